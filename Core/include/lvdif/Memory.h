@@ -1,0 +1,30 @@
+// Memory estimates made before allocating. Large allocations in the core ask
+// requireMemory() first, so an absurd request fails with a message naming the
+// size asked and the limit instead of exhausting the machine.
+#pragma once
+
+#include <cstdint>
+#include <string>
+
+namespace lvdif
+{
+
+/// Bytes the process may still use: the LVDIF_MEMORY_LIMIT environment
+/// variable (bytes, or with a K/M/G suffix) if set, otherwise 90% of the
+/// MemAvailable line of /proc/meminfo (or 8 GiB where that cannot be read).
+std::uint64_t memoryLimitBytes();
+
+/// Throws Error(OutOfMemory) when bytes > limit. `what` names the allocation.
+void requireMemory(std::uint64_t bytes, const std::string& what, std::uint64_t limit);
+void requireMemory(std::uint64_t bytes, const std::string& what);
+
+/// Multiplies with overflow detection; throws Error(OutOfMemory) on overflow.
+std::uint64_t checkedMultiply(std::uint64_t a, std::uint64_t b, const std::string& what);
+
+/// "1.50 GiB" style formatting for messages and benchmark tables.
+std::string formatBytes(std::uint64_t bytes);
+
+/// Resident set size of this process in bytes (from /proc/self/statm), 0 if unknown.
+std::uint64_t residentMemoryBytes();
+
+} // namespace lvdif

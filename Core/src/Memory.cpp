@@ -1,0 +1,110 @@
+#include "lvdif/Memory.h"
+
+#include "lvdif/Error.h"
+
+#include <cstdio>
+#include <cstdlib>
+#include <fstream>
+#include <sstream>
+#include <string>
+#include <unistd.h>
+
+namespace lvdif
+{
+
+static std::uint64_t parseSize(const char* text)
+{
+  char* end = nullptr;
+  const double v = std::strtod(text, &end);
+  if (end == text || v <= 0)
+  {
+    return 0;
+  }
+  double mult = 1;
+  switch (*end)
+  {
+    case 'k': case 'K': mult = 1024.0; break;
+    case 'm': case 'M': mult = 1024.0 * 1024; break;
+    case 'g': case 'G': mult = 1024.0 * 1024 * 1024; break;
+    case 't': case 'T': mult = 1024.0 * 1024 * 1024 * 1024; break;
+    default: break;
+  }
+  return static_cast<std::uint64_t>(v * mult);
+}
+
+std::uint64_t memoryLimitBytes()
+{
+  if (const char* env = std::getenv("LVDIF_MEMORY_LIMIT"))
+  {
+    if (std::uint64_t v = parseSize(env))
+    {
+      return v;
+    }
+  }
+  std::ifstream meminfo("/proc/meminfo");
+  std::string key;
+  std::uint64_t kb = 0;
+  std::string unit;
+  while (meminfo >> key >> kb >> unit)
+  {
+    if (key == "MemAvailable:")
+    {
+      return kb * 1024 / 10 * 9;
+    }
+  }
+  return 8ull << 30;
+}
+
+std::string formatBytes(std::uint64_t bytes)
+{
+  const char* units[] = { "B", "KiB", "MiB", "GiB", "TiB", "PiB", "EiB" };
+  double v = static_cast<double>(bytes);
+  int u = 0;
+  while (v >= 1024.0 && u < 6)
+  {
+    v /= 1024.0;
+    ++u;
+  }
+  char buf[64];
+  std::snprintf(buf, sizeof(buf), u == 0 ? "%.0f %s" : "%.2f %s", v, units[u]);
+  return buf;
+}
+
+void requireMemory(std::uint64_t bytes, const std::string& what, std::uint64_t limit)
+{
+  if (bytes > limit)
+  {
+    throw Error(ErrorCode::OutOfMemory,
+      what + " needs " + formatBytes(bytes) + ", more than the limit of " + formatBytes(limit) +
+        " (set LVDIF_MEMORY_LIMIT to change it)");
+  }
+}
+
+void requireMemory(std::uint64_t bytes, const std::string& what)
+{
+  requireMemory(bytes, what, memoryLimitBytes());
+}
+
+std::uint64_t checkedMultiply(std::uint64_t a, std::uint64_t b, const std::string& what)
+{
+  if (a != 0 && b > UINT64_MAX / a)
+  {
+    throw Error(ErrorCode::OutOfMemory, what + " size overflows 64 bits");
+  }
+  return a * b;
+}
+
+std::uint64_t residentMemoryBytes()
+{
+  std::FILE* f = std::fopen("/proc/self/statm", "r");
+  if (!f)
+  {
+    return 0;
+  }
+  unsigned long size = 0, resident = 0;
+  const int n = std::fscanf(f, "%lu %lu", &size, &resident);
+  std::fclose(f);
+  return n == 2 ? static_cast<std::uint64_t>(resident) * static_cast<std::uint64_t>(sysconf(_SC_PAGESIZE)) : 0;
+}
+
+} // namespace lvdif

@@ -1,0 +1,84 @@
+#include "lvdif/SdfDictionary.h"
+
+#include "lvdif/Error.h"
+
+#include <cmath>
+#include <sstream>
+
+namespace lvdif
+{
+
+SdfDictionary::SdfDictionary(const SdfDictionaryParams& params)
+  : Params(params)
+{
+  require(std::isfinite(params.stepA) && params.stepA > 0, "SDF dictionary: stepA must be > 0");
+  require(std::isfinite(params.stepB) && params.stepB >= params.stepA,
+    "SDF dictionary: stepB must be >= stepA");
+  require(std::isfinite(params.groupALimit) && params.groupALimit >= params.stepA,
+    "SDF dictionary: groupALimit must be >= stepA");
+
+  this->HalfA = std::llround(params.groupALimit / params.stepA);
+  // Group B needs at least one key per side; 2*HalfA+1 + 2 <= 65536.
+  if (2 * this->HalfA + 3 > KeyCount)
+  {
+    std::ostringstream msg;
+    msg << "SDF dictionary: Group A [-" << params.groupALimit << ", " << params.groupALimit
+        << "] in steps of " << params.stepA << " needs " << (2 * this->HalfA + 1)
+        << " keys and leaves none for Group B (65,536 keys in all)";
+    throw Error(ErrorCode::InvalidArgument, msg.str());
+  }
+  const double aMax = static_cast<double>(this->HalfA) * params.stepA;
+  this->FirstB = (std::floor(aMax / params.stepB + 1e-9) + 1.0) * params.stepB;
+  const std::int64_t bKeys = KeyCount - (2 * this->HalfA + 1);
+  const std::int64_t bNeg = bKeys / 2;       // 28,766 by default
+  const std::int64_t bPos = bKeys - bNeg;    // 28,767 by default (one more: 65,536 is even)
+  this->ZeroKey = bNeg + this->HalfA;
+  this->InvStepA = 1.0 / params.stepA;
+  this->InvStepB = 1.0 / params.stepB;
+  this->EncodeALimit = 0.5 * (aMax + this->FirstB);
+
+  this->Table.resize(KeyCount);
+  for (std::int64_t k = 0; k < KeyCount; ++k)
+  {
+    const std::int64_t off = k - this->ZeroKey; // signed distance from zero in keys
+    const std::int64_t m = off < 0 ? -off : off;
+    double v;
+    if (m <= this->HalfA)
+    {
+      v = static_cast<double>(m) * params.stepA;
+    }
+    else
+    {
+      v = this->FirstB + static_cast<double>(m - this->HalfA - 1) * params.stepB;
+    }
+    this->Table[static_cast<size_t>(k)] = static_cast<float>(off < 0 ? -v : v);
+  }
+  (void)bPos;
+  // Distinctness is what makes the order usable: refuse steps that float cannot resolve.
+  for (int k = 1; k < KeyCount; ++k)
+  {
+    if (!(this->Table[k] > this->Table[k - 1]))
+    {
+      std::ostringstream msg;
+      msg << "SDF dictionary: values " << this->Table[k - 1] << " and " << this->Table[k]
+          << " collapse in float precision; use larger steps";
+      throw Error(ErrorCode::InvalidArgument, msg.str());
+    }
+  }
+}
+
+double SdfDictionary::maxErrorInRange() const
+{
+  const double aMax = static_cast<double>(this->HalfA) * this->Params.stepA;
+  double gap = 0.5 * (this->FirstB - aMax);
+  double e = this->maxErrorGroupB();
+  return gap > e ? gap : e;
+}
+
+const SdfDictionary& defaultSdfDictionary()
+{
+  static const SdfDictionary dictionary;
+  return dictionary;
+}
+
+} // namespace lvdif

@@ -1,0 +1,92 @@
+#include "lvdif/ColorDictionary.h"
+#include "lvdif/Error.h"
+
+#include <gtest/gtest.h>
+
+using namespace lvdif;
+
+static Rgba colourOf(std::uint32_t i)
+{
+  return Rgba::unpack(i * 2654435761u | 0xff000000u);
+}
+
+TEST(ColorDictionary, DeduplicatesAndKeepsDefault)
+{
+  ColorDictionary d(Rgba{ 10, 20, 30, 255 });
+  EXPECT_EQ(d.size(), 1u);
+  EXPECT_EQ(d.add(Rgba{ 10, 20, 30, 255 }), 0);
+  const ColorKey red = d.add(Rgba{ 255, 0, 0, 255 });
+  EXPECT_EQ(red, 1);
+  EXPECT_EQ(d.add(Rgba{ 255, 0, 0, 255 }), red);
+  EXPECT_EQ(d.add(Rgba{ 255, 0, 0, 128 }), 2); // alpha distinguishes colours
+  EXPECT_EQ(d.size(), 3u);
+  ColorKey k = 99;
+  EXPECT_TRUE(d.find(Rgba{ 255, 0, 0, 255 }, k));
+  EXPECT_EQ(k, red);
+  EXPECT_FALSE(d.find(Rgba{ 1, 2, 3, 4 }, k));
+  EXPECT_THROW(d.color(3), Error);
+}
+
+TEST(ColorDictionary, CapacityAndFullError)
+{
+  ColorDictionary d(Rgba{ 0, 0, 0, 0 });
+  std::uint32_t i = 1;
+  while (!d.full())
+  {
+    d.add(Rgba::unpack(i++));
+  }
+  EXPECT_EQ(d.size(), ColorDictionary::Capacity);
+  EXPECT_EQ(d.color(65534).packed(), 65534u);
+  // an existing colour still resolves
+  EXPECT_EQ(d.add(Rgba::unpack(77)), 77);
+  try
+  {
+    d.add(Rgba{ 1, 2, 3, 200 });
+    FAIL() << "a full dictionary must refuse a new colour";
+  }
+  catch (const Error& e)
+  {
+    EXPECT_EQ(e.code(), ErrorCode::DictionaryFull);
+    EXPECT_NE(std::string(e.what()).find("full"), std::string::npos);
+  }
+  EXPECT_EQ(d.size(), ColorDictionary::Capacity);
+}
+
+TEST(ColorDictionary, NearestPolicyWhenFull)
+{
+  ColorDictionary d(Rgba{ 0, 0, 0, 255 }, ColorDictionary::FullPolicy::Nearest);
+  for (std::uint32_t i = 1; d.size() < ColorDictionary::Capacity; ++i)
+  {
+    d.add(colourOf(i));
+  }
+  const Rgba probe{ 3, 1, 2, 255 };
+  ColorKey dummy;
+  ASSERT_FALSE(d.find(probe, dummy));
+  const ColorKey k = d.add(probe);
+  // brute-force nearest as the oracle
+  long best = 1L << 40;
+  ColorKey bestKey = 0;
+  for (std::size_t i = 0; i < d.size(); ++i)
+  {
+    const Rgba c = d[static_cast<ColorKey>(i)];
+    const long dr = c.r - 3, dg = c.g - 1, db = c.b - 2, da = c.a - 255;
+    const long dist = dr * dr + dg * dg + db * db + da * da;
+    if (dist < best)
+    {
+      best = dist;
+      bestKey = static_cast<ColorKey>(i);
+    }
+  }
+  EXPECT_EQ(k, bestKey);
+  EXPECT_EQ(d.size(), ColorDictionary::Capacity);
+}
+
+TEST(ColorDictionary, AssignValidates)
+{
+  ColorDictionary d;
+  EXPECT_THROW(d.assign({}), Error);
+  EXPECT_THROW(d.assign({ Rgba{ 1, 1, 1, 1 }, Rgba{ 1, 1, 1, 1 } }), Error);
+  d.assign({ Rgba{ 1, 1, 1, 1 }, Rgba{ 2, 2, 2, 2 } });
+  EXPECT_EQ(d.size(), 2u);
+  EXPECT_EQ(d.add(Rgba{ 2, 2, 2, 2 }), 1);
+}

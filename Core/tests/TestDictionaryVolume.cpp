@@ -1,0 +1,211 @@
+#include "lvdif/AnalyticFill.h"
+#include "lvdif/DictionaryVolume.h"
+#include "lvdif/Error.h"
+#include "lvdif/Memory.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <random>
+
+using namespace lvdif;
+
+static VolumeOptions opts(std::int64_t x, std::int64_t y, std::int64_t z, int edge = 32)
+{
+  VolumeOptions o;
+  o.dims = { x, y, z };
+  o.chunkEdge = edge;
+  return o;
+}
+
+TEST(DictionaryVolume, StartsOutsideAndSparse)
+{
+  DictionaryVolume v(opts(100, 70, 33));
+  EXPECT_EQ(v.chunkCounts()[0], 4);
+  EXPECT_EQ(v.chunkCounts()[1], 3);
+  EXPECT_EQ(v.chunkCounts()[2], 2);
+  EXPECT_EQ(v.expandedChunkCount(), 0);
+  EXPECT_FLOAT_EQ(v.sdf(99, 69, 32), 8.0f);
+  EXPECT_EQ(v.get(0, 0, 0), v.outsideVoxel());
+}
+
+TEST(DictionaryVolume, RandomWritesReadBackAndCollapseKeepsEveryVoxel)
+{
+  DictionaryVolume v(opts(70, 45, 38, 16)); // not multiples of the chunk edge
+  std::mt19937 rng(3);
+  std::vector<Voxel> shadow(static_cast<size_t>(v.voxelCount()), v.outsideVoxel());
+  auto idx = [&](std::int64_t x, std::int64_t y, std::int64_t z) { return x + 70 * (y + 45 * z); };
+  for (int i = 0; i < 20000; ++i)
+  {
+    const std::int64_t x = rng() % 70, y = rng() % 45, z = rng() % 38;
+    const Voxel val{ static_cast<SdfKey>(rng() % 65536), static_cast<ColorKey>(rng() % 7) };
+    v.set(x, y, z, val);
+    shadow[idx(x, y, z)] = val;
+  }
+  auto checkAll = [&] {
+    for (std::int64_t z = 0; z < 38; ++z)
+      for (std::int64_t y = 0; y < 45; ++y)
+        for (std::int64_t x = 0; x < 70; ++x)
+          ASSERT_EQ(v.get(x, y, z), shadow[idx(x, y, z)]) << x << " " << y << " " << z;
+  };
+  checkAll();
+  // make a few chunks uniform again by writing one value across them
+  for (std::int64_t id : { 0, 5, 17 })
+  {
+    const VoxelBox b = v.chunkBox(id);
+    for (std::int64_t z = b.lo[2]; z <= b.hi[2]; ++z)
+      for (std::int64_t y = b.lo[1]; y <= b.hi[1]; ++y)
+        for (std::int64_t x = b.lo[0]; x <= b.hi[0]; ++x)
+        {
+          v.set(x, y, z, Voxel{ 1234, 2 });
+          shadow[idx(x, y, z)] = Voxel{ 1234, 2 };
+        }
+  }
+  const std::int64_t before = v.expandedChunkCount();
+  const std::int64_t collapsed = v.collapseUniformChunks();
+  EXPECT_EQ(collapsed, 3);
+  EXPECT_EQ(v.expandedChunkCount(), before - 3);
+  EXPECT_TRUE(v.isUniform(0));
+  EXPECT_EQ(v.uniformValue(17), (Voxel{ 1234, 2 }));
+  checkAll();
+  // expanding a uniform chunk reproduces its value everywhere
+  v.expandChunk(5);
+  checkAll();
+}
+
+TEST(DictionaryVolume, PartialEdgeChunkCollapsesDespitePadding)
+{
+  DictionaryVolume v(opts(40, 40, 40));
+  const std::int64_t last = v.chunkId(1, 1, 1); // owns voxels 32..39 only
+  Voxel* d = v.expandChunk(last);
+  (void)d;
+  for (std::int64_t z = 32; z < 40; ++z)
+    for (std::int64_t y = 32; y < 40; ++y)
+      for (std::int64_t x = 32; x < 40; ++x) v.set(x, y, z, Voxel{ 5, 5 });
+  EXPECT_TRUE(v.tryCollapseChunk(last));
+  EXPECT_EQ(v.get(39, 39, 39), (Voxel{ 5, 5 }));
+}
+
+TEST(DictionaryVolume, DirtyFlagsAndRanges)
+{
+  DictionaryVolume v(opts(64, 64, 64));
+  EXPECT_TRUE(v.takeDirtyChunks().empty());
+  v.setSdf(40, 1, 1, -2.5f);
+  v.setSdf(1, 40, 40, 0.25f);
+  const auto dirty = v.takeDirtyChunks();
+  ASSERT_EQ(dirty.size(), 2u);
+  EXPECT_EQ(dirty[0], v.chunkOf(40, 1, 1));
+  EXPECT_EQ(dirty[1], v.chunkOf(1, 40, 40));
+  EXPECT_TRUE(v.takeDirtyChunks().empty());
+  auto r = v.chunkRange(v.chunkOf(40, 1, 1));
+  EXPECT_FLOAT_EQ(v.decode(r.first), -2.5f);
+  EXPECT_FLOAT_EQ(v.decode(r.second), 8.0f);
+  v.setSdf(40, 1, 1, 1.0f); // the range shrinks after an overwrite
+  r = v.chunkRange(v.chunkOf(40, 1, 1));
+  EXPECT_FLOAT_EQ(v.decode(r.first), 1.0f);
+  VoxelBox box;
+  box.lo = { 30, 30, 30 };
+  box.hi = { 33, 33, 33 };
+  v.markDirty(box);
+  EXPECT_EQ(v.takeDirtyChunks().size(), 8u);
+  EXPECT_EQ(v.chunksInBox(box).size(), 8u);
+}
+
+TEST(DictionaryVolume, BandSaturatesDistances)
+{
+  DictionaryVolume v(opts(8, 8, 8, 8));
+  v.setSdf(1, 1, 1, 100.0f);
+  v.setSdf(2, 2, 2, -100.0f);
+  v.setSdf(3, 3, 3, 3.25f);
+  EXPECT_FLOAT_EQ(v.sdf(1, 1, 1), 8.0f);
+  EXPECT_FLOAT_EQ(v.sdf(2, 2, 2), -8.0f);
+  EXPECT_FLOAT_EQ(v.sdf(3, 3, 3), 3.25f);
+  VolumeOptions full = opts(8, 8, 8, 8);
+  full.bandWidth = std::numeric_limits<float>::infinity();
+  DictionaryVolume f(full);
+  f.setSdf(1, 1, 1, 100.04f);
+  EXPECT_NEAR(f.sdf(1, 1, 1), 100.0f, 1e-3);
+  f.setSdf(1, 1, 1, 1e9f);
+  EXPECT_FLOAT_EQ(f.sdf(1, 1, 1), 2880.7f);
+}
+
+TEST(DictionaryVolume, RefusesAbsurdSizesBeforeAllocating)
+{
+  const std::uint64_t rssBefore = residentMemoryBytes();
+  try
+  {
+    VolumeOptions o = opts(1 << 20, 1 << 20, 1 << 20, 4);
+    DictionaryVolume v(o);
+    FAIL() << "a 2^60-voxel volume must be refused";
+  }
+  catch (const Error& e)
+  {
+    EXPECT_EQ(e.code(), ErrorCode::OutOfMemory);
+    EXPECT_NE(std::string(e.what()).find("limit"), std::string::npos) << e.what();
+  }
+  EXPECT_THROW(DictionaryVolume(opts(0, 5, 5)), Error);
+  EXPECT_THROW(DictionaryVolume(opts(-4, 5, 5)), Error);
+  EXPECT_THROW(DictionaryVolume(opts((1 << 20) + 1, 5, 5)), Error);
+  EXPECT_THROW(DictionaryVolume(opts(5, 5, 5, 24)), Error); // not a power of two
+  // A 4096^3 dense request on a 24 GiB machine is refused by the estimate.
+  VolumeOptions dense = opts(4096, 4096, 4096);
+  const std::uint64_t need = DictionaryVolume::denseBytes(dense);
+  EXPECT_GE(need, 256ull << 30);
+  EXPECT_THROW(requireMemory(need, "dense 4096^3 volume", 24ull << 30), Error);
+  // and the volume's own expansion honours a small limit
+  VolumeOptions small = opts(256, 256, 256);
+  small.memoryLimit = 1 << 20; // 1 MiB: the table fits, eight 128 KiB chunks do not
+  DictionaryVolume v(small);
+  EXPECT_THROW(
+    {
+      for (std::int64_t id = 0; id < v.chunkCount(); ++id) v.expandChunk(id);
+    },
+    Error);
+  EXPECT_LT(residentMemoryBytes(), rssBefore + (64ull << 20));
+}
+
+TEST(DictionaryVolume, Sparse2048SphereWithinMemory)
+{
+  // 2048^3 = 8.6e9 voxels (34 GiB dense at 4 bytes). A sphere of radius 300
+  // with band 8 touches only the chunks of its shell.
+  VolumeOptions o = opts(2048, 2048, 2048);
+  DictionaryVolume v(o);
+  const double c = 1024.3, r = 300.0;
+  fillFromFunction(v, sphereSdf(c, c, c, r));
+  const std::uint64_t bytes = v.memoryBytes();
+  EXPECT_LT(bytes, 512ull << 20) << formatBytes(bytes); // the bound stated in docs/DICTIONARY.md
+  // far voxels saturate; near voxels keep their distance
+  EXPECT_FLOAT_EQ(v.sdf(0, 0, 0), 8.0f);
+  EXPECT_FLOAT_EQ(v.sdf(1024, 1024, 1024), -8.0f);
+  const float d = v.sdf(1024 + 302, 1024, 1024);
+  EXPECT_NEAR(d, std::sqrt((1326 - c) * (1326 - c) + 2 * 0.09) - r, 5e-4);
+  // 64-bit indexing: the far corner
+  EXPECT_FLOAT_EQ(v.sdf(2047, 2047, 2047), 8.0f);
+  v.setSdf(2047, 2047, 2047, -1.5f);
+  v.setSdf(5, 2000, 1000, 0.5f);
+  EXPECT_FLOAT_EQ(v.sdf(2047, 2047, 2047), -1.5f);
+  EXPECT_FLOAT_EQ(v.sdf(5, 2000, 1000), 0.5f);
+  EXPECT_LT(v.memoryBytes(), bytes + (1u << 20));
+}
+
+TEST(DictionaryVolume, CloneIsDeep)
+{
+  DictionaryVolume v(opts(50, 50, 50));
+  fillFromFunction(v, sphereSdf(25, 25, 25, 15));
+  v.colors().add(Rgba{ 1, 2, 3, 4 });
+  auto c = v.clone();
+  for (std::int64_t z = 0; z < 50; z += 3)
+    for (std::int64_t y = 0; y < 50; y += 2)
+      for (std::int64_t x = 0; x < 50; ++x) ASSERT_EQ(c->get(x, y, z), v.get(x, y, z));
+  EXPECT_EQ(c->colors().size(), 2u);
+  c->setSdf(25, 25, 25, 3.0f);
+  EXPECT_FLOAT_EQ(v.sdf(25, 25, 25), -8.0f);
+}
+
+TEST(DictionaryVolume, BoundsCheckedAccess)
+{
+  DictionaryVolume v(opts(10, 10, 10, 8));
+  EXPECT_THROW(v.at(10, 0, 0), Error);
+  EXPECT_THROW(v.at(-1, 0, 0), Error);
+  EXPECT_NO_THROW(v.at(9, 9, 9));
+}
