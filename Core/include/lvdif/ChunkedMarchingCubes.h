@@ -53,6 +53,7 @@ struct MarchingCubesOptions
   bool computeColors = true;
   /// Per-triangle 8 corner colour keys + cell index (dictionary volume only).
   bool cornerColors = true;
+  /// Not used yet: there is no CUDA path so far; everything runs on the CPU.
   Device device = Device::Cpu;
 };
 
