@@ -31,25 +31,36 @@ void ChunkedMarchingCubes::Impl::init(const Index3& dims, const MarchingCubesOpt
   }
   Options = options;
   Dims = dims;
+  VoxelBox all;
   for (int a = 0; a < 3; ++a)
   {
+    require(options.gridOffset[a] >= 0, "marching cubes: negative grid offset");
     Cells[a] = dims[a] - 1;
-    Counts[a] = (Cells[a] + options.chunkEdge - 1) / options.chunkEdge;
+    all.hi[a] = Cells[a] - 1;
     InvSpacing[a] = static_cast<float>(1.0 / Spacing[a]);
+  }
+  Region = options.cellRegion.empty() ? all : options.cellRegion.intersect(all);
+  require(!Region.empty(), "marching cubes: the cell region lies outside the grid");
+  const std::int64_t E = options.chunkEdge;
+  for (int a = 0; a < 3; ++a)
+  {
+    const Index3& off = options.gridOffset;
+    First[a] = (Region.lo[a] + off[a]) / E;
+    Counts[a] = (Region.hi[a] + off[a]) / E - First[a] + 1;
   }
   Total = Counts[0] * Counts[1] * Counts[2];
 }
 
 VoxelBox ChunkedMarchingCubes::Impl::cells(std::int64_t id) const
 {
-  const Index3 c = coord(id);
+  const Index3 c = globalCoord(id);
   VoxelBox b;
   for (int a = 0; a < 3; ++a)
   {
-    b.lo[a] = c[a] * Options.chunkEdge;
-    b.hi[a] = std::min(b.lo[a] + Options.chunkEdge, Cells[a]) - 1;
+    b.lo[a] = c[a] * Options.chunkEdge - Options.gridOffset[a];
+    b.hi[a] = b.lo[a] + Options.chunkEdge - 1;
   }
-  return b;
+  return b.intersect(Region);
 }
 
 VoxelBox ChunkedMarchingCubes::Impl::points(std::int64_t id) const
@@ -128,7 +139,7 @@ const Index3& ChunkedMarchingCubes::pointDims() const { return P->Dims; }
 const Index3& ChunkedMarchingCubes::chunkCounts() const { return P->Counts; }
 std::int64_t ChunkedMarchingCubes::chunkCount() const { return P->Total; }
 VoxelBox ChunkedMarchingCubes::chunkCells(std::int64_t id) const { return P->cells(id); }
-Index3 ChunkedMarchingCubes::chunkCoord(std::int64_t id) const { return P->coord(id); }
+Index3 ChunkedMarchingCubes::chunkCoord(std::int64_t id) const { return P->globalCoord(id); }
 bool ChunkedMarchingCubes::chunkIsEmpty(std::int64_t id) const { return P->empty(id); }
 
 std::unique_ptr<ChunkedMarchingCubes::ChunkInput> ChunkedMarchingCubes::gather(std::int64_t id) const
@@ -221,7 +232,7 @@ ChunkMesh ChunkedMarchingCubes::extractChunk(std::int64_t id) const
   {
     ChunkMesh m;
     m.chunkId = id;
-    m.chunkCoord = P->coord(id);
+    m.chunkCoord = P->globalCoord(id);
     m.cells = P->cells(id);
     return m;
   }
@@ -288,11 +299,12 @@ std::vector<std::int64_t> ChunkedMarchingCubes::chunksAffectedBy(const VoxelBox&
   Index3 lo, hi;
   for (int a = 0; a < 3; ++a)
   {
-    const std::int64_t c0 = std::max<std::int64_t>(changed.lo[a] - 2, 0);
-    const std::int64_t c1 = std::min<std::int64_t>(changed.hi[a] + 1, P->Cells[a] - 1);
+    const std::int64_t c0 = std::max<std::int64_t>(changed.lo[a] - 2, P->Region.lo[a]);
+    const std::int64_t c1 = std::min<std::int64_t>(changed.hi[a] + 1, P->Region.hi[a]);
     if (c1 < c0) return ids;
-    lo[a] = c0 / P->Options.chunkEdge;
-    hi[a] = c1 / P->Options.chunkEdge;
+    const std::int64_t off = P->Options.gridOffset[a];
+    lo[a] = (c0 + off) / P->Options.chunkEdge - P->First[a];
+    hi[a] = (c1 + off) / P->Options.chunkEdge - P->First[a];
   }
   for (std::int64_t z = lo[2]; z <= hi[2]; ++z)
     for (std::int64_t y = lo[1]; y <= hi[1]; ++y)

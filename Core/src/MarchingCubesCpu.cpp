@@ -57,7 +57,7 @@ struct Sweep
     const std::int64_t p[3] = { x, y, z };
     Vec3f pos;
     for (int k = 0; k < 3; ++k)
-      pos[k] = mc::coord(impl.Origin[k], impl.Spacing[k], p[k], k == axis ? t : 0.0f);
+      pos[k] = mc::coord(impl.Origin[k], impl.Spacing[k], p[k] + impl.Options.gridOffset[k], k == axis ? t : 0.0f);
     const std::uint32_t id = static_cast<std::uint32_t>(out.points.size());
     out.points.push_back(pos);
     out.edgeIds.push_back(3 * static_cast<std::uint64_t>(x + impl.Dims[0] * (y + impl.Dims[1] * z)) +
@@ -88,10 +88,11 @@ ChunkMesh meshChunkCpu(const ChunkedMarchingCubes::Impl& impl, const ChunkedMarc
   const MarchingCubesTables& T = marchingCubesTables();
   ChunkMesh out;
   out.chunkId = in.chunkId;
-  out.chunkCoord = impl.coord(in.chunkId);
+  out.chunkCoord = impl.globalCoord(in.chunkId);
   out.cells = in.cells;
   Sweep s{ impl, in, out, impl.Options.computeNormals, !in.colors.empty() };
   const bool keys = !in.colorKeys.empty();
+  const bool cells = impl.wantsTriangleCells();
   const float iso = impl.Options.isoValue;
   const VoxelBox& c = in.cells;
   const std::int64_t ex = c.hi[0] - c.lo[0] + 1, ey = c.hi[1] - c.lo[1] + 1, ez = c.hi[2] - c.lo[2] + 1;
@@ -170,17 +171,17 @@ ChunkMesh meshChunkCpu(const ChunkedMarchingCubes::Impl& impl, const ChunkedMarc
         {
           out.triangles.push_back({ ev[tri[3 * t]], ev[tri[3 * t + 1]], ev[tri[3 * t + 2]] });
         }
-        if (keys)
+        if (cells)
         {
           const std::int64_t x = c.lo[0] + i, y = c.lo[1] + j, zc = z - 1;
-          std::array<ColorKey, 8> k;
-          for (int q = 0; q < 8; ++q)
-            k[q] = in.colorKeys[in.local(x + (q & 1), y + ((q >> 1) & 1), zc + ((q >> 2) & 1))];
           const std::int64_t cell = x + impl.Dims[0] * (y + impl.Dims[1] * zc);
-          for (int t = 0; t < nt; ++t)
+          out.triangleCells.insert(out.triangleCells.end(), static_cast<std::size_t>(nt), cell);
+          if (keys)
           {
-            out.cornerColors.push_back(k);
-            out.triangleCells.push_back(cell);
+            std::array<ColorKey, 8> k;
+            for (int q = 0; q < 8; ++q)
+              k[q] = in.colorKeys[in.local(x + (q & 1), y + ((q >> 1) & 1), zc + ((q >> 2) & 1))];
+            out.cornerColors.insert(out.cornerColors.end(), static_cast<std::size_t>(nt), k);
           }
         }
       }

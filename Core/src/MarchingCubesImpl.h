@@ -18,6 +18,8 @@ public:
   Index3 Dims{ 0, 0, 0 }; // points
   Index3 Cells{ 0, 0, 0 };
   Index3 Counts{ 0, 0, 0 };
+  VoxelBox Region;              // the cells meshed (options.cellRegion clipped, or all)
+  Index3 First{ 0, 0, 0 };      // global coordinate of local chunk (0,0,0)
   std::int64_t Total = 0;
   std::array<double, 3> Origin{ 0, 0, 0 }, Spacing{ 1, 1, 1 };
   std::array<float, 3> InvSpacing{ 1, 1, 1 };
@@ -25,9 +27,16 @@ public:
   std::vector<float> MinValue, MaxValue;
 
   void init(const Index3& dims, const MarchingCubesOptions& options);
+  /// Local chunk coordinate (0..Counts-1).
   Index3 coord(std::int64_t id) const
   {
     return { id % Counts[0], (id / Counts[0]) % Counts[1], id / (Counts[0] * Counts[1]) };
+  }
+  /// Global chunk coordinate (chunk grid aligned with options.gridOffset).
+  Index3 globalCoord(std::int64_t id) const
+  {
+    const Index3 c = coord(id);
+    return { c[0] + First[0], c[1] + First[1], c[2] + First[2] };
   }
   VoxelBox cells(std::int64_t id) const;
   /// The points the chunk's cells use: cells.lo .. cells.hi + 1.
@@ -36,6 +45,7 @@ public:
   bool empty(std::int64_t id) const;
   bool wantsColors() const { return Options.computeColors && (Volume || GridColors); }
   bool wantsCornerColors() const { return Options.cornerColors && Volume; }
+  bool wantsTriangleCells() const { return Options.cornerColors; }
 };
 
 /// The CPU kernel: meshes one gathered chunk.

@@ -51,8 +51,21 @@ struct MarchingCubesOptions
   bool computeNormals = true;
   /// Per-vertex colours (dictionary volume, or a float grid given with colours).
   bool computeColors = true;
-  /// Per-triangle 8 corner colour keys + cell index (dictionary volume only).
+  /// Per triangle: the cell it came from (triangleCells), and on a dictionary
+  /// volume the 8 corner colour keys (cornerColors).
   bool cornerColors = true;
+  /// Only the cells in this box (grid point indices of the cells' lowest
+  /// corners) are meshed; empty (the default) means every cell. Used by the
+  /// VTK filter to mesh only the cells a piece owns while reading its ghost
+  /// points for the gradients.
+  VoxelBox cellRegion;
+  /// When the grid is one piece of a larger volume: the global index of the
+  /// grid's point (0,0,0). Chunks are aligned to multiples of chunkEdge in global
+  /// cell indices and positions are origin + spacing * (global index + t), the
+  /// origin being that of the global point 0, so every piece computes the same
+  /// chunk grid and bit-identical shared vertices. chunkCoord() is global; chunk
+  /// ids, edgeIds and triangleCells stay local to the grid.
+  Index3 gridOffset{ 0, 0, 0 };
   /// Not used yet: there is no CUDA path so far; everything runs on the CPU.
   Device device = Device::Cpu;
 };
@@ -79,8 +92,8 @@ struct ChunkMesh
   /// Per triangle (empty unless cornerColors on a dictionary volume): colour keys
   /// of the cell's 8 corners, corner c at offset (c&1, (c>>1)&1, (c>>2)&1).
   std::vector<std::array<ColorKey, 8>> cornerColors;
-  /// Per triangle (with cornerColors): linear point index x + nx*(y + ny*z) of the
-  /// cell's corner 0 (its lowest point).
+  /// Per triangle (with cornerColors, any source): linear point index
+  /// x + nx*(y + ny*z) of the cell's corner 0 (its lowest point) in the grid.
   std::vector<std::int64_t> triangleCells;
 
   bool empty() const { return this->triangles.empty(); }
