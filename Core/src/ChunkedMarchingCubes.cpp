@@ -73,18 +73,22 @@ VoxelBox ChunkedMarchingCubes::Impl::points(std::int64_t id) const
 void ChunkedMarchingCubes::Impl::rangeOfPoints(std::int64_t id, float& lo, float& hi) const
 {
   const VoxelBox b = points(id);
-  lo = std::numeric_limits<float>::infinity();
-  hi = -lo;
+  float l = std::numeric_limits<float>::infinity(), h = -l;
   for (std::int64_t z = b.lo[2]; z <= b.hi[2]; ++z)
     for (std::int64_t y = b.lo[1]; y <= b.hi[1]; ++y)
     {
       const float* row = Grid.data + Grid.geometry.index(b.lo[0], y, z);
-      for (std::int64_t i = 0, n = b.hi[0] - b.lo[0] + 1; i < n; ++i)
+      const std::int64_t n = b.hi[0] - b.lo[0] + 1;
+      // simd reduction: plain std::min/max over floats is not vectorized (NaN rules)
+#pragma omp simd reduction(min : l) reduction(max : h)
+      for (std::int64_t i = 0; i < n; ++i)
       {
-        lo = std::min(lo, row[i]);
-        hi = std::max(hi, row[i]);
+        l = row[i] < l ? row[i] : l;
+        h = row[i] > h ? row[i] : h;
       }
     }
+  lo = l;
+  hi = h;
 }
 
 bool ChunkedMarchingCubes::Impl::empty(std::int64_t id) const
@@ -227,6 +231,23 @@ ChunkMesh ChunkedMarchingCubes::mesh(const ChunkInput& input) const { return mes
 
 ChunkMesh ChunkedMarchingCubes::extractChunk(std::int64_t id) const
 {
+  if (!P->Volume)
+  {
+    // float grid: mesh the caller's array in place (no copy)
+    require(id >= 0 && id < P->Total, "marching cubes: chunk id " + std::to_string(id) + " out of range");
+    ChunkInput view;
+    view.chunkId = id;
+    view.cells = P->cells(id);
+    view.size = P->Dims;
+    view.view = P->Grid.data;
+    view.viewColors = P->wantsColors() ? P->GridColors : nullptr;
+    if (!P->empty(id)) return this->mesh(view);
+    ChunkMesh m;
+    m.chunkId = id;
+    m.chunkCoord = P->globalCoord(id);
+    m.cells = view.cells;
+    return m;
+  }
   const auto in = this->gather(id);
   if (!in)
   {

@@ -20,9 +20,11 @@ struct Sweep
   const ChunkedMarchingCubes::Impl& impl;
   const ChunkedMarchingCubes::ChunkInput& in;
   ChunkMesh& out;
-  bool normals, colors;
+  bool normals;
+  const float* values;
+  const Rgba* colors; // null without colours
 
-  float value(std::int64_t x, std::int64_t y, std::int64_t z) const { return in.values[in.local(x, y, z)]; }
+  float value(std::int64_t x, std::int64_t y, std::int64_t z) const { return values[in.local(x, y, z)]; }
 
   void gradientAt(std::int64_t x, std::int64_t y, std::int64_t z, float g[3]) const
   {
@@ -73,7 +75,7 @@ struct Sweep
     }
     if (colors)
     {
-      const Rgba c0 = in.colors[in.local(x, y, z)], c1 = in.colors[in.local(q[0], q[1], q[2])];
+      const Rgba c0 = colors[in.local(x, y, z)], c1 = colors[in.local(q[0], q[1], q[2])];
       out.colors.push_back(Rgba{ mc::lerpChannel(c0.r, c1.r, t), mc::lerpChannel(c0.g, c1.g, t),
         mc::lerpChannel(c0.b, c1.b, t), mc::lerpChannel(c0.a, c1.a, t) });
     }
@@ -90,7 +92,7 @@ ChunkMesh meshChunkCpu(const ChunkedMarchingCubes::Impl& impl, const ChunkedMarc
   out.chunkId = in.chunkId;
   out.chunkCoord = impl.globalCoord(in.chunkId);
   out.cells = in.cells;
-  Sweep s{ impl, in, out, impl.Options.computeNormals, !in.colors.empty() };
+  Sweep s{ impl, in, out, impl.Options.computeNormals, in.valueData(), in.colorData() };
   const bool keys = !in.colorKeys.empty();
   const bool cells = impl.wantsTriangleCells();
   const float iso = impl.Options.isoValue;
@@ -109,7 +111,7 @@ ChunkMesh meshChunkCpu(const ChunkedMarchingCubes::Impl& impl, const ChunkedMarc
     bool any = false, all = true;
     for (std::int64_t j = 0; j < py; ++j)
     {
-      const float* row = in.values.data() + in.local(c.lo[0], c.lo[1] + j, z);
+      const float* row = s.values + in.local(c.lo[0], c.lo[1] + j, z);
       for (std::int64_t i = 0; i < px; ++i)
       {
         const std::uint8_t f = row[i] >= iso;

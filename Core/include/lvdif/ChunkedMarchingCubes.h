@@ -155,6 +155,13 @@ public:
     std::vector<float> values;
     std::vector<Rgba> colors;         // empty without colours
     std::vector<ColorKey> colorKeys;  // empty unless corner colours (dictionary)
+    /// Instead of the copies above: the source's own float grid (and colours),
+    /// lo = 0 and size = the grid's dims. extractChunk() meshes float grids
+    /// this way (no copy); gather() always copies (the worker's snapshot).
+    const float* view = nullptr;
+    const Rgba* viewColors = nullptr;
+    const float* valueData() const { return view ? view : values.data(); }
+    const Rgba* colorData() const { return view ? viewColors : (colors.empty() ? nullptr : colors.data()); }
     std::int64_t local(std::int64_t x, std::int64_t y, std::int64_t z) const
     {
       return (x - lo[0]) + size[0] * ((y - lo[1]) + size[1] * (z - lo[2]));
