@@ -49,6 +49,8 @@ void ChunkedMarchingCubes::Impl::init(const Index3& dims, const MarchingCubesOpt
     Counts[a] = (Region.hi[a] + off[a]) / E - First[a] + 1;
   }
   Total = Counts[0] * Counts[1] * Counts[2];
+  Options.device = resolveDevice(options.device);
+  if (Options.device == Device::Cuda) Cuda = makeMarchingCubesCudaState();
 }
 
 VoxelBox ChunkedMarchingCubes::Impl::cells(std::int64_t id) const
@@ -154,6 +156,16 @@ std::unique_ptr<ChunkedMarchingCubes::ChunkInput> ChunkedMarchingCubes::gather(s
     return nullptr;
   }
   auto in = std::make_unique<ChunkInput>();
+  P->gatherInto(id, *in);
+  return in;
+}
+
+void ChunkedMarchingCubes::Impl::gatherInto(std::int64_t id, ChunkInput& input) const
+{
+  const Impl* P = this;
+  ChunkInput* in = &input;
+  in->view = nullptr;
+  in->viewColors = nullptr;
   in->chunkId = id;
   in->cells = P->cells(id);
   Index3 hi;
@@ -165,10 +177,11 @@ std::unique_ptr<ChunkedMarchingCubes::ChunkInput> ChunkedMarchingCubes::gather(s
     in->size[a] = hi[a] - in->lo[a] + 1;
   }
   const std::size_t n = static_cast<std::size_t>(in->size[0] * in->size[1] * in->size[2]);
+  // resize keeps the capacity of a reused input (no page faults, no zeroing)
   in->values.resize(n);
   const bool colors = P->wantsColors(), keys = P->wantsCornerColors();
-  if (colors) in->colors.resize(n);
-  if (keys) in->colorKeys.resize(n);
+  in->colors.resize(colors ? n : 0);
+  in->colorKeys.resize(keys ? n : 0);
   const std::int64_t nx = in->size[0];
   if (P->Volume)
   {
@@ -224,10 +237,12 @@ std::unique_ptr<ChunkedMarchingCubes::ChunkInput> ChunkedMarchingCubes::gather(s
         }
       }
   }
-  return in;
 }
 
-ChunkMesh ChunkedMarchingCubes::mesh(const ChunkInput& input) const { return meshChunkCpu(*P, input); }
+ChunkMesh ChunkedMarchingCubes::mesh(const ChunkInput& input) const
+{
+  return P->Cuda ? meshChunkCuda(*P, input) : meshChunkCpu(*P, input);
+}
 
 ChunkMesh ChunkedMarchingCubes::extractChunk(std::int64_t id) const
 {
@@ -248,8 +263,8 @@ ChunkMesh ChunkedMarchingCubes::extractChunk(std::int64_t id) const
     m.cells = view.cells;
     return m;
   }
-  const auto in = this->gather(id);
-  if (!in)
+  require(id >= 0 && id < P->Total, "marching cubes: chunk id " + std::to_string(id) + " out of range");
+  if (P->empty(id))
   {
     ChunkMesh m;
     m.chunkId = id;
@@ -257,7 +272,10 @@ ChunkMesh ChunkedMarchingCubes::extractChunk(std::int64_t id) const
     m.cells = P->cells(id);
     return m;
   }
-  return this->mesh(*in);
+  // one decoded copy per thread, reused from chunk to chunk
+  thread_local ChunkInput in;
+  P->gatherInto(id, in);
+  return this->mesh(in);
 }
 
 std::vector<ChunkMesh> ChunkedMarchingCubes::extractChunks(const std::vector<std::int64_t>& ids,
@@ -270,7 +288,8 @@ std::vector<ChunkMesh> ChunkedMarchingCubes::extractChunks(const std::vector<std
   const std::int64_t n = static_cast<std::int64_t>(ids.size());
   Error firstError(ErrorCode::InvalidArgument, "");
   std::atomic<bool> failed{ false };
-#pragma omp parallel for schedule(dynamic, 1)
+  // the GPU path meshes one chunk at a time (its kernels fill the device)
+#pragma omp parallel for schedule(dynamic, 1) if (!P->Cuda)
   for (std::int64_t i = 0; i < n; ++i)
   {
     if (cancelled.load(std::memory_order_relaxed) || failed.load(std::memory_order_relaxed)) continue;
@@ -352,6 +371,7 @@ std::vector<std::int64_t> ChunkedMarchingCubes::chunksAffectedByStorageChunks(
 void ChunkedMarchingCubes::invalidate(const VoxelBox& changed)
 {
   if (P->Volume) return; // chunkRange of the volume is always exact
+  if (P->Cuda) dropMarchingCubesCudaGrid(*P->Cuda);
   for (std::int64_t id : this->chunksAffectedBy(changed))
   {
     P->rangeOfPoints(id, P->MinValue[id], P->MaxValue[id]);

@@ -3,14 +3,21 @@
 
 #include "lvdif/ChunkedMarchingCubes.h"
 
+#include <memory>
 #include <vector>
 
 namespace lvdif
 {
 
+/// Device buffers of the CUDA path (MarchingCubes.cu); opaque elsewhere.
+struct MarchingCubesCudaState;
+
 class ChunkedMarchingCubes::Impl
 {
 public:
+  /// Set at construction when options.device resolves to Cuda: mesh() runs on
+  /// the GPU (one chunk at a time, serialized by the state's mutex).
+  std::shared_ptr<MarchingCubesCudaState> Cuda;
   MarchingCubesOptions Options;
   const DictionaryVolume* Volume = nullptr;
   FloatGridView Grid;
@@ -43,6 +50,8 @@ public:
   VoxelBox points(std::int64_t id) const;
   void rangeOfPoints(std::int64_t id, float& lo, float& hi) const;
   bool empty(std::int64_t id) const;
+  /// ChunkedMarchingCubes::gather into an existing input (its buffers reused).
+  void gatherInto(std::int64_t id, ChunkedMarchingCubes::ChunkInput& in) const;
   bool wantsColors() const { return Options.computeColors && (Volume || GridColors); }
   bool wantsCornerColors() const { return Options.cornerColors && Volume; }
   bool wantsTriangleCells() const { return Options.cornerColors; }
@@ -50,5 +59,14 @@ public:
 
 /// The CPU kernel: meshes one gathered chunk.
 ChunkMesh meshChunkCpu(const ChunkedMarchingCubes::Impl& impl, const ChunkedMarchingCubes::ChunkInput& in);
+
+/// The CUDA kernels (same function as meshChunkCpu: bit-identical vertices,
+/// the same triangles; vertex order differs). Inputs that view the float grid
+/// read the grid's device copy (uploaded at the first call); gathered inputs
+/// are uploaded. Stubs in nocuda/ throw (never called: see resolveDevice).
+std::shared_ptr<MarchingCubesCudaState> makeMarchingCubesCudaState();
+ChunkMesh meshChunkCuda(const ChunkedMarchingCubes::Impl& impl, const ChunkedMarchingCubes::ChunkInput& in);
+/// Forgets the float grid's device copy (the grid changed: re-uploaded at the next call).
+void dropMarchingCubesCudaGrid(MarchingCubesCudaState& state);
 
 } // namespace lvdif

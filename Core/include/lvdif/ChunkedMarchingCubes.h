@@ -66,7 +66,8 @@ struct MarchingCubesOptions
   /// chunk grid and bit-identical shared vertices. chunkCoord() is global; chunk
   /// ids, edgeIds and triangleCells stay local to the grid.
   Index3 gridOffset{ 0, 0, 0 };
-  /// Not used yet: there is no CUDA path so far; everything runs on the CPU.
+  /// Cpu, or Cuda/Auto: the GPU when one can be used (resolveDevice), one chunk
+  /// at a time; same vertices bit for bit and the same triangles as the CPU.
   Device device = Device::Cpu;
 };
 
