@@ -282,6 +282,14 @@ std::vector<ChunkMesh> ChunkedMarchingCubes::extractChunks(const std::vector<std
   Interrupter& interrupter) const
 {
   interrupter.start("marching cubes");
+  if (P->Cuda && !P->Volume)
+  {
+    // float grid on the GPU: batches of chunks over the grid's device copy
+    std::vector<ChunkMesh> meshes = meshChunksCuda(*P, ids, interrupter);
+    interrupter.progress(1.0);
+    interrupter.end();
+    return meshes;
+  }
   std::vector<ChunkMesh> out(ids.size());
   std::atomic<bool> cancelled{ false };
   std::atomic<std::int64_t> done{ 0 };

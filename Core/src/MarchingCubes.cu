@@ -1,32 +1,38 @@
-// Chunked marching cubes on CUDA, one chunk at a time, without atomics:
-//  1. classify: per point a 3-bit mask of its cut edges (+x, +y, +z inside the
+// Chunked marching cubes on CUDA, a batch of chunks at a time, without atomics:
+//  1. classify: per point a 3-bit mask of its cut edges (+x, +y, +z inside its
 //     chunk) and their count; per cell its case and triangle count;
-//  2. exclusive prefix sums (CUB) give each point its first vertex id and each
-//     cell its first triangle;
+//  2. exclusive prefix sums (CUB) over the batch give each point its first
+//     vertex and each cell its first triangle (a chunk's are contiguous);
 //  3. generate: one thread per point writes its vertices, one per cell its
-//     triangles (a cut edge's vertex id = its point's first id + the rank of
-//     the axis among the point's cut edges).
+//     triangles (a cut edge's vertex = its point's first vertex + the rank of
+//     the axis among the point's cut edges);
+//  4. one copy back per array for the whole batch, split into chunk meshes.
 // The output is deterministic; the vertex arithmetic is MarchingCubesVertex.h
 // (explicitly rounded on the device), so vertices equal the CPU's bit for bit
 // and the triangles are the same (the CPU numbers vertices in sweep order,
-// this path in point order: compare by edge id).
+// this path in point order: compare by edge id). Kernels: MarchingCubesKernels.cuh.
 #include "MarchingCubesImpl.h"
-#include "MarchingCubesVertex.h"
+#include "MarchingCubesKernels.cuh"
 
 #include "lvdif/CudaCheck.cuh"
 #include "lvdif/MarchingCubesTables.h"
 
 #include <cub/cub.cuh>
 
+#include <cstring>
 #include <mutex>
 
 namespace lvdif
 {
 namespace
 {
+using mccuda::Box;
+using mccuda::Out;
 
-__constant__ std::uint8_t cTriCount[256];
-__constant__ std::int8_t cTris[256][16];
+/// Points (and cells) per batch: ~12 bytes of classification per point and
+/// per cell, so a batch needs well under 2 GB of device memory.
+constexpr long long BatchPoints = 64ll << 20;
+constexpr int BatchChunks = 65535; // gridDim.y
 
 template <typename T>
 struct Buffer
@@ -49,168 +55,7 @@ struct Buffer
   }
 };
 
-/// What the kernels read: a box of values (grid coordinates) and the chunk's cells.
-struct Box
-{
-  const float* values;
-  const Rgba* colors;    // same layout, or null
-  const ColorKey* keys;  // same layout, or null
-  long long lo[3], size[3];
-  long long c0[3];       // first cell
-  long long ex, ey, ez;  // cells per axis
-  long long dims[3];     // grid points (borders of the gradient)
-  long long goff[3];     // MarchingCubesOptions::gridOffset
-  double origin[3], spacing[3];
-  float inv[3];
-  float iso;
-  bool normals, cells;
-
-  __device__ long long local(long long x, long long y, long long z) const
-  {
-    return (x - lo[0]) + size[0] * ((y - lo[1]) + size[1] * (z - lo[2]));
-  }
-  __device__ float v(long long x, long long y, long long z) const { return values[local(x, y, z)]; }
-  __device__ void gradient(const long long p[3], float g[3]) const
-  {
-    const float mid = v(p[0], p[1], p[2]);
-    for (int a = 0; a < 3; ++a)
-    {
-      long long q[3] = { p[0], p[1], p[2] };
-      float l = mid, h = mid;
-      if (p[a] > 0)
-      {
-        q[a] = p[a] - 1;
-        l = v(q[0], q[1], q[2]);
-      }
-      if (p[a] < dims[a] - 1)
-      {
-        q[a] = p[a] + 1;
-        h = v(q[0], q[1], q[2]);
-      }
-      g[a] = mc::gradient(l, mid, h, p[a], dims[a], inv[a]);
-    }
-  }
-};
-
-struct Out
-{
-  float* points;
-  unsigned long long* edgeIds;
-  float* normals;
-  Rgba* colors;
-  unsigned int* tris;
-  long long* cells;
-  ColorKey* keys;
-};
-
-__global__ void classifyPoints(Box b, std::uint8_t* masks, unsigned int* counts, long long n)
-{
-  const long long p = static_cast<long long>(blockIdx.x) * blockDim.x + threadIdx.x;
-  if (p >= n) return;
-  const long long px = b.ex + 1, py = b.ey + 1;
-  const long long i = p % px, j = (p / px) % py, k = p / (px * py);
-  const long long x = b.c0[0] + i, y = b.c0[1] + j, z = b.c0[2] + k;
-  const bool a = b.v(x, y, z) >= b.iso;
-  unsigned m = 0;
-  if (i < b.ex && (b.v(x + 1, y, z) >= b.iso) != a) m |= 1u;
-  if (j < b.ey && (b.v(x, y + 1, z) >= b.iso) != a) m |= 2u;
-  if (k < b.ez && (b.v(x, y, z + 1) >= b.iso) != a) m |= 4u;
-  masks[p] = static_cast<std::uint8_t>(m);
-  counts[p] = __popc(m);
-}
-
-__global__ void classifyCells(Box b, std::uint8_t* cases, unsigned int* counts, long long n)
-{
-  const long long c = static_cast<long long>(blockIdx.x) * blockDim.x + threadIdx.x;
-  if (c >= n) return;
-  const long long i = c % b.ex, j = (c / b.ex) % b.ey, k = c / (b.ex * b.ey);
-  const long long x = b.c0[0] + i, y = b.c0[1] + j, z = b.c0[2] + k;
-  int cs = 0;
-  for (int q = 0; q < 8; ++q)
-    cs |= (b.v(x + (q & 1), y + ((q >> 1) & 1), z + ((q >> 2) & 1)) >= b.iso) << q;
-  cases[c] = static_cast<std::uint8_t>(cs);
-  counts[c] = cTriCount[cs];
-}
-
-__global__ void generateVertices(Box b, const std::uint8_t* masks, const unsigned int* first, Out o, long long n)
-{
-  const long long p = static_cast<long long>(blockIdx.x) * blockDim.x + threadIdx.x;
-  if (p >= n || masks[p] == 0) return;
-  const long long px = b.ex + 1, py = b.ey + 1;
-  const long long pt[3] = { b.c0[0] + p % px, b.c0[1] + (p / px) % py, b.c0[2] + p / (px * py) };
-  unsigned int id = first[p];
-  float g0[3];
-  if (b.normals) b.gradient(pt, g0);
-  for (int axis = 0; axis < 3; ++axis)
-  {
-    if (!((masks[p] >> axis) & 1u)) continue;
-    long long q[3] = { pt[0], pt[1], pt[2] };
-    q[axis] += 1;
-    const float va = b.v(pt[0], pt[1], pt[2]), vb = b.v(q[0], q[1], q[2]);
-    const float t = mc::edgeT(b.iso, va, vb);
-    for (int k = 0; k < 3; ++k)
-      o.points[3 * id + k] = mc::coord(b.origin[k], b.spacing[k], pt[k] + b.goff[k], k == axis ? t : 0.0f);
-    o.edgeIds[id] = 3ull * static_cast<unsigned long long>(pt[0] + b.dims[0] * (pt[1] + b.dims[1] * pt[2])) +
-      static_cast<unsigned long long>(axis);
-    if (b.normals)
-    {
-      float g1[3];
-      b.gradient(q, g1);
-      float nx = mc::lerp(g0[0], g1[0], t), ny = mc::lerp(g0[1], g1[1], t), nz = mc::lerp(g0[2], g1[2], t);
-      mc::normalize(nx, ny, nz);
-      o.normals[3 * id] = nx;
-      o.normals[3 * id + 1] = ny;
-      o.normals[3 * id + 2] = nz;
-    }
-    if (b.colors)
-    {
-      const Rgba c0 = b.colors[b.local(pt[0], pt[1], pt[2])], c1 = b.colors[b.local(q[0], q[1], q[2])];
-      Rgba c;
-      c.r = mc::lerpChannel(c0.r, c1.r, t);
-      c.g = mc::lerpChannel(c0.g, c1.g, t);
-      c.b = mc::lerpChannel(c0.b, c1.b, t);
-      c.a = mc::lerpChannel(c0.a, c1.a, t);
-      o.colors[id] = c;
-    }
-    ++id;
-  }
-}
-
-__global__ void generateTriangles(Box b, const std::uint8_t* cases, const unsigned int* firstTri,
-  const std::uint8_t* masks, const unsigned int* firstVertex, Out o, long long n)
-{
-  const long long c = static_cast<long long>(blockIdx.x) * blockDim.x + threadIdx.x;
-  if (c >= n) return;
-  const int cs = cases[c];
-  const int nt = cTriCount[cs];
-  if (nt == 0) return;
-  const long long px = b.ex + 1, py = b.ey + 1;
-  const long long i = c % b.ex, j = (c / b.ex) % b.ey, k = c / (b.ex * b.ey);
-  const unsigned int t0 = firstTri[c];
-  for (int t = 0; t < nt; ++t)
-    for (int corner = 0; corner < 3; ++corner)
-    {
-      const int e = cTris[cs][3 * t + corner];
-      const int axis = e >> 2, u = (axis + 1) % 3, v = (axis + 2) % 3;
-      long long off[3] = { 0, 0, 0 };
-      off[u] = (e >> 1) & 1;
-      off[v] = e & 1;
-      const long long pp = (i + off[0]) + px * ((j + off[1]) + py * (k + off[2]));
-      o.tris[3 * (t0 + t) + corner] = firstVertex[pp] + __popc(masks[pp] & ((1u << axis) - 1u));
-    }
-  if (!b.cells) return;
-  const long long x = b.c0[0] + i, y = b.c0[1] + j, z = b.c0[2] + k;
-  for (int t = 0; t < nt; ++t)
-  {
-    o.cells[t0 + t] = x + b.dims[0] * (y + b.dims[1] * z);
-    if (b.keys)
-      for (int q = 0; q < 8; ++q)
-        o.keys[8 * (t0 + t) + q] = b.keys[b.local(x + (q & 1), y + ((q >> 1) & 1), z + ((q >> 2) & 1))];
-  }
-}
-
 unsigned int blocks(long long n) { return static_cast<unsigned int>((n + 255) / 256); }
-
 } // namespace
 
 struct MarchingCubesCudaState
@@ -224,7 +69,10 @@ struct MarchingCubesCudaState
   Buffer<float> boxValues;
   Buffer<Rgba> boxColors;
   Buffer<ColorKey> boxKeys;
-  // classification and scans
+  // batch description, classification and scans
+  Buffer<Box> boxes;
+  Buffer<long long> pBase, cBase;
+  Buffer<unsigned int> vBase, tBase;
   Buffer<std::uint8_t> masks, cases;
   Buffer<unsigned int> vcount, vfirst, tcount, tfirst;
   Buffer<unsigned char> scratch;
@@ -245,13 +93,169 @@ struct MarchingCubesCudaState
   }
 };
 
+namespace
+{
+template <typename T>
+void download(std::vector<T>& dst, const void* src, std::size_t n)
+{
+  dst.resize(n);
+  if (n) LVDIF_CUDA_CHECK(cudaMemcpy(dst.data(), src, n * sizeof(T), cudaMemcpyDeviceToHost));
+}
+
+/// The fields every chunk's box shares; values/colors/keys and the chunk's cells are set by the caller.
+Box commonBox(const ChunkedMarchingCubes::Impl& impl)
+{
+  Box b{};
+  for (int a = 0; a < 3; ++a)
+  {
+    b.dims[a] = impl.Dims[a];
+    b.goff[a] = impl.Options.gridOffset[a];
+    b.origin[a] = impl.Origin[a];
+    b.spacing[a] = impl.Spacing[a];
+    b.inv[a] = impl.InvSpacing[a];
+  }
+  b.iso = impl.Options.isoValue;
+  b.normals = impl.Options.computeNormals;
+  b.cells = impl.wantsTriangleCells();
+  return b;
+}
+
+void setCells(Box& b, const VoxelBox& cells)
+{
+  for (int a = 0; a < 3; ++a) b.c0[a] = cells.lo[a];
+  b.ex = cells.hi[0] - cells.lo[0] + 1;
+  b.ey = cells.hi[1] - cells.lo[1] + 1;
+  b.ez = cells.hi[2] - cells.lo[2] + 1;
+}
+
+/// The float grid's device copy, uploaded once (invalidate() drops it).
+void ensureGrid(const ChunkedMarchingCubes::Impl& impl, MarchingCubesCudaState& S)
+{
+  if (S.hostGrid == impl.Grid.data) return;
+  S.hostGrid = nullptr;
+  const std::int64_t n = impl.Dims[0] * impl.Dims[1] * impl.Dims[2];
+  const bool colors = impl.wantsColors();
+  if (static_cast<std::uint64_t>(n) * (sizeof(float) + (colors ? sizeof(Rgba) : 0)) > cuda::freeMemory())
+    throw Error(ErrorCode::OutOfMemory, "marching cubes: the float grid does not fit in device memory");
+  S.grid.reserve(static_cast<std::size_t>(n));
+  LVDIF_CUDA_CHECK(cudaMemcpy(S.grid.p, impl.Grid.data, n * sizeof(float), cudaMemcpyHostToDevice));
+  if (colors)
+  {
+    S.gridColors.reserve(static_cast<std::size_t>(n));
+    LVDIF_CUDA_CHECK(cudaMemcpy(S.gridColors.p, impl.GridColors, n * sizeof(Rgba), cudaMemcpyHostToDevice));
+  }
+  S.hostGrid = impl.Grid.data;
+}
+
+/// Meshes one batch of chunks whose boxes point at device data.
+std::vector<ChunkMesh> runBatch(const ChunkedMarchingCubes::Impl& impl, MarchingCubesCudaState& S,
+  const std::vector<Box>& boxes, const std::vector<std::int64_t>& ids)
+{
+  const int n = static_cast<int>(boxes.size());
+  std::vector<long long> pb(n + 1, 0), cb(n + 1, 0);
+  long long maxP = 1, maxC = 1;
+  for (int i = 0; i < n; ++i)
+  {
+    const Box& b = boxes[i];
+    const long long np = (b.ex + 1) * (b.ey + 1) * (b.ez + 1), nc = b.ex * b.ey * b.ez;
+    pb[i + 1] = pb[i] + np;
+    cb[i + 1] = cb[i] + nc;
+    maxP = std::max(maxP, np);
+    maxC = std::max(maxC, nc);
+  }
+  const long long P = pb[n], C = cb[n];
+  S.boxes.reserve(n);
+  S.pBase.reserve(n + 1);
+  S.cBase.reserve(n + 1);
+  S.vBase.reserve(n + 1);
+  S.tBase.reserve(n + 1);
+  S.masks.reserve(P);
+  S.vcount.reserve(P + 1);
+  S.vfirst.reserve(P + 1);
+  S.cases.reserve(C);
+  S.tcount.reserve(C + 1);
+  S.tfirst.reserve(C + 1);
+  LVDIF_CUDA_CHECK(cudaMemcpy(S.boxes.p, boxes.data(), n * sizeof(Box), cudaMemcpyHostToDevice));
+  LVDIF_CUDA_CHECK(cudaMemcpy(S.pBase.p, pb.data(), (n + 1) * sizeof(long long), cudaMemcpyHostToDevice));
+  LVDIF_CUDA_CHECK(cudaMemcpy(S.cBase.p, cb.data(), (n + 1) * sizeof(long long), cudaMemcpyHostToDevice));
+  LVDIF_CUDA_CHECK(cudaMemset(S.vcount.p + P, 0, sizeof(unsigned int)));
+  LVDIF_CUDA_CHECK(cudaMemset(S.tcount.p + C, 0, sizeof(unsigned int)));
+  mccuda::classifyPoints<<<dim3(blocks(maxP), n), 256>>>(S.boxes.p, S.pBase.p, S.masks.p, S.vcount.p);
+  LVDIF_CUDA_CHECK(cudaGetLastError());
+  mccuda::classifyCells<<<dim3(blocks(maxC), n), 256>>>(S.boxes.p, S.cBase.p, S.cases.p, S.tcount.p);
+  LVDIF_CUDA_CHECK(cudaGetLastError());
+  S.scan(S.vcount.p, S.vfirst.p, P + 1);
+  S.scan(S.tcount.p, S.tfirst.p, C + 1);
+  mccuda::chunkBases<<<blocks(n + 1), 256>>>(S.pBase.p, S.cBase.p, S.vfirst.p, S.tfirst.p, S.vBase.p, S.tBase.p, n);
+  LVDIF_CUDA_CHECK(cudaGetLastError());
+  std::vector<unsigned int> vb, tb;
+  download(vb, S.vBase.p, n + 1);
+  download(tb, S.tBase.p, n + 1);
+
+  std::vector<ChunkMesh> out(n);
+  for (int i = 0; i < n; ++i)
+  {
+    out[i].chunkId = ids[i];
+    out[i].chunkCoord = impl.globalCoord(ids[i]);
+    out[i].cells = impl.cells(ids[i]);
+  }
+  const std::size_t NV = vb[n], NT = tb[n];
+  if (NT == 0) return out;
+  const bool normals = boxes[0].normals, colors = boxes[0].colors != nullptr, cells = boxes[0].cells,
+             keys = boxes[0].keys != nullptr;
+  S.points.reserve(3 * NV);
+  S.edgeIds.reserve(NV);
+  if (normals) S.normals.reserve(3 * NV);
+  if (colors) S.colors.reserve(NV);
+  S.tris.reserve(3 * NT);
+  if (cells) S.cells.reserve(NT);
+  if (keys) S.keys.reserve(8 * NT);
+  const Out o{ S.points.p, S.edgeIds.p, S.normals.p, S.colors.p, S.tris.p, S.cells.p, S.keys.p };
+  mccuda::generateVertices<<<dim3(blocks(maxP), n), 256>>>(S.boxes.p, S.pBase.p, S.masks.p, S.vfirst.p, o);
+  LVDIF_CUDA_CHECK(cudaGetLastError());
+  mccuda::generateTriangles<<<dim3(blocks(maxC), n), 256>>>(
+    S.boxes.p, S.pBase.p, S.cBase.p, S.vBase.p, S.cases.p, S.tfirst.p, S.masks.p, S.vfirst.p, o);
+  LVDIF_CUDA_CHECK(cudaGetLastError());
+
+  // one copy per array, then split by chunk (each chunk's range is contiguous)
+  std::vector<Vec3f> pts, nrm;
+  std::vector<std::uint64_t> eids;
+  std::vector<Rgba> col;
+  std::vector<std::array<std::uint32_t, 3>> tri;
+  std::vector<std::int64_t> tcell;
+  std::vector<std::array<ColorKey, 8>> tkeys;
+  download(pts, S.points.p, NV);
+  download(eids, S.edgeIds.p, NV);
+  download(tri, S.tris.p, NT);
+  if (normals) download(nrm, S.normals.p, NV);
+  if (colors) download(col, S.colors.p, NV);
+  if (cells) download(tcell, S.cells.p, NT);
+  if (keys) download(tkeys, S.keys.p, NT);
+#pragma omp parallel for schedule(dynamic, 4)
+  for (int i = 0; i < n; ++i)
+  {
+    ChunkMesh& m = out[i];
+    const std::size_t v0 = vb[i], v1 = vb[i + 1], t0 = tb[i], t1 = tb[i + 1];
+    if (t1 == t0) continue;
+    m.points.assign(pts.begin() + v0, pts.begin() + v1);
+    m.edgeIds.assign(eids.begin() + v0, eids.begin() + v1);
+    m.triangles.assign(tri.begin() + t0, tri.begin() + t1);
+    if (normals) m.normals.assign(nrm.begin() + v0, nrm.begin() + v1);
+    if (colors) m.colors.assign(col.begin() + v0, col.begin() + v1);
+    if (cells) m.triangleCells.assign(tcell.begin() + t0, tcell.begin() + t1);
+    if (keys) m.cornerColors.assign(tkeys.begin() + t0, tkeys.begin() + t1);
+  }
+  return out;
+}
+} // namespace
+
 std::shared_ptr<MarchingCubesCudaState> makeMarchingCubesCudaState()
 {
   static std::once_flag once;
   std::call_once(once, [] {
     const MarchingCubesTables& T = marchingCubesTables();
-    LVDIF_CUDA_CHECK(cudaMemcpyToSymbol(cTriCount, T.triangleCount, sizeof(T.triangleCount)));
-    LVDIF_CUDA_CHECK(cudaMemcpyToSymbol(cTris, T.triangles, sizeof(T.triangles)));
+    LVDIF_CUDA_CHECK(cudaMemcpyToSymbol(mccuda::cTriCount, T.triangleCount, sizeof(T.triangleCount)));
+    LVDIF_CUDA_CHECK(cudaMemcpyToSymbol(mccuda::cTris, T.triangles, sizeof(T.triangles)));
   });
   return std::make_shared<MarchingCubesCudaState>();
 }
@@ -260,133 +264,90 @@ ChunkMesh meshChunkCuda(const ChunkedMarchingCubes::Impl& impl, const ChunkedMar
 {
   MarchingCubesCudaState& S = *impl.Cuda;
   std::lock_guard<std::mutex> guard(S.lock);
-  ChunkMesh out;
-  out.chunkId = in.chunkId;
-  out.chunkCoord = impl.globalCoord(in.chunkId);
-  out.cells = in.cells;
-
-  Box b{};
-  const std::int64_t boxCount = in.size[0] * in.size[1] * in.size[2];
-  const bool colors = in.colorData() != nullptr;
-  if (in.view)
-  {
-    // the grid's device copy, uploaded once (invalidate() drops it)
-    if (S.hostGrid != in.view)
-    {
-      S.hostGrid = nullptr;
-      if (static_cast<std::uint64_t>(boxCount) * (sizeof(float) + (colors ? sizeof(Rgba) : 0)) > cuda::freeMemory())
-        throw Error(ErrorCode::OutOfMemory, "marching cubes: the float grid does not fit in device memory");
-      S.grid.reserve(static_cast<std::size_t>(boxCount));
-      LVDIF_CUDA_CHECK(cudaMemcpy(S.grid.p, in.view, boxCount * sizeof(float), cudaMemcpyHostToDevice));
-      if (colors)
-      {
-        S.gridColors.reserve(static_cast<std::size_t>(boxCount));
-        LVDIF_CUDA_CHECK(cudaMemcpy(S.gridColors.p, in.viewColors, boxCount * sizeof(Rgba), cudaMemcpyHostToDevice));
-      }
-      S.hostGrid = in.view;
-    }
-    b.values = S.grid.p;
-    b.colors = colors ? S.gridColors.p : nullptr;
-    b.keys = nullptr;
-  }
-  else
-  {
-    S.boxValues.reserve(static_cast<std::size_t>(boxCount));
-    LVDIF_CUDA_CHECK(cudaMemcpy(S.boxValues.p, in.values.data(), boxCount * sizeof(float), cudaMemcpyHostToDevice));
-    b.values = S.boxValues.p;
-    b.colors = nullptr;
-    b.keys = nullptr;
-    if (colors)
-    {
-      S.boxColors.reserve(static_cast<std::size_t>(boxCount));
-      LVDIF_CUDA_CHECK(cudaMemcpy(S.boxColors.p, in.colors.data(), boxCount * sizeof(Rgba), cudaMemcpyHostToDevice));
-      b.colors = S.boxColors.p;
-    }
-    if (!in.colorKeys.empty())
-    {
-      S.boxKeys.reserve(static_cast<std::size_t>(boxCount));
-      LVDIF_CUDA_CHECK(cudaMemcpy(S.boxKeys.p, in.colorKeys.data(), boxCount * sizeof(ColorKey), cudaMemcpyHostToDevice));
-      b.keys = S.boxKeys.p;
-    }
-  }
+  Box b = commonBox(impl);
+  setCells(b, in.cells);
   for (int a = 0; a < 3; ++a)
   {
     b.lo[a] = in.lo[a];
     b.size[a] = in.size[a];
-    b.c0[a] = in.cells.lo[a];
-    b.dims[a] = impl.Dims[a];
-    b.goff[a] = impl.Options.gridOffset[a];
-    b.origin[a] = impl.Origin[a];
-    b.spacing[a] = impl.Spacing[a];
-    b.inv[a] = impl.InvSpacing[a];
   }
-  b.ex = in.cells.hi[0] - in.cells.lo[0] + 1;
-  b.ey = in.cells.hi[1] - in.cells.lo[1] + 1;
-  b.ez = in.cells.hi[2] - in.cells.lo[2] + 1;
-  b.iso = impl.Options.isoValue;
-  b.normals = impl.Options.computeNormals;
-  b.cells = impl.wantsTriangleCells();
+  if (in.view)
+  {
+    ensureGrid(impl, S);
+    b.values = S.grid.p;
+    b.colors = in.viewColors ? S.gridColors.p : nullptr;
+  }
+  else
+  {
+    const std::size_t n = in.values.size();
+    S.boxValues.reserve(n);
+    LVDIF_CUDA_CHECK(cudaMemcpy(S.boxValues.p, in.values.data(), n * sizeof(float), cudaMemcpyHostToDevice));
+    b.values = S.boxValues.p;
+    if (!in.colors.empty())
+    {
+      S.boxColors.reserve(n);
+      LVDIF_CUDA_CHECK(cudaMemcpy(S.boxColors.p, in.colors.data(), n * sizeof(Rgba), cudaMemcpyHostToDevice));
+      b.colors = S.boxColors.p;
+    }
+    if (!in.colorKeys.empty())
+    {
+      S.boxKeys.reserve(n);
+      LVDIF_CUDA_CHECK(cudaMemcpy(S.boxKeys.p, in.colorKeys.data(), n * sizeof(ColorKey), cudaMemcpyHostToDevice));
+      b.keys = S.boxKeys.p;
+    }
+  }
+  return std::move(runBatch(impl, S, { b }, { in.chunkId })[0]);
+}
 
-  const long long np = (b.ex + 1) * (b.ey + 1) * (b.ez + 1), nc = b.ex * b.ey * b.ez;
-  S.masks.reserve(np);
-  S.vcount.reserve(np + 1);
-  S.vfirst.reserve(np + 1);
-  S.cases.reserve(nc);
-  S.tcount.reserve(nc + 1);
-  S.tfirst.reserve(nc + 1);
-  LVDIF_CUDA_CHECK(cudaMemset(S.vcount.p + np, 0, sizeof(unsigned int)));
-  LVDIF_CUDA_CHECK(cudaMemset(S.tcount.p + nc, 0, sizeof(unsigned int)));
-  classifyPoints<<<blocks(np), 256>>>(b, S.masks.p, S.vcount.p, np);
-  LVDIF_CUDA_CHECK(cudaGetLastError());
-  classifyCells<<<blocks(nc), 256>>>(b, S.cases.p, S.tcount.p, nc);
-  LVDIF_CUDA_CHECK(cudaGetLastError());
-  S.scan(S.vcount.p, S.vfirst.p, np + 1);
-  S.scan(S.tcount.p, S.tfirst.p, nc + 1);
-  unsigned int nv = 0, nt = 0;
-  LVDIF_CUDA_CHECK(cudaMemcpy(&nv, S.vfirst.p + np, sizeof(unsigned int), cudaMemcpyDeviceToHost));
-  LVDIF_CUDA_CHECK(cudaMemcpy(&nt, S.tfirst.p + nc, sizeof(unsigned int), cudaMemcpyDeviceToHost));
-  if (nt == 0) return out;
-
-  const bool keys = b.keys != nullptr;
-  S.points.reserve(3 * static_cast<std::size_t>(nv));
-  S.edgeIds.reserve(nv);
-  if (b.normals) S.normals.reserve(3 * static_cast<std::size_t>(nv));
-  if (b.colors) S.colors.reserve(nv);
-  S.tris.reserve(3 * static_cast<std::size_t>(nt));
-  if (b.cells) S.cells.reserve(nt);
-  if (keys) S.keys.reserve(8 * static_cast<std::size_t>(nt));
-  Out o{ S.points.p, S.edgeIds.p, S.normals.p, S.colors.p, S.tris.p, S.cells.p, S.keys.p };
-  generateVertices<<<blocks(np), 256>>>(b, S.masks.p, S.vfirst.p, o, np);
-  LVDIF_CUDA_CHECK(cudaGetLastError());
-  generateTriangles<<<blocks(nc), 256>>>(b, S.cases.p, S.tfirst.p, S.masks.p, S.vfirst.p, o, nc);
-  LVDIF_CUDA_CHECK(cudaGetLastError());
-
-  out.points.resize(nv);
-  out.edgeIds.resize(nv);
-  out.triangles.resize(nt);
-  LVDIF_CUDA_CHECK(cudaMemcpy(out.points.data(), S.points.p, nv * sizeof(Vec3f), cudaMemcpyDeviceToHost));
-  LVDIF_CUDA_CHECK(cudaMemcpy(out.edgeIds.data(), S.edgeIds.p, nv * sizeof(std::uint64_t), cudaMemcpyDeviceToHost));
-  LVDIF_CUDA_CHECK(cudaMemcpy(out.triangles.data(), S.tris.p, nt * sizeof(out.triangles[0]), cudaMemcpyDeviceToHost));
-  if (b.normals)
+std::vector<ChunkMesh> meshChunksCuda(const ChunkedMarchingCubes::Impl& impl, const std::vector<std::int64_t>& ids,
+  Interrupter& interrupter)
+{
+  MarchingCubesCudaState& S = *impl.Cuda;
+  std::lock_guard<std::mutex> guard(S.lock);
+  std::vector<ChunkMesh> out(ids.size());
+  std::vector<std::size_t> where;
+  std::vector<std::int64_t> batchIds;
+  std::vector<Box> batch;
+  long long points = 0;
+  Box common = commonBox(impl);
+  auto flush = [&] {
+    if (batch.empty()) return;
+    interrupter.checkInterrupt();
+    std::vector<ChunkMesh> meshes = runBatch(impl, S, batch, batchIds);
+    for (std::size_t k = 0; k < meshes.size(); ++k) out[where[k]] = std::move(meshes[k]);
+    batch.clear();
+    batchIds.clear();
+    where.clear();
+    points = 0;
+  };
+  for (std::size_t i = 0; i < ids.size(); ++i)
   {
-    out.normals.resize(nv);
-    LVDIF_CUDA_CHECK(cudaMemcpy(out.normals.data(), S.normals.p, nv * sizeof(Vec3f), cudaMemcpyDeviceToHost));
+    const std::int64_t id = ids[i];
+    require(id >= 0 && id < impl.Total, "marching cubes: chunk id " + std::to_string(id) + " out of range");
+    if (impl.empty(id))
+    {
+      out[i].chunkId = id;
+      out[i].chunkCoord = impl.globalCoord(id);
+      out[i].cells = impl.cells(id);
+      continue;
+    }
+    if (S.hostGrid != impl.Grid.data)
+    {
+      ensureGrid(impl, S);
+    }
+    Box b = common;
+    b.values = S.grid.p;
+    b.colors = impl.wantsColors() ? S.gridColors.p : nullptr;
+    for (int a = 0; a < 3; ++a) b.size[a] = impl.Dims[a];
+    setCells(b, impl.cells(id));
+    const long long np = (b.ex + 1) * (b.ey + 1) * (b.ez + 1);
+    if (!batch.empty() && (points + np > BatchPoints || static_cast<int>(batch.size()) == BatchChunks)) flush();
+    batch.push_back(b);
+    batchIds.push_back(id);
+    where.push_back(i);
+    points += np;
   }
-  if (b.colors)
-  {
-    out.colors.resize(nv);
-    LVDIF_CUDA_CHECK(cudaMemcpy(out.colors.data(), S.colors.p, nv * sizeof(Rgba), cudaMemcpyDeviceToHost));
-  }
-  if (b.cells)
-  {
-    out.triangleCells.resize(nt);
-    LVDIF_CUDA_CHECK(cudaMemcpy(out.triangleCells.data(), S.cells.p, nt * sizeof(std::int64_t), cudaMemcpyDeviceToHost));
-  }
-  if (keys)
-  {
-    out.cornerColors.resize(nt);
-    LVDIF_CUDA_CHECK(cudaMemcpy(out.cornerColors.data(), S.keys.p, nt * sizeof(out.cornerColors[0]), cudaMemcpyDeviceToHost));
-  }
+  flush();
   return out;
 }
 

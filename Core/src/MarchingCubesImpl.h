@@ -66,6 +66,10 @@ ChunkMesh meshChunkCpu(const ChunkedMarchingCubes::Impl& impl, const ChunkedMarc
 /// are uploaded. Stubs in nocuda/ throw (never called: see resolveDevice).
 std::shared_ptr<MarchingCubesCudaState> makeMarchingCubesCudaState();
 ChunkMesh meshChunkCuda(const ChunkedMarchingCubes::Impl& impl, const ChunkedMarchingCubes::ChunkInput& in);
+/// Float grids: meshes the given chunks in batches (one launch sequence and one
+/// copy back per batch instead of per chunk). One result per id, in order.
+std::vector<ChunkMesh> meshChunksCuda(const ChunkedMarchingCubes::Impl& impl, const std::vector<std::int64_t>& ids,
+  Interrupter& interrupter);
 /// Forgets the float grid's device copy (the grid changed: re-uploaded at the next call).
 void dropMarchingCubesCudaGrid(MarchingCubesCudaState& state);
 

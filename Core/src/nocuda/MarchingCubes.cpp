@@ -15,5 +15,10 @@ ChunkMesh meshChunkCuda(const ChunkedMarchingCubes::Impl&, const ChunkedMarching
 {
   throw Error(ErrorCode::DeviceFailure, "marching cubes: this build has no CUDA");
 }
+std::vector<ChunkMesh> meshChunksCuda(const ChunkedMarchingCubes::Impl&, const std::vector<std::int64_t>&, Interrupter&)
+{
+  throw Error(ErrorCode::DeviceFailure, "marching cubes: this build has no CUDA");
+}
+
 void dropMarchingCubesCudaGrid(MarchingCubesCudaState&) {}
 } // namespace lvdif
