@@ -71,7 +71,7 @@ void gpuTable(std::int64_t n, int repeats)
     rows.push_back({ std::to_string(n) + "^3", std::to_string(edge) + "^3", std::to_string(meshes), std::to_string(tris),
       bench::fmt(firstMs, 1), bench::fmt(full, 2), std::to_string(oneTris), bench::fmt(one, 3) });
   }
-  std::cout << "\nGPU (" << cuda::deviceName() << "), float grid, normals on, one chunk at a time\n";
+  std::cout << "\nGPU (" << cuda::deviceName() << "), float grid, normals on, batches of chunks (extractAll)\n";
   bench::printTable({ "volume", "MC chunk", "non-empty", "triangles", "first ms (upload)", "full ms", "one-chunk tris",
                       "one-chunk ms" },
     rows);
