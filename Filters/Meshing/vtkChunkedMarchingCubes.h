@@ -111,7 +111,9 @@ public:
 
   ///@{
   /// DEVICE_AUTO (default), DEVICE_CPU or DEVICE_CUDA (falls back to the CPU
-  /// without a GPU). The core has no CUDA marching cubes yet: all run on the CPU.
+  /// without a GPU). On the GPU the image is uploaded at every execution, then
+  /// meshed in batches of chunks; the result equals the CPU's (same vertices
+  /// bit for bit, same triangles; points numbered in another order).
   vtkSetClampMacro(Device, int, DEVICE_AUTO, DEVICE_CUDA);
   vtkGetMacro(Device, int);
   ///@}
