@@ -180,6 +180,8 @@ int main(int argc, char** argv)
   }
   if (!lvdif::cuda::available())
     gpuSizes.clear();
+  else
+    lvdif::cuda::freeMemory(); // creates the CUDA context outside the timings
   std::cout << "Sign voxel filters SVF1..SVF4 (T = 2, axis x, boundary outside), torus with injected wrong signs\n";
   std::cout << bench::machineDescription() << "\n\n";
   std::vector<int> sizes = cpuSizes;
