@@ -11,6 +11,7 @@
 
 #include <algorithm>
 #include <atomic>
+#include <cmath>
 #include <memory>
 #include <vector>
 
@@ -151,42 +152,103 @@ std::int64_t countChanged(const Dense& g, const std::vector<std::uint64_t>& befo
 }
 
 // ---- SVF2 / SVF3: coloured in-place sweeps, per-plane convergence ---------
+/// The neighbours of the voxels of one x-row (j, k) in the plane of the
+/// filter axis: neighbour q of voxel i is Row[q][i + Off[q]], or virtual (the
+/// boundary) when Row[q] is null or i + Off[q] leaves [0, nx). Hoisting the
+/// bounds tests out of the inner loop is what makes the CPU sweeps fast.
+struct RowNeighbours
+{
+  const float* Row[8];
+  int Off[8];
+  bool Interior; // every Row[q] present: only i = 0 and nx-1 need care
+
+  RowNeighbours(const Dense& g, int axis, std::int64_t j, std::int64_t k, bool diagonals)
+  {
+    int q = 0;
+    Interior = true;
+    for (int dv = -1; dv <= 1; ++dv)
+      for (int du = -1; du <= 1; ++du)
+      {
+        if ((du == 0 && dv == 0) || (!diagonals && du != 0 && dv != 0))
+          continue;
+        // (dj, dk, di) of this in-plane step for the axis
+        std::int64_t dj = 0, dk = 0;
+        int di = 0;
+        if (axis == 0)
+        {
+          dj = du;
+          dk = dv;
+        }
+        else if (axis == 1)
+        {
+          di = du;
+          dk = dv;
+        }
+        else
+        {
+          di = du;
+          dj = dv;
+        }
+        const std::int64_t jj = j + dj, kk = k + dk;
+        const bool in = jj >= 0 && kk >= 0 && jj < g.ny && kk < g.nz;
+        Row[q] = in ? g.d + g.nx * (jj + g.ny * kk) : nullptr;
+        Off[q] = di;
+        Interior = Interior && in;
+        ++q;
+      }
+  }
+
+  /// Signs and magnitudes of the neighbours of voxel i (n = 8 or 4).
+  void gather(std::int64_t i, std::int64_t nx, int n, int bsign, int* s, float* m) const
+  {
+    const bool safe = Interior && i > 0 && i + 1 < nx;
+    for (int q = 0; q < n; ++q)
+    {
+      const std::int64_t ii = i + Off[q];
+      if (safe || (Row[q] && ii >= 0 && ii < nx))
+      {
+        const float x = Row[q][ii];
+        s[q] = svf::signOf(x);
+        m[q] = std::fabs(x);
+      }
+      else
+      {
+        s[q] = bsign;
+        m[q] = 0.0f;
+      }
+    }
+  }
+};
+
 /// One sweep over colour `col` of the planes marked active; sets changed[a]
 /// for every plane where a voxel flipped.
 void sweep(const Dense& g, const SvfSetup& s, int filter, int col, const std::vector<std::uint8_t>& active,
   std::atomic<std::uint8_t>* changed)
 {
-  const AxisFrame f = g.frame(s.axis);
   const std::int64_t rows = g.ny * g.nz;
 #pragma omp parallel for schedule(static)
   for (std::int64_t r = 0; r < rows; ++r)
   {
     const std::int64_t j = r % g.ny, k = r / g.ny;
-    const std::int64_t base = g.nx * r;
-    // the coordinate of this row that is neither x nor (for axis x) the axis
     std::int64_t iStart = 0, iStep = 1;
     if (s.axis == 0)
     {
+      // (u, v) = (j, k): the whole row has one colour
       const int c = filter == 2 ? svf::colourSvf2(j, k) : svf::colourSvf3(j, k);
       if (c != col)
-      {
         continue;
-      }
     }
     else
     {
+      // u = i; the plane index a and v are fixed by the row
       const std::int64_t a = s.axis == 1 ? j : k;
       const std::int64_t v = s.axis == 1 ? k : j;
       if (!active[static_cast<std::size_t>(a)])
-      {
         continue;
-      }
       if (filter == 2)
       {
         if (((v & 1) << 1) != (col & 2))
-        {
           continue;
-        }
         iStart = col & 1;
       }
       else
@@ -195,38 +257,32 @@ void sweep(const Dense& g, const SvfSetup& s, int filter, int col, const std::ve
       }
       iStep = 2;
     }
+    const RowNeighbours nb(g, s.axis, j, k, filter == 2);
+    float* row = g.d + g.nx * r;
     for (std::int64_t i = iStart; i < g.nx; i += iStep)
     {
-      const std::int64_t a = s.axis == 0 ? i : (s.axis == 1 ? j : k);
-      if (!active[static_cast<std::size_t>(a)])
-      {
+      if (s.axis == 0 && !active[static_cast<std::size_t>(i)])
         continue;
-      }
-      const std::int64_t u = s.axis == 0 ? j : i;
-      const std::int64_t v = s.axis == 2 ? j : k;
-      const std::int64_t idx = base + i;
-      const float c = g.d[idx];
+      const float c = row[i];
       if (!svf::isFar(c, s.threshold))
-      {
         continue;
-      }
+      int sg[8];
+      float mg[8];
       bool flip;
       if (filter == 2)
       {
-        int sg[8];
-        float mg[8];
-        svf::gather8(g.d, idx, u, v, f, s.boundarySign, sg, mg);
+        nb.gather(i, g.nx, 8, s.boundarySign, sg, mg);
         flip = svf::svf2Flips(c, sg, mg, s.threshold);
       }
       else
       {
-        int sg[4];
-        svf::gather4(g.d, idx, u, v, f, s.boundarySign, sg);
+        nb.gather(i, g.nx, 4, s.boundarySign, sg, mg);
         flip = svf::svf3Flips(c, sg, s.threshold);
       }
       if (flip)
       {
-        g.d[idx] = -c;
+        row[i] = -c;
+        const std::int64_t a = s.axis == 0 ? i : (s.axis == 1 ? j : k);
         changed[a].store(1, std::memory_order_relaxed);
       }
     }
@@ -272,21 +328,24 @@ std::int64_t runPlanar(const Dense& g, const SvfSetup& s, int filter, Interrupte
 // ---- SVF4: one Jacobi pass through a flip mask ------------------------------
 std::int64_t runSvf4(const Dense& g, const SvfSetup& s, Interrupter& it)
 {
-  const AxisFrame f = g.frame(s.axis);
   const std::int64_t wordsPerRow = (g.nx + 63) / 64;
   const std::int64_t rows = g.ny * g.nz;
   requireMemory(static_cast<std::uint64_t>(wordsPerRow * rows) * 8, "SVF4 flip mask");
   std::vector<std::uint64_t> mask(static_cast<std::size_t>(wordsPerRow * rows), 0);
+  // The 6-neighbourhood is the same for every axis: the 4 neighbours in the
+  // x-row's (y, z) plane come from RowNeighbours of axis x, the 2 along x are in the row.
   forRows(g, it, s.filters, 3, [&](std::int64_t r) {
     const std::int64_t j = r % g.ny, k = r / g.ny;
+    const RowNeighbours nb(g, 0, j, k, false);
+    const float* row = g.d + g.nx * r;
     for (std::int64_t i = 0; i < g.nx; ++i)
     {
-      const std::int64_t c3[3] = { i, j, k };
-      const std::int64_t u = c3[svf::axisU(s.axis)], v = c3[svf::axisV(s.axis)], a = c3[s.axis];
-      const std::int64_t idx = g.nx * r + i;
       int sg[6];
-      svf::gather6(g.d, idx, u, v, a, f, s.boundarySign, sg);
-      if (svf::svf4Flips(g.d[idx], sg))
+      float mg[4];
+      nb.gather(i, g.nx, 4, s.boundarySign, sg, mg);
+      sg[4] = i + 1 < g.nx ? svf::signOf(row[i + 1]) : s.boundarySign;
+      sg[5] = i > 0 ? svf::signOf(row[i - 1]) : s.boundarySign;
+      if (svf::svf4Flips(row[i], sg))
       {
         mask[static_cast<std::size_t>(r * wordsPerRow + i / 64)] |= std::uint64_t(1) << (i % 64);
       }

@@ -9,6 +9,7 @@
 
 #include <gtest/gtest.h>
 
+#include <cstdlib>
 #include <cstring>
 #include <random>
 #include <vector>
@@ -435,6 +436,32 @@ TEST(SignVoxelFilter, CancelStops)
   {
     EXPECT_EQ(e.code(), ErrorCode::Cancelled);
   }
+}
+
+TEST(SignVoxelFilter, MatchesTheReferenceOnTheCudaTestCases)
+{
+  // the cases of SignVoxelFilterCuda.BitIdenticalToCpu, against the reference
+  // (its 130x97x64 shape too when LVDIF_SLOW_TESTS is set: ~45 s on 2 cores)
+  struct Shape
+  {
+    std::int64_t x, y, z;
+  };
+  std::vector<Shape> shapes{ { 29, 24, 18 }, { 67, 45, 39 }, { 1, 50, 70 } };
+  if (std::getenv("LVDIF_SLOW_TESTS"))
+    shapes.push_back({ 130, 97, 64 });
+  for (Shape s : shapes)
+    for (int axis = 0; axis < 3; ++axis)
+      for (SvfBoundary b : { SvfBoundary::Outside, SvfBoundary::Free })
+        for (unsigned filters : { unsigned(SvfAll), unsigned(Svf2), unsigned(Svf3 | Svf4) })
+        {
+          Vol g = randomVol(s.x, s.y, s.z, static_cast<unsigned>(s.x + axis));
+          svfref::Grid r = toRef(g);
+          signVoxelFilter(g.view(), params(filters, axis, b));
+          const std::int64_t dims[3] = { s.x, s.y, s.z };
+          const int cap = static_cast<int>(std::max({ dims[axis == 0 ? 1 : 0], dims[axis == 2 ? 1 : 2], std::int64_t(2) }));
+          svfref::run(r, 2.0f, axis, filters, cap, b == SvfBoundary::Outside ? 1 : 0);
+          ASSERT_EQ(g.v, r.v) << s.x << "x" << s.y << "x" << s.z << " axis " << axis << " filters " << filters;
+        }
 }
 
 // ---- CUDA: bit-identical to the CPU -----------------------------------------
