@@ -4,12 +4,15 @@
 // plain per-plane reference (SvfReference.h) on random volumes.
 #include "SvfReference.h"
 
+#include "lvdif/AnalyticFill.h"
+#include "lvdif/DictionaryVolume.h"
 #include "lvdif/Error.h"
 #include "lvdif/SignVoxelFilter.h"
 
 #include <gtest/gtest.h>
 
 #include <cstdlib>
+#include <algorithm>
 #include <cstring>
 #include <random>
 #include <vector>
@@ -509,4 +512,59 @@ TEST(SignVoxelFilterCuda, CapAndRepeatedRuns)
     signVoxelFilter(gpu.view(), p);
     EXPECT_EQ(std::memcmp(cpu.v.data(), gpu.v.data(), cpu.v.size() * sizeof(float)), 0) << rep;
   }
+}
+
+// ---- DictionaryVolume entry point -------------------------------------------
+
+TEST(SignVoxelFilterVolume, RepairsAStoredSphere)
+{
+  VolumeOptions o;
+  o.dims = { 64, 48, 40 };
+  o.chunkEdge = 16;
+  DictionaryVolume vol(o);
+  const double cx = 31.5, cy = 23.5, cz = 19.5, r = 14.0;
+  fillFromFunction(vol, sphereSdf(cx, cy, cz, r));
+  auto truthInside = [&](std::int64_t x, std::int64_t y, std::int64_t z) {
+    return std::sqrt((x - cx) * (x - cx) + (y - cy) * (y - cy) + (z - cz) * (z - cz)) < r;
+  };
+  // wrong signs: a streak inside, one outside (saturated, uniform chunks), isolated voxels
+  int injected = 0;
+  auto flip = [&](std::int64_t x, std::int64_t y, std::int64_t z) {
+    const float v = vol.sdf(x, y, z);
+    if (std::fabs(v) > 2.0f)
+    {
+      vol.setSdf(x, y, z, -v);
+      ++injected;
+    }
+  };
+  for (std::int64_t x = 26; x < 36; ++x)
+    flip(x, 24, 20);
+  for (std::int64_t x = 3; x < 12; ++x)
+    flip(x, 5, 33);
+  flip(50, 40, 5);
+  flip(30, 22, 18);
+  ASSERT_GT(injected, 15);
+  vol.takeDirtyChunks();
+  const std::unique_ptr<DictionaryVolume> before = vol.clone();
+
+  SignVoxelFilterParams p;
+  p.device = Device::Cpu;
+  const SignVoxelFilterStats st = signVoxelFilter(vol, p);
+  std::int64_t wrong = 0, changed = 0;
+  for (std::int64_t z = 0; z < 40; ++z)
+    for (std::int64_t y = 0; y < 48; ++y)
+      for (std::int64_t x = 0; x < 64; ++x)
+      {
+        const float v = vol.sdf(x, y, z);
+        wrong += (v < 0) != truthInside(x, y, z) ? 1 : 0;
+        const Voxel a = vol.get(x, y, z), b = before->get(x, y, z);
+        changed += a != b ? 1 : 0;
+        ASSERT_EQ(a.color, b.color);
+      }
+  EXPECT_EQ(wrong, 0);
+  EXPECT_EQ(st.totalFlips(), changed);
+  EXPECT_GE(changed, injected);
+  const std::vector<std::int64_t> dirty = vol.takeDirtyChunks();
+  EXPECT_NE(std::find(dirty.begin(), dirty.end(), vol.chunkOf(30, 24, 20)), dirty.end());
+  EXPECT_NE(std::find(dirty.begin(), dirty.end(), vol.chunkOf(5, 5, 33)), dirty.end());
 }

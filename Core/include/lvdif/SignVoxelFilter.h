@@ -31,6 +31,8 @@
 namespace lvdif
 {
 
+class DictionaryVolume;
+
 /// Bits selecting the filters; they always run in the order SVF1, 2, 3, 4.
 enum SvfBits : unsigned
 {
@@ -94,6 +96,15 @@ struct SignVoxelFilterStats
 /// grid, Error(Cancelled) when the interrupter asks (the grid then holds a
 /// partially filtered state). NaN voxels are never flipped and have no sign.
 SignVoxelFilterStats signVoxelFilter(const FloatGridView& grid, const SignVoxelFilterParams& params = {},
+  Interrupter& interrupter = nullInterrupter());
+
+/// The same on a dictionary volume: decodes it into a dense float grid (4 bytes
+/// a voxel, checked with requireMemory first), filters that, and writes back
+/// only the voxels whose sign changed, as the key of the negated decoded value
+/// (colour kept; chunks marked dirty, collapsed again where they became
+/// uniform). Because keys are ordered like values, the filters see exactly
+/// the signs the volume stores; magnitudes are those of the dictionary.
+SignVoxelFilterStats signVoxelFilter(DictionaryVolume& volume, const SignVoxelFilterParams& params = {},
   Interrupter& interrupter = nullInterrupter());
 
 } // namespace lvdif
