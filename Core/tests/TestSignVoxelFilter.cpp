@@ -467,6 +467,25 @@ TEST(SignVoxelFilter, MatchesTheReferenceOnTheCudaTestCases)
         }
 }
 
+TEST(SignVoxelFilter, ProgressRisesToOne)
+{
+  struct Recorder : Interrupter
+  {
+    std::vector<double> values;
+    int starts = 0;
+    void start(const char*) override { ++starts; }
+    void progress(double f) override { values.push_back(f); }
+  } rec;
+  Vol g = randomVol(30, 20, 20, 4);
+  signVoxelFilter(g.view(), params(SvfAll, 1), rec);
+  EXPECT_EQ(rec.starts, 1);
+  ASSERT_GT(rec.values.size(), 8u);
+  for (size_t i = 1; i < rec.values.size(); ++i)
+    EXPECT_GE(rec.values[i], rec.values[i - 1]) << i;
+  EXPECT_EQ(rec.values.back(), 1.0);
+  EXPECT_GE(rec.values.front(), 0.0);
+}
+
 // ---- CUDA: bit-identical to the CPU -----------------------------------------
 TEST(SignVoxelFilterCuda, BitIdenticalToCpu)
 {
