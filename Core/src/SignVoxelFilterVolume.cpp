@@ -5,6 +5,7 @@
 #include "lvdif/Memory.h"
 #include "lvdif/SignVoxelFilter.h"
 
+#include <exception>
 #include <vector>
 
 namespace lvdif
@@ -30,29 +31,47 @@ SignVoxelFilterStats signVoxelFilter(
   const SignVoxelFilterStats stats = signVoxelFilter(view, params, interrupter);
 
   const SdfKey zero = volume.sdfDictionary().zeroKey();
+  // expandChunk may throw OutOfMemory; an exception must not leave the OpenMP
+  // region, so the first one is kept and rethrown after it
+  std::exception_ptr failure;
 #pragma omp parallel for schedule(dynamic, 1)
   for (std::int64_t id = 0; id < volume.chunkCount(); ++id)
   {
-    const VoxelBox b = volume.chunkBox(id);
-    bool wrote = false;
-    for (std::int64_t z = b.lo[2]; z <= b.hi[2]; ++z)
-      for (std::int64_t y = b.lo[1]; y <= b.hi[1]; ++y)
-        for (std::int64_t x = b.lo[0]; x <= b.hi[0]; ++x)
-        {
-          const float v = grid[static_cast<std::size_t>(x + d[0] * (y + d[1] * z))];
-          Voxel old = volume.get(x, y, z);
-          // the filters only negate, so a changed sign is a flipped voxel
-          if ((v < 0.0f) != (old.sdf < zero))
-          {
-            old.sdf = volume.encode(v);
-            volume.set(x, y, z, old);
-            wrote = true;
-          }
-        }
-    if (wrote)
+    try
     {
-      volume.tryCollapseChunk(id);
+      const VoxelBox b = volume.chunkBox(id);
+      bool wrote = false;
+      for (std::int64_t z = b.lo[2]; z <= b.hi[2]; ++z)
+        for (std::int64_t y = b.lo[1]; y <= b.hi[1]; ++y)
+          for (std::int64_t x = b.lo[0]; x <= b.hi[0]; ++x)
+          {
+            const float v = grid[static_cast<std::size_t>(x + d[0] * (y + d[1] * z))];
+            Voxel old = volume.get(x, y, z);
+            // the filters only negate, so a changed sign is a flipped voxel
+            if ((v < 0.0f) != (old.sdf < zero))
+            {
+              old.sdf = volume.encode(v);
+              volume.set(x, y, z, old);
+              wrote = true;
+            }
+          }
+      if (wrote)
+      {
+        volume.tryCollapseChunk(id);
+      }
     }
+    catch (...)
+    {
+#pragma omp critical(lvdif_svf_volume_failure)
+      if (!failure)
+      {
+        failure = std::current_exception();
+      }
+    }
+  }
+  if (failure)
+  {
+    std::rethrow_exception(failure); // the volume then holds part of the flips
   }
   return stats;
 }
