@@ -104,6 +104,8 @@ SignVoxelFilterStats signVoxelFilter(const FloatGridView& grid, const SignVoxelF
 /// (colour kept; chunks marked dirty, collapsed again where they became
 /// uniform). Because keys are ordered like values, the filters see exactly
 /// the signs the volume stores; magnitudes are those of the dictionary.
+/// Cancelling leaves the volume unchanged (the write-back starts after the
+/// filters); an error during the write-back (OutOfMemory) leaves part of it.
 SignVoxelFilterStats signVoxelFilter(DictionaryVolume& volume, const SignVoxelFilterParams& params = {},
   Interrupter& interrupter = nullInterrupter());
 
