@@ -91,6 +91,7 @@ void validate(const std::vector<Dab>& dabs, const BrushSettings& s)
 {
   require(std::isfinite(s.blend) && s.blend >= 0, "brush blend radius must be finite and >= 0");
   require(std::isfinite(s.colorOffset) && s.colorOffset >= 0, "brush colour offset must be finite and >= 0");
+  require(std::isfinite(s.rounding) && s.rounding >= 0, "cube rounding must be finite and >= 0");
   require(s.op == BrushOp::Add || s.op == BrushOp::Subtract || s.op == BrushOp::Paint, "unknown brush operation");
   for (size_t i = 0; i < dabs.size(); ++i)
   {
@@ -226,7 +227,8 @@ EditResult applyDabs(DictionaryVolume& volume, const std::vector<Dab>& dabs, con
               const VoxelBox& b = boxes[static_cast<size_t>(k)];
               if (!b.contains(x, y, z))
                 continue;
-              const double s = dabDistance(active[static_cast<size_t>(k)], double(x), double(y), double(z));
+              const double s =
+                dabDistance(active[static_cast<size_t>(k)], double(x), double(y), double(z), settings.rounding);
               if (s > reach)
                 continue;
               v = detail::combineVoxel(v, s, ctx);

@@ -66,7 +66,7 @@ void writeRecording(std::ostream& out, const Recording& r)
     const BrushShape shape = e.dabs.empty() ? BrushShape::Sphere : e.dabs.front().shape;
     out << "edit time=" << num(e.time) << " op=" << toString(e.brush.op) << " shape=" << toString(shape)
         << " kind=" << toString(e.kind) << " spacing=" << num(e.spacing) << " blend=" << num(e.brush.blend)
-        << " coloroffset=" << num(e.brush.colorOffset) << " color=" << int(e.brush.color.r) << ","
+        << " coloroffset=" << num(e.brush.colorOffset) << " rounding=" << num(e.brush.rounding) << " color=" << int(e.brush.color.r) << ","
         << int(e.brush.color.g) << "," << int(e.brush.color.b) << "," << int(e.brush.color.a)
         << " dabs=" << e.dabs.size() << "\n";
     for (const Dab& d : e.dabs)
@@ -162,6 +162,8 @@ Recording readRecording(std::istream& in)
     e.spacing = toNumber(get("spacing"), no, "spacing");
     e.brush.blend = toNumber(get("blend"), no, "blend");
     e.brush.colorOffset = toNumber(get("coloroffset"), no, "coloroffset");
+    if (kv.count("rounding"))
+      e.brush.rounding = toNumber(kv["rounding"], no, "rounding");
     {
       std::istringstream c(get("color"));
       int rgba[4];

@@ -80,6 +80,8 @@ struct BrushSettings
   double blend = 0.0;
   /// Skin thickness (voxels) that gets the colour; the original uses 1.5.
   double colorOffset = 1.5;
+  /// Edge rounding of cube dabs (Quilez's round box: box(h - r) - r), 0..half edge.
+  double rounding = 0.0;
 };
 
 // ---- primitive SDFs (voxel units, negative inside) ---------------------------
@@ -110,14 +112,17 @@ inline double capsuleDistance(double px, double py, double pz, double bax, doubl
   return std::sqrt(qx * qx + qy * qy + qz * qz) - r;
 }
 
-/// The dab's signed distance at voxel (x, y, z).
-inline double dabDistance(const Dab& d, double x, double y, double z)
+/// The dab's signed distance at voxel (x, y, z); `rounding` rounds cube edges.
+inline double dabDistance(const Dab& d, double x, double y, double z, double rounding = 0.0)
 {
   const double px = x - d.center[0], py = y - d.center[1], pz = z - d.center[2];
   switch (d.shape)
   {
     case BrushShape::Cube:
-      return cubeDistance(px, py, pz, d.radius);
+    {
+      const double r = rounding < d.radius ? rounding : d.radius;
+      return r > 0 ? cubeDistance(px, py, pz, d.radius - r) - r : cubeDistance(px, py, pz, d.radius);
+    }
     case BrushShape::Capsule:
       return capsuleDistance(px, py, pz, d.end[0] - d.center[0], d.end[1] - d.center[1], d.end[2] - d.center[2], d.radius);
     default:
