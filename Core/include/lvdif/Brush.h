@@ -102,6 +102,16 @@ inline double cubeDistance(double px, double py, double pz, double h)
   return outside + (m < 0 ? m : 0);
 }
 
+/// Quilez's box with half extents (hx, hy, hz).
+inline double cubeDistanceBox(double px, double py, double pz, double hx, double hy, double hz)
+{
+  const double ux = std::fabs(px) - hx, uy = std::fabs(py) - hy, uz = std::fabs(pz) - hz;
+  const double mx = ux > 0 ? ux : 0, my = uy > 0 ? uy : 0, mz = uz > 0 ? uz : 0;
+  double m = ux > uy ? ux : uy;
+  m = m > uz ? m : uz;
+  return std::sqrt(mx * mx + my * my + mz * mz) + (m < 0 ? m : 0);
+}
+
 /// Quilez's capsule from a to b (p relative to a, ba = b - a).
 inline double capsuleDistance(double px, double py, double pz, double bax, double bay, double baz, double r)
 {
