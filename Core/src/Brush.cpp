@@ -120,27 +120,37 @@ VoxelBox dabInfluenceBox(const DictionaryVolume& volume, const Dab& dab, const B
   return boxFor(volume, dab, reachOf(volume, settings));
 }
 
-EditResult applyDabs(DictionaryVolume& volume, const std::vector<Dab>& dabs, const BrushSettings& settings,
-  ChunkWriteObserver* observer)
+namespace detail
+{
+EncodeParams EncodeParams::of(const SdfDictionary& d, float band)
+{
+  // the same expressions as SdfDictionary's constructor
+  const SdfDictionaryParams& p = d.params();
+  EncodeParams e;
+  e.halfA = std::llround(p.groupALimit / p.stepA);
+  e.zeroKey = d.zeroKey();
+  e.invStepA = 1.0 / p.stepA;
+  e.invStepB = 1.0 / p.stepB;
+  e.firstB = d.firstGroupBValue();
+  e.encodeALimit = 0.5 * (static_cast<double>(e.halfA) * p.stepA + e.firstB);
+  e.band = band;
+  return e;
+}
+
+DabPlan planDabs(DictionaryVolume& volume, const std::vector<Dab>& dabs, const BrushSettings& settings)
 {
   validate(dabs, settings);
-  EditResult result;
-  detail::BrushContext ctx;
-  ctx.op = settings.op;
+  DabPlan plan;
+  BrushContext& ctx = plan.ctx;
+  ctx.op = static_cast<int>(settings.op);
   ctx.blend = settings.blend;
   ctx.colorOffset = settings.colorOffset;
-  ctx.band = volume.bandWidth();
-  ctx.dictionary = &volume.sdfDictionary();
+  ctx.rounding = settings.rounding;
   ctx.reach = reachOf(volume, settings);
   if (settings.op != BrushOp::Subtract)
   {
     ctx.colorKey = volume.colors().add(settings.color);
   }
-
-  // Boxes of the dabs that can do anything, and the chunks they touch.
-  std::vector<Dab> active;
-  std::vector<VoxelBox> boxes;
-  std::vector<std::int64_t> chunks;
   for (const Dab& d : dabs)
   {
     if (!(d.radius > 0))
@@ -152,13 +162,29 @@ EditResult applyDabs(DictionaryVolume& volume, const std::vector<Dab>& dabs, con
     {
       continue;
     }
-    active.push_back(d);
-    boxes.push_back(b);
-    volume.forEachChunkInBox(b, [&](std::int64_t id) { chunks.push_back(id); });
+    plan.dabs.push_back(d);
+    plan.boxes.push_back(b);
+    volume.forEachChunkInBox(b, [&](std::int64_t id) { plan.chunks.push_back(id); });
   }
-  std::sort(chunks.begin(), chunks.end());
-  chunks.erase(std::unique(chunks.begin(), chunks.end()), chunks.end());
+  std::sort(plan.chunks.begin(), plan.chunks.end());
+  plan.chunks.erase(std::unique(plan.chunks.begin(), plan.chunks.end()), plan.chunks.end());
+  return plan;
+}
+} // namespace detail
 
+EditResult applyDabs(DictionaryVolume& volume, const std::vector<Dab>& dabs, const BrushSettings& settings,
+  ChunkWriteObserver* observer)
+{
+  detail::DabPlan plan = detail::planDabs(volume, dabs, settings);
+  EditResult result;
+  const detail::BrushContext& ctx = plan.ctx;
+  const std::vector<Dab>& active = plan.dabs;
+  const std::vector<VoxelBox>& boxes = plan.boxes;
+  const std::vector<std::int64_t>& chunks = plan.chunks;
+  const float* table = volume.sdfDictionary().table();
+  const SdfDictionary& dict = volume.sdfDictionary();
+  const float band = volume.bandWidth();
+  auto encode = [&dict, band](double v) { return dict.encodeClamped(static_cast<float>(v), band); };
   const std::int64_t nChunks = static_cast<std::int64_t>(chunks.size());
   std::vector<std::int64_t> changedPerChunk(chunks.size(), 0);
   const double reach = ctx.reach;
@@ -228,10 +254,10 @@ EditResult applyDabs(DictionaryVolume& volume, const std::vector<Dab>& dabs, con
               if (!b.contains(x, y, z))
                 continue;
               const double s =
-                dabDistance(active[static_cast<size_t>(k)], double(x), double(y), double(z), settings.rounding);
+                dabDistance(active[static_cast<size_t>(k)], double(x), double(y), double(z), ctx.rounding);
               if (s > reach)
                 continue;
-              v = detail::combineVoxel(v, s, ctx);
+              detail::combineVoxel(v.sdf, v.color, s, ctx, table, encode);
             }
             if (v != old)
             {
