@@ -113,6 +113,72 @@ void validate(const std::vector<Dab>& dabs, const BrushSettings& s)
   }
 }
 
+
+// A hard add or subtract whose primitive lies below -band over a whole chunk
+// sets every voxel's distance to the band's extreme key (add: -band and the
+// brush colour; subtract: +band, colours kept), whatever the other dabs of the
+// call do, provided no stored key is beyond the band. Then the chunk is
+// written in one go instead of voxel by voxel; the bits are the same as the
+// per-voxel rule's (the CUDA path, which has no such shortcut, checks it).
+bool coverChunk(DictionaryVolume& volume, std::int64_t id, const detail::BrushContext& ctx,
+  ChunkWriteObserver* observer, std::int64_t& changed)
+{
+  const float band = volume.bandWidth();
+  const bool add = ctx.op == static_cast<int>(BrushOp::Add);
+  const SdfKey extreme = volume.encode(add ? -band : band);
+  const std::pair<SdfKey, SdfKey> range = volume.chunkRange(id);
+  if (add ? range.first < extreme : range.second > extreme)
+    return false; // keys beyond the band: leave it to the per-voxel rule
+  const VoxelBox b = volume.chunkBox(id);
+  changed = 0;
+  if (volume.isUniform(id))
+  {
+    const Voxel u = volume.uniformValue(id);
+    const Voxel target{ extreme, add ? ctx.colorKey : u.color };
+    if (u != target)
+    {
+      changed = b.voxelCount();
+      if (observer)
+        observer->beforeChunkWrite(volume, id);
+      volume.fillChunk(id, target);
+    }
+    return true;
+  }
+  if (add)
+  {
+    const Voxel target{ extreme, ctx.colorKey };
+    for (std::int64_t z = b.lo[2]; z <= b.hi[2]; ++z)
+      for (std::int64_t y = b.lo[1]; y <= b.hi[1]; ++y)
+        for (std::int64_t x = b.lo[0]; x <= b.hi[0]; ++x)
+          changed += volume.get(x, y, z) != target;
+    if (changed > 0)
+    {
+      if (observer)
+        observer->beforeChunkWrite(volume, id);
+      volume.fillChunk(id, target);
+    }
+    return true;
+  }
+  bool touched = false;
+  for (std::int64_t z = b.lo[2]; z <= b.hi[2]; ++z)
+    for (std::int64_t y = b.lo[1]; y <= b.hi[1]; ++y)
+      for (std::int64_t x = b.lo[0]; x <= b.hi[0]; ++x)
+      {
+        Voxel v = volume.get(x, y, z);
+        if (v.sdf == extreme)
+          continue;
+        if (!touched && observer)
+          observer->beforeChunkWrite(volume, id);
+        touched = true;
+        v.sdf = extreme;
+        volume.set(x, y, z, v);
+        ++changed;
+      }
+  if (touched)
+    volume.tryCollapseChunk(id);
+  return true;
+}
+
 } // namespace
 
 VoxelBox dabInfluenceBox(const DictionaryVolume& volume, const Dab& dab, const BrushSettings& settings)
@@ -198,8 +264,15 @@ EditResult applyDabs(DictionaryVolume& volume, const std::vector<Dab>& dabs, con
     {
       const std::int64_t id = chunks[static_cast<size_t>(ci)];
       const VoxelBox cb = volume.chunkBox(id);
-      // the dabs (in order) whose box meets this chunk, and the union of their boxes
+      // The dabs (in order) whose box meets this chunk and that can reach it, and the
+      // union of their boxes. SDFs are 1-Lipschitz, so the distance at the chunk's
+      // centre +- its half diagonal bounds every voxel's.
+      const double cc[3] = { 0.5 * (cb.lo[0] + cb.hi[0]), 0.5 * (cb.lo[1] + cb.hi[1]), 0.5 * (cb.lo[2] + cb.hi[2]) };
+      const double halfDiag = 0.5 * std::sqrt(double((cb.hi[0] - cb.lo[0]) * (cb.hi[0] - cb.lo[0]) +
+                                                (cb.hi[1] - cb.lo[1]) * (cb.hi[1] - cb.lo[1]) +
+                                                (cb.hi[2] - cb.lo[2]) * (cb.hi[2] - cb.lo[2])));
       std::vector<int> mine;
+      bool covered = false; // some dab is below -band over the whole chunk
       VoxelBox region;
       region.lo = cb.hi;
       region.hi = cb.lo;
@@ -208,6 +281,10 @@ EditResult applyDabs(DictionaryVolume& volume, const std::vector<Dab>& dabs, con
         const VoxelBox ib = boxes[k].intersect(cb);
         if (ib.empty())
           continue;
+        const double sc = dabDistance(active[k], cc[0], cc[1], cc[2], ctx.rounding);
+        if (sc - halfDiag > reach)
+          continue;
+        covered = covered || sc + halfDiag <= -double(band);
         mine.push_back(static_cast<int>(k));
         for (int a = 0; a < 3; ++a)
         {
@@ -217,6 +294,15 @@ EditResult applyDabs(DictionaryVolume& volume, const std::vector<Dab>& dabs, con
       }
       if (mine.empty())
         continue;
+      if (covered && ctx.blend <= 0 && ctx.op != static_cast<int>(BrushOp::Paint))
+      {
+        std::int64_t n = 0;
+        if (coverChunk(volume, id, ctx, observer, n))
+        {
+          changedPerChunk[static_cast<size_t>(ci)] = n;
+          continue;
+        }
+      }
       bool touched = false;
       std::int64_t changed = 0;
       for (std::int64_t z = region.lo[2]; z <= region.hi[2]; ++z)

@@ -285,3 +285,30 @@ TEST(Brush, SdfRoundTripMakesKeySpaceMinExact)
   for (int k = 0; k < 65536; ++k)
     ASSERT_EQ(d.encode(d.decode(static_cast<SdfKey>(k))), k);
 }
+
+TEST(Brush, LargePrimitivesCoveringWholeChunksMatchTheAnalyticCsg)
+{
+  // chunks of edge 8 lie wholly inside these primitives by more than the band,
+  // which the brush writes chunk-wise: the result must still be the analytic field
+  DictionaryVolume v(options(96, 8));
+  fillFromFunction(v, sphereSdf(48, 48, 48, 30));
+  auto start = v.clone();
+  BrushSettings add;
+  add.color = Rgba{ 5, 6, 7, 255 };
+  applyDab(v, Dab{ BrushShape::Cube, { 60, 50, 47 }, 28, {} }, add);
+  BrushSettings sub;
+  sub.op = BrushOp::Subtract;
+  applyDab(v, Dab{ BrushShape::Sphere, { 30, 40, 50 }, 26, {} }, sub);
+  ColorKey key = 0;
+  ASSERT_TRUE(v.colors().find(add.color, key));
+  double worst = 0;
+  edittest::forEachVoxel(v, [&](std::int64_t x, std::int64_t y, std::int64_t z) {
+    long double d = clampBand(oracleSphere(x, y, z, 48, 48, 48, 30), 8);
+    const long double c = oracleCube(x, y, z, 60, 50, 47, 28);
+    d = clampBand(std::min(d, c), 8);
+    d = clampBand(std::max(d, -oracleSphere(x, y, z, 30, 40, 50, 26)), 8);
+    worst = std::max(worst, double(std::fabs(v.sdf(x, y, z) - d)));
+    ASSERT_EQ(v.get(x, y, z).color, c <= 1.5L ? key : start->get(x, y, z).color);
+  });
+  EXPECT_LE(worst, tolerance(v, 3));
+}
