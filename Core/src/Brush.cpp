@@ -305,6 +305,12 @@ EditResult applyDabs(DictionaryVolume& volume, const std::vector<Dab>& dabs, con
       }
       bool touched = false;
       std::int64_t changed = 0;
+      // Read through the chunk's own storage; after the first change (volume.set expands
+      // the chunk and marks it dirty and its range stale) write straight into its data:
+      // this thread owns the chunk for the whole call.
+      const Voxel* readData = volume.chunkData(id);
+      const Voxel uniformValue = volume.uniformValue(id);
+      Voxel* writeData = nullptr;
       for (std::int64_t z = region.lo[2]; z <= region.hi[2]; ++z)
         for (std::int64_t y = region.lo[1]; y <= region.hi[1]; ++y)
         {
@@ -332,7 +338,8 @@ EditResult applyDabs(DictionaryVolume& volume, const std::vector<Dab>& dabs, con
           }
           for (std::int64_t x = x0; x <= x1; ++x)
           {
-            const Voxel old = volume.get(x, y, z);
+            const std::int64_t li = volume.localIndex(x, y, z);
+            const Voxel old = writeData ? writeData[li] : (readData ? readData[li] : uniformValue);
             Voxel v = old;
             for (int k : mine)
             {
@@ -352,8 +359,13 @@ EditResult applyDabs(DictionaryVolume& volume, const std::vector<Dab>& dabs, con
                 touched = true;
                 if (observer)
                   observer->beforeChunkWrite(volume, id);
+                volume.set(x, y, z, v);
+                writeData = volume.expandChunk(id); // already expanded by set: returns its data
               }
-              volume.set(x, y, z, v);
+              else
+              {
+                writeData[li] = v;
+              }
               ++changed;
             }
           }
