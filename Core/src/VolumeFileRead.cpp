@@ -268,7 +268,7 @@ std::unique_ptr<DictionaryVolume> readVolume(
   Error failure(ErrorCode::CorruptData, "");
   std::int64_t done = 0;
   const std::int64_t total = static_cast<std::int64_t>(wanted.size());
-#pragma omp parallel
+#pragma omp parallel if (total > 16) // a thread team costs more than a few small chunks
   {
     ZSTD_DCtx* dctx = ZSTD_createDCtx();
     std::vector<std::uint8_t> packed, planes(static_cast<size_t>(raw));

@@ -102,7 +102,7 @@ void writeVolume(const DictionaryVolume& volume, ByteSink& sink, const VolumeFil
     const std::int64_t last = std::min(n, first + batch);
     bool failed = false;
     std::string failure;
-#pragma omp parallel num_threads(threads)
+#pragma omp parallel num_threads(threads) if (last - first > 16)
     {
       std::vector<std::uint8_t> planes(raw);
       ZSTD_CCtx* cctx = contexts[static_cast<size_t>(omp_get_thread_num())].ctx;
