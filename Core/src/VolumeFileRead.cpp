@@ -10,7 +10,6 @@
 #include <zstd.h>
 
 #include <algorithm>
-#include <omp.h>
 
 namespace lvdif
 {

@@ -9,7 +9,12 @@
 #include <zstd.h>
 
 #include <algorithm>
+#ifdef _OPENMP
 #include <omp.h>
+#else // the fuzz build runs without OpenMP
+static int omp_get_max_threads() { return 1; }
+static int omp_get_thread_num() { return 0; }
+#endif
 
 namespace lvdif
 {

@@ -9,6 +9,9 @@
 // a lower bound of any raw layout. Loads of both read from the page cache
 // (the file was just written), so they measure decoding, not the disk.
 //
+// On a shared machine the wall times depend on the load; the CPU seconds
+// (all threads) of each operation are printed beside them.
+//
 // Usage: bench_volume_file [max edge = 1024] [directory = /tmp]
 #include "BenchCommon.h"
 
@@ -21,6 +24,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <fcntl.h>
+#include <sys/resource.h>
 #include <iostream>
 #include <unistd.h>
 
@@ -70,6 +74,14 @@ std::unique_ptr<DictionaryVolume> makeShape(std::int64_t n)
   return v;
 }
 
+/// CPU seconds of the process (all threads), to read wall times on a shared machine.
+double cpuSeconds()
+{
+  rusage u;
+  getrusage(RUSAGE_SELF, &u);
+  return double(u.ru_utime.tv_sec + u.ru_stime.tv_sec) + 1e-6 * double(u.ru_utime.tv_usec + u.ru_stime.tv_usec);
+}
+
 std::uint64_t fileSize(const std::string& path)
 {
   FileSource s(path);
@@ -80,6 +92,7 @@ struct Row
 {
   std::string name;
   double mib, saveMs, loadMs;
+  double saveCpu = 0, loadCpu = 0; // CPU seconds per operation
 };
 
 Row measure(const DictionaryVolume& v, const std::string& path, int level)
@@ -87,13 +100,17 @@ Row measure(const DictionaryVolume& v, const std::string& path, int level)
   VolumeFileWriteOptions o;
   o.compressionLevel = level;
   Row r;
+  double c0 = cpuSeconds();
   r.saveMs = bench::medianMs(3, [&] { saveVolume(v, path, o); });
+  r.saveCpu = (cpuSeconds() - c0) / 3;
+  c0 = cpuSeconds();
   r.mib = double(fileSize(path)) / (1 << 20);
   bool same = true;
   r.loadMs = bench::medianMs(3, [&] {
     auto back = loadVolume(path);
     same = back->expandedChunkCount() == v.expandedChunkCount();
   });
+  r.loadCpu = (cpuSeconds() - c0) / 3;
   if (!same)
   {
     std::cerr << "round trip changed the chunk structure\n";
@@ -109,6 +126,7 @@ Row measureRaw(std::int64_t n, const std::string& path)
   requireMemory(bytes, "raw baseline buffer");
   std::vector<std::uint8_t> dense(bytes, 0x5a);
   Row r;
+  double c0 = cpuSeconds();
   r.saveMs = bench::medianMs(1, [&] {
     const int fd = ::open(path.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
     for (std::uint64_t off = 0; off < bytes;)
@@ -120,12 +138,15 @@ Row measureRaw(std::int64_t n, const std::string& path)
     ::fsync(fd);
     ::close(fd);
   });
+  r.saveCpu = cpuSeconds() - c0;
   r.mib = double(bytes) / (1 << 20);
+  c0 = cpuSeconds();
   r.loadMs = bench::medianMs(1, [&] {
     FileSource s(path);
     for (std::uint64_t off = 0; off < bytes; off += 1u << 30)
       s.read(off, dense.data() + off, std::min<std::uint64_t>(bytes - off, 1u << 30));
   });
+  r.loadCpu = cpuSeconds() - c0;
   std::remove(path.c_str());
   return r;
 }
@@ -137,6 +158,7 @@ int main(int argc, char** argv)
   const std::int64_t maxEdge = argc > 1 ? std::atoll(argv[1]) : 1024;
   const std::string dir = argc > 2 ? argv[2] : "/tmp";
   const std::string path = dir + "/bench_volume_file.lvdv";
+  const int level = VolumeFileWriteOptions().compressionLevel; // the default
   std::cout << "bench_volume_file: " << bench::machineDescription() << "\n"
             << "shape: sphere + torus, band 8, chunk edge 32, 6 paint colours on the shell\n\n";
 
@@ -149,15 +171,16 @@ int main(int argc, char** argv)
     auto v = makeShape(n);
     std::cout << n << "^3: filled in " << bench::fmt(fill.seconds(), 1) << " s, " << v->expandedChunkCount() << " of "
               << v->chunkCount() << " chunks non-uniform, " << formatBytes(v->memoryBytes()) << " in memory\n";
-    const Row f = measure(*v, path, 3);
+    const Row f = measure(*v, path, level);
     const Row raw = measureRaw(n, dir + "/bench_volume_file.raw");
-    rows.push_back({ std::to_string(n) + "^3", "lvdv zstd 3", bench::fmt(f.mib, 1), bench::fmt(f.saveMs, 0),
-      bench::fmt(f.loadMs, 0), bench::fmt(raw.mib / f.mib, 1) + "x smaller" });
+    rows.push_back({ std::to_string(n) + "^3", "lvdv zstd " + std::to_string(level), bench::fmt(f.mib, 1),
+      bench::fmt(f.saveMs, 0), bench::fmt(f.saveCpu, 2), bench::fmt(f.loadMs, 0), bench::fmt(f.loadCpu, 2),
+      bench::fmt(raw.mib / f.mib, 1) + "x smaller" });
     rows.push_back({ std::to_string(n) + "^3", "raw 4 B/voxel", bench::fmt(raw.mib, 1), bench::fmt(raw.saveMs, 0),
-      bench::fmt(raw.loadMs, 0), "save " + bench::fmt(raw.saveMs / f.saveMs, 1) + "x, load " +
+      bench::fmt(raw.saveCpu, 2), bench::fmt(raw.loadMs, 0), bench::fmt(raw.loadCpu, 2), "save " + bench::fmt(raw.saveMs / f.saveMs, 1) + "x, load " +
         bench::fmt(raw.loadMs / f.loadMs, 1) + "x the lvdv time" });
   }
-  bench::printTable({ "volume", "layout", "MiB", "save ms", "load ms", "vs peer" }, rows);
+  bench::printTable({ "volume", "layout", "MiB", "save ms", "save CPU s", "load ms", "load CPU s", "vs peer" }, rows);
 
   std::cout << "\nzstd level at 512^3 (same shape):\n";
   auto v = makeShape(std::min<std::int64_t>(512, maxEdge));
@@ -165,8 +188,9 @@ int main(int argc, char** argv)
   for (int level : { 1, 3, 5, 9 })
   {
     const Row r = measure(*v, path, level);
-    levels.push_back({ std::to_string(level), bench::fmt(r.mib, 2), bench::fmt(r.saveMs, 0), bench::fmt(r.loadMs, 0) });
+    levels.push_back({ std::to_string(level), bench::fmt(r.mib, 2), bench::fmt(r.saveMs, 0), bench::fmt(r.saveCpu, 2),
+      bench::fmt(r.loadMs, 0), bench::fmt(r.loadCpu, 2) });
   }
-  bench::printTable({ "level", "MiB", "save ms", "load ms" }, levels);
+  bench::printTable({ "level", "MiB", "save ms", "save CPU s", "load ms", "load CPU s" }, levels);
   return 0;
 }
