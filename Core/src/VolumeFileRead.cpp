@@ -30,7 +30,7 @@ struct ParsedFile
   std::vector<TableEntry> table;
 };
 
-ParsedFile parse(ByteSource& src)
+ParsedFile parse(ByteSource& src, std::uint64_t memoryLimit)
 {
   ParsedFile pf;
   const std::uint64_t fileBytes = src.size();
@@ -130,7 +130,7 @@ ParsedFile parse(ByteSource& src)
   // table: its size is bounded by the file; refuse it if the volume's own
   // table would not fit in memory anyway
   requireMemory(DictionaryVolume::tableBytes(h.options) + h.chunkCount * volume_file::TableEntryBytes,
-    "chunk table of the file");
+    "chunk table of the file", memoryLimit);
   std::vector<std::uint8_t> tb(static_cast<size_t>(h.chunkCount * volume_file::TableEntryBytes));
   src.read(tableOffset, tb.data(), tb.size());
   if (checksum64(tb.data(), tb.size()) != tableChecksum)
@@ -210,7 +210,7 @@ void decodeChunk(ByteSource& src, const ParsedFile& pf, std::int64_t id, ZSTD_DC
 
 VolumeFileInfo readVolumeInfo(ByteSource& source)
 {
-  return parse(source).info;
+  return parse(source, memoryLimitBytes()).info;
 }
 
 VolumeFileInfo readVolumeInfo(const std::string& path)
@@ -223,9 +223,10 @@ std::unique_ptr<DictionaryVolume> readVolume(
   ByteSource& source, const VolumeFileReadOptions& options, Interrupter& interrupter, VolumeFileInfo* info)
 {
   interrupter.start("load volume");
-  ParsedFile pf = parse(source);
+  const std::uint64_t limit = options.memoryLimit ? options.memoryLimit : memoryLimitBytes();
+  ParsedFile pf = parse(source, limit);
   VolumeOptions vo = pf.header.options;
-  vo.memoryLimit = options.memoryLimit ? options.memoryLimit : memoryLimitBytes();
+  vo.memoryLimit = limit;
   const int edge = vo.chunkEdge;
   const std::uint64_t raw = static_cast<std::uint64_t>(edge) * edge * edge * sizeof(Voxel);
 
