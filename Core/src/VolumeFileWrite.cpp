@@ -114,42 +114,53 @@ void writeVolume(const DictionaryVolume& volume, ByteSink& sink, const VolumeFil
 #pragma omp for schedule(dynamic, 1)
       for (std::int64_t id = first; id < last; ++id)
       {
-        std::vector<std::uint8_t>& buf = out[static_cast<size_t>(id - first)];
-        const Voxel* data = volume.chunkData(id);
-        if (!data)
+        try // no exception may leave an OpenMP region
         {
-          buf.clear();
-          continue;
+          std::vector<std::uint8_t>& buf = out[static_cast<size_t>(id - first)];
+          const Voxel* data = volume.chunkData(id);
+          if (!data)
+          {
+            buf.clear();
+            continue;
+          }
+          const std::int64_t voxels = static_cast<std::int64_t>(edge) * edge * edge;
+          ColorKey maxColor = 0;
+          for (std::int64_t i = 0; i < voxels; ++i) maxColor = std::max(maxColor, data[i].color);
+          if (maxColor >= h.colorCount)
+          {
+#pragma omp critical(lvdif_save_failure)
+            {
+              failed = true;
+              failure = "chunk " + std::to_string(id) + " uses colour key " + std::to_string(maxColor) +
+                ", which is not in the colour dictionary (" + std::to_string(h.colorCount) + " colours)";
+            }
+            continue;
+          }
+          encodeChunkPlanes(data, edge, planes.data());
+          buf.resize(bound);
+          const std::size_t size =
+            cctx ? ZSTD_compressCCtx(cctx, buf.data(), bound, planes.data(), raw, options.compressionLevel) : 0;
+          if (!cctx || ZSTD_isError(size))
+          {
+#pragma omp critical(lvdif_save_failure)
+            {
+              failed = true;
+              failure = std::string("zstd failed on chunk ") + std::to_string(id) + ": " +
+                (cctx ? ZSTD_getErrorName(size) : "no context");
+            }
+            buf.clear();
+            continue;
+          }
+          buf.resize(size);
         }
-        const std::int64_t voxels = static_cast<std::int64_t>(edge) * edge * edge;
-        ColorKey maxColor = 0;
-        for (std::int64_t i = 0; i < voxels; ++i) maxColor = std::max(maxColor, data[i].color);
-        if (maxColor >= h.colorCount)
+        catch (const std::exception& e)
         {
 #pragma omp critical(lvdif_save_failure)
           {
             failed = true;
-            failure = "chunk " + std::to_string(id) + " uses colour key " + std::to_string(maxColor) +
-              ", which is not in the colour dictionary (" + std::to_string(h.colorCount) + " colours)";
+            failure = "chunk " + std::to_string(id) + ": " + e.what();
           }
-          continue;
         }
-        encodeChunkPlanes(data, edge, planes.data());
-        buf.resize(bound);
-        const std::size_t size =
-          cctx ? ZSTD_compressCCtx(cctx, buf.data(), bound, planes.data(), raw, options.compressionLevel) : 0;
-        if (!cctx || ZSTD_isError(size))
-        {
-#pragma omp critical(lvdif_save_failure)
-          {
-            failed = true;
-            failure = std::string("zstd failed on chunk ") + std::to_string(id) + ": " +
-              (cctx ? ZSTD_getErrorName(size) : "no context");
-          }
-          buf.clear();
-          continue;
-        }
-        buf.resize(size);
       }
     }
     if (failed)
