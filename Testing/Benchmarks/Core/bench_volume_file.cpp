@@ -14,6 +14,7 @@
 //
 // Usage: bench_volume_file [max edge = 1024] [directory = /tmp]
 #include "BenchCommon.h"
+#include "BenchVolumeShape.h"
 
 #include "lvdif/AnalyticFill.h"
 #include "lvdif/Memory.h"
@@ -33,54 +34,6 @@ using namespace lvdif;
 namespace
 {
 
-std::unique_ptr<DictionaryVolume> makeShape(std::int64_t n)
-{
-  VolumeOptions o;
-  o.dims = { n, n, n };
-  o.chunkEdge = 32;
-  o.memoryLimit = 0;
-  auto v = std::make_unique<DictionaryVolume>(o);
-  const double c = 0.5 * double(n), r = 0.3 * double(n), R = 0.3 * double(n), t = 0.08 * double(n);
-  const SdfFunction sphere = sphereSdf(c, c, c * 0.9, r);
-  // union of a sphere and a horizontal torus through it (min of SDFs stays 1-Lipschitz)
-  fillFromFunction(*v, [=](double x, double y, double z) {
-    const double dx = x - c, dy = y - c, dz = z - c * 1.2;
-    const double q = std::sqrt(dx * dx + dy * dy) - R;
-    return std::min(sphere(x, y, z), static_cast<float>(std::sqrt(q * q + dz * dz) - t));
-  });
-  // paint: 6 colours in 16-voxel stripes on the shell (|d| < 3)
-  ColorKey keys[6];
-  for (int i = 0; i < 6; ++i)
-    keys[i] = v->colors().add(Rgba{ std::uint8_t(40 * i), std::uint8_t(255 - 30 * i), std::uint8_t(90 + 20 * i), 255 });
-  const SdfKey lo = v->encode(-3), hi = v->encode(3);
-#pragma omp parallel for schedule(dynamic, 4)
-  for (std::int64_t id = 0; id < v->chunkCount(); ++id)
-  {
-    if (v->isUniform(id))
-      continue;
-    const VoxelBox b = v->chunkBox(id);
-    for (std::int64_t z = b.lo[2]; z <= b.hi[2]; ++z)
-      for (std::int64_t y = b.lo[1]; y <= b.hi[1]; ++y)
-        for (std::int64_t x = b.lo[0]; x <= b.hi[0]; ++x)
-        {
-          Voxel w = v->get(x, y, z);
-          if (w.sdf > lo && w.sdf < hi)
-          {
-            w.color = keys[((x + 2 * y) / 16 + z / 16) % 6];
-            v->set(x, y, z, w);
-          }
-        }
-  }
-  return v;
-}
-
-/// CPU seconds of the process (all threads), to read wall times on a shared machine.
-double cpuSeconds()
-{
-  rusage u;
-  getrusage(RUSAGE_SELF, &u);
-  return double(u.ru_utime.tv_sec + u.ru_stime.tv_sec) + 1e-6 * double(u.ru_utime.tv_usec + u.ru_stime.tv_usec);
-}
 
 std::uint64_t fileSize(const std::string& path)
 {
@@ -100,17 +53,17 @@ Row measure(const DictionaryVolume& v, const std::string& path, int level)
   VolumeFileWriteOptions o;
   o.compressionLevel = level;
   Row r;
-  double c0 = cpuSeconds();
+  double c0 = bench::cpuSeconds();
   r.saveMs = bench::medianMs(3, [&] { saveVolume(v, path, o); });
-  r.saveCpu = (cpuSeconds() - c0) / 3;
-  c0 = cpuSeconds();
+  r.saveCpu = (bench::cpuSeconds() - c0) / 3;
+  c0 = bench::cpuSeconds();
   r.mib = double(fileSize(path)) / (1 << 20);
   bool same = true;
   r.loadMs = bench::medianMs(3, [&] {
     auto back = loadVolume(path);
     same = back->expandedChunkCount() == v.expandedChunkCount();
   });
-  r.loadCpu = (cpuSeconds() - c0) / 3;
+  r.loadCpu = (bench::cpuSeconds() - c0) / 3;
   if (!same)
   {
     std::cerr << "round trip changed the chunk structure\n";
@@ -126,7 +79,7 @@ Row measureRaw(std::int64_t n, const std::string& path)
   requireMemory(bytes, "raw baseline buffer");
   std::vector<std::uint8_t> dense(bytes, 0x5a);
   Row r;
-  double c0 = cpuSeconds();
+  double c0 = bench::cpuSeconds();
   r.saveMs = bench::medianMs(1, [&] {
     const int fd = ::open(path.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
     for (std::uint64_t off = 0; off < bytes;)
@@ -138,15 +91,15 @@ Row measureRaw(std::int64_t n, const std::string& path)
     ::fsync(fd);
     ::close(fd);
   });
-  r.saveCpu = cpuSeconds() - c0;
+  r.saveCpu = bench::cpuSeconds() - c0;
   r.mib = double(bytes) / (1 << 20);
-  c0 = cpuSeconds();
+  c0 = bench::cpuSeconds();
   r.loadMs = bench::medianMs(1, [&] {
     FileSource s(path);
     for (std::uint64_t off = 0; off < bytes; off += 1u << 30)
       s.read(off, dense.data() + off, std::min<std::uint64_t>(bytes - off, 1u << 30));
   });
-  r.loadCpu = cpuSeconds() - c0;
+  r.loadCpu = bench::cpuSeconds() - c0;
   std::remove(path.c_str());
   return r;
 }
@@ -168,7 +121,7 @@ int main(int argc, char** argv)
     if (n > maxEdge)
       continue;
     bench::Stopwatch fill;
-    auto v = makeShape(n);
+    auto v = bench::makePaintedShape(n);
     std::cout << n << "^3: filled in " << bench::fmt(fill.seconds(), 1) << " s, " << v->expandedChunkCount() << " of "
               << v->chunkCount() << " chunks non-uniform, " << formatBytes(v->memoryBytes()) << " in memory\n";
     const Row f = measure(*v, path, level);
@@ -183,7 +136,7 @@ int main(int argc, char** argv)
   bench::printTable({ "volume", "layout", "MiB", "save ms", "save CPU s", "load ms", "load CPU s", "vs peer" }, rows);
 
   std::cout << "\nzstd level at 512^3 (same shape):\n";
-  auto v = makeShape(std::min<std::int64_t>(512, maxEdge));
+  auto v = bench::makePaintedShape(std::min<std::int64_t>(512, maxEdge));
   std::vector<std::vector<std::string>> levels;
   for (int level : { 1, 3, 5, 9 })
   {
