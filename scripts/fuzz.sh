@@ -14,11 +14,11 @@ jobs="${FUZZ_BUILD_JOBS:-2}"
 CC="${CC:-clang}" CXX="${CXX:-clang++}" cmake -S "$root/Testing/Fuzz" -B "$build" >/dev/null
 cmake --build "$build" -j "$jobs"
 
-mkdir -p "$build/corpus/volume" "$build/corpus/bv" "$build/crashes"
-"$build/make_fuzz_seeds" "$build/corpus/volume" "$build/corpus/bv"
+mkdir -p "$build/corpus/volume" "$build/corpus/bv" "$build/corpus/mesh" "$build/crashes"
+"$build/make_fuzz_seeds" "$build/corpus/volume" "$build/corpus/bv" "$build/corpus/mesh"
 
 status=0
-for target in volume_file bv; do
+for target in volume_file bv mesh; do
   corpus="$build/corpus/${target/volume_file/volume}"
   echo "== fuzz_$target for ${seconds}s (corpus $corpus)"
   # -rss_limit_mb: the readers must refuse absurd sizes long before this
