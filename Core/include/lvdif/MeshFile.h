@@ -12,6 +12,7 @@
 #pragma once
 
 #include "lvdif/ByteStream.h"
+#include "lvdif/Error.h"
 #include "lvdif/TriangleMesh.h"
 
 #include <string>
