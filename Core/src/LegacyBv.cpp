@@ -5,6 +5,7 @@
 #include "lvdif/Memory.h"
 
 #include <algorithm>
+#include <cctype>
 #include <cmath>
 #include <unordered_set>
 
