@@ -1,0 +1,15 @@
+// Mesh to SDF CUDA entry points for builds without CUDA (never called:
+// resolveDevice() returns Cpu there).
+#include "../MeshToSdfCuda.h"
+
+namespace lvdif
+{
+namespace cudasdf
+{
+void computeExtent(const sdfdetail::PreparedMesh&, const sdfdetail::Bvh&, const GridGeometry&, const VoxelBox&, float*,
+  const MeshToSdfOptions&, double, double, MeshToSdfStats&, Interrupter&)
+{
+  throw Error(ErrorCode::Unsupported, "mesh to SDF: this build has no CUDA");
+}
+} // namespace cudasdf
+} // namespace lvdif
