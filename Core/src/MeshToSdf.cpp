@@ -153,7 +153,9 @@ struct Engine
     for (std::int64_t i = i0; i <= i1; ++i)
     {
       const double dist = out[i - i0] / this->toOut; // world; a lower bound when saturated
-      if (have && prevDist + dist > h)
+      // the margin covers the float rounding of the stored distances: a
+      // segment that crosses a face has prevDist + dist == h exactly
+      if (have && prevDist + dist > h * (1 + 1e-5))
       {
         // the segment from the previous voxel cannot meet the mesh; w moves
         // by at most h * max|grad w| <= h * Lb / (4 pi m^2) along it
