@@ -24,8 +24,6 @@ using namespace sdfdetail;
 
 namespace
 {
-constexpr double FourPi = 12.566370614359172;
-
 double now()
 {
   return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count();
@@ -43,17 +41,12 @@ void validateGrid(const GridGeometry& g)
   }
 }
 
-/// Inside iff |w| >= 0.5; decided when every w of [lo, hi] gives the same answer.
-bool decided(double lo, double hi)
-{
-  return !(lo < 0.5 && hi >= 0.5) && !(lo <= -0.5 && hi > -0.5);
-}
-
 struct Engine
 {
   PreparedMesh mesh;
   std::unique_ptr<Bvh> bvh;
   std::unique_ptr<FaithfulGrid> grid;
+  std::unique_ptr<WindingSigner> winding;
   GridGeometry geom;
   MeshToSdfOptions opts;
   double toOut = 1;       // world distance -> output units
@@ -120,14 +113,32 @@ struct Engine
   }
 
   /// Distances (and the local sign) of one row; out holds output units.
+  /// With a finite band and no normal-based sign, the distance being
+  /// 1-Lipschitz lets far voxels skip the query: each query looks a margin
+  /// beyond the band, and the following voxels stay saturated while the
+  /// lower bound (previous distance - steps) is still past the band.
   void distanceRow(std::int64_t j, std::int64_t k, std::int64_t i0, std::int64_t i1, float* out) const
   {
+    const bool bounded = this->opts.accel == MeshToSdfAccel::Bvh &&
+      (this->opts.sign == SignMode::WindingNumber || this->opts.sign == SignMode::Unsigned) &&
+      this->bandWorld2 < 1e299;
+    const double h = this->geom.spacing[0];
+    const double bandWorld = std::sqrt(this->bandWorld2);
+    const double reach = bandWorld + 4 * h;
+    double lower = -1; // lower bound of the current voxel's world distance
     std::int32_t hint = -1;
     for (std::int64_t i = i0; i <= i1; ++i)
     {
+      lower -= h;
+      if (bounded && lower >= bandWorld)
+      {
+        out[i - i0] = static_cast<float>(this->band);
+        continue;
+      }
       const V3 p = this->position(i, j, k);
-      const NearestResult r = this->nearest(p, hint);
+      const NearestResult r = bounded ? this->bvh->nearest(p, hint, reach * reach) : this->nearest(p, hint);
       double d = r.tri < 0 ? this->band : std::sqrt(r.dist2) * this->toOut;
+      lower = r.tri < 0 ? reach : std::sqrt(r.dist2);
       d = std::min(d, this->band);
       float s = 1.0f;
       if (r.tri >= 0)
@@ -141,58 +152,6 @@ struct Engine
       out[i - i0] = s * static_cast<float>(d);
     }
   }
-
-  /// Winding-number signs of one row whose unsigned distances are in out.
-  void signRow(std::int64_t j, std::int64_t k, std::int64_t i0, std::int64_t i1, float* out, std::int64_t& evals,
-    std::int64_t& exact) const
-  {
-    const double h = this->geom.spacing[0];
-    const double lb = this->mesh.boundaryLength;
-    bool have = false;
-    double lo = 0, hi = 0, prevDist = 0;
-    for (std::int64_t i = i0; i <= i1; ++i)
-    {
-      const double dist = out[i - i0] / this->toOut; // world; a lower bound when saturated
-      // the margin covers the float rounding of the stored distances: a
-      // segment that crosses a face has prevDist + dist == h exactly
-      if (have && prevDist + dist > h * (1 + 1e-5))
-      {
-        // the segment from the previous voxel cannot meet the mesh; w moves
-        // by at most h * max|grad w| <= h * Lb / (4 pi m^2) along it
-        const double m = 0.5 * (prevDist + dist - h);
-        const double drift = lb > 0 ? h * lb / (FourPi * m * m) : 0.0;
-        lo -= drift;
-        hi += drift;
-      }
-      else
-      {
-        have = false;
-      }
-      if (!have || !decided(lo, hi))
-      {
-        const V3 p = this->position(i, j, k);
-        double err = 0;
-        double w = this->bvh->winding(p, this->opts.windingBeta, &err);
-        err += 1e-9 + 1e-12 * static_cast<double>(this->mesh.tris.size());
-        ++evals;
-        if (!decided(w - err, w + err))
-        {
-          w = this->bvh->windingExact(p);
-          err = 1e-9 + 1e-12 * static_cast<double>(this->mesh.tris.size());
-          ++exact;
-        }
-        lo = w - err;
-        hi = w + err;
-        have = true;
-      }
-      prevDist = dist;
-      const double mid = 0.5 * (lo + hi);
-      if (std::fabs(mid) >= 0.5)
-      {
-        out[i - i0] = -out[i - i0];
-      }
-    }
-  }
 };
 
 std::unique_ptr<Engine> makeEngine(const TriangleMesh& mesh, const GridGeometry& geom, const MeshToSdfOptions& opts,
@@ -202,7 +161,6 @@ std::unique_ptr<Engine> makeEngine(const TriangleMesh& mesh, const GridGeometry&
   require(opts.faithfulCellsPerAxis >= 1 && opts.faithfulCellsPerAxis <= 256,
     "mesh to SDF: faithfulCellsPerAxis must be in [1, 256]");
   require(opts.faithfulScale >= 1 && opts.faithfulScale <= 16, "mesh to SDF: faithfulScale must be in [1, 16]");
-  require(opts.windingBeta >= 1 && std::isfinite(opts.windingBeta), "mesh to SDF: windingBeta must be >= 1");
   require(band > 0, "mesh to SDF: band width must be positive");
   const double t0 = now();
   auto e = std::make_unique<Engine>();
@@ -215,6 +173,10 @@ std::unique_ptr<Engine> makeEngine(const TriangleMesh& mesh, const GridGeometry&
   const double bw = static_cast<double>(band) / e->toOut;
   e->bandWorld2 = std::isfinite(bw) ? bw * bw * (1 + 1e-9) : 1e300;
   e->bvh = std::make_unique<Bvh>(e->mesh.tris);
+  if (opts.sign == SignMode::WindingNumber)
+  {
+    e->winding = std::make_unique<WindingSigner>(e->mesh);
+  }
   if (opts.accel == MeshToSdfAccel::Faithful)
   {
     const std::uint64_t cells = static_cast<std::uint64_t>(opts.faithfulCellsPerAxis) *
@@ -281,7 +243,7 @@ void computeBox(const Engine& e, const VoxelBox& box, float* out, MeshToSdfStats
   forRows(box, intr, progressBase + 0.5 * progressSpan, 0.5 * progressSpan,
     [&](std::int64_t j, std::int64_t k, std::int64_t r) {
       std::int64_t ev = 0, ex = 0;
-      e.signRow(j, k, box.lo[0], box.hi[0], out + r * nx, ev, ex);
+      e.winding->signRow(e.position(box.lo[0], j, k), e.geom.spacing[0], nx, out + r * nx, ev, ex);
       evals += ev;
       exact += ex;
     });

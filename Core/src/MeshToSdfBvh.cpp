@@ -163,40 +163,6 @@ NearestResult Bvh::nearest(V3 p, std::int32_t hint, double maxDist2) const
   return best;
 }
 
-double Bvh::winding(V3 p, double beta, double* errorBound) const
-{
-  double omega = 0, err = 0;
-  std::int32_t stack[128];
-  int top = 0;
-  stack[top++] = 0;
-  while (top > 0)
-  {
-    const Node& n = this->Nodes[stack[--top]];
-    const V3 r = n.centre - p;
-    const double d = norm(r);
-    if (d > beta * n.radius && d > n.radius)
-    {
-      omega += dot(n.vecArea, r) / (d * d * d);
-      const double g = d - n.radius;
-      err += n.area * 2.0 * n.radius / (g * g * g);
-      continue;
-    }
-    if (n.left < 0)
-    {
-      for (std::int32_t i = n.first; i < n.first + n.count; ++i)
-      {
-        const Tri& t = this->Tris[this->Order[i]];
-        omega += solidAngle(p, t.v[0], t.v[1], t.v[2]);
-      }
-      continue;
-    }
-    stack[top++] = n.left;
-    stack[top++] = n.right;
-  }
-  *errorBound = err / FourPi;
-  return omega / FourPi;
-}
-
 double Bvh::windingExact(V3 p) const
 {
   double omega = 0;
@@ -205,6 +171,73 @@ double Bvh::windingExact(V3 p) const
     omega += solidAngle(p, t.v[0], t.v[1], t.v[2]);
   }
   return omega / FourPi;
+}
+
+bool Bvh::rayHits(V3 o, V3 dir, double tmin, std::vector<RayHit>& hits) const
+{
+  // slab test per node; Moeller-Trumbore per triangle, with a relative
+  // tolerance that reports near-edge / near-vertex crossings as ambiguous
+  constexpr double Eps = 1e-9;
+  const double inv[3] = { 1.0 / dir.x, 1.0 / dir.y, 1.0 / dir.z };
+  std::int32_t stack[128];
+  int top = 0;
+  stack[top++] = 0;
+  while (top > 0)
+  {
+    const Node& n = this->Nodes[stack[--top]];
+    double t0 = tmin, t1 = 1e300;
+    bool miss = false;
+    for (int a = 0; a < 3 && !miss; ++a)
+    {
+      const double da = dir[a];
+      if (da == 0)
+      {
+        miss = o[a] < n.lo[a] || o[a] > n.hi[a];
+        continue;
+      }
+      double ta = (n.lo[a] - o[a]) * inv[a], tb = (n.hi[a] - o[a]) * inv[a];
+      if (ta > tb) std::swap(ta, tb);
+      const double pad = 1e-9 * (std::fabs(ta) + std::fabs(tb)) + 1e-300;
+      t0 = std::max(t0, ta - pad);
+      t1 = std::min(t1, tb + pad);
+      miss = t0 > t1;
+    }
+    if (miss) continue;
+    if (n.left >= 0)
+    {
+      stack[top++] = n.left;
+      stack[top++] = n.right;
+      continue;
+    }
+    for (std::int32_t i = n.first; i < n.first + n.count; ++i)
+    {
+      const std::int32_t ti = this->Order[i];
+      const Tri& t = this->Tris[ti];
+      const V3 e1 = t.v[1] - t.v[0], e2 = t.v[2] - t.v[0];
+      const V3 pv = cross(dir, e2);
+      const double det = dot(e1, pv);
+      const double scale = norm(e1) * norm(e2) * norm(dir);
+      const V3 tv = o - t.v[0];
+      if (std::fabs(det) <= Eps * scale)
+      {
+        // parallel: ambiguous only if the ray lies in the triangle's plane
+        if (std::fabs(dot(tv, t.n)) <= Eps * (norm(tv) + norm(e1))) return false;
+        continue;
+      }
+      const double invDet = 1.0 / det;
+      const double u = dot(tv, pv) * invDet;
+      const V3 qv = cross(tv, e1);
+      const double v = dot(dir, qv) * invDet;
+      const double tt = dot(e2, qv) * invDet;
+      const double w = 1 - u - v;
+      if (u < -Eps || v < -Eps || w < -Eps) continue; // clear miss
+      const double tScale = 1e-9 * (std::fabs(tt) + std::fabs(tmin) + norm(e1) / norm(dir));
+      if (tt < tmin - tScale) continue;
+      if (u <= Eps || v <= Eps || w <= Eps || std::fabs(tt - tmin) <= tScale) return false;
+      hits.push_back({ tt, ti, static_cast<std::int8_t>(dot(dir, t.n) > 0 ? 1 : -1) });
+    }
+  }
+  return true;
 }
 
 } // namespace sdfdetail

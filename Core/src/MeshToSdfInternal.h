@@ -7,6 +7,7 @@
 #include "lvdif/TriangleMesh.h"
 
 #include <cstdint>
+#include <memory>
 #include <vector>
 
 namespace lvdif
@@ -20,6 +21,9 @@ struct PreparedMesh
   std::size_t degenerate = 0;     // skipped zero-area triangles
   double boundaryLength = 0;      // total length of the boundary chain (0 when closed)
   std::size_t boundaryEdges = 0;  // edges of non-zero net multiplicity
+  /// The boundary chain as directed segments (a -> b, repeated per unit of
+  /// multiplicity): the oriented edges of the triangles that do not cancel.
+  std::vector<std::array<V3, 2>> boundary;
   double lo[3] = { 0, 0, 0 }, hi[3] = { 0, 0, 0 }; // bounds of the kept triangles
 };
 
@@ -58,13 +62,19 @@ public:
   /// from the given hint (tri index, -1 for none), exact.
   NearestResult nearest(V3 p, std::int32_t hint, double maxDist2) const;
 
-  /// Winding number at p with a rigorous bound of its error (first-order
-  /// dipole expansion of clusters with |p - centre| > beta * radius, exact
-  /// solid angles elsewhere). The bound follows from the Hessian of 1/r:
-  /// |Omega_err| <= area * 2 r / (d - r)^3 per approximated cluster.
-  double winding(V3 p, double beta, double* errorBound) const;
   /// Exact winding number: the sum of all solid angles / 4 pi.
   double windingExact(V3 p) const;
+
+  struct RayHit
+  {
+    double t;
+    std::int32_t tri;
+    std::int8_t sign; // +1 when the ray leaves through the front face
+  };
+  /// Every crossing of the ray o + t dir, t > tmin, with a triangle. Returns
+  /// false when a crossing is too close to an edge, a vertex, the ray origin,
+  /// or the ray lies in a triangle's plane (the count would be ambiguous).
+  bool rayHits(V3 o, V3 dir, double tmin, std::vector<RayHit>& hits) const;
 
   const std::vector<Node>& nodes() const { return this->Nodes; }
 
@@ -100,6 +110,35 @@ private:
   std::vector<std::int64_t> Start; // M^3 + 1 offsets into Entries
   std::vector<std::int32_t> Entries;
   std::vector<std::int32_t> NearestFull; // for each cell, a cell with triangles near it (BFS)
+};
+
+/// Exact generalized winding number of the mesh by crossings (MeshToSdfWinding.cpp).
+class WindingSigner
+{
+public:
+  explicit WindingSigner(const PreparedMesh& mesh);
+  /// Flips the sign of the voxels of one row (unsigned distances in out,
+  /// world distance = out / toOut) where |w| >= 0.5. Positions x0 + i * h.
+  void signRow(V3 rowStart, double h, std::int64_t n, float* out, std::int64_t& evaluations,
+    std::int64_t& fallbacks) const;
+  /// Exact winding number at p by a ray in a fixed oblique direction; the
+  /// sum of all solid angles if that ray is ambiguous.
+  double evaluate(V3 p) const;
+
+private:
+  double coneWinding(V3 p) const;
+  double driftPerLength(V3 p, V3 q, double h) const;
+  const PreparedMesh& Mesh;
+  std::size_t MeshTris = 0;        // closed[0, MeshTris) are the mesh, the rest the cone
+  std::vector<Tri> Closed;         // mesh + cone over the boundary: a closed chain
+  std::unique_ptr<Bvh> ClosedBvh;
+  std::vector<Tri> Cone;
+  struct Cluster
+  {
+    V3 centre;
+    double radius = 0, length = 0;
+  };
+  std::vector<Cluster> Clusters;   // of boundary edges, for the drift bound
 };
 
 /// Akenine-Moeller (2001) triangle/box overlap by the separating axis theorem

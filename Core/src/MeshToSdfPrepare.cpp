@@ -139,6 +139,11 @@ PreparedMesh prepareMesh(const TriangleMesh& mesh)
       const V3 b = pos[static_cast<std::uint32_t>(e.first & 0xffffffffu)];
       out.boundaryLength += std::abs(e.second) * norm(b - a);
       ++out.boundaryEdges;
+      for (int k = 0; k < std::abs(e.second); ++k)
+      {
+        // key (lo, hi) with positive multiplicity means lo -> hi
+        out.boundary.push_back(e.second > 0 ? std::array<V3, 2>{ a, b } : std::array<V3, 2>{ b, a });
+      }
     }
   }
 

@@ -21,16 +21,12 @@
 //                   (Baerentzen & Aanaes 2005): right on closed, consistently
 //                   oriented meshes;
 //   WindingNumber - inside iff |w| >= 0.5 for the generalized winding number
-//                   w (Jacobson, Kavan, Sorkine-Hornung 2013). Evaluated with
-//                   fast winding numbers (Barill et al. 2018) whose error is
-//                   bounded rigorously; a voxel whose bound straddles the
-//                   threshold is evaluated exactly (sum of all solid angles).
-//                   Along a scan line the sign is carried from voxel to voxel
-//                   when the segment between them cannot meet the mesh and w
-//                   cannot have drifted across the threshold (the drift is
-//                   bounded by the boundary length over the squared distance,
-//                   Biot-Savart; zero for closed meshes). So the sign equals
-//                   that of the exact winding number up to double rounding.
+//                   w (Jacobson, Kavan, Sorkine-Hornung 2013), computed
+//                   exactly (up to double rounding) by signed ray crossings
+//                   along each scan line of the mesh closed by a cone over its
+//                   boundary, minus the cone's solid angle; for open meshes w
+//                   is carried along the line with a Biot-Savart bound of its
+//                   variation. Details: src/MeshToSdfWinding.cpp.
 // Units: distances in voxels (world distance / the smallest spacing), or world
 // units with DistanceUnit::World. Band: |d| saturates at bandWidth.
 #pragma once
@@ -77,7 +73,6 @@ struct MeshToSdfOptions
   bool useVertexNormals = false; // Normal mode: interpolate the mesh's vertex normals
   float bandWidth = std::numeric_limits<float>::infinity(); // |d| saturates here (output units)
   DistanceUnit unit = DistanceUnit::Voxel;
-  double windingBeta = 2.0; // fast winding number accuracy (Barill et al.'s beta)
   Device device = Device::Auto;
 };
 
@@ -88,8 +83,8 @@ struct MeshToSdfStats
   std::size_t boundaryEdges = 0;     // edges of the open boundary (0: closed)
   Device device = Device::Cpu;
   double buildSeconds = 0, distanceSeconds = 0, signSeconds = 0, writeSeconds = 0;
-  std::int64_t windingEvaluations = 0; // fast evaluations (WindingNumber)
-  std::int64_t windingExact = 0;       // of those, exact fallbacks
+  std::int64_t windingEvaluations = 0; // voxels whose winding number was evaluated (not carried)
+  std::int64_t windingExact = 0;       // of those, on rows whose +x ray was ambiguous
   std::uint64_t devicePeakBytes = 0;   // CUDA: device memory used
 };
 
