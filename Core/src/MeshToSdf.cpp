@@ -306,7 +306,7 @@ MeshToSdfStats meshToSdf(const TriangleMesh& mesh, const GridGeometry& grid, con
   stats.device = resolveDevice(options.device);
   if (stats.device == Device::Cuda)
   {
-    cudasdf::computeExtent(engine->mesh, *engine->bvh, grid, extent, out, options, engine->toOut,
+    cudasdf::computeExtent(engine->mesh, *engine->bvh, engine->winding.get(), grid, extent, out, options, engine->toOut,
       engine->band, stats, interrupter);
   }
   else
@@ -358,7 +358,7 @@ MeshToSdfStats meshToSdf(const TriangleMesh& mesh, DictionaryVolume& volume, con
     const double span = 1.0 / static_cast<double>(cc[2]);
     if (stats.device == Device::Cuda)
     {
-      cudasdf::computeExtent(engine->mesh, *engine->bvh, grid, box, slab.data(), opts, engine->toOut, engine->band,
+      cudasdf::computeExtent(engine->mesh, *engine->bvh, engine->winding.get(), grid, box, slab.data(), opts, engine->toOut, engine->band,
         stats, interrupter);
     }
     else

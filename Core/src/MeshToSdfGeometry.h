@@ -7,6 +7,13 @@
 #include <cmath>
 #include <cstdint>
 
+// Shared by the CPU code and the CUDA kernels (MeshToSdfCuda.cu).
+#if defined(__CUDACC__)
+#define LVDIF_HD __host__ __device__ inline
+#else
+#define LVDIF_HD inline
+#endif
+
 namespace lvdif
 {
 namespace sdfdetail
@@ -15,15 +22,15 @@ namespace sdfdetail
 struct V3
 {
   double x = 0, y = 0, z = 0;
-  double operator[](int a) const { return a == 0 ? x : (a == 1 ? y : z); }
+  LVDIF_HD double operator[](int a) const { return a == 0 ? x : (a == 1 ? y : z); }
 };
-inline V3 operator+(V3 a, V3 b) { return { a.x + b.x, a.y + b.y, a.z + b.z }; }
-inline V3 operator-(V3 a, V3 b) { return { a.x - b.x, a.y - b.y, a.z - b.z }; }
-inline V3 operator*(double s, V3 a) { return { s * a.x, s * a.y, s * a.z }; }
-inline double dot(V3 a, V3 b) { return a.x * b.x + a.y * b.y + a.z * b.z; }
-inline V3 cross(V3 a, V3 b) { return { a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x }; }
-inline double norm(V3 a) { return std::sqrt(dot(a, a)); }
-inline V3 normalized(V3 a)
+LVDIF_HD V3 operator+(V3 a, V3 b) { return { a.x + b.x, a.y + b.y, a.z + b.z }; }
+LVDIF_HD V3 operator-(V3 a, V3 b) { return { a.x - b.x, a.y - b.y, a.z - b.z }; }
+LVDIF_HD V3 operator*(double s, V3 a) { return { s * a.x, s * a.y, s * a.z }; }
+LVDIF_HD double dot(V3 a, V3 b) { return a.x * b.x + a.y * b.y + a.z * b.z; }
+LVDIF_HD V3 cross(V3 a, V3 b) { return { a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x }; }
+LVDIF_HD double norm(V3 a) { return std::sqrt(dot(a, a)); }
+LVDIF_HD V3 normalized(V3 a)
 {
   const double n = norm(a);
   return n > 0 ? (1.0 / n) * a : V3{};
@@ -66,7 +73,7 @@ struct Closest
 /// "Real-Time Collision Detection" (2005), Sect. 5.1.5. Every region test is
 /// done in order, so the edge-AB region uses its own parameter d1/(d1-d3)
 /// (the original code took the AC parameter there, spec section 1.4).
-inline Closest closestPointOnTriangle(V3 p, V3 a, V3 b, V3 c)
+LVDIF_HD Closest closestPointOnTriangle(V3 p, V3 a, V3 b, V3 c)
 {
   const V3 ab = b - a, ac = c - a, ap = p - a;
   const double d1 = dot(ab, ap), d2 = dot(ac, ap);
@@ -111,7 +118,7 @@ inline Closest closestPointOnTriangle(V3 p, V3 a, V3 b, V3 c)
 
 /// Signed solid angle of triangle (a, b, c) seen from p (positive when p is
 /// behind the triangle's front), Van Oosterom & Strackee (1983).
-inline double solidAngle(V3 p, V3 a, V3 b, V3 c)
+LVDIF_HD double solidAngle(V3 p, V3 a, V3 b, V3 c)
 {
   const V3 x = a - p, y = b - p, z = c - p;
   const double lx = norm(x), ly = norm(y), lz = norm(z);
@@ -121,7 +128,7 @@ inline double solidAngle(V3 p, V3 a, V3 b, V3 c)
 }
 
 /// Squared distance from p to the box [lo, hi] (0 inside).
-inline double pointBoxDist2(V3 p, const double lo[3], const double hi[3])
+LVDIF_HD double pointBoxDist2(V3 p, const double lo[3], const double hi[3])
 {
   double s = 0;
   for (int a = 0; a < 3; ++a)
@@ -134,7 +141,7 @@ inline double pointBoxDist2(V3 p, const double lo[3], const double hi[3])
 }
 
 /// The pseudo-normal of the feature the closest point lies on.
-inline V3 featureNormal(const Tri& t, Feature f)
+LVDIF_HD V3 featureNormal(const Tri& t, Feature f)
 {
   switch (f)
   {

@@ -77,6 +77,7 @@ public:
   bool rayHits(V3 o, V3 dir, double tmin, std::vector<RayHit>& hits) const;
 
   const std::vector<Node>& nodes() const { return this->Nodes; }
+  const std::vector<std::int32_t>& order() const { return this->Order; }
 
 private:
   std::int32_t build(std::int32_t first, std::int32_t count, int depth);
@@ -125,6 +126,18 @@ public:
   /// sum of all solid angles if that ray is ambiguous.
   double evaluate(V3 p) const;
 
+  struct Cluster
+  {
+    V3 centre;
+    double radius = 0, length = 0;
+  };
+  // for the CUDA path, which mirrors signRow
+  const std::vector<Tri>& closedTris() const { return this->Closed; }
+  const Bvh& closedBvh() const { return *this->ClosedBvh; }
+  const std::vector<Tri>& cone() const { return this->Cone; }
+  const std::vector<Cluster>& clusters() const { return this->Clusters; }
+  std::size_t meshTriangles() const { return this->MeshTris; }
+
 private:
   double coneWinding(V3 p) const;
   double driftPerLength(V3 p, V3 q, double h) const;
@@ -133,11 +146,6 @@ private:
   std::vector<Tri> Closed;         // mesh + cone over the boundary: a closed chain
   std::unique_ptr<Bvh> ClosedBvh;
   std::vector<Tri> Cone;
-  struct Cluster
-  {
-    V3 centre;
-    double radius = 0, length = 0;
-  };
   std::vector<Cluster> Clusters;   // of boundary edges, for the drift bound
 };
 

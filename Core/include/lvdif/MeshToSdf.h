@@ -74,6 +74,8 @@ struct MeshToSdfOptions
   float bandWidth = std::numeric_limits<float>::infinity(); // |d| saturates here (output units)
   DistanceUnit unit = DistanceUnit::Voxel;
   Device device = Device::Auto;
+  /// CUDA: bytes of the device slab buffer (z layers per slab follow from it).
+  std::uint64_t cudaSlabBytes = 256ull << 20;
 };
 
 struct MeshToSdfStats

@@ -6,7 +6,8 @@ namespace lvdif
 {
 namespace cudasdf
 {
-void computeExtent(const sdfdetail::PreparedMesh&, const sdfdetail::Bvh&, const GridGeometry&, const VoxelBox&, float*,
+void computeExtent(const sdfdetail::PreparedMesh&, const sdfdetail::Bvh&, const sdfdetail::WindingSigner*,
+  const GridGeometry&, const VoxelBox&, float*,
   const MeshToSdfOptions&, double, double, MeshToSdfStats&, Interrupter&)
 {
   throw Error(ErrorCode::Unsupported, "mesh to SDF: this build has no CUDA");
