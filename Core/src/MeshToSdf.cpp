@@ -306,8 +306,9 @@ MeshToSdfStats meshToSdf(const TriangleMesh& mesh, const GridGeometry& grid, con
   stats.device = resolveDevice(options.device);
   if (stats.device == Device::Cuda)
   {
-    cudasdf::computeExtent(engine->mesh, *engine->bvh, engine->winding.get(), grid, extent, out, options, engine->toOut,
-      engine->band, stats, interrupter);
+    auto session = cudasdf::openSession(engine->mesh, *engine->bvh, engine->winding.get(), grid, options,
+      engine->toOut, engine->band, stats);
+    session->compute(extent, out, stats, interrupter);
   }
   else
   {
@@ -341,70 +342,84 @@ MeshToSdfStats meshToSdf(const TriangleMesh& mesh, DictionaryVolume& volume, con
   stats.device = resolveDevice(options.device);
 
   // One slab of whole chunk layers at a time: nx * ny * chunkEdge floats
-  // (128 MiB at 1024^2 x 32), never the full grid.
+  // (128 MiB at 1024^2 x 32) on the CPU, up to 4 chunk layers (512 MiB) per
+  // CUDA call; never the full grid.
   const std::int64_t edge = volume.chunkEdge();
-  const std::uint64_t slabFloats = checkedMultiply(
+  const std::uint64_t layerFloats = checkedMultiply(
     checkedMultiply(static_cast<std::uint64_t>(grid.dims[0]), static_cast<std::uint64_t>(grid.dims[1]), "slab"),
     static_cast<std::uint64_t>(edge), "slab");
+  const Index3& cc = volume.chunkCounts();
+  std::int64_t group = 1;
+  std::unique_ptr<cudasdf::Session> session;
+  if (stats.device == Device::Cuda)
+  {
+    group = std::max<std::int64_t>(1, std::min<std::int64_t>({ cc[2], 4,
+      static_cast<std::int64_t>((512ull << 20) / (layerFloats * sizeof(float))) }));
+    session = cudasdf::openSession(engine->mesh, *engine->bvh, engine->winding.get(), grid, opts, engine->toOut,
+      engine->band, stats);
+  }
+  const std::uint64_t slabFloats = layerFloats * static_cast<std::uint64_t>(group);
   requireMemory(slabFloats * sizeof(float), "mesh to SDF: slab buffer");
   std::vector<float> slab(static_cast<std::size_t>(slabFloats));
-  const Index3& cc = volume.chunkCounts();
-  for (std::int64_t cz = 0; cz < cc[2]; ++cz)
+  for (std::int64_t g0 = 0; g0 < cc[2]; g0 += group)
   {
-    VoxelBox box;
-    box.lo = { 0, 0, cz * edge };
-    box.hi = { grid.dims[0] - 1, grid.dims[1] - 1, std::min(grid.dims[2], (cz + 1) * edge) - 1 };
-    const double base = static_cast<double>(cz) / static_cast<double>(cc[2]);
-    const double span = 1.0 / static_cast<double>(cc[2]);
-    if (stats.device == Device::Cuda)
+    VoxelBox groupBox;
+    groupBox.lo = { 0, 0, g0 * edge };
+    groupBox.hi = { grid.dims[0] - 1, grid.dims[1] - 1, std::min(grid.dims[2], (g0 + group) * edge) - 1 };
+    const double base = static_cast<double>(g0) / static_cast<double>(cc[2]);
+    const double span = static_cast<double>(std::min(group, cc[2] - g0)) / static_cast<double>(cc[2]);
+    if (session)
     {
-      cudasdf::computeExtent(engine->mesh, *engine->bvh, engine->winding.get(), grid, box, slab.data(), opts, engine->toOut, engine->band,
-        stats, interrupter);
+      session->compute(groupBox, slab.data(), stats, interrupter);
     }
     else
     {
-      computeBox(*engine, box, slab.data(), stats, interrupter, base, span);
+      computeBox(*engine, groupBox, slab.data(), stats, interrupter, base, span);
     }
-    const double t0 = now();
-    const std::int64_t nx = grid.dims[0], ny = grid.dims[1];
-    const std::int64_t chunksInSlab = cc[0] * cc[1];
-#pragma omp parallel for schedule(dynamic, 1)
-    for (std::int64_t c = 0; c < chunksInSlab; ++c)
+    for (std::int64_t cz = g0; cz < std::min(cc[2], g0 + group); ++cz)
     {
-      const std::int64_t id = volume.chunkId(c % cc[0], c / cc[0], cz);
-      const VoxelBox cb = volume.chunkBox(id);
-      auto valueAt = [&](std::int64_t x, std::int64_t y, std::int64_t z) {
-        return slab[static_cast<std::size_t>(x + nx * (y + ny * (z - box.lo[2])))];
-      };
-      const SdfKey first = volume.encode(valueAt(cb.lo[0], cb.lo[1], cb.lo[2]));
-      bool uniform = true;
-      for (std::int64_t z = cb.lo[2]; z <= cb.hi[2] && uniform; ++z)
-        for (std::int64_t y = cb.lo[1]; y <= cb.hi[1] && uniform; ++y)
-          for (std::int64_t x = cb.lo[0]; x <= cb.hi[0]; ++x)
-          {
-            if (volume.encode(valueAt(x, y, z)) != first)
-            {
-              uniform = false;
-              break;
-            }
-          }
-      if (uniform && volume.isUniform(id))
+      const VoxelBox& box = groupBox;
+      const double t0 = now();
+      const std::int64_t nx = grid.dims[0], ny = grid.dims[1];
+      const std::int64_t chunksInSlab = cc[0] * cc[1];
+#pragma omp parallel for schedule(dynamic, 1)
+      for (std::int64_t c = 0; c < chunksInSlab; ++c)
       {
-        volume.fillChunk(id, Voxel{ first, volume.uniformValue(id).color });
-        continue;
+        const std::int64_t id = volume.chunkId(c % cc[0], c / cc[0], cz);
+        const VoxelBox cb = volume.chunkBox(id);
+        auto valueAt = [&](std::int64_t x, std::int64_t y, std::int64_t z) {
+          return slab[static_cast<std::size_t>(x + nx * (y + ny * (z - box.lo[2])))];
+        };
+        const SdfKey first = volume.encode(valueAt(cb.lo[0], cb.lo[1], cb.lo[2]));
+        bool uniform = true;
+        for (std::int64_t z = cb.lo[2]; z <= cb.hi[2] && uniform; ++z)
+          for (std::int64_t y = cb.lo[1]; y <= cb.hi[1] && uniform; ++y)
+            for (std::int64_t x = cb.lo[0]; x <= cb.hi[0]; ++x)
+            {
+              if (volume.encode(valueAt(x, y, z)) != first)
+              {
+                uniform = false;
+                break;
+              }
+            }
+        if (uniform && volume.isUniform(id))
+        {
+          volume.fillChunk(id, Voxel{ first, volume.uniformValue(id).color });
+          continue;
+        }
+        Voxel* data = volume.expandChunk(id);
+        for (std::int64_t z = cb.lo[2]; z <= cb.hi[2]; ++z)
+          for (std::int64_t y = cb.lo[1]; y <= cb.hi[1]; ++y)
+            for (std::int64_t x = cb.lo[0]; x <= cb.hi[0]; ++x)
+            {
+              data[volume.localIndex(x, y, z)].sdf = volume.encode(valueAt(x, y, z));
+            }
+        volume.markDirty(id);
+        volume.tryCollapseChunk(id);
       }
-      Voxel* data = volume.expandChunk(id);
-      for (std::int64_t z = cb.lo[2]; z <= cb.hi[2]; ++z)
-        for (std::int64_t y = cb.lo[1]; y <= cb.hi[1]; ++y)
-          for (std::int64_t x = cb.lo[0]; x <= cb.hi[0]; ++x)
-          {
-            data[volume.localIndex(x, y, z)].sdf = volume.encode(valueAt(x, y, z));
-          }
-      volume.markDirty(id);
-      volume.tryCollapseChunk(id);
+      stats.writeSeconds += now() - t0;
+      interrupter.progress(static_cast<double>(cz + 1) / static_cast<double>(cc[2]));
     }
-    stats.writeSeconds += now() - t0;
-    interrupter.progress(static_cast<double>(cz + 1) / static_cast<double>(cc[2]));
   }
   interrupter.end();
   return stats;

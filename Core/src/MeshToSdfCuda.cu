@@ -104,7 +104,7 @@ __device__ NearestResult nearestDev(const DevBvh& b, V3 p, int hint, double maxD
         const Closest c = closestPointOnTriangle(p, t.v[0], t.v[1], t.v[2]);
         const V3 d = c.point - p;
         const double d2 = dot(d, d);
-        if (d2 < best.dist2 || (best.tri < 0 && d2 <= best.dist2))
+        if (d2 < best.dist2 || (d2 == best.dist2 && (best.tri < 0 || ti < best.tri)))
         {
           best.dist2 = d2;
           best.tri = ti;
@@ -451,87 +451,115 @@ DevBvh uploadBvh(DeviceArena& arena, const std::vector<Tri>& tris, const Bvh& b)
   d.order = arena.upload(b.order());
   return d;
 }
-} // namespace
 
-void computeExtent(const PreparedMesh& mesh, const Bvh& bvh, const WindingSigner* winding, const GridGeometry& grid,
-  const VoxelBox& extent, float* out, const MeshToSdfOptions& options, double toOut, double band,
-  MeshToSdfStats& stats, Interrupter& interrupter)
+class CudaSession : public Session
 {
-  double t0 = now();
-  DeviceArena arena;
-  const DevBvh dbvh = uploadBvh(arena, mesh.tris, bvh);
-  WindingDev W;
-  if (winding)
+public:
+  CudaSession(const PreparedMesh& mesh, const Bvh& bvh, const WindingSigner* winding, const GridGeometry& grid,
+    const MeshToSdfOptions& options, double toOut, double band, MeshToSdfStats& stats)
+    : Options(options)
+    , HasWinding(winding != nullptr)
   {
-    W.closed = uploadBvh(arena, winding->closedTris(), winding->closedBvh());
-    W.meshTris = static_cast<int>(winding->meshTriangles());
-    W.cone = W.closed.tris + W.meshTris;
-    W.coneCount = static_cast<int>(winding->cone().size());
-    W.clusters = arena.upload(winding->clusters());
-    W.clusterCount = static_cast<int>(winding->clusters().size());
-  }
-  unsigned long long* counters = arena.alloc<unsigned long long>(2);
-  LVDIF_CUDA_CHECK(cudaMemset(counters, 0, 2 * sizeof(unsigned long long)));
-
-  const long long nx = extent.hi[0] - extent.lo[0] + 1, ny = extent.hi[1] - extent.lo[1] + 1;
-  const long long nz = extent.hi[2] - extent.lo[2] + 1;
-  const std::uint64_t layerBytes = static_cast<std::uint64_t>(nx) * static_cast<std::uint64_t>(ny) * sizeof(float);
-  const long long slabLayers = std::max<long long>(1, std::min<long long>(nz, static_cast<long long>(options.cudaSlabBytes / layerBytes)));
-  float* dSlab = arena.alloc<float>(static_cast<std::size_t>(slabLayers * nx * ny));
-  stats.devicePeakBytes = std::max(stats.devicePeakBytes, arena.bytes());
-  LVDIF_CUDA_CHECK(cudaDeviceSynchronize());
-  stats.buildSeconds += now() - t0;
-
-  Params P;
-  for (int a = 0; a < 3; ++a)
-  {
-    P.origin[a] = grid.origin[a];
-    P.spacing[a] = grid.spacing[a];
-  }
-  P.toOut = toOut;
-  P.band = band;
-  P.bandWorld = std::isfinite(band) ? band / toOut : 1e300;
-  P.reach = P.bandWorld < 1e299 ? P.bandWorld + 4 * grid.spacing[0] : 1e300;
-  P.sign = options.sign == SignMode::Normal ? 0 : options.sign == SignMode::PseudoNormal ? 1
-    : options.sign == SignMode::WindingNumber ? 2 : 3;
-  P.useVertexNormals = options.useVertexNormals ? 1 : 0;
-  P.bounded = (P.sign >= 2 && P.bandWorld < 1e299) ? 1 : 0;
-
-  for (long long z0 = extent.lo[2]; z0 <= extent.hi[2]; z0 += slabLayers)
-  {
-    interrupter.checkInterrupt();
-    const long long z1 = std::min<long long>(extent.hi[2], z0 + slabLayers - 1);
-    P.lo[0] = extent.lo[0];
-    P.lo[1] = extent.lo[1];
-    P.lo[2] = z0;
-    P.hi[0] = extent.hi[0];
-    P.hi[1] = extent.hi[1];
-    P.hi[2] = z1;
-    const long long rows = ny * (z1 - z0 + 1);
-    const long long threads = rows * ((nx + Run - 1) / Run);
-    t0 = now();
-    distanceKernel<<<static_cast<unsigned>((threads + 127) / 128), 128>>>(dbvh, P, dSlab);
-    LVDIF_CUDA_CHECK(cudaGetLastError());
-    LVDIF_CUDA_CHECK(cudaDeviceSynchronize());
-    stats.distanceSeconds += now() - t0;
+    const double t0 = now();
+    this->Dbvh = uploadBvh(this->Arena, mesh.tris, bvh);
     if (winding)
     {
-      t0 = now();
-      signKernel<<<static_cast<unsigned>((rows + 63) / 64), 64>>>(W, P, dSlab, counters, counters + 1);
+      this->W.closed = uploadBvh(this->Arena, winding->closedTris(), winding->closedBvh());
+      this->W.meshTris = static_cast<int>(winding->meshTriangles());
+      this->W.cone = this->W.closed.tris + this->W.meshTris;
+      this->W.coneCount = static_cast<int>(winding->cone().size());
+      this->W.clusters = this->Arena.upload(winding->clusters());
+      this->W.clusterCount = static_cast<int>(winding->clusters().size());
+    }
+    this->Counters = this->Arena.alloc<unsigned long long>(2);
+    for (int a = 0; a < 3; ++a)
+    {
+      this->P.origin[a] = grid.origin[a];
+      this->P.spacing[a] = grid.spacing[a];
+    }
+    this->P.toOut = toOut;
+    this->P.band = band;
+    this->P.bandWorld = std::isfinite(band) ? band / toOut : 1e300;
+    this->P.reach = this->P.bandWorld < 1e299 ? this->P.bandWorld + 4 * grid.spacing[0] : 1e300;
+    this->P.sign = options.sign == SignMode::Normal ? 0 : options.sign == SignMode::PseudoNormal ? 1
+      : options.sign == SignMode::WindingNumber ? 2 : 3;
+    this->P.useVertexNormals = options.useVertexNormals ? 1 : 0;
+    this->P.bounded = (this->P.sign >= 2 && this->P.bandWorld < 1e299) ? 1 : 0;
+    LVDIF_CUDA_CHECK(cudaDeviceSynchronize());
+    stats.buildSeconds += now() - t0;
+  }
+
+  void compute(const VoxelBox& extent, float* out, MeshToSdfStats& stats, Interrupter& interrupter) override
+  {
+    const long long nx = extent.hi[0] - extent.lo[0] + 1, ny = extent.hi[1] - extent.lo[1] + 1;
+    const long long nz = extent.hi[2] - extent.lo[2] + 1;
+    const std::uint64_t layerBytes = static_cast<std::uint64_t>(nx) * static_cast<std::uint64_t>(ny) * sizeof(float);
+    const long long slabLayers =
+      std::max<long long>(1, std::min<long long>(nz, static_cast<long long>(this->Options.cudaSlabBytes / layerBytes)));
+    const std::size_t slabFloats = static_cast<std::size_t>(slabLayers * nx * ny);
+    if (slabFloats > this->SlabCapacity)
+    {
+      this->Slab = this->Arena.alloc<float>(slabFloats); // earlier, smaller slabs stay until the session ends
+      this->SlabCapacity = slabFloats;
+    }
+    stats.devicePeakBytes = std::max(stats.devicePeakBytes, this->Arena.bytes());
+    LVDIF_CUDA_CHECK(cudaMemset(this->Counters, 0, 2 * sizeof(unsigned long long)));
+    Params P = this->P;
+    for (long long z0 = extent.lo[2]; z0 <= extent.hi[2]; z0 += slabLayers)
+    {
+      interrupter.checkInterrupt();
+      const long long z1 = std::min<long long>(extent.hi[2], z0 + slabLayers - 1);
+      P.lo[0] = extent.lo[0];
+      P.lo[1] = extent.lo[1];
+      P.lo[2] = z0;
+      P.hi[0] = extent.hi[0];
+      P.hi[1] = extent.hi[1];
+      P.hi[2] = z1;
+      const long long rows = ny * (z1 - z0 + 1);
+      const long long threads = rows * ((nx + Run - 1) / Run);
+      double t0 = now();
+      distanceKernel<<<static_cast<unsigned>((threads + 127) / 128), 128>>>(this->Dbvh, P, this->Slab);
       LVDIF_CUDA_CHECK(cudaGetLastError());
       LVDIF_CUDA_CHECK(cudaDeviceSynchronize());
-      stats.signSeconds += now() - t0;
+      stats.distanceSeconds += now() - t0;
+      if (this->HasWinding)
+      {
+        t0 = now();
+        signKernel<<<static_cast<unsigned>((rows + 63) / 64), 64>>>(this->W, P, this->Slab, this->Counters,
+          this->Counters + 1);
+        LVDIF_CUDA_CHECK(cudaGetLastError());
+        LVDIF_CUDA_CHECK(cudaDeviceSynchronize());
+        stats.signSeconds += now() - t0;
+      }
+      t0 = now();
+      LVDIF_CUDA_CHECK(cudaMemcpy(out + (z0 - extent.lo[2]) * nx * ny, this->Slab,
+        static_cast<std::size_t>(rows * nx) * sizeof(float), cudaMemcpyDeviceToHost));
+      stats.writeSeconds += now() - t0;
+      interrupter.progress(static_cast<double>(z1 - extent.lo[2] + 1) / static_cast<double>(nz));
     }
-    t0 = now();
-    LVDIF_CUDA_CHECK(cudaMemcpy(out + (z0 - extent.lo[2]) * nx * ny, dSlab,
-      static_cast<std::size_t>(rows * nx) * sizeof(float), cudaMemcpyDeviceToHost));
-    stats.writeSeconds += now() - t0;
-    interrupter.progress(static_cast<double>(z1 - extent.lo[2] + 1) / static_cast<double>(nz));
+    unsigned long long host[2] = { 0, 0 };
+    LVDIF_CUDA_CHECK(cudaMemcpy(host, this->Counters, sizeof(host), cudaMemcpyDeviceToHost));
+    stats.windingEvaluations += static_cast<std::int64_t>(host[0]);
+    stats.windingExact += static_cast<std::int64_t>(host[1]);
   }
-  unsigned long long host[2] = { 0, 0 };
-  LVDIF_CUDA_CHECK(cudaMemcpy(host, counters, sizeof(host), cudaMemcpyDeviceToHost));
-  stats.windingEvaluations += static_cast<std::int64_t>(host[0]);
-  stats.windingExact += static_cast<std::int64_t>(host[1]);
+
+private:
+  MeshToSdfOptions Options;
+  bool HasWinding;
+  DeviceArena Arena;
+  DevBvh Dbvh;
+  WindingDev W;
+  Params P;
+  unsigned long long* Counters = nullptr;
+  float* Slab = nullptr;
+  std::size_t SlabCapacity = 0;
+};
+} // namespace
+
+std::unique_ptr<Session> openSession(const PreparedMesh& mesh, const Bvh& bvh, const WindingSigner* winding,
+  const GridGeometry& grid, const MeshToSdfOptions& options, double toOut, double band, MeshToSdfStats& stats)
+{
+  return std::make_unique<CudaSession>(mesh, bvh, winding, grid, options, toOut, band, stats);
 }
 
 } // namespace cudasdf

@@ -5,17 +5,26 @@
 #include "MeshToSdfInternal.h"
 #include "lvdif/MeshToSdf.h"
 
+#include <memory>
+
 namespace lvdif
 {
 namespace cudasdf
 {
-/// Same contract as the CPU path of meshToSdf for one extent of the grid:
-/// distances (and signs) in output units, band-saturated, into out, one
-/// slab of z layers at a time. Always uses the BVH (the accelerators give the
-/// same distances); winding is null unless the sign mode is WindingNumber.
-void computeExtent(const sdfdetail::PreparedMesh& mesh, const sdfdetail::Bvh& bvh,
-  const sdfdetail::WindingSigner* winding, const GridGeometry& grid,
-  const VoxelBox& extent, float* out, const MeshToSdfOptions& options, double toOut, double band,
-  MeshToSdfStats& stats, Interrupter& interrupter);
+/// The mesh and its BVHs uploaded once; compute() then fills any extent of
+/// the grid with the same contract as the CPU path (distances and signs in
+/// output units, band-saturated), one slab of z layers at a time so device
+/// memory stays bounded. Always uses the BVH (the accelerators give the same
+/// distances); winding is null unless the sign mode is WindingNumber.
+class Session
+{
+public:
+  virtual ~Session() = default;
+  virtual void compute(const VoxelBox& extent, float* out, MeshToSdfStats& stats, Interrupter& interrupter) = 0;
+};
+
+std::unique_ptr<Session> openSession(const sdfdetail::PreparedMesh& mesh, const sdfdetail::Bvh& bvh,
+  const sdfdetail::WindingSigner* winding, const GridGeometry& grid, const MeshToSdfOptions& options, double toOut,
+  double band, MeshToSdfStats& stats);
 } // namespace cudasdf
 } // namespace lvdif

@@ -138,7 +138,7 @@ void FaithfulGrid::scanCell(std::int64_t cell, V3 p, NearestResult& best) const
     const Closest c = closestPointOnTriangle(p, t.v[0], t.v[1], t.v[2]);
     const V3 d = c.point - p;
     const double d2 = dot(d, d);
-    if (d2 < best.dist2)
+    if (d2 < best.dist2 || (d2 == best.dist2 && ti < best.tri)) // ties: lowest index, as the BVH
     {
       best.dist2 = d2;
       best.tri = ti;

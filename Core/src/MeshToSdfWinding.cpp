@@ -74,7 +74,7 @@ WindingSigner::WindingSigner(const PreparedMesh& mesh)
         this->Closed.push_back(t);
       }
     }
-    // clusters of boundary edges (median splits, at most 64 edges each)
+    // clusters of boundary edges (median splits, at most 16 edges each)
     std::vector<std::array<V3, 2>> edges = mesh.boundary;
     struct Range
     {
@@ -94,7 +94,7 @@ WindingSigner::WindingSigner(const PreparedMesh& mesh)
           hi = { std::max(hi.x, v.x), std::max(hi.y, v.y), std::max(hi.z, v.z) };
         }
       }
-      if (r.count > 64)
+      if (r.count > 16)
       {
         const V3 ext = hi - lo;
         const int axis = ext.x >= ext.y && ext.x >= ext.z ? 0 : (ext.y >= ext.z ? 1 : 2);

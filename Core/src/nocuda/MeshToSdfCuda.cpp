@@ -6,9 +6,8 @@ namespace lvdif
 {
 namespace cudasdf
 {
-void computeExtent(const sdfdetail::PreparedMesh&, const sdfdetail::Bvh&, const sdfdetail::WindingSigner*,
-  const GridGeometry&, const VoxelBox&, float*,
-  const MeshToSdfOptions&, double, double, MeshToSdfStats&, Interrupter&)
+std::unique_ptr<Session> openSession(const sdfdetail::PreparedMesh&, const sdfdetail::Bvh&,
+  const sdfdetail::WindingSigner*, const GridGeometry&, const MeshToSdfOptions&, double, double, MeshToSdfStats&)
 {
   throw Error(ErrorCode::Unsupported, "mesh to SDF: this build has no CUDA");
 }
