@@ -1,0 +1,84 @@
+#include "vtkDictionaryVolumeToImage.h"
+
+#include "vtkLVDIFVolumeBridge.h"
+
+#include "lvdif/DictionaryVolume.h"
+#include "lvdif/Error.h"
+
+#include "vtkDataObject.h"
+#include "vtkImageData.h"
+#include "vtkInformation.h"
+#include "vtkInformationVector.h"
+#include "vtkObjectFactory.h"
+#include "vtkStreamingDemandDrivenPipeline.h"
+
+vtkStandardNewMacro(vtkDictionaryVolumeToImage);
+
+vtkDictionaryVolumeToImage::vtkDictionaryVolumeToImage()
+{
+  this->SetNumberOfInputPorts(0);
+}
+
+vtkDictionaryVolumeToImage::~vtkDictionaryVolumeToImage() = default;
+
+void vtkDictionaryVolumeToImage::SetVolume(std::shared_ptr<lvdif::DictionaryVolume> volume)
+{
+  this->Volume = std::move(volume);
+  this->Modified();
+}
+
+int vtkDictionaryVolumeToImage::RequestInformation(
+  vtkInformation*, vtkInformationVector**, vtkInformationVector* outputVector)
+{
+  if (!this->Volume)
+  {
+    vtkErrorMacro("no volume: call SetVolume() first");
+    return 0;
+  }
+  vtkInformation* outInfo = outputVector->GetInformationObject(0);
+  const auto& o = this->Volume->options();
+  int whole[6] = { 0, static_cast<int>(o.dims[0] - 1), 0, static_cast<int>(o.dims[1] - 1), 0,
+    static_cast<int>(o.dims[2] - 1) };
+  outInfo->Set(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT(), whole, 6);
+  outInfo->Set(vtkDataObject::ORIGIN(), o.origin.data(), 3);
+  outInfo->Set(vtkDataObject::SPACING(), o.spacing.data(), 3);
+  outInfo->Set(vtkAlgorithm::CAN_PRODUCE_SUB_EXTENT(), 1);
+  vtkDataObject::SetPointDataActiveScalarInfo(outInfo, VTK_FLOAT, 1);
+  return 1;
+}
+
+int vtkDictionaryVolumeToImage::RequestData(
+  vtkInformation*, vtkInformationVector**, vtkInformationVector* outputVector)
+{
+  vtkInformation* outInfo = outputVector->GetInformationObject(0);
+  vtkImageData* output = vtkImageData::GetData(outInfo);
+  int ext[6];
+  outInfo->Get(vtkStreamingDemandDrivenPipeline::UPDATE_EXTENT(), ext);
+  try
+  {
+    vtkLVDIFVolumeBridge::FillImage(*this->Volume, ext, output, this->WithColor);
+  }
+  catch (const lvdif::Error& e)
+  {
+    vtkErrorMacro(<< e.what());
+    return 0;
+  }
+  return 1;
+}
+
+void vtkDictionaryVolumeToImage::PrintSelf(ostream& os, vtkIndent indent)
+{
+  this->Superclass::PrintSelf(os, indent);
+  os << indent << "Volume: ";
+  if (this->Volume)
+  {
+    const auto& d = this->Volume->dims();
+    os << d[0] << " x " << d[1] << " x " << d[2] << ", chunk edge " << this->Volume->chunkEdge() << ", band "
+       << this->Volume->bandWidth() << "\n";
+  }
+  else
+  {
+    os << "(none)\n";
+  }
+  os << indent << "WithColor: " << this->WithColor << "\n";
+}

@@ -1,0 +1,39 @@
+/**
+ * @class   vtkLVDIFInterrupter
+ * @brief   adapts lvdif::Interrupter to a vtkAlgorithm's progress and abort
+ *
+ * Core algorithms report progress through lvdif::Interrupter; this adapter
+ * forwards it to vtkAlgorithm::UpdateProgress (scaled into [shift, shift+scale]
+ * so one filter can run several stages) and answers wasInterrupted() from
+ * vtkAlgorithm::GetAbortExecute(), the only cancel mechanism VTK 9.1 has.
+ * Progress is forwarded only from the thread that created the adapter, since
+ * observers (e.g. a Qt progress bar) are not prepared for OpenMP worker threads.
+ */
+#ifndef vtkLVDIFInterrupter_h
+#define vtkLVDIFInterrupter_h
+
+#include "lvdif/Interrupter.h"
+#include "lvdifFiltersVolumeModule.h"
+
+#include <thread>
+
+class vtkAlgorithm;
+
+class LVDIFFILTERSVOLUME_EXPORT vtkLVDIFInterrupter : public lvdif::Interrupter
+{
+public:
+  explicit vtkLVDIFInterrupter(vtkAlgorithm* algorithm, double shift = 0.0, double scale = 1.0);
+  void start(const char* name) override;
+  void progress(double fraction) override;
+  bool wasInterrupted() const override;
+  /// Maps the next stage's [0,1] into [shift, shift + scale] of the filter's progress.
+  void setStage(double shift, double scale);
+
+private:
+  vtkAlgorithm* Algorithm;
+  double Shift;
+  double Scale;
+  std::thread::id Owner;
+};
+
+#endif

@@ -1,0 +1,176 @@
+#include "vtkLVDIFVolumeBridge.h"
+
+#include "lvdif/Error.h"
+#include "lvdif/Memory.h"
+
+#include "vtkFloatArray.h"
+#include "vtkImageData.h"
+#include "vtkPointData.h"
+#include "vtkUnsignedCharArray.h"
+
+#include <algorithm>
+#include <cmath>
+#include <sstream>
+
+namespace vtkLVDIFVolumeBridge
+{
+
+void FillImage(const lvdif::DictionaryVolume& volume, const int extentIn[6], vtkImageData* image, bool withColor)
+{
+  const auto& dims = volume.dims();
+  int ext[6];
+  for (int a = 0; a < 3; ++a)
+  {
+    ext[2 * a] = std::max<int>(extentIn[2 * a], 0);
+    ext[2 * a + 1] = static_cast<int>(std::min<std::int64_t>(extentIn[2 * a + 1], dims[a] - 1));
+  }
+  const std::int64_t nx = std::max(0, ext[1] - ext[0] + 1), ny = std::max(0, ext[3] - ext[2] + 1),
+                     nz = std::max(0, ext[5] - ext[4] + 1);
+  const std::uint64_t n = static_cast<std::uint64_t>(nx * ny * nz);
+  lvdif::requireMemory(n * (withColor ? 8u : 4u), "image of the requested extent");
+  const auto& o = volume.options();
+  image->SetExtent(ext);
+  image->SetOrigin(o.origin[0], o.origin[1], o.origin[2]);
+  image->SetSpacing(o.spacing[0], o.spacing[1], o.spacing[2]);
+
+  vtkNew<vtkFloatArray> sdf;
+  sdf->SetName("sdf");
+  sdf->SetNumberOfTuples(static_cast<vtkIdType>(n));
+  float* s = sdf->GetPointer(0);
+  vtkNew<vtkUnsignedCharArray> rgba;
+  unsigned char* c = nullptr;
+  if (withColor)
+  {
+    rgba->SetName("rgba");
+    rgba->SetNumberOfComponents(4);
+    rgba->SetNumberOfTuples(static_cast<vtkIdType>(n));
+    c = rgba->GetPointer(0);
+  }
+  const lvdif::ColorDictionary& colors = volume.colors();
+#pragma omp parallel for schedule(static)
+  for (std::int64_t k = 0; k < nz; ++k)
+  {
+    for (std::int64_t j = 0; j < ny; ++j)
+    {
+      std::int64_t idx = nx * (j + ny * k);
+      for (std::int64_t i = 0; i < nx; ++i, ++idx)
+      {
+        const lvdif::Voxel v = volume.get(ext[0] + i, ext[2] + j, ext[4] + k);
+        s[idx] = volume.decode(v.sdf);
+        if (c)
+        {
+          const lvdif::Rgba col = v.color < colors.size() ? colors[v.color] : colors[0];
+          c[4 * idx + 0] = col.r;
+          c[4 * idx + 1] = col.g;
+          c[4 * idx + 2] = col.b;
+          c[4 * idx + 3] = col.a;
+        }
+      }
+    }
+  }
+  image->GetPointData()->AddArray(sdf);
+  image->GetPointData()->SetActiveScalars("sdf");
+  if (withColor)
+  {
+    image->GetPointData()->AddArray(rgba);
+  }
+}
+
+lvdif::GridGeometry Geometry(vtkImageData* image)
+{
+  lvdif::GridGeometry g;
+  int ext[6];
+  image->GetExtent(ext);
+  double origin[3], spacing[3];
+  image->GetOrigin(origin);
+  image->GetSpacing(spacing);
+  for (int a = 0; a < 3; ++a)
+  {
+    g.dims[a] = std::max(0, ext[2 * a + 1] - ext[2 * a] + 1);
+    g.spacing[a] = spacing[a];
+    g.origin[a] = origin[a] + ext[2 * a] * spacing[a];
+  }
+  return g;
+}
+
+lvdif::FloatGridView FloatView(vtkImageData* image, vtkDataArray* array)
+{
+  lvdif::FloatGridView view;
+  view.geometry = Geometry(image);
+  auto* f = vtkFloatArray::SafeDownCast(array);
+  if (f && f->GetNumberOfComponents() == 1 && f->GetNumberOfTuples() == view.geometry.count())
+  {
+    view.data = f->GetPointer(0);
+  }
+  return view;
+}
+
+std::unique_ptr<lvdif::DictionaryVolume> VolumeFromImage(
+  vtkImageData* image, vtkDataArray* sdf, vtkDataArray* rgba, lvdif::VolumeOptions options)
+{
+  if (!image || !sdf)
+  {
+    throw lvdif::Error(lvdif::ErrorCode::InvalidArgument, "no image or no SDF array");
+  }
+  const lvdif::GridGeometry g = Geometry(image);
+  if (sdf->GetNumberOfTuples() != g.count() || sdf->GetNumberOfComponents() != 1)
+  {
+    std::ostringstream msg;
+    msg << "SDF array '" << (sdf->GetName() ? sdf->GetName() : "") << "' has " << sdf->GetNumberOfTuples()
+        << " tuples of " << sdf->GetNumberOfComponents() << " components; expected " << g.count() << " scalars";
+    throw lvdif::Error(lvdif::ErrorCode::InvalidArgument, msg.str());
+  }
+  if (rgba && (rgba->GetNumberOfTuples() != g.count() || rgba->GetNumberOfComponents() < 1 ||
+                rgba->GetNumberOfComponents() > 4))
+  {
+    throw lvdif::Error(lvdif::ErrorCode::InvalidArgument, "RGBA array does not match the image's points");
+  }
+  options.dims = g.dims;
+  options.origin = g.origin;
+  options.spacing = g.spacing;
+  auto volume = std::make_unique<lvdif::DictionaryVolume>(options);
+  const int nc = rgba ? rgba->GetNumberOfComponents() : 0;
+  auto* f = vtkFloatArray::SafeDownCast(sdf);
+  const std::int64_t chunks = volume->chunkCount();
+  // Colours are added serially first so keys are deterministic.
+  std::vector<lvdif::ColorKey> keyOfPoint;
+  if (rgba)
+  {
+    keyOfPoint.resize(static_cast<size_t>(g.count()));
+    for (std::int64_t p = 0; p < g.count(); ++p)
+    {
+      double t[4] = { 0, 0, 0, 255 };
+      for (int cidx = 0; cidx < nc; ++cidx) t[cidx] = rgba->GetComponent(p, cidx);
+      if (nc == 1) t[1] = t[2] = t[0];
+      lvdif::Rgba col{ static_cast<std::uint8_t>(t[0]), static_cast<std::uint8_t>(t[1]),
+        static_cast<std::uint8_t>(t[2]), static_cast<std::uint8_t>(t[3]) };
+      keyOfPoint[static_cast<size_t>(p)] = volume->colors().add(col);
+    }
+  }
+  bool sawNaN = false;
+#pragma omp parallel for schedule(dynamic, 4) reduction(|| : sawNaN)
+  for (std::int64_t id = 0; id < chunks; ++id)
+  {
+    const lvdif::VoxelBox b = volume->chunkBox(id);
+    lvdif::Voxel* d = volume->expandChunk(id);
+    for (std::int64_t z = b.lo[2]; z <= b.hi[2]; ++z)
+      for (std::int64_t y = b.lo[1]; y <= b.hi[1]; ++y)
+        for (std::int64_t x = b.lo[0]; x <= b.hi[0]; ++x)
+        {
+          const std::int64_t p = g.index(x, y, z);
+          const float v = f ? f->GetValue(p) : static_cast<float>(sdf->GetComponent(p, 0));
+          sawNaN = sawNaN || std::isnan(v);
+          d[volume->localIndex(x, y, z)] =
+            lvdif::Voxel{ volume->encode(v), rgba ? keyOfPoint[static_cast<size_t>(p)] : lvdif::ColorKey(0) };
+        }
+    volume->tryCollapseChunk(id);
+  }
+  if (sawNaN)
+  {
+    throw lvdif::Error(lvdif::ErrorCode::InvalidArgument, "the SDF array contains NaN values");
+  }
+  volume->takeDirtyChunks();
+  return volume;
+}
+
+} // namespace vtkLVDIFVolumeBridge

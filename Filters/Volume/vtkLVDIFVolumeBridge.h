@@ -1,0 +1,44 @@
+/**
+ * @file   vtkLVDIFVolumeBridge.h
+ * @brief  conversions between lvdif::DictionaryVolume and vtkImageData
+ *
+ * Image data use the project's array names: a float point array `sdf`
+ * (negative inside, voxel units) and an optional 4-component unsigned char
+ * array `rgba`. Extents are VTK extents (inclusive point indices) of the
+ * volume's whole extent [0, dims-1].
+ */
+#ifndef vtkLVDIFVolumeBridge_h
+#define vtkLVDIFVolumeBridge_h
+
+#include "lvdif/DenseGrid.h"
+#include "lvdif/DictionaryVolume.h"
+#include "lvdifFiltersVolumeModule.h"
+
+#include <memory>
+
+class vtkDataArray;
+class vtkImageData;
+
+namespace vtkLVDIFVolumeBridge
+{
+/// Writes the voxels of `extent` (clipped to the volume) into `image`:
+/// extent, origin, spacing, `sdf` and, if withColor, `rgba`.
+LVDIFFILTERSVOLUME_EXPORT void FillImage(
+  const lvdif::DictionaryVolume& volume, const int extent[6], vtkImageData* image, bool withColor);
+
+/// Builds a dictionary volume from an image's float SDF array (any real type
+/// is converted) and optional RGBA array (1 to 4 unsigned char components).
+/// `options` supplies chunk edge, band width and dictionary; dims, origin and
+/// spacing come from the image. Throws lvdif::Error on bad input.
+LVDIFFILTERSVOLUME_EXPORT std::unique_ptr<lvdif::DictionaryVolume> VolumeFromImage(
+  vtkImageData* image, vtkDataArray* sdf, vtkDataArray* rgba, lvdif::VolumeOptions options);
+
+/// Geometry of an image's point grid (dims from its extent; origin moved to the extent's first point).
+LVDIFFILTERSVOLUME_EXPORT lvdif::GridGeometry Geometry(vtkImageData* image);
+
+/// A view of a float array's storage when it is a contiguous single-component
+/// vtkFloatArray covering the image's points; data is nullptr otherwise.
+LVDIFFILTERSVOLUME_EXPORT lvdif::FloatGridView FloatView(vtkImageData* image, vtkDataArray* array);
+}
+
+#endif
