@@ -314,6 +314,18 @@ MeshToSdfStats meshToSdf(const TriangleMesh& mesh, const GridGeometry& grid, con
   {
     computeBox(*engine, extent, out, stats, interrupter, 0.0, 1.0);
   }
+  if (options.svfFilters != 0)
+  {
+    const double t0 = now();
+    FloatGridView view;
+    view.data = out;
+    view.geometry.dims = { extent.hi[0] - extent.lo[0] + 1, extent.hi[1] - extent.lo[1] + 1,
+      extent.hi[2] - extent.lo[2] + 1 };
+    SignVoxelFilterParams p = options.svf;
+    p.filters = options.svfFilters;
+    stats.svfFlips = signVoxelFilter(view, p, interrupter).totalFlips();
+    stats.svfSeconds = now() - t0;
+  }
   interrupter.end();
   return stats;
 }
@@ -420,6 +432,14 @@ MeshToSdfStats meshToSdf(const TriangleMesh& mesh, DictionaryVolume& volume, con
       stats.writeSeconds += now() - t0;
       interrupter.progress(static_cast<double>(cz + 1) / static_cast<double>(cc[2]));
     }
+  }
+  if (options.svfFilters != 0)
+  {
+    const double t0 = now();
+    SignVoxelFilterParams p = options.svf;
+    p.filters = options.svfFilters;
+    stats.svfFlips = signVoxelFilter(volume, p, interrupter).totalFlips();
+    stats.svfSeconds = now() - t0;
   }
   interrupter.end();
   return stats;

@@ -192,3 +192,32 @@ TEST(MeshToSdfSign, WindingNumberOnEveryVoxelOfAClosedMeshWithExactEvaluation)
       }
   EXPECT_EQ(wrong, 0);
 }
+
+TEST(MeshToSdfSign, SignVoxelFilterHookEqualsFilteringAfterwards)
+{
+  // the hook must be exactly "mesh to SDF, then signVoxelFilter" (composition)
+  TriangleMesh m = makeSphereMesh(0, 0, 0, 1.0f, 10, 20);
+  std::mt19937 rng(5);
+  for (auto& t : m.triangles)
+  {
+    if (rng() % 6 == 0) std::swap(t[1], t[2]);
+  }
+  GridGeometry g;
+  g.dims = { 26, 25, 24 };
+  g.origin = { -1.4, -1.4, -1.4 };
+  g.spacing = { 0.115, 0.115, 0.115 };
+  MeshToSdfOptions o;
+  o.sign = SignMode::Normal;
+  o.device = Device::Cpu;
+  std::vector<float> plain(static_cast<std::size_t>(g.count())), hooked(plain.size());
+  meshToSdf(m, FloatGridView{ plain.data(), g }, o);
+  o.svfFilters = SvfAll;
+  const MeshToSdfStats st = meshToSdf(m, FloatGridView{ hooked.data(), g }, o);
+  SignVoxelFilterParams p;
+  p.filters = SvfAll;
+  p.device = Device::Cpu;
+  const SignVoxelFilterStats ref = signVoxelFilter(FloatGridView{ plain.data(), g }, p);
+  EXPECT_EQ(hooked, plain);
+  EXPECT_EQ(st.svfFlips, ref.totalFlips());
+  EXPECT_GT(st.svfFlips, 0);
+}

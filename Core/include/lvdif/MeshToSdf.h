@@ -35,6 +35,7 @@
 #include "lvdif/DenseGrid.h"
 #include "lvdif/DictionaryVolume.h"
 #include "lvdif/Interrupter.h"
+#include "lvdif/SignVoxelFilter.h"
 #include "lvdif/TriangleMesh.h"
 
 #include <cstdint>
@@ -74,6 +75,12 @@ struct MeshToSdfOptions
   float bandWidth = std::numeric_limits<float>::infinity(); // |d| saturates here (output units)
   DistanceUnit unit = DistanceUnit::Voxel;
   Device device = Device::Auto;
+  /// Sign voxel filters (SvfBits) run on the result afterwards, with svf's
+  /// parameters (meant for SignMode::Normal, as in the paper; 0 = none). On a
+  /// sub-extent they see only that extent; on a dictionary volume they run
+  /// through signVoxelFilter(DictionaryVolume&), which decodes it densely.
+  unsigned svfFilters = 0;
+  SignVoxelFilterParams svf;
   /// CUDA: bytes of the device slab buffer (z layers per slab follow from it).
   std::uint64_t cudaSlabBytes = 256ull << 20;
 };
@@ -88,6 +95,8 @@ struct MeshToSdfStats
   std::int64_t windingEvaluations = 0; // voxels whose winding number was evaluated (not carried)
   std::int64_t windingExact = 0;       // of those, on rows whose +x ray was ambiguous
   std::uint64_t devicePeakBytes = 0;   // CUDA: device memory used
+  std::int64_t svfFlips = 0;           // signs changed by the sign voxel filters
+  double svfSeconds = 0;
 };
 
 /// Isotropic voxels fitted to the mesh bounds: the longest axis gets maxDim
