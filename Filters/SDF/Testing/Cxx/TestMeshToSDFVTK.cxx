@@ -171,3 +171,34 @@ TEST(vtkMeshToSDF, ClearErrors)
   f->Update();
   EXPECT_NE(errors.last.find("limit"), std::string::npos) << errors.last;
 }
+
+namespace
+{
+class AbortMeshToSdf : public vtkCommand
+{
+public:
+  static AbortMeshToSdf* New() { return new AbortMeshToSdf; }
+  void Execute(vtkObject* caller, unsigned long, void*) override
+  {
+    static_cast<vtkAlgorithm*>(caller)->SetAbortExecute(1);
+    ++this->Calls;
+  }
+  int Calls = 0;
+};
+} // namespace
+
+TEST(vtkMeshToSDF, AbortStopsAndProgressIsReported)
+{
+  vtkNew<vtkSphereSource> sphere;
+  sphere->SetThetaResolution(16);
+  sphere->SetPhiResolution(12);
+  vtkNew<vtkMeshToSDF> f;
+  f->SetInputConnection(sphere->GetOutputPort());
+  f->SetMaxDimension(48);
+  f->SetDevice(vtkMeshToSDF::DEVICE_CPU);
+  vtkNew<AbortMeshToSdf> cb;
+  f->AddObserver(vtkCommand::ProgressEvent, cb);
+  f->Update();
+  EXPECT_GT(cb->Calls, 0);
+  EXPECT_EQ(f->GetOutput()->GetPointData()->GetArray("sdf"), nullptr); // cancelled: no sdf array
+}
