@@ -7,7 +7,7 @@
 
 #include "lvdif/Cuda.h"
 #include "lvdif/DictionaryVolume.h"
-#include "lvdif/MeshReaders.h"
+#include "lvdif/MeshFile.h"
 #include "lvdif/MeshToSdf.h"
 #include "lvdif/Memory.h"
 
@@ -40,7 +40,7 @@ int main(int argc, char** argv)
     const double padding = argc > 8 ? std::atof(argv[8]) : 2.0;
 
     bench::Stopwatch readClock;
-    const TriangleMesh mesh = readMesh(path);
+    const TriangleMesh mesh = loadMesh(path);
     const double readMs = readClock.ms();
 
     MeshToSdfOptions o;
