@@ -1,0 +1,11 @@
+# Runs the editor with ARGS, then the checker with CHECKS; fails if either fails.
+execute_process(COMMAND "${EDITOR}" ${ARGS} RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
+message("${out}${err}")
+if (NOT rc EQUAL 0)
+  message(FATAL_ERROR "lvdif-editor failed (${rc})")
+endif ()
+execute_process(COMMAND "${CHECK}" ${CHECKS} RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
+message("${out}${err}")
+if (NOT rc EQUAL 0)
+  message(FATAL_ERROR "check failed (${rc})")
+endif ()

@@ -1,0 +1,77 @@
+// The edited volume and everything that follows it: the Core editor (brush
+// settings, undo stack, recorder), the chunked marching cubes and its
+// background worker. The UI thread edits (holding the worker's source
+// mutex, so the worker never reads a half-written chunk) and polls finished
+// chunk meshes; the meshing itself never runs on the UI thread.
+#pragma once
+
+#include "lvdif/ChunkedMarchingCubes.h"
+#include "lvdif/DictionaryVolume.h"
+#include "lvdif/Editor.h"
+#include "lvdif/MarchingCubesWorker.h"
+
+#include <QString>
+
+#include <memory>
+#include <vector>
+
+class VolumeDocument
+{
+public:
+  enum class Fill
+  {
+    Empty,
+    Full,
+    Sphere
+  };
+
+  VolumeDocument();
+  ~VolumeDocument();
+
+  /// A new canvas of n^3 voxels (chunk edge 32). Throws lvdif::Error.
+  void newCanvas(int nx, int ny, int nz, Fill fill);
+  /// Opens a .vti image (float `sdf`, optional uchar `rgba`) or, when the
+  /// native format is available, a .lvdv file. Throws lvdif::Error.
+  void open(const QString& path);
+  /// Saves as .vti (sdf + rgba); throws lvdif::Error. Clears the modified flag
+  /// unless `asCopy` (autosave).
+  void save(const QString& path, bool asCopy = false);
+
+  bool hasVolume() const { return this->Volume != nullptr; }
+  lvdif::DictionaryVolume& volume() { return *this->Volume; }
+  lvdif::Editor& editor() { return *this->Edit; }
+  const QString& path() const { return this->Path; }
+  bool modified() const { return this->Modified; }
+  /// Edits since the last autosave.
+  bool needsAutosave() const { return this->EditsSinceAutosave > 0; }
+  void autosaved() { this->EditsSinceAutosave = 0; }
+
+  // ---- edits (UI thread) ---------------------------------------------------
+  void beginStroke();
+  void addSample(const lvdif::BrushSample& s);
+  void endStroke();
+  bool undo();
+  bool redo();
+  void startRecording();
+  lvdif::Recording stopRecording();
+  void play(const lvdif::Recording& r);
+
+  // ---- meshing ---------------------------------------------------------------
+  /// Meshes finished since the last call (never waits).
+  std::vector<lvdif::ChunkMesh> collectMeshes();
+  bool meshingIdle() const;
+  void waitMeshingIdle();
+
+private:
+  void resetPipeline();
+  void afterEdit(const lvdif::EditResult& r);
+  void requestDirty();
+
+  std::unique_ptr<lvdif::DictionaryVolume> Volume;
+  std::unique_ptr<lvdif::Editor> Edit;
+  std::unique_ptr<lvdif::ChunkedMarchingCubes> Mesher;
+  std::unique_ptr<lvdif::MarchingCubesWorker> Worker;
+  QString Path;
+  bool Modified = false;
+  int EditsSinceAutosave = 0;
+};
