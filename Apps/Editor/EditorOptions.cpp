@@ -25,7 +25,7 @@ EditorOptions parseEditorOptions(const QStringList& arguments)
   const QCommandLineOption create("new", "New canvas of N^3 or NXxNYxNZ voxels.", "size");
   const QCommandLineOption fill("fill", "Fill of a new canvas: empty, full or sphere.", "fill", "sphere");
   const QCommandLineOption script("script", "Play a recording (.lvrec) after loading.", "file");
-  const QCommandLineOption drag("replay-drag", "Synthetic left-drag through display points 'x,y;x,y;...'.", "points");
+  const QCommandLineOption drag("replay-drag", "Synthetic left-drag through display points 'x,y;x,y;...' (or / between points).", "points");
   const QCommandLineOption undo("undo", "Undo N steps after the drag.", "n", "0");
   const QCommandLineOption shot("screenshot", "Save a screenshot (PNG) and quit.", "file");
   const QCommandLineOption save("save", "Save the volume (.vti) and quit.", "file");
@@ -63,7 +63,7 @@ EditorOptions parseEditorOptions(const QStringList& arguments)
   o.script = p.value(script);
   if (p.isSet(drag))
   {
-    for (const QString& pt : p.value(drag).split(';', Qt::SkipEmptyParts))
+    for (const QString& pt : p.value(drag).split(QRegularExpression("[;/ ]"), Qt::SkipEmptyParts))
     {
       const QStringList xy = pt.split(',');
       bool ok1 = false, ok2 = false;

@@ -7,10 +7,8 @@
 #include "vtkNew.h"
 #include "vtkOBJWriter.h"
 #include "vtkPLYWriter.h"
-#include "vtkPNGWriter.h"
 #include "vtkPolyData.h"
 #include "vtkSTLWriter.h"
-#include "vtkWindowToImageFilter.h"
 
 #include <QComboBox>
 #include <QDialog>
@@ -18,6 +16,8 @@
 #include <QFileDialog>
 #include <QFileInfo>
 #include <QFormLayout>
+#include <QImage>
+#include <QVTKOpenGLNativeWidget.h>
 #include <QMessageBox>
 #include <QSpinBox>
 
@@ -139,19 +139,14 @@ bool MainWindow::exportMesh(const QString& path)
 
 bool MainWindow::saveScreenshot(const QString& path)
 {
+  // QVTKOpenGLNativeWidget renders in its paintGL: a render requested from
+  // here is deferred, so reading the render window's buffer could give the
+  // previous frame. grabFramebuffer() paints now and returns that frame.
   this->RenderWindow->Render();
-  vtkNew<vtkWindowToImageFilter> grab;
-  grab->SetInput(this->RenderWindow);
-  grab->SetInputBufferTypeToRGB();
-  grab->ReadFrontBufferOff();
-  grab->Update();
-  vtkNew<vtkPNGWriter> png;
-  png->SetFileName(path.toLocal8Bit().constData());
-  png->SetInputConnection(grab->GetOutputPort());
-  png->Write();
-  if (png->GetErrorCode() != 0)
+  const QImage image = this->View->grabFramebuffer();
+  if (image.isNull() || !image.save(path, "PNG"))
   {
-    this->showError("Cannot write " + path, std::runtime_error("PNG writer error"));
+    this->showError("Cannot write " + path, std::runtime_error("no frame to save"));
     return false;
   }
   return true;
