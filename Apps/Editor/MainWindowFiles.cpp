@@ -143,7 +143,7 @@ bool MainWindow::saveScreenshot(const QString& path)
   // here is deferred, so reading the render window's buffer could give the
   // previous frame. grabFramebuffer() paints now and returns that frame.
   this->RenderWindow->Render();
-  const QImage image = this->View->grabFramebuffer();
+  const QImage image = this->View->grabFramebuffer().convertToFormat(QImage::Format_RGB888);
   if (image.isNull() || !image.save(path, "PNG"))
   {
     this->showError("Cannot write " + path, std::runtime_error("no frame to save"));
