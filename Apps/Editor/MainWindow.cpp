@@ -1,6 +1,5 @@
 #include "MainWindow.h"
 
-#include "ChunkMeshConversion.h"
 
 #include "lvdif/Error.h"
 #include "lvdif/Recording.h"
@@ -10,6 +9,7 @@
 #include "vtkCallbackCommand.h"
 #include "vtkCamera.h"
 #include "vtkChunkActorManager.h"
+#include "vtkLVDIFChunkMesh.h"
 #include "vtkGenericOpenGLRenderWindow.h"
 #include "vtkPolyData.h"
 #include "vtkProperty.h"
@@ -256,7 +256,7 @@ void MainWindow::pollMeshes()
     if (m.empty())
       this->Chunks->RemoveChunk(m.chunkId);
     else
-      this->Chunks->SetChunk(m.chunkId, chunkMeshToPolyData(m, this->Doc.volume().colors(), d));
+      this->Chunks->SetChunk(m.chunkId, vtkLVDIFChunkMesh::ToPolyData(m, this->Doc.volume().colors(), d));
   }
   if (!this->ViewInitialized && this->Chunks->GetNumberOfChunks() > 0)
   {

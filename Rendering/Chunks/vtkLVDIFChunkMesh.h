@@ -1,16 +1,23 @@
 // lvdif::ChunkMesh -> vtkPolyData with the rendering contract of
 // Rendering/Chunks: point data `Normals` and `rgba`, cell data
 // `corner_rgba` (8 corners x RGBA from the colour dictionary) and `cell_ijk`.
-// (The marching cubes VTK filter will produce the same arrays; this keeps
-// the editor independent of it.)
-#pragma once
+// (The marching cubes VTK filter produces the same arrays for a whole
+// volume; this converts the chunks of lvdif::MarchingCubesWorker one by one.)
+#ifndef vtkLVDIFChunkMesh_h
+#define vtkLVDIFChunkMesh_h
 
 #include "lvdif/ChunkedMarchingCubes.h"
+#include "lvdifRenderingChunksModule.h" // for export macro
 
 #include "vtkSmartPointer.h"
 
 class vtkPolyData;
 
+namespace vtkLVDIFChunkMesh
+{
 /// `pointDims` are the volume's point dimensions (to split the linear cell index).
-vtkSmartPointer<vtkPolyData> chunkMeshToPolyData(
+LVDIFRENDERINGCHUNKS_EXPORT vtkSmartPointer<vtkPolyData> ToPolyData(
   const lvdif::ChunkMesh& mesh, const lvdif::ColorDictionary& colors, const lvdif::Index3& pointDims);
+}
+
+#endif

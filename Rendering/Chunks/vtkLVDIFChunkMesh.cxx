@@ -1,4 +1,4 @@
-#include "ChunkMeshConversion.h"
+#include "vtkLVDIFChunkMesh.h"
 
 #include "vtkCellArray.h"
 #include "vtkCellData.h"
@@ -12,7 +12,7 @@
 
 #include <cstring>
 
-vtkSmartPointer<vtkPolyData> chunkMeshToPolyData(
+vtkSmartPointer<vtkPolyData> vtkLVDIFChunkMesh::ToPolyData(
   const lvdif::ChunkMesh& mesh, const lvdif::ColorDictionary& colors, const lvdif::Index3& pointDims)
 {
   auto pd = vtkSmartPointer<vtkPolyData>::New();
