@@ -3,6 +3,7 @@
 
 #include "lvdif/Error.h"
 #include "lvdif/Recording.h"
+#include "lvdif/Script.h"
 
 #include "vtkBrushRepresentation.h"
 #include "vtkBrushWidget.h"
@@ -24,6 +25,7 @@
 #include <QDockWidget>
 #include <QFile>
 #include <QFileDialog>
+#include <QFileInfo>
 #include <QInputDialog>
 #include <QLabel>
 #include <QMenuBar>
@@ -34,6 +36,7 @@
 #include <QVTKOpenGLNativeWidget.h>
 
 #include <cmath>
+#include <stdexcept>
 
 MainWindow::MainWindow(const EditorOptions& options)
   : Options(options)
@@ -311,13 +314,7 @@ bool MainWindow::newCanvas(int nx, int ny, int nz, VolumeDocument::Fill fill)
     this->showError("Cannot create the canvas", e);
     return false;
   }
-  const auto& o = this->Doc.volume().options();
-  this->Chunks->SetOrigin(o.origin[0], o.origin[1], o.origin[2]);
-  this->Chunks->SetSpacing(o.spacing[0], o.spacing[1], o.spacing[2]);
-  this->applyBrushState();
-  this->ViewInitialized = false;
-  this->Brush->On();
-  this->updateTitle();
+  this->volumeReplaced();
   if (fill != VolumeDocument::Fill::Sphere)
     this->resetView();
   return true;
@@ -335,13 +332,7 @@ bool MainWindow::openVolume(const QString& path)
     this->showError("Cannot open " + path, e);
     return false;
   }
-  const auto& o = this->Doc.volume().options();
-  this->Chunks->SetOrigin(o.origin[0], o.origin[1], o.origin[2]);
-  this->Chunks->SetSpacing(o.spacing[0], o.spacing[1], o.spacing[2]);
-  this->applyBrushState();
-  this->ViewInitialized = false;
-  this->Brush->On();
-  this->updateTitle();
+  this->volumeReplaced();
   return true;
 }
 
@@ -417,6 +408,47 @@ bool MainWindow::playRecording(const QString& path)
   }
   this->updateTitle();
   return true;
+}
+
+bool MainWindow::runScript(const QString& path)
+{
+  if (QFileInfo(path).suffix().toLower() == "lvrec")
+    return this->playRecording(path);
+  QFile file(path);
+  if (!file.open(QIODevice::ReadOnly | QIODevice::Text))
+  {
+    this->showError("Cannot read " + path, std::runtime_error(file.errorString().toStdString()));
+    return false;
+  }
+  const std::string source = file.readAll().toStdString();
+  const int before = this->Doc.hasVolume() ? this->Doc.generation() : -1;
+  try
+  {
+    if (!this->Doc.hasVolume())
+      this->Doc.newCanvas(128, 128, 128, VolumeDocument::Fill::Empty);
+    this->Doc.runScript(source);
+  }
+  catch (const std::exception& e)
+  {
+    this->showError("The script " + QFileInfo(path).fileName() + " failed", e);
+    return false;
+  }
+  if (this->Doc.generation() != before)
+    this->volumeReplaced();
+  this->updateTitle();
+  return true;
+}
+
+void MainWindow::volumeReplaced()
+{
+  this->Chunks->RemoveAllChunks();
+  const auto& o = this->Doc.volume().options();
+  this->Chunks->SetOrigin(o.origin[0], o.origin[1], o.origin[2]);
+  this->Chunks->SetSpacing(o.spacing[0], o.spacing[1], o.spacing[2]);
+  this->applyBrushState();
+  this->ViewInitialized = false;
+  this->Brush->On();
+  this->updateTitle();
 }
 
 void MainWindow::replayDrag(const QVector<QPointF>& points)

@@ -38,6 +38,8 @@ public:
   bool exportMesh(const QString& path);
   bool saveScreenshot(const QString& path);
   bool playRecording(const QString& path);
+  /// Runs a script (.lvs) or plays a recording (.lvrec), by extension.
+  bool runScript(const QString& path);
   /// A left-drag through display points (VTK display coordinates, origin
   /// bottom-left) sent as interactor events, as a user's mouse would.
   void replayDrag(const QVector<QPointF>& points);
@@ -60,6 +62,7 @@ private:
   void pollMeshes();
   void autosave();
   void resetView();
+  void volumeReplaced();
   void updateTitle();
   bool maybeSave();
   void onBrushSample(const double* sample);

@@ -162,7 +162,7 @@ void MainWindow::screenshotDialog()
 void MainWindow::scriptDialog()
 {
   const QString path =
-    QFileDialog::getOpenFileName(this, "Run script (recording)", QString(), "Recordings (*.lvrec);;All files (*)");
+    QFileDialog::getOpenFileName(this, "Run script", QString(), "Scripts and recordings (*.lvs *.lvrec);;All files (*)");
   if (!path.isEmpty())
-    this->playRecording(path);
+    this->runScript(path);
 }

@@ -5,6 +5,7 @@
 
 #include "lvdif/AnalyticFill.h"
 #include "lvdif/Error.h"
+#include "lvdif/Script.h"
 
 #include "vtkImageData.h"
 #include "vtkNew.h"
@@ -37,6 +38,7 @@ VolumeDocument::~VolumeDocument()
 
 void VolumeDocument::resetPipeline()
 {
+  ++this->Generation;
   this->Worker.reset();
   this->Mesher.reset();
   this->Edit = std::make_unique<lvdif::Editor>(*this->Volume);
@@ -220,6 +222,45 @@ void VolumeDocument::play(const lvdif::Recording& r)
   this->Modified = true;
   ++this->EditsSinceAutosave;
   this->requestDirty();
+}
+
+void VolumeDocument::runScript(const std::string& source)
+{
+  lvdif::checkScript(source); // syntax errors before anything changes
+  std::unique_ptr<lvdif::DictionaryVolume> made;
+  {
+    std::lock_guard<std::mutex> lock(this->Worker->sourceMutex());
+    lvdif::ScriptRunner runner;
+    runner.attach(*this->Volume);
+    try
+    {
+      runner.run(source);
+    }
+    catch (...)
+    {
+      // Edits made before the error stay (and are shown); the history no longer matches them.
+      this->Edit->undoStack().clear();
+      this->Modified = true;
+      this->requestDirty();
+      throw;
+    }
+    made = runner.takeVolume();
+    if (!made)
+    {
+      this->Edit->undoStack().clear();
+      this->Modified = true;
+      ++this->EditsSinceAutosave;
+      this->requestDirty();
+      return;
+    }
+  }
+  this->Worker.reset();
+  this->Mesher.reset();
+  this->Volume = std::move(made);
+  this->Path.clear();
+  this->resetPipeline();
+  this->Modified = true;
+  ++this->EditsSinceAutosave;
 }
 
 std::vector<lvdif::ChunkMesh> VolumeDocument::collectMeshes()

@@ -41,6 +41,8 @@ public:
   lvdif::DictionaryVolume& volume() { return *this->Volume; }
   lvdif::Editor& editor() { return *this->Edit; }
   const QString& path() const { return this->Path; }
+  /// Changes whenever the volume object is replaced (new, open, a script's canvas).
+  int generation() const { return this->Generation; }
   bool modified() const { return this->Modified; }
   /// Edits since the last autosave.
   bool needsAutosave() const { return this->EditsSinceAutosave > 0; }
@@ -55,6 +57,10 @@ public:
   void startRecording();
   lvdif::Recording stopRecording();
   void play(const lvdif::Recording& r);
+  /// Runs an LVDIF script (docs/SCRIPTING.md) on the volume, or on the new
+  /// volume its `canvas` command makes. The script's edits are not undoable
+  /// one by one, so the undo history is cleared. Throws lvdif::ScriptError.
+  void runScript(const std::string& source);
 
   // ---- meshing ---------------------------------------------------------------
   /// Meshes finished since the last call (never waits).
@@ -74,4 +80,5 @@ private:
   QString Path;
   bool Modified = false;
   int EditsSinceAutosave = 0;
+  int Generation = 0;
 };

@@ -23,7 +23,7 @@ int runBatch(MainWindow& w, const EditorOptions& o)
   for (int i = 0; i < o.undo; ++i)
     w.undo();
   if (!o.script.isEmpty())
-    ok = w.playRecording(o.script) && ok;
+    ok = w.runScript(o.script) && ok;
   w.finishMeshing();
   if (!o.screenshot.isEmpty())
     ok = w.saveScreenshot(o.screenshot) && ok;

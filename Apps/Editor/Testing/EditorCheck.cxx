@@ -9,6 +9,7 @@
 //   --image T.png B.png the screenshot matches the baseline (vtkImageDifference,
 //                       as VTK's regression tests); a missing baseline fails
 //                       and says where the new image is.
+//   --script-shape V.vti  V is sphere.lvs's result: the analytic sphere minus the cube.
 //   --mesh M.ply        the exported mesh has triangles inside the volume.
 #include "vtkFloatArray.h"
 #include "vtkImageData.h"
@@ -47,10 +48,20 @@ vtkSmartPointer<vtkImageData> readVolume(const char* path)
   return img;
 }
 
+// The sphere of the 64^3 "--fill sphere" canvas.
+double Cx = 31.5, Cy = 31.5, Cz = 31.5, R = 0.35 * 64;
+double CutZ = 1e9, CutH = 0; // optional subtracted cube (centre (Cx, Cy, CutZ), half edge CutH)
+
 double analytic(int i, int j, int k)
 {
-  const double c = 31.5, r = 0.35 * 64;
-  const double d = std::sqrt((i - c) * (i - c) + (j - c) * (j - c) + (k - c) * (k - c)) - r;
+  double d = std::sqrt((i - Cx) * (i - Cx) + (j - Cy) * (j - Cy) + (k - Cz) * (k - Cz)) - R;
+  if (CutH > 0)
+  {
+    const double qx = std::fabs(i - Cx) - CutH, qy = std::fabs(j - Cy) - CutH, qz = std::fabs(k - CutZ) - CutH;
+    const double ox = std::max(qx, 0.0), oy = std::max(qy, 0.0), oz = std::max(qz, 0.0);
+    const double cube = std::sqrt(ox * ox + oy * oy + oz * oz) + std::min(std::max(qx, std::max(qy, qz)), 0.0);
+    d = std::max(d, -cube);
+  }
   return std::max(-8.0, std::min(8.0, d));
 }
 
@@ -60,23 +71,23 @@ double tolerance(double d)
   return 1e-3 + 2e-2 * std::fabs(d);
 }
 
-void checkSphere(const char* path, bool added)
+void checkSphere(const char* path, bool added, int n = 64, bool colours = true)
 {
   auto img = readVolume(path);
   int dims[3];
   img->GetDimensions(dims);
-  check(dims[0] == 64 && dims[1] == 64 && dims[2] == 64, std::string(path) + " is 64^3");
+  check(dims[0] == n && dims[1] == n && dims[2] == n, std::string(path) + " is " + std::to_string(n) + "^3");
   auto* sdf = vtkFloatArray::SafeDownCast(img->GetPointData()->GetArray("sdf"));
   auto* rgba = vtkUnsignedCharArray::SafeDownCast(img->GetPointData()->GetArray("rgba"));
   check(sdf && rgba, "sdf and rgba arrays present");
-  if (!sdf || !rgba || dims[0] != 64)
+  if (!sdf || !rgba || dims[0] != n)
     return;
   double worst = 0;
   long outward = 0, gained = 0, coloured = 0, grey = 0;
   vtkIdType id = 0;
-  for (int k = 0; k < 64; ++k)
-    for (int j = 0; j < 64; ++j)
-      for (int i = 0; i < 64; ++i, ++id)
+  for (int k = 0; k < n; ++k)
+    for (int j = 0; j < n; ++j)
+      for (int i = 0; i < n; ++i, ++id)
       {
         const double e = analytic(i, j, k);
         const double v = sdf->GetValue(id);
@@ -87,12 +98,13 @@ void checkSphere(const char* path, bool added)
         grey += c[0] == 200 && c[1] == 200 && c[2] == 200 && c[3] == 255;
         coloured += c[0] == 0xe0 && c[1] == 0x50 && c[2] == 0x30;
       }
-  const long n = 64L * 64 * 64;
+  const long total = long(n) * n * n;
   if (!added)
   {
     std::printf("max excess over the tolerance: %g\n", worst);
-    check(worst <= 0, "every voxel equals the analytic sphere (within the dictionary's precision)");
-    check(grey == n, "every colour is the default grey (" + std::to_string(grey) + "/" + std::to_string(n) + ")");
+    check(worst <= 0, "every voxel equals the analytic shape (within the dictionary's precision)");
+    if (colours)
+      check(grey == total, "every colour is the default grey (" + std::to_string(grey) + "/" + std::to_string(total) + ")");
   }
   else
   {
@@ -141,6 +153,15 @@ int main(int argc, char* argv[])
   {
     if (!std::strcmp(argv[i], "--sphere") && i + 1 < argc)
       checkSphere(argv[++i], false);
+    else if (!std::strcmp(argv[i], "--script-shape") && i + 1 < argc)
+    {
+      // Data/Testing sphere.lvs: canvas 48, sphere (24,24,24) r 15, cube cut at z 40, half edge 6.
+      Cx = Cy = Cz = 24;
+      R = 15;
+      CutZ = 40;
+      CutH = 6;
+      checkSphere(argv[++i], false, 48, false);
+    }
     else if (!std::strcmp(argv[i], "--added") && i + 1 < argc)
       checkSphere(argv[++i], true);
     else if (!std::strcmp(argv[i], "--image") && i + 2 < argc)
@@ -152,7 +173,7 @@ int main(int argc, char* argv[])
       checkMesh(argv[++i]);
     else
     {
-      std::fprintf(stderr, "usage: %s [--sphere V.vti] [--added V.vti] [--image T.png B.png] [--mesh M.ply]\n", argv[0]);
+      std::fprintf(stderr, "usage: %s [--sphere V.vti] [--added V.vti] [--script-shape V.vti] [--image T.png B.png] [--mesh M.ply]\n", argv[0]);
       return 2;
     }
   }
