@@ -1,6 +1,7 @@
 #include "VolumeDocument.h"
 
 #include "vtkDictionaryVolumeToImage.h"
+#include "vtkLVDIFChunkMesh.h"
 #include "vtkLVDIFVolumeBridge.h"
 
 #include "lvdif/AnalyticFill.h"
@@ -15,6 +16,7 @@
 
 #include <QFileInfo>
 
+#include <cmath>
 #include <mutex>
 
 namespace
@@ -146,13 +148,13 @@ void VolumeDocument::afterEdit(const lvdif::EditResult& r)
   }
 }
 
-void VolumeDocument::requestDirty()
+void VolumeDocument::requestDirty(const lvdif::VoxelBox* bound)
 {
   // Called with the source mutex held.
   const std::vector<std::int64_t> dirty = this->Volume->takeDirtyChunks();
   if (!dirty.empty())
   {
-    this->Worker->request(this->Mesher->chunksAffectedByStorageChunks(dirty));
+    this->Worker->request(vtkLVDIFChunkMesh::ChunksToRemesh(*this->Mesher, dirty, bound));
   }
 }
 
@@ -160,13 +162,28 @@ void VolumeDocument::beginStroke()
 {
   std::lock_guard<std::mutex> lock(this->Worker->sourceMutex());
   this->Edit->beginStroke();
+  this->HasLastSample = false;
 }
 
 void VolumeDocument::addSample(const lvdif::BrushSample& s)
 {
   std::lock_guard<std::mutex> lock(this->Worker->sourceMutex());
   this->afterEdit(this->Edit->addSample(s));
-  this->requestDirty();
+  // The dabs of this sample lie on the segment from the previous one; every
+  // voxel they change is within radius + band + colour skin + blend of it.
+  const std::array<double, 3>& a = this->HasLastSample ? this->LastSample : s.position;
+  const double reach = this->Edit->stroke.radius + this->Volume->bandWidth() + this->Edit->brush.colorOffset +
+    this->Edit->brush.blend + 1;
+  lvdif::VoxelBox box;
+  for (int k = 0; k < 3; ++k)
+  {
+    box.lo[k] = static_cast<std::int64_t>(std::floor(std::min(a[k], s.position[k]) - reach));
+    box.hi[k] = static_cast<std::int64_t>(std::ceil(std::max(a[k], s.position[k]) + reach));
+  }
+  // Only Drill-style (live) strokes apply here; Dynamic applies at the end.
+  this->requestDirty(this->Edit->stroke.kind == lvdif::BrushKind::Drill ? &box : nullptr);
+  this->LastSample = s.position;
+  this->HasLastSample = true;
 }
 
 void VolumeDocument::endStroke()

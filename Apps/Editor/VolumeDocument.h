@@ -12,6 +12,7 @@
 
 #include <QString>
 
+#include <array>
 #include <memory>
 #include <vector>
 
@@ -71,7 +72,7 @@ public:
 private:
   void resetPipeline();
   void afterEdit(const lvdif::EditResult& r);
-  void requestDirty();
+  void requestDirty(const lvdif::VoxelBox* bound = nullptr);
 
   std::unique_ptr<lvdif::DictionaryVolume> Volume;
   std::unique_ptr<lvdif::Editor> Edit;
@@ -81,4 +82,6 @@ private:
   bool Modified = false;
   int EditsSinceAutosave = 0;
   int Generation = 0;
+  std::array<double, 3> LastSample{ 0, 0, 0 };
+  bool HasLastSample = false;
 };

@@ -10,7 +10,9 @@
 #include "vtkPolyData.h"
 #include "vtkUnsignedCharArray.h"
 
+#include <algorithm>
 #include <cstring>
+#include <iterator>
 
 vtkSmartPointer<vtkPolyData> vtkLVDIFChunkMesh::ToPolyData(
   const lvdif::ChunkMesh& mesh, const lvdif::ColorDictionary& colors, const lvdif::Index3& pointDims)
@@ -96,4 +98,20 @@ vtkSmartPointer<vtkPolyData> vtkLVDIFChunkMesh::ToPolyData(
     pd->GetCellData()->AddArray(ijk);
   }
   return pd;
+}
+
+std::vector<std::int64_t> vtkLVDIFChunkMesh::ChunksToRemesh(const lvdif::ChunkedMarchingCubes& mc,
+  const std::vector<std::int64_t>& dirtyStorageChunks, const lvdif::VoxelBox* changedBound)
+{
+  std::vector<std::int64_t> byStorage = mc.chunksAffectedByStorageChunks(dirtyStorageChunks);
+  if (!changedBound || byStorage.empty())
+  {
+    return byStorage;
+  }
+  std::vector<std::int64_t> byBox = mc.chunksAffectedBy(*changedBound);
+  std::sort(byBox.begin(), byBox.end());
+  std::sort(byStorage.begin(), byStorage.end());
+  std::vector<std::int64_t> both;
+  std::set_intersection(byStorage.begin(), byStorage.end(), byBox.begin(), byBox.end(), std::back_inserter(both));
+  return both;
 }

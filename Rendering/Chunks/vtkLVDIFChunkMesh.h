@@ -11,6 +11,8 @@
 
 #include "vtkSmartPointer.h"
 
+#include <vector>
+
 class vtkPolyData;
 
 namespace vtkLVDIFChunkMesh
@@ -18,6 +20,16 @@ namespace vtkLVDIFChunkMesh
 /// `pointDims` are the volume's point dimensions (to split the linear cell index).
 LVDIFRENDERINGCHUNKS_EXPORT vtkSmartPointer<vtkPolyData> ToPolyData(
   const lvdif::ChunkMesh& mesh, const lvdif::ColorDictionary& colors, const lvdif::Index3& pointDims);
+
+/// The marching cubes chunks to re-mesh after an edit that dirtied these
+/// storage chunks. A storage chunk only says "something in these 32^3 voxels
+/// changed", which makes every neighbouring marching cubes chunk suspect (a
+/// 2x2x2 block of dirty storage chunks gives 4^3 = 64). When the caller knows
+/// a box that holds every changed voxel (a dab's centre +- radius + band),
+/// only the chunks both rules name are returned (both are supersets of the
+/// chunks whose mesh can change, so their intersection is too).
+LVDIFRENDERINGCHUNKS_EXPORT std::vector<std::int64_t> ChunksToRemesh(const lvdif::ChunkedMarchingCubes& mc,
+  const std::vector<std::int64_t>& dirtyStorageChunks, const lvdif::VoxelBox* changedBound = nullptr);
 }
 
 #endif

@@ -7,7 +7,8 @@
 //   UI loop (this thread, ticking at up to 60 Hz):
 //     deliver the samples whose time has come -> lvdif::Editor::addSample
 //     (live application, under the worker's source mutex) -> request the
-//     dirty chunks -> collect finished chunk meshes -> vtkLVDIFChunkMesh +
+//     chunks the sample can have changed (vtkLVDIFChunkMesh::ChunksToRemesh,
+//     as the editor does) -> collect finished chunk meshes -> vtkLVDIFChunkMesh +
 //     vtkChunkActorManager::SetChunk (vertex un-sharing for the tetrahedral
 //     shader included) -> [optional: render a frame]
 //   worker thread: lvdif::MarchingCubesWorker re-meshes requested chunks.
@@ -121,7 +122,20 @@ int main(int argc, char* argv[])
     stroke[i].buttons = 1;
   }
 
-  std::vector<double> latency, tickMs, editMs, installMs;
+  std::vector<double> tickMs, editMs, installMs;
+  // Every voxel a sample's dabs can change: the segment from the previous
+  // sample, grown by the radius, the band (distances saturate there), the
+  // colour skin and one voxel of rounding.
+  const double reach = radius + volume.bandWidth() + editor.brush.colorOffset + editor.brush.blend + 1;
+  auto segmentBox = [&](const std::array<double, 3>& a, const std::array<double, 3>& b) {
+    lvdif::VoxelBox box;
+    for (int k = 0; k < 3; ++k)
+    {
+      box.lo[k] = static_cast<std::int64_t>(std::floor(std::min(a[k], b[k]) - reach));
+      box.hi[k] = static_cast<std::int64_t>(std::ceil(std::max(a[k], b[k]) + reach));
+    }
+    return box;
+  };
   // For the latency: which chunks each sample dirtied, and when each chunk's meshes arrived.
   std::vector<std::pair<double, std::vector<std::int64_t>>> requests; // (arrival time, chunks)
   std::map<std::int64_t, std::vector<double>> delivered;
@@ -142,7 +156,8 @@ int main(int argc, char* argv[])
       bench::Stopwatch e;
       std::lock_guard<std::mutex> lock(worker.sourceMutex());
       editor.addSample(stroke[next]);
-      const auto ids = mc.chunksAffectedByStorageChunks(volume.takeDirtyChunks());
+      const lvdif::VoxelBox bound = segmentBox(stroke[next > 0 ? next - 1 : 0].position, stroke[next].position);
+      const auto ids = vtkLVDIFChunkMesh::ChunksToRemesh(mc, volume.takeDirtyChunks(), &bound);
       worker.request(ids);
       requests.emplace_back(clock.seconds(), ids);
       ++next;
@@ -152,7 +167,8 @@ int main(int argc, char* argv[])
     {
       std::lock_guard<std::mutex> lock(worker.sourceMutex());
       editor.endStroke();
-      const auto ids = mc.chunksAffectedByStorageChunks(volume.takeDirtyChunks());
+      const lvdif::VoxelBox bound = segmentBox(stroke[next > 1 ? next - 2 : 0].position, stroke[next - 1].position);
+      const auto ids = vtkLVDIFChunkMesh::ChunksToRemesh(mc, volume.takeDirtyChunks(), &bound);
       worker.request(ids);
       if (!requests.empty())
         requests.back().second.insert(requests.back().second.end(), ids.begin(), ids.end());
