@@ -36,6 +36,7 @@
 #include <QVTKOpenGLNativeWidget.h>
 
 #include <cmath>
+#include <map>
 #include <stdexcept>
 
 MainWindow::MainWindow(const EditorOptions& options)
@@ -254,8 +255,13 @@ void MainWindow::pollMeshes()
   if (meshes.empty())
     return;
   const auto& d = this->Doc.volume().dims();
-  for (const lvdif::ChunkMesh& m : meshes)
+  // In completion order; a later mesh of a chunk supersedes an earlier one.
+  std::map<std::int64_t, const lvdif::ChunkMesh*> newest;
+  for (const lvdif::ChunkMesh& mesh : meshes)
+    newest[mesh.chunkId] = &mesh;
+  for (const auto& kv : newest)
   {
+    const lvdif::ChunkMesh& m = *kv.second;
     if (m.empty())
       this->Chunks->RemoveChunk(m.chunkId);
     else

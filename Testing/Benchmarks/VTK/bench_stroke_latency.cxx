@@ -178,8 +178,12 @@ int main(int argc, char* argv[])
     bench::Stopwatch inst;
     const std::vector<lvdif::ChunkMesh> meshes = worker.collect();
     const double arrived = clock.seconds();
+    std::map<std::int64_t, const lvdif::ChunkMesh*> newest; // a later mesh of a chunk supersedes an earlier one
     for (const auto& m : meshes)
+      newest[m.chunkId] = &m;
+    for (const auto& kv : newest)
     {
+      const lvdif::ChunkMesh& m = *kv.second;
       delivered[m.chunkId].push_back(arrived);
       if (m.empty())
         actors->RemoveChunk(m.chunkId);
