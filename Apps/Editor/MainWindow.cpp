@@ -303,6 +303,7 @@ void MainWindow::resetView()
       b[2 * a + 1] = o.origin[a] + o.spacing[a] * (d[a] - 1);
     }
     this->Renderer->ResetCamera(b);
+    cam->Zoom(1.4); // the volume's box is mostly empty around the surface
   }
   this->Renderer->ResetCameraClippingRange();
   this->RenderWindow->Render();
