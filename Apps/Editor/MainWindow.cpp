@@ -32,6 +32,7 @@
 #include <QMessageBox>
 #include <QStandardPaths>
 #include <QStatusBar>
+#include <QTabletEvent>
 #include <QTimer>
 #include <QVTKOpenGLNativeWidget.h>
 
@@ -50,6 +51,7 @@ MainWindow::MainWindow(const EditorOptions& options)
   this->Renderer->SetBackground2(0.05, 0.05, 0.07);
   this->Renderer->GradientBackgroundOn();
   this->setCentralWidget(this->View);
+  this->View->installEventFilter(this);
   this->resize(options.width, options.height);
 
   this->Chunks->SetRenderer(this->Renderer);
@@ -219,6 +221,7 @@ void MainWindow::onBrushSample(const double* sample)
   for (int a = 0; a < 3; ++a)
     s.position[a] = (p[a] - o.origin[a]) / o.spacing[a];
   s.buttons = 1;
+  s.pressure = this->Pressure; // < 0 without a tablet: the radius stays as set
   s.time = this->Clock.elapsed() * 1e-3;
   try
   {
@@ -535,6 +538,24 @@ bool MainWindow::maybeSave()
   if (answer == QMessageBox::Save)
     return this->Doc.path().isEmpty() ? this->saveAsDialog() : this->saveVolume(this->Doc.path());
   return true;
+}
+
+bool MainWindow::eventFilter(QObject* watched, QEvent* event)
+{
+  switch (event->type())
+  {
+    case QEvent::TabletPress:
+    case QEvent::TabletMove:
+      this->Pressure = static_cast<QTabletEvent*>(event)->pressure();
+      break;
+    case QEvent::TabletRelease:
+      this->Pressure = -1;
+      break;
+    default:
+      break;
+  }
+  // Not consumed: Qt turns unaccepted tablet events into mouse events.
+  return QMainWindow::eventFilter(watched, event);
 }
 
 void MainWindow::closeEvent(QCloseEvent* event)

@@ -55,6 +55,9 @@ public:
 
 protected:
   void closeEvent(QCloseEvent* event) override;
+  /// Tablet pressure: the view's tablet events carry it; the mouse events Qt
+  /// synthesises from them then drive the brush as usual.
+  bool eventFilter(QObject* watched, QEvent* event) override;
 
 private:
   void buildMenus();
@@ -93,4 +96,5 @@ private:
   vtkNew<vtkBrushWidget> Brush;
   bool ViewInitialized = false;
   bool Painting = false;
+  double Pressure = -1; // last tablet pressure in [0, 1]; -1: no tablet in use
 };
