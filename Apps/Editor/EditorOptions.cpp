@@ -21,14 +21,14 @@ EditorOptions parseEditorOptions(const QStringList& arguments)
   QCommandLineParser p;
   p.setApplicationDescription("LVDIF volume editor");
   p.addHelpOption();
-  const QCommandLineOption open("open", "Open a volume (.vti).", "file");
+  const QCommandLineOption open("open", "Open a volume (.lvdv or .vti).", "file");
   const QCommandLineOption create("new", "New canvas of N^3 or NXxNYxNZ voxels.", "size");
   const QCommandLineOption fill("fill", "Fill of a new canvas: empty, full or sphere.", "fill", "sphere");
   const QCommandLineOption script("script", "Run a script (.lvs) or play a recording (.lvrec) after loading.", "file");
   const QCommandLineOption drag("replay-drag", "Synthetic left-drag through display points 'x,y;x,y;...' (or / between points).", "points");
   const QCommandLineOption undo("undo", "Undo N steps after the drag.", "n", "0");
   const QCommandLineOption shot("screenshot", "Save a screenshot (PNG) and quit.", "file");
-  const QCommandLineOption save("save", "Save the volume (.vti) and quit.", "file");
+  const QCommandLineOption save("save", "Save the volume (.lvdv or .vti) and quit.", "file");
   const QCommandLineOption exp("export", "Export the mesh (.ply, .obj, .stl) and quit.", "file");
   const QCommandLineOption op("op", "Brush operation: add, subtract, paint.", "op", "add");
   const QCommandLineOption shape("shape", "Brush shape: sphere, cube.", "shape", "sphere");

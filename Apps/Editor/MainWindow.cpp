@@ -493,7 +493,7 @@ QString MainWindow::recoveryPath() const
   if (dir.isEmpty())
     dir = QStandardPaths::writableLocation(QStandardPaths::AppDataLocation);
   QDir().mkpath(dir);
-  return QDir(dir).filePath("recovery.vti");
+  return QDir(dir).filePath("recovery.lvdv");
 }
 
 void MainWindow::autosave()

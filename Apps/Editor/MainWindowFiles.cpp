@@ -58,18 +58,20 @@ void MainWindow::openDialog()
 {
   if (!this->maybeSave())
     return;
-  const QString path = QFileDialog::getOpenFileName(this, "Open volume", QString(), "VTK image (*.vti)");
+  const QString path = QFileDialog::getOpenFileName(
+    this, "Open volume", QString(), "Volumes (*.lvdv *.vti);;LVDIF volume (*.lvdv);;VTK image (*.vti)");
   if (!path.isEmpty())
     this->openVolume(path);
 }
 
 bool MainWindow::saveAsDialog()
 {
-  QString path = QFileDialog::getSaveFileName(this, "Save volume", this->Doc.path(), "VTK image (*.vti)");
+  QString path = QFileDialog::getSaveFileName(
+    this, "Save volume", this->Doc.path(), "LVDIF volume (*.lvdv);;VTK image (*.vti)");
   if (path.isEmpty())
     return false;
   if (QFileInfo(path).suffix().isEmpty())
-    path += ".vti";
+    path += ".lvdv";
   return this->saveVolume(path);
 }
 

@@ -7,6 +7,7 @@
 #include "lvdif/AnalyticFill.h"
 #include "lvdif/Error.h"
 #include "lvdif/Script.h"
+#include "lvdif/VolumeFile.h"
 
 #include "vtkImageData.h"
 #include "vtkNew.h"
@@ -79,10 +80,20 @@ void VolumeDocument::newCanvas(int nx, int ny, int nz, Fill fill)
 void VolumeDocument::open(const QString& path)
 {
   const QString ext = QFileInfo(path).suffix().toLower();
+  if (ext == "lvdv")
+  {
+    auto v = lvdif::loadVolume(path.toStdString());
+    this->Worker.reset();
+    this->Mesher.reset();
+    this->Volume = std::move(v);
+    this->Path = path;
+    this->resetPipeline();
+    return;
+  }
   if (ext != "vti")
   {
     throw lvdif::Error(lvdif::ErrorCode::InvalidArgument,
-      "unsupported volume file '" + path.toStdString() + "' (expected .vti)");
+      "unsupported volume file '" + path.toStdString() + "' (expected .lvdv or .vti)");
   }
   vtkNew<vtkXMLImageDataReader> reader;
   if (!reader->CanReadFile(path.toLocal8Bit().constData()))
@@ -117,6 +128,24 @@ void VolumeDocument::save(const QString& path, bool asCopy)
   {
     throw lvdif::Error(lvdif::ErrorCode::InvalidArgument, "no volume to save");
   }
+  if (QFileInfo(path).suffix().toLower() == "lvdv")
+  {
+    std::lock_guard<std::mutex> lock(this->Worker->sourceMutex());
+    lvdif::saveVolume(*this->Volume, path.toStdString()); // exact keys and dictionaries, crash-safe
+  }
+  else
+  {
+    this->saveImage(path);
+  }
+  if (!asCopy)
+  {
+    this->Path = path;
+    this->Modified = false;
+  }
+}
+
+void VolumeDocument::saveImage(const QString& path)
+{
   vtkNew<vtkImageData> img;
   {
     std::lock_guard<std::mutex> lock(this->Worker->sourceMutex());
@@ -131,11 +160,6 @@ void VolumeDocument::save(const QString& path, bool asCopy)
   if (!writer->Write())
   {
     throw lvdif::Error(lvdif::ErrorCode::IoFailure, "cannot write '" + path.toStdString() + "'");
-  }
-  if (!asCopy)
-  {
-    this->Path = path;
-    this->Modified = false;
   }
 }
 

@@ -31,11 +31,11 @@ public:
 
   /// A new canvas of n^3 voxels (chunk edge 32). Throws lvdif::Error.
   void newCanvas(int nx, int ny, int nz, Fill fill);
-  /// Opens a .vti image (float `sdf`, optional uchar `rgba`) or, when the
-  /// native format is available, a .lvdv file. Throws lvdif::Error.
+  /// Opens a native volume file (.lvdv, docs/FORMAT.md) or a .vti image
+  /// (float `sdf`, optional uchar `rgba`). Throws lvdif::Error.
   void open(const QString& path);
-  /// Saves as .vti (sdf + rgba); throws lvdif::Error. Clears the modified flag
-  /// unless `asCopy` (autosave).
+  /// Saves as .lvdv (exact) or .vti (decoded sdf + rgba) by extension; throws
+  /// lvdif::Error. Clears the modified flag unless `asCopy` (autosave).
   void save(const QString& path, bool asCopy = false);
 
   bool hasVolume() const { return this->Volume != nullptr; }
@@ -71,6 +71,7 @@ public:
 
 private:
   void resetPipeline();
+  void saveImage(const QString& path);
   void afterEdit(const lvdif::EditResult& r);
   void requestDirty(const lvdif::VoxelBox* bound = nullptr);
 
