@@ -1,5 +1,6 @@
-// A surface after a few scripted CSG edits (two coloured unions, a cube cut,
-// a painted band) on a dictionary volume, meshed by the Core's chunked
+// A surface after a few scripted edits (an LVDIF script run by the Core's
+// interpreter: two coloured unions, a cube cut, a painted stroke) on a
+// dictionary volume, meshed by the Core's chunked
 // marching cubes and shown through vtkChunkActorManager. The manager is fed
 // incrementally (only the chunks the edits dirtied are re-meshed and
 // replaced); the oracle is a second manager fed with a full re-mesh of the
@@ -9,6 +10,7 @@
 
 #include "lvdif/AnalyticFill.h"
 #include "lvdif/ChunkedMarchingCubes.h"
+#include "lvdif/Script.h"
 
 #include "vtkCamera.h"
 #include "vtkImageData.h"
@@ -25,38 +27,9 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
-#include <functional>
 
 namespace
 {
-using Dist = std::function<double(double, double, double)>;
-
-// One edit of the script: union (add), subtraction or paint of a primitive.
-void edit(lvdif::DictionaryVolume& v, int op, const Dist& s, const int box[6], lvdif::Rgba color)
-{
-  const lvdif::ColorKey key = v.colors().add(color);
-  for (int z = std::max(0, box[4]); z <= std::min<int>(v.dims()[2] - 1, box[5]); ++z)
-    for (int y = std::max(0, box[2]); y <= std::min<int>(v.dims()[1] - 1, box[3]); ++y)
-      for (int x = std::max(0, box[0]); x <= std::min<int>(v.dims()[0] - 1, box[1]); ++x)
-      {
-        const lvdif::Voxel old = v.get(x, y, z);
-        const double d = v.decode(old.sdf), sd = s(x, y, z);
-        lvdif::Voxel nv = old;
-        if (op == 0)
-        {
-          nv.sdf = v.encode(static_cast<float>(std::min(d, sd)));
-          if (sd <= 1.5)
-            nv.color = key;
-        }
-        else if (op == 1)
-          nv.sdf = v.encode(static_cast<float>(std::max(d, -sd)));
-        else if (sd <= 0 && std::fabs(d) <= 1.5)
-          nv.color = key;
-        if (nv != old)
-          v.set(x, y, z, nv);
-      }
-}
-
 void show(vtkChunkActorManager* mgr, const std::vector<lvdif::ChunkMesh>& meshes, const lvdif::DictionaryVolume& v)
 {
   for (const auto& m : meshes)
@@ -117,22 +90,22 @@ int TestScriptedEdits(int argc, char* argv[])
   setCamera(ren);
   rw->Render();
 
-  // The script.
-  auto sphere = [](double cx, double cy, double cz, double r) -> Dist {
-    return [=](double x, double y, double z) { return std::sqrt((x - cx) * (x - cx) + (y - cy) * (y - cy) + (z - cz) * (z - cz)) - r; };
-  };
-  // Boxes: where each primitive (plus the 8-voxel band) can change voxels.
-  const int b1[6] = { 28, 60, 0, 32, 30, 62 }, b2[6] = { 0, 30, 0, 32, 0, 32 }, b3[6] = { 0, 31, 0, 31, 40, 46 },
-            b4[6] = { 18, 46, 0, 30, 36, 64 };
-  edit(volume, 0, sphere(44, 16, 44, 8.0), b1, { 230, 70, 40, 255 });  // red bump
-  edit(volume, 0, sphere(16, 18, 20, 6.5), b2, { 60, 200, 90, 255 });  // green bump
-  edit(volume, 1, [](double x, double y, double z) { // a cube cut into the top
-    const double qx = std::fabs(x - 32) - 6, qy = std::fabs(y - 16) - 6, qz = std::fabs(z - 50) - 6;
-    const double ox = std::max(qx, 0.0), oy = std::max(qy, 0.0), oz = std::max(qz, 0.0);
-    return std::sqrt(ox * ox + oy * oy + oz * oz) + std::min(std::max(qx, std::max(qy, qz)), 0.0);
-  }, b4, { 0, 0, 0, 255 });
-  edit(volume, 2, [](double, double, double z) { return std::fabs(z - 43) - 2; }, b3, { 250, 210, 40, 255 }); // band
-
+  // The script (docs/SCRIPTING.md), run by the Core's interpreter on this volume.
+  const char* script = R"(
+color 230 70 40
+sphere 44, 16, 44, 8            # a red bump
+color 60 200 90
+sphere 16, 18, 20, 6.5          # a green bump
+op subtract
+cube 32, 16, 50, 6              # a cube cut into the top
+op paint
+color 250 210 40
+radius 4
+line 17.4, 23.1, 43, 29.2, 14.9, 43   # a painted stroke on the surface
+)";
+  lvdif::ScriptRunner runner;
+  runner.attach(volume);
+  runner.run(script);
   const std::vector<std::int64_t> ids = mc.chunksAffectedByStorageChunks(volume.takeDirtyChunks());
   const vtkIdType before = incremental->GetNumberOfChunkUpdates();
   show(incremental, mc.extractChunks(ids), volume);
