@@ -6,13 +6,16 @@
 #include "vtkCornerColorAttributes.h"
 #include "vtkMath.h"
 #include "vtkNew.h"
+#include "vtkFieldData.h"
 #include "vtkObjectFactory.h"
+#include "vtkPartitionedDataSet.h"
 #include "vtkPolyData.h"
 #include "vtkProperty.h"
 #include "vtkRenderer.h"
 #include "vtkTetrahedralColorMapper.h"
 
 #include <map>
+#include <vector>
 
 vtkStandardNewMacro(vtkChunkActorManager);
 
@@ -23,6 +26,7 @@ struct vtkChunkActorManager::Internals
     vtkSmartPointer<vtkActor> Actor;
     vtkSmartPointer<vtkTetrahedralColorMapper> Mapper;
     vtkSmartPointer<vtkPolyData> Source; // the mesh as given
+    vtkMTimeType SourceMTime = 0;         // its MTime when it was given
   };
   std::map<vtkIdType, Entry> Chunks;
   vtkSmartPointer<vtkRenderer> Renderer;
@@ -133,8 +137,47 @@ void vtkChunkActorManager::SetChunk(vtkIdType chunkId, vtkPolyData* mesh, bool p
   // Only this mapper sees a new input: only its buffers are rebuilt.
   it->second.Mapper->SetInputData(ready);
   it->second.Source = mesh;
+  it->second.SourceMTime = mesh ? mesh->GetMTime() : 0;
   ++this->NumberOfChunkUpdates;
   this->Modified();
+}
+
+void vtkChunkActorManager::SetPartitions(vtkPartitionedDataSet* chunks)
+{
+  std::map<vtkIdType, vtkPolyData*> wanted;
+  const unsigned int n = chunks ? chunks->GetNumberOfPartitions() : 0;
+  for (unsigned int i = 0; i < n; ++i)
+  {
+    vtkPolyData* pd = vtkPolyData::SafeDownCast(chunks->GetPartition(i));
+    if (!pd)
+    {
+      continue;
+    }
+    vtkDataArray* id = pd->GetFieldData()->GetArray("chunk_id");
+    wanted[id && id->GetNumberOfTuples() > 0 ? static_cast<vtkIdType>(id->GetTuple1(0)) : i] = pd;
+  }
+  std::vector<vtkIdType> gone;
+  for (auto& kv : this->Internal->Chunks)
+  {
+    if (!wanted.count(kv.first))
+    {
+      gone.push_back(kv.first);
+    }
+  }
+  for (vtkIdType id : gone)
+  {
+    this->RemoveChunk(id);
+  }
+  for (auto& kv : wanted)
+  {
+    auto it = this->Internal->Chunks.find(kv.first);
+    if (it != this->Internal->Chunks.end() && it->second.Source.Get() == kv.second &&
+      kv.second->GetMTime() == it->second.SourceMTime)
+    {
+      continue; // the same, unmodified mesh object is already shown
+    }
+    this->SetChunk(kv.first, kv.second);
+  }
 }
 
 void vtkChunkActorManager::RemoveChunk(vtkIdType chunkId)

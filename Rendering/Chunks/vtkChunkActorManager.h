@@ -33,6 +33,7 @@
 #include <memory> // for unique_ptr
 
 class vtkActor;
+class vtkPartitionedDataSet;
 class vtkPolyData;
 class vtkProp;
 class vtkProperty;
@@ -73,6 +74,11 @@ public:
   /// Replaces the mesh of one chunk. A null or empty mesh removes the chunk.
   void SetChunk(vtkIdType chunkId, vtkPolyData* mesh, bool prepared = false);
   void RemoveChunk(vtkIdType chunkId);
+  /// Shows every partition of vtkChunkedMarchingCubes' partitioned output
+  /// (field data `chunk_id` names the chunk; partitions without it get their
+  /// index). Chunks not in the data set are removed; a partition whose poly
+  /// data object was already shown for that chunk is not re-uploaded.
+  void SetPartitions(vtkPartitionedDataSet* chunks);
   void RemoveAllChunks();
 
   vtkActor* GetChunkActor(vtkIdType chunkId);
