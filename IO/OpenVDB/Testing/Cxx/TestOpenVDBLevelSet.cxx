@@ -330,7 +330,9 @@ TEST(OpenVDBLevelSet, ErrorsNameTheProblem)
   reader->AddObserver(vtkCommand::ErrorEvent, catcher);
   reader->GetExecutive()->AddObserver(vtkCommand::ErrorEvent, catcher);
   reader->SetFileName(path.c_str());
-  EXPECT_EQ(reader->GetGridList(), "sdf (float, level set)\nrgba (int32, unknown)\n");
+  const std::string list = reader->GetGridList(); // in OpenVDB's order
+  EXPECT_NE(list.find("sdf (float, level set)\n"), std::string::npos) << list;
+  EXPECT_NE(list.find("rgba (int32, unknown)\n"), std::string::npos) << list;
   // a missing grid: the message lists the grids there are
   reader->SetGridName("density");
   catcher->Last.clear();
