@@ -22,6 +22,7 @@
 #include <cmath>
 #include <cstdio>
 #include <fstream>
+#include <iostream>
 #include <regex>
 #include <unistd.h>
 
@@ -174,6 +175,7 @@ TEST(OpenVDBLevelSet, VdbPrintListsTheLevelSet)
   while (std::fgets(buf, sizeof buf, p))
     out += buf;
   ASSERT_EQ(::pclose(p), 0) << out;
+  std::cout << out; // for the log
   // OpenVDB's tool sees a level-set float grid named sdf, the rgba grid, and
   // the same voxel count and bounding box (a tightly bounded sphere band).
   EXPECT_TRUE(std::regex_search(out, std::regex("name: sdf"))) << out;
