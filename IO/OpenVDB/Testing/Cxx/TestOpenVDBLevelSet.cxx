@@ -178,13 +178,17 @@ TEST(OpenVDBLevelSet, VdbPrintListsTheLevelSet)
   std::cout << out; // for the log
   // OpenVDB's tool sees a level-set float grid named sdf, the rgba grid, and
   // the same voxel count and bounding box (a tightly bounded sphere band).
-  EXPECT_TRUE(std::regex_search(out, std::regex("name: sdf"))) << out;
-  EXPECT_TRUE(std::regex_search(out, std::regex("class: level set"))) << out;
-  EXPECT_TRUE(std::regex_search(out, std::regex("name: rgba"))) << out;
-  EXPECT_NE(out.find(std::to_string(active)), std::string::npos) << out;
+  EXPECT_TRUE(std::regex_search(out, std::regex("Name: rgba"))) << out;
+  const std::size_t at = out.find("Name: sdf\n");
+  ASSERT_NE(at, std::string::npos) << out;
+  const std::string sdfPart = out.substr(at, out.find("Name: ", at + 1) - at); // the sdf grid's block only
+  EXPECT_NE(sdfPart.find("Type: Tree_float_5_4_3"), std::string::npos) << sdfPart;
+  EXPECT_NE(sdfPart.find("class: level set"), std::string::npos) << sdfPart;
+  EXPECT_NE(sdfPart.find("file_voxel_count: " + std::to_string(active) + "\n"), std::string::npos) << sdfPart;
+  EXPECT_NE(sdfPart.find("voxel size: 0.5"), std::string::npos) << sdfPart;
   std::ostringstream b;
-  b << bbox.min() << " -> " << bbox.max();
-  EXPECT_NE(out.find(b.str()), std::string::npos) << b.str() << "\n" << out;
+  b << "Bounding box of active voxels: " << bbox.min() << " -> " << bbox.max();
+  EXPECT_NE(sdfPart.find(b.str()), std::string::npos) << b.str() << "\n" << sdfPart;
   std::remove(path.c_str());
 }
 #endif
