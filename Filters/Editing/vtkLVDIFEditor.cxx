@@ -246,7 +246,9 @@ int vtkLVDIFEditor::GetColorComponent(int i)
 {
   if (i < 0 || i > 3)
     return -1;
-  return brushOf(this->Ed.get(), this->Brush->brush).color[static_cast<std::size_t>(i)];
+  const lvdif::Rgba& c = brushOf(this->Ed.get(), this->Brush->brush).color;
+  const std::uint8_t v[4] = { c.r, c.g, c.b, c.a };
+  return v[i];
 }
 
 void vtkLVDIFEditor::SetBlend(double k)
@@ -538,4 +540,9 @@ void vtkLVDIFEditor::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "Spacing: " << this->GetSpacing() << "\n";
   os << indent << "UndoCount: " << this->GetUndoCount() << "\n";
   os << indent << "LastError: " << this->LastError << "\n";
+}
+
+vtkIdTypeArray* vtkLVDIFEditor::GetLastChangedChunks()
+{
+  return this->LastChanged;
 }

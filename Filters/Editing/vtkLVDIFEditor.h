@@ -184,7 +184,7 @@ public:
   ///@}
 
   /// Chunk ids reported by the last ChunksModifiedEvent.
-  vtkIdTypeArray* GetLastChangedChunks() { return this->LastChanged; }
+  vtkIdTypeArray* GetLastChangedChunks();
 
   /// An image source sharing this editor's volume (`sdf` and `rgba`); it
   /// follows NewVolume/LoadVolume and is marked modified by every edit.
