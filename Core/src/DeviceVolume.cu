@@ -378,7 +378,7 @@ EditResult DeviceVolume::sync(ChunkWriteObserver* observer)
           for (std::int64_t x = b.lo[0]; x <= b.hi[0]; ++x)
           {
             Voxel nv;
-            std::memcpy(&nv, src + volume.localIndex(x, y, z), sizeof(Voxel));
+            std::memcpy(static_cast<void*>(&nv), src + volume.localIndex(x, y, z), sizeof(Voxel));
             if (nv != volume.get(x, y, z))
             {
               if (!touched && observer)

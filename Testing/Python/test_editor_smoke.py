@@ -35,6 +35,7 @@ if not ed.CanUndo() or not ed.Undo():
 src.Update()
 if src.GetOutput().GetPointData().GetArray("sdf").GetValue(centre) <= 0:
     fail("undo did not restore the empty volume")
+ed.GlobalWarningDisplayOff()  # the next error is expected
 if ed.RunScript("sphere 1 2 3 4\n  bogus 1\n"):
     fail("a bad script succeeded")
 if (ed.GetLastErrorLine(), ed.GetLastErrorColumn()) != (2, 3):

@@ -60,10 +60,11 @@ public:
   /// The chunks changed by edits, undo and redo since the last call (increasing ids),
   /// independent of the volume's dirty flags (front ends report them in events).
   std::vector<std::int64_t> takeTouchedChunks();
+  /// Adds chunks changed outside the editor's edits (e.g. a script's `canvas fill`).
+  void touch(const std::vector<std::int64_t>& ids);
 
 private:
   void record(const EditRecord& e);
-  void touch(const std::vector<std::int64_t>& ids);
 
   DictionaryVolume& Volume;
   UndoStack Undo;
