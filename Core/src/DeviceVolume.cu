@@ -88,6 +88,51 @@ std::uint32_t bitsOf(Voxel v)
   return u;
 }
 
+/// Writes one chunk's device copy `src` (storage order, n voxels) into the host
+/// volume: the first changed voxel goes through set() (expands, marks dirty and the
+/// range stale, after the observer's snapshot), the rest straight into the chunk's
+/// data as the CPU brush does (this thread owns the chunk). Returns the changed voxels.
+/// Voxels outside the volume never differ (the kernel leaves them as uploaded).
+std::int64_t writeBack(DictionaryVolume& volume, std::int64_t id, const std::uint32_t* src, std::size_t n,
+  ChunkWriteObserver* observer)
+{
+  const Voxel* data = volume.chunkData(id);
+  const std::uint32_t uniformBits = bitsOf(volume.uniformValue(id));
+  std::size_t i = 0;
+  if (data)
+  {
+    const std::uint32_t* host = reinterpret_cast<const std::uint32_t*>(data);
+    while (i < n && src[i] == host[i])
+      ++i;
+  }
+  else
+  {
+    while (i < n && src[i] == uniformBits)
+      ++i;
+  }
+  if (i == n)
+    return 0;
+  if (observer)
+    observer->beforeChunkWrite(volume, id);
+  const int edge = volume.chunkEdge();
+  const Index3 c = volume.chunkCoord(id);
+  const std::int64_t lx = static_cast<std::int64_t>(i % edge), ly = static_cast<std::int64_t>((i / edge) % edge),
+                     lz = static_cast<std::int64_t>(i / (static_cast<std::size_t>(edge) * edge));
+  Voxel v;
+  std::memcpy(static_cast<void*>(&v), src + i, sizeof(Voxel));
+  volume.set(c[0] * edge + lx, c[1] * edge + ly, c[2] * edge + lz, v);
+  std::uint32_t* dst = reinterpret_cast<std::uint32_t*>(volume.expandChunk(id));
+  std::int64_t changed = 1;
+  for (++i; i < n; ++i)
+    if (dst[i] != src[i])
+    {
+      dst[i] = src[i];
+      ++changed;
+    }
+  volume.tryCollapseChunk(id);
+  return changed;
+}
+
 } // namespace
 
 struct DeviceVolume::Impl
@@ -105,6 +150,22 @@ struct DeviceVolume::Impl
   std::vector<std::uint8_t> pending;  // changed on the device, not yet on the host
   std::vector<int> freeSlots;
   std::size_t pendingCount = 0;
+  std::uint32_t* staging = nullptr; // pinned host buffer for sync
+  std::size_t stagingBytes = 0;
+
+  void reserveStaging(std::size_t want)
+  {
+    if (want <= this->stagingBytes)
+      return;
+    if (this->staging)
+      LVDIF_CUDA_CHECK(cudaFreeHost(this->staging));
+    this->staging = nullptr;
+    this->stagingBytes = 0;
+    void* ptr = nullptr;
+    LVDIF_CUDA_CHECK(cudaMallocHost(&ptr, want));
+    this->staging = static_cast<std::uint32_t*>(ptr);
+    this->stagingBytes = want;
+  }
 
   void reserveLaunch(std::size_t want)
   {
@@ -159,6 +220,9 @@ struct DeviceVolume::Impl
       cudaFree(this->table);
     if (this->launch)
       cudaFree(this->launch);
+    if (this->staging)
+      cudaFreeHost(this->staging);
+    this->staging = nullptr;
     this->pool = nullptr;
     this->table = nullptr;
     this->launch = nullptr;
@@ -352,46 +416,42 @@ EditResult DeviceVolume::sync(ChunkWriteObserver* observer)
   for (std::size_t id = 0; id < p.pending.size(); ++id)
     if (p.pending[id])
       ids.push_back(static_cast<std::int64_t>(id));
-  // in batches of at most 64 MiB of host staging
-  const std::size_t batch = std::max<std::size_t>(1, (std::size_t(64) << 20) / p.chunkBytes);
-  std::vector<std::uint32_t> back;
+  // in batches of at most 64 MiB of pinned host staging (one asynchronous copy per slot, one wait)
+  const std::size_t batch = std::max<std::size_t>(1, std::min<std::size_t>(ids.size(), (std::size_t(64) << 20) / p.chunkBytes));
+  p.reserveStaging(batch * p.chunkBytes);
   for (std::size_t first = 0; first < ids.size(); first += batch)
   {
     const std::size_t count = std::min(batch, ids.size() - first);
-    back.resize(count * p.n);
     for (std::size_t t = 0; t < count; ++t)
-      LVDIF_CUDA_CHECK(cudaMemcpy(back.data() + t * p.n,
+      LVDIF_CUDA_CHECK(cudaMemcpyAsync(p.staging + t * p.n,
         p.pool + static_cast<std::size_t>(p.slotOf[static_cast<std::size_t>(ids[first + t])]) * p.n, p.chunkBytes,
-        cudaMemcpyDeviceToHost));
+        cudaMemcpyDeviceToHost, 0));
+    LVDIF_CUDA_CHECK(cudaStreamSynchronize(0));
     std::vector<std::int64_t> perChunk(count, 0);
     const std::int64_t nCount = static_cast<std::int64_t>(count);
+    bool failed = false;
+    Error firstError(ErrorCode::InvalidArgument, "");
 #pragma omp parallel for schedule(dynamic, 1)
     for (std::int64_t t = 0; t < nCount; ++t)
     {
-      const std::int64_t id = ids[first + static_cast<std::size_t>(t)];
-      const VoxelBox b = volume.chunkBox(id);
-      const std::uint32_t* src = back.data() + static_cast<std::size_t>(t) * p.n;
-      bool touched = false;
-      std::int64_t changed = 0;
-      for (std::int64_t z = b.lo[2]; z <= b.hi[2]; ++z)
-        for (std::int64_t y = b.lo[1]; y <= b.hi[1]; ++y)
-          for (std::int64_t x = b.lo[0]; x <= b.hi[0]; ++x)
-          {
-            Voxel nv;
-            std::memcpy(static_cast<void*>(&nv), src + volume.localIndex(x, y, z), sizeof(Voxel));
-            if (nv != volume.get(x, y, z))
-            {
-              if (!touched && observer)
-                observer->beforeChunkWrite(volume, id);
-              touched = true;
-              volume.set(x, y, z, nv);
-              ++changed;
-            }
-          }
-      if (touched && !volume.isUniform(id))
-        volume.tryCollapseChunk(id);
-      perChunk[static_cast<std::size_t>(t)] = changed;
+      try
+      {
+        const std::int64_t id = ids[first + static_cast<std::size_t>(t)];
+        perChunk[static_cast<std::size_t>(t)] =
+          writeBack(volume, id, p.staging + static_cast<std::size_t>(t) * p.n, p.n, observer);
+      }
+      catch (const Error& e)
+      {
+#pragma omp critical(lvdif_device_sync)
+        if (!failed)
+        {
+          failed = true;
+          firstError = e;
+        }
+      }
     }
+    if (failed)
+      throw firstError; // the chunks stay pending: a later sync retries them
     for (std::size_t t = 0; t < count; ++t)
     {
       const std::size_t id = static_cast<std::size_t>(ids[first + t]);
