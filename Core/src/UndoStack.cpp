@@ -1,10 +1,9 @@
 #include "lvdif/UndoStack.h"
 
-#include <algorithm>
-
 #include "lvdif/Error.h"
 #include "lvdif/Memory.h"
 
+#include <algorithm>
 #include <cstring>
 
 namespace lvdif
