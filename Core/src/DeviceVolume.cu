@@ -8,6 +8,7 @@
 #include "lvdif/DeviceVolume.h"
 
 #include "BrushKernel.h"
+#include "BrushVoxelDevice.cuh"
 #include "lvdif/CudaCheck.cuh"
 #include "lvdif/Error.h"
 #include "lvdif/Memory.h"
@@ -23,10 +24,7 @@ namespace cuda
 namespace
 {
 
-struct Box
-{
-  long long lo[3], hi[3];
-};
+using Box = detail::DeviceDabBox;
 
 // Per planned chunk: its slot, origin, and the value to start from when the slot is fresh.
 struct ChunkJob
@@ -56,19 +54,7 @@ __global__ void residentDabKernel(std::uint32_t* pool, const ChunkJob* jobs, int
   std::uint32_t nv = v;
   if (x < dx && y < dy && z < dz)
   {
-    std::uint16_t sdf = static_cast<std::uint16_t>(v & 0xffffu);
-    std::uint16_t color = static_cast<std::uint16_t>(v >> 16);
-    for (int k = 0; k < nDabs; ++k)
-    {
-      const Box& b = boxes[k];
-      if (x < b.lo[0] || x > b.hi[0] || y < b.lo[1] || y > b.hi[1] || z < b.lo[2] || z > b.hi[2])
-        continue;
-      const double s = dabDistance(dabs[k], double(x), double(y), double(z), ctx.rounding);
-      if (s > ctx.reach)
-        continue;
-      detail::combineVoxel(sdf, color, s, ctx, table, enc);
-    }
-    nv = static_cast<std::uint32_t>(sdf) | (static_cast<std::uint32_t>(color) << 16);
+    nv = detail::applyDabsToVoxel(v, x, y, z, dabs, boxes, nDabs, ctx, table, enc);
   }
   if (job.fresh || nv != v)
     *p = nv;
