@@ -3,9 +3,13 @@
 #include "lvdif/Error.h"
 #include "lvdif/Memory.h"
 
+#include "vtkAlgorithm.h"
+#include "vtkDataObject.h"
 #include "vtkFloatArray.h"
 #include "vtkImageData.h"
+#include "vtkInformation.h"
 #include "vtkPointData.h"
+#include "vtkStreamingDemandDrivenPipeline.h"
 #include "vtkUnsignedCharArray.h"
 
 #include <algorithm>
@@ -74,6 +78,17 @@ void FillImage(const lvdif::DictionaryVolume& volume, const int extentIn[6], vtk
   {
     image->GetPointData()->AddArray(rgba);
   }
+}
+
+void SetImageInformation(vtkInformation* outInfo, const lvdif::VolumeOptions& o)
+{
+  int whole[6] = { 0, static_cast<int>(o.dims[0] - 1), 0, static_cast<int>(o.dims[1] - 1), 0,
+    static_cast<int>(o.dims[2] - 1) };
+  outInfo->Set(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT(), whole, 6);
+  outInfo->Set(vtkDataObject::ORIGIN(), o.origin.data(), 3);
+  outInfo->Set(vtkDataObject::SPACING(), o.spacing.data(), 3);
+  outInfo->Set(vtkAlgorithm::CAN_PRODUCE_SUB_EXTENT(), 1);
+  vtkDataObject::SetPointDataActiveScalarInfo(outInfo, VTK_FLOAT, 1);
 }
 
 lvdif::GridGeometry Geometry(vtkImageData* image)

@@ -18,6 +18,7 @@
 
 class vtkDataArray;
 class vtkImageData;
+class vtkInformation;
 
 namespace vtkLVDIFVolumeBridge
 {
@@ -32,6 +33,10 @@ LVDIFFILTERSVOLUME_EXPORT void FillImage(
 /// spacing come from the image. Throws lvdif::Error on bad input.
 LVDIFFILTERSVOLUME_EXPORT std::unique_ptr<lvdif::DictionaryVolume> VolumeFromImage(
   vtkImageData* image, vtkDataArray* sdf, vtkDataArray* rgba, lvdif::VolumeOptions options);
+
+/// What an image source of this volume announces in RequestInformation: whole
+/// extent, origin, spacing, CAN_PRODUCE_SUB_EXTENT and a float `sdf` scalar.
+LVDIFFILTERSVOLUME_EXPORT void SetImageInformation(vtkInformation* outInfo, const lvdif::VolumeOptions& options);
 
 /// Geometry of an image's point grid (dims from its extent; origin moved to the extent's first point).
 LVDIFFILTERSVOLUME_EXPORT lvdif::GridGeometry Geometry(vtkImageData* image);

@@ -74,13 +74,7 @@ int vtkDictionaryVolumeReader::RequestInformation(
     }
   }
   vtkInformation* outInfo = outputVector->GetInformationObject(0);
-  int whole[6] = { 0, static_cast<int>(o.dims[0] - 1), 0, static_cast<int>(o.dims[1] - 1), 0,
-    static_cast<int>(o.dims[2] - 1) };
-  outInfo->Set(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT(), whole, 6);
-  outInfo->Set(vtkDataObject::ORIGIN(), o.origin.data(), 3);
-  outInfo->Set(vtkDataObject::SPACING(), o.spacing.data(), 3);
-  outInfo->Set(vtkAlgorithm::CAN_PRODUCE_SUB_EXTENT(), 1);
-  vtkDataObject::SetPointDataActiveScalarInfo(outInfo, VTK_FLOAT, 1);
+  vtkLVDIFVolumeBridge::SetImageInformation(outInfo, o);
   return 1;
 }
 
