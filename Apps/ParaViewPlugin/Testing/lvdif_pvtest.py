@@ -1,0 +1,160 @@
+"""Shared code of the LVDIF pvpython / pvbatch tests. Import it FIRST.
+
+Route B (docs/PARAVIEW.md): python3-paraview is unpacked in a private prefix,
+and the interpreter would otherwise find python3-vtk9's `vtkmodules` (VTK 9.1)
+first and crash. So ParaView's dist-packages goes to the front of sys.path;
+/usr/lib/python3/dist-packages stays behind it (numpy, mpi4py).
+
+The pipeline is mesh -> SDF -> sign voxel filter -> contour -> .lvd write -> read.
+Each LVDIF stage is used when its proxy is in the plugin (the plugin registers a
+class's XML only once the class exists, and the tests are told which ones are
+registered: they fail if a registered one is missing). A stage whose filter has
+not landed yet uses a stand-in that is said so in the output:
+  SDF      -> a ProgrammableSource evaluating the analytic sphere SDF (honours
+              UPDATE_EXTENT, so it distributes like vtkMeshToSDF)
+  SVF      -> skipped
+  contour  -> ParaView's Contour (always computed too: it is the oracle for MC)
+  write/read -> skipped
+"""
+import os
+import sys
+
+PV_PYTHONPATH = os.environ.get("LVDIF_PV_PYTHONPATH", "/opt/lvdif-pvshim/pvpy/usr/lib/python3/dist-packages")
+sys.path = [PV_PYTHONPATH] + [p for p in sys.path if p != PV_PYTHONPATH]
+
+import math  # noqa: E402
+
+import paraview.simple as pvs  # noqa: E402
+from paraview import servermanager  # noqa: E402
+
+# VTK class -> ParaView proxy name in Python (the XML label without spaces).
+# Add a line here when a class's XML lands in Apps/ParaViewPlugin/XML/.
+PROXY_NAMES = {
+    "vtkMeshToSDF": "MeshToSDF",
+    "vtkSignVoxelFilter": "SignVoxelFilter",
+    "vtkChunkedMarchingCubes": "ChunkedMarchingCubes",
+    "vtkDictionaryVolumeReader": "LVDIFDictionaryVolumeReader",
+    "vtkDictionaryVolumeWriter": "LVDIFDictionaryVolumeWriter",
+}
+
+# The test scene: a sphere of radius R centred in a cube grid of N^3 points.
+RADIUS = 1.0
+HALF = 1.25  # the grid covers [-HALF, HALF]^3
+N = 48
+
+
+def spacing():
+    return 2.0 * HALF / (N - 1)
+
+
+def load_plugin(path, expected_classes, remote):
+    """Loads the plugin and checks that every registered class has its proxy."""
+    pvs.LoadPlugin(path, remote=remote, ns=globals())
+    present = {}
+    for cls, name in PROXY_NAMES.items():
+        present[cls] = hasattr(pvs, name)
+    for cls in expected_classes:
+        if cls not in PROXY_NAMES:
+            raise AssertionError("class %s has XML but no entry in lvdif_pvtest.PROXY_NAMES" % cls)
+        if not present[cls]:
+            raise AssertionError("plugin registered XML for %s but proxy %s is missing" % (cls, PROXY_NAMES[cls]))
+    for cls, ok in present.items():
+        print("stage %-28s %s" % (cls, "plugin proxy " + PROXY_NAMES[cls] if ok else "NOT IN PLUGIN (stand-in or skipped)"))
+    return present
+
+
+_SDF_INFO_SCRIPT = """
+from vtkmodules.vtkCommonExecutionModel import vtkAlgorithm, vtkStreamingDemandDrivenPipeline as sddp
+from vtkmodules.vtkCommonDataModel import vtkDataObject
+info = self.GetOutputInformation(0)
+info.Set(sddp.WHOLE_EXTENT(), 0, %(n1)d, 0, %(n1)d, 0, %(n1)d)
+info.Set(vtkDataObject.ORIGIN(), %(o)r, %(o)r, %(o)r)
+info.Set(vtkDataObject.SPACING(), %(h)r, %(h)r, %(h)r)
+info.Set(vtkAlgorithm.CAN_PRODUCE_SUB_EXTENT(), 1)
+"""
+
+_SDF_SCRIPT = """
+import numpy as np
+from vtkmodules.vtkCommonExecutionModel import vtkStreamingDemandDrivenPipeline as sddp
+from vtkmodules.util.numpy_support import numpy_to_vtk
+info = self.GetOutputInformation(0)
+e = info.Get(sddp.UPDATE_EXTENT())
+out = self.GetOutput()
+out.SetExtent(e)
+out.SetOrigin(%(o)r, %(o)r, %(o)r)
+out.SetSpacing(%(h)r, %(h)r, %(h)r)
+z, y, x = np.meshgrid(*[np.arange(e[2 * a], e[2 * a + 1] + 1) * %(h)r + %(o)r for a in (2, 1, 0)], indexing='ij')
+d = ((np.sqrt(x * x + y * y + z * z) - %(r)r) / %(h)r).astype(np.float32).ravel()
+a = numpy_to_vtk(d, deep=1)
+a.SetName('sdf')
+out.GetPointData().SetScalars(a)
+"""
+
+
+def sdf_stage(present):
+    """mesh -> SDF (image with float point array `sdf`, voxel units, negative inside)."""
+    h = spacing()
+    if present["vtkMeshToSDF"]:
+        mesh = pvs.Sphere(Radius=RADIUS, ThetaResolution=128, PhiResolution=128)
+        sdf = getattr(pvs, PROXY_NAMES["vtkMeshToSDF"])(Input=mesh)
+        configure_mesh_to_sdf(sdf, h)
+        return sdf, "vtkMeshToSDF"
+    p = {"n1": N - 1, "o": -HALF, "h": h, "r": RADIUS}
+    src = pvs.ProgrammableSource(OutputDataSetType="vtkImageData")
+    src.ScriptRequestInformation = _SDF_INFO_SCRIPT % p
+    src.Script = _SDF_SCRIPT % p
+    return src, "stand-in: analytic sphere SDF (ProgrammableSource)"
+
+
+def configure_mesh_to_sdf(proxy, h):
+    """Grid of the test scene for vtkMeshToSDF; fill in when its XML lands."""
+    raise NotImplementedError("vtkMeshToSDF XML landed: set its grid properties here")
+
+
+def contour(source, present):
+    """Returns (ParaView Contour proxy, LVDIF MC proxy or None)."""
+    c = pvs.Contour(Input=source, ContourBy=["POINTS", "sdf"], Isosurfaces=[0.0], ComputeNormals=0,
+                    ComputeScalars=0, ComputeGradients=0)
+    mc = None
+    if present["vtkChunkedMarchingCubes"]:
+        mc = getattr(pvs, PROXY_NAMES["vtkChunkedMarchingCubes"])(Input=source)
+    return c, mc
+
+
+def area(proxy):
+    iv = pvs.IntegrateVariables(Input=proxy)
+    d = servermanager.Fetch(iv)
+    return d.GetCellData().GetArray("Area").GetValue(0)
+
+
+def sphere_area():
+    return 4.0 * math.pi * RADIUS * RADIUS
+
+
+def triangle_key_list(polydata, digits=5):
+    """Every triangle as a tuple of rounded vertex coordinates, rotated so the
+    smallest vertex comes first (orientation kept), sorted: two meshes with the
+    same triangles give equal lists whatever their point numbering or piece."""
+    pts = polydata.GetPoints()
+    tris = []
+    ids = polydata.GetPolys()
+    from vtkmodules.vtkCommonCore import vtkIdList
+    idl = vtkIdList()
+    ids.InitTraversal()
+    while ids.GetNextCell(idl):
+        if idl.GetNumberOfIds() != 3:
+            raise AssertionError("non-triangle cell with %d points" % idl.GetNumberOfIds())
+        v = [tuple(round(c, digits) for c in pts.GetPoint(idl.GetId(i))) for i in range(3)]
+        k = v.index(min(v))
+        tris.append(tuple(v[k:] + v[:k]))
+    tris.sort()
+    return tris
+
+
+def check(cond, msg):
+    print(("PASS " if cond else "FAIL ") + msg)
+    if not cond:
+        check.failures += 1
+
+
+check.failures = 0
