@@ -49,7 +49,7 @@ def spacing():
 
 def load_plugin(path, expected_classes, remote):
     """Loads the plugin and checks that every registered class has its proxy."""
-    pvs.LoadPlugin(path, remote=remote, ns=globals())
+    pvs.LoadPlugin(path, remote=remote)  # adds the proxies to paraview.simple
     present = {}
     for cls, name in PROXY_NAMES.items():
         present[cls] = hasattr(pvs, name)
@@ -109,6 +109,44 @@ def sdf_stage(present):
 def configure_mesh_to_sdf(proxy, h):
     """Grid of the test scene for vtkMeshToSDF; fill in when its XML lands."""
     raise NotImplementedError("vtkMeshToSDF XML landed: set its grid properties here")
+
+
+_CORRUPT_SCRIPT = """
+import numpy as np
+from vtkmodules.util.numpy_support import vtk_to_numpy, numpy_to_vtk
+inp = self.GetInputDataObject(0, 0)
+out = self.GetOutputDataObject(0)
+out.ShallowCopy(inp)
+e = inp.GetExtent()
+d = vtk_to_numpy(inp.GetPointData().GetArray('sdf')).copy()
+k, j, i = np.meshgrid(*[np.arange(e[2 * a], e[2 * a + 1] + 1) for a in (2, 1, 0)], indexing='ij')
+hit = ((i * 7 + j * 13 + k * 29) %% %(period)d == 0).ravel() & (np.abs(d) > %(far)r)
+d[hit] = -d[hit]
+a = numpy_to_vtk(d, deep=1)
+a.SetName('sdf')
+out.GetPointData().SetScalars(a)
+"""
+
+
+def corrupt_signs(source, period=97, far=4.0):
+    """Flips the sign of isolated voxels far (|d| > far) from the surface, on a
+    fixed lattice pattern: the wrong signs a sign voxel filter must repair."""
+    f = pvs.ProgrammableFilter(Input=source, OutputDataSetType="vtkImageData")
+    f.Script = _CORRUPT_SCRIPT % {"period": period, "far": far}
+    return f
+
+
+def sign_voxel_stage(source):
+    svf = getattr(pvs, PROXY_NAMES["vtkSignVoxelFilter"])(Input=source)
+    svf.Scalars = ["POINTS", "sdf"]
+    return svf
+
+
+def inside_count(proxy):
+    """Voxels with sdf < 0 of a (single-process) image proxy."""
+    from vtkmodules.util.numpy_support import vtk_to_numpy
+    img = servermanager.Fetch(proxy)
+    return int((vtk_to_numpy(img.GetPointData().GetArray("sdf")) < 0).sum())
 
 
 def contour(source, present):

@@ -31,7 +31,16 @@ check(rng[0] < 0 < rng[1], "sdf changes sign (range %s)" % (rng,))
 # --- sign voxel filter
 field = sdf
 if present["vtkSignVoxelFilter"]:
-    field = T.sign_voxel_stage(sdf)
+    # Oracle: isolated far voxels get a wrong sign; the filter must give back
+    # exactly the inside set of the clean field.
+    clean_inside = T.inside_count(sdf)
+    bad = T.corrupt_signs(sdf)
+    bad_inside = T.inside_count(bad)
+    check(bad_inside != clean_inside, "corruption moved the inside count by %d" % (bad_inside - clean_inside))
+    field = T.sign_voxel_stage(bad)
+    fixed_inside = T.inside_count(field)
+    check(fixed_inside == clean_inside, "Sign Voxel Filter restores the inside set: %d voxels vs %d clean (%d corrupted)"
+          % (fixed_inside, clean_inside, bad_inside))
 else:
     print("SVF stage: skipped (vtkSignVoxelFilter not in the plugin)")
 
