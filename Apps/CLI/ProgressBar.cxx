@@ -1,0 +1,65 @@
+#include "ProgressBar.h"
+
+#include <atomic>
+#include <csignal>
+#include <cstdio>
+#include <unistd.h>
+
+namespace
+{
+std::atomic<bool> interrupted{ false };
+extern "C" void onInterrupt(int)
+{
+  interrupted.store(true);
+}
+}
+
+ProgressBar::ProgressBar()
+  : Tty(isatty(STDERR_FILENO) != 0)
+{
+  std::signal(SIGINT, onInterrupt);
+}
+
+ProgressBar::~ProgressBar()
+{
+  std::signal(SIGINT, SIG_DFL);
+}
+
+void ProgressBar::start(const char* name)
+{
+  this->Stage = name ? name : "";
+  this->LastPercent = -1;
+  this->progress(0.0);
+}
+
+void ProgressBar::progress(double fraction)
+{
+  const int percent = static_cast<int>(fraction * 100.0 + 0.5);
+  if (percent == this->LastPercent || (!this->Tty && percent != 100 && percent != 0))
+  {
+    return;
+  }
+  this->LastPercent = percent;
+  if (this->Tty)
+  {
+    const int width = 30, filled = percent * width / 100;
+    std::fprintf(stderr, "\r%-16s [%.*s%*s] %3d%%", this->Stage.c_str(), filled,
+      "##############################", width - filled, "", percent);
+    if (percent >= 100) std::fputc('\n', stderr);
+  }
+  else if (percent >= 100)
+  {
+    std::fprintf(stderr, "%s: done\n", this->Stage.c_str());
+  }
+  std::fflush(stderr);
+}
+
+bool ProgressBar::wasInterrupted() const
+{
+  return interrupted.load();
+}
+
+void ProgressBar::end()
+{
+  if (this->LastPercent < 100) this->progress(1.0);
+}

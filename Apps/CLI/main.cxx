@@ -1,0 +1,58 @@
+// lvdif: the command-line tool. `lvdif help` lists the commands.
+#include "Commands.h"
+
+#include "lvdif/Error.h"
+
+#include <cstdio>
+#include <cstring>
+#include <exception>
+
+namespace
+{
+struct Command
+{
+  const char* name;
+  int (*run)(int, char**);
+  const char* help;
+};
+
+const Command commands[] = {
+  { "demo", CommandDemo, "demo [--out DIR] [--size N]   build, save, mesh and render the bundled example" },
+  { "mesh", CommandMesh, "mesh VOLUME OUT.(ply|obj|stl|vtp) [--png OUT.png]   extract the surface of a volume" },
+};
+
+int usage(FILE* f)
+{
+  std::fprintf(f, "usage: lvdif COMMAND [ARGS]\n\ncommands:\n");
+  for (const auto& c : commands) std::fprintf(f, "  %s\n", c.help);
+  return f == stdout ? 0 : 2;
+}
+}
+
+int main(int argc, char** argv)
+{
+  if (argc < 2) return usage(stderr);
+  if (!std::strcmp(argv[1], "help") || !std::strcmp(argv[1], "--help") || !std::strcmp(argv[1], "-h")) return usage(stdout);
+  for (const auto& c : commands)
+  {
+    if (std::strcmp(argv[1], c.name) == 0)
+    {
+      try
+      {
+        return c.run(argc, argv);
+      }
+      catch (const lvdif::Error& e)
+      {
+        std::fprintf(stderr, "lvdif %s: %s\n", c.name, e.what());
+        return e.code() == lvdif::ErrorCode::Cancelled ? 130 : 1;
+      }
+      catch (const std::exception& e)
+      {
+        std::fprintf(stderr, "lvdif %s: %s\n", c.name, e.what());
+        return 1;
+      }
+    }
+  }
+  std::fprintf(stderr, "lvdif: unknown command '%s'\n", argv[1]);
+  return usage(stderr);
+}

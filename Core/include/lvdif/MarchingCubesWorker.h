@@ -1,0 +1,74 @@
+// A background marching cubes worker (paper Sect. 3.3: the kernel runs in its
+// own thread so the interactive thread never waits for it).
+//
+// Snapshot semantics: the worker copies the input of one chunk at a time
+// (ChunkedMarchingCubes::gather) while holding sourceMutex(), then meshes the
+// copy without the lock. Whoever writes the volume (or float grid) holds
+// sourceMutex() during the write. Each finished chunk mesh therefore reflects
+// the volume as it was at one instant between two locked edits; different
+// chunks may reflect different instants. To converge, the editing thread
+// requests (again) every chunk its edit touched after the edit; a chunk
+// requested while it is being meshed is meshed once more afterwards, so the
+// last mesh collected for every chunk reflects the last edit.
+//
+// Results: collect() never blocks on meshing; it returns the meshes finished
+// since the previous call in completion order (a later mesh of a chunk
+// supersedes an earlier one; an empty mesh means "the chunk has no surface
+// any more").
+#pragma once
+
+#include "lvdif/ChunkedMarchingCubes.h"
+
+#include <condition_variable>
+#include <deque>
+#include <mutex>
+#include <thread>
+#include <vector>
+
+namespace lvdif
+{
+
+class MarchingCubesWorker
+{
+public:
+  /// Starts the thread. `mesher` (and its source) must outlive the worker.
+  explicit MarchingCubesWorker(const ChunkedMarchingCubes& mesher);
+  /// Drops pending work and joins the thread.
+  ~MarchingCubesWorker();
+  MarchingCubesWorker(const MarchingCubesWorker&) = delete;
+  MarchingCubesWorker& operator=(const MarchingCubesWorker&) = delete;
+
+  /// Hold this while writing the source (and while calling takeDirtyChunks).
+  std::mutex& sourceMutex() { return this->SourceMutex; }
+
+  /// Queues marching cubes chunk ids; ids already queued are not queued twice.
+  void request(const std::vector<std::int64_t>& chunkIds);
+  /// Queues every chunk (cheap for empty ones: a range test).
+  void requestAll();
+  /// The meshes finished since the last call (never waits for meshing).
+  std::vector<ChunkMesh> collect();
+  /// True when nothing is queued or being meshed.
+  bool idle() const;
+  /// Blocks until idle() (for tests and scripts).
+  void waitIdle();
+  /// Drops queued requests (a chunk being meshed still finishes).
+  void cancelPending();
+  /// Stops and joins the thread; requests made afterwards throw Error(InvalidArgument).
+  void shutdown();
+
+private:
+  void run();
+
+  const ChunkedMarchingCubes& Mesher;
+  std::mutex SourceMutex;
+  mutable std::mutex QueueMutex;
+  std::condition_variable Wake, Idle;
+  std::deque<std::int64_t> Queue;
+  std::vector<char> Queued;
+  std::vector<ChunkMesh> Done;
+  int InFlight = 0;
+  bool Stop = false;
+  std::thread Thread;
+};
+
+} // namespace lvdif

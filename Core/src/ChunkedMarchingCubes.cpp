@@ -1,0 +1,328 @@
+// Chunk layout, range skipping, input gathering and incremental bookkeeping of
+// the chunked marching cubes; the per-chunk kernel is in MarchingCubesCpu.cpp.
+#include "MarchingCubesImpl.h"
+
+#include "lvdif/Error.h"
+
+#include <algorithm>
+#include <atomic>
+#include <limits>
+#include <string>
+
+namespace lvdif
+{
+
+std::uint64_t ChunkMesh::memoryBytes() const
+{
+  return points.size() * sizeof(Vec3f) + edgeIds.size() * sizeof(std::uint64_t) + normals.size() * sizeof(Vec3f) + colors.size() * sizeof(Rgba) +
+    triangles.size() * sizeof(triangles[0]) + cornerColors.size() * sizeof(cornerColors[0]) +
+    triangleCells.size() * sizeof(std::int64_t);
+}
+
+void ChunkedMarchingCubes::Impl::init(const Index3& dims, const MarchingCubesOptions& options)
+{
+  require(options.chunkEdge >= 16 && options.chunkEdge <= 256,
+    "marching cubes: chunk edge " + std::to_string(options.chunkEdge) + " outside 16..256");
+  require(options.isoValue == options.isoValue, "marching cubes: iso value is NaN");
+  for (int a = 0; a < 3; ++a)
+  {
+    require(dims[a] >= 2, "marching cubes: the volume needs at least 2 points per axis");
+    require(Spacing[a] > 0, "marching cubes: spacing must be positive");
+  }
+  Options = options;
+  Dims = dims;
+  for (int a = 0; a < 3; ++a)
+  {
+    Cells[a] = dims[a] - 1;
+    Counts[a] = (Cells[a] + options.chunkEdge - 1) / options.chunkEdge;
+    InvSpacing[a] = static_cast<float>(1.0 / Spacing[a]);
+  }
+  Total = Counts[0] * Counts[1] * Counts[2];
+}
+
+VoxelBox ChunkedMarchingCubes::Impl::cells(std::int64_t id) const
+{
+  const Index3 c = coord(id);
+  VoxelBox b;
+  for (int a = 0; a < 3; ++a)
+  {
+    b.lo[a] = c[a] * Options.chunkEdge;
+    b.hi[a] = std::min(b.lo[a] + Options.chunkEdge, Cells[a]) - 1;
+  }
+  return b;
+}
+
+VoxelBox ChunkedMarchingCubes::Impl::points(std::int64_t id) const
+{
+  VoxelBox b = cells(id);
+  for (int a = 0; a < 3; ++a) b.hi[a] += 1;
+  return b;
+}
+
+void ChunkedMarchingCubes::Impl::rangeOfPoints(std::int64_t id, float& lo, float& hi) const
+{
+  const VoxelBox b = points(id);
+  lo = std::numeric_limits<float>::infinity();
+  hi = -lo;
+  for (std::int64_t z = b.lo[2]; z <= b.hi[2]; ++z)
+    for (std::int64_t y = b.lo[1]; y <= b.hi[1]; ++y)
+    {
+      const float* row = Grid.data + Grid.geometry.index(b.lo[0], y, z);
+      for (std::int64_t i = 0, n = b.hi[0] - b.lo[0] + 1; i < n; ++i)
+      {
+        lo = std::min(lo, row[i]);
+        hi = std::max(hi, row[i]);
+      }
+    }
+}
+
+bool ChunkedMarchingCubes::Impl::empty(std::int64_t id) const
+{
+  const float iso = Options.isoValue;
+  if (!Volume)
+  {
+    return MinValue[id] >= iso || MaxValue[id] < iso;
+  }
+  // the storage chunks this chunk reads; their exact key ranges bound its values
+  SdfKey lo = std::numeric_limits<SdfKey>::max(), hi = 0;
+  Volume->forEachChunkInBox(points(id), [&](std::int64_t s) {
+    const auto r = Volume->chunkRange(s);
+    lo = std::min(lo, r.first);
+    hi = std::max(hi, r.second);
+  });
+  return Volume->decode(lo) >= iso || Volume->decode(hi) < iso;
+}
+
+ChunkedMarchingCubes::ChunkedMarchingCubes(const DictionaryVolume& volume, const MarchingCubesOptions& options)
+  : P(new Impl)
+{
+  P->Volume = &volume;
+  P->Origin = volume.options().origin;
+  P->Spacing = volume.options().spacing;
+  P->init(volume.dims(), options);
+}
+
+ChunkedMarchingCubes::ChunkedMarchingCubes(const FloatGridView& grid, const Rgba* colors,
+  const MarchingCubesOptions& options)
+  : P(new Impl)
+{
+  require(grid.data != nullptr, "marching cubes: the float grid has no data");
+  P->Grid = grid;
+  P->GridColors = colors;
+  P->Origin = grid.geometry.origin;
+  P->Spacing = grid.geometry.spacing;
+  P->init(grid.geometry.dims, options);
+  P->MinValue.resize(static_cast<std::size_t>(P->Total));
+  P->MaxValue.resize(static_cast<std::size_t>(P->Total));
+#pragma omp parallel for schedule(dynamic, 4)
+  for (std::int64_t id = 0; id < P->Total; ++id)
+  {
+    P->rangeOfPoints(id, P->MinValue[id], P->MaxValue[id]);
+  }
+}
+
+ChunkedMarchingCubes::~ChunkedMarchingCubes() = default;
+
+const MarchingCubesOptions& ChunkedMarchingCubes::options() const { return P->Options; }
+const Index3& ChunkedMarchingCubes::pointDims() const { return P->Dims; }
+const Index3& ChunkedMarchingCubes::chunkCounts() const { return P->Counts; }
+std::int64_t ChunkedMarchingCubes::chunkCount() const { return P->Total; }
+VoxelBox ChunkedMarchingCubes::chunkCells(std::int64_t id) const { return P->cells(id); }
+Index3 ChunkedMarchingCubes::chunkCoord(std::int64_t id) const { return P->coord(id); }
+bool ChunkedMarchingCubes::chunkIsEmpty(std::int64_t id) const { return P->empty(id); }
+
+std::unique_ptr<ChunkedMarchingCubes::ChunkInput> ChunkedMarchingCubes::gather(std::int64_t id) const
+{
+  require(id >= 0 && id < P->Total, "marching cubes: chunk id " + std::to_string(id) + " out of range");
+  if (P->empty(id))
+  {
+    return nullptr;
+  }
+  auto in = std::make_unique<ChunkInput>();
+  in->chunkId = id;
+  in->cells = P->cells(id);
+  Index3 hi;
+  for (int a = 0; a < 3; ++a)
+  {
+    // the chunk's points plus one more on each side for the gradient stencil
+    in->lo[a] = std::max<std::int64_t>(in->cells.lo[a] - 1, 0);
+    hi[a] = std::min<std::int64_t>(in->cells.hi[a] + 2, P->Dims[a] - 1);
+    in->size[a] = hi[a] - in->lo[a] + 1;
+  }
+  const std::size_t n = static_cast<std::size_t>(in->size[0] * in->size[1] * in->size[2]);
+  in->values.resize(n);
+  const bool colors = P->wantsColors(), keys = P->wantsCornerColors();
+  if (colors) in->colors.resize(n);
+  if (keys) in->colorKeys.resize(n);
+  const std::int64_t nx = in->size[0];
+  if (P->Volume)
+  {
+    const DictionaryVolume& v = *P->Volume;
+    const float* table = v.sdfDictionary().table();
+    const Rgba* palette = v.colors().colors().data();
+    const std::int64_t E = v.chunkEdge();
+    for (std::int64_t z = in->lo[2]; z <= hi[2]; ++z)
+      for (std::int64_t y = in->lo[1]; y <= hi[1]; ++y)
+      {
+        std::int64_t o = in->local(in->lo[0], y, z);
+        // walk the row storage chunk by storage chunk
+        for (std::int64_t x = in->lo[0]; x <= hi[0];)
+        {
+          const std::int64_t end = std::min(hi[0], (x / E + 1) * E - 1);
+          const std::int64_t s = v.chunkOf(x, y, z);
+          const Voxel* d = v.chunkData(s);
+          if (d)
+          {
+            const Voxel* row = d + v.localIndex(x, y, z);
+            for (std::int64_t i = 0; i <= end - x; ++i)
+            {
+              in->values[o + i] = table[row[i].sdf];
+              if (colors) in->colors[o + i] = palette[row[i].color];
+              if (keys) in->colorKeys[o + i] = row[i].color;
+            }
+          }
+          else
+          {
+            const Voxel u = v.uniformValue(s);
+            for (std::int64_t i = 0; i <= end - x; ++i)
+            {
+              in->values[o + i] = table[u.sdf];
+              if (colors) in->colors[o + i] = palette[u.color];
+              if (keys) in->colorKeys[o + i] = u.color;
+            }
+          }
+          o += end - x + 1;
+          x = end + 1;
+        }
+      }
+  }
+  else
+  {
+    for (std::int64_t z = in->lo[2]; z <= hi[2]; ++z)
+      for (std::int64_t y = in->lo[1]; y <= hi[1]; ++y)
+      {
+        const std::int64_t g = P->Grid.geometry.index(in->lo[0], y, z);
+        std::copy(P->Grid.data + g, P->Grid.data + g + nx, in->values.begin() + in->local(in->lo[0], y, z));
+        if (colors)
+        {
+          std::copy(P->GridColors + g, P->GridColors + g + nx, in->colors.begin() + in->local(in->lo[0], y, z));
+        }
+      }
+  }
+  return in;
+}
+
+ChunkMesh ChunkedMarchingCubes::mesh(const ChunkInput& input) const { return meshChunkCpu(*P, input); }
+
+ChunkMesh ChunkedMarchingCubes::extractChunk(std::int64_t id) const
+{
+  const auto in = this->gather(id);
+  if (!in)
+  {
+    ChunkMesh m;
+    m.chunkId = id;
+    m.chunkCoord = P->coord(id);
+    m.cells = P->cells(id);
+    return m;
+  }
+  return this->mesh(*in);
+}
+
+std::vector<ChunkMesh> ChunkedMarchingCubes::extractChunks(const std::vector<std::int64_t>& ids,
+  Interrupter& interrupter) const
+{
+  interrupter.start("marching cubes");
+  std::vector<ChunkMesh> out(ids.size());
+  std::atomic<bool> cancelled{ false };
+  std::atomic<std::int64_t> done{ 0 };
+  const std::int64_t n = static_cast<std::int64_t>(ids.size());
+  Error firstError(ErrorCode::InvalidArgument, "");
+  std::atomic<bool> failed{ false };
+#pragma omp parallel for schedule(dynamic, 1)
+  for (std::int64_t i = 0; i < n; ++i)
+  {
+    if (cancelled.load(std::memory_order_relaxed) || failed.load(std::memory_order_relaxed)) continue;
+    try
+    {
+      out[i] = this->extractChunk(ids[i]);
+    }
+    catch (const Error& e)
+    {
+#pragma omp critical(lvdif_mc_error)
+      {
+        if (!failed.exchange(true)) firstError = e;
+      }
+    }
+    const std::int64_t d = ++done;
+    if (interrupter.wasInterrupted()) cancelled = true;
+    if ((d & 63) == 0)
+    {
+#pragma omp critical(lvdif_mc_progress)
+      interrupter.progress(static_cast<double>(d) / static_cast<double>(n));
+    }
+  }
+  if (failed) throw firstError;
+  if (cancelled) interrupter.checkInterrupt();
+  interrupter.progress(1.0);
+  interrupter.end();
+  return out;
+}
+
+std::vector<ChunkMesh> ChunkedMarchingCubes::extractAll(Interrupter& interrupter) const
+{
+  // test emptiness first (cheap, serial) so the parallel loop only sees real work
+  std::vector<std::int64_t> ids;
+  for (std::int64_t id = 0; id < P->Total; ++id)
+  {
+    if (!P->empty(id)) ids.push_back(id);
+  }
+  std::vector<ChunkMesh> all = this->extractChunks(ids, interrupter);
+  all.erase(std::remove_if(all.begin(), all.end(), [](const ChunkMesh& m) { return m.empty(); }), all.end());
+  return all;
+}
+
+std::vector<std::int64_t> ChunkedMarchingCubes::chunksAffectedBy(const VoxelBox& changed) const
+{
+  std::vector<std::int64_t> ids;
+  if (changed.empty()) return ids;
+  Index3 lo, hi;
+  for (int a = 0; a < 3; ++a)
+  {
+    const std::int64_t c0 = std::max<std::int64_t>(changed.lo[a] - 2, 0);
+    const std::int64_t c1 = std::min<std::int64_t>(changed.hi[a] + 1, P->Cells[a] - 1);
+    if (c1 < c0) return ids;
+    lo[a] = c0 / P->Options.chunkEdge;
+    hi[a] = c1 / P->Options.chunkEdge;
+  }
+  for (std::int64_t z = lo[2]; z <= hi[2]; ++z)
+    for (std::int64_t y = lo[1]; y <= hi[1]; ++y)
+      for (std::int64_t x = lo[0]; x <= hi[0]; ++x)
+        ids.push_back(x + P->Counts[0] * (y + P->Counts[1] * z));
+  return ids;
+}
+
+std::vector<std::int64_t> ChunkedMarchingCubes::chunksAffectedByStorageChunks(
+  const std::vector<std::int64_t>& storageIds) const
+{
+  require(P->Volume != nullptr, "marching cubes: storage chunks exist only for a dictionary volume");
+  std::vector<char> mark(static_cast<std::size_t>(P->Total), 0);
+  for (std::int64_t s : storageIds)
+  {
+    for (std::int64_t id : this->chunksAffectedBy(P->Volume->chunkBox(s))) mark[id] = 1;
+  }
+  std::vector<std::int64_t> ids;
+  for (std::int64_t id = 0; id < P->Total; ++id)
+    if (mark[id]) ids.push_back(id);
+  return ids;
+}
+
+void ChunkedMarchingCubes::invalidate(const VoxelBox& changed)
+{
+  if (P->Volume) return; // chunkRange of the volume is always exact
+  for (std::int64_t id : this->chunksAffectedBy(changed))
+  {
+    P->rangeOfPoints(id, P->MinValue[id], P->MaxValue[id]);
+  }
+}
+
+} // namespace lvdif
