@@ -13,15 +13,16 @@ B="${1:-$here/build-pv}"
 SHIM="${2:-/opt/lvdif-pvshim}"
 JOBS="${JOBS:-2}"
 
+mkdir -p "$B"
 pvdir=$("$here/scripts/paraview-shim.sh" "$SHIM" | tail -n1)
 # The main build's CUDA kernels are not needed in ParaView (the filters fall
 # back to the CPU); the plugin tree builds no apps, benchmarks or Core tests.
 cmake -S "$here" -B "$B" -DLVDIF_PARAVIEW_PLUGIN=ON -DParaView_DIR="$pvdir" \
   -DLVDIF_CUDA="${LVDIF_PV_CUDA:-OFF}" -DLVDIF_BUILD_BENCHMARKS=OFF -DLVDIF_BUILD_APPS=OFF \
-  -DBUILD_TESTING=ON ${LVDIF_PV_CMAKE_ARGS:-} >"$B.configure.log" 2>&1 \
-  || { cat "$B.configure.log" >&2; exit 1; }
-cmake --build "$B" --target LVDIF -j "$JOBS" >"$B.build.log" 2>&1 \
-  || { tail -n 80 "$B.build.log" >&2; exit 1; }
+  -DBUILD_TESTING=ON ${LVDIF_PV_CMAKE_ARGS:-} >"$B/lvdif-configure.log" 2>&1 \
+  || { cat "$B/lvdif-configure.log" >&2; exit 1; }
+cmake --build "$B" --target LVDIF -j "$JOBS" >"$B/lvdif-build.log" 2>&1 \
+  || { tail -n 80 "$B/lvdif-build.log" >&2; exit 1; }
 plugin=$(cat "$B/lvdif-plugin-path.txt")
 [ -f "$plugin" ] || { echo "build-paraview-plugin: $plugin was not built" >&2; exit 1; }
 echo "$plugin"
