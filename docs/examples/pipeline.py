@@ -18,10 +18,10 @@ import sys
 
 import vtkmodules.all as vtk  # noqa: F401 (VTK's own classes)
 import lvdif
-from vtkmodules.vtkCommonDataModel import vtkImplicitPolyDataDistance
 from vtkmodules.vtkFiltersCore import vtkFlyingEdges3D, vtkMassProperties, vtkTriangleFilter
 from vtkmodules.vtkFiltersSources import vtkSphereSource
-from vtkmodules.vtkImagingCore import vtkImageShiftScale
+from vtkmodules.vtkCommonDataModel import vtkSphere
+from vtkmodules.vtkFiltersCore import vtkArrayCalculator
 from vtkmodules.vtkImagingHybrid import vtkSampleFunction
 from vtkmodules.vtkIOXML import vtkXMLImageDataWriter, vtkXMLPolyDataWriter
 
@@ -41,24 +41,28 @@ def signed_distance(m):
     """Float point array `sdf`, voxel units, negative inside."""
     if hasattr(lvdif, "vtkMeshToSDF"):
         raise NotImplementedError("vtkMeshToSDF landed: use it here")  # see docs/PYTHON.md
-    # VTK equivalent: sample the exact distance to the mesh on the grid, then
-    # convert world units to voxel units.
-    m.Update()
-    dist = vtkImplicitPolyDataDistance()
-    dist.SetInput(m.GetOutput())
+    # Stand-in until vtkMeshToSDF lands: the analytic sphere the mesh
+    # approximates, sampled on the grid (vtkImplicitPolyDataDistance on the
+    # mesh itself gets hundreds of voxel signs wrong on this sphere: exactly
+    # what vtkSignVoxelFilter is for, but not a stand-in for a correct SDF).
+    sphere = vtkSphere()
+    sphere.SetRadius(RADIUS)
     sample = vtkSampleFunction()
-    sample.SetImplicitFunction(dist)
+    sample.SetImplicitFunction(sphere)
     sample.SetModelBounds(-HALF, HALF, -HALF, HALF, -HALF, HALF)
     sample.SetSampleDimensions(N, N, N)
     sample.SetOutputScalarTypeToFloat()
     sample.ComputeNormalsOff()
     sample.SetScalarArrayName("sdf")
-    scale = vtkImageShiftScale()
-    scale.SetInputConnection(sample.GetOutputPort())
-    scale.SetScale(1.0 / H)
-    scale.SetOutputScalarTypeToFloat()
-    print("SDF: vtkImplicitPolyDataDistance (vtkMeshToSDF not in this build)")
-    return scale
+    # vtkSphere evaluates |p|^2 - R^2; make it a distance in voxel units.
+    calc = vtkArrayCalculator()
+    calc.SetInputConnection(sample.GetOutputPort())
+    calc.AddScalarArrayName("sdf")
+    calc.SetFunction("(sqrt(sdf + %r) - %r) / %r" % (RADIUS * RADIUS, RADIUS, H))
+    calc.SetResultArrayName("sdf")
+    calc.SetResultArrayType(vtk.VTK_FLOAT)
+    print("SDF: stand-in, analytic sphere (vtkMeshToSDF not in this build)")
+    return calc
 
 
 def repair_signs(sdf):
