@@ -27,15 +27,18 @@ import math  # noqa: E402
 import paraview.simple as pvs  # noqa: E402
 from paraview import servermanager  # noqa: E402
 
-# VTK class -> ParaView proxy name in Python (the XML label without spaces).
-# Add a line here when a class's XML lands in Apps/ParaViewPlugin/XML/.
-PROXY_NAMES = {
-    "vtkMeshToSDF": "MeshToSDF",
-    "vtkSignVoxelFilter": "SignVoxelFilter",
-    "vtkChunkedMarchingCubes": "ChunkedMarchingCubes",
-    "vtkDictionaryVolumeReader": "LVDIFDictionaryVolumeReader",
-    "vtkDictionaryVolumeWriter": "LVDIFDictionaryVolumeWriter",
+# VTK class -> (proxy group, proxy name); in Python a filter or reader is
+# paraview.simple.<name> (the XML label without spaces). Add a line here when a
+# class's XML lands in Apps/ParaViewPlugin/XML/.
+PROXIES = {
+    "vtkMeshToSDF": ("filters", "MeshToSDF"),
+    "vtkSignVoxelFilter": ("filters", "SignVoxelFilter"),
+    "vtkChunkedMarchingCubes": ("filters", "ChunkedMarchingCubes"),
+    "vtkDictionaryVolumeReader": ("sources", "LVDIFDictionaryVolumeReader"),
+    "vtkDictionaryVolumeWriter": ("writers", "LVDIFDictionaryVolumeWriter"),
 }
+PROXY_NAMES = {cls: name for cls, (group, name) in PROXIES.items()}
+LVD_EXTENSION = "lvdv"
 
 # The test scene: a sphere of radius R centred in a cube grid of N^3 points.
 RADIUS = 1.0
@@ -50,12 +53,11 @@ def spacing():
 def load_plugin(path, expected_classes, remote):
     """Loads the plugin and checks that every registered class has its proxy."""
     pvs.LoadPlugin(path, remote=remote)  # adds the proxies to paraview.simple
-    present = {}
-    for cls, name in PROXY_NAMES.items():
-        present[cls] = hasattr(pvs, name)
+    defs = servermanager.ProxyManager().SMProxyManager.GetProxyDefinitionManager()
+    present = {cls: bool(defs.HasDefinition(group, name)) for cls, (group, name) in PROXIES.items()}
     for cls in expected_classes:
-        if cls not in PROXY_NAMES:
-            raise AssertionError("class %s has XML but no entry in lvdif_pvtest.PROXY_NAMES" % cls)
+        if cls not in PROXIES:
+            raise AssertionError("class %s has XML but no entry in lvdif_pvtest.PROXIES" % cls)
         if not present[cls]:
             raise AssertionError("plugin registered XML for %s but proxy %s is missing" % (cls, PROXY_NAMES[cls]))
     for cls, ok in present.items():
@@ -206,3 +208,60 @@ def check(cond, msg):
 
 
 check.failures = 0
+
+
+def write_read_stage(field, path, check):
+    """SaveData picks our writer by extension, OpenDataFile our reader; the
+    read field must equal the written one within the SDF dictionary's
+    quantisation (Core/include/lvdif/SdfDictionary.h: step 0.001 up to |d| 4,
+    0.1 beyond, saturated at the band, 8 voxels by default)."""
+    import numpy as np
+    from vtkmodules.util.numpy_support import vtk_to_numpy
+    if os.path.exists(path):
+        os.remove(path)
+    pvs.SaveData(path, proxy=field)
+    check(os.path.exists(path) and os.path.getsize(path) > 0, "SaveData wrote %s (%d bytes)" % (
+        path, os.path.getsize(path) if os.path.exists(path) else 0))
+    reader = pvs.OpenDataFile(path)
+    check(reader is not None and reader.GetXMLName() == PROXY_NAMES["vtkDictionaryVolumeReader"],
+          "OpenDataFile chose %s" % (reader.GetXMLName() if reader is not None else None))
+    a = vtk_to_numpy(servermanager.Fetch(field).GetPointData().GetArray("sdf")).astype(np.float64)
+    img = servermanager.Fetch(reader)
+    b = vtk_to_numpy(img.GetPointData().GetArray("sdf")).astype(np.float64)
+    check(a.shape == b.shape, "read back %d voxels, wrote %d" % (b.size, a.size))
+    if a.shape != b.shape:
+        return reader
+    near, mid, far = np.abs(a) <= 4.0, (np.abs(a) > 4.2) & (np.abs(a) < 7.9), np.abs(a) >= 8.0
+    check(np.abs(a - b)[near].max() <= 0.0006, "|d| <= 4: max error %.5f (<= 0.0005 + float)" % np.abs(a - b)[near].max())
+    check(np.abs(a - b)[mid].max() <= 0.051, "4.2 < |d| < 7.9: max error %.4f (<= 0.05)" % np.abs(a - b)[mid].max())
+    check(bool(np.all(np.sign(b[far]) == np.sign(a[far]))) and np.abs(np.abs(b[far]) - 8.0).max() < 0.051,
+          "beyond the band: sign kept, |d| saturated to 8")
+    return reader
+
+
+def _session():
+    return servermanager.ActiveConnection.Session
+
+
+def check_reader_hints(check, path=None):
+    """The reader is in the Open dialog: the reader factory lists *.lvdv and,
+    for a written file, picks our reader."""
+    rf = servermanager.vtkSMProxyManager.GetProxyManager().GetReaderFactory()
+    types = rf.GetSupportedFileTypes(_session())
+    check("*.%s" % LVD_EXTENSION in types, "Open dialog lists *.%s (%s)" % (
+        LVD_EXTENSION, [t for t in types.split(";;") if "LVDIF" in t]))
+    if path:
+        ok = rf.CanReadFile(path, _session())
+        check(bool(ok) and rf.GetReaderName() == PROXY_NAMES["vtkDictionaryVolumeReader"],
+              "reader factory picks %s for %s" % (rf.GetReaderName() if ok else None, os.path.basename(path)))
+
+
+def check_writer_hints(source, check):
+    """The writer is in the Save Data dialog for image data."""
+    wf = servermanager.vtkSMProxyManager.GetProxyManager().GetWriterFactory()
+    types = wf.GetSupportedFileTypes(source.SMProxy, 0)
+    check("*.%s" % LVD_EXTENSION in types, "Save dialog lists *.%s for image data (%s)" % (
+        LVD_EXTENSION, [t for t in types.split(";;") if "LVDIF" in t]))
+    w = wf.CreateWriter("x." + LVD_EXTENSION, source.SMProxy, 0)
+    check(w is not None and w.GetXMLName() == PROXY_NAMES["vtkDictionaryVolumeWriter"],
+          "writer factory creates %s for .%s" % (w.GetXMLName() if w is not None else None, LVD_EXTENSION))

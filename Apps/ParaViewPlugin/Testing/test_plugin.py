@@ -57,15 +57,20 @@ if mc is not None:
 else:
     print("MC stage: ParaView Contour only (vtkChunkedMarchingCubes not in the plugin)")
 
-# --- write .lvd -> read
+# --- write .lvdv -> read
+lvd = os.path.join(tmpdir, "test_plugin." + T.LVD_EXTENSION)
 if present["vtkDictionaryVolumeWriter"] and present["vtkDictionaryVolumeReader"]:
-    T.write_read_stage(field, os.path.join(tmpdir, "test_plugin.lvd"), check)
+    reader = T.write_read_stage(field, lvd, check)
+    # the surface of the read volume is the same sphere
+    a_rd = T.area(pvs.Contour(Input=reader, ContourBy=["POINTS", "sdf"], Isosurfaces=[0.0], ComputeNormals=0,
+                              ComputeScalars=0))
+    check(abs(a_rd - a_pv) / a_pv < 0.002, "Contour area after write/read %.5f vs before %.5f" % (a_rd, a_pv))
 else:
     print("write/read stage: skipped (reader/writer not in the plugin)")
 
 # --- reader/writer in ParaView's open/save dialogs
 if present["vtkDictionaryVolumeReader"]:
-    T.check_reader_hints(check)
+    T.check_reader_hints(check, lvd if os.path.exists(lvd) else None)
 if present["vtkDictionaryVolumeWriter"]:
     T.check_writer_hints(field, check)
 
