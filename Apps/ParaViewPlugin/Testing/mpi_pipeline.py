@@ -104,13 +104,35 @@ def verify():
     if timing:
         print("TIME ranks=%d N=%d pipeline=%.3f s write=%.3f s triangles=%d" % (nranks, T.N, t1 - t0, t3 - t2, len(tris)))
 
+    # Distributed reading: the serial run writes the volume (.lvdv, serial
+    # writer); every run reads it back piecewise (each rank decodes only the
+    # chunks of its extent) and contours it.
+    lvd = os.path.join(tmpdir, "mpi_volume_N%d.%s" % (T.N, T.LVD_EXTENSION))
+    read_tris = None
+    if present["vtkDictionaryVolumeReader"] and present["vtkDictionaryVolumeWriter"]:
+        if mode == "--reference":
+            pvs.SaveData(lvd, proxy=field)
+        reader = T.PROXY_NAMES["vtkDictionaryVolumeReader"]
+        rd = getattr(pvs, reader)(FileName=lvd)
+        rc = pvs.Contour(Input=rd, ContourBy=["POINTS", "sdf"], Isosurfaces=[0.0], ComputeNormals=0,
+                         ComputeScalars=0, ComputeGradients=0)
+        rpid = servermanager.Fetch(pvs.ProcessIdScalars(Input=rc))
+        read_pid_range = rpid.GetPointData().GetArray("ProcessId").GetRange()
+        read_tris = T.triangle_key_list(servermanager.Fetch(rc))
+        print("read %s on %d ranks: %d triangles, ProcessId range %s" % (
+            os.path.basename(lvd), nranks, len(read_tris), read_pid_range))
+    else:
+        print("distributed read: skipped (reader/writer not in the plugin)")
+
     ref_path = os.path.join(tmpdir, "mpi_reference_N%d.json" % T.N)
     if mode == "--reference":
         check(nranks == 1, "reference run is single-process")
         check(len(tris) > 0 and len(set(tris)) == len(tris), "serial surface has %d distinct triangles" % len(tris))
         check(inside == inside_unique, "serial owned points are distinct (%d)" % inside)
+        if read_tris is not None:
+            check(len(read_tris) > 0, "serial contour of the read volume: %d triangles" % len(read_tris))
         with open(ref_path, "w") as f:
-            json.dump({"triangles": tris, "inside": inside, "sdf": how}, f)
+            json.dump({"triangles": tris, "inside": inside, "sdf": how, "read_triangles": read_tris}, f)
     else:
         with open(ref_path) as f:
             ref = json.load(f)
@@ -122,6 +144,11 @@ def verify():
         check(tris == ref_tris, "the triangles (rounded vertices) equal the serial ones")
         check(inside == ref["inside"] and inside_unique == inside,
               "owned inside points: %d over ranks (%d distinct) vs %d serial" % (inside, inside_unique, ref["inside"]))
+        if read_tris is not None:
+            ref_read = [tuple(tuple(v) for v in t) for t in (ref.get("read_triangles") or [])]
+            check(read_pid_range == (0.0, nranks - 1.0), "every rank read and contoured its part (%s)" % (read_pid_range,))
+            check(read_tris == ref_read, "contour of the distributed read: %d triangles, equal to the serial %d" % (
+                len(read_tris), len(ref_read)))
 
 
 
