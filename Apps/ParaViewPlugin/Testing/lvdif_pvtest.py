@@ -158,6 +158,8 @@ def contour(source, present):
     mc = None
     if present["vtkChunkedMarchingCubes"]:
         mc = getattr(pvs, PROXY_NAMES["vtkChunkedMarchingCubes"])(Input=source)
+        if "Scalars" in mc.ListProperties():
+            mc.Scalars = ["POINTS", "sdf"]
     return c, mc
 
 
