@@ -11,10 +11,10 @@ SHIM="${LVDIF_PVSHIM:-/opt/lvdif-pvshim}"
 plugin=$("$here/scripts/build-paraview-plugin.sh" "$B" "$SHIM" | tail -n1)
 export LVDIF_PV_PYTHONPATH="$SHIM/pvpy/usr/lib/python3/dist-packages"
 export PYTHONPATH="$here/Apps/ParaViewPlugin/Testing:$LVDIF_PV_PYTHONPATH"
-export VTK_SMP_BACKEND_IN_USE=STDThread OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1
+export VTK_SMP_BACKEND_IN_USE="${VTK_SMP_BACKEND_IN_USE:-STDThread}" OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1
 tmp=$(mktemp -d)
 script="$here/Apps/ParaViewPlugin/Testing/mpi_pipeline.py"
-echo "machine: $(nproc) cores, $(grep -m1 'model name' /proc/cpuinfo | cut -d: -f2 | xargs), VTK_SMP_BACKEND_IN_USE=STDThread"
+echo "machine: $(nproc) cores, $(grep -m1 'model name' /proc/cpuinfo | cut -d: -f2 | xargs), VTK_SMP_BACKEND_IN_USE=$VTK_SMP_BACKEND_IN_USE, load: $(cut -d" " -f1-3 /proc/loadavg)"
 echo
 echo "| ranks | SDF stage | grid | pipeline (s) | write (s) | triangles |"
 echo "|---|---|---|---|---|---|"

@@ -30,11 +30,26 @@ done
 if [ ${#need[@]} -gt 0 ]; then
   echo "paraview-shim: installing ${need[*]} (without recommends: paraview recommends python3-paraview)" >&2
   SUDO=""; [ "$(id -u)" = 0 ] || SUDO=sudo
-  $SUDO env DEBIAN_FRONTEND=noninteractive apt-get install -y --no-install-recommends "${need[@]}" >&2
+  $SUDO apt-get update -qq >&2
+  $SUDO env DEBIAN_FRONTEND=noninteractive apt-get install -y -qq --no-install-recommends "${need[@]}" >&2
 fi
 [ -d "$PV_CMAKE" ] || { echo "paraview-shim: $PV_CMAKE missing after installing paraview-dev" >&2; exit 1; }
 
+# Links every entry of $1 into $2 that $2 lacks (except the names given after).
+mirror() {
+  local src=$1 dst=$2 f n; shift 2
+  for f in "$src"/*; do
+    n=${f##*/}
+    case " $* " in *" $n "*) continue ;; esac
+    [ -e "$dst/$n" ] || [ -L "$dst/$n" ] || ln -s "$f" "$dst/$n"
+  done
+}
+
 if [ -f "$STAMP" ]; then
+  # Packages installed since the prefix was made must show through it too.
+  mirror "$ARCH_LIB" "$S/lib/x86_64-linux-gnu" cmake vtk
+  mirror "$ARCH_LIB/cmake" "$S/lib/x86_64-linux-gnu/cmake" paraview-5.11
+  mirror /usr/bin "$S/bin" pvpython pvpython3.11
   echo "$S/lib/x86_64-linux-gnu/cmake/paraview-5.11"
   exit 0
 fi
@@ -44,7 +59,8 @@ mkdir -p "$D/deb"
 pvver=$(dpkg-query -W -f='${Version}' paraview-dev)
 deb=$(ls "$D"/deb/python3-paraview_*.deb 2>/dev/null | head -n1 || true)
 if [ -z "$deb" ]; then
-  (cd "$D/deb" && apt-get download "python3-paraview=$pvver" >&2)
+  (cd "$D/deb" && { apt-get download "python3-paraview=$pvver" >&2 2>/dev/null \
+    || { apt-get update -qq >&2 && apt-get download "python3-paraview=$pvver" >&2; }; })
   deb=$(ls "$D"/deb/python3-paraview_*.deb | head -n1)
 fi
 rm -rf "$D/pvpy" "$S"
@@ -52,19 +68,14 @@ dpkg-deb -x "$deb" "$D/pvpy"
 
 # --- the mirror of /usr
 mkdir -p "$S/lib/x86_64-linux-gnu/cmake" "$S/lib/x86_64-linux-gnu/vtk/hierarchy" "$S/bin" "$S/lib/python3"
-for f in "$ARCH_LIB"/*; do
-  n=${f##*/}
-  [ "$n" = cmake ] || [ "$n" = vtk ] || ln -s "$f" "$S/lib/x86_64-linux-gnu/"
-done
-for f in "$ARCH_LIB"/cmake/*; do
-  [ "${f##*/}" = paraview-5.11 ] || ln -s "$f" "$S/lib/x86_64-linux-gnu/cmake/"
-done
+mirror "$ARCH_LIB" "$S/lib/x86_64-linux-gnu" cmake vtk
+mirror "$ARCH_LIB/cmake" "$S/lib/x86_64-linux-gnu/cmake" paraview-5.11
 cp -r "$PV_CMAKE" "$S/lib/x86_64-linux-gnu/cmake/"   # a real copy (see the header)
 if [ -d "$ARCH_LIB/vtk/hierarchy" ]; then
   for f in "$ARCH_LIB"/vtk/hierarchy/*; do ln -s "$f" "$S/lib/x86_64-linux-gnu/vtk/hierarchy/"; done
 fi
 ln -s "$D/pvpy/usr/lib/x86_64-linux-gnu/vtk/hierarchy/ParaView" "$S/lib/x86_64-linux-gnu/vtk/hierarchy/"
-for f in /usr/bin/*; do ln -s "$f" "$S/bin/" 2>/dev/null || true; done
+mirror /usr/bin "$S/bin" pvpython pvpython3.11
 ln -sf "$D/pvpy/usr/bin/pvpython3.11" "$S/bin/pvpython3.11"
 ln -sf pvpython3.11 "$S/bin/pvpython"
 ln -s "$D/pvpy/usr/lib/python3/dist-packages" "$S/lib/python3/dist-packages"
