@@ -1,0 +1,133 @@
+#include "vtkSignVoxelFilter.h"
+
+#include "vtkLVDIFInterrupter.h"
+
+#include "lvdif/Error.h"
+#include "lvdif/SignVoxelFilter.h"
+
+#include "vtkDataObject.h"
+#include "vtkFieldData.h"
+#include "vtkFloatArray.h"
+#include "vtkIdTypeArray.h"
+#include "vtkImageData.h"
+#include "vtkInformation.h"
+#include "vtkInformationVector.h"
+#include "vtkIntArray.h"
+#include "vtkNew.h"
+#include "vtkObjectFactory.h"
+#include "vtkPointData.h"
+#include "vtkSmartPointer.h"
+
+vtkStandardNewMacro(vtkSignVoxelFilter);
+
+vtkSignVoxelFilter::vtkSignVoxelFilter()
+{
+  this->SetInputArrayToProcess(0, 0, 0, vtkDataObject::FIELD_ASSOCIATION_POINTS, "sdf");
+}
+
+vtkSignVoxelFilter::~vtkSignVoxelFilter() = default;
+
+int vtkSignVoxelFilter::RequestData(
+  vtkInformation*, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
+{
+  vtkImageData* input = vtkImageData::GetData(inputVector[0]);
+  vtkImageData* output = vtkImageData::GetData(outputVector);
+  if (!input || !output)
+  {
+    vtkErrorMacro("input and output must be vtkImageData");
+    return 0;
+  }
+  vtkDataArray* in = this->GetInputArrayToProcess(0, inputVector);
+  if (!in)
+  {
+    vtkErrorMacro("no point array to process (default: `sdf`; see SetInputArrayToProcess)");
+    return 0;
+  }
+  vtkFloatArray* inFloat = vtkFloatArray::SafeDownCast(in);
+  if (!inFloat || in->GetNumberOfComponents() != 1)
+  {
+    vtkErrorMacro("array `" << (in->GetName() ? in->GetName() : "") << "` must be a 1-component vtkFloatArray, is "
+                            << in->GetClassName() << " with " << in->GetNumberOfComponents() << " components");
+    return 0;
+  }
+  int dims[3];
+  input->GetDimensions(dims);
+  if (in->GetNumberOfTuples() != static_cast<vtkIdType>(dims[0]) * dims[1] * dims[2])
+  {
+    vtkErrorMacro("array `" << in->GetName() << "` is not a point array of the image (" << in->GetNumberOfTuples()
+                            << " values for " << dims[0] << " x " << dims[1] << " x " << dims[2] << " points)");
+    return 0;
+  }
+
+  vtkNew<vtkFloatArray> filtered;
+  filtered->DeepCopy(inFloat);
+  filtered->SetName(in->GetName());
+
+  lvdif::FloatGridView grid;
+  grid.data = filtered->GetPointer(0);
+  grid.geometry.dims = { dims[0], dims[1], dims[2] };
+  lvdif::SignVoxelFilterParams p;
+  p.threshold = static_cast<float>(this->Threshold);
+  p.axis = this->Axis;
+  p.filters = static_cast<unsigned>(this->Filters);
+  p.maxIterations = this->MaxIterations;
+  p.boundary = this->Boundary == BOUNDARY_FREE ? lvdif::SvfBoundary::Free : lvdif::SvfBoundary::Outside;
+  p.device = this->Device == DEVICE_CPU ? lvdif::Device::Cpu
+                                        : (this->Device == DEVICE_CUDA ? lvdif::Device::Cuda : lvdif::Device::Auto);
+  lvdif::SignVoxelFilterStats st;
+  vtkLVDIFInterrupter interrupter(this);
+  try
+  {
+    st = lvdif::signVoxelFilter(grid, p, interrupter);
+  }
+  catch (const lvdif::Error& e)
+  {
+    if (e.code() != lvdif::ErrorCode::Cancelled)
+    {
+      vtkErrorMacro(<< e.what());
+    }
+    return 0;
+  }
+
+  output->ShallowCopy(input);
+  // replace the processed array, keeping its attribute role (e.g. active scalars)
+  vtkPointData* pd = output->GetPointData();
+  const bool wasScalars = pd->GetScalars() == in;
+  if (in->GetName())
+  {
+    pd->RemoveArray(in->GetName());
+  }
+  if (wasScalars)
+  {
+    pd->SetScalars(filtered);
+  }
+  else
+  {
+    pd->AddArray(filtered);
+  }
+
+  vtkNew<vtkIdTypeArray> flips;
+  flips->SetName("svf_flips");
+  vtkNew<vtkIntArray> iterations;
+  iterations->SetName("svf_iterations");
+  for (int f = 0; f < 4; ++f)
+  {
+    flips->InsertNextValue(static_cast<vtkIdType>(st.flips[f]));
+    iterations->InsertNextValue(st.iterations[f]);
+  }
+  output->GetFieldData()->AddArray(flips);
+  output->GetFieldData()->AddArray(iterations);
+  this->UpdateProgress(1.0);
+  return 1;
+}
+
+void vtkSignVoxelFilter::PrintSelf(ostream& os, vtkIndent indent)
+{
+  this->Superclass::PrintSelf(os, indent);
+  os << indent << "Threshold: " << this->Threshold << "\n";
+  os << indent << "Axis: " << this->Axis << "\n";
+  os << indent << "Filters: " << this->Filters << "\n";
+  os << indent << "MaxIterations: " << this->MaxIterations << "\n";
+  os << indent << "Boundary: " << (this->Boundary == BOUNDARY_FREE ? "free" : "outside") << "\n";
+  os << indent << "Device: " << this->Device << "\n";
+}

@@ -1,0 +1,103 @@
+/**
+ * @class   vtkSignVoxelFilter
+ * @brief   repairs wrong signs of a signed distance image (LVDIF's SVF1..SVF4)
+ *
+ * Runs the sign voxel filters of Wang et al. 2023 ("LVDIF", Sect. 3.2) on one
+ * float point array of a vtkImageData (chosen with SetInputArrayToProcess;
+ * default: the array named `sdf`), negative inside, in voxel units. The
+ * output is the input with that array replaced by a filtered copy; the input
+ * is not modified. Field data of the output gets `svf_flips` (vtkIdTypeArray,
+ * 4 values: voxels whose sign SVF1..SVF4 changed) and `svf_iterations`
+ * (vtkIntArray, 4 values). Rules, parameters and determinism: docs/SVF.md and
+ * lvdif/SignVoxelFilter.h. Reports progress; AbortExecute cancels (the output
+ * is then empty).
+ */
+#ifndef vtkSignVoxelFilter_h
+#define vtkSignVoxelFilter_h
+
+#include "lvdifFiltersSDFModule.h"
+#include "vtkImageAlgorithm.h"
+
+class LVDIFFILTERSSDF_EXPORT vtkSignVoxelFilter : public vtkImageAlgorithm
+{
+public:
+  static vtkSignVoxelFilter* New();
+  vtkTypeMacro(vtkSignVoxelFilter, vtkImageAlgorithm);
+  void PrintSelf(ostream& os, vtkIndent indent) override;
+
+  enum
+  {
+    SVF1 = 1,
+    SVF2 = 2,
+    SVF3 = 4,
+    SVF4 = 8,
+    ALL = 15
+  };
+  enum
+  {
+    BOUNDARY_OUTSIDE = 0,
+    BOUNDARY_FREE = 1
+  };
+  enum
+  {
+    DEVICE_AUTO = 0,
+    DEVICE_CPU = 1,
+    DEVICE_CUDA = 2
+  };
+
+  ///@{
+  /// SVF1..SVF3 never flip voxels with |value| <= Threshold (default 2, voxel units).
+  vtkSetClampMacro(Threshold, double, 0.0, VTK_FLOAT_MAX);
+  vtkGetMacro(Threshold, double);
+  ///@}
+
+  ///@{
+  /// Filter axis 0 = x (default), 1 = y, 2 = z.
+  vtkSetClampMacro(Axis, int, 0, 2);
+  vtkGetMacro(Axis, int);
+  ///@}
+
+  ///@{
+  /// Bit mask of the filters to run (SVF1 | SVF2 | SVF3 | SVF4; default ALL).
+  vtkSetClampMacro(Filters, int, 0, 15);
+  vtkGetMacro(Filters, int);
+  ///@}
+
+  ///@{
+  /// SVF2/SVF3 iterations per plane at most; 0 = automatic (default).
+  vtkSetClampMacro(MaxIterations, int, 0, VTK_INT_MAX);
+  vtkGetMacro(MaxIterations, int);
+  ///@}
+
+  ///@{
+  /// What the neighbours outside the image read as: BOUNDARY_OUTSIDE (default)
+  /// or BOUNDARY_FREE (no sign).
+  vtkSetClampMacro(Boundary, int, BOUNDARY_OUTSIDE, BOUNDARY_FREE);
+  vtkGetMacro(Boundary, int);
+  ///@}
+
+  ///@{
+  /// DEVICE_AUTO (default: CUDA when available), DEVICE_CPU or DEVICE_CUDA.
+  vtkSetClampMacro(Device, int, DEVICE_AUTO, DEVICE_CUDA);
+  vtkGetMacro(Device, int);
+  ///@}
+
+protected:
+  vtkSignVoxelFilter();
+  ~vtkSignVoxelFilter() override;
+
+  int RequestData(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
+
+  double Threshold = 2.0;
+  int Axis = 0;
+  int Filters = ALL;
+  int MaxIterations = 0;
+  int Boundary = BOUNDARY_OUTSIDE;
+  int Device = DEVICE_AUTO;
+
+private:
+  vtkSignVoxelFilter(const vtkSignVoxelFilter&) = delete;
+  void operator=(const vtkSignVoxelFilter&) = delete;
+};
+
+#endif
