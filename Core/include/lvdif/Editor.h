@@ -1,0 +1,73 @@
+// The edit API every front end drives (scripts, recordings, input devices, the
+// VTK layer and the Qt app): it owns the current brush settings, wraps every
+// edit in one undo step, and appends it to the recording when recording.
+//
+// Interactive strokes: beginStroke(), addSample() for each device sample
+// (Drill strokes are applied as they go), endStroke(). pump() does this from an
+// InputDevice: button bit 0 pressed starts a stroke, held adds samples, released
+// ends it.
+#pragma once
+
+#include "lvdif/InputDevice.h"
+#include "lvdif/Interrupter.h"
+#include "lvdif/Recording.h"
+#include "lvdif/UndoStack.h"
+
+#include <memory>
+
+namespace lvdif
+{
+
+class Editor
+{
+public:
+  explicit Editor(DictionaryVolume& volume, const UndoStack::Options& undo = UndoStack::Options());
+
+  DictionaryVolume& volume() { return this->Volume; }
+  UndoStack& undoStack() { return this->Undo; }
+
+  BrushSettings brush;
+  StrokeSettings stroke;
+
+  /// One dab (with the current brush) as one undo step.
+  EditResult dab(const Dab& d);
+  /// A whole stroke through these samples (current stroke settings) as one undo step.
+  EditResult strokeThrough(const std::vector<BrushSample>& samples);
+  /// Applies dabs as they are (one undo step) and records them with `kind`.
+  EditResult applyDabs(const std::vector<Dab>& dabs, BrushKind kind);
+
+  void beginStroke();
+  EditResult addSample(const BrushSample& s);
+  EditResult endStroke();
+  bool strokeOpen() const { return this->Builder != nullptr; }
+
+  /// Reads up to maxSamples samples from the device; returns how many were read.
+  std::size_t pump(InputDevice& device, std::size_t maxSamples = 1024, int timeoutMs = 0);
+
+  bool undo();
+  bool redo();
+
+  /// Starts appending every edit (and undo/redo) to a recording; time is the
+  /// number of recorded events unless setTime() gives one (seconds, >= 0).
+  void startRecording();
+  Recording stopRecording();
+  bool recording() const { return this->Rec != nullptr; }
+  void setTime(double t) { this->Time = t; }
+
+  /// Plays a recording back (edits, undo and redo in order).
+  void play(const Recording& r, Interrupter& interrupter = nullInterrupter());
+
+private:
+  void record(const EditRecord& e);
+
+  DictionaryVolume& Volume;
+  UndoStack Undo;
+  std::unique_ptr<StrokeBuilder> Builder;
+  std::vector<Dab> StrokeDabs; // every dab of the open stroke, for the record
+  EditResult StrokeResult;
+  std::unique_ptr<Recording> Rec;
+  double Time = -1;
+  bool Pressed = false;
+};
+
+} // namespace lvdif

@@ -1,0 +1,85 @@
+// The action recorder's format (paper Sect. 3.4.2: "recorded input actions can
+// be used to reconstruct a CSG-based volume model"). A recording is a list of
+// edits, each with every parameter needed to redo it, plus undo/redo events.
+// Text format (docs/RECORDING.md):
+//
+//   LVDIF-RECORDING 1
+//   edit time=0.25 op=add shape=sphere kind=basic spacing=1.6 blend=0 coloroffset=1.5 color=255,0,0,255 dabs=2
+//   d 10 20 30 3
+//   d 11.6 20 30 3
+//   undo time=1.5
+//
+// Numbers are written with 17 significant digits, so reading a recording gives
+// the same doubles and playing it back (Editor::play) on the same start volume
+// reproduces the volume bit for bit. The player applies the recorded dabs as
+// they are (as the original's player does): strokes are not re-interpolated.
+//
+// importOriginalCsv() reads the original LVDIF recorder's CSV
+// (original-code-spec.md section 6.2): positions are in kernel order (z, y, x)
+// in voxels of the original N^3 volume, so they are swapped to (x, y, z) and
+// scaled by targetSize / originalSize; radii are scaled the same way.
+#pragma once
+
+#include "lvdif/Stroke.h"
+
+#include <iosfwd>
+#include <string>
+#include <vector>
+
+namespace lvdif
+{
+
+struct EditRecord
+{
+  enum class Type
+  {
+    Edit,
+    Undo,
+    Redo
+  };
+  Type type = Type::Edit;
+  double time = 0;
+  BrushSettings brush;
+  BrushKind kind = BrushKind::Single;
+  double spacing = 1.6;
+  std::vector<Dab> dabs;
+};
+
+struct Recording
+{
+  static constexpr int Version = 1;
+  std::vector<EditRecord> records;
+};
+
+void writeRecording(std::ostream& out, const Recording& recording);
+/// Throws Error(ParseError) naming the line for any malformed input.
+Recording readRecording(std::istream& in);
+void saveRecording(const std::string& path, const Recording& recording);
+Recording loadRecording(const std::string& path);
+
+struct CsvImportOptions
+{
+  /// Edge N of the volume the CSV was recorded on (its file name says it:
+  /// Recording_<N>_<date>.csv).
+  double originalSize = 128;
+  /// Edge of the volume it will be played on; coordinates scale by target/original.
+  double targetSize = 128;
+  /// The colour of each palette index (the original does not store its palette);
+  /// empty means defaultCsvPalette().
+  std::vector<Rgba> palette;
+};
+
+struct CsvImportResult
+{
+  Recording recording;
+  std::size_t skippedRows = 0; // rows that were not 10 valid fields ("Broken frame")
+  std::string firstProblem;    // "line N: what" for the first skipped row
+};
+
+/// Ten distinct colours used for palette indices when none is given (our choice,
+/// not the original Unity palette, which its files do not record); index i wraps mod 10.
+const std::vector<Rgba>& defaultCsvPalette();
+
+CsvImportResult importOriginalCsv(std::istream& in, const CsvImportOptions& options);
+
+} // namespace lvdif

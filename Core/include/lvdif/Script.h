@@ -1,0 +1,88 @@
+// The LVDIF scripting language (paper Sect. 3.4.2, Fig. 9; docs/SCRIPTING.md):
+// a small language with variables, arithmetic, loops, conditionals and math
+// functions whose commands drive the same edit API as every other front end
+// (lvdif::Editor). Programs build models procedurally, e.g.
+//
+//   canvas 128
+//   brush cube
+//   color 120 190 255
+//   cube 64 64 64 40
+//   op subtract
+//   for i in 0..3 { sphere 30 + 20*i, 64, 104, 8 }
+//
+// Errors carry the line and column (1-based) of the offending token. Running
+// counts steps (statements and loop iterations) and stops with an error past
+// ScriptOptions::maxSteps, so no script can hang the application; an
+// Interrupter reports progress and can cancel.
+#pragma once
+
+#include "lvdif/Editor.h"
+#include "lvdif/Error.h"
+#include "lvdif/Interrupter.h"
+
+#include <functional>
+#include <memory>
+#include <string>
+
+namespace lvdif
+{
+
+class ScriptError : public Error
+{
+public:
+  ScriptError(ErrorCode code, int line, int column, const std::string& what);
+  int line() const { return this->Line; }
+  int column() const { return this->Column; }
+  /// The message without the "line L, column C: " prefix.
+  const std::string& detail() const { return this->Detail; }
+
+private:
+  int Line, Column;
+  std::string Detail;
+};
+
+struct ScriptOptions
+{
+  std::uint64_t maxSteps = 50'000'000;
+  /// Options of volumes made by `canvas` (its dims replace options.dims).
+  VolumeOptions canvas;
+  /// Output of `print` (default: standard output).
+  std::function<void(const std::string&)> print;
+  Interrupter* interrupter = nullptr;
+  /// Largest voxel count `canvas` may ask for (absurd sizes are refused).
+  std::int64_t maxCanvasVoxels = std::int64_t(1) << 32;
+};
+
+/// Parses only (syntax and command names/arity); throws ScriptError (ParseError).
+void checkScript(const std::string& source);
+
+class ScriptRunner
+{
+public:
+  explicit ScriptRunner(const ScriptOptions& options = ScriptOptions());
+  ~ScriptRunner();
+
+  /// Scripts edit this volume until a `canvas` command makes a new one.
+  void attach(DictionaryVolume& volume);
+  /// Parses and runs; throws ScriptError (syntax: ParseError; run time:
+  /// InvalidArgument) or Error(Cancelled).
+  void run(const std::string& source);
+
+  DictionaryVolume* volume();
+  /// The volume made by `canvas` (nullptr if the script edits an attached one).
+  std::unique_ptr<DictionaryVolume> takeVolume();
+  Editor* editor();
+  std::uint64_t steps() const { return this->Steps; }
+  /// Edits applied (dabs, primitives, lines and strokes), for tests and the CLI.
+  std::uint64_t edits() const { return this->Edits; }
+  double variable(const std::string& name) const;
+
+  struct Impl;
+
+private:
+  std::unique_ptr<Impl> P;
+  std::uint64_t Steps = 0;
+  std::uint64_t Edits = 0;
+};
+
+} // namespace lvdif

@@ -1,0 +1,205 @@
+#include "lvdif/Editor.h"
+
+#include "lvdif/Error.h"
+
+#include <algorithm>
+
+namespace lvdif
+{
+
+namespace
+{
+void merge(EditResult& into, const EditResult& r)
+{
+  into.changedVoxels += r.changedVoxels;
+  std::vector<std::int64_t> all;
+  std::set_union(into.changedChunks.begin(), into.changedChunks.end(), r.changedChunks.begin(),
+    r.changedChunks.end(), std::back_inserter(all));
+  into.changedChunks.swap(all);
+}
+} // namespace
+
+Editor::Editor(DictionaryVolume& volume, const UndoStack::Options& undo)
+  : Volume(volume)
+  , Undo(volume, undo)
+{
+}
+
+void Editor::record(const EditRecord& e)
+{
+  if (!this->Rec)
+    return;
+  EditRecord r = e;
+  r.time = this->Time >= 0 ? this->Time : static_cast<double>(this->Rec->records.size());
+  this->Rec->records.push_back(std::move(r));
+}
+
+EditResult Editor::applyDabs(const std::vector<Dab>& dabs, BrushKind kind)
+{
+  require(!this->Builder, "finish the open stroke first");
+  this->Undo.beginStep(kind == BrushKind::Single ? "dab" : "stroke");
+  EditResult r;
+  try
+  {
+    r = lvdif::applyDabs(this->Volume, dabs, this->brush, &this->Undo);
+  }
+  catch (...)
+  {
+    this->Undo.endStep();
+    throw;
+  }
+  this->Undo.endStep();
+  EditRecord e;
+  e.brush = this->brush;
+  e.kind = kind;
+  e.spacing = this->stroke.spacing;
+  e.dabs = dabs;
+  this->record(e);
+  return r;
+}
+
+EditResult Editor::dab(const Dab& d)
+{
+  return this->applyDabs(std::vector<Dab>{ d }, BrushKind::Single);
+}
+
+EditResult Editor::strokeThrough(const std::vector<BrushSample>& samples)
+{
+  return this->applyDabs(strokeDabs(samples, this->stroke), this->stroke.kind);
+}
+
+void Editor::beginStroke()
+{
+  require(!this->Builder, "a stroke is already open");
+  this->Builder = std::make_unique<StrokeBuilder>(this->stroke);
+  this->StrokeDabs.clear();
+  this->StrokeResult = EditResult();
+  this->Undo.beginStep("stroke");
+}
+
+EditResult Editor::addSample(const BrushSample& s)
+{
+  require(this->Builder != nullptr, "no stroke is open");
+  this->Builder->add(s);
+  const std::vector<Dab> ready = this->Builder->takeReady();
+  EditResult r;
+  if (!ready.empty())
+  {
+    r = lvdif::applyDabs(this->Volume, ready, this->brush, &this->Undo);
+    this->StrokeDabs.insert(this->StrokeDabs.end(), ready.begin(), ready.end());
+    merge(this->StrokeResult, r);
+  }
+  return r;
+}
+
+EditResult Editor::endStroke()
+{
+  require(this->Builder != nullptr, "no stroke is open");
+  const std::vector<Dab> rest = this->Builder->finish();
+  EditResult r;
+  try
+  {
+    r = lvdif::applyDabs(this->Volume, rest, this->brush, &this->Undo);
+  }
+  catch (...)
+  {
+    this->Builder.reset();
+    this->Undo.endStep();
+    throw;
+  }
+  this->StrokeDabs.insert(this->StrokeDabs.end(), rest.begin(), rest.end());
+  merge(this->StrokeResult, r);
+  this->Undo.endStep();
+  EditRecord e;
+  e.brush = this->brush;
+  e.kind = this->stroke.kind;
+  e.spacing = this->stroke.spacing;
+  e.dabs = this->StrokeDabs;
+  this->record(e);
+  this->Builder.reset();
+  return this->StrokeResult;
+}
+
+std::size_t Editor::pump(InputDevice& device, std::size_t maxSamples, int timeoutMs)
+{
+  std::size_t n = 0;
+  BrushSample s;
+  while (n < maxSamples && device.poll(s, n == 0 ? timeoutMs : 0))
+  {
+    ++n;
+    const bool down = (s.buttons & 1u) != 0;
+    if (down && !this->Builder)
+      this->beginStroke();
+    if (this->Builder)
+      this->addSample(s);
+    if (!down && this->Builder)
+      this->endStroke();
+  }
+  if (device.finished() && this->Builder)
+    this->endStroke();
+  return n;
+}
+
+bool Editor::undo()
+{
+  require(!this->Builder, "finish the open stroke first");
+  const bool done = this->Undo.undo();
+  if (done)
+  {
+    EditRecord e;
+    e.type = EditRecord::Type::Undo;
+    this->record(e);
+  }
+  return done;
+}
+
+bool Editor::redo()
+{
+  require(!this->Builder, "finish the open stroke first");
+  const bool done = this->Undo.redo();
+  if (done)
+  {
+    EditRecord e;
+    e.type = EditRecord::Type::Redo;
+    this->record(e);
+  }
+  return done;
+}
+
+void Editor::startRecording()
+{
+  this->Rec = std::make_unique<Recording>();
+}
+
+Recording Editor::stopRecording()
+{
+  require(this->Rec != nullptr, "not recording");
+  Recording r = std::move(*this->Rec);
+  this->Rec.reset();
+  return r;
+}
+
+void Editor::play(const Recording& r, Interrupter& interrupter)
+{
+  interrupter.start("play recording");
+  const BrushSettings saved = this->brush;
+  std::size_t i = 0;
+  for (const EditRecord& e : r.records)
+  {
+    interrupter.checkInterrupt();
+    if (e.type == EditRecord::Type::Undo)
+      this->undo();
+    else if (e.type == EditRecord::Type::Redo)
+      this->redo();
+    else
+    {
+      this->brush = e.brush;
+      this->applyDabs(e.dabs, e.kind);
+    }
+    interrupter.progress(static_cast<double>(++i) / static_cast<double>(std::max<std::size_t>(1, r.records.size())));
+  }
+  this->brush = saved;
+  interrupter.end();
+}
+
+} // namespace lvdif

@@ -1,0 +1,140 @@
+// Internal helpers of the mesh readers: the line scanner, strict number
+// parsing and the checks every reader shares.
+#pragma once
+
+#include "lvdif/Error.h"
+#include "lvdif/TriangleMesh.h"
+
+#include <cmath>
+#include <cstdint>
+#include <cstdlib>
+#include <cstring>
+#include <string>
+#include <vector>
+
+namespace lvdif
+{
+namespace meshio
+{
+
+[[noreturn]] inline void fail(ErrorCode code, const std::string& where, const std::string& what)
+{
+  throw Error(code, where + ": " + what);
+}
+
+/// Splits text into lines and lines into whitespace-separated tokens.
+class TextScanner
+{
+public:
+  TextScanner(const char* data, std::size_t size, std::string format)
+    : P(data)
+    , End(data + size)
+    , Format(std::move(format))
+  {
+  }
+  /// Next line's tokens (comments from '#' removed); false at the end.
+  bool next(std::vector<std::string>& tokens, bool stripComments = true)
+  {
+    tokens.clear();
+    if (this->P >= this->End)
+      return false;
+    ++this->Line;
+    const char* e = static_cast<const char*>(std::memchr(this->P, '\n', static_cast<size_t>(this->End - this->P)));
+    if (!e)
+      e = this->End;
+    const char* q = this->P;
+    while (q < e)
+    {
+      while (q < e && (*q == ' ' || *q == '\t' || *q == '\r' || *q == '\f' || *q == '\v'))
+        ++q;
+      if (q >= e || (stripComments && *q == '#'))
+        break;
+      const char* s = q;
+      while (q < e && !(*q == ' ' || *q == '\t' || *q == '\r' || *q == '\f' || *q == '\v'))
+        ++q;
+      tokens.emplace_back(s, q);
+    }
+    this->P = e < this->End ? e + 1 : e;
+    return true;
+  }
+  /// The next line with at least one token; false at the end.
+  bool nextNonEmpty(std::vector<std::string>& tokens)
+  {
+    while (this->next(tokens))
+      if (!tokens.empty())
+        return true;
+    return false;
+  }
+  std::string where() const { return this->Format + " line " + std::to_string(this->Line); }
+  const char* position() const { return this->P; }
+  std::size_t remaining() const { return static_cast<std::size_t>(this->End - this->P); }
+
+private:
+  const char* P;
+  const char* End;
+  std::string Format;
+  std::int64_t Line = 0;
+};
+
+inline double parseReal(const std::string& t, const std::string& where)
+{
+  char* end = nullptr;
+  const double v = std::strtod(t.c_str(), &end);
+  if (t.empty() || end != t.c_str() + t.size())
+    fail(ErrorCode::ParseError, where, "'" + t.substr(0, 40) + "' is not a number");
+  if (!std::isfinite(v))
+    fail(ErrorCode::ParseError, where, "coordinate '" + t.substr(0, 40) + "' is NaN or infinite");
+  return v;
+}
+
+inline std::int64_t parseInt(const std::string& t, const std::string& where)
+{
+  char* end = nullptr;
+  errno = 0;
+  const long long v = std::strtoll(t.c_str(), &end, 10);
+  if (t.empty() || end != t.c_str() + t.size() || errno == ERANGE)
+    fail(ErrorCode::ParseError, where, "'" + t.substr(0, 40) + "' is not an integer");
+  return v;
+}
+
+inline Vec3f point(double x, double y, double z, const std::string& where)
+{
+  const double m = 3.4e38;
+  if (!(std::fabs(x) < m && std::fabs(y) < m && std::fabs(z) < m))
+    fail(ErrorCode::ParseError, where, "coordinate is NaN, infinite or beyond float range");
+  return { static_cast<float>(x), static_cast<float>(y), static_cast<float>(z) };
+}
+
+/// Appends a polygon as a triangle fan after checking its indices.
+inline void addPolygon(TriangleMesh& mesh, const std::vector<std::int64_t>& ids, std::int64_t pointCount,
+  const std::string& where, ErrorCode code)
+{
+  if (ids.size() < 3)
+    fail(code, where, "face with " + std::to_string(ids.size()) + " vertices (at least 3 needed)");
+  for (std::int64_t id : ids)
+    if (id < 0 || id >= pointCount)
+      fail(code, where, "vertex index " + std::to_string(id) + " out of range [0, " + std::to_string(pointCount) + ")");
+  for (std::size_t i = 1; i + 1 < ids.size(); ++i)
+    mesh.triangles.push_back({ static_cast<std::uint32_t>(ids[0]), static_cast<std::uint32_t>(ids[i]),
+      static_cast<std::uint32_t>(ids[i + 1]) });
+}
+
+/// Final checks: at least one triangle, point count within 32-bit indices.
+inline void finish(TriangleMesh& mesh, const std::string& format)
+{
+  if (mesh.triangles.empty())
+    fail(ErrorCode::ParseError, format, "the file holds no triangles");
+  try
+  {
+    mesh.validate();
+  }
+  catch (const Error& e)
+  {
+    fail(ErrorCode::ParseError, format, e.what());
+  }
+}
+
+TriangleMesh readPly(const std::vector<char>& data);
+
+} // namespace meshio
+} // namespace lvdif

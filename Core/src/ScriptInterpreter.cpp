@@ -1,0 +1,461 @@
+// Tree-walking interpreter of the scripting language: evaluates expressions in
+// double precision with one global variable scope, and turns commands into
+// lvdif::Editor calls.
+#include "ScriptAst.h"
+
+#include "lvdif/Script.h"
+
+#include <cmath>
+#include <iostream>
+#include <map>
+#include <sstream>
+
+namespace lvdif
+{
+
+ScriptError::ScriptError(ErrorCode code, int line, int column, const std::string& what)
+  : Error(code, "line " + std::to_string(line) + ", column " + std::to_string(column) + ": " + what)
+  , Line(line)
+  , Column(column)
+  , Detail(what)
+{
+}
+
+void checkScript(const std::string& source)
+{
+  script::parse(script::lex(source));
+}
+
+using script::Expr;
+using script::Stmt;
+
+struct ScriptRunner::Impl
+{
+  ScriptOptions Options;
+  ScriptRunner* Owner = nullptr;
+  std::unique_ptr<DictionaryVolume> Owned;
+  DictionaryVolume* Volume = nullptr;
+  std::unique_ptr<Editor> Ed;
+  std::map<std::string, double> Vars;
+  BrushShape Shape = BrushShape::Sphere;
+  double Radius = 3;
+  int StrokeLine = 0, StrokeColumn = 0;
+  std::size_t TopDone = 0, TopTotal = 1;
+
+  [[noreturn]] static void fail(int line, int col, const std::string& what)
+  {
+    throw ScriptError(ErrorCode::InvalidArgument, line, col, what);
+  }
+
+  void step(int line, int col)
+  {
+    if (++this->Owner->Steps > this->Options.maxSteps)
+      fail(line, col, "step limit of " + std::to_string(this->Options.maxSteps) + " exceeded (an endless loop?)");
+    if ((this->Owner->Steps & 1023) == 0 && this->Options.interrupter)
+      this->Options.interrupter->checkInterrupt();
+  }
+
+  void setVolume(DictionaryVolume* v)
+  {
+    this->Volume = v;
+    this->Ed = std::make_unique<Editor>(*v);
+    this->Ed->stroke.radius = this->Radius;
+    this->Ed->stroke.shape = this->Shape;
+    this->Vars["nx"] = static_cast<double>(v->dims()[0]);
+    this->Vars["ny"] = static_cast<double>(v->dims()[1]);
+    this->Vars["nz"] = static_cast<double>(v->dims()[2]);
+  }
+
+  double eval(const Expr& e)
+  {
+    switch (e.kind)
+    {
+      case Expr::Kind::Number:
+        return e.number;
+      case Expr::Kind::Variable:
+      {
+        auto it = this->Vars.find(e.name);
+        if (it == this->Vars.end())
+          fail(e.line, e.column, "undefined variable '" + e.name + "'");
+        return it->second;
+      }
+      case Expr::Kind::Unary:
+      {
+        const double a = this->eval(*e.args[0]);
+        return e.op == "-" ? -a : (a == 0 ? 1.0 : 0.0);
+      }
+      case Expr::Kind::Binary:
+        return this->binary(e);
+      case Expr::Kind::Call:
+        return this->call(e);
+    }
+    return 0;
+  }
+
+  double binary(const Expr& e)
+  {
+    const std::string& op = e.op;
+    const double a = this->eval(*e.args[0]);
+    if (op == "&")
+      return a != 0 && this->eval(*e.args[1]) != 0 ? 1.0 : 0.0; // short-circuit
+    if (op == "|")
+      return a != 0 || this->eval(*e.args[1]) != 0 ? 1.0 : 0.0;
+    const double b = this->eval(*e.args[1]);
+    double r = 0;
+    if (op == "+")
+      r = a + b;
+    else if (op == "-")
+      r = a - b;
+    else if (op == "*")
+      r = a * b;
+    else if (op == "/" || op == "%")
+    {
+      if (b == 0)
+        fail(e.line, e.column, op == "/" ? "division by zero" : "remainder by zero");
+      r = op == "/" ? a / b : a - b * std::floor(a / b); // % takes the sign of the divisor
+    }
+    else if (op == "<")
+      r = a < b;
+    else if (op == "<=")
+      r = a <= b;
+    else if (op == ">")
+      r = a > b;
+    else if (op == ">=")
+      r = a >= b;
+    else if (op == "==")
+      r = a == b;
+    else if (op == "!=")
+      r = a != b;
+    if (!std::isfinite(r))
+      fail(e.line, e.column, "'" + op + "' gives a non-finite result");
+    return r;
+  }
+
+  double call(const Expr& e)
+  {
+    static const std::map<std::string, int> arity{ { "sin", 1 }, { "cos", 1 }, { "tan", 1 }, { "asin", 1 },
+      { "acos", 1 }, { "atan", 1 }, { "atan2", 2 }, { "sqrt", 1 }, { "abs", 1 }, { "floor", 1 }, { "ceil", 1 },
+      { "round", 1 }, { "exp", 1 }, { "log", 1 }, { "pow", 2 }, { "min", -2 }, { "max", -2 }, { "clamp", 3 } };
+    auto it = arity.find(e.name);
+    if (it == arity.end())
+      fail(e.line, e.column, "unknown function '" + e.name + "'");
+    const int n = static_cast<int>(e.args.size());
+    if ((it->second > 0 && n != it->second) || (it->second < 0 && n < -it->second))
+      fail(e.line, e.column,
+        "'" + e.name + "' takes " + (it->second > 0 ? std::to_string(it->second) : "at least 2") + " argument" +
+          (it->second == 1 ? "" : "s") + ", got " + std::to_string(n));
+    std::vector<double> a;
+    for (const auto& x : e.args)
+      a.push_back(this->eval(*x));
+    const std::string& f = e.name;
+    double r = 0;
+    if (f == "sin") r = std::sin(a[0]);
+    else if (f == "cos") r = std::cos(a[0]);
+    else if (f == "tan") r = std::tan(a[0]);
+    else if (f == "asin") r = std::asin(a[0]);
+    else if (f == "acos") r = std::acos(a[0]);
+    else if (f == "atan") r = std::atan(a[0]);
+    else if (f == "atan2") r = std::atan2(a[0], a[1]);
+    else if (f == "sqrt") r = std::sqrt(a[0]);
+    else if (f == "abs") r = std::fabs(a[0]);
+    else if (f == "floor") r = std::floor(a[0]);
+    else if (f == "ceil") r = std::ceil(a[0]);
+    else if (f == "round") r = std::round(a[0]);
+    else if (f == "exp") r = std::exp(a[0]);
+    else if (f == "log") r = std::log(a[0]);
+    else if (f == "pow") r = std::pow(a[0], a[1]);
+    else if (f == "clamp") r = std::max(a[1], std::min(a[2], a[0]));
+    else if (f == "min" || f == "max")
+    {
+      r = a[0];
+      for (double v : a)
+        r = f == "min" ? std::min(r, v) : std::max(r, v);
+    }
+    if (!std::isfinite(r))
+      fail(e.line, e.column, "'" + f + "' gives a non-finite result (argument out of its domain?)");
+    return r;
+  }
+
+  void run(const script::Block& b, bool top)
+  {
+    for (const auto& s : b)
+    {
+      this->exec(*s);
+      if (top && this->Options.interrupter)
+        this->Options.interrupter->progress(double(++this->TopDone) / double(this->TopTotal));
+    }
+  }
+
+  void exec(const Stmt& s)
+  {
+    this->step(s.line, s.column);
+    switch (s.kind)
+    {
+      case Stmt::Kind::Assign:
+        this->Vars[s.name] = this->eval(*s.cond);
+        return;
+      case Stmt::Kind::If:
+        if (this->eval(*s.cond) != 0)
+          this->run(s.body, false);
+        else
+          this->run(s.orelse, false);
+        return;
+      case Stmt::Kind::While:
+        while (this->eval(*s.cond) != 0)
+        {
+          this->step(s.line, s.column);
+          this->run(s.body, false);
+        }
+        return;
+      case Stmt::Kind::For:
+      {
+        const double from = this->eval(*s.from), to = this->eval(*s.to);
+        for (double i = from; i < to; i += 1.0)
+        {
+          this->step(s.line, s.column);
+          this->Vars[s.name] = i;
+          this->run(s.body, false);
+        }
+        return;
+      }
+      case Stmt::Kind::Command:
+        try
+        {
+          this->command(s);
+        }
+        catch (const ScriptError&)
+        {
+          throw;
+        }
+        catch (const Error& e)
+        {
+          if (e.code() == ErrorCode::Cancelled)
+            throw;
+          throw ScriptError(e.code(), s.line, s.column, e.what());
+        }
+        return;
+    }
+  }
+
+  Editor& editor(const Stmt& s)
+  {
+    if (!this->Ed)
+      fail(s.line, s.column, "no canvas: start with 'canvas N' (or attach a volume)");
+    return *this->Ed;
+  }
+
+  double positive(const Stmt& s, double v, const char* what)
+  {
+    if (!(v > 0))
+      fail(s.line, s.column, std::string(what) + " must be > 0");
+    return v;
+  }
+
+  void command(const Stmt& s)
+  {
+    const std::string& c = s.name;
+    std::vector<double> a;
+    for (const auto& e : s.args)
+      a.push_back(this->eval(*e));
+    if (c == "print")
+    {
+      std::ostringstream o;
+      for (size_t i = 0; i < a.size(); ++i)
+        o << (i ? " " : "") << a[i];
+      if (this->Options.print)
+        this->Options.print(o.str());
+      else
+        std::cout << o.str() << "\n";
+      return;
+    }
+    if (c == "canvas")
+      return this->canvas(s, a);
+    if (c == "radius")
+    {
+      this->Radius = this->positive(s, a[0], "radius");
+      if (this->Ed)
+        this->Ed->stroke.radius = this->Radius;
+      return;
+    }
+    if (c == "brush")
+    {
+      this->Shape = s.word == "cube" ? BrushShape::Cube : BrushShape::Sphere;
+      if (this->Ed)
+        this->Ed->stroke.shape = this->Shape;
+      return;
+    }
+    Editor& ed = this->editor(s);
+    if (c == "color")
+    {
+      std::uint8_t v[4] = { 0, 0, 0, 255 };
+      for (size_t i = 0; i < a.size(); ++i)
+      {
+        if (!(a[i] >= 0 && a[i] <= 255))
+          fail(s.line, s.column, "colour components must be in 0..255");
+        v[i] = static_cast<std::uint8_t>(std::lround(a[i]));
+      }
+      ed.brush.color = Rgba{ v[0], v[1], v[2], v[3] };
+    }
+    else if (c == "op")
+      ed.brush.op = s.word == "add" ? BrushOp::Add : s.word == "subtract" ? BrushOp::Subtract : BrushOp::Paint;
+    else if (c == "kind")
+      ed.stroke.kind = s.word == "single" ? BrushKind::Single
+        : s.word == "basic"               ? BrushKind::Basic
+        : s.word == "dynamic"             ? BrushKind::Dynamic
+                                          : BrushKind::Drill;
+    else if (c == "blend")
+    {
+      if (!(a[0] >= 0))
+        fail(s.line, s.column, "blend must be >= 0");
+      ed.brush.blend = a[0];
+    }
+    else if (c == "round")
+    {
+      if (!(a[0] >= 0))
+        fail(s.line, s.column, "round must be >= 0");
+      ed.brush.rounding = a[0];
+    }
+    else if (c == "spacing")
+      ed.stroke.spacing = this->positive(s, a[0], "spacing");
+    else if (c == "dab" || c == "sphere" || c == "cube")
+    {
+      Dab d;
+      d.shape = c == "dab" ? this->Shape : c == "cube" ? BrushShape::Cube : BrushShape::Sphere;
+      d.center = { a[0], a[1], a[2] };
+      d.radius = c == "dab" ? this->Radius : this->positive(s, a[3], c == "cube" ? "half edge" : "radius");
+      ed.dab(d);
+      ++this->Owner->Edits;
+    }
+    else if (c == "line")
+    {
+      BrushSample p0, p1;
+      p0.position = { a[0], a[1], a[2] };
+      p1.position = { a[3], a[4], a[5] };
+      ed.strokeThrough({ p0, p1 });
+      ++this->Owner->Edits;
+    }
+    else if (c == "begin")
+    {
+      ed.beginStroke();
+      this->StrokeLine = s.line;
+      this->StrokeColumn = s.column;
+    }
+    else if (c == "point")
+    {
+      if (!ed.strokeOpen())
+        fail(s.line, s.column, "'point' outside a stroke: use 'begin' first");
+      BrushSample p;
+      p.position = { a[0], a[1], a[2] };
+      if (a.size() == 4)
+        p.pressure = a[3];
+      ed.addSample(p);
+    }
+    else if (c == "end")
+    {
+      if (!ed.strokeOpen())
+        fail(s.line, s.column, "'end' without 'begin'");
+      ed.endStroke();
+      ++this->Owner->Edits;
+    }
+    else if (c == "undo")
+      ed.undo();
+    else if (c == "redo")
+      ed.redo();
+  }
+
+  void canvas(const Stmt& s, const std::vector<double>& a)
+  {
+    if (!s.word.empty())
+    {
+      Editor& ed = this->editor(s);
+      if (ed.strokeOpen())
+        fail(s.line, s.column, "finish the stroke before 'canvas " + s.word + "'");
+      DictionaryVolume& v = *this->Volume;
+      const Voxel fill = s.word == "fill" ? Voxel{ v.insideVoxel().sdf, v.colors().add(ed.brush.color) } : v.outsideVoxel();
+      for (std::int64_t id = 0; id < v.chunkCount(); ++id)
+        v.fillChunk(id, fill);
+      ed.undoStack().clear(); // the history no longer matches the volume
+      return;
+    }
+    Index3 dims;
+    for (int i = 0; i < 3; ++i)
+    {
+      const double d = a.size() == 1 ? a[0] : a[static_cast<size_t>(i)];
+      if (!(d >= 1 && d <= double(DictionaryVolume::MaxDimension)) || d != std::floor(d))
+        fail(s.line, s.column, "canvas dimensions must be whole numbers in 1.." +
+            std::to_string(DictionaryVolume::MaxDimension));
+      dims[i] = static_cast<std::int64_t>(d);
+    }
+    if (double(dims[0]) * double(dims[1]) * double(dims[2]) > double(this->Options.maxCanvasVoxels))
+      fail(s.line, s.column, "canvas of " + std::to_string(dims[0]) + " x " + std::to_string(dims[1]) + " x " +
+          std::to_string(dims[2]) + " voxels exceeds the limit of " + std::to_string(this->Options.maxCanvasVoxels));
+    if (this->Ed && this->Ed->strokeOpen())
+      fail(s.line, s.column, "finish the stroke before 'canvas'");
+    VolumeOptions o = this->Options.canvas;
+    o.dims = dims;
+    this->Ed.reset();
+    this->Owned = std::make_unique<DictionaryVolume>(o);
+    this->setVolume(this->Owned.get());
+  }
+};
+
+ScriptRunner::ScriptRunner(const ScriptOptions& options)
+  : P(std::make_unique<Impl>())
+{
+  this->P->Options = options;
+  this->P->Owner = this;
+  this->P->Vars["pi"] = 3.14159265358979323846;
+}
+
+ScriptRunner::~ScriptRunner() = default;
+
+void ScriptRunner::attach(DictionaryVolume& volume)
+{
+  this->P->Owned.reset();
+  this->P->setVolume(&volume);
+}
+
+void ScriptRunner::run(const std::string& source)
+{
+  const script::Program prog = script::parse(script::lex(source));
+  Interrupter* in = this->P->Options.interrupter;
+  if (in)
+    in->start("script");
+  this->P->TopDone = 0;
+  this->P->TopTotal = std::max<std::size_t>(1, prog.statements.size());
+  this->P->run(prog.statements, true);
+  if (this->P->Ed && this->P->Ed->strokeOpen())
+  {
+    this->P->Ed->endStroke(); // keep the work, but report the mistake
+    throw ScriptError(ErrorCode::InvalidArgument, this->P->StrokeLine, this->P->StrokeColumn,
+      "'begin' without 'end' (the stroke was ended at the end of the script)");
+  }
+  if (in)
+    in->end();
+}
+
+DictionaryVolume* ScriptRunner::volume()
+{
+  return this->P->Volume;
+}
+
+std::unique_ptr<DictionaryVolume> ScriptRunner::takeVolume()
+{
+  this->P->Ed.reset();
+  this->P->Volume = nullptr;
+  return std::move(this->P->Owned);
+}
+
+Editor* ScriptRunner::editor()
+{
+  return this->P->Ed.get();
+}
+
+double ScriptRunner::variable(const std::string& name) const
+{
+  auto it = this->P->Vars.find(name);
+  require(it != this->P->Vars.end(), "no variable '" + name + "'");
+  return it->second;
+}
+
+} // namespace lvdif

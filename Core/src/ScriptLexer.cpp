@@ -1,0 +1,172 @@
+// Lexer of the scripting language: numbers, identifiers, operators, newlines
+// (statement ends); '#' starts a comment to the end of the line.
+#include "ScriptAst.h"
+
+#include "lvdif/Script.h"
+
+#include <cctype>
+#include <cmath>
+#include <cstdlib>
+
+namespace lvdif
+{
+namespace script
+{
+
+std::vector<Token> lex(const std::string& src)
+{
+  std::vector<Token> out;
+  int line = 1, col = 1;
+  std::size_t i = 0;
+  auto push = [&](Tok k, const std::string& text, int l, int c) {
+    Token t;
+    t.kind = k;
+    t.text = text;
+    t.line = l;
+    t.column = c;
+    out.push_back(t);
+  };
+  while (i < src.size())
+  {
+    const char ch = src[i];
+    const int l = line, c = col;
+    if (ch == '\n')
+    {
+      push(Tok::Newline, "\\n", l, c);
+      ++i;
+      ++line;
+      col = 1;
+      continue;
+    }
+    if (ch == ' ' || ch == '\t' || ch == '\r')
+    {
+      ++i;
+      ++col;
+      continue;
+    }
+    if (ch == '#')
+    {
+      while (i < src.size() && src[i] != '\n')
+        ++i;
+      continue;
+    }
+    if (std::isdigit(static_cast<unsigned char>(ch)) ||
+      (ch == '.' && i + 1 < src.size() && std::isdigit(static_cast<unsigned char>(src[i + 1]))))
+    {
+      std::size_t j = i;
+      while (j < src.size() && std::isdigit(static_cast<unsigned char>(src[j])))
+        ++j;
+      // a '.' followed by '.' is the range operator, not a decimal point
+      if (j < src.size() && src[j] == '.' && !(j + 1 < src.size() && src[j + 1] == '.'))
+      {
+        ++j;
+        while (j < src.size() && std::isdigit(static_cast<unsigned char>(src[j])))
+          ++j;
+      }
+      if (j < src.size() && (src[j] == 'e' || src[j] == 'E'))
+      {
+        std::size_t k = j + 1;
+        if (k < src.size() && (src[k] == '+' || src[k] == '-'))
+          ++k;
+        if (k < src.size() && std::isdigit(static_cast<unsigned char>(src[k])))
+        {
+          j = k;
+          while (j < src.size() && std::isdigit(static_cast<unsigned char>(src[j])))
+            ++j;
+        }
+      }
+      const std::string text = src.substr(i, j - i);
+      Token t;
+      t.kind = Tok::Number;
+      t.text = text;
+      t.number = std::strtod(text.c_str(), nullptr);
+      t.line = l;
+      t.column = c;
+      if (!std::isfinite(t.number))
+        throw ScriptError(ErrorCode::ParseError, l, c, "number '" + text + "' is out of range");
+      if (j < src.size() && (std::isalpha(static_cast<unsigned char>(src[j])) || src[j] == '_'))
+        throw ScriptError(ErrorCode::ParseError, l, c + static_cast<int>(j - i),
+          std::string("unexpected '") + src[j] + "' after a number");
+      out.push_back(t);
+      col += static_cast<int>(j - i);
+      i = j;
+      continue;
+    }
+    if (std::isalpha(static_cast<unsigned char>(ch)) || ch == '_')
+    {
+      std::size_t j = i;
+      while (j < src.size() && (std::isalnum(static_cast<unsigned char>(src[j])) || src[j] == '_'))
+        ++j;
+      push(Tok::Ident, src.substr(i, j - i), l, c);
+      col += static_cast<int>(j - i);
+      i = j;
+      continue;
+    }
+    const char next = i + 1 < src.size() ? src[i + 1] : '\0';
+    auto two = [&](Tok k, const char* text) {
+      push(k, text, l, c);
+      i += 2;
+      col += 2;
+    };
+    auto one = [&](Tok k) {
+      push(k, std::string(1, ch), l, c);
+      ++i;
+      ++col;
+    };
+    switch (ch)
+    {
+      case '.':
+        if (next == '.')
+        {
+          two(Tok::DotDot, "..");
+          continue;
+        }
+        break;
+      case '=':
+        if (next == '=')
+          two(Tok::Eq, "==");
+        else
+          one(Tok::Assign);
+        continue;
+      case '!':
+        if (next == '=')
+        {
+          two(Tok::Ne, "!=");
+          continue;
+        }
+        break;
+      case '<':
+        if (next == '=')
+          two(Tok::Le, "<=");
+        else
+          one(Tok::Lt);
+        continue;
+      case '>':
+        if (next == '=')
+          two(Tok::Ge, ">=");
+        else
+          one(Tok::Gt);
+        continue;
+      case '(': one(Tok::LParen); continue;
+      case ')': one(Tok::RParen); continue;
+      case '{': one(Tok::LBrace); continue;
+      case '}': one(Tok::RBrace); continue;
+      case ',': one(Tok::Comma); continue;
+      case ';': one(Tok::Semicolon); continue;
+      case '+': one(Tok::Plus); continue;
+      case '-': one(Tok::Minus); continue;
+      case '*': one(Tok::Star); continue;
+      case '/': one(Tok::Slash); continue;
+      case '%': one(Tok::Percent); continue;
+      default: break;
+    }
+    const unsigned char u = static_cast<unsigned char>(ch);
+    std::string shown = std::isprint(u) ? std::string("'") + ch + "'" : "byte " + std::to_string(int(u));
+    throw ScriptError(ErrorCode::ParseError, l, c, "unexpected character " + shown);
+  }
+  push(Tok::End, "end of script", line, col);
+  return out;
+}
+
+} // namespace script
+} // namespace lvdif

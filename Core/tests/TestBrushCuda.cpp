@@ -1,0 +1,108 @@
+// The CUDA brush equals the CPU brush bit for bit (skipped without a GPU), and
+// the device encoder restated in BrushKernel.h equals the dictionary's (CPU).
+#include "../src/BrushKernel.h"
+#include "EditTestUtil.h"
+#include "lvdif/AnalyticFill.h"
+#include "lvdif/BrushCuda.h"
+#include "lvdif/Cuda.h"
+#include "lvdif/Stroke.h"
+#include "lvdif/UndoStack.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstring>
+#include <random>
+
+using namespace lvdif;
+
+TEST(BrushEncoder, RestatedEncoderEqualsTheDictionary)
+{
+  const SdfDictionary& d = defaultSdfDictionary();
+  for (float band : { 8.0f, 3.5f, 1e30f })
+  {
+    const detail::EncodeParams e = detail::EncodeParams::of(d, band);
+    for (int k = 0; k + 1 < 65536; ++k)
+    {
+      const float a = d.decode(static_cast<SdfKey>(k)), b = d.decode(static_cast<SdfKey>(k + 1));
+      const float mid = 0.5f * (a + b);
+      for (float v : { a, mid, std::nextafter(mid, -1e30f), std::nextafter(mid, 1e30f) })
+        ASSERT_EQ(e(double(v)), d.encodeClamped(v, band)) << v;
+    }
+    std::mt19937 rng(3);
+    std::uniform_real_distribution<double> u(-4000, 4000);
+    for (int i = 0; i < 200000; ++i)
+    {
+      const double v = u(rng) * (i % 2 ? 1e-3 : 1.0);
+      ASSERT_EQ(e(v), d.encodeClamped(static_cast<float>(v), band)) << v;
+    }
+    ASSERT_EQ(e(NAN), d.encodeClamped(NAN, band));
+  }
+}
+
+TEST(BrushCuda, GpuDabsEqualCpuDabsBitForBit)
+{
+  if (!cuda::available())
+  {
+    GTEST_SKIP() << "no CUDA device";
+  }
+  VolumeOptions o = edittest::options(150, 16); // not a multiple of the chunk edge
+  DictionaryVolume cpu(o);
+  fillFromFunction(cpu, sphereSdf(70, 75, 72, 45));
+  auto gpu = cpu.clone();
+  std::mt19937 rng(9);
+  std::uniform_real_distribution<double> pos(-5, 155), rad(1, 30);
+  for (int i = 0; i < 40; ++i)
+  {
+    BrushSettings s;
+    s.op = static_cast<BrushOp>(i % 3);
+    s.blend = i % 4 == 1 ? 3.5 : 0;
+    s.rounding = i % 5 == 2 ? 2 : 0;
+    s.color = Rgba{ static_cast<std::uint8_t>(i), 9, 9, 255 };
+    std::vector<Dab> dabs;
+    if (i % 7 == 3)
+    {
+      StrokeSettings st;
+      st.kind = BrushKind::Dynamic;
+      st.radius = rad(rng) / 3 + 1;
+      std::vector<BrushSample> samples(4);
+      for (auto& p : samples)
+        p.position = { pos(rng), pos(rng), pos(rng) };
+      dabs = strokeDabs(samples, st);
+    }
+    else
+    {
+      Dab d;
+      d.shape = static_cast<BrushShape>(i % 3);
+      d.center = { pos(rng), pos(rng), pos(rng) };
+      d.end = { pos(rng), pos(rng), pos(rng) };
+      d.radius = rad(rng);
+      dabs.push_back(d);
+    }
+    cpu.takeDirtyChunks();
+    gpu->takeDirtyChunks();
+    const EditResult a = applyDabs(cpu, dabs, s);
+    const EditResult b = cuda::applyDabs(*gpu, dabs, s);
+    ASSERT_EQ(a.changedVoxels, b.changedVoxels) << "edit " << i;
+    ASSERT_EQ(a.changedChunks, b.changedChunks) << "edit " << i;
+    ASSERT_EQ(cpu.takeDirtyChunks(), gpu->takeDirtyChunks()) << "edit " << i;
+    ASSERT_EQ(edittest::countDifferences(cpu, *gpu), 0) << "edit " << i;
+  }
+  // the undo observer sees the GPU edits too
+  UndoStack undo(*gpu);
+  auto before = gpu->clone();
+  undo.beginStep("gpu");
+  cuda::applyDabs(*gpu, { Dab{ BrushShape::Sphere, { 70, 75, 117 }, 15, {} } }, BrushSettings(), &undo);
+  undo.endStep();
+  ASSERT_GT(edittest::countDifferences(*gpu, *before), 0);
+  undo.undo();
+  EXPECT_EQ(edittest::countDifferences(*gpu, *before), 0);
+}
+
+TEST(BrushCuda, DispatchFallsBackToTheCpu)
+{
+  DictionaryVolume a(edittest::options(32)), b(edittest::options(32));
+  applyDabs(Device::Auto, a, { Dab{ BrushShape::Sphere, { 16, 16, 16 }, 6, {} } }, BrushSettings());
+  applyDabs(b, { Dab{ BrushShape::Sphere, { 16, 16, 16 }, 6, {} } }, BrushSettings());
+  EXPECT_EQ(edittest::countDifferences(a, b), 0);
+}

@@ -1,0 +1,152 @@
+// Mesh file readers: small files written out here by hand (the oracle is the
+// mesh they describe) in every supported encoding, and a table of malformed
+// inputs, each a clear error naming the problem.
+#include "lvdif/Error.h"
+#include "lvdif/MeshFile.h"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cstring>
+
+using namespace lvdif;
+
+namespace
+{
+TriangleMesh readText(const std::string& text, MeshFormat f)
+{
+  MemorySource src(text.data(), text.size());
+  return readMesh(src, f, "test");
+}
+
+/// The expected mesh of every "square" file: 4 points, the square split in 2 triangles.
+void expectSquare(const TriangleMesh& m)
+{
+  ASSERT_EQ(m.points.size(), 4u);
+  EXPECT_EQ(m.points[2], (Vec3f{ 1, 1, 0 }));
+  EXPECT_EQ(m.points[3], (Vec3f{ 0, 1, 0.5f }));
+  ASSERT_EQ(m.triangles.size(), 2u);
+  EXPECT_EQ(m.triangles[0], (std::array<std::uint32_t, 3>{ 0, 1, 2 }));
+  EXPECT_EQ(m.triangles[1], (std::array<std::uint32_t, 3>{ 0, 2, 3 }));
+}
+
+void expectError(const std::string& text, MeshFormat f, const std::string& needle)
+{
+  try
+  {
+    readText(text, f);
+    ADD_FAILURE() << "accepted: " << text.substr(0, 60);
+  }
+  catch (const Error& e)
+  {
+    EXPECT_TRUE(e.code() == ErrorCode::ParseError || e.code() == ErrorCode::CorruptData) << e.what();
+    EXPECT_NE(std::string(e.what()).find(needle), std::string::npos) << "'" << e.what() << "' lacks '" << needle << "'";
+  }
+}
+
+template <typename T>
+void put(std::string& s, T v, bool big = false)
+{
+  char b[sizeof(T)];
+  std::memcpy(b, &v, sizeof(T));
+  if (big)
+    std::reverse(b, b + sizeof(T));
+  s.append(b, sizeof(T));
+}
+
+std::string binaryPly(bool big)
+{
+  std::string s = std::string("ply\nformat ") + (big ? "binary_big_endian" : "binary_little_endian") +
+    " 1.0\ncomment square\nelement vertex 4\nproperty double x\nproperty float y\nproperty float z\n"
+    "property uchar red\nelement face 1\nproperty list uchar int vertex_indices\nend_header\n";
+  const double p[4][3] = { { 0, 0, 0 }, { 1, 0, 0 }, { 1, 1, 0 }, { 0, 1, 0.5 } };
+  for (auto& q : p)
+  {
+    put<double>(s, q[0], big);
+    put<float>(s, float(q[1]), big);
+    put<float>(s, float(q[2]), big);
+    put<std::uint8_t>(s, 7);
+  }
+  put<std::uint8_t>(s, 4);
+  for (int i : { 0, 1, 2, 3 })
+    put<std::int32_t>(s, i, big);
+  return s;
+}
+} // namespace
+
+TEST(MeshFile, EveryFormatReadsTheSquare)
+{
+  expectSquare(readText("# square\nv 0 0 0\nv 1 0 0\nvt 0 0\nv 1 1 0\nv 0 1 0.5\nvn 0 0 1\ng a\nf 1/1 2//1 3/1/1 -1\n",
+    MeshFormat::Obj));
+  expectSquare(readText("OFF\n# c\n4 1 0\n0 0 0\n1 0 0\n1 1 0\n0 1 0.5\n4 0 1 2 3 255 0 0\n", MeshFormat::Off));
+  expectSquare(readText("ply\nformat ascii 1.0\nelement vertex 4\nproperty float x\nproperty float y\nproperty float z\n"
+                        "element face 1\nproperty list uchar int vertex_indices\nend_header\n"
+                        "0 0 0\n1 0 0\n1 1 0\n0 1 0.5\n4 0 1 2 3\n",
+    MeshFormat::Ply));
+  expectSquare(readText(binaryPly(false), MeshFormat::Ply));
+  expectSquare(readText(binaryPly(true), MeshFormat::Ply));
+}
+
+TEST(MeshFile, StlAsciiAndBinaryShareCorners)
+{
+  const std::string ascii = "solid sq\nfacet normal 0 0 1\n outer loop\n  vertex 0 0 0\n  vertex 1 0 0\n  vertex 1 1 0\n"
+                            " endloop\nendfacet\nfacet normal 0 0 1\nouter loop\nvertex 0 0 0\nvertex 1 1 0\n"
+                            "vertex 0 1 0.5\nendloop\nendfacet\nendsolid sq\n";
+  expectSquare(readText(ascii, MeshFormat::Stl));
+  std::string bin(80, ' ');
+  put<std::uint32_t>(bin, 2);
+  const float tris[2][9] = { { 0, 0, 0, 1, 0, 0, 1, 1, 0 }, { 0, 0, 0, 1, 1, 0, 0, 1, 0.5f } };
+  for (auto& t : tris)
+  {
+    for (int i = 0; i < 3; ++i) put<float>(bin, 0);
+    for (float f : t) put<float>(bin, f);
+    put<std::uint16_t>(bin, 0);
+  }
+  expectSquare(readText(bin, MeshFormat::Stl));
+  EXPECT_EQ(meshFormatFromName("/a/b.STL"), MeshFormat::Stl);
+  EXPECT_THROW(meshFormatFromName("x.3ds"), Error);
+}
+
+TEST(MeshFile, MalformedInputsAreClearErrors)
+{
+  const std::string plyHead = "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\n"
+                              "property float z\nelement face 1\nproperty list uchar int vertex_indices\nend_header\n";
+  const std::string tri = "0 0 0\n1 0 0\n0 1 0\n";
+  struct Case { const char* label; std::string text; MeshFormat f; const char* needle; };
+  const std::vector<Case> cases = {
+    { "OBJ index out of range", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 4\n", MeshFormat::Obj, "out of range" },
+    { "OBJ relative index before the start", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf -1 -2 -4\n", MeshFormat::Obj, "out of range" },
+    { "OBJ index 0", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 0 1 2\n", MeshFormat::Obj, "index 0" },
+    { "OBJ NaN", "v nan 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n", MeshFormat::Obj, "NaN" },
+    { "OBJ inf", "v 0 1e999 0\n", MeshFormat::Obj, "NaN or infinite" },
+    { "OBJ two-vertex face", "v 0 0 0\nv 1 0 0\nf 1 2\n", MeshFormat::Obj, "face with 2 vertices" },
+    { "OBJ empty face", "v 0 0 0\nf\n", MeshFormat::Obj, "face with 0 vertices" },
+    { "OBJ garbage index", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 x\n", MeshFormat::Obj, "not an integer" },
+    { "OBJ short vertex", "v 0 0\n", MeshFormat::Obj, "fewer than 3" },
+    { "OBJ no faces", "v 0 0 0\n", MeshFormat::Obj, "no triangles" },
+    { "OFF negative index", "OFF\n3 1 0\n" + tri + "3 0 -1 2\n", MeshFormat::Off, "out of range" },
+    { "OFF huge counts", "OFF\n2000000000 1 0\n0 0 0\n", MeshFormat::Off, "cannot fit" },
+    { "OFF truncated", "OFF\n3 1 0\n0 0 0\n1 0 0\n# a comment long enough to pass the size bound\n", MeshFormat::Off, "file ends" },
+    { "OFF counts past the size", "OFF\n3 1 0\n0 0 0\n1 0 0\n", MeshFormat::Off, "cannot fit" },
+    { "OFF face shorter than announced", "OFF\n3 1 0\n" + tri + "4 0 1 2\n", MeshFormat::Off, "announces 4" },
+    { "OFF no header", "3 1 0\n" + tri, MeshFormat::Off, "header" },
+    { "PLY index out of range", plyHead + tri + "3 0 1 3\n", MeshFormat::Ply, "out of range" },
+    { "PLY negative index", plyHead + tri + "3 0 -1 2\n", MeshFormat::Ply, "out of range" },
+    { "PLY empty face", plyHead + tri + "0\n", MeshFormat::Ply, "face with 0" },
+    { "PLY NaN", plyHead + "nan 0 0\n1 0 0\n0 1 0\n3 0 1 2\n", MeshFormat::Ply, "NaN" },
+    { "PLY too few values", plyHead + "0 0\n1 0 0\n0 1 0\n3 0 1 2\n", MeshFormat::Ply, "too few" },
+    { "PLY huge count", "ply\nformat binary_little_endian 1.0\nelement vertex 4000000000\nproperty float x\nproperty float y\nproperty float z\nend_header\n" + std::string(12, '\0'), MeshFormat::Ply, "cannot fit" },
+    { "PLY truncated binary", binaryPly(false).substr(0, binaryPly(false).size() - 3), MeshFormat::Ply, "ends inside" },
+    { "PLY no format", "ply\nelement vertex 0\nend_header\n", MeshFormat::Ply, "no format" },
+    { "PLY no end_header", "ply\nformat ascii 1.0\nelement vertex 0\n", MeshFormat::Ply, "no end_header" },
+    { "PLY missing z", "ply\nformat ascii 1.0\nelement vertex 1\nproperty float x\nproperty float y\nend_header\n0 0\n", MeshFormat::Ply, "without x, y and z" },
+    { "PLY not ply", "plx\n", MeshFormat::Ply, "magic" },
+    { "STL neither", "hello", MeshFormat::Stl, "neither" },
+    { "STL 4-vertex facet", "solid a\nfacet normal 0 0 1\nouter loop\nvertex 0 0 0\nvertex 1 0 0\nvertex 1 1 0\nvertex 0 1 0\nendloop\nendfacet\nendsolid\n", MeshFormat::Stl, "facet with 4" },
+  };
+  for (const Case& c : cases)
+  {
+    SCOPED_TRACE(c.label);
+    expectError(c.text, c.f, c.needle);
+  }
+}

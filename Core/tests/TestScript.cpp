@@ -1,0 +1,281 @@
+// The scripting language: expressions, control flow, exact error positions,
+// step limit and cancellation, and the two shipped example scripts checked
+// against analytic geometry.
+#include "EditTestUtil.h"
+#include "lvdif/Brush.h"
+#include "lvdif/Script.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <fstream>
+#include <set>
+#include <sstream>
+
+using namespace lvdif;
+
+namespace
+{
+double valueOf(const std::string& src, const char* var = "x")
+{
+  ScriptRunner r;
+  r.run(src);
+  return r.variable(var);
+}
+
+struct Where
+{
+  int line = 0, column = 0;
+  std::string detail;
+  ErrorCode code = ErrorCode::InvalidArgument;
+};
+
+Where errorOf(const std::string& src, ScriptOptions o = ScriptOptions())
+{
+  ScriptRunner r(o);
+  try
+  {
+    r.run(src);
+  }
+  catch (const ScriptError& e)
+  {
+    return Where{ e.line(), e.column(), e.detail(), e.code() };
+  }
+  return Where{ 0, 0, "no error", ErrorCode::InvalidArgument };
+}
+
+std::string readScript(const char* name)
+{
+  // Data/ is two levels above this file (Core/tests/); CMake passes absolute paths in __FILE__
+  std::string here = __FILE__;
+  here = here.substr(0, here.find_last_of('/'));
+  std::ifstream in(here + "/../../Data/scripts/" + name);
+  std::stringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+} // namespace
+
+TEST(Script, ArithmeticPrecedenceAndFunctions)
+{
+  EXPECT_EQ(valueOf("x = 1 + 2 * 3 - -4 / 2"), 9);
+  EXPECT_EQ(valueOf("x = (1 + 2) * 3"), 9);
+  EXPECT_EQ(valueOf("x = 7 % 3"), 1);
+  EXPECT_EQ(valueOf("x = -7 % 3"), 2);
+  EXPECT_EQ(valueOf("x = 2 < 3 and not (1 == 2) or 0"), 1);
+  EXPECT_EQ(valueOf("x = 1 >= 2"), 0);
+  EXPECT_NEAR(valueOf("x = sin(pi / 2) + cos(0) + sqrt(16) + abs(-2) + floor(2.7) + min(3, 1, 2) + max(1, 5)"),
+    1 + 1 + 4 + 2 + 2 + 1 + 5, 1e-12);
+  EXPECT_EQ(valueOf("let x = 2.5e1; x = x + .5"), 25.5);
+}
+
+TEST(Script, LoopsAndConditionals)
+{
+  EXPECT_EQ(valueOf("x = 0\nfor i in 0..5 { x = x + i }"), 10); // half-open range
+  EXPECT_EQ(valueOf("x = 0\nfor i in 3..3 { x = 99 }"), 0);
+  EXPECT_EQ(valueOf("x = 1\nwhile x < 100 { x = x * 2 }"), 128);
+  EXPECT_EQ(valueOf("y = 5\nif y < 3 { x = 1 } else if y < 6 { x = 2 } else { x = 3 }"), 2);
+  EXPECT_EQ(valueOf("y = 9\nif y < 3 {\n x = 1\n}\nelse {\n x = 3\n}"), 3);
+  EXPECT_EQ(valueOf("x = 0\nif 1 { x = 4 }\nx = x + 1"), 5);
+  EXPECT_EQ(valueOf("x = 0\nfor i in 0..3 { for j in 0..4 { x = x + 1 } }"), 12);
+}
+
+TEST(Script, SyntaxErrorsGiveLineAndColumn)
+{
+  Where w = errorOf("x = 1 +\n");
+  EXPECT_EQ(w.code, ErrorCode::ParseError);
+  EXPECT_EQ(w.line, 1);
+  EXPECT_EQ(w.column, 8);
+  EXPECT_EQ(w.detail, "expected a value, found the end of the line");
+
+  w = errorOf("canvas 64\n  dab 1 2\n");
+  EXPECT_EQ(w.line, 2);
+  EXPECT_EQ(w.column, 3);
+  EXPECT_EQ(w.detail, "'dab' takes 3 arguments, got 2");
+
+  w = errorOf("for i in 0..3 {\n  dab 1 2 3\n");
+  EXPECT_EQ(w.line, 1);
+  EXPECT_EQ(w.column, 15);
+  EXPECT_EQ(w.detail, "this '{' is never closed");
+
+  w = errorOf("brush cylinder");
+  EXPECT_EQ(w.line, 1);
+  EXPECT_EQ(w.column, 7);
+  EXPECT_EQ(w.detail, "'brush' expects one of: cube, sphere; found 'cylinder'");
+
+  w = errorOf("\n\nx = 3 $ 4");
+  EXPECT_EQ(w.line, 3);
+  EXPECT_EQ(w.column, 7);
+  EXPECT_EQ(w.detail, "unexpected character '$'");
+
+  w = errorOf("x = 1\n   explode 1 2");
+  EXPECT_EQ(w.line, 2);
+  EXPECT_EQ(w.column, 4);
+  EXPECT_EQ(w.detail, "unknown command 'explode'");
+
+  w = errorOf("if 1 < 2 < 3 { }");
+  EXPECT_EQ(w.column, 10);
+  EXPECT_EQ(w.detail, "comparisons cannot be chained; use 'and'");
+
+  w = errorOf("x = (1 + 2");
+  EXPECT_EQ(w.line, 1);
+  EXPECT_EQ(w.column, 11);
+  EXPECT_EQ(w.detail, "expected ')', found the end of the script");
+
+  w = errorOf("for in 0..3 { }");
+  EXPECT_EQ(w.column, 5);
+  EXPECT_EQ(w.detail, "'in' is a reserved word and cannot be a variable");
+
+  w = errorOf("x = 12abc");
+  EXPECT_EQ(w.column, 7);
+  EXPECT_EQ(w.detail, "unexpected 'a' after a number");
+
+  w = errorOf("}");
+  EXPECT_EQ(w.detail, "unexpected '}' without a matching '{'");
+}
+
+TEST(Script, RunTimeErrorsGiveLineAndColumn)
+{
+  Where w = errorOf("x = 1\ny = x + zz");
+  EXPECT_EQ(w.code, ErrorCode::InvalidArgument);
+  EXPECT_EQ(w.line, 2);
+  EXPECT_EQ(w.column, 9);
+  EXPECT_EQ(w.detail, "undefined variable 'zz'");
+  w = errorOf("y = 0\nx = 3 / y");
+  EXPECT_EQ(w.line, 2);
+  EXPECT_EQ(w.column, 7);
+  EXPECT_EQ(w.detail, "division by zero");
+  w = errorOf("x = sqrt(-1)");
+  EXPECT_EQ(w.column, 5);
+  w = errorOf("dab 1 2 3");
+  EXPECT_EQ(w.detail, "no canvas: start with 'canvas N' (or attach a volume)");
+  w = errorOf("canvas 100000 100000 100000");
+  EXPECT_NE(w.detail.find("exceeds the limit"), std::string::npos);
+  w = errorOf("canvas 16\nradius -2");
+  EXPECT_EQ(w.line, 2);
+  EXPECT_EQ(w.detail, "radius must be > 0");
+  w = errorOf("canvas 16\nbegin\npoint 1 2 3");
+  EXPECT_EQ(w.line, 2);
+  EXPECT_EQ(w.column, 1);
+}
+
+TEST(Script, StepLimitStopsEndlessLoops)
+{
+  ScriptOptions o;
+  o.maxSteps = 10000;
+  const Where w = errorOf("x = 0\nwhile 1 { x = x + 1 }", o);
+  EXPECT_EQ(w.line, 2);
+  EXPECT_NE(w.detail.find("step limit of 10000 exceeded"), std::string::npos);
+}
+
+TEST(Script, CancelStopsTheScript)
+{
+  struct CancelAfter : Interrupter
+  {
+    int calls = 0;
+    bool wasInterrupted() const override { return true; }
+  } cancel;
+  ScriptOptions o;
+  o.interrupter = &cancel;
+  ScriptRunner r(o);
+  try
+  {
+    r.run("x = 0\nwhile 1 { x = x + 1 }");
+    FAIL() << "not cancelled";
+  }
+  catch (const Error& e)
+  {
+    EXPECT_EQ(e.code(), ErrorCode::Cancelled);
+  }
+  EXPECT_LT(r.steps(), 5000u);
+}
+
+TEST(Script, CommandsDriveTheSameEditsAsTheEditor)
+{
+  ScriptRunner r;
+  r.run("canvas 40\ncolor 255 0 0\nradius 4\nbrush cube\ndab 20 20 20\nop subtract\nsphere 24, 20, 20, 3\n"
+        "op add\nbrush sphere\nblend 2\nline 5 5 5 15 5 5\n");
+  DictionaryVolume v(edittest::options(40, 32));
+  Editor e(v);
+  e.brush.color = Rgba{ 255, 0, 0, 255 };
+  e.dab(Dab{ BrushShape::Cube, { 20, 20, 20 }, 4, {} });
+  e.brush.op = BrushOp::Subtract;
+  e.dab(Dab{ BrushShape::Sphere, { 24, 20, 20 }, 3, {} });
+  e.brush.op = BrushOp::Add;
+  e.brush.blend = 2;
+  e.stroke.radius = 4;
+  BrushSample a, b;
+  a.position = { 5, 5, 5 };
+  b.position = { 15, 5, 5 };
+  e.strokeThrough({ a, b });
+  EXPECT_EQ(edittest::countDifferences(*r.volume(), v), 0);
+  EXPECT_EQ(r.edits(), 3u);
+}
+
+TEST(Script, DiceMatchesTheAnalyticRoundedCubeMinusPips)
+{
+  ScriptRunner r;
+  const std::string src = readScript("dice.lvs");
+  ASSERT_FALSE(src.empty());
+  r.run(src);
+  DictionaryVolume& v = *r.volume();
+  const double n = 128, c = 64, h = 0.4 * n, round = 0.06 * n, pr = 0.1 * n;
+  std::vector<std::array<double, 3>> pips{ { c, c, c - h }, { c, c + h, c } };
+  for (int i = 0; i < 4; ++i)
+    pips.push_back({ (0.3 + 0.4 * (i % 2)) * n, c + h, (0.3 + 0.4 * (i / 2)) * n });
+  for (int k = 0; k < 3; ++k)
+    pips.push_back({ c + h, (0.3 + 0.2 * k) * n, (0.3 + 0.2 * k) * n });
+  std::int64_t material = 0, expected = 0, signMismatch = 0;
+  edittest::forEachVoxel(v, [&](std::int64_t x, std::int64_t y, std::int64_t z) {
+    // rounded box by the closest-point construction, in double
+    const double q[3] = { std::fabs(x - c) - (h - round), std::fabs(y - c) - (h - round), std::fabs(z - c) - (h - round) };
+    double out = 0, in = -1e30;
+    for (double a : q)
+    {
+      out += a > 0 ? a * a : 0;
+      in = std::max(in, a);
+    }
+    double d = std::sqrt(out) + std::min(in, 0.0) - round;
+    for (const auto& p : pips)
+      d = std::max(d, pr - std::sqrt((x - p[0]) * (x - p[0]) + (y - p[1]) * (y - p[1]) + (z - p[2]) * (z - p[2])));
+    const bool solid = v.sdf(x, y, z) < 0;
+    material += solid;
+    expected += d < 0;
+    if (std::fabs(d) > 0.06 && solid != (d < 0))
+      ++signMismatch;
+  });
+  EXPECT_EQ(signMismatch, 0);
+  EXPECT_NEAR(double(material), double(expected), 0.002 * expected);
+  // colours: the pip floor shows the red interior, the face the white body
+  const Rgba red{ 220, 30, 40, 255 }, white{ 235, 235, 240, 255 };
+  EXPECT_EQ(v.colors()[v.get(64, 64, 26).color], red);   // floor of the one-pip dimple (z = 25.6)
+  EXPECT_EQ(v.colors()[v.get(84, 84, 13).color], white); // the same face away from the pip
+  EXPECT_EQ(r.edits(), 11u);
+}
+
+TEST(Script, SpiralDrawsNineTaperedLinesInNineColours)
+{
+  ScriptRunner r;
+  const std::string src = readScript("spiral.lvs");
+  ASSERT_FALSE(src.empty());
+  r.run(src);
+  DictionaryVolume& v = *r.volume();
+  EXPECT_EQ(r.edits(), 9u);
+  EXPECT_EQ(r.editor()->undoStack().undoCount(), 9u);
+  std::set<ColorKey> used;
+  edittest::forEachVoxel(v, [&](std::int64_t x, std::int64_t y, std::int64_t z) {
+    if (v.sdf(x, y, z) < 0)
+      used.insert(v.get(x, y, z).color);
+  });
+  EXPECT_EQ(used.size(), 9u);
+  EXPECT_EQ(v.colors().size(), 10u); // the default colour and nine line colours
+  // each helix starts (i = 0, t = 0) at radius 0.03 n = 3.84: its start point is solid
+  for (int j = 0; j < 9; ++j)
+  {
+    const double phi = j * 40 * M_PI / 180;
+    const double x = 128 * (0.5 + 0.25 * std::sin(phi)), y = 128 * (0.5 + 0.25 * std::cos(phi)), z = 128 * 0.1;
+    EXPECT_LT(v.sdf(std::lround(x), std::lround(y), std::lround(z)), 0.0f) << j;
+  }
+  // the helix axis itself is empty
+  EXPECT_GT(v.sdf(64, 64, 64), 0.0f);
+}

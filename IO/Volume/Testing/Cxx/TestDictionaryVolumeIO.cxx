@@ -1,0 +1,206 @@
+// vtkDictionaryVolumeWriter -> file -> vtkDictionaryVolumeReader: values
+// against the analytic SDF the image was made from (within the dictionary's
+// quantization), colours exactly, sub-extents equal to the whole read, and
+// the error paths.
+#include "vtkDictionaryVolumeReader.h"
+#include "vtkDictionaryVolumeWriter.h"
+
+#include "vtkCommand.h"
+#include "vtkExecutive.h"
+#include "vtkFloatArray.h"
+#include "vtkImageData.h"
+#include "vtkNew.h"
+#include "vtkPointData.h"
+#include "vtkUnsignedCharArray.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdio>
+#include <fstream>
+#include <unistd.h>
+
+namespace
+{
+const int NX = 45, NY = 38, NZ = 29;
+
+double analytic(int i, int j, int k)
+{
+  const double dx = i - 21.3, dy = j - 17.8, dz = k - 14.1;
+  return std::sqrt(dx * dx + dy * dy + dz * dz) - 11.0;
+}
+
+vtkSmartPointer<vtkImageData> makeImage()
+{
+  auto img = vtkSmartPointer<vtkImageData>::New();
+  img->SetDimensions(NX, NY, NZ);
+  img->SetOrigin(-2.0, 0.5, 3.0);
+  img->SetSpacing(0.25, 0.5, 0.75);
+  vtkNew<vtkFloatArray> sdf;
+  sdf->SetName("sdf");
+  sdf->SetNumberOfTuples(NX * NY * NZ);
+  vtkNew<vtkUnsignedCharArray> rgba;
+  rgba->SetName("rgba");
+  rgba->SetNumberOfComponents(4);
+  rgba->SetNumberOfTuples(NX * NY * NZ);
+  for (int k = 0, id = 0; k < NZ; ++k)
+    for (int j = 0; j < NY; ++j)
+      for (int i = 0; i < NX; ++i, ++id)
+      {
+        sdf->SetValue(id, static_cast<float>(analytic(i, j, k)));
+        const unsigned char c[4] = { static_cast<unsigned char>(i < 20 ? 255 : 10), static_cast<unsigned char>(j % 3 * 60),
+          static_cast<unsigned char>(k < 10 ? 0 : 200), 255 };
+        rgba->SetTypedTuple(id, c);
+      }
+  img->GetPointData()->AddArray(sdf);
+  img->GetPointData()->AddArray(rgba);
+  return img;
+}
+
+std::string tempFile(const char* name)
+{
+  return ::testing::TempDir() + "lvdif_io_" + std::to_string(::getpid()) + "_" + name;
+}
+
+struct ErrorCatcher : vtkCommand
+{
+  static ErrorCatcher* New() { return new ErrorCatcher; }
+  void Execute(vtkObject*, unsigned long, void* data) override
+  {
+    ++this->Count;
+    this->Last += static_cast<const char*>(data); // every message, the executive's too
+  }
+  int Count = 0;
+  std::string Last;
+};
+} // namespace
+
+TEST(DictionaryVolumeIO, WriteThenReadMatchesTheAnalyticField)
+{
+  auto img = makeImage();
+  const std::string path = tempFile("sphere.lvdv");
+  vtkNew<vtkDictionaryVolumeWriter> writer;
+  writer->SetInputData(img);
+  writer->SetFileName(path.c_str());
+  writer->SetBandWidth(6.0);
+  writer->SetChunkEdge(16);
+  writer->SetCompressionLevel(5);
+  writer->SetVolumeName("test sphere");
+  ASSERT_EQ(writer->Write(), 1);
+  ASSERT_TRUE(vtkDictionaryVolumeReader::CanReadFile(path.c_str()));
+
+  vtkNew<vtkDictionaryVolumeReader> reader;
+  reader->SetFileName(path.c_str());
+  reader->Update();
+  EXPECT_EQ(reader->GetMetadata("name"), "test sphere");
+  vtkImageData* out = reader->GetOutput();
+  int dims[3];
+  out->GetDimensions(dims);
+  ASSERT_EQ(dims[0], NX);
+  ASSERT_EQ(dims[1], NY);
+  ASSERT_EQ(dims[2], NZ);
+  double origin[3], spacing[3];
+  out->GetOrigin(origin);
+  out->GetSpacing(spacing);
+  EXPECT_DOUBLE_EQ(origin[0], -2.0);
+  EXPECT_DOUBLE_EQ(spacing[2], 0.75);
+  auto* sdf = vtkFloatArray::SafeDownCast(out->GetPointData()->GetArray("sdf"));
+  auto* rgba = vtkUnsignedCharArray::SafeDownCast(out->GetPointData()->GetArray("rgba"));
+  ASSERT_TRUE(sdf && rgba);
+  ASSERT_EQ(rgba->GetNumberOfComponents(), 4);
+  auto* inRgba = vtkUnsignedCharArray::SafeDownCast(img->GetPointData()->GetArray("rgba"));
+  int bad = 0;
+  for (int k = 0, id = 0; k < NZ; ++k)
+    for (int j = 0; j < NY; ++j)
+      for (int i = 0; i < NX; ++i, ++id)
+      {
+        const double d = analytic(i, j, k);
+        const double expected = std::max(-6.0, std::min(6.0, d));
+        // Group A (|d| <= 4.001): step 0.001; beyond: step 0.1 (default dictionary)
+        const double tol = std::fabs(expected) <= 4.0 ? 0.0005 + 1e-6 : 0.05 + 1e-6;
+        bad += std::fabs(sdf->GetValue(id) - expected) > tol;
+        for (int c = 0; c < 4; ++c)
+          bad += rgba->GetValue(4 * id + c) != inRgba->GetValue(4 * id + c);
+      }
+  EXPECT_EQ(bad, 0);
+  std::remove(path.c_str());
+}
+
+TEST(DictionaryVolumeIO, SubExtentsEqualTheWholeRead)
+{
+  auto img = makeImage();
+  const std::string path = tempFile("sub.lvdv");
+  vtkNew<vtkDictionaryVolumeWriter> writer;
+  writer->SetInputData(img);
+  writer->SetFileName(path.c_str());
+  writer->SetChunkEdge(8);
+  ASSERT_EQ(writer->Write(), 1);
+  vtkNew<vtkDictionaryVolumeReader> whole;
+  whole->SetFileName(path.c_str());
+  whole->Update();
+  vtkNew<vtkDictionaryVolumeReader> part;
+  part->SetFileName(path.c_str());
+  int ext[6] = { 5, 30, 9, 9, 3, 20 };
+  part->UpdateExtent(ext);
+  vtkImageData* p = part->GetOutput();
+  int got[6];
+  p->GetExtent(got);
+  for (int a = 0; a < 6; ++a)
+    EXPECT_EQ(got[a], ext[a]);
+  auto* ws = whole->GetOutput()->GetPointData()->GetArray("sdf");
+  auto* ps = p->GetPointData()->GetArray("sdf");
+  auto* wc = whole->GetOutput()->GetPointData()->GetArray("rgba");
+  auto* pc = p->GetPointData()->GetArray("rgba");
+  int bad = 0;
+  for (int k = ext[4]; k <= ext[5]; ++k)
+    for (int j = ext[2]; j <= ext[3]; ++j)
+      for (int i = ext[0]; i <= ext[1]; ++i)
+      {
+        int ijk[3] = { i, j, k };
+        const vtkIdType a = whole->GetOutput()->ComputePointId(ijk), b = p->ComputePointId(ijk);
+        bad += ws->GetTuple1(a) != ps->GetTuple1(b);
+        bad += wc->GetComponent(a, 1) != pc->GetComponent(b, 1);
+      }
+  EXPECT_EQ(bad, 0);
+  std::remove(path.c_str());
+}
+
+TEST(DictionaryVolumeIO, ErrorsAreReportedNotCrashed)
+{
+  vtkNew<ErrorCatcher> catcher;
+  vtkNew<vtkDictionaryVolumeReader> reader;
+  reader->AddObserver(vtkCommand::ErrorEvent, catcher);
+  reader->GetExecutive()->AddObserver(vtkCommand::ErrorEvent, catcher);
+  reader->SetFileName(tempFile("missing.lvdv").c_str());
+  reader->Update();
+  EXPECT_GE(catcher->Count, 1);
+
+  // a truncated file names the problem
+  auto img = makeImage();
+  const std::string path = tempFile("trunc.lvdv");
+  vtkNew<vtkDictionaryVolumeWriter> writer;
+  writer->SetInputData(img);
+  writer->SetFileName(path.c_str());
+  ASSERT_EQ(writer->Write(), 1);
+  ASSERT_EQ(::truncate(path.c_str(), 300), 0);
+  catcher->Count = 0;
+  catcher->Last.clear();
+  reader->SetFileName(path.c_str());
+  reader->Update();
+  EXPECT_GE(catcher->Count, 1);
+  EXPECT_NE(catcher->Last.find("footer"), std::string::npos) << catcher->Last;
+  std::remove(path.c_str());
+
+  // the writer without an sdf array
+  vtkNew<vtkImageData> empty;
+  empty->SetDimensions(4, 4, 4);
+  vtkNew<vtkDictionaryVolumeWriter> w2;
+  w2->AddObserver(vtkCommand::ErrorEvent, catcher);
+  w2->SetInputData(empty);
+  w2->SetFileName(tempFile("nosdf.lvdv").c_str());
+  catcher->Count = 0;
+  catcher->Last.clear();
+  w2->Write();
+  EXPECT_GE(catcher->Count, 1);
+  EXPECT_NE(catcher->Last.find("sdf"), std::string::npos);
+}

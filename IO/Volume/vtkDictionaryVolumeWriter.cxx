@@ -1,0 +1,94 @@
+#include "vtkDictionaryVolumeWriter.h"
+
+#include "vtkLVDIFInterrupter.h"
+#include "vtkLVDIFVolumeBridge.h"
+
+#include "lvdif/VolumeFile.h"
+
+#include "vtkDataArray.h"
+#include "vtkErrorCode.h"
+#include "vtkImageData.h"
+#include "vtkInformation.h"
+#include "vtkObjectFactory.h"
+#include "vtkPointData.h"
+
+#include <limits>
+
+vtkStandardNewMacro(vtkDictionaryVolumeWriter);
+
+vtkDictionaryVolumeWriter::vtkDictionaryVolumeWriter()
+  : CompressionLevel(lvdif::VolumeFileWriteOptions().compressionLevel)
+{
+}
+
+vtkDictionaryVolumeWriter::~vtkDictionaryVolumeWriter() = default;
+
+vtkImageData* vtkDictionaryVolumeWriter::GetInput()
+{
+  return vtkImageData::SafeDownCast(this->Superclass::GetInput());
+}
+
+int vtkDictionaryVolumeWriter::FillInputPortInformation(int, vtkInformation* info)
+{
+  info->Set(vtkAlgorithm::INPUT_REQUIRED_DATA_TYPE(), "vtkImageData");
+  return 1;
+}
+
+void vtkDictionaryVolumeWriter::WriteData()
+{
+  vtkImageData* image = this->GetInput();
+  if (this->FileName.empty())
+  {
+    vtkErrorMacro("no file name: call SetFileName() first");
+    this->SetErrorCode(vtkErrorCode::NoFileNameError);
+    return;
+  }
+  vtkDataArray* sdf = image ? image->GetPointData()->GetArray("sdf") : nullptr;
+  if (!sdf)
+  {
+    vtkErrorMacro("the input has no point array named 'sdf'");
+    this->SetErrorCode(vtkErrorCode::UnknownError);
+    return;
+  }
+  vtkDataArray* rgba = image->GetPointData()->GetArray("rgba");
+  lvdif::VolumeOptions options;
+  options.chunkEdge = this->ChunkEdge;
+  options.bandWidth = this->BandWidth >= std::numeric_limits<float>::max()
+    ? std::numeric_limits<float>::infinity()
+    : static_cast<float>(this->BandWidth);
+  lvdif::VolumeFileWriteOptions writeOptions;
+  writeOptions.compressionLevel = this->CompressionLevel;
+  if (!this->VolumeName.empty())
+  {
+    writeOptions.metadata["name"] = this->VolumeName;
+  }
+  writeOptions.metadata["creation parameters"] =
+    "vtkDictionaryVolumeWriter band " + std::to_string(this->BandWidth) + " chunk " + std::to_string(this->ChunkEdge);
+  vtkLVDIFInterrupter interrupter(this, 0.0, 1.0);
+  try
+  {
+    interrupter.setStage(0.0, 0.3);
+    auto volume = vtkLVDIFVolumeBridge::VolumeFromImage(image, sdf, rgba, options);
+    interrupter.setStage(0.3, 0.7);
+    lvdif::saveVolume(*volume, this->FileName, writeOptions, interrupter);
+  }
+  catch (const lvdif::Error& e)
+  {
+    if (e.code() != lvdif::ErrorCode::Cancelled)
+    {
+      vtkErrorMacro(<< "cannot write '" << this->FileName << "': " << e.what());
+    }
+    this->SetErrorCode(e.code() == lvdif::ErrorCode::IoFailure ? vtkErrorCode::CannotOpenFileError
+                                                               : vtkErrorCode::UnknownError);
+  }
+}
+
+void vtkDictionaryVolumeWriter::PrintSelf(ostream& os, vtkIndent indent)
+{
+  this->Superclass::PrintSelf(os, indent);
+  os << indent << "FileName: " << this->FileName << "\n";
+  os << indent << "VolumeName: " << this->VolumeName << "\n";
+  os << indent << "BandWidth: " << this->BandWidth << "\n";
+  os << indent << "ChunkEdge: " << this->ChunkEdge << "\n";
+  os << indent << "CompressionLevel: " << this->CompressionLevel << "\n";
+}

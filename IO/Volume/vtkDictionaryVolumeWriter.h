@@ -1,0 +1,77 @@
+/**
+ * @class   vtkDictionaryVolumeWriter
+ * @brief   writes vtkImageData as an LVDIF dictionary volume file (.lvdv)
+ *
+ * The input must have a point array `sdf` (any real type; negative inside,
+ * in voxel units) and may have an unsigned char array `rgba` (1 to 4
+ * components). Distances are encoded with the SDF dictionary and saturated to
+ * +-BandWidth; chunks beyond the band are stored as one value. The file is
+ * written crash-safely (temporary file, fsync, rename): a failed write leaves
+ * any previous file intact. Reports progress and honours AbortExecute.
+ */
+#ifndef vtkDictionaryVolumeWriter_h
+#define vtkDictionaryVolumeWriter_h
+
+#include "lvdifIOVolumeModule.h"
+#include "vtkWriter.h"
+
+#include <string>
+
+class vtkImageData;
+
+class LVDIFIOVOLUME_EXPORT vtkDictionaryVolumeWriter : public vtkWriter
+{
+public:
+  static vtkDictionaryVolumeWriter* New();
+  vtkTypeMacro(vtkDictionaryVolumeWriter, vtkWriter);
+  void PrintSelf(ostream& os, vtkIndent indent) override;
+
+  vtkSetStdStringFromCharMacro(FileName);
+  vtkGetCharFromStdStringMacro(FileName);
+
+  ///@{
+  /// Distances saturate to +-BandWidth voxels (default 8; VTK_FLOAT_MAX or
+  /// larger keeps every representable distance).
+  vtkSetMacro(BandWidth, double);
+  vtkGetMacro(BandWidth, double);
+  ///@}
+
+  ///@{
+  /// Chunk edge in voxels, a power of two in [4, 256] (default 32).
+  vtkSetMacro(ChunkEdge, int);
+  vtkGetMacro(ChunkEdge, int);
+  ///@}
+
+  ///@{
+  /// zstd level 1..19 (default: the format's default, see docs/FORMAT.md).
+  vtkSetClampMacro(CompressionLevel, int, 1, 19);
+  vtkGetMacro(CompressionLevel, int);
+  ///@}
+
+  ///@{
+  /// Stored as the `name` metadata entry when not empty.
+  vtkSetStdStringFromCharMacro(VolumeName);
+  vtkGetCharFromStdStringMacro(VolumeName);
+  ///@}
+
+  vtkImageData* GetInput();
+
+protected:
+  vtkDictionaryVolumeWriter();
+  ~vtkDictionaryVolumeWriter() override;
+
+  void WriteData() override;
+  int FillInputPortInformation(int port, vtkInformation* info) override;
+
+  std::string FileName;
+  std::string VolumeName;
+  double BandWidth = 8.0;
+  int ChunkEdge = 32;
+  int CompressionLevel;
+
+private:
+  vtkDictionaryVolumeWriter(const vtkDictionaryVolumeWriter&) = delete;
+  void operator=(const vtkDictionaryVolumeWriter&) = delete;
+};
+
+#endif
