@@ -16,5 +16,7 @@ ok &= abs(volume - 4 / 3 * math.pi * R ** 3) / (4 / 3 * math.pi * R ** 3) < 0.01
 files = [f for f in os.listdir(outdir) if os.path.getsize(os.path.join(outdir, f)) > 0]
 print("files:", sorted(files))
 ok &= len(files) >= 2
+if hasattr(pipeline.lvdif, "vtkDictionaryVolumeWriter"):
+    ok &= "sphere.lvdv" in files
 print("PASS" if ok else "FAIL")
 sys.exit(0 if ok else 1)
