@@ -20,7 +20,7 @@ int CommandDemo(int argc, char** argv)
   Arguments args(argc, argv, 2);
   args.allowOnly({ "out", "size" });
   const std::string out = args.get("out", "out");
-  const long size = args.getInt("size", 160);
+  const long size = args.getInt("size", 128);
   ::mkdir(out.c_str(), 0755);
   ProgressBar progress;
   const auto t0 = std::chrono::steady_clock::now();

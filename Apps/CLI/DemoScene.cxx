@@ -1,27 +1,34 @@
 #include "DemoScene.h"
 
-#include "lvdif/AnalyticFill.h"
+#include "DemoScript.h"
+#include "VolumeFiles.h"
 
-#include <algorithm>
-#include <cmath>
+#include "lvdif/Error.h"
+#include "lvdif/Script.h"
 
-DemoResult BuildDemoVolume(long size, const std::string&, lvdif::Interrupter& progress)
+#include <regex>
+
+DemoResult BuildDemoVolume(long size, const std::string& outDir, lvdif::Interrupter& progress)
 {
-  lvdif::VolumeOptions o;
-  o.dims = { size, size, size };
+  // The dice script (paper Fig. 9b) sizes everything from `n = 128`; the
+  // demo's --size replaces that first assignment.
+  const std::string script =
+    std::regex_replace(DemoScript, std::regex("^n = [0-9]+", std::regex::multiline), "n = " + std::to_string(size),
+      std::regex_constants::format_first_only);
+  lvdif::ScriptOptions options;
+  options.interrupter = &progress;
+  lvdif::ScriptRunner runner(options);
+  runner.run(script);
   DemoResult r;
-  r.volume = std::make_unique<lvdif::DictionaryVolume>(o);
-  const double c = 0.5 * size, rad = 0.3 * size;
-  // a sphere with a cubic bite taken out (max of the sphere and the negated box)
-  const auto sphere = lvdif::sphereSdf(c, c, c, rad);
-  lvdif::fillFromFunction(*r.volume, [&](double x, double y, double z) {
-    const double q[3] = { std::fabs(x - c - 0.5 * rad) - 0.45 * rad, std::fabs(y - c - 0.5 * rad) - 0.45 * rad,
-      std::fabs(z - c - 0.5 * rad) - 0.45 * rad };
-    const double outside = std::sqrt(std::pow(std::max(q[0], 0.0), 2) + std::pow(std::max(q[1], 0.0), 2) +
-      std::pow(std::max(q[2], 0.0), 2));
-    const double box = outside + std::min(std::max(q[0], std::max(q[1], q[2])), 0.0);
-    return static_cast<float>(std::max<double>(sphere(x, y, z), -box));
-  }, 0, progress);
-  r.source = "analytic sphere minus box (embedded)";
+  r.volume = runner.takeVolume();
+  if (!r.volume)
+  {
+    throw lvdif::Error(lvdif::ErrorCode::InvalidArgument, "the embedded demo script made no canvas");
+  }
+  r.source = "embedded script Data/scripts/dice.lvs (n = " + std::to_string(size) + ", " +
+    std::to_string(runner.edits()) + " edits)";
+  r.savedPath = outDir + "/demo.lvdv";
+  SaveAnyVolume(*r.volume, r.savedPath, { { "name", "LVDIF demo dice" }, { "script", "Data/scripts/dice.lvs" } },
+    progress);
   return r;
 }

@@ -149,7 +149,7 @@ void RenderPng(vtkPolyData* mesh, const std::string& path, int width, int height
   vtkCamera* camera = renderer->GetActiveCamera();
   camera->Azimuth(35);
   camera->Elevation(25);
-  camera->Zoom(1.3);
+  camera->Zoom(1.05);
   renderer->ResetCameraClippingRange();
   window->Render();
   vtkNew<vtkWindowToImageFilter> grab;

@@ -18,7 +18,12 @@ struct Command
 
 const Command commands[] = {
   { "demo", CommandDemo, "demo [--out DIR] [--size N]   build, save, mesh and render the bundled example" },
+  { "info", CommandInfo, "info VOLUME.lvdv   describe a volume file (header, chunks, colours, metadata)" },
   { "mesh", CommandMesh, "mesh VOLUME OUT.(ply|obj|stl|vtp) [--png OUT.png]   extract the surface of a volume" },
+  { "convert", CommandConvert, "convert IN OUT   between .lvdv and the original's .bv" },
+  { "script", CommandScript,
+    "script FILE.lvs [--in VOLUME] [--out VOLUME] [--mesh OUT] [--png OUT.png] [--size N]   run a script" },
+  { "play", CommandPlay, "play RECORDING.lvr --in VOLUME [--out VOLUME] [--mesh OUT] [--png OUT.png]   replay edits" },
 };
 
 int usage(FILE* f)

@@ -31,25 +31,38 @@ void ChunkedMarchingCubes::Impl::init(const Index3& dims, const MarchingCubesOpt
   }
   Options = options;
   Dims = dims;
+  VoxelBox all;
   for (int a = 0; a < 3; ++a)
   {
+    require(options.gridOffset[a] >= 0, "marching cubes: negative grid offset");
     Cells[a] = dims[a] - 1;
-    Counts[a] = (Cells[a] + options.chunkEdge - 1) / options.chunkEdge;
+    all.hi[a] = Cells[a] - 1;
     InvSpacing[a] = static_cast<float>(1.0 / Spacing[a]);
   }
+  Region = options.cellRegion.empty() ? all : options.cellRegion.intersect(all);
+  require(!Region.empty(), "marching cubes: the cell region lies outside the grid");
+  const std::int64_t E = options.chunkEdge;
+  for (int a = 0; a < 3; ++a)
+  {
+    const Index3& off = options.gridOffset;
+    First[a] = (Region.lo[a] + off[a]) / E;
+    Counts[a] = (Region.hi[a] + off[a]) / E - First[a] + 1;
+  }
   Total = Counts[0] * Counts[1] * Counts[2];
+  Options.device = resolveDevice(options.device);
+  if (Options.device == Device::Cuda) Cuda = makeMarchingCubesCudaState();
 }
 
 VoxelBox ChunkedMarchingCubes::Impl::cells(std::int64_t id) const
 {
-  const Index3 c = coord(id);
+  const Index3 c = globalCoord(id);
   VoxelBox b;
   for (int a = 0; a < 3; ++a)
   {
-    b.lo[a] = c[a] * Options.chunkEdge;
-    b.hi[a] = std::min(b.lo[a] + Options.chunkEdge, Cells[a]) - 1;
+    b.lo[a] = c[a] * Options.chunkEdge - Options.gridOffset[a];
+    b.hi[a] = b.lo[a] + Options.chunkEdge - 1;
   }
-  return b;
+  return b.intersect(Region);
 }
 
 VoxelBox ChunkedMarchingCubes::Impl::points(std::int64_t id) const
@@ -62,18 +75,22 @@ VoxelBox ChunkedMarchingCubes::Impl::points(std::int64_t id) const
 void ChunkedMarchingCubes::Impl::rangeOfPoints(std::int64_t id, float& lo, float& hi) const
 {
   const VoxelBox b = points(id);
-  lo = std::numeric_limits<float>::infinity();
-  hi = -lo;
+  float l = std::numeric_limits<float>::infinity(), h = -l;
   for (std::int64_t z = b.lo[2]; z <= b.hi[2]; ++z)
     for (std::int64_t y = b.lo[1]; y <= b.hi[1]; ++y)
     {
       const float* row = Grid.data + Grid.geometry.index(b.lo[0], y, z);
-      for (std::int64_t i = 0, n = b.hi[0] - b.lo[0] + 1; i < n; ++i)
+      const std::int64_t n = b.hi[0] - b.lo[0] + 1;
+      // simd reduction: plain std::min/max over floats is not vectorized (NaN rules)
+#pragma omp simd reduction(min : l) reduction(max : h)
+      for (std::int64_t i = 0; i < n; ++i)
       {
-        lo = std::min(lo, row[i]);
-        hi = std::max(hi, row[i]);
+        l = row[i] < l ? row[i] : l;
+        h = row[i] > h ? row[i] : h;
       }
     }
+  lo = l;
+  hi = h;
 }
 
 bool ChunkedMarchingCubes::Impl::empty(std::int64_t id) const
@@ -128,7 +145,7 @@ const Index3& ChunkedMarchingCubes::pointDims() const { return P->Dims; }
 const Index3& ChunkedMarchingCubes::chunkCounts() const { return P->Counts; }
 std::int64_t ChunkedMarchingCubes::chunkCount() const { return P->Total; }
 VoxelBox ChunkedMarchingCubes::chunkCells(std::int64_t id) const { return P->cells(id); }
-Index3 ChunkedMarchingCubes::chunkCoord(std::int64_t id) const { return P->coord(id); }
+Index3 ChunkedMarchingCubes::chunkCoord(std::int64_t id) const { return P->globalCoord(id); }
 bool ChunkedMarchingCubes::chunkIsEmpty(std::int64_t id) const { return P->empty(id); }
 
 std::unique_ptr<ChunkedMarchingCubes::ChunkInput> ChunkedMarchingCubes::gather(std::int64_t id) const
@@ -139,6 +156,16 @@ std::unique_ptr<ChunkedMarchingCubes::ChunkInput> ChunkedMarchingCubes::gather(s
     return nullptr;
   }
   auto in = std::make_unique<ChunkInput>();
+  P->gatherInto(id, *in);
+  return in;
+}
+
+void ChunkedMarchingCubes::Impl::gatherInto(std::int64_t id, ChunkInput& input) const
+{
+  const Impl* P = this;
+  ChunkInput* in = &input;
+  in->view = nullptr;
+  in->viewColors = nullptr;
   in->chunkId = id;
   in->cells = P->cells(id);
   Index3 hi;
@@ -150,10 +177,11 @@ std::unique_ptr<ChunkedMarchingCubes::ChunkInput> ChunkedMarchingCubes::gather(s
     in->size[a] = hi[a] - in->lo[a] + 1;
   }
   const std::size_t n = static_cast<std::size_t>(in->size[0] * in->size[1] * in->size[2]);
+  // resize keeps the capacity of a reused input (no page faults, no zeroing)
   in->values.resize(n);
   const bool colors = P->wantsColors(), keys = P->wantsCornerColors();
-  if (colors) in->colors.resize(n);
-  if (keys) in->colorKeys.resize(n);
+  in->colors.resize(colors ? n : 0);
+  in->colorKeys.resize(keys ? n : 0);
   const std::int64_t nx = in->size[0];
   if (P->Volume)
   {
@@ -209,36 +237,67 @@ std::unique_ptr<ChunkedMarchingCubes::ChunkInput> ChunkedMarchingCubes::gather(s
         }
       }
   }
-  return in;
 }
 
-ChunkMesh ChunkedMarchingCubes::mesh(const ChunkInput& input) const { return meshChunkCpu(*P, input); }
+ChunkMesh ChunkedMarchingCubes::mesh(const ChunkInput& input) const
+{
+  return P->Cuda ? meshChunkCuda(*P, input) : meshChunkCpu(*P, input);
+}
 
 ChunkMesh ChunkedMarchingCubes::extractChunk(std::int64_t id) const
 {
-  const auto in = this->gather(id);
-  if (!in)
+  if (!P->Volume)
+  {
+    // float grid: mesh the caller's array in place (no copy)
+    require(id >= 0 && id < P->Total, "marching cubes: chunk id " + std::to_string(id) + " out of range");
+    ChunkInput view;
+    view.chunkId = id;
+    view.cells = P->cells(id);
+    view.size = P->Dims;
+    view.view = P->Grid.data;
+    view.viewColors = P->wantsColors() ? P->GridColors : nullptr;
+    if (!P->empty(id)) return this->mesh(view);
+    ChunkMesh m;
+    m.chunkId = id;
+    m.chunkCoord = P->globalCoord(id);
+    m.cells = view.cells;
+    return m;
+  }
+  require(id >= 0 && id < P->Total, "marching cubes: chunk id " + std::to_string(id) + " out of range");
+  if (P->empty(id))
   {
     ChunkMesh m;
     m.chunkId = id;
-    m.chunkCoord = P->coord(id);
+    m.chunkCoord = P->globalCoord(id);
     m.cells = P->cells(id);
     return m;
   }
-  return this->mesh(*in);
+  // one decoded copy per thread, reused from chunk to chunk
+  thread_local ChunkInput in;
+  P->gatherInto(id, in);
+  return this->mesh(in);
 }
 
 std::vector<ChunkMesh> ChunkedMarchingCubes::extractChunks(const std::vector<std::int64_t>& ids,
   Interrupter& interrupter) const
 {
   interrupter.start("marching cubes");
+  if (P->Cuda && !P->Volume)
+  {
+    // float grid on the GPU: batches of chunks over the grid's device copy
+    std::vector<ChunkMesh> meshes = meshChunksCuda(*P, ids, interrupter);
+    interrupter.progress(1.0);
+    interrupter.end();
+    return meshes;
+  }
   std::vector<ChunkMesh> out(ids.size());
   std::atomic<bool> cancelled{ false };
   std::atomic<std::int64_t> done{ 0 };
   const std::int64_t n = static_cast<std::int64_t>(ids.size());
   Error firstError(ErrorCode::InvalidArgument, "");
   std::atomic<bool> failed{ false };
-#pragma omp parallel for schedule(dynamic, 1)
+  // the GPU path meshes one chunk at a time (its kernels fill the device)
+#pragma omp parallel for schedule(dynamic, 1) if (!P->Cuda)
   for (std::int64_t i = 0; i < n; ++i)
   {
     if (cancelled.load(std::memory_order_relaxed) || failed.load(std::memory_order_relaxed)) continue;
@@ -288,11 +347,12 @@ std::vector<std::int64_t> ChunkedMarchingCubes::chunksAffectedBy(const VoxelBox&
   Index3 lo, hi;
   for (int a = 0; a < 3; ++a)
   {
-    const std::int64_t c0 = std::max<std::int64_t>(changed.lo[a] - 2, 0);
-    const std::int64_t c1 = std::min<std::int64_t>(changed.hi[a] + 1, P->Cells[a] - 1);
+    const std::int64_t c0 = std::max<std::int64_t>(changed.lo[a] - 2, P->Region.lo[a]);
+    const std::int64_t c1 = std::min<std::int64_t>(changed.hi[a] + 1, P->Region.hi[a]);
     if (c1 < c0) return ids;
-    lo[a] = c0 / P->Options.chunkEdge;
-    hi[a] = c1 / P->Options.chunkEdge;
+    const std::int64_t off = P->Options.gridOffset[a];
+    lo[a] = (c0 + off) / P->Options.chunkEdge - P->First[a];
+    hi[a] = (c1 + off) / P->Options.chunkEdge - P->First[a];
   }
   for (std::int64_t z = lo[2]; z <= hi[2]; ++z)
     for (std::int64_t y = lo[1]; y <= hi[1]; ++y)
@@ -319,6 +379,7 @@ std::vector<std::int64_t> ChunkedMarchingCubes::chunksAffectedByStorageChunks(
 void ChunkedMarchingCubes::invalidate(const VoxelBox& changed)
 {
   if (P->Volume) return; // chunkRange of the volume is always exact
+  if (P->Cuda) dropMarchingCubesCudaGrid(*P->Cuda);
   for (std::int64_t id : this->chunksAffectedBy(changed))
   {
     P->rangeOfPoints(id, P->MinValue[id], P->MaxValue[id]);

@@ -8,6 +8,7 @@
 
 #include "lvdif/MarchingCubesTables.h"
 
+#include <algorithm>
 #include <cstring>
 
 namespace lvdif
@@ -20,9 +21,11 @@ struct Sweep
   const ChunkedMarchingCubes::Impl& impl;
   const ChunkedMarchingCubes::ChunkInput& in;
   ChunkMesh& out;
-  bool normals, colors;
+  bool normals;
+  const float* values;
+  const Rgba* colors; // null without colours
 
-  float value(std::int64_t x, std::int64_t y, std::int64_t z) const { return in.values[in.local(x, y, z)]; }
+  float value(std::int64_t x, std::int64_t y, std::int64_t z) const { return values[in.local(x, y, z)]; }
 
   void gradientAt(std::int64_t x, std::int64_t y, std::int64_t z, float g[3]) const
   {
@@ -57,7 +60,7 @@ struct Sweep
     const std::int64_t p[3] = { x, y, z };
     Vec3f pos;
     for (int k = 0; k < 3; ++k)
-      pos[k] = mc::coord(impl.Origin[k], impl.Spacing[k], p[k], k == axis ? t : 0.0f);
+      pos[k] = mc::coord(impl.Origin[k], impl.Spacing[k], p[k] + impl.Options.gridOffset[k], k == axis ? t : 0.0f);
     const std::uint32_t id = static_cast<std::uint32_t>(out.points.size());
     out.points.push_back(pos);
     out.edgeIds.push_back(3 * static_cast<std::uint64_t>(x + impl.Dims[0] * (y + impl.Dims[1] * z)) +
@@ -73,7 +76,7 @@ struct Sweep
     }
     if (colors)
     {
-      const Rgba c0 = in.colors[in.local(x, y, z)], c1 = in.colors[in.local(q[0], q[1], q[2])];
+      const Rgba c0 = colors[in.local(x, y, z)], c1 = colors[in.local(q[0], q[1], q[2])];
       out.colors.push_back(Rgba{ mc::lerpChannel(c0.r, c1.r, t), mc::lerpChannel(c0.g, c1.g, t),
         mc::lerpChannel(c0.b, c1.b, t), mc::lerpChannel(c0.a, c1.a, t) });
     }
@@ -83,21 +86,49 @@ struct Sweep
 
 } // namespace
 
+namespace
+{
+/// Per point row of a layer: the first and last x-edge whose two points are
+/// on different sides (Flying Edges' trim, Schroeder et al. 2015). Points
+/// 0..L all equal the row's first point, points R+1.. its last point. A row
+/// without cut: L = px-1 (its last point), R = -1.
+struct RowTrim
+{
+  std::int32_t L, R;
+};
+
+/// Calls f(i) for the points i in 0..px-1 where rows a and b (of flags) differ,
+/// testing only where the trims say they can (both rows are constant outside).
+template <typename F>
+void forDiffering(const std::uint8_t* a, const std::uint8_t* b, RowTrim ta, RowTrim tb, std::int64_t px, F&& f)
+{
+  const std::int64_t m = std::min(ta.L, tb.L), M = std::max(ta.R, tb.R) + 1;
+  if (a[0] != b[0])
+    for (std::int64_t i = 0; i <= m; ++i) f(i);
+  for (std::int64_t i = m + 1; i < M; ++i)
+    if (a[i] != b[i]) f(i);
+  if (a[px - 1] != b[px - 1])
+    for (std::int64_t i = std::max(M, m + 1); i < px; ++i) f(i);
+}
+} // namespace
+
 ChunkMesh meshChunkCpu(const ChunkedMarchingCubes::Impl& impl, const ChunkedMarchingCubes::ChunkInput& in)
 {
   const MarchingCubesTables& T = marchingCubesTables();
   ChunkMesh out;
   out.chunkId = in.chunkId;
-  out.chunkCoord = impl.coord(in.chunkId);
+  out.chunkCoord = impl.globalCoord(in.chunkId);
   out.cells = in.cells;
-  Sweep s{ impl, in, out, impl.Options.computeNormals, !in.colors.empty() };
+  Sweep s{ impl, in, out, impl.Options.computeNormals, in.valueData(), in.colorData() };
   const bool keys = !in.colorKeys.empty();
+  const bool cells = impl.wantsTriangleCells();
   const float iso = impl.Options.isoValue;
   const VoxelBox& c = in.cells;
   const std::int64_t ex = c.hi[0] - c.lo[0] + 1, ey = c.hi[1] - c.lo[1] + 1, ez = c.hi[2] - c.lo[2] + 1;
   const std::int64_t px = ex + 1, py = ey + 1, plane = px * py;
-  // per point layer (two kept): above flags and vertex ids of x- and y-edges; z-edges of one slab
+  // per point layer (two kept): above flags, row trims, vertex ids of x- and y-edges; z-edges of one slab
   std::vector<std::uint8_t> above(2 * plane);
+  std::vector<RowTrim> trim(2 * py);
   std::vector<std::uint32_t> xv(2 * plane), yv(2 * plane), zv(plane);
   for (std::int64_t kz = 0; kz <= ez; ++kz)
   {
@@ -105,17 +136,32 @@ ChunkMesh meshChunkCpu(const ChunkedMarchingCubes::Impl& impl, const ChunkedMarc
     const int cur = static_cast<int>(kz & 1), prev = cur ^ 1;
     std::uint8_t* A = above.data() + cur * plane;
     const std::uint8_t* B = above.data() + prev * plane;
+    RowTrim* TA = trim.data() + cur * py;
+    const RowTrim* TB = trim.data() + prev * py;
     bool any = false, all = true;
     for (std::int64_t j = 0; j < py; ++j)
     {
-      const float* row = in.values.data() + in.local(c.lo[0], c.lo[1] + j, z);
+      const float* row = s.values + in.local(c.lo[0], c.lo[1] + j, z);
+      std::uint8_t* a = A + px * j;
+      std::uint8_t rowOr = 0, rowAnd = 1;
       for (std::int64_t i = 0; i < px; ++i)
       {
         const std::uint8_t f = row[i] >= iso;
-        A[i + px * j] = f;
-        any |= f != 0;
-        all &= f != 0;
+        a[i] = f;
+        rowOr |= f;
+        rowAnd &= f;
       }
+      any |= rowOr != 0;
+      all &= rowAnd != 0;
+      RowTrim t{ static_cast<std::int32_t>(px - 1), -1 };
+      if (rowOr != rowAnd)
+      {
+        std::int64_t l = 0, r = ex - 1;
+        while (a[l] == a[l + 1]) ++l;
+        while (a[r] == a[r + 1]) --r;
+        t = RowTrim{ static_cast<std::int32_t>(l), static_cast<std::int32_t>(r) };
+      }
+      TA[j] = t;
     }
     const bool layerCut = any && !all;
     std::uint32_t* X = xv.data() + cur * plane;
@@ -123,12 +169,15 @@ ChunkMesh meshChunkCpu(const ChunkedMarchingCubes::Impl& impl, const ChunkedMarc
     if (layerCut)
     {
       for (std::int64_t j = 0; j < py; ++j)
-        for (std::int64_t i = 0; i < px; ++i)
-        {
-          const std::int64_t o = i + px * j;
-          if (i < ex && A[o] != A[o + 1]) X[o] = s.addVertex(c.lo[0] + i, c.lo[1] + j, z, 0);
-          if (j < ey && A[o] != A[o + px]) Y[o] = s.addVertex(c.lo[0] + i, c.lo[1] + j, z, 1);
-        }
+      {
+        const std::uint8_t* a = A + px * j;
+        const std::int64_t y = c.lo[1] + j;
+        for (std::int64_t i = TA[j].L; i <= TA[j].R; ++i)
+          if (a[i] != a[i + 1]) X[i + px * j] = s.addVertex(c.lo[0] + i, y, z, 0);
+        if (j < ey)
+          forDiffering(a, a + px, TA[j], TA[j + 1], px,
+            [&](std::int64_t i) { Y[i + px * j] = s.addVertex(c.lo[0] + i, y, z, 1); });
+      }
     }
     if (kz == 0) continue;
     // z-edges between the previous layer and this one, then the cells of that slab
@@ -136,54 +185,67 @@ ChunkMesh meshChunkCpu(const ChunkedMarchingCubes::Impl& impl, const ChunkedMarc
     for (std::int64_t o = 0; o < plane && !slabCut; ++o) slabCut = A[o] != B[0] || B[o] != B[0];
     if (!slabCut) continue;
     for (std::int64_t j = 0; j < py; ++j)
-      for (std::int64_t i = 0; i < px; ++i)
-      {
-        const std::int64_t o = i + px * j;
-        if (A[o] != B[o]) zv[o] = s.addVertex(c.lo[0] + i, c.lo[1] + j, z - 1, 2);
-      }
+      forDiffering(A + px * j, B + px * j, TA[j], TB[j], px,
+        [&](std::int64_t i) { zv[i + px * j] = s.addVertex(c.lo[0] + i, c.lo[1] + j, z - 1, 2); });
     const std::uint32_t* X0 = xv.data() + prev * plane;
     const std::uint32_t* Y0 = yv.data() + prev * plane;
     for (std::int64_t j = 0; j < ey; ++j)
-      for (std::int64_t i = 0; i < ex; ++i)
-      {
-        const std::int64_t o = i + px * j;
-        const int cs = B[o] | (B[o + 1] << 1) | (B[o + px] << 2) | (B[o + px + 1] << 3) | (A[o] << 4) |
-          (A[o + 1] << 5) | (A[o + px] << 6) | (A[o + px + 1] << 7);
-        if (cs == 0 || cs == 255) continue;
-        // the cell's 12 edge vertices (edge = 4*axis + 2*bu + bv, see MarchingCubesTables.h)
-        std::uint32_t ev[12];
-        ev[0] = X0[o];
-        ev[1] = X[o];
-        ev[2] = X0[o + px];
-        ev[3] = X[o + px];
-        ev[4] = Y0[o];
-        ev[5] = Y0[o + 1];
-        ev[6] = Y[o];
-        ev[7] = Y[o + 1];
-        ev[8] = zv[o];
-        ev[9] = zv[o + px];
-        ev[10] = zv[o + 1];
-        ev[11] = zv[o + 1 + px];
-        const std::int8_t* tri = T.triangles[cs];
-        const int nt = T.triangleCount[cs];
-        for (int t = 0; t < nt; ++t)
+    {
+      auto cellsOf = [&](std::int64_t i0, std::int64_t i1) {
+        for (std::int64_t i = i0; i < i1; ++i)
         {
-          out.triangles.push_back({ ev[tri[3 * t]], ev[tri[3 * t + 1]], ev[tri[3 * t + 2]] });
-        }
-        if (keys)
-        {
-          const std::int64_t x = c.lo[0] + i, y = c.lo[1] + j, zc = z - 1;
-          std::array<ColorKey, 8> k;
-          for (int q = 0; q < 8; ++q)
-            k[q] = in.colorKeys[in.local(x + (q & 1), y + ((q >> 1) & 1), zc + ((q >> 2) & 1))];
-          const std::int64_t cell = x + impl.Dims[0] * (y + impl.Dims[1] * zc);
+          const std::int64_t o = i + px * j;
+          const int cs = B[o] | (B[o + 1] << 1) | (B[o + px] << 2) | (B[o + px + 1] << 3) | (A[o] << 4) |
+            (A[o + 1] << 5) | (A[o + px] << 6) | (A[o + px + 1] << 7);
+          if (cs == 0 || cs == 255) continue;
+          // the cell's 12 edge vertices (edge = 4*axis + 2*bu + bv, see MarchingCubesTables.h)
+          std::uint32_t ev[12];
+          ev[0] = X0[o];
+          ev[1] = X[o];
+          ev[2] = X0[o + px];
+          ev[3] = X[o + px];
+          ev[4] = Y0[o];
+          ev[5] = Y0[o + 1];
+          ev[6] = Y[o];
+          ev[7] = Y[o + 1];
+          ev[8] = zv[o];
+          ev[9] = zv[o + px];
+          ev[10] = zv[o + 1];
+          ev[11] = zv[o + 1 + px];
+          const std::int8_t* tri = T.triangles[cs];
+          const int nt = T.triangleCount[cs];
           for (int t = 0; t < nt; ++t)
           {
-            out.cornerColors.push_back(k);
-            out.triangleCells.push_back(cell);
+            out.triangles.push_back({ ev[tri[3 * t]], ev[tri[3 * t + 1]], ev[tri[3 * t + 2]] });
+          }
+          if (cells)
+          {
+            const std::int64_t x = c.lo[0] + i, y = c.lo[1] + j, zc = z - 1;
+            const std::int64_t cell = x + impl.Dims[0] * (y + impl.Dims[1] * zc);
+            out.triangleCells.insert(out.triangleCells.end(), static_cast<std::size_t>(nt), cell);
+            if (keys)
+            {
+              std::array<ColorKey, 8> k;
+              for (int q = 0; q < 8; ++q)
+                k[q] = in.colorKeys[in.local(x + (q & 1), y + ((q >> 1) & 1), zc + ((q >> 2) & 1))];
+              out.cornerColors.insert(out.cornerColors.end(), static_cast<std::size_t>(nt), k);
+            }
           }
         }
-      }
+      };
+      // the four point rows of this cell row are constant left of the smallest
+      // L and right of the largest R: there every cell has the case of the first
+      // (last) cell, so those spans are skipped whole when that case is empty
+      const std::int64_t minL = std::min({ TB[j].L, TB[j + 1].L, TA[j].L, TA[j + 1].L });
+      const std::int64_t maxR = std::max({ TB[j].R, TB[j + 1].R, TA[j].R, TA[j + 1].R });
+      const std::int64_t o = px * j, last = o + ex;
+      const bool leftCut = !(B[o] == B[o + px] && B[o] == A[o] && B[o] == A[o + px]);
+      const bool rightCut = !(B[last] == B[last + px] && B[last] == A[last] && B[last] == A[last + px]);
+      const std::int64_t leftEnd = std::min(minL, ex);
+      if (leftCut) cellsOf(0, leftEnd);
+      if (minL <= maxR) cellsOf(minL, maxR + 1);
+      if (rightCut) cellsOf(std::max(maxR + 1, leftEnd), ex);
+    }
   }
   return out;
 }

@@ -3,14 +3,21 @@
 
 #include "lvdif/ChunkedMarchingCubes.h"
 
+#include <memory>
 #include <vector>
 
 namespace lvdif
 {
 
+/// Device buffers of the CUDA path (MarchingCubes.cu); opaque elsewhere.
+struct MarchingCubesCudaState;
+
 class ChunkedMarchingCubes::Impl
 {
 public:
+  /// Set at construction when options.device resolves to Cuda: mesh() runs on
+  /// the GPU (one chunk at a time, serialized by the state's mutex).
+  std::shared_ptr<MarchingCubesCudaState> Cuda;
   MarchingCubesOptions Options;
   const DictionaryVolume* Volume = nullptr;
   FloatGridView Grid;
@@ -18,6 +25,8 @@ public:
   Index3 Dims{ 0, 0, 0 }; // points
   Index3 Cells{ 0, 0, 0 };
   Index3 Counts{ 0, 0, 0 };
+  VoxelBox Region;              // the cells meshed (options.cellRegion clipped, or all)
+  Index3 First{ 0, 0, 0 };      // global coordinate of local chunk (0,0,0)
   std::int64_t Total = 0;
   std::array<double, 3> Origin{ 0, 0, 0 }, Spacing{ 1, 1, 1 };
   std::array<float, 3> InvSpacing{ 1, 1, 1 };
@@ -25,20 +34,43 @@ public:
   std::vector<float> MinValue, MaxValue;
 
   void init(const Index3& dims, const MarchingCubesOptions& options);
+  /// Local chunk coordinate (0..Counts-1).
   Index3 coord(std::int64_t id) const
   {
     return { id % Counts[0], (id / Counts[0]) % Counts[1], id / (Counts[0] * Counts[1]) };
+  }
+  /// Global chunk coordinate (chunk grid aligned with options.gridOffset).
+  Index3 globalCoord(std::int64_t id) const
+  {
+    const Index3 c = coord(id);
+    return { c[0] + First[0], c[1] + First[1], c[2] + First[2] };
   }
   VoxelBox cells(std::int64_t id) const;
   /// The points the chunk's cells use: cells.lo .. cells.hi + 1.
   VoxelBox points(std::int64_t id) const;
   void rangeOfPoints(std::int64_t id, float& lo, float& hi) const;
   bool empty(std::int64_t id) const;
+  /// ChunkedMarchingCubes::gather into an existing input (its buffers reused).
+  void gatherInto(std::int64_t id, ChunkedMarchingCubes::ChunkInput& in) const;
   bool wantsColors() const { return Options.computeColors && (Volume || GridColors); }
   bool wantsCornerColors() const { return Options.cornerColors && Volume; }
+  bool wantsTriangleCells() const { return Options.cornerColors; }
 };
 
 /// The CPU kernel: meshes one gathered chunk.
 ChunkMesh meshChunkCpu(const ChunkedMarchingCubes::Impl& impl, const ChunkedMarchingCubes::ChunkInput& in);
+
+/// The CUDA kernels (same function as meshChunkCpu: bit-identical vertices,
+/// the same triangles; vertex order differs). Inputs that view the float grid
+/// read the grid's device copy (uploaded at the first call); gathered inputs
+/// are uploaded. Stubs in nocuda/ throw (never called: see resolveDevice).
+std::shared_ptr<MarchingCubesCudaState> makeMarchingCubesCudaState();
+ChunkMesh meshChunkCuda(const ChunkedMarchingCubes::Impl& impl, const ChunkedMarchingCubes::ChunkInput& in);
+/// Float grids: meshes the given chunks in batches (one launch sequence and one
+/// copy back per batch instead of per chunk). One result per id, in order.
+std::vector<ChunkMesh> meshChunksCuda(const ChunkedMarchingCubes::Impl& impl, const std::vector<std::int64_t>& ids,
+  Interrupter& interrupter);
+/// Forgets the float grid's device copy (the grid changed: re-uploaded at the next call).
+void dropMarchingCubesCudaGrid(MarchingCubesCudaState& state);
 
 } // namespace lvdif

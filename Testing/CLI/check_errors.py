@@ -17,5 +17,20 @@ assert code == 1 and err == "lvdif demo: unknown option --bogus", (code, err)
 code, err = run("demo", "--size", "ten")
 assert code == 1 and "expects an integer" in err, (code, err)
 code, err = run("demo", "--size", "100000000", "--out", out)
-assert code == 1 and ("out of range" in err or "limit" in err), (code, err)
+assert code == 1 and ("out of range" in err or "limit" in err or "1..1048576" in err), (code, err)
+
+import os  # noqa: E402
+
+os.makedirs(out, exist_ok=True)
+bad = os.path.join(out, "bad.lvs")
+with open(bad, "w") as f:
+    f.write("radius 3\nsphere 1, 2,\n")
+code, err = run("script", bad)
+assert code == 1 and f"{bad}:2:" in err, (code, err)
+code, err = run("info", os.path.join(out, "missing.lvdv"))
+assert code == 1 and "missing.lvdv" in err, (code, err)
+with open(os.path.join(out, "junk.lvdv"), "wb") as f:
+    f.write(b"not a volume file at all" * 10)
+code, err = run("info", os.path.join(out, "junk.lvdv"))
+assert code == 1 and err.count("\n") == 0, (code, err)
 print("error handling OK")

@@ -51,9 +51,23 @@ struct MarchingCubesOptions
   bool computeNormals = true;
   /// Per-vertex colours (dictionary volume, or a float grid given with colours).
   bool computeColors = true;
-  /// Per-triangle 8 corner colour keys + cell index (dictionary volume only).
+  /// Per triangle: the cell it came from (triangleCells), and on a dictionary
+  /// volume the 8 corner colour keys (cornerColors).
   bool cornerColors = true;
-  /// Not used yet: there is no CUDA path so far; everything runs on the CPU.
+  /// Only the cells in this box (grid point indices of the cells' lowest
+  /// corners) are meshed; empty (the default) means every cell. Used by the
+  /// VTK filter to mesh only the cells a piece owns while reading its ghost
+  /// points for the gradients.
+  VoxelBox cellRegion;
+  /// When the grid is one piece of a larger volume: the global index of the
+  /// grid's point (0,0,0). Chunks are aligned to multiples of chunkEdge in global
+  /// cell indices and positions are origin + spacing * (global index + t), the
+  /// origin being that of the global point 0, so every piece computes the same
+  /// chunk grid and bit-identical shared vertices. chunkCoord() is global; chunk
+  /// ids, edgeIds and triangleCells stay local to the grid.
+  Index3 gridOffset{ 0, 0, 0 };
+  /// Cpu, or Cuda/Auto: the GPU when one can be used (resolveDevice), one chunk
+  /// at a time; same vertices bit for bit and the same triangles as the CPU.
   Device device = Device::Cpu;
 };
 
@@ -79,8 +93,8 @@ struct ChunkMesh
   /// Per triangle (empty unless cornerColors on a dictionary volume): colour keys
   /// of the cell's 8 corners, corner c at offset (c&1, (c>>1)&1, (c>>2)&1).
   std::vector<std::array<ColorKey, 8>> cornerColors;
-  /// Per triangle (with cornerColors): linear point index x + nx*(y + ny*z) of the
-  /// cell's corner 0 (its lowest point).
+  /// Per triangle (with cornerColors, any source): linear point index
+  /// x + nx*(y + ny*z) of the cell's corner 0 (its lowest point) in the grid.
   std::vector<std::int64_t> triangleCells;
 
   bool empty() const { return this->triangles.empty(); }
@@ -142,6 +156,13 @@ public:
     std::vector<float> values;
     std::vector<Rgba> colors;         // empty without colours
     std::vector<ColorKey> colorKeys;  // empty unless corner colours (dictionary)
+    /// Instead of the copies above: the source's own float grid (and colours),
+    /// lo = 0 and size = the grid's dims. extractChunk() meshes float grids
+    /// this way (no copy); gather() always copies (the worker's snapshot).
+    const float* view = nullptr;
+    const Rgba* viewColors = nullptr;
+    const float* valueData() const { return view ? view : values.data(); }
+    const Rgba* colorData() const { return view ? viewColors : (colors.empty() ? nullptr : colors.data()); }
     std::int64_t local(std::int64_t x, std::int64_t y, std::int64_t z) const
     {
       return (x - lo[0]) + size[0] * ((y - lo[1]) + size[1] * (z - lo[2]));

@@ -2,11 +2,14 @@
 // update of one chunk for several chunk sizes on 512^3 and 1024^3 dictionary
 // volumes of an analytic sphere, and the re-mesh after one radius-15 sphere
 // edit in a 1024^3 volume with 64^3 chunks.
-// Usage: bench_marching_cubes [maxN=1024] [repeats=3]
+// With a CUDA device: the GPU path on a 1024^3 float grid (resident on the
+// device) and on one 64^3 chunk.
+// Usage: bench_marching_cubes [maxN=1024] [repeats=3] [gpu-only: 0|1]
 #include "BenchCommon.h"
 
 #include "lvdif/AnalyticFill.h"
 #include "lvdif/ChunkedMarchingCubes.h"
+#include "lvdif/Cuda.h"
 
 #include <cmath>
 #include <cstdlib>
@@ -31,13 +34,58 @@ std::int64_t surfaceChunk(const ChunkedMarchingCubes& mc, double cx, double cy, 
                      z = static_cast<std::int64_t>(cz) / e;
   return x + mc.chunkCounts()[0] * (y + mc.chunkCounts()[1] * z);
 }
+/// GPU: full extraction of an n^3 float grid sphere (grid already on the
+/// device after a first call that uploads it) and one 64^3 chunk.
+void gpuTable(std::int64_t n, int repeats)
+{
+  std::vector<float> grid(static_cast<std::size_t>(n * n * n));
+  const double c = 0.5 * n + 0.37, r = 0.39 * n;
+#pragma omp parallel for schedule(static)
+  for (std::int64_t z = 0; z < n; ++z)
+    for (std::int64_t y = 0; y < n; ++y)
+      for (std::int64_t x = 0; x < n; ++x)
+        grid[x + n * (y + n * z)] = static_cast<float>(
+          std::sqrt((x - c) * (x - c) + (y - c + 0.21) * (y - c + 0.21) + (z - c - 0.13) * (z - c - 0.13)) - r);
+  FloatGridView g;
+  g.data = grid.data();
+  g.geometry.dims = { n, n, n };
+  std::vector<std::vector<std::string>> rows;
+  for (int edge : { 32, 64, 128 })
+  {
+    MarchingCubesOptions o;
+    o.chunkEdge = edge;
+    o.device = Device::Cuda;
+    ChunkedMarchingCubes mc(g, nullptr, o);
+    bench::Stopwatch first;
+    std::size_t tris = triangles(mc.extractAll());
+    const double firstMs = first.ms();
+    std::size_t meshes = 0;
+    const double full = bench::medianMs(repeats, [&] {
+      const auto all = mc.extractAll();
+      tris = triangles(all);
+      meshes = all.size();
+    });
+    const std::int64_t id = surfaceChunk(mc, c, c - 0.21, c + 0.13, r);
+    std::size_t oneTris = 0;
+    const double one = bench::medianMs(21, [&] { oneTris = mc.extractChunk(id).triangles.size(); });
+    rows.push_back({ std::to_string(n) + "^3", std::to_string(edge) + "^3", std::to_string(meshes), std::to_string(tris),
+      bench::fmt(firstMs, 1), bench::fmt(full, 2), std::to_string(oneTris), bench::fmt(one, 3) });
+  }
+  std::cout << "\nGPU (" << cuda::deviceName() << "), float grid, normals on, batches of chunks (extractAll)\n";
+  bench::printTable({ "volume", "MC chunk", "non-empty", "triangles", "first ms (upload)", "full ms", "one-chunk tris",
+                      "one-chunk ms" },
+    rows);
+}
 } // namespace
 
 int main(int argc, char** argv)
 {
   const std::int64_t maxN = argc > 1 ? std::atoll(argv[1]) : 1024;
   const int repeats = argc > 2 ? std::atoi(argv[2]) : 3;
+  const bool gpuOnly = argc > 3 && std::atoi(argv[3]) != 0;
   std::cout << "# bench_marching_cubes\n" << bench::machineDescription() << "\n\n";
+  if (cuda::available()) gpuTable(maxN, std::max(repeats, 3));
+  if (gpuOnly) return 0;
   std::vector<std::vector<std::string>> rows;
   std::unique_ptr<DictionaryVolume> big;
   for (std::int64_t n : { std::int64_t(512), std::int64_t(1024) })

@@ -1,0 +1,86 @@
+// Commands that edit: script (run a .lvs program) and play (replay a recording).
+#include "Arguments.h"
+#include "Commands.h"
+#include "EditOutputs.h"
+#include "ProgressBar.h"
+#include "VolumeFiles.h"
+
+#include "lvdif/Editor.h"
+#include "lvdif/Error.h"
+#include "lvdif/Recording.h"
+#include "lvdif/Script.h"
+
+#include <cstdio>
+#include <fstream>
+#include <sstream>
+
+namespace
+{
+std::string readText(const std::string& path)
+{
+  std::ifstream in(path);
+  if (!in) throw lvdif::Error(lvdif::ErrorCode::IoFailure, "cannot read " + path);
+  std::ostringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+}
+
+int CommandScript(int argc, char** argv)
+{
+  Arguments args(argc, argv, 2);
+  args.allowOnly({ "in", "out", "mesh", "png", "size" });
+  if (args.positional().size() != 1)
+    throw lvdif::Error(lvdif::ErrorCode::InvalidArgument,
+      "usage: lvdif script FILE.lvs [--in VOLUME] [--out VOLUME] [--mesh OUT.ply] [--png OUT.png] [--size N]");
+  const std::string path = args.positional()[0];
+  ProgressBar progress;
+  lvdif::ScriptOptions options;
+  options.interrupter = &progress;
+  lvdif::ScriptRunner runner(options);
+  std::unique_ptr<lvdif::DictionaryVolume> start;
+  if (args.has("in"))
+  {
+    start = LoadAnyVolume(args.get("in", ""), progress);
+  }
+  else
+  {
+    // scripts without `canvas` edit an empty canvas of --size (default 128)
+    lvdif::VolumeOptions o;
+    const long n = args.getInt("size", 128);
+    o.dims = { n, n, n };
+    start = std::make_unique<lvdif::DictionaryVolume>(o);
+  }
+  runner.attach(*start);
+  try
+  {
+    runner.run(readText(path));
+  }
+  catch (const lvdif::ScriptError& e)
+  {
+    // file:line:column, the way compilers report, so editors can jump to it
+    throw lvdif::Error(e.code(), path + ":" + std::to_string(e.line()) + ":" + std::to_string(e.column()) + ": " + e.detail());
+  }
+  std::unique_ptr<lvdif::DictionaryVolume> made = runner.takeVolume();
+  const lvdif::DictionaryVolume& result = made ? *made : *start;
+  std::printf("%s: %llu edits, %llu steps\n", path.c_str(), (unsigned long long)runner.edits(),
+    (unsigned long long)runner.steps());
+  WriteEditOutputs(result, args, { { "script", path } }, progress);
+  return 0;
+}
+
+int CommandPlay(int argc, char** argv)
+{
+  Arguments args(argc, argv, 2);
+  args.allowOnly({ "in", "out", "mesh", "png" });
+  if (args.positional().size() != 1 || !args.has("in"))
+    throw lvdif::Error(lvdif::ErrorCode::InvalidArgument,
+      "usage: lvdif play RECORDING.lvr --in VOLUME [--out VOLUME] [--mesh OUT.ply] [--png OUT.png]");
+  ProgressBar progress;
+  auto volume = LoadAnyVolume(args.get("in", ""), progress);
+  const lvdif::Recording recording = lvdif::loadRecording(args.positional()[0]);
+  lvdif::Editor editor(*volume);
+  editor.play(recording, progress);
+  WriteEditOutputs(*volume, args, { { "recording", args.positional()[0] } }, progress);
+  return 0;
+}

@@ -1,0 +1,65 @@
+// Commands on saved volumes: info, mesh, convert.
+#include "Arguments.h"
+#include "Commands.h"
+#include "MeshOutput.h"
+#include "ProgressBar.h"
+#include "VolumeFiles.h"
+
+#include "lvdif/Error.h"
+#include "lvdif/Memory.h"
+#include "lvdif/VolumeFile.h"
+
+#include "vtkPolyData.h"
+
+#include <cstdio>
+
+int CommandInfo(int argc, char** argv)
+{
+  Arguments args(argc, argv, 2);
+  args.allowOnly({});
+  if (args.positional().size() != 1)
+    throw lvdif::Error(lvdif::ErrorCode::InvalidArgument, "usage: lvdif info VOLUME.lvdv");
+  const lvdif::VolumeFileInfo info = lvdif::readVolumeInfo(args.positional()[0]);
+  const auto& o = info.options;
+  std::printf("file        %s (%s, format version %u)\n", args.positional()[0].c_str(),
+    lvdif::formatBytes(info.fileBytes).c_str(), info.version);
+  std::printf("dimensions  %lld x %lld x %lld, chunk edge %d, band %g\n", (long long)o.dims[0], (long long)o.dims[1],
+    (long long)o.dims[2], o.chunkEdge, o.bandWidth);
+  std::printf("origin      %g %g %g, spacing %g %g %g\n", o.origin[0], o.origin[1], o.origin[2], o.spacing[0],
+    o.spacing[1], o.spacing[2]);
+  std::printf("dictionary  Group A +-%g step %g, Group B step %g\n", o.dictionary.groupALimit, o.dictionary.stepA,
+    o.dictionary.stepB);
+  std::printf("chunks      %lld (%lld uniform), compressed payload %s\n", (long long)info.chunkCount,
+    (long long)info.uniformChunks, lvdif::formatBytes(info.payloadBytes).c_str());
+  std::printf("colours     %zu\n", info.colors.size());
+  for (const auto& kv : info.metadata) std::printf("meta        %s = %s\n", kv.first.c_str(), kv.second.c_str());
+  return 0;
+}
+
+int CommandMesh(int argc, char** argv)
+{
+  Arguments args(argc, argv, 2);
+  args.allowOnly({ "png" });
+  if (args.positional().size() != 2)
+    throw lvdif::Error(lvdif::ErrorCode::InvalidArgument, "usage: lvdif mesh VOLUME OUT.(ply|obj|stl|vtp) [--png OUT.png]");
+  ProgressBar progress;
+  auto volume = LoadAnyVolume(args.positional()[0], progress);
+  vtkSmartPointer<vtkPolyData> mesh = MeshVolume(*volume, progress);
+  WriteMesh(mesh, args.positional()[1]);
+  if (args.has("png")) RenderPng(mesh, args.get("png", ""));
+  std::printf("%lld triangles -> %s\n", (long long)mesh->GetNumberOfPolys(), args.positional()[1].c_str());
+  return 0;
+}
+
+int CommandConvert(int argc, char** argv)
+{
+  Arguments args(argc, argv, 2);
+  args.allowOnly({});
+  if (args.positional().size() != 2)
+    throw lvdif::Error(lvdif::ErrorCode::InvalidArgument, "usage: lvdif convert IN.(lvdv|bv) OUT.(lvdv|bv)");
+  ProgressBar progress;
+  auto volume = LoadAnyVolume(args.positional()[0], progress);
+  SaveAnyVolume(*volume, args.positional()[1], { { "converted_from", args.positional()[0] } }, progress);
+  std::printf("%s -> %s\n", args.positional()[0].c_str(), args.positional()[1].c_str());
+  return 0;
+}

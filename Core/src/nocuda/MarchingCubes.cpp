@@ -1,0 +1,24 @@
+// CUDA marching cubes entry points for builds without CUDA (never reached:
+// resolveDevice() never answers Cuda in such a build).
+#include "../MarchingCubesImpl.h"
+
+#include "lvdif/Error.h"
+
+namespace lvdif
+{
+std::shared_ptr<MarchingCubesCudaState> makeMarchingCubesCudaState()
+{
+  throw Error(ErrorCode::DeviceFailure, "marching cubes: this build has no CUDA");
+}
+
+ChunkMesh meshChunkCuda(const ChunkedMarchingCubes::Impl&, const ChunkedMarchingCubes::ChunkInput&)
+{
+  throw Error(ErrorCode::DeviceFailure, "marching cubes: this build has no CUDA");
+}
+std::vector<ChunkMesh> meshChunksCuda(const ChunkedMarchingCubes::Impl&, const std::vector<std::int64_t>&, Interrupter&)
+{
+  throw Error(ErrorCode::DeviceFailure, "marching cubes: this build has no CUDA");
+}
+
+void dropMarchingCubesCudaGrid(MarchingCubesCudaState&) {}
+} // namespace lvdif

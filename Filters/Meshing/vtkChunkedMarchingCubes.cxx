@@ -1,0 +1,309 @@
+#include "vtkChunkedMarchingCubes.h"
+
+#include "vtkChunkedMarchingCubesOutput.h"
+#include "vtkLVDIFInterrupter.h"
+#include "vtkLVDIFVolumeBridge.h"
+
+#include "lvdif/ChunkedMarchingCubes.h"
+#include "lvdif/Error.h"
+
+#include "vtkDataArray.h"
+#include "vtkExtentTranslator.h"
+#include "vtkFieldData.h"
+#include "vtkIdTypeArray.h"
+#include "vtkImageData.h"
+#include "vtkInformation.h"
+#include "vtkInformationVector.h"
+#include "vtkIntArray.h"
+#include "vtkObjectFactory.h"
+#include "vtkPartitionedDataSet.h"
+#include "vtkPointData.h"
+#include "vtkPolyData.h"
+#include "vtkStreamingDemandDrivenPipeline.h"
+#include "vtkUnsignedCharArray.h"
+
+#include <algorithm>
+#include <vector>
+
+vtkStandardNewMacro(vtkChunkedMarchingCubes);
+
+namespace
+{
+/// The ghost-free extent of a piece: block split by cells, so neighbouring
+/// pieces share one plane of points. Empty (hi < lo) when there are more
+/// pieces than cells.
+void pieceExtent(int piece, int pieces, const int whole[6], int ext[6])
+{
+  vtkNew<vtkExtentTranslator> t;
+  int w[6];
+  std::copy(whole, whole + 6, w);
+  if (!t->PieceToExtentThreadSafe(piece, pieces, 0, w, ext, vtkExtentTranslator::BLOCK_MODE, 0))
+  {
+    for (int a = 0; a < 3; ++a)
+    {
+      ext[2 * a] = whole[2 * a];
+      ext[2 * a + 1] = whole[2 * a] - 1;
+    }
+  }
+}
+
+void pieceRequest(vtkInformation* info, int& piece, int& pieces)
+{
+  using SDDP = vtkStreamingDemandDrivenPipeline;
+  piece = info->Has(SDDP::UPDATE_PIECE_NUMBER()) ? info->Get(SDDP::UPDATE_PIECE_NUMBER()) : 0;
+  pieces = info->Has(SDDP::UPDATE_NUMBER_OF_PIECES()) ? info->Get(SDDP::UPDATE_NUMBER_OF_PIECES()) : 1;
+  pieces = std::max(pieces, 1);
+}
+}
+
+vtkChunkedMarchingCubes::vtkChunkedMarchingCubes()
+{
+  this->SetColorArrayName("rgba");
+  this->SetInputArrayToProcess(0, 0, 0, vtkDataObject::FIELD_ASSOCIATION_POINTS, "sdf");
+}
+
+vtkChunkedMarchingCubes::~vtkChunkedMarchingCubes()
+{
+  this->SetColorArrayName(nullptr);
+}
+
+int vtkChunkedMarchingCubes::FillInputPortInformation(int, vtkInformation* info)
+{
+  info->Set(vtkAlgorithm::INPUT_REQUIRED_DATA_TYPE(), "vtkImageData");
+  return 1;
+}
+
+int vtkChunkedMarchingCubes::FillOutputPortInformation(int, vtkInformation* info)
+{
+  info->Set(vtkDataObject::DATA_TYPE_NAME(), "vtkDataObject");
+  return 1;
+}
+
+int vtkChunkedMarchingCubes::RequestDataObject(
+  vtkInformation*, vtkInformationVector**, vtkInformationVector* outputVector)
+{
+  vtkInformation* outInfo = outputVector->GetInformationObject(0);
+  vtkDataObject* current = outInfo->Get(vtkDataObject::DATA_OBJECT());
+  const bool merged = this->OutputMode == MERGED;
+  if (merged && vtkPolyData::SafeDownCast(current)) return 1;
+  if (!merged && vtkPartitionedDataSet::SafeDownCast(current)) return 1;
+  vtkSmartPointer<vtkDataObject> out;
+  if (merged)
+    out = vtkSmartPointer<vtkPolyData>::New();
+  else
+    out = vtkSmartPointer<vtkPartitionedDataSet>::New();
+  outInfo->Set(vtkDataObject::DATA_OBJECT(), out);
+  return 1;
+}
+
+int vtkChunkedMarchingCubes::RequestInformation(
+  vtkInformation*, vtkInformationVector**, vtkInformationVector* outputVector)
+{
+  // the output is split by pieces (not extents): every piece request is served
+  outputVector->GetInformationObject(0)->Set(vtkAlgorithm::CAN_HANDLE_PIECE_REQUEST(), 1);
+  return 1;
+}
+
+int vtkChunkedMarchingCubes::RequestUpdateExtent(
+  vtkInformation*, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
+{
+  using SDDP = vtkStreamingDemandDrivenPipeline;
+  vtkInformation* outInfo = outputVector->GetInformationObject(0);
+  vtkInformation* inInfo = inputVector[0]->GetInformationObject(0);
+  int piece, pieces;
+  pieceRequest(outInfo, piece, pieces);
+  int whole[6];
+  inInfo->Get(SDDP::WHOLE_EXTENT(), whole);
+  int ext[6];
+  pieceExtent(piece, pieces, whole, ext);
+  // one ghost layer: central-difference gradients at the piece's border
+  for (int a = 0; a < 3; ++a)
+  {
+    if (ext[2 * a + 1] < ext[2 * a]) continue;
+    ext[2 * a] = std::max(ext[2 * a] - 1, whole[2 * a]);
+    ext[2 * a + 1] = std::min(ext[2 * a + 1] + 1, whole[2 * a + 1]);
+  }
+  // The request is the extent alone: with the piece keys left in place the
+  // executive would split the input again with its own piece layout and
+  // intersect that with this extent.
+  inInfo->Set(SDDP::UPDATE_EXTENT(), ext, 6);
+  inInfo->Set(SDDP::UPDATE_PIECE_NUMBER(), 0);
+  inInfo->Set(SDDP::UPDATE_NUMBER_OF_PIECES(), 1);
+  inInfo->Set(SDDP::UPDATE_NUMBER_OF_GHOST_LEVELS(), 0);
+  // (no EXACT_EXTENT: a trivial producer would crop the caller's image in
+  // place; a larger input extent is fine, only the owned cells are meshed)
+  return 1;
+}
+
+int vtkChunkedMarchingCubes::RequestData(
+  vtkInformation*, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
+{
+  using SDDP = vtkStreamingDemandDrivenPipeline;
+  vtkInformation* outInfo = outputVector->GetInformationObject(0);
+  vtkInformation* inInfo = inputVector[0]->GetInformationObject(0);
+  vtkImageData* input = vtkImageData::GetData(inInfo);
+  vtkDataObject* output = outInfo->Get(vtkDataObject::DATA_OBJECT());
+  auto* merged = vtkPolyData::SafeDownCast(output);
+  auto* partitioned = vtkPartitionedDataSet::SafeDownCast(output);
+  if (!input || (!merged && !partitioned))
+  {
+    vtkErrorMacro("no image input or no output of the expected type");
+    return 0;
+  }
+  int inExt[6];
+  input->GetExtent(inExt);
+  int whole[6];
+  if (inInfo->Has(SDDP::WHOLE_EXTENT()))
+    inInfo->Get(SDDP::WHOLE_EXTENT(), whole);
+  else
+    std::copy(inExt, inExt + 6, whole);
+  int piece, pieces;
+  pieceRequest(outInfo, piece, pieces);
+  int own[6];
+  pieceExtent(piece, pieces, whole, own);
+
+  // the cells this piece owns, in the input grid's local indices (see the class comment)
+  lvdif::VoxelBox region;
+  for (int a = 0; a < 3; ++a)
+  {
+    region.lo[a] = std::max(own[2 * a], inExt[2 * a]) - inExt[2 * a];
+    region.hi[a] = std::min(own[2 * a + 1], inExt[2 * a + 1]) - 1 - inExt[2 * a];
+  }
+  if (region.empty() || input->GetNumberOfPoints() == 0) return 1; // nothing owned: empty output
+
+  vtkDataArray* sdf = this->GetInputArrayToProcess(0, inputVector);
+  if (!sdf)
+  {
+    vtkErrorMacro("no SDF point array (default name 'sdf'; see SetInputArrayToProcess)");
+    return 0;
+  }
+  if (sdf->GetNumberOfComponents() != 1 || sdf->GetNumberOfTuples() != input->GetNumberOfPoints())
+  {
+    vtkErrorMacro("SDF array '" << (sdf->GetName() ? sdf->GetName() : "") << "' must have one component per point");
+    return 0;
+  }
+  lvdif::FloatGridView grid = vtkLVDIFVolumeBridge::FloatView(input, sdf);
+  std::vector<float> converted;
+  if (!grid.data)
+  {
+    converted.resize(static_cast<std::size_t>(sdf->GetNumberOfTuples()));
+    for (vtkIdType i = 0; i < sdf->GetNumberOfTuples(); ++i) converted[i] = static_cast<float>(sdf->GetComponent(i, 0));
+    grid.data = converted.data();
+  }
+  // positions from global indices: origin of the whole extent's point 0 + spacing * global index
+  double origin[3], spacing[3];
+  input->GetOrigin(origin);
+  input->GetSpacing(spacing);
+  lvdif::MarchingCubesOptions o;
+  for (int a = 0; a < 3; ++a)
+  {
+    grid.geometry.origin[a] = origin[a] + spacing[a] * whole[2 * a];
+    o.gridOffset[a] = inExt[2 * a] - whole[2 * a];
+  }
+
+  // colours: the array as it is when it is 4-component unsigned char, else converted
+  vtkDataArray* colorArray =
+    this->ColorArrayName ? input->GetPointData()->GetArray(this->ColorArrayName) : nullptr;
+  const lvdif::Rgba* colors = nullptr;
+  std::vector<lvdif::Rgba> colorCopy;
+  if (colorArray && colorArray->GetNumberOfTuples() == input->GetNumberOfPoints() &&
+    (this->ComputeColors || this->ComputeCornerColors))
+  {
+    auto* uc = vtkUnsignedCharArray::SafeDownCast(colorArray);
+    if (uc && uc->GetNumberOfComponents() == 4)
+    {
+      colors = reinterpret_cast<const lvdif::Rgba*>(uc->GetPointer(0));
+    }
+    else
+    {
+      const int nc = colorArray->GetNumberOfComponents();
+      colorCopy.resize(static_cast<std::size_t>(colorArray->GetNumberOfTuples()));
+      for (vtkIdType i = 0; i < colorArray->GetNumberOfTuples(); ++i)
+      {
+        unsigned char c[4] = { 0, 0, 0, 255 };
+        for (int k = 0; k < std::min(nc, 4); ++k)
+          c[k] = static_cast<unsigned char>(std::min(255.0, std::max(0.0, colorArray->GetComponent(i, k))));
+        if (nc == 1) c[1] = c[2] = c[0];
+        colorCopy[i] = lvdif::Rgba{ c[0], c[1], c[2], c[3] };
+      }
+      colors = colorCopy.data();
+    }
+  }
+
+  o.isoValue = static_cast<float>(this->IsoValue);
+  o.chunkEdge = this->ChunkEdge;
+  o.computeNormals = this->ComputeNormals != 0;
+  o.computeColors = this->ComputeColors != 0 && colors != nullptr;
+  o.cornerColors = this->ComputeCornerColors != 0;
+  o.cellRegion = region;
+  o.device = this->Device == DEVICE_CPU ? lvdif::Device::Cpu
+                                        : (this->Device == DEVICE_CUDA ? lvdif::Device::Cuda : lvdif::Device::Auto);
+  std::vector<lvdif::ChunkMesh> meshes;
+  try
+  {
+    lvdif::ChunkedMarchingCubes mc(grid, o.computeColors ? colors : nullptr, o);
+    vtkLVDIFInterrupter interrupter(this, 0.0, 0.8);
+    meshes = mc.extractAll(interrupter);
+  }
+  catch (const lvdif::Error& e)
+  {
+    if (e.code() == lvdif::ErrorCode::Cancelled) return 1; // aborted: empty output
+    vtkErrorMacro(<< e.what());
+    return 0;
+  }
+
+  vtkChunkedMarchingCubesOutput::Context ctx;
+  ctx.gridDims = grid.geometry.dims;
+  for (int a = 0; a < 3; ++a) ctx.extentLo[a] = inExt[2 * a];
+  ctx.colors = colors;
+  ctx.normals = o.computeNormals;
+  ctx.pointColors = o.computeColors;
+  ctx.cellData = o.cornerColors;
+  if (merged)
+  {
+    merged->ShallowCopy(vtkChunkedMarchingCubesOutput::MergeChunks(meshes, ctx));
+    this->UpdateProgress(1.0);
+    return 1;
+  }
+  // chunk counts of the whole extent, for a chunk id every piece agrees on
+  vtkIdType counts[3];
+  for (int a = 0; a < 3; ++a)
+    counts[a] = std::max<vtkIdType>(1, (whole[2 * a + 1] - whole[2 * a] + this->ChunkEdge - 1) / this->ChunkEdge);
+  partitioned->SetNumberOfPartitions(static_cast<unsigned int>(meshes.size()));
+  for (std::size_t i = 0; i < meshes.size(); ++i)
+  {
+    if (i % 64 == 0)
+    {
+      if (this->GetAbortExecute()) break;
+      this->UpdateProgress(0.8 + 0.2 * static_cast<double>(i) / static_cast<double>(meshes.size()));
+    }
+    vtkSmartPointer<vtkPolyData> pd = vtkChunkedMarchingCubesOutput::ChunkToPolyData(meshes[i], ctx);
+    const lvdif::Index3& c = meshes[i].chunkCoord;
+    vtkNew<vtkIdTypeArray> id;
+    id->SetName("chunk_id");
+    id->InsertNextValue(c[0] + counts[0] * (c[1] + counts[1] * c[2]));
+    vtkNew<vtkIntArray> ijk;
+    ijk->SetName("chunk_ijk");
+    ijk->SetNumberOfComponents(3);
+    ijk->InsertNextTuple3(c[0], c[1], c[2]);
+    pd->GetFieldData()->AddArray(id);
+    pd->GetFieldData()->AddArray(ijk);
+    partitioned->SetPartition(static_cast<unsigned int>(i), pd);
+  }
+  this->UpdateProgress(1.0);
+  return 1;
+}
+
+void vtkChunkedMarchingCubes::PrintSelf(ostream& os, vtkIndent indent)
+{
+  this->Superclass::PrintSelf(os, indent);
+  os << indent << "OutputMode: " << (this->OutputMode == MERGED ? "Merged" : "Partitioned") << "\n";
+  os << indent << "IsoValue: " << this->IsoValue << "\n";
+  os << indent << "ChunkEdge: " << this->ChunkEdge << "\n";
+  os << indent << "ComputeNormals: " << this->ComputeNormals << "\n";
+  os << indent << "ComputeColors: " << this->ComputeColors << "\n";
+  os << indent << "ComputeCornerColors: " << this->ComputeCornerColors << "\n";
+  os << indent << "ColorArrayName: " << (this->ColorArrayName ? this->ColorArrayName : "(none)") << "\n";
+  os << indent << "Device: "
+     << (this->Device == DEVICE_CPU ? "Cpu" : (this->Device == DEVICE_CUDA ? "Cuda" : "Auto")) << "\n";
+}

@@ -1,0 +1,146 @@
+/**
+ * @class   vtkChunkedMarchingCubes
+ * @brief   seamless chunked marching cubes of an SDF image (paper Sect. 3.3)
+ *
+ * A thin wrapper over lvdif::ChunkedMarchingCubes. Input: vtkImageData with a
+ * scalar point array (default `sdf`, negative inside; choose another with
+ * SetInputArrayToProcess(0, 0, 0, vtkDataObject::FIELD_ASSOCIATION_POINTS, name))
+ * and an optional 4-component unsigned char colour array (default `rgba`).
+ *
+ * Output (OutputMode):
+ * - PARTITIONED: a vtkPartitionedDataSet with one vtkPolyData per non-empty
+ *   chunk, each with field data `chunk_id` (vtkIdType: x + cx*(y + cy*z) of the
+ *   chunk coordinate, cx, cy chunk counts of the whole extent) and `chunk_ijk`
+ *   (int, 3 components). Chunk boundary vertices appear in both chunks with
+ *   bit-identical coordinates.
+ * - MERGED: one vtkPolyData, chunk boundary vertices merged (one point per cut
+ *   grid edge), so a closed surface is watertight as it is.
+ * Point arrays: `Normals` (unit, outward: along the SDF gradient) when
+ * ComputeNormals, `rgba` (interpolated along the cut edge) when ComputeColors
+ * and the input has colours. Cell arrays (ComputeCornerColors): `cell_ijk`
+ * (int, 3 components: the structured index of the cell's lowest point) and,
+ * with colours, `corner_rgba` (unsigned char, 32 components: the RGBA of the
+ * cell's 8 corners, corner c at offset (c&1, (c>>1)&1, (c>>2)&1)) for the
+ * tetrahedral colour shader. Triangles are counter-clockwise seen from outside.
+ *
+ * Chunks are ChunkEdge^3 cells aligned to the whole extent's first point.
+ *
+ * Pieces: the filter asks its input for the piece's extent (vtkExtentTranslator,
+ * block mode, split by cells so neighbouring pieces share a plane of points)
+ * plus one ghost level, which makes gradients at piece borders central
+ * differences as in a one-piece run. Ownership rule: a cell belongs to the
+ * piece whose (ghost-free) piece extent contains its lowest corner AND its
+ * upper corner, i.e. lowest corner in [lo, hi-1] of the piece extent. Pieces
+ * therefore partition the cells: no triangle is emitted twice, and the vertices
+ * on a shared plane are bit-identical (positions are computed from global point
+ * indices), so the union of the pieces is seamless.
+ *
+ * Progress and abort: UpdateProgress / AbortExecute through vtkLVDIFInterrupter.
+ */
+#ifndef vtkChunkedMarchingCubes_h
+#define vtkChunkedMarchingCubes_h
+
+#include "lvdifFiltersMeshingModule.h"
+#include "vtkDataObjectAlgorithm.h"
+
+class LVDIFFILTERSMESHING_EXPORT vtkChunkedMarchingCubes : public vtkDataObjectAlgorithm
+{
+public:
+  static vtkChunkedMarchingCubes* New();
+  vtkTypeMacro(vtkChunkedMarchingCubes, vtkDataObjectAlgorithm);
+  void PrintSelf(ostream& os, vtkIndent indent) override;
+
+  enum OutputModes
+  {
+    PARTITIONED = 0,
+    MERGED = 1
+  };
+  enum Devices
+  {
+    DEVICE_AUTO = 0,
+    DEVICE_CPU = 1,
+    DEVICE_CUDA = 2
+  };
+
+  ///@{
+  /// PARTITIONED (default): one vtkPolyData per chunk; MERGED: one vtkPolyData.
+  vtkSetClampMacro(OutputMode, int, PARTITIONED, MERGED);
+  vtkGetMacro(OutputMode, int);
+  void SetOutputModeToPartitioned() { this->SetOutputMode(PARTITIONED); }
+  void SetOutputModeToMerged() { this->SetOutputMode(MERGED); }
+  ///@}
+
+  ///@{
+  /// The iso value (default 0: the SDF's zero set).
+  vtkSetMacro(IsoValue, double);
+  vtkGetMacro(IsoValue, double);
+  ///@}
+
+  ///@{
+  /// Cells per chunk edge, 16..256 (default 64).
+  vtkSetClampMacro(ChunkEdge, int, 16, 256);
+  vtkGetMacro(ChunkEdge, int);
+  ///@}
+
+  ///@{
+  /// Per-vertex `Normals` from the SDF gradient (default on).
+  vtkSetMacro(ComputeNormals, vtkTypeBool);
+  vtkGetMacro(ComputeNormals, vtkTypeBool);
+  vtkBooleanMacro(ComputeNormals, vtkTypeBool);
+  ///@}
+
+  ///@{
+  /// Per-vertex `rgba` when the input has the colour array (default on).
+  vtkSetMacro(ComputeColors, vtkTypeBool);
+  vtkGetMacro(ComputeColors, vtkTypeBool);
+  vtkBooleanMacro(ComputeColors, vtkTypeBool);
+  ///@}
+
+  ///@{
+  /// Per-triangle `cell_ijk` and (with colours) `corner_rgba` (default on).
+  vtkSetMacro(ComputeCornerColors, vtkTypeBool);
+  vtkGetMacro(ComputeCornerColors, vtkTypeBool);
+  vtkBooleanMacro(ComputeCornerColors, vtkTypeBool);
+  ///@}
+
+  ///@{
+  /// Name of the input's colour point array (default `rgba`).
+  vtkSetStringMacro(ColorArrayName);
+  vtkGetStringMacro(ColorArrayName);
+  ///@}
+
+  ///@{
+  /// DEVICE_AUTO (default), DEVICE_CPU or DEVICE_CUDA (falls back to the CPU
+  /// without a GPU). On the GPU the image is uploaded at every execution, then
+  /// meshed in batches of chunks; the result equals the CPU's (same vertices
+  /// bit for bit, same triangles; points numbered in another order).
+  vtkSetClampMacro(Device, int, DEVICE_AUTO, DEVICE_CUDA);
+  vtkGetMacro(Device, int);
+  ///@}
+
+protected:
+  vtkChunkedMarchingCubes();
+  ~vtkChunkedMarchingCubes() override;
+
+  int FillInputPortInformation(int port, vtkInformation* info) override;
+  int FillOutputPortInformation(int port, vtkInformation* info) override;
+  int RequestDataObject(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
+  int RequestInformation(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
+  int RequestUpdateExtent(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
+  int RequestData(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
+
+  int OutputMode = PARTITIONED;
+  double IsoValue = 0.0;
+  int ChunkEdge = 64;
+  vtkTypeBool ComputeNormals = 1;
+  vtkTypeBool ComputeColors = 1;
+  vtkTypeBool ComputeCornerColors = 1;
+  char* ColorArrayName = nullptr;
+  int Device = DEVICE_AUTO;
+
+private:
+  vtkChunkedMarchingCubes(const vtkChunkedMarchingCubes&) = delete;
+  void operator=(const vtkChunkedMarchingCubes&) = delete;
+};
+
+#endif

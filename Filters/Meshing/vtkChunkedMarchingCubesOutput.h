@@ -1,0 +1,39 @@
+/**
+ * @file   vtkChunkedMarchingCubesOutput.h
+ * @brief  lvdif::ChunkMesh -> vtkPolyData (one chunk, or all chunks merged)
+ *
+ * Internal to vtkChunkedMarchingCubes. Array names: point `Normals`, `rgba`;
+ * cell `cell_ijk` (int x3), `corner_rgba` (unsigned char x32).
+ */
+#ifndef vtkChunkedMarchingCubesOutput_h
+#define vtkChunkedMarchingCubesOutput_h
+
+#include "lvdif/ChunkedMarchingCubes.h"
+
+#include "vtkSmartPointer.h"
+
+#include <vector>
+
+class vtkPolyData;
+
+namespace vtkChunkedMarchingCubesOutput
+{
+struct Context
+{
+  lvdif::Index3 gridDims{ 0, 0, 0 }; // points of the meshed grid (decodes edgeIds, triangleCells)
+  int extentLo[3] = { 0, 0, 0 };     // structured index of the grid's point 0
+  const lvdif::Rgba* colors = nullptr; // one per grid point (corner_rgba), or null
+  bool normals = false;
+  bool pointColors = false;
+  bool cellData = false; // cell_ijk (+ corner_rgba when colors)
+};
+
+/// One chunk's mesh as it is (boundary vertices not shared with neighbours).
+vtkSmartPointer<vtkPolyData> ChunkToPolyData(const lvdif::ChunkMesh& mesh, const Context& ctx);
+
+/// All chunks in one mesh, one point per cut grid edge: only the points on a
+/// chunk's faces are looked up in a hash map, the rest are unique by construction.
+vtkSmartPointer<vtkPolyData> MergeChunks(const std::vector<lvdif::ChunkMesh>& meshes, const Context& ctx);
+}
+
+#endif
