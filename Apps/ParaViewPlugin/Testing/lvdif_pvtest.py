@@ -158,8 +158,9 @@ def contour(source, present):
     mc = None
     if present["vtkChunkedMarchingCubes"]:
         mc = getattr(pvs, PROXY_NAMES["vtkChunkedMarchingCubes"])(Input=source)
-        if "Scalars" in mc.ListProperties():
-            mc.Scalars = ["POINTS", "sdf"]
+        mc.Scalars = ["POINTS", "sdf"]
+        mc.OutputMode = "Merged"  # one polydata per rank (the comparisons want triangles)
+        mc.IsoValue = 0.0
     return c, mc
 
 
