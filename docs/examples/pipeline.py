@@ -79,7 +79,14 @@ def repair_signs(sdf):
 
 def surface(field):
     if hasattr(lvdif, "vtkChunkedMarchingCubes"):
-        raise NotImplementedError("vtkChunkedMarchingCubes landed: use it here")  # see docs/PYTHON.md
+        mc = lvdif.vtkChunkedMarchingCubes()
+        mc.SetInputConnection(field.GetOutputPort())
+        mc.SetInputArrayToProcess(0, 0, 0, vtk.vtkDataObject.FIELD_ASSOCIATION_POINTS, "sdf")
+        mc.SetIsoValue(0.0)
+        mc.SetOutputModeToMerged()  # one watertight vtkPolyData (default: one per chunk)
+        mc.SetChunkEdge(32)
+        print("surface: vtkChunkedMarchingCubes")
+        return mc
     fe = vtkFlyingEdges3D()
     fe.SetInputConnection(field.GetOutputPort())
     fe.SetInputArrayToProcess(0, 0, 0, vtk.vtkDataObject.FIELD_ASSOCIATION_POINTS, "sdf")
