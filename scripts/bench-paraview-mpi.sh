@@ -16,13 +16,13 @@ tmp=$(mktemp -d)
 script="$here/Apps/ParaViewPlugin/Testing/mpi_pipeline.py"
 echo "machine: $(nproc) cores, $(grep -m1 'model name' /proc/cpuinfo | cut -d: -f2 | xargs), VTK_SMP_BACKEND_IN_USE=$VTK_SMP_BACKEND_IN_USE, load: $(cut -d" " -f1-3 /proc/loadavg)"
 echo
-echo "| ranks | SDF stage | grid | pipeline (s) | write (s) | triangles |"
-echo "|---|---|---|---|---|---|"
+echo "| ranks | SDF stage | surface | grid | pipeline (s) | write (s) | triangles |"
+echo "|---|---|---|---|---|---|---|"
 for np in 1 2 4; do
   line=$(xvfb-run -a -s "-screen 0 1280x1024x24" mpirun --allow-run-as-root --oversubscribe -np "$np" \
     pvbatch --force-offscreen-rendering "$script" "$plugin" "$tmp" --bench --n "$N" 2>&1 | grep '^BENCH' || true)
   [ -n "$line" ] || { echo "bench-paraview-mpi: run with $np ranks failed" >&2; exit 1; }
   eval "$(echo "$line" | sed 's/^BENCH //; s/ /;/g')"
-  echo "| $ranks | $sdf | ${N}^3 | $pipeline_s | $write_s | $triangles |"
+  echo "| $ranks | $sdf | $surface | ${N}^3 | $pipeline_s | $write_s | $triangles |"
 done
 rm -rf "$tmp"

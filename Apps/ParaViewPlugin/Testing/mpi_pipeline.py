@@ -160,8 +160,9 @@ def bench():
     pvs.SaveData(path, proxy=surface)
     t3 = time.perf_counter()
     ntri = surface.GetDataInformation().GetNumberOfCells()
-    print("BENCH ranks=%d N=%d sdf=%s pipeline_s=%.3f write_s=%.3f triangles=%d" % (
-        nranks, T.N, how.split(":")[0], t1 - t0, t3 - t2, ntri))
+    print("BENCH ranks=%d N=%d sdf=%s surface=%s pipeline_s=%.3f write_s=%.3f triangles=%d" % (
+        nranks, T.N, how.split(":")[0], "vtkChunkedMarchingCubes" if mc is not None else "Contour",
+        t1 - t0, t3 - t2, ntri))
 
 
 if mode == "--bench":
