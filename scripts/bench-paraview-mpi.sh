@@ -14,7 +14,7 @@ export PYTHONPATH="$here/Apps/ParaViewPlugin/Testing:$LVDIF_PV_PYTHONPATH"
 export VTK_SMP_BACKEND_IN_USE="${VTK_SMP_BACKEND_IN_USE:-STDThread}" OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1
 tmp=$(mktemp -d)
 script="$here/Apps/ParaViewPlugin/Testing/mpi_pipeline.py"
-echo "machine: $(nproc) cores, $(grep -m1 'model name' /proc/cpuinfo | cut -d: -f2 | xargs), VTK_SMP_BACKEND_IN_USE=$VTK_SMP_BACKEND_IN_USE, load: $(cut -d" " -f1-3 /proc/loadavg)"
+echo "machine: $(nproc --all) cores, $(grep -m1 'model name' /proc/cpuinfo | cut -d: -f2 | xargs), VTK_SMP_BACKEND_IN_USE=$VTK_SMP_BACKEND_IN_USE, OMP_NUM_THREADS=${OMP_NUM_THREADS:-unset}, load: $(cut -d" " -f1-3 /proc/loadavg)"
 echo
 echo "| ranks | SDF stage | surface | grid | pipeline (s) | write (s) | triangles |"
 echo "|---|---|---|---|---|---|---|"
