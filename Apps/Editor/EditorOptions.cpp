@@ -1,0 +1,99 @@
+#include "EditorOptions.h"
+
+#include <QCommandLineParser>
+#include <QPointF>
+#include <QRegularExpression>
+
+#include <cstdio>
+#include <cstdlib>
+
+namespace
+{
+[[noreturn]] void fail(const QString& message)
+{
+  std::fprintf(stderr, "lvdif-editor: %s\n", message.toLocal8Bit().constData());
+  std::exit(2);
+}
+} // namespace
+
+EditorOptions parseEditorOptions(const QStringList& arguments)
+{
+  QCommandLineParser p;
+  p.setApplicationDescription("LVDIF volume editor");
+  p.addHelpOption();
+  const QCommandLineOption open("open", "Open a volume (.lvdv or .vti).", "file");
+  const QCommandLineOption create("new", "New canvas of N^3 or NXxNYxNZ voxels.", "size");
+  const QCommandLineOption fill("fill", "Fill of a new canvas: empty, full or sphere.", "fill", "sphere");
+  const QCommandLineOption script("script", "Run a script (.lvs) or play a recording (.lvrec) after loading.", "file");
+  const QCommandLineOption drag("replay-drag", "Synthetic left-drag through display points 'x,y;x,y;...' (or / between points).", "points");
+  const QCommandLineOption undo("undo", "Undo N steps after the drag.", "n", "0");
+  const QCommandLineOption shot("screenshot", "Save a screenshot (PNG) and quit.", "file");
+  const QCommandLineOption save("save", "Save the volume (.lvdv or .vti) and quit.", "file");
+  const QCommandLineOption exp("export", "Export the mesh (.ply, .obj, .stl) and quit.", "file");
+  const QCommandLineOption op("op", "Brush operation: add, subtract, paint.", "op", "add");
+  const QCommandLineOption shape("shape", "Brush shape: sphere, cube.", "shape", "sphere");
+  const QCommandLineOption kind("brush", "Brush kind: basic, dynamic, drill.", "kind", "basic");
+  const QCommandLineOption radius("radius", "Brush radius in voxels.", "r", "4");
+  const QCommandLineOption color("color", "Brush colour #rrggbb.", "color");
+  const QCommandLineOption size("size", "Window size WxH.", "size", "900x700");
+  const QCommandLineOption quit("quit", "Quit when the command-line work is done.");
+  const QCommandLineOption noRecovery("no-recovery", "Do not offer to recover an autosaved volume.");
+  const QCommandLineOption recoveryDir("recovery-dir", "Folder of the autosave file.", "dir");
+  const QCommandLineOption autosave("autosave", "Autosave interval in seconds (0: off).", "s", "60");
+  const QCommandLineOption perVertex("per-vertex-color", "Per-vertex colours instead of tetrahedral interpolation.");
+  p.addOptions({ open, create, fill, script, drag, undo, shot, save, exp, op, shape, kind, radius, color, size, quit,
+    noRecovery, recoveryDir, autosave, perVertex });
+  p.process(arguments);
+
+  EditorOptions o;
+  o.open = p.value(open);
+  if (p.isSet(create))
+  {
+    const QStringList parts = p.value(create).split('x');
+    if (parts.size() == 1)
+      o.newDims = { parts[0].toInt(), parts[0].toInt(), parts[0].toInt() };
+    else if (parts.size() == 3)
+      o.newDims = { parts[0].toInt(), parts[1].toInt(), parts[2].toInt() };
+    if (o.newDims[0] < 2 || o.newDims[1] < 2 || o.newDims[2] < 2)
+      fail("--new expects N or NXxNYxNZ with every size >= 2, got '" + p.value(create) + "'");
+  }
+  o.fill = p.value(fill);
+  if (o.fill != "empty" && o.fill != "full" && o.fill != "sphere")
+    fail("--fill must be empty, full or sphere");
+  o.script = p.value(script);
+  if (p.isSet(drag))
+  {
+    for (const QString& pt : p.value(drag).split(QRegularExpression("[;/ ]"), Qt::SkipEmptyParts))
+    {
+      const QStringList xy = pt.split(',');
+      bool ok1 = false, ok2 = false;
+      if (xy.size() == 2)
+        o.drag.push_back(QPointF(xy[0].toDouble(&ok1), xy[1].toDouble(&ok2)));
+      if (!ok1 || !ok2)
+        fail("--replay-drag expects 'x,y;x,y;...', got '" + pt + "'");
+    }
+  }
+  o.undo = p.value(undo).toInt();
+  o.screenshot = p.value(shot);
+  o.save = p.value(save);
+  o.exportMesh = p.value(exp);
+  o.op = p.value(op);
+  o.shape = p.value(shape);
+  o.kind = p.value(kind);
+  o.radius = p.value(radius).toDouble();
+  if (!(o.radius > 0))
+    fail("--radius must be positive");
+  o.color = p.value(color);
+  const QStringList wh = p.value(size).split('x');
+  if (wh.size() == 2)
+  {
+    o.width = wh[0].toInt();
+    o.height = wh[1].toInt();
+  }
+  o.quit = p.isSet(quit);
+  o.noRecovery = p.isSet(noRecovery);
+  o.recoveryDir = p.value(recoveryDir);
+  o.autosaveSeconds = p.value(autosave).toInt();
+  o.perVertexColor = p.isSet(perVertex);
+  return o;
+}

@@ -1,0 +1,34 @@
+// Command-line options of the editor (for users and for the tests).
+#pragma once
+
+#include <QPointF>
+#include <QString>
+#include <QVector>
+
+#include <array>
+
+struct EditorOptions
+{
+  QString open;               // --open FILE (.vti)
+  std::array<int, 3> newDims{ 0, 0, 0 }; // --new N or NXxNYxNZ
+  QString fill = "sphere";    // --fill empty|full|sphere
+  QString script;             // --script FILE (a recording to play)
+  QVector<QPointF> drag;      // --replay-drag "x,y;x,y;..." (display pixels, origin bottom-left; or fractions of the view if all in [0,1])
+  int undo = 0;               // --undo N after the drag
+  QString screenshot;         // --screenshot FILE.png
+  QString save;               // --save FILE.vti
+  QString exportMesh;         // --export FILE.ply|obj|stl
+  QString op = "add", shape = "sphere", kind = "basic"; // --op --shape --brush
+  double radius = 4.0;        // --radius voxels
+  QString color;              // --color #rrggbb
+  int width = 900, height = 700; // --size WxH of the window
+  bool quit = false;          // --quit when done (implied by --screenshot/--save/--export)
+  bool noRecovery = false;    // --no-recovery: never offer to recover
+  QString recoveryDir;        // --recovery-dir DIR (default: the app data folder)
+  int autosaveSeconds = 60;   // --autosave S
+  bool perVertexColor = false; // --per-vertex-color
+  bool batch() const { return this->quit || !this->screenshot.isEmpty() || !this->save.isEmpty() || !this->exportMesh.isEmpty(); }
+};
+
+/// Parses the arguments (exits with a message on bad ones).
+EditorOptions parseEditorOptions(const QStringList& arguments);

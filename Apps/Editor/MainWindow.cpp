@@ -1,0 +1,590 @@
+#include "MainWindow.h"
+
+
+#include "lvdif/Error.h"
+#include "lvdif/Recording.h"
+#include "lvdif/Script.h"
+
+#include "vtkBrushRepresentation.h"
+#include "vtkBrushWidget.h"
+#include "vtkCallbackCommand.h"
+#include "vtkCamera.h"
+#include "vtkChunkActorManager.h"
+#include "vtkLVDIFChunkMesh.h"
+#include "vtkGenericOpenGLRenderWindow.h"
+#include "vtkPolyData.h"
+#include "vtkProperty.h"
+#include "vtkRenderWindowInteractor.h"
+#include "vtkRenderer.h"
+#include "vtkTetrahedralColorMapper.h"
+
+#include <QAction>
+#include <QApplication>
+#include <QCloseEvent>
+#include <QDir>
+#include <QDockWidget>
+#include <QFile>
+#include <QFileDialog>
+#include <QFileInfo>
+#include <QInputDialog>
+#include <QLabel>
+#include <QMenuBar>
+#include <QMessageBox>
+#include <QStandardPaths>
+#include <QStatusBar>
+#include <QTabletEvent>
+#include <QTimer>
+#include <QVTKOpenGLNativeWidget.h>
+
+#include <cmath>
+#include <map>
+#include <stdexcept>
+
+MainWindow::MainWindow(const EditorOptions& options)
+  : Options(options)
+{
+  this->Clock.start();
+  this->View = new QVTKOpenGLNativeWidget(this);
+  this->View->setRenderWindow(this->RenderWindow);
+  this->RenderWindow->AddRenderer(this->Renderer);
+  this->Renderer->SetBackground(0.16, 0.17, 0.2);
+  this->Renderer->SetBackground2(0.05, 0.05, 0.07);
+  this->Renderer->GradientBackgroundOn();
+  this->setCentralWidget(this->View);
+  this->View->installEventFilter(this);
+  this->resize(options.width, options.height);
+
+  this->Chunks->SetRenderer(this->Renderer);
+  this->Chunks->GetProperty()->SetSpecular(0.25);
+  this->Chunks->GetProperty()->SetSpecularPower(25);
+  this->Chunks->SetInterpolationMode(
+    options.perVertexColor ? vtkTetrahedralColorMapper::PerVertex : vtkTetrahedralColorMapper::Tetrahedral);
+
+  this->Brush->SetInteractor(this->View->interactor());
+  this->Brush->SetRepresentation(this->BrushRep);
+  auto observe = [this](unsigned long event, auto handler) {
+    vtkNew<vtkCallbackCommand> cb;
+    cb->SetClientData(new std::function<void(void*)>(handler));
+    cb->SetCallback([](vtkObject*, unsigned long, void* cd, void* data) {
+      (*static_cast<std::function<void(void*)>*>(cd))(data);
+    });
+    cb->SetClientDataDeleteCallback([](void* cd) { delete static_cast<std::function<void(void*)>*>(cd); });
+    this->Brush->AddObserver(event, cb);
+  };
+  observe(vtkBrushWidget::BrushSampleEvent, [this](void* d) { this->onBrushSample(static_cast<double*>(d)); });
+  observe(vtkCommand::StartInteractionEvent, [this](void*) { this->onStrokeStart(); });
+  observe(vtkCommand::EndInteractionEvent, [this](void*) { this->onStrokeEnd(); });
+  observe(vtkBrushWidget::RadiusChangedEvent, [this](void* d) {
+    const double world = *static_cast<double*>(d);
+    if (this->Doc.hasVolume())
+    {
+      this->Tools->setRadius(world / this->Doc.volume().options().spacing[0]);
+      this->applyBrushState();
+    }
+  });
+
+  this->Tools = new ToolPanel(this);
+  BrushState s;
+  s.op = options.op == "subtract" ? 1 : (options.op == "paint" ? 2 : 0);
+  s.shape = options.shape == "cube" ? 1 : 0;
+  s.kind = options.kind == "dynamic" ? 2 : (options.kind == "drill" ? 3 : 1);
+  s.radius = options.radius;
+  if (!options.color.isEmpty())
+    s.color = QColor(options.color);
+  this->Tools->setState(s);
+  auto* dock = new QDockWidget("Brush", this);
+  dock->setObjectName("BrushDock");
+  dock->setWidget(this->Tools);
+  this->addDockWidget(Qt::RightDockWidgetArea, dock);
+  connect(this->Tools, &ToolPanel::changed, this, &MainWindow::applyBrushState);
+  connect(this->Tools, &ToolPanel::undoRequested, this, &MainWindow::undo);
+  connect(this->Tools, &ToolPanel::redoRequested, this, &MainWindow::redo);
+  connect(this->Tools, &ToolPanel::recordToggled, this, &MainWindow::toggleRecording);
+  connect(this->Tools, &ToolPanel::playRequested, this, &MainWindow::scriptDialog);
+
+  this->Status = new QLabel(this);
+  this->statusBar()->addPermanentWidget(this->Status);
+  this->buildMenus();
+
+  // Finished chunk meshes are picked up ~60 times a second; the view never waits for them.
+  this->MeshTimer = new QTimer(this);
+  connect(this->MeshTimer, &QTimer::timeout, this, &MainWindow::pollMeshes);
+  this->MeshTimer->start(15);
+  this->AutosaveTimer = new QTimer(this);
+  connect(this->AutosaveTimer, &QTimer::timeout, this, &MainWindow::autosave);
+  if (options.autosaveSeconds > 0)
+    this->AutosaveTimer->start(options.autosaveSeconds * 1000);
+  this->updateTitle();
+}
+
+MainWindow::~MainWindow()
+{
+  this->Brush->Off();
+  this->Chunks->RemoveAllChunks();
+}
+
+void MainWindow::buildMenus()
+{
+  QMenu* file = this->menuBar()->addMenu("&File");
+  file->addAction("&New canvas...", this, &MainWindow::newDialog, QKeySequence::New);
+  file->addAction("&Open volume...", this, &MainWindow::openDialog, QKeySequence::Open);
+  this->OpenMeshAction = file->addAction("Open &mesh...");
+  this->OpenMeshAction->setEnabled(false);
+  this->OpenMeshAction->setToolTip("Needs the mesh-to-SDF filter (vtkMeshToSDF), not yet part of this build");
+  this->OpenMeshAction->setStatusTip(this->OpenMeshAction->toolTip());
+  file->setToolTipsVisible(true);
+  file->addSeparator();
+  file->addAction("&Save", this, [this] {
+    if (this->Doc.path().isEmpty())
+      this->saveAsDialog();
+    else
+      this->saveVolume(this->Doc.path());
+  }, QKeySequence::Save);
+  file->addAction("Save &as...", this, &MainWindow::saveAsDialog, QKeySequence::SaveAs);
+  file->addAction("&Export mesh...", this, &MainWindow::exportDialog);
+  file->addAction("Screens&hot...", this, &MainWindow::screenshotDialog);
+  file->addSeparator();
+  file->addAction("&Run script (recording)...", this, &MainWindow::scriptDialog);
+  file->addSeparator();
+  file->addAction("&Quit", this, &QWidget::close, QKeySequence::Quit);
+
+  QMenu* edit = this->menuBar()->addMenu("&Edit");
+  edit->addAction("&Undo", this, &MainWindow::undo, QKeySequence(Qt::CTRL | Qt::Key_Z));
+  edit->addAction("&Redo", this, &MainWindow::redo, QKeySequence(Qt::CTRL | Qt::SHIFT | Qt::Key_Z));
+
+  QMenu* view = this->menuBar()->addMenu("&View");
+  QAction* tetra = view->addAction("&Tetrahedral colour interpolation");
+  tetra->setCheckable(true);
+  tetra->setChecked(!this->Options.perVertexColor);
+  connect(tetra, &QAction::toggled, this, [this](bool on) {
+    this->Chunks->SetInterpolationMode(
+      on ? vtkTetrahedralColorMapper::Tetrahedral : vtkTetrahedralColorMapper::PerVertex);
+    this->RenderWindow->Render();
+  });
+  view->addAction("&Reset camera", this, &MainWindow::resetView);
+}
+
+void MainWindow::applyBrushState()
+{
+  const BrushState& s = this->Tools->state();
+  if (this->Doc.hasVolume())
+  {
+    lvdif::Editor& e = this->Doc.editor();
+    e.brush.op = static_cast<lvdif::BrushOp>(s.op);
+    e.brush.blend = s.blend;
+    e.brush.color = lvdif::Rgba{ static_cast<std::uint8_t>(s.color.red()), static_cast<std::uint8_t>(s.color.green()),
+      static_cast<std::uint8_t>(s.color.blue()), static_cast<std::uint8_t>(s.color.alpha()) };
+    e.stroke.shape = static_cast<lvdif::BrushShape>(s.shape);
+    e.stroke.radius = s.radius;
+    // Basic strokes are applied as they go (the Core's Drill mode of
+    // application, here with the cursor on the surface) so the user sees
+    // the surface change under the mouse; Dynamic needs the whole stroke
+    // for its taper and is applied on release.
+    e.stroke.kind = s.kind == 2 ? lvdif::BrushKind::Dynamic : lvdif::BrushKind::Drill;
+    this->BrushRep->SetRadius(s.radius * this->Doc.volume().options().spacing[0]);
+  }
+  this->BrushRep->SetShape(s.shape == 1 ? vtkBrushRepresentation::Cube : vtkBrushRepresentation::Sphere);
+  this->BrushRep->GetCursorProperty()->SetColor(s.color.redF(), s.color.greenF(), s.color.blueF());
+}
+
+void MainWindow::onStrokeStart()
+{
+  if (!this->Doc.hasVolume())
+    return;
+  this->applyBrushState();
+  try
+  {
+    this->Doc.beginStroke();
+    this->Painting = true;
+  }
+  catch (const std::exception& e)
+  {
+    this->showError("Cannot start the stroke", e);
+  }
+}
+
+void MainWindow::onBrushSample(const double* sample)
+{
+  if (!this->Painting)
+    return;
+  const auto& o = this->Doc.volume().options();
+  lvdif::BrushSample s;
+  double p[3] = { sample[0], sample[1], sample[2] };
+  if (this->Tools->state().kind == 3)
+  {
+    // Drill: the tool goes below the surface, half a radius along the inward normal.
+    const double* n = this->BrushRep->GetPickedNormal();
+    const double depth = 0.5 * sample[3];
+    for (int a = 0; a < 3; ++a)
+      p[a] -= depth * n[a];
+  }
+  for (int a = 0; a < 3; ++a)
+    s.position[a] = (p[a] - o.origin[a]) / o.spacing[a];
+  s.buttons = 1;
+  s.pressure = this->Pressure; // < 0 without a tablet: the radius stays as set
+  s.time = this->Clock.elapsed() * 1e-3;
+  try
+  {
+    this->Doc.addSample(s);
+  }
+  catch (const std::exception& e)
+  {
+    this->Painting = false;
+    this->showError("The brush failed", e);
+  }
+}
+
+void MainWindow::onStrokeEnd()
+{
+  if (!this->Painting)
+    return;
+  this->Painting = false;
+  try
+  {
+    this->Doc.endStroke();
+  }
+  catch (const std::exception& e)
+  {
+    this->showError("The brush failed", e);
+  }
+  this->updateTitle();
+}
+
+void MainWindow::pollMeshes()
+{
+  if (!this->Doc.hasVolume())
+    return;
+  std::vector<lvdif::ChunkMesh> meshes = this->Doc.collectMeshes();
+  if (meshes.empty())
+    return;
+  const auto& d = this->Doc.volume().dims();
+  // In completion order; a later mesh of a chunk supersedes an earlier one.
+  std::map<std::int64_t, const lvdif::ChunkMesh*> newest;
+  for (const lvdif::ChunkMesh& mesh : meshes)
+    newest[mesh.chunkId] = &mesh;
+  for (const auto& kv : newest)
+  {
+    const lvdif::ChunkMesh& m = *kv.second;
+    if (m.empty())
+      this->Chunks->RemoveChunk(m.chunkId);
+    else
+      this->Chunks->SetChunk(m.chunkId, vtkLVDIFChunkMesh::ToPolyData(m, this->Doc.volume().colors(), d));
+  }
+  if (!this->ViewInitialized && this->Chunks->GetNumberOfChunks() > 0)
+  {
+    this->resetView();
+    this->ViewInitialized = true;
+  }
+  this->Status->setText(QString("%1 chunks, %2 triangles")
+                          .arg(this->Chunks->GetNumberOfChunks())
+                          .arg(this->Chunks->GetNumberOfTriangles()));
+  this->RenderWindow->Render();
+  this->View->update();
+}
+
+void MainWindow::finishMeshing()
+{
+  this->Doc.waitMeshingIdle();
+  this->pollMeshes();
+  this->RenderWindow->Render();
+}
+
+void MainWindow::resetView()
+{
+  vtkCamera* cam = this->Renderer->GetActiveCamera();
+  cam->SetFocalPoint(0, 0, 0);
+  cam->SetPosition(0.35, -1.0, 0.55);
+  cam->SetViewUp(0, 0, 1);
+  if (this->Doc.hasVolume())
+  {
+    const auto& o = this->Doc.volume().options();
+    const auto& d = this->Doc.volume().dims();
+    double b[6];
+    for (int a = 0; a < 3; ++a)
+    {
+      b[2 * a] = o.origin[a];
+      b[2 * a + 1] = o.origin[a] + o.spacing[a] * (d[a] - 1);
+    }
+    this->Renderer->ResetCamera(b);
+    cam->Zoom(1.4); // the volume's box is mostly empty around the surface
+  }
+  this->Renderer->ResetCameraClippingRange();
+  this->RenderWindow->Render();
+}
+
+bool MainWindow::newCanvas(int nx, int ny, int nz, VolumeDocument::Fill fill)
+{
+  try
+  {
+    this->Chunks->RemoveAllChunks();
+    this->Doc.newCanvas(nx, ny, nz, fill);
+  }
+  catch (const std::exception& e)
+  {
+    this->showError("Cannot create the canvas", e);
+    return false;
+  }
+  this->volumeReplaced();
+  if (fill != VolumeDocument::Fill::Sphere)
+    this->resetView();
+  return true;
+}
+
+bool MainWindow::openVolume(const QString& path)
+{
+  try
+  {
+    this->Chunks->RemoveAllChunks();
+    this->Doc.open(path);
+  }
+  catch (const std::exception& e)
+  {
+    this->showError("Cannot open " + path, e);
+    return false;
+  }
+  this->volumeReplaced();
+  return true;
+}
+
+bool MainWindow::saveVolume(const QString& path)
+{
+  try
+  {
+    this->Doc.save(path);
+  }
+  catch (const std::exception& e)
+  {
+    this->showError("Cannot save " + path, e);
+    return false;
+  }
+  this->updateTitle();
+  return true;
+}
+
+void MainWindow::undo()
+{
+  if (this->Doc.hasVolume() && !this->Painting)
+    this->Doc.undo();
+  this->updateTitle();
+}
+
+void MainWindow::redo()
+{
+  if (this->Doc.hasVolume() && !this->Painting)
+    this->Doc.redo();
+  this->updateTitle();
+}
+
+void MainWindow::toggleRecording(bool on)
+{
+  if (!this->Doc.hasVolume())
+  {
+    this->Tools->setRecording(false);
+    return;
+  }
+  if (on)
+  {
+    this->Doc.startRecording();
+    this->Tools->setRecording(true);
+    return;
+  }
+  this->Tools->setRecording(false);
+  const lvdif::Recording r = this->Doc.stopRecording();
+  const QString path = QFileDialog::getSaveFileName(this, "Save recording", QString(), "Recordings (*.lvrec)");
+  if (path.isEmpty())
+    return;
+  try
+  {
+    lvdif::saveRecording(path.toStdString(), r);
+  }
+  catch (const std::exception& e)
+  {
+    this->showError("Cannot save the recording", e);
+  }
+}
+
+bool MainWindow::playRecording(const QString& path)
+{
+  if (!this->Doc.hasVolume())
+    return false;
+  try
+  {
+    this->Doc.play(lvdif::loadRecording(path.toStdString()));
+  }
+  catch (const std::exception& e)
+  {
+    this->showError("Cannot play " + path, e);
+    return false;
+  }
+  this->updateTitle();
+  return true;
+}
+
+bool MainWindow::runScript(const QString& path)
+{
+  if (QFileInfo(path).suffix().toLower() == "lvrec")
+    return this->playRecording(path);
+  QFile file(path);
+  if (!file.open(QIODevice::ReadOnly | QIODevice::Text))
+  {
+    this->showError("Cannot read " + path, std::runtime_error(file.errorString().toStdString()));
+    return false;
+  }
+  const std::string source = file.readAll().toStdString();
+  const int before = this->Doc.hasVolume() ? this->Doc.generation() : -1;
+  try
+  {
+    if (!this->Doc.hasVolume())
+      this->Doc.newCanvas(128, 128, 128, VolumeDocument::Fill::Empty);
+    this->Doc.runScript(source);
+  }
+  catch (const std::exception& e)
+  {
+    this->showError("The script " + QFileInfo(path).fileName() + " failed", e);
+    return false;
+  }
+  if (this->Doc.generation() != before)
+    this->volumeReplaced();
+  this->updateTitle();
+  return true;
+}
+
+void MainWindow::volumeReplaced()
+{
+  this->Chunks->RemoveAllChunks();
+  const auto& o = this->Doc.volume().options();
+  this->Chunks->SetOrigin(o.origin[0], o.origin[1], o.origin[2]);
+  this->Chunks->SetSpacing(o.spacing[0], o.spacing[1], o.spacing[2]);
+  this->applyBrushState();
+  this->ViewInitialized = false;
+  this->Brush->On();
+  this->updateTitle();
+}
+
+void MainWindow::replayDrag(const QVector<QPointF>& points)
+{
+  vtkRenderWindowInteractor* iren = this->View->interactor();
+  // Points with both coordinates in [0, 1] are fractions of the view's size.
+  bool fractions = true;
+  for (const QPointF& p : points)
+    fractions = fractions && p.x() >= 0 && p.x() <= 1 && p.y() >= 0 && p.y() <= 1;
+  const int* size = this->RenderWindow->GetSize();
+  const double sx = fractions ? size[0] : 1.0, sy = fractions ? size[1] : 1.0;
+  auto send = [iren, sx, sy](const QPointF& p, unsigned long event) {
+    iren->SetEventInformation(
+      static_cast<int>(std::lround(p.x() * sx)), static_cast<int>(std::lround(p.y() * sy)), 0, 0);
+    iren->InvokeEvent(event, nullptr);
+  };
+  if (points.isEmpty())
+    return;
+  send(points.front(), vtkCommand::MouseMoveEvent);
+  send(points.front(), vtkCommand::LeftButtonPressEvent);
+  for (int i = 1; i < points.size(); ++i)
+  {
+    send(points[i], vtkCommand::MouseMoveEvent);
+    QApplication::processEvents();
+  }
+  send(points.back(), vtkCommand::LeftButtonReleaseEvent);
+}
+
+QString MainWindow::recoveryPath() const
+{
+  QString dir = this->Options.recoveryDir;
+  if (dir.isEmpty())
+    dir = QStandardPaths::writableLocation(QStandardPaths::AppDataLocation);
+  QDir().mkpath(dir);
+  return QDir(dir).filePath("recovery.lvdv");
+}
+
+void MainWindow::autosave()
+{
+  if (!this->Doc.hasVolume() || !this->Doc.needsAutosave() || this->Painting)
+    return;
+  try
+  {
+    this->Doc.save(this->recoveryPath(), true);
+    this->Doc.autosaved();
+    this->statusBar()->showMessage("Autosaved to " + this->recoveryPath(), 3000);
+  }
+  catch (const std::exception& e)
+  {
+    this->statusBar()->showMessage(QString("Autosave failed: ") + e.what(), 5000);
+  }
+}
+
+bool MainWindow::offerRecovery()
+{
+  const QString path = this->recoveryPath();
+  if (this->Options.noRecovery || !QFile::exists(path))
+    return false;
+  const auto answer = QMessageBox::question(this, "Recover",
+    "An autosaved volume from a session that did not end normally exists:\n" + path + "\n\nRecover it?",
+    QMessageBox::Yes | QMessageBox::No | QMessageBox::Discard);
+  if (answer == QMessageBox::Discard)
+    QFile::remove(path);
+  if (answer != QMessageBox::Yes)
+    return false;
+  return this->openVolume(path);
+}
+
+bool MainWindow::maybeSave()
+{
+  if (!this->Doc.hasVolume() || !this->Doc.modified())
+    return true;
+  const auto answer = QMessageBox::warning(this, "Unsaved changes", "The volume has been modified. Save it?",
+    QMessageBox::Save | QMessageBox::Discard | QMessageBox::Cancel);
+  if (answer == QMessageBox::Cancel)
+    return false;
+  if (answer == QMessageBox::Save)
+    return this->Doc.path().isEmpty() ? this->saveAsDialog() : this->saveVolume(this->Doc.path());
+  return true;
+}
+
+bool MainWindow::eventFilter(QObject* watched, QEvent* event)
+{
+  switch (event->type())
+  {
+    case QEvent::TabletPress:
+    case QEvent::TabletMove:
+      this->Pressure = static_cast<QTabletEvent*>(event)->pressure();
+      break;
+    case QEvent::TabletRelease:
+      this->Pressure = -1;
+      break;
+    default:
+      break;
+  }
+  // Not consumed: Qt turns unaccepted tablet events into mouse events.
+  return QMainWindow::eventFilter(watched, event);
+}
+
+void MainWindow::closeEvent(QCloseEvent* event)
+{
+  if (!this->Options.batch() && !this->maybeSave())
+  {
+    event->ignore();
+    return;
+  }
+  QFile::remove(this->recoveryPath()); // a normal end: nothing to recover
+  event->accept();
+}
+
+void MainWindow::updateTitle()
+{
+  QString name = this->Doc.path().isEmpty() ? QString("untitled") : QFileInfo(this->Doc.path()).fileName();
+  if (this->Doc.hasVolume())
+  {
+    const auto& d = this->Doc.volume().dims();
+    name += QString(" (%1x%2x%3)").arg(d[0]).arg(d[1]).arg(d[2]);
+  }
+  this->setWindowTitle(name + (this->Doc.modified() ? " *" : "") + " - LVDIF editor");
+}
+
+void MainWindow::showError(const QString& what, const std::exception& e)
+{
+  const QString text = what + ": " + QString::fromLocal8Bit(e.what());
+  if (this->Options.batch())
+    std::fprintf(stderr, "lvdif-editor: %s\n", text.toLocal8Bit().constData());
+  else
+    QMessageBox::critical(this, "LVDIF editor", text);
+}

@@ -1,0 +1,170 @@
+// MainWindow: the file dialogs, mesh export and screenshots.
+#include "MainWindow.h"
+
+#include "vtkChunkActorManager.h"
+#include "vtkCleanPolyData.h"
+#include "vtkGenericOpenGLRenderWindow.h"
+#include "vtkNew.h"
+#include "vtkOBJWriter.h"
+#include "vtkPLYWriter.h"
+#include "vtkPolyData.h"
+#include "vtkSTLWriter.h"
+
+#include <QComboBox>
+#include <QDialog>
+#include <QDialogButtonBox>
+#include <QFileDialog>
+#include <QFileInfo>
+#include <QFormLayout>
+#include <QImage>
+#include <QVTKOpenGLNativeWidget.h>
+#include <QMessageBox>
+#include <QSpinBox>
+
+#include <stdexcept>
+
+void MainWindow::newDialog()
+{
+  if (!this->maybeSave())
+    return;
+  QDialog dlg(this);
+  dlg.setWindowTitle("New canvas");
+  auto* form = new QFormLayout(&dlg);
+  QSpinBox* sizes[3];
+  const char* names[3] = { "X voxels", "Y voxels", "Z voxels" };
+  for (int a = 0; a < 3; ++a)
+  {
+    sizes[a] = new QSpinBox(&dlg);
+    sizes[a]->setRange(8, 4096);
+    sizes[a]->setValue(128);
+    form->addRow(names[a], sizes[a]);
+  }
+  auto* fill = new QComboBox(&dlg);
+  fill->addItems({ "Sphere", "Empty", "Full" });
+  form->addRow("Fill", fill);
+  auto* buttons = new QDialogButtonBox(QDialogButtonBox::Ok | QDialogButtonBox::Cancel, &dlg);
+  form->addRow(buttons);
+  connect(buttons, &QDialogButtonBox::accepted, &dlg, &QDialog::accept);
+  connect(buttons, &QDialogButtonBox::rejected, &dlg, &QDialog::reject);
+  if (dlg.exec() != QDialog::Accepted)
+    return;
+  const VolumeDocument::Fill f = fill->currentIndex() == 0
+    ? VolumeDocument::Fill::Sphere
+    : (fill->currentIndex() == 1 ? VolumeDocument::Fill::Empty : VolumeDocument::Fill::Full);
+  this->newCanvas(sizes[0]->value(), sizes[1]->value(), sizes[2]->value(), f);
+}
+
+void MainWindow::openDialog()
+{
+  if (!this->maybeSave())
+    return;
+  const QString path = QFileDialog::getOpenFileName(
+    this, "Open volume", QString(), "Volumes (*.lvdv *.vti);;LVDIF volume (*.lvdv);;VTK image (*.vti)");
+  if (!path.isEmpty())
+    this->openVolume(path);
+}
+
+bool MainWindow::saveAsDialog()
+{
+  QString path = QFileDialog::getSaveFileName(
+    this, "Save volume", this->Doc.path(), "LVDIF volume (*.lvdv);;VTK image (*.vti)");
+  if (path.isEmpty())
+    return false;
+  if (QFileInfo(path).suffix().isEmpty())
+    path += ".lvdv";
+  return this->saveVolume(path);
+}
+
+void MainWindow::exportDialog()
+{
+  const QString path =
+    QFileDialog::getSaveFileName(this, "Export mesh", QString(), "Meshes (*.ply *.obj *.stl)");
+  if (!path.isEmpty())
+    this->exportMesh(path);
+}
+
+bool MainWindow::exportMesh(const QString& path)
+{
+  try
+  {
+    this->finishMeshing();
+    // The chunk meshes repeat their boundary vertices bit-identically: merge them.
+    vtkNew<vtkCleanPolyData> clean;
+    clean->SetInputData(this->Chunks->GetMergedMesh());
+    clean->PointMergingOn();
+    clean->SetTolerance(0.0);
+    clean->Update();
+    vtkPolyData* mesh = clean->GetOutput();
+    if (mesh->GetNumberOfPolys() == 0)
+      throw std::runtime_error("the volume has no surface");
+    const QString ext = QFileInfo(path).suffix().toLower();
+    const std::string file = path.toLocal8Bit().constData();
+    int ok = 0;
+    if (ext == "ply")
+    {
+      vtkNew<vtkPLYWriter> w;
+      w->SetFileName(file.c_str());
+      w->SetInputData(mesh);
+      w->SetArrayName("rgba");
+      w->SetColorModeToDefault();
+      w->EnableAlphaOn();
+      w->SetFileTypeToBinary();
+      ok = w->Write();
+    }
+    else if (ext == "obj")
+    {
+      vtkNew<vtkOBJWriter> w;
+      w->SetFileName(file.c_str());
+      w->SetInputData(mesh);
+      ok = w->Write();
+    }
+    else if (ext == "stl")
+    {
+      vtkNew<vtkSTLWriter> w;
+      w->SetFileName(file.c_str());
+      w->SetInputData(mesh);
+      w->SetFileTypeToBinary();
+      ok = w->Write();
+    }
+    else
+      throw std::runtime_error("unknown mesh format '" + ext.toStdString() + "' (use .ply, .obj or .stl)");
+    if (!ok)
+      throw std::runtime_error("the writer failed");
+  }
+  catch (const std::exception& e)
+  {
+    this->showError("Cannot export " + path, e);
+    return false;
+  }
+  return true;
+}
+
+bool MainWindow::saveScreenshot(const QString& path)
+{
+  // QVTKOpenGLNativeWidget renders in its paintGL: a render requested from
+  // here is deferred, so reading the render window's buffer could give the
+  // previous frame. grabFramebuffer() paints now and returns that frame.
+  this->RenderWindow->Render();
+  const QImage image = this->View->grabFramebuffer().convertToFormat(QImage::Format_RGB888);
+  if (image.isNull() || !image.save(path, "PNG"))
+  {
+    this->showError("Cannot write " + path, std::runtime_error("no frame to save"));
+    return false;
+  }
+  return true;
+}
+
+void MainWindow::screenshotDialog()
+{
+  const QString path = QFileDialog::getSaveFileName(this, "Screenshot", QString(), "PNG (*.png)");
+  if (!path.isEmpty())
+    this->saveScreenshot(path);
+}
+
+void MainWindow::scriptDialog()
+{
+  const QString path =
+    QFileDialog::getOpenFileName(this, "Run script", QString(), "Scripts and recordings (*.lvs *.lvrec);;All files (*)");
+  if (!path.isEmpty())
+    this->runScript(path);
+}

@@ -1,0 +1,181 @@
+// Checks what the editor test wrote, against independent oracles:
+//   --sphere V.vti      V is the 64^3 sphere canvas untouched: every decoded
+//                       distance matches the analytic sphere (centre 31.5,
+//                       radius 0.35*64), saturated at the 8-voxel band, and
+//                       every colour is the default grey.
+//   --added V.vti       V is that sphere after an Add stroke: no voxel moved
+//                       outwards (union never removes material), some voxels
+//                       gained material, and some carry the brush colour.
+//   --image T.png B.png the screenshot matches the baseline (vtkImageDifference,
+//                       as VTK's regression tests); a missing baseline fails
+//                       and says where the new image is.
+//   --script-shape V.vti  V is sphere.lvs's result: the analytic sphere minus the cube.
+//   --mesh M.ply        the exported mesh has triangles inside the volume.
+#include "vtkFloatArray.h"
+#include "vtkImageData.h"
+#include "vtkImageDifference.h"
+#include "vtkNew.h"
+#include "vtkPLYReader.h"
+#include "vtkPNGReader.h"
+#include "vtkPointData.h"
+#include "vtkPolyData.h"
+#include "vtkUnsignedCharArray.h"
+#include "vtkXMLImageDataReader.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <cstring>
+#include <fstream>
+#include <string>
+
+namespace
+{
+int failures = 0;
+void check(bool ok, const std::string& what)
+{
+  std::printf("%s: %s\n", ok ? "ok" : "FAILED", what.c_str());
+  failures += ok ? 0 : 1;
+}
+
+vtkSmartPointer<vtkImageData> readVolume(const char* path)
+{
+  vtkNew<vtkXMLImageDataReader> r;
+  r->SetFileName(path);
+  r->Update();
+  auto img = vtkSmartPointer<vtkImageData>::New();
+  img->ShallowCopy(r->GetOutput());
+  return img;
+}
+
+// The sphere of the 64^3 "--fill sphere" canvas.
+double Cx = 31.5, Cy = 31.5, Cz = 31.5, R = 0.35 * 64;
+double CutZ = 1e9, CutH = 0; // optional subtracted cube (centre (Cx, Cy, CutZ), half edge CutH)
+
+double analytic(int i, int j, int k)
+{
+  double d = std::sqrt((i - Cx) * (i - Cx) + (j - Cy) * (j - Cy) + (k - Cz) * (k - Cz)) - R;
+  if (CutH > 0)
+  {
+    const double qx = std::fabs(i - Cx) - CutH, qy = std::fabs(j - Cy) - CutH, qz = std::fabs(k - CutZ) - CutH;
+    const double ox = std::max(qx, 0.0), oy = std::max(qy, 0.0), oz = std::max(qz, 0.0);
+    const double cube = std::sqrt(ox * ox + oy * oy + oz * oz) + std::min(std::max(qx, std::max(qy, qz)), 0.0);
+    d = std::max(d, -cube);
+  }
+  return std::max(-8.0, std::min(8.0, d));
+}
+
+// Dictionary quantisation bound used by the Core tests: fine near 0, coarser far out.
+double tolerance(double d)
+{
+  return 1e-3 + 2e-2 * std::fabs(d);
+}
+
+void checkSphere(const char* path, bool added, int n = 64, bool colours = true)
+{
+  auto img = readVolume(path);
+  int dims[3];
+  img->GetDimensions(dims);
+  check(dims[0] == n && dims[1] == n && dims[2] == n, std::string(path) + " is " + std::to_string(n) + "^3");
+  auto* sdf = vtkFloatArray::SafeDownCast(img->GetPointData()->GetArray("sdf"));
+  auto* rgba = vtkUnsignedCharArray::SafeDownCast(img->GetPointData()->GetArray("rgba"));
+  check(sdf && rgba, "sdf and rgba arrays present");
+  if (!sdf || !rgba || dims[0] != n)
+    return;
+  double worst = 0;
+  long outward = 0, gained = 0, coloured = 0, grey = 0;
+  vtkIdType id = 0;
+  for (int k = 0; k < n; ++k)
+    for (int j = 0; j < n; ++j)
+      for (int i = 0; i < n; ++i, ++id)
+      {
+        const double e = analytic(i, j, k);
+        const double v = sdf->GetValue(id);
+        worst = std::max(worst, std::fabs(v - e) - tolerance(e));
+        outward += v > e + tolerance(e);
+        gained += v < e - 0.5;
+        const unsigned char* c = rgba->GetPointer(4 * id);
+        grey += c[0] == 200 && c[1] == 200 && c[2] == 200 && c[3] == 255;
+        coloured += c[0] == 0xe0 && c[1] == 0x50 && c[2] == 0x30;
+      }
+  const long total = long(n) * n * n;
+  if (!added)
+  {
+    std::printf("max excess over the tolerance: %g\n", worst);
+    check(worst <= 0, "every voxel equals the analytic shape (within the dictionary's precision)");
+    if (colours)
+      check(grey == total, "every colour is the default grey (" + std::to_string(grey) + "/" + std::to_string(total) + ")");
+  }
+  else
+  {
+    std::printf("voxels moved outwards: %ld, gained material: %ld, brush-coloured: %ld\n", outward, gained, coloured);
+    check(outward == 0, "add never removes material");
+    check(gained > 100, "the stroke added material");
+    check(coloured > 100, "the stroke coloured voxels");
+  }
+}
+
+void checkImage(const char* test, const char* baseline)
+{
+  if (!std::ifstream(baseline).good())
+  {
+    check(false, std::string("baseline ") + baseline + " exists (new image: " + test + ")");
+    return;
+  }
+  vtkNew<vtkPNGReader> a, b;
+  a->SetFileName(test);
+  b->SetFileName(baseline);
+  vtkNew<vtkImageDifference> diff;
+  diff->SetInputConnection(a->GetOutputPort());
+  diff->SetImageConnection(b->GetOutputPort());
+  diff->Update();
+  const double err = diff->GetThresholdedError();
+  std::printf("image error against %s: %g\n", baseline, err);
+  check(err <= 10.0, "the screenshot matches the baseline (thresholded error <= 10, VTK's default)");
+}
+
+void checkMesh(const char* path)
+{
+  vtkNew<vtkPLYReader> r;
+  r->SetFileName(path);
+  r->Update();
+  vtkPolyData* pd = r->GetOutput();
+  double b[6];
+  pd->GetBounds(b);
+  check(pd->GetNumberOfPolys() > 1000, "the exported mesh has triangles (" + std::to_string(pd->GetNumberOfPolys()) + ")");
+  check(b[0] >= 0 && b[1] <= 63 && b[2] >= 0 && b[3] <= 63 && b[4] >= 0 && b[5] <= 63, "the mesh lies in the volume");
+}
+} // namespace
+
+int main(int argc, char* argv[])
+{
+  for (int i = 1; i < argc; ++i)
+  {
+    if (!std::strcmp(argv[i], "--sphere") && i + 1 < argc)
+      checkSphere(argv[++i], false);
+    else if (!std::strcmp(argv[i], "--script-shape") && i + 1 < argc)
+    {
+      // Data/Testing sphere.lvs: canvas 48, sphere (24,24,24) r 15, cube cut at z 40, half edge 6.
+      Cx = Cy = Cz = 24;
+      R = 15;
+      CutZ = 40;
+      CutH = 6;
+      checkSphere(argv[++i], false, 48, false);
+    }
+    else if (!std::strcmp(argv[i], "--added") && i + 1 < argc)
+      checkSphere(argv[++i], true);
+    else if (!std::strcmp(argv[i], "--image") && i + 2 < argc)
+    {
+      checkImage(argv[i + 1], argv[i + 2]);
+      i += 2;
+    }
+    else if (!std::strcmp(argv[i], "--mesh") && i + 1 < argc)
+      checkMesh(argv[++i]);
+    else
+    {
+      std::fprintf(stderr, "usage: %s [--sphere V.vti] [--added V.vti] [--script-shape V.vti] [--image T.png B.png] [--mesh M.ply]\n", argv[0]);
+      return 2;
+    }
+  }
+  return failures == 0 ? 0 : 1;
+}

@@ -1,0 +1,20 @@
+# Runs the editor with ARGS (and again with ARGS2 if given), then the checker
+# with CHECKS; fails if any fails.
+execute_process(COMMAND "${EDITOR}" ${ARGS} RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
+message("${out}${err}")
+if (NOT rc EQUAL 0)
+  message(FATAL_ERROR "lvdif-editor failed (${rc})")
+endif ()
+if (DEFINED ARGS2)
+  # A second editor run (e.g. reopening what the first saved).
+  execute_process(COMMAND "${EDITOR}" ${ARGS2} RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
+  message("${out}${err}")
+  if (NOT rc EQUAL 0)
+    message(FATAL_ERROR "second lvdif-editor run failed (${rc})")
+  endif ()
+endif ()
+execute_process(COMMAND "${CHECK}" ${CHECKS} RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
+message("${out}${err}")
+if (NOT rc EQUAL 0)
+  message(FATAL_ERROR "check failed (${rc})")
+endif ()

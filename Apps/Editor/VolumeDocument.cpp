@@ -1,0 +1,323 @@
+#include "VolumeDocument.h"
+
+#include "vtkDictionaryVolumeToImage.h"
+#include "vtkLVDIFChunkMesh.h"
+#include "vtkLVDIFVolumeBridge.h"
+
+#include "lvdif/AnalyticFill.h"
+#include "lvdif/Error.h"
+#include "lvdif/Script.h"
+#include "lvdif/VolumeFile.h"
+
+#include "vtkImageData.h"
+#include "vtkNew.h"
+#include "vtkPointData.h"
+#include "vtkXMLImageDataReader.h"
+#include "vtkXMLImageDataWriter.h"
+
+#include <QFileInfo>
+
+#include <cmath>
+#include <mutex>
+
+namespace
+{
+std::shared_ptr<lvdif::DictionaryVolume> borrow(lvdif::DictionaryVolume& v)
+{
+  return std::shared_ptr<lvdif::DictionaryVolume>(&v, [](lvdif::DictionaryVolume*) {});
+}
+} // namespace
+
+VolumeDocument::VolumeDocument() = default;
+
+VolumeDocument::~VolumeDocument()
+{
+  // The worker reads through the mesher, which reads the volume.
+  this->Worker.reset();
+  this->Mesher.reset();
+  this->Edit.reset();
+  this->Volume.reset();
+}
+
+void VolumeDocument::resetPipeline()
+{
+  ++this->Generation;
+  this->Worker.reset();
+  this->Mesher.reset();
+  this->Edit = std::make_unique<lvdif::Editor>(*this->Volume);
+  lvdif::MarchingCubesOptions mo;
+  mo.chunkEdge = 32;
+  this->Mesher = std::make_unique<lvdif::ChunkedMarchingCubes>(*this->Volume, mo);
+  this->Worker = std::make_unique<lvdif::MarchingCubesWorker>(*this->Mesher);
+  this->Volume->takeDirtyChunks();
+  this->Worker->requestAll();
+  this->Modified = false;
+  this->EditsSinceAutosave = 0;
+}
+
+void VolumeDocument::newCanvas(int nx, int ny, int nz, Fill fill)
+{
+  lvdif::VolumeOptions o;
+  o.dims = { nx, ny, nz };
+  o.chunkEdge = 32;
+  auto v = std::make_unique<lvdif::DictionaryVolume>(o);
+  if (fill == Fill::Full)
+  {
+    v = std::make_unique<lvdif::DictionaryVolume>(o, v->insideVoxel());
+  }
+  else if (fill == Fill::Sphere)
+  {
+    const double r = 0.35 * std::min(nx, std::min(ny, nz));
+    lvdif::fillFromFunction(*v, lvdif::sphereSdf(0.5 * (nx - 1), 0.5 * (ny - 1), 0.5 * (nz - 1), r));
+  }
+  this->Worker.reset(); // stop reading the old volume before it goes
+  this->Mesher.reset();
+  this->Volume = std::move(v);
+  this->Path.clear();
+  this->resetPipeline();
+}
+
+void VolumeDocument::open(const QString& path)
+{
+  const QString ext = QFileInfo(path).suffix().toLower();
+  if (ext == "lvdv")
+  {
+    auto v = lvdif::loadVolume(path.toStdString());
+    this->Worker.reset();
+    this->Mesher.reset();
+    this->Volume = std::move(v);
+    this->Path = path;
+    this->resetPipeline();
+    return;
+  }
+  if (ext != "vti")
+  {
+    throw lvdif::Error(lvdif::ErrorCode::InvalidArgument,
+      "unsupported volume file '" + path.toStdString() + "' (expected .lvdv or .vti)");
+  }
+  vtkNew<vtkXMLImageDataReader> reader;
+  if (!reader->CanReadFile(path.toLocal8Bit().constData()))
+  {
+    throw lvdif::Error(lvdif::ErrorCode::InvalidArgument, "cannot read '" + path.toStdString() + "'");
+  }
+  reader->SetFileName(path.toLocal8Bit().constData());
+  reader->Update();
+  vtkImageData* img = reader->GetOutput();
+  vtkDataArray* sdf = img->GetPointData()->GetArray("sdf");
+  if (!sdf)
+  {
+    sdf = img->GetPointData()->GetScalars();
+  }
+  if (!sdf)
+  {
+    throw lvdif::Error(lvdif::ErrorCode::InvalidArgument, "'" + path.toStdString() + "' has no sdf array");
+  }
+  lvdif::VolumeOptions o;
+  o.chunkEdge = 32;
+  auto v = vtkLVDIFVolumeBridge::VolumeFromImage(img, sdf, img->GetPointData()->GetArray("rgba"), o);
+  this->Worker.reset();
+  this->Mesher.reset();
+  this->Volume = std::move(v);
+  this->Path = path;
+  this->resetPipeline();
+}
+
+void VolumeDocument::save(const QString& path, bool asCopy)
+{
+  if (!this->Volume)
+  {
+    throw lvdif::Error(lvdif::ErrorCode::InvalidArgument, "no volume to save");
+  }
+  if (QFileInfo(path).suffix().toLower() == "lvdv")
+  {
+    std::lock_guard<std::mutex> lock(this->Worker->sourceMutex());
+    lvdif::saveVolume(*this->Volume, path.toStdString()); // exact keys and dictionaries, crash-safe
+  }
+  else
+  {
+    this->saveImage(path);
+  }
+  if (!asCopy)
+  {
+    this->Path = path;
+    this->Modified = false;
+  }
+}
+
+void VolumeDocument::saveImage(const QString& path)
+{
+  vtkNew<vtkImageData> img;
+  {
+    std::lock_guard<std::mutex> lock(this->Worker->sourceMutex());
+    const auto& d = this->Volume->dims();
+    int extent[6] = { 0, int(d[0] - 1), 0, int(d[1] - 1), 0, int(d[2] - 1) };
+    vtkLVDIFVolumeBridge::FillImage(*this->Volume, extent, img, true);
+  }
+  vtkNew<vtkXMLImageDataWriter> writer;
+  writer->SetInputData(img);
+  writer->SetFileName(path.toLocal8Bit().constData());
+  writer->SetCompressorTypeToZLib();
+  if (!writer->Write())
+  {
+    throw lvdif::Error(lvdif::ErrorCode::IoFailure, "cannot write '" + path.toStdString() + "'");
+  }
+}
+
+void VolumeDocument::afterEdit(const lvdif::EditResult& r)
+{
+  if (r.changedVoxels > 0 || !r.changedChunks.empty())
+  {
+    this->Modified = true;
+    ++this->EditsSinceAutosave;
+  }
+}
+
+void VolumeDocument::requestDirty(const lvdif::VoxelBox* bound)
+{
+  // Called with the source mutex held.
+  const std::vector<std::int64_t> dirty = this->Volume->takeDirtyChunks();
+  if (!dirty.empty())
+  {
+    this->Worker->request(vtkLVDIFChunkMesh::ChunksToRemesh(*this->Mesher, dirty, bound));
+  }
+}
+
+void VolumeDocument::beginStroke()
+{
+  std::lock_guard<std::mutex> lock(this->Worker->sourceMutex());
+  this->Edit->beginStroke();
+  this->HasLastSample = false;
+}
+
+void VolumeDocument::addSample(const lvdif::BrushSample& s)
+{
+  std::lock_guard<std::mutex> lock(this->Worker->sourceMutex());
+  this->afterEdit(this->Edit->addSample(s));
+  // The dabs of this sample lie on the segment from the previous one; every
+  // voxel they change is within radius + band + colour skin + blend of it.
+  const std::array<double, 3>& a = this->HasLastSample ? this->LastSample : s.position;
+  const double reach = this->Edit->stroke.radius + this->Volume->bandWidth() + this->Edit->brush.colorOffset +
+    this->Edit->brush.blend + 1;
+  lvdif::VoxelBox box;
+  for (int k = 0; k < 3; ++k)
+  {
+    box.lo[k] = static_cast<std::int64_t>(std::floor(std::min(a[k], s.position[k]) - reach));
+    box.hi[k] = static_cast<std::int64_t>(std::ceil(std::max(a[k], s.position[k]) + reach));
+  }
+  // Only Drill-style (live) strokes apply here; Dynamic applies at the end.
+  this->requestDirty(this->Edit->stroke.kind == lvdif::BrushKind::Drill ? &box : nullptr);
+  this->LastSample = s.position;
+  this->HasLastSample = true;
+}
+
+void VolumeDocument::endStroke()
+{
+  std::lock_guard<std::mutex> lock(this->Worker->sourceMutex());
+  if (this->Edit->strokeOpen())
+  {
+    this->afterEdit(this->Edit->endStroke());
+  }
+  this->requestDirty();
+}
+
+bool VolumeDocument::undo()
+{
+  std::lock_guard<std::mutex> lock(this->Worker->sourceMutex());
+  const bool done = this->Edit->undo();
+  if (done)
+  {
+    this->Modified = true;
+    ++this->EditsSinceAutosave;
+  }
+  this->requestDirty();
+  return done;
+}
+
+bool VolumeDocument::redo()
+{
+  std::lock_guard<std::mutex> lock(this->Worker->sourceMutex());
+  const bool done = this->Edit->redo();
+  if (done)
+  {
+    this->Modified = true;
+    ++this->EditsSinceAutosave;
+  }
+  this->requestDirty();
+  return done;
+}
+
+void VolumeDocument::startRecording()
+{
+  this->Edit->startRecording();
+}
+
+lvdif::Recording VolumeDocument::stopRecording()
+{
+  return this->Edit->stopRecording();
+}
+
+void VolumeDocument::play(const lvdif::Recording& r)
+{
+  std::lock_guard<std::mutex> lock(this->Worker->sourceMutex());
+  this->Edit->play(r);
+  this->Modified = true;
+  ++this->EditsSinceAutosave;
+  this->requestDirty();
+}
+
+void VolumeDocument::runScript(const std::string& source)
+{
+  lvdif::checkScript(source); // syntax errors before anything changes
+  std::unique_ptr<lvdif::DictionaryVolume> made;
+  {
+    std::lock_guard<std::mutex> lock(this->Worker->sourceMutex());
+    lvdif::ScriptRunner runner;
+    runner.attach(*this->Volume);
+    try
+    {
+      runner.run(source);
+    }
+    catch (...)
+    {
+      // Edits made before the error stay (and are shown); the history no longer matches them.
+      this->Edit->undoStack().clear();
+      this->Modified = true;
+      this->requestDirty();
+      throw;
+    }
+    made = runner.takeVolume();
+    if (!made)
+    {
+      this->Edit->undoStack().clear();
+      this->Modified = true;
+      ++this->EditsSinceAutosave;
+      this->requestDirty();
+      return;
+    }
+  }
+  this->Worker.reset();
+  this->Mesher.reset();
+  this->Volume = std::move(made);
+  this->Path.clear();
+  this->resetPipeline();
+  this->Modified = true;
+  ++this->EditsSinceAutosave;
+}
+
+std::vector<lvdif::ChunkMesh> VolumeDocument::collectMeshes()
+{
+  return this->Worker ? this->Worker->collect() : std::vector<lvdif::ChunkMesh>();
+}
+
+bool VolumeDocument::meshingIdle() const
+{
+  return !this->Worker || this->Worker->idle();
+}
+
+void VolumeDocument::waitMeshingIdle()
+{
+  if (this->Worker)
+  {
+    this->Worker->waitIdle();
+  }
+}

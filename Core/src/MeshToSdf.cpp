@@ -1,0 +1,471 @@
+// Mesh to SDF driver: validation, grid fitting, the per-row distance and sign
+// passes (OpenMP over rows), output into a float extent or a dictionary
+// volume slab by slab. Algorithms: MeshToSdf.h; structures: MeshToSdfInternal.h.
+#include "lvdif/MeshToSdf.h"
+
+#include "MeshToSdfCuda.h"
+#include "MeshToSdfInternal.h"
+#include "lvdif/Memory.h"
+
+#include <omp.h>
+
+#include <algorithm>
+#include <atomic>
+#include <chrono>
+#include <cmath>
+#include <exception>
+#include <memory>
+#include <sstream>
+
+namespace lvdif
+{
+
+using namespace sdfdetail;
+
+namespace
+{
+double now()
+{
+  return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count();
+}
+
+void validateGrid(const GridGeometry& g)
+{
+  for (int a = 0; a < 3; ++a)
+  {
+    require(g.dims[a] >= 1 && g.dims[a] <= DictionaryVolume::MaxDimension,
+      "mesh to SDF: grid dimension " + std::to_string(g.dims[a]) + " out of range [1, " +
+        std::to_string(DictionaryVolume::MaxDimension) + "]");
+    require(std::isfinite(g.origin[a]), "mesh to SDF: grid origin is not finite");
+    require(std::isfinite(g.spacing[a]) && g.spacing[a] > 0, "mesh to SDF: grid spacing must be positive and finite");
+  }
+}
+
+struct Engine
+{
+  PreparedMesh mesh;
+  std::unique_ptr<Bvh> bvh;
+  std::unique_ptr<FaithfulGrid> grid;
+  std::unique_ptr<WindingSigner> winding;
+  GridGeometry geom;
+  MeshToSdfOptions opts;
+  double toOut = 1;       // world distance -> output units
+  double band = 0;        // output units (may be infinite)
+  double bandWorld2 = 0;  // squared band in world units, for bounded queries
+
+  V3 position(std::int64_t i, std::int64_t j, std::int64_t k) const
+  {
+    return { this->geom.origin[0] + i * this->geom.spacing[0], this->geom.origin[1] + j * this->geom.spacing[1],
+      this->geom.origin[2] + k * this->geom.spacing[2] };
+  }
+
+  NearestResult nearest(V3 p, std::int32_t hint) const
+  {
+    switch (this->opts.accel)
+    {
+      case MeshToSdfAccel::Faithful: return this->grid->nearest(p);
+      case MeshToSdfAccel::BruteForce:
+      {
+        NearestResult best;
+        best.dist2 = 1e300;
+        for (std::size_t t = 0; t < this->mesh.tris.size(); ++t)
+        {
+          const Tri& tri = this->mesh.tris[t];
+          const Closest c = closestPointOnTriangle(p, tri.v[0], tri.v[1], tri.v[2]);
+          const V3 d = c.point - p;
+          const double d2 = dot(d, d);
+          if (d2 < best.dist2)
+          {
+            best = { d2, static_cast<std::int32_t>(t), c };
+          }
+        }
+        return best;
+      }
+      default:
+      {
+        // only the winding-number and unsigned modes may stop at the band:
+        // the others need the closest triangle for its normal
+        const bool bounded = this->opts.sign == SignMode::WindingNumber || this->opts.sign == SignMode::Unsigned;
+        return this->bvh->nearest(p, hint, bounded ? this->bandWorld2 : 1e300);
+      }
+    }
+  }
+
+  /// -1 inside, +1 outside, from the closest triangle (Normal / PseudoNormal).
+  float localSign(V3 p, const NearestResult& r) const
+  {
+    const Tri& t = this->mesh.tris[r.tri];
+    V3 n;
+    if (this->opts.sign == SignMode::PseudoNormal)
+    {
+      n = featureNormal(t, r.closest.feature);
+    }
+    else if (this->opts.useVertexNormals && dot(t.nv[0], t.nv[0]) > 0)
+    {
+      const double b0 = 1 - r.closest.b1 - r.closest.b2;
+      n = b0 * t.nv[0] + r.closest.b1 * t.nv[1] + r.closest.b2 * t.nv[2];
+    }
+    else
+    {
+      n = t.n;
+    }
+    return dot(p - r.closest.point, n) < 0 ? -1.0f : 1.0f;
+  }
+
+  /// Distances (and the local sign) of one row; out holds output units.
+  /// With a finite band and no normal-based sign, the distance being
+  /// 1-Lipschitz lets far voxels skip the query: each query looks a margin
+  /// beyond the band, and the following voxels stay saturated while the
+  /// lower bound (previous distance - steps) is still past the band.
+  void distanceRow(std::int64_t j, std::int64_t k, std::int64_t i0, std::int64_t i1, float* out) const
+  {
+    const bool bounded = this->opts.accel == MeshToSdfAccel::Bvh &&
+      (this->opts.sign == SignMode::WindingNumber || this->opts.sign == SignMode::Unsigned) &&
+      this->bandWorld2 < 1e299;
+    const double h = this->geom.spacing[0];
+    const double bandWorld = std::sqrt(this->bandWorld2);
+    const double reach = bandWorld + 4 * h;
+    double lower = -1; // lower bound of the current voxel's world distance
+    std::int32_t hint = -1;
+    for (std::int64_t i = i0; i <= i1; ++i)
+    {
+      lower -= h;
+      if (bounded && lower >= bandWorld)
+      {
+        out[i - i0] = static_cast<float>(this->band);
+        continue;
+      }
+      const V3 p = this->position(i, j, k);
+      const NearestResult r = bounded ? this->bvh->nearest(p, hint, reach * reach) : this->nearest(p, hint);
+      double d = r.tri < 0 ? this->band : std::sqrt(r.dist2) * this->toOut;
+      lower = r.tri < 0 ? reach : std::sqrt(r.dist2);
+      d = std::min(d, this->band);
+      float s = 1.0f;
+      if (r.tri >= 0)
+      {
+        hint = r.tri;
+        if (this->opts.sign == SignMode::Normal || this->opts.sign == SignMode::PseudoNormal)
+        {
+          s = this->localSign(p, r);
+        }
+      }
+      out[i - i0] = s * static_cast<float>(d);
+    }
+  }
+};
+
+std::unique_ptr<Engine> makeEngine(const TriangleMesh& mesh, const GridGeometry& geom, const MeshToSdfOptions& opts,
+  float band, MeshToSdfStats& stats)
+{
+  validateGrid(geom);
+  require(opts.faithfulCellsPerAxis >= 1 && opts.faithfulCellsPerAxis <= 256,
+    "mesh to SDF: faithfulCellsPerAxis must be in [1, 256]");
+  require(opts.faithfulScale >= 1 && opts.faithfulScale <= 16, "mesh to SDF: faithfulScale must be in [1, 16]");
+  require(band > 0, "mesh to SDF: band width must be positive");
+  const double t0 = now();
+  auto e = std::make_unique<Engine>();
+  e->mesh = prepareMesh(mesh);
+  e->geom = geom;
+  e->opts = opts;
+  const double unit = std::min(geom.spacing[0], std::min(geom.spacing[1], geom.spacing[2]));
+  e->toOut = opts.unit == DistanceUnit::Voxel ? 1.0 / unit : 1.0;
+  e->band = band;
+  const double bw = static_cast<double>(band) / e->toOut;
+  e->bandWorld2 = std::isfinite(bw) ? bw * bw * (1 + 1e-9) : 1e300;
+  e->bvh = std::make_unique<Bvh>(e->mesh.tris);
+  if (opts.sign == SignMode::WindingNumber)
+  {
+    e->winding = std::make_unique<WindingSigner>(e->mesh);
+  }
+  if (opts.accel == MeshToSdfAccel::Faithful)
+  {
+    const std::uint64_t cells = static_cast<std::uint64_t>(opts.faithfulCellsPerAxis) *
+      opts.faithfulCellsPerAxis * opts.faithfulCellsPerAxis;
+    requireMemory(cells * 48, "mesh to SDF: faithful cell lists");
+    e->grid = std::make_unique<FaithfulGrid>(
+      e->mesh.tris, e->mesh.lo, e->mesh.hi, opts.faithfulCellsPerAxis, opts.faithfulScale);
+  }
+  stats.triangles = e->mesh.tris.size();
+  stats.degenerateSkipped = e->mesh.degenerate;
+  stats.boundaryEdges = e->mesh.boundaryEdges;
+  stats.buildSeconds += now() - t0;
+  return e;
+}
+
+/// Runs fn(row) for every (j, k) row of the box on OpenMP threads; progress
+/// from thread 0, cancellation per row; rethrows the first exception.
+template <typename F>
+void forRows(const VoxelBox& box, Interrupter& intr, double progressBase, double progressSpan, F&& fn)
+{
+  const std::int64_t ny = box.hi[1] - box.lo[1] + 1, nz = box.hi[2] - box.lo[2] + 1;
+  const std::int64_t rows = ny * nz;
+  std::atomic<std::int64_t> done{ 0 };
+  std::atomic<bool> stop{ false };
+  std::exception_ptr failure;
+#pragma omp parallel for schedule(dynamic, 2)
+  for (std::int64_t r = 0; r < rows; ++r)
+  {
+    if (stop.load(std::memory_order_relaxed)) continue;
+    try
+    {
+      fn(box.lo[1] + r % ny, box.lo[2] + r / ny, r);
+      const std::int64_t n = done.fetch_add(1) + 1;
+      if (omp_get_thread_num() == 0)
+      {
+        if (intr.wasInterrupted()) stop = true;
+        intr.progress(progressBase + progressSpan * static_cast<double>(n) / static_cast<double>(rows));
+      }
+    }
+    catch (...)
+    {
+#pragma omp critical(lvdif_mesh_to_sdf_failure)
+      if (!failure) failure = std::current_exception();
+      stop = true;
+    }
+  }
+  if (failure) std::rethrow_exception(failure);
+  intr.checkInterrupt();
+}
+
+/// The distance and sign passes over one box of voxels into out (box layout).
+void computeBox(const Engine& e, const VoxelBox& box, float* out, MeshToSdfStats& stats, Interrupter& intr,
+  double progressBase, double progressSpan)
+{
+  const std::int64_t nx = box.hi[0] - box.lo[0] + 1, ny = box.hi[1] - box.lo[1] + 1;
+  const bool winding = e.opts.sign == SignMode::WindingNumber;
+  double t0 = now();
+  forRows(box, intr, progressBase, winding ? progressSpan * 0.5 : progressSpan,
+    [&](std::int64_t j, std::int64_t k, std::int64_t r) { e.distanceRow(j, k, box.lo[0], box.hi[0], out + r * nx); });
+  stats.distanceSeconds += now() - t0;
+  if (!winding) return;
+  t0 = now();
+  std::atomic<std::int64_t> evals{ 0 }, exact{ 0 };
+  forRows(box, intr, progressBase + 0.5 * progressSpan, 0.5 * progressSpan,
+    [&](std::int64_t j, std::int64_t k, std::int64_t r) {
+      std::int64_t ev = 0, ex = 0;
+      e.winding->signRow(e.position(box.lo[0], j, k), e.geom.spacing[0], nx, out + r * nx, ev, ex);
+      evals += ev;
+      exact += ex;
+    });
+  (void)ny;
+  stats.windingEvaluations += evals.load();
+  stats.windingExact += exact.load();
+  stats.signSeconds += now() - t0;
+}
+
+} // namespace
+
+GridGeometry fitGridToMesh(const TriangleMesh& mesh, std::int64_t maxDim, double paddingVoxels)
+{
+  mesh.validate();
+  require(maxDim >= 2 && maxDim <= DictionaryVolume::MaxDimension,
+    "fit grid: maximum dimension " + std::to_string(maxDim) + " out of range [2, " +
+      std::to_string(DictionaryVolume::MaxDimension) + "]");
+  require(std::isfinite(paddingVoxels) && paddingVoxels >= 0, "fit grid: padding must be finite and >= 0");
+  require(static_cast<double>(maxDim) - 1 - 2 * paddingVoxels >= 1,
+    "fit grid: padding leaves no voxel for the mesh (maxDim - 1 - 2 * padding < 1)");
+  const auto b = mesh.bounds();
+  double ext[3], longest = 0;
+  int axis = 0;
+  for (int a = 0; a < 3; ++a)
+  {
+    ext[a] = static_cast<double>(b[1][a]) - b[0][a];
+    if (ext[a] > longest)
+    {
+      longest = ext[a];
+      axis = a;
+    }
+  }
+  require(longest > 0, "fit grid: the mesh bounds have zero size");
+  const double h = longest / (static_cast<double>(maxDim) - 1 - 2 * paddingVoxels);
+  GridGeometry g;
+  for (int a = 0; a < 3; ++a)
+  {
+    g.dims[a] = a == axis ? maxDim : std::min<std::int64_t>(maxDim,
+      static_cast<std::int64_t>(std::ceil(ext[a] / h + 2 * paddingVoxels - 1e-9)) + 1);
+    g.spacing[a] = h;
+    const double centre = 0.5 * (static_cast<double>(b[0][a]) + b[1][a]);
+    g.origin[a] = centre - 0.5 * static_cast<double>(g.dims[a] - 1) * h;
+  }
+  return g;
+}
+
+MeshToSdfStats meshToSdf(const TriangleMesh& mesh, const GridGeometry& grid, const VoxelBox& extent, float* out,
+  const MeshToSdfOptions& options, Interrupter& interrupter)
+{
+  validateGrid(grid);
+  require(out != nullptr, "mesh to SDF: output pointer is null");
+  require(!extent.empty(), "mesh to SDF: the requested extent is empty");
+  for (int a = 0; a < 3; ++a)
+  {
+    require(extent.lo[a] >= 0 && extent.hi[a] < grid.dims[a], "mesh to SDF: the extent lies outside the grid");
+  }
+  MeshToSdfStats stats;
+  interrupter.start("mesh to SDF");
+  auto engine = makeEngine(mesh, grid, options, options.bandWidth, stats);
+  stats.device = resolveDevice(options.device);
+  if (stats.device == Device::Cuda)
+  {
+    auto session = cudasdf::openSession(engine->mesh, *engine->bvh, engine->winding.get(), grid, options,
+      engine->toOut, engine->band, stats);
+    session->compute(extent, out, stats, interrupter);
+  }
+  else
+  {
+    computeBox(*engine, extent, out, stats, interrupter, 0.0, 1.0);
+  }
+  if (options.svfFilters != 0)
+  {
+    const double t0 = now();
+    FloatGridView view;
+    view.data = out;
+    view.geometry.dims = { extent.hi[0] - extent.lo[0] + 1, extent.hi[1] - extent.lo[1] + 1,
+      extent.hi[2] - extent.lo[2] + 1 };
+    SignVoxelFilterParams p = options.svf;
+    p.filters = options.svfFilters;
+    stats.svfFlips = signVoxelFilter(view, p, interrupter).totalFlips();
+    stats.svfSeconds = now() - t0;
+  }
+  interrupter.end();
+  return stats;
+}
+
+MeshToSdfStats meshToSdf(const TriangleMesh& mesh, const FloatGridView& out, const MeshToSdfOptions& options,
+  Interrupter& interrupter)
+{
+  VoxelBox all;
+  all.hi = { out.geometry.dims[0] - 1, out.geometry.dims[1] - 1, out.geometry.dims[2] - 1 };
+  return meshToSdf(mesh, out.geometry, all, out.data, options, interrupter);
+}
+
+MeshToSdfStats meshToSdf(const TriangleMesh& mesh, DictionaryVolume& volume, const MeshToSdfOptions& options,
+  Interrupter& interrupter)
+{
+  const VolumeOptions& vo = volume.options();
+  GridGeometry grid;
+  grid.dims = vo.dims;
+  grid.origin = vo.origin;
+  grid.spacing = vo.spacing;
+  MeshToSdfOptions opts = options;
+  opts.unit = DistanceUnit::Voxel;
+  MeshToSdfStats stats;
+  interrupter.start("mesh to SDF");
+  auto engine = makeEngine(mesh, grid, opts, volume.bandWidth(), stats);
+  stats.device = resolveDevice(options.device);
+
+  // One slab of whole chunk layers at a time: nx * ny * chunkEdge floats
+  // (128 MiB at 1024^2 x 32) on the CPU, up to 4 chunk layers (512 MiB) per
+  // CUDA call; never the full grid.
+  const std::int64_t edge = volume.chunkEdge();
+  const std::uint64_t layerFloats = checkedMultiply(
+    checkedMultiply(static_cast<std::uint64_t>(grid.dims[0]), static_cast<std::uint64_t>(grid.dims[1]), "slab"),
+    static_cast<std::uint64_t>(edge), "slab");
+  const Index3& cc = volume.chunkCounts();
+  std::int64_t group = 1;
+  std::unique_ptr<cudasdf::Session> session;
+  if (stats.device == Device::Cuda)
+  {
+    group = std::max<std::int64_t>(1, std::min<std::int64_t>({ cc[2], 4,
+      static_cast<std::int64_t>((512ull << 20) / (layerFloats * sizeof(float))) }));
+    session = cudasdf::openSession(engine->mesh, *engine->bvh, engine->winding.get(), grid, opts, engine->toOut,
+      engine->band, stats);
+  }
+  const std::uint64_t slabFloats = layerFloats * static_cast<std::uint64_t>(group);
+  requireMemory(slabFloats * sizeof(float), "mesh to SDF: slab buffer");
+  std::vector<float> slab(static_cast<std::size_t>(slabFloats));
+  for (std::int64_t g0 = 0; g0 < cc[2]; g0 += group)
+  {
+    VoxelBox groupBox;
+    groupBox.lo = { 0, 0, g0 * edge };
+    groupBox.hi = { grid.dims[0] - 1, grid.dims[1] - 1, std::min(grid.dims[2], (g0 + group) * edge) - 1 };
+    const double base = static_cast<double>(g0) / static_cast<double>(cc[2]);
+    const double span = static_cast<double>(std::min(group, cc[2] - g0)) / static_cast<double>(cc[2]);
+    if (session)
+    {
+      session->compute(groupBox, slab.data(), stats, interrupter);
+    }
+    else
+    {
+      computeBox(*engine, groupBox, slab.data(), stats, interrupter, base, span);
+    }
+    for (std::int64_t cz = g0; cz < std::min(cc[2], g0 + group); ++cz)
+    {
+      const VoxelBox& box = groupBox;
+      const double t0 = now();
+      const std::int64_t nx = grid.dims[0], ny = grid.dims[1];
+      const std::int64_t chunksInSlab = cc[0] * cc[1];
+#pragma omp parallel for schedule(dynamic, 1)
+      for (std::int64_t c = 0; c < chunksInSlab; ++c)
+      {
+        const std::int64_t id = volume.chunkId(c % cc[0], c / cc[0], cz);
+        const VoxelBox cb = volume.chunkBox(id);
+        auto valueAt = [&](std::int64_t x, std::int64_t y, std::int64_t z) {
+          return slab[static_cast<std::size_t>(x + nx * (y + ny * (z - box.lo[2])))];
+        };
+        const SdfKey first = volume.encode(valueAt(cb.lo[0], cb.lo[1], cb.lo[2]));
+        bool uniform = true;
+        for (std::int64_t z = cb.lo[2]; z <= cb.hi[2] && uniform; ++z)
+          for (std::int64_t y = cb.lo[1]; y <= cb.hi[1] && uniform; ++y)
+            for (std::int64_t x = cb.lo[0]; x <= cb.hi[0]; ++x)
+            {
+              if (volume.encode(valueAt(x, y, z)) != first)
+              {
+                uniform = false;
+                break;
+              }
+            }
+        if (uniform && volume.isUniform(id))
+        {
+          volume.fillChunk(id, Voxel{ first, volume.uniformValue(id).color });
+          continue;
+        }
+        Voxel* data = volume.expandChunk(id);
+        for (std::int64_t z = cb.lo[2]; z <= cb.hi[2]; ++z)
+          for (std::int64_t y = cb.lo[1]; y <= cb.hi[1]; ++y)
+            for (std::int64_t x = cb.lo[0]; x <= cb.hi[0]; ++x)
+            {
+              data[volume.localIndex(x, y, z)].sdf = volume.encode(valueAt(x, y, z));
+            }
+        volume.markDirty(id);
+        volume.tryCollapseChunk(id);
+      }
+      stats.writeSeconds += now() - t0;
+      interrupter.progress(static_cast<double>(cz + 1) / static_cast<double>(cc[2]));
+    }
+  }
+  if (options.svfFilters != 0)
+  {
+    const double t0 = now();
+    SignVoxelFilterParams p = options.svf;
+    p.filters = options.svfFilters;
+    stats.svfFlips = signVoxelFilter(volume, p, interrupter).totalFlips();
+    stats.svfSeconds = now() - t0;
+  }
+  interrupter.end();
+  return stats;
+}
+
+const char* toString(SignMode mode)
+{
+  switch (mode)
+  {
+    case SignMode::Normal: return "normal";
+    case SignMode::PseudoNormal: return "pseudonormal";
+    case SignMode::WindingNumber: return "winding";
+    case SignMode::Unsigned: return "unsigned";
+  }
+  return "?";
+}
+
+const char* toString(MeshToSdfAccel accel)
+{
+  switch (accel)
+  {
+    case MeshToSdfAccel::Bvh: return "bvh";
+    case MeshToSdfAccel::Faithful: return "faithful";
+    case MeshToSdfAccel::BruteForce: return "bruteforce";
+  }
+  return "?";
+}
+
+} // namespace lvdif

@@ -1,0 +1,566 @@
+// CUDA path of mesh to SDF: the same double-precision algorithms as the CPU
+// (MeshToSdf.cpp distanceRow, MeshToSdfWinding.cpp signRow), run over the
+// requested extent one slab of z layers at a time so device memory stays
+// bounded (the slab buffer is at most 256 MiB, plus the mesh and BVHs).
+// Kernel 1: one thread per run of 16 voxels along x (nearest triangle on the
+// BVH, warm-started, far voxels skipped by the Lipschitz bound).
+// Kernel 2 (WindingNumber): one thread per scan line (ray crossings of the
+// closed chain, carried winding number for open meshes).
+#include "MeshToSdfCuda.h"
+
+#include "lvdif/CudaCheck.cuh"
+#include "lvdif/Memory.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <vector>
+
+namespace lvdif
+{
+namespace cudasdf
+{
+
+using namespace sdfdetail;
+
+namespace
+{
+constexpr int Run = 16;        // voxels per thread in the distance kernel
+constexpr int MaxHits = 96;    // crossings a scan line may hold (more: per-voxel fallback)
+constexpr double FourPi = 12.566370614359172;
+
+struct GpuNode
+{
+  double lo[3], hi[3];
+  int left, right, first, count;
+};
+
+struct DevBvh
+{
+  const Tri* tris = nullptr;
+  const GpuNode* nodes = nullptr;
+  const int* order = nullptr;
+};
+
+struct Params
+{
+  double origin[3], spacing[3];
+  long long lo[3], hi[3]; // the slab, in grid indices
+  double toOut, band, bandWorld, reach;
+  int sign; // 0 normal, 1 pseudo-normal, 2 winding, 3 unsigned
+  int useVertexNormals;
+  int bounded;
+};
+
+struct WindingDev
+{
+  DevBvh closed;
+  int meshTris = 0;
+  const Tri* cone = nullptr; // closed.tris + meshTris
+  int coneCount = 0;
+  const WindingSigner::Cluster* clusters = nullptr;
+  int clusterCount = 0;
+};
+
+__device__ V3 positionOf(const Params& P, long long i, long long j, long long k)
+{
+  return { P.origin[0] + i * P.spacing[0], P.origin[1] + j * P.spacing[1], P.origin[2] + k * P.spacing[2] };
+}
+
+__device__ NearestResult nearestDev(const DevBvh& b, V3 p, int hint, double maxDist2)
+{
+  NearestResult best;
+  best.dist2 = maxDist2;
+  if (hint >= 0)
+  {
+    const Tri& t = b.tris[hint];
+    const Closest c = closestPointOnTriangle(p, t.v[0], t.v[1], t.v[2]);
+    const V3 d = c.point - p;
+    const double d2 = dot(d, d);
+    if (d2 <= best.dist2)
+    {
+      best.dist2 = d2;
+      best.tri = hint;
+      best.closest = c;
+    }
+  }
+  int stackNode[64];
+  double stackD2[64];
+  int top = 0;
+  stackNode[top] = 0;
+  stackD2[top++] = pointBoxDist2(p, b.nodes[0].lo, b.nodes[0].hi);
+  while (top > 0)
+  {
+    --top;
+    if (stackD2[top] > best.dist2) continue;
+    const GpuNode n = b.nodes[stackNode[top]];
+    if (n.left < 0)
+    {
+      for (int i = n.first; i < n.first + n.count; ++i)
+      {
+        const int ti = b.order[i];
+        if (ti == best.tri) continue;
+        const Tri& t = b.tris[ti];
+        const Closest c = closestPointOnTriangle(p, t.v[0], t.v[1], t.v[2]);
+        const V3 d = c.point - p;
+        const double d2 = dot(d, d);
+        if (d2 < best.dist2 || (d2 == best.dist2 && (best.tri < 0 || ti < best.tri)))
+        {
+          best.dist2 = d2;
+          best.tri = ti;
+          best.closest = c;
+        }
+      }
+      continue;
+    }
+    const double dl = pointBoxDist2(p, b.nodes[n.left].lo, b.nodes[n.left].hi);
+    const double dr = pointBoxDist2(p, b.nodes[n.right].lo, b.nodes[n.right].hi);
+    const int nearC = dl <= dr ? n.left : n.right, farC = dl <= dr ? n.right : n.left;
+    const double nearD = dl <= dr ? dl : dr, farD = dl <= dr ? dr : dl;
+    if (farD <= best.dist2 && top < 64) { stackNode[top] = farC; stackD2[top++] = farD; }
+    if (nearD <= best.dist2 && top < 64) { stackNode[top] = nearC; stackD2[top++] = nearD; }
+  }
+  return best;
+}
+
+__global__ void distanceKernel(DevBvh bvh, Params P, float* out)
+{
+  const long long nx = P.hi[0] - P.lo[0] + 1, ny = P.hi[1] - P.lo[1] + 1, nz = P.hi[2] - P.lo[2] + 1;
+  const long long runs = (nx + Run - 1) / Run;
+  const long long t = static_cast<long long>(blockIdx.x) * blockDim.x + threadIdx.x;
+  if (t >= runs * ny * nz) return;
+  const long long row = t / runs, run = t % runs;
+  const long long j = P.lo[1] + row % ny, k = P.lo[2] + row / ny;
+  const long long i0 = P.lo[0] + run * Run, i1 = min(P.hi[0], i0 + Run - 1);
+  float* rowOut = out + row * nx - P.lo[0];
+  const double h = P.spacing[0];
+  double lower = -1;
+  int hint = -1;
+  for (long long i = i0; i <= i1; ++i)
+  {
+    lower -= h;
+    if (P.bounded && lower >= P.bandWorld)
+    {
+      rowOut[i] = static_cast<float>(P.band);
+      continue;
+    }
+    const V3 p = positionOf(P, i, j, k);
+    const NearestResult r = nearestDev(bvh, p, hint, P.bounded ? P.reach * P.reach : 1e300);
+    double d = r.tri < 0 ? P.band : sqrt(r.dist2) * P.toOut;
+    lower = r.tri < 0 ? P.reach : sqrt(r.dist2);
+    d = fmin(d, P.band);
+    float s = 1.0f;
+    if (r.tri >= 0)
+    {
+      hint = r.tri;
+      if (P.sign == 0 || P.sign == 1)
+      {
+        const Tri& tr = bvh.tris[r.tri];
+        V3 n = tr.n;
+        if (P.sign == 1)
+        {
+          n = featureNormal(tr, r.closest.feature);
+        }
+        else if (P.useVertexNormals && dot(tr.nv[0], tr.nv[0]) > 0)
+        {
+          const double b0 = 1 - r.closest.b1 - r.closest.b2;
+          n = b0 * tr.nv[0] + r.closest.b1 * tr.nv[1] + r.closest.b2 * tr.nv[2];
+        }
+        s = dot(p - r.closest.point, n) < 0 ? -1.0f : 1.0f;
+      }
+    }
+    rowOut[i] = s * static_cast<float>(d);
+  }
+}
+
+struct Hit
+{
+  double t;
+  int tri;
+  int sign;
+};
+
+/// Mirrors Bvh::rayHits. Returns false when ambiguous or (collecting) when
+/// more than MaxHits crossings; otherwise the signed sum is in *sum.
+__device__ bool rayDev(const DevBvh& b, V3 o, V3 dir, Hit* hits, int* count, int* sum)
+{
+  constexpr double Eps = 1e-9;
+  const double tmin = 0.0;
+  const double inv[3] = { 1.0 / dir.x, 1.0 / dir.y, 1.0 / dir.z };
+  int stack[64];
+  int top = 0;
+  stack[top++] = 0;
+  *sum = 0;
+  if (count) *count = 0;
+  while (top > 0)
+  {
+    const GpuNode n = b.nodes[stack[--top]];
+    double t0 = tmin, t1 = 1e300;
+    bool miss = false;
+    for (int a = 0; a < 3 && !miss; ++a)
+    {
+      const double da = dir[a], oa = o[a];
+      if (da == 0)
+      {
+        miss = oa < n.lo[a] || oa > n.hi[a];
+        continue;
+      }
+      double ta = (n.lo[a] - oa) * inv[a], tb = (n.hi[a] - oa) * inv[a];
+      if (ta > tb) { const double x = ta; ta = tb; tb = x; }
+      const double pad = 1e-9 * (fabs(ta) + fabs(tb)) + 1e-300;
+      t0 = fmax(t0, ta - pad);
+      t1 = fmin(t1, tb + pad);
+      miss = t0 > t1;
+    }
+    if (miss) continue;
+    if (n.left >= 0)
+    {
+      if (top + 2 > 64) return false;
+      stack[top++] = n.left;
+      stack[top++] = n.right;
+      continue;
+    }
+    for (int i = n.first; i < n.first + n.count; ++i)
+    {
+      const int ti = b.order[i];
+      const Tri& t = b.tris[ti];
+      const V3 e1 = t.v[1] - t.v[0], e2 = t.v[2] - t.v[0];
+      const V3 pv = cross(dir, e2);
+      const double det = dot(e1, pv);
+      const double scale = norm(e1) * norm(e2) * norm(dir);
+      const V3 tv = o - t.v[0];
+      if (fabs(det) <= Eps * scale)
+      {
+        if (fabs(dot(tv, t.n)) <= Eps * (norm(tv) + norm(e1))) return false;
+        continue;
+      }
+      const double invDet = 1.0 / det;
+      const double u = dot(tv, pv) * invDet;
+      const V3 qv = cross(tv, e1);
+      const double v = dot(dir, qv) * invDet;
+      const double tt = dot(e2, qv) * invDet;
+      const double w = 1 - u - v;
+      if (u < -Eps || v < -Eps || w < -Eps) continue;
+      const double tScale = 1e-9 * (fabs(tt) + fabs(tmin) + norm(e1) / norm(dir));
+      if (tt < tmin - tScale) continue;
+      if (u <= Eps || v <= Eps || w <= Eps || fabs(tt - tmin) <= tScale) return false;
+      const int sg = dot(dir, t.n) > 0 ? 1 : -1;
+      *sum += sg;
+      if (hits)
+      {
+        if (*count >= MaxHits) return false;
+        hits[(*count)++] = { tt, ti, sg };
+      }
+    }
+  }
+  return true;
+}
+
+__device__ double coneWindingDev(const WindingDev& W, V3 p)
+{
+  double s = 0;
+  for (int c = 0; c < W.coneCount; ++c)
+  {
+    const Tri& t = W.cone[c];
+    s += solidAngle(p, t.v[0], t.v[1], t.v[2]);
+  }
+  return s / FourPi;
+}
+
+__device__ double driftDev(const WindingDev& W, V3 p, V3 q, double h)
+{
+  double sum = 0;
+  for (int c = 0; c < W.clusterCount; ++c)
+  {
+    const WindingSigner::Cluster cl = W.clusters[c];
+    const double m = 0.5 * (norm(p - cl.centre) + norm(q - cl.centre) - h) - cl.radius;
+    if (!(m > 0)) return 1e300;
+    sum += cl.length / (m * m);
+  }
+  return h * sum / FourPi;
+}
+
+__device__ double evaluateDev(const WindingDev& W, V3 p)
+{
+  const V3 dir = normalized(V3{ 0.5773502691896258, 0.5780, 0.5767 });
+  int sum = 0;
+  if (rayDev(W.closed, p, dir, nullptr, nullptr, &sum))
+  {
+    return sum - coneWindingDev(W, p);
+  }
+  double s = 0;
+  for (int i = 0; i < W.meshTris; ++i)
+  {
+    const Tri& t = W.closed.tris[i];
+    s += solidAngle(p, t.v[0], t.v[1], t.v[2]);
+  }
+  return s / FourPi;
+}
+
+__device__ bool insideOf(double w) { return fabs(w) >= 0.5; }
+__device__ bool decidedDev(double lo, double hi) { return !(lo < 0.5 && hi >= 0.5) && !(lo <= -0.5 && hi > -0.5); }
+
+__global__ void signKernel(WindingDev W, Params P, float* out, unsigned long long* evals,
+  unsigned long long* fallbacks)
+{
+  const long long nx = P.hi[0] - P.lo[0] + 1, ny = P.hi[1] - P.lo[1] + 1, nz = P.hi[2] - P.lo[2] + 1;
+  const long long row = static_cast<long long>(blockIdx.x) * blockDim.x + threadIdx.x;
+  if (row >= ny * nz) return;
+  const long long j = P.lo[1] + row % ny, k = P.lo[2] + row / ny;
+  float* rowOut = out + row * nx;
+  const double h = P.spacing[0];
+  const V3 start = positionOf(P, P.lo[0], j, k);
+  auto pos = [&](long long i) { return start + V3{ static_cast<double>(i) * h, 0, 0 }; };
+  Hit hits[MaxHits];
+  int count = 0, sum = 0;
+  if (!rayDev(W.closed, start - V3{ 0.5 * h, 0, 0 }, V3{ 1, 0, 0 }, hits, &count, &sum))
+  {
+    for (long long i = 0; i < nx; ++i)
+    {
+      if (insideOf(evaluateDev(W, pos(i)))) rowOut[i] = -rowOut[i];
+    }
+    atomicAdd(fallbacks, static_cast<unsigned long long>(nx));
+    atomicAdd(evals, static_cast<unsigned long long>(nx));
+    return;
+  }
+  for (int a = 1; a < count; ++a) // insertion sort by t
+  {
+    const Hit x = hits[a];
+    int b = a - 1;
+    while (b >= 0 && hits[b].t > x.t)
+    {
+      hits[b + 1] = hits[b];
+      --b;
+    }
+    hits[b + 1] = x;
+  }
+  int ahead = sum;
+  int next = 0;
+  const bool open = W.coneCount > 0;
+  bool have = false;
+  double lo = 0, hi = 0;
+  unsigned long long ev = 0;
+  for (long long i = 0; i < nx; ++i)
+  {
+    const double ti = 0.5 * h + static_cast<double>(i) * h;
+    int jumpMesh = 0;
+    while (next < count && hits[next].t <= ti)
+    {
+      ahead -= hits[next].sign;
+      if (hits[next].tri < W.meshTris) jumpMesh += hits[next].sign;
+      ++next;
+    }
+    double w;
+    if (!open)
+    {
+      w = ahead;
+    }
+    else
+    {
+      if (have)
+      {
+        const double drift = driftDev(W, pos(i - 1), pos(i), h);
+        if (drift < 1e299)
+        {
+          lo = lo - jumpMesh - drift;
+          hi = hi - jumpMesh + drift;
+        }
+        else
+        {
+          have = false;
+        }
+      }
+      if (!have || !decidedDev(lo, hi))
+      {
+        const double exact = ahead - coneWindingDev(W, pos(i));
+        lo = exact - 1e-9;
+        hi = exact + 1e-9;
+        have = true;
+        ++ev;
+      }
+      w = 0.5 * (lo + hi);
+    }
+    if (insideOf(w)) rowOut[i] = -rowOut[i];
+  }
+  if (ev) atomicAdd(evals, ev);
+}
+
+double now()
+{
+  return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count();
+}
+
+/// Device buffers freed on scope exit (also on exceptions).
+class DeviceArena
+{
+public:
+  ~DeviceArena()
+  {
+    for (void* p : this->Ptrs) cudaFree(p);
+  }
+  template <typename T>
+  T* upload(const std::vector<T>& v)
+  {
+    T* d = this->alloc<T>(v.size());
+    if (!v.empty()) LVDIF_CUDA_CHECK(cudaMemcpy(d, v.data(), v.size() * sizeof(T), cudaMemcpyHostToDevice));
+    return d;
+  }
+  template <typename T>
+  T* alloc(std::size_t n)
+  {
+    void* p = nullptr;
+    const std::size_t bytes = std::max<std::size_t>(n, 1) * sizeof(T);
+    LVDIF_CUDA_CHECK(cudaMalloc(&p, bytes));
+    this->Ptrs.push_back(p);
+    this->Bytes += bytes;
+    return static_cast<T*>(p);
+  }
+  std::uint64_t bytes() const { return this->Bytes; }
+
+private:
+  std::vector<void*> Ptrs;
+  std::uint64_t Bytes = 0;
+};
+
+std::vector<GpuNode> convertNodes(const Bvh& b)
+{
+  std::vector<GpuNode> out;
+  out.reserve(b.nodes().size());
+  for (const Bvh::Node& n : b.nodes())
+  {
+    GpuNode g;
+    for (int a = 0; a < 3; ++a)
+    {
+      g.lo[a] = n.lo[a];
+      g.hi[a] = n.hi[a];
+    }
+    g.left = n.left;
+    g.right = n.right;
+    g.first = n.first;
+    g.count = n.count;
+    out.push_back(g);
+  }
+  return out;
+}
+
+DevBvh uploadBvh(DeviceArena& arena, const std::vector<Tri>& tris, const Bvh& b)
+{
+  DevBvh d;
+  d.tris = arena.upload(tris);
+  d.nodes = arena.upload(convertNodes(b));
+  d.order = arena.upload(b.order());
+  return d;
+}
+
+class CudaSession : public Session
+{
+public:
+  CudaSession(const PreparedMesh& mesh, const Bvh& bvh, const WindingSigner* winding, const GridGeometry& grid,
+    const MeshToSdfOptions& options, double toOut, double band, MeshToSdfStats& stats)
+    : Options(options)
+    , HasWinding(winding != nullptr)
+  {
+    const double t0 = now();
+    this->Dbvh = uploadBvh(this->Arena, mesh.tris, bvh);
+    if (winding)
+    {
+      this->W.closed = uploadBvh(this->Arena, winding->closedTris(), winding->closedBvh());
+      this->W.meshTris = static_cast<int>(winding->meshTriangles());
+      this->W.cone = this->W.closed.tris + this->W.meshTris;
+      this->W.coneCount = static_cast<int>(winding->cone().size());
+      this->W.clusters = this->Arena.upload(winding->clusters());
+      this->W.clusterCount = static_cast<int>(winding->clusters().size());
+    }
+    this->Counters = this->Arena.alloc<unsigned long long>(2);
+    for (int a = 0; a < 3; ++a)
+    {
+      this->P.origin[a] = grid.origin[a];
+      this->P.spacing[a] = grid.spacing[a];
+    }
+    this->P.toOut = toOut;
+    this->P.band = band;
+    this->P.bandWorld = std::isfinite(band) ? band / toOut : 1e300;
+    this->P.reach = this->P.bandWorld < 1e299 ? this->P.bandWorld + 4 * grid.spacing[0] : 1e300;
+    this->P.sign = options.sign == SignMode::Normal ? 0 : options.sign == SignMode::PseudoNormal ? 1
+      : options.sign == SignMode::WindingNumber ? 2 : 3;
+    this->P.useVertexNormals = options.useVertexNormals ? 1 : 0;
+    this->P.bounded = (this->P.sign >= 2 && this->P.bandWorld < 1e299) ? 1 : 0;
+    LVDIF_CUDA_CHECK(cudaDeviceSynchronize());
+    stats.buildSeconds += now() - t0;
+  }
+
+  void compute(const VoxelBox& extent, float* out, MeshToSdfStats& stats, Interrupter& interrupter) override
+  {
+    const long long nx = extent.hi[0] - extent.lo[0] + 1, ny = extent.hi[1] - extent.lo[1] + 1;
+    const long long nz = extent.hi[2] - extent.lo[2] + 1;
+    const std::uint64_t layerBytes = static_cast<std::uint64_t>(nx) * static_cast<std::uint64_t>(ny) * sizeof(float);
+    const long long slabLayers =
+      std::max<long long>(1, std::min<long long>(nz, static_cast<long long>(this->Options.cudaSlabBytes / layerBytes)));
+    const std::size_t slabFloats = static_cast<std::size_t>(slabLayers * nx * ny);
+    if (slabFloats > this->SlabCapacity)
+    {
+      this->Slab = this->Arena.alloc<float>(slabFloats); // earlier, smaller slabs stay until the session ends
+      this->SlabCapacity = slabFloats;
+    }
+    stats.devicePeakBytes = std::max(stats.devicePeakBytes, this->Arena.bytes());
+    LVDIF_CUDA_CHECK(cudaMemset(this->Counters, 0, 2 * sizeof(unsigned long long)));
+    Params P = this->P;
+    for (long long z0 = extent.lo[2]; z0 <= extent.hi[2]; z0 += slabLayers)
+    {
+      interrupter.checkInterrupt();
+      const long long z1 = std::min<long long>(extent.hi[2], z0 + slabLayers - 1);
+      P.lo[0] = extent.lo[0];
+      P.lo[1] = extent.lo[1];
+      P.lo[2] = z0;
+      P.hi[0] = extent.hi[0];
+      P.hi[1] = extent.hi[1];
+      P.hi[2] = z1;
+      const long long rows = ny * (z1 - z0 + 1);
+      const long long threads = rows * ((nx + Run - 1) / Run);
+      double t0 = now();
+      distanceKernel<<<static_cast<unsigned>((threads + 127) / 128), 128>>>(this->Dbvh, P, this->Slab);
+      LVDIF_CUDA_CHECK(cudaGetLastError());
+      LVDIF_CUDA_CHECK(cudaDeviceSynchronize());
+      stats.distanceSeconds += now() - t0;
+      if (this->HasWinding)
+      {
+        t0 = now();
+        signKernel<<<static_cast<unsigned>((rows + 63) / 64), 64>>>(this->W, P, this->Slab, this->Counters,
+          this->Counters + 1);
+        LVDIF_CUDA_CHECK(cudaGetLastError());
+        LVDIF_CUDA_CHECK(cudaDeviceSynchronize());
+        stats.signSeconds += now() - t0;
+      }
+      t0 = now();
+      LVDIF_CUDA_CHECK(cudaMemcpy(out + (z0 - extent.lo[2]) * nx * ny, this->Slab,
+        static_cast<std::size_t>(rows * nx) * sizeof(float), cudaMemcpyDeviceToHost));
+      stats.writeSeconds += now() - t0;
+      interrupter.progress(static_cast<double>(z1 - extent.lo[2] + 1) / static_cast<double>(nz));
+    }
+    unsigned long long host[2] = { 0, 0 };
+    LVDIF_CUDA_CHECK(cudaMemcpy(host, this->Counters, sizeof(host), cudaMemcpyDeviceToHost));
+    stats.windingEvaluations += static_cast<std::int64_t>(host[0]);
+    stats.windingExact += static_cast<std::int64_t>(host[1]);
+  }
+
+private:
+  MeshToSdfOptions Options;
+  bool HasWinding;
+  DeviceArena Arena;
+  DevBvh Dbvh;
+  WindingDev W;
+  Params P;
+  unsigned long long* Counters = nullptr;
+  float* Slab = nullptr;
+  std::size_t SlabCapacity = 0;
+};
+} // namespace
+
+std::unique_ptr<Session> openSession(const PreparedMesh& mesh, const Bvh& bvh, const WindingSigner* winding,
+  const GridGeometry& grid, const MeshToSdfOptions& options, double toOut, double band, MeshToSdfStats& stats)
+{
+  return std::make_unique<CudaSession>(mesh, bvh, winding, grid, options, toOut, band, stats);
+}
+
+} // namespace cudasdf
+} // namespace lvdif

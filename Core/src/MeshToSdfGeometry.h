@@ -1,0 +1,159 @@
+// Internal geometry of mesh to SDF (double precision): vectors, the prepared
+// triangle record, the exact closest point on a triangle with the feature it
+// lies on, the solid angle of a triangle, point/box distances.
+#pragma once
+
+#include <array>
+#include <cmath>
+#include <cstdint>
+
+// Shared by the CPU code and the CUDA kernels (MeshToSdfCuda.cu).
+#if defined(__CUDACC__)
+#define LVDIF_HD __host__ __device__ inline
+#else
+#define LVDIF_HD inline
+#endif
+
+namespace lvdif
+{
+namespace sdfdetail
+{
+
+struct V3
+{
+  double x = 0, y = 0, z = 0;
+  LVDIF_HD double operator[](int a) const { return a == 0 ? x : (a == 1 ? y : z); }
+};
+LVDIF_HD V3 operator+(V3 a, V3 b) { return { a.x + b.x, a.y + b.y, a.z + b.z }; }
+LVDIF_HD V3 operator-(V3 a, V3 b) { return { a.x - b.x, a.y - b.y, a.z - b.z }; }
+LVDIF_HD V3 operator*(double s, V3 a) { return { s * a.x, s * a.y, s * a.z }; }
+LVDIF_HD double dot(V3 a, V3 b) { return a.x * b.x + a.y * b.y + a.z * b.z; }
+LVDIF_HD V3 cross(V3 a, V3 b) { return { a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x }; }
+LVDIF_HD double norm(V3 a) { return std::sqrt(dot(a, a)); }
+LVDIF_HD V3 normalized(V3 a)
+{
+  const double n = norm(a);
+  return n > 0 ? (1.0 / n) * a : V3{};
+}
+
+/// Which feature of triangle (A, B, C) the closest point lies on.
+enum Feature : std::uint8_t
+{
+  FeatVertA,
+  FeatVertB,
+  FeatVertC,
+  FeatEdgeAB,
+  FeatEdgeBC,
+  FeatEdgeCA,
+  FeatFace
+};
+
+/// A non-degenerate triangle ready for queries. en: pseudo-normals of edges
+/// AB, BC, CA; vn: angle-weighted pseudo-normals of A, B, C (Baerentzen &
+/// Aanaes 2005); nv: the mesh's vertex normals at A, B, C (zero if none).
+struct Tri
+{
+  V3 v[3];
+  V3 n; // unit face normal, (B-A)x(C-A) direction
+  V3 en[3];
+  V3 vn[3];
+  V3 nv[3];
+  double area = 0;
+  std::uint32_t source = 0; // index in the input mesh
+};
+
+struct Closest
+{
+  V3 point;
+  double b1 = 0, b2 = 0; // barycentric weights of B and C
+  Feature feature = FeatFace;
+};
+
+/// Closest point of triangle (a, b, c) to p by Voronoi regions, after Ericson,
+/// "Real-Time Collision Detection" (2005), Sect. 5.1.5. Every region test is
+/// done in order, so the edge-AB region uses its own parameter d1/(d1-d3)
+/// (the original code took the AC parameter there, spec section 1.4).
+LVDIF_HD Closest closestPointOnTriangle(V3 p, V3 a, V3 b, V3 c)
+{
+  const V3 ab = b - a, ac = c - a, ap = p - a;
+  const double d1 = dot(ab, ap), d2 = dot(ac, ap);
+  if (d1 <= 0 && d2 <= 0)
+  {
+    return { a, 0, 0, FeatVertA };
+  }
+  const V3 bp = p - b;
+  const double d3 = dot(ab, bp), d4 = dot(ac, bp);
+  if (d3 >= 0 && d4 <= d3)
+  {
+    return { b, 1, 0, FeatVertB };
+  }
+  const double vc = d1 * d4 - d3 * d2;
+  if (vc <= 0 && d1 >= 0 && d3 <= 0)
+  {
+    const double v = d1 / (d1 - d3);
+    return { a + v * ab, v, 0, FeatEdgeAB };
+  }
+  const V3 cp = p - c;
+  const double d5 = dot(ab, cp), d6 = dot(ac, cp);
+  if (d6 >= 0 && d5 <= d6)
+  {
+    return { c, 0, 1, FeatVertC };
+  }
+  const double vb = d5 * d2 - d1 * d6;
+  if (vb <= 0 && d2 >= 0 && d6 <= 0)
+  {
+    const double w = d2 / (d2 - d6);
+    return { a + w * ac, 0, w, FeatEdgeCA };
+  }
+  const double va = d3 * d6 - d5 * d4;
+  if (va <= 0 && (d4 - d3) >= 0 && (d5 - d6) >= 0)
+  {
+    const double w = (d4 - d3) / ((d4 - d3) + (d5 - d6));
+    return { b + w * (c - b), 1 - w, w, FeatEdgeBC };
+  }
+  const double denom = 1.0 / (va + vb + vc);
+  const double v = vb * denom, w = vc * denom;
+  return { a + v * ab + w * ac, v, w, FeatFace };
+}
+
+/// Signed solid angle of triangle (a, b, c) seen from p (positive when p is
+/// behind the triangle's front), Van Oosterom & Strackee (1983).
+LVDIF_HD double solidAngle(V3 p, V3 a, V3 b, V3 c)
+{
+  const V3 x = a - p, y = b - p, z = c - p;
+  const double lx = norm(x), ly = norm(y), lz = norm(z);
+  const double num = dot(x, cross(y, z));
+  const double den = lx * ly * lz + dot(x, y) * lz + dot(x, z) * ly + dot(y, z) * lx;
+  return 2.0 * std::atan2(num, den);
+}
+
+/// Squared distance from p to the box [lo, hi] (0 inside).
+LVDIF_HD double pointBoxDist2(V3 p, const double lo[3], const double hi[3])
+{
+  double s = 0;
+  for (int a = 0; a < 3; ++a)
+  {
+    const double q = p[a];
+    const double d = q < lo[a] ? lo[a] - q : (q > hi[a] ? q - hi[a] : 0.0);
+    s += d * d;
+  }
+  return s;
+}
+
+/// The pseudo-normal of the feature the closest point lies on.
+LVDIF_HD V3 featureNormal(const Tri& t, Feature f)
+{
+  switch (f)
+  {
+    case FeatVertA: return t.vn[0];
+    case FeatVertB: return t.vn[1];
+    case FeatVertC: return t.vn[2];
+    case FeatEdgeAB: return t.en[0];
+    case FeatEdgeBC: return t.en[1];
+    case FeatEdgeCA: return t.en[2];
+    default: return t.n;
+  }
+}
+
+} // namespace sdfdetail
+} // namespace lvdif

@@ -1,0 +1,157 @@
+// Internal structures of mesh to SDF: the prepared triangle list, the BVH
+// (nearest triangle and fast winding numbers) and the paper's uniform grid of
+// overlapping boxes ("faithful" mode). See MeshToSdf.h for the algorithm.
+#pragma once
+
+#include "MeshToSdfGeometry.h"
+#include "lvdif/TriangleMesh.h"
+
+#include <cstdint>
+#include <memory>
+#include <vector>
+
+namespace lvdif
+{
+namespace sdfdetail
+{
+
+struct PreparedMesh
+{
+  std::vector<Tri> tris;          // non-degenerate triangles only
+  std::size_t degenerate = 0;     // skipped zero-area triangles
+  double boundaryLength = 0;      // total length of the boundary chain (0 when closed)
+  std::size_t boundaryEdges = 0;  // edges of non-zero net multiplicity
+  /// The boundary chain as directed segments (a -> b, repeated per unit of
+  /// multiplicity): the oriented edges of the triangles that do not cancel.
+  std::vector<std::array<V3, 2>> boundary;
+  double lo[3] = { 0, 0, 0 }, hi[3] = { 0, 0, 0 }; // bounds of the kept triangles
+};
+
+/// Validates the mesh and builds the triangle records, the pseudo-normals
+/// (vertices welded by exact position) and the boundary chain.
+PreparedMesh prepareMesh(const TriangleMesh& mesh);
+
+struct NearestResult
+{
+  double dist2 = 0;
+  std::int32_t tri = -1;
+  Closest closest;
+};
+
+/// Binary BVH over the triangles (median split on the longest axis of the
+/// centroid bounds, leaves of at most 4). Each node also carries the
+/// moments of Barill et al. 2018 (vector area, area-weighted centre, radius,
+/// total area) for fast winding numbers.
+class Bvh
+{
+public:
+  struct Node
+  {
+    double lo[3], hi[3];
+    V3 vecArea;   // sum of area * unit normal
+    V3 centre;    // area-weighted centroid
+    double radius = 0; // max distance from centre to a vertex below
+    double area = 0;   // sum of |area|
+    std::int32_t left = -1, right = -1; // children, or -1 for a leaf
+    std::int32_t first = 0, count = 0;  // leaf range in Order
+  };
+
+  explicit Bvh(const std::vector<Tri>& tris);
+
+  /// Nearest triangle to p among those closer than sqrt(bestDist2): starts
+  /// from the given hint (tri index, -1 for none), exact.
+  NearestResult nearest(V3 p, std::int32_t hint, double maxDist2) const;
+
+  /// Exact winding number: the sum of all solid angles / 4 pi.
+  double windingExact(V3 p) const;
+
+  struct RayHit
+  {
+    double t;
+    std::int32_t tri;
+    std::int8_t sign; // +1 when the ray leaves through the front face
+  };
+  /// Every crossing of the ray o + t dir, t > tmin, with a triangle. Returns
+  /// false when a crossing is too close to an edge, a vertex, the ray origin,
+  /// or the ray lies in a triangle's plane (the count would be ambiguous).
+  bool rayHits(V3 o, V3 dir, double tmin, std::vector<RayHit>& hits) const;
+
+  const std::vector<Node>& nodes() const { return this->Nodes; }
+  const std::vector<std::int32_t>& order() const { return this->Order; }
+
+private:
+  std::int32_t build(std::int32_t first, std::int32_t count, int depth);
+  const std::vector<Tri>& Tris;
+  std::vector<Node> Nodes;
+  std::vector<std::int32_t> Order;
+};
+
+/// The paper's "octree of overlapping chunks" (Sect. 3.1, spec 1.7): a uniform
+/// grid of M^3 cells over the triangle bounds; each cell lists the triangles
+/// overlapping the cell scaled by `scale` about its centre (Akenine-Moeller
+/// separating-axis test). Every cell is processed (the original skipped the
+/// last one). The query is exact: see nearest().
+class FaithfulGrid
+{
+public:
+  FaithfulGrid(const std::vector<Tri>& tris, const double lo[3], const double hi[3], int m, double scale);
+  /// Paper's step: brute force over the list of the cell nearest to p that
+  /// has triangles; then, to be exact, every other cell whose own (unscaled)
+  /// region is within the current best distance is searched too (the true
+  /// closest point lies in some cell, and its triangle overlaps that cell).
+  NearestResult nearest(V3 p) const;
+  std::size_t listEntries() const { return this->Entries.size(); }
+
+private:
+  std::int64_t cellIndex(int i, int j, int k) const { return i + this->M * (j + static_cast<std::int64_t>(this->M) * k); }
+  void scanCell(std::int64_t cell, V3 p, NearestResult& best) const;
+  const std::vector<Tri>& Tris;
+  int M;
+  double Lo[3], Step[3];
+  std::vector<std::int64_t> Start; // M^3 + 1 offsets into Entries
+  std::vector<std::int32_t> Entries;
+  std::vector<std::int32_t> NearestFull; // for each cell, a cell with triangles near it (BFS)
+};
+
+/// Exact generalized winding number of the mesh by crossings (MeshToSdfWinding.cpp).
+class WindingSigner
+{
+public:
+  explicit WindingSigner(const PreparedMesh& mesh);
+  /// Flips the sign of the voxels of one row (unsigned distances in out,
+  /// world distance = out / toOut) where |w| >= 0.5. Positions x0 + i * h.
+  void signRow(V3 rowStart, double h, std::int64_t n, float* out, std::int64_t& evaluations,
+    std::int64_t& fallbacks) const;
+  /// Exact winding number at p by a ray in a fixed oblique direction; the
+  /// sum of all solid angles if that ray is ambiguous.
+  double evaluate(V3 p) const;
+
+  struct Cluster
+  {
+    V3 centre;
+    double radius = 0, length = 0;
+  };
+  // for the CUDA path, which mirrors signRow
+  const std::vector<Tri>& closedTris() const { return this->Closed; }
+  const Bvh& closedBvh() const { return *this->ClosedBvh; }
+  const std::vector<Tri>& cone() const { return this->Cone; }
+  const std::vector<Cluster>& clusters() const { return this->Clusters; }
+  std::size_t meshTriangles() const { return this->MeshTris; }
+
+private:
+  double coneWinding(V3 p) const;
+  double driftPerLength(V3 p, V3 q, double h) const;
+  const PreparedMesh& Mesh;
+  std::size_t MeshTris = 0;        // closed[0, MeshTris) are the mesh, the rest the cone
+  std::vector<Tri> Closed;         // mesh + cone over the boundary: a closed chain
+  std::unique_ptr<Bvh> ClosedBvh;
+  std::vector<Tri> Cone;
+  std::vector<Cluster> Clusters;   // of boundary edges, for the drift bound
+};
+
+/// Akenine-Moeller (2001) triangle/box overlap by the separating axis theorem
+/// (13 axes). Conservative: the box is inflated by a relative 1e-9.
+bool triangleBoxOverlap(const V3 tri[3], const double centre[3], const double half[3]);
+
+} // namespace sdfdetail
+} // namespace lvdif

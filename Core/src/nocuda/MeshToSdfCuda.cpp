@@ -1,0 +1,15 @@
+// Mesh to SDF CUDA entry points for builds without CUDA (never called:
+// resolveDevice() returns Cpu there).
+#include "../MeshToSdfCuda.h"
+
+namespace lvdif
+{
+namespace cudasdf
+{
+std::unique_ptr<Session> openSession(const sdfdetail::PreparedMesh&, const sdfdetail::Bvh&,
+  const sdfdetail::WindingSigner*, const GridGeometry&, const MeshToSdfOptions&, double, double, MeshToSdfStats&)
+{
+  throw Error(ErrorCode::Unsupported, "mesh to SDF: this build has no CUDA");
+}
+} // namespace cudasdf
+} // namespace lvdif

@@ -1,0 +1,278 @@
+// Mesh to SDF distances against a brute-force double/long-double oracle,
+// exact equality of the faithful (paper) mode, grids, outputs, bad input.
+#include "MeshToSdfOracle.h"
+#include "lvdif/DictionaryVolume.h"
+#include "lvdif/Error.h"
+#include "lvdif/MeshToSdf.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <limits>
+#include <vector>
+
+using namespace lvdif;
+
+namespace
+{
+GridGeometry oddGrid()
+{
+  GridGeometry g;
+  g.dims = { 23, 17, 19 };
+  g.origin = { -1.6, -1.5, -1.7 };
+  g.spacing = { 0.15, 0.19, 0.18 };
+  return g;
+}
+
+std::vector<float> run(const TriangleMesh& m, const GridGeometry& g, MeshToSdfOptions o)
+{
+  std::vector<float> out(static_cast<std::size_t>(g.count()));
+  o.device = Device::Cpu;
+  meshToSdf(m, FloatGridView{ out.data(), g }, o);
+  return out;
+}
+} // namespace
+
+TEST(MeshToSdf, DistancesMatchBruteForceOracle)
+{
+  for (unsigned seed : { 1u, 2u, 3u })
+  {
+    const TriangleMesh m = oracle::randomSoup(40, seed);
+    const GridGeometry g = oddGrid();
+    MeshToSdfOptions o;
+    o.sign = SignMode::Unsigned;
+    o.unit = DistanceUnit::World;
+    const std::vector<float> d = run(m, g, o);
+    double worst = 0;
+    for (std::int64_t k = 0; k < g.dims[2]; ++k)
+      for (std::int64_t j = 0; j < g.dims[1]; ++j)
+        for (std::int64_t i = 0; i < g.dims[0]; ++i)
+        {
+          const oracle::P p{ g.origin[0] + i * g.spacing[0], g.origin[1] + j * g.spacing[1],
+            g.origin[2] + k * g.spacing[2] };
+          const double ref = oracle::distance(m, p);
+          worst = std::max(worst, std::fabs(d[g.index(i, j, k)] - ref) / std::max(ref, 1e-3));
+        }
+    EXPECT_LT(worst, 1e-6) << "seed " << seed; // float rounding of the stored value
+  }
+}
+
+TEST(MeshToSdf, AllAcceleratorsGiveTheSameFloats)
+{
+  // Normal signs too: equidistant triangles resolve to the lowest index everywhere
+  for (unsigned seed : { 4u, 5u, 6u })
+  {
+    const TriangleMesh m = seed == 6u ? makeSphereMesh(0.1f, 0, 0, 1.1f, 8, 12) : oracle::randomSoup(60, seed);
+    const GridGeometry g = oddGrid();
+    MeshToSdfOptions o;
+    o.sign = seed == 4u ? SignMode::Unsigned : SignMode::Normal;
+    o.accel = MeshToSdfAccel::BruteForce;
+    const std::vector<float> ref = run(m, g, o);
+    o.accel = MeshToSdfAccel::Bvh;
+    EXPECT_EQ(run(m, g, o), ref);
+    o.accel = MeshToSdfAccel::Faithful;
+    for (int cells : { 1, 3, 8, 16 })
+    {
+      for (double scale : { 1.0, 2.0 })
+      {
+        o.faithfulCellsPerAxis = cells;
+        o.faithfulScale = scale;
+        EXPECT_EQ(run(m, g, o), ref) << "faithful M=" << cells << " scale " << scale;
+      }
+    }
+  }
+}
+
+TEST(MeshToSdf, FaithfulExactOnSphereFarOutside)
+{
+  // voxels far from the mesh are where the original's single-list lookup
+  // missed the nearest triangle
+  const TriangleMesh m = makeSphereMesh(0.2f, -0.1f, 0.05f, 0.7f, 12, 24);
+  GridGeometry g;
+  g.dims = { 20, 21, 22 };
+  g.origin = { -3, -3, -3 };
+  g.spacing = { 0.3, 0.3, 0.3 };
+  MeshToSdfOptions o;
+  o.sign = SignMode::PseudoNormal;
+  o.accel = MeshToSdfAccel::BruteForce;
+  const std::vector<float> ref = run(m, g, o);
+  o.accel = MeshToSdfAccel::Faithful;
+  EXPECT_EQ(run(m, g, o), ref);
+}
+
+TEST(MeshToSdf, SubExtentEqualsTheSameVoxelsOfTheWhole)
+{
+  const TriangleMesh m = makeSphereMesh(0, 0, 0, 1.0f, 10, 20);
+  const GridGeometry g = oddGrid();
+  MeshToSdfOptions o;
+  o.device = Device::Cpu;
+  const std::vector<float> whole = run(m, g, o);
+  VoxelBox box;
+  box.lo = { 3, 5, 2 };
+  box.hi = { 20, 9, 15 };
+  std::vector<float> part(static_cast<std::size_t>(box.voxelCount()));
+  meshToSdf(m, g, box, part.data(), o);
+  std::size_t n = 0;
+  for (std::int64_t k = box.lo[2]; k <= box.hi[2]; ++k)
+    for (std::int64_t j = box.lo[1]; j <= box.hi[1]; ++j)
+      for (std::int64_t i = box.lo[0]; i <= box.hi[0]; ++i)
+      {
+        ASSERT_EQ(part[n++], whole[g.index(i, j, k)]);
+      }
+}
+
+TEST(MeshToSdf, VoxelUnitsAndBand)
+{
+  const TriangleMesh m = makeSphereMesh(0, 0, 0, 1.0f, 10, 20);
+  const GridGeometry g = oddGrid();
+  MeshToSdfOptions o;
+  o.unit = DistanceUnit::World;
+  const std::vector<float> world = run(m, g, o);
+  o.unit = DistanceUnit::Voxel;
+  o.bandWidth = 2.0f;
+  const std::vector<float> vox = run(m, g, o);
+  const double h = 0.15; // smallest spacing
+  for (std::size_t i = 0; i < world.size(); ++i)
+  {
+    const double expect = std::max(-2.0, std::min(2.0, world[i] / h));
+    ASSERT_NEAR(vox[i], expect, 1e-5) << i;
+  }
+}
+
+TEST(MeshToSdf, DictionaryVolumeMatchesFloatPath)
+{
+  const TriangleMesh m = makeSphereMesh(0, 0, 0, 1.0f, 16, 32);
+  VolumeOptions vo;
+  vo.dims = { 45, 40, 37 }; // not multiples of the chunk edge
+  vo.chunkEdge = 8;
+  vo.origin = { -1.5, -1.4, -1.3 };
+  vo.spacing = { 0.07, 0.07, 0.07 };
+  vo.bandWidth = 3.0f;
+  DictionaryVolume vol(vo);
+  MeshToSdfOptions o;
+  o.device = Device::Cpu;
+  const MeshToSdfStats st = meshToSdf(m, vol, o);
+  EXPECT_EQ(st.triangles, m.triangles.size());
+  GridGeometry g;
+  g.dims = vo.dims;
+  g.origin = vo.origin;
+  g.spacing = vo.spacing;
+  o.bandWidth = 3.0f;
+  const std::vector<float> ref = run(m, g, o);
+  for (std::int64_t z = 0; z < g.dims[2]; ++z)
+    for (std::int64_t y = 0; y < g.dims[1]; ++y)
+      for (std::int64_t x = 0; x < g.dims[0]; ++x)
+      {
+        ASSERT_EQ(vol.get(x, y, z).sdf, vol.encode(ref[g.index(x, y, z)])) << x << " " << y << " " << z;
+      }
+  // far chunks are saturated and stay uniform
+  EXPECT_LT(vol.expandedChunkCount(), vol.chunkCount());
+  EXPECT_GT(vol.expandedChunkCount(), 0);
+  EXPECT_FALSE(vol.takeDirtyChunks().empty());
+}
+
+TEST(MeshToSdf, FitGridToMesh)
+{
+  const TriangleMesh m = makeBoxMesh({ 0, 0, 0 }, { 4, 2, 1 });
+  const GridGeometry g = fitGridToMesh(m, 101, 2.5);
+  EXPECT_EQ(g.dims[0], 101);
+  EXPECT_LT(g.dims[1], 101);
+  EXPECT_LT(g.dims[2], g.dims[1]);
+  EXPECT_DOUBLE_EQ(g.spacing[0], g.spacing[1]);
+  EXPECT_DOUBLE_EQ(g.spacing[0], g.spacing[2]);
+  for (int a = 0; a < 3; ++a)
+  {
+    const double hi = a == 0 ? 4 : (a == 1 ? 2 : 1);
+    // at least 2.5 voxels of margin on both sides
+    EXPECT_LE(g.origin[a] + 2.5 * g.spacing[a], 1e-9) << a;
+    EXPECT_GE(g.origin[a] + (g.dims[a] - 1 - 2.5) * g.spacing[a], hi - 1e-9) << a;
+  }
+  EXPECT_NEAR(g.origin[0] + 2.5 * g.spacing[0], 0, 1e-9);
+}
+
+TEST(MeshToSdf, DegenerateTrianglesAreSkippedAndCounted)
+{
+  TriangleMesh m = makeSphereMesh(0, 0, 0, 1.0f, 8, 16);
+  const TriangleMesh clean = m;
+  m.points.push_back({ 0.3f, 0.3f, 0.3f });
+  const std::uint32_t last = static_cast<std::uint32_t>(m.points.size() - 1);
+  m.triangles.push_back({ last, last, 0 });      // repeated index
+  m.triangles.push_back({ 0, 0, 0 });             // a point
+  const GridGeometry g = oddGrid();
+  MeshToSdfOptions o;
+  o.device = Device::Cpu;
+  std::vector<float> a(static_cast<std::size_t>(g.count())), b(a.size());
+  const MeshToSdfStats st = meshToSdf(m, FloatGridView{ a.data(), g }, o);
+  meshToSdf(clean, FloatGridView{ b.data(), g }, o);
+  EXPECT_EQ(st.degenerateSkipped, 2u);
+  EXPECT_EQ(a, b);
+}
+
+TEST(MeshToSdf, BadInputIsRefused)
+{
+  const GridGeometry g = oddGrid();
+  std::vector<float> out(static_cast<std::size_t>(g.count()));
+  MeshToSdfOptions o;
+  auto code = [&](const TriangleMesh& m, const GridGeometry& gg) {
+    try
+    {
+      meshToSdf(m, gg, VoxelBox{ { 0, 0, 0 }, { 0, 0, 0 } }, out.data(), o);
+    }
+    catch (const Error& e)
+    {
+      return e.code();
+    }
+    return ErrorCode::Unsupported;
+  };
+  const TriangleMesh sphere = makeSphereMesh(0, 0, 0, 1.0f, 4, 6);
+  EXPECT_EQ(code(TriangleMesh{}, g), ErrorCode::InvalidArgument);
+  TriangleMesh nan = sphere;
+  nan.points[1][2] = std::numeric_limits<float>::quiet_NaN();
+  EXPECT_EQ(code(nan, g), ErrorCode::InvalidArgument);
+  TriangleMesh badIndex = sphere;
+  badIndex.triangles[0][1] = 999;
+  EXPECT_EQ(code(badIndex, g), ErrorCode::InvalidArgument);
+  TriangleMesh allDegenerate;
+  allDegenerate.points = { { 0, 0, 0 }, { 1, 1, 1 }, { 2, 2, 2 } };
+  allDegenerate.triangles = { { 0, 1, 2 } };
+  EXPECT_EQ(code(allDegenerate, g), ErrorCode::InvalidArgument);
+  GridGeometry huge = g;
+  huge.dims = { 1 << 22, 4, 4 };
+  EXPECT_EQ(code(sphere, huge), ErrorCode::InvalidArgument);
+  GridGeometry zeroSpacing = g;
+  zeroSpacing.spacing[1] = 0;
+  EXPECT_EQ(code(sphere, zeroSpacing), ErrorCode::InvalidArgument);
+  // extent outside the grid
+  EXPECT_THROW(meshToSdf(sphere, g, VoxelBox{ { 0, 0, 0 }, { 23, 0, 0 } }, out.data(), o), Error);
+  // fitted grids: zero-size bounds, absurd dims
+  TriangleMesh point;
+  point.points = { { 1, 1, 1 } };
+  point.triangles = { { 0, 0, 0 } };
+  EXPECT_THROW(fitGridToMesh(point, 64, 1), Error);
+  EXPECT_THROW(fitGridToMesh(sphere, std::int64_t(1) << 40, 1), Error);
+  EXPECT_THROW(fitGridToMesh(sphere, 8, 4), Error);
+  // a dictionary volume of absurd size is refused by its constructor, before allocating
+  VolumeOptions vo;
+  vo.dims = { 1 << 20, 1 << 20, 1 << 20 };
+  EXPECT_THROW(DictionaryVolume v(vo), Error);
+}
+
+TEST(MeshToSdf, CancelStopsWithCancelled)
+{
+  const TriangleMesh m = makeSphereMesh(0, 0, 0, 1.0f, 8, 16);
+  const GridGeometry g = oddGrid();
+  std::vector<float> out(static_cast<std::size_t>(g.count()));
+  CancelFlagInterrupter intr;
+  intr.cancel();
+  MeshToSdfOptions o;
+  o.device = Device::Cpu;
+  try
+  {
+    meshToSdf(m, FloatGridView{ out.data(), g }, o, intr);
+    FAIL() << "no exception";
+  }
+  catch (const Error& e)
+  {
+    EXPECT_EQ(e.code(), ErrorCode::Cancelled);
+  }
+}

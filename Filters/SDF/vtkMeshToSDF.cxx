@@ -1,0 +1,294 @@
+#include "vtkMeshToSDF.h"
+
+#include "vtkLVDIFInterrupter.h"
+
+#include "lvdif/Error.h"
+#include "lvdif/Memory.h"
+#include "lvdif/MeshToSdf.h"
+
+#include "vtkAlgorithmOutput.h"
+#include "vtkCellArray.h"
+#include "vtkDataArray.h"
+#include "vtkFieldData.h"
+#include "vtkFloatArray.h"
+#include "vtkIdTypeArray.h"
+#include "vtkImageData.h"
+#include "vtkInformation.h"
+#include "vtkInformationVector.h"
+#include "vtkNew.h"
+#include "vtkObjectFactory.h"
+#include "vtkPointData.h"
+#include "vtkPolyData.h"
+#include "vtkStreamingDemandDrivenPipeline.h"
+
+#include <cmath>
+#include <limits>
+
+vtkStandardNewMacro(vtkMeshToSDF);
+
+namespace
+{
+/// Polygons fan-triangulated (exact for convex polygons), strips split with
+/// alternating order so every triangle keeps the strip's orientation.
+lvdif::TriangleMesh toMesh(vtkPolyData* pd, bool withNormals)
+{
+  lvdif::TriangleMesh m;
+  const vtkIdType np = pd->GetNumberOfPoints();
+  m.points.resize(static_cast<std::size_t>(np));
+  for (vtkIdType i = 0; i < np; ++i)
+  {
+    double p[3];
+    pd->GetPoint(i, p);
+    m.points[i] = { static_cast<float>(p[0]), static_cast<float>(p[1]), static_cast<float>(p[2]) };
+  }
+  vtkDataArray* normals = pd->GetPointData()->GetNormals();
+  if (withNormals && normals && normals->GetNumberOfComponents() == 3 && normals->GetNumberOfTuples() == np)
+  {
+    m.normals.resize(static_cast<std::size_t>(np));
+    for (vtkIdType i = 0; i < np; ++i)
+    {
+      double n[3];
+      normals->GetTuple(i, n);
+      m.normals[i] = { static_cast<float>(n[0]), static_cast<float>(n[1]), static_cast<float>(n[2]) };
+    }
+  }
+  auto id = [](vtkIdType v) { return static_cast<std::uint32_t>(v); };
+  vtkIdType n;
+  const vtkIdType* ids;
+  vtkCellArray* polys = pd->GetPolys();
+  for (polys->InitTraversal(); polys->GetNextCell(n, ids);)
+  {
+    for (vtkIdType k = 1; k + 1 < n; ++k)
+    {
+      m.triangles.push_back({ id(ids[0]), id(ids[k]), id(ids[k + 1]) });
+    }
+  }
+  vtkCellArray* strips = pd->GetStrips();
+  for (strips->InitTraversal(); strips->GetNextCell(n, ids);)
+  {
+    for (vtkIdType k = 0; k + 2 < n; ++k)
+    {
+      if (k % 2 == 0)
+        m.triangles.push_back({ id(ids[k]), id(ids[k + 1]), id(ids[k + 2]) });
+      else
+        m.triangles.push_back({ id(ids[k + 1]), id(ids[k]), id(ids[k + 2]) });
+    }
+  }
+  return m;
+}
+} // namespace
+
+vtkMeshToSDF::vtkMeshToSDF()
+{
+  this->SetNumberOfInputPorts(1);
+}
+
+vtkMeshToSDF::~vtkMeshToSDF() = default;
+
+int vtkMeshToSDF::FillInputPortInformation(int, vtkInformation* info)
+{
+  info->Set(vtkAlgorithm::INPUT_REQUIRED_DATA_TYPE(), "vtkPolyData");
+  return 1;
+}
+
+namespace
+{
+/// The grid of the filter's settings for this input; throws lvdif::Error.
+lvdif::GridGeometry gridFor(vtkPolyData* pd, bool explicitGrid, const int dims[3], const double origin[3],
+  const double spacing[3], int maxDim, double sampleSpacing, double padding)
+{
+  lvdif::GridGeometry g;
+  if (explicitGrid)
+  {
+    for (int a = 0; a < 3; ++a)
+    {
+      g.dims[a] = dims[a];
+      g.origin[a] = origin[a];
+      g.spacing[a] = spacing[a];
+    }
+    return g;
+  }
+  lvdif::require(pd && pd->GetNumberOfPoints() > 0, "vtkMeshToSDF: the input mesh has no points");
+  double b[6];
+  pd->GetBounds(b);
+  for (double v : b)
+  {
+    lvdif::require(std::isfinite(v), "vtkMeshToSDF: the input has NaN or infinite points");
+  }
+  if (sampleSpacing > 0)
+  {
+    double longest = 0;
+    for (int a = 0; a < 3; ++a) longest = std::max(longest, b[2 * a + 1] - b[2 * a]);
+    lvdif::require(longest > 0, "vtkMeshToSDF: the mesh bounds have zero size");
+    for (int a = 0; a < 3; ++a)
+    {
+      const double n = std::ceil((b[2 * a + 1] - b[2 * a]) / sampleSpacing + 2 * padding - 1e-9) + 1;
+      lvdif::require(n <= static_cast<double>(1 << 20),
+        "vtkMeshToSDF: SampleSpacing gives more than 2^20 points along an axis");
+      g.dims[a] = static_cast<std::int64_t>(n);
+      g.spacing[a] = sampleSpacing;
+      g.origin[a] = 0.5 * (b[2 * a] + b[2 * a + 1]) - 0.5 * static_cast<double>(g.dims[a] - 1) * sampleSpacing;
+    }
+    return g;
+  }
+  lvdif::TriangleMesh box; // fitGridToMesh needs only the bounds: the 8 corners stand in
+  for (int c = 0; c < 8; ++c)
+  {
+    box.points.push_back({ static_cast<float>(b[(c & 1) ? 1 : 0]), static_cast<float>(b[(c & 2) ? 3 : 2]),
+      static_cast<float>(b[(c & 4) ? 5 : 4]) });
+  }
+  box.triangles.push_back({ 0, 1, 2 });
+  return lvdif::fitGridToMesh(box, maxDim, padding);
+}
+} // namespace
+
+int vtkMeshToSDF::RequestInformation(
+  vtkInformation*, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
+{
+  vtkPolyData* input = vtkPolyData::GetData(inputVector[0]);
+  if (!this->UseExplicitGrid && (!input || input->GetNumberOfPoints() == 0))
+  {
+    // a fitted grid needs the mesh bounds before RequestData: bring the input up to date
+    vtkAlgorithmOutput* conn = this->GetInputConnection(0, 0);
+    if (conn && conn->GetProducer())
+    {
+      conn->GetProducer()->Update(conn->GetIndex());
+      input = vtkPolyData::GetData(inputVector[0]);
+    }
+  }
+  lvdif::GridGeometry g;
+  try
+  {
+    g = gridFor(input, this->UseExplicitGrid, this->Dimensions, this->Origin, this->Spacing, this->MaxDimension,
+      this->SampleSpacing, this->Padding);
+    for (int a = 0; a < 3; ++a)
+    {
+      lvdif::require(g.dims[a] >= 1 && g.dims[a] <= VTK_INT_MAX && g.spacing[a] > 0,
+        "vtkMeshToSDF: grid dimensions must be >= 1 and spacings > 0");
+    }
+  }
+  catch (const lvdif::Error& e)
+  {
+    vtkErrorMacro(<< e.what());
+    return 0;
+  }
+  vtkInformation* outInfo = outputVector->GetInformationObject(0);
+  int whole[6] = { 0, static_cast<int>(g.dims[0] - 1), 0, static_cast<int>(g.dims[1] - 1), 0,
+    static_cast<int>(g.dims[2] - 1) };
+  outInfo->Set(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT(), whole, 6);
+  outInfo->Set(vtkDataObject::ORIGIN(), g.origin.data(), 3);
+  outInfo->Set(vtkDataObject::SPACING(), g.spacing.data(), 3);
+  outInfo->Set(vtkAlgorithm::CAN_PRODUCE_SUB_EXTENT(), 1);
+  vtkDataObject::SetPointDataActiveScalarInfo(outInfo, VTK_FLOAT, 1);
+  return 1;
+}
+
+int vtkMeshToSDF::RequestUpdateExtent(vtkInformation*, vtkInformationVector** inputVector, vtkInformationVector*)
+{
+  // every piece of the image needs the whole mesh
+  vtkInformation* inInfo = inputVector[0]->GetInformationObject(0);
+  inInfo->Set(vtkStreamingDemandDrivenPipeline::UPDATE_PIECE_NUMBER(), 0);
+  inInfo->Set(vtkStreamingDemandDrivenPipeline::UPDATE_NUMBER_OF_PIECES(), 1);
+  inInfo->Set(vtkStreamingDemandDrivenPipeline::UPDATE_NUMBER_OF_GHOST_LEVELS(), 0);
+  return 1;
+}
+
+int vtkMeshToSDF::RequestData(vtkInformation*, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
+{
+  vtkPolyData* input = vtkPolyData::GetData(inputVector[0]);
+  vtkInformation* outInfo = outputVector->GetInformationObject(0);
+  vtkImageData* output = vtkImageData::GetData(outInfo);
+  if (!input || !output)
+  {
+    vtkErrorMacro("input must be vtkPolyData and output vtkImageData");
+    return 0;
+  }
+  if (input->GetNumberOfPoints() == 0)
+  {
+    vtkErrorMacro("the input mesh is empty (no points)");
+    return 0;
+  }
+  if (input->GetNumberOfPolys() + input->GetNumberOfStrips() == 0)
+  {
+    vtkErrorMacro("the input mesh has no polygons or triangle strips (lines and vertices are ignored)");
+    return 0;
+  }
+  int ext[6];
+  outInfo->Get(vtkStreamingDemandDrivenPipeline::UPDATE_EXTENT(), ext);
+  vtkNew<vtkFloatArray> sdf;
+  sdf->SetName("sdf");
+  lvdif::MeshToSdfStats st;
+  vtkLVDIFInterrupter interrupter(this);
+  try
+  {
+    const lvdif::GridGeometry g = gridFor(input, this->UseExplicitGrid, this->Dimensions, this->Origin,
+      this->Spacing, this->MaxDimension, this->SampleSpacing, this->Padding);
+    lvdif::VoxelBox box;
+    for (int a = 0; a < 3; ++a)
+    {
+      box.lo[a] = ext[2 * a];
+      box.hi[a] = ext[2 * a + 1];
+    }
+    lvdif::require(!box.empty(), "vtkMeshToSDF: the requested extent is empty");
+    for (int a = 0; a < 3; ++a)
+    {
+      lvdif::require(box.lo[a] >= 0 && box.hi[a] < g.dims[a], "vtkMeshToSDF: the requested extent is outside the grid");
+    }
+    lvdif::requireMemory(lvdif::checkedMultiply(static_cast<std::uint64_t>(box.voxelCount()), 4, "sdf"),
+      "vtkMeshToSDF: the sdf array");
+    const lvdif::TriangleMesh mesh = toMesh(input, this->UseVertexNormals);
+    sdf->SetNumberOfTuples(static_cast<vtkIdType>(box.voxelCount()));
+    lvdif::MeshToSdfOptions o;
+    o.sign = this->SignMode == NORMAL ? lvdif::SignMode::Normal
+      : this->SignMode == PSEUDO_NORMAL ? lvdif::SignMode::PseudoNormal
+      : this->SignMode == UNSIGNED      ? lvdif::SignMode::Unsigned
+                                        : lvdif::SignMode::WindingNumber;
+    o.accel = this->Accelerator == FAITHFUL ? lvdif::MeshToSdfAccel::Faithful
+      : this->Accelerator == BRUTE_FORCE    ? lvdif::MeshToSdfAccel::BruteForce
+                                            : lvdif::MeshToSdfAccel::Bvh;
+    o.bandWidth = this->BandWidth > 0 ? static_cast<float>(this->BandWidth) : std::numeric_limits<float>::infinity();
+    o.unit = this->WorldUnits ? lvdif::DistanceUnit::World : lvdif::DistanceUnit::Voxel;
+    o.useVertexNormals = this->UseVertexNormals;
+    o.svfFilters = static_cast<unsigned>(this->SignVoxelFilters);
+    o.device = this->Device == DEVICE_CPU ? lvdif::Device::Cpu
+                                          : (this->Device == DEVICE_CUDA ? lvdif::Device::Cuda : lvdif::Device::Auto);
+    o.svf.device = o.device;
+    st = lvdif::meshToSdf(mesh, g, box, sdf->GetPointer(0), o, interrupter);
+  }
+  catch (const lvdif::Error& e)
+  {
+    if (e.code() != lvdif::ErrorCode::Cancelled)
+    {
+      vtkErrorMacro(<< e.what());
+    }
+    return 0;
+  }
+  output->SetExtent(ext);
+  output->GetPointData()->SetScalars(sdf);
+  vtkNew<vtkIdTypeArray> degenerate;
+  degenerate->SetName("degenerate_triangles");
+  degenerate->InsertNextValue(static_cast<vtkIdType>(st.degenerateSkipped));
+  output->GetFieldData()->AddArray(degenerate);
+  this->UpdateProgress(1.0);
+  return 1;
+}
+
+void vtkMeshToSDF::PrintSelf(ostream& os, vtkIndent indent)
+{
+  this->Superclass::PrintSelf(os, indent);
+  os << indent << "SignMode: " << this->SignMode << "\n";
+  os << indent << "Accelerator: " << this->Accelerator << "\n";
+  os << indent << "MaxDimension: " << this->MaxDimension << "\n";
+  os << indent << "SampleSpacing: " << this->SampleSpacing << "\n";
+  os << indent << "Padding: " << this->Padding << "\n";
+  os << indent << "UseExplicitGrid: " << this->UseExplicitGrid << "\n";
+  os << indent << "Dimensions: " << this->Dimensions[0] << " " << this->Dimensions[1] << " " << this->Dimensions[2]
+     << "\n";
+  os << indent << "Origin: " << this->Origin[0] << " " << this->Origin[1] << " " << this->Origin[2] << "\n";
+  os << indent << "Spacing: " << this->Spacing[0] << " " << this->Spacing[1] << " " << this->Spacing[2] << "\n";
+  os << indent << "BandWidth: " << this->BandWidth << "\n";
+  os << indent << "WorldUnits: " << this->WorldUnits << "\n";
+  os << indent << "UseVertexNormals: " << this->UseVertexNormals << "\n";
+  os << indent << "SignVoxelFilters: " << this->SignVoxelFilters << "\n";
+  os << indent << "Device: " << this->Device << "\n";
+}

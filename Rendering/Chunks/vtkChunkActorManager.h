@@ -1,0 +1,116 @@
+/**
+ * @class   vtkChunkActorManager
+ * @brief   one actor per marching cubes chunk; replacing a chunk re-uploads
+ *          only that chunk's buffers
+ *
+ * The paper (Sect. 3.3, 3.4.1) re-meshes only the chunks a brush touched and
+ * updates only their mesh objects. Here each chunk id owns a vtkActor with a
+ * vtkTetrahedralColorMapper. SetChunk() swaps the input of that one mapper,
+ * so the next render uploads that chunk's vertex buffers and no other; an
+ * empty mesh removes the actor. All actors share one vtkProperty.
+ *
+ * Why not one merged actor: rebuilding a merged poly data and re-uploading it
+ * costs time proportional to the whole model per edit (see
+ * Testing/Benchmarks/VTK/bench_chunk_actors.cxx for the measured ratio); the
+ * price of one actor per chunk is one draw call per non-empty chunk, which
+ * stays small with 32^3..64^3 cell chunks (a 512^3 volume has at most 4096).
+ *
+ * Input meshes either carry the tetrahedral contract (cell data
+ * `corner_rgba`, `cell_ijk`), in which case they are run through
+ * vtkCornerColorAttributes with the volume geometry set here, or just point
+ * data `rgba` + `Normals` (per-vertex colours).
+ *
+ * Not thread-safe: call from the thread that renders. PrepareChunk() is the
+ * part that may run on a worker thread.
+ */
+#ifndef vtkChunkActorManager_h
+#define vtkChunkActorManager_h
+
+#include "lvdifRenderingChunksModule.h" // for export macro
+#include "vtkObject.h"
+#include "vtkSmartPointer.h" // for return type
+
+#include <memory> // for unique_ptr
+
+class vtkActor;
+class vtkPartitionedDataSet;
+class vtkPolyData;
+class vtkProp;
+class vtkProperty;
+class vtkRenderer;
+
+class LVDIFRENDERINGCHUNKS_EXPORT vtkChunkActorManager : public vtkObject
+{
+public:
+  static vtkChunkActorManager* New();
+  vtkTypeMacro(vtkChunkActorManager, vtkObject);
+  void PrintSelf(ostream& os, vtkIndent indent) override;
+
+  /// The renderer the chunk actors live in (actors move over when it changes).
+  void SetRenderer(vtkRenderer* renderer);
+  vtkRenderer* GetRenderer();
+
+  ///@{
+  /// Volume geometry (world position of voxel (0,0,0), voxel size) used to
+  /// turn cell_ijk into local cell coordinates.
+  vtkSetVector3Macro(Origin, double);
+  vtkGetVector3Macro(Origin, double);
+  vtkSetVector3Macro(Spacing, double);
+  vtkGetVector3Macro(Spacing, double);
+  ///@}
+
+  /// vtkTetrahedralColorMapper::Tetrahedral (default) or ::PerVertex, for every chunk.
+  void SetInterpolationMode(int mode);
+  vtkGetMacro(InterpolationMode, int);
+
+  /// The property every chunk actor shares (material, opacity, ...).
+  vtkProperty* GetProperty();
+
+  /// Prepares a mesh for rendering (un-shares vertices for the tetrahedral
+  /// shader when the mesh carries corner colours). Thread-safe; SetChunk calls
+  /// it unless told the mesh is prepared.
+  vtkSmartPointer<vtkPolyData> PrepareChunk(vtkPolyData* mesh) const;
+
+  /// Replaces the mesh of one chunk. A null or empty mesh removes the chunk.
+  void SetChunk(vtkIdType chunkId, vtkPolyData* mesh, bool prepared = false);
+  void RemoveChunk(vtkIdType chunkId);
+  /// Shows every partition of vtkChunkedMarchingCubes' partitioned output
+  /// (field data `chunk_id` names the chunk; partitions without it get their
+  /// index). Chunks not in the data set are removed; a partition whose poly
+  /// data object was already shown for that chunk is not re-uploaded.
+  void SetPartitions(vtkPartitionedDataSet* chunks);
+  void RemoveAllChunks();
+
+  vtkActor* GetChunkActor(vtkIdType chunkId);
+  /// The chunk id of an actor of this manager (e.g. a picked one), or -1.
+  vtkIdType GetChunkId(vtkProp* actor);
+  int GetNumberOfChunks();
+  vtkIdType GetNumberOfTriangles();
+  /// Bounds of every chunk actor (vtkMath::UninitializeBounds if none).
+  void GetBounds(double bounds[6]);
+  /// Every chunk mesh (as given, before preparation) appended into one poly data
+  /// (for export and for the merged-actor comparison).
+  vtkSmartPointer<vtkPolyData> GetMergedMesh();
+  /// How many times a chunk's mesh was replaced or added since construction.
+  vtkGetMacro(NumberOfChunkUpdates, vtkIdType);
+
+  void SetVisibility(bool visible);
+
+protected:
+  vtkChunkActorManager();
+  ~vtkChunkActorManager() override;
+
+  double Origin[3] = { 0, 0, 0 };
+  double Spacing[3] = { 1, 1, 1 };
+  int InterpolationMode = 0;
+  vtkIdType NumberOfChunkUpdates = 0;
+
+private:
+  vtkChunkActorManager(const vtkChunkActorManager&) = delete;
+  void operator=(const vtkChunkActorManager&) = delete;
+
+  struct Internals;
+  std::unique_ptr<Internals> Internal;
+};
+
+#endif

@@ -1,0 +1,169 @@
+#include "vtkCornerColorAttributes.h"
+
+#include "vtkCellArray.h"
+#include "vtkCellArrayIterator.h"
+#include "vtkCellData.h"
+#include "vtkFloatArray.h"
+#include "vtkIdList.h"
+#include "vtkInformation.h"
+#include "vtkInformationVector.h"
+#include "vtkIntArray.h"
+#include "vtkNew.h"
+#include "vtkObjectFactory.h"
+#include "vtkPointData.h"
+#include "vtkPoints.h"
+#include "vtkPolyData.h"
+#include "vtkUnsignedCharArray.h"
+
+vtkStandardNewMacro(vtkCornerColorAttributes);
+
+vtkCornerColorAttributes::vtkCornerColorAttributes() = default;
+
+const char* vtkCornerColorAttributes::CornerArrayName(int corner)
+{
+  static const char* names[8] = { "lvdif_corner0", "lvdif_corner1", "lvdif_corner2", "lvdif_corner3",
+    "lvdif_corner4", "lvdif_corner5", "lvdif_corner6", "lvdif_corner7" };
+  return (corner >= 0 && corner < 8) ? names[corner] : nullptr;
+}
+
+bool vtkCornerColorAttributes::HasCornerColors(vtkPolyData* pd)
+{
+  if (!pd)
+  {
+    return false;
+  }
+  auto* corners = vtkUnsignedCharArray::SafeDownCast(pd->GetCellData()->GetArray("corner_rgba"));
+  vtkDataArray* ijk = pd->GetCellData()->GetArray("cell_ijk");
+  return corners && corners->GetNumberOfComponents() == 32 && ijk && ijk->GetNumberOfComponents() == 3;
+}
+
+int vtkCornerColorAttributes::RequestData(
+  vtkInformation*, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
+{
+  vtkPolyData* input = vtkPolyData::GetData(inputVector[0]);
+  vtkPolyData* output = vtkPolyData::GetData(outputVector);
+  if (!input || !output)
+  {
+    return 0;
+  }
+  if (this->Spacing[0] <= 0 || this->Spacing[1] <= 0 || this->Spacing[2] <= 0)
+  {
+    vtkErrorMacro("Spacing must be positive, got " << this->Spacing[0] << " " << this->Spacing[1] << " "
+                                                   << this->Spacing[2]);
+    return 0;
+  }
+  if (!HasCornerColors(input))
+  {
+    vtkErrorMacro("Input lacks the cell arrays corner_rgba (unsigned char, 32 components) and "
+                  "cell_ijk (3 components)");
+    return 0;
+  }
+  auto* corners = vtkUnsignedCharArray::SafeDownCast(input->GetCellData()->GetArray("corner_rgba"));
+  vtkDataArray* ijk = input->GetCellData()->GetArray("cell_ijk");
+
+  vtkCellArray* polys = input->GetPolys();
+  // Cell ids of polygons start after the vertices and lines (vtkPolyData's cell order).
+  const vtkIdType firstPoly = input->GetNumberOfVerts() + input->GetNumberOfLines();
+  vtkIdType triangles = 0;
+  {
+    auto it = vtk::TakeSmartPointer(polys->NewIterator());
+    for (it->GoToFirstCell(); !it->IsDoneWithTraversal(); it->GoToNextCell())
+    {
+      const vtkIdType n = it->GetCurrentCell()->GetNumberOfIds();
+      triangles += n >= 3 ? n - 2 : 0;
+    }
+  }
+
+  vtkPoints* inPts = input->GetPoints();
+  vtkNew<vtkPoints> pts;
+  pts->SetDataTypeToFloat();
+  pts->SetNumberOfPoints(3 * triangles);
+  vtkPointData* outPd = output->GetPointData();
+  outPd->CopyAllocate(input->GetPointData(), 3 * triangles);
+  // Point data is copied in one batch at the end (typed, much faster than per point).
+  vtkNew<vtkIdList> fromIds, toIds;
+  fromIds->SetNumberOfIds(3 * triangles);
+  toIds->SetNumberOfIds(3 * triangles);
+  vtkNew<vtkFloatArray> local;
+  local->SetName(LocalArrayName());
+  local->SetNumberOfComponents(3);
+  local->SetNumberOfTuples(3 * triangles);
+  vtkNew<vtkUnsignedCharArray> cornerArrays[8];
+  for (int c = 0; c < 8; ++c)
+  {
+    cornerArrays[c]->SetName(CornerArrayName(c));
+    cornerArrays[c]->SetNumberOfComponents(4);
+    cornerArrays[c]->SetNumberOfTuples(3 * triangles);
+  }
+  vtkCellData* outCd = output->GetCellData();
+  outCd->CopyFieldOff("corner_rgba");
+  outCd->CopyFieldOff("cell_ijk");
+  outCd->CopyAllocate(input->GetCellData(), triangles);
+  vtkNew<vtkCellArray> outPolys;
+  outPolys->AllocateExact(triangles, 3 * triangles);
+
+  vtkIdType next = 0, tri = 0, cellId = firstPoly;
+  const vtkIdType reportEvery = triangles / 50 + 1;
+  auto it = vtk::TakeSmartPointer(polys->NewIterator());
+  for (it->GoToFirstCell(); !it->IsDoneWithTraversal(); it->GoToNextCell(), ++cellId)
+  {
+    vtkIdList* ids = it->GetCurrentCell();
+    const vtkIdType n = ids->GetNumberOfIds();
+    double cellOrigin[3];
+    for (int a = 0; a < 3; ++a)
+    {
+      cellOrigin[a] = this->Origin[a] + ijk->GetComponent(cellId, a) * this->Spacing[a];
+    }
+    const unsigned char* rgba = corners->GetPointer(32 * cellId);
+    for (vtkIdType k = 1; k + 1 < n; ++k)
+    {
+      const vtkIdType fan[3] = { ids->GetId(0), ids->GetId(k), ids->GetId(k + 1) };
+      vtkIdType outIds[3];
+      for (int v = 0; v < 3; ++v, ++next)
+      {
+        double p[3];
+        inPts->GetPoint(fan[v], p);
+        pts->SetPoint(next, p);
+        fromIds->SetId(next, fan[v]);
+        toIds->SetId(next, next);
+        float u[3];
+        for (int a = 0; a < 3; ++a)
+        {
+          u[a] = static_cast<float>((p[a] - cellOrigin[a]) / this->Spacing[a]);
+        }
+        local->SetTypedTuple(next, u);
+        for (int c = 0; c < 8; ++c)
+        {
+          cornerArrays[c]->SetTypedTuple(next, rgba + 4 * c);
+        }
+        outIds[v] = next;
+      }
+      outPolys->InsertNextCell(3, outIds);
+      outCd->CopyData(input->GetCellData(), cellId, tri);
+      if (++tri % reportEvery == 0)
+      {
+        this->UpdateProgress(static_cast<double>(tri) / triangles);
+        if (this->GetAbortExecute())
+        {
+          return 1;
+        }
+      }
+    }
+  }
+  outPd->CopyData(input->GetPointData(), fromIds, toIds);
+  output->SetPoints(pts);
+  output->SetPolys(outPolys);
+  outPd->AddArray(local);
+  for (int c = 0; c < 8; ++c)
+  {
+    outPd->AddArray(cornerArrays[c]);
+  }
+  return 1;
+}
+
+void vtkCornerColorAttributes::PrintSelf(ostream& os, vtkIndent indent)
+{
+  this->Superclass::PrintSelf(os, indent);
+  os << indent << "Origin: " << this->Origin[0] << " " << this->Origin[1] << " " << this->Origin[2] << "\n";
+  os << indent << "Spacing: " << this->Spacing[0] << " " << this->Spacing[1] << " " << this->Spacing[2] << "\n";
+}

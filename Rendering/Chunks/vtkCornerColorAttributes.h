@@ -1,0 +1,76 @@
+/**
+ * @class   vtkCornerColorAttributes
+ * @brief   un-shares triangle vertices and turns the per-triangle marching
+ *          cubes cell colours into per-vertex attributes for the
+ *          tetrahedral colour shader
+ *
+ * Input: triangles with cell data `corner_rgba` (unsigned char, 32
+ * components: the RGBA of the 8 corners of the marching cubes cell the
+ * triangle came from, corner c at offset (c&1, (c>>1)&1, (c>>2)&1)) and
+ * `cell_ijk` (int, 3 components: the cell's lowest voxel index). Origin and
+ * Spacing are the volume's (world position of voxel (0,0,0), voxel size).
+ *
+ * Output: every triangle gets its own 3 points (polygons with more points are
+ * fanned). Point data keeps the input's point arrays (Normals, rgba, ...) and
+ * adds
+ * - `lvdif_cell_local` (float, 3): the vertex position in the cell's local
+ *   coordinates, (P - origin - ijk*spacing) / spacing, nominally in [0,1]^3.
+ *   It is affine in P, so the rasteriser's interpolation gives every
+ *   fragment its exact local coordinate (no barycentric reconstruction as in
+ *   the original Unity shader).
+ * - `lvdif_corner0` .. `lvdif_corner7` (unsigned char, 4): the corner
+ *   colours, equal on the triangle's three vertices.
+ *
+ * Memory: the GPU needs per-vertex attributes, and a vertex shared by
+ * several triangles would need several corner sets, hence un-sharing. An
+ * indexed marching cubes mesh has about T/2 points for T triangles (28 bytes
+ * each with float position+normal and rgba) plus 12 bytes of indices per
+ * triangle, ~26 B/triangle; the output holds 3 points per triangle of
+ * 12 (position) + 12 (normal) + 4 (rgba) + 12 (local) + 32 (corners) bytes,
+ * 216 B/triangle (+ 12 B of connectivity), about 8x more. The
+ * mapper uploads the corner colours as floats (VTK converts extra vertex
+ * attributes to float), 128 more bytes per vertex on the GPU.
+ */
+#ifndef vtkCornerColorAttributes_h
+#define vtkCornerColorAttributes_h
+
+#include "lvdifRenderingChunksModule.h" // for export macro
+#include "vtkPolyDataAlgorithm.h"
+
+class LVDIFRENDERINGCHUNKS_EXPORT vtkCornerColorAttributes : public vtkPolyDataAlgorithm
+{
+public:
+  static vtkCornerColorAttributes* New();
+  vtkTypeMacro(vtkCornerColorAttributes, vtkPolyDataAlgorithm);
+  void PrintSelf(ostream& os, vtkIndent indent) override;
+
+  ///@{
+  /// World position of voxel (0,0,0) and the voxel size of the volume the mesh came from.
+  vtkSetVector3Macro(Origin, double);
+  vtkGetVector3Macro(Origin, double);
+  vtkSetVector3Macro(Spacing, double);
+  vtkGetVector3Macro(Spacing, double);
+  ///@}
+
+  /// Names of the output point arrays (shared with vtkTetrahedralColorMapper).
+  static const char* LocalArrayName() { return "lvdif_cell_local"; }
+  static const char* CornerArrayName(int corner);
+
+  /// True if the poly data carries the input contract (corner_rgba + cell_ijk cell arrays).
+  static bool HasCornerColors(vtkPolyData* pd);
+
+protected:
+  vtkCornerColorAttributes();
+  ~vtkCornerColorAttributes() override = default;
+
+  int RequestData(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
+
+  double Origin[3] = { 0, 0, 0 };
+  double Spacing[3] = { 1, 1, 1 };
+
+private:
+  vtkCornerColorAttributes(const vtkCornerColorAttributes&) = delete;
+  void operator=(const vtkCornerColorAttributes&) = delete;
+};
+
+#endif

@@ -1,0 +1,146 @@
+#include "vtkTetrahedralColorMapper.h"
+
+#include "vtkActor.h"
+#include "vtkCornerColorAttributes.h"
+#include "vtkObjectFactory.h"
+#include "vtkPointData.h"
+#include "vtkPolyData.h"
+#include "vtkShaderProperty.h"
+
+#include <string>
+
+vtkStandardNewMacro(vtkTetrahedralColorMapper);
+
+namespace
+{
+// Shader fragments. Attribute names are those of the mapped arrays' shader
+// side; VTK uploads extra vertex attributes as floats without normalising,
+// so the colours arrive in 0..255.
+const char* const VsDec = R"(//VTK::Normal::Dec
+in vec3 lvdifLocal;
+in vec4 lvdifC0; in vec4 lvdifC1; in vec4 lvdifC2; in vec4 lvdifC3;
+in vec4 lvdifC4; in vec4 lvdifC5; in vec4 lvdifC6; in vec4 lvdifC7;
+out vec3 lvdifLocalVS;
+flat out vec4 lvdifCV0; flat out vec4 lvdifCV1; flat out vec4 lvdifCV2; flat out vec4 lvdifCV3;
+flat out vec4 lvdifCV4; flat out vec4 lvdifCV5; flat out vec4 lvdifCV6; flat out vec4 lvdifCV7;
+)";
+
+const char* const VsImpl = R"(//VTK::Normal::Impl
+  lvdifLocalVS = lvdifLocal;
+  lvdifCV0 = lvdifC0; lvdifCV1 = lvdifC1; lvdifCV2 = lvdifC2; lvdifCV3 = lvdifC3;
+  lvdifCV4 = lvdifC4; lvdifCV5 = lvdifC5; lvdifCV6 = lvdifC6; lvdifCV7 = lvdifC7;
+)";
+
+// Corner c = x + 2y + 4z: C0=c000 C1=c100 C2=c010 C3=c110 C4=c001 C5=c101 C6=c011 C7=c111.
+// The six tetrahedra share the diagonal c000-c111; the order of x, y, z
+// picks one, and the weights are the differences of the sorted coordinates.
+const char* const FsDec = R"(//VTK::Normal::Dec
+in vec3 lvdifLocalVS;
+flat in vec4 lvdifCV0; flat in vec4 lvdifCV1; flat in vec4 lvdifCV2; flat in vec4 lvdifCV3;
+flat in vec4 lvdifCV4; flat in vec4 lvdifCV5; flat in vec4 lvdifCV6; flat in vec4 lvdifCV7;
+vec4 lvdifTetrahedral(vec3 u)
+{
+  u = clamp(u, 0.0, 1.0);
+  float x = u.x, y = u.y, z = u.z;
+  vec4 c;
+  if (x >= y)
+  {
+    if (y >= z)      { c = (1.0-x)*lvdifCV0 + (x-y)*lvdifCV1 + (y-z)*lvdifCV3 + z*lvdifCV7; }
+    else if (x >= z) { c = (1.0-x)*lvdifCV0 + (x-z)*lvdifCV1 + (z-y)*lvdifCV5 + y*lvdifCV7; }
+    else             { c = (1.0-z)*lvdifCV0 + (z-x)*lvdifCV4 + (x-y)*lvdifCV5 + y*lvdifCV7; }
+  }
+  else
+  {
+    if (z >= y)      { c = (1.0-z)*lvdifCV0 + (z-y)*lvdifCV4 + (y-x)*lvdifCV6 + x*lvdifCV7; }
+    else if (z >= x) { c = (1.0-y)*lvdifCV0 + (y-z)*lvdifCV2 + (z-x)*lvdifCV6 + x*lvdifCV7; }
+    else             { c = (1.0-y)*lvdifCV0 + (y-x)*lvdifCV2 + (x-z)*lvdifCV3 + z*lvdifCV7; }
+  }
+  return c * (1.0 / 255.0);
+}
+)";
+
+const char* const FsImpl = R"(//VTK::Color::Impl
+  {
+    vec4 lvdifColor = lvdifTetrahedral(lvdifLocalVS);
+    ambientColor = ambientIntensity * lvdifColor.rgb;
+    diffuseColor = diffuseIntensity * lvdifColor.rgb;
+    opacity = opacity * lvdifColor.a;
+  }
+)";
+
+bool hasTetrahedralArrays(vtkPolyData* pd)
+{
+  if (!pd || !pd->GetPointData()->GetArray(vtkCornerColorAttributes::LocalArrayName()))
+  {
+    return false;
+  }
+  for (int c = 0; c < 8; ++c)
+  {
+    if (!pd->GetPointData()->GetArray(vtkCornerColorAttributes::CornerArrayName(c)))
+    {
+      return false;
+    }
+  }
+  return true;
+}
+} // namespace
+
+vtkTetrahedralColorMapper::vtkTetrahedralColorMapper()
+{
+  this->SetColorModeToDirectScalars();
+  this->SetScalarModeToUsePointFieldData();
+  this->SelectColorArray("rgba");
+}
+
+void vtkTetrahedralColorMapper::InstallShaderReplacements(vtkShaderProperty* property, bool on)
+{
+  // Removing and re-adding would bump the property's MTime and rebuild the
+  // shader every frame, so only act on a change of state.
+  const bool installed = property->GetNumberOfShaderReplacements() > 0;
+  if (on == installed)
+  {
+    return;
+  }
+  if (!on)
+  {
+    property->ClearAllShaderReplacements();
+    return;
+  }
+  property->AddVertexShaderReplacement("//VTK::Normal::Dec", true, VsDec, false);
+  property->AddVertexShaderReplacement("//VTK::Normal::Impl", true, VsImpl, false);
+  property->AddFragmentShaderReplacement("//VTK::Normal::Dec", true, FsDec, false);
+  property->AddFragmentShaderReplacement("//VTK::Color::Impl", true, FsImpl, false);
+}
+
+void vtkTetrahedralColorMapper::RenderPiece(vtkRenderer* ren, vtkActor* act)
+{
+  const bool tetra = this->InterpolationMode == Tetrahedral && hasTetrahedralArrays(this->GetInput());
+  if (tetra != this->UsedTetrahedral || this->ExtraAttributes.empty() == tetra)
+  {
+    this->RemoveAllVertexAttributeMappings();
+    if (tetra)
+    {
+      static const char* shaderNames[8] = { "lvdifC0", "lvdifC1", "lvdifC2", "lvdifC3", "lvdifC4", "lvdifC5",
+        "lvdifC6", "lvdifC7" };
+      this->MapDataArrayToVertexAttribute(
+        "lvdifLocal", vtkCornerColorAttributes::LocalArrayName(), vtkDataObject::FIELD_ASSOCIATION_POINTS, -1);
+      for (int c = 0; c < 8; ++c)
+      {
+        this->MapDataArrayToVertexAttribute(shaderNames[c], vtkCornerColorAttributes::CornerArrayName(c),
+          vtkDataObject::FIELD_ASSOCIATION_POINTS, -1);
+      }
+    }
+    this->SetScalarVisibility(!tetra);
+    this->UsedTetrahedral = tetra;
+  }
+  InstallShaderReplacements(act->GetShaderProperty(), tetra);
+  this->Superclass::RenderPiece(ren, act);
+}
+
+void vtkTetrahedralColorMapper::PrintSelf(ostream& os, vtkIndent indent)
+{
+  this->Superclass::PrintSelf(os, indent);
+  os << indent << "InterpolationMode: " << (this->InterpolationMode == Tetrahedral ? "Tetrahedral" : "PerVertex")
+     << "\n";
+  os << indent << "UsedTetrahedral: " << this->UsedTetrahedral << "\n";
+}

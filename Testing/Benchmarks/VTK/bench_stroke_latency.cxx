@@ -1,0 +1,234 @@
+// Stroke-to-frame latency of interactive editing (issue 8, paper Table 2's
+// "C3: marching cubes in its own thread"), headless.
+//
+// A recorded-style stroke (samples with timestamps, 50 Hz as the original's
+// input, along an arc on the surface of a sphere volume) is replayed at its
+// own speed against the editor's real pipeline:
+//   UI loop (this thread, ticking at up to 60 Hz):
+//     deliver the samples whose time has come -> lvdif::Editor::addSample
+//     (live application, under the worker's source mutex) -> request the
+//     chunks the sample can have changed (vtkLVDIFChunkMesh::ChunksToRemesh,
+//     as the editor does) -> collect finished chunk meshes -> vtkLVDIFChunkMesh +
+//     vtkChunkActorManager::SetChunk (vertex un-sharing for the tetrahedral
+//     shader included) -> [optional: render a frame]
+//   worker thread: lvdif::MarchingCubesWorker re-meshes requested chunks.
+// Latency of a sample = time from its application until every chunk it
+// dirtied has a mesh reflecting it installed in the actor manager (given as
+// lower and upper bounds, see below). FPS = loop ticks per second.
+//
+// Without --render no frame is drawn (the numbers then are the CPU pipeline
+// up to "ready to draw"); --render draws every tick with whatever OpenGL the
+// X server offers (Mesa llvmpipe on the development VM: software
+// rasterisation of the whole model, which dominates and is not what a GPU
+// would cost). Needs the Core editor (lvdif/Editor.h).
+//
+// usage: bench_stroke_latency [N=512] [--render] [--samples 100] [--radius 8]
+#include "BenchCommon.h"
+
+#include "lvdif/AnalyticFill.h"
+#include "lvdif/ChunkedMarchingCubes.h"
+#include "lvdif/Editor.h"
+#include "lvdif/MarchingCubesWorker.h"
+
+#include "vtkCamera.h"
+#include "vtkChunkActorManager.h"
+#include "vtkLVDIFChunkMesh.h"
+#include "vtkNew.h"
+#include "vtkPolyData.h"
+#include "vtkRenderWindow.h"
+#include "vtkRenderer.h"
+
+#include <cmath>
+#include <cstdio>
+#include <cstring>
+#include <iostream>
+#include <map>
+#include <mutex>
+#include <string>
+#include <thread>
+
+namespace
+{
+double percentile(std::vector<double> v, double p)
+{
+  if (v.empty())
+    return 0;
+  std::sort(v.begin(), v.end());
+  const std::size_t i = static_cast<std::size_t>(std::ceil(p * v.size())) - 1;
+  return v[std::min(i, v.size() - 1)];
+}
+} // namespace
+
+int main(int argc, char* argv[])
+{
+  int n = 512, samples = 100;
+  double radius = 8;
+  bool render = false;
+  for (int i = 1; i < argc; ++i)
+  {
+    if (!std::strcmp(argv[i], "--render"))
+      render = true;
+    else if (!std::strcmp(argv[i], "--samples") && i + 1 < argc)
+      samples = std::atoi(argv[++i]);
+    else if (!std::strcmp(argv[i], "--radius") && i + 1 < argc)
+      radius = std::atof(argv[++i]);
+    else
+      n = std::atoi(argv[i]);
+  }
+  std::cout << "bench_stroke_latency: " << bench::machineDescription() << "\n";
+
+  bench::Stopwatch setup;
+  lvdif::VolumeOptions o;
+  o.dims = { n, n, n };
+  o.chunkEdge = 32;
+  lvdif::DictionaryVolume volume(o);
+  const double c = 0.5 * (n - 1), r = 0.35 * n;
+  lvdif::fillFromFunction(volume, lvdif::sphereSdf(c, c, c, r));
+  volume.takeDirtyChunks();
+  lvdif::MarchingCubesOptions mo;
+  mo.chunkEdge = 32;
+  lvdif::ChunkedMarchingCubes mc(volume, mo);
+  vtkNew<vtkChunkActorManager> actors;
+  vtkNew<vtkRenderer> ren;
+  vtkNew<vtkRenderWindow> rw;
+  actors->SetRenderer(ren);
+  for (const auto& m : mc.extractAll())
+    actors->SetChunk(m.chunkId, vtkLVDIFChunkMesh::ToPolyData(m, volume.colors(), volume.dims()));
+  if (render)
+  {
+    rw->SetSize(640, 480);
+    rw->AddRenderer(ren);
+    ren->ResetCamera();
+    rw->Render();
+  }
+  std::printf("volume %d^3, chunk 32^3, %d chunk actors, %lld triangles; setup %.1f s; frames drawn: %s\n", n,
+    actors->GetNumberOfChunks(), static_cast<long long>(actors->GetNumberOfTriangles()), setup.seconds(),
+    render ? "yes (this X server's OpenGL)" : "no (ready-to-draw)");
+
+  lvdif::Editor editor(volume);
+  editor.brush.op = lvdif::BrushOp::Add;
+  editor.brush.color = lvdif::Rgba{ 230, 80, 50, 255 };
+  editor.stroke.kind = lvdif::BrushKind::Drill; // applied as it goes, as the editor does
+  editor.stroke.radius = radius;
+  lvdif::MarchingCubesWorker worker(mc);
+
+  // The stroke: 50 Hz samples on the sphere's surface along a 90-degree arc.
+  std::vector<lvdif::BrushSample> stroke(samples);
+  for (int i = 0; i < samples; ++i)
+  {
+    const double a = 0.5 * M_PI * i / std::max(1, samples - 1);
+    stroke[i].position = { c + r * std::cos(a), c + r * std::sin(a), c };
+    stroke[i].time = i / 50.0;
+    stroke[i].buttons = 1;
+  }
+
+  std::vector<double> tickMs, editMs, installMs;
+  // Every voxel a sample's dabs can change: the segment from the previous
+  // sample, grown by the radius, the band (distances saturate there), the
+  // colour skin and one voxel of rounding.
+  const double reach = radius + volume.bandWidth() + editor.brush.colorOffset + editor.brush.blend + 1;
+  auto segmentBox = [&](const std::array<double, 3>& a, const std::array<double, 3>& b) {
+    lvdif::VoxelBox box;
+    for (int k = 0; k < 3; ++k)
+    {
+      box.lo[k] = static_cast<std::int64_t>(std::floor(std::min(a[k], b[k]) - reach));
+      box.hi[k] = static_cast<std::int64_t>(std::ceil(std::max(a[k], b[k]) + reach));
+    }
+    return box;
+  };
+  // For the latency: which chunks each sample dirtied, and when each chunk's meshes arrived.
+  std::vector<std::pair<double, std::vector<std::int64_t>>> requests; // (arrival time, chunks)
+  std::map<std::int64_t, std::vector<double>> delivered;
+  bench::Stopwatch clock;
+  std::size_t next = 0;
+  int ticks = 0;
+  {
+    std::lock_guard<std::mutex> lock(worker.sourceMutex());
+    editor.beginStroke();
+  }
+  bool ended = false;
+  while (true)
+  {
+    bench::Stopwatch tick;
+    const double now = clock.seconds();
+    while (next < stroke.size() && stroke[next].time <= now)
+    {
+      bench::Stopwatch e;
+      std::lock_guard<std::mutex> lock(worker.sourceMutex());
+      editor.addSample(stroke[next]);
+      const lvdif::VoxelBox bound = segmentBox(stroke[next > 0 ? next - 1 : 0].position, stroke[next].position);
+      const auto ids = vtkLVDIFChunkMesh::ChunksToRemesh(mc, volume.takeDirtyChunks(), &bound);
+      worker.request(ids);
+      requests.emplace_back(clock.seconds(), ids);
+      ++next;
+      editMs.push_back(e.ms());
+    }
+    if (next == stroke.size() && !ended)
+    {
+      std::lock_guard<std::mutex> lock(worker.sourceMutex());
+      editor.endStroke();
+      const lvdif::VoxelBox bound = segmentBox(stroke[next > 1 ? next - 2 : 0].position, stroke[next - 1].position);
+      const auto ids = vtkLVDIFChunkMesh::ChunksToRemesh(mc, volume.takeDirtyChunks(), &bound);
+      worker.request(ids);
+      if (!requests.empty())
+        requests.back().second.insert(requests.back().second.end(), ids.begin(), ids.end());
+      ended = true;
+    }
+    const bool idleBefore = worker.idle();
+    bench::Stopwatch inst;
+    const std::vector<lvdif::ChunkMesh> meshes = worker.collect();
+    const double arrived = clock.seconds();
+    std::map<std::int64_t, const lvdif::ChunkMesh*> newest; // a later mesh of a chunk supersedes an earlier one
+    for (const auto& m : meshes)
+      newest[m.chunkId] = &m;
+    for (const auto& kv : newest)
+    {
+      const lvdif::ChunkMesh& m = *kv.second;
+      delivered[m.chunkId].push_back(arrived);
+      if (m.empty())
+        actors->RemoveChunk(m.chunkId);
+      else
+        actors->SetChunk(m.chunkId, vtkLVDIFChunkMesh::ToPolyData(m, volume.colors(), volume.dims()));
+    }
+    installMs.push_back(inst.ms());
+    if (render)
+      rw->Render();
+    ++ticks;
+    if (idleBefore && ended)
+      break;
+    const double spent = tick.seconds();
+    tickMs.push_back(1e3 * spent);
+    if (spent < 1.0 / 60)
+      std::this_thread::sleep_for(std::chrono::duration<double>(1.0 / 60 - spent));
+  }
+  const double duration = clock.seconds();
+  // A chunk requested at time r is shown with the edit by its first mesh
+  // collected after r if that meshing started after r, else by the second
+  // (the worker re-meshes a chunk requested while in flight). The worker does
+  // not say which, so give both bounds: first delivery (lower) and second
+  // delivery, or the first when no second came (upper).
+  std::vector<double> lower, upper;
+  for (const auto& req : requests)
+  {
+    double lo = 0, hi = 0;
+    for (std::int64_t id : req.second)
+    {
+      const auto& times = delivered[id];
+      auto it = std::upper_bound(times.begin(), times.end(), req.first);
+      if (it == times.end())
+        continue; // not re-meshed: the chunk's mesh did not change
+      lo = std::max(lo, *it - req.first);
+      hi = std::max(hi, (std::next(it) != times.end() ? *std::next(it) : *it) - req.first);
+    }
+    lower.push_back(1e3 * lo);
+    upper.push_back(1e3 * hi);
+  }
+  bench::printTable({ "volume", "samples", "radius", "latency p50 ms (lower-upper)", "latency p95 ms (lower-upper)",
+                      "loop FPS", "tick p95 ms", "edit p95 ms", "install p95 ms", "frames drawn" },
+    { { std::to_string(n) + "^3", std::to_string(samples), bench::fmt(radius, 1),
+      bench::fmt(percentile(lower, 0.5)) + " - " + bench::fmt(percentile(upper, 0.5)),
+      bench::fmt(percentile(lower, 0.95)) + " - " + bench::fmt(percentile(upper, 0.95)), bench::fmt(ticks / duration, 1),
+      bench::fmt(percentile(tickMs, 0.95)), bench::fmt(percentile(editMs, 0.95)),
+      bench::fmt(percentile(installMs, 0.95)), render ? "yes" : "no" } });
+  return 0;
+}
