@@ -109,8 +109,12 @@ def sdf_stage(present):
 
 
 def configure_mesh_to_sdf(proxy, h):
-    """Grid of the test scene for vtkMeshToSDF; fill in when its XML lands."""
-    raise NotImplementedError("vtkMeshToSDF XML landed: set its grid properties here")
+    """The test scene's grid, explicitly (the same points as the stand-in)."""
+    proxy.UseExplicitGrid = 1
+    proxy.Dimensions = [N, N, N]
+    proxy.Origin = [-HALF, -HALF, -HALF]
+    proxy.Spacing = [h, h, h]
+    proxy.SignMode = "Winding Number"
 
 
 _CORRUPT_SCRIPT = """
