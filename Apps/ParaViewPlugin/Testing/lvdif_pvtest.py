@@ -5,7 +5,7 @@ and the interpreter would otherwise find python3-vtk9's `vtkmodules` (VTK 9.1)
 first and crash. So ParaView's dist-packages goes to the front of sys.path;
 /usr/lib/python3/dist-packages stays behind it (numpy, mpi4py).
 
-The pipeline is mesh -> SDF -> sign voxel filter -> contour -> .lvd write -> read.
+The pipeline is mesh -> SDF -> sign voxel filter -> contour -> .lvdv write -> read.
 Each LVDIF stage is used when its proxy is in the plugin (the plugin registers a
 class's XML only once the class exists, and the tests are told which ones are
 registered: they fail if a registered one is missing). A stage whose filter has

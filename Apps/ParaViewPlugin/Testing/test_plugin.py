@@ -1,5 +1,5 @@
 # pvpython test of the LVDIF plugin: load it, run mesh -> SDF -> SVF -> contour
-# -> .lvd write -> read, check numbers against independent oracles, compare a
+# -> .lvdv write -> read, check numbers against independent oracles, compare a
 # rendering with a baseline, and check the reader/writer dialog hints.
 # Usage: pvpython --force-offscreen-rendering test_plugin.py PLUGIN BASELINE.png TMPDIR [vtkClass ...]
 #   (the classes are those whose XML the plugin registered; see CMakeLists.txt)
