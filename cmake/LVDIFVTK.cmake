@@ -21,6 +21,12 @@ foreach (area IN ITEMS Filters IO Rendering)
   file(GLOB area_modules CONFIGURE_DEPENDS "${CMAKE_SOURCE_DIR}/${area}/*/vtk.module")
   list(APPEND LVDIF_MODULE_FILES ${area_modules})
 endforeach ()
+# Optional modules whose third-party library may be missing: VTK 9.1's
+# vtk.module has no CONDITION, so they are left out of the scan instead.
+include(LVDIFOpenVDB)
+if (NOT LVDIF_HAVE_OPENVDB)
+  list(REMOVE_ITEM LVDIF_MODULE_FILES "${CMAKE_SOURCE_DIR}/IO/OpenVDB/vtk.module")
+endif ()
 
 # Regression baselines are plain PNGs in the tree; a local object store keeps
 # ExternalData from wanting a URL.

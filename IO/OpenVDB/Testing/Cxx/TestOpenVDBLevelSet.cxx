@@ -1,0 +1,379 @@
+// vtkOpenVDBLevelSetWriter / Reader and lvdif::vdb: the written .vdb is
+// checked with OpenVDB's own API (grid class, transform, background, every
+// active value against the analytic SDF in world units, flood-filled signs,
+// colours) and with OpenVDB's own `vdb_print`; the reader's output against the
+// analytic SDF; the core round trip key-exact; and the error paths.
+#include "LVDIFOpenVDB.h"
+#include "vtkOpenVDBLevelSetReader.h"
+#include "vtkOpenVDBLevelSetWriter.h"
+
+#include "vtkCommand.h"
+#include "vtkExecutive.h"
+#include "vtkFloatArray.h"
+#include "vtkImageData.h"
+#include "vtkNew.h"
+#include "vtkPointData.h"
+#include "vtkUnsignedCharArray.h"
+
+#include <openvdb/openvdb.h>
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdio>
+#include <fstream>
+#include <iostream>
+#include <regex>
+#include <unistd.h>
+
+namespace
+{
+const int NX = 40, NY = 36, NZ = 30;
+const double H = 0.5;                       // isotropic spacing
+const double O[3] = { -3.0, 1.0, 2.0 };     // origin
+const double HW = 3.0;                      // half width (voxels)
+const double TOL = 0.0005 + 1e-5;           // dictionary group A half step + float slack
+const double MARGIN = 0.002;                // voxels this close to |d| = HW are ambiguous
+
+double analytic(double i, double j, double k)
+{
+  const double dx = i - 19.3, dy = j - 17.6, dz = k - 14.2;
+  return std::sqrt(dx * dx + dy * dy + dz * dz) - 10.5;
+}
+
+std::array<unsigned char, 4> colourOf(int i, int j, int k)
+{
+  return { static_cast<unsigned char>(i < 20 ? 255 : 10), static_cast<unsigned char>(j % 3 * 60),
+    static_cast<unsigned char>(k < 12 ? 0 : 200), static_cast<unsigned char>(k % 2 ? 255 : 128) };
+}
+
+vtkSmartPointer<vtkImageData> makeImage(double sy = H)
+{
+  auto img = vtkSmartPointer<vtkImageData>::New();
+  img->SetDimensions(NX, NY, NZ);
+  img->SetOrigin(O[0], O[1], O[2]);
+  img->SetSpacing(H, sy, H);
+  vtkNew<vtkFloatArray> sdf;
+  sdf->SetName("sdf");
+  sdf->SetNumberOfTuples(NX * NY * NZ);
+  vtkNew<vtkUnsignedCharArray> rgba;
+  rgba->SetName("rgba");
+  rgba->SetNumberOfComponents(4);
+  rgba->SetNumberOfTuples(NX * NY * NZ);
+  for (int k = 0, id = 0; k < NZ; ++k)
+    for (int j = 0; j < NY; ++j)
+      for (int i = 0; i < NX; ++i, ++id)
+      {
+        sdf->SetValue(id, static_cast<float>(analytic(i, j, k)));
+        rgba->SetTypedTuple(id, colourOf(i, j, k).data());
+      }
+  img->GetPointData()->AddArray(sdf);
+  img->GetPointData()->AddArray(rgba);
+  return img;
+}
+
+std::string tempFile(const char* name)
+{
+  return ::testing::TempDir() + "lvdif_vdb_" + std::to_string(::getpid()) + "_" + name;
+}
+
+std::string writeSphere(const char* name)
+{
+  const std::string path = tempFile(name);
+  vtkNew<vtkOpenVDBLevelSetWriter> writer;
+  writer->SetInputData(makeImage());
+  writer->SetFileName(path.c_str());
+  writer->SetHalfWidth(HW);
+  EXPECT_EQ(writer->Write(), 1);
+  return path;
+}
+
+struct ErrorCatcher : vtkCommand
+{
+  static ErrorCatcher* New() { return new ErrorCatcher; }
+  void Execute(vtkObject*, unsigned long, void* data) override
+  {
+    ++this->Count;
+    this->Last += static_cast<const char*>(data);
+  }
+  int Count = 0;
+  std::string Last;
+};
+} // namespace
+
+TEST(OpenVDBLevelSet, WrittenFileIsAnOpenVDBLevelSetOfTheAnalyticField)
+{
+  const std::string path = writeSphere("check.vdb");
+  openvdb::initialize();
+  openvdb::io::File file(path);
+  file.open();
+  auto sdf = openvdb::gridPtrCast<openvdb::FloatGrid>(file.readGrid("sdf"));
+  auto rgba = openvdb::gridPtrCast<openvdb::Int32Grid>(file.readGrid("rgba"));
+  file.close();
+  ASSERT_TRUE(sdf && rgba);
+  EXPECT_EQ(sdf->getGridClass(), openvdb::GRID_LEVEL_SET);
+  EXPECT_FLOAT_EQ(sdf->background(), float(HW * H));
+  EXPECT_DOUBLE_EQ(sdf->voxelSize()[0], H);
+  EXPECT_TRUE(sdf->hasUniformVoxels());
+  const openvdb::Vec3d w = sdf->indexToWorld(openvdb::Vec3d(2, 3, 4));
+  EXPECT_NEAR(w.x(), O[0] + 2 * H, 1e-12);
+  EXPECT_NEAR(w.y(), O[1] + 3 * H, 1e-12);
+  EXPECT_NEAR(w.z(), O[2] + 4 * H, 1e-12);
+
+  auto sa = sdf->getConstAccessor();
+  auto ca = rgba->getConstAccessor();
+  openvdb::Index64 surely = 0, maybe = 0;
+  int bad = 0;
+  for (int k = 0; k < NZ; ++k)
+    for (int j = 0; j < NY; ++j)
+      for (int i = 0; i < NX; ++i)
+      {
+        const double d = analytic(i, j, k);
+        const openvdb::Coord c(i, j, k);
+        if (std::fabs(d) < HW - MARGIN)
+        {
+          ++surely;
+          bad += !sa.isValueOn(c) || std::fabs(sa.getValue(c) - d * H) > TOL * H;
+          const auto col = colourOf(i, j, k);
+          const std::uint32_t packed = col[0] | col[1] << 8 | col[2] << 16 | std::uint32_t(col[3]) << 24;
+          bad += !ca.isValueOn(c) || static_cast<std::uint32_t>(ca.getValue(c)) != packed;
+        }
+        else if (std::fabs(d) > HW + MARGIN)
+        {
+          // inactive, and the flood fill gave the right sign
+          bad += sa.isValueOn(c) || sa.getValue(c) != float(d > 0 ? HW * H : -HW * H);
+        }
+        else
+        {
+          ++maybe;
+        }
+      }
+  EXPECT_EQ(bad, 0);
+  EXPECT_GE(sdf->activeVoxelCount(), surely);
+  EXPECT_LE(sdf->activeVoxelCount(), surely + maybe);
+  EXPECT_EQ(rgba->activeVoxelCount(), sdf->activeVoxelCount());
+  // far outside the written box: outside background; the sphere's centre: inside
+  EXPECT_EQ(sa.getValue(openvdb::Coord(500, 0, 0)), float(HW * H));
+  EXPECT_EQ(sa.getValue(openvdb::Coord(19, 18, 14)), float(-HW * H));
+  std::remove(path.c_str());
+}
+
+#ifdef LVDIF_VDB_PRINT
+TEST(OpenVDBLevelSet, VdbPrintListsTheLevelSet)
+{
+  const std::string path = writeSphere("print.vdb");
+  openvdb::initialize();
+  openvdb::io::File file(path);
+  file.open();
+  const auto active = file.readGrid("sdf")->activeVoxelCount();
+  const auto bbox = file.readGrid("sdf")->evalActiveVoxelBoundingBox();
+  file.close();
+  std::string out;
+  FILE* p = ::popen((std::string(LVDIF_VDB_PRINT) + " -l '" + path + "' 2>&1").c_str(), "r");
+  ASSERT_NE(p, nullptr);
+  char buf[4096];
+  while (std::fgets(buf, sizeof buf, p))
+    out += buf;
+  ASSERT_EQ(::pclose(p), 0) << out;
+  std::cout << out; // for the log
+  // OpenVDB's tool sees a level-set float grid named sdf, the rgba grid, and
+  // the same voxel count and bounding box (a tightly bounded sphere band).
+  EXPECT_TRUE(std::regex_search(out, std::regex("Name: rgba"))) << out;
+  const std::size_t at = out.find("Name: sdf\n");
+  ASSERT_NE(at, std::string::npos) << out;
+  const std::string sdfPart = out.substr(at, out.find("Name: ", at + 1) - at); // the sdf grid's block only
+  EXPECT_NE(sdfPart.find("Type: Tree_float_5_4_3"), std::string::npos) << sdfPart;
+  EXPECT_NE(sdfPart.find("class: level set"), std::string::npos) << sdfPart;
+  EXPECT_NE(sdfPart.find("file_voxel_count: " + std::to_string(active) + "\n"), std::string::npos) << sdfPart;
+  EXPECT_NE(sdfPart.find("voxel size: 0.5"), std::string::npos) << sdfPart;
+  std::ostringstream b;
+  b << "Bounding box of active voxels: " << bbox.min() << " -> " << bbox.max();
+  EXPECT_NE(sdfPart.find(b.str()), std::string::npos) << b.str() << "\n" << sdfPart;
+  std::remove(path.c_str());
+}
+#endif
+
+TEST(OpenVDBLevelSet, ReaderMatchesTheAnalyticField)
+{
+  const std::string path = writeSphere("read.vdb");
+  vtkNew<vtkOpenVDBLevelSetReader> reader;
+  reader->SetFileName(path.c_str());
+  reader->SetPadding(2);
+  reader->Update();
+  vtkImageData* out = reader->GetOutput();
+  double origin[3], spacing[3];
+  out->GetOrigin(origin);
+  out->GetSpacing(spacing);
+  int dims[3];
+  out->GetDimensions(dims);
+  EXPECT_DOUBLE_EQ(spacing[0], H);
+  EXPECT_DOUBLE_EQ(spacing[2], H);
+  auto* sdf = vtkFloatArray::SafeDownCast(out->GetPointData()->GetArray("sdf"));
+  auto* rgba = vtkUnsignedCharArray::SafeDownCast(out->GetPointData()->GetArray("rgba"));
+  ASSERT_TRUE(sdf && rgba);
+  // the output's first point is a voxel of the source grid
+  int off[3];
+  for (int a = 0; a < 3; ++a)
+  {
+    const double f = (origin[a] - O[a]) / H;
+    off[a] = static_cast<int>(std::lround(f));
+    EXPECT_NEAR(f, off[a], 1e-9);
+  }
+  int bad = 0, compared = 0;
+  for (int k = 0; k < dims[2]; ++k)
+    for (int j = 0; j < dims[1]; ++j)
+      for (int i = 0; i < dims[0]; ++i)
+      {
+        const int si = i + off[0], sj = j + off[1], sk = k + off[2];
+        const double d = analytic(si, sj, sk); // also defined off the source grid (padding)
+        const bool inSource = si >= 0 && sj >= 0 && sk >= 0 && si < NX && sj < NY && sk < NZ;
+        const vtkIdType id = i + dims[0] * (j + vtkIdType(dims[1]) * k);
+        if (std::fabs(std::fabs(d) - HW) <= MARGIN)
+          continue;
+        ++compared;
+        const double expected = std::max(-HW, std::min(HW, d));
+        bad += std::fabs(sdf->GetValue(id) - expected) > TOL;
+        unsigned char want[4] = { 200, 200, 200, 255 }; // default colour off the band
+        if (inSource && std::fabs(d) < HW)
+        {
+          const auto c = colourOf(si, sj, sk);
+          std::copy(c.begin(), c.end(), want);
+        }
+        for (int c = 0; c < 4; ++c)
+          bad += rgba->GetValue(4 * id + c) != want[c];
+      }
+  EXPECT_GT(compared, 1000);
+  EXPECT_EQ(bad, 0);
+  // the band is entirely inside the source box: the output is the band's bbox + 2
+  for (int a = 0; a < 3; ++a)
+    EXPECT_GE(off[a], -2);
+
+  // a sub-extent equals the same part of the whole read
+  vtkNew<vtkOpenVDBLevelSetReader> part;
+  part->SetFileName(path.c_str());
+  part->SetPadding(2);
+  int ext[6] = { 3, 20, 5, 5, 2, 17 };
+  part->UpdateExtent(ext);
+  int diff = 0;
+  for (int k = ext[4]; k <= ext[5]; ++k)
+    for (int i = ext[0]; i <= ext[1]; ++i)
+    {
+      int ijk[3] = { i, 5, k };
+      diff += part->GetOutput()->GetPointData()->GetArray("sdf")->GetTuple1(part->GetOutput()->ComputePointId(ijk)) !=
+        sdf->GetValue(out->ComputePointId(ijk));
+    }
+  EXPECT_EQ(diff, 0);
+  std::remove(path.c_str());
+}
+
+TEST(OpenVDBLevelSet, CoreRoundTripIsKeyExactInTheBand)
+{
+  lvdif::VolumeOptions o;
+  o.dims = { 50, 44, 37 };
+  o.chunkEdge = 16;
+  o.origin = { 1.5, -2.0, 0.25 };
+  o.spacing = { 0.3, 0.3, 0.3 };
+  o.bandWidth = 5.0f;
+  lvdif::DictionaryVolume v(o);
+  const lvdif::ColorKey red = v.colors().add(lvdif::Rgba{ 255, 0, 0, 255 });
+  const lvdif::ColorKey blue = v.colors().add(lvdif::Rgba{ 0, 0, 255, 77 });
+  for (int z = 0; z < 37; ++z)
+    for (int y = 0; y < 44; ++y)
+      for (int x = 0; x < 50; ++x)
+      {
+        const double dx = x - 24.6, dy = y - 21.1, dz = z - 18.3;
+        const float d = static_cast<float>(std::sqrt(dx * dx + dy * dy + dz * dz) - 12.2);
+        v.set(x, y, z, lvdif::Voxel{ v.encode(d), x < 25 ? red : blue });
+      }
+  const std::string path = tempFile("core.vdb");
+  lvdif::vdb::exportLevelSet(v, path);
+  lvdif::vdb::ImportOptions io;
+  auto w = lvdif::vdb::importLevelSet(path, io);
+  // grid bbox = the band's bbox: compare where both exist
+  const auto wo = w->options();
+  EXPECT_FLOAT_EQ(w->bandWidth(), 5.0f);
+  std::int64_t off[3];
+  for (int a = 0; a < 3; ++a)
+  {
+    off[a] = std::llround((wo.origin[a] - o.origin[a]) / o.spacing[a]);
+    EXPECT_DOUBLE_EQ(wo.spacing[a], 0.3);
+  }
+  std::int64_t bad = 0, inBand = 0;
+  for (std::int64_t z = 0; z < wo.dims[2]; ++z)
+    for (std::int64_t y = 0; y < wo.dims[1]; ++y)
+      for (std::int64_t x = 0; x < wo.dims[0]; ++x)
+      {
+        const lvdif::Voxel a = v.get(x + off[0], y + off[1], z + off[2]);
+        const lvdif::Voxel b = w->get(x, y, z);
+        if (std::fabs(v.decode(a.sdf)) < 5.0f)
+        {
+          ++inBand;
+          bad += a.sdf != b.sdf || v.colors()[a.color] != w->colors()[b.color];
+        }
+        else
+        {
+          bad += a.sdf != b.sdf; // saturated +-band, the sign from the flood fill
+        }
+      }
+  EXPECT_GT(inBand, 10000);
+  EXPECT_EQ(bad, 0);
+  std::remove(path.c_str());
+}
+
+TEST(OpenVDBLevelSet, ErrorsNameTheProblem)
+{
+  vtkNew<ErrorCatcher> catcher;
+  // anisotropic spacing is refused
+  vtkNew<vtkOpenVDBLevelSetWriter> writer;
+  writer->AddObserver(vtkCommand::ErrorEvent, catcher);
+  writer->SetInputData(makeImage(0.6));
+  writer->SetFileName(tempFile("aniso.vdb").c_str());
+  EXPECT_EQ(writer->Write(), 0);
+  EXPECT_NE(catcher->Last.find("isotropic"), std::string::npos) << catcher->Last;
+
+  const std::string path = writeSphere("errors.vdb");
+  vtkNew<vtkOpenVDBLevelSetReader> reader;
+  reader->AddObserver(vtkCommand::ErrorEvent, catcher);
+  reader->GetExecutive()->AddObserver(vtkCommand::ErrorEvent, catcher);
+  reader->SetFileName(path.c_str());
+  const std::string list = reader->GetGridList(); // in OpenVDB's order
+  EXPECT_NE(list.find("sdf (float, level set)\n"), std::string::npos) << list;
+  EXPECT_NE(list.find("rgba (int32, unknown)\n"), std::string::npos) << list;
+  // a missing grid: the message lists the grids there are
+  reader->SetGridName("density");
+  catcher->Last.clear();
+  reader->Update();
+  EXPECT_NE(catcher->Last.find("no grid named 'density'"), std::string::npos) << catcher->Last;
+  EXPECT_NE(catcher->Last.find("'sdf' (float, level set)"), std::string::npos) << catcher->Last;
+  // a grid of another type
+  reader->SetGridName("rgba");
+  catcher->Last.clear();
+  reader->Update();
+  EXPECT_NE(catcher->Last.find("not float"), std::string::npos) << catcher->Last;
+
+  // not a .vdb at all
+  const std::string junk = tempFile("junk.vdb");
+  std::ofstream(junk) << "this is not an OpenVDB file";
+  EXPECT_FALSE(vtkOpenVDBLevelSetReader::CanReadFile(junk.c_str()));
+  reader->SetGridName("");
+  reader->SetFileName(junk.c_str());
+  catcher->Last.clear();
+  reader->Update();
+  EXPECT_NE(catcher->Last.find("OpenVDB cannot open"), std::string::npos) << catcher->Last;
+
+  // a file without a level set (a fog volume of vectors)
+  openvdb::initialize();
+  auto vec = openvdb::Vec3SGrid::create();
+  vec->setName("velocity");
+  vec->tree().setValue(openvdb::Coord(1, 2, 3), openvdb::Vec3s(1, 0, 0));
+  const std::string other = tempFile("velocity.vdb");
+  openvdb::io::File(other).write({ vec });
+  reader->SetFileName(other.c_str());
+  catcher->Last.clear();
+  reader->Update();
+  EXPECT_NE(catcher->Last.find("no float level-set grid"), std::string::npos) << catcher->Last;
+  EXPECT_EQ(reader->GetOutput()->GetNumberOfPoints(), 0);
+  std::remove(path.c_str());
+  std::remove(junk.c_str());
+  std::remove(other.c_str());
+}

@@ -1,0 +1,157 @@
+#include "vtkOpenVDBLevelSetReader.h"
+
+#include "LVDIFOpenVDB.h"
+#include "vtkLVDIFInterrupter.h"
+#include "vtkLVDIFVolumeBridge.h"
+
+#include "vtkDataObject.h"
+#include "vtkImageData.h"
+#include "vtkInformation.h"
+#include "vtkInformationVector.h"
+#include "vtkObjectFactory.h"
+#include "vtkStreamingDemandDrivenPipeline.h"
+
+#include <sys/stat.h>
+
+vtkStandardNewMacro(vtkOpenVDBLevelSetReader);
+
+struct vtkOpenVDBLevelSetReader::Internals
+{
+  std::unique_ptr<lvdif::DictionaryVolume> Volume;
+  vtkMTimeType ReadTime = 0; // this->GetMTime() when Volume was read
+  std::string ReadFile;
+  long long FileStamp = -1;
+};
+
+namespace
+{
+long long fileStamp(const std::string& path)
+{
+  struct stat st;
+  return ::stat(path.c_str(), &st) == 0 ? static_cast<long long>(st.st_mtim.tv_sec) * 1000000000LL + st.st_mtim.tv_nsec + st.st_size
+                                        : -1;
+}
+}
+
+vtkOpenVDBLevelSetReader::vtkOpenVDBLevelSetReader()
+  : Internal(new Internals)
+{
+  this->SetNumberOfInputPorts(0);
+}
+
+vtkOpenVDBLevelSetReader::~vtkOpenVDBLevelSetReader()
+{
+  delete this->Internal;
+}
+
+bool vtkOpenVDBLevelSetReader::CanReadFile(const char* fileName)
+{
+  try
+  {
+    lvdif::vdb::listGrids(fileName ? fileName : "");
+    return true;
+  }
+  catch (const lvdif::Error&)
+  {
+    return false;
+  }
+}
+
+std::string vtkOpenVDBLevelSetReader::GetGridList()
+{
+  std::string out;
+  try
+  {
+    for (const auto& g : lvdif::vdb::listGrids(this->FileName))
+    {
+      out += g.name + " (" + g.type + ", " + g.gridClass + ")\n";
+    }
+  }
+  catch (const lvdif::Error& e)
+  {
+    vtkErrorMacro(<< e.what());
+  }
+  return out;
+}
+
+int vtkOpenVDBLevelSetReader::RequestInformation(
+  vtkInformation*, vtkInformationVector**, vtkInformationVector* outputVector)
+{
+  if (this->FileName.empty())
+  {
+    vtkErrorMacro("no file name: call SetFileName() first");
+    return 0;
+  }
+  Internals& in = *this->Internal;
+  const long long stamp = fileStamp(this->FileName);
+  if (!in.Volume || in.ReadTime != this->GetMTime() || in.ReadFile != this->FileName || in.FileStamp != stamp)
+  {
+    in.Volume.reset();
+    lvdif::vdb::ImportOptions options;
+    options.gridName = this->GridName;
+    options.colorName = this->WithColor ? this->ColorGridName : std::string();
+    options.padding = this->Padding;
+    vtkLVDIFInterrupter interrupter(this, 0.0, 0.9);
+    try
+    {
+      in.Volume = lvdif::vdb::importLevelSet(this->FileName, options, interrupter);
+    }
+    catch (const lvdif::Error& e)
+    {
+      if (e.code() != lvdif::ErrorCode::Cancelled)
+      {
+        vtkErrorMacro(<< "cannot read '" << this->FileName << "': " << e.what());
+      }
+      return 0;
+    }
+    in.ReadTime = this->GetMTime();
+    in.ReadFile = this->FileName;
+    in.FileStamp = stamp;
+  }
+  const lvdif::VolumeOptions& o = in.Volume->options();
+  int whole[6] = { 0, static_cast<int>(o.dims[0] - 1), 0, static_cast<int>(o.dims[1] - 1), 0,
+    static_cast<int>(o.dims[2] - 1) };
+  vtkInformation* outInfo = outputVector->GetInformationObject(0);
+  outInfo->Set(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT(), whole, 6);
+  outInfo->Set(vtkDataObject::ORIGIN(), o.origin.data(), 3);
+  outInfo->Set(vtkDataObject::SPACING(), o.spacing.data(), 3);
+  outInfo->Set(vtkAlgorithm::CAN_PRODUCE_SUB_EXTENT(), 1);
+  vtkDataObject::SetPointDataActiveScalarInfo(outInfo, VTK_FLOAT, 1);
+  return 1;
+}
+
+int vtkOpenVDBLevelSetReader::RequestData(
+  vtkInformation*, vtkInformationVector**, vtkInformationVector* outputVector)
+{
+  vtkInformation* outInfo = outputVector->GetInformationObject(0);
+  vtkImageData* output = vtkImageData::GetData(outInfo);
+  if (!this->Internal->Volume)
+  {
+    output->Initialize();
+    return 0;
+  }
+  int ext[6];
+  outInfo->Get(vtkStreamingDemandDrivenPipeline::UPDATE_EXTENT(), ext);
+  try
+  {
+    vtkLVDIFVolumeBridge::FillImage(*this->Internal->Volume, ext, output, this->WithColor);
+  }
+  catch (const lvdif::Error& e)
+  {
+    output->Initialize();
+    vtkErrorMacro(<< "cannot read '" << this->FileName << "': " << e.what());
+    return 0;
+  }
+  this->UpdateProgress(1.0);
+  return 1;
+}
+
+void vtkOpenVDBLevelSetReader::PrintSelf(ostream& os, vtkIndent indent)
+{
+  this->Superclass::PrintSelf(os, indent);
+  os << indent << "FileName: " << this->FileName << "\n";
+  os << indent << "GridName: " << this->GridName << "\n";
+  os << indent << "ColorGridName: " << this->ColorGridName << "\n";
+  os << indent << "WithColor: " << this->WithColor << "\n";
+  os << indent << "Padding: " << this->Padding << "\n";
+}

@@ -1,0 +1,79 @@
+#include "vtkOpenVDBLevelSetWriter.h"
+
+#include "LVDIFOpenVDB.h"
+#include "vtkLVDIFInterrupter.h"
+#include "vtkLVDIFVolumeBridge.h"
+
+#include "vtkDataArray.h"
+#include "vtkErrorCode.h"
+#include "vtkImageData.h"
+#include "vtkInformation.h"
+#include "vtkObjectFactory.h"
+#include "vtkPointData.h"
+
+vtkStandardNewMacro(vtkOpenVDBLevelSetWriter);
+
+vtkOpenVDBLevelSetWriter::vtkOpenVDBLevelSetWriter() = default;
+vtkOpenVDBLevelSetWriter::~vtkOpenVDBLevelSetWriter() = default;
+
+vtkImageData* vtkOpenVDBLevelSetWriter::GetInput()
+{
+  return vtkImageData::SafeDownCast(this->Superclass::GetInput());
+}
+
+int vtkOpenVDBLevelSetWriter::FillInputPortInformation(int, vtkInformation* info)
+{
+  info->Set(vtkAlgorithm::INPUT_REQUIRED_DATA_TYPE(), "vtkImageData");
+  return 1;
+}
+
+void vtkOpenVDBLevelSetWriter::WriteData()
+{
+  vtkImageData* image = this->GetInput();
+  if (this->FileName.empty())
+  {
+    vtkErrorMacro("no file name: call SetFileName() first");
+    this->SetErrorCode(vtkErrorCode::NoFileNameError);
+    return;
+  }
+  vtkDataArray* sdf = image ? image->GetPointData()->GetArray("sdf") : nullptr;
+  if (!sdf)
+  {
+    vtkErrorMacro("the input has no point array named 'sdf'");
+    this->SetErrorCode(vtkErrorCode::UnknownError);
+    return;
+  }
+  vtkDataArray* rgba = this->WithColor ? image->GetPointData()->GetArray("rgba") : nullptr;
+  lvdif::VolumeOptions options;
+  options.bandWidth = static_cast<float>(this->HalfWidth);
+  lvdif::vdb::ExportOptions exportOptions;
+  exportOptions.halfWidth = this->HalfWidth;
+  exportOptions.withColor = rgba != nullptr;
+  exportOptions.sdfName = this->GridName;
+  vtkLVDIFInterrupter interrupter(this, 0.0, 1.0);
+  try
+  {
+    interrupter.setStage(0.0, 0.4);
+    auto volume = vtkLVDIFVolumeBridge::VolumeFromImage(image, sdf, rgba, options);
+    interrupter.setStage(0.4, 0.6);
+    lvdif::vdb::exportLevelSet(*volume, this->FileName, exportOptions, interrupter);
+  }
+  catch (const lvdif::Error& e)
+  {
+    if (e.code() != lvdif::ErrorCode::Cancelled)
+    {
+      vtkErrorMacro(<< "cannot write '" << this->FileName << "': " << e.what());
+    }
+    this->SetErrorCode(e.code() == lvdif::ErrorCode::IoFailure ? vtkErrorCode::CannotOpenFileError
+                                                               : vtkErrorCode::UnknownError);
+  }
+}
+
+void vtkOpenVDBLevelSetWriter::PrintSelf(ostream& os, vtkIndent indent)
+{
+  this->Superclass::PrintSelf(os, indent);
+  os << indent << "FileName: " << this->FileName << "\n";
+  os << indent << "GridName: " << this->GridName << "\n";
+  os << indent << "HalfWidth: " << this->HalfWidth << "\n";
+  os << indent << "WithColor: " << this->WithColor << "\n";
+}

@@ -1,0 +1,74 @@
+/**
+ * @class   vtkOpenVDBLevelSetWriter
+ * @brief   writes vtkImageData's `sdf` (and `rgba`) as an OpenVDB level set (.vdb)
+ *
+ * The input needs a point array `sdf` (negative inside, voxel units) and
+ * isotropic spacing; an unsigned char `rgba` array (1 to 4 components) is
+ * written too when WithColor is on. The file holds a FloatGrid `sdf` of class
+ * level set whose values are WORLD-unit distances (voxel distance x spacing),
+ * active where |d| < HalfWidth voxels, background HalfWidth x spacing, the
+ * transform mapping index (i,j,k) to origin + spacing (i,j,k); plus an
+ * Int32Grid `rgba` of packed colours (r | g<<8 | b<<16 | a<<24) on the same
+ * active voxels. Distances pass through the SDF dictionary (quantization of
+ * docs/FORMAT.md). See docs/FORMAT.md, "OpenVDB interop". Check with
+ * `vdb_print -l file.vdb`.
+ */
+#ifndef vtkOpenVDBLevelSetWriter_h
+#define vtkOpenVDBLevelSetWriter_h
+
+#include "lvdifIOOpenVDBModule.h"
+#include "vtkWriter.h"
+
+#include <string>
+
+class vtkImageData;
+
+class LVDIFIOOPENVDB_EXPORT vtkOpenVDBLevelSetWriter : public vtkWriter
+{
+public:
+  static vtkOpenVDBLevelSetWriter* New();
+  vtkTypeMacro(vtkOpenVDBLevelSetWriter, vtkWriter);
+  void PrintSelf(ostream& os, vtkIndent indent) override;
+
+  vtkSetStdStringFromCharMacro(FileName);
+  vtkGetCharFromStdStringMacro(FileName);
+
+  ///@{
+  /// Narrow-band half width in voxels (default 3, OpenVDB's default).
+  vtkSetClampMacro(HalfWidth, double, 1.0, 1.0e4);
+  vtkGetMacro(HalfWidth, double);
+  ///@}
+
+  ///@{
+  /// Write the `rgba` grid when the input has an `rgba` array (default on).
+  vtkSetMacro(WithColor, bool);
+  vtkGetMacro(WithColor, bool);
+  vtkBooleanMacro(WithColor, bool);
+  ///@}
+
+  ///@{
+  /// Name of the level-set grid (default `sdf`).
+  vtkSetStdStringFromCharMacro(GridName);
+  vtkGetCharFromStdStringMacro(GridName);
+  ///@}
+
+  vtkImageData* GetInput();
+
+protected:
+  vtkOpenVDBLevelSetWriter();
+  ~vtkOpenVDBLevelSetWriter() override;
+
+  void WriteData() override;
+  int FillInputPortInformation(int port, vtkInformation* info) override;
+
+  std::string FileName;
+  std::string GridName = "sdf";
+  double HalfWidth = 3.0;
+  bool WithColor = true;
+
+private:
+  vtkOpenVDBLevelSetWriter(const vtkOpenVDBLevelSetWriter&) = delete;
+  void operator=(const vtkOpenVDBLevelSetWriter&) = delete;
+};
+
+#endif
