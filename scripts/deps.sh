@@ -11,6 +11,11 @@ PACKAGES=(
   xvfb xauth
   openmpi-bin libopenmpi-dev
   clang libclang-rt-14-dev
+  # ParaView plugin (second build tree, scripts/build-paraview-plugin.sh). Never
+  # python3-paraview: it would remove libvtk9-dev; scripts/paraview-shim.sh
+  # unpacks it into a private prefix instead. --no-install-recommends (below)
+  # matters: paraview recommends python3-paraview.
+  paraview-dev libqt5svg5-dev qtxmlpatterns5-dev-tools
 )
 
 missing=()

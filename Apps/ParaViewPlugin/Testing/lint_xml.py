@@ -1,0 +1,55 @@
+"""Checks the plugin's server-manager XML (registered and drafts) for what the
+issue asks of every proxy: documentation of the proxy and of every property,
+a default and a domain for every numeric property, a menu category for
+filters, factory hints with the .lvdv extension for readers and writers.
+Usage: python3 lint_xml.py XML_DIR"""
+import glob
+import os
+import sys
+import xml.etree.ElementTree as ET
+
+problems = []
+files = sorted(glob.glob(os.path.join(sys.argv[1], "*.xml")) + glob.glob(os.path.join(sys.argv[1], "drafts", "*.xml")))
+for path in files:
+    name = os.path.relpath(path, sys.argv[1])
+    try:
+        root = ET.parse(path).getroot()
+    except ET.ParseError as e:
+        problems.append("%s: not well-formed: %s" % (name, e))
+        continue
+    for group in root.iter("ProxyGroup"):
+        for proxy in group:
+            if proxy.tag not in ("SourceProxy", "WriterProxy", "Proxy"):
+                continue
+            pname = proxy.get("name")
+            where = "%s: %s" % (name, pname)
+            if proxy.find("Documentation") is None:
+                problems.append(where + ": no Documentation")
+            hints = proxy.find("Hints")
+            if group.get("name") == "filters" and (hints is None or hints.find("ShowInMenu") is None):
+                problems.append(where + ": filter without ShowInMenu")
+            if group.get("name") == "sources" and proxy.get("class", "").endswith("Reader"):
+                rf = hints.find("ReaderFactory") if hints is not None else None
+                if rf is None or "lvdv" not in rf.get("extensions", "").split():
+                    problems.append(where + ": reader without ReaderFactory extensions=lvdv")
+            if group.get("name") == "writers":
+                wf = hints.find("WriterFactory") if hints is not None else None
+                if wf is None or "lvdv" not in wf.get("extensions", "").split():
+                    problems.append(where + ": writer without WriterFactory extensions=lvdv")
+            for prop in proxy:
+                if not prop.tag.endswith("Property"):
+                    continue
+                pw = "%s.%s" % (where, prop.get("name"))
+                if prop.find("Documentation") is None:
+                    problems.append(pw + ": no Documentation")
+                if prop.tag in ("IntVectorProperty", "DoubleVectorProperty") and prop.get("information_only") != "1":
+                    if prop.get("default_values") is None:
+                        problems.append(pw + ": no default_values")
+                    if not any(c.tag.endswith("Domain") for c in prop):
+                        problems.append(pw + ": no domain")
+                if prop.get("command") == "SetInputArrayToProcess" and prop.find("ArrayListDomain") is None:
+                    problems.append(pw + ": array selection without ArrayListDomain")
+print("checked %d XML files" % len(files))
+for p in problems:
+    print("FAIL " + p)
+sys.exit(1 if problems else 0)

@@ -1,0 +1,176 @@
+# pvbatch test of distributed execution: mesh -> SDF -> marching cubes
+# -> write (parallel .pvtp) -> read, every rank computing its own piece of the
+# volume, compared with the single-process result.
+#
+# Usage (ParaView runs the script on rank 0 and the pipeline on every rank):
+#   pvbatch --force-offscreen-rendering mpi_pipeline.py PLUGIN TMPDIR --reference [classes]
+#   mpirun -np 2 pvbatch --force-offscreen-rendering mpi_pipeline.py PLUGIN TMPDIR --compare [classes]
+# Options: --n N (grid points per axis, default the tests' 48), --time (print stage times).
+#
+# Ownership rule checked here (docs/PARAVIEW.md): VTK splits the point extent
+# into pieces that share one point plane per cut. A CELL lies in exactly one
+# piece, so every triangle is made by exactly one rank (no duplicates). A POINT
+# on a shared plane belongs to the piece where it is NOT on the upper face,
+# i.e. index i on axis a is owned when lo_a <= i < hi_a, or i == hi_a == the
+# whole extent's maximum. Point reductions (inside-voxel counts, chunk output of
+# the writer) must use this rule; surface vertices on shared planes exist once
+# per rank and are merged only when one file is wanted (clean / merge points).
+import lvdif_pvtest as T  # first: fixes sys.path for route B
+
+import builtins  # pvbatch scripts see numpy_interface.algorithms.sum as `sum`
+import json
+import os
+import sys
+import time
+
+import paraview.simple as pvs
+from paraview import servermanager
+
+args = sys.argv[1:]
+plugin, tmpdir, mode = args[0], args[1], args[2]
+rest = args[3:]
+timing = "--time" in rest
+if "--n" in rest:
+    T.N = int(rest[rest.index("--n") + 1])
+    rest = [a for i, a in enumerate(rest) if a != "--n" and (i == 0 or rest[i - 1] != "--n")]
+classes = [a for a in rest if a.startswith("vtk")]
+check = T.check
+
+nranks = servermanager.vtkProcessModule.GetProcessModule().GetNumberOfLocalPartitions()
+print("ranks:", nranks)
+present = T.load_plugin(plugin, classes, remote=True)
+
+t0 = time.perf_counter()
+sdf, how = T.sdf_stage(present)
+print("SDF stage:", how)
+# No sign voxel filter here: SVF1 scans whole rows and SVF2/SVF3 whole planes,
+# so filtering each piece alone is not filtering the volume (docs/PARAVIEW.md).
+field = sdf
+c, mc = T.contour(field, present)
+surface = mc if mc is not None else c
+surface.UpdatePipeline()
+t1 = time.perf_counter()
+
+
+OWNED_SCRIPT = """
+import numpy as np
+from vtkmodules.vtkCommonExecutionModel import vtkStreamingDemandDrivenPipeline as sddp
+from vtkmodules.vtkCommonCore import vtkPoints
+from vtkmodules.vtkCommonDataModel import vtkCellArray
+from vtkmodules.util.numpy_support import vtk_to_numpy, numpy_to_vtk
+img = self.GetInputDataObject(0, 0)
+whole = self.GetInputInformation(0, 0).Get(sddp.WHOLE_EXTENT())
+e = img.GetExtent()
+d = vtk_to_numpy(img.GetPointData().GetArray('sdf'))
+nx, ny, nz = e[1] - e[0] + 1, e[3] - e[2] + 1, e[5] - e[4] + 1
+d = d.reshape(nz, ny, nx)
+# keep index i when lo <= i < hi, or i == hi == whole max
+hx = nx if e[1] == whole[1] else nx - 1
+hy = ny if e[3] == whole[3] else ny - 1
+hz = nz if e[5] == whole[5] else nz - 1
+k, j, i = np.nonzero(d[:hz, :hy, :hx] < 0)
+o, s = img.GetOrigin(), img.GetSpacing()
+xyz = np.stack([(i + e[0]) * s[0] + o[0], (j + e[2]) * s[1] + o[1], (k + e[4]) * s[2] + o[2]], axis=1)
+pts = vtkPoints(); pts.SetData(numpy_to_vtk(np.ascontiguousarray(xyz), deep=1))
+out = self.GetPolyDataOutput(); out.SetPoints(pts)
+"""
+
+
+def verify():
+    # Owned inside points per rank, by the ownership rule.
+    owned = pvs.ProgrammableFilter(Input=field, OutputDataSetType="vtkPolyData")
+    owned.Script = OWNED_SCRIPT
+    owned_pd = servermanager.Fetch(owned)
+    inside = owned_pd.GetNumberOfPoints()
+    inside_unique = len({tuple(round(x, 6) for x in owned_pd.GetPoint(i)) for i in range(inside)})
+
+    # Which rank made which triangles.
+    pid = pvs.ProcessIdScalars(Input=surface)
+    pid_pd = servermanager.Fetch(pid)
+    pid_range = pid_pd.GetPointData().GetArray("ProcessId").GetRange() if pid_pd.GetNumberOfPoints() else (-1, -1)
+
+    # write (one piece per rank + a .pvtp index) -> read back
+    t2 = time.perf_counter()
+    path = os.path.join(tmpdir, "mpi_surface_np%d.pvtp" % nranks)
+    pvs.SaveData(path, proxy=surface)
+    t3 = time.perf_counter()
+    back = pvs.OpenDataFile(path)
+    merged = servermanager.Fetch(back)
+    tris = T.triangle_key_list(merged)  # ghost (DUPLICATECELL) triangles dropped
+    ghost = merged.GetCellData().GetArray("vtkGhostType")
+    print("read back %d cells, %d of them ghost copies" % (merged.GetNumberOfCells(),
+          builtins.sum(1 for i in range(merged.GetNumberOfCells()) if ghost and int(ghost.GetValue(i)) & 1)))
+
+    if timing:
+        print("TIME ranks=%d N=%d pipeline=%.3f s write=%.3f s triangles=%d" % (nranks, T.N, t1 - t0, t3 - t2, len(tris)))
+
+    # Distributed reading: the serial run writes the volume (.lvdv, serial
+    # writer); every run reads it back piecewise (each rank decodes only the
+    # chunks of its extent) and contours it.
+    lvd = os.path.join(tmpdir, "mpi_volume_N%d.%s" % (T.N, T.LVD_EXTENSION))
+    read_tris = None
+    if present["vtkDictionaryVolumeReader"] and present["vtkDictionaryVolumeWriter"]:
+        if mode == "--reference":
+            pvs.SaveData(lvd, proxy=field)
+        reader = T.PROXY_NAMES["vtkDictionaryVolumeReader"]
+        rd = getattr(pvs, reader)(FileName=lvd)
+        rc = pvs.Contour(Input=rd, ContourBy=["POINTS", "sdf"], Isosurfaces=[0.0], ComputeNormals=0,
+                         ComputeScalars=0, ComputeGradients=0)
+        rpid = servermanager.Fetch(pvs.ProcessIdScalars(Input=rc))
+        read_pid_range = rpid.GetPointData().GetArray("ProcessId").GetRange()
+        read_tris = T.triangle_key_list(servermanager.Fetch(rc))
+        print("read %s on %d ranks: %d triangles, ProcessId range %s" % (
+            os.path.basename(lvd), nranks, len(read_tris), read_pid_range))
+    else:
+        print("distributed read: skipped (reader/writer not in the plugin)")
+
+    ref_path = os.path.join(tmpdir, "mpi_reference_N%d.json" % T.N)
+    if mode == "--reference":
+        check(nranks == 1, "reference run is single-process")
+        check(len(tris) > 0 and len(set(tris)) == len(tris), "serial surface has %d distinct triangles" % len(tris))
+        check(inside == inside_unique, "serial owned points are distinct (%d)" % inside)
+        if read_tris is not None:
+            check(len(read_tris) > 0, "serial contour of the read volume: %d triangles" % len(read_tris))
+        with open(ref_path, "w") as f:
+            json.dump({"triangles": tris, "inside": inside, "sdf": how, "read_triangles": read_tris}, f)
+    else:
+        with open(ref_path) as f:
+            ref = json.load(f)
+        ref_tris = [tuple(tuple(v) for v in t) for t in ref["triangles"]]
+        check(nranks > 1, "%d ranks" % nranks)
+        check(pid_range == (0.0, nranks - 1.0), "triangles come from ranks %s (want 0..%d)" % (pid_range, nranks - 1))
+        check(len(tris) == len(ref_tris), "%d triangles from %d ranks vs %d serial" % (len(tris), nranks, len(ref_tris)))
+        check(len(set(tris)) == len(tris), "no duplicated triangle across ranks")
+        check(tris == ref_tris, "the triangles (rounded vertices) equal the serial ones")
+        check(inside == ref["inside"] and inside_unique == inside,
+              "owned inside points: %d over ranks (%d distinct) vs %d serial" % (inside, inside_unique, ref["inside"]))
+        if read_tris is not None:
+            ref_read = [tuple(tuple(v) for v in t) for t in (ref.get("read_triangles") or [])]
+            check(read_pid_range == (0.0, nranks - 1.0), "every rank read and contoured its part (%s)" % (read_pid_range,))
+            check(read_tris == ref_read, "contour of the distributed read: %d triangles, equal to the serial %d" % (
+                len(read_tris), len(ref_read)))
+
+
+
+def bench():
+    """Timing only (scripts/bench-paraview-mpi.sh): the first, uncached update
+    of the whole pipeline (t0..t1 above), then the parallel write."""
+    path = os.path.join(tmpdir, "bench_surface_np%d.pvtp" % nranks)
+    t2 = time.perf_counter()
+    pvs.SaveData(path, proxy=surface)
+    t3 = time.perf_counter()
+    ntri = surface.GetDataInformation().GetNumberOfCells()
+    print("BENCH ranks=%d N=%d sdf=%s surface=%s pipeline_s=%.3f write_s=%.3f triangles=%d" % (
+        nranks, T.N, how.split(":")[0], "vtkChunkedMarchingCubes" if mc is not None else "Contour",
+        t1 - t0, t3 - t2, ntri))
+
+
+if mode == "--bench":
+    bench()
+else:
+    verify()
+print("failures:", check.failures)
+# Never sys.exit(0) under pvbatch: it leaves without MPI_Finalize and mpirun
+# reports an abnormal termination. A failure may (the exit code is what counts).
+if check.failures:
+    sys.exit(1)
