@@ -156,6 +156,9 @@ public:
     std::vector<float> values;
     std::vector<Rgba> colors;         // empty without colours
     std::vector<ColorKey> colorKeys;  // empty unless corner colours (dictionary)
+    /// Scratch of gather() (the storage chunks' sides of iso), kept for reuse.
+    std::vector<std::int8_t> sideScratch;
+    std::vector<float> quietScratch;
     /// Instead of the copies above: the source's own float grid (and colours),
     /// lo = 0 and size = the grid's dims. extractChunk() meshes float grids
     /// this way (no copy); gather() always copies (the worker's snapshot).
@@ -171,6 +174,9 @@ public:
   /// Copies the chunk's input (the only step that reads the source: do it under
   /// the lock that guards writers). Returns null when the chunk is empty.
   std::unique_ptr<ChunkInput> gather(std::int64_t id) const;
+  /// The same into an existing input (its buffers reused: no allocation once
+  /// warm). Returns false (and leaves `into` unchanged) when the chunk is empty.
+  bool gather(std::int64_t id, ChunkInput& into) const;
   /// Meshes a gathered input (reads nothing else; any thread).
   ChunkMesh mesh(const ChunkInput& input) const;
 

@@ -8,6 +8,7 @@
 #include "BenchCommon.h"
 
 #include "lvdif/AnalyticFill.h"
+#include "lvdif/Brush.h"
 #include "lvdif/ChunkedMarchingCubes.h"
 #include "lvdif/Cuda.h"
 
@@ -132,31 +133,32 @@ int main(int argc, char** argv)
     big->takeDirtyChunks();
     std::vector<std::vector<std::string>> erows;
     const double c = 0.5 * 1024 + 0.37, r = 0.39 * 1024;
+    BrushSettings add;
+    add.op = BrushOp::Add;
+    add.color = Rgba{ 200, 40, 40, 255 };
     for (int k = 0; k < 5; ++k)
     {
       // centre on the surface, a different spot each time
       const double a = 0.3 + 0.25 * k;
       const double ex = c + r * std::cos(a), ey = c - 0.21 + r * std::sin(a), ez = c + 0.13 + 0.1 * k;
       bench::Stopwatch write;
-      const std::int64_t rad = 15;
-      for (std::int64_t z = std::int64_t(ez) - rad - 2; z <= std::int64_t(ez) + rad + 2; ++z)
-        for (std::int64_t y = std::int64_t(ey) - rad - 2; y <= std::int64_t(ey) + rad + 2; ++y)
-          for (std::int64_t x = std::int64_t(ex) - rad - 2; x <= std::int64_t(ex) + rad + 2; ++x)
-          {
-            const float s = static_cast<float>(
-              std::sqrt((x - ex) * (x - ex) + (y - ey) * (y - ey) + (z - ez) * (z - ez)) - rad);
-            if (s < big->sdf(x, y, z)) big->setSdf(x, y, z, s);
-          }
+      const EditResult edit = applyDab(*big, Dab{ BrushShape::Sphere, { ex, ey, ez }, 15.0, {} }, add);
       const double writeMs = write.ms();
+      const std::size_t byStorage = mc.chunksAffectedByStorageChunks(big->takeDirtyChunks()).size();
       bench::Stopwatch remesh;
-      const auto ids = mc.chunksAffectedByStorageChunks(big->takeDirtyChunks());
+      const auto ids = mc.chunksAffectedBy(edit.changedBox);
       const auto meshes = mc.extractChunks(ids);
       const double remeshMs = remesh.ms();
-      erows.push_back({ std::to_string(k), bench::fmt(writeMs, 2), std::to_string(ids.size()),
-        std::to_string(triangles(meshes)), bench::fmt(remeshMs, 2) });
+      std::size_t nonEmpty = 0;
+      for (const auto& m : meshes) nonEmpty += !m.empty();
+      erows.push_back({ std::to_string(k), bench::fmt(writeMs, 2), std::to_string(byStorage), std::to_string(ids.size()),
+        std::to_string(nonEmpty), std::to_string(triangles(meshes)), bench::fmt(remeshMs, 2) });
     }
-    std::cout << "\nRe-mesh after one radius-15 sphere edit, 1024^3, 64^3 MC chunks (storage chunks 32^3)\n";
-    bench::printTable({ "edit", "write ms", "MC chunks re-meshed", "triangles", "re-mesh ms" }, erows);
+    std::cout << "\nRe-mesh after one radius-15 sphere brush (applyDab, add), 1024^3, 64^3 MC chunks (storage chunks "
+                 "32^3); re-mesh = chunksAffectedBy(changedBox) + extractChunks\n";
+    bench::printTable({ "edit", "brush ms", "MC chunks (storage rule)", "MC chunks (changedBox)", "non-empty",
+                        "triangles", "re-mesh ms" },
+      erows);
   }
   return 0;
 }
