@@ -407,6 +407,24 @@ std::vector<ChunkMesh> ChunkedMarchingCubes::extractAll(Interrupter& interrupter
   return all;
 }
 
+void ChunkedMarchingCubes::extractAllPacked(PackedChunkMeshes& out, Interrupter& interrupter) const
+{
+  if (P->Cuda && !P->Volume)
+  {
+    std::vector<std::int64_t> ids;
+    for (std::int64_t id = 0; id < P->Total; ++id)
+    {
+      if (!P->empty(id)) ids.push_back(id);
+    }
+    interrupter.start("marching cubes");
+    packChunksCuda(*P, ids, out, interrupter);
+    interrupter.progress(1.0);
+    interrupter.end();
+    return;
+  }
+  packChunkMeshes(*P, this->extractAll(interrupter), out);
+}
+
 std::vector<std::int64_t> ChunkedMarchingCubes::chunksAffectedBy(const VoxelBox& changed) const
 {
   std::vector<std::int64_t> ids;

@@ -287,3 +287,39 @@ TEST(MarchingCubes, RejectsBadOptions)
   g.geometry.dims = { 4, 1, 1 };
   EXPECT_THROW(ChunkedMarchingCubes(g, nullptr, withEdge(16)), Error);
 }
+
+TEST(MarchingCubes, PackedEqualsChunkMeshes)
+{
+  VolumeOptions vo;
+  vo.dims = { 61, 57, 66 };
+  vo.chunkEdge = 16;
+  DictionaryVolume vol(vo);
+  fillFromFunction(vol, sphereSdf(30.2, 28.7, 33.1, 21.4));
+  MarchingCubesOptions o;
+  o.chunkEdge = 24;
+  ChunkedMarchingCubes mc(vol, o);
+  const auto meshes = mc.extractAll();
+  PackedChunkMeshes p;
+  mc.extractAllPacked(p);
+  ASSERT_EQ(p.chunkCount(), meshes.size());
+  ASSERT_GT(meshes.size(), 4u);
+  EXPECT_FALSE(p.pageLocked());
+  const PackedChunkMeshes copy = p; // shares the block; the next extraction must not overwrite it
+  mc.extractAllPacked(p);
+  for (const PackedChunkMeshes* q : { &p, &copy })
+    for (std::size_t i = 0; i < meshes.size(); ++i)
+    {
+      const ChunkMesh c = q->chunk(i);
+      const ChunkMesh& m = meshes[i];
+      EXPECT_EQ(c.chunkId, m.chunkId);
+      EXPECT_EQ(c.chunkCoord, m.chunkCoord);
+      EXPECT_EQ(c.points, m.points);
+      EXPECT_EQ(c.edgeIds, m.edgeIds);
+      EXPECT_EQ(c.normals, m.normals);
+      EXPECT_TRUE(c.colors == m.colors);
+      EXPECT_EQ(c.triangles, m.triangles);
+      EXPECT_EQ(c.triangleCells, m.triangleCells);
+      EXPECT_EQ(c.cornerColors, m.cornerColors);
+    }
+  EXPECT_NE(p.points(), copy.points());
+}
