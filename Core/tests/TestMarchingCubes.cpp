@@ -306,7 +306,7 @@ TEST(MarchingCubes, PackedEqualsChunkMeshes)
   EXPECT_FALSE(p.pageLocked());
   const PackedChunkMeshes copy = p; // shares the block; the next extraction must not overwrite it
   mc.extractAllPacked(p);
-  for (const PackedChunkMeshes* q : { &p, &copy })
+  for (const PackedChunkMeshes* q : { static_cast<const PackedChunkMeshes*>(&p), &copy })
     for (std::size_t i = 0; i < meshes.size(); ++i)
     {
       const ChunkMesh c = q->chunk(i);
