@@ -187,9 +187,16 @@ void ChunkedMarchingCubes::Impl::gatherInto(std::int64_t id, ChunkInput& input) 
   const std::size_t n = static_cast<std::size_t>(in->size[0] * in->size[1] * in->size[2]);
   // resize keeps the capacity of a reused input (no page faults, no zeroing)
   in->values.resize(n);
-  const bool colors = P->wantsColors(), keys = P->wantsCornerColors();
+  // on the CPU a dictionary volume's colours travel as keys + a palette copy
+  // (cheaper than decoding every voxel's colour); the GPU path wants them decoded
+  const bool keyed = P->Volume && !P->Cuda && P->wantsColors();
+  const bool colors = P->wantsColors() && !keyed, keys = P->wantsCornerColors() || keyed;
   in->colors.resize(colors ? n : 0);
   in->colorKeys.resize(keys ? n : 0);
+  if (keyed)
+    in->palette = P->Volume->colors().colors();
+  else
+    in->palette.clear();
   const std::int64_t nx = in->size[0];
   if (P->Volume)
   {
@@ -269,22 +276,27 @@ void ChunkedMarchingCubes::Impl::gatherInto(std::int64_t id, ChunkInput& input) 
           else if (d)
           {
             const Voxel* row = d + v.localIndex(x, y, z);
-            for (std::int64_t i = 0; i <= end - x; ++i)
+            const std::int64_t m = end - x + 1;
+            float* val = in->values.data() + o;
+            for (std::int64_t i = 0; i < m; ++i) val[i] = table[row[i].sdf];
+            if (keys)
             {
-              in->values[o + i] = table[row[i].sdf];
-              if (colors) in->colors[o + i] = palette[row[i].color];
-              if (keys) in->colorKeys[o + i] = row[i].color;
+              ColorKey* k = in->colorKeys.data() + o;
+              for (std::int64_t i = 0; i < m; ++i) k[i] = row[i].color;
+            }
+            if (colors)
+            {
+              Rgba* c = in->colors.data() + o;
+              for (std::int64_t i = 0; i < m; ++i) c[i] = palette[row[i].color];
             }
           }
           else
           {
             const Voxel u = v.uniformValue(s);
-            for (std::int64_t i = 0; i <= end - x; ++i)
-            {
-              in->values[o + i] = table[u.sdf];
-              if (colors) in->colors[o + i] = palette[u.color];
-              if (keys) in->colorKeys[o + i] = u.color;
-            }
+            const std::int64_t m = end - x + 1;
+            std::fill_n(in->values.data() + o, m, table[u.sdf]);
+            if (colors) std::fill_n(in->colors.data() + o, m, palette[u.color]);
+            if (keys) std::fill_n(in->colorKeys.data() + o, m, u.color);
           }
           o += end - x + 1;
           x = end + 1;

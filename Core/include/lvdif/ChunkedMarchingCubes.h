@@ -197,8 +197,13 @@ public:
     Index3 lo{ 0, 0, 0 };   // first point of the copied box
     Index3 size{ 0, 0, 0 }; // points per axis of the copied box
     std::vector<float> values;
-    std::vector<Rgba> colors;         // empty without colours
-    std::vector<ColorKey> colorKeys;  // empty unless corner colours (dictionary)
+    std::vector<Rgba> colors;         // empty without colours, or when given as keys + palette
+    /// Dictionary volumes: colour keys (for corner colours, and on the CPU for
+    /// the colours too: colour = palette[key], not decoded per voxel).
+    std::vector<ColorKey> colorKeys;
+    std::vector<Rgba> palette;        // copy of the colour dictionary when colours come as keys
+    /// Points of storage chunks whose neighbourhood lies on one side of iso hold
+    /// one placeholder value of that side and stale colours (never read by the mesher).
     /// Scratch of gather() (the storage chunks' sides of iso), kept for reuse.
     std::vector<std::int8_t> sideScratch;
     std::vector<float> quietScratch;
