@@ -253,6 +253,7 @@ EditResult applyDabs(DictionaryVolume& volume, const std::vector<Dab>& dabs, con
   auto encode = [&dict, band](double v) { return dict.encodeClamped(static_cast<float>(v), band); };
   const std::int64_t nChunks = static_cast<std::int64_t>(chunks.size());
   std::vector<std::int64_t> changedPerChunk(chunks.size(), 0);
+  std::vector<VoxelBox> changedBoxPerChunk(chunks.size());
   const double reach = ctx.reach;
   bool failed = false;
   Error firstError(ErrorCode::InvalidArgument, "");
@@ -300,11 +301,14 @@ EditResult applyDabs(DictionaryVolume& volume, const std::vector<Dab>& dabs, con
         if (coverChunk(volume, id, ctx, observer, n))
         {
           changedPerChunk[static_cast<size_t>(ci)] = n;
+          if (n > 0)
+            changedBoxPerChunk[static_cast<size_t>(ci)] = cb;
           continue;
         }
       }
       bool touched = false;
       std::int64_t changed = 0;
+      VoxelBox changedBox;
       // Read through the chunk's own storage; after the first change (volume.set expands
       // the chunk and marks it dirty and its range stale) write straight into its data:
       // this thread owns the chunk for the whole call.
@@ -367,6 +371,7 @@ EditResult applyDabs(DictionaryVolume& volume, const std::vector<Dab>& dabs, con
                 writeData[li] = v;
               }
               ++changed;
+              changedBox.include(x, y, z);
             }
           }
         }
@@ -375,6 +380,7 @@ EditResult applyDabs(DictionaryVolume& volume, const std::vector<Dab>& dabs, con
         volume.tryCollapseChunk(id);
       }
       changedPerChunk[static_cast<size_t>(ci)] = changed;
+      changedBoxPerChunk[static_cast<size_t>(ci)] = changedBox;
     }
     catch (const Error& e)
     {
@@ -396,6 +402,7 @@ EditResult applyDabs(DictionaryVolume& volume, const std::vector<Dab>& dabs, con
     {
       result.changedChunks.push_back(chunks[i]);
       result.changedVoxels += changedPerChunk[i];
+      result.changedBox = result.changedBox.unite(changedBoxPerChunk[i]);
     }
   }
   return result;

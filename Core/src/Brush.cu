@@ -189,6 +189,7 @@ EditResult applyDabs(DictionaryVolume& volume, const std::vector<Dab>& dabs, con
     for (std::size_t t = 0; t < todo.size(); ++t)
       LVDIF_CUDA_CHECK(cudaMemcpy(back.data() + t * n, slots + todo[t] * n, chunkBytes, cudaMemcpyDeviceToHost));
     std::vector<std::int64_t> perChunk(todo.size(), 0);
+    std::vector<VoxelBox> boxes2(todo.size());
     const std::int64_t nTodo = static_cast<std::int64_t>(todo.size());
 #pragma omp parallel for schedule(dynamic, 1)
     for (std::int64_t t = 0; t < nTodo; ++t)
@@ -198,6 +199,7 @@ EditResult applyDabs(DictionaryVolume& volume, const std::vector<Dab>& dabs, con
       const std::uint32_t* src = back.data() + static_cast<std::size_t>(t) * n;
       bool touched = false;
       std::int64_t count2 = 0;
+      VoxelBox box;
       for (std::int64_t z = b.lo[2]; z <= b.hi[2]; ++z)
         for (std::int64_t y = b.lo[1]; y <= b.hi[1]; ++y)
           for (std::int64_t x = b.lo[0]; x <= b.hi[0]; ++x)
@@ -214,17 +216,20 @@ EditResult applyDabs(DictionaryVolume& volume, const std::vector<Dab>& dabs, con
               }
               volume.set(x, y, z, nv);
               ++count2;
+              box.include(x, y, z);
             }
           }
       if (touched && !volume.isUniform(id))
         volume.tryCollapseChunk(id);
       perChunk[static_cast<std::size_t>(t)] = count2;
+      boxes2[static_cast<std::size_t>(t)] = box;
     }
     for (std::size_t t = 0; t < todo.size(); ++t)
       if (perChunk[t] > 0)
       {
         result.changedChunks.push_back(plan.chunks[first + todo[t]]);
         result.changedVoxels += perChunk[t];
+        result.changedBox = result.changedBox.unite(boxes2[t]);
       }
   }
   return result;

@@ -160,6 +160,14 @@ std::unique_ptr<ChunkedMarchingCubes::ChunkInput> ChunkedMarchingCubes::gather(s
   return in;
 }
 
+bool ChunkedMarchingCubes::gather(std::int64_t id, ChunkInput& into) const
+{
+  require(id >= 0 && id < P->Total, "marching cubes: chunk id " + std::to_string(id) + " out of range");
+  if (P->empty(id)) return false;
+  P->gatherInto(id, into);
+  return true;
+}
+
 void ChunkedMarchingCubes::Impl::gatherInto(std::int64_t id, ChunkInput& input) const
 {
   const Impl* P = this;
@@ -179,9 +187,16 @@ void ChunkedMarchingCubes::Impl::gatherInto(std::int64_t id, ChunkInput& input) 
   const std::size_t n = static_cast<std::size_t>(in->size[0] * in->size[1] * in->size[2]);
   // resize keeps the capacity of a reused input (no page faults, no zeroing)
   in->values.resize(n);
-  const bool colors = P->wantsColors(), keys = P->wantsCornerColors();
+  // on the CPU a dictionary volume's colours travel as keys + a palette copy
+  // (cheaper than decoding every voxel's colour); the GPU path wants them decoded
+  const bool keyed = P->Volume && !P->Cuda && P->wantsColors();
+  const bool colors = P->wantsColors() && !keyed, keys = P->wantsCornerColors() || keyed;
   in->colors.resize(colors ? n : 0);
   in->colorKeys.resize(keys ? n : 0);
+  if (keyed)
+    in->palette = P->Volume->colors().colors();
+  else
+    in->palette.clear();
   const std::int64_t nx = in->size[0];
   if (P->Volume)
   {
@@ -189,35 +204,99 @@ void ChunkedMarchingCubes::Impl::gatherInto(std::int64_t id, ChunkInput& input) 
     const float* table = v.sdfDictionary().table();
     const Rgba* palette = v.colors().colors().data();
     const std::int64_t E = v.chunkEdge();
+    // Storage chunks that are "quiet": all their values, and all those of their
+    // 26 neighbours, on one side of iso. No cell with a corner in a quiet chunk
+    // is cut, and no point of a cut cell nor of its gradient stencil (both
+    // within 2 voxels of a point on the other side, which lies outside the
+    // neighbourhood, E >= 16 away) is inside one: only the side of their
+    // points is read, so they are filled with one value of that side and
+    // their colours are not decoded (left stale: never read).
+    Index3 q0, q1, qn;
+    for (int a = 0; a < 3; ++a)
+    {
+      q0[a] = in->lo[a] / E;
+      q1[a] = hi[a] / E;
+      qn[a] = q1[a] - q0[a] + 1;
+    }
+    std::vector<std::int8_t>& side = in->sideScratch;
+    std::vector<float>& quiet = in->quietScratch; // NaN = decode
+    const Index3 rn{ qn[0] + 2, qn[1] + 2, qn[2] + 2 };
+    side.assign(static_cast<std::size_t>(rn[0] * rn[1] * rn[2]), 0);
+    const Index3& cc = v.chunkCounts();
+    for (std::int64_t k = 0; k < rn[2]; ++k)
+      for (std::int64_t j = 0; j < rn[1]; ++j)
+        for (std::int64_t i = 0; i < rn[0]; ++i)
+        {
+          const std::int64_t cx = q0[0] + i - 1, cy = q0[1] + j - 1, cz = q0[2] + k - 1;
+          std::int8_t sd = 2; // outside the volume: agrees with anything
+          if (cx >= 0 && cy >= 0 && cz >= 0 && cx < cc[0] && cy < cc[1] && cz < cc[2])
+          {
+            const auto r = v.chunkRange(v.chunkId(cx, cy, cz));
+            sd = table[r.first] >= P->Options.isoValue ? 1 : (table[r.second] < P->Options.isoValue ? -1 : 0);
+          }
+          side[static_cast<std::size_t>(i + rn[0] * (j + rn[1] * k))] = sd;
+        }
+    quiet.assign(static_cast<std::size_t>(qn[0] * qn[1] * qn[2]), std::numeric_limits<float>::quiet_NaN());
+    for (std::int64_t k = 0; k < qn[2]; ++k)
+      for (std::int64_t j = 0; j < qn[1]; ++j)
+        for (std::int64_t i = 0; i < qn[0]; ++i)
+        {
+          const std::int8_t me = side[static_cast<std::size_t>((i + 1) + rn[0] * ((j + 1) + rn[1] * (k + 1)))];
+          if (me == 0) continue;
+          bool same = true;
+          for (std::int64_t dk = 0; dk < 3 && same; ++dk)
+            for (std::int64_t dj = 0; dj < 3 && same; ++dj)
+              for (std::int64_t di = 0; di < 3 && same; ++di)
+              {
+                const std::int8_t o = side[static_cast<std::size_t>((i + di) + rn[0] * ((j + dj) + rn[1] * (k + dk)))];
+                same = o == me || o == 2;
+              }
+          if (same)
+          {
+            const std::int64_t s = v.chunkId(q0[0] + i, q0[1] + j, q0[2] + k);
+            quiet[static_cast<std::size_t>(i + qn[0] * (j + qn[1] * k))] = table[v.chunkRange(s).first];
+          }
+        }
     for (std::int64_t z = in->lo[2]; z <= hi[2]; ++z)
       for (std::int64_t y = in->lo[1]; y <= hi[1]; ++y)
       {
         std::int64_t o = in->local(in->lo[0], y, z);
+        const std::size_t qrow = static_cast<std::size_t>(qn[0] * ((y / E - q0[1]) + qn[1] * (z / E - q0[2])));
         // walk the row storage chunk by storage chunk
         for (std::int64_t x = in->lo[0]; x <= hi[0];)
         {
           const std::int64_t end = std::min(hi[0], (x / E + 1) * E - 1);
           const std::int64_t s = v.chunkOf(x, y, z);
           const Voxel* d = v.chunkData(s);
-          if (d)
+          const float qv = quiet[qrow + static_cast<std::size_t>(x / E - q0[0])];
+          if (qv == qv)
+          {
+            std::fill(in->values.begin() + o, in->values.begin() + o + (end - x + 1), qv);
+          }
+          else if (d)
           {
             const Voxel* row = d + v.localIndex(x, y, z);
-            for (std::int64_t i = 0; i <= end - x; ++i)
+            const std::int64_t m = end - x + 1;
+            float* val = in->values.data() + o;
+            for (std::int64_t i = 0; i < m; ++i) val[i] = table[row[i].sdf];
+            if (keys)
             {
-              in->values[o + i] = table[row[i].sdf];
-              if (colors) in->colors[o + i] = palette[row[i].color];
-              if (keys) in->colorKeys[o + i] = row[i].color;
+              ColorKey* k = in->colorKeys.data() + o;
+              for (std::int64_t i = 0; i < m; ++i) k[i] = row[i].color;
+            }
+            if (colors)
+            {
+              Rgba* c = in->colors.data() + o;
+              for (std::int64_t i = 0; i < m; ++i) c[i] = palette[row[i].color];
             }
           }
           else
           {
             const Voxel u = v.uniformValue(s);
-            for (std::int64_t i = 0; i <= end - x; ++i)
-            {
-              in->values[o + i] = table[u.sdf];
-              if (colors) in->colors[o + i] = palette[u.color];
-              if (keys) in->colorKeys[o + i] = u.color;
-            }
+            const std::int64_t m = end - x + 1;
+            std::fill_n(in->values.data() + o, m, table[u.sdf]);
+            if (colors) std::fill_n(in->colors.data() + o, m, palette[u.color]);
+            if (keys) std::fill_n(in->colorKeys.data() + o, m, u.color);
           }
           o += end - x + 1;
           x = end + 1;
@@ -338,6 +417,24 @@ std::vector<ChunkMesh> ChunkedMarchingCubes::extractAll(Interrupter& interrupter
   std::vector<ChunkMesh> all = this->extractChunks(ids, interrupter);
   all.erase(std::remove_if(all.begin(), all.end(), [](const ChunkMesh& m) { return m.empty(); }), all.end());
   return all;
+}
+
+void ChunkedMarchingCubes::extractAllPacked(PackedChunkMeshes& out, Interrupter& interrupter) const
+{
+  if (P->Cuda && !P->Volume)
+  {
+    std::vector<std::int64_t> ids;
+    for (std::int64_t id = 0; id < P->Total; ++id)
+    {
+      if (!P->empty(id)) ids.push_back(id);
+    }
+    interrupter.start("marching cubes");
+    packChunksCuda(*P, ids, out, interrupter);
+    interrupter.progress(1.0);
+    interrupter.end();
+    return;
+  }
+  packChunkMeshes(*P, this->extractAll(interrupter), out);
 }
 
 std::vector<std::int64_t> ChunkedMarchingCubes::chunksAffectedBy(const VoxelBox& changed) const

@@ -12,6 +12,7 @@ namespace
 void merge(EditResult& into, const EditResult& r)
 {
   into.changedVoxels += r.changedVoxels;
+  into.changedBox = into.changedBox.unite(r.changedBox);
   std::vector<std::int64_t> all;
   std::set_union(into.changedChunks.begin(), into.changedChunks.end(), r.changedChunks.begin(),
     r.changedChunks.end(), std::back_inserter(all));

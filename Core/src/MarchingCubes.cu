@@ -6,7 +6,11 @@
 //  3. generate: one thread per point writes its vertices, one per cell its
 //     triangles (a cut edge's vertex = its point's first vertex + the rank of
 //     the axis among the point's cut edges);
-//  4. one copy back per array for the whole batch, split into chunk meshes.
+//  4. lists of chunks (extractAll, extractChunks, extractAllPacked) run as a
+//     pipeline: batch k+1 is classified and generated on one stream while
+//     batch k's arrays are copied on another straight into a page-locked
+//     packed block (PackedChunkMeshes); extractChunks then splits it per chunk.
+//     One chunk (meshChunkCuda) is one synchronous batch.
 // The output is deterministic; the vertex arithmetic is MarchingCubesVertex.h
 // (explicitly rounded on the device), so vertices equal the CPU's bit for bit
 // and the triangles are the same (the CPU numbers vertices in sweep order,
@@ -19,8 +23,11 @@
 
 #include <cub/cub.cuh>
 
+#include <algorithm>
+#include <cstdlib>
 #include <cstring>
 #include <mutex>
+#include <string>
 
 namespace lvdif
 {
@@ -58,6 +65,29 @@ struct Buffer
 unsigned int blocks(long long n) { return static_cast<unsigned int>((n + 255) / 256); }
 } // namespace
 
+/// Device output arrays of one batch (two sets: one filled while the other is copied out).
+struct MarchingCubesOutBuffers
+{
+  Buffer<float> points, normals;
+  Buffer<unsigned long long> edgeIds;
+  Buffer<Rgba> colors;
+  Buffer<unsigned int> tris;
+  Buffer<long long> cells;
+  Buffer<ColorKey> keys;
+  Out reserve(std::size_t NV, std::size_t NT, bool normals, bool colors, bool cells, bool keys)
+  {
+    this->points.reserve(3 * NV);
+    this->edgeIds.reserve(NV);
+    if (normals) this->normals.reserve(3 * NV);
+    if (colors) this->colors.reserve(NV);
+    this->tris.reserve(3 * NT);
+    if (cells) this->cells.reserve(NT);
+    if (keys) this->keys.reserve(8 * NT);
+    return Out{ this->points.p, this->edgeIds.p, normals ? this->normals.p : nullptr, colors ? this->colors.p : nullptr,
+      this->tris.p, cells ? this->cells.p : nullptr, keys ? this->keys.p : nullptr };
+  }
+};
+
 struct MarchingCubesCudaState
 {
   std::mutex lock;
@@ -76,20 +106,46 @@ struct MarchingCubesCudaState
   Buffer<std::uint8_t> masks, cases;
   Buffer<unsigned int> vcount, vfirst, tcount, tfirst;
   Buffer<unsigned char> scratch;
-  // output
-  Buffer<float> points, normals;
-  Buffer<unsigned long long> edgeIds;
-  Buffer<Rgba> colors;
-  Buffer<unsigned int> tris;
-  Buffer<long long> cells;
-  Buffer<ColorKey> keys;
+  // output (set 0 also serves the one-chunk path)
+  MarchingCubesOutBuffers out[2];
+  // the streamed pipeline: kernels on `compute`, copies to the host on `copy`
+  cudaStream_t compute = nullptr, copy = nullptr;
+  cudaEvent_t generated[2] = { nullptr, nullptr }, copied[2] = { nullptr, nullptr };
+  bool copyPending[2] = { false, false };
+  /// extractChunks/extractAll on the GPU pack here first (page-locked, reused).
+  PackedChunkMeshes staging;
 
-  void scan(const unsigned int* in, unsigned int* out, long long n)
+  void ensureStreams()
+  {
+    if (compute) return;
+    LVDIF_CUDA_CHECK(cudaStreamCreateWithFlags(&compute, cudaStreamNonBlocking));
+    LVDIF_CUDA_CHECK(cudaStreamCreateWithFlags(&copy, cudaStreamNonBlocking));
+    for (int i = 0; i < 2; ++i)
+    {
+      LVDIF_CUDA_CHECK(cudaEventCreateWithFlags(&generated[i], cudaEventDisableTiming));
+      LVDIF_CUDA_CHECK(cudaEventCreateWithFlags(&copied[i], cudaEventDisableTiming));
+    }
+  }
+  ~MarchingCubesCudaState()
+  {
+    // no checks: the device may already be shutting down
+    if (compute) cudaStreamSynchronize(compute);
+    if (copy) cudaStreamSynchronize(copy);
+    for (int i = 0; i < 2; ++i)
+    {
+      if (generated[i]) cudaEventDestroy(generated[i]);
+      if (copied[i]) cudaEventDestroy(copied[i]);
+    }
+    if (compute) cudaStreamDestroy(compute);
+    if (copy) cudaStreamDestroy(copy);
+  }
+
+  void scan(const unsigned int* in, unsigned int* out, long long n, cudaStream_t stream = nullptr)
   {
     std::size_t bytes = 0;
-    LVDIF_CUDA_CHECK(cub::DeviceScan::ExclusiveSum(nullptr, bytes, in, out, static_cast<int>(n)));
+    LVDIF_CUDA_CHECK(cub::DeviceScan::ExclusiveSum(nullptr, bytes, in, out, static_cast<int>(n), stream));
     scratch.reserve(bytes);
-    LVDIF_CUDA_CHECK(cub::DeviceScan::ExclusiveSum(scratch.p, bytes, in, out, static_cast<int>(n)));
+    LVDIF_CUDA_CHECK(cub::DeviceScan::ExclusiveSum(scratch.p, bytes, in, out, static_cast<int>(n), stream));
   }
 };
 
@@ -203,14 +259,10 @@ std::vector<ChunkMesh> runBatch(const ChunkedMarchingCubes::Impl& impl, Marching
   if (NT == 0) return out;
   const bool normals = boxes[0].normals, colors = boxes[0].colors != nullptr, cells = boxes[0].cells,
              keys = boxes[0].keys != nullptr;
-  S.points.reserve(3 * NV);
-  S.edgeIds.reserve(NV);
-  if (normals) S.normals.reserve(3 * NV);
-  if (colors) S.colors.reserve(NV);
-  S.tris.reserve(3 * NT);
-  if (cells) S.cells.reserve(NT);
-  if (keys) S.keys.reserve(8 * NT);
-  const Out o{ S.points.p, S.edgeIds.p, S.normals.p, S.colors.p, S.tris.p, S.cells.p, S.keys.p };
+  if (S.copyPending[0]) LVDIF_CUDA_CHECK(cudaEventSynchronize(S.copied[0]));
+  S.copyPending[0] = false;
+  MarchingCubesOutBuffers& ob = S.out[0];
+  const Out o = ob.reserve(NV, NT, normals, colors, cells, keys);
   mccuda::generateVertices<<<dim3(blocks(maxP), n), 256>>>(S.boxes.p, S.pBase.p, S.masks.p, S.vfirst.p, o);
   LVDIF_CUDA_CHECK(cudaGetLastError());
   mccuda::generateTriangles<<<dim3(blocks(maxC), n), 256>>>(
@@ -224,13 +276,13 @@ std::vector<ChunkMesh> runBatch(const ChunkedMarchingCubes::Impl& impl, Marching
   std::vector<std::array<std::uint32_t, 3>> tri;
   std::vector<std::int64_t> tcell;
   std::vector<std::array<ColorKey, 8>> tkeys;
-  download(pts, S.points.p, NV);
-  download(eids, S.edgeIds.p, NV);
-  download(tri, S.tris.p, NT);
-  if (normals) download(nrm, S.normals.p, NV);
-  if (colors) download(col, S.colors.p, NV);
-  if (cells) download(tcell, S.cells.p, NT);
-  if (keys) download(tkeys, S.keys.p, NT);
+  download(pts, ob.points.p, NV);
+  download(eids, ob.edgeIds.p, NV);
+  download(tri, ob.tris.p, NT);
+  if (normals) download(nrm, ob.normals.p, NV);
+  if (colors) download(col, ob.colors.p, NV);
+  if (cells) download(tcell, ob.cells.p, NT);
+  if (keys) download(tkeys, ob.keys.p, NT);
 #pragma omp parallel for schedule(dynamic, 4)
   for (int i = 0; i < n; ++i)
   {
@@ -299,55 +351,223 @@ ChunkMesh meshChunkCuda(const ChunkedMarchingCubes::Impl& impl, const ChunkedMar
   return std::move(runBatch(impl, S, { b }, { in.chunkId })[0]);
 }
 
+std::shared_ptr<std::uint8_t> allocatePageLocked(std::size_t bytes)
+{
+  void* p = nullptr;
+  LVDIF_CUDA_CHECK(cudaHostAlloc(&p, bytes, cudaHostAllocDefault));
+  return std::shared_ptr<std::uint8_t>(static_cast<std::uint8_t*>(p), [](std::uint8_t* q) { cudaFreeHost(q); });
+}
+
+namespace
+{
+/// The streamed pipeline (S.lock held). Per batch: upload its boxes, classify,
+/// scan and read back the per-chunk bases (the one synchronization: the host
+/// needs the batch's sizes), then generate into output set `slot` on the
+/// compute stream while the copy stream is still copying the previous batch's
+/// set into the page-locked block; the set is reused only after its copy ended.
+void packLocked(const ChunkedMarchingCubes::Impl& impl, MarchingCubesCudaState& S, const std::vector<std::int64_t>& ids,
+  PackedChunkMeshes& out, Interrupter& interrupter)
+{
+  S.ensureStreams();
+  const Box common = commonBox(impl);
+  const bool normals = common.normals, colors = impl.wantsColors(), cells = common.cells;
+  const std::size_t N = ids.size();
+  out.chunkIds = ids;
+  out.chunkCoords.resize(N);
+  out.chunkCells.resize(N);
+  out.vertexStart.assign(N + 1, 0);
+  out.triangleStart.assign(N + 1, 0);
+  if (!out.storage || out.storage.use_count() > 1) out.storage = std::make_shared<PackedChunkMeshes::Storage>();
+  PackedChunkMeshes::Storage& st = *out.storage;
+  if (N > 0) ensureGrid(impl, S);
+  long long totalPoints = 0;
+  std::vector<Box> all(N);
+  for (std::size_t i = 0; i < N; ++i)
+  {
+    require(ids[i] >= 0 && ids[i] < impl.Total, "marching cubes: chunk id " + std::to_string(ids[i]) + " out of range");
+    out.chunkCoords[i] = impl.globalCoord(ids[i]);
+    out.chunkCells[i] = impl.cells(ids[i]);
+    Box b = common;
+    b.values = S.grid.p;
+    b.colors = colors ? S.gridColors.p : nullptr;
+    for (int a = 0; a < 3; ++a) b.size[a] = impl.Dims[a];
+    setCells(b, out.chunkCells[i]);
+    all[i] = b;
+    totalPoints += (b.ex + 1) * (b.ey + 1) * (b.ez + 1);
+  }
+  // test hook: smaller batches exercise the double buffering and the block's growth
+  long long batchPoints = BatchPoints;
+  if (const char* e = std::getenv("LVDIF_MC_BATCH_POINTS")) batchPoints = std::max(1ll, std::atoll(e));
+  std::uint64_t V = 0, T = 0;
+  long long pointsDone = 0;
+  int slot = 0;
+  std::vector<long long> pb, cb;
+  std::vector<unsigned int> vb, tb;
+  for (std::size_t first = 0; first < N;)
+  {
+    interrupter.checkInterrupt();
+    // the batch: up to BatchPoints points and BatchChunks chunks
+    std::size_t last = first;
+    long long P = 0, C = 0, maxP = 1, maxC = 1;
+    pb.assign(1, 0);
+    cb.assign(1, 0);
+    while (last < N && static_cast<int>(last - first) < BatchChunks)
+    {
+      const Box& b = all[last];
+      const long long np = (b.ex + 1) * (b.ey + 1) * (b.ez + 1), nc = b.ex * b.ey * b.ez;
+      if (last > first && P + np > batchPoints) break;
+      P += np;
+      C += nc;
+      maxP = std::max(maxP, np);
+      maxC = std::max(maxC, nc);
+      pb.push_back(P);
+      cb.push_back(C);
+      ++last;
+    }
+    const int n = static_cast<int>(last - first);
+    S.boxes.reserve(n);
+    S.pBase.reserve(n + 1);
+    S.cBase.reserve(n + 1);
+    S.vBase.reserve(n + 1);
+    S.tBase.reserve(n + 1);
+    S.masks.reserve(P);
+    S.vcount.reserve(P + 1);
+    S.vfirst.reserve(P + 1);
+    S.cases.reserve(C);
+    S.tcount.reserve(C + 1);
+    S.tfirst.reserve(C + 1);
+    cudaStream_t cs = S.compute;
+    LVDIF_CUDA_CHECK(cudaMemcpyAsync(S.boxes.p, all.data() + first, n * sizeof(Box), cudaMemcpyHostToDevice, cs));
+    LVDIF_CUDA_CHECK(cudaMemcpyAsync(S.pBase.p, pb.data(), (n + 1) * sizeof(long long), cudaMemcpyHostToDevice, cs));
+    LVDIF_CUDA_CHECK(cudaMemcpyAsync(S.cBase.p, cb.data(), (n + 1) * sizeof(long long), cudaMemcpyHostToDevice, cs));
+    LVDIF_CUDA_CHECK(cudaMemsetAsync(S.vcount.p + P, 0, sizeof(unsigned int), cs));
+    LVDIF_CUDA_CHECK(cudaMemsetAsync(S.tcount.p + C, 0, sizeof(unsigned int), cs));
+    mccuda::classifyPoints<<<dim3(blocks(maxP), n), 256, 0, cs>>>(S.boxes.p, S.pBase.p, S.masks.p, S.vcount.p);
+    LVDIF_CUDA_CHECK(cudaGetLastError());
+    mccuda::classifyCells<<<dim3(blocks(maxC), n), 256, 0, cs>>>(S.boxes.p, S.cBase.p, S.cases.p, S.tcount.p);
+    LVDIF_CUDA_CHECK(cudaGetLastError());
+    S.scan(S.vcount.p, S.vfirst.p, P + 1, cs);
+    S.scan(S.tcount.p, S.tfirst.p, C + 1, cs);
+    mccuda::chunkBases<<<blocks(n + 1), 256, 0, cs>>>(S.pBase.p, S.cBase.p, S.vfirst.p, S.tfirst.p, S.vBase.p, S.tBase.p, n);
+    LVDIF_CUDA_CHECK(cudaGetLastError());
+    vb.resize(n + 1);
+    tb.resize(n + 1);
+    LVDIF_CUDA_CHECK(cudaMemcpyAsync(vb.data(), S.vBase.p, (n + 1) * sizeof(unsigned int), cudaMemcpyDeviceToHost, cs));
+    LVDIF_CUDA_CHECK(cudaMemcpyAsync(tb.data(), S.tBase.p, (n + 1) * sizeof(unsigned int), cudaMemcpyDeviceToHost, cs));
+    LVDIF_CUDA_CHECK(cudaStreamSynchronize(cs));
+    const std::uint64_t NV = vb[n], NT = tb[n];
+    for (int i = 0; i < n; ++i)
+    {
+      out.vertexStart[first + i] = V + vb[i];
+      out.triangleStart[first + i] = T + tb[i];
+    }
+    pointsDone += P;
+    if (NT > 0)
+    {
+      if (V + NV > st.vcap || T + NT > st.tcap || !st.block || !st.pinned || st.normalsOn != normals ||
+        st.colorsOn != colors || st.cellsOn != cells || st.keysOn)
+      {
+        // grow the page-locked block: wait for the copies into it, estimate the total from the share done
+        LVDIF_CUDA_CHECK(cudaStreamSynchronize(S.copy));
+        const double scale = static_cast<double>(totalPoints) / static_cast<double>(pointsDone) * 1.1;
+        st.reserve(static_cast<std::uint64_t>((V + NV) * scale) + 1, static_cast<std::uint64_t>((T + NT) * scale) + 1,
+          V, T, true, normals, colors, cells, false);
+      }
+      if (S.copyPending[slot]) LVDIF_CUDA_CHECK(cudaEventSynchronize(S.copied[slot]));
+      S.copyPending[slot] = false;
+      const Out o = S.out[slot].reserve(NV, NT, normals, colors, cells, false);
+      mccuda::generateVertices<<<dim3(blocks(maxP), n), 256, 0, cs>>>(S.boxes.p, S.pBase.p, S.masks.p, S.vfirst.p, o);
+      LVDIF_CUDA_CHECK(cudaGetLastError());
+      mccuda::generateTriangles<<<dim3(blocks(maxC), n), 256, 0, cs>>>(
+        S.boxes.p, S.pBase.p, S.cBase.p, S.vBase.p, S.cases.p, S.tfirst.p, S.masks.p, S.vfirst.p, o);
+      LVDIF_CUDA_CHECK(cudaGetLastError());
+      LVDIF_CUDA_CHECK(cudaEventRecord(S.generated[slot], cs));
+      cudaStream_t cp = S.copy;
+      LVDIF_CUDA_CHECK(cudaStreamWaitEvent(cp, S.generated[slot], 0));
+      auto get = [&](void* dst, const void* src, std::size_t bytes) {
+        LVDIF_CUDA_CHECK(cudaMemcpyAsync(dst, src, bytes, cudaMemcpyDeviceToHost, cp));
+      };
+      get(st.points + V, o.points, NV * sizeof(Vec3f));
+      get(st.edgeIds + V, o.edgeIds, NV * sizeof(std::uint64_t));
+      if (normals) get(st.normals + V, o.normals, NV * sizeof(Vec3f));
+      if (colors) get(st.colors + V, o.colors, NV * sizeof(Rgba));
+      get(st.tris + T, o.tris, NT * 3 * sizeof(unsigned int));
+      if (cells) get(st.cells + T, o.cells, NT * sizeof(long long));
+      LVDIF_CUDA_CHECK(cudaEventRecord(S.copied[slot], cp));
+      S.copyPending[slot] = true;
+      slot ^= 1;
+    }
+    V += NV;
+    T += NT;
+    first = last;
+    interrupter.progress(static_cast<double>(pointsDone) / static_cast<double>(std::max(totalPoints, 1ll)));
+  }
+  LVDIF_CUDA_CHECK(cudaStreamSynchronize(S.copy));
+  S.copyPending[0] = S.copyPending[1] = false;
+  out.vertexStart[N] = V;
+  out.triangleStart[N] = T;
+  // drop the chunks without triangles (their ranges are empty)
+  std::size_t k = 0;
+  for (std::size_t i = 0; i < N; ++i)
+  {
+    if (out.triangleStart[i + 1] == out.triangleStart[i]) continue;
+    out.chunkIds[k] = out.chunkIds[i];
+    out.chunkCoords[k] = out.chunkCoords[i];
+    out.chunkCells[k] = out.chunkCells[i];
+    out.vertexStart[k] = out.vertexStart[i];
+    out.triangleStart[k] = out.triangleStart[i];
+    ++k;
+  }
+  out.chunkIds.resize(k);
+  out.chunkCoords.resize(k);
+  out.chunkCells.resize(k);
+  out.vertexStart[k] = V;
+  out.triangleStart[k] = T;
+  out.vertexStart.resize(k + 1);
+  out.triangleStart.resize(k + 1);
+}
+} // namespace
+
+void packChunksCuda(const ChunkedMarchingCubes::Impl& impl, const std::vector<std::int64_t>& ids,
+  PackedChunkMeshes& out, Interrupter& interrupter)
+{
+  MarchingCubesCudaState& S = *impl.Cuda;
+  std::lock_guard<std::mutex> guard(S.lock);
+  packLocked(impl, S, ids, out, interrupter);
+}
+
 std::vector<ChunkMesh> meshChunksCuda(const ChunkedMarchingCubes::Impl& impl, const std::vector<std::int64_t>& ids,
   Interrupter& interrupter)
 {
   MarchingCubesCudaState& S = *impl.Cuda;
   std::lock_guard<std::mutex> guard(S.lock);
+  std::vector<std::int64_t> work;
+  for (std::int64_t id : ids)
+  {
+    require(id >= 0 && id < impl.Total, "marching cubes: chunk id " + std::to_string(id) + " out of range");
+    if (!impl.empty(id)) work.push_back(id);
+  }
+  std::sort(work.begin(), work.end());
+  work.erase(std::unique(work.begin(), work.end()), work.end());
+  PackedChunkMeshes& pk = S.staging;
+  packLocked(impl, S, work, pk, interrupter);
+  // split into per-chunk vectors (pk.chunkIds is increasing)
   std::vector<ChunkMesh> out(ids.size());
-  std::vector<std::size_t> where;
-  std::vector<std::int64_t> batchIds;
-  std::vector<Box> batch;
-  long long points = 0;
-  Box common = commonBox(impl);
-  auto flush = [&] {
-    if (batch.empty()) return;
-    interrupter.checkInterrupt();
-    std::vector<ChunkMesh> meshes = runBatch(impl, S, batch, batchIds);
-    for (std::size_t k = 0; k < meshes.size(); ++k) out[where[k]] = std::move(meshes[k]);
-    batch.clear();
-    batchIds.clear();
-    where.clear();
-    points = 0;
-  };
-  for (std::size_t i = 0; i < ids.size(); ++i)
+  const std::int64_t n = static_cast<std::int64_t>(ids.size());
+#pragma omp parallel for schedule(dynamic, 4)
+  for (std::int64_t i = 0; i < n; ++i)
   {
     const std::int64_t id = ids[i];
-    require(id >= 0 && id < impl.Total, "marching cubes: chunk id " + std::to_string(id) + " out of range");
-    if (impl.empty(id))
+    const auto it = std::lower_bound(pk.chunkIds.begin(), pk.chunkIds.end(), id);
+    if (it != pk.chunkIds.end() && *it == id)
     {
-      out[i].chunkId = id;
-      out[i].chunkCoord = impl.globalCoord(id);
-      out[i].cells = impl.cells(id);
+      out[i] = pk.chunk(static_cast<std::size_t>(it - pk.chunkIds.begin()));
       continue;
     }
-    if (S.hostGrid != impl.Grid.data)
-    {
-      ensureGrid(impl, S);
-    }
-    Box b = common;
-    b.values = S.grid.p;
-    b.colors = impl.wantsColors() ? S.gridColors.p : nullptr;
-    for (int a = 0; a < 3; ++a) b.size[a] = impl.Dims[a];
-    setCells(b, impl.cells(id));
-    const long long np = (b.ex + 1) * (b.ey + 1) * (b.ez + 1);
-    if (!batch.empty() && (points + np > BatchPoints || static_cast<int>(batch.size()) == BatchChunks)) flush();
-    batch.push_back(b);
-    batchIds.push_back(id);
-    where.push_back(i);
-    points += np;
+    out[i].chunkId = id;
+    out[i].chunkCoord = impl.globalCoord(id);
+    out[i].cells = impl.cells(id);
   }
-  flush();
   return out;
 }
 

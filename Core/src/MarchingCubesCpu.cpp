@@ -23,7 +23,11 @@ struct Sweep
   ChunkMesh& out;
   bool normals;
   const float* values;
-  const Rgba* colors; // null without colours
+  const Rgba* colors;      // decoded colours, or null
+  const ColorKey* keys;    // with palette: colour = palette[key] (dictionary volume on the CPU)
+  const Rgba* palette;
+
+  Rgba colorAt(std::int64_t l) const { return colors ? colors[l] : palette[keys[l]]; }
 
   float value(std::int64_t x, std::int64_t y, std::int64_t z) const { return values[in.local(x, y, z)]; }
 
@@ -74,9 +78,9 @@ struct Sweep
       mc::normalize(nrm[0], nrm[1], nrm[2]);
       out.normals.push_back(nrm);
     }
-    if (colors)
+    if (colors || palette)
     {
-      const Rgba c0 = colors[in.local(x, y, z)], c1 = colors[in.local(q[0], q[1], q[2])];
+      const Rgba c0 = colorAt(in.local(x, y, z)), c1 = colorAt(in.local(q[0], q[1], q[2]));
       out.colors.push_back(Rgba{ mc::lerpChannel(c0.r, c1.r, t), mc::lerpChannel(c0.g, c1.g, t),
         mc::lerpChannel(c0.b, c1.b, t), mc::lerpChannel(c0.a, c1.a, t) });
     }
@@ -119,8 +123,10 @@ ChunkMesh meshChunkCpu(const ChunkedMarchingCubes::Impl& impl, const ChunkedMarc
   out.chunkId = in.chunkId;
   out.chunkCoord = impl.globalCoord(in.chunkId);
   out.cells = in.cells;
-  Sweep s{ impl, in, out, impl.Options.computeNormals, in.valueData(), in.colorData() };
-  const bool keys = !in.colorKeys.empty();
+  const bool keyed = !in.palette.empty() && !in.colorKeys.empty();
+  Sweep s{ impl, in, out, impl.Options.computeNormals, in.valueData(), in.colorData(),
+    keyed ? in.colorKeys.data() : nullptr, keyed ? in.palette.data() : nullptr };
+  const bool keys = impl.wantsCornerColors() && !in.colorKeys.empty();
   const bool cells = impl.wantsTriangleCells();
   const float iso = impl.Options.isoValue;
   const VoxelBox& c = in.cells;

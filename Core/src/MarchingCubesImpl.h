@@ -57,6 +57,33 @@ public:
   bool wantsTriangleCells() const { return Options.cornerColors; }
 };
 
+/// The block behind PackedChunkMeshes: one allocation holding every array.
+struct PackedChunkMeshes::Storage
+{
+  std::shared_ptr<std::uint8_t> block;
+  bool pinned = false;
+  bool normalsOn = false, colorsOn = false, cellsOn = false, keysOn = false;
+  std::uint64_t vcap = 0, tcap = 0;
+  Vec3f* points = nullptr;
+  std::uint64_t* edgeIds = nullptr;
+  Vec3f* normals = nullptr;
+  Rgba* colors = nullptr;
+  std::array<std::uint32_t, 3>* tris = nullptr;
+  std::int64_t* cells = nullptr;
+  std::array<ColorKey, 8>* keys = nullptr;
+  /// Room for v vertices and t triangles with these arrays; the first keepV
+  /// vertices and keepT triangles survive a reallocation (same flags only).
+  void reserve(std::uint64_t v, std::uint64_t t, std::uint64_t keepV, std::uint64_t keepT, bool pageLocked,
+    bool normals, bool colors, bool cells, bool keys);
+};
+
+/// Page-locked host memory (CUDA builds; the nocuda stub throws).
+std::shared_ptr<std::uint8_t> allocatePageLocked(std::size_t bytes);
+
+/// Fills `out` from chunk meshes (the CPU path of extractAllPacked).
+void packChunkMeshes(const ChunkedMarchingCubes::Impl& impl, const std::vector<ChunkMesh>& meshes,
+  PackedChunkMeshes& out);
+
 /// The CPU kernel: meshes one gathered chunk.
 ChunkMesh meshChunkCpu(const ChunkedMarchingCubes::Impl& impl, const ChunkedMarchingCubes::ChunkInput& in);
 
@@ -70,6 +97,11 @@ ChunkMesh meshChunkCuda(const ChunkedMarchingCubes::Impl& impl, const ChunkedMar
 /// copy back per batch instead of per chunk). One result per id, in order.
 std::vector<ChunkMesh> meshChunksCuda(const ChunkedMarchingCubes::Impl& impl, const std::vector<std::int64_t>& ids,
   Interrupter& interrupter);
+/// Float grids: meshes the given (non-empty) chunks into `out` with the
+/// streamed pipeline (compute on one stream, copies into the page-locked block
+/// on another). Chunks that turn out to have no triangles are dropped.
+void packChunksCuda(const ChunkedMarchingCubes::Impl& impl, const std::vector<std::int64_t>& ids,
+  PackedChunkMeshes& out, Interrupter& interrupter);
 /// Forgets the float grid's device copy (the grid changed: re-uploaded at the next call).
 void dropMarchingCubesCudaGrid(MarchingCubesCudaState& state);
 

@@ -4,6 +4,10 @@
 
 #include "lvdif/Error.h"
 
+#include <omp.h>
+
+#include <algorithm>
+
 namespace lvdif
 {
 
@@ -85,46 +89,74 @@ void MarchingCubesWorker::shutdown()
 
 void MarchingCubesWorker::run()
 {
+  // Takes up to one chunk per OpenMP thread at a time: each is gathered under
+  // the source lock (a snapshot, as before), then the batch is meshed in
+  // parallel without the lock. A GPU mesher serializes on the device anyway.
+  const int width = this->Mesher.options().device == Device::Cuda ? 1 : std::max(1, omp_get_max_threads());
+  std::vector<std::int64_t> ids;
+  // one reusable input per slot (no allocation per chunk once warm)
+  std::vector<ChunkedMarchingCubes::ChunkInput> inputs(static_cast<std::size_t>(width));
+  std::vector<char> has(static_cast<std::size_t>(width));
   for (;;)
   {
-    std::int64_t id;
+    ids.clear();
     {
       std::unique_lock<std::mutex> lock(this->QueueMutex);
       this->Wake.wait(lock, [this] { return this->Stop || !this->Queue.empty(); });
       if (this->Stop) return;
-      id = this->Queue.front();
-      this->Queue.pop_front();
-      this->Queued[id] = 0; // a request from now on means "mesh it again"
-      ++this->InFlight;
+      while (!this->Queue.empty() && static_cast<int>(ids.size()) < width)
+      {
+        const std::int64_t id = this->Queue.front();
+        this->Queue.pop_front();
+        this->Queued[id] = 0; // a request from now on means "mesh it again"
+        ids.push_back(id);
+      }
+      this->InFlight += static_cast<int>(ids.size());
     }
-    ChunkMesh mesh;
-    bool ok = true;
-    try
+    const int n = static_cast<int>(ids.size());
+    std::vector<ChunkMesh> meshes(static_cast<std::size_t>(n));
+    std::vector<char> ok(static_cast<std::size_t>(n), 1);
     {
-      std::unique_ptr<ChunkedMarchingCubes::ChunkInput> input;
+      std::lock_guard<std::mutex> source(this->SourceMutex);
+      for (int i = 0; i < n; ++i)
       {
-        std::lock_guard<std::mutex> source(this->SourceMutex);
-        input = this->Mesher.gather(id);
-      }
-      if (input)
-      {
-        mesh = this->Mesher.mesh(*input);
-      }
-      else
-      {
-        mesh.chunkId = id;
-        mesh.chunkCoord = this->Mesher.chunkCoord(id);
-        mesh.cells = this->Mesher.chunkCells(id);
+        try
+        {
+          has[i] = this->Mesher.gather(ids[i], inputs[i]);
+        }
+        catch (const Error&)
+        {
+          ok[i] = 0; // out of memory for one chunk: leave its previous mesh in place
+        }
       }
     }
-    catch (const Error&)
+#pragma omp parallel for schedule(dynamic, 1) num_threads(n) if (n > 1)
+    for (int i = 0; i < n; ++i)
     {
-      ok = false; // out of memory for one chunk: leave its previous mesh in place
+      if (!ok[i]) continue;
+      try
+      {
+        if (has[i])
+        {
+          meshes[i] = this->Mesher.mesh(inputs[i]);
+        }
+        else
+        {
+          meshes[i].chunkId = ids[i];
+          meshes[i].chunkCoord = this->Mesher.chunkCoord(ids[i]);
+          meshes[i].cells = this->Mesher.chunkCells(ids[i]);
+        }
+      }
+      catch (const Error&)
+      {
+        ok[i] = 0;
+      }
     }
     {
       std::lock_guard<std::mutex> lock(this->QueueMutex);
-      if (ok) this->Done.push_back(std::move(mesh));
-      --this->InFlight;
+      for (int i = 0; i < n; ++i)
+        if (ok[i]) this->Done.push_back(std::move(meshes[i]));
+      this->InFlight -= n;
       if (this->Queue.empty() && this->InFlight == 0) this->Idle.notify_all();
     }
   }

@@ -287,3 +287,87 @@ TEST(MarchingCubes, RejectsBadOptions)
   g.geometry.dims = { 4, 1, 1 };
   EXPECT_THROW(ChunkedMarchingCubes(g, nullptr, withEdge(16)), Error);
 }
+
+TEST(MarchingCubes, PackedEqualsChunkMeshes)
+{
+  VolumeOptions vo;
+  vo.dims = { 61, 57, 66 };
+  vo.chunkEdge = 16;
+  DictionaryVolume vol(vo);
+  fillFromFunction(vol, sphereSdf(30.2, 28.7, 33.1, 21.4));
+  MarchingCubesOptions o;
+  o.chunkEdge = 24;
+  ChunkedMarchingCubes mc(vol, o);
+  const auto meshes = mc.extractAll();
+  PackedChunkMeshes p;
+  mc.extractAllPacked(p);
+  ASSERT_EQ(p.chunkCount(), meshes.size());
+  ASSERT_GT(meshes.size(), 4u);
+  EXPECT_FALSE(p.pageLocked());
+  const PackedChunkMeshes copy = p; // shares the block; the next extraction must not overwrite it
+  mc.extractAllPacked(p);
+  for (const PackedChunkMeshes* q : { static_cast<const PackedChunkMeshes*>(&p), &copy })
+    for (std::size_t i = 0; i < meshes.size(); ++i)
+    {
+      const ChunkMesh c = q->chunk(i);
+      const ChunkMesh& m = meshes[i];
+      EXPECT_EQ(c.chunkId, m.chunkId);
+      EXPECT_EQ(c.chunkCoord, m.chunkCoord);
+      EXPECT_EQ(c.points, m.points);
+      EXPECT_EQ(c.edgeIds, m.edgeIds);
+      EXPECT_EQ(c.normals, m.normals);
+      EXPECT_TRUE(c.colors == m.colors);
+      EXPECT_EQ(c.triangles, m.triangles);
+      EXPECT_EQ(c.triangleCells, m.triangleCells);
+      EXPECT_EQ(c.cornerColors, m.cornerColors);
+    }
+  EXPECT_NE(p.points(), copy.points());
+}
+
+TEST(MarchingCubes, DictionaryVolumeEqualsItsDecodedFloatGrid)
+{
+  // the dictionary path skips decoding storage chunks whose neighbourhood is on
+  // one side of iso; the float grid path reads every value: same meshes
+  VolumeOptions vo;
+  vo.dims = { 100, 90, 84 };
+  vo.chunkEdge = 16;
+  vo.bandWidth = 6;
+  DictionaryVolume vol(vo);
+  fillFromFunction(vol, sphereSdf(49.5, 44.2, 41.7, 33.3));
+  const ColorKey green = vol.colors().add(Rgba{ 0, 250, 10, 255 });
+  for (std::int64_t z = 20; z < 60; ++z)
+    for (std::int64_t y = 0; y < 90; ++y)
+      for (std::int64_t x = 50; x < 100; ++x) vol.set(x, y, z, Voxel{ vol.get(x, y, z).sdf, green });
+  std::vector<float> values(static_cast<std::size_t>(100 * 90 * 84));
+  std::vector<Rgba> colors(values.size());
+  for (std::int64_t z = 0; z < 84; ++z)
+    for (std::int64_t y = 0; y < 90; ++y)
+      for (std::int64_t x = 0; x < 100; ++x)
+      {
+        const Voxel v = vol.get(x, y, z);
+        values[x + 100 * (y + 90 * z)] = vol.decode(v.sdf);
+        colors[x + 100 * (y + 90 * z)] = vol.colors().colors()[v.color];
+      }
+  FloatGridView g;
+  g.data = values.data();
+  g.geometry.dims = vol.dims();
+  for (float iso : { 0.0f, -2.5f, 3.25f })
+  {
+    MarchingCubesOptions o;
+    o.chunkEdge = 24;
+    o.isoValue = iso;
+    ChunkedMarchingCubes a(vol, o), b(g, colors.data(), o);
+    const auto ma = a.extractAll(), mb = b.extractAll();
+    ASSERT_EQ(ma.size(), mb.size());
+    ASSERT_GT(ma.size(), 10u);
+    for (std::size_t i = 0; i < ma.size(); ++i)
+    {
+      EXPECT_EQ(ma[i].chunkId, mb[i].chunkId);
+      EXPECT_EQ(ma[i].points, mb[i].points);
+      EXPECT_EQ(ma[i].normals, mb[i].normals);
+      EXPECT_TRUE(ma[i].colors == mb[i].colors);
+      EXPECT_EQ(ma[i].triangles, mb[i].triangles);
+      EXPECT_EQ(ma[i].triangleCells, mb[i].triangleCells);
+    }
+  }
+}

@@ -216,3 +216,54 @@ TEST(MarchingCubesCuda, BatchOfChunksInAnyOrderWithEmptyOnesEqualsCpu)
     if (!c.empty()) break;
   }
 }
+
+TEST(MarchingCubesCuda, PackedPipelineEqualsCpuOverManyBatches)
+{
+  if (!haveDevice()) GTEST_SKIP() << "no CUDA device";
+  const std::int64_t n = 90;
+  std::vector<float> values(static_cast<std::size_t>(n * n * n));
+  std::vector<Rgba> colors(values.size());
+  for (std::int64_t z = 0; z < n; ++z)
+    for (std::int64_t y = 0; y < n; ++y)
+      for (std::int64_t x = 0; x < n; ++x)
+      {
+        const std::int64_t i = x + n * (y + n * z);
+        values[i] =
+          static_cast<float>(std::sqrt((x - 44.4) * (x - 44.4) + (y - 41.1) * (y - 41.1) + (z - 46.8) * (z - 46.8)) - 31.6);
+        colors[i] = Rgba{ static_cast<std::uint8_t>(x), static_cast<std::uint8_t>(2 * y), 9, 255 };
+      }
+  FloatGridView g;
+  g.data = values.data();
+  g.geometry.dims = { n, n, n };
+  MarchingCubesOptions o;
+  o.chunkEdge = 16;
+  o.device = Device::Cpu;
+  ChunkedMarchingCubes cpu(g, colors.data(), o);
+  o.device = Device::Cuda;
+  ChunkedMarchingCubes gpu(g, colors.data(), o);
+  const auto a = cpu.extractAll();
+  // batches of ~4 chunks: many batches, both output sets, the block grows on the way
+  setenv("LVDIF_MC_BATCH_POINTS", "20000", 1);
+  PackedChunkMeshes packed;
+  gpu.extractAllPacked(packed);
+  EXPECT_TRUE(packed.pageLocked());
+  const Vec3f* block = packed.points();
+  for (int pass = 0; pass < 2; ++pass)
+  {
+    ASSERT_EQ(packed.chunkCount(), a.size());
+    std::vector<ChunkMesh> b;
+    std::uint64_t tris = 0;
+    for (std::size_t i = 0; i < packed.chunkCount(); ++i)
+    {
+      b.push_back(packed.chunk(i));
+      tris += b.back().triangles.size();
+    }
+    EXPECT_EQ(tris, packed.triangleCount());
+    expectSame(a, b);
+    gpu.extractAllPacked(packed); // second pass: the same block, reused
+    EXPECT_EQ(packed.points(), block);
+  }
+  // the split path (extractAll) over many batches too
+  expectSame(a, gpu.extractAll());
+  unsetenv("LVDIF_MC_BATCH_POINTS");
+}

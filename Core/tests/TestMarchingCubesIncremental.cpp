@@ -4,6 +4,7 @@
 #include "MarchingCubesTestUtil.h"
 
 #include "lvdif/AnalyticFill.h"
+#include "lvdif/Brush.h"
 #include "lvdif/ChunkedMarchingCubes.h"
 #include "lvdif/MarchingCubesWorker.h"
 
@@ -102,6 +103,48 @@ TEST(MarchingCubesIncremental, DirtyChunksRemeshedEqualFullExtraction)
       EXPECT_EQ(topo.nonManifoldEdges, 0u);
     }
   }
+}
+
+TEST(MarchingCubesIncremental, BrushChangedBoxRemeshEqualsFullExtraction)
+{
+  // brushes (add, subtract, paint, smooth) report changedBox; re-meshing only
+  // chunksAffectedBy(changedBox) must give every chunk mesh of a full extraction
+  VolumeOptions vo;
+  vo.dims = { 90, 84, 80 };
+  vo.chunkEdge = 16;
+  vo.bandWidth = 5;
+  DictionaryVolume vol(vo);
+  fillFromFunction(vol, sphereSdf(44, 41, 39, 24));
+  MarchingCubesOptions o;
+  o.chunkEdge = 16;
+  ChunkedMarchingCubes mc(vol, o);
+  Store store;
+  apply(store, mc.extractAll());
+  std::mt19937 rng(23);
+  std::uniform_real_distribution<double> pos(12, 72), rad(2, 9), blend(0, 3);
+  std::size_t fewer = 0;
+  for (int round = 0; round < 12; ++round)
+  {
+    BrushSettings s;
+    s.op = static_cast<BrushOp>(round % 3);
+    s.blend = round % 2 ? blend(rng) : 0.0;
+    s.color = Rgba{ 10, static_cast<std::uint8_t>(20 * round), 200, 255 };
+    const EditResult r = applyDab(vol, Dab{ BrushShape::Sphere, { pos(rng), pos(rng), pos(rng) }, rad(rng), {} }, s);
+    const auto ids = mc.chunksAffectedBy(r.changedBox);
+    fewer += ids.size() < mc.chunksAffectedByStorageChunks(vol.takeDirtyChunks()).size();
+    apply(store, mc.extractChunks(ids));
+    const auto full = mc.extractAll();
+    ASSERT_EQ(full.size(), store.size()) << "round " << round;
+    for (const ChunkMesh& f : full)
+    {
+      const ChunkMesh& m = store.at(f.chunkId);
+      EXPECT_EQ(f.points, m.points) << "round " << round << " chunk " << f.chunkId;
+      EXPECT_EQ(f.triangles, m.triangles) << "round " << round << " chunk " << f.chunkId;
+      EXPECT_TRUE(f.colors == m.colors) << "round " << round << " chunk " << f.chunkId;
+      EXPECT_EQ(f.cornerColors, m.cornerColors) << "round " << round << " chunk " << f.chunkId;
+    }
+  }
+  EXPECT_GT(fewer, 0u); // the box is tighter than the storage chunks
 }
 
 TEST(MarchingCubesIncremental, FloatGridInvalidateThenRemesh)

@@ -175,6 +175,11 @@ struct EditResult
   std::int64_t changedVoxels = 0;
   /// Chunks with at least one changed voxel, increasing ids.
   std::vector<std::int64_t> changedChunks;
+  /// A box holding every changed voxel (empty when none changed): exact per row
+  /// of the brush loop, the whole chunk box where a chunk was filled in one go.
+  /// Feed it to ChunkedMarchingCubes::chunksAffectedBy for the exact set of
+  /// marching cubes chunks to re-mesh.
+  VoxelBox changedBox;
 };
 
 /// Applies the dabs in order (see the header comment). Adds the brush colour to the

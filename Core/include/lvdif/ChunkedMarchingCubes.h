@@ -101,6 +101,43 @@ struct ChunkMesh
   std::uint64_t memoryBytes() const;
 };
 
+/// Many chunk meshes in one set of arrays (what extractAllPacked fills): chunk
+/// i owns vertices vertexStart[i] .. vertexStart[i+1]-1 and triangles
+/// triangleStart[i] .. triangleStart[i+1]-1; triangle vertex indices are local
+/// to the chunk, as in ChunkMesh. The arrays live in one host block that is
+/// reused by the next extractAllPacked into the same object when it is large
+/// enough (on the GPU path the block is page-locked, so the device copies its
+/// results straight into it while it computes the next batch). Copyable; copies
+/// share the block, and an extraction into an object whose block is shared
+/// allocates a new one, so copies stay valid.
+class PackedChunkMeshes
+{
+public:
+  std::vector<std::int64_t> chunkIds; // increasing
+  std::vector<Index3> chunkCoords;
+  std::vector<VoxelBox> chunkCells;
+  std::vector<std::uint64_t> vertexStart{ 0 }, triangleStart{ 0 }; // chunkCount() + 1 entries
+
+  std::size_t chunkCount() const { return chunkIds.size(); }
+  std::uint64_t vertexCount() const { return vertexStart.back(); }
+  std::uint64_t triangleCount() const { return triangleStart.back(); }
+  /// Null when the array is off (see MarchingCubesOptions) or there is nothing.
+  const Vec3f* points() const;
+  const std::uint64_t* edgeIds() const;
+  const Vec3f* normals() const;
+  const Rgba* colors() const;
+  const std::array<std::uint32_t, 3>* triangles() const;
+  const std::int64_t* triangleCells() const;
+  const std::array<ColorKey, 8>* cornerColors() const;
+  /// True when the block is page-locked host memory (filled by the GPU path).
+  bool pageLocked() const;
+  /// A copy of chunk i as a ChunkMesh.
+  ChunkMesh chunk(std::size_t i) const;
+
+  struct Storage; // MarchingCubesImpl.h
+  std::shared_ptr<Storage> storage;
+};
+
 class ChunkedMarchingCubes
 {
 public:
@@ -133,6 +170,12 @@ public:
     Interrupter& interrupter = nullInterrupter()) const;
   /// Meshes every chunk; returns only the non-empty meshes, by increasing id.
   std::vector<ChunkMesh> extractAll(Interrupter& interrupter = nullInterrupter()) const;
+  /// The same meshes packed into one set of arrays (no per-chunk vectors), in
+  /// `out`, reusing its block when large enough. On the GPU with a float grid
+  /// this is the fast path: batches are computed on one stream while the
+  /// previous batch's results are copied on another straight into the
+  /// page-locked block. Elsewhere it packs extractAll()'s meshes.
+  void extractAllPacked(PackedChunkMeshes& out, Interrupter& interrupter = nullInterrupter()) const;
 
   // ---- incremental --------------------------------------------------------
   /// The chunks whose meshes can change when the given points change: cells
@@ -154,8 +197,16 @@ public:
     Index3 lo{ 0, 0, 0 };   // first point of the copied box
     Index3 size{ 0, 0, 0 }; // points per axis of the copied box
     std::vector<float> values;
-    std::vector<Rgba> colors;         // empty without colours
-    std::vector<ColorKey> colorKeys;  // empty unless corner colours (dictionary)
+    std::vector<Rgba> colors;         // empty without colours, or when given as keys + palette
+    /// Dictionary volumes: colour keys (for corner colours, and on the CPU for
+    /// the colours too: colour = palette[key], not decoded per voxel).
+    std::vector<ColorKey> colorKeys;
+    std::vector<Rgba> palette;        // copy of the colour dictionary when colours come as keys
+    /// Points of storage chunks whose neighbourhood lies on one side of iso hold
+    /// one placeholder value of that side and stale colours (never read by the mesher).
+    /// Scratch of gather() (the storage chunks' sides of iso), kept for reuse.
+    std::vector<std::int8_t> sideScratch;
+    std::vector<float> quietScratch;
     /// Instead of the copies above: the source's own float grid (and colours),
     /// lo = 0 and size = the grid's dims. extractChunk() meshes float grids
     /// this way (no copy); gather() always copies (the worker's snapshot).
@@ -171,6 +222,9 @@ public:
   /// Copies the chunk's input (the only step that reads the source: do it under
   /// the lock that guards writers). Returns null when the chunk is empty.
   std::unique_ptr<ChunkInput> gather(std::int64_t id) const;
+  /// The same into an existing input (its buffers reused: no allocation once
+  /// warm). Returns false (and leaves `into` unchanged) when the chunk is empty.
+  bool gather(std::int64_t id, ChunkInput& into) const;
   /// Meshes a gathered input (reads nothing else; any thread).
   ChunkMesh mesh(const ChunkInput& input) const;
 

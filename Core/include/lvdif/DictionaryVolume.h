@@ -59,6 +59,24 @@ struct VoxelBox
     return x >= lo[0] && x <= hi[0] && y >= lo[1] && y <= hi[1] && z >= lo[2] && z <= hi[2];
   }
   VoxelBox intersect(const VoxelBox& o) const;
+  /// The smallest box holding both (an empty box is neutral).
+  VoxelBox unite(const VoxelBox& o) const
+  {
+    if (o.empty()) return *this;
+    if (empty()) return o;
+    VoxelBox b;
+    for (int a = 0; a < 3; ++a)
+    {
+      b.lo[a] = lo[a] < o.lo[a] ? lo[a] : o.lo[a];
+      b.hi[a] = hi[a] > o.hi[a] ? hi[a] : o.hi[a];
+    }
+    return b;
+  }
+  /// Grows the box to hold the voxel (x, y, z).
+  void include(std::int64_t x, std::int64_t y, std::int64_t z)
+  {
+    *this = unite(VoxelBox{ { x, y, z }, { x, y, z } });
+  }
 };
 
 struct VolumeOptions

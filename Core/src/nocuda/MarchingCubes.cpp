@@ -20,5 +20,15 @@ std::vector<ChunkMesh> meshChunksCuda(const ChunkedMarchingCubes::Impl&, const s
   throw Error(ErrorCode::DeviceFailure, "marching cubes: this build has no CUDA");
 }
 
+void packChunksCuda(const ChunkedMarchingCubes::Impl&, const std::vector<std::int64_t>&, PackedChunkMeshes&, Interrupter&)
+{
+  throw Error(ErrorCode::DeviceFailure, "marching cubes: this build has no CUDA");
+}
+
+std::shared_ptr<std::uint8_t> allocatePageLocked(std::size_t)
+{
+  throw Error(ErrorCode::DeviceFailure, "marching cubes: this build has no CUDA (page-locked memory)");
+}
+
 void dropMarchingCubesCudaGrid(MarchingCubesCudaState&) {}
 } // namespace lvdif

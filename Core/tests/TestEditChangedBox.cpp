@@ -1,0 +1,110 @@
+// EditResult::changedBox: every voxel whose 4 bytes an edit changed (found by
+// comparing against a clone taken before the edit) lies inside the box, and
+// where no chunk is filled in one go (blend > 0, paint) the box is exactly the
+// bounding box of the changed voxels. Also through the Editor (strokes merge boxes).
+#include "EditTestUtil.h"
+
+#include "lvdif/AnalyticFill.h"
+#include "lvdif/Brush.h"
+#include "lvdif/Editor.h"
+
+#include <gtest/gtest.h>
+
+#include <random>
+
+using namespace lvdif;
+
+namespace
+{
+/// Bounding box of the voxels that differ between a and b (empty if none).
+VoxelBox differenceBox(const DictionaryVolume& a, const DictionaryVolume& b)
+{
+  VoxelBox box;
+  edittest::forEachVoxel(a, [&](std::int64_t x, std::int64_t y, std::int64_t z) {
+    if (a.get(x, y, z) != b.get(x, y, z)) box.include(x, y, z);
+  });
+  return box;
+}
+
+bool covers(const VoxelBox& outer, const VoxelBox& inner)
+{
+  if (inner.empty()) return true;
+  return !outer.empty() && outer.intersect(inner).voxelCount() == inner.voxelCount();
+}
+} // namespace
+
+TEST(EditChangedBox, CoversEveryChangedVoxel)
+{
+  DictionaryVolume vol(edittest::options(72, 16, 6.0f));
+  fillFromFunction(vol, sphereSdf(35.3, 36.1, 34.7, 20));
+  std::mt19937 rng(17);
+  std::uniform_real_distribution<double> pos(-6, 78), rad(1.0, 14.0), blend(0, 4);
+  std::uniform_int_distribution<int> pick(0, 2);
+  int exactChecked = 0, nonEmpty = 0;
+  for (int round = 0; round < 40; ++round)
+  {
+    BrushSettings s;
+    s.op = static_cast<BrushOp>(pick(rng));
+    s.blend = round % 3 == 0 ? 0.0 : blend(rng);
+    s.color = Rgba{ static_cast<std::uint8_t>(round * 37), 90, 200, 255 };
+    std::vector<Dab> dabs;
+    const int n = 1 + round % 4;
+    for (int k = 0; k < n; ++k)
+    {
+      Dab d;
+      d.shape = static_cast<BrushShape>(pick(rng));
+      d.center = { pos(rng), pos(rng), pos(rng) };
+      d.end = { d.center[0] + pos(rng) / 8, d.center[1] - pos(rng) / 9, d.center[2] + 3 };
+      d.radius = rad(rng);
+      dabs.push_back(d);
+    }
+    const auto before = vol.clone();
+    const EditResult r = applyDabs(vol, dabs, s);
+    const VoxelBox truth = differenceBox(*before, vol);
+    SCOPED_TRACE("round " + std::to_string(round));
+    EXPECT_EQ(truth.empty(), r.changedBox.empty());
+    EXPECT_EQ(truth.empty(), r.changedVoxels == 0);
+    EXPECT_TRUE(covers(r.changedBox, truth));
+    EXPECT_TRUE(covers(vol.bounds(), r.changedBox)); // never outside the volume
+    nonEmpty += !truth.empty();
+    if (s.blend > 0 || s.op == BrushOp::Paint)
+    {
+      // no whole-chunk fill: the box is tight
+      EXPECT_EQ(r.changedBox.lo, truth.lo);
+      EXPECT_EQ(r.changedBox.hi, truth.hi);
+      exactChecked += !truth.empty();
+    }
+  }
+  EXPECT_GT(nonEmpty, 20);
+  EXPECT_GT(exactChecked, 10);
+}
+
+TEST(EditChangedBox, EditorStrokeUnitesTheBoxes)
+{
+  DictionaryVolume vol(edittest::options(64, 16, 6.0f));
+  fillFromFunction(vol, sphereSdf(32, 31.5, 32.2, 18));
+  Editor ed(vol);
+  ed.brush.op = BrushOp::Subtract;
+  ed.brush.blend = 1.0;
+  ed.stroke.radius = 4;
+  const auto before = vol.clone();
+  ed.beginStroke();
+  EditResult all;
+  for (int i = 0; i < 12; ++i)
+  {
+    BrushSample s;
+    s.position = { 14.0 + 3 * i, 32.0 + 0.5 * i, 50.0 };
+    s.pressure = 1.0;
+    const EditResult r = ed.addSample(s);
+    all.changedBox = all.changedBox.unite(r.changedBox);
+  }
+  const EditResult last = ed.endStroke();
+  all.changedBox = all.changedBox.unite(last.changedBox);
+  const VoxelBox truth = differenceBox(*before, vol);
+  ASSERT_FALSE(truth.empty());
+  EXPECT_EQ(all.changedBox.lo, truth.lo);
+  EXPECT_EQ(all.changedBox.hi, truth.hi);
+  // endStroke returns the whole stroke's merged result
+  EXPECT_EQ(last.changedBox.lo, truth.lo);
+  EXPECT_EQ(last.changedBox.hi, truth.hi);
+}
