@@ -5,6 +5,7 @@
 #include "lvdif/BrushCuda.h"
 
 #include "BrushKernel.h"
+#include "BrushVoxelDevice.cuh"
 #include "lvdif/CudaCheck.cuh"
 #include "lvdif/Error.h"
 
@@ -20,10 +21,7 @@ namespace cuda
 namespace
 {
 
-struct DeviceBox
-{
-  long long lo[3], hi[3];
-};
+using DeviceBox = detail::DeviceDabBox;
 
 __global__ void dabKernel(std::uint32_t* slots, const std::uint32_t* uniform, const int* expanded,
   const long long* origin, int edge, int shift, long long dx, long long dy, long long dz, const Dab* dabs,
@@ -44,19 +42,7 @@ __global__ void dabKernel(std::uint32_t* slots, const std::uint32_t* uniform, co
   std::uint32_t nv = v;
   if (x < dx && y < dy && z < dz)
   {
-    std::uint16_t sdf = static_cast<std::uint16_t>(v & 0xffffu);
-    std::uint16_t color = static_cast<std::uint16_t>(v >> 16);
-    for (int k = 0; k < nDabs; ++k)
-    {
-      const DeviceBox& b = boxes[k];
-      if (x < b.lo[0] || x > b.hi[0] || y < b.lo[1] || y > b.hi[1] || z < b.lo[2] || z > b.hi[2])
-        continue;
-      const double s = dabDistance(dabs[k], double(x), double(y), double(z), ctx.rounding);
-      if (s > ctx.reach)
-        continue;
-      detail::combineVoxel(sdf, color, s, ctx, table, enc);
-    }
-    nv = static_cast<std::uint32_t>(sdf) | (static_cast<std::uint32_t>(color) << 16);
+    nv = detail::applyDabsToVoxel(v, x, y, z, dabs, boxes, nDabs, ctx, table, enc);
   }
   *p = nv;
   if (nv != v)

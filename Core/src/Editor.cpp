@@ -48,6 +48,7 @@ EditResult Editor::applyDabs(const std::vector<Dab>& dabs, BrushKind kind)
     this->Undo.endStep();
     throw;
   }
+  this->touch(r.changedChunks);
   this->Undo.endStep();
   EditRecord e;
   e.brush = this->brush;
@@ -88,6 +89,7 @@ EditResult Editor::addSample(const BrushSample& s)
     r = lvdif::applyDabs(this->Volume, ready, this->brush, &this->Undo);
     this->StrokeDabs.insert(this->StrokeDabs.end(), ready.begin(), ready.end());
     merge(this->StrokeResult, r);
+    this->touch(r.changedChunks);
   }
   return r;
 }
@@ -109,6 +111,7 @@ EditResult Editor::endStroke()
   }
   this->StrokeDabs.insert(this->StrokeDabs.end(), rest.begin(), rest.end());
   merge(this->StrokeResult, r);
+  this->touch(r.changedChunks);
   this->Undo.endStep();
   EditRecord e;
   e.brush = this->brush;
@@ -146,6 +149,7 @@ bool Editor::undo()
   const bool done = this->Undo.undo();
   if (done)
   {
+    this->touch(this->Undo.lastRestoredChunks());
     EditRecord e;
     e.type = EditRecord::Type::Undo;
     this->record(e);
@@ -159,11 +163,27 @@ bool Editor::redo()
   const bool done = this->Undo.redo();
   if (done)
   {
+    this->touch(this->Undo.lastRestoredChunks());
     EditRecord e;
     e.type = EditRecord::Type::Redo;
     this->record(e);
   }
   return done;
+}
+
+void Editor::touch(const std::vector<std::int64_t>& ids)
+{
+  std::vector<std::int64_t> all;
+  all.reserve(this->Touched.size() + ids.size());
+  std::set_union(this->Touched.begin(), this->Touched.end(), ids.begin(), ids.end(), std::back_inserter(all));
+  this->Touched.swap(all);
+}
+
+std::vector<std::int64_t> Editor::takeTouchedChunks()
+{
+  std::vector<std::int64_t> out;
+  out.swap(this->Touched);
+  return out;
 }
 
 void Editor::startRecording()

@@ -35,7 +35,8 @@ struct ScriptRunner::Impl
   ScriptRunner* Owner = nullptr;
   std::unique_ptr<DictionaryVolume> Owned;
   DictionaryVolume* Volume = nullptr;
-  std::unique_ptr<Editor> Ed;
+  std::unique_ptr<Editor> OwnedEd; // the editor of an owned or attached volume
+  Editor* Ed = nullptr;            // the editor in use (OwnedEd or one attached by the caller)
   std::map<std::string, double> Vars;
   BrushShape Shape = BrushShape::Sphere;
   double Radius = 3;
@@ -58,7 +59,8 @@ struct ScriptRunner::Impl
   void setVolume(DictionaryVolume* v)
   {
     this->Volume = v;
-    this->Ed = std::make_unique<Editor>(*v);
+    this->OwnedEd = std::make_unique<Editor>(*v);
+    this->Ed = this->OwnedEd.get();
     this->Ed->stroke.radius = this->Radius;
     this->Ed->stroke.shape = this->Shape;
     this->Vars["nx"] = static_cast<double>(v->dims()[0]);
@@ -372,9 +374,14 @@ struct ScriptRunner::Impl
         fail(s.line, s.column, "finish the stroke before 'canvas " + s.word + "'");
       DictionaryVolume& v = *this->Volume;
       const Voxel fill = s.word == "fill" ? Voxel{ v.insideVoxel().sdf, v.colors().add(ed.brush.color) } : v.outsideVoxel();
+      std::vector<std::int64_t> all(static_cast<std::size_t>(v.chunkCount()));
       for (std::int64_t id = 0; id < v.chunkCount(); ++id)
+      {
         v.fillChunk(id, fill);
+        all[static_cast<std::size_t>(id)] = id;
+      }
       ed.undoStack().clear(); // the history no longer matches the volume
+      ed.touch(all);
       return;
     }
     Index3 dims;
@@ -393,7 +400,8 @@ struct ScriptRunner::Impl
       fail(s.line, s.column, "finish the stroke before 'canvas'");
     VolumeOptions o = this->Options.canvas;
     o.dims = dims;
-    this->Ed.reset();
+    this->Ed = nullptr;
+    this->OwnedEd.reset();
     this->Owned = std::make_unique<DictionaryVolume>(o);
     this->setVolume(this->Owned.get());
   }
@@ -413,6 +421,20 @@ void ScriptRunner::attach(DictionaryVolume& volume)
 {
   this->P->Owned.reset();
   this->P->setVolume(&volume);
+}
+
+void ScriptRunner::attach(Editor& editor)
+{
+  this->P->Owned.reset();
+  this->P->OwnedEd.reset();
+  this->P->Volume = &editor.volume();
+  this->P->Ed = &editor;
+  // the script continues from the editor's brush, not from the script defaults
+  this->P->Radius = editor.stroke.radius;
+  this->P->Shape = editor.stroke.shape;
+  this->P->Vars["nx"] = static_cast<double>(editor.volume().dims()[0]);
+  this->P->Vars["ny"] = static_cast<double>(editor.volume().dims()[1]);
+  this->P->Vars["nz"] = static_cast<double>(editor.volume().dims()[2]);
 }
 
 void ScriptRunner::run(const std::string& source)
@@ -441,14 +463,15 @@ DictionaryVolume* ScriptRunner::volume()
 
 std::unique_ptr<DictionaryVolume> ScriptRunner::takeVolume()
 {
-  this->P->Ed.reset();
+  this->P->Ed = nullptr;
+  this->P->OwnedEd.reset();
   this->P->Volume = nullptr;
   return std::move(this->P->Owned);
 }
 
 Editor* ScriptRunner::editor()
 {
-  return this->P->Ed.get();
+  return this->P->Ed;
 }
 
 double ScriptRunner::variable(const std::string& name) const

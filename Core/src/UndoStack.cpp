@@ -3,6 +3,7 @@
 #include "lvdif/Error.h"
 #include "lvdif/Memory.h"
 
+#include <algorithm>
 #include <cstring>
 
 namespace lvdif
@@ -103,8 +104,10 @@ void UndoStack::swapIn(Step& step)
   const std::size_t n = static_cast<std::size_t>(this->Volume.chunkEdge()) * this->Volume.chunkEdge() *
     this->Volume.chunkEdge();
   std::uint64_t bytes = 0;
+  this->LastRestored.clear();
   for (Snapshot& s : step.Chunks)
   {
+    this->LastRestored.push_back(s.Id);
     Snapshot now = this->capture(s.Id);
     if (s.Data)
     {
@@ -122,6 +125,7 @@ void UndoStack::swapIn(Step& step)
   }
   this->Bytes = this->Bytes - step.Bytes + bytes;
   step.Bytes = bytes;
+  std::sort(this->LastRestored.begin(), this->LastRestored.end());
 }
 
 bool UndoStack::undo()

@@ -57,6 +57,12 @@ public:
   /// Plays a recording back (edits, undo and redo in order).
   void play(const Recording& r, Interrupter& interrupter = nullInterrupter());
 
+  /// The chunks changed by edits, undo and redo since the last call (increasing ids),
+  /// independent of the volume's dirty flags (front ends report them in events).
+  std::vector<std::int64_t> takeTouchedChunks();
+  /// Adds chunks changed outside the editor's edits (e.g. a script's `canvas fill`).
+  void touch(const std::vector<std::int64_t>& ids);
+
 private:
   void record(const EditRecord& e);
 
@@ -66,6 +72,7 @@ private:
   std::vector<Dab> StrokeDabs; // every dab of the open stroke, for the record
   EditResult StrokeResult;
   std::unique_ptr<Recording> Rec;
+  std::vector<std::int64_t> Touched; // since the last takeTouchedChunks()
   double Time = -1;
   bool Pressed = false;
 };

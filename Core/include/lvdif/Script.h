@@ -64,6 +64,9 @@ public:
 
   /// Scripts edit this volume until a `canvas` command makes a new one.
   void attach(DictionaryVolume& volume);
+  /// Scripts drive this editor (its undo stack and recording, starting from its
+  /// brush) until a `canvas` command makes a new volume. The editor must outlive the run.
+  void attach(Editor& editor);
   /// Parses and runs; throws ScriptError (syntax: ParseError; run time:
   /// InvalidArgument) or Error(Cancelled).
   void run(const std::string& source);

@@ -62,6 +62,8 @@ public:
   std::string undoLabel() const { return this->Undo.empty() ? std::string() : this->Undo.back()->Label; }
   /// Bytes held by all undo and redo steps.
   std::uint64_t bytes() const { return this->Bytes; }
+  /// The chunk ids restored by the last undo() or redo(), increasing.
+  const std::vector<std::int64_t>& lastRestoredChunks() const { return this->LastRestored; }
   const Options& options() const { return this->Opts; }
   void clear();
 
@@ -91,6 +93,7 @@ private:
   std::unordered_set<std::int64_t> OpenIds;
   std::mutex Mutex;
   std::uint64_t Bytes = 0;
+  std::vector<std::int64_t> LastRestored;
 };
 
 } // namespace lvdif

@@ -1,0 +1,287 @@
+// vtkLVDIFEditor: edits seen through its image source against analytic SDFs,
+// undo/redo bit-identical, events naming exactly the chunks whose voxels
+// changed (found by brute-force image comparison), script errors with line and
+// column, record -> play bit-exact through the VTK API.
+#include "vtkLVDIFEditor.h"
+
+#include "vtkCallbackCommand.h"
+#include "vtkDictionaryVolumeToImage.h"
+#include "vtkFloatArray.h"
+#include "vtkIdTypeArray.h"
+#include "vtkImageData.h"
+#include "vtkNew.h"
+#include "vtkPointData.h"
+#include "vtkUnsignedCharArray.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdio>
+#include <cstring>
+#include <set>
+#include <string>
+#include <vector>
+
+namespace
+{
+struct Snapshot
+{
+  int dims[3] = { 0, 0, 0 };
+  std::vector<float> sdf;
+  std::vector<unsigned char> rgba;
+  bool operator==(const Snapshot& o) const
+  {
+    // bit-identical: compare the bytes, not the floats
+    return sdf.size() == o.sdf.size() && rgba == o.rgba &&
+      std::memcmp(sdf.data(), o.sdf.data(), sdf.size() * sizeof(float)) == 0;
+  }
+};
+
+Snapshot snap(vtkLVDIFEditor* ed)
+{
+  vtkDictionaryVolumeToImage* src = ed->GetImageSource();
+  src->Update();
+  vtkImageData* img = src->GetOutput();
+  Snapshot s;
+  img->GetDimensions(s.dims);
+  auto* sdf = vtkFloatArray::SafeDownCast(img->GetPointData()->GetArray("sdf"));
+  auto* rgba = vtkUnsignedCharArray::SafeDownCast(img->GetPointData()->GetArray("rgba"));
+  EXPECT_NE(sdf, nullptr);
+  EXPECT_NE(rgba, nullptr);
+  if (!sdf || !rgba)
+    return s;
+  s.sdf.assign(sdf->GetPointer(0), sdf->GetPointer(0) + sdf->GetNumberOfValues());
+  s.rgba.assign(rgba->GetPointer(0), rgba->GetPointer(0) + rgba->GetNumberOfValues());
+  return s;
+}
+
+// Chunk ids (edge e) of the voxels that differ between two snapshots: the oracle for the events.
+std::set<vtkIdType> changedChunks(const Snapshot& a, const Snapshot& b, int e)
+{
+  std::set<vtkIdType> ids;
+  const int ncx = (a.dims[0] + e - 1) / e, ncy = (a.dims[1] + e - 1) / e;
+  for (int z = 0; z < a.dims[2]; ++z)
+    for (int y = 0; y < a.dims[1]; ++y)
+      for (int x = 0; x < a.dims[0]; ++x)
+      {
+        const std::size_t i = static_cast<std::size_t>(x + a.dims[0] * (y + a.dims[1] * z));
+        if (std::memcmp(&a.sdf[i], &b.sdf[i], sizeof(float)) != 0 ||
+          std::memcmp(&a.rgba[4 * i], &b.rgba[4 * i], 4) != 0)
+          ids.insert(static_cast<vtkIdType>(x / e + ncx * (y / e + ncy * (z / e))));
+      }
+  return ids;
+}
+
+struct EventLog
+{
+  int chunkEvents = 0;
+  int modifiedEvents = 0;
+  std::set<vtkIdType> lastIds;
+  static void Callback(vtkObject*, unsigned long event, void* client, void* callData)
+  {
+    auto* self = static_cast<EventLog*>(client);
+    if (event == vtkLVDIFEditor::ChunksModifiedEvent)
+    {
+      ++self->chunkEvents;
+      self->lastIds.clear();
+      auto* ids = static_cast<vtkIdTypeArray*>(callData);
+      for (vtkIdType i = 0; i < ids->GetNumberOfValues(); ++i)
+        self->lastIds.insert(ids->GetValue(i));
+    }
+    else if (event == vtkCommand::ModifiedEvent)
+      ++self->modifiedEvents;
+  }
+};
+
+// tolerance of the SDF dictionary's quantization (docs/FORMAT.md): stepA/2 near the surface
+double tolerance(double d)
+{
+  return std::fabs(d) <= 4.0 ? 6e-4 : 0.06;
+}
+} // namespace
+
+TEST(LVDIFEditor, DabMatchesAnalyticSphereAndUndoRedoAreBitIdentical)
+{
+  vtkNew<vtkLVDIFEditor> ed;
+  ed->SetChunkEdge(16);
+  ASSERT_EQ(ed->NewVolume(48, 40, 44, false), 1) << ed->GetLastError();
+  EventLog log;
+  vtkNew<vtkCallbackCommand> cb;
+  cb->SetCallback(&EventLog::Callback);
+  cb->SetClientData(&log);
+  ed->AddObserver(vtkLVDIFEditor::ChunksModifiedEvent, cb);
+  ed->AddObserver(vtkCommand::ModifiedEvent, cb);
+
+  const Snapshot empty = snap(ed);
+  ed->SetOperationToAdd();
+  ed->SetPrimitiveToSphere();
+  ed->SetRadius(9.5);
+  ed->SetColor(10, 200, 30, 255);
+  ASSERT_EQ(ed->Dab(20.25, 17.5, 22.0), 1) << ed->GetLastError();
+  const Snapshot dab = snap(ed);
+  EXPECT_EQ(log.chunkEvents, 1);
+  EXPECT_GE(log.modifiedEvents, 1);
+  // oracle: the union of "outside everywhere" (+band) and the sphere is the sphere, saturated to the band
+  int checked = 0;
+  for (int z = 0; z < 44; ++z)
+    for (int y = 0; y < 40; ++y)
+      for (int x = 0; x < 48; ++x)
+      {
+        const double d = std::sqrt((x - 20.25) * (x - 20.25) + (y - 17.5) * (y - 17.5) + (z - 22.0) * (z - 22.0)) - 9.5;
+        const double expect = std::max(-8.0, std::min(8.0, d));
+        const std::size_t i = static_cast<std::size_t>(x + 48 * (y + 40 * z));
+        ASSERT_NEAR(dab.sdf[i], expect, tolerance(expect)) << x << " " << y << " " << z;
+        if (d <= 1.5) // the colour skin (Brush.h): brush colour inside the sphere plus 1.5 voxels
+        {
+          EXPECT_EQ(dab.rgba[4 * i + 1], 200);
+          ++checked;
+        }
+      }
+  EXPECT_GT(checked, 3000);
+  // the event names exactly the chunks whose voxels changed
+  EXPECT_EQ(log.lastIds, changedChunks(empty, dab, 16));
+
+  ASSERT_TRUE(ed->CanUndo());
+  EXPECT_FALSE(ed->CanRedo());
+  ASSERT_EQ(ed->Undo(), 1);
+  EXPECT_TRUE(snap(ed) == empty);
+  EXPECT_EQ(log.lastIds, changedChunks(empty, dab, 16));
+  ASSERT_TRUE(ed->CanRedo());
+  ASSERT_EQ(ed->Redo(), 1);
+  EXPECT_TRUE(snap(ed) == dab);
+  EXPECT_EQ(log.chunkEvents, 3);
+
+  // a stroke is one undo step; subtract then undo restores the single-dab volume
+  ed->SetOperationToSubtract();
+  ed->SetRadius(3);
+  ed->SetBrushKind(vtkLVDIFEditor::BrushKindBasic);
+  ASSERT_EQ(ed->BeginStroke(), 1);
+  for (int i = 0; i <= 10; ++i)
+    ASSERT_EQ(ed->AddSample(12.0 + i, 17.5, 22.0, -1), 1);
+  ASSERT_EQ(ed->EndStroke(), 1) << ed->GetLastError();
+  const Snapshot cut = snap(ed);
+  EXPECT_FALSE(cut == dab);
+  EXPECT_GT(cut.sdf[static_cast<std::size_t>(16 + 48 * (17 + 40 * 22))], 0.0f); // carved out
+  EXPECT_EQ(ed->GetUndoCount(), 2);
+  ASSERT_EQ(ed->Undo(), 1);
+  EXPECT_TRUE(snap(ed) == dab);
+  ASSERT_EQ(ed->Undo(), 1);
+  EXPECT_TRUE(snap(ed) == empty);
+  EXPECT_EQ(ed->Undo(), 0); // nothing left
+}
+
+TEST(LVDIFEditor, RefusesBadCallsWithoutChangingTheVolume)
+{
+  vtkNew<vtkLVDIFEditor> ed;
+  ed->GlobalWarningDisplayOff();
+  EXPECT_EQ(ed->Dab(1, 2, 3), 0);
+  EXPECT_NE(std::string(ed->GetLastError()).find("no volume"), std::string::npos);
+  ASSERT_EQ(ed->NewVolume(24, 24, 24, true), 1);
+  const Snapshot full = snap(ed);
+  EXPECT_LT(full.sdf[0], 0.0f); // filled = inside
+  ed->SetRadius(-2);            // refused, radius unchanged
+  EXPECT_GT(ed->GetRadius(), 0.0);
+  EXPECT_EQ(ed->Dab(NAN, 2, 3), 0);
+  EXPECT_FALSE(std::string(ed->GetLastError()).empty());
+  EXPECT_EQ(ed->EndStroke(), 0);
+  EXPECT_EQ(ed->LoadVolume("/nonexistent/x.lvdif"), 0);
+  EXPECT_EQ(ed->NewVolume(0, 4, 4, false), 0);
+  EXPECT_TRUE(snap(ed) == full);
+  EXPECT_EQ(ed->PlayRecording("/nonexistent/r.lvrec"), 0);
+  EXPECT_TRUE(snap(ed) == full);
+}
+
+TEST(LVDIFEditor, ScriptErrorsCarryLineAndColumn)
+{
+  vtkNew<vtkLVDIFEditor> ed;
+  ed->GlobalWarningDisplayOff();
+  ASSERT_EQ(ed->NewVolume(32, 32, 32, false), 1);
+  const Snapshot empty = snap(ed);
+  // syntax error: nothing runs
+  EXPECT_EQ(ed->RunScript("sphere 16 16 16 5\nlet a = 3\n  frobnicate 1 2\n"), 0);
+  EXPECT_EQ(ed->GetLastErrorLine(), 3);
+  EXPECT_EQ(ed->GetLastErrorColumn(), 3);
+  EXPECT_NE(std::string(ed->GetLastError()).find("frobnicate"), std::string::npos);
+  EXPECT_TRUE(snap(ed) == empty);
+  // run-time error on line 2: the first line's edit is kept and undoable
+  EXPECT_EQ(ed->RunScript("sphere 16, 16, 16, 5\nradius -1\n"), 0);
+  EXPECT_EQ(ed->GetLastErrorLine(), 2);
+  EXPECT_EQ(ed->GetLastErrorColumn(), 1);
+  EXPECT_FALSE(snap(ed) == empty);
+  EXPECT_TRUE(ed->CanUndo());
+  ASSERT_EQ(ed->Undo(), 1);
+  EXPECT_TRUE(snap(ed) == empty);
+  // success clears the error; the script's edits are undo steps of this editor
+  ASSERT_EQ(ed->RunScript("for i in 0..3 { sphere 8 + 8*i, 16, 16, 3 }"), 1) << ed->GetLastError();
+  EXPECT_STREQ(ed->GetLastError(), "");
+  EXPECT_EQ(ed->GetLastErrorLine(), 0);
+  EXPECT_EQ(ed->GetUndoCount(), 3);
+  // `canvas` replaces the volume and the image source follows it
+  ASSERT_EQ(ed->RunScript("canvas 20 24 28\nsphere 10 12 14 4"), 1) << ed->GetLastError();
+  const Snapshot c = snap(ed);
+  EXPECT_EQ(c.dims[0], 20);
+  EXPECT_EQ(c.dims[2], 28);
+  EXPECT_NEAR(c.sdf[static_cast<std::size_t>(10 + 20 * (12 + 24 * 14))], -4.0, 6e-4);
+}
+
+TEST(LVDIFEditor, RecordThenPlayIsBitExact)
+{
+  const std::string path = std::string(::testing::TempDir()) + "/lvdif_editor_record.lvrec";
+  vtkNew<vtkLVDIFEditor> a;
+  ASSERT_EQ(a->NewVolume(40, 40, 40, false), 1);
+  ASSERT_EQ(a->StartRecording(), 1);
+  EXPECT_TRUE(a->IsRecording());
+  a->SetRadius(7.3);
+  a->SetColor(200, 10, 10, 255);
+  ASSERT_EQ(a->Dab(20.1, 19.7, 20.3), 1);
+  a->SetPrimitiveToCube();
+  a->SetBlend(2.0);
+  ASSERT_EQ(a->Dab(26.0, 20.0, 20.0), 1);
+  a->SetOperationToSubtract();
+  a->SetPrimitiveToSphere();
+  a->SetBlend(0);
+  a->SetBrushKind(vtkLVDIFEditor::BrushKindDynamic);
+  a->SetRadius(3.1);
+  ASSERT_EQ(a->BeginStroke(), 1);
+  for (int i = 0; i < 12; ++i)
+    ASSERT_EQ(a->AddSample(10.0 + 1.37 * i, 20.0 + 0.5 * std::sin(i), 20.0, 0.5 + 0.04 * i), 1);
+  ASSERT_EQ(a->EndStroke(), 1);
+  a->SetOperationToPaint();
+  a->SetColor(0, 0, 255, 255);
+  a->SetRadius(5);
+  ASSERT_EQ(a->Dab(20, 27, 20), 1);
+  ASSERT_EQ(a->Undo(), 1);
+  ASSERT_EQ(a->Redo(), 1);
+  ASSERT_EQ(a->Undo(), 1);
+  ASSERT_EQ(a->RunScript("color 0 255 0\nop add\nsphere 30, 30, 30, 4"), 1) << a->GetLastError();
+  ASSERT_EQ(a->StopRecording(path.c_str()), 1) << a->GetLastError();
+  EXPECT_FALSE(a->IsRecording());
+  const Snapshot recorded = snap(a);
+
+  vtkNew<vtkLVDIFEditor> b;
+  ASSERT_EQ(b->NewVolume(40, 40, 40, false), 1);
+  const Snapshot empty = snap(b);
+  EXPECT_FALSE(recorded == empty);
+  ASSERT_EQ(b->PlayRecording(path.c_str()), 1) << b->GetLastError();
+  EXPECT_TRUE(snap(b) == recorded);
+  // the played edits are undoable like live ones (undo/redo events included)
+  while (b->CanUndo())
+    ASSERT_EQ(b->Undo(), 1);
+  EXPECT_TRUE(snap(b) == empty);
+  std::remove(path.c_str());
+}
+
+TEST(LVDIFEditor, SaveAndLoadRoundTrip)
+{
+  const std::string path = std::string(::testing::TempDir()) + "/lvdif_editor_volume.lvdif";
+  vtkNew<vtkLVDIFEditor> a;
+  ASSERT_EQ(a->NewVolume(33, 20, 17, false), 1);
+  a->SetColor(1, 2, 3, 255);
+  ASSERT_EQ(a->Dab(16, 10, 8), 1);
+  ASSERT_EQ(a->SaveVolume(path.c_str()), 1) << a->GetLastError();
+  vtkNew<vtkLVDIFEditor> b;
+  ASSERT_EQ(b->LoadVolume(path.c_str()), 1) << b->GetLastError();
+  EXPECT_FALSE(b->CanUndo());
+  EXPECT_TRUE(snap(b) == snap(a));
+  std::remove(path.c_str());
+}
