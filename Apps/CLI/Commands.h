@@ -6,5 +6,6 @@ int CommandDemo(int argc, char** argv);
 int CommandInfo(int argc, char** argv);
 int CommandMesh(int argc, char** argv);
 int CommandConvert(int argc, char** argv);
+int CommandMeshToSdf(int argc, char** argv);
 int CommandScript(int argc, char** argv);
 int CommandPlay(int argc, char** argv);

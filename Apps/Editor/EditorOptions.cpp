@@ -22,6 +22,9 @@ EditorOptions parseEditorOptions(const QStringList& arguments)
   p.setApplicationDescription("LVDIF volume editor");
   p.addHelpOption();
   const QCommandLineOption open("open", "Open a volume (.lvdv or .vti).", "file");
+  const QCommandLineOption openMesh("open-mesh", "Convert a mesh (.obj .off .stl .ply) to a volume and open it.", "file");
+  const QCommandLineOption meshRes("mesh-resolution", "Voxels along the mesh's longest axis (--open-mesh).", "n", "128");
+  const QCommandLineOption meshSign("mesh-sign", "Sign of --open-mesh: winding, pseudo or normal.", "mode", "winding");
   const QCommandLineOption create("new", "New canvas of N^3 or NXxNYxNZ voxels.", "size");
   const QCommandLineOption fill("fill", "Fill of a new canvas: empty, full or sphere.", "fill", "sphere");
   const QCommandLineOption script("script", "Run a script (.lvs) or play a recording (.lvrec) after loading.", "file");
@@ -41,12 +44,19 @@ EditorOptions parseEditorOptions(const QStringList& arguments)
   const QCommandLineOption recoveryDir("recovery-dir", "Folder of the autosave file.", "dir");
   const QCommandLineOption autosave("autosave", "Autosave interval in seconds (0: off).", "s", "60");
   const QCommandLineOption perVertex("per-vertex-color", "Per-vertex colours instead of tetrahedral interpolation.");
-  p.addOptions({ open, create, fill, script, drag, undo, shot, save, exp, op, shape, kind, radius, color, size, quit,
+  p.addOptions({ open, openMesh, meshRes, meshSign, create, fill, script, drag, undo, shot, save, exp, op, shape, kind, radius, color, size, quit,
     noRecovery, recoveryDir, autosave, perVertex });
   p.process(arguments);
 
   EditorOptions o;
   o.open = p.value(open);
+  o.openMesh = p.value(openMesh);
+  o.meshResolution = p.value(meshRes).toInt();
+  if (o.meshResolution < 8 || o.meshResolution > 4096)
+    fail("--mesh-resolution expects 8..4096, got '" + p.value(meshRes) + "'");
+  o.meshSign = p.value(meshSign);
+  if (o.meshSign != "winding" && o.meshSign != "pseudo" && o.meshSign != "normal")
+    fail("--mesh-sign expects winding, pseudo or normal, got '" + o.meshSign + "'");
   if (p.isSet(create))
   {
     const QStringList parts = p.value(create).split('x');

@@ -128,9 +128,8 @@ void MainWindow::buildMenus()
   QMenu* file = this->menuBar()->addMenu("&File");
   file->addAction("&New canvas...", this, &MainWindow::newDialog, QKeySequence::New);
   file->addAction("&Open volume...", this, &MainWindow::openDialog, QKeySequence::Open);
-  this->OpenMeshAction = file->addAction("Open &mesh...");
-  this->OpenMeshAction->setEnabled(false);
-  this->OpenMeshAction->setToolTip("Needs the mesh-to-SDF filter (vtkMeshToSDF), not yet part of this build");
+  this->OpenMeshAction = file->addAction("Open &mesh...", this, &MainWindow::openMeshDialog);
+  this->OpenMeshAction->setToolTip("Convert an OBJ, OFF, STL or PLY mesh to a volume (signed distance field)");
   this->OpenMeshAction->setStatusTip(this->OpenMeshAction->toolTip());
   file->setToolTipsVisible(true);
   file->addSeparator();
@@ -336,6 +335,30 @@ bool MainWindow::openVolume(const QString& path)
   {
     this->Chunks->RemoveAllChunks();
     this->Doc.open(path);
+  }
+  catch (const std::exception& e)
+  {
+    this->showError("Cannot open " + path, e);
+    return false;
+  }
+  this->volumeReplaced();
+  return true;
+}
+
+bool MainWindow::openMesh(const QString& path, const MeshImportSettings& settings)
+{
+  QString error;
+  auto volume = importMesh(this, path, settings, error);
+  if (!volume)
+  {
+    if (!error.isEmpty())
+      this->showError("Cannot convert " + path, std::runtime_error(error.toStdString()));
+    return false;
+  }
+  try
+  {
+    this->Chunks->RemoveAllChunks();
+    this->Doc.adopt(std::move(volume));
   }
   catch (const std::exception& e)
   {

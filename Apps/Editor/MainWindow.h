@@ -3,6 +3,7 @@
 #pragma once
 
 #include "EditorOptions.h"
+#include "MeshImport.h"
 #include "ToolPanel.h"
 #include "VolumeDocument.h"
 
@@ -34,6 +35,9 @@ public:
   // ---- the command-line / test entry points ------------------------------
   bool newCanvas(int nx, int ny, int nz, VolumeDocument::Fill fill);
   bool openVolume(const QString& path);
+  /// Converts a mesh file to a volume (vtkMeshToSDF on a worker thread, with a
+  /// progress dialog and Cancel); false on error or cancel.
+  bool openMesh(const QString& path, const MeshImportSettings& settings);
   bool saveVolume(const QString& path);
   bool exportMesh(const QString& path);
   bool saveScreenshot(const QString& path);
@@ -73,6 +77,7 @@ private:
   void onStrokeEnd();
   void newDialog();
   void openDialog();
+  void openMeshDialog();
   bool saveAsDialog();
   void exportDialog();
   void screenshotDialog();
@@ -88,6 +93,7 @@ private:
   QTimer* MeshTimer = nullptr;
   QTimer* AutosaveTimer = nullptr;
   QAction* OpenMeshAction = nullptr;
+  MeshImportSettings MeshSettings;
   QElapsedTimer Clock;
   vtkNew<vtkGenericOpenGLRenderWindow> RenderWindow;
   vtkNew<vtkRenderer> Renderer;

@@ -64,6 +64,17 @@ void MainWindow::openDialog()
     this->openVolume(path);
 }
 
+void MainWindow::openMeshDialog()
+{
+  if (!this->maybeSave())
+    return;
+  const QString path = QFileDialog::getOpenFileName(
+    this, "Open mesh", QString(), "Meshes (*.obj *.off *.stl *.ply);;All files (*)");
+  if (path.isEmpty() || !askMeshImportSettings(this, this->MeshSettings))
+    return;
+  this->openMesh(path, this->MeshSettings);
+}
+
 bool MainWindow::saveAsDialog()
 {
   QString path = QFileDialog::getSaveFileName(

@@ -77,6 +77,16 @@ void VolumeDocument::newCanvas(int nx, int ny, int nz, Fill fill)
   this->resetPipeline();
 }
 
+void VolumeDocument::adopt(std::unique_ptr<lvdif::DictionaryVolume> volume)
+{
+  this->Worker.reset();
+  this->Mesher.reset();
+  this->Volume = std::move(volume);
+  this->Path.clear();
+  this->resetPipeline();
+  this->Modified = true;
+}
+
 void VolumeDocument::open(const QString& path)
 {
   const QString ext = QFileInfo(path).suffix().toLower();

@@ -37,6 +37,9 @@ public:
   /// Saves as .lvdv (exact) or .vti (decoded sdf + rgba) by extension; throws
   /// lvdif::Error. Clears the modified flag unless `asCopy` (autosave).
   void save(const QString& path, bool asCopy = false);
+  /// Takes a volume made elsewhere (e.g. a converted mesh): no file yet, so
+  /// the document counts as modified and Save asks for a name.
+  void adopt(std::unique_ptr<lvdif::DictionaryVolume> volume);
 
   bool hasVolume() const { return this->Volume != nullptr; }
   lvdif::DictionaryVolume& volume() { return *this->Volume; }

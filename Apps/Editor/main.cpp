@@ -51,7 +51,14 @@ int main(int argc, char* argv[])
     loaded = window.offerRecovery();
   if (!loaded)
   {
-    if (!options.open.isEmpty())
+    if (!options.openMesh.isEmpty())
+    {
+      MeshImportSettings settings;
+      settings.resolution = options.meshResolution;
+      settings.signMode = meshSignModeFromName(options.meshSign);
+      loaded = window.openMesh(options.openMesh, settings);
+    }
+    else if (!options.open.isEmpty())
       loaded = window.openVolume(options.open);
     else
     {

@@ -35,7 +35,7 @@ StrokeBuilder::StrokeBuilder(const StrokeSettings& settings)
   validate(settings);
 }
 
-void StrokeBuilder::emit(const std::array<double, 3>& p, double radius, double arc)
+void StrokeBuilder::addDab(const std::array<double, 3>& p, double radius, double arc)
 {
   Dab d;
   d.shape = this->Settings.shape;
@@ -63,7 +63,7 @@ void StrokeBuilder::add(const BrushSample& sample)
     this->Samples = 1;
     this->Last = sample.position;
     this->LastRadius = r;
-    this->emit(sample.position, r, 0.0);
+    this->addDab(sample.position, r, 0.0);
     this->NextAt = this->Settings.spacing;
     return;
   }
@@ -82,7 +82,7 @@ void StrokeBuilder::add(const BrushSample& sample)
   while (this->NextAt <= this->Arc + len)
   {
     const double t = (this->NextAt - this->Arc) / len;
-    this->emit({ q[0] + t * dx, q[1] + t * dy, q[2] + t * dz }, this->LastRadius + t * (r - this->LastRadius),
+    this->addDab({ q[0] + t * dx, q[1] + t * dy, q[2] + t * dz }, this->LastRadius + t * (r - this->LastRadius),
       this->NextAt);
     this->NextAt += this->Settings.spacing;
   }
@@ -109,7 +109,7 @@ std::vector<Dab> StrokeBuilder::finish()
   this->Finished = true;
   if (this->Samples > 0 && this->Settings.kind != BrushKind::Single && this->Arc - this->LastEmit > 1e-9)
   {
-    this->emit(this->Last, this->LastRadius, this->Arc); // keep the last sample
+    this->addDab(this->Last, this->LastRadius, this->Arc); // keep the last sample
   }
   if (this->Settings.kind == BrushKind::Dynamic && this->Arc > 0)
   {

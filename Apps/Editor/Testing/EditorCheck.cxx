@@ -11,6 +11,14 @@
 //                       and says where the new image is.
 //   --script-shape V.vti  V is sphere.lvs's result: the analytic sphere minus the cube.
 //   --mesh M.ply        the exported mesh has triangles inside the volume.
+//   --write-sphere-obj F.obj   writes a UV sphere (centre MeshC, radius MeshR,
+//                       128 x 64 segments) for --open-mesh (runs before the editor).
+//   --mesh-sphere V.vti V is that sphere converted by --open-mesh: every voxel's
+//                       distance equals the analytic sphere's in voxel units
+//                       (world distance / spacing, saturated at the 8-voxel
+//                       band) within the tessellation's sagitta plus the
+//                       dictionary's precision, and the grid is fitted (64 on
+//                       every axis, the box contains the sphere).
 #include "vtkFloatArray.h"
 #include "vtkImageData.h"
 #include "vtkImageDifference.h"
@@ -115,6 +123,84 @@ void checkSphere(const char* path, bool added, int n = 64, bool colours = true)
   }
 }
 
+const double MeshC[3] = { 0.1, -0.2, 0.3 }, MeshR = 1.0;
+const int MeshSlices = 128, MeshStacks = 64;
+
+void writeSphereObj(const char* path)
+{
+  const double pi = std::acos(-1.0);
+  std::FILE* f = std::fopen(path, "w");
+  if (!f)
+  {
+    check(false, std::string("cannot write ") + path);
+    return;
+  }
+  // poles, then rings of MeshSlices points; outward, counter-clockwise faces
+  std::fprintf(f, "v %.9g %.9g %.9g\n", MeshC[0], MeshC[1], MeshC[2] + MeshR);
+  std::fprintf(f, "v %.9g %.9g %.9g\n", MeshC[0], MeshC[1], MeshC[2] - MeshR);
+  for (int s = 1; s < MeshStacks; ++s)
+  {
+    const double t = pi * s / MeshStacks;
+    for (int l = 0; l < MeshSlices; ++l)
+    {
+      const double p = 2 * pi * l / MeshSlices;
+      std::fprintf(f, "v %.9g %.9g %.9g\n", MeshC[0] + MeshR * std::sin(t) * std::cos(p),
+        MeshC[1] + MeshR * std::sin(t) * std::sin(p), MeshC[2] + MeshR * std::cos(t));
+    }
+  }
+  auto ring = [](int s, int l) { return 3 + (s - 1) * MeshSlices + (l % MeshSlices); }; // 1-based
+  for (int l = 0; l < MeshSlices; ++l)
+  {
+    std::fprintf(f, "f 1 %d %d\n", ring(1, l), ring(1, l + 1));
+    std::fprintf(f, "f 2 %d %d\n", ring(MeshStacks - 1, l + 1), ring(MeshStacks - 1, l));
+    for (int s = 1; s + 1 < MeshStacks; ++s)
+    {
+      std::fprintf(f, "f %d %d %d\n", ring(s, l), ring(s + 1, l), ring(s + 1, l + 1));
+      std::fprintf(f, "f %d %d %d\n", ring(s, l), ring(s + 1, l + 1), ring(s, l + 1));
+    }
+  }
+  std::fclose(f);
+  std::printf("wrote %s\n", path);
+}
+
+void checkMeshSphere(const char* path)
+{
+  auto img = readVolume(path);
+  int dims[3];
+  img->GetDimensions(dims);
+  double o[3], sp[3];
+  img->GetOrigin(o);
+  img->GetSpacing(sp);
+  check(dims[0] == 64 && dims[1] == 64 && dims[2] == 64, "the fitted grid is 64^3");
+  check(sp[0] == sp[1] && sp[1] == sp[2], "isotropic voxels");
+  auto* sdf = vtkFloatArray::SafeDownCast(img->GetPointData()->GetArray("sdf"));
+  check(sdf != nullptr, "sdf array present");
+  if (!sdf || dims[0] != 64)
+    return;
+  for (int a = 0; a < 3; ++a)
+    check(o[a] < MeshC[a] - MeshR && o[a] + sp[a] * (dims[a] - 1) > MeshC[a] + MeshR, "the grid contains the sphere");
+  // A face of the 128 x 64 UV sphere lies at most R (1 - cos(pi / 64)) inside the sphere.
+  const double sagitta = MeshR * (1 - std::cos(std::acos(-1.0) / 64)) / sp[0];
+  double worst = 0;
+  long inside = 0, expectedInside = 0;
+  vtkIdType id = 0;
+  for (int k = 0; k < dims[2]; ++k)
+    for (int j = 0; j < dims[1]; ++j)
+      for (int i = 0; i < dims[0]; ++i, ++id)
+      {
+        const double x = o[0] + i * sp[0] - MeshC[0], y = o[1] + j * sp[1] - MeshC[1], z = o[2] + k * sp[2] - MeshC[2];
+        const double e = std::max(-8.0, std::min(8.0, (std::sqrt(x * x + y * y + z * z) - MeshR) / sp[0]));
+        const double v = sdf->GetValue(id);
+        worst = std::max(worst, std::fabs(v - e) - tolerance(e) - sagitta);
+        inside += v < 0;
+        expectedInside += e < -sagitta;
+      }
+  std::printf("sagitta %g voxels; max excess over the tolerance: %g; inside %ld (analytic, beyond the sagitta: %ld)\n",
+    sagitta, worst, inside, expectedInside);
+  check(worst <= 0, "every voxel equals the analytic sphere's distance (within sagitta + dictionary precision)");
+  check(inside >= expectedInside && inside > 1000, "the inside is negative");
+}
+
 void checkImage(const char* test, const char* baseline)
 {
   if (!std::ifstream(baseline).good())
@@ -169,11 +255,15 @@ int main(int argc, char* argv[])
       checkImage(argv[i + 1], argv[i + 2]);
       i += 2;
     }
+    else if (!std::strcmp(argv[i], "--write-sphere-obj") && i + 1 < argc)
+      writeSphereObj(argv[++i]);
+    else if (!std::strcmp(argv[i], "--mesh-sphere") && i + 1 < argc)
+      checkMeshSphere(argv[++i]);
     else if (!std::strcmp(argv[i], "--mesh") && i + 1 < argc)
       checkMesh(argv[++i]);
     else
     {
-      std::fprintf(stderr, "usage: %s [--sphere V.vti] [--added V.vti] [--script-shape V.vti] [--image T.png B.png] [--mesh M.ply]\n", argv[0]);
+      std::fprintf(stderr, "usage: %s [--sphere V.vti] [--added V.vti] [--script-shape V.vti] [--image T.png B.png] [--mesh M.ply] [--write-sphere-obj F.obj] [--mesh-sphere V.vti]\n", argv[0]);
       return 2;
     }
   }

@@ -1,5 +1,13 @@
-# Runs the editor with ARGS (and again with ARGS2 if given), then the checker
+# Runs the checker with PREP first if given (e.g. to write an input mesh),
+# the editor with ARGS (and again with ARGS2 if given), then the checker
 # with CHECKS; fails if any fails.
+if (DEFINED PREP)
+  execute_process(COMMAND "${CHECK}" ${PREP} RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
+  message("${out}${err}")
+  if (NOT rc EQUAL 0)
+    message(FATAL_ERROR "preparation failed (${rc})")
+  endif ()
+endif ()
 execute_process(COMMAND "${EDITOR}" ${ARGS} RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
 message("${out}${err}")
 if (NOT rc EQUAL 0)

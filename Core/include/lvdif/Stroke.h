@@ -81,7 +81,7 @@ public:
   std::size_t sampleCount() const { return this->Samples; }
 
 private:
-  void emit(const std::array<double, 3>& p, double radius, double arc);
+  void addDab(const std::array<double, 3>& p, double radius, double arc);
 
   StrokeSettings Settings;
   std::size_t Samples = 0;

@@ -1,0 +1,174 @@
+#include "MeshImport.h"
+
+#include "vtkLVDIFMeshReader.h"
+#include "vtkLVDIFVolumeBridge.h"
+#include "vtkMeshToSDF.h"
+
+#include "vtkCallbackCommand.h"
+#include "vtkCommand.h"
+#include "vtkExecutive.h"
+#include "vtkImageData.h"
+#include "vtkNew.h"
+#include "vtkPointData.h"
+
+#include <QComboBox>
+#include <QDialog>
+#include <QDialogButtonBox>
+#include <QEventLoop>
+#include <QFormLayout>
+#include <QProgressDialog>
+#include <QSpinBox>
+#include <QTimer>
+
+#include <atomic>
+#include <mutex>
+#include <thread>
+
+namespace
+{
+/// Collects vtkErrorMacro messages (from the worker thread) instead of printing them.
+struct ErrorCollector : vtkCommand
+{
+  static ErrorCollector* New() { return new ErrorCollector; }
+  void Execute(vtkObject*, unsigned long, void* data) override
+  {
+    std::lock_guard<std::mutex> lock(this->Mutex);
+    if (this->Text.empty() && data)
+      this->Text = static_cast<const char*>(data);
+  }
+  std::string text()
+  {
+    std::lock_guard<std::mutex> lock(this->Mutex);
+    return this->Text;
+  }
+  std::mutex Mutex;
+  std::string Text;
+};
+
+/// Runs on the worker thread inside RequestData: publishes the progress and
+/// turns a Cancel into AbortExecute (set here, not from the UI thread, because
+/// the pipeline clears AbortExecute when it starts executing).
+struct ProgressWatcher : vtkCommand
+{
+  static ProgressWatcher* New() { return new ProgressWatcher; }
+  void Execute(vtkObject* caller, unsigned long, void* data) override
+  {
+    if (data)
+      this->Fraction.store(*static_cast<double*>(data));
+    if (this->Cancel.load())
+      static_cast<vtkAlgorithm*>(caller)->SetAbortExecute(1);
+  }
+  std::atomic<double> Fraction{ 0.0 };
+  std::atomic<bool> Cancel{ false };
+};
+} // namespace
+
+int meshSignModeFromName(const QString& name)
+{
+  if (name == "winding")
+    return vtkMeshToSDF::WINDING_NUMBER;
+  if (name == "pseudo")
+    return vtkMeshToSDF::PSEUDO_NORMAL;
+  if (name == "normal")
+    return vtkMeshToSDF::NORMAL;
+  return -1;
+}
+
+bool askMeshImportSettings(QWidget* parent, MeshImportSettings& settings)
+{
+  QDialog dlg(parent);
+  dlg.setWindowTitle("Open mesh");
+  auto* form = new QFormLayout(&dlg);
+  auto* resolution = new QSpinBox(&dlg);
+  resolution->setRange(8, 4096);
+  resolution->setValue(settings.resolution);
+  resolution->setToolTip("Voxels along the mesh's longest axis");
+  form->addRow("Resolution", resolution);
+  auto* sign = new QComboBox(&dlg);
+  sign->addItem("Winding number (robust)", int(vtkMeshToSDF::WINDING_NUMBER));
+  sign->addItem("Pseudo-normal", int(vtkMeshToSDF::PSEUDO_NORMAL));
+  sign->addItem("Face normal (the paper's)", int(vtkMeshToSDF::NORMAL));
+  sign->setCurrentIndex(sign->findData(settings.signMode));
+  form->addRow("Sign", sign);
+  auto* buttons = new QDialogButtonBox(QDialogButtonBox::Ok | QDialogButtonBox::Cancel, &dlg);
+  form->addRow(buttons);
+  QObject::connect(buttons, &QDialogButtonBox::accepted, &dlg, &QDialog::accept);
+  QObject::connect(buttons, &QDialogButtonBox::rejected, &dlg, &QDialog::reject);
+  if (dlg.exec() != QDialog::Accepted)
+    return false;
+  settings.resolution = resolution->value();
+  settings.signMode = sign->currentData().toInt();
+  return true;
+}
+
+std::unique_ptr<lvdif::DictionaryVolume> importMesh(
+  QWidget* parent, const QString& path, const MeshImportSettings& settings, QString& error)
+{
+  error.clear();
+  vtkNew<vtkLVDIFMeshReader> reader;
+  reader->SetFileName(path.toLocal8Bit().constData());
+  vtkNew<vtkMeshToSDF> toSdf;
+  toSdf->SetInputConnection(reader->GetOutputPort());
+  toSdf->SetMaxDimension(settings.resolution);
+  toSdf->SetSignMode(settings.signMode);
+  toSdf->SetPadding(settings.padding);
+  vtkNew<ErrorCollector> errors;
+  for (vtkAlgorithm* a : { static_cast<vtkAlgorithm*>(reader), static_cast<vtkAlgorithm*>(toSdf) })
+  {
+    a->AddObserver(vtkCommand::ErrorEvent, errors);
+    a->GetExecutive()->AddObserver(vtkCommand::ErrorEvent, errors);
+  }
+  vtkNew<ProgressWatcher> progress;
+  toSdf->AddObserver(vtkCommand::ProgressEvent, progress);
+
+  std::unique_ptr<lvdif::DictionaryVolume> volume;
+  std::string failure;
+  std::atomic<bool> done{ false };
+  std::thread worker([&] {
+    try
+    {
+      toSdf->Update();
+      vtkImageData* img = toSdf->GetOutput();
+      vtkDataArray* sdf = img->GetPointData()->GetArray("sdf");
+      if (sdf && !progress->Cancel.load())
+      {
+        lvdif::VolumeOptions o;
+        o.chunkEdge = 32;
+        volume = vtkLVDIFVolumeBridge::VolumeFromImage(img, sdf, nullptr, o);
+      }
+    }
+    catch (const std::exception& e)
+    {
+      failure = e.what();
+    }
+    done.store(true);
+  });
+
+  // The UI thread waits in its own event loop: the dialog repaints and Cancel works.
+  QProgressDialog dlg("Converting " + path + " to a volume...", "Cancel", 0, 1000, parent);
+  dlg.setWindowTitle("Open mesh");
+  dlg.setWindowModality(Qt::WindowModal);
+  dlg.setMinimumDuration(300);
+  QEventLoop loop;
+  QTimer timer;
+  QObject::connect(&timer, &QTimer::timeout, [&] {
+    if (dlg.wasCanceled())
+      progress->Cancel.store(true);
+    dlg.setValue(static_cast<int>(1000 * progress->Fraction.load()) % 1000);
+    if (done.load())
+      loop.quit();
+  });
+  timer.start(30);
+  loop.exec();
+  worker.join();
+  dlg.reset();
+
+  if (progress->Cancel.load())
+    return nullptr; // cancelled: error stays empty
+  if (!volume)
+  {
+    const std::string why = !failure.empty() ? failure : errors->text();
+    error = QString::fromStdString(why.empty() ? std::string("the conversion produced no volume") : why);
+  }
+  return volume;
+}

@@ -1,0 +1,31 @@
+// "Open mesh...": a mesh file (vtkLVDIFMeshReader) converted to a volume by
+// vtkMeshToSDF on a worker thread, with a progress dialog whose Cancel
+// button sets the filter's AbortExecute. The UI thread keeps running its
+// event loop meanwhile (the chunk view and the dialog stay responsive).
+#pragma once
+
+#include "lvdif/DictionaryVolume.h"
+
+#include <QString>
+
+#include <memory>
+
+class QWidget;
+
+struct MeshImportSettings
+{
+  int resolution = 128; // points along the mesh's longest axis
+  int signMode = 2;     // vtkMeshToSDF::NORMAL / PSEUDO_NORMAL / WINDING_NUMBER (default)
+  double padding = 2.0; // voxels of margin around the mesh
+};
+
+/// Asks for the resolution and the sign mode; false if cancelled.
+bool askMeshImportSettings(QWidget* parent, MeshImportSettings& settings);
+
+/// "winding", "pseudo" or "normal" to a sign mode; -1 if none of them.
+int meshSignModeFromName(const QString& name);
+
+/// Converts the mesh, showing progress under `parent`. Returns the volume, or
+/// nullptr with `error` set (empty when the user cancelled).
+std::unique_ptr<lvdif::DictionaryVolume> importMesh(
+  QWidget* parent, const QString& path, const MeshImportSettings& settings, QString& error);

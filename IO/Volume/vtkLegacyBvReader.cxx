@@ -1,0 +1,140 @@
+#include "vtkLegacyBvReader.h"
+
+#include "vtkLVDIFInterrupter.h"
+#include "vtkLVDIFVolumeBridge.h"
+
+#include "lvdif/LegacyBv.h"
+
+#include "vtkDataObject.h"
+#include "vtkImageData.h"
+#include "vtkInformation.h"
+#include "vtkInformationVector.h"
+#include "vtkObjectFactory.h"
+#include "vtkStreamingDemandDrivenPipeline.h"
+
+#include <cmath>
+#include <cstdint>
+#include <fstream>
+#include <string>
+
+vtkStandardNewMacro(vtkLegacyBvReader);
+
+namespace
+{
+/// N from the file's size and name, or a message saying why there is none.
+/// (Core checks the same again on load; checking here lets RequestInformation
+/// announce the extent without reading the file.)
+std::int64_t edgeOf(const std::string& path, std::string& why)
+{
+  std::ifstream f(path, std::ios::binary | std::ios::ate);
+  if (!f)
+  {
+    why = "cannot open the file";
+    return -1;
+  }
+  const std::uint64_t bytes = static_cast<std::uint64_t>(f.tellg());
+  const std::uint64_t records = bytes / 4;
+  std::int64_t n = static_cast<std::int64_t>(std::llround(std::cbrt(static_cast<double>(records))));
+  while (n > 0 && std::uint64_t(n) * n * n > records)
+    --n;
+  while (std::uint64_t(n + 1) * (n + 1) * (n + 1) <= records)
+    ++n;
+  if (bytes == 0 || bytes % 4 != 0 || std::uint64_t(n) * n * n != records)
+  {
+    why = "size of " + std::to_string(bytes) + " bytes is not 4*N^3 (N^3 records of 4 bytes)";
+    return -1;
+  }
+  const std::int64_t token = lvdif::legacy_bv::edgeFromName(path);
+  if (token >= 0 && token != n)
+  {
+    why = "file name says N = " + std::to_string(token) + " but its size gives N = " + std::to_string(n);
+    return -1;
+  }
+  if (n > VTK_INT_MAX)
+  {
+    why = "edge " + std::to_string(n) + " exceeds VTK's extent range";
+    return -1;
+  }
+  return n;
+}
+} // namespace
+
+vtkLegacyBvReader::vtkLegacyBvReader()
+{
+  this->SetNumberOfInputPorts(0);
+}
+
+vtkLegacyBvReader::~vtkLegacyBvReader() = default;
+
+bool vtkLegacyBvReader::CanReadFile(const char* fileName)
+{
+  std::string why;
+  return fileName && edgeOf(fileName, why) > 0;
+}
+
+int vtkLegacyBvReader::RequestInformation(
+  vtkInformation*, vtkInformationVector**, vtkInformationVector* outputVector)
+{
+  this->Edge = 0;
+  if (this->FileName.empty())
+  {
+    vtkErrorMacro("no file name: call SetFileName() first");
+    return 0;
+  }
+  std::string why;
+  const std::int64_t n = edgeOf(this->FileName, why);
+  if (n <= 0)
+  {
+    vtkErrorMacro(<< "cannot read '" << this->FileName << "': .bv: " << why);
+    return 0;
+  }
+  this->Edge = static_cast<int>(n);
+  vtkInformation* outInfo = outputVector->GetInformationObject(0);
+  const int whole[6] = { 0, this->Edge - 1, 0, this->Edge - 1, 0, this->Edge - 1 };
+  const double origin[3] = { 0, 0, 0 }, spacing[3] = { 1, 1, 1 };
+  outInfo->Set(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT(), whole, 6);
+  outInfo->Set(vtkDataObject::ORIGIN(), origin, 3);
+  outInfo->Set(vtkDataObject::SPACING(), spacing, 3);
+  vtkDataObject::SetPointDataActiveScalarInfo(outInfo, VTK_FLOAT, 1);
+  return 1;
+}
+
+int vtkLegacyBvReader::RequestData(vtkInformation*, vtkInformationVector**, vtkInformationVector* outputVector)
+{
+  vtkInformation* outInfo = outputVector->GetInformationObject(0);
+  vtkImageData* output = vtkImageData::GetData(outInfo);
+  lvdif::LegacyBvOptions options;
+  options.swapXZ = this->SwapXZ;
+  options.distanceScale = this->DistanceScale;
+  options.bandWidth = static_cast<float>(this->BandWidth);
+  vtkLVDIFInterrupter interrupter(this, 0.0, 0.8);
+  try
+  {
+    // The file has no index: it is read whole (no sub-extents).
+    auto volume = lvdif::loadLegacyBv(this->FileName, options, interrupter);
+    this->UpdateProgress(0.8);
+    const int whole[6] = { 0, this->Edge - 1, 0, this->Edge - 1, 0, this->Edge - 1 };
+    vtkLVDIFVolumeBridge::FillImage(*volume, whole, output, true);
+  }
+  catch (const lvdif::Error& e)
+  {
+    output->Initialize();
+    if (e.code() != lvdif::ErrorCode::Cancelled)
+    {
+      vtkErrorMacro(<< "cannot read '" << this->FileName << "': " << e.what());
+    }
+    return 0;
+  }
+  this->UpdateProgress(1.0);
+  return 1;
+}
+
+void vtkLegacyBvReader::PrintSelf(ostream& os, vtkIndent indent)
+{
+  this->Superclass::PrintSelf(os, indent);
+  os << indent << "FileName: " << this->FileName << "\n";
+  os << indent << "SwapXZ: " << this->SwapXZ << "\n";
+  os << indent << "DistanceScale: " << this->DistanceScale << "\n";
+  os << indent << "BandWidth: " << this->BandWidth << "\n";
+  os << indent << "Edge (after UpdateInformation): " << this->Edge << "\n";
+}
