@@ -65,24 +65,38 @@ PreparedMesh prepareMesh(const TriangleMesh& mesh)
   }
   const std::size_t nv = weldPos.size();
 
-  // triangle records and corner angles, in parallel (independent per triangle)
-  std::vector<Tri> all(nt);
-  std::vector<std::array<double, 3>> angles(nt);
-  std::vector<unsigned char> keep(nt);
+  // triangle records and corner angles, in parallel, written straight to
+  // their final (compacted) place: which triangles are kept is known first
   const std::int64_t ntI = static_cast<std::int64_t>(nt);
+  auto faceCross = [&](std::int64_t t, V3* v) {
+    const auto& ix = mesh.triangles[static_cast<std::size_t>(t)];
+    for (int k = 0; k < 3; ++k) v[k] = toV3(mesh.points[ix[k]]);
+    return cross(v[1] - v[0], v[2] - v[0]);
+  };
+  std::vector<std::uint32_t> slot(nt + 1, 0);
 #pragma omp parallel for schedule(static)
   for (std::int64_t t = 0; t < ntI; ++t)
   {
-    const auto& ix = mesh.triangles[t];
-    Tri& tri = all[t];
-    for (int k = 0; k < 3; ++k)
-    {
-      tri.v[k] = toV3(mesh.points[ix[k]]);
-    }
-    const V3 c = cross(tri.v[1] - tri.v[0], tri.v[2] - tri.v[0]);
+    V3 v[3];
+    slot[t + 1] = norm(faceCross(t, v)) > 0 ? 1 : 0;
+  }
+  for (std::size_t t = 0; t < nt; ++t) slot[t + 1] += slot[t];
+  const std::size_t n = slot[nt];
+  out.degenerate = nt - n;
+  require(n > 0, "mesh has no triangle of non-zero area (" + std::to_string(out.degenerate) +
+      " degenerate triangles)");
+  out.tris.resize(n);
+  std::vector<std::array<std::uint32_t, 3>> welded(n);
+  std::vector<std::array<double, 3>> keptAngles(n);
+#pragma omp parallel for schedule(static)
+  for (std::int64_t t = 0; t < ntI; ++t)
+  {
+    if (slot[t + 1] == slot[t]) continue; // degenerate
+    const std::size_t o = slot[t];
+    const auto& ix = mesh.triangles[static_cast<std::size_t>(t)];
+    Tri& tri = out.tris[o];
+    const V3 c = faceCross(t, tri.v);
     const double len = norm(c);
-    keep[t] = len > 0;
-    if (!keep[t]) continue;
     tri.n = (1.0 / len) * c;
     tri.area = 0.5 * len;
     tri.source = static_cast<std::uint32_t>(t);
@@ -95,29 +109,10 @@ PreparedMesh prepareMesh(const TriangleMesh& mesh)
     }
     for (int k = 0; k < 3; ++k)
     {
-      angles[t][k] = angleAt(tri.v[k], tri.v[(k + 1) % 3], tri.v[(k + 2) % 3]);
+      keptAngles[o][k] = angleAt(tri.v[k], tri.v[(k + 1) % 3], tri.v[(k + 2) % 3]);
     }
+    welded[o] = { weld[ix[0]], weld[ix[1]], weld[ix[2]] };
   }
-  std::vector<std::array<std::uint32_t, 3>> welded;
-  std::vector<std::array<double, 3>> keptAngles;
-  out.tris.reserve(nt);
-  welded.reserve(nt);
-  keptAngles.reserve(nt);
-  for (std::size_t t = 0; t < nt; ++t)
-  {
-    if (!keep[t])
-    {
-      ++out.degenerate;
-      continue;
-    }
-    const auto& ix = mesh.triangles[t];
-    welded.push_back({ weld[ix[0]], weld[ix[1]], weld[ix[2]] });
-    keptAngles.push_back(angles[t]);
-    out.tris.push_back(all[t]);
-  }
-  require(!out.tris.empty(), "mesh has no triangle of non-zero area (" + std::to_string(out.degenerate) +
-      " degenerate triangles)");
-  const std::size_t n = out.tris.size();
 
   // vertex pseudo-normals: summed in triangle order (deterministic)
   std::vector<V3> vertexNormal(nv);
