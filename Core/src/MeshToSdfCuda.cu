@@ -603,62 +603,37 @@ public:
       : options.sign == SignMode::WindingNumber ? 2 : 3;
     this->P.useVertexNormals = options.useVertexNormals ? 1 : 0;
     this->P.bounded = (this->P.sign >= 2 && this->P.bandWorld < 1e299) ? 1 : 0;
-    // non-blocking streams: kernels on Stream, float slabs back on CopyStream
-    // (every transfer names its stream: the legacy default stream would not
-    // order against them)
-    LVDIF_CUDA_CHECK(cudaStreamCreateWithFlags(&this->Stream, cudaStreamNonBlocking));
-    LVDIF_CUDA_CHECK(cudaStreamCreateWithFlags(&this->CopyStream, cudaStreamNonBlocking));
-    LVDIF_CUDA_CHECK(cudaMemsetAsync(this->Counters, 0, 2 * sizeof(unsigned long long), this->Stream));
+    LVDIF_CUDA_CHECK(cudaMemset(this->Counters, 0, 2 * sizeof(unsigned long long)));
     stats.devicePeakBytes = std::max(stats.devicePeakBytes, this->Mesh.bytes() + this->Arena.bytes());
   }
 
   ~CudaSession() override
   {
-    cudaDeviceSynchronize(); // never free buffers under running kernels or copies
-    if (this->Stream) cudaStreamDestroy(this->Stream);
-    if (this->CopyStream) cudaStreamDestroy(this->CopyStream);
+    if (this->Launched) cudaDeviceSynchronize(); // never free buffers under running kernels
   }
 
-  /// Two slab buffers of half the slab budget each: the kernels of slab i + 1
-  /// run while slab i is copied to the host (pageable memory: the host waits
-  /// for that copy, the GPU does not).
   void compute(const VoxelBox& extent, float* out, MeshToSdfStats& stats, Interrupter& interrupter) override
   {
     const long long nx = extent.hi[0] - extent.lo[0] + 1, ny = extent.hi[1] - extent.lo[1] + 1;
     const long long nz = extent.hi[2] - extent.lo[2] + 1;
     const std::uint64_t layerBytes = static_cast<std::uint64_t>(nx) * static_cast<std::uint64_t>(ny) * sizeof(float);
-    const long long slabLayers = std::max<long long>(
-      1, std::min<long long>(nz, static_cast<long long>(this->Options.cudaSlabBytes / 2 / layerBytes)));
-    const std::size_t slabFloats = static_cast<std::size_t>(slabLayers * nx * ny);
-    const bool two = slabLayers < nz;
-    this->reserveSlab(two ? 2 * slabFloats : slabFloats, stats);
-    auto boxOf = [&](long long z0) {
-      VoxelBox b = extent;
-      b.lo[2] = z0;
-      b.hi[2] = std::min<long long>(extent.hi[2], z0 + slabLayers - 1);
-      return b;
-    };
-    int buffer = 0;
-    this->launchSlab(boxOf(extent.lo[2]), this->Slab);
+    const long long slabLayers =
+      std::max<long long>(1, std::min<long long>(nz, static_cast<long long>(this->Options.cudaSlabBytes / layerBytes)));
+    this->reserveSlab(static_cast<std::size_t>(slabLayers * nx * ny), stats);
     for (long long z0 = extent.lo[2]; z0 <= extent.hi[2]; z0 += slabLayers)
     {
+      interrupter.checkInterrupt();
       const long long z1 = std::min<long long>(extent.hi[2], z0 + slabLayers - 1);
+      VoxelBox slab = extent;
+      slab.lo[2] = z0;
+      slab.hi[2] = z1;
+      this->launchSlab(slab);
       LVDIF_CUDA_CHECK(cudaEventSynchronize(this->SignDone.b));
-      this->Launched = false;
       stats.distanceSeconds += this->DistanceDone.seconds();
       if (this->HasWinding) stats.signSeconds += this->SignDone.seconds();
-      interrupter.checkInterrupt();
-      const float* done = this->Slab + (buffer ? slabFloats : 0);
-      if (z1 < extent.hi[2])
-      {
-        buffer ^= 1; // the other buffer's copy finished in the previous iteration
-        this->launchSlab(boxOf(z1 + 1), this->Slab + (buffer ? slabFloats : 0));
-      }
       const double t0 = now();
-      LVDIF_CUDA_CHECK(cudaMemcpyAsync(out + (z0 - extent.lo[2]) * nx * ny, done,
-        static_cast<std::size_t>((z1 - z0 + 1) * ny * nx) * sizeof(float), cudaMemcpyDeviceToHost,
-        this->CopyStream));
-      LVDIF_CUDA_CHECK(cudaStreamSynchronize(this->CopyStream));
+      LVDIF_CUDA_CHECK(cudaMemcpy(out + (z0 - extent.lo[2]) * nx * ny, this->Slab,
+        static_cast<std::size_t>((z1 - z0 + 1) * ny * nx) * sizeof(float), cudaMemcpyDeviceToHost));
       stats.writeSeconds += now() - t0;
       interrupter.progress(static_cast<double>(z1 - extent.lo[2] + 1) / static_cast<double>(nz));
     }
@@ -684,8 +659,8 @@ public:
       this->List = this->Arena.alloc<long long>(static_cast<std::size_t>(this->Chunks));
       this->FlagCapacity = this->Chunks;
     }
-    this->launchSlab(box, this->Slab);
-    chunkUniformKernel<<<static_cast<unsigned>(this->Chunks), 256, 0, this->Stream>>>(
+    this->launchSlab(box);
+    chunkUniformKernel<<<static_cast<unsigned>(this->Chunks), 256>>>(
       this->Slab, nx, ny, nz, edge, this->Ccx, this->Ccy, encode, band, this->Flags);
     LVDIF_CUDA_CHECK(cudaGetLastError());
     stats.devicePeakBytes = std::max(stats.devicePeakBytes, this->Mesh.bytes() + this->Arena.bytes());
@@ -696,9 +671,8 @@ public:
     const long long nx = this->KeyBox.hi[0] - this->KeyBox.lo[0] + 1, ny = this->KeyBox.hi[1] - this->KeyBox.lo[1] + 1;
     const long long nz = this->KeyBox.hi[2] - this->KeyBox.lo[2] + 1;
     out.uniform.resize(static_cast<std::size_t>(this->Chunks));
-    LVDIF_CUDA_CHECK(cudaMemcpyAsync(out.uniform.data(), this->Flags, out.uniform.size() * sizeof(unsigned),
-      cudaMemcpyDeviceToHost, this->Stream));
-    LVDIF_CUDA_CHECK(cudaStreamSynchronize(this->Stream)); // the kernels are done
+    LVDIF_CUDA_CHECK(cudaMemcpy(out.uniform.data(), this->Flags, out.uniform.size() * sizeof(unsigned),
+      cudaMemcpyDeviceToHost)); // waits for the kernels
     this->Launched = false;
     stats.distanceSeconds += this->DistanceDone.seconds();
     if (this->HasWinding) stats.signSeconds += this->SignDone.seconds();
@@ -719,21 +693,19 @@ public:
         this->Keys = this->Arena.alloc<unsigned short>(keyCount);
         this->KeyCapacity = keyCount;
       }
-      LVDIF_CUDA_CHECK(cudaMemcpyAsync(this->List, out.listed.data(), out.listed.size() * sizeof(long long),
-        cudaMemcpyHostToDevice, this->Stream));
-      chunkKeysKernel<<<static_cast<unsigned>(out.listed.size()), 256, 0, this->Stream>>>(this->Slab, nx, ny, nz, this->Edge,
+      LVDIF_CUDA_CHECK(cudaMemcpy(this->List, out.listed.data(), out.listed.size() * sizeof(long long),
+        cudaMemcpyHostToDevice));
+      chunkKeysKernel<<<static_cast<unsigned>(out.listed.size()), 256>>>(this->Slab, nx, ny, nz, this->Edge,
         this->Ccx, this->Ccy, this->Encode, this->Band, this->List, this->Keys);
       LVDIF_CUDA_CHECK(cudaGetLastError());
-      LVDIF_CUDA_CHECK(cudaMemcpyAsync(out.keys.data(), this->Keys, keyCount * sizeof(unsigned short),
-        cudaMemcpyDeviceToHost, this->Stream));
-      LVDIF_CUDA_CHECK(cudaStreamSynchronize(this->Stream));
+      LVDIF_CUDA_CHECK(cudaMemcpy(out.keys.data(), this->Keys, keyCount * sizeof(unsigned short),
+        cudaMemcpyDeviceToHost));
     }
     if (this->Options.cudaVerifyKeys)
     {
       out.floats.resize(static_cast<std::size_t>(nx * ny * nz));
-      LVDIF_CUDA_CHECK(cudaMemcpyAsync(out.floats.data(), this->Slab, out.floats.size() * sizeof(float),
-        cudaMemcpyDeviceToHost, this->Stream));
-      LVDIF_CUDA_CHECK(cudaStreamSynchronize(this->Stream));
+      LVDIF_CUDA_CHECK(cudaMemcpy(out.floats.data(), this->Slab, out.floats.size() * sizeof(float),
+        cudaMemcpyDeviceToHost));
     }
     stats.devicePeakBytes = std::max(stats.devicePeakBytes, this->Mesh.bytes() + this->Arena.bytes());
     stats.writeSeconds += now() - t0;
@@ -752,8 +724,8 @@ private:
     stats.devicePeakBytes = std::max(stats.devicePeakBytes, this->Mesh.bytes() + this->Arena.bytes());
   }
 
-  /// Queues the distance and sign kernels of one slab (box layout in slab).
-  void launchSlab(const VoxelBox& box, float* slab)
+  /// Queues the distance and sign kernels of one slab (box layout in Slab).
+  void launchSlab(const VoxelBox& box)
   {
     Params P = this->P;
     for (int a = 0; a < 3; ++a)
@@ -764,27 +736,26 @@ private:
     const long long nx = box.hi[0] - box.lo[0] + 1;
     const long long rows = (box.hi[1] - box.lo[1] + 1) * (box.hi[2] - box.lo[2] + 1);
     const long long threads = rows * ((nx + Run - 1) / Run);
-    LVDIF_CUDA_CHECK(cudaEventRecord(this->DistanceDone.a, this->Stream));
-    distanceKernel<<<static_cast<unsigned>((threads + 127) / 128), 128, 0, this->Stream>>>(this->Mesh.Dbvh, P, slab);
+    LVDIF_CUDA_CHECK(cudaEventRecord(this->DistanceDone.a));
+    distanceKernel<<<static_cast<unsigned>((threads + 127) / 128), 128>>>(this->Mesh.Dbvh, P, this->Slab);
     LVDIF_CUDA_CHECK(cudaGetLastError());
-    LVDIF_CUDA_CHECK(cudaEventRecord(this->DistanceDone.b, this->Stream));
-    LVDIF_CUDA_CHECK(cudaEventRecord(this->SignDone.a, this->Stream));
+    LVDIF_CUDA_CHECK(cudaEventRecord(this->DistanceDone.b));
+    LVDIF_CUDA_CHECK(cudaEventRecord(this->SignDone.a));
     if (this->HasWinding)
     {
-      signKernel<<<static_cast<unsigned>((rows + 63) / 64), 64, 0, this->Stream>>>(this->Mesh.W, P, slab, this->Counters,
+      signKernel<<<static_cast<unsigned>((rows + 63) / 64), 64>>>(this->Mesh.W, P, this->Slab, this->Counters,
         this->Counters + 1);
       LVDIF_CUDA_CHECK(cudaGetLastError());
     }
-    LVDIF_CUDA_CHECK(cudaEventRecord(this->SignDone.b, this->Stream));
+    LVDIF_CUDA_CHECK(cudaEventRecord(this->SignDone.b));
     this->Launched = true;
   }
 
   void readCounters(MeshToSdfStats& stats)
   {
     unsigned long long host[2] = { 0, 0 };
-    LVDIF_CUDA_CHECK(cudaMemcpyAsync(host, this->Counters, sizeof(host), cudaMemcpyDeviceToHost, this->Stream));
-    LVDIF_CUDA_CHECK(cudaStreamSynchronize(this->Stream));
-    LVDIF_CUDA_CHECK(cudaMemsetAsync(this->Counters, 0, sizeof(host), this->Stream));
+    LVDIF_CUDA_CHECK(cudaMemcpy(host, this->Counters, sizeof(host), cudaMemcpyDeviceToHost));
+    LVDIF_CUDA_CHECK(cudaMemset(this->Counters, 0, sizeof(host)));
     stats.windingEvaluations += static_cast<std::int64_t>(host[0]);
     stats.windingExact += static_cast<std::int64_t>(host[1]);
   }
@@ -794,7 +765,6 @@ private:
   bool HasWinding;
   bool Launched = false;
   DeviceArena Arena;
-  cudaStream_t Stream = nullptr, CopyStream = nullptr;
   Params P;
   EventTimer DistanceDone, SignDone;
   unsigned long long* Counters = nullptr;
