@@ -16,6 +16,7 @@
 #include <exception>
 #include <memory>
 #include <sstream>
+#include <utility>
 
 namespace lvdif
 {
@@ -43,10 +44,10 @@ void validateGrid(const GridGeometry& g)
 
 struct Engine
 {
-  PreparedMesh mesh;
-  std::unique_ptr<Bvh> bvh;
+  const PreparedMesh* mesh = nullptr;
+  const Bvh* bvh = nullptr;
+  const WindingSigner* winding = nullptr;
   std::unique_ptr<FaithfulGrid> grid;
-  std::unique_ptr<WindingSigner> winding;
   GridGeometry geom;
   MeshToSdfOptions opts;
   double toOut = 1;       // world distance -> output units
@@ -68,9 +69,9 @@ struct Engine
       {
         NearestResult best;
         best.dist2 = 1e300;
-        for (std::size_t t = 0; t < this->mesh.tris.size(); ++t)
+        for (std::size_t t = 0; t < this->mesh->tris.size(); ++t)
         {
-          const Tri& tri = this->mesh.tris[t];
+          const Tri& tri = this->mesh->tris[t];
           const Closest c = closestPointOnTriangle(p, tri.v[0], tri.v[1], tri.v[2]);
           const V3 d = c.point - p;
           const double d2 = dot(d, d);
@@ -94,7 +95,7 @@ struct Engine
   /// -1 inside, +1 outside, from the closest triangle (Normal / PseudoNormal).
   float localSign(V3 p, const NearestResult& r) const
   {
-    const Tri& t = this->mesh.tris[r.tri];
+    const Tri& t = this->mesh->tris[r.tri];
     V3 n;
     if (this->opts.sign == SignMode::PseudoNormal)
     {
@@ -154,8 +155,8 @@ struct Engine
   }
 };
 
-std::unique_ptr<Engine> makeEngine(const TriangleMesh& mesh, const GridGeometry& geom, const MeshToSdfOptions& opts,
-  float band, MeshToSdfStats& stats)
+std::unique_ptr<Engine> makeEngine(const MeshToSdfPrepared& prepared, const GridGeometry& geom,
+  const MeshToSdfOptions& opts, float band, MeshToSdfStats& stats)
 {
   validateGrid(geom);
   require(opts.faithfulCellsPerAxis >= 1 && opts.faithfulCellsPerAxis <= 256,
@@ -164,7 +165,9 @@ std::unique_ptr<Engine> makeEngine(const TriangleMesh& mesh, const GridGeometry&
   require(band > 0, "mesh to SDF: band width must be positive");
   const double t0 = now();
   auto e = std::make_unique<Engine>();
-  e->mesh = prepareMesh(mesh);
+  MeshToSdfPrepared::Impl& impl = prepared.impl();
+  e->mesh = &impl.mesh;
+  e->bvh = impl.bvh.get();
   e->geom = geom;
   e->opts = opts;
   const double unit = std::min(geom.spacing[0], std::min(geom.spacing[1], geom.spacing[2]));
@@ -172,10 +175,10 @@ std::unique_ptr<Engine> makeEngine(const TriangleMesh& mesh, const GridGeometry&
   e->band = band;
   const double bw = static_cast<double>(band) / e->toOut;
   e->bandWorld2 = std::isfinite(bw) ? bw * bw * (1 + 1e-9) : 1e300;
-  e->bvh = std::make_unique<Bvh>(e->mesh.tris);
+  double lazy = 0; // only what this call had to build (timed inside)
   if (opts.sign == SignMode::WindingNumber)
   {
-    e->winding = std::make_unique<WindingSigner>(e->mesh);
+    e->winding = &impl.windingSigner(lazy);
   }
   if (opts.accel == MeshToSdfAccel::Faithful)
   {
@@ -183,13 +186,26 @@ std::unique_ptr<Engine> makeEngine(const TriangleMesh& mesh, const GridGeometry&
       opts.faithfulCellsPerAxis * opts.faithfulCellsPerAxis;
     requireMemory(cells * 48, "mesh to SDF: faithful cell lists");
     e->grid = std::make_unique<FaithfulGrid>(
-      e->mesh.tris, e->mesh.lo, e->mesh.hi, opts.faithfulCellsPerAxis, opts.faithfulScale);
+      e->mesh->tris, e->mesh->lo, e->mesh->hi, opts.faithfulCellsPerAxis, opts.faithfulScale);
   }
-  stats.triangles = e->mesh.tris.size();
-  stats.degenerateSkipped = e->mesh.degenerate;
-  stats.boundaryEdges = e->mesh.boundaryEdges;
+  stats.triangles = e->mesh->tris.size();
+  stats.degenerateSkipped = e->mesh->degenerate;
+  stats.boundaryEdges = e->mesh->boundaryEdges;
   stats.buildSeconds += now() - t0;
   return e;
+}
+
+/// The CUDA session of a call, on the prepared mesh's device copy (uploaded
+/// on first use; the upload counts as build time).
+std::unique_ptr<cudasdf::Session> openCuda(const MeshToSdfPrepared& prepared, const Engine& e,
+  const MeshToSdfOptions& opts, MeshToSdfStats& stats)
+{
+  const double t0 = now();
+  double unused = 0;
+  const cudasdf::DeviceMesh& dm = prepared.impl().deviceMesh(opts.sign == SignMode::WindingNumber, unused);
+  auto session = cudasdf::openSession(dm, e.geom, opts, e.toOut, e.band, stats);
+  stats.buildSeconds += now() - t0;
+  return session;
 }
 
 /// Runs fn(row) for every (j, k) row of the box on OpenMP threads; progress
@@ -253,6 +269,138 @@ void computeBox(const Engine& e, const VoxelBox& box, float* out, MeshToSdfStats
   stats.signSeconds += now() - t0;
 }
 
+/// Stores one chunk's keys (the CPU and GPU paths): a uniform chunk over a
+/// uniform one is filled, anything else expanded and written (colours kept).
+template <typename KeyAt>
+void storeChunk(DictionaryVolume& volume, std::int64_t id, bool uniform, SdfKey first, KeyAt&& keyAt)
+{
+  if (uniform && volume.isUniform(id))
+  {
+    volume.fillChunk(id, Voxel{ first, volume.uniformValue(id).color });
+    return;
+  }
+  const VoxelBox cb = volume.chunkBox(id);
+  Voxel* data = volume.expandChunk(id);
+  for (std::int64_t z = cb.lo[2]; z <= cb.hi[2]; ++z)
+    for (std::int64_t y = cb.lo[1]; y <= cb.hi[1]; ++y)
+      for (std::int64_t x = cb.lo[0]; x <= cb.hi[0]; ++x)
+      {
+        const std::int64_t l = volume.localIndex(x, y, z);
+        data[l].sdf = uniform ? first : keyAt(x, y, z, l);
+      }
+  volume.markDirty(id);
+  volume.tryCollapseChunk(id);
+}
+
+/// CPU: one layer of chunks at a time (nx * ny * chunkEdge floats, 128 MiB
+/// at 1024^2 x 32), encoded on the host; never the full grid.
+void volumeOnCpu(const Engine& e, DictionaryVolume& volume, MeshToSdfStats& stats, Interrupter& intr)
+{
+  const GridGeometry& grid = e.geom;
+  const std::int64_t edge = volume.chunkEdge();
+  const std::uint64_t layerFloats = checkedMultiply(
+    checkedMultiply(static_cast<std::uint64_t>(grid.dims[0]), static_cast<std::uint64_t>(grid.dims[1]), "slab"),
+    static_cast<std::uint64_t>(edge), "slab");
+  const Index3& cc = volume.chunkCounts();
+  requireMemory(layerFloats * sizeof(float), "mesh to SDF: slab buffer");
+  std::vector<float> slab(static_cast<std::size_t>(layerFloats));
+  const std::int64_t nx = grid.dims[0], ny = grid.dims[1];
+  for (std::int64_t cz = 0; cz < cc[2]; ++cz)
+  {
+    VoxelBox box;
+    box.lo = { 0, 0, cz * edge };
+    box.hi = { grid.dims[0] - 1, grid.dims[1] - 1, std::min(grid.dims[2], (cz + 1) * edge) - 1 };
+    computeBox(e, box, slab.data(), stats, intr, static_cast<double>(cz) / static_cast<double>(cc[2]),
+      1.0 / static_cast<double>(cc[2]));
+    const double t0 = now();
+    const std::int64_t chunksInSlab = cc[0] * cc[1];
+#pragma omp parallel for schedule(dynamic, 1)
+    for (std::int64_t c = 0; c < chunksInSlab; ++c)
+    {
+      const std::int64_t id = volume.chunkId(c % cc[0], c / cc[0], cz);
+      const VoxelBox cb = volume.chunkBox(id);
+      auto keyAt = [&](std::int64_t x, std::int64_t y, std::int64_t z, std::int64_t) {
+        return volume.encode(slab[static_cast<std::size_t>(x + nx * (y + ny * (z - box.lo[2])))]);
+      };
+      const SdfKey first = keyAt(cb.lo[0], cb.lo[1], cb.lo[2], 0);
+      bool uniform = true;
+      for (std::int64_t z = cb.lo[2]; z <= cb.hi[2] && uniform; ++z)
+        for (std::int64_t y = cb.lo[1]; y <= cb.hi[1] && uniform; ++y)
+          for (std::int64_t x = cb.lo[0]; x <= cb.hi[0] && uniform; ++x) uniform = keyAt(x, y, z, 0) == first;
+      storeChunk(volume, id, uniform, first, keyAt);
+    }
+    stats.writeSeconds += now() - t0;
+  }
+}
+
+/// CUDA: groups of chunk layers as large as cudaSlabBytes allows (at least
+/// one), encoded on the GPU (SdfDictionary::encodeWith, the host's own
+/// rounding); only the keys of non-uniform chunks come back, and the host
+/// stores group g while the GPU computes group g + 1.
+void volumeOnCuda(cudasdf::Session& session, DictionaryVolume& volume, const MeshToSdfOptions& opts,
+  MeshToSdfStats& stats, Interrupter& intr)
+{
+  const Index3 dims = volume.options().dims;
+  const std::int64_t edge = volume.chunkEdge();
+  const Index3& cc = volume.chunkCounts();
+  const std::uint64_t layerBytes = static_cast<std::uint64_t>(dims[0]) * static_cast<std::uint64_t>(dims[1]) *
+    static_cast<std::uint64_t>(edge) * sizeof(float);
+  const std::int64_t group = std::max<std::int64_t>(1,
+    std::min<std::int64_t>(cc[2], static_cast<std::int64_t>(opts.cudaSlabBytes / layerBytes)));
+  const SdfDictionary::EncodeConstants& enc = volume.sdfDictionary().encodeConstants();
+  const float band = volume.bandWidth();
+  auto boxOf = [&](std::int64_t g0) {
+    VoxelBox b;
+    b.lo = { 0, 0, g0 * edge };
+    b.hi = { dims[0] - 1, dims[1] - 1, std::min(dims[2], (g0 + group) * edge) - 1 };
+    return b;
+  };
+  cudasdf::ChunkKeys keys;
+  session.launchKeys(boxOf(0), static_cast<int>(edge), enc, band, stats);
+  const std::int64_t e3 = edge * edge * edge;
+  for (std::int64_t g0 = 0; g0 < cc[2]; g0 += group)
+  {
+    intr.checkInterrupt();
+    session.fetchKeys(keys, stats);
+    if (g0 + group < cc[2]) session.launchKeys(boxOf(g0 + group), static_cast<int>(edge), enc, band, stats);
+    const double t0 = now();
+    const VoxelBox box = boxOf(g0);
+    const std::int64_t chunks = static_cast<std::int64_t>(keys.uniform.size());
+    std::vector<std::int64_t> slot(static_cast<std::size_t>(chunks), -1); // index in keys.listed
+    for (std::size_t i = 0; i < keys.listed.size(); ++i) slot[static_cast<std::size_t>(keys.listed[i])] = static_cast<std::int64_t>(i);
+    std::int64_t mismatches = 0, verified = 0;
+#pragma omp parallel for schedule(dynamic, 1) reduction(+ : mismatches, verified)
+    for (std::int64_t c = 0; c < chunks; ++c)
+    {
+      const std::int64_t id = volume.chunkId(c % cc[0], (c / cc[0]) % cc[1], g0 + c / (cc[0] * cc[1]));
+      const std::uint32_t u = keys.uniform[static_cast<std::size_t>(c)];
+      const bool uniform = u != cudasdf::ChunkKeys::NotUniform;
+      const std::uint16_t* k = uniform ? nullptr : keys.keys.data() + slot[static_cast<std::size_t>(c)] * e3;
+      auto keyAt = [&](std::int64_t, std::int64_t, std::int64_t, std::int64_t l) { return k[l]; };
+      if (!keys.floats.empty())
+      {
+        // tests: every GPU key against the host's encode of the same float
+        const VoxelBox cb = volume.chunkBox(id);
+        for (std::int64_t z = cb.lo[2]; z <= cb.hi[2]; ++z)
+          for (std::int64_t y = cb.lo[1]; y <= cb.hi[1]; ++y)
+            for (std::int64_t x = cb.lo[0]; x <= cb.hi[0]; ++x)
+            {
+              const SdfKey want = volume.encode(
+                keys.floats[static_cast<std::size_t>(x + dims[0] * (y + dims[1] * (z - box.lo[2])))]);
+              const SdfKey got = uniform ? static_cast<SdfKey>(u) : k[volume.localIndex(x, y, z)];
+              mismatches += want != got;
+              ++verified;
+            }
+      }
+      storeChunk(volume, id, uniform, static_cast<SdfKey>(uniform ? u : 0), keyAt);
+    }
+    stats.keyMismatches += mismatches;
+    stats.keysVerified += verified;
+    stats.writeSeconds += now() - t0;
+    intr.progress(static_cast<double>(std::min(cc[2], g0 + group)) / static_cast<double>(cc[2]));
+  }
+}
+
 } // namespace
 
 GridGeometry fitGridToMesh(const TriangleMesh& mesh, std::int64_t maxDim, double paddingVoxels)
@@ -290,8 +438,8 @@ GridGeometry fitGridToMesh(const TriangleMesh& mesh, std::int64_t maxDim, double
   return g;
 }
 
-MeshToSdfStats meshToSdf(const TriangleMesh& mesh, const GridGeometry& grid, const VoxelBox& extent, float* out,
-  const MeshToSdfOptions& options, Interrupter& interrupter)
+MeshToSdfStats meshToSdf(const MeshToSdfPrepared& mesh, const GridGeometry& grid, const VoxelBox& extent,
+  float* out, const MeshToSdfOptions& options, Interrupter& interrupter)
 {
   validateGrid(grid);
   require(out != nullptr, "mesh to SDF: output pointer is null");
@@ -306,9 +454,7 @@ MeshToSdfStats meshToSdf(const TriangleMesh& mesh, const GridGeometry& grid, con
   stats.device = resolveDevice(options.device);
   if (stats.device == Device::Cuda)
   {
-    auto session = cudasdf::openSession(engine->mesh, *engine->bvh, engine->winding.get(), grid, options,
-      engine->toOut, engine->band, stats);
-    session->compute(extent, out, stats, interrupter);
+    openCuda(mesh, *engine, options, stats)->compute(extent, out, stats, interrupter);
   }
   else
   {
@@ -330,7 +476,7 @@ MeshToSdfStats meshToSdf(const TriangleMesh& mesh, const GridGeometry& grid, con
   return stats;
 }
 
-MeshToSdfStats meshToSdf(const TriangleMesh& mesh, const FloatGridView& out, const MeshToSdfOptions& options,
+MeshToSdfStats meshToSdf(const MeshToSdfPrepared& mesh, const FloatGridView& out, const MeshToSdfOptions& options,
   Interrupter& interrupter)
 {
   VoxelBox all;
@@ -338,7 +484,7 @@ MeshToSdfStats meshToSdf(const TriangleMesh& mesh, const FloatGridView& out, con
   return meshToSdf(mesh, out.geometry, all, out.data, options, interrupter);
 }
 
-MeshToSdfStats meshToSdf(const TriangleMesh& mesh, DictionaryVolume& volume, const MeshToSdfOptions& options,
+MeshToSdfStats meshToSdf(const MeshToSdfPrepared& mesh, DictionaryVolume& volume, const MeshToSdfOptions& options,
   Interrupter& interrupter)
 {
   const VolumeOptions& vo = volume.options();
@@ -352,86 +498,13 @@ MeshToSdfStats meshToSdf(const TriangleMesh& mesh, DictionaryVolume& volume, con
   interrupter.start("mesh to SDF");
   auto engine = makeEngine(mesh, grid, opts, volume.bandWidth(), stats);
   stats.device = resolveDevice(options.device);
-
-  // One slab of whole chunk layers at a time: nx * ny * chunkEdge floats
-  // (128 MiB at 1024^2 x 32) on the CPU, up to 4 chunk layers (512 MiB) per
-  // CUDA call; never the full grid.
-  const std::int64_t edge = volume.chunkEdge();
-  const std::uint64_t layerFloats = checkedMultiply(
-    checkedMultiply(static_cast<std::uint64_t>(grid.dims[0]), static_cast<std::uint64_t>(grid.dims[1]), "slab"),
-    static_cast<std::uint64_t>(edge), "slab");
-  const Index3& cc = volume.chunkCounts();
-  std::int64_t group = 1;
-  std::unique_ptr<cudasdf::Session> session;
   if (stats.device == Device::Cuda)
   {
-    group = std::max<std::int64_t>(1, std::min<std::int64_t>({ cc[2], 4,
-      static_cast<std::int64_t>((512ull << 20) / (layerFloats * sizeof(float))) }));
-    session = cudasdf::openSession(engine->mesh, *engine->bvh, engine->winding.get(), grid, opts, engine->toOut,
-      engine->band, stats);
+    volumeOnCuda(*openCuda(mesh, *engine, opts, stats), volume, opts, stats, interrupter);
   }
-  const std::uint64_t slabFloats = layerFloats * static_cast<std::uint64_t>(group);
-  requireMemory(slabFloats * sizeof(float), "mesh to SDF: slab buffer");
-  std::vector<float> slab(static_cast<std::size_t>(slabFloats));
-  for (std::int64_t g0 = 0; g0 < cc[2]; g0 += group)
+  else
   {
-    VoxelBox groupBox;
-    groupBox.lo = { 0, 0, g0 * edge };
-    groupBox.hi = { grid.dims[0] - 1, grid.dims[1] - 1, std::min(grid.dims[2], (g0 + group) * edge) - 1 };
-    const double base = static_cast<double>(g0) / static_cast<double>(cc[2]);
-    const double span = static_cast<double>(std::min(group, cc[2] - g0)) / static_cast<double>(cc[2]);
-    if (session)
-    {
-      session->compute(groupBox, slab.data(), stats, interrupter);
-    }
-    else
-    {
-      computeBox(*engine, groupBox, slab.data(), stats, interrupter, base, span);
-    }
-    for (std::int64_t cz = g0; cz < std::min(cc[2], g0 + group); ++cz)
-    {
-      const VoxelBox& box = groupBox;
-      const double t0 = now();
-      const std::int64_t nx = grid.dims[0], ny = grid.dims[1];
-      const std::int64_t chunksInSlab = cc[0] * cc[1];
-#pragma omp parallel for schedule(dynamic, 1)
-      for (std::int64_t c = 0; c < chunksInSlab; ++c)
-      {
-        const std::int64_t id = volume.chunkId(c % cc[0], c / cc[0], cz);
-        const VoxelBox cb = volume.chunkBox(id);
-        auto valueAt = [&](std::int64_t x, std::int64_t y, std::int64_t z) {
-          return slab[static_cast<std::size_t>(x + nx * (y + ny * (z - box.lo[2])))];
-        };
-        const SdfKey first = volume.encode(valueAt(cb.lo[0], cb.lo[1], cb.lo[2]));
-        bool uniform = true;
-        for (std::int64_t z = cb.lo[2]; z <= cb.hi[2] && uniform; ++z)
-          for (std::int64_t y = cb.lo[1]; y <= cb.hi[1] && uniform; ++y)
-            for (std::int64_t x = cb.lo[0]; x <= cb.hi[0]; ++x)
-            {
-              if (volume.encode(valueAt(x, y, z)) != first)
-              {
-                uniform = false;
-                break;
-              }
-            }
-        if (uniform && volume.isUniform(id))
-        {
-          volume.fillChunk(id, Voxel{ first, volume.uniformValue(id).color });
-          continue;
-        }
-        Voxel* data = volume.expandChunk(id);
-        for (std::int64_t z = cb.lo[2]; z <= cb.hi[2]; ++z)
-          for (std::int64_t y = cb.lo[1]; y <= cb.hi[1]; ++y)
-            for (std::int64_t x = cb.lo[0]; x <= cb.hi[0]; ++x)
-            {
-              data[volume.localIndex(x, y, z)].sdf = volume.encode(valueAt(x, y, z));
-            }
-        volume.markDirty(id);
-        volume.tryCollapseChunk(id);
-      }
-      stats.writeSeconds += now() - t0;
-      interrupter.progress(static_cast<double>(cz + 1) / static_cast<double>(cc[2]));
-    }
+    volumeOnCpu(*engine, volume, stats, interrupter);
   }
   if (options.svfFilters != 0)
   {
@@ -444,6 +517,88 @@ MeshToSdfStats meshToSdf(const TriangleMesh& mesh, DictionaryVolume& volume, con
   interrupter.end();
   return stats;
 }
+
+/// The one-call API: prepare, then the prepared call (preparation counts as build time).
+template <typename Out>
+MeshToSdfStats prepareAndRun(const TriangleMesh& mesh, Out&& out, const MeshToSdfOptions& options,
+  Interrupter& interrupter)
+{
+  const MeshToSdfPrepared prepared = prepareMeshToSdf(mesh, options.sign);
+  MeshToSdfStats stats = meshToSdf(prepared, std::forward<Out>(out), options, interrupter);
+  stats.buildSeconds += prepared.prepareSeconds();
+  return stats;
+}
+
+MeshToSdfStats meshToSdf(const TriangleMesh& mesh, const GridGeometry& grid, const VoxelBox& extent, float* out,
+  const MeshToSdfOptions& options, Interrupter& interrupter)
+{
+  const MeshToSdfPrepared prepared = prepareMeshToSdf(mesh, options.sign);
+  MeshToSdfStats stats = meshToSdf(prepared, grid, extent, out, options, interrupter);
+  stats.buildSeconds += prepared.prepareSeconds();
+  return stats;
+}
+
+MeshToSdfStats meshToSdf(const TriangleMesh& mesh, const FloatGridView& out, const MeshToSdfOptions& options,
+  Interrupter& interrupter)
+{
+  return prepareAndRun(mesh, out, options, interrupter);
+}
+
+MeshToSdfStats meshToSdf(const TriangleMesh& mesh, DictionaryVolume& volume, const MeshToSdfOptions& options,
+  Interrupter& interrupter)
+{
+  return prepareAndRun(mesh, volume, options, interrupter);
+}
+
+MeshToSdfPrepared prepareMeshToSdf(const TriangleMesh& mesh, SignMode sign)
+{
+  const double t0 = now();
+  auto impl = std::make_shared<MeshToSdfPrepared::Impl>();
+  impl->mesh = prepareMesh(mesh);
+  impl->bvh = std::make_unique<Bvh>(impl->mesh.tris);
+  double unused = 0;
+  if (sign == SignMode::WindingNumber) impl->windingSigner(unused);
+  impl->prepareSeconds = now() - t0;
+  return MeshToSdfPrepared(std::move(impl));
+}
+
+std::size_t MeshToSdfPrepared::triangles() const { return this->Pimpl->mesh.tris.size(); }
+std::size_t MeshToSdfPrepared::degenerateSkipped() const { return this->Pimpl->mesh.degenerate; }
+std::size_t MeshToSdfPrepared::boundaryEdges() const { return this->Pimpl->mesh.boundaryEdges; }
+double MeshToSdfPrepared::prepareSeconds() const { return this->Pimpl->prepareSeconds; }
+
+const WindingSigner& MeshToSdfPrepared::Impl::windingSigner(double& seconds)
+{
+  std::lock_guard<std::mutex> lock(this->Lock);
+  if (!this->Winding)
+  {
+    const double t0 = now();
+    this->Winding = std::make_unique<WindingSigner>(this->mesh);
+    seconds += now() - t0;
+  }
+  return *this->Winding;
+}
+
+const cudasdf::DeviceMesh& MeshToSdfPrepared::Impl::deviceMesh(bool winding, double& seconds)
+{
+  const WindingSigner* w = winding ? &this->windingSigner(seconds) : nullptr;
+  // Sessions of other threads may hold the first copy: a copy with the
+  // winding structures is added beside it, never put in its place.
+  std::lock_guard<std::mutex> lock(this->Lock);
+  const double t0 = now();
+  if (!this->Device)
+  {
+    this->Device = cudasdf::uploadMesh(this->mesh, *this->bvh, w);
+  }
+  else if (w && !this->Device->hasWinding() && !this->WindingDevice)
+  {
+    this->WindingDevice = cudasdf::uploadMesh(this->mesh, *this->bvh, w);
+  }
+  seconds += now() - t0;
+  return w && !this->Device->hasWinding() ? *this->WindingDevice : *this->Device;
+}
+
+MeshToSdfPrepared::Impl::~Impl() = default;
 
 const char* toString(SignMode mode)
 {

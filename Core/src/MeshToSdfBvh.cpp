@@ -1,7 +1,5 @@
 // BVH for mesh to SDF: exact nearest-triangle queries (branch and bound on
-// box distances) and fast winding numbers with a rigorous error bound
-// (Barill, Dickson, Schmidt, Levin, Jacobson, "Fast winding numbers for
-// soups and clouds", SIGGRAPH 2018, first-order dipole terms).
+// box distances) and ray crossings for the winding-number signs.
 #include "MeshToSdfInternal.h"
 
 #include <algorithm>
@@ -18,64 +16,66 @@ constexpr double FourPi = 12.566370614359172;
 constexpr int LeafSize = 4;
 } // namespace
 
+namespace
+{
+/// Nodes of a subtree over `count` triangles (median splits, leaves of at
+/// most LeafSize): lets parallel tasks place their nodes deterministically.
+std::int32_t subtreeNodes(std::int32_t count, int depth)
+{
+  if (count <= LeafSize || depth >= 60) return 1;
+  const std::int32_t half = count / 2;
+  return 1 + subtreeNodes(half, depth + 1) + subtreeNodes(count - half, depth + 1);
+}
+} // namespace
+
+/// Per-triangle bounds and centroids, computed once in parallel; the
+/// recursive build then touches only these compact arrays (the triangle
+/// records are 328 bytes each). Subtrees of more than 2048 triangles build as
+/// OpenMP tasks; the node layout (preorder) does not depend on the threads.
 Bvh::Bvh(const std::vector<Tri>& tris)
   : Tris(tris)
 {
+  const std::int32_t n = static_cast<std::int32_t>(tris.size());
   this->Order.resize(tris.size());
-  for (std::size_t i = 0; i < tris.size(); ++i)
+  BuildData d;
+  d.box.resize(tris.size());
+  d.centroid.resize(tris.size());
+#pragma omp parallel for schedule(static)
+  for (std::int32_t i = 0; i < n; ++i)
   {
-    this->Order[i] = static_cast<std::int32_t>(i);
-  }
-  this->Nodes.reserve(2 * tris.size() / LeafSize + 2);
-  this->build(0, static_cast<std::int32_t>(tris.size()), 0);
-}
-
-std::int32_t Bvh::build(std::int32_t first, std::int32_t count, int depth)
-{
-  const std::int32_t id = static_cast<std::int32_t>(this->Nodes.size());
-  this->Nodes.emplace_back();
-  Node node;
-  double clo[3], chi[3];
-  for (int a = 0; a < 3; ++a)
-  {
-    node.lo[a] = clo[a] = 1e300;
-    node.hi[a] = chi[a] = -1e300;
-  }
-  V3 weighted;
-  for (std::int32_t i = first; i < first + count; ++i)
-  {
-    const Tri& t = this->Tris[this->Order[i]];
-    for (int k = 0; k < 3; ++k)
-    {
-      for (int a = 0; a < 3; ++a)
-      {
-        node.lo[a] = std::min(node.lo[a], t.v[k][a]);
-        node.hi[a] = std::max(node.hi[a], t.v[k][a]);
-      }
-    }
-    const V3 c = (1.0 / 3.0) * (t.v[0] + t.v[1] + t.v[2]);
+    this->Order[i] = i;
+    const Tri& t = tris[i];
+    auto& b = d.box[i];
     for (int a = 0; a < 3; ++a)
     {
-      clo[a] = std::min(clo[a], c[a]);
-      chi[a] = std::max(chi[a], c[a]);
-    }
-    node.vecArea = node.vecArea + t.area * t.n;
-    node.area += t.area;
-    weighted = weighted + t.area * c;
-  }
-  node.centre = (1.0 / node.area) * weighted;
-  for (std::int32_t i = first; i < first + count; ++i)
-  {
-    const Tri& t = this->Tris[this->Order[i]];
-    for (int k = 0; k < 3; ++k)
-    {
-      node.radius = std::max(node.radius, norm(t.v[k] - node.centre));
+      b[a] = std::min(t.v[0][a], std::min(t.v[1][a], t.v[2][a]));
+      b[a + 3] = std::max(t.v[0][a], std::max(t.v[1][a], t.v[2][a]));
+      d.centroid[i][a] = t.v[0][a] + t.v[1][a] + t.v[2][a]; // 3x the centroid: only compared
     }
   }
+  this->Nodes.resize(static_cast<std::size_t>(subtreeNodes(n, 0)));
+#pragma omp parallel
+#pragma omp single
+  this->build(d, 0, 0, n, 0);
+}
+
+void Bvh::build(const BuildData& d, std::int32_t id, std::int32_t first, std::int32_t count, int depth)
+{
+  Node& node = this->Nodes[id];
   node.first = first;
   node.count = count;
   if (count > LeafSize && depth < 60)
   {
+    double clo[3] = { 1e300, 1e300, 1e300 }, chi[3] = { -1e300, -1e300, -1e300 };
+    for (std::int32_t i = first; i < first + count; ++i)
+    {
+      const auto& c = d.centroid[this->Order[i]];
+      for (int a = 0; a < 3; ++a)
+      {
+        clo[a] = std::min(clo[a], c[a]);
+        chi[a] = std::max(chi[a], c[a]);
+      }
+    }
     int axis = 0;
     for (int a = 1; a < 3; ++a)
     {
@@ -83,15 +83,46 @@ std::int32_t Bvh::build(std::int32_t first, std::int32_t count, int depth)
     }
     const std::int32_t half = count / 2;
     std::nth_element(this->Order.begin() + first, this->Order.begin() + first + half,
-      this->Order.begin() + first + count, [&](std::int32_t x, std::int32_t y) {
-        const Tri &tx = this->Tris[x], &ty = this->Tris[y];
-        return tx.v[0][axis] + tx.v[1][axis] + tx.v[2][axis] < ty.v[0][axis] + ty.v[1][axis] + ty.v[2][axis];
-      });
-    node.left = this->build(first, half, depth + 1);
-    node.right = this->build(first + half, count - half, depth + 1);
+      this->Order.begin() + first + count,
+      [&](std::int32_t x, std::int32_t y) { return d.centroid[x][axis] < d.centroid[y][axis]; });
+    node.left = id + 1;
+    node.right = id + 1 + subtreeNodes(half, depth + 1);
+    if (count > 2048)
+    {
+#pragma omp task
+      this->build(d, node.left, first, half, depth + 1);
+#pragma omp task
+      this->build(d, node.right, first + half, count - half, depth + 1);
+#pragma omp taskwait
+    }
+    else
+    {
+      this->build(d, node.left, first, half, depth + 1);
+      this->build(d, node.right, first + half, count - half, depth + 1);
+    }
+    const Node &l = this->Nodes[node.left], &r = this->Nodes[node.right];
+    for (int a = 0; a < 3; ++a)
+    {
+      node.lo[a] = std::min(l.lo[a], r.lo[a]);
+      node.hi[a] = std::max(l.hi[a], r.hi[a]);
+    }
+    return;
   }
-  this->Nodes[id] = node;
-  return id;
+  node.left = node.right = -1;
+  for (int a = 0; a < 3; ++a)
+  {
+    node.lo[a] = 1e300;
+    node.hi[a] = -1e300;
+  }
+  for (std::int32_t i = first; i < first + count; ++i)
+  {
+    const auto& b = d.box[this->Order[i]];
+    for (int a = 0; a < 3; ++a)
+    {
+      node.lo[a] = std::min(node.lo[a], b[a]);
+      node.hi[a] = std::max(node.hi[a], b[a + 3]);
+    }
+  }
 }
 
 NearestResult Bvh::nearest(V3 p, std::int32_t hint, double maxDist2) const

@@ -9,6 +9,7 @@
 #include "MeshToSdfCuda.h"
 
 #include "lvdif/CudaCheck.cuh"
+#include "lvdif/Error.h"
 #include "lvdif/Memory.h"
 
 #include <algorithm>
@@ -412,13 +413,29 @@ public:
     const std::size_t bytes = std::max<std::size_t>(n, 1) * sizeof(T);
     LVDIF_CUDA_CHECK(cudaMalloc(&p, bytes));
     this->Ptrs.push_back(p);
+    this->Sizes.push_back(bytes);
     this->Bytes += bytes;
     return static_cast<T*>(p);
+  }
+  /// Frees one buffer now (a slab outgrown by a later call).
+  void release(void* p)
+  {
+    for (std::size_t i = 0; i < this->Ptrs.size(); ++i)
+    {
+      if (this->Ptrs[i] != p) continue;
+      LVDIF_CUDA_CHECK(cudaDeviceSynchronize());
+      LVDIF_CUDA_CHECK(cudaFree(p));
+      this->Bytes -= this->Sizes[i];
+      this->Ptrs.erase(this->Ptrs.begin() + static_cast<std::ptrdiff_t>(i));
+      this->Sizes.erase(this->Sizes.begin() + static_cast<std::ptrdiff_t>(i));
+      return;
+    }
   }
   std::uint64_t bytes() const { return this->Bytes; }
 
 private:
   std::vector<void*> Ptrs;
+  std::vector<std::uint64_t> Sizes;
   std::uint64_t Bytes = 0;
 };
 
@@ -452,15 +469,11 @@ DevBvh uploadBvh(DeviceArena& arena, const std::vector<Tri>& tris, const Bvh& b)
   return d;
 }
 
-class CudaSession : public Session
+class CudaMesh : public DeviceMesh
 {
 public:
-  CudaSession(const PreparedMesh& mesh, const Bvh& bvh, const WindingSigner* winding, const GridGeometry& grid,
-    const MeshToSdfOptions& options, double toOut, double band, MeshToSdfStats& stats)
-    : Options(options)
-    , HasWinding(winding != nullptr)
+  CudaMesh(const PreparedMesh& mesh, const Bvh& bvh, const WindingSigner* winding)
   {
-    const double t0 = now();
     this->Dbvh = uploadBvh(this->Arena, mesh.tris, bvh);
     if (winding)
     {
@@ -471,6 +484,111 @@ public:
       this->W.clusters = this->Arena.upload(winding->clusters());
       this->W.clusterCount = static_cast<int>(winding->clusters().size());
     }
+    this->Winding = winding != nullptr;
+    LVDIF_CUDA_CHECK(cudaDeviceSynchronize());
+  }
+  bool hasWinding() const override { return this->Winding; }
+  std::uint64_t bytes() const override { return this->Arena.bytes(); }
+  DevBvh Dbvh;
+  WindingDev W;
+
+private:
+  DeviceArena Arena;
+  bool Winding = false;
+};
+
+/// One thread block per chunk of the slab: encodes every voxel (the host's
+/// SdfDictionary::encodeWith, band-clamped as DictionaryVolume::encode) and
+/// records the chunk's key when all are equal, NotUniform otherwise.
+__global__ void chunkUniformKernel(const float* slab, long long nx, long long ny, long long nz, int edge, int ccx,
+  int ccy, SdfDictionary::EncodeConstants E, float band, unsigned* flags)
+{
+  const long long c = blockIdx.x;
+  const long long cx = c % ccx, cy = (c / ccx) % ccy, cz = c / (static_cast<long long>(ccx) * ccy);
+  const long long x0 = cx * edge, y0 = cy * edge, z0 = cz * edge;
+  const long long ex = min(nx - x0, static_cast<long long>(edge)), ey = min(ny - y0, static_cast<long long>(edge));
+  const long long ez = min(nz - z0, static_cast<long long>(edge));
+  auto keyAt = [&](long long lx, long long ly, long long lz) {
+    float v = slab[(x0 + lx) + nx * ((y0 + ly) + ny * (z0 + lz))];
+    if (v > band) v = band;
+    if (v < -band) v = -band;
+    return SdfDictionary::encodeWith(E, v);
+  };
+  const SdfKey first = keyAt(0, 0, 0);
+  int differs = 0;
+  const long long count = ex * ey * ez;
+  for (long long l = threadIdx.x; l < count && !differs; l += blockDim.x)
+  {
+    differs = keyAt(l % ex, (l / ex) % ey, l / (ex * ey)) != first;
+  }
+  differs = __syncthreads_or(differs);
+  if (threadIdx.x == 0) flags[c] = differs ? ChunkKeys::NotUniform : static_cast<unsigned>(first);
+}
+
+/// One thread block per listed chunk: its keys in localIndex layout (x fastest
+/// inside the chunk); voxels outside the grid are left unwritten.
+__global__ void chunkKeysKernel(const float* slab, long long nx, long long ny, long long nz, int edge, int ccx,
+  int ccy, SdfDictionary::EncodeConstants E, float band, const long long* list, unsigned short* keys)
+{
+  const long long c = list[blockIdx.x];
+  const long long cx = c % ccx, cy = (c / ccx) % ccy, cz = c / (static_cast<long long>(ccx) * ccy);
+  const long long x0 = cx * edge, y0 = cy * edge, z0 = cz * edge;
+  const long long e3 = static_cast<long long>(edge) * edge * edge;
+  unsigned short* out = keys + static_cast<long long>(blockIdx.x) * e3;
+  for (long long l = threadIdx.x; l < e3; l += blockDim.x)
+  {
+    const long long x = x0 + l % edge, y = y0 + (l / edge) % edge, z = z0 + l / (static_cast<long long>(edge) * edge);
+    if (x >= nx || y >= ny || z >= nz) continue;
+    float v = slab[x + nx * (y + ny * z)];
+    if (v > band) v = band;
+    if (v < -band) v = -band;
+    out[l] = SdfDictionary::encodeWith(E, v);
+  }
+}
+
+__global__ void encodeKernel(SdfDictionary::EncodeConstants E, float band, const float* in, long long n,
+  unsigned short* out)
+{
+  const long long i = static_cast<long long>(blockIdx.x) * blockDim.x + threadIdx.x;
+  if (i >= n) return;
+  float v = in[i];
+  if (v > band) v = band;
+  if (v < -band) v = -band;
+  out[i] = SdfDictionary::encodeWith(E, v);
+}
+
+/// A CUDA event pair timing kernels without synchronising at each launch.
+struct EventTimer
+{
+  cudaEvent_t a = nullptr, b = nullptr;
+  EventTimer()
+  {
+    LVDIF_CUDA_CHECK(cudaEventCreate(&this->a));
+    LVDIF_CUDA_CHECK(cudaEventCreate(&this->b));
+  }
+  ~EventTimer()
+  {
+    cudaEventDestroy(this->a);
+    cudaEventDestroy(this->b);
+  }
+  double seconds() const
+  {
+    float ms = 0;
+    LVDIF_CUDA_CHECK(cudaEventElapsedTime(&ms, this->a, this->b));
+    return 1e-3 * ms;
+  }
+};
+
+class CudaSession : public Session
+{
+public:
+  CudaSession(const CudaMesh& mesh, const GridGeometry& grid, const MeshToSdfOptions& options, double toOut,
+    double band, MeshToSdfStats& stats)
+    : Options(options)
+    , Mesh(mesh)
+    , HasWinding(options.sign == SignMode::WindingNumber)
+  {
+    require(!this->HasWinding || mesh.hasWinding(), "mesh to SDF: the device mesh has no winding structures");
     this->Counters = this->Arena.alloc<unsigned long long>(2);
     for (int a = 0; a < 3; ++a)
     {
@@ -485,8 +603,13 @@ public:
       : options.sign == SignMode::WindingNumber ? 2 : 3;
     this->P.useVertexNormals = options.useVertexNormals ? 1 : 0;
     this->P.bounded = (this->P.sign >= 2 && this->P.bandWorld < 1e299) ? 1 : 0;
-    LVDIF_CUDA_CHECK(cudaDeviceSynchronize());
-    stats.buildSeconds += now() - t0;
+    LVDIF_CUDA_CHECK(cudaMemset(this->Counters, 0, 2 * sizeof(unsigned long long)));
+    stats.devicePeakBytes = std::max(stats.devicePeakBytes, this->Mesh.bytes() + this->Arena.bytes());
+  }
+
+  ~CudaSession() override
+  {
+    if (this->Launched) cudaDeviceSynchronize(); // never free buffers under running kernels
   }
 
   void compute(const VoxelBox& extent, float* out, MeshToSdfStats& stats, Interrupter& interrupter) override
@@ -496,70 +619,193 @@ public:
     const std::uint64_t layerBytes = static_cast<std::uint64_t>(nx) * static_cast<std::uint64_t>(ny) * sizeof(float);
     const long long slabLayers =
       std::max<long long>(1, std::min<long long>(nz, static_cast<long long>(this->Options.cudaSlabBytes / layerBytes)));
-    const std::size_t slabFloats = static_cast<std::size_t>(slabLayers * nx * ny);
-    if (slabFloats > this->SlabCapacity)
-    {
-      this->Slab = this->Arena.alloc<float>(slabFloats); // earlier, smaller slabs stay until the session ends
-      this->SlabCapacity = slabFloats;
-    }
-    stats.devicePeakBytes = std::max(stats.devicePeakBytes, this->Arena.bytes());
-    LVDIF_CUDA_CHECK(cudaMemset(this->Counters, 0, 2 * sizeof(unsigned long long)));
-    Params P = this->P;
+    this->reserveSlab(static_cast<std::size_t>(slabLayers * nx * ny), stats);
     for (long long z0 = extent.lo[2]; z0 <= extent.hi[2]; z0 += slabLayers)
     {
       interrupter.checkInterrupt();
       const long long z1 = std::min<long long>(extent.hi[2], z0 + slabLayers - 1);
-      P.lo[0] = extent.lo[0];
-      P.lo[1] = extent.lo[1];
-      P.lo[2] = z0;
-      P.hi[0] = extent.hi[0];
-      P.hi[1] = extent.hi[1];
-      P.hi[2] = z1;
-      const long long rows = ny * (z1 - z0 + 1);
-      const long long threads = rows * ((nx + Run - 1) / Run);
-      double t0 = now();
-      distanceKernel<<<static_cast<unsigned>((threads + 127) / 128), 128>>>(this->Dbvh, P, this->Slab);
-      LVDIF_CUDA_CHECK(cudaGetLastError());
-      LVDIF_CUDA_CHECK(cudaDeviceSynchronize());
-      stats.distanceSeconds += now() - t0;
-      if (this->HasWinding)
-      {
-        t0 = now();
-        signKernel<<<static_cast<unsigned>((rows + 63) / 64), 64>>>(this->W, P, this->Slab, this->Counters,
-          this->Counters + 1);
-        LVDIF_CUDA_CHECK(cudaGetLastError());
-        LVDIF_CUDA_CHECK(cudaDeviceSynchronize());
-        stats.signSeconds += now() - t0;
-      }
-      t0 = now();
+      VoxelBox slab = extent;
+      slab.lo[2] = z0;
+      slab.hi[2] = z1;
+      this->launchSlab(slab);
+      LVDIF_CUDA_CHECK(cudaEventSynchronize(this->SignDone.b));
+      stats.distanceSeconds += this->DistanceDone.seconds();
+      if (this->HasWinding) stats.signSeconds += this->SignDone.seconds();
+      const double t0 = now();
       LVDIF_CUDA_CHECK(cudaMemcpy(out + (z0 - extent.lo[2]) * nx * ny, this->Slab,
-        static_cast<std::size_t>(rows * nx) * sizeof(float), cudaMemcpyDeviceToHost));
+        static_cast<std::size_t>((z1 - z0 + 1) * ny * nx) * sizeof(float), cudaMemcpyDeviceToHost));
       stats.writeSeconds += now() - t0;
       interrupter.progress(static_cast<double>(z1 - extent.lo[2] + 1) / static_cast<double>(nz));
     }
+    this->readCounters(stats);
+  }
+
+  void launchKeys(const VoxelBox& box, int edge, const SdfDictionary::EncodeConstants& encode, float band,
+    MeshToSdfStats& stats) override
+  {
+    const long long nx = box.hi[0] - box.lo[0] + 1, ny = box.hi[1] - box.lo[1] + 1;
+    const long long nz = box.hi[2] - box.lo[2] + 1;
+    this->reserveSlab(static_cast<std::size_t>(nx * ny * nz), stats);
+    this->KeyBox = box;
+    this->Edge = edge;
+    this->Encode = encode;
+    this->Band = band;
+    this->Ccx = static_cast<int>((nx + edge - 1) / edge);
+    this->Ccy = static_cast<int>((ny + edge - 1) / edge);
+    this->Chunks = static_cast<long long>(this->Ccx) * this->Ccy * ((nz + edge - 1) / edge);
+    if (this->Chunks > this->FlagCapacity)
+    {
+      this->Flags = this->Arena.alloc<unsigned>(static_cast<std::size_t>(this->Chunks));
+      this->List = this->Arena.alloc<long long>(static_cast<std::size_t>(this->Chunks));
+      this->FlagCapacity = this->Chunks;
+    }
+    this->launchSlab(box);
+    chunkUniformKernel<<<static_cast<unsigned>(this->Chunks), 256>>>(
+      this->Slab, nx, ny, nz, edge, this->Ccx, this->Ccy, encode, band, this->Flags);
+    LVDIF_CUDA_CHECK(cudaGetLastError());
+    stats.devicePeakBytes = std::max(stats.devicePeakBytes, this->Mesh.bytes() + this->Arena.bytes());
+  }
+
+  void fetchKeys(ChunkKeys& out, MeshToSdfStats& stats) override
+  {
+    const long long nx = this->KeyBox.hi[0] - this->KeyBox.lo[0] + 1, ny = this->KeyBox.hi[1] - this->KeyBox.lo[1] + 1;
+    const long long nz = this->KeyBox.hi[2] - this->KeyBox.lo[2] + 1;
+    out.uniform.resize(static_cast<std::size_t>(this->Chunks));
+    LVDIF_CUDA_CHECK(cudaMemcpy(out.uniform.data(), this->Flags, out.uniform.size() * sizeof(unsigned),
+      cudaMemcpyDeviceToHost)); // waits for the kernels
+    this->Launched = false;
+    stats.distanceSeconds += this->DistanceDone.seconds();
+    if (this->HasWinding) stats.signSeconds += this->SignDone.seconds();
+    const double t0 = now();
+    out.listed.clear();
+    for (long long c = 0; c < this->Chunks; ++c)
+    {
+      if (out.uniform[static_cast<std::size_t>(c)] == ChunkKeys::NotUniform) out.listed.push_back(c);
+    }
+    const long long e3 = static_cast<long long>(this->Edge) * this->Edge * this->Edge;
+    const std::size_t keyCount = out.listed.size() * static_cast<std::size_t>(e3);
+    out.keys.resize(keyCount);
+    if (!out.listed.empty())
+    {
+      if (keyCount > this->KeyCapacity)
+      {
+        if (this->Keys) this->Arena.release(this->Keys);
+        this->Keys = this->Arena.alloc<unsigned short>(keyCount);
+        this->KeyCapacity = keyCount;
+      }
+      LVDIF_CUDA_CHECK(cudaMemcpy(this->List, out.listed.data(), out.listed.size() * sizeof(long long),
+        cudaMemcpyHostToDevice));
+      chunkKeysKernel<<<static_cast<unsigned>(out.listed.size()), 256>>>(this->Slab, nx, ny, nz, this->Edge,
+        this->Ccx, this->Ccy, this->Encode, this->Band, this->List, this->Keys);
+      LVDIF_CUDA_CHECK(cudaGetLastError());
+      LVDIF_CUDA_CHECK(cudaMemcpy(out.keys.data(), this->Keys, keyCount * sizeof(unsigned short),
+        cudaMemcpyDeviceToHost));
+    }
+    if (this->Options.cudaVerifyKeys)
+    {
+      out.floats.resize(static_cast<std::size_t>(nx * ny * nz));
+      LVDIF_CUDA_CHECK(cudaMemcpy(out.floats.data(), this->Slab, out.floats.size() * sizeof(float),
+        cudaMemcpyDeviceToHost));
+    }
+    stats.devicePeakBytes = std::max(stats.devicePeakBytes, this->Mesh.bytes() + this->Arena.bytes());
+    stats.writeSeconds += now() - t0;
+    this->readCounters(stats);
+  }
+
+private:
+  void reserveSlab(std::size_t floats, MeshToSdfStats& stats)
+  {
+    if (floats > this->SlabCapacity)
+    {
+      if (this->Slab) this->Arena.release(this->Slab);
+      this->Slab = this->Arena.alloc<float>(floats);
+      this->SlabCapacity = floats;
+    }
+    stats.devicePeakBytes = std::max(stats.devicePeakBytes, this->Mesh.bytes() + this->Arena.bytes());
+  }
+
+  /// Queues the distance and sign kernels of one slab (box layout in Slab).
+  void launchSlab(const VoxelBox& box)
+  {
+    Params P = this->P;
+    for (int a = 0; a < 3; ++a)
+    {
+      P.lo[a] = box.lo[a];
+      P.hi[a] = box.hi[a];
+    }
+    const long long nx = box.hi[0] - box.lo[0] + 1;
+    const long long rows = (box.hi[1] - box.lo[1] + 1) * (box.hi[2] - box.lo[2] + 1);
+    const long long threads = rows * ((nx + Run - 1) / Run);
+    LVDIF_CUDA_CHECK(cudaEventRecord(this->DistanceDone.a));
+    distanceKernel<<<static_cast<unsigned>((threads + 127) / 128), 128>>>(this->Mesh.Dbvh, P, this->Slab);
+    LVDIF_CUDA_CHECK(cudaGetLastError());
+    LVDIF_CUDA_CHECK(cudaEventRecord(this->DistanceDone.b));
+    LVDIF_CUDA_CHECK(cudaEventRecord(this->SignDone.a));
+    if (this->HasWinding)
+    {
+      signKernel<<<static_cast<unsigned>((rows + 63) / 64), 64>>>(this->Mesh.W, P, this->Slab, this->Counters,
+        this->Counters + 1);
+      LVDIF_CUDA_CHECK(cudaGetLastError());
+    }
+    LVDIF_CUDA_CHECK(cudaEventRecord(this->SignDone.b));
+    this->Launched = true;
+  }
+
+  void readCounters(MeshToSdfStats& stats)
+  {
     unsigned long long host[2] = { 0, 0 };
     LVDIF_CUDA_CHECK(cudaMemcpy(host, this->Counters, sizeof(host), cudaMemcpyDeviceToHost));
+    LVDIF_CUDA_CHECK(cudaMemset(this->Counters, 0, sizeof(host)));
     stats.windingEvaluations += static_cast<std::int64_t>(host[0]);
     stats.windingExact += static_cast<std::int64_t>(host[1]);
   }
 
-private:
   MeshToSdfOptions Options;
+  const CudaMesh& Mesh;
   bool HasWinding;
+  bool Launched = false;
   DeviceArena Arena;
-  DevBvh Dbvh;
-  WindingDev W;
   Params P;
+  EventTimer DistanceDone, SignDone;
   unsigned long long* Counters = nullptr;
   float* Slab = nullptr;
   std::size_t SlabCapacity = 0;
+  // the group of chunk layers of the last launchKeys
+  VoxelBox KeyBox;
+  int Edge = 32, Ccx = 0, Ccy = 0;
+  long long Chunks = 0, FlagCapacity = 0;
+  SdfDictionary::EncodeConstants Encode;
+  float Band = 0;
+  unsigned* Flags = nullptr;
+  long long* List = nullptr;
+  unsigned short* Keys = nullptr;
+  std::size_t KeyCapacity = 0;
 };
 } // namespace
 
-std::unique_ptr<Session> openSession(const PreparedMesh& mesh, const Bvh& bvh, const WindingSigner* winding,
-  const GridGeometry& grid, const MeshToSdfOptions& options, double toOut, double band, MeshToSdfStats& stats)
+std::unique_ptr<DeviceMesh> uploadMesh(const PreparedMesh& mesh, const Bvh& bvh, const WindingSigner* winding)
 {
-  return std::make_unique<CudaSession>(mesh, bvh, winding, grid, options, toOut, band, stats);
+  return std::make_unique<CudaMesh>(mesh, bvh, winding);
+}
+
+std::unique_ptr<Session> openSession(const DeviceMesh& mesh, const GridGeometry& grid,
+  const MeshToSdfOptions& options, double toOut, double band, MeshToSdfStats& stats)
+{
+  return std::make_unique<CudaSession>(static_cast<const CudaMesh&>(mesh), grid, options, toOut, band, stats);
+}
+
+std::vector<std::uint16_t> encodeOnDevice(
+  const SdfDictionary::EncodeConstants& encode, float band, const std::vector<float>& values)
+{
+  DeviceArena arena;
+  const float* in = arena.upload(values);
+  unsigned short* out = arena.alloc<unsigned short>(values.size());
+  const long long n = static_cast<long long>(values.size());
+  encodeKernel<<<static_cast<unsigned>((n + 255) / 256), 256>>>(encode, band, in, n, out);
+  LVDIF_CUDA_CHECK(cudaGetLastError());
+  std::vector<std::uint16_t> host(values.size());
+  LVDIF_CUDA_CHECK(cudaMemcpy(host.data(), out, host.size() * sizeof(unsigned short), cudaMemcpyDeviceToHost));
+  return host;
 }
 
 } // namespace cudasdf

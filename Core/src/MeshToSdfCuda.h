@@ -4,27 +4,63 @@
 
 #include "MeshToSdfInternal.h"
 #include "lvdif/MeshToSdf.h"
+#include "lvdif/SdfDictionary.h"
 
 #include <memory>
+#include <vector>
 
 namespace lvdif
 {
 namespace cudasdf
 {
-/// The mesh and its BVHs uploaded once; compute() then fills any extent of
-/// the grid with the same contract as the CPU path (distances and signs in
-/// output units, band-saturated), one slab of z layers at a time so device
-/// memory stays bounded. Always uses the BVH (the accelerators give the same
-/// distances); winding is null unless the sign mode is WindingNumber.
+/// The mesh and its BVH (and, when uploaded with a winding signer, the
+/// closed chain's BVH, cone and clusters) on the GPU; freed on destruction.
+/// Owned by MeshToSdfPrepared::Impl, so it lives as long as the prepared mesh.
+class DeviceMesh
+{
+public:
+  virtual ~DeviceMesh() = default;
+  virtual bool hasWinding() const = 0;
+  virtual std::uint64_t bytes() const = 0;
+};
+
+std::unique_ptr<DeviceMesh> uploadMesh(
+  const sdfdetail::PreparedMesh& mesh, const sdfdetail::Bvh& bvh, const sdfdetail::WindingSigner* winding);
+
+/// The keys of one group of chunk layers, encoded on the GPU.
+struct ChunkKeys
+{
+  static constexpr std::uint32_t NotUniform = 0xffffffffu;
+  std::vector<std::uint32_t> uniform; // per chunk (cx + ccx * (cy + ccy * czLocal)): its key or NotUniform
+  std::vector<std::int64_t> listed;   // the NotUniform chunks, in order
+  std::vector<std::uint16_t> keys;    // chunkEdge^3 per listed chunk, localIndex layout (outside the grid: junk)
+  std::vector<float> floats;          // options.cudaVerifyKeys: the slab's floats (box layout)
+};
+
+/// compute() fills any extent of the grid with the same contract as the CPU
+/// path (distances and signs in output units, band-saturated), one slab of z
+/// layers at a time so device memory stays bounded. Always uses the BVH (the
+/// accelerators give the same distances). launchKeys/fetchKeys: the
+/// dictionary-volume path, where the chunks are encoded on the GPU and only
+/// their keys come back, while the host stores the previous group.
 class Session
 {
 public:
   virtual ~Session() = default;
   virtual void compute(const VoxelBox& extent, float* out, MeshToSdfStats& stats, Interrupter& interrupter) = 0;
+  /// Queues (does not wait for) the kernels of `box`: whole chunk layers
+  /// over the full x and y extent of the grid, chunks of `edge` voxels.
+  virtual void launchKeys(const VoxelBox& box, int edge, const SdfDictionary::EncodeConstants& encode, float band,
+    MeshToSdfStats& stats) = 0;
+  /// Waits for the last launchKeys and copies its keys back.
+  virtual void fetchKeys(ChunkKeys& out, MeshToSdfStats& stats) = 0;
 };
 
-std::unique_ptr<Session> openSession(const sdfdetail::PreparedMesh& mesh, const sdfdetail::Bvh& bvh,
-  const sdfdetail::WindingSigner* winding, const GridGeometry& grid, const MeshToSdfOptions& options, double toOut,
-  double band, MeshToSdfStats& stats);
+std::unique_ptr<Session> openSession(const DeviceMesh& mesh, const GridGeometry& grid,
+  const MeshToSdfOptions& options, double toOut, double band, MeshToSdfStats& stats);
+
+/// Tests: SdfDictionary::encodeWith (band-clamped as DictionaryVolume::encode) run on the GPU.
+std::vector<std::uint16_t> encodeOnDevice(
+  const SdfDictionary::EncodeConstants& encode, float band, const std::vector<float>& values);
 } // namespace cudasdf
 } // namespace lvdif

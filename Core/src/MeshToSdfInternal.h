@@ -4,10 +4,12 @@
 #pragma once
 
 #include "MeshToSdfGeometry.h"
+#include "lvdif/MeshToSdf.h"
 #include "lvdif/TriangleMesh.h"
 
 #include <cstdint>
 #include <memory>
+#include <mutex>
 #include <vector>
 
 namespace lvdif
@@ -39,19 +41,13 @@ struct NearestResult
 };
 
 /// Binary BVH over the triangles (median split on the longest axis of the
-/// centroid bounds, leaves of at most 4). Each node also carries the
-/// moments of Barill et al. 2018 (vector area, area-weighted centre, radius,
-/// total area) for fast winding numbers.
+/// centroid bounds, leaves of at most 4), built in parallel (OpenMP tasks).
 class Bvh
 {
 public:
   struct Node
   {
     double lo[3], hi[3];
-    V3 vecArea;   // sum of area * unit normal
-    V3 centre;    // area-weighted centroid
-    double radius = 0; // max distance from centre to a vertex below
-    double area = 0;   // sum of |area|
     std::int32_t left = -1, right = -1; // children, or -1 for a leaf
     std::int32_t first = 0, count = 0;  // leaf range in Order
   };
@@ -80,7 +76,12 @@ public:
   const std::vector<std::int32_t>& order() const { return this->Order; }
 
 private:
-  std::int32_t build(std::int32_t first, std::int32_t count, int depth);
+  struct BuildData
+  {
+    std::vector<std::array<double, 6>> box;      // per triangle: lo, hi
+    std::vector<std::array<double, 3>> centroid; // per triangle: sum of the vertices
+  };
+  void build(const BuildData& d, std::int32_t id, std::int32_t first, std::int32_t count, int depth);
   const std::vector<Tri>& Tris;
   std::vector<Node> Nodes;
   std::vector<std::int32_t> Order;
@@ -154,4 +155,31 @@ private:
 bool triangleBoxOverlap(const V3 tri[3], const double centre[3], const double half[3]);
 
 } // namespace sdfdetail
+
+namespace cudasdf
+{
+class DeviceMesh; // MeshToSdfCuda.h
+}
+
+/// What prepareMeshToSdf builds (immutable once built; the lazily built parts
+/// are guarded by Lock).
+struct MeshToSdfPrepared::Impl
+{
+  sdfdetail::PreparedMesh mesh;
+  std::unique_ptr<sdfdetail::Bvh> bvh;
+  double prepareSeconds = 0;
+  /// The winding-number structures, built on first use (seconds added).
+  const sdfdetail::WindingSigner& windingSigner(double& seconds);
+  /// The mesh (and, when asked, the winding structures) on the GPU, uploaded
+  /// on first use and kept until the prepared mesh is destroyed.
+  const cudasdf::DeviceMesh& deviceMesh(bool winding, double& seconds);
+  ~Impl();
+
+private:
+  std::mutex Lock;
+  std::unique_ptr<sdfdetail::WindingSigner> Winding;
+  std::unique_ptr<cudasdf::DeviceMesh> Device;        // first upload
+  std::unique_ptr<cudasdf::DeviceMesh> WindingDevice; // with the winding structures, if Device lacks them
+};
+
 } // namespace lvdif

@@ -56,7 +56,8 @@ Tri makeTri(V3 a, V3 b, V3 c, bool& ok)
 WindingSigner::WindingSigner(const PreparedMesh& mesh)
   : Mesh(mesh)
 {
-  this->Closed = mesh.tris;
+  this->Closed.reserve(mesh.tris.size() + mesh.boundary.size());
+  this->Closed.assign(mesh.tris.begin(), mesh.tris.end());
   this->MeshTris = mesh.tris.size();
   if (!mesh.boundary.empty())
   {

@@ -276,3 +276,40 @@ TEST(MeshToSdf, CancelStopsWithCancelled)
     EXPECT_EQ(e.code(), ErrorCode::Cancelled);
   }
 }
+
+TEST(MeshToSdf, PreparedMeshEqualsOneCallAndIsNeverStale)
+{
+  // a holed sphere (open: boundary cone) checked against the oracle, then the
+  // prepared path against it bit for bit, before and after editing the mesh
+  TriangleMesh m = makeSphereMesh(0.1f, 0.0f, -0.05f, 1.0f, 12, 24);
+  m.triangles.erase(m.triangles.begin(), m.triangles.begin() + 24);
+  const GridGeometry g = fitGridToMesh(m, 24, 2);
+  MeshToSdfOptions o;
+  o.device = Device::Cpu;
+  o.bandWidth = 4.0f;
+  const MeshToSdfPrepared prepared = prepareMeshToSdf(m, SignMode::Unsigned);
+  EXPECT_EQ(prepared.triangles(), m.triangles.size());
+  EXPECT_GT(prepared.boundaryEdges(), 0u);
+  std::vector<float> one(static_cast<std::size_t>(g.count())), prep(one.size());
+  for (SignMode s : { SignMode::WindingNumber, SignMode::PseudoNormal, SignMode::Normal, SignMode::Unsigned })
+  {
+    o.sign = s;
+    meshToSdf(m, FloatGridView{ one.data(), g }, o);
+    meshToSdf(prepared, FloatGridView{ prep.data(), g }, o);
+    EXPECT_EQ(one, prep) << toString(s);
+  }
+  for (std::int64_t k = 0; k < g.dims[2]; k += 3)
+    for (std::int64_t j = 0; j < g.dims[1]; j += 3)
+      for (std::int64_t i = 0; i < g.dims[0]; i += 3)
+      {
+        const double ref = std::min(4.0, oracle::distance(m, { g.origin[0] + i * g.spacing[0],
+          g.origin[1] + j * g.spacing[1], g.origin[2] + k * g.spacing[2] }) / g.spacing[0]);
+        ASSERT_NEAR(std::fabs(prep[g.index(i, j, k)]), ref, 1e-4);
+      }
+  const std::vector<float> before = prep;
+  for (auto& p : m.points) p[1] += 0.3f; // edit the mesh: the prepared copy must not see it
+  meshToSdf(prepared, FloatGridView{ prep.data(), g }, o);
+  EXPECT_EQ(prep, before);
+  meshToSdf(m, FloatGridView{ one.data(), g }, o);
+  EXPECT_NE(one, before);
+}

@@ -4,10 +4,13 @@
 #include "MeshToSdfOracle.h"
 #include "lvdif/Cuda.h"
 #include "lvdif/MeshToSdf.h"
+#include "lvdif/SdfDictionary.h"
+#include "../src/MeshToSdfCuda.h"
 
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstring>
 #include <cstdio>
 #include <limits>
 #include <random>
@@ -121,7 +124,7 @@ TEST(MeshToSdfCuda, DictionaryVolumeMatchesCpu)
 {
   if (!cuda::available()) GTEST_SKIP() << "no CUDA device";
   const TriangleMesh m = holedFlipped();
-  const GridGeometry g = fitGridToMesh(m, 75, 2);
+  const GridGeometry g = fitGridToMesh(m, 75, 2); // not a multiple of the chunk edge: partial chunks
   VolumeOptions vo;
   vo.dims = g.dims;
   vo.origin = g.origin;
@@ -133,15 +136,82 @@ TEST(MeshToSdfCuda, DictionaryVolumeMatchesCpu)
   o.device = Device::Cpu;
   meshToSdf(m, a, o);
   o.device = Device::Cuda;
-  meshToSdf(m, b, o);
-  std::int64_t diff = 0;
-  for (std::int64_t z = 0; z < g.dims[2]; ++z)
-    for (std::int64_t y = 0; y < g.dims[1]; ++y)
-      for (std::int64_t x = 0; x < g.dims[0]; ++x)
-      {
-        const int ka = a.get(x, y, z).sdf, kb = b.get(x, y, z).sdf;
-        // keys are 0.001 apart near the surface: allow one key of float rounding
-        if (std::abs(ka - kb) > 1) ++diff;
-      }
-  EXPECT_EQ(diff, 0);
+  o.cudaVerifyKeys = true;
+  o.cudaSlabBytes = static_cast<std::uint64_t>(g.dims[0] * g.dims[1]) * 16 * 4 * 2; // groups of 2 chunk layers
+  const MeshToSdfPrepared prepared = prepareMeshToSdf(m);
+  for (int pass = 0; pass < 2; ++pass) // the second pass writes over expanded chunks
+  {
+    const MeshToSdfStats st = meshToSdf(prepared, b, o);
+    ASSERT_EQ(st.device, Device::Cuda);
+    // every GPU-encoded key of every slab against the host's encode of the same float
+    EXPECT_EQ(st.keysVerified, g.count());
+    EXPECT_EQ(st.keyMismatches, 0);
+    std::int64_t diff = 0, structure = 0;
+    for (std::int64_t c = 0; c < a.chunkCount(); ++c) structure += a.isUniform(c) != b.isUniform(c);
+    for (std::int64_t z = 0; z < g.dims[2]; ++z)
+      for (std::int64_t y = 0; y < g.dims[1]; ++y)
+        for (std::int64_t x = 0; x < g.dims[0]; ++x) diff += a.get(x, y, z).sdf != b.get(x, y, z).sdf;
+    EXPECT_EQ(diff, 0) << "pass " << pass; // the same floats and the same rounding: equal keys
+    EXPECT_EQ(structure, 0) << "pass " << pass;
+    std::printf("[ cpu vs cuda ] dictionary volume pass %d: %lld key and %lld chunk differences, %lld keys "
+                "verified, %lld expanded chunks\n",
+      pass, static_cast<long long>(diff), static_cast<long long>(structure),
+      static_cast<long long>(st.keysVerified), static_cast<long long>(b.expandedChunkCount()));
+  }
+}
+
+TEST(MeshToSdfCuda, DeviceEncodeMatchesHostEncode)
+{
+  if (!cuda::available()) GTEST_SKIP() << "no CUDA device";
+  const SdfDictionary& d = defaultSdfDictionary();
+  std::vector<float> v;
+  for (std::uint64_t bits = 0; bits < (1ull << 32); bits += 251) // every 251st float bit pattern (NaN, inf too)
+  {
+    const std::uint32_t b32 = static_cast<std::uint32_t>(bits);
+    float f;
+    std::memcpy(&f, &b32, sizeof(f));
+    v.push_back(f);
+  }
+  for (int i = -12000; i <= 12000; ++i) // around every half step of Group A and the gap to Group B
+  {
+    const float c = static_cast<float>(i * 0.0005);
+    v.push_back(c);
+    v.push_back(std::nextafter(c, 1e9f));
+    v.push_back(std::nextafter(c, -1e9f));
+  }
+  for (float band : { 4.0f, 8.0f, std::numeric_limits<float>::infinity() })
+  {
+    const std::vector<std::uint16_t> gpu = cudasdf::encodeOnDevice(d.encodeConstants(), band, v);
+    std::int64_t bad = 0;
+    for (std::size_t i = 0; i < v.size(); ++i) bad += gpu[i] != d.encodeClamped(v[i], band);
+    EXPECT_EQ(bad, 0) << "band " << band;
+  }
+}
+
+TEST(MeshToSdfCuda, PreparedMeshIsReusedAcrossCallsAndDevices)
+{
+  if (!cuda::available()) GTEST_SKIP() << "no CUDA device";
+  TriangleMesh m = holedFlipped();
+  const GridGeometry g = fitGridToMesh(m, 48, 2);
+  MeshToSdfOptions o;
+  o.bandWidth = 3.0f;
+  o.sign = SignMode::Unsigned;
+  const MeshToSdfPrepared prepared = prepareMeshToSdf(m, SignMode::Unsigned); // winding made on first use
+  std::vector<float> first(static_cast<std::size_t>(g.count())), again(first.size()), cpu(first.size());
+  for (SignMode s : { SignMode::Unsigned, SignMode::WindingNumber, SignMode::PseudoNormal })
+  {
+    o.sign = s;
+    o.device = Device::Cuda;
+    meshToSdf(prepared, FloatGridView{ first.data(), g }, o);
+    meshToSdf(prepared, FloatGridView{ again.data(), g }, o);
+    o.device = Device::Cpu;
+    meshToSdf(m, FloatGridView{ cpu.data(), g }, o); // the one-call CPU path
+    EXPECT_EQ(first, again) << toString(s);
+    EXPECT_EQ(first, cpu) << toString(s);
+  }
+  // the prepared mesh owns its data: editing the mesh afterwards changes nothing
+  for (auto& p : m.points) p[0] += 0.25f;
+  o.device = Device::Cuda;
+  meshToSdf(prepared, FloatGridView{ again.data(), g }, o);
+  EXPECT_EQ(first, again);
 }

@@ -40,6 +40,7 @@
 
 #include <cstdint>
 #include <limits>
+#include <memory>
 
 namespace lvdif
 {
@@ -81,8 +82,12 @@ struct MeshToSdfOptions
   /// through signVoxelFilter(DictionaryVolume&), which decodes it densely.
   unsigned svfFilters = 0;
   SignVoxelFilterParams svf;
-  /// CUDA: bytes of the device slab buffer (z layers per slab follow from it).
+  /// CUDA: bytes of the device slab buffer (z layers per slab follow from it;
+  /// into a dictionary volume at least one layer of chunks per slab).
   std::uint64_t cudaSlabBytes = 256ull << 20;
+  /// CUDA into a dictionary volume: also copy the float slabs back and check
+  /// every GPU-encoded key against the host's encode (tests; costs the copy).
+  bool cudaVerifyKeys = false;
 };
 
 struct MeshToSdfStats
@@ -95,9 +100,41 @@ struct MeshToSdfStats
   std::int64_t windingEvaluations = 0; // voxels whose winding number was evaluated (not carried)
   std::int64_t windingExact = 0;       // of those, on rows whose +x ray was ambiguous
   std::uint64_t devicePeakBytes = 0;   // CUDA: device memory used
+  std::int64_t keysVerified = 0;       // cudaVerifyKeys: voxels whose GPU key was checked
+  std::int64_t keyMismatches = 0;      // cudaVerifyKeys: GPU keys != host encode (must be 0)
   std::int64_t svfFlips = 0;           // signs changed by the sign voxel filters
   double svfSeconds = 0;
 };
+
+/// A mesh prepared once for mesh to SDF and reusable across calls (other
+/// grids, extents, options, devices): validated, pseudo-normals, boundary
+/// cone, BVHs; the winding-number structures and the GPU upload are made on
+/// first use and kept. It owns copies of everything it needs, so it never
+/// returns stale results: editing or destroying the TriangleMesh afterwards
+/// does not change it (prepare again for a changed mesh). Copies share the
+/// same prepared data; concurrent calls with one prepared mesh are safe.
+class MeshToSdfPrepared
+{
+public:
+  struct Impl; // MeshToSdfInternal.h
+  explicit MeshToSdfPrepared(std::shared_ptr<Impl> impl)
+    : Pimpl(std::move(impl))
+  {
+  }
+  std::size_t triangles() const;         // used (non-degenerate)
+  std::size_t degenerateSkipped() const; // zero-area triangles skipped
+  std::size_t boundaryEdges() const;     // 0: closed
+  double prepareSeconds() const;         // host time spent by prepareMeshToSdf
+  Impl& impl() const { return *this->Pimpl; }
+
+private:
+  std::shared_ptr<Impl> Pimpl;
+};
+
+/// Prepares the mesh (OpenMP). With sign == WindingNumber the winding
+/// structures are built now, otherwise on first use. Throws Error on bad
+/// input (empty mesh, NaN, no triangle of non-zero area).
+MeshToSdfPrepared prepareMeshToSdf(const TriangleMesh& mesh, SignMode sign = SignMode::WindingNumber);
 
 /// Isotropic voxels fitted to the mesh bounds: the longest axis gets maxDim
 /// voxels, every axis has paddingVoxels voxels of margin on both sides and
@@ -119,6 +156,16 @@ MeshToSdfStats meshToSdf(const TriangleMesh& mesh, const FloatGridView& out, con
 /// uniform, no full float array is ever allocated. The volume's band width
 /// applies (options.bandWidth is ignored); units are voxels.
 MeshToSdfStats meshToSdf(const TriangleMesh& mesh, DictionaryVolume& volume, const MeshToSdfOptions& options,
+  Interrupter& interrupter = nullInterrupter());
+
+/// The same three calls on a prepared mesh: no preparation, and on CUDA no
+/// upload after the first call (buildSeconds then holds only what was still
+/// missing, e.g. the first upload).
+MeshToSdfStats meshToSdf(const MeshToSdfPrepared& mesh, const GridGeometry& grid, const VoxelBox& extent, float* out,
+  const MeshToSdfOptions& options, Interrupter& interrupter = nullInterrupter());
+MeshToSdfStats meshToSdf(const MeshToSdfPrepared& mesh, const FloatGridView& out, const MeshToSdfOptions& options,
+  Interrupter& interrupter = nullInterrupter());
+MeshToSdfStats meshToSdf(const MeshToSdfPrepared& mesh, DictionaryVolume& volume, const MeshToSdfOptions& options,
   Interrupter& interrupter = nullInterrupter());
 
 const char* toString(SignMode mode);

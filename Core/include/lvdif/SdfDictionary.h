@@ -23,6 +23,12 @@
 #include <cstdint>
 #include <vector>
 
+#if defined(__CUDACC__)
+#define LVDIF_SDF_HD __host__ __device__
+#else
+#define LVDIF_SDF_HD
+#endif
+
 namespace lvdif
 {
 
@@ -51,7 +57,22 @@ public:
   const SdfDictionaryParams& params() const { return this->Params; }
 
   /// Nearest key; saturates beyond the range, NaN -> maxKey().
-  SdfKey encode(float value) const
+  SdfKey encode(float value) const { return encodeWith(this->Consts, value); }
+
+  /// What encode() needs, for device code that must round identically
+  /// (MeshToSdfCuda.cu encodes chunks on the GPU with encodeWith).
+  struct EncodeConstants
+  {
+    std::int64_t halfA = 0;   // Group A keys on one side of zero
+    std::int64_t zeroKey = 0; // key of 0.0
+    double invStepA = 0, invStepB = 0;
+    double firstB = 0;       // first positive Group B value
+    double encodeALimit = 0; // |x| up to which Group A rounding applies
+  };
+  const EncodeConstants& encodeConstants() const { return this->Consts; }
+
+  /// encode() from the constants: one definition for the host and the GPU.
+  LVDIF_SDF_HD static SdfKey encodeWith(const EncodeConstants& c, float value)
   {
     if (!(value == value)) // NaN
     {
@@ -59,27 +80,27 @@ public:
     }
     const double a = value < 0 ? -static_cast<double>(value) : static_cast<double>(value);
     std::int64_t offset; // distance from the zero key, in keys
-    if (a <= this->EncodeALimit)
+    if (a <= c.encodeALimit)
     {
-      offset = roundHalfDown(a * this->InvStepA);
-      if (offset > this->HalfA) // the lower half of the gap between the groups
+      offset = roundHalfDown(a * c.invStepA);
+      if (offset > c.halfA) // the lower half of the gap between the groups
       {
-        offset = this->HalfA;
+        offset = c.halfA;
       }
     }
     else
     {
       // Group B index j counts from firstB; ties between groups resolved by the midpoint.
       // clamp before converting so huge values and infinity saturate instead of overflowing
-      const double t = (a - this->FirstB) * this->InvStepB;
+      const double t = (a - c.firstB) * c.invStepB;
       const double j = t > 1e6 ? 1e6 : static_cast<double>(roundHalfDown(t));
-      offset = this->HalfA + 1 + static_cast<std::int64_t>(j < 0 ? 0 : j);
+      offset = c.halfA + 1 + static_cast<std::int64_t>(j < 0 ? 0 : j);
     }
     if (value < 0)
     {
-      return offset > this->ZeroKey ? 0 : static_cast<SdfKey>(this->ZeroKey - offset);
+      return offset > c.zeroKey ? 0 : static_cast<SdfKey>(c.zeroKey - offset);
     }
-    const std::int64_t k = this->ZeroKey + offset;
+    const std::int64_t k = c.zeroKey + offset;
     return k > KeyCount - 1 ? static_cast<SdfKey>(KeyCount - 1) : static_cast<SdfKey>(k);
   }
 
@@ -87,11 +108,11 @@ public:
   const float* table() const { return this->Table.data(); }
 
   /// The key that decodes to exactly 0.
-  SdfKey zeroKey() const { return static_cast<SdfKey>(this->ZeroKey); }
+  SdfKey zeroKey() const { return static_cast<SdfKey>(this->Consts.zeroKey); }
   float minValue() const { return this->Table.front(); }
   float maxValue() const { return this->Table.back(); }
   /// First value of Group B (4.1 by default).
-  double firstGroupBValue() const { return this->FirstB; }
+  double firstGroupBValue() const { return this->Consts.firstB; }
   /// Largest |decode(encode(x)) - x| for |x| <= maxValue (the gap between groups dominates).
   double maxErrorInRange() const;
   /// Largest error for |x| <= groupALimit.
@@ -108,7 +129,7 @@ public:
   }
 
 private:
-  static std::int64_t roundHalfDown(double x)
+  LVDIF_SDF_HD static std::int64_t roundHalfDown(double x)
   {
     // nearest integer; exact .5 goes down (toward the smaller magnitude)
     const double f = static_cast<double>(static_cast<std::int64_t>(x));
@@ -116,11 +137,7 @@ private:
   }
 
   SdfDictionaryParams Params;
-  std::int64_t HalfA = 0;   // Group A keys on one side of zero
-  std::int64_t ZeroKey = 0; // key of 0.0
-  double InvStepA = 0, InvStepB = 0;
-  double FirstB = 0;       // first positive Group B value
-  double EncodeALimit = 0; // |x| up to which Group A rounding applies
+  EncodeConstants Consts;
   std::vector<float> Table;
 };
 

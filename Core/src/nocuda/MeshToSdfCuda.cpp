@@ -6,8 +6,19 @@ namespace lvdif
 {
 namespace cudasdf
 {
-std::unique_ptr<Session> openSession(const sdfdetail::PreparedMesh&, const sdfdetail::Bvh&,
-  const sdfdetail::WindingSigner*, const GridGeometry&, const MeshToSdfOptions&, double, double, MeshToSdfStats&)
+std::unique_ptr<DeviceMesh> uploadMesh(
+  const sdfdetail::PreparedMesh&, const sdfdetail::Bvh&, const sdfdetail::WindingSigner*)
+{
+  throw Error(ErrorCode::Unsupported, "mesh to SDF: this build has no CUDA");
+}
+
+std::unique_ptr<Session> openSession(
+  const DeviceMesh&, const GridGeometry&, const MeshToSdfOptions&, double, double, MeshToSdfStats&)
+{
+  throw Error(ErrorCode::Unsupported, "mesh to SDF: this build has no CUDA");
+}
+
+std::vector<std::uint16_t> encodeOnDevice(const SdfDictionary::EncodeConstants&, float, const std::vector<float>&)
 {
   throw Error(ErrorCode::Unsupported, "mesh to SDF: this build has no CUDA");
 }
