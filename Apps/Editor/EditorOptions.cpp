@@ -27,7 +27,7 @@ EditorOptions parseEditorOptions(const QStringList& arguments)
   const QCommandLineOption meshSign("mesh-sign", "Sign of --open-mesh: winding, pseudo or normal.", "mode", "winding");
   const QCommandLineOption create("new", "New canvas of N^3 or NXxNYxNZ voxels.", "size");
   const QCommandLineOption fill("fill", "Fill of a new canvas: empty, full or sphere.", "fill", "sphere");
-  const QCommandLineOption script("script", "Run a script (.lvs) or play a recording (.lvrec) after loading.", "file");
+  const QCommandLineOption script("script", "Run a script (.lvs) or play a recording (.lvr) after loading.", "file");
   const QCommandLineOption drag("replay-drag", "Synthetic left-drag through display points 'x,y;x,y;...' (or / between points).", "points");
   const QCommandLineOption undo("undo", "Undo N steps after the drag.", "n", "0");
   const QCommandLineOption shot("screenshot", "Save a screenshot (PNG) and quit.", "file");

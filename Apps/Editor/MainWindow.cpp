@@ -413,7 +413,7 @@ void MainWindow::toggleRecording(bool on)
   }
   this->Tools->setRecording(false);
   const lvdif::Recording r = this->Doc.stopRecording();
-  const QString path = QFileDialog::getSaveFileName(this, "Save recording", QString(), "Recordings (*.lvrec)");
+  const QString path = QFileDialog::getSaveFileName(this, "Save recording", QString(), "Recordings (*.lvr)");
   if (path.isEmpty())
     return;
   try
@@ -445,7 +445,7 @@ bool MainWindow::playRecording(const QString& path)
 
 bool MainWindow::runScript(const QString& path)
 {
-  if (QFileInfo(path).suffix().toLower() == "lvrec")
+  if (QFileInfo(path).suffix().toLower() == "lvr" || QFileInfo(path).suffix().toLower() == "lvrec")
     return this->playRecording(path);
   QFile file(path);
   if (!file.open(QIODevice::ReadOnly | QIODevice::Text))

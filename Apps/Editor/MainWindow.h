@@ -42,7 +42,7 @@ public:
   bool exportMesh(const QString& path);
   bool saveScreenshot(const QString& path);
   bool playRecording(const QString& path);
-  /// Runs a script (.lvs) or plays a recording (.lvrec), by extension.
+  /// Runs a script (.lvs) or plays a recording (.lvr; .lvrec is accepted too), by extension.
   bool runScript(const QString& path);
   /// A left-drag through display points (VTK display coordinates, origin
   /// bottom-left) sent as interactor events, as a user's mouse would.

@@ -175,7 +175,7 @@ void MainWindow::screenshotDialog()
 void MainWindow::scriptDialog()
 {
   const QString path =
-    QFileDialog::getOpenFileName(this, "Run script", QString(), "Scripts and recordings (*.lvs *.lvrec);;All files (*)");
+    QFileDialog::getOpenFileName(this, "Run script", QString(), "Scripts and recordings (*.lvs *.lvr *.lvrec);;All files (*)");
   if (!path.isEmpty())
     this->runScript(path);
 }
