@@ -34,8 +34,8 @@ for path in files:
             if group.get("name") == "sources" and proxy.get("class", "").endswith("Reader"):
                 rf = hints.find("ReaderFactory") if hints is not None else None
                 exts = rf.get("extensions", "").split() if rf is not None else []
-                if not exts or (volume and "lvdv" not in exts):
-                    problems.append(where + ": reader without ReaderFactory extensions" + ("=lvdv" if volume else ""))
+                if not exts or (volume and not set(exts) & {"lvdv", "lvdvp"}):
+                    problems.append(where + ": reader without ReaderFactory extensions" + ("=lvdv or lvdvp" if volume else ""))
                 elif not volume and "LVDIF" not in rf.get("file_description", ""):
                     problems.append(where + ": ReaderFactory file_description must name LVDIF (distinct from ParaView's readers)")
             if group.get("name") == "writers":
