@@ -6,6 +6,7 @@
 #include "lvdif/SignVoxelFilter.h"
 
 #include "vtkDataObject.h"
+#include "vtkExtentTranslator.h"
 #include "vtkFieldData.h"
 #include "vtkFloatArray.h"
 #include "vtkIdTypeArray.h"
@@ -19,6 +20,8 @@
 #include "vtkSmartPointer.h"
 #include "vtkStreamingDemandDrivenPipeline.h"
 
+#include <algorithm>
+
 vtkStandardNewMacro(vtkSignVoxelFilter);
 
 vtkSignVoxelFilter::vtkSignVoxelFilter()
@@ -27,6 +30,39 @@ vtkSignVoxelFilter::vtkSignVoxelFilter()
 }
 
 vtkSignVoxelFilter::~vtkSignVoxelFilter() = default;
+
+namespace
+{
+using SDDP = vtkStreamingDemandDrivenPipeline;
+/// A consumer's request arrives as UPDATE_EXTENT (the executive translates a
+/// downstream piece request into it). UpdatePiece() called on this filter
+/// itself leaves UPDATE_EXTENT at the whole extent and sets only the piece
+/// keys: then the piece is translated here, as the executive would (block
+/// mode, split by cells: pieces share one point plane).
+void RequestedPiece(vtkInformation* outInfo, int ext[6])
+{
+  const int pieces = outInfo->Has(SDDP::UPDATE_NUMBER_OF_PIECES()) ? outInfo->Get(SDDP::UPDATE_NUMBER_OF_PIECES()) : 1;
+  if (pieces <= 1 || !outInfo->Has(SDDP::WHOLE_EXTENT()))
+  {
+    return;
+  }
+  int whole[6];
+  outInfo->Get(SDDP::WHOLE_EXTENT(), whole);
+  if (!std::equal(whole, whole + 6, ext))
+  {
+    return;
+  }
+  const int piece = outInfo->Has(SDDP::UPDATE_PIECE_NUMBER()) ? outInfo->Get(SDDP::UPDATE_PIECE_NUMBER()) : 0;
+  const int ghosts =
+    outInfo->Has(SDDP::UPDATE_NUMBER_OF_GHOST_LEVELS()) ? outInfo->Get(SDDP::UPDATE_NUMBER_OF_GHOST_LEVELS()) : 0;
+  vtkNew<vtkExtentTranslator> t;
+  if (!t->PieceToExtentThreadSafe(piece, pieces, ghosts, whole, ext, vtkExtentTranslator::BLOCK_MODE, 0))
+  {
+    ext[0] = ext[2] = ext[4] = 0; // an empty piece
+    ext[1] = ext[3] = ext[5] = -1;
+  }
+}
+} // namespace
 
 // The scans need whole rows and planes: always filter the whole input (see the header).
 int vtkSignVoxelFilter::RequestUpdateExtent(
@@ -143,7 +179,15 @@ int vtkSignVoxelFilter::RequestData(
   {
     int uExt[6];
     outInfo->Get(vtkStreamingDemandDrivenPipeline::UPDATE_EXTENT(), uExt);
-    output->Crop(uExt);
+    RequestedPiece(outInfo, uExt);
+    if (uExt[0] > uExt[1] || uExt[2] > uExt[3] || uExt[4] > uExt[5])
+    {
+      output->Initialize(); // an empty piece (more pieces than cells)
+    }
+    else
+    {
+      output->Crop(uExt);
+    }
   }
   this->UpdateProgress(1.0);
   return 1;

@@ -18,6 +18,8 @@
 #include "vtkObjectFactory.h"
 #include "vtkStreamingDemandDrivenPipeline.h"
 
+#include <algorithm>
+
 vtkStandardNewMacro(vtkPDictionaryVolumeWriter);
 vtkCxxSetObjectMacro(vtkPDictionaryVolumeWriter, Controller, vtkMultiProcessController);
 
