@@ -313,7 +313,7 @@ def edit_stage(field, check):
     c = 0.5 * (N - 1)  # the sphere's centre in voxel indices
     r_vox = 8.0
     ed = getattr(pvs, PROXY_NAMES["vtkVolumeEditFilter"])(Input=field)
-    default_script = ed.ScriptText
+    default_script = ed.Script
     check(default_script.lstrip().startswith("#") and "sphere" in default_script,
           "Volume Edit Filter's default script is a commented example")
     c_pass = pvs.Contour(Input=ed, ContourBy=["POINTS", "sdf"], Isosurfaces=[0.0], ComputeNormals=0, ComputeScalars=0)
@@ -321,7 +321,7 @@ def edit_stage(field, check):
                                                              ComputeNormals=0, ComputeScalars=0)))
     v_pass = closed_volume(servermanager.Fetch(c_pass))
     check(abs(v_pass - v_field) / v_field < 0.002, "default script passes the volume through: %.5f vs %.5f" % (v_pass, v_field))
-    ed.ScriptText = "# cut a ball on the sphere's +x pole\nop subtract\nsphere %r, %r, %r, %r\n" % (c + RADIUS / h, c, c, r_vox)
+    ed.Script = "# cut a ball on the sphere's +x pole\nop subtract\nsphere %r, %r, %r, %r\n" % (c + RADIUS / h, c, c, r_vox)
     ed.BandWidth = 8.0
     v_edit = closed_volume(servermanager.Fetch(c_pass))
     r_world = r_vox * h

@@ -1,6 +1,6 @@
 // vtkPDictionaryVolumeWriter / vtkPDictionaryVolumeReader without MPI: the
 // pieces are written one after the other (Piece p of n, no controller), from
-// an upstream that produces exactly the requested extent. Oracles: the serial
+// an upstream that gives the whole image (the writer crops its piece). Oracles: the serial
 // vtkDictionaryVolumeWriter -> vtkDictionaryVolumeReader round trip of the
 // same image (the distributed read must equal it exactly, every array), the
 // analytic SDF (within the dictionary's quantisation), the piece files' sizes
@@ -92,7 +92,7 @@ void writePieces(vtkImageData* img, const std::string& index, int n)
 {
   for (int p = 0; p < n; ++p)
   {
-    vtkNew<vtkImageClip> clip; // produces exactly the requested extent
+    vtkNew<vtkImageClip> clip; // passes the whole image: the writer must crop to its piece
     clip->SetInputData(img);
     clip->ClipDataOn();
     vtkNew<vtkPDictionaryVolumeWriter> w;
