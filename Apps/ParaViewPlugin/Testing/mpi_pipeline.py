@@ -111,7 +111,7 @@ def parallel_volume_stage():
     t_write = time.perf_counter() - t
     with open(path) as f:
         listed = [line.split()[-1] for line in f if line.startswith("piece ")]
-    check(os.path.exists(path) and listed == [os.path.basename(p) for p in pieces] and all(map(os.path.exists, pieces)),
+    check(os.path.exists(path) and listed == [os.path.basename(p) for p in pieces] and builtins.all(os.path.exists(p) for p in pieces),
           "%d ranks wrote the index and %d piece files %s" % (nranks, len(listed), listed))
     rd = getattr(pvs, T.PROXY_NAMES["vtkPDictionaryVolumeReader"])(FileName=path)
     rc = pvs.Contour(Input=rd, ContourBy=["POINTS", "sdf"], Isosurfaces=[0.0], ComputeNormals=0,
