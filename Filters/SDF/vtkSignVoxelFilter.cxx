@@ -6,6 +6,7 @@
 #include "lvdif/SignVoxelFilter.h"
 
 #include "vtkDataObject.h"
+#include "vtkExtentTranslator.h"
 #include "vtkFieldData.h"
 #include "vtkFloatArray.h"
 #include "vtkIdTypeArray.h"
@@ -17,6 +18,9 @@
 #include "vtkObjectFactory.h"
 #include "vtkPointData.h"
 #include "vtkSmartPointer.h"
+#include "vtkStreamingDemandDrivenPipeline.h"
+
+#include <algorithm>
 
 vtkStandardNewMacro(vtkSignVoxelFilter);
 
@@ -26,6 +30,58 @@ vtkSignVoxelFilter::vtkSignVoxelFilter()
 }
 
 vtkSignVoxelFilter::~vtkSignVoxelFilter() = default;
+
+namespace
+{
+using SDDP = vtkStreamingDemandDrivenPipeline;
+/// A consumer's request arrives as UPDATE_EXTENT (the executive translates a
+/// downstream piece request into it). UpdatePiece() called on this filter
+/// itself leaves UPDATE_EXTENT at the whole extent and sets only the piece
+/// keys: then the piece is translated here, as the executive would (block
+/// mode, split by cells: pieces share one point plane).
+void RequestedPiece(vtkInformation* outInfo, int ext[6])
+{
+  const int pieces = outInfo->Has(SDDP::UPDATE_NUMBER_OF_PIECES()) ? outInfo->Get(SDDP::UPDATE_NUMBER_OF_PIECES()) : 1;
+  if (pieces <= 1 || !outInfo->Has(SDDP::WHOLE_EXTENT()))
+  {
+    return;
+  }
+  int whole[6];
+  outInfo->Get(SDDP::WHOLE_EXTENT(), whole);
+  if (!std::equal(whole, whole + 6, ext))
+  {
+    return;
+  }
+  const int piece = outInfo->Has(SDDP::UPDATE_PIECE_NUMBER()) ? outInfo->Get(SDDP::UPDATE_PIECE_NUMBER()) : 0;
+  const int ghosts =
+    outInfo->Has(SDDP::UPDATE_NUMBER_OF_GHOST_LEVELS()) ? outInfo->Get(SDDP::UPDATE_NUMBER_OF_GHOST_LEVELS()) : 0;
+  vtkNew<vtkExtentTranslator> t;
+  if (!t->PieceToExtentThreadSafe(piece, pieces, ghosts, whole, ext, vtkExtentTranslator::BLOCK_MODE, 0))
+  {
+    ext[0] = ext[2] = ext[4] = 0; // an empty piece
+    ext[1] = ext[3] = ext[5] = -1;
+  }
+}
+} // namespace
+
+// The scans need whole rows and planes: always filter the whole input (see the header).
+int vtkSignVoxelFilter::RequestUpdateExtent(
+  vtkInformation*, vtkInformationVector** inputVector, vtkInformationVector*)
+{
+  vtkInformation* inInfo = inputVector[0]->GetInformationObject(0);
+  if (inInfo->Has(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT()))
+  {
+    int whole[6];
+    inInfo->Get(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT(), whole);
+    inInfo->Set(vtkStreamingDemandDrivenPipeline::UPDATE_EXTENT(), whole, 6);
+  }
+  // a request for the whole extent is one piece of one, without ghosts
+  inInfo->Set(vtkStreamingDemandDrivenPipeline::UPDATE_PIECE_NUMBER(), 0);
+  inInfo->Set(vtkStreamingDemandDrivenPipeline::UPDATE_NUMBER_OF_PIECES(), 1);
+  inInfo->Set(vtkStreamingDemandDrivenPipeline::UPDATE_NUMBER_OF_GHOST_LEVELS(), 0);
+  inInfo->Set(vtkStreamingDemandDrivenPipeline::EXACT_EXTENT(), 1);
+  return 1;
+}
 
 int vtkSignVoxelFilter::RequestData(
   vtkInformation*, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
@@ -117,6 +173,22 @@ int vtkSignVoxelFilter::RequestData(
   }
   output->GetFieldData()->AddArray(flips);
   output->GetFieldData()->AddArray(iterations);
+  // only the requested piece leaves the filter (every piece is a crop of the serial result)
+  vtkInformation* outInfo = outputVector->GetInformationObject(0);
+  if (outInfo->Has(vtkStreamingDemandDrivenPipeline::UPDATE_EXTENT()))
+  {
+    int uExt[6];
+    outInfo->Get(vtkStreamingDemandDrivenPipeline::UPDATE_EXTENT(), uExt);
+    RequestedPiece(outInfo, uExt);
+    if (uExt[0] > uExt[1] || uExt[2] > uExt[3] || uExt[4] > uExt[5])
+    {
+      output->Initialize(); // an empty piece (more pieces than cells)
+    }
+    else
+    {
+      output->Crop(uExt);
+    }
+  }
   this->UpdateProgress(1.0);
   return 1;
 }

@@ -11,6 +11,13 @@
  * (vtkIntArray, 4 values). Rules, parameters and determinism: docs/SVF.md and
  * lvdif/SignVoxelFilter.h. Reports progress; AbortExecute cancels (the output
  * is then empty).
+ *
+ * Pieces: SVF1 scans whole rows and SVF2/SVF3 sweep whole planes, so a piece
+ * filtered alone would read its cut as the volume's boundary. The filter
+ * therefore asks its input for the WHOLE extent (as vtkProbeFilter does for
+ * its source), filters all of it and outputs only the requested update
+ * extent: every piece equals the same region of the serial result (correct,
+ * not scalable: each rank holds and filters the whole volume).
  */
 #ifndef vtkSignVoxelFilter_h
 #define vtkSignVoxelFilter_h
@@ -86,6 +93,7 @@ protected:
   vtkSignVoxelFilter();
   ~vtkSignVoxelFilter() override;
 
+  int RequestUpdateExtent(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
   int RequestData(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
 
   double Threshold = 2.0;

@@ -28,14 +28,25 @@ for path in files:
             hints = proxy.find("Hints")
             if group.get("name") == "filters" and (hints is None or hints.find("ShowInMenu") is None):
                 problems.append(where + ": filter without ShowInMenu")
+            # dictionary volume readers and writers register .lvdv (.lvdvp: the parallel index);
+            # other readers (meshes) register their own extensions and a distinct description
+            volume = "DictionaryVolume" in proxy.get("class", "")
             if group.get("name") == "sources" and proxy.get("class", "").endswith("Reader"):
                 rf = hints.find("ReaderFactory") if hints is not None else None
-                if rf is None or "lvdv" not in rf.get("extensions", "").split():
-                    problems.append(where + ": reader without ReaderFactory extensions=lvdv")
+                exts = rf.get("extensions", "").split() if rf is not None else []
+                if not exts or (volume and not set(exts) & {"lvdv", "lvdvp"}):
+                    problems.append(where + ": reader without ReaderFactory extensions" + ("=lvdv or lvdvp" if volume else ""))
+                elif not volume and "LVDIF" not in rf.get("file_description", ""):
+                    problems.append(where + ": ReaderFactory file_description must name LVDIF (distinct from ParaView's readers)")
             if group.get("name") == "writers":
                 wf = hints.find("WriterFactory") if hints is not None else None
-                if wf is None or "lvdv" not in wf.get("extensions", "").split():
-                    problems.append(where + ": writer without WriterFactory extensions=lvdv")
+                if wf is None or not set(wf.get("extensions", "").split()) & {"lvdv", "lvdvp"}:
+                    problems.append(where + ": writer without WriterFactory extensions=lvdv or lvdvp")
+            for prop in proxy:
+                if prop.tag == "StringVectorProperty" and "FileName" in prop.get("name", "") \
+                        and prop.get("panel_visibility") != "never" and prop.find("FileListDomain") is None \
+                        and group.get("name") != "writers":
+                    problems.append("%s.%s: file name without FileListDomain" % (where, prop.get("name")))
             for prop in proxy:
                 if not prop.tag.endswith("Property"):
                     continue

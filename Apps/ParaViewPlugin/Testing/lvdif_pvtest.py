@@ -36,9 +36,14 @@ PROXIES = {
     "vtkChunkedMarchingCubes": ("filters", "ChunkedMarchingCubes"),
     "vtkDictionaryVolumeReader": ("sources", "LVDIFDictionaryVolumeReader"),
     "vtkDictionaryVolumeWriter": ("writers", "LVDIFDictionaryVolumeWriter"),
+    "vtkPDictionaryVolumeReader": ("sources", "LVDIFParallelDictionaryVolumeReader"),
+    "vtkPDictionaryVolumeWriter": ("writers", "LVDIFParallelDictionaryVolumeWriter"),
+    "vtkVolumeEditFilter": ("filters", "VolumeEditFilter"),
+    "vtkLVDIFMeshReader": ("sources", "LVDIFMeshReader"),
 }
 PROXY_NAMES = {cls: name for cls, (group, name) in PROXIES.items()}
 LVD_EXTENSION = "lvdv"
+PLVD_EXTENSION = "lvdvp"  # the distributed volume's index
 
 # The test scene: a sphere of radius R centred in a cube grid of N^3 points.
 RADIUS = 1.0
@@ -127,6 +132,9 @@ e = inp.GetExtent()
 d = vtk_to_numpy(inp.GetPointData().GetArray('sdf')).copy()
 k, j, i = np.meshgrid(*[np.arange(e[2 * a], e[2 * a + 1] + 1) for a in (2, 1, 0)], indexing='ij')
 hit = ((i * 7 + j * 13 + k * 29) %% %(period)d == 0).ravel() & (np.abs(d) > %(far)r)
+lo, hi = %(slab_lo)r, %(slab_hi)r
+if lo is not None:
+    hit |= ((i >= lo[0]) & (i <= hi[0]) & (j >= lo[1]) & (j <= hi[1]) & (k >= lo[2]) & (k <= hi[2])).ravel() & (d < -%(far)r)
 d[hit] = -d[hit]
 a = numpy_to_vtk(d, deep=1)
 a.SetName('sdf')
@@ -134,11 +142,14 @@ out.GetPointData().SetScalars(a)
 """
 
 
-def corrupt_signs(source, period=97, far=4.0):
+def corrupt_signs(source, period=97, far=4.0, slab=None):
     """Flips the sign of isolated voxels far (|d| > far) from the surface, on a
-    fixed lattice pattern: the wrong signs a sign voxel filter must repair."""
+    fixed lattice pattern: the wrong signs a sign voxel filter must repair.
+    slab=((i0, j0, k0), (i1, j1, k1)) also makes the inside voxels of that box
+    (d < -far) positive: a wrong region that can cross the pieces' cuts."""
     f = pvs.ProgrammableFilter(Input=source, OutputDataSetType="vtkImageData")
-    f.Script = _CORRUPT_SCRIPT % {"period": period, "far": far}
+    f.Script = _CORRUPT_SCRIPT % {"period": period, "far": far,
+                                  "slab_lo": slab[0] if slab else None, "slab_hi": slab[1] if slab else None}
     return f
 
 
@@ -272,3 +283,123 @@ def check_writer_hints(source, check):
     w = wf.CreateWriter("x." + LVD_EXTENSION, source.SMProxy, 0)
     check(w is not None and w.GetXMLName() == PROXY_NAMES["vtkDictionaryVolumeWriter"],
           "writer factory creates %s for .%s" % (w.GetXMLName() if w is not None else None, LVD_EXTENSION))
+
+
+def closed_volume(polydata):
+    """Volume enclosed by a closed, consistently oriented triangle surface
+    (divergence theorem: sum of signed tetrahedra against the origin)."""
+    import numpy as np
+    from vtkmodules.util.numpy_support import vtk_to_numpy
+    pts = vtk_to_numpy(polydata.GetPoints().GetData()).astype(np.float64)
+    conn = vtk_to_numpy(polydata.GetPolys().GetConnectivityArray()).reshape(-1, 3)
+    a, b, c = pts[conn[:, 0]], pts[conn[:, 1]], pts[conn[:, 2]]
+    return abs(float(np.einsum("ij,ij->i", a, np.cross(b, c)).sum()) / 6.0)
+
+
+def lens_volume(R, r, d):
+    """Volume of the intersection of two balls of radii R and r whose centres are d apart (0 < d < R + r)."""
+    if d >= R + r:
+        return 0.0
+    if d <= abs(R - r):
+        return 4.0 / 3.0 * math.pi * min(R, r) ** 3
+    return math.pi * (R + r - d) ** 2 * (d * d + 2 * d * r - 3 * r * r + 2 * d * R + 6 * r * R - 3 * R * R) / (12 * d)
+
+
+def edit_stage(field, check):
+    """The editing filter: a script subtracts a ball of radius r (voxels) centred
+    on the sphere's surface; oracle: the analytic volume 4/3 pi R^3 minus the lens
+    of the two balls. The default script (comments only) must change nothing."""
+    h = spacing()
+    c = 0.5 * (N - 1)  # the sphere's centre in voxel indices
+    r_vox = 8.0
+    ed = getattr(pvs, PROXY_NAMES["vtkVolumeEditFilter"])(Input=field)
+    default_script = ed.Script
+    check(default_script.lstrip().startswith("#") and "sphere" in default_script,
+          "Volume Edit Filter's default script is a commented example")
+    c_pass = pvs.Contour(Input=ed, ContourBy=["POINTS", "sdf"], Isosurfaces=[0.0], ComputeNormals=0, ComputeScalars=0)
+    v_field = closed_volume(servermanager.Fetch(pvs.Contour(Input=field, ContourBy=["POINTS", "sdf"], Isosurfaces=[0.0],
+                                                             ComputeNormals=0, ComputeScalars=0)))
+    v_pass = closed_volume(servermanager.Fetch(c_pass))
+    check(abs(v_pass - v_field) / v_field < 0.002, "default script passes the volume through: %.5f vs %.5f" % (v_pass, v_field))
+    ed.Script = "# cut a ball on the sphere's +x pole\nop subtract\nsphere %r, %r, %r, %r\n" % (c + RADIUS / h, c, c, r_vox)
+    ed.BandWidth = 8.0
+    v_edit = closed_volume(servermanager.Fetch(c_pass))
+    r_world = r_vox * h
+    lens = lens_volume(RADIUS, r_world, RADIUS)
+    v_ref = 4.0 / 3.0 * math.pi * RADIUS ** 3 - lens
+    check(abs(v_edit - v_ref) / v_ref < 0.01, "edited volume %.5f vs analytic %.5f (sphere minus lens)" % (v_edit, v_ref))
+    removed = v_field - v_edit
+    check(abs(removed - lens) / lens < 0.05, "removed volume %.5f vs analytic lens %.5f" % (removed, lens))
+    rgba = ed.PointData["rgba"] if "rgba" in ed.PointData.keys() else None
+    check(rgba is not None, "Volume Edit Filter outputs rgba (With Color on)")
+    return ed
+
+
+_CUBE_OFF = "OFF\n8 6 0\n0 0 0\n1 0 0\n1 1 0\n0 1 0\n0 0 1\n1 0 1\n1 1 1\n0 1 1\n" \
+    "4 0 3 2 1\n4 4 5 6 7\n4 0 1 5 4\n4 1 2 6 5\n4 2 3 7 6\n4 3 0 4 7\n"
+_CUBE_OBJ = "v 0 0 0\nv 2 0 0\nv 2 2 0\nv 0 2 0\nv 0 0 2\nv 2 0 2\nv 2 2 2\nv 0 2 2\n" \
+    "f 1 4 3 2\nf 5 6 7 8\nf 1 2 6 5\nf 2 3 7 6\nf 3 4 8 7\nf 4 1 5 8\n"
+
+
+def mesh_reader_stage(tmpdir, check):
+    """The validating mesh reader: a unit cube (OFF) and a cube of edge 2 (OBJ),
+    quads fanned to 12 triangles; oracles: the analytic area and volume. The
+    Open dialog lists it under its own description, distinct from ParaView's
+    OBJ/STL/PLY readers; for .off (no ParaView reader) the factory picks it."""
+    name = PROXY_NAMES["vtkLVDIFMeshReader"]
+    for fname, text, edge in (("cube.off", _CUBE_OFF, 1.0), ("cube.obj", _CUBE_OBJ, 2.0)):
+        path = os.path.join(tmpdir, fname)
+        with open(path, "w") as f:
+            f.write(text)
+        rd = getattr(pvs, name)(FileName=path)
+        pd = servermanager.Fetch(rd)
+        check(pd.GetNumberOfPolys() == 12, "%s: %d triangles (12)" % (fname, pd.GetNumberOfPolys()))
+        a = area(rd)
+        check(abs(a - 6 * edge * edge) < 1e-5, "%s: area %.6f vs %.1f" % (fname, a, 6 * edge * edge))
+        v = closed_volume(pd)
+        check(abs(v - edge ** 3) < 1e-5, "%s: volume %.6f vs %.1f" % (fname, v, edge ** 3))
+    rf = servermanager.vtkSMProxyManager.GetProxyManager().GetReaderFactory()
+    types = rf.GetSupportedFileTypes(_session())
+    ours = [t for t in types.split(";;") if t.startswith("LVDIF Mesh Reader")]
+    check(len(ours) == 1 and all("*.%s" % e in ours[0] for e in ("obj", "off", "stl", "ply")),
+          "Open dialog lists the LVDIF mesh reader under its own name: %s" % ours)
+    ok = rf.CanReadFile(os.path.join(tmpdir, "cube.off"), _session())
+    check(bool(ok) and rf.GetReaderName() == name, "reader factory picks %s for .off" % (rf.GetReaderName() if ok else None))
+
+
+def check_parallel_io_hints(source, check, path=None):
+    """The distributed writer and reader in the Save/Open dialogs (.lvdvp)."""
+    wf = servermanager.vtkSMProxyManager.GetProxyManager().GetWriterFactory()
+    types = wf.GetSupportedFileTypes(source.SMProxy, 0)
+    check("*.%s" % PLVD_EXTENSION in types, "Save dialog lists *.%s (%s)" % (
+        PLVD_EXTENSION, [t for t in types.split(";;") if "LVDIF" in t]))
+    w = wf.CreateWriter("x." + PLVD_EXTENSION, source.SMProxy, 0)
+    check(w is not None and w.GetXMLName() == PROXY_NAMES["vtkPDictionaryVolumeWriter"],
+          "writer factory creates %s for .%s" % (w.GetXMLName() if w is not None else None, PLVD_EXTENSION))
+    if path:
+        rf = servermanager.vtkSMProxyManager.GetProxyManager().GetReaderFactory()
+        ok = rf.CanReadFile(path, _session())
+        check(bool(ok) and rf.GetReaderName() == PROXY_NAMES["vtkPDictionaryVolumeReader"],
+              "reader factory picks %s for %s" % (rf.GetReaderName() if ok else None, os.path.basename(path)))
+
+
+def same_volume(a_img, b_img):
+    """(equal, message): same extent, origin, spacing and exactly the same sdf and rgba values."""
+    import numpy as np
+    from vtkmodules.util.numpy_support import vtk_to_numpy
+    if tuple(a_img.GetExtent()) != tuple(b_img.GetExtent()):
+        # the serial .lvdv reader gives 0-based extents: compare shapes and world positions instead
+        da, db = a_img.GetDimensions(), b_img.GetDimensions()
+        if da != db:
+            return False, "dimensions %s vs %s" % (da, db)
+    pa = [a_img.GetPoint(0), a_img.GetPoint(a_img.GetNumberOfPoints() - 1)]
+    pb = [b_img.GetPoint(0), b_img.GetPoint(b_img.GetNumberOfPoints() - 1)]
+    if max(abs(x - y) for p, q in zip(pa, pb) for x, y in zip(p, q)) > 1e-9:
+        return False, "corners %s vs %s" % (pa, pb)
+    for name in ("sdf", "rgba"):
+        x, y = a_img.GetPointData().GetArray(name), b_img.GetPointData().GetArray(name)
+        if (x is None) != (y is None):
+            return False, "array %s in one volume only" % name
+        if x is not None and not np.array_equal(vtk_to_numpy(x), vtk_to_numpy(y)):
+            return False, "array %s differs at %d values" % (name, int((vtk_to_numpy(x) != vtk_to_numpy(y)).sum()))
+    return True, "%d points, sdf and rgba identical" % a_img.GetNumberOfPoints()

@@ -43,9 +43,17 @@ present = T.load_plugin(plugin, classes, remote=True)
 t0 = time.perf_counter()
 sdf, how = T.sdf_stage(present)
 print("SDF stage:", how)
-# No sign voxel filter here: SVF1 scans whole rows and SVF2/SVF3 whole planes,
-# so filtering each piece alone is not filtering the volume (docs/PARAVIEW.md).
+# The sign voxel filter scans whole rows and planes; it asks for the whole
+# input and outputs the rank's piece (docs/PARAVIEW.md), so every piece equals
+# the serial result. The corruption includes a box of wrong signs that crosses
+# the cuts of 2 and 4 pieces (z = 24, y = 24 at N = 48), and the filter axis is
+# Z, so its rows are cut too: a piece filtered alone would not repair it.
+SLAB = ((T.N * 3 // 8, T.N * 3 // 8, T.N * 5 // 24), (T.N * 5 // 8, T.N * 5 // 8, T.N * 19 // 24))
 field = sdf
+if present["vtkSignVoxelFilter"]:
+    field = T.sign_voxel_stage(T.corrupt_signs(sdf, slab=SLAB))
+    field.Axis = "Z"
+    print("SVF stage: Sign Voxel Filter (axis Z) on corrupted signs, box %s..%s" % SLAB)
 c, mc = T.contour(field, present)
 surface = mc if mc is not None else c
 surface.UpdatePipeline()
@@ -76,13 +84,52 @@ out = self.GetPolyDataOutput(); out.SetPoints(pts)
 """
 
 
-def verify():
-    # Owned inside points per rank, by the ownership rule.
-    owned = pvs.ProgrammableFilter(Input=field, OutputDataSetType="vtkPolyData")
+def owned_inside(image):
+    owned = pvs.ProgrammableFilter(Input=image, OutputDataSetType="vtkPolyData")
     owned.Script = OWNED_SCRIPT
     owned_pd = servermanager.Fetch(owned)
-    inside = owned_pd.GetNumberOfPoints()
-    inside_unique = len({tuple(round(x, 6) for x in owned_pd.GetPoint(i)) for i in range(inside)})
+    n = owned_pd.GetNumberOfPoints()
+    return n, len({tuple(round(x, 6) for x in owned_pd.GetPoint(i)) for i in range(n)})
+
+
+def parallel_volume_stage():
+    """Every rank writes its piece (.lvdv) and rank 0 the .lvdvp index; then the
+    index is read back distributed and contoured. Returns the contour's triangles."""
+    path = os.path.join(tmpdir, "mpi_volume_np%d.%s" % (nranks, T.PLVD_EXTENSION))
+    pieces = [os.path.join(tmpdir, "mpi_volume_np%d_%d.lvdv" % (nranks, r)) for r in range(nranks)]
+    for old in [path] + pieces:
+        if os.path.exists(old):
+            os.remove(old)
+    T.check_parallel_io_hints(field, check)
+    wf = servermanager.vtkSMProxyManager.GetProxyManager().GetWriterFactory()
+    types = wf.GetSupportedFileTypes(field.SMProxy, 0)
+    if nranks > 1:
+        check("*.%s)" % T.LVD_EXTENSION not in types and "*.%s " % T.LVD_EXTENSION not in types,
+              "distributed session: the serial .%s writer is not offered, the .%s one is" % (T.LVD_EXTENSION, T.PLVD_EXTENSION))
+    t = time.perf_counter()
+    pvs.SaveData(path, proxy=field)
+    t_write = time.perf_counter() - t
+    with open(path) as f:
+        listed = [line.split()[-1] for line in f if line.startswith("piece ")]
+    check(os.path.exists(path) and listed == [os.path.basename(p) for p in pieces] and builtins.all(os.path.exists(p) for p in pieces),
+          "%d ranks wrote the index and %d piece files %s" % (nranks, len(listed), listed))
+    rd = getattr(pvs, T.PROXY_NAMES["vtkPDictionaryVolumeReader"])(FileName=path)
+    rc = pvs.Contour(Input=rd, ContourBy=["POINTS", "sdf"], Isosurfaces=[0.0], ComputeNormals=0,
+                     ComputeScalars=0, ComputeGradients=0)
+    rpid = servermanager.Fetch(pvs.ProcessIdScalars(Input=rc))
+    prange = rpid.GetPointData().GetArray("ProcessId").GetRange()
+    check(prange == (0.0, nranks - 1.0), "every rank read its part of the .lvdvp and contoured it (%s)" % (prange,))
+    if timing:
+        print("TIME ranks=%d N=%d lvdvp_write=%.3f s" % (nranks, T.N, t_write))
+    return T.triangle_key_list(servermanager.Fetch(rc))
+
+
+def verify():
+    # Owned inside points per rank, by the ownership rule.
+    inside, inside_unique = owned_inside(field)
+    if field is not sdf and mode == "--reference":
+        clean, _ = owned_inside(sdf)
+        check(inside == clean, "Sign Voxel Filter restores the inside set: %d voxels vs %d clean" % (inside, clean))
 
     # Which rank made which triangles.
     pid = pvs.ProcessIdScalars(Input=surface)
@@ -124,6 +171,12 @@ def verify():
     else:
         print("distributed read: skipped (reader/writer not in the plugin)")
 
+    pread_tris = None
+    if present["vtkPDictionaryVolumeWriter"] and present["vtkPDictionaryVolumeReader"]:
+        pread_tris = parallel_volume_stage()
+    else:
+        print("distributed write: skipped (parallel reader/writer not in the plugin)")
+
     ref_path = os.path.join(tmpdir, "mpi_reference_N%d.json" % T.N)
     if mode == "--reference":
         check(nranks == 1, "reference run is single-process")
@@ -132,7 +185,8 @@ def verify():
         if read_tris is not None:
             check(len(read_tris) > 0, "serial contour of the read volume: %d triangles" % len(read_tris))
         with open(ref_path, "w") as f:
-            json.dump({"triangles": tris, "inside": inside, "sdf": how, "read_triangles": read_tris}, f)
+            json.dump({"triangles": tris, "inside": inside, "sdf": how, "read_triangles": read_tris,
+                       "pread_triangles": pread_tris}, f)
     else:
         with open(ref_path) as f:
             ref = json.load(f)
@@ -149,6 +203,11 @@ def verify():
             check(read_pid_range == (0.0, nranks - 1.0), "every rank read and contoured its part (%s)" % (read_pid_range,))
             check(read_tris == ref_read, "contour of the distributed read: %d triangles, equal to the serial %d" % (
                 len(read_tris), len(ref_read)))
+        if pread_tris is not None:
+            ref_pread = [tuple(tuple(v) for v in t) for t in (ref.get("pread_triangles") or [])]
+            check(len(pread_tris) > 0 and pread_tris == ref_pread,
+                  "contour of the %d-rank .lvdvp read on %d ranks: %d triangles, equal to the serial %d" % (
+                      nranks, nranks, len(pread_tris), len(ref_pread)))
 
 
 

@@ -44,6 +44,18 @@ if present["vtkSignVoxelFilter"]:
 else:
     print("SVF stage: skipped (vtkSignVoxelFilter not in the plugin)")
 
+# --- the editing filter (script -> analytic volume)
+if present["vtkVolumeEditFilter"]:
+    T.edit_stage(field, check)
+else:
+    print("edit stage: skipped (vtkVolumeEditFilter not in the plugin)")
+
+# --- the validating mesh reader
+if present["vtkLVDIFMeshReader"]:
+    T.mesh_reader_stage(tmpdir, check)
+else:
+    print("mesh reader stage: skipped (vtkLVDIFMeshReader not in the plugin)")
+
 # --- contour: ParaView's Contour is the oracle of the LVDIF marching cubes
 c, mc = T.contour(field, present)
 a_pv = T.area(c)
@@ -67,6 +79,24 @@ if present["vtkDictionaryVolumeWriter"] and present["vtkDictionaryVolumeReader"]
     check(abs(a_rd - a_pv) / a_pv < 0.002, "Contour area after write/read %.5f vs before %.5f" % (a_rd, a_pv))
 else:
     print("write/read stage: skipped (reader/writer not in the plugin)")
+
+# --- distributed volume (.lvdvp) written by one process: index + one piece; equals the .lvdv read
+plvd = os.path.join(tmpdir, "test_plugin." + T.PLVD_EXTENSION)
+if present["vtkPDictionaryVolumeWriter"] and present["vtkPDictionaryVolumeReader"] and os.path.exists(lvd):
+    for old in (plvd, os.path.join(tmpdir, "test_plugin_0.lvdv")):
+        if os.path.exists(old):
+            os.remove(old)
+    pvs.SaveData(plvd, proxy=field)
+    check(os.path.exists(plvd) and os.path.exists(os.path.join(tmpdir, "test_plugin_0.lvdv")),
+          "SaveData wrote the index %s and its piece" % os.path.basename(plvd))
+    preader = pvs.OpenDataFile(plvd)
+    check(preader is not None and preader.GetXMLName() == T.PROXY_NAMES["vtkPDictionaryVolumeReader"],
+          "OpenDataFile chose %s" % (preader.GetXMLName() if preader is not None else None))
+    same, why = T.same_volume(servermanager.Fetch(preader), servermanager.Fetch(pvs.OpenDataFile(lvd)))
+    check(same, ".lvdvp read equals the .lvdv read: " + why)
+    T.check_parallel_io_hints(field, check, plvd)
+else:
+    print("distributed volume stage: skipped (parallel reader/writer not in the plugin)")
 
 # --- reader/writer in ParaView's open/save dialogs
 if present["vtkDictionaryVolumeReader"]:

@@ -1,0 +1,151 @@
+#include "LVDIFVolumeIndex.h"
+
+#include "lvdif/Error.h"
+
+#include <cstdio>
+#include <fstream>
+#include <iomanip>
+#include <sstream>
+
+namespace lvdifvtk
+{
+namespace
+{
+const char* MAGIC = "LVDIF-PVOLUME";
+
+[[noreturn]] void fail(const std::string& path, int line, const std::string& what)
+{
+  throw lvdif::Error(lvdif::ErrorCode::CorruptData,
+    "index '" + path + "'" + (line > 0 ? ", line " + std::to_string(line) : std::string()) + ": " + what);
+}
+
+bool contains(const int outer[6], const int inner[6])
+{
+  for (int a = 0; a < 3; ++a)
+    if (inner[2 * a] < outer[2 * a] || inner[2 * a + 1] > outer[2 * a + 1])
+      return false;
+  return true;
+}
+} // namespace
+
+std::string directoryOf(const std::string& path)
+{
+  const auto slash = path.find_last_of('/');
+  return slash == std::string::npos ? std::string() : path.substr(0, slash + 1);
+}
+
+std::string pieceFileName(const std::string& indexPath, int piece)
+{
+  std::string name = indexPath.substr(directoryOf(indexPath).size());
+  const auto dot = name.find_last_of('.');
+  if (dot != std::string::npos && dot > 0)
+    name.resize(dot);
+  return name + "_" + std::to_string(piece) + ".lvdv";
+}
+
+VolumeIndex readVolumeIndex(const std::string& path)
+{
+  std::ifstream in(path);
+  if (!in)
+    throw lvdif::Error(lvdif::ErrorCode::IoFailure, "cannot open index '" + path + "'");
+  VolumeIndex index;
+  std::string line;
+  int lineNo = 0, declaredPieces = -1;
+  bool haveWhole = false, haveOrigin = false, haveSpacing = false;
+  while (std::getline(in, line))
+  {
+    ++lineNo;
+    if (line.empty() || line[0] == '#')
+      continue;
+    std::istringstream ls(line);
+    std::string key;
+    ls >> key;
+    if (lineNo == 1)
+    {
+      if (key != MAGIC || !(ls >> index.version))
+        fail(path, lineNo, std::string("not an LVDIF volume index (expected '") + MAGIC + " <version>')");
+      if (index.version != 1)
+        fail(path, lineNo, "unsupported index version " + std::to_string(index.version) + " (this reader knows 1)");
+      continue;
+    }
+    if (key == "whole_extent")
+    {
+      for (int& v : index.wholeExtent)
+        if (!(ls >> v))
+          fail(path, lineNo, "whole_extent needs 6 integers");
+      if (!extentIsValid(index.wholeExtent))
+        fail(path, lineNo, "empty whole_extent");
+      haveWhole = true;
+    }
+    else if (key == "origin" || key == "spacing")
+    {
+      double* v = key == "origin" ? index.origin : index.spacing;
+      for (int a = 0; a < 3; ++a)
+        if (!(ls >> v[a]))
+          fail(path, lineNo, key + " needs 3 numbers");
+      (key == "origin" ? haveOrigin : haveSpacing) = true;
+    }
+    else if (key == "pieces")
+    {
+      if (!(ls >> declaredPieces) || declaredPieces < 1 || declaredPieces > (1 << 20))
+        fail(path, lineNo, "pieces needs a count in 1..1048576");
+    }
+    else if (key == "piece")
+    {
+      VolumeIndexPiece p;
+      for (int& v : p.extent)
+        if (!(ls >> v))
+          fail(path, lineNo, "piece needs 6 integers and a file name");
+      std::getline(ls >> std::ws, p.file);
+      if (p.file.empty() || p.file.find('/') != std::string::npos)
+        fail(path, lineNo, "piece file must be a plain file name beside the index");
+      if (!extentIsValid(p.extent) || !haveWhole || !contains(index.wholeExtent, p.extent))
+        fail(path, lineNo, "piece extent empty or outside whole_extent (whole_extent must come first)");
+      index.pieces.push_back(p);
+    }
+    else
+    {
+      fail(path, lineNo, "unknown key '" + key + "'");
+    }
+  }
+  if (lineNo == 0)
+    fail(path, 0, "empty file");
+  if (!haveWhole || !haveOrigin || !haveSpacing)
+    fail(path, 0, "whole_extent, origin and spacing are required");
+  if (declaredPieces != static_cast<int>(index.pieces.size()))
+    fail(path, 0, "declares " + std::to_string(declaredPieces) + " pieces, lists " + std::to_string(index.pieces.size()));
+  return index;
+}
+
+void writeVolumeIndex(const VolumeIndex& index, const std::string& path)
+{
+  const std::string tmp = path + ".tmp";
+  {
+    std::ofstream out(tmp, std::ios::trunc);
+    out << MAGIC << " " << index.version << "\n";
+    out << "# distributed LVDIF dictionary volume: the pieces are .lvdv files beside this index (docs/FORMAT.md)\n";
+    out << "whole_extent";
+    for (int v : index.wholeExtent)
+      out << " " << v;
+    out << "\n" << std::setprecision(17);
+    out << "origin " << index.origin[0] << " " << index.origin[1] << " " << index.origin[2] << "\n";
+    out << "spacing " << index.spacing[0] << " " << index.spacing[1] << " " << index.spacing[2] << "\n";
+    out << "pieces " << index.pieces.size() << "\n";
+    for (const auto& p : index.pieces)
+    {
+      out << "piece";
+      for (int v : p.extent)
+        out << " " << v;
+      out << " " << p.file << "\n";
+    }
+    out.flush();
+    if (!out)
+      throw lvdif::Error(lvdif::ErrorCode::IoFailure, "cannot write index '" + tmp + "'");
+  }
+  if (std::rename(tmp.c_str(), path.c_str()) != 0)
+  {
+    std::remove(tmp.c_str());
+    throw lvdif::Error(lvdif::ErrorCode::IoFailure, "cannot rename '" + tmp + "' to '" + path + "'");
+  }
+}
+}

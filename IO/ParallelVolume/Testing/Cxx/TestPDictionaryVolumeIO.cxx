@@ -1,0 +1,250 @@
+// vtkPDictionaryVolumeWriter / vtkPDictionaryVolumeReader without MPI: the
+// pieces are written one after the other (Piece p of n, no controller), from
+// an upstream that gives the whole image (the writer crops its piece). Oracles: the serial
+// vtkDictionaryVolumeWriter -> vtkDictionaryVolumeReader round trip of the
+// same image (the distributed read must equal it exactly, every array), the
+// analytic SDF (within the dictionary's quantisation), the piece files' sizes
+// (the translator's extents), a sub-extent read that opens one piece only, and
+// the error paths (missing piece, broken index).
+#include "vtkDictionaryVolumeReader.h"
+#include "vtkDictionaryVolumeWriter.h"
+#include "vtkPDictionaryVolumeReader.h"
+#include "vtkPDictionaryVolumeWriter.h"
+
+#include "vtkFloatArray.h"
+#include "vtkImageClip.h"
+#include "vtkImageData.h"
+#include "vtkInformation.h"
+#include "vtkNew.h"
+#include "vtkPointData.h"
+#include "vtkStreamingDemandDrivenPipeline.h"
+#include "vtkUnsignedCharArray.h"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <fstream>
+#include <string>
+#include <unistd.h>
+
+namespace
+{
+const int NX = 41, NY = 34, NZ = 37;
+
+double analytic(int i, int j, int k)
+{
+  const double dx = i - 20.3, dy = j - 16.8, dz = k - 18.1;
+  return std::sqrt(dx * dx + dy * dy + dz * dz) - 12.0;
+}
+
+vtkSmartPointer<vtkImageData> makeImage()
+{
+  auto img = vtkSmartPointer<vtkImageData>::New();
+  img->SetExtent(3, 3 + NX - 1, -2, -2 + NY - 1, 5, 5 + NZ - 1); // not 0-based: the index keeps it
+  img->SetOrigin(-2.0, 0.5, 3.0);
+  img->SetSpacing(0.25, 0.5, 0.75);
+  vtkNew<vtkFloatArray> sdf;
+  sdf->SetName("sdf");
+  sdf->SetNumberOfTuples(NX * NY * NZ);
+  vtkNew<vtkUnsignedCharArray> rgba;
+  rgba->SetName("rgba");
+  rgba->SetNumberOfComponents(4);
+  rgba->SetNumberOfTuples(NX * NY * NZ);
+  for (int k = 0, id = 0; k < NZ; ++k)
+    for (int j = 0; j < NY; ++j)
+      for (int i = 0; i < NX; ++i, ++id)
+      {
+        sdf->SetValue(id, static_cast<float>(analytic(i, j, k)));
+        const unsigned char c[4] = { static_cast<unsigned char>(i < 20 ? 255 : 10),
+          static_cast<unsigned char>(j % 3 * 60), static_cast<unsigned char>(k < 10 ? 0 : 200), 255 };
+        rgba->SetTypedTuple(id, c);
+      }
+  img->GetPointData()->AddArray(sdf);
+  img->GetPointData()->AddArray(rgba);
+  return img;
+}
+
+std::string tmpName(const std::string& stem)
+{
+  return std::string(::testing::TempDir()) + "lvdif_p_" + std::to_string(getpid()) + "_" + stem;
+}
+
+/// The serial round trip: the oracle for the distributed one.
+vtkSmartPointer<vtkImageData> serialRoundTrip(vtkImageData* img)
+{
+  const std::string f = tmpName("serial.lvdv");
+  vtkNew<vtkDictionaryVolumeWriter> w;
+  w->SetInputData(img);
+  w->SetFileName(f.c_str());
+  w->Write();
+  vtkNew<vtkDictionaryVolumeReader> r;
+  r->SetFileName(f.c_str());
+  r->Update();
+  auto out = vtkSmartPointer<vtkImageData>::New();
+  out->DeepCopy(r->GetOutput());
+  std::remove(f.c_str());
+  return out;
+}
+
+void writePieces(vtkImageData* img, const std::string& index, int n)
+{
+  for (int p = 0; p < n; ++p)
+  {
+    vtkNew<vtkImageClip> clip; // passes the whole image: the writer must crop to its piece
+    clip->SetInputData(img);
+    clip->ClipDataOn();
+    vtkNew<vtkPDictionaryVolumeWriter> w;
+    w->SetController(nullptr);
+    w->SetInputConnection(clip->GetOutputPort());
+    w->SetFileName(index.c_str());
+    w->SetPiece(p);
+    w->SetNumberOfPieces(n);
+    ASSERT_TRUE(w->Write()) << "piece " << p;
+  }
+}
+} // namespace
+
+class PVolumeIO : public ::testing::TestWithParam<int>
+{
+};
+
+TEST_P(PVolumeIO, DistributedWriteEqualsSerialRoundTrip)
+{
+  const int n = GetParam();
+  vtkSmartPointer<vtkImageData> img = makeImage();
+  vtkSmartPointer<vtkImageData> oracle = serialRoundTrip(img);
+  const std::string index = tmpName("vol" + std::to_string(n) + ".lvdvp");
+  writePieces(img, index, n);
+  ASSERT_TRUE(vtkPDictionaryVolumeReader::CanReadFile(index.c_str()));
+
+  // the piece files hold exactly the translator's extents
+  int whole[6];
+  img->GetExtent(whole);
+  for (int p = 0; p < n; ++p)
+  {
+    int e[6];
+    vtkPDictionaryVolumeWriter::PieceExtent(whole, p, n, e);
+    const std::string pf = tmpName("vol" + std::to_string(n) + "_" + std::to_string(p) + ".lvdv");
+    vtkNew<vtkDictionaryVolumeReader> pr;
+    pr->SetFileName(pf.c_str());
+    pr->UpdateInformation();
+    int pw[6];
+    pr->GetOutputInformation(0)->Get(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT(), pw);
+    for (int a = 0; a < 3; ++a)
+      EXPECT_EQ(pw[2 * a + 1] + 1, e[2 * a + 1] - e[2 * a] + 1) << "piece " << p << " axis " << a;
+  }
+
+  vtkNew<vtkPDictionaryVolumeReader> r;
+  r->SetFileName(index.c_str());
+  r->Update();
+  vtkImageData* out = r->GetOutput();
+  EXPECT_EQ(r->GetPiecesRead(), n);
+  int e[6];
+  out->GetExtent(e);
+  for (int q = 0; q < 6; ++q)
+    EXPECT_EQ(e[q], whole[q]);
+  double o[3], s[3];
+  out->GetOrigin(o);
+  out->GetSpacing(s);
+  EXPECT_DOUBLE_EQ(o[0], -2.0);
+  EXPECT_DOUBLE_EQ(o[2], 3.0);
+  EXPECT_DOUBLE_EQ(s[1], 0.5);
+  // serial oracle: same values, every array (the serial reader gives 0-based indices)
+  ASSERT_EQ(out->GetNumberOfPoints(), oracle->GetNumberOfPoints());
+  for (const char* name : { "sdf", "rgba" })
+  {
+    vtkDataArray* a = out->GetPointData()->GetArray(name);
+    vtkDataArray* b = oracle->GetPointData()->GetArray(name);
+    ASSERT_NE(a, nullptr) << name;
+    ASSERT_NE(b, nullptr) << name;
+    ASSERT_EQ(a->GetNumberOfComponents(), b->GetNumberOfComponents());
+    long diff = 0;
+    for (vtkIdType id = 0; id < a->GetNumberOfTuples(); ++id)
+      for (int c = 0; c < a->GetNumberOfComponents(); ++c)
+        diff += a->GetComponent(id, c) != b->GetComponent(id, c) ? 1 : 0;
+    EXPECT_EQ(diff, 0) << name;
+  }
+  // analytic oracle near the surface (dictionary step 0.001 up to |d| 4)
+  vtkDataArray* sdf = out->GetPointData()->GetArray("sdf");
+  double worst = 0;
+  for (int k = 0, id = 0; k < NZ; ++k)
+    for (int j = 0; j < NY; ++j)
+      for (int i = 0; i < NX; ++i, ++id)
+        if (std::fabs(analytic(i, j, k)) < 3.9)
+          worst = std::max(worst, std::fabs(sdf->GetTuple1(id) - analytic(i, j, k)));
+  EXPECT_LT(worst, 0.0006);
+
+  // a sub-extent inside the first piece opens one piece only and equals the whole read there
+  int e0[6];
+  vtkPDictionaryVolumeWriter::PieceExtent(whole, 0, n, e0);
+  int sub[6] = { e0[0] + 1, e0[0] + 5, e0[2] + 1, e0[2] + 4, e0[4] + 1, e0[4] + 3 };
+  vtkNew<vtkPDictionaryVolumeReader> rs;
+  rs->SetFileName(index.c_str());
+  rs->UpdateExtent(sub);
+  EXPECT_EQ(rs->GetPiecesRead(), 1);
+  vtkImageData* so = rs->GetOutput();
+  int got[6];
+  so->GetExtent(got);
+  for (int q = 0; q < 6; ++q)
+    EXPECT_EQ(got[q], sub[q]);
+  for (int k = sub[4]; k <= sub[5]; ++k)
+    for (int j = sub[2]; j <= sub[3]; ++j)
+      for (int i = sub[0]; i <= sub[1]; ++i)
+      {
+        int ijk[3] = { i, j, k };
+        EXPECT_EQ(so->GetPointData()->GetArray("sdf")->GetTuple1(so->ComputePointId(ijk)),
+          sdf->GetTuple1(out->ComputePointId(ijk)));
+      }
+
+  for (int p = 0; p < n; ++p)
+    std::remove(tmpName("vol" + std::to_string(n) + "_" + std::to_string(p) + ".lvdv").c_str());
+  std::remove(index.c_str());
+}
+
+INSTANTIATE_TEST_SUITE_P(Pieces, PVolumeIO, ::testing::Values(1, 2, 3, 4));
+
+TEST(PVolumeIO, ErrorsAreReported)
+{
+  vtkSmartPointer<vtkImageData> img = makeImage();
+  const std::string index = tmpName("err.lvdvp");
+  writePieces(img, index, 2);
+  vtkNew<vtkPDictionaryVolumeReader> r;
+  r->GlobalWarningDisplayOff();
+  r->SetFileName(index.c_str());
+
+  // a missing piece file
+  const std::string p1 = tmpName("err_1.lvdv");
+  std::rename(p1.c_str(), (p1 + ".away").c_str());
+  r->Modified();
+  r->Update();
+  EXPECT_EQ(r->GetOutput()->GetNumberOfPoints(), 0);
+  std::rename((p1 + ".away").c_str(), p1.c_str());
+  r->Modified();
+  r->Update();
+  EXPECT_EQ(r->GetOutput()->GetNumberOfPoints(), NX * NY * NZ);
+
+  // broken indices: unknown key, piece outside the whole extent, wrong count, wrong magic
+  const char* broken[] = {
+    "LVDIF-PVOLUME 1\nwhole_extent 0 9 0 9 0 9\norigin 0 0 0\nspacing 1 1 1\nbogus 3\n",
+    "LVDIF-PVOLUME 1\nwhole_extent 0 9 0 9 0 9\norigin 0 0 0\nspacing 1 1 1\npieces 1\npiece 0 9 0 9 0 12 x.lvdv\n",
+    "LVDIF-PVOLUME 1\nwhole_extent 0 9 0 9 0 9\norigin 0 0 0\nspacing 1 1 1\npieces 2\npiece 0 9 0 9 0 9 x.lvdv\n",
+    "LVDIF-PVOLUME 2\nwhole_extent 0 9 0 9 0 9\norigin 0 0 0\nspacing 1 1 1\npieces 1\npiece 0 9 0 9 0 9 x.lvdv\n",
+    "LVDIFVOL\n",
+  };
+  const std::string bad = tmpName("bad.lvdvp");
+  for (const char* text : broken)
+  {
+    std::ofstream(bad) << text;
+    vtkNew<vtkPDictionaryVolumeReader> b;
+    b->GlobalWarningDisplayOff();
+    b->SetFileName(bad.c_str());
+    b->Update();
+    EXPECT_EQ(b->GetOutput()->GetNumberOfPoints(), 0) << text;
+  }
+  std::remove(bad.c_str());
+  std::remove(index.c_str());
+  std::remove(tmpName("err_0.lvdv").c_str());
+  std::remove(p1.c_str());
+}

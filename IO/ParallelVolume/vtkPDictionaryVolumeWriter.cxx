@@ -1,0 +1,207 @@
+#include "vtkPDictionaryVolumeWriter.h"
+
+#include "LVDIFVolumeIndex.h"
+#include "vtkDictionaryVolumeWriter.h"
+
+#include "lvdif/Error.h"
+#include "lvdif/VolumeFile.h"
+
+#include "vtkCommunicator.h"
+#include "vtkDataObject.h"
+#include "vtkErrorCode.h"
+#include "vtkExtentTranslator.h"
+#include "vtkImageData.h"
+#include "vtkInformation.h"
+#include "vtkInformationVector.h"
+#include "vtkMultiProcessController.h"
+#include "vtkNew.h"
+#include "vtkObjectFactory.h"
+#include "vtkStreamingDemandDrivenPipeline.h"
+
+#include <algorithm>
+
+vtkStandardNewMacro(vtkPDictionaryVolumeWriter);
+vtkCxxSetObjectMacro(vtkPDictionaryVolumeWriter, Controller, vtkMultiProcessController);
+
+vtkPDictionaryVolumeWriter::vtkPDictionaryVolumeWriter()
+  : CompressionLevel(lvdif::VolumeFileWriteOptions().compressionLevel)
+{
+  this->SetController(vtkMultiProcessController::GetGlobalController());
+}
+
+vtkPDictionaryVolumeWriter::~vtkPDictionaryVolumeWriter()
+{
+  this->SetController(nullptr);
+}
+
+vtkImageData* vtkPDictionaryVolumeWriter::GetInput()
+{
+  return vtkImageData::SafeDownCast(this->Superclass::GetInput());
+}
+
+int vtkPDictionaryVolumeWriter::FillInputPortInformation(int, vtkInformation* info)
+{
+  info->Set(vtkAlgorithm::INPUT_REQUIRED_DATA_TYPE(), "vtkImageData");
+  return 1;
+}
+
+void vtkPDictionaryVolumeWriter::PieceExtent(const int whole[6], int piece, int numberOfPieces, int extent[6])
+{
+  vtkNew<vtkExtentTranslator> t;
+  int w[6] = { whole[0], whole[1], whole[2], whole[3], whole[4], whole[5] };
+  if (!t->PieceToExtentThreadSafe(piece, numberOfPieces, 0, w, extent, vtkExtentTranslator::BLOCK_MODE, 0))
+  {
+    extent[0] = extent[2] = extent[4] = 0; // no points for this piece
+    extent[1] = extent[3] = extent[5] = -1;
+  }
+}
+
+// Ask the input for exactly this piece's extent (the one piece 0 lists in the index).
+vtkTypeBool vtkPDictionaryVolumeWriter::ProcessRequest(
+  vtkInformation* request, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
+{
+  if (request->Has(vtkStreamingDemandDrivenPipeline::REQUEST_UPDATE_EXTENT()))
+  {
+    vtkInformation* inInfo = inputVector[0]->GetInformationObject(0);
+    if (inInfo && inInfo->Has(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT()))
+    {
+      int whole[6], ext[6];
+      inInfo->Get(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT(), whole);
+      PieceExtent(whole, this->Piece, this->NumberOfPieces, ext);
+      if (!lvdifvtk::extentIsValid(ext))
+      {
+        // an empty piece still needs a (small) valid request; nothing is written for it
+        for (int a = 0; a < 3; ++a)
+          ext[2 * a + 1] = ext[2 * a] = whole[2 * a];
+      }
+      inInfo->Set(vtkStreamingDemandDrivenPipeline::UPDATE_PIECE_NUMBER(), this->Piece);
+      inInfo->Set(vtkStreamingDemandDrivenPipeline::UPDATE_NUMBER_OF_PIECES(), this->NumberOfPieces);
+      inInfo->Set(vtkStreamingDemandDrivenPipeline::UPDATE_NUMBER_OF_GHOST_LEVELS(), 0);
+      inInfo->Set(vtkStreamingDemandDrivenPipeline::UPDATE_EXTENT(), ext, 6);
+      inInfo->Set(vtkStreamingDemandDrivenPipeline::EXACT_EXTENT(), 1);
+    }
+    return 1;
+  }
+  return this->Superclass::ProcessRequest(request, inputVector, outputVector);
+}
+
+bool vtkPDictionaryVolumeWriter::WritePiece(vtkImageData* image, const int ext[6])
+{
+  // crop: a producer may give more than the requested extent
+  vtkNew<vtkImageData> piece;
+  piece->ShallowCopy(image);
+  piece->Crop(ext);
+  int got[6];
+  piece->GetExtent(got);
+  for (int q = 0; q < 6; ++q)
+  {
+    if (got[q] != ext[q])
+    {
+      vtkErrorMacro("piece " << this->Piece << ": the input does not cover the piece's extent");
+      return false;
+    }
+  }
+  vtkNew<vtkDictionaryVolumeWriter> w;
+  w->SetInputData(piece);
+  w->SetFileName((lvdifvtk::directoryOf(this->FileName) + lvdifvtk::pieceFileName(this->FileName, this->Piece)).c_str());
+  w->SetBandWidth(this->BandWidth);
+  w->SetChunkEdge(this->ChunkEdge);
+  w->SetCompressionLevel(this->CompressionLevel);
+  w->SetVolumeName(this->VolumeName.c_str());
+  w->Write();
+  return w->GetErrorCode() == vtkErrorCode::NoError;
+}
+
+void vtkPDictionaryVolumeWriter::WriteData()
+{
+  vtkImageData* image = this->GetInput();
+  vtkInformation* inInfo = this->GetInputInformation(0, 0);
+  if (this->FileName.empty())
+  {
+    vtkErrorMacro("no file name: call SetFileName() first");
+    this->SetErrorCode(vtkErrorCode::NoFileNameError);
+    return;
+  }
+  if (!image || !inInfo || !inInfo->Has(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT()))
+  {
+    vtkErrorMacro("no input image");
+    this->SetErrorCode(vtkErrorCode::UnknownError);
+    return;
+  }
+  if (this->Piece >= this->NumberOfPieces)
+  {
+    vtkErrorMacro("piece " << this->Piece << " of " << this->NumberOfPieces << " does not exist");
+    this->SetErrorCode(vtkErrorCode::UnknownError);
+    return;
+  }
+  int whole[6], ext[6];
+  inInfo->Get(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT(), whole);
+  PieceExtent(whole, this->Piece, this->NumberOfPieces, ext);
+  int ok = lvdifvtk::extentIsValid(ext) ? (this->WritePiece(image, ext) ? 1 : 0) : 1;
+
+  vtkMultiProcessController* c = this->Controller;
+  const bool collective = c && c->GetNumberOfProcesses() == this->NumberOfPieces && this->NumberOfPieces > 1;
+  if (collective)
+  {
+    int all = 0;
+    c->AllReduce(&ok, &all, 1, vtkCommunicator::MIN_OP);
+    if (!all && ok)
+    {
+      vtkErrorMacro("another piece failed; the index is not written");
+    }
+    ok = all;
+  }
+  if (ok && this->Piece == 0)
+  {
+    lvdifvtk::VolumeIndex index;
+    std::copy(whole, whole + 6, index.wholeExtent);
+    // origin and spacing of the whole image (index 0), from the pipeline information
+    double origin[3], spacing[3];
+    image->GetOrigin(origin);
+    image->GetSpacing(spacing);
+    if (inInfo->Has(vtkDataObject::ORIGIN()))
+      inInfo->Get(vtkDataObject::ORIGIN(), origin);
+    if (inInfo->Has(vtkDataObject::SPACING()))
+      inInfo->Get(vtkDataObject::SPACING(), spacing);
+    std::copy(origin, origin + 3, index.origin);
+    std::copy(spacing, spacing + 3, index.spacing);
+    for (int p = 0; p < this->NumberOfPieces; ++p)
+    {
+      lvdifvtk::VolumeIndexPiece piece;
+      PieceExtent(whole, p, this->NumberOfPieces, piece.extent);
+      if (!lvdifvtk::extentIsValid(piece.extent))
+        continue;
+      piece.file = lvdifvtk::pieceFileName(this->FileName, p);
+      index.pieces.push_back(piece);
+    }
+    try
+    {
+      lvdifvtk::writeVolumeIndex(index, this->FileName);
+    }
+    catch (const lvdif::Error& e)
+    {
+      vtkErrorMacro(<< e.what());
+      ok = 0;
+    }
+  }
+  if (collective)
+  {
+    c->Barrier(); // the index and every piece exist when Write() returns on any rank
+  }
+  if (!ok)
+  {
+    this->SetErrorCode(vtkErrorCode::UnknownError);
+  }
+}
+
+void vtkPDictionaryVolumeWriter::PrintSelf(ostream& os, vtkIndent indent)
+{
+  this->Superclass::PrintSelf(os, indent);
+  os << indent << "FileName: " << this->FileName << "\n";
+  os << indent << "Piece: " << this->Piece << " of " << this->NumberOfPieces << "\n";
+  os << indent << "BandWidth: " << this->BandWidth << "\n";
+  os << indent << "ChunkEdge: " << this->ChunkEdge << "\n";
+  os << indent << "CompressionLevel: " << this->CompressionLevel << "\n";
+  os << indent << "VolumeName: " << this->VolumeName << "\n";
+  os << indent << "Controller: " << this->Controller << "\n";
+}

@@ -1,0 +1,100 @@
+/**
+ * @class   vtkPDictionaryVolumeWriter
+ * @brief   writes a distributed image as one .lvdv file per piece plus a .lvdvp index
+ *
+ * Every process writes its piece (Piece of NumberOfPieces; ParaView sets both
+ * from the MPI rank and size) as `<name>_<piece>.lvdv` beside FileName
+ * (`<name>.lvdvp`), with vtkDictionaryVolumeWriter's encoding (BandWidth,
+ * ChunkEdge, CompressionLevel). Piece 0 writes the index: a small text file
+ * with the format version, the whole extent, origin, spacing and each
+ * non-empty piece's extent and file (docs/FORMAT.md, "Distributed volumes").
+ *
+ * The writer asks its input for exactly the extent vtkExtentTranslator gives
+ * the piece (block mode, no ghosts), so piece 0 knows every piece's extent
+ * without communication; pieces share one point plane per cut, as ParaView's.
+ * With a Controller of NumberOfPieces processes the ranks agree on success
+ * (the index is written only if every piece was) and wait for each other, so
+ * the index is complete when Write() returns. Without one (serial, or a test
+ * calling Write for each piece in turn), pieces are written independently.
+ *
+ * vtkPDictionaryVolumeReader reads the index (only the pieces overlapping its
+ * update extent).
+ */
+#ifndef vtkPDictionaryVolumeWriter_h
+#define vtkPDictionaryVolumeWriter_h
+
+#include "lvdifIOParallelVolumeModule.h"
+#include "vtkWriter.h"
+
+#include <string>
+
+class vtkImageData;
+class vtkMultiProcessController;
+
+class LVDIFIOPARALLELVOLUME_EXPORT vtkPDictionaryVolumeWriter : public vtkWriter
+{
+public:
+  static vtkPDictionaryVolumeWriter* New();
+  vtkTypeMacro(vtkPDictionaryVolumeWriter, vtkWriter);
+  void PrintSelf(ostream& os, vtkIndent indent) override;
+
+  /// The index file (`name.lvdvp`); pieces go to `name_<piece>.lvdv` beside it.
+  vtkSetStdStringFromCharMacro(FileName);
+  vtkGetCharFromStdStringMacro(FileName);
+
+  ///@{
+  /// This process's piece and the number of pieces (default 0 of 1).
+  vtkSetClampMacro(Piece, int, 0, VTK_INT_MAX);
+  vtkGetMacro(Piece, int);
+  vtkSetClampMacro(NumberOfPieces, int, 1, VTK_INT_MAX);
+  vtkGetMacro(NumberOfPieces, int);
+  ///@}
+
+  ///@{
+  /// Encoding of every piece, as vtkDictionaryVolumeWriter's.
+  vtkSetMacro(BandWidth, double);
+  vtkGetMacro(BandWidth, double);
+  vtkSetMacro(ChunkEdge, int);
+  vtkGetMacro(ChunkEdge, int);
+  vtkSetClampMacro(CompressionLevel, int, 1, 19);
+  vtkGetMacro(CompressionLevel, int);
+  vtkSetStdStringFromCharMacro(VolumeName);
+  vtkGetCharFromStdStringMacro(VolumeName);
+  ///@}
+
+  ///@{
+  /// The controller the ranks agree through (default: the global controller).
+  /// Used only when it has exactly NumberOfPieces processes.
+  virtual void SetController(vtkMultiProcessController*);
+  vtkGetObjectMacro(Controller, vtkMultiProcessController);
+  ///@}
+
+  vtkImageData* GetInput();
+
+  /// The extent of `piece` of `numberOfPieces` of `wholeExtent` (the translator's block split, no ghosts).
+  static void PieceExtent(const int wholeExtent[6], int piece, int numberOfPieces, int extent[6]);
+
+protected:
+  vtkPDictionaryVolumeWriter();
+  ~vtkPDictionaryVolumeWriter() override;
+
+  vtkTypeBool ProcessRequest(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
+  void WriteData() override;
+  int FillInputPortInformation(int port, vtkInformation* info) override;
+
+  std::string FileName;
+  std::string VolumeName;
+  int Piece = 0;
+  int NumberOfPieces = 1;
+  double BandWidth = 8.0;
+  int ChunkEdge = 32;
+  int CompressionLevel;
+  vtkMultiProcessController* Controller = nullptr;
+
+private:
+  bool WritePiece(vtkImageData* image, const int extent[6]);
+  vtkPDictionaryVolumeWriter(const vtkPDictionaryVolumeWriter&) = delete;
+  void operator=(const vtkPDictionaryVolumeWriter&) = delete;
+};
+
+#endif
