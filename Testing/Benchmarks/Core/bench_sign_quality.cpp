@@ -3,7 +3,7 @@
 // meshes. Modes: Algorithm 1 (SignMode::Normal), Normal + SVF1, +SVF2, +SVF3,
 // +SVF4 (the filters' defaults: threshold 2, axis x, boundary Outside),
 // PseudoNormal and WindingNumber. All fields have no band (the SVFs need the
-// magnitudes), voxel units, a grid fitted to the mesh with 2 voxels of padding.
+// magnitudes; WindingNumber, the reference, has band 4), voxel units, a grid fitted to the mesh with 2 voxels of padding.
 //
 // References, stated per column:
 //  * "vs WN": the WindingNumber mode of meshToSdf (exact, docs/MESH_TO_SDF.md)
@@ -18,7 +18,7 @@
 // SPEC is a mesh path, or DAMAGE:PATH with DAMAGE one of holes (8 round holes),
 // flip10 (10 % of the faces reversed), dup20 (20 % of the faces duplicated),
 // pair (the mesh and a shifted copy, intersecting). --dump writes the fields of
-// mesh NAME (the SPEC's label, e.g. holes-armadillo) at resolution R as raw
+// the meshes NAME,NAME2,... (the SPEC's label, e.g. holes-armadillo) at resolution R as raw
 // float32 files for scripts/sign_quality_images.py.
 #include "BenchCommon.h"
 #include "SignQualityMeshes.h"
@@ -137,6 +137,9 @@ int main(int argc, char** argv)
         auto compute = [&](Mode& md, SignMode s) {
           md.field.assign(n, 0.0f);
           o.sign = s;
+          // Only WindingNumber profits from a band (its distance queries stop there); the
+          // reference needs only signs and |d| > 1, so it gets band 4.
+          o.bandWidth = s == SignMode::WindingNumber ? 4.0f : std::numeric_limits<float>::infinity();
           bench::Stopwatch w;
           st = meshToSdf(mesh, FloatGridView{ md.field.data(), g }, o);
           md.seconds = w.seconds();
@@ -223,7 +226,7 @@ int main(int argc, char** argv)
         if (bf) summaryBf.push_back(rowBf);
         std::fflush(stdout);
 
-        if (!dumpDir.empty() && label == dumpMesh && res == dumpRes)
+        if (!dumpDir.empty() && ("," + dumpMesh + ",").find("," + label + ",") != std::string::npos && res == dumpRes)
         {
           const std::string stem = dumpDir + "/" + label + "_" + std::to_string(res);
           std::ofstream hdr(stem + ".txt");
