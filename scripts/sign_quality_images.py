@@ -5,7 +5,8 @@ usage: xvfb-run -a /usr/bin/python3 scripts/sign_quality_images.py STEM OUTPREFI
          [AZIMUTH] [ELEVATION]
   STEM       DIR/NAME_RES (the .txt header and the NAME_RES_MODE.f32 fields)
   OUTPREFIX  e.g. docs/images/sign_quality_lvdif-bunny  (-> OUTPREFIX_slices.png, OUTPREFIX_surfaces.png)
-  Z          slice index (default: the slice with most wrong far voxels in the Normal field)
+  Z          slice index (default: the slice with most wrong far voxels in the Normal field among those
+             whose inside area is at least half the largest)
   AXIS       slice normal, z (default) or y or x
   AZIMUTH, ELEVATION  camera of the surface renders (degrees, default 30 15)
 PNGs are quantized to 64 colours (PIL) to keep them small.
@@ -38,7 +39,7 @@ def load(stem):
 
 
 def take(a, axis, index):
-    return {"z": a[index, :, :], "y": a[:, index, :], "x": a[:, :, index]}[axis]
+    return {"z": lambda: a[index, :, :], "y": lambda: a[:, index, :], "x": lambda: a[:, :, index]}[axis]()
 
 
 def slice_rgb(field, ref, axis, index):
@@ -65,7 +66,7 @@ def image_actor(rgb):
     return actor, w, h
 
 
-def label(text, size=16):
+def label(text, size=14):
     t = vtk.vtkTextActor()
     t.SetInput(text)
     t.GetTextProperty().SetFontSize(size)
@@ -92,7 +93,7 @@ def render(panels, path, cols, panel_w, panel_h, legend="", view=(30, 15)):
         if parallel:
             ren.GetActiveCamera().ParallelProjectionOn()
             ren.ResetCamera()
-            ren.GetActiveCamera().Zoom(1.35)
+            ren.GetActiveCamera().Zoom(1.15)
         else:
             ren.GetActiveCamera().Azimuth(view[0])
             ren.GetActiveCamera().Elevation(view[1])
@@ -106,7 +107,7 @@ def render(panels, path, cols, panel_w, panel_h, legend="", view=(30, 15)):
         ren.SetViewport(c / cols, 1 - (r + 1) / rows, (c + 1) / cols, 1 - r / rows)
         ren.SetBackground(1, 1, 1)
         if legend:
-            t = label(legend, 14)
+            t = label(legend, 12)
             t.SetPosition(0.03, 0.1)
             ren.AddActor2D(t)
             legend = ""
@@ -154,8 +155,11 @@ def main():
     if len(sys.argv) > 4 and sys.argv[4] != "auto":
         index = int(sys.argv[4])
     else:
+        # the slice with most wrong far voxels of the Normal field among those that cut the object
         wrong = ((fields["normal"] < 0) != (ref < 0)) & (np.abs(ref) > 1)
-        sums = {"z": wrong.sum(axis=(1, 2)), "y": wrong.sum(axis=(0, 2)), "x": wrong.sum(axis=(0, 1))}[axis]
+        dims_sum = {"z": (1, 2), "y": (0, 2), "x": (0, 1)}[axis]
+        inside = (ref < 0).sum(axis=dims_sum)
+        sums = np.where(inside > 0.5 * inside.max(), wrong.sum(axis=dims_sum), -1)
         index = int(np.argmax(sums))
     if what in ("slices", "both"):
         panels = []
