@@ -11,7 +11,7 @@ set(BUILD_SHARED_LIBS ON)
 find_package(VTK 9.1 REQUIRED COMPONENTS
   CommonCore CommonDataModel CommonExecutionModel CommonMisc CommonSystem CommonTransforms
   FiltersCore FiltersGeneral FiltersSources FiltersGeometry FiltersModeling FiltersParallel
-  ImagingCore ImagingGeneral IOImage IOXML IOGeometry IOPLY IOLegacy
+  ImagingCore ImagingGeneral ImagingHybrid IOImage IOXML IOGeometry IOPLY IOLegacy
   InteractionStyle InteractionWidgets RenderingCore RenderingOpenGL2 RenderingUI RenderingFreeType
   RenderingAnnotation TestingCore TestingRendering ParallelCore
   OPTIONAL_COMPONENTS GUISupportQt Python WrappingPythonCore)
