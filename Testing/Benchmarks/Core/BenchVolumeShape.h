@@ -13,6 +13,8 @@
 namespace bench
 {
 
+inline void paintShell(lvdif::DictionaryVolume& volume);
+
 inline std::unique_ptr<lvdif::DictionaryVolume> makePaintedShape(std::int64_t n)
 {
   lvdif::VolumeOptions o;
@@ -28,7 +30,14 @@ inline std::unique_ptr<lvdif::DictionaryVolume> makePaintedShape(std::int64_t n)
     const double q = std::sqrt(dx * dx + dy * dy) - R;
     return std::min(sphere(x, y, z), static_cast<float>(std::sqrt(q * q + dz * dz) - t));
   });
-  // paint: 6 colours in 16-voxel stripes on the shell (|d| < 3)
+  paintShell(*v);
+  return v;
+}
+
+/// Paints 6 colours in 16-voxel stripes on the shell (|d| < 3) of any volume.
+inline void paintShell(lvdif::DictionaryVolume& volume)
+{
+  lvdif::DictionaryVolume* v = &volume;
   lvdif::ColorKey keys[6];
   for (int i = 0; i < 6; ++i)
     keys[i] = v->colors().add(lvdif::Rgba{ std::uint8_t(40 * i), std::uint8_t(255 - 30 * i), std::uint8_t(90 + 20 * i), 255 });
@@ -51,7 +60,6 @@ inline std::unique_ptr<lvdif::DictionaryVolume> makePaintedShape(std::int64_t n)
           }
         }
   }
-  return v;
 }
 
 /// CPU seconds of the process (all threads), to read wall times on a shared machine.

@@ -12,9 +12,14 @@
 // On a shared machine the wall times depend on the load; the CPU seconds
 // (all threads) of each operation are printed beside them.
 //
-// Usage: bench_volume_file [max edge = 1024] [directory = /tmp]
+// Usage: bench_volume_file [max edge = 1024] [directory = /tmp] [MESH]
+// With MESH, the volumes are that mesh's SDF (mesh to SDF, WindingNumber signs,
+// fitted to the largest edge, band 8) painted like the shape, e.g. the bunny.
 #include "BenchCommon.h"
 #include "BenchVolumeShape.h"
+
+#include "lvdif/MeshFile.h"
+#include "lvdif/MeshToSdf.h"
 
 #include "lvdif/AnalyticFill.h"
 #include "lvdif/Memory.h"
@@ -111,9 +116,28 @@ int main(int argc, char** argv)
   const std::int64_t maxEdge = argc > 1 ? std::atoll(argv[1]) : 1024;
   const std::string dir = argc > 2 ? argv[2] : "/tmp";
   const std::string path = dir + "/bench_volume_file.lvdv";
+  const std::string meshPath = argc > 3 ? argv[3] : "";
+  TriangleMesh mesh;
+  if (!meshPath.empty()) mesh = loadMesh(meshPath);
+  auto makeVolume = [&](std::int64_t n) {
+    if (meshPath.empty()) return bench::makePaintedShape(n);
+    VolumeOptions o;
+    const GridGeometry g = fitGridToMesh(mesh, n, 2.0);
+    o.dims = g.dims;
+    o.origin = g.origin;
+    o.spacing = g.spacing;
+    auto v = std::make_unique<DictionaryVolume>(o);
+    MeshToSdfOptions mo;
+    mo.sign = SignMode::WindingNumber;
+    mo.device = Device::Auto;
+    meshToSdf(mesh, *v, mo);
+    bench::paintShell(*v);
+    return v;
+  };
   const int level = VolumeFileWriteOptions().compressionLevel; // the default
   std::cout << "bench_volume_file: " << bench::machineDescription() << "\n"
-            << "shape: sphere + torus, band 8, chunk edge 32, 6 paint colours on the shell\n\n";
+            << "shape: " << (meshPath.empty() ? std::string("sphere + torus") : "mesh " + meshPath + " (WindingNumber)")
+            << ", band 8, chunk edge 32, 6 paint colours on the shell\n\n";
 
   std::vector<std::vector<std::string>> rows;
   for (std::int64_t n : { std::int64_t(512), std::int64_t(1024) })
@@ -121,7 +145,7 @@ int main(int argc, char** argv)
     if (n > maxEdge)
       continue;
     bench::Stopwatch fill;
-    auto v = bench::makePaintedShape(n);
+    auto v = makeVolume(n);
     std::cout << n << "^3: filled in " << bench::fmt(fill.seconds(), 1) << " s, " << v->expandedChunkCount() << " of "
               << v->chunkCount() << " chunks non-uniform, " << formatBytes(v->memoryBytes()) << " in memory\n";
     const Row f = measure(*v, path, level);
@@ -136,7 +160,7 @@ int main(int argc, char** argv)
   bench::printTable({ "volume", "layout", "MiB", "save ms", "save CPU s", "load ms", "load CPU s", "vs peer" }, rows);
 
   std::cout << "\nzstd level at 512^3 (same shape):\n";
-  auto v = bench::makePaintedShape(std::min<std::int64_t>(512, maxEdge));
+  auto v = makeVolume(std::min<std::int64_t>(512, maxEdge));
   std::vector<std::vector<std::string>> levels;
   for (int level : { 1, 3, 5, 9 })
   {
