@@ -7,8 +7,11 @@
 //   UI loop (this thread, ticking at up to 60 Hz):
 //     deliver the samples whose time has come -> lvdif::Editor::addSample
 //     (live application, under the worker's source mutex) -> request the
-//     chunks the sample can have changed (vtkLVDIFChunkMesh::ChunksToRemesh,
-//     as the editor does) -> collect finished chunk meshes -> vtkLVDIFChunkMesh +
+//     chunks the sample changed (vtkLVDIFChunkMesh::ChunksToRemesh with the
+//     editor's lastWrite(), i.e. chunksAffectedBy(changedBox), as the editor
+//     does; rule "storage" is the previous request, storage-chunk rule
+//     intersected with the segment's reach box, run in the same process as
+//     the peer) -> collect finished chunk meshes -> vtkLVDIFChunkMesh +
 //     vtkChunkActorManager::SetChunk (vertex un-sharing for the tetrahedral
 //     shader included) -> [optional: render a frame]
 //   worker thread: lvdif::MarchingCubesWorker re-meshes requested chunks.
@@ -22,7 +25,12 @@
 // rasterisation of the whole model, which dominates and is not what a GPU
 // would cost). Needs the Core editor (lvdif/Editor.h).
 //
-// usage: bench_stroke_latency [N=512] [--render] [--samples 100] [--radius 8]
+// Where the time goes (per sample, p95): brush = Editor::addSample, lock =
+// waiting for the source mutex (the worker gathers under it), request =
+// computing the chunk list; per request, mesh = extractChunks of its chunks
+// re-run synchronously after the stroke (both cores); per tick, install.
+//
+// usage: bench_stroke_latency [N=512] [--render] [--samples 100] [--radius 8] [--rule both|exact|storage]
 #include "BenchCommon.h"
 
 #include "lvdif/AnalyticFill.h"
@@ -59,24 +67,8 @@ double percentile(std::vector<double> v, double p)
 }
 } // namespace
 
-int main(int argc, char* argv[])
+std::vector<std::string> runStroke(int n, int samples, double radius, bool render, bool exact)
 {
-  int n = 512, samples = 100;
-  double radius = 8;
-  bool render = false;
-  for (int i = 1; i < argc; ++i)
-  {
-    if (!std::strcmp(argv[i], "--render"))
-      render = true;
-    else if (!std::strcmp(argv[i], "--samples") && i + 1 < argc)
-      samples = std::atoi(argv[++i]);
-    else if (!std::strcmp(argv[i], "--radius") && i + 1 < argc)
-      radius = std::atof(argv[++i]);
-    else
-      n = std::atoi(argv[i]);
-  }
-  std::cout << "bench_stroke_latency: " << bench::machineDescription() << "\n";
-
   bench::Stopwatch setup;
   lvdif::VolumeOptions o;
   o.dims = { n, n, n };
@@ -122,7 +114,7 @@ int main(int argc, char* argv[])
     stroke[i].buttons = 1;
   }
 
-  std::vector<double> tickMs, editMs, installMs;
+  std::vector<double> tickMs, brushMs, lockMs, requestMs, installMs;
   // Every voxel a sample's dabs can change: the segment from the previous
   // sample, grown by the radius, the band (distances saturate there), the
   // colour skin and one voxel of rounding.
@@ -155,20 +147,36 @@ int main(int argc, char* argv[])
     {
       bench::Stopwatch e;
       std::lock_guard<std::mutex> lock(worker.sourceMutex());
+      lockMs.push_back(e.ms());
+      bench::Stopwatch b;
       editor.addSample(stroke[next]);
-      const lvdif::VoxelBox bound = segmentBox(stroke[next > 0 ? next - 1 : 0].position, stroke[next].position);
-      const auto ids = vtkLVDIFChunkMesh::ChunksToRemesh(mc, volume.takeDirtyChunks(), &bound);
+      brushMs.push_back(b.ms());
+      bench::Stopwatch q;
+      std::vector<std::int64_t> ids;
+      if (exact)
+        ids = vtkLVDIFChunkMesh::ChunksToRemesh(mc, volume.takeDirtyChunks(), editor.lastWrite());
+      else
+      {
+        const lvdif::VoxelBox bound = segmentBox(stroke[next > 0 ? next - 1 : 0].position, stroke[next].position);
+        ids = vtkLVDIFChunkMesh::ChunksToRemesh(mc, volume.takeDirtyChunks(), &bound);
+      }
       worker.request(ids);
+      requestMs.push_back(q.ms());
       requests.emplace_back(clock.seconds(), ids);
       ++next;
-      editMs.push_back(e.ms());
     }
     if (next == stroke.size() && !ended)
     {
       std::lock_guard<std::mutex> lock(worker.sourceMutex());
       editor.endStroke();
-      const lvdif::VoxelBox bound = segmentBox(stroke[next > 1 ? next - 2 : 0].position, stroke[next - 1].position);
-      const auto ids = vtkLVDIFChunkMesh::ChunksToRemesh(mc, volume.takeDirtyChunks(), &bound);
+      std::vector<std::int64_t> ids;
+      if (exact)
+        ids = vtkLVDIFChunkMesh::ChunksToRemesh(mc, volume.takeDirtyChunks(), editor.lastWrite());
+      else
+      {
+        const lvdif::VoxelBox bound = segmentBox(stroke[next > 1 ? next - 2 : 0].position, stroke[next - 1].position);
+        ids = vtkLVDIFChunkMesh::ChunksToRemesh(mc, volume.takeDirtyChunks(), &bound);
+      }
       worker.request(ids);
       if (!requests.empty())
         requests.back().second.insert(requests.back().second.end(), ids.begin(), ids.end());
@@ -223,12 +231,58 @@ int main(int argc, char* argv[])
     lower.push_back(1e3 * lo);
     upper.push_back(1e3 * hi);
   }
-  bench::printTable({ "volume", "samples", "radius", "latency p50 ms (lower-upper)", "latency p95 ms (lower-upper)",
-                      "loop FPS", "tick p95 ms", "edit p95 ms", "install p95 ms", "frames drawn" },
-    { { std::to_string(n) + "^3", std::to_string(samples), bench::fmt(radius, 1),
-      bench::fmt(percentile(lower, 0.5)) + " - " + bench::fmt(percentile(upper, 0.5)),
-      bench::fmt(percentile(lower, 0.95)) + " - " + bench::fmt(percentile(upper, 0.95)), bench::fmt(ticks / duration, 1),
-      bench::fmt(percentile(tickMs, 0.95)), bench::fmt(percentile(editMs, 0.95)),
-      bench::fmt(percentile(installMs, 0.95)), render ? "yes" : "no" } });
+  // Meshing cost of each request on its own (synchronously, after the stroke:
+  // the chunks' final content, same chunk count as in the stroke).
+  std::vector<double> meshMs, chunkCounts;
+  for (const auto& req : requests)
+  {
+    bench::Stopwatch m;
+    const auto meshes = mc.extractChunks(req.second);
+    meshMs.push_back(m.ms());
+    chunkCounts.push_back(static_cast<double>(req.second.size()));
+  }
+  return { std::to_string(n) + "^3", exact ? "changedBox" : "storage+reach", std::to_string(samples),
+    bench::fmt(radius, 1),
+    bench::fmt(percentile(chunkCounts, 0.5), 0) + " (" + bench::fmt(percentile(chunkCounts, 0.95), 0) + ")",
+    bench::fmt(percentile(lower, 0.5)) + " - " + bench::fmt(percentile(upper, 0.5)),
+    bench::fmt(percentile(lower, 0.95)) + " - " + bench::fmt(percentile(upper, 0.95)), bench::fmt(ticks / duration, 1),
+    bench::fmt(percentile(tickMs, 0.95)), bench::fmt(percentile(brushMs, 0.95)), bench::fmt(percentile(lockMs, 0.95)),
+    bench::fmt(percentile(requestMs, 0.95)),
+    bench::fmt(percentile(meshMs, 0.5)) + " (" + bench::fmt(percentile(meshMs, 0.95)) + ")",
+    bench::fmt(percentile(installMs, 0.95)), render ? "yes" : "no" };
+}
+
+int main(int argc, char* argv[])
+{
+  int n = 512, samples = 100;
+  double radius = 8;
+  bool render = false;
+  std::string rule = "both";
+  for (int i = 1; i < argc; ++i)
+  {
+    if (!std::strcmp(argv[i], "--render"))
+      render = true;
+    else if (!std::strcmp(argv[i], "--samples") && i + 1 < argc)
+      samples = std::atoi(argv[++i]);
+    else if (!std::strcmp(argv[i], "--radius") && i + 1 < argc)
+      radius = std::atof(argv[++i]);
+    else if (!std::strcmp(argv[i], "--rule") && i + 1 < argc)
+      rule = argv[++i];
+    else
+      n = std::atoi(argv[i]);
+  }
+  std::cout << "bench_stroke_latency: " << bench::machineDescription() << "\n";
+  std::vector<std::vector<std::string>> rows;
+  for (const bool exact : { false, true })
+  {
+    if ((exact && rule == "storage") || (!exact && rule == "exact"))
+      continue;
+    rows.push_back(runStroke(n, samples, radius, render, exact));
+  }
+  bench::printTable({ "volume", "rule", "samples", "radius", "chunks/request p50 (p95)",
+                      "latency p50 ms (lower-upper)", "latency p95 ms (lower-upper)", "loop FPS", "tick p95 ms",
+                      "brush p95 ms", "lock p95 ms", "request p95 ms", "mesh/request p50 (p95) ms",
+                      "install p95 ms", "frames drawn" },
+    rows);
   return 0;
 }
