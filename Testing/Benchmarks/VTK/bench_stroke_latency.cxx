@@ -16,8 +16,8 @@
 //     shader included) -> [optional: render a frame]
 //   worker thread: lvdif::MarchingCubesWorker re-meshes requested chunks.
 // Latency of a sample = time from its application until every chunk it
-// dirtied has a mesh reflecting it installed in the actor manager (given as
-// lower and upper bounds, see below). FPS = loop ticks per second.
+// dirtied has a mesh reflecting it installed in the actor manager (exact: the
+// worker says when each mesh's input was gathered). FPS = loop ticks per second.
 //
 // Without --render no frame is drawn (the numbers then are the CPU pipeline
 // up to "ready to draw"); --render draws every tick with whatever OpenGL the
@@ -130,8 +130,18 @@ std::vector<std::string> runStroke(int n, int samples, double radius, bool rende
   };
   // For the latency: which chunks each sample dirtied, and when each chunk's meshes arrived.
   std::vector<std::pair<double, std::vector<std::int64_t>>> requests; // (arrival time, chunks)
-  std::map<std::int64_t, std::vector<double>> delivered;
-  bench::Stopwatch clock;
+  // per chunk: (when its input was gathered, when it was installed), in order
+  std::map<std::int64_t, std::vector<std::pair<double, double>>> delivered;
+  const auto t0 = std::chrono::steady_clock::now();
+  struct
+  {
+    std::chrono::steady_clock::time_point start;
+    double at(std::chrono::steady_clock::time_point t) const
+    {
+      return std::chrono::duration<double>(t - start).count();
+    }
+    double seconds() const { return this->at(std::chrono::steady_clock::now()); }
+  } clock{ t0 };
   std::size_t next = 0;
   int ticks = 0;
   {
@@ -178,21 +188,20 @@ std::vector<std::string> runStroke(int n, int samples, double radius, bool rende
         ids = vtkLVDIFChunkMesh::ChunksToRemesh(mc, volume.takeDirtyChunks(), &bound);
       }
       worker.request(ids);
-      if (!requests.empty())
-        requests.back().second.insert(requests.back().second.end(), ids.begin(), ids.end());
+      if (!ids.empty())
+        requests.emplace_back(clock.seconds(), ids); // the stroke's last dabs
       ended = true;
     }
     const bool idleBefore = worker.idle();
     bench::Stopwatch inst;
-    const std::vector<lvdif::ChunkMesh> meshes = worker.collect();
-    const double arrived = clock.seconds();
+    std::vector<std::chrono::steady_clock::time_point> gathered;
+    const std::vector<lvdif::ChunkMesh> meshes = worker.collect(&gathered);
     std::map<std::int64_t, const lvdif::ChunkMesh*> newest; // a later mesh of a chunk supersedes an earlier one
     for (const auto& m : meshes)
       newest[m.chunkId] = &m;
     for (const auto& kv : newest)
     {
       const lvdif::ChunkMesh& m = *kv.second;
-      delivered[m.chunkId].push_back(arrived);
       if (m.empty())
         actors->RemoveChunk(m.chunkId);
       else
@@ -201,6 +210,9 @@ std::vector<std::string> runStroke(int n, int samples, double radius, bool rende
     installMs.push_back(inst.ms());
     if (render)
       rw->Render();
+    const double shown = clock.seconds(); // ready to draw (or drawn with --render)
+    for (std::size_t i = 0; i < meshes.size(); ++i)
+      delivered[meshes[i].chunkId].emplace_back(clock.at(gathered[i]), shown);
     ++ticks;
     if (idleBefore && ended)
       break;
@@ -210,27 +222,30 @@ std::vector<std::string> runStroke(int n, int samples, double radius, bool rende
       std::this_thread::sleep_for(std::chrono::duration<double>(1.0 / 60 - spent));
   }
   const double duration = clock.seconds();
-  // A chunk requested at time r is shown with the edit by its first mesh
-  // collected after r if that meshing started after r, else by the second
-  // (the worker re-meshes a chunk requested while in flight). The worker does
-  // not say which, so give both bounds: first delivery (lower) and second
-  // delivery, or the first when no second came (upper).
-  std::vector<double> lower, upper;
+  // A chunk requested at time r shows the edit from the first of its meshes
+  // whose input was gathered after r (gathers and edits both hold the source
+  // mutex, so that mesh includes the edit and earlier ones do not). Latency
+  // of a sample = until its last chunk shows it.
+  std::vector<double> latency;
+  int missing = 0;
   for (const auto& req : requests)
   {
-    double lo = 0, hi = 0;
+    double worst = 0;
     for (std::int64_t id : req.second)
     {
-      const auto& times = delivered[id];
-      auto it = std::upper_bound(times.begin(), times.end(), req.first);
-      if (it == times.end())
-        continue; // not re-meshed: the chunk's mesh did not change
-      lo = std::max(lo, *it - req.first);
-      hi = std::max(hi, (std::next(it) != times.end() ? *std::next(it) : *it) - req.first);
+      const auto& d = delivered[id];
+      auto it = std::find_if(d.begin(), d.end(), [&](const std::pair<double, double>& g) { return g.first > req.first; });
+      if (it == d.end())
+      {
+        ++missing; // never happens unless the worker dropped a request
+        continue;
+      }
+      worst = std::max(worst, it->second - req.first);
     }
-    lower.push_back(1e3 * lo);
-    upper.push_back(1e3 * hi);
+    latency.push_back(1e3 * worst);
   }
+  if (missing)
+    std::printf("warning: %d requested chunk meshes never arrived\n", missing);
   // Meshing cost of each request on its own (synchronously, after the stroke:
   // the chunks' final content, same chunk count as in the stroke).
   std::vector<double> meshMs, chunkCounts;
@@ -244,8 +259,8 @@ std::vector<std::string> runStroke(int n, int samples, double radius, bool rende
   return { std::to_string(n) + "^3", exact ? "changedBox" : "storage+reach", std::to_string(samples),
     bench::fmt(radius, 1),
     bench::fmt(percentile(chunkCounts, 0.5), 0) + " (" + bench::fmt(percentile(chunkCounts, 0.95), 0) + ")",
-    bench::fmt(percentile(lower, 0.5)) + " - " + bench::fmt(percentile(upper, 0.5)),
-    bench::fmt(percentile(lower, 0.95)) + " - " + bench::fmt(percentile(upper, 0.95)), bench::fmt(ticks / duration, 1),
+    bench::fmt(percentile(latency, 0.5)), bench::fmt(percentile(latency, 0.95)), bench::fmt(percentile(latency, 1.0)),
+    bench::fmt(ticks / duration, 1),
     bench::fmt(percentile(tickMs, 0.95)), bench::fmt(percentile(brushMs, 0.95)), bench::fmt(percentile(lockMs, 0.95)),
     bench::fmt(percentile(requestMs, 0.95)),
     bench::fmt(percentile(meshMs, 0.5)) + " (" + bench::fmt(percentile(meshMs, 0.95)) + ")",
@@ -280,7 +295,7 @@ int main(int argc, char* argv[])
     rows.push_back(runStroke(n, samples, radius, render, exact));
   }
   bench::printTable({ "volume", "rule", "samples", "radius", "chunks/request p50 (p95)",
-                      "latency p50 ms (lower-upper)", "latency p95 ms (lower-upper)", "loop FPS", "tick p95 ms",
+                      "latency p50 ms", "latency p95 ms", "latency max ms", "loop FPS", "tick p95 ms",
                       "brush p95 ms", "lock p95 ms", "request p95 ms", "mesh/request p50 (p95) ms",
                       "install p95 ms", "frames drawn" },
     rows);
