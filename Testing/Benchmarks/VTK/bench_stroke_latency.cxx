@@ -17,7 +17,9 @@
 //   worker thread: lvdif::MarchingCubesWorker re-meshes requested chunks.
 // Latency of a sample = time from its application until every chunk it
 // dirtied has a mesh reflecting it installed in the actor manager (exact: the
-// worker says when each mesh's input was gathered). FPS = loop ticks per second.
+// worker says when each mesh's input was gathered). "From sample time" adds
+// the wait before the loop applies the sample (its recorded time to its
+// application: up to one tick) and the brush. FPS = loop ticks per second.
 //
 // Without --render no frame is drawn (the numbers then are the CPU pipeline
 // up to "ready to draw"); --render draws every tick with whatever OpenGL the
@@ -31,6 +33,7 @@
 // re-run synchronously after the stroke (both cores); per tick, install.
 //
 // usage: bench_stroke_latency [N=512] [--render] [--samples 100] [--radius 8] [--rule both|exact|storage]
+//        [--settle MS: wait up to MS per tick for the worker before collecting]
 #include "BenchCommon.h"
 
 #include "lvdif/AnalyticFill.h"
@@ -67,7 +70,7 @@ double percentile(std::vector<double> v, double p)
 }
 } // namespace
 
-std::vector<std::string> runStroke(int n, int samples, double radius, bool render, bool exact)
+std::vector<std::string> runStroke(int n, int samples, double radius, bool render, bool exact, double settleMs)
 {
   bench::Stopwatch setup;
   lvdif::VolumeOptions o;
@@ -130,6 +133,7 @@ std::vector<std::string> runStroke(int n, int samples, double radius, bool rende
   };
   // For the latency: which chunks each sample dirtied, and when each chunk's meshes arrived.
   std::vector<std::pair<double, std::vector<std::int64_t>>> requests; // (arrival time, chunks)
+  std::vector<double> sampleTimes; // the stroke time of each request's sample
   // per chunk: (when its input was gathered, when it was installed), in order
   std::map<std::int64_t, std::vector<std::pair<double, double>>> delivered;
   const auto t0 = std::chrono::steady_clock::now();
@@ -173,6 +177,7 @@ std::vector<std::string> runStroke(int n, int samples, double radius, bool rende
       worker.request(ids);
       requestMs.push_back(q.ms());
       requests.emplace_back(clock.seconds(), ids);
+      sampleTimes.push_back(stroke[next].time);
       ++next;
     }
     if (next == stroke.size() && !ended)
@@ -189,8 +194,19 @@ std::vector<std::string> runStroke(int n, int samples, double radius, bool rende
       }
       worker.request(ids);
       if (!ids.empty())
+      {
         requests.emplace_back(clock.seconds(), ids); // the stroke's last dabs
+        sampleTimes.push_back(stroke.back().time);
+      }
       ended = true;
+    }
+    // --settle: give the worker up to this long to finish what this tick
+    // requested, so its meshes are installed now instead of one tick later.
+    if (settleMs > 0)
+    {
+      bench::Stopwatch w;
+      while (!worker.idle() && w.ms() < settleMs)
+        std::this_thread::sleep_for(std::chrono::microseconds(200));
     }
     const bool idleBefore = worker.idle();
     bench::Stopwatch inst;
@@ -226,11 +242,12 @@ std::vector<std::string> runStroke(int n, int samples, double radius, bool rende
   // whose input was gathered after r (gathers and edits both hold the source
   // mutex, so that mesh includes the edit and earlier ones do not). Latency
   // of a sample = until its last chunk shows it.
-  std::vector<double> latency;
+  std::vector<double> latency, fromInput;
   int missing = 0;
-  for (const auto& req : requests)
+  for (std::size_t r = 0; r < requests.size(); ++r)
   {
-    double worst = 0;
+    const auto& req = requests[r];
+    double worst = 0, shownAt = req.first;
     for (std::int64_t id : req.second)
     {
       const auto& d = delivered[id];
@@ -241,8 +258,10 @@ std::vector<std::string> runStroke(int n, int samples, double radius, bool rende
         continue;
       }
       worst = std::max(worst, it->second - req.first);
+      shownAt = std::max(shownAt, it->second);
     }
     latency.push_back(1e3 * worst);
+    fromInput.push_back(1e3 * (shownAt - sampleTimes[r]));
   }
   if (missing)
     std::printf("warning: %d requested chunk meshes never arrived\n", missing);
@@ -256,10 +275,12 @@ std::vector<std::string> runStroke(int n, int samples, double radius, bool rende
     meshMs.push_back(m.ms());
     chunkCounts.push_back(static_cast<double>(req.second.size()));
   }
-  return { std::to_string(n) + "^3", exact ? "changedBox" : "storage+reach", std::to_string(samples),
+  return { std::to_string(n) + "^3",
+    std::string(exact ? "changedBox" : "storage+reach") + (settleMs > 0 ? ", settle " + bench::fmt(settleMs, 0) + " ms" : ""), std::to_string(samples),
     bench::fmt(radius, 1),
     bench::fmt(percentile(chunkCounts, 0.5), 0) + " (" + bench::fmt(percentile(chunkCounts, 0.95), 0) + ")",
     bench::fmt(percentile(latency, 0.5)), bench::fmt(percentile(latency, 0.95)), bench::fmt(percentile(latency, 1.0)),
+    bench::fmt(percentile(fromInput, 0.5)) + " (" + bench::fmt(percentile(fromInput, 0.95)) + ")",
     bench::fmt(ticks / duration, 1),
     bench::fmt(percentile(tickMs, 0.95)), bench::fmt(percentile(brushMs, 0.95)), bench::fmt(percentile(lockMs, 0.95)),
     bench::fmt(percentile(requestMs, 0.95)),
@@ -273,6 +294,7 @@ int main(int argc, char* argv[])
   double radius = 8;
   bool render = false;
   std::string rule = "both";
+  double settleMs = 0;
   for (int i = 1; i < argc; ++i)
   {
     if (!std::strcmp(argv[i], "--render"))
@@ -281,6 +303,8 @@ int main(int argc, char* argv[])
       samples = std::atoi(argv[++i]);
     else if (!std::strcmp(argv[i], "--radius") && i + 1 < argc)
       radius = std::atof(argv[++i]);
+    else if (!std::strcmp(argv[i], "--settle") && i + 1 < argc)
+      settleMs = std::atof(argv[++i]);
     else if (!std::strcmp(argv[i], "--rule") && i + 1 < argc)
       rule = argv[++i];
     else
@@ -292,10 +316,11 @@ int main(int argc, char* argv[])
   {
     if ((exact && rule == "storage") || (!exact && rule == "exact"))
       continue;
-    rows.push_back(runStroke(n, samples, radius, render, exact));
+    rows.push_back(runStroke(n, samples, radius, render, exact, settleMs));
   }
   bench::printTable({ "volume", "rule", "samples", "radius", "chunks/request p50 (p95)",
-                      "latency p50 ms", "latency p95 ms", "latency max ms", "loop FPS", "tick p95 ms",
+                      "latency p50 ms", "latency p95 ms", "latency max ms",
+                      "from sample time p50 (p95) ms", "loop FPS", "tick p95 ms",
                       "brush p95 ms", "lock p95 ms", "request p95 ms", "mesh/request p50 (p95) ms",
                       "install p95 ms", "frames drawn" },
     rows);
