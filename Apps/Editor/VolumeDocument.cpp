@@ -182,13 +182,24 @@ void VolumeDocument::afterEdit(const lvdif::EditResult& r)
   }
 }
 
-void VolumeDocument::requestDirty(const lvdif::VoxelBox* bound)
+void VolumeDocument::requestDirty()
 {
   // Called with the source mutex held.
   const std::vector<std::int64_t> dirty = this->Volume->takeDirtyChunks();
   if (!dirty.empty())
   {
-    this->Worker->request(vtkLVDIFChunkMesh::ChunksToRemesh(*this->Mesher, dirty, bound));
+    this->Worker->request(vtkLVDIFChunkMesh::ChunksToRemesh(*this->Mesher, dirty));
+  }
+}
+
+void VolumeDocument::requestChanged(const lvdif::EditResult& r)
+{
+  // Called with the source mutex held.
+  const std::vector<std::int64_t> dirty = this->Volume->takeDirtyChunks();
+  const std::vector<std::int64_t> ids = vtkLVDIFChunkMesh::ChunksToRemesh(*this->Mesher, dirty, r);
+  if (!ids.empty())
+  {
+    this->Worker->request(ids);
   }
 }
 
@@ -196,28 +207,15 @@ void VolumeDocument::beginStroke()
 {
   std::lock_guard<std::mutex> lock(this->Worker->sourceMutex());
   this->Edit->beginStroke();
-  this->HasLastSample = false;
 }
 
 void VolumeDocument::addSample(const lvdif::BrushSample& s)
 {
   std::lock_guard<std::mutex> lock(this->Worker->sourceMutex());
   this->afterEdit(this->Edit->addSample(s));
-  // The dabs of this sample lie on the segment from the previous one; every
-  // voxel they change is within radius + band + colour skin + blend of it.
-  const std::array<double, 3>& a = this->HasLastSample ? this->LastSample : s.position;
-  const double reach = this->Edit->stroke.radius + this->Volume->bandWidth() + this->Edit->brush.colorOffset +
-    this->Edit->brush.blend + 1;
-  lvdif::VoxelBox box;
-  for (int k = 0; k < 3; ++k)
-  {
-    box.lo[k] = static_cast<std::int64_t>(std::floor(std::min(a[k], s.position[k]) - reach));
-    box.hi[k] = static_cast<std::int64_t>(std::ceil(std::max(a[k], s.position[k]) + reach));
-  }
-  // Only Drill-style (live) strokes apply here; Dynamic applies at the end.
-  this->requestDirty(this->Edit->stroke.kind == lvdif::BrushKind::Drill ? &box : nullptr);
-  this->LastSample = s.position;
-  this->HasLastSample = true;
+  // Only Drill-style (live) strokes write here (Dynamic applies at the end):
+  // re-mesh exactly the chunks around the voxels this sample changed.
+  this->requestChanged(this->Edit->lastWrite());
 }
 
 void VolumeDocument::endStroke()
@@ -226,8 +224,13 @@ void VolumeDocument::endStroke()
   if (this->Edit->strokeOpen())
   {
     this->afterEdit(this->Edit->endStroke());
+    // The stroke's remaining dabs only (Drill) or the whole stroke (Dynamic).
+    this->requestChanged(this->Edit->lastWrite());
   }
-  this->requestDirty();
+  else
+  {
+    this->requestDirty();
+  }
 }
 
 bool VolumeDocument::undo()

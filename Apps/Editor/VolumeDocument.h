@@ -76,7 +76,9 @@ private:
   void resetPipeline();
   void saveImage(const QString& path);
   void afterEdit(const lvdif::EditResult& r);
-  void requestDirty(const lvdif::VoxelBox* bound = nullptr);
+  void requestDirty();
+  /// Re-mesh request after an editor call: exact for what `r` changed.
+  void requestChanged(const lvdif::EditResult& r);
 
   std::unique_ptr<lvdif::DictionaryVolume> Volume;
   std::unique_ptr<lvdif::Editor> Edit;
@@ -86,6 +88,4 @@ private:
   bool Modified = false;
   int EditsSinceAutosave = 0;
   int Generation = 0;
-  std::array<double, 3> LastSample{ 0, 0, 0 };
-  bool HasLastSample = false;
 };

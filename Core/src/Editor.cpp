@@ -40,6 +40,7 @@ EditResult Editor::applyDabs(const std::vector<Dab>& dabs, BrushKind kind)
   require(!this->Builder, "finish the open stroke first");
   this->Undo.beginStep(kind == BrushKind::Single ? "dab" : "stroke");
   EditResult r;
+  this->LastWrite = EditResult();
   try
   {
     r = lvdif::applyDabs(this->Volume, dabs, this->brush, &this->Undo);
@@ -50,6 +51,7 @@ EditResult Editor::applyDabs(const std::vector<Dab>& dabs, BrushKind kind)
     throw;
   }
   this->touch(r.changedChunks);
+  this->LastWrite = r;
   this->Undo.endStep();
   EditRecord e;
   e.brush = this->brush;
@@ -85,12 +87,14 @@ EditResult Editor::addSample(const BrushSample& s)
   this->Builder->add(s);
   const std::vector<Dab> ready = this->Builder->takeReady();
   EditResult r;
+  this->LastWrite = EditResult();
   if (!ready.empty())
   {
     r = lvdif::applyDabs(this->Volume, ready, this->brush, &this->Undo);
     this->StrokeDabs.insert(this->StrokeDabs.end(), ready.begin(), ready.end());
     merge(this->StrokeResult, r);
     this->touch(r.changedChunks);
+    this->LastWrite = r;
   }
   return r;
 }
@@ -100,6 +104,7 @@ EditResult Editor::endStroke()
   require(this->Builder != nullptr, "no stroke is open");
   const std::vector<Dab> rest = this->Builder->finish();
   EditResult r;
+  this->LastWrite = EditResult();
   try
   {
     r = lvdif::applyDabs(this->Volume, rest, this->brush, &this->Undo);
@@ -113,6 +118,7 @@ EditResult Editor::endStroke()
   this->StrokeDabs.insert(this->StrokeDabs.end(), rest.begin(), rest.end());
   merge(this->StrokeResult, r);
   this->touch(r.changedChunks);
+  this->LastWrite = r;
   this->Undo.endStep();
   EditRecord e;
   e.brush = this->brush;

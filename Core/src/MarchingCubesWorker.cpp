@@ -45,11 +45,14 @@ void MarchingCubesWorker::requestAll()
   this->request(all);
 }
 
-std::vector<ChunkMesh> MarchingCubesWorker::collect()
+std::vector<ChunkMesh> MarchingCubesWorker::collect(std::vector<std::chrono::steady_clock::time_point>* gatheredAt)
 {
   std::lock_guard<std::mutex> lock(this->QueueMutex);
   std::vector<ChunkMesh> out;
   out.swap(this->Done);
+  if (gatheredAt)
+    gatheredAt->swap(this->DoneGathered);
+  this->DoneGathered.clear();
   return out;
 }
 
@@ -116,8 +119,10 @@ void MarchingCubesWorker::run()
     const int n = static_cast<int>(ids.size());
     std::vector<ChunkMesh> meshes(static_cast<std::size_t>(n));
     std::vector<char> ok(static_cast<std::size_t>(n), 1);
+    std::chrono::steady_clock::time_point gathered;
     {
       std::lock_guard<std::mutex> source(this->SourceMutex);
+      gathered = std::chrono::steady_clock::now();
       for (int i = 0; i < n; ++i)
       {
         try
@@ -155,7 +160,11 @@ void MarchingCubesWorker::run()
     {
       std::lock_guard<std::mutex> lock(this->QueueMutex);
       for (int i = 0; i < n; ++i)
-        if (ok[i]) this->Done.push_back(std::move(meshes[i]));
+        if (ok[i])
+        {
+          this->Done.push_back(std::move(meshes[i]));
+          this->DoneGathered.push_back(gathered);
+        }
       this->InFlight -= n;
       if (this->Queue.empty() && this->InFlight == 0) this->Idle.notify_all();
     }

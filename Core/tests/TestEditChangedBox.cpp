@@ -108,3 +108,47 @@ TEST(EditChangedBox, EditorStrokeUnitesTheBoxes)
   EXPECT_EQ(last.changedBox.lo, truth.lo);
   EXPECT_EQ(last.changedBox.hi, truth.hi);
 }
+
+TEST(EditChangedBox, LastWriteIsWhatEachCallWrote)
+{
+  // A live (Drill) stroke: lastWrite() after every addSample and after
+  // endStroke covers exactly the voxels that call changed (clone before each
+  // call as the oracle), and endStroke's lastWrite is not the whole stroke's box.
+  DictionaryVolume vol(edittest::options(64, 16, 6.0f));
+  fillFromFunction(vol, sphereSdf(32, 31.5, 32.2, 18));
+  Editor ed(vol);
+  ed.brush.op = BrushOp::Add;
+  ed.brush.blend = 1.0; // no whole-chunk fills: boxes are tight
+  ed.stroke.kind = BrushKind::Drill;
+  ed.stroke.radius = 3;
+  ed.beginStroke();
+  VoxelBox whole;
+  int nonEmpty = 0;
+  for (int i = 0; i < 10; ++i)
+  {
+    BrushSample s;
+    s.position = { 12.0 + 4 * i, 32.0, 50.0 };
+    s.pressure = 1.0;
+    s.time = 0.02 * i;
+    s.buttons = 1;
+    const auto before = vol.clone();
+    const EditResult r = ed.addSample(s);
+    const VoxelBox truth = differenceBox(*before, vol);
+    SCOPED_TRACE("sample " + std::to_string(i));
+    EXPECT_EQ(ed.lastWrite().changedBox.lo, truth.lo);
+    EXPECT_EQ(ed.lastWrite().changedBox.hi, truth.hi);
+    EXPECT_EQ(ed.lastWrite().changedVoxels, r.changedVoxels);
+    whole = whole.unite(truth);
+    nonEmpty += !truth.empty();
+  }
+  const auto before = vol.clone();
+  const EditResult all = ed.endStroke();
+  const VoxelBox tail = differenceBox(*before, vol);
+  whole = whole.unite(tail);
+  EXPECT_GT(nonEmpty, 5);
+  EXPECT_EQ(ed.lastWrite().changedBox.lo, tail.lo);
+  EXPECT_EQ(ed.lastWrite().changedBox.hi, tail.hi);
+  EXPECT_EQ(all.changedBox.lo, whole.lo);
+  EXPECT_EQ(all.changedBox.hi, whole.hi);
+  EXPECT_LT(ed.lastWrite().changedBox.voxelCount(), all.changedBox.voxelCount());
+}

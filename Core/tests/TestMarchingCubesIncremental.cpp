@@ -235,3 +235,63 @@ TEST(MarchingCubesIncremental, WorkerShutsDownWithWorkPending)
   EXPECT_THROW(worker->request({ 0 }), Error);
   worker.reset();
 }
+
+TEST(MarchingCubesIncremental, WorkerSaysWhenEachMeshWasGathered)
+{
+  // Edits from this thread under the source mutex, each followed by a snapshot
+  // (clone) of the volume. Every mesh collected with collect(&gatheredAt) must
+  // equal the same chunk extracted from the snapshot of the last edit made
+  // before its gather time (the oracle: a separate mesher on the snapshot).
+  VolumeOptions vo;
+  vo.dims = { 64, 64, 64 };
+  vo.chunkEdge = 16;
+  DictionaryVolume vol(vo);
+  fillFromFunction(vol, sphereSdf(32, 32, 32, 16));
+  vol.takeDirtyChunks();
+  MarchingCubesOptions o;
+  o.chunkEdge = 16;
+  ChunkedMarchingCubes mc(vol, o);
+  using Clock = std::chrono::steady_clock;
+  std::vector<std::pair<Clock::time_point, std::unique_ptr<DictionaryVolume>>> snaps;
+  snaps.emplace_back(Clock::now(), vol.clone());
+  std::vector<ChunkMesh> got;
+  std::vector<Clock::time_point> when;
+  {
+    MarchingCubesWorker worker(mc);
+    std::mt19937 rng(9);
+    std::uniform_real_distribution<double> pos(14, 50), rad(2, 5);
+    for (int edit = 0; edit < 25; ++edit)
+    {
+      {
+        std::lock_guard<std::mutex> lock(worker.sourceMutex());
+        const VoxelBox b = stampSphere(vol, pos(rng), pos(rng), pos(rng), rad(rng), 0);
+        vol.takeDirtyChunks();
+        worker.request(mc.chunksAffectedBy(b));
+        snaps.emplace_back(Clock::now(), vol.clone());
+      }
+      std::vector<Clock::time_point> w;
+      auto m = worker.collect(&w);
+      ASSERT_EQ(m.size(), w.size());
+      for (auto& x : m) got.push_back(std::move(x));
+      when.insert(when.end(), w.begin(), w.end());
+      if (edit % 5 == 0) std::this_thread::sleep_for(std::chrono::milliseconds(1));
+    }
+    worker.waitIdle();
+    std::vector<Clock::time_point> w;
+    auto m = worker.collect(&w);
+    ASSERT_EQ(m.size(), w.size());
+    for (auto& x : m) got.push_back(std::move(x));
+    when.insert(when.end(), w.begin(), w.end());
+  }
+  ASSERT_FALSE(got.empty());
+  for (std::size_t i = 0; i < got.size(); ++i)
+  {
+    // last snapshot taken (under the mutex) before the gather
+    std::size_t s = 0;
+    while (s + 1 < snaps.size() && snaps[s + 1].first < when[i]) ++s;
+    ChunkedMarchingCubes oracle(*snaps[s].second, o);
+    const ChunkMesh want = oracle.extractChunk(got[i].chunkId);
+    EXPECT_EQ(mctest::triangleSet(mergeChunkMeshes({ got[i] })), mctest::triangleSet(mergeChunkMeshes({ want })))
+      << "mesh " << i << " of chunk " << got[i].chunkId;
+  }
+}

@@ -6,6 +6,7 @@
 #ifndef vtkLVDIFChunkMesh_h
 #define vtkLVDIFChunkMesh_h
 
+#include "lvdif/Brush.h"
 #include "lvdif/ChunkedMarchingCubes.h"
 #include "lvdifRenderingChunksModule.h" // for export macro
 
@@ -30,6 +31,14 @@ LVDIFRENDERINGCHUNKS_EXPORT vtkSmartPointer<vtkPolyData> ToPolyData(
 /// chunks whose mesh can change, so their intersection is too).
 LVDIFRENDERINGCHUNKS_EXPORT std::vector<std::int64_t> ChunksToRemesh(const lvdif::ChunkedMarchingCubes& mc,
   const std::vector<std::int64_t>& dirtyStorageChunks, const lvdif::VoxelBox* changedBound = nullptr);
+
+/// The marching cubes chunks to re-mesh after `edit` (an lvdif::Editor call's
+/// lastWrite()) when these storage chunks are dirty: the exact set
+/// chunksAffectedBy(edit.changedBox) for what the edit changed, and the
+/// storage-chunk rule for dirty chunks the edit does not name (written by
+/// something else since the last request). Sorted, unique.
+LVDIFRENDERINGCHUNKS_EXPORT std::vector<std::int64_t> ChunksToRemesh(const lvdif::ChunkedMarchingCubes& mc,
+  const std::vector<std::int64_t>& dirtyStorageChunks, const lvdif::EditResult& edit);
 }
 
 #endif

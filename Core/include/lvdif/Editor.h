@@ -38,7 +38,13 @@ public:
 
   void beginStroke();
   EditResult addSample(const BrushSample& s);
+  /// Returns the whole stroke's merged result; lastWrite() has only what this call wrote.
   EditResult endStroke();
+  /// What the most recent dab(), strokeThrough(), applyDabs(), addSample() or
+  /// endStroke() wrote by itself (for endStroke: only the stroke's remaining
+  /// dabs). A live (Drill) front end re-meshes chunksAffectedBy(lastWrite().changedBox)
+  /// after each call instead of the whole stroke's box.
+  const EditResult& lastWrite() const { return this->LastWrite; }
   bool strokeOpen() const { return this->Builder != nullptr; }
 
   /// Reads up to maxSamples samples from the device; returns how many were read.
@@ -71,6 +77,7 @@ private:
   std::unique_ptr<StrokeBuilder> Builder;
   std::vector<Dab> StrokeDabs; // every dab of the open stroke, for the record
   EditResult StrokeResult;
+  EditResult LastWrite;
   std::unique_ptr<Recording> Rec;
   std::vector<std::int64_t> Touched; // since the last takeTouchedChunks()
   double Time = -1;

@@ -19,6 +19,7 @@
 
 #include "lvdif/ChunkedMarchingCubes.h"
 
+#include <chrono>
 #include <condition_variable>
 #include <deque>
 #include <mutex>
@@ -45,8 +46,11 @@ public:
   void request(const std::vector<std::int64_t>& chunkIds);
   /// Queues every chunk (cheap for empty ones: a range test).
   void requestAll();
-  /// The meshes finished since the last call (never waits for meshing).
-  std::vector<ChunkMesh> collect();
+  /// The meshes finished since the last call (never waits for meshing). With
+  /// `gatheredAt`, also when each mesh's input was read from the source (under
+  /// sourceMutex()): a mesh shows every write made under that mutex before this
+  /// time and none after it (for exact edit-to-mesh latency).
+  std::vector<ChunkMesh> collect(std::vector<std::chrono::steady_clock::time_point>* gatheredAt = nullptr);
   /// True when nothing is queued or being meshed.
   bool idle() const;
   /// Blocks until idle() (for tests and scripts).
@@ -66,6 +70,7 @@ private:
   std::deque<std::int64_t> Queue;
   std::vector<char> Queued;
   std::vector<ChunkMesh> Done;
+  std::vector<std::chrono::steady_clock::time_point> DoneGathered; // parallel to Done
   int InFlight = 0;
   bool Stop = false;
   std::thread Thread;

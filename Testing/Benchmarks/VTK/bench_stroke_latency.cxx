@@ -7,14 +7,19 @@
 //   UI loop (this thread, ticking at up to 60 Hz):
 //     deliver the samples whose time has come -> lvdif::Editor::addSample
 //     (live application, under the worker's source mutex) -> request the
-//     chunks the sample can have changed (vtkLVDIFChunkMesh::ChunksToRemesh,
-//     as the editor does) -> collect finished chunk meshes -> vtkLVDIFChunkMesh +
+//     chunks the sample changed (vtkLVDIFChunkMesh::ChunksToRemesh with the
+//     editor's lastWrite(), i.e. chunksAffectedBy(changedBox), as the editor
+//     does; rule "storage" is the previous request, storage-chunk rule
+//     intersected with the segment's reach box, run in the same process as
+//     the peer) -> collect finished chunk meshes -> vtkLVDIFChunkMesh +
 //     vtkChunkActorManager::SetChunk (vertex un-sharing for the tetrahedral
 //     shader included) -> [optional: render a frame]
 //   worker thread: lvdif::MarchingCubesWorker re-meshes requested chunks.
 // Latency of a sample = time from its application until every chunk it
-// dirtied has a mesh reflecting it installed in the actor manager (given as
-// lower and upper bounds, see below). FPS = loop ticks per second.
+// dirtied has a mesh reflecting it installed in the actor manager (exact: the
+// worker says when each mesh's input was gathered). "From sample time" adds
+// the wait before the loop applies the sample (its recorded time to its
+// application: up to one tick) and the brush. FPS = loop ticks per second.
 //
 // Without --render no frame is drawn (the numbers then are the CPU pipeline
 // up to "ready to draw"); --render draws every tick with whatever OpenGL the
@@ -22,7 +27,13 @@
 // rasterisation of the whole model, which dominates and is not what a GPU
 // would cost). Needs the Core editor (lvdif/Editor.h).
 //
-// usage: bench_stroke_latency [N=512] [--render] [--samples 100] [--radius 8]
+// Where the time goes (per sample, p95): brush = Editor::addSample, lock =
+// waiting for the source mutex (the worker gathers under it), request =
+// computing the chunk list; per request, mesh = extractChunks of its chunks
+// re-run synchronously after the stroke (both cores); per tick, install.
+//
+// usage: bench_stroke_latency [N=512] [--render] [--samples 100] [--radius 8] [--rule both|exact|storage]
+//        [--settle MS: wait up to MS per tick for the worker before collecting]
 #include "BenchCommon.h"
 
 #include "lvdif/AnalyticFill.h"
@@ -59,24 +70,8 @@ double percentile(std::vector<double> v, double p)
 }
 } // namespace
 
-int main(int argc, char* argv[])
+std::vector<std::string> runStroke(int n, int samples, double radius, bool render, bool exact, double settleMs)
 {
-  int n = 512, samples = 100;
-  double radius = 8;
-  bool render = false;
-  for (int i = 1; i < argc; ++i)
-  {
-    if (!std::strcmp(argv[i], "--render"))
-      render = true;
-    else if (!std::strcmp(argv[i], "--samples") && i + 1 < argc)
-      samples = std::atoi(argv[++i]);
-    else if (!std::strcmp(argv[i], "--radius") && i + 1 < argc)
-      radius = std::atof(argv[++i]);
-    else
-      n = std::atoi(argv[i]);
-  }
-  std::cout << "bench_stroke_latency: " << bench::machineDescription() << "\n";
-
   bench::Stopwatch setup;
   lvdif::VolumeOptions o;
   o.dims = { n, n, n };
@@ -122,7 +117,7 @@ int main(int argc, char* argv[])
     stroke[i].buttons = 1;
   }
 
-  std::vector<double> tickMs, editMs, installMs;
+  std::vector<double> tickMs, brushMs, lockMs, requestMs, installMs;
   // Every voxel a sample's dabs can change: the segment from the previous
   // sample, grown by the radius, the band (distances saturate there), the
   // colour skin and one voxel of rounding.
@@ -138,8 +133,19 @@ int main(int argc, char* argv[])
   };
   // For the latency: which chunks each sample dirtied, and when each chunk's meshes arrived.
   std::vector<std::pair<double, std::vector<std::int64_t>>> requests; // (arrival time, chunks)
-  std::map<std::int64_t, std::vector<double>> delivered;
-  bench::Stopwatch clock;
+  std::vector<double> sampleTimes; // the stroke time of each request's sample
+  // per chunk: (when its input was gathered, when it was installed), in order
+  std::map<std::int64_t, std::vector<std::pair<double, double>>> delivered;
+  const auto t0 = std::chrono::steady_clock::now();
+  struct
+  {
+    std::chrono::steady_clock::time_point start;
+    double at(std::chrono::steady_clock::time_point t) const
+    {
+      return std::chrono::duration<double>(t - start).count();
+    }
+    double seconds() const { return this->at(std::chrono::steady_clock::now()); }
+  } clock{ t0 };
   std::size_t next = 0;
   int ticks = 0;
   {
@@ -155,36 +161,63 @@ int main(int argc, char* argv[])
     {
       bench::Stopwatch e;
       std::lock_guard<std::mutex> lock(worker.sourceMutex());
+      lockMs.push_back(e.ms());
+      bench::Stopwatch b;
       editor.addSample(stroke[next]);
-      const lvdif::VoxelBox bound = segmentBox(stroke[next > 0 ? next - 1 : 0].position, stroke[next].position);
-      const auto ids = vtkLVDIFChunkMesh::ChunksToRemesh(mc, volume.takeDirtyChunks(), &bound);
+      brushMs.push_back(b.ms());
+      bench::Stopwatch q;
+      std::vector<std::int64_t> ids;
+      if (exact)
+        ids = vtkLVDIFChunkMesh::ChunksToRemesh(mc, volume.takeDirtyChunks(), editor.lastWrite());
+      else
+      {
+        const lvdif::VoxelBox bound = segmentBox(stroke[next > 0 ? next - 1 : 0].position, stroke[next].position);
+        ids = vtkLVDIFChunkMesh::ChunksToRemesh(mc, volume.takeDirtyChunks(), &bound);
+      }
       worker.request(ids);
+      requestMs.push_back(q.ms());
       requests.emplace_back(clock.seconds(), ids);
+      sampleTimes.push_back(stroke[next].time);
       ++next;
-      editMs.push_back(e.ms());
     }
     if (next == stroke.size() && !ended)
     {
       std::lock_guard<std::mutex> lock(worker.sourceMutex());
       editor.endStroke();
-      const lvdif::VoxelBox bound = segmentBox(stroke[next > 1 ? next - 2 : 0].position, stroke[next - 1].position);
-      const auto ids = vtkLVDIFChunkMesh::ChunksToRemesh(mc, volume.takeDirtyChunks(), &bound);
+      std::vector<std::int64_t> ids;
+      if (exact)
+        ids = vtkLVDIFChunkMesh::ChunksToRemesh(mc, volume.takeDirtyChunks(), editor.lastWrite());
+      else
+      {
+        const lvdif::VoxelBox bound = segmentBox(stroke[next > 1 ? next - 2 : 0].position, stroke[next - 1].position);
+        ids = vtkLVDIFChunkMesh::ChunksToRemesh(mc, volume.takeDirtyChunks(), &bound);
+      }
       worker.request(ids);
-      if (!requests.empty())
-        requests.back().second.insert(requests.back().second.end(), ids.begin(), ids.end());
+      if (!ids.empty())
+      {
+        requests.emplace_back(clock.seconds(), ids); // the stroke's last dabs
+        sampleTimes.push_back(stroke.back().time);
+      }
       ended = true;
+    }
+    // --settle: give the worker up to this long to finish what this tick
+    // requested, so its meshes are installed now instead of one tick later.
+    if (settleMs > 0)
+    {
+      bench::Stopwatch w;
+      while (!worker.idle() && w.ms() < settleMs)
+        std::this_thread::sleep_for(std::chrono::microseconds(200));
     }
     const bool idleBefore = worker.idle();
     bench::Stopwatch inst;
-    const std::vector<lvdif::ChunkMesh> meshes = worker.collect();
-    const double arrived = clock.seconds();
+    std::vector<std::chrono::steady_clock::time_point> gathered;
+    const std::vector<lvdif::ChunkMesh> meshes = worker.collect(&gathered);
     std::map<std::int64_t, const lvdif::ChunkMesh*> newest; // a later mesh of a chunk supersedes an earlier one
     for (const auto& m : meshes)
       newest[m.chunkId] = &m;
     for (const auto& kv : newest)
     {
       const lvdif::ChunkMesh& m = *kv.second;
-      delivered[m.chunkId].push_back(arrived);
       if (m.empty())
         actors->RemoveChunk(m.chunkId);
       else
@@ -193,6 +226,9 @@ int main(int argc, char* argv[])
     installMs.push_back(inst.ms());
     if (render)
       rw->Render();
+    const double shown = clock.seconds(); // ready to draw (or drawn with --render)
+    for (std::size_t i = 0; i < meshes.size(); ++i)
+      delivered[meshes[i].chunkId].emplace_back(clock.at(gathered[i]), shown);
     ++ticks;
     if (idleBefore && ended)
       break;
@@ -202,33 +238,91 @@ int main(int argc, char* argv[])
       std::this_thread::sleep_for(std::chrono::duration<double>(1.0 / 60 - spent));
   }
   const double duration = clock.seconds();
-  // A chunk requested at time r is shown with the edit by its first mesh
-  // collected after r if that meshing started after r, else by the second
-  // (the worker re-meshes a chunk requested while in flight). The worker does
-  // not say which, so give both bounds: first delivery (lower) and second
-  // delivery, or the first when no second came (upper).
-  std::vector<double> lower, upper;
-  for (const auto& req : requests)
+  // A chunk requested at time r shows the edit from the first of its meshes
+  // whose input was gathered after r (gathers and edits both hold the source
+  // mutex, so that mesh includes the edit and earlier ones do not). Latency
+  // of a sample = until its last chunk shows it.
+  std::vector<double> latency, fromInput;
+  int missing = 0;
+  for (std::size_t r = 0; r < requests.size(); ++r)
   {
-    double lo = 0, hi = 0;
+    const auto& req = requests[r];
+    double worst = 0, shownAt = req.first;
     for (std::int64_t id : req.second)
     {
-      const auto& times = delivered[id];
-      auto it = std::upper_bound(times.begin(), times.end(), req.first);
-      if (it == times.end())
-        continue; // not re-meshed: the chunk's mesh did not change
-      lo = std::max(lo, *it - req.first);
-      hi = std::max(hi, (std::next(it) != times.end() ? *std::next(it) : *it) - req.first);
+      const auto& d = delivered[id];
+      auto it = std::find_if(d.begin(), d.end(), [&](const std::pair<double, double>& g) { return g.first > req.first; });
+      if (it == d.end())
+      {
+        ++missing; // never happens unless the worker dropped a request
+        continue;
+      }
+      worst = std::max(worst, it->second - req.first);
+      shownAt = std::max(shownAt, it->second);
     }
-    lower.push_back(1e3 * lo);
-    upper.push_back(1e3 * hi);
+    latency.push_back(1e3 * worst);
+    fromInput.push_back(1e3 * (shownAt - sampleTimes[r]));
   }
-  bench::printTable({ "volume", "samples", "radius", "latency p50 ms (lower-upper)", "latency p95 ms (lower-upper)",
-                      "loop FPS", "tick p95 ms", "edit p95 ms", "install p95 ms", "frames drawn" },
-    { { std::to_string(n) + "^3", std::to_string(samples), bench::fmt(radius, 1),
-      bench::fmt(percentile(lower, 0.5)) + " - " + bench::fmt(percentile(upper, 0.5)),
-      bench::fmt(percentile(lower, 0.95)) + " - " + bench::fmt(percentile(upper, 0.95)), bench::fmt(ticks / duration, 1),
-      bench::fmt(percentile(tickMs, 0.95)), bench::fmt(percentile(editMs, 0.95)),
-      bench::fmt(percentile(installMs, 0.95)), render ? "yes" : "no" } });
+  if (missing)
+    std::printf("warning: %d requested chunk meshes never arrived\n", missing);
+  // Meshing cost of each request on its own (synchronously, after the stroke:
+  // the chunks' final content, same chunk count as in the stroke).
+  std::vector<double> meshMs, chunkCounts;
+  for (const auto& req : requests)
+  {
+    bench::Stopwatch m;
+    const auto meshes = mc.extractChunks(req.second);
+    meshMs.push_back(m.ms());
+    chunkCounts.push_back(static_cast<double>(req.second.size()));
+  }
+  return { std::to_string(n) + "^3",
+    std::string(exact ? "changedBox" : "storage+reach") + (settleMs > 0 ? ", settle " + bench::fmt(settleMs, 0) + " ms" : ""), std::to_string(samples),
+    bench::fmt(radius, 1),
+    bench::fmt(percentile(chunkCounts, 0.5), 0) + " (" + bench::fmt(percentile(chunkCounts, 0.95), 0) + ")",
+    bench::fmt(percentile(latency, 0.5)), bench::fmt(percentile(latency, 0.95)), bench::fmt(percentile(latency, 1.0)),
+    bench::fmt(percentile(fromInput, 0.5)) + " (" + bench::fmt(percentile(fromInput, 0.95)) + ")",
+    bench::fmt(ticks / duration, 1),
+    bench::fmt(percentile(tickMs, 0.95)), bench::fmt(percentile(brushMs, 0.95)), bench::fmt(percentile(lockMs, 0.95)),
+    bench::fmt(percentile(requestMs, 0.95)),
+    bench::fmt(percentile(meshMs, 0.5)) + " (" + bench::fmt(percentile(meshMs, 0.95)) + ")",
+    bench::fmt(percentile(installMs, 0.95)), render ? "yes" : "no" };
+}
+
+int main(int argc, char* argv[])
+{
+  int n = 512, samples = 100;
+  double radius = 8;
+  bool render = false;
+  std::string rule = "both";
+  double settleMs = 0;
+  for (int i = 1; i < argc; ++i)
+  {
+    if (!std::strcmp(argv[i], "--render"))
+      render = true;
+    else if (!std::strcmp(argv[i], "--samples") && i + 1 < argc)
+      samples = std::atoi(argv[++i]);
+    else if (!std::strcmp(argv[i], "--radius") && i + 1 < argc)
+      radius = std::atof(argv[++i]);
+    else if (!std::strcmp(argv[i], "--settle") && i + 1 < argc)
+      settleMs = std::atof(argv[++i]);
+    else if (!std::strcmp(argv[i], "--rule") && i + 1 < argc)
+      rule = argv[++i];
+    else
+      n = std::atoi(argv[i]);
+  }
+  std::cout << "bench_stroke_latency: " << bench::machineDescription() << "\n";
+  std::vector<std::vector<std::string>> rows;
+  for (const bool exact : { false, true })
+  {
+    if ((exact && rule == "storage") || (!exact && rule == "exact"))
+      continue;
+    rows.push_back(runStroke(n, samples, radius, render, exact, settleMs));
+  }
+  bench::printTable({ "volume", "rule", "samples", "radius", "chunks/request p50 (p95)",
+                      "latency p50 ms", "latency p95 ms", "latency max ms",
+                      "from sample time p50 (p95) ms", "loop FPS", "tick p95 ms",
+                      "brush p95 ms", "lock p95 ms", "request p95 ms", "mesh/request p50 (p95) ms",
+                      "install p95 ms", "frames drawn" },
+    rows);
   return 0;
 }
