@@ -67,6 +67,8 @@ private:
   void buildMenus();
   void applyBrushState();
   void pollMeshes();
+  /// After a brush sample: waits a few ms for its chunks, then installs them.
+  void settleMeshes();
   void autosave();
   void resetView();
   void volumeReplaced();
