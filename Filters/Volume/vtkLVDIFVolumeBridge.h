@@ -15,6 +15,7 @@
 #include "lvdifFiltersVolumeModule.h"
 
 #include <memory>
+#include <string>
 
 class vtkDataArray;
 class vtkImageData;
@@ -37,6 +38,13 @@ LVDIFFILTERSVOLUME_EXPORT std::unique_ptr<lvdif::DictionaryVolume> VolumeFromIma
 /// What an image source of this volume announces in RequestInformation: whole
 /// extent, origin, spacing, CAN_PRODUCE_SUB_EXTENT and a float `sdf` scalar.
 LVDIFFILTERSVOLUME_EXPORT void SetImageInformation(vtkInformation* outInfo, const lvdif::VolumeOptions& options);
+
+/// What a volume writer needs from its input: the `sdf` point array and the
+/// optional `rgba` one. Returns an empty string when usable, otherwise the
+/// one-line reason (no file name, no `sdf` array) for the writer's error;
+/// `missingFileName` tells which error code applies.
+LVDIFFILTERSVOLUME_EXPORT std::string WriterInput(vtkImageData* image, const std::string& fileName,
+  bool withColor, vtkDataArray*& sdf, vtkDataArray*& rgba, bool& missingFileName);
 
 /// Geometry of an image's point grid (dims from its extent; origin moved to the extent's first point).
 LVDIFFILTERSVOLUME_EXPORT lvdif::GridGeometry Geometry(vtkImageData* image);

@@ -30,20 +30,16 @@ int vtkOpenVDBLevelSetWriter::FillInputPortInformation(int, vtkInformation* info
 void vtkOpenVDBLevelSetWriter::WriteData()
 {
   vtkImageData* image = this->GetInput();
-  if (this->FileName.empty())
+  vtkDataArray *sdf, *rgba;
+  bool missingFileName;
+  const std::string problem =
+    vtkLVDIFVolumeBridge::WriterInput(image, this->FileName, this->WithColor, sdf, rgba, missingFileName);
+  if (!problem.empty())
   {
-    vtkErrorMacro("no file name: call SetFileName() first");
-    this->SetErrorCode(vtkErrorCode::NoFileNameError);
+    vtkErrorMacro(<< problem);
+    this->SetErrorCode(missingFileName ? vtkErrorCode::NoFileNameError : vtkErrorCode::UnknownError);
     return;
   }
-  vtkDataArray* sdf = image ? image->GetPointData()->GetArray("sdf") : nullptr;
-  if (!sdf)
-  {
-    vtkErrorMacro("the input has no point array named 'sdf'");
-    this->SetErrorCode(vtkErrorCode::UnknownError);
-    return;
-  }
-  vtkDataArray* rgba = this->WithColor ? image->GetPointData()->GetArray("rgba") : nullptr;
   lvdif::VolumeOptions options;
   options.bandWidth = static_cast<float>(this->HalfWidth);
   lvdif::vdb::ExportOptions exportOptions;

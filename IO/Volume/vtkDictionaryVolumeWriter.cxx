@@ -37,20 +37,16 @@ int vtkDictionaryVolumeWriter::FillInputPortInformation(int, vtkInformation* inf
 void vtkDictionaryVolumeWriter::WriteData()
 {
   vtkImageData* image = this->GetInput();
-  if (this->FileName.empty())
+  vtkDataArray *sdf, *rgba;
+  bool missingFileName;
+  const std::string problem =
+    vtkLVDIFVolumeBridge::WriterInput(image, this->FileName, true, sdf, rgba, missingFileName);
+  if (!problem.empty())
   {
-    vtkErrorMacro("no file name: call SetFileName() first");
-    this->SetErrorCode(vtkErrorCode::NoFileNameError);
+    vtkErrorMacro(<< problem);
+    this->SetErrorCode(missingFileName ? vtkErrorCode::NoFileNameError : vtkErrorCode::UnknownError);
     return;
   }
-  vtkDataArray* sdf = image ? image->GetPointData()->GetArray("sdf") : nullptr;
-  if (!sdf)
-  {
-    vtkErrorMacro("the input has no point array named 'sdf'");
-    this->SetErrorCode(vtkErrorCode::UnknownError);
-    return;
-  }
-  vtkDataArray* rgba = image->GetPointData()->GetArray("rgba");
   lvdif::VolumeOptions options;
   options.chunkEdge = this->ChunkEdge;
   options.bandWidth = this->BandWidth >= std::numeric_limits<float>::max()
