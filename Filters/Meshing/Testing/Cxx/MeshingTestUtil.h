@@ -1,6 +1,6 @@
 // Shared helpers for the vtkChunkedMarchingCubes tests: analytic SDF images
-// and independent measures (area, enclosed volume, nearest-point distances,
-// boundary edges) computed in double precision with VTK's own classes.
+// and independent measures (area, enclosed volume, triangle-set matching up to
+// float rounding, boundary edges) computed in double precision with VTK's own classes.
 #pragma once
 
 #include "vtkAppendPolyData.h"
@@ -256,28 +256,6 @@ inline TriangleMatch matchTriangles(vtkPolyData* a, vtkPolyData* b, double tol)
   }
   r.onlyInB = static_cast<vtkIdType>(inB.size());
   return r;
-}
-
-/// max over points of a of the distance to the nearest point of b.
-inline double oneSidedDistance(vtkPolyData* a, vtkPolyData* b)
-{
-  vtkNew<vtkStaticPointLocator> loc;
-  loc->SetDataSet(b);
-  loc->BuildLocator();
-  double worst = 0;
-  for (vtkIdType i = 0; i < a->GetNumberOfPoints(); ++i)
-  {
-    double p[3], q[3];
-    a->GetPoint(i, p);
-    b->GetPoint(loc->FindClosestPoint(p), q);
-    worst = std::max(worst, std::sqrt(vtkMath::Distance2BetweenPoints(p, q)));
-  }
-  return worst;
-}
-
-inline double hausdorff(vtkPolyData* a, vtkPolyData* b)
-{
-  return std::max(oneSidedDistance(a, b), oneSidedDistance(b, a));
 }
 
 /// Merges points with equal coordinates (tolerance 0) and keeps degenerate triangles.

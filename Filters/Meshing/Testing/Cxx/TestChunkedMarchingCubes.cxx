@@ -115,7 +115,7 @@ void expectSameSurface(vtkDataObject* input, const char* array, double iso, bool
         EXPECT_TRUE(tm.identical()) << "unmatched points " << tm.unmatchedPoints << ", ambiguous " << tm.ambiguousPoints
                                     << ", triangles only ours " << tm.onlyInA << ", only VTK's " << tm.onlyInB;
         EXPECT_LE(tm.maxPointDistance, tol);
-        if (std::getenv("LVDIF_PRINT_MATCH"))
+        if (std::getenv("LVDIF_PRINT_MATCH")) // the measured differences, for docs/MARCHING_CUBES.md
           std::printf("edge %d mode %d ref %d: %lld triangles, max point distance %.3g (tol %.3g), ambiguous %lld, "
                       "area rel diff %.2g, volume rel diff %.2g\n",
             edge, mode, r, static_cast<long long>(m.triangles), tm.maxPointDistance, tol,
