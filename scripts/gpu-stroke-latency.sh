@@ -21,6 +21,11 @@ run $B 1024 --device cpu                                   # CPU marching cubes,
 run $B 1024 --device cpu --loop tick
 run env OMP_NUM_THREADS=2 $B 512 --device cpu                  # the 2-core target's setting, on this host's cores
 run env OMP_NUM_THREADS=2 $B 512 --device cpu --loop tick
+# how long to settle: the Qt editor's 6 ms is tuned for the CPU worker
+for s in 0 3 10 16; do run $B 1024 --device cuda --brush cpu --settle $s; done
+run $B 1024 --device cuda --brush device --settle 10
+run $B 1024 --device cpu --settle 0
+run $B 512 --device cuda --brush cpu
 timeout 100 ./b/Core/LVDIFCoreTests --gtest_filter='*Cuda*' > "$OUT/tests_cuda.log" 2>&1
 echo "tests rc=$?" >> "$OUT/tests_cuda.log"
 tail -3 "$OUT/tests_cuda.log"
