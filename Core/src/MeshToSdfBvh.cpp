@@ -57,6 +57,15 @@ Bvh::Bvh(const std::vector<Tri>& tris)
 #pragma omp parallel
 #pragma omp single
   this->build(d, 0, 0, n, 0);
+  this->Leaves.resize(tris.size());
+#pragma omp parallel for schedule(static)
+  for (std::int32_t i = 0; i < n; ++i)
+  {
+    const Tri& t = tris[this->Order[i]];
+    LeafTri& l = this->Leaves[i];
+    for (int k = 0; k < 3; ++k) l.v[k] = t.v[k];
+    l.n = t.n;
+  }
 }
 
 void Bvh::build(const BuildData& d, std::int32_t id, std::int32_t first, std::int32_t count, int depth)
@@ -89,9 +98,11 @@ void Bvh::build(const BuildData& d, std::int32_t id, std::int32_t first, std::in
     node.right = id + 1 + subtreeNodes(half, depth + 1);
     if (count > 2048)
     {
-#pragma omp task
+      // shared(d): by default a task takes a firstprivate COPY of the object
+      // a reference refers to (2 MB of boxes and centroids per task)
+#pragma omp task shared(d)
       this->build(d, node.left, first, half, depth + 1);
-#pragma omp task
+#pragma omp task shared(d)
       this->build(d, node.right, first + half, count - half, depth + 1);
 #pragma omp taskwait
     }

@@ -3,9 +3,16 @@
 // requested extent one slab of z layers at a time so device memory stays
 // bounded (the slab buffer is at most 256 MiB, plus the mesh and BVHs).
 // Kernel 1: one thread per run of 16 voxels along x (nearest triangle on the
-// BVH, warm-started, far voxels skipped by the Lipschitz bound).
-// Kernel 2 (WindingNumber): one thread per scan line (ray crossings of the
-// closed chain, carried winding number for open meshes).
+// BVH, warm-started, far voxels skipped by the Lipschitz bound); a warp takes
+// a tile of 4 runs x 8 rows so its queries follow similar BVH paths.
+// Kernel 2 (WindingNumber): one warp per scan line: lane 0 casts the ray
+// (crossings of the closed chain) into shared memory, the lanes compute the
+// drift bounds of 32 voxels at a time, every lane walks the carried interval
+// (the same values in every lane, so control flow stays uniform) and an
+// exact evaluation of the cone's solid angle is split over the 32 lanes
+// (lane-strided partial sums, xor-butterfly reduction: the order the CPU's
+// laneOrderedSum reproduces). Triangles are read from compact leaf-ordered
+// records (vertices + normal, 96 bytes) rather than the 328-byte Tri.
 #include "MeshToSdfCuda.h"
 
 #include "lvdif/CudaCheck.cuh"
@@ -27,6 +34,9 @@ using namespace sdfdetail;
 namespace
 {
 constexpr int Run = 16;        // voxels per thread in the distance kernel
+constexpr int TileRuns = 4, TileRows = 8; // a warp of the distance kernel: 4 runs along x, 8 rows
+constexpr int SignWarps = 4;   // warps (scan lines) per block of the sign kernel
+constexpr unsigned FullMask = 0xffffffffu;
 constexpr int MaxHits = 96;    // crossings a scan line may hold (more: per-voxel fallback)
 constexpr double FourPi = 12.566370614359172;
 
@@ -36,9 +46,12 @@ struct GpuNode
   int left, right, first, count;
 };
 
+using GpuTri = LeafTri; // vertices and unit normal, in BVH leaf order
+
 struct DevBvh
 {
-  const Tri* tris = nullptr;
+  const Tri* tris = nullptr;    // full records by triangle index: mesh BVH, Normal/PseudoNormal sessions only
+  const GpuTri* leaf = nullptr; // leaf[i] = triangle order[i]
   const GpuNode* nodes = nullptr;
   const int* order = nullptr;
 };
@@ -55,9 +68,11 @@ struct Params
 
 struct WindingDev
 {
-  DevBvh closed;
+  DevBvh closed;      // tris unused (null): leaf records only
   int meshTris = 0;
-  const Tri* cone = nullptr; // closed.tris + meshTris
+  const GpuTri* meshLeaf = nullptr; // the mesh BVH's leaves and the slot of each triangle there:
+  const int* meshSlot = nullptr;    // the mesh in index order, for the all-solid-angle fallback
+  const GpuTri* cone = nullptr;
   int coneCount = 0;
   const WindingSigner::Cluster* clusters = nullptr;
   int clusterCount = 0;
@@ -68,21 +83,24 @@ __device__ V3 positionOf(const Params& P, long long i, long long j, long long k)
   return { P.origin[0] + i * P.spacing[0], P.origin[1] + j * P.spacing[1], P.origin[2] + k * P.spacing[2] };
 }
 
-__device__ NearestResult nearestDev(const DevBvh& b, V3 p, int hint, double maxDist2)
+/// Bvh::nearest; the hint and the result's place are leaf slots (bestSlot).
+__device__ NearestResult nearestDev(const DevBvh& b, V3 p, int hintSlot, double maxDist2, int& bestSlot)
 {
   NearestResult best;
   best.dist2 = maxDist2;
-  if (hint >= 0)
+  bestSlot = -1;
+  if (hintSlot >= 0)
   {
-    const Tri& t = b.tris[hint];
+    const GpuTri& t = b.leaf[hintSlot];
     const Closest c = closestPointOnTriangle(p, t.v[0], t.v[1], t.v[2]);
     const V3 d = c.point - p;
     const double d2 = dot(d, d);
     if (d2 <= best.dist2)
     {
       best.dist2 = d2;
-      best.tri = hint;
+      best.tri = b.order[hintSlot];
       best.closest = c;
+      bestSlot = hintSlot;
     }
   }
   int stackNode[64];
@@ -101,7 +119,7 @@ __device__ NearestResult nearestDev(const DevBvh& b, V3 p, int hint, double maxD
       {
         const int ti = b.order[i];
         if (ti == best.tri) continue;
-        const Tri& t = b.tris[ti];
+        const GpuTri& t = b.leaf[i];
         const Closest c = closestPointOnTriangle(p, t.v[0], t.v[1], t.v[2]);
         const V3 d = c.point - p;
         const double d2 = dot(d, d);
@@ -110,6 +128,7 @@ __device__ NearestResult nearestDev(const DevBvh& b, V3 p, int hint, double maxD
           best.dist2 = d2;
           best.tri = ti;
           best.closest = c;
+          bestSlot = i;
         }
       }
       continue;
@@ -128,10 +147,17 @@ __global__ void distanceKernel(DevBvh bvh, Params P, float* out)
 {
   const long long nx = P.hi[0] - P.lo[0] + 1, ny = P.hi[1] - P.lo[1] + 1, nz = P.hi[2] - P.lo[2] + 1;
   const long long runs = (nx + Run - 1) / Run;
+  const long long tilesX = (runs + TileRuns - 1) / TileRuns, tilesY = (ny + TileRows - 1) / TileRows;
   const long long t = static_cast<long long>(blockIdx.x) * blockDim.x + threadIdx.x;
-  if (t >= runs * ny * nz) return;
-  const long long row = t / runs, run = t % runs;
-  const long long j = P.lo[1] + row % ny, k = P.lo[2] + row / ny;
+  const long long tile = t / 32;
+  const int lane = static_cast<int>(t % 32);
+  if (tile >= tilesX * tilesY * nz) return;
+  const long long run = (tile % tilesX) * TileRuns + lane % TileRuns;
+  const long long jj = ((tile / tilesX) % tilesY) * TileRows + lane / TileRuns;
+  if (run >= runs || jj >= ny) return;
+  const long long kk = tile / (tilesX * tilesY);
+  const long long row = jj + ny * kk;
+  const long long j = P.lo[1] + jj, k = P.lo[2] + kk;
   const long long i0 = P.lo[0] + run * Run, i1 = min(P.hi[0], i0 + Run - 1);
   float* rowOut = out + row * nx - P.lo[0];
   const double h = P.spacing[0];
@@ -146,14 +172,15 @@ __global__ void distanceKernel(DevBvh bvh, Params P, float* out)
       continue;
     }
     const V3 p = positionOf(P, i, j, k);
-    const NearestResult r = nearestDev(bvh, p, hint, P.bounded ? P.reach * P.reach : 1e300);
+    int slot = -1;
+    const NearestResult r = nearestDev(bvh, p, hint, P.bounded ? P.reach * P.reach : 1e300, slot);
     double d = r.tri < 0 ? P.band : sqrt(r.dist2) * P.toOut;
     lower = r.tri < 0 ? P.reach : sqrt(r.dist2);
     d = fmin(d, P.band);
     float s = 1.0f;
     if (r.tri >= 0)
     {
-      hint = r.tri;
+      hint = slot;
       if (P.sign == 0 || P.sign == 1)
       {
         const Tri& tr = bvh.tris[r.tri];
@@ -224,7 +251,7 @@ __device__ bool rayDev(const DevBvh& b, V3 o, V3 dir, Hit* hits, int* count, int
     for (int i = n.first; i < n.first + n.count; ++i)
     {
       const int ti = b.order[i];
-      const Tri& t = b.tris[ti];
+      const GpuTri& t = b.leaf[i];
       const V3 e1 = t.v[1] - t.v[0], e2 = t.v[2] - t.v[0];
       const V3 pv = cross(dir, e2);
       const double det = dot(e1, pv);
@@ -257,15 +284,25 @@ __device__ bool rayDev(const DevBvh& b, V3 o, V3 dir, Hit* hits, int* count, int
   return true;
 }
 
-__device__ double coneWindingDev(const WindingDev& W, V3 p)
+/// Sum of f(c) for c in [0, n) in the order of the CPU's laneOrderedSum:
+/// lane l adds c = l, l + 32, ... in order, then an xor butterfly (every lane
+/// ends with the same bits: IEEE addition is commutative).
+template <typename F>
+__device__ double warpOrderedSum(int n, int lane, F f)
 {
   double s = 0;
-  for (int c = 0; c < W.coneCount; ++c)
-  {
-    const Tri& t = W.cone[c];
-    s += solidAngle(p, t.v[0], t.v[1], t.v[2]);
-  }
-  return s / FourPi;
+  for (int c = lane; c < n; c += 32) s += f(c);
+  for (int off = 16; off > 0; off >>= 1) s += __shfl_xor_sync(FullMask, s, off);
+  return s;
+}
+
+/// The cone's winding number at p, all lanes of the warp together.
+__device__ double coneWindingWarp(const WindingDev& W, V3 p, int lane)
+{
+  return warpOrderedSum(W.coneCount, lane, [&](int c) {
+    const GpuTri& t = W.cone[c];
+    return solidAngle(p, t.v[0], t.v[1], t.v[2]);
+  }) / FourPi;
 }
 
 __device__ double driftDev(const WindingDev& W, V3 p, V3 q, double h)
@@ -281,59 +318,73 @@ __device__ double driftDev(const WindingDev& W, V3 p, V3 q, double h)
   return h * sum / FourPi;
 }
 
-__device__ double evaluateDev(const WindingDev& W, V3 p)
+/// WindingSigner::evaluate, all lanes of the warp together (each lane casts
+/// the same oblique ray: same result, uniform control flow).
+__device__ double evaluateWarp(const WindingDev& W, V3 p, int lane)
 {
   const V3 dir = normalized(V3{ 0.5773502691896258, 0.5780, 0.5767 });
   int sum = 0;
   if (rayDev(W.closed, p, dir, nullptr, nullptr, &sum))
   {
-    return sum - coneWindingDev(W, p);
+    return sum - coneWindingWarp(W, p, lane);
   }
-  double s = 0;
-  for (int i = 0; i < W.meshTris; ++i)
-  {
-    const Tri& t = W.closed.tris[i];
-    s += solidAngle(p, t.v[0], t.v[1], t.v[2]);
-  }
-  return s / FourPi;
+  return warpOrderedSum(W.meshTris, lane, [&](int i) {
+    const GpuTri& t = W.meshLeaf[W.meshSlot[i]];
+    return solidAngle(p, t.v[0], t.v[1], t.v[2]);
+  }) / FourPi;
 }
 
 __device__ bool insideOf(double w) { return fabs(w) >= 0.5; }
 __device__ bool decidedDev(double lo, double hi) { return !(lo < 0.5 && hi >= 0.5) && !(lo <= -0.5 && hi > -0.5); }
 
+/// WindingSigner::signRow, one warp per scan line (see the file comment).
 __global__ void signKernel(WindingDev W, Params P, float* out, unsigned long long* evals,
   unsigned long long* fallbacks)
 {
+  __shared__ Hit sharedHits[SignWarps][MaxHits];
   const long long nx = P.hi[0] - P.lo[0] + 1, ny = P.hi[1] - P.lo[1] + 1, nz = P.hi[2] - P.lo[2] + 1;
-  const long long row = static_cast<long long>(blockIdx.x) * blockDim.x + threadIdx.x;
-  if (row >= ny * nz) return;
+  const int lane = static_cast<int>(threadIdx.x % 32), warp = static_cast<int>(threadIdx.x / 32);
+  const long long row = static_cast<long long>(blockIdx.x) * SignWarps + warp;
+  if (row >= ny * nz) return; // the whole warp
   const long long j = P.lo[1] + row % ny, k = P.lo[2] + row / ny;
   float* rowOut = out + row * nx;
   const double h = P.spacing[0];
   const V3 start = positionOf(P, P.lo[0], j, k);
   auto pos = [&](long long i) { return start + V3{ static_cast<double>(i) * h, 0, 0 }; };
-  Hit hits[MaxHits];
-  int count = 0, sum = 0;
-  if (!rayDev(W.closed, start - V3{ 0.5 * h, 0, 0 }, V3{ 1, 0, 0 }, hits, &count, &sum))
+  Hit* hits = sharedHits[warp];
+  int count = 0, sum = 0, ok = 0;
+  if (lane == 0)
+  {
+    ok = rayDev(W.closed, start - V3{ 0.5 * h, 0, 0 }, V3{ 1, 0, 0 }, hits, &count, &sum) ? 1 : 0;
+    for (int a = 1; ok && a < count; ++a) // insertion sort by t
+    {
+      const Hit x = hits[a];
+      int b = a - 1;
+      while (b >= 0 && hits[b].t > x.t)
+      {
+        hits[b + 1] = hits[b];
+        --b;
+      }
+      hits[b + 1] = x;
+    }
+  }
+  __syncwarp();
+  ok = __shfl_sync(FullMask, ok, 0);
+  count = __shfl_sync(FullMask, count, 0);
+  sum = __shfl_sync(FullMask, sum, 0);
+  if (!ok)
   {
     for (long long i = 0; i < nx; ++i)
     {
-      if (insideOf(evaluateDev(W, pos(i)))) rowOut[i] = -rowOut[i];
+      const double w = evaluateWarp(W, pos(i), lane);
+      if (lane == static_cast<int>(i % 32) && insideOf(w)) rowOut[i] = -rowOut[i];
     }
-    atomicAdd(fallbacks, static_cast<unsigned long long>(nx));
-    atomicAdd(evals, static_cast<unsigned long long>(nx));
-    return;
-  }
-  for (int a = 1; a < count; ++a) // insertion sort by t
-  {
-    const Hit x = hits[a];
-    int b = a - 1;
-    while (b >= 0 && hits[b].t > x.t)
+    if (lane == 0)
     {
-      hits[b + 1] = hits[b];
-      --b;
+      atomicAdd(fallbacks, static_cast<unsigned long long>(nx));
+      atomicAdd(evals, static_cast<unsigned long long>(nx));
     }
-    hits[b + 1] = x;
+    return;
   }
   int ahead = sum;
   int next = 0;
@@ -341,49 +392,58 @@ __global__ void signKernel(WindingDev W, Params P, float* out, unsigned long lon
   bool have = false;
   double lo = 0, hi = 0;
   unsigned long long ev = 0;
-  for (long long i = 0; i < nx; ++i)
+  for (long long base = 0; base < nx; base += 32)
   {
-    const double ti = 0.5 * h + static_cast<double>(i) * h;
-    int jumpMesh = 0;
-    while (next < count && hits[next].t <= ti)
+    const long long mine = base + lane;
+    // the drift bound from voxel mine - 1 to mine (used only while an interval is carried)
+    const double myDrift = open && mine > 0 && mine < nx ? driftDev(W, pos(mine - 1), pos(mine), h) : 0.0;
+    const long long end = base + 32 < nx ? base + 32 : nx;
+    bool myInside = false;
+    for (long long i = base; i < end; ++i)
     {
-      ahead -= hits[next].sign;
-      if (hits[next].tri < W.meshTris) jumpMesh += hits[next].sign;
-      ++next;
-    }
-    double w;
-    if (!open)
-    {
-      w = ahead;
-    }
-    else
-    {
-      if (have)
+      const double ti = 0.5 * h + static_cast<double>(i) * h;
+      int jumpMesh = 0;
+      while (next < count && hits[next].t <= ti)
       {
-        const double drift = driftDev(W, pos(i - 1), pos(i), h);
-        if (drift < 1e299)
-        {
-          lo = lo - jumpMesh - drift;
-          hi = hi - jumpMesh + drift;
-        }
-        else
-        {
-          have = false;
-        }
+        ahead -= hits[next].sign;
+        if (hits[next].tri < W.meshTris) jumpMesh += hits[next].sign;
+        ++next;
       }
-      if (!have || !decidedDev(lo, hi))
+      double w;
+      if (!open)
       {
-        const double exact = ahead - coneWindingDev(W, pos(i));
-        lo = exact - 1e-9;
-        hi = exact + 1e-9;
-        have = true;
-        ++ev;
+        w = ahead;
       }
-      w = 0.5 * (lo + hi);
+      else
+      {
+        const double drift = __shfl_sync(FullMask, myDrift, static_cast<int>(i - base));
+        if (have)
+        {
+          if (drift < 1e299)
+          {
+            lo = lo - jumpMesh - drift;
+            hi = hi - jumpMesh + drift;
+          }
+          else
+          {
+            have = false;
+          }
+        }
+        if (!have || !decidedDev(lo, hi))
+        {
+          const double exact = ahead - coneWindingWarp(W, pos(i), lane);
+          lo = exact - 1e-9;
+          hi = exact + 1e-9;
+          have = true;
+          ++ev;
+        }
+        w = 0.5 * (lo + hi);
+      }
+      if (i - base == lane) myInside = insideOf(w);
     }
-    if (insideOf(w)) rowOut[i] = -rowOut[i];
+    if (mine < nx && myInside) rowOut[mine] = -rowOut[mine];
   }
-  if (ev) atomicAdd(evals, ev);
+  if (lane == 0 && ev) atomicAdd(evals, ev);
 }
 
 double now()
@@ -460,10 +520,22 @@ std::vector<GpuNode> convertNodes(const Bvh& b)
   return out;
 }
 
-DevBvh uploadBvh(DeviceArena& arena, const std::vector<Tri>& tris, const Bvh& b)
+std::vector<GpuTri> compactTris(const std::vector<Tri>& tris)
+{
+  std::vector<GpuTri> out(tris.size());
+  for (std::size_t i = 0; i < tris.size(); ++i)
+  {
+    for (int k = 0; k < 3; ++k) out[i].v[k] = tris[i].v[k];
+    out[i].n = tris[i].n;
+  }
+  return out;
+}
+
+/// The BVH's nodes, order and leaf-ordered compact triangles.
+DevBvh uploadBvh(DeviceArena& arena, const Bvh& b)
 {
   DevBvh d;
-  d.tris = arena.upload(tris);
+  d.leaf = arena.upload(b.leaves());
   d.nodes = arena.upload(convertNodes(b));
   d.order = arena.upload(b.order());
   return d;
@@ -472,20 +544,37 @@ DevBvh uploadBvh(DeviceArena& arena, const std::vector<Tri>& tris, const Bvh& b)
 class CudaMesh : public DeviceMesh
 {
 public:
-  CudaMesh(const PreparedMesh& mesh, const Bvh& bvh, const WindingSigner* winding)
+  CudaMesh(const PreparedMesh& mesh, const Bvh& bvh, const WindingSigner* winding, bool normals)
+    : Mesh(mesh)
+    , MeshBvh(bvh)
   {
-    this->Dbvh = uploadBvh(this->Arena, mesh.tris, bvh);
-    if (winding)
+    this->Dbvh = uploadBvh(this->Arena, bvh);
+    if (normals) this->addNormals();
+    if (winding) this->addWinding(*winding);
+    LVDIF_CUDA_CHECK(cudaDeviceSynchronize());
+  }
+  bool hasNormals() const override { return this->Dbvh.tris != nullptr; }
+  void addNormals() override
+  {
+    if (!this->Dbvh.tris) this->Dbvh.tris = this->Arena.upload(this->Mesh.tris);
+  }
+  void addWinding(const WindingSigner& signer) override
+  {
+    const WindingSigner* winding = &signer;
+    if (!this->Winding)
     {
-      this->W.closed = uploadBvh(this->Arena, winding->closedTris(), winding->closedBvh());
+      this->W.closed = uploadBvh(this->Arena, winding->closedBvh());
       this->W.meshTris = static_cast<int>(winding->meshTriangles());
-      this->W.cone = this->W.closed.tris + this->W.meshTris;
+      this->W.meshLeaf = this->Dbvh.leaf;
+      std::vector<int> slot(this->MeshBvh.order().size());
+      for (std::size_t i = 0; i < slot.size(); ++i) slot[static_cast<std::size_t>(this->MeshBvh.order()[i])] = static_cast<int>(i);
+      this->W.meshSlot = this->Arena.upload(slot);
+      this->W.cone = this->Arena.upload(compactTris(winding->cone()));
       this->W.coneCount = static_cast<int>(winding->cone().size());
       this->W.clusters = this->Arena.upload(winding->clusters());
       this->W.clusterCount = static_cast<int>(winding->clusters().size());
     }
-    this->Winding = winding != nullptr;
-    LVDIF_CUDA_CHECK(cudaDeviceSynchronize());
+    this->Winding = true;
   }
   bool hasWinding() const override { return this->Winding; }
   std::uint64_t bytes() const override { return this->Arena.bytes(); }
@@ -493,6 +582,8 @@ public:
   WindingDev W;
 
 private:
+  const PreparedMesh& Mesh; // owned by the prepared mesh, which owns this copy
+  const Bvh& MeshBvh;
   DeviceArena Arena;
   bool Winding = false;
 };
@@ -583,12 +674,17 @@ class CudaSession : public Session
 {
 public:
   CudaSession(const CudaMesh& mesh, const GridGeometry& grid, const MeshToSdfOptions& options, double toOut,
-    double band, MeshToSdfStats& stats)
+    double band, MeshToSdfStats& stats, std::function<void()> ensureWinding)
     : Options(options)
     , Mesh(mesh)
     , HasWinding(options.sign == SignMode::WindingNumber)
+    , EnsureWinding(std::move(ensureWinding))
+    , Stats(stats)
   {
-    require(!this->HasWinding || mesh.hasWinding(), "mesh to SDF: the device mesh has no winding structures");
+    require(!this->HasWinding || mesh.hasWinding() || this->EnsureWinding,
+      "mesh to SDF: the device mesh has no winding structures");
+    require(!(options.sign == SignMode::Normal || options.sign == SignMode::PseudoNormal) || mesh.hasNormals(),
+      "mesh to SDF: the device mesh has no triangle normals");
     this->Counters = this->Arena.alloc<unsigned long long>(2);
     for (int a = 0; a < 3; ++a)
     {
@@ -735,15 +831,25 @@ private:
     }
     const long long nx = box.hi[0] - box.lo[0] + 1;
     const long long rows = (box.hi[1] - box.lo[1] + 1) * (box.hi[2] - box.lo[2] + 1);
-    const long long threads = rows * ((nx + Run - 1) / Run);
+    const long long runs = (nx + Run - 1) / Run;
+    const long long tiles = ((runs + TileRuns - 1) / TileRuns) * ((box.hi[1] - box.lo[1] + TileRows) / TileRows) *
+      (box.hi[2] - box.lo[2] + 1);
+    const long long threads = tiles * 32;
     LVDIF_CUDA_CHECK(cudaEventRecord(this->DistanceDone.a));
     distanceKernel<<<static_cast<unsigned>((threads + 127) / 128), 128>>>(this->Mesh.Dbvh, P, this->Slab);
     LVDIF_CUDA_CHECK(cudaGetLastError());
     LVDIF_CUDA_CHECK(cudaEventRecord(this->DistanceDone.b));
+    if (this->HasWinding && !this->Mesh.hasWinding())
+    {
+      // built and uploaded on the host while the distance kernel runs
+      this->EnsureWinding();
+      require(this->Mesh.hasWinding(), "mesh to SDF: the device mesh has no winding structures");
+      this->Stats.devicePeakBytes = std::max(this->Stats.devicePeakBytes, this->Mesh.bytes() + this->Arena.bytes());
+    }
     LVDIF_CUDA_CHECK(cudaEventRecord(this->SignDone.a));
     if (this->HasWinding)
     {
-      signKernel<<<static_cast<unsigned>((rows + 63) / 64), 64>>>(this->Mesh.W, P, this->Slab, this->Counters,
+      signKernel<<<static_cast<unsigned>((rows + SignWarps - 1) / SignWarps), 32 * SignWarps>>>(this->Mesh.W, P, this->Slab, this->Counters,
         this->Counters + 1);
       LVDIF_CUDA_CHECK(cudaGetLastError());
     }
@@ -763,6 +869,8 @@ private:
   MeshToSdfOptions Options;
   const CudaMesh& Mesh;
   bool HasWinding;
+  std::function<void()> EnsureWinding;
+  MeshToSdfStats& Stats;
   bool Launched = false;
   DeviceArena Arena;
   Params P;
@@ -783,15 +891,18 @@ private:
 };
 } // namespace
 
-std::unique_ptr<DeviceMesh> uploadMesh(const PreparedMesh& mesh, const Bvh& bvh, const WindingSigner* winding)
+std::unique_ptr<DeviceMesh> uploadMesh(
+  const PreparedMesh& mesh, const Bvh& bvh, const WindingSigner* winding, bool normals)
 {
-  return std::make_unique<CudaMesh>(mesh, bvh, winding);
+  return std::make_unique<CudaMesh>(mesh, bvh, winding, normals);
 }
 
 std::unique_ptr<Session> openSession(const DeviceMesh& mesh, const GridGeometry& grid,
-  const MeshToSdfOptions& options, double toOut, double band, MeshToSdfStats& stats)
+  const MeshToSdfOptions& options, double toOut, double band, MeshToSdfStats& stats,
+  std::function<void()> ensureWinding)
 {
-  return std::make_unique<CudaSession>(static_cast<const CudaMesh&>(mesh), grid, options, toOut, band, stats);
+  return std::make_unique<CudaSession>(
+    static_cast<const CudaMesh&>(mesh), grid, options, toOut, band, stats, std::move(ensureWinding));
 }
 
 std::vector<std::uint16_t> encodeOnDevice(

@@ -74,6 +74,8 @@ public:
 
   const std::vector<Node>& nodes() const { return this->Nodes; }
   const std::vector<std::int32_t>& order() const { return this->Order; }
+  /// leaves()[i] = vertices and normal of triangle order()[i] (for the GPU).
+  const std::vector<LeafTri>& leaves() const { return this->Leaves; }
 
 private:
   struct BuildData
@@ -85,6 +87,7 @@ private:
   const std::vector<Tri>& Tris;
   std::vector<Node> Nodes;
   std::vector<std::int32_t> Order;
+  std::vector<LeafTri> Leaves;
 };
 
 /// The paper's "octree of overlapping chunks" (Sect. 3.1, spec 1.7): a uniform
@@ -170,16 +173,19 @@ struct MeshToSdfPrepared::Impl
   double prepareSeconds = 0;
   /// The winding-number structures, built on first use (seconds added).
   const sdfdetail::WindingSigner& windingSigner(double& seconds);
+  /// Whether the winding-number structures are built already.
+  bool hasWindingSigner();
   /// The mesh (and, when asked, the winding structures) on the GPU, uploaded
-  /// on first use and kept until the prepared mesh is destroyed.
-  const cudasdf::DeviceMesh& deviceMesh(bool winding, double& seconds);
+  /// on first use and kept until the prepared mesh is destroyed. The winding
+  /// part may be added later (once) to a copy uploaded without it: sessions
+  /// that do not use it never read it.
+  const cudasdf::DeviceMesh& deviceMesh(bool winding, bool normals, double& seconds);
   ~Impl();
 
 private:
   std::mutex Lock;
   std::unique_ptr<sdfdetail::WindingSigner> Winding;
-  std::unique_ptr<cudasdf::DeviceMesh> Device;        // first upload
-  std::unique_ptr<cudasdf::DeviceMesh> WindingDevice; // with the winding structures, if Device lacks them
+  std::unique_ptr<cudasdf::DeviceMesh> Device;
 };
 
 } // namespace lvdif
