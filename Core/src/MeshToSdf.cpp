@@ -228,7 +228,8 @@ std::unique_ptr<cudasdf::Session> openCuda(const MeshToSdfPrepared& prepared, co
   MeshToSdfPrepared::Impl& impl = prepared.impl();
   const bool winding = opts.sign == SignMode::WindingNumber;
   const bool normals = opts.sign == SignMode::Normal || opts.sign == SignMode::PseudoNormal;
-  const cudasdf::DeviceMesh& dm = impl.deviceMesh(winding && impl.hasWindingSigner(), normals, unused);
+  const bool built = impl.hasWindingSigner();
+  const cudasdf::DeviceMesh& dm = impl.deviceMesh(winding && built, normals, unused, winding && !built);
   std::function<void()> ensure;
   if (winding)
   {
@@ -635,7 +636,8 @@ bool MeshToSdfPrepared::Impl::hasWindingSigner()
   return this->Winding != nullptr;
 }
 
-const cudasdf::DeviceMesh& MeshToSdfPrepared::Impl::deviceMesh(bool winding, bool normals, double& seconds)
+const cudasdf::DeviceMesh& MeshToSdfPrepared::Impl::deviceMesh(
+  bool winding, bool normals, double& seconds, bool windingLater)
 {
   const WindingSigner* w = winding ? &this->windingSigner(seconds) : nullptr;
   // Sessions of other threads may use the copy: the winding part is only
@@ -644,7 +646,7 @@ const cudasdf::DeviceMesh& MeshToSdfPrepared::Impl::deviceMesh(bool winding, boo
   const double t0 = now();
   if (!this->Device)
   {
-    this->Device = cudasdf::uploadMesh(this->mesh, *this->bvh, w, normals);
+    this->Device = cudasdf::uploadMesh(this->mesh, *this->bvh, w, normals, windingLater);
   }
   else
   {

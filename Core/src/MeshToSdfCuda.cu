@@ -21,6 +21,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cstdlib>
 #include <cmath>
 #include <vector>
 
@@ -33,8 +34,8 @@ using namespace sdfdetail;
 
 namespace
 {
-constexpr int Run = 16;        // voxels per thread in the distance kernel
-constexpr int TileRuns = 4, TileRows = 8; // a warp of the distance kernel: 4 runs along x, 8 rows
+// distance kernel: a thread takes a run of voxels along x, a warp a tile of
+// runs x rows (see launchDistance for the shape in use)
 constexpr int SignWarps = 4;   // warps (scan lines) per block of the sign kernel
 constexpr unsigned FullMask = 0xffffffffu;
 constexpr int MaxHits = 96;    // crossings a scan line may hold (more: per-voxel fallback)
@@ -143,8 +144,10 @@ __device__ NearestResult nearestDev(const DevBvh& b, V3 p, int hintSlot, double 
   return best;
 }
 
-__global__ void distanceKernel(DevBvh bvh, Params P, float* out)
+template <int Run, int TileRuns, int MinBlocks>
+__global__ void __launch_bounds__(128, MinBlocks) distanceKernel(DevBvh bvh, Params P, float* out)
 {
+  constexpr int TileRows = 32 / TileRuns;
   const long long nx = P.hi[0] - P.lo[0] + 1, ny = P.hi[1] - P.lo[1] + 1, nz = P.hi[2] - P.lo[2] + 1;
   const long long runs = (nx + Run - 1) / Run;
   const long long tilesX = (runs + TileRuns - 1) / TileRuns, tilesY = (ny + TileRows - 1) / TileRows;
@@ -198,6 +201,40 @@ __global__ void distanceKernel(DevBvh bvh, Params P, float* out)
       }
     }
     rowOut[i] = s * static_cast<float>(d);
+  }
+}
+
+template <int Run, int TileRuns, int MinBlocks>
+void launchDistanceAs(const DevBvh& bvh, const Params& P, float* out)
+{
+  constexpr int TileRows = 32 / TileRuns;
+  const long long nx = P.hi[0] - P.lo[0] + 1, ny = P.hi[1] - P.lo[1] + 1, nz = P.hi[2] - P.lo[2] + 1;
+  const long long runs = (nx + Run - 1) / Run;
+  const long long tiles = ((runs + TileRuns - 1) / TileRuns) * ((ny + TileRows - 1) / TileRows) * nz;
+  distanceKernel<Run, TileRuns, MinBlocks><<<static_cast<unsigned>((tiles * 32 + 127) / 128), 128>>>(bvh, P, out);
+  LVDIF_CUDA_CHECK(cudaGetLastError());
+}
+
+/// Runs of 16 voxels, warps of 4 runs x 8 rows. LVDIF_SDF_DISTANCE_VARIANT
+/// (benchmarks only; every variant computes the same values) picks another
+/// shape: 1 = at most 64 registers, 2 = 2 x 16, 3 = runs of 8, 4 = 8 x 4,
+/// 5 = at most 80 registers, 6 = runs of 32, 7 = 1 x 32.
+void launchDistance(const DevBvh& bvh, const Params& P, float* out)
+{
+  static const int variant = [] {
+    const char* v = std::getenv("LVDIF_SDF_DISTANCE_VARIANT");
+    return v ? std::atoi(v) : 0;
+  }();
+  switch (variant)
+  {
+    case 1: return launchDistanceAs<16, 4, 8>(bvh, P, out);
+    case 2: return launchDistanceAs<16, 2, 1>(bvh, P, out);
+    case 3: return launchDistanceAs<8, 4, 1>(bvh, P, out);
+    case 4: return launchDistanceAs<16, 8, 1>(bvh, P, out);
+    case 5: return launchDistanceAs<16, 4, 6>(bvh, P, out);
+    case 6: return launchDistanceAs<32, 4, 1>(bvh, P, out);
+    case 7: return launchDistanceAs<16, 1, 1>(bvh, P, out);
+    default: return launchDistanceAs<16, 4, 1>(bvh, P, out);
   }
 }
 
@@ -338,14 +375,14 @@ __device__ bool insideOf(double w) { return fabs(w) >= 0.5; }
 __device__ bool decidedDev(double lo, double hi) { return !(lo < 0.5 && hi >= 0.5) && !(lo <= -0.5 && hi > -0.5); }
 
 /// WindingSigner::signRow, one warp per scan line (see the file comment).
-__global__ void signKernel(WindingDev W, Params P, float* out, unsigned long long* evals,
-  unsigned long long* fallbacks)
+__global__ void signKernel(WindingDev W, Params P, long long rowBegin, long long rowEnd, float* out,
+  unsigned long long* evals, unsigned long long* fallbacks)
 {
   __shared__ Hit sharedHits[SignWarps][MaxHits];
-  const long long nx = P.hi[0] - P.lo[0] + 1, ny = P.hi[1] - P.lo[1] + 1, nz = P.hi[2] - P.lo[2] + 1;
+  const long long nx = P.hi[0] - P.lo[0] + 1, ny = P.hi[1] - P.lo[1] + 1;
   const int lane = static_cast<int>(threadIdx.x % 32), warp = static_cast<int>(threadIdx.x / 32);
-  const long long row = static_cast<long long>(blockIdx.x) * SignWarps + warp;
-  if (row >= ny * nz) return; // the whole warp
+  const long long row = rowBegin + static_cast<long long>(blockIdx.x) * SignWarps + warp;
+  if (row >= rowEnd) return; // the whole warp
   const long long j = P.lo[1] + row % ny, k = P.lo[2] + row / ny;
   float* rowOut = out + row * nx;
   const double h = P.spacing[0];
@@ -466,6 +503,19 @@ public:
     if (!v.empty()) LVDIF_CUDA_CHECK(cudaMemcpy(d, v.data(), v.size() * sizeof(T), cudaMemcpyHostToDevice));
     return d;
   }
+  /// Copies v into `into` (capacity `cap` elements) or, if it does not fit, a
+  /// new buffer, on a non-blocking stream: never waits for running kernels.
+  template <typename T>
+  T* uploadOn(cudaStream_t stream, const std::vector<T>& v, T* into = nullptr, std::size_t cap = 0)
+  {
+    T* d = into && v.size() <= cap ? into : this->alloc<T>(v.size());
+    if (!v.empty())
+    {
+      LVDIF_CUDA_CHECK(cudaMemcpyAsync(d, v.data(), v.size() * sizeof(T), cudaMemcpyHostToDevice, stream));
+      LVDIF_CUDA_CHECK(cudaStreamSynchronize(stream)); // v may be freed after return
+    }
+    return d;
+  }
   template <typename T>
   T* alloc(std::size_t n)
   {
@@ -531,49 +581,77 @@ std::vector<GpuTri> compactTris(const std::vector<Tri>& tris)
   return out;
 }
 
-/// The BVH's nodes, order and leaf-ordered compact triangles.
-DevBvh uploadBvh(DeviceArena& arena, const Bvh& b)
+/// The BVH's nodes, order and leaf-ordered compact triangles (into the
+/// reserved buffers of `into` where they fit).
+DevBvh uploadBvh(DeviceArena& arena, cudaStream_t stream, const Bvh& b, const DevBvh& into = DevBvh(),
+  std::size_t cap = 0)
 {
   DevBvh d;
-  d.leaf = arena.upload(b.leaves());
-  d.nodes = arena.upload(convertNodes(b));
-  d.order = arena.upload(b.order());
+  d.leaf = arena.uploadOn(stream, b.leaves(), const_cast<GpuTri*>(into.leaf), cap);
+  d.nodes = arena.uploadOn(stream, convertNodes(b), const_cast<GpuNode*>(into.nodes), 2 * cap);
+  d.order = arena.uploadOn(stream, b.order(), const_cast<int*>(into.order), cap);
   return d;
 }
+
+/// A non-blocking CUDA stream (no implicit ordering with the legacy stream).
+struct Stream
+{
+  cudaStream_t s = nullptr;
+  Stream() { LVDIF_CUDA_CHECK(cudaStreamCreateWithFlags(&this->s, cudaStreamNonBlocking)); }
+  ~Stream() { cudaStreamDestroy(this->s); }
+  Stream(const Stream&) = delete;
+  Stream& operator=(const Stream&) = delete;
+};
 
 class CudaMesh : public DeviceMesh
 {
 public:
-  CudaMesh(const PreparedMesh& mesh, const Bvh& bvh, const WindingSigner* winding, bool normals)
+  /// windingLater: reserve (allocate now) the buffers of the winding
+  /// structures, so that addWinding only copies (a cudaMalloc could wait for
+  /// the distance kernel it is meant to overlap). Their sizes are bounded by
+  /// the mesh: closed chain <= triangles + boundary edges, nodes <= 2 x that.
+  CudaMesh(const PreparedMesh& mesh, const Bvh& bvh, const WindingSigner* winding, bool normals, bool windingLater)
     : Mesh(mesh)
     , MeshBvh(bvh)
   {
-    this->Dbvh = uploadBvh(this->Arena, bvh);
+    this->Dbvh = uploadBvh(this->Arena, this->Upload.s, bvh);
     if (normals) this->addNormals();
-    if (winding) this->addWinding(*winding);
+    if (winding)
+    {
+      this->addWinding(*winding);
+    }
+    else if (windingLater)
+    {
+      this->ClosedCap = mesh.tris.size() + mesh.boundary.size();
+      this->EdgeCap = mesh.boundary.size();
+      this->Reserved.leaf = this->Arena.alloc<GpuTri>(this->ClosedCap);
+      this->Reserved.nodes = this->Arena.alloc<GpuNode>(2 * this->ClosedCap);
+      this->Reserved.order = this->Arena.alloc<int>(this->ClosedCap);
+      this->ReservedSlot = this->Arena.alloc<int>(mesh.tris.size());
+      this->ReservedCone = this->Arena.alloc<GpuTri>(this->EdgeCap);
+      this->ReservedClusters = this->Arena.alloc<WindingSigner::Cluster>(this->EdgeCap);
+    }
     LVDIF_CUDA_CHECK(cudaDeviceSynchronize());
   }
   bool hasNormals() const override { return this->Dbvh.tris != nullptr; }
   void addNormals() override
   {
-    if (!this->Dbvh.tris) this->Dbvh.tris = this->Arena.upload(this->Mesh.tris);
+    if (!this->Dbvh.tris) this->Dbvh.tris = this->Arena.uploadOn(this->Upload.s, this->Mesh.tris);
   }
-  void addWinding(const WindingSigner& signer) override
+  void addWinding(const WindingSigner& winding) override
   {
-    const WindingSigner* winding = &signer;
-    if (!this->Winding)
-    {
-      this->W.closed = uploadBvh(this->Arena, winding->closedBvh());
-      this->W.meshTris = static_cast<int>(winding->meshTriangles());
-      this->W.meshLeaf = this->Dbvh.leaf;
-      std::vector<int> slot(this->MeshBvh.order().size());
-      for (std::size_t i = 0; i < slot.size(); ++i) slot[static_cast<std::size_t>(this->MeshBvh.order()[i])] = static_cast<int>(i);
-      this->W.meshSlot = this->Arena.upload(slot);
-      this->W.cone = this->Arena.upload(compactTris(winding->cone()));
-      this->W.coneCount = static_cast<int>(winding->cone().size());
-      this->W.clusters = this->Arena.upload(winding->clusters());
-      this->W.clusterCount = static_cast<int>(winding->clusters().size());
-    }
+    if (this->Winding) return;
+    const cudaStream_t st = this->Upload.s;
+    this->W.closed = uploadBvh(this->Arena, st, winding.closedBvh(), this->Reserved, this->ClosedCap);
+    this->W.meshTris = static_cast<int>(winding.meshTriangles());
+    this->W.meshLeaf = this->Dbvh.leaf;
+    std::vector<int> slot(this->MeshBvh.order().size());
+    for (std::size_t i = 0; i < slot.size(); ++i) slot[static_cast<std::size_t>(this->MeshBvh.order()[i])] = static_cast<int>(i);
+    this->W.meshSlot = this->Arena.uploadOn(st, slot, this->ReservedSlot, this->ReservedSlot ? slot.size() : 0);
+    this->W.cone = this->Arena.uploadOn(st, compactTris(winding.cone()), this->ReservedCone, this->EdgeCap);
+    this->W.coneCount = static_cast<int>(winding.cone().size());
+    this->W.clusters = this->Arena.uploadOn(st, winding.clusters(), this->ReservedClusters, this->EdgeCap);
+    this->W.clusterCount = static_cast<int>(winding.clusters().size());
     this->Winding = true;
   }
   bool hasWinding() const override { return this->Winding; }
@@ -585,7 +663,13 @@ private:
   const PreparedMesh& Mesh; // owned by the prepared mesh, which owns this copy
   const Bvh& MeshBvh;
   DeviceArena Arena;
+  Stream Upload;
   bool Winding = false;
+  DevBvh Reserved; // windingLater buffers
+  std::size_t ClosedCap = 0, EdgeCap = 0;
+  int* ReservedSlot = nullptr;
+  GpuTri* ReservedCone = nullptr;
+  WindingSigner::Cluster* ReservedClusters = nullptr;
 };
 
 /// One thread block per chunk of the slab: encodes every voxel (the host's
@@ -670,6 +754,22 @@ struct EventTimer
   }
 };
 
+/// Events without timing, one per part of the sign pass.
+struct PartEvents
+{
+  static constexpr int Max = 4;
+  cudaEvent_t e[Max] = {};
+  PartEvents()
+  {
+    for (cudaEvent_t& x : this->e) LVDIF_CUDA_CHECK(cudaEventCreateWithFlags(&x, cudaEventDisableTiming));
+  }
+  ~PartEvents()
+  {
+    for (cudaEvent_t x : this->e) cudaEventDestroy(x);
+  }
+  cudaEvent_t operator[](int i) const { return this->e[i]; }
+};
+
 class CudaSession : public Session
 {
 public:
@@ -723,14 +823,24 @@ public:
       VoxelBox slab = extent;
       slab.lo[2] = z0;
       slab.hi[2] = z1;
-      this->launchSlab(slab);
+      const long long rows = ny * (z1 - z0 + 1);
+      // the sign pass in parts: part p is copied back while part p + 1 runs
+      const int parts = this->HasWinding && rows >= 4 * 4096 ? 4 : 1;
+      this->launchSlab(slab, parts);
+      float* slabOut = out + (z0 - extent.lo[2]) * nx * ny;
+      for (int p = 0; p < parts; ++p)
+      {
+        const long long r0 = rows * p / parts, r1 = rows * (p + 1) / parts;
+        LVDIF_CUDA_CHECK(cudaEventSynchronize(this->PartDone[p]));
+        const double t0 = now();
+        LVDIF_CUDA_CHECK(cudaMemcpyAsync(slabOut + r0 * nx, this->Slab + r0 * nx,
+          static_cast<std::size_t>((r1 - r0) * nx) * sizeof(float), cudaMemcpyDeviceToHost, this->Copy.s));
+        LVDIF_CUDA_CHECK(cudaStreamSynchronize(this->Copy.s));
+        stats.writeSeconds += now() - t0;
+      }
       LVDIF_CUDA_CHECK(cudaEventSynchronize(this->SignDone.b));
       stats.distanceSeconds += this->DistanceDone.seconds();
       if (this->HasWinding) stats.signSeconds += this->SignDone.seconds();
-      const double t0 = now();
-      LVDIF_CUDA_CHECK(cudaMemcpy(out + (z0 - extent.lo[2]) * nx * ny, this->Slab,
-        static_cast<std::size_t>((z1 - z0 + 1) * ny * nx) * sizeof(float), cudaMemcpyDeviceToHost));
-      stats.writeSeconds += now() - t0;
       interrupter.progress(static_cast<double>(z1 - extent.lo[2] + 1) / static_cast<double>(nz));
     }
     this->readCounters(stats);
@@ -821,7 +931,10 @@ private:
   }
 
   /// Queues the distance and sign kernels of one slab (box layout in Slab).
-  void launchSlab(const VoxelBox& box)
+  /// parts: the sign kernel in that many launches over consecutive rows,
+  /// PartDone[p] recorded after launch p (after the distance kernel when
+  /// there is no sign pass).
+  void launchSlab(const VoxelBox& box, int parts = 1)
   {
     Params P = this->P;
     for (int a = 0; a < 3; ++a)
@@ -829,15 +942,9 @@ private:
       P.lo[a] = box.lo[a];
       P.hi[a] = box.hi[a];
     }
-    const long long nx = box.hi[0] - box.lo[0] + 1;
     const long long rows = (box.hi[1] - box.lo[1] + 1) * (box.hi[2] - box.lo[2] + 1);
-    const long long runs = (nx + Run - 1) / Run;
-    const long long tiles = ((runs + TileRuns - 1) / TileRuns) * ((box.hi[1] - box.lo[1] + TileRows) / TileRows) *
-      (box.hi[2] - box.lo[2] + 1);
-    const long long threads = tiles * 32;
     LVDIF_CUDA_CHECK(cudaEventRecord(this->DistanceDone.a));
-    distanceKernel<<<static_cast<unsigned>((threads + 127) / 128), 128>>>(this->Mesh.Dbvh, P, this->Slab);
-    LVDIF_CUDA_CHECK(cudaGetLastError());
+    launchDistance(this->Mesh.Dbvh, P, this->Slab);
     LVDIF_CUDA_CHECK(cudaEventRecord(this->DistanceDone.b));
     if (this->HasWinding && !this->Mesh.hasWinding())
     {
@@ -847,11 +954,16 @@ private:
       this->Stats.devicePeakBytes = std::max(this->Stats.devicePeakBytes, this->Mesh.bytes() + this->Arena.bytes());
     }
     LVDIF_CUDA_CHECK(cudaEventRecord(this->SignDone.a));
-    if (this->HasWinding)
+    for (int p = 0; p < parts; ++p)
     {
-      signKernel<<<static_cast<unsigned>((rows + SignWarps - 1) / SignWarps), 32 * SignWarps>>>(this->Mesh.W, P, this->Slab, this->Counters,
-        this->Counters + 1);
-      LVDIF_CUDA_CHECK(cudaGetLastError());
+      if (this->HasWinding)
+      {
+        const long long r0 = rows * p / parts, r1 = rows * (p + 1) / parts;
+        signKernel<<<static_cast<unsigned>((r1 - r0 + SignWarps - 1) / SignWarps), 32 * SignWarps>>>(
+          this->Mesh.W, P, r0, r1, this->Slab, this->Counters, this->Counters + 1);
+        LVDIF_CUDA_CHECK(cudaGetLastError());
+      }
+      LVDIF_CUDA_CHECK(cudaEventRecord(this->PartDone[p]));
     }
     LVDIF_CUDA_CHECK(cudaEventRecord(this->SignDone.b));
     this->Launched = true;
@@ -875,6 +987,8 @@ private:
   DeviceArena Arena;
   Params P;
   EventTimer DistanceDone, SignDone;
+  PartEvents PartDone;
+  Stream Copy; // device -> host copies, beside the kernels of the legacy stream
   unsigned long long* Counters = nullptr;
   float* Slab = nullptr;
   std::size_t SlabCapacity = 0;
@@ -892,9 +1006,9 @@ private:
 } // namespace
 
 std::unique_ptr<DeviceMesh> uploadMesh(
-  const PreparedMesh& mesh, const Bvh& bvh, const WindingSigner* winding, bool normals)
+  const PreparedMesh& mesh, const Bvh& bvh, const WindingSigner* winding, bool normals, bool windingLater)
 {
-  return std::make_unique<CudaMesh>(mesh, bvh, winding, normals);
+  return std::make_unique<CudaMesh>(mesh, bvh, winding, normals, windingLater);
 }
 
 std::unique_ptr<Session> openSession(const DeviceMesh& mesh, const GridGeometry& grid,

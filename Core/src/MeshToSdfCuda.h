@@ -32,8 +32,9 @@ public:
   virtual void addNormals() = 0;
 };
 
+/// windingLater (winding null): reserve device memory for an addWinding to come.
 std::unique_ptr<DeviceMesh> uploadMesh(const sdfdetail::PreparedMesh& mesh, const sdfdetail::Bvh& bvh,
-  const sdfdetail::WindingSigner* winding, bool normals);
+  const sdfdetail::WindingSigner* winding, bool normals, bool windingLater);
 
 /// The keys of one group of chunk layers, encoded on the GPU.
 struct ChunkKeys

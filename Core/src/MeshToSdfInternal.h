@@ -179,7 +179,8 @@ struct MeshToSdfPrepared::Impl
   /// on first use and kept until the prepared mesh is destroyed. The winding
   /// part may be added later (once) to a copy uploaded without it: sessions
   /// that do not use it never read it.
-  const cudasdf::DeviceMesh& deviceMesh(bool winding, bool normals, double& seconds);
+  /// windingLater: the winding part will be added soon (its memory is reserved now).
+  const cudasdf::DeviceMesh& deviceMesh(bool winding, bool normals, double& seconds, bool windingLater = false);
   ~Impl();
 
 private:

@@ -122,15 +122,17 @@ TEST(MeshToSdfCuda, ClosedAndIntersectingMeshesAndSubExtent)
 
 TEST(MeshToSdfCuda, AmbiguousScanLinesMatchCpu)
 {
-  // An open cube on grid planes: scan lines lying in its faces or through
-  // its edges are ambiguous, so the warp-cooperative per-voxel fallback of
-  // the sign kernel runs (and must give the CPU's signs).
+  // An open box with its side and bottom faces on grid planes: scan lines
+  // lying in those faces or through their edges are ambiguous, so the
+  // warp-cooperative per-voxel fallback of the sign kernel runs (and must
+  // give the CPU's signs). The open top is off the grid planes: in the plane
+  // of a hole the winding number is exactly 1/2, a knife edge for any sign.
   if (!cuda::available()) GTEST_SKIP() << "no CUDA device";
   TriangleMesh m;
-  m.points = { { -1, -1, -1 }, { 1, -1, -1 }, { 1, 1, -1 }, { -1, 1, -1 }, { -1, -1, 1 }, { 1, -1, 1 }, { 1, 1, 1 },
-    { -1, 1, 1 } };
+  m.points = { { -1, -1, -1 }, { 1, -1, -1 }, { 1, 1, -1 }, { -1, 1, -1 }, { -1, -1, 1.1f }, { 1, -1, 1.1f },
+    { 1, 1, 1.1f }, { -1, 1, 1.1f } };
   m.triangles = { { 0, 2, 1 }, { 0, 3, 2 }, { 0, 1, 5 }, { 0, 5, 4 }, { 1, 2, 6 }, { 1, 6, 5 }, { 2, 3, 7 },
-    { 2, 7, 6 }, { 3, 0, 4 }, { 3, 4, 7 } }; // the top (z = 1) is left open
+    { 2, 7, 6 }, { 3, 0, 4 }, { 3, 4, 7 } }; // the top (z = 1.1) is left open
   GridGeometry g;
   g.dims = { 17, 17, 17 };
   g.origin = { -2, -2, -2 };
@@ -142,7 +144,7 @@ TEST(MeshToSdfCuda, AmbiguousScanLinesMatchCpu)
   for (float band : { 3.0f, std::numeric_limits<float>::infinity() })
   {
     o.bandWidth = band;
-    compare(m, g, all, o, "open cube on grid planes, band " + std::to_string(band));
+    compare(m, g, all, o, "open box on grid planes, band " + std::to_string(band));
     std::vector<float> gpu(static_cast<std::size_t>(g.count()));
     o.device = Device::Cuda;
     const MeshToSdfStats st = meshToSdf(m, FloatGridView{ gpu.data(), g }, o);

@@ -7,7 +7,7 @@ namespace lvdif
 namespace cudasdf
 {
 std::unique_ptr<DeviceMesh> uploadMesh(
-  const sdfdetail::PreparedMesh&, const sdfdetail::Bvh&, const sdfdetail::WindingSigner*, bool)
+  const sdfdetail::PreparedMesh&, const sdfdetail::Bvh&, const sdfdetail::WindingSigner*, bool, bool)
 {
   throw Error(ErrorCode::Unsupported, "mesh to SDF: this build has no CUDA");
 }
