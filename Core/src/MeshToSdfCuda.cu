@@ -4,7 +4,8 @@
 // bounded (the slab buffer is at most 256 MiB, plus the mesh and BVHs).
 // Kernel 1: one thread per run of 16 voxels along x (nearest triangle on the
 // BVH, warm-started, far voxels skipped by the Lipschitz bound); a warp takes
-// a tile of 4 runs x 8 rows so its queries follow similar BVH paths.
+// the same run in 32 neighbouring rows so its queries follow similar BVH
+// paths (consecutive runs of one row, as before, diverge more).
 // Kernel 2 (WindingNumber): one warp per scan line: lane 0 casts the ray
 // (crossings of the closed chain) into shared memory, the lanes compute the
 // drift bounds of 32 voxels at a time, every lane walks the carried interval
@@ -215,10 +216,11 @@ void launchDistanceAs(const DevBvh& bvh, const Params& P, float* out)
   LVDIF_CUDA_CHECK(cudaGetLastError());
 }
 
-/// Runs of 16 voxels, warps of 4 runs x 8 rows. LVDIF_SDF_DISTANCE_VARIANT
-/// (benchmarks only; every variant computes the same values) picks another
-/// shape: 1 = at most 64 registers, 2 = 2 x 16, 3 = runs of 8, 4 = 8 x 4,
-/// 5 = at most 80 registers, 6 = runs of 32, 7 = 1 x 32.
+/// Runs of 16 voxels along x, a warp = one run in each of 32 neighbouring
+/// rows (y): the fastest shape measured on the H200 (docs/BENCHMARKS.md).
+/// LVDIF_SDF_DISTANCE_VARIANT (benchmarks only; every shape computes the
+/// same values, the tests run them all) picks another: 1 = the same with at
+/// most 64 registers, 2 = at most 80 registers, 3 = warps of 4 runs x 8 rows.
 void launchDistance(const DevBvh& bvh, const Params& P, float* out)
 {
   static const int variant = [] {
@@ -227,14 +229,10 @@ void launchDistance(const DevBvh& bvh, const Params& P, float* out)
   }();
   switch (variant)
   {
-    case 1: return launchDistanceAs<16, 4, 8>(bvh, P, out);
-    case 2: return launchDistanceAs<16, 2, 1>(bvh, P, out);
-    case 3: return launchDistanceAs<8, 4, 1>(bvh, P, out);
-    case 4: return launchDistanceAs<16, 8, 1>(bvh, P, out);
-    case 5: return launchDistanceAs<16, 4, 6>(bvh, P, out);
-    case 6: return launchDistanceAs<32, 4, 1>(bvh, P, out);
-    case 7: return launchDistanceAs<16, 1, 1>(bvh, P, out);
-    default: return launchDistanceAs<16, 4, 1>(bvh, P, out);
+    case 1: return launchDistanceAs<16, 1, 8>(bvh, P, out);
+    case 2: return launchDistanceAs<16, 1, 6>(bvh, P, out);
+    case 3: return launchDistanceAs<16, 4, 1>(bvh, P, out);
+    default: return launchDistanceAs<16, 1, 1>(bvh, P, out);
   }
 }
 

@@ -80,10 +80,15 @@ public:
 private:
   struct BuildData
   {
-    std::vector<std::array<double, 6>> box;      // per triangle: lo, hi
-    std::vector<std::array<double, 3>> centroid; // per triangle: sum of the vertices
+    std::vector<std::array<double, 6>> box; // per triangle: lo, hi
+    struct Ref
+    {
+      double c[3];      // sum of the vertices (3x the centroid: only compared)
+      std::int32_t tri; // triangle index
+    };
+    std::vector<Ref> ref; // permuted in place by the build; becomes Order
   };
-  void build(const BuildData& d, std::int32_t id, std::int32_t first, std::int32_t count, int depth);
+  void build(BuildData& d, std::int32_t id, std::int32_t first, std::int32_t count, int depth);
   const std::vector<Tri>& Tris;
   std::vector<Node> Nodes;
   std::vector<std::int32_t> Order;
