@@ -15,6 +15,7 @@
 #include "lvdif/Memory.h"
 
 #include <algorithm>
+#include <atomic>
 #include <chrono>
 #include <cstdlib>
 #include <cmath>
@@ -87,12 +88,12 @@ public:
       return;
     }
   }
-  std::uint64_t bytes() const { return this->Bytes; }
+  std::uint64_t bytes() const { return this->Bytes.load(); }
 
 private:
   std::vector<void*> Ptrs;
   std::vector<std::uint64_t> Sizes;
-  std::uint64_t Bytes = 0;
+  std::atomic<std::uint64_t> Bytes{ 0 }; // read by sessions of other threads (statistics)
 };
 
 std::vector<GpuNode> convertNodes(const Bvh& b)
@@ -179,14 +180,26 @@ public:
     }
     LVDIF_CUDA_CHECK(cudaDeviceSynchronize());
   }
-  bool hasNormals() const override { return this->Dbvh.tris != nullptr; }
+  // addNormals/addWinding run under the prepared mesh's lock while sessions
+  // of other threads may be launching kernels: the parts they add are
+  // published by release stores, and a session reads them only after an
+  // acquire load saw them (or after taking that lock itself).
+  bool hasNormals() const override { return this->Full.load(std::memory_order_acquire) != nullptr; }
   void addNormals() override
   {
-    if (!this->Dbvh.tris) this->Dbvh.tris = this->Arena.uploadOn(this->Upload.s, this->Mesh.tris);
+    if (!this->hasNormals())
+      this->Full.store(this->Arena.uploadOn(this->Upload.s, this->Mesh.tris), std::memory_order_release);
+  }
+  /// The mesh BVH as the distance kernel takes it (full records if uploaded).
+  DevBvh meshBvh() const
+  {
+    DevBvh b = this->Dbvh;
+    b.tris = this->Full.load(std::memory_order_acquire);
+    return b;
   }
   void addWinding(const WindingSigner& winding) override
   {
-    if (this->Winding) return;
+    if (this->hasWinding()) return;
     const cudaStream_t st = this->Upload.s;
     this->W.closed = uploadBvh(this->Arena, st, winding.closedBvh(), this->Reserved, this->ClosedCap);
     this->W.meshTris = static_cast<int>(winding.meshTriangles());
@@ -198,19 +211,20 @@ public:
     this->W.coneCount = static_cast<int>(winding.cone().size());
     this->W.clusters = this->Arena.uploadOn(st, winding.clusters(), this->ReservedClusters, this->EdgeCap);
     this->W.clusterCount = static_cast<int>(winding.clusters().size());
-    this->Winding = true;
+    this->Winding.store(true, std::memory_order_release);
   }
-  bool hasWinding() const override { return this->Winding; }
+  bool hasWinding() const override { return this->Winding.load(std::memory_order_acquire); }
   std::uint64_t bytes() const override { return this->Arena.bytes(); }
-  DevBvh Dbvh;
-  WindingDev W;
+  DevBvh Dbvh;  // immutable once constructed (tris: see meshBvh)
+  WindingDev W; // written once by addWinding, before Winding is set
 
 private:
   const PreparedMesh& Mesh; // owned by the prepared mesh, which owns this copy
   const Bvh& MeshBvh;
   DeviceArena Arena;
   Stream Upload;
-  bool Winding = false;
+  std::atomic<bool> Winding{ false };
+  std::atomic<const Tri*> Full{ nullptr }; // the full triangle records (Normal/PseudoNormal)
   DevBvh Reserved; // windingLater buffers
   std::size_t ClosedCap = 0, EdgeCap = 0;
   int* ReservedSlot = nullptr;
@@ -430,7 +444,7 @@ private:
     }
     const long long rows = (box.hi[1] - box.lo[1] + 1) * (box.hi[2] - box.lo[2] + 1);
     LVDIF_CUDA_CHECK(cudaEventRecord(this->DistanceDone.a));
-    launchDistance(this->Mesh.Dbvh, P, this->Slab);
+    launchDistance(this->Mesh.meshBvh(), P, this->Slab);
     LVDIF_CUDA_CHECK(cudaEventRecord(this->DistanceDone.b));
     if (this->HasWinding && !this->Mesh.hasWinding())
     {
