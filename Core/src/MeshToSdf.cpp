@@ -10,10 +10,13 @@
 #include <omp.h>
 
 #include <algorithm>
+#include <cstdio>
+#include <cstdlib>
 #include <atomic>
 #include <chrono>
 #include <cmath>
 #include <exception>
+#include <functional>
 #include <memory>
 #include <sstream>
 #include <utility>
@@ -28,6 +31,21 @@ namespace
 double now()
 {
   return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count();
+}
+
+/// LVDIF_MESH_TO_SDF_TRACE=1: host phase times on stderr (benchmarks).
+bool traceOn()
+{
+  static const bool on = [] {
+    const char* v = std::getenv("LVDIF_MESH_TO_SDF_TRACE");
+    return v != nullptr && v[0] == '1';
+  }();
+  return on;
+}
+
+void trace(const char* what, double seconds)
+{
+  if (traceOn()) std::fprintf(stderr, "[mesh to SDF] %s: %.2f ms\n", what, seconds * 1e3);
 }
 
 void validateGrid(const GridGeometry& g)
@@ -155,8 +173,10 @@ struct Engine
   }
 };
 
+/// On CUDA the winding structures are left to openCuda, which builds them
+/// (if not prepared yet) while the GPU computes distances.
 std::unique_ptr<Engine> makeEngine(const MeshToSdfPrepared& prepared, const GridGeometry& geom,
-  const MeshToSdfOptions& opts, float band, MeshToSdfStats& stats)
+  const MeshToSdfOptions& opts, float band, Device device, MeshToSdfStats& stats)
 {
   validateGrid(geom);
   require(opts.faithfulCellsPerAxis >= 1 && opts.faithfulCellsPerAxis <= 256,
@@ -176,7 +196,7 @@ std::unique_ptr<Engine> makeEngine(const MeshToSdfPrepared& prepared, const Grid
   const double bw = static_cast<double>(band) / e->toOut;
   e->bandWorld2 = std::isfinite(bw) ? bw * bw * (1 + 1e-9) : 1e300;
   double lazy = 0; // only what this call had to build (timed inside)
-  if (opts.sign == SignMode::WindingNumber)
+  if (opts.sign == SignMode::WindingNumber && device == Device::Cpu)
   {
     e->winding = &impl.windingSigner(lazy);
   }
@@ -196,15 +216,34 @@ std::unique_ptr<Engine> makeEngine(const MeshToSdfPrepared& prepared, const Grid
 }
 
 /// The CUDA session of a call, on the prepared mesh's device copy (uploaded
-/// on first use; the upload counts as build time).
+/// on first use; the upload counts as build time). Winding structures not
+/// built yet (the one-call API) are built and uploaded by the session right
+/// after it queues the first distance kernel, overlapping it; that host time
+/// is added to the build time too.
 std::unique_ptr<cudasdf::Session> openCuda(const MeshToSdfPrepared& prepared, const Engine& e,
   const MeshToSdfOptions& opts, MeshToSdfStats& stats)
 {
   const double t0 = now();
   double unused = 0;
-  const cudasdf::DeviceMesh& dm = prepared.impl().deviceMesh(opts.sign == SignMode::WindingNumber, unused);
-  auto session = cudasdf::openSession(dm, e.geom, opts, e.toOut, e.band, stats);
+  MeshToSdfPrepared::Impl& impl = prepared.impl();
+  const bool winding = opts.sign == SignMode::WindingNumber;
+  const bool normals = opts.sign == SignMode::Normal || opts.sign == SignMode::PseudoNormal;
+  const bool built = impl.hasWindingSigner();
+  const cudasdf::DeviceMesh& dm = impl.deviceMesh(winding && built, normals, unused, winding && !built);
+  std::function<void()> ensure;
+  if (winding)
+  {
+    ensure = [&impl, &stats]() {
+      const double t1 = now();
+      double s = 0;
+      impl.deviceMesh(true, false, s);
+      stats.buildSeconds += now() - t1;
+      trace("winding structures built and uploaded, overlapping the distance kernel", now() - t1);
+    };
+  }
+  auto session = cudasdf::openSession(dm, e.geom, opts, e.toOut, e.band, stats, std::move(ensure));
   stats.buildSeconds += now() - t0;
+  trace("upload and session", now() - t0);
   return session;
 }
 
@@ -450,8 +489,8 @@ MeshToSdfStats meshToSdf(const MeshToSdfPrepared& mesh, const GridGeometry& grid
   }
   MeshToSdfStats stats;
   interrupter.start("mesh to SDF");
-  auto engine = makeEngine(mesh, grid, options, options.bandWidth, stats);
   stats.device = resolveDevice(options.device);
+  auto engine = makeEngine(mesh, grid, options, options.bandWidth, stats.device, stats);
   if (stats.device == Device::Cuda)
   {
     openCuda(mesh, *engine, options, stats)->compute(extent, out, stats, interrupter);
@@ -496,8 +535,8 @@ MeshToSdfStats meshToSdf(const MeshToSdfPrepared& mesh, DictionaryVolume& volume
   opts.unit = DistanceUnit::Voxel;
   MeshToSdfStats stats;
   interrupter.start("mesh to SDF");
-  auto engine = makeEngine(mesh, grid, opts, volume.bandWidth(), stats);
   stats.device = resolveDevice(options.device);
+  auto engine = makeEngine(mesh, grid, opts, volume.bandWidth(), stats.device, stats);
   if (stats.device == Device::Cuda)
   {
     volumeOnCuda(*openCuda(mesh, *engine, opts, stats), volume, opts, stats, interrupter);
@@ -518,12 +557,31 @@ MeshToSdfStats meshToSdf(const MeshToSdfPrepared& mesh, DictionaryVolume& volume
   return stats;
 }
 
+/// prepareMeshToSdf; the winding structures only when `winding` (otherwise
+/// built on first use: on CUDA while the GPU computes distances).
+static MeshToSdfPrepared prepareInternal(const TriangleMesh& mesh, bool winding)
+{
+  const double t0 = now();
+  auto impl = std::make_shared<MeshToSdfPrepared::Impl>();
+  impl->mesh = prepareMesh(mesh);
+  const double t1 = now();
+  impl->bvh = std::make_unique<Bvh>(impl->mesh.tris);
+  const double t2 = now();
+  double unused = 0;
+  if (winding) impl->windingSigner(unused);
+  impl->prepareSeconds = now() - t0;
+  trace("prepareMesh", t1 - t0);
+  trace("mesh BVH", t2 - t1);
+  if (winding) trace("winding structures", now() - t2);
+  return MeshToSdfPrepared(std::move(impl));
+}
+
 /// The one-call API: prepare, then the prepared call (preparation counts as build time).
 template <typename Out>
 MeshToSdfStats prepareAndRun(const TriangleMesh& mesh, Out&& out, const MeshToSdfOptions& options,
   Interrupter& interrupter)
 {
-  const MeshToSdfPrepared prepared = prepareMeshToSdf(mesh, options.sign);
+  const MeshToSdfPrepared prepared = prepareInternal(mesh, false);
   MeshToSdfStats stats = meshToSdf(prepared, std::forward<Out>(out), options, interrupter);
   stats.buildSeconds += prepared.prepareSeconds();
   return stats;
@@ -532,7 +590,7 @@ MeshToSdfStats prepareAndRun(const TriangleMesh& mesh, Out&& out, const MeshToSd
 MeshToSdfStats meshToSdf(const TriangleMesh& mesh, const GridGeometry& grid, const VoxelBox& extent, float* out,
   const MeshToSdfOptions& options, Interrupter& interrupter)
 {
-  const MeshToSdfPrepared prepared = prepareMeshToSdf(mesh, options.sign);
+  const MeshToSdfPrepared prepared = prepareInternal(mesh, false);
   MeshToSdfStats stats = meshToSdf(prepared, grid, extent, out, options, interrupter);
   stats.buildSeconds += prepared.prepareSeconds();
   return stats;
@@ -552,14 +610,7 @@ MeshToSdfStats meshToSdf(const TriangleMesh& mesh, DictionaryVolume& volume, con
 
 MeshToSdfPrepared prepareMeshToSdf(const TriangleMesh& mesh, SignMode sign)
 {
-  const double t0 = now();
-  auto impl = std::make_shared<MeshToSdfPrepared::Impl>();
-  impl->mesh = prepareMesh(mesh);
-  impl->bvh = std::make_unique<Bvh>(impl->mesh.tris);
-  double unused = 0;
-  if (sign == SignMode::WindingNumber) impl->windingSigner(unused);
-  impl->prepareSeconds = now() - t0;
-  return MeshToSdfPrepared(std::move(impl));
+  return prepareInternal(mesh, sign == SignMode::WindingNumber);
 }
 
 std::size_t MeshToSdfPrepared::triangles() const { return this->Pimpl->mesh.tris.size(); }
@@ -579,23 +630,31 @@ const WindingSigner& MeshToSdfPrepared::Impl::windingSigner(double& seconds)
   return *this->Winding;
 }
 
-const cudasdf::DeviceMesh& MeshToSdfPrepared::Impl::deviceMesh(bool winding, double& seconds)
+bool MeshToSdfPrepared::Impl::hasWindingSigner()
+{
+  std::lock_guard<std::mutex> lock(this->Lock);
+  return this->Winding != nullptr;
+}
+
+const cudasdf::DeviceMesh& MeshToSdfPrepared::Impl::deviceMesh(
+  bool winding, bool normals, double& seconds, bool windingLater)
 {
   const WindingSigner* w = winding ? &this->windingSigner(seconds) : nullptr;
-  // Sessions of other threads may hold the first copy: a copy with the
-  // winding structures is added beside it, never put in its place.
+  // Sessions of other threads may use the copy: the winding part is only
+  // added (never replaced), and only sessions in WindingNumber mode read it.
   std::lock_guard<std::mutex> lock(this->Lock);
   const double t0 = now();
   if (!this->Device)
   {
-    this->Device = cudasdf::uploadMesh(this->mesh, *this->bvh, w);
+    this->Device = cudasdf::uploadMesh(this->mesh, *this->bvh, w, normals, windingLater);
   }
-  else if (w && !this->Device->hasWinding() && !this->WindingDevice)
+  else
   {
-    this->WindingDevice = cudasdf::uploadMesh(this->mesh, *this->bvh, w);
+    if (w && !this->Device->hasWinding()) this->Device->addWinding(*w);
+    if (normals && !this->Device->hasNormals()) this->Device->addNormals();
   }
   seconds += now() - t0;
-  return w && !this->Device->hasWinding() ? *this->WindingDevice : *this->Device;
+  return *this->Device;
 }
 
 MeshToSdfPrepared::Impl::~Impl() = default;
