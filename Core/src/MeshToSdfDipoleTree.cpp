@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 namespace lvdif
 {
@@ -118,6 +119,93 @@ bool DipoleTree::bound(V3 q, double rho, double theta, double& value, double& er
   // relative 1e-12 per summed term covers the rounding of the sums above
   err = bound / FourPi + 1e-12 * static_cast<double>(this->Tris.size()) * (1 + std::fabs(value));
   return true;
+}
+
+DipoleTree::Refined DipoleTree::refine(V3 q, double rho, const std::function<int(double, double)>& goal, double& sLo,
+  double& sHi, std::int64_t& leafTris) const
+{
+  struct Open
+  {
+    double err, value; // in units of 4 pi
+    std::int32_t node;
+    bool operator<(const Open& o) const { return this->err < o.err; }
+  };
+  thread_local std::vector<Open> heap;
+  heap.clear();
+  double value = 0, err = 0, mag = 0; // sums over the open clusters (+ the exact leaves in value)
+  int unbounded = 0;                  // open clusters too close for any bound
+  auto visit = [&](std::int32_t id) {
+    const Node& nd = this->Nodes[id];
+    const V3 y = nd.c - q;
+    const double r = norm(y);
+    const double d = r - rho - nd.r;
+    Open o{ std::numeric_limits<double>::infinity(), 0, id };
+    if (d > 0)
+    {
+      const double e0 = nd.mass / (d * d), e1 = 2 * nd.mass * (nd.r + rho) / (d * d * d);
+      if (e1 < e0) o = { e1, dot(nd.dipole, y) / (r * r * r), id };
+      else o = { e0, 0, id };
+      value += o.value;
+      err += o.err;
+      mag += std::fabs(o.value);
+    }
+    else
+    {
+      ++unbounded;
+    }
+    heap.push_back(o);
+    std::push_heap(heap.begin(), heap.end());
+  };
+  if (this->Nodes.empty())
+  {
+    sLo = sHi = 0;
+    return goal(0, 0) > 0 ? Refined::Done : Refined::Exact;
+  }
+  visit(0);
+  while (true)
+  {
+    // slack: rounding of the running sums and of the exact solid angles
+    const double slack = 1e-9 + 1e-12 * (mag + err) * static_cast<double>(heap.size() + 1);
+    if (unbounded == 0)
+    {
+      sLo = (value - err) / FourPi - slack;
+      sHi = (value + err) / FourPi + slack;
+      const int g = goal(sLo, sHi);
+      if (g > 0) return Refined::Done;
+      if (g < 0) return Refined::Failed;
+      if (heap.empty()) return Refined::Exact;
+    }
+    std::pop_heap(heap.begin(), heap.end());
+    const Open o = heap.back();
+    heap.pop_back();
+    if (std::isfinite(o.err))
+    {
+      value -= o.value;
+      err -= o.err;
+      mag -= std::fabs(o.value);
+    }
+    else
+    {
+      --unbounded;
+    }
+    const Node& nd = this->Nodes[o.node];
+    if (nd.left >= 0)
+    {
+      visit(nd.left);
+      visit(nd.right);
+      continue;
+    }
+    if (rho > 0) return Refined::Failed;
+    for (std::int32_t i = nd.first; i < nd.first + nd.count; ++i)
+    {
+      const WeightedTri& t = this->Tris[i];
+      const double a = t.w * solidAngle(q, t.v[0], t.v[1], t.v[2]);
+      value += a;
+      mag += std::fabs(a);
+    }
+    leafTris += nd.count;
+    if (heap.empty()) err = 0; // only exact sums left: drop the rounding of the running error
+  }
 }
 
 double DipoleTree::exact(V3 p) const

@@ -44,8 +44,8 @@ namespace sdfdetail
 namespace
 {
 constexpr double FourPi = 12.566370614359172;
-constexpr std::int64_t Segment = 16;                          // voxels per bounded row segment
-constexpr double Theta[4] = { 0.3, 0.3, 0.1, 0.03 };           // segment, then per voxel
+constexpr double FirstTheta = 0.3;                              // per voxel, before refine()
+constexpr std::int64_t Segment = 16, MinSegment = 4;                          // voxels per bounded row segment
 
 bool insideOf(double w) { return std::fabs(w) >= 0.5; }
 bool decided(double lo, double hi) { return !(lo < 0.5 && hi >= 0.5) && !(lo <= -0.5 && hi > -0.5); }
@@ -245,14 +245,12 @@ bool WindingSigner::insideAt(V3 p, std::int64_t& fullSums) const
   for (const auto& h : hits) k += h.sign;
   const double u = k - coneWinding(this->Plus, p);
   if (!this->Flipped) return insideOf(u);
-  for (int level = 1; level < 4; ++level)
-  {
-    double v = 0, e = 0;
-    this->Flipped->bound(p, 0, Theta[level], v, e);
-    if (decided(u - 1e-9 - v - e, u + 1e-9 - v + e)) return insideOf(u - v);
-  }
-  ++fullSums;
-  return insideOf(u - this->Flipped->exact(p));
+  double sLo = 0, sHi = 0;
+  std::int64_t leafTris = 0;
+  const auto r = this->Flipped->refine(p, 0,
+    [&](double lo, double hi) { return decided(u - 1e-9 - hi, u + 1e-9 - lo) ? 1 : 0; }, sLo, sHi, leafTris);
+  if (r == DipoleTree::Refined::Exact) ++fullSums;
+  return insideOf(u - 0.5 * (sLo + sHi));
 }
 
 void WindingSigner::signRow(V3 rowStart, double h, std::int64_t n, float* out, std::int64_t& evaluations,
@@ -284,8 +282,9 @@ void WindingSigner::signRow(V3 rowStart, double h, std::int64_t n, float* out, s
   bool have = false;
   double lo = 0, hi = 0;                 // interval of u = w_{M+}
   std::int64_t segEnd = 0;               // the bounded segment covers voxels < segEnd
-  bool segOk = false;
-  double segV = 0, segE = 0;             // s = 2 w_{F+} in segV +- segE on the segment
+  std::int64_t segStart = 0;
+  double segLo[Segment], segHi[Segment]; // s over the voxels of the segment
+  std::int64_t leafTris = 0;
   for (std::int64_t i = 0; i < n; ++i)
   {
     const double ti = 0.5 * h + static_cast<double>(i) * h;
@@ -322,27 +321,45 @@ void WindingSigner::signRow(V3 rowStart, double h, std::int64_t n, float* out, s
     };
     if (!have && open) exactU();
     double sLo = 0, sHi = 0;
-    int level = 4; // next refinement of s (4: none left)
+    int level = 2; // 1: s can still be refined at this voxel
     if (flips)
     {
       if (i >= segEnd)
       {
+        // s over balls around row segments: 16 voxels, halved down to
+        // MinSegment where a leaf is too close. Goal: s inside (-0.5, 0.5)
+        // on the whole segment, which decides every voxel whose u is an
+        // integer (|u - s| < 0.5 iff u = 0).
         const std::int64_t len = std::min(Segment, n - i);
-        const double half = 0.5 * static_cast<double>(len - 1) * h;
-        segOk = flips->bound(pos(i) + V3{ half, 0, 0 }, half * (1 + 1e-12), Theta[0], segV, segE);
+        std::fill(segLo, segLo + len, -std::numeric_limits<double>::infinity());
+        std::fill(segHi, segHi + len, std::numeric_limits<double>::infinity());
+        auto tryBall = [&](auto& self, std::int64_t a, std::int64_t m) -> void {
+          const double half = 0.5 * static_cast<double>(m - 1) * h;
+          const V3 centre = pos(i + a) + V3{ half, 0, 0 };
+          // rho covers the rounding of the voxel positions too
+          const double slack = 1e-12 * (half + std::fabs(centre.x) + std::fabs(centre.y) + std::fabs(centre.z));
+          double x = 0, y = 0;
+          const auto r = flips->refine(centre, half + slack,
+            [](double l, double u) { return l > -0.5 && u < 0.5 ? 1 : (l >= 0.5 || u <= -0.5 ? -1 : 0); }, x, y,
+            leafTris);
+          if (r == DipoleTree::Refined::Done)
+          {
+            std::fill(segLo + a, segLo + a + m, x);
+            std::fill(segHi + a, segHi + a + m, y);
+          }
+          else if (m >= 2 * MinSegment)
+          {
+            self(self, a, m / 2);
+            self(self, a + m / 2, m - m / 2);
+          }
+        };
+        tryBall(tryBall, 0, len);
+        segStart = i;
         segEnd = i + len;
       }
       level = 1;
-      if (segOk)
-      {
-        sLo = segV - segE;
-        sHi = segV + segE;
-      }
-      else
-      {
-        sLo = -std::numeric_limits<double>::infinity();
-        sHi = std::numeric_limits<double>::infinity();
-      }
+      sLo = segLo[i - segStart];
+      sHi = segHi[i - segStart];
     }
     while (!decided(lo - sHi, hi - sLo))
     {
@@ -351,23 +368,25 @@ void WindingSigner::signRow(V3 rowStart, double h, std::int64_t n, float* out, s
         exactU();
         continue;
       }
-      if (level < 4)
+      if (level == 1)
       {
+        // s at this voxel: a fixed opening angle first (cheap), then
+        // refined until the sign is decided (or all exact)
+        double a = 0, b = 0;
+        const double ulo = lo, uhi = hi;
         double v = 0, e = 0;
-        flips->bound(pos(i), 0, Theta[level], v, e);
+        flips->bound(pos(i), 0, FirstTheta, v, e);
+        evaluated = true;
         sLo = std::max(sLo, v - e);
         sHi = std::min(sHi, v + e);
-        ++level;
+        if (decided(lo - sHi, hi - sLo)) break;
+        const auto r = flips->refine(pos(i), 0, [&](double x, double y) { return decided(ulo - y, uhi - x) ? 1 : 0; },
+          a, b, leafTris);
+        sLo = std::max(sLo, a);
+        sHi = std::min(sHi, b);
+        if (r == DipoleTree::Refined::Exact) ++full;
+        level = 2;
         evaluated = true;
-        continue;
-      }
-      if (level == 4 && flips && sHi - sLo > 1e-6)
-      {
-        const double v = flips->exact(pos(i));
-        sLo = v - 1e-9;
-        sHi = v + 1e-9;
-        ++full;
-        ++level;
         continue;
       }
       break; // within rounding of +-0.5 with everything exact

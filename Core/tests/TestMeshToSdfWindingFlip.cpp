@@ -4,7 +4,7 @@
 // voxel farther than 1 voxel, for flipped fractions 10-90 %, flipped + holes,
 // duplicated faces, intersecting closed meshes, a Moebius strip (non
 // orientable) and three faces on one edge (non manifold). Also: the dipole
-// tree's error bound holds against long double solid angles, and the
+// tree's intervals hold against long double solid angles, and the
 // orientation finds exactly the reversed faces of a closed sphere.
 #include "../src/MeshToSdfDipoleTree.h"
 #include "../src/MeshToSdfInternal.h"
@@ -77,12 +77,15 @@ TriangleMesh moebius(int n, float width)
 
 /// Every voxel farther than 1 voxel from the mesh must have the sign of the
 /// exact winding number (|w| >= 0.5 inside).
-void expectExactSigns(const std::string& name, const TriangleMesh& mesh, double h = 0.12)
+MeshToSdfStats expectExactSigns(const std::string& name, const TriangleMesh& mesh, GridGeometry g = {})
 {
-  GridGeometry g;
-  g.dims = { 22, 21, 20 };
-  g.origin = { -1.3, -1.25, -1.2 };
-  g.spacing = { h, h, h };
+  if (g.dims[0] == 0)
+  {
+    g.dims = { 18, 17, 16 };
+    g.origin = { -1.3, -1.25, -1.2 };
+    g.spacing = { 0.15, 0.15, 0.15 };
+  }
+  const double h = std::min(g.spacing[0], std::min(g.spacing[1], g.spacing[2])); // the voxel unit
   MeshToSdfOptions o;
   o.sign = SignMode::WindingNumber;
   o.device = Device::Cpu;
@@ -93,7 +96,7 @@ void expectExactSigns(const std::string& name, const TriangleMesh& mesh, double 
     for (std::int64_t j = 0; j < g.dims[1]; ++j)
       for (std::int64_t i = 0; i < g.dims[0]; ++i)
       {
-        const oracle::P p{ g.origin[0] + i * h, g.origin[1] + j * h, g.origin[2] + k * h };
+        const oracle::P p{ g.origin[0] + i * g.spacing[0], g.origin[1] + j * g.spacing[1], g.origin[2] + k * g.spacing[2] };
         if (oracle::distance(mesh, p) <= h) continue;
         const double w = oracle::winding(mesh, p);
         if (std::fabs(std::fabs(w) - 0.5) < 1e-6) continue; // the oracle cannot decide
@@ -108,10 +111,11 @@ void expectExactSigns(const std::string& name, const TriangleMesh& mesh, double 
   std::printf("[ %s ] far voxels %lld, inside %lld, evaluations %lld, full sums %lld\n", name.c_str(),
     static_cast<long long>(far), static_cast<long long>(inside), static_cast<long long>(st.windingEvaluations),
     static_cast<long long>(st.windingFullSums));
+  return st;
 }
 } // namespace
 
-TEST(MeshToSdfWindingFlip, DipoleTreeBoundHoldsAgainstLongDoubleSolidAngles)
+TEST(MeshToSdfWindingFlip, DipoleTreeIntervalsHoldAgainstLongDoubleSolidAngles)
 {
   using namespace sdfdetail;
   std::mt19937 rng(3);
@@ -141,31 +145,43 @@ TEST(MeshToSdfWindingFlip, DipoleTreeBoundHoldsAgainstLongDoubleSolidAngles)
     }
   }
   const DipoleTree tree(tris);
-  int accepted = 0, checked = 0;
+  int done = 0, checked = 0, failed = 0;
+  std::int64_t leafTris = 0;
   for (int n = 0; n < 300; ++n)
   {
     const V3 q{ 2 * u(rng), 2 * u(rng), 2 * u(rng) };
     for (double rho : { 0.0, 0.05, 0.3 })
-      for (double theta : { 0.3, 0.1 })
+      for (double width : { 0.2, 0.02, 0.0 })
       {
-        double v = 0, e = 0;
-        if (!tree.bound(q, rho, theta, v, e)) continue;
-        ++accepted;
+        // goal: an interval narrower than width (0: only the exact sum)
+        double lo = 0, hi = 0;
+        const auto r = tree.refine(q, rho, [&](double a, double b) { return b - a < width ? 1 : 0; }, lo, hi, leafTris);
+        if (r == DipoleTree::Refined::Failed)
+        {
+          EXPECT_GT(rho, 0); // only a ball may fail (a leaf too close)
+          ++failed;
+          continue;
+        }
+        ++done;
+        if (r == DipoleTree::Refined::Done) EXPECT_LT(hi - lo, width);
         for (int k = 0; k < 4; ++k)
         {
-          // a point within rho of q (the centre and three random offsets)
+          // points within rho of q: the centre and three random ones
           V3 d{ u(rng), u(rng), u(rng) };
           d = (k == 0 ? 0.0 : rho * std::fabs(u(rng)) / std::max(norm(d), 1e-12)) * d;
           const V3 p = q + d;
           const double w = oracle::winding(ref, { p.x, p.y, p.z });
-          EXPECT_LE(std::fabs(w - v), e + 1e-12) << "rho " << rho << " theta " << theta;
+          EXPECT_LE(lo, w) << "rho " << rho << " width " << width;
+          EXPECT_GE(hi, w) << "rho " << rho << " width " << width;
           ++checked;
         }
-        if (rho == 0) EXPECT_NEAR(tree.exact(q), oracle::winding(ref, { q.x, q.y, q.z }), 1e-9);
+        if (rho == 0 && width == 0) EXPECT_NEAR(tree.exact(q), oracle::winding(ref, { q.x, q.y, q.z }), 1e-9);
       }
   }
-  EXPECT_GT(accepted, 500);
-  EXPECT_GT(checked, 2000);
+  EXPECT_GT(done, 900);
+  EXPECT_GT(failed, 10);
+  EXPECT_GT(checked, 3600);
+  EXPECT_GT(leafTris, 0);
 }
 
 TEST(MeshToSdfWindingFlip, OrientationFindsExactlyTheReversedFaces)
@@ -195,6 +211,20 @@ TEST(MeshToSdfWindingFlip, FlippedFractionsAreExact)
   std::swap(box.triangles[3][1], box.triangles[3][2]);
   std::swap(box.triangles[8][1], box.triangles[8][2]);
   expectExactSigns("box, 2 of 12 flipped", box);
+}
+
+TEST(MeshToSdfWindingFlip, LongRowsUseTheSegmentBounds)
+{
+  // long rows past a small flipped sphere: most 16-voxel segments are far
+  // enough for the segment bound to decide without per-voxel evaluation
+  TriangleMesh m = makeSphereMesh(0.02f, 0.01f, -0.03f, 0.5f, 6, 12);
+  flip(m, 0.3, 12);
+  GridGeometry g;
+  g.dims = { 96, 11, 10 };
+  g.origin = { -3.3, -0.62, -0.6 };
+  g.spacing = { 0.07, 0.12, 0.13 };
+  const MeshToSdfStats st = expectExactSigns("small sphere, 30% flipped, long rows", m, g);
+  EXPECT_LT(st.windingEvaluations, g.count() / 2);
 }
 
 TEST(MeshToSdfWindingFlip, FlippedWithHolesIsExact)

@@ -6,12 +6,14 @@
 // (long double solid angles, SignQualityMeshes.h) on a random subsample of
 // voxels farther than 1 voxel from the mesh.
 //
-// usage: bench_winding_flip [--res 64,128] [--flip 0.1,0.5] [--samples 1000] MESH...
-// (flip 0 = the mesh as it is; every flip uses signquality::flipFaces, seed 2,
-// as bench_sign_quality's flip10.)
+// usage: bench_winding_flip [--res 64,128] [--samples 1000] SPEC...
+// SPEC is a mesh path, or DAMAGE:PATH with DAMAGE flipNN (NN % of the faces
+// reversed, signquality::flipFaces, seed 2: flip10 is bench_sign_quality's),
+// dupNN (NN % duplicated), holes (8 round holes) or pair (two intersecting copies).
 #include "BenchCommon.h"
 #include "SignQualityMeshes.h"
 
+#include "lvdif/Error.h"
 #include "lvdif/MeshFile.h"
 #include "lvdif/MeshToSdf.h"
 
@@ -37,6 +39,23 @@ double cpuSeconds()
   return double(u.ru_utime.tv_sec + u.ru_stime.tv_sec) + 1e-6 * double(u.ru_utime.tv_usec + u.ru_stime.tv_usec);
 }
 
+TriangleMesh loadSpec(const std::string& spec, std::string& label)
+{
+  const auto colon = spec.find(':');
+  const std::string damage = colon == std::string::npos ? "" : spec.substr(0, colon);
+  const std::string path = colon == std::string::npos ? spec : spec.substr(colon + 1);
+  std::string base = path.substr(path.find_last_of('/') + 1);
+  base = base.substr(0, base.find('.'));
+  label = damage.empty() ? base : damage + "-" + base;
+  const TriangleMesh m = loadMesh(path);
+  if (damage.empty()) return m;
+  if (damage.rfind("flip", 0) == 0) return signquality::flipFaces(m, std::atof(damage.c_str() + 4) / 100.0);
+  if (damage.rfind("dup", 0) == 0) return signquality::duplicateFaces(m, std::atof(damage.c_str() + 3) / 100.0);
+  if (damage == "holes") return signquality::punchHoles(m, 8, 0.03);
+  if (damage == "pair") return signquality::intersectingPair(m);
+  throw Error(ErrorCode::InvalidArgument, "unknown damage '" + damage + "'");
+}
+
 std::vector<double> parseList(const std::string& s)
 {
   std::vector<double> out;
@@ -50,30 +69,28 @@ std::vector<double> parseList(const std::string& s)
 
 int main(int argc, char** argv)
 {
-  std::vector<double> resolutions{ 64, 128 }, flips{ 0.1 };
+  std::vector<double> resolutions{ 64, 128 };
   std::int64_t samples = 1000;
   std::vector<std::string> meshes;
   for (int i = 1; i < argc; ++i)
   {
     const std::string a = argv[i];
     if (a == "--res" && i + 1 < argc) resolutions = parseList(argv[++i]);
-    else if (a == "--flip" && i + 1 < argc) flips = parseList(argv[++i]);
     else if (a == "--samples" && i + 1 < argc) samples = std::atoll(argv[++i]);
     else meshes.push_back(a);
   }
   if (meshes.empty())
   {
-    std::fprintf(stderr, "usage: %s [--res 64,128] [--flip 0.1,0.5] [--samples N] MESH...\n", argv[0]);
+    std::fprintf(stderr, "usage: %s [--res 64,128] [--samples N] [flipNN:|dupNN:|holes:|pair:]MESH...\n", argv[0]);
     return 2;
   }
   std::printf("machine: %s\n", bench::machineDescription().c_str());
   std::vector<std::vector<std::string>> rows;
-  for (const std::string& path : meshes)
+  for (const std::string& spec : meshes)
   {
-    const TriangleMesh base = loadMesh(path);
-    for (double f : flips)
+    std::string label;
+    const TriangleMesh mesh = loadSpec(spec, label);
     {
-      const TriangleMesh mesh = f > 0 ? signquality::flipFaces(base, f) : base;
       for (double resD : resolutions)
       {
         const auto res = static_cast<std::int64_t>(resD);
@@ -112,7 +129,7 @@ int main(int argc, char** argv)
           const bool inside = std::fabs(signquality::bruteWinding(mesh, p)) >= 0.5L;
           wrong += (wn[static_cast<std::size_t>(idx)] < 0) != inside;
         }
-        rows.push_back({ path.substr(path.find_last_of('/') + 1), bench::fmt(f, 2), std::to_string(res),
+        rows.push_back({ label, std::to_string(res),
           std::to_string(st.triangles), bench::fmt(pnCpu, 2), bench::fmt(wnCpu, 2), bench::fmt(wnCpu / pnCpu, 2),
           bench::fmt(pnWall, 2), bench::fmt(wnWall, 2), bench::fmt(st.signSeconds, 2),
           std::to_string(st.windingEvaluations), std::to_string(st.windingFullSums), std::to_string(st.windingExact),
@@ -121,7 +138,7 @@ int main(int argc, char** argv)
       }
     }
   }
-  bench::printTable({ "mesh", "flip", "res", "tris", "PN cpu s", "WN cpu s", "WN/PN", "PN wall s", "WN wall s",
+  bench::printTable({ "mesh", "res", "tris", "PN cpu s", "WN cpu s", "WN/PN", "PN wall s", "WN wall s",
                       "WN sign s", "evaluations", "full sums", "ambig. rows vox", "WN vs BF wrong (far)" },
     rows);
   return 0;
