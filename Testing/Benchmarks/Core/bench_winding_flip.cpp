@@ -134,6 +134,11 @@ int main(int argc, char** argv)
           bench::fmt(pnWall, 2), bench::fmt(wnWall, 2), bench::fmt(st.signSeconds, 2),
           std::to_string(st.windingEvaluations), std::to_string(st.windingFullSums), std::to_string(st.windingExact),
           std::to_string(wrong) + "/" + std::to_string(samples) });
+        std::printf("row: %s\n", [&] {
+          std::string line;
+          for (const auto& c : rows.back()) line += c + " | ";
+          return line;
+        }().c_str());
         std::fflush(stdout);
       }
     }
