@@ -284,6 +284,7 @@ void WindingSigner::signRow(V3 rowStart, double h, std::int64_t n, float* out, s
   std::int64_t segEnd = 0;               // the bounded segment covers voxels < segEnd
   std::int64_t segStart = 0;
   double segLo[Segment], segHi[Segment]; // s over the voxels of the segment
+  int segK[Segment];                     // their crossing counts (closed M+ + C only)
   std::int64_t leafTris = 0;
   for (std::int64_t i = 0; i < n; ++i)
   {
@@ -327,21 +328,43 @@ void WindingSigner::signRow(V3 rowStart, double h, std::int64_t n, float* out, s
       if (i >= segEnd)
       {
         // s over balls around row segments: 16 voxels, halved down to
-        // MinSegment where a leaf is too close. Goal: s inside (-0.5, 0.5)
-        // on the whole segment, which decides every voxel whose u is an
-        // integer (|u - s| < 0.5 iff u = 0).
+        // MinSegment where a leaf is too close. Goal, when u = K exactly
+        // (no cone): the interval of K - s decided for every crossing count
+        // K of the segment's voxels; with a cone: s inside (-0.5, 0.5),
+        // which decides every voxel whose u is an integer.
         const std::int64_t len = std::min(Segment, n - i);
         std::fill(segLo, segLo + len, -std::numeric_limits<double>::infinity());
         std::fill(segHi, segHi + len, std::numeric_limits<double>::infinity());
+        if (!open)
+        {
+          std::size_t nx = next;
+          int k = ahead;
+          for (std::int64_t a = 0; a < len; ++a)
+          {
+            const double ta = 0.5 * h + static_cast<double>(i + a) * h;
+            for (; nx < hits.size() && hits[nx].t <= ta; ++nx) k -= hits[nx].sign;
+            segK[a] = k;
+          }
+        }
         auto tryBall = [&](auto& self, std::int64_t a, std::int64_t m) -> void {
           const double half = 0.5 * static_cast<double>(m - 1) * h;
           const V3 centre = pos(i + a) + V3{ half, 0, 0 };
           // rho covers the rounding of the voxel positions too
           const double slack = 1e-12 * (half + std::fabs(centre.x) + std::fabs(centre.y) + std::fabs(centre.z));
+          int kLo = 0, kHi = 0;
+          if (!open)
+          {
+            kLo = *std::min_element(segK + a, segK + a + m);
+            kHi = *std::max_element(segK + a, segK + a + m);
+          }
+          auto goal = [&](double l, double u) {
+            if (open) return l > -0.5 && u < 0.5 ? 1 : (l >= 0.5 || u <= -0.5 ? -1 : 0);
+            for (int k = kLo; k <= kHi; ++k)
+              if (!decided(k - u, k - l)) return 0;
+            return 1;
+          };
           double x = 0, y = 0;
-          const auto r = flips->refine(centre, half + slack,
-            [](double l, double u) { return l > -0.5 && u < 0.5 ? 1 : (l >= 0.5 || u <= -0.5 ? -1 : 0); }, x, y,
-            leafTris);
+          const auto r = flips->refine(centre, half + slack, goal, x, y, leafTris);
           if (r == DipoleTree::Refined::Done)
           {
             std::fill(segLo + a, segLo + a + m, x);
