@@ -4,31 +4,33 @@
 // For ANY chain S with boundary dS = -dM, M + S is closed, so w_{M+S} is an
 // integer (signed ray crossings) and w_M = w_{M+S} - w_S. S is chosen so
 // that w_S is cheap to bound:
-// * M+ = M with a set F of faces reversed so that M+ is consistently
-//   oriented (MeshToSdfOrientation.cpp: BFS over manifold edges, F = the
-//   minority of each component). As chains M+ = M + 2 F+ (F+ = F reversed).
+// * M+ = M with a set F of faces reversed and a set R of exact duplicates
+//   removed (MeshToSdfOrientation.cpp: duplicates reduced to their net
+//   multiplicity, then a BFS over manifold edges, F = the minority of each
+//   component). As chains M = M+ - 2 F+ + R (F+ = F reversed).
 // * C = a cone from one apex over the boundary chain of M+ (oriented edges
-//   that do not cancel, only the true holes once F is reversed).
-// So S = 2 F+ + C, w_M = K - w_C - 2 w_{F+} with K the crossings of M+ + C.
+//   that do not cancel: only true holes and seams once F and R are out).
+// So w_M = K - w_C - s, K the crossings of M+ + C, s = 2 w_{F+} + w_{-R}:
 //   * u = K - w_C (= w_{M+}) is carried from voxel to voxel of a scan line
 //     as an interval: across a triangle of M+ it jumps by exactly +-1;
 //     elsewhere its gradient is the Biot-Savart field of dM+, |grad u| <=
 //     sum_e len_e / (4 pi dist(x, e)^2), bounded per cluster of boundary
 //     edges; w_C is evaluated again (sum over the cone) only when the sign
 //     could change.
-//   * s = 2 w_{F+} is bounded over 16-voxel row segments and, where that
-//     does not decide, per voxel, by a dipole tree with a rigorous error
-//     bound (MeshToSdfDipoleTree.h, Barill et al. 2018), refined with a
-//     smaller opening angle and finally summed exactly.
+//   * s is bounded by a dipole tree with rigorous error bounds
+//     (MeshToSdfDipoleTree.h, after Barill et al. 2018) over balls around
+//     16-voxel row segments (halved down to 4 voxels where a face is too
+//     close) and, where that does not decide, per voxel: a fixed opening
+//     angle first, then refined (largest error first) until decided.
 //   The voxel's sign is decided once the interval of u - s lies on one side
 //   of +-0.5.
-// * A closed consistently oriented mesh has neither F nor C: w = K.
+// * A closed consistently oriented mesh has neither F, R nor C: w = K.
 // * A ray that passes too close to an edge or vertex is ambiguous: that row
 //   is evaluated voxel by voxel with an oblique ray, and a voxel whose
 //   oblique ray is ambiguous too sums all solid angles of M.
 // So every voxel gets the sign of the exact winding number of M as given (up
 // to double rounding), flipped faces, duplicated and intersecting triangles,
-// non-manifold and non-orientable parts included (any F gives the same w_M).
+// non-manifold and non-orientable parts included (any F, R give the same w_M).
 #include "MeshToSdfInternal.h"
 #include "MeshToSdfOrientation.h"
 
