@@ -5,6 +5,7 @@
 #include "MeshToSdfOrientation.h"
 
 #include "MeshToSdfInternal.h"
+#include "lvdif/Memory.h"
 
 #include <algorithm>
 #include <cstring>
@@ -29,6 +30,8 @@ OrientedMesh orientMesh(const std::vector<Tri>& tris)
 {
   OrientedMesh out;
   const std::size_t n = tris.size();
+  // corners, welded ids and positions, duplicate keys, edge uses, adjacency, BFS
+  requireMemory(static_cast<std::uint64_t>(n) * 160, "mesh to SDF: face orientation for the winding number");
   out.state.assign(n, OrientedMesh::Keep);
   if (n == 0) return out;
 
