@@ -123,7 +123,8 @@ public:
   ~WindingSigner();
   /// Flips the sign of the voxels of one row (unsigned distances in out,
   /// world distance = out / toOut) where |w| >= 0.5. Positions x0 + i * h.
-  /// fullSums (optional) counts voxels that summed every correction triangle.
+  /// fullSums (optional) counts voxels whose refinement summed every
+  /// reversed/removed face exactly (or all of M, on an ambiguous oblique ray).
   void signRow(V3 rowStart, double h, std::int64_t n, float* out, std::int64_t& evaluations,
     std::int64_t& fallbacks, std::int64_t* fullSums = nullptr) const;
   /// Exact winding number at p by a ray in a fixed oblique direction; the
@@ -152,16 +153,17 @@ public:
   const std::vector<Tri>& cone() const { return this->coneOverMesh().cone; }
   const std::vector<Cluster>& clusters() const { return this->coneOverMesh().clusters; }
   std::size_t meshTriangles() const { return this->coneOverMesh().meshTris; }
+  /// Faces reversed (F) or removed as duplicates (R) for the CPU closure.
   std::size_t flippedTriangles() const { return this->Flipped ? this->Flipped->size() : 0; }
 
 private:
   const Closure& coneOverMesh() const;
   bool insideAt(V3 p, std::int64_t& fullSums) const;
   const PreparedMesh& Mesh;
-  Closure Plus;                          // M+ (F reversed) closed by the cone over dM+
-  std::unique_ptr<DipoleTree> Flipped;   // F+ with weight 2 (null when F is empty)
+  Closure Plus;                          // M+ (F reversed, R removed) closed by the cone over dM+
+  std::unique_ptr<DipoleTree> Flipped;   // F reversed, weight 2, and R reversed, weight 1 (null if both empty)
   mutable std::once_flag LegacyOnce;
-  mutable std::unique_ptr<Closure> Legacy; // M closed by the cone over dM (CUDA), when F is not empty
+  mutable std::unique_ptr<Closure> Legacy; // M closed by the cone over dM (CUDA), when F or R is not empty
 };
 
 /// Akenine-Moeller (2001) triangle/box overlap by the separating axis theorem
