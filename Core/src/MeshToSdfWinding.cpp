@@ -183,6 +183,13 @@ const V3 Oblique = normalized(V3{ 0.5773502691896258, 0.5780, 0.5767 });
 WindingSigner::WindingSigner(const PreparedMesh& mesh)
   : Mesh(mesh)
 {
+  if (mesh.boundary.empty())
+  {
+    // M is already a closed chain (every oriented edge cancels): w = K, no
+    // orientation pass needed
+    buildClosure(this->Plus, mesh.tris, nullptr, mesh.boundary);
+    return;
+  }
   const OrientedMesh om = orientMesh(mesh.tris);
   if (om.flippedCount == 0 && om.removedCount == 0)
   {
