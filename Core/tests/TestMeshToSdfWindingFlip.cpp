@@ -195,7 +195,12 @@ TEST(MeshToSdfWindingFlip, OrientationFindsExactlyTheReversedFaces)
     const sdfdetail::WindingSigner w(prepared);
     const std::size_t minority = std::min(n, prepared.tris.size() - n);
     EXPECT_EQ(w.flippedTriangles(), minority) << f;
-    EXPECT_TRUE(w.cone().size() == prepared.boundary.size() || w.cone().size() < prepared.boundary.size());
+    // what the CUDA kernel gets: M itself closed by a cone over dM (every
+    // edge of a reversed face is uncancelled there)
+    EXPECT_GT(prepared.boundary.size(), 0u);
+    EXPECT_EQ(w.cone().size(), prepared.boundary.size());
+    EXPECT_EQ(w.meshTriangles(), prepared.tris.size());
+    EXPECT_EQ(w.closedTris().size(), prepared.tris.size() + prepared.boundary.size());
   }
 }
 
