@@ -122,8 +122,10 @@ bool DipoleTree::bound(V3 q, double rho, double theta, double& value, double& er
 }
 
 DipoleTree::Refined DipoleTree::refine(V3 q, double rho, const std::function<int(double, double)>& goal, double& sLo,
-  double& sHi, std::int64_t& leafTris) const
+  double& sHi, std::int64_t& leafTris, std::vector<std::int32_t>* cut) const
 {
+  thread_local std::vector<std::int32_t> summed; // leaves summed exactly (part of the final cut)
+  summed.clear();
   struct Open
   {
     double err, value; // in units of 4 pi
@@ -161,7 +163,23 @@ DipoleTree::Refined DipoleTree::refine(V3 q, double rho, const std::function<int
     sLo = sHi = 0;
     return goal(0, 0) > 0 ? Refined::Done : Refined::Exact;
   }
-  visit(0);
+  if (cut && !cut->empty())
+  {
+    for (const std::int32_t id : *cut) visit(id);
+  }
+  else
+  {
+    visit(0);
+  }
+  auto finish = [&](Refined r) {
+    if (cut)
+    {
+      cut->clear();
+      for (const Open& o : heap) cut->push_back(o.node);
+      cut->insert(cut->end(), summed.begin(), summed.end());
+    }
+    return r;
+  };
   while (true)
   {
     // slack: rounding of the running sums and of the exact solid angles
@@ -171,9 +189,9 @@ DipoleTree::Refined DipoleTree::refine(V3 q, double rho, const std::function<int
       sLo = (value - err) / FourPi - slack;
       sHi = (value + err) / FourPi + slack;
       const int g = goal(sLo, sHi);
-      if (g > 0) return Refined::Done;
-      if (g < 0) return Refined::Failed;
-      if (heap.empty()) return Refined::Exact;
+      if (g > 0) return finish(Refined::Done);
+      if (g < 0) return finish(Refined::Failed);
+      if (heap.empty()) return finish(Refined::Exact);
     }
     std::pop_heap(heap.begin(), heap.end());
     const Open o = heap.back();
@@ -195,7 +213,11 @@ DipoleTree::Refined DipoleTree::refine(V3 q, double rho, const std::function<int
       visit(nd.right);
       continue;
     }
-    if (rho > 0) return Refined::Failed;
+    if (rho > 0)
+    {
+      heap.push_back(o); // keep the cut whole
+      return finish(Refined::Failed);
+    }
     for (std::int32_t i = nd.first; i < nd.first + nd.count; ++i)
     {
       const WeightedTri& t = this->Tris[i];
@@ -204,6 +226,7 @@ DipoleTree::Refined DipoleTree::refine(V3 q, double rho, const std::function<int
       mag += std::fabs(a);
     }
     leafTris += nd.count;
+    summed.push_back(o.node);
     if (heap.empty()) err = 0; // only exact sums left: drop the rounding of the running error
   }
 }

@@ -53,8 +53,11 @@ public:
   /// 2 A (R + rho) / d^3 (Taylor: |grad (y / |y|^3)| <= 2 / |y|^3), or 0
   /// with error A / d^2 (|Omega_t| <= area / dist^2); d <= 0: no bound.
   /// leafTris counts the triangles summed exactly.
+  /// cut (optional): clusters to start from instead of the root (any set of
+  /// nodes that covers every triangle exactly once, e.g. the cut a previous
+  /// call ended with, a neighbouring voxel's); replaced by the final cut.
   Refined refine(V3 q, double rho, const std::function<int(double, double)>& goal, double& sLo, double& sHi,
-    std::int64_t& leafTris) const;
+    std::int64_t& leafTris, std::vector<std::int32_t>* cut = nullptr) const;
   /// The plain sum over all triangles (Van Oosterom & Strackee solid angles).
   double exact(V3 p) const;
 

@@ -21,7 +21,8 @@
 //     (MeshToSdfDipoleTree.h, after Barill et al. 2018) over balls around
 //     16-voxel row segments (halved down to 4 voxels where a face is too
 //     close) and, where that does not decide, per voxel: a fixed opening
-//     angle first, then refined (largest error first) until decided.
+//     angle first, then refined (largest error first, starting from the
+//     previous voxel's clusters) until decided.
 //   The voxel's sign is decided once the interval of u - s lies on one side
 //   of +-0.5.
 // * A closed consistently oriented mesh has neither F, R nor C: w = K.
@@ -294,6 +295,8 @@ void WindingSigner::signRow(V3 rowStart, double h, std::int64_t n, float* out, s
   std::int64_t segStart = 0;
   double segLo[Segment], segHi[Segment]; // s over the voxels of the segment
   int segK[Segment];                     // their crossing counts (closed M+ + C only)
+  std::vector<std::int32_t> cut;         // the last per-voxel refinement's clusters
+  bool thetaWorked = true;               // the last per-voxel fixed-angle bound decided
   std::int64_t leafTris = 0;
   for (std::int64_t i = 0; i < n; ++i)
   {
@@ -386,6 +389,8 @@ void WindingSigner::signRow(V3 rowStart, double h, std::int64_t n, float* out, s
           }
         };
         tryBall(tryBall, 0, len);
+        cut.clear();
+        thetaWorked = true;
         segStart = i;
         segEnd = i + len;
       }
@@ -402,18 +407,24 @@ void WindingSigner::signRow(V3 rowStart, double h, std::int64_t n, float* out, s
       }
       if (level == 1)
       {
-        // s at this voxel: a fixed opening angle first (cheap), then
-        // refined until the sign is decided (or all exact)
+        // s at this voxel: a fixed opening angle first (cheap) unless it
+        // failed on the previous voxel, then refined until the sign is
+        // decided (or all exact), starting from the cut the previous voxel
+        // ended with (cleared at every segment)
         double a = 0, b = 0;
         const double ulo = lo, uhi = hi;
-        double v = 0, e = 0;
-        flips->bound(pos(i), 0, FirstTheta, v, e);
         evaluated = true;
-        sLo = std::max(sLo, v - e);
-        sHi = std::min(sHi, v + e);
-        if (decided(lo - sHi, hi - sLo)) break;
+        if (thetaWorked || cut.empty())
+        {
+          double v = 0, e = 0;
+          flips->bound(pos(i), 0, FirstTheta, v, e);
+          sLo = std::max(sLo, v - e);
+          sHi = std::min(sHi, v + e);
+          thetaWorked = decided(lo - sHi, hi - sLo);
+          if (thetaWorked) break;
+        }
         const auto r = flips->refine(pos(i), 0, [&](double x, double y) { return decided(ulo - y, uhi - x) ? 1 : 0; },
-          a, b, leafTris);
+          a, b, leafTris, &cut);
         sLo = std::max(sLo, a);
         sHi = std::min(sHi, b);
         if (r == DipoleTree::Refined::Exact) ++full;

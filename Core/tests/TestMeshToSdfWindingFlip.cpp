@@ -176,6 +176,21 @@ TEST(MeshToSdfWindingFlip, DipoleTreeIntervalsHoldAgainstLongDoubleSolidAngles)
           ++checked;
         }
         if (rho == 0 && width == 0) EXPECT_NEAR(tree.exact(q), oracle::winding(ref, { q.x, q.y, q.z }), 1e-9);
+        if (rho == 0 && width > 0)
+        {
+          // warm start: a neighbour's final cut as the starting clusters
+          std::vector<std::int32_t> cut;
+          tree.refine(q, 0, [&](double a, double b) { return b - a < width ? 1 : 0; }, lo, hi, leafTris, &cut);
+          EXPECT_FALSE(cut.empty());
+          const V3 p = q + V3{ 0.03, -0.02, 0.01 };
+          const auto r2 =
+            tree.refine(p, 0, [&](double a, double b) { return b - a < width / 2 ? 1 : 0; }, lo, hi, leafTris, &cut);
+          const double w = oracle::winding(ref, { p.x, p.y, p.z });
+          EXPECT_NE(r2, DipoleTree::Refined::Failed);
+          EXPECT_LE(lo, w);
+          EXPECT_GE(hi, w);
+          ++checked;
+        }
       }
   }
   EXPECT_GT(done, 900);
