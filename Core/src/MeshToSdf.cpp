@@ -294,17 +294,19 @@ void computeBox(const Engine& e, const VoxelBox& box, float* out, MeshToSdfStats
   stats.distanceSeconds += now() - t0;
   if (!winding) return;
   t0 = now();
-  std::atomic<std::int64_t> evals{ 0 }, exact{ 0 };
+  std::atomic<std::int64_t> evals{ 0 }, exact{ 0 }, fullSums{ 0 };
   forRows(box, intr, progressBase + 0.5 * progressSpan, 0.5 * progressSpan,
     [&](std::int64_t j, std::int64_t k, std::int64_t r) {
-      std::int64_t ev = 0, ex = 0;
-      e.winding->signRow(e.position(box.lo[0], j, k), e.geom.spacing[0], nx, out + r * nx, ev, ex);
+      std::int64_t ev = 0, ex = 0, fs = 0;
+      e.winding->signRow(e.position(box.lo[0], j, k), e.geom.spacing[0], nx, out + r * nx, ev, ex, &fs);
       evals += ev;
       exact += ex;
+      fullSums += fs;
     });
   (void)ny;
   stats.windingEvaluations += evals.load();
   stats.windingExact += exact.load();
+  stats.windingFullSums += fullSums.load();
   stats.signSeconds += now() - t0;
 }
 

@@ -3,6 +3,7 @@
 // overlapping boxes ("faithful" mode). See MeshToSdf.h for the algorithm.
 #pragma once
 
+#include "MeshToSdfDipoleTree.h"
 #include "MeshToSdfGeometry.h"
 #include "lvdif/MeshToSdf.h"
 #include "lvdif/TriangleMesh.h"
@@ -127,10 +128,13 @@ class WindingSigner
 {
 public:
   explicit WindingSigner(const PreparedMesh& mesh);
+  ~WindingSigner();
   /// Flips the sign of the voxels of one row (unsigned distances in out,
   /// world distance = out / toOut) where |w| >= 0.5. Positions x0 + i * h.
+  /// fullSums (optional) counts voxels whose refinement summed every
+  /// reversed/removed face exactly (or all of M, on an ambiguous oblique ray).
   void signRow(V3 rowStart, double h, std::int64_t n, float* out, std::int64_t& evaluations,
-    std::int64_t& fallbacks) const;
+    std::int64_t& fallbacks, std::int64_t* fullSums = nullptr) const;
   /// Exact winding number at p by a ray in a fixed oblique direction; the
   /// sum of all solid angles if that ray is ambiguous.
   double evaluate(V3 p) const;
@@ -140,22 +144,34 @@ public:
     V3 centre;
     double radius = 0, length = 0;
   };
-  // for the CUDA path, which mirrors signRow
-  const std::vector<Tri>& closedTris() const { return this->Closed; }
-  const Bvh& closedBvh() const { return *this->ClosedBvh; }
-  const std::vector<Tri>& cone() const { return this->Cone; }
-  const std::vector<Cluster>& clusters() const { return this->Clusters; }
-  std::size_t meshTriangles() const { return this->MeshTris; }
+  /// A closed chain: triangles [0, meshTris) of `closed` are the mesh (some
+  /// possibly reversed), the rest the cone over its boundary.
+  struct Closure
+  {
+    std::vector<Tri> closed;
+    std::unique_ptr<Bvh> bvh;
+    std::vector<Tri> cone;
+    std::vector<Cluster> clusters; // of boundary edges, for the drift bound
+    std::size_t meshTris = 0;
+  };
+  // for the CUDA path, which keeps the cone over the boundary of M itself
+  // (built on first use when it differs from the CPU's closure)
+  const std::vector<Tri>& closedTris() const { return this->coneOverMesh().closed; }
+  const Bvh& closedBvh() const { return *this->coneOverMesh().bvh; }
+  const std::vector<Tri>& cone() const { return this->coneOverMesh().cone; }
+  const std::vector<Cluster>& clusters() const { return this->coneOverMesh().clusters; }
+  std::size_t meshTriangles() const { return this->coneOverMesh().meshTris; }
+  /// Faces reversed (F) or removed as duplicates (R) for the CPU closure.
+  std::size_t flippedTriangles() const { return this->Flipped ? this->Flipped->size() : 0; }
 
 private:
-  double coneWinding(V3 p) const;
-  double driftPerLength(V3 p, V3 q, double h) const;
+  const Closure& coneOverMesh() const;
+  bool insideAt(V3 p, std::int64_t& fullSums) const;
   const PreparedMesh& Mesh;
-  std::size_t MeshTris = 0;        // closed[0, MeshTris) are the mesh, the rest the cone
-  std::vector<Tri> Closed;         // mesh + cone over the boundary: a closed chain
-  std::unique_ptr<Bvh> ClosedBvh;
-  std::vector<Tri> Cone;
-  std::vector<Cluster> Clusters;   // of boundary edges, for the drift bound
+  Closure Plus;                          // M+ (F reversed, R removed) closed by the cone over dM+
+  std::unique_ptr<DipoleTree> Flipped;   // F reversed, weight 2, and R reversed, weight 1 (null if both empty)
+  mutable std::once_flag LegacyOnce;
+  mutable std::unique_ptr<Closure> Legacy; // M closed by the cone over dM (CUDA), when F or R is not empty
 };
 
 /// Akenine-Moeller (2001) triangle/box overlap by the separating axis theorem

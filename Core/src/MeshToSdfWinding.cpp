@@ -1,23 +1,39 @@
 // Exact generalized winding numbers (Jacobson, Kavan, Sorkine-Hornung 2013)
-// for every voxel, by crossings instead of summing solid angles:
+// for every voxel, by crossings instead of summing solid angles.
 //
-// * The mesh M is closed into a chain M' = M + C by a cone C from one apex
-//   over the boundary chain (the oriented edges of M that do not cancel).
-//   w_M' is an integer: the signed count of crossings along any ray, and
-//   w_M = w_M' - w_C, where w_C is the (exact) solid angle of the small cone
-//   (one triangle per boundary edge). Closed meshes have no cone.
-// * One ray per scan line (+x) gives the crossings of every voxel of the row.
-// * Open meshes: w_M is carried from voxel to voxel as an interval: across
-//   a triangle of M it jumps by exactly +-1; elsewhere its gradient is the
-//   Biot-Savart field of the boundary, |grad w| <= sum_e len_e / (4 pi
-//   dist(x, e)^2), bounded per cluster of boundary edges. w_C is evaluated
-//   again only when the interval could straddle +-0.5.
+// For ANY chain S with boundary dS = -dM, M + S is closed, so w_{M+S} is an
+// integer (signed ray crossings) and w_M = w_{M+S} - w_S. S is chosen so
+// that w_S is cheap to bound:
+// * M+ = M with a set F of faces reversed and a set R of exact duplicates
+//   removed (MeshToSdfOrientation.cpp: duplicates reduced to their net
+//   multiplicity, then a BFS over manifold edges, F = the minority of each
+//   component). As chains M = M+ - 2 F+ + R (F+ = F reversed).
+// * C = a cone from one apex over the boundary chain of M+ (oriented edges
+//   that do not cancel: only true holes and seams once F and R are out).
+// So w_M = K - w_C - s, K the crossings of M+ + C, s = 2 w_{F+} + w_{-R}:
+//   * u = K - w_C (= w_{M+}) is carried from voxel to voxel of a scan line
+//     as an interval: across a triangle of M+ it jumps by exactly +-1;
+//     elsewhere its gradient is the Biot-Savart field of dM+, |grad u| <=
+//     sum_e len_e / (4 pi dist(x, e)^2), bounded per cluster of boundary
+//     edges; w_C is evaluated again (sum over the cone) only when the sign
+//     could change.
+//   * s is bounded by a dipole tree with rigorous error bounds
+//     (MeshToSdfDipoleTree.h, after Barill et al. 2018) over balls around
+//     16-voxel row segments (halved down to 4 voxels where a face is too
+//     close) and, where that does not decide, per voxel: a fixed opening
+//     angle first, then refined (largest error first, starting from the
+//     previous voxel's clusters) until decided.
+//   The voxel's sign is decided once the interval of u - s lies on one side
+//   of +-0.5.
+// * A closed consistently oriented mesh has neither F, R nor C: w = K.
 // * A ray that passes too close to an edge or vertex is ambiguous: that row
 //   is evaluated voxel by voxel with an oblique ray, and a voxel whose
-//   oblique ray is ambiguous too sums all solid angles.
-// So every voxel gets the sign of the exact winding number (up to double
-// rounding), flipped faces, duplicated and intersecting triangles included.
+//   oblique ray is ambiguous too sums all solid angles of M.
+// So every voxel gets the sign of the exact winding number of M as given (up
+// to double rounding), flipped faces, duplicated and intersecting triangles,
+// non-manifold and non-orientable parts included (any F, R give the same w_M).
 #include "MeshToSdfInternal.h"
+#include "MeshToSdfOrientation.h"
 
 #include <algorithm>
 #include <cmath>
@@ -31,6 +47,8 @@ namespace sdfdetail
 namespace
 {
 constexpr double FourPi = 12.566370614359172;
+constexpr double FirstTheta = 0.3;                              // per voxel, before refine()
+constexpr std::int64_t Segment = 16, MinSegment = 4;                          // voxels per bounded row segment
 
 bool insideOf(double w) { return std::fabs(w) >= 0.5; }
 
@@ -65,106 +83,175 @@ Tri makeTri(V3 a, V3 b, V3 c, bool& ok)
   }
   return t;
 }
-} // namespace
 
-WindingSigner::WindingSigner(const PreparedMesh& mesh)
-  : Mesh(mesh)
+/// Clusters of boundary edges (median splits, at most 16 edges each).
+std::vector<WindingSigner::Cluster> clusterEdges(std::vector<std::array<V3, 2>> edges)
 {
-  this->Closed.reserve(mesh.tris.size() + mesh.boundary.size());
-  this->Closed.assign(mesh.tris.begin(), mesh.tris.end());
-  this->MeshTris = mesh.tris.size();
-  if (!mesh.boundary.empty())
+  std::vector<WindingSigner::Cluster> out;
+  struct Range
+  {
+    std::size_t first, count;
+  };
+  std::vector<Range> todo{ { 0, edges.size() } };
+  while (!todo.empty())
+  {
+    const Range r = todo.back();
+    todo.pop_back();
+    V3 lo{ 1e300, 1e300, 1e300 }, hi{ -1e300, -1e300, -1e300 };
+    for (std::size_t i = r.first; i < r.first + r.count; ++i)
+    {
+      for (const V3& v : edges[i])
+      {
+        lo = { std::min(lo.x, v.x), std::min(lo.y, v.y), std::min(lo.z, v.z) };
+        hi = { std::max(hi.x, v.x), std::max(hi.y, v.y), std::max(hi.z, v.z) };
+      }
+    }
+    if (r.count > 16)
+    {
+      const V3 ext = hi - lo;
+      const int axis = ext.x >= ext.y && ext.x >= ext.z ? 0 : (ext.y >= ext.z ? 1 : 2);
+      const std::size_t half = r.count / 2;
+      std::nth_element(edges.begin() + r.first, edges.begin() + r.first + half, edges.begin() + r.first + r.count,
+        [axis](const std::array<V3, 2>& x, const std::array<V3, 2>& y) {
+          return x[0][axis] + x[1][axis] < y[0][axis] + y[1][axis];
+        });
+      todo.push_back({ r.first, half });
+      todo.push_back({ r.first + half, r.count - half });
+      continue;
+    }
+    WindingSigner::Cluster c;
+    c.centre = 0.5 * (lo + hi);
+    for (std::size_t i = r.first; i < r.first + r.count; ++i)
+    {
+      c.length += norm(edges[i][1] - edges[i][0]);
+      c.radius = std::max(c.radius, std::max(norm(edges[i][0] - c.centre), norm(edges[i][1] - c.centre)));
+    }
+    out.push_back(c);
+  }
+  return out;
+}
+
+/// Fills c (in place: its BVH refers to c.closed) with the mesh, the faces
+/// reversed or removed as `state` says (OrientedMesh::State), closed by a
+/// cone over `boundary`.
+void buildClosure(WindingSigner::Closure& c, const std::vector<Tri>& tris, const std::vector<std::uint8_t>* state,
+  const std::vector<std::array<V3, 2>>& boundary)
+{
+  c.closed.reserve(tris.size() + boundary.size());
+  for (std::size_t t = 0; t < tris.size(); ++t)
+  {
+    const std::uint8_t st = state ? (*state)[t] : static_cast<std::uint8_t>(OrientedMesh::Keep);
+    if (st == OrientedMesh::Remove) continue;
+    c.closed.push_back(tris[t]);
+    if (st == OrientedMesh::Reverse)
+    {
+      Tri& x = c.closed.back();
+      std::swap(x.v[1], x.v[2]);
+      x.n = -1.0 * x.n;
+    }
+  }
+  c.meshTris = c.closed.size();
+  if (!boundary.empty())
   {
     V3 apex;
-    for (const auto& e : mesh.boundary) apex = apex + e[0] + e[1];
-    apex = (0.5 / static_cast<double>(mesh.boundary.size())) * apex;
-    for (const auto& e : mesh.boundary)
+    for (const auto& e : boundary) apex = apex + e[0] + e[1];
+    apex = (0.5 / static_cast<double>(boundary.size())) * apex;
+    for (const auto& e : boundary)
     {
       bool ok = false;
       // boundary edge a -> b is closed by the cone triangle (apex, b, a)
       const Tri t = makeTri(apex, e[1], e[0], ok);
       if (ok)
       {
-        this->Cone.push_back(t);
-        this->Closed.push_back(t);
+        c.cone.push_back(t);
+        c.closed.push_back(t);
       }
     }
-    // clusters of boundary edges (median splits, at most 16 edges each)
-    std::vector<std::array<V3, 2>> edges = mesh.boundary;
-    struct Range
-    {
-      std::size_t first, count;
-    };
-    std::vector<Range> todo{ { 0, edges.size() } };
-    while (!todo.empty())
-    {
-      const Range r = todo.back();
-      todo.pop_back();
-      V3 lo{ 1e300, 1e300, 1e300 }, hi{ -1e300, -1e300, -1e300 };
-      for (std::size_t i = r.first; i < r.first + r.count; ++i)
-      {
-        for (const V3& v : edges[i])
-        {
-          lo = { std::min(lo.x, v.x), std::min(lo.y, v.y), std::min(lo.z, v.z) };
-          hi = { std::max(hi.x, v.x), std::max(hi.y, v.y), std::max(hi.z, v.z) };
-        }
-      }
-      if (r.count > 16)
-      {
-        const V3 ext = hi - lo;
-        const int axis = ext.x >= ext.y && ext.x >= ext.z ? 0 : (ext.y >= ext.z ? 1 : 2);
-        const std::size_t half = r.count / 2;
-        std::nth_element(edges.begin() + r.first, edges.begin() + r.first + half, edges.begin() + r.first + r.count,
-          [axis](const std::array<V3, 2>& x, const std::array<V3, 2>& y) {
-            return x[0][axis] + x[1][axis] < y[0][axis] + y[1][axis];
-          });
-        todo.push_back({ r.first, half });
-        todo.push_back({ r.first + half, r.count - half });
-        continue;
-      }
-      Cluster c;
-      c.centre = 0.5 * (lo + hi);
-      for (std::size_t i = r.first; i < r.first + r.count; ++i)
-      {
-        c.length += norm(edges[i][1] - edges[i][0]);
-        c.radius = std::max(c.radius, std::max(norm(edges[i][0] - c.centre), norm(edges[i][1] - c.centre)));
-      }
-      this->Clusters.push_back(c);
-    }
+    c.clusters = clusterEdges(boundary);
   }
-  this->ClosedBvh = std::make_unique<Bvh>(this->Closed);
+  c.bvh = std::make_unique<Bvh>(c.closed);
 }
 
-double WindingSigner::coneWinding(V3 p) const
+double coneWinding(const WindingSigner::Closure& c, V3 p)
 {
-  return laneOrderedSum(this->Cone.size(), [&](std::size_t c) {
-    const Tri& t = this->Cone[c];
+  return laneOrderedSum(c.cone.size(), [&](std::size_t i) {
+    const Tri& t = c.cone[i];
     return solidAngle(p, t.v[0], t.v[1], t.v[2]);
   }) / FourPi;
 }
 
-double WindingSigner::driftPerLength(V3 p, V3 q, double h) const
+double driftPerLength(const WindingSigner::Closure& c, V3 p, V3 q, double h)
 {
   // every point x of segment pq has |x - c| >= (|p - c| + |q - c| - h) / 2
   double sum = 0;
-  for (const Cluster& c : this->Clusters)
+  for (const WindingSigner::Cluster& k : c.clusters)
   {
-    const double m = 0.5 * (norm(p - c.centre) + norm(q - c.centre) - h) - c.radius;
+    const double m = 0.5 * (norm(p - k.centre) + norm(q - k.centre) - h) - k.radius;
     if (!(m > 0)) return std::numeric_limits<double>::infinity();
-    sum += c.length / (m * m);
+    sum += k.length / (m * m);
   }
   return h * sum / FourPi;
 }
 
+const V3 Oblique = normalized(V3{ 0.5773502691896258, 0.5780, 0.5767 });
+} // namespace
+
+WindingSigner::WindingSigner(const PreparedMesh& mesh)
+  : Mesh(mesh)
+{
+  if (mesh.boundary.empty())
+  {
+    // M is already a closed chain (every oriented edge cancels): w = K, no
+    // orientation pass needed
+    buildClosure(this->Plus, mesh.tris, nullptr, mesh.boundary);
+    return;
+  }
+  const OrientedMesh om = orientMesh(mesh.tris);
+  if (om.flippedCount == 0 && om.removedCount == 0)
+  {
+    // M+ = M: exactly the cone over dM (shared with the CUDA path)
+    buildClosure(this->Plus, mesh.tris, nullptr, mesh.boundary);
+    return;
+  }
+  buildClosure(this->Plus, mesh.tris, &om.state, om.boundary);
+  // the correction s with w_M = w_{M+} - s: each reversed face t counts
+  // 2 w_{-t} (M+ = M - 2t), each removed duplicate w_{-t} (M+ = M - t)
+  std::vector<WeightedTri> f;
+  f.reserve(om.flippedCount + om.removedCount);
+  for (std::size_t t = 0; t < mesh.tris.size(); ++t)
+  {
+    if (om.state[t] == OrientedMesh::Keep) continue;
+    const Tri& x = mesh.tris[t];
+    WeightedTri w;
+    w.v[0] = x.v[0];
+    w.v[1] = x.v[2]; // -t: the face reversed
+    w.v[2] = x.v[1];
+    w.w = om.state[t] == OrientedMesh::Reverse ? 2 : 1;
+    f.push_back(w);
+  }
+  this->Flipped = std::make_unique<DipoleTree>(std::move(f));
+}
+
+WindingSigner::~WindingSigner() = default;
+
+const WindingSigner::Closure& WindingSigner::coneOverMesh() const
+{
+  if (!this->Flipped) return this->Plus;
+  std::call_once(this->LegacyOnce, [this] {
+    this->Legacy = std::make_unique<Closure>();
+    buildClosure(*this->Legacy, this->Mesh.tris, nullptr, this->Mesh.boundary);
+  });
+  return *this->Legacy;
+}
+
 double WindingSigner::evaluate(V3 p) const
 {
-  const V3 dir = normalized(V3{ 0.5773502691896258, 0.5780, 0.5767 });
   std::vector<Bvh::RayHit> hits;
-  if (this->ClosedBvh->rayHits(p, dir, 0.0, hits))
+  if (this->Plus.bvh->rayHits(p, Oblique, 0.0, hits))
   {
     double k = 0;
     for (const auto& h : hits) k += h.sign;
-    return k - this->coneWinding(p);
+    return k - coneWinding(this->Plus, p) - (this->Flipped ? this->Flipped->exact(p) : 0.0);
   }
   return laneOrderedSum(this->Mesh.tris.size(), [&](std::size_t i) {
     const Tri& t = this->Mesh.tris[i];
@@ -172,71 +259,199 @@ double WindingSigner::evaluate(V3 p) const
   }) / FourPi;
 }
 
-void WindingSigner::signRow(V3 rowStart, double h, std::int64_t n, float* out, std::int64_t& evaluations,
-  std::int64_t& fallbacks) const
+bool WindingSigner::insideAt(V3 p, std::int64_t& fullSums) const
 {
+  std::vector<Bvh::RayHit> hits;
+  if (!this->Plus.bvh->rayHits(p, Oblique, 0.0, hits))
+  {
+    ++fullSums;
+    return insideOf(this->evaluate(p)); // sums all solid angles of M
+  }
+  double k = 0;
+  for (const auto& h : hits) k += h.sign;
+  const double u = k - coneWinding(this->Plus, p);
+  if (!this->Flipped) return insideOf(u);
+  double sLo = 0, sHi = 0;
+  std::int64_t leafTris = 0;
+  const auto r = this->Flipped->refine(p, 0,
+    [&](double lo, double hi) { return decided(u - 1e-9 - hi, u + 1e-9 - lo) ? 1 : 0; }, sLo, sHi, leafTris);
+  if (r == DipoleTree::Refined::Exact) ++fullSums;
+  return insideOf(u - 0.5 * (sLo + sHi));
+}
+
+void WindingSigner::signRow(V3 rowStart, double h, std::int64_t n, float* out, std::int64_t& evaluations,
+  std::int64_t& fallbacks, std::int64_t* fullSums) const
+{
+  std::int64_t fullLocal = 0;
+  std::int64_t& full = fullSums ? *fullSums : fullLocal;
+  const Closure& c = this->Plus;
   std::vector<Bvh::RayHit> hits;
   const V3 origin = rowStart - V3{ 0.5 * h, 0, 0 };
   auto pos = [&](std::int64_t i) { return rowStart + V3{ static_cast<double>(i) * h, 0, 0 }; };
-  if (!this->ClosedBvh->rayHits(origin, V3{ 1, 0, 0 }, 0.0, hits))
+  if (!c.bvh->rayHits(origin, V3{ 1, 0, 0 }, 0.0, hits))
   {
     for (std::int64_t i = 0; i < n; ++i)
     {
-      if (insideOf(this->evaluate(pos(i)))) out[i] = -out[i];
+      if (this->insideAt(pos(i), full)) out[i] = -out[i];
     }
     fallbacks += n;
     evaluations += n;
     return;
   }
   std::sort(hits.begin(), hits.end(), [](const Bvh::RayHit& a, const Bvh::RayHit& b) { return a.t < b.t; });
-  // k of voxel i = signed crossings ahead of it (t > t_i)
+  // K of voxel i = signed crossings ahead of it (t > t_i)
   int ahead = 0;
   for (const auto& x : hits) ahead += x.sign;
   std::size_t next = 0; // first hit not yet passed
-  const bool open = !this->Cone.empty();
+  const bool open = !c.cone.empty();
+  const DipoleTree* flips = this->Flipped.get();
   bool have = false;
-  double lo = 0, hi = 0;
+  double lo = 0, hi = 0;                 // interval of u = w_{M+}
+  std::int64_t segEnd = 0;               // the bounded segment covers voxels < segEnd
+  std::int64_t segStart = 0;
+  double segLo[Segment], segHi[Segment]; // s over the voxels of the segment
+  int segK[Segment];                     // their crossing counts (closed M+ + C only)
+  std::vector<std::int32_t> cut;         // the last per-voxel refinement's clusters
+  bool thetaWorked = true;               // the last per-voxel fixed-angle bound decided
+  std::int64_t leafTris = 0;
   for (std::int64_t i = 0; i < n; ++i)
   {
     const double ti = 0.5 * h + static_cast<double>(i) * h;
-    int jumpMesh = 0; // signed crossings of mesh triangles passed since the previous voxel
+    int jumpMesh = 0; // signed crossings of M+ triangles passed since the previous voxel
     while (next < hits.size() && hits[next].t <= ti)
     {
       ahead -= hits[next].sign;
-      if (static_cast<std::size_t>(hits[next].tri) < this->MeshTris) jumpMesh += hits[next].sign;
+      if (static_cast<std::size_t>(hits[next].tri) < c.meshTris) jumpMesh += hits[next].sign;
       ++next;
     }
-    double w;
+    bool uExact = !open, evaluated = false;
     if (!open)
     {
-      w = ahead; // closed chain: the crossing count is the winding number
+      lo = hi = ahead; // closed chain: the crossing count is w_{M+}
     }
-    else
+    else if (have)
     {
-      if (have)
+      const double drift = driftPerLength(c, pos(i - 1), pos(i), h);
+      if (std::isfinite(drift))
       {
-        const double drift = this->driftPerLength(pos(i - 1), pos(i), h);
-        if (std::isfinite(drift))
-        {
-          lo = lo - jumpMesh - drift;
-          hi = hi - jumpMesh + drift;
-        }
-        else
-        {
-          have = false;
-        }
+        lo = lo - jumpMesh - drift;
+        hi = hi - jumpMesh + drift;
       }
-      if (!have || !decided(lo, hi))
+      else
       {
-        const double exact = ahead - this->coneWinding(pos(i));
-        lo = exact - 1e-9;
-        hi = exact + 1e-9;
-        have = true;
-        ++evaluations;
+        have = false;
       }
-      w = 0.5 * (lo + hi);
     }
-    if (insideOf(w)) out[i] = -out[i];
+    auto exactU = [&] {
+      const double exact = ahead - coneWinding(c, pos(i));
+      lo = exact - 1e-9;
+      hi = exact + 1e-9;
+      have = uExact = evaluated = true;
+    };
+    if (!have && open) exactU();
+    double sLo = 0, sHi = 0;
+    int level = 2; // 1: s can still be refined at this voxel
+    if (flips)
+    {
+      if (i >= segEnd)
+      {
+        // s over balls around row segments: 16 voxels, halved down to
+        // MinSegment where a leaf is too close. Goal, when u = K exactly
+        // (no cone): the interval of K - s decided for every crossing count
+        // K of the segment's voxels; with a cone: s inside (-0.5, 0.5),
+        // which decides every voxel whose u is an integer.
+        const std::int64_t len = std::min(Segment, n - i);
+        std::fill(segLo, segLo + len, -std::numeric_limits<double>::infinity());
+        std::fill(segHi, segHi + len, std::numeric_limits<double>::infinity());
+        if (!open)
+        {
+          std::size_t nx = next;
+          int k = ahead;
+          for (std::int64_t a = 0; a < len; ++a)
+          {
+            const double ta = 0.5 * h + static_cast<double>(i + a) * h;
+            for (; nx < hits.size() && hits[nx].t <= ta; ++nx) k -= hits[nx].sign;
+            segK[a] = k;
+          }
+        }
+        auto tryBall = [&](auto& self, std::int64_t a, std::int64_t m) -> void {
+          const double half = 0.5 * static_cast<double>(m - 1) * h;
+          const V3 centre = pos(i + a) + V3{ half, 0, 0 };
+          // rho covers the rounding of the voxel positions too
+          const double slack = 1e-12 * (half + std::fabs(centre.x) + std::fabs(centre.y) + std::fabs(centre.z));
+          int kLo = 0, kHi = 0;
+          if (!open)
+          {
+            kLo = *std::min_element(segK + a, segK + a + m);
+            kHi = *std::max_element(segK + a, segK + a + m);
+          }
+          auto goal = [&](double l, double u) {
+            if (open) return l > -0.5 && u < 0.5 ? 1 : (l >= 0.5 || u <= -0.5 ? -1 : 0);
+            for (int k = kLo; k <= kHi; ++k)
+              if (!decided(k - u, k - l)) return 0;
+            return 1;
+          };
+          double x = 0, y = 0;
+          const auto r = flips->refine(centre, half + slack, goal, x, y, leafTris);
+          if (r == DipoleTree::Refined::Done)
+          {
+            std::fill(segLo + a, segLo + a + m, x);
+            std::fill(segHi + a, segHi + a + m, y);
+          }
+          else if (m >= 2 * MinSegment)
+          {
+            self(self, a, m / 2);
+            self(self, a + m / 2, m - m / 2);
+          }
+        };
+        tryBall(tryBall, 0, len);
+        cut.clear();
+        thetaWorked = true;
+        segStart = i;
+        segEnd = i + len;
+      }
+      level = 1;
+      sLo = segLo[i - segStart];
+      sHi = segHi[i - segStart];
+    }
+    while (!decided(lo - sHi, hi - sLo))
+    {
+      if (!uExact)
+      {
+        exactU();
+        continue;
+      }
+      if (level == 1)
+      {
+        // s at this voxel: a fixed opening angle first (cheap) unless it
+        // failed on the previous voxel, then refined until the sign is
+        // decided (or all exact), starting from the cut the previous voxel
+        // ended with (cleared at every segment)
+        double a = 0, b = 0;
+        const double ulo = lo, uhi = hi;
+        evaluated = true;
+        if (thetaWorked || cut.empty())
+        {
+          double v = 0, e = 0;
+          flips->bound(pos(i), 0, FirstTheta, v, e);
+          sLo = std::max(sLo, v - e);
+          sHi = std::min(sHi, v + e);
+          thetaWorked = decided(lo - sHi, hi - sLo);
+          if (thetaWorked) break;
+        }
+        const auto r = flips->refine(pos(i), 0, [&](double x, double y) { return decided(ulo - y, uhi - x) ? 1 : 0; },
+          a, b, leafTris, &cut);
+        sLo = std::max(sLo, a);
+        sHi = std::min(sHi, b);
+        if (r == DipoleTree::Refined::Exact) ++full;
+        level = 2;
+        evaluated = true;
+        continue;
+      }
+      break; // within rounding of +-0.5 with everything exact
+    }
+    if (evaluated) ++evaluations;
+    if (insideOf(0.5 * ((lo - sHi) + (hi - sLo)))) out[i] = -out[i];
   }
 }
 

@@ -99,6 +99,7 @@ struct MeshToSdfStats
   double buildSeconds = 0, distanceSeconds = 0, signSeconds = 0, writeSeconds = 0;
   std::int64_t windingEvaluations = 0; // voxels whose winding number was evaluated (not carried)
   std::int64_t windingExact = 0;       // of those, on rows whose +x ray was ambiguous
+  std::int64_t windingFullSums = 0;    // CPU: voxels whose sign needed every reversed/duplicate face summed exactly (docs/MESH_TO_SDF.md)
   std::uint64_t devicePeakBytes = 0;   // CUDA: device memory used
   std::int64_t keysVerified = 0;       // cudaVerifyKeys: voxels whose GPU key was checked
   std::int64_t keyMismatches = 0;      // cudaVerifyKeys: GPU keys != host encode (must be 0)

@@ -1,0 +1,76 @@
+// A hierarchy over weighted triangles for the sum of their solid angles with
+// a RIGOROUS error bound (used for 2 w_{F+}, the reversed faces of the
+// winding-number sign, MeshToSdfWinding.cpp). Far clusters use the dipole
+// term of Barill et al., "Fast Winding Numbers for Soups and Clouds" (ACM TOG
+// 2018): sum_t w_t a_t n_t . (c - p) / |c - p|^3, with the remainder bounded
+// by the Taylor estimate below instead of being ignored.
+#pragma once
+
+#include "MeshToSdfGeometry.h"
+
+#include <cstdint>
+#include <functional>
+#include <vector>
+
+namespace lvdif
+{
+namespace sdfdetail
+{
+
+struct WeightedTri
+{
+  V3 v[3];
+  double w = 1; // multiplicity of the triangle in the chain
+};
+
+class DipoleTree
+{
+public:
+  explicit DipoleTree(std::vector<WeightedTri> tris);
+  bool empty() const { return this->Tris.empty(); }
+  std::size_t size() const { return this->Tris.size(); }
+
+  /// s = sum_t w_t Omega_t(p) / (4 pi) lies in [value - err, value + err]
+  /// for EVERY p with |p - q| <= rho, by a fixed opening criterion: a
+  /// cluster is used (see refine() for its bound) when R + rho <= theta d;
+  /// closer leaves are summed exactly when rho == 0, and with rho > 0 such a
+  /// leaf makes the call return false (no bound). Cheaper per cluster than
+  /// refine() (no heap), for a first try.
+  bool bound(V3 q, double rho, double theta, double& value, double& err) const;
+  enum class Refined
+  {
+    Done,   // goal(sLo, sHi) said so
+    Exact,  // everything summed exactly, goal still not reached (within rounding)
+    Failed  // goal gave up, or rho > 0 and a leaf is too close to bound over the ball
+  };
+  /// s = sum_t w_t Omega_t(p) / (4 pi) lies in [sLo, sHi] for EVERY p with
+  /// |p - q| <= rho. The interval starts as the root's bound, and the cluster with the largest error is
+  /// split (a leaf summed exactly when rho == 0) until goal(sLo, sHi)
+  /// returns 1 (done) or -1 (give up); 0 means go on. Barnes-Hut style, but
+  /// driven by the sign decision instead of a fixed opening angle. A cluster
+  /// (centre c, radius R, weighted area A) at d = |c - q| - rho - R > 0 uses
+  /// the smaller of two rigorous bounds: its dipole term at q with error
+  /// 2 A (R + rho) / d^3 (Taylor: |grad (y / |y|^3)| <= 2 / |y|^3), or 0
+  /// with error A / d^2 (|Omega_t| <= area / dist^2); d <= 0: no bound.
+  /// leafTris counts the triangles summed exactly.
+  /// cut (optional): clusters to start from instead of the root (any set of
+  /// nodes that covers every triangle exactly once, e.g. the cut a previous
+  /// call ended with, a neighbouring voxel's); replaced by the final cut.
+  Refined refine(V3 q, double rho, const std::function<int(double, double)>& goal, double& sLo, double& sHi,
+    std::int64_t& leafTris, std::vector<std::int32_t>* cut = nullptr) const;
+  /// The plain sum over all triangles (Van Oosterom & Strackee solid angles).
+  double exact(V3 p) const;
+
+private:
+  struct Node
+  {
+    V3 c, dipole;        // centre; sum of w a n
+    double r = 0, mass = 0; // radius about c; sum of |w| a
+    std::int32_t left = -1, right = -1, first = 0, count = 0;
+  };
+  std::vector<WeightedTri> Tris;
+  std::vector<Node> Nodes;
+};
+
+} // namespace sdfdetail
+} // namespace lvdif

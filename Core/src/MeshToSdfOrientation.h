@@ -1,0 +1,52 @@
+// Consistent re-orientation of a triangle soup for the winding-number sign
+// (MeshToSdfWinding.cpp): M+ = M with a set F of faces reversed and a set R
+// of duplicated faces removed, so that w_M = w_{M+} + 2 w_F + w_R, and the
+// boundary chain of M+ (what still needs a cone to close it).
+#pragma once
+
+#include "MeshToSdfGeometry.h"
+
+#include <array>
+#include <cstdint>
+#include <vector>
+
+namespace lvdif
+{
+namespace sdfdetail
+{
+
+struct Tri;
+
+struct OrientedMesh
+{
+  enum State : std::uint8_t
+  {
+    Keep = 0,    // in M+ as it is
+    Reverse = 1, // in M+ reversed: w_M = w_{M+} + 2 w_t
+    Remove = 2   // not in M+ (an exact duplicate of another face): w_M = w_{M+} + w_t
+  };
+  /// Per triangle (index into the prepared triangles).
+  std::vector<std::uint8_t> state;
+  std::size_t flippedCount = 0;     // faces reversed
+  std::size_t removedCount = 0;     // duplicate faces removed
+  std::size_t components = 0;       // connected over manifold edges
+  std::size_t nonManifoldEdges = 0; // edges with 1 or more than 2 faces are not crossed by the BFS
+  std::size_t conflicts = 0;        // manifold edges left inconsistent (non-orientable parts)
+  /// The boundary chain of M+ as directed segments a -> b, repeated per unit
+  /// of |net multiplicity|; sorted so the result does not depend on threads.
+  std::vector<std::array<V3, 2>> boundary;
+};
+
+/// Faces with the same three vertices as another face are reduced first to
+/// their net multiplicity (one face of the majority orientation, or none when
+/// they cancel); the others are removed. Then it orients every connected component (faces joined by edges with exactly two
+/// faces) by a breadth-first search, keeps the orientation of the majority of
+/// each component's faces, and lists the reversed minority F. Any choice of F
+/// gives the same w_M: only the speed depends on F being small and M+ having
+/// little boundary. Non-manifold edges are not crossed; a non-orientable
+/// component keeps the first orientation the BFS reached (its conflicting
+/// edges become boundary of M+, closed by the cone).
+OrientedMesh orientMesh(const std::vector<Tri>& tris);
+
+} // namespace sdfdetail
+} // namespace lvdif

@@ -1,0 +1,303 @@
+// Winding-number sign on meshes with reversed faces (issue 4): the sign of
+// meshToSdf's WindingNumber mode against the exact winding number by brute
+// force (sum of solid angles in long double, MeshToSdfOracle.h) on every
+// voxel farther than 1 voxel, for flipped fractions 10-90 %, flipped + holes,
+// duplicated faces, intersecting closed meshes, a Moebius strip (non
+// orientable) and three faces on one edge (non manifold). Also: the dipole
+// tree's intervals hold against long double solid angles, and the
+// orientation finds exactly the reversed faces of a closed sphere.
+#include "../src/MeshToSdfDipoleTree.h"
+#include "../src/MeshToSdfInternal.h"
+#include "MeshToSdfOracle.h"
+#include "lvdif/MeshToSdf.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <random>
+#include <string>
+#include <vector>
+
+using namespace lvdif;
+
+namespace
+{
+TriangleMesh merge(const TriangleMesh& a, const TriangleMesh& b)
+{
+  TriangleMesh m = a;
+  const std::uint32_t off = static_cast<std::uint32_t>(a.points.size());
+  m.points.insert(m.points.end(), b.points.begin(), b.points.end());
+  for (auto t : b.triangles) m.triangles.push_back({ t[0] + off, t[1] + off, t[2] + off });
+  return m;
+}
+
+/// Reverses a random fraction of the faces; returns how many.
+std::size_t flip(TriangleMesh& m, double fraction, unsigned seed)
+{
+  std::mt19937 rng(seed);
+  std::uniform_real_distribution<double> u(0, 1);
+  std::size_t n = 0;
+  for (auto& t : m.triangles)
+    if (u(rng) < fraction)
+    {
+      std::swap(t[1], t[2]);
+      ++n;
+    }
+  return n;
+}
+
+TriangleMesh moebius(int n, float width)
+{
+  // centre circle of radius 0.8 in z = 0; the strip turns by half a turn, so
+  // the last column joins the first one upside down (non-orientable)
+  TriangleMesh m;
+  const int across = 3;
+  for (int i = 0; i < n; ++i)
+  {
+    const double u = 2 * M_PI * i / n;
+    for (int j = 0; j < across; ++j)
+    {
+      const double v = width * (2.0 * j / (across - 1) - 1);
+      m.points.push_back({ static_cast<float>((0.8 + v * std::cos(u / 2)) * std::cos(u)),
+        static_cast<float>((0.8 + v * std::cos(u / 2)) * std::sin(u)), static_cast<float>(v * std::sin(u / 2)) });
+    }
+  }
+  auto id = [&](int i, int j) {
+    if (i == n) return static_cast<std::uint32_t>(across - 1 - j); // glued upside down
+    return static_cast<std::uint32_t>(i * across + j);
+  };
+  for (int i = 0; i < n; ++i)
+    for (int j = 0; j + 1 < across; ++j)
+    {
+      m.triangles.push_back({ id(i, j), id(i + 1, j), id(i + 1, j + 1) });
+      m.triangles.push_back({ id(i, j), id(i + 1, j + 1), id(i, j + 1) });
+    }
+  return m;
+}
+
+/// Every voxel farther than 1 voxel from the mesh must have the sign of the
+/// exact winding number (|w| >= 0.5 inside).
+MeshToSdfStats expectExactSigns(const std::string& name, const TriangleMesh& mesh, GridGeometry g = {})
+{
+  if (g.dims[0] == 0)
+  {
+    g.dims = { 18, 17, 16 };
+    g.origin = { -1.3, -1.25, -1.2 };
+    g.spacing = { 0.15, 0.15, 0.15 };
+  }
+  const double h = std::min(g.spacing[0], std::min(g.spacing[1], g.spacing[2])); // the voxel unit
+  MeshToSdfOptions o;
+  o.sign = SignMode::WindingNumber;
+  o.device = Device::Cpu;
+  std::vector<float> sdf(static_cast<std::size_t>(g.count()));
+  const MeshToSdfStats st = meshToSdf(mesh, FloatGridView{ sdf.data(), g }, o);
+  std::int64_t far = 0, wrong = 0, inside = 0;
+  for (std::int64_t k = 0; k < g.dims[2]; ++k)
+    for (std::int64_t j = 0; j < g.dims[1]; ++j)
+      for (std::int64_t i = 0; i < g.dims[0]; ++i)
+      {
+        const oracle::P p{ g.origin[0] + i * g.spacing[0], g.origin[1] + j * g.spacing[1], g.origin[2] + k * g.spacing[2] };
+        if (oracle::distance(mesh, p) <= h) continue;
+        const double w = oracle::winding(mesh, p);
+        if (std::fabs(std::fabs(w) - 0.5) < 1e-6) continue; // the oracle cannot decide
+        ++far;
+        const bool in = std::fabs(w) >= 0.5;
+        inside += in;
+        wrong += (sdf[static_cast<std::size_t>(g.index(i, j, k))] < 0) != in;
+      }
+  EXPECT_EQ(wrong, 0) << name << ": " << wrong << " of " << far << " far voxels wrong (evaluations "
+                      << st.windingEvaluations << ", full sums " << st.windingFullSums << ")";
+  EXPECT_GT(far, g.count() / 2) << name;
+  std::printf("[ %s ] far voxels %lld, inside %lld, evaluations %lld, full sums %lld\n", name.c_str(),
+    static_cast<long long>(far), static_cast<long long>(inside), static_cast<long long>(st.windingEvaluations),
+    static_cast<long long>(st.windingFullSums));
+  return st;
+}
+} // namespace
+
+TEST(MeshToSdfWindingFlip, DipoleTreeIntervalsHoldAgainstLongDoubleSolidAngles)
+{
+  using namespace sdfdetail;
+  std::mt19937 rng(3);
+  std::uniform_real_distribution<double> u(-1, 1);
+  std::uniform_real_distribution<float> uf(-1, 1), sf(-0.1f, 0.1f);
+  std::vector<WeightedTri> tris(600);
+  TriangleMesh ref; // the same triangles, weight 2 as two copies
+  for (auto& t : tris)
+  {
+    const float cx = uf(rng), cy = uf(rng), cz = 0.3f * uf(rng);
+    for (auto& v : t.v)
+    {
+      // float points (as a mesh has), converted exactly to double
+      const Vec3f f{ cx + sf(rng), cy + sf(rng), cz + sf(rng) };
+      v = V3{ f[0], f[1], f[2] };
+    }
+    t.w = 2;
+    for (int copy = 0; copy < 2; ++copy)
+    {
+      const std::uint32_t b = static_cast<std::uint32_t>(ref.points.size());
+      for (const auto& v : t.v)
+      {
+        ref.points.push_back({ static_cast<float>(v.x), static_cast<float>(v.y), static_cast<float>(v.z) });
+        ASSERT_EQ(static_cast<double>(ref.points.back()[0]), v.x); // the oracle sees the same points
+      }
+      ref.triangles.push_back({ b, b + 1, b + 2 });
+    }
+  }
+  const DipoleTree tree(tris);
+  int done = 0, checked = 0, failed = 0;
+  std::int64_t leafTris = 0;
+  for (int n = 0; n < 300; ++n)
+  {
+    const V3 q{ 2 * u(rng), 2 * u(rng), 2 * u(rng) };
+    for (double rho : { 0.0, 0.05, 0.3 })
+      for (double width : { 0.2, 0.02, 0.0 })
+      {
+        // goal: an interval narrower than width (0: only the exact sum)
+        double lo = 0, hi = 0;
+        const auto r = tree.refine(q, rho, [&](double a, double b) { return b - a < width ? 1 : 0; }, lo, hi, leafTris);
+        if (r == DipoleTree::Refined::Failed)
+        {
+          EXPECT_GT(rho, 0); // only a ball may fail (a leaf too close)
+          ++failed;
+          continue;
+        }
+        ++done;
+        if (r == DipoleTree::Refined::Done) EXPECT_LT(hi - lo, width);
+        for (int k = 0; k < 4; ++k)
+        {
+          // points within rho of q: the centre and three random ones
+          V3 d{ u(rng), u(rng), u(rng) };
+          d = (k == 0 ? 0.0 : rho * std::fabs(u(rng)) / std::max(norm(d), 1e-12)) * d;
+          const V3 p = q + d;
+          const double w = oracle::winding(ref, { p.x, p.y, p.z });
+          EXPECT_LE(lo, w) << "rho " << rho << " width " << width;
+          EXPECT_GE(hi, w) << "rho " << rho << " width " << width;
+          ++checked;
+        }
+        if (rho == 0 && width == 0) EXPECT_NEAR(tree.exact(q), oracle::winding(ref, { q.x, q.y, q.z }), 1e-9);
+        if (rho == 0 && width > 0)
+        {
+          // warm start: a neighbour's final cut as the starting clusters
+          std::vector<std::int32_t> cut;
+          tree.refine(q, 0, [&](double a, double b) { return b - a < width ? 1 : 0; }, lo, hi, leafTris, &cut);
+          EXPECT_FALSE(cut.empty());
+          const V3 p = q + V3{ 0.03, -0.02, 0.01 };
+          const auto r2 =
+            tree.refine(p, 0, [&](double a, double b) { return b - a < width / 2 ? 1 : 0; }, lo, hi, leafTris, &cut);
+          const double w = oracle::winding(ref, { p.x, p.y, p.z });
+          EXPECT_NE(r2, DipoleTree::Refined::Failed);
+          EXPECT_LE(lo, w);
+          EXPECT_GE(hi, w);
+          ++checked;
+        }
+      }
+  }
+  EXPECT_GT(done, 900);
+  EXPECT_GT(failed, 10);
+  EXPECT_GT(checked, 3600);
+  EXPECT_GT(leafTris, 0);
+}
+
+TEST(MeshToSdfWindingFlip, OrientationFindsExactlyTheReversedFaces)
+{
+  // a closed manifold sphere: F must be exactly the reversed minority
+  for (double f : { 0.1, 0.3, 0.7 })
+  {
+    TriangleMesh m = makeSphereMesh(0, 0, 0, 1.0f, 10, 20);
+    const std::size_t n = flip(m, f, 9);
+    const auto prepared = sdfdetail::prepareMesh(m);
+    const sdfdetail::WindingSigner w(prepared);
+    const std::size_t minority = std::min(n, prepared.tris.size() - n);
+    EXPECT_EQ(w.flippedTriangles(), minority) << f;
+    // what the CUDA kernel gets: M itself closed by a cone over dM (every
+    // edge of a reversed face is uncancelled there)
+    EXPECT_GT(prepared.boundary.size(), 0u);
+    EXPECT_EQ(w.cone().size(), prepared.boundary.size());
+    EXPECT_EQ(w.meshTriangles(), prepared.tris.size());
+    EXPECT_EQ(w.closedTris().size(), prepared.tris.size() + prepared.boundary.size());
+  }
+}
+
+TEST(MeshToSdfWindingFlip, FlippedFractionsAreExact)
+{
+  for (double f : { 0.1, 0.3, 0.5, 0.9 })
+  {
+    TriangleMesh m = makeSphereMesh(0.05f, -0.03f, 0.02f, 1.0f, 10, 20);
+    flip(m, f, 17);
+    expectExactSigns("sphere, " + std::to_string(int(f * 100)) + "% flipped", m);
+  }
+  TriangleMesh box = makeBoxMesh({ -0.9f, -0.7f, -0.8f }, { 0.8f, 0.9f, 0.6f });
+  std::swap(box.triangles[3][1], box.triangles[3][2]);
+  std::swap(box.triangles[8][1], box.triangles[8][2]);
+  expectExactSigns("box, 2 of 12 flipped", box);
+}
+
+TEST(MeshToSdfWindingFlip, LongRowsUseTheSegmentBounds)
+{
+  // long rows past a small flipped sphere: most 16-voxel segments are far
+  // enough for the segment bound to decide without per-voxel evaluation
+  TriangleMesh m = makeSphereMesh(0.02f, 0.01f, -0.03f, 0.5f, 6, 12);
+  flip(m, 0.3, 12);
+  GridGeometry g;
+  g.dims = { 96, 11, 10 };
+  g.origin = { -3.3, -0.62, -0.6 };
+  g.spacing = { 0.07, 0.12, 0.13 };
+  const MeshToSdfStats st = expectExactSigns("small sphere, 30% flipped, long rows", m, g);
+  EXPECT_LT(st.windingEvaluations, g.count() / 2);
+}
+
+TEST(MeshToSdfWindingFlip, FlippedWithHolesIsExact)
+{
+  TriangleMesh m = makeSphereMesh(0.05f, -0.03f, 0.02f, 1.0f, 12, 24);
+  std::vector<std::array<std::uint32_t, 3>> kept;
+  for (std::size_t t = 0; t < m.triangles.size(); ++t)
+    if (t >= 24 * 2 && t % 31 != 7) kept.push_back(m.triangles[t]); // a polar opening and scattered holes
+  m.triangles = kept;
+  flip(m, 0.1, 4);
+  expectExactSigns("holes + 10% flipped", m);
+  flip(m, 0.5, 5);
+  expectExactSigns("holes + ~50% flipped", m);
+}
+
+TEST(MeshToSdfWindingFlip, DuplicatedAndIntersectingAreExact)
+{
+  const TriangleMesh sphere = makeSphereMesh(0.05f, -0.03f, 0.02f, 1.0f, 10, 20);
+  TriangleMesh d = sphere;
+  for (std::size_t t = 0; t < sphere.triangles.size(); t += 3)
+  {
+    auto x = sphere.triangles[t];
+    if (t % 2) std::swap(x[1], x[2]); // some duplicates reversed (they cancel)
+    d.triangles.push_back(x);
+  }
+  flip(d, 0.1, 6);
+  expectExactSigns("duplicated faces + 10% flipped", d);
+
+  TriangleMesh a = makeSphereMesh(-0.35f, 0, 0, 0.8f, 8, 16), b = makeSphereMesh(0.4f, 0.1f, 0.05f, 0.75f, 8, 16);
+  flip(a, 0.1, 7);
+  for (auto& t : b.triangles) std::swap(t[1], t[2]); // the second one inside out
+  flip(b, 0.2, 8);
+  expectExactSigns("two intersecting spheres, one inside out, flips", merge(a, b));
+}
+
+TEST(MeshToSdfWindingFlip, NonOrientableAndNonManifoldAreExact)
+{
+  TriangleMesh strip = moebius(40, 0.35f);
+  expectExactSigns("Moebius strip", strip);
+  flip(strip, 0.2, 10);
+  expectExactSigns("Moebius strip, 20% flipped", strip);
+
+  // a closed box with a fin on one edge (three faces on that edge) and a
+  // second box glued along an edge, some faces flipped
+  TriangleMesh m = makeBoxMesh({ -0.8f, -0.7f, -0.6f }, { 0.3f, 0.4f, 0.5f });
+  const std::uint32_t b = static_cast<std::uint32_t>(m.points.size());
+  m.points.push_back({ 0.3f, 0.4f, -0.6f });
+  m.points.push_back({ 0.3f, 0.4f, 0.5f });
+  m.points.push_back({ 1.0f, 1.1f, 0.0f });
+  // the fin uses the box's edge (0.3, 0.4, z) by position (welded by exact position)
+  m.triangles.push_back({ b, b + 1, b + 2 });
+  TriangleMesh other = makeBoxMesh({ 0.3f, 0.4f, -0.6f }, { 1.1f, 1.0f, 0.5f });
+  m = merge(m, other);
+  flip(m, 0.25, 11);
+  expectExactSigns("boxes on one edge + fin (non-manifold), flips", m);
+}

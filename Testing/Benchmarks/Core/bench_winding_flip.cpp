@@ -1,0 +1,150 @@
+// Winding-number sign on meshes with reversed faces (issue 4): process CPU
+// seconds of meshToSdf with SignMode::WindingNumber against PseudoNormal in
+// the same process (the ratio is the figure to compare across machines), the
+// counts of per-voxel evaluations and full exact sums, and a check of the
+// WindingNumber signs against an independent brute-force winding number
+// (long double solid angles, SignQualityMeshes.h) on a random subsample of
+// voxels farther than 1 voxel from the mesh.
+//
+// usage: bench_winding_flip [--res 64,128] [--samples 1000] SPEC...
+// SPEC is a mesh path, or DAMAGE:PATH with DAMAGE flipNN (NN % of the faces
+// reversed, signquality::flipFaces, seed 2: flip10 is bench_sign_quality's),
+// dupNN (NN % duplicated), holes (8 round holes) or pair (two intersecting copies).
+#include "BenchCommon.h"
+#include "SignQualityMeshes.h"
+
+#include "lvdif/Error.h"
+#include "lvdif/MeshFile.h"
+#include "lvdif/MeshToSdf.h"
+
+#include <sys/resource.h>
+
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <limits>
+#include <random>
+#include <sstream>
+#include <string>
+#include <vector>
+
+using namespace lvdif;
+
+namespace
+{
+double cpuSeconds()
+{
+  rusage u{};
+  getrusage(RUSAGE_SELF, &u);
+  return double(u.ru_utime.tv_sec + u.ru_stime.tv_sec) + 1e-6 * double(u.ru_utime.tv_usec + u.ru_stime.tv_usec);
+}
+
+TriangleMesh loadSpec(const std::string& spec, std::string& label)
+{
+  const auto colon = spec.find(':');
+  const std::string damage = colon == std::string::npos ? "" : spec.substr(0, colon);
+  const std::string path = colon == std::string::npos ? spec : spec.substr(colon + 1);
+  std::string base = path.substr(path.find_last_of('/') + 1);
+  base = base.substr(0, base.find('.'));
+  label = damage.empty() ? base : damage + "-" + base;
+  const TriangleMesh m = loadMesh(path);
+  if (damage.empty()) return m;
+  if (damage.rfind("flip", 0) == 0) return signquality::flipFaces(m, std::atof(damage.c_str() + 4) / 100.0);
+  if (damage.rfind("dup", 0) == 0) return signquality::duplicateFaces(m, std::atof(damage.c_str() + 3) / 100.0);
+  if (damage == "holes") return signquality::punchHoles(m, 8, 0.03);
+  if (damage == "pair") return signquality::intersectingPair(m);
+  throw Error(ErrorCode::InvalidArgument, "unknown damage '" + damage + "'");
+}
+
+std::vector<double> parseList(const std::string& s)
+{
+  std::vector<double> out;
+  std::stringstream ss(s);
+  std::string item;
+  while (std::getline(ss, item, ','))
+    if (!item.empty()) out.push_back(std::atof(item.c_str()));
+  return out;
+}
+} // namespace
+
+int main(int argc, char** argv)
+{
+  std::vector<double> resolutions{ 64, 128 };
+  std::int64_t samples = 1000;
+  std::vector<std::string> meshes;
+  for (int i = 1; i < argc; ++i)
+  {
+    const std::string a = argv[i];
+    if (a == "--res" && i + 1 < argc) resolutions = parseList(argv[++i]);
+    else if (a == "--samples" && i + 1 < argc) samples = std::atoll(argv[++i]);
+    else meshes.push_back(a);
+  }
+  if (meshes.empty())
+  {
+    std::fprintf(stderr, "usage: %s [--res 64,128] [--samples N] [flipNN:|dupNN:|holes:|pair:]MESH...\n", argv[0]);
+    return 2;
+  }
+  std::printf("machine: %s\n", bench::machineDescription().c_str());
+  std::vector<std::vector<std::string>> rows;
+  for (const std::string& spec : meshes)
+  {
+    std::string label;
+    const TriangleMesh mesh = loadSpec(spec, label);
+    {
+      for (double resD : resolutions)
+      {
+        const auto res = static_cast<std::int64_t>(resD);
+        const GridGeometry g = fitGridToMesh(mesh, res, 2.0);
+        std::vector<float> pn(static_cast<std::size_t>(g.count())), wn(pn.size());
+        MeshToSdfOptions o;
+        o.device = Device::Cpu;
+        o.sign = SignMode::PseudoNormal;
+        o.bandWidth = 4.0f;
+        double c0 = cpuSeconds();
+        bench::Stopwatch w;
+        meshToSdf(mesh, FloatGridView{ pn.data(), g }, o);
+        const double pnCpu = cpuSeconds() - c0, pnWall = w.seconds();
+        o.sign = SignMode::WindingNumber;
+        c0 = cpuSeconds();
+        w.reset();
+        const MeshToSdfStats st = meshToSdf(mesh, FloatGridView{ wn.data(), g }, o);
+        const double wnCpu = cpuSeconds() - c0, wnWall = w.seconds();
+        // brute-force check on a subsample of far voxels
+        std::mt19937_64 rng(42);
+        std::uniform_int_distribution<std::int64_t> u(0, g.count() - 1);
+        std::vector<std::int64_t> pick;
+        while (static_cast<std::int64_t>(pick.size()) < samples)
+        {
+          const std::int64_t idx = u(rng);
+          if (std::fabs(wn[static_cast<std::size_t>(idx)]) > 1.0f) pick.push_back(idx);
+        }
+        std::int64_t wrong = 0;
+#pragma omp parallel for schedule(dynamic, 8) reduction(+ : wrong)
+        for (std::int64_t s = 0; s < samples; ++s)
+        {
+          const std::int64_t idx = pick[static_cast<std::size_t>(s)];
+          const std::int64_t x = idx % g.dims[0], y = (idx / g.dims[0]) % g.dims[1], z = idx / (g.dims[0] * g.dims[1]);
+          const std::array<double, 3> p{ g.origin[0] + x * g.spacing[0], g.origin[1] + y * g.spacing[1],
+            g.origin[2] + z * g.spacing[2] };
+          const bool inside = std::fabs(signquality::bruteWinding(mesh, p)) >= 0.5L;
+          wrong += (wn[static_cast<std::size_t>(idx)] < 0) != inside;
+        }
+        rows.push_back({ label, std::to_string(res),
+          std::to_string(st.triangles), bench::fmt(pnCpu, 2), bench::fmt(wnCpu, 2), bench::fmt(wnCpu / pnCpu, 2),
+          bench::fmt(pnWall, 2), bench::fmt(wnWall, 2), bench::fmt(st.signSeconds, 2),
+          std::to_string(st.windingEvaluations), std::to_string(st.windingFullSums), std::to_string(st.windingExact),
+          std::to_string(wrong) + "/" + std::to_string(samples) });
+        std::printf("row: %s\n", [&] {
+          std::string line;
+          for (const auto& c : rows.back()) line += c + " | ";
+          return line;
+        }().c_str());
+        std::fflush(stdout);
+      }
+    }
+  }
+  bench::printTable({ "mesh", "res", "tris", "PN cpu s", "WN cpu s", "WN/PN", "PN wall s", "WN wall s",
+                      "WN sign s", "evaluations", "full sums", "ambig. rows vox", "WN vs BF wrong (far)" },
+    rows);
+  return 0;
+}
