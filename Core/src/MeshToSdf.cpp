@@ -5,6 +5,7 @@
 
 #include "MeshToSdfCuda.h"
 #include "MeshToSdfInternal.h"
+#include "MeshToSdfNearest.h"
 #include "lvdif/Memory.h"
 
 #include <omp.h>
@@ -45,7 +46,7 @@ void validateGrid(const GridGeometry& g)
 struct Engine
 {
   const PreparedMesh* mesh = nullptr;
-  const Bvh* bvh = nullptr;
+  const NearestIndex* index = nullptr;
   const WindingSigner* winding = nullptr;
   std::unique_ptr<FaithfulGrid> grid;
   GridGeometry geom;
@@ -87,7 +88,7 @@ struct Engine
         // only the winding-number and unsigned modes may stop at the band:
         // the others need the closest triangle for its normal
         const bool bounded = this->opts.sign == SignMode::WindingNumber || this->opts.sign == SignMode::Unsigned;
-        return this->bvh->nearest(p, hint, bounded ? this->bandWorld2 : 1e300);
+        return this->index->nearest(p, hint, bounded ? this->bandWorld2 : 1e300);
       }
     }
   }
@@ -137,7 +138,7 @@ struct Engine
         continue;
       }
       const V3 p = this->position(i, j, k);
-      const NearestResult r = bounded ? this->bvh->nearest(p, hint, reach * reach) : this->nearest(p, hint);
+      const NearestResult r = bounded ? this->index->nearest(p, hint, reach * reach) : this->nearest(p, hint);
       double d = r.tri < 0 ? this->band : std::sqrt(r.dist2) * this->toOut;
       lower = r.tri < 0 ? reach : std::sqrt(r.dist2);
       d = std::min(d, this->band);
@@ -167,7 +168,7 @@ std::unique_ptr<Engine> makeEngine(const MeshToSdfPrepared& prepared, const Grid
   auto e = std::make_unique<Engine>();
   MeshToSdfPrepared::Impl& impl = prepared.impl();
   e->mesh = &impl.mesh;
-  e->bvh = impl.bvh.get();
+  e->index = impl.nearest.get();
   e->geom = geom;
   e->opts = opts;
   const double unit = std::min(geom.spacing[0], std::min(geom.spacing[1], geom.spacing[2]));
@@ -556,6 +557,7 @@ MeshToSdfPrepared prepareMeshToSdf(const TriangleMesh& mesh, SignMode sign)
   auto impl = std::make_shared<MeshToSdfPrepared::Impl>();
   impl->mesh = prepareMesh(mesh);
   impl->bvh = std::make_unique<Bvh>(impl->mesh.tris);
+  impl->nearest = std::make_unique<NearestIndex>(impl->mesh.tris);
   double unused = 0;
   if (sign == SignMode::WindingNumber) impl->windingSigner(unused);
   impl->prepareSeconds = now() - t0;

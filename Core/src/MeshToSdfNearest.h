@@ -1,0 +1,56 @@
+// CPU-only query structure for the exact nearest triangle of mesh to SDF: a
+// 4-wide BVH (binned SAH, one triangle per slot) with float child boxes
+// rounded outward, tested four at a time, over triangles stored contiguously
+// in traversal order. Beside the binary Bvh (which the CUDA path uploads and
+// the winding pass uses), never in its place. See docs/MESH_TO_SDF.md.
+#pragma once
+
+#include "MeshToSdfInternal.h"
+
+#include <cstdint>
+#include <vector>
+
+namespace lvdif
+{
+namespace sdfdetail
+{
+
+class NearestIndex
+{
+public:
+  explicit NearestIndex(const std::vector<Tri>& tris);
+
+  /// The same answer as a brute-force scan of closestPointOnTriangle over
+  /// every triangle (ties to the lowest index), among the triangles whose
+  /// squared distance is <= maxDist2 (tri = -1 when there is none). The hint
+  /// (a triangle index, -1 for none) only seeds the bound. Pruning uses lower
+  /// bounds with a margin (see Tau in the .cpp), so it never drops a triangle
+  /// whose computed distance could win or tie.
+  NearestResult nearest(V3 p, std::int32_t hint, double maxDist2) const;
+
+  struct alignas(16) Node
+  {
+    float lo[3][4], hi[3][4]; // child boxes, per axis, four lanes
+    std::int32_t child[4];    // >= 0: node; < 0: ~(position in Packed)
+    std::int32_t count = 0;   // used lanes (the first `count`)
+  };
+  struct Packed
+  {
+    V3 v[3];             // exact copies of the triangle's vertices
+    V3 n;                // unit normal (plane distance bound)
+    std::int32_t index;  // in the prepared triangle list
+  };
+
+  const std::vector<Node>& nodes() const { return this->Nodes; }
+  std::size_t depth() const { return this->Depth; }
+
+private:
+  std::vector<Node> Nodes;
+  std::vector<Packed> Tris;          // in traversal order
+  std::vector<std::int32_t> PosOf;   // triangle index -> position in Tris
+  double Scale = 0;                  // largest |coordinate| of the mesh
+  std::size_t Depth = 0;
+};
+
+} // namespace sdfdetail
+} // namespace lvdif
