@@ -129,29 +129,48 @@ struct Engine
     const double reach = bandWorld + 4 * h;
     double lower = -1; // lower bound of the current voxel's world distance
     std::int32_t hint = -1;
-    for (std::int64_t i = i0; i <= i1; ++i)
+    // the unbounded BVH case takes the voxels four at a time (one shared traversal)
+    const bool packets = !bounded && this->opts.accel == MeshToSdfAccel::Bvh;
+    for (std::int64_t i = i0; i <= i1;)
     {
-      lower -= h;
-      if (bounded && lower >= bandWorld)
+      NearestResult res[4];
+      V3 ps[4];
+      int count = 1;
+      if (packets)
       {
-        out[i - i0] = static_cast<float>(this->band);
-        continue;
+        count = static_cast<int>(std::min<std::int64_t>(4, i1 - i + 1));
+        for (int q = 0; q < count; ++q) ps[q] = this->position(i + q, j, k);
+        this->index->nearestRow(ps, count, hint, res);
       }
-      const V3 p = this->position(i, j, k);
-      const NearestResult r = bounded ? this->index->nearest(p, hint, reach * reach) : this->nearest(p, hint);
-      double d = r.tri < 0 ? this->band : std::sqrt(r.dist2) * this->toOut;
-      lower = r.tri < 0 ? reach : std::sqrt(r.dist2);
-      d = std::min(d, this->band);
-      float s = 1.0f;
-      if (r.tri >= 0)
+      else
       {
-        hint = r.tri;
-        if (this->opts.sign == SignMode::Normal || this->opts.sign == SignMode::PseudoNormal)
+        lower -= h;
+        if (bounded && lower >= bandWorld)
         {
-          s = this->localSign(p, r);
+          out[i - i0] = static_cast<float>(this->band);
+          ++i;
+          continue;
         }
+        ps[0] = this->position(i, j, k);
+        res[0] = bounded ? this->index->nearest(ps[0], hint, reach * reach) : this->nearest(ps[0], hint);
       }
-      out[i - i0] = s * static_cast<float>(d);
+      for (int q = 0; q < count; ++q, ++i)
+      {
+        const NearestResult& r = res[q];
+        double d = r.tri < 0 ? this->band : std::sqrt(r.dist2) * this->toOut;
+        lower = r.tri < 0 ? reach : std::sqrt(r.dist2);
+        d = std::min(d, this->band);
+        float s = 1.0f;
+        if (r.tri >= 0)
+        {
+          hint = r.tri;
+          if (this->opts.sign == SignMode::Normal || this->opts.sign == SignMode::PseudoNormal)
+          {
+            s = this->localSign(ps[q], r);
+          }
+        }
+        out[i - i0] = s * static_cast<float>(d);
+      }
     }
   }
 };

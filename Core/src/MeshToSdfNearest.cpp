@@ -15,6 +15,12 @@
 #define LVDIF_NEAREST_SSE 1
 #endif
 
+#ifdef LVDIF_NEAREST_STATS
+long long gStatNodes = 0, gStatBoxPass = 0, gStatEricson = 0, gStatQueries = 0, gStatImprove = 0;
+#define STAT(x) __atomic_add_fetch(&x, 1, __ATOMIC_RELAXED)
+#else
+#define STAT(x)
+#endif
 namespace lvdif
 {
 namespace sdfdetail
@@ -35,6 +41,7 @@ struct BNode
   double lo[3], hi[3];
   std::int32_t left = -1, right = -1; // -1: leaf of one triangle
   std::int32_t tri = -1;
+  std::int32_t first = 0, count = 0; // range in Builder::Order
 };
 
 double area(const double lo[3], const double hi[3])
@@ -67,6 +74,8 @@ public:
   {
     const std::int32_t id = static_cast<std::int32_t>(this->Nodes.size());
     this->Nodes.emplace_back();
+    this->Nodes[id].first = first;
+    this->Nodes[id].count = count;
     if (count == 1)
     {
       BNode& n = this->Nodes[id];
@@ -162,19 +171,26 @@ private:
   const std::vector<Ref>& Refs;
 };
 
-float roundDown(double x)
+} // namespace
+
+float roundDownToFloat(double x)
 {
   float f = static_cast<float>(x);
   if (static_cast<double>(f) > x) f = std::nextafter(f, -std::numeric_limits<float>::infinity());
   return f;
 }
 
-float roundUp(double x)
+float roundUpToFloat(double x)
 {
   float f = static_cast<float>(x);
   if (static_cast<double>(f) < x) f = std::nextafter(f, std::numeric_limits<float>::infinity());
   return f;
 }
+
+namespace
+{
+float roundDown(double x) { return roundDownToFloat(x); }
+float roundUp(double x) { return roundUpToFloat(x); }
 } // namespace
 
 NearestIndex::NearestIndex(const std::vector<Tri>& tris)
@@ -210,11 +226,57 @@ NearestIndex::NearestIndex(const std::vector<Tri>& tris)
     const V3 c = cross(e1, e2);
     const double len = norm(c);
     const double tilt = 8.0 * 1.1102230246251565e-16 * norm(e1) * norm(e2) / len;
-    p.n = len > 0 && tilt < 1e-13 ? (1.0 / len) * c : V3{};
+    for (auto& pl : p.plane) pl[0] = pl[1] = pl[2] = pl[3] = 0;
+    if (len > 0 && tilt < 1e-13)
+    {
+      const V3 n = (1.0 / len) * c;
+      auto setPlane = [&](int k, V3 m, V3 on) {
+        p.plane[k][0] = m.x;
+        p.plane[k][1] = m.y;
+        p.plane[k][2] = m.z;
+        p.plane[k][3] = -dot(m, on);
+      };
+      setPlane(0, n, src.v[0]);
+      for (int e = 0; e < 3; ++e)
+      {
+        const V3 a = src.v[e], b = src.v[(e + 1) % 3];
+        setPlane(1 + e, normalized(cross(b - a, n)), a); // outward for a counter-clockwise (about n) triangle
+      }
+    }
     p.index = t;
     this->PosOf[static_cast<std::size_t>(t)] = static_cast<std::int32_t>(this->Tris.size());
     this->Tris.push_back(p);
     return ~static_cast<std::int32_t>(this->Tris.size() - 1);
+  };
+
+  // a child's slab: its area-weighted mean normal rounded to float, and the
+  // range of that float normal's dot with every vertex, rounded outward
+  auto childSlab = [&](const BNode& c, float out[5]) {
+    V3 sum;
+    for (std::int32_t i = c.first; i < c.first + c.count; ++i)
+    {
+      const Tri& t = tris[static_cast<std::size_t>(b.Order[static_cast<std::size_t>(i)])];
+      sum = sum + cross(t.v[1] - t.v[0], t.v[2] - t.v[0]);
+    }
+    const V3 n = normalized(sum);
+    const V3 nf{ static_cast<float>(n.x), static_cast<float>(n.y), static_cast<float>(n.z) };
+    double lo = 1e300, hi = -1e300;
+    for (std::int32_t i = c.first; i < c.first + c.count; ++i)
+    {
+      const Tri& t = tris[static_cast<std::size_t>(b.Order[static_cast<std::size_t>(i)])];
+      for (int k = 0; k < 3; ++k)
+      {
+        lo = std::min(lo, dot(nf, t.v[k]));
+        hi = std::max(hi, dot(nf, t.v[k]));
+      }
+    }
+    // the double dots round too: widen by a relative 1e-15 of the magnitudes
+    const double pad = 1e-15 * (std::fabs(lo) + std::fabs(hi) + this->Scale);
+    out[0] = static_cast<float>(nf.x);
+    out[1] = static_cast<float>(nf.y);
+    out[2] = static_cast<float>(nf.z);
+    out[3] = roundDown(lo - pad);
+    out[4] = roundUp(hi + pad);
   };
 
   // collapse: open the child of largest surface area until four, then emit
@@ -259,6 +321,8 @@ NearestIndex::NearestIndex(const std::vector<Tri>& tris)
       const BNode& c = b.Nodes[kids[i]];
       child[i] = c.left < 0 ? addTri(c.tri) : self(self, kids[i], depth + 1);
     }
+    float slab[4][5];
+    for (int i = 0; i < k; ++i) childSlab(b.Nodes[kids[i]], slab[i]);
     Node& node = this->Nodes[id];
     node.count = k;
     for (int i = 0; i < 4; ++i)
@@ -269,7 +333,10 @@ NearestIndex::NearestIndex(const std::vector<Tri>& tris)
       {
         node.lo[a][i] = used ? roundDown(b.Nodes[kids[i]].lo[a]) : std::numeric_limits<float>::infinity();
         node.hi[a][i] = used ? roundUp(b.Nodes[kids[i]].hi[a]) : -std::numeric_limits<float>::infinity();
+        node.sn[a][i] = used ? slab[i][a] : 0.0f;
       }
+      node.smin[i] = used ? slab[i][3] : 0.0f;
+      node.smax[i] = used ? slab[i][4] : 0.0f;
     }
     return id;
   };
@@ -283,6 +350,7 @@ NearestResult NearestIndex::nearest(V3 p, std::int32_t hint, double maxDist2) co
   NearestResult best;
   best.dist2 = maxDist2;
   if (this->Nodes.empty()) return best;
+  STAT(gStatQueries);
   // Tau: slack on every bound, far above the rounding of the closest point
   // (a few ulps of the largest coordinate), far below a voxel
   const double big = std::max(this->Scale, std::max(std::fabs(p.x), std::max(std::fabs(p.y), std::fabs(p.z))));
@@ -296,8 +364,12 @@ NearestResult NearestIndex::nearest(V3 p, std::int32_t hint, double maxDist2) co
   };
   auto consider = [&](const Packed& t) {
     if (t.index == best.tri) return;
-    const double pd = dot(p - t.v[0], t.n);
-    if (pd * pd > thr2) return;
+    STAT(gStatBoxPass);
+    auto eval = [&](int k) { return t.plane[k][0] * p.x + t.plane[k][1] * p.y + t.plane[k][2] * p.z + t.plane[k][3]; };
+    const double pd = eval(0);
+    const double ed = std::max(0.0, std::max(eval(1), std::max(eval(2), eval(3))));
+    if (pd * pd + ed * ed > thr2) return;
+    STAT(gStatEricson);
     const Closest c = closestPointOnTriangle(p, t.v[0], t.v[1], t.v[2]);
     const V3 d = c.point - p;
     const double d2 = dot(d, d);
@@ -308,6 +380,7 @@ NearestResult NearestIndex::nearest(V3 p, std::int32_t hint, double maxDist2) co
       best.tri = t.index;
       best.closest = c;
       setThreshold();
+      STAT(gStatImprove);
     }
   };
   if (hint >= 0)
@@ -337,6 +410,7 @@ NearestResult NearestIndex::nearest(V3 p, std::int32_t hint, double maxDist2) co
   stack[top++] = { 0, 0.0f };
 #ifdef LVDIF_NEAREST_SSE
   const __m128 vx = _mm_set1_ps(px), vy = _mm_set1_ps(py), vz = _mm_set1_ps(pz);
+  const __m128 vsepsv = _mm_set1_ps(2.5f * epsF);
   const __m128 veps = _mm_set1_ps(epsF), zero = _mm_setzero_ps(), shrink = _mm_set1_ps(0.999999f);
 #endif
   while (top > 0)
@@ -344,6 +418,7 @@ NearestResult NearestIndex::nearest(V3 p, std::int32_t hint, double maxDist2) co
     const Item it = stack[--top];
     if (it.lb > thrF) continue;
     const Node& n = this->Nodes[static_cast<std::size_t>(it.node)];
+    STAT(gStatNodes);
     alignas(16) float lb[4];
 #ifdef LVDIF_NEAREST_SSE
     {
@@ -352,7 +427,11 @@ NearestResult NearestIndex::nearest(V3 p, std::int32_t hint, double maxDist2) co
         const __m128 c = _mm_max_ps(_mm_sub_ps(g, veps), zero);
         return _mm_mul_ps(c, c);
       };
-      _mm_store_ps(lb, _mm_mul_ps(_mm_add_ps(_mm_add_ps(gap(0, vx), gap(1, vy)), gap(2, vz)), shrink));
+      const __m128 box = _mm_add_ps(_mm_add_ps(gap(0, vx), gap(1, vy)), gap(2, vz));
+      const __m128 d = _mm_add_ps(_mm_add_ps(_mm_mul_ps(_mm_load_ps(n.sn[0]), vx), _mm_mul_ps(_mm_load_ps(n.sn[1]), vy)),
+        _mm_mul_ps(_mm_load_ps(n.sn[2]), vz));
+      const __m128 sg = _mm_max_ps(_mm_sub_ps(_mm_max_ps(_mm_sub_ps(_mm_load_ps(n.smin), d), _mm_sub_ps(d, _mm_load_ps(n.smax))), vsepsv), zero);
+      _mm_store_ps(lb, _mm_mul_ps(_mm_max_ps(box, _mm_mul_ps(sg, sg)), shrink));
     }
 #else
     {
@@ -365,7 +444,9 @@ NearestResult NearestIndex::nearest(V3 p, std::int32_t hint, double maxDist2) co
           const float g = std::max(std::max(n.lo[a][i] - q[a], q[a] - n.hi[a][i]) - epsF, 0.0f);
           s += g * g;
         }
-        lb[i] = s * 0.999999f;
+        const float d = n.sn[0][i] * px + n.sn[1][i] * py + n.sn[2][i] * pz;
+        const float g = std::max(std::max(n.smin[i] - d, d - n.smax[i]) - 2.5f * epsF, 0.0f);
+        lb[i] = std::max(s, g * g) * 0.999999f;
       }
     }
 #endif

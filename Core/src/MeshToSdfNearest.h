@@ -15,6 +15,10 @@ namespace lvdif
 namespace sdfdetail
 {
 
+/// float bounds rounded outward (the boxes must contain the double ones)
+float roundDownToFloat(double x);
+float roundUpToFloat(double x);
+
 class NearestIndex
 {
 public:
@@ -28,16 +32,27 @@ public:
   /// whose computed distance could win or tie.
   NearestResult nearest(V3 p, std::int32_t hint, double maxDist2) const;
 
+  /// nearest(p[i], ., 1e300) for n <= 4 points of one grid row (equal y and
+  /// z), in one traversal: the node's boxes are tested for the four points at
+  /// once (MeshToSdfNearestRow.cpp). The hint seeds every point.
+  void nearestRow(const V3* p, int n, std::int32_t hint, NearestResult* out) const;
+
   struct alignas(16) Node
   {
     float lo[3][4], hi[3][4]; // child boxes, per axis, four lanes
+    // child slabs: smin <= sn . x <= smax for every vertex below the child
+    // (sn: the child's mean normal in float; exact for any sn, tight where flat)
+    float sn[3][4], smin[4], smax[4];
     std::int32_t child[4];    // >= 0: node; < 0: ~(position in Packed)
     std::int32_t count = 0;   // used lanes (the first `count`)
   };
   struct Packed
   {
     V3 v[3];             // exact copies of the triangle's vertices
-    V3 n;                // unit normal (plane distance bound)
+    // lower bound planes: the unit normal, then the in-plane outward unit
+    // normals of edges AB, BC, CA; the distance is at least
+    // sqrt(plane^2 + max(0, edges)^2) (all zero for slivers: no bound)
+    double plane[4][4];  // x, y, z, offset
     std::int32_t index;  // in the prepared triangle list
   };
 

@@ -34,7 +34,8 @@ NearestResult bruteForce(const std::vector<Tri>& tris, V3 p, double maxDist2)
 }
 
 /// Every query against brute force, with no bound and with a bound, with no
-/// hint and a random one; returns the number of queries checked.
+/// hint and a random one, and as the first of a row of 1 to 4 points
+/// (nearestRow); returns the number of queries checked.
 int checkAll(const TriangleMesh& mesh, const std::vector<V3>& queries, std::mt19937& rng)
 {
   const PreparedMesh pm = prepareMesh(mesh);
@@ -60,6 +61,25 @@ int checkAll(const TriangleMesh& mesh, const std::vector<V3>& queries, std::mt19
         EXPECT_EQ(got.closest.point.x, want.closest.point.x);
       }
       ++checked;
+    }
+    // four points of a row (equal y and z) in one traversal, each exact
+    {
+      const double steps[3] = { 1e-3, 0.05, 3.0 };
+      const double h = steps[std::uniform_int_distribution<int>(0, 2)(rng)];
+      const int n = std::uniform_int_distribution<int>(1, 4)(rng);
+      V3 row[4];
+      NearestResult res[4];
+      for (int i = 0; i < n; ++i) row[i] = { p.x + i * h, p.y, p.z };
+      const std::int32_t hint = pick(rng);
+      index.nearestRow(row, n, hint, res);
+      for (int i = 0; i < n; ++i)
+      {
+        const NearestResult want = bruteForce(pm.tris, row[i], 1e300);
+        EXPECT_EQ(res[i].tri, want.tri) << "row point " << i << " of " << n << " hint " << hint;
+        EXPECT_EQ(res[i].dist2, want.dist2);
+        if (res[i].tri == want.tri) EXPECT_EQ(res[i].closest.feature, want.closest.feature);
+        ++checked;
+      }
     }
     // and the independent oracle (another method, long double)
     const Tri& t = pm.tris[static_cast<std::size_t>(ref.tri)];

@@ -1,5 +1,6 @@
 // Nearest-triangle queries of mesh to SDF, CPU: the binary Bvh (the GPU's
-// tree) against the CPU NearestIndex, on every voxel of a fitted grid, rows in
+// tree) against the CPU NearestIndex (one point, and four points of a row per
+// traversal as Engine::distanceRow uses it), on every voxel of a fitted grid, rows in
 // parallel with the previous voxel's triangle as hint (as Engine::distanceRow
 // does), in one process. Checks that both give the same triangle and the same
 // double distance on every voxel (and, with CHECK=1, brute force on a sample).
@@ -12,6 +13,7 @@
 
 #include <omp.h>
 
+#include <algorithm>
 #include <cstdio>
 #include <cstdlib>
 #include <string>
@@ -39,6 +41,33 @@ double sweep(const GridGeometry& g, Q&& query, std::vector<double>& d2, std::vec
       hint = n.tri;
       d2[static_cast<std::size_t>(r * g.dims[0] + i)] = n.dist2;
       tri[static_cast<std::size_t>(r * g.dims[0] + i)] = n.tri;
+    }
+  }
+  return w.seconds();
+}
+double rowSweep(const GridGeometry& g, const NearestIndex& index, std::vector<double>& d2, std::vector<std::int32_t>& tri)
+{
+  bench::Stopwatch w;
+  const std::int64_t rows = g.dims[1] * g.dims[2];
+#pragma omp parallel for schedule(dynamic, 2)
+  for (std::int64_t r = 0; r < rows; ++r)
+  {
+    const std::int64_t j = r % g.dims[1], k = r / g.dims[1];
+    std::int32_t hint = -1;
+    for (std::int64_t i = 0; i < g.dims[0]; i += 4)
+    {
+      const int n = static_cast<int>(std::min<std::int64_t>(4, g.dims[0] - i));
+      V3 p[4];
+      NearestResult res[4];
+      for (int q = 0; q < n; ++q)
+        p[q] = { g.origin[0] + (i + q) * g.spacing[0], g.origin[1] + j * g.spacing[1], g.origin[2] + k * g.spacing[2] };
+      index.nearestRow(p, n, hint, res);
+      hint = res[n - 1].tri;
+      for (int q = 0; q < n; ++q)
+      {
+        d2[static_cast<std::size_t>(r * g.dims[0] + i + q)] = res[q].dist2;
+        tri[static_cast<std::size_t>(r * g.dims[0] + i + q)] = res[q].tri;
+      }
     }
   }
   return w.seconds();
@@ -75,12 +104,16 @@ int main(int argc, char** argv)
   const std::size_t n = static_cast<std::size_t>(g.count());
   std::vector<double> d2a(n), d2b(n);
   std::vector<std::int32_t> ta(n), tb(n);
+  std::vector<double> d2c(n);
+  std::vector<std::int32_t> tc(n);
   const double tNew = sweep(g, [&](V3 p, std::int32_t h) { return index.nearest(p, h, 1e300); }, d2b, tb);
+  const double tRow = rowSweep(g, index, d2c, tc);
   const double tOld = sweep(g, [&](V3 p, std::int32_t h) { return bvh.nearest(p, h, 1e300); }, d2a, ta);
   std::int64_t diff = 0;
-  for (std::size_t i = 0; i < n; ++i) diff += d2a[i] != d2b[i] || ta[i] != tb[i];
-  std::printf("Bvh %.3f s, NearestIndex %.3f s, speed-up %.2f; voxels differing: %lld of %zu\n", tOld, tNew,
-    tOld / tNew, (long long)diff, n);
+  for (std::size_t i = 0; i < n; ++i) diff += d2a[i] != d2b[i] || ta[i] != tb[i] || d2a[i] != d2c[i] || ta[i] != tc[i];
+  std::printf("Bvh %.3f s, NearestIndex::nearest %.3f s (x%.2f), NearestIndex::nearestRow %.3f s (x%.2f); voxels "
+              "differing: %lld of %zu\n",
+    tOld, tNew, tOld / tNew, tRow, tOld / tRow, (long long)diff, n);
   if (check)
   {
     std::int64_t bad = 0, tested = 0;
