@@ -129,16 +129,16 @@ struct Engine
     const double reach = bandWorld + 4 * h;
     double lower = -1; // lower bound of the current voxel's world distance
     std::int32_t hint = -1;
-    // the unbounded BVH case takes the voxels four at a time (one shared traversal)
+    // the unbounded BVH case takes the voxels RowPoints at a time (one shared traversal)
     const bool packets = !bounded && this->opts.accel == MeshToSdfAccel::Bvh;
     for (std::int64_t i = i0; i <= i1;)
     {
-      NearestResult res[4];
-      V3 ps[4];
+      NearestResult res[NearestIndex::RowPoints];
+      V3 ps[NearestIndex::RowPoints];
       int count = 1;
       if (packets)
       {
-        count = static_cast<int>(std::min<std::int64_t>(4, i1 - i + 1));
+        count = static_cast<int>(std::min<std::int64_t>(NearestIndex::RowPoints, i1 - i + 1));
         for (int q = 0; q < count; ++q) ps[q] = this->position(i + q, j, k);
         this->index->nearestRow(ps, count, hint, res);
       }

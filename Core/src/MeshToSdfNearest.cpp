@@ -246,6 +246,15 @@ NearestIndex::NearestIndex(const std::vector<Tri>& tris)
     p.index = t;
     this->PosOf[static_cast<std::size_t>(t)] = static_cast<std::int32_t>(this->Tris.size());
     this->Tris.push_back(p);
+    PlanesF f;
+    for (int k = 0; k < 4; ++k)
+    {
+      f.x[k] = static_cast<float>(p.plane[k][0]);
+      f.y[k] = static_cast<float>(p.plane[k][1]);
+      f.z[k] = static_cast<float>(p.plane[k][2]);
+      f.w[k] = static_cast<float>(p.plane[k][3]);
+    }
+    this->TriPlanes.push_back(f);
     return ~static_cast<std::int32_t>(this->Tris.size() - 1);
   };
 

@@ -32,9 +32,10 @@ public:
   /// whose computed distance could win or tie.
   NearestResult nearest(V3 p, std::int32_t hint, double maxDist2) const;
 
-  /// nearest(p[i], ., 1e300) for n <= 4 points of one grid row (equal y and
-  /// z), in one traversal: the node's boxes are tested for the four points at
-  /// once (MeshToSdfNearestRow.cpp). The hint seeds every point.
+  /// nearest(p[i], ., 1e300) for n <= RowPoints points of one grid row
+  /// (equal y and z), in one traversal: each node's boxes are tested for the
+  /// points four at a time (MeshToSdfNearestRow.cpp). The hint seeds every point.
+  static constexpr int RowPoints = 8;
   void nearestRow(const V3* p, int n, std::int32_t hint, NearestResult* out) const;
 
   struct alignas(16) Node
@@ -48,12 +49,12 @@ public:
   };
   struct Packed
   {
+    std::int32_t index;  // in the prepared triangle list
     V3 v[3];             // exact copies of the triangle's vertices
     // lower bound planes: the unit normal, then the in-plane outward unit
     // normals of edges AB, BC, CA; the distance is at least
     // sqrt(plane^2 + max(0, edges)^2) (all zero for slivers: no bound)
     double plane[4][4];  // x, y, z, offset
-    std::int32_t index;  // in the prepared triangle list
   };
 
   const std::vector<Node>& nodes() const { return this->Nodes; }
@@ -62,6 +63,13 @@ public:
 private:
   std::vector<Node> Nodes;
   std::vector<Packed> Tris;          // in traversal order
+  /// Packed::plane rounded to float, per plane k: x[k] y[k] z[k] w[k]
+  /// (nearestRow tests four points at once; its margin covers the rounding)
+  struct alignas(16) PlanesF
+  {
+    float x[4], y[4], z[4], w[4];
+  };
+  std::vector<PlanesF> TriPlanes;    // same order as Tris
   std::vector<std::int32_t> PosOf;   // triangle index -> position in Tris
   double Scale = 0;                  // largest |coordinate| of the mesh
   std::size_t Depth = 0;

@@ -29,6 +29,12 @@ void NearestIndex::nearestRow(const V3* p, int n, std::int32_t hint, NearestResu
 #else
 void NearestIndex::nearestRow(const V3* p, int n, std::int32_t hint, NearestResult* out) const
 {
+  if (n > RowPoints)
+  {
+    this->nearestRow(p, RowPoints, hint, out);
+    this->nearestRow(p + RowPoints, n - RowPoints, out[RowPoints - 1].tri, out + RowPoints);
+    return;
+  }
   double big = this->Scale;
   for (int i = 0; i < n; ++i)
   {
@@ -39,23 +45,20 @@ void NearestIndex::nearestRow(const V3* p, int n, std::int32_t hint, NearestResu
   if (this->Nodes.empty() || n <= 0) return;
   const double tau = 1e-10 * big; // as in nearest()
   const float epsF = static_cast<float>(big * 1.2e-7 * 4.0);
-  double thr2[4] = { -1, -1, -1, -1 };
-  alignas(16) float thrF[4] = { -1, -1, -1, -1 }; // unused lanes never pass
+  double thr2[RowPoints];
+  alignas(16) float thrF[RowPoints]; // unused lanes: -1, never pass
+  for (int i = 0; i < RowPoints; ++i) thr2[i] = thrF[i] = -1;
   auto setThreshold = [&](int i) {
     const double s = std::sqrt(out[i].dist2) + tau;
     thr2[i] = s * s;
     thrF[i] = roundUpToFloat(thr2[i]);
   };
-  auto consider = [&](int i, const Packed& t) {
+  // the exact test of triangle t for point i (its bounds already passed)
+  auto exact = [&](int i, const Packed& t) {
     NearestResult& best = out[i];
     if (t.index == best.tri) return;
-    const V3 q = p[i];
-    auto eval = [&](int k) { return t.plane[k][0] * q.x + t.plane[k][1] * q.y + t.plane[k][2] * q.z + t.plane[k][3]; };
-    const double pd = eval(0);
-    const double ed = std::max(0.0, std::max(eval(1), std::max(eval(2), eval(3))));
-    if (pd * pd + ed * ed > thr2[i]) return;
-    const Closest c = closestPointOnTriangle(q, t.v[0], t.v[1], t.v[2]);
-    const V3 d = c.point - q;
+    const Closest c = closestPointOnTriangle(p[i], t.v[0], t.v[1], t.v[2]);
+    const V3 d = c.point - p[i];
     const double d2 = dot(d, d);
     if (d2 < best.dist2 || (d2 == best.dist2 && (best.tri < 0 || t.index < best.tri)))
     {
@@ -78,11 +81,18 @@ void NearestIndex::nearestRow(const V3* p, int n, std::int32_t hint, NearestResu
     }
     setThreshold(i);
   }
-  float px[4];
-  for (int i = 0; i < 4; ++i) px[i] = static_cast<float>(p[std::min(i, n - 1)].x);
-  const __m128 vy = _mm_set1_ps(static_cast<float>(p[0].y)), vz = _mm_set1_ps(static_cast<float>(p[0].z));
+  alignas(16) float px[RowPoints];
+  for (int i = 0; i < RowPoints; ++i) px[i] = static_cast<float>(p[std::min(i, n - 1)].x);
+  const float py = static_cast<float>(p[0].y), pz = static_cast<float>(p[0].z);
+  const __m128 vy = _mm_set1_ps(py), vz = _mm_set1_ps(pz);
   const __m128 veps = _mm_set1_ps(epsF), vseps = _mm_set1_ps(2.5f * epsF), zero = _mm_setzero_ps(),
-               shrink = _mm_set1_ps(0.999999f);
+               shrink = _mm_set1_ps(0.999999f), huge = _mm_set1_ps(3.4e38f);
+  // triangle planes in float: the error of a plane value is below 1.3e-6 big
+  // (coefficients, offset and products rounded), so 4e-6 big is conservative
+  const __m128 vpeps = _mm_set1_ps(static_cast<float>(4e-6 * big));
+  const __m128 absMask = _mm_castsi128_ps(_mm_set1_epi32(0x7fffffff));
+  constexpr int Quads = RowPoints / 4;
+  const int usedQuads = (n + 3) / 4;
   struct Item
   {
     std::int32_t node;
@@ -96,7 +106,7 @@ void NearestIndex::nearestRow(const V3* p, int n, std::int32_t hint, NearestResu
   {
     const Item it = stack[--top];
     float worst = -1;
-    for (int i = 0; i < 4; ++i)
+    for (int i = 0; i < n; ++i)
       if (it.mask >> i & 1) worst = std::max(worst, thrF[i]);
     if (it.key > worst) continue;
     const Node& nd = this->Nodes[static_cast<std::size_t>(it.node)];
@@ -108,37 +118,72 @@ void NearestIndex::nearestRow(const V3* p, int n, std::int32_t hint, NearestResu
     const __m128 yz = _mm_add_ps(gap2(1, vy), gap2(2, vz));
     const __m128 snx = _mm_load_ps(nd.sn[0]), smin = _mm_load_ps(nd.smin), smax = _mm_load_ps(nd.smax);
     const __m128 dyz = _mm_add_ps(_mm_mul_ps(_mm_load_ps(nd.sn[1]), vy), _mm_mul_ps(_mm_load_ps(nd.sn[2]), vz));
-    alignas(16) float lb[4][4]; // [point][child]
-    int childMask[4] = { 0, 0, 0, 0 };
-    for (int i = 0; i < 4; ++i)
+    // l[q][c]: child c's bounds for the points of quad q (lanes = points)
+    __m128 l[Quads][4];
+    int cm[4] = { 0, 0, 0, 0 }; // per child: the points it may serve
+    for (int q = 0; q < usedQuads; ++q)
     {
-      if (!(it.mask >> i & 1)) continue;
-      const __m128 vx = _mm_set1_ps(px[i]);
-      const __m128 box = _mm_add_ps(gap2(0, vx), yz);
-      const __m128 d = _mm_add_ps(_mm_mul_ps(snx, vx), dyz);
-      const __m128 sg = _mm_max_ps(_mm_sub_ps(_mm_max_ps(_mm_sub_ps(smin, d), _mm_sub_ps(d, smax)), vseps), zero);
-      const __m128 l = _mm_mul_ps(_mm_max_ps(box, _mm_mul_ps(sg, sg)), shrink);
-      _mm_store_ps(lb[i], l);
-      const int m = _mm_movemask_ps(_mm_cmple_ps(l, _mm_set1_ps(thrF[i])));
-      for (int c = 0; c < 4; ++c) childMask[c] |= (m >> c & 1) << i;
+      if ((it.mask >> (4 * q) & 15) == 0)
+      {
+        for (int c = 0; c < 4; ++c) l[q][c] = huge;
+        continue;
+      }
+      for (int i = 0; i < 4; ++i)
+      {
+        const __m128 vx = _mm_set1_ps(px[4 * q + i]);
+        const __m128 box = _mm_add_ps(gap2(0, vx), yz);
+        const __m128 d = _mm_add_ps(_mm_mul_ps(snx, vx), dyz);
+        const __m128 sg = _mm_max_ps(_mm_sub_ps(_mm_max_ps(_mm_sub_ps(smin, d), _mm_sub_ps(d, smax)), vseps), zero);
+        l[q][i] = _mm_mul_ps(_mm_max_ps(box, _mm_mul_ps(sg, sg)), shrink);
+      }
+      _MM_TRANSPOSE4_PS(l[q][0], l[q][1], l[q][2], l[q][3]);
+      const __m128 vthr = _mm_load_ps(thrF + 4 * q);
+      for (int c = 0; c < 4; ++c) cm[c] |= _mm_movemask_ps(_mm_cmple_ps(l[q][c], vthr)) << (4 * q);
     }
     Item kids[4];
     int nk = 0;
     for (int c = 0; c < nd.count; ++c)
     {
-      const int m = childMask[c];
+      const int m = cm[c] & it.mask;
       if (m == 0) continue;
       const std::int32_t ch = nd.child[c];
       if (ch < 0)
       {
+        // the triangle's plane and edge bounds for four points at once
+        const PlanesF& f = this->TriPlanes[static_cast<std::size_t>(~ch)];
+        const __m128 base = _mm_add_ps(_mm_add_ps(_mm_mul_ps(_mm_load_ps(f.y), vy), _mm_mul_ps(_mm_load_ps(f.z), vz)),
+          _mm_load_ps(f.w));
+        alignas(16) float b[4];
+        _mm_store_ps(b, base);
+        int mt = 0;
+        for (int q = 0; q < usedQuads; ++q)
+        {
+          if ((m >> (4 * q) & 15) == 0) continue;
+          const __m128 vpx = _mm_load_ps(px + 4 * q);
+          auto val = [&](int k) { return _mm_add_ps(_mm_mul_ps(_mm_set1_ps(f.x[k]), vpx), _mm_set1_ps(b[k])); };
+          const __m128 pd = _mm_max_ps(_mm_sub_ps(_mm_and_ps(val(0), absMask), vpeps), zero);
+          const __m128 ed = _mm_max_ps(_mm_sub_ps(_mm_max_ps(val(1), _mm_max_ps(val(2), val(3))), vpeps), zero);
+          const __m128 lt = _mm_mul_ps(_mm_add_ps(_mm_mul_ps(pd, pd), _mm_mul_ps(ed, ed)), shrink);
+          mt |= _mm_movemask_ps(_mm_cmple_ps(lt, _mm_load_ps(thrF + 4 * q))) << (4 * q);
+        }
+        mt &= m;
+        if (mt == 0) continue;
         const Packed& t = this->Tris[static_cast<std::size_t>(~ch)];
-        for (int i = 0; i < 4; ++i)
-          if (m >> i & 1) consider(i, t);
+        for (int i = 0; i < n; ++i)
+          if (mt >> i & 1) exact(i, t);
         continue;
       }
-      float key = 3.4e38f;
-      for (int i = 0; i < 4; ++i)
-        if (m >> i & 1) key = std::min(key, lb[i][c]);
+      // the smallest bound among the points that pass (the others set to huge)
+      __m128 km = huge;
+      for (int q = 0; q < usedQuads; ++q)
+      {
+        const int mq = m >> (4 * q);
+        const __m128 keep = _mm_castsi128_ps(_mm_set_epi32(-(mq >> 3 & 1), -(mq >> 2 & 1), -(mq >> 1 & 1), -(mq & 1)));
+        km = _mm_min_ps(km, _mm_or_ps(_mm_and_ps(keep, l[q][c]), _mm_andnot_ps(keep, huge)));
+      }
+      km = _mm_min_ps(km, _mm_shuffle_ps(km, km, _MM_SHUFFLE(2, 3, 0, 1)));
+      km = _mm_min_ps(km, _mm_shuffle_ps(km, km, _MM_SHUFFLE(1, 0, 3, 2)));
+      const float key = _mm_cvtss_f32(km);
       int j = nk++;
       while (j > 0 && kids[j - 1].key < key)
       {

@@ -34,7 +34,7 @@ NearestResult bruteForce(const std::vector<Tri>& tris, V3 p, double maxDist2)
 }
 
 /// Every query against brute force, with no bound and with a bound, with no
-/// hint and a random one, and as the first of a row of 1 to 4 points
+/// hint and a random one, and as the first of a row of 1 to RowPoints points
 /// (nearestRow); returns the number of queries checked.
 int checkAll(const TriangleMesh& mesh, const std::vector<V3>& queries, std::mt19937& rng)
 {
@@ -62,13 +62,13 @@ int checkAll(const TriangleMesh& mesh, const std::vector<V3>& queries, std::mt19
       }
       ++checked;
     }
-    // four points of a row (equal y and z) in one traversal, each exact
+    // up to RowPoints points of a row (equal y and z) in one traversal, each exact
     {
       const double steps[3] = { 1e-3, 0.05, 3.0 };
       const double h = steps[std::uniform_int_distribution<int>(0, 2)(rng)];
-      const int n = std::uniform_int_distribution<int>(1, 4)(rng);
-      V3 row[4];
-      NearestResult res[4];
+      const int n = std::uniform_int_distribution<int>(1, NearestIndex::RowPoints)(rng);
+      V3 row[NearestIndex::RowPoints];
+      NearestResult res[NearestIndex::RowPoints];
       for (int i = 0; i < n; ++i) row[i] = { p.x + i * h, p.y, p.z };
       const std::int32_t hint = pick(rng);
       index.nearestRow(row, n, hint, res);

@@ -1,6 +1,6 @@
 // Nearest-triangle queries of mesh to SDF, CPU: the binary Bvh (the GPU's
-// tree) against the CPU NearestIndex (one point, and four points of a row per
-// traversal as Engine::distanceRow uses it), on every voxel of a fitted grid, rows in
+// tree) against the CPU NearestIndex (one point, and RowPoints points of a row
+// per traversal as Engine::distanceRow uses it), on every voxel of a fitted grid, rows in
 // parallel with the previous voxel's triangle as hint (as Engine::distanceRow
 // does), in one process. Checks that both give the same triangle and the same
 // double distance on every voxel (and, with CHECK=1, brute force on a sample).
@@ -54,11 +54,11 @@ double rowSweep(const GridGeometry& g, const NearestIndex& index, std::vector<do
   {
     const std::int64_t j = r % g.dims[1], k = r / g.dims[1];
     std::int32_t hint = -1;
-    for (std::int64_t i = 0; i < g.dims[0]; i += 4)
+    for (std::int64_t i = 0; i < g.dims[0]; i += NearestIndex::RowPoints)
     {
-      const int n = static_cast<int>(std::min<std::int64_t>(4, g.dims[0] - i));
-      V3 p[4];
-      NearestResult res[4];
+      const int n = static_cast<int>(std::min<std::int64_t>(NearestIndex::RowPoints, g.dims[0] - i));
+      V3 p[NearestIndex::RowPoints];
+      NearestResult res[NearestIndex::RowPoints];
       for (int q = 0; q < n; ++q)
         p[q] = { g.origin[0] + (i + q) * g.spacing[0], g.origin[1] + j * g.spacing[1], g.origin[2] + k * g.spacing[2] };
       index.nearestRow(p, n, hint, res);
