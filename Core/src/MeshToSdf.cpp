@@ -119,7 +119,10 @@ struct Engine
   /// 1-Lipschitz lets far voxels skip the query: each query looks a margin
   /// beyond the band, and the following voxels stay saturated while the
   /// lower bound (previous distance - steps) is still past the band.
-  void distanceRow(std::int64_t j, std::int64_t k, std::int64_t i0, std::int64_t i1, float* out) const
+  /// rowTris (nx entries): on entry the nearest triangles of the row below
+  /// when belowValid (they seed the bounds), on exit this row's.
+  void distanceRow(std::int64_t j, std::int64_t k, std::int64_t i0, std::int64_t i1, float* out,
+    std::int32_t* rowTris, bool belowValid) const
   {
     const bool bounded = this->opts.accel == MeshToSdfAccel::Bvh &&
       (this->opts.sign == SignMode::WindingNumber || this->opts.sign == SignMode::Unsigned) &&
@@ -140,7 +143,7 @@ struct Engine
       {
         count = static_cast<int>(std::min<std::int64_t>(NearestIndex::RowPoints, i1 - i + 1));
         for (int q = 0; q < count; ++q) ps[q] = this->position(i + q, j, k);
-        this->index->nearestRow(ps, count, hint, res);
+        this->index->nearestRow(ps, count, hint, belowValid ? rowTris + (i - i0) : nullptr, res);
       }
       else
       {
@@ -148,6 +151,7 @@ struct Engine
         if (bounded && lower >= bandWorld)
         {
           out[i - i0] = static_cast<float>(this->band);
+          rowTris[i - i0] = -1;
           ++i;
           continue;
         }
@@ -157,6 +161,7 @@ struct Engine
       for (int q = 0; q < count; ++q, ++i)
       {
         const NearestResult& r = res[q];
+        rowTris[i - i0] = r.tri;
         double d = r.tri < 0 ? this->band : std::sqrt(r.dist2) * this->toOut;
         lower = r.tri < 0 ? reach : std::sqrt(r.dist2);
         d = std::min(d, this->band);
@@ -231,14 +236,14 @@ std::unique_ptr<cudasdf::Session> openCuda(const MeshToSdfPrepared& prepared, co
 /// Runs fn(row) for every (j, k) row of the box on OpenMP threads; progress
 /// from thread 0, cancellation per row; rethrows the first exception.
 template <typename F>
-void forRows(const VoxelBox& box, Interrupter& intr, double progressBase, double progressSpan, F&& fn)
+void forRows(const VoxelBox& box, Interrupter& intr, double progressBase, double progressSpan, F&& fn, int chunk = 2)
 {
   const std::int64_t ny = box.hi[1] - box.lo[1] + 1, nz = box.hi[2] - box.lo[2] + 1;
   const std::int64_t rows = ny * nz;
   std::atomic<std::int64_t> done{ 0 };
   std::atomic<bool> stop{ false };
   std::exception_ptr failure;
-#pragma omp parallel for schedule(dynamic, 2)
+#pragma omp parallel for schedule(dynamic, chunk)
   for (std::int64_t r = 0; r < rows; ++r)
   {
     if (stop.load(std::memory_order_relaxed)) continue;
@@ -270,8 +275,19 @@ void computeBox(const Engine& e, const VoxelBox& box, float* out, MeshToSdfStats
   const std::int64_t nx = box.hi[0] - box.lo[0] + 1, ny = box.hi[1] - box.lo[1] + 1;
   const bool winding = e.opts.sign == SignMode::WindingNumber;
   double t0 = now();
+  // per thread: the nearest triangles of its last row; rows come in chunks of
+  // 8 consecutive ones, so most rows find the row below in their buffer
+  const int threads = omp_get_max_threads();
+  requireMemory(static_cast<std::uint64_t>(threads) * static_cast<std::uint64_t>(nx) * 4, "mesh to SDF: row hints");
+  std::vector<std::int32_t> rowTris(static_cast<std::size_t>(threads * nx), -1);
+  std::vector<std::int64_t> lastRow(static_cast<std::size_t>(threads), -2);
   forRows(box, intr, progressBase, winding ? progressSpan * 0.5 : progressSpan,
-    [&](std::int64_t j, std::int64_t k, std::int64_t r) { e.distanceRow(j, k, box.lo[0], box.hi[0], out + r * nx); });
+    [&](std::int64_t j, std::int64_t k, std::int64_t r) {
+      const int t = std::min(omp_get_thread_num(), threads - 1);
+      const bool below = lastRow[static_cast<std::size_t>(t)] == r - 1 && j > box.lo[1];
+      e.distanceRow(j, k, box.lo[0], box.hi[0], out + r * nx, rowTris.data() + t * nx, below);
+      lastRow[static_cast<std::size_t>(t)] = r;
+    }, 8);
   stats.distanceSeconds += now() - t0;
   if (!winding) return;
   t0 = now();
@@ -575,7 +591,6 @@ MeshToSdfPrepared prepareMeshToSdf(const TriangleMesh& mesh, SignMode sign)
   const double t0 = now();
   auto impl = std::make_shared<MeshToSdfPrepared::Impl>();
   impl->mesh = prepareMesh(mesh);
-  impl->bvh = std::make_unique<Bvh>(impl->mesh.tris);
   impl->nearest = std::make_unique<NearestIndex>(impl->mesh.tris);
   double unused = 0;
   if (sign == SignMode::WindingNumber) impl->windingSigner(unused);
@@ -607,6 +622,8 @@ const cudasdf::DeviceMesh& MeshToSdfPrepared::Impl::deviceMesh(bool winding, dou
   // winding structures is added beside it, never put in its place.
   std::lock_guard<std::mutex> lock(this->Lock);
   const double t0 = now();
+  // the GPU's tree: only the device path needs it (the CPU queries NearestIndex)
+  if (!this->bvh) this->bvh = std::make_unique<Bvh>(this->mesh.tris);
   if (!this->Device)
   {
     this->Device = cudasdf::uploadMesh(this->mesh, *this->bvh, w);

@@ -168,7 +168,7 @@ class DeviceMesh; // MeshToSdfCuda.h
 struct MeshToSdfPrepared::Impl
 {
   sdfdetail::PreparedMesh mesh;
-  std::unique_ptr<sdfdetail::Bvh> bvh;             // the GPU's tree (uploaded as is)
+  std::unique_ptr<sdfdetail::Bvh> bvh;             // the GPU's tree, built on first upload (under Lock)
   std::unique_ptr<sdfdetail::NearestIndex> nearest; // the CPU's distance queries
   double prepareSeconds = 0;
   /// The winding-number structures, built on first use (seconds added).

@@ -34,9 +34,11 @@ public:
 
   /// nearest(p[i], ., 1e300) for n <= RowPoints points of one grid row
   /// (equal y and z), in one traversal: each node's boxes are tested for the
-  /// points four at a time (MeshToSdfNearestRow.cpp). The hint seeds every point.
+  /// points four at a time (MeshToSdfNearestRow.cpp). The hint seeds every
+  /// point, laneHints[i] (may be null; -1 for none) point i only, e.g. the
+  /// triangles of the row below.
   static constexpr int RowPoints = 8;
-  void nearestRow(const V3* p, int n, std::int32_t hint, NearestResult* out) const;
+  void nearestRow(const V3* p, int n, std::int32_t hint, const std::int32_t* laneHints, NearestResult* out) const;
 
   struct alignas(16) Node
   {

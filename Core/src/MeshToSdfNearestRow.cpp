@@ -22,17 +22,21 @@ namespace sdfdetail
 {
 
 #ifndef LVDIF_NEAREST_ROW_SSE
-void NearestIndex::nearestRow(const V3* p, int n, std::int32_t hint, NearestResult* out) const
+void NearestIndex::nearestRow(
+  const V3* p, int n, std::int32_t hint, const std::int32_t* laneHints, NearestResult* out) const
 {
-  for (int i = 0; i < n; ++i) out[i] = this->nearest(p[i], i > 0 ? out[i - 1].tri : hint, 1e300);
+  for (int i = 0; i < n; ++i)
+    out[i] = this->nearest(p[i], laneHints && laneHints[i] >= 0 ? laneHints[i] : (i > 0 ? out[i - 1].tri : hint), 1e300);
 }
 #else
-void NearestIndex::nearestRow(const V3* p, int n, std::int32_t hint, NearestResult* out) const
+void NearestIndex::nearestRow(
+  const V3* p, int n, std::int32_t hint, const std::int32_t* laneHints, NearestResult* out) const
 {
   if (n > RowPoints)
   {
-    this->nearestRow(p, RowPoints, hint, out);
-    this->nearestRow(p + RowPoints, n - RowPoints, out[RowPoints - 1].tri, out + RowPoints);
+    this->nearestRow(p, RowPoints, hint, laneHints, out);
+    this->nearestRow(p + RowPoints, n - RowPoints, out[RowPoints - 1].tri, laneHints ? laneHints + RowPoints : nullptr,
+      out + RowPoints);
     return;
   }
   double big = this->Scale;
@@ -70,16 +74,10 @@ void NearestIndex::nearestRow(const V3* p, int n, std::int32_t hint, NearestResu
   };
   for (int i = 0; i < n; ++i)
   {
-    if (hint >= 0)
-    {
-      const Packed& t = this->Tris[static_cast<std::size_t>(this->PosOf[static_cast<std::size_t>(hint)])];
-      const Closest c = closestPointOnTriangle(p[i], t.v[0], t.v[1], t.v[2]);
-      const V3 d = c.point - p[i];
-      out[i].dist2 = dot(d, d);
-      out[i].tri = hint;
-      out[i].closest = c;
-    }
-    setThreshold(i);
+    setThreshold(i); // 1e300 first: the seeds are taken as exact candidates
+    if (hint >= 0) exact(i, this->Tris[static_cast<std::size_t>(this->PosOf[static_cast<std::size_t>(hint)])]);
+    if (laneHints && laneHints[i] >= 0 && laneHints[i] != hint)
+      exact(i, this->Tris[static_cast<std::size_t>(this->PosOf[static_cast<std::size_t>(laneHints[i])])]);
   }
   alignas(16) float px[RowPoints];
   for (int i = 0; i < RowPoints; ++i) px[i] = static_cast<float>(p[std::min(i, n - 1)].x);

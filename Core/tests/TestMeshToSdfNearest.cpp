@@ -71,7 +71,9 @@ int checkAll(const TriangleMesh& mesh, const std::vector<V3>& queries, std::mt19
       NearestResult res[NearestIndex::RowPoints];
       for (int i = 0; i < n; ++i) row[i] = { p.x + i * h, p.y, p.z };
       const std::int32_t hint = pick(rng);
-      index.nearestRow(row, n, hint, res);
+      std::int32_t lanes[NearestIndex::RowPoints];
+      for (int i = 0; i < n; ++i) lanes[i] = pick(rng);
+      index.nearestRow(row, n, hint, pick(rng) % 2 ? lanes : nullptr, res);
       for (int i = 0; i < n; ++i)
       {
         const NearestResult want = bruteForce(pm.tris, row[i], 1e300);

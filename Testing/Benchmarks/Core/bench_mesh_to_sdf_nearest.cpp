@@ -49,24 +49,30 @@ double rowSweep(const GridGeometry& g, const NearestIndex& index, std::vector<do
 {
   bench::Stopwatch w;
   const std::int64_t rows = g.dims[1] * g.dims[2];
-#pragma omp parallel for schedule(dynamic, 2)
-  for (std::int64_t r = 0; r < rows; ++r)
+  const std::int64_t nx = g.dims[0];
+  // blocks of 8 consecutive rows: the row below seeds each point (as computeBox does)
+#pragma omp parallel for schedule(dynamic, 1)
+  for (std::int64_t r0 = 0; r0 < rows; r0 += 8)
   {
-    const std::int64_t j = r % g.dims[1], k = r / g.dims[1];
-    std::int32_t hint = -1;
-    for (std::int64_t i = 0; i < g.dims[0]; i += NearestIndex::RowPoints)
+    for (std::int64_t r = r0; r < std::min(rows, r0 + 8); ++r)
     {
-      const int n = static_cast<int>(std::min<std::int64_t>(NearestIndex::RowPoints, g.dims[0] - i));
-      V3 p[NearestIndex::RowPoints];
-      NearestResult res[NearestIndex::RowPoints];
-      for (int q = 0; q < n; ++q)
-        p[q] = { g.origin[0] + (i + q) * g.spacing[0], g.origin[1] + j * g.spacing[1], g.origin[2] + k * g.spacing[2] };
-      index.nearestRow(p, n, hint, res);
-      hint = res[n - 1].tri;
-      for (int q = 0; q < n; ++q)
+      const std::int64_t j = r % g.dims[1], k = r / g.dims[1];
+      const bool below = r > r0 && j > 0;
+      std::int32_t hint = -1;
+      for (std::int64_t i = 0; i < nx; i += NearestIndex::RowPoints)
       {
-        d2[static_cast<std::size_t>(r * g.dims[0] + i + q)] = res[q].dist2;
-        tri[static_cast<std::size_t>(r * g.dims[0] + i + q)] = res[q].tri;
+        const int n = static_cast<int>(std::min<std::int64_t>(NearestIndex::RowPoints, nx - i));
+        V3 p[NearestIndex::RowPoints];
+        NearestResult res[NearestIndex::RowPoints];
+        for (int q = 0; q < n; ++q)
+          p[q] = { g.origin[0] + (i + q) * g.spacing[0], g.origin[1] + j * g.spacing[1], g.origin[2] + k * g.spacing[2] };
+        index.nearestRow(p, n, hint, below ? tri.data() + (r - 1) * nx + i : nullptr, res);
+        hint = res[n - 1].tri;
+        for (int q = 0; q < n; ++q)
+        {
+          d2[static_cast<std::size_t>(r * nx + i + q)] = res[q].dist2;
+          tri[static_cast<std::size_t>(r * nx + i + q)] = res[q].tri;
+        }
       }
     }
   }
