@@ -19,6 +19,8 @@ namespace sdfdetail
 float roundDownToFloat(double x);
 float roundUpToFloat(double x);
 
+struct NearestRowState; // MeshToSdfNearestRow.h
+
 class NearestIndex
 {
 public:
@@ -63,6 +65,8 @@ public:
   std::size_t depth() const { return this->Depth; }
 
 private:
+  void traverseRowSse(NearestRowState& s) const;
+  void traverseRowAvx2(NearestRowState& s) const;
   std::vector<Node> Nodes;
   std::vector<Packed> Tris;          // in traversal order
   /// Packed::plane rounded to float, per plane k: x[k] y[k] z[k] w[k]

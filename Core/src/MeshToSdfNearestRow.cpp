@@ -6,7 +6,7 @@
 // it may still serve, so every point is pruned by its own bound. Per point
 // the answer is exactly that of nearest() (same closest-point routine, same
 // tie rule, conservative bounds); only the work is shared.
-#include "MeshToSdfNearest.h"
+#include "MeshToSdfNearestRow.h"
 
 #include <algorithm>
 #include <cmath>
@@ -21,14 +21,15 @@ namespace lvdif
 namespace sdfdetail
 {
 
-#ifndef LVDIF_NEAREST_ROW_SSE
-void NearestIndex::nearestRow(
-  const V3* p, int n, std::int32_t hint, const std::int32_t* laneHints, NearestResult* out) const
-{
-  for (int i = 0; i < n; ++i)
-    out[i] = this->nearest(p[i], laneHints && laneHints[i] >= 0 ? laneHints[i] : (i > 0 ? out[i - 1].tri : hint), 1e300);
-}
+bool nearestRowUseAvx2 = [] {
+#if defined(__GNUC__) && defined(__x86_64__)
+  __builtin_cpu_init(); // needed before __builtin_cpu_supports in static initialisers
+  return __builtin_cpu_supports("avx2") != 0;
 #else
+  return false;
+#endif
+}();
+
 void NearestIndex::nearestRow(
   const V3* p, int n, std::int32_t hint, const std::int32_t* laneHints, NearestResult* out) const
 {
@@ -39,6 +40,10 @@ void NearestIndex::nearestRow(
       out + RowPoints);
     return;
   }
+  NearestRowState s;
+  s.p = p;
+  s.n = n;
+  s.out = out;
   double big = this->Scale;
   for (int i = 0; i < n; ++i)
   {
@@ -47,47 +52,49 @@ void NearestIndex::nearestRow(
     big = std::max(big, std::max(std::fabs(p[i].x), std::max(std::fabs(p[i].y), std::fabs(p[i].z))));
   }
   if (this->Nodes.empty() || n <= 0) return;
-  const double tau = 1e-10 * big; // as in nearest()
-  const float epsF = static_cast<float>(big * 1.2e-7 * 4.0);
-  double thr2[RowPoints];
-  alignas(16) float thrF[RowPoints]; // unused lanes: -1, never pass
-  for (int i = 0; i < RowPoints; ++i) thr2[i] = thrF[i] = -1;
-  auto setThreshold = [&](int i) {
-    const double s = std::sqrt(out[i].dist2) + tau;
-    thr2[i] = s * s;
-    thrF[i] = roundUpToFloat(thr2[i]);
-  };
-  // the exact test of triangle t for point i (its bounds already passed)
-  auto exact = [&](int i, const Packed& t) {
-    NearestResult& best = out[i];
-    if (t.index == best.tri) return;
-    const Closest c = closestPointOnTriangle(p[i], t.v[0], t.v[1], t.v[2]);
-    const V3 d = c.point - p[i];
-    const double d2 = dot(d, d);
-    if (d2 < best.dist2 || (d2 == best.dist2 && (best.tri < 0 || t.index < best.tri)))
-    {
-      best.dist2 = d2;
-      best.tri = t.index;
-      best.closest = c;
-      setThreshold(i);
-    }
-  };
-  for (int i = 0; i < n; ++i)
-  {
-    setThreshold(i); // 1e300 first: the seeds are taken as exact candidates
-    if (hint >= 0) exact(i, this->Tris[static_cast<std::size_t>(this->PosOf[static_cast<std::size_t>(hint)])]);
-    if (laneHints && laneHints[i] >= 0 && laneHints[i] != hint)
-      exact(i, this->Tris[static_cast<std::size_t>(this->PosOf[static_cast<std::size_t>(laneHints[i])])]);
-  }
-  alignas(16) float px[RowPoints];
-  for (int i = 0; i < RowPoints; ++i) px[i] = static_cast<float>(p[std::min(i, n - 1)].x);
-  const float py = static_cast<float>(p[0].y), pz = static_cast<float>(p[0].z);
-  const __m128 vy = _mm_set1_ps(py), vz = _mm_set1_ps(pz);
-  const __m128 veps = _mm_set1_ps(epsF), vseps = _mm_set1_ps(2.5f * epsF), zero = _mm_setzero_ps(),
-               shrink = _mm_set1_ps(0.999999f), huge = _mm_set1_ps(3.4e38f);
+  s.tau = 1e-10 * big; // as in nearest()
+  s.epsF = static_cast<float>(big * 1.2e-7 * 4.0);
   // triangle planes in float: the error of a plane value is below 1.3e-6 big
   // (coefficients, offset and products rounded), so 4e-6 big is conservative
-  const __m128 vpeps = _mm_set1_ps(static_cast<float>(4e-6 * big));
+  s.planeEps = static_cast<float>(4e-6 * big);
+  for (int i = 0; i < RowPoints; ++i) s.thr2[i] = s.thrF[i] = -1;
+  for (int i = 0; i < n; ++i)
+  {
+    s.setThreshold(i); // 1e300 first: the seeds are taken as exact candidates
+    if (hint >= 0) s.exact(i, this->Tris[static_cast<std::size_t>(this->PosOf[static_cast<std::size_t>(hint)])]);
+    if (laneHints && laneHints[i] >= 0 && laneHints[i] != hint)
+      s.exact(i, this->Tris[static_cast<std::size_t>(this->PosOf[static_cast<std::size_t>(laneHints[i])])]);
+  }
+  for (int i = 0; i < RowPoints; ++i) s.px[i] = static_cast<float>(p[std::min(i, n - 1)].x);
+  s.py = static_cast<float>(p[0].y);
+  s.pz = static_cast<float>(p[0].z);
+#if defined(__GNUC__) && defined(__x86_64__)
+  if (nearestRowUseAvx2)
+  {
+    this->traverseRowAvx2(s);
+    return;
+  }
+#endif
+  this->traverseRowSse(s);
+}
+
+#ifndef LVDIF_NEAREST_ROW_SSE
+void NearestIndex::traverseRowSse(NearestRowState& s) const
+{
+  // no SSE: one-point queries seeded by the row's results so far
+  for (int i = 0; i < s.n; ++i)
+    s.out[i] = this->nearest(s.p[i], s.out[i].tri >= 0 ? s.out[i].tri : (i > 0 ? s.out[i - 1].tri : -1), 1e300);
+}
+#else
+void NearestIndex::traverseRowSse(NearestRowState& s) const
+{
+  const int n = s.n;
+  const float* px = s.px;
+  const float* thrF = s.thrF;
+  const __m128 vy = _mm_set1_ps(s.py), vz = _mm_set1_ps(s.pz);
+  const __m128 veps = _mm_set1_ps(s.epsF), vseps = _mm_set1_ps(2.5f * s.epsF), zero = _mm_setzero_ps(),
+               shrink = _mm_set1_ps(0.999999f), huge = _mm_set1_ps(3.4e38f);
+  const __m128 vpeps = _mm_set1_ps(s.planeEps);
   const __m128 absMask = _mm_castsi128_ps(_mm_set1_epi32(0x7fffffff));
   constexpr int Quads = RowPoints / 4;
   const int usedQuads = (n + 3) / 4;
@@ -168,7 +175,7 @@ void NearestIndex::nearestRow(
         if (mt == 0) continue;
         const Packed& t = this->Tris[static_cast<std::size_t>(~ch)];
         for (int i = 0; i < n; ++i)
-          if (mt >> i & 1) exact(i, t);
+          if (mt >> i & 1) s.exact(i, t);
         continue;
       }
       // the smallest bound among the points that pass (the others set to huge)

@@ -3,7 +3,7 @@
 // index: the definition the index must reproduce bit for bit) and against the
 // independent long-double oracle, on random soups, meshes full of exact ties,
 // slivers and tiny triangles, and query points from on the surface to 1e6 away.
-#include "../src/MeshToSdfNearest.h"
+#include "../src/MeshToSdfNearestRow.h"
 #include "MeshToSdfOracle.h"
 
 #include <gtest/gtest.h>
@@ -73,14 +73,23 @@ int checkAll(const TriangleMesh& mesh, const std::vector<V3>& queries, std::mt19
       const std::int32_t hint = pick(rng);
       std::int32_t lanes[NearestIndex::RowPoints];
       for (int i = 0; i < n; ++i) lanes[i] = pick(rng);
-      index.nearestRow(row, n, hint, pick(rng) % 2 ? lanes : nullptr, res);
-      for (int i = 0; i < n; ++i)
+      const bool useLanes = pick(rng) % 2 != 0;
+      // both traversals: SSE, and AVX2 where the CPU has it
+      const bool avx2 = nearestRowUseAvx2;
+      for (const bool withAvx2 : { false, true })
       {
-        const NearestResult want = bruteForce(pm.tris, row[i], 1e300);
-        EXPECT_EQ(res[i].tri, want.tri) << "row point " << i << " of " << n << " hint " << hint;
-        EXPECT_EQ(res[i].dist2, want.dist2);
-        if (res[i].tri == want.tri) EXPECT_EQ(res[i].closest.feature, want.closest.feature);
-        ++checked;
+        if (withAvx2 && !avx2) continue;
+        nearestRowUseAvx2 = withAvx2;
+        index.nearestRow(row, n, hint, useLanes ? lanes : nullptr, res);
+        nearestRowUseAvx2 = avx2;
+        for (int i = 0; i < n; ++i)
+        {
+          const NearestResult want = bruteForce(pm.tris, row[i], 1e300);
+          EXPECT_EQ(res[i].tri, want.tri) << "row point " << i << " of " << n << " hint " << hint << " avx2 " << withAvx2;
+          EXPECT_EQ(res[i].dist2, want.dist2);
+          if (res[i].tri == want.tri) EXPECT_EQ(res[i].closest.feature, want.closest.feature);
+          ++checked;
+        }
       }
     }
     // and the independent oracle (another method, long double)
