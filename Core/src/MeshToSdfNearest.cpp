@@ -15,12 +15,6 @@
 #define LVDIF_NEAREST_SSE 1
 #endif
 
-#ifdef LVDIF_NEAREST_STATS
-long long gStatNodes = 0, gStatBoxPass = 0, gStatEricson = 0, gStatQueries = 0, gStatImprove = 0;
-#define STAT(x) __atomic_add_fetch(&x, 1, __ATOMIC_RELAXED)
-#else
-#define STAT(x)
-#endif
 namespace lvdif
 {
 namespace sdfdetail
@@ -359,7 +353,6 @@ NearestResult NearestIndex::nearest(V3 p, std::int32_t hint, double maxDist2) co
   NearestResult best;
   best.dist2 = maxDist2;
   if (this->Nodes.empty()) return best;
-  STAT(gStatQueries);
   // Tau: slack on every bound, far above the rounding of the closest point
   // (a few ulps of the largest coordinate), far below a voxel
   const double big = std::max(this->Scale, std::max(std::fabs(p.x), std::max(std::fabs(p.y), std::fabs(p.z))));
@@ -373,12 +366,10 @@ NearestResult NearestIndex::nearest(V3 p, std::int32_t hint, double maxDist2) co
   };
   auto consider = [&](const Packed& t) {
     if (t.index == best.tri) return;
-    STAT(gStatBoxPass);
     auto eval = [&](int k) { return t.plane[k][0] * p.x + t.plane[k][1] * p.y + t.plane[k][2] * p.z + t.plane[k][3]; };
     const double pd = eval(0);
     const double ed = std::max(0.0, std::max(eval(1), std::max(eval(2), eval(3))));
     if (pd * pd + ed * ed > thr2) return;
-    STAT(gStatEricson);
     const Closest c = closestPointOnTriangle(p, t.v[0], t.v[1], t.v[2]);
     const V3 d = c.point - p;
     const double d2 = dot(d, d);
@@ -389,7 +380,6 @@ NearestResult NearestIndex::nearest(V3 p, std::int32_t hint, double maxDist2) co
       best.tri = t.index;
       best.closest = c;
       setThreshold();
-      STAT(gStatImprove);
     }
   };
   if (hint >= 0)
@@ -427,7 +417,6 @@ NearestResult NearestIndex::nearest(V3 p, std::int32_t hint, double maxDist2) co
     const Item it = stack[--top];
     if (it.lb > thrF) continue;
     const Node& n = this->Nodes[static_cast<std::size_t>(it.node)];
-    STAT(gStatNodes);
     alignas(16) float lb[4];
 #ifdef LVDIF_NEAREST_SSE
     {

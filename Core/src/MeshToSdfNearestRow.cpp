@@ -1,11 +1,12 @@
-// NearestIndex::nearestRow: four neighbouring voxels of a grid row share one
-// traversal ("packet" traversal, as for coherent rays: Wald et al.,
+// NearestIndex::nearestRow: RowPoints (8) neighbouring voxels of a grid row
+// share one traversal ("packet" traversal, as for coherent rays: Wald et al.,
 // "Interactive rendering with coherent ray tracing", 2001). Each node's four
-// child boxes are tested against the four points with SSE (the y and z parts
-// once, the x part per point); a child is entered with the mask of the points
-// it may still serve, so every point is pruned by its own bound. Per point
-// the answer is exactly that of nearest() (same closest-point routine, same
-// tie rule, conservative bounds); only the work is shared.
+// child boxes are tested against the points four at a time with SSE (the y
+// and z parts once, the x part per point; MeshToSdfNearestRowAvx2.cpp does
+// the 8 points at once); a child is entered with the mask of the points it
+// may still serve, so every point is pruned by its own bound. Per point the
+// answer is exactly that of nearest() (same closest-point routine, same tie
+// rule, conservative bounds); only the work is shared.
 #include "MeshToSdfNearestRow.h"
 
 #include <algorithm>
