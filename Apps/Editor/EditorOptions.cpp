@@ -44,8 +44,10 @@ EditorOptions parseEditorOptions(const QStringList& arguments)
   const QCommandLineOption recoveryDir("recovery-dir", "Folder of the autosave file.", "dir");
   const QCommandLineOption autosave("autosave", "Autosave interval in seconds (0: off).", "s", "60");
   const QCommandLineOption perVertex("per-vertex-color", "Per-vertex colours instead of tetrahedral interpolation.");
+  const QCommandLineOption benchmark("benchmark-stroke",
+    "Replay a recorded stroke (JSON-lines samples or .lvr) at its speed, print the latency and FPS, quit.", "file");
   p.addOptions({ open, openMesh, meshRes, meshSign, create, fill, script, drag, undo, shot, save, exp, op, shape, kind, radius, color, size, quit,
-    noRecovery, recoveryDir, autosave, perVertex });
+    noRecovery, recoveryDir, autosave, perVertex, benchmark });
   p.process(arguments);
 
   EditorOptions o;
@@ -105,5 +107,6 @@ EditorOptions parseEditorOptions(const QStringList& arguments)
   o.recoveryDir = p.value(recoveryDir);
   o.autosaveSeconds = p.value(autosave).toInt();
   o.perVertexColor = p.isSet(perVertex);
+  o.benchmarkStroke = p.value(benchmark);
   return o;
 }

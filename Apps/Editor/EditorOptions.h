@@ -30,6 +30,7 @@ struct EditorOptions
   QString recoveryDir;        // --recovery-dir DIR (default: the app data folder)
   int autosaveSeconds = 60;   // --autosave S
   bool perVertexColor = false; // --per-vertex-color
+  QString benchmarkStroke;    // --benchmark-stroke FILE: replay a recorded stroke, print latency and FPS, quit
   bool batch() const { return this->quit || !this->screenshot.isEmpty() || !this->save.isEmpty() || !this->exportMesh.isEmpty(); }
 };
 

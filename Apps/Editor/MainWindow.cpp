@@ -1,5 +1,7 @@
 #include "MainWindow.h"
 
+#include "StrokeBenchmark.h"
+
 #include <QThread>
 
 
@@ -234,6 +236,8 @@ void MainWindow::onBrushSample(const double* sample)
     this->showError("The brush failed", e);
     return;
   }
+  if (this->Bench)
+    this->Bench->sampleApplied();
   this->settleMeshes();
 }
 
@@ -273,9 +277,11 @@ void MainWindow::pollMeshes()
 {
   if (!this->Doc.hasVolume())
     return;
-  std::vector<lvdif::ChunkMesh> meshes = this->Doc.collectMeshes();
+  std::vector<StrokeBenchmark::TimePoint> gathered;
+  std::vector<lvdif::ChunkMesh> meshes = this->Doc.collectMeshes(this->Bench ? &gathered : nullptr);
   if (meshes.empty())
     return;
+  const auto installStart = std::chrono::steady_clock::now();
   const auto& d = this->Doc.volume().dims();
   // In completion order; a later mesh of a chunk supersedes an earlier one.
   std::map<std::int64_t, const lvdif::ChunkMesh*> newest;
@@ -298,6 +304,11 @@ void MainWindow::pollMeshes()
                           .arg(this->Chunks->GetNumberOfChunks())
                           .arg(this->Chunks->GetNumberOfTriangles()));
   this->RenderWindow->Render();
+  if (this->Bench)
+  {
+    this->RenderWindow->WaitForCompletion(); // the frame is drawn, not just queued
+    this->Bench->frameRendered(meshes, gathered, installStart, std::chrono::steady_clock::now());
+  }
   this->View->update();
 }
 

@@ -14,6 +14,7 @@
 #include "vtkSmartPointer.h"
 
 class QAction;
+class StrokeBenchmark;
 class QLabel;
 class QTimer;
 class QVTKOpenGLNativeWidget;
@@ -56,6 +57,10 @@ public:
   QString recoveryPath() const;
   /// Offers to recover an autosaved volume if one exists; true if recovered.
   bool offerRecovery();
+  /// --benchmark-stroke: replays the samples of `path` at their recorded times
+  /// through the UI, prints the latency and quits (StrokeBenchmark.h); false
+  /// (with a message) if the file cannot be read.
+  bool startStrokeBenchmark(const QString& path);
 
 protected:
   void closeEvent(QCloseEvent* event) override;
@@ -105,4 +110,6 @@ private:
   bool ViewInitialized = false;
   bool Painting = false;
   double Pressure = -1; // last tablet pressure in [0, 1]; -1: no tablet in use
+  StrokeBenchmark* Bench = nullptr; // set while --benchmark-stroke runs
+  friend class StrokeBenchmark;
 };

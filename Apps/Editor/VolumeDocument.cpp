@@ -197,6 +197,8 @@ void VolumeDocument::requestChanged(const lvdif::EditResult& r)
   // Called with the source mutex held.
   const std::vector<std::int64_t> dirty = this->Volume->takeDirtyChunks();
   const std::vector<std::int64_t> ids = vtkLVDIFChunkMesh::ChunksToRemesh(*this->Mesher, dirty, r);
+  this->LastRequest = ids;
+  this->LastRequestAt = std::chrono::steady_clock::now();
   if (!ids.empty())
   {
     this->Worker->request(ids);
@@ -317,9 +319,9 @@ void VolumeDocument::runScript(const std::string& source)
   ++this->EditsSinceAutosave;
 }
 
-std::vector<lvdif::ChunkMesh> VolumeDocument::collectMeshes()
+std::vector<lvdif::ChunkMesh> VolumeDocument::collectMeshes(std::vector<std::chrono::steady_clock::time_point>* gatheredAt)
 {
-  return this->Worker ? this->Worker->collect() : std::vector<lvdif::ChunkMesh>();
+  return this->Worker ? this->Worker->collect(gatheredAt) : std::vector<lvdif::ChunkMesh>();
 }
 
 bool VolumeDocument::meshingIdle() const

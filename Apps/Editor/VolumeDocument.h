@@ -10,6 +10,8 @@
 #include "lvdif/Editor.h"
 #include "lvdif/MarchingCubesWorker.h"
 
+#include <chrono>
+
 #include <QString>
 
 #include <array>
@@ -67,8 +69,13 @@ public:
   void runScript(const std::string& source);
 
   // ---- meshing ---------------------------------------------------------------
-  /// Meshes finished since the last call (never waits).
-  std::vector<lvdif::ChunkMesh> collectMeshes();
+  /// Meshes finished since the last call (never waits); with `gatheredAt`, when
+  /// each mesh's input was read (MarchingCubesWorker::collect).
+  std::vector<lvdif::ChunkMesh> collectMeshes(std::vector<std::chrono::steady_clock::time_point>* gatheredAt = nullptr);
+  /// The chunks the last addSample()/endStroke() asked to re-mesh, and when
+  /// (taken under the source mutex right after the edit): a mesh gathered later shows it.
+  const std::vector<std::int64_t>& lastRequest() const { return this->LastRequest; }
+  std::chrono::steady_clock::time_point lastRequestTime() const { return this->LastRequestAt; }
   bool meshingIdle() const;
   void waitMeshingIdle();
 
@@ -88,4 +95,6 @@ private:
   bool Modified = false;
   int EditsSinceAutosave = 0;
   int Generation = 0;
+  std::vector<std::int64_t> LastRequest;
+  std::chrono::steady_clock::time_point LastRequestAt;
 };

@@ -47,7 +47,8 @@ int main(int argc, char* argv[])
   MainWindow window(options);
   window.show();
   bool loaded = false;
-  if (!options.batch())
+  const bool benchmark = !options.benchmarkStroke.isEmpty();
+  if (!options.batch() && !benchmark)
     loaded = window.offerRecovery();
   if (!loaded)
   {
@@ -69,6 +70,19 @@ int main(int argc, char* argv[])
         : (options.fill == "full" ? VolumeDocument::Fill::Full : VolumeDocument::Fill::Sphere);
       loaded = window.newCanvas(nx, ny, nz, fill);
     }
+  }
+  if (benchmark)
+  {
+    if (!loaded)
+      return 1;
+    // Once the window is up and the first surface is shown, replay the stroke;
+    // StrokeBenchmark quits the application with its status.
+    QTimer::singleShot(0, &window, [&] {
+      window.finishMeshing();
+      if (!window.startStrokeBenchmark(options.benchmarkStroke))
+        QApplication::exit(1);
+    });
+    return app.exec();
   }
   if (!options.batch() && options.drag.isEmpty() && options.script.isEmpty())
     return app.exec();

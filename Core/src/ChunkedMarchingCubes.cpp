@@ -49,8 +49,12 @@ void ChunkedMarchingCubes::Impl::init(const Index3& dims, const MarchingCubesOpt
     Counts[a] = (Region.hi[a] + off[a]) / E - First[a] + 1;
   }
   Total = Counts[0] * Counts[1] * Counts[2];
+  if (options.triangleTable)
+    Tables = std::make_shared<const MarchingCubesTables>(marchingCubesTablesWith(*options.triangleTable));
+  else
+    Tables = std::shared_ptr<const MarchingCubesTables>(&marchingCubesTables(), [](const MarchingCubesTables*) {});
   Options.device = resolveDevice(options.device);
-  if (Options.device == Device::Cuda) Cuda = makeMarchingCubesCudaState();
+  if (Options.device == Device::Cuda) Cuda = makeMarchingCubesCudaState(*Tables);
 }
 
 VoxelBox ChunkedMarchingCubes::Impl::cells(std::int64_t id) const

@@ -106,6 +106,8 @@ struct MarchingCubesCudaState
   Buffer<std::uint8_t> masks, cases;
   Buffer<unsigned int> vcount, vfirst, tcount, tfirst;
   Buffer<unsigned char> scratch;
+  /// the mesher's case table (MarchingCubesTables::triangles, 256 x 16)
+  Buffer<std::int8_t> tris;
   // output (set 0 also serves the one-chunk path)
   MarchingCubesOutBuffers out[2];
   // the streamed pipeline: kernels on `compute`, copies to the host on `copy`
@@ -266,7 +268,7 @@ std::vector<ChunkMesh> runBatch(const ChunkedMarchingCubes::Impl& impl, Marching
   mccuda::generateVertices<<<dim3(blocks(maxP), n), 256>>>(S.boxes.p, S.pBase.p, S.masks.p, S.vfirst.p, o);
   LVDIF_CUDA_CHECK(cudaGetLastError());
   mccuda::generateTriangles<<<dim3(blocks(maxC), n), 256>>>(
-    S.boxes.p, S.pBase.p, S.cBase.p, S.vBase.p, S.cases.p, S.tfirst.p, S.masks.p, S.vfirst.p, o);
+    S.boxes.p, S.pBase.p, S.cBase.p, S.vBase.p, S.cases.p, S.tfirst.p, S.masks.p, S.vfirst.p, S.tris.p, o);
   LVDIF_CUDA_CHECK(cudaGetLastError());
 
   // one copy per array, then split by chunk (each chunk's range is contiguous)
@@ -301,15 +303,18 @@ std::vector<ChunkMesh> runBatch(const ChunkedMarchingCubes::Impl& impl, Marching
 }
 } // namespace
 
-std::shared_ptr<MarchingCubesCudaState> makeMarchingCubesCudaState()
+std::shared_ptr<MarchingCubesCudaState> makeMarchingCubesCudaState(const MarchingCubesTables& tables)
 {
   static std::once_flag once;
   std::call_once(once, [] {
+    // the counts are those of every valid table (same loops), so they are uploaded once
     const MarchingCubesTables& T = marchingCubesTables();
     LVDIF_CUDA_CHECK(cudaMemcpyToSymbol(mccuda::cTriCount, T.triangleCount, sizeof(T.triangleCount)));
-    LVDIF_CUDA_CHECK(cudaMemcpyToSymbol(mccuda::cTris, T.triangles, sizeof(T.triangles)));
   });
-  return std::make_shared<MarchingCubesCudaState>();
+  auto state = std::make_shared<MarchingCubesCudaState>();
+  state->tris.reserve(sizeof(tables.triangles));
+  LVDIF_CUDA_CHECK(cudaMemcpy(state->tris.p, tables.triangles, sizeof(tables.triangles), cudaMemcpyHostToDevice));
+  return state;
 }
 
 ChunkMesh meshChunkCuda(const ChunkedMarchingCubes::Impl& impl, const ChunkedMarchingCubes::ChunkInput& in)
@@ -479,7 +484,7 @@ void packLocked(const ChunkedMarchingCubes::Impl& impl, MarchingCubesCudaState& 
       mccuda::generateVertices<<<dim3(blocks(maxP), n), 256, 0, cs>>>(S.boxes.p, S.pBase.p, S.masks.p, S.vfirst.p, o);
       LVDIF_CUDA_CHECK(cudaGetLastError());
       mccuda::generateTriangles<<<dim3(blocks(maxC), n), 256, 0, cs>>>(
-        S.boxes.p, S.pBase.p, S.cBase.p, S.vBase.p, S.cases.p, S.tfirst.p, S.masks.p, S.vfirst.p, o);
+        S.boxes.p, S.pBase.p, S.cBase.p, S.vBase.p, S.cases.p, S.tfirst.p, S.masks.p, S.vfirst.p, S.tris.p, o);
       LVDIF_CUDA_CHECK(cudaGetLastError());
       LVDIF_CUDA_CHECK(cudaEventRecord(S.generated[slot], cs));
       cudaStream_t cp = S.copy;

@@ -118,7 +118,7 @@ void forDiffering(const std::uint8_t* a, const std::uint8_t* b, RowTrim ta, RowT
 
 ChunkMesh meshChunkCpu(const ChunkedMarchingCubes::Impl& impl, const ChunkedMarchingCubes::ChunkInput& in)
 {
-  const MarchingCubesTables& T = marchingCubesTables();
+  const MarchingCubesTables& T = *impl.Tables;
   ChunkMesh out;
   out.chunkId = in.chunkId;
   out.chunkCoord = impl.globalCoord(in.chunkId);

@@ -19,6 +19,8 @@ public:
   /// the GPU (one chunk at a time, serialized by the state's mutex).
   std::shared_ptr<MarchingCubesCudaState> Cuda;
   MarchingCubesOptions Options;
+  /// Options.triangleTable checked and completed, or lvdif's own table.
+  std::shared_ptr<const MarchingCubesTables> Tables;
   const DictionaryVolume* Volume = nullptr;
   FloatGridView Grid;
   const Rgba* GridColors = nullptr;
@@ -91,7 +93,8 @@ ChunkMesh meshChunkCpu(const ChunkedMarchingCubes::Impl& impl, const ChunkedMarc
 /// the same triangles; vertex order differs). Inputs that view the float grid
 /// read the grid's device copy (uploaded at the first call); gathered inputs
 /// are uploaded. Stubs in nocuda/ throw (never called: see resolveDevice).
-std::shared_ptr<MarchingCubesCudaState> makeMarchingCubesCudaState();
+/// The state holds a device copy of `tables`' triangles (the mesher's case table).
+std::shared_ptr<MarchingCubesCudaState> makeMarchingCubesCudaState(const MarchingCubesTables& tables);
 ChunkMesh meshChunkCuda(const ChunkedMarchingCubes::Impl& impl, const ChunkedMarchingCubes::ChunkInput& in);
 /// Float grids: meshes the given chunks in batches (one launch sequence and one
 /// copy back per batch instead of per chunk). One result per id, in order.

@@ -14,8 +14,10 @@ namespace lvdif
 namespace mccuda
 {
 
+/// Triangles per case: the same for every valid case table (marchingCubesTablesWith
+/// keeps the loops, hence the counts). The triangles themselves are the mesher's
+/// table, in device memory (generateTriangles' `tris`).
 __constant__ std::uint8_t cTriCount[256];
-__constant__ std::int8_t cTris[256][16];
 
 /// What the kernels read: a box of values (grid coordinates) and the chunk's cells.
 struct Box
@@ -157,10 +159,11 @@ __global__ void generateVertices(
 }
 
 /// Triangles are written at their global index; their vertex ids are local to
-/// the chunk (minus the chunk's first vertex, vBase).
+/// the chunk (minus the chunk's first vertex, vBase). `tris`: the case table's
+/// triangles, 16 entries per case (MarchingCubesTables::triangles).
 __global__ void generateTriangles(const Box* boxes, const long long* pBase, const long long* cBase,
   const unsigned int* vBase, const std::uint8_t* cases, const unsigned int* firstTri, const std::uint8_t* masks,
-  const unsigned int* firstVertex, Out o)
+  const unsigned int* firstVertex, const std::int8_t* tris, Out o)
 {
   const Box& b = boxes[blockIdx.y];
   const long long c = static_cast<long long>(blockIdx.x) * blockDim.x + threadIdx.x;
@@ -179,7 +182,7 @@ __global__ void generateTriangles(const Box* boxes, const long long* pBase, cons
   for (int t = 0; t < nt; ++t)
     for (int corner = 0; corner < 3; ++corner)
     {
-      const int e = cTris[cs][3 * t + corner];
+      const int e = tris[16 * cs + 3 * t + corner];
       const int axis = e >> 2, u = (axis + 1) % 3, v = (axis + 2) % 3;
       long long off[3] = { 0, 0, 0 };
       off[u] = (e >> 1) & 1;

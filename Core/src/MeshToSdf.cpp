@@ -11,10 +11,13 @@
 #include <omp.h>
 
 #include <algorithm>
+#include <cstdio>
+#include <cstdlib>
 #include <atomic>
 #include <chrono>
 #include <cmath>
 #include <exception>
+#include <functional>
 #include <memory>
 #include <sstream>
 #include <utility>
@@ -29,6 +32,21 @@ namespace
 double now()
 {
   return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count();
+}
+
+/// LVDIF_MESH_TO_SDF_TRACE=1: host phase times on stderr (benchmarks).
+bool traceOn()
+{
+  static const bool on = [] {
+    const char* v = std::getenv("LVDIF_MESH_TO_SDF_TRACE");
+    return v != nullptr && v[0] == '1';
+  }();
+  return on;
+}
+
+void trace(const char* what, double seconds)
+{
+  if (traceOn()) std::fprintf(stderr, "[mesh to SDF] %s: %.2f ms\n", what, seconds * 1e3);
 }
 
 void validateGrid(const GridGeometry& g)
@@ -180,8 +198,10 @@ struct Engine
   }
 };
 
+/// On CUDA the winding structures are left to openCuda, which builds them
+/// (if not prepared yet) while the GPU computes distances.
 std::unique_ptr<Engine> makeEngine(const MeshToSdfPrepared& prepared, const GridGeometry& geom,
-  const MeshToSdfOptions& opts, float band, MeshToSdfStats& stats)
+  const MeshToSdfOptions& opts, float band, Device device, MeshToSdfStats& stats)
 {
   validateGrid(geom);
   require(opts.faithfulCellsPerAxis >= 1 && opts.faithfulCellsPerAxis <= 256,
@@ -192,7 +212,6 @@ std::unique_ptr<Engine> makeEngine(const MeshToSdfPrepared& prepared, const Grid
   auto e = std::make_unique<Engine>();
   MeshToSdfPrepared::Impl& impl = prepared.impl();
   e->mesh = &impl.mesh;
-  e->index = impl.nearest.get();
   e->geom = geom;
   e->opts = opts;
   const double unit = std::min(geom.spacing[0], std::min(geom.spacing[1], geom.spacing[2]));
@@ -201,7 +220,11 @@ std::unique_ptr<Engine> makeEngine(const MeshToSdfPrepared& prepared, const Grid
   const double bw = static_cast<double>(band) / e->toOut;
   e->bandWorld2 = std::isfinite(bw) ? bw * bw * (1 + 1e-9) : 1e300;
   double lazy = 0; // only what this call had to build (timed inside)
-  if (opts.sign == SignMode::WindingNumber)
+  if (device == Device::Cpu && opts.accel == MeshToSdfAccel::Bvh)
+  {
+    e->index = &impl.nearestIndex(lazy);
+  }
+  if (opts.sign == SignMode::WindingNumber && device == Device::Cpu)
   {
     e->winding = &impl.windingSigner(lazy);
   }
@@ -221,15 +244,34 @@ std::unique_ptr<Engine> makeEngine(const MeshToSdfPrepared& prepared, const Grid
 }
 
 /// The CUDA session of a call, on the prepared mesh's device copy (uploaded
-/// on first use; the upload counts as build time).
+/// on first use; the upload counts as build time). Winding structures not
+/// built yet (the one-call API) are built and uploaded by the session right
+/// after it queues the first distance kernel, overlapping it; that host time
+/// is added to the build time too.
 std::unique_ptr<cudasdf::Session> openCuda(const MeshToSdfPrepared& prepared, const Engine& e,
   const MeshToSdfOptions& opts, MeshToSdfStats& stats)
 {
   const double t0 = now();
   double unused = 0;
-  const cudasdf::DeviceMesh& dm = prepared.impl().deviceMesh(opts.sign == SignMode::WindingNumber, unused);
-  auto session = cudasdf::openSession(dm, e.geom, opts, e.toOut, e.band, stats);
+  MeshToSdfPrepared::Impl& impl = prepared.impl();
+  const bool winding = opts.sign == SignMode::WindingNumber;
+  const bool normals = opts.sign == SignMode::Normal || opts.sign == SignMode::PseudoNormal;
+  const bool built = impl.hasWindingSigner();
+  const cudasdf::DeviceMesh& dm = impl.deviceMesh(winding && built, normals, unused, winding && !built);
+  std::function<void()> ensure;
+  if (winding)
+  {
+    ensure = [&impl, &stats]() {
+      const double t1 = now();
+      double s = 0;
+      impl.deviceMesh(true, false, s);
+      stats.buildSeconds += now() - t1;
+      trace("winding structures built and uploaded, overlapping the distance kernel", now() - t1);
+    };
+  }
+  auto session = cudasdf::openSession(dm, e.geom, opts, e.toOut, e.band, stats, std::move(ensure));
   stats.buildSeconds += now() - t0;
+  trace("upload and session", now() - t0);
   return session;
 }
 
@@ -451,8 +493,8 @@ MeshToSdfStats meshToSdf(const MeshToSdfPrepared& mesh, const GridGeometry& grid
   }
   MeshToSdfStats stats;
   interrupter.start("mesh to SDF");
-  auto engine = makeEngine(mesh, grid, options, options.bandWidth, stats);
   stats.device = resolveDevice(options.device);
+  auto engine = makeEngine(mesh, grid, options, options.bandWidth, stats.device, stats);
   if (stats.device == Device::Cuda)
   {
     openCuda(mesh, *engine, options, stats)->compute(extent, out, stats, interrupter);
@@ -497,8 +539,8 @@ MeshToSdfStats meshToSdf(const MeshToSdfPrepared& mesh, DictionaryVolume& volume
   opts.unit = DistanceUnit::Voxel;
   MeshToSdfStats stats;
   interrupter.start("mesh to SDF");
-  auto engine = makeEngine(mesh, grid, opts, volume.bandWidth(), stats);
   stats.device = resolveDevice(options.device);
+  auto engine = makeEngine(mesh, grid, opts, volume.bandWidth(), stats.device, stats);
   if (stats.device == Device::Cuda)
   {
     volumeOnCuda(*openCuda(mesh, *engine, opts, stats), volume, opts, stats, interrupter);
@@ -519,12 +561,30 @@ MeshToSdfStats meshToSdf(const MeshToSdfPrepared& mesh, DictionaryVolume& volume
   return stats;
 }
 
+/// prepareMeshToSdf; the winding structures only when `winding` (otherwise
+/// built on first use: on CUDA while the GPU computes distances).
+static MeshToSdfPrepared prepareInternal(const TriangleMesh& mesh, bool winding)
+{
+  const double t0 = now();
+  auto impl = std::make_shared<MeshToSdfPrepared::Impl>();
+  impl->mesh = prepareMesh(mesh);
+  const double t2 = now();
+  // the search structures are built on first use: the CPU's NearestIndex by
+  // makeEngine, the GPU's Bvh by deviceMesh (each path needs only its own)
+  double unused = 0;
+  if (winding) impl->windingSigner(unused);
+  impl->prepareSeconds = now() - t0;
+  trace("prepareMesh", t2 - t0);
+  if (winding) trace("winding structures", now() - t2);
+  return MeshToSdfPrepared(std::move(impl));
+}
+
 /// The one-call API: prepare, then the prepared call (preparation counts as build time).
 template <typename Out>
 MeshToSdfStats prepareAndRun(const TriangleMesh& mesh, Out&& out, const MeshToSdfOptions& options,
   Interrupter& interrupter)
 {
-  const MeshToSdfPrepared prepared = prepareMeshToSdf(mesh, options.sign);
+  const MeshToSdfPrepared prepared = prepareInternal(mesh, false);
   MeshToSdfStats stats = meshToSdf(prepared, std::forward<Out>(out), options, interrupter);
   stats.buildSeconds += prepared.prepareSeconds();
   return stats;
@@ -533,7 +593,7 @@ MeshToSdfStats prepareAndRun(const TriangleMesh& mesh, Out&& out, const MeshToSd
 MeshToSdfStats meshToSdf(const TriangleMesh& mesh, const GridGeometry& grid, const VoxelBox& extent, float* out,
   const MeshToSdfOptions& options, Interrupter& interrupter)
 {
-  const MeshToSdfPrepared prepared = prepareMeshToSdf(mesh, options.sign);
+  const MeshToSdfPrepared prepared = prepareInternal(mesh, false);
   MeshToSdfStats stats = meshToSdf(prepared, grid, extent, out, options, interrupter);
   stats.buildSeconds += prepared.prepareSeconds();
   return stats;
@@ -553,20 +613,26 @@ MeshToSdfStats meshToSdf(const TriangleMesh& mesh, DictionaryVolume& volume, con
 
 MeshToSdfPrepared prepareMeshToSdf(const TriangleMesh& mesh, SignMode sign)
 {
-  const double t0 = now();
-  auto impl = std::make_shared<MeshToSdfPrepared::Impl>();
-  impl->mesh = prepareMesh(mesh);
-  impl->nearest = std::make_unique<NearestIndex>(impl->mesh.tris);
-  double unused = 0;
-  if (sign == SignMode::WindingNumber) impl->windingSigner(unused);
-  impl->prepareSeconds = now() - t0;
-  return MeshToSdfPrepared(std::move(impl));
+  return prepareInternal(mesh, sign == SignMode::WindingNumber);
 }
 
 std::size_t MeshToSdfPrepared::triangles() const { return this->Pimpl->mesh.tris.size(); }
 std::size_t MeshToSdfPrepared::degenerateSkipped() const { return this->Pimpl->mesh.degenerate; }
 std::size_t MeshToSdfPrepared::boundaryEdges() const { return this->Pimpl->mesh.boundaryEdges; }
 double MeshToSdfPrepared::prepareSeconds() const { return this->Pimpl->prepareSeconds; }
+
+const NearestIndex& MeshToSdfPrepared::Impl::nearestIndex(double& seconds)
+{
+  std::lock_guard<std::mutex> lock(this->Lock);
+  if (!this->nearest)
+  {
+    const double t0 = now();
+    this->nearest = std::make_unique<NearestIndex>(this->mesh.tris);
+    seconds += now() - t0;
+    trace("nearest index", now() - t0);
+  }
+  return *this->nearest;
+}
 
 const WindingSigner& MeshToSdfPrepared::Impl::windingSigner(double& seconds)
 {
@@ -580,25 +646,38 @@ const WindingSigner& MeshToSdfPrepared::Impl::windingSigner(double& seconds)
   return *this->Winding;
 }
 
-const cudasdf::DeviceMesh& MeshToSdfPrepared::Impl::deviceMesh(bool winding, double& seconds)
+bool MeshToSdfPrepared::Impl::hasWindingSigner()
+{
+  std::lock_guard<std::mutex> lock(this->Lock);
+  return this->Winding != nullptr;
+}
+
+const cudasdf::DeviceMesh& MeshToSdfPrepared::Impl::deviceMesh(
+  bool winding, bool normals, double& seconds, bool windingLater)
 {
   const WindingSigner* w = winding ? &this->windingSigner(seconds) : nullptr;
-  // Sessions of other threads may hold the first copy: a copy with the
-  // winding structures is added beside it, never put in its place.
+  // Sessions of other threads may use the copy: the winding part is only
+  // added (never replaced), and only sessions in WindingNumber mode read it.
   std::lock_guard<std::mutex> lock(this->Lock);
   const double t0 = now();
   // the GPU's tree: only the device path needs it (the CPU queries NearestIndex)
-  if (!this->bvh) this->bvh = std::make_unique<Bvh>(this->mesh.tris);
+  if (!this->bvh)
+  {
+    const double tb = now();
+    this->bvh = std::make_unique<Bvh>(this->mesh.tris);
+    trace("mesh BVH", now() - tb);
+  }
   if (!this->Device)
   {
-    this->Device = cudasdf::uploadMesh(this->mesh, *this->bvh, w);
+    this->Device = cudasdf::uploadMesh(this->mesh, *this->bvh, w, normals, windingLater);
   }
-  else if (w && !this->Device->hasWinding() && !this->WindingDevice)
+  else
   {
-    this->WindingDevice = cudasdf::uploadMesh(this->mesh, *this->bvh, w);
+    if (w && !this->Device->hasWinding()) this->Device->addWinding(*w);
+    if (normals && !this->Device->hasNormals()) this->Device->addNormals();
   }
   seconds += now() - t0;
-  return w && !this->Device->hasWinding() ? *this->WindingDevice : *this->Device;
+  return *this->Device;
 }
 
 MeshToSdfPrepared::Impl::~Impl() = default;

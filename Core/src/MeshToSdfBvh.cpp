@@ -30,8 +30,10 @@ std::int32_t subtreeNodes(std::int32_t count, int depth)
 
 /// Per-triangle bounds and centroids, computed once in parallel; the
 /// recursive build then touches only these compact arrays (the triangle
-/// records are 328 bytes each). Subtrees of more than 2048 triangles build as
-/// OpenMP tasks; the node layout (preorder) does not depend on the threads.
+/// records are 328 bytes each), and the median splits permute the centroids
+/// themselves (contiguous, no indirection; the same permutation as sorting
+/// indices by them). Subtrees of more than 2048 triangles build as OpenMP
+/// tasks; the node layout (preorder) does not depend on the threads.
 Bvh::Bvh(const std::vector<Tri>& tris)
   : Tris(tris)
 {
@@ -39,27 +41,38 @@ Bvh::Bvh(const std::vector<Tri>& tris)
   this->Order.resize(tris.size());
   BuildData d;
   d.box.resize(tris.size());
-  d.centroid.resize(tris.size());
+  d.ref.resize(tris.size());
 #pragma omp parallel for schedule(static)
   for (std::int32_t i = 0; i < n; ++i)
   {
-    this->Order[i] = i;
     const Tri& t = tris[i];
     auto& b = d.box[i];
+    auto& r = d.ref[i];
     for (int a = 0; a < 3; ++a)
     {
       b[a] = std::min(t.v[0][a], std::min(t.v[1][a], t.v[2][a]));
       b[a + 3] = std::max(t.v[0][a], std::max(t.v[1][a], t.v[2][a]));
-      d.centroid[i][a] = t.v[0][a] + t.v[1][a] + t.v[2][a]; // 3x the centroid: only compared
+      r.c[a] = t.v[0][a] + t.v[1][a] + t.v[2][a];
     }
+    r.tri = i;
   }
   this->Nodes.resize(static_cast<std::size_t>(subtreeNodes(n, 0)));
 #pragma omp parallel
 #pragma omp single
   this->build(d, 0, 0, n, 0);
+  this->Leaves.resize(tris.size());
+#pragma omp parallel for schedule(static)
+  for (std::int32_t i = 0; i < n; ++i)
+  {
+    this->Order[i] = d.ref[i].tri;
+    const Tri& t = tris[this->Order[i]];
+    LeafTri& l = this->Leaves[i];
+    for (int k = 0; k < 3; ++k) l.v[k] = t.v[k];
+    l.n = t.n;
+  }
 }
 
-void Bvh::build(const BuildData& d, std::int32_t id, std::int32_t first, std::int32_t count, int depth)
+void Bvh::build(BuildData& d, std::int32_t id, std::int32_t first, std::int32_t count, int depth)
 {
   Node& node = this->Nodes[id];
   node.first = first;
@@ -69,7 +82,7 @@ void Bvh::build(const BuildData& d, std::int32_t id, std::int32_t first, std::in
     double clo[3] = { 1e300, 1e300, 1e300 }, chi[3] = { -1e300, -1e300, -1e300 };
     for (std::int32_t i = first; i < first + count; ++i)
     {
-      const auto& c = d.centroid[this->Order[i]];
+      const double* c = d.ref[i].c;
       for (int a = 0; a < 3; ++a)
       {
         clo[a] = std::min(clo[a], c[a]);
@@ -82,16 +95,17 @@ void Bvh::build(const BuildData& d, std::int32_t id, std::int32_t first, std::in
       if (chi[a] - clo[a] > chi[axis] - clo[axis]) axis = a;
     }
     const std::int32_t half = count / 2;
-    std::nth_element(this->Order.begin() + first, this->Order.begin() + first + half,
-      this->Order.begin() + first + count,
-      [&](std::int32_t x, std::int32_t y) { return d.centroid[x][axis] < d.centroid[y][axis]; });
+    std::nth_element(d.ref.begin() + first, d.ref.begin() + first + half, d.ref.begin() + first + count,
+      [axis](const BuildData::Ref& x, const BuildData::Ref& y) { return x.c[axis] < y.c[axis]; });
     node.left = id + 1;
     node.right = id + 1 + subtreeNodes(half, depth + 1);
     if (count > 2048)
     {
-#pragma omp task
+      // shared(d): by default a task takes a firstprivate COPY of the object
+      // a reference refers to (2 MB of boxes and centroids per task)
+#pragma omp task shared(d)
       this->build(d, node.left, first, half, depth + 1);
-#pragma omp task
+#pragma omp task shared(d)
       this->build(d, node.right, first + half, count - half, depth + 1);
 #pragma omp taskwait
     }
@@ -116,7 +130,7 @@ void Bvh::build(const BuildData& d, std::int32_t id, std::int32_t first, std::in
   }
   for (std::int32_t i = first; i < first + count; ++i)
   {
-    const auto& b = d.box[this->Order[i]];
+    const auto& b = d.box[d.ref[i].tri];
     for (int a = 0; a < 3; ++a)
     {
       node.lo[a] = std::min(node.lo[a], b[a]);

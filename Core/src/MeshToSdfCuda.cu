@@ -1,19 +1,23 @@
-// CUDA path of mesh to SDF: the same double-precision algorithms as the CPU
-// (MeshToSdf.cpp distanceRow, MeshToSdfWinding.cpp signRow), run over the
-// requested extent one slab of z layers at a time so device memory stays
-// bounded (the slab buffer is at most 256 MiB, plus the mesh and BVHs).
-// Kernel 1: one thread per run of 16 voxels along x (nearest triangle on the
-// BVH, warm-started, far voxels skipped by the Lipschitz bound).
-// Kernel 2 (WindingNumber): one thread per scan line (ray crossings of the
-// closed chain, carried winding number for open meshes).
+// CUDA path of mesh to SDF, host side: the same double-precision algorithms as
+// the CPU (MeshToSdf.cpp distanceRow, MeshToSdfWinding.cpp signRow; kernels in
+// MeshToSdfCudaKernels.cuh), run over the requested extent one slab of z
+// layers at a time so device memory stays bounded (the slab buffer is at most
+// 256 MiB, plus the mesh and BVHs). Here: the prepared mesh's device copy
+// (compact records; the winding part may be added while the distance kernel
+// runs, into buffers reserved beforehand, on a non-blocking stream) and the
+// sessions (float slabs whose sign pass runs in parts, each copied back while
+// the next runs; dictionary-volume groups encoded on the GPU).
 #include "MeshToSdfCuda.h"
+#include "MeshToSdfCudaKernels.cuh"
 
 #include "lvdif/CudaCheck.cuh"
 #include "lvdif/Error.h"
 #include "lvdif/Memory.h"
 
 #include <algorithm>
+#include <atomic>
 #include <chrono>
+#include <cstdlib>
 #include <cmath>
 #include <vector>
 
@@ -26,366 +30,6 @@ using namespace sdfdetail;
 
 namespace
 {
-constexpr int Run = 16;        // voxels per thread in the distance kernel
-constexpr int MaxHits = 96;    // crossings a scan line may hold (more: per-voxel fallback)
-constexpr double FourPi = 12.566370614359172;
-
-struct GpuNode
-{
-  double lo[3], hi[3];
-  int left, right, first, count;
-};
-
-struct DevBvh
-{
-  const Tri* tris = nullptr;
-  const GpuNode* nodes = nullptr;
-  const int* order = nullptr;
-};
-
-struct Params
-{
-  double origin[3], spacing[3];
-  long long lo[3], hi[3]; // the slab, in grid indices
-  double toOut, band, bandWorld, reach;
-  int sign; // 0 normal, 1 pseudo-normal, 2 winding, 3 unsigned
-  int useVertexNormals;
-  int bounded;
-};
-
-struct WindingDev
-{
-  DevBvh closed;
-  int meshTris = 0;
-  const Tri* cone = nullptr; // closed.tris + meshTris
-  int coneCount = 0;
-  const WindingSigner::Cluster* clusters = nullptr;
-  int clusterCount = 0;
-};
-
-__device__ V3 positionOf(const Params& P, long long i, long long j, long long k)
-{
-  return { P.origin[0] + i * P.spacing[0], P.origin[1] + j * P.spacing[1], P.origin[2] + k * P.spacing[2] };
-}
-
-__device__ NearestResult nearestDev(const DevBvh& b, V3 p, int hint, double maxDist2)
-{
-  NearestResult best;
-  best.dist2 = maxDist2;
-  if (hint >= 0)
-  {
-    const Tri& t = b.tris[hint];
-    const Closest c = closestPointOnTriangle(p, t.v[0], t.v[1], t.v[2]);
-    const V3 d = c.point - p;
-    const double d2 = dot(d, d);
-    if (d2 <= best.dist2)
-    {
-      best.dist2 = d2;
-      best.tri = hint;
-      best.closest = c;
-    }
-  }
-  int stackNode[64];
-  double stackD2[64];
-  int top = 0;
-  stackNode[top] = 0;
-  stackD2[top++] = pointBoxDist2(p, b.nodes[0].lo, b.nodes[0].hi);
-  while (top > 0)
-  {
-    --top;
-    if (stackD2[top] > best.dist2) continue;
-    const GpuNode n = b.nodes[stackNode[top]];
-    if (n.left < 0)
-    {
-      for (int i = n.first; i < n.first + n.count; ++i)
-      {
-        const int ti = b.order[i];
-        if (ti == best.tri) continue;
-        const Tri& t = b.tris[ti];
-        const Closest c = closestPointOnTriangle(p, t.v[0], t.v[1], t.v[2]);
-        const V3 d = c.point - p;
-        const double d2 = dot(d, d);
-        if (d2 < best.dist2 || (d2 == best.dist2 && (best.tri < 0 || ti < best.tri)))
-        {
-          best.dist2 = d2;
-          best.tri = ti;
-          best.closest = c;
-        }
-      }
-      continue;
-    }
-    const double dl = pointBoxDist2(p, b.nodes[n.left].lo, b.nodes[n.left].hi);
-    const double dr = pointBoxDist2(p, b.nodes[n.right].lo, b.nodes[n.right].hi);
-    const int nearC = dl <= dr ? n.left : n.right, farC = dl <= dr ? n.right : n.left;
-    const double nearD = dl <= dr ? dl : dr, farD = dl <= dr ? dr : dl;
-    if (farD <= best.dist2 && top < 64) { stackNode[top] = farC; stackD2[top++] = farD; }
-    if (nearD <= best.dist2 && top < 64) { stackNode[top] = nearC; stackD2[top++] = nearD; }
-  }
-  return best;
-}
-
-__global__ void distanceKernel(DevBvh bvh, Params P, float* out)
-{
-  const long long nx = P.hi[0] - P.lo[0] + 1, ny = P.hi[1] - P.lo[1] + 1, nz = P.hi[2] - P.lo[2] + 1;
-  const long long runs = (nx + Run - 1) / Run;
-  const long long t = static_cast<long long>(blockIdx.x) * blockDim.x + threadIdx.x;
-  if (t >= runs * ny * nz) return;
-  const long long row = t / runs, run = t % runs;
-  const long long j = P.lo[1] + row % ny, k = P.lo[2] + row / ny;
-  const long long i0 = P.lo[0] + run * Run, i1 = min(P.hi[0], i0 + Run - 1);
-  float* rowOut = out + row * nx - P.lo[0];
-  const double h = P.spacing[0];
-  double lower = -1;
-  int hint = -1;
-  for (long long i = i0; i <= i1; ++i)
-  {
-    lower -= h;
-    if (P.bounded && lower >= P.bandWorld)
-    {
-      rowOut[i] = static_cast<float>(P.band);
-      continue;
-    }
-    const V3 p = positionOf(P, i, j, k);
-    const NearestResult r = nearestDev(bvh, p, hint, P.bounded ? P.reach * P.reach : 1e300);
-    double d = r.tri < 0 ? P.band : sqrt(r.dist2) * P.toOut;
-    lower = r.tri < 0 ? P.reach : sqrt(r.dist2);
-    d = fmin(d, P.band);
-    float s = 1.0f;
-    if (r.tri >= 0)
-    {
-      hint = r.tri;
-      if (P.sign == 0 || P.sign == 1)
-      {
-        const Tri& tr = bvh.tris[r.tri];
-        V3 n = tr.n;
-        if (P.sign == 1)
-        {
-          n = featureNormal(tr, r.closest.feature);
-        }
-        else if (P.useVertexNormals && dot(tr.nv[0], tr.nv[0]) > 0)
-        {
-          const double b0 = 1 - r.closest.b1 - r.closest.b2;
-          n = b0 * tr.nv[0] + r.closest.b1 * tr.nv[1] + r.closest.b2 * tr.nv[2];
-        }
-        s = dot(p - r.closest.point, n) < 0 ? -1.0f : 1.0f;
-      }
-    }
-    rowOut[i] = s * static_cast<float>(d);
-  }
-}
-
-struct Hit
-{
-  double t;
-  int tri;
-  int sign;
-};
-
-/// Mirrors Bvh::rayHits. Returns false when ambiguous or (collecting) when
-/// more than MaxHits crossings; otherwise the signed sum is in *sum.
-__device__ bool rayDev(const DevBvh& b, V3 o, V3 dir, Hit* hits, int* count, int* sum)
-{
-  constexpr double Eps = 1e-9;
-  const double tmin = 0.0;
-  const double inv[3] = { 1.0 / dir.x, 1.0 / dir.y, 1.0 / dir.z };
-  int stack[64];
-  int top = 0;
-  stack[top++] = 0;
-  *sum = 0;
-  if (count) *count = 0;
-  while (top > 0)
-  {
-    const GpuNode n = b.nodes[stack[--top]];
-    double t0 = tmin, t1 = 1e300;
-    bool miss = false;
-    for (int a = 0; a < 3 && !miss; ++a)
-    {
-      const double da = dir[a], oa = o[a];
-      if (da == 0)
-      {
-        miss = oa < n.lo[a] || oa > n.hi[a];
-        continue;
-      }
-      double ta = (n.lo[a] - oa) * inv[a], tb = (n.hi[a] - oa) * inv[a];
-      if (ta > tb) { const double x = ta; ta = tb; tb = x; }
-      const double pad = 1e-9 * (fabs(ta) + fabs(tb)) + 1e-300;
-      t0 = fmax(t0, ta - pad);
-      t1 = fmin(t1, tb + pad);
-      miss = t0 > t1;
-    }
-    if (miss) continue;
-    if (n.left >= 0)
-    {
-      if (top + 2 > 64) return false;
-      stack[top++] = n.left;
-      stack[top++] = n.right;
-      continue;
-    }
-    for (int i = n.first; i < n.first + n.count; ++i)
-    {
-      const int ti = b.order[i];
-      const Tri& t = b.tris[ti];
-      const V3 e1 = t.v[1] - t.v[0], e2 = t.v[2] - t.v[0];
-      const V3 pv = cross(dir, e2);
-      const double det = dot(e1, pv);
-      const double scale = norm(e1) * norm(e2) * norm(dir);
-      const V3 tv = o - t.v[0];
-      if (fabs(det) <= Eps * scale)
-      {
-        if (fabs(dot(tv, t.n)) <= Eps * (norm(tv) + norm(e1))) return false;
-        continue;
-      }
-      const double invDet = 1.0 / det;
-      const double u = dot(tv, pv) * invDet;
-      const V3 qv = cross(tv, e1);
-      const double v = dot(dir, qv) * invDet;
-      const double tt = dot(e2, qv) * invDet;
-      const double w = 1 - u - v;
-      if (u < -Eps || v < -Eps || w < -Eps) continue;
-      const double tScale = 1e-9 * (fabs(tt) + fabs(tmin) + norm(e1) / norm(dir));
-      if (tt < tmin - tScale) continue;
-      if (u <= Eps || v <= Eps || w <= Eps || fabs(tt - tmin) <= tScale) return false;
-      const int sg = dot(dir, t.n) > 0 ? 1 : -1;
-      *sum += sg;
-      if (hits)
-      {
-        if (*count >= MaxHits) return false;
-        hits[(*count)++] = { tt, ti, sg };
-      }
-    }
-  }
-  return true;
-}
-
-__device__ double coneWindingDev(const WindingDev& W, V3 p)
-{
-  double s = 0;
-  for (int c = 0; c < W.coneCount; ++c)
-  {
-    const Tri& t = W.cone[c];
-    s += solidAngle(p, t.v[0], t.v[1], t.v[2]);
-  }
-  return s / FourPi;
-}
-
-__device__ double driftDev(const WindingDev& W, V3 p, V3 q, double h)
-{
-  double sum = 0;
-  for (int c = 0; c < W.clusterCount; ++c)
-  {
-    const WindingSigner::Cluster cl = W.clusters[c];
-    const double m = 0.5 * (norm(p - cl.centre) + norm(q - cl.centre) - h) - cl.radius;
-    if (!(m > 0)) return 1e300;
-    sum += cl.length / (m * m);
-  }
-  return h * sum / FourPi;
-}
-
-__device__ double evaluateDev(const WindingDev& W, V3 p)
-{
-  const V3 dir = normalized(V3{ 0.5773502691896258, 0.5780, 0.5767 });
-  int sum = 0;
-  if (rayDev(W.closed, p, dir, nullptr, nullptr, &sum))
-  {
-    return sum - coneWindingDev(W, p);
-  }
-  double s = 0;
-  for (int i = 0; i < W.meshTris; ++i)
-  {
-    const Tri& t = W.closed.tris[i];
-    s += solidAngle(p, t.v[0], t.v[1], t.v[2]);
-  }
-  return s / FourPi;
-}
-
-__device__ bool insideOf(double w) { return fabs(w) >= 0.5; }
-__device__ bool decidedDev(double lo, double hi) { return !(lo < 0.5 && hi >= 0.5) && !(lo <= -0.5 && hi > -0.5); }
-
-__global__ void signKernel(WindingDev W, Params P, float* out, unsigned long long* evals,
-  unsigned long long* fallbacks)
-{
-  const long long nx = P.hi[0] - P.lo[0] + 1, ny = P.hi[1] - P.lo[1] + 1, nz = P.hi[2] - P.lo[2] + 1;
-  const long long row = static_cast<long long>(blockIdx.x) * blockDim.x + threadIdx.x;
-  if (row >= ny * nz) return;
-  const long long j = P.lo[1] + row % ny, k = P.lo[2] + row / ny;
-  float* rowOut = out + row * nx;
-  const double h = P.spacing[0];
-  const V3 start = positionOf(P, P.lo[0], j, k);
-  auto pos = [&](long long i) { return start + V3{ static_cast<double>(i) * h, 0, 0 }; };
-  Hit hits[MaxHits];
-  int count = 0, sum = 0;
-  if (!rayDev(W.closed, start - V3{ 0.5 * h, 0, 0 }, V3{ 1, 0, 0 }, hits, &count, &sum))
-  {
-    for (long long i = 0; i < nx; ++i)
-    {
-      if (insideOf(evaluateDev(W, pos(i)))) rowOut[i] = -rowOut[i];
-    }
-    atomicAdd(fallbacks, static_cast<unsigned long long>(nx));
-    atomicAdd(evals, static_cast<unsigned long long>(nx));
-    return;
-  }
-  for (int a = 1; a < count; ++a) // insertion sort by t
-  {
-    const Hit x = hits[a];
-    int b = a - 1;
-    while (b >= 0 && hits[b].t > x.t)
-    {
-      hits[b + 1] = hits[b];
-      --b;
-    }
-    hits[b + 1] = x;
-  }
-  int ahead = sum;
-  int next = 0;
-  const bool open = W.coneCount > 0;
-  bool have = false;
-  double lo = 0, hi = 0;
-  unsigned long long ev = 0;
-  for (long long i = 0; i < nx; ++i)
-  {
-    const double ti = 0.5 * h + static_cast<double>(i) * h;
-    int jumpMesh = 0;
-    while (next < count && hits[next].t <= ti)
-    {
-      ahead -= hits[next].sign;
-      if (hits[next].tri < W.meshTris) jumpMesh += hits[next].sign;
-      ++next;
-    }
-    double w;
-    if (!open)
-    {
-      w = ahead;
-    }
-    else
-    {
-      if (have)
-      {
-        const double drift = driftDev(W, pos(i - 1), pos(i), h);
-        if (drift < 1e299)
-        {
-          lo = lo - jumpMesh - drift;
-          hi = hi - jumpMesh + drift;
-        }
-        else
-        {
-          have = false;
-        }
-      }
-      if (!have || !decidedDev(lo, hi))
-      {
-        const double exact = ahead - coneWindingDev(W, pos(i));
-        lo = exact - 1e-9;
-        hi = exact + 1e-9;
-        have = true;
-        ++ev;
-      }
-      w = 0.5 * (lo + hi);
-    }
-    if (insideOf(w)) rowOut[i] = -rowOut[i];
-  }
-  if (ev) atomicAdd(evals, ev);
-}
-
 double now()
 {
   return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count();
@@ -404,6 +48,19 @@ public:
   {
     T* d = this->alloc<T>(v.size());
     if (!v.empty()) LVDIF_CUDA_CHECK(cudaMemcpy(d, v.data(), v.size() * sizeof(T), cudaMemcpyHostToDevice));
+    return d;
+  }
+  /// Copies v into `into` (capacity `cap` elements) or, if it does not fit, a
+  /// new buffer, on a non-blocking stream: never waits for running kernels.
+  template <typename T>
+  T* uploadOn(cudaStream_t stream, const std::vector<T>& v, T* into = nullptr, std::size_t cap = 0)
+  {
+    T* d = into && v.size() <= cap ? into : this->alloc<T>(v.size());
+    if (!v.empty())
+    {
+      LVDIF_CUDA_CHECK(cudaMemcpyAsync(d, v.data(), v.size() * sizeof(T), cudaMemcpyHostToDevice, stream));
+      LVDIF_CUDA_CHECK(cudaStreamSynchronize(stream)); // v may be freed after return
+    }
     return d;
   }
   template <typename T>
@@ -431,12 +88,12 @@ public:
       return;
     }
   }
-  std::uint64_t bytes() const { return this->Bytes; }
+  std::uint64_t bytes() const { return this->Bytes.load(); }
 
 private:
   std::vector<void*> Ptrs;
   std::vector<std::uint64_t> Sizes;
-  std::uint64_t Bytes = 0;
+  std::atomic<std::uint64_t> Bytes{ 0 }; // read by sessions of other threads (statistics)
 };
 
 std::vector<GpuNode> convertNodes(const Bvh& b)
@@ -460,102 +117,120 @@ std::vector<GpuNode> convertNodes(const Bvh& b)
   return out;
 }
 
-DevBvh uploadBvh(DeviceArena& arena, const std::vector<Tri>& tris, const Bvh& b)
+std::vector<GpuTri> compactTris(const std::vector<Tri>& tris)
+{
+  std::vector<GpuTri> out(tris.size());
+  for (std::size_t i = 0; i < tris.size(); ++i)
+  {
+    for (int k = 0; k < 3; ++k) out[i].v[k] = tris[i].v[k];
+    out[i].n = tris[i].n;
+  }
+  return out;
+}
+
+/// The BVH's nodes, order and leaf-ordered compact triangles (into the
+/// reserved buffers of `into` where they fit).
+DevBvh uploadBvh(DeviceArena& arena, cudaStream_t stream, const Bvh& b, const DevBvh& into = DevBvh(),
+  std::size_t cap = 0)
 {
   DevBvh d;
-  d.tris = arena.upload(tris);
-  d.nodes = arena.upload(convertNodes(b));
-  d.order = arena.upload(b.order());
+  d.leaf = arena.uploadOn(stream, b.leaves(), const_cast<GpuTri*>(into.leaf), cap);
+  d.nodes = arena.uploadOn(stream, convertNodes(b), const_cast<GpuNode*>(into.nodes), 2 * cap);
+  d.order = arena.uploadOn(stream, b.order(), const_cast<int*>(into.order), cap);
   return d;
 }
+
+/// A non-blocking CUDA stream (no implicit ordering with the legacy stream).
+struct Stream
+{
+  cudaStream_t s = nullptr;
+  Stream() { LVDIF_CUDA_CHECK(cudaStreamCreateWithFlags(&this->s, cudaStreamNonBlocking)); }
+  ~Stream() { cudaStreamDestroy(this->s); }
+  Stream(const Stream&) = delete;
+  Stream& operator=(const Stream&) = delete;
+};
 
 class CudaMesh : public DeviceMesh
 {
 public:
-  CudaMesh(const PreparedMesh& mesh, const Bvh& bvh, const WindingSigner* winding)
+  /// windingLater: reserve (allocate now) the buffers of the winding
+  /// structures, so that addWinding only copies (a cudaMalloc could wait for
+  /// the distance kernel it is meant to overlap). Their sizes are bounded by
+  /// the mesh: closed chain <= triangles + boundary edges, nodes <= 2 x that.
+  CudaMesh(const PreparedMesh& mesh, const Bvh& bvh, const WindingSigner* winding, bool normals, bool windingLater)
+    : Mesh(mesh)
+    , MeshBvh(bvh)
   {
-    this->Dbvh = uploadBvh(this->Arena, mesh.tris, bvh);
+    this->Dbvh = uploadBvh(this->Arena, this->Upload.s, bvh);
+    if (normals) this->addNormals();
     if (winding)
     {
-      this->W.closed = uploadBvh(this->Arena, winding->closedTris(), winding->closedBvh());
-      this->W.meshTris = static_cast<int>(winding->meshTriangles());
-      this->W.cone = this->W.closed.tris + this->W.meshTris;
-      this->W.coneCount = static_cast<int>(winding->cone().size());
-      this->W.clusters = this->Arena.upload(winding->clusters());
-      this->W.clusterCount = static_cast<int>(winding->clusters().size());
+      this->addWinding(*winding);
     }
-    this->Winding = winding != nullptr;
+    else if (windingLater)
+    {
+      this->ClosedCap = mesh.tris.size() + mesh.boundary.size();
+      this->EdgeCap = mesh.boundary.size();
+      this->Reserved.leaf = this->Arena.alloc<GpuTri>(this->ClosedCap);
+      this->Reserved.nodes = this->Arena.alloc<GpuNode>(2 * this->ClosedCap);
+      this->Reserved.order = this->Arena.alloc<int>(this->ClosedCap);
+      this->ReservedSlot = this->Arena.alloc<int>(mesh.tris.size());
+      this->ReservedCone = this->Arena.alloc<GpuTri>(this->EdgeCap);
+      this->ReservedClusters = this->Arena.alloc<WindingSigner::Cluster>(this->EdgeCap);
+    }
     LVDIF_CUDA_CHECK(cudaDeviceSynchronize());
   }
-  bool hasWinding() const override { return this->Winding; }
+  // addNormals/addWinding run under the prepared mesh's lock while sessions
+  // of other threads may be launching kernels: the parts they add are
+  // published by release stores, and a session reads them only after an
+  // acquire load saw them (or after taking that lock itself).
+  bool hasNormals() const override { return this->Full.load(std::memory_order_acquire) != nullptr; }
+  void addNormals() override
+  {
+    if (!this->hasNormals())
+      this->Full.store(this->Arena.uploadOn(this->Upload.s, this->Mesh.tris), std::memory_order_release);
+  }
+  /// The mesh BVH as the distance kernel takes it (full records if uploaded).
+  DevBvh meshBvh() const
+  {
+    DevBvh b = this->Dbvh;
+    b.tris = this->Full.load(std::memory_order_acquire);
+    return b;
+  }
+  void addWinding(const WindingSigner& winding) override
+  {
+    if (this->hasWinding()) return;
+    const cudaStream_t st = this->Upload.s;
+    this->W.closed = uploadBvh(this->Arena, st, winding.closedBvh(), this->Reserved, this->ClosedCap);
+    this->W.meshTris = static_cast<int>(winding.meshTriangles());
+    this->W.meshLeaf = this->Dbvh.leaf;
+    std::vector<int> slot(this->MeshBvh.order().size());
+    for (std::size_t i = 0; i < slot.size(); ++i) slot[static_cast<std::size_t>(this->MeshBvh.order()[i])] = static_cast<int>(i);
+    this->W.meshSlot = this->Arena.uploadOn(st, slot, this->ReservedSlot, this->ReservedSlot ? slot.size() : 0);
+    this->W.cone = this->Arena.uploadOn(st, compactTris(winding.cone()), this->ReservedCone, this->EdgeCap);
+    this->W.coneCount = static_cast<int>(winding.cone().size());
+    this->W.clusters = this->Arena.uploadOn(st, winding.clusters(), this->ReservedClusters, this->EdgeCap);
+    this->W.clusterCount = static_cast<int>(winding.clusters().size());
+    this->Winding.store(true, std::memory_order_release);
+  }
+  bool hasWinding() const override { return this->Winding.load(std::memory_order_acquire); }
   std::uint64_t bytes() const override { return this->Arena.bytes(); }
-  DevBvh Dbvh;
-  WindingDev W;
+  DevBvh Dbvh;  // immutable once constructed (tris: see meshBvh)
+  WindingDev W; // written once by addWinding, before Winding is set
 
 private:
+  const PreparedMesh& Mesh; // owned by the prepared mesh, which owns this copy
+  const Bvh& MeshBvh;
   DeviceArena Arena;
-  bool Winding = false;
+  Stream Upload;
+  std::atomic<bool> Winding{ false };
+  std::atomic<const Tri*> Full{ nullptr }; // the full triangle records (Normal/PseudoNormal)
+  DevBvh Reserved; // windingLater buffers
+  std::size_t ClosedCap = 0, EdgeCap = 0;
+  int* ReservedSlot = nullptr;
+  GpuTri* ReservedCone = nullptr;
+  WindingSigner::Cluster* ReservedClusters = nullptr;
 };
-
-/// One thread block per chunk of the slab: encodes every voxel (the host's
-/// SdfDictionary::encodeWith, band-clamped as DictionaryVolume::encode) and
-/// records the chunk's key when all are equal, NotUniform otherwise.
-__global__ void chunkUniformKernel(const float* slab, long long nx, long long ny, long long nz, int edge, int ccx,
-  int ccy, SdfDictionary::EncodeConstants E, float band, unsigned* flags)
-{
-  const long long c = blockIdx.x;
-  const long long cx = c % ccx, cy = (c / ccx) % ccy, cz = c / (static_cast<long long>(ccx) * ccy);
-  const long long x0 = cx * edge, y0 = cy * edge, z0 = cz * edge;
-  const long long ex = min(nx - x0, static_cast<long long>(edge)), ey = min(ny - y0, static_cast<long long>(edge));
-  const long long ez = min(nz - z0, static_cast<long long>(edge));
-  auto keyAt = [&](long long lx, long long ly, long long lz) {
-    float v = slab[(x0 + lx) + nx * ((y0 + ly) + ny * (z0 + lz))];
-    if (v > band) v = band;
-    if (v < -band) v = -band;
-    return SdfDictionary::encodeWith(E, v);
-  };
-  const SdfKey first = keyAt(0, 0, 0);
-  int differs = 0;
-  const long long count = ex * ey * ez;
-  for (long long l = threadIdx.x; l < count && !differs; l += blockDim.x)
-  {
-    differs = keyAt(l % ex, (l / ex) % ey, l / (ex * ey)) != first;
-  }
-  differs = __syncthreads_or(differs);
-  if (threadIdx.x == 0) flags[c] = differs ? ChunkKeys::NotUniform : static_cast<unsigned>(first);
-}
-
-/// One thread block per listed chunk: its keys in localIndex layout (x fastest
-/// inside the chunk); voxels outside the grid are left unwritten.
-__global__ void chunkKeysKernel(const float* slab, long long nx, long long ny, long long nz, int edge, int ccx,
-  int ccy, SdfDictionary::EncodeConstants E, float band, const long long* list, unsigned short* keys)
-{
-  const long long c = list[blockIdx.x];
-  const long long cx = c % ccx, cy = (c / ccx) % ccy, cz = c / (static_cast<long long>(ccx) * ccy);
-  const long long x0 = cx * edge, y0 = cy * edge, z0 = cz * edge;
-  const long long e3 = static_cast<long long>(edge) * edge * edge;
-  unsigned short* out = keys + static_cast<long long>(blockIdx.x) * e3;
-  for (long long l = threadIdx.x; l < e3; l += blockDim.x)
-  {
-    const long long x = x0 + l % edge, y = y0 + (l / edge) % edge, z = z0 + l / (static_cast<long long>(edge) * edge);
-    if (x >= nx || y >= ny || z >= nz) continue;
-    float v = slab[x + nx * (y + ny * z)];
-    if (v > band) v = band;
-    if (v < -band) v = -band;
-    out[l] = SdfDictionary::encodeWith(E, v);
-  }
-}
-
-__global__ void encodeKernel(SdfDictionary::EncodeConstants E, float band, const float* in, long long n,
-  unsigned short* out)
-{
-  const long long i = static_cast<long long>(blockIdx.x) * blockDim.x + threadIdx.x;
-  if (i >= n) return;
-  float v = in[i];
-  if (v > band) v = band;
-  if (v < -band) v = -band;
-  out[i] = SdfDictionary::encodeWith(E, v);
-}
 
 /// A CUDA event pair timing kernels without synchronising at each launch.
 struct EventTimer
@@ -579,16 +254,37 @@ struct EventTimer
   }
 };
 
+/// Events without timing, one per part of the sign pass.
+struct PartEvents
+{
+  static constexpr int Max = 4;
+  cudaEvent_t e[Max] = {};
+  PartEvents()
+  {
+    for (cudaEvent_t& x : this->e) LVDIF_CUDA_CHECK(cudaEventCreateWithFlags(&x, cudaEventDisableTiming));
+  }
+  ~PartEvents()
+  {
+    for (cudaEvent_t x : this->e) cudaEventDestroy(x);
+  }
+  cudaEvent_t operator[](int i) const { return this->e[i]; }
+};
+
 class CudaSession : public Session
 {
 public:
   CudaSession(const CudaMesh& mesh, const GridGeometry& grid, const MeshToSdfOptions& options, double toOut,
-    double band, MeshToSdfStats& stats)
+    double band, MeshToSdfStats& stats, std::function<void()> ensureWinding)
     : Options(options)
     , Mesh(mesh)
     , HasWinding(options.sign == SignMode::WindingNumber)
+    , EnsureWinding(std::move(ensureWinding))
+    , Stats(stats)
   {
-    require(!this->HasWinding || mesh.hasWinding(), "mesh to SDF: the device mesh has no winding structures");
+    require(!this->HasWinding || mesh.hasWinding() || this->EnsureWinding,
+      "mesh to SDF: the device mesh has no winding structures");
+    require(!(options.sign == SignMode::Normal || options.sign == SignMode::PseudoNormal) || mesh.hasNormals(),
+      "mesh to SDF: the device mesh has no triangle normals");
     this->Counters = this->Arena.alloc<unsigned long long>(2);
     for (int a = 0; a < 3; ++a)
     {
@@ -627,14 +323,24 @@ public:
       VoxelBox slab = extent;
       slab.lo[2] = z0;
       slab.hi[2] = z1;
-      this->launchSlab(slab);
+      const long long rows = ny * (z1 - z0 + 1);
+      // the sign pass in parts: part p is copied back while part p + 1 runs
+      const int parts = this->HasWinding && rows >= 4 * 4096 ? 4 : 1;
+      this->launchSlab(slab, parts);
+      float* slabOut = out + (z0 - extent.lo[2]) * nx * ny;
+      for (int p = 0; p < parts; ++p)
+      {
+        const long long r0 = rows * p / parts, r1 = rows * (p + 1) / parts;
+        LVDIF_CUDA_CHECK(cudaEventSynchronize(this->PartDone[p]));
+        const double t0 = now();
+        LVDIF_CUDA_CHECK(cudaMemcpyAsync(slabOut + r0 * nx, this->Slab + r0 * nx,
+          static_cast<std::size_t>((r1 - r0) * nx) * sizeof(float), cudaMemcpyDeviceToHost, this->Copy.s));
+        LVDIF_CUDA_CHECK(cudaStreamSynchronize(this->Copy.s));
+        stats.writeSeconds += now() - t0;
+      }
       LVDIF_CUDA_CHECK(cudaEventSynchronize(this->SignDone.b));
       stats.distanceSeconds += this->DistanceDone.seconds();
       if (this->HasWinding) stats.signSeconds += this->SignDone.seconds();
-      const double t0 = now();
-      LVDIF_CUDA_CHECK(cudaMemcpy(out + (z0 - extent.lo[2]) * nx * ny, this->Slab,
-        static_cast<std::size_t>((z1 - z0 + 1) * ny * nx) * sizeof(float), cudaMemcpyDeviceToHost));
-      stats.writeSeconds += now() - t0;
       interrupter.progress(static_cast<double>(z1 - extent.lo[2] + 1) / static_cast<double>(nz));
     }
     this->readCounters(stats);
@@ -725,7 +431,10 @@ private:
   }
 
   /// Queues the distance and sign kernels of one slab (box layout in Slab).
-  void launchSlab(const VoxelBox& box)
+  /// parts: the sign kernel in that many launches over consecutive rows,
+  /// PartDone[p] recorded after launch p (after the distance kernel when
+  /// there is no sign pass).
+  void launchSlab(const VoxelBox& box, int parts = 1)
   {
     Params P = this->P;
     for (int a = 0; a < 3; ++a)
@@ -733,19 +442,28 @@ private:
       P.lo[a] = box.lo[a];
       P.hi[a] = box.hi[a];
     }
-    const long long nx = box.hi[0] - box.lo[0] + 1;
     const long long rows = (box.hi[1] - box.lo[1] + 1) * (box.hi[2] - box.lo[2] + 1);
-    const long long threads = rows * ((nx + Run - 1) / Run);
     LVDIF_CUDA_CHECK(cudaEventRecord(this->DistanceDone.a));
-    distanceKernel<<<static_cast<unsigned>((threads + 127) / 128), 128>>>(this->Mesh.Dbvh, P, this->Slab);
-    LVDIF_CUDA_CHECK(cudaGetLastError());
+    launchDistance(this->Mesh.meshBvh(), P, this->Slab);
     LVDIF_CUDA_CHECK(cudaEventRecord(this->DistanceDone.b));
-    LVDIF_CUDA_CHECK(cudaEventRecord(this->SignDone.a));
-    if (this->HasWinding)
+    if (this->HasWinding && !this->Mesh.hasWinding())
     {
-      signKernel<<<static_cast<unsigned>((rows + 63) / 64), 64>>>(this->Mesh.W, P, this->Slab, this->Counters,
-        this->Counters + 1);
-      LVDIF_CUDA_CHECK(cudaGetLastError());
+      // built and uploaded on the host while the distance kernel runs
+      this->EnsureWinding();
+      require(this->Mesh.hasWinding(), "mesh to SDF: the device mesh has no winding structures");
+      this->Stats.devicePeakBytes = std::max(this->Stats.devicePeakBytes, this->Mesh.bytes() + this->Arena.bytes());
+    }
+    LVDIF_CUDA_CHECK(cudaEventRecord(this->SignDone.a));
+    for (int p = 0; p < parts; ++p)
+    {
+      if (this->HasWinding)
+      {
+        const long long r0 = rows * p / parts, r1 = rows * (p + 1) / parts;
+        signKernel<<<static_cast<unsigned>((r1 - r0 + SignWarps - 1) / SignWarps), 32 * SignWarps>>>(
+          this->Mesh.W, P, r0, r1, this->Slab, this->Counters, this->Counters + 1);
+        LVDIF_CUDA_CHECK(cudaGetLastError());
+      }
+      LVDIF_CUDA_CHECK(cudaEventRecord(this->PartDone[p]));
     }
     LVDIF_CUDA_CHECK(cudaEventRecord(this->SignDone.b));
     this->Launched = true;
@@ -763,10 +481,14 @@ private:
   MeshToSdfOptions Options;
   const CudaMesh& Mesh;
   bool HasWinding;
+  std::function<void()> EnsureWinding;
+  MeshToSdfStats& Stats;
   bool Launched = false;
   DeviceArena Arena;
   Params P;
   EventTimer DistanceDone, SignDone;
+  PartEvents PartDone;
+  Stream Copy; // device -> host copies, beside the kernels of the legacy stream
   unsigned long long* Counters = nullptr;
   float* Slab = nullptr;
   std::size_t SlabCapacity = 0;
@@ -783,15 +505,18 @@ private:
 };
 } // namespace
 
-std::unique_ptr<DeviceMesh> uploadMesh(const PreparedMesh& mesh, const Bvh& bvh, const WindingSigner* winding)
+std::unique_ptr<DeviceMesh> uploadMesh(
+  const PreparedMesh& mesh, const Bvh& bvh, const WindingSigner* winding, bool normals, bool windingLater)
 {
-  return std::make_unique<CudaMesh>(mesh, bvh, winding);
+  return std::make_unique<CudaMesh>(mesh, bvh, winding, normals, windingLater);
 }
 
 std::unique_ptr<Session> openSession(const DeviceMesh& mesh, const GridGeometry& grid,
-  const MeshToSdfOptions& options, double toOut, double band, MeshToSdfStats& stats)
+  const MeshToSdfOptions& options, double toOut, double band, MeshToSdfStats& stats,
+  std::function<void()> ensureWinding)
 {
-  return std::make_unique<CudaSession>(static_cast<const CudaMesh&>(mesh), grid, options, toOut, band, stats);
+  return std::make_unique<CudaSession>(
+    static_cast<const CudaMesh&>(mesh), grid, options, toOut, band, stats, std::move(ensureWinding));
 }
 
 std::vector<std::uint16_t> encodeOnDevice(

@@ -6,6 +6,7 @@
 #include "lvdif/MeshToSdf.h"
 #include "lvdif/SdfDictionary.h"
 
+#include <functional>
 #include <memory>
 #include <vector>
 
@@ -22,10 +23,18 @@ public:
   virtual ~DeviceMesh() = default;
   virtual bool hasWinding() const = 0;
   virtual std::uint64_t bytes() const = 0;
+  /// Uploads the winding structures to a copy made without them (called
+  /// once, under the prepared mesh's lock).
+  virtual void addWinding(const sdfdetail::WindingSigner& winding) = 0;
+  /// The full triangle records (normals), which only the Normal and
+  /// PseudoNormal modes read: uploaded on first need, like addWinding.
+  virtual bool hasNormals() const = 0;
+  virtual void addNormals() = 0;
 };
 
-std::unique_ptr<DeviceMesh> uploadMesh(
-  const sdfdetail::PreparedMesh& mesh, const sdfdetail::Bvh& bvh, const sdfdetail::WindingSigner* winding);
+/// windingLater (winding null): reserve device memory for an addWinding to come.
+std::unique_ptr<DeviceMesh> uploadMesh(const sdfdetail::PreparedMesh& mesh, const sdfdetail::Bvh& bvh,
+  const sdfdetail::WindingSigner* winding, bool normals, bool windingLater);
 
 /// The keys of one group of chunk layers, encoded on the GPU.
 struct ChunkKeys
@@ -56,8 +65,13 @@ public:
   virtual void fetchKeys(ChunkKeys& out, MeshToSdfStats& stats) = 0;
 };
 
+/// ensureWinding: when the sign mode is WindingNumber and `mesh` has no
+/// winding structures yet, called right after the first distance kernel is
+/// queued (so the host builds and uploads them while the GPU computes
+/// distances); it must leave them on `mesh`.
 std::unique_ptr<Session> openSession(const DeviceMesh& mesh, const GridGeometry& grid,
-  const MeshToSdfOptions& options, double toOut, double band, MeshToSdfStats& stats);
+  const MeshToSdfOptions& options, double toOut, double band, MeshToSdfStats& stats,
+  std::function<void()> ensureWinding);
 
 /// Tests: SdfDictionary::encodeWith (band-clamped as DictionaryVolume::encode) run on the GPU.
 std::vector<std::uint16_t> encodeOnDevice(

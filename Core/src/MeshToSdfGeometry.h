@@ -62,6 +62,14 @@ struct Tri
   std::uint32_t source = 0; // index in the input mesh
 };
 
+/// A triangle's vertices and unit normal: the compact copy the BVH keeps in
+/// leaf order (the GPU reads these 96 bytes rather than the 328-byte Tri).
+struct LeafTri
+{
+  V3 v[3];
+  V3 n;
+};
+
 struct Closest
 {
   V3 point;

@@ -74,17 +74,25 @@ public:
 
   const std::vector<Node>& nodes() const { return this->Nodes; }
   const std::vector<std::int32_t>& order() const { return this->Order; }
+  /// leaves()[i] = vertices and normal of triangle order()[i] (for the GPU).
+  const std::vector<LeafTri>& leaves() const { return this->Leaves; }
 
 private:
   struct BuildData
   {
-    std::vector<std::array<double, 6>> box;      // per triangle: lo, hi
-    std::vector<std::array<double, 3>> centroid; // per triangle: sum of the vertices
+    std::vector<std::array<double, 6>> box; // per triangle: lo, hi
+    struct Ref
+    {
+      double c[3];      // sum of the vertices (3x the centroid: only compared)
+      std::int32_t tri; // triangle index
+    };
+    std::vector<Ref> ref; // permuted in place by the build; becomes Order
   };
-  void build(const BuildData& d, std::int32_t id, std::int32_t first, std::int32_t count, int depth);
+  void build(BuildData& d, std::int32_t id, std::int32_t first, std::int32_t count, int depth);
   const std::vector<Tri>& Tris;
   std::vector<Node> Nodes;
   std::vector<std::int32_t> Order;
+  std::vector<LeafTri> Leaves;
 };
 
 /// The paper's "octree of overlapping chunks" (Sect. 3.1, spec 1.7): a uniform
@@ -169,20 +177,26 @@ struct MeshToSdfPrepared::Impl
 {
   sdfdetail::PreparedMesh mesh;
   std::unique_ptr<sdfdetail::Bvh> bvh;             // the GPU's tree, built on first upload (under Lock)
-  std::unique_ptr<sdfdetail::NearestIndex> nearest; // the CPU's distance queries
+  std::unique_ptr<sdfdetail::NearestIndex> nearest; // the CPU's distance queries, built on first CPU use
+  /// The CPU's NearestIndex, built on first use (seconds added; under Lock).
+  const sdfdetail::NearestIndex& nearestIndex(double& seconds);
   double prepareSeconds = 0;
   /// The winding-number structures, built on first use (seconds added).
   const sdfdetail::WindingSigner& windingSigner(double& seconds);
+  /// Whether the winding-number structures are built already.
+  bool hasWindingSigner();
   /// The mesh (and, when asked, the winding structures) on the GPU, uploaded
-  /// on first use and kept until the prepared mesh is destroyed.
-  const cudasdf::DeviceMesh& deviceMesh(bool winding, double& seconds);
+  /// on first use and kept until the prepared mesh is destroyed. The winding
+  /// part may be added later (once) to a copy uploaded without it: sessions
+  /// that do not use it never read it.
+  /// windingLater: the winding part will be added soon (its memory is reserved now).
+  const cudasdf::DeviceMesh& deviceMesh(bool winding, bool normals, double& seconds, bool windingLater = false);
   ~Impl();
 
 private:
   std::mutex Lock;
   std::unique_ptr<sdfdetail::WindingSigner> Winding;
-  std::unique_ptr<cudasdf::DeviceMesh> Device;        // first upload
-  std::unique_ptr<cudasdf::DeviceMesh> WindingDevice; // with the winding structures, if Device lacks them
+  std::unique_ptr<cudasdf::DeviceMesh> Device;
 };
 
 } // namespace lvdif

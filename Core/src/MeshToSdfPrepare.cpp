@@ -10,7 +10,6 @@
 #include <cmath>
 #include <algorithm>
 #include <cstring>
-#include <unordered_map>
 
 namespace lvdif
 {
@@ -19,20 +18,45 @@ namespace sdfdetail
 
 namespace
 {
-struct PosHash
+/// Welds points of bitwise equal coordinates (as the hash map this replaced
+/// did in effect: it hashed the bits; NaN is refused by validate()): ids in
+/// order of first appearance. Open addressing in one flat table (no node per
+/// point, no rehashing).
+std::uint32_t weldPoints(const std::vector<Vec3f>& points, std::vector<std::uint32_t>& weld, std::vector<std::uint32_t>& firstOf)
 {
-  std::size_t operator()(const Vec3f& p) const
+  const std::size_t n = points.size();
+  std::size_t cap = 16;
+  while (cap < 2 * n) cap *= 2;
+  std::vector<std::uint32_t> table(cap, 0xffffffffu); // point index of the first occurrence
+  weld.resize(n);
+  firstOf.clear();
+  firstOf.reserve(n);
+  for (std::size_t i = 0; i < n; ++i)
   {
     std::uint32_t b[3];
-    std::memcpy(b, p.data(), sizeof(b));
+    std::memcpy(b, points[i].data(), sizeof(b));
     std::uint64_t h = 1469598103934665603ull;
-    for (std::uint32_t v : b)
+    for (std::uint32_t v : b) h = (h ^ v) * 1099511628211ull;
+    std::size_t slot = static_cast<std::size_t>(h ^ (h >> 29)) & (cap - 1);
+    for (;; slot = (slot + 1) & (cap - 1))
     {
-      h = (h ^ v) * 1099511628211ull;
+      const std::uint32_t e = table[slot];
+      if (e == 0xffffffffu)
+      {
+        table[slot] = static_cast<std::uint32_t>(i);
+        weld[i] = static_cast<std::uint32_t>(firstOf.size());
+        firstOf.push_back(static_cast<std::uint32_t>(i));
+        break;
+      }
+      if (std::memcmp(points[e].data(), b, sizeof(b)) == 0)
+      {
+        weld[i] = weld[e];
+        break;
+      }
     }
-    return static_cast<std::size_t>(h);
   }
-};
+  return static_cast<std::uint32_t>(firstOf.size());
+}
 
 double angleAt(V3 p, V3 q, V3 r) // angle at p of triangle p q r
 {
@@ -51,19 +75,11 @@ PreparedMesh prepareMesh(const TriangleMesh& mesh)
 
   // Weld by exact position so pseudo-normals and the boundary chain see the
   // surface's topology even in a soup with duplicated points.
-  std::unordered_map<Vec3f, std::uint32_t, PosHash> weldMap;
-  weldMap.reserve(mesh.points.size());
-  std::vector<std::uint32_t> weld(mesh.points.size());
-  std::vector<V3> weldPos;
-  weldPos.reserve(mesh.points.size());
+  std::vector<std::uint32_t> weld, firstOf;
+  const std::size_t nv = weldPoints(mesh.points, weld, firstOf);
   auto toV3 = [](const Vec3f& p) { return V3{ p[0], p[1], p[2] }; };
-  for (std::size_t i = 0; i < mesh.points.size(); ++i)
-  {
-    const auto ins = weldMap.emplace(mesh.points[i], static_cast<std::uint32_t>(weldMap.size()));
-    if (ins.second) weldPos.push_back(toV3(mesh.points[i]));
-    weld[i] = ins.first->second;
-  }
-  const std::size_t nv = weldPos.size();
+  std::vector<V3> weldPos(nv);
+  for (std::size_t v = 0; v < nv; ++v) weldPos[v] = toV3(mesh.points[firstOf[v]]);
 
   // triangle records and corner angles, in parallel, written straight to
   // their final (compacted) place: which triangles are kept is known first
@@ -208,21 +224,20 @@ PreparedMesh prepareMesh(const TriangleMesh& mesh)
     }
   }
 
-  for (int a = 0; a < 3; ++a)
+  // bounds: min/max are exact, so the parallel reduction gives the same values
+  double lx = out.tris[0].v[0].x, ly = out.tris[0].v[0].y, lz = out.tris[0].v[0].z;
+  double hx = lx, hy = ly, hz = lz;
+#pragma omp parallel for schedule(static) reduction(min : lx, ly, lz) reduction(max : hx, hy, hz)
+  for (std::int64_t t = 0; t < nI; ++t)
   {
-    out.lo[a] = out.hi[a] = out.tris[0].v[0][a];
-  }
-  for (const Tri& tri : out.tris)
-  {
-    for (int k = 0; k < 3; ++k)
+    for (const V3& v : out.tris[t].v)
     {
-      for (int a = 0; a < 3; ++a)
-      {
-        out.lo[a] = std::fmin(out.lo[a], tri.v[k][a]);
-        out.hi[a] = std::fmax(out.hi[a], tri.v[k][a]);
-      }
+      lx = std::min(lx, v.x), ly = std::min(ly, v.y), lz = std::min(lz, v.z);
+      hx = std::max(hx, v.x), hy = std::max(hy, v.y), hz = std::max(hz, v.z);
     }
   }
+  out.lo[0] = lx, out.lo[1] = ly, out.lo[2] = lz;
+  out.hi[0] = hx, out.hi[1] = hy, out.hi[2] = hz;
   return out;
 }
 

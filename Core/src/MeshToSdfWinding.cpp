@@ -33,6 +33,20 @@ namespace
 constexpr double FourPi = 12.566370614359172;
 
 bool insideOf(double w) { return std::fabs(w) >= 0.5; }
+
+/// Sum of f(c), c in [0, n), in the order of the GPU's warp reduction
+/// (MeshToSdfCuda.cu warpOrderedSum): 32 lane-strided partial sums, each in
+/// index order, then an xor butterfly. Both sides then add the same terms in
+/// the same order.
+template <typename F>
+double laneOrderedSum(std::size_t n, F&& f)
+{
+  double part[32] = {};
+  for (std::size_t c = 0; c < n; ++c) part[c % 32] += f(c);
+  for (int off = 16; off > 0; off >>= 1)
+    for (int l = 0; l < off; ++l) part[l] = part[l] + part[l + off];
+  return part[0];
+}
 bool decided(double lo, double hi) { return !(lo < 0.5 && hi >= 0.5) && !(lo <= -0.5 && hi > -0.5); }
 
 Tri makeTri(V3 a, V3 b, V3 c, bool& ok)
@@ -123,12 +137,10 @@ WindingSigner::WindingSigner(const PreparedMesh& mesh)
 
 double WindingSigner::coneWinding(V3 p) const
 {
-  double s = 0;
-  for (const Tri& t : this->Cone)
-  {
-    s += solidAngle(p, t.v[0], t.v[1], t.v[2]);
-  }
-  return s / FourPi;
+  return laneOrderedSum(this->Cone.size(), [&](std::size_t c) {
+    const Tri& t = this->Cone[c];
+    return solidAngle(p, t.v[0], t.v[1], t.v[2]);
+  }) / FourPi;
 }
 
 double WindingSigner::driftPerLength(V3 p, V3 q, double h) const
@@ -154,9 +166,10 @@ double WindingSigner::evaluate(V3 p) const
     for (const auto& h : hits) k += h.sign;
     return k - this->coneWinding(p);
   }
-  double s = 0;
-  for (const Tri& t : this->Mesh.tris) s += solidAngle(p, t.v[0], t.v[1], t.v[2]);
-  return s / FourPi;
+  return laneOrderedSum(this->Mesh.tris.size(), [&](std::size_t i) {
+    const Tri& t = this->Mesh.tris[i];
+    return solidAngle(p, t.v[0], t.v[1], t.v[2]);
+  }) / FourPi;
 }
 
 void WindingSigner::signRow(V3 rowStart, double h, std::int64_t n, float* out, std::int64_t& evaluations,

@@ -120,6 +120,38 @@ TEST(MeshToSdfCuda, ClosedAndIntersectingMeshesAndSubExtent)
       }
 }
 
+TEST(MeshToSdfCuda, AmbiguousScanLinesMatchCpu)
+{
+  // An open box with its side and bottom faces on grid planes: scan lines
+  // lying in those faces or through their edges are ambiguous, so the
+  // warp-cooperative per-voxel fallback of the sign kernel runs (and must
+  // give the CPU's signs). The open top is off the grid planes: in the plane
+  // of a hole the winding number is exactly 1/2, a knife edge for any sign.
+  if (!cuda::available()) GTEST_SKIP() << "no CUDA device";
+  TriangleMesh m;
+  m.points = { { -1, -1, -1 }, { 1, -1, -1 }, { 1, 1, -1 }, { -1, 1, -1 }, { -1, -1, 1.1f }, { 1, -1, 1.1f },
+    { 1, 1, 1.1f }, { -1, 1, 1.1f } };
+  m.triangles = { { 0, 2, 1 }, { 0, 3, 2 }, { 0, 1, 5 }, { 0, 5, 4 }, { 1, 2, 6 }, { 1, 6, 5 }, { 2, 3, 7 },
+    { 2, 7, 6 }, { 3, 0, 4 }, { 3, 4, 7 } }; // the top (z = 1.1) is left open
+  GridGeometry g;
+  g.dims = { 17, 17, 17 };
+  g.origin = { -2, -2, -2 };
+  g.spacing = { 0.25, 0.25, 0.25 };
+  VoxelBox all;
+  all.hi = { 16, 16, 16 };
+  MeshToSdfOptions o;
+  o.sign = SignMode::WindingNumber;
+  for (float band : { 3.0f, std::numeric_limits<float>::infinity() })
+  {
+    o.bandWidth = band;
+    compare(m, g, all, o, "open box on grid planes, band " + std::to_string(band));
+    std::vector<float> gpu(static_cast<std::size_t>(g.count()));
+    o.device = Device::Cuda;
+    const MeshToSdfStats st = meshToSdf(m, FloatGridView{ gpu.data(), g }, o);
+    EXPECT_GT(st.windingExact, 0) << "no ambiguous scan line: the fallback was not exercised";
+  }
+}
+
 TEST(MeshToSdfCuda, DictionaryVolumeMatchesCpu)
 {
   if (!cuda::available()) GTEST_SKIP() << "no CUDA device";

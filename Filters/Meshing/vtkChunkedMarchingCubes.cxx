@@ -1,6 +1,7 @@
 #include "vtkChunkedMarchingCubes.h"
 
 #include "vtkChunkedMarchingCubesOutput.h"
+#include "vtkChunkedMarchingCubesVtkTable.h"
 #include "vtkLVDIFInterrupter.h"
 #include "vtkLVDIFVolumeBridge.h"
 
@@ -67,9 +68,17 @@ vtkChunkedMarchingCubes::~vtkChunkedMarchingCubes()
   this->SetColorArrayName(nullptr);
 }
 
+void vtkChunkedMarchingCubes::SetVolume(std::shared_ptr<lvdif::DictionaryVolume> volume)
+{
+  this->Volume = std::move(volume);
+  this->Modified();
+}
+
 int vtkChunkedMarchingCubes::FillInputPortInformation(int, vtkInformation* info)
 {
   info->Set(vtkAlgorithm::INPUT_REQUIRED_DATA_TYPE(), "vtkImageData");
+  // optional: a dictionary volume (SetVolume) replaces the input
+  info->Set(vtkAlgorithm::INPUT_IS_OPTIONAL(), 1);
   return 1;
 }
 
@@ -110,6 +119,7 @@ int vtkChunkedMarchingCubes::RequestUpdateExtent(
   using SDDP = vtkStreamingDemandDrivenPipeline;
   vtkInformation* outInfo = outputVector->GetInformationObject(0);
   vtkInformation* inInfo = inputVector[0]->GetInformationObject(0);
+  if (!inInfo) return 1; // no input: a dictionary volume (SetVolume) is meshed
   int piece, pieces;
   pieceRequest(outInfo, piece, pieces);
   int whole[6];
@@ -135,19 +145,47 @@ int vtkChunkedMarchingCubes::RequestUpdateExtent(
   return 1;
 }
 
+lvdif::MarchingCubesOptions vtkChunkedMarchingCubes::CoreOptions() const
+{
+  lvdif::MarchingCubesOptions o;
+  o.isoValue = static_cast<float>(this->IsoValue);
+  o.chunkEdge = this->ChunkEdge;
+  o.computeNormals = this->ComputeNormals != 0;
+  o.computeColors = this->ComputeColors != 0;
+  o.cornerColors = this->ComputeCornerColors != 0;
+  o.device = this->Device == DEVICE_CPU ? lvdif::Device::Cpu
+                                        : (this->Device == DEVICE_CUDA ? lvdif::Device::Cuda : lvdif::Device::Auto);
+  if (this->UseVTKCaseTable) o.triangleTable = vtkChunkedMarchingCubesVtkTable::Get();
+  return o;
+}
+
 int vtkChunkedMarchingCubes::RequestData(
   vtkInformation*, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
 {
   using SDDP = vtkStreamingDemandDrivenPipeline;
   vtkInformation* outInfo = outputVector->GetInformationObject(0);
   vtkInformation* inInfo = inputVector[0]->GetInformationObject(0);
-  vtkImageData* input = vtkImageData::GetData(inInfo);
   vtkDataObject* output = outInfo->Get(vtkDataObject::DATA_OBJECT());
-  auto* merged = vtkPolyData::SafeDownCast(output);
-  auto* partitioned = vtkPartitionedDataSet::SafeDownCast(output);
-  if (!input || (!merged && !partitioned))
+  if (!vtkPolyData::SafeDownCast(output) && !vtkPartitionedDataSet::SafeDownCast(output))
   {
-    vtkErrorMacro("no image input or no output of the expected type");
+    vtkErrorMacro("no output of the expected type");
+    return 0;
+  }
+  int piece, pieces;
+  pieceRequest(outInfo, piece, pieces);
+  if (this->Volume)
+  {
+    if (inInfo)
+    {
+      vtkErrorMacro("both an input image and a dictionary volume (SetVolume): disconnect the input or SetVolume(nullptr)");
+      return 0;
+    }
+    return this->MeshVolume(piece, pieces, output);
+  }
+  vtkImageData* input = inInfo ? vtkImageData::GetData(inInfo) : nullptr;
+  if (!input)
+  {
+    vtkErrorMacro("no input: connect an image with an SDF point array, or call SetVolume()");
     return 0;
   }
   int inExt[6];
@@ -157,8 +195,6 @@ int vtkChunkedMarchingCubes::RequestData(
     inInfo->Get(SDDP::WHOLE_EXTENT(), whole);
   else
     std::copy(inExt, inExt + 6, whole);
-  int piece, pieces;
-  pieceRequest(outInfo, piece, pieces);
   int own[6];
   pieceExtent(piece, pieces, whole, own);
 
@@ -194,7 +230,7 @@ int vtkChunkedMarchingCubes::RequestData(
   double origin[3], spacing[3];
   input->GetOrigin(origin);
   input->GetSpacing(spacing);
-  lvdif::MarchingCubesOptions o;
+  lvdif::MarchingCubesOptions o = this->CoreOptions();
   for (int a = 0; a < 3; ++a)
   {
     grid.geometry.origin[a] = origin[a] + spacing[a] * whole[2 * a];
@@ -229,15 +265,8 @@ int vtkChunkedMarchingCubes::RequestData(
       colors = colorCopy.data();
     }
   }
-
-  o.isoValue = static_cast<float>(this->IsoValue);
-  o.chunkEdge = this->ChunkEdge;
-  o.computeNormals = this->ComputeNormals != 0;
-  o.computeColors = this->ComputeColors != 0 && colors != nullptr;
-  o.cornerColors = this->ComputeCornerColors != 0;
+  o.computeColors = o.computeColors && colors != nullptr;
   o.cellRegion = region;
-  o.device = this->Device == DEVICE_CPU ? lvdif::Device::Cpu
-                                        : (this->Device == DEVICE_CUDA ? lvdif::Device::Cuda : lvdif::Device::Auto);
   std::vector<lvdif::ChunkMesh> meshes;
   try
   {
@@ -259,12 +288,61 @@ int vtkChunkedMarchingCubes::RequestData(
   ctx.normals = o.computeNormals;
   ctx.pointColors = o.computeColors;
   ctx.cellData = o.cornerColors;
-  if (merged)
+  return this->Emit(meshes, ctx, whole, output);
+}
+
+int vtkChunkedMarchingCubes::MeshVolume(int piece, int pieces, vtkDataObject* output)
+{
+  const lvdif::DictionaryVolume& volume = *this->Volume;
+  const lvdif::Index3& dims = volume.dims();
+  int whole[6];
+  for (int a = 0; a < 3; ++a)
+  {
+    whole[2 * a] = 0;
+    whole[2 * a + 1] = static_cast<int>(dims[a] - 1);
+  }
+  int own[6];
+  pieceExtent(piece, pieces, whole, own);
+  // the cells this piece owns (same rule as for images; grid indices are global here)
+  lvdif::MarchingCubesOptions o = this->CoreOptions();
+  for (int a = 0; a < 3; ++a)
+  {
+    o.cellRegion.lo[a] = own[2 * a];
+    o.cellRegion.hi[a] = own[2 * a + 1] - 1;
+  }
+  if (o.cellRegion.empty()) return 1; // nothing owned: empty output
+  std::vector<lvdif::ChunkMesh> meshes;
+  try
+  {
+    lvdif::ChunkedMarchingCubes mc(volume, o);
+    vtkLVDIFInterrupter interrupter(this, 0.0, 0.8);
+    meshes = mc.extractAll(interrupter);
+  }
+  catch (const lvdif::Error& e)
+  {
+    if (e.code() == lvdif::ErrorCode::Cancelled) return 1; // aborted: empty output
+    vtkErrorMacro(<< e.what());
+    return 0;
+  }
+  vtkChunkedMarchingCubesOutput::Context ctx;
+  ctx.gridDims = dims;
+  ctx.palette = volume.colors().colors().data(); // corner colours come as keys
+  ctx.normals = o.computeNormals;
+  ctx.pointColors = o.computeColors;
+  ctx.cellData = o.cornerColors;
+  return this->Emit(meshes, ctx, whole, output);
+}
+
+int vtkChunkedMarchingCubes::Emit(const std::vector<lvdif::ChunkMesh>& meshes,
+  const vtkChunkedMarchingCubesOutput::Context& ctx, const int whole[6], vtkDataObject* output)
+{
+  if (auto* merged = vtkPolyData::SafeDownCast(output))
   {
     merged->ShallowCopy(vtkChunkedMarchingCubesOutput::MergeChunks(meshes, ctx));
     this->UpdateProgress(1.0);
     return 1;
   }
+  auto* partitioned = vtkPartitionedDataSet::SafeDownCast(output);
   // chunk counts of the whole extent, for a chunk id every piece agrees on
   vtkIdType counts[3];
   for (int a = 0; a < 3; ++a)
@@ -306,4 +384,15 @@ void vtkChunkedMarchingCubes::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "ColorArrayName: " << (this->ColorArrayName ? this->ColorArrayName : "(none)") << "\n";
   os << indent << "Device: "
      << (this->Device == DEVICE_CPU ? "Cpu" : (this->Device == DEVICE_CUDA ? "Cuda" : "Auto")) << "\n";
+  os << indent << "UseVTKCaseTable: " << this->UseVTKCaseTable << "\n";
+  os << indent << "Volume: ";
+  if (this->Volume)
+  {
+    const auto& d = this->Volume->dims();
+    os << d[0] << " x " << d[1] << " x " << d[2] << "\n";
+  }
+  else
+  {
+    os << "(none)\n";
+  }
 }

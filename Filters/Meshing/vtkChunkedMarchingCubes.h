@@ -1,11 +1,26 @@
 /**
  * @class   vtkChunkedMarchingCubes
- * @brief   seamless chunked marching cubes of an SDF image (paper Sect. 3.3)
+ * @brief   seamless chunked marching cubes of an SDF image or dictionary volume (paper Sect. 3.3)
  *
- * A thin wrapper over lvdif::ChunkedMarchingCubes. Input: vtkImageData with a
- * scalar point array (default `sdf`, negative inside; choose another with
- * SetInputArrayToProcess(0, 0, 0, vtkDataObject::FIELD_ASSOCIATION_POINTS, name))
- * and an optional 4-component unsigned char colour array (default `rgba`).
+ * A thin wrapper over lvdif::ChunkedMarchingCubes. Input, one of:
+ * - vtkImageData on port 0 with a scalar point array (default `sdf`, negative
+ *   inside; choose another with SetInputArrayToProcess(0, 0, 0,
+ *   vtkDataObject::FIELD_ASSOCIATION_POINTS, name)) and an optional
+ *   4-component unsigned char colour array (default `rgba`);
+ * - an lvdif::DictionaryVolume given with SetVolume() and nothing connected to
+ *   port 0 (the filter then acts as a source): it is meshed directly, chunk by
+ *   chunk, without a dense copy (colours from its colour dictionary). The
+ *   volume is shared, not copied: call Modified() after editing it. The result
+ *   equals meshing its dense image (vtkDictionaryVolumeToImage) with the
+ *   same settings. Connecting an input while a volume is set is an error.
+ *
+ * Case table (UseVTKCaseTable, default on): VTK's own table
+ * (vtkMarchingCubesTriangleCases, read at run time and converted to lvdif's
+ * numbering), so the surface is vtkMarchingCubes' / vtkFlyingEdges3D's:
+ * the same triangles (as sets of 3 vertices; ours are counter-clockwise seen
+ * from outside, VTK's the other way round) up to float rounding of the vertex
+ * positions, after merging chunk seams. Off: lvdif's own generated table (same
+ * loops and triangle counts, other diagonals inside some 4- to 7-vertex loops).
  *
  * Output (OutputMode):
  * - PARTITIONED: a vtkPartitionedDataSet with one vtkPolyData per non-empty
@@ -42,6 +57,20 @@
 
 #include "lvdifFiltersMeshingModule.h"
 #include "vtkDataObjectAlgorithm.h"
+
+#include <memory>
+#include <vector>
+
+namespace lvdif
+{
+class DictionaryVolume;
+struct ChunkMesh;
+struct MarchingCubesOptions;
+}
+namespace vtkChunkedMarchingCubesOutput
+{
+struct Context;
+}
 
 class LVDIFFILTERSMESHING_EXPORT vtkChunkedMarchingCubes : public vtkDataObjectAlgorithm
 {
@@ -118,6 +147,24 @@ public:
   vtkGetMacro(Device, int);
   ///@}
 
+  ///@{
+  /// On (default): VTK's marching cubes case table (the surface of
+  /// vtkMarchingCubes / vtkFlyingEdges3D); off: lvdif's own table.
+  vtkSetMacro(UseVTKCaseTable, vtkTypeBool);
+  vtkGetMacro(UseVTKCaseTable, vtkTypeBool);
+  vtkBooleanMacro(UseVTKCaseTable, vtkTypeBool);
+  ///@}
+
+#ifndef __VTK_WRAP__
+  ///@{
+  /// A dictionary volume to mesh directly (used when nothing is connected to
+  /// port 0); null (default) to mesh the input image. Call Modified() after
+  /// editing the volume.
+  void SetVolume(std::shared_ptr<lvdif::DictionaryVolume> volume);
+  std::shared_ptr<lvdif::DictionaryVolume> GetVolume() const { return this->Volume; }
+  ///@}
+#endif
+
 protected:
   vtkChunkedMarchingCubes();
   ~vtkChunkedMarchingCubes() override;
@@ -128,6 +175,13 @@ protected:
   int RequestInformation(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
   int RequestUpdateExtent(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
   int RequestData(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
+  /// The options common to both sources (no region, offset or colours yet).
+  lvdif::MarchingCubesOptions CoreOptions() const;
+  /// Meshes the cells piece `piece` of `pieces` owns of this->Volume into output.
+  int MeshVolume(int piece, int pieces, vtkDataObject* output);
+  /// Fills output (vtkPolyData: merged; vtkPartitionedDataSet: one per chunk).
+  int Emit(const std::vector<lvdif::ChunkMesh>& meshes, const vtkChunkedMarchingCubesOutput::Context& ctx,
+    const int whole[6], vtkDataObject* output);
 
   int OutputMode = PARTITIONED;
   double IsoValue = 0.0;
@@ -137,6 +191,8 @@ protected:
   vtkTypeBool ComputeCornerColors = 1;
   char* ColorArrayName = nullptr;
   int Device = DEVICE_AUTO;
+  vtkTypeBool UseVTKCaseTable = 1;
+  std::shared_ptr<lvdif::DictionaryVolume> Volume;
 
 private:
   vtkChunkedMarchingCubes(const vtkChunkedMarchingCubes&) = delete;

@@ -49,7 +49,7 @@ struct Arrays
       cellIjk->SetName("cell_ijk");
       cellIjk->SetNumberOfComponents(3);
       cellIjk->SetNumberOfTuples(nt);
-      if (ctx.colors)
+      if (ctx.colors || ctx.palette)
       {
         cornerRgba->SetName("corner_rgba");
         cornerRgba->SetNumberOfComponents(32);
@@ -82,7 +82,12 @@ struct Arrays
     ijk[0] = static_cast<int>(x) + ctx.extentLo[0];
     ijk[1] = static_cast<int>(y) + ctx.extentLo[1];
     ijk[2] = static_cast<int>(z) + ctx.extentLo[2];
-    if (ctx.colors)
+    if (ctx.palette)
+    {
+      unsigned char* out = cornerRgba->GetPointer(32 * dst);
+      for (int q = 0; q < 8; ++q) std::memcpy(out + 4 * q, &ctx.palette[m.cornerColors[src][q]], 4);
+    }
+    else if (ctx.colors)
     {
       unsigned char* out = cornerRgba->GetPointer(32 * dst);
       for (int q = 0; q < 8; ++q)
@@ -107,7 +112,7 @@ struct Arrays
     if (ctx.cellData)
     {
       pd->GetCellData()->AddArray(cellIjk);
-      if (ctx.colors) pd->GetCellData()->AddArray(cornerRgba);
+      if (ctx.colors || ctx.palette) pd->GetCellData()->AddArray(cornerRgba);
     }
     return pd;
   }

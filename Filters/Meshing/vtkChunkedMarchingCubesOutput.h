@@ -23,6 +23,7 @@ struct Context
   lvdif::Index3 gridDims{ 0, 0, 0 }; // points of the meshed grid (decodes edgeIds, triangleCells)
   int extentLo[3] = { 0, 0, 0 };     // structured index of the grid's point 0
   const lvdif::Rgba* colors = nullptr; // one per grid point (corner_rgba), or null
+  const lvdif::Rgba* palette = nullptr; // or: colour of each key of ChunkMesh::cornerColors (dictionary volumes)
   bool normals = false;
   bool pointColors = false;
   bool cellData = false; // cell_ijk (+ corner_rgba when colors)

@@ -19,9 +19,12 @@
 // colours), and per triangle the 8 corner colour keys and the cell it came
 // from (for the rendering's tetrahedral colour interpolation).
 //
-// Case table: see MarchingCubesTables.h (triangle counts equal VTK's
-// vtkMarchingCubes / vtkFlyingEdges3D case by case). A point is "above"
-// (outside) when value >= iso, as in VTK.
+// Case table: see MarchingCubesTables.h (the same contour loops and triangle
+// counts as VTK's vtkMarchingCubes / vtkFlyingEdges3D case by case; the
+// diagonals inside 4- to 7-vertex loops differ in some cases). A caller may
+// pass another triangulation of the same loops (MarchingCubesOptions::
+// triangleTable; the VTK filter passes VTK's table, giving VTK's surface). A
+// point is "above" (outside) when value >= iso, as in VTK.
 //
 // Skipping: a chunk whose points are all above or all below iso is empty and
 // costs one range test (DictionaryVolume::chunkRange of the storage chunks it
@@ -33,6 +36,7 @@
 #include "lvdif/DenseGrid.h"
 #include "lvdif/DictionaryVolume.h"
 #include "lvdif/Interrupter.h"
+#include "lvdif/MarchingCubesTables.h"
 #include "lvdif/TriangleMesh.h"
 
 #include <array>
@@ -69,6 +73,12 @@ struct MarchingCubesOptions
   /// Cpu, or Cuda/Auto: the GPU when one can be used (resolveDevice), one chunk
   /// at a time; same vertices bit for bit and the same triangles as the CPU.
   Device device = Device::Cpu;
+  /// Triangles per case in place of lvdif's own (MarchingCubesTables.h), e.g.
+  /// VTK's table converted to our numbering. Checked when the mesher is built
+  /// (marchingCubesTablesWith: the same loops, only other diagonals; else
+  /// Error InvalidArgument). Null (the default): lvdif's table. Used by the
+  /// CPU and the CUDA paths alike.
+  std::shared_ptr<const MarchingCubesTriangleTable> triangleTable;
 };
 
 /// The mesh of one chunk. Empty (no triangles) when the surface does not cross it.

@@ -6,7 +6,7 @@
 
 namespace lvdif
 {
-std::shared_ptr<MarchingCubesCudaState> makeMarchingCubesCudaState()
+std::shared_ptr<MarchingCubesCudaState> makeMarchingCubesCudaState(const MarchingCubesTables&)
 {
   throw Error(ErrorCode::DeviceFailure, "marching cubes: this build has no CUDA");
 }

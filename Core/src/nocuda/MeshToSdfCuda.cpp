@@ -7,13 +7,13 @@ namespace lvdif
 namespace cudasdf
 {
 std::unique_ptr<DeviceMesh> uploadMesh(
-  const sdfdetail::PreparedMesh&, const sdfdetail::Bvh&, const sdfdetail::WindingSigner*)
+  const sdfdetail::PreparedMesh&, const sdfdetail::Bvh&, const sdfdetail::WindingSigner*, bool, bool)
 {
   throw Error(ErrorCode::Unsupported, "mesh to SDF: this build has no CUDA");
 }
 
-std::unique_ptr<Session> openSession(
-  const DeviceMesh&, const GridGeometry&, const MeshToSdfOptions&, double, double, MeshToSdfStats&)
+std::unique_ptr<Session> openSession(const DeviceMesh&, const GridGeometry&, const MeshToSdfOptions&, double, double,
+  MeshToSdfStats&, std::function<void()>)
 {
   throw Error(ErrorCode::Unsupported, "mesh to SDF: this build has no CUDA");
 }

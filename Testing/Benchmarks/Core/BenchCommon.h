@@ -34,6 +34,19 @@ void printTable(const std::vector<std::string>& header, const std::vector<std::v
 
 std::string fmt(double value, int decimals = 2);
 
+/// The p-quantile (0..1, nearest rank) of the values; 0 for none.
+inline double percentile(std::vector<double> v, double p)
+{
+  if (v.empty())
+    return 0;
+  std::sort(v.begin(), v.end());
+  const double rank = p * static_cast<double>(v.size());
+  std::size_t i = static_cast<std::size_t>(rank);
+  if (static_cast<double>(i) < rank)
+    ++i; // ceil
+  return v[std::min(v.size() - 1, i > 0 ? i - 1 : 0)];
+}
+
 /// Median of repeated timings of fn (in milliseconds).
 template <typename F>
 double medianMs(int repeats, F&& fn)

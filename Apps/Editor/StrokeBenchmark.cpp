@@ -1,0 +1,221 @@
+#include "StrokeBenchmark.h"
+
+#include "MainWindow.h"
+
+#include "lvdif/Error.h"
+#include "lvdif/InputDevice.h"
+#include "lvdif/Recording.h"
+
+#include <QApplication>
+#include <QFileInfo>
+#include <QTimer>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <fstream>
+
+namespace
+{
+double percentile(std::vector<double> v, double p)
+{
+  if (v.empty())
+    return 0;
+  std::sort(v.begin(), v.end());
+  const std::size_t rank = static_cast<std::size_t>(std::ceil(p * static_cast<double>(v.size())));
+  return v[std::min(v.size() - 1, rank > 0 ? rank - 1 : 0)];
+}
+
+double ms(std::chrono::steady_clock::duration d)
+{
+  return std::chrono::duration<double, std::milli>(d).count();
+}
+} // namespace
+
+std::vector<lvdif::BrushSample> StrokeBenchmark::loadSamples(const QString& path)
+{
+  const std::string file = path.toStdString();
+  std::vector<lvdif::BrushSample> samples;
+  const QString suffix = QFileInfo(path).suffix().toLower();
+  if (suffix == "lvr" || suffix == "lvrec")
+  {
+    for (const lvdif::EditRecord& r : lvdif::loadRecording(file).records)
+      if (r.type == lvdif::EditRecord::Type::Edit)
+        for (const lvdif::Dab& d : r.dabs)
+        {
+          lvdif::BrushSample s;
+          s.position = d.center;
+          s.time = static_cast<double>(samples.size()) / 50.0; // no sample times in recordings
+          samples.push_back(s);
+        }
+  }
+  else
+  {
+    std::ifstream in(file);
+    if (!in)
+      throw lvdif::Error(lvdif::ErrorCode::IoFailure, "cannot read '" + file + "'");
+    std::string line;
+    int number = 0;
+    bool timed = false;
+    while (std::getline(in, line))
+    {
+      ++number;
+      const auto first = line.find_first_not_of(" \t\r");
+      if (first == std::string::npos || line[first] == '#')
+        continue;
+      lvdif::BrushSample s;
+      std::string why;
+      if (!lvdif::parseSampleJson(line, s, &why))
+        throw lvdif::Error(lvdif::ErrorCode::ParseError, file + ":" + std::to_string(number) + ": " + why);
+      timed = timed || s.time != 0;
+      if (!samples.empty() && s.time < samples.back().time)
+        throw lvdif::Error(lvdif::ErrorCode::ParseError,
+          file + ":" + std::to_string(number) + ": sample times must not decrease");
+      samples.push_back(s);
+    }
+    const double t0 = samples.empty() ? 0 : samples.front().time;
+    for (std::size_t i = 0; i < samples.size(); ++i)
+      samples[i].time = timed ? samples[i].time - t0 : static_cast<double>(i) / 50.0;
+  }
+  if (samples.size() < 2)
+    throw lvdif::Error(lvdif::ErrorCode::InvalidArgument, "'" + file + "' holds fewer than 2 samples");
+  if (samples.back().time > 600)
+    throw lvdif::Error(lvdif::ErrorCode::InvalidArgument, "'" + file + "' lasts more than 10 minutes");
+  return samples;
+}
+
+StrokeBenchmark::StrokeBenchmark(MainWindow& window, std::vector<lvdif::BrushSample> samples, const QString& name)
+  : QObject(&window)
+  , Window(window)
+  , Samples(std::move(samples))
+  , Name(name)
+{
+}
+
+void StrokeBenchmark::start()
+{
+  this->Window.Bench = this;
+  this->Start = std::chrono::steady_clock::now();
+  this->LastFrame = this->Start;
+  this->Window.onStrokeStart();
+  if (!this->Window.Painting)
+  {
+    std::printf("benchmark-stroke: the stroke could not start (no volume?)\n");
+    QApplication::exit(1);
+    return;
+  }
+  // One timer per sample, as a device's events would arrive; precise timers
+  // fire within a millisecond when the loop is free, later when it is busy
+  // (that wait is part of the latency, as for a real mouse event).
+  for (std::size_t i = 0; i < this->Samples.size(); ++i)
+  {
+    const auto due = this->Start + std::chrono::microseconds(static_cast<std::int64_t>(this->Samples[i].time * 1e6));
+    const int inMs = std::max(0, static_cast<int>(std::floor(ms(due - std::chrono::steady_clock::now()))));
+    QTimer::singleShot(inMs, Qt::PreciseTimer, this, [this, i] { this->deliver(i); });
+  }
+}
+
+bool MainWindow::startStrokeBenchmark(const QString& path)
+{
+  try
+  {
+    auto* bench = new StrokeBenchmark(*this, StrokeBenchmark::loadSamples(path), QFileInfo(path).fileName());
+    bench->start();
+    return true;
+  }
+  catch (const std::exception& e)
+  {
+    std::fprintf(stderr, "benchmark-stroke: %s\n", e.what());
+    return false;
+  }
+}
+
+void StrokeBenchmark::deliver(std::size_t i)
+{
+  const auto& o = this->Window.Doc.volume().options();
+  const lvdif::BrushSample& s = this->Samples[i];
+  double world[4];
+  for (int a = 0; a < 3; ++a)
+    world[a] = o.origin[a] + o.spacing[a] * s.position[a];
+  world[3] = this->Window.Tools->state().radius * o.spacing[0];
+  this->CurrentSampleTime = s.time;
+  this->Window.onBrushSample(world); // applies, settles, may render
+  if (i + 1 == this->Samples.size())
+  {
+    this->Window.onStrokeEnd();
+    this->sampleApplied(); // the stroke's last dabs (Drill): one more request
+    this->Ended = true;
+    this->finishWhenIdle();
+  }
+}
+
+void StrokeBenchmark::sampleApplied()
+{
+  const std::vector<std::int64_t>& ids = this->Window.Doc.lastRequest();
+  if (ids.empty() || (!this->Requests.empty() && this->Requests.back().editedAt == this->Window.Doc.lastRequestTime()))
+    return;
+  Request r;
+  r.sampleTime = this->CurrentSampleTime;
+  r.editedAt = this->Window.Doc.lastRequestTime();
+  r.chunks = ids;
+  this->Requests.push_back(std::move(r));
+}
+
+void StrokeBenchmark::frameRendered(const std::vector<lvdif::ChunkMesh>& meshes,
+  const std::vector<TimePoint>& gatheredAt, TimePoint renderStart, TimePoint renderEnd)
+{
+  for (std::size_t i = 0; i < meshes.size() && i < gatheredAt.size(); ++i)
+    this->Delivered[meshes[i].chunkId].emplace_back(gatheredAt[i], renderEnd);
+  this->RenderMs.push_back(ms(renderEnd - renderStart));
+  this->LastFrame = renderEnd;
+  ++this->Frames;
+}
+
+void StrokeBenchmark::finishWhenIdle()
+{
+  if (!this->Window.Doc.meshingIdle())
+  {
+    QTimer::singleShot(5, Qt::PreciseTimer, this, [this] { this->finishWhenIdle(); });
+    return;
+  }
+  this->Window.pollMeshes(); // what the worker finished since the last poll
+  this->report();
+}
+
+void StrokeBenchmark::report()
+{
+  this->Window.Bench = nullptr;
+  std::vector<double> latency;
+  int missing = 0;
+  for (const Request& r : this->Requests)
+  {
+    TimePoint shown = r.editedAt;
+    for (std::int64_t id : r.chunks)
+    {
+      const auto& d = this->Delivered[id];
+      const auto it = std::find_if(d.begin(), d.end(), [&](const std::pair<TimePoint, TimePoint>& g) { return g.first > r.editedAt; });
+      if (it == d.end())
+      {
+        ++missing;
+        continue;
+      }
+      shown = std::max(shown, it->second);
+    }
+    latency.push_back(ms(shown - this->Start) - 1e3 * r.sampleTime);
+  }
+  const double seconds = std::max(1e-9, ms(this->LastFrame - this->Start) / 1e3);
+  const auto& d = this->Window.Doc.volume().dims();
+  std::printf("benchmark-stroke: %s: %zu samples over %.2f s, volume %lldx%lldx%lld, %zu re-mesh requests\n",
+    this->Name.toLocal8Bit().constData(), this->Samples.size(), this->Samples.back().time,
+    static_cast<long long>(d[0]), static_cast<long long>(d[1]), static_cast<long long>(d[2]), this->Requests.size());
+  std::printf("benchmark-stroke: latency from sample time to rendered frame: p50 %.2f ms, p95 %.2f ms, max %.2f ms\n",
+    percentile(latency, 0.5), percentile(latency, 0.95), percentile(latency, 1.0));
+  std::printf("benchmark-stroke: frames with new meshes: %d in %.2f s, %.1f fps; install+render p50 %.2f ms, p95 %.2f ms\n",
+    this->Frames, seconds, this->Frames / seconds, percentile(this->RenderMs, 0.5), percentile(this->RenderMs, 0.95));
+  std::printf("benchmark-stroke: frames are drawn by this display's OpenGL; under Xvfb (Mesa llvmpipe, software) "
+              "frame times are not representative of a GPU\n");
+  if (missing)
+    std::printf("benchmark-stroke: error: %d requested chunk meshes never showed\n", missing);
+  std::fflush(stdout);
+  QApplication::exit(missing || this->Requests.empty() ? 1 : 0);
+}

@@ -1,0 +1,86 @@
+// lvdif-editor --benchmark-stroke FILE (issue 8): replays a recorded stroke
+// through the editor's real UI event loop at the speed it was recorded and
+// prints the stroke-to-frame latency (p50, p95, max) and the frames per
+// second, then quits.
+//
+// Each sample is delivered by a Qt timer at its recorded time to the same
+// handlers the brush widget calls (onStrokeStart, onBrushSample, onStrokeEnd):
+// the Core editor applies it, the worker re-meshes the chunks it changed,
+// MainWindow::settleMeshes / the 15 ms mesh timer install the finished
+// meshes as chunk actors and render. Latency of a sample = from its recorded
+// time until the end of the render (glFinish) of the frame at which every chunk
+// it changed shows a mesh gathered after the edit (the worker says when each
+// mesh's input was read). Qt's compositing of the widget afterwards is not
+// included. Under Xvfb the frames are drawn by software OpenGL: not
+// representative of a GPU.
+//
+// FILE: one sample per line in the socket protocol (InputDevice.h:
+// {"position":[x,y,z],"time":t}, voxel coordinates, seconds; '#' lines and
+// blank lines skipped; without times, 50 Hz), or a recording (.lvr/.lvrec):
+// the centres of its dabs as samples at 50 Hz (recordings keep no sample
+// times). The brush is the tool panel's (--radius, --op, --color, --brush).
+#pragma once
+
+#include "lvdif/Stroke.h"
+
+#include <QObject>
+#include <QString>
+
+#include <chrono>
+#include <cstdint>
+#include <map>
+#include <vector>
+
+class MainWindow;
+namespace lvdif
+{
+struct ChunkMesh;
+}
+
+class StrokeBenchmark : public QObject
+{
+  Q_OBJECT
+public:
+  using TimePoint = std::chrono::steady_clock::time_point;
+
+  /// Reads the samples (positions in voxels, times in seconds from 0); throws
+  /// lvdif::Error naming the file and line on bad input.
+  static std::vector<lvdif::BrushSample> loadSamples(const QString& path);
+
+  StrokeBenchmark(MainWindow& window, std::vector<lvdif::BrushSample> samples, const QString& name);
+
+  /// Schedules the stroke; when done, prints the report and calls
+  /// QApplication::exit (0, or 1 if a requested chunk never showed).
+  void start();
+
+  // ---- hooks from MainWindow ------------------------------------------------
+  /// Right after the document applied a sample (before settling).
+  void sampleApplied();
+  /// After a frame that installed these meshes was rendered.
+  void frameRendered(const std::vector<lvdif::ChunkMesh>& meshes, const std::vector<TimePoint>& gatheredAt,
+    TimePoint renderStart, TimePoint renderEnd);
+
+private:
+  void deliver(std::size_t i);
+  void finishWhenIdle();
+  void report();
+
+  struct Request
+  {
+    double sampleTime = 0; // seconds after the start
+    TimePoint editedAt;
+    std::vector<std::int64_t> chunks;
+  };
+  MainWindow& Window;
+  std::vector<lvdif::BrushSample> Samples;
+  QString Name;
+  TimePoint Start;
+  double CurrentSampleTime = 0;
+  bool Ended = false;
+  std::vector<Request> Requests;
+  // per chunk: (gathered, rendered) of every mesh installed, in order
+  std::map<std::int64_t, std::vector<std::pair<TimePoint, TimePoint>>> Delivered;
+  std::vector<double> RenderMs;
+  TimePoint LastFrame;
+  int Frames = 0;
+};

@@ -1,0 +1,540 @@
+// Device side of mesh to SDF on CUDA (included by MeshToSdfCuda.cu only):
+// the data layouts on the GPU, the distance kernel (one thread per run of 16
+// voxels along x, nearest triangle on the BVH, warm-started, far voxels
+// skipped by the Lipschitz bound; a warp takes that run in 32 neighbouring
+// rows so its queries follow similar paths), the sign kernel (one warp per
+// scan line: lane 0 casts the ray of the closed chain into shared memory, the
+// lanes compute the drift bounds of 32 voxels at a time, every lane walks the
+// carried interval with the same values so control flow stays uniform, and an
+// exact evaluation of the cone's solid angle is split over the lanes as
+// lane-strided partial sums reduced by an xor butterfly: the order the CPU's
+// laneOrderedSum reproduces) and the chunk-encoding kernels of the
+// dictionary-volume path. Triangles are read from compact leaf-ordered records
+// (vertices + normal, 96 bytes) rather than the 328-byte Tri.
+#pragma once
+
+#include "MeshToSdfInternal.h"
+#include "lvdif/CudaCheck.cuh"
+#include "lvdif/SdfDictionary.h"
+
+#include <cstdlib>
+
+namespace lvdif
+{
+namespace cudasdf
+{
+
+using namespace sdfdetail;
+
+namespace
+{
+// distance kernel: a thread takes a run of voxels along x, a warp a tile of
+// runs x rows (see launchDistance for the shape in use)
+constexpr int SignWarps = 4;   // warps (scan lines) per block of the sign kernel
+constexpr unsigned FullMask = 0xffffffffu;
+constexpr int MaxHits = 96;    // crossings a scan line may hold (more: per-voxel fallback)
+constexpr double FourPi = 12.566370614359172;
+
+struct GpuNode
+{
+  double lo[3], hi[3];
+  int left, right, first, count;
+};
+
+using GpuTri = LeafTri; // vertices and unit normal, in BVH leaf order
+
+struct DevBvh
+{
+  const Tri* tris = nullptr;    // full records by triangle index: mesh BVH, Normal/PseudoNormal sessions only
+  const GpuTri* leaf = nullptr; // leaf[i] = triangle order[i]
+  const GpuNode* nodes = nullptr;
+  const int* order = nullptr;
+};
+
+struct Params
+{
+  double origin[3], spacing[3];
+  long long lo[3], hi[3]; // the slab, in grid indices
+  double toOut, band, bandWorld, reach;
+  int sign; // 0 normal, 1 pseudo-normal, 2 winding, 3 unsigned
+  int useVertexNormals;
+  int bounded;
+};
+
+struct WindingDev
+{
+  DevBvh closed;      // tris unused (null): leaf records only
+  int meshTris = 0;
+  const GpuTri* meshLeaf = nullptr; // the mesh BVH's leaves and the slot of each triangle there:
+  const int* meshSlot = nullptr;    // the mesh in index order, for the all-solid-angle fallback
+  const GpuTri* cone = nullptr;
+  int coneCount = 0;
+  const WindingSigner::Cluster* clusters = nullptr;
+  int clusterCount = 0;
+};
+
+__device__ V3 positionOf(const Params& P, long long i, long long j, long long k)
+{
+  return { P.origin[0] + i * P.spacing[0], P.origin[1] + j * P.spacing[1], P.origin[2] + k * P.spacing[2] };
+}
+
+/// Bvh::nearest; the hint and the result's place are leaf slots (bestSlot).
+__device__ NearestResult nearestDev(const DevBvh& b, V3 p, int hintSlot, double maxDist2, int& bestSlot)
+{
+  NearestResult best;
+  best.dist2 = maxDist2;
+  bestSlot = -1;
+  if (hintSlot >= 0)
+  {
+    const GpuTri& t = b.leaf[hintSlot];
+    const Closest c = closestPointOnTriangle(p, t.v[0], t.v[1], t.v[2]);
+    const V3 d = c.point - p;
+    const double d2 = dot(d, d);
+    if (d2 <= best.dist2)
+    {
+      best.dist2 = d2;
+      best.tri = b.order[hintSlot];
+      best.closest = c;
+      bestSlot = hintSlot;
+    }
+  }
+  int stackNode[64];
+  double stackD2[64];
+  int top = 0;
+  stackNode[top] = 0;
+  stackD2[top++] = pointBoxDist2(p, b.nodes[0].lo, b.nodes[0].hi);
+  while (top > 0)
+  {
+    --top;
+    if (stackD2[top] > best.dist2) continue;
+    const GpuNode n = b.nodes[stackNode[top]];
+    if (n.left < 0)
+    {
+      for (int i = n.first; i < n.first + n.count; ++i)
+      {
+        const int ti = b.order[i];
+        if (ti == best.tri) continue;
+        const GpuTri& t = b.leaf[i];
+        const Closest c = closestPointOnTriangle(p, t.v[0], t.v[1], t.v[2]);
+        const V3 d = c.point - p;
+        const double d2 = dot(d, d);
+        if (d2 < best.dist2 || (d2 == best.dist2 && (best.tri < 0 || ti < best.tri)))
+        {
+          best.dist2 = d2;
+          best.tri = ti;
+          best.closest = c;
+          bestSlot = i;
+        }
+      }
+      continue;
+    }
+    const double dl = pointBoxDist2(p, b.nodes[n.left].lo, b.nodes[n.left].hi);
+    const double dr = pointBoxDist2(p, b.nodes[n.right].lo, b.nodes[n.right].hi);
+    const int nearC = dl <= dr ? n.left : n.right, farC = dl <= dr ? n.right : n.left;
+    const double nearD = dl <= dr ? dl : dr, farD = dl <= dr ? dr : dl;
+    if (farD <= best.dist2 && top < 64) { stackNode[top] = farC; stackD2[top++] = farD; }
+    if (nearD <= best.dist2 && top < 64) { stackNode[top] = nearC; stackD2[top++] = nearD; }
+  }
+  return best;
+}
+
+template <int Run, int TileRuns, int MinBlocks>
+__global__ void __launch_bounds__(128, MinBlocks) distanceKernel(DevBvh bvh, Params P, float* out)
+{
+  constexpr int TileRows = 32 / TileRuns;
+  const long long nx = P.hi[0] - P.lo[0] + 1, ny = P.hi[1] - P.lo[1] + 1, nz = P.hi[2] - P.lo[2] + 1;
+  const long long runs = (nx + Run - 1) / Run;
+  const long long tilesX = (runs + TileRuns - 1) / TileRuns, tilesY = (ny + TileRows - 1) / TileRows;
+  const long long t = static_cast<long long>(blockIdx.x) * blockDim.x + threadIdx.x;
+  const long long tile = t / 32;
+  const int lane = static_cast<int>(t % 32);
+  if (tile >= tilesX * tilesY * nz) return;
+  const long long run = (tile % tilesX) * TileRuns + lane % TileRuns;
+  const long long jj = ((tile / tilesX) % tilesY) * TileRows + lane / TileRuns;
+  if (run >= runs || jj >= ny) return;
+  const long long kk = tile / (tilesX * tilesY);
+  const long long row = jj + ny * kk;
+  const long long j = P.lo[1] + jj, k = P.lo[2] + kk;
+  const long long i0 = P.lo[0] + run * Run, i1 = min(P.hi[0], i0 + Run - 1);
+  float* rowOut = out + row * nx - P.lo[0];
+  const double h = P.spacing[0];
+  double lower = -1;
+  int hint = -1;
+  for (long long i = i0; i <= i1; ++i)
+  {
+    lower -= h;
+    if (P.bounded && lower >= P.bandWorld)
+    {
+      rowOut[i] = static_cast<float>(P.band);
+      continue;
+    }
+    const V3 p = positionOf(P, i, j, k);
+    int slot = -1;
+    const NearestResult r = nearestDev(bvh, p, hint, P.bounded ? P.reach * P.reach : 1e300, slot);
+    double d = r.tri < 0 ? P.band : sqrt(r.dist2) * P.toOut;
+    lower = r.tri < 0 ? P.reach : sqrt(r.dist2);
+    d = fmin(d, P.band);
+    float s = 1.0f;
+    if (r.tri >= 0)
+    {
+      hint = slot;
+      if (P.sign == 0 || P.sign == 1)
+      {
+        const Tri& tr = bvh.tris[r.tri];
+        V3 n = tr.n;
+        if (P.sign == 1)
+        {
+          n = featureNormal(tr, r.closest.feature);
+        }
+        else if (P.useVertexNormals && dot(tr.nv[0], tr.nv[0]) > 0)
+        {
+          const double b0 = 1 - r.closest.b1 - r.closest.b2;
+          n = b0 * tr.nv[0] + r.closest.b1 * tr.nv[1] + r.closest.b2 * tr.nv[2];
+        }
+        s = dot(p - r.closest.point, n) < 0 ? -1.0f : 1.0f;
+      }
+    }
+    rowOut[i] = s * static_cast<float>(d);
+  }
+}
+
+template <int Run, int TileRuns, int MinBlocks>
+void launchDistanceAs(const DevBvh& bvh, const Params& P, float* out)
+{
+  constexpr int TileRows = 32 / TileRuns;
+  const long long nx = P.hi[0] - P.lo[0] + 1, ny = P.hi[1] - P.lo[1] + 1, nz = P.hi[2] - P.lo[2] + 1;
+  const long long runs = (nx + Run - 1) / Run;
+  const long long tiles = ((runs + TileRuns - 1) / TileRuns) * ((ny + TileRows - 1) / TileRows) * nz;
+  distanceKernel<Run, TileRuns, MinBlocks><<<static_cast<unsigned>((tiles * 32 + 127) / 128), 128>>>(bvh, P, out);
+  LVDIF_CUDA_CHECK(cudaGetLastError());
+}
+
+/// Runs of 16 voxels along x, a warp = one run in each of 32 neighbouring
+/// rows (y), at most 64 registers (8 blocks of 128 per SM; the spills cost
+/// less than the occupancy gains): the fastest shape measured on the H200
+/// (docs/BENCHMARKS.md). LVDIF_SDF_DISTANCE_VARIANT (benchmarks only; every
+/// shape computes the same values, and the CUDA tests pass with each) picks
+/// another: 1 = the same without the register cap, 2 = at most 80 registers,
+/// 3 = warps of 4 runs x 8 rows, no cap.
+void launchDistance(const DevBvh& bvh, const Params& P, float* out)
+{
+  static const int variant = [] {
+    const char* v = std::getenv("LVDIF_SDF_DISTANCE_VARIANT");
+    return v ? std::atoi(v) : 0;
+  }();
+  switch (variant)
+  {
+    case 1: return launchDistanceAs<16, 1, 1>(bvh, P, out);
+    case 2: return launchDistanceAs<16, 1, 6>(bvh, P, out);
+    case 3: return launchDistanceAs<16, 4, 1>(bvh, P, out);
+    default: return launchDistanceAs<16, 1, 8>(bvh, P, out);
+  }
+}
+
+struct Hit
+{
+  double t;
+  int tri;
+  int sign;
+};
+
+/// Mirrors Bvh::rayHits. Returns false when ambiguous or (collecting) when
+/// more than MaxHits crossings; otherwise the signed sum is in *sum.
+__device__ bool rayDev(const DevBvh& b, V3 o, V3 dir, Hit* hits, int* count, int* sum)
+{
+  constexpr double Eps = 1e-9;
+  const double tmin = 0.0;
+  const double inv[3] = { 1.0 / dir.x, 1.0 / dir.y, 1.0 / dir.z };
+  int stack[64];
+  int top = 0;
+  stack[top++] = 0;
+  *sum = 0;
+  if (count) *count = 0;
+  while (top > 0)
+  {
+    const GpuNode n = b.nodes[stack[--top]];
+    double t0 = tmin, t1 = 1e300;
+    bool miss = false;
+    for (int a = 0; a < 3 && !miss; ++a)
+    {
+      const double da = dir[a], oa = o[a];
+      if (da == 0)
+      {
+        miss = oa < n.lo[a] || oa > n.hi[a];
+        continue;
+      }
+      double ta = (n.lo[a] - oa) * inv[a], tb = (n.hi[a] - oa) * inv[a];
+      if (ta > tb) { const double x = ta; ta = tb; tb = x; }
+      const double pad = 1e-9 * (fabs(ta) + fabs(tb)) + 1e-300;
+      t0 = fmax(t0, ta - pad);
+      t1 = fmin(t1, tb + pad);
+      miss = t0 > t1;
+    }
+    if (miss) continue;
+    if (n.left >= 0)
+    {
+      if (top + 2 > 64) return false;
+      stack[top++] = n.left;
+      stack[top++] = n.right;
+      continue;
+    }
+    for (int i = n.first; i < n.first + n.count; ++i)
+    {
+      const int ti = b.order[i];
+      const GpuTri& t = b.leaf[i];
+      const V3 e1 = t.v[1] - t.v[0], e2 = t.v[2] - t.v[0];
+      const V3 pv = cross(dir, e2);
+      const double det = dot(e1, pv);
+      const double scale = norm(e1) * norm(e2) * norm(dir);
+      const V3 tv = o - t.v[0];
+      if (fabs(det) <= Eps * scale)
+      {
+        if (fabs(dot(tv, t.n)) <= Eps * (norm(tv) + norm(e1))) return false;
+        continue;
+      }
+      const double invDet = 1.0 / det;
+      const double u = dot(tv, pv) * invDet;
+      const V3 qv = cross(tv, e1);
+      const double v = dot(dir, qv) * invDet;
+      const double tt = dot(e2, qv) * invDet;
+      const double w = 1 - u - v;
+      if (u < -Eps || v < -Eps || w < -Eps) continue;
+      const double tScale = 1e-9 * (fabs(tt) + fabs(tmin) + norm(e1) / norm(dir));
+      if (tt < tmin - tScale) continue;
+      if (u <= Eps || v <= Eps || w <= Eps || fabs(tt - tmin) <= tScale) return false;
+      const int sg = dot(dir, t.n) > 0 ? 1 : -1;
+      *sum += sg;
+      if (hits)
+      {
+        if (*count >= MaxHits) return false;
+        hits[(*count)++] = { tt, ti, sg };
+      }
+    }
+  }
+  return true;
+}
+
+/// Sum of f(c) for c in [0, n) in the order of the CPU's laneOrderedSum:
+/// lane l adds c = l, l + 32, ... in order, then an xor butterfly (every lane
+/// ends with the same bits: IEEE addition is commutative).
+template <typename F>
+__device__ double warpOrderedSum(int n, int lane, F f)
+{
+  double s = 0;
+  for (int c = lane; c < n; c += 32) s += f(c);
+  for (int off = 16; off > 0; off >>= 1) s += __shfl_xor_sync(FullMask, s, off);
+  return s;
+}
+
+/// The cone's winding number at p, all lanes of the warp together.
+__device__ double coneWindingWarp(const WindingDev& W, V3 p, int lane)
+{
+  return warpOrderedSum(W.coneCount, lane, [&](int c) {
+    const GpuTri& t = W.cone[c];
+    return solidAngle(p, t.v[0], t.v[1], t.v[2]);
+  }) / FourPi;
+}
+
+__device__ double driftDev(const WindingDev& W, V3 p, V3 q, double h)
+{
+  double sum = 0;
+  for (int c = 0; c < W.clusterCount; ++c)
+  {
+    const WindingSigner::Cluster cl = W.clusters[c];
+    const double m = 0.5 * (norm(p - cl.centre) + norm(q - cl.centre) - h) - cl.radius;
+    if (!(m > 0)) return 1e300;
+    sum += cl.length / (m * m);
+  }
+  return h * sum / FourPi;
+}
+
+/// WindingSigner::evaluate, all lanes of the warp together (each lane casts
+/// the same oblique ray: same result, uniform control flow).
+__device__ double evaluateWarp(const WindingDev& W, V3 p, int lane)
+{
+  const V3 dir = normalized(V3{ 0.5773502691896258, 0.5780, 0.5767 });
+  int sum = 0;
+  if (rayDev(W.closed, p, dir, nullptr, nullptr, &sum))
+  {
+    return sum - coneWindingWarp(W, p, lane);
+  }
+  return warpOrderedSum(W.meshTris, lane, [&](int i) {
+    const GpuTri& t = W.meshLeaf[W.meshSlot[i]];
+    return solidAngle(p, t.v[0], t.v[1], t.v[2]);
+  }) / FourPi;
+}
+
+__device__ bool insideOf(double w) { return fabs(w) >= 0.5; }
+__device__ bool decidedDev(double lo, double hi) { return !(lo < 0.5 && hi >= 0.5) && !(lo <= -0.5 && hi > -0.5); }
+
+/// WindingSigner::signRow, one warp per scan line (see the file comment).
+__global__ void signKernel(WindingDev W, Params P, long long rowBegin, long long rowEnd, float* out,
+  unsigned long long* evals, unsigned long long* fallbacks)
+{
+  __shared__ Hit sharedHits[SignWarps][MaxHits];
+  const long long nx = P.hi[0] - P.lo[0] + 1, ny = P.hi[1] - P.lo[1] + 1;
+  const int lane = static_cast<int>(threadIdx.x % 32), warp = static_cast<int>(threadIdx.x / 32);
+  const long long row = rowBegin + static_cast<long long>(blockIdx.x) * SignWarps + warp;
+  if (row >= rowEnd) return; // the whole warp
+  const long long j = P.lo[1] + row % ny, k = P.lo[2] + row / ny;
+  float* rowOut = out + row * nx;
+  const double h = P.spacing[0];
+  const V3 start = positionOf(P, P.lo[0], j, k);
+  auto pos = [&](long long i) { return start + V3{ static_cast<double>(i) * h, 0, 0 }; };
+  Hit* hits = sharedHits[warp];
+  int count = 0, sum = 0, ok = 0;
+  if (lane == 0)
+  {
+    ok = rayDev(W.closed, start - V3{ 0.5 * h, 0, 0 }, V3{ 1, 0, 0 }, hits, &count, &sum) ? 1 : 0;
+    for (int a = 1; ok && a < count; ++a) // insertion sort by t
+    {
+      const Hit x = hits[a];
+      int b = a - 1;
+      while (b >= 0 && hits[b].t > x.t)
+      {
+        hits[b + 1] = hits[b];
+        --b;
+      }
+      hits[b + 1] = x;
+    }
+  }
+  __syncwarp();
+  ok = __shfl_sync(FullMask, ok, 0);
+  count = __shfl_sync(FullMask, count, 0);
+  sum = __shfl_sync(FullMask, sum, 0);
+  if (!ok)
+  {
+    for (long long i = 0; i < nx; ++i)
+    {
+      const double w = evaluateWarp(W, pos(i), lane);
+      if (lane == static_cast<int>(i % 32) && insideOf(w)) rowOut[i] = -rowOut[i];
+    }
+    if (lane == 0)
+    {
+      atomicAdd(fallbacks, static_cast<unsigned long long>(nx));
+      atomicAdd(evals, static_cast<unsigned long long>(nx));
+    }
+    return;
+  }
+  int ahead = sum;
+  int next = 0;
+  const bool open = W.coneCount > 0;
+  bool have = false;
+  double lo = 0, hi = 0;
+  unsigned long long ev = 0;
+  for (long long base = 0; base < nx; base += 32)
+  {
+    const long long mine = base + lane;
+    // the drift bound from voxel mine - 1 to mine (used only while an interval is carried)
+    const double myDrift = open && mine > 0 && mine < nx ? driftDev(W, pos(mine - 1), pos(mine), h) : 0.0;
+    const long long end = base + 32 < nx ? base + 32 : nx;
+    bool myInside = false;
+    for (long long i = base; i < end; ++i)
+    {
+      const double ti = 0.5 * h + static_cast<double>(i) * h;
+      int jumpMesh = 0;
+      while (next < count && hits[next].t <= ti)
+      {
+        ahead -= hits[next].sign;
+        if (hits[next].tri < W.meshTris) jumpMesh += hits[next].sign;
+        ++next;
+      }
+      double w;
+      if (!open)
+      {
+        w = ahead;
+      }
+      else
+      {
+        const double drift = __shfl_sync(FullMask, myDrift, static_cast<int>(i - base));
+        if (have)
+        {
+          if (drift < 1e299)
+          {
+            lo = lo - jumpMesh - drift;
+            hi = hi - jumpMesh + drift;
+          }
+          else
+          {
+            have = false;
+          }
+        }
+        if (!have || !decidedDev(lo, hi))
+        {
+          const double exact = ahead - coneWindingWarp(W, pos(i), lane);
+          lo = exact - 1e-9;
+          hi = exact + 1e-9;
+          have = true;
+          ++ev;
+        }
+        w = 0.5 * (lo + hi);
+      }
+      if (i - base == lane) myInside = insideOf(w);
+    }
+    if (mine < nx && myInside) rowOut[mine] = -rowOut[mine];
+  }
+  if (lane == 0 && ev) atomicAdd(evals, ev);
+}
+
+/// One thread block per chunk of the slab: encodes every voxel (the host's
+/// SdfDictionary::encodeWith, band-clamped as DictionaryVolume::encode) and
+/// records the chunk's key when all are equal, NotUniform otherwise.
+__global__ void chunkUniformKernel(const float* slab, long long nx, long long ny, long long nz, int edge, int ccx,
+  int ccy, SdfDictionary::EncodeConstants E, float band, unsigned* flags)
+{
+  const long long c = blockIdx.x;
+  const long long cx = c % ccx, cy = (c / ccx) % ccy, cz = c / (static_cast<long long>(ccx) * ccy);
+  const long long x0 = cx * edge, y0 = cy * edge, z0 = cz * edge;
+  const long long ex = min(nx - x0, static_cast<long long>(edge)), ey = min(ny - y0, static_cast<long long>(edge));
+  const long long ez = min(nz - z0, static_cast<long long>(edge));
+  auto keyAt = [&](long long lx, long long ly, long long lz) {
+    float v = slab[(x0 + lx) + nx * ((y0 + ly) + ny * (z0 + lz))];
+    if (v > band) v = band;
+    if (v < -band) v = -band;
+    return SdfDictionary::encodeWith(E, v);
+  };
+  const SdfKey first = keyAt(0, 0, 0);
+  int differs = 0;
+  const long long count = ex * ey * ez;
+  for (long long l = threadIdx.x; l < count && !differs; l += blockDim.x)
+  {
+    differs = keyAt(l % ex, (l / ex) % ey, l / (ex * ey)) != first;
+  }
+  differs = __syncthreads_or(differs);
+  if (threadIdx.x == 0) flags[c] = differs ? ChunkKeys::NotUniform : static_cast<unsigned>(first);
+}
+
+/// One thread block per listed chunk: its keys in localIndex layout (x fastest
+/// inside the chunk); voxels outside the grid are left unwritten.
+__global__ void chunkKeysKernel(const float* slab, long long nx, long long ny, long long nz, int edge, int ccx,
+  int ccy, SdfDictionary::EncodeConstants E, float band, const long long* list, unsigned short* keys)
+{
+  const long long c = list[blockIdx.x];
+  const long long cx = c % ccx, cy = (c / ccx) % ccy, cz = c / (static_cast<long long>(ccx) * ccy);
+  const long long x0 = cx * edge, y0 = cy * edge, z0 = cz * edge;
+  const long long e3 = static_cast<long long>(edge) * edge * edge;
+  unsigned short* out = keys + static_cast<long long>(blockIdx.x) * e3;
+  for (long long l = threadIdx.x; l < e3; l += blockDim.x)
+  {
+    const long long x = x0 + l % edge, y = y0 + (l / edge) % edge, z = z0 + l / (static_cast<long long>(edge) * edge);
+    if (x >= nx || y >= ny || z >= nz) continue;
+    float v = slab[x + nx * (y + ny * z)];
+    if (v > band) v = band;
+    if (v < -band) v = -band;
+    out[l] = SdfDictionary::encodeWith(E, v);
+  }
+}
+
+__global__ void encodeKernel(SdfDictionary::EncodeConstants E, float band, const float* in, long long n,
+  unsigned short* out)
+{
+  const long long i = static_cast<long long>(blockIdx.x) * blockDim.x + threadIdx.x;
+  if (i >= n) return;
+  float v = in[i];
+  if (v > band) v = band;
+  if (v < -band) v = -band;
+  out[i] = SdfDictionary::encodeWith(E, v);
+}
+} // namespace
+} // namespace cudasdf
+} // namespace lvdif
