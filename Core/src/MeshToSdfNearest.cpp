@@ -6,6 +6,8 @@
 // triangle's plane), the exact closestPointOnTriangle only for survivors.
 #include "MeshToSdfNearest.h"
 
+#include "lvdif/Memory.h"
+
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -190,6 +192,9 @@ float roundUp(double x) { return roundUpToFloat(x); }
 NearestIndex::NearestIndex(const std::vector<Tri>& tris)
 {
   const std::size_t n = tris.size();
+  // peak: the index (~350 bytes a triangle: packed records, float planes,
+  // nodes, positions) plus the build data (~220 bytes a triangle)
+  requireMemory(static_cast<std::uint64_t>(n) * 600, "mesh to SDF: nearest-triangle index");
   std::vector<Ref> refs(n);
   for (std::size_t i = 0; i < n; ++i)
   {
