@@ -5,6 +5,7 @@
 
 #include "MeshToSdfCuda.h"
 #include "MeshToSdfInternal.h"
+#include "MeshToSdfNearest.h"
 #include "lvdif/Memory.h"
 
 #include <omp.h>
@@ -63,7 +64,7 @@ void validateGrid(const GridGeometry& g)
 struct Engine
 {
   const PreparedMesh* mesh = nullptr;
-  const Bvh* bvh = nullptr;
+  const NearestIndex* index = nullptr;
   const WindingSigner* winding = nullptr;
   std::unique_ptr<FaithfulGrid> grid;
   GridGeometry geom;
@@ -105,7 +106,7 @@ struct Engine
         // only the winding-number and unsigned modes may stop at the band:
         // the others need the closest triangle for its normal
         const bool bounded = this->opts.sign == SignMode::WindingNumber || this->opts.sign == SignMode::Unsigned;
-        return this->bvh->nearest(p, hint, bounded ? this->bandWorld2 : 1e300);
+        return this->index->nearest(p, hint, bounded ? this->bandWorld2 : 1e300);
       }
     }
   }
@@ -136,7 +137,10 @@ struct Engine
   /// 1-Lipschitz lets far voxels skip the query: each query looks a margin
   /// beyond the band, and the following voxels stay saturated while the
   /// lower bound (previous distance - steps) is still past the band.
-  void distanceRow(std::int64_t j, std::int64_t k, std::int64_t i0, std::int64_t i1, float* out) const
+  /// rowTris (nx entries): on entry the nearest triangles of the row below
+  /// when belowValid (they seed the bounds), on exit this row's.
+  void distanceRow(std::int64_t j, std::int64_t k, std::int64_t i0, std::int64_t i1, float* out,
+    std::int32_t* rowTris, bool belowValid) const
   {
     const bool bounded = this->opts.accel == MeshToSdfAccel::Bvh &&
       (this->opts.sign == SignMode::WindingNumber || this->opts.sign == SignMode::Unsigned) &&
@@ -146,29 +150,50 @@ struct Engine
     const double reach = bandWorld + 4 * h;
     double lower = -1; // lower bound of the current voxel's world distance
     std::int32_t hint = -1;
-    for (std::int64_t i = i0; i <= i1; ++i)
+    // the unbounded BVH case takes the voxels RowPoints at a time (one shared traversal)
+    const bool packets = !bounded && this->opts.accel == MeshToSdfAccel::Bvh;
+    for (std::int64_t i = i0; i <= i1;)
     {
-      lower -= h;
-      if (bounded && lower >= bandWorld)
+      NearestResult res[NearestIndex::RowPoints];
+      V3 ps[NearestIndex::RowPoints];
+      int count = 1;
+      if (packets)
       {
-        out[i - i0] = static_cast<float>(this->band);
-        continue;
+        count = static_cast<int>(std::min<std::int64_t>(NearestIndex::RowPoints, i1 - i + 1));
+        for (int q = 0; q < count; ++q) ps[q] = this->position(i + q, j, k);
+        this->index->nearestRow(ps, count, hint, belowValid ? rowTris + (i - i0) : nullptr, res);
       }
-      const V3 p = this->position(i, j, k);
-      const NearestResult r = bounded ? this->bvh->nearest(p, hint, reach * reach) : this->nearest(p, hint);
-      double d = r.tri < 0 ? this->band : std::sqrt(r.dist2) * this->toOut;
-      lower = r.tri < 0 ? reach : std::sqrt(r.dist2);
-      d = std::min(d, this->band);
-      float s = 1.0f;
-      if (r.tri >= 0)
+      else
       {
-        hint = r.tri;
-        if (this->opts.sign == SignMode::Normal || this->opts.sign == SignMode::PseudoNormal)
+        lower -= h;
+        if (bounded && lower >= bandWorld)
         {
-          s = this->localSign(p, r);
+          out[i - i0] = static_cast<float>(this->band);
+          rowTris[i - i0] = -1;
+          ++i;
+          continue;
         }
+        ps[0] = this->position(i, j, k);
+        res[0] = bounded ? this->index->nearest(ps[0], hint, reach * reach) : this->nearest(ps[0], hint);
       }
-      out[i - i0] = s * static_cast<float>(d);
+      for (int q = 0; q < count; ++q, ++i)
+      {
+        const NearestResult& r = res[q];
+        rowTris[i - i0] = r.tri;
+        double d = r.tri < 0 ? this->band : std::sqrt(r.dist2) * this->toOut;
+        lower = r.tri < 0 ? reach : std::sqrt(r.dist2);
+        d = std::min(d, this->band);
+        float s = 1.0f;
+        if (r.tri >= 0)
+        {
+          hint = r.tri;
+          if (this->opts.sign == SignMode::Normal || this->opts.sign == SignMode::PseudoNormal)
+          {
+            s = this->localSign(ps[q], r);
+          }
+        }
+        out[i - i0] = s * static_cast<float>(d);
+      }
     }
   }
 };
@@ -187,7 +212,6 @@ std::unique_ptr<Engine> makeEngine(const MeshToSdfPrepared& prepared, const Grid
   auto e = std::make_unique<Engine>();
   MeshToSdfPrepared::Impl& impl = prepared.impl();
   e->mesh = &impl.mesh;
-  e->bvh = impl.bvh.get();
   e->geom = geom;
   e->opts = opts;
   const double unit = std::min(geom.spacing[0], std::min(geom.spacing[1], geom.spacing[2]));
@@ -196,6 +220,10 @@ std::unique_ptr<Engine> makeEngine(const MeshToSdfPrepared& prepared, const Grid
   const double bw = static_cast<double>(band) / e->toOut;
   e->bandWorld2 = std::isfinite(bw) ? bw * bw * (1 + 1e-9) : 1e300;
   double lazy = 0; // only what this call had to build (timed inside)
+  if (device == Device::Cpu && opts.accel == MeshToSdfAccel::Bvh)
+  {
+    e->index = &impl.nearestIndex(lazy);
+  }
   if (opts.sign == SignMode::WindingNumber && device == Device::Cpu)
   {
     e->winding = &impl.windingSigner(lazy);
@@ -250,14 +278,14 @@ std::unique_ptr<cudasdf::Session> openCuda(const MeshToSdfPrepared& prepared, co
 /// Runs fn(row) for every (j, k) row of the box on OpenMP threads; progress
 /// from thread 0, cancellation per row; rethrows the first exception.
 template <typename F>
-void forRows(const VoxelBox& box, Interrupter& intr, double progressBase, double progressSpan, F&& fn)
+void forRows(const VoxelBox& box, Interrupter& intr, double progressBase, double progressSpan, F&& fn, int chunk = 2)
 {
   const std::int64_t ny = box.hi[1] - box.lo[1] + 1, nz = box.hi[2] - box.lo[2] + 1;
   const std::int64_t rows = ny * nz;
   std::atomic<std::int64_t> done{ 0 };
   std::atomic<bool> stop{ false };
   std::exception_ptr failure;
-#pragma omp parallel for schedule(dynamic, 2)
+#pragma omp parallel for schedule(dynamic, chunk)
   for (std::int64_t r = 0; r < rows; ++r)
   {
     if (stop.load(std::memory_order_relaxed)) continue;
@@ -289,8 +317,19 @@ void computeBox(const Engine& e, const VoxelBox& box, float* out, MeshToSdfStats
   const std::int64_t nx = box.hi[0] - box.lo[0] + 1, ny = box.hi[1] - box.lo[1] + 1;
   const bool winding = e.opts.sign == SignMode::WindingNumber;
   double t0 = now();
+  // per thread: the nearest triangles of its last row; rows come in chunks of
+  // 8 consecutive ones, so most rows find the row below in their buffer
+  const int threads = omp_get_max_threads();
+  requireMemory(static_cast<std::uint64_t>(threads) * static_cast<std::uint64_t>(nx) * 4, "mesh to SDF: row hints");
+  std::vector<std::int32_t> rowTris(static_cast<std::size_t>(threads * nx), -1);
+  std::vector<std::int64_t> lastRow(static_cast<std::size_t>(threads), -2);
   forRows(box, intr, progressBase, winding ? progressSpan * 0.5 : progressSpan,
-    [&](std::int64_t j, std::int64_t k, std::int64_t r) { e.distanceRow(j, k, box.lo[0], box.hi[0], out + r * nx); });
+    [&](std::int64_t j, std::int64_t k, std::int64_t r) {
+      const int t = std::min(omp_get_thread_num(), threads - 1);
+      const bool below = lastRow[static_cast<std::size_t>(t)] == r - 1 && j > box.lo[1];
+      e.distanceRow(j, k, box.lo[0], box.hi[0], out + r * nx, rowTris.data() + t * nx, below);
+      lastRow[static_cast<std::size_t>(t)] = r;
+    }, 8);
   stats.distanceSeconds += now() - t0;
   if (!winding) return;
   t0 = now();
@@ -444,41 +483,6 @@ void volumeOnCuda(cudasdf::Session& session, DictionaryVolume& volume, const Mes
 
 } // namespace
 
-GridGeometry fitGridToMesh(const TriangleMesh& mesh, std::int64_t maxDim, double paddingVoxels)
-{
-  mesh.validate();
-  require(maxDim >= 2 && maxDim <= DictionaryVolume::MaxDimension,
-    "fit grid: maximum dimension " + std::to_string(maxDim) + " out of range [2, " +
-      std::to_string(DictionaryVolume::MaxDimension) + "]");
-  require(std::isfinite(paddingVoxels) && paddingVoxels >= 0, "fit grid: padding must be finite and >= 0");
-  require(static_cast<double>(maxDim) - 1 - 2 * paddingVoxels >= 1,
-    "fit grid: padding leaves no voxel for the mesh (maxDim - 1 - 2 * padding < 1)");
-  const auto b = mesh.bounds();
-  double ext[3], longest = 0;
-  int axis = 0;
-  for (int a = 0; a < 3; ++a)
-  {
-    ext[a] = static_cast<double>(b[1][a]) - b[0][a];
-    if (ext[a] > longest)
-    {
-      longest = ext[a];
-      axis = a;
-    }
-  }
-  require(longest > 0, "fit grid: the mesh bounds have zero size");
-  const double h = longest / (static_cast<double>(maxDim) - 1 - 2 * paddingVoxels);
-  GridGeometry g;
-  for (int a = 0; a < 3; ++a)
-  {
-    g.dims[a] = a == axis ? maxDim : std::min<std::int64_t>(maxDim,
-      static_cast<std::int64_t>(std::ceil(ext[a] / h + 2 * paddingVoxels - 1e-9)) + 1);
-    g.spacing[a] = h;
-    const double centre = 0.5 * (static_cast<double>(b[0][a]) + b[1][a]);
-    g.origin[a] = centre - 0.5 * static_cast<double>(g.dims[a] - 1) * h;
-  }
-  return g;
-}
-
 MeshToSdfStats meshToSdf(const MeshToSdfPrepared& mesh, const GridGeometry& grid, const VoxelBox& extent,
   float* out, const MeshToSdfOptions& options, Interrupter& interrupter)
 {
@@ -566,14 +570,13 @@ static MeshToSdfPrepared prepareInternal(const TriangleMesh& mesh, bool winding)
   const double t0 = now();
   auto impl = std::make_shared<MeshToSdfPrepared::Impl>();
   impl->mesh = prepareMesh(mesh);
-  const double t1 = now();
-  impl->bvh = std::make_unique<Bvh>(impl->mesh.tris);
   const double t2 = now();
+  // the search structures are built on first use: the CPU's NearestIndex by
+  // makeEngine, the GPU's Bvh by deviceMesh (each path needs only its own)
   double unused = 0;
   if (winding) impl->windingSigner(unused);
   impl->prepareSeconds = now() - t0;
-  trace("prepareMesh", t1 - t0);
-  trace("mesh BVH", t2 - t1);
+  trace("prepareMesh", t2 - t0);
   if (winding) trace("winding structures", now() - t2);
   return MeshToSdfPrepared(std::move(impl));
 }
@@ -620,6 +623,19 @@ std::size_t MeshToSdfPrepared::degenerateSkipped() const { return this->Pimpl->m
 std::size_t MeshToSdfPrepared::boundaryEdges() const { return this->Pimpl->mesh.boundaryEdges; }
 double MeshToSdfPrepared::prepareSeconds() const { return this->Pimpl->prepareSeconds; }
 
+const NearestIndex& MeshToSdfPrepared::Impl::nearestIndex(double& seconds)
+{
+  std::lock_guard<std::mutex> lock(this->Lock);
+  if (!this->nearest)
+  {
+    const double t0 = now();
+    this->nearest = std::make_unique<NearestIndex>(this->mesh.tris);
+    seconds += now() - t0;
+    trace("nearest index", now() - t0);
+  }
+  return *this->nearest;
+}
+
 const WindingSigner& MeshToSdfPrepared::Impl::windingSigner(double& seconds)
 {
   std::lock_guard<std::mutex> lock(this->Lock);
@@ -646,6 +662,13 @@ const cudasdf::DeviceMesh& MeshToSdfPrepared::Impl::deviceMesh(
   // added (never replaced), and only sessions in WindingNumber mode read it.
   std::lock_guard<std::mutex> lock(this->Lock);
   const double t0 = now();
+  // the GPU's tree: only the device path needs it (the CPU queries NearestIndex)
+  if (!this->bvh)
+  {
+    const double tb = now();
+    this->bvh = std::make_unique<Bvh>(this->mesh.tris);
+    trace("mesh BVH", now() - tb);
+  }
   if (!this->Device)
   {
     this->Device = cudasdf::uploadMesh(this->mesh, *this->bvh, w, normals, windingLater);
@@ -660,28 +683,5 @@ const cudasdf::DeviceMesh& MeshToSdfPrepared::Impl::deviceMesh(
 }
 
 MeshToSdfPrepared::Impl::~Impl() = default;
-
-const char* toString(SignMode mode)
-{
-  switch (mode)
-  {
-    case SignMode::Normal: return "normal";
-    case SignMode::PseudoNormal: return "pseudonormal";
-    case SignMode::WindingNumber: return "winding";
-    case SignMode::Unsigned: return "unsigned";
-  }
-  return "?";
-}
-
-const char* toString(MeshToSdfAccel accel)
-{
-  switch (accel)
-  {
-    case MeshToSdfAccel::Bvh: return "bvh";
-    case MeshToSdfAccel::Faithful: return "faithful";
-    case MeshToSdfAccel::BruteForce: return "bruteforce";
-  }
-  return "?";
-}
 
 } // namespace lvdif

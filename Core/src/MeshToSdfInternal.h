@@ -178,6 +178,8 @@ private:
 /// (13 axes). Conservative: the box is inflated by a relative 1e-9.
 bool triangleBoxOverlap(const V3 tri[3], const double centre[3], const double half[3]);
 
+class NearestIndex; // MeshToSdfNearest.h: the CPU nearest-triangle queries
+
 } // namespace sdfdetail
 
 namespace cudasdf
@@ -190,7 +192,10 @@ class DeviceMesh; // MeshToSdfCuda.h
 struct MeshToSdfPrepared::Impl
 {
   sdfdetail::PreparedMesh mesh;
-  std::unique_ptr<sdfdetail::Bvh> bvh;
+  std::unique_ptr<sdfdetail::Bvh> bvh;             // the GPU's tree, built on first upload (under Lock)
+  std::unique_ptr<sdfdetail::NearestIndex> nearest; // the CPU's distance queries, built on first CPU use
+  /// The CPU's NearestIndex, built on first use (seconds added; under Lock).
+  const sdfdetail::NearestIndex& nearestIndex(double& seconds);
   double prepareSeconds = 0;
   /// The winding-number structures, built on first use (seconds added).
   const sdfdetail::WindingSigner& windingSigner(double& seconds);

@@ -1,0 +1,85 @@
+// CPU-only query structure for the exact nearest triangle of mesh to SDF: a
+// 4-wide BVH (binned SAH, one triangle per slot) with float child boxes
+// rounded outward, tested four at a time, over triangles stored contiguously
+// in traversal order. Beside the binary Bvh (which the CUDA path uploads and
+// the winding pass uses), never in its place. See docs/MESH_TO_SDF.md.
+#pragma once
+
+#include "MeshToSdfInternal.h"
+
+#include <cstdint>
+#include <vector>
+
+namespace lvdif
+{
+namespace sdfdetail
+{
+
+/// float bounds rounded outward (the boxes must contain the double ones)
+float roundDownToFloat(double x);
+float roundUpToFloat(double x);
+
+struct NearestRowState; // MeshToSdfNearestRow.h
+
+class NearestIndex
+{
+public:
+  explicit NearestIndex(const std::vector<Tri>& tris);
+
+  /// The same answer as a brute-force scan of closestPointOnTriangle over
+  /// every triangle (ties to the lowest index), among the triangles whose
+  /// squared distance is <= maxDist2 (tri = -1 when there is none). The hint
+  /// (a triangle index, -1 for none) only seeds the bound. Pruning uses lower
+  /// bounds with a margin (see Tau in the .cpp), so it never drops a triangle
+  /// whose computed distance could win or tie.
+  NearestResult nearest(V3 p, std::int32_t hint, double maxDist2) const;
+
+  /// nearest(p[i], ., 1e300) for n <= RowPoints points of one grid row
+  /// (equal y and z), in one traversal: each node's boxes are tested for the
+  /// points four at a time (MeshToSdfNearestRow.cpp). The hint seeds every
+  /// point, laneHints[i] (may be null; -1 for none) point i only, e.g. the
+  /// triangles of the row below.
+  static constexpr int RowPoints = 8;
+  void nearestRow(const V3* p, int n, std::int32_t hint, const std::int32_t* laneHints, NearestResult* out) const;
+
+  struct alignas(16) Node
+  {
+    float lo[3][4], hi[3][4]; // child boxes, per axis, four lanes
+    // child slabs: smin <= sn . x <= smax for every vertex below the child
+    // (sn: the child's mean normal in float; exact for any sn, tight where flat)
+    float sn[3][4], smin[4], smax[4];
+    std::int32_t child[4];    // >= 0: node; < 0: ~(position in Packed)
+    std::int32_t count = 0;   // used lanes (the first `count`)
+  };
+  struct Packed
+  {
+    std::int32_t index;  // in the prepared triangle list
+    V3 v[3];             // exact copies of the triangle's vertices
+    // lower bound planes: the unit normal, then the in-plane outward unit
+    // normals of edges AB, BC, CA; the distance is at least
+    // sqrt(plane^2 + max(0, edges)^2) (all zero for slivers: no bound)
+    double plane[4][4];  // x, y, z, offset
+  };
+
+  const std::vector<Node>& nodes() const { return this->Nodes; }
+  std::size_t depth() const { return this->Depth; }
+
+private:
+  void traverseRowSse(NearestRowState& s) const;
+  void traverseRowAvx2(NearestRowState& s) const;
+  std::vector<Node> Nodes;
+  std::vector<Packed> Tris;          // in traversal order
+  /// Packed::plane rounded to float, per plane k: x[k] y[k] z[k] w[k]
+  /// (nearestRow tests four points at once; its margin covers the rounding)
+  struct alignas(16) PlanesF
+  {
+    float x[4], y[4], z[4], w[4];
+  };
+  std::vector<PlanesF> TriPlanes;    // same order as Tris
+  std::vector<std::int32_t> PosOf;   // triangle index -> position in Tris
+  double Scale = 0;                  // largest |coordinate| of the mesh
+  std::size_t Depth = 0;
+};
+
+} // namespace sdfdetail
+} // namespace lvdif
