@@ -206,6 +206,17 @@ WindingSigner::WindingSigner(const PreparedMesh& mesh)
     buildClosure(this->Plus, mesh.tris, nullptr, mesh.boundary);
     return;
   }
+  // The orientation pass (a sort of every edge) only pays when the boundary
+  // is large or doubled: a few hundred true boundary edges of single
+  // multiplicity (holes) are cheap for the cone, and both constructions are
+  // exact, so this is a speed choice only (the open bunny: 182 edges).
+  const bool fewSimpleEdges = mesh.boundary.size() == mesh.boundaryEdges &&
+    mesh.boundary.size() <= std::max<std::size_t>(512, mesh.tris.size() / 64);
+  if (fewSimpleEdges)
+  {
+    buildClosure(this->Plus, mesh.tris, nullptr, mesh.boundary);
+    return;
+  }
   const OrientedMesh om = orientMesh(mesh.tris);
   if (om.flippedCount == 0 && om.removedCount == 0)
   {
