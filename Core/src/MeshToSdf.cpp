@@ -275,6 +275,22 @@ std::unique_ptr<cudasdf::Session> openCuda(const MeshToSdfPrepared& prepared, co
   return session;
 }
 
+/// The device of a call. Auto prefers CUDA, except for WindingNumber on a mesh
+/// with reversed or duplicated faces: the CPU then decides most voxels with
+/// the orientation + dipole-tree construction (MeshToSdfWinding.cpp), while the
+/// CUDA sign kernel still closes M by a cone over every uncancelled edge,
+/// exact too but orders of magnitude slower on such meshes. An explicit
+/// Device::Cuda is obeyed.
+Device chooseDevice(const MeshToSdfPrepared& prepared, const MeshToSdfOptions& options)
+{
+  const Device d = resolveDevice(options.device);
+  if (d != Device::Cuda || options.device != Device::Auto || options.sign != SignMode::WindingNumber) return d;
+  MeshToSdfPrepared::Impl& impl = prepared.impl();
+  if (!WindingSigner::mayHaveReversedFaces(impl.mesh)) return d;
+  double unused = 0;
+  return impl.windingSigner(unused).flippedTriangles() > 0 ? Device::Cpu : d;
+}
+
 /// Runs fn(row) for every (j, k) row of the box on OpenMP threads; progress
 /// from thread 0, cancellation per row; rethrows the first exception.
 template <typename F>
@@ -495,7 +511,7 @@ MeshToSdfStats meshToSdf(const MeshToSdfPrepared& mesh, const GridGeometry& grid
   }
   MeshToSdfStats stats;
   interrupter.start("mesh to SDF");
-  stats.device = resolveDevice(options.device);
+  stats.device = chooseDevice(mesh, options);
   auto engine = makeEngine(mesh, grid, options, options.bandWidth, stats.device, stats);
   if (stats.device == Device::Cuda)
   {
@@ -541,7 +557,7 @@ MeshToSdfStats meshToSdf(const MeshToSdfPrepared& mesh, DictionaryVolume& volume
   opts.unit = DistanceUnit::Voxel;
   MeshToSdfStats stats;
   interrupter.start("mesh to SDF");
-  stats.device = resolveDevice(options.device);
+  stats.device = chooseDevice(mesh, options);
   auto engine = makeEngine(mesh, grid, opts, volume.bandWidth(), stats.device, stats);
   if (stats.device == Device::Cuda)
   {

@@ -129,6 +129,10 @@ class WindingSigner
 public:
   explicit WindingSigner(const PreparedMesh& mesh);
   ~WindingSigner();
+  /// False when the boundary is empty or a few edges of multiplicity 1 (holes):
+  /// then no orientation pass runs and the closure is the cone over dM, as on
+  /// CUDA. True: the orientation pass runs (flippedTriangles() tells what it found).
+  static bool mayHaveReversedFaces(const PreparedMesh& mesh);
   /// Flips the sign of the voxels of one row (unsigned distances in out,
   /// world distance = out / toOut) where |w| >= 0.5. Positions x0 + i * h.
   /// fullSums (optional) counts voxels whose refinement summed every

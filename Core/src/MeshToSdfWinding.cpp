@@ -210,9 +210,7 @@ WindingSigner::WindingSigner(const PreparedMesh& mesh)
   // is large or doubled: a few hundred true boundary edges of single
   // multiplicity (holes) are cheap for the cone, and both constructions are
   // exact, so this is a speed choice only (the open bunny: 182 edges).
-  const bool fewSimpleEdges = mesh.boundary.size() == mesh.boundaryEdges &&
-    mesh.boundary.size() <= std::max<std::size_t>(512, mesh.tris.size() / 64);
-  if (fewSimpleEdges)
+  if (!WindingSigner::mayHaveReversedFaces(mesh))
   {
     buildClosure(this->Plus, mesh.tris, nullptr, mesh.boundary);
     return;
@@ -244,6 +242,13 @@ WindingSigner::WindingSigner(const PreparedMesh& mesh)
 }
 
 WindingSigner::~WindingSigner() = default;
+
+bool WindingSigner::mayHaveReversedFaces(const PreparedMesh& mesh)
+{
+  return !mesh.boundary.empty() &&
+    !(mesh.boundary.size() == mesh.boundaryEdges &&
+      mesh.boundary.size() <= std::max<std::size_t>(512, mesh.tris.size() / 64));
+}
 
 const WindingSigner::Closure& WindingSigner::coneOverMesh() const
 {

@@ -83,6 +83,35 @@ TEST(MeshToSdfCuda, MatchesCpuOnEverySignMode)
   }
 }
 
+// Device::Auto keeps WindingNumber on the CPU for meshes with reversed faces
+// (the CUDA kernel lacks that construction and would be very slow), and uses
+// CUDA otherwise; the same field either way.
+TEST(MeshToSdfCuda, AutoKeepsReversedFacesOnTheCpu)
+{
+  if (!cuda::available()) GTEST_SKIP() << "no CUDA device";
+  TriangleMesh flipped = makeSphereMesh(0.05f, -0.03f, 0.02f, 1.0f, 24, 48);
+  for (std::size_t t = 0; t < flipped.triangles.size(); t += 9) std::swap(flipped.triangles[t][1], flipped.triangles[t][2]);
+  TriangleMesh holed = makeSphereMesh(0.05f, -0.03f, 0.02f, 1.0f, 24, 48);
+  holed.triangles.erase(holed.triangles.begin(), holed.triangles.begin() + 48);
+  const GridGeometry g = fitGridToMesh(flipped, 24, 2);
+  VoxelBox all;
+  all.hi = { g.dims[0] - 1, g.dims[1] - 1, g.dims[2] - 1 };
+  std::vector<float> a(static_cast<std::size_t>(all.voxelCount())), b(a.size());
+  MeshToSdfOptions o;
+  o.sign = SignMode::WindingNumber;
+  o.device = Device::Auto;
+  EXPECT_EQ(meshToSdf(flipped, g, all, a.data(), o).device, Device::Cpu);
+  o.device = Device::Cuda;
+  EXPECT_EQ(meshToSdf(flipped, g, all, b.data(), o).device, Device::Cuda);
+  std::int64_t differ = 0;
+  for (std::size_t i = 0; i < a.size(); ++i) differ += std::fabs(a[i]) > 1e-3f && (a[i] < 0) != (b[i] < 0);
+  EXPECT_EQ(differ, 0);
+  o.device = Device::Auto;
+  EXPECT_EQ(meshToSdf(holed, g, all, a.data(), o).device, Device::Cuda);
+  o.sign = SignMode::PseudoNormal;
+  EXPECT_EQ(meshToSdf(flipped, g, all, a.data(), o).device, Device::Cuda);
+}
+
 TEST(MeshToSdfCuda, ClosedAndIntersectingMeshesAndSubExtent)
 {
   if (!cuda::available()) GTEST_SKIP() << "no CUDA device";

@@ -75,6 +75,9 @@ struct MeshToSdfOptions
   bool useVertexNormals = false; // Normal mode: interpolate the mesh's vertex normals
   float bandWidth = std::numeric_limits<float>::infinity(); // |d| saturates here (output units)
   DistanceUnit unit = DistanceUnit::Voxel;
+  /// Auto: CUDA when available, except WindingNumber on a mesh with reversed
+  /// or duplicated faces, which runs on the CPU (its sign construction for such
+  /// meshes is not ported to CUDA; docs/MESH_TO_SDF.md). Cuda/Cpu are obeyed.
   Device device = Device::Auto;
   /// Sign voxel filters (SvfBits) run on the result afterwards, with svf's
   /// parameters (meant for SignMode::Normal, as in the paper; 0 = none). On a
