@@ -18,7 +18,7 @@
 namespace
 {
 const char* const Usage = "usage: lvdif mesh-to-sdf MESH OUT.(lvdv|bv) [--dims N] [--padding P] "
-                          "[--sign normal|pseudo|winding] [--svf] [--band B] [--device cpu|cuda|auto]";
+                          "[--sign normal|pseudo|winding] [--reorient] [--svf] [--band B] [--device cpu|cuda|auto]";
 
 lvdif::SignMode signFromName(const std::string& s)
 {
@@ -45,8 +45,8 @@ lvdif::Device deviceFromName(const std::string& s)
 
 int CommandMeshToSdf(int argc, char** argv)
 {
-  Arguments args(argc, argv, 2, { "svf" });
-  args.allowOnly({ "dims", "padding", "sign", "svf", "band", "device" });
+  Arguments args(argc, argv, 2, { "svf", "reorient" });
+  args.allowOnly({ "dims", "padding", "sign", "svf", "reorient", "band", "device" });
   if (args.positional().size() != 2)
     throw lvdif::Error(lvdif::ErrorCode::InvalidArgument, Usage);
   const std::string in = args.positional()[0], out = args.positional()[1];
@@ -61,6 +61,10 @@ int CommandMeshToSdf(int argc, char** argv)
   lvdif::MeshToSdfOptions options;
   options.sign = signFromName(args.get("sign", "winding"));
   options.device = deviceFromName(args.get("device", "auto"));
+  // winding sign of the consistently re-oriented mesh (unreliable face orientation)
+  options.reorientFaces = args.has("reorient");
+  if (options.reorientFaces && options.sign != lvdif::SignMode::WindingNumber)
+    throw lvdif::Error(lvdif::ErrorCode::InvalidArgument, "--reorient needs --sign winding");
   if (args.has("svf"))
     options.svfFilters = lvdif::SvfAll; // SVF1..SVF4, the paper's cleanup (meant for --sign normal)
 
@@ -78,6 +82,7 @@ int CommandMeshToSdf(int argc, char** argv)
     { { "source mesh", in },
       { "creation parameters", "lvdif mesh-to-sdf --dims " + std::to_string(dims) + " --padding " +
           std::to_string(padding) + " --sign " + lvdif::toString(options.sign) + (args.has("svf") ? " --svf" : "") +
+          (options.reorientFaces ? " --reorient" : "") +
           " --band " + std::to_string(band) } },
     progress);
   std::printf("%zu triangles (%zu degenerate skipped, %zu boundary edges) -> %lld x %lld x %lld voxels, sign %s, "

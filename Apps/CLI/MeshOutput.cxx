@@ -17,6 +17,8 @@
 #include "vtkPolyDataMapper.h"
 #include "vtkProperty.h"
 #include "vtkRenderWindow.h"
+
+#include <cstdlib>
 #include "vtkRenderer.h"
 #include "vtkSTLWriter.h"
 #include "vtkUnsignedCharArray.h"
@@ -142,6 +144,13 @@ void RenderPng(vtkPolyData* mesh, const std::string& path, int width, int height
   renderer->SetBackground2(0.05, 0.05, 0.08);
   renderer->GradientBackgroundOn();
   vtkNew<vtkRenderWindow> window;
+  // Debian's VTK renders through X only: without a display it aborts the
+  // process, so say so first (the mesh itself has been written already)
+  if (window->IsA("vtkXOpenGLRenderWindow") && !std::getenv("DISPLAY"))
+  {
+    throw lvdif::Error(lvdif::ErrorCode::InvalidArgument,
+      "cannot render " + path + ": no X display (DISPLAY is not set); run under xvfb-run -a");
+  }
   window->SetOffScreenRendering(1);
   window->SetSize(width, height);
   window->AddRenderer(renderer);

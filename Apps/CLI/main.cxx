@@ -22,7 +22,7 @@ const Command commands[] = {
   { "mesh", CommandMesh, "mesh VOLUME OUT.(ply|obj|stl|vtp) [--png OUT.png]   extract the surface of a volume" },
   { "convert", CommandConvert, "convert IN OUT   between .lvdv and the original's .bv" },
   { "mesh-to-sdf", CommandMeshToSdf,
-    "mesh-to-sdf MESH OUT.(lvdv|bv) [--dims N] [--padding P] [--sign normal|pseudo|winding] [--svf] [--band B] "
+    "mesh-to-sdf MESH OUT.(lvdv|bv) [--dims N] [--padding P] [--sign normal|pseudo|winding] [--reorient] [--svf] [--band B] "
     "[--device cpu|cuda|auto]   voxelize a mesh (OBJ, OFF, STL, PLY)" },
   { "script", CommandScript,
     "script FILE.lvs [--in VOLUME] [--out VOLUME] [--mesh OUT] [--png OUT.png] [--size N]   run a script" },

@@ -284,7 +284,9 @@ std::unique_ptr<cudasdf::Session> openCuda(const MeshToSdfPrepared& prepared, co
 Device chooseDevice(const MeshToSdfPrepared& prepared, const MeshToSdfOptions& options)
 {
   const Device d = resolveDevice(options.device);
-  if (d != Device::Cuda || options.device != Device::Auto || options.sign != SignMode::WindingNumber) return d;
+  if (d != Device::Cuda || options.sign != SignMode::WindingNumber) return d;
+  if (options.reorientFaces) return Device::Cpu; // not on CUDA (documented at the option)
+  if (options.device != Device::Auto) return d;
   MeshToSdfPrepared::Impl& impl = prepared.impl();
   if (!WindingSigner::mayHaveReversedFaces(impl.mesh)) return d;
   double unused = 0;
@@ -353,7 +355,8 @@ void computeBox(const Engine& e, const VoxelBox& box, float* out, MeshToSdfStats
   forRows(box, intr, progressBase + 0.5 * progressSpan, 0.5 * progressSpan,
     [&](std::int64_t j, std::int64_t k, std::int64_t r) {
       std::int64_t ev = 0, ex = 0, fs = 0;
-      e.winding->signRow(e.position(box.lo[0], j, k), e.geom.spacing[0], nx, out + r * nx, ev, ex, &fs);
+      e.winding->signRow(
+        e.position(box.lo[0], j, k), e.geom.spacing[0], nx, out + r * nx, ev, ex, &fs, e.opts.reorientFaces);
       evals += ev;
       exact += ex;
       fullSums += fs;

@@ -138,10 +138,12 @@ public:
   /// fullSums (optional) counts voxels whose refinement summed every
   /// reversed/removed face exactly (or all of M, on an ambiguous oblique ray).
   void signRow(V3 rowStart, double h, std::int64_t n, float* out, std::int64_t& evaluations,
-    std::int64_t& fallbacks, std::int64_t* fullSums = nullptr) const;
+    std::int64_t& fallbacks, std::int64_t* fullSums = nullptr, bool reoriented = false) const;
   /// Exact winding number at p by a ray in a fixed oblique direction; the
-  /// sum of all solid angles if that ray is ambiguous.
-  double evaluate(V3 p) const;
+  /// sum of all solid angles if that ray is ambiguous. reoriented: of M+
+  /// (every component consistently oriented, exact duplicates once) instead
+  /// of M as given (MeshToSdfOptions::reorientFaces).
+  double evaluate(V3 p, bool reoriented = false) const;
 
   struct Cluster
   {
@@ -170,7 +172,7 @@ public:
 
 private:
   const Closure& coneOverMesh() const;
-  bool insideAt(V3 p, std::int64_t& fullSums) const;
+  bool insideAt(V3 p, std::int64_t& fullSums, bool reoriented) const;
   const PreparedMesh& Mesh;
   Closure Plus;                          // M+ (F reversed, R removed) closed by the cone over dM+
   std::unique_ptr<DipoleTree> Flipped;   // F reversed, weight 2, and R reversed, weight 1 (null if both empty)

@@ -260,14 +260,23 @@ const WindingSigner::Closure& WindingSigner::coneOverMesh() const
   return *this->Legacy;
 }
 
-double WindingSigner::evaluate(V3 p) const
+double WindingSigner::evaluate(V3 p, bool reoriented) const
 {
   std::vector<Bvh::RayHit> hits;
+  const bool correct = this->Flipped && !reoriented;
   if (this->Plus.bvh->rayHits(p, Oblique, 0.0, hits))
   {
     double k = 0;
     for (const auto& h : hits) k += h.sign;
-    return k - coneWinding(this->Plus, p) - (this->Flipped ? this->Flipped->exact(p) : 0.0);
+    return k - coneWinding(this->Plus, p) - (correct ? this->Flipped->exact(p) : 0.0);
+  }
+  if (reoriented)
+  {
+    // w of M+ (the re-oriented faces, duplicates once): its triangles lead Plus.closed
+    return laneOrderedSum(this->Plus.meshTris, [&](std::size_t i) {
+      const Tri& t = this->Plus.closed[i];
+      return solidAngle(p, t.v[0], t.v[1], t.v[2]);
+    }) / FourPi;
   }
   return laneOrderedSum(this->Mesh.tris.size(), [&](std::size_t i) {
     const Tri& t = this->Mesh.tris[i];
@@ -275,18 +284,18 @@ double WindingSigner::evaluate(V3 p) const
   }) / FourPi;
 }
 
-bool WindingSigner::insideAt(V3 p, std::int64_t& fullSums) const
+bool WindingSigner::insideAt(V3 p, std::int64_t& fullSums, bool reoriented) const
 {
   std::vector<Bvh::RayHit> hits;
   if (!this->Plus.bvh->rayHits(p, Oblique, 0.0, hits))
   {
     ++fullSums;
-    return insideOf(this->evaluate(p)); // sums all solid angles of M
+    return insideOf(this->evaluate(p, reoriented)); // sums all solid angles of M (M+)
   }
   double k = 0;
   for (const auto& h : hits) k += h.sign;
   const double u = k - coneWinding(this->Plus, p);
-  if (!this->Flipped) return insideOf(u);
+  if (!this->Flipped || reoriented) return insideOf(u);
   double sLo = 0, sHi = 0;
   std::int64_t leafTris = 0;
   const auto r = this->Flipped->refine(p, 0,
@@ -296,7 +305,7 @@ bool WindingSigner::insideAt(V3 p, std::int64_t& fullSums) const
 }
 
 void WindingSigner::signRow(V3 rowStart, double h, std::int64_t n, float* out, std::int64_t& evaluations,
-  std::int64_t& fallbacks, std::int64_t* fullSums) const
+  std::int64_t& fallbacks, std::int64_t* fullSums, bool reoriented) const
 {
   std::int64_t fullLocal = 0;
   std::int64_t& full = fullSums ? *fullSums : fullLocal;
@@ -308,7 +317,7 @@ void WindingSigner::signRow(V3 rowStart, double h, std::int64_t n, float* out, s
   {
     for (std::int64_t i = 0; i < n; ++i)
     {
-      if (this->insideAt(pos(i), full)) out[i] = -out[i];
+      if (this->insideAt(pos(i), full, reoriented)) out[i] = -out[i];
     }
     fallbacks += n;
     evaluations += n;
@@ -320,7 +329,7 @@ void WindingSigner::signRow(V3 rowStart, double h, std::int64_t n, float* out, s
   for (const auto& x : hits) ahead += x.sign;
   std::size_t next = 0; // first hit not yet passed
   const bool open = !c.cone.empty();
-  const DipoleTree* flips = this->Flipped.get();
+  const DipoleTree* flips = reoriented ? nullptr : this->Flipped.get();
   bool have = false;
   double lo = 0, hi = 0;                 // interval of u = w_{M+}
   std::int64_t segEnd = 0;               // the bounded segment covers voxels < segEnd

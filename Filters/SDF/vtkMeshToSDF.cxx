@@ -249,6 +249,7 @@ int vtkMeshToSDF::RequestData(vtkInformation*, vtkInformationVector** inputVecto
     o.bandWidth = this->BandWidth > 0 ? static_cast<float>(this->BandWidth) : std::numeric_limits<float>::infinity();
     o.unit = this->WorldUnits ? lvdif::DistanceUnit::World : lvdif::DistanceUnit::Voxel;
     o.useVertexNormals = this->UseVertexNormals;
+    o.reorientFaces = this->ReorientFaces;
     o.svfFilters = static_cast<unsigned>(this->SignVoxelFilters);
     o.device = this->Device == DEVICE_CPU ? lvdif::Device::Cpu
                                           : (this->Device == DEVICE_CUDA ? lvdif::Device::Cuda : lvdif::Device::Auto);
@@ -289,6 +290,7 @@ void vtkMeshToSDF::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "BandWidth: " << this->BandWidth << "\n";
   os << indent << "WorldUnits: " << this->WorldUnits << "\n";
   os << indent << "UseVertexNormals: " << this->UseVertexNormals << "\n";
+  os << indent << "ReorientFaces: " << this->ReorientFaces << "\n";
   os << indent << "SignVoxelFilters: " << this->SignVoxelFilters << "\n";
   os << indent << "Device: " << this->Device << "\n";
 }

@@ -116,6 +116,16 @@ public:
   ///@}
 
   ///@{
+  /// WINDING_NUMBER mode: re-orient every connected component consistently and
+  /// count exact duplicate faces once before taking the winding number, for
+  /// meshes whose face orientation cannot be trusted (default off: the mesh as
+  /// given). Runs on the CPU whatever the Device.
+  vtkSetMacro(ReorientFaces, bool);
+  vtkGetMacro(ReorientFaces, bool);
+  vtkBooleanMacro(ReorientFaces, bool);
+  ///@}
+
+  ///@{
   /// Sign voxel filters run afterwards (bits 1,2,4,8 = SVF1..SVF4; default 0 = none).
   vtkSetClampMacro(SignVoxelFilters, int, 0, 15);
   vtkGetMacro(SignVoxelFilters, int);
@@ -148,6 +158,7 @@ protected:
   double BandWidth = 0.0;
   bool WorldUnits = false;
   bool UseVertexNormals = false;
+  bool ReorientFaces = false;
   int SignVoxelFilters = 0;
   int Device = DEVICE_AUTO;
 

@@ -21,6 +21,9 @@ assert code == 1 and ("out of range" in err or "limit" in err or "1..1048576" in
 
 import os  # noqa: E402
 
+code, err = run("mesh-to-sdf", "in.obj", os.path.join(out, "x.lvdv"), "--sign", "pseudo", "--reorient")
+assert code == 1 and err.endswith("--reorient needs --sign winding"), (code, err)
+
 os.makedirs(out, exist_ok=True)
 bad = os.path.join(out, "bad.lvs")
 with open(bad, "w") as f:
