@@ -29,26 +29,6 @@ using namespace sdfdetail;
 
 namespace
 {
-double now()
-{
-  return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count();
-}
-
-/// LVDIF_MESH_TO_SDF_TRACE=1: host phase times on stderr (benchmarks).
-bool traceOn()
-{
-  static const bool on = [] {
-    const char* v = std::getenv("LVDIF_MESH_TO_SDF_TRACE");
-    return v != nullptr && v[0] == '1';
-  }();
-  return on;
-}
-
-void trace(const char* what, double seconds)
-{
-  if (traceOn()) std::fprintf(stderr, "[mesh to SDF] %s: %.2f ms\n", what, seconds * 1e3);
-}
-
 void validateGrid(const GridGeometry& g)
 {
   for (int a = 0; a < 3; ++a)
@@ -637,70 +617,5 @@ MeshToSdfPrepared prepareMeshToSdf(const TriangleMesh& mesh, SignMode sign)
   return prepareInternal(mesh, sign == SignMode::WindingNumber);
 }
 
-std::size_t MeshToSdfPrepared::triangles() const { return this->Pimpl->mesh.tris.size(); }
-std::size_t MeshToSdfPrepared::degenerateSkipped() const { return this->Pimpl->mesh.degenerate; }
-std::size_t MeshToSdfPrepared::boundaryEdges() const { return this->Pimpl->mesh.boundaryEdges; }
-double MeshToSdfPrepared::prepareSeconds() const { return this->Pimpl->prepareSeconds; }
-
-const NearestIndex& MeshToSdfPrepared::Impl::nearestIndex(double& seconds)
-{
-  std::lock_guard<std::mutex> lock(this->Lock);
-  if (!this->nearest)
-  {
-    const double t0 = now();
-    this->nearest = std::make_unique<NearestIndex>(this->mesh.tris);
-    seconds += now() - t0;
-    trace("nearest index", now() - t0);
-  }
-  return *this->nearest;
-}
-
-const WindingSigner& MeshToSdfPrepared::Impl::windingSigner(double& seconds)
-{
-  std::lock_guard<std::mutex> lock(this->Lock);
-  if (!this->Winding)
-  {
-    const double t0 = now();
-    this->Winding = std::make_unique<WindingSigner>(this->mesh);
-    seconds += now() - t0;
-  }
-  return *this->Winding;
-}
-
-bool MeshToSdfPrepared::Impl::hasWindingSigner()
-{
-  std::lock_guard<std::mutex> lock(this->Lock);
-  return this->Winding != nullptr;
-}
-
-const cudasdf::DeviceMesh& MeshToSdfPrepared::Impl::deviceMesh(
-  bool winding, bool normals, double& seconds, bool windingLater)
-{
-  const WindingSigner* w = winding ? &this->windingSigner(seconds) : nullptr;
-  // Sessions of other threads may use the copy: the winding part is only
-  // added (never replaced), and only sessions in WindingNumber mode read it.
-  std::lock_guard<std::mutex> lock(this->Lock);
-  const double t0 = now();
-  // the GPU's tree: only the device path needs it (the CPU queries NearestIndex)
-  if (!this->bvh)
-  {
-    const double tb = now();
-    this->bvh = std::make_unique<Bvh>(this->mesh.tris);
-    trace("mesh BVH", now() - tb);
-  }
-  if (!this->Device)
-  {
-    this->Device = cudasdf::uploadMesh(this->mesh, *this->bvh, w, normals, windingLater);
-  }
-  else
-  {
-    if (w && !this->Device->hasWinding()) this->Device->addWinding(*w);
-    if (normals && !this->Device->hasNormals()) this->Device->addNormals();
-  }
-  seconds += now() - t0;
-  return *this->Device;
-}
-
-MeshToSdfPrepared::Impl::~Impl() = default;
 
 } // namespace lvdif

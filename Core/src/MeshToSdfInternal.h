@@ -18,6 +18,11 @@ namespace lvdif
 namespace sdfdetail
 {
 
+/// Seconds of a steady clock; host phase times on stderr when
+/// LVDIF_MESH_TO_SDF_TRACE=1 (benchmarks). MeshToSdfPrepared.cpp.
+double now();
+void trace(const char* what, double seconds);
+
 struct PreparedMesh
 {
   std::vector<Tri> tris;          // non-degenerate triangles only
