@@ -35,7 +35,7 @@ std::shared_ptr<const lvdif::MarchingCubesTriangleTable> convert()
     int ours = 0;
     for (int v = 0; v < 8; ++v)
       if ((vc >> v) & 1) ours |= 1 << corner[v];
-    const EDGE_LIST* e = cases[vc].edges;
+    const auto* e = cases[vc].edges; // int (EDGE_LIST in VTK 9.1; a plain int in ParaView 5.11's VTK)
     auto& row = (*table)[static_cast<std::size_t>(ours)];
     for (int k = 0; k < 15 && e[k] >= 0; k += 3)
     {
