@@ -1,4 +1,5 @@
 #include "MeshOutput.h"
+#include "VolumeFiles.h"
 
 #include "lvdif/ChunkedMarchingCubes.h"
 #include "lvdif/Error.h"
@@ -82,8 +83,7 @@ vtkSmartPointer<vtkPolyData> MeshVolume(const lvdif::DictionaryVolume& volume, l
 
 void WriteMesh(vtkPolyData* mesh, const std::string& path)
 {
-  std::string ext = path.substr(path.find_last_of('.') + 1);
-  std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char ch) { return std::tolower(ch); });
+  const std::string ext = Extension(path);
   int ok = 0;
   if (ext == "ply")
   {

@@ -188,21 +188,6 @@ VoxelBox dabInfluenceBox(const DictionaryVolume& volume, const Dab& dab, const B
 
 namespace detail
 {
-EncodeParams EncodeParams::of(const SdfDictionary& d, float band)
-{
-  // the same expressions as SdfDictionary's constructor
-  const SdfDictionaryParams& p = d.params();
-  EncodeParams e;
-  e.halfA = std::llround(p.groupALimit / p.stepA);
-  e.zeroKey = d.zeroKey();
-  e.invStepA = 1.0 / p.stepA;
-  e.invStepB = 1.0 / p.stepB;
-  e.firstB = d.firstGroupBValue();
-  e.encodeALimit = 0.5 * (static_cast<double>(e.halfA) * p.stepA + e.firstB);
-  e.band = band;
-  return e;
-}
-
 DabPlan planDabs(DictionaryVolume& volume, const std::vector<Dab>& dabs, const BrushSettings& settings)
 {
   validate(dabs, settings);

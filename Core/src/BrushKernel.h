@@ -74,45 +74,16 @@ LVDIF_HD inline void combineVoxel(
   }
 }
 
-/// The encoder of SdfDictionary::encodeClamped, restated from the dictionary's
-/// public parameters so device code can run it (TestBrush checks it against
-/// the dictionary for every key midpoint).
+/// SdfDictionary::encodeClamped for host and device code: the dictionary's
+/// own encodeWith on its constants, after clamping to the band (TestBrushCuda
+/// checks it against encodeClamped for every key midpoint).
 struct EncodeParams
 {
-  std::int64_t halfA = 0, zeroKey = 0;
-  double invStepA = 0, invStepB = 0, firstB = 0, encodeALimit = 0;
+  SdfDictionary::EncodeConstants c;
   float band = 8;
 
-  static EncodeParams of(const SdfDictionary& d, float band);
+  static EncodeParams of(const SdfDictionary& d, float band) { return { d.encodeConstants(), band }; }
 
-  LVDIF_HD static std::int64_t roundHalfDown(double x)
-  {
-    const double f = static_cast<double>(static_cast<std::int64_t>(x));
-    return static_cast<std::int64_t>(x - f > 0.5 ? f + 1 : f);
-  }
-  LVDIF_HD std::uint16_t encodeFloat(float value) const
-  {
-    if (!(value == value))
-      return 65535;
-    const double a = value < 0 ? -static_cast<double>(value) : static_cast<double>(value);
-    std::int64_t offset;
-    if (a <= encodeALimit)
-    {
-      offset = roundHalfDown(a * invStepA);
-      if (offset > halfA)
-        offset = halfA;
-    }
-    else
-    {
-      const double t = (a - firstB) * invStepB;
-      const double j = t > 1e6 ? 1e6 : static_cast<double>(roundHalfDown(t));
-      offset = halfA + 1 + static_cast<std::int64_t>(j < 0 ? 0 : j);
-    }
-    if (value < 0)
-      return offset > zeroKey ? 0 : static_cast<std::uint16_t>(zeroKey - offset);
-    const std::int64_t k = zeroKey + offset;
-    return k > 65535 ? 65535 : static_cast<std::uint16_t>(k);
-  }
   LVDIF_HD std::uint16_t operator()(double value) const
   {
     float v = static_cast<float>(value);
@@ -120,7 +91,7 @@ struct EncodeParams
       v = band;
     if (v < -band)
       v = -band;
-    return encodeFloat(v);
+    return SdfDictionary::encodeWith(c, v);
   }
 };
 

@@ -187,6 +187,23 @@ void setCells(Box& b, const VoxelBox& cells)
 }
 
 /// The float grid's device copy, uploaded once (invalidate() drops it).
+/// Device buffers of one batch of n chunks, P and C being the batch's totals
+/// behind pBase and cBase (both extraction paths size them the same way).
+void reserveBatch(MarchingCubesCudaState& S, int n, long long P, long long C)
+{
+  S.boxes.reserve(n);
+  S.pBase.reserve(n + 1);
+  S.cBase.reserve(n + 1);
+  S.vBase.reserve(n + 1);
+  S.tBase.reserve(n + 1);
+  S.masks.reserve(P);
+  S.vcount.reserve(P + 1);
+  S.vfirst.reserve(P + 1);
+  S.cases.reserve(C);
+  S.tcount.reserve(C + 1);
+  S.tfirst.reserve(C + 1);
+}
+
 void ensureGrid(const ChunkedMarchingCubes::Impl& impl, MarchingCubesCudaState& S)
 {
   if (S.hostGrid == impl.Grid.data) return;
@@ -222,17 +239,7 @@ std::vector<ChunkMesh> runBatch(const ChunkedMarchingCubes::Impl& impl, Marching
     maxC = std::max(maxC, nc);
   }
   const long long P = pb[n], C = cb[n];
-  S.boxes.reserve(n);
-  S.pBase.reserve(n + 1);
-  S.cBase.reserve(n + 1);
-  S.vBase.reserve(n + 1);
-  S.tBase.reserve(n + 1);
-  S.masks.reserve(P);
-  S.vcount.reserve(P + 1);
-  S.vfirst.reserve(P + 1);
-  S.cases.reserve(C);
-  S.tcount.reserve(C + 1);
-  S.tfirst.reserve(C + 1);
+  reserveBatch(S, n, P, C);
   LVDIF_CUDA_CHECK(cudaMemcpy(S.boxes.p, boxes.data(), n * sizeof(Box), cudaMemcpyHostToDevice));
   LVDIF_CUDA_CHECK(cudaMemcpy(S.pBase.p, pb.data(), (n + 1) * sizeof(long long), cudaMemcpyHostToDevice));
   LVDIF_CUDA_CHECK(cudaMemcpy(S.cBase.p, cb.data(), (n + 1) * sizeof(long long), cudaMemcpyHostToDevice));
@@ -430,17 +437,7 @@ void packLocked(const ChunkedMarchingCubes::Impl& impl, MarchingCubesCudaState& 
       ++last;
     }
     const int n = static_cast<int>(last - first);
-    S.boxes.reserve(n);
-    S.pBase.reserve(n + 1);
-    S.cBase.reserve(n + 1);
-    S.vBase.reserve(n + 1);
-    S.tBase.reserve(n + 1);
-    S.masks.reserve(P);
-    S.vcount.reserve(P + 1);
-    S.vfirst.reserve(P + 1);
-    S.cases.reserve(C);
-    S.tcount.reserve(C + 1);
-    S.tfirst.reserve(C + 1);
+    reserveBatch(S, n, P, C);
     cudaStream_t cs = S.compute;
     LVDIF_CUDA_CHECK(cudaMemcpyAsync(S.boxes.p, all.data() + first, n * sizeof(Box), cudaMemcpyHostToDevice, cs));
     LVDIF_CUDA_CHECK(cudaMemcpyAsync(S.pBase.p, pb.data(), (n + 1) * sizeof(long long), cudaMemcpyHostToDevice, cs));

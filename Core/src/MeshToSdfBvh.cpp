@@ -12,7 +12,6 @@ namespace sdfdetail
 
 namespace
 {
-constexpr double FourPi = 12.566370614359172;
 constexpr int LeafSize = 4;
 } // namespace
 

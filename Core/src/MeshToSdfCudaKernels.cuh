@@ -33,7 +33,6 @@ namespace
 constexpr int SignWarps = 4;   // warps (scan lines) per block of the sign kernel
 constexpr unsigned FullMask = 0xffffffffu;
 constexpr int MaxHits = 96;    // crossings a scan line may hold (more: per-voxel fallback)
-constexpr double FourPi = 12.566370614359172;
 
 struct GpuNode
 {

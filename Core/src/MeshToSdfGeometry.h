@@ -19,6 +19,8 @@ namespace lvdif
 namespace sdfdetail
 {
 
+constexpr double FourPi = 12.566370614359172; // solid angle of the whole sphere
+
 struct V3
 {
   double x = 0, y = 0, z = 0;

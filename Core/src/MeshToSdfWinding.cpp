@@ -46,7 +46,6 @@ namespace sdfdetail
 
 namespace
 {
-constexpr double FourPi = 12.566370614359172;
 constexpr double FirstTheta = 0.3;                              // per voxel, before refine()
 constexpr std::int64_t Segment = 16, MinSegment = 4;                          // voxels per bounded row segment
 

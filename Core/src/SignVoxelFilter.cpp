@@ -2,6 +2,7 @@
 #include "lvdif/SignVoxelFilter.h"
 
 #include "SignVoxelFilterImpl.h"
+#include "SignVoxelFilterRules.h"
 
 #include "lvdif/Error.h"
 #include "lvdif/Memory.h"
@@ -56,8 +57,7 @@ SignVoxelFilterStats signVoxelFilter(
   s.axis = params.axis;
   s.filters = params.filters;
   s.boundarySign = params.boundary == SvfBoundary::Outside ? 1 : 0;
-  const int u = params.axis == 0 ? 1 : 0;
-  const int v = params.axis == 2 ? 1 : 2;
+  const int u = svf::axisU(params.axis), v = svf::axisV(params.axis);
   const std::int64_t autoCap = std::max<std::int64_t>({ g.dims[u], g.dims[v], 2 });
   s.cap = params.maxIterations > 0 ? params.maxIterations : static_cast<int>(std::min<std::int64_t>(autoCap, 1 << 30));
 

@@ -18,6 +18,7 @@
 
 #include <algorithm>
 #include <fstream>
+#include <utility>
 #include <vector>
 
 vtkStandardNewMacro(vtkPDictionaryVolumeReader);
@@ -145,6 +146,13 @@ int vtkPDictionaryVolumeReader::RequestData(
       else
         dst->AddArray(d);
     }
+    // (destination, source) arrays, matched by name once per piece, not per voxel
+    std::vector<std::pair<vtkDataArray*, vtkDataArray*>> pairs;
+    for (int q = 0; q < dst->GetNumberOfArrays(); ++q)
+    {
+      if (vtkDataArray* sa = src->GetArray(dst->GetArray(q)->GetName()))
+        pairs.emplace_back(dst->GetArray(q), sa);
+    }
     for (int k = sub[4]; k <= sub[5]; ++k)
       for (int j = sub[2]; j <= sub[3]; ++j)
         for (int i = sub[0]; i <= sub[1]; ++i)
@@ -155,13 +163,8 @@ int vtkPDictionaryVolumeReader::RequestData(
           if (filled[static_cast<size_t>(o)])
             continue;
           const vtkIdType s = img->ComputePointId(li);
-          for (int q = 0; q < dst->GetNumberOfArrays(); ++q)
-          {
-            vtkDataArray* d = dst->GetArray(q);
-            vtkDataArray* sa = src->GetArray(d->GetName());
-            if (sa)
-              d->SetTuple(o, s, sa);
-          }
+          for (const auto& pr : pairs)
+            pr.first->SetTuple(o, s, pr.second);
           filled[static_cast<size_t>(o)] = 1;
           --missing;
         }

@@ -59,12 +59,8 @@ vtkSmartPointer<vtkPolyData> vtkLVDIFChunkMesh::ToPolyData(
     c->SetName("rgba");
     c->SetNumberOfComponents(4);
     c->SetNumberOfTuples(np);
-    for (vtkIdType i = 0; i < np; ++i)
-    {
-      const lvdif::Rgba& col = mesh.colors[i];
-      const unsigned char v[4] = { col.r, col.g, col.b, col.a };
-      c->SetTypedTuple(i, v);
-    }
+    static_assert(sizeof(lvdif::Rgba) == 4, "Rgba is r, g, b, a bytes");
+    std::memcpy(c->GetPointer(0), mesh.colors.data(), 4 * static_cast<size_t>(np));
     pd->GetPointData()->AddArray(c);
   }
   if (mesh.cornerColors.size() == mesh.triangles.size() && mesh.triangleCells.size() == mesh.triangles.size())

@@ -60,17 +60,7 @@
 #include <string>
 #include <thread>
 
-namespace
-{
-double percentile(std::vector<double> v, double p)
-{
-  if (v.empty())
-    return 0;
-  std::sort(v.begin(), v.end());
-  const std::size_t i = static_cast<std::size_t>(std::ceil(p * v.size())) - 1;
-  return v[std::min(i, v.size() - 1)];
-}
-} // namespace
+using bench::percentile;
 
 std::vector<std::string> runStroke(int n, int samples, double radius, bool render, bool exact, double settleMs)
 {
