@@ -81,6 +81,16 @@ inline double winding(const lvdif::TriangleMesh& m, P p)
   return static_cast<double>(sum / (4 * 3.14159265358979323846264338327950288L));
 }
 
+/// a and b in one mesh (b's indices shifted past a's points).
+inline lvdif::TriangleMesh merge(const lvdif::TriangleMesh& a, const lvdif::TriangleMesh& b)
+{
+  lvdif::TriangleMesh m = a;
+  const std::uint32_t off = static_cast<std::uint32_t>(a.points.size());
+  m.points.insert(m.points.end(), b.points.begin(), b.points.end());
+  for (auto t : b.triangles) m.triangles.push_back({ t[0] + off, t[1] + off, t[2] + off });
+  return m;
+}
+
 inline lvdif::TriangleMesh randomSoup(int n, unsigned seed)
 {
   std::mt19937 rng(seed);

@@ -5,6 +5,7 @@
 #include "lvdif/AnalyticFill.h"
 #include "lvdif/BrushCuda.h"
 #include "lvdif/Cuda.h"
+#include "lvdif/Error.h"
 #include "lvdif/Stroke.h"
 #include "lvdif/UndoStack.h"
 
@@ -105,4 +106,11 @@ TEST(BrushCuda, DispatchFallsBackToTheCpu)
   applyDabs(Device::Auto, a, { Dab{ BrushShape::Sphere, { 16, 16, 16 }, 6, {} } }, BrushSettings());
   applyDabs(b, { Dab{ BrushShape::Sphere, { 16, 16, 16 }, 6, {} } }, BrushSettings());
   EXPECT_EQ(edittest::countDifferences(a, b), 0);
+  EXPECT_LT(a.sdf(16, 16, 16), 0.0f); // the dab did land
+  if (!cuda::available())
+  {
+    // the CUDA entry point itself refuses here, so Auto's success was the fallback
+    DictionaryVolume c(edittest::options(32));
+    EXPECT_THROW(cuda::applyDabs(c, { Dab{ BrushShape::Sphere, { 16, 16, 16 }, 6, {} } }, BrushSettings()), Error);
+  }
 }

@@ -115,11 +115,8 @@ TEST(MeshToSdfCuda, AutoKeepsReversedFacesOnTheCpu)
 TEST(MeshToSdfCuda, ClosedAndIntersectingMeshesAndSubExtent)
 {
   if (!cuda::available()) GTEST_SKIP() << "no CUDA device";
-  TriangleMesh m = makeSphereMesh(-0.35f, 0, 0, 0.8f, 16, 32);
-  const TriangleMesh b = makeSphereMesh(0.4f, 0.1f, 0.05f, 0.75f, 16, 32);
-  const std::uint32_t off = static_cast<std::uint32_t>(m.points.size());
-  m.points.insert(m.points.end(), b.points.begin(), b.points.end());
-  for (auto t : b.triangles) m.triangles.push_back({ t[0] + off, t[1] + off, t[2] + off });
+  const TriangleMesh m =
+    oracle::merge(makeSphereMesh(-0.35f, 0, 0, 0.8f, 16, 32), makeSphereMesh(0.4f, 0.1f, 0.05f, 0.75f, 16, 32));
   const GridGeometry g = fitGridToMesh(m, 80, 2);
   VoxelBox box;
   box.lo = { 5, 7, 3 };

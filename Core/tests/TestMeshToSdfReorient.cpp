@@ -94,10 +94,7 @@ TEST(MeshToSdfReorient, TwoComponentsAndHolesKeepTheirOwnOrientation)
   // its own (|w| >= 1/2 inside either way), the hole closed by the cone
   TriangleMesh a = makeSphereMesh(-0.6f, 0, 0, 0.5f, 10, 20);
   const TriangleMesh b = makeSphereMesh(0.6f, 0, 0, 0.45f, 10, 20);
-  TriangleMesh clean = a;
-  const std::uint32_t off = static_cast<std::uint32_t>(a.points.size());
-  clean.points.insert(clean.points.end(), b.points.begin(), b.points.end());
-  for (auto t : b.triangles) clean.triangles.push_back({ t[0] + off, t[1] + off, t[2] + off });
+  TriangleMesh clean = oracle::merge(a, b);
   TriangleMesh m = clean;
   std::mt19937 rng(9);
   for (std::size_t t = 0; t < a.triangles.size(); ++t)

@@ -22,14 +22,7 @@ using namespace lvdif;
 
 namespace
 {
-TriangleMesh merge(const TriangleMesh& a, const TriangleMesh& b)
-{
-  TriangleMesh m = a;
-  const std::uint32_t off = static_cast<std::uint32_t>(a.points.size());
-  m.points.insert(m.points.end(), b.points.begin(), b.points.end());
-  for (auto t : b.triangles) m.triangles.push_back({ t[0] + off, t[1] + off, t[2] + off });
-  return m;
-}
+using oracle::merge;
 
 /// Reverses a random fraction of the faces; returns how many.
 std::size_t flip(TriangleMesh& m, double fraction, unsigned seed)

@@ -3,7 +3,11 @@
 // float rounding, boundary edges) computed in double precision with VTK's own classes.
 #pragma once
 
+#include "vtkAlgorithm.h"
 #include "vtkAppendPolyData.h"
+#include "vtkCallbackCommand.h"
+#include "vtkCommand.h"
+#include "vtkExecutive.h"
 #include "vtkCellArray.h"
 #include "vtkCleanPolyData.h"
 #include "vtkFeatureEdges.h"
@@ -300,4 +304,17 @@ inline vtkIdType duplicatedTriangles(vtkPolyData* pd)
   }
   return dups;
 }
+/// Updates alg and returns how many ErrorEvents it (or its executive) raised.
+inline int countErrors(vtkAlgorithm* mc)
+{
+  int errors = 0;
+  vtkNew<vtkCallbackCommand> cb;
+  cb->SetClientData(&errors);
+  cb->SetCallback([](vtkObject*, unsigned long, void* data, void*) { ++*static_cast<int*>(data); });
+  mc->AddObserver(vtkCommand::ErrorEvent, cb);
+  mc->GetExecutive()->AddObserver(vtkCommand::ErrorEvent, cb);
+  mc->Update();
+  return errors;
+}
+
 } // namespace meshtest

@@ -125,17 +125,6 @@ void expectSameOutput(vtkDataObject* a, vtkDataObject* b)
   }
 }
 
-int countErrors(vtkChunkedMarchingCubes* mc)
-{
-  int errors = 0;
-  vtkNew<vtkCallbackCommand> cb;
-  cb->SetClientData(&errors);
-  cb->SetCallback([](vtkObject*, unsigned long, void* data, void*) { ++*static_cast<int*>(data); });
-  mc->AddObserver(vtkCommand::ErrorEvent, cb);
-  mc->GetExecutive()->AddObserver(vtkCommand::ErrorEvent, cb);
-  mc->Update();
-  return errors;
-}
 } // namespace
 
 TEST(ChunkedMarchingCubesVolume, VolumeEqualsItsDenseImage)
