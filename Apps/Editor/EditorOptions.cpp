@@ -39,7 +39,7 @@ EditorOptions parseEditorOptions(const QStringList& arguments)
   const QCommandLineOption strength("strength", "Brush strength in (0, 1] (default: the tool's).", "s");
   const QCommandLineOption falloff("falloff", "Brush falloff: constant, linear, smooth, sharp (default: the tool's).", "curve");
   const QCommandLineOption mirror("mirror", "Symmetry: the mirrored axes, e.g. x or xz.", "axes");
-  const QCommandLineOption keys("keys", "Key presses before the drag, e.g. \"G ] Ctrl+Z\" (tests).", "keys");
+  const QCommandLineOption keys("keys", "Key presses before the drag, e.g. \"G ] Ctrl+Z\" (RightBracket/LeftBracket name ] and [) (tests).", "keys");
   const QCommandLineOption keysAfter("keys-after", "Key presses after the drag (tests).", "keys");
   const QCommandLineOption dragMods("drag-modifiers", "Keys held during --replay-drag: ctrl, shift or ctrl,shift.", "keys");
   const QCommandLineOption saveAsAnswer("save-as-answer", "The file the Save As dialog answers (tests).", "file");

@@ -13,6 +13,7 @@
 #include <QTest>
 #endif
 
+#include <cctype>
 #include <cmath>
 #include <cstdio>
 
@@ -46,8 +47,10 @@ void MainWindow::replayDrag(const QVector<QPointF>& points, bool ctrl, bool shif
 bool MainWindow::typeKeys(const QString& keys)
 {
 #ifdef LVDIF_EDITOR_HAVE_QTTEST
-  for (const QString& word : keys.split(' ', Qt::SkipEmptyParts))
+  for (QString word : keys.split(' ', Qt::SkipEmptyParts))
   {
+    // bracket names for callers that cannot pass brackets (CMake lists)
+    word.replace("LeftBracket", "[").replace("RightBracket", "]");
     const QKeySequence seq = QKeySequence::fromString(word, QKeySequence::PortableText);
     if (seq.isEmpty() || seq[0] == 0)
     {
@@ -59,8 +62,13 @@ bool MainWindow::typeKeys(const QString& keys)
     // shortcuts only fire in the active window
     QApplication::setActiveWindow(this);
     this->View->setFocus();
-    QTest::keyClick(this->View, Qt::Key(k & ~Qt::KeyboardModifierMask),
-      Qt::KeyboardModifiers(k & Qt::KeyboardModifierMask));
+    const int key = k & ~Qt::KeyboardModifierMask;
+    const Qt::KeyboardModifiers mods(k & Qt::KeyboardModifierMask);
+    // printable keys by their character (QTest knows the text of every one of them)
+    if (key >= 0x20 && key <= 0x7e)
+      QTest::keyClick(this->View, static_cast<char>(std::tolower(key)), mods);
+    else
+      QTest::keyClick(this->View, Qt::Key(key), mods);
     QApplication::processEvents();
   }
   return true;

@@ -351,8 +351,16 @@ detail::DabPlan planGroups(DictionaryVolume& volume, const std::vector<Dab>& dab
   const bool csg = settings.op == BrushOp::Add || settings.op == BrushOp::Subtract || settings.op == BrushOp::Paint;
   ctx.unitWeight = csg && settings.strength == 1 && settings.falloff == Falloff::Constant ? 1 : 0;
   ctx.groupSize = 1;
+  int nMirror = 0;
   for (int a = 0; a < 3; ++a)
-    ctx.groupSize *= settings.symmetry.mirror[a] ? 2 : 1;
+  {
+    ctx.twicePlane[a] = 2 * settings.symmetry.plane[a];
+    if (settings.symmetry.mirror[a])
+    {
+      ctx.groupSize *= 2;
+      ctx.mirrorAxis[nMirror++] = a; // mirrorDabs' bit order
+    }
+  }
   if (settings.op == BrushOp::Add || settings.op == BrushOp::Paint)
   {
     ctx.colorKey = volume.colors().add(settings.color);
@@ -428,13 +436,16 @@ EditResult applyGather(DictionaryVolume& volume, const detail::DabPlan& plan, Ch
         {
           double s = 0, t = 0, disp[3] = { 0, 0, 0 };
           bool in = false;
+          const Dab& base = plan.dabs[static_cast<std::size_t>(gi * g)];
           for (int k = gi * g; k < (gi + 1) * g; ++k)
           {
             const Dab& d = plan.dabs[static_cast<std::size_t>(k)];
             if (!plan.boxes[static_cast<std::size_t>(k)].contains(x, y, z))
               continue;
-            const double sk = dabDistance(d, double(x), double(y), double(z), c.rounding);
-            const double tk = dabRadialFraction(d, double(x), double(y), double(z));
+            double p[3] = { double(x), double(y), double(z) };
+            detail::reflectForMember(c, k - gi * g, p);
+            const double sk = dabDistance(base, p[0], p[1], p[2], c.rounding);
+            const double tk = dabRadialFraction(base, p[0], p[1], p[2]);
             if (!in || sk < s)
               s = sk;
             if (!in || tk < t)

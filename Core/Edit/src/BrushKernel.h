@@ -30,8 +30,13 @@ struct BrushContext
   double band = 8;
   /// Strength 1 and the Constant falloff: the paper's CSG bit for bit, no t needed.
   int unitWeight = 1;
-  /// Dabs per symmetry group (1, 2, 4 or 8), see Brush.h.
+  /// Dabs per symmetry group (1, 2, 4 or 8), see Brush.h. Member m of a group is
+  /// the group's first dab seen from the voxel reflected on the axes of m's set
+  /// bits (bit i: axis mirrorAxis[i], p -> twicePlane - p): exact for integer
+  /// voxels and planes on whole or half voxels, so mirror images are bit-exact.
   int groupSize = 1;
+  int mirrorAxis[3] = { 0, 1, 2 };
+  double twicePlane[3] = { 0, 0, 0 };
   /// Soft paint: the sorted colour keys the dab may meet (mixCount of them) and,
   /// per key, the keys of its mixes with the brush colour at 1/8 .. 7/8.
   const std::uint16_t* mixFrom = nullptr;
@@ -149,19 +154,34 @@ LVDIF_HD void combineVoxel(std::uint16_t& sdf, std::uint16_t& color, double s, d
 
 /// Applies dab group `g` (dabs [g * groupSize, (g + 1) * groupSize)) to one voxel:
 /// the members whose box holds it act as the union of their primitives.
+/// The voxel position member m of a group sees (see BrushContext::groupSize).
+LVDIF_HD void reflectForMember(const BrushContext& c, int m, double p[3])
+{
+  for (int i = 0; (1 << i) < c.groupSize; ++i)
+    if ((m >> i) & 1)
+    {
+      const int a = c.mirrorAxis[i];
+      p[a] = c.twicePlane[a] - p[a];
+    }
+}
+
 template <typename Box, typename Encode>
 LVDIF_HD void applyGroupToVoxel(std::uint16_t& sdf, std::uint16_t& color, long long x, long long y, long long z,
   const Dab* dabs, const Box* boxes, int g, const BrushContext& c, const float* table, const Encode& encode)
 {
   double s = 0, t = 0;
   int best = -1;
-  for (int k = g * c.groupSize; k < (g + 1) * c.groupSize; ++k)
+  const Dab& base = dabs[g * c.groupSize];
+  for (int m = 0; m < c.groupSize; ++m)
   {
+    const int k = g * c.groupSize + m;
     const Box& b = boxes[k];
     if (x < b.lo[0] || x > b.hi[0] || y < b.lo[1] || y > b.hi[1] || z < b.lo[2] || z > b.hi[2])
       continue;
-    const double sk = dabDistance(dabs[k], double(x), double(y), double(z), c.rounding);
-    const double tk = c.unitWeight ? 0.0 : dabRadialFraction(dabs[k], double(x), double(y), double(z));
+    double p[3] = { double(x), double(y), double(z) };
+    reflectForMember(c, m, p);
+    const double sk = dabDistance(base, p[0], p[1], p[2], c.rounding);
+    const double tk = c.unitWeight ? 0.0 : dabRadialFraction(base, p[0], p[1], p[2]);
     if (best < 0 || sk < s)
       s = sk;
     if (best < 0 || tk < t)

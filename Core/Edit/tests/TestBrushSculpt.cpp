@@ -369,9 +369,10 @@ TEST(BrushSculpt, SymmetryGivesItsOwnMirrorImage)
       s.falloff = static_cast<Falloff>(i % 4);
       s.strength = i % 2 ? 0.75 : 1.0;
       s.color = Rgba{ 10, static_cast<std::uint8_t>(20 * i), 30, 255 };
-      std::vector<Dab> dabs{ Dab{ BrushShape::Sphere, { 20.25, 40.5, 44.75 }, 6, {} },
-        Dab{ BrushShape::Cube, { 29.5, 18.25, 46 }, 4, {} },
-        Dab{ BrushShape::Capsule, { 14, 30.5, 20 }, 3.5, { 22.75, 36, 18.5 } } };
+      // arbitrary positions (not binary fractions): the images are still exact
+      std::vector<Dab> dabs{ Dab{ BrushShape::Sphere, { 20.123, 40.517, 44.771 }, 6.1, {} },
+        Dab{ BrushShape::Cube, { 29.613, 18.252, 46.07 }, 4.3, {} },
+        Dab{ BrushShape::Capsule, { 14.33, 30.59, 20.01 }, 3.7, { 22.751, 36.2, 18.49 } } };
       applyDabs(v, dabs, s);
       ++i;
     }

@@ -55,7 +55,9 @@
 //
 // Symmetry mirrors every dab about the chosen planes (x = plane[0], ...);
 // a dab and its mirror images act as one dab whose primitive is their union
-// (s = min, t = min), so a symmetric volume stays exactly symmetric.
+// (s = min, t = min). An image is evaluated as the dab itself at the reflected
+// voxel (exact for planes on whole or half voxels), so a symmetric volume stays
+// exactly symmetric wherever the dabs are.
 //
 // Only chunks that intersect the dab's influence box are visited; a voxel is
 // written only when its 4 bytes change, so exactly the chunks with a changed
