@@ -15,6 +15,9 @@ namespace
 int runBatch(MainWindow& w, const EditorOptions& o)
 {
   bool ok = true;
+  // a script first: it sets the scene the keys and the drag then work on
+  if (!o.script.isEmpty())
+    ok = w.runScript(o.script) && ok;
   if (!o.keys.isEmpty())
     ok = w.typeKeys(o.keys) && ok;
   if (!o.drag.isEmpty())
@@ -26,8 +29,6 @@ int runBatch(MainWindow& w, const EditorOptions& o)
     ok = w.typeKeys(o.keysAfter) && ok;
   for (int i = 0; i < o.undo; ++i)
     w.undo();
-  if (!o.script.isEmpty())
-    ok = w.runScript(o.script) && ok;
   w.finishMeshing();
   if (!o.screenshot.isEmpty())
     ok = w.saveScreenshot(o.screenshot) && ok;

@@ -45,7 +45,10 @@ E lookup(const std::string& word, const std::map<std::string, E>& table, std::si
 }
 
 const std::map<std::string, BrushOp> Ops{ { "add", BrushOp::Add }, { "subtract", BrushOp::Subtract },
-  { "paint", BrushOp::Paint } };
+  { "paint", BrushOp::Paint }, { "smooth", BrushOp::Smooth }, { "inflate", BrushOp::Inflate }, { "grab", BrushOp::Grab },
+  { "flatten", BrushOp::Flatten }, { "crease", BrushOp::Crease } };
+const std::map<std::string, Falloff> Falloffs{ { "constant", Falloff::Constant }, { "linear", Falloff::Linear },
+  { "smooth", Falloff::Smooth }, { "sharp", Falloff::Sharp } };
 const std::map<std::string, BrushShape> Shapes{ { "sphere", BrushShape::Sphere }, { "cube", BrushShape::Cube },
   { "capsule", BrushShape::Capsule } };
 const std::map<std::string, BrushKind> Kinds{ { "single", BrushKind::Single }, { "basic", BrushKind::Basic },
@@ -68,13 +71,26 @@ void writeRecording(std::ostream& out, const Recording& r)
         << " kind=" << toString(e.kind) << " spacing=" << num(e.spacing) << " blend=" << num(e.brush.blend)
         << " coloroffset=" << num(e.brush.colorOffset) << " rounding=" << num(e.brush.rounding) << " color=" << int(e.brush.color.r) << ","
         << int(e.brush.color.g) << "," << int(e.brush.color.b) << "," << int(e.brush.color.a)
-        << " dabs=" << e.dabs.size() << "\n";
+        << " dabs=" << e.dabs.size();
+    // the sculpting settings only where they differ from the defaults (older files stay as they were)
+    if (e.brush.strength != 1)
+      out << " strength=" << num(e.brush.strength);
+    if (e.brush.falloff != Falloff::Constant)
+      out << " falloff=" << toString(e.brush.falloff);
+    if (e.brush.invert)
+      out << " invert=1";
+    for (int a = 0; a < 3; ++a)
+      if (e.brush.symmetry.mirror[a])
+        out << " mirror" << "xyz"[a] << "=" << num(e.brush.symmetry.plane[a]);
+    out << "\n";
     for (const Dab& d : e.dabs)
     {
       out << (d.shape == shape ? "d" : (std::string("d:") + toString(d.shape))) << " " << num(d.center[0]) << " "
           << num(d.center[1]) << " " << num(d.center[2]) << " " << num(d.radius);
       if (d.shape == BrushShape::Capsule)
         out << " " << num(d.end[0]) << " " << num(d.end[1]) << " " << num(d.end[2]);
+      if (e.brush.op == BrushOp::Grab) // the drag of each grab dab
+        out << " " << num(d.vec[0]) << " " << num(d.vec[1]) << " " << num(d.vec[2]);
       out << "\n";
     }
   }
@@ -119,9 +135,13 @@ Recording readRecording(std::istream& in)
       std::vector<std::string> f;
       for (std::string w; words >> w;)
         f.push_back(w);
-      const std::size_t want = d.shape == BrushShape::Capsule ? 7 : 4;
+      const bool grab = r.records.back().brush.op == BrushOp::Grab;
+      const std::size_t want = (d.shape == BrushShape::Capsule ? 7 : 4) + (grab ? 3 : 0);
       if (f.size() != want)
         bad(no, "a dab needs " + std::to_string(want) + " numbers");
+      if (grab)
+        for (int a = 0; a < 3; ++a)
+          d.vec[a] = toNumber(f[want - 3 + a], no, "grab displacement");
       for (int a = 0; a < 3; ++a)
         d.center[a] = toNumber(f[a], no, "dab position");
       d.radius = toNumber(f[3], no, "dab radius");
@@ -164,6 +184,21 @@ Recording readRecording(std::istream& in)
     e.brush.colorOffset = toNumber(get("coloroffset"), no, "coloroffset");
     if (kv.count("rounding"))
       e.brush.rounding = toNumber(kv["rounding"], no, "rounding");
+    if (kv.count("strength"))
+      e.brush.strength = toNumber(kv["strength"], no, "strength");
+    if (kv.count("falloff"))
+      e.brush.falloff = lookup(kv["falloff"], Falloffs, no, "falloff");
+    if (kv.count("invert"))
+      e.brush.invert = toNumber(kv["invert"], no, "invert") != 0;
+    for (int a = 0; a < 3; ++a)
+    {
+      const std::string key = std::string("mirror") + "xyz"[a];
+      if (kv.count(key))
+      {
+        e.brush.symmetry.mirror[a] = true;
+        e.brush.symmetry.plane[a] = toNumber(kv[key], no, key.c_str());
+      }
+    }
     {
       std::istringstream c(get("color"));
       int rgba[4];

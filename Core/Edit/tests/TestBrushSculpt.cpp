@@ -9,12 +9,14 @@
 #include "lvdif/ChunkedMarchingCubes.h"
 #include "lvdif/Editor.h"
 #include "lvdif/Error.h"
+#include "lvdif/Recording.h"
 
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <cstdio>
 #include <random>
+#include <sstream>
 
 using namespace lvdif;
 using edittest::options;
@@ -402,4 +404,47 @@ TEST(BrushSculpt, BadSettingsAreRefused)
   s.symmetry.plane[1] = NAN;
   EXPECT_THROW(applyDab(v, Dab{}, s), Error);
   EXPECT_EQ(edittest::countDifferences(v, *before), 0);
+}
+
+TEST(BrushSculpt, RecordingsReplayTheSculptingBrushesBitForBit)
+{
+  DictionaryVolume v(options(64));
+  fillFromFunction(v, sphereSdf(31.5, 31.5, 31.5, 18));
+  auto start = v.clone();
+  Editor ed(v);
+  ed.startRecording();
+  auto stroke = [&ed](std::initializer_list<std::array<double, 3>> pts) {
+    ed.beginStroke();
+    for (const auto& p : pts)
+    {
+      BrushSample s;
+      s.position = p;
+      ed.addSample(s);
+    }
+    ed.endStroke();
+  };
+  ed.stroke.radius = 8;
+  ed.brush.op = BrushOp::Grab;
+  ed.brush.falloff = Falloff::Smooth;
+  stroke({ { 31.5, 31.5, 49.5 }, { 33, 32, 51 }, { 35, 33, 52.5 } });
+  ed.brush.op = BrushOp::Inflate;
+  ed.brush.strength = 0.35;
+  ed.brush.invert = true;
+  ed.brush.symmetry.mirror = { true, false, true };
+  ed.brush.symmetry.plane = { 31.5, 0, 31.5 };
+  stroke({ { 20, 40, 40 }, { 24, 44, 42 } });
+  ed.brush = BrushSettings();
+  ed.brush.op = BrushOp::Paint;
+  ed.brush.falloff = Falloff::Linear;
+  ed.brush.color = Rgba{ 9, 99, 199, 255 };
+  stroke({ { 31.5, 13.5, 31.5 }, { 36, 14, 30 } });
+  std::ostringstream text;
+  writeRecording(text, ed.stopRecording());
+  std::istringstream in(text.str());
+  const Recording back = readRecording(in);
+  Editor player(*start);
+  player.play(back);
+  EXPECT_EQ(edittest::countDifferences(v, *start), 0);
+  EXPECT_NE(text.str().find("op=grab"), std::string::npos);
+  EXPECT_NE(text.str().find("mirrorz=31.5"), std::string::npos);
 }
