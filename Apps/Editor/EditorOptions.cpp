@@ -31,6 +31,8 @@ EditorOptions parseEditorOptions(const QStringList& arguments)
   const QCommandLineOption drag("replay-drag", "Synthetic left-drag through display points 'x,y;x,y;...' (or / between points).", "points");
   const QCommandLineOption undo("undo", "Undo N steps after the drag.", "n", "0");
   const QCommandLineOption shot("screenshot", "Save a screenshot (PNG) and quit.", "file");
+  const QCommandLineOption dragShot("screenshot-during-drag",
+    "Save a screenshot of the view during --replay-drag, before the button is released.", "file");
   const QCommandLineOption windowShot("screenshot-window", "Save a picture of the whole window (PNG) and quit.", "file");
   const QCommandLineOption save("save", "Save the volume (.lvdv or .vti) and quit.", "file");
   const QCommandLineOption exp("export", "Export the mesh (.ply, .obj, .stl) and quit.", "file");
@@ -57,7 +59,7 @@ EditorOptions parseEditorOptions(const QStringList& arguments)
     "Replay a recorded stroke (JSON-lines samples or .lvr) at its speed, print the latency and FPS, quit.", "file");
   p.addOptions({ open, openMesh, meshRes, meshSign, create, fill, script, drag, undo, shot, save, exp, op, shape, kind, radius, color, size, quit,
     noRecovery, recoveryDir, autosave, perVertex, benchmark, strength, falloff, mirror, keys, keysAfter, dragMods,
-    saveAsAnswer, windowShot });
+    saveAsAnswer, windowShot, dragShot });
   p.process(arguments);
 
   EditorOptions o;
@@ -98,6 +100,7 @@ EditorOptions parseEditorOptions(const QStringList& arguments)
   o.undo = p.value(undo).toInt();
   o.screenshot = p.value(shot);
   o.windowShot = p.value(windowShot);
+  o.dragShot = p.value(dragShot);
   o.save = p.value(save);
   o.exportMesh = p.value(exp);
   o.op = p.value(op).toLower();

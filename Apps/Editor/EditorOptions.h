@@ -20,6 +20,7 @@ struct EditorOptions
   int undo = 0;               // --undo N after the drag
   QString screenshot;         // --screenshot FILE.png (the view)
   QString windowShot;         // --screenshot-window FILE.png (the whole window)
+  QString dragShot;           // --screenshot-during-drag FILE.png (the view before the button is released)
   QString save;               // --save FILE.vti
   QString exportMesh;         // --export FILE.ply|obj|stl
   QString op = "add", shape = "sphere", kind = "basic"; // --op (a tool name) --shape --brush

@@ -40,6 +40,8 @@ void MainWindow::replayDrag(const QVector<QPointF>& points, bool ctrl, bool shif
     send(points[i], vtkCommand::MouseMoveEvent);
     QApplication::processEvents();
   }
+  if (!this->Options.dragShot.isEmpty())
+    this->saveScreenshot(this->Options.dragShot); // before the release: e.g. the Dynamic preview
   send(points.back(), vtkCommand::LeftButtonReleaseEvent);
   iren->SetEventInformation(iren->GetEventPosition()[0], iren->GetEventPosition()[1], 0, 0);
 }
