@@ -22,6 +22,7 @@
 //                       Ctrl+Shift+S saved).
 //   --script-shape V.vti  V is sphere.lvs's result: the analytic sphere minus the cube.
 //   --mesh M.ply        the exported mesh has triangles inside the volume.
+//   --write-cone-obj F.obj  writes a cone with its apex up (+y) for the upright test.
 //   --write-sphere-obj F.obj   writes a UV sphere (centre MeshC, radius MeshR,
 //                       128 x 64 segments) for --open-mesh (runs before the editor).
 //   --mesh-sphere V.vti V is that sphere converted by --open-mesh: every voxel's
@@ -136,6 +137,29 @@ void checkSphere(const char* path, bool added, int n = 64, bool colours = true)
 
 const double MeshC[3] = { 0.1, -0.2, 0.3 }, MeshR = 1.0;
 const int MeshSlices = 128, MeshStacks = 64;
+
+// A closed cone, apex up (+y, as mesh files are usually Y up): the upright test's input.
+void writeConeObj(const char* path)
+{
+  const double pi = std::acos(-1.0);
+  const int n = 48;
+  std::FILE* f = std::fopen(path, "w");
+  if (!f)
+  {
+    check(false, std::string("cannot write ") + path);
+    return;
+  }
+  std::fprintf(f, "v 0 1 0\nv 0 -1 0\n"); // apex, base centre
+  for (int i = 0; i < n; ++i)
+    std::fprintf(f, "v %.9g -1 %.9g\n", 0.6 * std::cos(2 * pi * i / n), 0.6 * std::sin(2 * pi * i / n));
+  for (int i = 0; i < n; ++i)
+  {
+    const int a = 3 + i, b = 3 + (i + 1) % n;
+    std::fprintf(f, "f 1 %d %d\nf 2 %d %d\n", b, a, a, b); // outward
+  }
+  std::fclose(f);
+  check(true, std::string("wrote ") + path);
+}
 
 void writeSphereObj(const char* path)
 {
@@ -362,6 +386,8 @@ int main(int argc, char* argv[])
       check(dims[0] == 64 && img->GetPointData()->GetArray("sdf") && img->GetPointData()->GetArray("rgba"),
         std::string(argv[i]) + " is a 64^3 volume with sdf and rgba");
     }
+    else if (!std::strcmp(argv[i], "--write-cone-obj") && i + 1 < argc)
+      writeConeObj(argv[++i]);
     else if (!std::strcmp(argv[i], "--write-sphere-obj") && i + 1 < argc)
       writeSphereObj(argv[++i]);
     else if (!std::strcmp(argv[i], "--mesh-sphere") && i + 1 < argc)
