@@ -1,5 +1,5 @@
-"""Checks the plugin's server-manager XML (registered and drafts) for what the
-issue asks of every proxy: documentation of the proxy and of every property,
+"""Checks the plugin's server-manager XML for what the
+project asks of every proxy: documentation of the proxy and of every property,
 a default and a domain for every numeric property, a menu category for
 filters, factory hints with the .lvdv extension for readers and writers.
 Usage: python3 lint_xml.py XML_DIR"""
@@ -9,7 +9,7 @@ import sys
 import xml.etree.ElementTree as ET
 
 problems = []
-files = sorted(glob.glob(os.path.join(sys.argv[1], "*.xml")) + glob.glob(os.path.join(sys.argv[1], "drafts", "*.xml")))
+files = sorted(glob.glob(os.path.join(sys.argv[1], "*.xml")))
 for path in files:
     name = os.path.relpath(path, sys.argv[1])
     try:
