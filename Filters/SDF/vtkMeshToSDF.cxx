@@ -21,10 +21,18 @@
 #include "vtkPolyData.h"
 #include "vtkStreamingDemandDrivenPipeline.h"
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 
 vtkStandardNewMacro(vtkMeshToSDF);
+
+namespace
+{
+/// A dense sdf image from this size on is announced with a warning (or from
+/// half the memory limit, when that is lower).
+constexpr std::uint64_t LargeImageBytes = std::uint64_t(1) << 30;
+}
 
 namespace
 {
@@ -234,8 +242,18 @@ int vtkMeshToSDF::RequestData(vtkInformation*, vtkInformationVector** inputVecto
     {
       lvdif::require(box.lo[a] >= 0 && box.hi[a] < g.dims[a], "vtkMeshToSDF: the requested extent is outside the grid");
     }
-    lvdif::requireMemory(lvdif::checkedMultiply(static_cast<std::uint64_t>(box.voxelCount()), 4, "sdf"),
-      "vtkMeshToSDF: the sdf array");
+    const std::uint64_t bytes = lvdif::checkedMultiply(static_cast<std::uint64_t>(box.voxelCount()), 4, "sdf");
+    const std::uint64_t limit = lvdif::memoryLimitBytes();
+    // said before allocating, so that a GUI user sees why the machine is busy
+    // (above the limit the allocation is refused below)
+    if (bytes >= std::min<std::uint64_t>(LargeImageBytes, limit / 2))
+    {
+      vtkWarningMacro(<< "the dense sdf image of " << (box.hi[0] - box.lo[0] + 1) << " x "
+                      << (box.hi[1] - box.lo[1] + 1) << " x " << (box.hi[2] - box.lo[2] + 1) << " points needs "
+                      << lvdif::formatBytes(bytes) << " (memory limit " << lvdif::formatBytes(limit)
+                      << ", LVDIF_MEMORY_LIMIT); a smaller Max Dimension needs less");
+    }
+    lvdif::requireMemory(bytes, "vtkMeshToSDF: the sdf array", limit);
     const lvdif::TriangleMesh mesh = toMesh(input, this->UseVertexNormals);
     sdf->SetNumberOfTuples(static_cast<vtkIdType>(box.voxelCount()));
     lvdif::MeshToSdfOptions o;

@@ -5,6 +5,7 @@
 
 #include "vtkAlgorithm.h"
 #include "vtkDataObject.h"
+#include "vtkDataSet.h"
 #include "vtkFloatArray.h"
 #include "vtkImageData.h"
 #include "vtkInformation.h"
@@ -136,6 +137,21 @@ lvdif::FloatGridView FloatView(vtkImageData* image, vtkDataArray* array)
     view.data = f->GetPointer(0);
   }
   return view;
+}
+
+vtkDataArray* SdfArray(vtkInformation* selection, vtkDataSet* input, vtkDataArray* selected)
+{
+  if (selected || !input)
+  {
+    return selected;
+  }
+  const char* name = selection && selection->Has(vtkDataObject::FIELD_NAME()) ? selection->Get(vtkDataObject::FIELD_NAME()) : nullptr;
+  if (name && *name)
+  {
+    return nullptr; // a named array that is not there: the caller's error names it
+  }
+  vtkDataArray* sdf = input->GetPointData()->GetArray("sdf");
+  return sdf ? sdf : input->GetPointData()->GetScalars();
 }
 
 std::unique_ptr<lvdif::DictionaryVolume> VolumeFromImage(

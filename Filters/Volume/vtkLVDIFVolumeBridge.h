@@ -18,6 +18,7 @@
 #include <string>
 
 class vtkDataArray;
+class vtkDataSet;
 class vtkImageData;
 class vtkInformation;
 
@@ -52,6 +53,13 @@ LVDIFFILTERSVOLUME_EXPORT lvdif::GridGeometry Geometry(vtkImageData* image);
 /// A view of a float array's storage when it is a contiguous single-component
 /// vtkFloatArray covering the image's points; data is nullptr otherwise.
 LVDIFFILTERSVOLUME_EXPORT lvdif::FloatGridView FloatView(vtkImageData* image, vtkDataArray* array);
+
+/// The SDF array a filter processes: `selected` (its GetInputArrayToProcess)
+/// when found; when the selection names no array (`selection` is the
+/// filter's GetInputArrayInformation: ParaView sends an empty name for a
+/// filter chained to one not yet updated), the point array `sdf`, else the
+/// active point scalars; nullptr when a named array is missing.
+LVDIFFILTERSVOLUME_EXPORT vtkDataArray* SdfArray(vtkInformation* selection, vtkDataSet* input, vtkDataArray* selected);
 }
 
 #endif
