@@ -1,6 +1,7 @@
 #include "vtkMeshToSDF.h"
 
 #include "vtkLVDIFInterrupter.h"
+#include "vtkLVDIFVolumeBridge.h"
 
 #include "lvdif/Error.h"
 #include "lvdif/Memory.h"
@@ -282,6 +283,7 @@ int vtkMeshToSDF::RequestData(vtkInformation*, vtkInformationVector** inputVecto
     }
     return 0;
   }
+  vtkLVDIFVolumeBridge::StoreRange(sdf); // ParaView's data information then needs no pass of its own
   output->SetExtent(ext);
   output->GetPointData()->SetScalars(sdf);
   vtkNew<vtkIdTypeArray> degenerate;

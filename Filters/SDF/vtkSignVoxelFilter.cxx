@@ -147,6 +147,8 @@ int vtkSignVoxelFilter::RequestData(
     return 0;
   }
 
+  // the copy took the input's cached range along, and signs were flipped through the pointer
+  vtkLVDIFVolumeBridge::StoreRange(filtered);
   output->ShallowCopy(input);
   // replace the processed array, keeping its attribute role (e.g. active scalars)
   vtkPointData* pd = output->GetPointData();

@@ -9,11 +9,19 @@
 #include "vtkFloatArray.h"
 #include "vtkImageData.h"
 #include "vtkInformation.h"
+#include "vtkInformationInformationVectorKey.h"
+#include "vtkInformationVector.h"
+#include "vtkInformationDoubleVectorKey.h"
+#include "vtkNew.h"
 #include "vtkPointData.h"
+#include "vtkSMPThreadLocal.h"
+#include "vtkSMPTools.h"
 #include "vtkStreamingDemandDrivenPipeline.h"
 #include "vtkUnsignedCharArray.h"
 
 #include <algorithm>
+#include <array>
+#include <limits>
 #include <cmath>
 #include <sstream>
 
@@ -152,6 +160,59 @@ vtkDataArray* SdfArray(vtkInformation* selection, vtkDataSet* input, vtkDataArra
   }
   vtkDataArray* sdf = input->GetPointData()->GetArray("sdf");
   return sdf ? sdf : input->GetPointData()->GetScalars();
+}
+
+void StoreRange(vtkFloatArray* array)
+{
+  if (!array || array->GetNumberOfComponents() != 1 || array->GetNumberOfTuples() == 0)
+  {
+    return;
+  }
+  array->Modified(); // written through the pointer: drop whatever was cached before
+  const float* v = array->GetPointer(0);
+  struct MinMax
+  {
+    float lo = std::numeric_limits<float>::infinity();
+    float hi = -std::numeric_limits<float>::infinity();
+    bool finite = true;
+  };
+  vtkSMPThreadLocal<MinMax> local;
+  vtkSMPTools::For(0, array->GetNumberOfTuples(), [&](vtkIdType begin, vtkIdType end) {
+    MinMax& m = local.Local();
+    float lo = m.lo, hi = m.hi;
+    bool finite = true;
+    for (vtkIdType i = begin; i < end; ++i)
+    {
+      const float x = v[i];
+      lo = std::min(lo, x);
+      hi = std::max(hi, x);
+      finite &= (x - x == 0.0f); // false for NaN and +-inf
+    }
+    m.lo = lo;
+    m.hi = hi;
+    m.finite = m.finite && finite;
+  });
+  MinMax all;
+  for (const MinMax& m : local)
+  {
+    all.lo = std::min(all.lo, m.lo);
+    all.hi = std::max(all.hi, m.hi);
+    all.finite = all.finite && m.finite;
+  }
+  if (!all.finite)
+  {
+    return;
+  }
+  const double range[2] = { all.lo, all.hi };
+  vtkInformation* info = array->GetInformation();
+  for (vtkInformationInformationVectorKey* key :
+    { vtkAbstractArray::PER_COMPONENT(), vtkAbstractArray::PER_FINITE_COMPONENT() })
+  {
+    vtkNew<vtkInformationVector> perComponent;
+    perComponent->SetNumberOfInformationObjects(1);
+    perComponent->GetInformationObject(0)->Set(vtkDataArray::COMPONENT_RANGE(), range, 2);
+    info->Set(key, perComponent);
+  }
 }
 
 std::unique_ptr<lvdif::DictionaryVolume> VolumeFromImage(

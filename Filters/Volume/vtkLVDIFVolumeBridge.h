@@ -19,6 +19,7 @@
 
 class vtkDataArray;
 class vtkDataSet;
+class vtkFloatArray;
 class vtkImageData;
 class vtkInformation;
 
@@ -60,6 +61,14 @@ LVDIFFILTERSVOLUME_EXPORT lvdif::FloatGridView FloatView(vtkImageData* image, vt
 /// filter chained to one not yet updated), the point array `sdf`, else the
 /// active point scalars; nullptr when a named array is missing.
 LVDIFFILTERSVOLUME_EXPORT vtkDataArray* SdfArray(vtkInformation* selection, vtkDataSet* input, vtkDataArray* selected);
+
+/// Computes the range of a 1-component float array written through its raw
+/// pointer and stores it as the array's cached range and finite range (what
+/// GetRange/GetFiniteRange return until the next Modified()). ParaView asks
+/// every new output for both: VTK's generic pass takes about 1 s each for
+/// 10^8 values, this one pass a fraction of that. Nothing is cached when a
+/// value is not finite (VTK then computes as usual).
+LVDIFFILTERSVOLUME_EXPORT void StoreRange(vtkFloatArray* array);
 }
 
 #endif
