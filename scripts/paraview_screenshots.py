@@ -48,7 +48,7 @@ mc = pvs.ChunkedMarchingCubes(Input=svf)
 v = view()
 pvs.Show(sdf, v)
 d = pvs.Show(mc, v)
-pvs.ColorBy(d, None)
+d.ColorArrayName = [None, ""]
 d.DiffuseColor = [0.9, 0.6, 0.3]
 camera(v, (0.3, 0.4, 2.0))
 pvs.SaveScreenshot(os.path.join(out, "paraview-defaults.png"), v, ImageResolution=[640, 480])
@@ -57,7 +57,7 @@ print("paraview-defaults.png:", name)
 # 2. A slice through the signed distances (band 8: |sdf| saturates 8 voxels from the surface).
 s = pvs.Show(svf, v)
 s.SetRepresentationType("Slice")
-s.SliceMode = "Z Normal"
+s.SliceMode = "XY Plane"
 pvs.ColorBy(s, ("POINTS", "sdf"))
 lut = pvs.GetColorTransferFunction("sdf")
 lut.ApplyPreset("Cool to Warm", True)
@@ -87,7 +87,7 @@ for i, (iso, label) in enumerate(((0.5 * (lo + hi), "former default: mid-range %
         pvs.AssignViewToLayout(v, layout, 1)
     m = pvs.ChunkedMarchingCubes(Input=svf, IsoValue=iso)
     dm = pvs.Show(m, v)
-    pvs.ColorBy(dm, None)
+    dm.ColorArrayName = [None, ""]
     dm.DiffuseColor = [0.9, 0.6, 0.3]
     pvs.Show(sdf, v)
     t = pvs.Text(Text=label)

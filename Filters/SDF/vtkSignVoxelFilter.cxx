@@ -147,7 +147,7 @@ int vtkSignVoxelFilter::RequestData(
     return 0;
   }
 
-  // the copy took the input's cached range along, and signs were flipped through the pointer
+  // signs changed through the pointer: the range of the new values, stored for ParaView's data information
   vtkLVDIFVolumeBridge::StoreRange(filtered);
   output->ShallowCopy(input);
   // replace the processed array, keeping its attribute role (e.g. active scalars)

@@ -21,6 +21,7 @@ import paraview.simple as pvs
 from paraview import servermanager
 from vtkmodules.util.misc import calldata_type
 from vtkmodules.vtkCommonCore import VTK_STRING
+from vtkmodules.util.numpy_support import vtk_to_numpy
 from vtkmodules.vtkFiltersCore import vtkFeatureEdges
 
 plugin = sys.argv[1]
@@ -113,6 +114,12 @@ for name, mesh, dims in generated_meshes() + file_meshes():
     diag = sum((br[2 * a + 1] - br[2 * a]) ** 2 for a in range(3)) ** 0.5
     check(max(abs(x - y) for x, y in zip(bm, br)) <= 1e-5 * diag, "%s: bounds %s, Contour %s"
           % (name, ["%.4f" % v for v in bm], ["%.4f" % v for v in br]))
+    # the sdf ranges ParaView shows (the filters store them) are those of the values
+    for p, what in ((sdf, "Mesh To SDF"), (svf, "Sign Voxel Filter")):
+        shown = p.PointData["sdf"].GetRange()
+        vals = vtk_to_numpy(servermanager.Fetch(p).GetPointData().GetArray("sdf"))
+        check(shown == (float(vals.min()), float(vals.max())), "%s: %s's sdf range %s, values %s"
+              % (name, what, shown, (float(vals.min()), float(vals.max()))))
     # the surface lies on the mesh: bounds within one voxel of the input's
     mb = servermanager.Fetch(mesh).GetBounds()
     off = max(abs(bm[i] - mb[i]) / spacing[i // 2] for i in range(6))
@@ -133,6 +140,31 @@ for name, mesh, dims in generated_meshes() + file_meshes():
         first = False
     for p in (oracle, mc, svf, sdf):
         pvs.Delete(p)
+
+
+def repaired_range():
+    """Sign Voxel Filter flips signs in its copy of the array and stores the new
+    range: the range ParaView reports must be that of its output values, not the
+    one of its (corrupted) input, whose range ParaView computed first.
+    Box 0.7 thick at Max Dimension 80: at most about 6.6 voxels deep and 3.9 out,
+    so flipping far voxels (|d| > 4) changes the range."""
+    box = pvs.Box(XLength=4.0, YLength=1.3, ZLength=0.7)
+    sdf = pvs.MeshToSDF(Input=box, MaxDimension=80)
+    bad = T.corrupt_signs(sdf)
+    bad.UpdatePipeline()
+    bad_range = bad.PointData["sdf"].GetRange()  # ParaView computes and caches it on the input
+    svf = pvs.SignVoxelFilter(Input=bad)
+    shown = svf.PointData["sdf"].GetRange()
+    vals = vtk_to_numpy(servermanager.Fetch(svf).GetPointData().GetArray("sdf"))
+    clean = sdf.PointData["sdf"].GetRange()
+    check(bad_range != clean, "corruption changes the range: clean %s, corrupted %s" % (clean, bad_range))
+    check(shown == (float(vals.min()), float(vals.max())) == clean,
+          "repaired range %s = values %s = clean %s" % (shown, (float(vals.min()), float(vals.max())), clean))
+    for p in (svf, bad, sdf, box):
+        pvs.Delete(p)
+
+
+repaired_range()
 
 
 def memory_messages(limit):
