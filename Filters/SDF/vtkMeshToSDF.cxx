@@ -28,12 +28,6 @@
 
 vtkStandardNewMacro(vtkMeshToSDF);
 
-namespace
-{
-/// A dense sdf image from this size on is announced with a warning (or from
-/// half the memory limit, when that is lower).
-constexpr std::uint64_t LargeImageBytes = std::uint64_t(1) << 30;
-}
 
 namespace
 {
@@ -247,12 +241,11 @@ int vtkMeshToSDF::RequestData(vtkInformation*, vtkInformationVector** inputVecto
     const std::uint64_t limit = lvdif::memoryLimitBytes();
     // said before allocating, so that a GUI user sees why the machine is busy
     // (above the limit the allocation is refused below)
-    if (bytes >= std::min<std::uint64_t>(LargeImageBytes, limit / 2))
+    const std::string warning = vtkLVDIFVolumeBridge::DenseImageWarning(
+      bytes, ext, limit, "a smaller Max Dimension needs less");
+    if (!warning.empty())
     {
-      vtkWarningMacro(<< "the dense sdf image of " << (box.hi[0] - box.lo[0] + 1) << " x "
-                      << (box.hi[1] - box.lo[1] + 1) << " x " << (box.hi[2] - box.lo[2] + 1) << " points needs "
-                      << lvdif::formatBytes(bytes) << " (memory limit " << lvdif::formatBytes(limit)
-                      << ", LVDIF_MEMORY_LIMIT); a smaller Max Dimension needs less");
+      vtkWarningMacro(<< warning);
     }
     lvdif::requireMemory(bytes, "vtkMeshToSDF: the sdf array", limit);
     const lvdif::TriangleMesh mesh = toMesh(input, this->UseVertexNormals);

@@ -81,6 +81,7 @@ void FillImage(const lvdif::DictionaryVolume& volume, const int extentIn[6], vtk
       }
     }
   }
+  StoreRange(sdf); // ParaView's data information then needs no range pass of its own
   image->GetPointData()->AddArray(sdf);
   image->GetPointData()->SetActiveScalars("sdf");
   if (withColor)
@@ -160,6 +161,24 @@ vtkDataArray* SdfArray(vtkInformation* selection, vtkDataSet* input, vtkDataArra
   }
   vtkDataArray* sdf = input->GetPointData()->GetArray("sdf");
   return sdf ? sdf : input->GetPointData()->GetScalars();
+}
+
+std::string DenseImageWarning(std::uint64_t bytes, const int extent[6], std::uint64_t limit, const char* advice)
+{
+  constexpr std::uint64_t Large = std::uint64_t(1) << 30;
+  if (bytes < std::min(Large, limit / 2))
+  {
+    return std::string();
+  }
+  std::ostringstream msg;
+  msg << "the dense image of " << (extent[1] - extent[0] + 1) << " x " << (extent[3] - extent[2] + 1) << " x "
+      << (extent[5] - extent[4] + 1) << " points needs " << lvdif::formatBytes(bytes) << " (memory limit "
+      << lvdif::formatBytes(limit) << ", LVDIF_MEMORY_LIMIT)";
+  if (advice && *advice)
+  {
+    msg << "; " << advice;
+  }
+  return msg.str();
 }
 
 void StoreRange(vtkFloatArray* array)

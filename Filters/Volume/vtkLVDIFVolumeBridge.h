@@ -48,6 +48,13 @@ LVDIFFILTERSVOLUME_EXPORT void SetImageInformation(vtkInformation* outInfo, cons
 LVDIFFILTERSVOLUME_EXPORT std::string WriterInput(vtkImageData* image, const std::string& fileName,
   bool withColor, vtkDataArray*& sdf, vtkDataArray*& rgba, bool& missingFileName);
 
+/// What a filter or reader says (vtkWarningMacro) before it allocates a dense
+/// image of `bytes` for `extent`: the size, the memory limit and what to do;
+/// "" for images under 1 GiB and under half the limit. Above the limit the
+/// allocation itself is refused (lvdif::requireMemory).
+LVDIFFILTERSVOLUME_EXPORT std::string DenseImageWarning(
+  std::uint64_t bytes, const int extent[6], std::uint64_t limit, const char* advice);
+
 /// Geometry of an image's point grid (dims from its extent; origin moved to the extent's first point).
 LVDIFFILTERSVOLUME_EXPORT lvdif::GridGeometry Geometry(vtkImageData* image);
 

@@ -16,6 +16,7 @@ import lvdif_pvtest as T  # first: fixes sys.path for route B
 
 import os
 import sys
+import tempfile
 
 import paraview.simple as pvs
 from paraview import servermanager
@@ -167,12 +168,12 @@ def repaired_range():
 repaired_range()
 
 
-def memory_messages(limit):
-    """Runs Mesh To SDF (sphere, Max Dimension 128: about 126^3 points, 8 MB) under
-    LVDIF_MEMORY_LIMIT=limit; returns (warnings, errors) the filter reported."""
+def memory_messages(make, limit):
+    """Updates the proxy make() returns under LVDIF_MEMORY_LIMIT=limit; returns
+    (warnings, errors) its VTK object reported."""
     os.environ["LVDIF_MEMORY_LIMIT"] = limit
     try:
-        sdf = pvs.MeshToSDF(Input=pvs.Sphere(ThetaResolution=32, PhiResolution=32), MaxDimension=128)
+        proxy = make()
         got = {"WarningEvent": [], "ErrorEvent": []}
 
         def keep(kind):
@@ -181,27 +182,40 @@ def memory_messages(limit):
                 # the text after "vtkMeshToSDF (0x...): " (the "ERROR:" prefix would fail the ctest)
                 got[kind].append(str(calldata).split("): ", 1)[-1].strip())
             return cb
-        algo = sdf.GetClientSideObject()  # builtin session: the VTK filter itself
+        algo = proxy.GetClientSideObject()  # builtin session: the VTK object itself
         for event in got:
             algo.AddObserver(event, keep(event))
         algo.GetExecutive().AddObserver("ErrorEvent", lambda *a: None)  # its "returned failure" echo
-        sdf.UpdatePipeline()
-        pvs.Delete(sdf)
+        proxy.UpdatePipeline()
+        pvs.Delete(proxy)
         return got["WarningEvent"], got["ErrorEvent"]
     finally:
         del os.environ["LVDIF_MEMORY_LIMIT"]
 
 
+def sphere_sdf():
+    """Mesh To SDF of a sphere at Max Dimension 128: 128^3 points, 8 MiB of floats."""
+    return pvs.MeshToSDF(Input=pvs.Sphere(ThetaResolution=32, PhiResolution=32), MaxDimension=128)
+
+
 # a large dense image is announced before it is allocated, with its size ...
-warnings, errors = memory_messages("12M")
-check(len(warnings) == 1 and "MiB" in warnings[0] and "memory limit 12.00 MiB" in warnings[0] and not errors,
-      "warning before a large allocation: %s %s" % (warnings, errors))
+warnings, errors = memory_messages(sphere_sdf, "12M")
+check(len(warnings) == 1 and "needs 8.00 MiB (memory limit 12.00 MiB" in warnings[0] and not errors,
+      "Mesh To SDF warns before a large allocation: %s %s" % (warnings, errors))
 # ... and refused above the limit, with one clear error
-warnings, errors = memory_messages("4M")
-check(len(errors) >= 1 and "sdf array" in errors[0], "refused above the memory limit: %s" % errors[:1])
+warnings, errors = memory_messages(sphere_sdf, "4M")
+check(len(errors) >= 1 and "sdf array" in errors[0], "Mesh To SDF refuses above the memory limit: %s" % errors[:1])
 # small images say nothing
-warnings, errors = memory_messages("1G")
+warnings, errors = memory_messages(sphere_sdf, "1G")
 check(not warnings and not errors, "no message for a small image: %s %s" % (warnings, errors))
+# the .lvdv reader decodes into a dense image too (sdf and rgba: 8 bytes a point, 16 MiB here)
+lvdv = os.path.join(tempfile.mkdtemp(), "sphere.lvdv")
+written = sphere_sdf()
+pvs.SaveData(lvdv, proxy=written)
+pvs.Delete(written)
+warnings, errors = memory_messages(lambda: pvs.OpenDataFile(lvdv), "24M")
+check(len(warnings) == 1 and "needs 16.00 MiB (memory limit 24.00 MiB" in warnings[0] and not errors,
+      "the .lvdv reader warns before a large allocation: %s %s" % (warnings, errors))
 
 print("failures:", check.failures)
 sys.exit(1 if check.failures else 0)
