@@ -52,7 +52,7 @@ def open_edges(polydata):
 
 
 def generated_meshes():
-    """Elongated closed meshes made by ParaView's own sources (name, proxy, MaxDimension or None)."""
+    """Elongated closed meshes made by ParaView's own sources (name, proxy, MaxDimension, Band Width or None)."""
     ell = pvs.Transform(Input=pvs.Sphere(Radius=1.0, ThetaResolution=96, PhiResolution=64))
     ell.Transform.Scale = [3.0, 1.0, 0.6]
     box = pvs.Box(XLength=4.0, YLength=1.3, ZLength=0.7, Center=[0.3, -0.2, 0.1])
@@ -61,86 +61,100 @@ def generated_meshes():
     torus_t = pvs.Transform(Input=torus)
     torus_t.Transform.Scale = [2.0, 1.0, 1.0]
     torus_t.Transform.Rotate = [0.0, 0.0, 20.0]
-    return [("ellipsoid 3:1:0.6", ell, 96), ("box 4:1.3:0.7", box, 80), ("torus 2:1, rotated", torus_t, 96)]
+    # Band Width 0 (exact distances far out, as in the report of the open surface): a lopsided range
+    return [("ellipsoid 3:1:0.6", ell, 96, None), ("box 4:1.3:0.7", box, 80, None),
+            ("torus 2:1, rotated", torus_t, 96, None), ("ellipsoid 3:1:0.6, band 0", ell, 96, 0.0)]
 
 
 def file_meshes():
     out = []
     if not mesh_dir:
         return out
-    for name, dims in (("cow.off", 64), ("elephant.off", 96), ("bunny00.off", 128)):
+    for name, dims, band in (("cow.off", 64, None), ("cow.off", 64, 0.0), ("elephant.off", 96, None),
+                             ("bunny00.off", 128, None)):
         path = os.path.join(mesh_dir, name)
         if os.path.exists(path):
-            out.append((name, getattr(pvs, T.PROXY_NAMES["vtkLVDIFMeshReader"])(FileName=path), dims))
+            reader = getattr(pvs, T.PROXY_NAMES["vtkLVDIFMeshReader"])(FileName=path)
+            out.append((name if band is None else "%s, band %g" % (name, band), reader, dims, band))
         else:
             print("skip %s (not in %s; scripts/extract-meshes.sh)" % (name, mesh_dir))
     return out
 
 
 first = True
-for name, mesh, dims in generated_meshes() + file_meshes():
-    # the chain, with no UpdatePipeline between the filters
-    sdf = pvs.MeshToSDF(Input=mesh)
-    if first:
-        for prop, value in CLI_DEFAULTS.items():
-            got = getattr(sdf, prop)
-            check(got == value, "Mesh To SDF default %s = %r (lvdif mesh-to-sdf: %r)" % (prop, got, value))
-    if dims is not None:
-        sdf.MaxDimension = dims
-    svf = pvs.SignVoxelFilter(Input=sdf)
-    mc = pvs.ChunkedMarchingCubes(Input=svf)
-    check(mc.IsoValue == 0.0, "%s: Chunked Marching Cubes' default iso value is 0 (the SDF's zero set), is %r"
-          % (name, mc.IsoValue))
-    surface = servermanager.Fetch(mc)
-    img_info = sdf.GetDataInformation()
-    ext = img_info.GetExtent()
-    pts = [ext[2 * a + 1] - ext[2 * a] + 1 for a in range(3)]
-    check(len(set(pts)) > 1, "%s: fitted grid %s is not cubic" % (name, "x".join(map(str, pts))))
-    spacing = servermanager.Fetch(sdf).GetSpacing()
+# Two ways to build the chain: as the GUI does (each filter updated by Apply before the next
+# is made, so ParaView fills domain defaults from its data), and as a script does (no update
+# in between; the domains then have no data). The open surface came from the first.
+for mesh_name, mesh, dims, band in generated_meshes() + file_meshes():
+    for flow in ("Apply", "chained"):
+        name = "%s, %s" % (mesh_name, flow)
+        sdf = pvs.MeshToSDF(Input=mesh)
+        if first:
+            for prop, value in CLI_DEFAULTS.items():
+                got = getattr(sdf, prop)
+                check(got == value, "Mesh To SDF default %s = %r (lvdif mesh-to-sdf: %r)" % (prop, got, value))
+        if dims is not None:
+            sdf.MaxDimension = dims
+        if band is not None:
+            sdf.BandWidth = band
+        if flow == "Apply":
+            sdf.UpdatePipeline()
+        svf = pvs.SignVoxelFilter(Input=sdf)
+        if flow == "Apply":
+            svf.UpdatePipeline()
+        mc = pvs.ChunkedMarchingCubes(Input=svf)
+        check(mc.IsoValue == 0.0, "%s: Chunked Marching Cubes' default iso value is 0 (the SDF's zero set), is %r"
+              % (name, mc.IsoValue))
+        surface = servermanager.Fetch(mc)
+        img_info = sdf.GetDataInformation()
+        ext = img_info.GetExtent()
+        pts = [ext[2 * a + 1] - ext[2 * a] + 1 for a in range(3)]
+        check(len(set(pts)) > 1, "%s: fitted grid %s is not cubic" % (name, "x".join(map(str, pts))))
+        spacing = servermanager.Fetch(sdf).GetSpacing()
 
-    oracle = pvs.Contour(Input=svf, ContourBy=["POINTS", "sdf"], Isosurfaces=[0.0], ComputeNormals=0,
-                         ComputeScalars=0, ComputeGradients=0)
-    ref = servermanager.Fetch(oracle)
-    b_mc, n_mc = open_edges(surface)
-    b_ref, n_ref = open_edges(ref)
-    check(b_ref == 0 and n_ref == 0, "%s: oracle Contour is closed and manifold (%d boundary, %d non-manifold edges)"
-          % (name, b_ref, n_ref))
-    check(b_mc == 0 and n_mc == 0, "%s: Chunked Marching Cubes is closed and manifold (%d boundary, %d non-manifold edges)"
-          % (name, b_mc, n_mc))
-    check(surface.GetNumberOfCells() == ref.GetNumberOfCells(), "%s: %d triangles, Contour %d"
-          % (name, surface.GetNumberOfCells(), ref.GetNumberOfCells()))
-    a_mc, a_ref = T.area(mc), T.area(oracle)
-    check(abs(a_mc - a_ref) <= 1e-5 * a_ref, "%s: area %.6f, Contour %.6f" % (name, a_mc, a_ref))
-    bm, br = surface.GetBounds(), ref.GetBounds()
-    diag = sum((br[2 * a + 1] - br[2 * a]) ** 2 for a in range(3)) ** 0.5
-    check(max(abs(x - y) for x, y in zip(bm, br)) <= 1e-5 * diag, "%s: bounds %s, Contour %s"
-          % (name, ["%.4f" % v for v in bm], ["%.4f" % v for v in br]))
-    # the sdf ranges ParaView shows (the filters store them) are those of the values
-    for p, what in ((sdf, "Mesh To SDF"), (svf, "Sign Voxel Filter")):
-        shown = p.PointData["sdf"].GetRange()
-        vals = vtk_to_numpy(servermanager.Fetch(p).GetPointData().GetArray("sdf"))
-        check(shown == (float(vals.min()), float(vals.max())), "%s: %s's sdf range %s, values %s"
-              % (name, what, shown, (float(vals.min()), float(vals.max()))))
-    # the surface lies on the mesh: bounds within one voxel of the input's
-    mb = servermanager.Fetch(mesh).GetBounds()
-    off = max(abs(bm[i] - mb[i]) / spacing[i // 2] for i in range(6))
-    check(off <= 1.0, "%s: surface bounds within %.2f voxels of the mesh's" % (name, off))
+        oracle = pvs.Contour(Input=svf, ContourBy=["POINTS", "sdf"], Isosurfaces=[0.0], ComputeNormals=0,
+                             ComputeScalars=0, ComputeGradients=0)
+        ref = servermanager.Fetch(oracle)
+        b_mc, n_mc = open_edges(surface)
+        b_ref, n_ref = open_edges(ref)
+        check(b_ref == 0 and n_ref == 0, "%s: oracle Contour is closed and manifold (%d boundary, %d non-manifold edges)"
+              % (name, b_ref, n_ref))
+        check(b_mc == 0 and n_mc == 0, "%s: Chunked Marching Cubes is closed and manifold (%d boundary, %d non-manifold edges)"
+              % (name, b_mc, n_mc))
+        check(surface.GetNumberOfCells() == ref.GetNumberOfCells(), "%s: %d triangles, Contour %d"
+              % (name, surface.GetNumberOfCells(), ref.GetNumberOfCells()))
+        a_mc, a_ref = T.area(mc), T.area(oracle)
+        check(abs(a_mc - a_ref) <= 1e-5 * a_ref, "%s: area %.6f, Contour %.6f" % (name, a_mc, a_ref))
+        bm, br = surface.GetBounds(), ref.GetBounds()
+        diag = sum((br[2 * a + 1] - br[2 * a]) ** 2 for a in range(3)) ** 0.5
+        check(max(abs(x - y) for x, y in zip(bm, br)) <= 1e-5 * diag, "%s: bounds %s, Contour %s"
+              % (name, ["%.4f" % v for v in bm], ["%.4f" % v for v in br]))
+        # the sdf ranges ParaView shows (the filters store them) are those of the values
+        for p, what in ((sdf, "Mesh To SDF"), (svf, "Sign Voxel Filter")):
+            shown = p.PointData["sdf"].GetRange()
+            vals = vtk_to_numpy(servermanager.Fetch(p).GetPointData().GetArray("sdf"))
+            check(shown == (float(vals.min()), float(vals.max())), "%s: %s's sdf range %s, values %s"
+                  % (name, what, shown, (float(vals.min()), float(vals.max()))))
+        # the surface lies on the mesh: bounds within one voxel of the input's
+        mb = servermanager.Fetch(mesh).GetBounds()
+        off = max(abs(bm[i] - mb[i]) / spacing[i // 2] for i in range(6))
+        check(off <= 1.0, "%s: surface bounds within %.2f voxels of the mesh's" % (name, off))
 
-    if first:
-        # first display: the image as an outline, the surface as a surface
-        view = pvs.CreateRenderView()
-        d_img = pvs.Show(sdf, view)
-        d_mc = pvs.Show(mc, view)
-        check(d_img.Representation == "Outline", "Mesh To SDF shows as %s (Outline expected)" % d_img.Representation)
-        check(d_mc.Representation == "Surface", "Chunked Marching Cubes shows as %s (Surface expected)"
-              % d_mc.Representation)
-        pvs.Delete(d_img)
-        pvs.Delete(d_mc)
-        pvs.Delete(view)
-        del view
-        first = False
-    for p in (oracle, mc, svf, sdf):
-        pvs.Delete(p)
+        if first:
+            # first display: the image as an outline, the surface as a surface
+            view = pvs.CreateRenderView()
+            d_img = pvs.Show(sdf, view)
+            d_mc = pvs.Show(mc, view)
+            check(d_img.Representation == "Outline", "Mesh To SDF shows as %s (Outline expected)" % d_img.Representation)
+            check(d_mc.Representation == "Surface", "Chunked Marching Cubes shows as %s (Surface expected)"
+                  % d_mc.Representation)
+            pvs.Delete(d_img)
+            pvs.Delete(d_mc)
+            pvs.Delete(view)
+            del view
+            first = False
+        for p in (oracle, mc, svf, sdf):
+            pvs.Delete(p)
 
 
 def repaired_range():
