@@ -22,12 +22,10 @@
 #include "vtkPolyData.h"
 #include "vtkStreamingDemandDrivenPipeline.h"
 
-#include <algorithm>
 #include <cmath>
 #include <limits>
 
 vtkStandardNewMacro(vtkMeshToSDF);
-
 
 namespace
 {

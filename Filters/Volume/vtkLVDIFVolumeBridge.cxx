@@ -9,9 +9,9 @@
 #include "vtkFloatArray.h"
 #include "vtkImageData.h"
 #include "vtkInformation.h"
+#include "vtkInformationDoubleVectorKey.h"
 #include "vtkInformationInformationVectorKey.h"
 #include "vtkInformationVector.h"
-#include "vtkInformationDoubleVectorKey.h"
 #include "vtkNew.h"
 #include "vtkPointData.h"
 #include "vtkSMPThreadLocal.h"
@@ -20,9 +20,8 @@
 #include "vtkUnsignedCharArray.h"
 
 #include <algorithm>
-#include <array>
-#include <limits>
 #include <cmath>
+#include <limits>
 #include <sstream>
 
 namespace vtkLVDIFVolumeBridge
@@ -154,7 +153,8 @@ vtkDataArray* SdfArray(vtkInformation* selection, vtkDataSet* input, vtkDataArra
   {
     return selected;
   }
-  const char* name = selection && selection->Has(vtkDataObject::FIELD_NAME()) ? selection->Get(vtkDataObject::FIELD_NAME()) : nullptr;
+  const char* name =
+    selection && selection->Has(vtkDataObject::FIELD_NAME()) ? selection->Get(vtkDataObject::FIELD_NAME()) : nullptr;
   if (name && *name)
   {
     return nullptr; // a named array that is not there: the caller's error names it

@@ -16,8 +16,8 @@
 #include <algorithm>
 #include <cstdint>
 #include <cstring>
-#include <string>
 #include <fstream>
+#include <string>
 
 vtkStandardNewMacro(vtkDictionaryVolumeReader);
 

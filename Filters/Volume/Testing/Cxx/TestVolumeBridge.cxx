@@ -6,8 +6,8 @@
 #include "lvdif/AnalyticFill.h"
 #include "lvdif/Error.h"
 
-#include "vtkFloatArray.h"
 #include "vtkDataObject.h"
+#include "vtkFloatArray.h"
 #include "vtkImageData.h"
 #include "vtkInformation.h"
 #include "vtkNew.h"
