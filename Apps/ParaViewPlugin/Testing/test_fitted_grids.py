@@ -1,12 +1,16 @@
 # pvpython test: Mesh To SDF -> Sign Voxel Filter -> Chunked Marching Cubes with
-# DEFAULT properties on grids fitted to elongated meshes (non-cubic), chained
-# without intermediate updates, as a user does it in the GUI or in pvpython.
-# Oracle: ParaView's own Contour (iso value 0) of the same filtered image.
-# Checks for every mesh: the fitted grid is not cubic, the surface of the chain
-# is closed and manifold (0 boundary and 0 non-manifold edges), it has the
-# Contour's triangles, area and bounds, and it lies on the input mesh (bounds
-# within a voxel). Also the defaults agree with `lvdif mesh-to-sdf` and the
-# first display is an outline (image) or a surface (mesh), never a volume.
+# DEFAULT properties (only Max Dimension set, for time; Band Width 0 in two cases,
+# as in the report) on grids fitted to elongated meshes (non-cubic), built both
+# as the GUI does (each filter updated, as Apply does, before the next is made:
+# then ParaView fills domain defaults from the data) and as a script does
+# (chained without any update). Oracle: ParaView's own Contour (iso value 0) of
+# the same filtered image. Checks for every mesh and flow: the fitted grid is not
+# cubic, the iso value is 0, the surface is closed and manifold (0 boundary and
+# 0 non-manifold edges), it has the Contour's triangles, area and bounds, it lies
+# on the input mesh (bounds within a voxel), and the sdf ranges ParaView reports
+# are those of the values. Also: the defaults agree with `lvdif mesh-to-sdf`, the
+# first display is an outline (image) or a surface (mesh), never a volume, and
+# Mesh To SDF and the .lvdv reader warn before a large dense image.
 #
 # Usage: pvpython --force-offscreen-rendering test_fitted_grids.py PLUGIN [MESH_DIR]
 #   MESH_DIR: optional folder with cow.off, elephant.off, bunny00.off
