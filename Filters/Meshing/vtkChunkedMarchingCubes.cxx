@@ -4,6 +4,7 @@
 #include "vtkChunkedMarchingCubesVtkTable.h"
 #include "vtkLVDIFInterrupter.h"
 #include "vtkLVDIFVolumeBridge.h"
+#include "vtkSparseDictionaryVolume.h"
 
 #include "lvdif/ChunkedMarchingCubes.h"
 #include "lvdif/Error.h"
@@ -76,7 +77,9 @@ void vtkChunkedMarchingCubes::SetVolume(std::shared_ptr<lvdif::DictionaryVolume>
 
 int vtkChunkedMarchingCubes::FillInputPortInformation(int, vtkInformation* info)
 {
-  info->Set(vtkAlgorithm::INPUT_REQUIRED_DATA_TYPE(), "vtkImageData");
+  info->Remove(vtkAlgorithm::INPUT_REQUIRED_DATA_TYPE());
+  info->Append(vtkAlgorithm::INPUT_REQUIRED_DATA_TYPE(), "vtkImageData");
+  info->Append(vtkAlgorithm::INPUT_REQUIRED_DATA_TYPE(), "vtkSparseDictionaryVolume");
   // optional: a dictionary volume (SetVolume) replaces the input
   info->Set(vtkAlgorithm::INPUT_IS_OPTIONAL(), 1);
   return 1;
@@ -180,12 +183,17 @@ int vtkChunkedMarchingCubes::RequestData(
       vtkErrorMacro("both an input image and a dictionary volume (SetVolume): disconnect the input or SetVolume(nullptr)");
       return 0;
     }
-    return this->MeshVolume(piece, pieces, output);
+    return this->MeshVolume(*this->Volume, piece, pieces, output);
+  }
+  if (auto* sparse = vtkSparseDictionaryVolume::GetData(inInfo))
+  {
+    if (!sparse->HasVolume()) return 1; // an empty or failed upstream: empty output
+    return this->MeshVolume(*sparse->GetVolume(), piece, pieces, output);
   }
   vtkImageData* input = inInfo ? vtkImageData::GetData(inInfo) : nullptr;
   if (!input)
   {
-    vtkErrorMacro("no input: connect an image with an SDF point array, or call SetVolume()");
+    vtkErrorMacro("no input: connect a sparse dictionary volume or an image with an SDF point array, or call SetVolume()");
     return 0;
   }
   int inExt[6];
@@ -291,9 +299,9 @@ int vtkChunkedMarchingCubes::RequestData(
   return this->Emit(meshes, ctx, whole, output);
 }
 
-int vtkChunkedMarchingCubes::MeshVolume(int piece, int pieces, vtkDataObject* output)
+int vtkChunkedMarchingCubes::MeshVolume(
+  const lvdif::DictionaryVolume& volume, int piece, int pieces, vtkDataObject* output)
 {
-  const lvdif::DictionaryVolume& volume = *this->Volume;
   const lvdif::Index3& dims = volume.dims();
   int whole[6];
   for (int a = 0; a < 3; ++a)

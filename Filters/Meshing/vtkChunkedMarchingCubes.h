@@ -3,6 +3,10 @@
  * @brief   seamless chunked marching cubes of an SDF image or dictionary volume (paper Sect. 3.3)
  *
  * A thin wrapper over lvdif::ChunkedMarchingCubes. Input, one of:
+ * - a vtkSparseDictionaryVolume (vtkDictionaryVolumeReader, vtkMeshToSDF,
+ *   vtkSignVoxelFilter, vtkImageToSparseVolume): its Core volume is meshed
+ *   directly, chunk by chunk, without a dense copy (colours from its colour
+ *   dictionary);
  * - vtkImageData on port 0 with a scalar point array (default `sdf`, negative
  *   inside; choose another with SetInputArrayToProcess(0, 0, 0,
  *   vtkDataObject::FIELD_ASSOCIATION_POINTS, name)) and an optional
@@ -177,8 +181,8 @@ protected:
   int RequestData(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
   /// The options common to both sources (no region, offset or colours yet).
   lvdif::MarchingCubesOptions CoreOptions() const;
-  /// Meshes the cells piece `piece` of `pieces` owns of this->Volume into output.
-  int MeshVolume(int piece, int pieces, vtkDataObject* output);
+  /// Meshes the cells piece `piece` of `pieces` owns of `volume` into output.
+  int MeshVolume(const lvdif::DictionaryVolume& volume, int piece, int pieces, vtkDataObject* output);
   /// Fills output (vtkPolyData: merged; vtkPartitionedDataSet: one per chunk).
   int Emit(const std::vector<lvdif::ChunkMesh>& meshes, const vtkChunkedMarchingCubesOutput::Context& ctx,
     const int whole[6], vtkDataObject* output);

@@ -8,8 +8,10 @@
 #include "vtkFloatArray.h"
 #include "vtkImageData.h"
 #include "vtkInformation.h"
+#include "vtkInformationVector.h"
 #include "vtkPointData.h"
 #include "vtkStreamingDemandDrivenPipeline.h"
+#include "vtkSparseDictionaryVolume.h"
 #include "vtkUnsignedCharArray.h"
 
 #include <algorithm>
@@ -18,6 +20,50 @@
 
 namespace vtkLVDIFVolumeBridge
 {
+
+lvdif::Device ToDevice(int device)
+{
+  return device == 1 ? lvdif::Device::Cpu : (device == 2 ? lvdif::Device::Cuda : lvdif::Device::Auto);
+}
+
+bool CallCore(vtkAlgorithm* algorithm, const std::function<void()>& work, const std::string& context, bool* cancelled)
+{
+  if (cancelled) *cancelled = false;
+  try
+  {
+    work();
+    return true;
+  }
+  catch (const lvdif::Error& e)
+  {
+    if (e.code() == lvdif::ErrorCode::Cancelled)
+    {
+      if (cancelled) *cancelled = true;
+      return false;
+    }
+    vtkErrorWithObjectMacro(algorithm, << context << e.what());
+    return false;
+  }
+}
+
+void EnsureSparseOutput(vtkInformationVector* outputVector)
+{
+  vtkInformation* outInfo = outputVector->GetInformationObject(0);
+  if (!vtkSparseDictionaryVolume::GetData(outInfo))
+  {
+    vtkNew<vtkSparseDictionaryVolume> out;
+    outInfo->Set(vtkDataObject::DATA_OBJECT(), out);
+  }
+}
+
+void SetSparseInformation(vtkInformation* outInfo, const lvdif::VolumeOptions& o)
+{
+  int whole[6] = { 0, static_cast<int>(o.dims[0] - 1), 0, static_cast<int>(o.dims[1] - 1), 0,
+    static_cast<int>(o.dims[2] - 1) };
+  outInfo->Set(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT(), whole, 6);
+  outInfo->Set(vtkDataObject::ORIGIN(), o.origin.data(), 3);
+  outInfo->Set(vtkDataObject::SPACING(), o.spacing.data(), 3);
+}
 
 void FillImage(const lvdif::DictionaryVolume& volume, const int extentIn[6], vtkImageData* image, bool withColor)
 {
@@ -38,14 +84,14 @@ void FillImage(const lvdif::DictionaryVolume& volume, const int extentIn[6], vtk
   image->SetSpacing(o.spacing[0], o.spacing[1], o.spacing[2]);
 
   vtkNew<vtkFloatArray> sdf;
-  sdf->SetName("sdf");
+  sdf->SetName(SdfArrayName);
   sdf->SetNumberOfTuples(static_cast<vtkIdType>(n));
   float* s = sdf->GetPointer(0);
   vtkNew<vtkUnsignedCharArray> rgba;
   unsigned char* c = nullptr;
   if (withColor)
   {
-    rgba->SetName("rgba");
+    rgba->SetName(ColorArrayName);
     rgba->SetNumberOfComponents(4);
     rgba->SetNumberOfTuples(static_cast<vtkIdType>(n));
     c = rgba->GetPointer(0);
@@ -73,7 +119,7 @@ void FillImage(const lvdif::DictionaryVolume& volume, const int extentIn[6], vtk
     }
   }
   image->GetPointData()->AddArray(sdf);
-  image->GetPointData()->SetActiveScalars("sdf");
+  image->GetPointData()->SetActiveScalars(SdfArrayName);
   if (withColor)
   {
     image->GetPointData()->AddArray(rgba);
@@ -100,12 +146,12 @@ std::string WriterInput(vtkImageData* image, const std::string& fileName, bool w
   {
     return "no file name: call SetFileName() first";
   }
-  sdf = image ? image->GetPointData()->GetArray("sdf") : nullptr;
+  sdf = image ? image->GetPointData()->GetArray(SdfArrayName) : nullptr;
   if (!sdf)
   {
     return "the input has no point array named 'sdf'";
   }
-  rgba = withColor ? image->GetPointData()->GetArray("rgba") : nullptr;
+  rgba = withColor ? image->GetPointData()->GetArray(ColorArrayName) : nullptr;
   return std::string();
 }
 

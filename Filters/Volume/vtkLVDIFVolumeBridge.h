@@ -14,15 +14,42 @@
 #include "lvdif/DictionaryVolume.h"
 #include "lvdifFiltersVolumeModule.h"
 
+#include "lvdif/Cuda.h"
+
+#include <functional>
 #include <memory>
 #include <string>
 
+class vtkAlgorithm;
 class vtkDataArray;
 class vtkImageData;
 class vtkInformation;
+class vtkInformationVector;
 
 namespace vtkLVDIFVolumeBridge
 {
+/// The project's array names (README "Conventions").
+constexpr const char* SdfArrayName = "sdf";
+constexpr const char* ColorArrayName = "rgba";
+
+/// The filters' Device property (0 auto, 1 CPU, 2 CUDA) as lvdif's Device.
+LVDIFFILTERSVOLUME_EXPORT lvdif::Device ToDevice(int device);
+
+/// Calls Core: returns true on success; on lvdif::Error reports it with
+/// vtkErrorMacro's text on `algorithm` (prefixed by `context` when given) and
+/// returns false. A cancel (AbortExecute through vtkLVDIFInterrupter) returns
+/// false without an error, and sets `cancelled` when given.
+LVDIFFILTERSVOLUME_EXPORT bool CallCore(vtkAlgorithm* algorithm, const std::function<void()>& work,
+  const std::string& context = std::string(), bool* cancelled = nullptr);
+
+/// RequestDataObject of a filter whose output port 0 is a vtkSparseDictionaryVolume.
+LVDIFFILTERSVOLUME_EXPORT void EnsureSparseOutput(vtkInformationVector* outputVector);
+
+/// What a sparse volume producer announces in RequestInformation: the volume's
+/// whole extent, origin and spacing (read by vtkSparseVolumeToImage and the
+/// piece logic of the consumers).
+LVDIFFILTERSVOLUME_EXPORT void SetSparseInformation(vtkInformation* outInfo, const lvdif::VolumeOptions& options);
+
 /// Writes the voxels of `extent` (clipped to the volume) into `image`:
 /// extent, origin, spacing, `sdf` and, if withColor, `rgba`.
 LVDIFFILTERSVOLUME_EXPORT void FillImage(

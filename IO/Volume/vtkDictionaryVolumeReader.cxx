@@ -2,6 +2,7 @@
 
 #include "vtkLVDIFInterrupter.h"
 #include "vtkLVDIFVolumeBridge.h"
+#include "vtkSparseDictionaryVolume.h"
 
 #include "lvdif/VolumeFile.h"
 
@@ -12,6 +13,7 @@
 #include "vtkObjectFactory.h"
 #include "vtkStreamingDemandDrivenPipeline.h"
 
+#include <algorithm>
 #include <cstring>
 #include <fstream>
 
@@ -46,6 +48,18 @@ std::string vtkDictionaryVolumeReader::GetMetadata(const std::string& key) const
   return it == this->Internal->Info.metadata.end() ? std::string() : it->second;
 }
 
+int vtkDictionaryVolumeReader::FillOutputPortInformation(int, vtkInformation* info)
+{
+  info->Set(vtkDataObject::DATA_TYPE_NAME(), "vtkSparseDictionaryVolume");
+  return 1;
+}
+
+int vtkDictionaryVolumeReader::RequestDataObject(vtkInformation*, vtkInformationVector**, vtkInformationVector* out)
+{
+  vtkLVDIFVolumeBridge::EnsureSparseOutput(out);
+  return 1;
+}
+
 int vtkDictionaryVolumeReader::RequestInformation(
   vtkInformation*, vtkInformationVector**, vtkInformationVector* outputVector)
 {
@@ -74,35 +88,42 @@ int vtkDictionaryVolumeReader::RequestInformation(
     }
   }
   vtkInformation* outInfo = outputVector->GetInformationObject(0);
-  vtkLVDIFVolumeBridge::SetImageInformation(outInfo, o);
+  vtkLVDIFVolumeBridge::SetSparseInformation(outInfo, o);
   return 1;
 }
 
 int vtkDictionaryVolumeReader::RequestData(
   vtkInformation*, vtkInformationVector**, vtkInformationVector* outputVector)
 {
+  using SDDP = vtkStreamingDemandDrivenPipeline;
   vtkInformation* outInfo = outputVector->GetInformationObject(0);
-  vtkImageData* output = vtkImageData::GetData(outInfo);
-  int ext[6];
-  outInfo->Get(vtkStreamingDemandDrivenPipeline::UPDATE_EXTENT(), ext);
+  vtkSparseDictionaryVolume* output = vtkSparseDictionaryVolume::GetData(outInfo);
   lvdif::VolumeFileReadOptions options;
-  options.wholeVolume = false;
-  options.region.lo = { ext[0], ext[2], ext[4] };
-  options.region.hi = { ext[1], ext[3], ext[5] };
-  vtkLVDIFInterrupter interrupter(this, 0.0, 0.9);
-  try
+  if (outInfo->Has(SDDP::UPDATE_EXTENT()) && outInfo->Has(SDDP::WHOLE_EXTENT()))
   {
-    auto volume = lvdif::loadVolume(this->FileName, options, interrupter);
-    this->UpdateProgress(0.9);
-    vtkLVDIFVolumeBridge::FillImage(*volume, ext, output, this->WithColor);
+    int ext[6], whole[6];
+    outInfo->Get(SDDP::UPDATE_EXTENT(), ext);
+    outInfo->Get(SDDP::WHOLE_EXTENT(), whole);
+    if (!std::equal(ext, ext + 6, whole))
+    {
+      // a consumer asked for part of the volume: read only its chunks
+      options.wholeVolume = false;
+      options.region.lo = { ext[0], ext[2], ext[4] };
+      options.region.hi = { ext[1], ext[3], ext[5] };
+    }
   }
-  catch (const lvdif::Error& e)
+  vtkLVDIFInterrupter interrupter(this, 0.0, 1.0);
+  output->SetPartitionColors(this->WithColor);
+  const bool ok = vtkLVDIFVolumeBridge::CallCore(
+    this,
+    [&] {
+      std::shared_ptr<lvdif::DictionaryVolume> volume = lvdif::loadVolume(this->FileName, options, interrupter);
+      output->SetVolume(std::move(volume));
+    },
+    "cannot read '" + this->FileName + "': ");
+  if (!ok)
   {
     output->Initialize();
-    if (e.code() != lvdif::ErrorCode::Cancelled)
-    {
-      vtkErrorMacro(<< "cannot read '" << this->FileName << "': " << e.what());
-    }
     return 0;
   }
   this->UpdateProgress(1.0);

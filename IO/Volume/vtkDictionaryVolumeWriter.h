@@ -1,8 +1,11 @@
 /**
  * @class   vtkDictionaryVolumeWriter
- * @brief   writes vtkImageData as an LVDIF dictionary volume file (.lvdv)
+ * @brief   writes a vtkSparseDictionaryVolume (or vtkImageData) as an LVDIF dictionary volume file (.lvdv)
  *
- * The input must have a point array `sdf` (any real type; negative inside,
+ * A vtkSparseDictionaryVolume input is written as it is: its chunks, uniform
+ * chunks and dictionaries, without decoding (BandWidth and ChunkEdge are the
+ * volume's own then; the properties below apply to image input only).
+ * An image input must have a point array `sdf` (any real type; negative inside,
  * in voxel units) and may have an unsigned char array `rgba` (1 to 4
  * components). Distances are encoded with the SDF dictionary and saturated to
  * +-BandWidth; chunks beyond the band are stored as one value. The file is
@@ -18,6 +21,7 @@
 #include <string>
 
 class vtkImageData;
+class vtkSparseDictionaryVolume;
 
 class LVDIFIOVOLUME_EXPORT vtkDictionaryVolumeWriter : public vtkWriter
 {
@@ -54,6 +58,7 @@ public:
   vtkGetCharFromStdStringMacro(VolumeName);
   ///@}
 
+  /// The input when it is an image (nullptr for a sparse volume).
   vtkImageData* GetInput();
 
 protected:
@@ -61,6 +66,7 @@ protected:
   ~vtkDictionaryVolumeWriter() override;
 
   void WriteData() override;
+  void WriteSparse(vtkSparseDictionaryVolume* sparse);
   int FillInputPortInformation(int port, vtkInformation* info) override;
 
   std::string FileName;
