@@ -77,7 +77,7 @@ void VolumeDocument::newCanvas(int nx, int ny, int nz, Fill fill)
   this->resetPipeline();
 }
 
-void VolumeDocument::adopt(std::unique_ptr<lvdif::DictionaryVolume> volume)
+void VolumeDocument::adopt(std::shared_ptr<lvdif::DictionaryVolume> volume)
 {
   this->Worker.reset();
   this->Mesher.reset();

@@ -4,6 +4,10 @@
 #include "lvdif/Memory.h"
 
 #include "vtkAlgorithm.h"
+#include "vtkCellArray.h"
+#include "vtkIdTypeArray.h"
+#include "vtkPoints.h"
+#include "vtkPolyData.h"
 #include "vtkDataObject.h"
 #include "vtkFloatArray.h"
 #include "vtkImageData.h"
@@ -16,6 +20,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 #include <sstream>
 
 namespace vtkLVDIFVolumeBridge
@@ -44,6 +49,90 @@ bool CallCore(vtkAlgorithm* algorithm, const std::function<void()>& work, const 
     vtkErrorWithObjectMacro(algorithm, << context << e.what());
     return false;
   }
+}
+
+lvdif::TriangleMesh ToTriangleMesh(vtkPolyData* pd, bool withNormals)
+{
+  lvdif::TriangleMesh m;
+  const vtkIdType np = pd->GetNumberOfPoints();
+  m.points.resize(static_cast<std::size_t>(np));
+  for (vtkIdType i = 0; i < np; ++i)
+  {
+    double p[3];
+    pd->GetPoint(i, p);
+    m.points[i] = { static_cast<float>(p[0]), static_cast<float>(p[1]), static_cast<float>(p[2]) };
+  }
+  vtkDataArray* normals = pd->GetPointData()->GetNormals();
+  if (withNormals && normals && normals->GetNumberOfComponents() == 3 && normals->GetNumberOfTuples() == np)
+  {
+    m.normals.resize(static_cast<std::size_t>(np));
+    for (vtkIdType i = 0; i < np; ++i)
+    {
+      double n[3];
+      normals->GetTuple(i, n);
+      m.normals[i] = { static_cast<float>(n[0]), static_cast<float>(n[1]), static_cast<float>(n[2]) };
+    }
+  }
+  auto id = [](vtkIdType v) { return static_cast<std::uint32_t>(v); };
+  vtkIdType n;
+  const vtkIdType* ids;
+  vtkCellArray* polys = pd->GetPolys();
+  for (polys->InitTraversal(); polys->GetNextCell(n, ids);)
+  {
+    for (vtkIdType k = 1; k + 1 < n; ++k)
+    {
+      m.triangles.push_back({ id(ids[0]), id(ids[k]), id(ids[k + 1]) });
+    }
+  }
+  vtkCellArray* strips = pd->GetStrips();
+  for (strips->InitTraversal(); strips->GetNextCell(n, ids);)
+  {
+    for (vtkIdType k = 0; k + 2 < n; ++k)
+    {
+      if (k % 2 == 0)
+        m.triangles.push_back({ id(ids[k]), id(ids[k + 1]), id(ids[k + 2]) });
+      else
+        m.triangles.push_back({ id(ids[k + 1]), id(ids[k]), id(ids[k + 2]) });
+    }
+  }
+  return m;
+}
+
+vtkSmartPointer<vtkPolyData> ToPolyData(const lvdif::TriangleMesh& mesh)
+{
+  auto output = vtkSmartPointer<vtkPolyData>::New();
+  vtkNew<vtkPoints> points;
+  points->SetDataTypeToFloat();
+  points->SetNumberOfPoints(static_cast<vtkIdType>(mesh.points.size()));
+  std::memcpy(vtkFloatArray::SafeDownCast(points->GetData())->GetPointer(0), mesh.points.data(),
+    mesh.points.size() * sizeof(lvdif::Vec3f));
+  const vtkIdType n = static_cast<vtkIdType>(mesh.triangles.size());
+  vtkNew<vtkIdTypeArray> offsets, connectivity;
+  offsets->SetNumberOfValues(n + 1);
+  connectivity->SetNumberOfValues(3 * n);
+  for (vtkIdType t = 0; t < n; ++t)
+  {
+    offsets->SetValue(t, 3 * t);
+    for (int c = 0; c < 3; ++c)
+    {
+      connectivity->SetValue(3 * t + c, mesh.triangles[t][c]);
+    }
+  }
+  offsets->SetValue(n, 3 * n);
+  vtkNew<vtkCellArray> polys;
+  polys->SetData(offsets, connectivity);
+  output->SetPoints(points);
+  output->SetPolys(polys);
+  if (!mesh.normals.empty())
+  {
+    vtkNew<vtkFloatArray> normals;
+    normals->SetName("Normals");
+    normals->SetNumberOfComponents(3);
+    normals->SetNumberOfTuples(static_cast<vtkIdType>(mesh.normals.size()));
+    std::memcpy(normals->GetPointer(0), mesh.normals.data(), mesh.normals.size() * sizeof(lvdif::Vec3f));
+    output->GetPointData()->SetNormals(normals);
+  }
+  return output;
 }
 
 void EnsureSparseOutput(vtkInformationVector* outputVector)

@@ -12,9 +12,12 @@
 
 #include "lvdif/DenseGrid.h"
 #include "lvdif/DictionaryVolume.h"
+#include "lvdif/TriangleMesh.h"
 #include "lvdifFiltersVolumeModule.h"
 
 #include "lvdif/Cuda.h"
+
+#include "vtkSmartPointer.h"
 
 #include <functional>
 #include <memory>
@@ -25,6 +28,7 @@ class vtkDataArray;
 class vtkImageData;
 class vtkInformation;
 class vtkInformationVector;
+class vtkPolyData;
 
 namespace vtkLVDIFVolumeBridge
 {
@@ -41,6 +45,14 @@ LVDIFFILTERSVOLUME_EXPORT lvdif::Device ToDevice(int device);
 /// false without an error, and sets `cancelled` when given.
 LVDIFFILTERSVOLUME_EXPORT bool CallCore(vtkAlgorithm* algorithm, const std::function<void()>& work,
   const std::string& context = std::string(), bool* cancelled = nullptr);
+
+/// A vtkPolyData's polygons (fan-triangulated: exact for convex polygons) and
+/// triangle strips (split keeping the strip's orientation) as an lvdif mesh;
+/// with withNormals, its 3-component point normals too.
+LVDIFFILTERSVOLUME_EXPORT lvdif::TriangleMesh ToTriangleMesh(vtkPolyData* polyData, bool withNormals);
+
+/// An lvdif mesh as vtkPolyData: float points, triangles, `Normals` when it has them.
+LVDIFFILTERSVOLUME_EXPORT vtkSmartPointer<vtkPolyData> ToPolyData(const lvdif::TriangleMesh& mesh);
 
 /// RequestDataObject of a filter whose output port 0 is a vtkSparseDictionaryVolume.
 LVDIFFILTERSVOLUME_EXPORT void EnsureSparseOutput(vtkInformationVector* outputVector);
