@@ -319,26 +319,56 @@ int vtkChunkedMarchingCubes::MeshVolume(
     o.cellRegion.hi[a] = own[2 * a + 1] - 1;
   }
   if (o.cellRegion.empty()) return 1; // nothing owned: empty output
-  std::vector<lvdif::ChunkMesh> meshes;
-  try
-  {
-    lvdif::ChunkedMarchingCubes mc(volume, o);
-    vtkLVDIFInterrupter interrupter(this, 0.0, 0.8);
-    meshes = mc.extractAll(interrupter);
-  }
-  catch (const lvdif::Error& e)
-  {
-    if (e.code() == lvdif::ErrorCode::Cancelled) return 1; // aborted: empty output
-    vtkErrorMacro(<< e.what());
-    return 0;
-  }
   vtkChunkedMarchingCubesOutput::Context ctx;
   ctx.gridDims = dims;
   ctx.palette = volume.colors().colors().data(); // corner colours come as keys
   ctx.normals = o.computeNormals;
   ctx.pointColors = o.computeColors;
   ctx.cellData = o.cornerColors;
-  return this->Emit(meshes, ctx, whole, output);
+  // A volume can be far larger than its surface: chunks are meshed in batches
+  // and only one batch of chunk meshes is held at a time.
+  constexpr std::size_t Batch = 64;
+  try
+  {
+    lvdif::ChunkedMarchingCubes mc(volume, o);
+    std::vector<std::int64_t> ids;
+    for (std::int64_t id = 0; id < mc.chunkCount(); ++id)
+      if (!mc.chunkIsEmpty(id)) ids.push_back(id);
+    const std::size_t batches = (ids.size() + Batch - 1) / Batch;
+    const bool merged = vtkPolyData::SafeDownCast(output) != nullptr;
+    vtkLVDIFInterrupter interrupter(this);
+    auto batch = [&](std::size_t b, int pass) {
+      // progress: merged runs two passes (count, fill), partitioned one
+      const double share = merged ? 0.5 : 1.0;
+      interrupter.setStage(share * (pass + static_cast<double>(b) / batches), share / batches);
+      const std::size_t lo = b * Batch, hi = std::min(ids.size(), lo + Batch);
+      std::vector<lvdif::ChunkMesh> meshes =
+        mc.extractChunks(std::vector<std::int64_t>(ids.begin() + lo, ids.begin() + hi), interrupter);
+      meshes.erase(std::remove_if(meshes.begin(), meshes.end(), [](const lvdif::ChunkMesh& m) { return m.empty(); }),
+        meshes.end());
+      return meshes;
+    };
+    if (auto* pd = vtkPolyData::SafeDownCast(output))
+    {
+      pd->ShallowCopy(vtkChunkedMarchingCubesOutput::MergeBatches(batch, batches, ctx));
+    }
+    else
+    {
+      auto* partitioned = vtkPartitionedDataSet::SafeDownCast(output);
+      partitioned->SetNumberOfPartitions(0);
+      for (std::size_t b = 0; b < batches; ++b)
+        this->AddPartitions(batch(b, 0), ctx, whole, partitioned);
+    }
+  }
+  catch (const lvdif::Error& e)
+  {
+    output->Initialize();
+    if (e.code() == lvdif::ErrorCode::Cancelled) return 1; // aborted: empty output
+    vtkErrorMacro(<< e.what());
+    return 0;
+  }
+  this->UpdateProgress(1.0);
+  return 1;
 }
 
 int vtkChunkedMarchingCubes::Emit(const std::vector<lvdif::ChunkMesh>& meshes,
@@ -351,18 +381,24 @@ int vtkChunkedMarchingCubes::Emit(const std::vector<lvdif::ChunkMesh>& meshes,
     return 1;
   }
   auto* partitioned = vtkPartitionedDataSet::SafeDownCast(output);
+  partitioned->SetNumberOfPartitions(0);
+  this->AddPartitions(meshes, ctx, whole, partitioned);
+  this->UpdateProgress(1.0);
+  return 1;
+}
+
+void vtkChunkedMarchingCubes::AddPartitions(const std::vector<lvdif::ChunkMesh>& meshes,
+  const vtkChunkedMarchingCubesOutput::Context& ctx, const int whole[6], vtkPartitionedDataSet* partitioned)
+{
   // chunk counts of the whole extent, for a chunk id every piece agrees on
   vtkIdType counts[3];
   for (int a = 0; a < 3; ++a)
     counts[a] = std::max<vtkIdType>(1, (whole[2 * a + 1] - whole[2 * a] + this->ChunkEdge - 1) / this->ChunkEdge);
-  partitioned->SetNumberOfPartitions(static_cast<unsigned int>(meshes.size()));
+  const unsigned int first = partitioned->GetNumberOfPartitions();
+  partitioned->SetNumberOfPartitions(first + static_cast<unsigned int>(meshes.size()));
   for (std::size_t i = 0; i < meshes.size(); ++i)
   {
-    if (i % 64 == 0)
-    {
-      if (this->GetAbortExecute()) break;
-      this->UpdateProgress(0.8 + 0.2 * static_cast<double>(i) / static_cast<double>(meshes.size()));
-    }
+    if (i % 64 == 0 && this->GetAbortExecute()) break;
     vtkSmartPointer<vtkPolyData> pd = vtkChunkedMarchingCubesOutput::ChunkToPolyData(meshes[i], ctx);
     const lvdif::Index3& c = meshes[i].chunkCoord;
     vtkNew<vtkIdTypeArray> id;
@@ -374,10 +410,8 @@ int vtkChunkedMarchingCubes::Emit(const std::vector<lvdif::ChunkMesh>& meshes,
     ijk->InsertNextTuple3(c[0], c[1], c[2]);
     pd->GetFieldData()->AddArray(id);
     pd->GetFieldData()->AddArray(ijk);
-    partitioned->SetPartition(static_cast<unsigned int>(i), pd);
+    partitioned->SetPartition(first + static_cast<unsigned int>(i), pd);
   }
-  this->UpdateProgress(1.0);
-  return 1;
 }
 
 void vtkChunkedMarchingCubes::PrintSelf(ostream& os, vtkIndent indent)

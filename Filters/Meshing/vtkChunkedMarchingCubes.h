@@ -65,6 +65,7 @@
 #include <memory>
 #include <vector>
 
+class vtkPartitionedDataSet;
 namespace lvdif
 {
 class DictionaryVolume;
@@ -186,6 +187,10 @@ protected:
   /// Fills output (vtkPolyData: merged; vtkPartitionedDataSet: one per chunk).
   int Emit(const std::vector<lvdif::ChunkMesh>& meshes, const vtkChunkedMarchingCubesOutput::Context& ctx,
     const int whole[6], vtkDataObject* output);
+
+  /// Appends one vtkPolyData partition per chunk mesh (with `chunk_id`, `chunk_ijk`).
+  void AddPartitions(const std::vector<lvdif::ChunkMesh>& meshes, const vtkChunkedMarchingCubesOutput::Context& ctx,
+    const int whole[6], vtkPartitionedDataSet* partitioned);
 
   int OutputMode = PARTITIONED;
   double IsoValue = 0.0;

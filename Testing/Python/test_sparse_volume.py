@@ -138,6 +138,11 @@ check(unmatched(vtks, ours) == 0 and unmatched(ours, vtks) == 0, "the same verte
 check(abs(area(vtks) - area(ours)) < 0.005 * area(ours), "the same area (within 0.5%)")
 check(open_edges(vtks) == 0, "the contour of the partitions is closed: no seams")
 check(open_edges(ours) == 0, "the chunked MC surface is closed")
+mc.SetChunkEdge(16)  # 216 chunks: the merge runs over several batches
+mc.Update()
+small_chunks = merged([mc.GetOutput()])
+check(mc.GetOutput().GetNumberOfPoints() == ours.GetNumberOfPoints() and open_edges(mc.GetOutput()) == 0 and
+      unmatched(small_chunks, vtks) == 0, "chunk edge 16 (merged batch by batch): the same closed surface")
 
 plane = vtkPlane()
 plane.SetOrigin(47.3, 47.3, 47.3)
