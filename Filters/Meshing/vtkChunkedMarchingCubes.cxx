@@ -25,6 +25,7 @@
 #include "vtkUnsignedCharArray.h"
 
 #include <algorithm>
+#include <map>
 #include <vector>
 
 vtkStandardNewMacro(vtkChunkedMarchingCubes);
@@ -188,8 +189,15 @@ int vtkChunkedMarchingCubes::RequestData(
   if (auto* sparse = vtkSparseDictionaryVolume::GetData(inInfo))
   {
     if (!sparse->HasVolume()) return 1; // an empty or failed upstream: empty output
+    auto* partitioned = vtkPartitionedDataSet::SafeDownCast(output);
+    if (partitioned && pieces == 1)
+    {
+      return this->MeshVolumeIncrementally(sparse->GetVolume(), partitioned);
+    }
+    this->Cache = nullptr;
     return this->MeshVolume(*sparse->GetVolume(), piece, pieces, output);
   }
+  this->Cache = nullptr;
   vtkImageData* input = inInfo ? vtkImageData::GetData(inInfo) : nullptr;
   if (!input)
   {
@@ -367,6 +375,94 @@ int vtkChunkedMarchingCubes::MeshVolume(
     vtkErrorMacro(<< e.what());
     return 0;
   }
+  this->UpdateProgress(1.0);
+  return 1;
+}
+
+int vtkChunkedMarchingCubes::MeshVolumeIncrementally(
+  const std::shared_ptr<lvdif::DictionaryVolume>& volume, vtkPartitionedDataSet* output)
+{
+  // The cache holds the last run's chunk meshes (the same vtkPolyData objects
+  // the output shares, so no extra memory). It is valid for the same Core
+  // volume and unchanged settings; then only the chunks that the volume's
+  // dirty storage chunks reach are meshed again.
+  const bool reuse = this->Cache && this->CachedVolume.lock() == volume && this->CacheTime > this->GetMTime();
+  lvdif::MarchingCubesOptions o = this->CoreOptions();
+  const lvdif::Index3& dims = volume->dims();
+  int whole[6];
+  for (int a = 0; a < 3; ++a)
+  {
+    whole[2 * a] = 0;
+    whole[2 * a + 1] = static_cast<int>(dims[a] - 1);
+    o.cellRegion.lo[a] = 0;
+    o.cellRegion.hi[a] = dims[a] - 2;
+  }
+  if (!reuse)
+  {
+    this->Cache = nullptr;
+    volume->takeDirtyChunks(); // everything is meshed now
+    const int ok = o.cellRegion.empty() ? 1 : this->MeshVolume(*volume, 0, 1, output);
+    this->LastChunksMeshed = -1;
+    if (ok && !this->GetAbortExecute())
+    {
+      this->Cache = vtkSmartPointer<vtkPartitionedDataSet>::New();
+      this->Cache->ShallowCopy(output);
+      this->CachedVolume = volume;
+      this->CacheTime.Modified();
+    }
+    return ok;
+  }
+  vtkChunkedMarchingCubesOutput::Context ctx;
+  ctx.gridDims = dims;
+  ctx.palette = volume->colors().colors().data();
+  ctx.normals = o.computeNormals;
+  ctx.pointColors = o.computeColors;
+  ctx.cellData = o.cornerColors;
+  std::map<vtkIdType, vtkSmartPointer<vtkDataObject>> byChunk;
+  for (unsigned int i = 0; i < this->Cache->GetNumberOfPartitions(); ++i)
+  {
+    vtkDataObject* pd = this->Cache->GetPartitionAsDataObject(i);
+    auto* id = pd ? vtkIdTypeArray::SafeDownCast(pd->GetFieldData()->GetArray("chunk_id")) : nullptr;
+    if (id) byChunk[id->GetValue(0)] = pd;
+  }
+  try
+  {
+    lvdif::ChunkedMarchingCubes mc(*volume, o);
+    const std::vector<std::int64_t> redo = mc.chunksAffectedByStorageChunks(volume->takeDirtyChunks());
+    std::vector<std::int64_t> ids;
+    for (std::int64_t id : redo)
+    {
+      byChunk.erase(static_cast<vtkIdType>(id));
+      if (!mc.chunkIsEmpty(id)) ids.push_back(id);
+    }
+    vtkLVDIFInterrupter interrupter(this, 0.0, 0.9);
+    std::vector<lvdif::ChunkMesh> meshes = mc.extractChunks(ids, interrupter);
+    meshes.erase(std::remove_if(meshes.begin(), meshes.end(), [](const lvdif::ChunkMesh& m) { return m.empty(); }),
+      meshes.end());
+    vtkNew<vtkPartitionedDataSet> fresh;
+    this->AddPartitions(meshes, ctx, whole, fresh);
+    for (unsigned int i = 0; i < fresh->GetNumberOfPartitions(); ++i)
+    {
+      vtkDataObject* pd = fresh->GetPartitionAsDataObject(i);
+      byChunk[vtkIdTypeArray::SafeDownCast(pd->GetFieldData()->GetArray("chunk_id"))->GetValue(0)] = pd;
+    }
+    this->LastChunksMeshed = static_cast<vtkIdType>(ids.size());
+  }
+  catch (const lvdif::Error& e)
+  {
+    this->Cache = nullptr;
+    output->Initialize();
+    if (e.code() == lvdif::ErrorCode::Cancelled) return 1; // aborted: empty output
+    vtkErrorMacro(<< e.what());
+    return 0;
+  }
+  // partitions in chunk id order, as a full run gives them
+  this->Cache = vtkSmartPointer<vtkPartitionedDataSet>::New();
+  this->Cache->SetNumberOfPartitions(static_cast<unsigned int>(byChunk.size()));
+  unsigned int i = 0;
+  for (auto& kv : byChunk) this->Cache->SetPartition(i++, kv.second);
+  this->CacheTime.Modified();
+  output->ShallowCopy(this->Cache);
   this->UpdateProgress(1.0);
   return 1;
 }
