@@ -53,9 +53,21 @@ int vtkImageToSparseVolume::RequestInformation(
   using SDDP = vtkStreamingDemandDrivenPipeline;
   vtkInformation* inInfo = inputVector[0]->GetInformationObject(0);
   vtkInformation* outInfo = outputVector->GetInformationObject(0);
-  outInfo->CopyEntry(inInfo, SDDP::WHOLE_EXTENT());
-  outInfo->CopyEntry(inInfo, vtkDataObject::ORIGIN());
-  outInfo->CopyEntry(inInfo, vtkDataObject::SPACING());
+  if (!inInfo->Has(SDDP::WHOLE_EXTENT())) return 1;
+  // the volume's indices start at 0: its origin is the whole extent's first point
+  int whole[6];
+  inInfo->Get(SDDP::WHOLE_EXTENT(), whole);
+  double origin[3] = { 0, 0, 0 }, spacing[3] = { 1, 1, 1 };
+  if (inInfo->Has(vtkDataObject::ORIGIN())) inInfo->Get(vtkDataObject::ORIGIN(), origin);
+  if (inInfo->Has(vtkDataObject::SPACING())) inInfo->Get(vtkDataObject::SPACING(), spacing);
+  lvdif::VolumeOptions o;
+  for (int a = 0; a < 3; ++a)
+  {
+    o.dims[a] = whole[2 * a + 1] - whole[2 * a] + 1;
+    o.origin[a] = origin[a] + whole[2 * a] * spacing[a];
+    o.spacing[a] = spacing[a];
+  }
+  vtkLVDIFVolumeBridge::SetSparseInformation(outInfo, o);
   return 1;
 }
 

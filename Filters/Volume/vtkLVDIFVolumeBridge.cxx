@@ -215,6 +215,35 @@ void FillImage(const lvdif::DictionaryVolume& volume, const int extentIn[6], vtk
   }
 }
 
+std::unique_ptr<lvdif::DictionaryVolume> CropVolume(const lvdif::DictionaryVolume& v, const int ext[6])
+{
+  lvdif::VolumeOptions o = v.options();
+  o.memoryLimit = 0;
+  for (int a = 0; a < 3; ++a)
+  {
+    lvdif::require(ext[2 * a] >= 0 && ext[2 * a + 1] < v.dims()[a] && ext[2 * a] <= ext[2 * a + 1],
+      "the extent to crop is empty or outside the volume");
+    o.dims[a] = ext[2 * a + 1] - ext[2 * a] + 1;
+    o.origin[a] += ext[2 * a] * o.spacing[a];
+  }
+  auto out = std::make_unique<lvdif::DictionaryVolume>(o);
+  out->colors() = v.colors(); // the same keys
+  const std::int64_t n = out->chunkCount();
+#pragma omp parallel for schedule(dynamic, 4)
+  for (std::int64_t id = 0; id < n; ++id)
+  {
+    const lvdif::VoxelBox b = out->chunkBox(id);
+    lvdif::Voxel* d = out->expandChunk(id);
+    for (std::int64_t z = b.lo[2]; z <= b.hi[2]; ++z)
+      for (std::int64_t y = b.lo[1]; y <= b.hi[1]; ++y)
+        for (std::int64_t x = b.lo[0]; x <= b.hi[0]; ++x)
+          d[out->localIndex(x, y, z)] = v.get(x + ext[0], y + ext[2], z + ext[4]);
+    out->tryCollapseChunk(id);
+  }
+  out->takeDirtyChunks();
+  return out;
+}
+
 void SetImageInformation(vtkInformation* outInfo, const lvdif::VolumeOptions& o)
 {
   int whole[6] = { 0, static_cast<int>(o.dims[0] - 1), 0, static_cast<int>(o.dims[1] - 1), 0,

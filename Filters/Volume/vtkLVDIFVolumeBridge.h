@@ -74,6 +74,12 @@ LVDIFFILTERSVOLUME_EXPORT void FillImage(
 LVDIFFILTERSVOLUME_EXPORT std::unique_ptr<lvdif::DictionaryVolume> VolumeFromImage(
   vtkImageData* image, vtkDataArray* sdf, vtkDataArray* rgba, lvdif::VolumeOptions options);
 
+/// The voxels of `extent` (inclusive point indices, inside the volume) as a
+/// volume of their own: the same chunk edge, band, dictionaries and keys
+/// (no re-encoding), origin moved to the extent's first point.
+LVDIFFILTERSVOLUME_EXPORT std::unique_ptr<lvdif::DictionaryVolume> CropVolume(
+  const lvdif::DictionaryVolume& volume, const int extent[6]);
+
 /// What an image source of this volume announces in RequestInformation: whole
 /// extent, origin, spacing, CAN_PRODUCE_SUB_EXTENT and a float `sdf` scalar.
 LVDIFFILTERSVOLUME_EXPORT void SetImageInformation(vtkInformation* outInfo, const lvdif::VolumeOptions& options);
