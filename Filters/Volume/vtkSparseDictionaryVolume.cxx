@@ -63,11 +63,21 @@ bool partitionNeeded(const lvdif::DictionaryVolume& v, std::int64_t id)
   return false;
 }
 
-std::vector<std::int64_t> neededPartitions(const lvdif::DictionaryVolume& v)
+/// owned: null for every chunk, else an inclusive box of chunk coordinates.
+std::vector<std::int64_t> neededPartitions(const lvdif::DictionaryVolume& v, const int* owned)
 {
   std::vector<std::int64_t> ids;
   for (std::int64_t id = 0; id < v.chunkCount(); ++id)
+  {
+    if (owned)
+    {
+      const lvdif::Index3 c = v.chunkCoord(id);
+      if (c[0] < owned[0] || c[0] > owned[1] || c[1] < owned[2] || c[1] > owned[3] || c[2] < owned[4] ||
+        c[2] > owned[5])
+        continue;
+    }
     if (partitionNeeded(v, id)) ids.push_back(id);
+  }
   return ids;
 }
 
@@ -87,7 +97,29 @@ void vtkSparseDictionaryVolume::SetVolume(std::shared_ptr<lvdif::DictionaryVolum
   this->Superclass::Initialize();
   this->Volume = std::move(volume);
   this->PartitionsBuilt = false;
+  this->OwnsAll = true;
   this->Modified();
+}
+
+void vtkSparseDictionaryVolume::SetOwnedChunks(const int box[6])
+{
+  this->OwnsAll = false;
+  std::copy(box, box + 6, this->Owned);
+  this->VolumeModified();
+}
+
+void vtkSparseDictionaryVolume::GetOwnedChunks(int box[6]) const
+{
+  if (!this->OwnsAll)
+  {
+    std::copy(this->Owned, this->Owned + 6, box);
+    return;
+  }
+  for (int a = 0; a < 3; ++a)
+  {
+    box[2 * a] = 0;
+    box[2 * a + 1] = this->Volume ? static_cast<int>(this->Volume->chunkCounts()[a] - 1) : -1;
+  }
 }
 
 void vtkSparseDictionaryVolume::VolumeModified()
@@ -150,14 +182,14 @@ double vtkSparseDictionaryVolume::GetDenseImageBytes() const
 double vtkSparseDictionaryVolume::GetPartitionBytes() const
 {
   if (!this->Volume) return 0.0;
-  return static_cast<double>(partitionBytes(*this->Volume, neededPartitions(*this->Volume), this->PartitionColors));
+  return static_cast<double>(partitionBytes(*this->Volume, neededPartitions(*this->Volume, this->OwnsAll ? nullptr : this->Owned), this->PartitionColors));
 }
 
 bool vtkSparseDictionaryVolume::UpdatePartitions()
 {
   if (this->PartitionsBuilt || !this->Volume) return true;
   const lvdif::DictionaryVolume& v = *this->Volume;
-  const std::vector<std::int64_t> ids = neededPartitions(v);
+  const std::vector<std::int64_t> ids = neededPartitions(v, this->OwnsAll ? nullptr : this->Owned);
   try
   {
     lvdif::requireMemory(partitionBytes(v, ids, this->PartitionColors),
@@ -263,11 +295,33 @@ vtkDataObjectTreeIterator* vtkSparseDictionaryVolume::NewTreeIterator()
 
 void vtkSparseDictionaryVolume::CopyStructure(vtkCompositeDataSet* input)
 {
-  if (auto* s = vtkSparseDictionaryVolume::SafeDownCast(input))
+  auto* s = vtkSparseDictionaryVolume::SafeDownCast(input);
+  if (s)
   {
     s->UpdatePartitions();
   }
   this->Superclass::CopyStructure(input);
+  // ParaView's post filter copies every output as CopyStructure + a shallow
+  // copy of each leaf: the copy is still a view of the same Core volume. A
+  // generic filter's output made the same way gets other leaves (SetDataSet
+  // below drops the volume then).
+  this->Volume = s ? s->Volume : nullptr;
+  this->PartitionsBuilt = s != nullptr && s->PartitionsBuilt;
+  this->OwnsAll = s ? s->OwnsAll : true;
+  if (s)
+  {
+    this->PartitionColors = s->PartitionColors;
+    std::copy(s->Owned, s->Owned + 6, this->Owned);
+  }
+}
+
+void vtkSparseDictionaryVolume::SetDataSet(vtkCompositeDataIterator* iter, vtkDataObject* dataObj)
+{
+  if (this->Volume && dataObj && !vtkImageData::SafeDownCast(dataObj))
+  {
+    this->Volume.reset(); // a filter's result over the partitions, not a view of the volume
+  }
+  this->Superclass::SetDataSet(iter, dataObj);
 }
 
 void vtkSparseDictionaryVolume::Initialize()
@@ -275,6 +329,7 @@ void vtkSparseDictionaryVolume::Initialize()
   this->Superclass::Initialize();
   this->Volume.reset();
   this->PartitionsBuilt = false;
+  this->OwnsAll = true;
 }
 
 void vtkSparseDictionaryVolume::ShallowCopy(vtkDataObject* src)
@@ -294,8 +349,33 @@ void vtkSparseDictionaryVolume::ShallowCopy(vtkDataObject* src)
   this->Volume = s ? s->Volume : nullptr;
   this->PartitionColors = s ? s->PartitionColors : this->PartitionColors;
   this->PartitionsBuilt = s ? s->PartitionsBuilt : false;
+  this->OwnsAll = s ? s->OwnsAll : true;
+  if (s) std::copy(s->Owned, s->Owned + 6, this->Owned);
   this->Modified();
 }
+
+#if VTK_MAJOR_VERSION > 9 || (VTK_MAJOR_VERSION == 9 && VTK_MINOR_VERSION >= 2)
+void vtkSparseDictionaryVolume::CompositeShallowCopy(vtkCompositeDataSet* src)
+{
+  if (src == this) return;
+  auto* s = vtkSparseDictionaryVolume::SafeDownCast(src);
+  if (s && !s->PartitionsBuilt)
+  {
+    this->Superclass::SetNumberOfPartitions(0);
+    this->vtkDataObject::ShallowCopy(src);
+  }
+  else
+  {
+    this->Superclass::CompositeShallowCopy(src);
+  }
+  this->Volume = s ? s->Volume : nullptr;
+  this->PartitionColors = s ? s->PartitionColors : this->PartitionColors;
+  this->PartitionsBuilt = s ? s->PartitionsBuilt : false;
+  this->OwnsAll = s ? s->OwnsAll : true;
+  if (s) std::copy(s->Owned, s->Owned + 6, this->Owned);
+  this->Modified();
+}
+#endif
 
 void vtkSparseDictionaryVolume::DeepCopy(vtkDataObject* src)
 {
@@ -313,6 +393,8 @@ void vtkSparseDictionaryVolume::DeepCopy(vtkDataObject* src)
   this->Volume = s->Volume ? std::shared_ptr<lvdif::DictionaryVolume>(s->Volume->clone()) : nullptr;
   this->PartitionColors = s->PartitionColors;
   this->PartitionsBuilt = false;
+  this->OwnsAll = s->OwnsAll;
+  std::copy(s->Owned, s->Owned + 6, this->Owned);
   this->Modified();
 }
 

@@ -36,6 +36,7 @@
 
 #include "lvdifFiltersVolumeModule.h"
 #include "vtkPartitionedDataSet.h"
+#include "vtkVersionMacros.h"
 
 #include <cstdint>
 #include <memory>
@@ -85,6 +86,15 @@ public:
   bool GetPartitionColors() const { return this->PartitionColors; }
   ///@}
 
+  ///@{
+  /// The storage chunks this object's partitions come from, as an inclusive
+  /// box of chunk coordinates (cx0, cx1, cy0, cy1, cz0, cz1); default: all.
+  /// A distributed reader sets its piece's chunks here (its Core volume then
+  /// holds those chunks plus the one layer of points their partitions share).
+  void SetOwnedChunks(const int box[6]);
+  void GetOwnedChunks(int box[6]) const;
+  ///@}
+
   /// Builds the partitions now if they are not built (idempotent). Returns
   /// false (with an error) when the memory limit refuses them.
   bool UpdatePartitions();
@@ -101,8 +111,18 @@ public:
   void CopyStructure(vtkCompositeDataSet* input) override;
   ///@}
 
+  /// Setting a leaf that is not a vtkImageData (a generic filter's result over
+  /// the partitions, e.g. vtkContourFilter's, whose composite output the
+  /// executive makes with NewInstance + CopyStructure) drops the Core volume:
+  /// such an object is a plain partitioned dataset (HasVolume() false).
+  void SetDataSet(vtkCompositeDataIterator* iter, vtkDataObject* dataObj) override;
+
   void Initialize() override;
   void ShallowCopy(vtkDataObject* src) override;
+#if VTK_MAJOR_VERSION > 9 || (VTK_MAJOR_VERSION == 9 && VTK_MINOR_VERSION >= 2)
+  /// VTK 9.2 (ParaView 5.11): ParaView's post filter copies every output with it.
+  void CompositeShallowCopy(vtkCompositeDataSet* src) override;
+#endif
   void DeepCopy(vtkDataObject* src) override;
   /// Kibibytes: the Core volume plus any built partitions.
   unsigned long GetActualMemorySize() override;
@@ -120,6 +140,8 @@ protected:
   std::shared_ptr<lvdif::DictionaryVolume> Volume;
   bool PartitionColors = true;
   bool PartitionsBuilt = false;
+  bool OwnsAll = true;
+  int Owned[6] = { 0, -1, 0, -1, 0, -1 };
 
 private:
   vtkSparseDictionaryVolume(const vtkSparseDictionaryVolume&) = delete;

@@ -7,6 +7,7 @@
 #include "lvdif/VolumeFile.h"
 
 #include "vtkDataObject.h"
+#include "vtkExtentTranslator.h"
 #include "vtkImageData.h"
 #include "vtkInformation.h"
 #include "vtkInformationVector.h"
@@ -99,7 +100,37 @@ int vtkDictionaryVolumeReader::RequestData(
   vtkInformation* outInfo = outputVector->GetInformationObject(0);
   vtkSparseDictionaryVolume* output = vtkSparseDictionaryVolume::GetData(outInfo);
   lvdif::VolumeFileReadOptions options;
-  if (outInfo->Has(SDDP::UPDATE_EXTENT()) && outInfo->Has(SDDP::WHOLE_EXTENT()))
+  const int pieces = outInfo->Has(SDDP::UPDATE_NUMBER_OF_PIECES()) ? outInfo->Get(SDDP::UPDATE_NUMBER_OF_PIECES()) : 1;
+  const int piece = outInfo->Has(SDDP::UPDATE_PIECE_NUMBER()) ? outInfo->Get(SDDP::UPDATE_PIECE_NUMBER()) : 0;
+  int owned[6] = { 0, -1, 0, -1, 0, -1 };
+  if (pieces > 1)
+  {
+    // A piece is a block of storage chunks (see the header); it reads them and
+    // the one layer of points their partitions share with the next chunks.
+    const lvdif::VolumeOptions& o = this->Internal->Info.options;
+    int bounds[6], block[6];
+    for (int a = 0; a < 3; ++a)
+    {
+      bounds[2 * a] = 0; // chunk boundaries 0..count: a split by cells gives disjoint chunk ranges
+      bounds[2 * a + 1] = static_cast<int>((o.dims[a] + o.chunkEdge - 1) / o.chunkEdge);
+    }
+    vtkNew<vtkExtentTranslator> t;
+    if (!t->PieceToExtentThreadSafe(piece, pieces, 0, bounds, block, vtkExtentTranslator::BLOCK_MODE, 0) ||
+      block[0] >= block[1] || block[2] >= block[3] || block[4] >= block[5])
+    {
+      output->Initialize(); // a piece without chunks: empty
+      return 1;
+    }
+    options.wholeVolume = false;
+    for (int a = 0; a < 3; ++a)
+    {
+      owned[2 * a] = block[2 * a];
+      owned[2 * a + 1] = block[2 * a + 1] - 1;
+      options.region.lo[a] = static_cast<std::int64_t>(block[2 * a]) * o.chunkEdge;
+      options.region.hi[a] = std::min<std::int64_t>(static_cast<std::int64_t>(block[2 * a + 1]) * o.chunkEdge, o.dims[a] - 1);
+    }
+  }
+  else if (outInfo->Has(SDDP::UPDATE_EXTENT()) && outInfo->Has(SDDP::WHOLE_EXTENT()))
   {
     int ext[6], whole[6];
     outInfo->Get(SDDP::UPDATE_EXTENT(), ext);
@@ -119,6 +150,7 @@ int vtkDictionaryVolumeReader::RequestData(
     [&] {
       std::shared_ptr<lvdif::DictionaryVolume> volume = lvdif::loadVolume(this->FileName, options, interrupter);
       output->SetVolume(std::move(volume));
+      if (pieces > 1) output->SetOwnedChunks(owned);
     },
     "cannot read '" + this->FileName + "': ");
   if (!ok)

@@ -13,6 +13,16 @@
  * pieces, vtkSparseVolumeToImage sub-extents). Reports progress and honours
  * AbortExecute. A corrupt file gives one error naming the problem and an
  * empty output.
+ *
+ * Pieces (pvbatch; a request of piece p of n > 1 pieces, as ParaView makes for
+ * generic filters): a piece is a block of storage chunks. Ownership rule: the
+ * chunk grid's boundaries 0..C (C chunks along an axis) are split like a point
+ * extent by vtkExtentTranslator (block mode, by cells), and piece p owns the
+ * chunks [b0, b1 - 1] of its boundary range [b0, b1] on every axis: pieces own
+ * disjoint chunk blocks that cover the volume. The piece reads its chunks plus
+ * the first layer of points of the next ones (their partitions share it) and
+ * its partitions are its own chunks only (SetOwnedChunks), so Contour/Slice
+ * over all ranks gives every cell once.
  */
 #ifndef vtkDictionaryVolumeReader_h
 #define vtkDictionaryVolumeReader_h

@@ -128,6 +128,9 @@ contour.Update()
 parts = [b for b in blocks(contour.GetOutputDataObject(0)) if b.GetNumberOfPoints() > 0]
 check(volume.GetPartitionsBuilt() and volume.GetNumberOfPartitions() > 1,
       "the contour ran on %d image partitions" % volume.GetNumberOfPartitions())
+out = contour.GetOutputDataObject(0)
+check(not (out.IsA("vtkSparseDictionaryVolume") and out.HasVolume()),
+      "the contour's composite output does not claim the Core volume")
 vtks = merged(parts)
 print("   chunked MC: %d points %d triangles area %.3f; VTK contour: %d points %d triangles area %.3f" % (
     ours.GetNumberOfPoints(), ours.GetNumberOfCells(), area(ours), vtks.GetNumberOfPoints(), vtks.GetNumberOfCells(),
@@ -158,6 +161,27 @@ outline.SetInputConnection(reader.GetOutputPort())
 outline.Update()
 b = outline.GetOutput().GetBounds()
 check(outline.GetOutput().GetNumberOfCells() > 0 and b[0] >= 0 and b[1] <= 95, "vtkOutlineFilter works")
+
+# ---- pieces: a piece is a block of storage chunks (the reader's ownership rule) --------------
+whole_tris = vtks.GetNumberOfCells()
+for n in (2, 4):
+    polys, volume_bytes = [], []
+    for p in range(n):
+        rp = lvdif.vtkDictionaryVolumeReader()
+        rp.SetFileName(small)
+        cp = vtkContourFilter()
+        cp.SetInputConnection(rp.GetOutputPort())
+        cp.SetValue(0, 0.0)
+        cp.UpdatePiece(p, n, 0)
+        polys += [b for b in blocks(cp.GetOutputDataObject(0)) if b.GetNumberOfPoints() > 0]
+        volume_bytes.append(rp.GetOutput().GetVolumeMemoryBytes())
+    union = merged(polys)
+    check(union.GetNumberOfCells() == whole_tris and unmatched(union, vtks) == 0 and open_edges(union) == 0,
+          "%d pieces: the contours of the pieces make the whole closed surface once (%d triangles)" % (
+              n, union.GetNumberOfCells()))
+    check(max(volume_bytes) < volume.GetVolumeMemoryBytes(),
+          "%d pieces: a piece holds only its chunks (largest %d of %d bytes)" % (
+              n, max(volume_bytes), volume.GetVolumeMemoryBytes()))
 
 # ---- 3. copies and the executive keep the Core volume --------------------------------------
 shallow = lvdif.vtkSparseDictionaryVolume()
