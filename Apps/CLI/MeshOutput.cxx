@@ -4,6 +4,7 @@
 #include "lvdif/Error.h"
 
 #include "vtkActor.h"
+#include "vtkLVDIFFiles.h"
 #include "vtkCallbackCommand.h"
 #include "vtkChunkedMarchingCubes.h"
 #include "vtkCommand.h"
@@ -64,48 +65,7 @@ vtkSmartPointer<vtkPolyData> MeshVolume(const lvdif::DictionaryVolume& volume, l
 
 void WriteMesh(vtkPolyData* mesh, const std::string& path)
 {
-  const std::string ext = Extension(path);
-  int ok = 0;
-  if (ext == "ply")
-  {
-    vtkNew<vtkPLYWriter> w;
-    w->SetFileName(path.c_str());
-    w->SetInputData(mesh);
-    w->SetFileTypeToBinary();
-    w->SetArrayName("rgba");
-    w->SetEnableAlpha(true);
-    ok = w->Write();
-  }
-  else if (ext == "obj")
-  {
-    vtkNew<vtkOBJWriter> w;
-    w->SetFileName(path.c_str());
-    w->SetInputData(mesh);
-    ok = w->Write();
-  }
-  else if (ext == "stl")
-  {
-    vtkNew<vtkSTLWriter> w;
-    w->SetFileName(path.c_str());
-    w->SetInputData(mesh);
-    w->SetFileTypeToBinary();
-    ok = w->Write();
-  }
-  else if (ext == "vtp")
-  {
-    vtkNew<vtkXMLPolyDataWriter> w;
-    w->SetFileName(path.c_str());
-    w->SetInputData(mesh);
-    ok = w->Write();
-  }
-  else
-  {
-    throw lvdif::Error(lvdif::ErrorCode::InvalidArgument, "unknown mesh extension '." + ext + "' (use .ply, .obj, .stl or .vtp)");
-  }
-  if (!ok)
-  {
-    throw lvdif::Error(lvdif::ErrorCode::IoFailure, "could not write " + path);
-  }
+  vtkLVDIFFiles::SaveMesh(mesh, path); // by extension, through the one file registry
 }
 
 void RenderPng(vtkPolyData* mesh, const std::string& path, int width, int height)

@@ -81,7 +81,6 @@ public:
 
 private:
   void resetPipeline();
-  void saveImage(const QString& path);
   void afterEdit(const lvdif::EditResult& r);
   void requestDirty();
   /// Re-mesh request after an editor call: exact for what `r` changed.

@@ -31,16 +31,36 @@ int vtkSparseVolumeToImage::RequestInformation(
   using SDDP = vtkStreamingDemandDrivenPipeline;
   vtkInformation* inInfo = inputVector[0]->GetInformationObject(0);
   vtkInformation* outInfo = outputVector->GetInformationObject(0);
-  if (!inInfo->Has(SDDP::WHOLE_EXTENT()))
+  int whole[6];
+  if (inInfo->Has(SDDP::WHOLE_EXTENT()))
+  {
+    inInfo->Get(SDDP::WHOLE_EXTENT(), whole);
+    if (inInfo->Has(vtkDataObject::ORIGIN())) outInfo->CopyEntry(inInfo, vtkDataObject::ORIGIN());
+    if (inInfo->Has(vtkDataObject::SPACING())) outInfo->CopyEntry(inInfo, vtkDataObject::SPACING());
+  }
+  else if (vtkSparseDictionaryVolume* given = vtkSparseDictionaryVolume::GetData(inInfo))
+  {
+    if (!given->HasVolume())
+    {
+      vtkErrorMacro("the input holds no dictionary volume");
+      return 0;
+    }
+    // a volume given as data (vtkTrivialProducer) announces nothing: read it off the volume
+    const lvdif::VolumeOptions& o = given->GetVolume()->options();
+    for (int a = 0; a < 3; ++a)
+    {
+      whole[2 * a] = 0;
+      whole[2 * a + 1] = static_cast<int>(o.dims[a] - 1);
+    }
+    outInfo->Set(vtkDataObject::ORIGIN(), o.origin.data(), 3);
+    outInfo->Set(vtkDataObject::SPACING(), o.spacing.data(), 3);
+  }
+  else
   {
     vtkErrorMacro("the input does not announce the volume's extent (not a sparse volume producer?)");
     return 0;
   }
-  int whole[6];
-  inInfo->Get(SDDP::WHOLE_EXTENT(), whole);
   outInfo->Set(SDDP::WHOLE_EXTENT(), whole, 6);
-  if (inInfo->Has(vtkDataObject::ORIGIN())) outInfo->CopyEntry(inInfo, vtkDataObject::ORIGIN());
-  if (inInfo->Has(vtkDataObject::SPACING())) outInfo->CopyEntry(inInfo, vtkDataObject::SPACING());
   outInfo->Set(vtkAlgorithm::CAN_PRODUCE_SUB_EXTENT(), 1);
   vtkDataObject::SetPointDataActiveScalarInfo(outInfo, VTK_FLOAT, 1);
   double points = 1;

@@ -146,7 +146,7 @@ void vtkPDictionaryVolumeWriter::WriteData()
     this->SetErrorCode(vtkErrorCode::NoFileNameError);
     return;
   }
-  if ((!image && !sparse) || !inInfo || !inInfo->Has(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT()))
+  if ((!image && !sparse) || !inInfo || (!sparse && !inInfo->Has(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT())))
   {
     vtkErrorMacro("no input image or sparse volume");
     this->SetErrorCode(vtkErrorCode::UnknownError);
@@ -159,7 +159,18 @@ void vtkPDictionaryVolumeWriter::WriteData()
     return;
   }
   int whole[6], ext[6];
-  inInfo->Get(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT(), whole);
+  if (sparse)
+  {
+    for (int a = 0; a < 3; ++a) // the volume's own (0-based) indices
+    {
+      whole[2 * a] = 0;
+      whole[2 * a + 1] = static_cast<int>(sparse->GetVolume()->dims()[a] - 1);
+    }
+  }
+  else
+  {
+    inInfo->Get(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT(), whole);
+  }
   PieceExtent(whole, this->Piece, this->NumberOfPieces, ext);
   int ok = !lvdifvtk::extentIsValid(ext) ? 1
     : sparse                            ? (this->WritePiece(sparse, ext) ? 1 : 0)

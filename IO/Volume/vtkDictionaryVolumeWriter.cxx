@@ -62,6 +62,7 @@ void vtkDictionaryVolumeWriter::WriteData()
     : static_cast<float>(this->BandWidth);
   lvdif::VolumeFileWriteOptions writeOptions;
   writeOptions.compressionLevel = this->CompressionLevel;
+  writeOptions.metadata = this->Metadata;
   if (!this->VolumeName.empty())
   {
     writeOptions.metadata["name"] = this->VolumeName;
@@ -103,6 +104,7 @@ void vtkDictionaryVolumeWriter::WriteSparse(vtkSparseDictionaryVolume* sparse)
   }
   lvdif::VolumeFileWriteOptions writeOptions;
   writeOptions.compressionLevel = this->CompressionLevel;
+  writeOptions.metadata = this->Metadata;
   if (!this->VolumeName.empty())
   {
     writeOptions.metadata["name"] = this->VolumeName;

@@ -18,6 +18,7 @@
 #include "lvdifIOVolumeModule.h"
 #include "vtkWriter.h"
 
+#include <map>
 #include <string>
 
 class vtkImageData;
@@ -56,6 +57,10 @@ public:
   /// Stored as the `name` metadata entry when not empty.
   vtkSetStdStringFromCharMacro(VolumeName);
   vtkGetCharFromStdStringMacro(VolumeName);
+
+  /// Adds a metadata entry to the file ("source mesh", "creation parameters", ...).
+  void AddMetadata(const std::string& key, const std::string& value) { this->Metadata[key] = value; }
+  void ClearMetadata() { this->Metadata.clear(); }
   ///@}
 
   /// The input when it is an image (nullptr for a sparse volume).
@@ -71,6 +76,7 @@ protected:
 
   std::string FileName;
   std::string VolumeName;
+  std::map<std::string, std::string> Metadata;
   double BandWidth = 8.0;
   int ChunkEdge = 32;
   int CompressionLevel;
