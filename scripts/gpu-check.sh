@@ -12,8 +12,11 @@ mkdir -p "$OUT"
 cmake -S . -B b -DLVDIF_CORE_ONLY=ON -DLVDIF_CUDA=ON -DCMAKE_CUDA_ARCHITECTURES=90 -DCMAKE_BUILD_TYPE=Release \
   > "$OUT/build.log" 2>&1 || { tail -40 "$OUT/build.log"; exit 1; }
 cmake --build b -j16 >> "$OUT/build.log" 2>&1 || { grep -B2 -A10 -i "error" "$OUT/build.log" | head -80; exit 1; }
-timeout 240 ./b/Core/LVDIFCoreTests > "$OUT/tests.log" 2>&1
-echo "tests rc=$?" >> "$OUT/tests.log"
+: > "$OUT/tests.log"
+for t in b/Core/*/LVDIF*Tests; do
+  timeout 240 "$t" >> "$OUT/tests.log" 2>&1
+  echo "tests $(basename "$t") rc=$?" >> "$OUT/tests.log"
+done
 grep -E "^\[  (PASSED|FAILED|SKIPPED) " "$OUT/tests.log" | sort | uniq -c | sort -rn | head -5
 grep "FAILED" "$OUT/tests.log" | head
 B=b/Testing/Benchmarks/Core

@@ -1,5 +1,5 @@
 #!/bin/bash
-# Issue 8's GPU row: builds Core with CUDA (no VTK/Qt needed) and runs
+# The stroke-latency GPU row: builds Core with CUDA (no VTK/Qt needed) and runs
 # bench_stroke_latency_core at 1024^3 (cuda, and cpu with all threads for
 # reference) plus the CUDA tests. Logs go to $OUT (default ./out-gpu).
 # usage: scripts/gpu-stroke-latency.sh   (from the repository root, on the GPU host)
@@ -9,7 +9,7 @@ mkdir -p "$OUT"
 { date -u; nvidia-smi -L; nproc; uptime; } > "$OUT/machine.txt" 2>&1
 cmake -S . -B b -DLVDIF_CORE_ONLY=ON -DLVDIF_CUDA=ON -DCMAKE_CUDA_ARCHITECTURES=90 -DCMAKE_BUILD_TYPE=Release \
   > "$OUT/build.log" 2>&1 || { tail -40 "$OUT/build.log"; exit 1; }
-cmake --build b -j16 --target LVDIFCoreTests bench_stroke_latency_core >> "$OUT/build.log" 2>&1 \
+cmake --build b -j16 --target LVDIFEditTests LVDIFMarchingCubesTests bench_stroke_latency_core >> "$OUT/build.log" 2>&1 \
   || { grep -B2 -A10 -i "error" "$OUT/build.log" | head -80; exit 1; }
 B=b/Testing/Benchmarks/Core/bench_stroke_latency_core
 L="$OUT/bench.log"
@@ -26,7 +26,10 @@ for s in 0 3 10 16; do run $B 1024 --device cuda --brush cpu --settle $s; done
 run $B 1024 --device cuda --brush device --settle 10
 run $B 1024 --device cpu --settle 0
 run $B 512 --device cuda --brush cpu
-timeout 100 ./b/Core/LVDIFCoreTests --gtest_filter='*Cuda*' > "$OUT/tests_cuda.log" 2>&1
-echo "tests rc=$?" >> "$OUT/tests_cuda.log"
+: > "$OUT/tests_cuda.log"
+for t in b/Core/Edit/LVDIFEditTests b/Core/MarchingCubes/LVDIFMarchingCubesTests; do
+  timeout 100 "$t" --gtest_filter='*Cuda*' >> "$OUT/tests_cuda.log" 2>&1
+  echo "tests $(basename "$t") rc=$?" >> "$OUT/tests_cuda.log"
+done
 tail -3 "$OUT/tests_cuda.log"
 grep -v "^|--" "$L" | grep "^|\|^##\|^rc\|warning\|^volume"

@@ -2,7 +2,7 @@
  * @class   vtkLegacyBvReader
  * @brief   reads the original LVDIF's `.bv` volume file as a vtkSparseDictionaryVolume
  *
- * A thin wrapper over lvdif::loadLegacyBv (Core/include/lvdif/LegacyBv.h,
+ * A thin wrapper over lvdif::loadLegacyBv (Core/Formats/include/lvdif/LegacyBv.h,
  * original-code-spec.md section 3): N^3 records {uint16 SDF key, uint16
  * colour index}, no header. The edge N comes from the file size (4 N^3 bytes)
  * and must agree with an `SDF_<N>_` token in the file name when there is one.

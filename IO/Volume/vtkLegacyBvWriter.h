@@ -2,7 +2,7 @@
  * @class   vtkLegacyBvWriter
  * @brief   writes vtkImageData as the original LVDIF's `.bv` volume file
  *
- * A thin wrapper over lvdif::saveLegacyBv (Core/include/lvdif/LegacyBv.h).
+ * A thin wrapper over lvdif::saveLegacyBv (Core/Formats/include/lvdif/LegacyBv.h).
  * The input must be a cube of N^3 points with a point array `sdf` (negative
  * inside, voxel units) and may have an unsigned char array `rgba`. Distances
  * are encoded with the project's dictionary (saturated to +-BandWidth), then

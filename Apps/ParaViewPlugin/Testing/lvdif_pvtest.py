@@ -240,7 +240,7 @@ check.failures = 0
 def write_read_stage(field, path, check):
     """SaveData picks our writer by extension, OpenDataFile our reader; the
     read field must equal the written one within the SDF dictionary's
-    quantisation (Core/include/lvdif/SdfDictionary.h: step 0.001 up to |d| 4,
+    quantisation (Core/Volume/include/lvdif/SdfDictionary.h: step 0.001 up to |d| 4,
     0.1 beyond, saturated at the band, 8 voxels by default)."""
     import numpy as np
     from vtkmodules.util.numpy_support import vtk_to_numpy

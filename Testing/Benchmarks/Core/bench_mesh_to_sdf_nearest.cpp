@@ -7,7 +7,7 @@
 // usage: bench_mesh_to_sdf_nearest MESH [RES=128] [THREADS=2] [CHECK=0]
 #include "BenchCommon.h"
 
-#include "../../../Core/src/MeshToSdfNearest.h"
+#include "../../../Core/MeshToSdf/src/MeshToSdfNearest.h"
 #include "lvdif/MeshFile.h"
 #include "lvdif/MeshToSdf.h"
 

@@ -34,6 +34,8 @@
 // voxel in list order, which is bit-identical to applying them one by one.
 #pragma once
 
+#include "lvdif/HostDevice.h"
+
 #include "lvdif/DictionaryVolume.h"
 
 #include <array>
@@ -42,11 +44,6 @@
 #include <vector>
 
 // The primitive functions below also compile as CUDA device code (Brush.cu).
-#if defined(__CUDACC__)
-#define LVDIF_HD __host__ __device__
-#else
-#define LVDIF_HD
-#endif
 
 namespace lvdif
 {
@@ -93,13 +90,13 @@ struct BrushSettings
 
 // ---- primitive SDFs (voxel units, negative inside) ---------------------------
 
-LVDIF_HD inline double sphereDistance(double px, double py, double pz, double r)
+LVDIF_HD double sphereDistance(double px, double py, double pz, double r)
 {
   return std::sqrt(px * px + py * py + pz * pz) - r;
 }
 
 /// Quilez's box with half extent h on every axis.
-LVDIF_HD inline double cubeDistance(double px, double py, double pz, double h)
+LVDIF_HD double cubeDistance(double px, double py, double pz, double h)
 {
   const double ux = std::fabs(px) - h, uy = std::fabs(py) - h, uz = std::fabs(pz) - h;
   const double mx = ux > 0 ? ux : 0, my = uy > 0 ? uy : 0, mz = uz > 0 ? uz : 0;
@@ -110,7 +107,7 @@ LVDIF_HD inline double cubeDistance(double px, double py, double pz, double h)
 }
 
 /// Quilez's box with half extents (hx, hy, hz).
-LVDIF_HD inline double cubeDistanceBox(double px, double py, double pz, double hx, double hy, double hz)
+LVDIF_HD double cubeDistanceBox(double px, double py, double pz, double hx, double hy, double hz)
 {
   const double ux = std::fabs(px) - hx, uy = std::fabs(py) - hy, uz = std::fabs(pz) - hz;
   const double mx = ux > 0 ? ux : 0, my = uy > 0 ? uy : 0, mz = uz > 0 ? uz : 0;
@@ -120,7 +117,7 @@ LVDIF_HD inline double cubeDistanceBox(double px, double py, double pz, double h
 }
 
 /// Quilez's capsule from a to b (p relative to a, ba = b - a).
-LVDIF_HD inline double capsuleDistance(double px, double py, double pz, double bax, double bay, double baz, double r)
+LVDIF_HD double capsuleDistance(double px, double py, double pz, double bax, double bay, double baz, double r)
 {
   const double bb = bax * bax + bay * bay + baz * baz;
   double t = bb > 0 ? (px * bax + py * bay + pz * baz) / bb : 0.0;
@@ -130,7 +127,7 @@ LVDIF_HD inline double capsuleDistance(double px, double py, double pz, double b
 }
 
 /// The dab's signed distance at voxel (x, y, z); `rounding` rounds cube edges.
-LVDIF_HD inline double dabDistance(const Dab& d, double x, double y, double z, double rounding = 0.0)
+LVDIF_HD double dabDistance(const Dab& d, double x, double y, double z, double rounding = 0.0)
 {
   const double px = x - d.center[0], py = y - d.center[1], pz = z - d.center[2];
   switch (d.shape)
@@ -148,7 +145,7 @@ LVDIF_HD inline double dabDistance(const Dab& d, double x, double y, double z, d
 }
 
 /// Quilez's polynomial smooth minimum (k > 0).
-LVDIF_HD inline double smoothMin(double a, double b, double k)
+LVDIF_HD double smoothMin(double a, double b, double k)
 {
   const double diff = a > b ? a - b : b - a;
   const double h = (k - diff > 0 ? k - diff : 0) / k;

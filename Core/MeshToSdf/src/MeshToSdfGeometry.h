@@ -3,16 +3,13 @@
 // lies on, the solid angle of a triangle, point/box distances.
 #pragma once
 
+#include "lvdif/HostDevice.h"
+
 #include <array>
 #include <cmath>
 #include <cstdint>
 
 // Shared by the CPU code and the CUDA kernels (MeshToSdfCuda.cu).
-#if defined(__CUDACC__)
-#define LVDIF_HD __host__ __device__ inline
-#else
-#define LVDIF_HD inline
-#endif
 
 namespace lvdif
 {

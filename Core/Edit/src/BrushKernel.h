@@ -29,7 +29,7 @@ struct BrushContext
 /// Combines one voxel (sdf key, colour key) with one primitive distance s.
 /// `table` decodes keys; `encode(double)` is the band-clamped encoder.
 template <typename Encode>
-LVDIF_HD inline void combineVoxel(
+LVDIF_HD void combineVoxel(
   std::uint16_t& sdf, std::uint16_t& color, double s, const BrushContext& c, const float* table, const Encode& encode)
 {
   const double d = table[sdf];

@@ -4,13 +4,10 @@
 // number from either side.
 #pragma once
 
+#include "lvdif/HostDevice.h"
+
 #include <cstdint>
 
-#ifdef __CUDACC__
-#define LVDIF_HD __host__ __device__ __forceinline__
-#else
-#define LVDIF_HD inline
-#endif
 
 namespace lvdif
 {

@@ -8,14 +8,11 @@
 // "Opposite" means strictly opposite: a zero (or NaN) sign never opposes.
 #pragma once
 
+#include "lvdif/HostDevice.h"
+
 #include <cmath>
 #include <cstdint>
 
-#ifdef __CUDACC__
-#define LVDIF_HD __host__ __device__ __forceinline__
-#else
-#define LVDIF_HD inline
-#endif
 
 namespace lvdif
 {

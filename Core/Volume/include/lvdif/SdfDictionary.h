@@ -20,14 +20,11 @@
 // same sign (never wraps); NaN encodes to the most positive key ("outside").
 #pragma once
 
+#include "lvdif/HostDevice.h"
+
 #include <cstdint>
 #include <vector>
 
-#if defined(__CUDACC__)
-#define LVDIF_SDF_HD __host__ __device__
-#else
-#define LVDIF_SDF_HD
-#endif
 
 namespace lvdif
 {
@@ -72,7 +69,7 @@ public:
   const EncodeConstants& encodeConstants() const { return this->Consts; }
 
   /// encode() from the constants: one definition for the host and the GPU.
-  LVDIF_SDF_HD static SdfKey encodeWith(const EncodeConstants& c, float value)
+  LVDIF_HD static SdfKey encodeWith(const EncodeConstants& c, float value)
   {
     if (!(value == value)) // NaN
     {
@@ -129,7 +126,7 @@ public:
   }
 
 private:
-  LVDIF_SDF_HD static std::int64_t roundHalfDown(double x)
+  LVDIF_HD static std::int64_t roundHalfDown(double x)
   {
     // nearest integer; exact .5 goes down (toward the smaller magnitude)
     const double f = static_cast<double>(static_cast<std::int64_t>(x));

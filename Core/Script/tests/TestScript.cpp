@@ -46,10 +46,7 @@ Where errorOf(const std::string& src, ScriptOptions o = ScriptOptions())
 
 std::string readScript(const char* name)
 {
-  // Data/ is two levels above this file (Core/tests/); CMake passes absolute paths in __FILE__
-  std::string here = __FILE__;
-  here = here.substr(0, here.find_last_of('/'));
-  std::ifstream in(here + "/../../Data/scripts/" + name);
+  std::ifstream in(std::string(LVDIF_SOURCE_DIR) + "/Data/scripts/" + name);
   std::stringstream s;
   s << in.rdbuf();
   return s.str();
