@@ -172,7 +172,7 @@ void validate(const std::vector<Dab>& dabs, const BrushSettings& s)
 // call do, provided no stored key is beyond the band. Then the chunk is
 // written in one go instead of voxel by voxel; the bits are the same as the
 // per-voxel rule's (the CUDA path, which has no such shortcut, checks it).
-bool coverChunk(DictionaryVolume& volume, std::int64_t id, const detail::BrushContext& ctx,
+bool coverChunk(DictionaryVolume& volume, std::int64_t id, const detail::edit::BrushContext& ctx,
   ChunkWriteObserver* observer, std::int64_t& changed)
 {
   const float band = volume.bandWidth();
@@ -289,7 +289,7 @@ void measurePlane(const DictionaryVolume& v, Dab& d)
 
 // Soft paint: every colour key the plan's boxes hold where the skin may be
 // painted, and its mixes with the brush colour in eighths.
-void buildMixTable(DictionaryVolume& volume, detail::DabPlan& plan, const BrushSettings& settings)
+void buildMixTable(DictionaryVolume& volume, detail::edit::DabPlan& plan, const BrushSettings& settings)
 {
   const float* table = volume.sdfDictionary().table();
   std::set<std::uint16_t> keys;
@@ -318,9 +318,9 @@ void buildMixTable(DictionaryVolume& volume, detail::DabPlan& plan, const BrushS
   {
     plan.mixFrom.push_back(k);
     const Rgba old = volume.colors().color(k);
-    for (int q = 1; q < detail::PaintLevels; ++q)
+    for (int q = 1; q < detail::edit::PaintLevels; ++q)
     {
-      const int L = detail::PaintLevels;
+      const int L = detail::edit::PaintLevels;
       auto mix = [&](std::uint8_t a, std::uint8_t b) {
         return static_cast<std::uint8_t>((int(a) * (L - q) + int(b) * q + L / 2) / L);
       };
@@ -334,11 +334,11 @@ void buildMixTable(DictionaryVolume& volume, detail::DabPlan& plan, const BrushS
 }
 
 // Plans groups of dabs (any operation); shared by the per-voxel rule and the gather brushes.
-detail::DabPlan planGroups(DictionaryVolume& volume, const std::vector<Dab>& dabs, const BrushSettings& settings)
+detail::edit::DabPlan planGroups(DictionaryVolume& volume, const std::vector<Dab>& dabs, const BrushSettings& settings)
 {
   validate(dabs, settings);
-  detail::DabPlan plan;
-  detail::BrushContext& ctx = plan.ctx;
+  detail::edit::DabPlan plan;
+  detail::edit::BrushContext& ctx = plan.ctx;
   ctx.op = static_cast<int>(settings.op);
   ctx.blend = settings.blend;
   ctx.colorOffset = settings.colorOffset;
@@ -404,9 +404,9 @@ detail::DabPlan planGroups(DictionaryVolume& volume, const std::vector<Dab>& dab
 
 // Smooth and Grab: per group, every new value is computed from the volume as
 // the previous group left it, then written.
-EditResult applyGather(DictionaryVolume& volume, const detail::DabPlan& plan, ChunkWriteObserver* observer)
+EditResult applyGather(DictionaryVolume& volume, const detail::edit::DabPlan& plan, ChunkWriteObserver* observer)
 {
-  const detail::BrushContext& c = plan.ctx;
+  const detail::edit::BrushContext& c = plan.ctx;
   const float* table = volume.sdfDictionary().table();
   const Index3& n = volume.dims();
   const bool grab = c.op == static_cast<int>(BrushOp::Grab);
@@ -443,7 +443,7 @@ EditResult applyGather(DictionaryVolume& volume, const detail::DabPlan& plan, Ch
             if (!plan.boxes[static_cast<std::size_t>(k)].contains(x, y, z))
               continue;
             double p[3] = { double(x), double(y), double(z) };
-            detail::reflectForMember(c, k - gi * g, p);
+            detail::edit::reflectForMember(c, k - gi * g, p);
             const double sk = dabDistance(base, p[0], p[1], p[2], c.rounding);
             const double tk = dabRadialFraction(base, p[0], p[1], p[2]);
             if (!in || sk < s)
@@ -514,7 +514,7 @@ EditResult applyGather(DictionaryVolume& volume, const detail::DabPlan& plan, Ch
 }
 } // namespace
 
-namespace detail
+namespace detail::edit
 {
 DabPlan planDabs(DictionaryVolume& volume, const std::vector<Dab>& dabs, const BrushSettings& settings)
 {
@@ -523,16 +523,16 @@ DabPlan planDabs(DictionaryVolume& volume, const std::vector<Dab>& dabs, const B
       std::string("the ") + toString(settings.op) + " brush reads neighbouring voxels and runs on the CPU only");
   return planGroups(volume, dabs, settings);
 }
-} // namespace detail
+} // namespace detail::edit
 
 EditResult applyDabs(DictionaryVolume& volume, const std::vector<Dab>& dabs, const BrushSettings& settings,
   ChunkWriteObserver* observer)
 {
   if (readsNeighbours(settings.op))
     return applyGather(volume, planGroups(volume, dabs, settings), observer);
-  detail::DabPlan plan = detail::planDabs(volume, dabs, settings);
+  detail::edit::DabPlan plan = detail::edit::planDabs(volume, dabs, settings);
   EditResult result;
-  const detail::BrushContext& ctx = plan.ctx;
+  const detail::edit::BrushContext& ctx = plan.ctx;
   const std::vector<Dab>& active = plan.dabs;
   const std::vector<VoxelBox>& boxes = plan.boxes;
   const std::vector<std::int64_t>& chunks = plan.chunks;
@@ -641,7 +641,7 @@ EditResult applyDabs(DictionaryVolume& volume, const std::vector<Dab>& dabs, con
             const Voxel old = writeData ? writeData[li] : (readData ? readData[li] : uniformValue);
             Voxel v = old;
             for (int gi : mine)
-              detail::applyGroupToVoxel(v.sdf, v.color, x, y, z, active.data(), boxes.data(), gi, ctx, table, encode);
+              detail::edit::applyGroupToVoxel(v.sdf, v.color, x, y, z, active.data(), boxes.data(), gi, ctx, table, encode);
             if (v != old)
             {
               if (!touched)

@@ -12,7 +12,7 @@
 
 namespace lvdif
 {
-namespace detail
+namespace detail::edit
 {
 
 struct BrushContext
@@ -235,5 +235,5 @@ struct DabPlan
 /// Refuses Smooth and Grab (they are not per-voxel rules).
 DabPlan planDabs(DictionaryVolume& volume, const std::vector<Dab>& dabs, const BrushSettings& settings);
 
-} // namespace detail
+} // namespace detail::edit
 } // namespace lvdif
