@@ -95,8 +95,11 @@ TEST(VolumeEditFilter, ScriptMatchesAnalyticCsg)
         ASSERT_NEAR(sdf->GetValue(i), expect, tol) << x << " " << y << " " << z;
         if (std::fabs(exact) < 1)
           ++near;
-        if (t <= 1.5) // the added sphere's colour skin
-          EXPECT_EQ(rgba->GetComponent(i, 0), 250);
+        // the added sphere's colour: its inside, and its 1.5-voxel skin where it is the
+        // nearer surface (docs/EDITING.md); never on the old surface around it (no halo)
+        const double before = std::max(-8.0, std::min(8.0, std::max(s, -c)));
+        if (std::fabs(t - before) > 2e-3 && t <= 1.5)
+          EXPECT_EQ(rgba->GetComponent(i, 0) == 250, t <= 0 || t < before) << x << " " << y << " " << z;
       }
   EXPECT_GT(near, 1000);
 }
