@@ -306,10 +306,10 @@ void MainWindow::rebuildRecentMenu()
       if (!this->maybeSave())
         return;
       const QString ext = QFileInfo(f).suffix().toLower();
-      if (ext == "lvdv" || ext == "vti")
-        this->openVolume(f);
-      else
+      if (ext == "obj" || ext == "off" || ext == "stl" || ext == "ply")
         this->openMesh(f, this->MeshSettings);
+      else
+        this->openVolume(f); // every volume format of the file registry
     })->setToolTip(f);
   this->RecentMenu->setEnabled(!files.isEmpty());
 }
