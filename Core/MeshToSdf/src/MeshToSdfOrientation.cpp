@@ -53,6 +53,7 @@ OrientedMesh orientMesh(const std::vector<Tri>& tris)
   }
 
   // exact duplicates (same vertex set): keep one face of the net orientation
+  // (of the group's first face when the orientations cancel)
   {
     std::vector<std::array<std::uint32_t, 4>> key(n); // sorted ids, triangle
     for (std::size_t t = 0; t < n; ++t)
@@ -79,7 +80,10 @@ OrientedMesh orientMesh(const std::vector<Tri>& tris)
         for (std::size_t i = g; i < g1; ++i)
         {
           const std::uint32_t t = key[i][3];
-          if (!kept && net != 0 && parity(t, key[i]) == (net > 0 ? 1 : -1))
+          // a group that cancels (net 0) still keeps one face: the search
+          // orients it with its neighbours and the correction s restores w_M,
+          // instead of a one-face hole whose cone term costs every voxel
+          if (!kept && (net == 0 || parity(t, key[i]) == (net > 0 ? 1 : -1)))
           {
             kept = true;
             continue;

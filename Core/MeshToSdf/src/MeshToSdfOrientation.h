@@ -38,8 +38,9 @@ struct OrientedMesh
 };
 
 /// Faces with the same three vertices as another face are reduced first to
-/// their net multiplicity (one face of the majority orientation, or none when
-/// they cancel); the others are removed. Then it orients every connected component (faces joined by edges with exactly two
+/// their net multiplicity (one face of the majority orientation; when they
+/// cancel, one face all the same, oriented by the search below, so M+ has no
+/// hole there); the others are removed. Then it orients every connected component (faces joined by edges with exactly two
 /// faces) by a breadth-first search, keeps the orientation of the majority of
 /// each component's faces, and lists the reversed minority F. Any choice of F
 /// gives the same w_M: only the speed depends on F being small and M+ having
