@@ -26,7 +26,7 @@
 
 namespace
 {
-/// Collects vtkErrorMacro messages (from the worker thread) instead of printing them.
+/// Collects the first vtkErrorMacro (or vtkWarningMacro) message from the worker thread instead of printing it.
 struct ErrorCollector : vtkCommand
 {
   static ErrorCollector* New() { return new ErrorCollector; }
@@ -102,9 +102,11 @@ bool askMeshImportSettings(QWidget* parent, MeshImportSettings& settings)
 }
 
 std::unique_ptr<lvdif::DictionaryVolume> importMesh(
-  QWidget* parent, const QString& path, const MeshImportSettings& settings, QString& error)
+  QWidget* parent, const QString& path, const MeshImportSettings& settings, QString& error, QString* warning)
 {
   error.clear();
+  if (warning)
+    warning->clear();
   vtkNew<vtkLVDIFMeshReader> reader;
   reader->SetFileName(path.toLocal8Bit().constData());
   vtkNew<vtkMeshToSDF> toSdf;
@@ -118,6 +120,9 @@ std::unique_ptr<lvdif::DictionaryVolume> importMesh(
     a->AddObserver(vtkCommand::ErrorEvent, errors);
     a->GetExecutive()->AddObserver(vtkCommand::ErrorEvent, errors);
   }
+  // the filter's warnings (a mesh that encloses no volume, voxels too coarse)
+  vtkNew<ErrorCollector> warnings;
+  toSdf->AddObserver(vtkCommand::WarningEvent, warnings);
   vtkNew<ProgressWatcher> progress;
   toSdf->AddObserver(vtkCommand::ProgressEvent, progress);
 
@@ -169,6 +174,10 @@ std::unique_ptr<lvdif::DictionaryVolume> importMesh(
   {
     const std::string why = !failure.empty() ? failure : errors->text();
     error = QString::fromStdString(why.empty() ? std::string("the conversion produced no volume") : why);
+  }
+  else if (warning)
+  {
+    *warning = QString::fromStdString(warnings->text());
   }
   return volume;
 }

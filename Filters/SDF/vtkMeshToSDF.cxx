@@ -264,6 +264,10 @@ int vtkMeshToSDF::RequestData(vtkInformation*, vtkInformationVector** inputVecto
     }
     return 0;
   }
+  for (const std::string& w : st.warnings)
+  {
+    vtkWarningMacro(<< w);
+  }
   output->SetExtent(ext);
   output->GetPointData()->SetScalars(sdf);
   vtkNew<vtkIdTypeArray> degenerate;
