@@ -8,6 +8,7 @@
 // orientation finds exactly the reversed faces of a closed sphere.
 #include "../src/MeshToSdfDipoleTree.h"
 #include "../src/MeshToSdfInternal.h"
+#include "../src/MeshToSdfOrientation.h"
 #include "MeshToSdfOracle.h"
 #include "lvdif/MeshToSdf.h"
 
@@ -210,6 +211,32 @@ TEST(MeshToSdfWindingFlip, OrientationFindsExactlyTheReversedFaces)
     EXPECT_EQ(w.meshTriangles(), prepared.tris.size());
     EXPECT_EQ(w.closedTris().size(), prepared.tris.size() + prepared.boundary.size());
   }
+}
+
+TEST(MeshToSdfWindingFlip, CancellingDuplicatesLeaveNoHoleAndOneFaceHolesAreExact)
+{
+  // a face and its reversed copy cancel as chains: the orientation pass
+  // keeps one of them (no one-face hole in M+), so M+ is closed
+  TriangleMesh m = makeSphereMesh(0.05f, -0.03f, 0.02f, 1.0f, 10, 20);
+  const std::size_t n = m.triangles.size();
+  for (std::size_t t = 0; t < n; t += 9)
+  {
+    auto r = m.triangles[t];
+    std::swap(r[1], r[2]);
+    m.triangles.push_back(r);
+  }
+  const auto prepared = sdfdetail::prepareMesh(m);
+  const sdfdetail::OrientedMesh om = sdfdetail::orientMesh(prepared.tris);
+  EXPECT_TRUE(om.boundary.empty());
+  EXPECT_EQ(om.removedCount, m.triangles.size() - n); // one face of each pair
+  expectExactSigns("sphere + reversed copies of every 9th face", m);
+  // many small holes: each closed by its own cap (a triangle), exact
+  TriangleMesh h = makeSphereMesh(0.05f, -0.03f, 0.02f, 1.0f, 10, 20);
+  std::vector<std::array<std::uint32_t, 3>> kept;
+  for (std::size_t t = 0; t < h.triangles.size(); ++t)
+    if (t % 13 != 5) kept.push_back(h.triangles[t]);
+  h.triangles = kept;
+  expectExactSigns("sphere with 15 one-face holes", h);
 }
 
 TEST(MeshToSdfWindingFlip, FlippedFractionsAreExact)
