@@ -50,24 +50,25 @@ run 40 $M "$BUNNY" 1024 winding auto bvh volume 8 2 cold,warm,prepared
 run 40 $M "$A" 1024 winding auto bvh volume 8 2 cold,warm
 run 40 $M "$A" 1024 pseudonormal auto bvh volume 8 2 cold,warm
 run 40 $M "$A" 1024 normal auto bvh volume 8 2 warm
-# clean vs damaged armadillo at 512^3: Device::Auto (damaged with reversed or
-# duplicated faces stays on the CPU, 16 threads, until the CUDA construction
-# exists), then explicit CUDA (the GPU's cone construction)
+# clean vs damaged armadillo at 512^3 under Device::Auto (meshes with
+# reversed or duplicated faces stay on the CPU, all cores, until the CUDA
+# construction exists; holes and fins go to the GPU)
 run 30 $M "$A" 512 winding auto bvh volume 8 2 cold,warm
-for d in patch10 patch30 duprev20 holes40 fins200 pair; do
+for d in patch10 duprev20 holes40 fins200 pair; do
   run 45 $M "$d:$A" 512 winding auto bvh volume 8 2 warm
 done
-for d in patch10 duprev20 holes40 fins200; do
-  run 30 $M "$d:$A" 512 winding cuda bvh volume 8 2 warm
-done
-# 1024^3: clean, holes (GPU under Auto), reversed patches (CPU under Auto)
-run 30 $M "holes40:$A" 1024 winding auto bvh volume 8 2 warm
+# 1024^3: clean above; holes (GPU under Auto), reversed patches (CPU under Auto)
+run 40 $M "holes40:$A" 1024 winding auto bvh volume 8 2 warm
 run 60 $M "patch10:$A" 1024 winding auto bvh volume 8 2 warm
 # 832k triangles (armadillo, 2 levels of midpoint subdivision) at 1024^3
 run 60 $M "sub2:$A" 1024 winding auto bvh volume 8 2 cold,warm,prepared
-# the mesh reader on a generated 10M-triangle binary PLY (written to $OUT/../)
-if [ -x "$B/bench_mesh_read" ]; then run 60 "$B/bench_mesh_read" 10000000 /tmp/lvdif-bench-10m; fi
-# CPU ratios on all cores: damaged / clean WindingNumber time, brute-force check of far voxels
-run 90 "$B/bench_winding_flip" --res 128 --samples 200 "$A" "patch10:$A" "duprev20:$A" "holes40:$A" "fins200:$A" "pair:$A"
+# CPU ratios on all cores: damaged / clean WindingNumber time at 256^3, with a
+# brute-force check of 200 far voxels each
+run 120 "$B/bench_winding_flip" --res 256 --samples 200 "$A" "patch10:$A" "duprev20:$A" "holes40:$A" "fins200:$A" \
+  "pair:$A"
+# explicit CUDA on damaged meshes: the GPU's cone construction (slow there)
+for d in patch10 duprev20; do
+  run 30 $M "$d:$A" 512 winding cuda bvh volume 8 2 warm
+done
 grep -E "^mesh:|^\| (cold|warm|prepared)|^## SKIPPED|^rc=1[0-9][0-9]" "$L" >> "$OUT/summary.txt"
 echo "total $(( $(date +%s) - T0 )) s" | tee -a "$OUT/summary.txt"
