@@ -32,6 +32,8 @@ struct PreparedMesh
   /// The boundary chain as directed segments (a -> b, repeated per unit of
   /// multiplicity): the oriented edges of the triangles that do not cancel.
   std::vector<std::array<V3, 2>> boundary;
+  /// Per triangle of tris: its corners' vertex ids, welded by exact position.
+  std::vector<std::array<std::uint32_t, 3>> welded;
   double lo[3] = { 0, 0, 0 }, hi[3] = { 0, 0, 0 }; // bounds of the kept triangles
 };
 

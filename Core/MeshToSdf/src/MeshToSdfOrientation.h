@@ -47,7 +47,10 @@ struct OrientedMesh
 /// little boundary. Non-manifold edges are not crossed; a non-orientable
 /// component keeps the first orientation the BFS reached (its conflicting
 /// edges become boundary of M+, closed by the cone).
-OrientedMesh orientMesh(const std::vector<Tri>& tris);
+/// `welded`: per triangle, its corners' vertex ids welded by exact position
+/// (PreparedMesh::welded). Sorts on OpenMP threads; the result does not
+/// depend on the thread count.
+OrientedMesh orientMesh(const std::vector<Tri>& tris, const std::vector<std::array<std::uint32_t, 3>>& welded);
 
 } // namespace sdfdetail
 } // namespace lvdif

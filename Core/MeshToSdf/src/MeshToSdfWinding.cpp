@@ -298,7 +298,7 @@ WindingSigner::WindingSigner(const PreparedMesh& mesh)
   const std::vector<std::array<V3, 2>>* boundary = &mesh.boundary;
   if (WindingSigner::mayHaveReversedFaces(mesh))
   {
-    om = orientMesh(mesh.tris);
+    om = orientMesh(mesh.tris, mesh.welded);
     if (om.flippedCount != 0 || om.removedCount != 0)
     {
       state = &om.state;

@@ -9,11 +9,14 @@
 #include "../src/MeshToSdfDipoleTree.h"
 #include "../src/MeshToSdfInternal.h"
 #include "../src/MeshToSdfOrientation.h"
+#include "../src/MeshToSdfParallelSort.h"
 #include "MeshToSdfOracle.h"
 #include "lvdif/MeshToSdf.h"
 
 #include <gtest/gtest.h>
+#include <omp.h>
 
+#include <algorithm>
 #include <cmath>
 #include <random>
 #include <string>
@@ -226,7 +229,7 @@ TEST(MeshToSdfWindingFlip, CancellingDuplicatesLeaveNoHoleAndOneFaceHolesAreExac
     m.triangles.push_back(r);
   }
   const auto prepared = sdfdetail::prepareMesh(m);
-  const sdfdetail::OrientedMesh om = sdfdetail::orientMesh(prepared.tris);
+  const sdfdetail::OrientedMesh om = sdfdetail::orientMesh(prepared.tris, prepared.welded);
   EXPECT_TRUE(om.boundary.empty());
   EXPECT_EQ(om.removedCount, m.triangles.size() - n); // one face of each pair
   expectExactSigns("sphere + reversed copies of every 9th face", m);
@@ -320,4 +323,34 @@ TEST(MeshToSdfWindingFlip, NonOrientableAndNonManifoldAreExact)
   m = merge(m, other);
   flip(m, 0.25, 11);
   expectExactSigns("boxes on one edge + fin (non-manifold), flips", m);
+}
+
+TEST(MeshToSdfWindingFlip, OrientationIsIndependentOfThreads)
+{
+  // large enough for the parallel sorts (parts of >= 32768 entries): the
+  // result must be the one thread's, entry for entry
+  std::vector<std::array<std::uint32_t, 4>> keys(300000);
+  std::mt19937 rng(5);
+  for (std::size_t i = 0; i < keys.size(); ++i)
+    keys[i] = { rng() % 50, rng() % 50, rng() % 50, static_cast<std::uint32_t>(i) };
+  auto sorted = keys;
+  std::sort(sorted.begin(), sorted.end());
+  const int threads = omp_get_max_threads();
+  omp_set_num_threads(std::max(4, threads));
+  sdfdetail::parallelSort(keys, std::less<std::array<std::uint32_t, 4>>());
+  EXPECT_TRUE(keys == sorted);
+
+  TriangleMesh m = makeSphereMesh(0, 0, 0, 1.0f, 120, 160);
+  flip(m, 0.2, 4);
+  for (std::size_t t = 0; t < m.triangles.size(); t += 50) m.triangles.push_back(m.triangles[t]);
+  const auto prepared = sdfdetail::prepareMesh(m);
+  omp_set_num_threads(1);
+  const sdfdetail::OrientedMesh one = sdfdetail::orientMesh(prepared.tris, prepared.welded);
+  omp_set_num_threads(std::max(4, threads));
+  const sdfdetail::OrientedMesh many = sdfdetail::orientMesh(prepared.tris, prepared.welded);
+  omp_set_num_threads(threads);
+  EXPECT_GT(one.flippedCount, 0u);
+  EXPECT_GT(one.removedCount, 0u);
+  EXPECT_TRUE(one.state == many.state);
+  EXPECT_EQ(one.boundary.size(), many.boundary.size());
 }
