@@ -7,7 +7,7 @@
 
 namespace lvdif
 {
-namespace sdfdetail
+namespace detail::meshtosdf
 {
 
 namespace
@@ -196,5 +196,5 @@ double DipoleTree::exact(V3 p) const
   return s / FourPi;
 }
 
-} // namespace sdfdetail
+} // namespace detail::meshtosdf
 } // namespace lvdif

@@ -14,7 +14,7 @@
 
 namespace lvdif
 {
-namespace sdfdetail
+namespace detail::meshtosdf
 {
 
 struct WeightedTri
@@ -65,5 +65,5 @@ private:
   std::vector<Node> Nodes;
 };
 
-} // namespace sdfdetail
+} // namespace detail::meshtosdf
 } // namespace lvdif

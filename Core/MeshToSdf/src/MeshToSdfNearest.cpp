@@ -20,7 +20,7 @@
 
 namespace lvdif
 {
-namespace sdfdetail
+namespace detail::meshtosdf
 {
 
 namespace
@@ -564,5 +564,5 @@ NearestResult NearestIndex::nearest(V3 p, std::int32_t hint, double maxDist2) co
   return best;
 }
 
-} // namespace sdfdetail
+} // namespace detail::meshtosdf
 } // namespace lvdif

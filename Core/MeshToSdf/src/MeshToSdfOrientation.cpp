@@ -14,7 +14,7 @@
 
 namespace lvdif
 {
-namespace sdfdetail
+namespace detail::meshtosdf
 {
 
 namespace
@@ -201,5 +201,5 @@ OrientedMesh orientMesh(const std::vector<Tri>& tris, const std::vector<std::arr
   return out;
 }
 
-} // namespace sdfdetail
+} // namespace detail::meshtosdf
 } // namespace lvdif

@@ -12,7 +12,7 @@
 
 namespace lvdif
 {
-namespace sdfdetail
+namespace detail::meshtosdf
 {
 
 struct Tri;
@@ -52,5 +52,5 @@ struct OrientedMesh
 /// depend on the thread count.
 OrientedMesh orientMesh(const std::vector<Tri>& tris, const std::vector<std::array<std::uint32_t, 3>>& welded);
 
-} // namespace sdfdetail
+} // namespace detail::meshtosdf
 } // namespace lvdif

@@ -12,7 +12,7 @@
 
 namespace lvdif
 {
-namespace sdfdetail
+namespace detail::meshtosdf
 {
 
 template <typename T, typename Less>
@@ -49,5 +49,5 @@ void parallelSort(std::vector<T>& v, Less less)
   if (src != &v) v.swap(tmp);
 }
 
-} // namespace sdfdetail
+} // namespace detail::meshtosdf
 } // namespace lvdif

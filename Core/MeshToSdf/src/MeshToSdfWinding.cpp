@@ -42,7 +42,7 @@
 
 namespace lvdif
 {
-namespace sdfdetail
+namespace detail::meshtosdf
 {
 
 namespace
@@ -576,5 +576,5 @@ void WindingSigner::signRow(V3 rowStart, double h, std::int64_t n, float* out, s
   }
 }
 
-} // namespace sdfdetail
+} // namespace detail::meshtosdf
 } // namespace lvdif

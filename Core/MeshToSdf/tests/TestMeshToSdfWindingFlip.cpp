@@ -1,4 +1,4 @@
-// Winding-number sign on meshes with reversed faces (issue 4): the sign of
+// Winding-number sign on meshes with reversed faces: the sign of
 // meshToSdf's WindingNumber mode against the exact winding number by brute
 // force (sum of solid angles in long double, MeshToSdfOracle.h) on every
 // voxel farther than 1 voxel, for flipped fractions 10-90 %, flipped + holes,
@@ -114,7 +114,7 @@ MeshToSdfStats expectExactSigns(const std::string& name, const TriangleMesh& mes
 
 TEST(MeshToSdfWindingFlip, DipoleTreeIntervalsHoldAgainstLongDoubleSolidAngles)
 {
-  using namespace sdfdetail;
+  using namespace detail::meshtosdf;
   std::mt19937 rng(3);
   std::uniform_real_distribution<double> u(-1, 1);
   std::uniform_real_distribution<float> uf(-1, 1), sf(-0.1f, 0.1f);
@@ -203,8 +203,8 @@ TEST(MeshToSdfWindingFlip, OrientationFindsExactlyTheReversedFaces)
   {
     TriangleMesh m = makeSphereMesh(0, 0, 0, 1.0f, 10, 20);
     const std::size_t n = flip(m, f, 9);
-    const auto prepared = sdfdetail::prepareMesh(m);
-    const sdfdetail::WindingSigner w(prepared);
+    const auto prepared = detail::meshtosdf::prepareMesh(m);
+    const detail::meshtosdf::WindingSigner w(prepared);
     const std::size_t minority = std::min(n, prepared.tris.size() - n);
     EXPECT_EQ(w.flippedTriangles(), minority) << f;
     // what the CUDA kernel gets: M itself closed by a cone over dM (every
@@ -228,8 +228,8 @@ TEST(MeshToSdfWindingFlip, CancellingDuplicatesLeaveNoHoleAndOneFaceHolesAreExac
     std::swap(r[1], r[2]);
     m.triangles.push_back(r);
   }
-  const auto prepared = sdfdetail::prepareMesh(m);
-  const sdfdetail::OrientedMesh om = sdfdetail::orientMesh(prepared.tris, prepared.welded);
+  const auto prepared = detail::meshtosdf::prepareMesh(m);
+  const detail::meshtosdf::OrientedMesh om = detail::meshtosdf::orientMesh(prepared.tris, prepared.welded);
   EXPECT_TRUE(om.boundary.empty());
   EXPECT_EQ(om.removedCount, m.triangles.size() - n); // one face of each pair
   expectExactSigns("sphere + reversed copies of every 9th face", m);
@@ -332,22 +332,23 @@ TEST(MeshToSdfWindingFlip, OrientationIsIndependentOfThreads)
   std::vector<std::array<std::uint32_t, 4>> keys(300000);
   std::mt19937 rng(5);
   for (std::size_t i = 0; i < keys.size(); ++i)
-    keys[i] = { rng() % 50, rng() % 50, rng() % 50, static_cast<std::uint32_t>(i) };
+    keys[i] = { static_cast<std::uint32_t>(rng() % 50), static_cast<std::uint32_t>(rng() % 50),
+      static_cast<std::uint32_t>(rng() % 50), static_cast<std::uint32_t>(i) };
   auto sorted = keys;
   std::sort(sorted.begin(), sorted.end());
   const int threads = omp_get_max_threads();
   omp_set_num_threads(std::max(4, threads));
-  sdfdetail::parallelSort(keys, std::less<std::array<std::uint32_t, 4>>());
+  detail::meshtosdf::parallelSort(keys, std::less<std::array<std::uint32_t, 4>>());
   EXPECT_TRUE(keys == sorted);
 
   TriangleMesh m = makeSphereMesh(0, 0, 0, 1.0f, 120, 160);
   flip(m, 0.2, 4);
   for (std::size_t t = 0; t < m.triangles.size(); t += 50) m.triangles.push_back(m.triangles[t]);
-  const auto prepared = sdfdetail::prepareMesh(m);
+  const auto prepared = detail::meshtosdf::prepareMesh(m);
   omp_set_num_threads(1);
-  const sdfdetail::OrientedMesh one = sdfdetail::orientMesh(prepared.tris, prepared.welded);
+  const detail::meshtosdf::OrientedMesh one = detail::meshtosdf::orientMesh(prepared.tris, prepared.welded);
   omp_set_num_threads(std::max(4, threads));
-  const sdfdetail::OrientedMesh many = sdfdetail::orientMesh(prepared.tris, prepared.welded);
+  const detail::meshtosdf::OrientedMesh many = detail::meshtosdf::orientMesh(prepared.tris, prepared.welded);
   omp_set_num_threads(threads);
   EXPECT_GT(one.flippedCount, 0u);
   EXPECT_GT(one.removedCount, 0u);
