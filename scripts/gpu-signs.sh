@@ -62,10 +62,16 @@ run 40 $M "holes40:$A" 1024 winding auto bvh volume 8 2 warm
 run 60 $M "patch10:$A" 1024 winding auto bvh volume 8 2 warm
 # 832k triangles (armadillo, 2 levels of midpoint subdivision) at 1024^3
 run 60 $M "sub2:$A" 1024 winding auto bvh volume 8 2 cold,warm,prepared
+# host builds on the 832k-triangle mesh: nearest index (CPU) with 1 thread and all threads, phase times
+run 60 env OMP_NUM_THREADS=1 $M "sub2:$A" 64 unsigned cpu bvh float 4 2 cold --trace
+run 60 $M "sub2:$A" 64 unsigned cpu bvh float 4 2 cold --trace
+run 60 $M "patch10:sub2:$A" 64 winding cpu bvh float 4 2 cold --trace
 # CPU ratios on all cores: damaged / clean WindingNumber time at 256^3, with a
 # brute-force check of 200 far voxels each
 run 120 "$B/bench_winding_flip" --res 256 --samples 200 "$A" "patch10:$A" "duprev20:$A" "holes40:$A" "fins200:$A" \
   "pair:$A"
+# 13.3M triangles (armadillo, 4 levels of subdivision; made in memory first) at 1024^3
+run 120 $M "sub4:$A" 1024 winding auto bvh volume 8 2 cold,warm
 # explicit CUDA on damaged meshes: the GPU's cone construction (slow there)
 for d in patch10 duprev20; do
   run 30 $M "$d:$A" 512 winding cuda bvh volume 8 2 warm

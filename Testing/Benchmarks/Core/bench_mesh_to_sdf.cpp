@@ -46,11 +46,18 @@ int main(int argc, char** argv)
   }
   try
   {
-    const std::string spec = argv[1];
-    const auto colon = spec.find(':');
-    const bool damaged = colon != std::string::npos && spec.find('/') > colon;
-    const std::string path = damaged ? spec.substr(colon + 1) : spec;
-    const std::string damage = damaged ? spec.substr(0, colon) : "";
+    // DAMAGE:...:PATH, applied from the right (patch10:sub2:m = patches on the subdivided mesh)
+    std::string path = argv[1];
+    std::vector<std::string> damages;
+    for (auto colon = path.find(':'); colon != std::string::npos && path.find('/') > colon; colon = path.find(':'))
+    {
+      damages.push_back(path.substr(0, colon));
+      path = path.substr(colon + 1);
+    }
+    std::string damage;
+    for (const std::string& d : damages) damage += d + ":";
+    const bool damaged = !damages.empty();
+    if (damaged) damage.pop_back();
     const std::int64_t res = argc > 2 ? std::atoll(argv[2]) : 256;
     const std::string sign = argc > 3 ? argv[3] : "winding";
     const std::string device = argc > 4 ? argv[4] : "auto";
@@ -71,7 +78,8 @@ int main(int argc, char** argv)
     }
 
     bench::Stopwatch readClock;
-    const TriangleMesh mesh = signquality::damaged(loadMesh(path), damage);
+    TriangleMesh mesh = loadMesh(path);
+    for (auto d = damages.rbegin(); d != damages.rend(); ++d) mesh = signquality::damaged(mesh, *d);
     const double readMs = readClock.ms(); // includes making the damaged variant
 
     MeshToSdfOptions o;
