@@ -377,14 +377,16 @@ bool MainWindow::openVolume(const QString& path)
 
 bool MainWindow::openMesh(const QString& path, const MeshImportSettings& settings)
 {
-  QString error;
-  auto volume = importMesh(this, path, settings, error);
+  QString error, warning;
+  auto volume = importMesh(this, path, settings, error, &warning);
   if (!volume)
   {
     if (!error.isEmpty())
       this->showError("Cannot convert " + path, std::runtime_error(error.toStdString()));
     return false;
   }
+  if (!warning.isEmpty())
+    QMessageBox::warning(this, "Open mesh", warning);
   try
   {
     this->Chunks->RemoveAllChunks();
