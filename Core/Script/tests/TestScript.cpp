@@ -9,6 +9,7 @@
 
 #include <cmath>
 #include <fstream>
+#include <random>
 #include <set>
 #include <sstream>
 
@@ -275,4 +276,99 @@ TEST(Script, SpiralDrawsNineTaperedLinesInNineColours)
   }
   // the helix axis itself is empty
   EXPECT_GT(v.sdf(64, 64, 64), 0.0f);
+}
+
+// Hostile shapes of scripts: chains of any length evaluate without recursion
+// (checked against a sum computed here), nesting beyond the limit is one
+// parse error at the token that crossed it.
+TEST(Script, LongChainsRunWithoutRecursion)
+{
+  std::mt19937 rng(18);
+  for (int n : { 2, 3, 1000, 100000 })
+  {
+    std::string src = "x = 7";
+    double expect = 7;
+    for (int i = 0; i < n; ++i)
+    {
+      const int v = static_cast<int>(rng() % 9) + 1;
+      const bool minus = rng() % 2 != 0;
+      src += (minus ? "-" : "+") + std::to_string(v);
+      expect += minus ? -v : v;
+    }
+    EXPECT_EQ(valueOf(src), expect) << n << " terms";
+  }
+  // products, 'and' and 'or' chains, and mixed levels
+  std::string prod = "x = 1", all = "x = 1", any = "x = 0";
+  for (int i = 0; i < 50000; ++i)
+  {
+    prod += i % 2 ? "*2" : "/2";
+    all += " and 1";
+    any += " or 0";
+  }
+  EXPECT_EQ(valueOf(prod), 1.0);
+  EXPECT_EQ(valueOf(all), 1.0);
+  EXPECT_EQ(valueOf(any + " or 3"), 1.0);
+  EXPECT_EQ(valueOf("x = 2 + 3 * 4 - 10 / 5 * 2 + 7 % 4"), 2 + 12 - 4 + 3);
+  EXPECT_EQ(valueOf("x = 1 < 2 and 3 > 2 or 0"), 1.0);
+  EXPECT_EQ(valueOf("x = (1 + 2) * (3 + 4) - (10 - 2 - 3)"), 21 - 5);
+  // errors inside a chain point at their own operator
+  const Where w = errorOf("x = 1 + 2 + 3 / 0 + 4");
+  EXPECT_EQ(w.line, 1);
+  EXPECT_EQ(w.column, 15);
+  EXPECT_EQ(w.detail, "division by zero");
+}
+
+TEST(Script, LongElseIfChainsPickTheRightClause)
+{
+  for (int n : { 1, 2, 30000 })
+    for (int pick : { 0, n / 2, n - 1, n })
+    {
+      std::string src = "k = " + std::to_string(pick) + "\nif k == 0 { x = 0 }";
+      for (int i = 1; i < n; ++i)
+        src += " else if k == " + std::to_string(i) + " { x = " + std::to_string(i) + " }";
+      src += "\nelse { x = -1 }";
+      EXPECT_EQ(valueOf(src), pick < n ? pick : -1) << n << " clauses, pick " << pick;
+    }
+}
+
+TEST(Script, NestingBeyondTheLimitIsOneParseError)
+{
+  const auto check = [](const std::string& src, int column, const char* what) {
+    const Where w = errorOf(src);
+    EXPECT_EQ(w.code, ErrorCode::ParseError) << what;
+    EXPECT_EQ(w.line, 1) << what;
+    EXPECT_EQ(w.column, column) << what;
+    EXPECT_NE(w.detail.find("nested too deeply"), std::string::npos) << what << ": " << w.detail;
+    EXPECT_EQ(w.detail.find('\n'), std::string::npos);
+  };
+  for (int n : { script::MaxNesting + 1, 100000 })
+  {
+    const std::string open(static_cast<std::size_t>(n), '(');
+    // 'x = ' is 4 characters; the parenthesis that crosses the limit is the MaxNesting-th
+    // (the statement's own expression is the first level)
+    check("x = " + open + "1" + std::string(static_cast<std::size_t>(n), ')'), 4 + script::MaxNesting, "parentheses");
+    std::string neg;
+    for (int i = 0; i < n; ++i)
+      neg += "-";
+    check("x = " + neg + "1", 3 + script::MaxNesting, "unary minus");
+    std::string nots;
+    for (int i = 0; i < n; ++i)
+      nots += "not ";
+    check("x = " + nots + "1", 5 + 4 * (script::MaxNesting - 2), "not");
+    std::string calls;
+    for (int i = 0; i < n; ++i)
+      calls += "abs(";
+    check("x = " + calls + "1" + std::string(static_cast<std::size_t>(n), ')'), 5 + 4 * (script::MaxNesting - 1),
+      "calls");
+    std::string blocks;
+    for (int i = 0; i < n; ++i)
+      blocks += "if 1 {";
+    // the top level is a block too; blocks alternate with their condition's expression level
+    const Where w = errorOf(blocks);
+    EXPECT_EQ(w.code, ErrorCode::ParseError);
+    EXPECT_NE(w.detail.find("nested too deeply"), std::string::npos) << w.detail;
+  }
+  // just inside the limit still runs
+  const int ok = script::MaxNesting - 2;
+  EXPECT_EQ(valueOf("x = " + std::string(ok, '(') + "5" + std::string(ok, ')')), 5.0);
 }
