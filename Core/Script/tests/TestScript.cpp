@@ -7,6 +7,7 @@
 
 #include <gtest/gtest.h>
 
+#include <chrono>
 #include <cmath>
 #include <fstream>
 #include <random>
@@ -371,4 +372,47 @@ TEST(Script, NestingBeyondTheLimitIsOneParseError)
   // just inside the limit still runs
   const int ok = script::MaxNesting - 2;
   EXPECT_EQ(valueOf("x = " + std::string(ok, '(') + "5" + std::string(ok, ')')), 5.0);
+}
+
+// Dabs count as steps and a runaway line is refused before its dabs exist:
+// generated spacings and lengths, each either runs within the step limit or
+// stops at its own line and column with nothing of it applied.
+TEST(Script, DabsCountAsStepsAndRunawayLinesAreRefusedFirst)
+{
+  std::mt19937 rng(18);
+  std::uniform_real_distribution<double> spacing(0.001, 0.01), length(50, 1e6);
+  for (int i = 0; i < 20; ++i)
+  {
+    ScriptOptions o;
+    o.maxSteps = 100000;
+    const double s = spacing(rng), l = length(rng);
+    std::ostringstream src;
+    src << "canvas 32\nspacing " << s << "\nline 2 2 2 " << 2 + l << " 2 2\n";
+    ScriptRunner r(o);
+    const auto t0 = std::chrono::steady_clock::now();
+    const double dabs = std::floor(l / s) + 2;
+    try
+    {
+      r.run(src.str());
+      EXPECT_LE(dabs, double(o.maxSteps)) << src.str();
+      EXPECT_GE(double(r.steps()), std::floor(l / s)); // the dabs were counted
+    }
+    catch (const ScriptError& e)
+    {
+      EXPECT_GT(dabs, double(o.maxSteps) - 10) << src.str();
+      EXPECT_EQ(e.line(), 3);
+      EXPECT_EQ(e.column(), 1);
+      EXPECT_NE(e.detail().find("more than the limit"), std::string::npos) << e.detail();
+      EXPECT_EQ(r.edits(), 0u);
+    }
+    EXPECT_LT(std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count(), 10.0);
+  }
+  // out-of-range numbers name the command's position
+  for (const char* cmd : { "blend 1e300", "round 1e300", "spacing 1e-9", "radius 1e300" })
+  {
+    const Where w = errorOf(std::string("canvas 16\n") + cmd + "\n");
+    EXPECT_EQ(w.line, 2) << cmd;
+    EXPECT_EQ(w.column, 1) << cmd;
+    EXPECT_NE(w.detail.find("must be a finite number in"), std::string::npos) << w.detail;
+  }
 }
