@@ -1,8 +1,11 @@
 #include "lvdif/Recording.h"
 
+#include "lvdif/ByteStream.h"
 #include "lvdif/EditLimits.h"
 #include "lvdif/Error.h"
+#include "lvdif/Memory.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -275,19 +278,34 @@ Recording readRecording(std::istream& in, const std::string& name)
 
 void saveRecording(const std::string& path, const Recording& recording)
 {
-  std::ofstream out(path);
-  if (!out)
-    throw Error(ErrorCode::IoFailure, "cannot write recording '" + path + "'");
+  std::ostringstream out;
   writeRecording(out, recording);
-  if (!out)
-    throw Error(ErrorCode::IoFailure, "writing recording '" + path + "' failed");
+  const std::string text = out.str();
+  saveAtomically(path, [&](ByteSink& sink) { sink.write(text.data(), text.size()); });
 }
 
 Recording loadRecording(const std::string& path)
 {
-  std::ifstream in(path);
-  if (!in)
-    throw Error(ErrorCode::IoFailure, "cannot read recording '" + path + "'");
+  FileSource src(path); // refuses FIFOs, directories and devices without blocking
+  // the version line first: a garbage file is refused without reading it whole
+  const std::string magic = "LVDIF-RECORDING";
+  std::string head(static_cast<std::size_t>(std::min<std::uint64_t>(src.size(), 4096)), '\0');
+  src.read(0, &head[0], head.size());
+  std::size_t b = 0;
+  while (b < head.size() && head[b] == '#') // comment lines before the version line
+  {
+    const std::size_t nl = head.find('\n', b);
+    b = nl == std::string::npos ? head.size() : nl + 1;
+  }
+  if (head.compare(b, magic.size(), magic) != 0 && b < head.size())
+  {
+    std::istringstream first(head.substr(b, head.find('\n', b) - b) + "\n");
+    readRecording(first, path); // throws the usual error for the first line
+  }
+  requireMemory(checkedMultiply(src.size(), 8, "recording"), "reading the recording " + path);
+  std::string text(static_cast<std::size_t>(src.size()), '\0');
+  src.read(0, &text[0], text.size());
+  std::istringstream in(text);
   return readRecording(in, path);
 }
 

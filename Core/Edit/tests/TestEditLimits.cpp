@@ -20,6 +20,8 @@
 #include <random>
 #include <sstream>
 #include <sys/socket.h>
+#include <sys/stat.h>
+#include <fstream>
 #include <thread>
 #include <unistd.h>
 
@@ -367,4 +369,43 @@ TEST(EditLimits, SocketDeviceIsBounded)
   writer.join();
   EXPECT_EQ(n, 200000u);
   EXPECT_EQ(dev.errorCount(), 0u);
+}
+
+TEST(EditLimits, LoadRecordingRefusesNonRegularFilesAndGarbageFirst)
+{
+  char t[] = "/tmp/lvdif-rec-XXXXXX";
+  const std::string dir = ::mkdtemp(t);
+  const std::string fifo = dir + "/r.lvr", big = dir + "/big.lvr";
+  ASSERT_EQ(::mkfifo(fifo.c_str(), 0644), 0);
+  for (const std::string& p : { fifo, dir, std::string("/dev/zero") })
+  {
+    try
+    {
+      loadRecording(p);
+      ADD_FAILURE() << p;
+    }
+    catch (const Error& e)
+    {
+      EXPECT_NE(std::string(e.what()).find("not a regular file"), std::string::npos) << e.what();
+    }
+  }
+  {
+    std::ofstream f(big);
+    f << "garbage that is not a recording\n";
+  }
+  ASSERT_EQ(::truncate(big.c_str(), off_t(3) << 30), 0); // 3 GiB, sparse
+  const auto t0 = std::chrono::steady_clock::now();
+  try
+  {
+    loadRecording(big);
+    ADD_FAILURE();
+  }
+  catch (const Error& e)
+  {
+    EXPECT_EQ(std::string(e.what()).rfind(big + ":1:1: expected the version line", 0), 0u) << e.what();
+  }
+  EXPECT_LT(seconds(t0), 2.0);
+  ::unlink(fifo.c_str());
+  ::unlink(big.c_str());
+  ::rmdir(dir.c_str());
 }
