@@ -207,7 +207,8 @@ int vtkChunkedMarchingCubes::RequestData(
   }
   if (region.empty() || input->GetNumberOfPoints() == 0) return 1; // nothing owned: empty output
 
-  vtkDataArray* sdf = this->GetInputArrayToProcess(0, inputVector);
+  vtkDataArray* sdf = vtkLVDIFVolumeBridge::SdfArray(
+    this->GetInputArrayInformation(0), input, this->GetInputArrayToProcess(0, inputVector));
   if (!sdf)
   {
     vtkErrorMacro("no SDF point array (default name 'sdf'; see SetInputArrayToProcess)");

@@ -1,6 +1,7 @@
 #include "vtkMeshToSDF.h"
 
 #include "vtkLVDIFInterrupter.h"
+#include "vtkLVDIFVolumeBridge.h"
 
 #include "lvdif/Error.h"
 #include "lvdif/Memory.h"
@@ -234,8 +235,17 @@ int vtkMeshToSDF::RequestData(vtkInformation*, vtkInformationVector** inputVecto
     {
       lvdif::require(box.lo[a] >= 0 && box.hi[a] < g.dims[a], "vtkMeshToSDF: the requested extent is outside the grid");
     }
-    lvdif::requireMemory(lvdif::checkedMultiply(static_cast<std::uint64_t>(box.voxelCount()), 4, "sdf"),
-      "vtkMeshToSDF: the sdf array");
+    const std::uint64_t bytes = lvdif::checkedMultiply(static_cast<std::uint64_t>(box.voxelCount()), 4, "sdf");
+    const std::uint64_t limit = lvdif::memoryLimitBytes();
+    // said before allocating, so that a GUI user sees why the machine is busy
+    // (above the limit the allocation is refused below)
+    const std::string warning = vtkLVDIFVolumeBridge::DenseImageWarning(
+      bytes, ext, limit, "a smaller Max Dimension needs less");
+    if (!warning.empty())
+    {
+      vtkWarningMacro(<< warning);
+    }
+    lvdif::requireMemory(bytes, "vtkMeshToSDF: the sdf array", limit);
     const lvdif::TriangleMesh mesh = toMesh(input, this->UseVertexNormals);
     sdf->SetNumberOfTuples(static_cast<vtkIdType>(box.voxelCount()));
     lvdif::MeshToSdfOptions o;
@@ -264,6 +274,7 @@ int vtkMeshToSDF::RequestData(vtkInformation*, vtkInformationVector** inputVecto
     }
     return 0;
   }
+  vtkLVDIFVolumeBridge::StoreRange(sdf); // ParaView's data information then needs no pass of its own
   output->SetExtent(ext);
   output->GetPointData()->SetScalars(sdf);
   vtkNew<vtkIdTypeArray> degenerate;

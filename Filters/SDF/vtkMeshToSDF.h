@@ -17,6 +17,11 @@
  * can produce sub-extents (CAN_PRODUCE_SUB_EXTENT) and computes only the
  * requested UPDATE_EXTENT, so pvbatch ranks split the work.
  * Field data gets `degenerate_triangles` (skipped zero-area triangles).
+ * Defaults are those of `lvdif mesh-to-sdf`: winding-number signs, 128
+ * points on the longest axis, 2 voxels of padding, band 8.
+ * Memory: the output is a dense float image (4 bytes a point). From 1 GiB
+ * (or half the memory limit, if lower) a warning names the size before the
+ * allocation; above the limit (LVDIF_MEMORY_LIMIT) the request is refused.
  * Reports progress; AbortExecute cancels (the output is then empty).
  */
 #ifndef vtkMeshToSDF_h
@@ -96,7 +101,8 @@ public:
   ///@}
 
   ///@{
-  /// |sdf| saturates at BandWidth (output units); 0 = no band (default).
+  /// |sdf| saturates at BandWidth (output units); default 8, as `lvdif mesh-to-sdf --band`
+  /// (far voxels then cost nothing); 0 = no band (exact distances everywhere, much slower).
   vtkSetClampMacro(BandWidth, double, 0.0, VTK_FLOAT_MAX);
   vtkGetMacro(BandWidth, double);
   ///@}
@@ -155,7 +161,7 @@ protected:
   int Dimensions[3] = { 64, 64, 64 };
   double Origin[3] = { 0, 0, 0 };
   double Spacing[3] = { 1, 1, 1 };
-  double BandWidth = 0.0;
+  double BandWidth = 8.0;
   bool WorldUnits = false;
   bool UseVertexNormals = false;
   bool ReorientFaces = false;

@@ -1,6 +1,7 @@
 #include "vtkSignVoxelFilter.h"
 
 #include "vtkLVDIFInterrupter.h"
+#include "vtkLVDIFVolumeBridge.h"
 
 #include "lvdif/Error.h"
 #include "lvdif/SignVoxelFilter.h"
@@ -93,7 +94,8 @@ int vtkSignVoxelFilter::RequestData(
     vtkErrorMacro("input and output must be vtkImageData");
     return 0;
   }
-  vtkDataArray* in = this->GetInputArrayToProcess(0, inputVector);
+  vtkDataArray* in = vtkLVDIFVolumeBridge::SdfArray(
+    this->GetInputArrayInformation(0), input, this->GetInputArrayToProcess(0, inputVector));
   if (!in)
   {
     vtkErrorMacro("no point array to process (default: `sdf`; see SetInputArrayToProcess)");
@@ -145,6 +147,8 @@ int vtkSignVoxelFilter::RequestData(
     return 0;
   }
 
+  // signs changed through the pointer: the range of the new values, stored for ParaView's data information
+  vtkLVDIFVolumeBridge::StoreRange(filtered);
   output->ShallowCopy(input);
   // replace the processed array, keeping its attribute role (e.g. active scalars)
   vtkPointData* pd = output->GetPointData();

@@ -71,6 +71,18 @@ public:
   ///@}
 
   ///@{
+  /// One filter of the mask on or off (ParaView's checkboxes set these).
+  void SetUseSVF1(bool on) { this->SetFilterBit(SVF1, on); }
+  bool GetUseSVF1() { return (this->Filters & SVF1) != 0; }
+  void SetUseSVF2(bool on) { this->SetFilterBit(SVF2, on); }
+  bool GetUseSVF2() { return (this->Filters & SVF2) != 0; }
+  void SetUseSVF3(bool on) { this->SetFilterBit(SVF3, on); }
+  bool GetUseSVF3() { return (this->Filters & SVF3) != 0; }
+  void SetUseSVF4(bool on) { this->SetFilterBit(SVF4, on); }
+  bool GetUseSVF4() { return (this->Filters & SVF4) != 0; }
+  ///@}
+
+  ///@{
   /// SVF2/SVF3 iterations per plane at most; 0 = automatic (default).
   vtkSetClampMacro(MaxIterations, int, 0, VTK_INT_MAX);
   vtkGetMacro(MaxIterations, int);
@@ -95,6 +107,7 @@ protected:
 
   int RequestUpdateExtent(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
   int RequestData(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
+  void SetFilterBit(int bit, bool on) { this->SetFilters(on ? (this->Filters | bit) : (this->Filters & ~bit)); }
 
   double Threshold = 2.0;
   int Axis = 0;

@@ -5,15 +5,23 @@
 
 #include "vtkAlgorithm.h"
 #include "vtkDataObject.h"
+#include "vtkDataSet.h"
 #include "vtkFloatArray.h"
 #include "vtkImageData.h"
 #include "vtkInformation.h"
+#include "vtkInformationDoubleVectorKey.h"
+#include "vtkInformationInformationVectorKey.h"
+#include "vtkInformationVector.h"
+#include "vtkNew.h"
 #include "vtkPointData.h"
+#include "vtkSMPThreadLocal.h"
+#include "vtkSMPTools.h"
 #include "vtkStreamingDemandDrivenPipeline.h"
 #include "vtkUnsignedCharArray.h"
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <sstream>
 
 namespace vtkLVDIFVolumeBridge
@@ -72,6 +80,7 @@ void FillImage(const lvdif::DictionaryVolume& volume, const int extentIn[6], vtk
       }
     }
   }
+  StoreRange(sdf); // ParaView's data information then needs no range pass of its own
   image->GetPointData()->AddArray(sdf);
   image->GetPointData()->SetActiveScalars("sdf");
   if (withColor)
@@ -136,6 +145,93 @@ lvdif::FloatGridView FloatView(vtkImageData* image, vtkDataArray* array)
     view.data = f->GetPointer(0);
   }
   return view;
+}
+
+vtkDataArray* SdfArray(vtkInformation* selection, vtkDataSet* input, vtkDataArray* selected)
+{
+  if (selected || !input)
+  {
+    return selected;
+  }
+  const char* name =
+    selection && selection->Has(vtkDataObject::FIELD_NAME()) ? selection->Get(vtkDataObject::FIELD_NAME()) : nullptr;
+  if (name && *name)
+  {
+    return nullptr; // a named array that is not there: the caller's error names it
+  }
+  vtkDataArray* sdf = input->GetPointData()->GetArray("sdf");
+  return sdf ? sdf : input->GetPointData()->GetScalars();
+}
+
+std::string DenseImageWarning(std::uint64_t bytes, const int extent[6], std::uint64_t limit, const char* advice)
+{
+  constexpr std::uint64_t Large = std::uint64_t(1) << 30;
+  if (bytes < std::min(Large, limit / 2))
+  {
+    return std::string();
+  }
+  std::ostringstream msg;
+  msg << "the dense image of " << (extent[1] - extent[0] + 1) << " x " << (extent[3] - extent[2] + 1) << " x "
+      << (extent[5] - extent[4] + 1) << " points needs " << lvdif::formatBytes(bytes) << " (memory limit "
+      << lvdif::formatBytes(limit) << ", LVDIF_MEMORY_LIMIT)";
+  if (advice && *advice)
+  {
+    msg << "; " << advice;
+  }
+  return msg.str();
+}
+
+void StoreRange(vtkFloatArray* array)
+{
+  if (!array || array->GetNumberOfComponents() != 1 || array->GetNumberOfTuples() == 0)
+  {
+    return;
+  }
+  array->Modified(); // written through the pointer: drop whatever was cached before
+  const float* v = array->GetPointer(0);
+  struct MinMax
+  {
+    float lo = std::numeric_limits<float>::infinity();
+    float hi = -std::numeric_limits<float>::infinity();
+    bool finite = true;
+  };
+  vtkSMPThreadLocal<MinMax> local;
+  vtkSMPTools::For(0, array->GetNumberOfTuples(), [&](vtkIdType begin, vtkIdType end) {
+    MinMax& m = local.Local();
+    float lo = m.lo, hi = m.hi;
+    bool finite = true;
+    for (vtkIdType i = begin; i < end; ++i)
+    {
+      const float x = v[i];
+      lo = std::min(lo, x);
+      hi = std::max(hi, x);
+      finite &= (x - x == 0.0f); // false for NaN and +-inf
+    }
+    m.lo = lo;
+    m.hi = hi;
+    m.finite = m.finite && finite;
+  });
+  MinMax all;
+  for (const MinMax& m : local)
+  {
+    all.lo = std::min(all.lo, m.lo);
+    all.hi = std::max(all.hi, m.hi);
+    all.finite = all.finite && m.finite;
+  }
+  if (!all.finite)
+  {
+    return;
+  }
+  const double range[2] = { all.lo, all.hi };
+  vtkInformation* info = array->GetInformation();
+  for (vtkInformationInformationVectorKey* key :
+    { vtkAbstractArray::PER_COMPONENT(), vtkAbstractArray::PER_FINITE_COMPONENT() })
+  {
+    vtkNew<vtkInformationVector> perComponent;
+    perComponent->SetNumberOfInformationObjects(1);
+    perComponent->GetInformationObject(0)->Set(vtkDataArray::COMPONENT_RANGE(), range, 2);
+    info->Set(key, perComponent);
+  }
 }
 
 std::unique_ptr<lvdif::DictionaryVolume> VolumeFromImage(

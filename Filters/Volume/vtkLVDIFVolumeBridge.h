@@ -18,6 +18,8 @@
 #include <string>
 
 class vtkDataArray;
+class vtkDataSet;
+class vtkFloatArray;
 class vtkImageData;
 class vtkInformation;
 
@@ -46,12 +48,34 @@ LVDIFFILTERSVOLUME_EXPORT void SetImageInformation(vtkInformation* outInfo, cons
 LVDIFFILTERSVOLUME_EXPORT std::string WriterInput(vtkImageData* image, const std::string& fileName,
   bool withColor, vtkDataArray*& sdf, vtkDataArray*& rgba, bool& missingFileName);
 
+/// What a filter or reader says (vtkWarningMacro) before it allocates a dense
+/// image of `bytes` for `extent`: the size, the memory limit and what to do;
+/// "" for images under 1 GiB and under half the limit. Above the limit the
+/// allocation itself is refused (lvdif::requireMemory).
+LVDIFFILTERSVOLUME_EXPORT std::string DenseImageWarning(
+  std::uint64_t bytes, const int extent[6], std::uint64_t limit, const char* advice);
+
 /// Geometry of an image's point grid (dims from its extent; origin moved to the extent's first point).
 LVDIFFILTERSVOLUME_EXPORT lvdif::GridGeometry Geometry(vtkImageData* image);
 
 /// A view of a float array's storage when it is a contiguous single-component
 /// vtkFloatArray covering the image's points; data is nullptr otherwise.
 LVDIFFILTERSVOLUME_EXPORT lvdif::FloatGridView FloatView(vtkImageData* image, vtkDataArray* array);
+
+/// The SDF array a filter processes: `selected` (its GetInputArrayToProcess)
+/// when found; when the selection names no array (`selection` is the
+/// filter's GetInputArrayInformation: ParaView sends an empty name for a
+/// filter chained to one not yet updated), the point array `sdf`, else the
+/// active point scalars; nullptr when a named array is missing.
+LVDIFFILTERSVOLUME_EXPORT vtkDataArray* SdfArray(vtkInformation* selection, vtkDataSet* input, vtkDataArray* selected);
+
+/// Computes the range of a 1-component float array written through its raw
+/// pointer and stores it as the array's cached range and finite range (what
+/// GetRange/GetFiniteRange return until the next Modified()). ParaView asks
+/// every new output for both: VTK's generic pass takes about 1 s each for
+/// 10^8 values, this one pass a fraction of that. Nothing is cached when a
+/// value is not finite (VTK then computes as usual).
+LVDIFFILTERSVOLUME_EXPORT void StoreRange(vtkFloatArray* array);
 }
 
 #endif

@@ -3,6 +3,7 @@
 #include "vtkLVDIFInterrupter.h"
 #include "vtkLVDIFVolumeBridge.h"
 
+#include "lvdif/Memory.h"
 #include "lvdif/VolumeFile.h"
 
 #include "vtkDataObject.h"
@@ -12,8 +13,11 @@
 #include "vtkObjectFactory.h"
 #include "vtkStreamingDemandDrivenPipeline.h"
 
+#include <algorithm>
+#include <cstdint>
 #include <cstring>
 #include <fstream>
+#include <string>
 
 vtkStandardNewMacro(vtkDictionaryVolumeReader);
 
@@ -90,6 +94,17 @@ int vtkDictionaryVolumeReader::RequestData(
   options.region.lo = { ext[0], ext[2], ext[4] };
   options.region.hi = { ext[1], ext[3], ext[5] };
   vtkLVDIFInterrupter interrupter(this, 0.0, 0.9);
+  std::uint64_t points = 1;
+  for (int a = 0; a < 3; ++a)
+  {
+    points *= static_cast<std::uint64_t>(std::max(0, ext[2 * a + 1] - ext[2 * a] + 1));
+  }
+  const std::string warning = vtkLVDIFVolumeBridge::DenseImageWarning(points * (this->WithColor ? 8 : 4), ext,
+    lvdif::memoryLimitBytes(), this->WithColor ? "without colours (With Color off) it needs half" : "");
+  if (!warning.empty())
+  {
+    vtkWarningMacro(<< warning);
+  }
   try
   {
     auto volume = lvdif::loadVolume(this->FileName, options, interrupter);

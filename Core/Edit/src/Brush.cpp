@@ -103,7 +103,7 @@ void validateAll(const std::vector<Dab>& dabs, const BrushSettings& s)
 // call do, provided no stored key is beyond the band. Then the chunk is
 // written in one go instead of voxel by voxel; the bits are the same as the
 // per-voxel rule's (the CUDA path, which has no such shortcut, checks it).
-bool coverChunk(DictionaryVolume& volume, std::int64_t id, const detail::BrushContext& ctx,
+bool coverChunk(DictionaryVolume& volume, std::int64_t id, const detail::edit::BrushContext& ctx,
   ChunkWriteObserver* observer, std::int64_t& changed)
 {
   const float band = volume.bandWidth();
@@ -169,7 +169,7 @@ VoxelBox dabInfluenceBox(const DictionaryVolume& volume, const Dab& dab, const B
   return boxFor(volume, dab, reachOf(volume, settings));
 }
 
-namespace detail
+namespace detail::edit
 {
 DabPlan planDabs(DictionaryVolume& volume, const std::vector<Dab>& dabs, const BrushSettings& settings,
   const ChunkWriteObserver* observer)
@@ -232,14 +232,14 @@ DabPlan planDabs(DictionaryVolume& volume, const std::vector<Dab>& dabs, const B
     "an edit of " + std::to_string(plan.chunks.size()) + " chunks");
   return plan;
 }
-} // namespace detail
+} // namespace detail::edit
 
 EditResult applyDabs(DictionaryVolume& volume, const std::vector<Dab>& dabs, const BrushSettings& settings,
   ChunkWriteObserver* observer)
 {
-  detail::DabPlan plan = detail::planDabs(volume, dabs, settings, observer);
+  detail::edit::DabPlan plan = detail::edit::planDabs(volume, dabs, settings, observer);
   EditResult result;
-  const detail::BrushContext& ctx = plan.ctx;
+  const detail::edit::BrushContext& ctx = plan.ctx;
   const std::vector<Dab>& active = plan.dabs;
   const std::vector<VoxelBox>& boxes = plan.boxes;
   const std::vector<std::int64_t>& chunks = plan.chunks;
@@ -350,7 +350,7 @@ EditResult applyDabs(DictionaryVolume& volume, const std::vector<Dab>& dabs, con
                 dabDistance(active[static_cast<size_t>(k)], double(x), double(y), double(z), ctx.rounding);
               if (s > reach)
                 continue;
-              detail::combineVoxel(v.sdf, v.color, s, ctx, table, encode);
+              detail::edit::combineVoxel(v.sdf, v.color, s, ctx, table, encode);
             }
             if (v != old)
             {

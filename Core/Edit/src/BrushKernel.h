@@ -12,7 +12,7 @@
 
 namespace lvdif
 {
-namespace detail
+namespace detail::edit
 {
 
 struct BrushContext
@@ -111,5 +111,5 @@ struct DabPlan
 DabPlan planDabs(DictionaryVolume& volume, const std::vector<Dab>& dabs, const BrushSettings& settings,
   const ChunkWriteObserver* observer = nullptr);
 
-} // namespace detail
+} // namespace detail::edit
 } // namespace lvdif

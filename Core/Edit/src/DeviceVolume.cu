@@ -24,7 +24,7 @@ namespace cuda
 namespace
 {
 
-using Box = detail::DeviceDabBox;
+using Box = detail::edit::DeviceDabBox;
 
 // Per planned chunk: its slot, origin, and the value to start from when the slot is fresh.
 struct ChunkJob
@@ -37,8 +37,8 @@ struct ChunkJob
 };
 
 __global__ void residentDabKernel(std::uint32_t* pool, const ChunkJob* jobs, int edge, int shift, long long dx,
-  long long dy, long long dz, const Dab* dabs, const Box* boxes, int nDabs, detail::BrushContext ctx,
-  const float* table, detail::EncodeParams enc, unsigned long long* changed)
+  long long dy, long long dz, const Dab* dabs, const Box* boxes, int nDabs, detail::edit::BrushContext ctx,
+  const float* table, detail::edit::EncodeParams enc, unsigned long long* changed)
 {
   const long long n = static_cast<long long>(edge) * edge * edge;
   const long long local = static_cast<long long>(blockIdx.x) * blockDim.x + threadIdx.x;
@@ -54,7 +54,7 @@ __global__ void residentDabKernel(std::uint32_t* pool, const ChunkJob* jobs, int
   std::uint32_t nv = v;
   if (x < dx && y < dy && z < dz)
   {
-    nv = detail::applyDabsToVoxel(v, x, y, z, dabs, boxes, nDabs, ctx, table, enc);
+    nv = detail::edit::applyDabsToVoxel(v, x, y, z, dabs, boxes, nDabs, ctx, table, enc);
   }
   if (job.fresh || nv != v)
     *p = nv;
@@ -287,7 +287,7 @@ EditResult DeviceVolume::applyDabs(const std::vector<Dab>& dabs, const BrushSett
 {
   Impl& p = *this->P;
   DictionaryVolume& volume = this->Volume;
-  const detail::DabPlan plan = detail::planDabs(volume, dabs, settings);
+  const detail::edit::DabPlan plan = detail::edit::planDabs(volume, dabs, settings);
   EditResult result;
   if (plan.chunks.empty())
     return result;
@@ -338,7 +338,7 @@ EditResult DeviceVolume::applyDabs(const std::vector<Dab>& dabs, const BrushSett
     char* dev = static_cast<char*>(p.launch);
     LVDIF_CUDA_CHECK(cudaMemcpyAsync(dev, host.data(), oCounts, cudaMemcpyHostToDevice, 0));
     LVDIF_CUDA_CHECK(cudaMemsetAsync(dev + oCounts, 0, sizeof(unsigned long long) * nChunks, 0));
-    const detail::EncodeParams enc = detail::EncodeParams::of(volume.sdfDictionary(), volume.bandWidth());
+    const detail::edit::EncodeParams enc = detail::edit::EncodeParams::of(volume.sdfDictionary(), volume.bandWidth());
     const Index3& dims = volume.dims();
     for (std::size_t first = 0; first < nChunks; first += 65535) // gridDim.y limit
     {

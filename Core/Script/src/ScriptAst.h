@@ -9,7 +9,7 @@
 
 namespace lvdif
 {
-namespace script
+namespace detail::script
 {
 
 enum class Tok
@@ -115,5 +115,5 @@ std::vector<Token> lex(const std::string& source);
 /// Parses tokens into a program; throws ScriptError.
 Program parse(const std::vector<Token>& tokens);
 
-} // namespace script
+} // namespace detail::script
 } // namespace lvdif

@@ -1,5 +1,5 @@
 // Stroke-to-"ready to draw" latency of interactive editing on the Core
-// pipeline only (issue 8; paper Table 2's "C3: marching cubes in its own
+// pipeline only (paper Table 2's "C3: marching cubes in its own
 // thread"), for machines without VTK/Qt (the GPU host). The VTK twin is
 // Testing/Benchmarks/VTK/bench_stroke_latency.cxx, which also installs the
 // meshes into vtkChunkActorManager; this one stops before that.

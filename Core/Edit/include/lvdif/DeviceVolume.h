@@ -1,4 +1,4 @@
-// Device-resident editing (issue 7's GPU targets): the CUDA brush of
+// Device-resident editing: the CUDA brush of
 // BrushCuda.h copies every touched chunk to the device and back per call, so
 // a dab costs ~1.5 ms of transfers. A DeviceVolume instead mirrors the chunk
 // table on the GPU once:

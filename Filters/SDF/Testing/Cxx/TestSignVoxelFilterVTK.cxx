@@ -266,3 +266,48 @@ TEST(vtkSignVoxelFilter, RepairedTorusSurface)
   EXPECT_EQ(fixed.regions, 1);
   EXPECT_LT(fixed.maxError, 1.0);
 }
+
+// The checkboxes (SetUseSVF1..4) are the bits of Filters: with only one on,
+// only that filter's counter moves, and the output equals SetFilters(bit).
+// The output's range (stored by the filter) is that of its values.
+TEST(vtkSignVoxelFilter, CheckboxesAreTheMaskBits)
+{
+  vtkSmartPointer<vtkImageData> img = makeImage();
+  const int bits[4] = { vtkSignVoxelFilter::SVF1, vtkSignVoxelFilter::SVF2, vtkSignVoxelFilter::SVF3,
+    vtkSignVoxelFilter::SVF4 };
+  for (int q = 0; q < 4; ++q)
+  {
+    vtkNew<vtkSignVoxelFilter> boxes, mask;
+    boxes->SetUseSVF1(q == 0);
+    boxes->SetUseSVF2(q == 1);
+    boxes->SetUseSVF3(q == 2);
+    boxes->SetUseSVF4(q == 3);
+    EXPECT_EQ(boxes->GetFilters(), bits[q]);
+    EXPECT_TRUE(q != 0 || boxes->GetUseSVF1());
+    EXPECT_TRUE(q != 3 || (boxes->GetUseSVF4() && !boxes->GetUseSVF1()));
+    mask->SetFilters(bits[q]);
+    for (vtkSignVoxelFilter* f : { boxes.Get(), mask.Get() })
+    {
+      f->SetInputData(img);
+      f->SetDevice(vtkSignVoxelFilter::DEVICE_CPU);
+      f->Update();
+    }
+    auto* flips = vtkIdTypeArray::SafeDownCast(boxes->GetOutput()->GetFieldData()->GetArray("svf_flips"));
+    ASSERT_NE(flips, nullptr);
+    for (int r = 0; r < 4; ++r)
+      if (r != q) EXPECT_EQ(flips->GetValue(r), 0) << "filter " << q + 1 << " alone, counter " << r + 1;
+    vtkDataArray* a = boxes->GetOutput()->GetPointData()->GetArray("sdf");
+    vtkDataArray* b = mask->GetOutput()->GetPointData()->GetArray("sdf");
+    double lo = a->GetTuple1(0), hi = lo;
+    for (vtkIdType i = 0; i < a->GetNumberOfTuples(); ++i)
+    {
+      ASSERT_EQ(a->GetTuple1(i), b->GetTuple1(i));
+      lo = std::min(lo, a->GetTuple1(i));
+      hi = std::max(hi, a->GetTuple1(i));
+    }
+    double range[2];
+    a->GetRange(range, 0);
+    EXPECT_EQ(range[0], lo);
+    EXPECT_EQ(range[1], hi);
+  }
+}
