@@ -107,8 +107,8 @@ private:
   // statements until '}' (open != nullptr) or the end
   void enter(const Token& at, const char* what)
   {
-    if (++this->Depth > MaxNesting)
-      this->fail(at, std::string(what) + " nested too deeply (more than " + std::to_string(MaxNesting) +
+    if (++this->Depth > ScriptMaxNesting)
+      this->fail(at, std::string(what) + " nested too deeply (more than " + std::to_string(ScriptMaxNesting) +
           " levels of blocks, parentheses, unary operators and calls)");
   }
 

@@ -342,24 +342,24 @@ TEST(Script, NestingBeyondTheLimitIsOneParseError)
     EXPECT_NE(w.detail.find("nested too deeply"), std::string::npos) << what << ": " << w.detail;
     EXPECT_EQ(w.detail.find('\n'), std::string::npos);
   };
-  for (int n : { script::MaxNesting + 1, 100000 })
+  for (int n : { ScriptMaxNesting + 1, 100000 })
   {
     const std::string open(static_cast<std::size_t>(n), '(');
-    // 'x = ' is 4 characters; the parenthesis that crosses the limit is the MaxNesting-th
+    // 'x = ' is 4 characters; the parenthesis that crosses the limit is the ScriptMaxNesting-th
     // (the statement's own expression is the first level)
-    check("x = " + open + "1" + std::string(static_cast<std::size_t>(n), ')'), 4 + script::MaxNesting, "parentheses");
+    check("x = " + open + "1" + std::string(static_cast<std::size_t>(n), ')'), 4 + ScriptMaxNesting, "parentheses");
     std::string neg;
     for (int i = 0; i < n; ++i)
       neg += "-";
-    check("x = " + neg + "1", 3 + script::MaxNesting, "unary minus");
+    check("x = " + neg + "1", 3 + ScriptMaxNesting, "unary minus");
     std::string nots;
     for (int i = 0; i < n; ++i)
       nots += "not ";
-    check("x = " + nots + "1", 5 + 4 * (script::MaxNesting - 2), "not");
+    check("x = " + nots + "1", 5 + 4 * (ScriptMaxNesting - 2), "not");
     std::string calls;
     for (int i = 0; i < n; ++i)
       calls += "abs(";
-    check("x = " + calls + "1" + std::string(static_cast<std::size_t>(n), ')'), 5 + 4 * (script::MaxNesting - 1),
+    check("x = " + calls + "1" + std::string(static_cast<std::size_t>(n), ')'), 5 + 4 * (ScriptMaxNesting - 1),
       "calls");
     std::string blocks;
     for (int i = 0; i < n; ++i)
@@ -370,7 +370,7 @@ TEST(Script, NestingBeyondTheLimitIsOneParseError)
     EXPECT_NE(w.detail.find("nested too deeply"), std::string::npos) << w.detail;
   }
   // just inside the limit still runs
-  const int ok = script::MaxNesting - 2;
+  const int ok = ScriptMaxNesting - 2;
   EXPECT_EQ(valueOf("x = " + std::string(ok, '(') + "5" + std::string(ok, ')')), 5.0);
 }
 

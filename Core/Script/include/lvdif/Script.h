@@ -27,14 +27,11 @@
 namespace lvdif
 {
 
-namespace script
-{
 /// Nesting limit of blocks, parentheses, unary operators and call arguments
 /// together: parsing and evaluation recurse once per level, so the bound keeps
 /// any script from exhausting the stack. Chains (1+1+1..., else if ...) do
 /// not nest and have no limit of their own.
-constexpr int MaxNesting = 200;
-}
+constexpr int ScriptMaxNesting = 200;
 
 class ScriptError : public Error
 {
