@@ -1,7 +1,9 @@
 #include "lvdif/Brush.h"
+#include "lvdif/EditLimits.h"
 
 #include "BrushKernel.h"
 #include "lvdif/Error.h"
+#include "lvdif/Memory.h"
 
 #include <algorithm>
 #include <cmath>
@@ -87,30 +89,11 @@ VoxelBox boxFor(const DictionaryVolume& volume, const Dab& d, double reach)
   return b.intersect(volume.bounds());
 }
 
-void validate(const std::vector<Dab>& dabs, const BrushSettings& s)
+void validateAll(const std::vector<Dab>& dabs, const BrushSettings& s)
 {
-  require(std::isfinite(s.blend) && s.blend >= 0, "brush blend radius must be finite and >= 0");
-  require(std::isfinite(s.colorOffset) && s.colorOffset >= 0, "brush colour offset must be finite and >= 0");
-  require(std::isfinite(s.rounding) && s.rounding >= 0, "cube rounding must be finite and >= 0");
-  require(s.op == BrushOp::Add || s.op == BrushOp::Subtract || s.op == BrushOp::Paint, "unknown brush operation");
+  validate(s);
   for (size_t i = 0; i < dabs.size(); ++i)
-  {
-    const Dab& d = dabs[i];
-    bool ok = std::isfinite(d.radius) && d.radius < 1e7;
-    for (int a = 0; a < 3; ++a)
-    {
-      ok = ok && std::isfinite(d.center[a]) && std::fabs(d.center[a]) < 1e9;
-      if (d.shape == BrushShape::Capsule)
-        ok = ok && std::isfinite(d.end[a]) && std::fabs(d.end[a]) < 1e9;
-    }
-    ok = ok && (d.shape == BrushShape::Sphere || d.shape == BrushShape::Cube || d.shape == BrushShape::Capsule);
-    if (!ok)
-    {
-      std::ostringstream msg;
-      msg << "dab " << i << " has a non-finite, absurd or unknown position, radius or shape";
-      throw Error(ErrorCode::InvalidArgument, msg.str());
-    }
-  }
+    validate(dabs[i], i);
 }
 
 
@@ -188,9 +171,10 @@ VoxelBox dabInfluenceBox(const DictionaryVolume& volume, const Dab& dab, const B
 
 namespace detail::edit
 {
-DabPlan planDabs(DictionaryVolume& volume, const std::vector<Dab>& dabs, const BrushSettings& settings)
+DabPlan planDabs(DictionaryVolume& volume, const std::vector<Dab>& dabs, const BrushSettings& settings,
+  const ChunkWriteObserver* observer)
 {
-  validate(dabs, settings);
+  validateAll(dabs, settings);
   DabPlan plan;
   BrushContext& ctx = plan.ctx;
   ctx.op = static_cast<int>(settings.op);
@@ -202,6 +186,12 @@ DabPlan planDabs(DictionaryVolume& volume, const std::vector<Dab>& dabs, const B
   {
     ctx.colorKey = volume.colors().add(settings.color);
   }
+  // Budgets, counted before any chunk is visited or written: the chunk visits
+  // of all boxes, then the memory the edit may allocate (uniform chunks it
+  // expands, plus the undo snapshots of expanded ones).
+  const std::uint64_t maxVisits = EditLimits().maxChunkVisitsPerEdit;
+  const double edge = volume.chunkEdge();
+  double visits = 0;
   for (const Dab& d : dabs)
   {
     if (!(d.radius > 0))
@@ -213,12 +203,33 @@ DabPlan planDabs(DictionaryVolume& volume, const std::vector<Dab>& dabs, const B
     {
       continue;
     }
+    double n = 1;
+    for (int a = 0; a < 3; ++a)
+      n *= std::floor(double(b.hi[a]) / edge) - std::floor(double(b.lo[a]) / edge) + 1;
+    visits += n;
+    if (visits > double(maxVisits))
+      throw Error(ErrorCode::InvalidArgument, "the edit's " + std::to_string(dabs.size()) +
+          " dabs would visit more than " + std::to_string(maxVisits) + " chunks (radius, blend or dab count too large)");
     plan.dabs.push_back(d);
     plan.boxes.push_back(b);
-    volume.forEachChunkInBox(b, [&](std::int64_t id) { plan.chunks.push_back(id); });
   }
+  std::vector<bool> seen(static_cast<std::size_t>(volume.chunkCount()), false);
+  for (const VoxelBox& b : plan.boxes)
+    volume.forEachChunkInBox(b, [&](std::int64_t id) {
+      if (!seen[static_cast<std::size_t>(id)])
+      {
+        seen[static_cast<std::size_t>(id)] = true;
+        plan.chunks.push_back(id);
+      }
+    });
   std::sort(plan.chunks.begin(), plan.chunks.end());
-  plan.chunks.erase(std::unique(plan.chunks.begin(), plan.chunks.end()), plan.chunks.end());
+  const std::uint64_t chunkBytes = std::uint64_t(volume.chunkEdge()) * std::uint64_t(volume.chunkEdge()) *
+    std::uint64_t(volume.chunkEdge()) * sizeof(Voxel);
+  std::uint64_t newBytes = 0;
+  for (std::int64_t id : plan.chunks)
+    newBytes += volume.isUniform(id) ? chunkBytes : 0;
+  requireMemory(newBytes + (observer ? plan.chunks.size() * chunkBytes : 0),
+    "an edit of " + std::to_string(plan.chunks.size()) + " chunks");
   return plan;
 }
 } // namespace detail::edit
@@ -226,7 +237,7 @@ DabPlan planDabs(DictionaryVolume& volume, const std::vector<Dab>& dabs, const B
 EditResult applyDabs(DictionaryVolume& volume, const std::vector<Dab>& dabs, const BrushSettings& settings,
   ChunkWriteObserver* observer)
 {
-  detail::edit::DabPlan plan = detail::edit::planDabs(volume, dabs, settings);
+  detail::edit::DabPlan plan = detail::edit::planDabs(volume, dabs, settings, observer);
   EditResult result;
   const detail::edit::BrushContext& ctx = plan.ctx;
   const std::vector<Dab>& active = plan.dabs;

@@ -105,8 +105,11 @@ struct DabPlan
   std::vector<std::int64_t> chunks;
 };
 
-/// Validates (Error InvalidArgument) and plans; adds the brush colour to the dictionary.
-DabPlan planDabs(DictionaryVolume& volume, const std::vector<Dab>& dabs, const BrushSettings& settings);
+/// Validates (Error InvalidArgument), checks the chunk and memory budgets
+/// (Error InvalidArgument / OutOfMemory; the undo snapshots count when an
+/// observer is given) and plans; adds the brush colour to the dictionary.
+DabPlan planDabs(DictionaryVolume& volume, const std::vector<Dab>& dabs, const BrushSettings& settings,
+  const ChunkWriteObserver* observer = nullptr);
 
 } // namespace detail::edit
 } // namespace lvdif
