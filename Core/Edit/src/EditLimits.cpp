@@ -31,7 +31,14 @@ void validate(const BrushSettings& s)
   checkedNumber(s.blend, 0, EditLimits::MaxSize, "brush blend radius");
   checkedNumber(s.colorOffset, 0, EditLimits::MaxSize, "brush colour offset");
   checkedNumber(s.rounding, 0, EditLimits::MaxSize, "cube rounding");
-  require(s.op == BrushOp::Add || s.op == BrushOp::Subtract || s.op == BrushOp::Paint, "unknown brush operation");
+  require(static_cast<int>(s.op) >= 0 && static_cast<int>(s.op) <= static_cast<int>(BrushOp::Crease),
+    "unknown brush operation");
+  require(std::isfinite(s.strength) && s.strength > 0 && s.strength <= 1, "brush strength must be in (0, 1]");
+  require(static_cast<int>(s.falloff) >= 0 && static_cast<int>(s.falloff) <= static_cast<int>(Falloff::Sharp),
+    "unknown brush falloff");
+  for (int a = 0; a < 3; ++a)
+    if (s.symmetry.mirror[a])
+      checkedNumber(s.symmetry.plane[a], -EditLimits::MaxCoordinate, EditLimits::MaxCoordinate, "symmetry plane");
 }
 
 void validate(const Dab& d, std::size_t index)
@@ -44,6 +51,7 @@ void validate(const Dab& d, std::size_t index)
   for (int a = 0; a < 3; ++a)
   {
     checkedNumber(d.center[a], -EditLimits::MaxCoordinate, EditLimits::MaxCoordinate, name + " position");
+    checkedNumber(d.vec[a], -EditLimits::MaxSize, EditLimits::MaxSize, name + " grab displacement");
     if (d.shape == BrushShape::Capsule)
       checkedNumber(d.end[a], -EditLimits::MaxCoordinate, EditLimits::MaxCoordinate, name + " capsule end");
   }

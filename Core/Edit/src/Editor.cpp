@@ -120,6 +120,7 @@ void Editor::beginStroke()
   this->Builder = std::make_unique<StrokeBuilder>(this->stroke, this->strokeBudget());
   this->StrokeDabs.clear();
   this->StrokeResult = EditResult();
+  this->GrabStarted = false;
   this->Undo.beginStep("stroke");
 }
 
@@ -127,7 +128,22 @@ EditResult Editor::addSample(const BrushSample& s)
 {
   require(this->Builder != nullptr, "no stroke is open");
   this->Builder->add(s);
-  const std::vector<Dab> ready = this->Builder->takeReady();
+  std::vector<Dab> ready = this->Builder->takeReady();
+  if (this->brush.op == BrushOp::Grab)
+  {
+    ready.clear();
+    if (this->GrabStarted && s.position != this->GrabFrom)
+    {
+      Dab d;
+      d.center = this->GrabFrom;
+      d.radius = this->stroke.radius;
+      for (int a = 0; a < 3; ++a)
+        d.vec[a] = s.position[a] - this->GrabFrom[a];
+      ready.push_back(d);
+    }
+    this->GrabFrom = s.position;
+    this->GrabStarted = true;
+  }
   EditResult r;
   this->LastWrite = EditResult();
   if (!ready.empty())
@@ -144,7 +160,9 @@ EditResult Editor::addSample(const BrushSample& s)
 EditResult Editor::endStroke()
 {
   require(this->Builder != nullptr, "no stroke is open");
-  const std::vector<Dab> rest = this->Builder->finish();
+  std::vector<Dab> rest = this->Builder->finish();
+  if (this->brush.op == BrushOp::Grab)
+    rest.clear(); // applied sample by sample
   EditResult r;
   this->LastWrite = EditResult();
   try

@@ -108,7 +108,10 @@ E lookup(const std::string& word, const std::map<std::string, E>& table, const W
 }
 
 const std::map<std::string, BrushOp> Ops{ { "add", BrushOp::Add }, { "subtract", BrushOp::Subtract },
-  { "paint", BrushOp::Paint } };
+  { "paint", BrushOp::Paint }, { "smooth", BrushOp::Smooth }, { "inflate", BrushOp::Inflate }, { "grab", BrushOp::Grab },
+  { "flatten", BrushOp::Flatten }, { "crease", BrushOp::Crease } };
+const std::map<std::string, Falloff> Falloffs{ { "constant", Falloff::Constant }, { "linear", Falloff::Linear },
+  { "smooth", Falloff::Smooth }, { "sharp", Falloff::Sharp } };
 const std::map<std::string, BrushShape> Shapes{ { "sphere", BrushShape::Sphere }, { "cube", BrushShape::Cube },
   { "capsule", BrushShape::Capsule } };
 const std::map<std::string, BrushKind> Kinds{ { "single", BrushKind::Single }, { "basic", BrushKind::Basic },
@@ -131,13 +134,26 @@ void writeRecording(std::ostream& out, const Recording& r)
         << " kind=" << toString(e.kind) << " spacing=" << num(e.spacing) << " blend=" << num(e.brush.blend)
         << " coloroffset=" << num(e.brush.colorOffset) << " rounding=" << num(e.brush.rounding) << " color=" << int(e.brush.color.r) << ","
         << int(e.brush.color.g) << "," << int(e.brush.color.b) << "," << int(e.brush.color.a)
-        << " dabs=" << e.dabs.size() << "\n";
+        << " dabs=" << e.dabs.size();
+    // the sculpting settings only where they differ from the defaults (older files stay as they were)
+    if (e.brush.strength != 1)
+      out << " strength=" << num(e.brush.strength);
+    if (e.brush.falloff != Falloff::Constant)
+      out << " falloff=" << toString(e.brush.falloff);
+    if (e.brush.invert)
+      out << " invert=1";
+    for (int a = 0; a < 3; ++a)
+      if (e.brush.symmetry.mirror[a])
+        out << " mirror" << "xyz"[a] << "=" << num(e.brush.symmetry.plane[a]);
+    out << "\n";
     for (const Dab& d : e.dabs)
     {
       out << (d.shape == shape ? "d" : (std::string("d:") + toString(d.shape))) << " " << num(d.center[0]) << " "
           << num(d.center[1]) << " " << num(d.center[2]) << " " << num(d.radius);
       if (d.shape == BrushShape::Capsule)
         out << " " << num(d.end[0]) << " " << num(d.end[1]) << " " << num(d.end[2]);
+      if (e.brush.op == BrushOp::Grab) // the drag of each grab dab
+        out << " " << num(d.vec[0]) << " " << num(d.vec[1]) << " " << num(d.vec[2]);
       out << "\n";
     }
   }
@@ -194,16 +210,20 @@ Recording readRecording(std::istream& in, const std::string& name)
         d.shape = lookup(head.text.substr(2), Shapes, at, head.column + 2, "shape");
       else if (head.text != "d")
         at.bad(head.column, "expected a dab line 'd x y z r', " + std::to_string(expectDabs) + " more due");
-      const std::size_t want = d.shape == BrushShape::Capsule ? 7 : 4;
+      const bool grab = r.records.back().brush.op == BrushOp::Grab;
+      const std::size_t want = (d.shape == BrushShape::Capsule ? 7 : 4) + (grab ? 3 : 0);
       if (words.size() - 1 != want)
         at.bad(words.size() - 1 > want ? words[want + 1].column : line.size() + 1,
           "a dab needs " + std::to_string(want) + " numbers, got " + std::to_string(words.size() - 1));
+      if (grab)
+        for (int a = 0; a < 3; ++a)
+          d.vec[a] = toNumber(words[want - 2 + a].text, at, words[want - 2 + a].column, "grab displacement");
       for (int a = 0; a < 3; ++a)
         d.center[a] = toNumber(words[1 + a].text, at, words[1 + a].column, "dab position");
       d.radius = toNumber(words[4].text, at, words[4].column, "dab radius");
       if (!(d.radius >= 0))
         at.bad(words[4].column, "dab radius must be >= 0 (got " + words[4].text + ")");
-      if (want == 7)
+      if (d.shape == BrushShape::Capsule)
         for (int a = 0; a < 3; ++a)
           d.end[a] = toNumber(words[5 + a].text, at, words[5 + a].column, "capsule end");
       rule([&] { validate(d, r.records.back().dabs.size()); }, words[1].column);
@@ -247,6 +267,21 @@ Recording readRecording(std::istream& in, const std::string& name)
     e.brush.colorOffset = number("coloroffset");
     if (kv.count("rounding"))
       e.brush.rounding = number("rounding");
+    if (kv.count("strength"))
+      e.brush.strength = number("strength");
+    if (kv.count("falloff"))
+      e.brush.falloff = lookup(get("falloff").first, Falloffs, at, get("falloff").second, "falloff");
+    if (kv.count("invert"))
+      e.brush.invert = number("invert") != 0;
+    for (int a = 0; a < 3; ++a)
+    {
+      const std::string key = std::string("mirror") + "xyz"[a];
+      if (kv.count(key))
+      {
+        e.brush.symmetry.mirror[a] = true;
+        e.brush.symmetry.plane[a] = number(key.c_str());
+      }
+    }
     rule([&] { validate(e.brush); }, head.column);
     rule([&] { checkedNumber(e.spacing, EditLimits::MinSpacing, EditLimits::MaxSize, "spacing"); }, get("spacing").second);
     {

@@ -5,7 +5,8 @@
 // Interactive strokes: beginStroke(), addSample() for each device sample
 // (Drill strokes are applied as they go), endStroke(). pump() does this from an
 // InputDevice: button bit 0 pressed starts a stroke, held adds samples, released
-// ends it.
+// ends it. A Grab stroke is applied as it goes, one dab per sample: centred on
+// the previous sample, displacing by the move since it (Brush.h).
 #pragma once
 
 #include "lvdif/EditLimits.h"
@@ -97,6 +98,8 @@ private:
   double Time = -1;
   bool Pressed = false;
   std::uint64_t DabsApplied = 0;
+  std::array<double, 3> GrabFrom{ 0, 0, 0 }; // the previous sample of a Grab stroke
+  bool GrabStarted = false;
 };
 
 } // namespace lvdif
