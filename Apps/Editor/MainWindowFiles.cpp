@@ -16,6 +16,7 @@
 #include <QFileInfo>
 #include <QFormLayout>
 #include <QImage>
+#include <QPixmap>
 #include <QVTKOpenGLNativeWidget.h>
 #include <QMessageBox>
 #include <QSpinBox>
@@ -85,8 +86,9 @@ void MainWindow::openMeshDialog()
 
 bool MainWindow::saveAsDialog()
 {
-  QString path = QFileDialog::getSaveFileName(
-    this, "Save volume", this->Doc.path(), dialogFilter(vtkLVDIFFiles::Kind::Volume, true));
+  QString path = !this->Options.saveAsAnswer.isEmpty()
+    ? this->Options.saveAsAnswer
+    : QFileDialog::getSaveFileName(this, "Save volume", this->Doc.path(), dialogFilter(vtkLVDIFFiles::Kind::Volume, true));
   if (path.isEmpty())
     return false;
   if (QFileInfo(path).suffix().isEmpty())
@@ -121,6 +123,20 @@ bool MainWindow::exportMesh(const QString& path)
   catch (const std::exception& e)
   {
     this->showError("Cannot export " + path, e);
+    return false;
+  }
+  return true;
+}
+
+bool MainWindow::saveWindowShot(const QString& path)
+{
+  // the whole window (menus, toolbar, tool panel, status bar); Qt composes the
+  // OpenGL view's current frame into it
+  this->RenderWindow->Render();
+  const QPixmap shot = this->grab();
+  if (shot.isNull() || !shot.save(path, "PNG"))
+  {
+    this->showError("Cannot write " + path, std::runtime_error("no window image to save"));
     return false;
   }
   return true;

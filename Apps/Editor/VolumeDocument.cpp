@@ -67,7 +67,9 @@ void VolumeDocument::newCanvas(int nx, int ny, int nz, Fill fill)
   }
   else if (fill == Fill::Sphere)
   {
-    const double r = 0.35 * std::min(nx, std::min(ny, nz));
+    // a starter sphere of at most 64 voxels: its mesh (and so the first frame) stays
+    // small on large canvases; the rest of the canvas is uniform and costs nothing
+    const double r = std::min(64.0, 0.35 * std::min(nx, std::min(ny, nz)));
     lvdif::fillFromFunction(*v, lvdif::sphereSdf(0.5 * (nx - 1), 0.5 * (ny - 1), 0.5 * (nz - 1), r));
   }
   this->Worker.reset(); // stop reading the old volume before it goes

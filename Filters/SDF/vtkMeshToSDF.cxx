@@ -209,6 +209,10 @@ int vtkMeshToSDF::RequestData(vtkInformation*, vtkInformationVector** inputVecto
     output->Initialize();
     return 0;
   }
+  for (const std::string& w : st.warnings)
+  {
+    vtkWarningMacro(<< w);
+  }
   vtkNew<vtkIdTypeArray> degenerate;
   degenerate->SetName("degenerate_triangles");
   degenerate->InsertNextValue(static_cast<vtkIdType>(st.degenerateSkipped));

@@ -7,6 +7,7 @@
 
 #include <algorithm>
 #include <cctype>
+#include <cstring>
 #include <unordered_map>
 
 namespace lvdif
@@ -18,17 +19,81 @@ using namespace detail::volumefile::meshfile;
 
 /// OBJ (Wavefront): v, f with i, i/t, i//n, i/t/n and negative (relative)
 /// indices; other statements (vn, vt, g, o, s, usemtl, l, ...) are skipped.
+// The format check that needs only the first bytes (and the size), made
+// before the whole file is read: a garbage file of any size is refused after
+// reading at most 4 KiB.
+void checkMeshHead(ByteSource& source, MeshFormat format, const std::string& name)
+{
+  const std::uint64_t size = source.size();
+  std::vector<char> head(static_cast<std::size_t>(std::min<std::uint64_t>(size, 4096)));
+  source.read(0, head.data(), head.size());
+  const std::string h(head.begin(), head.end());
+  const auto text = [&]() {
+    for (char c : h)
+      if (c == '\0')
+        return false;
+    return true;
+  };
+  switch (format)
+  {
+    case MeshFormat::Ply:
+      if (h.compare(0, 4, "ply\n") != 0 && h.compare(0, 5, "ply\r\n") != 0)
+        fail(ErrorCode::ParseError, name + ": PLY line 1", "missing the 'ply' magic line");
+      return;
+    case MeshFormat::Stl:
+    {
+      if (size >= 84)
+      {
+        std::uint32_t n = 0;
+        std::memcpy(&n, head.data() + 80, 4); // little-endian hosts only, as the reader
+        if (size == 84 + 50 * std::uint64_t(n))
+          return; // a binary STL
+      }
+      const std::size_t b = h.find_first_not_of(" \t\r\n");
+      if (b == std::string::npos || h.compare(b, 5, "solid") != 0 || !text())
+        fail(ErrorCode::CorruptData, name,
+          "neither a binary STL (size is not 84 + 50 x triangle count) nor an ASCII one (no 'solid')");
+      return;
+    }
+    case MeshFormat::Obj:
+    case MeshFormat::Off:
+      if (!text())
+        fail(ErrorCode::ParseError, name, std::string("not a text ") + (format == MeshFormat::Obj ? "OBJ" : "OFF") +
+            " file (a NUL byte in its first 4 KiB)");
+      return;
+    default:
+      return;
+  }
+}
+
 TriangleMesh readObj(const std::vector<char>& data)
 {
   TextScanner s(data.data(), data.size(), "OBJ");
   TriangleMesh mesh;
   std::vector<std::string> t;
   std::vector<std::int64_t> ids;
+  std::int64_t texCoords = 0, normals = 0;
+  // An index as written (1-based, or negative counting back from the newest
+  // element) checked against the elements so far; messages quote it as written.
+  auto resolve = [&](const std::string& text, std::int64_t count, const char* what, const char* plural) {
+    const std::int64_t v = parseInt(text, s.where());
+    if (v == 0)
+      fail(ErrorCode::ParseError, s.where(), std::string(what) + " index 0 (OBJ indices start at 1)");
+    if (v > count || v < -count)
+      fail(ErrorCode::ParseError, s.where(),
+        std::string(what) + " index " + text + " out of range: " + std::to_string(count) + " " +
+          (count == 1 ? what : plural) + " defined so far (OBJ counts from 1; negative counts back)");
+    return v > 0 ? v - 1 : count + v;
+  };
   while (s.next(t))
   {
     if (t.empty())
       continue;
-    if (t[0] == "v")
+    if (t[0] == "vt")
+      ++texCoords;
+    else if (t[0] == "vn")
+      ++normals;
+    else if (t[0] == "v")
     {
       if (t.size() < 4)
         fail(ErrorCode::ParseError, s.where(), "vertex with fewer than 3 coordinates");
@@ -41,10 +106,25 @@ TriangleMesh readObj(const std::vector<char>& data)
       const std::int64_t n = static_cast<std::int64_t>(mesh.points.size());
       for (std::size_t i = 1; i < t.size(); ++i)
       {
-        const std::int64_t v = parseInt(t[i].substr(0, t[i].find('/')), s.where());
-        if (v == 0)
-          fail(ErrorCode::ParseError, s.where(), "vertex index 0 (OBJ indices start at 1)");
-        ids.push_back(v > 0 ? v - 1 : n + v); // negative: relative to the last vertex
+        // v, v/vt, v//vn or v/vt/vn
+        const std::string& f = t[i];
+        const std::size_t a = f.find('/');
+        ids.push_back(resolve(f.substr(0, a), n, "vertex", "vertices"));
+        if (a == std::string::npos)
+          continue;
+        const std::size_t b = f.find('/', a + 1);
+        const std::string tex = f.substr(a + 1, b == std::string::npos ? std::string::npos : b - a - 1);
+        if (!tex.empty())
+          resolve(tex, texCoords, "texture coordinate", "texture coordinates");
+        if (b != std::string::npos)
+        {
+          const std::string nor = f.substr(b + 1);
+          if (nor.empty() || nor.find('/') != std::string::npos)
+            fail(ErrorCode::ParseError, s.where(), "bad face corner '" + f + "' (expected v, v/vt, v//vn or v/vt/vn)");
+          resolve(nor, normals, "normal", "normals");
+        }
+        else if (tex.empty())
+          fail(ErrorCode::ParseError, s.where(), "bad face corner '" + f + "' (expected v, v/vt, v//vn or v/vt/vn)");
       }
       addPolygon(mesh, ids, n, s.where(), ErrorCode::ParseError);
     }
@@ -194,6 +274,7 @@ TriangleMesh readMesh(ByteSource& source, MeshFormat format, const std::string& 
   if (format == MeshFormat::Auto)
     format = meshFormatFromName(name);
   const std::uint64_t size = source.size();
+  checkMeshHead(source, format, name);
   // the text and the mesh together take a few times the file size
   requireMemory(checkedMultiply(size, 4, "mesh file"), "reading the mesh file " + name);
   std::vector<char> data(static_cast<size_t>(size));
