@@ -1,7 +1,7 @@
 #include "MeshImport.h"
 
 #include "vtkLVDIFMeshReader.h"
-#include "vtkLVDIFVolumeBridge.h"
+#include "LVDIFVolumeBridge.h"
 #include "vtkMeshToSDF.h"
 #include "vtkSparseDictionaryVolume.h"
 
