@@ -6,6 +6,8 @@
 
 #include <gtest/gtest.h>
 
+#include <limits>
+
 #include <algorithm>
 #include <cstring>
 
@@ -149,4 +151,54 @@ TEST(MeshFile, MalformedInputsAreClearErrors)
     SCOPED_TRACE(c.label);
     expectError(c.text, c.f, c.needle);
   }
+}
+
+TEST(MeshFile, BinaryPlyFastPathMatchesTheGeneralReader)
+{
+  // float-only vertices and uchar/int triangle lists take the fast path of
+  // little-endian files; the same records as ASCII (and big-endian) go
+  // through the general reader: the meshes must be equal, and a record the
+  // fast path leaves (a quad, a bad index, a NaN, a truncation) must give
+  // the general reader's result or message
+  const float v[5][4] = { { 0, 0, 0, 1 }, { 1, 0, 0, 1 }, { 1, 1, 0, 1 }, { 0, 1, 0.5f, 1 }, { 2, 2, 2, 1 } };
+  const std::vector<std::vector<int>> faces = { { 0, 1, 2 }, { 0, 2, 3 }, { 0, 1, 2, 3 }, { 1, 2, 4 } };
+  auto head = [&](const std::string& format, std::size_t nv, std::size_t nf, const char* index) {
+    return "ply\nformat " + format + " 1.0\nelement vertex " + std::to_string(nv) +
+      "\nproperty float x\nproperty float y\nproperty float z\nproperty float nx\nelement face " + std::to_string(nf) +
+      "\nproperty list uchar " + index + " vertex_indices\nend_header\n";
+  };
+  auto binary = [&](bool big, const char* index, int badFace, float nanAt) {
+    std::string s = head(big ? "binary_big_endian" : "binary_little_endian", 5, faces.size(), index);
+    for (int i = 0; i < 5; ++i)
+      for (int k = 0; k < 4; ++k) put<float>(s, i == 2 && k == 1 ? nanAt : v[i][k], big);
+    for (std::size_t f = 0; f < faces.size(); ++f)
+    {
+      put<std::uint8_t>(s, static_cast<std::uint8_t>(faces[f].size()));
+      for (int id : faces[f]) put<std::int32_t>(s, int(f) == badFace && id == faces[f].back() ? 99 : id, big);
+    }
+    return s;
+  };
+  std::string ascii = head("ascii", 5, faces.size(), "int");
+  for (auto& p : v) ascii += std::to_string(p[0]) + " " + std::to_string(p[1]) + " " + std::to_string(p[2]) + " 1\n";
+  for (auto& f : faces)
+  {
+    ascii += std::to_string(f.size());
+    for (int id : f) ascii += " " + std::to_string(id);
+    ascii += "\n";
+  }
+  const TriangleMesh want = readText(ascii, MeshFormat::Ply);
+  ASSERT_EQ(want.triangles.size(), 5u);
+  for (const char* index : { "int", "uint" })
+    for (bool big : { false, true })
+    {
+      const TriangleMesh got = readText(binary(big, index, -1, v[2][1]), MeshFormat::Ply);
+      EXPECT_EQ(got.points, want.points) << index << big;
+      EXPECT_EQ(got.triangles, want.triangles) << index << big;
+    }
+  expectError(binary(false, "int", 1, v[2][1]), MeshFormat::Ply, "PLY face 1: vertex index 99 out of range [0, 5)");
+  expectError(binary(false, "int", 3, v[2][1]), MeshFormat::Ply, "PLY face 3: vertex index 99 out of range");
+  expectError(binary(false, "int", -1, std::numeric_limits<float>::quiet_NaN()), MeshFormat::Ply, "PLY vertex 2");
+  const std::string whole = binary(false, "int", -1, v[2][1]);
+  const std::size_t vertexBytes = whole.find("end_header\n") + 11;
+  expectError(whole.substr(0, vertexBytes + 16 * 3 + 5), MeshFormat::Ply, "ends inside");
 }
