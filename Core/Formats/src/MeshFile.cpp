@@ -98,17 +98,49 @@ TriangleMesh readOff(const std::vector<char>& data)
   return mesh;
 }
 
-/// Adds a corner to an STL mesh, sharing bit-identical points.
+/// Adds a corner to an STL mesh, sharing bit-identical points (ids in order
+/// of first appearance). Open addressing over the points' 12 bytes in one
+/// flat table, doubled at half load: no node or string per corner.
 struct PointMerger
 {
-  std::unordered_map<std::string, std::uint32_t> index;
+  std::vector<std::uint32_t> table = std::vector<std::uint32_t>(1024, Empty); // point id, or Empty
+  static constexpr std::uint32_t Empty = 0xffffffffu;
+  static std::size_t hash(const Vec3f& p)
+  {
+    std::uint32_t b[3];
+    std::memcpy(b, p.data(), sizeof(b));
+    std::uint64_t h = 1469598103934665603ull;
+    for (std::uint32_t v : b) h = (h ^ v) * 1099511628211ull;
+    return static_cast<std::size_t>(h ^ (h >> 29));
+  }
   std::uint32_t add(TriangleMesh& mesh, const Vec3f& p)
   {
-    const std::string key(reinterpret_cast<const char*>(p.data()), sizeof(Vec3f));
-    auto it = index.emplace(key, static_cast<std::uint32_t>(mesh.points.size()));
-    if (it.second)
-      mesh.points.push_back(p);
-    return it.first->second;
+    const std::size_t mask = this->table.size() - 1;
+    for (std::size_t slot = hash(p) & mask;; slot = (slot + 1) & mask)
+    {
+      const std::uint32_t e = this->table[slot];
+      if (e == Empty)
+      {
+        const auto id = static_cast<std::uint32_t>(mesh.points.size());
+        mesh.points.push_back(p);
+        this->table[slot] = id;
+        if (2 * mesh.points.size() > this->table.size()) this->grow(mesh);
+        return id;
+      }
+      if (std::memcmp(mesh.points[e].data(), p.data(), sizeof(Vec3f)) == 0) return e;
+    }
+  }
+  void grow(const TriangleMesh& mesh)
+  {
+    std::vector<std::uint32_t> bigger(2 * this->table.size(), Empty);
+    const std::size_t mask = bigger.size() - 1;
+    for (std::uint32_t id = 0; id < mesh.points.size(); ++id)
+    {
+      std::size_t slot = hash(mesh.points[id]) & mask;
+      while (bigger[slot] != Empty) slot = (slot + 1) & mask;
+      bigger[slot] = id;
+    }
+    this->table.swap(bigger);
   }
 };
 
@@ -137,8 +169,11 @@ TriangleMesh readStl(const std::vector<char>& data)
         std::array<std::uint32_t, 3> tri;
         for (int c = 0; c < 3; ++c)
         {
-          const std::string where = "STL triangle " + std::to_string(i);
-          tri[c] = merge.add(mesh, point(readLeFloat(r + 12 * c), readLeFloat(r + 12 * c + 4), readLeFloat(r + 12 * c + 8), where));
+          const float x = readLeFloat(r + 12 * c), y = readLeFloat(r + 12 * c + 4), z = readLeFloat(r + 12 * c + 8);
+          const double m = 3.4e38; // point()'s range; the record's name is made only when it fails
+          tri[c] = merge.add(mesh, std::fabs(double(x)) < m && std::fabs(double(y)) < m && std::fabs(double(z)) < m
+              ? Vec3f{ x, y, z }
+              : point(x, y, z, "STL triangle " + std::to_string(i)));
         }
         mesh.triangles.push_back(tri);
       }

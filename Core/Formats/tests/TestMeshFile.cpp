@@ -202,3 +202,44 @@ TEST(MeshFile, BinaryPlyFastPathMatchesTheGeneralReader)
   const std::size_t vertexBytes = whole.find("end_header\n") + 11;
   expectError(whole.substr(0, vertexBytes + 16 * 3 + 5), MeshFormat::Ply, "ends inside");
 }
+
+TEST(MeshFile, BinaryStlSharesCornersOfLargeMeshes)
+{
+  // a 40 x 40 grid as 3,200 separate STL triangles: the 1,681 distinct
+  // corners are shared again (the point table grows past its first size),
+  // ids in order of first appearance, every corner at its own position
+  const int k = 40;
+  std::string bin(80, ' ');
+  put<std::uint32_t>(bin, 2 * k * k);
+  std::vector<std::array<float, 9>> tris;
+  for (int j = 0; j < k; ++j)
+    for (int i = 0; i < k; ++i)
+    {
+      const float x0 = i * 0.25f, x1 = (i + 1) * 0.25f, y0 = j * 0.5f, y1 = (j + 1) * 0.5f;
+      tris.push_back({ x0, y0, 1, x1, y0, 1, x1, y1, 1 });
+      tris.push_back({ x0, y0, 1, x1, y1, 1, x0, y1, 1 });
+    }
+  for (const auto& t : tris)
+  {
+    for (int i = 0; i < 3; ++i) put<float>(bin, 0);
+    for (float f : t) put<float>(bin, f);
+    put<std::uint16_t>(bin, 0);
+  }
+  const TriangleMesh m = readText(bin, MeshFormat::Stl);
+  EXPECT_EQ(m.points.size(), std::size_t((k + 1) * (k + 1)));
+  ASSERT_EQ(m.triangles.size(), tris.size());
+  std::uint32_t next = 0; // first appearances number the points 0, 1, 2, ...
+  for (std::size_t t = 0; t < tris.size(); ++t)
+    for (int c = 0; c < 3; ++c)
+    {
+      const std::uint32_t id = m.triangles[t][c];
+      EXPECT_EQ(m.points[id], (Vec3f{ tris[t][3 * c], tris[t][3 * c + 1], tris[t][3 * c + 2] }));
+      if (id == next) ++next;
+      EXPECT_LT(id, next);
+    }
+  // a NaN corner still names its triangle
+  std::string bad = bin;
+  const float nan = std::numeric_limits<float>::quiet_NaN();
+  std::memcpy(&bad[84 + 50 * 7 + 12 + 4], &nan, 4);
+  expectError(bad, MeshFormat::Stl, "STL triangle 7");
+}
