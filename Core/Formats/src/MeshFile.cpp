@@ -6,6 +6,7 @@
 #include "lvdif/Memory.h"
 
 #include <algorithm>
+#include <charconv>
 #include <cctype>
 #include <unordered_map>
 
@@ -54,6 +55,85 @@ TriangleMesh readObj(const std::vector<char>& data)
 }
 
 /// OFF (Geomview): [C|N|CN]OFF header, counts, vertices, faces "n i1 .. in [colour]".
+bool offSpace(char c) { return c == ' ' || c == '\t' || c == '\r' || c == '\f' || c == '\v'; }
+
+/// The body of a large plain OFF file on OpenMP threads: vertex lines of
+/// numbers that std::from_chars reads whole, triangle lines ("3 a b c",
+/// indices in range), extra values on a line ignored as by the serial
+/// reader. False (mesh untouched) for anything else, a quad, a '+' sign, a
+/// hex float, a bad index, too few lines, even '#' comments: the serial reader
+/// then reads the body again with its checks and messages.
+bool parallelOff(const char* p, std::size_t size, std::int64_t nv, std::int64_t nf, TriangleMesh& mesh)
+{
+  if (nv + nf < 100000) return false; // small files: not worth it
+  const char* end = p + size;
+  // where each of the nv + nf non-empty lines starts (a serial memchr scan)
+  std::vector<const char*> line;
+  line.reserve(static_cast<std::size_t>(nv + nf));
+  for (const char* q = p; q < end && std::int64_t(line.size()) < nv + nf;)
+  {
+    const char* e = static_cast<const char*>(std::memchr(q, '\n', static_cast<std::size_t>(end - q)));
+    if (!e) e = end;
+    const char* b = q;
+    while (b < e && offSpace(*b)) ++b;
+    if (b < e && *b == '#') return false;
+    if (b < e) line.push_back(b);
+    q = e < end ? e + 1 : e;
+  }
+  if (std::int64_t(line.size()) < nv + nf) return false;
+  // the numbers of one line: at most `want` tokens, false if one is not read whole
+  auto tokens = [end](const char* b, auto* out, int want, int& got) {
+    got = 0;
+    while (got < want)
+    {
+      while (b < end && offSpace(*b)) ++b;
+      if (b >= end || *b == '\n' || *b == '#') return true;
+      const char* t = b;
+      while (b < end && !offSpace(*b) && *b != '\n') ++b;
+      const auto r = std::from_chars(t, b, out[got]);
+      if (r.ec != std::errc() || r.ptr != b) return false;
+      ++got;
+    }
+    return true;
+  };
+  mesh.points.resize(static_cast<std::size_t>(nv));
+  mesh.triangles.resize(static_cast<std::size_t>(nf));
+  bool ok = true;
+  const double m = 3.4e38; // point()'s range
+#pragma omp parallel for schedule(static) reduction(&& : ok)
+  for (std::int64_t i = 0; i < nv + nf; ++i)
+  {
+    int got = 0;
+    if (i < nv)
+    {
+      double x[3];
+      const bool read = tokens(line[static_cast<std::size_t>(i)], x, 3, got);
+      const bool good = read && got == 3 && std::fabs(x[0]) < m && std::fabs(x[1]) < m && std::fabs(x[2]) < m;
+      if (good)
+        mesh.points[static_cast<std::size_t>(i)] = { static_cast<float>(x[0]), static_cast<float>(x[1]),
+          static_cast<float>(x[2]) };
+      ok = ok && good;
+    }
+    else
+    {
+      long long v[4];
+      const bool read = tokens(line[static_cast<std::size_t>(i)], v, 4, got);
+      const bool good = read && got == 4 && v[0] == 3 && v[1] >= 0 && v[1] < nv && v[2] >= 0 && v[2] < nv &&
+        v[3] >= 0 && v[3] < nv;
+      if (good)
+        mesh.triangles[static_cast<std::size_t>(i - nv)] = { static_cast<std::uint32_t>(v[1]),
+          static_cast<std::uint32_t>(v[2]), static_cast<std::uint32_t>(v[3]) };
+      ok = ok && good;
+    }
+  }
+  if (!ok)
+  {
+    mesh.points.clear();
+    mesh.triangles.clear();
+  }
+  return ok;
+}
+
 TriangleMesh readOff(const std::vector<char>& data)
 {
   TextScanner s(data.data(), data.size(), "OFF");
@@ -72,6 +152,11 @@ TriangleMesh readOff(const std::vector<char>& data)
     fail(ErrorCode::ParseError, s.where(),
       std::to_string(nv) + " vertices and " + std::to_string(nf) + " faces cannot fit in the rest of the file");
   TriangleMesh mesh;
+  if (parallelOff(s.position(), s.remaining(), nv, nf, mesh))
+  {
+    finish(mesh, "OFF");
+    return mesh;
+  }
   mesh.points.reserve(static_cast<size_t>(nv));
   for (std::int64_t i = 0; i < nv; ++i)
   {

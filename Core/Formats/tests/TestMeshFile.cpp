@@ -9,6 +9,8 @@
 #include <limits>
 
 #include <algorithm>
+#include <cmath>
+#include <cstdio>
 #include <cstring>
 
 using namespace lvdif;
@@ -242,4 +244,51 @@ TEST(MeshFile, BinaryStlSharesCornersOfLargeMeshes)
   const float nan = std::numeric_limits<float>::quiet_NaN();
   std::memcpy(&bad[84 + 50 * 7 + 12 + 4], &nan, 4);
   expectError(bad, MeshFormat::Stl, "STL triangle 7");
+}
+
+TEST(MeshFile, LargeOffOnThreadsMatchesTheSerialReader)
+{
+  // 250 x 250 grid: 62,500 vertices and 124,002 faces (above the parallel
+  // path's threshold). The same text with a comment line (which the parallel
+  // path leaves to the serial reader) must give the same mesh; a bad index,
+  // a quad and a '+' sign give the serial reader's result or message.
+  const int k = 250;
+  std::string body;
+  char buf[96];
+  for (int j = 0; j < k; ++j)
+    for (int i = 0; i < k; ++i)
+      body += std::string(buf, static_cast<std::size_t>(std::snprintf(buf, sizeof buf, "%.9g %.9g %.9g 255\n",
+        0.1 * i + 1e-7 * j, 0.37 * j, std::sin(0.3 * i) * 1e-3)));
+  const std::size_t verticesEnd = body.size();
+  std::vector<std::string> faces;
+  for (int j = 0; j + 1 < k; ++j)
+    for (int i = 0; i + 1 < k; ++i)
+    {
+      const int a = j * k + i, b = a + 1, c = a + k + 1, d = a + k;
+      faces.push_back("3 " + std::to_string(a) + " " + std::to_string(b) + " " + std::to_string(c) + "\n");
+      faces.push_back("3 " + std::to_string(a) + " " + std::to_string(c) + " " + std::to_string(d) + " 1 2 3\n");
+    }
+  faces.push_back("3 0 1 2\n");
+  faces.push_back("3 2 1 0\n");
+  faces.push_back("3 0 1 251\n");
+  faces.push_back("3 0 251 250\n");
+  auto file = [&](const std::string& verts, const std::vector<std::string>& fs) {
+    std::string s = "OFF\n" + std::to_string(k * k) + " " + std::to_string(fs.size()) + " 0\n" + verts;
+    for (const auto& f : fs) s += f;
+    return s;
+  };
+  const TriangleMesh fast = readText(file(body, faces), MeshFormat::Off);
+  const TriangleMesh serial = readText(file(body.substr(0, verticesEnd) + "# serial\n", faces), MeshFormat::Off);
+  ASSERT_EQ(fast.points.size(), std::size_t(k * k));
+  EXPECT_EQ(fast.points, serial.points);
+  EXPECT_EQ(fast.triangles, serial.triangles);
+  auto bad = faces;
+  bad[70000] = "3 0 1 62500\n";
+  expectError(file(body, bad), MeshFormat::Off, "OFF line " + std::to_string(2 + k * k + 70000 + 1) + ": vertex index 62500");
+  auto quad = faces;
+  quad[5] = "4 0 1 251 250\n"; // a fan of two triangles
+  const TriangleMesh q = readText(file(body, quad), MeshFormat::Off);
+  EXPECT_EQ(q.triangles.size(), faces.size() + 1);
+  const std::string plus = "+" + body; // "+0 ...": strtod reads it, from_chars does not
+  EXPECT_EQ(readText(file(plus, faces), MeshFormat::Off).points, fast.points);
 }
