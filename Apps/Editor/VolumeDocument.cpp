@@ -1,5 +1,7 @@
 #include "VolumeDocument.h"
 
+#include "vtkLVDIFFiles.h"
+
 #include "vtkDictionaryVolumeToImage.h"
 #include "vtkLVDIFChunkMesh.h"
 #include "vtkLVDIFVolumeBridge.h"
@@ -12,8 +14,6 @@
 #include "vtkImageData.h"
 #include "vtkNew.h"
 #include "vtkPointData.h"
-#include "vtkXMLImageDataReader.h"
-#include "vtkXMLImageDataWriter.h"
 
 #include <QFileInfo>
 
@@ -77,7 +77,7 @@ void VolumeDocument::newCanvas(int nx, int ny, int nz, Fill fill)
   this->resetPipeline();
 }
 
-void VolumeDocument::adopt(std::unique_ptr<lvdif::DictionaryVolume> volume)
+void VolumeDocument::adopt(std::shared_ptr<lvdif::DictionaryVolume> volume)
 {
   this->Worker.reset();
   this->Mesher.reset();
@@ -89,42 +89,8 @@ void VolumeDocument::adopt(std::unique_ptr<lvdif::DictionaryVolume> volume)
 
 void VolumeDocument::open(const QString& path)
 {
-  const QString ext = QFileInfo(path).suffix().toLower();
-  if (ext == "lvdv")
-  {
-    auto v = lvdif::loadVolume(path.toStdString());
-    this->Worker.reset();
-    this->Mesher.reset();
-    this->Volume = std::move(v);
-    this->Path = path;
-    this->resetPipeline();
-    return;
-  }
-  if (ext != "vti")
-  {
-    throw lvdif::Error(lvdif::ErrorCode::InvalidArgument,
-      "unsupported volume file '" + path.toStdString() + "' (expected .lvdv or .vti)");
-  }
-  vtkNew<vtkXMLImageDataReader> reader;
-  if (!reader->CanReadFile(path.toLocal8Bit().constData()))
-  {
-    throw lvdif::Error(lvdif::ErrorCode::InvalidArgument, "cannot read '" + path.toStdString() + "'");
-  }
-  reader->SetFileName(path.toLocal8Bit().constData());
-  reader->Update();
-  vtkImageData* img = reader->GetOutput();
-  vtkDataArray* sdf = img->GetPointData()->GetArray("sdf");
-  if (!sdf)
-  {
-    sdf = img->GetPointData()->GetScalars();
-  }
-  if (!sdf)
-  {
-    throw lvdif::Error(lvdif::ErrorCode::InvalidArgument, "'" + path.toStdString() + "' has no sdf array");
-  }
-  lvdif::VolumeOptions o;
-  o.chunkEdge = 32;
-  auto v = vtkLVDIFVolumeBridge::VolumeFromImage(img, sdf, img->GetPointData()->GetArray("rgba"), o);
+  // every volume format, by extension, through the one file registry
+  std::shared_ptr<lvdif::DictionaryVolume> v = vtkLVDIFFiles::LoadVolume(path.toStdString());
   this->Worker.reset();
   this->Mesher.reset();
   this->Volume = std::move(v);
@@ -138,38 +104,14 @@ void VolumeDocument::save(const QString& path, bool asCopy)
   {
     throw lvdif::Error(lvdif::ErrorCode::InvalidArgument, "no volume to save");
   }
-  if (QFileInfo(path).suffix().toLower() == "lvdv")
   {
     std::lock_guard<std::mutex> lock(this->Worker->sourceMutex());
-    lvdif::saveVolume(*this->Volume, path.toStdString()); // exact keys and dictionaries, crash-safe
-  }
-  else
-  {
-    this->saveImage(path);
+    vtkLVDIFFiles::SaveVolume(this->Volume, path.toStdString()); // .lvdv: exact keys, crash-safe
   }
   if (!asCopy)
   {
     this->Path = path;
     this->Modified = false;
-  }
-}
-
-void VolumeDocument::saveImage(const QString& path)
-{
-  vtkNew<vtkImageData> img;
-  {
-    std::lock_guard<std::mutex> lock(this->Worker->sourceMutex());
-    const auto& d = this->Volume->dims();
-    int extent[6] = { 0, int(d[0] - 1), 0, int(d[1] - 1), 0, int(d[2] - 1) };
-    vtkLVDIFVolumeBridge::FillImage(*this->Volume, extent, img, true);
-  }
-  vtkNew<vtkXMLImageDataWriter> writer;
-  writer->SetInputData(img);
-  writer->SetFileName(path.toLocal8Bit().constData());
-  writer->SetCompressorTypeToZLib();
-  if (!writer->Write())
-  {
-    throw lvdif::Error(lvdif::ErrorCode::IoFailure, "cannot write '" + path.toStdString() + "'");
   }
 }
 

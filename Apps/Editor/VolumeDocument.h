@@ -41,7 +41,7 @@ public:
   void save(const QString& path, bool asCopy = false);
   /// Takes a volume made elsewhere (e.g. a converted mesh): no file yet, so
   /// the document counts as modified and Save asks for a name.
-  void adopt(std::unique_ptr<lvdif::DictionaryVolume> volume);
+  void adopt(std::shared_ptr<lvdif::DictionaryVolume> volume);
 
   bool hasVolume() const { return this->Volume != nullptr; }
   lvdif::DictionaryVolume& volume() { return *this->Volume; }
@@ -81,13 +81,12 @@ public:
 
 private:
   void resetPipeline();
-  void saveImage(const QString& path);
   void afterEdit(const lvdif::EditResult& r);
   void requestDirty();
   /// Re-mesh request after an editor call: exact for what `r` changed.
   void requestChanged(const lvdif::EditResult& r);
 
-  std::unique_ptr<lvdif::DictionaryVolume> Volume;
+  std::shared_ptr<lvdif::DictionaryVolume> Volume;
   std::unique_ptr<lvdif::Editor> Edit;
   std::unique_ptr<lvdif::ChunkedMarchingCubes> Mesher;
   std::unique_ptr<lvdif::MarchingCubesWorker> Worker;

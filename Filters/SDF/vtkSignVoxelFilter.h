@@ -1,6 +1,14 @@
 /**
  * @class   vtkSignVoxelFilter
- * @brief   repairs wrong signs of a signed distance image (LVDIF's SVF1..SVF4)
+ * @brief   repairs wrong signs of a sparse volume or signed distance image (LVDIF's SVF1..SVF4)
+ *
+ * Input, one of:
+ * - a vtkSparseDictionaryVolume: filtered chunk-aware by Core
+ *   (lvdif::signVoxelFilter on the dictionary volume: uniform chunks stay
+ *   collapsed, no dense copy) into a copy of the Core volume (the input is not
+ *   modified); the output is a vtkSparseDictionaryVolume whose dirty flags
+ *   mark the chunks whose signs changed;
+ * - a vtkImageData, as follows.
  *
  * Runs the sign voxel filters of Wang et al. 2023 ("LVDIF", Sect. 3.2) on one
  * float point array of a vtkImageData (chosen with SetInputArrayToProcess;
@@ -23,13 +31,19 @@
 #define vtkSignVoxelFilter_h
 
 #include "lvdifFiltersSDFModule.h"
-#include "vtkImageAlgorithm.h"
+#include "vtkDataObjectAlgorithm.h"
 
-class LVDIFFILTERSSDF_EXPORT vtkSignVoxelFilter : public vtkImageAlgorithm
+class vtkSparseDictionaryVolume;
+namespace lvdif
+{
+struct SignVoxelFilterParams;
+}
+
+class LVDIFFILTERSSDF_EXPORT vtkSignVoxelFilter : public vtkDataObjectAlgorithm
 {
 public:
   static vtkSignVoxelFilter* New();
-  vtkTypeMacro(vtkSignVoxelFilter, vtkImageAlgorithm);
+  vtkTypeMacro(vtkSignVoxelFilter, vtkDataObjectAlgorithm);
   void PrintSelf(ostream& os, vtkIndent indent) override;
 
   enum
@@ -105,9 +119,14 @@ protected:
   vtkSignVoxelFilter();
   ~vtkSignVoxelFilter() override;
 
+  int FillInputPortInformation(int port, vtkInformation* info) override;
+  int RequestDataObject(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
   int RequestUpdateExtent(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
   int RequestData(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
   void SetFilterBit(int bit, bool on) { this->SetFilters(on ? (this->Filters | bit) : (this->Filters & ~bit)); }
+
+  lvdif::SignVoxelFilterParams CoreParams() const;
+  int FilterSparse(vtkSparseDictionaryVolume* input, vtkSparseDictionaryVolume* output);
 
   double Threshold = 2.0;
   int Axis = 0;

@@ -12,19 +12,58 @@
 
 #include "lvdif/DenseGrid.h"
 #include "lvdif/DictionaryVolume.h"
+#include "lvdif/TriangleMesh.h"
 #include "lvdifFiltersVolumeModule.h"
 
+#include "lvdif/Cuda.h"
+
+#include "vtkSmartPointer.h"
+
+#include <functional>
 #include <memory>
 #include <string>
 
+class vtkAlgorithm;
 class vtkDataArray;
 class vtkDataSet;
 class vtkFloatArray;
 class vtkImageData;
 class vtkInformation;
+class vtkInformationVector;
+class vtkPolyData;
 
 namespace vtkLVDIFVolumeBridge
 {
+/// The project's array names (README "Conventions").
+constexpr const char* SdfArrayName = "sdf";
+constexpr const char* ColorArrayName = "rgba";
+
+/// The filters' Device property (0 auto, 1 CPU, 2 CUDA) as lvdif's Device.
+LVDIFFILTERSVOLUME_EXPORT lvdif::Device ToDevice(int device);
+
+/// Calls Core: returns true on success; on lvdif::Error reports it with
+/// vtkErrorMacro's text on `algorithm` (prefixed by `context` when given) and
+/// returns false. A cancel (AbortExecute through vtkLVDIFInterrupter) returns
+/// false without an error, and sets `cancelled` when given.
+LVDIFFILTERSVOLUME_EXPORT bool CallCore(vtkAlgorithm* algorithm, const std::function<void()>& work,
+  const std::string& context = std::string(), bool* cancelled = nullptr);
+
+/// A vtkPolyData's polygons (fan-triangulated: exact for convex polygons) and
+/// triangle strips (split keeping the strip's orientation) as an lvdif mesh;
+/// with withNormals, its 3-component point normals too.
+LVDIFFILTERSVOLUME_EXPORT lvdif::TriangleMesh ToTriangleMesh(vtkPolyData* polyData, bool withNormals);
+
+/// An lvdif mesh as vtkPolyData: float points, triangles, `Normals` when it has them.
+LVDIFFILTERSVOLUME_EXPORT vtkSmartPointer<vtkPolyData> ToPolyData(const lvdif::TriangleMesh& mesh);
+
+/// RequestDataObject of a filter whose output port 0 is a vtkSparseDictionaryVolume.
+LVDIFFILTERSVOLUME_EXPORT void EnsureSparseOutput(vtkInformationVector* outputVector);
+
+/// What a sparse volume producer announces in RequestInformation: the volume's
+/// whole extent, origin and spacing (read by vtkSparseVolumeToImage and the
+/// piece logic of the consumers).
+LVDIFFILTERSVOLUME_EXPORT void SetSparseInformation(vtkInformation* outInfo, const lvdif::VolumeOptions& options);
+
 /// Writes the voxels of `extent` (clipped to the volume) into `image`:
 /// extent, origin, spacing, `sdf` and, if withColor, `rgba`.
 LVDIFFILTERSVOLUME_EXPORT void FillImage(
@@ -36,6 +75,12 @@ LVDIFFILTERSVOLUME_EXPORT void FillImage(
 /// spacing come from the image. Throws lvdif::Error on bad input.
 LVDIFFILTERSVOLUME_EXPORT std::unique_ptr<lvdif::DictionaryVolume> VolumeFromImage(
   vtkImageData* image, vtkDataArray* sdf, vtkDataArray* rgba, lvdif::VolumeOptions options);
+
+/// The voxels of `extent` (inclusive point indices, inside the volume) as a
+/// volume of their own: the same chunk edge, band, dictionaries and keys
+/// (no re-encoding), origin moved to the extent's first point.
+LVDIFFILTERSVOLUME_EXPORT std::unique_ptr<lvdif::DictionaryVolume> CropVolume(
+  const lvdif::DictionaryVolume& volume, const int extent[6]);
 
 /// What an image source of this volume announces in RequestInformation: whole
 /// extent, origin, spacing, CAN_PRODUCE_SUB_EXTENT and a float `sdf` scalar.

@@ -10,12 +10,8 @@ import sys
 import xml.etree.ElementTree as ET
 
 problems = []
-<<<<<<< HEAD
-files = sorted(glob.glob(os.path.join(sys.argv[1], "*.xml")))
-=======
 DATA_RANGE_DOMAINS = ("ArrayRangeDomain", "BoundsDomain", "ExtentDomain", "ContourRangeDomain")
-files = sorted(glob.glob(os.path.join(sys.argv[1], "*.xml")) + glob.glob(os.path.join(sys.argv[1], "drafts", "*.xml")))
->>>>>>> issue-15pv
+files = sorted(glob.glob(os.path.join(sys.argv[1], "*.xml")))
 for path in files:
     name = os.path.relpath(path, sys.argv[1])
     try:
