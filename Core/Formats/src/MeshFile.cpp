@@ -6,6 +6,7 @@
 #include "lvdif/Memory.h"
 
 #include <algorithm>
+#include <charconv>
 #include <cctype>
 #include <cstring>
 #include <unordered_map>
@@ -134,6 +135,85 @@ TriangleMesh readObj(const std::vector<char>& data)
 }
 
 /// OFF (Geomview): [C|N|CN]OFF header, counts, vertices, faces "n i1 .. in [colour]".
+bool offSpace(char c) { return c == ' ' || c == '\t' || c == '\r' || c == '\f' || c == '\v'; }
+
+/// The body of a large plain OFF file on OpenMP threads: vertex lines of
+/// numbers that std::from_chars reads whole, triangle lines ("3 a b c",
+/// indices in range), extra values on a line ignored as by the serial
+/// reader. False (mesh untouched) for anything else, a quad, a '+' sign, a
+/// hex float, a bad index, too few lines, even '#' comments: the serial reader
+/// then reads the body again with its checks and messages.
+bool parallelOff(const char* p, std::size_t size, std::int64_t nv, std::int64_t nf, TriangleMesh& mesh)
+{
+  if (nv + nf < 100000) return false; // small files: not worth it
+  const char* end = p + size;
+  // where each of the nv + nf non-empty lines starts (a serial memchr scan)
+  std::vector<const char*> line;
+  line.reserve(static_cast<std::size_t>(nv + nf));
+  for (const char* q = p; q < end && std::int64_t(line.size()) < nv + nf;)
+  {
+    const char* e = static_cast<const char*>(std::memchr(q, '\n', static_cast<std::size_t>(end - q)));
+    if (!e) e = end;
+    const char* b = q;
+    while (b < e && offSpace(*b)) ++b;
+    if (b < e && *b == '#') return false;
+    if (b < e) line.push_back(b);
+    q = e < end ? e + 1 : e;
+  }
+  if (std::int64_t(line.size()) < nv + nf) return false;
+  // the numbers of one line: at most `want` tokens, false if one is not read whole
+  auto tokens = [end](const char* b, auto* out, int want, int& got) {
+    got = 0;
+    while (got < want)
+    {
+      while (b < end && offSpace(*b)) ++b;
+      if (b >= end || *b == '\n' || *b == '#') return true;
+      const char* t = b;
+      while (b < end && !offSpace(*b) && *b != '\n') ++b;
+      const auto r = std::from_chars(t, b, out[got]);
+      if (r.ec != std::errc() || r.ptr != b) return false;
+      ++got;
+    }
+    return true;
+  };
+  mesh.points.resize(static_cast<std::size_t>(nv));
+  mesh.triangles.resize(static_cast<std::size_t>(nf));
+  bool ok = true;
+  const double m = 3.4e38; // point()'s range
+#pragma omp parallel for schedule(static) reduction(&& : ok)
+  for (std::int64_t i = 0; i < nv + nf; ++i)
+  {
+    int got = 0;
+    if (i < nv)
+    {
+      double x[3];
+      const bool read = tokens(line[static_cast<std::size_t>(i)], x, 3, got);
+      const bool good = read && got == 3 && std::fabs(x[0]) < m && std::fabs(x[1]) < m && std::fabs(x[2]) < m;
+      if (good)
+        mesh.points[static_cast<std::size_t>(i)] = { static_cast<float>(x[0]), static_cast<float>(x[1]),
+          static_cast<float>(x[2]) };
+      ok = ok && good;
+    }
+    else
+    {
+      long long v[4];
+      const bool read = tokens(line[static_cast<std::size_t>(i)], v, 4, got);
+      const bool good = read && got == 4 && v[0] == 3 && v[1] >= 0 && v[1] < nv && v[2] >= 0 && v[2] < nv &&
+        v[3] >= 0 && v[3] < nv;
+      if (good)
+        mesh.triangles[static_cast<std::size_t>(i - nv)] = { static_cast<std::uint32_t>(v[1]),
+          static_cast<std::uint32_t>(v[2]), static_cast<std::uint32_t>(v[3]) };
+      ok = ok && good;
+    }
+  }
+  if (!ok)
+  {
+    mesh.points.clear();
+    mesh.triangles.clear();
+  }
+  return ok;
+}
+
 TriangleMesh readOff(const std::vector<char>& data)
 {
   TextScanner s(data.data(), data.size(), "OFF");
@@ -152,6 +232,11 @@ TriangleMesh readOff(const std::vector<char>& data)
     fail(ErrorCode::ParseError, s.where(),
       std::to_string(nv) + " vertices and " + std::to_string(nf) + " faces cannot fit in the rest of the file");
   TriangleMesh mesh;
+  if (parallelOff(s.position(), s.remaining(), nv, nf, mesh))
+  {
+    finish(mesh, "OFF");
+    return mesh;
+  }
   mesh.points.reserve(static_cast<size_t>(nv));
   for (std::int64_t i = 0; i < nv; ++i)
   {
@@ -178,17 +263,49 @@ TriangleMesh readOff(const std::vector<char>& data)
   return mesh;
 }
 
-/// Adds a corner to an STL mesh, sharing bit-identical points.
+/// Adds a corner to an STL mesh, sharing bit-identical points (ids in order
+/// of first appearance). Open addressing over the points' 12 bytes in one
+/// flat table, doubled at half load: no node or string per corner.
 struct PointMerger
 {
-  std::unordered_map<std::string, std::uint32_t> index;
+  std::vector<std::uint32_t> table = std::vector<std::uint32_t>(1024, Empty); // point id, or Empty
+  static constexpr std::uint32_t Empty = 0xffffffffu;
+  static std::size_t hash(const Vec3f& p)
+  {
+    std::uint32_t b[3];
+    std::memcpy(b, p.data(), sizeof(b));
+    std::uint64_t h = 1469598103934665603ull;
+    for (std::uint32_t v : b) h = (h ^ v) * 1099511628211ull;
+    return static_cast<std::size_t>(h ^ (h >> 29));
+  }
   std::uint32_t add(TriangleMesh& mesh, const Vec3f& p)
   {
-    const std::string key(reinterpret_cast<const char*>(p.data()), sizeof(Vec3f));
-    auto it = index.emplace(key, static_cast<std::uint32_t>(mesh.points.size()));
-    if (it.second)
-      mesh.points.push_back(p);
-    return it.first->second;
+    const std::size_t mask = this->table.size() - 1;
+    for (std::size_t slot = hash(p) & mask;; slot = (slot + 1) & mask)
+    {
+      const std::uint32_t e = this->table[slot];
+      if (e == Empty)
+      {
+        const auto id = static_cast<std::uint32_t>(mesh.points.size());
+        mesh.points.push_back(p);
+        this->table[slot] = id;
+        if (2 * mesh.points.size() > this->table.size()) this->grow(mesh);
+        return id;
+      }
+      if (std::memcmp(mesh.points[e].data(), p.data(), sizeof(Vec3f)) == 0) return e;
+    }
+  }
+  void grow(const TriangleMesh& mesh)
+  {
+    std::vector<std::uint32_t> bigger(2 * this->table.size(), Empty);
+    const std::size_t mask = bigger.size() - 1;
+    for (std::uint32_t id = 0; id < mesh.points.size(); ++id)
+    {
+      std::size_t slot = hash(mesh.points[id]) & mask;
+      while (bigger[slot] != Empty) slot = (slot + 1) & mask;
+      bigger[slot] = id;
+    }
+    this->table.swap(bigger);
   }
 };
 
@@ -217,8 +334,11 @@ TriangleMesh readStl(const std::vector<char>& data)
         std::array<std::uint32_t, 3> tri;
         for (int c = 0; c < 3; ++c)
         {
-          const std::string where = "STL triangle " + std::to_string(i);
-          tri[c] = merge.add(mesh, point(readLeFloat(r + 12 * c), readLeFloat(r + 12 * c + 4), readLeFloat(r + 12 * c + 8), where));
+          const float x = readLeFloat(r + 12 * c), y = readLeFloat(r + 12 * c + 4), z = readLeFloat(r + 12 * c + 8);
+          const double m = 3.4e38; // point()'s range; the record's name is made only when it fails
+          tri[c] = merge.add(mesh, std::fabs(double(x)) < m && std::fabs(double(y)) < m && std::fabs(double(z)) < m
+              ? Vec3f{ x, y, z }
+              : point(x, y, z, "STL triangle " + std::to_string(i)));
         }
         mesh.triangles.push_back(tri);
       }

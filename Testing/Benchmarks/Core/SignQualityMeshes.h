@@ -148,9 +148,13 @@ inline TriangleMesh addFins(const TriangleMesh& m, int count, double heightFrac 
   const double h = heightFrac * diagonal(m);
   TriangleMesh out = m;
   out.normals.clear();
+  std::vector<char> used(m.triangles.size(), 0); // one fin per face (two would be duplicates)
   for (int i = 0; i < count; ++i)
   {
-    const auto t = m.triangles[pick(rng)];
+    std::size_t f = pick(rng);
+    while (used[f]) f = pick(rng);
+    used[f] = 1;
+    const auto t = m.triangles[f];
     const auto& a = m.points[t[0]];
     const auto& b = m.points[t[1]];
     const auto& c = m.points[t[2]];
