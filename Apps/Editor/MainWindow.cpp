@@ -14,7 +14,7 @@
 #include "vtkCallbackCommand.h"
 #include "vtkCamera.h"
 #include "vtkChunkActorManager.h"
-#include "vtkLVDIFChunkMesh.h"
+#include "LVDIFChunkMesh.h"
 #include "vtkGenericOpenGLRenderWindow.h"
 #include "vtkPolyData.h"
 #include "vtkProperty.h"
@@ -361,7 +361,7 @@ void MainWindow::pollMeshes()
     if (m.empty())
       this->Chunks->RemoveChunk(m.chunkId);
     else
-      this->Chunks->SetChunk(m.chunkId, vtkLVDIFChunkMesh::ToPolyData(m, this->Doc.volume().colors(), d));
+      this->Chunks->SetChunk(m.chunkId, LVDIFChunkMesh::ToPolyData(m, this->Doc.volume().colors(), d));
   }
   if (!this->ViewInitialized && this->Chunks->GetNumberOfChunks() > 0)
   {
@@ -435,14 +435,16 @@ bool MainWindow::openVolume(const QString& path)
 
 bool MainWindow::openMesh(const QString& path, const MeshImportSettings& settings)
 {
-  QString error;
-  auto volume = importMesh(this, path, settings, error);
+  QString error, warning;
+  auto volume = importMesh(this, path, settings, error, &warning);
   if (!volume)
   {
     if (!error.isEmpty())
       this->showError("Cannot convert " + path, std::runtime_error(error.toStdString()));
     return false;
   }
+  if (!warning.isEmpty())
+    QMessageBox::warning(this, "Open mesh", warning);
   try
   {
     this->Chunks->RemoveAllChunks();

@@ -1,10 +1,10 @@
 #include "VolumeDocument.h"
 
-#include "vtkLVDIFFiles.h"
+#include "LVDIFFiles.h"
 
 #include "vtkDictionaryVolumeToImage.h"
-#include "vtkLVDIFChunkMesh.h"
-#include "vtkLVDIFVolumeBridge.h"
+#include "LVDIFChunkMesh.h"
+#include "LVDIFVolumeBridge.h"
 
 #include "lvdif/AnalyticFill.h"
 #include "lvdif/Error.h"
@@ -92,7 +92,7 @@ void VolumeDocument::adopt(std::shared_ptr<lvdif::DictionaryVolume> volume)
 void VolumeDocument::open(const QString& path)
 {
   // every volume format, by extension, through the one file registry
-  std::shared_ptr<lvdif::DictionaryVolume> v = vtkLVDIFFiles::LoadVolume(path.toStdString());
+  std::shared_ptr<lvdif::DictionaryVolume> v = LVDIFFiles::LoadVolume(path.toStdString());
   this->Worker.reset();
   this->Mesher.reset();
   this->Volume = std::move(v);
@@ -108,7 +108,7 @@ void VolumeDocument::save(const QString& path, bool asCopy)
   }
   {
     std::lock_guard<std::mutex> lock(this->Worker->sourceMutex());
-    vtkLVDIFFiles::SaveVolume(this->Volume, path.toStdString()); // .lvdv: exact keys, crash-safe
+    LVDIFFiles::SaveVolume(this->Volume, path.toStdString()); // .lvdv: exact keys, crash-safe
   }
   if (!asCopy)
   {
@@ -132,7 +132,7 @@ void VolumeDocument::requestDirty()
   const std::vector<std::int64_t> dirty = this->Volume->takeDirtyChunks();
   if (!dirty.empty())
   {
-    this->Worker->request(vtkLVDIFChunkMesh::ChunksToRemesh(*this->Mesher, dirty));
+    this->Worker->request(LVDIFChunkMesh::ChunksToRemesh(*this->Mesher, dirty));
   }
 }
 
@@ -140,7 +140,7 @@ void VolumeDocument::requestChanged(const lvdif::EditResult& r)
 {
   // Called with the source mutex held.
   const std::vector<std::int64_t> dirty = this->Volume->takeDirtyChunks();
-  const std::vector<std::int64_t> ids = vtkLVDIFChunkMesh::ChunksToRemesh(*this->Mesher, dirty, r);
+  const std::vector<std::int64_t> ids = LVDIFChunkMesh::ChunksToRemesh(*this->Mesher, dirty, r);
   this->LastRequest = ids;
   this->LastRequestAt = std::chrono::steady_clock::now();
   if (!ids.empty())

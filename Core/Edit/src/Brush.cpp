@@ -1,7 +1,9 @@
 #include "lvdif/Brush.h"
+#include "lvdif/EditLimits.h"
 
 #include "BrushKernel.h"
 #include "lvdif/Error.h"
+#include "lvdif/Memory.h"
 
 #include <algorithm>
 #include <cmath>
@@ -131,38 +133,11 @@ VoxelBox boxFor(const DictionaryVolume& volume, const Dab& d, double reach)
   return b.intersect(volume.bounds());
 }
 
-void validate(const std::vector<Dab>& dabs, const BrushSettings& s)
+void validateAll(const std::vector<Dab>& dabs, const BrushSettings& s)
 {
-  require(std::isfinite(s.blend) && s.blend >= 0, "brush blend radius must be finite and >= 0");
-  require(std::isfinite(s.colorOffset) && s.colorOffset >= 0, "brush colour offset must be finite and >= 0");
-  require(std::isfinite(s.rounding) && s.rounding >= 0, "cube rounding must be finite and >= 0");
-  require(static_cast<int>(s.op) >= 0 && static_cast<int>(s.op) <= static_cast<int>(BrushOp::Crease),
-    "unknown brush operation");
-  require(std::isfinite(s.strength) && s.strength > 0 && s.strength <= 1, "brush strength must be in (0, 1]");
-  require(static_cast<int>(s.falloff) >= 0 && static_cast<int>(s.falloff) <= static_cast<int>(Falloff::Sharp),
-    "unknown brush falloff");
-  for (int a = 0; a < 3; ++a)
-    require(!s.symmetry.mirror[a] || (std::isfinite(s.symmetry.plane[a]) && std::fabs(s.symmetry.plane[a]) < 1e9),
-      "symmetry plane must be finite");
+  validate(s);
   for (size_t i = 0; i < dabs.size(); ++i)
-  {
-    const Dab& d = dabs[i];
-    bool ok = std::isfinite(d.radius) && d.radius < 1e7;
-    for (int a = 0; a < 3; ++a)
-    {
-      ok = ok && std::isfinite(d.center[a]) && std::fabs(d.center[a]) < 1e9;
-      ok = ok && std::isfinite(d.vec[a]) && std::fabs(d.vec[a]) < 1e7;
-      if (d.shape == BrushShape::Capsule)
-        ok = ok && std::isfinite(d.end[a]) && std::fabs(d.end[a]) < 1e9;
-    }
-    ok = ok && (d.shape == BrushShape::Sphere || d.shape == BrushShape::Cube || d.shape == BrushShape::Capsule);
-    if (!ok)
-    {
-      std::ostringstream msg;
-      msg << "dab " << i << " has a non-finite, absurd or unknown position, radius or shape";
-      throw Error(ErrorCode::InvalidArgument, msg.str());
-    }
-  }
+    validate(dabs[i], i);
 }
 
 
@@ -334,9 +309,10 @@ void buildMixTable(DictionaryVolume& volume, detail::edit::DabPlan& plan, const 
 }
 
 // Plans groups of dabs (any operation); shared by the per-voxel rule and the gather brushes.
-detail::edit::DabPlan planGroups(DictionaryVolume& volume, const std::vector<Dab>& dabs, const BrushSettings& settings)
+detail::edit::DabPlan planGroups(DictionaryVolume& volume, const std::vector<Dab>& dabs, const BrushSettings& settings,
+  const ChunkWriteObserver* observer = nullptr)
 {
-  validate(dabs, settings);
+  validateAll(dabs, settings);
   detail::edit::DabPlan plan;
   detail::edit::BrushContext& ctx = plan.ctx;
   ctx.op = static_cast<int>(settings.op);
@@ -365,6 +341,12 @@ detail::edit::DabPlan planGroups(DictionaryVolume& volume, const std::vector<Dab
   {
     ctx.colorKey = volume.colors().add(settings.color);
   }
+  // Budgets, counted before any chunk is visited or written: the chunk visits
+  // of all boxes, then the memory the edit may allocate (uniform chunks it
+  // expands, plus the undo snapshots of expanded ones).
+  const std::uint64_t maxVisits = EditLimits().maxChunkVisitsPerEdit;
+  const double edge = volume.chunkEdge();
+  double visits = 0;
   const std::vector<Dab> all = mirrorDabs(dabs, settings.symmetry);
   const std::size_t g = static_cast<std::size_t>(ctx.groupSize);
   for (std::size_t first = 0; first < all.size(); first += g)
@@ -386,17 +368,41 @@ detail::edit::DabPlan planGroups(DictionaryVolume& volume, const std::vector<Dab
     }
     for (std::size_t k = 0; k < g; ++k)
     {
+      const VoxelBox& b = boxes[k];
+      if (!b.empty())
+      {
+        double n = 1;
+        for (int a = 0; a < 3; ++a)
+          n *= std::floor(double(b.hi[a]) / edge) - std::floor(double(b.lo[a]) / edge) + 1;
+        visits += n;
+      }
+      if (visits > double(maxVisits))
+        throw Error(ErrorCode::InvalidArgument, "the edit's " + std::to_string(all.size()) +
+            " dabs would visit more than " + std::to_string(maxVisits) + " chunks (radius, blend or dab count too large)");
       Dab d = all[first + k];
       if (settings.op == BrushOp::Flatten)
         measurePlane(volume, d);
       plan.dabs.push_back(d);
-      plan.boxes.push_back(boxes[k]);
-      if (!boxes[k].empty())
-        volume.forEachChunkInBox(boxes[k], [&](std::int64_t id) { plan.chunks.push_back(id); });
+      plan.boxes.push_back(b);
     }
   }
+  std::vector<bool> seen(static_cast<std::size_t>(volume.chunkCount()), false);
+  for (const VoxelBox& b : plan.boxes)
+    volume.forEachChunkInBox(b, [&](std::int64_t id) {
+      if (!seen[static_cast<std::size_t>(id)])
+      {
+        seen[static_cast<std::size_t>(id)] = true;
+        plan.chunks.push_back(id);
+      }
+    });
   std::sort(plan.chunks.begin(), plan.chunks.end());
-  plan.chunks.erase(std::unique(plan.chunks.begin(), plan.chunks.end()), plan.chunks.end());
+  const std::uint64_t chunkBytes = std::uint64_t(volume.chunkEdge()) * std::uint64_t(volume.chunkEdge()) *
+    std::uint64_t(volume.chunkEdge()) * sizeof(Voxel);
+  std::uint64_t newBytes = 0;
+  for (std::int64_t id : plan.chunks)
+    newBytes += volume.isUniform(id) ? chunkBytes : 0;
+  requireMemory(newBytes + (observer ? plan.chunks.size() * chunkBytes : 0),
+    "an edit of " + std::to_string(plan.chunks.size()) + " chunks");
   if (settings.op == BrushOp::Paint && !ctx.unitWeight)
     buildMixTable(volume, plan, settings);
   return plan;
@@ -516,12 +522,13 @@ EditResult applyGather(DictionaryVolume& volume, const detail::edit::DabPlan& pl
 
 namespace detail::edit
 {
-DabPlan planDabs(DictionaryVolume& volume, const std::vector<Dab>& dabs, const BrushSettings& settings)
+DabPlan planDabs(DictionaryVolume& volume, const std::vector<Dab>& dabs, const BrushSettings& settings,
+  const ChunkWriteObserver* observer)
 {
   if (readsNeighbours(settings.op))
     throw Error(ErrorCode::Unsupported,
       std::string("the ") + toString(settings.op) + " brush reads neighbouring voxels and runs on the CPU only");
-  return planGroups(volume, dabs, settings);
+  return planGroups(volume, dabs, settings, observer);
 }
 } // namespace detail::edit
 
@@ -529,8 +536,8 @@ EditResult applyDabs(DictionaryVolume& volume, const std::vector<Dab>& dabs, con
   ChunkWriteObserver* observer)
 {
   if (readsNeighbours(settings.op))
-    return applyGather(volume, planGroups(volume, dabs, settings), observer);
-  detail::edit::DabPlan plan = detail::edit::planDabs(volume, dabs, settings);
+    return applyGather(volume, planGroups(volume, dabs, settings, observer), observer);
+  detail::edit::DabPlan plan = detail::edit::planDabs(volume, dabs, settings, observer);
   EditResult result;
   const detail::edit::BrushContext& ctx = plan.ctx;
   const std::vector<Dab>& active = plan.dabs;

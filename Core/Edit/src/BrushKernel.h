@@ -230,10 +230,13 @@ struct DabPlan
   std::vector<std::uint16_t> mixFrom, mixTo;
 };
 
-/// Validates (Error InvalidArgument) and plans; adds the brush colour (and soft
-/// paint's mixes) to the dictionary; Flatten's planes are measured here.
-/// Refuses Smooth and Grab (they are not per-voxel rules).
-DabPlan planDabs(DictionaryVolume& volume, const std::vector<Dab>& dabs, const BrushSettings& settings);
+/// Validates (Error InvalidArgument), checks the chunk and memory budgets
+/// (Error InvalidArgument / OutOfMemory; the undo snapshots count when an
+/// observer is given) and plans; adds the brush colour (and soft paint's
+/// mixes) to the dictionary; Flatten's planes are measured here. Refuses
+/// Smooth and Grab (they are not per-voxel rules).
+DabPlan planDabs(DictionaryVolume& volume, const std::vector<Dab>& dabs, const BrushSettings& settings,
+  const ChunkWriteObserver* observer = nullptr);
 
 } // namespace detail::edit
 } // namespace lvdif

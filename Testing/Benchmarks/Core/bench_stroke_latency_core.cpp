@@ -31,7 +31,7 @@
 // has a collected mesh reflecting it ("ready to draw"; exact: the worker says
 // when each mesh's input was gathered under the mutex, and the edit was made
 // under it before). NOTHING IS DRAWN and no VTK object is built: the cost of
-// turning the collected meshes into actors (vtkLVDIFChunkMesh::ToPolyData +
+// turning the collected meshes into actors (LVDIFChunkMesh::ToPolyData +
 // vtkChunkActorManager::SetChunk, "install" in the VTK bench) and of the
 // frame itself is not in these numbers.
 //
@@ -70,7 +70,7 @@ struct Config
   std::string brush, loop = "event";
 };
 
-// The Core twin of vtkLVDIFChunkMesh::ChunksToRemesh(mc, dirty, EditResult):
+// The Core twin of LVDIFChunkMesh::ChunksToRemesh(mc, dirty, EditResult):
 // the chunks the edit's changed box reaches, plus the storage-chunk rule for
 // dirty chunks the edit does not name.
 std::vector<std::int64_t> chunksForEdit(const lvdif::ChunkedMarchingCubes& mc,

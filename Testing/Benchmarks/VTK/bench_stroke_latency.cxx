@@ -7,11 +7,11 @@
 //   UI loop (this thread, ticking at up to 60 Hz):
 //     deliver the samples whose time has come -> lvdif::Editor::addSample
 //     (live application, under the worker's source mutex) -> request the
-//     chunks the sample changed (vtkLVDIFChunkMesh::ChunksToRemesh with the
+//     chunks the sample changed (LVDIFChunkMesh::ChunksToRemesh with the
 //     editor's lastWrite(), i.e. chunksAffectedBy(changedBox), as the editor
 //     does; rule "storage" is the previous request, storage-chunk rule
 //     intersected with the segment's reach box, run in the same process as
-//     the peer) -> collect finished chunk meshes -> vtkLVDIFChunkMesh +
+//     the peer) -> collect finished chunk meshes -> LVDIFChunkMesh +
 //     vtkChunkActorManager::SetChunk (vertex un-sharing for the tetrahedral
 //     shader included) -> [optional: render a frame]
 //   worker thread: lvdif::MarchingCubesWorker re-meshes requested chunks.
@@ -45,7 +45,7 @@
 
 #include "vtkCamera.h"
 #include "vtkChunkActorManager.h"
-#include "vtkLVDIFChunkMesh.h"
+#include "LVDIFChunkMesh.h"
 #include "vtkNew.h"
 #include "vtkPolyData.h"
 #include "vtkRenderWindow.h"
@@ -80,7 +80,7 @@ std::vector<std::string> runStroke(int n, int samples, double radius, bool rende
   vtkNew<vtkRenderWindow> rw;
   actors->SetRenderer(ren);
   for (const auto& m : mc.extractAll())
-    actors->SetChunk(m.chunkId, vtkLVDIFChunkMesh::ToPolyData(m, volume.colors(), volume.dims()));
+    actors->SetChunk(m.chunkId, LVDIFChunkMesh::ToPolyData(m, volume.colors(), volume.dims()));
   if (render)
   {
     rw->SetSize(640, 480);
@@ -160,11 +160,11 @@ std::vector<std::string> runStroke(int n, int samples, double radius, bool rende
       bench::Stopwatch q;
       std::vector<std::int64_t> ids;
       if (exact)
-        ids = vtkLVDIFChunkMesh::ChunksToRemesh(mc, volume.takeDirtyChunks(), editor.lastWrite());
+        ids = LVDIFChunkMesh::ChunksToRemesh(mc, volume.takeDirtyChunks(), editor.lastWrite());
       else
       {
         const lvdif::VoxelBox bound = segmentBox(stroke[next > 0 ? next - 1 : 0].position, stroke[next].position);
-        ids = vtkLVDIFChunkMesh::ChunksToRemesh(mc, volume.takeDirtyChunks(), &bound);
+        ids = LVDIFChunkMesh::ChunksToRemesh(mc, volume.takeDirtyChunks(), &bound);
       }
       worker.request(ids);
       requestMs.push_back(q.ms());
@@ -178,11 +178,11 @@ std::vector<std::string> runStroke(int n, int samples, double radius, bool rende
       editor.endStroke();
       std::vector<std::int64_t> ids;
       if (exact)
-        ids = vtkLVDIFChunkMesh::ChunksToRemesh(mc, volume.takeDirtyChunks(), editor.lastWrite());
+        ids = LVDIFChunkMesh::ChunksToRemesh(mc, volume.takeDirtyChunks(), editor.lastWrite());
       else
       {
         const lvdif::VoxelBox bound = segmentBox(stroke[next > 1 ? next - 2 : 0].position, stroke[next - 1].position);
-        ids = vtkLVDIFChunkMesh::ChunksToRemesh(mc, volume.takeDirtyChunks(), &bound);
+        ids = LVDIFChunkMesh::ChunksToRemesh(mc, volume.takeDirtyChunks(), &bound);
       }
       worker.request(ids);
       if (!ids.empty())
@@ -213,7 +213,7 @@ std::vector<std::string> runStroke(int n, int samples, double radius, bool rende
       if (m.empty())
         actors->RemoveChunk(m.chunkId);
       else
-        actors->SetChunk(m.chunkId, vtkLVDIFChunkMesh::ToPolyData(m, volume.colors(), volume.dims()));
+        actors->SetChunk(m.chunkId, LVDIFChunkMesh::ToPolyData(m, volume.colors(), volume.dims()));
     }
     installMs.push_back(inst.ms());
     if (!newest.empty())

@@ -9,6 +9,7 @@
 // the previous sample, displacing by the move since it (Brush.h).
 #pragma once
 
+#include "lvdif/EditLimits.h"
 #include "lvdif/InputDevice.h"
 #include "lvdif/Interrupter.h"
 #include "lvdif/Recording.h"
@@ -29,6 +30,13 @@ public:
 
   BrushSettings brush;
   StrokeSettings stroke;
+  /// Budgets of every edit (checked before the work; Error InvalidArgument).
+  EditLimits limits;
+  /// Checked between batches of dabs inside long edits, strokes and playback
+  /// (Error Cancelled; what was applied stays, as one undo step).
+  Interrupter* interrupter = nullptr;
+  /// Dabs applied by this editor so far (counts against limits.maxTotalDabs).
+  std::uint64_t dabsApplied() const { return this->DabsApplied; }
 
   /// One dab (with the current brush) as one undo step.
   EditResult dab(const Dab& d);
@@ -48,8 +56,10 @@ public:
   const EditResult& lastWrite() const { return this->LastWrite; }
   bool strokeOpen() const { return this->Builder != nullptr; }
 
-  /// Reads up to maxSamples samples from the device; returns how many were read.
-  std::size_t pump(InputDevice& device, std::size_t maxSamples = 1024, int timeoutMs = 0);
+  /// Reads up to maxSamples samples from the device, and when maxMillis >= 0 for at
+  /// most that long (checked after each sample; an interactive front end passes its
+  /// frame budget); returns how many were read.
+  std::size_t pump(InputDevice& device, std::size_t maxSamples = 1024, int timeoutMs = 0, int maxMillis = -1);
 
   bool undo();
   bool redo();
@@ -72,6 +82,10 @@ public:
 
 private:
   void record(const EditRecord& e);
+  /// The budgets, then the dabs in batches with a cancellation check between them.
+  EditResult applyChecked(const std::vector<Dab>& dabs);
+  /// Dabs the next stroke may make: the per-edit limit or what is left of the total.
+  std::uint64_t strokeBudget() const;
 
   DictionaryVolume& Volume;
   UndoStack Undo;
@@ -83,6 +97,7 @@ private:
   std::vector<std::int64_t> Touched; // since the last takeTouchedChunks()
   double Time = -1;
   bool Pressed = false;
+  std::uint64_t DabsApplied = 0;
   std::array<double, 3> GrabFrom{ 0, 0, 0 }; // the previous sample of a Grab stroke
   bool GrabStarted = false;
 };

@@ -1,4 +1,4 @@
-#include "vtkLVDIFChunkMesh.h"
+#include "LVDIFChunkMesh.h"
 
 #include "vtkCellArray.h"
 #include "vtkCellData.h"
@@ -14,7 +14,7 @@
 #include <cstring>
 #include <iterator>
 
-vtkSmartPointer<vtkPolyData> vtkLVDIFChunkMesh::ToPolyData(
+vtkSmartPointer<vtkPolyData> LVDIFChunkMesh::ToPolyData(
   const lvdif::ChunkMesh& mesh, const lvdif::ColorDictionary& colors, const lvdif::Index3& pointDims)
 {
   auto pd = vtkSmartPointer<vtkPolyData>::New();
@@ -96,7 +96,7 @@ vtkSmartPointer<vtkPolyData> vtkLVDIFChunkMesh::ToPolyData(
   return pd;
 }
 
-std::vector<std::int64_t> vtkLVDIFChunkMesh::ChunksToRemesh(const lvdif::ChunkedMarchingCubes& mc,
+std::vector<std::int64_t> LVDIFChunkMesh::ChunksToRemesh(const lvdif::ChunkedMarchingCubes& mc,
   const std::vector<std::int64_t>& dirtyStorageChunks, const lvdif::VoxelBox* changedBound)
 {
   std::vector<std::int64_t> byStorage = mc.chunksAffectedByStorageChunks(dirtyStorageChunks);
@@ -112,7 +112,7 @@ std::vector<std::int64_t> vtkLVDIFChunkMesh::ChunksToRemesh(const lvdif::Chunked
   return both;
 }
 
-std::vector<std::int64_t> vtkLVDIFChunkMesh::ChunksToRemesh(const lvdif::ChunkedMarchingCubes& mc,
+std::vector<std::int64_t> LVDIFChunkMesh::ChunksToRemesh(const lvdif::ChunkedMarchingCubes& mc,
   const std::vector<std::int64_t>& dirtyStorageChunks, const lvdif::EditResult& edit)
 {
   // Both lists are increasing (takeDirtyChunks, EditResult::changedChunks).
