@@ -26,8 +26,11 @@
 #include "vtkWindowToImageFilter.h"
 #include "vtkXMLPolyDataWriter.h"
 
+#include "lvdif/ByteStream.h"
+
 #include <algorithm>
 #include <cctype>
+#include <dlfcn.h>
 
 vtkSmartPointer<vtkPolyData> MeshVolume(const lvdif::DictionaryVolume& volume, lvdif::Interrupter& interrupter)
 {
@@ -81,54 +84,96 @@ vtkSmartPointer<vtkPolyData> MeshVolume(const lvdif::DictionaryVolume& volume, l
   return mesh;
 }
 
-void WriteMesh(vtkPolyData* mesh, const std::string& path)
+void CheckMeshOutput(const std::string& path)
 {
   const std::string ext = Extension(path);
-  int ok = 0;
-  if (ext == "ply")
+  if (ext != "ply" && ext != "obj" && ext != "stl" && ext != "vtp")
+    throw lvdif::Error(lvdif::ErrorCode::InvalidArgument,
+      "unknown mesh extension '." + ext + "' of " + path + " (use .ply, .obj, .stl or .vtp)");
+  lvdif::requireWritable(path);
+}
+
+void CheckPngOutput(const std::string& path)
+{
+  if (Extension(path) != "png")
+    throw lvdif::Error(lvdif::ErrorCode::InvalidArgument, "a picture must be a .png file, not " + path);
+  lvdif::requireWritable(path);
+  // Debian's VTK renders through X only and aborts the process when the display
+  // cannot be opened: try opening it first (libX11 is loaded by VTK anyway)
+  vtkNew<vtkRenderWindow> window;
+  if (!window->IsA("vtkXOpenGLRenderWindow"))
+    return;
+  const char* display = std::getenv("DISPLAY");
+  if (!display || !*display)
+    throw lvdif::Error(lvdif::ErrorCode::InvalidArgument,
+      "cannot render " + path + ": no X display (DISPLAY is not set); run under xvfb-run -a");
+  void* x11 = ::dlopen("libX11.so.6", RTLD_LAZY | RTLD_LOCAL);
+  using Open = void* (*)(const char*);
+  using Close = int (*)(void*);
+  Open open = x11 ? reinterpret_cast<Open>(::dlsym(x11, "XOpenDisplay")) : nullptr;
+  Close close = x11 ? reinterpret_cast<Close>(::dlsym(x11, "XCloseDisplay")) : nullptr;
+  if (open && close)
   {
-    vtkNew<vtkPLYWriter> w;
-    w->SetFileName(path.c_str());
-    w->SetInputData(mesh);
-    w->SetFileTypeToBinary();
-    w->SetArrayName("rgba");
-    w->SetEnableAlpha(true);
-    ok = w->Write();
+    void* d = open(display);
+    if (!d)
+      throw lvdif::Error(lvdif::ErrorCode::InvalidArgument, "cannot render " + path + ": cannot open the X display '" +
+          display + "'; run under xvfb-run -a");
+    close(d);
   }
-  else if (ext == "obj")
-  {
-    vtkNew<vtkOBJWriter> w;
-    w->SetFileName(path.c_str());
-    w->SetInputData(mesh);
-    ok = w->Write();
-  }
-  else if (ext == "stl")
-  {
-    vtkNew<vtkSTLWriter> w;
-    w->SetFileName(path.c_str());
-    w->SetInputData(mesh);
-    w->SetFileTypeToBinary();
-    ok = w->Write();
-  }
-  else if (ext == "vtp")
-  {
-    vtkNew<vtkXMLPolyDataWriter> w;
-    w->SetFileName(path.c_str());
-    w->SetInputData(mesh);
-    ok = w->Write();
-  }
-  else
-  {
-    throw lvdif::Error(lvdif::ErrorCode::InvalidArgument, "unknown mesh extension '." + ext + "' (use .ply, .obj, .stl or .vtp)");
-  }
-  if (!ok)
-  {
-    throw lvdif::Error(lvdif::ErrorCode::IoFailure, "could not write " + path);
-  }
+}
+
+void WriteMesh(vtkPolyData* mesh, const std::string& path)
+{
+  CheckMeshOutput(path);
+  const std::string ext = Extension(path);
+  // VTK's writers write by name: into the safe save's temporary file
+  lvdif::saveAtomicallyByName(path, [&](const std::string& tmp) {
+    int ok = 0;
+    unsigned long error = 0;
+    if (ext == "ply")
+    {
+      vtkNew<vtkPLYWriter> w;
+      w->SetFileName(tmp.c_str());
+      w->SetInputData(mesh);
+      w->SetFileTypeToBinary();
+      w->SetArrayName("rgba");
+      w->SetEnableAlpha(true);
+      ok = w->Write();
+      error = w->GetErrorCode();
+    }
+    else if (ext == "obj")
+    {
+      vtkNew<vtkOBJWriter> w;
+      w->SetFileName(tmp.c_str());
+      w->SetInputData(mesh);
+      ok = w->Write();
+      error = w->GetErrorCode();
+    }
+    else if (ext == "stl")
+    {
+      vtkNew<vtkSTLWriter> w;
+      w->SetFileName(tmp.c_str());
+      w->SetInputData(mesh);
+      w->SetFileTypeToBinary();
+      ok = w->Write();
+      error = w->GetErrorCode();
+    }
+    else
+    {
+      vtkNew<vtkXMLPolyDataWriter> w;
+      w->SetFileName(tmp.c_str());
+      w->SetInputData(mesh);
+      ok = w->Write();
+      error = w->GetErrorCode();
+    }
+    if (!ok || error != 0)
+      throw lvdif::Error(lvdif::ErrorCode::IoFailure, "could not write " + path);
+  });
 }
 
 void RenderPng(vtkPolyData* mesh, const std::string& path, int width, int height)
 {
+  CheckPngOutput(path);
   vtkNew<vtkPolyDataMapper> mapper;
   mapper->SetInputData(mesh);
   mapper->SetScalarModeToUsePointFieldData();
@@ -144,13 +189,6 @@ void RenderPng(vtkPolyData* mesh, const std::string& path, int width, int height
   renderer->SetBackground2(0.05, 0.05, 0.08);
   renderer->GradientBackgroundOn();
   vtkNew<vtkRenderWindow> window;
-  // Debian's VTK renders through X only: without a display it aborts the
-  // process, so say so first (the mesh itself has been written already)
-  if (window->IsA("vtkXOpenGLRenderWindow") && !std::getenv("DISPLAY"))
-  {
-    throw lvdif::Error(lvdif::ErrorCode::InvalidArgument,
-      "cannot render " + path + ": no X display (DISPLAY is not set); run under xvfb-run -a");
-  }
   window->SetOffScreenRendering(1);
   window->SetSize(width, height);
   window->AddRenderer(renderer);
@@ -164,12 +202,12 @@ void RenderPng(vtkPolyData* mesh, const std::string& path, int width, int height
   vtkNew<vtkWindowToImageFilter> grab;
   grab->SetInput(window);
   grab->ReadFrontBufferOff();
-  vtkNew<vtkPNGWriter> png;
-  png->SetFileName(path.c_str());
-  png->SetInputConnection(grab->GetOutputPort());
-  png->Write();
-  if (png->GetErrorCode() != 0)
-  {
-    throw lvdif::Error(lvdif::ErrorCode::IoFailure, "could not write " + path);
-  }
+  lvdif::saveAtomicallyByName(path, [&](const std::string& tmp) {
+    vtkNew<vtkPNGWriter> png;
+    png->SetFileName(tmp.c_str());
+    png->SetInputConnection(grab->GetOutputPort());
+    png->Write();
+    if (png->GetErrorCode() != 0)
+      throw lvdif::Error(lvdif::ErrorCode::IoFailure, "could not write " + path);
+  });
 }

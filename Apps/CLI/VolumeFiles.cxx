@@ -1,5 +1,6 @@
 #include "VolumeFiles.h"
 
+#include "lvdif/ByteStream.h"
 #include "lvdif/Error.h"
 #include "lvdif/LegacyBv.h"
 #include "lvdif/VolumeFile.h"
@@ -28,6 +29,15 @@ std::unique_ptr<lvdif::DictionaryVolume> LoadAnyVolume(const std::string& path, 
   }
   throw lvdif::Error(lvdif::ErrorCode::InvalidArgument,
     "cannot read '" + path + "': volumes are .lvdv (or legacy .bv) files");
+}
+
+void CheckVolumeOutput(const std::string& path)
+{
+  const std::string ext = Extension(path);
+  if (ext != "lvdv" && ext != "bv")
+    throw lvdif::Error(lvdif::ErrorCode::InvalidArgument,
+      "cannot write '" + path + "': volumes are .lvdv (or legacy .bv) files");
+  lvdif::requireWritable(path);
 }
 
 void SaveAnyVolume(const lvdif::DictionaryVolume& volume, const std::string& path,

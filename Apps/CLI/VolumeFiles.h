@@ -10,6 +10,8 @@
 #include <string>
 
 std::unique_ptr<lvdif::DictionaryVolume> LoadAnyVolume(const std::string& path, lvdif::Interrupter& progress);
+/// A known volume extension and a writable place, checked before the work.
+void CheckVolumeOutput(const std::string& path);
 void SaveAnyVolume(const lvdif::DictionaryVolume& volume, const std::string& path,
   const std::map<std::string, std::string>& metadata, lvdif::Interrupter& progress);
 std::string Extension(const std::string& path);
