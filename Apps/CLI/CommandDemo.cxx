@@ -22,6 +22,8 @@ int CommandDemo(int argc, char** argv)
   const std::string out = args.get("out", "out");
   const long size = args.getInt("size", 128);
   ::mkdir(out.c_str(), 0755);
+  CheckMeshOutput(out + "/demo.ply");
+  CheckPngOutput(out + "/demo.png");
   ProgressBar progress;
   const auto t0 = std::chrono::steady_clock::now();
   auto seconds = [&] {

@@ -7,6 +7,8 @@
 
 #include "lvdif/Editor.h"
 #include "lvdif/Error.h"
+#include "lvdif/ByteStream.h"
+#include "lvdif/Memory.h"
 #include "lvdif/Recording.h"
 #include "lvdif/Script.h"
 
@@ -16,13 +18,14 @@
 
 namespace
 {
+// FileSource refuses FIFOs, directories and devices without blocking.
 std::string readText(const std::string& path)
 {
-  std::ifstream in(path);
-  if (!in) throw lvdif::Error(lvdif::ErrorCode::IoFailure, "cannot read " + path);
-  std::ostringstream s;
-  s << in.rdbuf();
-  return s.str();
+  lvdif::FileSource src(path);
+  lvdif::requireMemory(src.size(), "reading the script " + path);
+  std::string text(static_cast<std::size_t>(src.size()), '\0');
+  src.read(0, &text[0], text.size());
+  return text;
 }
 }
 
@@ -34,6 +37,7 @@ int CommandScript(int argc, char** argv)
     throw lvdif::Error(lvdif::ErrorCode::InvalidArgument,
       "usage: lvdif script FILE.lvs [--in VOLUME] [--out VOLUME] [--mesh OUT.ply] [--png OUT.png] [--size N]");
   const std::string path = args.positional()[0];
+  CheckEditOutputs(args);
   ProgressBar progress;
   lvdif::ScriptOptions options;
   options.interrupter = &progress;
@@ -76,6 +80,7 @@ int CommandPlay(int argc, char** argv)
   if (args.positional().size() != 1 || !args.has("in"))
     throw lvdif::Error(lvdif::ErrorCode::InvalidArgument,
       "usage: lvdif play RECORDING.lvr --in VOLUME [--out VOLUME] [--mesh OUT.ply] [--png OUT.png]");
+  CheckEditOutputs(args);
   ProgressBar progress;
   auto volume = LoadAnyVolume(args.get("in", ""), progress);
   const lvdif::Recording recording = lvdif::loadRecording(args.positional()[0]);

@@ -69,6 +69,7 @@ int CommandMeshToSdf(int argc, char** argv)
     options.svfFilters = lvdif::SvfAll; // SVF1..SVF4, the paper's cleanup (meant for --sign normal)
 
   ProgressBar progress;
+  CheckVolumeOutput(out);
   const lvdif::TriangleMesh mesh = lvdif::loadMesh(in);
   const lvdif::GridGeometry grid = lvdif::fitGridToMesh(mesh, dims, padding);
   lvdif::VolumeOptions vo;

@@ -42,6 +42,8 @@ int CommandMesh(int argc, char** argv)
   args.allowOnly({ "png" });
   if (args.positional().size() != 2)
     throw lvdif::Error(lvdif::ErrorCode::InvalidArgument, "usage: lvdif mesh VOLUME OUT.(ply|obj|stl|vtp) [--png OUT.png]");
+  CheckMeshOutput(args.positional()[1]);
+  if (args.has("png")) CheckPngOutput(args.get("png", ""));
   ProgressBar progress;
   auto volume = LoadAnyVolume(args.positional()[0], progress);
   vtkSmartPointer<vtkPolyData> mesh = MeshVolume(*volume, progress);
@@ -57,6 +59,7 @@ int CommandConvert(int argc, char** argv)
   args.allowOnly({});
   if (args.positional().size() != 2)
     throw lvdif::Error(lvdif::ErrorCode::InvalidArgument, "usage: lvdif convert IN.(lvdv|bv) OUT.(lvdv|bv)");
+  CheckVolumeOutput(args.positional()[1]);
   ProgressBar progress;
   auto volume = LoadAnyVolume(args.positional()[0], progress);
   SaveAnyVolume(*volume, args.positional()[1], { { "converted_from", args.positional()[0] } }, progress);

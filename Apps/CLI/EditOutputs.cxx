@@ -7,6 +7,16 @@
 
 #include <cstdio>
 
+void CheckEditOutputs(const Arguments& args)
+{
+  if (args.has("out"))
+    CheckVolumeOutput(args.get("out", ""));
+  if (args.has("mesh"))
+    CheckMeshOutput(args.get("mesh", ""));
+  if (args.has("png"))
+    CheckPngOutput(args.get("png", ""));
+}
+
 void WriteEditOutputs(const lvdif::DictionaryVolume& volume, const Arguments& args,
   const std::map<std::string, std::string>& metadata, lvdif::Interrupter& progress)
 {

@@ -9,5 +9,7 @@
 #include <map>
 #include <string>
 
+/// --out, --mesh and --png checked before the work (extension, writable place, display).
+void CheckEditOutputs(const Arguments& args);
 void WriteEditOutputs(const lvdif::DictionaryVolume& volume, const Arguments& args,
   const std::map<std::string, std::string>& metadata, lvdif::Interrupter& progress);

@@ -29,8 +29,11 @@
 #include "vtkWindowToImageFilter.h"
 #include "vtkXMLPolyDataWriter.h"
 
+#include "lvdif/ByteStream.h"
+
 #include <algorithm>
 #include <cctype>
+#include <dlfcn.h>
 
 vtkSmartPointer<vtkPolyData> MeshVolume(const lvdif::DictionaryVolume& volume, lvdif::Interrupter& interrupter)
 {
@@ -63,13 +66,54 @@ vtkSmartPointer<vtkPolyData> MeshVolume(const lvdif::DictionaryVolume& volume, l
   return mesh;
 }
 
+void CheckMeshOutput(const std::string& path)
+{
+  const LVDIFFiles::Format* f = LVDIFFiles::Find(path, LVDIFFiles::Kind::Mesh);
+  if (!f || f->writerClass.empty())
+    throw lvdif::Error(lvdif::ErrorCode::InvalidArgument, "unknown mesh extension of " + path + " (" +
+        LVDIFFiles::DialogFilter(LVDIFFiles::Kind::Mesh, true) + ")");
+  lvdif::requireWritable(path);
+}
+
+void CheckPngOutput(const std::string& path)
+{
+  if (Extension(path) != "png")
+    throw lvdif::Error(lvdif::ErrorCode::InvalidArgument, "a picture must be a .png file, not " + path);
+  lvdif::requireWritable(path);
+  // Debian's VTK renders through X only and aborts the process when the display
+  // cannot be opened: try opening it first (libX11 is loaded by VTK anyway)
+  vtkNew<vtkRenderWindow> window;
+  if (!window->IsA("vtkXOpenGLRenderWindow"))
+    return;
+  const char* display = std::getenv("DISPLAY");
+  if (!display || !*display)
+    throw lvdif::Error(lvdif::ErrorCode::InvalidArgument,
+      "cannot render " + path + ": no X display (DISPLAY is not set); run under xvfb-run -a");
+  void* x11 = ::dlopen("libX11.so.6", RTLD_LAZY | RTLD_LOCAL);
+  using Open = void* (*)(const char*);
+  using Close = int (*)(void*);
+  Open open = x11 ? reinterpret_cast<Open>(::dlsym(x11, "XOpenDisplay")) : nullptr;
+  Close close = x11 ? reinterpret_cast<Close>(::dlsym(x11, "XCloseDisplay")) : nullptr;
+  if (open && close)
+  {
+    void* d = open(display);
+    if (!d)
+      throw lvdif::Error(lvdif::ErrorCode::InvalidArgument, "cannot render " + path + ": cannot open the X display '" +
+          display + "'; run under xvfb-run -a");
+    close(d);
+  }
+}
+
 void WriteMesh(vtkPolyData* mesh, const std::string& path)
 {
-  LVDIFFiles::SaveMesh(mesh, path); // by extension, through the one file registry
+  CheckMeshOutput(path);
+  // the registry's writer, into the safe save's temporary file (same extension)
+  lvdif::saveAtomicallyByName(path, [&](const std::string& tmp) { LVDIFFiles::SaveMesh(mesh, tmp); });
 }
 
 void RenderPng(vtkPolyData* mesh, const std::string& path, int width, int height)
 {
+  CheckPngOutput(path);
   vtkNew<vtkPolyDataMapper> mapper;
   mapper->SetInputData(mesh);
   mapper->SetScalarModeToUsePointFieldData();
@@ -85,13 +129,6 @@ void RenderPng(vtkPolyData* mesh, const std::string& path, int width, int height
   renderer->SetBackground2(0.05, 0.05, 0.08);
   renderer->GradientBackgroundOn();
   vtkNew<vtkRenderWindow> window;
-  // Debian's VTK renders through X only: without a display it aborts the
-  // process, so say so first (the mesh itself has been written already)
-  if (window->IsA("vtkXOpenGLRenderWindow") && !std::getenv("DISPLAY"))
-  {
-    throw lvdif::Error(lvdif::ErrorCode::InvalidArgument,
-      "cannot render " + path + ": no X display (DISPLAY is not set); run under xvfb-run -a");
-  }
   window->SetOffScreenRendering(1);
   window->SetSize(width, height);
   window->AddRenderer(renderer);
@@ -105,12 +142,12 @@ void RenderPng(vtkPolyData* mesh, const std::string& path, int width, int height
   vtkNew<vtkWindowToImageFilter> grab;
   grab->SetInput(window);
   grab->ReadFrontBufferOff();
-  vtkNew<vtkPNGWriter> png;
-  png->SetFileName(path.c_str());
-  png->SetInputConnection(grab->GetOutputPort());
-  png->Write();
-  if (png->GetErrorCode() != 0)
-  {
-    throw lvdif::Error(lvdif::ErrorCode::IoFailure, "could not write " + path);
-  }
+  lvdif::saveAtomicallyByName(path, [&](const std::string& tmp) {
+    vtkNew<vtkPNGWriter> png;
+    png->SetFileName(tmp.c_str());
+    png->SetInputConnection(grab->GetOutputPort());
+    png->Write();
+    if (png->GetErrorCode() != 0)
+      throw lvdif::Error(lvdif::ErrorCode::IoFailure, "could not write " + path);
+  });
 }

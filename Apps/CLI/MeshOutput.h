@@ -13,7 +13,14 @@
 class vtkPolyData;
 
 vtkSmartPointer<vtkPolyData> MeshVolume(const lvdif::DictionaryVolume& volume, lvdif::Interrupter& interrupter);
+/// Checks a mesh output before any expensive work: a known extension and a
+/// writable place (lvdif::requireWritable); throws lvdif::Error.
+void CheckMeshOutput(const std::string& path);
+/// Checks a picture output before any expensive work: .png, writable, and an
+/// X display that opens (Debian's VTK aborts without one); throws lvdif::Error.
+void CheckPngOutput(const std::string& path);
 /// Chooses the writer from the extension (.ply .obj .stl .vtp); throws lvdif::Error on failure.
 void WriteMesh(vtkPolyData* mesh, const std::string& path);
-/// Renders the coloured mesh from a 3/4 view into a PNG of the given size.
+/// Both write through lvdif::saveAtomicallyByName (a failed write is an error,
+/// the previous file stays). Renders the coloured mesh from a 3/4 view into a PNG of the given size.
 void RenderPng(vtkPolyData* mesh, const std::string& path, int width = 800, int height = 600);

@@ -2,6 +2,9 @@
 
 #include "LVDIFFiles.h"
 
+#include "lvdif/ByteStream.h"
+#include "lvdif/Error.h"
+
 std::string Extension(const std::string& path)
 {
   return LVDIFFiles::Extension(path);
@@ -10,6 +13,15 @@ std::string Extension(const std::string& path)
 std::shared_ptr<lvdif::DictionaryVolume> LoadAnyVolume(const std::string& path, lvdif::Interrupter& progress)
 {
   return LVDIFFiles::LoadVolume(path, progress);
+}
+
+void CheckVolumeOutput(const std::string& path)
+{
+  const LVDIFFiles::Format* f = LVDIFFiles::Find(path, LVDIFFiles::Kind::Volume);
+  if (!f || f->writerClass.empty())
+    throw lvdif::Error(lvdif::ErrorCode::InvalidArgument,
+      "cannot write '" + path + "': not a volume format (" + LVDIFFiles::DialogFilter(LVDIFFiles::Kind::Volume, true) + ")");
+  lvdif::requireWritable(path);
 }
 
 void SaveAnyVolume(const lvdif::DictionaryVolume& volume, const std::string& path,

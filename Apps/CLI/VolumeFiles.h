@@ -11,6 +11,8 @@
 #include <string>
 
 std::shared_ptr<lvdif::DictionaryVolume> LoadAnyVolume(const std::string& path, lvdif::Interrupter& progress);
+/// A volume extension the file registry can write, and a writable place, checked before the work.
+void CheckVolumeOutput(const std::string& path);
 void SaveAnyVolume(const lvdif::DictionaryVolume& volume, const std::string& path,
   const std::map<std::string, std::string>& metadata, lvdif::Interrupter& progress);
 std::string Extension(const std::string& path);

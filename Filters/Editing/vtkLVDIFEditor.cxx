@@ -4,6 +4,7 @@
 #include "vtkIdTypeArray.h"
 #include "vtkObjectFactory.h"
 
+#include "lvdif/EditLimits.h"
 #include "lvdif/Editor.h"
 #include "lvdif/Error.h"
 #include "lvdif/Recording.h"
@@ -212,11 +213,31 @@ int vtkLVDIFEditor::GetPrimitive()
   return static_cast<int>(strokeOf(this->Ed.get(), this->Brush->stroke).shape);
 }
 
+namespace
+{
+// The rules every edit input follows (lvdif/EditLimits.h); "" when v passes.
+std::string numberProblem(double v, double lo, double hi, const char* what, bool positive)
+{
+  try
+  {
+    if (positive && !(v > 0))
+      return std::string(what) + " must be > 0";
+    lvdif::checkedNumber(v, lo, hi, what);
+  }
+  catch (const lvdif::Error& e)
+  {
+    return e.what();
+  }
+  return std::string();
+}
+} // namespace
+
 void vtkLVDIFEditor::SetRadius(double r)
 {
-  if (!(r > 0) || !std::isfinite(r))
+  const std::string bad = numberProblem(r, 0, lvdif::EditLimits::MaxSize, "radius", true);
+  if (!bad.empty())
   {
-    vtkErrorMacro(<< "radius " << r << " must be finite and > 0");
+    vtkErrorMacro(<< bad);
     return;
   }
   strokeOf(this->Ed.get(), this->Brush->stroke).radius = r;
@@ -253,9 +274,10 @@ int vtkLVDIFEditor::GetColorComponent(int i)
 
 void vtkLVDIFEditor::SetBlend(double k)
 {
-  if (!(k >= 0) || !std::isfinite(k))
+  const std::string bad = numberProblem(k, 0, lvdif::EditLimits::MaxSize, "blend", false);
+  if (!bad.empty())
   {
-    vtkErrorMacro(<< "blend " << k << " must be finite and >= 0");
+    vtkErrorMacro(<< bad);
     return;
   }
   brushOf(this->Ed.get(), this->Brush->brush).blend = k;
@@ -285,9 +307,10 @@ int vtkLVDIFEditor::GetBrushKind()
 
 void vtkLVDIFEditor::SetSpacing(double s)
 {
-  if (!(s > 0) || !std::isfinite(s))
+  const std::string bad = numberProblem(s, lvdif::EditLimits::MinSpacing, lvdif::EditLimits::MaxSize, "spacing", false);
+  if (!bad.empty())
   {
-    vtkErrorMacro(<< "spacing " << s << " must be finite and > 0");
+    vtkErrorMacro(<< bad);
     return;
   }
   strokeOf(this->Ed.get(), this->Brush->stroke).spacing = s;
@@ -301,9 +324,10 @@ double vtkLVDIFEditor::GetSpacing()
 
 void vtkLVDIFEditor::SetMinRadius(double r)
 {
-  if (!(r > 0) || !std::isfinite(r))
+  const std::string bad = numberProblem(r, 0, lvdif::EditLimits::MaxSize, "minimum radius", true);
+  if (!bad.empty())
   {
-    vtkErrorMacro(<< "minimum radius " << r << " must be finite and > 0");
+    vtkErrorMacro(<< bad);
     return;
   }
   strokeOf(this->Ed.get(), this->Brush->stroke).minRadius = r;

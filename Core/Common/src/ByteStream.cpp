@@ -124,7 +124,7 @@ void removeStaleTemps(const std::string& path)
       continue;
     char* end = nullptr;
     const long pid = std::strtol(name.c_str() + base.size(), &end, 10);
-    if (pid <= 0 || *end != '-' || std::strlen(end) != 7)
+    if (pid <= 0 || *end != '-' || std::strlen(end) < 7 || (std::strlen(end) > 7 && end[7] != '.'))
       continue;
     if (::kill(static_cast<pid_t>(pid), 0) == 0 || errno != ESRCH)
       continue; // its save may still be running
@@ -209,46 +209,97 @@ void MemorySink::write(const void* data, std::size_t n)
   this->Written += n;
 }
 
-void saveAtomically(const std::string& givenPath, const std::function<void(ByteSink&)>& produce, const SaveHooks& hooks)
+namespace
+{
+struct Target
+{
+  std::string path; // after symlinks
+  bool exists = false;
+  struct stat old;
+};
+
+Target prepareSave(const std::string& givenPath)
 {
   if (givenPath.empty())
   {
     throw Error(ErrorCode::InvalidArgument, "cannot save: empty file name");
   }
-  const std::string path = resolveLinks(givenPath);
-  struct stat old;
-  const bool exists = ::stat(path.c_str(), &old) == 0;
-  if (exists && !S_ISREG(old.st_mode))
+  Target t;
+  t.path = resolveLinks(givenPath);
+  t.exists = ::stat(t.path.c_str(), &t.old) == 0;
+  if (t.exists && !S_ISREG(t.old.st_mode))
   {
     throw Error(ErrorCode::IoFailure, "cannot save over '" + givenPath + "': not a regular file");
   }
-  removeStaleTemps(path);
-  std::string tmp = tempPrefix(path) + std::to_string(::getpid()) + "-XXXXXX";
+  removeStaleTemps(t.path);
+  return t;
+}
+
+// mkstemp creates 0600: an existing file keeps its mode (and owner, where
+// allowed); a new one is an ordinary document
+void applyMode(int fd, const Target& t)
+{
+  if (t.exists)
+  {
+    ::fchmod(fd, t.old.st_mode & 07777);
+    if (::fchown(fd, t.old.st_uid, t.old.st_gid) != 0)
+    {
+      // not permitted for other users' files: the file becomes ours, as any rewrite would
+    }
+  }
+  else
+  {
+    ::fchmod(fd, 0644);
+  }
+}
+
+// keepExtension: "<name>.tmp-<pid>-XXXXXX.<ext>", for writers that insist on
+// their extension (VTK's PLY writer appends ".ply" to any other name)
+int makeTemp(const Target& t, std::string& tmp, bool keepExtension = false)
+{
+  std::string suffix;
+  const std::size_t slash = t.path.find_last_of('/'), dot = t.path.find_last_of('.');
+  if (keepExtension && dot != std::string::npos && (slash == std::string::npos || dot > slash))
+    suffix = t.path.substr(dot);
+  tmp = tempPrefix(t.path) + std::to_string(::getpid()) + "-XXXXXX" + suffix;
   std::vector<char> name(tmp.begin(), tmp.end());
   name.push_back('\0');
-  const int fd = ::mkostemp(name.data(), O_CLOEXEC);
+  const int fd = ::mkostemps(name.data(), static_cast<int>(suffix.size()), O_CLOEXEC);
   if (fd < 0)
   {
-    throw Error(ErrorCode::IoFailure, systemError("cannot create a temporary file beside", path));
+    throw Error(ErrorCode::IoFailure, systemError("cannot create a temporary file beside", t.path));
   }
   tmp.assign(name.data());
+  return fd;
+}
+
+void commit(const std::string& tmp, const std::string& path)
+{
+  if (::rename(tmp.c_str(), path.c_str()) != 0)
+  {
+    const std::string msg = systemError("cannot rename the temporary file over", path);
+    ::unlink(tmp.c_str());
+    throw Error(ErrorCode::IoFailure, msg);
+  }
+  // make the rename itself durable
+  const int dir = ::open(directoryOf(path).c_str(), O_RDONLY | O_DIRECTORY | O_CLOEXEC);
+  if (dir >= 0)
+  {
+    ::fsync(dir);
+    ::close(dir);
+  }
+}
+} // namespace
+
+void saveAtomically(const std::string& givenPath, const std::function<void(ByteSink&)>& produce, const SaveHooks& hooks)
+{
+  const Target t = prepareSave(givenPath);
+  std::string tmp;
+  const int fd = makeTemp(t, tmp);
   bool open = true;
   try
   {
-    // mkstemp creates 0600: an existing file keeps its mode (and owner, where
-    // allowed); a new one is an ordinary document
-    if (exists)
-    {
-      ::fchmod(fd, old.st_mode & 07777);
-      if (::fchown(fd, old.st_uid, old.st_gid) != 0)
-      {
-        // not permitted for other users' files: the file becomes ours, as any rewrite would
-      }
-    }
-    else
-    {
-      ::fchmod(fd, 0644);
-    }
+    applyMode(fd, t);
     FdSink sink(fd, tmp, hooks);
     produce(sink);
     if (::fsync(fd) != 0)
@@ -270,18 +321,75 @@ void saveAtomically(const std::string& givenPath, const std::function<void(ByteS
     ::unlink(tmp.c_str());
     throw;
   }
-  if (::rename(tmp.c_str(), path.c_str()) != 0)
+  commit(tmp, t.path);
+}
+
+void saveAtomicallyByName(const std::string& givenPath, const std::function<void(const std::string&)>& produce)
+{
+  const Target t = prepareSave(givenPath);
+  std::string tmp;
+  int fd = makeTemp(t, tmp, true);
+  ::close(fd);
+  try
   {
-    const std::string msg = systemError("cannot rename the temporary file over", path);
-    ::unlink(tmp.c_str());
-    throw Error(ErrorCode::IoFailure, msg);
+    produce(tmp);
+    fd = ::open(tmp.c_str(), O_RDWR | O_CLOEXEC);
+    struct stat st;
+    if (fd < 0 || ::fstat(fd, &st) != 0 || st.st_size == 0)
+    {
+      throw Error(ErrorCode::IoFailure, "could not write '" + givenPath + "' (the writer produced nothing)");
+    }
+    applyMode(fd, t);
+    if (::fsync(fd) != 0)
+    {
+      throw Error(ErrorCode::IoFailure, systemError("cannot flush", tmp));
+    }
+    const int rc = ::close(fd);
+    fd = -1;
+    if (rc != 0)
+    {
+      throw Error(ErrorCode::IoFailure, systemError("cannot close", tmp));
+    }
   }
-  // make the rename itself durable
-  const int dir = ::open(directoryOf(path).c_str(), O_RDONLY | O_DIRECTORY | O_CLOEXEC);
-  if (dir >= 0)
+  catch (...)
   {
-    ::fsync(dir);
-    ::close(dir);
+    if (fd >= 0)
+    {
+      ::close(fd);
+    }
+    ::unlink(tmp.c_str());
+    throw;
+  }
+  commit(tmp, t.path);
+}
+
+void requireWritable(const std::string& givenPath)
+{
+  if (givenPath.empty())
+  {
+    throw Error(ErrorCode::InvalidArgument, "empty output file name");
+  }
+  const std::string path = resolveLinks(givenPath);
+  struct stat st;
+  if (::stat(path.c_str(), &st) == 0)
+  {
+    if (!S_ISREG(st.st_mode))
+    {
+      throw Error(ErrorCode::IoFailure, "cannot write '" + givenPath + "': not a regular file");
+    }
+    if (::access(path.c_str(), W_OK) != 0)
+    {
+      throw Error(ErrorCode::IoFailure, systemError("cannot write", givenPath));
+    }
+  }
+  const std::string dir = directoryOf(path);
+  if (::stat(dir.c_str(), &st) != 0 || !S_ISDIR(st.st_mode))
+  {
+    throw Error(ErrorCode::IoFailure, "cannot write '" + givenPath + "': the folder '" + dir + "' does not exist");
+  }
+  if (::access(dir.c_str(), W_OK | X_OK) != 0)
+  {
+    throw Error(ErrorCode::IoFailure, "cannot write '" + givenPath + "': the folder '" + dir + "' is not writable");
   }
 }
 

@@ -401,8 +401,10 @@ detail::edit::DabPlan planGroups(DictionaryVolume& volume, const std::vector<Dab
   std::uint64_t newBytes = 0;
   for (std::int64_t id : plan.chunks)
     newBytes += volume.isUniform(id) ? chunkBytes : 0;
-  requireMemory(newBytes + (observer ? plan.chunks.size() * chunkBytes : 0),
-    "an edit of " + std::to_string(plan.chunks.size()) + " chunks");
+  // small edits (every interactive dab) skip the /proc/meminfo read
+  const std::uint64_t need = newBytes + (observer ? plan.chunks.size() * chunkBytes : 0);
+  if (need > (std::uint64_t(64) << 20))
+    requireMemory(need, "an edit of " + std::to_string(plan.chunks.size()) + " chunks");
   if (settings.op == BrushOp::Paint && !ctx.unitWeight)
     buildMixTable(volume, plan, settings);
   return plan;

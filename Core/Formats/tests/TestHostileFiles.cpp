@@ -121,6 +121,9 @@ TEST(HostileFiles, SaveRefusesNonRegularTargetsAndCleansKilledSaves)
     stale.push_back(file + ".tmp-" + std::to_string(deadPid()) + "-abc12" + char('a' + i));
     std::ofstream(stale.back()) << "half a save";
   }
+  // the by-name save keeps the extension on its temporary
+  stale.push_back(file + ".tmp-" + std::to_string(deadPid()) + "-abc12z.lvdv");
+  std::ofstream(stale.back()) << "half a save";
   const std::string live = file + ".tmp-" + std::to_string(::getpid()) + "-zzzzzz";
   std::ofstream(live) << "a save in progress";
   const std::string other = d.path + "/other.lvdv.tmp-" + std::to_string(deadPid()) + "-qqqqqq";
@@ -218,4 +221,32 @@ TEST(HostileFiles, ObjIndicesAreReportedAsWrittenAndVtVnChecked)
       EXPECT_NO_THROW(read(obj + "f 1/1/1 2/" + std::to_string(vt) + "/" + std::to_string(vn) + " 3//1\n"));
   }
   EXPECT_NE(errorOf([&] { read("v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1/ 2 3\n"); }).find("bad face corner"), std::string::npos);
+}
+
+TEST(HostileFiles, SaveByNameChecksTheWriterAndKeepsTheOldFile)
+{
+  TempDir d;
+  const std::string file = d.path + "/m.ply";
+  std::ofstream(file) << "old";
+  ASSERT_EQ(::chmod(file.c_str(), 0600), 0);
+  // a writer that writes nothing, and one that throws: the old file stays
+  EXPECT_NE(errorOf([&] { saveAtomicallyByName(file, [](const std::string&) {}); }).find("produced nothing"),
+    std::string::npos);
+  EXPECT_NE(errorOf([&] { saveAtomicallyByName(file, [](const std::string&) { throw Error(ErrorCode::IoFailure, "x"); }); }),
+    "no error");
+  EXPECT_EQ(slurp(file), "old");
+  std::string seen;
+  saveAtomicallyByName(file, [&](const std::string& tmp) {
+    seen = tmp;
+    std::ofstream(tmp) << "new";
+  });
+  EXPECT_EQ(slurp(file), "new");
+  EXPECT_EQ(seen.substr(seen.size() - 4), ".ply"); // writers that append their extension
+  struct stat st;
+  ASSERT_EQ(::stat(file.c_str(), &st), 0);
+  EXPECT_EQ(st.st_mode & 07777, 0600u);
+  // requireWritable: before any work
+  EXPECT_NE(errorOf([&] { requireWritable("/nonexistent_dir/x.ply"); }).find("does not exist"), std::string::npos);
+  EXPECT_NE(errorOf([&] { requireWritable(d.path); }).find("not a regular file"), std::string::npos);
+  EXPECT_EQ(errorOf([&] { requireWritable(d.path + "/new.ply"); }), "no error");
 }

@@ -106,4 +106,14 @@ struct SaveHooks
 void saveAtomically(const std::string& path, const std::function<void(ByteSink&)>& produce,
   const SaveHooks& hooks = SaveHooks());
 
+/// The same save for writers that open a file by name (VTK's writers):
+/// `produce` writes the whole file at the temporary path it is given; a
+/// missing or empty result is a failure (Error IoFailure).
+void saveAtomicallyByName(const std::string& path, const std::function<void(const std::string& tmpPath)>& produce);
+
+/// Checks, before any expensive work, that `path` can be saved: its directory
+/// exists and is writable, and an existing file (or a symlink's target) is a
+/// writable regular file. Error IoFailure naming the problem.
+void requireWritable(const std::string& path);
+
 } // namespace lvdif

@@ -1,0 +1,132 @@
+#!/usr/bin/env bash
+# Hostile command lines, scripts, recordings, files and paths: each must end
+# with one clear line on stderr and exit status 1 (never a signal), within
+# 30 s and 2 GiB, with the previous output file byte-identical; accepted
+# hostile shapes (long chains) must succeed. Inputs are generated here.
+# Progress lines ("stage: done") may precede the error line on stderr.
+# Usage: test_hostile.sh LVDIF_EXE WORK_DIR
+set -uo pipefail
+exe="$1"
+work="$2"
+rm -rf "$work" && mkdir -p "$work" && cd "$work" || exit 1
+fails=0
+note() { echo "FAIL: $*" >&2; fails=$((fails + 1)); }
+
+# run NAME EXPECT(0|1) NEEDLE -- command...: status, one stderr line holding NEEDLE,
+# time and peak memory
+run() {
+  local name="$1" want="$2" needle="$3"
+  shift 4
+  local t0 t1 rc rss
+  t0=$(date +%s.%N)
+  /usr/bin/time -f "%M" -o "$name.rss" timeout -s KILL 30 "$@" >"$name.out" 2>"$name.err"
+  rc=$?
+  t1=$(date +%s.%N)
+  rss=$(tail -n 1 "$name.rss" 2>/dev/null || echo 0)
+  case "$rss" in '' | *[!0-9]*) rss=0 ;; esac
+  if [ "$rc" -ne "$want" ]; then note "$name: exit $rc, expected $want; stderr: $(head -c 300 "$name.err")"; return; fi
+  if [ "$rss" -gt $((2 * 1024 * 1024)) ]; then note "$name: peak RSS ${rss} KiB"; fi
+  if awk "BEGIN { exit !($t1 - $t0 > 30) }"; then note "$name: took more than 30 s"; fi
+  if [ "$want" -ne 0 ]; then
+    # progress lines ("stage: done") may come first; the failure is one "lvdif" line
+    local lines
+    lines=$(grep -c '^lvdif ' "$name.err")
+    if [ "$lines" -ne 1 ]; then note "$name: $lines error lines: $(head -c 300 "$name.err")"; fi
+    if ! grep -qF -- "$needle" "$name.err"; then note "$name: stderr lacks '$needle': $(head -c 300 "$name.err")"; fi
+  fi
+}
+same() { cmp -s "$1" "$2" || note "$3: $1 changed"; }
+
+# a starting volume and outputs that must survive failures
+printf 'canvas 48\nsphere 24 24 24 12\n' >base.lvs
+"$exe" script base.lvs --out base.lvdv --mesh old.ply >/dev/null 2>&1 || note "cannot make base.lvdv"
+cp base.lvdv base.copy && cp old.ply old.copy
+
+# --- scripts: long chains run, deep nesting is one positioned error
+python3 - <<'PY'
+import random
+random.seed(18)
+terms = "+".join(str(random.randint(1, 9)) for _ in range(100000))
+open("chain.lvs", "w").write("x = " + terms + "\nprint x\n")
+open("elif.lvs", "w").write("k = 29999\nif k == 0 { x = 0 }" + "".join(
+    f" else if k == {i} {{ x = {i} }}" for i in range(1, 30000)) + "\nprint x\n")
+n = random.randint(1000, 100000)
+open("parens.lvs", "w").write("x = " + "(" * n + "1" + ")" * n + "\n")
+open("minus.lvs", "w").write("x = " + "-" * n + "1\n")
+open("blocks.lvs", "w").write("if 1 {" * n + "\n")
+PY
+run chain 0 "" -- "$exe" script chain.lvs
+run elif 0 "" -- "$exe" script elif.lvs
+grep -q '^29999$' elif.out || note "elif: wrong clause: $(head -c 100 elif.out)"
+for s in parens minus blocks; do run "$s" 1 "$s.lvs:1:" -- "$exe" script "$s.lvs"; grep -q "nested too deeply" "$s.err" || note "$s: $(cat "$s.err")"; done
+
+# --- runaway edits and hostile numbers, refused before the work, old output untouched
+for sp in 0.001 0.0037 0.01; do
+  printf 'canvas 64\nspacing %s\nline 1 1 1 %s 1 1\n' "$sp" "$((RANDOM * 1000 + 100000))" >line.lvs
+  run "line-$sp" 1 "line.lvs:3:1:" -- "$exe" script line.lvs --in base.lvdv --out base.lvdv
+  same base.lvdv base.copy "line-$sp"
+done
+for cmd in "blend 1e300" "round 1e300" "radius 1e300" "spacing 1e-300" "sphere 1e300 0 0 4" "blend -1"; do
+  printf 'canvas 32\n%s\nsphere 16 16 16 5\n' "$cmd" >num.lvs
+  run "num-${cmd%% *}" 1 "num.lvs:" -- "$exe" script num.lvs --out base.lvdv
+  same base.lvdv base.copy "num $cmd"
+done
+
+# --- recordings: positioned errors, negative radius
+edit='edit time=0 op=add shape=sphere kind=basic spacing=1.6 blend=0 coloroffset=1.5 color=1,2,3,255 dabs=1'
+printf 'LVDIF-RECORDING 1\n%s\nd 10 10 10 -4\n' "$edit" >neg.lvr
+run neg 1 "neg.lvr:3:12: dab radius must be >= 0" -- "$exe" play neg.lvr --in base.lvdv --out base.lvdv
+printf 'LVDIF-RECORDING 1\n%s\nd 10 10 1e300 4\n' "${edit/blend=0/blend=1e300}" >big.lvr
+run bigblend 1 "big.lvr:2:" -- "$exe" play big.lvr --in base.lvdv --out base.lvdv
+same base.lvdv base.copy "recordings"
+# random garbage recordings and scripts: exit 0 or 1, never a signal
+for i in $(seq 1 15); do
+  head -c $((RANDOM % 400 + 1)) /dev/urandom >g.bin
+  { echo "LVDIF-RECORDING 1"; cat g.bin; } >g.lvr
+  timeout -s KILL 30 "$exe" play g.lvr --in base.lvdv >/dev/null 2>&1; rc=$?
+  [ "$rc" -le 1 ] || note "garbage recording $i: exit $rc"
+  { echo "canvas 16"; tr -c 'a-z0-9+*/()=\n {}.-' ' ' <g.bin; } >g.lvs
+  timeout -s KILL 30 "$exe" script g.lvs >/dev/null 2>&1; rc=$?
+  [ "$rc" -le 1 ] || note "garbage script $i: exit $rc"
+done
+
+# --- outputs checked before the work; failed writes are errors
+for ext in ply vtp obj stl; do
+  run "nodir-$ext" 1 "/nonexistent_dir" -- "$exe" mesh base.lvdv "/nonexistent_dir/x.$ext"
+done
+run script-mesh 1 "/nonexistent_dir" -- "$exe" script base.lvs --mesh /nonexistent_dir/x.ply
+run script-out 1 "/nonexistent_dir" -- "$exe" script base.lvs --out /nonexistent_dir/x.lvdv
+run badext 1 "unknown mesh extension" -- "$exe" mesh base.lvdv x.xyz
+mkdir -p adir adir.ply
+run ontodir 1 "not a regular file" -- "$exe" mesh base.lvdv adir.ply
+(unset DISPLAY; run png-nodisplay 1 "no X display" -- "$exe" mesh base.lvdv old.ply --png x.png)
+DISPLAY=:9876 run png-baddisplay 1 "cannot open the X display" -- "$exe" mesh base.lvdv old.ply --png x.png
+same old.ply old.copy "png"
+
+# --- files that are not regular files, without blocking
+mkfifo fifo.lvdv fifo.lvs fifo.lvr fifo.ply
+run info-fifo 1 "not a regular file" -- "$exe" info fifo.lvdv
+run script-fifo 1 "not a regular file" -- "$exe" script fifo.lvs
+run play-fifo 1 "not a regular file" -- "$exe" play fifo.lvr --in base.lvdv
+run m2s-fifo 1 "not a regular file" -- "$exe" mesh-to-sdf fifo.ply x.lvdv
+run info-dir 1 "not a regular file" -- "$exe" info adir
+# a garbage 3 GiB (sparse) mesh is refused after its head
+printf 'garbage' >big.ply && truncate -s 3G big.ply
+run bigply 1 "magic" -- "$exe" mesh-to-sdf big.ply x.lvdv
+
+# --- saving keeps the mode and writes through a symlink
+cp base.lvdv private.lvdv && chmod 600 private.lvdv
+"$exe" convert base.lvdv private.lvdv >/dev/null 2>&1 || note "convert over private.lvdv failed"
+[ "$(stat -c %a private.lvdv)" = 600 ] || note "mode became $(stat -c %a private.lvdv)"
+ln -s private.lvdv link.lvdv
+"$exe" convert base.lvdv link.lvdv >/dev/null 2>&1 || note "convert over link.lvdv failed"
+[ -L link.lvdv ] || note "the symlink was replaced"
+"$exe" mesh base.lvdv old.ply >/dev/null 2>&1 && chmod 640 old.ply && "$exe" mesh base.lvdv old.ply >/dev/null 2>&1
+[ "$(stat -c %a old.ply)" = 640 ] || note "mesh save changed the mode to $(stat -c %a old.ply)"
+ls ./*.tmp-* >/dev/null 2>&1 && note "temporary files left: $(ls ./*.tmp-*)"
+
+if [ "$fails" -ne 0 ]; then
+  echo "$fails hostile-input checks failed" >&2
+  exit 1
+fi
+echo "hostile inputs OK"
