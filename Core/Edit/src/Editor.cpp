@@ -26,6 +26,79 @@ Editor::Editor(DictionaryVolume& volume, const UndoStack::Options& undo)
 {
 }
 
+EditResult Editor::applyNow(const std::vector<Dab>& dabs)
+{
+  return this->Device ? this->Device->applyDabs(dabs, this->brush)
+                      : lvdif::applyDabs(this->Volume, dabs, this->brush, &this->Undo);
+}
+
+void Editor::beginStep(const char* label)
+{
+  if (this->Device)
+    this->Device->beginStep();
+  else
+    this->Undo.beginStep(label);
+}
+
+void Editor::endStep()
+{
+  if (this->Device)
+    this->Device->endStep();
+  else
+    this->Undo.endStep();
+}
+
+void Editor::attachDevice(cuda::DeviceVolume* device)
+{
+  require(!this->Builder, "finish the open stroke first");
+  require(!device || &device->volume() == &this->Volume, "the device volume mirrors another volume");
+  this->Undo.clear();
+  if (this->Device)
+    this->Device->clearHistory();
+  this->Device = device;
+  if (this->Device)
+    this->Device->clearHistory();
+}
+
+bool Editor::canUndo() const
+{
+  return this->Device ? this->Device->canUndo() : this->Undo.canUndo();
+}
+
+bool Editor::canRedo() const
+{
+  return this->Device ? this->Device->canRedo() : this->Undo.canRedo();
+}
+
+std::size_t Editor::undoCount() const
+{
+  return this->Device ? this->Device->undoCount() : this->Undo.undoCount();
+}
+
+void Editor::clearHistory()
+{
+  require(!this->Builder, "finish the open stroke first");
+  this->Undo.clear();
+  if (this->Device)
+    this->Device->clearHistory();
+}
+
+void Editor::fillVolume(Voxel fill)
+{
+  require(!this->Builder, "finish the open stroke first");
+  DictionaryVolume& v = this->Volume;
+  std::vector<std::int64_t> all(static_cast<std::size_t>(v.chunkCount()));
+  for (std::int64_t id = 0; id < v.chunkCount(); ++id)
+  {
+    v.fillChunk(id, fill);
+    all[static_cast<std::size_t>(id)] = id;
+  }
+  this->Undo.clear(); // the history no longer matches the volume
+  if (this->Device)
+    this->Device->reload(); // drops the device's pending edits and history too
+  this->touch(all);
+}
+
 void Editor::record(const EditRecord& e)
 {
   if (!this->Rec)
@@ -38,21 +111,21 @@ void Editor::record(const EditRecord& e)
 EditResult Editor::applyDabs(const std::vector<Dab>& dabs, BrushKind kind)
 {
   require(!this->Builder, "finish the open stroke first");
-  this->Undo.beginStep(kind == BrushKind::Single ? "dab" : "stroke");
+  this->beginStep(kind == BrushKind::Single ? "dab" : "stroke");
   EditResult r;
   this->LastWrite = EditResult();
   try
   {
-    r = lvdif::applyDabs(this->Volume, dabs, this->brush, &this->Undo);
+    r = this->applyNow(dabs);
   }
   catch (...)
   {
-    this->Undo.endStep();
+    this->endStep();
     throw;
   }
   this->touch(r.changedChunks);
   this->LastWrite = r;
-  this->Undo.endStep();
+  this->endStep();
   EditRecord e;
   e.brush = this->brush;
   e.kind = kind;
@@ -78,7 +151,7 @@ void Editor::beginStroke()
   this->Builder = std::make_unique<StrokeBuilder>(this->stroke);
   this->StrokeDabs.clear();
   this->StrokeResult = EditResult();
-  this->Undo.beginStep("stroke");
+  this->beginStep("stroke");
 }
 
 EditResult Editor::addSample(const BrushSample& s)
@@ -90,7 +163,7 @@ EditResult Editor::addSample(const BrushSample& s)
   this->LastWrite = EditResult();
   if (!ready.empty())
   {
-    r = lvdif::applyDabs(this->Volume, ready, this->brush, &this->Undo);
+    r = this->applyNow(ready);
     this->StrokeDabs.insert(this->StrokeDabs.end(), ready.begin(), ready.end());
     merge(this->StrokeResult, r);
     this->touch(r.changedChunks);
@@ -107,19 +180,19 @@ EditResult Editor::endStroke()
   this->LastWrite = EditResult();
   try
   {
-    r = lvdif::applyDabs(this->Volume, rest, this->brush, &this->Undo);
+    r = this->applyNow(rest);
   }
   catch (...)
   {
     this->Builder.reset();
-    this->Undo.endStep();
+    this->endStep();
     throw;
   }
   this->StrokeDabs.insert(this->StrokeDabs.end(), rest.begin(), rest.end());
   merge(this->StrokeResult, r);
   this->touch(r.changedChunks);
   this->LastWrite = r;
-  this->Undo.endStep();
+  this->endStep();
   EditRecord e;
   e.brush = this->brush;
   e.kind = this->stroke.kind;
@@ -153,10 +226,10 @@ std::size_t Editor::pump(InputDevice& device, std::size_t maxSamples, int timeou
 bool Editor::undo()
 {
   require(!this->Builder, "finish the open stroke first");
-  const bool done = this->Undo.undo();
+  const bool done = this->Device ? this->Device->undo() : this->Undo.undo();
   if (done)
   {
-    this->touch(this->Undo.lastRestoredChunks());
+    this->touch(this->Device ? this->Device->lastRestoredChunks() : this->Undo.lastRestoredChunks());
     EditRecord e;
     e.type = EditRecord::Type::Undo;
     this->record(e);
@@ -167,10 +240,10 @@ bool Editor::undo()
 bool Editor::redo()
 {
   require(!this->Builder, "finish the open stroke first");
-  const bool done = this->Undo.redo();
+  const bool done = this->Device ? this->Device->redo() : this->Undo.redo();
   if (done)
   {
-    this->touch(this->Undo.lastRestoredChunks());
+    this->touch(this->Device ? this->Device->lastRestoredChunks() : this->Undo.lastRestoredChunks());
     EditRecord e;
     e.type = EditRecord::Type::Redo;
     this->record(e);

@@ -6,8 +6,14 @@
 // (Drill strokes are applied as they go), endStroke(). pump() does this from an
 // InputDevice: button bit 0 pressed starts a stroke, held adds samples, released
 // ends it.
+//
+// With a device-resident volume attached (attachDevice), the same calls apply
+// the dabs on the GPU and keep the history there (DeviceVolume's copy-on-write
+// steps); the host volume is then a lazily synced copy (DeviceVolume::sync).
+// Front ends do not drive an Editor directly: lvdif::EditSession holds one.
 #pragma once
 
+#include "lvdif/DeviceVolume.h"
 #include "lvdif/InputDevice.h"
 #include "lvdif/Interrupter.h"
 #include "lvdif/Recording.h"
@@ -23,8 +29,25 @@ class Editor
 public:
   explicit Editor(DictionaryVolume& volume, const UndoStack::Options& undo = UndoStack::Options());
 
+  /// The host volume (with a device attached: synced only by DeviceVolume::sync).
   DictionaryVolume& volume() { return this->Volume; }
+  /// The host history (unused while a device is attached: see canUndo()).
   UndoStack& undoStack() { return this->Undo; }
+
+  /// Edits, undo and redo go to this device-resident copy of volume() from now
+  /// on (nullptr: back to the host). Either way the history starts empty.
+  /// Refused while a stroke is open.
+  void attachDevice(cuda::DeviceVolume* device);
+  cuda::DeviceVolume* device() { return this->Device; }
+
+  /// The history in use (host or device).
+  bool canUndo() const;
+  bool canRedo() const;
+  std::size_t undoCount() const;
+  void clearHistory();
+  /// Sets every voxel to `fill` (a script's `canvas fill|clear`): not undoable,
+  /// so the history is cleared; every storage chunk is touched.
+  void fillVolume(Voxel fill);
 
   BrushSettings brush;
   StrokeSettings stroke;
@@ -71,9 +94,13 @@ public:
 
 private:
   void record(const EditRecord& e);
+  EditResult applyNow(const std::vector<Dab>& dabs);
+  void beginStep(const char* label);
+  void endStep();
 
   DictionaryVolume& Volume;
   UndoStack Undo;
+  cuda::DeviceVolume* Device = nullptr;
   std::unique_ptr<StrokeBuilder> Builder;
   std::vector<Dab> StrokeDabs; // every dab of the open stroke, for the record
   EditResult StrokeResult;
