@@ -194,13 +194,13 @@ struct DeviceVolume::Impl
   struct Step
   {
     std::vector<Snapshot> chunks;
-    std::size_t slots = 0;
+    std::uint64_t bytes = 0; // as the host UndoStack counts: a chunk's voxels, or a few bytes for a value
   };
   std::deque<Step> undo, redo;
   std::unique_ptr<Step> open;
   std::vector<std::uint8_t> inOpen; // chunk already snapshotted in the open step
-  std::size_t historySlots = 0;
-  std::size_t historyCap = 0;  // slots the history may hold
+  std::uint64_t historyBytes = 0; // undo and redo steps
+  std::uint64_t historyCap = 0;
   std::size_t minHistorySteps = 1;
   std::vector<std::int64_t> lastRestored;
 
@@ -246,14 +246,19 @@ struct DeviceVolume::Impl
     }
   }
 
+  std::uint64_t snapshotBytes(const Snapshot& s) const
+  {
+    return s.slot >= 0 ? this->chunkBytes : sizeof(Snapshot);
+  }
+
   void freeStep(Step& st)
   {
     for (const Snapshot& s : st.chunks)
       if (s.slot >= 0)
         this->freeSlots.push_back(s.slot);
-    this->historySlots -= st.slots;
+    this->historyBytes -= st.bytes;
     st.chunks.clear();
-    st.slots = 0;
+    st.bytes = 0;
   }
 
   void clearRedo()
@@ -268,7 +273,7 @@ struct DeviceVolume::Impl
   void trimHistory(std::size_t needFree)
   {
     while (!this->undo.empty() &&
-      ((this->historySlots > this->historyCap && this->undo.size() > this->minHistorySteps) ||
+      ((this->historyBytes > this->historyCap && this->undo.size() > this->minHistorySteps) ||
         this->freeSlots.size() < needFree))
     {
       this->freeStep(this->undo.front());
@@ -311,14 +316,18 @@ struct DeviceVolume::Impl
   void swapIn(Step& st)
   {
     this->lastRestored.clear();
+    std::uint64_t bytes = 0;
     for (Snapshot& s : st.chunks)
     {
       const std::size_t id = static_cast<std::size_t>(s.id);
       std::swap(this->slotOf[id], s.slot);
       std::swap(this->uniform[id], s.value);
+      bytes += this->snapshotBytes(s);
       this->markPending(id);
       this->lastRestored.push_back(s.id);
     }
+    this->historyBytes = this->historyBytes - st.bytes + bytes;
+    st.bytes = bytes;
     std::sort(this->lastRestored.begin(), this->lastRestored.end());
     this->tablesStale = true;
   }
@@ -383,7 +392,7 @@ DeviceVolume::DeviceVolume(DictionaryVolume& volume, const Options& options)
   p.capacity = static_cast<std::size_t>(std::min<std::uint64_t>(
     { slotsFit, expanded + options.headroomSlots + historySlots, 2147483647ull }));
   p.capacity = std::max<std::size_t>(p.capacity, 1);
-  p.historyCap = static_cast<std::size_t>(historySlots);
+  p.historyCap = options.historyBytes;
   p.minHistorySteps = options.minHistorySteps;
   // host-side tables too: a few bytes per chunk
   requireMemory(static_cast<std::uint64_t>(chunks) * 10 + p.capacity * sizeof(int), "the device volume's chunk table");
@@ -539,11 +548,9 @@ EditResult DeviceVolume::applyDabs(const std::vector<Dab>& dabs, const BrushSett
       {
         // the old state is the step's snapshot
         p.open->chunks.push_back({ static_cast<std::int64_t>(id), j.src, j.value });
-        if (j.src >= 0)
-        {
-          ++p.open->slots;
-          ++p.historySlots;
-        }
+        const std::uint64_t b = p.snapshotBytes(p.open->chunks.back());
+        p.open->bytes += b;
+        p.historyBytes += b;
         p.inOpen[id] = 1;
       }
       else if (j.src >= 0)
@@ -569,7 +576,7 @@ bool DeviceVolume::endStep()
   for (const Impl::Snapshot& s : st->chunks)
     p.inOpen[static_cast<std::size_t>(s.id)] = 0;
   if (st->chunks.empty())
-    return false;
+    return false; // (its bytes are 0)
   p.clearRedo();
   p.undo.push_back(std::move(*st));
   p.trimHistory(0);
@@ -644,7 +651,7 @@ void DeviceVolume::clearHistory()
 
 std::uint64_t DeviceVolume::historyDeviceBytes() const
 {
-  return static_cast<std::uint64_t>(this->P->historySlots) * this->P->chunkBytes;
+  return this->P->historyBytes;
 }
 
 DeviceVolumeView DeviceVolume::view()
@@ -680,6 +687,9 @@ DeviceVolumeView DeviceVolume::view()
   }
   v.chunkEdge = p.edge;
   v.shift = p.shift;
+  // the uploads above are from pageable memory: make sure they landed before
+  // other streams (the marching cubes') read the tables
+  LVDIF_CUDA_CHECK(cudaStreamSynchronize(0));
   return v;
 }
 
