@@ -92,6 +92,9 @@ public:
   /// The host volume, synced first (on the GPU: the changed storage chunks come back).
   DictionaryVolume& volume();
   std::shared_ptr<DictionaryVolume> sharedVolume();
+  /// The host copy as it is, without a sync: its geometry, options and
+  /// dictionaries are always current; on the GPU its voxels lag until sync().
+  const DictionaryVolume& hostVolume() const { return *this->Vol; }
   /// Brings the host copy up to date (nothing to do on the CPU).
   void sync();
   /// Storage chunks changed on the device and not yet on the host.
