@@ -635,10 +635,13 @@ void packFromDeviceLocked(const ChunkedMarchingCubes::Impl& impl, MarchingCubesC
       ++last;
     }
     const int n = static_cast<int>(last - first);
-    reserveBatch(S, n, P, C);
-    S.boxValues.reserve(static_cast<std::size_t>(G));
-    if (colors) S.boxColors.reserve(static_cast<std::size_t>(G));
-    if (keys) S.boxKeys.reserve(static_cast<std::size_t>(G));
+    // interactive frames vary in size: grow with half again as slack, so that a
+    // slightly larger frame does not pay a cudaFree + cudaMalloc (a device sync)
+    auto slack = [](long long x) { return x + x / 2; };
+    reserveBatch(S, static_cast<int>(slack(n)), slack(P), slack(C));
+    S.boxValues.reserve(static_cast<std::size_t>(slack(G)));
+    if (colors) S.boxColors.reserve(static_cast<std::size_t>(slack(G)));
+    if (keys) S.boxKeys.reserve(static_cast<std::size_t>(slack(G)));
     for (int i = 0; i < n; ++i)
     {
       Box& b = all[first + i];
@@ -677,6 +680,7 @@ void packFromDeviceLocked(const ChunkedMarchingCubes::Impl& impl, MarchingCubesC
       st.reserve(V + NV, T + NT, V, T, true, normals, colors, cells, keys);
       if (S.copyPending[0]) LVDIF_CUDA_CHECK(cudaEventSynchronize(S.copied[0]));
       S.copyPending[0] = false;
+      S.out[0].reserve(slack(NV), slack(NT), normals, colors, cells, keys);
       const Out o = S.out[0].reserve(NV, NT, normals, colors, cells, keys);
       mccuda::generateVertices<<<dim3(blocks(maxP), n), 256, 0, cs>>>(S.boxes.p, S.pBase.p, S.masks.p, S.vfirst.p, o);
       LVDIF_CUDA_CHECK(cudaGetLastError());
