@@ -96,7 +96,7 @@ void Editor::fillVolume(Voxel fill)
   this->Undo.clear(); // the history no longer matches the volume
   if (this->Device)
     this->Device->reload(); // drops the device's pending edits and history too
-  this->touch(all);
+  this->touchStorageChunks(all);
 }
 
 void Editor::record(const EditRecord& e)
@@ -123,7 +123,7 @@ EditResult Editor::applyDabs(const std::vector<Dab>& dabs, BrushKind kind)
     this->endStep();
     throw;
   }
-  this->touch(r.changedChunks);
+  this->touchStorageChunks(r.changedChunks);
   this->LastWrite = r;
   this->endStep();
   EditRecord e;
@@ -166,7 +166,7 @@ EditResult Editor::addSample(const BrushSample& s)
     r = this->applyNow(ready);
     this->StrokeDabs.insert(this->StrokeDabs.end(), ready.begin(), ready.end());
     merge(this->StrokeResult, r);
-    this->touch(r.changedChunks);
+    this->touchStorageChunks(r.changedChunks);
     this->LastWrite = r;
   }
   return r;
@@ -190,7 +190,7 @@ EditResult Editor::endStroke()
   }
   this->StrokeDabs.insert(this->StrokeDabs.end(), rest.begin(), rest.end());
   merge(this->StrokeResult, r);
-  this->touch(r.changedChunks);
+  this->touchStorageChunks(r.changedChunks);
   this->LastWrite = r;
   this->endStep();
   EditRecord e;
@@ -229,7 +229,7 @@ bool Editor::undo()
   const bool done = this->Device ? this->Device->undo() : this->Undo.undo();
   if (done)
   {
-    this->touch(this->Device ? this->Device->lastRestoredChunks() : this->Undo.lastRestoredChunks());
+    this->touchStorageChunks(this->Device ? this->Device->lastRestoredChunks() : this->Undo.lastRestoredChunks());
     EditRecord e;
     e.type = EditRecord::Type::Undo;
     this->record(e);
@@ -243,7 +243,7 @@ bool Editor::redo()
   const bool done = this->Device ? this->Device->redo() : this->Undo.redo();
   if (done)
   {
-    this->touch(this->Device ? this->Device->lastRestoredChunks() : this->Undo.lastRestoredChunks());
+    this->touchStorageChunks(this->Device ? this->Device->lastRestoredChunks() : this->Undo.lastRestoredChunks());
     EditRecord e;
     e.type = EditRecord::Type::Redo;
     this->record(e);
@@ -251,7 +251,7 @@ bool Editor::redo()
   return done;
 }
 
-void Editor::touch(const std::vector<std::int64_t>& ids)
+void Editor::touchStorageChunks(const std::vector<std::int64_t>& ids)
 {
   std::vector<std::int64_t> all;
   all.reserve(this->Touched.size() + ids.size());
@@ -259,7 +259,7 @@ void Editor::touch(const std::vector<std::int64_t>& ids)
   this->Touched.swap(all);
 }
 
-std::vector<std::int64_t> Editor::takeTouchedChunks()
+std::vector<std::int64_t> Editor::takeTouchedStorageChunks()
 {
   std::vector<std::int64_t> out;
   out.swap(this->Touched);

@@ -173,7 +173,7 @@ void EditSession::afterEdit(const EditResult& edit, bool changed)
   // storage chunks changed by this call besides what `edit` names (undo, redo,
   // canvas fills, the earlier edits of a script or recording): the host's dirty
   // flags on the CPU, the editor's record of touched chunks on either
-  std::vector<std::int64_t> storage = this->Ed->takeTouchedChunks();
+  std::vector<std::int64_t> storage = this->Ed->takeTouchedStorageChunks();
   uniteSorted(storage, this->Vol->takeDirtyChunks());
   this->request(meshChunksToRemesh(*this->Mesher, storage, edit));
   if (changed)

@@ -86,11 +86,12 @@ public:
   /// Plays a recording back (edits, undo and redo in order).
   void play(const Recording& r, Interrupter& interrupter = nullInterrupter());
 
-  /// The chunks changed by edits, undo and redo since the last call (increasing ids),
-  /// independent of the volume's dirty flags (front ends report them in events).
-  std::vector<std::int64_t> takeTouchedChunks();
-  /// Adds chunks changed outside the editor's edits (e.g. a script's `canvas fill`).
-  void touch(const std::vector<std::int64_t>& ids);
+  /// The storage chunks changed by edits, undo, redo and refills since the last
+  /// call (increasing ids), independent of the volume's dirty flags (and, with a
+  /// device attached, of the host copy). EditSession turns them into mesh chunks.
+  std::vector<std::int64_t> takeTouchedStorageChunks();
+  /// Adds storage chunks changed outside the editor's edits.
+  void touchStorageChunks(const std::vector<std::int64_t>& ids);
 
 private:
   void record(const EditRecord& e);
@@ -106,7 +107,7 @@ private:
   EditResult StrokeResult;
   EditResult LastWrite;
   std::unique_ptr<Recording> Rec;
-  std::vector<std::int64_t> Touched; // since the last takeTouchedChunks()
+  std::vector<std::int64_t> Touched; // storage chunks, since the last takeTouchedStorageChunks()
   double Time = -1;
   bool Pressed = false;
 };
