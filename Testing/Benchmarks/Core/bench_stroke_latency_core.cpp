@@ -15,6 +15,9 @@
 //       meshes in its own thread; the loop waits up to --settle ms for it
 //       (the Qt editor's settleMeshes) and collects what is finished, and a
 //       15 ms poll collects the rest (--loop event), or polls at 60 Hz (tick).
+//   Samples that came due while a frame was busy are handled together in the
+//   next one (Qt compresses queued mouse moves), so a slow frame does not build
+//   an ever longer queue.
 // Latency of a sample = from its recorded time until every mesh chunk it
 // invalidated has a collected mesh showing it (exact: the session says when each
 // mesh's input was read, and the edit happened before). Nothing is drawn.
@@ -155,8 +158,13 @@ std::vector<std::string> runStroke(const Config& cfg, double radius)
     }
     else if (next < samples.size() && samples[next].time <= t)
     {
-      handle(false);
-      ++next;
+      // every sample that is due: samples that arrived while the last frame was
+      // busy are handled together, as Qt delivers the mouse moves that queued up
+      while (next < samples.size() && samples[next].time <= t)
+      {
+        handle(false);
+        ++next;
+      }
       edited = true;
     }
     else if (t < lastCollect + period && !(next == samples.size() && !ended))
