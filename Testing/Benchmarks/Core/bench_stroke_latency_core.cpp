@@ -88,15 +88,21 @@ std::vector<std::string> runStroke(const Config& cfg, double radius)
   session.brush().color = lvdif::Rgba{ 230, 80, 50, 255 };
   session.stroke().kind = lvdif::BrushKind::Drill; // applied as it goes, as the editor does
   session.stroke().radius = radius;
-  // Warm-up away from the stroke (the opposite side): first launches of the
-  // brush and of the marching cubes, the meshes' page-locked block.
+  // Warm-up away from the stroke (the opposite side), a few frames of the same
+  // size as the stroke's: first launches of the brush and of the marching cubes,
+  // the buffers and the meshes' page-locked block at their working size. Undone.
   {
-    lvdif::Dab d;
-    d.center = { c - r, c, c };
-    d.radius = radius;
-    session.dab(d);
-    session.waitMeshingIdle();
-    session.collectMeshes();
+    session.beginStroke();
+    for (int i = 0; i < 4; ++i)
+    {
+      lvdif::BrushSample w;
+      w.position = { c - r, c + 0.5 * M_PI * r / std::max(1, cfg.samples - 1) * i, c }; // the stroke's sample spacing
+      w.buttons = 1;
+      session.addSample(w);
+      session.waitMeshingIdle();
+      session.collectMeshes();
+    }
+    session.endStroke();
     session.undo();
     session.waitMeshingIdle();
     session.collectMeshes();
