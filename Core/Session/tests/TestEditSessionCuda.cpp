@@ -16,12 +16,14 @@ bool haveGpu()
 }
 
 
-void runAgainstCpu(std::int64_t n, int edge, std::uint32_t seed, int count, std::uint64_t historyBytes)
+void runAgainstCpu(std::int64_t n, int edge, std::uint32_t seed, int count, std::uint64_t historyBytes,
+  int meshChunkEdge = 0)
 {
   auto start = sphereVolume(n, edge);
   lvdif::EditSessionOptions go;
   go.device = lvdif::Device::Cuda;
   go.undo.maxBytes = historyBytes;
+  go.meshChunkEdge = meshChunkEdge;
   lvdif::EditSession gpu(start->clone(), go);
   ASSERT_TRUE(gpu.onDevice()) << gpu.notice();
   lvdif::EditSessionOptions co = go;
@@ -57,8 +59,16 @@ TEST(EditSessionCuda, DeviceVolumeEqualsCpuBitForBitAndMeshesEqualFullRemesh)
 {
   if (!haveGpu())
     GTEST_SKIP() << "no CUDA device";
-  for (std::uint32_t seed : { 1u, 2u, 3u, 4u })
+  for (std::uint32_t seed : { 1u, 2u, 3u, 4u, 5u, 6u, 7u, 8u })
     runAgainstCpu(64, 16, seed, 40, 256ull << 20);
+}
+
+TEST(EditSessionCuda, MeshChunksOfAnotherEdgeThanTheStorageChunks)
+{
+  if (!haveGpu())
+    GTEST_SKIP() << "no CUDA device";
+  runAgainstCpu(80, 16, 21, 40, 256ull << 20, 24); // mesh chunks of 24 cells over storage chunks of 16
+  runAgainstCpu(96, 32, 22, 30, 256ull << 20, 16);
 }
 
 TEST(EditSessionCuda, LargerChunksAndAClippedVolume)
@@ -66,6 +76,7 @@ TEST(EditSessionCuda, LargerChunksAndAClippedVolume)
   if (!haveGpu())
     GTEST_SKIP() << "no CUDA device";
   runAgainstCpu(100, 32, 5, 30, 256ull << 20); // 100 is not a multiple of 32: border chunks are clipped
+  runAgainstCpu(128, 32, 6, 60, 256ull << 20);
 }
 
 TEST(EditSessionCuda, SmallHistoryDropsOldStepsLikeTheCpu)
