@@ -38,7 +38,7 @@ int CommandScript(int argc, char** argv)
   lvdif::ScriptOptions options;
   options.interrupter = &progress;
   lvdif::ScriptRunner runner(options);
-  std::unique_ptr<lvdif::DictionaryVolume> start;
+  std::shared_ptr<lvdif::DictionaryVolume> start;
   if (args.has("in"))
   {
     start = LoadAnyVolume(args.get("in", ""), progress);

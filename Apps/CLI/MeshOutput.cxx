@@ -1,10 +1,13 @@
 #include "MeshOutput.h"
 #include "VolumeFiles.h"
 
-#include "lvdif/ChunkedMarchingCubes.h"
 #include "lvdif/Error.h"
 
 #include "vtkActor.h"
+#include "vtkLVDIFFiles.h"
+#include "vtkCallbackCommand.h"
+#include "vtkChunkedMarchingCubes.h"
+#include "vtkCommand.h"
 #include "vtkCamera.h"
 #include "vtkCellArray.h"
 #include "vtkFloatArray.h"
@@ -31,100 +34,38 @@
 
 vtkSmartPointer<vtkPolyData> MeshVolume(const lvdif::DictionaryVolume& volume, lvdif::Interrupter& interrupter)
 {
-  lvdif::MarchingCubesOptions options;
-  options.cornerColors = false;
-  lvdif::ChunkedMarchingCubes mc(volume, options);
-  const std::vector<lvdif::ChunkMesh> chunks = mc.extractAll(interrupter);
-  std::size_t nPoints = 0, nTriangles = 0;
-  for (const auto& c : chunks)
+  // The one chunk mesh -> vtkPolyData route: vtkChunkedMarchingCubes on the
+  // volume (merged, seam vertices shared), its progress and cancel bridged to
+  // the CLI's interrupter. The filter only reads the volume: it is lent, not owned.
+  std::shared_ptr<lvdif::DictionaryVolume> lent(const_cast<lvdif::DictionaryVolume*>(&volume), [](auto*) {});
+  vtkNew<vtkChunkedMarchingCubes> mc;
+  mc->SetVolume(lent);
+  mc->SetOutputModeToMerged();
+  mc->ComputeCornerColorsOff(); // per-triangle shader data: no file format takes it
+  vtkNew<vtkCallbackCommand> forward;
+  forward->SetClientData(&interrupter);
+  forward->SetCallback([](vtkObject* caller, unsigned long, void* client, void* call) {
+    auto* in = static_cast<lvdif::Interrupter*>(client);
+    in->progress(*static_cast<double*>(call));
+    if (in->wasInterrupted()) static_cast<vtkAlgorithm*>(caller)->SetAbortExecute(1);
+  });
+  mc->AddObserver(vtkCommand::ProgressEvent, forward);
+  interrupter.start("marching cubes");
+  mc->Update();
+  interrupter.end();
+  interrupter.checkInterrupt();
+  if (mc->GetErrorCode() != 0 || !mc->GetOutput())
   {
-    nPoints += c.points.size();
-    nTriangles += c.triangles.size();
-  }
-  vtkNew<vtkPoints> points;
-  points->SetDataTypeToFloat();
-  points->SetNumberOfPoints(static_cast<vtkIdType>(nPoints));
-  vtkNew<vtkFloatArray> normals;
-  normals->SetName("Normals");
-  normals->SetNumberOfComponents(3);
-  normals->SetNumberOfTuples(static_cast<vtkIdType>(nPoints));
-  vtkNew<vtkUnsignedCharArray> rgba;
-  rgba->SetName("rgba");
-  rgba->SetNumberOfComponents(4);
-  rgba->SetNumberOfTuples(static_cast<vtkIdType>(nPoints));
-  vtkNew<vtkCellArray> polys;
-  polys->AllocateExact(static_cast<vtkIdType>(nTriangles), static_cast<vtkIdType>(3 * nTriangles));
-  vtkIdType base = 0;
-  for (const auto& c : chunks)
-  {
-    for (std::size_t i = 0; i < c.points.size(); ++i)
-    {
-      const vtkIdType id = base + static_cast<vtkIdType>(i);
-      points->SetPoint(id, c.points[i].data());
-      if (!c.normals.empty()) normals->SetTypedTuple(id, c.normals[i].data());
-      const lvdif::Rgba col = c.colors.empty() ? lvdif::Rgba{ 200, 200, 200, 255 } : c.colors[i];
-      const unsigned char t[4] = { col.r, col.g, col.b, col.a };
-      rgba->SetTypedTuple(id, t);
-    }
-    for (const auto& t : c.triangles)
-    {
-      const vtkIdType ids[3] = { base + t[0], base + t[1], base + t[2] };
-      polys->InsertNextCell(3, ids);
-    }
-    base += static_cast<vtkIdType>(c.points.size());
+    throw lvdif::Error(lvdif::ErrorCode::InvalidArgument, "marching cubes failed");
   }
   auto mesh = vtkSmartPointer<vtkPolyData>::New();
-  mesh->SetPoints(points);
-  mesh->SetPolys(polys);
-  mesh->GetPointData()->SetNormals(normals);
-  mesh->GetPointData()->AddArray(rgba);
+  mesh->ShallowCopy(mc->GetOutput());
   return mesh;
 }
 
 void WriteMesh(vtkPolyData* mesh, const std::string& path)
 {
-  const std::string ext = Extension(path);
-  int ok = 0;
-  if (ext == "ply")
-  {
-    vtkNew<vtkPLYWriter> w;
-    w->SetFileName(path.c_str());
-    w->SetInputData(mesh);
-    w->SetFileTypeToBinary();
-    w->SetArrayName("rgba");
-    w->SetEnableAlpha(true);
-    ok = w->Write();
-  }
-  else if (ext == "obj")
-  {
-    vtkNew<vtkOBJWriter> w;
-    w->SetFileName(path.c_str());
-    w->SetInputData(mesh);
-    ok = w->Write();
-  }
-  else if (ext == "stl")
-  {
-    vtkNew<vtkSTLWriter> w;
-    w->SetFileName(path.c_str());
-    w->SetInputData(mesh);
-    w->SetFileTypeToBinary();
-    ok = w->Write();
-  }
-  else if (ext == "vtp")
-  {
-    vtkNew<vtkXMLPolyDataWriter> w;
-    w->SetFileName(path.c_str());
-    w->SetInputData(mesh);
-    ok = w->Write();
-  }
-  else
-  {
-    throw lvdif::Error(lvdif::ErrorCode::InvalidArgument, "unknown mesh extension '." + ext + "' (use .ply, .obj, .stl or .vtp)");
-  }
-  if (!ok)
-  {
-    throw lvdif::Error(lvdif::ErrorCode::IoFailure, "could not write " + path);
-  }
+  vtkLVDIFFiles::SaveMesh(mesh, path); // by extension, through the one file registry
 }
 
 void RenderPng(vtkPolyData* mesh, const std::string& path, int width, int height)

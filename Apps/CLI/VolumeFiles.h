@@ -1,5 +1,6 @@
-// Loading and saving volumes by file extension for the CLI:
-// .lvdv (the dictionary volume format) and .bv (the original LVDIF's raw files).
+// Loading and saving volumes for the CLI: by extension through the one file
+// registry (IO/Files/vtkLVDIFFiles.h), shared with the editor and checked
+// against the ParaView plugin.
 #pragma once
 
 #include "lvdif/DictionaryVolume.h"
@@ -9,7 +10,7 @@
 #include <memory>
 #include <string>
 
-std::unique_ptr<lvdif::DictionaryVolume> LoadAnyVolume(const std::string& path, lvdif::Interrupter& progress);
+std::shared_ptr<lvdif::DictionaryVolume> LoadAnyVolume(const std::string& path, lvdif::Interrupter& progress);
 void SaveAnyVolume(const lvdif::DictionaryVolume& volume, const std::string& path,
   const std::map<std::string, std::string>& metadata, lvdif::Interrupter& progress);
 std::string Extension(const std::string& path);

@@ -1,14 +1,13 @@
 // MainWindow: the file dialogs, mesh export and screenshots.
 #include "MainWindow.h"
 
+#include "vtkLVDIFFiles.h"
+
 #include "vtkChunkActorManager.h"
 #include "vtkCleanPolyData.h"
 #include "vtkGenericOpenGLRenderWindow.h"
 #include "vtkNew.h"
-#include "vtkOBJWriter.h"
-#include "vtkPLYWriter.h"
 #include "vtkPolyData.h"
-#include "vtkSTLWriter.h"
 
 #include <QComboBox>
 #include <QDialog>
@@ -54,12 +53,21 @@ void MainWindow::newDialog()
   this->newCanvas(sizes[0]->value(), sizes[1]->value(), sizes[2]->value(), f);
 }
 
+namespace
+{
+/// The dialog's file types, from the one file registry.
+QString dialogFilter(vtkLVDIFFiles::Kind kind, bool forSaving)
+{
+  return QString::fromStdString(vtkLVDIFFiles::DialogFilter(kind, forSaving)) + ";;All files (*)";
+}
+}
+
 void MainWindow::openDialog()
 {
   if (!this->maybeSave())
     return;
   const QString path = QFileDialog::getOpenFileName(
-    this, "Open volume", QString(), "Volumes (*.lvdv *.vti);;LVDIF volume (*.lvdv);;VTK image (*.vti)");
+    this, "Open volume", QString(), dialogFilter(vtkLVDIFFiles::Kind::Volume, false));
   if (!path.isEmpty())
     this->openVolume(path);
 }
@@ -69,7 +77,7 @@ void MainWindow::openMeshDialog()
   if (!this->maybeSave())
     return;
   const QString path = QFileDialog::getOpenFileName(
-    this, "Open mesh", QString(), "Meshes (*.obj *.off *.stl *.ply);;All files (*)");
+    this, "Open mesh", QString(), dialogFilter(vtkLVDIFFiles::Kind::Mesh, false));
   if (path.isEmpty() || !askMeshImportSettings(this, this->MeshSettings))
     return;
   this->openMesh(path, this->MeshSettings);
@@ -78,7 +86,7 @@ void MainWindow::openMeshDialog()
 bool MainWindow::saveAsDialog()
 {
   QString path = QFileDialog::getSaveFileName(
-    this, "Save volume", this->Doc.path(), "LVDIF volume (*.lvdv);;VTK image (*.vti)");
+    this, "Save volume", this->Doc.path(), dialogFilter(vtkLVDIFFiles::Kind::Volume, true));
   if (path.isEmpty())
     return false;
   if (QFileInfo(path).suffix().isEmpty())
@@ -89,7 +97,7 @@ bool MainWindow::saveAsDialog()
 void MainWindow::exportDialog()
 {
   const QString path =
-    QFileDialog::getSaveFileName(this, "Export mesh", QString(), "Meshes (*.ply *.obj *.stl)");
+    QFileDialog::getSaveFileName(this, "Export mesh", QString(), dialogFilter(vtkLVDIFFiles::Kind::Mesh, true));
   if (!path.isEmpty())
     this->exportMesh(path);
 }
@@ -108,39 +116,7 @@ bool MainWindow::exportMesh(const QString& path)
     vtkPolyData* mesh = clean->GetOutput();
     if (mesh->GetNumberOfPolys() == 0)
       throw std::runtime_error("the volume has no surface");
-    const QString ext = QFileInfo(path).suffix().toLower();
-    const std::string file = path.toLocal8Bit().constData();
-    int ok = 0;
-    if (ext == "ply")
-    {
-      vtkNew<vtkPLYWriter> w;
-      w->SetFileName(file.c_str());
-      w->SetInputData(mesh);
-      w->SetArrayName("rgba");
-      w->SetColorModeToDefault();
-      w->EnableAlphaOn();
-      w->SetFileTypeToBinary();
-      ok = w->Write();
-    }
-    else if (ext == "obj")
-    {
-      vtkNew<vtkOBJWriter> w;
-      w->SetFileName(file.c_str());
-      w->SetInputData(mesh);
-      ok = w->Write();
-    }
-    else if (ext == "stl")
-    {
-      vtkNew<vtkSTLWriter> w;
-      w->SetFileName(file.c_str());
-      w->SetInputData(mesh);
-      w->SetFileTypeToBinary();
-      ok = w->Write();
-    }
-    else
-      throw std::runtime_error("unknown mesh format '" + ext.toStdString() + "' (use .ply, .obj or .stl)");
-    if (!ok)
-      throw std::runtime_error("the writer failed");
+    vtkLVDIFFiles::SaveMesh(mesh, path.toLocal8Bit().constData()); // by extension, the one file registry
   }
   catch (const std::exception& e)
   {

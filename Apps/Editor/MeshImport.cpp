@@ -3,6 +3,7 @@
 #include "vtkLVDIFMeshReader.h"
 #include "vtkLVDIFVolumeBridge.h"
 #include "vtkMeshToSDF.h"
+#include "vtkSparseDictionaryVolume.h"
 
 #include "vtkCallbackCommand.h"
 #include "vtkCommand.h"
@@ -101,7 +102,7 @@ bool askMeshImportSettings(QWidget* parent, MeshImportSettings& settings)
   return true;
 }
 
-std::unique_ptr<lvdif::DictionaryVolume> importMesh(
+std::shared_ptr<lvdif::DictionaryVolume> importMesh(
   QWidget* parent, const QString& path, const MeshImportSettings& settings, QString& error)
 {
   error.clear();
@@ -121,20 +122,17 @@ std::unique_ptr<lvdif::DictionaryVolume> importMesh(
   vtkNew<ProgressWatcher> progress;
   toSdf->AddObserver(vtkCommand::ProgressEvent, progress);
 
-  std::unique_ptr<lvdif::DictionaryVolume> volume;
+  std::shared_ptr<lvdif::DictionaryVolume> volume;
   std::string failure;
   std::atomic<bool> done{ false };
   std::thread worker([&] {
     try
     {
       toSdf->Update();
-      vtkImageData* img = toSdf->GetOutput();
-      vtkDataArray* sdf = img->GetPointData()->GetArray("sdf");
-      if (sdf && !progress->Cancel.load())
+      auto* sparse = vtkSparseDictionaryVolume::SafeDownCast(toSdf->GetOutputDataObject(0));
+      if (sparse && !progress->Cancel.load())
       {
-        lvdif::VolumeOptions o;
-        o.chunkEdge = 32;
-        volume = vtkLVDIFVolumeBridge::VolumeFromImage(img, sdf, nullptr, o);
+        volume = sparse->GetVolume(); // shared with the filter's output, which goes away with it
       }
     }
     catch (const std::exception& e)

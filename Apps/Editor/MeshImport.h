@@ -1,5 +1,6 @@
 // "Open mesh...": a mesh file (vtkLVDIFMeshReader) converted to a volume by
-// vtkMeshToSDF on a worker thread, with a progress dialog whose Cancel
+// vtkMeshToSDF (the one mesh-to-volume route: Core's sparse meshToSdf, writing
+// straight into the dictionary volume with the CLI's defaults) on a worker thread, with a progress dialog whose Cancel
 // button sets the filter's AbortExecute. The UI thread keeps running its
 // event loop meanwhile (the chunk view and the dialog stay responsive).
 #pragma once
@@ -27,5 +28,5 @@ int meshSignModeFromName(const QString& name);
 
 /// Converts the mesh, showing progress under `parent`. Returns the volume, or
 /// nullptr with `error` set (empty when the user cancelled).
-std::unique_ptr<lvdif::DictionaryVolume> importMesh(
+std::shared_ptr<lvdif::DictionaryVolume> importMesh(
   QWidget* parent, const QString& path, const MeshImportSettings& settings, QString& error);

@@ -1,4 +1,4 @@
-// lvdif-editor --benchmark-stroke FILE (issue 8): replays a recorded stroke
+// lvdif-editor --benchmark-stroke FILE: replays a recorded stroke
 // through the editor's real UI event loop at the speed it was recorded and
 // prints the stroke-to-frame latency (p50, p95, max) and the frames per
 // second, then quits.

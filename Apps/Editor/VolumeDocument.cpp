@@ -1,18 +1,9 @@
 #include "VolumeDocument.h"
 
-#include "vtkLVDIFVolumeBridge.h"
+#include "vtkLVDIFFiles.h"
 
 #include "lvdif/AnalyticFill.h"
 #include "lvdif/Error.h"
-#include "lvdif/VolumeFile.h"
-
-#include "vtkImageData.h"
-#include "vtkNew.h"
-#include "vtkPointData.h"
-#include "vtkXMLImageDataReader.h"
-#include "vtkXMLImageDataWriter.h"
-
-#include <QFileInfo>
 
 #include <cmath>
 #include <iostream>
@@ -70,49 +61,17 @@ void VolumeDocument::newCanvas(int nx, int ny, int nz, Fill fill)
   this->hold(std::move(v));
 }
 
-void VolumeDocument::adopt(std::unique_ptr<lvdif::DictionaryVolume> volume)
+void VolumeDocument::adopt(std::shared_ptr<lvdif::DictionaryVolume> volume)
 {
   this->Path.clear();
-  this->hold(std::shared_ptr<lvdif::DictionaryVolume>(std::move(volume)));
+  this->hold(std::move(volume));
   this->Modified = true;
 }
 
 void VolumeDocument::open(const QString& path)
 {
-  const QString ext = QFileInfo(path).suffix().toLower();
-  if (ext == "lvdv")
-  {
-    std::shared_ptr<lvdif::DictionaryVolume> v = lvdif::loadVolume(path.toStdString());
-    this->Path = path;
-    this->hold(std::move(v));
-    return;
-  }
-  if (ext != "vti")
-  {
-    throw lvdif::Error(lvdif::ErrorCode::InvalidArgument,
-      "unsupported volume file '" + path.toStdString() + "' (expected .lvdv or .vti)");
-  }
-  vtkNew<vtkXMLImageDataReader> reader;
-  if (!reader->CanReadFile(path.toLocal8Bit().constData()))
-  {
-    throw lvdif::Error(lvdif::ErrorCode::InvalidArgument, "cannot read '" + path.toStdString() + "'");
-  }
-  reader->SetFileName(path.toLocal8Bit().constData());
-  reader->Update();
-  vtkImageData* img = reader->GetOutput();
-  vtkDataArray* sdf = img->GetPointData()->GetArray("sdf");
-  if (!sdf)
-  {
-    sdf = img->GetPointData()->GetScalars();
-  }
-  if (!sdf)
-  {
-    throw lvdif::Error(lvdif::ErrorCode::InvalidArgument, "'" + path.toStdString() + "' has no sdf array");
-  }
-  lvdif::VolumeOptions o;
-  o.chunkEdge = 32;
-  std::shared_ptr<lvdif::DictionaryVolume> v =
-    vtkLVDIFVolumeBridge::VolumeFromImage(img, sdf, img->GetPointData()->GetArray("rgba"), o);
+  // every volume format, by extension, through the one file registry
+  std::shared_ptr<lvdif::DictionaryVolume> v = vtkLVDIFFiles::LoadVolume(path.toStdString());
   this->Path = path;
   this->hold(std::move(v));
 }
@@ -123,36 +82,12 @@ void VolumeDocument::save(const QString& path, bool asCopy)
   {
     throw lvdif::Error(lvdif::ErrorCode::InvalidArgument, "no volume to save");
   }
-  if (QFileInfo(path).suffix().toLower() == "lvdv")
-  {
-    // the marching cubes worker only reads the volume: no lock needed to read it here
-    lvdif::saveVolume(this->Session->volume(), path.toStdString()); // exact keys and dictionaries, crash-safe
-  }
-  else
-  {
-    this->saveImage(path);
-  }
+  // sharedVolume() syncs a device-resident volume first; the CPU worker only reads
+  vtkLVDIFFiles::SaveVolume(this->Session->sharedVolume(), path.toStdString()); // .lvdv: exact keys, crash-safe
   if (!asCopy)
   {
     this->Path = path;
     this->Modified = false;
-  }
-}
-
-void VolumeDocument::saveImage(const QString& path)
-{
-  vtkNew<vtkImageData> img;
-  const lvdif::DictionaryVolume& v = this->Session->volume();
-  const auto& d = v.dims();
-  int extent[6] = { 0, int(d[0] - 1), 0, int(d[1] - 1), 0, int(d[2] - 1) };
-  vtkLVDIFVolumeBridge::FillImage(v, extent, img, true);
-  vtkNew<vtkXMLImageDataWriter> writer;
-  writer->SetInputData(img);
-  writer->SetFileName(path.toLocal8Bit().constData());
-  writer->SetCompressorTypeToZLib();
-  if (!writer->Write())
-  {
-    throw lvdif::Error(lvdif::ErrorCode::IoFailure, "cannot write '" + path.toStdString() + "'");
   }
 }
 

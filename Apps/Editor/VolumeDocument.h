@@ -31,15 +31,15 @@ public:
 
   /// A new canvas of n^3 voxels (chunk edge 32). Throws lvdif::Error.
   void newCanvas(int nx, int ny, int nz, Fill fill);
-  /// Opens a native volume file (.lvdv, docs/FORMAT.md) or a .vti image
-  /// (float `sdf`, optional uchar `rgba`). Throws lvdif::Error.
+  /// Opens a volume file of any format the file registry reads (vtkLVDIFFiles).
+  /// Throws lvdif::Error.
   void open(const QString& path);
-  /// Saves as .lvdv (exact) or .vti (decoded sdf + rgba) by extension; throws
+  /// Saves by extension through the file registry (.lvdv exact); throws
   /// lvdif::Error. Clears the modified flag unless `asCopy` (autosave).
   void save(const QString& path, bool asCopy = false);
   /// Takes a volume made elsewhere (e.g. a converted mesh): no file yet, so
   /// the document counts as modified and Save asks for a name.
-  void adopt(std::unique_ptr<lvdif::DictionaryVolume> volume);
+  void adopt(std::shared_ptr<lvdif::DictionaryVolume> volume);
 
   bool hasVolume() const { return this->Session != nullptr; }
   /// The volume's geometry, options and dictionaries (on the GPU its voxels are
@@ -82,7 +82,6 @@ public:
 private:
   /// Holds `volume` in the session (a new session the first time), meshes everything.
   void hold(std::shared_ptr<lvdif::DictionaryVolume> volume);
-  void saveImage(const QString& path);
   /// Counts a change when the session's count moved.
   void noteChanges();
 

@@ -1,4 +1,4 @@
-// lvdif-editor: the Qt 5 volume editor (issue 8). See docs/USER_GUIDE.md.
+// lvdif-editor: the Qt 5 volume editor. See docs/USER_GUIDE.md.
 #include "EditorOptions.h"
 #include "MainWindow.h"
 

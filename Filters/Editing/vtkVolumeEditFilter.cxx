@@ -2,8 +2,10 @@
 
 #include "vtkLVDIFInterrupter.h"
 #include "vtkLVDIFVolumeBridge.h"
+#include "vtkSparseDictionaryVolume.h"
 
 #include "vtkDataArray.h"
+#include "vtkNew.h"
 #include "vtkImageData.h"
 #include "vtkInformation.h"
 #include "vtkInformationVector.h"
@@ -26,29 +28,66 @@ int vtkVolumeEditFilter::RequestUpdateExtent(
 {
   // edits reach anywhere: always work on the whole input
   vtkInformation* inInfo = inputVector[0]->GetInformationObject(0);
-  inInfo->Set(vtkStreamingDemandDrivenPipeline::UPDATE_EXTENT(),
-    inInfo->Get(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT()), 6);
+  if (inInfo->Has(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT()))
+    inInfo->Set(vtkStreamingDemandDrivenPipeline::UPDATE_EXTENT(),
+      inInfo->Get(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT()), 6);
+  inInfo->Set(vtkStreamingDemandDrivenPipeline::UPDATE_PIECE_NUMBER(), 0);
+  inInfo->Set(vtkStreamingDemandDrivenPipeline::UPDATE_NUMBER_OF_PIECES(), 1);
+  return 1;
+}
+
+int vtkVolumeEditFilter::FillInputPortInformation(int, vtkInformation* info)
+{
+  info->Remove(vtkAlgorithm::INPUT_REQUIRED_DATA_TYPE());
+  info->Append(vtkAlgorithm::INPUT_REQUIRED_DATA_TYPE(), "vtkSparseDictionaryVolume");
+  info->Append(vtkAlgorithm::INPUT_REQUIRED_DATA_TYPE(), "vtkImageData");
+  return 1;
+}
+
+int vtkVolumeEditFilter::RequestDataObject(
+  vtkInformation*, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
+{
+  // sparse in, sparse out; image in, image out
+  vtkDataObject* input = vtkDataObject::GetData(inputVector[0]);
+  if (!input) return 0;
+  vtkInformation* outInfo = outputVector->GetInformationObject(0);
+  if (vtkSparseDictionaryVolume::SafeDownCast(input))
+  {
+    vtkLVDIFVolumeBridge::EnsureSparseOutput(outputVector);
+  }
+  else if (!vtkImageData::SafeDownCast(outInfo->Get(vtkDataObject::DATA_OBJECT())))
+  {
+    vtkNew<vtkImageData> image;
+    outInfo->Set(vtkDataObject::DATA_OBJECT(), image);
+  }
   return 1;
 }
 
 int vtkVolumeEditFilter::RequestData(
   vtkInformation*, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
 {
+  vtkSparseDictionaryVolume* sparseIn = vtkSparseDictionaryVolume::GetData(inputVector[0]);
+  vtkSparseDictionaryVolume* sparseOut = vtkSparseDictionaryVolume::GetData(outputVector);
   vtkImageData* input = vtkImageData::GetData(inputVector[0]);
   vtkImageData* output = vtkImageData::GetData(outputVector);
   this->LastError.clear();
   this->LastErrorLine = this->LastErrorColumn = 0;
-  if (!input || !output)
+  if (sparseIn && !sparseIn->HasVolume())
+  {
+    this->LastError = "the input sparse volume holds no dictionary volume";
+  }
+  else if (!sparseIn && (!input || !output))
   {
     this->LastError = "no input image";
-    vtkErrorMacro(<< this->LastError);
-    return 0;
   }
-  vtkDataArray* sdf = input->GetPointData()->GetArray("sdf");
-  vtkDataArray* rgba = input->GetPointData()->GetArray("rgba");
-  if (!sdf)
+  vtkDataArray* sdf = input ? input->GetPointData()->GetArray(vtkLVDIFVolumeBridge::SdfArrayName) : nullptr;
+  vtkDataArray* rgba = input ? input->GetPointData()->GetArray(vtkLVDIFVolumeBridge::ColorArrayName) : nullptr;
+  if (this->LastError.empty() && !sparseIn && !sdf)
   {
     this->LastError = "the input has no point array named 'sdf'";
+  }
+  if (!this->LastError.empty())
+  {
     vtkErrorMacro(<< this->LastError);
     return 0;
   }
@@ -58,7 +97,11 @@ int vtkVolumeEditFilter::RequestData(
     lvdif::VolumeOptions o;
     o.chunkEdge = this->ChunkEdge;
     o.bandWidth = static_cast<float>(this->BandWidth);
-    std::unique_ptr<lvdif::DictionaryVolume> volume = vtkLVDIFVolumeBridge::VolumeFromImage(input, sdf, rgba, o);
+    // a sparse input is edited in a copy (as sparse as the input); an image is encoded first
+    std::shared_ptr<lvdif::DictionaryVolume> volume = sparseIn
+      ? std::shared_ptr<lvdif::DictionaryVolume>(sparseIn->GetVolume()->clone())
+      : std::shared_ptr<lvdif::DictionaryVolume>(vtkLVDIFVolumeBridge::VolumeFromImage(input, sdf, rgba, o));
+    if (sparseIn) o = volume->options();
     auto editor = std::make_unique<lvdif::Editor>(*volume);
     this->UpdateProgress(0.1);
     if (!this->RecordingFileName.empty())
@@ -81,20 +124,28 @@ int vtkVolumeEditFilter::RequestData(
         volume = std::move(made);
       }
     }
-    int extent[6];
-    for (int i = 0; i < 3; ++i)
+    if (sparseOut)
     {
-      extent[2 * i] = 0;
-      extent[2 * i + 1] = static_cast<int>(volume->dims()[i]) - 1;
+      sparseOut->SetVolume(volume);
+      sparseOut->SetPartitionColors(sparseIn->GetPartitionColors() && this->WithColor);
     }
-    vtkLVDIFVolumeBridge::FillImage(*volume, extent, output, this->WithColor);
-    // keep the input's extent (the bridge works in the volume's 0-based indices)
-    const int* inExt = input->GetExtent();
-    if (volume->dims()[0] == inExt[1] - inExt[0] + 1 && volume->dims()[1] == inExt[3] - inExt[2] + 1 &&
-      volume->dims()[2] == inExt[5] - inExt[4] + 1)
+    else
     {
-      output->SetExtent(const_cast<int*>(inExt));
-      output->SetOrigin(input->GetOrigin());
+      int extent[6];
+      for (int i = 0; i < 3; ++i)
+      {
+        extent[2 * i] = 0;
+        extent[2 * i + 1] = static_cast<int>(volume->dims()[i]) - 1;
+      }
+      vtkLVDIFVolumeBridge::FillImage(*volume, extent, output, this->WithColor);
+      // keep the input's extent (the bridge works in the volume's 0-based indices)
+      const int* inExt = input->GetExtent();
+      if (volume->dims()[0] == inExt[1] - inExt[0] + 1 && volume->dims()[1] == inExt[3] - inExt[2] + 1 &&
+        volume->dims()[2] == inExt[5] - inExt[4] + 1)
+      {
+        output->SetExtent(const_cast<int*>(inExt));
+        output->SetOrigin(input->GetOrigin());
+      }
     }
     this->UpdateProgress(1.0);
   }
@@ -110,7 +161,7 @@ int vtkVolumeEditFilter::RequestData(
   }
   if (!this->LastError.empty())
   {
-    output->Initialize();
+    vtkDataObject::GetData(outputVector)->Initialize();
     vtkErrorMacro(<< this->LastError);
     return 0;
   }

@@ -1,8 +1,11 @@
 /**
  * @class   vtkVolumeEditFilter
- * @brief   applies an edit script or a recording to an SDF image ("the editing filter")
+ * @brief   applies an edit script or a recording to a sparse volume or SDF image ("the editing filter")
  *
- * Input: vtkImageData with a point array `sdf` (negative inside, voxel units;
+ * Input, one of: a vtkSparseDictionaryVolume, edited in a copy of its Core
+ * volume (sparse, no dense image; the output is a vtkSparseDictionaryVolume
+ * whose dirty flags mark the edited chunks; ChunkEdge and BandWidth are the
+ * volume's own then); or vtkImageData with a point array `sdf` (negative inside, voxel units;
  * any real type) and optionally `rgba` (unsigned char, 1 to 4 components).
  * Output: the same grid with the edited `sdf` (float) and `rgba` (4 unsigned
  * char components). The image becomes an lvdif::DictionaryVolume (chunk edge
@@ -22,15 +25,15 @@
 #define vtkVolumeEditFilter_h
 
 #include "lvdifFiltersEditingModule.h"
-#include "vtkImageAlgorithm.h"
+#include "vtkDataObjectAlgorithm.h"
 
 #include <string>
 
-class LVDIFFILTERSEDITING_EXPORT vtkVolumeEditFilter : public vtkImageAlgorithm
+class LVDIFFILTERSEDITING_EXPORT vtkVolumeEditFilter : public vtkDataObjectAlgorithm
 {
 public:
   static vtkVolumeEditFilter* New();
-  vtkTypeMacro(vtkVolumeEditFilter, vtkImageAlgorithm);
+  vtkTypeMacro(vtkVolumeEditFilter, vtkDataObjectAlgorithm);
   void PrintSelf(ostream& os, vtkIndent indent) override;
 
   ///@{
@@ -74,6 +77,8 @@ protected:
   vtkVolumeEditFilter();
   ~vtkVolumeEditFilter() override;
 
+  int FillInputPortInformation(int port, vtkInformation* info) override;
+  int RequestDataObject(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
   int RequestUpdateExtent(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
   int RequestData(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
 

@@ -4,6 +4,7 @@
 #include "vtkChunkedMarchingCubesVtkTable.h"
 #include "vtkLVDIFInterrupter.h"
 #include "vtkLVDIFVolumeBridge.h"
+#include "vtkSparseDictionaryVolume.h"
 
 #include "lvdif/ChunkedMarchingCubes.h"
 #include "lvdif/Error.h"
@@ -24,6 +25,7 @@
 #include "vtkUnsignedCharArray.h"
 
 #include <algorithm>
+#include <map>
 #include <vector>
 
 vtkStandardNewMacro(vtkChunkedMarchingCubes);
@@ -76,7 +78,9 @@ void vtkChunkedMarchingCubes::SetVolume(std::shared_ptr<lvdif::DictionaryVolume>
 
 int vtkChunkedMarchingCubes::FillInputPortInformation(int, vtkInformation* info)
 {
-  info->Set(vtkAlgorithm::INPUT_REQUIRED_DATA_TYPE(), "vtkImageData");
+  info->Remove(vtkAlgorithm::INPUT_REQUIRED_DATA_TYPE());
+  info->Append(vtkAlgorithm::INPUT_REQUIRED_DATA_TYPE(), "vtkImageData");
+  info->Append(vtkAlgorithm::INPUT_REQUIRED_DATA_TYPE(), "vtkSparseDictionaryVolume");
   // optional: a dictionary volume (SetVolume) replaces the input
   info->Set(vtkAlgorithm::INPUT_IS_OPTIONAL(), 1);
   return 1;
@@ -180,12 +184,24 @@ int vtkChunkedMarchingCubes::RequestData(
       vtkErrorMacro("both an input image and a dictionary volume (SetVolume): disconnect the input or SetVolume(nullptr)");
       return 0;
     }
-    return this->MeshVolume(piece, pieces, output);
+    return this->MeshVolume(*this->Volume, piece, pieces, output);
   }
+  if (auto* sparse = vtkSparseDictionaryVolume::GetData(inInfo))
+  {
+    if (!sparse->HasVolume()) return 1; // an empty or failed upstream: empty output
+    auto* partitioned = vtkPartitionedDataSet::SafeDownCast(output);
+    if (partitioned && pieces == 1)
+    {
+      return this->MeshVolumeIncrementally(sparse->GetVolume(), partitioned);
+    }
+    this->Cache = nullptr;
+    return this->MeshVolume(*sparse->GetVolume(), piece, pieces, output);
+  }
+  this->Cache = nullptr;
   vtkImageData* input = inInfo ? vtkImageData::GetData(inInfo) : nullptr;
   if (!input)
   {
-    vtkErrorMacro("no input: connect an image with an SDF point array, or call SetVolume()");
+    vtkErrorMacro("no input: connect a sparse dictionary volume or an image with an SDF point array, or call SetVolume()");
     return 0;
   }
   int inExt[6];
@@ -207,7 +223,8 @@ int vtkChunkedMarchingCubes::RequestData(
   }
   if (region.empty() || input->GetNumberOfPoints() == 0) return 1; // nothing owned: empty output
 
-  vtkDataArray* sdf = this->GetInputArrayToProcess(0, inputVector);
+  vtkDataArray* sdf = vtkLVDIFVolumeBridge::SdfArray(
+    this->GetInputArrayInformation(0), input, this->GetInputArrayToProcess(0, inputVector));
   if (!sdf)
   {
     vtkErrorMacro("no SDF point array (default name 'sdf'; see SetInputArrayToProcess)");
@@ -291,9 +308,9 @@ int vtkChunkedMarchingCubes::RequestData(
   return this->Emit(meshes, ctx, whole, output);
 }
 
-int vtkChunkedMarchingCubes::MeshVolume(int piece, int pieces, vtkDataObject* output)
+int vtkChunkedMarchingCubes::MeshVolume(
+  const lvdif::DictionaryVolume& volume, int piece, int pieces, vtkDataObject* output)
 {
-  const lvdif::DictionaryVolume& volume = *this->Volume;
   const lvdif::Index3& dims = volume.dims();
   int whole[6];
   for (int a = 0; a < 3; ++a)
@@ -311,26 +328,144 @@ int vtkChunkedMarchingCubes::MeshVolume(int piece, int pieces, vtkDataObject* ou
     o.cellRegion.hi[a] = own[2 * a + 1] - 1;
   }
   if (o.cellRegion.empty()) return 1; // nothing owned: empty output
-  std::vector<lvdif::ChunkMesh> meshes;
-  try
-  {
-    lvdif::ChunkedMarchingCubes mc(volume, o);
-    vtkLVDIFInterrupter interrupter(this, 0.0, 0.8);
-    meshes = mc.extractAll(interrupter);
-  }
-  catch (const lvdif::Error& e)
-  {
-    if (e.code() == lvdif::ErrorCode::Cancelled) return 1; // aborted: empty output
-    vtkErrorMacro(<< e.what());
-    return 0;
-  }
   vtkChunkedMarchingCubesOutput::Context ctx;
   ctx.gridDims = dims;
   ctx.palette = volume.colors().colors().data(); // corner colours come as keys
   ctx.normals = o.computeNormals;
   ctx.pointColors = o.computeColors;
   ctx.cellData = o.cornerColors;
-  return this->Emit(meshes, ctx, whole, output);
+  // A volume can be far larger than its surface: chunks are meshed in batches
+  // and only one batch of chunk meshes is held at a time.
+  constexpr std::size_t Batch = 64;
+  try
+  {
+    lvdif::ChunkedMarchingCubes mc(volume, o);
+    std::vector<std::int64_t> ids;
+    for (std::int64_t id = 0; id < mc.chunkCount(); ++id)
+      if (!mc.chunkIsEmpty(id)) ids.push_back(id);
+    const std::size_t batches = (ids.size() + Batch - 1) / Batch;
+    const bool merged = vtkPolyData::SafeDownCast(output) != nullptr;
+    vtkLVDIFInterrupter interrupter(this);
+    auto batch = [&](std::size_t b, int pass) {
+      // progress: merged runs two passes (count, fill), partitioned one
+      const double share = merged ? 0.5 : 1.0;
+      interrupter.setStage(share * (pass + static_cast<double>(b) / batches), share / batches);
+      const std::size_t lo = b * Batch, hi = std::min(ids.size(), lo + Batch);
+      std::vector<lvdif::ChunkMesh> meshes =
+        mc.extractChunks(std::vector<std::int64_t>(ids.begin() + lo, ids.begin() + hi), interrupter);
+      meshes.erase(std::remove_if(meshes.begin(), meshes.end(), [](const lvdif::ChunkMesh& m) { return m.empty(); }),
+        meshes.end());
+      return meshes;
+    };
+    if (auto* pd = vtkPolyData::SafeDownCast(output))
+    {
+      pd->ShallowCopy(vtkChunkedMarchingCubesOutput::MergeBatches(batch, batches, ctx));
+    }
+    else
+    {
+      auto* partitioned = vtkPartitionedDataSet::SafeDownCast(output);
+      partitioned->SetNumberOfPartitions(0);
+      for (std::size_t b = 0; b < batches; ++b)
+        this->AddPartitions(batch(b, 0), ctx, whole, partitioned);
+    }
+  }
+  catch (const lvdif::Error& e)
+  {
+    output->Initialize();
+    if (e.code() == lvdif::ErrorCode::Cancelled) return 1; // aborted: empty output
+    vtkErrorMacro(<< e.what());
+    return 0;
+  }
+  this->UpdateProgress(1.0);
+  return 1;
+}
+
+int vtkChunkedMarchingCubes::MeshVolumeIncrementally(
+  const std::shared_ptr<lvdif::DictionaryVolume>& volume, vtkPartitionedDataSet* output)
+{
+  // The cache holds the last run's chunk meshes (the same vtkPolyData objects
+  // the output shares, so no extra memory). It is valid for the same Core
+  // volume and unchanged settings; then only the chunks that the volume's
+  // dirty storage chunks reach are meshed again.
+  const bool reuse = this->Cache && this->CachedVolume.lock() == volume && this->CacheTime > this->GetMTime();
+  lvdif::MarchingCubesOptions o = this->CoreOptions();
+  const lvdif::Index3& dims = volume->dims();
+  int whole[6];
+  for (int a = 0; a < 3; ++a)
+  {
+    whole[2 * a] = 0;
+    whole[2 * a + 1] = static_cast<int>(dims[a] - 1);
+    o.cellRegion.lo[a] = 0;
+    o.cellRegion.hi[a] = dims[a] - 2;
+  }
+  if (!reuse)
+  {
+    this->Cache = nullptr;
+    volume->takeDirtyChunks(); // everything is meshed now
+    const int ok = o.cellRegion.empty() ? 1 : this->MeshVolume(*volume, 0, 1, output);
+    this->LastChunksMeshed = -1;
+    if (ok && !this->GetAbortExecute())
+    {
+      this->Cache = vtkSmartPointer<vtkPartitionedDataSet>::New();
+      this->Cache->ShallowCopy(output);
+      this->CachedVolume = volume;
+      this->CacheTime.Modified();
+    }
+    return ok;
+  }
+  vtkChunkedMarchingCubesOutput::Context ctx;
+  ctx.gridDims = dims;
+  ctx.palette = volume->colors().colors().data();
+  ctx.normals = o.computeNormals;
+  ctx.pointColors = o.computeColors;
+  ctx.cellData = o.cornerColors;
+  std::map<vtkIdType, vtkSmartPointer<vtkDataObject>> byChunk;
+  for (unsigned int i = 0; i < this->Cache->GetNumberOfPartitions(); ++i)
+  {
+    vtkDataObject* pd = this->Cache->GetPartitionAsDataObject(i);
+    auto* id = pd ? vtkIdTypeArray::SafeDownCast(pd->GetFieldData()->GetArray("chunk_id")) : nullptr;
+    if (id) byChunk[id->GetValue(0)] = pd;
+  }
+  try
+  {
+    lvdif::ChunkedMarchingCubes mc(*volume, o);
+    const std::vector<std::int64_t> redo = mc.chunksAffectedByStorageChunks(volume->takeDirtyChunks());
+    std::vector<std::int64_t> ids;
+    for (std::int64_t id : redo)
+    {
+      byChunk.erase(static_cast<vtkIdType>(id));
+      if (!mc.chunkIsEmpty(id)) ids.push_back(id);
+    }
+    vtkLVDIFInterrupter interrupter(this, 0.0, 0.9);
+    std::vector<lvdif::ChunkMesh> meshes = mc.extractChunks(ids, interrupter);
+    meshes.erase(std::remove_if(meshes.begin(), meshes.end(), [](const lvdif::ChunkMesh& m) { return m.empty(); }),
+      meshes.end());
+    vtkNew<vtkPartitionedDataSet> fresh;
+    this->AddPartitions(meshes, ctx, whole, fresh);
+    for (unsigned int i = 0; i < fresh->GetNumberOfPartitions(); ++i)
+    {
+      vtkDataObject* pd = fresh->GetPartitionAsDataObject(i);
+      byChunk[vtkIdTypeArray::SafeDownCast(pd->GetFieldData()->GetArray("chunk_id"))->GetValue(0)] = pd;
+    }
+    this->LastChunksMeshed = static_cast<vtkIdType>(ids.size());
+  }
+  catch (const lvdif::Error& e)
+  {
+    this->Cache = nullptr;
+    output->Initialize();
+    if (e.code() == lvdif::ErrorCode::Cancelled) return 1; // aborted: empty output
+    vtkErrorMacro(<< e.what());
+    return 0;
+  }
+  // partitions in chunk id order, as a full run gives them
+  this->Cache = vtkSmartPointer<vtkPartitionedDataSet>::New();
+  this->Cache->SetNumberOfPartitions(static_cast<unsigned int>(byChunk.size()));
+  unsigned int i = 0;
+  for (auto& kv : byChunk) this->Cache->SetPartition(i++, kv.second);
+  this->CacheTime.Modified();
+  output->ShallowCopy(this->Cache);
+  this->UpdateProgress(1.0);
+  return 1;
 }
 
 int vtkChunkedMarchingCubes::Emit(const std::vector<lvdif::ChunkMesh>& meshes,
@@ -343,18 +478,24 @@ int vtkChunkedMarchingCubes::Emit(const std::vector<lvdif::ChunkMesh>& meshes,
     return 1;
   }
   auto* partitioned = vtkPartitionedDataSet::SafeDownCast(output);
+  partitioned->SetNumberOfPartitions(0);
+  this->AddPartitions(meshes, ctx, whole, partitioned);
+  this->UpdateProgress(1.0);
+  return 1;
+}
+
+void vtkChunkedMarchingCubes::AddPartitions(const std::vector<lvdif::ChunkMesh>& meshes,
+  const vtkChunkedMarchingCubesOutput::Context& ctx, const int whole[6], vtkPartitionedDataSet* partitioned)
+{
   // chunk counts of the whole extent, for a chunk id every piece agrees on
   vtkIdType counts[3];
   for (int a = 0; a < 3; ++a)
     counts[a] = std::max<vtkIdType>(1, (whole[2 * a + 1] - whole[2 * a] + this->ChunkEdge - 1) / this->ChunkEdge);
-  partitioned->SetNumberOfPartitions(static_cast<unsigned int>(meshes.size()));
+  const unsigned int first = partitioned->GetNumberOfPartitions();
+  partitioned->SetNumberOfPartitions(first + static_cast<unsigned int>(meshes.size()));
   for (std::size_t i = 0; i < meshes.size(); ++i)
   {
-    if (i % 64 == 0)
-    {
-      if (this->GetAbortExecute()) break;
-      this->UpdateProgress(0.8 + 0.2 * static_cast<double>(i) / static_cast<double>(meshes.size()));
-    }
+    if (i % 64 == 0 && this->GetAbortExecute()) break;
     vtkSmartPointer<vtkPolyData> pd = vtkChunkedMarchingCubesOutput::ChunkToPolyData(meshes[i], ctx);
     const lvdif::Index3& c = meshes[i].chunkCoord;
     vtkNew<vtkIdTypeArray> id;
@@ -366,10 +507,8 @@ int vtkChunkedMarchingCubes::Emit(const std::vector<lvdif::ChunkMesh>& meshes,
     ijk->InsertNextTuple3(c[0], c[1], c[2]);
     pd->GetFieldData()->AddArray(id);
     pd->GetFieldData()->AddArray(ijk);
-    partitioned->SetPartition(static_cast<unsigned int>(i), pd);
+    partitioned->SetPartition(first + static_cast<unsigned int>(i), pd);
   }
-  this->UpdateProgress(1.0);
-  return 1;
 }
 
 void vtkChunkedMarchingCubes::PrintSelf(ostream& os, vtkIndent indent)

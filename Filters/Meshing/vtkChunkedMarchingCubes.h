@@ -3,6 +3,15 @@
  * @brief   seamless chunked marching cubes of an SDF image or dictionary volume (paper Sect. 3.3)
  *
  * A thin wrapper over lvdif::ChunkedMarchingCubes. Input, one of:
+ * - a vtkSparseDictionaryVolume (vtkDictionaryVolumeReader, vtkMeshToSDF,
+ *   vtkSignVoxelFilter, vtkImageToSparseVolume): its Core volume is meshed
+ *   directly, in batches of chunks, without a dense copy (colours from its
+ *   colour dictionary). In PARTITIONED mode (one piece) the filter keeps the
+ *   chunk meshes of its last run (shared with its output): when the input
+ *   holds the same Core volume again, edited in place and announced with
+ *   vtkSparseDictionaryVolume::VolumeModified(), only the chunks its dirty
+ *   storage chunks reach are meshed again (the dirty flags are taken, i.e.
+ *   cleared); any change of the filter's settings meshes everything;
  * - vtkImageData on port 0 with a scalar point array (default `sdf`, negative
  *   inside; choose another with SetInputArrayToProcess(0, 0, 0,
  *   vtkDataObject::FIELD_ASSOCIATION_POINTS, name)) and an optional
@@ -57,10 +66,13 @@
 
 #include "lvdifFiltersMeshingModule.h"
 #include "vtkDataObjectAlgorithm.h"
+#include "vtkSmartPointer.h"
+#include "vtkTimeStamp.h"
 
 #include <memory>
 #include <vector>
 
+class vtkPartitionedDataSet;
 namespace lvdif
 {
 class DictionaryVolume;
@@ -155,6 +167,11 @@ public:
   vtkBooleanMacro(UseVTKCaseTable, vtkTypeBool);
   ///@}
 
+  /// Chunks meshed by the last run when it was incremental (sparse input,
+  /// PARTITIONED, the same Core volume as the run before, settings unchanged);
+  /// -1 when the last run meshed everything.
+  vtkIdType GetLastChunksMeshed() const { return this->LastChunksMeshed; }
+
 #ifndef __VTK_WRAP__
   ///@{
   /// A dictionary volume to mesh directly (used when nothing is connected to
@@ -177,11 +194,19 @@ protected:
   int RequestData(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
   /// The options common to both sources (no region, offset or colours yet).
   lvdif::MarchingCubesOptions CoreOptions() const;
-  /// Meshes the cells piece `piece` of `pieces` owns of this->Volume into output.
-  int MeshVolume(int piece, int pieces, vtkDataObject* output);
+  /// Meshes the cells piece `piece` of `pieces` owns of `volume` into output.
+  int MeshVolume(const lvdif::DictionaryVolume& volume, int piece, int pieces, vtkDataObject* output);
   /// Fills output (vtkPolyData: merged; vtkPartitionedDataSet: one per chunk).
   int Emit(const std::vector<lvdif::ChunkMesh>& meshes, const vtkChunkedMarchingCubesOutput::Context& ctx,
     const int whole[6], vtkDataObject* output);
+
+  /// Sparse input, PARTITIONED, one piece: remeshes only the chunks the
+  /// volume's dirty storage chunks reach when the volume and settings are
+  /// those of the last run, else everything.
+  int MeshVolumeIncrementally(const std::shared_ptr<lvdif::DictionaryVolume>& volume, vtkPartitionedDataSet* output);
+  /// Appends one vtkPolyData partition per chunk mesh (with `chunk_id`, `chunk_ijk`).
+  void AddPartitions(const std::vector<lvdif::ChunkMesh>& meshes, const vtkChunkedMarchingCubesOutput::Context& ctx,
+    const int whole[6], vtkPartitionedDataSet* partitioned);
 
   int OutputMode = PARTITIONED;
   double IsoValue = 0.0;
@@ -193,6 +218,10 @@ protected:
   int Device = DEVICE_AUTO;
   vtkTypeBool UseVTKCaseTable = 1;
   std::shared_ptr<lvdif::DictionaryVolume> Volume;
+  vtkSmartPointer<vtkPartitionedDataSet> Cache;
+  std::weak_ptr<lvdif::DictionaryVolume> CachedVolume;
+  vtkTimeStamp CacheTime;
+  vtkIdType LastChunksMeshed = -1;
 
 private:
   vtkChunkedMarchingCubes(const vtkChunkedMarchingCubes&) = delete;

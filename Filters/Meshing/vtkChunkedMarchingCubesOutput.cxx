@@ -4,6 +4,8 @@
 #include "vtkCellData.h"
 #include "vtkFloatArray.h"
 #include "vtkIdTypeArray.h"
+#include "vtkTypeInt32Array.h"
+#include "vtkTypeInt64Array.h"
 #include "vtkIntArray.h"
 #include "vtkPointData.h"
 #include "vtkPoints.h"
@@ -11,6 +13,7 @@
 #include "vtkUnsignedCharArray.h"
 
 #include <cstring>
+#include <functional>
 #include <unordered_map>
 
 namespace vtkChunkedMarchingCubesOutput
@@ -24,7 +27,9 @@ struct Arrays
   vtkNew<vtkFloatArray> points, normals;
   vtkNew<vtkUnsignedCharArray> rgba, cornerRgba;
   vtkNew<vtkIntArray> cellIjk;
-  vtkNew<vtkIdTypeArray> offsets, connectivity;
+  // 32-bit cell storage when the ids fit (half the memory of vtkIdType's 64 bits)
+  vtkSmartPointer<vtkTypeInt32Array> offsets32, connectivity32;
+  vtkSmartPointer<vtkTypeInt64Array> offsets64, connectivity64;
   const Context& ctx;
 
   Arrays(const Context& c, vtkIdType np, vtkIdType nt)
@@ -56,9 +61,22 @@ struct Arrays
         cornerRgba->SetNumberOfTuples(nt);
       }
     }
-    offsets->SetNumberOfTuples(nt + 1);
-    connectivity->SetNumberOfTuples(3 * nt);
-    for (vtkIdType t = 0; t <= nt; ++t) offsets->SetValue(t, 3 * t);
+    if (np < VTK_INT_MAX && 3 * nt < VTK_INT_MAX)
+    {
+      offsets32 = vtkSmartPointer<vtkTypeInt32Array>::New();
+      connectivity32 = vtkSmartPointer<vtkTypeInt32Array>::New();
+      offsets32->SetNumberOfValues(nt + 1);
+      connectivity32->SetNumberOfValues(3 * nt);
+      for (vtkIdType t = 0; t <= nt; ++t) offsets32->SetValue(t, static_cast<vtkTypeInt32>(3 * t));
+    }
+    else
+    {
+      offsets64 = vtkSmartPointer<vtkTypeInt64Array>::New();
+      connectivity64 = vtkSmartPointer<vtkTypeInt64Array>::New();
+      offsets64->SetNumberOfValues(nt + 1);
+      connectivity64->SetNumberOfValues(3 * nt);
+      for (vtkIdType t = 0; t <= nt; ++t) offsets64->SetValue(t, 3 * t);
+    }
   }
 
   void setPoint(vtkIdType dst, const lvdif::ChunkMesh& m, std::size_t src)
@@ -70,10 +88,16 @@ struct Arrays
 
   void setTriangle(vtkIdType dst, const lvdif::ChunkMesh& m, std::size_t src, const vtkIdType ids[3])
   {
-    vtkIdType* c = connectivity->GetPointer(3 * dst);
-    c[0] = ids[0];
-    c[1] = ids[1];
-    c[2] = ids[2];
+    if (connectivity32)
+    {
+      vtkTypeInt32* c = connectivity32->GetPointer(3 * dst);
+      for (int k = 0; k < 3; ++k) c[k] = static_cast<vtkTypeInt32>(ids[k]);
+    }
+    else
+    {
+      vtkTypeInt64* c = connectivity64->GetPointer(3 * dst);
+      for (int k = 0; k < 3; ++k) c[k] = ids[k];
+    }
     if (!ctx.cellData) return;
     const std::int64_t cell = m.triangleCells[src];
     const std::int64_t nx = ctx.gridDims[0], ny = ctx.gridDims[1];
@@ -105,7 +129,10 @@ struct Arrays
     pts->SetData(points);
     pd->SetPoints(pts);
     vtkNew<vtkCellArray> polys;
-    polys->SetData(offsets, connectivity);
+    if (connectivity32)
+      polys->SetData(offsets32, connectivity32);
+    else
+      polys->SetData(offsets64, connectivity64);
     pd->SetPolys(polys);
     if (ctx.normals) pd->GetPointData()->SetNormals(normals);
     if (ctx.pointColors) pd->GetPointData()->AddArray(rgba);
@@ -190,6 +217,65 @@ vtkSmartPointer<vtkPolyData> MergeChunks(const std::vector<lvdif::ChunkMesh>& me
       a.setTriangle(t0 + static_cast<vtkIdType>(t), m, t, ids);
     }
     t0 += static_cast<vtkIdType>(m.triangles.size());
+  }
+  return a.finish();
+}
+
+vtkSmartPointer<vtkPolyData> MergeBatches(
+  const std::function<std::vector<lvdif::ChunkMesh>(std::size_t, int)>& batch, std::size_t batches, const Context& ctx)
+{
+  // pass 1: count the points off the chunk faces and collect the face points' edge ids
+  std::unordered_map<std::uint64_t, vtkIdType> shared;
+  vtkIdType inner = 0, nt = 0;
+  for (std::size_t b = 0; b < batches; ++b)
+  {
+    for (const lvdif::ChunkMesh& m : batch(b, 0))
+    {
+      for (std::size_t i = 0; i < m.points.size(); ++i)
+      {
+        if (onChunkFace(m.edgeIds[i], m.cells, ctx.gridDims))
+          shared.emplace(m.edgeIds[i], -1);
+        else
+          ++inner;
+      }
+      nt += static_cast<vtkIdType>(m.triangles.size());
+    }
+  }
+  // pass 2: the same batches again, numbered on the fly (a face point takes an
+  // id when first met), so nothing depends on the order chunks come in
+  Arrays a(ctx, inner + static_cast<vtkIdType>(shared.size()), nt);
+  vtkIdType np = 0, t0 = 0;
+  std::vector<vtkIdType> r;
+  for (std::size_t b = 0; b < batches; ++b)
+  {
+    for (const lvdif::ChunkMesh& m : batch(b, 1))
+    {
+      r.resize(m.points.size());
+      for (std::size_t i = 0; i < m.points.size(); ++i)
+      {
+        if (onChunkFace(m.edgeIds[i], m.cells, ctx.gridDims))
+        {
+          vtkIdType& id = shared[m.edgeIds[i]];
+          if (id < 0)
+          {
+            id = np++;
+            a.setPoint(id, m, i);
+          }
+          r[i] = id;
+        }
+        else
+        {
+          r[i] = np++;
+          a.setPoint(r[i], m, i);
+        }
+      }
+      for (std::size_t t = 0; t < m.triangles.size(); ++t)
+      {
+        const vtkIdType ids[3] = { r[m.triangles[t][0]], r[m.triangles[t][1]], r[m.triangles[t][2]] };
+        a.setTriangle(t0 + static_cast<vtkIdType>(t), m, t, ids);
+      }
+      t0 += static_cast<vtkIdType>(m.triangles.size());
+    }
   }
   return a.finish();
 }

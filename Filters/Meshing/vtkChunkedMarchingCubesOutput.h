@@ -12,6 +12,7 @@
 
 #include "vtkSmartPointer.h"
 
+#include <functional>
 #include <vector>
 
 class vtkPolyData;
@@ -35,6 +36,14 @@ vtkSmartPointer<vtkPolyData> ChunkToPolyData(const lvdif::ChunkMesh& mesh, const
 /// All chunks in one mesh, one point per cut grid edge: only the points on a
 /// chunk's faces are looked up in a hash map, the rest are unique by construction.
 vtkSmartPointer<vtkPolyData> MergeChunks(const std::vector<lvdif::ChunkMesh>& meshes, const Context& ctx);
+
+/// The same merge over chunk meshes made batch by batch, so only one batch
+/// is held at a time: batch(b, pass) returns batch b's meshes and is called
+/// twice for every batch (pass 0 counts, pass 1 fills the arrays, allocated
+/// once at their final size). For volumes far larger than their surface.
+vtkSmartPointer<vtkPolyData> MergeBatches(
+  const std::function<std::vector<lvdif::ChunkMesh>(std::size_t, int)>& batch, std::size_t batches,
+  const Context& ctx);
 }
 
 #endif

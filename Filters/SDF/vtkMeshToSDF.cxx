@@ -1,6 +1,10 @@
 #include "vtkMeshToSDF.h"
 
 #include "vtkLVDIFInterrupter.h"
+#include "vtkLVDIFVolumeBridge.h"
+#include "vtkSparseDictionaryVolume.h"
+
+#include "lvdif/DictionaryVolume.h"
 
 #include "lvdif/Error.h"
 #include "lvdif/Memory.h"
@@ -26,58 +30,6 @@
 
 vtkStandardNewMacro(vtkMeshToSDF);
 
-namespace
-{
-/// Polygons fan-triangulated (exact for convex polygons), strips split with
-/// alternating order so every triangle keeps the strip's orientation.
-lvdif::TriangleMesh toMesh(vtkPolyData* pd, bool withNormals)
-{
-  lvdif::TriangleMesh m;
-  const vtkIdType np = pd->GetNumberOfPoints();
-  m.points.resize(static_cast<std::size_t>(np));
-  for (vtkIdType i = 0; i < np; ++i)
-  {
-    double p[3];
-    pd->GetPoint(i, p);
-    m.points[i] = { static_cast<float>(p[0]), static_cast<float>(p[1]), static_cast<float>(p[2]) };
-  }
-  vtkDataArray* normals = pd->GetPointData()->GetNormals();
-  if (withNormals && normals && normals->GetNumberOfComponents() == 3 && normals->GetNumberOfTuples() == np)
-  {
-    m.normals.resize(static_cast<std::size_t>(np));
-    for (vtkIdType i = 0; i < np; ++i)
-    {
-      double n[3];
-      normals->GetTuple(i, n);
-      m.normals[i] = { static_cast<float>(n[0]), static_cast<float>(n[1]), static_cast<float>(n[2]) };
-    }
-  }
-  auto id = [](vtkIdType v) { return static_cast<std::uint32_t>(v); };
-  vtkIdType n;
-  const vtkIdType* ids;
-  vtkCellArray* polys = pd->GetPolys();
-  for (polys->InitTraversal(); polys->GetNextCell(n, ids);)
-  {
-    for (vtkIdType k = 1; k + 1 < n; ++k)
-    {
-      m.triangles.push_back({ id(ids[0]), id(ids[k]), id(ids[k + 1]) });
-    }
-  }
-  vtkCellArray* strips = pd->GetStrips();
-  for (strips->InitTraversal(); strips->GetNextCell(n, ids);)
-  {
-    for (vtkIdType k = 0; k + 2 < n; ++k)
-    {
-      if (k % 2 == 0)
-        m.triangles.push_back({ id(ids[k]), id(ids[k + 1]), id(ids[k + 2]) });
-      else
-        m.triangles.push_back({ id(ids[k + 1]), id(ids[k]), id(ids[k + 2]) });
-    }
-  }
-  return m;
-}
-} // namespace
-
 vtkMeshToSDF::vtkMeshToSDF()
 {
   this->SetNumberOfInputPorts(1);
@@ -88,6 +40,18 @@ vtkMeshToSDF::~vtkMeshToSDF() = default;
 int vtkMeshToSDF::FillInputPortInformation(int, vtkInformation* info)
 {
   info->Set(vtkAlgorithm::INPUT_REQUIRED_DATA_TYPE(), "vtkPolyData");
+  return 1;
+}
+
+int vtkMeshToSDF::FillOutputPortInformation(int, vtkInformation* info)
+{
+  info->Set(vtkDataObject::DATA_TYPE_NAME(), "vtkSparseDictionaryVolume");
+  return 1;
+}
+
+int vtkMeshToSDF::RequestDataObject(vtkInformation*, vtkInformationVector**, vtkInformationVector* out)
+{
+  vtkLVDIFVolumeBridge::EnsureSparseOutput(out);
   return 1;
 }
 
@@ -172,14 +136,11 @@ int vtkMeshToSDF::RequestInformation(
     vtkErrorMacro(<< e.what());
     return 0;
   }
-  vtkInformation* outInfo = outputVector->GetInformationObject(0);
-  int whole[6] = { 0, static_cast<int>(g.dims[0] - 1), 0, static_cast<int>(g.dims[1] - 1), 0,
-    static_cast<int>(g.dims[2] - 1) };
-  outInfo->Set(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT(), whole, 6);
-  outInfo->Set(vtkDataObject::ORIGIN(), g.origin.data(), 3);
-  outInfo->Set(vtkDataObject::SPACING(), g.spacing.data(), 3);
-  outInfo->Set(vtkAlgorithm::CAN_PRODUCE_SUB_EXTENT(), 1);
-  vtkDataObject::SetPointDataActiveScalarInfo(outInfo, VTK_FLOAT, 1);
+  lvdif::VolumeOptions vo;
+  vo.dims = g.dims;
+  vo.origin = g.origin;
+  vo.spacing = g.spacing;
+  vtkLVDIFVolumeBridge::SetSparseInformation(outputVector->GetInformationObject(0), vo);
   return 1;
 }
 
@@ -196,11 +157,10 @@ int vtkMeshToSDF::RequestUpdateExtent(vtkInformation*, vtkInformationVector** in
 int vtkMeshToSDF::RequestData(vtkInformation*, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
 {
   vtkPolyData* input = vtkPolyData::GetData(inputVector[0]);
-  vtkInformation* outInfo = outputVector->GetInformationObject(0);
-  vtkImageData* output = vtkImageData::GetData(outInfo);
+  vtkSparseDictionaryVolume* output = vtkSparseDictionaryVolume::GetData(outputVector);
   if (!input || !output)
   {
-    vtkErrorMacro("input must be vtkPolyData and output vtkImageData");
+    vtkErrorMacro("input must be vtkPolyData");
     return 0;
   }
   if (input->GetNumberOfPoints() == 0)
@@ -213,31 +173,20 @@ int vtkMeshToSDF::RequestData(vtkInformation*, vtkInformationVector** inputVecto
     vtkErrorMacro("the input mesh has no polygons or triangle strips (lines and vertices are ignored)");
     return 0;
   }
-  int ext[6];
-  outInfo->Get(vtkStreamingDemandDrivenPipeline::UPDATE_EXTENT(), ext);
-  vtkNew<vtkFloatArray> sdf;
-  sdf->SetName("sdf");
   lvdif::MeshToSdfStats st;
   vtkLVDIFInterrupter interrupter(this);
-  try
-  {
+  const bool ok = vtkLVDIFVolumeBridge::CallCore(this, [&] {
     const lvdif::GridGeometry g = gridFor(input, this->UseExplicitGrid, this->Dimensions, this->Origin,
       this->Spacing, this->MaxDimension, this->SampleSpacing, this->Padding);
-    lvdif::VoxelBox box;
-    for (int a = 0; a < 3; ++a)
-    {
-      box.lo[a] = ext[2 * a];
-      box.hi[a] = ext[2 * a + 1];
-    }
-    lvdif::require(!box.empty(), "vtkMeshToSDF: the requested extent is empty");
-    for (int a = 0; a < 3; ++a)
-    {
-      lvdif::require(box.lo[a] >= 0 && box.hi[a] < g.dims[a], "vtkMeshToSDF: the requested extent is outside the grid");
-    }
-    lvdif::requireMemory(lvdif::checkedMultiply(static_cast<std::uint64_t>(box.voxelCount()), 4, "sdf"),
-      "vtkMeshToSDF: the sdf array");
-    const lvdif::TriangleMesh mesh = toMesh(input, this->UseVertexNormals);
-    sdf->SetNumberOfTuples(static_cast<vtkIdType>(box.voxelCount()));
+    lvdif::VolumeOptions vo;
+    vo.dims = g.dims;
+    vo.origin = g.origin;
+    vo.spacing = g.spacing;
+    vo.chunkEdge = this->ChunkEdge;
+    vo.bandWidth =
+      this->BandWidth > 0 ? static_cast<float>(this->BandWidth) : std::numeric_limits<float>::infinity();
+    auto volume = std::make_shared<lvdif::DictionaryVolume>(vo); // validates and checks the memory limit
+    const lvdif::TriangleMesh mesh = vtkLVDIFVolumeBridge::ToTriangleMesh(input, this->UseVertexNormals);
     lvdif::MeshToSdfOptions o;
     o.sign = this->SignMode == NORMAL ? lvdif::SignMode::Normal
       : this->SignMode == PSEUDO_NORMAL ? lvdif::SignMode::PseudoNormal
@@ -246,26 +195,20 @@ int vtkMeshToSDF::RequestData(vtkInformation*, vtkInformationVector** inputVecto
     o.accel = this->Accelerator == FAITHFUL ? lvdif::MeshToSdfAccel::Faithful
       : this->Accelerator == BRUTE_FORCE    ? lvdif::MeshToSdfAccel::BruteForce
                                             : lvdif::MeshToSdfAccel::Bvh;
-    o.bandWidth = this->BandWidth > 0 ? static_cast<float>(this->BandWidth) : std::numeric_limits<float>::infinity();
-    o.unit = this->WorldUnits ? lvdif::DistanceUnit::World : lvdif::DistanceUnit::Voxel;
     o.useVertexNormals = this->UseVertexNormals;
     o.reorientFaces = this->ReorientFaces;
     o.svfFilters = static_cast<unsigned>(this->SignVoxelFilters);
-    o.device = this->Device == DEVICE_CPU ? lvdif::Device::Cpu
-                                          : (this->Device == DEVICE_CUDA ? lvdif::Device::Cuda : lvdif::Device::Auto);
+    o.device = vtkLVDIFVolumeBridge::ToDevice(this->Device);
     o.svf.device = o.device;
-    st = lvdif::meshToSdf(mesh, g, box, sdf->GetPointer(0), o, interrupter);
-  }
-  catch (const lvdif::Error& e)
+    st = lvdif::meshToSdf(mesh, *volume, o, interrupter);
+    volume->takeDirtyChunks(); // a new volume: nothing to re-mesh incrementally
+    output->SetVolume(std::move(volume));
+  });
+  if (!ok)
   {
-    if (e.code() != lvdif::ErrorCode::Cancelled)
-    {
-      vtkErrorMacro(<< e.what());
-    }
+    output->Initialize();
     return 0;
   }
-  output->SetExtent(ext);
-  output->GetPointData()->SetScalars(sdf);
   vtkNew<vtkIdTypeArray> degenerate;
   degenerate->SetName("degenerate_triangles");
   degenerate->InsertNextValue(static_cast<vtkIdType>(st.degenerateSkipped));
@@ -288,7 +231,7 @@ void vtkMeshToSDF::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "Origin: " << this->Origin[0] << " " << this->Origin[1] << " " << this->Origin[2] << "\n";
   os << indent << "Spacing: " << this->Spacing[0] << " " << this->Spacing[1] << " " << this->Spacing[2] << "\n";
   os << indent << "BandWidth: " << this->BandWidth << "\n";
-  os << indent << "WorldUnits: " << this->WorldUnits << "\n";
+  os << indent << "ChunkEdge: " << this->ChunkEdge << "\n";
   os << indent << "UseVertexNormals: " << this->UseVertexNormals << "\n";
   os << indent << "ReorientFaces: " << this->ReorientFaces << "\n";
   os << indent << "SignVoxelFilters: " << this->SignVoxelFilters << "\n";

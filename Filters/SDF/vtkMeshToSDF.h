@@ -1,11 +1,15 @@
 /**
  * @class   vtkMeshToSDF
- * @brief   signed distance image of a triangle mesh (LVDIF's mesh to SDF)
+ * @brief   sparse signed distance volume of a triangle mesh (LVDIF's mesh to SDF)
  *
- * Polydata in (polygons fan-triangulated, triangle strips split), image data
- * out with a float point array `sdf` (negative inside; voxel units, or world
- * units with WorldUnits on). A thin wrapper over lvdif::meshToSdf
- * (lvdif/MeshToSdf.h): exact distances; signs from the closest triangle's
+ * Polydata in (polygons fan-triangulated, triangle strips split), a
+ * vtkSparseDictionaryVolume out (negative inside, voxel units): Core's sparse
+ * route, lvdif::meshToSdf(mesh, DictionaryVolume&), writes straight into the
+ * dictionary volume one slab of chunks at a time (CUDA included, by Device),
+ * chunks saturated at the band collapse to one value, and no full float grid
+ * is ever allocated. The same route as `lvdif mesh-to-sdf` and the Qt
+ * editor's "Open mesh", with the same defaults (band 8, winding-number signs,
+ * padding 2). A dense image is vtkSparseVolumeToImage's job. Exact distances; signs from the closest triangle's
  * normal (NORMAL, the paper's Algorithm 1), angle-weighted pseudo-normals
  * (PSEUDO_NORMAL) or the exact generalized winding number (WINDING_NUMBER,
  * default: right on open, flipped, duplicated and intersecting meshes).
@@ -13,23 +17,26 @@
  * Grid: by default fitted to the mesh bounds with isotropic voxels, the
  * longest axis getting MaxDimension points and Padding voxels of margin on
  * every side; or fitted with a given SampleSpacing; or explicit
- * (SetUseExplicitGrid(true) with Dimensions, Origin, Spacing). The filter
- * can produce sub-extents (CAN_PRODUCE_SUB_EXTENT) and computes only the
- * requested UPDATE_EXTENT, so pvbatch ranks split the work.
+ * (SetUseExplicitGrid(true) with Dimensions, Origin, Spacing).
  * Field data gets `degenerate_triangles` (skipped zero-area triangles).
+ * Defaults are those of `lvdif mesh-to-sdf`: winding-number signs, 128
+ * points on the longest axis, 2 voxels of padding, band 8.
+ * Memory: the output is sparse (vtkSparseDictionaryVolume: 4 bytes a voxel
+ * of the chunks the surface crosses, one value per uniform chunk); above the
+ * memory limit (LVDIF_MEMORY_LIMIT) the request is refused.
  * Reports progress; AbortExecute cancels (the output is then empty).
  */
 #ifndef vtkMeshToSDF_h
 #define vtkMeshToSDF_h
 
 #include "lvdifFiltersSDFModule.h"
-#include "vtkImageAlgorithm.h"
+#include "vtkDataObjectAlgorithm.h"
 
-class LVDIFFILTERSSDF_EXPORT vtkMeshToSDF : public vtkImageAlgorithm
+class LVDIFFILTERSSDF_EXPORT vtkMeshToSDF : public vtkDataObjectAlgorithm
 {
 public:
   static vtkMeshToSDF* New();
-  vtkTypeMacro(vtkMeshToSDF, vtkImageAlgorithm);
+  vtkTypeMacro(vtkMeshToSDF, vtkDataObjectAlgorithm);
   void PrintSelf(ostream& os, vtkIndent indent) override;
 
   enum
@@ -96,16 +103,17 @@ public:
   ///@}
 
   ///@{
-  /// |sdf| saturates at BandWidth (output units); 0 = no band (default).
+  /// |sdf| saturates at BandWidth voxels (default 8, as `lvdif mesh-to-sdf`);
+  /// 0 = no band (every distance the dictionary can represent; far chunks
+  /// then do not collapse).
   vtkSetClampMacro(BandWidth, double, 0.0, VTK_FLOAT_MAX);
   vtkGetMacro(BandWidth, double);
   ///@}
 
   ///@{
-  /// World distances instead of voxels (world / smallest spacing). Default off.
-  vtkSetMacro(WorldUnits, bool);
-  vtkGetMacro(WorldUnits, bool);
-  vtkBooleanMacro(WorldUnits, bool);
+  /// Voxels per storage chunk edge, a power of two in 4..256 (default 32).
+  vtkSetClampMacro(ChunkEdge, int, 4, 256);
+  vtkGetMacro(ChunkEdge, int);
   ///@}
 
   ///@{
@@ -142,6 +150,8 @@ protected:
   ~vtkMeshToSDF() override;
 
   int FillInputPortInformation(int port, vtkInformation* info) override;
+  int FillOutputPortInformation(int port, vtkInformation* info) override;
+  int RequestDataObject(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
   int RequestInformation(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
   int RequestUpdateExtent(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
   int RequestData(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
@@ -155,8 +165,8 @@ protected:
   int Dimensions[3] = { 64, 64, 64 };
   double Origin[3] = { 0, 0, 0 };
   double Spacing[3] = { 1, 1, 1 };
-  double BandWidth = 0.0;
-  bool WorldUnits = false;
+  double BandWidth = 8.0;
+  int ChunkEdge = 32;
   bool UseVertexNormals = false;
   bool ReorientFaces = false;
   int SignVoxelFilters = 0;

@@ -1,6 +1,10 @@
 #include "vtkSignVoxelFilter.h"
 
 #include "vtkLVDIFInterrupter.h"
+#include "vtkLVDIFVolumeBridge.h"
+#include "vtkSparseDictionaryVolume.h"
+
+#include "lvdif/DictionaryVolume.h"
 
 #include "lvdif/Error.h"
 #include "lvdif/SignVoxelFilter.h"
@@ -62,7 +66,50 @@ void RequestedPiece(vtkInformation* outInfo, int ext[6])
     ext[1] = ext[3] = ext[5] = -1;
   }
 }
+
+void AddStats(vtkDataObject* output, const lvdif::SignVoxelFilterStats& st)
+{
+  vtkNew<vtkIdTypeArray> flips;
+  flips->SetName("svf_flips");
+  vtkNew<vtkIntArray> iterations;
+  iterations->SetName("svf_iterations");
+  for (int f = 0; f < 4; ++f)
+  {
+    flips->InsertNextValue(static_cast<vtkIdType>(st.flips[f]));
+    iterations->InsertNextValue(st.iterations[f]);
+  }
+  output->GetFieldData()->AddArray(flips);
+  output->GetFieldData()->AddArray(iterations);
+}
 } // namespace
+
+int vtkSignVoxelFilter::FillInputPortInformation(int, vtkInformation* info)
+{
+  info->Remove(vtkAlgorithm::INPUT_REQUIRED_DATA_TYPE());
+  info->Append(vtkAlgorithm::INPUT_REQUIRED_DATA_TYPE(), "vtkSparseDictionaryVolume");
+  info->Append(vtkAlgorithm::INPUT_REQUIRED_DATA_TYPE(), "vtkImageData");
+  return 1;
+}
+
+int vtkSignVoxelFilter::RequestDataObject(
+  vtkInformation*, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
+{
+  // the output is of the input's kind: sparse in, sparse out; image in, image out
+  vtkDataObject* input = vtkDataObject::GetData(inputVector[0]);
+  if (!input) return 0;
+  vtkInformation* outInfo = outputVector->GetInformationObject(0);
+  vtkDataObject* current = outInfo->Get(vtkDataObject::DATA_OBJECT());
+  if (vtkSparseDictionaryVolume::SafeDownCast(input))
+  {
+    vtkLVDIFVolumeBridge::EnsureSparseOutput(outputVector);
+  }
+  else if (!vtkImageData::SafeDownCast(current))
+  {
+    vtkNew<vtkImageData> image;
+    outInfo->Set(vtkDataObject::DATA_OBJECT(), image);
+  }
+  return 1;
+}
 
 // The scans need whole rows and planes: always filter the whole input (see the header).
 int vtkSignVoxelFilter::RequestUpdateExtent(
@@ -86,6 +133,10 @@ int vtkSignVoxelFilter::RequestUpdateExtent(
 int vtkSignVoxelFilter::RequestData(
   vtkInformation*, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
 {
+  if (auto* sparse = vtkSparseDictionaryVolume::GetData(inputVector[0]))
+  {
+    return this->FilterSparse(sparse, vtkSparseDictionaryVolume::GetData(outputVector));
+  }
   vtkImageData* input = vtkImageData::GetData(inputVector[0]);
   vtkImageData* output = vtkImageData::GetData(outputVector);
   if (!input || !output)
@@ -93,7 +144,8 @@ int vtkSignVoxelFilter::RequestData(
     vtkErrorMacro("input and output must be vtkImageData");
     return 0;
   }
-  vtkDataArray* in = this->GetInputArrayToProcess(0, inputVector);
+  vtkDataArray* in = vtkLVDIFVolumeBridge::SdfArray(
+    this->GetInputArrayInformation(0), input, this->GetInputArrayToProcess(0, inputVector));
   if (!in)
   {
     vtkErrorMacro("no point array to process (default: `sdf`; see SetInputArrayToProcess)");
@@ -122,14 +174,7 @@ int vtkSignVoxelFilter::RequestData(
   lvdif::FloatGridView grid;
   grid.data = filtered->GetPointer(0);
   grid.geometry.dims = { dims[0], dims[1], dims[2] };
-  lvdif::SignVoxelFilterParams p;
-  p.threshold = static_cast<float>(this->Threshold);
-  p.axis = this->Axis;
-  p.filters = static_cast<unsigned>(this->Filters);
-  p.maxIterations = this->MaxIterations;
-  p.boundary = this->Boundary == BOUNDARY_FREE ? lvdif::SvfBoundary::Free : lvdif::SvfBoundary::Outside;
-  p.device = this->Device == DEVICE_CPU ? lvdif::Device::Cpu
-                                        : (this->Device == DEVICE_CUDA ? lvdif::Device::Cuda : lvdif::Device::Auto);
+  const lvdif::SignVoxelFilterParams p = this->CoreParams();
   lvdif::SignVoxelFilterStats st;
   vtkLVDIFInterrupter interrupter(this);
   try
@@ -145,6 +190,8 @@ int vtkSignVoxelFilter::RequestData(
     return 0;
   }
 
+  // signs changed through the pointer: the range of the new values, stored for ParaView's data information
+  vtkLVDIFVolumeBridge::StoreRange(filtered);
   output->ShallowCopy(input);
   // replace the processed array, keeping its attribute role (e.g. active scalars)
   vtkPointData* pd = output->GetPointData();
@@ -162,17 +209,7 @@ int vtkSignVoxelFilter::RequestData(
     pd->AddArray(filtered);
   }
 
-  vtkNew<vtkIdTypeArray> flips;
-  flips->SetName("svf_flips");
-  vtkNew<vtkIntArray> iterations;
-  iterations->SetName("svf_iterations");
-  for (int f = 0; f < 4; ++f)
-  {
-    flips->InsertNextValue(static_cast<vtkIdType>(st.flips[f]));
-    iterations->InsertNextValue(st.iterations[f]);
-  }
-  output->GetFieldData()->AddArray(flips);
-  output->GetFieldData()->AddArray(iterations);
+  AddStats(output, st);
   // only the requested piece leaves the filter (every piece is a crop of the serial result)
   vtkInformation* outInfo = outputVector->GetInformationObject(0);
   if (outInfo->Has(vtkStreamingDemandDrivenPipeline::UPDATE_EXTENT()))
@@ -189,6 +226,44 @@ int vtkSignVoxelFilter::RequestData(
       output->Crop(uExt);
     }
   }
+  this->UpdateProgress(1.0);
+  return 1;
+}
+
+lvdif::SignVoxelFilterParams vtkSignVoxelFilter::CoreParams() const
+{
+  lvdif::SignVoxelFilterParams p;
+  p.threshold = static_cast<float>(this->Threshold);
+  p.axis = this->Axis;
+  p.filters = static_cast<unsigned>(this->Filters);
+  p.maxIterations = this->MaxIterations;
+  p.boundary = this->Boundary == BOUNDARY_FREE ? lvdif::SvfBoundary::Free : lvdif::SvfBoundary::Outside;
+  p.device = vtkLVDIFVolumeBridge::ToDevice(this->Device);
+  return p;
+}
+
+int vtkSignVoxelFilter::FilterSparse(vtkSparseDictionaryVolume* input, vtkSparseDictionaryVolume* output)
+{
+  if (!input->HasVolume())
+  {
+    vtkErrorMacro("the input sparse volume holds no dictionary volume");
+    return 0;
+  }
+  lvdif::SignVoxelFilterStats st;
+  vtkLVDIFInterrupter interrupter(this);
+  const bool ok = vtkLVDIFVolumeBridge::CallCore(this, [&] {
+    // a copy: VTK filters leave their input alone (the copy is as sparse as the input)
+    std::shared_ptr<lvdif::DictionaryVolume> volume(input->GetVolume()->clone());
+    st = lvdif::signVoxelFilter(*volume, this->CoreParams(), interrupter);
+    output->SetVolume(std::move(volume));
+    output->SetPartitionColors(input->GetPartitionColors());
+  });
+  if (!ok)
+  {
+    output->Initialize();
+    return 0;
+  }
+  AddStats(output, st);
   this->UpdateProgress(1.0);
   return 1;
 }

@@ -1,6 +1,14 @@
 /**
  * @class   vtkSignVoxelFilter
- * @brief   repairs wrong signs of a signed distance image (LVDIF's SVF1..SVF4)
+ * @brief   repairs wrong signs of a sparse volume or signed distance image (LVDIF's SVF1..SVF4)
+ *
+ * Input, one of:
+ * - a vtkSparseDictionaryVolume: filtered chunk-aware by Core
+ *   (lvdif::signVoxelFilter on the dictionary volume: uniform chunks stay
+ *   collapsed, no dense copy) into a copy of the Core volume (the input is not
+ *   modified); the output is a vtkSparseDictionaryVolume whose dirty flags
+ *   mark the chunks whose signs changed;
+ * - a vtkImageData, as follows.
  *
  * Runs the sign voxel filters of Wang et al. 2023 ("LVDIF", Sect. 3.2) on one
  * float point array of a vtkImageData (chosen with SetInputArrayToProcess;
@@ -23,13 +31,19 @@
 #define vtkSignVoxelFilter_h
 
 #include "lvdifFiltersSDFModule.h"
-#include "vtkImageAlgorithm.h"
+#include "vtkDataObjectAlgorithm.h"
 
-class LVDIFFILTERSSDF_EXPORT vtkSignVoxelFilter : public vtkImageAlgorithm
+class vtkSparseDictionaryVolume;
+namespace lvdif
+{
+struct SignVoxelFilterParams;
+}
+
+class LVDIFFILTERSSDF_EXPORT vtkSignVoxelFilter : public vtkDataObjectAlgorithm
 {
 public:
   static vtkSignVoxelFilter* New();
-  vtkTypeMacro(vtkSignVoxelFilter, vtkImageAlgorithm);
+  vtkTypeMacro(vtkSignVoxelFilter, vtkDataObjectAlgorithm);
   void PrintSelf(ostream& os, vtkIndent indent) override;
 
   enum
@@ -71,6 +85,18 @@ public:
   ///@}
 
   ///@{
+  /// One filter of the mask on or off (ParaView's checkboxes set these).
+  void SetUseSVF1(bool on) { this->SetFilterBit(SVF1, on); }
+  bool GetUseSVF1() { return (this->Filters & SVF1) != 0; }
+  void SetUseSVF2(bool on) { this->SetFilterBit(SVF2, on); }
+  bool GetUseSVF2() { return (this->Filters & SVF2) != 0; }
+  void SetUseSVF3(bool on) { this->SetFilterBit(SVF3, on); }
+  bool GetUseSVF3() { return (this->Filters & SVF3) != 0; }
+  void SetUseSVF4(bool on) { this->SetFilterBit(SVF4, on); }
+  bool GetUseSVF4() { return (this->Filters & SVF4) != 0; }
+  ///@}
+
+  ///@{
   /// SVF2/SVF3 iterations per plane at most; 0 = automatic (default).
   vtkSetClampMacro(MaxIterations, int, 0, VTK_INT_MAX);
   vtkGetMacro(MaxIterations, int);
@@ -93,8 +119,14 @@ protected:
   vtkSignVoxelFilter();
   ~vtkSignVoxelFilter() override;
 
+  int FillInputPortInformation(int port, vtkInformation* info) override;
+  int RequestDataObject(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
   int RequestUpdateExtent(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
   int RequestData(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
+  void SetFilterBit(int bit, bool on) { this->SetFilters(on ? (this->Filters | bit) : (this->Filters & ~bit)); }
+
+  lvdif::SignVoxelFilterParams CoreParams() const;
+  int FilterSparse(vtkSparseDictionaryVolume* input, vtkSparseDictionaryVolume* output);
 
   double Threshold = 2.0;
   int Axis = 0;

@@ -4,20 +4,162 @@
 #include "lvdif/Memory.h"
 
 #include "vtkAlgorithm.h"
+#include "vtkCellArray.h"
+#include "vtkIdTypeArray.h"
+#include "vtkPoints.h"
+#include "vtkPolyData.h"
 #include "vtkDataObject.h"
+#include "vtkDataSet.h"
 #include "vtkFloatArray.h"
 #include "vtkImageData.h"
 #include "vtkInformation.h"
+#include "vtkInformationDoubleVectorKey.h"
+#include "vtkInformationInformationVectorKey.h"
+#include "vtkInformationVector.h"
+#include "vtkNew.h"
 #include "vtkPointData.h"
+#include "vtkSMPThreadLocal.h"
+#include "vtkSMPTools.h"
 #include "vtkStreamingDemandDrivenPipeline.h"
+#include "vtkSparseDictionaryVolume.h"
 #include "vtkUnsignedCharArray.h"
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
+#include <cstring>
 #include <sstream>
 
 namespace vtkLVDIFVolumeBridge
 {
+
+lvdif::Device ToDevice(int device)
+{
+  return device == 1 ? lvdif::Device::Cpu : (device == 2 ? lvdif::Device::Cuda : lvdif::Device::Auto);
+}
+
+bool CallCore(vtkAlgorithm* algorithm, const std::function<void()>& work, const std::string& context, bool* cancelled)
+{
+  if (cancelled) *cancelled = false;
+  try
+  {
+    work();
+    return true;
+  }
+  catch (const lvdif::Error& e)
+  {
+    if (e.code() == lvdif::ErrorCode::Cancelled)
+    {
+      if (cancelled) *cancelled = true;
+      return false;
+    }
+    vtkErrorWithObjectMacro(algorithm, << context << e.what());
+    return false;
+  }
+}
+
+lvdif::TriangleMesh ToTriangleMesh(vtkPolyData* pd, bool withNormals)
+{
+  lvdif::TriangleMesh m;
+  const vtkIdType np = pd->GetNumberOfPoints();
+  m.points.resize(static_cast<std::size_t>(np));
+  for (vtkIdType i = 0; i < np; ++i)
+  {
+    double p[3];
+    pd->GetPoint(i, p);
+    m.points[i] = { static_cast<float>(p[0]), static_cast<float>(p[1]), static_cast<float>(p[2]) };
+  }
+  vtkDataArray* normals = pd->GetPointData()->GetNormals();
+  if (withNormals && normals && normals->GetNumberOfComponents() == 3 && normals->GetNumberOfTuples() == np)
+  {
+    m.normals.resize(static_cast<std::size_t>(np));
+    for (vtkIdType i = 0; i < np; ++i)
+    {
+      double n[3];
+      normals->GetTuple(i, n);
+      m.normals[i] = { static_cast<float>(n[0]), static_cast<float>(n[1]), static_cast<float>(n[2]) };
+    }
+  }
+  auto id = [](vtkIdType v) { return static_cast<std::uint32_t>(v); };
+  vtkIdType n;
+  const vtkIdType* ids;
+  vtkCellArray* polys = pd->GetPolys();
+  for (polys->InitTraversal(); polys->GetNextCell(n, ids);)
+  {
+    for (vtkIdType k = 1; k + 1 < n; ++k)
+    {
+      m.triangles.push_back({ id(ids[0]), id(ids[k]), id(ids[k + 1]) });
+    }
+  }
+  vtkCellArray* strips = pd->GetStrips();
+  for (strips->InitTraversal(); strips->GetNextCell(n, ids);)
+  {
+    for (vtkIdType k = 0; k + 2 < n; ++k)
+    {
+      if (k % 2 == 0)
+        m.triangles.push_back({ id(ids[k]), id(ids[k + 1]), id(ids[k + 2]) });
+      else
+        m.triangles.push_back({ id(ids[k + 1]), id(ids[k]), id(ids[k + 2]) });
+    }
+  }
+  return m;
+}
+
+vtkSmartPointer<vtkPolyData> ToPolyData(const lvdif::TriangleMesh& mesh)
+{
+  auto output = vtkSmartPointer<vtkPolyData>::New();
+  vtkNew<vtkPoints> points;
+  points->SetDataTypeToFloat();
+  points->SetNumberOfPoints(static_cast<vtkIdType>(mesh.points.size()));
+  std::memcpy(vtkFloatArray::SafeDownCast(points->GetData())->GetPointer(0), mesh.points.data(),
+    mesh.points.size() * sizeof(lvdif::Vec3f));
+  const vtkIdType n = static_cast<vtkIdType>(mesh.triangles.size());
+  vtkNew<vtkIdTypeArray> offsets, connectivity;
+  offsets->SetNumberOfValues(n + 1);
+  connectivity->SetNumberOfValues(3 * n);
+  for (vtkIdType t = 0; t < n; ++t)
+  {
+    offsets->SetValue(t, 3 * t);
+    for (int c = 0; c < 3; ++c)
+    {
+      connectivity->SetValue(3 * t + c, mesh.triangles[t][c]);
+    }
+  }
+  offsets->SetValue(n, 3 * n);
+  vtkNew<vtkCellArray> polys;
+  polys->SetData(offsets, connectivity);
+  output->SetPoints(points);
+  output->SetPolys(polys);
+  if (!mesh.normals.empty())
+  {
+    vtkNew<vtkFloatArray> normals;
+    normals->SetName("Normals");
+    normals->SetNumberOfComponents(3);
+    normals->SetNumberOfTuples(static_cast<vtkIdType>(mesh.normals.size()));
+    std::memcpy(normals->GetPointer(0), mesh.normals.data(), mesh.normals.size() * sizeof(lvdif::Vec3f));
+    output->GetPointData()->SetNormals(normals);
+  }
+  return output;
+}
+
+void EnsureSparseOutput(vtkInformationVector* outputVector)
+{
+  vtkInformation* outInfo = outputVector->GetInformationObject(0);
+  if (!vtkSparseDictionaryVolume::GetData(outInfo))
+  {
+    vtkNew<vtkSparseDictionaryVolume> out;
+    outInfo->Set(vtkDataObject::DATA_OBJECT(), out);
+  }
+}
+
+void SetSparseInformation(vtkInformation* outInfo, const lvdif::VolumeOptions& o)
+{
+  int whole[6] = { 0, static_cast<int>(o.dims[0] - 1), 0, static_cast<int>(o.dims[1] - 1), 0,
+    static_cast<int>(o.dims[2] - 1) };
+  outInfo->Set(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT(), whole, 6);
+  outInfo->Set(vtkDataObject::ORIGIN(), o.origin.data(), 3);
+  outInfo->Set(vtkDataObject::SPACING(), o.spacing.data(), 3);
+}
 
 void FillImage(const lvdif::DictionaryVolume& volume, const int extentIn[6], vtkImageData* image, bool withColor)
 {
@@ -38,14 +180,14 @@ void FillImage(const lvdif::DictionaryVolume& volume, const int extentIn[6], vtk
   image->SetSpacing(o.spacing[0], o.spacing[1], o.spacing[2]);
 
   vtkNew<vtkFloatArray> sdf;
-  sdf->SetName("sdf");
+  sdf->SetName(SdfArrayName);
   sdf->SetNumberOfTuples(static_cast<vtkIdType>(n));
   float* s = sdf->GetPointer(0);
   vtkNew<vtkUnsignedCharArray> rgba;
   unsigned char* c = nullptr;
   if (withColor)
   {
-    rgba->SetName("rgba");
+    rgba->SetName(ColorArrayName);
     rgba->SetNumberOfComponents(4);
     rgba->SetNumberOfTuples(static_cast<vtkIdType>(n));
     c = rgba->GetPointer(0);
@@ -72,12 +214,42 @@ void FillImage(const lvdif::DictionaryVolume& volume, const int extentIn[6], vtk
       }
     }
   }
+  StoreRange(sdf); // ParaView's data information then needs no range pass of its own
   image->GetPointData()->AddArray(sdf);
-  image->GetPointData()->SetActiveScalars("sdf");
+  image->GetPointData()->SetActiveScalars(SdfArrayName);
   if (withColor)
   {
     image->GetPointData()->AddArray(rgba);
   }
+}
+
+std::unique_ptr<lvdif::DictionaryVolume> CropVolume(const lvdif::DictionaryVolume& v, const int ext[6])
+{
+  lvdif::VolumeOptions o = v.options();
+  o.memoryLimit = 0;
+  for (int a = 0; a < 3; ++a)
+  {
+    lvdif::require(ext[2 * a] >= 0 && ext[2 * a + 1] < v.dims()[a] && ext[2 * a] <= ext[2 * a + 1],
+      "the extent to crop is empty or outside the volume");
+    o.dims[a] = ext[2 * a + 1] - ext[2 * a] + 1;
+    o.origin[a] += ext[2 * a] * o.spacing[a];
+  }
+  auto out = std::make_unique<lvdif::DictionaryVolume>(o);
+  out->colors() = v.colors(); // the same keys
+  const std::int64_t n = out->chunkCount();
+#pragma omp parallel for schedule(dynamic, 4)
+  for (std::int64_t id = 0; id < n; ++id)
+  {
+    const lvdif::VoxelBox b = out->chunkBox(id);
+    lvdif::Voxel* d = out->expandChunk(id);
+    for (std::int64_t z = b.lo[2]; z <= b.hi[2]; ++z)
+      for (std::int64_t y = b.lo[1]; y <= b.hi[1]; ++y)
+        for (std::int64_t x = b.lo[0]; x <= b.hi[0]; ++x)
+          d[out->localIndex(x, y, z)] = v.get(x + ext[0], y + ext[2], z + ext[4]);
+    out->tryCollapseChunk(id);
+  }
+  out->takeDirtyChunks();
+  return out;
 }
 
 void SetImageInformation(vtkInformation* outInfo, const lvdif::VolumeOptions& o)
@@ -100,12 +272,12 @@ std::string WriterInput(vtkImageData* image, const std::string& fileName, bool w
   {
     return "no file name: call SetFileName() first";
   }
-  sdf = image ? image->GetPointData()->GetArray("sdf") : nullptr;
+  sdf = image ? image->GetPointData()->GetArray(SdfArrayName) : nullptr;
   if (!sdf)
   {
     return "the input has no point array named 'sdf'";
   }
-  rgba = withColor ? image->GetPointData()->GetArray("rgba") : nullptr;
+  rgba = withColor ? image->GetPointData()->GetArray(ColorArrayName) : nullptr;
   return std::string();
 }
 
@@ -136,6 +308,93 @@ lvdif::FloatGridView FloatView(vtkImageData* image, vtkDataArray* array)
     view.data = f->GetPointer(0);
   }
   return view;
+}
+
+vtkDataArray* SdfArray(vtkInformation* selection, vtkDataSet* input, vtkDataArray* selected)
+{
+  if (selected || !input)
+  {
+    return selected;
+  }
+  const char* name =
+    selection && selection->Has(vtkDataObject::FIELD_NAME()) ? selection->Get(vtkDataObject::FIELD_NAME()) : nullptr;
+  if (name && *name)
+  {
+    return nullptr; // a named array that is not there: the caller's error names it
+  }
+  vtkDataArray* sdf = input->GetPointData()->GetArray("sdf");
+  return sdf ? sdf : input->GetPointData()->GetScalars();
+}
+
+std::string DenseImageWarning(std::uint64_t bytes, const int extent[6], std::uint64_t limit, const char* advice)
+{
+  constexpr std::uint64_t Large = std::uint64_t(1) << 30;
+  if (bytes < std::min(Large, limit / 2))
+  {
+    return std::string();
+  }
+  std::ostringstream msg;
+  msg << "the dense image of " << (extent[1] - extent[0] + 1) << " x " << (extent[3] - extent[2] + 1) << " x "
+      << (extent[5] - extent[4] + 1) << " points needs " << lvdif::formatBytes(bytes) << " (memory limit "
+      << lvdif::formatBytes(limit) << ", LVDIF_MEMORY_LIMIT)";
+  if (advice && *advice)
+  {
+    msg << "; " << advice;
+  }
+  return msg.str();
+}
+
+void StoreRange(vtkFloatArray* array)
+{
+  if (!array || array->GetNumberOfComponents() != 1 || array->GetNumberOfTuples() == 0)
+  {
+    return;
+  }
+  array->Modified(); // written through the pointer: drop whatever was cached before
+  const float* v = array->GetPointer(0);
+  struct MinMax
+  {
+    float lo = std::numeric_limits<float>::infinity();
+    float hi = -std::numeric_limits<float>::infinity();
+    bool finite = true;
+  };
+  vtkSMPThreadLocal<MinMax> local;
+  vtkSMPTools::For(0, array->GetNumberOfTuples(), [&](vtkIdType begin, vtkIdType end) {
+    MinMax& m = local.Local();
+    float lo = m.lo, hi = m.hi;
+    bool finite = true;
+    for (vtkIdType i = begin; i < end; ++i)
+    {
+      const float x = v[i];
+      lo = std::min(lo, x);
+      hi = std::max(hi, x);
+      finite &= (x - x == 0.0f); // false for NaN and +-inf
+    }
+    m.lo = lo;
+    m.hi = hi;
+    m.finite = m.finite && finite;
+  });
+  MinMax all;
+  for (const MinMax& m : local)
+  {
+    all.lo = std::min(all.lo, m.lo);
+    all.hi = std::max(all.hi, m.hi);
+    all.finite = all.finite && m.finite;
+  }
+  if (!all.finite)
+  {
+    return;
+  }
+  const double range[2] = { all.lo, all.hi };
+  vtkInformation* info = array->GetInformation();
+  for (vtkInformationInformationVectorKey* key :
+    { vtkAbstractArray::PER_COMPONENT(), vtkAbstractArray::PER_FINITE_COMPONENT() })
+  {
+    vtkNew<vtkInformationVector> perComponent;
+    perComponent->SetNumberOfInformationObjects(1);
+    perComponent->GetInformationObject(0)->Set(vtkDataArray::COMPONENT_RANGE(), range, 2);
+    info->Set(key, perComponent);
+  }
 }
 
 std::unique_ptr<lvdif::DictionaryVolume> VolumeFromImage(

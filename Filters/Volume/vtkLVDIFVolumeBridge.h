@@ -12,17 +12,58 @@
 
 #include "lvdif/DenseGrid.h"
 #include "lvdif/DictionaryVolume.h"
+#include "lvdif/TriangleMesh.h"
 #include "lvdifFiltersVolumeModule.h"
 
+#include "lvdif/Cuda.h"
+
+#include "vtkSmartPointer.h"
+
+#include <functional>
 #include <memory>
 #include <string>
 
+class vtkAlgorithm;
 class vtkDataArray;
+class vtkDataSet;
+class vtkFloatArray;
 class vtkImageData;
 class vtkInformation;
+class vtkInformationVector;
+class vtkPolyData;
 
 namespace vtkLVDIFVolumeBridge
 {
+/// The project's array names (README "Conventions").
+constexpr const char* SdfArrayName = "sdf";
+constexpr const char* ColorArrayName = "rgba";
+
+/// The filters' Device property (0 auto, 1 CPU, 2 CUDA) as lvdif's Device.
+LVDIFFILTERSVOLUME_EXPORT lvdif::Device ToDevice(int device);
+
+/// Calls Core: returns true on success; on lvdif::Error reports it with
+/// vtkErrorMacro's text on `algorithm` (prefixed by `context` when given) and
+/// returns false. A cancel (AbortExecute through vtkLVDIFInterrupter) returns
+/// false without an error, and sets `cancelled` when given.
+LVDIFFILTERSVOLUME_EXPORT bool CallCore(vtkAlgorithm* algorithm, const std::function<void()>& work,
+  const std::string& context = std::string(), bool* cancelled = nullptr);
+
+/// A vtkPolyData's polygons (fan-triangulated: exact for convex polygons) and
+/// triangle strips (split keeping the strip's orientation) as an lvdif mesh;
+/// with withNormals, its 3-component point normals too.
+LVDIFFILTERSVOLUME_EXPORT lvdif::TriangleMesh ToTriangleMesh(vtkPolyData* polyData, bool withNormals);
+
+/// An lvdif mesh as vtkPolyData: float points, triangles, `Normals` when it has them.
+LVDIFFILTERSVOLUME_EXPORT vtkSmartPointer<vtkPolyData> ToPolyData(const lvdif::TriangleMesh& mesh);
+
+/// RequestDataObject of a filter whose output port 0 is a vtkSparseDictionaryVolume.
+LVDIFFILTERSVOLUME_EXPORT void EnsureSparseOutput(vtkInformationVector* outputVector);
+
+/// What a sparse volume producer announces in RequestInformation: the volume's
+/// whole extent, origin and spacing (read by vtkSparseVolumeToImage and the
+/// piece logic of the consumers).
+LVDIFFILTERSVOLUME_EXPORT void SetSparseInformation(vtkInformation* outInfo, const lvdif::VolumeOptions& options);
+
 /// Writes the voxels of `extent` (clipped to the volume) into `image`:
 /// extent, origin, spacing, `sdf` and, if withColor, `rgba`.
 LVDIFFILTERSVOLUME_EXPORT void FillImage(
@@ -35,6 +76,12 @@ LVDIFFILTERSVOLUME_EXPORT void FillImage(
 LVDIFFILTERSVOLUME_EXPORT std::unique_ptr<lvdif::DictionaryVolume> VolumeFromImage(
   vtkImageData* image, vtkDataArray* sdf, vtkDataArray* rgba, lvdif::VolumeOptions options);
 
+/// The voxels of `extent` (inclusive point indices, inside the volume) as a
+/// volume of their own: the same chunk edge, band, dictionaries and keys
+/// (no re-encoding), origin moved to the extent's first point.
+LVDIFFILTERSVOLUME_EXPORT std::unique_ptr<lvdif::DictionaryVolume> CropVolume(
+  const lvdif::DictionaryVolume& volume, const int extent[6]);
+
 /// What an image source of this volume announces in RequestInformation: whole
 /// extent, origin, spacing, CAN_PRODUCE_SUB_EXTENT and a float `sdf` scalar.
 LVDIFFILTERSVOLUME_EXPORT void SetImageInformation(vtkInformation* outInfo, const lvdif::VolumeOptions& options);
@@ -46,12 +93,34 @@ LVDIFFILTERSVOLUME_EXPORT void SetImageInformation(vtkInformation* outInfo, cons
 LVDIFFILTERSVOLUME_EXPORT std::string WriterInput(vtkImageData* image, const std::string& fileName,
   bool withColor, vtkDataArray*& sdf, vtkDataArray*& rgba, bool& missingFileName);
 
+/// What a filter or reader says (vtkWarningMacro) before it allocates a dense
+/// image of `bytes` for `extent`: the size, the memory limit and what to do;
+/// "" for images under 1 GiB and under half the limit. Above the limit the
+/// allocation itself is refused (lvdif::requireMemory).
+LVDIFFILTERSVOLUME_EXPORT std::string DenseImageWarning(
+  std::uint64_t bytes, const int extent[6], std::uint64_t limit, const char* advice);
+
 /// Geometry of an image's point grid (dims from its extent; origin moved to the extent's first point).
 LVDIFFILTERSVOLUME_EXPORT lvdif::GridGeometry Geometry(vtkImageData* image);
 
 /// A view of a float array's storage when it is a contiguous single-component
 /// vtkFloatArray covering the image's points; data is nullptr otherwise.
 LVDIFFILTERSVOLUME_EXPORT lvdif::FloatGridView FloatView(vtkImageData* image, vtkDataArray* array);
+
+/// The SDF array a filter processes: `selected` (its GetInputArrayToProcess)
+/// when found; when the selection names no array (`selection` is the
+/// filter's GetInputArrayInformation: ParaView sends an empty name for a
+/// filter chained to one not yet updated), the point array `sdf`, else the
+/// active point scalars; nullptr when a named array is missing.
+LVDIFFILTERSVOLUME_EXPORT vtkDataArray* SdfArray(vtkInformation* selection, vtkDataSet* input, vtkDataArray* selected);
+
+/// Computes the range of a 1-component float array written through its raw
+/// pointer and stores it as the array's cached range and finite range (what
+/// GetRange/GetFiniteRange return until the next Modified()). ParaView asks
+/// every new output for both: VTK's generic pass takes about 1 s each for
+/// 10^8 values, this one pass a fraction of that. Nothing is cached when a
+/// value is not finite (VTK then computes as usual).
+LVDIFFILTERSVOLUME_EXPORT void StoreRange(vtkFloatArray* array);
 }
 
 #endif

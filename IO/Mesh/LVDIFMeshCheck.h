@@ -1,4 +1,4 @@
-// Mesh health report for triangle soups (issue 3: OpenMesh for mesh
+// Mesh health report for triangle soups (OpenMesh for mesh
 // processing). Private to LVDIF::IOMesh so that OpenMesh stays out of Core/
 // and out of public (Python-wrapped) headers.
 //

@@ -1,5 +1,7 @@
 #include "vtkLVDIFMeshReader.h"
 
+#include "vtkLVDIFVolumeBridge.h"
+
 #include "lvdif/MeshFile.h"
 
 #include "vtkCellArray.h"
@@ -59,37 +61,7 @@ int vtkLVDIFMeshReader::RequestData(vtkInformation*, vtkInformationVector**, vtk
   }
   this->UpdateProgress(0.7);
 
-  vtkNew<vtkPoints> points;
-  points->SetDataTypeToFloat();
-  points->SetNumberOfPoints(static_cast<vtkIdType>(mesh.points.size()));
-  std::memcpy(vtkFloatArray::SafeDownCast(points->GetData())->GetPointer(0), mesh.points.data(),
-    mesh.points.size() * sizeof(lvdif::Vec3f));
-  const vtkIdType n = static_cast<vtkIdType>(mesh.triangles.size());
-  vtkNew<vtkIdTypeArray> offsets, connectivity;
-  offsets->SetNumberOfValues(n + 1);
-  connectivity->SetNumberOfValues(3 * n);
-  for (vtkIdType t = 0; t < n; ++t)
-  {
-    offsets->SetValue(t, 3 * t);
-    for (int c = 0; c < 3; ++c)
-    {
-      connectivity->SetValue(3 * t + c, mesh.triangles[t][c]);
-    }
-  }
-  offsets->SetValue(n, 3 * n);
-  vtkNew<vtkCellArray> polys;
-  polys->SetData(offsets, connectivity);
-  output->SetPoints(points);
-  output->SetPolys(polys);
-  if (!mesh.normals.empty())
-  {
-    vtkNew<vtkFloatArray> normals;
-    normals->SetName("Normals");
-    normals->SetNumberOfComponents(3);
-    normals->SetNumberOfTuples(static_cast<vtkIdType>(mesh.normals.size()));
-    std::memcpy(normals->GetPointer(0), mesh.normals.data(), mesh.normals.size() * sizeof(lvdif::Vec3f));
-    output->GetPointData()->SetNormals(normals);
-  }
+  output->ShallowCopy(vtkLVDIFVolumeBridge::ToPolyData(mesh));
   this->UpdateProgress(1.0);
   return 1;
 }

@@ -3,6 +3,7 @@
 #include "LVDIFOpenVDB.h"
 #include "vtkLVDIFInterrupter.h"
 #include "vtkLVDIFVolumeBridge.h"
+#include "vtkSparseDictionaryVolume.h"
 
 #include "vtkDataObject.h"
 #include "vtkImageData.h"
@@ -17,7 +18,7 @@ vtkStandardNewMacro(vtkOpenVDBLevelSetReader);
 
 struct vtkOpenVDBLevelSetReader::Internals
 {
-  std::unique_ptr<lvdif::DictionaryVolume> Volume;
+  std::shared_ptr<lvdif::DictionaryVolume> Volume;
   vtkMTimeType ReadTime = 0; // this->GetMTime() when Volume was read
   std::string ReadFile;
   long long FileStamp = -1;
@@ -91,7 +92,7 @@ int vtkOpenVDBLevelSetReader::RequestInformation(
     options.gridName = this->GridName;
     options.colorName = this->WithColor ? this->ColorGridName : std::string();
     options.padding = this->Padding;
-    vtkLVDIFInterrupter interrupter(this, 0.0, 0.9);
+    vtkLVDIFInterrupter interrupter(this);
     try
     {
       in.Volume = lvdif::vdb::importLevelSet(this->FileName, options, interrupter);
@@ -109,32 +110,33 @@ int vtkOpenVDBLevelSetReader::RequestInformation(
     in.FileStamp = stamp;
   }
   const lvdif::VolumeOptions& o = in.Volume->options();
-  vtkLVDIFVolumeBridge::SetImageInformation(outputVector->GetInformationObject(0), o);
+  vtkLVDIFVolumeBridge::SetSparseInformation(outputVector->GetInformationObject(0), o);
+  return 1;
+}
+
+int vtkOpenVDBLevelSetReader::FillOutputPortInformation(int, vtkInformation* info)
+{
+  info->Set(vtkDataObject::DATA_TYPE_NAME(), "vtkSparseDictionaryVolume");
+  return 1;
+}
+
+int vtkOpenVDBLevelSetReader::RequestDataObject(vtkInformation*, vtkInformationVector**, vtkInformationVector* out)
+{
+  vtkLVDIFVolumeBridge::EnsureSparseOutput(out);
   return 1;
 }
 
 int vtkOpenVDBLevelSetReader::RequestData(
   vtkInformation*, vtkInformationVector**, vtkInformationVector* outputVector)
 {
-  vtkInformation* outInfo = outputVector->GetInformationObject(0);
-  vtkImageData* output = vtkImageData::GetData(outInfo);
+  vtkSparseDictionaryVolume* output = vtkSparseDictionaryVolume::GetData(outputVector);
   if (!this->Internal->Volume)
   {
     output->Initialize();
     return 0;
   }
-  int ext[6];
-  outInfo->Get(vtkStreamingDemandDrivenPipeline::UPDATE_EXTENT(), ext);
-  try
-  {
-    vtkLVDIFVolumeBridge::FillImage(*this->Internal->Volume, ext, output, this->WithColor);
-  }
-  catch (const lvdif::Error& e)
-  {
-    output->Initialize();
-    vtkErrorMacro(<< "cannot read '" << this->FileName << "': " << e.what());
-    return 0;
-  }
+  output->SetPartitionColors(this->WithColor);
+  output->SetVolume(this->Internal->Volume);
   this->UpdateProgress(1.0);
   return 1;
 }

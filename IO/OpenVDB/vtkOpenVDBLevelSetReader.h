@@ -1,6 +1,6 @@
 /**
  * @class   vtkOpenVDBLevelSetReader
- * @brief   reads a level set from an OpenVDB file (.vdb) as vtkImageData
+ * @brief   reads a level set from an OpenVDB file (.vdb) as a vtkSparseDictionaryVolume
  *
  * Reads one FloatGrid (GridName; default: the file's first grid of class
  * level set) with an axis-aligned, uniformly scaled transform. The output
@@ -13,22 +13,23 @@
  * (default `rgba`, packed r | g<<8 | b<<16 | a<<24) with the same transform
  * exists and WithColor is on, its active voxels colour the `rgba` array; others
  * get the default colour. Values pass through the SDF dictionary (see
- * docs/FORMAT.md). The grid is read once in RequestInformation; sub-extents
- * are served from it.
+ * docs/FORMAT.md). The grid is read once in RequestInformation into a sparse
+ * dictionary volume, the output (shared with the reader's cache: filters that
+ * change it work on a copy); vtkSparseVolumeToImage gives the dense image.
  */
 #ifndef vtkOpenVDBLevelSetReader_h
 #define vtkOpenVDBLevelSetReader_h
 
 #include "lvdifIOOpenVDBModule.h"
-#include "vtkImageAlgorithm.h"
+#include "vtkDataObjectAlgorithm.h"
 
 #include <string>
 
-class LVDIFIOOPENVDB_EXPORT vtkOpenVDBLevelSetReader : public vtkImageAlgorithm
+class LVDIFIOOPENVDB_EXPORT vtkOpenVDBLevelSetReader : public vtkDataObjectAlgorithm
 {
 public:
   static vtkOpenVDBLevelSetReader* New();
-  vtkTypeMacro(vtkOpenVDBLevelSetReader, vtkImageAlgorithm);
+  vtkTypeMacro(vtkOpenVDBLevelSetReader, vtkDataObjectAlgorithm);
   void PrintSelf(ostream& os, vtkIndent indent) override;
 
   vtkSetStdStringFromCharMacro(FileName);
@@ -70,6 +71,8 @@ protected:
   vtkOpenVDBLevelSetReader();
   ~vtkOpenVDBLevelSetReader() override;
 
+  int FillOutputPortInformation(int port, vtkInformation* info) override;
+  int RequestDataObject(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
   int RequestInformation(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
   int RequestData(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
 

@@ -3,6 +3,7 @@
 #include "LVDIFOpenVDB.h"
 #include "vtkLVDIFInterrupter.h"
 #include "vtkLVDIFVolumeBridge.h"
+#include "vtkSparseDictionaryVolume.h"
 
 #include "vtkDataArray.h"
 #include "vtkErrorCode.h"
@@ -23,12 +24,36 @@ vtkImageData* vtkOpenVDBLevelSetWriter::GetInput()
 
 int vtkOpenVDBLevelSetWriter::FillInputPortInformation(int, vtkInformation* info)
 {
-  info->Set(vtkAlgorithm::INPUT_REQUIRED_DATA_TYPE(), "vtkImageData");
+  info->Remove(vtkAlgorithm::INPUT_REQUIRED_DATA_TYPE());
+  info->Append(vtkAlgorithm::INPUT_REQUIRED_DATA_TYPE(), "vtkImageData");
+  info->Append(vtkAlgorithm::INPUT_REQUIRED_DATA_TYPE(), "vtkSparseDictionaryVolume");
   return 1;
 }
 
 void vtkOpenVDBLevelSetWriter::WriteData()
 {
+  if (auto* sparse = vtkSparseDictionaryVolume::SafeDownCast(this->Superclass::GetInput()))
+  {
+    // the volume as it is (its band; HalfWidth caps the exported narrow band)
+    if (this->FileName.empty() || !sparse->HasVolume())
+    {
+      vtkErrorMacro(<< (this->FileName.empty() ? "no file name: call SetFileName() first" : "the input holds no volume"));
+      this->SetErrorCode(this->FileName.empty() ? vtkErrorCode::NoFileNameError : vtkErrorCode::UnknownError);
+      return;
+    }
+    lvdif::vdb::ExportOptions exportOptions;
+    exportOptions.halfWidth = this->HalfWidth;
+    exportOptions.withColor = this->WithColor;
+    exportOptions.sdfName = this->GridName;
+    vtkLVDIFInterrupter interrupter(this);
+    if (!vtkLVDIFVolumeBridge::CallCore(
+          this, [&] { lvdif::vdb::exportLevelSet(*sparse->GetVolume(), this->FileName, exportOptions, interrupter); },
+          "cannot write '" + this->FileName + "': "))
+    {
+      this->SetErrorCode(vtkErrorCode::UnknownError);
+    }
+    return;
+  }
   vtkImageData* image = this->GetInput();
   vtkDataArray *sdf, *rgba;
   bool missingFileName;

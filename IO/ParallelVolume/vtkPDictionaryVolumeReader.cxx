@@ -2,6 +2,7 @@
 
 #include "LVDIFVolumeIndex.h"
 #include "vtkDictionaryVolumeReader.h"
+#include "vtkSparseVolumeToImage.h"
 
 #include "lvdif/Error.h"
 
@@ -121,14 +122,18 @@ int vtkPDictionaryVolumeReader::RequestData(
         return 0;
       }
     }
-    if (!r->UpdateExtent(local))
+    vtkNew<vtkSparseVolumeToImage> decode; // the piece's part of the request only
+    decode->SetInputConnection(r->GetOutputPort());
+    decode->SetWithColor(this->WithColor);
+    decode->UpdateInformation();
+    if (!decode->UpdateExtent(local))
     {
       vtkErrorMacro("cannot read piece file '" << piece.file << "'");
       output->Initialize();
       return 0;
     }
     ++this->PiecesRead;
-    vtkImageData* img = r->GetOutput();
+    vtkImageData* img = decode->GetOutput();
     vtkPointData* src = img->GetPointData();
     vtkPointData* dst = output->GetPointData();
     for (int q = 0; q < src->GetNumberOfArrays(); ++q)

@@ -2,6 +2,9 @@
 
 #include "LVDIFVolumeIndex.h"
 #include "vtkDictionaryVolumeWriter.h"
+#include "vtkLVDIFInterrupter.h"
+#include "vtkLVDIFVolumeBridge.h"
+#include "vtkSparseDictionaryVolume.h"
 
 #include "lvdif/Error.h"
 #include "lvdif/VolumeFile.h"
@@ -41,7 +44,9 @@ vtkImageData* vtkPDictionaryVolumeWriter::GetInput()
 
 int vtkPDictionaryVolumeWriter::FillInputPortInformation(int, vtkInformation* info)
 {
-  info->Set(vtkAlgorithm::INPUT_REQUIRED_DATA_TYPE(), "vtkImageData");
+  info->Remove(vtkAlgorithm::INPUT_REQUIRED_DATA_TYPE());
+  info->Append(vtkAlgorithm::INPUT_REQUIRED_DATA_TYPE(), "vtkImageData");
+  info->Append(vtkAlgorithm::INPUT_REQUIRED_DATA_TYPE(), "vtkSparseDictionaryVolume");
   return 1;
 }
 
@@ -85,6 +90,23 @@ vtkTypeBool vtkPDictionaryVolumeWriter::ProcessRequest(
   return this->Superclass::ProcessRequest(request, inputVector, outputVector);
 }
 
+bool vtkPDictionaryVolumeWriter::WritePiece(vtkSparseDictionaryVolume* sparse, const int ext[6])
+{
+  // the piece's voxels as they are stored (keys copied, nothing re-encoded)
+  const std::string path =
+    lvdifvtk::directoryOf(this->FileName) + lvdifvtk::pieceFileName(this->FileName, this->Piece);
+  lvdif::VolumeFileWriteOptions options;
+  options.compressionLevel = this->CompressionLevel;
+  if (!this->VolumeName.empty()) options.metadata["name"] = this->VolumeName;
+  vtkLVDIFInterrupter interrupter(this);
+  return vtkLVDIFVolumeBridge::CallCore(
+    this,
+    [&] {
+      lvdif::saveVolume(*vtkLVDIFVolumeBridge::CropVolume(*sparse->GetVolume(), ext), path, options, interrupter);
+    },
+    "piece " + std::to_string(this->Piece) + ": ");
+}
+
 bool vtkPDictionaryVolumeWriter::WritePiece(vtkImageData* image, const int ext[6])
 {
   // crop: a producer may give more than the requested extent
@@ -115,6 +137,8 @@ bool vtkPDictionaryVolumeWriter::WritePiece(vtkImageData* image, const int ext[6
 void vtkPDictionaryVolumeWriter::WriteData()
 {
   vtkImageData* image = this->GetInput();
+  auto* sparse = vtkSparseDictionaryVolume::SafeDownCast(this->Superclass::GetInput());
+  if (sparse && !sparse->HasVolume()) sparse = nullptr;
   vtkInformation* inInfo = this->GetInputInformation(0, 0);
   if (this->FileName.empty())
   {
@@ -122,9 +146,9 @@ void vtkPDictionaryVolumeWriter::WriteData()
     this->SetErrorCode(vtkErrorCode::NoFileNameError);
     return;
   }
-  if (!image || !inInfo || !inInfo->Has(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT()))
+  if ((!image && !sparse) || !inInfo || (!sparse && !inInfo->Has(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT())))
   {
-    vtkErrorMacro("no input image");
+    vtkErrorMacro("no input image or sparse volume");
     this->SetErrorCode(vtkErrorCode::UnknownError);
     return;
   }
@@ -135,9 +159,22 @@ void vtkPDictionaryVolumeWriter::WriteData()
     return;
   }
   int whole[6], ext[6];
-  inInfo->Get(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT(), whole);
+  if (sparse)
+  {
+    for (int a = 0; a < 3; ++a) // the volume's own (0-based) indices
+    {
+      whole[2 * a] = 0;
+      whole[2 * a + 1] = static_cast<int>(sparse->GetVolume()->dims()[a] - 1);
+    }
+  }
+  else
+  {
+    inInfo->Get(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT(), whole);
+  }
   PieceExtent(whole, this->Piece, this->NumberOfPieces, ext);
-  int ok = lvdifvtk::extentIsValid(ext) ? (this->WritePiece(image, ext) ? 1 : 0) : 1;
+  int ok = !lvdifvtk::extentIsValid(ext) ? 1
+    : sparse                            ? (this->WritePiece(sparse, ext) ? 1 : 0)
+                                        : (this->WritePiece(image, ext) ? 1 : 0);
 
   vtkMultiProcessController* c = this->Controller;
   const bool collective = c && c->GetNumberOfProcesses() == this->NumberOfPieces && this->NumberOfPieces > 1;
@@ -157,8 +194,11 @@ void vtkPDictionaryVolumeWriter::WriteData()
     std::copy(whole, whole + 6, index.wholeExtent);
     // origin and spacing of the whole image (index 0), from the pipeline information
     double origin[3], spacing[3];
-    image->GetOrigin(origin);
-    image->GetSpacing(spacing);
+    for (int a = 0; a < 3; ++a)
+    {
+      origin[a] = sparse ? sparse->GetVolume()->options().origin[a] : image->GetOrigin()[a];
+      spacing[a] = sparse ? sparse->GetVolume()->options().spacing[a] : image->GetSpacing()[a];
+    }
     if (inInfo->Has(vtkDataObject::ORIGIN()))
       inInfo->Get(vtkDataObject::ORIGIN(), origin);
     if (inInfo->Has(vtkDataObject::SPACING()))

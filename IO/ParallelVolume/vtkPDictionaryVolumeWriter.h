@@ -1,7 +1,10 @@
 /**
  * @class   vtkPDictionaryVolumeWriter
- * @brief   writes a distributed image as one .lvdv file per piece plus a .lvdvp index
+ * @brief   writes a distributed image or sparse volume as one .lvdv file per piece plus a .lvdvp index
  *
+ * A vtkSparseDictionaryVolume input is cropped to the piece's extent keeping
+ * its keys and chunk edge (nothing re-encoded; BandWidth and ChunkEdge then
+ * do not apply).
  * Every process writes its piece (Piece of NumberOfPieces; ParaView sets both
  * from the MPI rank and size) as `<name>_<piece>.lvdv` beside FileName
  * (`<name>.lvdvp`), with vtkDictionaryVolumeWriter's encoding (BandWidth,
@@ -29,6 +32,7 @@
 #include <string>
 
 class vtkImageData;
+class vtkSparseDictionaryVolume;
 class vtkMultiProcessController;
 
 class LVDIFIOPARALLELVOLUME_EXPORT vtkPDictionaryVolumeWriter : public vtkWriter
@@ -93,6 +97,7 @@ protected:
 
 private:
   bool WritePiece(vtkImageData* image, const int extent[6]);
+  bool WritePiece(vtkSparseDictionaryVolume* sparse, const int extent[6]);
   vtkPDictionaryVolumeWriter(const vtkPDictionaryVolumeWriter&) = delete;
   void operator=(const vtkPDictionaryVolumeWriter&) = delete;
 };

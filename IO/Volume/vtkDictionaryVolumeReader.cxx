@@ -2,18 +2,23 @@
 
 #include "vtkLVDIFInterrupter.h"
 #include "vtkLVDIFVolumeBridge.h"
+#include "vtkSparseDictionaryVolume.h"
 
+#include "lvdif/Memory.h"
 #include "lvdif/VolumeFile.h"
 
 #include "vtkDataObject.h"
+#include "vtkExtentTranslator.h"
 #include "vtkImageData.h"
 #include "vtkInformation.h"
 #include "vtkInformationVector.h"
 #include "vtkObjectFactory.h"
 #include "vtkStreamingDemandDrivenPipeline.h"
 
+#include <algorithm>
 #include <cstring>
 #include <fstream>
+#include <string>
 
 vtkStandardNewMacro(vtkDictionaryVolumeReader);
 
@@ -46,6 +51,18 @@ std::string vtkDictionaryVolumeReader::GetMetadata(const std::string& key) const
   return it == this->Internal->Info.metadata.end() ? std::string() : it->second;
 }
 
+int vtkDictionaryVolumeReader::FillOutputPortInformation(int, vtkInformation* info)
+{
+  info->Set(vtkDataObject::DATA_TYPE_NAME(), "vtkSparseDictionaryVolume");
+  return 1;
+}
+
+int vtkDictionaryVolumeReader::RequestDataObject(vtkInformation*, vtkInformationVector**, vtkInformationVector* out)
+{
+  vtkLVDIFVolumeBridge::EnsureSparseOutput(out);
+  return 1;
+}
+
 int vtkDictionaryVolumeReader::RequestInformation(
   vtkInformation*, vtkInformationVector**, vtkInformationVector* outputVector)
 {
@@ -74,35 +91,73 @@ int vtkDictionaryVolumeReader::RequestInformation(
     }
   }
   vtkInformation* outInfo = outputVector->GetInformationObject(0);
-  vtkLVDIFVolumeBridge::SetImageInformation(outInfo, o);
+  vtkLVDIFVolumeBridge::SetSparseInformation(outInfo, o);
   return 1;
 }
 
 int vtkDictionaryVolumeReader::RequestData(
   vtkInformation*, vtkInformationVector**, vtkInformationVector* outputVector)
 {
+  using SDDP = vtkStreamingDemandDrivenPipeline;
   vtkInformation* outInfo = outputVector->GetInformationObject(0);
-  vtkImageData* output = vtkImageData::GetData(outInfo);
-  int ext[6];
-  outInfo->Get(vtkStreamingDemandDrivenPipeline::UPDATE_EXTENT(), ext);
+  vtkSparseDictionaryVolume* output = vtkSparseDictionaryVolume::GetData(outInfo);
   lvdif::VolumeFileReadOptions options;
-  options.wholeVolume = false;
-  options.region.lo = { ext[0], ext[2], ext[4] };
-  options.region.hi = { ext[1], ext[3], ext[5] };
-  vtkLVDIFInterrupter interrupter(this, 0.0, 0.9);
-  try
+  const int pieces = outInfo->Has(SDDP::UPDATE_NUMBER_OF_PIECES()) ? outInfo->Get(SDDP::UPDATE_NUMBER_OF_PIECES()) : 1;
+  const int piece = outInfo->Has(SDDP::UPDATE_PIECE_NUMBER()) ? outInfo->Get(SDDP::UPDATE_PIECE_NUMBER()) : 0;
+  int owned[6] = { 0, -1, 0, -1, 0, -1 };
+  if (pieces > 1)
   {
-    auto volume = lvdif::loadVolume(this->FileName, options, interrupter);
-    this->UpdateProgress(0.9);
-    vtkLVDIFVolumeBridge::FillImage(*volume, ext, output, this->WithColor);
+    // A piece is a block of storage chunks (see the header); it reads them and
+    // the one layer of points their partitions share with the next chunks.
+    const lvdif::VolumeOptions& o = this->Internal->Info.options;
+    int bounds[6], block[6];
+    for (int a = 0; a < 3; ++a)
+    {
+      bounds[2 * a] = 0; // chunk boundaries 0..count: a split by cells gives disjoint chunk ranges
+      bounds[2 * a + 1] = static_cast<int>((o.dims[a] + o.chunkEdge - 1) / o.chunkEdge);
+    }
+    vtkNew<vtkExtentTranslator> t;
+    if (!t->PieceToExtentThreadSafe(piece, pieces, 0, bounds, block, vtkExtentTranslator::BLOCK_MODE, 0) ||
+      block[0] >= block[1] || block[2] >= block[3] || block[4] >= block[5])
+    {
+      output->Initialize(); // a piece without chunks: empty
+      return 1;
+    }
+    options.wholeVolume = false;
+    for (int a = 0; a < 3; ++a)
+    {
+      owned[2 * a] = block[2 * a];
+      owned[2 * a + 1] = block[2 * a + 1] - 1;
+      options.region.lo[a] = static_cast<std::int64_t>(block[2 * a]) * o.chunkEdge;
+      options.region.hi[a] = std::min<std::int64_t>(static_cast<std::int64_t>(block[2 * a + 1]) * o.chunkEdge, o.dims[a] - 1);
+    }
   }
-  catch (const lvdif::Error& e)
+  else if (outInfo->Has(SDDP::UPDATE_EXTENT()) && outInfo->Has(SDDP::WHOLE_EXTENT()))
+  {
+    int ext[6], whole[6];
+    outInfo->Get(SDDP::UPDATE_EXTENT(), ext);
+    outInfo->Get(SDDP::WHOLE_EXTENT(), whole);
+    if (!std::equal(ext, ext + 6, whole))
+    {
+      // a consumer asked for part of the volume: read only its chunks
+      options.wholeVolume = false;
+      options.region.lo = { ext[0], ext[2], ext[4] };
+      options.region.hi = { ext[1], ext[3], ext[5] };
+    }
+  }
+  vtkLVDIFInterrupter interrupter(this, 0.0, 1.0);
+  output->SetPartitionColors(this->WithColor);
+  const bool ok = vtkLVDIFVolumeBridge::CallCore(
+    this,
+    [&] {
+      std::shared_ptr<lvdif::DictionaryVolume> volume = lvdif::loadVolume(this->FileName, options, interrupter);
+      output->SetVolume(std::move(volume));
+      if (pieces > 1) output->SetOwnedChunks(owned);
+    },
+    "cannot read '" + this->FileName + "': ");
+  if (!ok)
   {
     output->Initialize();
-    if (e.code() != lvdif::ErrorCode::Cancelled)
-    {
-      vtkErrorMacro(<< "cannot read '" << this->FileName << "': " << e.what());
-    }
     return 0;
   }
   this->UpdateProgress(1.0);

@@ -2,6 +2,7 @@
 
 #include "vtkLVDIFInterrupter.h"
 #include "vtkLVDIFVolumeBridge.h"
+#include "vtkSparseDictionaryVolume.h"
 
 #include "lvdif/VolumeFile.h"
 
@@ -30,12 +31,19 @@ vtkImageData* vtkDictionaryVolumeWriter::GetInput()
 
 int vtkDictionaryVolumeWriter::FillInputPortInformation(int, vtkInformation* info)
 {
-  info->Set(vtkAlgorithm::INPUT_REQUIRED_DATA_TYPE(), "vtkImageData");
+  info->Remove(vtkAlgorithm::INPUT_REQUIRED_DATA_TYPE());
+  info->Append(vtkAlgorithm::INPUT_REQUIRED_DATA_TYPE(), "vtkImageData");
+  info->Append(vtkAlgorithm::INPUT_REQUIRED_DATA_TYPE(), "vtkSparseDictionaryVolume");
   return 1;
 }
 
 void vtkDictionaryVolumeWriter::WriteData()
 {
+  if (auto* sparse = vtkSparseDictionaryVolume::SafeDownCast(this->Superclass::GetInput()))
+  {
+    this->WriteSparse(sparse);
+    return;
+  }
   vtkImageData* image = this->GetInput();
   vtkDataArray *sdf, *rgba;
   bool missingFileName;
@@ -54,6 +62,7 @@ void vtkDictionaryVolumeWriter::WriteData()
     : static_cast<float>(this->BandWidth);
   lvdif::VolumeFileWriteOptions writeOptions;
   writeOptions.compressionLevel = this->CompressionLevel;
+  writeOptions.metadata = this->Metadata;
   if (!this->VolumeName.empty())
   {
     writeOptions.metadata["name"] = this->VolumeName;
@@ -76,6 +85,37 @@ void vtkDictionaryVolumeWriter::WriteData()
     }
     this->SetErrorCode(e.code() == lvdif::ErrorCode::IoFailure ? vtkErrorCode::CannotOpenFileError
                                                                : vtkErrorCode::UnknownError);
+  }
+}
+
+void vtkDictionaryVolumeWriter::WriteSparse(vtkSparseDictionaryVolume* sparse)
+{
+  if (this->FileName.empty())
+  {
+    vtkErrorMacro("no file name: call SetFileName() first");
+    this->SetErrorCode(vtkErrorCode::NoFileNameError);
+    return;
+  }
+  if (!sparse->HasVolume())
+  {
+    vtkErrorMacro("the input sparse volume holds no dictionary volume");
+    this->SetErrorCode(vtkErrorCode::UnknownError);
+    return;
+  }
+  lvdif::VolumeFileWriteOptions writeOptions;
+  writeOptions.compressionLevel = this->CompressionLevel;
+  writeOptions.metadata = this->Metadata;
+  if (!this->VolumeName.empty())
+  {
+    writeOptions.metadata["name"] = this->VolumeName;
+  }
+  vtkLVDIFInterrupter interrupter(this);
+  bool cancelled = false;
+  if (!vtkLVDIFVolumeBridge::CallCore(
+        this, [&] { lvdif::saveVolume(*sparse->GetVolume(), this->FileName, writeOptions, interrupter); },
+        "cannot write '" + this->FileName + "': ", &cancelled))
+  {
+    this->SetErrorCode(vtkErrorCode::UnknownError);
   }
 }
 

@@ -1,8 +1,11 @@
 /**
  * @class   vtkDictionaryVolumeWriter
- * @brief   writes vtkImageData as an LVDIF dictionary volume file (.lvdv)
+ * @brief   writes a vtkSparseDictionaryVolume (or vtkImageData) as an LVDIF dictionary volume file (.lvdv)
  *
- * The input must have a point array `sdf` (any real type; negative inside,
+ * A vtkSparseDictionaryVolume input is written as it is: its chunks, uniform
+ * chunks and dictionaries, without decoding (BandWidth and ChunkEdge are the
+ * volume's own then; the properties below apply to image input only).
+ * An image input must have a point array `sdf` (any real type; negative inside,
  * in voxel units) and may have an unsigned char array `rgba` (1 to 4
  * components). Distances are encoded with the SDF dictionary and saturated to
  * +-BandWidth; chunks beyond the band are stored as one value. The file is
@@ -15,9 +18,11 @@
 #include "lvdifIOVolumeModule.h"
 #include "vtkWriter.h"
 
+#include <map>
 #include <string>
 
 class vtkImageData;
+class vtkSparseDictionaryVolume;
 
 class LVDIFIOVOLUME_EXPORT vtkDictionaryVolumeWriter : public vtkWriter
 {
@@ -52,8 +57,13 @@ public:
   /// Stored as the `name` metadata entry when not empty.
   vtkSetStdStringFromCharMacro(VolumeName);
   vtkGetCharFromStdStringMacro(VolumeName);
+
+  /// Adds a metadata entry to the file ("source mesh", "creation parameters", ...).
+  void AddMetadata(const std::string& key, const std::string& value) { this->Metadata[key] = value; }
+  void ClearMetadata() { this->Metadata.clear(); }
   ///@}
 
+  /// The input when it is an image (nullptr for a sparse volume).
   vtkImageData* GetInput();
 
 protected:
@@ -61,10 +71,12 @@ protected:
   ~vtkDictionaryVolumeWriter() override;
 
   void WriteData() override;
+  void WriteSparse(vtkSparseDictionaryVolume* sparse);
   int FillInputPortInformation(int port, vtkInformation* info) override;
 
   std::string FileName;
   std::string VolumeName;
+  std::map<std::string, std::string> Metadata;
   double BandWidth = 8.0;
   int ChunkEdge = 32;
   int CompressionLevel;

@@ -2,6 +2,7 @@
 
 #include "vtkLVDIFInterrupter.h"
 #include "vtkLVDIFVolumeBridge.h"
+#include "vtkSparseDictionaryVolume.h"
 
 #include "lvdif/LegacyBv.h"
 
@@ -72,6 +73,18 @@ bool vtkLegacyBvReader::CanReadFile(const char* fileName)
   return fileName && edgeOf(fileName, why) > 0;
 }
 
+int vtkLegacyBvReader::FillOutputPortInformation(int, vtkInformation* info)
+{
+  info->Set(vtkDataObject::DATA_TYPE_NAME(), "vtkSparseDictionaryVolume");
+  return 1;
+}
+
+int vtkLegacyBvReader::RequestDataObject(vtkInformation*, vtkInformationVector**, vtkInformationVector* out)
+{
+  vtkLVDIFVolumeBridge::EnsureSparseOutput(out);
+  return 1;
+}
+
 int vtkLegacyBvReader::RequestInformation(
   vtkInformation*, vtkInformationVector**, vtkInformationVector* outputVector)
 {
@@ -89,32 +102,25 @@ int vtkLegacyBvReader::RequestInformation(
     return 0;
   }
   this->Edge = static_cast<int>(n);
-  vtkInformation* outInfo = outputVector->GetInformationObject(0);
-  const int whole[6] = { 0, this->Edge - 1, 0, this->Edge - 1, 0, this->Edge - 1 };
-  const double origin[3] = { 0, 0, 0 }, spacing[3] = { 1, 1, 1 };
-  outInfo->Set(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT(), whole, 6);
-  outInfo->Set(vtkDataObject::ORIGIN(), origin, 3);
-  outInfo->Set(vtkDataObject::SPACING(), spacing, 3);
-  vtkDataObject::SetPointDataActiveScalarInfo(outInfo, VTK_FLOAT, 1);
+  lvdif::VolumeOptions o; // origin 0, spacing 1
+  o.dims = { n, n, n };
+  vtkLVDIFVolumeBridge::SetSparseInformation(outputVector->GetInformationObject(0), o);
   return 1;
 }
 
 int vtkLegacyBvReader::RequestData(vtkInformation*, vtkInformationVector**, vtkInformationVector* outputVector)
 {
   vtkInformation* outInfo = outputVector->GetInformationObject(0);
-  vtkImageData* output = vtkImageData::GetData(outInfo);
+  vtkSparseDictionaryVolume* output = vtkSparseDictionaryVolume::GetData(outInfo);
   lvdif::LegacyBvOptions options;
   options.swapXZ = this->SwapXZ;
   options.distanceScale = this->DistanceScale;
   options.bandWidth = static_cast<float>(this->BandWidth);
-  vtkLVDIFInterrupter interrupter(this, 0.0, 0.8);
+  vtkLVDIFInterrupter interrupter(this);
   try
   {
     // The file has no index: it is read whole (no sub-extents).
-    auto volume = lvdif::loadLegacyBv(this->FileName, options, interrupter);
-    this->UpdateProgress(0.8);
-    const int whole[6] = { 0, this->Edge - 1, 0, this->Edge - 1, 0, this->Edge - 1 };
-    vtkLVDIFVolumeBridge::FillImage(*volume, whole, output, true);
+    output->SetVolume(lvdif::loadLegacyBv(this->FileName, options, interrupter));
   }
   catch (const lvdif::Error& e)
   {

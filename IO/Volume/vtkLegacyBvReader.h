@@ -1,15 +1,15 @@
 /**
  * @class   vtkLegacyBvReader
- * @brief   reads the original LVDIF's `.bv` volume file as vtkImageData
+ * @brief   reads the original LVDIF's `.bv` volume file as a vtkSparseDictionaryVolume
  *
  * A thin wrapper over lvdif::loadLegacyBv (Core/Formats/include/lvdif/LegacyBv.h,
  * original-code-spec.md section 3): N^3 records {uint16 SDF key, uint16
  * colour index}, no header. The edge N comes from the file size (4 N^3 bytes)
  * and must agree with an `SDF_<N>_` token in the file name when there is one.
- * Their inside-positive distances become the project's convention: a float
- * point array `sdf` (negative inside) and a 4-component unsigned char array
- * `rgba` (palette index -> colour, default the Mouse scene's palette). Spacing
- * 1, origin 0. The options mirror lvdif::LegacyBvOptions (SwapXZ,
+ * Their inside-positive distances become the project's convention (negative
+ * inside), the palette index a colour key (default the Mouse scene's
+ * palette); the output is the sparse dictionary volume (vtkSparseVolumeToImage
+ * makes the dense `sdf`/`rgba` image). Spacing 1, origin 0. The options mirror lvdif::LegacyBvOptions (SwapXZ,
  * DistanceScale, BandWidth). A bad size or name gives one error naming the
  * problem and an empty output. Reports progress and honours AbortExecute.
  */
@@ -17,15 +17,15 @@
 #define vtkLegacyBvReader_h
 
 #include "lvdifIOVolumeModule.h"
-#include "vtkImageAlgorithm.h"
+#include "vtkDataObjectAlgorithm.h"
 
 #include <string>
 
-class LVDIFIOVOLUME_EXPORT vtkLegacyBvReader : public vtkImageAlgorithm
+class LVDIFIOVOLUME_EXPORT vtkLegacyBvReader : public vtkDataObjectAlgorithm
 {
 public:
   static vtkLegacyBvReader* New();
-  vtkTypeMacro(vtkLegacyBvReader, vtkImageAlgorithm);
+  vtkTypeMacro(vtkLegacyBvReader, vtkDataObjectAlgorithm);
   void PrintSelf(ostream& os, vtkIndent indent) override;
 
   ///@{
@@ -64,6 +64,8 @@ protected:
   vtkLegacyBvReader();
   ~vtkLegacyBvReader() override;
 
+  int FillOutputPortInformation(int port, vtkInformation* info) override;
+  int RequestDataObject(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
   int RequestInformation(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
   int RequestData(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
 

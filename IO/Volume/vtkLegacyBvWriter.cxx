@@ -2,6 +2,7 @@
 
 #include "vtkLVDIFInterrupter.h"
 #include "vtkLVDIFVolumeBridge.h"
+#include "vtkSparseDictionaryVolume.h"
 
 #include "lvdif/LegacyBv.h"
 
@@ -84,12 +85,35 @@ vtkImageData* vtkLegacyBvWriter::GetInput()
 
 int vtkLegacyBvWriter::FillInputPortInformation(int, vtkInformation* info)
 {
-  info->Set(vtkAlgorithm::INPUT_REQUIRED_DATA_TYPE(), "vtkImageData");
+  info->Remove(vtkAlgorithm::INPUT_REQUIRED_DATA_TYPE());
+  info->Append(vtkAlgorithm::INPUT_REQUIRED_DATA_TYPE(), "vtkImageData");
+  info->Append(vtkAlgorithm::INPUT_REQUIRED_DATA_TYPE(), "vtkSparseDictionaryVolume");
   return 1;
 }
 
 void vtkLegacyBvWriter::WriteData()
 {
+  if (auto* sparse = vtkSparseDictionaryVolume::SafeDownCast(this->Superclass::GetInput()))
+  {
+    // the volume's keys as they are, as `lvdif convert` writes them
+    if (this->FileName.empty() || !sparse->HasVolume())
+    {
+      vtkErrorMacro(<< (this->FileName.empty() ? "no file name: call SetFileName() first" : "the input holds no volume"));
+      this->SetErrorCode(this->FileName.empty() ? vtkErrorCode::NoFileNameError : vtkErrorCode::UnknownError);
+      return;
+    }
+    lvdif::LegacyBvOptions options;
+    options.swapXZ = this->SwapXZ;
+    options.distanceScale = this->DistanceScale;
+    vtkLVDIFInterrupter interrupter(this);
+    if (!vtkLVDIFVolumeBridge::CallCore(
+          this, [&] { lvdif::saveLegacyBv(*sparse->GetVolume(), this->FileName, options, interrupter); },
+          "cannot write '" + this->FileName + "': "))
+    {
+      this->SetErrorCode(vtkErrorCode::UnknownError);
+    }
+    return;
+  }
   vtkImageData* image = this->GetInput();
   vtkDataArray *sdf, *rgba;
   bool missingFileName;

@@ -46,12 +46,14 @@ mass = vtk.vtkMassProperties()
 mass.SetInputConnection(clean.GetOutputPort())
 mass.Update()
 
-from lvdif import vtkDictionaryVolumeReader  # noqa: E402
+from lvdif import vtkDictionaryVolumeReader, vtkSparseVolumeToImage  # noqa: E402
 
 vol = vtkDictionaryVolumeReader()
 vol.SetFileName(f"{out}/demo.lvdv")
-vol.Update()
-sdf = vtk_to_numpy(vol.GetOutput().GetPointData().GetArray("sdf"))
+dense = vtkSparseVolumeToImage()  # the reader gives the sparse volume; the voxels are checked here
+dense.SetInputConnection(vol.GetOutputPort())
+dense.Update()
+sdf = vtk_to_numpy(dense.GetOutput().GetPointData().GetArray("sdf"))
 inside = float(np.count_nonzero(sdf < 0))
 rel = abs(mass.GetVolume() - inside) / inside
 print(f"enclosed volume {mass.GetVolume():.0f}, inside voxels {inside:.0f}, relative difference {rel:.4f}")

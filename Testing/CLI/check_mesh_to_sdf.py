@@ -44,7 +44,7 @@ def write_sphere(path):
 mesh = f"{out}/sphere.obj"
 write_sphere(mesh)
 
-from lvdif import vtkDictionaryVolumeReader  # noqa: E402
+from lvdif import vtkDictionaryVolumeReader, vtkSparseVolumeToImage  # noqa: E402
 
 N, BAND = 48, 6.0
 for sign, extra in (("winding", []), ("pseudo", []), ("normal", ["--svf"])):
@@ -59,8 +59,10 @@ for sign, extra in (("winding", []), ("pseudo", []), ("normal", ["--svf"])):
 
     reader = vtkDictionaryVolumeReader()
     reader.SetFileName(vol_path)
-    reader.Update()
-    img = reader.GetOutput()
+    dense = vtkSparseVolumeToImage()  # the reader gives the sparse volume; the voxels are checked here
+    dense.SetInputConnection(reader.GetOutputPort())
+    dense.Update()
+    img = dense.GetOutput()
     dims, origin, spacing = img.GetDimensions(), img.GetOrigin(), img.GetSpacing()
     assert dims == (N, N, N), dims
     assert spacing[0] == spacing[1] == spacing[2], spacing

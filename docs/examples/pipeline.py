@@ -5,8 +5,11 @@ Run with Debian's interpreter (the pyenv `python3` cannot see VTK):
     PYTHONPATH=<build>/lib/python3/dist-packages /usr/bin/python3 docs/examples/pipeline.py OUTDIR
 
 Every LVDIF class is an ordinary VTK algorithm: connect it with
-SetInputConnection, choose arrays with SetInputArrayToProcess, and call
-Update (or UpdatePiece(piece, pieces, ghosts) for one piece of the volume).
+SetInputConnection and call Update. Between the LVDIF filters the volume
+travels as a vtkSparseDictionaryVolume (the sparse dictionary volume itself,
+no dense image); vtkSparseVolumeToImage makes a dense vtkImageData when one
+is really wanted, and generic VTK filters (Contour, Cutter) run on its
+partitions.
 
 Stages whose LVDIF class is not in this build yet use the plain-VTK equivalent
 and say so (see docs/PYTHON.md); the printed numbers are checked by
@@ -110,15 +113,17 @@ def write(field, surf, outdir):
         w = lvdif.vtkDictionaryVolumeWriter()
         w.SetInputConnection(field.GetOutputPort())
         w.SetFileName(path)
-        w.SetBandWidth(8.0)  # distances saturate at +-8 voxels
+        # the sparse volume is written as it is (its band, 8 voxels by default, and chunks)
         w.SetVolumeName("sphere")
         if not w.Write():
             raise RuntimeError("writing %s failed" % path)
         r = lvdif.vtkDictionaryVolumeReader()
         r.SetFileName(path)
         r.Update()
-        print("volume: %s, %d bytes, read back %s points, name '%s'" % (
-            os.path.basename(path), os.path.getsize(path), r.GetOutput().GetNumberOfPoints(), r.GetMetadata("name")))
+        v = r.GetOutput()  # a vtkSparseDictionaryVolume: no dense image
+        print("volume: %s, %d bytes, read back %d of %d chunks holding voxels, name '%s'" % (
+            os.path.basename(path), os.path.getsize(path), v.GetNumberOfExpandedChunks(), v.GetNumberOfChunks(),
+            r.GetMetadata("name")))
     else:
         path = os.path.join(outdir, "sphere_sdf.vti")
         w = vtkXMLImageDataWriter()

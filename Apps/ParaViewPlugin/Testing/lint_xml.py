@@ -1,7 +1,8 @@
-"""Checks the plugin's server-manager XML (registered and drafts) for what the
-issue asks of every proxy: documentation of the proxy and of every property,
+"""Checks the plugin's server-manager XML for what the
+project asks of every proxy: documentation of the proxy and of every property,
 a default and a domain for every numeric property, a menu category for
-filters, factory hints with the .lvdv extension for readers and writers.
+filters, factory hints with the .lvdv extension for readers and writers, and no
+default that a data-driven range domain would silently replace.
 Usage: python3 lint_xml.py XML_DIR"""
 import glob
 import os
@@ -9,7 +10,8 @@ import sys
 import xml.etree.ElementTree as ET
 
 problems = []
-files = sorted(glob.glob(os.path.join(sys.argv[1], "*.xml")) + glob.glob(os.path.join(sys.argv[1], "drafts", "*.xml")))
+DATA_RANGE_DOMAINS = ("ArrayRangeDomain", "BoundsDomain", "ExtentDomain", "ContourRangeDomain")
+files = sorted(glob.glob(os.path.join(sys.argv[1], "*.xml")))
 for path in files:
     name = os.path.relpath(path, sys.argv[1])
     try:
@@ -58,6 +60,12 @@ for path in files:
                         problems.append(pw + ": no default_values")
                     if not any(c.tag.endswith("Domain") for c in prop):
                         problems.append(pw + ": no domain")
+                # ParaView replaces the XML default by the middle (default_mode) of a data-driven range
+                # when the filter is created on updated input: an iso value of 0 became mid-range
+                data_range = [c.tag for c in prop if c.tag in DATA_RANGE_DOMAINS]
+                if data_range and prop.get("default_values") is not None:
+                    problems.append(pw + ": %s would replace default_values %s by a value from the data"
+                                    % (data_range[0], prop.get("default_values")))
                 if prop.get("command") == "SetInputArrayToProcess" and prop.find("ArrayListDomain") is None:
                     problems.append(pw + ": array selection without ArrayListDomain")
 print("checked %d XML files" % len(files))

@@ -40,6 +40,8 @@ PROXIES = {
     "vtkPDictionaryVolumeWriter": ("writers", "LVDIFParallelDictionaryVolumeWriter"),
     "vtkVolumeEditFilter": ("filters", "VolumeEditFilter"),
     "vtkLVDIFMeshReader": ("sources", "LVDIFMeshReader"),
+    "vtkSparseVolumeToImage": ("filters", "SparseVolumeToImage"),
+    "vtkImageToSparseVolume": ("filters", "ImageToSparseVolume"),
 }
 PROXY_NAMES = {cls: name for cls, (group, name) in PROXIES.items()}
 LVD_EXTENSION = "lvdv"
@@ -98,6 +100,12 @@ out.GetPointData().SetScalars(a)
 """
 
 
+def dense(proxy):
+    """The explicit dense conversion of a sparse dictionary volume (the .lvdv
+    reader's and Mesh To SDF's output) for the stages that read voxels."""
+    return pvs.SparseVolumeToImage(Input=proxy)
+
+
 def sdf_stage(present):
     """mesh -> SDF (image with float point array `sdf`, voxel units, negative inside)."""
     h = spacing()
@@ -105,7 +113,8 @@ def sdf_stage(present):
         mesh = pvs.Sphere(Radius=RADIUS, ThetaResolution=128, PhiResolution=128)
         sdf = getattr(pvs, PROXY_NAMES["vtkMeshToSDF"])(Input=mesh)
         configure_mesh_to_sdf(sdf, h)
-        return sdf, "vtkMeshToSDF"
+        # the stages below corrupt and compare voxels: they take the dense image
+        return dense(sdf), "vtkMeshToSDF (sparse volume) -> SparseVolumeToImage"
     p = {"n1": N - 1, "o": -HALF, "h": h, "r": RADIUS}
     src = pvs.ProgrammableSource(OutputDataSetType="vtkImageData")
     src.ScriptRequestInformation = _SDF_INFO_SCRIPT % p
@@ -244,7 +253,7 @@ def write_read_stage(field, path, check):
     check(reader is not None and reader.GetXMLName() == PROXY_NAMES["vtkDictionaryVolumeReader"],
           "OpenDataFile chose %s" % (reader.GetXMLName() if reader is not None else None))
     a = vtk_to_numpy(servermanager.Fetch(field).GetPointData().GetArray("sdf")).astype(np.float64)
-    img = servermanager.Fetch(reader)
+    img = servermanager.Fetch(dense(reader))
     b = vtk_to_numpy(img.GetPointData().GetArray("sdf")).astype(np.float64)
     check(a.shape == b.shape, "read back %d voxels, wrote %d" % (b.size, a.size))
     if a.shape != b.shape:

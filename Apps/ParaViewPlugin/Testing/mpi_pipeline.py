@@ -161,8 +161,12 @@ def verify():
             pvs.SaveData(lvd, proxy=field)
         reader = T.PROXY_NAMES["vtkDictionaryVolumeReader"]
         rd = getattr(pvs, reader)(FileName=lvd)
-        rc = pvs.Contour(Input=rd, ContourBy=["POINTS", "sdf"], Isosurfaces=[0.0], ComputeNormals=0,
-                         ComputeScalars=0, ComputeGradients=0)
+        # the reader gives the sparse volume; a rank reads the block of storage
+        # chunks it owns and Contour runs on their partitions (the composite
+        # result is merged to one polydata per rank for the comparison)
+        rc = pvs.ExtractSurface(Input=pvs.MergeBlocks(Input=pvs.Contour(
+            Input=rd, ContourBy=["POINTS", "sdf"], Isosurfaces=[0.0], ComputeNormals=0, ComputeScalars=0,
+            ComputeGradients=0)))
         rpid = servermanager.Fetch(pvs.ProcessIdScalars(Input=rc))
         read_pid_range = rpid.GetPointData().GetArray("ProcessId").GetRange()
         read_tris = T.triangle_key_list(servermanager.Fetch(rc))

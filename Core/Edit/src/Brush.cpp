@@ -120,7 +120,7 @@ void validate(const std::vector<Dab>& dabs, const BrushSettings& s)
 // call do, provided no stored key is beyond the band. Then the chunk is
 // written in one go instead of voxel by voxel; the bits are the same as the
 // per-voxel rule's (the CUDA path, which has no such shortcut, checks it).
-bool coverChunk(DictionaryVolume& volume, std::int64_t id, const detail::BrushContext& ctx,
+bool coverChunk(DictionaryVolume& volume, std::int64_t id, const detail::edit::BrushContext& ctx,
   ChunkWriteObserver* observer, std::int64_t& changed)
 {
   const float band = volume.bandWidth();
@@ -186,7 +186,7 @@ VoxelBox dabInfluenceBox(const DictionaryVolume& volume, const Dab& dab, const B
   return boxFor(volume, dab, reachOf(volume, settings));
 }
 
-namespace detail
+namespace detail::edit
 {
 DabPlan planDabs(DictionaryVolume& volume, const std::vector<Dab>& dabs, const BrushSettings& settings)
 {
@@ -221,14 +221,14 @@ DabPlan planDabs(DictionaryVolume& volume, const std::vector<Dab>& dabs, const B
   plan.chunks.erase(std::unique(plan.chunks.begin(), plan.chunks.end()), plan.chunks.end());
   return plan;
 }
-} // namespace detail
+} // namespace detail::edit
 
 EditResult applyDabs(DictionaryVolume& volume, const std::vector<Dab>& dabs, const BrushSettings& settings,
   ChunkWriteObserver* observer)
 {
-  detail::DabPlan plan = detail::planDabs(volume, dabs, settings);
+  detail::edit::DabPlan plan = detail::edit::planDabs(volume, dabs, settings);
   EditResult result;
-  const detail::BrushContext& ctx = plan.ctx;
+  const detail::edit::BrushContext& ctx = plan.ctx;
   const std::vector<Dab>& active = plan.dabs;
   const std::vector<VoxelBox>& boxes = plan.boxes;
   const std::vector<std::int64_t>& chunks = plan.chunks;
@@ -339,7 +339,7 @@ EditResult applyDabs(DictionaryVolume& volume, const std::vector<Dab>& dabs, con
                 dabDistance(active[static_cast<size_t>(k)], double(x), double(y), double(z), ctx.rounding);
               if (s > reach)
                 continue;
-              detail::combineVoxel(v.sdf, v.color, s, ctx, table, encode);
+              detail::edit::combineVoxel(v.sdf, v.color, s, ctx, table, encode);
             }
             if (v != old)
             {

@@ -21,11 +21,11 @@ namespace cuda
 namespace
 {
 
-using DeviceBox = detail::DeviceDabBox;
+using DeviceBox = detail::edit::DeviceDabBox;
 
 __global__ void dabKernel(std::uint32_t* slots, const std::uint32_t* uniform, const int* expanded,
   const long long* origin, int edge, int shift, long long dx, long long dy, long long dz, const Dab* dabs,
-  const DeviceBox* boxes, int nDabs, detail::BrushContext ctx, const float* table, detail::EncodeParams enc,
+  const DeviceBox* boxes, int nDabs, detail::edit::BrushContext ctx, const float* table, detail::edit::EncodeParams enc,
   unsigned int* changed)
 {
   const long long n = static_cast<long long>(edge) * edge * edge;
@@ -42,7 +42,7 @@ __global__ void dabKernel(std::uint32_t* slots, const std::uint32_t* uniform, co
   std::uint32_t nv = v;
   if (x < dx && y < dy && z < dz)
   {
-    nv = detail::applyDabsToVoxel(v, x, y, z, dabs, boxes, nDabs, ctx, table, enc);
+    nv = detail::edit::applyDabsToVoxel(v, x, y, z, dabs, boxes, nDabs, ctx, table, enc);
   }
   *p = nv;
   if (nv != v)
@@ -92,7 +92,7 @@ EditResult applyDabs(DictionaryVolume& volume, const std::vector<Dab>& dabs, con
 {
   if (!available())
     throw Error(ErrorCode::Unsupported, "no CUDA device is available for the brush");
-  const detail::DabPlan plan = detail::planDabs(volume, dabs, settings);
+  const detail::edit::DabPlan plan = detail::edit::planDabs(volume, dabs, settings);
   EditResult result;
   if (plan.chunks.empty())
     return result;
@@ -143,7 +143,7 @@ EditResult applyDabs(DictionaryVolume& volume, const std::vector<Dab>& dabs, con
     LVDIF_CUDA_CHECK(cudaMemcpy(small + oDabs, plan.dabs.data(), sizeof(Dab) * plan.dabs.size(), cudaMemcpyHostToDevice));
     LVDIF_CUDA_CHECK(cudaMemcpy(small + oBoxes, boxes.data(), sizeof(DeviceBox) * boxes.size(), cudaMemcpyHostToDevice));
   }
-  const detail::EncodeParams enc = detail::EncodeParams::of(volume.sdfDictionary(), volume.bandWidth());
+  const detail::edit::EncodeParams enc = detail::edit::EncodeParams::of(volume.sdfDictionary(), volume.bandWidth());
   const Index3& dims = volume.dims();
 
   std::vector<std::uint32_t> uniform(batch);

@@ -12,7 +12,7 @@
 
 namespace lvdif
 {
-namespace detail
+namespace detail::edit
 {
 
 struct BrushContext
@@ -108,5 +108,5 @@ struct DabPlan
 /// Validates (Error InvalidArgument) and plans; adds the brush colour to the dictionary.
 DabPlan planDabs(DictionaryVolume& volume, const std::vector<Dab>& dabs, const BrushSettings& settings);
 
-} // namespace detail
+} // namespace detail::edit
 } // namespace lvdif

@@ -10,7 +10,7 @@
 
 namespace lvdif
 {
-namespace detail
+namespace detail::edit
 {
 
 /// A dab's inclusive voxel box on the device.
@@ -38,5 +38,5 @@ __device__ inline std::uint32_t applyDabsToVoxel(std::uint32_t v, long long x, l
   return static_cast<std::uint32_t>(sdf) | (static_cast<std::uint32_t>(color) << 16);
 }
 
-} // namespace detail
+} // namespace detail::edit
 } // namespace lvdif

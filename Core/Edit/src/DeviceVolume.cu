@@ -27,7 +27,7 @@ namespace cuda
 namespace
 {
 
-using Box = detail::DeviceDabBox;
+using Box = detail::edit::DeviceDabBox;
 
 // Per planned chunk: where its voxels come from and go to.
 struct ChunkJob
@@ -47,8 +47,8 @@ struct ChunkChange
 };
 
 __global__ void residentDabKernel(std::uint32_t* pool, const ChunkJob* jobs, int edge, int shift, long long dx,
-  long long dy, long long dz, const Dab* dabs, const Box* boxes, int nDabs, detail::BrushContext ctx,
-  const float* table, detail::EncodeParams enc, ChunkChange* changes)
+  long long dy, long long dz, const Dab* dabs, const Box* boxes, int nDabs, detail::edit::BrushContext ctx,
+  const float* table, detail::edit::EncodeParams enc, ChunkChange* changes)
 {
   __shared__ int sLo[3], sHi[3];
   __shared__ unsigned int sCount;
@@ -74,7 +74,7 @@ __global__ void residentDabKernel(std::uint32_t* pool, const ChunkJob* jobs, int
     const std::uint32_t v = job.src < 0 ? job.value : pool[static_cast<long long>(job.src) * n + local];
     std::uint32_t nv = v;
     if (x < dx && y < dy && z < dz)
-      nv = detail::applyDabsToVoxel(v, x, y, z, dabs, boxes, nDabs, ctx, table, enc);
+      nv = detail::edit::applyDabsToVoxel(v, x, y, z, dabs, boxes, nDabs, ctx, table, enc);
     if (job.src != job.dst || nv != v)
       pool[static_cast<long long>(job.dst) * n + local] = nv;
     if (nv != v)
@@ -433,7 +433,7 @@ EditResult DeviceVolume::applyDabs(const std::vector<Dab>& dabs, const BrushSett
 {
   Impl& p = *this->P;
   DictionaryVolume& volume = this->Volume;
-  const detail::DabPlan plan = detail::planDabs(volume, dabs, settings);
+  const detail::edit::DabPlan plan = detail::edit::planDabs(volume, dabs, settings);
   EditResult result;
   if (plan.chunks.empty())
     return result;
@@ -497,7 +497,7 @@ EditResult DeviceVolume::applyDabs(const std::vector<Dab>& dabs, const BrushSett
     p.reserveLaunch(2 * total); // slack: a larger call next time needs no cudaFree (a device sync)
     char* dev = static_cast<char*>(p.launch);
     LVDIF_CUDA_CHECK(cudaMemcpyAsync(dev, host.data(), total, cudaMemcpyHostToDevice, 0));
-    const detail::EncodeParams enc = detail::EncodeParams::of(volume.sdfDictionary(), volume.bandWidth());
+    const detail::edit::EncodeParams enc = detail::edit::EncodeParams::of(volume.sdfDictionary(), volume.bandWidth());
     const Index3& dims = volume.dims();
     for (std::size_t first = 0; first < nChunks; first += 65535) // gridDim.y limit
     {

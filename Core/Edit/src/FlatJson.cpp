@@ -5,7 +5,7 @@
 
 namespace lvdif
 {
-namespace detail
+namespace detail::edit
 {
 namespace
 {
@@ -207,5 +207,5 @@ bool parseFlatJson(const std::string& line, std::map<std::string, FlatJsonValue>
   return ok;
 }
 
-} // namespace detail
+} // namespace detail::edit
 } // namespace lvdif

@@ -10,7 +10,7 @@
 
 namespace lvdif
 {
-namespace detail
+namespace detail::edit
 {
 
 struct FlatJsonValue
@@ -24,5 +24,5 @@ struct FlatJsonValue
 /// Returns false with "column N: what" in *error on failure.
 bool parseFlatJson(const std::string& line, std::map<std::string, FlatJsonValue>& out, std::string* error);
 
-} // namespace detail
+} // namespace detail::edit
 } // namespace lvdif

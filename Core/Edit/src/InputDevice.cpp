@@ -48,8 +48,8 @@ bool ScriptDevice::poll(BrushSample& out, int)
 
 bool parseSampleJson(const std::string& line, BrushSample& out, std::string* error)
 {
-  std::map<std::string, detail::FlatJsonValue> obj;
-  if (!detail::parseFlatJson(line, obj, error))
+  std::map<std::string, detail::edit::FlatJsonValue> obj;
+  if (!detail::edit::parseFlatJson(line, obj, error))
   {
     return false;
   }
@@ -58,14 +58,14 @@ bool parseSampleJson(const std::string& line, BrushSample& out, std::string* err
       *error = what;
     return false;
   };
-  auto find = [&](const char* a, const char* b) -> const detail::FlatJsonValue* {
+  auto find = [&](const char* a, const char* b) -> const detail::edit::FlatJsonValue* {
     auto it = obj.find(a);
     if (it == obj.end())
       it = obj.find(b);
     return it == obj.end() ? nullptr : &it->second;
   };
   BrushSample s;
-  const detail::FlatJsonValue* pos = find("position", "pos");
+  const detail::edit::FlatJsonValue* pos = find("position", "pos");
   if (!pos || pos->numbers.size() != 3 || pos->isString)
     return fail("\"position\" must be an array of 3 numbers");
   for (int a = 0; a < 3; ++a)
@@ -74,7 +74,7 @@ bool parseSampleJson(const std::string& line, BrushSample& out, std::string* err
       return fail("\"position\" must be finite");
     s.position[a] = pos->numbers[a];
   }
-  if (const detail::FlatJsonValue* q = find("orientation", "quat"))
+  if (const detail::edit::FlatJsonValue* q = find("orientation", "quat"))
   {
     if (q->numbers.size() != 4 || q->isString)
       return fail("\"orientation\" must be an array of 4 numbers (w, x, y, z)");
@@ -85,19 +85,19 @@ bool parseSampleJson(const std::string& line, BrushSample& out, std::string* err
     for (int a = 0; a < 4; ++a)
       s.orientation[a] = q->numbers[a] / n;
   }
-  if (const detail::FlatJsonValue* p = find("pressure", "pressure"))
+  if (const detail::edit::FlatJsonValue* p = find("pressure", "pressure"))
   {
     if (p->numbers.size() != 1 || p->isArray || p->isString)
       return fail("\"pressure\" must be a number");
     s.pressure = std::isfinite(p->numbers[0]) ? p->numbers[0] : -1.0;
   }
-  if (const detail::FlatJsonValue* b = find("buttons", "buttons"))
+  if (const detail::edit::FlatJsonValue* b = find("buttons", "buttons"))
   {
     if (b->numbers.size() != 1 || b->isArray || b->isString || !(b->numbers[0] >= 0) || b->numbers[0] > 4294967295.0)
       return fail("\"buttons\" must be a number in [0, 2^32)");
     s.buttons = static_cast<std::uint32_t>(b->numbers[0]);
   }
-  if (const detail::FlatJsonValue* t = find("time", "t"))
+  if (const detail::edit::FlatJsonValue* t = find("time", "t"))
   {
     if (t->numbers.size() != 1 || t->isArray || t->isString || !std::isfinite(t->numbers[0]))
       return fail("\"time\" must be a finite number");

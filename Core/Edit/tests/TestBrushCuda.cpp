@@ -22,7 +22,7 @@ TEST(BrushEncoder, RestatedEncoderEqualsTheDictionary)
   const SdfDictionary& d = defaultSdfDictionary();
   for (float band : { 8.0f, 3.5f, 1e30f })
   {
-    const detail::EncodeParams e = detail::EncodeParams::of(d, band);
+    const detail::edit::EncodeParams e = detail::edit::EncodeParams::of(d, band);
     for (int k = 0; k + 1 < 65536; ++k)
     {
       const float a = d.decode(static_cast<SdfKey>(k)), b = d.decode(static_cast<SdfKey>(k + 1));

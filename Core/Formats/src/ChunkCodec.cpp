@@ -14,7 +14,7 @@
 
 namespace lvdif
 {
-namespace detail
+namespace detail::volumefile
 {
 
 namespace
@@ -117,5 +117,5 @@ void decodeChunkPlanes(const std::uint8_t* planes, int edge, Voxel* voxels)
   }
 }
 
-} // namespace detail
+} // namespace detail::volumefile
 } // namespace lvdif

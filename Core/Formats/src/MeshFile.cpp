@@ -14,7 +14,7 @@ namespace lvdif
 
 namespace
 {
-using namespace meshio;
+using namespace detail::volumefile::meshfile;
 
 /// OBJ (Wavefront): v, f with i, i/t, i//n, i/t/n and negative (relative)
 /// indices; other statements (vn, vt, g, o, s, usemtl, l, ...) are skipped.
@@ -203,7 +203,7 @@ TriangleMesh readMesh(ByteSource& source, MeshFormat format, const std::string& 
     case MeshFormat::Obj: return readObj(data);
     case MeshFormat::Off: return readOff(data);
     case MeshFormat::Stl: return readStl(data);
-    case MeshFormat::Ply: return meshio::readPly(data);
+    case MeshFormat::Ply: return detail::volumefile::meshfile::readPly(data);
     default: break;
   }
   throw Error(ErrorCode::InvalidArgument, "no mesh format given");

@@ -14,7 +14,7 @@
 
 namespace lvdif
 {
-namespace meshio
+namespace detail::volumefile::meshfile
 {
 
 [[noreturn]] inline void fail(ErrorCode code, const std::string& where, const std::string& what)
@@ -136,5 +136,5 @@ inline void finish(TriangleMesh& mesh, const std::string& format)
 
 TriangleMesh readPly(const std::vector<char>& data);
 
-} // namespace meshio
+} // namespace detail::volumefile::meshfile
 } // namespace lvdif

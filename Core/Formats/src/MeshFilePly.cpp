@@ -7,7 +7,7 @@
 
 namespace lvdif
 {
-namespace meshio
+namespace detail::volumefile::meshfile
 {
 
 namespace
@@ -249,5 +249,5 @@ TriangleMesh readPly(const std::vector<char>& data)
   return mesh;
 }
 
-} // namespace meshio
+} // namespace detail::volumefile::meshfile
 } // namespace lvdif

@@ -13,7 +13,7 @@
 
 namespace lvdif
 {
-namespace detail
+namespace detail::volumefile
 {
 
 constexpr char HeaderMagic[8] = { 'L', 'V', 'D', 'I', 'F', 'V', 'O', 'L' };
@@ -155,5 +155,5 @@ FileHeader decodeHeader(const std::uint8_t* bytes, std::size_t n);
 void encodeChunkPlanes(const Voxel* voxels, int edge, std::uint8_t* planes);
 void decodeChunkPlanes(const std::uint8_t* planes, int edge, Voxel* voxels);
 
-} // namespace detail
+} // namespace detail::volumefile
 } // namespace lvdif

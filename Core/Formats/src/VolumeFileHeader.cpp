@@ -35,7 +35,7 @@ std::uint64_t checksum64(const void* data, std::size_t n)
   return h;
 }
 
-namespace detail
+namespace detail::volumefile
 {
 
 std::vector<std::uint8_t> encodeHeader(const FileHeader& h)
@@ -168,5 +168,5 @@ FileHeader decodeHeader(const std::uint8_t* bytes, std::size_t n)
   return h;
 }
 
-} // namespace detail
+} // namespace detail::volumefile
 } // namespace lvdif

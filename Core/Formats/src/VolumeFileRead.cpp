@@ -16,7 +16,7 @@ namespace lvdif
 
 namespace
 {
-using namespace detail;
+using namespace detail::volumefile;
 
 [[noreturn]] void corrupt(const std::string& what)
 {

@@ -21,7 +21,7 @@ namespace lvdif
 
 namespace
 {
-using namespace detail;
+using namespace detail::volumefile;
 
 std::vector<std::uint8_t> dictionarySection(const DictionaryVolume& volume, const VolumeMetadata& metadata)
 {

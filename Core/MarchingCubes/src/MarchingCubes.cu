@@ -33,8 +33,8 @@ namespace lvdif
 {
 namespace
 {
-using mccuda::Box;
-using mccuda::Out;
+using detail::mc_cuda::Box;
+using detail::mc_cuda::Out;
 
 /// Points (and cells) per batch: ~12 bytes of classification per point and
 /// per cell, so a batch needs well under 2 GB of device memory.
@@ -245,13 +245,13 @@ std::vector<ChunkMesh> runBatch(const ChunkedMarchingCubes::Impl& impl, Marching
   LVDIF_CUDA_CHECK(cudaMemcpy(S.cBase.p, cb.data(), (n + 1) * sizeof(long long), cudaMemcpyHostToDevice));
   LVDIF_CUDA_CHECK(cudaMemset(S.vcount.p + P, 0, sizeof(unsigned int)));
   LVDIF_CUDA_CHECK(cudaMemset(S.tcount.p + C, 0, sizeof(unsigned int)));
-  mccuda::classifyPoints<<<dim3(blocks(maxP), n), 256>>>(S.boxes.p, S.pBase.p, S.masks.p, S.vcount.p);
+  detail::mc_cuda::classifyPoints<<<dim3(blocks(maxP), n), 256>>>(S.boxes.p, S.pBase.p, S.masks.p, S.vcount.p);
   LVDIF_CUDA_CHECK(cudaGetLastError());
-  mccuda::classifyCells<<<dim3(blocks(maxC), n), 256>>>(S.boxes.p, S.cBase.p, S.cases.p, S.tcount.p);
+  detail::mc_cuda::classifyCells<<<dim3(blocks(maxC), n), 256>>>(S.boxes.p, S.cBase.p, S.cases.p, S.tcount.p);
   LVDIF_CUDA_CHECK(cudaGetLastError());
   S.scan(S.vcount.p, S.vfirst.p, P + 1);
   S.scan(S.tcount.p, S.tfirst.p, C + 1);
-  mccuda::chunkBases<<<blocks(n + 1), 256>>>(S.pBase.p, S.cBase.p, S.vfirst.p, S.tfirst.p, S.vBase.p, S.tBase.p, n);
+  detail::mc_cuda::chunkBases<<<blocks(n + 1), 256>>>(S.pBase.p, S.cBase.p, S.vfirst.p, S.tfirst.p, S.vBase.p, S.tBase.p, n);
   LVDIF_CUDA_CHECK(cudaGetLastError());
   std::vector<unsigned int> vb, tb;
   download(vb, S.vBase.p, n + 1);
@@ -272,9 +272,9 @@ std::vector<ChunkMesh> runBatch(const ChunkedMarchingCubes::Impl& impl, Marching
   S.copyPending[0] = false;
   MarchingCubesOutBuffers& ob = S.out[0];
   const Out o = ob.reserve(NV, NT, normals, colors, cells, keys);
-  mccuda::generateVertices<<<dim3(blocks(maxP), n), 256>>>(S.boxes.p, S.pBase.p, S.masks.p, S.vfirst.p, o);
+  detail::mc_cuda::generateVertices<<<dim3(blocks(maxP), n), 256>>>(S.boxes.p, S.pBase.p, S.masks.p, S.vfirst.p, o);
   LVDIF_CUDA_CHECK(cudaGetLastError());
-  mccuda::generateTriangles<<<dim3(blocks(maxC), n), 256>>>(
+  detail::mc_cuda::generateTriangles<<<dim3(blocks(maxC), n), 256>>>(
     S.boxes.p, S.pBase.p, S.cBase.p, S.vBase.p, S.cases.p, S.tfirst.p, S.masks.p, S.vfirst.p, S.tris.p, o);
   LVDIF_CUDA_CHECK(cudaGetLastError());
 
@@ -316,7 +316,7 @@ std::shared_ptr<MarchingCubesCudaState> makeMarchingCubesCudaState(const Marchin
   std::call_once(once, [] {
     // the counts are those of every valid table (same loops), so they are uploaded once
     const MarchingCubesTables& T = marchingCubesTables();
-    LVDIF_CUDA_CHECK(cudaMemcpyToSymbol(mccuda::cTriCount, T.triangleCount, sizeof(T.triangleCount)));
+    LVDIF_CUDA_CHECK(cudaMemcpyToSymbol(detail::mc_cuda::cTriCount, T.triangleCount, sizeof(T.triangleCount)));
   });
   auto state = std::make_shared<MarchingCubesCudaState>();
   state->tris.reserve(sizeof(tables.triangles));
@@ -407,9 +407,7 @@ void packLocked(const ChunkedMarchingCubes::Impl& impl, MarchingCubesCudaState& 
     all[i] = b;
     totalPoints += (b.ex + 1) * (b.ey + 1) * (b.ez + 1);
   }
-  // test hook: smaller batches exercise the double buffering and the block's growth
-  long long batchPoints = BatchPoints;
-  if (const char* e = std::getenv("LVDIF_MC_BATCH_POINTS")) batchPoints = std::max(1ll, std::atoll(e));
+  const long long batchPoints = impl.Options.cudaBatchPoints > 0 ? impl.Options.cudaBatchPoints : BatchPoints;
   std::uint64_t V = 0, T = 0;
   long long pointsDone = 0;
   int slot = 0;
@@ -444,13 +442,13 @@ void packLocked(const ChunkedMarchingCubes::Impl& impl, MarchingCubesCudaState& 
     LVDIF_CUDA_CHECK(cudaMemcpyAsync(S.cBase.p, cb.data(), (n + 1) * sizeof(long long), cudaMemcpyHostToDevice, cs));
     LVDIF_CUDA_CHECK(cudaMemsetAsync(S.vcount.p + P, 0, sizeof(unsigned int), cs));
     LVDIF_CUDA_CHECK(cudaMemsetAsync(S.tcount.p + C, 0, sizeof(unsigned int), cs));
-    mccuda::classifyPoints<<<dim3(blocks(maxP), n), 256, 0, cs>>>(S.boxes.p, S.pBase.p, S.masks.p, S.vcount.p);
+    detail::mc_cuda::classifyPoints<<<dim3(blocks(maxP), n), 256, 0, cs>>>(S.boxes.p, S.pBase.p, S.masks.p, S.vcount.p);
     LVDIF_CUDA_CHECK(cudaGetLastError());
-    mccuda::classifyCells<<<dim3(blocks(maxC), n), 256, 0, cs>>>(S.boxes.p, S.cBase.p, S.cases.p, S.tcount.p);
+    detail::mc_cuda::classifyCells<<<dim3(blocks(maxC), n), 256, 0, cs>>>(S.boxes.p, S.cBase.p, S.cases.p, S.tcount.p);
     LVDIF_CUDA_CHECK(cudaGetLastError());
     S.scan(S.vcount.p, S.vfirst.p, P + 1, cs);
     S.scan(S.tcount.p, S.tfirst.p, C + 1, cs);
-    mccuda::chunkBases<<<blocks(n + 1), 256, 0, cs>>>(S.pBase.p, S.cBase.p, S.vfirst.p, S.tfirst.p, S.vBase.p, S.tBase.p, n);
+    detail::mc_cuda::chunkBases<<<blocks(n + 1), 256, 0, cs>>>(S.pBase.p, S.cBase.p, S.vfirst.p, S.tfirst.p, S.vBase.p, S.tBase.p, n);
     LVDIF_CUDA_CHECK(cudaGetLastError());
     vb.resize(n + 1);
     tb.resize(n + 1);
@@ -478,9 +476,9 @@ void packLocked(const ChunkedMarchingCubes::Impl& impl, MarchingCubesCudaState& 
       if (S.copyPending[slot]) LVDIF_CUDA_CHECK(cudaEventSynchronize(S.copied[slot]));
       S.copyPending[slot] = false;
       const Out o = S.out[slot].reserve(NV, NT, normals, colors, cells, false);
-      mccuda::generateVertices<<<dim3(blocks(maxP), n), 256, 0, cs>>>(S.boxes.p, S.pBase.p, S.masks.p, S.vfirst.p, o);
+      detail::mc_cuda::generateVertices<<<dim3(blocks(maxP), n), 256, 0, cs>>>(S.boxes.p, S.pBase.p, S.masks.p, S.vfirst.p, o);
       LVDIF_CUDA_CHECK(cudaGetLastError());
-      mccuda::generateTriangles<<<dim3(blocks(maxC), n), 256, 0, cs>>>(
+      detail::mc_cuda::generateTriangles<<<dim3(blocks(maxC), n), 256, 0, cs>>>(
         S.boxes.p, S.pBase.p, S.cBase.p, S.vBase.p, S.cases.p, S.tfirst.p, S.masks.p, S.vfirst.p, S.tris.p, o);
       LVDIF_CUDA_CHECK(cudaGetLastError());
       LVDIF_CUDA_CHECK(cudaEventRecord(S.generated[slot], cs));
@@ -656,13 +654,13 @@ void packFromDeviceLocked(const ChunkedMarchingCubes::Impl& impl, MarchingCubesC
     LVDIF_CUDA_CHECK(cudaMemsetAsync(S.tcount.p + C, 0, sizeof(unsigned int), cs));
     gatherFromVolume<<<dim3(blocks(maxG), n), 256, 0, cs>>>(v, S.boxes.p);
     LVDIF_CUDA_CHECK(cudaGetLastError());
-    mccuda::classifyPoints<<<dim3(blocks(maxP), n), 256, 0, cs>>>(S.boxes.p, S.pBase.p, S.masks.p, S.vcount.p);
+    detail::mc_cuda::classifyPoints<<<dim3(blocks(maxP), n), 256, 0, cs>>>(S.boxes.p, S.pBase.p, S.masks.p, S.vcount.p);
     LVDIF_CUDA_CHECK(cudaGetLastError());
-    mccuda::classifyCells<<<dim3(blocks(maxC), n), 256, 0, cs>>>(S.boxes.p, S.cBase.p, S.cases.p, S.tcount.p);
+    detail::mc_cuda::classifyCells<<<dim3(blocks(maxC), n), 256, 0, cs>>>(S.boxes.p, S.cBase.p, S.cases.p, S.tcount.p);
     LVDIF_CUDA_CHECK(cudaGetLastError());
     S.scan(S.vcount.p, S.vfirst.p, P + 1, cs);
     S.scan(S.tcount.p, S.tfirst.p, C + 1, cs);
-    mccuda::chunkBases<<<blocks(n + 1), 256, 0, cs>>>(S.pBase.p, S.cBase.p, S.vfirst.p, S.tfirst.p, S.vBase.p, S.tBase.p, n);
+    detail::mc_cuda::chunkBases<<<blocks(n + 1), 256, 0, cs>>>(S.pBase.p, S.cBase.p, S.vfirst.p, S.tfirst.p, S.vBase.p, S.tBase.p, n);
     LVDIF_CUDA_CHECK(cudaGetLastError());
     vb.resize(n + 1);
     tb.resize(n + 1);
@@ -682,9 +680,9 @@ void packFromDeviceLocked(const ChunkedMarchingCubes::Impl& impl, MarchingCubesC
       S.copyPending[0] = false;
       S.out[0].reserve(slack(NV), slack(NT), normals, colors, cells, keys);
       const Out o = S.out[0].reserve(NV, NT, normals, colors, cells, keys);
-      mccuda::generateVertices<<<dim3(blocks(maxP), n), 256, 0, cs>>>(S.boxes.p, S.pBase.p, S.masks.p, S.vfirst.p, o);
+      detail::mc_cuda::generateVertices<<<dim3(blocks(maxP), n), 256, 0, cs>>>(S.boxes.p, S.pBase.p, S.masks.p, S.vfirst.p, o);
       LVDIF_CUDA_CHECK(cudaGetLastError());
-      mccuda::generateTriangles<<<dim3(blocks(maxC), n), 256, 0, cs>>>(
+      detail::mc_cuda::generateTriangles<<<dim3(blocks(maxC), n), 256, 0, cs>>>(
         S.boxes.p, S.pBase.p, S.cBase.p, S.vBase.p, S.cases.p, S.tfirst.p, S.masks.p, S.vfirst.p, S.tris.p, o);
       LVDIF_CUDA_CHECK(cudaGetLastError());
       auto get = [&](void* dst, const void* src, std::size_t bytes) {

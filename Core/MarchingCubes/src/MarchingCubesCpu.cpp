@@ -50,7 +50,7 @@ struct Sweep
         hi[a] += 1;
         h = value(hi[0], hi[1], hi[2]);
       }
-      g[a] = mc::gradient(l, mid, h, p[a], n, impl.InvSpacing[a]);
+      g[a] = detail::mc::gradient(l, mid, h, p[a], n, impl.InvSpacing[a]);
     }
   }
 
@@ -60,11 +60,11 @@ struct Sweep
     std::int64_t q[3] = { x, y, z };
     q[axis] += 1;
     const float a = value(x, y, z), b = value(q[0], q[1], q[2]);
-    const float t = mc::edgeT(impl.Options.isoValue, a, b);
+    const float t = detail::mc::edgeT(impl.Options.isoValue, a, b);
     const std::int64_t p[3] = { x, y, z };
     Vec3f pos;
     for (int k = 0; k < 3; ++k)
-      pos[k] = mc::coord(impl.Origin[k], impl.Spacing[k], p[k] + impl.Options.gridOffset[k], k == axis ? t : 0.0f);
+      pos[k] = detail::mc::coord(impl.Origin[k], impl.Spacing[k], p[k] + impl.Options.gridOffset[k], k == axis ? t : 0.0f);
     const std::uint32_t id = static_cast<std::uint32_t>(out.points.size());
     out.points.push_back(pos);
     out.edgeIds.push_back(3 * static_cast<std::uint64_t>(x + impl.Dims[0] * (y + impl.Dims[1] * z)) +
@@ -74,15 +74,15 @@ struct Sweep
       float g0[3], g1[3];
       gradientAt(x, y, z, g0);
       gradientAt(q[0], q[1], q[2], g1);
-      Vec3f nrm{ mc::lerp(g0[0], g1[0], t), mc::lerp(g0[1], g1[1], t), mc::lerp(g0[2], g1[2], t) };
-      mc::normalize(nrm[0], nrm[1], nrm[2]);
+      Vec3f nrm{ detail::mc::lerp(g0[0], g1[0], t), detail::mc::lerp(g0[1], g1[1], t), detail::mc::lerp(g0[2], g1[2], t) };
+      detail::mc::normalize(nrm[0], nrm[1], nrm[2]);
       out.normals.push_back(nrm);
     }
     if (colors || palette)
     {
       const Rgba c0 = colorAt(in.local(x, y, z)), c1 = colorAt(in.local(q[0], q[1], q[2]));
-      out.colors.push_back(Rgba{ mc::lerpChannel(c0.r, c1.r, t), mc::lerpChannel(c0.g, c1.g, t),
-        mc::lerpChannel(c0.b, c1.b, t), mc::lerpChannel(c0.a, c1.a, t) });
+      out.colors.push_back(Rgba{ detail::mc::lerpChannel(c0.r, c1.r, t), detail::mc::lerpChannel(c0.g, c1.g, t),
+        detail::mc::lerpChannel(c0.b, c1.b, t), detail::mc::lerpChannel(c0.a, c1.a, t) });
     }
     return id;
   }

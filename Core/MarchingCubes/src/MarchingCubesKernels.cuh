@@ -11,7 +11,7 @@
 
 namespace lvdif
 {
-namespace mccuda
+namespace detail::mc_cuda
 {
 
 /// Triangles per case: the same for every valid case table (marchingCubesTablesWith
@@ -57,7 +57,7 @@ struct Box
         q[a] = p[a] + 1;
         h = v(q[0], q[1], q[2]);
       }
-      g[a] = mc::gradient(l, mid, h, p[a], dims[a], inv[a]);
+      g[a] = detail::mc::gradient(l, mid, h, p[a], dims[a], inv[a]);
     }
   }
 };
@@ -129,17 +129,17 @@ __global__ void generateVertices(
     long long q[3] = { pt[0], pt[1], pt[2] };
     q[axis] += 1;
     const float va = b.v(pt[0], pt[1], pt[2]), vb = b.v(q[0], q[1], q[2]);
-    const float t = mc::edgeT(b.iso, va, vb);
+    const float t = detail::mc::edgeT(b.iso, va, vb);
     for (int k = 0; k < 3; ++k)
-      o.points[3 * id + k] = mc::coord(b.origin[k], b.spacing[k], pt[k] + b.goff[k], k == axis ? t : 0.0f);
+      o.points[3 * id + k] = detail::mc::coord(b.origin[k], b.spacing[k], pt[k] + b.goff[k], k == axis ? t : 0.0f);
     o.edgeIds[id] = 3ull * static_cast<unsigned long long>(pt[0] + b.dims[0] * (pt[1] + b.dims[1] * pt[2])) +
       static_cast<unsigned long long>(axis);
     if (b.normals)
     {
       float g1[3];
       b.gradient(q, g1);
-      float nx = mc::lerp(g0[0], g1[0], t), ny = mc::lerp(g0[1], g1[1], t), nz = mc::lerp(g0[2], g1[2], t);
-      mc::normalize(nx, ny, nz);
+      float nx = detail::mc::lerp(g0[0], g1[0], t), ny = detail::mc::lerp(g0[1], g1[1], t), nz = detail::mc::lerp(g0[2], g1[2], t);
+      detail::mc::normalize(nx, ny, nz);
       o.normals[3 * id] = nx;
       o.normals[3 * id + 1] = ny;
       o.normals[3 * id + 2] = nz;
@@ -148,10 +148,10 @@ __global__ void generateVertices(
     {
       const Rgba c0 = b.colors[b.local(pt[0], pt[1], pt[2])], c1 = b.colors[b.local(q[0], q[1], q[2])];
       Rgba c;
-      c.r = mc::lerpChannel(c0.r, c1.r, t);
-      c.g = mc::lerpChannel(c0.g, c1.g, t);
-      c.b = mc::lerpChannel(c0.b, c1.b, t);
-      c.a = mc::lerpChannel(c0.a, c1.a, t);
+      c.r = detail::mc::lerpChannel(c0.r, c1.r, t);
+      c.g = detail::mc::lerpChannel(c0.g, c1.g, t);
+      c.b = detail::mc::lerpChannel(c0.b, c1.b, t);
+      c.a = detail::mc::lerpChannel(c0.a, c1.a, t);
       o.colors[id] = c;
     }
     ++id;
@@ -211,5 +211,5 @@ __global__ void chunkBases(const long long* pBase, const long long* cBase, const
   tBase[c] = firstTri[cBase[c]];
 }
 
-} // namespace mccuda
+} // namespace detail::mc_cuda
 } // namespace lvdif

@@ -11,7 +11,7 @@
 
 namespace lvdif
 {
-namespace mc
+namespace detail::mc
 {
 
 #if defined(__CUDA_ARCH__)
@@ -69,5 +69,5 @@ LVDIF_HD std::uint8_t lerpChannel(std::uint8_t a, std::uint8_t b, float t)
   return static_cast<std::uint8_t>(r < 0 ? 0 : (r > 255 ? 255 : r));
 }
 
-} // namespace mc
+} // namespace detail::mc
 } // namespace lvdif

@@ -242,10 +242,10 @@ TEST(MarchingCubesCuda, PackedPipelineEqualsCpuOverManyBatches)
   o.device = Device::Cpu;
   ChunkedMarchingCubes cpu(g, colors.data(), o);
   o.device = Device::Cuda;
+  // batches of ~4 chunks: many batches, both output sets, the block grows on the way
+  o.cudaBatchPoints = 20000;
   ChunkedMarchingCubes gpu(g, colors.data(), o);
   const auto a = cpu.extractAll();
-  // batches of ~4 chunks: many batches, both output sets, the block grows on the way
-  setenv("LVDIF_MC_BATCH_POINTS", "20000", 1);
   PackedChunkMeshes packed;
   gpu.extractAllPacked(packed);
   EXPECT_TRUE(packed.pageLocked());
@@ -267,7 +267,6 @@ TEST(MarchingCubesCuda, PackedPipelineEqualsCpuOverManyBatches)
   }
   // the split path (extractAll) over many batches too
   expectSame(a, gpu.extractAll());
-  unsetenv("LVDIF_MC_BATCH_POINTS");
 }
 
 TEST(MarchingCubesCuda, CustomTriangleTableEqualsCpu)

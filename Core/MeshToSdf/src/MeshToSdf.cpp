@@ -25,7 +25,7 @@
 namespace lvdif
 {
 
-using namespace sdfdetail;
+using namespace detail::meshtosdf;
 
 namespace
 {
@@ -228,7 +228,7 @@ std::unique_ptr<Engine> makeEngine(const MeshToSdfPrepared& prepared, const Grid
 /// built yet (the one-call API) are built and uploaded by the session right
 /// after it queues the first distance kernel, overlapping it; that host time
 /// is added to the build time too.
-std::unique_ptr<cudasdf::Session> openCuda(const MeshToSdfPrepared& prepared, const Engine& e,
+std::unique_ptr<detail::meshtosdf_cuda::Session> openCuda(const MeshToSdfPrepared& prepared, const Engine& e,
   const MeshToSdfOptions& opts, MeshToSdfStats& stats)
 {
   const double t0 = now();
@@ -237,7 +237,7 @@ std::unique_ptr<cudasdf::Session> openCuda(const MeshToSdfPrepared& prepared, co
   const bool winding = opts.sign == SignMode::WindingNumber;
   const bool normals = opts.sign == SignMode::Normal || opts.sign == SignMode::PseudoNormal;
   const bool built = impl.hasWindingSigner();
-  const cudasdf::DeviceMesh& dm = impl.deviceMesh(winding && built, normals, unused, winding && !built);
+  const detail::meshtosdf_cuda::DeviceMesh& dm = impl.deviceMesh(winding && built, normals, unused, winding && !built);
   std::function<void()> ensure;
   if (winding)
   {
@@ -249,7 +249,7 @@ std::unique_ptr<cudasdf::Session> openCuda(const MeshToSdfPrepared& prepared, co
       trace("winding structures built and uploaded, overlapping the distance kernel", now() - t1);
     };
   }
-  auto session = cudasdf::openSession(dm, e.geom, opts, e.toOut, e.band, stats, std::move(ensure));
+  auto session = detail::meshtosdf_cuda::openSession(dm, e.geom, opts, e.toOut, e.band, stats, std::move(ensure));
   stats.buildSeconds += now() - t0;
   trace("upload and session", now() - t0);
   return session;
@@ -416,7 +416,7 @@ void volumeOnCpu(const Engine& e, DictionaryVolume& volume, MeshToSdfStats& stat
 /// one), encoded on the GPU (SdfDictionary::encodeWith, the host's own
 /// rounding); only the keys of non-uniform chunks come back, and the host
 /// stores group g while the GPU computes group g + 1.
-void volumeOnCuda(cudasdf::Session& session, DictionaryVolume& volume, const MeshToSdfOptions& opts,
+void volumeOnCuda(detail::meshtosdf_cuda::Session& session, DictionaryVolume& volume, const MeshToSdfOptions& opts,
   MeshToSdfStats& stats, Interrupter& intr)
 {
   const Index3 dims = volume.options().dims;
@@ -434,7 +434,7 @@ void volumeOnCuda(cudasdf::Session& session, DictionaryVolume& volume, const Mes
     b.hi = { dims[0] - 1, dims[1] - 1, std::min(dims[2], (g0 + group) * edge) - 1 };
     return b;
   };
-  cudasdf::ChunkKeys keys;
+  detail::meshtosdf_cuda::ChunkKeys keys;
   session.launchKeys(boxOf(0), static_cast<int>(edge), enc, band, stats);
   const std::int64_t e3 = edge * edge * edge;
   for (std::int64_t g0 = 0; g0 < cc[2]; g0 += group)
@@ -453,7 +453,7 @@ void volumeOnCuda(cudasdf::Session& session, DictionaryVolume& volume, const Mes
     {
       const std::int64_t id = volume.chunkId(c % cc[0], (c / cc[0]) % cc[1], g0 + c / (cc[0] * cc[1]));
       const std::uint32_t u = keys.uniform[static_cast<std::size_t>(c)];
-      const bool uniform = u != cudasdf::ChunkKeys::NotUniform;
+      const bool uniform = u != detail::meshtosdf_cuda::ChunkKeys::NotUniform;
       const std::uint16_t* k = uniform ? nullptr : keys.keys.data() + slot[static_cast<std::size_t>(c)] * e3;
       auto keyAt = [&](std::int64_t, std::int64_t, std::int64_t, std::int64_t l) { return k[l]; };
       if (!keys.floats.empty())
@@ -485,6 +485,7 @@ void volumeOnCuda(cudasdf::Session& session, DictionaryVolume& volume, const Mes
 MeshToSdfStats meshToSdf(const MeshToSdfPrepared& mesh, const GridGeometry& grid, const VoxelBox& extent,
   float* out, const MeshToSdfOptions& options, Interrupter& interrupter)
 {
+  const PhaseTraceScope tracing(options.tracePhases);
   validateGrid(grid);
   require(out != nullptr, "mesh to SDF: output pointer is null");
   require(!extent.empty(), "mesh to SDF: the requested extent is empty");
@@ -531,6 +532,7 @@ MeshToSdfStats meshToSdf(const MeshToSdfPrepared& mesh, const FloatGridView& out
 MeshToSdfStats meshToSdf(const MeshToSdfPrepared& mesh, DictionaryVolume& volume, const MeshToSdfOptions& options,
   Interrupter& interrupter)
 {
+  const PhaseTraceScope tracing(options.tracePhases);
   const VolumeOptions& vo = volume.options();
   GridGeometry grid;
   grid.dims = vo.dims;
@@ -585,6 +587,7 @@ template <typename Out>
 MeshToSdfStats prepareAndRun(const TriangleMesh& mesh, Out&& out, const MeshToSdfOptions& options,
   Interrupter& interrupter)
 {
+  const PhaseTraceScope tracing(options.tracePhases);
   const MeshToSdfPrepared prepared = prepareInternal(mesh, false);
   MeshToSdfStats stats = meshToSdf(prepared, std::forward<Out>(out), options, interrupter);
   stats.buildSeconds += prepared.prepareSeconds();
@@ -594,6 +597,7 @@ MeshToSdfStats prepareAndRun(const TriangleMesh& mesh, Out&& out, const MeshToSd
 MeshToSdfStats meshToSdf(const TriangleMesh& mesh, const GridGeometry& grid, const VoxelBox& extent, float* out,
   const MeshToSdfOptions& options, Interrupter& interrupter)
 {
+  const PhaseTraceScope tracing(options.tracePhases);
   const MeshToSdfPrepared prepared = prepareInternal(mesh, false);
   MeshToSdfStats stats = meshToSdf(prepared, grid, extent, out, options, interrupter);
   stats.buildSeconds += prepared.prepareSeconds();

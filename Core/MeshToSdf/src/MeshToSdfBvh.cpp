@@ -7,7 +7,7 @@
 
 namespace lvdif
 {
-namespace sdfdetail
+namespace detail::meshtosdf
 {
 
 namespace
@@ -286,5 +286,5 @@ bool Bvh::rayHits(V3 o, V3 dir, double tmin, std::vector<RayHit>& hits) const
   return true;
 }
 
-} // namespace sdfdetail
+} // namespace detail::meshtosdf
 } // namespace lvdif

@@ -23,10 +23,10 @@
 
 namespace lvdif
 {
-namespace cudasdf
+namespace detail::meshtosdf_cuda
 {
 
-using namespace sdfdetail;
+using namespace detail::meshtosdf;
 
 namespace
 {
@@ -533,5 +533,5 @@ std::vector<std::uint16_t> encodeOnDevice(
   return host;
 }
 
-} // namespace cudasdf
+} // namespace detail::meshtosdf_cuda
 } // namespace lvdif

@@ -12,7 +12,7 @@
 
 namespace lvdif
 {
-namespace cudasdf
+namespace detail::meshtosdf_cuda
 {
 /// The mesh and its BVH (and, when uploaded with a winding signer, the
 /// closed chain's BVH, cone and clusters) on the GPU; freed on destruction.
@@ -25,7 +25,7 @@ public:
   virtual std::uint64_t bytes() const = 0;
   /// Uploads the winding structures to a copy made without them (called
   /// once, under the prepared mesh's lock).
-  virtual void addWinding(const sdfdetail::WindingSigner& winding) = 0;
+  virtual void addWinding(const detail::meshtosdf::WindingSigner& winding) = 0;
   /// The full triangle records (normals), which only the Normal and
   /// PseudoNormal modes read: uploaded on first need, like addWinding.
   virtual bool hasNormals() const = 0;
@@ -33,8 +33,8 @@ public:
 };
 
 /// windingLater (winding null): reserve device memory for an addWinding to come.
-std::unique_ptr<DeviceMesh> uploadMesh(const sdfdetail::PreparedMesh& mesh, const sdfdetail::Bvh& bvh,
-  const sdfdetail::WindingSigner* winding, bool normals, bool windingLater);
+std::unique_ptr<DeviceMesh> uploadMesh(const detail::meshtosdf::PreparedMesh& mesh, const detail::meshtosdf::Bvh& bvh,
+  const detail::meshtosdf::WindingSigner* winding, bool normals, bool windingLater);
 
 /// The keys of one group of chunk layers, encoded on the GPU.
 struct ChunkKeys
@@ -76,5 +76,5 @@ std::unique_ptr<Session> openSession(const DeviceMesh& mesh, const GridGeometry&
 /// Tests: SdfDictionary::encodeWith (band-clamped as DictionaryVolume::encode) run on the GPU.
 std::vector<std::uint16_t> encodeOnDevice(
   const SdfDictionary::EncodeConstants& encode, float band, const std::vector<float>& values);
-} // namespace cudasdf
+} // namespace detail::meshtosdf_cuda
 } // namespace lvdif

@@ -21,10 +21,10 @@
 
 namespace lvdif
 {
-namespace cudasdf
+namespace detail::meshtosdf_cuda
 {
 
-using namespace sdfdetail;
+using namespace detail::meshtosdf;
 
 namespace
 {
@@ -211,23 +211,11 @@ void launchDistanceAs(const DevBvh& bvh, const Params& P, float* out)
 /// Runs of 16 voxels along x, a warp = one run in each of 32 neighbouring
 /// rows (y), at most 64 registers (8 blocks of 128 per SM; the spills cost
 /// less than the occupancy gains): the fastest shape measured on the H200
-/// (docs/BENCHMARKS.md). LVDIF_SDF_DISTANCE_VARIANT (benchmarks only; every
-/// shape computes the same values, and the CUDA tests pass with each) picks
-/// another: 1 = the same without the register cap, 2 = at most 80 registers,
-/// 3 = warps of 4 runs x 8 rows, no cap.
+/// among those tried (no register cap, 80 registers, warps of 4 runs x 8 rows;
+/// docs/BENCHMARKS.md). Every shape computes the same values.
 void launchDistance(const DevBvh& bvh, const Params& P, float* out)
 {
-  static const int variant = [] {
-    const char* v = std::getenv("LVDIF_SDF_DISTANCE_VARIANT");
-    return v ? std::atoi(v) : 0;
-  }();
-  switch (variant)
-  {
-    case 1: return launchDistanceAs<16, 1, 1>(bvh, P, out);
-    case 2: return launchDistanceAs<16, 1, 6>(bvh, P, out);
-    case 3: return launchDistanceAs<16, 4, 1>(bvh, P, out);
-    default: return launchDistanceAs<16, 1, 8>(bvh, P, out);
-  }
+  launchDistanceAs<16, 1, 8>(bvh, P, out);
 }
 
 struct Hit
@@ -535,5 +523,5 @@ __global__ void encodeKernel(SdfDictionary::EncodeConstants E, float band, const
   out[i] = SdfDictionary::encodeWith(E, v);
 }
 } // namespace
-} // namespace cudasdf
+} // namespace detail::meshtosdf_cuda
 } // namespace lvdif

@@ -7,7 +7,7 @@
 
 namespace lvdif
 {
-namespace sdfdetail
+namespace detail::meshtosdf
 {
 
 namespace
@@ -237,5 +237,5 @@ double DipoleTree::exact(V3 p) const
   return s / FourPi;
 }
 
-} // namespace sdfdetail
+} // namespace detail::meshtosdf
 } // namespace lvdif

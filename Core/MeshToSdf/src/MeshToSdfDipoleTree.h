@@ -14,7 +14,7 @@
 
 namespace lvdif
 {
-namespace sdfdetail
+namespace detail::meshtosdf
 {
 
 struct WeightedTri
@@ -72,5 +72,5 @@ private:
   std::vector<Node> Nodes;
 };
 
-} // namespace sdfdetail
+} // namespace detail::meshtosdf
 } // namespace lvdif

@@ -13,7 +13,7 @@
 
 namespace lvdif
 {
-namespace sdfdetail
+namespace detail::meshtosdf
 {
 
 bool triangleBoxOverlap(const V3 tri[3], const double centre[3], const double half[3])
@@ -189,5 +189,5 @@ NearestResult FaithfulGrid::nearest(V3 p) const
   return best;
 }
 
-} // namespace sdfdetail
+} // namespace detail::meshtosdf
 } // namespace lvdif

@@ -13,7 +13,7 @@
 
 namespace lvdif
 {
-namespace sdfdetail
+namespace detail::meshtosdf
 {
 
 constexpr double FourPi = 12.566370614359172; // solid angle of the whole sphere
@@ -162,5 +162,5 @@ LVDIF_HD V3 featureNormal(const Tri& t, Feature f)
   }
 }
 
-} // namespace sdfdetail
+} // namespace detail::meshtosdf
 } // namespace lvdif

@@ -15,13 +15,25 @@
 
 namespace lvdif
 {
-namespace sdfdetail
+namespace detail::meshtosdf
 {
 
-/// Seconds of a steady clock; host phase times on stderr when
-/// LVDIF_MESH_TO_SDF_TRACE=1 (benchmarks). MeshToSdfPrepared.cpp.
+/// Seconds of a steady clock; host phase times on stderr while a
+/// PhaseTraceScope with MeshToSdfOptions::tracePhases is alive on this thread
+/// (benchmarks). MeshToSdfPrepared.cpp.
 double now();
 void trace(const char* what, double seconds);
+class PhaseTraceScope
+{
+public:
+  explicit PhaseTraceScope(bool on);
+  ~PhaseTraceScope();
+  PhaseTraceScope(const PhaseTraceScope&) = delete;
+  PhaseTraceScope& operator=(const PhaseTraceScope&) = delete;
+
+private:
+  bool previous;
+};
 
 struct PreparedMesh
 {
@@ -191,9 +203,9 @@ bool triangleBoxOverlap(const V3 tri[3], const double centre[3], const double ha
 
 class NearestIndex; // MeshToSdfNearest.h: the CPU nearest-triangle queries
 
-} // namespace sdfdetail
+} // namespace detail::meshtosdf
 
-namespace cudasdf
+namespace detail::meshtosdf_cuda
 {
 class DeviceMesh; // MeshToSdfCuda.h
 }
@@ -202,14 +214,14 @@ class DeviceMesh; // MeshToSdfCuda.h
 /// are guarded by Lock).
 struct MeshToSdfPrepared::Impl
 {
-  sdfdetail::PreparedMesh mesh;
-  std::unique_ptr<sdfdetail::Bvh> bvh;             // the GPU's tree, built on first upload (under Lock)
-  std::unique_ptr<sdfdetail::NearestIndex> nearest; // the CPU's distance queries, built on first CPU use
+  detail::meshtosdf::PreparedMesh mesh;
+  std::unique_ptr<detail::meshtosdf::Bvh> bvh;             // the GPU's tree, built on first upload (under Lock)
+  std::unique_ptr<detail::meshtosdf::NearestIndex> nearest; // the CPU's distance queries, built on first CPU use
   /// The CPU's NearestIndex, built on first use (seconds added; under Lock).
-  const sdfdetail::NearestIndex& nearestIndex(double& seconds);
+  const detail::meshtosdf::NearestIndex& nearestIndex(double& seconds);
   double prepareSeconds = 0;
   /// The winding-number structures, built on first use (seconds added).
-  const sdfdetail::WindingSigner& windingSigner(double& seconds);
+  const detail::meshtosdf::WindingSigner& windingSigner(double& seconds);
   /// Whether the winding-number structures are built already.
   bool hasWindingSigner();
   /// The mesh (and, when asked, the winding structures) on the GPU, uploaded
@@ -217,13 +229,13 @@ struct MeshToSdfPrepared::Impl
   /// part may be added later (once) to a copy uploaded without it: sessions
   /// that do not use it never read it.
   /// windingLater: the winding part will be added soon (its memory is reserved now).
-  const cudasdf::DeviceMesh& deviceMesh(bool winding, bool normals, double& seconds, bool windingLater = false);
+  const detail::meshtosdf_cuda::DeviceMesh& deviceMesh(bool winding, bool normals, double& seconds, bool windingLater = false);
   ~Impl();
 
 private:
   std::mutex Lock;
-  std::unique_ptr<sdfdetail::WindingSigner> Winding;
-  std::unique_ptr<cudasdf::DeviceMesh> Device;
+  std::unique_ptr<detail::meshtosdf::WindingSigner> Winding;
+  std::unique_ptr<detail::meshtosdf_cuda::DeviceMesh> Device;
 };
 
 } // namespace lvdif

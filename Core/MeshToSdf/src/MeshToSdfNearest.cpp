@@ -19,7 +19,7 @@
 
 namespace lvdif
 {
-namespace sdfdetail
+namespace detail::meshtosdf
 {
 
 namespace
@@ -479,5 +479,5 @@ NearestResult NearestIndex::nearest(V3 p, std::int32_t hint, double maxDist2) co
   return best;
 }
 
-} // namespace sdfdetail
+} // namespace detail::meshtosdf
 } // namespace lvdif

@@ -12,7 +12,7 @@
 
 namespace lvdif
 {
-namespace sdfdetail
+namespace detail::meshtosdf
 {
 
 /// float bounds rounded outward (the boxes must contain the double ones)
@@ -81,5 +81,5 @@ private:
   std::size_t Depth = 0;
 };
 
-} // namespace sdfdetail
+} // namespace detail::meshtosdf
 } // namespace lvdif

@@ -19,7 +19,7 @@
 
 namespace lvdif
 {
-namespace sdfdetail
+namespace detail::meshtosdf
 {
 
 bool nearestRowUseAvx2 = [] {
@@ -203,5 +203,5 @@ void NearestIndex::traverseRowSse(NearestRowState& s) const
 }
 #endif
 
-} // namespace sdfdetail
+} // namespace detail::meshtosdf
 } // namespace lvdif

@@ -8,7 +8,7 @@
 
 namespace lvdif
 {
-namespace sdfdetail
+namespace detail::meshtosdf
 {
 
 struct NearestRowState
@@ -54,5 +54,5 @@ struct NearestRowState
 /// tests switch it off to cover the SSE one).
 extern bool nearestRowUseAvx2;
 
-} // namespace sdfdetail
+} // namespace detail::meshtosdf
 } // namespace lvdif

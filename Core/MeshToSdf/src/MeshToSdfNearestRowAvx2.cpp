@@ -13,7 +13,7 @@
 
 namespace lvdif
 {
-namespace sdfdetail
+namespace detail::meshtosdf
 {
 
 static_assert(NearestIndex::RowPoints == 8, "one AVX register of points");
@@ -111,15 +111,15 @@ __attribute__((target("avx2"))) void NearestIndex::traverseRowAvx2(NearestRowSta
   }
 }
 
-} // namespace sdfdetail
+} // namespace detail::meshtosdf
 } // namespace lvdif
 
 #else
 namespace lvdif
 {
-namespace sdfdetail
+namespace detail::meshtosdf
 {
 void NearestIndex::traverseRowAvx2(NearestRowState& s) const { this->traverseRowSse(s); }
-} // namespace sdfdetail
+} // namespace detail::meshtosdf
 } // namespace lvdif
 #endif

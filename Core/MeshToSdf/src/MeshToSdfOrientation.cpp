@@ -13,7 +13,7 @@
 
 namespace lvdif
 {
-namespace sdfdetail
+namespace detail::meshtosdf
 {
 
 namespace
@@ -196,5 +196,5 @@ OrientedMesh orientMesh(const std::vector<Tri>& tris)
   return out;
 }
 
-} // namespace sdfdetail
+} // namespace detail::meshtosdf
 } // namespace lvdif

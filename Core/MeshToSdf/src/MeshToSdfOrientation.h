@@ -12,7 +12,7 @@
 
 namespace lvdif
 {
-namespace sdfdetail
+namespace detail::meshtosdf
 {
 
 struct Tri;
@@ -48,5 +48,5 @@ struct OrientedMesh
 /// edges become boundary of M+, closed by the cone).
 OrientedMesh orientMesh(const std::vector<Tri>& tris);
 
-} // namespace sdfdetail
+} // namespace detail::meshtosdf
 } // namespace lvdif

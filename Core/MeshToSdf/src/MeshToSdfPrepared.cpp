@@ -13,7 +13,7 @@
 
 namespace lvdif
 {
-namespace sdfdetail
+namespace detail::meshtosdf
 {
 double now()
 {
@@ -22,24 +22,25 @@ double now()
 
 namespace
 {
-/// LVDIF_MESH_TO_SDF_TRACE=1: host phase times on stderr (benchmarks).
-bool traceOn()
-{
-  static const bool on = [] {
-    const char* v = std::getenv("LVDIF_MESH_TO_SDF_TRACE");
-    return v != nullptr && v[0] == '1';
-  }();
-  return on;
-}
+// per thread, so that concurrent calls with and without tracePhases do not mix
+thread_local bool tracePhasesOn = false;
 } // namespace
+
+PhaseTraceScope::PhaseTraceScope(bool on)
+  : previous(tracePhasesOn)
+{
+  tracePhasesOn = previous || on;
+}
+
+PhaseTraceScope::~PhaseTraceScope() { tracePhasesOn = previous; }
 
 void trace(const char* what, double seconds)
 {
-  if (traceOn()) std::fprintf(stderr, "[mesh to SDF] %s: %.2f ms\n", what, seconds * 1e3);
+  if (tracePhasesOn) std::fprintf(stderr, "[mesh to SDF] %s: %.2f ms\n", what, seconds * 1e3);
 }
-} // namespace sdfdetail
+} // namespace detail::meshtosdf
 
-using namespace sdfdetail;
+using namespace detail::meshtosdf;
 
 std::size_t MeshToSdfPrepared::triangles() const { return this->Pimpl->mesh.tris.size(); }
 std::size_t MeshToSdfPrepared::degenerateSkipped() const { return this->Pimpl->mesh.degenerate; }
@@ -77,7 +78,7 @@ bool MeshToSdfPrepared::Impl::hasWindingSigner()
   return this->Winding != nullptr;
 }
 
-const cudasdf::DeviceMesh& MeshToSdfPrepared::Impl::deviceMesh(
+const detail::meshtosdf_cuda::DeviceMesh& MeshToSdfPrepared::Impl::deviceMesh(
   bool winding, bool normals, double& seconds, bool windingLater)
 {
   const WindingSigner* w = winding ? &this->windingSigner(seconds) : nullptr;
@@ -94,7 +95,7 @@ const cudasdf::DeviceMesh& MeshToSdfPrepared::Impl::deviceMesh(
   }
   if (!this->Device)
   {
-    this->Device = cudasdf::uploadMesh(this->mesh, *this->bvh, w, normals, windingLater);
+    this->Device = detail::meshtosdf_cuda::uploadMesh(this->mesh, *this->bvh, w, normals, windingLater);
   }
   else
   {

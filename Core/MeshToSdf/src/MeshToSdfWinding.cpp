@@ -41,7 +41,7 @@
 
 namespace lvdif
 {
-namespace sdfdetail
+namespace detail::meshtosdf
 {
 
 namespace
@@ -479,5 +479,5 @@ void WindingSigner::signRow(V3 rowStart, double h, std::int64_t n, float* out, s
   }
 }
 
-} // namespace sdfdetail
+} // namespace detail::meshtosdf
 } // namespace lvdif

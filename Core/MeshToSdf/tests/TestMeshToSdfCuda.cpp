@@ -239,7 +239,7 @@ TEST(MeshToSdfCuda, DeviceEncodeMatchesHostEncode)
   }
   for (float band : { 4.0f, 8.0f, std::numeric_limits<float>::infinity() })
   {
-    const std::vector<std::uint16_t> gpu = cudasdf::encodeOnDevice(d.encodeConstants(), band, v);
+    const std::vector<std::uint16_t> gpu = detail::meshtosdf_cuda::encodeOnDevice(d.encodeConstants(), band, v);
     std::int64_t bad = 0;
     for (std::size_t i = 0; i < v.size(); ++i) bad += gpu[i] != d.encodeClamped(v[i], band);
     EXPECT_EQ(bad, 0) << "band " << band;

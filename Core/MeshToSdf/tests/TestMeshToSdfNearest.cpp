@@ -14,7 +14,7 @@
 #include <vector>
 
 using namespace lvdif;
-using namespace lvdif::sdfdetail;
+using namespace lvdif::detail::meshtosdf;
 
 namespace
 {

@@ -70,7 +70,7 @@ TEST(MeshToSdfSign, ClosestPointMatchesOracle)
   // the edge-AB region the original code got wrong (spec 1.4)
   std::mt19937 rng(11);
   std::uniform_real_distribution<double> u(-2, 2);
-  using namespace sdfdetail;
+  using namespace detail::meshtosdf;
   double worst = 0;
   int featureCount[7] = {};
   for (int n = 0; n < 200000; ++n)

@@ -1,4 +1,4 @@
-// Winding-number sign on meshes with reversed faces (issue 4): the sign of
+// Winding-number sign on meshes with reversed faces: the sign of
 // meshToSdf's WindingNumber mode against the exact winding number by brute
 // force (sum of solid angles in long double, MeshToSdfOracle.h) on every
 // voxel farther than 1 voxel, for flipped fractions 10-90 %, flipped + holes,
@@ -110,7 +110,7 @@ MeshToSdfStats expectExactSigns(const std::string& name, const TriangleMesh& mes
 
 TEST(MeshToSdfWindingFlip, DipoleTreeIntervalsHoldAgainstLongDoubleSolidAngles)
 {
-  using namespace sdfdetail;
+  using namespace detail::meshtosdf;
   std::mt19937 rng(3);
   std::uniform_real_distribution<double> u(-1, 1);
   std::uniform_real_distribution<float> uf(-1, 1), sf(-0.1f, 0.1f);
@@ -199,8 +199,8 @@ TEST(MeshToSdfWindingFlip, OrientationFindsExactlyTheReversedFaces)
   {
     TriangleMesh m = makeSphereMesh(0, 0, 0, 1.0f, 10, 20);
     const std::size_t n = flip(m, f, 9);
-    const auto prepared = sdfdetail::prepareMesh(m);
-    const sdfdetail::WindingSigner w(prepared);
+    const auto prepared = detail::meshtosdf::prepareMesh(m);
+    const detail::meshtosdf::WindingSigner w(prepared);
     const std::size_t minority = std::min(n, prepared.tris.size() - n);
     EXPECT_EQ(w.flippedTriangles(), minority) << f;
     // what the CUDA kernel gets: M itself closed by a cone over dM (every

@@ -7,7 +7,7 @@
 
 namespace lvdif
 {
-namespace script
+namespace detail::script
 {
 
 enum class Tok
@@ -96,5 +96,5 @@ std::vector<Token> lex(const std::string& source);
 /// Parses tokens into a program; throws ScriptError.
 Program parse(const std::vector<Token>& tokens);
 
-} // namespace script
+} // namespace detail::script
 } // namespace lvdif

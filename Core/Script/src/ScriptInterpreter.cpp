@@ -23,11 +23,11 @@ ScriptError::ScriptError(ErrorCode code, int line, int column, const std::string
 
 void checkScript(const std::string& source)
 {
-  script::parse(script::lex(source));
+  detail::script::parse(detail::script::lex(source));
 }
 
-using script::Expr;
-using script::Stmt;
+using detail::script::Expr;
+using detail::script::Stmt;
 
 struct ScriptRunner::Impl
 {
@@ -178,7 +178,7 @@ struct ScriptRunner::Impl
     return r;
   }
 
-  void run(const script::Block& b, bool top)
+  void run(const detail::script::Block& b, bool top)
   {
     for (const auto& s : b)
     {
@@ -432,7 +432,7 @@ void ScriptRunner::attach(Editor& editor)
 
 void ScriptRunner::run(const std::string& source)
 {
-  const script::Program prog = script::parse(script::lex(source));
+  const detail::script::Program prog = detail::script::parse(detail::script::lex(source));
   Interrupter* in = this->P->Options.interrupter;
   if (in)
     in->start("script");

@@ -10,7 +10,7 @@
 
 namespace lvdif
 {
-namespace script
+namespace detail::script
 {
 
 std::vector<Token> lex(const std::string& src)
@@ -168,5 +168,5 @@ std::vector<Token> lex(const std::string& src)
   return out;
 }
 
-} // namespace script
+} // namespace detail::script
 } // namespace lvdif

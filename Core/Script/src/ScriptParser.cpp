@@ -10,7 +10,7 @@
 
 namespace lvdif
 {
-namespace script
+namespace detail::script
 {
 
 namespace
@@ -417,5 +417,5 @@ Program parse(const std::vector<Token>& tokens)
   return Parser(tokens).program();
 }
 
-} // namespace script
+} // namespace detail::script
 } // namespace lvdif

@@ -21,7 +21,7 @@ unsigned svfCumulative(int n)
   return (1u << n) - 1u;
 }
 
-namespace detail
+namespace detail::svf
 {
 double svfProgress(unsigned filters, int f, double within)
 {
@@ -36,7 +36,7 @@ double svfProgress(unsigned filters, int f, double within)
   }
   return total == 0 ? 1.0 : (before + std::clamp(within, 0.0, 1.0)) / total;
 }
-} // namespace detail
+} // namespace detail::svf
 
 SignVoxelFilterStats signVoxelFilter(
   const FloatGridView& grid, const SignVoxelFilterParams& params, Interrupter& interrupter)
@@ -52,12 +52,12 @@ SignVoxelFilterStats signVoxelFilter(
     "signVoxelFilter: the filter mask may only contain Svf1..Svf4 bits");
   require(params.maxIterations >= 0, "signVoxelFilter: maxIterations must be >= 0 (0 = automatic)");
 
-  detail::SvfSetup s;
+  detail::svf::SvfSetup s;
   s.threshold = params.threshold;
   s.axis = params.axis;
   s.filters = params.filters;
   s.boundarySign = params.boundary == SvfBoundary::Outside ? 1 : 0;
-  const int u = svf::axisU(params.axis), v = svf::axisV(params.axis);
+  const int u = detail::svf::axisU(params.axis), v = detail::svf::axisV(params.axis);
   const std::int64_t autoCap = std::max<std::int64_t>({ g.dims[u], g.dims[v], 2 });
   s.cap = params.maxIterations > 0 ? params.maxIterations : static_cast<int>(std::min<std::int64_t>(autoCap, 1 << 30));
 
@@ -65,18 +65,18 @@ SignVoxelFilterStats signVoxelFilter(
   SignVoxelFilterStats stats;
   if (resolveDevice(params.device) == Device::Cuda)
   {
-    const std::uint64_t need = detail::signVoxelFilterCudaBytes(g);
+    const std::uint64_t need = detail::svf::signVoxelFilterCudaBytes(g);
     // leave 5% of the free device memory for the runtime
     if (need <= cuda::freeMemory() / 20 * 19)
     {
-      stats = detail::signVoxelFilterCuda(grid, s, interrupter);
+      stats = detail::svf::signVoxelFilterCuda(grid, s, interrupter);
       interrupter.end();
       return stats;
     }
     std::fprintf(stderr, "lvdif: signVoxelFilter needs %s of device memory, %s free; using the CPU\n",
       formatBytes(need).c_str(), formatBytes(cuda::freeMemory()).c_str());
   }
-  stats = detail::signVoxelFilterCpu(grid, s, interrupter);
+  stats = detail::svf::signVoxelFilterCpu(grid, s, interrupter);
   interrupter.end();
   return stats;
 }

@@ -16,12 +16,12 @@
 
 namespace lvdif
 {
-namespace detail
+namespace detail::svf
 {
 namespace
 {
 
-using svf::AxisFrame;
+using detail::svf::AxisFrame;
 
 template <typename T>
 struct DeviceArray
@@ -62,13 +62,13 @@ __global__ void svf1Kernel(float* d, AxisFrame f, float t, int bsign, unsigned l
       {
         const std::int64_t idx = base + a * f.sA;
         float c = d[idx];
-        if (svf::svf1Flips(c, prev, t))
+        if (detail::svf::svf1Flips(c, prev, t))
         {
           c = -c;
           d[idx] = c;
           ++flips;
         }
-        prev = svf::signOf(c);
+        prev = detail::svf::signOf(c);
       }
     }
   }
@@ -121,7 +121,7 @@ __global__ void sweepKernel(float* d, AxisFrame f, int col, float t, int bsign, 
       }
       const std::int64_t idx = u * f.sU + v * f.sV + a * f.sA;
       const float c = d[idx];
-      if (!svf::isFar(c, t))
+      if (!detail::svf::isFar(c, t))
       {
         continue;
       }
@@ -130,14 +130,14 @@ __global__ void sweepKernel(float* d, AxisFrame f, int col, float t, int bsign, 
       {
         int sg[8];
         float mg[8];
-        svf::gather8(d, idx, u, v, f, bsign, sg, mg);
-        flip = svf::svf2Flips(c, sg, mg, t);
+        detail::svf::gather8(d, idx, u, v, f, bsign, sg, mg);
+        flip = detail::svf::svf2Flips(c, sg, mg, t);
       }
       else
       {
         int sg[4];
-        svf::gather4(d, idx, u, v, f, bsign, sg);
-        flip = svf::svf3Flips(c, sg, t);
+        detail::svf::gather4(d, idx, u, v, f, bsign, sg);
+        flip = detail::svf::svf3Flips(c, sg, t);
       }
       if (flip)
       {
@@ -168,8 +168,8 @@ __global__ void svf4MaskKernel(const float* d, Lin g, AxisFrame f, int axis, int
       const std::int64_t i = idx % g.nx, r = idx / g.nx;
       const std::int64_t c3[3] = { i, r % g.ny, r / g.ny };
       int sg[6];
-      svf::gather6(d, idx, c3[svf::axisU(axis)], c3[svf::axisV(axis)], c3[axis], f, bsign, sg);
-      flip = svf::svf4Flips(d[idx], sg);
+      detail::svf::gather6(d, idx, c3[detail::svf::axisU(axis)], c3[detail::svf::axisV(axis)], c3[axis], f, bsign, sg);
+      flip = detail::svf::svf4Flips(d[idx], sg);
     }
     const unsigned bits = __ballot_sync(0xffffffffu, flip);
     if (lane == 0)
@@ -357,7 +357,7 @@ SignVoxelFilterStats signVoxelFilterCuda(const FloatGridView& grid, const SvfSet
   const std::int64_t n = g.count();
   const std::int64_t nd[3] = { g.dims[0], g.dims[1], g.dims[2] };
   const std::int64_t sd[3] = { 1, nd[0], nd[0] * nd[1] };
-  const int u = svf::axisU(s.axis), v = svf::axisV(s.axis);
+  const int u = detail::svf::axisU(s.axis), v = detail::svf::axisV(s.axis);
   DeviceArray<float> d(static_cast<std::size_t>(n));
   DeviceArray<unsigned> mask(static_cast<std::size_t>((n + 31) / 32));
   DeviceArray<unsigned long long> counter(1);
@@ -412,5 +412,5 @@ SignVoxelFilterStats signVoxelFilterCuda(const FloatGridView& grid, const SvfSet
   return st;
 }
 
-} // namespace detail
+} // namespace detail::svf
 } // namespace lvdif

@@ -17,12 +17,12 @@
 
 namespace lvdif
 {
-namespace detail
+namespace detail::svf
 {
 namespace
 {
 
-using svf::AxisFrame;
+using detail::svf::AxisFrame;
 
 struct Dense
 {
@@ -32,7 +32,7 @@ struct Dense
   {
     const std::int64_t n[3] = { nx, ny, nz };
     const std::int64_t s[3] = { 1, nx, nx * ny };
-    const int u = svf::axisU(axis), v = svf::axisV(axis);
+    const int u = detail::svf::axisU(axis), v = detail::svf::axisV(axis);
     return AxisFrame{ n[u], n[v], n[axis], s[u], s[v], s[axis] };
   }
 };
@@ -82,13 +82,13 @@ std::int64_t runSvf1(const Dense& g, const SvfSetup& s, Interrupter& it)
           for (std::int64_t i = 0; i < g.nx; ++i)
           {
             float c = row[i];
-            if (svf::svf1Flips(c, prev, s.threshold))
+            if (detail::svf::svf1Flips(c, prev, s.threshold))
             {
               c = -c;
               row[i] = c;
               ++flips;
             }
-            prev = svf::signOf(c);
+            prev = detail::svf::signOf(c);
           }
         }
       }
@@ -103,8 +103,8 @@ std::int64_t runSvf1(const Dense& g, const SvfSetup& s, Interrupter& it)
           {
             const std::int64_t idx = base + i;
             const float c = g.d[idx];
-            const int prev = a > 0 ? svf::signOf(g.d[idx - f.sA]) : s.boundarySign;
-            if (svf::svf1Flips(c, prev, s.threshold))
+            const int prev = a > 0 ? detail::svf::signOf(g.d[idx - f.sA]) : s.boundarySign;
+            if (detail::svf::svf1Flips(c, prev, s.threshold))
             {
               g.d[idx] = -c;
               ++flips;
@@ -208,7 +208,7 @@ struct RowNeighbours
       if (safe || (Row[q] && ii >= 0 && ii < nx))
       {
         const float x = Row[q][ii];
-        s[q] = svf::signOf(x);
+        s[q] = detail::svf::signOf(x);
         m[q] = std::fabs(x);
       }
       else
@@ -234,7 +234,7 @@ void sweep(const Dense& g, const SvfSetup& s, int filter, int col, const std::ve
     if (s.axis == 0)
     {
       // (u, v) = (j, k): the whole row has one colour
-      const int c = filter == 2 ? svf::colourSvf2(j, k) : svf::colourSvf3(j, k);
+      const int c = filter == 2 ? detail::svf::colourSvf2(j, k) : detail::svf::colourSvf3(j, k);
       if (c != col)
         continue;
     }
@@ -264,7 +264,7 @@ void sweep(const Dense& g, const SvfSetup& s, int filter, int col, const std::ve
       if (s.axis == 0 && !active[static_cast<std::size_t>(i)])
         continue;
       const float c = row[i];
-      if (!svf::isFar(c, s.threshold))
+      if (!detail::svf::isFar(c, s.threshold))
         continue;
       int sg[8];
       float mg[8];
@@ -272,12 +272,12 @@ void sweep(const Dense& g, const SvfSetup& s, int filter, int col, const std::ve
       if (filter == 2)
       {
         nb.gather(i, g.nx, 8, s.boundarySign, sg, mg);
-        flip = svf::svf2Flips(c, sg, mg, s.threshold);
+        flip = detail::svf::svf2Flips(c, sg, mg, s.threshold);
       }
       else
       {
         nb.gather(i, g.nx, 4, s.boundarySign, sg, mg);
-        flip = svf::svf3Flips(c, sg, s.threshold);
+        flip = detail::svf::svf3Flips(c, sg, s.threshold);
       }
       if (flip)
       {
@@ -343,9 +343,9 @@ std::int64_t runSvf4(const Dense& g, const SvfSetup& s, Interrupter& it)
       int sg[6];
       float mg[4];
       nb.gather(i, g.nx, 4, s.boundarySign, sg, mg);
-      sg[4] = i + 1 < g.nx ? svf::signOf(row[i + 1]) : s.boundarySign;
-      sg[5] = i > 0 ? svf::signOf(row[i - 1]) : s.boundarySign;
-      if (svf::svf4Flips(row[i], sg))
+      sg[4] = i + 1 < g.nx ? detail::svf::signOf(row[i + 1]) : s.boundarySign;
+      sg[5] = i > 0 ? detail::svf::signOf(row[i - 1]) : s.boundarySign;
+      if (detail::svf::svf4Flips(row[i], sg))
       {
         mask[static_cast<std::size_t>(r * wordsPerRow + i / 64)] |= std::uint64_t(1) << (i % 64);
       }
@@ -400,5 +400,5 @@ SignVoxelFilterStats signVoxelFilterCpu(const FloatGridView& grid, const SvfSetu
   return st;
 }
 
-} // namespace detail
+} // namespace detail::svf
 } // namespace lvdif

@@ -6,7 +6,7 @@
 
 namespace lvdif
 {
-namespace detail
+namespace detail::svf
 {
 
 /// Validated parameters with the automatic values resolved.
@@ -29,5 +29,5 @@ SignVoxelFilterStats signVoxelFilterCuda(const FloatGridView& grid, const SvfSet
 /// Progress over the selected filters: filter f (0..3) is `within` done.
 double svfProgress(unsigned filters, int f, double within);
 
-} // namespace detail
+} // namespace detail::svf
 } // namespace lvdif

@@ -16,7 +16,7 @@
 
 namespace lvdif
 {
-namespace svf
+namespace detail::svf
 {
 
 LVDIF_HD int signOf(float v)
@@ -105,12 +105,12 @@ LVDIF_HD int colourSvf3(std::int64_t u, std::int64_t v)
   return static_cast<int>((u + v) & 1);
 }
 
-} // namespace svf
+} // namespace detail::svf
 } // namespace lvdif
 
 namespace lvdif
 {
-namespace svf
+namespace detail::svf
 {
 
 /// Strides and sizes of a grid seen from a filter axis.
@@ -169,5 +169,5 @@ LVDIF_HD void gather6(const float* d, std::int64_t idx, std::int64_t u, std::int
   s[5] = a > 0 ? signOf(d[idx - f.sA]) : bsign;
 }
 
-} // namespace svf
+} // namespace detail::svf
 } // namespace lvdif

@@ -24,10 +24,20 @@ using namespace lvdif;
 
 int main(int argc, char** argv)
 {
+  // --trace (anywhere): MeshToSdfOptions::tracePhases, the host phases' times on stderr
+  bool tracePhases = false;
+  for (int i = 1; i < argc; ++i)
+    if (std::string(argv[i]) == "--trace")
+    {
+      tracePhases = true;
+      for (int j = i; j + 1 < argc; ++j) argv[j] = argv[j + 1];
+      --argc;
+      break;
+    }
   if (argc < 2)
   {
     std::fprintf(stderr, "usage: %s MESH [RES] [normal|pseudonormal|winding|unsigned] [cpu|cuda|auto] "
-                         "[bvh|faithful|bruteforce] [volume|float] [BAND] [PADDING]\n", argv[0]);
+                         "[bvh|faithful|bruteforce] [volume|float] [BAND] [PADDING] [--trace]\n", argv[0]);
     return 2;
   }
   try
@@ -46,6 +56,7 @@ int main(int argc, char** argv)
     const double readMs = readClock.ms();
 
     MeshToSdfOptions o;
+    o.tracePhases = tracePhases;
     o.sign = sign == "normal" ? SignMode::Normal
       : sign == "pseudonormal" ? SignMode::PseudoNormal
       : sign == "unsigned"     ? SignMode::Unsigned

@@ -20,7 +20,7 @@
 #include <vector>
 
 using namespace lvdif;
-using namespace lvdif::sdfdetail;
+using namespace lvdif::detail::meshtosdf;
 
 namespace
 {

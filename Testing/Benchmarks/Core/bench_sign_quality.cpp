@@ -1,4 +1,4 @@
-// Sign-quality study (docs/SIGN_QUALITY.md, issue 5 "The study"): the fraction
+// Sign-quality study (docs/SIGN_QUALITY.md): the fraction
 // of voxels whose sign is wrong, per sign mode, on closed, open and damaged
 // meshes. Modes: Algorithm 1 (SignMode::Normal), Normal + SVF1, +SVF2, +SVF3,
 // +SVF4 (the filters' defaults: threshold 2, axis x, boundary Outside),

@@ -1,4 +1,4 @@
-// Sign voxel filter timing (issue 5; the paper: 0.84 s at 256^3, 56.84 s at
+// Sign voxel filter timing (the paper: 0.84 s at 256^3, 56.84 s at
 // 1024^3 on an RTX 3090 for all four filters).
 //
 // Field: the analytic SDF of a torus (voxel units, negative inside) with

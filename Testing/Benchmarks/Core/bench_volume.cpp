@@ -1,4 +1,4 @@
-// Dictionary volume benchmark (issue 2): voxel read/write rates, chunk
+// Dictionary volume benchmark: voxel read/write rates, chunk
 // iteration, and resident memory of a 1024^3 sphere volume, sparse (band 8)
 // against the paper's dense layout (every chunk expanded, 4 bytes/voxel).
 // CPU rates are also given as a ratio to a flat std::vector<uint32_t> peer

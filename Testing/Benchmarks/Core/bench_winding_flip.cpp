@@ -1,4 +1,4 @@
-// Winding-number sign on meshes with reversed faces (issue 4): process CPU
+// Winding-number sign on meshes with reversed faces: process CPU
 // seconds of meshToSdf with SignMode::WindingNumber against PseudoNormal in
 // the same process (the ratio is the figure to compare across machines), the
 // counts of per-voxel evaluations and full exact sums, and a check of the

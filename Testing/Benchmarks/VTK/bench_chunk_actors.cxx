@@ -1,4 +1,4 @@
-// Chunk actors vs one merged actor (issue 8): the cost of showing an edit
+// Chunk actors vs one merged actor: the cost of showing an edit
 // that changed ONE chunk, and the cost of a frame without edits.
 //
 //   per-chunk : vtkChunkActorManager::SetChunk(id, mesh) + Render()

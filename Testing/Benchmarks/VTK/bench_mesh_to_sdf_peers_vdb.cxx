@@ -1,5 +1,4 @@
-// Mesh to SDF on the CPU against its peers, in one process (issue 4,
-// "Benchmarks"): our lvdif::meshToSdf (BVH; WindingNumber and PseudoNormal
+// Mesh to SDF on the CPU against its peers, in one process: our lvdif::meshToSdf (BVH; WindingNumber and PseudoNormal
 // signs) vs OpenVDB tools::meshToSignedDistanceField producing the same dense
 // field (exterior band = the largest distance in the grid, interior band
 // unbounded, then copied into a dense x-fastest array), and vs VTK's
@@ -8,7 +7,7 @@
 // it is far slower).
 // Every field is compared with ours: max |distance difference| (voxels) and
 // the voxels whose sign differs from our WindingNumber field.
-// Then the sign check of issue 4: OpenVDB's level set of an OPEN mesh (the
+// Then the sign check: OpenVDB's level set of an OPEN mesh (the
 // lvdif bunny, open base), wrong-sign fraction against our WindingNumber.
 //
 // usage: bench_mesh_to_sdf_peers_vdb MESH [RES=256] [VTKRES=64] [THREADS=2] [OPENMESH]

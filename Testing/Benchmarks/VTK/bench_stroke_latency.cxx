@@ -1,4 +1,4 @@
-// Stroke-to-frame latency of interactive editing (issue 8, paper Table 2's
+// Stroke-to-frame latency of interactive editing (paper Table 2's
 // "C3: marching cubes in its own thread"), headless.
 //
 // A recorded-style stroke (samples with timestamps, 50 Hz as the original's

@@ -1,5 +1,5 @@
 // The volume file against OpenVDB's own .vdb (Blosc) of the same level set,
-// in one run (issue 3's acceptance benchmark; the Core-only part with zstd
+// in one run (the format's acceptance benchmark; the Core-only part with zstd
 // levels is bench_volume_file). The shape is bench::makePaintedShape: the
 // OpenVDB side gets a narrow-band level set FloatGrid `sdf` (background =
 // band, active voxels |d| < band, inside made negative with signedFloodFill,

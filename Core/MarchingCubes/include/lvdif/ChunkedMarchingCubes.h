@@ -80,6 +80,10 @@ struct MarchingCubesOptions
   /// Error InvalidArgument). Null (the default): lvdif's table. Used by the
   /// CPU and the CUDA paths alike.
   std::shared_ptr<const MarchingCubesTriangleTable> triangleTable;
+  /// CUDA, extractAllPacked/extractAll: grid points per batch of chunks (the
+  /// device staging buffers hold one batch; two batches are in flight). 0 (the
+  /// default) means 64 Mi points. Smaller batches use less device memory.
+  std::int64_t cudaBatchPoints = 0;
 };
 
 /// The mesh of one chunk. Empty (no triangles) when the surface does not cross it.

@@ -99,6 +99,9 @@ struct MeshToSdfOptions
   /// CUDA into a dictionary volume: also copy the float slabs back and check
   /// every GPU-encoded key against the host's encode (tests; costs the copy).
   bool cudaVerifyKeys = false;
+  /// Print the host phases' times (preparation, search structures, upload) to
+  /// stderr as they finish: for benchmarks (bench_mesh_to_sdf --trace).
+  bool tracePhases = false;
 };
 
 struct MeshToSdfStats

@@ -4,10 +4,10 @@
 
 namespace lvdif
 {
-namespace cudasdf
+namespace detail::meshtosdf_cuda
 {
 std::unique_ptr<DeviceMesh> uploadMesh(
-  const sdfdetail::PreparedMesh&, const sdfdetail::Bvh&, const sdfdetail::WindingSigner*, bool, bool)
+  const detail::meshtosdf::PreparedMesh&, const detail::meshtosdf::Bvh&, const detail::meshtosdf::WindingSigner*, bool, bool)
 {
   throw Error(ErrorCode::Unsupported, "mesh to SDF: this build has no CUDA");
 }
@@ -22,5 +22,5 @@ std::vector<std::uint16_t> encodeOnDevice(const SdfDictionary::EncodeConstants&,
 {
   throw Error(ErrorCode::Unsupported, "mesh to SDF: this build has no CUDA");
 }
-} // namespace cudasdf
+} // namespace detail::meshtosdf_cuda
 } // namespace lvdif

@@ -6,7 +6,7 @@
 
 namespace lvdif
 {
-namespace detail
+namespace detail::svf
 {
 std::uint64_t signVoxelFilterCudaBytes(const GridGeometry&)
 {
@@ -17,5 +17,5 @@ SignVoxelFilterStats signVoxelFilterCuda(const FloatGridView&, const SvfSetup&, 
 {
   throw Error(ErrorCode::Unsupported, "signVoxelFilter: this build has no CUDA");
 }
-} // namespace detail
+} // namespace detail::svf
 } // namespace lvdif

@@ -3,6 +3,9 @@
 // a recording made with vtkLVDIFEditor plays through the filter bit-exactly.
 #include "vtkLVDIFEditor.h"
 #include "vtkVolumeEditFilter.h"
+#include "vtkImageToSparseVolume.h"
+#include "vtkSparseDictionaryVolume.h"
+#include "vtkSparseVolumeToImage.h"
 
 #include "vtkDictionaryVolumeToImage.h"
 #include "vtkDoubleArray.h"
@@ -62,7 +65,7 @@ TEST(VolumeEditFilter, ScriptMatchesAnalyticCsg)
   f->SetScriptText("op subtract\ncube 24, 22, 32, 6\nop add\ncolor 250 0 0\nsphere 36, 22, 20, 5\n");
   f->Update();
   ASSERT_STREQ(f->GetLastError(), "");
-  vtkImageData* out = f->GetOutput();
+  vtkImageData* out = vtkImageData::SafeDownCast(f->GetOutput());
   int dims[3];
   out->GetDimensions(dims);
   ASSERT_EQ(dims[0], 48);
@@ -108,12 +111,12 @@ TEST(VolumeEditFilter, ScriptErrorsGiveLineAndColumnAndEmptyOutput)
   f->Update();
   EXPECT_EQ(f->GetLastErrorLine(), 2);
   EXPECT_GT(f->GetLastErrorColumn(), 0);
-  EXPECT_EQ(f->GetOutput()->GetNumberOfPoints(), 0);
+  EXPECT_EQ(vtkImageData::SafeDownCast(f->GetOutput())->GetNumberOfPoints(), 0);
   // fixing the script recovers
   f->SetScriptText("sphere 1, 2, 3, 4\nx = (1 + 2)\n");
   f->Update();
   EXPECT_STREQ(f->GetLastError(), "");
-  EXPECT_EQ(f->GetOutput()->GetNumberOfPoints(), 48 * 44 * 40);
+  EXPECT_EQ(vtkImageData::SafeDownCast(f->GetOutput())->GetNumberOfPoints(), 48 * 44 * 40);
   // no sdf array
   vtkNew<vtkImageData> bare;
   bare->SetDimensions(4, 4, 4);
@@ -151,13 +154,34 @@ TEST(VolumeEditFilter, RecordingPlaysBitExactlyLikeTheEditor)
   f->Update();
   ASSERT_STREQ(f->GetLastError(), "");
   auto* a = vtkFloatArray::SafeDownCast(expected->GetPointData()->GetArray("sdf"));
-  auto* b = vtkFloatArray::SafeDownCast(f->GetOutput()->GetPointData()->GetArray("sdf"));
+  auto* b = vtkFloatArray::SafeDownCast(vtkImageData::SafeDownCast(f->GetOutput())->GetPointData()->GetArray("sdf"));
   ASSERT_NE(b, nullptr);
   ASSERT_EQ(a->GetNumberOfValues(), b->GetNumberOfValues());
   EXPECT_EQ(std::memcmp(a->GetPointer(0), b->GetPointer(0), sizeof(float) * a->GetNumberOfValues()), 0);
   auto* ca = vtkUnsignedCharArray::SafeDownCast(expected->GetPointData()->GetArray("rgba"));
-  auto* cb = vtkUnsignedCharArray::SafeDownCast(f->GetOutput()->GetPointData()->GetArray("rgba"));
+  auto* cb = vtkUnsignedCharArray::SafeDownCast(vtkImageData::SafeDownCast(f->GetOutput())->GetPointData()->GetArray("rgba"));
   ASSERT_NE(cb, nullptr);
   EXPECT_EQ(std::memcmp(ca->GetPointer(0), cb->GetPointer(0), 4 * ca->GetNumberOfTuples()), 0);
+
+  // the same recording on the sparse volume: edited in a copy, sparse out, the same voxels
+  vtkNew<vtkImageToSparseVolume> sparse;
+  sparse->SetInputData(start);
+  vtkNew<vtkVolumeEditFilter> fs;
+  fs->SetInputConnection(sparse->GetOutputPort());
+  fs->SetRecordingFileName(path.c_str());
+  vtkNew<vtkSparseVolumeToImage> dense;
+  dense->SetInputConnection(fs->GetOutputPort());
+  dense->Update();
+  ASSERT_STREQ(fs->GetLastError(), "");
+  auto* out = vtkSparseDictionaryVolume::SafeDownCast(fs->GetOutputDataObject(0));
+  ASSERT_TRUE(out && out->HasVolume());
+  EXPECT_GT(out->GetNumberOfDirtyChunks(), 0); // the edited chunks, for incremental meshing
+  EXPECT_FALSE(out->GetPartitionsBuilt());
+  auto* bs = vtkFloatArray::SafeDownCast(dense->GetOutput()->GetPointData()->GetArray("sdf"));
+  auto* cs = vtkUnsignedCharArray::SafeDownCast(dense->GetOutput()->GetPointData()->GetArray("rgba"));
+  ASSERT_TRUE(bs && cs);
+  ASSERT_EQ(a->GetNumberOfValues(), bs->GetNumberOfValues());
+  EXPECT_EQ(std::memcmp(a->GetPointer(0), bs->GetPointer(0), sizeof(float) * a->GetNumberOfValues()), 0);
+  EXPECT_EQ(std::memcmp(ca->GetPointer(0), cs->GetPointer(0), 4 * ca->GetNumberOfTuples()), 0);
   std::remove(path.c_str());
 }

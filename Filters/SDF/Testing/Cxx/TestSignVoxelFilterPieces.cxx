@@ -69,8 +69,8 @@ vtkSmartPointer<vtkImageData> makeImage()
   return img;
 }
 
-/// A source that produces exactly the requested extent (as vtkMeshToSDF and
-/// the readers do), so a filter that asked only for its piece gets only it.
+/// A source that produces exactly the requested extent (as streaming image
+/// sources do), so a filter that asked only for its piece gets only it.
 class SubExtentSource : public vtkImageAlgorithm
 {
 public:
@@ -107,7 +107,7 @@ vtkSmartPointer<vtkImageData> runSerial(vtkImageData* img, int axis)
   f->SetDevice(vtkSignVoxelFilter::DEVICE_CPU);
   f->Update();
   auto out = vtkSmartPointer<vtkImageData>::New();
-  out->DeepCopy(f->GetOutput());
+  out->DeepCopy(vtkImageData::SafeDownCast(f->GetOutput()));
   return out;
 }
 
@@ -164,7 +164,7 @@ TEST_P(SvfPieces, EveryPieceEqualsTheSerialResult)
       f->SetAxis(axis);
       f->SetDevice(vtkSignVoxelFilter::DEVICE_CPU);
       ASSERT_TRUE(f->UpdatePiece(p, n, 0));
-      vtkImageData* out = f->GetOutput();
+      vtkImageData* out = vtkImageData::SafeDownCast(f->GetOutput());
       int e[6], req[6];
       out->GetExtent(e);
       int whole[6] = { 0, N - 1, 0, N - 1, 0, N - 1 };
@@ -193,11 +193,11 @@ TEST_P(SvfPieces, EveryPieceEqualsTheSerialResult)
         contour->SetValue(0, 0.0);
         ASSERT_TRUE(contour->UpdatePiece(p, n, 0));
         int e2[6];
-        f2->GetOutput()->GetExtent(e2);
+        vtkImageData::SafeDownCast(f2->GetOutput())->GetExtent(e2);
         EXPECT_LT(e2[5] - e2[4], N - 1) << "consumer's piece " << p << " of " << n << " was not cut";
         for (int a = 0; a < 3; ++a)
           EXPECT_TRUE(e2[2 * a] <= e[2 * a] && e2[2 * a + 1] >= e[2 * a + 1]) << "consumer's piece misses the piece";
-        EXPECT_EQ(differences(f2->GetOutput(), serial), 0) << "consumer's piece " << p << " of " << n;
+        EXPECT_EQ(differences(vtkImageData::SafeDownCast(f2->GetOutput()), serial), 0) << "consumer's piece " << p << " of " << n;
       }
 
       // negative control: the same piece filtered alone
@@ -207,13 +207,13 @@ TEST_P(SvfPieces, EveryPieceEqualsTheSerialResult)
       alone->ClipDataOn();
       alone->Update();
       auto pieceImg = vtkSmartPointer<vtkImageData>::New();
-      pieceImg->DeepCopy(alone->GetOutput());
+      pieceImg->DeepCopy(vtkImageData::SafeDownCast(alone->GetOutput()));
       vtkNew<vtkSignVoxelFilter> g;
       g->SetInputData(pieceImg);
       g->SetAxis(axis);
       g->SetDevice(vtkSignVoxelFilter::DEVICE_CPU);
       g->Update();
-      pieceAloneDiffers += differences(g->GetOutput(), serial);
+      pieceAloneDiffers += differences(vtkImageData::SafeDownCast(g->GetOutput()), serial);
     }
     EXPECT_EQ(covered, static_cast<long long>(N) * N * N) << n << " pieces";
   }

@@ -90,7 +90,7 @@ TEST(vtkSignVoxelFilter, RepairsInjectedWrongSigns)
   f->SetInputData(img);
   f->SetDevice(vtkSignVoxelFilter::DEVICE_CPU);
   f->Update();
-  vtkImageData* out = f->GetOutput();
+  vtkImageData* out = vtkImageData::SafeDownCast(f->GetOutput());
   vtkDataArray* res = out->GetPointData()->GetArray("sdf");
   ASSERT_NE(res, nullptr);
   EXPECT_EQ(out->GetPointData()->GetScalars(), res); // keeps the scalars role
@@ -121,13 +121,13 @@ TEST(vtkSignVoxelFilter, ChosenArrayAndMask)
   f->SetDevice(vtkSignVoxelFilter::DEVICE_CPU);
   f->Update();
   // `other` is uniform: nothing flips; `sdf` passes through unchanged
-  EXPECT_EQ(wrongSigns(f->GetOutput()->GetPointData()->GetArray("sdf")),
+  EXPECT_EQ(wrongSigns(vtkImageData::SafeDownCast(f->GetOutput())->GetPointData()->GetArray("sdf")),
     wrongSigns(img->GetPointData()->GetArray("sdf")));
 
   f->SetInputArrayToProcess(0, 0, 0, vtkDataObject::FIELD_ASSOCIATION_POINTS, "sdf");
   f->SetFilters(0);
   f->Update();
-  auto* flips = vtkIdTypeArray::SafeDownCast(f->GetOutput()->GetFieldData()->GetArray("svf_flips"));
+  auto* flips = vtkIdTypeArray::SafeDownCast(vtkImageData::SafeDownCast(f->GetOutput())->GetFieldData()->GetArray("svf_flips"));
   ASSERT_NE(flips, nullptr);
   for (int q = 0; q < 4; ++q)
     EXPECT_EQ(flips->GetValue(q), 0);
@@ -146,7 +146,7 @@ TEST(vtkSignVoxelFilter, RefusesNonFloatArrays)
   f->SetInputData(img);
   f->GlobalWarningDisplayOff();
   f->Update();
-  EXPECT_EQ(f->GetOutput()->GetNumberOfPoints(), 0);
+  EXPECT_EQ(vtkImageData::SafeDownCast(f->GetOutput())->GetNumberOfPoints(), 0);
 }
 
 namespace
@@ -174,7 +174,7 @@ TEST(vtkSignVoxelFilter, AbortStops)
   f->AddObserver(vtkCommand::ProgressEvent, cb);
   f->Update();
   EXPECT_GT(cb->Calls, 0);
-  EXPECT_EQ(f->GetOutput()->GetFieldData()->GetArray("svf_flips"), nullptr);
+  EXPECT_EQ(vtkImageData::SafeDownCast(f->GetOutput())->GetFieldData()->GetArray("svf_flips"), nullptr);
 }
 
 // The repaired surface, checked geometrically: marching cubes of a torus SDF
@@ -262,7 +262,52 @@ TEST(vtkSignVoxelFilter, RepairedTorusSurface)
   f->SetInputData(img);
   f->SetDevice(vtkSignVoxelFilter::DEVICE_CPU);
   f->Update();
-  const Surface fixed = surfaceOf(f->GetOutput());
+  const Surface fixed = surfaceOf(vtkImageData::SafeDownCast(f->GetOutput()));
   EXPECT_EQ(fixed.regions, 1);
   EXPECT_LT(fixed.maxError, 1.0);
+}
+
+// The checkboxes (SetUseSVF1..4) are the bits of Filters: with only one on,
+// only that filter's counter moves, and the output equals SetFilters(bit).
+// The output's range (stored by the filter) is that of its values.
+TEST(vtkSignVoxelFilter, CheckboxesAreTheMaskBits)
+{
+  vtkSmartPointer<vtkImageData> img = makeImage();
+  const int bits[4] = { vtkSignVoxelFilter::SVF1, vtkSignVoxelFilter::SVF2, vtkSignVoxelFilter::SVF3,
+    vtkSignVoxelFilter::SVF4 };
+  for (int q = 0; q < 4; ++q)
+  {
+    vtkNew<vtkSignVoxelFilter> boxes, mask;
+    boxes->SetUseSVF1(q == 0);
+    boxes->SetUseSVF2(q == 1);
+    boxes->SetUseSVF3(q == 2);
+    boxes->SetUseSVF4(q == 3);
+    EXPECT_EQ(boxes->GetFilters(), bits[q]);
+    EXPECT_TRUE(q != 0 || boxes->GetUseSVF1());
+    EXPECT_TRUE(q != 3 || (boxes->GetUseSVF4() && !boxes->GetUseSVF1()));
+    mask->SetFilters(bits[q]);
+    for (vtkSignVoxelFilter* f : { boxes.Get(), mask.Get() })
+    {
+      f->SetInputData(img);
+      f->SetDevice(vtkSignVoxelFilter::DEVICE_CPU);
+      f->Update();
+    }
+    auto* flips = vtkIdTypeArray::SafeDownCast(boxes->GetOutput()->GetFieldData()->GetArray("svf_flips"));
+    ASSERT_NE(flips, nullptr);
+    for (int r = 0; r < 4; ++r)
+      if (r != q) EXPECT_EQ(flips->GetValue(r), 0) << "filter " << q + 1 << " alone, counter " << r + 1;
+    vtkDataArray* a = boxes->GetOutput()->GetPointData()->GetArray("sdf");
+    vtkDataArray* b = mask->GetOutput()->GetPointData()->GetArray("sdf");
+    double lo = a->GetTuple1(0), hi = lo;
+    for (vtkIdType i = 0; i < a->GetNumberOfTuples(); ++i)
+    {
+      ASSERT_EQ(a->GetTuple1(i), b->GetTuple1(i));
+      lo = std::min(lo, a->GetTuple1(i));
+      hi = std::max(hi, a->GetTuple1(i));
+    }
+    double range[2];
+    a->GetRange(range, 0);
+    EXPECT_EQ(range[0], lo);
+    EXPECT_EQ(range[1], hi);
+  }
 }

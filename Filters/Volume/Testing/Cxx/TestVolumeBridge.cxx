@@ -6,8 +6,10 @@
 #include "lvdif/AnalyticFill.h"
 #include "lvdif/Error.h"
 
+#include "vtkDataObject.h"
 #include "vtkFloatArray.h"
 #include "vtkImageData.h"
+#include "vtkInformation.h"
 #include "vtkNew.h"
 #include "vtkPointData.h"
 #include "vtkRTAnalyticSource.h"
@@ -16,6 +18,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <limits>
 
 static std::shared_ptr<lvdif::DictionaryVolume> sphereVolume()
 {
@@ -119,4 +122,64 @@ TEST(VolumeBridge, BadInputIsAClearError)
   nan->FillValue(1.0f);
   nan->SetValue(5, std::nanf(""));
   EXPECT_THROW(vtkLVDIFVolumeBridge::VolumeFromImage(img, nan, nullptr, lvdif::VolumeOptions()), lvdif::Error);
+}
+
+// StoreRange's cached range against VTK's own range pass over the same values
+// (a copy without any cache); non-finite values leave the cache to VTK.
+TEST(VolumeBridge, StoredRangeEqualsVTKsRange)
+{
+  vtkNew<vtkFloatArray> a;
+  a->SetNumberOfTuples(100003); // odd size: thread chunks of unequal length
+  for (vtkIdType i = 0; i < a->GetNumberOfTuples(); ++i)
+    a->SetValue(i, static_cast<float>(std::sin(0.001 * static_cast<double>(i)) * 7.5 - 0.25));
+  a->SetValue(4242, -9.5f);
+  a->SetValue(99999, 12.25f);
+  vtkLVDIFVolumeBridge::StoreRange(a);
+  vtkNew<vtkFloatArray> fresh;
+  fresh->DeepCopy(a);
+  fresh->Modified(); // drops any copied cache: VTK computes
+  double stored[2], vtk[2];
+  a->GetRange(stored, 0);
+  fresh->GetRange(vtk, 0);
+  EXPECT_EQ(stored[0], vtk[0]);
+  EXPECT_EQ(stored[1], vtk[1]);
+  EXPECT_EQ(stored[0], -9.5);
+  a->GetFiniteRange(stored, 0);
+  EXPECT_EQ(stored[0], vtk[0]);
+  EXPECT_EQ(stored[1], vtk[1]);
+  // a later change followed by Modified() (VTK's contract for any cached range) is not hidden
+  a->SetValue(7, -20.0f);
+  a->Modified();
+  a->GetRange(stored, 0);
+  EXPECT_EQ(stored[0], -20.0);
+  // not finite: nothing is stored, VTK's GetFiniteRange skips the infinity
+  a->SetValue(11, std::numeric_limits<float>::infinity());
+  vtkLVDIFVolumeBridge::StoreRange(a);
+  a->GetFiniteRange(stored, 0);
+  EXPECT_EQ(stored[1], 12.25);
+}
+
+// An empty array selection (what ParaView sends before the input has data)
+// means `sdf`, else the active scalars; a named array that is missing stays missing.
+TEST(VolumeBridge, SdfArrayFallsBackOnlyForAnEmptySelection)
+{
+  vtkNew<vtkImageData> img;
+  img->SetDimensions(2, 2, 2);
+  vtkNew<vtkFloatArray> other, sdf;
+  other->SetName("other");
+  other->SetNumberOfTuples(8);
+  sdf->SetName("sdf");
+  sdf->SetNumberOfTuples(8);
+  img->GetPointData()->SetScalars(other);
+  img->GetPointData()->AddArray(sdf);
+  vtkNew<vtkInformation> sel;
+  EXPECT_EQ(vtkLVDIFVolumeBridge::SdfArray(sel, img, nullptr), sdf.Get()); // no name at all
+  sel->Set(vtkDataObject::FIELD_NAME(), "");
+  EXPECT_EQ(vtkLVDIFVolumeBridge::SdfArray(sel, img, nullptr), sdf.Get());
+  EXPECT_EQ(vtkLVDIFVolumeBridge::SdfArray(sel, img, other), other.Get()); // a found selection wins
+  sel->Set(vtkDataObject::FIELD_NAME(), "missing");
+  EXPECT_EQ(vtkLVDIFVolumeBridge::SdfArray(sel, img, nullptr), nullptr);
+  img->GetPointData()->RemoveArray("sdf");
+  sel->Set(vtkDataObject::FIELD_NAME(), "");
+  EXPECT_EQ(vtkLVDIFVolumeBridge::SdfArray(sel, img, nullptr), other.Get()); // the active scalars
 }

@@ -4,6 +4,7 @@
 // the error paths; the .vti export through VTK's own XML writer and reader.
 #include "vtkDictionaryVolumeReader.h"
 #include "vtkDictionaryVolumeWriter.h"
+#include "vtkSparseVolumeToImage.h"
 
 #include "vtkCommand.h"
 #include "vtkExecutive.h"
@@ -95,7 +96,10 @@ TEST(DictionaryVolumeIO, WriteThenReadMatchesTheAnalyticField)
   reader->SetFileName(path.c_str());
   reader->Update();
   EXPECT_EQ(reader->GetMetadata("name"), "test sphere");
-  vtkImageData* out = reader->GetOutput();
+  vtkNew<vtkSparseVolumeToImage> dense;
+  dense->SetInputConnection(reader->GetOutputPort());
+  dense->Update();
+  vtkImageData* out = dense->GetOutput();
   int dims[3];
   out->GetDimensions(dims);
   ASSERT_EQ(dims[0], NX);
@@ -137,11 +141,15 @@ TEST(DictionaryVolumeIO, SubExtentsEqualTheWholeRead)
   writer->SetFileName(path.c_str());
   writer->SetChunkEdge(8);
   ASSERT_EQ(writer->Write(), 1);
-  vtkNew<vtkDictionaryVolumeReader> whole;
-  whole->SetFileName(path.c_str());
+  vtkNew<vtkDictionaryVolumeReader> wholeReader;
+  wholeReader->SetFileName(path.c_str());
+  vtkNew<vtkSparseVolumeToImage> whole;
+  whole->SetInputConnection(wholeReader->GetOutputPort());
   whole->Update();
-  vtkNew<vtkDictionaryVolumeReader> part;
-  part->SetFileName(path.c_str());
+  vtkNew<vtkDictionaryVolumeReader> partReader;
+  partReader->SetFileName(path.c_str());
+  vtkNew<vtkSparseVolumeToImage> part;
+  part->SetInputConnection(partReader->GetOutputPort());
   int ext[6] = { 5, 30, 9, 9, 3, 20 };
   part->UpdateExtent(ext);
   vtkImageData* p = part->GetOutput();
@@ -221,8 +229,10 @@ TEST(DictionaryVolumeIO, VtiExportThroughVTKsXmlWriter)
 
   vtkNew<vtkDictionaryVolumeReader> reader;
   reader->SetFileName(lvdv.c_str());
-  vtkNew<vtkXMLImageDataWriter> xml; // the documented one-liner
-  xml->SetInputConnection(reader->GetOutputPort());
+  vtkNew<vtkSparseVolumeToImage> dense; // the explicit dense conversion
+  dense->SetInputConnection(reader->GetOutputPort());
+  vtkNew<vtkXMLImageDataWriter> xml;
+  xml->SetInputConnection(dense->GetOutputPort());
   xml->SetFileName(vti.c_str());
   ASSERT_EQ(xml->Write(), 1);
 

@@ -13,7 +13,7 @@
 #include "vtkChunkActorManager.h"
 #include "vtkInteractorEventRecorder.h"
 #include "vtkInteractorStyleTrackballCamera.h"
-#include "vtkRegressionTestImage.h"
+#include "RenderTestHarness.h"
 #include "vtkRenderWindow.h"
 #include "vtkRenderWindowInteractor.h"
 #include "vtkRenderer.h"
@@ -66,9 +66,7 @@ int TestBrushWidget(int argc, char* argv[])
 
   vtkNew<vtkRenderer> ren;
   ren->SetBackground(0.1, 0.1, 0.12);
-  vtkNew<vtkRenderWindow> rw;
-  rw->SetSize(300, 300);
-  rw->SetMultiSamples(0);
+  auto rw = makeTestWindow(300, 300);
   rw->AddRenderer(ren);
   vtkNew<vtkRenderWindowInteractor> iren;
   iren->SetRenderWindow(rw);
@@ -155,9 +153,6 @@ int TestBrushWidget(int argc, char* argv[])
     "the camera stays put while painting");
   check(!widget->IsPainting(), "the widget is idle after the release");
 
-  rw->Render();
-  int r = vtkRegressionTestImage(rw);
-  if (r == vtkRegressionTester::DO_INTERACTOR)
-    iren->Start();
+  const bool r = matchesBaseline(argc, argv, rw);
   return (failures == 0 && r) ? 0 : 1;
 }

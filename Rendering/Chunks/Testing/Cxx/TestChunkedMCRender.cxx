@@ -11,7 +11,7 @@
 #include "vtkChunkedMarchingCubes.h"
 #include "vtkImageDifference.h"
 #include "vtkPartitionedDataSet.h"
-#include "vtkRegressionTestImage.h"
+#include "RenderTestHarness.h"
 #include "vtkRenderWindow.h"
 #include "vtkRenderWindowInteractor.h"
 #include "vtkRenderer.h"
@@ -23,18 +23,6 @@ using namespace lvdiftest;
 
 namespace
 {
-vtkSmartPointer<vtkImageData> grab(vtkRenderWindow* rw)
-{
-  rw->Render();
-  vtkNew<vtkWindowToImageFilter> w2i;
-  w2i->SetInput(rw);
-  w2i->SetInputBufferTypeToRGB();
-  w2i->ReadFrontBufferOff();
-  w2i->Update();
-  auto img = vtkSmartPointer<vtkImageData>::New();
-  img->DeepCopy(w2i->GetOutput());
-  return img;
-}
 } // namespace
 
 int TestChunkedMCRender(int argc, char* argv[])
@@ -72,9 +60,7 @@ int TestChunkedMCRender(int argc, char* argv[])
     return 1;
   }
 
-  vtkNew<vtkRenderWindow> rw;
-  rw->SetSize(400, 400);
-  rw->SetMultiSamples(0);
+  auto rw = makeTestWindow(400, 400);
   vtkNew<vtkRenderer> ren;
   ren->SetBackground(0.1, 0.1, 0.12);
   rw->AddRenderer(ren);
@@ -94,7 +80,7 @@ int TestChunkedMCRender(int argc, char* argv[])
   cam->SetPosition(26 + 40, 25 - 80, 25 + 50);
   cam->SetViewUp(0, 0, 1);
   ren->ResetCameraClippingRange();
-  auto partitioned = grab(rw);
+  auto partitioned = grabWindow(rw);
 
   vtkNew<vtkChunkedMarchingCubes> merged;
   merged->SetInputData(img);
@@ -106,7 +92,7 @@ int TestChunkedMCRender(int argc, char* argv[])
   vtkNew<vtkChunkActorManager> one;
   one->SetRenderer(ren);
   one->SetChunk(0, vtkPolyData::SafeDownCast(merged->GetOutputDataObject(0)));
-  auto whole = grab(rw);
+  auto whole = grabWindow(rw);
   vtkNew<vtkImageDifference> diff;
   diff->SetInputData(partitioned);
   diff->SetImageData(whole);
@@ -122,11 +108,6 @@ int TestChunkedMCRender(int argc, char* argv[])
   one->SetVisibility(false);
   chunks->SetVisibility(true);
 
-  vtkNew<vtkRenderWindowInteractor> iren;
-  iren->SetRenderWindow(rw);
-  rw->Render();
-  int r = vtkRegressionTestImage(rw);
-  if (r == vtkRegressionTester::DO_INTERACTOR)
-    iren->Start();
+  const bool r = matchesBaseline(argc, argv, rw);
   return (r && failures == 0) ? 0 : 1;
 }

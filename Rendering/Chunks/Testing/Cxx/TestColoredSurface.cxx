@@ -6,7 +6,7 @@
 #include "vtkCamera.h"
 #include "vtkChunkActorManager.h"
 #include "vtkProperty.h"
-#include "vtkRegressionTestImage.h"
+#include "RenderTestHarness.h"
 #include "vtkRenderWindow.h"
 #include "vtkRenderWindowInteractor.h"
 #include "vtkRenderer.h"
@@ -50,9 +50,7 @@ int TestColoredSurface(int argc, char* argv[])
 
   vtkNew<vtkRenderer> ren;
   ren->SetBackground(0.15, 0.15, 0.18);
-  vtkNew<vtkRenderWindow> rw;
-  rw->SetSize(400, 400);
-  rw->SetMultiSamples(0);
+  auto rw = makeTestWindow(400, 400);
   rw->AddRenderer(ren);
   vtkNew<vtkChunkActorManager> mgr;
   mgr->SetRenderer(ren);
@@ -66,11 +64,6 @@ int TestColoredSurface(int argc, char* argv[])
   ren->GetActiveCamera()->Azimuth(25);
   ren->GetActiveCamera()->Zoom(1.3);
   ren->ResetCameraClippingRange();
-  vtkNew<vtkRenderWindowInteractor> iren;
-  iren->SetRenderWindow(rw);
-  rw->Render();
-  int r = vtkRegressionTestImage(rw);
-  if (r == vtkRegressionTester::DO_INTERACTOR)
-    iren->Start();
-  return !r;
+  const bool r = matchesBaseline(argc, argv, rw);
+  return r ? 0 : 1;
 }

@@ -8,7 +8,7 @@
 #include "vtkCamera.h"
 #include "vtkChunkActorManager.h"
 #include "vtkPolyDataConnectivityFilter.h"
-#include "vtkRegressionTestImage.h"
+#include "RenderTestHarness.h"
 #include "vtkRenderWindow.h"
 #include "vtkRenderWindowInteractor.h"
 #include "vtkRenderer.h"
@@ -53,9 +53,7 @@ int TestSVFRepair(int argc, char* argv[])
   const int before = regions(meshBroken), after = regions(meshRepaired);
   std::printf("surface pieces: %d before, %d after the sign voxel filters\n", before, after);
 
-  vtkNew<vtkRenderWindow> rw;
-  rw->SetSize(600, 300);
-  rw->SetMultiSamples(0);
+  auto rw = makeTestWindow(600, 300);
   vtkNew<vtkChunkActorManager> managers[2];
   vtkNew<vtkRenderer> renderers[2];
   vtkPolyData* meshes[2] = { meshBroken, meshRepaired };
@@ -73,11 +71,6 @@ int TestSVFRepair(int argc, char* argv[])
     cam->SetViewUp(0, 0, 1);
     renderers[v]->ResetCameraClippingRange();
   }
-  vtkNew<vtkRenderWindowInteractor> iren;
-  iren->SetRenderWindow(rw);
-  rw->Render();
-  int r = vtkRegressionTestImage(rw);
-  if (r == vtkRegressionTester::DO_INTERACTOR)
-    iren->Start();
+  const bool r = matchesBaseline(argc, argv, rw);
   return (r && before > 1 && after == 1) ? 0 : 1;
 }

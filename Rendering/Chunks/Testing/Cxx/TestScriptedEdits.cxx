@@ -18,7 +18,7 @@
 #include "vtkNew.h"
 #include "vtkPolyData.h"
 #include "vtkProperty.h"
-#include "vtkRegressionTestImage.h"
+#include "RenderTestHarness.h"
 #include "vtkRenderWindow.h"
 #include "vtkRenderWindowInteractor.h"
 #include "vtkRenderer.h"
@@ -51,19 +51,9 @@ void setCamera(vtkRenderer* ren)
   ren->ResetCameraClippingRange();
 }
 
-vtkSmartPointer<vtkImageData> grab(vtkRenderWindow* rw)
-{
-  rw->Render();
-  vtkNew<vtkWindowToImageFilter> w2i;
-  w2i->SetInput(rw);
-  w2i->SetInputBufferTypeToRGB();
-  w2i->ReadFrontBufferOff();
-  w2i->Update();
-  auto img = vtkSmartPointer<vtkImageData>::New();
-  img->DeepCopy(w2i->GetOutput());
-  return img;
-}
 } // namespace
+
+using namespace lvdiftest;
 
 int TestScriptedEdits(int argc, char* argv[])
 {
@@ -77,9 +67,7 @@ int TestScriptedEdits(int argc, char* argv[])
   mo.chunkEdge = 16;
   lvdif::ChunkedMarchingCubes mc(volume, mo);
 
-  vtkNew<vtkRenderWindow> rw;
-  rw->SetSize(400, 400);
-  rw->SetMultiSamples(0);
+  auto rw = makeTestWindow(400, 400);
   vtkNew<vtkRenderer> ren;
   ren->SetBackground(0.12, 0.12, 0.15);
   rw->AddRenderer(ren);
@@ -117,14 +105,14 @@ line 17.4, 23.1, 43, 29.2, 14.9, 43   # a painted stroke on the surface
     std::printf("ERROR: expected a strict subset of the chunks to be re-meshed\n");
     ++failures;
   }
-  auto incrementalImage = grab(rw);
+  auto incrementalImage = grabWindow(rw);
 
   // Oracle: everything re-meshed from scratch.
   incremental->SetVisibility(false);
   vtkNew<vtkChunkActorManager> full;
   full->SetRenderer(ren);
   show(full, mc.extractAll(), volume);
-  auto fullImage = grab(rw);
+  auto fullImage = grabWindow(rw);
   vtkNew<vtkImageDifference> diff;
   diff->SetInputData(incrementalImage);
   diff->SetImageData(fullImage);
@@ -140,11 +128,6 @@ line 17.4, 23.1, 43, 29.2, 14.9, 43   # a painted stroke on the surface
   full->SetVisibility(false);
   incremental->SetVisibility(true);
 
-  vtkNew<vtkRenderWindowInteractor> iren;
-  iren->SetRenderWindow(rw);
-  rw->Render();
-  int r = vtkRegressionTestImage(rw);
-  if (r == vtkRegressionTester::DO_INTERACTOR)
-    iren->Start();
+  const bool r = matchesBaseline(argc, argv, rw);
   return (r && failures == 0) ? 0 : 1;
 }

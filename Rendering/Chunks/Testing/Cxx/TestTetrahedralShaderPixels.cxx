@@ -24,7 +24,7 @@
 #include "vtkRenderer.h"
 #include "vtkTetrahedralColorMapper.h"
 #include "vtkUnsignedCharArray.h"
-#include "vtkWindowToImageFilter.h"
+#include "RenderTestHarness.h"
 
 #include <algorithm>
 #include <cmath>
@@ -133,26 +133,14 @@ vtkSmartPointer<vtkPolyData> quad()
   return pd;
 }
 
-vtkSmartPointer<vtkImageData> grab(vtkRenderWindow* rw)
-{
-  rw->Render();
-  vtkNew<vtkWindowToImageFilter> w2i;
-  w2i->SetInput(rw);
-  w2i->SetInputBufferTypeToRGB();
-  w2i->ReadFrontBufferOff();
-  w2i->Update();
-  auto img = vtkSmartPointer<vtkImageData>::New();
-  img->DeepCopy(w2i->GetOutput());
-  return img;
-}
 } // namespace
+
+using namespace lvdiftest;
 
 int TestTetrahedralShaderPixels(int, char*[])
 {
   vtkNew<vtkRenderer> ren;
-  vtkNew<vtkRenderWindow> rw;
-  rw->SetSize(N, N);
-  rw->SetMultiSamples(0);
+  auto rw = makeTestWindow(N, N);
   rw->AddRenderer(ren);
   vtkNew<vtkChunkActorManager> mgr;
   mgr->SetRenderer(ren);
@@ -168,7 +156,7 @@ int TestTetrahedralShaderPixels(int, char*[])
   cam->SetParallelScale(0.5);
   ren->ResetCameraClippingRange();
 
-  auto tetra = grab(rw);
+  auto tetra = grabWindow(rw);
   auto* mapper = vtkTetrahedralColorMapper::SafeDownCast(mgr->GetChunkActor(0)->GetMapper());
   if (!mapper->GetUsedTetrahedral())
   {
@@ -193,7 +181,7 @@ int TestTetrahedralShaderPixels(int, char*[])
   std::printf("tetrahedral shader: %d pixels, max |error| %.2f (8-bit levels)\n", checked, maxErr);
 
   mgr->SetInterpolationMode(vtkTetrahedralColorMapper::PerVertex);
-  auto vertex = grab(rw);
+  auto vertex = grabWindow(rw);
   double maxDiff = 0;
   for (int j = 2; j < N - 2; ++j)
     for (int i = 2; i < N - 2; ++i)

@@ -6,7 +6,7 @@
 
 #include "vtkCamera.h"
 #include "vtkChunkActorManager.h"
-#include "vtkRegressionTestImage.h"
+#include "RenderTestHarness.h"
 #include "vtkRenderWindow.h"
 #include "vtkRenderWindowInteractor.h"
 #include "vtkRenderer.h"
@@ -23,9 +23,7 @@ int TestTetrahedralVsVertexColor(int argc, char* argv[])
   auto mesh = contractMesh(img, checkerColor);
   auto chunks = splitChunks(mesh, 8, n - 1);
 
-  vtkNew<vtkRenderWindow> rw;
-  rw->SetSize(600, 300);
-  rw->SetMultiSamples(0);
+  auto rw = makeTestWindow(600, 300);
   vtkNew<vtkChunkActorManager> managers[2];
   vtkNew<vtkRenderer> renderers[2];
   for (int v = 0; v < 2; ++v)
@@ -44,11 +42,6 @@ int TestTetrahedralVsVertexColor(int argc, char* argv[])
     renderers[v]->GetActiveCamera()->Zoom(1.4);
     renderers[v]->ResetCameraClippingRange();
   }
-  vtkNew<vtkRenderWindowInteractor> iren;
-  iren->SetRenderWindow(rw);
-  rw->Render();
-  int r = vtkRegressionTestImage(rw);
-  if (r == vtkRegressionTester::DO_INTERACTOR)
-    iren->Start();
-  return !r;
+  const bool r = matchesBaseline(argc, argv, rw);
+  return r ? 0 : 1;
 }

@@ -1,0 +1,117 @@
+#include "vtkImageToSparseVolume.h"
+
+#include "vtkLVDIFVolumeBridge.h"
+#include "vtkSparseDictionaryVolume.h"
+
+#include "lvdif/DictionaryVolume.h"
+
+#include "vtkDataArray.h"
+#include "vtkImageData.h"
+#include "vtkInformation.h"
+#include "vtkInformationVector.h"
+#include "vtkObjectFactory.h"
+#include "vtkPointData.h"
+#include "vtkStreamingDemandDrivenPipeline.h"
+
+#include <limits>
+
+vtkStandardNewMacro(vtkImageToSparseVolume);
+
+vtkImageToSparseVolume::vtkImageToSparseVolume()
+{
+  this->SetColorArrayName(vtkLVDIFVolumeBridge::ColorArrayName);
+  this->SetInputArrayToProcess(
+    0, 0, 0, vtkDataObject::FIELD_ASSOCIATION_POINTS, vtkLVDIFVolumeBridge::SdfArrayName);
+}
+
+vtkImageToSparseVolume::~vtkImageToSparseVolume()
+{
+  this->SetColorArrayName(nullptr);
+}
+
+int vtkImageToSparseVolume::FillInputPortInformation(int, vtkInformation* info)
+{
+  info->Set(vtkAlgorithm::INPUT_REQUIRED_DATA_TYPE(), "vtkImageData");
+  return 1;
+}
+
+int vtkImageToSparseVolume::FillOutputPortInformation(int, vtkInformation* info)
+{
+  info->Set(vtkDataObject::DATA_TYPE_NAME(), "vtkSparseDictionaryVolume");
+  return 1;
+}
+
+int vtkImageToSparseVolume::RequestDataObject(vtkInformation*, vtkInformationVector**, vtkInformationVector* out)
+{
+  vtkLVDIFVolumeBridge::EnsureSparseOutput(out);
+  return 1;
+}
+
+int vtkImageToSparseVolume::RequestInformation(
+  vtkInformation*, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
+{
+  using SDDP = vtkStreamingDemandDrivenPipeline;
+  vtkInformation* inInfo = inputVector[0]->GetInformationObject(0);
+  vtkInformation* outInfo = outputVector->GetInformationObject(0);
+  if (!inInfo->Has(SDDP::WHOLE_EXTENT())) return 1;
+  // the volume's indices start at 0: its origin is the whole extent's first point
+  int whole[6];
+  inInfo->Get(SDDP::WHOLE_EXTENT(), whole);
+  double origin[3] = { 0, 0, 0 }, spacing[3] = { 1, 1, 1 };
+  if (inInfo->Has(vtkDataObject::ORIGIN())) inInfo->Get(vtkDataObject::ORIGIN(), origin);
+  if (inInfo->Has(vtkDataObject::SPACING())) inInfo->Get(vtkDataObject::SPACING(), spacing);
+  lvdif::VolumeOptions o;
+  for (int a = 0; a < 3; ++a)
+  {
+    o.dims[a] = whole[2 * a + 1] - whole[2 * a] + 1;
+    o.origin[a] = origin[a] + whole[2 * a] * spacing[a];
+    o.spacing[a] = spacing[a];
+  }
+  vtkLVDIFVolumeBridge::SetSparseInformation(outInfo, o);
+  return 1;
+}
+
+int vtkImageToSparseVolume::RequestUpdateExtent(
+  vtkInformation*, vtkInformationVector** inputVector, vtkInformationVector*)
+{
+  using SDDP = vtkStreamingDemandDrivenPipeline;
+  vtkInformation* inInfo = inputVector[0]->GetInformationObject(0);
+  if (inInfo->Has(SDDP::WHOLE_EXTENT()))
+  {
+    int whole[6];
+    inInfo->Get(SDDP::WHOLE_EXTENT(), whole);
+    inInfo->Set(SDDP::UPDATE_EXTENT(), whole, 6);
+  }
+  return 1;
+}
+
+int vtkImageToSparseVolume::RequestData(
+  vtkInformation*, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
+{
+  vtkImageData* image = vtkImageData::GetData(inputVector[0]);
+  vtkSparseDictionaryVolume* output = vtkSparseDictionaryVolume::GetData(outputVector);
+  vtkDataArray* sdf = this->GetInputArrayToProcess(0, inputVector);
+  if (!image || !sdf)
+  {
+    vtkErrorMacro("no input image with an SDF point array (default name 'sdf')");
+    return 0;
+  }
+  vtkDataArray* rgba = this->ColorArrayName && *this->ColorArrayName
+    ? image->GetPointData()->GetArray(this->ColorArrayName)
+    : nullptr;
+  lvdif::VolumeOptions options;
+  options.chunkEdge = this->ChunkEdge;
+  options.bandWidth =
+    this->BandWidth > 0 ? static_cast<float>(this->BandWidth) : std::numeric_limits<float>::infinity();
+  return vtkLVDIFVolumeBridge::CallCore(this, [&] {
+    output->SetVolume(vtkLVDIFVolumeBridge::VolumeFromImage(image, sdf, rgba, options));
+  }) ? 1 : 0;
+}
+
+void vtkImageToSparseVolume::PrintSelf(ostream& os, vtkIndent indent)
+{
+  this->Superclass::PrintSelf(os, indent);
+  os << indent << "ChunkEdge: " << this->ChunkEdge << "\n";
+  os << indent << "BandWidth: " << this->BandWidth << "\n";
+  os << indent << "ColorArrayName: " << (this->ColorArrayName ? this->ColorArrayName : "(none)") << "\n";
+}

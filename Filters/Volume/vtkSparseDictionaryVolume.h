@@ -1,0 +1,151 @@
+/**
+ * @class   vtkSparseDictionaryVolume
+ * @brief   the sparse dictionary volume as a VTK data object (no dense copy)
+ *
+ * A vtkPartitionedDataSet that holds an lvdif::DictionaryVolume by shared
+ * pointer: the storage chunks, both dictionaries, the uniform (collapsed)
+ * chunks and the dirty flags are the Core volume's own, never copied. Our
+ * filters (vtkChunkedMarchingCubes, vtkSignVoxelFilter,
+ * vtkDictionaryVolumeWriter, vtkSparseVolumeToImage) work on GetVolume().
+ *
+ * For generic VTK filters and ParaView the partitions are vtkImageData, one
+ * per storage chunk whose cells are not all equal: chunk c owns the voxels
+ * [lo, hi] and its partition has the points [lo, hi + 1] (clipped to the
+ * volume), i.e. it shares one boundary layer of points with its upper
+ * neighbours. Every cell with differing corner values then lies in exactly one
+ * partition, so vtkContourFilter / vtkCutter / vtkThreshold run per partition
+ * and meet without seams (shared points are bit-identical: same global index,
+ * same origin and spacing). Point arrays: float `sdf` (decoded, negative
+ * inside, voxel units) and, with PartitionColors on, unsigned char `rgba`;
+ * field data `chunk_id` and `chunk_ijk` as vtkChunkedMarchingCubes writes
+ * them. Uniform regions have no partition (their value is +-band, no surface).
+ *
+ * The partitions are built lazily, on the first request through the
+ * composite API (NewIterator, NewTreeIterator, GetNumberOfPartitions,
+ * GetPartition, CopyStructure, ShallowCopy of this object), so a pipeline of
+ * our own filters never allocates them. Their memory is checked against
+ * lvdif's limit (LVDIF_MEMORY_LIMIT) first; when refused, an error is
+ * reported and there are no partitions. After editing the Core volume in
+ * place, call VolumeModified() (drops the partitions; the dirty flags stay in
+ * the Core volume for vtkChunkedMarchingCubes' incremental update).
+ *
+ * ShallowCopy shares the Core volume; DeepCopy clones it (lvdif's clone()).
+ */
+#ifndef vtkSparseDictionaryVolume_h
+#define vtkSparseDictionaryVolume_h
+
+#include "lvdifFiltersVolumeModule.h"
+#include "vtkPartitionedDataSet.h"
+#include "vtkVersionMacros.h"
+
+#include <cstdint>
+#include <memory>
+
+namespace lvdif
+{
+class DictionaryVolume;
+}
+
+class LVDIFFILTERSVOLUME_EXPORT vtkSparseDictionaryVolume : public vtkPartitionedDataSet
+{
+public:
+  static vtkSparseDictionaryVolume* New();
+  vtkTypeMacro(vtkSparseDictionaryVolume, vtkPartitionedDataSet);
+  void PrintSelf(ostream& os, vtkIndent indent) override;
+
+#ifndef __VTK_WRAP__
+  /// Shares the Core volume (no copy) and drops any built partitions.
+  void SetVolume(std::shared_ptr<lvdif::DictionaryVolume> volume);
+  const std::shared_ptr<lvdif::DictionaryVolume>& GetVolume() const { return this->Volume; }
+#endif
+  /// True when a Core volume is held.
+  bool HasVolume() const { return this->Volume != nullptr; }
+
+  ///@{
+  /// Facts about the held volume, for Python and ParaView (0 without a volume).
+  void GetDimensions(int dims[3]) const;
+  int GetChunkEdge() const;
+  double GetBandWidth() const;
+  vtkIdType GetNumberOfChunks() const;
+  /// Chunks that hold voxels (the others are uniform: one value each).
+  vtkIdType GetNumberOfExpandedChunks() const;
+  /// Bytes the Core volume holds (chunk table, expanded chunks, dictionaries).
+  double GetVolumeMemoryBytes() const;
+  /// Bytes a dense float `sdf` + `rgba` image of the whole volume would need.
+  double GetDenseImageBytes() const;
+  /// Bytes the partitions need (computed from the chunk states, nothing built).
+  double GetPartitionBytes() const;
+  ///@}
+
+  /// Chunks written since the Core volume's dirty flags were last taken.
+  vtkIdType GetNumberOfDirtyChunks() const;
+
+  ///@{
+  /// Give the partitions an `rgba` array too (default on).
+  void SetPartitionColors(bool on);
+  bool GetPartitionColors() const { return this->PartitionColors; }
+  ///@}
+
+  ///@{
+  /// The storage chunks this object's partitions come from, as an inclusive
+  /// box of chunk coordinates (cx0, cx1, cy0, cy1, cz0, cz1); default: all.
+  /// A distributed reader sets its piece's chunks here (its Core volume then
+  /// holds those chunks plus the one layer of points their partitions share).
+  void SetOwnedChunks(const int box[6]);
+  void GetOwnedChunks(int box[6]) const;
+  ///@}
+
+  /// Builds the partitions now if they are not built (idempotent). Returns
+  /// false (with an error) when the memory limit refuses them.
+  bool UpdatePartitions();
+  bool GetPartitionsBuilt() const { return this->PartitionsBuilt; }
+  /// Call after editing the Core volume in place: drops the partitions and Modified().
+  void VolumeModified();
+
+  ///@{
+  /// The composite API builds the partitions first (see the class comment).
+  unsigned int GetNumberOfPartitions();
+  vtkDataSet* GetPartition(unsigned int idx);
+  VTK_NEWINSTANCE vtkCompositeDataIterator* NewIterator() override;
+  VTK_NEWINSTANCE vtkDataObjectTreeIterator* NewTreeIterator() override;
+  void CopyStructure(vtkCompositeDataSet* input) override;
+  ///@}
+
+  /// Setting a leaf that is not a vtkImageData (a generic filter's result over
+  /// the partitions, e.g. vtkContourFilter's, whose composite output the
+  /// executive makes with NewInstance + CopyStructure) drops the Core volume:
+  /// such an object is a plain partitioned dataset (HasVolume() false).
+  void SetDataSet(vtkCompositeDataIterator* iter, vtkDataObject* dataObj) override;
+
+  void Initialize() override;
+  void ShallowCopy(vtkDataObject* src) override;
+#if VTK_MAJOR_VERSION > 9 || (VTK_MAJOR_VERSION == 9 && VTK_MINOR_VERSION >= 2)
+  /// VTK 9.2 (ParaView 5.11): ParaView's post filter copies every output with it.
+  void CompositeShallowCopy(vtkCompositeDataSet* src) override;
+#endif
+  void DeepCopy(vtkDataObject* src) override;
+  /// Kibibytes: the Core volume plus any built partitions.
+  unsigned long GetActualMemorySize() override;
+
+  ///@{
+  /// Retrieve an instance of this class from an information object / vector.
+  static vtkSparseDictionaryVolume* GetData(vtkInformation* info);
+  static vtkSparseDictionaryVolume* GetData(vtkInformationVector* v, int i = 0);
+  ///@}
+
+protected:
+  vtkSparseDictionaryVolume();
+  ~vtkSparseDictionaryVolume() override;
+
+  std::shared_ptr<lvdif::DictionaryVolume> Volume;
+  bool PartitionColors = true;
+  bool PartitionsBuilt = false;
+  bool OwnsAll = true;
+  int Owned[6] = { 0, -1, 0, -1, 0, -1 };
+
+private:
+  vtkSparseDictionaryVolume(const vtkSparseDictionaryVolume&) = delete;
+  void operator=(const vtkSparseDictionaryVolume&) = delete;
+};
+
+#endif

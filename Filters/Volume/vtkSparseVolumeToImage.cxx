@@ -1,0 +1,126 @@
+#include "vtkSparseVolumeToImage.h"
+
+#include "vtkLVDIFVolumeBridge.h"
+#include "vtkSparseDictionaryVolume.h"
+
+#include "lvdif/DictionaryVolume.h"
+#include "lvdif/Memory.h"
+
+#include "vtkImageData.h"
+#include "vtkInformation.h"
+#include "vtkInformationVector.h"
+#include "vtkObjectFactory.h"
+#include "vtkStreamingDemandDrivenPipeline.h"
+
+#include <sstream>
+
+vtkStandardNewMacro(vtkSparseVolumeToImage);
+
+vtkSparseVolumeToImage::vtkSparseVolumeToImage() = default;
+vtkSparseVolumeToImage::~vtkSparseVolumeToImage() = default;
+
+int vtkSparseVolumeToImage::FillInputPortInformation(int, vtkInformation* info)
+{
+  info->Set(vtkAlgorithm::INPUT_REQUIRED_DATA_TYPE(), "vtkSparseDictionaryVolume");
+  return 1;
+}
+
+int vtkSparseVolumeToImage::RequestInformation(
+  vtkInformation*, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
+{
+  using SDDP = vtkStreamingDemandDrivenPipeline;
+  vtkInformation* inInfo = inputVector[0]->GetInformationObject(0);
+  vtkInformation* outInfo = outputVector->GetInformationObject(0);
+  int whole[6];
+  if (inInfo->Has(SDDP::WHOLE_EXTENT()))
+  {
+    inInfo->Get(SDDP::WHOLE_EXTENT(), whole);
+    if (inInfo->Has(vtkDataObject::ORIGIN())) outInfo->CopyEntry(inInfo, vtkDataObject::ORIGIN());
+    if (inInfo->Has(vtkDataObject::SPACING())) outInfo->CopyEntry(inInfo, vtkDataObject::SPACING());
+  }
+  else if (vtkSparseDictionaryVolume* given = vtkSparseDictionaryVolume::GetData(inInfo))
+  {
+    if (!given->HasVolume())
+    {
+      vtkErrorMacro("the input holds no dictionary volume");
+      return 0;
+    }
+    // a volume given as data (vtkTrivialProducer) announces nothing: read it off the volume
+    const lvdif::VolumeOptions& o = given->GetVolume()->options();
+    for (int a = 0; a < 3; ++a)
+    {
+      whole[2 * a] = 0;
+      whole[2 * a + 1] = static_cast<int>(o.dims[a] - 1);
+    }
+    outInfo->Set(vtkDataObject::ORIGIN(), o.origin.data(), 3);
+    outInfo->Set(vtkDataObject::SPACING(), o.spacing.data(), 3);
+  }
+  else
+  {
+    vtkErrorMacro("the input does not announce the volume's extent (not a sparse volume producer?)");
+    return 0;
+  }
+  outInfo->Set(SDDP::WHOLE_EXTENT(), whole, 6);
+  outInfo->Set(vtkAlgorithm::CAN_PRODUCE_SUB_EXTENT(), 1);
+  vtkDataObject::SetPointDataActiveScalarInfo(outInfo, VTK_FLOAT, 1);
+  double points = 1;
+  for (int a = 0; a < 3; ++a) points *= whole[2 * a + 1] - whole[2 * a] + 1;
+  this->RequiredBytes = points * (this->WithColor ? 8.0 : 4.0);
+  return 1;
+}
+
+int vtkSparseVolumeToImage::RequestUpdateExtent(
+  vtkInformation*, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
+{
+  // the sparse producer reads only the chunks of this extent
+  using SDDP = vtkStreamingDemandDrivenPipeline;
+  vtkInformation* outInfo = outputVector->GetInformationObject(0);
+  vtkInformation* inInfo = inputVector[0]->GetInformationObject(0);
+  if (outInfo->Has(SDDP::UPDATE_EXTENT()))
+  {
+    int ext[6];
+    outInfo->Get(SDDP::UPDATE_EXTENT(), ext);
+    inInfo->Set(SDDP::UPDATE_EXTENT(), ext, 6);
+  }
+  inInfo->Set(SDDP::UPDATE_PIECE_NUMBER(), 0);
+  inInfo->Set(SDDP::UPDATE_NUMBER_OF_PIECES(), 1);
+  inInfo->Set(SDDP::UPDATE_NUMBER_OF_GHOST_LEVELS(), 0);
+  return 1;
+}
+
+int vtkSparseVolumeToImage::RequestData(
+  vtkInformation*, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
+{
+  vtkSparseDictionaryVolume* input = vtkSparseDictionaryVolume::GetData(inputVector[0]);
+  vtkInformation* outInfo = outputVector->GetInformationObject(0);
+  vtkImageData* output = vtkImageData::GetData(outInfo);
+  if (!input || !input->HasVolume())
+  {
+    vtkErrorMacro("the input holds no dictionary volume");
+    return 0;
+  }
+  int ext[6];
+  outInfo->Get(vtkStreamingDemandDrivenPipeline::UPDATE_EXTENT(), ext);
+  const lvdif::DictionaryVolume& volume = *input->GetVolume();
+  return vtkLVDIFVolumeBridge::CallCore(this, [&] {
+    std::uint64_t points = 1;
+    std::ostringstream what;
+    what << "vtkSparseVolumeToImage: a dense image of ";
+    for (int a = 0; a < 3; ++a)
+    {
+      const std::int64_t n = std::max(0, ext[2 * a + 1] - ext[2 * a] + 1);
+      points = lvdif::checkedMultiply(points, static_cast<std::uint64_t>(n), "dense image");
+      what << n << (a < 2 ? " x " : " points");
+    }
+    what << (this->WithColor ? " (float sdf + rgba, 8 bytes a point)" : " (float sdf, 4 bytes a point)");
+    lvdif::requireMemory(lvdif::checkedMultiply(points, this->WithColor ? 8 : 4, "dense image"), what.str());
+    vtkLVDIFVolumeBridge::FillImage(volume, ext, output, this->WithColor);
+  }) ? 1 : 0;
+}
+
+void vtkSparseVolumeToImage::PrintSelf(ostream& os, vtkIndent indent)
+{
+  this->Superclass::PrintSelf(os, indent);
+  os << indent << "WithColor: " << this->WithColor << "\n";
+  os << indent << "RequiredBytes: " << this->RequiredBytes << "\n";
+}

@@ -1,0 +1,161 @@
+// The file registry: every volume format round-trips a sphere volume (against
+// the analytic field, within each format's quantization), meshes round-trip
+// through every mesh format, unknown extensions give one clear error, and the
+// ParaView plugin's reader/writer hints list exactly the registry's extensions
+// for each class (the registry is the one source of the formats).
+#include "vtkLVDIFFiles.h"
+
+#include "lvdif/AnalyticFill.h"
+#include "lvdif/Error.h"
+
+#include "vtkPolyData.h"
+#include "vtkSphereSource.h"
+#include "vtkTriangleFilter.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdio>
+#include <dirent.h>
+#include <fstream>
+#include <regex>
+#include <set>
+#include <sstream>
+
+namespace
+{
+std::string temp(const std::string& name)
+{
+  return std::string(::testing::TempDir()) + "/lvdif_files_" + name;
+}
+
+std::shared_ptr<lvdif::DictionaryVolume> sphere()
+{
+  lvdif::VolumeOptions o;
+  o.dims = { 40, 40, 40 }; // cubic: the .bv format has no header
+  o.chunkEdge = 16;
+  auto v = std::make_shared<lvdif::DictionaryVolume>(o);
+  lvdif::fillFromFunction(*v, lvdif::sphereSdf(19.3, 20.1, 18.7, 12.0));
+  return v;
+}
+}
+
+TEST(LVDIFFiles, EveryVolumeFormatRoundTrips)
+{
+  const auto v = sphere();
+  const auto analytic = lvdif::sphereSdf(19.3, 20.1, 18.7, 12.0);
+  int formats = 0;
+  for (const auto& f : vtkLVDIFFiles::Formats())
+  {
+    if (f.kind != vtkLVDIFFiles::Kind::Volume || f.writerClass.empty() || f.readerClass.empty()) continue;
+    ++formats;
+    const std::string path = temp("SDF_40_sphere." + f.extension);
+    vtkLVDIFFiles::SaveVolume(v, path, { { "source mesh", "analytic" } });
+    std::shared_ptr<lvdif::DictionaryVolume> back = vtkLVDIFFiles::LoadVolume(path);
+    ASSERT_TRUE(back) << f.extension;
+    // a format may crop or pad (OpenVDB: the active box): compare by world position
+    std::int64_t off[3];
+    for (int a = 0; a < 3; ++a)
+      off[a] = std::llround((back->options().origin[a] - v->options().origin[a]) / v->options().spacing[a]);
+    int bad = 0, compared = 0;
+    for (std::int64_t z = 0; z < 40; ++z)
+      for (std::int64_t y = 0; y < 40; ++y)
+        for (std::int64_t x = 0; x < 40; ++x)
+        {
+          const double d = analytic(static_cast<double>(x), static_cast<double>(y), static_cast<double>(z));
+          if (std::fabs(d) > 3.0) continue; // the band every format keeps
+          if (!back->inside(x - off[0], y - off[1], z - off[2])) continue;
+          ++compared;
+          // two dictionaries at most (ours, then the original's for .bv): two half steps
+          bad += std::fabs(back->sdf(x - off[0], y - off[1], z - off[2]) - d) > 0.0011;
+        }
+    EXPECT_GT(compared, 1000) << f.extension;
+    EXPECT_EQ(bad, 0) << f.extension;
+    std::remove(path.c_str());
+  }
+  EXPECT_GE(formats, 4); // lvdv, lvdvp, bv, vti (+ vdb with OpenVDB)
+}
+
+TEST(LVDIFFiles, UnknownExtensionsAreOneClearError)
+{
+  try
+  {
+    vtkLVDIFFiles::LoadVolume(temp("x.raw"));
+    FAIL() << "no error";
+  }
+  catch (const lvdif::Error& e)
+  {
+    EXPECT_NE(std::string(e.what()).find(".lvdv"), std::string::npos) << e.what();
+  }
+  EXPECT_THROW(vtkLVDIFFiles::LoadVolume(temp("missing.lvdv")), lvdif::Error);
+  EXPECT_THROW(vtkLVDIFFiles::SaveMesh(vtkPolyData::New(), temp("x.off")), lvdif::Error); // .off is read-only
+  EXPECT_EQ(vtkLVDIFFiles::Extension("/a.b/c.LVDV"), "lvdv");
+  EXPECT_EQ(vtkLVDIFFiles::Extension("/a.b/c"), "");
+  EXPECT_NE(vtkLVDIFFiles::DialogFilter(vtkLVDIFFiles::Kind::Volume, true).find("(*.lvdv)"), std::string::npos);
+}
+
+TEST(LVDIFFiles, EveryMeshFormatRoundTrips)
+{
+  vtkNew<vtkSphereSource> s;
+  s->SetThetaResolution(16);
+  s->SetPhiResolution(12);
+  vtkNew<vtkTriangleFilter> tri;
+  tri->SetInputConnection(s->GetOutputPort());
+  tri->Update();
+  for (const auto& f : vtkLVDIFFiles::Formats())
+  {
+    if (f.kind != vtkLVDIFFiles::Kind::Mesh || f.writerClass.empty()) continue;
+    const std::string path = temp("sphere." + f.extension);
+    vtkLVDIFFiles::SaveMesh(tri->GetOutput(), path);
+    if (!f.readerClass.empty())
+    {
+      vtkSmartPointer<vtkPolyData> back = vtkLVDIFFiles::LoadMesh(path);
+      EXPECT_EQ(back->GetNumberOfPolys(), tri->GetOutput()->GetNumberOfPolys()) << f.extension;
+    }
+    std::ifstream in(path, std::ios::binary | std::ios::ate);
+    EXPECT_GT(static_cast<long>(in.tellg()), 100) << f.extension;
+    std::remove(path.c_str());
+  }
+}
+
+TEST(LVDIFFiles, ParaViewHintsListTheRegistrysExtensions)
+{
+  // class -> extensions named by the plugin's ReaderFactory / WriterFactory hints
+  std::map<std::string, std::set<std::string>> readers, writers;
+  DIR* dir = opendir(LVDIF_PLUGIN_XML_DIR);
+  ASSERT_NE(dir, nullptr);
+  const std::regex proxy("class=\"(vtk\\w+)\"");
+  const std::regex factory("<(Reader|Writer)Factory\\s+extensions=\"([^\"]*)\"");
+  while (dirent* e = readdir(dir))
+  {
+    const std::string name = e->d_name;
+    if (name.size() < 4 || name.substr(name.size() - 4) != ".xml") continue;
+    std::ifstream in(std::string(LVDIF_PLUGIN_XML_DIR) + "/" + name);
+    std::stringstream text;
+    text << in.rdbuf();
+    const std::string xml = text.str();
+    std::smatch pm, fm;
+    if (!std::regex_search(xml, pm, proxy)) continue;
+    const std::string cls = pm[1];
+    for (auto it = std::sregex_iterator(xml.begin(), xml.end(), factory); it != std::sregex_iterator(); ++it)
+    {
+      std::istringstream exts((*it)[2]);
+      std::string ext;
+      while (exts >> ext) ((*it)[1] == "Reader" ? readers : writers)[cls].insert(ext);
+    }
+  }
+  closedir(dir);
+  ASSERT_FALSE(readers.empty());
+  for (const auto* table : { &readers, &writers })
+  {
+    const bool reading = table == &readers;
+    for (const auto& kv : *table)
+    {
+      std::set<std::string> registry;
+      for (const auto& f : vtkLVDIFFiles::Formats())
+        if ((reading ? f.readerClass : f.writerClass) == kv.first) registry.insert(f.extension);
+      EXPECT_EQ(kv.second, registry) << kv.first << (reading ? " reader" : " writer")
+                                     << " hints differ from the registry";
+    }
+  }
+}

@@ -1,0 +1,332 @@
+#include "vtkLVDIFFiles.h"
+
+#include "vtkDictionaryVolumeReader.h"
+#include "vtkDictionaryVolumeWriter.h"
+#include "vtkImageToSparseVolume.h"
+#include "vtkLVDIFMeshReader.h"
+#include "vtkLegacyBvReader.h"
+#include "vtkLegacyBvWriter.h"
+#include "vtkPDictionaryVolumeReader.h"
+#include "vtkPDictionaryVolumeWriter.h"
+#include "vtkSparseDictionaryVolume.h"
+#include "vtkSparseVolumeToImage.h"
+#ifdef LVDIF_WITH_OPENVDB_MODULE
+#include "vtkOpenVDBLevelSetReader.h"
+#include "vtkOpenVDBLevelSetWriter.h"
+#endif
+
+#include "lvdif/Error.h"
+
+#include "vtkCallbackCommand.h"
+#include "vtkCommand.h"
+#include "vtkExecutive.h"
+#include "vtkNew.h"
+#include "vtkOBJWriter.h"
+#include "vtkPLYWriter.h"
+#include "vtkPolyData.h"
+#include "vtkSTLWriter.h"
+#include "vtkTrivialProducer.h"
+#include "vtkXMLImageDataReader.h"
+#include "vtkXMLImageDataWriter.h"
+#include "vtkXMLPolyDataWriter.h"
+
+#include <algorithm>
+#include <cctype>
+#include <functional>
+
+namespace vtkLVDIFFiles
+{
+namespace
+{
+/// Runs a VTK algorithm for Core-style callers: progress and cancel through
+/// the interrupter, the algorithm's errors turned into one lvdif::Error.
+struct Watch
+{
+  lvdif::Interrupter& interrupter;
+  std::string errors;
+  vtkNew<vtkCallbackCommand> onProgress, onError;
+
+  Watch(lvdif::Interrupter& in, const std::vector<vtkAlgorithm*>& algorithms)
+    : interrupter(in)
+  {
+    this->onProgress->SetClientData(this);
+    this->onProgress->SetCallback([](vtkObject* caller, unsigned long, void* client, void* call) {
+      auto* w = static_cast<Watch*>(client);
+      w->interrupter.progress(*static_cast<double*>(call));
+      if (w->interrupter.wasInterrupted()) static_cast<vtkAlgorithm*>(caller)->SetAbortExecute(1);
+    });
+    this->onError->SetClientData(this);
+    this->onError->SetCallback([](vtkObject*, unsigned long, void* client, void* call) {
+      auto* w = static_cast<Watch*>(client);
+      std::string text = call ? static_cast<const char*>(call) : "";
+      // keep the message itself, not VTK's "ERROR: In file, line ..." preamble
+      const auto colon = text.find("): ");
+      if (colon != std::string::npos) text = text.substr(colon + 3);
+      while (!text.empty() && (text.back() == '\n' || text.back() == ' ')) text.pop_back();
+      if (w->errors.empty()) w->errors = text; // the first error names the cause
+    });
+    for (vtkAlgorithm* a : algorithms)
+    {
+      a->AddObserver(vtkCommand::ProgressEvent, this->onProgress);
+      a->AddObserver(vtkCommand::ErrorEvent, this->onError);
+      a->GetExecutive()->AddObserver(vtkCommand::ErrorEvent, this->onError);
+    }
+  }
+
+  /// Throws when the run failed or was cancelled.
+  /// Throws when the run failed or was cancelled; `what` names the file
+  /// ("cannot read 'x'") unless the reader's own message already does.
+  void check(bool ok, const std::string& what)
+  {
+    this->interrupter.checkInterrupt();
+    if (!ok || !this->errors.empty())
+    {
+      const std::string text = this->errors.empty() ? what + ": failed"
+        : this->errors.rfind("cannot ", 0) == 0   ? this->errors
+                                                  : what + ": " + this->errors;
+      throw lvdif::Error(lvdif::ErrorCode::IoFailure, text);
+    }
+  }
+};
+
+[[noreturn]] void unknown(const std::string& path, Kind kind, bool saving)
+{
+  std::string list;
+  for (const Format& f : Formats())
+  {
+    if (f.kind == kind && !(saving ? f.writerClass : f.readerClass).empty())
+      list += (list.empty() ? "." : ", .") + f.extension;
+  }
+  throw lvdif::Error(lvdif::ErrorCode::InvalidArgument,
+    std::string("cannot ") + (saving ? "write" : "read") + " '" + path + "': " +
+      (kind == Kind::Volume ? "volumes" : "meshes") + " are " + list + " files");
+}
+
+std::shared_ptr<lvdif::DictionaryVolume> volumeOf(vtkAlgorithm* a)
+{
+  auto* sparse = vtkSparseDictionaryVolume::SafeDownCast(a->GetOutputDataObject(0));
+  return sparse ? sparse->GetVolume() : nullptr;
+}
+} // namespace
+
+const std::vector<Format>& Formats()
+{
+  static const std::vector<Format> formats = {
+    { "lvdv", "LVDIF Dictionary Volume Files", Kind::Volume, "vtkDictionaryVolumeReader",
+      "vtkDictionaryVolumeWriter" },
+    { "lvdvp", "LVDIF Distributed Dictionary Volume Files", Kind::Volume, "vtkPDictionaryVolumeReader",
+      "vtkPDictionaryVolumeWriter" },
+    { "bv", "Original LVDIF volume", Kind::Volume, "vtkLegacyBvReader", "vtkLegacyBvWriter" },
+#ifdef LVDIF_WITH_OPENVDB_MODULE
+    { "vdb", "OpenVDB level set", Kind::Volume, "vtkOpenVDBLevelSetReader", "vtkOpenVDBLevelSetWriter" },
+#endif
+    { "vti", "VTK image (dense sdf, rgba)", Kind::Volume, "vtkXMLImageDataReader", "vtkXMLImageDataWriter" },
+    { "ply", "PLY mesh", Kind::Mesh, "vtkLVDIFMeshReader", "vtkPLYWriter" },
+    { "obj", "Wavefront OBJ mesh", Kind::Mesh, "vtkLVDIFMeshReader", "vtkOBJWriter" },
+    { "stl", "STL mesh", Kind::Mesh, "vtkLVDIFMeshReader", "vtkSTLWriter" },
+    { "off", "OFF mesh", Kind::Mesh, "vtkLVDIFMeshReader", "" },
+    { "vtp", "VTK polydata", Kind::Mesh, "", "vtkXMLPolyDataWriter" },
+  };
+  return formats;
+}
+
+std::string Extension(const std::string& path)
+{
+  const auto slash = path.find_last_of("/\\");
+  const auto dot = path.find_last_of('.');
+  if (dot == std::string::npos || (slash != std::string::npos && dot < slash)) return std::string();
+  std::string ext = path.substr(dot + 1);
+  std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return std::tolower(c); });
+  return ext;
+}
+
+const Format* Find(const std::string& path, Kind kind)
+{
+  const std::string ext = Extension(path);
+  for (const Format& f : Formats())
+    if (f.kind == kind && f.extension == ext) return &f;
+  return nullptr;
+}
+
+std::string DialogFilter(Kind kind, bool forSaving)
+{
+  std::string all, each;
+  for (const Format& f : Formats())
+  {
+    if (f.kind != kind || (forSaving ? f.writerClass : f.readerClass).empty()) continue;
+    all += (all.empty() ? "*." : " *.") + f.extension;
+    each += ";;" + f.description + " (*." + f.extension + ")";
+  }
+  return std::string(kind == Kind::Volume ? "Volumes" : "Meshes") + " (" + all + ")" + each;
+}
+
+std::shared_ptr<lvdif::DictionaryVolume> LoadVolume(const std::string& path, lvdif::Interrupter& interrupter)
+{
+  const Format* f = Find(path, Kind::Volume);
+  if (!f || f->readerClass.empty()) unknown(path, Kind::Volume, false);
+  const std::string what = "cannot read '" + path + "'";
+  vtkSmartPointer<vtkAlgorithm> reader, last;
+  if (f->extension == "lvdv")
+  {
+    auto r = vtkSmartPointer<vtkDictionaryVolumeReader>::New();
+    r->SetFileName(path.c_str());
+    reader = last = r;
+  }
+  else if (f->extension == "bv")
+  {
+    auto r = vtkSmartPointer<vtkLegacyBvReader>::New();
+    r->SetFileName(path.c_str());
+    reader = last = r;
+  }
+#ifdef LVDIF_WITH_OPENVDB_MODULE
+  else if (f->extension == "vdb")
+  {
+    auto r = vtkSmartPointer<vtkOpenVDBLevelSetReader>::New();
+    r->SetFileName(path.c_str());
+    reader = last = r;
+  }
+#endif
+  else
+  {
+    // images (.vti, .lvdvp) become the sparse volume with the defaults (band 8, chunk edge 32)
+    if (f->extension == "vti")
+    {
+      auto r = vtkSmartPointer<vtkXMLImageDataReader>::New();
+      r->SetFileName(path.c_str());
+      reader = r;
+    }
+    else
+    {
+      auto r = vtkSmartPointer<vtkPDictionaryVolumeReader>::New();
+      r->SetFileName(path.c_str());
+      reader = r;
+    }
+    auto toSparse = vtkSmartPointer<vtkImageToSparseVolume>::New();
+    toSparse->SetInputConnection(reader->GetOutputPort());
+    last = toSparse;
+  }
+  Watch watch(interrupter, { reader, last });
+  interrupter.start("read volume");
+  const bool ok = last->GetExecutive()->Update() != 0;
+  interrupter.end();
+  watch.check(ok, what);
+  std::shared_ptr<lvdif::DictionaryVolume> volume = volumeOf(last);
+  if (!volume) throw lvdif::Error(lvdif::ErrorCode::IoFailure, what + ": no volume");
+  return volume;
+}
+
+void SaveVolume(const std::shared_ptr<lvdif::DictionaryVolume>& volume, const std::string& path,
+  const std::map<std::string, std::string>& metadata, lvdif::Interrupter& interrupter)
+{
+  const Format* f = Find(path, Kind::Volume);
+  if (!f || f->writerClass.empty()) unknown(path, Kind::Volume, true);
+  vtkNew<vtkSparseDictionaryVolume> sparse;
+  sparse->SetVolume(volume);
+  vtkNew<vtkTrivialProducer> source;
+  source->SetOutput(sparse);
+  vtkSmartPointer<vtkAlgorithm> writer, dense;
+  if (f->extension == "lvdv")
+  {
+    auto w = vtkSmartPointer<vtkDictionaryVolumeWriter>::New();
+    w->SetFileName(path.c_str());
+    for (const auto& kv : metadata) w->AddMetadata(kv.first, kv.second);
+    writer = w;
+  }
+  else if (f->extension == "lvdvp")
+  {
+    auto w = vtkSmartPointer<vtkPDictionaryVolumeWriter>::New();
+    w->SetFileName(path.c_str());
+    writer = w;
+  }
+  else if (f->extension == "bv")
+  {
+    auto w = vtkSmartPointer<vtkLegacyBvWriter>::New();
+    w->SetFileName(path.c_str());
+    writer = w;
+  }
+#ifdef LVDIF_WITH_OPENVDB_MODULE
+  else if (f->extension == "vdb")
+  {
+    auto w = vtkSmartPointer<vtkOpenVDBLevelSetWriter>::New();
+    w->SetFileName(path.c_str());
+    writer = w;
+  }
+#endif
+  else
+  {
+    auto w = vtkSmartPointer<vtkXMLImageDataWriter>::New();
+    w->SetFileName(path.c_str());
+    writer = w;
+    dense = vtkSmartPointer<vtkSparseVolumeToImage>::New(); // states the memory, refuses above the limit
+    dense->SetInputConnection(source->GetOutputPort());
+  }
+  writer->SetInputConnection(dense ? dense->GetOutputPort() : source->GetOutputPort());
+  std::vector<vtkAlgorithm*> watched{ writer };
+  if (dense) watched.push_back(dense);
+  Watch watch(interrupter, watched);
+  interrupter.start("save volume");
+  const bool ok = writer->GetExecutive()->Update() != 0;
+  interrupter.end();
+  watch.check(ok, "cannot write '" + path + "'");
+}
+
+vtkSmartPointer<vtkPolyData> LoadMesh(const std::string& path)
+{
+  const Format* f = Find(path, Kind::Mesh);
+  if (!f || f->readerClass.empty()) unknown(path, Kind::Mesh, false);
+  vtkNew<vtkLVDIFMeshReader> reader;
+  reader->SetFileName(path.c_str());
+  Watch watch(lvdif::nullInterrupter(), { reader });
+  const bool ok = reader->GetExecutive()->Update() != 0;
+  watch.check(ok, "cannot read '" + path + "'");
+  auto mesh = vtkSmartPointer<vtkPolyData>::New();
+  mesh->ShallowCopy(reader->GetOutput());
+  return mesh;
+}
+
+void SaveMesh(vtkPolyData* mesh, const std::string& path)
+{
+  const Format* f = Find(path, Kind::Mesh);
+  if (!f || f->writerClass.empty()) unknown(path, Kind::Mesh, true);
+  vtkSmartPointer<vtkAlgorithm> writer;
+  std::function<int()> write;
+  if (f->extension == "ply")
+  {
+    auto w = vtkSmartPointer<vtkPLYWriter>::New();
+    w->SetFileName(path.c_str());
+    w->SetFileTypeToBinary();
+    w->SetArrayName("rgba");
+    w->SetColorModeToDefault();
+    w->EnableAlphaOn();
+    writer = w;
+    write = [w] { return w->Write(); };
+  }
+  else if (f->extension == "obj")
+  {
+    auto w = vtkSmartPointer<vtkOBJWriter>::New();
+    w->SetFileName(path.c_str());
+    writer = w;
+    write = [w] { return w->Write(); };
+  }
+  else if (f->extension == "stl")
+  {
+    auto w = vtkSmartPointer<vtkSTLWriter>::New();
+    w->SetFileName(path.c_str());
+    w->SetFileTypeToBinary();
+    writer = w;
+    write = [w] { return w->Write(); };
+  }
+  else
+  {
+    auto w = vtkSmartPointer<vtkXMLPolyDataWriter>::New();
+    w->SetFileName(path.c_str());
+    writer = w;
+    write = [w] { return w->Write(); };
+  }
+  writer->SetInputDataObject(mesh);
+  Watch watch(lvdif::nullInterrupter(), { writer });
+  const bool ok = write() != 0;
+  watch.check(ok, "cannot write '" + path + "'");
+}
+
+} // namespace vtkLVDIFFiles

@@ -1,0 +1,78 @@
+/**
+ * @file   vtkLVDIFFiles.h
+ * @brief  the one file registry by extension: which formats exist, who reads and writes them
+ *
+ * Every front end reads and writes the same formats through this table: the
+ * CLI (`lvdif`), the Qt editor (open/save volume, export mesh, file dialog
+ * filters) and the ParaView plugin, whose reader/writer XML hints
+ * (ReaderFactory / WriterFactory extensions) a test checks against it.
+ * Volumes are loaded and saved through the VTK reader and writer classes named
+ * here (so a format behaves the same everywhere); meshes through
+ * vtkLVDIFMeshReader and VTK's writers.
+ */
+#ifndef vtkLVDIFFiles_h
+#define vtkLVDIFFiles_h
+
+#include "lvdif/DictionaryVolume.h"
+#include "lvdif/Interrupter.h"
+#include "lvdifIOFilesModule.h"
+
+#include "vtkSmartPointer.h"
+
+#include <map>
+#include <memory>
+#include <string>
+#include <vector>
+
+class vtkPolyData;
+
+namespace vtkLVDIFFiles
+{
+enum class Kind
+{
+  Volume,
+  Mesh
+};
+
+struct Format
+{
+  std::string extension;   // lower case, no dot
+  std::string description; // for dialogs
+  Kind kind;
+  std::string readerClass; // the VTK class that reads it ("" if none)
+  std::string writerClass; // the VTK class that writes it ("" if none)
+};
+
+/// Every format this build handles (.vdb only with the OpenVDB module).
+LVDIFIOFILES_EXPORT const std::vector<Format>& Formats();
+
+/// The lower-case extension of a path without the dot ("" if none).
+LVDIFIOFILES_EXPORT std::string Extension(const std::string& path);
+
+/// The format of this kind for the path's extension, or nullptr.
+LVDIFIOFILES_EXPORT const Format* Find(const std::string& path, Kind kind);
+
+/// "LVDIF volume (*.lvdv);;..." for Qt file dialogs: the formats of a kind
+/// that can be read (forSaving false) or written (true), an "all" entry first.
+LVDIFIOFILES_EXPORT std::string DialogFilter(Kind kind, bool forSaving);
+
+/// Reads a volume by extension. Throws lvdif::Error naming the file and the
+/// problem (unknown extension, the reader's own error), Cancelled when the
+/// interrupter says so.
+LVDIFIOFILES_EXPORT std::shared_ptr<lvdif::DictionaryVolume> LoadVolume(
+  const std::string& path, lvdif::Interrupter& interrupter = lvdif::nullInterrupter());
+
+/// Writes a volume by extension (metadata where the format has a place for it).
+LVDIFIOFILES_EXPORT void SaveVolume(const std::shared_ptr<lvdif::DictionaryVolume>& volume, const std::string& path,
+  const std::map<std::string, std::string>& metadata = {},
+  lvdif::Interrupter& interrupter = lvdif::nullInterrupter());
+
+/// Reads a triangle mesh (vtkLVDIFMeshReader: validated, polygons fanned).
+LVDIFIOFILES_EXPORT vtkSmartPointer<vtkPolyData> LoadMesh(const std::string& path);
+
+/// Writes a mesh by extension (binary where the format allows; `rgba` as
+/// colours in .ply). Throws lvdif::Error on an unknown extension or failure.
+LVDIFIOFILES_EXPORT void SaveMesh(vtkPolyData* mesh, const std::string& path);
+}
+
+#endif

@@ -1,0 +1,247 @@
+"""The sparse dictionary volume through VTK (vtkSparseDictionaryVolume).
+
+Usage: test_sparse_volume.py LVDIF_CLI DICE_SCRIPT WORKDIR
+
+1. Generic VTK filters on the data object: vtkContourFilter runs per partition
+   and gives the surface vtkChunkedMarchingCubes gives (an independent oracle:
+   VTK's own contouring): the same vertex set (each vertex of one within 1e-4
+   of a vertex of the other, and as many), area within 0.5%, and the contour
+   is closed (no boundary or non-manifold edge after merging the partitions'
+   shared points, i.e. the partitions meet without seams). vtkCutter and
+   vtkOutlineFilter run on it too.
+2. The chain reader -> vtkChunkedMarchingCubes -> .ply under an
+   LVDIF_MEMORY_LIMIT that a dense copy exceeds: the chain succeeds, never
+   builds the partitions, and the explicit dense conversion is refused with
+   one clear error naming the size and the limit.
+3. ShallowCopy shares the Core volume; DeepCopy clones it; the executive
+   (vtkTrivialProducer, vtkPassThrough) keeps the subclass.
+"""
+import os
+import subprocess
+import sys
+
+import lvdif
+from vtkmodules.vtkCommonCore import vtkCommand, vtkPoints
+from vtkmodules.vtkCommonDataModel import vtkPlane, vtkPolyData
+from vtkmodules.vtkCommonExecutionModel import vtkTrivialProducer
+from vtkmodules.vtkFiltersCore import (vtkAppendPolyData, vtkCleanPolyData, vtkContourFilter, vtkCutter,
+                                       vtkFeatureEdges, vtkMassProperties, vtkPassThrough, vtkTriangleFilter)
+
+from vtkmodules.vtkFiltersModeling import vtkOutlineFilter
+from vtkmodules.vtkCommonDataModel import vtkPointLocator
+from vtkmodules.vtkIOPLY import vtkPLYWriter
+
+cli, dice_script, work = sys.argv[1:4]
+os.makedirs(work, exist_ok=True)
+failures = []
+
+
+def check(ok, what):
+    print(("ok   " if ok else "FAIL ") + what)
+    if not ok:
+        failures.append(what)
+
+
+def make_dice(n):
+    path = os.path.join(work, "dice%d.lvdv" % n)
+    src = open(dice_script).read().replace("n = 128", "n = %d" % n, 1)
+    script = os.path.join(work, "dice%d.lvs" % n)
+    open(script, "w").write(src)
+    subprocess.run([cli, "script", script, "--out", path], check=True, stdout=subprocess.DEVNULL)
+    return path
+
+
+def merged(polys):
+    """All pieces in one polydata, exactly coincident points merged."""
+    append = vtkAppendPolyData()
+    for p in polys:
+        append.AddInputData(p)
+    clean = vtkCleanPolyData()
+    clean.SetInputConnection(append.GetOutputPort())
+    clean.ToleranceIsAbsoluteOn()
+    clean.SetAbsoluteTolerance(0.0)
+    clean.PointMergingOn()
+    tri = vtkTriangleFilter()
+    tri.SetInputConnection(clean.GetOutputPort())
+    tri.Update()
+    return tri.GetOutput()
+
+
+def blocks(composite):
+    it = composite.NewIterator()
+    out = []
+    while not it.IsDoneWithTraversal():
+        out.append(it.GetCurrentDataObject())
+        it.GoToNextItem()
+    return out
+
+
+def open_edges(pd):
+    fe = vtkFeatureEdges()
+    fe.SetInputData(pd)
+    fe.BoundaryEdgesOn()
+    fe.NonManifoldEdgesOn()
+    fe.FeatureEdgesOff()
+    fe.ManifoldEdgesOff()
+    fe.Update()
+    return fe.GetOutput().GetNumberOfCells()
+
+
+def area(pd):
+    m = vtkMassProperties()
+    m.SetInputData(pd)
+    m.Update()
+    return m.GetSurfaceArea()
+
+
+def unmatched(a, b, tol=1e-4):
+    """Points of a farther than tol from every point of b."""
+    loc = vtkPointLocator()
+    loc.SetDataSet(b)
+    loc.BuildLocator()
+    bad = 0
+    for i in range(a.GetNumberOfPoints()):
+        p = a.GetPoint(i)
+        q = b.GetPoint(loc.FindClosestPoint(p))
+        bad += sum((p[k] - q[k]) ** 2 for k in range(3)) > tol * tol
+    return bad
+
+
+# ---- 1. generic filters against vtkChunkedMarchingCubes -------------------------------------
+small = make_dice(96)
+reader = lvdif.vtkDictionaryVolumeReader()
+reader.SetFileName(small)
+reader.Update()
+volume = reader.GetOutput()
+check(volume.IsA("vtkSparseDictionaryVolume") and volume.IsA("vtkPartitionedDataSet"), "the reader gives the sparse data object")
+check(volume.HasVolume() and not volume.GetPartitionsBuilt(), "partitions are not built before a generic filter asks")
+mc = lvdif.vtkChunkedMarchingCubes()
+mc.SetInputConnection(reader.GetOutputPort())
+mc.SetOutputModeToMerged()
+mc.Update()
+check(not volume.GetPartitionsBuilt(), "vtkChunkedMarchingCubes meshes the Core volume, no partitions")
+ours = merged([mc.GetOutput()])
+contour = vtkContourFilter()
+contour.SetInputConnection(reader.GetOutputPort())
+contour.SetValue(0, 0.0)
+contour.Update()
+parts = [b for b in blocks(contour.GetOutputDataObject(0)) if b.GetNumberOfPoints() > 0]
+check(volume.GetPartitionsBuilt() and volume.GetNumberOfPartitions() > 1,
+      "the contour ran on %d image partitions" % volume.GetNumberOfPartitions())
+out = contour.GetOutputDataObject(0)
+check(not (out.IsA("vtkSparseDictionaryVolume") and out.HasVolume()),
+      "the contour's composite output does not claim the Core volume")
+vtks = merged(parts)
+print("   chunked MC: %d points %d triangles area %.3f; VTK contour: %d points %d triangles area %.3f" % (
+    ours.GetNumberOfPoints(), ours.GetNumberOfCells(), area(ours), vtks.GetNumberOfPoints(), vtks.GetNumberOfCells(),
+    area(vtks)))
+check(ours.GetNumberOfCells() > 1000, "a real surface")
+check(vtks.GetNumberOfPoints() == ours.GetNumberOfPoints(), "the same number of vertices")
+check(unmatched(vtks, ours) == 0 and unmatched(ours, vtks) == 0, "the same vertex set (within 1e-4)")
+check(abs(area(vtks) - area(ours)) < 0.005 * area(ours), "the same area (within 0.5%)")
+check(open_edges(vtks) == 0, "the contour of the partitions is closed: no seams")
+check(open_edges(ours) == 0, "the chunked MC surface is closed")
+mc.SetChunkEdge(16)  # 216 chunks: the merge runs over several batches
+mc.Update()
+small_chunks = merged([mc.GetOutput()])
+check(mc.GetOutput().GetNumberOfPoints() == ours.GetNumberOfPoints() and open_edges(mc.GetOutput()) == 0 and
+      unmatched(small_chunks, vtks) == 0, "chunk edge 16 (merged batch by batch): the same closed surface")
+
+plane = vtkPlane()
+plane.SetOrigin(47.3, 47.3, 47.3)
+plane.SetNormal(0, 0, 1)
+cutter = vtkCutter()
+cutter.SetCutFunction(plane)
+cutter.SetInputConnection(reader.GetOutputPort())
+cutter.Update()
+cut = sum(b.GetNumberOfCells() for b in blocks(cutter.GetOutputDataObject(0)))
+check(cut > 0, "vtkCutter slices the partitions (%d cells)" % cut)
+outline = vtkOutlineFilter()
+outline.SetInputConnection(reader.GetOutputPort())
+outline.Update()
+b = outline.GetOutput().GetBounds()
+check(outline.GetOutput().GetNumberOfCells() > 0 and b[0] >= 0 and b[1] <= 95, "vtkOutlineFilter works")
+
+# ---- pieces: a piece is a block of storage chunks (the reader's ownership rule) --------------
+whole_tris = vtks.GetNumberOfCells()
+for n in (2, 4):
+    polys, volume_bytes = [], []
+    for p in range(n):
+        rp = lvdif.vtkDictionaryVolumeReader()
+        rp.SetFileName(small)
+        cp = vtkContourFilter()
+        cp.SetInputConnection(rp.GetOutputPort())
+        cp.SetValue(0, 0.0)
+        cp.UpdatePiece(p, n, 0)
+        polys += [b for b in blocks(cp.GetOutputDataObject(0)) if b.GetNumberOfPoints() > 0]
+        volume_bytes.append(rp.GetOutput().GetVolumeMemoryBytes())
+    union = merged(polys)
+    check(union.GetNumberOfCells() == whole_tris and unmatched(union, vtks) == 0 and open_edges(union) == 0,
+          "%d pieces: the contours of the pieces make the whole closed surface once (%d triangles)" % (
+              n, union.GetNumberOfCells()))
+    check(max(volume_bytes) < volume.GetVolumeMemoryBytes(),
+          "%d pieces: a piece holds only its chunks (largest %d of %d bytes)" % (
+              n, max(volume_bytes), volume.GetVolumeMemoryBytes()))
+
+# ---- 3. copies and the executive keep the Core volume --------------------------------------
+shallow = lvdif.vtkSparseDictionaryVolume()
+shallow.ShallowCopy(volume)
+check(shallow.HasVolume() and shallow.GetVolumeMemoryBytes() == volume.GetVolumeMemoryBytes(), "ShallowCopy shares the volume")
+deep = lvdif.vtkSparseDictionaryVolume()
+deep.DeepCopy(volume)
+check(deep.HasVolume() and deep.GetNumberOfExpandedChunks() == volume.GetNumberOfExpandedChunks(), "DeepCopy clones the volume")
+tp = vtkTrivialProducer()
+tp.SetOutput(deep)
+pt = vtkPassThrough()
+pt.SetInputConnection(tp.GetOutputPort())
+mc2 = lvdif.vtkChunkedMarchingCubes()
+mc2.SetInputConnection(pt.GetOutputPort())
+mc2.SetOutputModeToMerged()
+mc2.Update()
+check(pt.GetOutputDataObject(0).IsA("vtkSparseDictionaryVolume"), "vtkPassThrough keeps the subclass")
+check(mc2.GetOutput().GetNumberOfCells() == mc.GetOutput().GetNumberOfCells(), "the copy meshes like the original")
+
+# ---- 2. a large chain under a memory limit a dense copy exceeds ----------------------------
+n = 384
+large = make_dice(n)
+dense_bytes = n ** 3 * 8
+os.environ["LVDIF_MEMORY_LIMIT"] = str(dense_bytes // 2)  # read by Core at every check
+r2 = lvdif.vtkDictionaryVolumeReader()
+r2.SetFileName(large)
+mc3 = lvdif.vtkChunkedMarchingCubes()
+mc3.SetInputConnection(r2.GetOutputPort())
+mc3.SetOutputModeToMerged()
+mc3.ComputeCornerColorsOff()
+ply = vtkPLYWriter()
+ply.SetInputConnection(mc3.GetOutputPort())
+ply.SetFileName(os.path.join(work, "dice%d.ply" % n))
+ply.SetFileTypeToBinary()
+check(ply.Write() == 1 and mc3.GetOutput().GetNumberOfCells() > 100000,
+      "%d^3 chain under LVDIF_MEMORY_LIMIT=%d (dense: %d bytes): %d triangles" % (
+          n, dense_bytes // 2, dense_bytes, mc3.GetOutput().GetNumberOfCells()))
+v2 = r2.GetOutput()
+check(not v2.GetPartitionsBuilt(), "no partitions built on the way")
+check(v2.GetVolumeMemoryBytes() < dense_bytes // 2, "the sparse volume fits: %d bytes" % v2.GetVolumeMemoryBytes())
+errors = []
+
+
+def on_error(obj, event, message):
+    errors.append(message)
+
+
+on_error.CallDataType = "string0"  # VTK passes the error text
+to_dense = lvdif.vtkSparseVolumeToImage()
+to_dense.SetInputConnection(r2.GetOutputPort())
+to_dense.AddObserver(vtkCommand.ErrorEvent, on_error)  # observed: checked here, not printed
+to_dense.GetExecutive().AddObserver(vtkCommand.ErrorEvent, on_error)
+to_dense.Update()
+check(to_dense.GetOutput().GetNumberOfPoints() == 0, "the dense conversion is refused")
+message = errors[0] if errors else ""
+print("   its error: " + message.strip().splitlines()[-1] if message else "   no error")
+check("needs" in message and "limit" in message and "%d x %d x %d" % (n, n, n) in message,
+      "one clear error naming the size and the limit")
+check(to_dense.GetRequiredBytes() == dense_bytes, "it states the memory it needs (%d bytes)" % to_dense.GetRequiredBytes())
+del os.environ["LVDIF_MEMORY_LIMIT"]
+
+print("PASS" if not failures else "FAILED: " + "; ".join(failures))
+sys.exit(1 if failures else 0)
