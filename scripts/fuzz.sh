@@ -2,6 +2,8 @@
 # Builds the libFuzzer targets of Testing/Fuzz (clang, ASan + UBSan), writes
 # their seed corpus and runs each for a while.
 #   scripts/fuzz.sh [seconds per target = 30] [build dir = build-fuzz]
+# FUZZ_TARGETS="recording csv" limits the run to some targets; FUZZ_RUNS=N
+# stops each after N executions instead of the time (whichever comes first).
 # Longer runs: scripts/fuzz.sh 3600. Crashes are saved in <build>/crashes/;
 # reproduce one with <build>/fuzz_volume_file <file>. Exit status is non-zero
 # if any target found a problem.
@@ -18,14 +20,19 @@ mkdir -p "$build/corpus/volume" "$build/corpus/bv" "$build/corpus/mesh" "$build/
 "$build/make_fuzz_seeds" "$build/corpus/volume" "$build/corpus/bv" "$build/corpus/mesh"
 mkdir -p "$build/corpus/script"
 cp "$root"/Testing/Fuzz/corpus/script/* "$root"/Data/scripts/*.lvs "$build/corpus/script/"
+for kind in recording csv socket; do
+  mkdir -p "$build/corpus/$kind"
+  cp "$root"/Testing/Fuzz/corpus/$kind/* "$build/corpus/$kind/"
+done
 
 status=0
-for target in volume_file bv mesh script; do
+targets="${FUZZ_TARGETS:-volume_file bv mesh script recording csv socket}"
+for target in $targets; do
   corpus="$build/corpus/${target/volume_file/volume}"
   echo "== fuzz_$target for ${seconds}s (corpus $corpus)"
   # -rss_limit_mb: the readers must refuse absurd sizes long before this
   set +e
-  "$build/fuzz_$target" "$corpus" -max_total_time="$seconds" -rss_limit_mb=1024 -malloc_limit_mb=512 \
+  "$build/fuzz_$target" "$corpus" -max_total_time="$seconds" -runs="${FUZZ_RUNS:--1}" -rss_limit_mb=1024 -malloc_limit_mb=512 \
     -artifact_prefix="$build/crashes/${target}-" -print_final_stats=1 >"$build/fuzz_$target.log" 2>&1
   rc=$?
   set -e

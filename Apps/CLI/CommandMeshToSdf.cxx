@@ -90,5 +90,6 @@ int CommandMeshToSdf(int argc, char** argv)
     stats.triangles, stats.degenerateSkipped, stats.boundaryEdges, (long long)grid.dims[0], (long long)grid.dims[1],
     (long long)grid.dims[2], lvdif::toString(options.sign), lvdif::toString(stats.device), (long long)stats.svfFlips,
     out.c_str());
+  for (const std::string& w : stats.warnings) std::fprintf(stderr, "warning: %s\n", w.c_str());
   return 0;
 }

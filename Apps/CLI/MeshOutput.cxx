@@ -4,7 +4,7 @@
 #include "lvdif/Error.h"
 
 #include "vtkActor.h"
-#include "vtkLVDIFFiles.h"
+#include "LVDIFFiles.h"
 #include "vtkCallbackCommand.h"
 #include "vtkChunkedMarchingCubes.h"
 #include "vtkCommand.h"
@@ -65,7 +65,7 @@ vtkSmartPointer<vtkPolyData> MeshVolume(const lvdif::DictionaryVolume& volume, l
 
 void WriteMesh(vtkPolyData* mesh, const std::string& path)
 {
-  vtkLVDIFFiles::SaveMesh(mesh, path); // by extension, through the one file registry
+  LVDIFFiles::SaveMesh(mesh, path); // by extension, through the one file registry
 }
 
 void RenderPng(vtkPolyData* mesh, const std::string& path, int width, int height)

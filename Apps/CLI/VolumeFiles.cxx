@@ -1,15 +1,15 @@
 #include "VolumeFiles.h"
 
-#include "vtkLVDIFFiles.h"
+#include "LVDIFFiles.h"
 
 std::string Extension(const std::string& path)
 {
-  return vtkLVDIFFiles::Extension(path);
+  return LVDIFFiles::Extension(path);
 }
 
 std::shared_ptr<lvdif::DictionaryVolume> LoadAnyVolume(const std::string& path, lvdif::Interrupter& progress)
 {
-  return vtkLVDIFFiles::LoadVolume(path, progress);
+  return LVDIFFiles::LoadVolume(path, progress);
 }
 
 void SaveAnyVolume(const lvdif::DictionaryVolume& volume, const std::string& path,
@@ -17,5 +17,5 @@ void SaveAnyVolume(const lvdif::DictionaryVolume& volume, const std::string& pat
 {
   // the writers only read the volume: it is lent, not owned
   std::shared_ptr<lvdif::DictionaryVolume> lent(const_cast<lvdif::DictionaryVolume*>(&volume), [](auto*) {});
-  vtkLVDIFFiles::SaveVolume(lent, path, metadata, progress);
+  LVDIFFiles::SaveVolume(lent, path, metadata, progress);
 }

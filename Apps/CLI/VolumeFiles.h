@@ -1,5 +1,5 @@
 // Loading and saving volumes for the CLI: by extension through the one file
-// registry (IO/Files/vtkLVDIFFiles.h), shared with the editor and checked
+// registry (IO/Files/LVDIFFiles.h), shared with the editor and checked
 // against the ParaView plugin.
 #pragma once
 

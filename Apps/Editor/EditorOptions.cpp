@@ -31,9 +31,18 @@ EditorOptions parseEditorOptions(const QStringList& arguments)
   const QCommandLineOption drag("replay-drag", "Synthetic left-drag through display points 'x,y;x,y;...' (or / between points).", "points");
   const QCommandLineOption undo("undo", "Undo N steps after the drag.", "n", "0");
   const QCommandLineOption shot("screenshot", "Save a screenshot (PNG) and quit.", "file");
+  const QCommandLineOption windowShot("screenshot-window", "Save a picture of the whole window (PNG) and quit.", "file");
   const QCommandLineOption save("save", "Save the volume (.lvdv or .vti) and quit.", "file");
   const QCommandLineOption exp("export", "Export the mesh (.ply, .obj, .stl) and quit.", "file");
-  const QCommandLineOption op("op", "Brush operation: add, subtract, paint.", "op", "add");
+  const QCommandLineOption op("op",
+    "Tool: add, subtract, paint, smooth, inflate, grab, flatten, crease.", "op", "add");
+  const QCommandLineOption strength("strength", "Brush strength in (0, 1] (default: the tool's).", "s");
+  const QCommandLineOption falloff("falloff", "Brush falloff: constant, linear, smooth, sharp (default: the tool's).", "curve");
+  const QCommandLineOption mirror("mirror", "Symmetry: the mirrored axes, e.g. x or xz.", "axes");
+  const QCommandLineOption keys("keys", "Key presses before the drag, e.g. \"G ] Ctrl+Z\" (RightBracket/LeftBracket name ] and [) (tests).", "keys");
+  const QCommandLineOption keysAfter("keys-after", "Key presses after the drag (tests).", "keys");
+  const QCommandLineOption dragMods("drag-modifiers", "Keys held during --replay-drag: ctrl, shift or ctrl,shift.", "keys");
+  const QCommandLineOption saveAsAnswer("save-as-answer", "The file the Save As dialog answers (tests).", "file");
   const QCommandLineOption shape("shape", "Brush shape: sphere, cube.", "shape", "sphere");
   const QCommandLineOption kind("brush", "Brush kind: basic, dynamic, drill.", "kind", "basic");
   const QCommandLineOption radius("radius", "Brush radius in voxels.", "r", "4");
@@ -47,7 +56,8 @@ EditorOptions parseEditorOptions(const QStringList& arguments)
   const QCommandLineOption benchmark("benchmark-stroke",
     "Replay a recorded stroke (JSON-lines samples or .lvr) at its speed, print the latency and FPS, quit.", "file");
   p.addOptions({ open, openMesh, meshRes, meshSign, create, fill, script, drag, undo, shot, save, exp, op, shape, kind, radius, color, size, quit,
-    noRecovery, recoveryDir, autosave, perVertex, benchmark });
+    noRecovery, recoveryDir, autosave, perVertex, benchmark, strength, falloff, mirror, keys, keysAfter, dragMods,
+    saveAsAnswer, windowShot });
   p.process(arguments);
 
   EditorOptions o;
@@ -87,9 +97,40 @@ EditorOptions parseEditorOptions(const QStringList& arguments)
   }
   o.undo = p.value(undo).toInt();
   o.screenshot = p.value(shot);
+  o.windowShot = p.value(windowShot);
   o.save = p.value(save);
   o.exportMesh = p.value(exp);
-  o.op = p.value(op);
+  o.op = p.value(op).toLower();
+  if (!QStringList{ "add", "subtract", "paint", "smooth", "inflate", "grab", "flatten", "crease" }.contains(o.op))
+    fail("--op expects add, subtract, paint, smooth, inflate, grab, flatten or crease, got '" + o.op + "'");
+  if (p.isSet(strength))
+  {
+    o.strength = p.value(strength).toDouble();
+    if (!(o.strength > 0 && o.strength <= 1))
+      fail("--strength expects a number in (0, 1], got '" + p.value(strength) + "'");
+  }
+  const QStringList curves{ "constant", "linear", "smooth", "sharp" };
+  if (p.isSet(falloff))
+  {
+    o.falloff = curves.indexOf(p.value(falloff).toLower());
+    if (o.falloff < 0)
+      fail("--falloff expects constant, linear, smooth or sharp, got '" + p.value(falloff) + "'");
+  }
+  o.mirror = p.value(mirror).toLower();
+  if (o.mirror.contains(QRegularExpression("[^xyz]")))
+    fail("--mirror expects axis letters x, y, z, got '" + o.mirror + "'");
+  o.keys = p.value(keys);
+  o.keysAfter = p.value(keysAfter);
+  for (const QString& m : p.value(dragMods).toLower().split(',', Qt::SkipEmptyParts))
+  {
+    if (m == "ctrl")
+      o.dragCtrl = true;
+    else if (m == "shift")
+      o.dragShift = true;
+    else
+      fail("--drag-modifiers expects ctrl and/or shift, got '" + m + "'");
+  }
+  o.saveAsAnswer = p.value(saveAsAnswer);
   o.shape = p.value(shape);
   o.kind = p.value(kind);
   o.radius = p.value(radius).toDouble();

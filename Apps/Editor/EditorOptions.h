@@ -18,10 +18,17 @@ struct EditorOptions
   QString script;             // --script FILE (a recording to play)
   QVector<QPointF> drag;      // --replay-drag "x,y;x,y;..." (display pixels, origin bottom-left; or fractions of the view if all in [0,1])
   int undo = 0;               // --undo N after the drag
-  QString screenshot;         // --screenshot FILE.png
+  QString screenshot;         // --screenshot FILE.png (the view)
+  QString windowShot;         // --screenshot-window FILE.png (the whole window)
   QString save;               // --save FILE.vti
   QString exportMesh;         // --export FILE.ply|obj|stl
-  QString op = "add", shape = "sphere", kind = "basic"; // --op --shape --brush
+  QString op = "add", shape = "sphere", kind = "basic"; // --op (a tool name) --shape --brush
+  double strength = -1;       // --strength (0, 1]; < 0: the tool's default
+  int falloff = -1;           // --falloff constant|linear|smooth|sharp; < 0: the tool's default
+  QString mirror;             // --mirror: letters of the mirrored axes, e.g. "x" or "xz"
+  QString keys, keysAfter;    // --keys / --keys-after: key presses before / after the drag ("G ] Ctrl+Z")
+  bool dragCtrl = false, dragShift = false; // --drag-modifiers ctrl,shift
+  QString saveAsAnswer;       // --save-as-answer FILE: what the Save As dialog answers (tests)
   double radius = 4.0;        // --radius voxels
   QString color;              // --color #rrggbb
   int width = 900, height = 700; // --size WxH of the window
@@ -31,7 +38,7 @@ struct EditorOptions
   int autosaveSeconds = 60;   // --autosave S
   bool perVertexColor = false; // --per-vertex-color
   QString benchmarkStroke;    // --benchmark-stroke FILE: replay a recorded stroke, print latency and FPS, quit
-  bool batch() const { return this->quit || !this->screenshot.isEmpty() || !this->save.isEmpty() || !this->exportMesh.isEmpty(); }
+  bool batch() const { return this->quit || !this->screenshot.isEmpty() || !this->windowShot.isEmpty() || !this->save.isEmpty() || !this->exportMesh.isEmpty(); }
 };
 
 /// Parses the arguments (exits with a message on bad ones).

@@ -14,7 +14,7 @@
 #include "vtkCallbackCommand.h"
 #include "vtkCamera.h"
 #include "vtkChunkActorManager.h"
-#include "vtkLVDIFChunkMesh.h"
+#include "LVDIFChunkMesh.h"
 #include "vtkGenericOpenGLRenderWindow.h"
 #include "vtkPolyData.h"
 #include "vtkProperty.h"
@@ -40,6 +40,8 @@
 #include <QVTKOpenGLNativeWidget.h>
 
 #include <cmath>
+#include <cstdio>
+#include <cstdlib>
 #include <map>
 #include <stdexcept>
 
@@ -77,6 +79,7 @@ MainWindow::MainWindow(const EditorOptions& options)
   observe(vtkBrushWidget::BrushSampleEvent, [this](void* d) { this->onBrushSample(static_cast<double*>(d)); });
   observe(vtkCommand::StartInteractionEvent, [this](void*) { this->onStrokeStart(); });
   observe(vtkCommand::EndInteractionEvent, [this](void*) { this->onStrokeEnd(); });
+  observe(vtkCommand::InteractionEvent, [this](void*) { this->onGrabMove(); });
   observe(vtkBrushWidget::RadiusChangedEvent, [this](void* d) {
     const double world = *static_cast<double*>(d);
     if (this->Doc.hasVolume())
@@ -87,26 +90,39 @@ MainWindow::MainWindow(const EditorOptions& options)
   });
 
   this->Tools = new ToolPanel(this);
-  BrushState s;
-  s.op = options.op == "subtract" ? 1 : (options.op == "paint" ? 2 : 0);
+  for (int i = 0; i < ToolCount; ++i)
+    if (options.op.compare(toolInfo(i).name, Qt::CaseInsensitive) == 0)
+      this->Tools->setOp(i); // with the tool's own strength and falloff
+  BrushState s = this->Tools->state();
   s.shape = options.shape == "cube" ? 1 : 0;
   s.kind = options.kind == "dynamic" ? 2 : (options.kind == "drill" ? 3 : 1);
   s.radius = options.radius;
   if (!options.color.isEmpty())
     s.color = QColor(options.color);
+  if (options.strength > 0)
+    s.strength = options.strength;
+  if (options.falloff >= 0)
+    s.falloff = options.falloff;
+  for (int a = 0; a < 3; ++a)
+    s.mirror[a] = options.mirror.contains(QChar("xyz"[a]));
   this->Tools->setState(s);
   auto* dock = new QDockWidget("Brush", this);
   dock->setObjectName("BrushDock");
   dock->setWidget(this->Tools);
   this->addDockWidget(Qt::RightDockWidgetArea, dock);
   connect(this->Tools, &ToolPanel::changed, this, &MainWindow::applyBrushState);
+  connect(this->Tools, &ToolPanel::changed, this, &MainWindow::syncToolActions);
   connect(this->Tools, &ToolPanel::undoRequested, this, &MainWindow::undo);
   connect(this->Tools, &ToolPanel::redoRequested, this, &MainWindow::redo);
   connect(this->Tools, &ToolPanel::recordToggled, this, &MainWindow::toggleRecording);
   connect(this->Tools, &ToolPanel::playRequested, this, &MainWindow::scriptDialog);
 
   this->Status = new QLabel(this);
+  this->VolumeStatus = new QLabel(this);
+  this->VolumeStatus->setObjectName("volumeStatus");
+  this->statusBar()->addWidget(this->VolumeStatus, 1);
   this->statusBar()->addPermanentWidget(this->Status);
+  this->buildTools();
   this->buildMenus();
 
   // Finished chunk meshes are picked up ~60 times a second; the view never waits for them.
@@ -142,7 +158,8 @@ void MainWindow::buildMenus()
     else
       this->saveVolume(this->Doc.path());
   }, QKeySequence::Save);
-  file->addAction("Save &as...", this, &MainWindow::saveAsDialog, QKeySequence::SaveAs);
+  // explicit: QKeySequence::SaveAs is empty on platforms without a desktop theme (Xvfb, bare X11)
+  file->addAction("Save &as...", this, &MainWindow::saveAsDialog, QKeySequence(Qt::CTRL | Qt::SHIFT | Qt::Key_S));
   file->addAction("&Export mesh...", this, &MainWindow::exportDialog);
   file->addAction("Screens&hot...", this, &MainWindow::screenshotDialog);
   file->addSeparator();
@@ -153,6 +170,7 @@ void MainWindow::buildMenus()
   QMenu* edit = this->menuBar()->addMenu("&Edit");
   edit->addAction("&Undo", this, &MainWindow::undo, QKeySequence(Qt::CTRL | Qt::Key_Z));
   edit->addAction("&Redo", this, &MainWindow::redo, QKeySequence(Qt::CTRL | Qt::SHIFT | Qt::Key_Z));
+  edit->addAction("Redo (alternative)", this, &MainWindow::redo, QKeySequence(Qt::CTRL | Qt::Key_Y));
 
   QMenu* view = this->menuBar()->addMenu("&View");
   QAction* tetra = view->addAction("&Tetrahedral colour interpolation");
@@ -164,6 +182,8 @@ void MainWindow::buildMenus()
     this->RenderWindow->Render();
   });
   view->addAction("&Reset camera", this, &MainWindow::resetView);
+  this->buildViewMenu(view);
+  this->buildHelpMenu();
 }
 
 void MainWindow::applyBrushState()
@@ -173,7 +193,16 @@ void MainWindow::applyBrushState()
   {
     lvdif::Editor& e = this->Doc.editor();
     e.brush.op = static_cast<lvdif::BrushOp>(s.op);
+    e.brush.invert = false;
     e.brush.blend = s.blend;
+    e.brush.strength = s.strength;
+    e.brush.falloff = static_cast<lvdif::Falloff>(s.falloff);
+    const auto& dims = this->Doc.volume().dims();
+    for (int a = 0; a < 3; ++a)
+    {
+      e.brush.symmetry.mirror[a] = s.mirror[a];
+      e.brush.symmetry.plane[a] = 0.5 * double(dims[a] - 1); // the volume's centre: voxel i mirrors to n-1-i
+    }
     e.brush.color = lvdif::Rgba{ static_cast<std::uint8_t>(s.color.red()), static_cast<std::uint8_t>(s.color.green()),
       static_cast<std::uint8_t>(s.color.blue()), static_cast<std::uint8_t>(s.color.alpha()) };
     e.stroke.shape = static_cast<lvdif::BrushShape>(s.shape);
@@ -194,6 +223,15 @@ void MainWindow::onStrokeStart()
   if (!this->Doc.hasVolume())
     return;
   this->applyBrushState();
+  // Ctrl inverts, Shift smooths (effectiveOp), for this stroke only
+  const int op = this->effectiveOp();
+  lvdif::Editor& e = this->Doc.editor();
+  e.brush.op = static_cast<lvdif::BrushOp>(op);
+  const bool ctrl = this->View->interactor()->GetControlKey() ||
+    (QApplication::queryKeyboardModifiers() & Qt::ControlModifier);
+  e.brush.invert = ctrl && (op == 4 || op == 7);
+  this->Grabbing = op == 5;
+  updatePreview(nullptr, true);
   try
   {
     this->Doc.beginStroke();
@@ -209,6 +247,18 @@ void MainWindow::onBrushSample(const double* sample)
 {
   if (!this->Painting)
     return;
+  if (this->Grabbing)
+  {
+    if (!this->PreviewPoints.empty())
+      return; // after the press, the grab follows the view plane (onGrabMove)
+    double w[4] = { sample[0], sample[1], sample[2], 1.0 };
+    this->Renderer->SetWorldPoint(w);
+    this->Renderer->WorldToDisplay();
+    this->GrabDepth = this->Renderer->GetDisplayPoint()[2];
+    this->PreviewPoints.push_back({ sample[0], sample[1], sample[2] });
+  }
+  else if (this->Tools->state().kind == 2 && !this->Bench)
+    this->updatePreview(sample);
   const auto& o = this->Doc.volume().options();
   lvdif::BrushSample s;
   double p[3] = { sample[0], sample[1], sample[2] };
@@ -237,7 +287,23 @@ void MainWindow::onBrushSample(const double* sample)
   }
   if (this->Bench)
     this->Bench->sampleApplied();
+  this->LastEdit = QDateTime::currentDateTime();
   this->settleMeshes();
+}
+
+void MainWindow::onGrabMove()
+{
+  if (!this->Painting || !this->Grabbing || this->PreviewPoints.empty())
+    return;
+  // the point under the cursor on the view plane through the grab's start
+  const int* pos = this->View->interactor()->GetEventPosition();
+  this->Renderer->SetDisplayPoint(pos[0], pos[1], this->GrabDepth);
+  this->Renderer->DisplayToWorld();
+  const double* w = this->Renderer->GetWorldPoint();
+  const double p[4] = { w[0] / w[3], w[1] / w[3], w[2] / w[3], 0 };
+  this->Grabbing = false; // let onBrushSample take this one
+  this->onBrushSample(p);
+  this->Grabbing = true;
 }
 
 void MainWindow::settleMeshes()
@@ -261,6 +327,7 @@ void MainWindow::onStrokeEnd()
   if (!this->Painting)
     return;
   this->Painting = false;
+  this->Grabbing = false;
   try
   {
     this->Doc.endStroke();
@@ -269,6 +336,8 @@ void MainWindow::onStrokeEnd()
   {
     this->showError("The brush failed", e);
   }
+  this->updatePreview(nullptr, true);
+  this->LastEdit = QDateTime::currentDateTime();
   this->updateTitle();
 }
 
@@ -292,12 +361,15 @@ void MainWindow::pollMeshes()
     if (m.empty())
       this->Chunks->RemoveChunk(m.chunkId);
     else
-      this->Chunks->SetChunk(m.chunkId, vtkLVDIFChunkMesh::ToPolyData(m, this->Doc.volume().colors(), d));
+      this->Chunks->SetChunk(m.chunkId, LVDIFChunkMesh::ToPolyData(m, this->Doc.volume().colors(), d));
   }
   if (!this->ViewInitialized && this->Chunks->GetNumberOfChunks() > 0)
   {
     this->resetView();
     this->ViewInitialized = true;
+    if (std::getenv("LVDIF_EDITOR_TIMING"))
+      std::fprintf(stderr, "lvdif-editor: first surface shown %lld ms after the window was made\n",
+        static_cast<long long>(this->Clock.elapsed()));
   }
   this->Status->setText(QString("%1 chunks, %2 triangles")
                           .arg(this->Chunks->GetNumberOfChunks())
@@ -316,29 +388,14 @@ void MainWindow::finishMeshing()
   this->Doc.waitMeshingIdle();
   this->pollMeshes();
   this->RenderWindow->Render();
+  if (std::getenv("LVDIF_EDITOR_TIMING"))
+    std::fprintf(stderr, "lvdif-editor: every chunk meshed and shown %lld ms after the window was made\n",
+      static_cast<long long>(this->Clock.elapsed()));
 }
 
 void MainWindow::resetView()
 {
-  vtkCamera* cam = this->Renderer->GetActiveCamera();
-  cam->SetFocalPoint(0, 0, 0);
-  cam->SetPosition(0.35, -1.0, 0.55);
-  cam->SetViewUp(0, 0, 1);
-  if (this->Doc.hasVolume())
-  {
-    const auto& o = this->Doc.volume().options();
-    const auto& d = this->Doc.volume().dims();
-    double b[6];
-    for (int a = 0; a < 3; ++a)
-    {
-      b[2 * a] = o.origin[a];
-      b[2 * a + 1] = o.origin[a] + o.spacing[a] * (d[a] - 1);
-    }
-    this->Renderer->ResetCamera(b);
-    cam->Zoom(1.4); // the volume's box is mostly empty around the surface
-  }
-  this->Renderer->ResetCameraClippingRange();
-  this->RenderWindow->Render();
+  this->setViewPreset(-1);
 }
 
 bool MainWindow::newCanvas(int nx, int ny, int nz, VolumeDocument::Fill fill)
@@ -372,19 +429,22 @@ bool MainWindow::openVolume(const QString& path)
     return false;
   }
   this->volumeReplaced();
+  this->addRecentFile(path);
   return true;
 }
 
 bool MainWindow::openMesh(const QString& path, const MeshImportSettings& settings)
 {
-  QString error;
-  auto volume = importMesh(this, path, settings, error);
+  QString error, warning;
+  auto volume = importMesh(this, path, settings, error, &warning);
   if (!volume)
   {
     if (!error.isEmpty())
       this->showError("Cannot convert " + path, std::runtime_error(error.toStdString()));
     return false;
   }
+  if (!warning.isEmpty())
+    QMessageBox::warning(this, "Open mesh", warning);
   try
   {
     this->Chunks->RemoveAllChunks();
@@ -396,6 +456,7 @@ bool MainWindow::openMesh(const QString& path, const MeshImportSettings& setting
     return false;
   }
   this->volumeReplaced();
+  this->addRecentFile(path);
   return true;
 }
 
@@ -410,6 +471,7 @@ bool MainWindow::saveVolume(const QString& path)
     this->showError("Cannot save " + path, e);
     return false;
   }
+  this->addRecentFile(path);
   this->updateTitle();
   return true;
 }
@@ -514,32 +576,6 @@ void MainWindow::volumeReplaced()
   this->updateTitle();
 }
 
-void MainWindow::replayDrag(const QVector<QPointF>& points)
-{
-  vtkRenderWindowInteractor* iren = this->View->interactor();
-  // Points with both coordinates in [0, 1] are fractions of the view's size.
-  bool fractions = true;
-  for (const QPointF& p : points)
-    fractions = fractions && p.x() >= 0 && p.x() <= 1 && p.y() >= 0 && p.y() <= 1;
-  const int* size = this->RenderWindow->GetSize();
-  const double sx = fractions ? size[0] : 1.0, sy = fractions ? size[1] : 1.0;
-  auto send = [iren, sx, sy](const QPointF& p, unsigned long event) {
-    iren->SetEventInformation(
-      static_cast<int>(std::lround(p.x() * sx)), static_cast<int>(std::lround(p.y() * sy)), 0, 0);
-    iren->InvokeEvent(event, nullptr);
-  };
-  if (points.isEmpty())
-    return;
-  send(points.front(), vtkCommand::MouseMoveEvent);
-  send(points.front(), vtkCommand::LeftButtonPressEvent);
-  for (int i = 1; i < points.size(); ++i)
-  {
-    send(points[i], vtkCommand::MouseMoveEvent);
-    QApplication::processEvents();
-  }
-  send(points.back(), vtkCommand::LeftButtonReleaseEvent);
-}
-
 bool MainWindow::eventFilter(QObject* watched, QEvent* event)
 {
   switch (event->type())
@@ -554,6 +590,7 @@ bool MainWindow::eventFilter(QObject* watched, QEvent* event)
     default:
       break;
   }
+  this->keyFilter(event);
   // Not consumed: Qt turns unaccepted tablet events into mouse events.
   return QMainWindow::eventFilter(watched, event);
 }
@@ -567,6 +604,7 @@ void MainWindow::updateTitle()
     name += QString(" (%1x%2x%3)").arg(d[0]).arg(d[1]).arg(d[2]);
   }
   this->setWindowTitle(name + (this->Doc.modified() ? " *" : "") + " - LVDIF editor");
+  this->updateStatus();
 }
 
 void MainWindow::showError(const QString& what, const std::exception& e)

@@ -7,14 +7,21 @@
 #include "ToolPanel.h"
 #include "VolumeDocument.h"
 
+#include <QDateTime>
 #include <QElapsedTimer>
 #include <QMainWindow>
+
+#include <array>
+#include <vector>
 
 #include "vtkNew.h"
 #include "vtkSmartPointer.h"
 
 class QAction;
+class QActionGroup;
+class QMenu;
 class StrokeBenchmark;
+class vtkActor;
 class QLabel;
 class QTimer;
 class QVTKOpenGLNativeWidget;
@@ -42,12 +49,20 @@ public:
   bool saveVolume(const QString& path);
   bool exportMesh(const QString& path);
   bool saveScreenshot(const QString& path);
+  /// The whole window as a PNG (the user guide's pictures).
+  bool saveWindowShot(const QString& path);
   bool playRecording(const QString& path);
   /// Runs a script (.lvs) or plays a recording (.lvr; .lvrec is accepted too), by extension.
   bool runScript(const QString& path);
   /// A left-drag through display points (VTK display coordinates, origin
   /// bottom-left) sent as interactor events, as a user's mouse would.
-  void replayDrag(const QVector<QPointF>& points);
+  void replayDrag(const QVector<QPointF>& points, bool ctrl = false, bool shift = false);
+  /// Types key combinations ("G ] Ctrl+Z", QKeySequence's portable text, one per
+  /// word) into the window through Qt's shortcut system, as a user's keyboard
+  /// would (tests); false if a word is not a key.
+  bool typeKeys(const QString& keys);
+  /// The shortcut table of Help > Keyboard shortcuts (HTML).
+  QString shortcutHelp() const;
   /// Blocks until every requested chunk is meshed and shown (tests only: the
   /// interactive view never waits).
   void finishMeshing();
@@ -70,6 +85,29 @@ protected:
 
 private:
   void buildMenus();
+  // MainWindowUi.cpp: toolbar, shortcuts, help, view, recent files, status, cursor, preview
+  void buildTools();
+  void buildViewMenu(QMenu* view);
+  void buildHelpMenu();
+  void syncToolActions();
+  void scaleRadius(double factor);
+  void volumeBounds(double b[6]);
+  /// -1: home (the command line's camera, Y up); else Front, Back, Right, Left, Top, Bottom.
+  void setViewPreset(int preset);
+  void frameSurface();
+  void setOrthographic(bool on);
+  /// 0 smooth, 1 flat, 2 wireframe, 3 matcap-like clay.
+  void setShading(int mode);
+  void addRecentFile(const QString& path);
+  void rebuildRecentMenu();
+  void updateStatus();
+  /// The tool a stroke started now would use (Shift: smooth; Ctrl: add <-> subtract).
+  int effectiveOp() const;
+  void updateCursor();
+  /// Dynamic strokes: the tapered tube the stroke would make (reset: remove it).
+  void updatePreview(const double* world, bool reset = false);
+  bool keyFilter(QEvent* event);
+  void onGrabMove();
   void applyBrushState();
   void pollMeshes();
   /// After a brush sample: waits a few ms for its chunks, then installs them.
@@ -111,5 +149,17 @@ private:
   bool Painting = false;
   double Pressure = -1; // last tablet pressure in [0, 1]; -1: no tablet in use
   StrokeBenchmark* Bench = nullptr; // set while --benchmark-stroke runs
+  QActionGroup* ToolActions = nullptr;
+  std::vector<QAction*> ShortcutActions;
+  QAction* OrthoAction = nullptr;
+  QMenu* RecentMenu = nullptr;
+  QLabel* VolumeStatus = nullptr;
+  QDateTime LastEdit;
+  vtkSmartPointer<vtkActor> Preview;
+  std::vector<std::array<double, 3>> PreviewPoints;
+  int Shading = 0;
+  int CursorOp = -1;
+  bool Grabbing = false;    // a Grab stroke: samples on the view plane through its start
+  double GrabDepth = 0;     // display depth of the grab's start point
   friend class StrokeBenchmark;
 };

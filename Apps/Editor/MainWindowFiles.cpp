@@ -1,7 +1,7 @@
 // MainWindow: the file dialogs, mesh export and screenshots.
 #include "MainWindow.h"
 
-#include "vtkLVDIFFiles.h"
+#include "LVDIFFiles.h"
 
 #include "vtkChunkActorManager.h"
 #include "vtkCleanPolyData.h"
@@ -16,6 +16,7 @@
 #include <QFileInfo>
 #include <QFormLayout>
 #include <QImage>
+#include <QPixmap>
 #include <QVTKOpenGLNativeWidget.h>
 #include <QMessageBox>
 #include <QSpinBox>
@@ -56,9 +57,9 @@ void MainWindow::newDialog()
 namespace
 {
 /// The dialog's file types, from the one file registry.
-QString dialogFilter(vtkLVDIFFiles::Kind kind, bool forSaving)
+QString dialogFilter(LVDIFFiles::Kind kind, bool forSaving)
 {
-  return QString::fromStdString(vtkLVDIFFiles::DialogFilter(kind, forSaving)) + ";;All files (*)";
+  return QString::fromStdString(LVDIFFiles::DialogFilter(kind, forSaving)) + ";;All files (*)";
 }
 }
 
@@ -67,7 +68,7 @@ void MainWindow::openDialog()
   if (!this->maybeSave())
     return;
   const QString path = QFileDialog::getOpenFileName(
-    this, "Open volume", QString(), dialogFilter(vtkLVDIFFiles::Kind::Volume, false));
+    this, "Open volume", QString(), dialogFilter(LVDIFFiles::Kind::Volume, false));
   if (!path.isEmpty())
     this->openVolume(path);
 }
@@ -77,7 +78,7 @@ void MainWindow::openMeshDialog()
   if (!this->maybeSave())
     return;
   const QString path = QFileDialog::getOpenFileName(
-    this, "Open mesh", QString(), dialogFilter(vtkLVDIFFiles::Kind::Mesh, false));
+    this, "Open mesh", QString(), dialogFilter(LVDIFFiles::Kind::Mesh, false));
   if (path.isEmpty() || !askMeshImportSettings(this, this->MeshSettings))
     return;
   this->openMesh(path, this->MeshSettings);
@@ -85,8 +86,9 @@ void MainWindow::openMeshDialog()
 
 bool MainWindow::saveAsDialog()
 {
-  QString path = QFileDialog::getSaveFileName(
-    this, "Save volume", this->Doc.path(), dialogFilter(vtkLVDIFFiles::Kind::Volume, true));
+  QString path = !this->Options.saveAsAnswer.isEmpty()
+    ? this->Options.saveAsAnswer
+    : QFileDialog::getSaveFileName(this, "Save volume", this->Doc.path(), dialogFilter(LVDIFFiles::Kind::Volume, true));
   if (path.isEmpty())
     return false;
   if (QFileInfo(path).suffix().isEmpty())
@@ -97,7 +99,7 @@ bool MainWindow::saveAsDialog()
 void MainWindow::exportDialog()
 {
   const QString path =
-    QFileDialog::getSaveFileName(this, "Export mesh", QString(), dialogFilter(vtkLVDIFFiles::Kind::Mesh, true));
+    QFileDialog::getSaveFileName(this, "Export mesh", QString(), dialogFilter(LVDIFFiles::Kind::Mesh, true));
   if (!path.isEmpty())
     this->exportMesh(path);
 }
@@ -116,11 +118,25 @@ bool MainWindow::exportMesh(const QString& path)
     vtkPolyData* mesh = clean->GetOutput();
     if (mesh->GetNumberOfPolys() == 0)
       throw std::runtime_error("the volume has no surface");
-    vtkLVDIFFiles::SaveMesh(mesh, path.toLocal8Bit().constData()); // by extension, the one file registry
+    LVDIFFiles::SaveMesh(mesh, path.toLocal8Bit().constData()); // by extension, the one file registry
   }
   catch (const std::exception& e)
   {
     this->showError("Cannot export " + path, e);
+    return false;
+  }
+  return true;
+}
+
+bool MainWindow::saveWindowShot(const QString& path)
+{
+  // the whole window (menus, toolbar, tool panel, status bar); Qt composes the
+  // OpenGL view's current frame into it
+  this->RenderWindow->Render();
+  const QPixmap shot = this->grab();
+  if (shot.isNull() || !shot.save(path, "PNG"))
+  {
+    this->showError("Cannot write " + path, std::runtime_error("no window image to save"));
     return false;
   }
   return true;

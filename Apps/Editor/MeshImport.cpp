@@ -1,7 +1,7 @@
 #include "MeshImport.h"
 
 #include "vtkLVDIFMeshReader.h"
-#include "vtkLVDIFVolumeBridge.h"
+#include "LVDIFVolumeBridge.h"
 #include "vtkMeshToSDF.h"
 #include "vtkSparseDictionaryVolume.h"
 
@@ -27,7 +27,7 @@
 
 namespace
 {
-/// Collects vtkErrorMacro messages (from the worker thread) instead of printing them.
+/// Collects the first vtkErrorMacro (or vtkWarningMacro) message from the worker thread instead of printing it.
 struct ErrorCollector : vtkCommand
 {
   static ErrorCollector* New() { return new ErrorCollector; }
@@ -103,9 +103,11 @@ bool askMeshImportSettings(QWidget* parent, MeshImportSettings& settings)
 }
 
 std::shared_ptr<lvdif::DictionaryVolume> importMesh(
-  QWidget* parent, const QString& path, const MeshImportSettings& settings, QString& error)
+  QWidget* parent, const QString& path, const MeshImportSettings& settings, QString& error, QString* warning)
 {
   error.clear();
+  if (warning)
+    warning->clear();
   vtkNew<vtkLVDIFMeshReader> reader;
   reader->SetFileName(path.toLocal8Bit().constData());
   vtkNew<vtkMeshToSDF> toSdf;
@@ -119,6 +121,9 @@ std::shared_ptr<lvdif::DictionaryVolume> importMesh(
     a->AddObserver(vtkCommand::ErrorEvent, errors);
     a->GetExecutive()->AddObserver(vtkCommand::ErrorEvent, errors);
   }
+  // the filter's warnings (a mesh that encloses no volume, voxels too coarse)
+  vtkNew<ErrorCollector> warnings;
+  toSdf->AddObserver(vtkCommand::WarningEvent, warnings);
   vtkNew<ProgressWatcher> progress;
   toSdf->AddObserver(vtkCommand::ProgressEvent, progress);
 
@@ -167,6 +172,10 @@ std::shared_ptr<lvdif::DictionaryVolume> importMesh(
   {
     const std::string why = !failure.empty() ? failure : errors->text();
     error = QString::fromStdString(why.empty() ? std::string("the conversion produced no volume") : why);
+  }
+  else if (warning)
+  {
+    *warning = QString::fromStdString(warnings->text());
   }
   return volume;
 }

@@ -27,6 +27,7 @@ bool askMeshImportSettings(QWidget* parent, MeshImportSettings& settings);
 int meshSignModeFromName(const QString& name);
 
 /// Converts the mesh, showing progress under `parent`. Returns the volume, or
-/// nullptr with `error` set (empty when the user cancelled).
-std::shared_ptr<lvdif::DictionaryVolume> importMesh(
-  QWidget* parent, const QString& path, const MeshImportSettings& settings, QString& error);
+/// nullptr with `error` set (empty when the user cancelled). `warning`
+/// (optional): what the conversion warned about (e.g. no voxel inside), or empty.
+std::shared_ptr<lvdif::DictionaryVolume> importMesh(QWidget* parent, const QString& path,
+  const MeshImportSettings& settings, QString& error, QString* warning = nullptr);

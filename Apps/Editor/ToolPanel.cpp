@@ -1,7 +1,10 @@
 #include "ToolPanel.h"
 
 #include <QButtonGroup>
+#include <QCheckBox>
 #include <QColorDialog>
+#include <QComboBox>
+#include <QGridLayout>
 #include <QGroupBox>
 #include <QHBoxLayout>
 #include <QLabel>
@@ -13,20 +16,35 @@
 
 #include <cmath>
 
+const ToolInfo& toolInfo(int op)
+{
+  static const ToolInfo tools[ToolCount] = {
+    { "Add", 'A', "Add material: the union with the brush (Ctrl: subtract)" },
+    { "Subtract", 'S', "Carve: subtract the brush (Ctrl: add)" },
+    { "Paint", 'P', "Paint the surface; soft edges with a falloff" },
+    { "Smooth", 'M', "Smooth the surface inside the brush (or hold Shift with any tool)" },
+    { "Inflate", 'I', "Push the surface outward (Ctrl: deflate)" },
+    { "Grab", 'G', "Drag a region of the surface with the mouse" },
+    { "Flatten", 'T', "Pull the surface to the plane tangent under the brush" },
+    { "Crease", 'C', "Cut a sharp crease along the stroke (Ctrl: a ridge)" },
+  };
+  return tools[op >= 0 && op < ToolCount ? op : 0];
+}
+
 namespace
 {
 QButtonGroup* radioGroup(QWidget* parent, QVBoxLayout* into, const QString& title, const QStringList& labels,
-  const QList<int>& ids, int checked)
+  const QList<int>& ids, int checked, int columns = 8)
 {
   auto* box = new QGroupBox(title, parent);
-  auto* lay = new QHBoxLayout(box);
+  auto* lay = new QGridLayout(box);
   auto* group = new QButtonGroup(parent);
   for (int i = 0; i < labels.size(); ++i)
   {
     auto* b = new QRadioButton(labels[i], box);
     b->setObjectName(title.toLower() + "_" + labels[i].toLower());
     group->addButton(b, ids[i]);
-    lay->addWidget(b);
+    lay->addWidget(b, i / columns, i % columns);
     b->setChecked(ids[i] == checked);
   }
   into->addWidget(box);
@@ -37,14 +55,31 @@ QButtonGroup* radioGroup(QWidget* parent, QVBoxLayout* into, const QString& titl
 ToolPanel::ToolPanel(QWidget* parent)
   : QWidget(parent)
 {
+  // CSG tools start at the paper's hard rule; the shaping tools with a soft edge
+  const double strengths[ToolCount] = { 1, 1, 1, 0.5, 0.3, 1, 0.5, 0.5 };
+  const int falloffs[ToolCount] = { 0, 0, 0, 2, 2, 2, 2, 1 };
+  for (int i = 0; i < ToolCount; ++i)
+  {
+    this->ToolStrength[i] = strengths[i];
+    this->ToolFalloff[i] = falloffs[i];
+  }
   auto* lay = new QVBoxLayout(this);
-  this->Ops = radioGroup(this, lay, "Operation", { "Add", "Subtract", "Paint" }, { 0, 1, 2 }, this->State.op);
+  QStringList tools;
+  QList<int> ids;
+  for (int i = 0; i < ToolCount; ++i)
+  {
+    tools << toolInfo(i).name;
+    ids << i;
+  }
+  this->Ops = radioGroup(this, lay, "Operation", tools, ids, this->State.op, 4);
+  for (int i = 0; i < ToolCount; ++i)
+    this->Ops->button(i)->setToolTip(QString("%1 (%2)").arg(toolInfo(i).tip).arg(toolInfo(i).key));
   this->Shapes = radioGroup(this, lay, "Shape", { "Sphere", "Cube" }, { 0, 1 }, this->State.shape);
   this->Kinds = radioGroup(this, lay, "Brush", { "Basic", "Dynamic", "Drill" }, { 1, 2, 3 }, this->State.kind);
   for (QButtonGroup* g : { this->Ops, this->Shapes, this->Kinds })
   {
     connect(g, QOverload<int>::of(&QButtonGroup::buttonClicked), this, [this](int) {
-      this->State.op = this->Ops->checkedId();
+      this->switchTool(this->Ops->checkedId());
       this->State.shape = this->Shapes->checkedId();
       this->State.kind = this->Kinds->checkedId();
       Q_EMIT changed();
@@ -77,6 +112,45 @@ ToolPanel::ToolPanel(QWidget* parent)
     Q_EMIT changed();
   });
 
+  this->StrengthLabel = new QLabel(this);
+  this->Strength = new QSlider(Qt::Horizontal, this);
+  this->Strength->setObjectName("strength");
+  this->Strength->setRange(1, 20); // twentieths: 0.05 .. 1
+  this->Strength->setToolTip("How far each dab moves the surface toward the tool's result (1: all the way)");
+  lay->addWidget(this->StrengthLabel);
+  lay->addWidget(this->Strength);
+  connect(this->Strength, &QSlider::valueChanged, this, [this](int v) {
+    this->State.strength = v / 20.0;
+    this->StrengthLabel->setText(QString("Strength: %1").arg(this->State.strength, 0, 'f', 2));
+    Q_EMIT changed();
+  });
+  auto* falloffRow = new QHBoxLayout;
+  falloffRow->addWidget(new QLabel("Falloff", this));
+  this->Falloff = new QComboBox(this);
+  this->Falloff->setObjectName("falloff");
+  this->Falloff->addItems({ "Constant", "Linear", "Smooth", "Sharp" });
+  this->Falloff->setToolTip("How the brush's weight falls from its centre to its rim");
+  falloffRow->addWidget(this->Falloff, 1);
+  lay->addLayout(falloffRow);
+  connect(this->Falloff, QOverload<int>::of(&QComboBox::currentIndexChanged), this, [this](int i) {
+    this->State.falloff = i;
+    Q_EMIT changed();
+  });
+  auto* mirrorRow = new QHBoxLayout;
+  mirrorRow->addWidget(new QLabel("Symmetry", this));
+  for (int a = 0; a < 3; ++a)
+  {
+    this->Mirror[a] = new QCheckBox(QString("XYZ"[a]), this);
+    this->Mirror[a]->setObjectName(QString("mirror_") + "xyz"[a]);
+    this->Mirror[a]->setToolTip("Mirror every dab about the volume's centre plane across this axis");
+    mirrorRow->addWidget(this->Mirror[a]);
+    connect(this->Mirror[a], &QCheckBox::toggled, this, [this, a](bool on) {
+      this->State.mirror[a] = on;
+      Q_EMIT changed();
+    });
+  }
+  lay->addLayout(mirrorRow);
+
   this->ColorButton = new QPushButton(this);
   this->ColorButton->setObjectName("color");
   connect(this->ColorButton, &QPushButton::clicked, this, &ToolPanel::pickColor);
@@ -106,7 +180,15 @@ ToolPanel::ToolPanel(QWidget* parent)
 void ToolPanel::setState(const BrushState& s)
 {
   this->State = s;
-  const QSignalBlocker b1(this->Radius), b2(this->Blend);
+  const QSignalBlocker b1(this->Radius), b2(this->Blend), b3(this->Strength), b4(this->Falloff);
+  this->Strength->setValue(static_cast<int>(std::lround(20 * s.strength)));
+  this->StrengthLabel->setText(QString("Strength: %1").arg(s.strength, 0, 'f', 2));
+  this->Falloff->setCurrentIndex(s.falloff);
+  for (int a = 0; a < 3; ++a)
+  {
+    const QSignalBlocker b(this->Mirror[a]);
+    this->Mirror[a]->setChecked(s.mirror[a]);
+  }
   this->Ops->button(s.op)->setChecked(true);
   this->Shapes->button(s.shape)->setChecked(true);
   this->Kinds->button(s.kind)->setChecked(true);
@@ -123,6 +205,27 @@ void ToolPanel::setRadius(double voxels)
   const QSignalBlocker block(this->Radius);
   this->Radius->setValue(static_cast<int>(std::lround(2 * voxels)));
   this->RadiusLabel->setText(QString("Radius: %1 voxels").arg(voxels, 0, 'f', 1));
+}
+
+void ToolPanel::switchTool(int op)
+{
+  if (op == this->State.op)
+    return;
+  this->ToolStrength[this->State.op] = this->State.strength;
+  this->ToolFalloff[this->State.op] = this->State.falloff;
+  BrushState s = this->State;
+  s.op = op;
+  s.strength = this->ToolStrength[op];
+  s.falloff = this->ToolFalloff[op];
+  this->setState(s);
+}
+
+void ToolPanel::setOp(int op)
+{
+  if (op < 0 || op >= ToolCount || op == this->State.op)
+    return;
+  this->switchTool(op);
+  Q_EMIT changed();
 }
 
 void ToolPanel::setRecording(bool on)

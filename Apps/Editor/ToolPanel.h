@@ -1,5 +1,5 @@
-// The brush controls (a dock): operation, shape, brush kind, radius, colour,
-// smooth blend, and the undo / record buttons. It only edits a BrushState
+// The brush controls (a dock): tool (operation), shape, brush kind, radius,
+// strength, falloff, symmetry, colour, smooth blend, and the undo / record buttons. It only edits a BrushState
 // and says so; MainWindow applies it to the Core editor.
 #pragma once
 
@@ -7,19 +7,34 @@
 #include <QWidget>
 
 class QButtonGroup;
+class QCheckBox;
+class QComboBox;
 class QLabel;
 class QPushButton;
 class QSlider;
 
 struct BrushState
 {
-  int op = 0;    // 0 add, 1 subtract, 2 paint (lvdif::BrushOp)
+  int op = 0;    // lvdif::BrushOp: 0 add, 1 subtract, 2 paint, 3 smooth, 4 inflate, 5 grab, 6 flatten, 7 crease
   int shape = 0; // 0 sphere, 1 cube (lvdif::BrushShape)
   int kind = 1;  // 1 basic, 2 dynamic, 3 drill (lvdif::BrushKind)
   double radius = 4.0; // voxels
   double blend = 0.0;  // voxels
+  double strength = 1.0; // (0, 1]
+  int falloff = 0;       // lvdif::Falloff: 0 constant, 1 linear, 2 smooth, 3 sharp
+  bool mirror[3] = { false, false, false }; // symmetry about the volume's centre planes
   QColor color = QColor(230, 90, 60);
 };
+
+/// The tools in lvdif::BrushOp order: name, shortcut key, tool tip.
+struct ToolInfo
+{
+  const char* name;
+  char key;
+  const char* tip;
+};
+const ToolInfo& toolInfo(int op);
+constexpr int ToolCount = 8;
 
 class ToolPanel : public QWidget
 {
@@ -30,6 +45,8 @@ public:
   void setRadius(double voxels); // from the wheel: updates the slider quietly
   void setState(const BrushState& s);
   void setRecording(bool on);
+  /// Selects a tool (lvdif::BrushOp) and says so.
+  void setOp(int op);
 
 Q_SIGNALS:
   void changed();
@@ -43,6 +60,10 @@ private:
   void updateColorButton();
 
   BrushState State;
+  /// Each tool's own strength and falloff, restored when it is picked again.
+  double ToolStrength[ToolCount];
+  int ToolFalloff[ToolCount];
+  void switchTool(int op);
   QButtonGroup* Ops;
   QButtonGroup* Shapes;
   QButtonGroup* Kinds;
@@ -50,6 +71,10 @@ private:
   QLabel* RadiusLabel;
   QSlider* Blend;
   QLabel* BlendLabel;
+  QSlider* Strength;
+  QLabel* StrengthLabel;
+  QComboBox* Falloff;
+  QCheckBox* Mirror[3];
   QPushButton* ColorButton;
   QPushButton* RecordButton;
 };

@@ -1,6 +1,6 @@
 #include "VolumeDocument.h"
 
-#include "vtkLVDIFFiles.h"
+#include "LVDIFFiles.h"
 
 #include "lvdif/AnalyticFill.h"
 #include "lvdif/Error.h"
@@ -54,7 +54,9 @@ void VolumeDocument::newCanvas(int nx, int ny, int nz, Fill fill)
   }
   else if (fill == Fill::Sphere)
   {
-    const double r = 0.35 * std::min(nx, std::min(ny, nz));
+    // a starter sphere of at most 64 voxels: its mesh (and so the first frame) stays
+    // small on large canvases; the rest of the canvas is uniform and costs nothing
+    const double r = std::min(64.0, 0.35 * std::min(nx, std::min(ny, nz)));
     lvdif::fillFromFunction(*v, lvdif::sphereSdf(0.5 * (nx - 1), 0.5 * (ny - 1), 0.5 * (nz - 1), r));
   }
   this->Path.clear();
@@ -71,7 +73,7 @@ void VolumeDocument::adopt(std::shared_ptr<lvdif::DictionaryVolume> volume)
 void VolumeDocument::open(const QString& path)
 {
   // every volume format, by extension, through the one file registry
-  std::shared_ptr<lvdif::DictionaryVolume> v = vtkLVDIFFiles::LoadVolume(path.toStdString());
+  std::shared_ptr<lvdif::DictionaryVolume> v = LVDIFFiles::LoadVolume(path.toStdString());
   this->Path = path;
   this->hold(std::move(v));
 }
@@ -83,7 +85,7 @@ void VolumeDocument::save(const QString& path, bool asCopy)
     throw lvdif::Error(lvdif::ErrorCode::InvalidArgument, "no volume to save");
   }
   // sharedVolume() syncs a device-resident volume first; the CPU worker only reads
-  vtkLVDIFFiles::SaveVolume(this->Session->sharedVolume(), path.toStdString()); // .lvdv: exact keys, crash-safe
+  LVDIFFiles::SaveVolume(this->Session->sharedVolume(), path.toStdString()); // .lvdv: exact keys, crash-safe
   if (!asCopy)
   {
     this->Path = path;

@@ -31,7 +31,7 @@ public:
 
   /// A new canvas of n^3 voxels (chunk edge 32). Throws lvdif::Error.
   void newCanvas(int nx, int ny, int nz, Fill fill);
-  /// Opens a volume file of any format the file registry reads (vtkLVDIFFiles).
+  /// Opens a volume file of any format the file registry reads (LVDIFFiles).
   /// Throws lvdif::Error.
   void open(const QString& path);
   /// Saves by extension through the file registry (.lvdv exact); throws

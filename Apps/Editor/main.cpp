@@ -15,18 +15,25 @@ namespace
 int runBatch(MainWindow& w, const EditorOptions& o)
 {
   bool ok = true;
+  // a script first: it sets the scene the keys and the drag then work on
+  if (!o.script.isEmpty())
+    ok = w.runScript(o.script) && ok;
+  if (!o.keys.isEmpty())
+    ok = w.typeKeys(o.keys) && ok;
   if (!o.drag.isEmpty())
   {
     w.finishMeshing(); // the surface must be there to be picked
-    w.replayDrag(o.drag);
+    w.replayDrag(o.drag, o.dragCtrl, o.dragShift);
   }
+  if (!o.keysAfter.isEmpty())
+    ok = w.typeKeys(o.keysAfter) && ok;
   for (int i = 0; i < o.undo; ++i)
     w.undo();
-  if (!o.script.isEmpty())
-    ok = w.runScript(o.script) && ok;
   w.finishMeshing();
   if (!o.screenshot.isEmpty())
     ok = w.saveScreenshot(o.screenshot) && ok;
+  if (!o.windowShot.isEmpty())
+    ok = w.saveWindowShot(o.windowShot) && ok;
   if (!o.save.isEmpty())
     ok = w.saveVolume(o.save) && ok;
   if (!o.exportMesh.isEmpty())
@@ -84,7 +91,8 @@ int main(int argc, char* argv[])
     });
     return app.exec();
   }
-  if (!options.batch() && options.drag.isEmpty() && options.script.isEmpty())
+  if (!options.batch() && options.drag.isEmpty() && options.script.isEmpty() && options.keys.isEmpty() &&
+    options.keysAfter.isEmpty())
     return app.exec();
 
   int status = loaded ? 0 : 1;

@@ -1,7 +1,7 @@
 #include "vtkVolumeEditFilter.h"
 
-#include "vtkLVDIFInterrupter.h"
-#include "vtkLVDIFVolumeBridge.h"
+#include "LVDIFInterrupter.h"
+#include "LVDIFVolumeBridge.h"
 #include "vtkSparseDictionaryVolume.h"
 
 #include "vtkDataArray.h"
@@ -53,7 +53,7 @@ int vtkVolumeEditFilter::RequestDataObject(
   vtkInformation* outInfo = outputVector->GetInformationObject(0);
   if (vtkSparseDictionaryVolume::SafeDownCast(input))
   {
-    vtkLVDIFVolumeBridge::EnsureSparseOutput(outputVector);
+    LVDIFVolumeBridge::EnsureSparseOutput(outputVector);
   }
   else if (!vtkImageData::SafeDownCast(outInfo->Get(vtkDataObject::DATA_OBJECT())))
   {
@@ -80,8 +80,8 @@ int vtkVolumeEditFilter::RequestData(
   {
     this->LastError = "no input image";
   }
-  vtkDataArray* sdf = input ? input->GetPointData()->GetArray(vtkLVDIFVolumeBridge::SdfArrayName) : nullptr;
-  vtkDataArray* rgba = input ? input->GetPointData()->GetArray(vtkLVDIFVolumeBridge::ColorArrayName) : nullptr;
+  vtkDataArray* sdf = input ? input->GetPointData()->GetArray(LVDIFVolumeBridge::SdfArrayName) : nullptr;
+  vtkDataArray* rgba = input ? input->GetPointData()->GetArray(LVDIFVolumeBridge::ColorArrayName) : nullptr;
   if (this->LastError.empty() && !sparseIn && !sdf)
   {
     this->LastError = "the input has no point array named 'sdf'";
@@ -93,14 +93,14 @@ int vtkVolumeEditFilter::RequestData(
   }
   try
   {
-    vtkLVDIFInterrupter interrupter(this, 0.0, 0.1);
+    LVDIFInterrupter interrupter(this, 0.0, 0.1);
     lvdif::VolumeOptions o;
     o.chunkEdge = this->ChunkEdge;
     o.bandWidth = static_cast<float>(this->BandWidth);
     // a sparse input is edited in a copy (as sparse as the input); an image is encoded first
     std::shared_ptr<lvdif::DictionaryVolume> volume = sparseIn
       ? std::shared_ptr<lvdif::DictionaryVolume>(sparseIn->GetVolume()->clone())
-      : std::shared_ptr<lvdif::DictionaryVolume>(vtkLVDIFVolumeBridge::VolumeFromImage(input, sdf, rgba, o));
+      : std::shared_ptr<lvdif::DictionaryVolume>(LVDIFVolumeBridge::VolumeFromImage(input, sdf, rgba, o));
     if (sparseIn) o = volume->options();
     auto editor = std::make_unique<lvdif::Editor>(*volume);
     this->UpdateProgress(0.1);
@@ -137,7 +137,7 @@ int vtkVolumeEditFilter::RequestData(
         extent[2 * i] = 0;
         extent[2 * i + 1] = static_cast<int>(volume->dims()[i]) - 1;
       }
-      vtkLVDIFVolumeBridge::FillImage(*volume, extent, output, this->WithColor);
+      LVDIFVolumeBridge::FillImage(*volume, extent, output, this->WithColor);
       // keep the input's extent (the bridge works in the volume's 0-based indices)
       const int* inExt = input->GetExtent();
       if (volume->dims()[0] == inExt[1] - inExt[0] + 1 && volume->dims()[1] == inExt[3] - inExt[2] + 1 &&

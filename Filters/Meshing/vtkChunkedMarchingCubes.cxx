@@ -1,9 +1,9 @@
 #include "vtkChunkedMarchingCubes.h"
 
-#include "vtkChunkedMarchingCubesOutput.h"
-#include "vtkChunkedMarchingCubesVtkTable.h"
-#include "vtkLVDIFInterrupter.h"
-#include "vtkLVDIFVolumeBridge.h"
+#include "LVDIFChunkedMarchingCubesOutput.h"
+#include "LVDIFChunkedMarchingCubesVtkTable.h"
+#include "LVDIFInterrupter.h"
+#include "LVDIFVolumeBridge.h"
 #include "vtkSparseDictionaryVolume.h"
 
 #include "lvdif/ChunkedMarchingCubes.h"
@@ -159,7 +159,7 @@ lvdif::MarchingCubesOptions vtkChunkedMarchingCubes::CoreOptions() const
   o.cornerColors = this->ComputeCornerColors != 0;
   o.device = this->Device == DEVICE_CPU ? lvdif::Device::Cpu
                                         : (this->Device == DEVICE_CUDA ? lvdif::Device::Cuda : lvdif::Device::Auto);
-  if (this->UseVTKCaseTable) o.triangleTable = vtkChunkedMarchingCubesVtkTable::Get();
+  if (this->UseVTKCaseTable) o.triangleTable = LVDIFChunkedMarchingCubesVtkTable::Get();
   return o;
 }
 
@@ -223,7 +223,7 @@ int vtkChunkedMarchingCubes::RequestData(
   }
   if (region.empty() || input->GetNumberOfPoints() == 0) return 1; // nothing owned: empty output
 
-  vtkDataArray* sdf = vtkLVDIFVolumeBridge::SdfArray(
+  vtkDataArray* sdf = LVDIFVolumeBridge::SdfArray(
     this->GetInputArrayInformation(0), input, this->GetInputArrayToProcess(0, inputVector));
   if (!sdf)
   {
@@ -235,7 +235,7 @@ int vtkChunkedMarchingCubes::RequestData(
     vtkErrorMacro("SDF array '" << (sdf->GetName() ? sdf->GetName() : "") << "' must have one component per point");
     return 0;
   }
-  lvdif::FloatGridView grid = vtkLVDIFVolumeBridge::FloatView(input, sdf);
+  lvdif::FloatGridView grid = LVDIFVolumeBridge::FloatView(input, sdf);
   std::vector<float> converted;
   if (!grid.data)
   {
@@ -288,7 +288,7 @@ int vtkChunkedMarchingCubes::RequestData(
   try
   {
     lvdif::ChunkedMarchingCubes mc(grid, o.computeColors ? colors : nullptr, o);
-    vtkLVDIFInterrupter interrupter(this, 0.0, 0.8);
+    LVDIFInterrupter interrupter(this, 0.0, 0.8);
     meshes = mc.extractAll(interrupter);
   }
   catch (const lvdif::Error& e)
@@ -298,7 +298,7 @@ int vtkChunkedMarchingCubes::RequestData(
     return 0;
   }
 
-  vtkChunkedMarchingCubesOutput::Context ctx;
+  LVDIFChunkedMarchingCubesOutput::Context ctx;
   ctx.gridDims = grid.geometry.dims;
   for (int a = 0; a < 3; ++a) ctx.extentLo[a] = inExt[2 * a];
   ctx.colors = colors;
@@ -328,7 +328,7 @@ int vtkChunkedMarchingCubes::MeshVolume(
     o.cellRegion.hi[a] = own[2 * a + 1] - 1;
   }
   if (o.cellRegion.empty()) return 1; // nothing owned: empty output
-  vtkChunkedMarchingCubesOutput::Context ctx;
+  LVDIFChunkedMarchingCubesOutput::Context ctx;
   ctx.gridDims = dims;
   ctx.palette = volume.colors().colors().data(); // corner colours come as keys
   ctx.normals = o.computeNormals;
@@ -345,7 +345,7 @@ int vtkChunkedMarchingCubes::MeshVolume(
       if (!mc.chunkIsEmpty(id)) ids.push_back(id);
     const std::size_t batches = (ids.size() + Batch - 1) / Batch;
     const bool merged = vtkPolyData::SafeDownCast(output) != nullptr;
-    vtkLVDIFInterrupter interrupter(this);
+    LVDIFInterrupter interrupter(this);
     auto batch = [&](std::size_t b, int pass) {
       // progress: merged runs two passes (count, fill), partitioned one
       const double share = merged ? 0.5 : 1.0;
@@ -359,7 +359,7 @@ int vtkChunkedMarchingCubes::MeshVolume(
     };
     if (auto* pd = vtkPolyData::SafeDownCast(output))
     {
-      pd->ShallowCopy(vtkChunkedMarchingCubesOutput::MergeBatches(batch, batches, ctx));
+      pd->ShallowCopy(LVDIFChunkedMarchingCubesOutput::MergeBatches(batch, batches, ctx));
     }
     else
     {
@@ -413,7 +413,7 @@ int vtkChunkedMarchingCubes::MeshVolumeIncrementally(
     }
     return ok;
   }
-  vtkChunkedMarchingCubesOutput::Context ctx;
+  LVDIFChunkedMarchingCubesOutput::Context ctx;
   ctx.gridDims = dims;
   ctx.palette = volume->colors().colors().data();
   ctx.normals = o.computeNormals;
@@ -436,7 +436,7 @@ int vtkChunkedMarchingCubes::MeshVolumeIncrementally(
       byChunk.erase(static_cast<vtkIdType>(id));
       if (!mc.chunkIsEmpty(id)) ids.push_back(id);
     }
-    vtkLVDIFInterrupter interrupter(this, 0.0, 0.9);
+    LVDIFInterrupter interrupter(this, 0.0, 0.9);
     std::vector<lvdif::ChunkMesh> meshes = mc.extractChunks(ids, interrupter);
     meshes.erase(std::remove_if(meshes.begin(), meshes.end(), [](const lvdif::ChunkMesh& m) { return m.empty(); }),
       meshes.end());
@@ -469,11 +469,11 @@ int vtkChunkedMarchingCubes::MeshVolumeIncrementally(
 }
 
 int vtkChunkedMarchingCubes::Emit(const std::vector<lvdif::ChunkMesh>& meshes,
-  const vtkChunkedMarchingCubesOutput::Context& ctx, const int whole[6], vtkDataObject* output)
+  const LVDIFChunkedMarchingCubesOutput::Context& ctx, const int whole[6], vtkDataObject* output)
 {
   if (auto* merged = vtkPolyData::SafeDownCast(output))
   {
-    merged->ShallowCopy(vtkChunkedMarchingCubesOutput::MergeChunks(meshes, ctx));
+    merged->ShallowCopy(LVDIFChunkedMarchingCubesOutput::MergeChunks(meshes, ctx));
     this->UpdateProgress(1.0);
     return 1;
   }
@@ -485,7 +485,7 @@ int vtkChunkedMarchingCubes::Emit(const std::vector<lvdif::ChunkMesh>& meshes,
 }
 
 void vtkChunkedMarchingCubes::AddPartitions(const std::vector<lvdif::ChunkMesh>& meshes,
-  const vtkChunkedMarchingCubesOutput::Context& ctx, const int whole[6], vtkPartitionedDataSet* partitioned)
+  const LVDIFChunkedMarchingCubesOutput::Context& ctx, const int whole[6], vtkPartitionedDataSet* partitioned)
 {
   // chunk counts of the whole extent, for a chunk id every piece agrees on
   vtkIdType counts[3];
@@ -496,7 +496,7 @@ void vtkChunkedMarchingCubes::AddPartitions(const std::vector<lvdif::ChunkMesh>&
   for (std::size_t i = 0; i < meshes.size(); ++i)
   {
     if (i % 64 == 0 && this->GetAbortExecute()) break;
-    vtkSmartPointer<vtkPolyData> pd = vtkChunkedMarchingCubesOutput::ChunkToPolyData(meshes[i], ctx);
+    vtkSmartPointer<vtkPolyData> pd = LVDIFChunkedMarchingCubesOutput::ChunkToPolyData(meshes[i], ctx);
     const lvdif::Index3& c = meshes[i].chunkCoord;
     vtkNew<vtkIdTypeArray> id;
     id->SetName("chunk_id");

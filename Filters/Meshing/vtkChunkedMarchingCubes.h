@@ -59,7 +59,7 @@
  * on a shared plane are bit-identical (positions are computed from global point
  * indices), so the union of the pieces is seamless.
  *
- * Progress and abort: UpdateProgress / AbortExecute through vtkLVDIFInterrupter.
+ * Progress and abort: UpdateProgress / AbortExecute through LVDIFInterrupter.
  */
 #ifndef vtkChunkedMarchingCubes_h
 #define vtkChunkedMarchingCubes_h
@@ -79,7 +79,7 @@ class DictionaryVolume;
 struct ChunkMesh;
 struct MarchingCubesOptions;
 }
-namespace vtkChunkedMarchingCubesOutput
+namespace LVDIFChunkedMarchingCubesOutput
 {
 struct Context;
 }
@@ -197,7 +197,7 @@ protected:
   /// Meshes the cells piece `piece` of `pieces` owns of `volume` into output.
   int MeshVolume(const lvdif::DictionaryVolume& volume, int piece, int pieces, vtkDataObject* output);
   /// Fills output (vtkPolyData: merged; vtkPartitionedDataSet: one per chunk).
-  int Emit(const std::vector<lvdif::ChunkMesh>& meshes, const vtkChunkedMarchingCubesOutput::Context& ctx,
+  int Emit(const std::vector<lvdif::ChunkMesh>& meshes, const LVDIFChunkedMarchingCubesOutput::Context& ctx,
     const int whole[6], vtkDataObject* output);
 
   /// Sparse input, PARTITIONED, one piece: remeshes only the chunks the
@@ -205,7 +205,7 @@ protected:
   /// those of the last run, else everything.
   int MeshVolumeIncrementally(const std::shared_ptr<lvdif::DictionaryVolume>& volume, vtkPartitionedDataSet* output);
   /// Appends one vtkPolyData partition per chunk mesh (with `chunk_id`, `chunk_ijk`).
-  void AddPartitions(const std::vector<lvdif::ChunkMesh>& meshes, const vtkChunkedMarchingCubesOutput::Context& ctx,
+  void AddPartitions(const std::vector<lvdif::ChunkMesh>& meshes, const LVDIFChunkedMarchingCubesOutput::Context& ctx,
     const int whole[6], vtkPartitionedDataSet* partitioned);
 
   int OutputMode = PARTITIONED;

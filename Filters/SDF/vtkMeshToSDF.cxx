@@ -1,7 +1,7 @@
 #include "vtkMeshToSDF.h"
 
-#include "vtkLVDIFInterrupter.h"
-#include "vtkLVDIFVolumeBridge.h"
+#include "LVDIFInterrupter.h"
+#include "LVDIFVolumeBridge.h"
 #include "vtkSparseDictionaryVolume.h"
 
 #include "lvdif/DictionaryVolume.h"
@@ -51,7 +51,7 @@ int vtkMeshToSDF::FillOutputPortInformation(int, vtkInformation* info)
 
 int vtkMeshToSDF::RequestDataObject(vtkInformation*, vtkInformationVector**, vtkInformationVector* out)
 {
-  vtkLVDIFVolumeBridge::EnsureSparseOutput(out);
+  LVDIFVolumeBridge::EnsureSparseOutput(out);
   return 1;
 }
 
@@ -140,7 +140,7 @@ int vtkMeshToSDF::RequestInformation(
   vo.dims = g.dims;
   vo.origin = g.origin;
   vo.spacing = g.spacing;
-  vtkLVDIFVolumeBridge::SetSparseInformation(outputVector->GetInformationObject(0), vo);
+  LVDIFVolumeBridge::SetSparseInformation(outputVector->GetInformationObject(0), vo);
   return 1;
 }
 
@@ -174,8 +174,8 @@ int vtkMeshToSDF::RequestData(vtkInformation*, vtkInformationVector** inputVecto
     return 0;
   }
   lvdif::MeshToSdfStats st;
-  vtkLVDIFInterrupter interrupter(this);
-  const bool ok = vtkLVDIFVolumeBridge::CallCore(this, [&] {
+  LVDIFInterrupter interrupter(this);
+  const bool ok = LVDIFVolumeBridge::CallCore(this, [&] {
     const lvdif::GridGeometry g = gridFor(input, this->UseExplicitGrid, this->Dimensions, this->Origin,
       this->Spacing, this->MaxDimension, this->SampleSpacing, this->Padding);
     lvdif::VolumeOptions vo;
@@ -186,7 +186,7 @@ int vtkMeshToSDF::RequestData(vtkInformation*, vtkInformationVector** inputVecto
     vo.bandWidth =
       this->BandWidth > 0 ? static_cast<float>(this->BandWidth) : std::numeric_limits<float>::infinity();
     auto volume = std::make_shared<lvdif::DictionaryVolume>(vo); // validates and checks the memory limit
-    const lvdif::TriangleMesh mesh = vtkLVDIFVolumeBridge::ToTriangleMesh(input, this->UseVertexNormals);
+    const lvdif::TriangleMesh mesh = LVDIFVolumeBridge::ToTriangleMesh(input, this->UseVertexNormals);
     lvdif::MeshToSdfOptions o;
     o.sign = this->SignMode == NORMAL ? lvdif::SignMode::Normal
       : this->SignMode == PSEUDO_NORMAL ? lvdif::SignMode::PseudoNormal
@@ -198,7 +198,7 @@ int vtkMeshToSDF::RequestData(vtkInformation*, vtkInformationVector** inputVecto
     o.useVertexNormals = this->UseVertexNormals;
     o.reorientFaces = this->ReorientFaces;
     o.svfFilters = static_cast<unsigned>(this->SignVoxelFilters);
-    o.device = vtkLVDIFVolumeBridge::ToDevice(this->Device);
+    o.device = LVDIFVolumeBridge::ToDevice(this->Device);
     o.svf.device = o.device;
     st = lvdif::meshToSdf(mesh, *volume, o, interrupter);
     volume->takeDirtyChunks(); // a new volume: nothing to re-mesh incrementally
@@ -208,6 +208,10 @@ int vtkMeshToSDF::RequestData(vtkInformation*, vtkInformationVector** inputVecto
   {
     output->Initialize();
     return 0;
+  }
+  for (const std::string& w : st.warnings)
+  {
+    vtkWarningMacro(<< w);
   }
   vtkNew<vtkIdTypeArray> degenerate;
   degenerate->SetName("degenerate_triangles");

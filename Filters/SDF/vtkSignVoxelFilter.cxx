@@ -1,7 +1,7 @@
 #include "vtkSignVoxelFilter.h"
 
-#include "vtkLVDIFInterrupter.h"
-#include "vtkLVDIFVolumeBridge.h"
+#include "LVDIFInterrupter.h"
+#include "LVDIFVolumeBridge.h"
 #include "vtkSparseDictionaryVolume.h"
 
 #include "lvdif/DictionaryVolume.h"
@@ -101,7 +101,7 @@ int vtkSignVoxelFilter::RequestDataObject(
   vtkDataObject* current = outInfo->Get(vtkDataObject::DATA_OBJECT());
   if (vtkSparseDictionaryVolume::SafeDownCast(input))
   {
-    vtkLVDIFVolumeBridge::EnsureSparseOutput(outputVector);
+    LVDIFVolumeBridge::EnsureSparseOutput(outputVector);
   }
   else if (!vtkImageData::SafeDownCast(current))
   {
@@ -144,7 +144,7 @@ int vtkSignVoxelFilter::RequestData(
     vtkErrorMacro("input and output must be vtkImageData");
     return 0;
   }
-  vtkDataArray* in = vtkLVDIFVolumeBridge::SdfArray(
+  vtkDataArray* in = LVDIFVolumeBridge::SdfArray(
     this->GetInputArrayInformation(0), input, this->GetInputArrayToProcess(0, inputVector));
   if (!in)
   {
@@ -176,7 +176,7 @@ int vtkSignVoxelFilter::RequestData(
   grid.geometry.dims = { dims[0], dims[1], dims[2] };
   const lvdif::SignVoxelFilterParams p = this->CoreParams();
   lvdif::SignVoxelFilterStats st;
-  vtkLVDIFInterrupter interrupter(this);
+  LVDIFInterrupter interrupter(this);
   try
   {
     st = lvdif::signVoxelFilter(grid, p, interrupter);
@@ -191,7 +191,7 @@ int vtkSignVoxelFilter::RequestData(
   }
 
   // signs changed through the pointer: the range of the new values, stored for ParaView's data information
-  vtkLVDIFVolumeBridge::StoreRange(filtered);
+  LVDIFVolumeBridge::StoreRange(filtered);
   output->ShallowCopy(input);
   // replace the processed array, keeping its attribute role (e.g. active scalars)
   vtkPointData* pd = output->GetPointData();
@@ -238,7 +238,7 @@ lvdif::SignVoxelFilterParams vtkSignVoxelFilter::CoreParams() const
   p.filters = static_cast<unsigned>(this->Filters);
   p.maxIterations = this->MaxIterations;
   p.boundary = this->Boundary == BOUNDARY_FREE ? lvdif::SvfBoundary::Free : lvdif::SvfBoundary::Outside;
-  p.device = vtkLVDIFVolumeBridge::ToDevice(this->Device);
+  p.device = LVDIFVolumeBridge::ToDevice(this->Device);
   return p;
 }
 
@@ -250,8 +250,8 @@ int vtkSignVoxelFilter::FilterSparse(vtkSparseDictionaryVolume* input, vtkSparse
     return 0;
   }
   lvdif::SignVoxelFilterStats st;
-  vtkLVDIFInterrupter interrupter(this);
-  const bool ok = vtkLVDIFVolumeBridge::CallCore(this, [&] {
+  LVDIFInterrupter interrupter(this);
+  const bool ok = LVDIFVolumeBridge::CallCore(this, [&] {
     // a copy: VTK filters leave their input alone (the copy is as sparse as the input)
     std::shared_ptr<lvdif::DictionaryVolume> volume(input->GetVolume()->clone());
     st = lvdif::signVoxelFilter(*volume, this->CoreParams(), interrupter);

@@ -1,6 +1,6 @@
 #include "vtkDictionaryVolumeToImage.h"
 
-#include "vtkLVDIFVolumeBridge.h"
+#include "LVDIFVolumeBridge.h"
 
 #include "lvdif/DictionaryVolume.h"
 #include "lvdif/Error.h"
@@ -36,7 +36,7 @@ int vtkDictionaryVolumeToImage::RequestInformation(
     return 0;
   }
   vtkInformation* outInfo = outputVector->GetInformationObject(0);
-  vtkLVDIFVolumeBridge::SetImageInformation(outInfo, this->Volume->options());
+  LVDIFVolumeBridge::SetImageInformation(outInfo, this->Volume->options());
   return 1;
 }
 
@@ -49,7 +49,7 @@ int vtkDictionaryVolumeToImage::RequestData(
   outInfo->Get(vtkStreamingDemandDrivenPipeline::UPDATE_EXTENT(), ext);
   try
   {
-    vtkLVDIFVolumeBridge::FillImage(*this->Volume, ext, output, this->WithColor);
+    LVDIFVolumeBridge::FillImage(*this->Volume, ext, output, this->WithColor);
   }
   catch (const lvdif::Error& e)
   {

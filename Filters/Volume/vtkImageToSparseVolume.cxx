@@ -1,6 +1,6 @@
 #include "vtkImageToSparseVolume.h"
 
-#include "vtkLVDIFVolumeBridge.h"
+#include "LVDIFVolumeBridge.h"
 #include "vtkSparseDictionaryVolume.h"
 
 #include "lvdif/DictionaryVolume.h"
@@ -19,9 +19,9 @@ vtkStandardNewMacro(vtkImageToSparseVolume);
 
 vtkImageToSparseVolume::vtkImageToSparseVolume()
 {
-  this->SetColorArrayName(vtkLVDIFVolumeBridge::ColorArrayName);
+  this->SetColorArrayName(LVDIFVolumeBridge::ColorArrayName);
   this->SetInputArrayToProcess(
-    0, 0, 0, vtkDataObject::FIELD_ASSOCIATION_POINTS, vtkLVDIFVolumeBridge::SdfArrayName);
+    0, 0, 0, vtkDataObject::FIELD_ASSOCIATION_POINTS, LVDIFVolumeBridge::SdfArrayName);
 }
 
 vtkImageToSparseVolume::~vtkImageToSparseVolume()
@@ -43,7 +43,7 @@ int vtkImageToSparseVolume::FillOutputPortInformation(int, vtkInformation* info)
 
 int vtkImageToSparseVolume::RequestDataObject(vtkInformation*, vtkInformationVector**, vtkInformationVector* out)
 {
-  vtkLVDIFVolumeBridge::EnsureSparseOutput(out);
+  LVDIFVolumeBridge::EnsureSparseOutput(out);
   return 1;
 }
 
@@ -67,7 +67,7 @@ int vtkImageToSparseVolume::RequestInformation(
     o.origin[a] = origin[a] + whole[2 * a] * spacing[a];
     o.spacing[a] = spacing[a];
   }
-  vtkLVDIFVolumeBridge::SetSparseInformation(outInfo, o);
+  LVDIFVolumeBridge::SetSparseInformation(outInfo, o);
   return 1;
 }
 
@@ -103,8 +103,8 @@ int vtkImageToSparseVolume::RequestData(
   options.chunkEdge = this->ChunkEdge;
   options.bandWidth =
     this->BandWidth > 0 ? static_cast<float>(this->BandWidth) : std::numeric_limits<float>::infinity();
-  return vtkLVDIFVolumeBridge::CallCore(this, [&] {
-    output->SetVolume(vtkLVDIFVolumeBridge::VolumeFromImage(image, sdf, rgba, options));
+  return LVDIFVolumeBridge::CallCore(this, [&] {
+    output->SetVolume(LVDIFVolumeBridge::VolumeFromImage(image, sdf, rgba, options));
   }) ? 1 : 0;
 }
 

@@ -1,6 +1,6 @@
 #include "vtkSparseVolumeToImage.h"
 
-#include "vtkLVDIFVolumeBridge.h"
+#include "LVDIFVolumeBridge.h"
 #include "vtkSparseDictionaryVolume.h"
 
 #include "lvdif/DictionaryVolume.h"
@@ -102,7 +102,7 @@ int vtkSparseVolumeToImage::RequestData(
   int ext[6];
   outInfo->Get(vtkStreamingDemandDrivenPipeline::UPDATE_EXTENT(), ext);
   const lvdif::DictionaryVolume& volume = *input->GetVolume();
-  return vtkLVDIFVolumeBridge::CallCore(this, [&] {
+  return LVDIFVolumeBridge::CallCore(this, [&] {
     std::uint64_t points = 1;
     std::ostringstream what;
     what << "vtkSparseVolumeToImage: a dense image of ";
@@ -114,7 +114,7 @@ int vtkSparseVolumeToImage::RequestData(
     }
     what << (this->WithColor ? " (float sdf + rgba, 8 bytes a point)" : " (float sdf, 4 bytes a point)");
     lvdif::requireMemory(lvdif::checkedMultiply(points, this->WithColor ? 8 : 4, "dense image"), what.str());
-    vtkLVDIFVolumeBridge::FillImage(volume, ext, output, this->WithColor);
+    LVDIFVolumeBridge::FillImage(volume, ext, output, this->WithColor);
   }) ? 1 : 0;
 }
 

@@ -1,6 +1,6 @@
 #include "vtkLVDIFMeshReader.h"
 
-#include "vtkLVDIFVolumeBridge.h"
+#include "LVDIFVolumeBridge.h"
 
 #include "lvdif/MeshFile.h"
 
@@ -61,7 +61,7 @@ int vtkLVDIFMeshReader::RequestData(vtkInformation*, vtkInformationVector**, vtk
   }
   this->UpdateProgress(0.7);
 
-  output->ShallowCopy(vtkLVDIFVolumeBridge::ToPolyData(mesh));
+  output->ShallowCopy(LVDIFVolumeBridge::ToPolyData(mesh));
   this->UpdateProgress(1.0);
   return 1;
 }

@@ -1,8 +1,8 @@
 #include "vtkOpenVDBLevelSetReader.h"
 
 #include "LVDIFOpenVDB.h"
-#include "vtkLVDIFInterrupter.h"
-#include "vtkLVDIFVolumeBridge.h"
+#include "LVDIFInterrupter.h"
+#include "LVDIFVolumeBridge.h"
 #include "vtkSparseDictionaryVolume.h"
 
 #include "vtkDataObject.h"
@@ -92,7 +92,7 @@ int vtkOpenVDBLevelSetReader::RequestInformation(
     options.gridName = this->GridName;
     options.colorName = this->WithColor ? this->ColorGridName : std::string();
     options.padding = this->Padding;
-    vtkLVDIFInterrupter interrupter(this);
+    LVDIFInterrupter interrupter(this);
     try
     {
       in.Volume = lvdif::vdb::importLevelSet(this->FileName, options, interrupter);
@@ -110,7 +110,7 @@ int vtkOpenVDBLevelSetReader::RequestInformation(
     in.FileStamp = stamp;
   }
   const lvdif::VolumeOptions& o = in.Volume->options();
-  vtkLVDIFVolumeBridge::SetSparseInformation(outputVector->GetInformationObject(0), o);
+  LVDIFVolumeBridge::SetSparseInformation(outputVector->GetInformationObject(0), o);
   return 1;
 }
 
@@ -122,7 +122,7 @@ int vtkOpenVDBLevelSetReader::FillOutputPortInformation(int, vtkInformation* inf
 
 int vtkOpenVDBLevelSetReader::RequestDataObject(vtkInformation*, vtkInformationVector**, vtkInformationVector* out)
 {
-  vtkLVDIFVolumeBridge::EnsureSparseOutput(out);
+  LVDIFVolumeBridge::EnsureSparseOutput(out);
   return 1;
 }
 

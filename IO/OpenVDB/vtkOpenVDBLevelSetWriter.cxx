@@ -1,8 +1,8 @@
 #include "vtkOpenVDBLevelSetWriter.h"
 
 #include "LVDIFOpenVDB.h"
-#include "vtkLVDIFInterrupter.h"
-#include "vtkLVDIFVolumeBridge.h"
+#include "LVDIFInterrupter.h"
+#include "LVDIFVolumeBridge.h"
 #include "vtkSparseDictionaryVolume.h"
 
 #include "vtkDataArray.h"
@@ -45,8 +45,8 @@ void vtkOpenVDBLevelSetWriter::WriteData()
     exportOptions.halfWidth = this->HalfWidth;
     exportOptions.withColor = this->WithColor;
     exportOptions.sdfName = this->GridName;
-    vtkLVDIFInterrupter interrupter(this);
-    if (!vtkLVDIFVolumeBridge::CallCore(
+    LVDIFInterrupter interrupter(this);
+    if (!LVDIFVolumeBridge::CallCore(
           this, [&] { lvdif::vdb::exportLevelSet(*sparse->GetVolume(), this->FileName, exportOptions, interrupter); },
           "cannot write '" + this->FileName + "': "))
     {
@@ -58,7 +58,7 @@ void vtkOpenVDBLevelSetWriter::WriteData()
   vtkDataArray *sdf, *rgba;
   bool missingFileName;
   const std::string problem =
-    vtkLVDIFVolumeBridge::WriterInput(image, this->FileName, this->WithColor, sdf, rgba, missingFileName);
+    LVDIFVolumeBridge::WriterInput(image, this->FileName, this->WithColor, sdf, rgba, missingFileName);
   if (!problem.empty())
   {
     vtkErrorMacro(<< problem);
@@ -71,11 +71,11 @@ void vtkOpenVDBLevelSetWriter::WriteData()
   exportOptions.halfWidth = this->HalfWidth;
   exportOptions.withColor = rgba != nullptr;
   exportOptions.sdfName = this->GridName;
-  vtkLVDIFInterrupter interrupter(this, 0.0, 1.0);
+  LVDIFInterrupter interrupter(this, 0.0, 1.0);
   try
   {
     interrupter.setStage(0.0, 0.4);
-    auto volume = vtkLVDIFVolumeBridge::VolumeFromImage(image, sdf, rgba, options);
+    auto volume = LVDIFVolumeBridge::VolumeFromImage(image, sdf, rgba, options);
     interrupter.setStage(0.4, 0.6);
     lvdif::vdb::exportLevelSet(*volume, this->FileName, exportOptions, interrupter);
   }

@@ -2,8 +2,8 @@
 
 #include "LVDIFVolumeIndex.h"
 #include "vtkDictionaryVolumeWriter.h"
-#include "vtkLVDIFInterrupter.h"
-#include "vtkLVDIFVolumeBridge.h"
+#include "LVDIFInterrupter.h"
+#include "LVDIFVolumeBridge.h"
 #include "vtkSparseDictionaryVolume.h"
 
 #include "lvdif/Error.h"
@@ -98,11 +98,11 @@ bool vtkPDictionaryVolumeWriter::WritePiece(vtkSparseDictionaryVolume* sparse, c
   lvdif::VolumeFileWriteOptions options;
   options.compressionLevel = this->CompressionLevel;
   if (!this->VolumeName.empty()) options.metadata["name"] = this->VolumeName;
-  vtkLVDIFInterrupter interrupter(this);
-  return vtkLVDIFVolumeBridge::CallCore(
+  LVDIFInterrupter interrupter(this);
+  return LVDIFVolumeBridge::CallCore(
     this,
     [&] {
-      lvdif::saveVolume(*vtkLVDIFVolumeBridge::CropVolume(*sparse->GetVolume(), ext), path, options, interrupter);
+      lvdif::saveVolume(*LVDIFVolumeBridge::CropVolume(*sparse->GetVolume(), ext), path, options, interrupter);
     },
     "piece " + std::to_string(this->Piece) + ": ");
 }

@@ -1,7 +1,7 @@
 #include "vtkDictionaryVolumeReader.h"
 
-#include "vtkLVDIFInterrupter.h"
-#include "vtkLVDIFVolumeBridge.h"
+#include "LVDIFInterrupter.h"
+#include "LVDIFVolumeBridge.h"
 #include "vtkSparseDictionaryVolume.h"
 
 #include "lvdif/Memory.h"
@@ -59,7 +59,7 @@ int vtkDictionaryVolumeReader::FillOutputPortInformation(int, vtkInformation* in
 
 int vtkDictionaryVolumeReader::RequestDataObject(vtkInformation*, vtkInformationVector**, vtkInformationVector* out)
 {
-  vtkLVDIFVolumeBridge::EnsureSparseOutput(out);
+  LVDIFVolumeBridge::EnsureSparseOutput(out);
   return 1;
 }
 
@@ -91,7 +91,7 @@ int vtkDictionaryVolumeReader::RequestInformation(
     }
   }
   vtkInformation* outInfo = outputVector->GetInformationObject(0);
-  vtkLVDIFVolumeBridge::SetSparseInformation(outInfo, o);
+  LVDIFVolumeBridge::SetSparseInformation(outInfo, o);
   return 1;
 }
 
@@ -145,9 +145,9 @@ int vtkDictionaryVolumeReader::RequestData(
       options.region.hi = { ext[1], ext[3], ext[5] };
     }
   }
-  vtkLVDIFInterrupter interrupter(this, 0.0, 1.0);
+  LVDIFInterrupter interrupter(this, 0.0, 1.0);
   output->SetPartitionColors(this->WithColor);
-  const bool ok = vtkLVDIFVolumeBridge::CallCore(
+  const bool ok = LVDIFVolumeBridge::CallCore(
     this,
     [&] {
       std::shared_ptr<lvdif::DictionaryVolume> volume = lvdif::loadVolume(this->FileName, options, interrupter);

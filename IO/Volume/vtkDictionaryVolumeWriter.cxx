@@ -1,7 +1,7 @@
 #include "vtkDictionaryVolumeWriter.h"
 
-#include "vtkLVDIFInterrupter.h"
-#include "vtkLVDIFVolumeBridge.h"
+#include "LVDIFInterrupter.h"
+#include "LVDIFVolumeBridge.h"
 #include "vtkSparseDictionaryVolume.h"
 
 #include "lvdif/VolumeFile.h"
@@ -48,7 +48,7 @@ void vtkDictionaryVolumeWriter::WriteData()
   vtkDataArray *sdf, *rgba;
   bool missingFileName;
   const std::string problem =
-    vtkLVDIFVolumeBridge::WriterInput(image, this->FileName, true, sdf, rgba, missingFileName);
+    LVDIFVolumeBridge::WriterInput(image, this->FileName, true, sdf, rgba, missingFileName);
   if (!problem.empty())
   {
     vtkErrorMacro(<< problem);
@@ -69,11 +69,11 @@ void vtkDictionaryVolumeWriter::WriteData()
   }
   writeOptions.metadata["creation parameters"] =
     "vtkDictionaryVolumeWriter band " + std::to_string(this->BandWidth) + " chunk " + std::to_string(this->ChunkEdge);
-  vtkLVDIFInterrupter interrupter(this, 0.0, 1.0);
+  LVDIFInterrupter interrupter(this, 0.0, 1.0);
   try
   {
     interrupter.setStage(0.0, 0.3);
-    auto volume = vtkLVDIFVolumeBridge::VolumeFromImage(image, sdf, rgba, options);
+    auto volume = LVDIFVolumeBridge::VolumeFromImage(image, sdf, rgba, options);
     interrupter.setStage(0.3, 0.7);
     lvdif::saveVolume(*volume, this->FileName, writeOptions, interrupter);
   }
@@ -109,9 +109,9 @@ void vtkDictionaryVolumeWriter::WriteSparse(vtkSparseDictionaryVolume* sparse)
   {
     writeOptions.metadata["name"] = this->VolumeName;
   }
-  vtkLVDIFInterrupter interrupter(this);
+  LVDIFInterrupter interrupter(this);
   bool cancelled = false;
-  if (!vtkLVDIFVolumeBridge::CallCore(
+  if (!LVDIFVolumeBridge::CallCore(
         this, [&] { lvdif::saveVolume(*sparse->GetVolume(), this->FileName, writeOptions, interrupter); },
         "cannot write '" + this->FileName + "': ", &cancelled))
   {

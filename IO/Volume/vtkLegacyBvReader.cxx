@@ -1,7 +1,7 @@
 #include "vtkLegacyBvReader.h"
 
-#include "vtkLVDIFInterrupter.h"
-#include "vtkLVDIFVolumeBridge.h"
+#include "LVDIFInterrupter.h"
+#include "LVDIFVolumeBridge.h"
 #include "vtkSparseDictionaryVolume.h"
 
 #include "lvdif/LegacyBv.h"
@@ -81,7 +81,7 @@ int vtkLegacyBvReader::FillOutputPortInformation(int, vtkInformation* info)
 
 int vtkLegacyBvReader::RequestDataObject(vtkInformation*, vtkInformationVector**, vtkInformationVector* out)
 {
-  vtkLVDIFVolumeBridge::EnsureSparseOutput(out);
+  LVDIFVolumeBridge::EnsureSparseOutput(out);
   return 1;
 }
 
@@ -104,7 +104,7 @@ int vtkLegacyBvReader::RequestInformation(
   this->Edge = static_cast<int>(n);
   lvdif::VolumeOptions o; // origin 0, spacing 1
   o.dims = { n, n, n };
-  vtkLVDIFVolumeBridge::SetSparseInformation(outputVector->GetInformationObject(0), o);
+  LVDIFVolumeBridge::SetSparseInformation(outputVector->GetInformationObject(0), o);
   return 1;
 }
 
@@ -116,7 +116,7 @@ int vtkLegacyBvReader::RequestData(vtkInformation*, vtkInformationVector**, vtkI
   options.swapXZ = this->SwapXZ;
   options.distanceScale = this->DistanceScale;
   options.bandWidth = static_cast<float>(this->BandWidth);
-  vtkLVDIFInterrupter interrupter(this);
+  LVDIFInterrupter interrupter(this);
   try
   {
     // The file has no index: it is read whole (no sub-extents).

@@ -1,7 +1,7 @@
 #include "vtkLegacyBvWriter.h"
 
-#include "vtkLVDIFInterrupter.h"
-#include "vtkLVDIFVolumeBridge.h"
+#include "LVDIFInterrupter.h"
+#include "LVDIFVolumeBridge.h"
 #include "vtkSparseDictionaryVolume.h"
 
 #include "lvdif/LegacyBv.h"
@@ -44,7 +44,7 @@ void assignPaletteIndices(lvdif::DictionaryVolume& volume, vtkImageData* image, 
   std::unordered_map<std::uint32_t, lvdif::ColorKey> index;
   for (std::size_t i = 0; i < palette.size(); ++i)
     index.emplace(palette[i].packed(), static_cast<lvdif::ColorKey>(i));
-  const lvdif::GridGeometry g = vtkLVDIFVolumeBridge::Geometry(image);
+  const lvdif::GridGeometry g = LVDIFVolumeBridge::Geometry(image);
   std::vector<lvdif::ColorKey> keys(static_cast<std::size_t>(g.count()));
   for (std::int64_t p = 0; p < g.count(); ++p)
   {
@@ -105,8 +105,8 @@ void vtkLegacyBvWriter::WriteData()
     lvdif::LegacyBvOptions options;
     options.swapXZ = this->SwapXZ;
     options.distanceScale = this->DistanceScale;
-    vtkLVDIFInterrupter interrupter(this);
-    if (!vtkLVDIFVolumeBridge::CallCore(
+    LVDIFInterrupter interrupter(this);
+    if (!LVDIFVolumeBridge::CallCore(
           this, [&] { lvdif::saveLegacyBv(*sparse->GetVolume(), this->FileName, options, interrupter); },
           "cannot write '" + this->FileName + "': "))
     {
@@ -118,7 +118,7 @@ void vtkLegacyBvWriter::WriteData()
   vtkDataArray *sdf, *rgba;
   bool missingFileName;
   const std::string problem =
-    vtkLVDIFVolumeBridge::WriterInput(image, this->FileName, true, sdf, rgba, missingFileName);
+    LVDIFVolumeBridge::WriterInput(image, this->FileName, true, sdf, rgba, missingFileName);
   if (!problem.empty())
   {
     vtkErrorMacro(<< problem);
@@ -130,11 +130,11 @@ void vtkLegacyBvWriter::WriteData()
   lvdif::LegacyBvOptions options;
   options.swapXZ = this->SwapXZ;
   options.distanceScale = this->DistanceScale;
-  vtkLVDIFInterrupter interrupter(this, 0.0, 1.0);
+  LVDIFInterrupter interrupter(this, 0.0, 1.0);
   try
   {
     interrupter.setStage(0.0, 0.3);
-    auto volume = vtkLVDIFVolumeBridge::VolumeFromImage(image, sdf, nullptr, volumeOptions);
+    auto volume = LVDIFVolumeBridge::VolumeFromImage(image, sdf, nullptr, volumeOptions);
     if (rgba)
     {
       assignPaletteIndices(*volume, image, rgba);

@@ -4,7 +4,8 @@ code): the volume is read back through vtkDictionaryVolumeReader, and every
 voxel's distance must equal (|p - c| - r) / spacing, saturated at the band,
 within the tessellation's sagitta plus the dictionary's precision. Each sign
 mode is run (normal with the sign voxel filters); the progress bar is drawn on
-stderr; bad options fail with one line and a non-zero exit code."""
+stderr; bad options fail with one line and a non-zero exit code; an open sheet
+gets the warning that it encloses no volume, the sphere none."""
 import math
 import os
 import subprocess
@@ -98,4 +99,26 @@ for bad, needle in ((["--sign", "inside"], "--sign must be"), (["--dims", "1"], 
     assert not os.path.exists(target), bad
 run = subprocess.run([exe, "mesh-to-sdf", f"{out}/missing.obj", f"{out}/bad.lvdv"], capture_output=True, text=True)
 assert run.returncode == 1 and "missing.obj" in run.stderr, run.stderr
+
+# warnings: an open sheet encloses no volume (written, exit 0, one warning
+# naming the cause and the option); the closed sphere gets none
+sheet = f"{out}/sheet.obj"
+with open(sheet, "w") as f:
+    n = 8
+    for j in range(n + 1):
+        for i in range(n + 1):
+            x, y = -1 + 2 * i / n, -1 + 2 * j / n
+            f.write(f"v {x} {y} {0.02 * x - 0.05 * y + 0.013}\n")
+    for j in range(n):
+        for i in range(n):
+            a = j * (n + 1) + i + 1
+            f.write(f"f {a} {a + 1} {a + n + 2}\nf {a} {a + n + 2} {a + n + 1}\n")
+run = subprocess.run([exe, "mesh-to-sdf", sheet, f"{out}/sheet.lvdv", "--dims", "32", "--device", "cpu"],
+                     capture_output=True, text=True, timeout=60)
+assert run.returncode == 0 and os.path.exists(f"{out}/sheet.lvdv"), run.stderr
+warnings = [l for l in run.stderr.splitlines() if l.startswith("warning: ")]
+assert len(warnings) == 1 and "encloses no volume" in warnings[0] and "pseudo-normal" in warnings[0], run.stderr
+run = subprocess.run([exe, "mesh-to-sdf", mesh, f"{out}/sphere_again.lvdv", "--dims", "24", "--device", "cpu"],
+                     capture_output=True, text=True, timeout=60)
+assert run.returncode == 0 and "warning:" not in run.stderr, run.stderr
 print("mesh-to-sdf OK")

@@ -9,6 +9,17 @@
 //   --image T.png B.png the screenshot matches the baseline (vtkImageDifference,
 //                       as VTK's regression tests); a missing baseline fails
 //                       and says where the new image is.
+//   --removed V.vti     V is the sphere after a Subtract stroke (Ctrl + Add): no
+//                       voxel moved inwards, some lost material.
+//   --changed V.vti     V is the sphere after a shaping stroke (smooth, inflate,
+//                       grab, flatten, crease, paint): some voxel differs from the
+//                       untouched canvas (distance or colour).
+//   --smoothed V.vti    V is the sphere after a smoothing stroke: no distance moved
+//                       by more than 0.25 voxel (a crease moves it 1.5) and some moved.
+//   --mirror-x V.vti    V is its own mirror image about x = 31.5, voxel by voxel
+//                       (distance and colour; a stroke with --mirror x).
+//   --volume V.vti      V is a readable 64^3 volume with sdf and rgba (e.g. what
+//                       Ctrl+Shift+S saved).
 //   --script-shape V.vti  V is sphere.lvs's result: the analytic sphere minus the cube.
 //   --mesh M.ply        the exported mesh has triangles inside the volume.
 //   --write-sphere-obj F.obj   writes a UV sphere (centre MeshC, radius MeshR,
@@ -220,6 +231,56 @@ void checkImage(const char* test, const char* baseline)
   check(err <= 10.0, "the screenshot matches the baseline (thresholded error <= 10, VTK's default)");
 }
 
+// Counts voxels farther out / farther in than the untouched sphere, and colour changes.
+void compareWithSphere(const char* path, long& outward, long& inward, long& recoloured)
+{
+  outward = inward = recoloured = 0;
+  auto img = readVolume(path);
+  int dims[3];
+  img->GetDimensions(dims);
+  auto* sdf = vtkFloatArray::SafeDownCast(img->GetPointData()->GetArray("sdf"));
+  auto* rgba = vtkUnsignedCharArray::SafeDownCast(img->GetPointData()->GetArray("rgba"));
+  check(sdf && rgba && dims[0] == 64 && dims[1] == 64 && dims[2] == 64, std::string(path) + " is the 64^3 canvas");
+  if (!sdf || !rgba || dims[0] != 64)
+    return;
+  vtkIdType id = 0;
+  for (int k = 0; k < 64; ++k)
+    for (int j = 0; j < 64; ++j)
+      for (int i = 0; i < 64; ++i, ++id)
+      {
+        const double e = analytic(i, j, k), v = sdf->GetValue(id);
+        outward += v > e + tolerance(e) + 0.05;
+        inward += v < e - tolerance(e) - 0.05;
+        const unsigned char* c = rgba->GetPointer(4 * id);
+        recoloured += !(c[0] == 200 && c[1] == 200 && c[2] == 200);
+      }
+}
+
+void checkMirrorX(const char* path)
+{
+  auto img = readVolume(path);
+  int dims[3];
+  img->GetDimensions(dims);
+  auto* sdf = vtkFloatArray::SafeDownCast(img->GetPointData()->GetArray("sdf"));
+  auto* rgba = vtkUnsignedCharArray::SafeDownCast(img->GetPointData()->GetArray("rgba"));
+  check(sdf && rgba, "sdf and rgba arrays present");
+  if (!sdf || !rgba)
+    return;
+  long differ = 0, changed = 0;
+  for (int k = 0; k < dims[2]; ++k)
+    for (int j = 0; j < dims[1]; ++j)
+      for (int i = 0; i < dims[0]; ++i)
+      {
+        const vtkIdType a = i + dims[0] * (j + vtkIdType(dims[1]) * k);
+        const vtkIdType b = (dims[0] - 1 - i) + dims[0] * (j + vtkIdType(dims[1]) * k);
+        differ += sdf->GetValue(a) != sdf->GetValue(b) ||
+          std::memcmp(rgba->GetPointer(4 * a), rgba->GetPointer(4 * b), 4) != 0;
+        changed += std::fabs(sdf->GetValue(a) - analytic(i, j, k)) > 0.5;
+      }
+  check(changed > 100, "the stroke changed the sphere (" + std::to_string(changed) + " voxels)");
+  check(differ == 0, "the volume is its own mirror image in x (" + std::to_string(differ) + " voxels differ)");
+}
+
 void checkMesh(const char* path)
 {
   vtkNew<vtkPLYReader> r;
@@ -254,6 +315,52 @@ int main(int argc, char* argv[])
     {
       checkImage(argv[i + 1], argv[i + 2]);
       i += 2;
+    }
+    else if (!std::strcmp(argv[i], "--removed") && i + 1 < argc)
+    {
+      long out = 0, in = 0, col = 0;
+      compareWithSphere(argv[++i], out, in, col);
+      check(in == 0, "no voxel gained material (" + std::to_string(in) + ")");
+      check(out > 100, "the stroke removed material (" + std::to_string(out) + " voxels)");
+    }
+    else if (!std::strcmp(argv[i], "--changed") && i + 1 < argc)
+    {
+      long out = 0, in = 0, col = 0;
+      compareWithSphere(argv[++i], out, in, col);
+      check(out + in + col > 50, "the stroke changed the canvas (" + std::to_string(out) + " out, " +
+          std::to_string(in) + " in, " + std::to_string(col) + " recoloured)");
+    }
+    else if (!std::strcmp(argv[i], "--smoothed") && i + 1 < argc)
+    {
+      auto img = readVolume(argv[++i]);
+      auto* sdf = vtkFloatArray::SafeDownCast(img->GetPointData()->GetArray("sdf"));
+      double worst = 0;
+      long moved = 0;
+      if (sdf && sdf->GetNumberOfTuples() == 64 * 64 * 64)
+      {
+        vtkIdType id = 0;
+        for (int k = 0; k < 64; ++k)
+          for (int j = 0; j < 64; ++j)
+            for (int a = 0; a < 64; ++a, ++id)
+            {
+              const double e = analytic(a, j, k), dv = std::fabs(sdf->GetValue(id) - e);
+              if (std::fabs(e) < 4)
+                worst = std::max(worst, dv);
+              moved += dv > tolerance(e);
+            }
+      }
+      check(worst <= 0.25, "no distance near the surface moved more than 0.25 (" + std::to_string(worst) + ")");
+      check(moved > 20, "the stroke smoothed something (" + std::to_string(moved) + " voxels)");
+    }
+    else if (!std::strcmp(argv[i], "--mirror-x") && i + 1 < argc)
+      checkMirrorX(argv[++i]);
+    else if (!std::strcmp(argv[i], "--volume") && i + 1 < argc)
+    {
+      auto img = readVolume(argv[++i]);
+      int dims[3];
+      img->GetDimensions(dims);
+      check(dims[0] == 64 && img->GetPointData()->GetArray("sdf") && img->GetPointData()->GetArray("rgba"),
+        std::string(argv[i]) + " is a 64^3 volume with sdf and rgba");
     }
     else if (!std::strcmp(argv[i], "--write-sphere-obj") && i + 1 < argc)
       writeSphereObj(argv[++i]);

@@ -3,6 +3,10 @@
 #include "lvdif/Error.h"
 
 #include <cerrno>
+#include <csignal>
+#include <cstdlib>
+#include <dirent.h>
+#include <vector>
 #include <cstring>
 #include <fcntl.h>
 #include <string>
@@ -78,6 +82,56 @@ std::string directoryOf(const std::string& path)
   }
   return slash == 0 ? "/" : path.substr(0, slash);
 }
+
+// A symlink is saved through: the file written is the link's final target
+// (also when that does not exist yet), so the link stays a link.
+std::string resolveLinks(const std::string& path)
+{
+  std::string p = path;
+  for (int hops = 0; hops < 40; ++hops)
+  {
+    struct stat st;
+    if (::lstat(p.c_str(), &st) != 0 || !S_ISLNK(st.st_mode))
+      return p;
+    std::vector<char> buf(static_cast<std::size_t>(st.st_size > 0 ? st.st_size : 255) + 1);
+    const ssize_t n = ::readlink(p.c_str(), buf.data(), buf.size());
+    if (n < 0 || static_cast<std::size_t>(n) >= buf.size())
+      throw Error(ErrorCode::IoFailure, systemError("cannot read the link", p));
+    const std::string target(buf.data(), static_cast<std::size_t>(n));
+    p = !target.empty() && target[0] == '/' ? target : directoryOf(p) + "/" + target;
+  }
+  throw Error(ErrorCode::IoFailure, "cannot save '" + path + "': too many levels of symbolic links");
+}
+
+// Temporary files are "<name>.tmp-<pid>-XXXXXX"; one whose process is gone
+// is the leftover of a killed save and is removed by the next save.
+std::string tempPrefix(const std::string& path)
+{
+  return path + ".tmp-";
+}
+
+void removeStaleTemps(const std::string& path)
+{
+  const std::string dir = directoryOf(path);
+  const std::string base = tempPrefix(path).substr(path.find_last_of('/') == std::string::npos ? 0 : path.find_last_of('/') + 1);
+  DIR* d = ::opendir(dir.c_str());
+  if (!d)
+    return;
+  while (const dirent* e = ::readdir(d))
+  {
+    const std::string name = e->d_name;
+    if (name.compare(0, base.size(), base) != 0)
+      continue;
+    char* end = nullptr;
+    const long pid = std::strtol(name.c_str() + base.size(), &end, 10);
+    if (pid <= 0 || *end != '-' || std::strlen(end) != 7)
+      continue;
+    if (::kill(static_cast<pid_t>(pid), 0) == 0 || errno != ESRCH)
+      continue; // its save may still be running
+    ::unlink((dir + "/" + name).c_str());
+  }
+  ::closedir(d);
+}
 } // namespace
 
 void MemorySource::read(std::uint64_t offset, void* dst, std::size_t n)
@@ -94,7 +148,8 @@ void MemorySource::read(std::uint64_t offset, void* dst, std::size_t n)
 FileSource::FileSource(const std::string& path)
   : Path(path)
 {
-  this->Fd = ::open(path.c_str(), O_RDONLY | O_CLOEXEC);
+  // O_NONBLOCK: opening a FIFO must not wait for a writer; it is refused below
+  this->Fd = ::open(path.c_str(), O_RDONLY | O_CLOEXEC | O_NONBLOCK);
   if (this->Fd < 0)
   {
     throw Error(ErrorCode::IoFailure, systemError("cannot open", path));
@@ -106,6 +161,7 @@ FileSource::FileSource(const std::string& path)
     this->Fd = -1;
     throw Error(ErrorCode::IoFailure, "'" + path + "' is not a regular file");
   }
+  ::fcntl(this->Fd, F_SETFL, ::fcntl(this->Fd, F_GETFL) & ~O_NONBLOCK);
   this->Size = static_cast<std::uint64_t>(st.st_size);
 }
 
@@ -153,13 +209,21 @@ void MemorySink::write(const void* data, std::size_t n)
   this->Written += n;
 }
 
-void saveAtomically(const std::string& path, const std::function<void(ByteSink&)>& produce, const SaveHooks& hooks)
+void saveAtomically(const std::string& givenPath, const std::function<void(ByteSink&)>& produce, const SaveHooks& hooks)
 {
-  if (path.empty())
+  if (givenPath.empty())
   {
     throw Error(ErrorCode::InvalidArgument, "cannot save: empty file name");
   }
-  std::string tmp = path + ".tmp-XXXXXX";
+  const std::string path = resolveLinks(givenPath);
+  struct stat old;
+  const bool exists = ::stat(path.c_str(), &old) == 0;
+  if (exists && !S_ISREG(old.st_mode))
+  {
+    throw Error(ErrorCode::IoFailure, "cannot save over '" + givenPath + "': not a regular file");
+  }
+  removeStaleTemps(path);
+  std::string tmp = tempPrefix(path) + std::to_string(::getpid()) + "-XXXXXX";
   std::vector<char> name(tmp.begin(), tmp.end());
   name.push_back('\0');
   const int fd = ::mkostemp(name.data(), O_CLOEXEC);
@@ -171,8 +235,20 @@ void saveAtomically(const std::string& path, const std::function<void(ByteSink&)
   bool open = true;
   try
   {
-    // mkstemp creates 0600; a saved volume is an ordinary document
-    ::fchmod(fd, 0644);
+    // mkstemp creates 0600: an existing file keeps its mode (and owner, where
+    // allowed); a new one is an ordinary document
+    if (exists)
+    {
+      ::fchmod(fd, old.st_mode & 07777);
+      if (::fchown(fd, old.st_uid, old.st_gid) != 0)
+      {
+        // not permitted for other users' files: the file becomes ours, as any rewrite would
+      }
+    }
+    else
+    {
+      ::fchmod(fd, 0644);
+    }
     FdSink sink(fd, tmp, hooks);
     produce(sink);
     if (::fsync(fd) != 0)

@@ -1,11 +1,14 @@
 #include "lvdif/Brush.h"
+#include "lvdif/EditLimits.h"
 
 #include "BrushKernel.h"
 #include "lvdif/Error.h"
+#include "lvdif/Memory.h"
 
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <set>
 #include <sstream>
 
 namespace lvdif
@@ -29,8 +32,51 @@ const char* toString(BrushOp op)
     case BrushOp::Add: return "add";
     case BrushOp::Subtract: return "subtract";
     case BrushOp::Paint: return "paint";
+    case BrushOp::Smooth: return "smooth";
+    case BrushOp::Inflate: return "inflate";
+    case BrushOp::Grab: return "grab";
+    case BrushOp::Flatten: return "flatten";
+    case BrushOp::Crease: return "crease";
   }
   return "unknown";
+}
+
+const char* toString(Falloff f)
+{
+  switch (f)
+  {
+    case Falloff::Constant: return "constant";
+    case Falloff::Linear: return "linear";
+    case Falloff::Smooth: return "smooth";
+    case Falloff::Sharp: return "sharp";
+  }
+  return "unknown";
+}
+
+std::vector<Dab> mirrorDabs(const std::vector<Dab>& dabs, const Symmetry& sym)
+{
+  std::vector<Dab> out;
+  int axes[3], n = 0;
+  for (int a = 0; a < 3; ++a)
+    if (sym.mirror[a])
+      axes[n++] = a;
+  out.reserve(dabs.size() << n);
+  for (const Dab& d : dabs)
+    for (int m = 0; m < (1 << n); ++m)
+    {
+      Dab c = d;
+      for (int i = 0; i < n; ++i)
+        if (m & (1 << i))
+        {
+          const int a = axes[i];
+          const double p = sym.plane[a];
+          c.center[a] = 2 * p - c.center[a];
+          c.end[a] = 2 * p - c.end[a];
+          c.vec[a] = -c.vec[a];
+        }
+      out.push_back(c);
+    }
+  return out;
 }
 
 namespace
@@ -39,9 +85,9 @@ namespace
 double reachOf(const DictionaryVolume& volume, const BrushSettings& s)
 {
   const double k = s.blend > 0 ? s.blend : 0.0;
-  if (s.op == BrushOp::Paint)
+  if (s.op != BrushOp::Add && s.op != BrushOp::Subtract)
   {
-    return 0.0;
+    return 0.0; // the other operations act inside the primitive only
   }
   const double band = volume.bandWidth();
   const double colour = s.op == BrushOp::Add ? s.colorOffset : 0.0;
@@ -87,30 +133,11 @@ VoxelBox boxFor(const DictionaryVolume& volume, const Dab& d, double reach)
   return b.intersect(volume.bounds());
 }
 
-void validate(const std::vector<Dab>& dabs, const BrushSettings& s)
+void validateAll(const std::vector<Dab>& dabs, const BrushSettings& s)
 {
-  require(std::isfinite(s.blend) && s.blend >= 0, "brush blend radius must be finite and >= 0");
-  require(std::isfinite(s.colorOffset) && s.colorOffset >= 0, "brush colour offset must be finite and >= 0");
-  require(std::isfinite(s.rounding) && s.rounding >= 0, "cube rounding must be finite and >= 0");
-  require(s.op == BrushOp::Add || s.op == BrushOp::Subtract || s.op == BrushOp::Paint, "unknown brush operation");
+  validate(s);
   for (size_t i = 0; i < dabs.size(); ++i)
-  {
-    const Dab& d = dabs[i];
-    bool ok = std::isfinite(d.radius) && d.radius < 1e7;
-    for (int a = 0; a < 3; ++a)
-    {
-      ok = ok && std::isfinite(d.center[a]) && std::fabs(d.center[a]) < 1e9;
-      if (d.shape == BrushShape::Capsule)
-        ok = ok && std::isfinite(d.end[a]) && std::fabs(d.end[a]) < 1e9;
-    }
-    ok = ok && (d.shape == BrushShape::Sphere || d.shape == BrushShape::Cube || d.shape == BrushShape::Capsule);
-    if (!ok)
-    {
-      std::ostringstream msg;
-      msg << "dab " << i << " has a non-finite, absurd or unknown position, radius or shape";
-      throw Error(ErrorCode::InvalidArgument, msg.str());
-    }
-  }
+    validate(dabs[i], i);
 }
 
 
@@ -186,47 +213,331 @@ VoxelBox dabInfluenceBox(const DictionaryVolume& volume, const Dab& dab, const B
   return boxFor(volume, dab, reachOf(volume, settings));
 }
 
-namespace detail::edit
+namespace
 {
-DabPlan planDabs(DictionaryVolume& volume, const std::vector<Dab>& dabs, const BrushSettings& settings)
+double trilinear(const DictionaryVolume& v, const float* table, double x, double y, double z)
 {
-  validate(dabs, settings);
-  DabPlan plan;
-  BrushContext& ctx = plan.ctx;
+  const Index3& n = v.dims();
+  const double p[3] = { std::min(std::max(x, 0.0), double(n[0] - 1)), std::min(std::max(y, 0.0), double(n[1] - 1)),
+    std::min(std::max(z, 0.0), double(n[2] - 1)) };
+  std::int64_t i0[3], i1[3];
+  double f[3];
+  for (int a = 0; a < 3; ++a)
+  {
+    i0[a] = static_cast<std::int64_t>(std::floor(p[a]));
+    i1[a] = std::min(i0[a] + 1, n[a] - 1);
+    f[a] = p[a] - double(i0[a]);
+  }
+  double r = 0;
+  for (int c = 0; c < 8; ++c)
+  {
+    const double w = ((c & 1) ? f[0] : 1 - f[0]) * ((c & 2) ? f[1] : 1 - f[1]) * ((c & 4) ? f[2] : 1 - f[2]);
+    if (w == 0)
+      continue;
+    r += w * table[v.get((c & 1) ? i1[0] : i0[0], (c & 2) ? i1[1] : i0[1], (c & 4) ? i1[2] : i0[2]).sdf];
+  }
+  return r;
+}
+
+// Flatten's plane for a dab: tangent to the surface nearest the centre.
+void measurePlane(const DictionaryVolume& v, Dab& d)
+{
+  const float* table = v.sdfDictionary().table();
+  const double cx = d.center[0], cy = d.center[1], cz = d.center[2];
+  double g[3] = { trilinear(v, table, cx + 1, cy, cz) - trilinear(v, table, cx - 1, cy, cz),
+    trilinear(v, table, cx, cy + 1, cz) - trilinear(v, table, cx, cy - 1, cz),
+    trilinear(v, table, cx, cy, cz + 1) - trilinear(v, table, cx, cy, cz - 1) };
+  const double len = std::sqrt(g[0] * g[0] + g[1] * g[1] + g[2] * g[2]);
+  if (!(len > 1e-9))
+  {
+    g[0] = 0, g[1] = 0, g[2] = 1; // flat field (deep inside or far outside): any plane
+  }
+  else
+  {
+    for (double& c : g)
+      c /= len;
+  }
+  const double dc = trilinear(v, table, cx, cy, cz);
+  d.vec = { g[0], g[1], g[2] };
+  d.value = g[0] * (cx - dc * g[0]) + g[1] * (cy - dc * g[1]) + g[2] * (cz - dc * g[2]);
+}
+
+// Soft paint: every colour key the plan's boxes hold where the skin may be
+// painted, and its mixes with the brush colour in eighths.
+void buildMixTable(DictionaryVolume& volume, detail::edit::DabPlan& plan, const BrushSettings& settings)
+{
+  const float* table = volume.sdfDictionary().table();
+  std::set<std::uint16_t> keys;
+  VoxelBox all;
+  for (const VoxelBox& b : plan.boxes)
+    all = all.unite(b);
+  for (std::int64_t id : plan.chunks)
+  {
+    if (volume.isUniform(id))
+    {
+      keys.insert(volume.uniformValue(id).color);
+      continue;
+    }
+    const VoxelBox b = volume.chunkBox(id).intersect(all);
+    for (std::int64_t z = b.lo[2]; z <= b.hi[2]; ++z)
+      for (std::int64_t y = b.lo[1]; y <= b.hi[1]; ++y)
+        for (std::int64_t x = b.lo[0]; x <= b.hi[0]; ++x)
+        {
+          const Voxel v = volume.get(x, y, z);
+          if (std::fabs(table[v.sdf]) <= settings.colorOffset)
+            keys.insert(v.color);
+        }
+  }
+  const Rgba brush = settings.color;
+  for (std::uint16_t k : keys)
+  {
+    plan.mixFrom.push_back(k);
+    const Rgba old = volume.colors().color(k);
+    for (int q = 1; q < detail::edit::PaintLevels; ++q)
+    {
+      const int L = detail::edit::PaintLevels;
+      auto mix = [&](std::uint8_t a, std::uint8_t b) {
+        return static_cast<std::uint8_t>((int(a) * (L - q) + int(b) * q + L / 2) / L);
+      };
+      plan.mixTo.push_back(
+        volume.colors().add(Rgba{ mix(old.r, brush.r), mix(old.g, brush.g), mix(old.b, brush.b), mix(old.a, brush.a) }));
+    }
+  }
+  plan.ctx.mixFrom = plan.mixFrom.data();
+  plan.ctx.mixTo = plan.mixTo.data();
+  plan.ctx.mixCount = static_cast<int>(plan.mixFrom.size());
+}
+
+// Plans groups of dabs (any operation); shared by the per-voxel rule and the gather brushes.
+detail::edit::DabPlan planGroups(DictionaryVolume& volume, const std::vector<Dab>& dabs, const BrushSettings& settings,
+  const ChunkWriteObserver* observer = nullptr)
+{
+  validateAll(dabs, settings);
+  detail::edit::DabPlan plan;
+  detail::edit::BrushContext& ctx = plan.ctx;
   ctx.op = static_cast<int>(settings.op);
   ctx.blend = settings.blend;
   ctx.colorOffset = settings.colorOffset;
   ctx.rounding = settings.rounding;
   ctx.reach = reachOf(volume, settings);
-  if (settings.op != BrushOp::Subtract)
+  ctx.strength = settings.strength;
+  ctx.falloff = static_cast<int>(settings.falloff);
+  ctx.invert = settings.invert ? 1 : 0;
+  ctx.band = volume.bandWidth();
+  const bool csg = settings.op == BrushOp::Add || settings.op == BrushOp::Subtract || settings.op == BrushOp::Paint;
+  ctx.unitWeight = csg && settings.strength == 1 && settings.falloff == Falloff::Constant ? 1 : 0;
+  ctx.groupSize = 1;
+  int nMirror = 0;
+  for (int a = 0; a < 3; ++a)
+  {
+    ctx.twicePlane[a] = 2 * settings.symmetry.plane[a];
+    if (settings.symmetry.mirror[a])
+    {
+      ctx.groupSize *= 2;
+      ctx.mirrorAxis[nMirror++] = a; // mirrorDabs' bit order
+    }
+  }
+  if (settings.op == BrushOp::Add || settings.op == BrushOp::Paint)
   {
     ctx.colorKey = volume.colors().add(settings.color);
   }
-  for (const Dab& d : dabs)
+  // Budgets, counted before any chunk is visited or written: the chunk visits
+  // of all boxes, then the memory the edit may allocate (uniform chunks it
+  // expands, plus the undo snapshots of expanded ones).
+  const std::uint64_t maxVisits = EditLimits().maxChunkVisitsPerEdit;
+  const double edge = volume.chunkEdge();
+  double visits = 0;
+  const std::vector<Dab> all = mirrorDabs(dabs, settings.symmetry);
+  const std::size_t g = static_cast<std::size_t>(ctx.groupSize);
+  for (std::size_t first = 0; first < all.size(); first += g)
   {
-    if (!(d.radius > 0))
+    if (!(all[first].radius > 0))
     {
       continue; // the original skips points with w <= 0
     }
-    const VoxelBox b = boxFor(volume, d, ctx.reach);
-    if (b.empty())
+    std::vector<VoxelBox> boxes(g);
+    bool any = false;
+    for (std::size_t k = 0; k < g; ++k)
+    {
+      boxes[k] = boxFor(volume, all[first + k], ctx.reach);
+      any = any || !boxes[k].empty();
+    }
+    if (!any)
     {
       continue;
     }
-    plan.dabs.push_back(d);
-    plan.boxes.push_back(b);
-    volume.forEachChunkInBox(b, [&](std::int64_t id) { plan.chunks.push_back(id); });
+    for (std::size_t k = 0; k < g; ++k)
+    {
+      const VoxelBox& b = boxes[k];
+      if (!b.empty())
+      {
+        double n = 1;
+        for (int a = 0; a < 3; ++a)
+          n *= std::floor(double(b.hi[a]) / edge) - std::floor(double(b.lo[a]) / edge) + 1;
+        visits += n;
+      }
+      if (visits > double(maxVisits))
+        throw Error(ErrorCode::InvalidArgument, "the edit's " + std::to_string(all.size()) +
+            " dabs would visit more than " + std::to_string(maxVisits) + " chunks (radius, blend or dab count too large)");
+      Dab d = all[first + k];
+      if (settings.op == BrushOp::Flatten)
+        measurePlane(volume, d);
+      plan.dabs.push_back(d);
+      plan.boxes.push_back(b);
+    }
   }
+  std::vector<bool> seen(static_cast<std::size_t>(volume.chunkCount()), false);
+  for (const VoxelBox& b : plan.boxes)
+    volume.forEachChunkInBox(b, [&](std::int64_t id) {
+      if (!seen[static_cast<std::size_t>(id)])
+      {
+        seen[static_cast<std::size_t>(id)] = true;
+        plan.chunks.push_back(id);
+      }
+    });
   std::sort(plan.chunks.begin(), plan.chunks.end());
-  plan.chunks.erase(std::unique(plan.chunks.begin(), plan.chunks.end()), plan.chunks.end());
+  const std::uint64_t chunkBytes = std::uint64_t(volume.chunkEdge()) * std::uint64_t(volume.chunkEdge()) *
+    std::uint64_t(volume.chunkEdge()) * sizeof(Voxel);
+  std::uint64_t newBytes = 0;
+  for (std::int64_t id : plan.chunks)
+    newBytes += volume.isUniform(id) ? chunkBytes : 0;
+  requireMemory(newBytes + (observer ? plan.chunks.size() * chunkBytes : 0),
+    "an edit of " + std::to_string(plan.chunks.size()) + " chunks");
+  if (settings.op == BrushOp::Paint && !ctx.unitWeight)
+    buildMixTable(volume, plan, settings);
   return plan;
+}
+
+// Smooth and Grab: per group, every new value is computed from the volume as
+// the previous group left it, then written.
+EditResult applyGather(DictionaryVolume& volume, const detail::edit::DabPlan& plan, ChunkWriteObserver* observer)
+{
+  const detail::edit::BrushContext& c = plan.ctx;
+  const float* table = volume.sdfDictionary().table();
+  const Index3& n = volume.dims();
+  const bool grab = c.op == static_cast<int>(BrushOp::Grab);
+  EditResult result;
+  std::set<std::int64_t> changedChunks;
+  const int g = c.groupSize;
+  const int groups = static_cast<int>(plan.dabs.size()) / g;
+  struct Change
+  {
+    std::int64_t x, y, z;
+    Voxel v;
+  };
+  for (int gi = 0; gi < groups; ++gi)
+  {
+    VoxelBox box;
+    for (int k = gi * g; k < (gi + 1) * g; ++k)
+      box = box.unite(plan.boxes[static_cast<std::size_t>(k)]);
+    std::vector<std::vector<Change>> perSlice(static_cast<std::size_t>(box.hi[2] - box.lo[2] + 1));
+    const std::int64_t nz = static_cast<std::int64_t>(perSlice.size());
+#pragma omp parallel for schedule(dynamic, 1) if (nz > 4)
+    for (std::int64_t iz = 0; iz < nz; ++iz)
+    {
+      const std::int64_t z = box.lo[2] + iz;
+      std::vector<Change>& out = perSlice[static_cast<std::size_t>(iz)];
+      for (std::int64_t y = box.lo[1]; y <= box.hi[1]; ++y)
+        for (std::int64_t x = box.lo[0]; x <= box.hi[0]; ++x)
+        {
+          double s = 0, t = 0, disp[3] = { 0, 0, 0 };
+          bool in = false;
+          const Dab& base = plan.dabs[static_cast<std::size_t>(gi * g)];
+          for (int k = gi * g; k < (gi + 1) * g; ++k)
+          {
+            const Dab& d = plan.dabs[static_cast<std::size_t>(k)];
+            if (!plan.boxes[static_cast<std::size_t>(k)].contains(x, y, z))
+              continue;
+            double p[3] = { double(x), double(y), double(z) };
+            detail::edit::reflectForMember(c, k - gi * g, p);
+            const double sk = dabDistance(base, p[0], p[1], p[2], c.rounding);
+            const double tk = dabRadialFraction(base, p[0], p[1], p[2]);
+            if (!in || sk < s)
+              s = sk;
+            if (!in || tk < t)
+              t = tk;
+            in = true;
+            if (grab && sk <= 0)
+            {
+              const double wk = c.strength * falloffCurve(c.falloff, tk);
+              for (int a = 0; a < 3; ++a)
+                disp[a] += wk * d.vec[a];
+            }
+          }
+          if (!in || s > 0)
+            continue;
+          const Voxel old = volume.get(x, y, z);
+          const double d = table[old.sdf];
+          double dn = d;
+          if (grab)
+          {
+            if (disp[0] == 0 && disp[1] == 0 && disp[2] == 0)
+              continue;
+            dn = trilinear(volume, table, double(x) - disp[0], double(y) - disp[1], double(z) - disp[2]);
+          }
+          else
+          {
+            const double w = c.strength * falloffCurve(c.falloff, t);
+            if (!(w > 0) || !(d > -c.band && d < c.band))
+              continue;
+            const std::int64_t nb[6][3] = { { x - 1, y, z }, { x + 1, y, z }, { x, y - 1, z }, { x, y + 1, z },
+              { x, y, z - 1 }, { x, y, z + 1 } };
+            double v6[6];
+            for (int i = 0; i < 6; ++i)
+            {
+              const std::int64_t* q = nb[i];
+              const bool inside = q[0] >= 0 && q[1] >= 0 && q[2] >= 0 && q[0] < n[0] && q[1] < n[1] && q[2] < n[2];
+              v6[i] = inside ? table[volume.get(q[0], q[1], q[2]).sdf] : d;
+            }
+            // summed by axis pairs, so a mirror image of the volume gives the mirror image bit for bit
+            const double sum = (v6[0] + v6[1]) + (v6[2] + v6[3]) + (v6[4] + v6[5]);
+            dn = d + w * (sum / 6 - d);
+          }
+          Voxel v = old;
+          v.sdf = volume.encode(static_cast<float>(dn));
+          if (v != old)
+            out.push_back(Change{ x, y, z, v });
+        }
+    }
+    std::set<std::int64_t> touched;
+    for (const auto& slice : perSlice)
+      for (const Change& ch : slice)
+      {
+        const std::int64_t id = volume.chunkOf(ch.x, ch.y, ch.z);
+        if (touched.insert(id).second && observer)
+          observer->beforeChunkWrite(volume, id);
+        volume.set(ch.x, ch.y, ch.z, ch.v);
+        ++result.changedVoxels;
+        result.changedBox.include(ch.x, ch.y, ch.z);
+      }
+    for (std::int64_t id : touched)
+      if (!volume.isUniform(id))
+        volume.tryCollapseChunk(id);
+    changedChunks.insert(touched.begin(), touched.end());
+  }
+  result.changedChunks.assign(changedChunks.begin(), changedChunks.end());
+  return result;
+}
+} // namespace
+
+namespace detail::edit
+{
+DabPlan planDabs(DictionaryVolume& volume, const std::vector<Dab>& dabs, const BrushSettings& settings,
+  const ChunkWriteObserver* observer)
+{
+  if (readsNeighbours(settings.op))
+    throw Error(ErrorCode::Unsupported,
+      std::string("the ") + toString(settings.op) + " brush reads neighbouring voxels and runs on the CPU only");
+  return planGroups(volume, dabs, settings, observer);
 }
 } // namespace detail::edit
 
 EditResult applyDabs(DictionaryVolume& volume, const std::vector<Dab>& dabs, const BrushSettings& settings,
   ChunkWriteObserver* observer)
 {
-  detail::edit::DabPlan plan = detail::edit::planDabs(volume, dabs, settings);
+  if (readsNeighbours(settings.op))
+    return applyGather(volume, planGroups(volume, dabs, settings, observer), observer);
+  detail::edit::DabPlan plan = detail::edit::planDabs(volume, dabs, settings, observer);
   EditResult result;
   const detail::edit::BrushContext& ctx = plan.ctx;
   const std::vector<Dab>& active = plan.dabs;
@@ -257,11 +568,12 @@ EditResult applyDabs(DictionaryVolume& volume, const std::vector<Dab>& dabs, con
       const double halfDiag = 0.5 * std::sqrt(double((cb.hi[0] - cb.lo[0]) * (cb.hi[0] - cb.lo[0]) +
                                                 (cb.hi[1] - cb.lo[1]) * (cb.hi[1] - cb.lo[1]) +
                                                 (cb.hi[2] - cb.lo[2]) * (cb.hi[2] - cb.lo[2])));
-      std::vector<int> mine;
+      std::vector<int> mine; // groups that can reach this chunk
       bool covered = false; // some dab is below -band over the whole chunk
       VoxelBox region;
       region.lo = cb.hi;
       region.hi = cb.lo;
+      const int g = ctx.groupSize;
       for (size_t k = 0; k < active.size(); ++k)
       {
         const VoxelBox ib = boxes[k].intersect(cb);
@@ -271,7 +583,9 @@ EditResult applyDabs(DictionaryVolume& volume, const std::vector<Dab>& dabs, con
         if (sc - halfDiag > reach)
           continue;
         covered = covered || sc + halfDiag <= -double(band);
-        mine.push_back(static_cast<int>(k));
+        const int group = static_cast<int>(k) / g;
+        if (mine.empty() || mine.back() != group)
+          mine.push_back(group);
         for (int a = 0; a < 3; ++a)
         {
           region.lo[a] = std::min(region.lo[a], ib.lo[a]);
@@ -280,7 +594,7 @@ EditResult applyDabs(DictionaryVolume& volume, const std::vector<Dab>& dabs, con
       }
       if (mine.empty())
         continue;
-      if (covered && ctx.blend <= 0 && ctx.op != static_cast<int>(BrushOp::Paint))
+      if (covered && ctx.blend <= 0 && ctx.unitWeight && ctx.op != static_cast<int>(BrushOp::Paint))
       {
         std::int64_t n = 0;
         if (coverChunk(volume, id, ctx, observer, n))
@@ -305,42 +619,36 @@ EditResult applyDabs(DictionaryVolume& volume, const std::vector<Dab>& dabs, con
         {
           // per row, the x range each dab can reach (a sphere trims it analytically)
           std::int64_t x0 = region.hi[0] + 1, x1 = region.lo[0] - 1;
-          for (int k : mine)
+          for (int gi : mine)
           {
-            const VoxelBox& b = boxes[static_cast<size_t>(k)];
-            if (y < b.lo[1] || y > b.hi[1] || z < b.lo[2] || z > b.hi[2])
-              continue;
-            std::int64_t lo = std::max(b.lo[0], region.lo[0]), hi = std::min(b.hi[0], region.hi[0]);
-            const Dab& d = active[static_cast<size_t>(k)];
-            if (d.shape == BrushShape::Sphere && std::isfinite(reach))
+            for (int k = gi * g; k < (gi + 1) * g; ++k)
             {
-              const double rr = d.radius + reach, dy = y - d.center[1], dz = z - d.center[2];
-              const double q = rr * rr - dy * dy - dz * dz;
-              if (q < 0)
+              const VoxelBox& b = boxes[static_cast<size_t>(k)];
+              if (y < b.lo[1] || y > b.hi[1] || z < b.lo[2] || z > b.hi[2])
                 continue;
-              const double w = std::sqrt(q);
-              lo = std::max(lo, static_cast<std::int64_t>(std::floor(d.center[0] - w)));
-              hi = std::min(hi, static_cast<std::int64_t>(std::ceil(d.center[0] + w)));
+              std::int64_t lo = std::max(b.lo[0], region.lo[0]), hi = std::min(b.hi[0], region.hi[0]);
+              const Dab& d = active[static_cast<size_t>(k)];
+              if (d.shape == BrushShape::Sphere && std::isfinite(reach))
+              {
+                const double rr = d.radius + reach, dy = y - d.center[1], dz = z - d.center[2];
+                const double q = rr * rr - dy * dy - dz * dz;
+                if (q < 0)
+                  continue;
+                const double w = std::sqrt(q);
+                lo = std::max(lo, static_cast<std::int64_t>(std::floor(d.center[0] - w)));
+                hi = std::min(hi, static_cast<std::int64_t>(std::ceil(d.center[0] + w)));
+              }
+              x0 = std::min(x0, lo);
+              x1 = std::max(x1, hi);
             }
-            x0 = std::min(x0, lo);
-            x1 = std::max(x1, hi);
           }
           for (std::int64_t x = x0; x <= x1; ++x)
           {
             const std::int64_t li = volume.localIndex(x, y, z);
             const Voxel old = writeData ? writeData[li] : (readData ? readData[li] : uniformValue);
             Voxel v = old;
-            for (int k : mine)
-            {
-              const VoxelBox& b = boxes[static_cast<size_t>(k)];
-              if (!b.contains(x, y, z))
-                continue;
-              const double s =
-                dabDistance(active[static_cast<size_t>(k)], double(x), double(y), double(z), ctx.rounding);
-              if (s > reach)
-                continue;
-              detail::edit::combineVoxel(v.sdf, v.color, s, ctx, table, encode);
-            }
+            for (int gi : mine)
+              detail::edit::applyGroupToVoxel(v.sdf, v.color, x, y, z, active.data(), boxes.data(), gi, ctx, table, encode);
             if (v != old)
             {
               if (!touched)

@@ -92,6 +92,7 @@ EditResult applyDabs(DictionaryVolume& volume, const std::vector<Dab>& dabs, con
 {
   if (!available())
     throw Error(ErrorCode::Unsupported, "no CUDA device is available for the brush");
+  // (Smooth and Grab are refused by planDabs: they read neighbours, CPU only.)
   const detail::edit::DabPlan plan = detail::edit::planDabs(volume, dabs, settings);
   EditResult result;
   if (plan.chunks.empty())
@@ -118,14 +119,16 @@ EditResult applyDabs(DictionaryVolume& volume, const std::vector<Dab>& dabs, con
 
   DeviceCache& dc = cache();
   std::lock_guard<std::mutex> lock(dc.mutex);
-  // layout of the small buffer: dabs | boxes | uniform | expanded | origin | changed
+  // layout of the small buffer: dabs | boxes | uniform | expanded | origin | changed | soft paint's mix table
   const std::size_t oDabs = 0;
   const std::size_t oBoxes = alignUp(oDabs + sizeof(Dab) * plan.dabs.size());
   const std::size_t oUniform = alignUp(oBoxes + sizeof(DeviceBox) * boxes.size());
   const std::size_t oExpanded = alignUp(oUniform + sizeof(std::uint32_t) * batch);
   const std::size_t oOrigin = alignUp(oExpanded + sizeof(int) * batch);
   const std::size_t oChanged = alignUp(oOrigin + sizeof(long long) * 3 * batch);
-  const std::size_t smallTotal = alignUp(oChanged + sizeof(unsigned int) * batch);
+  const std::size_t oMixFrom = alignUp(oChanged + sizeof(unsigned int) * batch);
+  const std::size_t oMixTo = alignUp(oMixFrom + sizeof(std::uint16_t) * plan.mixFrom.size());
+  const std::size_t smallTotal = alignUp(oMixTo + sizeof(std::uint16_t) * plan.mixTo.size());
   dc.reserve(dc.small, dc.smallBytes, smallTotal);
   dc.reserve(dc.slots, dc.slotBytes, batch * chunkBytes);
   if (!dc.table)
@@ -142,6 +145,16 @@ EditResult applyDabs(DictionaryVolume& volume, const std::vector<Dab>& dabs, con
   {
     LVDIF_CUDA_CHECK(cudaMemcpy(small + oDabs, plan.dabs.data(), sizeof(Dab) * plan.dabs.size(), cudaMemcpyHostToDevice));
     LVDIF_CUDA_CHECK(cudaMemcpy(small + oBoxes, boxes.data(), sizeof(DeviceBox) * boxes.size(), cudaMemcpyHostToDevice));
+  }
+  detail::edit::BrushContext ctx = plan.ctx;
+  if (!plan.mixFrom.empty())
+  {
+    LVDIF_CUDA_CHECK(cudaMemcpy(small + oMixFrom, plan.mixFrom.data(), sizeof(std::uint16_t) * plan.mixFrom.size(),
+      cudaMemcpyHostToDevice));
+    LVDIF_CUDA_CHECK(
+      cudaMemcpy(small + oMixTo, plan.mixTo.data(), sizeof(std::uint16_t) * plan.mixTo.size(), cudaMemcpyHostToDevice));
+    ctx.mixFrom = reinterpret_cast<const std::uint16_t*>(small + oMixFrom);
+    ctx.mixTo = reinterpret_cast<const std::uint16_t*>(small + oMixTo);
   }
   const detail::edit::EncodeParams enc = detail::edit::EncodeParams::of(volume.sdfDictionary(), volume.bandWidth());
   const Index3& dims = volume.dims();
@@ -175,7 +188,7 @@ EditResult applyDabs(DictionaryVolume& volume, const std::vector<Dab>& dabs, con
     dabKernel<<<grid, block>>>(slots, reinterpret_cast<const std::uint32_t*>(small + oUniform),
       reinterpret_cast<const int*>(small + oExpanded), reinterpret_cast<const long long*>(small + oOrigin), edge, shift,
       dims[0], dims[1], dims[2], reinterpret_cast<const Dab*>(small + oDabs),
-      reinterpret_cast<const DeviceBox*>(small + oBoxes), nDabs, plan.ctx, dc.table, enc,
+      reinterpret_cast<const DeviceBox*>(small + oBoxes), nDabs, ctx, dc.table, enc,
       reinterpret_cast<unsigned int*>(small + oChanged));
     LVDIF_CUDA_CHECK(cudaGetLastError());
     LVDIF_CUDA_CHECK(cudaMemcpy(changed.data(), small + oChanged, sizeof(unsigned int) * count, cudaMemcpyDeviceToHost));

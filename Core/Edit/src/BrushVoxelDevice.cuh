@@ -1,6 +1,6 @@
 // The per-voxel dab loop shared by the two CUDA brush paths (Brush.cu, which
 // round-trips chunks per call, and DeviceVolume.cu, which keeps them resident):
-// applies every dab whose box holds the voxel, with the CPU's rule
+// applies every dab group (a dab and its mirror images) whose box holds the voxel, with the CPU's rule
 // (BrushKernel.h), and returns the voxel's new packed value (sdf | colour << 16).
 #pragma once
 
@@ -25,16 +25,9 @@ __device__ inline std::uint32_t applyDabsToVoxel(std::uint32_t v, long long x, l
 {
   std::uint16_t sdf = static_cast<std::uint16_t>(v & 0xffffu);
   std::uint16_t color = static_cast<std::uint16_t>(v >> 16);
-  for (int k = 0; k < nDabs; ++k)
-  {
-    const DeviceDabBox& b = boxes[k];
-    if (x < b.lo[0] || x > b.hi[0] || y < b.lo[1] || y > b.hi[1] || z < b.lo[2] || z > b.hi[2])
-      continue;
-    const double s = dabDistance(dabs[k], double(x), double(y), double(z), ctx.rounding);
-    if (s > ctx.reach)
-      continue;
-    combineVoxel(sdf, color, s, ctx, table, enc);
-  }
+  const int nGroups = nDabs / ctx.groupSize;
+  for (int g = 0; g < nGroups; ++g)
+    applyGroupToVoxel(sdf, color, x, y, z, dabs, boxes, g, ctx, table, enc);
   return static_cast<std::uint32_t>(sdf) | (static_cast<std::uint32_t>(color) << 16);
 }
 

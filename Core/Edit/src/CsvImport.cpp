@@ -6,6 +6,7 @@
 // original's '-' separator cannot write negative numbers, so none occur).
 #include "lvdif/Recording.h"
 
+#include "lvdif/EditLimits.h"
 #include "lvdif/Error.h"
 
 #include <cmath>
@@ -70,6 +71,9 @@ CsvImportResult importOriginalCsv(std::istream& in, const CsvImportOptions& opti
   require(std::isfinite(options.targetSize) && options.targetSize > 0, "target volume size must be > 0");
   const std::vector<Rgba>& palette = options.palette.empty() ? defaultCsvPalette() : options.palette;
   const double scale = options.targetSize / options.originalSize;
+  require(std::isfinite(scale) && scale > 0, "target / original volume size must be a finite ratio > 0");
+  const EditLimits limits;
+  std::uint64_t totalDabs = 0;
   CsvImportResult result;
   std::string line;
   std::size_t no = 0;
@@ -126,12 +130,36 @@ CsvImportResult importOriginalCsv(std::istream& in, const CsvImportOptions& opti
       d.center = { v[2] * scale, v[1] * scale, v[0] * scale };
       d.radius = v[3] * scale;
       e.dabs.push_back(d);
+      if (e.dabs.size() > limits.maxDabsPerEdit)
+      {
+        ok = false;
+        break;
+      }
     }
     if (!ok || e.dabs.empty())
     {
-      skip("bad point list (expected x-y-z-w joined by '_')");
+      skip(e.dabs.size() > limits.maxDabsPerEdit
+          ? "more than " + std::to_string(limits.maxDabsPerEdit) + " points in one row"
+          : "bad point list (expected x-y-z-w joined by '_')");
       continue;
     }
+    try
+    {
+      // the rules of every other edit input (lvdif/EditLimits.h), row by row
+      validate(e.brush);
+      checkedNumber(e.spacing, EditLimits::MinSpacing, EditLimits::MaxSize, "spacing");
+      for (std::size_t i = 0; i < e.dabs.size(); ++i)
+        validate(e.dabs[i], i);
+    }
+    catch (const Error& x)
+    {
+      skip(x.what());
+      continue;
+    }
+    totalDabs += e.dabs.size();
+    if (totalDabs > limits.maxTotalDabs)
+      throw Error(ErrorCode::InvalidArgument, "line " + std::to_string(no) + ": the CSV has more than " +
+          std::to_string(limits.maxTotalDabs) + " points in all");
     result.recording.records.push_back(std::move(e));
   }
   return result;

@@ -433,6 +433,12 @@ EditResult DeviceVolume::applyDabs(const std::vector<Dab>& dabs, const BrushSett
 {
   Impl& p = *this->P;
   DictionaryVolume& volume = this->Volume;
+  // Flatten measures its plane and soft paint its colours on the host volume,
+  // which is stale here until sync(): both stay on Brush.cu's round trip.
+  if (settings.op == BrushOp::Flatten ||
+    (settings.op == BrushOp::Paint && !(settings.strength == 1 && settings.falloff == Falloff::Constant)))
+    throw Error(ErrorCode::Unsupported, "the device-resident volume applies add, subtract, hard paint, inflate and "
+                                        "crease; use lvdif::applyDabs(Device::Cuda, ...) for flatten and soft paint");
   const detail::edit::DabPlan plan = detail::edit::planDabs(volume, dabs, settings);
   EditResult result;
   if (plan.chunks.empty())
@@ -482,21 +488,33 @@ EditResult DeviceVolume::applyDabs(const std::vector<Dab>& dabs, const BrushSett
       c.hi[a] = -1;
     }
   }
-  // one packed upload: dabs | boxes | jobs | changes (initial values)
+  // one packed upload: dabs | boxes | jobs | changes (initial values) | soft paint's mix tables
   const std::size_t oBoxes = alignUp(sizeof(Dab) * plan.dabs.size());
   const std::size_t oJobs = alignUp(oBoxes + sizeof(Box) * boxes.size());
   const std::size_t oChanges = alignUp(oJobs + sizeof(ChunkJob) * nChunks);
-  const std::size_t total = alignUp(oChanges + sizeof(ChunkChange) * nChunks);
+  const std::size_t oMixFrom = alignUp(oChanges + sizeof(ChunkChange) * nChunks);
+  const std::size_t oMixTo = alignUp(oMixFrom + sizeof(std::uint16_t) * plan.mixFrom.size());
+  const std::size_t total = alignUp(oMixTo + sizeof(std::uint16_t) * plan.mixTo.size());
   std::vector<char> host(total);
   std::memcpy(host.data(), plan.dabs.data(), sizeof(Dab) * plan.dabs.size());
   std::memcpy(host.data() + oBoxes, boxes.data(), sizeof(Box) * boxes.size());
   std::memcpy(host.data() + oJobs, jobs.data(), sizeof(ChunkJob) * nChunks);
   std::memcpy(host.data() + oChanges, changes.data(), sizeof(ChunkChange) * nChunks);
+  if (!plan.mixFrom.empty())
+    std::memcpy(host.data() + oMixFrom, plan.mixFrom.data(), sizeof(std::uint16_t) * plan.mixFrom.size());
+  if (!plan.mixTo.empty())
+    std::memcpy(host.data() + oMixTo, plan.mixTo.data(), sizeof(std::uint16_t) * plan.mixTo.size());
   try
   {
     p.reserveLaunch(2 * total); // slack: a larger call next time needs no cudaFree (a device sync)
     char* dev = static_cast<char*>(p.launch);
     LVDIF_CUDA_CHECK(cudaMemcpyAsync(dev, host.data(), total, cudaMemcpyHostToDevice, 0));
+    detail::edit::BrushContext ctx = plan.ctx;
+    if (!plan.mixFrom.empty())
+    {
+      ctx.mixFrom = reinterpret_cast<const std::uint16_t*>(dev + oMixFrom);
+      ctx.mixTo = reinterpret_cast<const std::uint16_t*>(dev + oMixTo);
+    }
     const detail::edit::EncodeParams enc = detail::edit::EncodeParams::of(volume.sdfDictionary(), volume.bandWidth());
     const Index3& dims = volume.dims();
     for (std::size_t first = 0; first < nChunks; first += 65535) // gridDim.y limit
@@ -506,7 +524,7 @@ EditResult DeviceVolume::applyDabs(const std::vector<Dab>& dabs, const BrushSett
       const dim3 grid(static_cast<unsigned>((p.n + 255) / 256), static_cast<unsigned>(count));
       residentDabKernel<<<grid, block>>>(p.pool, reinterpret_cast<const ChunkJob*>(dev + oJobs) + first, p.edge,
         p.shift, dims[0], dims[1], dims[2], reinterpret_cast<const Dab*>(dev), reinterpret_cast<const Box*>(dev + oBoxes),
-        static_cast<int>(plan.dabs.size()), plan.ctx, p.table, enc,
+        static_cast<int>(plan.dabs.size()), ctx, p.table, enc,
         reinterpret_cast<ChunkChange*>(dev + oChanges) + first);
       LVDIF_CUDA_CHECK(cudaGetLastError());
     }
@@ -782,6 +800,32 @@ void DeviceVolume::refresh(const std::vector<std::int64_t>& ids)
   }
   for (std::int64_t id : ids)
     p.upload(this->Volume, id);
+}
+
+void DeviceVolume::adoptHostChunks(const std::vector<std::int64_t>& ids)
+{
+  Impl& p = *this->P;
+  for (std::int64_t id : ids)
+  {
+    require(id >= 0 && id < this->Volume.chunkCount(), "adoptHostChunks: chunk id " + std::to_string(id) + " out of range");
+    require(!p.pending[static_cast<std::size_t>(id)], "adoptHostChunks: chunk " + std::to_string(id) + " is pending (sync first)");
+  }
+  p.trimHistory(ids.size());
+  for (std::int64_t id : ids)
+  {
+    const std::size_t i = static_cast<std::size_t>(id);
+    if (p.open && !p.inOpen[i])
+    {
+      // copy on write: the device's state is the step's snapshot, the host's comes into a fresh slot
+      p.open->chunks.push_back({ id, p.slotOf[i], p.uniform[i] });
+      const std::uint64_t b = p.snapshotBytes(p.open->chunks.back());
+      p.open->bytes += b;
+      p.historyBytes += b;
+      p.inOpen[i] = 1;
+      p.slotOf[i] = -1;
+    }
+    p.upload(this->Volume, id);
+  }
 }
 
 void DeviceVolume::reload()

@@ -3,6 +3,7 @@
 #include "lvdif/Error.h"
 
 #include <algorithm>
+#include <chrono>
 
 namespace lvdif
 {
@@ -28,8 +29,18 @@ Editor::Editor(DictionaryVolume& volume, const UndoStack::Options& undo)
 
 EditResult Editor::applyNow(const std::vector<Dab>& dabs)
 {
-  return this->Device ? this->Device->applyDabs(dabs, this->brush)
-                      : lvdif::applyDabs(this->Volume, dabs, this->brush, &this->Undo);
+  if (!this->Device)
+    return lvdif::applyDabs(this->Volume, dabs, this->brush, &this->Undo);
+  if (this->brush.op == BrushOp::Smooth || this->brush.op == BrushOp::Grab)
+  {
+    // these read neighbours and run on the CPU: on the synced host copy, and the
+    // changed storage chunks are handed to the device as part of its open step
+    this->Device->sync();
+    const EditResult r = lvdif::applyDabs(this->Volume, dabs, this->brush, nullptr);
+    this->Device->adoptHostChunks(r.changedChunks);
+    return r;
+  }
+  return this->Device->applyDabs(dabs, this->brush);
 }
 
 void Editor::beginStep(const char* label)
@@ -108,6 +119,41 @@ void Editor::record(const EditRecord& e)
   this->Rec->records.push_back(std::move(r));
 }
 
+EditResult Editor::applyChecked(const std::vector<Dab>& dabs)
+{
+  if (dabs.size() > this->limits.maxDabsPerEdit)
+    throw Error(ErrorCode::InvalidArgument, "an edit of " + std::to_string(dabs.size()) +
+        " dabs is more than the limit of " + std::to_string(this->limits.maxDabsPerEdit));
+  if (this->DabsApplied + dabs.size() > this->limits.maxTotalDabs)
+    throw Error(ErrorCode::InvalidArgument, "the edits would apply more than " +
+        std::to_string(this->limits.maxTotalDabs) + " dabs in all (the editor's limit)");
+  for (std::size_t i = 0; i < dabs.size(); ++i)
+    validate(dabs[i], i);
+  // Batches are bit-identical to one call (dabs apply per voxel in list order).
+  constexpr std::size_t Batch = 4096;
+  if (dabs.size() <= Batch)
+  {
+    if (this->interrupter)
+      this->interrupter->checkInterrupt();
+    EditResult r = this->applyNow(dabs);
+    this->DabsApplied += dabs.size();
+    return r;
+  }
+  EditResult all;
+  for (std::size_t at = 0; at < dabs.size(); at += Batch)
+  {
+    if (this->interrupter)
+      this->interrupter->checkInterrupt();
+    const std::vector<Dab> part(dabs.begin() + static_cast<std::ptrdiff_t>(at),
+      dabs.begin() + static_cast<std::ptrdiff_t>(std::min(dabs.size(), at + Batch)));
+    const EditResult r = this->applyNow(part);
+    this->DabsApplied += part.size();
+    this->touchStorageChunks(r.changedChunks); // a cancelled edit still reports what it changed
+    merge(all, r);
+  }
+  return all;
+}
+
 EditResult Editor::applyDabs(const std::vector<Dab>& dabs, BrushKind kind)
 {
   require(!this->Builder, "finish the open stroke first");
@@ -116,7 +162,7 @@ EditResult Editor::applyDabs(const std::vector<Dab>& dabs, BrushKind kind)
   this->LastWrite = EditResult();
   try
   {
-    r = this->applyNow(dabs);
+    r = this->applyChecked(dabs);
   }
   catch (...)
   {
@@ -142,15 +188,22 @@ EditResult Editor::dab(const Dab& d)
 
 EditResult Editor::strokeThrough(const std::vector<BrushSample>& samples)
 {
-  return this->applyDabs(strokeDabs(samples, this->stroke), this->stroke.kind);
+  return this->applyDabs(strokeDabs(samples, this->stroke, this->strokeBudget()), this->stroke.kind);
+}
+
+std::uint64_t Editor::strokeBudget() const
+{
+  const std::uint64_t left = this->limits.maxTotalDabs - std::min(this->limits.maxTotalDabs, this->DabsApplied);
+  return std::min(this->limits.maxDabsPerEdit, left);
 }
 
 void Editor::beginStroke()
 {
   require(!this->Builder, "a stroke is already open");
-  this->Builder = std::make_unique<StrokeBuilder>(this->stroke);
+  this->Builder = std::make_unique<StrokeBuilder>(this->stroke, this->strokeBudget());
   this->StrokeDabs.clear();
   this->StrokeResult = EditResult();
+  this->GrabStarted = false;
   this->beginStep("stroke");
 }
 
@@ -158,12 +211,27 @@ EditResult Editor::addSample(const BrushSample& s)
 {
   require(this->Builder != nullptr, "no stroke is open");
   this->Builder->add(s);
-  const std::vector<Dab> ready = this->Builder->takeReady();
+  std::vector<Dab> ready = this->Builder->takeReady();
+  if (this->brush.op == BrushOp::Grab)
+  {
+    ready.clear();
+    if (this->GrabStarted && s.position != this->GrabFrom)
+    {
+      Dab d;
+      d.center = this->GrabFrom;
+      d.radius = this->stroke.radius;
+      for (int a = 0; a < 3; ++a)
+        d.vec[a] = s.position[a] - this->GrabFrom[a];
+      ready.push_back(d);
+    }
+    this->GrabFrom = s.position;
+    this->GrabStarted = true;
+  }
   EditResult r;
   this->LastWrite = EditResult();
   if (!ready.empty())
   {
-    r = this->applyNow(ready);
+    r = this->applyChecked(ready);
     this->StrokeDabs.insert(this->StrokeDabs.end(), ready.begin(), ready.end());
     merge(this->StrokeResult, r);
     this->touchStorageChunks(r.changedChunks);
@@ -175,12 +243,14 @@ EditResult Editor::addSample(const BrushSample& s)
 EditResult Editor::endStroke()
 {
   require(this->Builder != nullptr, "no stroke is open");
-  const std::vector<Dab> rest = this->Builder->finish();
+  std::vector<Dab> rest = this->Builder->finish();
+  if (this->brush.op == BrushOp::Grab)
+    rest.clear(); // applied sample by sample
   EditResult r;
   this->LastWrite = EditResult();
   try
   {
-    r = this->applyNow(rest);
+    r = this->applyChecked(rest);
   }
   catch (...)
   {
@@ -203,13 +273,16 @@ EditResult Editor::endStroke()
   return this->StrokeResult;
 }
 
-std::size_t Editor::pump(InputDevice& device, std::size_t maxSamples, int timeoutMs)
+std::size_t Editor::pump(InputDevice& device, std::size_t maxSamples, int timeoutMs, int maxMillis)
 {
   std::size_t n = 0;
   BrushSample s;
+  const auto t0 = std::chrono::steady_clock::now();
   while (n < maxSamples && device.poll(s, n == 0 ? timeoutMs : 0))
   {
     ++n;
+    if (maxMillis >= 0 && std::chrono::steady_clock::now() - t0 > std::chrono::milliseconds(maxMillis))
+      maxSamples = n; // this sample is the last of this call
     const bool down = (s.buttons & 1u) != 0;
     if (down && !this->Builder)
       this->beginStroke();
@@ -283,6 +356,19 @@ void Editor::play(const Recording& r, Interrupter& interrupter)
 {
   interrupter.start("play recording");
   const BrushSettings saved = this->brush;
+  // long edits inside the recording check the same interrupter between batches
+  struct Restore
+  {
+    Editor& E;
+    Interrupter* Old;
+    BrushSettings Brush;
+    ~Restore()
+    {
+      this->E.interrupter = this->Old;
+      this->E.brush = this->Brush;
+    }
+  } restore{ *this, this->interrupter, saved };
+  this->interrupter = &interrupter;
   std::size_t i = 0;
   for (const EditRecord& e : r.records)
   {

@@ -1,5 +1,8 @@
 #include "lvdif/InputDevice.h"
 
+#include "lvdif/EditLimits.h"
+#include "lvdif/Error.h"
+
 #include "FlatJson.h"
 #include "lvdif/Error.h"
 
@@ -102,6 +105,14 @@ bool parseSampleJson(const std::string& line, BrushSample& out, std::string* err
     if (t->numbers.size() != 1 || t->isArray || t->isString || !std::isfinite(t->numbers[0]))
       return fail("\"time\" must be a finite number");
     s.time = t->numbers[0];
+  }
+  try
+  {
+    validate(s); // the rules every edit input follows (lvdif/EditLimits.h)
+  }
+  catch (const Error& e)
+  {
+    return fail(e.what());
   }
   out = s;
   return true;

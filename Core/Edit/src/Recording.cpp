@@ -1,11 +1,16 @@
 #include "lvdif/Recording.h"
 
+#include "lvdif/ByteStream.h"
+#include "lvdif/EditLimits.h"
 #include "lvdif/Error.h"
+#include "lvdif/Memory.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <fstream>
+#include <functional>
 #include <map>
 #include <sstream>
 
@@ -21,31 +26,92 @@ std::string num(double v)
   return buf;
 }
 
-[[noreturn]] void bad(std::size_t line, const std::string& what)
+// Errors read "<name>:<line>:<column>: what" (1-based), like the scripts'.
+struct Where
 {
-  throw Error(ErrorCode::ParseError, "recording line " + std::to_string(line) + ": " + what);
+  const std::string& Name;
+  std::size_t Line = 0;
+  [[noreturn]] void bad(std::size_t column, const std::string& what) const
+  {
+    throw Error(ErrorCode::ParseError,
+      this->Name + ":" + std::to_string(this->Line) + ":" + std::to_string(column) + ": " + what);
+  }
+};
+
+struct Word
+{
+  std::string text;
+  std::size_t column = 1;
+};
+
+// getline with a bound: a recording's lines are short, so a huge line (a
+// garbage or hostile file) is refused after MaxLine bytes, not read whole.
+constexpr std::size_t MaxLine = 4096;
+bool readLine(std::istream& in, std::string& line, const Where& at)
+{
+  line.clear();
+  std::streambuf* b = in.rdbuf();
+  for (;;)
+  {
+    const int c = b->sbumpc();
+    if (c == std::char_traits<char>::eof())
+    {
+      in.setstate(std::ios::eofbit);
+      return !line.empty();
+    }
+    if (c == '\n')
+      return true;
+    if (line.size() == MaxLine)
+    {
+      Where next{ at.Name, at.Line + 1 };
+      next.bad(MaxLine + 1, "line longer than " + std::to_string(MaxLine) + " bytes");
+    }
+    line.push_back(static_cast<char>(c));
+  }
 }
 
-double toNumber(const std::string& s, std::size_t line, const std::string& what)
+std::vector<Word> splitWords(const std::string& line)
+{
+  std::vector<Word> out;
+  std::size_t i = 0;
+  while (i < line.size())
+  {
+    while (i < line.size() && (line[i] == ' ' || line[i] == '\t'))
+      ++i;
+    if (i == line.size())
+      break;
+    const std::size_t b = i;
+    while (i < line.size() && line[i] != ' ' && line[i] != '\t')
+      ++i;
+    out.push_back(Word{ line.substr(b, i - b), b + 1 });
+  }
+  return out;
+}
+
+double toNumber(const std::string& s, const Where& at, std::size_t column, const std::string& what)
 {
   char* end = nullptr;
   const double v = std::strtod(s.c_str(), &end);
   if (s.empty() || *end != '\0' || !std::isfinite(v))
-    bad(line, what + " is not a finite number: '" + s + "'");
+    at.bad(column, what + " is not a finite number: '" + s + "'");
   return v;
 }
 
 template <typename E>
-E lookup(const std::string& word, const std::map<std::string, E>& table, std::size_t line, const char* what)
+E lookup(const std::string& word, const std::map<std::string, E>& table, const Where& at, std::size_t column,
+  const char* what)
 {
   auto it = table.find(word);
   if (it == table.end())
-    bad(line, std::string("unknown ") + what + " '" + word + "'");
+    at.bad(column, std::string("unknown ") + what + " '" + word + "'");
   return it->second;
 }
 
 const std::map<std::string, BrushOp> Ops{ { "add", BrushOp::Add }, { "subtract", BrushOp::Subtract },
-  { "paint", BrushOp::Paint } };
+  { "paint", BrushOp::Paint }, { "smooth", BrushOp::Smooth }, { "inflate", BrushOp::Inflate }, { "grab", BrushOp::Grab },
+  { "flatten", BrushOp::Flatten }, { "crease", BrushOp::Crease } };
+const std::map<std::string, Falloff> Falloffs{ { "constant", Falloff::Constant }, { "linear", Falloff::Linear },
+  { "smooth", Falloff::Smooth }, { "sharp", Falloff::Sharp } };
 const std::map<std::string, BrushShape> Shapes{ { "sphere", BrushShape::Sphere }, { "cube", BrushShape::Cube },
   { "capsule", BrushShape::Capsule } };
 const std::map<std::string, BrushKind> Kinds{ { "single", BrushKind::Single }, { "basic", BrushKind::Basic },
@@ -68,43 +134,71 @@ void writeRecording(std::ostream& out, const Recording& r)
         << " kind=" << toString(e.kind) << " spacing=" << num(e.spacing) << " blend=" << num(e.brush.blend)
         << " coloroffset=" << num(e.brush.colorOffset) << " rounding=" << num(e.brush.rounding) << " color=" << int(e.brush.color.r) << ","
         << int(e.brush.color.g) << "," << int(e.brush.color.b) << "," << int(e.brush.color.a)
-        << " dabs=" << e.dabs.size() << "\n";
+        << " dabs=" << e.dabs.size();
+    // the sculpting settings only where they differ from the defaults (older files stay as they were)
+    if (e.brush.strength != 1)
+      out << " strength=" << num(e.brush.strength);
+    if (e.brush.falloff != Falloff::Constant)
+      out << " falloff=" << toString(e.brush.falloff);
+    if (e.brush.invert)
+      out << " invert=1";
+    for (int a = 0; a < 3; ++a)
+      if (e.brush.symmetry.mirror[a])
+        out << " mirror" << "xyz"[a] << "=" << num(e.brush.symmetry.plane[a]);
+    out << "\n";
     for (const Dab& d : e.dabs)
     {
       out << (d.shape == shape ? "d" : (std::string("d:") + toString(d.shape))) << " " << num(d.center[0]) << " "
           << num(d.center[1]) << " " << num(d.center[2]) << " " << num(d.radius);
       if (d.shape == BrushShape::Capsule)
         out << " " << num(d.end[0]) << " " << num(d.end[1]) << " " << num(d.end[2]);
+      if (e.brush.op == BrushOp::Grab) // the drag of each grab dab
+        out << " " << num(d.vec[0]) << " " << num(d.vec[1]) << " " << num(d.vec[2]);
       out << "\n";
     }
   }
 }
 
-Recording readRecording(std::istream& in)
+Recording readRecording(std::istream& in, const std::string& name)
 {
   Recording r;
   std::string line;
-  std::size_t no = 0;
+  Where at{ name };
   bool header = false;
   std::size_t expectDabs = 0;
   BrushShape editShape = BrushShape::Sphere;
-  while (std::getline(in, line))
+  const EditLimits limits;
+  std::uint64_t totalDabs = 0;
+  // The same rules as every other edit (lvdif/EditLimits.h), reported at the value.
+  auto rule = [&](const std::function<void()>& check, std::size_t column) {
+    try
+    {
+      check();
+    }
+    catch (const Error& e)
+    {
+      at.bad(column, e.what());
+    }
+  };
+  while (in.rdbuf() && readLine(in, line, at))
   {
-    ++no;
+    ++at.Line;
     if (!line.empty() && line.back() == '\r')
       line.pop_back();
     if (line.empty() || line[0] == '#')
       continue;
-    std::istringstream words(line);
-    std::string head;
-    words >> head;
+    const std::vector<Word> words = splitWords(line);
+    if (words.empty())
+      continue;
+    const Word& head = words[0];
     if (!header)
     {
-      int version = 0;
-      if (head != "LVDIF-RECORDING" || !(words >> version))
-        bad(no, "expected the version line 'LVDIF-RECORDING 1'");
-      if (version != Recording::Version)
-        bad(no, "unsupported recording version " + std::to_string(version));
+      if (head.text != "LVDIF-RECORDING" || words.size() != 2)
+        at.bad(head.column, "expected the version line 'LVDIF-RECORDING 1'");
+      char* end = nullptr;
+      const long version = std::strtol(words[1].text.c_str(), &end, 10);
+      if (*end != '\0' || version != Recording::Version)
+        at.bad(words[1].column, "unsupported recording version '" + words[1].text + "'");
       header = true;
       continue;
     }
@@ -112,98 +206,142 @@ Recording readRecording(std::istream& in)
     {
       Dab d;
       d.shape = editShape;
-      if (head.rfind("d:", 0) == 0)
-        d.shape = lookup(head.substr(2), Shapes, no, "shape");
-      else if (head != "d")
-        bad(no, "expected a dab line 'd x y z r', " + std::to_string(expectDabs) + " more due");
-      std::vector<std::string> f;
-      for (std::string w; words >> w;)
-        f.push_back(w);
-      const std::size_t want = d.shape == BrushShape::Capsule ? 7 : 4;
-      if (f.size() != want)
-        bad(no, "a dab needs " + std::to_string(want) + " numbers");
-      for (int a = 0; a < 3; ++a)
-        d.center[a] = toNumber(f[a], no, "dab position");
-      d.radius = toNumber(f[3], no, "dab radius");
-      if (want == 7)
+      if (head.text.rfind("d:", 0) == 0)
+        d.shape = lookup(head.text.substr(2), Shapes, at, head.column + 2, "shape");
+      else if (head.text != "d")
+        at.bad(head.column, "expected a dab line 'd x y z r', " + std::to_string(expectDabs) + " more due");
+      const bool grab = r.records.back().brush.op == BrushOp::Grab;
+      const std::size_t want = (d.shape == BrushShape::Capsule ? 7 : 4) + (grab ? 3 : 0);
+      if (words.size() - 1 != want)
+        at.bad(words.size() - 1 > want ? words[want + 1].column : line.size() + 1,
+          "a dab needs " + std::to_string(want) + " numbers, got " + std::to_string(words.size() - 1));
+      if (grab)
         for (int a = 0; a < 3; ++a)
-          d.end[a] = toNumber(f[4 + a], no, "capsule end");
+          d.vec[a] = toNumber(words[want - 2 + a].text, at, words[want - 2 + a].column, "grab displacement");
+      for (int a = 0; a < 3; ++a)
+        d.center[a] = toNumber(words[1 + a].text, at, words[1 + a].column, "dab position");
+      d.radius = toNumber(words[4].text, at, words[4].column, "dab radius");
+      if (!(d.radius >= 0))
+        at.bad(words[4].column, "dab radius must be >= 0 (got " + words[4].text + ")");
+      if (d.shape == BrushShape::Capsule)
+        for (int a = 0; a < 3; ++a)
+          d.end[a] = toNumber(words[5 + a].text, at, words[5 + a].column, "capsule end");
+      rule([&] { validate(d, r.records.back().dabs.size()); }, words[1].column);
       r.records.back().dabs.push_back(d);
       --expectDabs;
       continue;
     }
-    std::map<std::string, std::string> kv;
-    for (std::string w; words >> w;)
+    std::map<std::string, std::pair<std::string, std::size_t>> kv;
+    for (std::size_t w = 1; w < words.size(); ++w)
     {
-      const auto eq = w.find('=');
+      const auto eq = words[w].text.find('=');
       if (eq == std::string::npos)
-        bad(no, "expected key=value, got '" + w + "'");
-      kv[w.substr(0, eq)] = w.substr(eq + 1);
+        at.bad(words[w].column, "expected key=value, got '" + words[w].text + "'");
+      kv[words[w].text.substr(0, eq)] = { words[w].text.substr(eq + 1), words[w].column + eq + 1 };
     }
-    auto get = [&](const char* key) -> std::string {
+    auto get = [&](const char* key) -> const std::pair<std::string, std::size_t>& {
       auto it = kv.find(key);
       if (it == kv.end())
-        bad(no, std::string("missing ") + key + "=");
+        at.bad(line.size() + 1, std::string("missing ") + key + "=");
       return it->second;
     };
+    auto number = [&](const char* key) {
+      const auto& v = get(key);
+      return toNumber(v.first, at, v.second, key);
+    };
     EditRecord e;
-    e.time = toNumber(get("time"), no, "time");
-    if (head == "undo" || head == "redo")
+    e.time = number("time");
+    if (head.text == "undo" || head.text == "redo")
     {
-      e.type = head == "undo" ? EditRecord::Type::Undo : EditRecord::Type::Redo;
+      e.type = head.text == "undo" ? EditRecord::Type::Undo : EditRecord::Type::Redo;
       r.records.push_back(e);
       continue;
     }
-    if (head != "edit")
-      bad(no, "unknown record '" + head + "'");
-    e.brush.op = lookup(get("op"), Ops, no, "op");
-    editShape = lookup(get("shape"), Shapes, no, "shape");
-    e.kind = lookup(get("kind"), Kinds, no, "kind");
-    e.spacing = toNumber(get("spacing"), no, "spacing");
-    e.brush.blend = toNumber(get("blend"), no, "blend");
-    e.brush.colorOffset = toNumber(get("coloroffset"), no, "coloroffset");
+    if (head.text != "edit")
+      at.bad(head.column, "unknown record '" + head.text + "'");
+    e.brush.op = lookup(get("op").first, Ops, at, get("op").second, "op");
+    editShape = lookup(get("shape").first, Shapes, at, get("shape").second, "shape");
+    e.kind = lookup(get("kind").first, Kinds, at, get("kind").second, "kind");
+    e.spacing = number("spacing");
+    e.brush.blend = number("blend");
+    e.brush.colorOffset = number("coloroffset");
     if (kv.count("rounding"))
-      e.brush.rounding = toNumber(kv["rounding"], no, "rounding");
+      e.brush.rounding = number("rounding");
+    if (kv.count("strength"))
+      e.brush.strength = number("strength");
+    if (kv.count("falloff"))
+      e.brush.falloff = lookup(get("falloff").first, Falloffs, at, get("falloff").second, "falloff");
+    if (kv.count("invert"))
+      e.brush.invert = number("invert") != 0;
+    for (int a = 0; a < 3; ++a)
     {
-      std::istringstream c(get("color"));
+      const std::string key = std::string("mirror") + "xyz"[a];
+      if (kv.count(key))
+      {
+        e.brush.symmetry.mirror[a] = true;
+        e.brush.symmetry.plane[a] = number(key.c_str());
+      }
+    }
+    rule([&] { validate(e.brush); }, head.column);
+    rule([&] { checkedNumber(e.spacing, EditLimits::MinSpacing, EditLimits::MaxSize, "spacing"); }, get("spacing").second);
+    {
+      std::istringstream c(get("color").first);
       int rgba[4];
       char sep;
       if (!(c >> rgba[0] >> sep >> rgba[1] >> sep >> rgba[2] >> sep >> rgba[3]))
-        bad(no, "color must be r,g,b,a");
+        at.bad(get("color").second, "color must be r,g,b,a");
       for (int v : rgba)
         if (v < 0 || v > 255)
-          bad(no, "color components must be 0..255");
+          at.bad(get("color").second, "color components must be 0..255");
       e.brush.color = Rgba{ std::uint8_t(rgba[0]), std::uint8_t(rgba[1]), std::uint8_t(rgba[2]), std::uint8_t(rgba[3]) };
     }
-    const double n = toNumber(get("dabs"), no, "dabs");
-    if (n < 0 || n > 1e8 || n != std::floor(n))
-      bad(no, "dabs must be a count");
+    const double n = number("dabs");
+    if (n < 0 || n != std::floor(n) || n > double(limits.maxDabsPerEdit))
+      at.bad(get("dabs").second, "dabs must be a count of at most " + std::to_string(limits.maxDabsPerEdit));
+    totalDabs += static_cast<std::uint64_t>(n);
+    if (totalDabs > limits.maxTotalDabs)
+      at.bad(get("dabs").second, "the recording has more than " + std::to_string(limits.maxTotalDabs) + " dabs in all");
     expectDabs = static_cast<std::size_t>(n);
     r.records.push_back(e);
   }
   if (!header)
-    bad(no, "empty recording (no version line)");
+    at.bad(1, "empty recording (no version line)");
   if (expectDabs > 0)
-    bad(no, "recording ends " + std::to_string(expectDabs) + " dab lines early");
+    at.bad(1, "recording ends " + std::to_string(expectDabs) + " dab lines early");
   return r;
 }
 
 void saveRecording(const std::string& path, const Recording& recording)
 {
-  std::ofstream out(path);
-  if (!out)
-    throw Error(ErrorCode::IoFailure, "cannot write recording '" + path + "'");
+  std::ostringstream out;
   writeRecording(out, recording);
-  if (!out)
-    throw Error(ErrorCode::IoFailure, "writing recording '" + path + "' failed");
+  const std::string text = out.str();
+  saveAtomically(path, [&](ByteSink& sink) { sink.write(text.data(), text.size()); });
 }
 
 Recording loadRecording(const std::string& path)
 {
-  std::ifstream in(path);
-  if (!in)
-    throw Error(ErrorCode::IoFailure, "cannot read recording '" + path + "'");
-  return readRecording(in);
+  FileSource src(path); // refuses FIFOs, directories and devices without blocking
+  // the version line first: a garbage file is refused without reading it whole
+  const std::string magic = "LVDIF-RECORDING";
+  std::string head(static_cast<std::size_t>(std::min<std::uint64_t>(src.size(), 4096)), '\0');
+  src.read(0, &head[0], head.size());
+  std::size_t b = 0;
+  while (b < head.size() && head[b] == '#') // comment lines before the version line
+  {
+    const std::size_t nl = head.find('\n', b);
+    b = nl == std::string::npos ? head.size() : nl + 1;
+  }
+  if (head.compare(b, magic.size(), magic) != 0 && b < head.size())
+  {
+    std::istringstream first(head.substr(b, head.find('\n', b) - b) + "\n");
+    readRecording(first, path); // throws the usual error for the first line
+  }
+  requireMemory(checkedMultiply(src.size(), 8, "recording"), "reading the recording " + path);
+  std::string text(static_cast<std::size_t>(src.size()), '\0');
+  src.read(0, &text[0], text.size());
+  std::istringstream in(text);
+  return readRecording(in, path);
 }
 
 } // namespace lvdif

@@ -77,7 +77,7 @@ void SocketDevice::consumeLines()
       break;
     if (this->Discarding)
     {
-      this->Discarding = false; // the tail of an over-long line
+      this->Discarding = false; // the tail of an over-long line (already counted once)
     }
     else
     {
@@ -102,7 +102,11 @@ void SocketDevice::consumeLines()
     start = nl + 1;
   }
   this->Buffer.erase(0, start);
-  if (this->Buffer.size() > MaxLine)
+  if (this->Discarding)
+  {
+    this->Buffer.clear(); // still inside the over-long line: drop, no new error
+  }
+  else if (this->Buffer.size() > MaxLine)
   {
     ++this->Errors;
     this->LastError = "line longer than " + std::to_string(MaxLine) + " bytes dropped";
@@ -130,17 +134,25 @@ void SocketDevice::pump(int timeoutMs)
   pollfd p{ this->ClientFd, POLLIN, 0 };
   if (::poll(&p, 1, timeoutMs) <= 0)
     return;
+  // Bounded work per call: at most MaxBytesPerPump bytes and never past a full
+  // queue; what is left waits in the kernel's buffer and then the client's
+  // (TCP back-pressure), so a flooding client cannot freeze the caller or
+  // grow memory.
   char buf[4096];
-  for (;;)
+  std::size_t read = 0;
+  while (read < MaxBytesPerPump && this->Queue.size() < MaxQueue)
   {
     const ssize_t n = ::recv(this->ClientFd, buf, sizeof(buf), 0);
     if (n > 0)
     {
+      read += static_cast<std::size_t>(n);
       this->Buffer.append(buf, static_cast<std::size_t>(n));
       this->consumeLines();
       continue;
     }
-    if (n == 0 || (errno != EAGAIN && errno != EWOULDBLOCK && errno != EINTR))
+    if (n < 0 && errno == EINTR)
+      continue;
+    if (n == 0 || (errno != EAGAIN && errno != EWOULDBLOCK))
     {
       // client gone: a final line without newline still counts
       if (!this->Discarding && !this->Buffer.empty())
@@ -148,6 +160,7 @@ void SocketDevice::pump(int timeoutMs)
         this->Buffer += '\n';
         this->consumeLines();
       }
+      this->Discarding = false;
       ::close(this->ClientFd);
       this->ClientFd = -1;
     }

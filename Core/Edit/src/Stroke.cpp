@@ -1,5 +1,6 @@
 #include "lvdif/Stroke.h"
 
+#include "lvdif/EditLimits.h"
 #include "lvdif/Error.h"
 
 #include <algorithm>
@@ -22,15 +23,18 @@ const char* toString(BrushKind k)
 
 void validate(const StrokeSettings& s)
 {
-  require(std::isfinite(s.radius) && s.radius > 0, "stroke radius must be finite and > 0");
-  require(std::isfinite(s.spacing) && s.spacing > 0, "stroke sample spacing must be finite and > 0");
-  require(std::isfinite(s.minRadius) && s.minRadius > 0, "stroke minimum radius must be finite and > 0");
+  require(s.radius > 0, "stroke radius must be > 0");
+  checkedNumber(s.radius, 0, EditLimits::MaxSize, "stroke radius");
+  checkedNumber(s.spacing, EditLimits::MinSpacing, EditLimits::MaxSize, "stroke sample spacing");
+  require(s.minRadius > 0, "stroke minimum radius must be > 0");
+  checkedNumber(s.minRadius, 0, EditLimits::MaxSize, "stroke minimum radius");
   require(s.shape == BrushShape::Sphere || s.shape == BrushShape::Cube, "stroke dabs must be spheres or cubes");
   require(static_cast<int>(s.kind) >= 0 && static_cast<int>(s.kind) <= 3, "unknown brush kind");
 }
 
-StrokeBuilder::StrokeBuilder(const StrokeSettings& settings)
+StrokeBuilder::StrokeBuilder(const StrokeSettings& settings, std::uint64_t maxDabs)
   : Settings(settings)
+  , MaxDabs(maxDabs)
 {
   validate(settings);
 }
@@ -49,10 +53,7 @@ void StrokeBuilder::addDab(const std::array<double, 3>& p, double radius, double
 void StrokeBuilder::add(const BrushSample& sample)
 {
   require(!this->Finished, "stroke already finished");
-  for (int a = 0; a < 3; ++a)
-  {
-    require(std::isfinite(sample.position[a]), "brush sample position must be finite");
-  }
+  validate(sample);
   double r = this->Settings.radius;
   if (this->Settings.pressureDrivesRadius && sample.pressure >= 0 && std::isfinite(sample.pressure))
   {
@@ -79,6 +80,14 @@ void StrokeBuilder::add(const BrushSample& sample)
   {
     return; // repeated position
   }
+  // the budget, before making any dab of this segment (the +1 keeps room for
+  // the dab finish() adds at the last sample)
+  const double segmentDabs = std::floor((this->Arc + len - this->NextAt) / this->Settings.spacing) + 1;
+  if (double(this->Pending.size()) + std::max(0.0, segmentDabs) + 1 > double(this->MaxDabs))
+    throw Error(ErrorCode::InvalidArgument,
+      "the stroke would make " + std::to_string(static_cast<std::uint64_t>(double(this->Pending.size()) + segmentDabs)) +
+        " dabs (" + std::to_string(len) + " voxels of path at spacing " + std::to_string(this->Settings.spacing) +
+        "), more than the limit of " + std::to_string(this->MaxDabs));
   while (this->NextAt <= this->Arc + len)
   {
     const double t = (this->NextAt - this->Arc) / len;
@@ -124,9 +133,10 @@ std::vector<Dab> StrokeBuilder::finish()
   return out;
 }
 
-std::vector<Dab> strokeDabs(const std::vector<BrushSample>& samples, const StrokeSettings& settings)
+std::vector<Dab> strokeDabs(const std::vector<BrushSample>& samples, const StrokeSettings& settings,
+  std::uint64_t maxDabs)
 {
-  StrokeBuilder b(settings);
+  StrokeBuilder b(settings, maxDabs);
   for (const BrushSample& s : samples)
   {
     b.add(s);

@@ -27,10 +27,24 @@ std::vector<std::pair<std::vector<Dab>, BrushSettings>> editSequence(int count, 
   for (int i = 0; i < count; ++i)
   {
     BrushSettings s;
-    s.op = static_cast<BrushOp>(i % 3);
+    // the per-voxel operations the resident volume applies (Brush.h); strength,
+    // falloff and symmetry on some (paint stays hard: soft paint is refused here)
+    const BrushOp ops[] = { BrushOp::Add, BrushOp::Subtract, BrushOp::Paint, BrushOp::Inflate, BrushOp::Crease };
+    s.op = i < 12 ? static_cast<BrushOp>(i % 3) : ops[i % 5];
     s.blend = i % 4 == 1 ? 3.5 : 0;
     s.rounding = i % 5 == 2 ? 2 : 0;
     s.color = Rgba{ static_cast<std::uint8_t>(i * 7), 9, static_cast<std::uint8_t>(i), 255 };
+    if (i >= 12 && s.op != BrushOp::Paint)
+    {
+      s.strength = i % 3 == 0 ? 1.0 : 0.6;
+      s.falloff = static_cast<Falloff>(i % 4);
+      s.invert = i % 2 == 1;
+    }
+    if (i >= 12 && i % 3 == 1)
+    {
+      s.symmetry.mirror = { true, i % 2 == 0, false };
+      s.symmetry.plane = { 0.5 * n, 0.4 * n, 0 };
+    }
     std::vector<Dab> dabs;
     if (i % 7 == 3)
     {

@@ -1,5 +1,5 @@
 // Recorder and player: record -> text -> read -> play is bit-exact; parse
-// errors name the line; the original CSV imports with axis swap and scaling.
+// errors name the source, line and column; the original CSV imports with axis swap and scaling.
 #include "EditTestUtil.h"
 #include "lvdif/AnalyticFill.h"
 #include "lvdif/Editor.h"
@@ -82,15 +82,15 @@ TEST(Recording, ParseErrorsNameTheLine)
     }
     return std::string("no error");
   };
-  EXPECT_EQ(errorOf("hello\n"), "recording line 1: expected the version line 'LVDIF-RECORDING 1'");
-  EXPECT_EQ(errorOf("LVDIF-RECORDING 2\n"), "recording line 1: unsupported recording version 2");
+  EXPECT_EQ(errorOf("hello\n"), "recording:1:1: expected the version line 'LVDIF-RECORDING 1'");
+  EXPECT_EQ(errorOf("LVDIF-RECORDING 2\n"), "recording:1:17: unsupported recording version '2'");
   const std::string head = "LVDIF-RECORDING 1\n";
   const std::string edit =
     "edit time=0 op=add shape=sphere kind=basic spacing=1.6 blend=0 coloroffset=1.5 color=1,2,3,255 dabs=2\n";
-  EXPECT_EQ(errorOf(head + edit + "d 1 2 3 4\n"), "recording line 3: recording ends 1 dab lines early");
-  EXPECT_EQ(errorOf(head + edit + "d 1 2 3 4\nd 1 2 x 4\n"), "recording line 4: dab position is not a finite number: 'x'");
-  EXPECT_EQ(errorOf(head + "\n# c\nedit time=0 op=melt\n"), "recording line 4: unknown op 'melt'");
-  EXPECT_EQ(errorOf(head + "bogus time=1\n"), "recording line 2: unknown record 'bogus'");
+  EXPECT_EQ(errorOf(head + edit + "d 1 2 3 4\n"), "recording:3:1: recording ends 1 dab lines early");
+  EXPECT_EQ(errorOf(head + edit + "d 1 2 3 4\nd 1 2 x 4\n"), "recording:4:7: dab position is not a finite number: 'x'");
+  EXPECT_EQ(errorOf(head + "\n# c\nedit time=0 op=melt\n"), "recording:4:16: unknown op 'melt'");
+  EXPECT_EQ(errorOf(head + "bogus time=1\n"), "recording:2:1: unknown record 'bogus'");
 }
 
 TEST(Recording, ImportsTheOriginalCsvWithAxisSwapAndScaling)

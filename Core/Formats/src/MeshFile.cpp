@@ -6,7 +6,9 @@
 #include "lvdif/Memory.h"
 
 #include <algorithm>
+#include <charconv>
 #include <cctype>
+#include <cstring>
 #include <unordered_map>
 
 namespace lvdif
@@ -18,17 +20,81 @@ using namespace detail::volumefile::meshfile;
 
 /// OBJ (Wavefront): v, f with i, i/t, i//n, i/t/n and negative (relative)
 /// indices; other statements (vn, vt, g, o, s, usemtl, l, ...) are skipped.
+// The format check that needs only the first bytes (and the size), made
+// before the whole file is read: a garbage file of any size is refused after
+// reading at most 4 KiB.
+void checkMeshHead(ByteSource& source, MeshFormat format, const std::string& name)
+{
+  const std::uint64_t size = source.size();
+  std::vector<char> head(static_cast<std::size_t>(std::min<std::uint64_t>(size, 4096)));
+  source.read(0, head.data(), head.size());
+  const std::string h(head.begin(), head.end());
+  const auto text = [&]() {
+    for (char c : h)
+      if (c == '\0')
+        return false;
+    return true;
+  };
+  switch (format)
+  {
+    case MeshFormat::Ply:
+      if (h.compare(0, 4, "ply\n") != 0 && h.compare(0, 5, "ply\r\n") != 0)
+        fail(ErrorCode::ParseError, name + ": PLY line 1", "missing the 'ply' magic line");
+      return;
+    case MeshFormat::Stl:
+    {
+      if (size >= 84)
+      {
+        std::uint32_t n = 0;
+        std::memcpy(&n, head.data() + 80, 4); // little-endian hosts only, as the reader
+        if (size == 84 + 50 * std::uint64_t(n))
+          return; // a binary STL
+      }
+      const std::size_t b = h.find_first_not_of(" \t\r\n");
+      if (b == std::string::npos || h.compare(b, 5, "solid") != 0 || !text())
+        fail(ErrorCode::CorruptData, name,
+          "neither a binary STL (size is not 84 + 50 x triangle count) nor an ASCII one (no 'solid')");
+      return;
+    }
+    case MeshFormat::Obj:
+    case MeshFormat::Off:
+      if (!text())
+        fail(ErrorCode::ParseError, name, std::string("not a text ") + (format == MeshFormat::Obj ? "OBJ" : "OFF") +
+            " file (a NUL byte in its first 4 KiB)");
+      return;
+    default:
+      return;
+  }
+}
+
 TriangleMesh readObj(const std::vector<char>& data)
 {
   TextScanner s(data.data(), data.size(), "OBJ");
   TriangleMesh mesh;
   std::vector<std::string> t;
   std::vector<std::int64_t> ids;
+  std::int64_t texCoords = 0, normals = 0;
+  // An index as written (1-based, or negative counting back from the newest
+  // element) checked against the elements so far; messages quote it as written.
+  auto resolve = [&](const std::string& text, std::int64_t count, const char* what, const char* plural) {
+    const std::int64_t v = parseInt(text, s.where());
+    if (v == 0)
+      fail(ErrorCode::ParseError, s.where(), std::string(what) + " index 0 (OBJ indices start at 1)");
+    if (v > count || v < -count)
+      fail(ErrorCode::ParseError, s.where(),
+        std::string(what) + " index " + text + " out of range: " + std::to_string(count) + " " +
+          (count == 1 ? what : plural) + " defined so far (OBJ counts from 1; negative counts back)");
+    return v > 0 ? v - 1 : count + v;
+  };
   while (s.next(t))
   {
     if (t.empty())
       continue;
-    if (t[0] == "v")
+    if (t[0] == "vt")
+      ++texCoords;
+    else if (t[0] == "vn")
+      ++normals;
+    else if (t[0] == "v")
     {
       if (t.size() < 4)
         fail(ErrorCode::ParseError, s.where(), "vertex with fewer than 3 coordinates");
@@ -41,10 +107,25 @@ TriangleMesh readObj(const std::vector<char>& data)
       const std::int64_t n = static_cast<std::int64_t>(mesh.points.size());
       for (std::size_t i = 1; i < t.size(); ++i)
       {
-        const std::int64_t v = parseInt(t[i].substr(0, t[i].find('/')), s.where());
-        if (v == 0)
-          fail(ErrorCode::ParseError, s.where(), "vertex index 0 (OBJ indices start at 1)");
-        ids.push_back(v > 0 ? v - 1 : n + v); // negative: relative to the last vertex
+        // v, v/vt, v//vn or v/vt/vn
+        const std::string& f = t[i];
+        const std::size_t a = f.find('/');
+        ids.push_back(resolve(f.substr(0, a), n, "vertex", "vertices"));
+        if (a == std::string::npos)
+          continue;
+        const std::size_t b = f.find('/', a + 1);
+        const std::string tex = f.substr(a + 1, b == std::string::npos ? std::string::npos : b - a - 1);
+        if (!tex.empty())
+          resolve(tex, texCoords, "texture coordinate", "texture coordinates");
+        if (b != std::string::npos)
+        {
+          const std::string nor = f.substr(b + 1);
+          if (nor.empty() || nor.find('/') != std::string::npos)
+            fail(ErrorCode::ParseError, s.where(), "bad face corner '" + f + "' (expected v, v/vt, v//vn or v/vt/vn)");
+          resolve(nor, normals, "normal", "normals");
+        }
+        else if (tex.empty())
+          fail(ErrorCode::ParseError, s.where(), "bad face corner '" + f + "' (expected v, v/vt, v//vn or v/vt/vn)");
       }
       addPolygon(mesh, ids, n, s.where(), ErrorCode::ParseError);
     }
@@ -54,6 +135,85 @@ TriangleMesh readObj(const std::vector<char>& data)
 }
 
 /// OFF (Geomview): [C|N|CN]OFF header, counts, vertices, faces "n i1 .. in [colour]".
+bool offSpace(char c) { return c == ' ' || c == '\t' || c == '\r' || c == '\f' || c == '\v'; }
+
+/// The body of a large plain OFF file on OpenMP threads: vertex lines of
+/// numbers that std::from_chars reads whole, triangle lines ("3 a b c",
+/// indices in range), extra values on a line ignored as by the serial
+/// reader. False (mesh untouched) for anything else, a quad, a '+' sign, a
+/// hex float, a bad index, too few lines, even '#' comments: the serial reader
+/// then reads the body again with its checks and messages.
+bool parallelOff(const char* p, std::size_t size, std::int64_t nv, std::int64_t nf, TriangleMesh& mesh)
+{
+  if (nv + nf < 100000) return false; // small files: not worth it
+  const char* end = p + size;
+  // where each of the nv + nf non-empty lines starts (a serial memchr scan)
+  std::vector<const char*> line;
+  line.reserve(static_cast<std::size_t>(nv + nf));
+  for (const char* q = p; q < end && std::int64_t(line.size()) < nv + nf;)
+  {
+    const char* e = static_cast<const char*>(std::memchr(q, '\n', static_cast<std::size_t>(end - q)));
+    if (!e) e = end;
+    const char* b = q;
+    while (b < e && offSpace(*b)) ++b;
+    if (b < e && *b == '#') return false;
+    if (b < e) line.push_back(b);
+    q = e < end ? e + 1 : e;
+  }
+  if (std::int64_t(line.size()) < nv + nf) return false;
+  // the numbers of one line: at most `want` tokens, false if one is not read whole
+  auto tokens = [end](const char* b, auto* out, int want, int& got) {
+    got = 0;
+    while (got < want)
+    {
+      while (b < end && offSpace(*b)) ++b;
+      if (b >= end || *b == '\n' || *b == '#') return true;
+      const char* t = b;
+      while (b < end && !offSpace(*b) && *b != '\n') ++b;
+      const auto r = std::from_chars(t, b, out[got]);
+      if (r.ec != std::errc() || r.ptr != b) return false;
+      ++got;
+    }
+    return true;
+  };
+  mesh.points.resize(static_cast<std::size_t>(nv));
+  mesh.triangles.resize(static_cast<std::size_t>(nf));
+  bool ok = true;
+  const double m = 3.4e38; // point()'s range
+#pragma omp parallel for schedule(static) reduction(&& : ok)
+  for (std::int64_t i = 0; i < nv + nf; ++i)
+  {
+    int got = 0;
+    if (i < nv)
+    {
+      double x[3];
+      const bool read = tokens(line[static_cast<std::size_t>(i)], x, 3, got);
+      const bool good = read && got == 3 && std::fabs(x[0]) < m && std::fabs(x[1]) < m && std::fabs(x[2]) < m;
+      if (good)
+        mesh.points[static_cast<std::size_t>(i)] = { static_cast<float>(x[0]), static_cast<float>(x[1]),
+          static_cast<float>(x[2]) };
+      ok = ok && good;
+    }
+    else
+    {
+      long long v[4];
+      const bool read = tokens(line[static_cast<std::size_t>(i)], v, 4, got);
+      const bool good = read && got == 4 && v[0] == 3 && v[1] >= 0 && v[1] < nv && v[2] >= 0 && v[2] < nv &&
+        v[3] >= 0 && v[3] < nv;
+      if (good)
+        mesh.triangles[static_cast<std::size_t>(i - nv)] = { static_cast<std::uint32_t>(v[1]),
+          static_cast<std::uint32_t>(v[2]), static_cast<std::uint32_t>(v[3]) };
+      ok = ok && good;
+    }
+  }
+  if (!ok)
+  {
+    mesh.points.clear();
+    mesh.triangles.clear();
+  }
+  return ok;
+}
+
 TriangleMesh readOff(const std::vector<char>& data)
 {
   TextScanner s(data.data(), data.size(), "OFF");
@@ -72,6 +232,11 @@ TriangleMesh readOff(const std::vector<char>& data)
     fail(ErrorCode::ParseError, s.where(),
       std::to_string(nv) + " vertices and " + std::to_string(nf) + " faces cannot fit in the rest of the file");
   TriangleMesh mesh;
+  if (parallelOff(s.position(), s.remaining(), nv, nf, mesh))
+  {
+    finish(mesh, "OFF");
+    return mesh;
+  }
   mesh.points.reserve(static_cast<size_t>(nv));
   for (std::int64_t i = 0; i < nv; ++i)
   {
@@ -98,17 +263,49 @@ TriangleMesh readOff(const std::vector<char>& data)
   return mesh;
 }
 
-/// Adds a corner to an STL mesh, sharing bit-identical points.
+/// Adds a corner to an STL mesh, sharing bit-identical points (ids in order
+/// of first appearance). Open addressing over the points' 12 bytes in one
+/// flat table, doubled at half load: no node or string per corner.
 struct PointMerger
 {
-  std::unordered_map<std::string, std::uint32_t> index;
+  std::vector<std::uint32_t> table = std::vector<std::uint32_t>(1024, Empty); // point id, or Empty
+  static constexpr std::uint32_t Empty = 0xffffffffu;
+  static std::size_t hash(const Vec3f& p)
+  {
+    std::uint32_t b[3];
+    std::memcpy(b, p.data(), sizeof(b));
+    std::uint64_t h = 1469598103934665603ull;
+    for (std::uint32_t v : b) h = (h ^ v) * 1099511628211ull;
+    return static_cast<std::size_t>(h ^ (h >> 29));
+  }
   std::uint32_t add(TriangleMesh& mesh, const Vec3f& p)
   {
-    const std::string key(reinterpret_cast<const char*>(p.data()), sizeof(Vec3f));
-    auto it = index.emplace(key, static_cast<std::uint32_t>(mesh.points.size()));
-    if (it.second)
-      mesh.points.push_back(p);
-    return it.first->second;
+    const std::size_t mask = this->table.size() - 1;
+    for (std::size_t slot = hash(p) & mask;; slot = (slot + 1) & mask)
+    {
+      const std::uint32_t e = this->table[slot];
+      if (e == Empty)
+      {
+        const auto id = static_cast<std::uint32_t>(mesh.points.size());
+        mesh.points.push_back(p);
+        this->table[slot] = id;
+        if (2 * mesh.points.size() > this->table.size()) this->grow(mesh);
+        return id;
+      }
+      if (std::memcmp(mesh.points[e].data(), p.data(), sizeof(Vec3f)) == 0) return e;
+    }
+  }
+  void grow(const TriangleMesh& mesh)
+  {
+    std::vector<std::uint32_t> bigger(2 * this->table.size(), Empty);
+    const std::size_t mask = bigger.size() - 1;
+    for (std::uint32_t id = 0; id < mesh.points.size(); ++id)
+    {
+      std::size_t slot = hash(mesh.points[id]) & mask;
+      while (bigger[slot] != Empty) slot = (slot + 1) & mask;
+      bigger[slot] = id;
+    }
+    this->table.swap(bigger);
   }
 };
 
@@ -137,8 +334,11 @@ TriangleMesh readStl(const std::vector<char>& data)
         std::array<std::uint32_t, 3> tri;
         for (int c = 0; c < 3; ++c)
         {
-          const std::string where = "STL triangle " + std::to_string(i);
-          tri[c] = merge.add(mesh, point(readLeFloat(r + 12 * c), readLeFloat(r + 12 * c + 4), readLeFloat(r + 12 * c + 8), where));
+          const float x = readLeFloat(r + 12 * c), y = readLeFloat(r + 12 * c + 4), z = readLeFloat(r + 12 * c + 8);
+          const double m = 3.4e38; // point()'s range; the record's name is made only when it fails
+          tri[c] = merge.add(mesh, std::fabs(double(x)) < m && std::fabs(double(y)) < m && std::fabs(double(z)) < m
+              ? Vec3f{ x, y, z }
+              : point(x, y, z, "STL triangle " + std::to_string(i)));
         }
         mesh.triangles.push_back(tri);
       }
@@ -194,6 +394,7 @@ TriangleMesh readMesh(ByteSource& source, MeshFormat format, const std::string& 
   if (format == MeshFormat::Auto)
     format = meshFormatFromName(name);
   const std::uint64_t size = source.size();
+  checkMeshHead(source, format, name);
   // the text and the mesh together take a few times the file size
   requireMemory(checkedMultiply(size, 4, "mesh file"), "reading the mesh file " + name);
   std::vector<char> data(static_cast<size_t>(size));

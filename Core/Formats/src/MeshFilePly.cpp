@@ -52,6 +52,22 @@ bool scalarType(const std::string& t, int& size, char& kind)
   return false;
 }
 
+bool littleEndianHost()
+{
+  const std::uint16_t one = 1;
+  unsigned char b;
+  std::memcpy(&b, &one, 1);
+  return b == 1;
+}
+
+template <typename T>
+double load(const unsigned char* q)
+{
+  T v;
+  std::memcpy(&v, q, sizeof(T));
+  return static_cast<double>(v);
+}
+
 /// Reads values from the binary body, bounds-checked.
 struct BinaryReader
 {
@@ -63,6 +79,24 @@ struct BinaryReader
   {
     if (end - p < size)
       fail(ErrorCode::CorruptData, "PLY " + element, "file ends inside the element data");
+    if (!bigEndian && littleEndianHost())
+    {
+      // the common case straight from the bytes (one load, no byte loop)
+      const unsigned char* q = p;
+      p += size;
+      switch (size * 4 + (kind == 'f' ? 0 : kind == 'u' ? 1 : 2))
+      {
+        case 16: return load<float>(q);
+        case 32: return load<double>(q);
+        case 5: return load<std::uint8_t>(q);
+        case 6: return load<std::int8_t>(q);
+        case 9: return load<std::uint16_t>(q);
+        case 10: return load<std::int16_t>(q);
+        case 17: return load<std::uint32_t>(q);
+        case 18: return load<std::int32_t>(q);
+        default: p = q; // other sizes: the general path below
+      }
+    }
     unsigned char b[8];
     for (int i = 0; i < size; ++i)
       b[i] = bigEndian ? p[size - 1 - i] : p[i];
@@ -199,21 +233,77 @@ TriangleMesh readPly(const std::vector<char>& data)
     if (isVertex)
       mesh.points.reserve(static_cast<size_t>(e.count));
     bin.element = e.name.substr(0, 40);
-    for (std::int64_t r = 0; r < e.count; ++r)
+    const std::string prefix = "PLY " + e.name.substr(0, 40) + " ";
+    scalars.assign(e.properties.size(), 0.0);
+    const ErrorCode faceCode = enc == Encoding::Ascii ? ErrorCode::ParseError : ErrorCode::CorruptData;
+    // Fast path for the common binary layouts (little-endian file and host):
+    // vertices of 4-byte floats only, faces with only a uchar-counted list of
+    // 4-byte indices. It takes records while they are plain (in range, 3
+    // indices, bytes left) and leaves the first other one, with everything
+    // after it, to the general loop below (its checks and messages).
+    std::int64_t r0 = 0;
+    if (enc == Encoding::LittleEndian && littleEndianHost())
     {
-      const std::string where = "PLY " + e.name.substr(0, 40) + " " + std::to_string(r);
-      scalars.assign(e.properties.size(), 0.0);
+      bool floats = isVertex;
+      for (const Property& p : e.properties) floats = floats && !p.list && p.kind == 'f' && p.type == 4;
+      const bool triangleList = isFace && e.properties.size() == 1 && e.properties[0].list &&
+        e.properties[0].countType == 1 && e.properties[0].type == 4 && e.properties[0].kind != 'f';
+      if (floats)
+      {
+        const std::size_t rec = 4 * e.properties.size();
+        const double m = 3.4e38; // point()'s range
+        for (; r0 < e.count && static_cast<std::size_t>(bin.end - bin.p) >= rec; ++r0)
+        {
+          float v[3];
+          std::memcpy(&v[0], bin.p + 4 * ix, 4);
+          std::memcpy(&v[1], bin.p + 4 * iy, 4);
+          std::memcpy(&v[2], bin.p + 4 * iz, 4);
+          if (!(std::fabs(double(v[0])) < m && std::fabs(double(v[1])) < m && std::fabs(double(v[2])) < m)) break;
+          mesh.points.push_back({ v[0], v[1], v[2] });
+          bin.p += rec;
+        }
+      }
+      else if (triangleList)
+      {
+        const bool isSigned = e.properties[0].kind == 'i';
+        for (; r0 < e.count && bin.end - bin.p >= 13 && bin.p[0] == 3; ++r0)
+        {
+          std::int64_t id[3];
+          for (int k = 0; k < 3; ++k)
+          {
+            std::uint32_t u;
+            std::memcpy(&u, bin.p + 1 + 4 * k, 4);
+            id[k] = isSigned ? static_cast<std::int64_t>(static_cast<std::int32_t>(u)) : static_cast<std::int64_t>(u);
+          }
+          if (!(id[0] >= 0 && id[0] < vertexCount && id[1] >= 0 && id[1] < vertexCount && id[2] >= 0 &&
+                id[2] < vertexCount))
+            break;
+          mesh.triangles.push_back(
+            { static_cast<std::uint32_t>(id[0]), static_cast<std::uint32_t>(id[1]), static_cast<std::uint32_t>(id[2]) });
+          bin.p += 13;
+        }
+      }
+    }
+    for (std::int64_t r = r0; r < e.count; ++r)
+    {
+      // the record's name, made only for a message (not per record: binary
+      // files then read at a fraction of the cost)
+      std::string whereText;
+      auto where = [&]() -> const std::string& {
+        if (whereText.empty()) whereText = prefix + std::to_string(r);
+        return whereText;
+      };
       ids.clear();
       std::size_t at = 0; // token position in ASCII
       if (enc == Encoding::Ascii && !body.nextNonEmpty(tok))
-        fail(ErrorCode::ParseError, where, "file ends before this record");
+        fail(ErrorCode::ParseError, where(), "file ends before this record");
       auto next = [&](int size, char kind) -> double {
         if (enc != Encoding::Ascii)
           return bin.value(size, kind);
         if (at >= tok.size())
-          fail(ErrorCode::ParseError, where, "record has too few values");
+          fail(ErrorCode::ParseError, where(), "record has too few values");
         const std::string& v = tok[at++];
-        return kind == 'f' ? parseReal(v, where) : static_cast<double>(parseInt(v, where));
+        return kind == 'f' ? parseReal(v, where()) : static_cast<double>(parseInt(v, where()));
       };
       for (std::size_t i = 0; i < e.properties.size(); ++i)
       {
@@ -225,24 +315,39 @@ TriangleMesh readPly(const std::vector<char>& data)
         }
         const double count = next(p.countType, p.countKind);
         if (count < 0 || count > double(left))
-          fail(ErrorCode::CorruptData, where, "list of " + std::to_string(static_cast<long long>(count)) + " items");
+          fail(ErrorCode::CorruptData, where(), "list of " + std::to_string(static_cast<long long>(count)) + " items");
         for (std::int64_t k = 0; k < static_cast<std::int64_t>(count); ++k)
         {
           const double v = next(p.type, p.kind);
           if (int(i) == ilist)
           {
             if (v != std::floor(v))
-              fail(ErrorCode::CorruptData, where, "vertex index is not an integer");
+              fail(ErrorCode::CorruptData, where(), "vertex index is not an integer");
             ids.push_back(static_cast<std::int64_t>(std::max(-1.0, std::min(v, 1e18))));
           }
         }
       }
       if (enc == Encoding::Ascii && at != tok.size())
-        fail(ErrorCode::ParseError, where, "record has " + std::to_string(tok.size() - at) + " values too many");
+        fail(ErrorCode::ParseError, where(), "record has " + std::to_string(tok.size() - at) + " values too many");
       if (isVertex)
-        mesh.points.push_back(point(scalars[size_t(ix)], scalars[size_t(iy)], scalars[size_t(iz)], where));
+      {
+        const double x = scalars[size_t(ix)], y = scalars[size_t(iy)], z = scalars[size_t(iz)];
+        const double m = 3.4e38; // point()'s range: it names the record when it fails
+        if (std::fabs(x) < m && std::fabs(y) < m && std::fabs(z) < m)
+          mesh.points.push_back({ static_cast<float>(x), static_cast<float>(y), static_cast<float>(z) });
+        else
+          mesh.points.push_back(point(x, y, z, where()));
+      }
       else if (isFace)
-        addPolygon(mesh, ids, vertexCount, where, enc == Encoding::Ascii ? ErrorCode::ParseError : ErrorCode::CorruptData);
+      {
+        // a valid triangle straight in; anything else through addPolygon (fans, messages)
+        if (ids.size() == 3 && ids[0] >= 0 && ids[0] < vertexCount && ids[1] >= 0 && ids[1] < vertexCount &&
+          ids[2] >= 0 && ids[2] < vertexCount)
+          mesh.triangles.push_back({ static_cast<std::uint32_t>(ids[0]), static_cast<std::uint32_t>(ids[1]),
+            static_cast<std::uint32_t>(ids[2]) });
+        else
+          addPolygon(mesh, ids, vertexCount, where(), faceCode);
+      }
     }
   }
   finish(mesh, "PLY");

@@ -127,10 +127,11 @@ FileHeader decodeHeader(const std::uint8_t* bytes, std::size_t n)
           << DictionaryVolume::MaxDimension;
       bad(msg.str());
     }
-    if (!std::isfinite(o.origin[a]) || !std::isfinite(o.spacing[a]) || !(o.spacing[a] > 0))
-    {
-      bad("origin or spacing not finite or spacing not positive");
-    }
+  }
+  const std::string geometry = DictionaryVolume::checkGeometry(o);
+  if (!geometry.empty())
+  {
+    bad(geometry);
   }
   if (edge < 4 || edge > 256 || (edge & (edge - 1)) != 0)
   {

@@ -6,7 +6,11 @@
 
 #include <gtest/gtest.h>
 
+#include <limits>
+
 #include <algorithm>
+#include <cmath>
+#include <cstdio>
 #include <cstring>
 
 using namespace lvdif;
@@ -149,4 +153,142 @@ TEST(MeshFile, MalformedInputsAreClearErrors)
     SCOPED_TRACE(c.label);
     expectError(c.text, c.f, c.needle);
   }
+}
+
+TEST(MeshFile, BinaryPlyFastPathMatchesTheGeneralReader)
+{
+  // float-only vertices and uchar/int triangle lists take the fast path of
+  // little-endian files; the same records as ASCII (and big-endian) go
+  // through the general reader: the meshes must be equal, and a record the
+  // fast path leaves (a quad, a bad index, a NaN, a truncation) must give
+  // the general reader's result or message
+  const float v[5][4] = { { 0, 0, 0, 1 }, { 1, 0, 0, 1 }, { 1, 1, 0, 1 }, { 0, 1, 0.5f, 1 }, { 2, 2, 2, 1 } };
+  const std::vector<std::vector<int>> faces = { { 0, 1, 2 }, { 0, 2, 3 }, { 0, 1, 2, 3 }, { 1, 2, 4 } };
+  auto head = [&](const std::string& format, std::size_t nv, std::size_t nf, const char* index) {
+    return "ply\nformat " + format + " 1.0\nelement vertex " + std::to_string(nv) +
+      "\nproperty float x\nproperty float y\nproperty float z\nproperty float nx\nelement face " + std::to_string(nf) +
+      "\nproperty list uchar " + index + " vertex_indices\nend_header\n";
+  };
+  auto binary = [&](bool big, const char* index, int badFace, float nanAt) {
+    std::string s = head(big ? "binary_big_endian" : "binary_little_endian", 5, faces.size(), index);
+    for (int i = 0; i < 5; ++i)
+      for (int k = 0; k < 4; ++k) put<float>(s, i == 2 && k == 1 ? nanAt : v[i][k], big);
+    for (std::size_t f = 0; f < faces.size(); ++f)
+    {
+      put<std::uint8_t>(s, static_cast<std::uint8_t>(faces[f].size()));
+      for (int id : faces[f]) put<std::int32_t>(s, int(f) == badFace && id == faces[f].back() ? 99 : id, big);
+    }
+    return s;
+  };
+  std::string ascii = head("ascii", 5, faces.size(), "int");
+  for (auto& p : v) ascii += std::to_string(p[0]) + " " + std::to_string(p[1]) + " " + std::to_string(p[2]) + " 1\n";
+  for (auto& f : faces)
+  {
+    ascii += std::to_string(f.size());
+    for (int id : f) ascii += " " + std::to_string(id);
+    ascii += "\n";
+  }
+  const TriangleMesh want = readText(ascii, MeshFormat::Ply);
+  ASSERT_EQ(want.triangles.size(), 5u);
+  for (const char* index : { "int", "uint" })
+    for (bool big : { false, true })
+    {
+      const TriangleMesh got = readText(binary(big, index, -1, v[2][1]), MeshFormat::Ply);
+      EXPECT_EQ(got.points, want.points) << index << big;
+      EXPECT_EQ(got.triangles, want.triangles) << index << big;
+    }
+  expectError(binary(false, "int", 1, v[2][1]), MeshFormat::Ply, "PLY face 1: vertex index 99 out of range [0, 5)");
+  expectError(binary(false, "int", 3, v[2][1]), MeshFormat::Ply, "PLY face 3: vertex index 99 out of range");
+  expectError(binary(false, "int", -1, std::numeric_limits<float>::quiet_NaN()), MeshFormat::Ply, "PLY vertex 2");
+  const std::string whole = binary(false, "int", -1, v[2][1]);
+  const std::size_t vertexBytes = whole.find("end_header\n") + 11;
+  expectError(whole.substr(0, vertexBytes + 16 * 3 + 5), MeshFormat::Ply, "ends inside");
+}
+
+TEST(MeshFile, BinaryStlSharesCornersOfLargeMeshes)
+{
+  // a 40 x 40 grid as 3,200 separate STL triangles: the 1,681 distinct
+  // corners are shared again (the point table grows past its first size),
+  // ids in order of first appearance, every corner at its own position
+  const int k = 40;
+  std::string bin(80, ' ');
+  put<std::uint32_t>(bin, 2 * k * k);
+  std::vector<std::array<float, 9>> tris;
+  for (int j = 0; j < k; ++j)
+    for (int i = 0; i < k; ++i)
+    {
+      const float x0 = i * 0.25f, x1 = (i + 1) * 0.25f, y0 = j * 0.5f, y1 = (j + 1) * 0.5f;
+      tris.push_back({ x0, y0, 1, x1, y0, 1, x1, y1, 1 });
+      tris.push_back({ x0, y0, 1, x1, y1, 1, x0, y1, 1 });
+    }
+  for (const auto& t : tris)
+  {
+    for (int i = 0; i < 3; ++i) put<float>(bin, 0);
+    for (float f : t) put<float>(bin, f);
+    put<std::uint16_t>(bin, 0);
+  }
+  const TriangleMesh m = readText(bin, MeshFormat::Stl);
+  EXPECT_EQ(m.points.size(), std::size_t((k + 1) * (k + 1)));
+  ASSERT_EQ(m.triangles.size(), tris.size());
+  std::uint32_t next = 0; // first appearances number the points 0, 1, 2, ...
+  for (std::size_t t = 0; t < tris.size(); ++t)
+    for (int c = 0; c < 3; ++c)
+    {
+      const std::uint32_t id = m.triangles[t][c];
+      EXPECT_EQ(m.points[id], (Vec3f{ tris[t][3 * c], tris[t][3 * c + 1], tris[t][3 * c + 2] }));
+      if (id == next) ++next;
+      EXPECT_LT(id, next);
+    }
+  // a NaN corner still names its triangle
+  std::string bad = bin;
+  const float nan = std::numeric_limits<float>::quiet_NaN();
+  std::memcpy(&bad[84 + 50 * 7 + 12 + 4], &nan, 4);
+  expectError(bad, MeshFormat::Stl, "STL triangle 7");
+}
+
+TEST(MeshFile, LargeOffOnThreadsMatchesTheSerialReader)
+{
+  // 250 x 250 grid: 62,500 vertices and 124,002 faces (above the parallel
+  // path's threshold). The same text with a comment line (which the parallel
+  // path leaves to the serial reader) must give the same mesh; a bad index,
+  // a quad and a '+' sign give the serial reader's result or message.
+  const int k = 250;
+  std::string body;
+  char buf[96];
+  for (int j = 0; j < k; ++j)
+    for (int i = 0; i < k; ++i)
+      body += std::string(buf, static_cast<std::size_t>(std::snprintf(buf, sizeof buf, "%.9g %.9g %.9g 255\n",
+        0.1 * i + 1e-7 * j, 0.37 * j, std::sin(0.3 * i) * 1e-3)));
+  const std::size_t verticesEnd = body.size();
+  std::vector<std::string> faces;
+  for (int j = 0; j + 1 < k; ++j)
+    for (int i = 0; i + 1 < k; ++i)
+    {
+      const int a = j * k + i, b = a + 1, c = a + k + 1, d = a + k;
+      faces.push_back("3 " + std::to_string(a) + " " + std::to_string(b) + " " + std::to_string(c) + "\n");
+      faces.push_back("3 " + std::to_string(a) + " " + std::to_string(c) + " " + std::to_string(d) + " 1 2 3\n");
+    }
+  faces.push_back("3 0 1 2\n");
+  faces.push_back("3 2 1 0\n");
+  faces.push_back("3 0 1 251\n");
+  faces.push_back("3 0 251 250\n");
+  auto file = [&](const std::string& verts, const std::vector<std::string>& fs) {
+    std::string s = "OFF\n" + std::to_string(k * k) + " " + std::to_string(fs.size()) + " 0\n" + verts;
+    for (const auto& f : fs) s += f;
+    return s;
+  };
+  const TriangleMesh fast = readText(file(body, faces), MeshFormat::Off);
+  const TriangleMesh serial = readText(file(body.substr(0, verticesEnd) + "# serial\n", faces), MeshFormat::Off);
+  ASSERT_EQ(fast.points.size(), std::size_t(k * k));
+  EXPECT_EQ(fast.points, serial.points);
+  EXPECT_EQ(fast.triangles, serial.triangles);
+  auto bad = faces;
+  bad[70000] = "3 0 1 62500\n";
+  expectError(file(body, bad), MeshFormat::Off, "OFF line " + std::to_string(2 + k * k + 70000 + 1) + ": vertex index 62500");
+  auto quad = faces;
+  quad[5] = "4 0 1 251 250\n"; // a fan of two triangles
+  const TriangleMesh q = readText(file(body, quad), MeshFormat::Off);
+  EXPECT_EQ(q.triangles.size(), faces.size() + 1);
+  const std::string plus = "+" + body; // "+0 ...": strtod reads it, from_chars does not
+  EXPECT_EQ(readText(file(plus, faces), MeshFormat::Off).points, fast.points);
 }

@@ -13,6 +13,7 @@
 #include <cstdio>
 #include <dirent.h>
 #include <fstream>
+#include <limits>
 #include <random>
 #include <sys/stat.h>
 #include <unistd.h>
@@ -459,6 +460,9 @@ TEST(VolumeFileMalformed, CraftedHeadersAndTables)
     { "chunk count mismatch", [](Bytes& f) { patchHeader(f, kChunkCount, 13, 8); }, "chunk count" },
     { "chunk edge not a power of two", [](Bytes& f) { patchHeader(f, kEdge, 24, 4); }, "chunk edge" },
     { "NaN spacing", [](Bytes& f) { patchHeader(f, 64, 0x7ff8000000000000ull, 8); }, "spacing" },
+    { "origin near 1e308", [](Bytes& f) { patchHeader(f, 40, 0x7fe1ccf385ebc8a0ull, 8); }, "float vertices" },
+    { "spacing near 1e308", [](Bytes& f) { patchHeader(f, 72, 0x7fe1ccf385ebc8a0ull, 8); }, "float vertices" },
+    { "spacing 1e-300", [](Bytes& f) { patchHeader(f, 80, 0x01a56e1fc2f8f359ull, 8); }, "spacing >=" },
     { "negative band", [](Bytes& f) { patchHeader(f, 92, 0xbf800000u, 4); }, "band" },
     { "bad dictionary step", [](Bytes& f) { patchHeader(f, 104, 0, 8); }, "SDF dictionary" },
     { "zero colours", [](Bytes& f) { patchHeader(f, kColorCount, 0, 4); }, "colour dictionary count" },
@@ -521,4 +525,54 @@ TEST(VolumeFileMalformed, ValidFramesWithBadContent)
   planes[3 * raw / 4 + 5] = 0x7f; // high byte of one colour key
   expectCorrupt(withPayload(zstd(planes)), "not in the colour dictionary", "colour key out of range");
   ASSERT_NO_THROW(fromBytes(withPayload(zstd(Bytes(raw, 0))))); // the harness itself builds valid files
+}
+
+// Origins and spacings from tiny to huge: a volume is either refused, or every
+// voxel's world position is finite in float (what mesh vertices are).
+TEST(VolumeFileMalformed, GeometryIsRefusedOrFiniteInFloat)
+{
+  std::mt19937 rng(18);
+  std::uniform_real_distribution<double> e(-45, 45);
+  int accepted = 0, refused = 0;
+  for (int i = 0; i < 2000; ++i)
+  {
+    VolumeOptions o;
+    o.dims = { 8, 16, 4 };
+    o.chunkEdge = 8;
+    for (int a = 0; a < 3; ++a)
+    {
+      o.origin[a] = (rng() % 2 ? -1 : 1) * std::pow(10.0, e(rng));
+      o.spacing[a] = std::pow(10.0, e(rng));
+    }
+    try
+    {
+      DictionaryVolume v(o);
+      ++accepted;
+      for (int a = 0; a < 3; ++a)
+      {
+        const float far = static_cast<float>(o.origin[a] + double(o.dims[a] - 1) * o.spacing[a]);
+        const float step = static_cast<float>(o.spacing[a]);
+        EXPECT_TRUE(std::isfinite(far) && std::isfinite(static_cast<float>(o.origin[a])));
+        EXPECT_GT(step, 0.0f);
+      }
+    }
+    catch (const Error& x)
+    {
+      ++refused;
+      EXPECT_EQ(x.code(), ErrorCode::InvalidArgument);
+      EXPECT_NE(std::string(x.what()).find("float vertices"), std::string::npos) << x.what();
+    }
+  }
+  EXPECT_GT(accepted, 100);
+  EXPECT_GT(refused, 100);
+  for (double huge : { 1e308, -1e308, 1e31, std::numeric_limits<double>::infinity() })
+  {
+    VolumeOptions o;
+    o.dims = { 8, 8, 8 };
+    o.origin = { huge, 0, 0 };
+    EXPECT_THROW(DictionaryVolume v(o), Error);
+    o.origin = { 0, 0, 0 };
+    o.spacing = { 1, std::fabs(huge), 1 };
+    EXPECT_THROW(DictionaryVolume v(o), Error);
+  }
 }

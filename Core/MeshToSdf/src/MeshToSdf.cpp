@@ -480,6 +480,40 @@ void volumeOnCuda(detail::meshtosdf_cuda::Session& session, DictionaryVolume& vo
   }
 }
 
+/// stats.warnings when a signed field over the whole grid has no voxel
+/// inside (`inside`: voxels deeper than 1 voxel inside the surface).
+void warnIfNothingInside(const MeshToSdfPrepared& mesh, const GridGeometry& grid, const MeshToSdfOptions& options,
+  std::int64_t inside, MeshToSdfStats& stats)
+{
+  if (options.sign == SignMode::Unsigned || inside > 0) return;
+  const double h = std::min({ grid.spacing[0], grid.spacing[1], grid.spacing[2] });
+  std::ostringstream w;
+  if (mesh.boundaryEdges() > 0)
+  {
+    w << "mesh to SDF: no voxel is inside the mesh (deeper than 1 voxel): it is open (" << mesh.boundaryEdges()
+      << " boundary edges) and encloses no volume at any voxel centre"
+      << (options.sign == SignMode::WindingNumber ? " (|winding number| < 1/2 everywhere, as for a single open sheet)"
+                                                  : "")
+      << ", so the field has no zero crossing and meshing it gives no surface; close the mesh, or use the "
+         "pseudo-normal sign (each side of a sheet gets its own sign) or the unsigned distance meshed at a "
+         "positive iso-value (a shell around the sheet)";
+  }
+  else
+  {
+    w << "mesh to SDF: no voxel centre lies inside the mesh (deeper than 1 voxel): the voxels (spacing " << h
+      << ") are larger than the mesh's parts, so the field has no zero crossing and meshing it gives no surface; "
+         "use more voxels (a higher resolution / --dims) or less padding";
+  }
+  stats.warnings.push_back(w.str());
+}
+
+bool wholeGrid(const GridGeometry& grid, const VoxelBox& extent)
+{
+  for (int a = 0; a < 3; ++a)
+    if (extent.lo[a] != 0 || extent.hi[a] != grid.dims[a] - 1) return false;
+  return true;
+}
+
 } // namespace
 
 MeshToSdfStats meshToSdf(const MeshToSdfPrepared& mesh, const GridGeometry& grid, const VoxelBox& extent,
@@ -516,6 +550,20 @@ MeshToSdfStats meshToSdf(const MeshToSdfPrepared& mesh, const GridGeometry& grid
     p.filters = options.svfFilters;
     stats.svfFlips = signVoxelFilter(view, p, interrupter).totalFlips();
     stats.svfSeconds = now() - t0;
+  }
+  if (wholeGrid(grid, extent) && options.sign != SignMode::Unsigned)
+  {
+    // a piece of a larger grid may rightly have nothing inside: whole grids
+    // only. Inside voxels within 1 voxel of the surface do not count: a
+    // curved open sheet has a film of them (|w| just above 1/2), and
+    // meshing them gives slivers at best
+    const double h = std::min({ grid.spacing[0], grid.spacing[1], grid.spacing[2] });
+    const float deep = options.unit == DistanceUnit::World ? static_cast<float>(-h) : -1.0f;
+    std::int64_t inside = 0;
+    const std::int64_t n = extent.voxelCount();
+#pragma omp parallel for reduction(+ : inside)
+    for (std::int64_t i = 0; i < n; ++i) inside += out[i] < deep;
+    warnIfNothingInside(mesh, grid, options, inside, stats);
   }
   interrupter.end();
   return stats;
@@ -559,6 +607,26 @@ MeshToSdfStats meshToSdf(const MeshToSdfPrepared& mesh, DictionaryVolume& volume
     p.filters = options.svfFilters;
     stats.svfFlips = signVoxelFilter(volume, p, interrupter).totalFlips();
     stats.svfSeconds = now() - t0;
+  }
+  if (options.sign != SignMode::Unsigned)
+  {
+    // voxels deeper than 1 voxel inside (as for float grids): uniform chunks
+    // by their value, the others voxel by voxel until the first one
+    const SdfKey zero = volume.sdfDictionary().encode(-1.0f);
+    std::int64_t inside = 0;
+    for (std::int64_t c = 0; c < volume.chunkCount() && inside == 0; ++c)
+    {
+      if (volume.isUniform(c))
+      {
+        inside += volume.uniformValue(c).sdf < zero;
+        continue;
+      }
+      const VoxelBox b = volume.chunkBox(c);
+      for (std::int64_t z = b.lo[2]; z <= b.hi[2] && inside == 0; ++z)
+        for (std::int64_t y = b.lo[1]; y <= b.hi[1] && inside == 0; ++y)
+          for (std::int64_t x = b.lo[0]; x <= b.hi[0] && inside == 0; ++x) inside += volume.get(x, y, z).sdf < zero;
+    }
+    warnIfNothingInside(mesh, grid, options, inside, stats);
   }
   interrupter.end();
   return stats;

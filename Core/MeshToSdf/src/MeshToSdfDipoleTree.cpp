@@ -79,47 +79,6 @@ DipoleTree::DipoleTree(std::vector<WeightedTri> tris)
   }
 }
 
-bool DipoleTree::bound(V3 q, double rho, double theta, double& value, double& err) const
-{
-  value = 0;
-  err = 0;
-  if (this->Nodes.empty()) return true;
-  std::int32_t stack[128];
-  int top = 0;
-  stack[top++] = 0;
-  double sum = 0, bound = 0;
-  while (top > 0)
-  {
-    const Node& nd = this->Nodes[stack[--top]];
-    const V3 y = nd.c - q;
-    const double r = norm(y);
-    const double d = r - rho - nd.r;
-    if (d > 0 && nd.r + rho <= theta * d)
-    {
-      sum += dot(nd.dipole, y) / (r * r * r);
-      bound += 2 * nd.mass * (nd.r + rho) / (d * d * d);
-      continue;
-    }
-    if (nd.left >= 0 && top + 2 <= 128)
-    {
-      stack[top++] = nd.left;
-      stack[top++] = nd.right;
-      continue;
-    }
-    if (rho > 0) return false;
-    // a leaf (or a too deep stack): exact
-    for (std::int32_t i = nd.first; i < nd.first + nd.count; ++i)
-    {
-      const WeightedTri& t = this->Tris[i];
-      sum += t.w * solidAngle(q, t.v[0], t.v[1], t.v[2]);
-    }
-  }
-  value = sum / FourPi;
-  // relative 1e-12 per summed term covers the rounding of the sums above
-  err = bound / FourPi + 1e-12 * static_cast<double>(this->Tris.size()) * (1 + std::fabs(value));
-  return true;
-}
-
 DipoleTree::Refined DipoleTree::refine(V3 q, double rho, const std::function<int(double, double)>& goal, double& sLo,
   double& sHi, std::int64_t& leafTris, std::vector<std::int32_t>* cut) const
 {

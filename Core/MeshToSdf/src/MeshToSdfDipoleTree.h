@@ -30,13 +30,6 @@ public:
   bool empty() const { return this->Tris.empty(); }
   std::size_t size() const { return this->Tris.size(); }
 
-  /// s = sum_t w_t Omega_t(p) / (4 pi) lies in [value - err, value + err]
-  /// for EVERY p with |p - q| <= rho, by a fixed opening criterion: a
-  /// cluster is used (see refine() for its bound) when R + rho <= theta d;
-  /// closer leaves are summed exactly when rho == 0, and with rho > 0 such a
-  /// leaf makes the call return false (no bound). Cheaper per cluster than
-  /// refine() (no heap), for a first try.
-  bool bound(V3 q, double rho, double theta, double& value, double& err) const;
   enum class Refined
   {
     Done,   // goal(sLo, sHi) said so

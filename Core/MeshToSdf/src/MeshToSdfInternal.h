@@ -44,6 +44,8 @@ struct PreparedMesh
   /// The boundary chain as directed segments (a -> b, repeated per unit of
   /// multiplicity): the oriented edges of the triangles that do not cancel.
   std::vector<std::array<V3, 2>> boundary;
+  /// Per triangle of tris: its corners' vertex ids, welded by exact position.
+  std::vector<std::array<std::uint32_t, 3>> welded;
   double lo[3] = { 0, 0, 0 }, hi[3] = { 0, 0, 0 }; // bounds of the kept triangles
 };
 
@@ -168,7 +170,7 @@ public:
     double radius = 0, length = 0;
   };
   /// A closed chain: triangles [0, meshTris) of `closed` are the mesh (some
-  /// possibly reversed), the rest the cone over its boundary.
+  /// possibly reversed), the rest the caps (or the cone) over its boundary.
   struct Closure
   {
     std::vector<Tri> closed;
@@ -185,14 +187,19 @@ public:
   const std::vector<Cluster>& clusters() const { return this->coneOverMesh().clusters; }
   std::size_t meshTriangles() const { return this->coneOverMesh().meshTris; }
   /// Faces reversed (F) or removed as duplicates (R) for the CPU closure.
-  std::size_t flippedTriangles() const { return this->Flipped ? this->Flipped->size() : 0; }
+  std::size_t flippedTriangles() const { return this->CorrectedFaces; }
 
 private:
   const Closure& coneOverMesh() const;
   bool insideAt(V3 p, std::int64_t& fullSums, bool reoriented) const;
   const PreparedMesh& Mesh;
-  Closure Plus;                          // M+ (F reversed, R removed) closed by the cone over dM+
-  std::unique_ptr<DipoleTree> Flipped;   // F reversed, weight 2, and R reversed, weight 1 (null if both empty)
+  /// The correction s (w = K - s) of M as given, or of M+ (reoriented).
+  const DipoleTree* correction(bool reoriented) const;
+  Closure Plus;                          // M+ (F reversed, R removed) closed by local caps S over dM+ (or a cone)
+  bool PlusIsCone = true;                // Plus is M closed by the cone over dM (what CUDA uses)
+  std::size_t CorrectedFaces = 0;        // |F| + |R|
+  std::unique_ptr<DipoleTree> Flipped;   // F reversed, weight 2, R reversed, weight 1, and the caps S (null if all empty)
+  std::unique_ptr<DipoleTree> CapsOnly;  // the caps S alone (reoriented), when F or R is not empty
   mutable std::once_flag LegacyOnce;
   mutable std::unique_ptr<Closure> Legacy; // M closed by the cone over dM (CUDA), when F or R is not empty
 };

@@ -9,6 +9,7 @@
 #include "lvdif/Memory.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <limits>
 
@@ -26,6 +27,7 @@ namespace
 {
 constexpr int Bins = 16;
 constexpr int SahDepthLimit = 48; // deeper: median splits (bounds the depth)
+constexpr std::int32_t Grain = 4096; // subtrees of at most this many triangles are built in parallel
 
 struct Ref
 {
@@ -66,15 +68,87 @@ public:
     this->Nodes.reserve(2 * refs.size());
   }
 
-  std::int32_t build(std::int32_t first, std::int32_t count, int depth)
+  /// The whole tree. The top levels are split serially down to ranges of at
+  /// most Grain triangles, which are then built in parallel into their own
+  /// node arrays and appended in order: the same tree and the same layout
+  /// for any number of threads (splits depend only on the range and depth).
+  void buildAll()
   {
-    const std::int32_t id = static_cast<std::int32_t>(this->Nodes.size());
-    this->Nodes.emplace_back();
-    this->Nodes[id].first = first;
-    this->Nodes[id].count = count;
+    const auto n = static_cast<std::int32_t>(this->Refs.size());
+    struct Job
+    {
+      std::int32_t slot, first, count, depth;
+    };
+    std::vector<Job> jobs;
+    std::vector<std::int32_t> top; // inner nodes of the top levels, parents first
+    auto topLevels = [&](auto& self, std::int32_t first, std::int32_t count, int depth) -> std::int32_t {
+      const auto id = static_cast<std::int32_t>(this->Nodes.size());
+      this->Nodes.emplace_back();
+      this->Nodes[id].first = first;
+      this->Nodes[id].count = count;
+      if (count <= Grain)
+      {
+        jobs.push_back({ id, first, count, depth });
+        return id;
+      }
+      top.push_back(id);
+      const std::int32_t mid = this->split(first, count, depth);
+      const std::int32_t l = self(self, first, mid - first, depth + 1);
+      const std::int32_t r = self(self, mid, first + count - mid, depth + 1);
+      this->Nodes[id].left = l;
+      this->Nodes[id].right = r;
+      return id;
+    };
+    topLevels(topLevels, 0, n, 0);
+    std::vector<std::vector<BNode>> local(jobs.size());
+#pragma omp parallel for schedule(dynamic, 1)
+    for (std::int64_t j = 0; j < static_cast<std::int64_t>(jobs.size()); ++j)
+    {
+      const Job& d = jobs[static_cast<std::size_t>(j)];
+      local[static_cast<std::size_t>(j)].reserve(2 * static_cast<std::size_t>(d.count));
+      this->build(local[static_cast<std::size_t>(j)], d.first, d.count, d.depth);
+    }
+    for (std::size_t j = 0; j < jobs.size(); ++j)
+    {
+      // local node i > 0 goes to base + i - 1, the local root to its slot
+      const auto base = static_cast<std::int32_t>(this->Nodes.size());
+      auto map = [base](std::int32_t c) { return c < 0 ? c : base + c - 1; };
+      for (std::size_t i = 1; i < local[j].size(); ++i)
+      {
+        BNode x = local[j][i];
+        x.left = map(x.left);
+        x.right = map(x.right);
+        this->Nodes.push_back(x);
+      }
+      BNode root = local[j][0];
+      root.left = map(root.left);
+      root.right = map(root.right);
+      this->Nodes[static_cast<std::size_t>(jobs[j].slot)] = root;
+      std::vector<BNode>().swap(local[j]);
+    }
+    for (auto it = top.rbegin(); it != top.rend(); ++it)
+    {
+      BNode& x = this->Nodes[static_cast<std::size_t>(*it)];
+      const BNode &l = this->Nodes[static_cast<std::size_t>(x.left)], &r = this->Nodes[static_cast<std::size_t>(x.right)];
+      for (int a = 0; a < 3; ++a)
+      {
+        x.lo[a] = std::min(l.lo[a], r.lo[a]);
+        x.hi[a] = std::max(l.hi[a], r.hi[a]);
+      }
+    }
+  }
+
+  /// The subtree of Order[first, first + count) into `nodes` (its root first).
+  /// Threads may build disjoint ranges at once (split touches only its range).
+  std::int32_t build(std::vector<BNode>& nodes, std::int32_t first, std::int32_t count, int depth)
+  {
+    const std::int32_t id = static_cast<std::int32_t>(nodes.size());
+    nodes.emplace_back();
+    nodes[id].first = first;
+    nodes[id].count = count;
     if (count == 1)
     {
-      BNode& n = this->Nodes[id];
+      BNode& n = nodes[id];
       const Ref& r = this->Refs[this->Order[first]];
       n.tri = this->Order[first];
       std::copy(r.lo, r.lo + 3, n.lo);
@@ -82,15 +156,15 @@ public:
       return id;
     }
     const std::int32_t mid = this->split(first, count, depth);
-    const std::int32_t l = this->build(first, mid - first, depth + 1);
-    const std::int32_t r = this->build(mid, first + count - mid, depth + 1);
-    BNode& n = this->Nodes[id];
+    const std::int32_t l = this->build(nodes, first, mid - first, depth + 1);
+    const std::int32_t r = this->build(nodes, mid, first + count - mid, depth + 1);
+    BNode& n = nodes[id];
     n.left = l;
     n.right = r;
     for (int a = 0; a < 3; ++a)
     {
-      n.lo[a] = std::min(this->Nodes[l].lo[a], this->Nodes[r].lo[a]);
-      n.hi[a] = std::max(this->Nodes[l].hi[a], this->Nodes[r].hi[a]);
+      n.lo[a] = std::min(nodes[l].lo[a], nodes[r].lo[a]);
+      n.hi[a] = std::max(nodes[l].hi[a], nodes[r].hi[a]);
     }
     return id;
   }
@@ -193,23 +267,28 @@ NearestIndex::NearestIndex(const std::vector<Tri>& tris)
 {
   const std::size_t n = tris.size();
   // peak: the index (~350 bytes a triangle: packed records, float planes,
-  // nodes, positions) plus the build data (~220 bytes a triangle)
-  requireMemory(static_cast<std::uint64_t>(n) * 600, "mesh to SDF: nearest-triangle index");
+  // nodes, positions) plus the build data (~220 bytes a triangle, ~400 while
+  // the parallel subtrees are appended; 40 for the slabs)
+  requireMemory(static_cast<std::uint64_t>(n) * 800, "mesh to SDF: nearest-triangle index");
   std::vector<Ref> refs(n);
-  for (std::size_t i = 0; i < n; ++i)
+  double scale = 0;
+#pragma omp parallel for schedule(static) reduction(max : scale)
+  for (std::int64_t k = 0; k < static_cast<std::int64_t>(n); ++k)
   {
+    const auto i = static_cast<std::size_t>(k);
     const Tri& t = tris[i];
     for (int a = 0; a < 3; ++a)
     {
       refs[i].lo[a] = std::min(t.v[0][a], std::min(t.v[1][a], t.v[2][a]));
       refs[i].hi[a] = std::max(t.v[0][a], std::max(t.v[1][a], t.v[2][a]));
       refs[i].c[a] = t.v[0][a] + t.v[1][a] + t.v[2][a];
-      this->Scale = std::max(this->Scale, std::max(std::fabs(refs[i].lo[a]), std::fabs(refs[i].hi[a])));
+      scale = std::max(scale, std::max(std::fabs(refs[i].lo[a]), std::fabs(refs[i].hi[a])));
     }
   }
+  this->Scale = scale;
   if (n == 0) return;
   Builder b(refs);
-  b.build(0, static_cast<std::int32_t>(n), 0);
+  b.buildAll();
   this->PosOf.assign(n, -1);
   this->Tris.reserve(n);
   this->Nodes.reserve(n / 2 + 1);
@@ -287,6 +366,12 @@ NearestIndex::NearestIndex(const std::vector<Tri>& tris)
     out[4] = roundUp(hi + pad);
   };
 
+  // every node's slab up front, in parallel (each reads its own triangles)
+  std::vector<std::array<float, 5>> slabOf(b.Nodes.size());
+#pragma omp parallel for schedule(dynamic, 256)
+  for (std::int64_t i = 0; i < static_cast<std::int64_t>(b.Nodes.size()); ++i)
+    childSlab(b.Nodes[static_cast<std::size_t>(i)], slabOf[static_cast<std::size_t>(i)].data());
+
   // collapse: open the child of largest surface area until four, then emit
   // in preorder (children's triangles and nodes laid out as they are visited)
   std::size_t maxDepth = 0;
@@ -330,7 +415,7 @@ NearestIndex::NearestIndex(const std::vector<Tri>& tris)
       child[i] = c.left < 0 ? addTri(c.tri) : self(self, kids[i], depth + 1);
     }
     float slab[4][5];
-    for (int i = 0; i < k; ++i) childSlab(b.Nodes[kids[i]], slab[i]);
+    for (int i = 0; i < k; ++i) std::copy_n(slabOf[static_cast<std::size_t>(kids[i])].data(), 5, slab[i]);
     Node& node = this->Nodes[id];
     node.count = k;
     for (int i = 0; i < 4; ++i)

@@ -5,10 +5,11 @@
 #include "MeshToSdfOrientation.h"
 
 #include "MeshToSdfInternal.h"
+#include "MeshToSdfParallelSort.h"
 #include "lvdif/Memory.h"
 
 #include <algorithm>
-#include <cstring>
+#include <functional>
 #include <tuple>
 
 namespace lvdif
@@ -26,42 +27,42 @@ struct EdgeUse
 };
 } // namespace
 
-OrientedMesh orientMesh(const std::vector<Tri>& tris)
+OrientedMesh orientMesh(const std::vector<Tri>& tris, const std::vector<std::array<std::uint32_t, 3>>& welded)
 {
   OrientedMesh out;
   const std::size_t n = tris.size();
-  // corners, welded ids and positions, duplicate keys, edge uses, adjacency, BFS
-  requireMemory(static_cast<std::uint64_t>(n) * 160, "mesh to SDF: face orientation for the winding number");
+  require(welded.size() == n, "mesh to SDF: orientation needs the welded corners of every triangle");
+  // duplicate keys, edge uses (and a merge buffer for each), adjacency, BFS
+  requireMemory(static_cast<std::uint64_t>(n) * 200, "mesh to SDF: face orientation for the winding number");
   out.state.assign(n, OrientedMesh::Keep);
   if (n == 0) return out;
 
-  // weld corners by exact position (the triangles hold exact copies of the
-  // input floats, so equal points compare equal)
-  std::vector<std::uint32_t> corner(3 * n), id(3 * n);
-  for (std::size_t c = 0; c < 3 * n; ++c) corner[c] = static_cast<std::uint32_t>(c);
-  auto at = [&](std::uint32_t c) { return tris[c / 3].v[c % 3]; };
-  std::sort(corner.begin(), corner.end(), [&](std::uint32_t a, std::uint32_t b) {
-    const V3 p = at(a), q = at(b);
-    return std::tie(p.x, p.y, p.z) < std::tie(q.x, q.y, q.z);
-  });
-  std::vector<V3> pos;
-  for (std::size_t i = 0; i < corner.size(); ++i)
-  {
-    const V3 p = at(corner[i]);
-    if (i == 0 || std::memcmp(&p, &pos.back(), sizeof(V3)) != 0) pos.push_back(p);
-    id[corner[i]] = static_cast<std::uint32_t>(pos.size() - 1);
-  }
+  // corners welded by exact position (prepareMesh): id of corner c, and the
+  // position of every id
+  std::vector<std::uint32_t> id(3 * n);
+  std::uint32_t nv = 0;
+  for (std::size_t t = 0; t < n; ++t)
+    for (int k = 0; k < 3; ++k)
+    {
+      id[3 * t + k] = welded[t][k];
+      nv = std::max(nv, welded[t][k] + 1);
+    }
+  std::vector<V3> pos(nv);
+  for (std::size_t c = 0; c < 3 * n; ++c) pos[id[c]] = tris[c / 3].v[c % 3];
 
   // exact duplicates (same vertex set): keep one face of the net orientation
+  // (of the group's first face when the orientations cancel)
   {
     std::vector<std::array<std::uint32_t, 4>> key(n); // sorted ids, triangle
-    for (std::size_t t = 0; t < n; ++t)
+#pragma omp parallel for schedule(static)
+    for (std::int64_t ti = 0; ti < static_cast<std::int64_t>(n); ++ti)
     {
+      const auto t = static_cast<std::size_t>(ti);
       std::array<std::uint32_t, 3> s{ id[3 * t], id[3 * t + 1], id[3 * t + 2] };
       std::sort(s.begin(), s.end());
       key[t] = { s[0], s[1], s[2], static_cast<std::uint32_t>(t) };
     }
-    std::sort(key.begin(), key.end());
+    parallelSort(key, std::less<std::array<std::uint32_t, 4>>());
     // orientation of t relative to the sorted order (an even permutation: +1)
     auto parity = [&](std::uint32_t t, const std::array<std::uint32_t, 4>& k) {
       const std::uint32_t a = id[3 * t], b = id[3 * t + 1];
@@ -79,7 +80,10 @@ OrientedMesh orientMesh(const std::vector<Tri>& tris)
         for (std::size_t i = g; i < g1; ++i)
         {
           const std::uint32_t t = key[i][3];
-          if (!kept && net != 0 && parity(t, key[i]) == (net > 0 ? 1 : -1))
+          // a group that cancels (net 0) still keeps one face: the search
+          // orients it with its neighbours and the correction s restores w_M,
+          // instead of a one-face hole whose cone term costs every voxel
+          if (!kept && (net == 0 || parity(t, key[i]) == (net > 0 ? 1 : -1)))
           {
             kept = true;
             continue;
@@ -102,7 +106,8 @@ OrientedMesh orientMesh(const std::vector<Tri>& tris)
       uses.push_back({ std::min(a, b), std::max(a, b), static_cast<std::uint32_t>(t),
         static_cast<std::int8_t>(a < b ? 1 : -1) });
     }
-  std::sort(uses.begin(), uses.end(), [](const EdgeUse& a, const EdgeUse& b) {
+  // (lo, hi, tri) is a total order: a non-degenerate triangle uses an edge once
+  parallelSort(uses, [](const EdgeUse& a, const EdgeUse& b) {
     return std::tie(a.lo, a.hi, a.tri) < std::tie(b.lo, b.hi, b.tri);
   });
 

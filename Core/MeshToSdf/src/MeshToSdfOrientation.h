@@ -38,15 +38,19 @@ struct OrientedMesh
 };
 
 /// Faces with the same three vertices as another face are reduced first to
-/// their net multiplicity (one face of the majority orientation, or none when
-/// they cancel); the others are removed. Then it orients every connected component (faces joined by edges with exactly two
+/// their net multiplicity (one face of the majority orientation; when they
+/// cancel, one face all the same, oriented by the search below, so M+ has no
+/// hole there); the others are removed. Then it orients every connected component (faces joined by edges with exactly two
 /// faces) by a breadth-first search, keeps the orientation of the majority of
 /// each component's faces, and lists the reversed minority F. Any choice of F
 /// gives the same w_M: only the speed depends on F being small and M+ having
 /// little boundary. Non-manifold edges are not crossed; a non-orientable
 /// component keeps the first orientation the BFS reached (its conflicting
 /// edges become boundary of M+, closed by the cone).
-OrientedMesh orientMesh(const std::vector<Tri>& tris);
+/// `welded`: per triangle, its corners' vertex ids welded by exact position
+/// (PreparedMesh::welded). Sorts on OpenMP threads; the result does not
+/// depend on the thread count.
+OrientedMesh orientMesh(const std::vector<Tri>& tris, const std::vector<std::array<std::uint32_t, 3>>& welded);
 
 } // namespace detail::meshtosdf
 } // namespace lvdif

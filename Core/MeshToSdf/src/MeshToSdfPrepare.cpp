@@ -238,6 +238,7 @@ PreparedMesh prepareMesh(const TriangleMesh& mesh)
   }
   out.lo[0] = lx, out.lo[1] = ly, out.lo[2] = lz;
   out.hi[0] = hx, out.hi[1] = hy, out.hi[2] = hz;
+  out.welded = std::move(welded);
   return out;
 }
 

@@ -7,8 +7,10 @@
 #include "MeshToSdfOracle.h"
 
 #include <gtest/gtest.h>
+#include <omp.h>
 
 #include <algorithm>
+#include <cstring>
 #include <limits>
 #include <random>
 #include <vector>
@@ -196,4 +198,32 @@ TEST(MeshToSdfNearest, SliversTinyAndNeedleTriangles)
   for (const V3& f : randomQueries(rng, 20, -1e4, 1e4)) q.push_back(f);
   for (std::size_t i = 0; i < m.points.size(); i += 3) q.push_back({ m.points[i][0], m.points[i][1], m.points[i][2] });
   EXPECT_GT(checkAll(m, q, rng), 0);
+}
+
+TEST(MeshToSdfNearest, ParallelBuildIsExactAndIndependentOfThreads)
+{
+  // more triangles than one parallel subtree (4096): the top levels are split
+  // serially and the subtrees built on threads; the tree must not depend on
+  // the thread count, and queries stay exact
+  const TriangleMesh mesh = makeSphereMesh(0.1f, -0.2f, 0.05f, 1.0f, 90, 120);
+  const PreparedMesh pm = prepareMesh(mesh);
+  ASSERT_GT(pm.tris.size(), 4u * 4096u);
+  const int threads = omp_get_max_threads();
+  omp_set_num_threads(1);
+  const NearestIndex one(pm.tris);
+  omp_set_num_threads(std::max(4, threads));
+  const NearestIndex many(pm.tris);
+  omp_set_num_threads(threads);
+  ASSERT_EQ(one.nodes().size(), many.nodes().size());
+  EXPECT_EQ(std::memcmp(one.nodes().data(), many.nodes().data(), one.nodes().size() * sizeof(one.nodes()[0])), 0);
+  std::mt19937 rng(11);
+  std::uniform_real_distribution<double> u(-1.6, 1.6);
+  for (int q = 0; q < 300; ++q)
+  {
+    const V3 p{ u(rng), u(rng), u(rng) };
+    const NearestResult want = bruteForce(pm.tris, p, 1e300);
+    const NearestResult got = many.nearest(p, -1, 1e300);
+    EXPECT_EQ(got.tri, want.tri);
+    EXPECT_EQ(got.dist2, want.dist2);
+  }
 }

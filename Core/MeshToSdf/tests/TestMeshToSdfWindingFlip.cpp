@@ -8,11 +8,15 @@
 // orientation finds exactly the reversed faces of a closed sphere.
 #include "../src/MeshToSdfDipoleTree.h"
 #include "../src/MeshToSdfInternal.h"
+#include "../src/MeshToSdfOrientation.h"
+#include "../src/MeshToSdfParallelSort.h"
 #include "MeshToSdfOracle.h"
 #include "lvdif/MeshToSdf.h"
 
 #include <gtest/gtest.h>
+#include <omp.h>
 
+#include <algorithm>
 #include <cmath>
 #include <random>
 #include <string>
@@ -212,6 +216,32 @@ TEST(MeshToSdfWindingFlip, OrientationFindsExactlyTheReversedFaces)
   }
 }
 
+TEST(MeshToSdfWindingFlip, CancellingDuplicatesLeaveNoHoleAndOneFaceHolesAreExact)
+{
+  // a face and its reversed copy cancel as chains: the orientation pass
+  // keeps one of them (no one-face hole in M+), so M+ is closed
+  TriangleMesh m = makeSphereMesh(0.05f, -0.03f, 0.02f, 1.0f, 10, 20);
+  const std::size_t n = m.triangles.size();
+  for (std::size_t t = 0; t < n; t += 9)
+  {
+    auto r = m.triangles[t];
+    std::swap(r[1], r[2]);
+    m.triangles.push_back(r);
+  }
+  const auto prepared = detail::meshtosdf::prepareMesh(m);
+  const detail::meshtosdf::OrientedMesh om = detail::meshtosdf::orientMesh(prepared.tris, prepared.welded);
+  EXPECT_TRUE(om.boundary.empty());
+  EXPECT_EQ(om.removedCount, m.triangles.size() - n); // one face of each pair
+  expectExactSigns("sphere + reversed copies of every 9th face", m);
+  // many small holes: each closed by its own cap (a triangle), exact
+  TriangleMesh h = makeSphereMesh(0.05f, -0.03f, 0.02f, 1.0f, 10, 20);
+  std::vector<std::array<std::uint32_t, 3>> kept;
+  for (std::size_t t = 0; t < h.triangles.size(); ++t)
+    if (t % 13 != 5) kept.push_back(h.triangles[t]);
+  h.triangles = kept;
+  expectExactSigns("sphere with 15 one-face holes", h);
+}
+
 TEST(MeshToSdfWindingFlip, FlippedFractionsAreExact)
 {
   for (double f : { 0.1, 0.3, 0.5, 0.9 })
@@ -293,4 +323,35 @@ TEST(MeshToSdfWindingFlip, NonOrientableAndNonManifoldAreExact)
   m = merge(m, other);
   flip(m, 0.25, 11);
   expectExactSigns("boxes on one edge + fin (non-manifold), flips", m);
+}
+
+TEST(MeshToSdfWindingFlip, OrientationIsIndependentOfThreads)
+{
+  // large enough for the parallel sorts (parts of >= 32768 entries): the
+  // result must be the one thread's, entry for entry
+  std::vector<std::array<std::uint32_t, 4>> keys(300000);
+  std::mt19937 rng(5);
+  for (std::size_t i = 0; i < keys.size(); ++i)
+    keys[i] = { static_cast<std::uint32_t>(rng() % 50), static_cast<std::uint32_t>(rng() % 50),
+      static_cast<std::uint32_t>(rng() % 50), static_cast<std::uint32_t>(i) };
+  auto sorted = keys;
+  std::sort(sorted.begin(), sorted.end());
+  const int threads = omp_get_max_threads();
+  omp_set_num_threads(std::max(4, threads));
+  detail::meshtosdf::parallelSort(keys, std::less<std::array<std::uint32_t, 4>>());
+  EXPECT_TRUE(keys == sorted);
+
+  TriangleMesh m = makeSphereMesh(0, 0, 0, 1.0f, 120, 160);
+  flip(m, 0.2, 4);
+  for (std::size_t t = 0; t < m.triangles.size(); t += 50) m.triangles.push_back(m.triangles[t]);
+  const auto prepared = detail::meshtosdf::prepareMesh(m);
+  omp_set_num_threads(1);
+  const detail::meshtosdf::OrientedMesh one = detail::meshtosdf::orientMesh(prepared.tris, prepared.welded);
+  omp_set_num_threads(std::max(4, threads));
+  const detail::meshtosdf::OrientedMesh many = detail::meshtosdf::orientMesh(prepared.tris, prepared.welded);
+  omp_set_num_threads(threads);
+  EXPECT_GT(one.flippedCount, 0u);
+  EXPECT_GT(one.removedCount, 0u);
+  EXPECT_TRUE(one.state == many.state);
+  EXPECT_EQ(one.boundary.size(), many.boundary.size());
 }

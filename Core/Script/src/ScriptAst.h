@@ -1,6 +1,8 @@
 // Tokens and syntax tree of the scripting language (see lvdif/Script.h).
 #pragma once
 
+#include "lvdif/Script.h"
+
 #include <memory>
 #include <string>
 #include <vector>
@@ -52,14 +54,24 @@ struct Expr
     Number,
     Variable,
     Unary,  // op '-' or 'n' (not)
-    Binary, // op: + - * / % < <= > >= == != & (and) | (or)
+    Binary, // args[0] ops[0] args[1] ops[1] ... left to right, one precedence level
     Call
+  };
+  /// One operator of a Binary chain: + - * / % < <= > >= == != & (and) | (or).
+  struct Op
+  {
+    std::string op;
+    int line = 1, column = 1;
   };
   Kind kind = Kind::Number;
   double number = 0;
   std::string name; // variable or function
-  std::string op;
+  std::string op;   // of a Unary
   std::vector<std::unique_ptr<Expr>> args;
+  /// A chain such as 1+1+1+... is one node with n operands and n-1 operators,
+  /// so its length never turns into recursion depth (parsing, evaluation or
+  /// destruction); only parentheses, unary operators and calls nest.
+  std::vector<Op> ops;
   int line = 1, column = 1;
 };
 using ExprPtr = std::unique_ptr<Expr>;
@@ -74,7 +86,7 @@ struct Stmt
     Assign, // name = value
     For,    // for name in from..to { body }
     While,  // while cond { body }
-    If,     // if cond { body } else { orelse }
+    If,     // if cond { body } else if elifs[0].cond { elifs[0].body } ... else { orelse }
     Command // name args...
   };
   Kind kind = Kind::Command;
@@ -83,6 +95,13 @@ struct Stmt
   std::vector<ExprPtr> args;
   ExprPtr cond, from, to;
   Block body, orelse;
+  /// The `else if` clauses of an If, flat (a long chain nests nothing).
+  struct Clause
+  {
+    ExprPtr cond;
+    Block body;
+  };
+  std::vector<Clause> elifs;
   int line = 1, column = 1;
 };
 

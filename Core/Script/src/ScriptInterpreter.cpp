@@ -5,6 +5,7 @@
 
 #include "lvdif/Script.h"
 
+#include <algorithm>
 #include <cmath>
 #include <iostream>
 #include <map>
@@ -94,15 +95,33 @@ struct ScriptRunner::Impl
     return 0;
   }
 
+  // A chain evaluates left to right in a loop; 'and' and 'or' stop at the
+  // first operand that decides the result.
   double binary(const Expr& e)
   {
-    const std::string& op = e.op;
-    const double a = this->eval(*e.args[0]);
-    if (op == "&")
-      return a != 0 && this->eval(*e.args[1]) != 0 ? 1.0 : 0.0; // short-circuit
-    if (op == "|")
-      return a != 0 || this->eval(*e.args[1]) != 0 ? 1.0 : 0.0;
-    const double b = this->eval(*e.args[1]);
+    double a = this->eval(*e.args[0]);
+    for (std::size_t i = 0; i < e.ops.size(); ++i)
+    {
+      const Expr::Op& o = e.ops[i];
+      const Expr& rhs = *e.args[i + 1];
+      if (o.op == "&")
+      {
+        a = a != 0 && this->eval(rhs) != 0 ? 1.0 : 0.0;
+        continue;
+      }
+      if (o.op == "|")
+      {
+        a = a != 0 || this->eval(rhs) != 0 ? 1.0 : 0.0;
+        continue;
+      }
+      a = this->apply(o, a, this->eval(rhs));
+    }
+    return a;
+  }
+
+  static double apply(const Expr::Op& o, double a, double b)
+  {
+    const std::string& op = o.op;
     double r = 0;
     if (op == "+")
       r = a + b;
@@ -113,7 +132,7 @@ struct ScriptRunner::Impl
     else if (op == "/" || op == "%")
     {
       if (b == 0)
-        fail(e.line, e.column, op == "/" ? "division by zero" : "remainder by zero");
+        fail(o.line, o.column, op == "/" ? "division by zero" : "remainder by zero");
       r = op == "/" ? a / b : a - b * std::floor(a / b); // % takes the sign of the divisor
     }
     else if (op == "<")
@@ -129,7 +148,7 @@ struct ScriptRunner::Impl
     else if (op == "!=")
       r = a != b;
     if (!std::isfinite(r))
-      fail(e.line, e.column, "'" + op + "' gives a non-finite result");
+      fail(o.line, o.column, "'" + op + "' gives a non-finite result");
     return r;
   }
 
@@ -197,11 +216,15 @@ struct ScriptRunner::Impl
         this->Vars[s.name] = this->eval(*s.cond);
         return;
       case Stmt::Kind::If:
+      {
         if (this->eval(*s.cond) != 0)
-          this->run(s.body, false);
-        else
-          this->run(s.orelse, false);
+          return this->run(s.body, false);
+        for (const Stmt::Clause& c : s.elifs)
+          if (this->eval(*c.cond) != 0)
+            return this->run(c.body, false);
+        this->run(s.orelse, false);
         return;
+      }
       case Stmt::Kind::While:
         while (this->eval(*s.cond) != 0)
         {
@@ -253,7 +276,44 @@ struct ScriptRunner::Impl
     return v;
   }
 
+  // Dabs count as steps: an edit may make at most the steps left (checked
+  // before the dabs are generated), and the dabs it made are added after.
   void command(const Stmt& s)
+  {
+    if (!this->Ed)
+      return this->commandOn(s);
+    Editor& ed = *this->Ed;
+    const EditLimits saved = ed.limits;
+    Interrupter* savedIn = ed.interrupter;
+    const std::uint64_t left = this->Options.maxSteps - std::min(this->Options.maxSteps, this->Owner->Steps);
+    ed.limits.maxDabsPerEdit = std::min<std::uint64_t>(ed.limits.maxDabsPerEdit, left);
+    ed.limits.maxTotalDabs = std::min<std::uint64_t>(ed.limits.maxTotalDabs, ed.dabsApplied() + left);
+    if (this->Options.interrupter)
+      ed.interrupter = this->Options.interrupter;
+    const std::uint64_t before = ed.dabsApplied();
+    Editor* used = &ed;
+    try
+    {
+      this->commandOn(s);
+    }
+    catch (...)
+    {
+      if (this->Ed == used) // 'canvas' replaces the editor
+      {
+        used->limits = saved;
+        used->interrupter = savedIn;
+      }
+      throw;
+    }
+    if (this->Ed == used)
+    {
+      this->Owner->Steps += used->dabsApplied() - before;
+      used->limits = saved;
+      used->interrupter = savedIn;
+    }
+  }
+
+  void commandOn(const Stmt& s)
   {
     const std::string& c = s.name;
     std::vector<double> a;
@@ -274,7 +334,7 @@ struct ScriptRunner::Impl
       return this->canvas(s, a);
     if (c == "radius")
     {
-      this->Radius = this->positive(s, a[0], "radius");
+      this->Radius = checkedNumber(this->positive(s, a[0], "radius"), 0, EditLimits::MaxSize, "radius");
       if (this->Ed)
         this->Ed->stroke.radius = this->Radius;
       return;
@@ -307,18 +367,14 @@ struct ScriptRunner::Impl
                                           : BrushKind::Drill;
     else if (c == "blend")
     {
-      if (!(a[0] >= 0))
-        fail(s.line, s.column, "blend must be >= 0");
-      ed.brush.blend = a[0];
+      ed.brush.blend = checkedNumber(a[0], 0, EditLimits::MaxSize, "blend");
     }
     else if (c == "round")
     {
-      if (!(a[0] >= 0))
-        fail(s.line, s.column, "round must be >= 0");
-      ed.brush.rounding = a[0];
+      ed.brush.rounding = checkedNumber(a[0], 0, EditLimits::MaxSize, "round");
     }
     else if (c == "spacing")
-      ed.stroke.spacing = this->positive(s, a[0], "spacing");
+      ed.stroke.spacing = checkedNumber(a[0], EditLimits::MinSpacing, EditLimits::MaxSize, "spacing");
     else if (c == "dab" || c == "sphere" || c == "cube")
     {
       Dab d;

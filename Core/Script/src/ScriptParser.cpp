@@ -105,10 +105,16 @@ private:
   }
 
   // statements until '}' (open != nullptr) or the end
+  void enter(const Token& at, const char* what)
+  {
+    if (++this->Depth > ScriptMaxNesting)
+      this->fail(at, std::string(what) + " nested too deeply (more than " + std::to_string(ScriptMaxNesting) +
+          " levels of blocks, parentheses, unary operators and calls)");
+  }
+
   Block block(const Token* open)
   {
-    if (++this->Depth > 200)
-      this->fail(this->peek(), "blocks nested too deeply");
+    this->enter(this->peek(), "blocks");
     Block b;
     for (;;)
     {
@@ -187,20 +193,28 @@ private:
       s->kind = Stmt::Kind::If;
       s->cond = this->expression();
       s->body = this->braced();
-      this->skipNewlinesBefore(Tok::Ident);
-      if (this->atWord("else"))
+      // else-if clauses are collected in a loop, not by recursion
+      for (;;)
       {
+        this->skipNewlinesBefore(Tok::Ident);
+        if (!this->atWord("else"))
+        {
+          // skipNewlinesBefore may have moved onto the next statement: step back to its newline
+          while (this->I > 0 && this->T[this->I - 1].kind == Tok::Newline)
+            --this->I;
+          break;
+        }
         this->next();
-        if (this->atWord("if"))
-          s->orelse.push_back(this->statement());
-        else
+        if (!this->atWord("if"))
+        {
           s->orelse = this->braced();
-      }
-      else
-      {
-        // skipNewlinesBefore may have moved onto the next statement: step back to its newline
-        while (this->I > 0 && this->T[this->I - 1].kind == Tok::Newline)
-          --this->I;
+          break;
+        }
+        this->next();
+        Stmt::Clause c;
+        c.cond = this->expression();
+        c.body = this->braced();
+        s->elifs.push_back(std::move(c));
       }
       return s;
     }
@@ -273,42 +287,48 @@ private:
     e->column = t.column;
     return e;
   }
-  ExprPtr binary(const Token& t, const std::string& op, ExprPtr a, ExprPtr b)
-  {
-    auto e = this->node(Expr::Kind::Binary, t);
-    e->op = op;
-    e->args.push_back(std::move(a));
-    e->args.push_back(std::move(b));
-    return e;
-  }
-
   ExprPtr expression()
   {
-    if (++this->Depth > 200)
-      this->fail(this->peek(), "expression nested too deeply");
+    this->enter(this->peek(), "expressions");
     ExprPtr e = this->orExpr();
     --this->Depth;
     return e;
   }
+  // Each level loops over its operators; a parenthesised chain of the same
+  // level is its own node (it came back from primary(), not from this loop).
   ExprPtr orExpr()
   {
     ExprPtr a = this->andExpr();
+    ExprPtr c;
     while (this->atWord("or"))
     {
       const Token& t = this->next();
-      a = this->binary(t, "|", std::move(a), this->andExpr());
+      c = this->grow(std::move(c), std::move(a), t, "|", this->andExpr());
     }
-    return a;
+    return c ? std::move(c) : std::move(a);
   }
   ExprPtr andExpr()
   {
     ExprPtr a = this->comparison();
+    ExprPtr c;
     while (this->atWord("and"))
     {
       const Token& t = this->next();
-      a = this->binary(t, "&", std::move(a), this->comparison());
+      c = this->grow(std::move(c), std::move(a), t, "&", this->comparison());
     }
-    return a;
+    return c ? std::move(c) : std::move(a);
+  }
+  /// The first operator makes a new chain node holding `first`; later ones extend it.
+  ExprPtr grow(ExprPtr chainNode, ExprPtr first, const Token& t, const std::string& op, ExprPtr b)
+  {
+    if (!chainNode)
+    {
+      chainNode = this->node(Expr::Kind::Binary, t);
+      chainNode->args.push_back(std::move(first));
+    }
+    chainNode->ops.push_back(Expr::Op{ op, t.line, t.column });
+    chainNode->args.push_back(std::move(b));
+    return chainNode;
   }
   ExprPtr comparison()
   {
@@ -317,7 +337,7 @@ private:
     if (k == Tok::Lt || k == Tok::Le || k == Tok::Gt || k == Tok::Ge || k == Tok::Eq || k == Tok::Ne)
     {
       const Token& t = this->next();
-      a = this->binary(t, t.text, std::move(a), this->sum());
+      a = this->grow(nullptr, std::move(a), t, t.text, this->sum());
       const Tok k2 = this->peek().kind;
       if (k2 == Tok::Lt || k2 == Tok::Le || k2 == Tok::Gt || k2 == Tok::Ge || k2 == Tok::Eq || k2 == Tok::Ne)
         this->fail(this->peek(), "comparisons cannot be chained; use 'and'");
@@ -327,29 +347,30 @@ private:
   ExprPtr sum()
   {
     ExprPtr a = this->product();
+    ExprPtr c;
     while (this->at(Tok::Plus) || this->at(Tok::Minus))
     {
       const Token& t = this->next();
-      a = this->binary(t, t.text, std::move(a), this->product());
+      c = this->grow(std::move(c), std::move(a), t, t.text, this->product());
     }
-    return a;
+    return c ? std::move(c) : std::move(a);
   }
   ExprPtr product()
   {
     ExprPtr a = this->unary();
+    ExprPtr c;
     while (this->at(Tok::Star) || this->at(Tok::Slash) || this->at(Tok::Percent))
     {
       const Token& t = this->next();
-      a = this->binary(t, t.text, std::move(a), this->unary());
+      c = this->grow(std::move(c), std::move(a), t, t.text, this->unary());
     }
-    return a;
+    return c ? std::move(c) : std::move(a);
   }
   ExprPtr unary()
   {
     if (this->at(Tok::Minus) || this->atWord("not"))
     {
-      if (++this->Depth > 200)
-        this->fail(this->peek(), "expression nested too deeply");
+      this->enter(this->peek(), "unary operators");
       const Token& t = this->next();
       auto e = this->node(Expr::Kind::Unary, t);
       e->op = t.kind == Tok::Minus ? "-" : "n";

@@ -7,8 +7,10 @@
 
 #include <gtest/gtest.h>
 
+#include <chrono>
 #include <cmath>
 #include <fstream>
+#include <random>
 #include <set>
 #include <sstream>
 
@@ -275,4 +277,142 @@ TEST(Script, SpiralDrawsNineTaperedLinesInNineColours)
   }
   // the helix axis itself is empty
   EXPECT_GT(v.sdf(64, 64, 64), 0.0f);
+}
+
+// Hostile shapes of scripts: chains of any length evaluate without recursion
+// (checked against a sum computed here), nesting beyond the limit is one
+// parse error at the token that crossed it.
+TEST(Script, LongChainsRunWithoutRecursion)
+{
+  std::mt19937 rng(18);
+  for (int n : { 2, 3, 1000, 100000 })
+  {
+    std::string src = "x = 7";
+    double expect = 7;
+    for (int i = 0; i < n; ++i)
+    {
+      const int v = static_cast<int>(rng() % 9) + 1;
+      const bool minus = rng() % 2 != 0;
+      src += (minus ? "-" : "+") + std::to_string(v);
+      expect += minus ? -v : v;
+    }
+    EXPECT_EQ(valueOf(src), expect) << n << " terms";
+  }
+  // products, 'and' and 'or' chains, and mixed levels
+  std::string prod = "x = 1", all = "x = 1", any = "x = 0";
+  for (int i = 0; i < 50000; ++i)
+  {
+    prod += i % 2 ? "*2" : "/2";
+    all += " and 1";
+    any += " or 0";
+  }
+  EXPECT_EQ(valueOf(prod), 1.0);
+  EXPECT_EQ(valueOf(all), 1.0);
+  EXPECT_EQ(valueOf(any + " or 3"), 1.0);
+  EXPECT_EQ(valueOf("x = 2 + 3 * 4 - 10 / 5 * 2 + 7 % 4"), 2 + 12 - 4 + 3);
+  EXPECT_EQ(valueOf("x = 1 < 2 and 3 > 2 or 0"), 1.0);
+  EXPECT_EQ(valueOf("x = (1 + 2) * (3 + 4) - (10 - 2 - 3)"), 21 - 5);
+  // errors inside a chain point at their own operator
+  const Where w = errorOf("x = 1 + 2 + 3 / 0 + 4");
+  EXPECT_EQ(w.line, 1);
+  EXPECT_EQ(w.column, 15);
+  EXPECT_EQ(w.detail, "division by zero");
+}
+
+TEST(Script, LongElseIfChainsPickTheRightClause)
+{
+  for (int n : { 1, 2, 30000 })
+    for (int pick : { 0, n / 2, n - 1, n })
+    {
+      std::string src = "k = " + std::to_string(pick) + "\nif k == 0 { x = 0 }";
+      for (int i = 1; i < n; ++i)
+        src += " else if k == " + std::to_string(i) + " { x = " + std::to_string(i) + " }";
+      src += "\nelse { x = -1 }";
+      EXPECT_EQ(valueOf(src), pick < n ? pick : -1) << n << " clauses, pick " << pick;
+    }
+}
+
+TEST(Script, NestingBeyondTheLimitIsOneParseError)
+{
+  const auto check = [](const std::string& src, int column, const char* what) {
+    const Where w = errorOf(src);
+    EXPECT_EQ(w.code, ErrorCode::ParseError) << what;
+    EXPECT_EQ(w.line, 1) << what;
+    EXPECT_EQ(w.column, column) << what;
+    EXPECT_NE(w.detail.find("nested too deeply"), std::string::npos) << what << ": " << w.detail;
+    EXPECT_EQ(w.detail.find('\n'), std::string::npos);
+  };
+  for (int n : { ScriptMaxNesting + 1, 100000 })
+  {
+    const std::string open(static_cast<std::size_t>(n), '(');
+    // 'x = ' is 4 characters; the parenthesis that crosses the limit is the ScriptMaxNesting-th
+    // (the statement's own expression is the first level)
+    check("x = " + open + "1" + std::string(static_cast<std::size_t>(n), ')'), 4 + ScriptMaxNesting, "parentheses");
+    std::string neg;
+    for (int i = 0; i < n; ++i)
+      neg += "-";
+    check("x = " + neg + "1", 3 + ScriptMaxNesting, "unary minus");
+    std::string nots;
+    for (int i = 0; i < n; ++i)
+      nots += "not ";
+    check("x = " + nots + "1", 5 + 4 * (ScriptMaxNesting - 2), "not");
+    std::string calls;
+    for (int i = 0; i < n; ++i)
+      calls += "abs(";
+    check("x = " + calls + "1" + std::string(static_cast<std::size_t>(n), ')'), 5 + 4 * (ScriptMaxNesting - 1),
+      "calls");
+    std::string blocks;
+    for (int i = 0; i < n; ++i)
+      blocks += "if 1 {";
+    // the top level is a block too; blocks alternate with their condition's expression level
+    const Where w = errorOf(blocks);
+    EXPECT_EQ(w.code, ErrorCode::ParseError);
+    EXPECT_NE(w.detail.find("nested too deeply"), std::string::npos) << w.detail;
+  }
+  // just inside the limit still runs
+  const int ok = ScriptMaxNesting - 2;
+  EXPECT_EQ(valueOf("x = " + std::string(ok, '(') + "5" + std::string(ok, ')')), 5.0);
+}
+
+// Dabs count as steps and a runaway line is refused before its dabs exist:
+// generated spacings and lengths, each either runs within the step limit or
+// stops at its own line and column with nothing of it applied.
+TEST(Script, DabsCountAsStepsAndRunawayLinesAreRefusedFirst)
+{
+  std::mt19937 rng(18);
+  std::uniform_real_distribution<double> spacing(0.001, 0.01), length(50, 1e6);
+  for (int i = 0; i < 20; ++i)
+  {
+    ScriptOptions o;
+    o.maxSteps = 100000;
+    const double s = spacing(rng), l = length(rng);
+    std::ostringstream src;
+    src << "canvas 32\nspacing " << s << "\nline 2 2 2 " << 2 + l << " 2 2\n";
+    ScriptRunner r(o);
+    const auto t0 = std::chrono::steady_clock::now();
+    const double dabs = std::floor(l / s) + 2;
+    try
+    {
+      r.run(src.str());
+      EXPECT_LE(dabs, double(o.maxSteps)) << src.str();
+      EXPECT_GE(double(r.steps()), std::floor(l / s)); // the dabs were counted
+    }
+    catch (const ScriptError& e)
+    {
+      EXPECT_GT(dabs, double(o.maxSteps) - 10) << src.str();
+      EXPECT_EQ(e.line(), 3);
+      EXPECT_EQ(e.column(), 1);
+      EXPECT_NE(e.detail().find("more than the limit"), std::string::npos) << e.detail();
+      EXPECT_EQ(r.edits(), 0u);
+    }
+    EXPECT_LT(std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count(), 10.0);
+  }
+  // out-of-range numbers name the command's position
+  for (const char* cmd : { "blend 1e300", "round 1e300", "spacing 1e-9", "radius 1e300" })
+  {
+    const Where w = errorOf(std::string("canvas 16\n") + cmd + "\n");
+    EXPECT_EQ(w.line, 2) << cmd;
+    EXPECT_EQ(w.column, 1) << cmd;
+    EXPECT_NE(w.detail.find("must be a finite number in"), std::string::npos) << w.detail;
+  }
 }

@@ -59,9 +59,9 @@ static void validateOptions(const VolumeOptions& o)
           << " are out of range (each must be 1.." << DictionaryVolume::MaxDimension << ")";
       throw Error(ErrorCode::InvalidArgument, msg.str());
     }
-    require(std::isfinite(o.origin[a]), "volume origin must be finite");
-    require(std::isfinite(o.spacing[a]) && o.spacing[a] > 0, "volume spacing must be finite and > 0");
   }
+  const std::string geometry = DictionaryVolume::checkGeometry(o);
+  require(geometry.empty(), geometry);
   const int e = o.chunkEdge;
   if (e < 4 || e > 256 || (e & (e - 1)) != 0)
   {
@@ -88,6 +88,24 @@ std::uint64_t DictionaryVolume::denseBytes(const VolumeOptions& o)
   const std::uint64_t table = tableBytes(o);
   const std::uint64_t chunks = table / sizeof(Chunk);
   return table + checkedMultiply(chunks, static_cast<std::uint64_t>(chunkSize(o.chunkEdge)) * sizeof(Voxel), "dense volume");
+}
+
+std::string DictionaryVolume::checkGeometry(const VolumeOptions& o)
+{
+  for (int a = 0; a < 3; ++a)
+  {
+    const double far = std::fabs(o.origin[a]) + o.spacing[a] * double(o.dims[a]);
+    if (!std::isfinite(o.origin[a]) || !std::isfinite(o.spacing[a]) || !(o.spacing[a] >= MinSpacing) ||
+      !(far <= MaxWorldCoordinate))
+    {
+      std::ostringstream msg;
+      msg << "volume origin " << o.origin[a] << " and spacing " << o.spacing[a] << " on axis " << "xyz"[a]
+          << " must be finite, spacing >= " << MinSpacing << ", and keep every voxel within +-"
+          << MaxWorldCoordinate << " (float vertices)";
+      return msg.str();
+    }
+  }
+  return std::string();
 }
 
 DictionaryVolume::DictionaryVolume(const VolumeOptions& options)

@@ -1,9 +1,13 @@
 // Mesh to SDF benchmark: per-phase times (build, distance, sign, write) for a
 // mesh file at a resolution, sign mode, accelerator, device and output.
-// usage: bench_mesh_to_sdf MESH [RES=256] [SIGN=winding] [DEVICE=auto]
+// usage: bench_mesh_to_sdf [DAMAGE:]MESH [RES=256] [SIGN=winding] [DEVICE=auto]
 //        [ACCEL=bvh] [OUTPUT=volume|float] [BAND=8] [PADDING=2]
-// The bunny is not in the repository: pass its path (e.g. /work/shared/data/lvdif-bunny-30k.ply).
+//        [RUNS=cold,warm,prepared,prepared]
+// DAMAGE: a seeded variant of the mesh made in memory before timing (any of
+// signquality::damaged, SignQualityMeshes.h: patch10, duprev20, holes40,
+// fins200, pair, sub2, ...). The bunny is not in the repository: pass its path (e.g. /work/shared/data/lvdif-bunny-30k.ply).
 #include "BenchCommon.h"
+#include "SignQualityMeshes.h"
 
 #include "lvdif/Cuda.h"
 #include "lvdif/DictionaryVolume.h"
@@ -37,12 +41,23 @@ int main(int argc, char** argv)
   if (argc < 2)
   {
     std::fprintf(stderr, "usage: %s MESH [RES] [normal|pseudonormal|winding|unsigned] [cpu|cuda|auto] "
-                         "[bvh|faithful|bruteforce] [volume|float] [BAND] [PADDING] [--trace]\n", argv[0]);
+                         "[bvh|faithful|bruteforce] [volume|float] [BAND] [PADDING] [RUNS] [--trace]\n", argv[0]);
     return 2;
   }
   try
   {
-    const std::string path = argv[1];
+    // DAMAGE:...:PATH, applied from the right (patch10:sub2:m = patches on the subdivided mesh)
+    std::string path = argv[1];
+    std::vector<std::string> damages;
+    for (auto colon = path.find(':'); colon != std::string::npos && path.find('/') > colon; colon = path.find(':'))
+    {
+      damages.push_back(path.substr(0, colon));
+      path = path.substr(colon + 1);
+    }
+    std::string damage;
+    for (const std::string& d : damages) damage += d + ":";
+    const bool damaged = !damages.empty();
+    if (damaged) damage.pop_back();
     const std::int64_t res = argc > 2 ? std::atoll(argv[2]) : 256;
     const std::string sign = argc > 3 ? argv[3] : "winding";
     const std::string device = argc > 4 ? argv[4] : "auto";
@@ -50,10 +65,22 @@ int main(int argc, char** argv)
     const std::string output = argc > 6 ? argv[6] : "volume";
     const float band = argc > 7 ? static_cast<float>(std::atof(argv[7])) : 8.0f;
     const double padding = argc > 8 ? std::atof(argv[8]) : 2.0;
+    // which calls to time, in order (fewer on slow cases keep a GPU session short)
+    std::vector<std::string> runs;
+    {
+      std::string list = argc > 9 ? argv[9] : "cold,warm,prepared,prepared";
+      for (std::size_t a = 0; a <= list.size();)
+      {
+        const std::size_t b = std::min(list.find(',', a), list.size());
+        if (b > a) runs.push_back(list.substr(a, b - a));
+        a = b + 1;
+      }
+    }
 
     bench::Stopwatch readClock;
-    const TriangleMesh mesh = loadMesh(path);
-    const double readMs = readClock.ms();
+    TriangleMesh mesh = loadMesh(path);
+    for (auto d = damages.rbegin(); d != damages.rend(); ++d) mesh = signquality::damaged(mesh, *d);
+    const double readMs = readClock.ms(); // includes making the damaged variant
 
     MeshToSdfOptions o;
     o.tracePhases = tracePhases;
@@ -69,9 +96,9 @@ int main(int argc, char** argv)
     const GridGeometry g = fitGridToMesh(mesh, res, padding);
 
     std::printf("machine: %s\n", bench::machineDescription().c_str());
-    std::printf("mesh: %s (%zu points, %zu triangles), grid %lld x %lld x %lld, sign %s, accel %s, output %s, "
+    std::printf("mesh: %s%s%s (%zu points, %zu triangles), grid %lld x %lld x %lld, sign %s, accel %s, output %s, "
                 "band %s\n",
-      path.c_str(), mesh.points.size(), mesh.triangles.size(), static_cast<long long>(g.dims[0]),
+      damage.c_str(), damaged ? ":" : "", path.c_str(), mesh.points.size(), mesh.triangles.size(), static_cast<long long>(g.dims[0]),
       static_cast<long long>(g.dims[1]), static_cast<long long>(g.dims[2]), toString(o.sign), toString(o.accel),
       output.c_str(), band > 0 ? bench::fmt(band, 1).c_str() : "none");
 
@@ -89,7 +116,7 @@ int main(int argc, char** argv)
     bench::Stopwatch prepClock;
     const MeshToSdfPrepared prepared = prepareMeshToSdf(mesh, o.sign);
     const double prepareMs = prepClock.ms();
-    for (const std::string run : { "cold", "warm", "prepared", "prepared" })
+    for (const std::string& run : runs)
     {
       std::int64_t expanded = 0, inside = 0;
       double callMs = 0;

@@ -9,7 +9,9 @@
 // usage: bench_winding_flip [--res 64,128] [--samples 1000] SPEC...
 // SPEC is a mesh path, or DAMAGE:PATH with DAMAGE flipNN (NN % of the faces
 // reversed, signquality::flipFaces, seed 2: flip10 is bench_sign_quality's),
-// dupNN (NN % duplicated), holes (8 round holes) or pair (two intersecting copies).
+// any damage of signquality::damaged (SignQualityMeshes.h: flipNN, patchNN,
+// dupNN, duprevNN, holes[NN], finsNN, pair). "WN/clean WN": the WindingNumber
+// CPU time against the undamaged mesh's on a grid of the same size, same process.
 #include "BenchCommon.h"
 #include "SignQualityMeshes.h"
 
@@ -23,6 +25,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <limits>
+#include <map>
 #include <random>
 #include <sstream>
 #include <string>
@@ -39,7 +42,7 @@ double cpuSeconds()
   return double(u.ru_utime.tv_sec + u.ru_stime.tv_sec) + 1e-6 * double(u.ru_utime.tv_usec + u.ru_stime.tv_usec);
 }
 
-TriangleMesh loadSpec(const std::string& spec, std::string& label)
+TriangleMesh loadSpec(const std::string& spec, std::string& label, std::string* cleanPath = nullptr)
 {
   const auto colon = spec.find(':');
   const std::string damage = colon == std::string::npos ? "" : spec.substr(0, colon);
@@ -47,13 +50,8 @@ TriangleMesh loadSpec(const std::string& spec, std::string& label)
   std::string base = path.substr(path.find_last_of('/') + 1);
   base = base.substr(0, base.find('.'));
   label = damage.empty() ? base : damage + "-" + base;
-  const TriangleMesh m = loadMesh(path);
-  if (damage.empty()) return m;
-  if (damage.rfind("flip", 0) == 0) return signquality::flipFaces(m, std::atof(damage.c_str() + 4) / 100.0);
-  if (damage.rfind("dup", 0) == 0) return signquality::duplicateFaces(m, std::atof(damage.c_str() + 3) / 100.0);
-  if (damage == "holes") return signquality::punchHoles(m, 8, 0.03);
-  if (damage == "pair") return signquality::intersectingPair(m);
-  throw Error(ErrorCode::InvalidArgument, "unknown damage '" + damage + "'");
+  if (cleanPath) *cleanPath = path;
+  return signquality::damaged(loadMesh(path), damage);
 }
 
 std::vector<double> parseList(const std::string& s)
@@ -86,10 +84,21 @@ int main(int argc, char** argv)
   }
   std::printf("machine: %s\n", bench::machineDescription().c_str());
   std::vector<std::vector<std::string>> rows;
+  // the undamaged mesh's WindingNumber CPU seconds per (path, res), same process
+  std::map<std::pair<std::string, std::int64_t>, double> cleanCpu;
+  auto windingCpu = [](const TriangleMesh& m, const GridGeometry& g, std::vector<float>& buf) {
+    MeshToSdfOptions o;
+    o.device = Device::Cpu;
+    o.sign = SignMode::WindingNumber;
+    o.bandWidth = 4.0f;
+    const double c0 = cpuSeconds();
+    meshToSdf(m, FloatGridView{ buf.data(), g }, o);
+    return cpuSeconds() - c0;
+  };
   for (const std::string& spec : meshes)
   {
-    std::string label;
-    const TriangleMesh mesh = loadSpec(spec, label);
+    std::string label, path;
+    const TriangleMesh mesh = loadSpec(spec, label, &path);
     {
       for (double resD : resolutions)
       {
@@ -109,11 +118,20 @@ int main(int argc, char** argv)
         w.reset();
         const MeshToSdfStats st = meshToSdf(mesh, FloatGridView{ wn.data(), g }, o);
         const double wnCpu = cpuSeconds() - c0, wnWall = w.seconds();
+        // the clean mesh on the grid fitted to it, so the same grid size
+        const auto key = std::make_pair(path, res);
+        if (!cleanCpu.count(key))
+        {
+          const TriangleMesh clean = loadMesh(path);
+          const GridGeometry cg = fitGridToMesh(clean, res, 2.0);
+          std::vector<float> buf(static_cast<std::size_t>(cg.count()));
+          cleanCpu[key] = windingCpu(clean, cg, buf);
+        }
         // brute-force check on a subsample of far voxels
         std::mt19937_64 rng(42);
         std::uniform_int_distribution<std::int64_t> u(0, g.count() - 1);
         std::vector<std::int64_t> pick;
-        while (static_cast<std::int64_t>(pick.size()) < samples)
+        while (static_cast<std::int64_t>(pick.size()) < samples && samples > 0)
         {
           const std::int64_t idx = u(rng);
           if (std::fabs(wn[static_cast<std::size_t>(idx)]) > 1.0f) pick.push_back(idx);
@@ -130,7 +148,8 @@ int main(int argc, char** argv)
           wrong += (wn[static_cast<std::size_t>(idx)] < 0) != inside;
         }
         rows.push_back({ label, std::to_string(res),
-          std::to_string(st.triangles), bench::fmt(pnCpu, 2), bench::fmt(wnCpu, 2), bench::fmt(wnCpu / pnCpu, 2),
+          std::to_string(st.triangles), std::to_string(st.boundaryEdges), bench::fmt(pnCpu, 2), bench::fmt(wnCpu, 2),
+          bench::fmt(wnCpu / pnCpu, 2), bench::fmt(wnCpu / cleanCpu[key], 2),
           bench::fmt(pnWall, 2), bench::fmt(wnWall, 2), bench::fmt(st.signSeconds, 2),
           std::to_string(st.windingEvaluations), std::to_string(st.windingFullSums), std::to_string(st.windingExact),
           std::to_string(wrong) + "/" + std::to_string(samples) });
@@ -143,7 +162,7 @@ int main(int argc, char** argv)
       }
     }
   }
-  bench::printTable({ "mesh", "res", "tris", "PN cpu s", "WN cpu s", "WN/PN", "PN wall s", "WN wall s",
+  bench::printTable({ "mesh", "res", "tris", "boundary edges", "PN cpu s", "WN cpu s", "WN/PN", "WN/clean WN", "PN wall s", "WN wall s",
                       "WN sign s", "evaluations", "full sums", "ambig. rows vox", "WN vs BF wrong (far)" },
     rows);
   return 0;

@@ -99,6 +99,10 @@ struct SaveHooks
 /// `path` and the directory is fsync'ed. On any failure (an exception from
 /// `produce`, the hook or the system) the temporary file is removed and the
 /// exception propagates; the previous file at `path` is untouched.
+/// A symlink at `path` is written through (its target is replaced, the link
+/// stays); an existing file keeps its mode; a path that is a directory, FIFO or
+/// device is refused; temporary files of saves killed earlier (their process is
+/// gone) are removed first. Every file the project saves goes through here.
 void saveAtomically(const std::string& path, const std::function<void(ByteSink&)>& produce,
   const SaveHooks& hooks = SaveHooks());
 

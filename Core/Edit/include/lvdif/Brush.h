@@ -3,7 +3,8 @@
 // A dab is one primitive (sphere, cube, or a capsule for stroke segments)
 // placed in voxel coordinates; the primitive SDFs are Quilez's
 // (https://iquilezles.org/articles/distfunctions/). Applying a dab combines
-// the primitive's distance s with the stored distance d:
+// the primitive's distance s with the stored distance d. With strength 1 and
+// the Constant falloff (the defaults) the CSG operations are the paper's:
 //
 //   Add       d' = min(d, s)          (union; smooth: d' = smin(d, s, k))
 //   Subtract  d' = max(d, -s)         (subtraction; smooth: d' = smax(d, -s, k))
@@ -14,17 +15,49 @@
 // paper's hard CSG. Every written distance goes through volume.encode(), so
 // it saturates to +-band like every other write.
 //
+// Strength and falloff. Every dab has a weight w = strength * f(t), t the
+// voxel's distance from the dab's core in units of its radius (sphere:
+// |p - c| / r; cube: the largest |p_i - c_i| / h; capsule: distance to the
+// segment / r) and f the falloff curve (Constant 1, Linear 1 - t, Smooth
+// 1 - 3t^2 + 2t^3, Sharp (1 - t)^2; 0 beyond t = 1). Add and Subtract move
+// the distance part of the way to the CSG result, d' = d + w (csg - d), with
+// t clamped to 1 (the rim's weight holds in the band around the primitive);
+// w = 1 is exactly the rule above. The other operations act inside the
+// primitive (s <= 0) only, and only on distances inside the band (a
+// saturated distance means "at least band", which no offset may turn into
+// a surface):
+//
+//   Inflate   d' = d - w            (deflate with `invert`: d + w), voxels
+//   Crease    d' = d + w^3 * 1.5    (a sharp dent; `invert`: a ridge)
+//   Flatten   d' = d + w (e - d), e the signed distance to the plane tangent
+//             to the surface nearest the dab centre (normal: the volume's
+//             gradient there, by central differences of trilinear samples)
+//   Smooth    d' = d + w (mean of the 6 neighbours - d)   (CPU only)
+//   Grab      d'(p) = d(p - w(p) D), D the dab's `vec` (the drag since the
+//             previous sample), d sampled trilinearly (CPU only)
+// Smooth and Grab read neighbours, so each dab reads the volume as the
+// previous dab left it (a Jacobi step per dab); they have no CUDA path
+// (lvdif::applyDabs(Device::Auto, ...) runs them on the CPU).
+//
 // Colour (the exact rule):
-//   Add       colour := brush colour where s <= colorOffset (the original's
-//             rule: the primitive's inside plus a 1.5-voxel skin, written even
-//             where the geometry does not change, so a smaller add inside a
-//             body recolours its interior, as the dice demo needs); with a
-//             blend k > 0 also where the smooth result changed the distance
-//             and d' <= colorOffset (the fillet).
-//   Subtract  colour unchanged (as the original: a cut exposes the colour the
-//             interior already has).
-//   Paint     colour := brush colour where s <= 0 and |d| <= colorOffset: the
-//             skin of the surface inside the brush, nothing deeper.
+//   Add       colour := brush colour where the new surface owns the voxel:
+//             inside the primitive (s <= 0; a smaller add inside a body
+//             recolours its interior, as the dice demo needs), or where the
+//             distance was lowered to d' <= colorOffset. A voxel whose
+//             distance the old surface keeps is never coloured (no halo).
+//   Subtract and the shape brushes: colour unchanged (a cut exposes the
+//             colour the interior already has).
+//   Paint     where s <= 0 and |d| <= colorOffset (the skin of the surface
+//             inside the brush, nothing deeper): colour := mix(old, brush,
+//             q/8), q = round(8 w) (coverage in eighths; q = 8 is the brush
+//             colour itself, q = 0 leaves the voxel). Mixed colours go into
+//             the colour dictionary (Error DictionaryFull when it cannot).
+//
+// Symmetry mirrors every dab about the chosen planes (x = plane[0], ...);
+// a dab and its mirror images act as one dab whose primitive is their union
+// (s = min, t = min). An image is evaluated as the dab itself at the reflected
+// voxel (exact for planes on whole or half voxels), so a symmetric volume stays
+// exactly symmetric wherever the dabs are.
 //
 // Only chunks that intersect the dab's influence box are visited; a voxel is
 // written only when its 4 bytes change, so exactly the chunks with a changed
@@ -59,11 +92,39 @@ enum class BrushOp : int
 {
   Add = 0,
   Subtract = 1,
-  Paint = 2
+  Paint = 2,
+  Smooth = 3,
+  Inflate = 4,
+  Grab = 5,
+  Flatten = 6,
+  Crease = 7
+};
+
+/// How a dab's weight falls from its core (t = 0) to its rim (t = 1); see above.
+enum class Falloff : int
+{
+  Constant = 0,
+  Linear = 1,
+  Smooth = 2,
+  Sharp = 3
+};
+
+/// Mirror planes: axis a is mirrored about a = plane[a] where mirror[a].
+struct Symmetry
+{
+  std::array<bool, 3> mirror{ false, false, false };
+  std::array<double, 3> plane{ 0, 0, 0 };
+  bool any() const { return this->mirror[0] || this->mirror[1] || this->mirror[2]; }
 };
 
 const char* toString(BrushShape s);
 const char* toString(BrushOp op);
+const char* toString(Falloff f);
+/// True for the operations that read neighbouring voxels (Smooth, Grab): CPU only.
+inline bool readsNeighbours(BrushOp op)
+{
+  return op == BrushOp::Smooth || op == BrushOp::Grab;
+}
 
 /// One placed primitive, in voxel coordinates.
 struct Dab
@@ -74,6 +135,11 @@ struct Dab
   double radius = 1.0;
   /// Second end point of a capsule (ignored otherwise).
   std::array<double, 3> end{ 0, 0, 0 };
+  /// Grab: the displacement this dab applies (voxels); Flatten: set by the brush
+  /// (the plane's unit normal), ignored on input.
+  std::array<double, 3> vec{ 0, 0, 0 };
+  /// Flatten: set by the brush (the plane's offset n . p0), ignored on input.
+  double value = 0;
 };
 
 struct BrushSettings
@@ -86,6 +152,12 @@ struct BrushSettings
   double colorOffset = 1.5;
   /// Edge rounding of cube dabs (Quilez's round box: box(h - r) - r), 0..half edge.
   double rounding = 0.0;
+  /// Weight of every dab, (0, 1].
+  double strength = 1.0;
+  Falloff falloff = Falloff::Constant;
+  /// Inflate deflates, Crease raises a ridge (the UI's Ctrl).
+  bool invert = false;
+  Symmetry symmetry;
 };
 
 // ---- primitive SDFs (voxel units, negative inside) ---------------------------
@@ -144,6 +216,39 @@ LVDIF_HD double dabDistance(const Dab& d, double x, double y, double z, double r
   }
 }
 
+/// The voxel's distance from the dab's core in units of its radius (t above).
+LVDIF_HD double dabRadialFraction(const Dab& d, double x, double y, double z)
+{
+  const double px = x - d.center[0], py = y - d.center[1], pz = z - d.center[2];
+  if (d.shape == BrushShape::Cube)
+  {
+    double m = std::fabs(px);
+    m = std::fabs(py) > m ? std::fabs(py) : m;
+    m = std::fabs(pz) > m ? std::fabs(pz) : m;
+    return m / d.radius;
+  }
+  if (d.shape == BrushShape::Capsule)
+    return (capsuleDistance(px, py, pz, d.end[0] - d.center[0], d.end[1] - d.center[1], d.end[2] - d.center[2], 0.0)) /
+      d.radius;
+  return std::sqrt(px * px + py * py + pz * pz) / d.radius;
+}
+
+/// The falloff curve f(t) (0 for t >= 1 except Constant at t = 1).
+LVDIF_HD double falloffCurve(int falloff, double t)
+{
+  if (t > 1)
+    return 0;
+  if (t < 0)
+    t = 0;
+  switch (falloff)
+  {
+    case static_cast<int>(Falloff::Linear): return 1 - t;
+    case static_cast<int>(Falloff::Smooth): return 1 - t * t * (3 - 2 * t);
+    case static_cast<int>(Falloff::Sharp): return (1 - t) * (1 - t);
+    default: return 1;
+  }
+}
+
 /// Quilez's polynomial smooth minimum (k > 0).
 LVDIF_HD double smoothMin(double a, double b, double k)
 {
@@ -184,6 +289,10 @@ struct EditResult
 /// (non-finite position or radius) are refused with Error(InvalidArgument) before any write.
 EditResult applyDabs(DictionaryVolume& volume, const std::vector<Dab>& dabs, const BrushSettings& settings,
   ChunkWriteObserver* observer = nullptr);
+
+/// The dabs with their mirror images (`symmetry`), in groups of 2^(mirrored axes):
+/// dab i's group is [i * g, (i + 1) * g), its first member the dab itself.
+std::vector<Dab> mirrorDabs(const std::vector<Dab>& dabs, const Symmetry& symmetry);
 
 inline EditResult applyDab(DictionaryVolume& volume, const Dab& dab, const BrushSettings& settings,
   ChunkWriteObserver* observer = nullptr)

@@ -102,6 +102,10 @@ public:
   /// Re-reads these chunks from the host after it changed them (Error
   /// InvalidArgument if one is pending: sync first).
   void refresh(const std::vector<std::int64_t>& ids);
+  /// Takes these chunks from the host after a host-side edit (Smooth, Grab) of
+  /// the synced volume: inside a step, copy on write (the device's state is the
+  /// snapshot). The chunks must not be pending.
+  void adoptHostChunks(const std::vector<std::int64_t>& ids);
   /// Drops pending device changes and the history and re-reads every chunk
   /// from the host (after the host volume was rewritten as a whole).
   void reload();

@@ -5,15 +5,17 @@
 // Interactive strokes: beginStroke(), addSample() for each device sample
 // (Drill strokes are applied as they go), endStroke(). pump() does this from an
 // InputDevice: button bit 0 pressed starts a stroke, held adds samples, released
-// ends it.
+// ends it. A Grab stroke is applied as it goes, one dab per sample: centred on
+// the previous sample, displacing by the move since it (Brush.h).
 //
 // With a device-resident volume attached (attachDevice), the same calls apply
 // the dabs on the GPU and keep the history there (DeviceVolume's copy-on-write
-// steps); the host volume is then a lazily synced copy (DeviceVolume::sync).
-// Front ends do not drive an Editor directly: lvdif::EditSession holds one.
+// steps); Smooth and Grab run on the synced host copy and hand their chunks to
+// the device. Front ends do not drive an Editor directly: lvdif::EditSession holds one.
 #pragma once
 
 #include "lvdif/DeviceVolume.h"
+#include "lvdif/EditLimits.h"
 #include "lvdif/InputDevice.h"
 #include "lvdif/Interrupter.h"
 #include "lvdif/Recording.h"
@@ -51,6 +53,13 @@ public:
 
   BrushSettings brush;
   StrokeSettings stroke;
+  /// Budgets of every edit (checked before the work; Error InvalidArgument).
+  EditLimits limits;
+  /// Checked between batches of dabs inside long edits, strokes and playback
+  /// (Error Cancelled; what was applied stays, as one undo step).
+  Interrupter* interrupter = nullptr;
+  /// Dabs applied by this editor so far (counts against limits.maxTotalDabs).
+  std::uint64_t dabsApplied() const { return this->DabsApplied; }
 
   /// One dab (with the current brush) as one undo step.
   EditResult dab(const Dab& d);
@@ -70,8 +79,10 @@ public:
   const EditResult& lastWrite() const { return this->LastWrite; }
   bool strokeOpen() const { return this->Builder != nullptr; }
 
-  /// Reads up to maxSamples samples from the device; returns how many were read.
-  std::size_t pump(InputDevice& device, std::size_t maxSamples = 1024, int timeoutMs = 0);
+  /// Reads up to maxSamples samples from the device, and when maxMillis >= 0 for at
+  /// most that long (checked after each sample; an interactive front end passes its
+  /// frame budget); returns how many were read.
+  std::size_t pump(InputDevice& device, std::size_t maxSamples = 1024, int timeoutMs = 0, int maxMillis = -1);
 
   bool undo();
   bool redo();
@@ -86,11 +97,10 @@ public:
   /// Plays a recording back (edits, undo and redo in order).
   void play(const Recording& r, Interrupter& interrupter = nullInterrupter());
 
-  /// The storage chunks changed by edits, undo, redo and refills since the last
-  /// call (increasing ids), independent of the volume's dirty flags (and, with a
-  /// device attached, of the host copy). EditSession turns them into mesh chunks.
+  /// The chunks changed by edits, undo and redo since the last call (increasing ids),
+  /// independent of the volume's dirty flags (front ends report them in events).
   std::vector<std::int64_t> takeTouchedStorageChunks();
-  /// Adds storage chunks changed outside the editor's edits.
+  /// Adds chunks changed outside the editor's edits (e.g. a script's `canvas fill`).
   void touchStorageChunks(const std::vector<std::int64_t>& ids);
 
 private:
@@ -98,6 +108,10 @@ private:
   EditResult applyNow(const std::vector<Dab>& dabs);
   void beginStep(const char* label);
   void endStep();
+  /// The budgets, then the dabs in batches with a cancellation check between them.
+  EditResult applyChecked(const std::vector<Dab>& dabs);
+  /// Dabs the next stroke may make: the per-edit limit or what is left of the total.
+  std::uint64_t strokeBudget() const;
 
   DictionaryVolume& Volume;
   UndoStack Undo;
@@ -110,6 +124,9 @@ private:
   std::vector<std::int64_t> Touched; // storage chunks, since the last takeTouchedStorageChunks()
   double Time = -1;
   bool Pressed = false;
+  std::uint64_t DabsApplied = 0;
+  std::array<double, 3> GrabFrom{ 0, 0, 0 }; // the previous sample of a Grab stroke
+  bool GrabStarted = false;
 };
 
 } // namespace lvdif

@@ -88,8 +88,12 @@ public:
 
   std::uint64_t errorCount() const { return this->Errors; }
   const std::string& lastError() const { return this->LastError; }
-  /// Longest accepted line; longer ones are dropped and counted as errors.
+  /// Longest accepted line; a longer one is dropped and counted as one error.
   static constexpr std::size_t MaxLine = 64 * 1024;
+  /// Most samples waiting to be polled; reading stops while the queue is full.
+  static constexpr std::size_t MaxQueue = 4096;
+  /// Most bytes read from the client by one poll (bounds the time per pump).
+  static constexpr std::size_t MaxBytesPerPump = 256 * 1024;
 
 private:
   void pump(int timeoutMs);

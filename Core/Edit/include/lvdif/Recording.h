@@ -53,7 +53,8 @@ struct Recording
 
 void writeRecording(std::ostream& out, const Recording& recording);
 /// Throws Error(ParseError) naming the line for any malformed input.
-Recording readRecording(std::istream& in);
+/// Errors name the source: "<name>:<line>:<column>: what".
+Recording readRecording(std::istream& in, const std::string& name = "recording");
 void saveRecording(const std::string& path, const Recording& recording);
 Recording loadRecording(const std::string& path);
 

@@ -70,7 +70,9 @@ void validate(const StrokeSettings& s);
 class StrokeBuilder
 {
 public:
-  explicit StrokeBuilder(const StrokeSettings& settings);
+  /// maxDabs: the most dabs this stroke may make; add() refuses a sample that would
+  /// pass it (Error InvalidArgument) before making any of its dabs.
+  explicit StrokeBuilder(const StrokeSettings& settings, std::uint64_t maxDabs = 1'000'000);
   const StrokeSettings& settings() const { return this->Settings; }
 
   void add(const BrushSample& sample);
@@ -84,6 +86,7 @@ private:
   void addDab(const std::array<double, 3>& p, double radius, double arc);
 
   StrokeSettings Settings;
+  std::uint64_t MaxDabs;
   std::size_t Samples = 0;
   std::array<double, 3> Last{ 0, 0, 0 };
   double LastRadius = 0;
@@ -97,6 +100,7 @@ private:
 };
 
 /// All dabs of a complete stroke.
-std::vector<Dab> strokeDabs(const std::vector<BrushSample>& samples, const StrokeSettings& settings);
+std::vector<Dab> strokeDabs(const std::vector<BrushSample>& samples, const StrokeSettings& settings,
+  std::uint64_t maxDabs = 1'000'000);
 
 } // namespace lvdif

@@ -39,6 +39,11 @@ void DeviceVolume::refresh(const std::vector<std::int64_t>&)
   throw Error(ErrorCode::Unsupported, "this build has no CUDA");
 }
 
+void DeviceVolume::adoptHostChunks(const std::vector<std::int64_t>&)
+{
+  throw Error(ErrorCode::Unsupported, "this build has no CUDA");
+}
+
 void DeviceVolume::reload()
 {
   throw Error(ErrorCode::Unsupported, "this build has no CUDA");

@@ -119,6 +119,13 @@ struct MeshToSdfStats
   std::int64_t keyMismatches = 0;      // cudaVerifyKeys: GPU keys != host encode (must be 0)
   std::int64_t svfFlips = 0;           // signs changed by the sign voxel filters
   double svfSeconds = 0;
+  /// When the result cannot be what the user expects, one sentence each
+  /// naming the cause and the option that helps (the CLI prints them, the VTK
+  /// filter emits them as warnings): a signed field over the whole grid with
+  /// no voxel deeper than 1 voxel inside (an open mesh that encloses no
+  /// volume, or voxels larger than the mesh's parts). Meshing such a field
+  /// gives no surface (or slivers).
+  std::vector<std::string> warnings;
 };
 
 /// A mesh prepared once for mesh to SDF and reusable across calls (other

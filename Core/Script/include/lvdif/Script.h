@@ -27,6 +27,12 @@
 namespace lvdif
 {
 
+/// Nesting limit of blocks, parentheses, unary operators and call arguments
+/// together: parsing and evaluation recurse once per level, so the bound keeps
+/// any script from exhausting the stack. Chains (1+1+1..., else if ...) do
+/// not nest and have no limit of their own.
+constexpr int ScriptMaxNesting = 200;
+
 class ScriptError : public Error
 {
 public:

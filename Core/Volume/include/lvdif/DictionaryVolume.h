@@ -99,6 +99,13 @@ class DictionaryVolume
 {
 public:
   static constexpr std::int64_t MaxDimension = 1 << 20;
+  /// Largest |world coordinate| of any voxel (origin + index x spacing), and the
+  /// smallest spacing: meshes have float vertices, so every world position must
+  /// stay far inside float range (no Inf or NaN vertex, no collapsed axis).
+  static constexpr double MaxWorldCoordinate = 1e30;
+  static constexpr double MinSpacing = 1e-30;
+  /// The rule above for these options; "" if they pass, else the reason.
+  static std::string checkGeometry(const VolumeOptions& o);
 
   /// Creates an all-outside volume (every voxel +band, colour 0), or filled with
   /// `fill` when given. Validates the options and refuses absurd sizes before

@@ -296,8 +296,8 @@ TEST(vtkSignVoxelFilter, CheckboxesAreTheMaskBits)
     ASSERT_NE(flips, nullptr);
     for (int r = 0; r < 4; ++r)
       if (r != q) EXPECT_EQ(flips->GetValue(r), 0) << "filter " << q + 1 << " alone, counter " << r + 1;
-    vtkDataArray* a = boxes->GetOutput()->GetPointData()->GetArray("sdf");
-    vtkDataArray* b = mask->GetOutput()->GetPointData()->GetArray("sdf");
+    vtkDataArray* a = vtkImageData::SafeDownCast(boxes->GetOutput())->GetPointData()->GetArray("sdf");
+    vtkDataArray* b = vtkImageData::SafeDownCast(mask->GetOutput())->GetPointData()->GetArray("sdf");
     double lo = a->GetTuple1(0), hi = lo;
     for (vtkIdType i = 0; i < a->GetNumberOfTuples(); ++i)
     {

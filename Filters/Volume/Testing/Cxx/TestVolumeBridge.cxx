@@ -1,7 +1,7 @@
 // The dictionary volume <-> vtkImageData bridge: decoded values, colours,
 // sub-extents, and the error paths.
 #include "vtkDictionaryVolumeToImage.h"
-#include "vtkLVDIFVolumeBridge.h"
+#include "LVDIFVolumeBridge.h"
 
 #include "lvdif/AnalyticFill.h"
 #include "lvdif/Error.h"
@@ -97,7 +97,7 @@ TEST(VolumeBridge, ImageToVolumeRoundTrip)
   }
   lvdif::VolumeOptions o;
   o.chunkEdge = 8;
-  auto v = vtkLVDIFVolumeBridge::VolumeFromImage(img, sdf, nullptr, o);
+  auto v = LVDIFVolumeBridge::VolumeFromImage(img, sdf, nullptr, o);
   EXPECT_EQ(v->dims()[0], 21);
   for (vtkIdType i = 0; i < sdf->GetNumberOfTuples(); i += 7)
   {
@@ -116,12 +116,12 @@ TEST(VolumeBridge, BadInputIsAClearError)
   img->SetDimensions(4, 4, 4);
   vtkNew<vtkFloatArray> wrong;
   wrong->SetNumberOfTuples(10);
-  EXPECT_THROW(vtkLVDIFVolumeBridge::VolumeFromImage(img, wrong, nullptr, lvdif::VolumeOptions()), lvdif::Error);
+  EXPECT_THROW(LVDIFVolumeBridge::VolumeFromImage(img, wrong, nullptr, lvdif::VolumeOptions()), lvdif::Error);
   vtkNew<vtkFloatArray> nan;
   nan->SetNumberOfTuples(64);
   nan->FillValue(1.0f);
   nan->SetValue(5, std::nanf(""));
-  EXPECT_THROW(vtkLVDIFVolumeBridge::VolumeFromImage(img, nan, nullptr, lvdif::VolumeOptions()), lvdif::Error);
+  EXPECT_THROW(LVDIFVolumeBridge::VolumeFromImage(img, nan, nullptr, lvdif::VolumeOptions()), lvdif::Error);
 }
 
 // StoreRange's cached range against VTK's own range pass over the same values
@@ -134,7 +134,7 @@ TEST(VolumeBridge, StoredRangeEqualsVTKsRange)
     a->SetValue(i, static_cast<float>(std::sin(0.001 * static_cast<double>(i)) * 7.5 - 0.25));
   a->SetValue(4242, -9.5f);
   a->SetValue(99999, 12.25f);
-  vtkLVDIFVolumeBridge::StoreRange(a);
+  LVDIFVolumeBridge::StoreRange(a);
   vtkNew<vtkFloatArray> fresh;
   fresh->DeepCopy(a);
   fresh->Modified(); // drops any copied cache: VTK computes
@@ -154,7 +154,7 @@ TEST(VolumeBridge, StoredRangeEqualsVTKsRange)
   EXPECT_EQ(stored[0], -20.0);
   // not finite: nothing is stored, VTK's GetFiniteRange skips the infinity
   a->SetValue(11, std::numeric_limits<float>::infinity());
-  vtkLVDIFVolumeBridge::StoreRange(a);
+  LVDIFVolumeBridge::StoreRange(a);
   a->GetFiniteRange(stored, 0);
   EXPECT_EQ(stored[1], 12.25);
 }
@@ -173,13 +173,13 @@ TEST(VolumeBridge, SdfArrayFallsBackOnlyForAnEmptySelection)
   img->GetPointData()->SetScalars(other);
   img->GetPointData()->AddArray(sdf);
   vtkNew<vtkInformation> sel;
-  EXPECT_EQ(vtkLVDIFVolumeBridge::SdfArray(sel, img, nullptr), sdf.Get()); // no name at all
+  EXPECT_EQ(LVDIFVolumeBridge::SdfArray(sel, img, nullptr), sdf.Get()); // no name at all
   sel->Set(vtkDataObject::FIELD_NAME(), "");
-  EXPECT_EQ(vtkLVDIFVolumeBridge::SdfArray(sel, img, nullptr), sdf.Get());
-  EXPECT_EQ(vtkLVDIFVolumeBridge::SdfArray(sel, img, other), other.Get()); // a found selection wins
+  EXPECT_EQ(LVDIFVolumeBridge::SdfArray(sel, img, nullptr), sdf.Get());
+  EXPECT_EQ(LVDIFVolumeBridge::SdfArray(sel, img, other), other.Get()); // a found selection wins
   sel->Set(vtkDataObject::FIELD_NAME(), "missing");
-  EXPECT_EQ(vtkLVDIFVolumeBridge::SdfArray(sel, img, nullptr), nullptr);
+  EXPECT_EQ(LVDIFVolumeBridge::SdfArray(sel, img, nullptr), nullptr);
   img->GetPointData()->RemoveArray("sdf");
   sel->Set(vtkDataObject::FIELD_NAME(), "");
-  EXPECT_EQ(vtkLVDIFVolumeBridge::SdfArray(sel, img, nullptr), other.Get()); // the active scalars
+  EXPECT_EQ(LVDIFVolumeBridge::SdfArray(sel, img, nullptr), other.Get()); // the active scalars
 }

@@ -3,7 +3,7 @@
 // through every mesh format, unknown extensions give one clear error, and the
 // ParaView plugin's reader/writer hints list exactly the registry's extensions
 // for each class (the registry is the one source of the formats).
-#include "vtkLVDIFFiles.h"
+#include "LVDIFFiles.h"
 
 #include "lvdif/AnalyticFill.h"
 #include "lvdif/Error.h"
@@ -45,13 +45,13 @@ TEST(LVDIFFiles, EveryVolumeFormatRoundTrips)
   const auto v = sphere();
   const auto analytic = lvdif::sphereSdf(19.3, 20.1, 18.7, 12.0);
   int formats = 0;
-  for (const auto& f : vtkLVDIFFiles::Formats())
+  for (const auto& f : LVDIFFiles::Formats())
   {
-    if (f.kind != vtkLVDIFFiles::Kind::Volume || f.writerClass.empty() || f.readerClass.empty()) continue;
+    if (f.kind != LVDIFFiles::Kind::Volume || f.writerClass.empty() || f.readerClass.empty()) continue;
     ++formats;
     const std::string path = temp("SDF_40_sphere." + f.extension);
-    vtkLVDIFFiles::SaveVolume(v, path, { { "source mesh", "analytic" } });
-    std::shared_ptr<lvdif::DictionaryVolume> back = vtkLVDIFFiles::LoadVolume(path);
+    LVDIFFiles::SaveVolume(v, path, { { "source mesh", "analytic" } });
+    std::shared_ptr<lvdif::DictionaryVolume> back = LVDIFFiles::LoadVolume(path);
     ASSERT_TRUE(back) << f.extension;
     // a format may crop or pad (OpenVDB: the active box): compare by world position
     std::int64_t off[3];
@@ -80,18 +80,18 @@ TEST(LVDIFFiles, UnknownExtensionsAreOneClearError)
 {
   try
   {
-    vtkLVDIFFiles::LoadVolume(temp("x.raw"));
+    LVDIFFiles::LoadVolume(temp("x.raw"));
     FAIL() << "no error";
   }
   catch (const lvdif::Error& e)
   {
     EXPECT_NE(std::string(e.what()).find(".lvdv"), std::string::npos) << e.what();
   }
-  EXPECT_THROW(vtkLVDIFFiles::LoadVolume(temp("missing.lvdv")), lvdif::Error);
-  EXPECT_THROW(vtkLVDIFFiles::SaveMesh(vtkPolyData::New(), temp("x.off")), lvdif::Error); // .off is read-only
-  EXPECT_EQ(vtkLVDIFFiles::Extension("/a.b/c.LVDV"), "lvdv");
-  EXPECT_EQ(vtkLVDIFFiles::Extension("/a.b/c"), "");
-  EXPECT_NE(vtkLVDIFFiles::DialogFilter(vtkLVDIFFiles::Kind::Volume, true).find("(*.lvdv)"), std::string::npos);
+  EXPECT_THROW(LVDIFFiles::LoadVolume(temp("missing.lvdv")), lvdif::Error);
+  EXPECT_THROW(LVDIFFiles::SaveMesh(vtkPolyData::New(), temp("x.off")), lvdif::Error); // .off is read-only
+  EXPECT_EQ(LVDIFFiles::Extension("/a.b/c.LVDV"), "lvdv");
+  EXPECT_EQ(LVDIFFiles::Extension("/a.b/c"), "");
+  EXPECT_NE(LVDIFFiles::DialogFilter(LVDIFFiles::Kind::Volume, true).find("(*.lvdv)"), std::string::npos);
 }
 
 TEST(LVDIFFiles, EveryMeshFormatRoundTrips)
@@ -102,14 +102,14 @@ TEST(LVDIFFiles, EveryMeshFormatRoundTrips)
   vtkNew<vtkTriangleFilter> tri;
   tri->SetInputConnection(s->GetOutputPort());
   tri->Update();
-  for (const auto& f : vtkLVDIFFiles::Formats())
+  for (const auto& f : LVDIFFiles::Formats())
   {
-    if (f.kind != vtkLVDIFFiles::Kind::Mesh || f.writerClass.empty()) continue;
+    if (f.kind != LVDIFFiles::Kind::Mesh || f.writerClass.empty()) continue;
     const std::string path = temp("sphere." + f.extension);
-    vtkLVDIFFiles::SaveMesh(tri->GetOutput(), path);
+    LVDIFFiles::SaveMesh(tri->GetOutput(), path);
     if (!f.readerClass.empty())
     {
-      vtkSmartPointer<vtkPolyData> back = vtkLVDIFFiles::LoadMesh(path);
+      vtkSmartPointer<vtkPolyData> back = LVDIFFiles::LoadMesh(path);
       EXPECT_EQ(back->GetNumberOfPolys(), tri->GetOutput()->GetNumberOfPolys()) << f.extension;
     }
     std::ifstream in(path, std::ios::binary | std::ios::ate);
@@ -152,7 +152,7 @@ TEST(LVDIFFiles, ParaViewHintsListTheRegistrysExtensions)
     for (const auto& kv : *table)
     {
       std::set<std::string> registry;
-      for (const auto& f : vtkLVDIFFiles::Formats())
+      for (const auto& f : LVDIFFiles::Formats())
         if ((reading ? f.readerClass : f.writerClass) == kv.first) registry.insert(f.extension);
       EXPECT_EQ(kv.second, registry) << kv.first << (reading ? " reader" : " writer")
                                      << " hints differ from the registry";

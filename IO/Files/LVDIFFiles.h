@@ -1,5 +1,5 @@
 /**
- * @file   vtkLVDIFFiles.h
+ * @file   LVDIFFiles.h
  * @brief  the one file registry by extension: which formats exist, who reads and writes them
  *
  * Every front end reads and writes the same formats through this table: the
@@ -10,8 +10,8 @@
  * here (so a format behaves the same everywhere); meshes through
  * vtkLVDIFMeshReader and VTK's writers.
  */
-#ifndef vtkLVDIFFiles_h
-#define vtkLVDIFFiles_h
+#ifndef LVDIFFiles_h
+#define LVDIFFiles_h
 
 #include "lvdif/DictionaryVolume.h"
 #include "lvdif/Interrupter.h"
@@ -26,7 +26,7 @@
 
 class vtkPolyData;
 
-namespace vtkLVDIFFiles
+namespace LVDIFFiles
 {
 enum class Kind
 {

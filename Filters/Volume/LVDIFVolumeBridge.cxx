@@ -1,4 +1,4 @@
-#include "vtkLVDIFVolumeBridge.h"
+#include "LVDIFVolumeBridge.h"
 
 #include "lvdif/Error.h"
 #include "lvdif/Memory.h"
@@ -30,7 +30,7 @@
 #include <cstring>
 #include <sstream>
 
-namespace vtkLVDIFVolumeBridge
+namespace LVDIFVolumeBridge
 {
 
 lvdif::Device ToDevice(int device)
@@ -465,4 +465,4 @@ std::unique_ptr<lvdif::DictionaryVolume> VolumeFromImage(
   return volume;
 }
 
-} // namespace vtkLVDIFVolumeBridge
+} // namespace LVDIFVolumeBridge

@@ -1,4 +1,4 @@
-#include "vtkLVDIFFiles.h"
+#include "LVDIFFiles.h"
 
 #include "vtkDictionaryVolumeReader.h"
 #include "vtkDictionaryVolumeWriter.h"
@@ -34,7 +34,7 @@
 #include <cctype>
 #include <functional>
 
-namespace vtkLVDIFFiles
+namespace LVDIFFiles
 {
 namespace
 {
@@ -329,4 +329,4 @@ void SaveMesh(vtkPolyData* mesh, const std::string& path)
   watch.check(ok, "cannot write '" + path + "'");
 }
 
-} // namespace vtkLVDIFFiles
+} // namespace LVDIFFiles

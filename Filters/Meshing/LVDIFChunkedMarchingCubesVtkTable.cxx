@@ -1,8 +1,8 @@
-#include "vtkChunkedMarchingCubesVtkTable.h"
+#include "LVDIFChunkedMarchingCubesVtkTable.h"
 
 #include "vtkMarchingCubesTriangleCases.h"
 
-namespace vtkChunkedMarchingCubesVtkTable
+namespace LVDIFChunkedMarchingCubesVtkTable
 {
 namespace
 {

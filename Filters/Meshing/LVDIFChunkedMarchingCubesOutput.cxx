@@ -1,4 +1,4 @@
-#include "vtkChunkedMarchingCubesOutput.h"
+#include "LVDIFChunkedMarchingCubesOutput.h"
 
 #include "vtkCellArray.h"
 #include "vtkCellData.h"
@@ -16,7 +16,7 @@
 #include <functional>
 #include <unordered_map>
 
-namespace vtkChunkedMarchingCubesOutput
+namespace LVDIFChunkedMarchingCubesOutput
 {
 namespace
 {
@@ -280,4 +280,4 @@ vtkSmartPointer<vtkPolyData> MergeBatches(
   return a.finish();
 }
 
-} // namespace vtkChunkedMarchingCubesOutput
+} // namespace LVDIFChunkedMarchingCubesOutput

@@ -1,5 +1,5 @@
 /**
- * @file   vtkLVDIFVolumeBridge.h
+ * @file   LVDIFVolumeBridge.h
  * @brief  conversions between lvdif::DictionaryVolume and vtkImageData
  *
  * Image data use the project's array names: a float point array `sdf`
@@ -7,8 +7,8 @@
  * array `rgba`. Extents are VTK extents (inclusive point indices) of the
  * volume's whole extent [0, dims-1].
  */
-#ifndef vtkLVDIFVolumeBridge_h
-#define vtkLVDIFVolumeBridge_h
+#ifndef LVDIFVolumeBridge_h
+#define LVDIFVolumeBridge_h
 
 #include "lvdif/DenseGrid.h"
 #include "lvdif/DictionaryVolume.h"
@@ -32,7 +32,7 @@ class vtkInformation;
 class vtkInformationVector;
 class vtkPolyData;
 
-namespace vtkLVDIFVolumeBridge
+namespace LVDIFVolumeBridge
 {
 /// The project's array names (README "Conventions").
 constexpr const char* SdfArrayName = "sdf";
@@ -43,7 +43,7 @@ LVDIFFILTERSVOLUME_EXPORT lvdif::Device ToDevice(int device);
 
 /// Calls Core: returns true on success; on lvdif::Error reports it with
 /// vtkErrorMacro's text on `algorithm` (prefixed by `context` when given) and
-/// returns false. A cancel (AbortExecute through vtkLVDIFInterrupter) returns
+/// returns false. A cancel (AbortExecute through LVDIFInterrupter) returns
 /// false without an error, and sets `cancelled` when given.
 LVDIFFILTERSVOLUME_EXPORT bool CallCore(vtkAlgorithm* algorithm, const std::function<void()>& work,
   const std::string& context = std::string(), bool* cancelled = nullptr);

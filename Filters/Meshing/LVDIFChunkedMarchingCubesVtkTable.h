@@ -1,5 +1,5 @@
 /**
- * @file   vtkChunkedMarchingCubesVtkTable.h
+ * @file   LVDIFChunkedMarchingCubesVtkTable.h
  * @brief  VTK's marching cubes case table in lvdif's numbering
  *
  * Internal to vtkChunkedMarchingCubes. VTK's table
@@ -18,8 +18,8 @@
  * and Filters/Meshing/Testing checks it against vtkMarchingCubes on all 256
  * single-cell images.
  */
-#ifndef vtkChunkedMarchingCubesVtkTable_h
-#define vtkChunkedMarchingCubesVtkTable_h
+#ifndef LVDIFChunkedMarchingCubesVtkTable_h
+#define LVDIFChunkedMarchingCubesVtkTable_h
 
 #include "lvdifFiltersMeshingModule.h"
 
@@ -27,7 +27,7 @@
 
 #include <memory>
 
-namespace vtkChunkedMarchingCubesVtkTable
+namespace LVDIFChunkedMarchingCubesVtkTable
 {
 /// VTK's table converted to lvdif's numbering (computed once; thread-safe).
 LVDIFFILTERSMESHING_EXPORT std::shared_ptr<const lvdif::MarchingCubesTriangleTable> Get();

@@ -1,8 +1,8 @@
-#include "vtkLVDIFInterrupter.h"
+#include "LVDIFInterrupter.h"
 
 #include "vtkAlgorithm.h"
 
-vtkLVDIFInterrupter::vtkLVDIFInterrupter(vtkAlgorithm* algorithm, double shift, double scale)
+LVDIFInterrupter::LVDIFInterrupter(vtkAlgorithm* algorithm, double shift, double scale)
   : Algorithm(algorithm)
   , Shift(shift)
   , Scale(scale)
@@ -10,7 +10,7 @@ vtkLVDIFInterrupter::vtkLVDIFInterrupter(vtkAlgorithm* algorithm, double shift, 
 {
 }
 
-void vtkLVDIFInterrupter::start(const char* name)
+void LVDIFInterrupter::start(const char* name)
 {
   if (this->Algorithm && std::this_thread::get_id() == this->Owner)
   {
@@ -18,7 +18,7 @@ void vtkLVDIFInterrupter::start(const char* name)
   }
 }
 
-void vtkLVDIFInterrupter::progress(double fraction)
+void LVDIFInterrupter::progress(double fraction)
 {
   if (this->Algorithm && std::this_thread::get_id() == this->Owner)
   {
@@ -26,12 +26,12 @@ void vtkLVDIFInterrupter::progress(double fraction)
   }
 }
 
-bool vtkLVDIFInterrupter::wasInterrupted() const
+bool LVDIFInterrupter::wasInterrupted() const
 {
   return this->Algorithm && this->Algorithm->GetAbortExecute() != 0;
 }
 
-void vtkLVDIFInterrupter::setStage(double shift, double scale)
+void LVDIFInterrupter::setStage(double shift, double scale)
 {
   this->Shift = shift;
   this->Scale = scale;

@@ -1,12 +1,12 @@
 /**
- * @file   vtkChunkedMarchingCubesOutput.h
+ * @file   LVDIFChunkedMarchingCubesOutput.h
  * @brief  lvdif::ChunkMesh -> vtkPolyData (one chunk, or all chunks merged)
  *
  * Internal to vtkChunkedMarchingCubes. Array names: point `Normals`, `rgba`;
  * cell `cell_ijk` (int x3), `corner_rgba` (unsigned char x32).
  */
-#ifndef vtkChunkedMarchingCubesOutput_h
-#define vtkChunkedMarchingCubesOutput_h
+#ifndef LVDIFChunkedMarchingCubesOutput_h
+#define LVDIFChunkedMarchingCubesOutput_h
 
 #include "lvdif/ChunkedMarchingCubes.h"
 
@@ -17,7 +17,7 @@
 
 class vtkPolyData;
 
-namespace vtkChunkedMarchingCubesOutput
+namespace LVDIFChunkedMarchingCubesOutput
 {
 struct Context
 {

@@ -1,4 +1,4 @@
-#include "vtkLVDIFChunkMesh.h"
+#include "LVDIFChunkMesh.h"
 
 #include "vtkCellArray.h"
 #include "vtkCellData.h"
@@ -14,7 +14,7 @@
 #include <cstring>
 #include <iterator>
 
-vtkSmartPointer<vtkPolyData> vtkLVDIFChunkMesh::ToPolyData(
+vtkSmartPointer<vtkPolyData> LVDIFChunkMesh::ToPolyData(
   const lvdif::ChunkMesh& mesh, const lvdif::ColorDictionary& colors, const lvdif::Index3& pointDims)
 {
   auto pd = vtkSmartPointer<vtkPolyData>::New();

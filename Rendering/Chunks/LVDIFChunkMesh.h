@@ -3,8 +3,8 @@
 // `corner_rgba` (8 corners x RGBA from the colour dictionary) and `cell_ijk`.
 // (The marching cubes VTK filter produces the same arrays for a whole
 // volume; this converts the chunks of lvdif::MarchingCubesWorker one by one.)
-#ifndef vtkLVDIFChunkMesh_h
-#define vtkLVDIFChunkMesh_h
+#ifndef LVDIFChunkMesh_h
+#define LVDIFChunkMesh_h
 
 #include "lvdif/ChunkedMarchingCubes.h"
 #include "lvdifRenderingChunksModule.h" // for export macro
@@ -15,7 +15,7 @@
 
 class vtkPolyData;
 
-namespace vtkLVDIFChunkMesh
+namespace LVDIFChunkMesh
 {
 /// `pointDims` are the volume's point dimensions (to split the linear cell index).
 LVDIFRENDERINGCHUNKS_EXPORT vtkSmartPointer<vtkPolyData> ToPolyData(

@@ -1,5 +1,5 @@
 /**
- * @class   vtkLVDIFInterrupter
+ * @class   LVDIFInterrupter
  * @brief   adapts lvdif::Interrupter to a vtkAlgorithm's progress and abort
  *
  * Core algorithms report progress through lvdif::Interrupter; this adapter
@@ -9,8 +9,8 @@
  * Progress is forwarded only from the thread that created the adapter, since
  * observers (e.g. a Qt progress bar) are not prepared for OpenMP worker threads.
  */
-#ifndef vtkLVDIFInterrupter_h
-#define vtkLVDIFInterrupter_h
+#ifndef LVDIFInterrupter_h
+#define LVDIFInterrupter_h
 
 #include "lvdif/Interrupter.h"
 #include "lvdifFiltersVolumeModule.h"
@@ -19,10 +19,10 @@
 
 class vtkAlgorithm;
 
-class LVDIFFILTERSVOLUME_EXPORT vtkLVDIFInterrupter : public lvdif::Interrupter
+class LVDIFFILTERSVOLUME_EXPORT LVDIFInterrupter : public lvdif::Interrupter
 {
 public:
-  explicit vtkLVDIFInterrupter(vtkAlgorithm* algorithm, double shift = 0.0, double scale = 1.0);
+  explicit LVDIFInterrupter(vtkAlgorithm* algorithm, double shift = 0.0, double scale = 1.0);
   void start(const char* name) override;
   void progress(double fraction) override;
   bool wasInterrupted() const override;
