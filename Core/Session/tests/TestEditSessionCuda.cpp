@@ -134,3 +134,57 @@ TEST(EditSessionCuda, ScriptsAndCanvasFillOnTheDevice)
   std::string problem;
   EXPECT_EQ(compareWithFullRemesh(store, cpu.volume(), gpu.mesher().options(), &problem), 0) << problem;
 }
+
+TEST(EditSessionCuda, SculptingBrushesOnTheDeviceEqualTheCpu)
+{
+  if (!haveGpu())
+    GTEST_SKIP() << "no CUDA device";
+  // every op (Smooth and Grab run on the synced host copy and hand their chunks to
+  // the device step), soft falloffs and strengths (soft paint's mix tables on the device)
+  auto start = sphereVolume(64, 16);
+  lvdif::EditSessionOptions o;
+  o.device = lvdif::Device::Cuda;
+  lvdif::EditSession gpu(start->clone(), o);
+  ASSERT_TRUE(gpu.onDevice()) << gpu.notice();
+  o.device = lvdif::Device::Cpu;
+  lvdif::EditSession cpu(start->clone(), o);
+  MeshStore store;
+  gpu.requestAllMeshes();
+  store.take(gpu.collectMeshes());
+  for (int op = 0; op <= static_cast<int>(lvdif::BrushOp::Crease); ++op)
+  {
+    for (lvdif::EditSession* s : { &gpu, &cpu })
+    {
+      s->brush() = lvdif::BrushSettings();
+      s->brush().op = static_cast<lvdif::BrushOp>(op);
+      s->brush().strength = op % 2 ? 0.6 : 1.0;
+      s->brush().falloff = static_cast<lvdif::Falloff>(op % 3);
+      s->brush().color = lvdif::Rgba{ static_cast<std::uint8_t>(30 * op), 120, 200, 255 };
+      s->stroke().kind = lvdif::BrushKind::Drill;
+      s->stroke().radius = 5;
+      s->beginStroke();
+      for (int i = 0; i < 6; ++i)
+      {
+        lvdif::BrushSample b;
+        b.position = { 32.0 + 2.0 * i, 32.0 + 0.5 * op, 51.0 };
+        b.buttons = 1;
+        s->addSample(b);
+      }
+      s->endStroke();
+    }
+    store.take(gpu.collectMeshes());
+    EXPECT_EQ(gpu.undoCount(), cpu.undoCount()) << "op " << op;
+    EXPECT_EQ(differences(gpu.volume(), cpu.volume()), 0) << "op " << op;
+  }
+  for (int k = 0; k < 3; ++k)
+  {
+    gpu.undo();
+    cpu.undo();
+  }
+  gpu.redo();
+  cpu.redo();
+  store.take(gpu.collectMeshes());
+  EXPECT_EQ(differences(gpu.volume(), cpu.volume()), 0);
+  std::string problem;
+  EXPECT_EQ(compareWithFullRemesh(store, cpu.volume(), gpu.mesher().options(), &problem), 0) << problem;
+}
