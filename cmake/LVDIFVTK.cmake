@@ -40,9 +40,13 @@ vtk_module_scan(
   WANT_BY_DEFAULT ON
   ENABLE_TESTS "${BUILD_TESTING}")
 
-install(TARGETS LVDIFCore EXPORT LVDIF
+# the subsystems' OBJECT libraries are in LVDIFCore's link interface (as
+# $<LINK_ONLY:...>), so they belong to the export set too
+get_property(lvdif_core_subsystems GLOBAL PROPERTY LVDIF_CORE_SUBSYSTEMS)
+install(TARGETS LVDIFCore ${lvdif_core_subsystems} EXPORT LVDIF
   ARCHIVE DESTINATION ${CMAKE_INSTALL_LIBDIR}
-  LIBRARY DESTINATION ${CMAKE_INSTALL_LIBDIR})
+  LIBRARY DESTINATION ${CMAKE_INSTALL_LIBDIR}
+  OBJECTS DESTINATION ${CMAKE_INSTALL_LIBDIR}/lvdif-objects)
 
 vtk_module_build(
   MODULES ${LVDIF_MODULES}

@@ -2,57 +2,44 @@
 
 #include "LVDIFFiles.h"
 
-#include "vtkDictionaryVolumeToImage.h"
-#include "LVDIFChunkMesh.h"
-#include "LVDIFVolumeBridge.h"
-
 #include "lvdif/AnalyticFill.h"
 #include "lvdif/Error.h"
-#include "lvdif/Script.h"
-#include "lvdif/VolumeFile.h"
-
-#include "vtkImageData.h"
-#include "vtkNew.h"
-#include "vtkPointData.h"
-
-#include <QFileInfo>
 
 #include <cmath>
-#include <mutex>
-
-namespace
-{
-std::shared_ptr<lvdif::DictionaryVolume> borrow(lvdif::DictionaryVolume& v)
-{
-  return std::shared_ptr<lvdif::DictionaryVolume>(&v, [](lvdif::DictionaryVolume*) {});
-}
-} // namespace
+#include <iostream>
 
 VolumeDocument::VolumeDocument() = default;
 
-VolumeDocument::~VolumeDocument()
-{
-  // The worker reads through the mesher, which reads the volume.
-  this->Worker.reset();
-  this->Mesher.reset();
-  this->Edit.reset();
-  this->Volume.reset();
-}
+VolumeDocument::~VolumeDocument() = default;
 
-void VolumeDocument::resetPipeline()
+void VolumeDocument::hold(std::shared_ptr<lvdif::DictionaryVolume> volume)
 {
-  ++this->Generation;
-  this->Worker.reset();
-  this->Mesher.reset();
-  this->Edit = std::make_unique<lvdif::Editor>(*this->Volume);
-  lvdif::MarchingCubesOptions mo;
-  mo.chunkEdge = 32;
-  this->Mesher = std::make_unique<lvdif::ChunkedMarchingCubes>(*this->Volume, mo);
-  this->Worker = std::make_unique<lvdif::MarchingCubesWorker>(*this->Mesher);
-  this->Volume->takeDirtyChunks();
-  this->Worker->requestAll();
+  if (this->Session)
+    this->Session->setVolume(std::move(volume));
+  else
+  {
+    this->Session = std::make_unique<lvdif::EditSession>(std::move(volume));
+    static bool told = false; // one notice per run
+    if (!this->Session->notice().empty() && !told)
+    {
+      std::cerr << "lvdif-editor: " << this->Session->notice() << "\n";
+      told = true;
+    }
+  }
+  this->Session->requestAllMeshes();
+  this->SeenChanges = this->Session->changeCount();
   this->Modified = false;
   this->EditsSinceAutosave = 0;
+}
+
+void VolumeDocument::noteChanges()
+{
+  if (this->Session->changeCount() != this->SeenChanges)
+  {
+    this->SeenChanges = this->Session->changeCount();
+    this->Modified = true;
+    ++this->EditsSinceAutosave;
+  }
 }
 
 void VolumeDocument::newCanvas(int nx, int ny, int nz, Fill fill)
@@ -60,10 +47,10 @@ void VolumeDocument::newCanvas(int nx, int ny, int nz, Fill fill)
   lvdif::VolumeOptions o;
   o.dims = { nx, ny, nz };
   o.chunkEdge = 32;
-  auto v = std::make_unique<lvdif::DictionaryVolume>(o);
+  auto v = std::make_shared<lvdif::DictionaryVolume>(o);
   if (fill == Fill::Full)
   {
-    v = std::make_unique<lvdif::DictionaryVolume>(o, v->insideVoxel());
+    v = std::make_shared<lvdif::DictionaryVolume>(o, v->insideVoxel());
   }
   else if (fill == Fill::Sphere)
   {
@@ -72,20 +59,14 @@ void VolumeDocument::newCanvas(int nx, int ny, int nz, Fill fill)
     const double r = std::min(64.0, 0.35 * std::min(nx, std::min(ny, nz)));
     lvdif::fillFromFunction(*v, lvdif::sphereSdf(0.5 * (nx - 1), 0.5 * (ny - 1), 0.5 * (nz - 1), r));
   }
-  this->Worker.reset(); // stop reading the old volume before it goes
-  this->Mesher.reset();
-  this->Volume = std::move(v);
   this->Path.clear();
-  this->resetPipeline();
+  this->hold(std::move(v));
 }
 
 void VolumeDocument::adopt(std::shared_ptr<lvdif::DictionaryVolume> volume)
 {
-  this->Worker.reset();
-  this->Mesher.reset();
-  this->Volume = std::move(volume);
   this->Path.clear();
-  this->resetPipeline();
+  this->hold(std::move(volume));
   this->Modified = true;
 }
 
@@ -93,23 +74,18 @@ void VolumeDocument::open(const QString& path)
 {
   // every volume format, by extension, through the one file registry
   std::shared_ptr<lvdif::DictionaryVolume> v = LVDIFFiles::LoadVolume(path.toStdString());
-  this->Worker.reset();
-  this->Mesher.reset();
-  this->Volume = std::move(v);
   this->Path = path;
-  this->resetPipeline();
+  this->hold(std::move(v));
 }
 
 void VolumeDocument::save(const QString& path, bool asCopy)
 {
-  if (!this->Volume)
+  if (!this->Session)
   {
     throw lvdif::Error(lvdif::ErrorCode::InvalidArgument, "no volume to save");
   }
-  {
-    std::lock_guard<std::mutex> lock(this->Worker->sourceMutex());
-    LVDIFFiles::SaveVolume(this->Volume, path.toStdString()); // .lvdv: exact keys, crash-safe
-  }
+  // sharedVolume() syncs a device-resident volume first; the CPU worker only reads
+  LVDIFFiles::SaveVolume(this->Session->sharedVolume(), path.toStdString()); // .lvdv: exact keys, crash-safe
   if (!asCopy)
   {
     this->Path = path;
@@ -117,166 +93,103 @@ void VolumeDocument::save(const QString& path, bool asCopy)
   }
 }
 
-void VolumeDocument::afterEdit(const lvdif::EditResult& r)
-{
-  if (r.changedVoxels > 0 || !r.changedChunks.empty())
-  {
-    this->Modified = true;
-    ++this->EditsSinceAutosave;
-  }
-}
-
-void VolumeDocument::requestDirty()
-{
-  // Called with the source mutex held.
-  const std::vector<std::int64_t> dirty = this->Volume->takeDirtyChunks();
-  if (!dirty.empty())
-  {
-    this->Worker->request(LVDIFChunkMesh::ChunksToRemesh(*this->Mesher, dirty));
-  }
-}
-
-void VolumeDocument::requestChanged(const lvdif::EditResult& r)
-{
-  // Called with the source mutex held.
-  const std::vector<std::int64_t> dirty = this->Volume->takeDirtyChunks();
-  const std::vector<std::int64_t> ids = LVDIFChunkMesh::ChunksToRemesh(*this->Mesher, dirty, r);
-  this->LastRequest = ids;
-  this->LastRequestAt = std::chrono::steady_clock::now();
-  if (!ids.empty())
-  {
-    this->Worker->request(ids);
-  }
-}
-
 void VolumeDocument::beginStroke()
 {
-  std::lock_guard<std::mutex> lock(this->Worker->sourceMutex());
-  this->Edit->beginStroke();
+  this->Session->beginStroke();
 }
 
 void VolumeDocument::addSample(const lvdif::BrushSample& s)
 {
-  std::lock_guard<std::mutex> lock(this->Worker->sourceMutex());
-  this->afterEdit(this->Edit->addSample(s));
-  // Only Drill-style (live) strokes write here (Dynamic applies at the end):
-  // re-mesh exactly the chunks around the voxels this sample changed.
-  this->requestChanged(this->Edit->lastWrite());
+  this->Session->addSample(s);
+  this->noteChanges();
 }
 
 void VolumeDocument::endStroke()
 {
-  std::lock_guard<std::mutex> lock(this->Worker->sourceMutex());
-  if (this->Edit->strokeOpen())
+  if (this->Session->strokeOpen())
   {
-    this->afterEdit(this->Edit->endStroke());
-    // The stroke's remaining dabs only (Drill) or the whole stroke (Dynamic).
-    this->requestChanged(this->Edit->lastWrite());
-  }
-  else
-  {
-    this->requestDirty();
+    this->Session->endStroke();
+    this->noteChanges();
   }
 }
 
 bool VolumeDocument::undo()
 {
-  std::lock_guard<std::mutex> lock(this->Worker->sourceMutex());
-  const bool done = this->Edit->undo();
-  if (done)
-  {
-    this->Modified = true;
-    ++this->EditsSinceAutosave;
-  }
-  this->requestDirty();
+  const bool done = this->Session->undo();
+  this->noteChanges();
   return done;
 }
 
 bool VolumeDocument::redo()
 {
-  std::lock_guard<std::mutex> lock(this->Worker->sourceMutex());
-  const bool done = this->Edit->redo();
-  if (done)
-  {
-    this->Modified = true;
-    ++this->EditsSinceAutosave;
-  }
-  this->requestDirty();
+  const bool done = this->Session->redo();
+  this->noteChanges();
   return done;
 }
 
 void VolumeDocument::startRecording()
 {
-  this->Edit->startRecording();
+  this->Session->startRecording();
 }
 
 lvdif::Recording VolumeDocument::stopRecording()
 {
-  return this->Edit->stopRecording();
+  return this->Session->stopRecording();
 }
 
 void VolumeDocument::play(const lvdif::Recording& r)
 {
-  std::lock_guard<std::mutex> lock(this->Worker->sourceMutex());
-  this->Edit->play(r);
-  this->Modified = true;
-  ++this->EditsSinceAutosave;
-  this->requestDirty();
+  this->Session->play(r);
+  this->noteChanges();
 }
 
 void VolumeDocument::runScript(const std::string& source)
 {
-  lvdif::checkScript(source); // syntax errors before anything changes
-  std::unique_ptr<lvdif::DictionaryVolume> made;
+  const int generation = this->Session->generation();
+  try
   {
-    std::lock_guard<std::mutex> lock(this->Worker->sourceMutex());
-    lvdif::ScriptRunner runner;
-    runner.attach(*this->Volume);
-    try
-    {
-      runner.run(source);
-    }
-    catch (...)
-    {
-      // Edits made before the error stay (and are shown); the history no longer matches them.
-      this->Edit->undoStack().clear();
-      this->Modified = true;
-      this->requestDirty();
-      throw;
-    }
-    made = runner.takeVolume();
-    if (!made)
-    {
-      this->Edit->undoStack().clear();
-      this->Modified = true;
-      ++this->EditsSinceAutosave;
-      this->requestDirty();
-      return;
-    }
+    this->Session->runScript(source);
   }
-  this->Worker.reset();
-  this->Mesher.reset();
-  this->Volume = std::move(made);
-  this->Path.clear();
-  this->resetPipeline();
-  this->Modified = true;
-  ++this->EditsSinceAutosave;
+  catch (...)
+  {
+    this->noteChanges(); // edits made before the error stay (each undoable)
+    throw;
+  }
+  this->noteChanges();
+  if (this->Session->generation() != generation)
+  {
+    // a `canvas N` made a new volume: no file yet
+    this->Path.clear();
+    this->Session->requestAllMeshes();
+    this->Modified = true;
+  }
 }
 
 std::vector<lvdif::ChunkMesh> VolumeDocument::collectMeshes(std::vector<std::chrono::steady_clock::time_point>* gatheredAt)
 {
-  return this->Worker ? this->Worker->collect(gatheredAt) : std::vector<lvdif::ChunkMesh>();
+  return this->Session ? this->Session->collectMeshes(gatheredAt) : std::vector<lvdif::ChunkMesh>();
+}
+
+const std::vector<std::int64_t>& VolumeDocument::lastRequest() const
+{
+  static const std::vector<std::int64_t> none;
+  return this->Session ? this->Session->lastRequest() : none;
+}
+
+std::chrono::steady_clock::time_point VolumeDocument::lastRequestTime() const
+{
+  return this->Session ? this->Session->lastRequestTime() : std::chrono::steady_clock::time_point();
 }
 
 bool VolumeDocument::meshingIdle() const
 {
-  return !this->Worker || this->Worker->idle();
+  return !this->Session || this->Session->meshingIdle();
 }
 
 void VolumeDocument::waitMeshingIdle()
 {
-  if (this->Worker)
+  if (this->Session)
   {
-    this->Worker->waitIdle();
+    this->Session->waitMeshingIdle();
   }
 }

@@ -1,14 +1,12 @@
-// The edited volume and everything that follows it: the Core editor (brush
-// settings, undo stack, recorder), the chunked marching cubes and its
-// background worker. The UI thread edits (holding the worker's source
-// mutex, so the worker never reads a half-written chunk) and polls finished
-// chunk meshes; the meshing itself never runs on the UI thread.
+// The edited document: a holder of one lvdif::EditSession (the volume, on the
+// host or resident on the GPU, its editor, marching cubes and remesh rule) plus
+// what only the app needs: the file name and the modified/autosave state. The
+// UI thread edits and polls finished chunk meshes; the session decides where
+// the meshing runs (a worker thread on the CPU, one batched launch per frame on
+// the GPU), never on the UI thread's time on the CPU.
 #pragma once
 
-#include "lvdif/ChunkedMarchingCubes.h"
-#include "lvdif/DictionaryVolume.h"
-#include "lvdif/Editor.h"
-#include "lvdif/MarchingCubesWorker.h"
+#include "lvdif/EditSession.h"
 
 #include <chrono>
 
@@ -33,22 +31,25 @@ public:
 
   /// A new canvas of n^3 voxels (chunk edge 32). Throws lvdif::Error.
   void newCanvas(int nx, int ny, int nz, Fill fill);
-  /// Opens a native volume file (.lvdv, docs/FORMAT.md) or a .vti image
-  /// (float `sdf`, optional uchar `rgba`). Throws lvdif::Error.
+  /// Opens a volume file of any format the file registry reads (LVDIFFiles).
+  /// Throws lvdif::Error.
   void open(const QString& path);
-  /// Saves as .lvdv (exact) or .vti (decoded sdf + rgba) by extension; throws
+  /// Saves by extension through the file registry (.lvdv exact); throws
   /// lvdif::Error. Clears the modified flag unless `asCopy` (autosave).
   void save(const QString& path, bool asCopy = false);
   /// Takes a volume made elsewhere (e.g. a converted mesh): no file yet, so
   /// the document counts as modified and Save asks for a name.
   void adopt(std::shared_ptr<lvdif::DictionaryVolume> volume);
 
-  bool hasVolume() const { return this->Volume != nullptr; }
-  lvdif::DictionaryVolume& volume() { return *this->Volume; }
-  lvdif::Editor& editor() { return *this->Edit; }
+  bool hasVolume() const { return this->Session != nullptr; }
+  /// The volume's geometry, options and dictionaries (on the GPU its voxels are
+  /// synced only for saving: lvdif::EditSession::hostVolume).
+  const lvdif::DictionaryVolume& volume() const { return this->Session->hostVolume(); }
+  lvdif::Editor& editor() { return this->Session->editor(); }
+  lvdif::EditSession& session() { return *this->Session; }
   const QString& path() const { return this->Path; }
   /// Changes whenever the volume object is replaced (new, open, a script's canvas).
-  int generation() const { return this->Generation; }
+  int generation() const { return this->Session ? this->Session->generation() : 0; }
   bool modified() const { return this->Modified; }
   /// Edits since the last autosave.
   bool needsAutosave() const { return this->EditsSinceAutosave > 0; }
@@ -63,37 +64,30 @@ public:
   void startRecording();
   lvdif::Recording stopRecording();
   void play(const lvdif::Recording& r);
-  /// Runs an LVDIF script (docs/SCRIPTING.md) on the volume, or on the new
-  /// volume its `canvas` command makes. The script's edits are not undoable
-  /// one by one, so the undo history is cleared. Throws lvdif::ScriptError.
+  /// Runs an LVDIF script (docs/SCRIPTING.md) through the session: its edits
+  /// are undoable; a `canvas` command makes a new volume. Throws lvdif::ScriptError.
   void runScript(const std::string& source);
 
   // ---- meshing ---------------------------------------------------------------
-  /// Meshes finished since the last call (never waits); with `gatheredAt`, when
-  /// each mesh's input was read (MarchingCubesWorker::collect).
+  /// Meshes ready now (never waits for the CPU worker); with `gatheredAt`, when
+  /// each mesh's input was read (lvdif::EditSession::collectMeshes).
   std::vector<lvdif::ChunkMesh> collectMeshes(std::vector<std::chrono::steady_clock::time_point>* gatheredAt = nullptr);
-  /// The chunks the last addSample()/endStroke() asked to re-mesh, and when
-  /// (taken under the source mutex right after the edit): a mesh gathered later shows it.
-  const std::vector<std::int64_t>& lastRequest() const { return this->LastRequest; }
-  std::chrono::steady_clock::time_point lastRequestTime() const { return this->LastRequestAt; }
+  /// The mesh chunks the last addSample()/endStroke() asked to re-mesh, and when
+  /// (right after the edit): a mesh gathered later shows it.
+  const std::vector<std::int64_t>& lastRequest() const;
+  std::chrono::steady_clock::time_point lastRequestTime() const;
   bool meshingIdle() const;
   void waitMeshingIdle();
 
 private:
-  void resetPipeline();
-  void afterEdit(const lvdif::EditResult& r);
-  void requestDirty();
-  /// Re-mesh request after an editor call: exact for what `r` changed.
-  void requestChanged(const lvdif::EditResult& r);
+  /// Holds `volume` in the session (a new session the first time), meshes everything.
+  void hold(std::shared_ptr<lvdif::DictionaryVolume> volume);
+  /// Counts a change when the session's count moved.
+  void noteChanges();
 
-  std::shared_ptr<lvdif::DictionaryVolume> Volume;
-  std::unique_ptr<lvdif::Editor> Edit;
-  std::unique_ptr<lvdif::ChunkedMarchingCubes> Mesher;
-  std::unique_ptr<lvdif::MarchingCubesWorker> Worker;
+  std::unique_ptr<lvdif::EditSession> Session;
   QString Path;
   bool Modified = false;
   int EditsSinceAutosave = 0;
-  int Generation = 0;
-  std::vector<std::int64_t> LastRequest;
-  std::chrono::steady_clock::time_point LastRequestAt;
+  std::uint64_t SeenChanges = 0;
 };

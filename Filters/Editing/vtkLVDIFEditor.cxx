@@ -5,7 +5,7 @@
 #include "vtkObjectFactory.h"
 
 #include "lvdif/EditLimits.h"
-#include "lvdif/Editor.h"
+#include "lvdif/EditSession.h"
 #include "lvdif/Error.h"
 #include "lvdif/Recording.h"
 #include "lvdif/Script.h"
@@ -19,22 +19,23 @@
 
 vtkStandardNewMacro(vtkLVDIFEditor);
 
-// Brush and stroke settings while there is no lvdif::Editor (they survive volume changes).
+// Brush and stroke settings while there is no session (they survive volume changes).
 struct vtkLVDIFEditor::Settings
 {
   lvdif::BrushSettings brush;
   lvdif::StrokeSettings stroke;
+  std::string notice;
 };
 
 namespace
 {
-lvdif::BrushSettings& brushOf(lvdif::Editor* ed, lvdif::BrushSettings& fallback)
+lvdif::BrushSettings& brushOf(lvdif::EditSession* s, lvdif::BrushSettings& fallback)
 {
-  return ed ? ed->brush : fallback;
+  return s ? s->brush() : fallback;
 }
-lvdif::StrokeSettings& strokeOf(lvdif::Editor* ed, lvdif::StrokeSettings& fallback)
+lvdif::StrokeSettings& strokeOf(lvdif::EditSession* s, lvdif::StrokeSettings& fallback)
 {
-  return ed ? ed->stroke : fallback;
+  return s ? s->stroke() : fallback;
 }
 } // namespace
 
@@ -76,7 +77,7 @@ int vtkLVDIFEditor::Guard(const char* what, F&& fn)
 
 bool vtkLVDIFEditor::RequireVolume()
 {
-  if (this->Ed)
+  if (this->Session)
     return true;
   this->LastError = "no volume: call NewVolume or LoadVolume first";
   this->LastErrorLine = this->LastErrorColumn = 0;
@@ -86,11 +87,20 @@ bool vtkLVDIFEditor::RequireVolume()
 
 void vtkLVDIFEditor::ReportChanges()
 {
-  if (!this->Ed)
+  if (!this->Session)
     return;
-  const std::vector<std::int64_t> ids = this->Ed->takeTouchedChunks();
+  if (this->Session->generation() != this->ImageGeneration)
+  {
+    // a script's `canvas N` replaced the volume
+    this->ImageSource->SetVolume(this->Session->sharedVolume());
+    this->ImageGeneration = this->Session->generation();
+  }
+  const std::vector<std::int64_t> ids = this->Session->takeChangedMeshChunks();
   if (ids.empty())
     return;
+  // the image source and GetVolume() read the host copy: bring it up to date
+  // (a Python call is not a frame; the interactive path keeps it lazy)
+  this->Session->sync();
   this->LastChanged->SetNumberOfValues(static_cast<vtkIdType>(ids.size()));
   for (std::size_t i = 0; i < ids.size(); ++i)
     this->LastChanged->SetValue(static_cast<vtkIdType>(i), static_cast<vtkIdType>(ids[i]));
@@ -99,34 +109,61 @@ void vtkLVDIFEditor::ReportChanges()
   this->Modified();
 }
 
-void vtkLVDIFEditor::ReportAll()
+void vtkLVDIFEditor::SetDevice(int device)
 {
-  const vtkIdType n = this->Volume ? static_cast<vtkIdType>(this->Volume->chunkCount()) : 0;
-  this->LastChanged->SetNumberOfValues(n);
-  for (vtkIdType i = 0; i < n; ++i)
-    this->LastChanged->SetValue(i, i);
-  this->ImageSource->Modified();
-  this->InvokeEvent(ChunksModifiedEvent, this->LastChanged.GetPointer());
-  this->Modified();
+  if (device < 0 || device > 2)
+  {
+    vtkErrorMacro(<< "device " << device << " is not 0 (auto), 1 (CPU) or 2 (CUDA)");
+    return;
+  }
+  if (this->Device != device)
+  {
+    this->Device = device;
+    this->Modified();
+  }
+}
+
+bool vtkLVDIFEditor::IsOnDevice()
+{
+  return this->Session && this->Session->onDevice();
+}
+
+const char* vtkLVDIFEditor::GetNotice()
+{
+  return this->Brush->notice.c_str();
+}
+
+int vtkLVDIFEditor::GetMeshChunkEdge()
+{
+  return this->Session ? this->Session->meshChunkEdge() : 0;
+}
+
+std::shared_ptr<lvdif::DictionaryVolume> vtkLVDIFEditor::GetVolume()
+{
+  return this->Session ? this->Session->sharedVolume() : nullptr;
 }
 
 void vtkLVDIFEditor::SetVolume(std::shared_ptr<lvdif::DictionaryVolume> volume)
 {
-  if (this->Ed)
+  if (this->Session)
   {
-    this->Brush->brush = this->Ed->brush;
-    this->Brush->stroke = this->Ed->stroke;
+    this->Brush->brush = this->Session->brush();
+    this->Brush->stroke = this->Session->stroke();
   }
-  this->Ed.reset();
-  this->Volume = std::move(volume);
-  if (this->Volume)
+  this->Session.reset();
+  if (volume)
   {
-    this->Ed = std::make_unique<lvdif::Editor>(*this->Volume);
-    this->Ed->brush = this->Brush->brush;
-    this->Ed->stroke = this->Brush->stroke;
+    lvdif::EditSessionOptions o;
+    o.device = this->Device == 1 ? lvdif::Device::Cpu : (this->Device == 2 ? lvdif::Device::Cuda : lvdif::Device::Auto);
+    o.meshing = false; // this object hands out no meshes, only which mesh chunks changed
+    this->Session = std::make_unique<lvdif::EditSession>(volume, o);
+    this->Session->brush() = this->Brush->brush;
+    this->Session->stroke() = this->Brush->stroke;
+    this->Brush->notice = this->Session->notice();
   }
-  this->ImageSource->SetVolume(this->Volume);
-  this->ReportAll();
+  this->ImageSource->SetVolume(volume);
+  this->ImageGeneration = this->Session ? this->Session->generation() : 0;
+  this->ReportChanges(); // a new session reports every mesh chunk
 }
 
 int vtkLVDIFEditor::NewVolume(int nx, int ny, int nz, bool filled)
@@ -139,7 +176,7 @@ int vtkLVDIFEditor::NewVolume(int nx, int ny, int nz, bool filled)
     auto v = std::make_shared<lvdif::DictionaryVolume>(o);
     if (filled)
     {
-      const lvdif::Rgba c = brushOf(this->Ed.get(), this->Brush->brush).color;
+      const lvdif::Rgba c = brushOf(this->Session.get(), this->Brush->brush).color;
       const lvdif::Voxel fill{ v->insideVoxel().sdf, v->colors().add(c) };
       for (std::int64_t id = 0; id < v->chunkCount(); ++id)
         v->fillChunk(id, fill);
@@ -164,19 +201,19 @@ int vtkLVDIFEditor::SaveVolume(const char* path)
     return 0;
   return this->Guard("SaveVolume", [&] {
     lvdif::require(path && *path, "no file name");
-    lvdif::saveVolume(*this->Volume, path);
+    lvdif::saveVolume(this->Session->volume(), path);
   });
 }
 
 void vtkLVDIFEditor::GetDimensions(int dims[3])
 {
   for (int i = 0; i < 3; ++i)
-    dims[i] = this->Volume ? static_cast<int>(this->Volume->dims()[i]) : 0;
+    dims[i] = this->Session ? static_cast<int>(this->Session->mesher().pointDims()[i]) : 0;
 }
 
 int vtkLVDIFEditor::GetNumberOfChunks()
 {
-  return this->Volume ? static_cast<int>(this->Volume->chunkCount()) : 0;
+  return this->Session ? static_cast<int>(this->Session->mesher().chunkCount()) : 0;
 }
 
 // ---- brush settings -----------------------------------------------------------
@@ -188,13 +225,13 @@ void vtkLVDIFEditor::SetOperation(int op)
     vtkErrorMacro(<< "operation " << op << " is not 0 (add), 1 (subtract) or 2 (paint)");
     return;
   }
-  brushOf(this->Ed.get(), this->Brush->brush).op = static_cast<lvdif::BrushOp>(op);
+  brushOf(this->Session.get(), this->Brush->brush).op = static_cast<lvdif::BrushOp>(op);
   this->Modified();
 }
 
 int vtkLVDIFEditor::GetOperation()
 {
-  return static_cast<int>(brushOf(this->Ed.get(), this->Brush->brush).op);
+  return static_cast<int>(brushOf(this->Session.get(), this->Brush->brush).op);
 }
 
 void vtkLVDIFEditor::SetPrimitive(int primitive)
@@ -204,13 +241,13 @@ void vtkLVDIFEditor::SetPrimitive(int primitive)
     vtkErrorMacro(<< "primitive " << primitive << " is not 0 (sphere) or 1 (cube)");
     return;
   }
-  strokeOf(this->Ed.get(), this->Brush->stroke).shape = static_cast<lvdif::BrushShape>(primitive);
+  strokeOf(this->Session.get(), this->Brush->stroke).shape = static_cast<lvdif::BrushShape>(primitive);
   this->Modified();
 }
 
 int vtkLVDIFEditor::GetPrimitive()
 {
-  return static_cast<int>(strokeOf(this->Ed.get(), this->Brush->stroke).shape);
+  return static_cast<int>(strokeOf(this->Session.get(), this->Brush->stroke).shape);
 }
 
 namespace
@@ -240,13 +277,13 @@ void vtkLVDIFEditor::SetRadius(double r)
     vtkErrorMacro(<< bad);
     return;
   }
-  strokeOf(this->Ed.get(), this->Brush->stroke).radius = r;
+  strokeOf(this->Session.get(), this->Brush->stroke).radius = r;
   this->Modified();
 }
 
 double vtkLVDIFEditor::GetRadius()
 {
-  return strokeOf(this->Ed.get(), this->Brush->stroke).radius;
+  return strokeOf(this->Session.get(), this->Brush->stroke).radius;
 }
 
 void vtkLVDIFEditor::SetColor(int r, int g, int b, int a)
@@ -258,7 +295,7 @@ void vtkLVDIFEditor::SetColor(int r, int g, int b, int a)
       vtkErrorMacro(<< "colour components must be in 0..255, got " << v);
       return;
     }
-  brushOf(this->Ed.get(), this->Brush->brush).color = lvdif::Rgba{ static_cast<std::uint8_t>(r),
+  brushOf(this->Session.get(), this->Brush->brush).color = lvdif::Rgba{ static_cast<std::uint8_t>(r),
     static_cast<std::uint8_t>(g), static_cast<std::uint8_t>(b), static_cast<std::uint8_t>(a) };
   this->Modified();
 }
@@ -267,7 +304,7 @@ int vtkLVDIFEditor::GetColorComponent(int i)
 {
   if (i < 0 || i > 3)
     return -1;
-  const lvdif::Rgba& c = brushOf(this->Ed.get(), this->Brush->brush).color;
+  const lvdif::Rgba& c = brushOf(this->Session.get(), this->Brush->brush).color;
   const std::uint8_t v[4] = { c.r, c.g, c.b, c.a };
   return v[i];
 }
@@ -280,13 +317,13 @@ void vtkLVDIFEditor::SetBlend(double k)
     vtkErrorMacro(<< bad);
     return;
   }
-  brushOf(this->Ed.get(), this->Brush->brush).blend = k;
+  brushOf(this->Session.get(), this->Brush->brush).blend = k;
   this->Modified();
 }
 
 double vtkLVDIFEditor::GetBlend()
 {
-  return brushOf(this->Ed.get(), this->Brush->brush).blend;
+  return brushOf(this->Session.get(), this->Brush->brush).blend;
 }
 
 void vtkLVDIFEditor::SetBrushKind(int kind)
@@ -296,13 +333,13 @@ void vtkLVDIFEditor::SetBrushKind(int kind)
     vtkErrorMacro(<< "brush kind " << kind << " is not 0 (single), 1 (basic), 2 (dynamic) or 3 (drill)");
     return;
   }
-  strokeOf(this->Ed.get(), this->Brush->stroke).kind = static_cast<lvdif::BrushKind>(kind);
+  strokeOf(this->Session.get(), this->Brush->stroke).kind = static_cast<lvdif::BrushKind>(kind);
   this->Modified();
 }
 
 int vtkLVDIFEditor::GetBrushKind()
 {
-  return static_cast<int>(strokeOf(this->Ed.get(), this->Brush->stroke).kind);
+  return static_cast<int>(strokeOf(this->Session.get(), this->Brush->stroke).kind);
 }
 
 void vtkLVDIFEditor::SetSpacing(double s)
@@ -313,13 +350,13 @@ void vtkLVDIFEditor::SetSpacing(double s)
     vtkErrorMacro(<< bad);
     return;
   }
-  strokeOf(this->Ed.get(), this->Brush->stroke).spacing = s;
+  strokeOf(this->Session.get(), this->Brush->stroke).spacing = s;
   this->Modified();
 }
 
 double vtkLVDIFEditor::GetSpacing()
 {
-  return strokeOf(this->Ed.get(), this->Brush->stroke).spacing;
+  return strokeOf(this->Session.get(), this->Brush->stroke).spacing;
 }
 
 void vtkLVDIFEditor::SetMinRadius(double r)
@@ -330,13 +367,13 @@ void vtkLVDIFEditor::SetMinRadius(double r)
     vtkErrorMacro(<< bad);
     return;
   }
-  strokeOf(this->Ed.get(), this->Brush->stroke).minRadius = r;
+  strokeOf(this->Session.get(), this->Brush->stroke).minRadius = r;
   this->Modified();
 }
 
 double vtkLVDIFEditor::GetMinRadius()
 {
-  return strokeOf(this->Ed.get(), this->Brush->stroke).minRadius;
+  return strokeOf(this->Session.get(), this->Brush->stroke).minRadius;
 }
 
 // ---- edits ----------------------------------------------------------------------
@@ -347,10 +384,10 @@ int vtkLVDIFEditor::Dab(double x, double y, double z)
     return 0;
   return this->Guard("Dab", [&] {
     lvdif::Dab d;
-    d.shape = this->Ed->stroke.shape;
+    d.shape = this->Session->stroke().shape;
     d.center = { x, y, z };
-    d.radius = this->Ed->stroke.radius;
-    this->Ed->dab(d);
+    d.radius = this->Session->stroke().radius;
+    this->Session->dab(d);
   });
 }
 
@@ -358,7 +395,7 @@ int vtkLVDIFEditor::BeginStroke()
 {
   if (!this->RequireVolume())
     return 0;
-  return this->Guard("BeginStroke", [&] { this->Ed->beginStroke(); });
+  return this->Guard("BeginStroke", [&] { this->Session->beginStroke(); });
 }
 
 int vtkLVDIFEditor::AddSample(double x, double y, double z, double pressure)
@@ -372,7 +409,7 @@ int vtkLVDIFEditor::AddSample(double x, double y, double z, double pressure)
     s.buttons = 1;
     for (double v : s.position)
       lvdif::require(std::isfinite(v), "sample position must be finite");
-    this->Ed->addSample(s);
+    this->Session->addSample(s);
   });
 }
 
@@ -380,12 +417,12 @@ int vtkLVDIFEditor::EndStroke()
 {
   if (!this->RequireVolume())
     return 0;
-  return this->Guard("EndStroke", [&] { this->Ed->endStroke(); });
+  return this->Guard("EndStroke", [&] { this->Session->endStroke(); });
 }
 
 bool vtkLVDIFEditor::IsStrokeOpen()
 {
-  return this->Ed && this->Ed->strokeOpen();
+  return this->Session && this->Session->strokeOpen();
 }
 
 int vtkLVDIFEditor::Undo()
@@ -393,7 +430,7 @@ int vtkLVDIFEditor::Undo()
   if (!this->RequireVolume())
     return 0;
   bool done = false;
-  const int ok = this->Guard("Undo", [&] { done = this->Ed->undo(); });
+  const int ok = this->Guard("Undo", [&] { done = this->Session->undo(); });
   return ok && done ? 1 : 0;
 }
 
@@ -402,23 +439,23 @@ int vtkLVDIFEditor::Redo()
   if (!this->RequireVolume())
     return 0;
   bool done = false;
-  const int ok = this->Guard("Redo", [&] { done = this->Ed->redo(); });
+  const int ok = this->Guard("Redo", [&] { done = this->Session->redo(); });
   return ok && done ? 1 : 0;
 }
 
 bool vtkLVDIFEditor::CanUndo()
 {
-  return this->Ed && !this->Ed->strokeOpen() && this->Ed->undoStack().canUndo();
+  return this->Session && this->Session->canUndo();
 }
 
 bool vtkLVDIFEditor::CanRedo()
 {
-  return this->Ed && !this->Ed->strokeOpen() && this->Ed->undoStack().canRedo();
+  return this->Session && this->Session->canRedo();
 }
 
 int vtkLVDIFEditor::GetUndoCount()
 {
-  return this->Ed ? static_cast<int>(this->Ed->undoStack().undoCount()) : 0;
+  return this->Session ? static_cast<int>(this->Session->undoCount()) : 0;
 }
 
 // ---- recorder and player ------------------------------------------------------------
@@ -427,12 +464,12 @@ int vtkLVDIFEditor::StartRecording()
 {
   if (!this->RequireVolume())
     return 0;
-  return this->Guard("StartRecording", [&] { this->Ed->startRecording(); });
+  return this->Guard("StartRecording", [&] { this->Session->startRecording(); });
 }
 
 bool vtkLVDIFEditor::IsRecording()
 {
-  return this->Ed && this->Ed->recording();
+  return this->Session && this->Session->recording();
 }
 
 int vtkLVDIFEditor::StopRecording(const char* path)
@@ -440,7 +477,7 @@ int vtkLVDIFEditor::StopRecording(const char* path)
   if (!this->RequireVolume())
     return 0;
   return this->Guard("StopRecording", [&] {
-    const lvdif::Recording r = this->Ed->stopRecording();
+    const lvdif::Recording r = this->Session->stopRecording();
     if (path && *path)
       lvdif::saveRecording(path, r);
   });
@@ -453,7 +490,7 @@ int vtkLVDIFEditor::PlayRecording(const char* path)
   return this->Guard("PlayRecording", [&] {
     lvdif::require(path && *path, "no file name");
     const lvdif::Recording r = lvdif::loadRecording(path);
-    this->Ed->play(r);
+    this->Session->play(r);
   });
 }
 
@@ -475,14 +512,14 @@ int vtkLVDIFEditor::ImportOriginalCsv(const char* path, double originalSize)
         "give the original volume size: the file name does not say it (Recording_<N>_...)");
       o.originalSize = std::stod(m[1].str());
     }
-    o.targetSize = static_cast<double>(this->Volume->dims()[0]);
+    o.targetSize = static_cast<double>(this->Session->mesher().pointDims()[0]);
     std::ifstream in(path);
     if (!in)
       throw lvdif::Error(lvdif::ErrorCode::IoFailure, std::string("cannot open '") + path + "'");
     const lvdif::CsvImportResult r = lvdif::importOriginalCsv(in, o);
     if (r.skippedRows)
       vtkWarningMacro(<< r.skippedRows << " broken rows skipped; first: " << r.firstProblem);
-    this->Ed->play(r.recording);
+    this->Session->play(r.recording);
   });
 }
 
@@ -495,33 +532,27 @@ int vtkLVDIFEditor::RunScript(const char* text)
     lvdif::ScriptOptions o;
     o.canvas.chunkEdge = this->ChunkEdge;
     o.canvas.bandWidth = static_cast<float>(this->BandWidth);
+    if (this->Session)
+    {
+      this->Session->runScript(source, o); // the session adopts a `canvas N` volume itself
+      return;
+    }
+    // no volume yet: the script must make one (`canvas N`); a session then holds it
     lvdif::ScriptRunner runner(o);
-    if (this->Ed)
-      runner.attach(*this->Ed);
-    struct Adopt // a `canvas` volume replaces ours even when the script fails later
+    struct Adopt // a `canvas` volume is kept even when the script fails later
     {
       vtkLVDIFEditor* Self;
       lvdif::ScriptRunner& Runner;
       ~Adopt()
       {
-        std::unique_ptr<lvdif::DictionaryVolume> made;
-        lvdif::Editor* used = this->Runner.editor();
-        lvdif::BrushSettings b;
-        lvdif::StrokeSettings s;
-        if (used)
+        if (lvdif::Editor* used = this->Runner.editor())
         {
-          b = used->brush;
-          s = used->stroke;
+          this->Self->Brush->brush = used->brush;
+          this->Self->Brush->stroke = used->stroke;
         }
-        made = this->Runner.takeVolume();
+        std::unique_ptr<lvdif::DictionaryVolume> made = this->Runner.takeVolume();
         if (made)
-        {
-          made->takeDirtyChunks();
-          this->Self->Brush->brush = b;
-          this->Self->Brush->stroke = s;
-          this->Self->Ed.reset(); // SetVolume must not copy the old editor's settings over
           this->Self->SetVolume(std::shared_ptr<lvdif::DictionaryVolume>(std::move(made)));
-        }
       }
     } adopt{ this, runner };
     runner.run(source);
@@ -556,6 +587,7 @@ void vtkLVDIFEditor::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "Dimensions: " << d[0] << " " << d[1] << " " << d[2] << "\n";
   os << indent << "ChunkEdge: " << this->ChunkEdge << "\n";
   os << indent << "BandWidth: " << this->BandWidth << "\n";
+  os << indent << "Device: " << this->Device << (this->IsOnDevice() ? " (on the GPU)" : "") << "\n";
   os << indent << "Operation: " << this->GetOperation() << "\n";
   os << indent << "Primitive: " << this->GetPrimitive() << "\n";
   os << indent << "Radius: " << this->GetRadius() << "\n";

@@ -1,10 +1,11 @@
 /**
  * @class   vtkLVDIFEditor
- * @brief   the editing engine as a VTK object: owns a volume and its editor
+ * @brief   the editing engine as a VTK object: holds one lvdif::EditSession
  *
- * A thin wrapper over lvdif::Editor (brushes, strokes, undo/redo, recorder and
- * player, scripts) with plain scalar and string arguments, so that Python, the
- * Qt app and ParaView can drive edits (docs/EDITING.md):
+ * A thin holder of lvdif::EditSession (the volume, on the host or resident on
+ * the GPU; brushes, strokes, undo/redo, recorder and player, scripts; the mesh
+ * chunks each edit invalidates) with plain scalar and string arguments, so that
+ * Python and ParaView drive the same session as the Qt app (docs/EDITING.md):
  *
  * @code{.py}
  * from lvdif import vtkLVDIFEditor
@@ -24,10 +25,12 @@
  * it made before the error, each undoable).
  *
  * Events: after every call that changed voxels the editor invokes
- * ChunksModifiedEvent with call data a vtkIdTypeArray* of the changed chunk
- * ids (increasing; chunk id = cx + ncx * (cy + ncy * cz)), then
+ * ChunksModifiedEvent with call data a vtkIdTypeArray* of the mesh chunks whose
+ * meshes the call invalidated (increasing; mesh chunk id = cx + ncx * (cy + ncy
+ * * cz) over chunks of GetMeshChunkEdge() cells, the ids of
+ * lvdif::ChunkedMarchingCubes / vtkChunkedMarchingCubes' chunk_id), then
  * vtkCommand::ModifiedEvent. The image source is marked modified as well.
- * NewVolume and LoadVolume report every chunk.
+ * NewVolume and LoadVolume report every mesh chunk.
  */
 #ifndef vtkLVDIFEditor_h
 #define vtkLVDIFEditor_h
@@ -47,6 +50,7 @@ namespace lvdif
 {
 class DictionaryVolume;
 class Editor;
+class EditSession;
 }
 
 class LVDIFFILTERSEDITING_EXPORT vtkLVDIFEditor : public vtkObject
@@ -56,7 +60,7 @@ public:
   vtkTypeMacro(vtkLVDIFEditor, vtkObject);
   void PrintSelf(ostream& os, vtkIndent indent) override;
 
-  /// Invoked with a vtkIdTypeArray* of the changed chunk ids.
+  /// Invoked with a vtkIdTypeArray* of the invalidated mesh chunk ids.
   enum
   {
     ChunksModifiedEvent = vtkCommand::UserEvent + 7001
@@ -88,10 +92,25 @@ public:
   int LoadVolume(const char* path);
   /// Writes the volume crash-safely.
   int SaveVolume(const char* path);
-  bool HasVolume() const { return this->Volume != nullptr; }
+  bool HasVolume() const { return this->Session != nullptr; }
   /// Dimensions of the volume (0 0 0 without one).
   void GetDimensions(int dims[3]);
   int GetNumberOfChunks();
+  ///@}
+
+  ///@{
+  /// Where volumes live and edits run from the next NewVolume/LoadVolume/SetVolume on:
+  /// 0 auto (the GPU when one can be used, the default), 1 CPU, 2 CUDA (the GPU, else
+  /// the CPU with a notice). GetNotice() says why a volume stayed on the CPU ("" otherwise).
+  void SetDevice(int device);
+  vtkGetMacro(Device, int);
+  void SetDeviceToAuto() { this->SetDevice(0); }
+  void SetDeviceToCpu() { this->SetDevice(1); }
+  void SetDeviceToCuda() { this->SetDevice(2); }
+  bool IsOnDevice();
+  const char* GetNotice();
+  /// Cells per mesh chunk edge of the ids in ChunksModifiedEvent (0 without a volume).
+  int GetMeshChunkEdge();
   ///@}
 
   ///@{
@@ -183,7 +202,7 @@ public:
   int GetLastErrorColumn() { return this->LastErrorColumn; }
   ///@}
 
-  /// Chunk ids reported by the last ChunksModifiedEvent.
+  /// Mesh chunk ids reported by the last ChunksModifiedEvent.
   vtkIdTypeArray* GetLastChangedChunks();
 
   /// An image source sharing this editor's volume (`sdf` and `rgba`); it
@@ -191,11 +210,12 @@ public:
   vtkDictionaryVolumeToImage* GetImageSource();
 
 #ifndef __VTK_WRAP__
-  std::shared_ptr<lvdif::DictionaryVolume> GetVolume() const { return this->Volume; }
+  /// The volume's host copy (synced from the GPU first when it lives there).
+  std::shared_ptr<lvdif::DictionaryVolume> GetVolume();
   /// Adopts a volume (clears undo/redo).
   void SetVolume(std::shared_ptr<lvdif::DictionaryVolume> volume);
-  /// The core editor (nullptr without a volume).
-  lvdif::Editor* GetEditor() { return this->Ed.get(); }
+  /// The session (nullptr without a volume), e.g. for collectMeshes() or pump().
+  lvdif::EditSession* GetSession() { return this->Session.get(); }
 #endif
 
 protected:
@@ -207,12 +227,10 @@ protected:
   int Guard(const char* what, F&& fn);
   bool RequireVolume();
   void ReportChanges();
-  void ReportAll();
 
-  std::shared_ptr<lvdif::DictionaryVolume> Volume;
-  std::unique_ptr<lvdif::Editor> Ed;
+  std::unique_ptr<lvdif::EditSession> Session;
   struct Settings;
-  std::unique_ptr<Settings> Brush; // kept across volumes
+  std::unique_ptr<Settings> Brush; // while there is no session
   vtkSmartPointer<vtkDictionaryVolumeToImage> ImageSource;
   vtkSmartPointer<vtkIdTypeArray> LastChanged;
   std::string LastError;
@@ -220,6 +238,8 @@ protected:
   int LastErrorColumn = 0;
   int ChunkEdge = 32;
   double BandWidth = 8.0;
+  int Device = 0;
+  int ImageGeneration = 0; // the session generation the image source shows
 
 private:
   vtkLVDIFEditor(const vtkLVDIFEditor&) = delete;

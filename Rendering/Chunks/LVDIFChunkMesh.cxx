@@ -95,37 +95,3 @@ vtkSmartPointer<vtkPolyData> LVDIFChunkMesh::ToPolyData(
   }
   return pd;
 }
-
-std::vector<std::int64_t> LVDIFChunkMesh::ChunksToRemesh(const lvdif::ChunkedMarchingCubes& mc,
-  const std::vector<std::int64_t>& dirtyStorageChunks, const lvdif::VoxelBox* changedBound)
-{
-  std::vector<std::int64_t> byStorage = mc.chunksAffectedByStorageChunks(dirtyStorageChunks);
-  if (!changedBound || byStorage.empty())
-  {
-    return byStorage;
-  }
-  std::vector<std::int64_t> byBox = mc.chunksAffectedBy(*changedBound);
-  std::sort(byBox.begin(), byBox.end());
-  std::sort(byStorage.begin(), byStorage.end());
-  std::vector<std::int64_t> both;
-  std::set_intersection(byStorage.begin(), byStorage.end(), byBox.begin(), byBox.end(), std::back_inserter(both));
-  return both;
-}
-
-std::vector<std::int64_t> LVDIFChunkMesh::ChunksToRemesh(const lvdif::ChunkedMarchingCubes& mc,
-  const std::vector<std::int64_t>& dirtyStorageChunks, const lvdif::EditResult& edit)
-{
-  // Both lists are increasing (takeDirtyChunks, EditResult::changedChunks).
-  std::vector<std::int64_t> foreign;
-  std::set_difference(dirtyStorageChunks.begin(), dirtyStorageChunks.end(), edit.changedChunks.begin(),
-    edit.changedChunks.end(), std::back_inserter(foreign));
-  std::vector<std::int64_t> ids = mc.chunksAffectedBy(edit.changedBox);
-  if (!foreign.empty())
-  {
-    const std::vector<std::int64_t> more = mc.chunksAffectedByStorageChunks(foreign);
-    ids.insert(ids.end(), more.begin(), more.end());
-  }
-  std::sort(ids.begin(), ids.end());
-  ids.erase(std::unique(ids.begin(), ids.end()), ids.end());
-  return ids;
-}

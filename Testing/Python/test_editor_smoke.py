@@ -35,6 +35,16 @@ if not ed.CanUndo() or not ed.Undo():
 src.Update()
 if src.GetOutput().GetPointData().GetArray("sdf").GetValue(centre) <= 0:
     fail("undo did not restore the empty volume")
+# a script's edits are undoable through the same session
+if not ed.RunScript("op add\nsphere 16 16 16 3"):
+    fail(ed.GetLastError())
+if ed.GetUndoCount() != 1 or not ed.Undo():
+    fail("script edit not undoable (undo count %d)" % ed.GetUndoCount())
+# the session: where it runs (GPU when usable, else the CPU with a notice) and the mesh chunks of the events
+if ed.GetDevice() != 0 or (ed.IsOnDevice() and ed.GetNotice()):
+    fail("device %d, on the GPU %s, notice %s" % (ed.GetDevice(), ed.IsOnDevice(), ed.GetNotice()))
+if ed.GetMeshChunkEdge() < 16:
+    fail("mesh chunk edge %d" % ed.GetMeshChunkEdge())
 ed.GlobalWarningDisplayOff()  # the next error is expected
 if ed.RunScript("sphere 1 2 3 4\n  bogus 1\n"):
     fail("a bad script succeeded")

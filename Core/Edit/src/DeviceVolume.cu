@@ -1,8 +1,10 @@
 // The device-resident volume (lvdif/DeviceVolume.h). One launch per apply call:
 // the host plans the dabs (BrushKernel.h, as the CPU and Brush.cu do), assigns
-// pool slots to the uniform chunks the dabs reach, packs the launch data into
-// one buffer (one copy up), the kernel combines every voxel of every planned
-// chunk in place in its slot and counts the changed voxels per chunk (one
+// pool slots (a fresh one for a uniform chunk, and inside a history step for
+// the step's first write into a chunk: copy on write), packs the launch data
+// into one buffer (one copy up), the kernel combines every voxel of every
+// planned chunk from its source slot (or uniform value) into its destination
+// slot and reduces per chunk the changed voxels and their bounding box (one
 // small copy down). Compiled with --fmad=false (Core/CMakeLists.txt) so the
 // double arithmetic rounds like the host's.
 #include "lvdif/DeviceVolume.h"
@@ -15,6 +17,7 @@
 
 #include <algorithm>
 #include <cstring>
+#include <deque>
 #include <string>
 
 namespace lvdif
@@ -26,40 +29,75 @@ namespace
 
 using Box = detail::edit::DeviceDabBox;
 
-// Per planned chunk: its slot, origin, and the value to start from when the slot is fresh.
+// Per planned chunk: where its voxels come from and go to.
 struct ChunkJob
 {
   long long origin[3];
-  int slot;
-  int fresh;          // 1: the slot was uniform `value` before this call
+  int src;            // slot read, or -1: the chunk was uniform `value`
+  int dst;            // slot written (every voxel when src != dst, else the changed ones)
   std::uint32_t value;
   std::uint32_t pad;
 };
 
+// Per planned chunk: changed voxels and their box in chunk-local coordinates.
+struct ChunkChange
+{
+  unsigned long long count;
+  int lo[3], hi[3];
+};
+
 __global__ void residentDabKernel(std::uint32_t* pool, const ChunkJob* jobs, int edge, int shift, long long dx,
   long long dy, long long dz, const Dab* dabs, const Box* boxes, int nDabs, detail::edit::BrushContext ctx,
-  const float* table, detail::edit::EncodeParams enc, unsigned long long* changed)
+  const float* table, detail::edit::EncodeParams enc, ChunkChange* changes)
 {
+  __shared__ int sLo[3], sHi[3];
+  __shared__ unsigned int sCount;
+  if (threadIdx.x == 0)
+  {
+    for (int a = 0; a < 3; ++a)
+    {
+      sLo[a] = 0x7fffffff;
+      sHi[a] = -1;
+    }
+    sCount = 0;
+  }
+  __syncthreads();
   const long long n = static_cast<long long>(edge) * edge * edge;
   const long long local = static_cast<long long>(blockIdx.x) * blockDim.x + threadIdx.x;
-  if (local >= n)
-    return;
   const ChunkJob job = jobs[blockIdx.y];
-  const long long m = edge - 1;
-  const long long x = job.origin[0] + (local & m);
-  const long long y = job.origin[1] + ((local >> shift) & m);
-  const long long z = job.origin[2] + (local >> (2 * shift));
-  std::uint32_t* p = pool + static_cast<long long>(job.slot) * n + local;
-  const std::uint32_t v = job.fresh ? job.value : *p;
-  std::uint32_t nv = v;
-  if (x < dx && y < dy && z < dz)
+  if (local < n)
   {
-    nv = detail::edit::applyDabsToVoxel(v, x, y, z, dabs, boxes, nDabs, ctx, table, enc);
+    const long long m = edge - 1;
+    const int l[3] = { static_cast<int>(local & m), static_cast<int>((local >> shift) & m),
+      static_cast<int>(local >> (2 * shift)) };
+    const long long x = job.origin[0] + l[0], y = job.origin[1] + l[1], z = job.origin[2] + l[2];
+    const std::uint32_t v = job.src < 0 ? job.value : pool[static_cast<long long>(job.src) * n + local];
+    std::uint32_t nv = v;
+    if (x < dx && y < dy && z < dz)
+      nv = detail::edit::applyDabsToVoxel(v, x, y, z, dabs, boxes, nDabs, ctx, table, enc);
+    if (job.src != job.dst || nv != v)
+      pool[static_cast<long long>(job.dst) * n + local] = nv;
+    if (nv != v)
+    {
+      atomicAdd(&sCount, 1u);
+      for (int a = 0; a < 3; ++a)
+      {
+        atomicMin(&sLo[a], l[a]);
+        atomicMax(&sHi[a], l[a]);
+      }
+    }
   }
-  if (job.fresh || nv != v)
-    *p = nv;
-  if (nv != v)
-    atomicAdd(&changed[blockIdx.y], 1ull);
+  __syncthreads();
+  if (threadIdx.x == 0 && sCount > 0)
+  {
+    ChunkChange& c = changes[blockIdx.y];
+    atomicAdd(&c.count, static_cast<unsigned long long>(sCount));
+    for (int a = 0; a < 3; ++a)
+    {
+      atomicMin(&c.lo[a], sLo[a]);
+      atomicMax(&c.hi[a], sHi[a]);
+    }
+  }
 }
 
 std::size_t alignUp(std::size_t x)
@@ -129,7 +167,7 @@ struct DeviceVolume::Impl
   std::size_t capacity = 0;
   std::uint32_t* pool = nullptr;
   float* table = nullptr;
-  void* launch = nullptr; // packed launch data (dabs | boxes | jobs | counts)
+  void* launch = nullptr; // packed launch data (dabs | boxes | jobs | changes)
   std::size_t launchBytes = 0;
   std::vector<int> slotOf;           // chunk -> slot, -1 when uniform on the device
   std::vector<std::uint32_t> uniform; // value of chunks without a slot
@@ -138,6 +176,33 @@ struct DeviceVolume::Impl
   std::size_t pendingCount = 0;
   std::uint32_t* staging = nullptr; // pinned host buffer for sync
   std::size_t stagingBytes = 0;
+
+  // device copies of the chunk table and of the colour dictionary, for view()
+  int* devSlotOf = nullptr;
+  std::uint32_t* devUniform = nullptr;
+  std::uint32_t* devPalette = nullptr;
+  std::size_t paletteUploaded = 0;
+  bool tablesStale = true;
+
+  // history: per step, the snapshots (a chunk's slot or uniform value before the step)
+  struct Snapshot
+  {
+    std::int64_t id;
+    int slot;
+    std::uint32_t value;
+  };
+  struct Step
+  {
+    std::vector<Snapshot> chunks;
+    std::uint64_t bytes = 0; // as the host UndoStack counts: a chunk's voxels, or a few bytes for a value
+  };
+  std::deque<Step> undo, redo;
+  std::unique_ptr<Step> open;
+  std::vector<std::uint8_t> inOpen; // chunk already snapshotted in the open step
+  std::uint64_t historyBytes = 0; // undo and redo steps
+  std::uint64_t historyCap = 0;
+  std::size_t minHistorySteps = 1;
+  std::vector<std::int64_t> lastRestored;
 
   void reserveStaging(std::size_t want)
   {
@@ -172,9 +237,59 @@ struct DeviceVolume::Impl
     return s;
   }
 
+  void markPending(std::size_t id)
+  {
+    if (!this->pending[id])
+    {
+      this->pending[id] = 1;
+      ++this->pendingCount;
+    }
+  }
+
+  std::uint64_t snapshotBytes(const Snapshot& s) const
+  {
+    return s.slot >= 0 ? this->chunkBytes : sizeof(Snapshot);
+  }
+
+  void freeStep(Step& st)
+  {
+    for (const Snapshot& s : st.chunks)
+      if (s.slot >= 0)
+        this->freeSlots.push_back(s.slot);
+    this->historyBytes -= st.bytes;
+    st.chunks.clear();
+    st.bytes = 0;
+  }
+
+  void clearRedo()
+  {
+    for (Step& st : this->redo)
+      this->freeStep(st);
+    this->redo.clear();
+  }
+
+  /// Drops the oldest undo steps while the history is over its cap (keeping
+  /// minHistorySteps), or until `needFree` slots are free (keeping none).
+  void trimHistory(std::size_t needFree)
+  {
+    while (!this->undo.empty() &&
+      ((this->historyBytes > this->historyCap && this->undo.size() > this->minHistorySteps) ||
+        this->freeSlots.size() < needFree))
+    {
+      this->freeStep(this->undo.front());
+      this->undo.pop_front();
+    }
+    while (!this->redo.empty() && this->freeSlots.size() < needFree)
+    {
+      this->freeStep(this->redo.back());
+      this->redo.pop_back();
+    }
+  }
+
   /// Copies host chunk `id` (expanded) into its slot, taking one if needed.
   void upload(const DictionaryVolume& v, std::int64_t id)
   {
+    this->tablesStale = true;
     const Voxel* d = v.chunkData(id);
     if (!d)
     {
@@ -197,21 +312,43 @@ struct DeviceVolume::Impl
       this->chunkBytes, cudaMemcpyHostToDevice));
   }
 
+  /// Swaps the step's snapshots with the chunks' current states (undo and redo alike).
+  void swapIn(Step& st)
+  {
+    this->lastRestored.clear();
+    std::uint64_t bytes = 0;
+    for (Snapshot& s : st.chunks)
+    {
+      const std::size_t id = static_cast<std::size_t>(s.id);
+      std::swap(this->slotOf[id], s.slot);
+      std::swap(this->uniform[id], s.value);
+      bytes += this->snapshotBytes(s);
+      this->markPending(id);
+      this->lastRestored.push_back(s.id);
+    }
+    this->historyBytes = this->historyBytes - st.bytes + bytes;
+    st.bytes = bytes;
+    std::sort(this->lastRestored.begin(), this->lastRestored.end());
+    this->tablesStale = true;
+  }
+
   void release()
   {
     // errors are ignored here: a destructor must not throw
-    if (this->pool)
-      cudaFree(this->pool);
-    if (this->table)
-      cudaFree(this->table);
-    if (this->launch)
-      cudaFree(this->launch);
+    for (void* p : { static_cast<void*>(this->pool), static_cast<void*>(this->table), this->launch,
+           static_cast<void*>(this->devSlotOf), static_cast<void*>(this->devUniform),
+           static_cast<void*>(this->devPalette) })
+      if (p)
+        cudaFree(p);
     if (this->staging)
       cudaFreeHost(this->staging);
     this->staging = nullptr;
     this->pool = nullptr;
     this->table = nullptr;
     this->launch = nullptr;
+    this->devSlotOf = nullptr;
+    this->devUniform = nullptr;
+    this->devPalette = nullptr;
   }
 };
 
@@ -242,21 +379,27 @@ DeviceVolume::DeviceVolume(DictionaryVolume& volume, const Options& options)
   std::uint64_t bound = freeBytes / 2;
   if (options.maxDeviceBytes > 0)
     bound = std::min<std::uint64_t>(bound, options.maxDeviceBytes);
-  const std::uint64_t fixed = sizeof(float) * SdfDictionary::KeyCount + (1u << 20);
+  const std::uint64_t fixed = sizeof(float) * SdfDictionary::KeyCount + sizeof(std::uint32_t) * 65536 +
+    static_cast<std::uint64_t>(chunks) * 8 + (1u << 20);
   const std::uint64_t slotsFit = bound > fixed ? (bound - fixed) / p.chunkBytes : 0;
   if (slotsFit < expanded)
     throw Error(ErrorCode::OutOfMemory, "a device-resident copy needs " +
         formatBytes(static_cast<std::uint64_t>(expanded) * p.chunkBytes + fixed) + " of device memory (" +
         std::to_string(expanded) + " expanded chunks), more than the bound of " + formatBytes(bound) +
         " (free: " + formatBytes(freeBytes) + ")");
-  p.capacity = static_cast<std::size_t>(
-    std::min<std::uint64_t>({ slotsFit, expanded + options.headroomSlots, static_cast<std::uint64_t>(chunks), 2147483647ull }));
+  const std::uint64_t historySlots = options.historyBytes / p.chunkBytes;
+  // the history's copies may exceed the chunk count (the same chunk in many steps)
+  p.capacity = static_cast<std::size_t>(std::min<std::uint64_t>(
+    { slotsFit, expanded + options.headroomSlots + historySlots, 2147483647ull }));
   p.capacity = std::max<std::size_t>(p.capacity, 1);
+  p.historyCap = options.historyBytes;
+  p.minHistorySteps = options.minHistorySteps;
   // host-side tables too: a few bytes per chunk
-  requireMemory(static_cast<std::uint64_t>(chunks) * 9 + p.capacity * sizeof(int), "the device volume's chunk table");
+  requireMemory(static_cast<std::uint64_t>(chunks) * 10 + p.capacity * sizeof(int), "the device volume's chunk table");
   p.slotOf.assign(static_cast<std::size_t>(chunks), -1);
   p.uniform.resize(static_cast<std::size_t>(chunks));
   p.pending.assign(static_cast<std::size_t>(chunks), 0);
+  p.inOpen.assign(static_cast<std::size_t>(chunks), 0);
   p.freeSlots.resize(p.capacity);
   for (std::size_t i = 0; i < p.capacity; ++i)
     p.freeSlots[i] = static_cast<int>(p.capacity - 1 - i); // slot 0 first
@@ -266,6 +409,9 @@ DeviceVolume::DeviceVolume(DictionaryVolume& volume, const Options& options)
     LVDIF_CUDA_CHECK(cudaMalloc(&p.table, sizeof(float) * SdfDictionary::KeyCount));
     LVDIF_CUDA_CHECK(cudaMemcpy(p.table, volume.sdfDictionary().table(), sizeof(float) * SdfDictionary::KeyCount,
       cudaMemcpyHostToDevice));
+    LVDIF_CUDA_CHECK(cudaMalloc(&p.devSlotOf, sizeof(int) * static_cast<std::size_t>(chunks)));
+    LVDIF_CUDA_CHECK(cudaMalloc(&p.devUniform, sizeof(std::uint32_t) * static_cast<std::size_t>(chunks)));
+    LVDIF_CUDA_CHECK(cudaMalloc(&p.devPalette, sizeof(std::uint32_t) * 65536));
     for (std::int64_t id = 0; id < chunks; ++id)
       p.upload(volume, id);
     LVDIF_CUDA_CHECK(cudaDeviceSynchronize());
@@ -297,13 +443,19 @@ EditResult DeviceVolume::applyDabs(const std::vector<Dab>& dabs, const BrushSett
   EditResult result;
   if (plan.chunks.empty())
     return result;
+  const bool cow = p.open != nullptr;
   std::size_t needSlots = 0;
   for (std::int64_t id : plan.chunks)
-    needSlots += p.slotOf[static_cast<std::size_t>(id)] < 0 ? 1 : 0;
+  {
+    const std::size_t i = static_cast<std::size_t>(id);
+    needSlots += (p.slotOf[i] < 0 || (cow && !p.inOpen[i])) ? 1 : 0;
+  }
   if (needSlots > p.freeSlots.size())
-    throw Error(ErrorCode::OutOfMemory, "the edit reaches " + std::to_string(needSlots) +
-        " uniform chunks but the device pool has " + std::to_string(p.freeSlots.size()) +
-        " free slots (sync and rebuild with a larger bound)");
+    p.trimHistory(needSlots);
+  if (needSlots > p.freeSlots.size())
+    throw Error(ErrorCode::OutOfMemory, "the edit needs " + std::to_string(needSlots) +
+        " free chunk slots but the device pool has " + std::to_string(p.freeSlots.size()) +
+        " (raise DeviceVolume::Options::maxDeviceBytes or headroomSlots)");
 
   const std::size_t nChunks = plan.chunks.size();
   std::vector<ChunkJob> jobs(nChunks);
@@ -314,12 +466,10 @@ EditResult DeviceVolume::applyDabs(const std::vector<Dab>& dabs, const BrushSett
     const Index3 c = volume.chunkCoord(static_cast<std::int64_t>(id));
     for (int a = 0; a < 3; ++a)
       j.origin[a] = c[a] * p.edge;
-    j.fresh = p.slotOf[id] < 0 ? 1 : 0;
+    j.src = p.slotOf[id];
     j.value = p.uniform[id];
     j.pad = 0;
-    if (j.fresh)
-      p.slotOf[id] = p.takeSlot();
-    j.slot = p.slotOf[id];
+    j.dst = (j.src < 0 || (cow && !p.inOpen[id])) ? p.takeSlot() : j.src;
   }
   std::vector<Box> boxes(plan.boxes.size());
   for (std::size_t k = 0; k < boxes.size(); ++k)
@@ -328,22 +478,43 @@ EditResult DeviceVolume::applyDabs(const std::vector<Dab>& dabs, const BrushSett
       boxes[k].lo[a] = plan.boxes[k].lo[a];
       boxes[k].hi[a] = plan.boxes[k].hi[a];
     }
-  // one packed upload: dabs | boxes | jobs ; counts are zeroed on the device
+  std::vector<ChunkChange> changes(nChunks);
+  for (ChunkChange& c : changes)
+  {
+    c.count = 0;
+    for (int a = 0; a < 3; ++a)
+    {
+      c.lo[a] = 0x7fffffff;
+      c.hi[a] = -1;
+    }
+  }
+  // one packed upload: dabs | boxes | jobs | changes (initial values) | soft paint's mix tables
   const std::size_t oBoxes = alignUp(sizeof(Dab) * plan.dabs.size());
   const std::size_t oJobs = alignUp(oBoxes + sizeof(Box) * boxes.size());
-  const std::size_t oCounts = alignUp(oJobs + sizeof(ChunkJob) * nChunks);
-  const std::size_t total = alignUp(oCounts + sizeof(unsigned long long) * nChunks);
-  std::vector<char> host(oCounts);
+  const std::size_t oChanges = alignUp(oJobs + sizeof(ChunkJob) * nChunks);
+  const std::size_t oMixFrom = alignUp(oChanges + sizeof(ChunkChange) * nChunks);
+  const std::size_t oMixTo = alignUp(oMixFrom + sizeof(std::uint16_t) * plan.mixFrom.size());
+  const std::size_t total = alignUp(oMixTo + sizeof(std::uint16_t) * plan.mixTo.size());
+  std::vector<char> host(total);
   std::memcpy(host.data(), plan.dabs.data(), sizeof(Dab) * plan.dabs.size());
   std::memcpy(host.data() + oBoxes, boxes.data(), sizeof(Box) * boxes.size());
   std::memcpy(host.data() + oJobs, jobs.data(), sizeof(ChunkJob) * nChunks);
-  std::vector<unsigned long long> counts(nChunks, 0);
+  std::memcpy(host.data() + oChanges, changes.data(), sizeof(ChunkChange) * nChunks);
+  if (!plan.mixFrom.empty())
+    std::memcpy(host.data() + oMixFrom, plan.mixFrom.data(), sizeof(std::uint16_t) * plan.mixFrom.size());
+  if (!plan.mixTo.empty())
+    std::memcpy(host.data() + oMixTo, plan.mixTo.data(), sizeof(std::uint16_t) * plan.mixTo.size());
   try
   {
-    p.reserveLaunch(total);
+    p.reserveLaunch(2 * total); // slack: a larger call next time needs no cudaFree (a device sync)
     char* dev = static_cast<char*>(p.launch);
-    LVDIF_CUDA_CHECK(cudaMemcpyAsync(dev, host.data(), oCounts, cudaMemcpyHostToDevice, 0));
-    LVDIF_CUDA_CHECK(cudaMemsetAsync(dev + oCounts, 0, sizeof(unsigned long long) * nChunks, 0));
+    LVDIF_CUDA_CHECK(cudaMemcpyAsync(dev, host.data(), total, cudaMemcpyHostToDevice, 0));
+    detail::edit::BrushContext ctx = plan.ctx;
+    if (!plan.mixFrom.empty())
+    {
+      ctx.mixFrom = reinterpret_cast<const std::uint16_t*>(dev + oMixFrom);
+      ctx.mixTo = reinterpret_cast<const std::uint16_t*>(dev + oMixTo);
+    }
     const detail::edit::EncodeParams enc = detail::edit::EncodeParams::of(volume.sdfDictionary(), volume.bandWidth());
     const Index3& dims = volume.dims();
     for (std::size_t first = 0; first < nChunks; first += 65535) // gridDim.y limit
@@ -353,47 +524,191 @@ EditResult DeviceVolume::applyDabs(const std::vector<Dab>& dabs, const BrushSett
       const dim3 grid(static_cast<unsigned>((p.n + 255) / 256), static_cast<unsigned>(count));
       residentDabKernel<<<grid, block>>>(p.pool, reinterpret_cast<const ChunkJob*>(dev + oJobs) + first, p.edge,
         p.shift, dims[0], dims[1], dims[2], reinterpret_cast<const Dab*>(dev), reinterpret_cast<const Box*>(dev + oBoxes),
-        static_cast<int>(plan.dabs.size()), plan.ctx, p.table, enc,
-        reinterpret_cast<unsigned long long*>(dev + oCounts) + first);
+        static_cast<int>(plan.dabs.size()), ctx, p.table, enc,
+        reinterpret_cast<ChunkChange*>(dev + oChanges) + first);
       LVDIF_CUDA_CHECK(cudaGetLastError());
     }
-    LVDIF_CUDA_CHECK(cudaMemcpy(counts.data(), dev + oCounts, sizeof(unsigned long long) * nChunks, cudaMemcpyDeviceToHost));
+    LVDIF_CUDA_CHECK(cudaMemcpy(changes.data(), dev + oChanges, sizeof(ChunkChange) * nChunks, cudaMemcpyDeviceToHost));
   }
   catch (...)
   {
-    // the pool may be half written: the host volume is still right, so re-read the planned chunks
+    // the destination slots may be half written, the sources are intact: give the new slots back
     for (std::size_t i = 0; i < nChunks; ++i)
-    {
-      const std::size_t id = static_cast<std::size_t>(plan.chunks[i]);
-      if (jobs[i].fresh)
-      {
-        p.freeSlots.push_back(p.slotOf[id]);
-        p.slotOf[id] = -1;
-      }
-    }
+      if (jobs[i].dst != jobs[i].src)
+        p.freeSlots.push_back(jobs[i].dst);
     throw;
   }
   for (std::size_t i = 0; i < nChunks; ++i)
   {
     const std::size_t id = static_cast<std::size_t>(plan.chunks[i]);
-    if (counts[i] > 0)
+    const ChunkJob& j = jobs[i];
+    const ChunkChange& c = changes[i];
+    if (c.count == 0)
     {
-      result.changedChunks.push_back(static_cast<std::int64_t>(id));
-      result.changedVoxels += static_cast<std::int64_t>(counts[i]);
-      if (!p.pending[id])
-      {
-        p.pending[id] = 1;
-        ++p.pendingCount;
-      }
+      // unchanged: keep the source, give a new slot back
+      if (j.dst != j.src)
+        p.freeSlots.push_back(j.dst);
+      continue;
     }
-    else if (jobs[i].fresh && !p.pending[id])
+    result.changedChunks.push_back(static_cast<std::int64_t>(id));
+    result.changedVoxels += static_cast<std::int64_t>(c.count);
+    VoxelBox b;
+    for (int a = 0; a < 3; ++a)
     {
-      // still uniform: give the slot back
-      p.freeSlots.push_back(p.slotOf[id]);
-      p.slotOf[id] = -1;
+      b.lo[a] = j.origin[a] + c.lo[a];
+      b.hi[a] = j.origin[a] + c.hi[a];
+    }
+    result.changedBox = result.changedBox.unite(b);
+    p.markPending(id);
+    if (j.dst != j.src)
+    {
+      if (cow && !p.inOpen[id])
+      {
+        // the old state is the step's snapshot
+        p.open->chunks.push_back({ static_cast<std::int64_t>(id), j.src, j.value });
+        const std::uint64_t b = p.snapshotBytes(p.open->chunks.back());
+        p.open->bytes += b;
+        p.historyBytes += b;
+        p.inOpen[id] = 1;
+      }
+      else if (j.src >= 0)
+        p.freeSlots.push_back(j.src); // cannot happen (in place outside a step) but keeps the pool whole
+      p.slotOf[id] = j.dst;
+      p.tablesStale = true;
     }
   }
   return result;
+}
+
+void DeviceVolume::beginStep()
+{
+  require(!this->P->open, "a device history step is already open");
+  this->P->open = std::make_unique<Impl::Step>();
+}
+
+bool DeviceVolume::endStep()
+{
+  Impl& p = *this->P;
+  require(p.open != nullptr, "no device history step is open");
+  std::unique_ptr<Impl::Step> st = std::move(p.open);
+  for (const Impl::Snapshot& s : st->chunks)
+    p.inOpen[static_cast<std::size_t>(s.id)] = 0;
+  if (st->chunks.empty())
+    return false; // (its bytes are 0)
+  p.clearRedo();
+  p.undo.push_back(std::move(*st));
+  p.trimHistory(0);
+  return true;
+}
+
+bool DeviceVolume::inStep() const
+{
+  return this->P->open != nullptr;
+}
+
+bool DeviceVolume::canUndo() const
+{
+  return !this->P->undo.empty();
+}
+
+bool DeviceVolume::canRedo() const
+{
+  return !this->P->redo.empty();
+}
+
+std::size_t DeviceVolume::undoCount() const
+{
+  return this->P->undo.size();
+}
+
+std::size_t DeviceVolume::redoCount() const
+{
+  return this->P->redo.size();
+}
+
+bool DeviceVolume::undo()
+{
+  Impl& p = *this->P;
+  require(!p.open, "finish the open step before undo");
+  if (p.undo.empty())
+    return false;
+  Impl::Step st = std::move(p.undo.back());
+  p.undo.pop_back();
+  p.swapIn(st);
+  p.redo.push_back(std::move(st));
+  return true;
+}
+
+bool DeviceVolume::redo()
+{
+  Impl& p = *this->P;
+  require(!p.open, "finish the open step before redo");
+  if (p.redo.empty())
+    return false;
+  Impl::Step st = std::move(p.redo.back());
+  p.redo.pop_back();
+  p.swapIn(st);
+  p.undo.push_back(std::move(st));
+  return true;
+}
+
+const std::vector<std::int64_t>& DeviceVolume::lastRestoredChunks() const
+{
+  return this->P->lastRestored;
+}
+
+void DeviceVolume::clearHistory()
+{
+  Impl& p = *this->P;
+  require(!p.open, "finish the open step before clearing the history");
+  for (Impl::Step& st : p.undo)
+    p.freeStep(st);
+  p.undo.clear();
+  p.clearRedo();
+}
+
+std::uint64_t DeviceVolume::historyDeviceBytes() const
+{
+  return this->P->historyBytes;
+}
+
+DeviceVolumeView DeviceVolume::view()
+{
+  Impl& p = *this->P;
+  const std::size_t chunks = p.slotOf.size();
+  if (p.tablesStale)
+  {
+    LVDIF_CUDA_CHECK(cudaMemcpy(p.devSlotOf, p.slotOf.data(), sizeof(int) * chunks, cudaMemcpyHostToDevice));
+    LVDIF_CUDA_CHECK(cudaMemcpy(p.devUniform, p.uniform.data(), sizeof(std::uint32_t) * chunks, cudaMemcpyHostToDevice));
+    p.tablesStale = false;
+  }
+  const std::vector<Rgba>& colors = this->Volume.colors().colors();
+  if (colors.size() > p.paletteUploaded)
+  {
+    static_assert(sizeof(Rgba) == sizeof(std::uint32_t), "a colour is 4 bytes");
+    LVDIF_CUDA_CHECK(cudaMemcpy(p.devPalette + p.paletteUploaded, colors.data() + p.paletteUploaded,
+      sizeof(Rgba) * (colors.size() - p.paletteUploaded), cudaMemcpyHostToDevice));
+    p.paletteUploaded = colors.size();
+  }
+  DeviceVolumeView v;
+  v.pool = p.pool;
+  v.slotOf = p.devSlotOf;
+  v.uniform = p.devUniform;
+  v.sdfTable = p.table;
+  v.palette = p.devPalette;
+  const Index3& dims = this->Volume.dims();
+  const Index3& cc = this->Volume.chunkCounts();
+  for (int a = 0; a < 3; ++a)
+  {
+    v.dims[a] = dims[a];
+    v.chunkCounts[a] = cc[a];
+  }
+  v.chunkEdge = p.edge;
+  v.shift = p.shift;
+  // the uploads above are from pageable memory: make sure they landed before
+  // other streams (the marching cubes') read the tables
+  LVDIF_CUDA_CHECK(cudaStreamSynchronize(0));
+  return v;
 }
 
 EditResult DeviceVolume::sync(ChunkWriteObserver* observer)
@@ -415,9 +730,14 @@ EditResult DeviceVolume::sync(ChunkWriteObserver* observer)
   {
     const std::size_t count = std::min(batch, ids.size() - first);
     for (std::size_t t = 0; t < count; ++t)
-      LVDIF_CUDA_CHECK(cudaMemcpyAsync(p.staging + t * p.n,
-        p.pool + static_cast<std::size_t>(p.slotOf[static_cast<std::size_t>(ids[first + t])]) * p.n, p.chunkBytes,
-        cudaMemcpyDeviceToHost, 0));
+    {
+      const std::size_t id = static_cast<std::size_t>(ids[first + t]);
+      if (p.slotOf[id] >= 0)
+        LVDIF_CUDA_CHECK(cudaMemcpyAsync(p.staging + t * p.n, p.pool + static_cast<std::size_t>(p.slotOf[id]) * p.n,
+          p.chunkBytes, cudaMemcpyDeviceToHost, 0));
+      else
+        std::fill(p.staging + t * p.n, p.staging + (t + 1) * p.n, p.uniform[id]); // restored by undo as uniform
+    }
     LVDIF_CUDA_CHECK(cudaStreamSynchronize(0));
     std::vector<std::int64_t> perChunk(count, 0);
     const std::int64_t nCount = static_cast<std::int64_t>(count);
@@ -453,13 +773,16 @@ EditResult DeviceVolume::sync(ChunkWriteObserver* observer)
       {
         result.changedChunks.push_back(ids[first + t]);
         result.changedVoxels += perChunk[t];
+        result.changedBox = result.changedBox.unite(volume.chunkBox(static_cast<std::int64_t>(id)));
       }
-      if (volume.isUniform(static_cast<std::int64_t>(id)))
+      if (volume.isUniform(static_cast<std::int64_t>(id)) && p.slotOf[id] >= 0)
       {
-        // collapsed on the host: free the slot, the device keeps the value
+        // collapsed on the host: free the slot, the device keeps the value (the
+        // history's snapshots are other slots)
         p.freeSlots.push_back(p.slotOf[id]);
         p.slotOf[id] = -1;
         p.uniform[id] = bitsOf(volume.uniformValue(static_cast<std::int64_t>(id)));
+        p.tablesStale = true;
       }
     }
   }
@@ -477,6 +800,50 @@ void DeviceVolume::refresh(const std::vector<std::int64_t>& ids)
   }
   for (std::int64_t id : ids)
     p.upload(this->Volume, id);
+}
+
+void DeviceVolume::adoptHostChunks(const std::vector<std::int64_t>& ids)
+{
+  Impl& p = *this->P;
+  for (std::int64_t id : ids)
+  {
+    require(id >= 0 && id < this->Volume.chunkCount(), "adoptHostChunks: chunk id " + std::to_string(id) + " out of range");
+    require(!p.pending[static_cast<std::size_t>(id)], "adoptHostChunks: chunk " + std::to_string(id) + " is pending (sync first)");
+  }
+  p.trimHistory(ids.size());
+  for (std::int64_t id : ids)
+  {
+    const std::size_t i = static_cast<std::size_t>(id);
+    if (p.open && !p.inOpen[i])
+    {
+      // copy on write: the device's state is the step's snapshot, the host's comes into a fresh slot
+      p.open->chunks.push_back({ id, p.slotOf[i], p.uniform[i] });
+      const std::uint64_t b = p.snapshotBytes(p.open->chunks.back());
+      p.open->bytes += b;
+      p.historyBytes += b;
+      p.inOpen[i] = 1;
+      p.slotOf[i] = -1;
+    }
+    p.upload(this->Volume, id);
+  }
+}
+
+void DeviceVolume::reload()
+{
+  Impl& p = *this->P;
+  require(!p.open, "finish the open step before reloading");
+  this->clearHistory();
+  std::fill(p.pending.begin(), p.pending.end(), 0);
+  p.pendingCount = 0;
+  // first free every slot of a chunk that is uniform on the host, then upload the rest
+  const std::int64_t chunks = this->Volume.chunkCount();
+  for (std::int64_t id = 0; id < chunks; ++id)
+    if (this->Volume.isUniform(id))
+      p.upload(this->Volume, id);
+  for (std::int64_t id = 0; id < chunks; ++id)
+    if (!this->Volume.isUniform(id))
+      p.upload(this->Volume, id);
+  p.paletteUploaded = 0;
 }
 
 std::size_t DeviceVolume::pendingChunks() const
@@ -497,7 +864,8 @@ std::size_t DeviceVolume::slotCapacity() const
 std::uint64_t DeviceVolume::deviceBytes() const
 {
   return static_cast<std::uint64_t>(this->P->capacity) * this->P->chunkBytes +
-    sizeof(float) * SdfDictionary::KeyCount + this->P->launchBytes;
+    sizeof(float) * SdfDictionary::KeyCount + this->P->launchBytes + sizeof(std::uint32_t) * 65536 +
+    static_cast<std::uint64_t>(this->P->slotOf.size()) * 8;
 }
 
 } // namespace cuda

@@ -27,6 +27,89 @@ Editor::Editor(DictionaryVolume& volume, const UndoStack::Options& undo)
 {
 }
 
+EditResult Editor::applyNow(const std::vector<Dab>& dabs)
+{
+  if (!this->Device)
+    return lvdif::applyDabs(this->Volume, dabs, this->brush, &this->Undo);
+  if (this->brush.op == BrushOp::Smooth || this->brush.op == BrushOp::Grab)
+  {
+    // these read neighbours and run on the CPU: on the synced host copy, and the
+    // changed storage chunks are handed to the device as part of its open step
+    this->Device->sync();
+    const EditResult r = lvdif::applyDabs(this->Volume, dabs, this->brush, nullptr);
+    this->Device->adoptHostChunks(r.changedChunks);
+    return r;
+  }
+  return this->Device->applyDabs(dabs, this->brush);
+}
+
+void Editor::beginStep(const char* label)
+{
+  if (this->Device)
+    this->Device->beginStep();
+  else
+    this->Undo.beginStep(label);
+}
+
+void Editor::endStep()
+{
+  if (this->Device)
+    this->Device->endStep();
+  else
+    this->Undo.endStep();
+}
+
+void Editor::attachDevice(cuda::DeviceVolume* device)
+{
+  require(!this->Builder, "finish the open stroke first");
+  require(!device || &device->volume() == &this->Volume, "the device volume mirrors another volume");
+  this->Undo.clear();
+  if (this->Device)
+    this->Device->clearHistory();
+  this->Device = device;
+  if (this->Device)
+    this->Device->clearHistory();
+}
+
+bool Editor::canUndo() const
+{
+  return this->Device ? this->Device->canUndo() : this->Undo.canUndo();
+}
+
+bool Editor::canRedo() const
+{
+  return this->Device ? this->Device->canRedo() : this->Undo.canRedo();
+}
+
+std::size_t Editor::undoCount() const
+{
+  return this->Device ? this->Device->undoCount() : this->Undo.undoCount();
+}
+
+void Editor::clearHistory()
+{
+  require(!this->Builder, "finish the open stroke first");
+  this->Undo.clear();
+  if (this->Device)
+    this->Device->clearHistory();
+}
+
+void Editor::fillVolume(Voxel fill)
+{
+  require(!this->Builder, "finish the open stroke first");
+  DictionaryVolume& v = this->Volume;
+  std::vector<std::int64_t> all(static_cast<std::size_t>(v.chunkCount()));
+  for (std::int64_t id = 0; id < v.chunkCount(); ++id)
+  {
+    v.fillChunk(id, fill);
+    all[static_cast<std::size_t>(id)] = id;
+  }
+  this->Undo.clear(); // the history no longer matches the volume
+  if (this->Device)
+    this->Device->reload(); // drops the device's pending edits and history too
+  this->touchStorageChunks(all);
+}
+
 void Editor::record(const EditRecord& e)
 {
   if (!this->Rec)
@@ -52,7 +135,7 @@ EditResult Editor::applyChecked(const std::vector<Dab>& dabs)
   {
     if (this->interrupter)
       this->interrupter->checkInterrupt();
-    EditResult r = lvdif::applyDabs(this->Volume, dabs, this->brush, &this->Undo);
+    EditResult r = this->applyNow(dabs);
     this->DabsApplied += dabs.size();
     return r;
   }
@@ -63,9 +146,9 @@ EditResult Editor::applyChecked(const std::vector<Dab>& dabs)
       this->interrupter->checkInterrupt();
     const std::vector<Dab> part(dabs.begin() + static_cast<std::ptrdiff_t>(at),
       dabs.begin() + static_cast<std::ptrdiff_t>(std::min(dabs.size(), at + Batch)));
-    const EditResult r = lvdif::applyDabs(this->Volume, part, this->brush, &this->Undo);
+    const EditResult r = this->applyNow(part);
     this->DabsApplied += part.size();
-    this->touch(r.changedChunks); // a cancelled edit still reports what it changed
+    this->touchStorageChunks(r.changedChunks); // a cancelled edit still reports what it changed
     merge(all, r);
   }
   return all;
@@ -74,7 +157,7 @@ EditResult Editor::applyChecked(const std::vector<Dab>& dabs)
 EditResult Editor::applyDabs(const std::vector<Dab>& dabs, BrushKind kind)
 {
   require(!this->Builder, "finish the open stroke first");
-  this->Undo.beginStep(kind == BrushKind::Single ? "dab" : "stroke");
+  this->beginStep(kind == BrushKind::Single ? "dab" : "stroke");
   EditResult r;
   this->LastWrite = EditResult();
   try
@@ -83,12 +166,12 @@ EditResult Editor::applyDabs(const std::vector<Dab>& dabs, BrushKind kind)
   }
   catch (...)
   {
-    this->Undo.endStep();
+    this->endStep();
     throw;
   }
-  this->touch(r.changedChunks);
+  this->touchStorageChunks(r.changedChunks);
   this->LastWrite = r;
-  this->Undo.endStep();
+  this->endStep();
   EditRecord e;
   e.brush = this->brush;
   e.kind = kind;
@@ -121,7 +204,7 @@ void Editor::beginStroke()
   this->StrokeDabs.clear();
   this->StrokeResult = EditResult();
   this->GrabStarted = false;
-  this->Undo.beginStep("stroke");
+  this->beginStep("stroke");
 }
 
 EditResult Editor::addSample(const BrushSample& s)
@@ -151,7 +234,7 @@ EditResult Editor::addSample(const BrushSample& s)
     r = this->applyChecked(ready);
     this->StrokeDabs.insert(this->StrokeDabs.end(), ready.begin(), ready.end());
     merge(this->StrokeResult, r);
-    this->touch(r.changedChunks);
+    this->touchStorageChunks(r.changedChunks);
     this->LastWrite = r;
   }
   return r;
@@ -172,14 +255,14 @@ EditResult Editor::endStroke()
   catch (...)
   {
     this->Builder.reset();
-    this->Undo.endStep();
+    this->endStep();
     throw;
   }
   this->StrokeDabs.insert(this->StrokeDabs.end(), rest.begin(), rest.end());
   merge(this->StrokeResult, r);
-  this->touch(r.changedChunks);
+  this->touchStorageChunks(r.changedChunks);
   this->LastWrite = r;
-  this->Undo.endStep();
+  this->endStep();
   EditRecord e;
   e.brush = this->brush;
   e.kind = this->stroke.kind;
@@ -216,10 +299,10 @@ std::size_t Editor::pump(InputDevice& device, std::size_t maxSamples, int timeou
 bool Editor::undo()
 {
   require(!this->Builder, "finish the open stroke first");
-  const bool done = this->Undo.undo();
+  const bool done = this->Device ? this->Device->undo() : this->Undo.undo();
   if (done)
   {
-    this->touch(this->Undo.lastRestoredChunks());
+    this->touchStorageChunks(this->Device ? this->Device->lastRestoredChunks() : this->Undo.lastRestoredChunks());
     EditRecord e;
     e.type = EditRecord::Type::Undo;
     this->record(e);
@@ -230,10 +313,10 @@ bool Editor::undo()
 bool Editor::redo()
 {
   require(!this->Builder, "finish the open stroke first");
-  const bool done = this->Undo.redo();
+  const bool done = this->Device ? this->Device->redo() : this->Undo.redo();
   if (done)
   {
-    this->touch(this->Undo.lastRestoredChunks());
+    this->touchStorageChunks(this->Device ? this->Device->lastRestoredChunks() : this->Undo.lastRestoredChunks());
     EditRecord e;
     e.type = EditRecord::Type::Redo;
     this->record(e);
@@ -241,7 +324,7 @@ bool Editor::redo()
   return done;
 }
 
-void Editor::touch(const std::vector<std::int64_t>& ids)
+void Editor::touchStorageChunks(const std::vector<std::int64_t>& ids)
 {
   std::vector<std::int64_t> all;
   all.reserve(this->Touched.size() + ids.size());
@@ -249,7 +332,7 @@ void Editor::touch(const std::vector<std::int64_t>& ids)
   this->Touched.swap(all);
 }
 
-std::vector<std::int64_t> Editor::takeTouchedChunks()
+std::vector<std::int64_t> Editor::takeTouchedStorageChunks()
 {
   std::vector<std::int64_t> out;
   out.swap(this->Touched);

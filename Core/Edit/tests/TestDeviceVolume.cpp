@@ -186,6 +186,7 @@ TEST(DeviceVolumeCuda, RefreshRefusesPendingChunksAndTheBoundIsEnforced)
   // a pool with exactly no headroom: an edit that must expand uniform chunks is refused, nothing changes
   cuda::DeviceVolume::Options exact;
   exact.headroomSlots = 0;
+  exact.historyBytes = 0; // the history's share of the pool: none
   cuda::DeviceVolume d(v, exact);
   EXPECT_EQ(d.slotCapacity(), static_cast<std::size_t>(expanded));
   auto before = v.clone();

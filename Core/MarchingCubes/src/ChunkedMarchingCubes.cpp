@@ -361,6 +361,20 @@ ChunkMesh ChunkedMarchingCubes::extractChunk(std::int64_t id) const
   return this->mesh(in);
 }
 
+bool ChunkedMarchingCubes::onDevice() const
+{
+  return P->Cuda != nullptr;
+}
+
+void ChunkedMarchingCubes::extractChunksFromDevice(const DeviceVolumeView& volume, const std::vector<std::int64_t>& ids,
+  PackedChunkMeshes& out) const
+{
+  require(P->Cuda && P->Volume, "marching cubes from a device volume needs the CUDA mesher of a dictionary volume");
+  require(volume.valid() && volume.dims[0] == P->Dims[0] && volume.dims[1] == P->Dims[1] && volume.dims[2] == P->Dims[2],
+    "marching cubes: the device volume is not the mesher's volume");
+  packChunksFromDeviceVolumeCuda(*P, volume, ids, out);
+}
+
 std::vector<ChunkMesh> ChunkedMarchingCubes::extractChunks(const std::vector<std::int64_t>& ids,
   Interrupter& interrupter) const
 {

@@ -528,6 +528,211 @@ void packLocked(const ChunkedMarchingCubes::Impl& impl, MarchingCubesCudaState& 
 }
 } // namespace
 
+namespace
+{
+/// Decodes each chunk's input box (its points plus the gradient margin, the
+/// boxes of ChunkedMarchingCubes::gather) from the device-resident volume into
+/// the batch's value, colour and key buffers the boxes point at.
+__global__ void gatherFromVolume(DeviceVolumeView v, const Box* boxes)
+{
+  const Box& b = boxes[blockIdx.y];
+  const long long count = b.size[0] * b.size[1] * b.size[2];
+  const long long p = static_cast<long long>(blockIdx.x) * blockDim.x + threadIdx.x;
+  if (p >= count) return;
+  const long long x = b.lo[0] + p % b.size[0], y = b.lo[1] + (p / b.size[0]) % b.size[1],
+                  z = b.lo[2] + p / (b.size[0] * b.size[1]);
+  const long long m = v.chunkEdge - 1;
+  const long long id =
+    (x >> v.shift) + v.chunkCounts[0] * ((y >> v.shift) + v.chunkCounts[1] * (z >> v.shift));
+  const int slot = v.slotOf[id];
+  std::uint32_t bits;
+  if (slot < 0)
+    bits = v.uniform[id];
+  else
+  {
+    const long long n = static_cast<long long>(v.chunkEdge) * v.chunkEdge * v.chunkEdge;
+    bits = v.pool[slot * n + (x & m) + ((y & m) << v.shift) + ((z & m) << (2 * v.shift))];
+  }
+  const_cast<float*>(b.values)[p] = v.sdfTable[bits & 0xffffu];
+  const std::uint32_t key = bits >> 16;
+  if (b.colors)
+  {
+    const std::uint32_t c = v.palette[key];
+    Rgba rgba;
+    rgba.r = static_cast<std::uint8_t>(c & 0xffu);
+    rgba.g = static_cast<std::uint8_t>((c >> 8) & 0xffu);
+    rgba.b = static_cast<std::uint8_t>((c >> 16) & 0xffu);
+    rgba.a = static_cast<std::uint8_t>(c >> 24);
+    const_cast<Rgba*>(b.colors)[p] = rgba;
+  }
+  if (b.keys) const_cast<ColorKey*>(b.keys)[p] = static_cast<ColorKey>(key);
+}
+
+/// extractChunksFromDevice with S.lock held: per batch (up to BatchPoints points)
+/// gather on the device, classify, scan, read back the per-chunk bases, generate,
+/// copy the arrays into the page-locked block; all on the compute stream.
+void packFromDeviceLocked(const ChunkedMarchingCubes::Impl& impl, MarchingCubesCudaState& S, const DeviceVolumeView& v,
+  const std::vector<std::int64_t>& ids, PackedChunkMeshes& out)
+{
+  S.ensureStreams();
+  const Box common = commonBox(impl);
+  const bool normals = common.normals, colors = impl.wantsColors(), cells = common.cells,
+             keys = impl.wantsCornerColors();
+  const std::size_t N = ids.size();
+  out.chunkIds = ids;
+  out.chunkCoords.resize(N);
+  out.chunkCells.resize(N);
+  out.vertexStart.assign(N + 1, 0);
+  out.triangleStart.assign(N + 1, 0);
+  if (!out.storage || out.storage.use_count() > 1) out.storage = std::make_shared<PackedChunkMeshes::Storage>();
+  PackedChunkMeshes::Storage& st = *out.storage;
+  std::vector<Box> all(N);
+  std::vector<long long> gatherPoints(N);
+  for (std::size_t i = 0; i < N; ++i)
+  {
+    require(ids[i] >= 0 && ids[i] < impl.Total, "marching cubes: chunk id " + std::to_string(ids[i]) + " out of range");
+    out.chunkCoords[i] = impl.globalCoord(ids[i]);
+    out.chunkCells[i] = impl.cells(ids[i]);
+    Box b = common;
+    setCells(b, out.chunkCells[i]);
+    for (int a = 0; a < 3; ++a)
+    {
+      // the box ChunkedMarchingCubes::gather copies: the points plus one on each side (gradients)
+      b.lo[a] = std::max<long long>(out.chunkCells[i].lo[a] - 1, 0);
+      const long long hi = std::min<long long>(out.chunkCells[i].hi[a] + 2, impl.Dims[a] - 1);
+      b.size[a] = hi - b.lo[a] + 1;
+    }
+    gatherPoints[i] = b.size[0] * b.size[1] * b.size[2];
+    all[i] = b;
+  }
+  cudaStream_t cs = S.compute;
+  std::uint64_t V = 0, T = 0;
+  std::vector<long long> pb, cb, gb;
+  std::vector<unsigned int> vb, tb;
+  for (std::size_t first = 0; first < N;)
+  {
+    std::size_t last = first;
+    long long P = 0, C = 0, G = 0, maxP = 1, maxC = 1, maxG = 1;
+    pb.assign(1, 0);
+    cb.assign(1, 0);
+    gb.assign(1, 0);
+    while (last < N && static_cast<int>(last - first) < BatchChunks)
+    {
+      const Box& b = all[last];
+      const long long np = (b.ex + 1) * (b.ey + 1) * (b.ez + 1), nc = b.ex * b.ey * b.ez, ng = gatherPoints[last];
+      if (last > first && G + ng > BatchPoints) break;
+      P += np;
+      C += nc;
+      G += ng;
+      maxP = std::max(maxP, np);
+      maxC = std::max(maxC, nc);
+      maxG = std::max(maxG, ng);
+      pb.push_back(P);
+      cb.push_back(C);
+      gb.push_back(G);
+      ++last;
+    }
+    const int n = static_cast<int>(last - first);
+    // interactive frames vary in size: grow with half again as slack, so that a
+    // slightly larger frame does not pay a cudaFree + cudaMalloc (a device sync)
+    auto slack = [](long long x) { return x + x / 2; };
+    reserveBatch(S, static_cast<int>(slack(n)), slack(P), slack(C));
+    S.boxValues.reserve(static_cast<std::size_t>(slack(G)));
+    if (colors) S.boxColors.reserve(static_cast<std::size_t>(slack(G)));
+    if (keys) S.boxKeys.reserve(static_cast<std::size_t>(slack(G)));
+    for (int i = 0; i < n; ++i)
+    {
+      Box& b = all[first + i];
+      b.values = S.boxValues.p + gb[i];
+      b.colors = colors ? S.boxColors.p + gb[i] : nullptr;
+      b.keys = keys ? S.boxKeys.p + gb[i] : nullptr;
+    }
+    LVDIF_CUDA_CHECK(cudaMemcpyAsync(S.boxes.p, all.data() + first, n * sizeof(Box), cudaMemcpyHostToDevice, cs));
+    LVDIF_CUDA_CHECK(cudaMemcpyAsync(S.pBase.p, pb.data(), (n + 1) * sizeof(long long), cudaMemcpyHostToDevice, cs));
+    LVDIF_CUDA_CHECK(cudaMemcpyAsync(S.cBase.p, cb.data(), (n + 1) * sizeof(long long), cudaMemcpyHostToDevice, cs));
+    LVDIF_CUDA_CHECK(cudaMemsetAsync(S.vcount.p + P, 0, sizeof(unsigned int), cs));
+    LVDIF_CUDA_CHECK(cudaMemsetAsync(S.tcount.p + C, 0, sizeof(unsigned int), cs));
+    gatherFromVolume<<<dim3(blocks(maxG), n), 256, 0, cs>>>(v, S.boxes.p);
+    LVDIF_CUDA_CHECK(cudaGetLastError());
+    detail::mc_cuda::classifyPoints<<<dim3(blocks(maxP), n), 256, 0, cs>>>(S.boxes.p, S.pBase.p, S.masks.p, S.vcount.p);
+    LVDIF_CUDA_CHECK(cudaGetLastError());
+    detail::mc_cuda::classifyCells<<<dim3(blocks(maxC), n), 256, 0, cs>>>(S.boxes.p, S.cBase.p, S.cases.p, S.tcount.p);
+    LVDIF_CUDA_CHECK(cudaGetLastError());
+    S.scan(S.vcount.p, S.vfirst.p, P + 1, cs);
+    S.scan(S.tcount.p, S.tfirst.p, C + 1, cs);
+    detail::mc_cuda::chunkBases<<<blocks(n + 1), 256, 0, cs>>>(S.pBase.p, S.cBase.p, S.vfirst.p, S.tfirst.p, S.vBase.p, S.tBase.p, n);
+    LVDIF_CUDA_CHECK(cudaGetLastError());
+    vb.resize(n + 1);
+    tb.resize(n + 1);
+    LVDIF_CUDA_CHECK(cudaMemcpyAsync(vb.data(), S.vBase.p, (n + 1) * sizeof(unsigned int), cudaMemcpyDeviceToHost, cs));
+    LVDIF_CUDA_CHECK(cudaMemcpyAsync(tb.data(), S.tBase.p, (n + 1) * sizeof(unsigned int), cudaMemcpyDeviceToHost, cs));
+    LVDIF_CUDA_CHECK(cudaStreamSynchronize(cs));
+    const std::uint64_t NV = vb[n], NT = tb[n];
+    for (int i = 0; i < n; ++i)
+    {
+      out.vertexStart[first + i] = V + vb[i];
+      out.triangleStart[first + i] = T + tb[i];
+    }
+    if (NT > 0)
+    {
+      st.reserve(V + NV, T + NT, V, T, true, normals, colors, cells, keys);
+      if (S.copyPending[0]) LVDIF_CUDA_CHECK(cudaEventSynchronize(S.copied[0]));
+      S.copyPending[0] = false;
+      S.out[0].reserve(slack(NV), slack(NT), normals, colors, cells, keys);
+      const Out o = S.out[0].reserve(NV, NT, normals, colors, cells, keys);
+      detail::mc_cuda::generateVertices<<<dim3(blocks(maxP), n), 256, 0, cs>>>(S.boxes.p, S.pBase.p, S.masks.p, S.vfirst.p, o);
+      LVDIF_CUDA_CHECK(cudaGetLastError());
+      detail::mc_cuda::generateTriangles<<<dim3(blocks(maxC), n), 256, 0, cs>>>(
+        S.boxes.p, S.pBase.p, S.cBase.p, S.vBase.p, S.cases.p, S.tfirst.p, S.masks.p, S.vfirst.p, S.tris.p, o);
+      LVDIF_CUDA_CHECK(cudaGetLastError());
+      auto get = [&](void* dst, const void* src, std::size_t bytes) {
+        LVDIF_CUDA_CHECK(cudaMemcpyAsync(dst, src, bytes, cudaMemcpyDeviceToHost, cs));
+      };
+      get(st.points + V, o.points, NV * sizeof(Vec3f));
+      get(st.edgeIds + V, o.edgeIds, NV * sizeof(std::uint64_t));
+      if (normals) get(st.normals + V, o.normals, NV * sizeof(Vec3f));
+      if (colors) get(st.colors + V, o.colors, NV * sizeof(Rgba));
+      get(st.tris + T, o.tris, NT * 3 * sizeof(unsigned int));
+      if (cells) get(st.cells + T, o.cells, NT * sizeof(long long));
+      if (keys) get(st.keys + T, o.keys, NT * 8 * sizeof(ColorKey));
+      LVDIF_CUDA_CHECK(cudaStreamSynchronize(cs));
+    }
+    V += NV;
+    T += NT;
+    first = last;
+  }
+  out.vertexStart[N] = V;
+  out.triangleStart[N] = T;
+  // drop the chunks without triangles (their ranges are empty)
+  std::size_t k = 0;
+  for (std::size_t i = 0; i < N; ++i)
+  {
+    if (out.triangleStart[i + 1] == out.triangleStart[i]) continue;
+    out.chunkIds[k] = out.chunkIds[i];
+    out.chunkCoords[k] = out.chunkCoords[i];
+    out.chunkCells[k] = out.chunkCells[i];
+    out.vertexStart[k] = out.vertexStart[i];
+    out.triangleStart[k] = out.triangleStart[i];
+    ++k;
+  }
+  out.chunkIds.resize(k);
+  out.chunkCoords.resize(k);
+  out.chunkCells.resize(k);
+  out.vertexStart[k] = V;
+  out.triangleStart[k] = T;
+  out.vertexStart.resize(k + 1);
+  out.triangleStart.resize(k + 1);
+}
+} // namespace
+
+void packChunksFromDeviceVolumeCuda(const ChunkedMarchingCubes::Impl& impl, const DeviceVolumeView& volume,
+  const std::vector<std::int64_t>& ids, PackedChunkMeshes& out)
+{
+  MarchingCubesCudaState& S = *impl.Cuda;
+  std::lock_guard<std::mutex> guard(S.lock);
+  packFromDeviceLocked(impl, S, volume, ids, out);
+}
+
 void packChunksCuda(const ChunkedMarchingCubes::Impl& impl, const std::vector<std::int64_t>& ids,
   PackedChunkMeshes& out, Interrupter& interrupter)
 {

@@ -2,6 +2,7 @@
 #pragma once
 
 #include "lvdif/ChunkedMarchingCubes.h"
+#include "lvdif/DeviceVolumeView.h"
 
 #include <memory>
 #include <vector>
@@ -105,6 +106,11 @@ std::vector<ChunkMesh> meshChunksCuda(const ChunkedMarchingCubes::Impl& impl, co
 /// on another). Chunks that turn out to have no triangles are dropped.
 void packChunksCuda(const ChunkedMarchingCubes::Impl& impl, const std::vector<std::int64_t>& ids,
   PackedChunkMeshes& out, Interrupter& interrupter);
+/// Dictionary volumes: meshes the given chunks from the volume's device-resident
+/// copy (gathered on the device, one batch for a frame's chunks) into `out`;
+/// chunks without triangles are dropped.
+void packChunksFromDeviceVolumeCuda(const ChunkedMarchingCubes::Impl& impl, const DeviceVolumeView& volume,
+  const std::vector<std::int64_t>& ids, PackedChunkMeshes& out);
 /// Forgets the float grid's device copy (the grid changed: re-uploaded at the next call).
 void dropMarchingCubesCudaGrid(MarchingCubesCudaState& state);
 

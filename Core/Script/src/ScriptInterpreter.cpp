@@ -430,14 +430,7 @@ struct ScriptRunner::Impl
         fail(s.line, s.column, "finish the stroke before 'canvas " + s.word + "'");
       DictionaryVolume& v = *this->Volume;
       const Voxel fill = s.word == "fill" ? Voxel{ v.insideVoxel().sdf, v.colors().add(ed.brush.color) } : v.outsideVoxel();
-      std::vector<std::int64_t> all(static_cast<std::size_t>(v.chunkCount()));
-      for (std::int64_t id = 0; id < v.chunkCount(); ++id)
-      {
-        v.fillChunk(id, fill);
-        all[static_cast<std::size_t>(id)] = id;
-      }
-      ed.undoStack().clear(); // the history no longer matches the volume
-      ed.touch(all);
+      ed.fillVolume(fill); // not undoable: clears the history
       return;
     }
     Index3 dims;

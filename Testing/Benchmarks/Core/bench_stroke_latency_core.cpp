@@ -1,52 +1,38 @@
-// Stroke-to-"ready to draw" latency of interactive editing on the Core
-// pipeline only (paper Table 2's "C3: marching cubes in its own
-// thread"), for machines without VTK/Qt (the GPU host). The VTK twin is
-// Testing/Benchmarks/VTK/bench_stroke_latency.cxx, which also installs the
-// meshes into vtkChunkActorManager; this one stops before that.
+// Stroke-to-"meshes ready" latency of interactive editing through one
+// lvdif::EditSession (the object the Qt editor, vtkLVDIFEditor and Python
+// hold), on the Core pipeline only: machines without VTK/Qt (the GPU host).
+// The VTK twin (Testing/Benchmarks/VTK/bench_stroke_latency.cxx) also builds
+// actors; this one stops when the meshes are on the host ("ready to draw").
 //
 // A recorded-style stroke (samples with timestamps at 50 Hz along a 90-degree
-// arc on the surface of an analytic sphere, brush radius 8, Add) is replayed
-// at its own speed:
-//   editing thread (this one):
-//     apply the sample (under the worker's source mutex), with one of
-//       cpu    lvdif::Editor::addSample (Drill: applied as it goes, undo step):
-//              what the Qt editor does today, also on a machine with a GPU;
-//       cuda   StrokeBuilder + lvdif::cuda::applyDabs (the CUDA brush: the
-//              touched chunks go to the device and back per call), same undo;
-//       device StrokeBuilder + cuda::DeviceVolume::applyDabs + sync() (the
-//              device-resident volume; sync writes the host copy that the
-//              marching cubes read, with the undo observer);
-//     -> request the marching cubes chunks the sample changed
-//        (chunksAffectedBy(changedBox) as the editor does; the device path
-//        reports no box, so it uses the dirty storage chunks intersected with
-//        the dabs' reach box)
-//     -> wait up to --settle ms for the worker (MainWindow::settleMeshes)
-//     -> collect the finished chunk meshes (never blocks on meshing).
-//   worker thread: lvdif::MarchingCubesWorker on --device cpu|cuda.
-// Loop (--loop): "event" (default) is the Qt editor's: each sample is handled
-// when its time comes, and a 15 ms timer collects what settling left over;
-// "tick" is the VTK bench's 60 Hz polling loop (all due samples per tick).
+// arc on the surface of an analytic sphere, Add, Drill kind: applied as it
+// goes, as the editor does while dragging) is replayed at its own speed:
+//   for each sample when its time comes:  session.addSample(sample)
+//     GPU session: the brush runs on the device volume; then collectMeshes()
+//       meshes the mesh chunks the sample invalidated on the device in one
+//       batched launch and brings back only those meshes (the frame);
+//     CPU session: the brush runs on the host; the marching cubes worker
+//       meshes in its own thread; the loop waits up to --settle ms for it
+//       (the Qt editor's settleMeshes) and collects what is finished, and a
+//       15 ms poll collects the rest (--loop event), or polls at 60 Hz (tick).
+//   Samples that came due while a frame was busy are handled together in the
+//   next one (Qt compresses queued mouse moves), so a slow frame does not build
+//   an ever longer queue.
+// Latency of a sample = from its recorded time until every mesh chunk it
+// invalidated has a collected mesh showing it (exact: the session says when each
+// mesh's input was read, and the edit happened before). Nothing is drawn.
+// Frame = the editing thread's work per loop iteration (edit + mesh + collect on
+// the GPU; edit + settle + collect on the CPU); fps = 1000 / mean frame time is
+// what a drag could sustain if samples came faster than 50 Hz.
 //
-// Latency of a sample = from its recorded time until every chunk it dirtied
-// has a collected mesh reflecting it ("ready to draw"; exact: the worker says
-// when each mesh's input was gathered under the mutex, and the edit was made
-// under it before). NOTHING IS DRAWN and no VTK object is built: the cost of
-// turning the collected meshes into actors (LVDIFChunkMesh::ToPolyData +
-// vtkChunkActorManager::SetChunk, "install" in the VTK bench) and of the
-// frame itself is not in these numbers.
-//
-// usage: bench_stroke_latency_core [N=512] [--device cpu|cuda] [--brush cpu|cuda|device|all]
-//        [--samples 100] [--radius 8] [--settle 6] [--loop event|tick] [--chunk E]
-//        (E: 32 below 1024^3, 64 from 1024^3 as the paper)
+// usage: bench_stroke_latency_core [N=512] [--device cpu|cuda] [--radius 15,40]
+//        [--samples 100] [--settle 6] [--loop event|tick] [--chunk E]
+//        (E: storage and mesh chunk edge, 32 below 1024^3, 64 from 1024^3 as the paper)
 #include "BenchCommon.h"
 
 #include "lvdif/AnalyticFill.h"
-#include "lvdif/BrushCuda.h"
-#include "lvdif/ChunkedMarchingCubes.h"
-#include "lvdif/DeviceVolume.h"
-#include "lvdif/Editor.h"
+#include "lvdif/EditSession.h"
 #include "lvdif/Error.h"
-#include "lvdif/MarchingCubesWorker.h"
 
 #include <cmath>
 #include <cstdio>
@@ -54,7 +40,7 @@
 #include <iostream>
 #include <map>
 #include <memory>
-#include <mutex>
+#include <sstream>
 #include <string>
 #include <thread>
 
@@ -65,147 +51,20 @@ using Clock = std::chrono::steady_clock;
 struct Config
 {
   int n = 512, samples = 100, chunk = 0;
-  double radius = 8, settleMs = 6;
+  std::vector<double> radii{ 15, 40 };
+  double settleMs = 6;
   lvdif::Device device = lvdif::Device::Cpu;
-  std::string brush, loop = "event";
-};
-
-// The Core twin of LVDIFChunkMesh::ChunksToRemesh(mc, dirty, EditResult):
-// the chunks the edit's changed box reaches, plus the storage-chunk rule for
-// dirty chunks the edit does not name.
-std::vector<std::int64_t> chunksForEdit(const lvdif::ChunkedMarchingCubes& mc,
-  const std::vector<std::int64_t>& dirty, const lvdif::EditResult& edit)
-{
-  std::vector<std::int64_t> foreign;
-  std::set_difference(dirty.begin(), dirty.end(), edit.changedChunks.begin(), edit.changedChunks.end(),
-    std::back_inserter(foreign));
-  std::vector<std::int64_t> ids = edit.changedBox.empty() ? std::vector<std::int64_t>() : mc.chunksAffectedBy(edit.changedBox);
-  const std::vector<std::int64_t> more = mc.chunksAffectedByStorageChunks(foreign);
-  ids.insert(ids.end(), more.begin(), more.end());
-  std::sort(ids.begin(), ids.end());
-  ids.erase(std::unique(ids.begin(), ids.end()), ids.end());
-  return ids;
-}
-
-// Storage-chunk rule intersected with the box every voxel the dabs can change
-// lies in (radius, band, colour skin, blend, one voxel of rounding).
-std::vector<std::int64_t> chunksForDabs(const lvdif::ChunkedMarchingCubes& mc, const std::vector<std::int64_t>& dirty,
-  const std::vector<lvdif::Dab>& dabs, double extra)
-{
-  std::vector<std::int64_t> byStorage = mc.chunksAffectedByStorageChunks(dirty);
-  if (byStorage.empty() || dabs.empty())
-    return byStorage;
-  lvdif::VoxelBox box;
-  for (const lvdif::Dab& d : dabs)
-  {
-    const double reach = d.radius * std::sqrt(3.0) + extra; // a cube's corner, at most
-    lvdif::VoxelBox b;
-    for (int k = 0; k < 3; ++k)
-    {
-      b.lo[k] = static_cast<std::int64_t>(std::floor(d.center[k] - reach));
-      b.hi[k] = static_cast<std::int64_t>(std::ceil(d.center[k] + reach));
-    }
-    box = box.unite(b);
-  }
-  std::vector<std::int64_t> byBox = mc.chunksAffectedBy(box);
-  std::sort(byBox.begin(), byBox.end());
-  std::sort(byStorage.begin(), byStorage.end());
-  std::vector<std::int64_t> both;
-  std::set_intersection(byStorage.begin(), byStorage.end(), byBox.begin(), byBox.end(), std::back_inserter(both));
-  return both;
-}
-
-// One brush path: applies a sample (or the stroke's end) and returns the
-// marching cubes chunks to re-mesh. Called with the source mutex held.
-class BrushPath
-{
-public:
-  BrushPath(const std::string& kind, lvdif::DictionaryVolume& volume, const lvdif::ChunkedMarchingCubes& mc,
-    const lvdif::BrushSettings& brush, const lvdif::StrokeSettings& stroke)
-    : Kind(kind), Volume(volume), Mc(mc), Ed(volume), Undo(volume)
-  {
-    this->Ed.brush = brush;
-    this->Ed.stroke = stroke;
-    this->Extra = volume.bandWidth() + brush.colorOffset + brush.blend + 1;
-    if (kind == "device")
-      this->Dev = std::make_unique<lvdif::cuda::DeviceVolume>(volume);
-  }
-  // One dab away from the stroke (first CUDA launches, lazy module loading).
-  void warmUp(const lvdif::Dab& d)
-  {
-    if (this->Kind == "device")
-    {
-      this->Dev->applyDabs({ d }, this->Ed.brush);
-      this->Dev->sync();
-    }
-    else if (this->Kind == "cuda")
-      lvdif::cuda::applyDabs(this->Volume, { d }, this->Ed.brush);
-    else
-      lvdif::applyDabs(this->Volume, { d }, this->Ed.brush);
-    this->Volume.takeDirtyChunks();
-  }
-  void begin()
-  {
-    if (this->Kind == "cpu")
-      return this->Ed.beginStroke();
-    this->Builder = std::make_unique<lvdif::StrokeBuilder>(this->Ed.stroke);
-    this->Undo.beginStep("stroke");
-  }
-  std::vector<std::int64_t> add(const lvdif::BrushSample& s)
-  {
-    if (this->Kind == "cpu")
-    {
-      this->Ed.addSample(s);
-      return chunksForEdit(this->Mc, this->Volume.takeDirtyChunks(), this->Ed.lastWrite());
-    }
-    this->Builder->add(s);
-    return this->apply(this->Builder->takeReady());
-  }
-  std::vector<std::int64_t> end()
-  {
-    if (this->Kind == "cpu")
-    {
-      this->Ed.endStroke();
-      return chunksForEdit(this->Mc, this->Volume.takeDirtyChunks(), this->Ed.lastWrite());
-    }
-    const std::vector<std::int64_t> ids = this->apply(this->Builder->finish());
-    this->Undo.endStep();
-    return ids;
-  }
-
-private:
-  std::vector<std::int64_t> apply(const std::vector<lvdif::Dab>& dabs)
-  {
-    if (dabs.empty())
-      return {};
-    if (this->Kind == "cuda")
-    {
-      const lvdif::EditResult r = lvdif::cuda::applyDabs(this->Volume, dabs, this->Ed.brush, &this->Undo);
-      return chunksForEdit(this->Mc, this->Volume.takeDirtyChunks(), r);
-    }
-    this->Dev->applyDabs(dabs, this->Ed.brush);
-    this->Dev->sync(&this->Undo);
-    return chunksForDabs(this->Mc, this->Volume.takeDirtyChunks(), dabs, this->Extra);
-  }
-
-  std::string Kind;
-  lvdif::DictionaryVolume& Volume;
-  const lvdif::ChunkedMarchingCubes& Mc;
-  lvdif::Editor Ed;
-  lvdif::UndoStack Undo; // the cuda/device paths' undo (the Editor has its own)
-  std::unique_ptr<lvdif::StrokeBuilder> Builder;
-  std::unique_ptr<lvdif::cuda::DeviceVolume> Dev;
-  double Extra = 0;
+  std::string loop = "event";
 };
 
 struct Request
 {
-  double editedAt = 0;   // stroke clock, seconds, taken under the mutex right after the edit
+  double editedAt = 0;   // stroke clock, seconds, right after the edit
   double sampleTime = 0; // the sample's recorded time
   std::vector<std::int64_t> chunks;
 };
 
-std::vector<std::string> runStroke(const Config& cfg, const std::string& brushKind)
+std::vector<std::string> runStroke(const Config& cfg, double radius)
 {
   const int n = cfg.n;
   const int edge = cfg.chunk > 0 ? cfg.chunk : (n >= 1024 ? 64 : 32);
@@ -213,40 +72,42 @@ std::vector<std::string> runStroke(const Config& cfg, const std::string& brushKi
   lvdif::VolumeOptions o;
   o.dims = { n, n, n };
   o.chunkEdge = edge;
-  lvdif::DictionaryVolume volume(o);
+  auto volume = std::make_shared<lvdif::DictionaryVolume>(o);
   const double c = 0.5 * (n - 1), r = 0.35 * n;
-  lvdif::fillFromFunction(volume, lvdif::sphereSdf(c, c, c, r));
-  volume.takeDirtyChunks();
+  lvdif::fillFromFunction(*volume, lvdif::sphereSdf(c, c, c, r));
+  volume->takeDirtyChunks();
   const double fillS = setup.seconds();
-  lvdif::MarchingCubesOptions mo;
-  mo.chunkEdge = edge;
-  mo.device = cfg.device;
-  lvdif::ChunkedMarchingCubes mc(volume, mo);
-
-  lvdif::BrushSettings brush;
-  brush.op = lvdif::BrushOp::Add;
-  brush.color = lvdif::Rgba{ 230, 80, 50, 255 };
-  lvdif::StrokeSettings stroke;
-  stroke.kind = lvdif::BrushKind::Drill; // applied as it goes, as the editor does
-  stroke.radius = cfg.radius;
-  BrushPath path(brushKind, volume, mc, brush, stroke);
-  // Warm-up away from the stroke (opposite side of the sphere): first launches
-  // of the brush and of the marching cubes on the chosen device.
+  lvdif::EditSessionOptions so;
+  so.device = cfg.device;
+  so.meshChunkEdge = edge;
+  lvdif::EditSession session(volume, so);
+  if (!session.notice().empty())
+    std::printf("notice: %s\n", session.notice().c_str());
+  const bool gpu = session.onDevice();
+  session.brush().op = lvdif::BrushOp::Add;
+  session.brush().color = lvdif::Rgba{ 230, 80, 50, 255 };
+  session.stroke().kind = lvdif::BrushKind::Drill; // applied as it goes, as the editor does
+  session.stroke().radius = radius;
+  // Warm-up away from the stroke (the opposite side), a few frames of the same
+  // size as the stroke's: first launches of the brush and of the marching cubes,
+  // the buffers and the meshes' page-locked block at their working size. Undone.
   {
-    lvdif::Dab d;
-    d.center = { c - r, c, c };
-    d.radius = cfg.radius;
-    path.warmUp(d);
-    const auto ids = mc.chunksAffectedBy(lvdif::VoxelBox{ { static_cast<std::int64_t>(c - r), static_cast<std::int64_t>(c), static_cast<std::int64_t>(c) },
-      { static_cast<std::int64_t>(c - r), static_cast<std::int64_t>(c), static_cast<std::int64_t>(c) } });
-    mc.extractChunks(ids);
+    session.beginStroke();
+    for (int i = 0; i < 4; ++i)
+    {
+      lvdif::BrushSample w;
+      w.position = { c - r, c + 0.5 * M_PI * r / std::max(1, cfg.samples - 1) * i, c }; // the stroke's sample spacing
+      w.buttons = 1;
+      session.addSample(w);
+      session.waitMeshingIdle();
+      session.collectMeshes();
+    }
+    session.endStroke();
+    session.undo();
+    session.waitMeshingIdle();
+    session.collectMeshes();
   }
-  lvdif::MarchingCubesWorker worker(mc);
-  std::printf("volume %d^3, chunk %d^3 (storage and marching cubes), %lld marching cubes chunks; setup %.1f s "
-              "(fill %.1f s); brush %s, marching cubes on %s, loop %s, settle %.0f ms; frames drawn: no "
-              "(ready to draw, no VTK)\n",
-    n, edge, static_cast<long long>(mc.chunkCount()), setup.seconds(), fillS, brushKind.c_str(),
-    lvdif::resolveDevice(cfg.device) == lvdif::Device::Cuda ? "cuda" : "cpu", cfg.loop.c_str(), cfg.settleMs);
+  const double setupS = setup.seconds();
 
   // The stroke: 50 Hz samples on the sphere's surface along a 90-degree arc.
   std::vector<lvdif::BrushSample> samples(cfg.samples);
@@ -258,37 +119,32 @@ std::vector<std::string> runStroke(const Config& cfg, const std::string& brushKi
     samples[i].buttons = 1;
   }
 
-  std::vector<double> brushMs, lockMs, requestMs, settleMs, collectMs;
+  std::vector<double> brushMs, frameMs, collectMs;
   std::vector<Request> requests;
-  // per chunk: (when its input was gathered, when it was collected), in order
+  // per mesh chunk: (when its input was gathered, when it was collected), in order
   std::map<std::int64_t, std::vector<std::pair<double, double>>> delivered;
   const Clock::time_point t0 = Clock::now();
   auto at = [&](Clock::time_point t) { return std::chrono::duration<double>(t - t0).count(); };
   auto now = [&] { return at(Clock::now()); };
   const bool tickLoop = cfg.loop == "tick";
   const double period = tickLoop ? 1.0 / 60 : 0.015; // tick loop / the Qt editor's mesh poll timer
-  {
-    std::lock_guard<std::mutex> lock(worker.sourceMutex());
-    path.begin();
-  }
+  session.beginStroke();
   std::size_t next = 0;
   int iterations = 0;
   bool ended = false;
   double lastCollect = 0;
+  std::uint64_t triangles = 0;
   auto handle = [&](bool endStroke) {
-    bench::Stopwatch wait;
-    std::lock_guard<std::mutex> lock(worker.sourceMutex());
-    lockMs.push_back(wait.ms());
     bench::Stopwatch b;
-    std::vector<std::int64_t> ids = endStroke ? path.end() : path.add(samples[next]);
+    if (endStroke)
+      session.endStroke();
+    else
+      session.addSample(samples[next]);
     brushMs.push_back(b.ms());
     Request q;
-    q.editedAt = now();
+    q.editedAt = at(session.lastRequestTime());
     q.sampleTime = samples[endStroke ? samples.size() - 1 : next].time;
-    bench::Stopwatch rq;
-    worker.request(ids);
-    requestMs.push_back(rq.ms());
-    q.chunks = std::move(ids);
+    q.chunks = session.lastRequest();
     if (!q.chunks.empty())
       requests.push_back(std::move(q));
   };
@@ -296,6 +152,7 @@ std::vector<std::string> runStroke(const Config& cfg, const std::string& brushKi
   {
     const double t = now();
     bool edited = false;
+    const double frameStart = t;
     if (tickLoop)
     {
       while (next < samples.size() && samples[next].time <= t)
@@ -307,8 +164,13 @@ std::vector<std::string> runStroke(const Config& cfg, const std::string& brushKi
     }
     else if (next < samples.size() && samples[next].time <= t)
     {
-      handle(false);
-      ++next;
+      // every sample that is due: samples that arrived while the last frame was
+      // busy are handled together, as Qt delivers the mouse moves that queued up
+      while (next < samples.size() && samples[next].time <= t)
+      {
+        handle(false);
+        ++next;
+      }
       edited = true;
     }
     else if (t < lastCollect + period && !(next == samples.size() && !ended))
@@ -326,26 +188,27 @@ std::vector<std::string> runStroke(const Config& cfg, const std::string& brushKi
       ended = true;
       edited = true;
     }
-    if (edited && cfg.settleMs > 0)
+    if (edited && !gpu && cfg.settleMs > 0)
     {
       bench::Stopwatch w;
-      while (!worker.idle() && w.ms() < cfg.settleMs)
+      while (!session.meshingIdle() && w.ms() < cfg.settleMs)
         std::this_thread::sleep_for(std::chrono::microseconds(200));
-      settleMs.push_back(w.ms());
     }
-    const bool idleBefore = worker.idle();
+    const bool idleBefore = session.meshingIdle();
     bench::Stopwatch col;
     std::vector<Clock::time_point> gathered;
-    const std::vector<lvdif::ChunkMesh> meshes = worker.collect(&gathered);
-    std::map<std::int64_t, const lvdif::ChunkMesh*> newest; // what a front end would install
-    for (const auto& m : meshes)
-      newest[m.chunkId] = &m;
+    const std::vector<lvdif::ChunkMesh> meshes = session.collectMeshes(&gathered);
     collectMs.push_back(col.ms());
     lastCollect = now(); // ready to draw
+    if (edited)
+      frameMs.push_back(1e3 * (lastCollect - frameStart));
     for (std::size_t i = 0; i < meshes.size(); ++i)
+    {
       delivered[meshes[i].chunkId].emplace_back(at(gathered[i]), lastCollect);
+      triangles += meshes[i].triangles.size();
+    }
     ++iterations;
-    if (idleBefore && ended)
+    if ((idleBefore || gpu) && ended && session.meshingIdle())
       break;
     if (tickLoop)
     {
@@ -355,7 +218,7 @@ std::vector<std::string> runStroke(const Config& cfg, const std::string& brushKi
     }
   }
   const double duration = now();
-  // A chunk shows an edit from its first mesh gathered after the edit.
+  // A mesh chunk shows an edit from its first mesh gathered after the edit.
   std::vector<double> fromSample, fromEdit, chunkCounts;
   int missing = 0;
   for (const Request& q : requests)
@@ -364,7 +227,7 @@ std::vector<std::string> runStroke(const Config& cfg, const std::string& brushKi
     for (std::int64_t id : q.chunks)
     {
       const auto& d = delivered[id];
-      auto it = std::find_if(d.begin(), d.end(), [&](const std::pair<double, double>& g) { return g.first > q.editedAt; });
+      auto it = std::find_if(d.begin(), d.end(), [&](const std::pair<double, double>& g) { return g.first >= q.editedAt; });
       if (it == d.end())
       {
         ++missing;
@@ -378,26 +241,26 @@ std::vector<std::string> runStroke(const Config& cfg, const std::string& brushKi
   }
   if (missing)
     std::printf("warning: %d requested chunk meshes never arrived\n", missing);
-  // Meshing cost of each request on its own, synchronously after the stroke
-  // (the chunks' final content) on the chosen device.
-  std::vector<double> meshMs;
-  for (const Request& q : requests)
-  {
-    bench::Stopwatch m;
-    mc.extractChunks(q.chunks);
-    meshMs.push_back(m.ms());
-  }
+  double meanFrame = 0;
+  for (double f : frameMs)
+    meanFrame += f / static_cast<double>(std::max<std::size_t>(1, frameMs.size()));
+  std::printf("volume %d^3, chunk %d^3 (storage and mesh), %lld mesh chunks, radius %.0f; setup %.1f s (fill %.1f s); "
+              "session on %s%s; %llu triangles handed out; frames drawn: no (ready to draw, no VTK)\n",
+    n, edge, static_cast<long long>(session.mesher().chunkCount()), radius, setupS, fillS,
+    gpu ? "the GPU (device-resident volume, device marching cubes)" : "the CPU (host volume, marching cubes worker)",
+    gpu ? "" : (", loop " + cfg.loop + ", settle " + bench::fmt(cfg.settleMs, 0) + " ms").c_str(),
+    static_cast<unsigned long long>(triangles));
   using bench::fmt;
   using bench::percentile;
   auto p50p95 = [](const std::vector<double>& v) {
     return fmt(percentile(v, 0.5)) + " (" + fmt(percentile(v, 0.95)) + ")";
   };
-  return { std::to_string(n) + "^3/" + std::to_string(edge), lvdif::resolveDevice(cfg.device) == lvdif::Device::Cuda ? "cuda" : "cpu",
-    brushKind, cfg.loop + (cfg.settleMs > 0 ? ", settle " + fmt(cfg.settleMs, 0) : ""),
-    std::to_string(requests.size()), fmt(percentile(chunkCounts, 0.5), 0) + " (" + fmt(percentile(chunkCounts, 0.95), 0) + ")",
+  return { std::to_string(n) + "^3/" + std::to_string(edge), gpu ? "gpu" : "cpu", fmt(radius, 0),
+    gpu ? "frame" : cfg.loop + ", settle " + fmt(cfg.settleMs, 0), std::to_string(requests.size()),
+    fmt(percentile(chunkCounts, 0.5), 0) + " (" + fmt(percentile(chunkCounts, 0.95), 0) + ")",
     fmt(percentile(fromSample, 0.5)), fmt(percentile(fromSample, 0.95)), fmt(percentile(fromSample, 1.0)),
-    p50p95(fromEdit), fmt(iterations / duration, 1), p50p95(brushMs), fmt(percentile(lockMs, 0.95)),
-    fmt(percentile(requestMs, 0.95)), p50p95(meshMs), p50p95(collectMs) };
+    p50p95(fromEdit), p50p95(frameMs), fmt(meanFrame > 0 ? 1e3 / meanFrame : 0, 0), fmt(iterations / duration, 1),
+    p50p95(brushMs), p50p95(collectMs) };
 }
 } // namespace
 
@@ -412,15 +275,19 @@ int main(int argc, char* argv[])
       if (!std::strcmp(argv[i], "--samples") && more)
         cfg.samples = std::atoi(argv[++i]);
       else if (!std::strcmp(argv[i], "--radius") && more)
-        cfg.radius = std::atof(argv[++i]);
+      {
+        cfg.radii.clear();
+        std::stringstream s(argv[++i]);
+        std::string item;
+        while (std::getline(s, item, ','))
+          cfg.radii.push_back(std::atof(item.c_str()));
+      }
       else if (!std::strcmp(argv[i], "--settle") && more)
         cfg.settleMs = std::atof(argv[++i]);
       else if (!std::strcmp(argv[i], "--chunk") && more)
         cfg.chunk = std::atoi(argv[++i]);
       else if (!std::strcmp(argv[i], "--loop") && more)
         cfg.loop = argv[++i];
-      else if (!std::strcmp(argv[i], "--brush") && more)
-        cfg.brush = argv[++i];
       else if (!std::strcmp(argv[i], "--device") && more)
       {
         const std::string d = argv[++i];
@@ -433,30 +300,23 @@ int main(int argc, char* argv[])
       else
         throw lvdif::Error(lvdif::ErrorCode::InvalidArgument, std::string("unknown option ") + argv[i]);
     }
-    if (cfg.n < 64 || cfg.samples < 2 || cfg.radius <= 0 || (cfg.loop != "event" && cfg.loop != "tick"))
-      throw lvdif::Error(lvdif::ErrorCode::InvalidArgument, "need N >= 64, samples >= 2, radius > 0, loop event|tick");
+    bool radiiOk = !cfg.radii.empty();
+    for (double r : cfg.radii)
+      radiiOk = radiiOk && r > 0;
+    if (cfg.n < 64 || cfg.samples < 2 || !radiiOk || (cfg.loop != "event" && cfg.loop != "tick"))
+      throw lvdif::Error(lvdif::ErrorCode::InvalidArgument, "need N >= 64, samples >= 2, radii > 0, loop event|tick");
     if (cfg.device == lvdif::Device::Cuda && lvdif::resolveDevice(cfg.device) != lvdif::Device::Cuda)
       throw lvdif::Error(lvdif::ErrorCode::Unsupported, "--device cuda: no usable CUDA device in this build/machine");
-    std::vector<std::string> brushes;
-    const std::string b = cfg.brush.empty() ? (cfg.device == lvdif::Device::Cuda ? "all" : "cpu") : cfg.brush;
-    if (b == "all")
-      brushes = cfg.device == lvdif::Device::Cuda ? std::vector<std::string>{ "cpu", "cuda", "device" }
-                                                  : std::vector<std::string>{ "cpu" };
-    else if (b == "cpu" || b == "cuda" || b == "device")
-      brushes = { b };
-    else
-      throw lvdif::Error(lvdif::ErrorCode::InvalidArgument, "--brush must be cpu, cuda, device or all");
     std::cout << "bench_stroke_latency_core: " << bench::machineDescription() << "\n"
-              << "Latency = from the sample's recorded time until every chunk it changed has a collected mesh "
-                 "showing it (ready to draw). Not included: building VTK actors from the meshes and drawing "
-                 "the frame (no VTK/OpenGL here).\n";
+              << "Latency = from the sample's recorded time until every mesh chunk it invalidated has a collected "
+                 "mesh showing it (ready to draw). Not included: building VTK actors and drawing the frame.\n";
     std::vector<std::vector<std::string>> rows;
-    for (const std::string& k : brushes)
-      rows.push_back(runStroke(cfg, k));
-    bench::printTable({ "volume/chunk", "mc device", "brush", "loop", "requests", "chunks/request p50 (p95)",
+    for (double r : cfg.radii)
+      rows.push_back(runStroke(cfg, r));
+    bench::printTable({ "volume/chunk", "session", "radius", "loop", "requests", "mesh chunks/request p50 (p95)",
                         "latency p50 ms", "latency p95 ms", "latency max ms", "from edit p50 (p95) ms",
-                        "loop it/s", "brush p50 (p95) ms", "lock p95 ms", "request p95 ms",
-                        "mesh/request p50 (p95) ms", "collect p50 (p95) ms" },
+                        "frame p50 (p95) ms", "fps (1/mean frame)", "loop it/s", "edit p50 (p95) ms",
+                        "collect p50 (p95) ms" },
       rows);
   }
   catch (const std::exception& e)

@@ -4,17 +4,15 @@
 // A recorded-style stroke (samples with timestamps, 50 Hz as the original's
 // input, along an arc on the surface of a sphere volume) is replayed at its
 // own speed against the editor's real pipeline:
-//   UI loop (this thread, ticking at up to 60 Hz):
-//     deliver the samples whose time has come -> lvdif::Editor::addSample
-//     (live application, under the worker's source mutex) -> request the
-//     chunks the sample changed (LVDIFChunkMesh::ChunksToRemesh with the
-//     editor's lastWrite(), i.e. chunksAffectedBy(changedBox), as the editor
-//     does; rule "storage" is the previous request, storage-chunk rule
-//     intersected with the segment's reach box, run in the same process as
-//     the peer) -> collect finished chunk meshes -> LVDIFChunkMesh +
-//     vtkChunkActorManager::SetChunk (vertex un-sharing for the tetrahedral
-//     shader included) -> [optional: render a frame]
-//   worker thread: lvdif::MarchingCubesWorker re-meshes requested chunks.
+//   UI loop (this thread, ticking at up to 60 Hz), through one
+//   lvdif::EditSession as the Qt editor: deliver the samples whose time has
+//     come -> EditSession::addSample (live application; the session queues the
+//     mesh chunks the sample invalidated, lvdif::meshChunksToRemesh) -> collect
+//     the meshes ready -> LVDIFChunkMesh + vtkChunkActorManager::SetChunk
+//     (vertex un-sharing for the tetrahedral shader included) -> [optional:
+//     render a frame]
+//   meshing: the session's marching cubes worker thread (CPU), or one batched
+//     launch per collect on the GPU (a device-resident session).
 // Latency of a sample = time from its application until every chunk it
 // dirtied has a mesh reflecting it installed in the actor manager (exact: the
 // worker says when each mesh's input was gathered). "From sample time" adds
@@ -27,21 +25,18 @@
 // rasterisation of the whole model, which dominates and is not what a GPU
 // would cost). Needs the Core editor (lvdif/Editor.h).
 //
-// Where the time goes (per sample, p95): brush = Editor::addSample, lock =
-// waiting for the source mutex (the worker gathers under it), request =
-// computing the chunk list; per request, mesh = extractChunks of its chunks
-// re-run synchronously after the stroke (both cores); per tick, install (and
-// per tick that installed at least one mesh: what bench_stroke_latency_core,
-// which has no VTK, leaves out).
+// Where the time goes (per sample, p95): edit = EditSession::addSample (brush,
+// the worker's source lock, the remesh rule); per request, mesh = extractChunks
+// of its chunks re-run synchronously after the stroke (all cores); per tick,
+// install (and per tick that installed at least one mesh: what
+// bench_stroke_latency_core, which has no VTK, leaves out).
 //
-// usage: bench_stroke_latency [N=512] [--render] [--samples 100] [--radius 8] [--rule both|exact|storage]
+// usage: bench_stroke_latency [N=512] [--render] [--samples 100] [--radius 8] [--device cpu|auto]
 //        [--settle MS: wait up to MS per tick for the worker before collecting]
 #include "BenchCommon.h"
 
 #include "lvdif/AnalyticFill.h"
-#include "lvdif/ChunkedMarchingCubes.h"
-#include "lvdif/Editor.h"
-#include "lvdif/MarchingCubesWorker.h"
+#include "lvdif/EditSession.h"
 
 #include "vtkCamera.h"
 #include "vtkChunkActorManager.h"
@@ -62,25 +57,31 @@
 
 using bench::percentile;
 
-std::vector<std::string> runStroke(int n, int samples, double radius, bool render, bool exact, double settleMs)
+std::vector<std::string> runStroke(int n, int samples, double radius, bool render, lvdif::Device device, double settleMs)
 {
   bench::Stopwatch setup;
   lvdif::VolumeOptions o;
   o.dims = { n, n, n };
   o.chunkEdge = 32;
-  lvdif::DictionaryVolume volume(o);
+  auto shared = std::make_shared<lvdif::DictionaryVolume>(o);
   const double c = 0.5 * (n - 1), r = 0.35 * n;
-  lvdif::fillFromFunction(volume, lvdif::sphereSdf(c, c, c, r));
-  volume.takeDirtyChunks();
-  lvdif::MarchingCubesOptions mo;
-  mo.chunkEdge = 32;
-  lvdif::ChunkedMarchingCubes mc(volume, mo);
+  lvdif::fillFromFunction(*shared, lvdif::sphereSdf(c, c, c, r));
+  lvdif::EditSessionOptions so;
+  so.device = device;
+  so.meshChunkEdge = 32;
+  lvdif::EditSession session(shared, so);
+  if (!session.notice().empty())
+    std::printf("notice: %s\n", session.notice().c_str());
+  const lvdif::DictionaryVolume& volume = session.hostVolume(); // geometry and colours
   vtkNew<vtkChunkActorManager> actors;
   vtkNew<vtkRenderer> ren;
   vtkNew<vtkRenderWindow> rw;
   actors->SetRenderer(ren);
-  for (const auto& m : mc.extractAll())
-    actors->SetChunk(m.chunkId, LVDIFChunkMesh::ToPolyData(m, volume.colors(), volume.dims()));
+  session.requestAllMeshes();
+  session.waitMeshingIdle();
+  for (const auto& m : session.collectMeshes())
+    if (!m.empty())
+      actors->SetChunk(m.chunkId, LVDIFChunkMesh::ToPolyData(m, volume.colors(), volume.dims()));
   if (render)
   {
     rw->SetSize(640, 480);
@@ -92,12 +93,10 @@ std::vector<std::string> runStroke(int n, int samples, double radius, bool rende
     actors->GetNumberOfChunks(), static_cast<long long>(actors->GetNumberOfTriangles()), setup.seconds(),
     render ? "yes (this X server's OpenGL)" : "no (ready-to-draw)");
 
-  lvdif::Editor editor(volume);
-  editor.brush.op = lvdif::BrushOp::Add;
-  editor.brush.color = lvdif::Rgba{ 230, 80, 50, 255 };
-  editor.stroke.kind = lvdif::BrushKind::Drill; // applied as it goes, as the editor does
-  editor.stroke.radius = radius;
-  lvdif::MarchingCubesWorker worker(mc);
+  session.brush().op = lvdif::BrushOp::Add;
+  session.brush().color = lvdif::Rgba{ 230, 80, 50, 255 };
+  session.stroke().kind = lvdif::BrushKind::Drill; // applied as it goes, as the editor does
+  session.stroke().radius = radius;
 
   // The stroke: 50 Hz samples on the sphere's surface along a 90-degree arc.
   std::vector<lvdif::BrushSample> stroke(samples);
@@ -109,20 +108,7 @@ std::vector<std::string> runStroke(int n, int samples, double radius, bool rende
     stroke[i].buttons = 1;
   }
 
-  std::vector<double> tickMs, brushMs, lockMs, requestMs, installMs, installBusyMs;
-  // Every voxel a sample's dabs can change: the segment from the previous
-  // sample, grown by the radius, the band (distances saturate there), the
-  // colour skin and one voxel of rounding.
-  const double reach = radius + volume.bandWidth() + editor.brush.colorOffset + editor.brush.blend + 1;
-  auto segmentBox = [&](const std::array<double, 3>& a, const std::array<double, 3>& b) {
-    lvdif::VoxelBox box;
-    for (int k = 0; k < 3; ++k)
-    {
-      box.lo[k] = static_cast<std::int64_t>(std::floor(std::min(a[k], b[k]) - reach));
-      box.hi[k] = static_cast<std::int64_t>(std::ceil(std::max(a[k], b[k]) + reach));
-    }
-    return box;
-  };
+  std::vector<double> tickMs, brushMs, installMs, installBusyMs;
   // For the latency: which chunks each sample dirtied, and when each chunk's meshes arrived.
   std::vector<std::pair<double, std::vector<std::int64_t>>> requests; // (arrival time, chunks)
   std::vector<double> sampleTimes; // the stroke time of each request's sample
@@ -140,10 +126,7 @@ std::vector<std::string> runStroke(int n, int samples, double radius, bool rende
   } clock{ t0 };
   std::size_t next = 0;
   int ticks = 0;
-  {
-    std::lock_guard<std::mutex> lock(worker.sourceMutex());
-    editor.beginStroke();
-  }
+  session.beginStroke();
   bool ended = false;
   while (true)
   {
@@ -151,43 +134,19 @@ std::vector<std::string> runStroke(int n, int samples, double radius, bool rende
     const double now = clock.seconds();
     while (next < stroke.size() && stroke[next].time <= now)
     {
-      bench::Stopwatch e;
-      std::lock_guard<std::mutex> lock(worker.sourceMutex());
-      lockMs.push_back(e.ms());
       bench::Stopwatch b;
-      editor.addSample(stroke[next]);
+      session.addSample(stroke[next]);
       brushMs.push_back(b.ms());
-      bench::Stopwatch q;
-      std::vector<std::int64_t> ids;
-      if (exact)
-        ids = LVDIFChunkMesh::ChunksToRemesh(mc, volume.takeDirtyChunks(), editor.lastWrite());
-      else
-      {
-        const lvdif::VoxelBox bound = segmentBox(stroke[next > 0 ? next - 1 : 0].position, stroke[next].position);
-        ids = LVDIFChunkMesh::ChunksToRemesh(mc, volume.takeDirtyChunks(), &bound);
-      }
-      worker.request(ids);
-      requestMs.push_back(q.ms());
-      requests.emplace_back(clock.seconds(), ids);
+      requests.emplace_back(clock.at(session.lastRequestTime()), session.lastRequest());
       sampleTimes.push_back(stroke[next].time);
       ++next;
     }
     if (next == stroke.size() && !ended)
     {
-      std::lock_guard<std::mutex> lock(worker.sourceMutex());
-      editor.endStroke();
-      std::vector<std::int64_t> ids;
-      if (exact)
-        ids = LVDIFChunkMesh::ChunksToRemesh(mc, volume.takeDirtyChunks(), editor.lastWrite());
-      else
+      session.endStroke();
+      if (!session.lastRequest().empty())
       {
-        const lvdif::VoxelBox bound = segmentBox(stroke[next > 1 ? next - 2 : 0].position, stroke[next - 1].position);
-        ids = LVDIFChunkMesh::ChunksToRemesh(mc, volume.takeDirtyChunks(), &bound);
-      }
-      worker.request(ids);
-      if (!ids.empty())
-      {
-        requests.emplace_back(clock.seconds(), ids); // the stroke's last dabs
+        requests.emplace_back(clock.at(session.lastRequestTime()), session.lastRequest()); // the stroke's last dabs
         sampleTimes.push_back(stroke.back().time);
       }
       ended = true;
@@ -197,13 +156,13 @@ std::vector<std::string> runStroke(int n, int samples, double radius, bool rende
     if (settleMs > 0)
     {
       bench::Stopwatch w;
-      while (!worker.idle() && w.ms() < settleMs)
+      while (!session.meshingIdle() && w.ms() < settleMs)
         std::this_thread::sleep_for(std::chrono::microseconds(200));
     }
-    const bool idleBefore = worker.idle();
+    const bool idleBefore = session.meshingIdle();
     bench::Stopwatch inst;
     std::vector<std::chrono::steady_clock::time_point> gathered;
-    const std::vector<lvdif::ChunkMesh> meshes = worker.collect(&gathered);
+    const std::vector<lvdif::ChunkMesh> meshes = session.collectMeshes(&gathered);
     std::map<std::int64_t, const lvdif::ChunkMesh*> newest; // a later mesh of a chunk supersedes an earlier one
     for (const auto& m : meshes)
       newest[m.chunkId] = &m;
@@ -224,7 +183,7 @@ std::vector<std::string> runStroke(int n, int samples, double radius, bool rende
     for (std::size_t i = 0; i < meshes.size(); ++i)
       delivered[meshes[i].chunkId].emplace_back(clock.at(gathered[i]), shown);
     ++ticks;
-    if (idleBefore && ended)
+    if (idleBefore && ended && session.meshingIdle())
       break;
     const double spent = tick.seconds();
     tickMs.push_back(1e3 * spent);
@@ -245,7 +204,7 @@ std::vector<std::string> runStroke(int n, int samples, double radius, bool rende
     for (std::int64_t id : req.second)
     {
       const auto& d = delivered[id];
-      auto it = std::find_if(d.begin(), d.end(), [&](const std::pair<double, double>& g) { return g.first > req.first; });
+      auto it = std::find_if(d.begin(), d.end(), [&](const std::pair<double, double>& g) { return g.first >= req.first; });
       if (it == d.end())
       {
         ++missing; // never happens unless the worker dropped a request
@@ -262,22 +221,22 @@ std::vector<std::string> runStroke(int n, int samples, double radius, bool rende
   // Meshing cost of each request on its own (synchronously, after the stroke:
   // the chunks' final content, same chunk count as in the stroke).
   std::vector<double> meshMs, chunkCounts;
+  session.sync();
   for (const auto& req : requests)
   {
     bench::Stopwatch m;
-    const auto meshes = mc.extractChunks(req.second);
+    const auto meshes = session.mesher().extractChunks(req.second);
     meshMs.push_back(m.ms());
     chunkCounts.push_back(static_cast<double>(req.second.size()));
   }
   return { std::to_string(n) + "^3",
-    std::string(exact ? "changedBox" : "storage+reach") + (settleMs > 0 ? ", settle " + bench::fmt(settleMs, 0) + " ms" : ""), std::to_string(samples),
+    std::string(session.onDevice() ? "gpu" : "cpu") + (settleMs > 0 ? ", settle " + bench::fmt(settleMs, 0) + " ms" : ""), std::to_string(samples),
     bench::fmt(radius, 1),
     bench::fmt(percentile(chunkCounts, 0.5), 0) + " (" + bench::fmt(percentile(chunkCounts, 0.95), 0) + ")",
     bench::fmt(percentile(latency, 0.5)), bench::fmt(percentile(latency, 0.95)), bench::fmt(percentile(latency, 1.0)),
     bench::fmt(percentile(fromInput, 0.5)) + " (" + bench::fmt(percentile(fromInput, 0.95)) + ")",
     bench::fmt(ticks / duration, 1),
-    bench::fmt(percentile(tickMs, 0.95)), bench::fmt(percentile(brushMs, 0.95)), bench::fmt(percentile(lockMs, 0.95)),
-    bench::fmt(percentile(requestMs, 0.95)),
+    bench::fmt(percentile(tickMs, 0.95)), bench::fmt(percentile(brushMs, 0.95)),
     bench::fmt(percentile(meshMs, 0.5)) + " (" + bench::fmt(percentile(meshMs, 0.95)) + ")",
     bench::fmt(percentile(installMs, 0.95)),
     bench::fmt(percentile(installBusyMs, 0.5)) + " (" + bench::fmt(percentile(installBusyMs, 0.95)) + ")",
@@ -289,7 +248,7 @@ int main(int argc, char* argv[])
   int n = 512, samples = 100;
   double radius = 8;
   bool render = false;
-  std::string rule = "both";
+  lvdif::Device device = lvdif::Device::Cpu;
   double settleMs = 0;
   for (int i = 1; i < argc; ++i)
   {
@@ -301,23 +260,18 @@ int main(int argc, char* argv[])
       radius = std::atof(argv[++i]);
     else if (!std::strcmp(argv[i], "--settle") && i + 1 < argc)
       settleMs = std::atof(argv[++i]);
-    else if (!std::strcmp(argv[i], "--rule") && i + 1 < argc)
-      rule = argv[++i];
+    else if (!std::strcmp(argv[i], "--device") && i + 1 < argc)
+      device = std::strcmp(argv[++i], "cpu") ? lvdif::Device::Auto : lvdif::Device::Cpu;
     else
       n = std::atoi(argv[i]);
   }
   std::cout << "bench_stroke_latency: " << bench::machineDescription() << "\n";
   std::vector<std::vector<std::string>> rows;
-  for (const bool exact : { false, true })
-  {
-    if ((exact && rule == "storage") || (!exact && rule == "exact"))
-      continue;
-    rows.push_back(runStroke(n, samples, radius, render, exact, settleMs));
-  }
-  bench::printTable({ "volume", "rule", "samples", "radius", "chunks/request p50 (p95)",
+  rows.push_back(runStroke(n, samples, radius, render, device, settleMs));
+  bench::printTable({ "volume", "session", "samples", "radius", "mesh chunks/request p50 (p95)",
                       "latency p50 ms", "latency p95 ms", "latency max ms",
                       "from sample time p50 (p95) ms", "loop FPS", "tick p95 ms",
-                      "brush p95 ms", "lock p95 ms", "request p95 ms", "mesh/request p50 (p95) ms",
+                      "edit p95 ms", "mesh/request p50 (p95) ms",
                       "install p95 ms", "install/busy tick p50 (p95) ms", "frames drawn" },
     rows);
   return 0;

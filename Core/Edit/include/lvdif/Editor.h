@@ -7,8 +7,14 @@
 // InputDevice: button bit 0 pressed starts a stroke, held adds samples, released
 // ends it. A Grab stroke is applied as it goes, one dab per sample: centred on
 // the previous sample, displacing by the move since it (Brush.h).
+//
+// With a device-resident volume attached (attachDevice), the same calls apply
+// the dabs on the GPU and keep the history there (DeviceVolume's copy-on-write
+// steps); Smooth and Grab run on the synced host copy and hand their chunks to
+// the device. Front ends do not drive an Editor directly: lvdif::EditSession holds one.
 #pragma once
 
+#include "lvdif/DeviceVolume.h"
 #include "lvdif/EditLimits.h"
 #include "lvdif/InputDevice.h"
 #include "lvdif/Interrupter.h"
@@ -25,8 +31,25 @@ class Editor
 public:
   explicit Editor(DictionaryVolume& volume, const UndoStack::Options& undo = UndoStack::Options());
 
+  /// The host volume (with a device attached: synced only by DeviceVolume::sync).
   DictionaryVolume& volume() { return this->Volume; }
+  /// The host history (unused while a device is attached: see canUndo()).
   UndoStack& undoStack() { return this->Undo; }
+
+  /// Edits, undo and redo go to this device-resident copy of volume() from now
+  /// on (nullptr: back to the host). Either way the history starts empty.
+  /// Refused while a stroke is open.
+  void attachDevice(cuda::DeviceVolume* device);
+  cuda::DeviceVolume* device() { return this->Device; }
+
+  /// The history in use (host or device).
+  bool canUndo() const;
+  bool canRedo() const;
+  std::size_t undoCount() const;
+  void clearHistory();
+  /// Sets every voxel to `fill` (a script's `canvas fill|clear`): not undoable,
+  /// so the history is cleared; every storage chunk is touched.
+  void fillVolume(Voxel fill);
 
   BrushSettings brush;
   StrokeSettings stroke;
@@ -76,12 +99,15 @@ public:
 
   /// The chunks changed by edits, undo and redo since the last call (increasing ids),
   /// independent of the volume's dirty flags (front ends report them in events).
-  std::vector<std::int64_t> takeTouchedChunks();
+  std::vector<std::int64_t> takeTouchedStorageChunks();
   /// Adds chunks changed outside the editor's edits (e.g. a script's `canvas fill`).
-  void touch(const std::vector<std::int64_t>& ids);
+  void touchStorageChunks(const std::vector<std::int64_t>& ids);
 
 private:
   void record(const EditRecord& e);
+  EditResult applyNow(const std::vector<Dab>& dabs);
+  void beginStep(const char* label);
+  void endStep();
   /// The budgets, then the dabs in batches with a cancellation check between them.
   EditResult applyChecked(const std::vector<Dab>& dabs);
   /// Dabs the next stroke may make: the per-edit limit or what is left of the total.
@@ -89,12 +115,13 @@ private:
 
   DictionaryVolume& Volume;
   UndoStack Undo;
+  cuda::DeviceVolume* Device = nullptr;
   std::unique_ptr<StrokeBuilder> Builder;
   std::vector<Dab> StrokeDabs; // every dab of the open stroke, for the record
   EditResult StrokeResult;
   EditResult LastWrite;
   std::unique_ptr<Recording> Rec;
-  std::vector<std::int64_t> Touched; // since the last takeTouchedChunks()
+  std::vector<std::int64_t> Touched; // storage chunks, since the last takeTouchedStorageChunks()
   double Time = -1;
   bool Pressed = false;
   std::uint64_t DabsApplied = 0;

@@ -39,6 +39,43 @@ void DeviceVolume::refresh(const std::vector<std::int64_t>&)
   throw Error(ErrorCode::Unsupported, "this build has no CUDA");
 }
 
+void DeviceVolume::adoptHostChunks(const std::vector<std::int64_t>&)
+{
+  throw Error(ErrorCode::Unsupported, "this build has no CUDA");
+}
+
+void DeviceVolume::reload()
+{
+  throw Error(ErrorCode::Unsupported, "this build has no CUDA");
+}
+
+void DeviceVolume::beginStep()
+{
+  throw Error(ErrorCode::Unsupported, "this build has no CUDA");
+}
+
+bool DeviceVolume::endStep() { return false; }
+bool DeviceVolume::inStep() const { return false; }
+bool DeviceVolume::canUndo() const { return false; }
+bool DeviceVolume::canRedo() const { return false; }
+std::size_t DeviceVolume::undoCount() const { return 0; }
+std::size_t DeviceVolume::redoCount() const { return 0; }
+bool DeviceVolume::undo() { return false; }
+bool DeviceVolume::redo() { return false; }
+void DeviceVolume::clearHistory() {}
+std::uint64_t DeviceVolume::historyDeviceBytes() const { return 0; }
+
+const std::vector<std::int64_t>& DeviceVolume::lastRestoredChunks() const
+{
+  static const std::vector<std::int64_t> none;
+  return none;
+}
+
+DeviceVolumeView DeviceVolume::view()
+{
+  throw Error(ErrorCode::Unsupported, "this build has no CUDA");
+}
+
 std::size_t DeviceVolume::pendingChunks() const { return 0; }
 std::size_t DeviceVolume::slotsUsed() const { return 0; }
 std::size_t DeviceVolume::slotCapacity() const { return 0; }

@@ -34,6 +34,7 @@
 #include "lvdif/ColorDictionary.h"
 #include "lvdif/Cuda.h"
 #include "lvdif/DenseGrid.h"
+#include "lvdif/DeviceVolumeView.h"
 #include "lvdif/DictionaryVolume.h"
 #include "lvdif/Interrupter.h"
 #include "lvdif/MarchingCubesTables.h"
@@ -190,6 +191,19 @@ public:
   /// previous batch's results are copied on another straight into the
   /// page-locked block. Elsewhere it packs extractAll()'s meshes.
   void extractAllPacked(PackedChunkMeshes& out, Interrupter& interrupter = nullInterrupter()) const;
+
+  /// True when this mesher runs on the GPU (options.device resolved to Cuda).
+  bool onDevice() const;
+  /// Meshes the given chunks of the dictionary volume this mesher was built
+  /// for from its device-resident copy (DeviceVolume::view(), the same voxels as
+  /// the host volume would have after a sync) without reading the host volume:
+  /// each chunk's input box is decoded on the device and all chunks go through
+  /// one launch sequence; only the meshes come back, into `out`'s page-locked
+  /// block (reused when large enough). Chunks without triangles are left out.
+  /// The same meshes as extractChunks on the synced host volume. Needs
+  /// onDevice() and the dictionary constructor (Error InvalidArgument).
+  void extractChunksFromDevice(const DeviceVolumeView& volume, const std::vector<std::int64_t>& ids,
+    PackedChunkMeshes& out) const;
 
   // ---- incremental --------------------------------------------------------
   /// The chunks whose meshes can change when the given points change: cells

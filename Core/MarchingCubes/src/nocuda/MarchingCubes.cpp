@@ -30,5 +30,11 @@ std::shared_ptr<std::uint8_t> allocatePageLocked(std::size_t)
   throw Error(ErrorCode::DeviceFailure, "marching cubes: this build has no CUDA (page-locked memory)");
 }
 
+void packChunksFromDeviceVolumeCuda(const ChunkedMarchingCubes::Impl&, const DeviceVolumeView&,
+  const std::vector<std::int64_t>&, PackedChunkMeshes&)
+{
+  throw Error(ErrorCode::DeviceFailure, "marching cubes: this build has no CUDA");
+}
+
 void dropMarchingCubesCudaGrid(MarchingCubesCudaState&) {}
 } // namespace lvdif

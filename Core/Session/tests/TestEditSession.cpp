@@ -1,0 +1,230 @@
+// The CPU edit session: undo/redo against a replay oracle, meshes against a
+// full re-mesh, scripts (undoable, canvas), recordings, change reports, and the
+// remesh rule against brute force.
+#include "SessionTestUtil.h"
+
+#include "lvdif/Error.h"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+
+using namespace sessiontest;
+
+namespace
+{
+lvdif::EditSessionOptions cpuOptions()
+{
+  lvdif::EditSessionOptions o;
+  o.device = lvdif::Device::Cpu;
+  return o;
+}
+
+} // namespace
+
+TEST(EditSession, RandomStrokesUndoRedoEqualReplayAndMeshesEqualFullRemesh)
+{
+  for (std::uint32_t seed : { 1u, 2u, 3u })
+  {
+    auto start = sphereVolume(64, 16);
+    lvdif::EditSession s(start->clone(), cpuOptions());
+    EXPECT_FALSE(s.onDevice());
+    EXPECT_EQ(s.notice(), "");
+    MeshStore store;
+    s.requestAllMeshes();
+    const std::vector<Op> ops = randomOps(seed, 40, 64);
+    for (std::size_t i = 0; i < ops.size(); ++i)
+    {
+      apply(s, ops[i]);
+      if (i % 7 == 0)
+        store.take(s.collectMeshes()); // meshes of intermediate states are superseded later
+    }
+    s.waitMeshingIdle();
+    store.take(s.collectMeshes());
+    const auto oracle = replay(*start, ops);
+    EXPECT_EQ(decodedDifferences(s.volume(), *oracle), 0) << "seed " << seed;
+    std::string problem;
+    EXPECT_EQ(compareWithFullRemesh(store, s.volume(), s.mesher().options(), &problem), 0)
+      << "seed " << seed << ": " << problem;
+  }
+}
+
+TEST(EditSession, ChangedMeshChunksCoverEveryMeshThatChanged)
+{
+  auto v = sphereVolume(64, 16);
+  lvdif::EditSession s(v, cpuOptions());
+  lvdif::MarchingCubesOptions mo = s.mesher().options();
+  s.takeChangedMeshChunks(); // the initial "everything"
+  const std::vector<Op> ops = randomOps(7, 12, 64);
+  for (const Op& op : ops)
+  {
+    auto snapshot = s.volume().clone();
+    lvdif::ChunkedMarchingCubes mcBefore(*snapshot, mo);
+    apply(s, op);
+    const std::vector<std::int64_t> changed = s.takeChangedMeshChunks();
+    EXPECT_TRUE(std::is_sorted(changed.begin(), changed.end()));
+    lvdif::ChunkedMarchingCubes mcAfter(s.volume(), mo);
+    for (std::int64_t id = 0; id < mcAfter.chunkCount(); ++id)
+    {
+      if (std::binary_search(changed.begin(), changed.end(), id))
+        continue;
+      EXPECT_EQ(compare(mcBefore.extractChunk(id), mcAfter.extractChunk(id)), "")
+        << "mesh chunk " << id << " changed but was not reported";
+    }
+  }
+}
+
+TEST(EditSession, RemeshRuleCoversBruteForce)
+{
+  // every mesh chunk whose mesh differs after a dab is named by the rule
+  auto v = sphereVolume(64, 16);
+  lvdif::MarchingCubesOptions mo;
+  mo.chunkEdge = 16;
+  for (int k = 0; k < 6; ++k)
+  {
+    auto before = v->clone();
+    lvdif::BrushSettings b;
+    b.op = k % 2 ? lvdif::BrushOp::Subtract : lvdif::BrushOp::Add;
+    lvdif::Dab d;
+    d.center = { 20.0 + 4 * k, 32.0, 44.0 - 3 * k };
+    d.radius = 3 + k;
+    v->takeDirtyChunks();
+    const lvdif::EditResult r = lvdif::applyDab(*v, d, b);
+    lvdif::ChunkedMarchingCubes mcBefore(*before, mo), mcAfter(*v, mo);
+    const std::vector<std::int64_t> ids = lvdif::meshChunksToRemesh(mcAfter, v->takeDirtyChunks(), r);
+    for (std::int64_t id = 0; id < mcAfter.chunkCount(); ++id)
+      if (!std::binary_search(ids.begin(), ids.end(), id))
+        EXPECT_EQ(compare(mcBefore.extractChunk(id), mcAfter.extractChunk(id)), "") << "dab " << k << " chunk " << id;
+  }
+}
+
+TEST(EditSession, ScriptEditsAreUndoable)
+{
+  auto v = sphereVolume(48, 16);
+  lvdif::EditSession s(v, cpuOptions());
+  const auto before = s.volume().clone();
+  s.runScript("op subtract\nsphere 24 24 34 6\nop add\ncube 10 10 10 4");
+  EXPECT_GT(differences(s.volume(), *before), 0);
+  EXPECT_EQ(s.undoCount(), 2u); // one step per edit command
+  EXPECT_TRUE(s.undo());
+  EXPECT_TRUE(s.undo());
+  EXPECT_EQ(differences(s.volume(), *before), 0);
+  EXPECT_TRUE(s.redo());
+  EXPECT_TRUE(s.redo());
+  // the oracle: the same two primitives applied directly
+  auto oracle = before->clone();
+  lvdif::BrushSettings b;
+  b.op = lvdif::BrushOp::Subtract;
+  lvdif::Dab d;
+  d.center = { 24, 24, 34 };
+  d.radius = 6;
+  lvdif::applyDab(*oracle, d, b);
+  b.op = lvdif::BrushOp::Add;
+  d.shape = lvdif::BrushShape::Cube;
+  d.center = { 10, 10, 10 };
+  d.radius = 4;
+  lvdif::applyDab(*oracle, d, b);
+  EXPECT_EQ(decodedDifferences(s.volume(), *oracle), 0);
+}
+
+TEST(EditSession, ScriptErrorKeepsEarlierEditsAndSyntaxErrorChangesNothing)
+{
+  auto v = sphereVolume(48, 16);
+  lvdif::EditSession s(v, cpuOptions());
+  const auto before = s.volume().clone();
+  EXPECT_THROW(s.runScript("sphere 24 24 24 5\nsphere 1 2"), lvdif::ScriptError); // arity: a syntax error
+  EXPECT_EQ(differences(s.volume(), *before), 0);
+  EXPECT_EQ(s.undoCount(), 0u);
+  try
+  {
+    s.runScript("sphere 24 24 34 5\nx = 1 / 0\nsphere 1 1 1 sqrt(-1)");
+  }
+  catch (const lvdif::ScriptError&)
+  {
+  }
+  EXPECT_EQ(s.undoCount(), 1u);
+  EXPECT_GT(differences(s.volume(), *before), 0);
+  EXPECT_TRUE(s.undo());
+  EXPECT_EQ(differences(s.volume(), *before), 0);
+}
+
+TEST(EditSession, ScriptCanvasReplacesTheVolumeAndKeepsTheScriptsBrush)
+{
+  lvdif::EditSession s(sphereVolume(32, 16), cpuOptions());
+  const int g = s.generation();
+  s.takeChangedMeshChunks();
+  s.runScript("canvas 40\nradius 5\nsphere 20 20 20 8");
+  EXPECT_NE(s.generation(), g);
+  EXPECT_EQ(s.volume().dims()[0], 40);
+  EXPECT_EQ(s.stroke().radius, 5);
+  EXPECT_LT(s.volume().sdf(20, 20, 20), 0.0f);
+  EXPECT_EQ(static_cast<std::int64_t>(s.takeChangedMeshChunks().size()), s.mesher().chunkCount());
+  s.waitMeshingIdle();
+  s.runScript("canvas clear");
+  EXPECT_GT(s.volume().sdf(20, 20, 20), 0.0f);
+  EXPECT_EQ(s.undoCount(), 0u); // a refill is not undoable: the history is gone
+}
+
+TEST(EditSession, RecordingPlaysBackBitExactInAnotherSession)
+{
+  auto start = sphereVolume(48, 16);
+  lvdif::EditSession a(start->clone(), cpuOptions());
+  a.startRecording();
+  const std::vector<Op> ops = randomOps(11, 15, 48);
+  for (const Op& op : ops)
+    apply(a, op);
+  a.runScript("op subtract\nsphere 10 30 20 4");
+  const lvdif::Recording r = a.stopRecording();
+  lvdif::EditSession b(start->clone(), cpuOptions());
+  b.play(r);
+  EXPECT_EQ(differences(a.volume(), b.volume()), 0);
+  // the player's edits are undoable like any other
+  EXPECT_GT(b.undoCount(), 0u);
+}
+
+TEST(EditSession, SetVolumeKeepsTheBrushAndClearsHistory)
+{
+  lvdif::EditSession s(sphereVolume(32, 16), cpuOptions());
+  s.stroke().radius = 7;
+  s.brush().color = lvdif::Rgba{ 1, 2, 3, 255 };
+  lvdif::Dab d;
+  d.center = { 16, 16, 26 };
+  d.radius = 4;
+  s.dab(d);
+  EXPECT_TRUE(s.canUndo());
+  s.setVolume(sphereVolume(48, 16));
+  EXPECT_FALSE(s.canUndo());
+  EXPECT_EQ(s.stroke().radius, 7);
+  EXPECT_EQ(s.brush().color.g, 2);
+  EXPECT_EQ(s.volume().dims()[0], 48);
+}
+
+TEST(EditSession, AutoWithoutAGpuRunsOnTheCpuWithOneNotice)
+{
+  if (lvdif::resolveDevice(lvdif::Device::Cuda) == lvdif::Device::Cuda)
+    GTEST_SKIP() << "a GPU is present";
+  lvdif::EditSessionOptions o;
+  o.device = lvdif::Device::Auto;
+  lvdif::EditSession s(sphereVolume(32, 16), o);
+  EXPECT_FALSE(s.onDevice());
+  EXPECT_NE(s.notice(), "");
+  lvdif::Dab d;
+  d.center = { 16, 16, 26 };
+  d.radius = 4;
+  EXPECT_GT(s.dab(d).changedVoxels, 0);
+}
+
+TEST(EditSession, MeshingOffStillReportsChangedMeshChunks)
+{
+  lvdif::EditSessionOptions o = cpuOptions();
+  o.meshing = false;
+  lvdif::EditSession s(sphereVolume(32, 16), o);
+  s.takeChangedMeshChunks();
+  lvdif::Dab d;
+  d.center = { 16, 16, 26 };
+  d.radius = 4;
+  s.dab(d);
+  EXPECT_FALSE(s.takeChangedMeshChunks().empty());
+  EXPECT_TRUE(s.collectMeshes().empty());
+  EXPECT_TRUE(s.meshingIdle());
+}
