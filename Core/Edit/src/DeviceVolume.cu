@@ -435,8 +435,7 @@ EditResult DeviceVolume::applyDabs(const std::vector<Dab>& dabs, const BrushSett
   DictionaryVolume& volume = this->Volume;
   // Flatten measures its plane and soft paint its colours on the host volume,
   // which is stale here until sync(): both stay on Brush.cu's round trip.
-  if (settings.op == BrushOp::Flatten ||
-    (settings.op == BrushOp::Paint && !(settings.strength == 1 && settings.falloff == Falloff::Constant)))
+  if (!appliesOnDevice(settings))
     throw Error(ErrorCode::Unsupported, "the device-resident volume applies add, subtract, hard paint, inflate and "
                                         "crease; use lvdif::applyDabs(Device::Cuda, ...) for flatten and soft paint");
   const detail::edit::DabPlan plan = detail::edit::planDabs(volume, dabs, settings);

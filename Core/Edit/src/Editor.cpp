@@ -31,10 +31,11 @@ EditResult Editor::applyNow(const std::vector<Dab>& dabs)
 {
   if (!this->Device)
     return lvdif::applyDabs(this->Volume, dabs, this->brush, &this->Undo);
-  if (this->brush.op == BrushOp::Smooth || this->brush.op == BrushOp::Grab)
+  if (!cuda::appliesOnDevice(this->brush))
   {
-    // these read neighbours and run on the CPU: on the synced host copy, and the
-    // changed storage chunks are handed to the device as part of its open step
+    // smooth and grab read neighbours, flatten and soft paint measure the host
+    // volume: they run on the CPU, on the synced host copy, and the changed
+    // storage chunks are handed to the device as part of its open step
     this->Device->sync();
     const EditResult r = lvdif::applyDabs(this->Volume, dabs, this->brush, nullptr);
     this->Device->adoptHostChunks(r.changedChunks);
