@@ -125,6 +125,39 @@ ln -s private.lvdv link.lvdv
 [ "$(stat -c %a old.ply)" = 640 ] || note "mesh save changed the mode to $(stat -c %a old.ply)"
 ls ./*.tmp-* >/dev/null 2>&1 && note "temporary files left: $(ls ./*.tmp-*)"
 
+# --- Ctrl-C inside one long statement and inside one long recorded edit
+interrupt() {
+  local name="$1"
+  shift
+  "$@" >"$name.out" 2>"$name.err" &
+  local pid=$! t0 t1 rc
+  sleep 2
+  kill -INT "$pid" 2>/dev/null
+  t0=$(date +%s.%N)
+  wait "$pid"
+  rc=$?
+  t1=$(date +%s.%N)
+  # 130: the CLI's "cancelled" status (an exit, not death by the signal)
+  [ "$rc" -eq 130 ] || note "$name: exit $rc after Ctrl-C, expected 130: $(tail -c 200 "$name.err")"
+  grep -q "cancelled" "$name.err" || note "$name: no 'cancelled' line"
+  awk "BEGIN { exit !($t1 - $t0 > 5) }" && note "$name: took $(echo "$t1 - $t0" | bc) s to stop"
+}
+printf 'canvas 256\nradius 40\nspacing 0.002\nline 20 128 128 230 128 128\n' >slow.lvs
+interrupt ctrlc-script "$exe" script slow.lvs
+python3 - <<'PY'
+import random
+random.seed(18)
+n = 200000
+with open("long.lvr", "w") as f:
+    f.write("LVDIF-RECORDING 1\nedit time=0 op=add shape=sphere kind=basic spacing=1.6 blend=1 "
+            f"coloroffset=1.5 color=9,9,9,255 dabs={n}\n")
+    for _ in range(n):
+        f.write(f"d {random.uniform(4, 44):.3f} {random.uniform(4, 44):.3f} {random.uniform(4, 44):.3f} 6\n")
+PY
+cp base.lvdv played.lvdv && cp played.lvdv played.copy
+interrupt ctrlc-play "$exe" play long.lvr --in played.lvdv --out played.lvdv
+same played.lvdv played.copy "cancelled play"
+
 if [ "$fails" -ne 0 ]; then
   echo "$fails hostile-input checks failed" >&2
   exit 1

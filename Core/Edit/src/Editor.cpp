@@ -131,8 +131,28 @@ EditResult Editor::applyChecked(const std::vector<Dab>& dabs)
   for (std::size_t i = 0; i < dabs.size(); ++i)
     validate(dabs[i], i);
   // Batches are bit-identical to one call (dabs apply per voxel in list order).
-  constexpr std::size_t Batch = 4096;
-  if (dabs.size() <= Batch)
+  // A batch ends after 4096 dabs or about 2^23 voxels of dab boxes, whichever
+  // comes first, so a cancel is seen within a fraction of a second even for
+  // large dabs (a radius-40 dab alone covers ~10^6 voxels).
+  constexpr std::size_t MaxBatch = 4096;
+  constexpr double MaxBatchVoxels = double(1 << 23);
+  const double reach = this->brush.op == BrushOp::Paint
+    ? 0.0
+    : std::max<double>(this->Volume.bandWidth(), this->brush.colorOffset) + this->brush.blend;
+  const double volumeVoxels =
+    double(this->Volume.dims()[0]) * double(this->Volume.dims()[1]) * double(this->Volume.dims()[2]);
+  auto batchEnd = [&](std::size_t at) {
+    double work = 0;
+    std::size_t end = at;
+    while (end < dabs.size() && end - at < MaxBatch && (end == at || work < MaxBatchVoxels))
+    {
+      const double side = 2 * (std::max(0.0, dabs[end].radius) + reach) + 1;
+      work += std::min(side * side * side, volumeVoxels);
+      ++end;
+    }
+    return end;
+  };
+  if (batchEnd(0) == dabs.size())
   {
     if (this->interrupter)
       this->interrupter->checkInterrupt();
@@ -141,12 +161,13 @@ EditResult Editor::applyChecked(const std::vector<Dab>& dabs)
     return r;
   }
   EditResult all;
-  for (std::size_t at = 0; at < dabs.size(); at += Batch)
+  for (std::size_t at = 0, end = 0; at < dabs.size(); at = end)
   {
+    end = batchEnd(at);
     if (this->interrupter)
       this->interrupter->checkInterrupt();
     const std::vector<Dab> part(dabs.begin() + static_cast<std::ptrdiff_t>(at),
-      dabs.begin() + static_cast<std::ptrdiff_t>(std::min(dabs.size(), at + Batch)));
+      dabs.begin() + static_cast<std::ptrdiff_t>(end));
     const EditResult r = this->applyNow(part);
     this->DabsApplied += part.size();
     this->touchStorageChunks(r.changedChunks); // a cancelled edit still reports what it changed

@@ -55,7 +55,8 @@ public:
   StrokeSettings stroke;
   /// Budgets of every edit (checked before the work; Error InvalidArgument).
   EditLimits limits;
-  /// Checked between batches of dabs inside long edits, strokes and playback
+  /// Checked between batches of dabs (at most 4096 dabs or ~2^23 voxels of their boxes)
+  /// inside long edits, strokes and playback
   /// (Error Cancelled; what was applied stays, as one undo step).
   Interrupter* interrupter = nullptr;
   /// Dabs applied by this editor so far (counts against limits.maxTotalDabs).
