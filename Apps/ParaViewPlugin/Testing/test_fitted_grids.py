@@ -114,9 +114,10 @@ for mesh_name, mesh, dims, band in generated_meshes() + file_meshes():
         ext = img_info.GetExtent()
         pts = [ext[2 * a + 1] - ext[2 * a] + 1 for a in range(3)]
         check(len(set(pts)) > 1, "%s: fitted grid %s is not cubic" % (name, "x".join(map(str, pts))))
-        spacing = servermanager.Fetch(sdf).GetSpacing()
-
-        oracle = pvs.Contour(Input=svf, ContourBy=["POINTS", "sdf"], Isosurfaces=[0.0], ComputeNormals=0,
+        # the filters pass the sparse volume; the oracle contours its explicit dense image
+        spacing = servermanager.Fetch(pvs.SparseVolumeToImage(Input=sdf)).GetSpacing()
+        dense = pvs.SparseVolumeToImage(Input=svf)
+        oracle = pvs.Contour(Input=dense, ContourBy=["POINTS", "sdf"], Isosurfaces=[0.0], ComputeNormals=0,
                              ComputeScalars=0, ComputeGradients=0)
         ref = servermanager.Fetch(oracle)
         b_mc, n_mc = open_edges(surface)
@@ -136,7 +137,7 @@ for mesh_name, mesh, dims, band in generated_meshes() + file_meshes():
         # the sdf ranges ParaView shows (the filters store them) are those of the values
         for p, what in ((sdf, "Mesh To SDF"), (svf, "Sign Voxel Filter")):
             shown = p.PointData["sdf"].GetRange()
-            vals = vtk_to_numpy(servermanager.Fetch(p).GetPointData().GetArray("sdf"))
+            vals = vtk_to_numpy(servermanager.Fetch(pvs.SparseVolumeToImage(Input=p)).GetPointData().GetArray("sdf"))
             check(shown == (float(vals.min()), float(vals.max())), "%s: %s's sdf range %s, values %s"
                   % (name, what, shown, (float(vals.min()), float(vals.max()))))
         # the surface lies on the mesh: bounds within one voxel of the input's
@@ -174,7 +175,7 @@ def repaired_range():
     bad_range = bad.PointData["sdf"].GetRange()  # ParaView computes and caches it on the input
     svf = pvs.SignVoxelFilter(Input=bad)
     shown = svf.PointData["sdf"].GetRange()
-    vals = vtk_to_numpy(servermanager.Fetch(svf).GetPointData().GetArray("sdf"))
+    vals = vtk_to_numpy(servermanager.Fetch(pvs.SparseVolumeToImage(Input=svf)).GetPointData().GetArray("sdf"))
     clean = sdf.PointData["sdf"].GetRange()
     check(bad_range != clean, "corruption changes the range: clean %s, corrupted %s" % (clean, bad_range))
     check(shown == (float(vals.min()), float(vals.max())) == clean,
