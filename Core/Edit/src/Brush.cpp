@@ -213,6 +213,30 @@ VoxelBox dabInfluenceBox(const DictionaryVolume& volume, const Dab& dab, const B
   return boxFor(volume, dab, reachOf(volume, settings));
 }
 
+void requireChunkVisitBudget(const DictionaryVolume& volume, const std::vector<Dab>& dabs, const BrushSettings& settings)
+{
+  const std::uint64_t maxVisits = EditLimits().maxChunkVisitsPerEdit;
+  const double edge = volume.chunkEdge();
+  const double reach = reachOf(volume, settings);
+  const std::vector<Dab> all = mirrorDabs(dabs, settings.symmetry);
+  double visits = 0;
+  for (const Dab& d : all)
+  {
+    if (!(d.radius > 0))
+      continue; // skipped by every brush
+    const VoxelBox b = boxFor(volume, d, reach);
+    if (b.empty())
+      continue;
+    double n = 1;
+    for (int a = 0; a < 3; ++a)
+      n *= std::floor(double(b.hi[a]) / edge) - std::floor(double(b.lo[a]) / edge) + 1;
+    visits += n;
+    if (visits > double(maxVisits))
+      throw Error(ErrorCode::InvalidArgument, "the edit's " + std::to_string(all.size()) +
+          " dabs would visit more than " + std::to_string(maxVisits) + " chunks (radius, blend or dab count too large)");
+  }
+}
+
 namespace
 {
 double trilinear(const DictionaryVolume& v, const float* table, double x, double y, double z)
@@ -342,11 +366,9 @@ detail::edit::DabPlan planGroups(DictionaryVolume& volume, const std::vector<Dab
     ctx.colorKey = volume.colors().add(settings.color);
   }
   // Budgets, counted before any chunk is visited or written: the chunk visits
-  // of all boxes, then the memory the edit may allocate (uniform chunks it
-  // expands, plus the undo snapshots of expanded ones).
-  const std::uint64_t maxVisits = EditLimits().maxChunkVisitsPerEdit;
-  const double edge = volume.chunkEdge();
-  double visits = 0;
+  // of all boxes, then (below) the memory the edit may allocate (uniform chunks
+  // it expands, plus the undo snapshots of expanded ones).
+  requireChunkVisitBudget(volume, dabs, settings);
   const std::vector<Dab> all = mirrorDabs(dabs, settings.symmetry);
   const std::size_t g = static_cast<std::size_t>(ctx.groupSize);
   for (std::size_t first = 0; first < all.size(); first += g)
@@ -368,22 +390,11 @@ detail::edit::DabPlan planGroups(DictionaryVolume& volume, const std::vector<Dab
     }
     for (std::size_t k = 0; k < g; ++k)
     {
-      const VoxelBox& b = boxes[k];
-      if (!b.empty())
-      {
-        double n = 1;
-        for (int a = 0; a < 3; ++a)
-          n *= std::floor(double(b.hi[a]) / edge) - std::floor(double(b.lo[a]) / edge) + 1;
-        visits += n;
-      }
-      if (visits > double(maxVisits))
-        throw Error(ErrorCode::InvalidArgument, "the edit's " + std::to_string(all.size()) +
-            " dabs would visit more than " + std::to_string(maxVisits) + " chunks (radius, blend or dab count too large)");
       Dab d = all[first + k];
       if (settings.op == BrushOp::Flatten)
         measurePlane(volume, d);
       plan.dabs.push_back(d);
-      plan.boxes.push_back(b);
+      plan.boxes.push_back(boxes[k]);
     }
   }
   std::vector<bool> seen(static_cast<std::size_t>(volume.chunkCount()), false);

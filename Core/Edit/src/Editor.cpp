@@ -130,6 +130,8 @@ EditResult Editor::applyChecked(const std::vector<Dab>& dabs)
         std::to_string(this->limits.maxTotalDabs) + " dabs in all (the editor's limit)");
   for (std::size_t i = 0; i < dabs.size(); ++i)
     validate(dabs[i], i);
+  // the chunk-visit budget holds for the whole edit, not per batch
+  requireChunkVisitBudget(this->Volume, dabs, this->brush);
   // Batches are bit-identical to one call (dabs apply per voxel in list order).
   // A batch ends after 4096 dabs or about 2^23 voxels of dab boxes, whichever
   // comes first, so a cancel is seen within a fraction of a second even for

@@ -262,6 +262,12 @@ LVDIF_HD double smoothMin(double a, double b, double k)
 /// plus the colour skin and the blend radius.
 VoxelBox dabInfluenceBox(const DictionaryVolume& volume, const Dab& dab, const BrushSettings& settings);
 
+/// Throws Error(InvalidArgument) when the dabs (with their mirror images) would visit
+/// more chunks in all than EditLimits::maxChunkVisitsPerEdit. Every apply call checks
+/// it before writing; an editor that applies a long edit in batches checks the whole
+/// edit once, so batching cannot lift the budget.
+void requireChunkVisitBudget(const DictionaryVolume& volume, const std::vector<Dab>& dabs, const BrushSettings& settings);
+
 /// Told before the first write into a chunk during one apply call (from the thread that
 /// owns the chunk; different chunks may call concurrently). The undo stack uses it to
 /// snapshot the chunk (copy-on-write).
