@@ -372,6 +372,58 @@ std::shared_ptr<std::uint8_t> allocatePageLocked(std::size_t bytes)
 
 namespace
 {
+// The vertices and triangles of a classified batch of n chunks, into `o` (on stream cs).
+void generateBatch(MarchingCubesCudaState& S, const Out& o, int n, long long maxP, long long maxC, cudaStream_t cs)
+{
+  detail::mc_cuda::generateVertices<<<dim3(blocks(maxP), n), 256, 0, cs>>>(S.boxes.p, S.pBase.p, S.masks.p, S.vfirst.p, o);
+  LVDIF_CUDA_CHECK(cudaGetLastError());
+  detail::mc_cuda::generateTriangles<<<dim3(blocks(maxC), n), 256, 0, cs>>>(
+    S.boxes.p, S.pBase.p, S.cBase.p, S.vBase.p, S.cases.p, S.tfirst.p, S.masks.p, S.vfirst.p, S.tris.p, o);
+  LVDIF_CUDA_CHECK(cudaGetLastError());
+}
+
+// Queues the copies of a generated batch into the host storage at vertex V and triangle T.
+void copyBatchToHost(PackedChunkMeshes::Storage& st, const Out& o, std::uint64_t V, std::uint64_t T, std::uint64_t NV,
+  std::uint64_t NT, bool normals, bool colors, bool cells, bool keys, cudaStream_t stream)
+{
+  auto get = [&](void* dst, const void* src, std::size_t bytes) {
+    LVDIF_CUDA_CHECK(cudaMemcpyAsync(dst, src, bytes, cudaMemcpyDeviceToHost, stream));
+  };
+  get(st.points + V, o.points, NV * sizeof(Vec3f));
+  get(st.edgeIds + V, o.edgeIds, NV * sizeof(std::uint64_t));
+  if (normals) get(st.normals + V, o.normals, NV * sizeof(Vec3f));
+  if (colors) get(st.colors + V, o.colors, NV * sizeof(Rgba));
+  get(st.tris + T, o.tris, NT * 3 * sizeof(unsigned int));
+  if (cells) get(st.cells + T, o.cells, NT * sizeof(long long));
+  if (keys) get(st.keys + T, o.keys, NT * 8 * sizeof(ColorKey));
+}
+
+// Closes the ranges of the N packed chunks (V vertices, T triangles in all) and
+// drops the chunks without triangles (their ranges are empty).
+void finishPacked(PackedChunkMeshes& out, std::size_t N, std::uint64_t V, std::uint64_t T)
+{
+  out.vertexStart[N] = V;
+  out.triangleStart[N] = T;
+  std::size_t k = 0;
+  for (std::size_t i = 0; i < N; ++i)
+  {
+    if (out.triangleStart[i + 1] == out.triangleStart[i]) continue;
+    out.chunkIds[k] = out.chunkIds[i];
+    out.chunkCoords[k] = out.chunkCoords[i];
+    out.chunkCells[k] = out.chunkCells[i];
+    out.vertexStart[k] = out.vertexStart[i];
+    out.triangleStart[k] = out.triangleStart[i];
+    ++k;
+  }
+  out.chunkIds.resize(k);
+  out.chunkCoords.resize(k);
+  out.chunkCells.resize(k);
+  out.vertexStart[k] = V;
+  out.triangleStart[k] = T;
+  out.vertexStart.resize(k + 1);
+  out.triangleStart.resize(k + 1);
+}
+
 /// The streamed pipeline (S.lock held). Per batch: upload its boxes, classify,
 /// scan and read back the per-chunk bases (the one synchronization: the host
 /// needs the batch's sizes), then generate into output set `slot` on the
@@ -476,23 +528,11 @@ void packLocked(const ChunkedMarchingCubes::Impl& impl, MarchingCubesCudaState& 
       if (S.copyPending[slot]) LVDIF_CUDA_CHECK(cudaEventSynchronize(S.copied[slot]));
       S.copyPending[slot] = false;
       const Out o = S.out[slot].reserve(NV, NT, normals, colors, cells, false);
-      detail::mc_cuda::generateVertices<<<dim3(blocks(maxP), n), 256, 0, cs>>>(S.boxes.p, S.pBase.p, S.masks.p, S.vfirst.p, o);
-      LVDIF_CUDA_CHECK(cudaGetLastError());
-      detail::mc_cuda::generateTriangles<<<dim3(blocks(maxC), n), 256, 0, cs>>>(
-        S.boxes.p, S.pBase.p, S.cBase.p, S.vBase.p, S.cases.p, S.tfirst.p, S.masks.p, S.vfirst.p, S.tris.p, o);
-      LVDIF_CUDA_CHECK(cudaGetLastError());
+      generateBatch(S, o, n, maxP, maxC, cs);
       LVDIF_CUDA_CHECK(cudaEventRecord(S.generated[slot], cs));
       cudaStream_t cp = S.copy;
       LVDIF_CUDA_CHECK(cudaStreamWaitEvent(cp, S.generated[slot], 0));
-      auto get = [&](void* dst, const void* src, std::size_t bytes) {
-        LVDIF_CUDA_CHECK(cudaMemcpyAsync(dst, src, bytes, cudaMemcpyDeviceToHost, cp));
-      };
-      get(st.points + V, o.points, NV * sizeof(Vec3f));
-      get(st.edgeIds + V, o.edgeIds, NV * sizeof(std::uint64_t));
-      if (normals) get(st.normals + V, o.normals, NV * sizeof(Vec3f));
-      if (colors) get(st.colors + V, o.colors, NV * sizeof(Rgba));
-      get(st.tris + T, o.tris, NT * 3 * sizeof(unsigned int));
-      if (cells) get(st.cells + T, o.cells, NT * sizeof(long long));
+      copyBatchToHost(st, o, V, T, NV, NT, normals, colors, cells, false, cp);
       LVDIF_CUDA_CHECK(cudaEventRecord(S.copied[slot], cp));
       S.copyPending[slot] = true;
       slot ^= 1;
@@ -504,27 +544,7 @@ void packLocked(const ChunkedMarchingCubes::Impl& impl, MarchingCubesCudaState& 
   }
   LVDIF_CUDA_CHECK(cudaStreamSynchronize(S.copy));
   S.copyPending[0] = S.copyPending[1] = false;
-  out.vertexStart[N] = V;
-  out.triangleStart[N] = T;
-  // drop the chunks without triangles (their ranges are empty)
-  std::size_t k = 0;
-  for (std::size_t i = 0; i < N; ++i)
-  {
-    if (out.triangleStart[i + 1] == out.triangleStart[i]) continue;
-    out.chunkIds[k] = out.chunkIds[i];
-    out.chunkCoords[k] = out.chunkCoords[i];
-    out.chunkCells[k] = out.chunkCells[i];
-    out.vertexStart[k] = out.vertexStart[i];
-    out.triangleStart[k] = out.triangleStart[i];
-    ++k;
-  }
-  out.chunkIds.resize(k);
-  out.chunkCoords.resize(k);
-  out.chunkCells.resize(k);
-  out.vertexStart[k] = V;
-  out.triangleStart[k] = T;
-  out.vertexStart.resize(k + 1);
-  out.triangleStart.resize(k + 1);
+  finishPacked(out, N, V, T);
 }
 } // namespace
 
@@ -680,48 +700,15 @@ void packFromDeviceLocked(const ChunkedMarchingCubes::Impl& impl, MarchingCubesC
       S.copyPending[0] = false;
       S.out[0].reserve(slack(NV), slack(NT), normals, colors, cells, keys);
       const Out o = S.out[0].reserve(NV, NT, normals, colors, cells, keys);
-      detail::mc_cuda::generateVertices<<<dim3(blocks(maxP), n), 256, 0, cs>>>(S.boxes.p, S.pBase.p, S.masks.p, S.vfirst.p, o);
-      LVDIF_CUDA_CHECK(cudaGetLastError());
-      detail::mc_cuda::generateTriangles<<<dim3(blocks(maxC), n), 256, 0, cs>>>(
-        S.boxes.p, S.pBase.p, S.cBase.p, S.vBase.p, S.cases.p, S.tfirst.p, S.masks.p, S.vfirst.p, S.tris.p, o);
-      LVDIF_CUDA_CHECK(cudaGetLastError());
-      auto get = [&](void* dst, const void* src, std::size_t bytes) {
-        LVDIF_CUDA_CHECK(cudaMemcpyAsync(dst, src, bytes, cudaMemcpyDeviceToHost, cs));
-      };
-      get(st.points + V, o.points, NV * sizeof(Vec3f));
-      get(st.edgeIds + V, o.edgeIds, NV * sizeof(std::uint64_t));
-      if (normals) get(st.normals + V, o.normals, NV * sizeof(Vec3f));
-      if (colors) get(st.colors + V, o.colors, NV * sizeof(Rgba));
-      get(st.tris + T, o.tris, NT * 3 * sizeof(unsigned int));
-      if (cells) get(st.cells + T, o.cells, NT * sizeof(long long));
-      if (keys) get(st.keys + T, o.keys, NT * 8 * sizeof(ColorKey));
+      generateBatch(S, o, n, maxP, maxC, cs);
+      copyBatchToHost(st, o, V, T, NV, NT, normals, colors, cells, keys, cs);
       LVDIF_CUDA_CHECK(cudaStreamSynchronize(cs));
     }
     V += NV;
     T += NT;
     first = last;
   }
-  out.vertexStart[N] = V;
-  out.triangleStart[N] = T;
-  // drop the chunks without triangles (their ranges are empty)
-  std::size_t k = 0;
-  for (std::size_t i = 0; i < N; ++i)
-  {
-    if (out.triangleStart[i + 1] == out.triangleStart[i]) continue;
-    out.chunkIds[k] = out.chunkIds[i];
-    out.chunkCoords[k] = out.chunkCoords[i];
-    out.chunkCells[k] = out.chunkCells[i];
-    out.vertexStart[k] = out.vertexStart[i];
-    out.triangleStart[k] = out.triangleStart[i];
-    ++k;
-  }
-  out.chunkIds.resize(k);
-  out.chunkCoords.resize(k);
-  out.chunkCells.resize(k);
-  out.vertexStart[k] = V;
-  out.triangleStart[k] = T;
-  out.vertexStart.resize(k + 1);
-  out.triangleStart.resize(k + 1);
+  finishPacked(out, N, V, T);
 }
 } // namespace
 
