@@ -221,11 +221,11 @@ EditResult EditSession::endStroke()
   return r;
 }
 
-std::size_t EditSession::pump(InputDevice& device, std::size_t maxSamples, int timeoutMs)
+std::size_t EditSession::pump(InputDevice& device, std::size_t maxSamples, int timeoutMs, int maxMillis)
 {
   auto lock = this->lockSource();
   const std::uint64_t before = this->Ed->undoCount();
-  const std::size_t n = this->Ed->pump(device, maxSamples, timeoutMs);
+  const std::size_t n = this->Ed->pump(device, maxSamples, timeoutMs, maxMillis);
   // several calls' writes: the touched storage chunks name them all
   this->afterEdit(EditResult(), n > 0 || this->Ed->undoCount() != before);
   return n;

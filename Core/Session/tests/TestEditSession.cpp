@@ -4,6 +4,7 @@
 #include "SessionTestUtil.h"
 
 #include "lvdif/Error.h"
+#include "lvdif/InputDevice.h"
 
 #include <gtest/gtest.h>
 
@@ -227,4 +228,24 @@ TEST(EditSession, MeshingOffStillReportsChangedMeshChunks)
   EXPECT_FALSE(s.takeChangedMeshChunks().empty());
   EXPECT_TRUE(s.collectMeshes().empty());
   EXPECT_TRUE(s.meshingIdle());
+}
+
+TEST(EditSession, PumpStopsAtItsTimeBudget)
+{
+  // every sample is a slow drill dab; a budget of 0 ms stops after the first
+  auto v = sphereVolume(64, 16);
+  lvdif::EditSession s(v, cpuOptions());
+  s.stroke().kind = lvdif::BrushKind::Drill;
+  std::uint64_t produced = 0;
+  lvdif::ScriptDevice dev([&](std::uint64_t i, lvdif::BrushSample& b) {
+    produced = i + 1;
+    b.position = { 10.0 + 0.5 * double(i % 80), 32, 32 };
+    b.buttons = 1;
+    return i < 500;
+  });
+  EXPECT_EQ(s.pump(dev, 1000, 0, 0), 1u);
+  EXPECT_EQ(produced, 1u);
+  // without a budget the same call takes everything up to maxSamples
+  EXPECT_EQ(s.pump(dev, 100, 0), 100u);
+  EXPECT_EQ(produced, 101u);
 }

@@ -122,7 +122,9 @@ public:
   EditResult addSample(const BrushSample& s);
   EditResult endStroke();
   bool strokeOpen() const { return this->Ed->strokeOpen(); }
-  std::size_t pump(InputDevice& device, std::size_t maxSamples = 1024, int timeoutMs = 0);
+  /// Editor::pump under the session's lock; an interactive front end passes its
+  /// frame budget as maxMillis so a flooding device cannot hold the frame.
+  std::size_t pump(InputDevice& device, std::size_t maxSamples = 1024, int timeoutMs = 0, int maxMillis = -1);
 
   bool undo();
   bool redo();
