@@ -60,7 +60,7 @@ public:
   static QVTKOpenGLNativeWidget* view(MainWindow& window);
 
 private:
-  void answerOpenDialog();
+  void answerShownSaveDialog();
 
   MainWindow& Window;
   const EditorOptions& Options;

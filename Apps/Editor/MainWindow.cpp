@@ -241,7 +241,7 @@ bool MainWindow::beginStroke()
   return this->Painting;
 }
 
-void MainWindow::addBrushSample(const double sample[4])
+void MainWindow::addBrushSample(const double* sample)
 {
   if (!this->Painting)
     return;

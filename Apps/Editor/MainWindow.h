@@ -79,6 +79,7 @@ public:
   /// Offers to recover an autosaved volume if one exists; true if recovered.
   bool offerRecovery();
 
+public slots:
   // ---- brush input --------------------------------------------------------
   // The view's brush widget calls these for a left-drag on the surface; any
   // other source of 3D samples (a recorded stroke: --benchmark-stroke) drives
@@ -86,9 +87,10 @@ public:
   // the view's interactor saw them at the start.
   /// Starts a stroke; false if none could start (no volume, or an error shown).
   bool beginStroke();
-  /// One sample: world x, y, z and the brush radius in world units. Applies it
-  /// and shows what the meshing finishes within a few ms (never waits longer).
-  void addBrushSample(const double sample[4]);
+  /// One sample, double[4]: world x, y, z and the brush radius in world units.
+  /// Applies it and shows what the meshing finishes within a few ms (never
+  /// waits longer).
+  void addBrushSample(const double* sample);
   void endStroke();
 
   // ---- the view -------------------------------------------------------------
