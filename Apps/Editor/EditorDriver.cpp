@@ -22,7 +22,6 @@
 #include <cctype>
 #include <cmath>
 #include <cstdio>
-#include <cstdlib>
 
 EditorDriver::EditorDriver(MainWindow& window, const EditorOptions& options, QElapsedTimer sinceWindow)
   : Window(window)
@@ -74,7 +73,7 @@ void EditorDriver::waitForSurface()
     this->Window.document().waitMeshingIdle();
   this->Window.showFinishedMeshes();
   view(this->Window)->renderWindow()->Render();
-  if (std::getenv("LVDIF_EDITOR_TIMING"))
+  if (this->Options.timing)
     std::fprintf(stderr, "lvdif-editor: every chunk meshed and shown %lld ms after the window was made\n",
       static_cast<long long>(this->SinceWindow.elapsed()));
 }

@@ -24,7 +24,7 @@ class EditorDriver : public QObject
 {
   Q_OBJECT
 public:
-  /// `sinceWindow` was started when the window was made (LVDIF_EDITOR_TIMING).
+  /// `sinceWindow` was started when the window was made (--timing).
   EditorDriver(MainWindow& window, const EditorOptions& options, QElapsedTimer sinceWindow);
 
   /// The work of the command line (script, keys, drag, keys after, undo, then

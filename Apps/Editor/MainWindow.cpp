@@ -366,7 +366,7 @@ void MainWindow::showFinishedMeshes()
   {
     this->resetView();
     this->ViewInitialized = true;
-    if (std::getenv("LVDIF_EDITOR_TIMING"))
+    if (this->Options.timing)
       std::fprintf(stderr, "lvdif-editor: first surface shown %lld ms after the window was made\n",
         static_cast<long long>(this->Clock.elapsed()));
   }
