@@ -57,9 +57,11 @@ EditorOptions parseEditorOptions(const QStringList& arguments)
   const QCommandLineOption perVertex("per-vertex-color", "Per-vertex colours instead of tetrahedral interpolation.");
   const QCommandLineOption benchmark("benchmark-stroke",
     "Replay a recorded stroke (JSON-lines samples or .lvr) at its speed, print the latency and FPS, quit.", "file");
+  const QCommandLineOption timing("timing",
+    "Print (stderr) when the first surface was shown and when every chunk was meshed and shown, in ms after the window was made.");
   p.addOptions({ open, openMesh, meshRes, meshSign, create, fill, script, drag, undo, shot, save, exp, op, shape, kind, radius, color, size, quit,
     noRecovery, recoveryDir, autosave, perVertex, benchmark, strength, falloff, mirror, keys, keysAfter, dragMods,
-    saveAsAnswer, windowShot, dragShot });
+    saveAsAnswer, windowShot, dragShot, timing });
   p.process(arguments);
 
   EditorOptions o;
@@ -152,5 +154,6 @@ EditorOptions parseEditorOptions(const QStringList& arguments)
   o.autosaveSeconds = p.value(autosave).toInt();
   o.perVertexColor = p.isSet(perVertex);
   o.benchmarkStroke = p.value(benchmark);
+  o.timing = p.isSet(timing);
   return o;
 }

@@ -1,9 +1,6 @@
 #include "MainWindow.h"
 
-#include "StrokeBenchmark.h"
-
 #include <QThread>
-
 
 #include "lvdif/Error.h"
 #include "lvdif/Recording.h"
@@ -76,9 +73,9 @@ MainWindow::MainWindow(const EditorOptions& options)
     cb->SetClientDataDeleteCallback([](void* cd) { delete static_cast<std::function<void(void*)>*>(cd); });
     this->Brush->AddObserver(event, cb);
   };
-  observe(vtkBrushWidget::BrushSampleEvent, [this](void* d) { this->onBrushSample(static_cast<double*>(d)); });
-  observe(vtkCommand::StartInteractionEvent, [this](void*) { this->onStrokeStart(); });
-  observe(vtkCommand::EndInteractionEvent, [this](void*) { this->onStrokeEnd(); });
+  observe(vtkBrushWidget::BrushSampleEvent, [this](void* d) { this->addBrushSample(static_cast<double*>(d)); });
+  observe(vtkCommand::StartInteractionEvent, [this](void*) { this->beginStroke(); });
+  observe(vtkCommand::EndInteractionEvent, [this](void*) { this->endStroke(); });
   observe(vtkCommand::InteractionEvent, [this](void*) { this->onGrabMove(); });
   observe(vtkBrushWidget::RadiusChangedEvent, [this](void* d) {
     const double world = *static_cast<double*>(d);
@@ -127,7 +124,7 @@ MainWindow::MainWindow(const EditorOptions& options)
 
   // Finished chunk meshes are picked up ~60 times a second; the view never waits for them.
   this->MeshTimer = new QTimer(this);
-  connect(this->MeshTimer, &QTimer::timeout, this, &MainWindow::pollMeshes);
+  connect(this->MeshTimer, &QTimer::timeout, this, &MainWindow::showFinishedMeshes);
   this->MeshTimer->start(15);
   this->AutosaveTimer = new QTimer(this);
   connect(this->AutosaveTimer, &QTimer::timeout, this, &MainWindow::autosave);
@@ -218,10 +215,10 @@ void MainWindow::applyBrushState()
   this->BrushRep->GetCursorProperty()->SetColor(s.color.redF(), s.color.greenF(), s.color.blueF());
 }
 
-void MainWindow::onStrokeStart()
+bool MainWindow::beginStroke()
 {
   if (!this->Doc.hasVolume())
-    return;
+    return false;
   this->applyBrushState();
   // Ctrl inverts, Shift smooths (effectiveOp), for this stroke only
   const int op = this->effectiveOp();
@@ -241,9 +238,10 @@ void MainWindow::onStrokeStart()
   {
     this->showError("Cannot start the stroke", e);
   }
+  return this->Painting;
 }
 
-void MainWindow::onBrushSample(const double* sample)
+void MainWindow::addBrushSample(const double* sample)
 {
   if (!this->Painting)
     return;
@@ -257,7 +255,7 @@ void MainWindow::onBrushSample(const double* sample)
     this->GrabDepth = this->Renderer->GetDisplayPoint()[2];
     this->PreviewPoints.push_back({ sample[0], sample[1], sample[2] });
   }
-  else if (this->Tools->state().kind == 2 && !this->Bench)
+  else if (this->Tools->state().kind == 2)
     this->updatePreview(sample);
   const auto& o = this->Doc.volume().options();
   lvdif::BrushSample s;
@@ -285,8 +283,6 @@ void MainWindow::onBrushSample(const double* sample)
     this->showError("The brush failed", e);
     return;
   }
-  if (this->Bench)
-    this->Bench->sampleApplied();
   this->LastEdit = QDateTime::currentDateTime();
   this->settleMeshes();
 }
@@ -301,8 +297,8 @@ void MainWindow::onGrabMove()
   this->Renderer->DisplayToWorld();
   const double* w = this->Renderer->GetWorldPoint();
   const double p[4] = { w[0] / w[3], w[1] / w[3], w[2] / w[3], 0 };
-  this->Grabbing = false; // let onBrushSample take this one
-  this->onBrushSample(p);
+  this->Grabbing = false; // let addBrushSample take this one
+  this->addBrushSample(p);
   this->Grabbing = true;
 }
 
@@ -319,10 +315,10 @@ void MainWindow::settleMeshes()
   {
     QThread::usleep(250);
   }
-  this->pollMeshes();
+  this->showFinishedMeshes();
 }
 
-void MainWindow::onStrokeEnd()
+void MainWindow::endStroke()
 {
   if (!this->Painting)
     return;
@@ -341,15 +337,18 @@ void MainWindow::onStrokeEnd()
   this->updateTitle();
 }
 
-void MainWindow::pollMeshes()
+void MainWindow::showFinishedMeshes()
 {
   if (!this->Doc.hasVolume())
     return;
-  std::vector<StrokeBenchmark::TimePoint> gathered;
-  std::vector<lvdif::ChunkMesh> meshes = this->Doc.collectMeshes(this->Bench ? &gathered : nullptr);
+  ShownMeshes shown;
+  std::vector<lvdif::ChunkMesh> meshes = this->Doc.collectMeshes(&shown.gatheredAt);
   if (meshes.empty())
     return;
-  const auto installStart = std::chrono::steady_clock::now();
+  shown.chunks.reserve(meshes.size());
+  for (const lvdif::ChunkMesh& mesh : meshes)
+    shown.chunks.push_back(mesh.chunkId);
+  shown.installStart = std::chrono::steady_clock::now();
   const auto& d = this->Doc.volume().dims();
   // In completion order; a later mesh of a chunk supersedes an earlier one.
   std::map<std::int64_t, const lvdif::ChunkMesh*> newest;
@@ -367,7 +366,7 @@ void MainWindow::pollMeshes()
   {
     this->resetView();
     this->ViewInitialized = true;
-    if (std::getenv("LVDIF_EDITOR_TIMING"))
+    if (this->Options.timing)
       std::fprintf(stderr, "lvdif-editor: first surface shown %lld ms after the window was made\n",
         static_cast<long long>(this->Clock.elapsed()));
   }
@@ -375,22 +374,8 @@ void MainWindow::pollMeshes()
                           .arg(this->Chunks->GetNumberOfChunks())
                           .arg(this->Chunks->GetNumberOfTriangles()));
   this->RenderWindow->Render();
-  if (this->Bench)
-  {
-    this->RenderWindow->WaitForCompletion(); // the frame is drawn, not just queued
-    this->Bench->frameRendered(meshes, gathered, installStart, std::chrono::steady_clock::now());
-  }
+  emit this->meshesShown(shown);
   this->View->update();
-}
-
-void MainWindow::finishMeshing()
-{
-  this->Doc.waitMeshingIdle();
-  this->pollMeshes();
-  this->RenderWindow->Render();
-  if (std::getenv("LVDIF_EDITOR_TIMING"))
-    std::fprintf(stderr, "lvdif-editor: every chunk meshed and shown %lld ms after the window was made\n",
-      static_cast<long long>(this->Clock.elapsed()));
 }
 
 void MainWindow::resetView()

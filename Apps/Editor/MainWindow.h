@@ -12,6 +12,8 @@
 #include <QMainWindow>
 
 #include <array>
+#include <chrono>
+#include <cstdint>
 #include <vector>
 
 #include "vtkNew.h"
@@ -20,7 +22,6 @@
 class QAction;
 class QActionGroup;
 class QMenu;
-class StrokeBenchmark;
 class vtkActor;
 class QLabel;
 class QTimer;
@@ -31,6 +32,19 @@ class vtkChunkActorManager;
 class vtkGenericOpenGLRenderWindow;
 class vtkRenderer;
 
+/// What one frame that showed newly finished chunk meshes installed (the
+/// meshesShown signal): the chunks in the order their meshes were collected (a
+/// chunk may come twice, the later mesh shown), when each mesh's input was read
+/// (it shows every edit made before that time and none after;
+/// lvdif::EditSession::collectMeshes), and when the install began.
+struct ShownMeshes
+{
+  using TimePoint = std::chrono::steady_clock::time_point;
+  std::vector<std::int64_t> chunks;
+  std::vector<TimePoint> gatheredAt;
+  TimePoint installStart;
+};
+
 class MainWindow : public QMainWindow
 {
   Q_OBJECT
@@ -40,42 +54,54 @@ public:
 
   VolumeDocument& document() { return this->Doc; }
 
-  // ---- the command-line / test entry points ------------------------------
+  // ---- file and edit operations: the menus call these, so does the command line
   bool newCanvas(int nx, int ny, int nz, VolumeDocument::Fill fill);
   bool openVolume(const QString& path);
   /// Converts a mesh file to a volume (vtkMeshToSDF on a worker thread, with a
   /// progress dialog and Cancel); false on error or cancel.
   bool openMesh(const QString& path, const MeshImportSettings& settings);
   bool saveVolume(const QString& path);
+  /// Waits for every requested chunk mesh, then writes the merged surface.
   bool exportMesh(const QString& path);
+  /// The view as a PNG (the frame shown now: chunks still being meshed are missing).
   bool saveScreenshot(const QString& path);
   /// The whole window as a PNG (the user guide's pictures).
   bool saveWindowShot(const QString& path);
   bool playRecording(const QString& path);
   /// Runs a script (.lvs) or plays a recording (.lvr; .lvrec is accepted too), by extension.
   bool runScript(const QString& path);
-  /// A left-drag through display points (VTK display coordinates, origin
-  /// bottom-left) sent as interactor events, as a user's mouse would.
-  void replayDrag(const QVector<QPointF>& points, bool ctrl = false, bool shift = false);
-  /// Types key combinations ("G ] Ctrl+Z", QKeySequence's portable text, one per
-  /// word) into the window through Qt's shortcut system, as a user's keyboard
-  /// would (tests); false if a word is not a key.
-  bool typeKeys(const QString& keys);
   /// The shortcut table of Help > Keyboard shortcuts (HTML).
   QString shortcutHelp() const;
-  /// Blocks until every requested chunk is meshed and shown (tests only: the
-  /// interactive view never waits).
-  void finishMeshing();
   void undo();
   void redo();
   /// The recovery file (autosave target).
   QString recoveryPath() const;
   /// Offers to recover an autosaved volume if one exists; true if recovered.
   bool offerRecovery();
-  /// --benchmark-stroke: replays the samples of `path` at their recorded times
-  /// through the UI, prints the latency and quits (StrokeBenchmark.h); false
-  /// (with a message) if the file cannot be read.
-  bool startStrokeBenchmark(const QString& path);
+
+public slots:
+  // ---- brush input --------------------------------------------------------
+  // The view's brush widget calls these for a left-drag on the surface; any
+  // other source of 3D samples (a recorded stroke: --benchmark-stroke) drives
+  // the window the same way. The tool is the tool panel's, with Ctrl/Shift as
+  // the view's interactor saw them at the start.
+  /// Starts a stroke; false if none could start (no volume, or an error shown).
+  bool beginStroke();
+  /// One sample, double[4]: world x, y, z and the brush radius in world units.
+  /// Applies it and shows what the meshing finishes within a few ms (never
+  /// waits longer).
+  void addBrushSample(const double* sample);
+  void endStroke();
+
+  // ---- the view -------------------------------------------------------------
+  /// Installs the chunk meshes finished since the last call as actors and
+  /// renders (the 15 ms mesh timer calls it); never waits for the meshing.
+  void showFinishedMeshes();
+
+signals:
+  /// After the render of a frame that installed newly finished chunk meshes
+  /// (before Qt composes the widget): for latency measurements (--benchmark-stroke).
+  void meshesShown(const ShownMeshes& shown);
 
 protected:
   void closeEvent(QCloseEvent* event) override;
@@ -109,7 +135,6 @@ private:
   bool keyFilter(QEvent* event);
   void onGrabMove();
   void applyBrushState();
-  void pollMeshes();
   /// After a brush sample: waits a few ms for its chunks, then installs them.
   void settleMeshes();
   void autosave();
@@ -117,9 +142,6 @@ private:
   void volumeReplaced();
   void updateTitle();
   bool maybeSave();
-  void onBrushSample(const double* sample);
-  void onStrokeStart();
-  void onStrokeEnd();
   void newDialog();
   void openDialog();
   void openMeshDialog();
@@ -148,7 +170,6 @@ private:
   bool ViewInitialized = false;
   bool Painting = false;
   double Pressure = -1; // last tablet pressure in [0, 1]; -1: no tablet in use
-  StrokeBenchmark* Bench = nullptr; // set while --benchmark-stroke runs
   QActionGroup* ToolActions = nullptr;
   std::vector<QAction*> ShortcutActions;
   QAction* OrthoAction = nullptr;
@@ -161,5 +182,4 @@ private:
   int CursorOp = -1;
   bool Grabbing = false;    // a Grab stroke: samples on the view plane through its start
   double GrabDepth = 0;     // display depth of the grab's start point
-  friend class StrokeBenchmark;
 };

@@ -86,9 +86,8 @@ void MainWindow::openMeshDialog()
 
 bool MainWindow::saveAsDialog()
 {
-  QString path = !this->Options.saveAsAnswer.isEmpty()
-    ? this->Options.saveAsAnswer
-    : QFileDialog::getSaveFileName(this, "Save volume", this->Doc.path(), dialogFilter(LVDIFFiles::Kind::Volume, true));
+  QString path =
+    QFileDialog::getSaveFileName(this, "Save volume", this->Doc.path(), dialogFilter(LVDIFFiles::Kind::Volume, true));
   if (path.isEmpty())
     return false;
   if (QFileInfo(path).suffix().isEmpty())
@@ -108,7 +107,8 @@ bool MainWindow::exportMesh(const QString& path)
 {
   try
   {
-    this->finishMeshing();
+    this->Doc.waitMeshingIdle(); // every chunk, not only those shown so far
+    this->showFinishedMeshes();
     // The chunk meshes repeat their boundary vertices bit-identically: merge them.
     vtkNew<vtkCleanPolyData> clean;
     clean->SetInputData(this->Chunks->GetMergedMesh());

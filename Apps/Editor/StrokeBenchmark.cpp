@@ -1,6 +1,9 @@
 #include "StrokeBenchmark.h"
 
+#include "EditorDriver.h"
 #include "MainWindow.h"
+
+#include "vtkGenericOpenGLRenderWindow.h"
 
 #include "lvdif/Error.h"
 #include "lvdif/InputDevice.h"
@@ -9,6 +12,7 @@
 #include <QApplication>
 #include <QFileInfo>
 #include <QTimer>
+#include <QVTKOpenGLNativeWidget.h>
 
 #include <algorithm>
 #include <cmath>
@@ -94,11 +98,10 @@ StrokeBenchmark::StrokeBenchmark(MainWindow& window, std::vector<lvdif::BrushSam
 
 void StrokeBenchmark::start()
 {
-  this->Window.Bench = this;
+  connect(&this->Window, &MainWindow::meshesShown, this, &StrokeBenchmark::frameRendered);
   this->Start = std::chrono::steady_clock::now();
   this->LastFrame = this->Start;
-  this->Window.onStrokeStart();
-  if (!this->Window.Painting)
+  if (!this->Window.beginStroke())
   {
     std::printf("benchmark-stroke: the stroke could not start (no volume?)\n");
     QApplication::exit(1);
@@ -115,34 +118,21 @@ void StrokeBenchmark::start()
   }
 }
 
-bool MainWindow::startStrokeBenchmark(const QString& path)
-{
-  try
-  {
-    auto* bench = new StrokeBenchmark(*this, StrokeBenchmark::loadSamples(path), QFileInfo(path).fileName());
-    bench->start();
-    return true;
-  }
-  catch (const std::exception& e)
-  {
-    std::fprintf(stderr, "benchmark-stroke: %s\n", e.what());
-    return false;
-  }
-}
-
 void StrokeBenchmark::deliver(std::size_t i)
 {
-  const auto& o = this->Window.Doc.volume().options();
+  VolumeDocument& doc = this->Window.document();
+  const auto& o = doc.volume().options();
   const lvdif::BrushSample& s = this->Samples[i];
   double world[4];
   for (int a = 0; a < 3; ++a)
     world[a] = o.origin[a] + o.spacing[a] * s.position[a];
-  world[3] = this->Window.Tools->state().radius * o.spacing[0];
+  world[3] = doc.editor().stroke.radius * o.spacing[0]; // the tool panel's, set at the stroke's start
   this->CurrentSampleTime = s.time;
-  this->Window.onBrushSample(world); // applies, settles, may render
+  this->Window.addBrushSample(world); // applies, settles, may render
+  this->sampleApplied();
   if (i + 1 == this->Samples.size())
   {
-    this->Window.onStrokeEnd();
+    this->Window.endStroke();
     this->sampleApplied(); // the stroke's last dabs (Drill): one more request
     this->Ended = true;
     this->finishWhenIdle();
@@ -151,40 +141,43 @@ void StrokeBenchmark::deliver(std::size_t i)
 
 void StrokeBenchmark::sampleApplied()
 {
-  const std::vector<std::int64_t>& ids = this->Window.Doc.lastRequest();
-  if (ids.empty() || (!this->Requests.empty() && this->Requests.back().editedAt == this->Window.Doc.lastRequestTime()))
+  const VolumeDocument& doc = this->Window.document();
+  const std::vector<std::int64_t>& ids = doc.lastRequest();
+  if (ids.empty() || (!this->Requests.empty() && this->Requests.back().editedAt == doc.lastRequestTime()))
     return;
   Request r;
   r.sampleTime = this->CurrentSampleTime;
-  r.editedAt = this->Window.Doc.lastRequestTime();
+  r.editedAt = doc.lastRequestTime();
   r.chunks = ids;
   this->Requests.push_back(std::move(r));
 }
 
-void StrokeBenchmark::frameRendered(const std::vector<lvdif::ChunkMesh>& meshes,
-  const std::vector<TimePoint>& gatheredAt, TimePoint renderStart, TimePoint renderEnd)
+void StrokeBenchmark::frameRendered(const ShownMeshes& shown)
 {
-  for (std::size_t i = 0; i < meshes.size() && i < gatheredAt.size(); ++i)
-    this->Delivered[meshes[i].chunkId].emplace_back(gatheredAt[i], renderEnd);
-  this->RenderMs.push_back(ms(renderEnd - renderStart));
+  // called right after the window's Render(): the frame is drawn, not just queued
+  EditorDriver::view(this->Window)->renderWindow()->WaitForCompletion();
+  const TimePoint renderEnd = std::chrono::steady_clock::now();
+  for (std::size_t i = 0; i < shown.chunks.size() && i < shown.gatheredAt.size(); ++i)
+    this->Delivered[shown.chunks[i]].emplace_back(shown.gatheredAt[i], renderEnd);
+  this->RenderMs.push_back(ms(renderEnd - shown.installStart));
   this->LastFrame = renderEnd;
   ++this->Frames;
 }
 
 void StrokeBenchmark::finishWhenIdle()
 {
-  if (!this->Window.Doc.meshingIdle())
+  if (!this->Window.document().meshingIdle())
   {
     QTimer::singleShot(5, Qt::PreciseTimer, this, [this] { this->finishWhenIdle(); });
     return;
   }
-  this->Window.pollMeshes(); // what the worker finished since the last poll
+  this->Window.showFinishedMeshes(); // what the worker finished since the last poll
   this->report();
 }
 
 void StrokeBenchmark::report()
 {
-  this->Window.Bench = nullptr;
+  disconnect(&this->Window, &MainWindow::meshesShown, this, &StrokeBenchmark::frameRendered);
   std::vector<double> latency;
   int missing = 0;
   for (const Request& r : this->Requests)
@@ -204,7 +197,7 @@ void StrokeBenchmark::report()
     latency.push_back(ms(shown - this->Start) - 1e3 * r.sampleTime);
   }
   const double seconds = std::max(1e-9, ms(this->LastFrame - this->Start) / 1e3);
-  const auto& d = this->Window.Doc.volume().dims();
+  const auto& d = this->Window.document().volume().dims();
   std::printf("benchmark-stroke: %s: %zu samples over %.2f s, volume %lldx%lldx%lld, %zu re-mesh requests\n",
     this->Name.toLocal8Bit().constData(), this->Samples.size(), this->Samples.back().time,
     static_cast<long long>(d[0]), static_cast<long long>(d[1]), static_cast<long long>(d[2]), this->Requests.size());

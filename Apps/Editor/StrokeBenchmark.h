@@ -3,16 +3,17 @@
 // prints the stroke-to-frame latency (p50, p95, max) and the frames per
 // second, then quits.
 //
-// Each sample is delivered by a Qt timer at its recorded time to the same
-// handlers the brush widget calls (onStrokeStart, onBrushSample, onStrokeEnd):
-// the Core editor applies it, the worker re-meshes the chunks it changed,
-// MainWindow::settleMeshes / the 15 ms mesh timer install the finished
-// meshes as chunk actors and render. Latency of a sample = from its recorded
-// time until the end of the render (glFinish) of the frame at which every chunk
-// it changed shows a mesh gathered after the edit (the worker says when each
-// mesh's input was read). Qt's compositing of the widget afterwards is not
-// included. Under Xvfb the frames are drawn by software OpenGL: not
-// representative of a GPU.
+// Each sample is delivered by a Qt timer at its recorded time to the window's
+// brush input, the slots the brush widget calls (MainWindow::beginStroke,
+// addBrushSample, endStroke): the Core editor applies it, the worker re-meshes
+// the chunks it changed, the sample's settle / the 15 ms mesh timer install
+// the finished meshes as chunk actors and render. Latency of a sample = from
+// its recorded time until the end of the render (glFinish) of the frame at
+// which every chunk it changed shows a mesh gathered after the edit (the
+// window's meshesShown signal says when each mesh's input was read). Qt's
+// compositing of the widget afterwards is not included. Under Xvfb the frames
+// are drawn by software OpenGL: not representative of a GPU. Only the window's
+// public interface is used (EditorDriver starts it).
 //
 // FILE: one sample per line in the socket protocol (InputDevice.h:
 // {"position":[x,y,z],"time":t}, voxel coordinates, seconds; '#' lines and
@@ -32,10 +33,7 @@
 #include <vector>
 
 class MainWindow;
-namespace lvdif
-{
-struct ChunkMesh;
-}
+struct ShownMeshes;
 
 class StrokeBenchmark : public QObject
 {
@@ -49,18 +47,15 @@ public:
 
   StrokeBenchmark(MainWindow& window, std::vector<lvdif::BrushSample> samples, const QString& name);
 
-  /// Schedules the stroke; when done, prints the report and calls
-  /// QApplication::exit (0, or 1 if a requested chunk never showed).
+  /// Schedules the stroke (the surface should be shown); when done, prints the
+  /// report and calls QApplication::exit (0, or 1 if a requested chunk never showed).
   void start();
 
-  // ---- hooks from MainWindow ------------------------------------------------
-  /// Right after the document applied a sample (before settling).
-  void sampleApplied();
-  /// After a frame that installed these meshes was rendered.
-  void frameRendered(const std::vector<lvdif::ChunkMesh>& meshes, const std::vector<TimePoint>& gatheredAt,
-    TimePoint renderStart, TimePoint renderEnd);
-
 private:
+  /// After the window applied a sample: the chunks it asked to re-mesh.
+  void sampleApplied();
+  /// MainWindow::meshesShown: waits for the frame to be drawn, notes when.
+  void frameRendered(const ShownMeshes& shown);
   void deliver(std::size_t i);
   void finishWhenIdle();
   void report();

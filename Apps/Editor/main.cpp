@@ -1,46 +1,15 @@
 // lvdif-editor: the Qt 5 volume editor. See docs/USER_GUIDE.md.
+#include "EditorDriver.h"
 #include "EditorOptions.h"
 #include "MainWindow.h"
 
 #include <QApplication>
+#include <QElapsedTimer>
 #include <QSurfaceFormat>
 #include <QTimer>
 #include <QVTKOpenGLNativeWidget.h>
 
 #include <cstdio>
-
-namespace
-{
-// The command-line work, run once the window is shown.
-int runBatch(MainWindow& w, const EditorOptions& o)
-{
-  bool ok = true;
-  // a script first: it sets the scene the keys and the drag then work on
-  if (!o.script.isEmpty())
-    ok = w.runScript(o.script) && ok;
-  if (!o.keys.isEmpty())
-    ok = w.typeKeys(o.keys) && ok;
-  if (!o.drag.isEmpty())
-  {
-    w.finishMeshing(); // the surface must be there to be picked
-    w.replayDrag(o.drag, o.dragCtrl, o.dragShift);
-  }
-  if (!o.keysAfter.isEmpty())
-    ok = w.typeKeys(o.keysAfter) && ok;
-  for (int i = 0; i < o.undo; ++i)
-    w.undo();
-  w.finishMeshing();
-  if (!o.screenshot.isEmpty())
-    ok = w.saveScreenshot(o.screenshot) && ok;
-  if (!o.windowShot.isEmpty())
-    ok = w.saveWindowShot(o.windowShot) && ok;
-  if (!o.save.isEmpty())
-    ok = w.saveVolume(o.save) && ok;
-  if (!o.exportMesh.isEmpty())
-    ok = w.exportMesh(o.exportMesh) && ok;
-  return ok ? 0 : 1;
-}
-} // namespace
 
 int main(int argc, char* argv[])
 {
@@ -51,7 +20,11 @@ int main(int argc, char* argv[])
   QApplication::setOrganizationName("LVDIF");
   const EditorOptions options = parseEditorOptions(app.arguments());
 
+  QElapsedTimer sinceWindow;
+  sinceWindow.start();
   MainWindow window(options);
+  // the command line's work (batch, keys, drag, benchmark) drives the window from outside
+  EditorDriver driver(window, options, sinceWindow);
   window.show();
   bool loaded = false;
   const bool benchmark = !options.benchmarkStroke.isEmpty();
@@ -85,8 +58,7 @@ int main(int argc, char* argv[])
     // Once the window is up and the first surface is shown, replay the stroke;
     // StrokeBenchmark quits the application with its status.
     QTimer::singleShot(0, &window, [&] {
-      window.finishMeshing();
-      if (!window.startStrokeBenchmark(options.benchmarkStroke))
+      if (!driver.startStrokeBenchmark(options.benchmarkStroke))
         QApplication::exit(1);
     });
     return app.exec();
@@ -98,7 +70,7 @@ int main(int argc, char* argv[])
   int status = loaded ? 0 : 1;
   QTimer::singleShot(0, &window, [&] {
     if (status == 0)
-      status = runBatch(window, options);
+      status = driver.runBatch();
     if (options.batch())
       window.close();
   });

@@ -1,0 +1,215 @@
+#include "EditorDriver.h"
+
+#include "EditorOptions.h"
+#include "MainWindow.h"
+#include "StrokeBenchmark.h"
+
+#include "vtkGenericOpenGLRenderWindow.h"
+#include "vtkRenderWindowInteractor.h"
+
+#include <QApplication>
+#include <QFileDialog>
+#include <QFileInfo>
+#include <QKeyEvent>
+#include <QKeySequence>
+#include <QMouseEvent>
+#include <QTimer>
+#include <QVTKOpenGLNativeWidget.h>
+#ifdef LVDIF_EDITOR_HAVE_QTTEST
+#include <QTest>
+#endif
+
+#include <cctype>
+#include <cmath>
+#include <cstdio>
+
+EditorDriver::EditorDriver(MainWindow& window, const EditorOptions& options, QElapsedTimer sinceWindow)
+  : Window(window)
+  , Options(options)
+  , SinceWindow(sinceWindow)
+{
+}
+
+QVTKOpenGLNativeWidget* EditorDriver::view(MainWindow& window)
+{
+  return qobject_cast<QVTKOpenGLNativeWidget*>(window.centralWidget());
+}
+
+int EditorDriver::runBatch()
+{
+  const EditorOptions& o = this->Options;
+  bool ok = true;
+  if (!o.saveAsAnswer.isEmpty())
+    this->answerSaveDialogs(o.saveAsAnswer);
+  // a script first: it sets the scene the keys and the drag then work on
+  if (!o.script.isEmpty())
+    ok = this->Window.runScript(o.script) && ok;
+  if (!o.keys.isEmpty())
+    ok = this->typeKeys(o.keys) && ok;
+  if (!o.drag.isEmpty())
+  {
+    this->waitForSurface(); // the surface must be there to be picked
+    this->drag(o.drag, o.dragCtrl, o.dragShift, o.dragShot);
+  }
+  if (!o.keysAfter.isEmpty())
+    ok = this->typeKeys(o.keysAfter) && ok;
+  for (int i = 0; i < o.undo; ++i)
+    this->Window.undo();
+  this->waitForSurface();
+  if (!o.screenshot.isEmpty())
+    ok = this->Window.saveScreenshot(o.screenshot) && ok;
+  if (!o.windowShot.isEmpty())
+    ok = this->Window.saveWindowShot(o.windowShot) && ok;
+  if (!o.save.isEmpty())
+    ok = this->Window.saveVolume(o.save) && ok;
+  if (!o.exportMesh.isEmpty())
+    ok = this->Window.exportMesh(o.exportMesh) && ok;
+  return ok ? 0 : 1;
+}
+
+void EditorDriver::waitForSurface()
+{
+  if (this->Window.document().hasVolume())
+    this->Window.document().waitMeshingIdle();
+  this->Window.showFinishedMeshes();
+  view(this->Window)->renderWindow()->Render();
+  if (this->Options.timing)
+    std::fprintf(stderr, "lvdif-editor: every chunk meshed and shown %lld ms after the window was made\n",
+      static_cast<long long>(this->SinceWindow.elapsed()));
+}
+
+void EditorDriver::drag(const QVector<QPointF>& points, bool ctrl, bool shift, const QString& shotBeforeRelease)
+{
+  if (points.isEmpty())
+    return;
+  QVTKOpenGLNativeWidget* v = view(this->Window);
+  vtkRenderWindowInteractor* iren = v->interactor();
+  // Points with both coordinates in [0, 1] are fractions of the view's size.
+  bool fractions = true;
+  for (const QPointF& p : points)
+    fractions = fractions && p.x() >= 0 && p.x() <= 1 && p.y() >= 0 && p.y() <= 1;
+  const int* size = v->renderWindow()->GetSize();
+  const double sx = fractions ? size[0] : 1.0, sy = fractions ? size[1] : 1.0;
+  // VTK display pixels (origin bottom-left) to the widget's Qt coordinates
+  // (origin top-left, device-independent pixels): the inverse of what the
+  // view's interactor adapter does with a mouse event, so the interactor sees
+  // exactly the pixel asked for.
+  const double ratio = v->devicePixelRatioF();
+  auto widgetPoint = [&](const QPointF& p) {
+    const long x = std::lround(p.x() * sx), y = std::lround(p.y() * sy);
+    return QPointF(static_cast<double>(x) / ratio, static_cast<double>(iren->GetSize()[1] - 1 - y) / ratio);
+  };
+  Qt::KeyboardModifiers mods;
+  if (ctrl)
+    mods |= Qt::ControlModifier;
+  if (shift)
+    mods |= Qt::ShiftModifier;
+  auto mouse = [&](QEvent::Type type, const QPointF& p, Qt::MouseButton button, Qt::MouseButtons buttons) {
+    const QPointF local = widgetPoint(p);
+    QMouseEvent event(type, local, local, local + v->mapToGlobal(QPoint(0, 0)), button, buttons, mods);
+    QApplication::sendEvent(v, &event);
+  };
+  // the modifier keys go down before the press and up after the release
+  auto modifierKeys = [&](QEvent::Type type) {
+    const Qt::Key keys[2] = { Qt::Key_Control, Qt::Key_Shift };
+    const bool held[2] = { ctrl, shift };
+    for (int i = 0; i < 2; ++i)
+      if (held[i])
+      {
+        QKeyEvent event(type, keys[i], type == QEvent::KeyPress ? mods : Qt::KeyboardModifiers());
+        QApplication::sendEvent(v, &event);
+      }
+  };
+  modifierKeys(QEvent::KeyPress);
+  mouse(QEvent::MouseMove, points.front(), Qt::NoButton, Qt::NoButton);
+  mouse(QEvent::MouseButtonPress, points.front(), Qt::LeftButton, Qt::LeftButton);
+  for (int i = 1; i < points.size(); ++i)
+  {
+    mouse(QEvent::MouseMove, points[i], Qt::NoButton, Qt::LeftButton);
+    QApplication::processEvents();
+  }
+  if (!shotBeforeRelease.isEmpty())
+    this->Window.saveScreenshot(shotBeforeRelease); // e.g. the Dynamic brush's preview
+  mouse(QEvent::MouseButtonRelease, points.back(), Qt::LeftButton, Qt::NoButton);
+  mods = Qt::KeyboardModifiers();
+  modifierKeys(QEvent::KeyRelease);
+}
+
+bool EditorDriver::typeKeys(const QString& keys)
+{
+#ifdef LVDIF_EDITOR_HAVE_QTTEST
+  QVTKOpenGLNativeWidget* v = view(this->Window);
+  for (QString word : keys.split(' ', Qt::SkipEmptyParts))
+  {
+    // bracket names for callers that cannot pass brackets (CMake lists)
+    word.replace("LeftBracket", "[").replace("RightBracket", "]");
+    const QKeySequence seq = QKeySequence::fromString(word, QKeySequence::PortableText);
+    // an unknown name parses as Key_unknown, which QTest cannot type (it asserts)
+    if (seq.isEmpty() || seq[0] == 0 || (seq[0] & ~Qt::KeyboardModifierMask) == Qt::Key_unknown)
+    {
+      std::fprintf(stderr, "lvdif-editor: --keys: '%s' is not a key\n", word.toLocal8Bit().constData());
+      return false;
+    }
+    const int k = seq[0];
+    // without a window manager (Xvfb) nothing activates the window, and window
+    // shortcuts only fire in the active window
+    QApplication::setActiveWindow(&this->Window);
+    v->setFocus();
+    const int key = k & ~Qt::KeyboardModifierMask;
+    const Qt::KeyboardModifiers mods(k & Qt::KeyboardModifierMask);
+    // printable keys by their character (QTest knows the text of every one of them)
+    if (key >= 0x20 && key <= 0x7e)
+      QTest::keyClick(v, static_cast<char>(std::tolower(key)), mods);
+    else
+      QTest::keyClick(v, Qt::Key(key), mods);
+    QApplication::processEvents();
+  }
+  return true;
+#else
+  (void)keys;
+  std::fprintf(stderr, "lvdif-editor: --keys needs Qt5Test at build time\n");
+  return false;
+#endif
+}
+
+void EditorDriver::answerSaveDialogs(const QString& path)
+{
+  if (this->SaveAnswer.isEmpty())
+  {
+    // A file dialog runs its own event loop (exec): a timer of ours still fires in it.
+    auto* timer = new QTimer(this);
+    connect(timer, &QTimer::timeout, this, &EditorDriver::answerShownSaveDialog);
+    timer->start(10);
+  }
+  this->SaveAnswer = path;
+}
+
+void EditorDriver::answerShownSaveDialog()
+{
+  for (QWidget* w : QApplication::topLevelWidgets())
+  {
+    auto* dialog = qobject_cast<QFileDialog*>(w);
+    if (!dialog || !dialog->isVisible() || dialog->acceptMode() != QFileDialog::AcceptSave)
+      continue;
+    // a test's file may be there from an earlier run: no overwrite question
+    dialog->setOption(QFileDialog::DontConfirmOverwrite);
+    dialog->selectFile(QFileInfo(this->SaveAnswer).absoluteFilePath());
+    static_cast<QDialog*>(dialog)->accept(); // QFileDialog's accept, as its Save button calls it
+  }
+}
+
+bool EditorDriver::startStrokeBenchmark(const QString& path)
+{
+  try
+  {
+    auto* bench = new StrokeBenchmark(this->Window, StrokeBenchmark::loadSamples(path), QFileInfo(path).fileName());
+    this->waitForSurface();
+    bench->start();
+    return true;
+  }
+  catch (const std::exception& e)
+  {
+    std::fprintf(stderr, "benchmark-stroke: %s\n", e.what());
+    return false;
+  }
+}

@@ -1,0 +1,69 @@
+// The editor's command-line automation: --script, --keys, --replay-drag,
+// --keys-after, --undo, --screenshot*, --save, --export, --save-as-answer and
+// --benchmark-stroke (docs/USER_GUIDE.md, "Command line"). The app tests and
+// the user guide's pictures are made this way.
+//
+// It drives a MainWindow only from outside, as a user or a device would: its
+// public operations (the ones its menus call), its brush-input slots and
+// meshesShown signal, the document it shows, and synthetic Qt events on the
+// view (mouse drags, key clicks through Qt's shortcut system, answers to file
+// dialogs). MainWindow knows nothing of it.
+#pragma once
+
+#include <QElapsedTimer>
+#include <QObject>
+#include <QPointF>
+#include <QString>
+#include <QVector>
+
+struct EditorOptions;
+class MainWindow;
+class QVTKOpenGLNativeWidget;
+
+class EditorDriver : public QObject
+{
+  Q_OBJECT
+public:
+  /// `sinceWindow` was started when the window was made (--timing).
+  EditorDriver(MainWindow& window, const EditorOptions& options, QElapsedTimer sinceWindow);
+
+  /// The work of the command line (script, keys, drag, keys after, undo, then
+  /// screenshots, save, export); 0 if every step succeeded, else 1.
+  int runBatch();
+
+  /// Blocks until every requested chunk is meshed and shown (the interactive
+  /// view never waits: the batch's screenshots and the drag's picking need the
+  /// whole surface).
+  void waitForSurface();
+
+  /// A left-drag through display points (VTK display coordinates, origin
+  /// bottom-left; fractions of the view if every coordinate is in [0, 1]) as Qt
+  /// mouse events on the view, with Ctrl and/or Shift held as a user would.
+  /// With `shotBeforeRelease`, a screenshot of the view before the release.
+  void drag(const QVector<QPointF>& points, bool ctrl, bool shift, const QString& shotBeforeRelease = QString());
+
+  /// Types key combinations ("G ] Ctrl+Z", QKeySequence's portable text, one per
+  /// word; LeftBracket/RightBracket for [ and ]) into the window through Qt's
+  /// shortcut system, as a keyboard would; false if a word is not a key or Qt5Test
+  /// was missing at build time.
+  bool typeKeys(const QString& keys);
+
+  /// From now on, a Save file dialog that opens is answered with `path`.
+  void answerSaveDialogs(const QString& path);
+
+  /// --benchmark-stroke: once the surface is shown, replays the samples of
+  /// `path` through the brush input (StrokeBenchmark.h), prints the latency and
+  /// quits the application; false (with a message) if the file cannot be read.
+  bool startStrokeBenchmark(const QString& path);
+
+  /// The window's VTK view (its central widget).
+  static QVTKOpenGLNativeWidget* view(MainWindow& window);
+
+private:
+  void answerShownSaveDialog();
+
+  MainWindow& Window;
+  const EditorOptions& Options;
+  QElapsedTimer SinceWindow;
+  QString SaveAnswer;
+};
