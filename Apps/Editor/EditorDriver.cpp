@@ -67,12 +67,17 @@ int EditorDriver::runBatch()
   return ok ? 0 : 1;
 }
 
-void EditorDriver::waitForSurface()
+void EditorDriver::showAllMeshes()
 {
   if (this->Window.document().hasVolume())
     this->Window.document().waitMeshingIdle();
   this->Window.showFinishedMeshes();
   view(this->Window)->renderWindow()->Render();
+}
+
+void EditorDriver::waitForSurface()
+{
+  this->showAllMeshes();
   if (this->Options.timing)
     std::fprintf(stderr, "lvdif-editor: every chunk meshed and shown %lld ms after the window was made\n",
       static_cast<long long>(this->SinceWindow.elapsed()));
@@ -127,6 +132,10 @@ void EditorDriver::drag(const QVector<QPointF>& points, bool ctrl, bool shift, c
   {
     mouse(QEvent::MouseMove, points[i], Qt::NoButton, Qt::LeftButton);
     QApplication::processEvents();
+    // Each sample picks the surface shown: wait until the previous samples'
+    // chunks are re-meshed and shown, so a replay picks the same points
+    // however loaded the machine is (a user's pace, not the mouse's).
+    this->showAllMeshes();
   }
   if (!shotBeforeRelease.isEmpty())
     this->Window.saveScreenshot(shotBeforeRelease); // e.g. the Dynamic brush's preview

@@ -35,6 +35,8 @@ public:
   /// view never waits: the batch's screenshots and the drag's picking need the
   /// whole surface).
   void waitForSurface();
+  /// waitForSurface without the --timing report (between a drag's samples).
+  void showAllMeshes();
 
   /// A left-drag through display points (VTK display coordinates, origin
   /// bottom-left; fractions of the view if every coordinate is in [0, 1]) as Qt
