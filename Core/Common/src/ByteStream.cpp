@@ -36,18 +36,13 @@ void checkRange(std::uint64_t offset, std::size_t n, std::uint64_t size)
 class FdSink : public ByteSink
 {
 public:
-  FdSink(int fd, const std::string& path, const SaveHooks& hooks)
+  FdSink(int fd, const std::string& path)
     : Fd(fd)
     , Path(path)
-    , Hooks(hooks)
   {
   }
   void write(const void* data, std::size_t n) override
   {
-    if (this->Hooks.beforeWrite)
-    {
-      this->Hooks.beforeWrite(this->Written, n);
-    }
     const char* p = static_cast<const char*>(data);
     std::size_t left = n;
     while (left > 0)
@@ -70,7 +65,6 @@ public:
 private:
   int Fd;
   std::string Path;
-  const SaveHooks& Hooks;
 };
 
 std::string directoryOf(const std::string& path)
@@ -291,7 +285,7 @@ void commit(const std::string& tmp, const std::string& path)
 }
 } // namespace
 
-void saveAtomically(const std::string& givenPath, const std::function<void(ByteSink&)>& produce, const SaveHooks& hooks)
+void saveAtomically(const std::string& givenPath, const std::function<void(ByteSink&)>& produce)
 {
   const Target t = prepareSave(givenPath);
   std::string tmp;
@@ -300,7 +294,7 @@ void saveAtomically(const std::string& givenPath, const std::function<void(ByteS
   try
   {
     applyMode(fd, t);
-    FdSink sink(fd, tmp, hooks);
+    FdSink sink(fd, tmp);
     produce(sink);
     if (::fsync(fd) != 0)
     {

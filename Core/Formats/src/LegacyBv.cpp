@@ -274,7 +274,7 @@ void saveLegacyBv(
   require(token < 0 || token == volume.dims()[0],
     "file name says N = " + std::to_string(token) + " but the volume's edge is " + std::to_string(volume.dims()[0]));
   saveAtomically(
-    path, [&](ByteSink& sink) { writeLegacyBv(volume, sink, options, interrupter); }, options.hooks);
+    path, [&](ByteSink& sink) { writeLegacyBv(volume, sink, options, interrupter); });
 }
 
 } // namespace lvdif

@@ -214,8 +214,7 @@ void writeVolume(const DictionaryVolume& volume, ByteSink& sink, const VolumeFil
 void saveVolume(const DictionaryVolume& volume, const std::string& path, const VolumeFileWriteOptions& options,
   Interrupter& interrupter)
 {
-  saveAtomically(
-    path, [&](ByteSink& sink) { writeVolume(volume, sink, options, interrupter); }, options.hooks);
+  saveAtomically(path, [&](ByteSink& sink) { writeVolume(volume, sink, options, interrupter); });
 }
 
 } // namespace lvdif

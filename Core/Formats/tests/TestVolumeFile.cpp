@@ -303,15 +303,33 @@ TEST(VolumeFile, FailedSaveLeavesThePreviousFileByteIdentical)
   saveVolume(*a.volume, path);
   const Bytes before = readFile(path);
   const std::uint64_t total = toBytes(*bvol.volume).size();
+  // saveVolume is saveAtomically around writeVolume: the same save, through a
+  // sink that fails (disk full, killed process) part way
+  struct FailingSink : ByteSink
+  {
+    ByteSink& real;
+    std::uint64_t failAt;
+    FailingSink(ByteSink& r, std::uint64_t at)
+      : real(r)
+      , failAt(at)
+    {
+    }
+    void write(const void* data, std::size_t n) override
+    {
+      if (this->Written + n > this->failAt)
+        throw Error(ErrorCode::IoFailure, "injected failure: disk full");
+      this->real.write(data, n);
+      this->Written += n;
+    }
+  };
   for (std::uint64_t failAt : { std::uint64_t(0), std::uint64_t(100), total / 2, total - 1 })
   {
-    VolumeFileWriteOptions o;
-    o.hooks.beforeWrite = [failAt](std::uint64_t written, std::size_t next) {
-      if (written + next > failAt) throw Error(ErrorCode::IoFailure, "injected failure: disk full");
-    };
     try
     {
-      saveVolume(*bvol.volume, path, o);
+      saveAtomically(path, [&](ByteSink& sink) {
+        FailingSink failing(sink, failAt);
+        writeVolume(*bvol.volume, failing, VolumeFileWriteOptions());
+      });
       ADD_FAILURE() << "save did not fail at " << failAt;
     }
     catch (const Error& e)

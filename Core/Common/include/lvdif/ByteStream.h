@@ -86,25 +86,17 @@ private:
   std::vector<std::uint8_t> Buffer;
 };
 
-struct SaveHooks
-{
-  /// Test hook: if set, called before every write with the bytes written so
-  /// far and the size of the write; a hook that throws simulates a failure
-  /// (disk full, killed process) half way through the save.
-  std::function<void(std::uint64_t written, std::size_t next)> beforeWrite;
-};
-
 /// Crash-safe save: `produce` writes the whole file into the sink, which is a
 /// temporary file beside `path`; on success it is fsync'ed and renamed over
 /// `path` and the directory is fsync'ed. On any failure (an exception from
 /// `produce`, the hook or the system) the temporary file is removed and the
-/// exception propagates; the previous file at `path` is untouched.
+/// exception propagates; the previous file at `path` is untouched (the tests
+/// make `produce` fail at every stage through a sink that throws part way).
 /// A symlink at `path` is written through (its target is replaced, the link
 /// stays); an existing file keeps its mode; a path that is a directory, FIFO or
 /// device is refused; temporary files of saves killed earlier (their process is
 /// gone) are removed first. Every file the project saves goes through here.
-void saveAtomically(const std::string& path, const std::function<void(ByteSink&)>& produce,
-  const SaveHooks& hooks = SaveHooks());
+void saveAtomically(const std::string& path, const std::function<void(ByteSink&)>& produce);
 
 /// The same save for writers that open a file by name (VTK's writers):
 /// `produce` writes the whole file at the temporary path it is given; a

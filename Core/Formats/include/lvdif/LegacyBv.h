@@ -51,8 +51,6 @@ struct LegacyBvOptions
   std::vector<Rgba> palette;
   /// Import: bytes the volume may use; 0 = memoryLimitBytes().
   std::uint64_t memoryLimit = 0;
-  /// Export: test hooks of the crash-safe save.
-  SaveHooks hooks;
 };
 
 namespace legacy_bv

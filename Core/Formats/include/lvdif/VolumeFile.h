@@ -34,8 +34,6 @@ struct VolumeFileWriteOptions
   /// bench_volume_file (docs/FORMAT.md): ratio close to level 9 at a fraction of its time.
   int compressionLevel = 3;
   VolumeMetadata metadata;
-  /// Test hooks of the crash-safe save (see saveAtomically).
-  SaveHooks hooks;
 };
 
 struct VolumeFileReadOptions
