@@ -1,0 +1,24 @@
+#!/bin/bash
+# The ASan + UBSan build (LVDIF_SANITIZE=ON) of Core on a many-core host
+# without VTK: configure, build, and run every Core test executable; any
+# sanitizer report fails the test (UBSan is fatal, ASan aborts). Logs in $OUT.
+# usage: scripts/gpu-sanitize.sh   (from the repository root)
+set -u
+OUT=${OUT:-out-sanitize}
+mkdir -p "$OUT"
+J=$(nproc)
+{ date -u; nproc; lscpu | grep "Model name"; g++ --version | head -1; } > "$OUT/machine.txt" 2>&1
+cmake -S . -B bsan -DLVDIF_CORE_ONLY=ON -DLVDIF_CUDA=OFF -DLVDIF_SANITIZE=ON -DCMAKE_BUILD_TYPE=RelWithDebInfo \
+  > "$OUT/build.log" 2>&1 || { tail -40 "$OUT/build.log"; exit 1; }
+cmake --build bsan -j"$J" >> "$OUT/build.log" 2>&1 || { grep -B2 -A10 -i "error" "$OUT/build.log" | head -80; exit 1; }
+export ASAN_OPTIONS=detect_leaks=1:abort_on_error=1 UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1
+status=0
+: > "$OUT/tests.log"
+for t in bsan/Core/*/LVDIF*Tests; do
+  timeout 400 "$t" > "$OUT/$(basename "$t").log" 2>&1
+  rc=$?
+  [ $rc -ne 0 ] && status=1
+  printf "%-26s rc=%s %s\n" "$(basename "$t")" "$rc" "$(grep -E '^\[  (PASSED|FAILED) ' "$OUT/$(basename "$t").log" | tr '\n' ' ')" | tee -a "$OUT/tests.log"
+done
+grep -l "ERROR: AddressSanitizer\|runtime error:\|LeakSanitizer" "$OUT"/*.log | tee "$OUT/sanitizer-reports.txt"
+exit $status
