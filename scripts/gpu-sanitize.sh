@@ -14,11 +14,16 @@ cmake --build bsan -j"$J" >> "$OUT/build.log" 2>&1 || { grep -B2 -A10 -i "error"
 export ASAN_OPTIONS=detect_leaks=1:abort_on_error=1 UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1
 status=0
 : > "$OUT/tests.log"
+# the executables at once (each is multi-threaded; the host has the cores)
 for t in bsan/Core/*/LVDIF*Tests; do
-  timeout 400 "$t" > "$OUT/$(basename "$t").log" 2>&1
-  rc=$?
-  [ $rc -ne 0 ] && status=1
-  printf "%-26s rc=%s %s\n" "$(basename "$t")" "$rc" "$(grep -E '^\[  (PASSED|FAILED) ' "$OUT/$(basename "$t").log" | tr '\n' ' ')" | tee -a "$OUT/tests.log"
+  ( timeout 500 "$t" > "$OUT/$(basename "$t").log" 2>&1; echo $? > "$OUT/$(basename "$t").rc" ) &
+done
+wait
+for t in bsan/Core/*/LVDIF*Tests; do
+  n=$(basename "$t")
+  rc=$(cat "$OUT/$n.rc")
+  [ "$rc" != 0 ] && status=1
+  printf "%-26s rc=%s %s\n" "$n" "$rc" "$(grep -E '^\[  (PASSED|FAILED) ' "$OUT/$n.log" | tr '\n' ' ')" | tee -a "$OUT/tests.log"
 done
 grep -l "ERROR: AddressSanitizer\|runtime error:\|LeakSanitizer" "$OUT"/*.log | tee "$OUT/sanitizer-reports.txt"
 exit $status
