@@ -263,24 +263,6 @@ void SetImageInformation(vtkInformation* outInfo, const lvdif::VolumeOptions& o)
   vtkDataObject::SetPointDataActiveScalarInfo(outInfo, VTK_FLOAT, 1);
 }
 
-std::string WriterInput(vtkImageData* image, const std::string& fileName, bool withColor, vtkDataArray*& sdf,
-  vtkDataArray*& rgba, bool& missingFileName)
-{
-  sdf = rgba = nullptr;
-  missingFileName = fileName.empty();
-  if (missingFileName)
-  {
-    return "no file name: call SetFileName() first";
-  }
-  sdf = image ? image->GetPointData()->GetArray(SdfArrayName) : nullptr;
-  if (!sdf)
-  {
-    return "the input has no point array named 'sdf'";
-  }
-  rgba = withColor ? image->GetPointData()->GetArray(ColorArrayName) : nullptr;
-  return std::string();
-}
-
 lvdif::GridGeometry Geometry(vtkImageData* image)
 {
   lvdif::GridGeometry g;

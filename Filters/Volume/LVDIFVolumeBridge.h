@@ -86,12 +86,6 @@ LVDIFFILTERSVOLUME_EXPORT std::unique_ptr<lvdif::DictionaryVolume> CropVolume(
 /// extent, origin, spacing, CAN_PRODUCE_SUB_EXTENT and a float `sdf` scalar.
 LVDIFFILTERSVOLUME_EXPORT void SetImageInformation(vtkInformation* outInfo, const lvdif::VolumeOptions& options);
 
-/// What a volume writer needs from its input: the `sdf` point array and the
-/// optional `rgba` one. Returns an empty string when usable, otherwise the
-/// one-line reason (no file name, no `sdf` array) for the writer's error;
-/// `missingFileName` tells which error code applies.
-LVDIFFILTERSVOLUME_EXPORT std::string WriterInput(vtkImageData* image, const std::string& fileName,
-  bool withColor, vtkDataArray*& sdf, vtkDataArray*& rgba, bool& missingFileName);
 
 /// What a filter or reader says (vtkWarningMacro) before it allocates a dense
 /// image of `bytes` for `extent`: the size, the memory limit and what to do;

@@ -1,8 +1,9 @@
 /**
  * @class   vtkOpenVDBLevelSetWriter
- * @brief   writes vtkImageData's `sdf` (and `rgba`) as an OpenVDB level set (.vdb)
+ * @brief   writes a vtkSparseDictionaryVolume, or vtkImageData's `sdf` (and `rgba`), as an OpenVDB level set (.vdb)
  *
- * The input needs a point array `sdf` (negative inside, voxel units) and
+ * A sparse volume is exported as it is (its band; HalfWidth caps the exported
+ * narrow band). An image input needs a point array `sdf` (negative inside, voxel units) and
  * isotropic spacing; an unsigned char `rgba` array (1 to 4 components) is
  * written too when WithColor is on. The file holds a FloatGrid `sdf` of class
  * level set whose values are WORLD-unit distances (voxel distance x spacing),
@@ -17,21 +18,16 @@
 #define vtkOpenVDBLevelSetWriter_h
 
 #include "lvdifIOOpenVDBModule.h"
-#include "vtkWriter.h"
+#include "vtkLVDIFVolumeWriter.h"
 
 #include <string>
 
-class vtkImageData;
-
-class LVDIFIOOPENVDB_EXPORT vtkOpenVDBLevelSetWriter : public vtkWriter
+class LVDIFIOOPENVDB_EXPORT vtkOpenVDBLevelSetWriter : public vtkLVDIFVolumeWriter
 {
 public:
   static vtkOpenVDBLevelSetWriter* New();
-  vtkTypeMacro(vtkOpenVDBLevelSetWriter, vtkWriter);
+  vtkTypeMacro(vtkOpenVDBLevelSetWriter, vtkLVDIFVolumeWriter);
   void PrintSelf(ostream& os, vtkIndent indent) override;
-
-  vtkSetStdStringFromCharMacro(FileName);
-  vtkGetCharFromStdStringMacro(FileName);
 
   ///@{
   /// Narrow-band half width in voxels (default 3, OpenVDB's default).
@@ -52,16 +48,14 @@ public:
   vtkGetCharFromStdStringMacro(GridName);
   ///@}
 
-  vtkImageData* GetInput();
-
 protected:
   vtkOpenVDBLevelSetWriter();
   ~vtkOpenVDBLevelSetWriter() override;
 
-  void WriteData() override;
-  int FillInputPortInformation(int port, vtkInformation* info) override;
+  void Save(const lvdif::DictionaryVolume& volume, const SaveSource& source, lvdif::Interrupter& interrupter) override;
+  bool ReadsImageColors() override { return this->WithColor; }
+  lvdif::VolumeOptions ImageVolumeOptions() override;
 
-  std::string FileName;
   std::string GridName = "sdf";
   double HalfWidth = 3.0;
   bool WithColor = true;

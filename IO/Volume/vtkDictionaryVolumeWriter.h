@@ -16,23 +16,17 @@
 #define vtkDictionaryVolumeWriter_h
 
 #include "lvdifIOVolumeModule.h"
-#include "vtkWriter.h"
+#include "vtkLVDIFVolumeWriter.h"
 
 #include <map>
 #include <string>
 
-class vtkImageData;
-class vtkSparseDictionaryVolume;
-
-class LVDIFIOVOLUME_EXPORT vtkDictionaryVolumeWriter : public vtkWriter
+class LVDIFIOVOLUME_EXPORT vtkDictionaryVolumeWriter : public vtkLVDIFVolumeWriter
 {
 public:
   static vtkDictionaryVolumeWriter* New();
-  vtkTypeMacro(vtkDictionaryVolumeWriter, vtkWriter);
+  vtkTypeMacro(vtkDictionaryVolumeWriter, vtkLVDIFVolumeWriter);
   void PrintSelf(ostream& os, vtkIndent indent) override;
-
-  vtkSetStdStringFromCharMacro(FileName);
-  vtkGetCharFromStdStringMacro(FileName);
 
   ///@{
   /// Distances saturate to +-BandWidth voxels (default 8; VTK_FLOAT_MAX or
@@ -63,18 +57,13 @@ public:
   void ClearMetadata() { this->Metadata.clear(); }
   ///@}
 
-  /// The input when it is an image (nullptr for a sparse volume).
-  vtkImageData* GetInput();
-
 protected:
   vtkDictionaryVolumeWriter();
   ~vtkDictionaryVolumeWriter() override;
 
-  void WriteData() override;
-  void WriteSparse(vtkSparseDictionaryVolume* sparse);
-  int FillInputPortInformation(int port, vtkInformation* info) override;
+  void Save(const lvdif::DictionaryVolume& volume, const SaveSource& source, lvdif::Interrupter& interrupter) override;
+  lvdif::VolumeOptions ImageVolumeOptions() override;
 
-  std::string FileName;
   std::string VolumeName;
   std::map<std::string, std::string> Metadata;
   double BandWidth = 8.0;

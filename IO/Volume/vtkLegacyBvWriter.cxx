@@ -1,15 +1,11 @@
 #include "vtkLegacyBvWriter.h"
 
-#include "LVDIFInterrupter.h"
 #include "LVDIFVolumeBridge.h"
-#include "vtkSparseDictionaryVolume.h"
 
 #include "lvdif/LegacyBv.h"
 
 #include "vtkDataArray.h"
-#include "vtkErrorCode.h"
 #include "vtkImageData.h"
-#include "vtkInformation.h"
 #include "vtkObjectFactory.h"
 #include "vtkPointData.h"
 
@@ -78,85 +74,37 @@ void assignPaletteIndices(lvdif::DictionaryVolume& volume, vtkImageData* image, 
 vtkLegacyBvWriter::vtkLegacyBvWriter() = default;
 vtkLegacyBvWriter::~vtkLegacyBvWriter() = default;
 
-vtkImageData* vtkLegacyBvWriter::GetInput()
+lvdif::VolumeOptions vtkLegacyBvWriter::ImageVolumeOptions()
 {
-  return vtkImageData::SafeDownCast(this->Superclass::GetInput());
+  lvdif::VolumeOptions options;
+  options.bandWidth = static_cast<float>(this->BandWidth);
+  return options;
 }
 
-int vtkLegacyBvWriter::FillInputPortInformation(int, vtkInformation* info)
+std::unique_ptr<lvdif::DictionaryVolume> vtkLegacyBvWriter::ImageToVolume(
+  vtkImageData* image, vtkDataArray* sdf, vtkDataArray* rgba)
 {
-  info->Remove(vtkAlgorithm::INPUT_REQUIRED_DATA_TYPE());
-  info->Append(vtkAlgorithm::INPUT_REQUIRED_DATA_TYPE(), "vtkImageData");
-  info->Append(vtkAlgorithm::INPUT_REQUIRED_DATA_TYPE(), "vtkSparseDictionaryVolume");
-  return 1;
+  // colours become palette indices, not colour-dictionary entries
+  auto volume = LVDIFVolumeBridge::VolumeFromImage(image, sdf, nullptr, this->ImageVolumeOptions());
+  if (rgba)
+  {
+    assignPaletteIndices(*volume, image, rgba);
+  }
+  return volume;
 }
 
-void vtkLegacyBvWriter::WriteData()
+void vtkLegacyBvWriter::Save(const lvdif::DictionaryVolume& volume, const SaveSource&, lvdif::Interrupter& interrupter)
 {
-  if (auto* sparse = vtkSparseDictionaryVolume::SafeDownCast(this->Superclass::GetInput()))
-  {
-    // the volume's keys as they are, as `lvdif convert` writes them
-    if (this->FileName.empty() || !sparse->HasVolume())
-    {
-      vtkErrorMacro(<< (this->FileName.empty() ? "no file name: call SetFileName() first" : "the input holds no volume"));
-      this->SetErrorCode(this->FileName.empty() ? vtkErrorCode::NoFileNameError : vtkErrorCode::UnknownError);
-      return;
-    }
-    lvdif::LegacyBvOptions options;
-    options.swapXZ = this->SwapXZ;
-    options.distanceScale = this->DistanceScale;
-    LVDIFInterrupter interrupter(this);
-    if (!LVDIFVolumeBridge::CallCore(
-          this, [&] { lvdif::saveLegacyBv(*sparse->GetVolume(), this->FileName, options, interrupter); },
-          "cannot write '" + this->FileName + "': "))
-    {
-      this->SetErrorCode(vtkErrorCode::UnknownError);
-    }
-    return;
-  }
-  vtkImageData* image = this->GetInput();
-  vtkDataArray *sdf, *rgba;
-  bool missingFileName;
-  const std::string problem =
-    LVDIFVolumeBridge::WriterInput(image, this->FileName, true, sdf, rgba, missingFileName);
-  if (!problem.empty())
-  {
-    vtkErrorMacro(<< problem);
-    this->SetErrorCode(missingFileName ? vtkErrorCode::NoFileNameError : vtkErrorCode::UnknownError);
-    return;
-  }
-  lvdif::VolumeOptions volumeOptions;
-  volumeOptions.bandWidth = static_cast<float>(this->BandWidth);
+  // the volume's keys as they are (a sparse input is written as `lvdif convert` writes it)
   lvdif::LegacyBvOptions options;
   options.swapXZ = this->SwapXZ;
   options.distanceScale = this->DistanceScale;
-  LVDIFInterrupter interrupter(this, 0.0, 1.0);
-  try
-  {
-    interrupter.setStage(0.0, 0.3);
-    auto volume = LVDIFVolumeBridge::VolumeFromImage(image, sdf, nullptr, volumeOptions);
-    if (rgba)
-    {
-      assignPaletteIndices(*volume, image, rgba);
-    }
-    interrupter.setStage(0.3, 0.7);
-    lvdif::saveLegacyBv(*volume, this->FileName, options, interrupter);
-  }
-  catch (const lvdif::Error& e)
-  {
-    if (e.code() != lvdif::ErrorCode::Cancelled)
-    {
-      vtkErrorMacro(<< "cannot write '" << this->FileName << "': " << e.what());
-    }
-    this->SetErrorCode(e.code() == lvdif::ErrorCode::IoFailure ? vtkErrorCode::CannotOpenFileError
-                                                               : vtkErrorCode::UnknownError);
-  }
+  lvdif::saveLegacyBv(volume, this->FileName, options, interrupter);
 }
 
 void vtkLegacyBvWriter::PrintSelf(ostream& os, vtkIndent indent)
 {
   this->Superclass::PrintSelf(os, indent);
-  os << indent << "FileName: " << this->FileName << "\n";
   os << indent << "SwapXZ: " << this->SwapXZ << "\n";
   os << indent << "DistanceScale: " << this->DistanceScale << "\n";
   os << indent << "BandWidth: " << this->BandWidth << "\n";

@@ -1,6 +1,6 @@
 /**
  * @class   vtkLegacyBvWriter
- * @brief   writes vtkImageData as the original LVDIF's `.bv` volume file
+ * @brief   writes a vtkSparseDictionaryVolume (or vtkImageData) as the original LVDIF's `.bv` volume file
  *
  * A thin wrapper over lvdif::saveLegacyBv (Core/Formats/include/lvdif/LegacyBv.h).
  * The input must be a cube of N^3 points with a point array `sdf` (negative
@@ -17,21 +17,16 @@
 #define vtkLegacyBvWriter_h
 
 #include "lvdifIOVolumeModule.h"
-#include "vtkWriter.h"
+#include "vtkLVDIFVolumeWriter.h"
 
 #include <string>
 
-class vtkImageData;
-
-class LVDIFIOVOLUME_EXPORT vtkLegacyBvWriter : public vtkWriter
+class LVDIFIOVOLUME_EXPORT vtkLegacyBvWriter : public vtkLVDIFVolumeWriter
 {
 public:
   static vtkLegacyBvWriter* New();
-  vtkTypeMacro(vtkLegacyBvWriter, vtkWriter);
+  vtkTypeMacro(vtkLegacyBvWriter, vtkLVDIFVolumeWriter);
   void PrintSelf(ostream& os, vtkIndent indent) override;
-
-  vtkSetStdStringFromCharMacro(FileName);
-  vtkGetCharFromStdStringMacro(FileName);
 
   ///@{
   /// Exchange X and Z (default on, as vtkLegacyBvReader).
@@ -52,16 +47,15 @@ public:
   vtkGetMacro(BandWidth, double);
   ///@}
 
-  vtkImageData* GetInput();
-
 protected:
   vtkLegacyBvWriter();
   ~vtkLegacyBvWriter() override;
 
-  void WriteData() override;
-  int FillInputPortInformation(int port, vtkInformation* info) override;
+  void Save(const lvdif::DictionaryVolume& volume, const SaveSource& source, lvdif::Interrupter& interrupter) override;
+  std::unique_ptr<lvdif::DictionaryVolume> ImageToVolume(
+    vtkImageData* image, vtkDataArray* sdf, vtkDataArray* rgba) override;
+  lvdif::VolumeOptions ImageVolumeOptions() override;
 
-  std::string FileName;
   bool SwapXZ = true;
   double DistanceScale = 1.0;
   double BandWidth = 8.0;

@@ -1,0 +1,83 @@
+#include "vtkLVDIFVolumeWriter.h"
+
+#include "LVDIFInterrupter.h"
+#include "LVDIFVolumeBridge.h"
+#include "vtkSparseDictionaryVolume.h"
+
+#include "lvdif/DictionaryVolume.h"
+#include "lvdif/Error.h"
+
+#include "vtkDataArray.h"
+#include "vtkErrorCode.h"
+#include "vtkImageData.h"
+#include "vtkInformation.h"
+#include "vtkPointData.h"
+
+vtkLVDIFVolumeWriter::vtkLVDIFVolumeWriter() = default;
+vtkLVDIFVolumeWriter::~vtkLVDIFVolumeWriter() = default;
+
+vtkImageData* vtkLVDIFVolumeWriter::GetInput()
+{
+  return vtkImageData::SafeDownCast(this->Superclass::GetInput());
+}
+
+int vtkLVDIFVolumeWriter::FillInputPortInformation(int, vtkInformation* info)
+{
+  info->Remove(vtkAlgorithm::INPUT_REQUIRED_DATA_TYPE());
+  info->Append(vtkAlgorithm::INPUT_REQUIRED_DATA_TYPE(), "vtkImageData");
+  info->Append(vtkAlgorithm::INPUT_REQUIRED_DATA_TYPE(), "vtkSparseDictionaryVolume");
+  return 1;
+}
+
+std::unique_ptr<lvdif::DictionaryVolume> vtkLVDIFVolumeWriter::ImageToVolume(
+  vtkImageData* image, vtkDataArray* sdf, vtkDataArray* rgba)
+{
+  return LVDIFVolumeBridge::VolumeFromImage(image, sdf, rgba, this->ImageVolumeOptions());
+}
+
+void vtkLVDIFVolumeWriter::WriteData()
+{
+  auto fail = [this](const std::string& what, unsigned long code) {
+    vtkErrorMacro(<< what);
+    this->SetErrorCode(code);
+  };
+  if (this->FileName.empty())
+    return fail("no file name: call SetFileName() first", vtkErrorCode::NoFileNameError);
+  vtkSparseDictionaryVolume* sparse = vtkSparseDictionaryVolume::SafeDownCast(this->Superclass::GetInput());
+  vtkImageData* image = this->GetInput();
+  vtkDataArray* sdf = image ? image->GetPointData()->GetArray(LVDIFVolumeBridge::SdfArrayName) : nullptr;
+  if (sparse && !sparse->HasVolume())
+    return fail("the input sparse volume holds no dictionary volume", vtkErrorCode::UnknownError);
+  if (!sparse && !sdf)
+    return fail("the input has no point array named 'sdf'", vtkErrorCode::UnknownError);
+  LVDIFInterrupter interrupter(this, 0.0, 1.0);
+  try
+  {
+    if (sparse)
+    {
+      this->Save(*sparse->GetVolume(), SaveSource(), interrupter);
+      return;
+    }
+    SaveSource source;
+    source.fromImage = true;
+    source.imageColors =
+      this->ReadsImageColors() ? image->GetPointData()->GetArray(LVDIFVolumeBridge::ColorArrayName) : nullptr;
+    interrupter.setStage(0.0, 0.3);
+    const std::unique_ptr<lvdif::DictionaryVolume> volume = this->ImageToVolume(image, sdf, source.imageColors);
+    interrupter.setStage(0.3, 1.0);
+    this->Save(*volume, source, interrupter);
+  }
+  catch (const lvdif::Error& e)
+  {
+    if (e.code() == lvdif::ErrorCode::Cancelled)
+      return; // AbortExecute: not an error
+    fail("cannot write '" + this->FileName + "': " + e.what(),
+      e.code() == lvdif::ErrorCode::IoFailure ? vtkErrorCode::CannotOpenFileError : vtkErrorCode::UnknownError);
+  }
+}
+
+void vtkLVDIFVolumeWriter::PrintSelf(ostream& os, vtkIndent indent)
+{
+  this->Superclass::PrintSelf(os, indent);
+  os << indent << "FileName: " << this->FileName << "\n";
+}

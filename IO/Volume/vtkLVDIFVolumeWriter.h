@@ -1,0 +1,77 @@
+/**
+ * @class   vtkLVDIFVolumeWriter
+ * @brief   base of the writers of LVDIF volumes (.lvdv, .bv, .vdb)
+ *
+ * Takes a vtkSparseDictionaryVolume (written as it is, without decoding) or a
+ * vtkImageData with a point array `sdf` (negative inside, voxel units) and
+ * optionally `rgba` (made into a dictionary volume first). WriteData checks the
+ * file name and the input, makes the volume of an image input, calls Save, and
+ * reports a failure once (vtkErrorMacro and the writer's error code); a cancel
+ * (AbortExecute) is not an error. Subclasses say how an image becomes a volume
+ * and how a volume is saved. Every save is crash-safe (lvdif::saveAtomically).
+ */
+#ifndef vtkLVDIFVolumeWriter_h
+#define vtkLVDIFVolumeWriter_h
+
+#include "lvdifIOVolumeModule.h"
+#include "vtkWriter.h"
+
+#include <memory>
+#include <string>
+
+class vtkDataArray;
+class vtkImageData;
+
+namespace lvdif
+{
+class DictionaryVolume;
+class Interrupter;
+struct VolumeOptions;
+}
+
+class LVDIFIOVOLUME_EXPORT vtkLVDIFVolumeWriter : public vtkWriter
+{
+public:
+  vtkTypeMacro(vtkLVDIFVolumeWriter, vtkWriter);
+  void PrintSelf(ostream& os, vtkIndent indent) override;
+
+  vtkSetStdStringFromCharMacro(FileName);
+  vtkGetCharFromStdStringMacro(FileName);
+
+  /// The input when it is an image (nullptr for a sparse volume).
+  vtkImageData* GetInput();
+
+protected:
+  vtkLVDIFVolumeWriter();
+  ~vtkLVDIFVolumeWriter() override;
+
+  void WriteData() final;
+  int FillInputPortInformation(int port, vtkInformation* info) override;
+
+  /// What a save is given besides the volume.
+  struct SaveSource
+  {
+    /// The volume was just made from an image input (false: a sparse input).
+    bool fromImage = false;
+    /// The image's `rgba` array when it had one and the writer asked for it.
+    vtkDataArray* imageColors = nullptr;
+  };
+  /// Writes `volume` to FileName; throws lvdif::Error on failure.
+  virtual void Save(const lvdif::DictionaryVolume& volume, const SaveSource& source, lvdif::Interrupter& interrupter) = 0;
+  /// Whether an image input's `rgba` array is read (default true).
+  virtual bool ReadsImageColors() { return true; }
+  /// The volume of an image input (default: its `sdf` and `rgba` encoded with
+  /// ImageVolumeOptions()); throws lvdif::Error.
+  virtual std::unique_ptr<lvdif::DictionaryVolume> ImageToVolume(
+    vtkImageData* image, vtkDataArray* sdf, vtkDataArray* rgba);
+  /// Chunk edge and band of the volume made from an image input.
+  virtual lvdif::VolumeOptions ImageVolumeOptions() = 0;
+
+  std::string FileName;
+
+private:
+  vtkLVDIFVolumeWriter(const vtkLVDIFVolumeWriter&) = delete;
+  void operator=(const vtkLVDIFVolumeWriter&) = delete;
+};
+
+#endif
