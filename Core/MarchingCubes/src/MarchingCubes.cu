@@ -222,6 +222,38 @@ void ensureGrid(const ChunkedMarchingCubes::Impl& impl, MarchingCubesCudaState& 
   S.hostGrid = impl.Grid.data;
 }
 
+// Uploads a batch's n boxes and per-chunk point/cell bases and clears the counters' tails.
+void uploadBatch(MarchingCubesCudaState& S, const Box* boxes, int n, const std::vector<long long>& pb,
+  const std::vector<long long>& cb, long long P, long long C, cudaStream_t cs)
+{
+  LVDIF_CUDA_CHECK(cudaMemcpyAsync(S.boxes.p, boxes, n * sizeof(Box), cudaMemcpyHostToDevice, cs));
+  LVDIF_CUDA_CHECK(cudaMemcpyAsync(S.pBase.p, pb.data(), (n + 1) * sizeof(long long), cudaMemcpyHostToDevice, cs));
+  LVDIF_CUDA_CHECK(cudaMemcpyAsync(S.cBase.p, cb.data(), (n + 1) * sizeof(long long), cudaMemcpyHostToDevice, cs));
+  LVDIF_CUDA_CHECK(cudaMemsetAsync(S.vcount.p + P, 0, sizeof(unsigned int), cs));
+  LVDIF_CUDA_CHECK(cudaMemsetAsync(S.tcount.p + C, 0, sizeof(unsigned int), cs));
+}
+
+// Classifies the batch's P points and C cells, scans the counts and reads back
+// each chunk's first vertex and triangle (vb, tb; n + 1 entries, the last the
+// totals): the one synchronization of a batch.
+void classifyBatch(MarchingCubesCudaState& S, int n, long long P, long long C, long long maxP, long long maxC,
+  std::vector<unsigned int>& vb, std::vector<unsigned int>& tb, cudaStream_t cs)
+{
+  detail::mc_cuda::classifyPoints<<<dim3(blocks(maxP), n), 256, 0, cs>>>(S.boxes.p, S.pBase.p, S.masks.p, S.vcount.p);
+  LVDIF_CUDA_CHECK(cudaGetLastError());
+  detail::mc_cuda::classifyCells<<<dim3(blocks(maxC), n), 256, 0, cs>>>(S.boxes.p, S.cBase.p, S.cases.p, S.tcount.p);
+  LVDIF_CUDA_CHECK(cudaGetLastError());
+  S.scan(S.vcount.p, S.vfirst.p, P + 1, cs);
+  S.scan(S.tcount.p, S.tfirst.p, C + 1, cs);
+  detail::mc_cuda::chunkBases<<<blocks(n + 1), 256, 0, cs>>>(S.pBase.p, S.cBase.p, S.vfirst.p, S.tfirst.p, S.vBase.p, S.tBase.p, n);
+  LVDIF_CUDA_CHECK(cudaGetLastError());
+  vb.resize(n + 1);
+  tb.resize(n + 1);
+  LVDIF_CUDA_CHECK(cudaMemcpyAsync(vb.data(), S.vBase.p, (n + 1) * sizeof(unsigned int), cudaMemcpyDeviceToHost, cs));
+  LVDIF_CUDA_CHECK(cudaMemcpyAsync(tb.data(), S.tBase.p, (n + 1) * sizeof(unsigned int), cudaMemcpyDeviceToHost, cs));
+  LVDIF_CUDA_CHECK(cudaStreamSynchronize(cs));
+}
+
 /// Meshes one batch of chunks whose boxes point at device data.
 std::vector<ChunkMesh> runBatch(const ChunkedMarchingCubes::Impl& impl, MarchingCubesCudaState& S,
   const std::vector<Box>& boxes, const std::vector<std::int64_t>& ids)
@@ -240,22 +272,9 @@ std::vector<ChunkMesh> runBatch(const ChunkedMarchingCubes::Impl& impl, Marching
   }
   const long long P = pb[n], C = cb[n];
   reserveBatch(S, n, P, C);
-  LVDIF_CUDA_CHECK(cudaMemcpy(S.boxes.p, boxes.data(), n * sizeof(Box), cudaMemcpyHostToDevice));
-  LVDIF_CUDA_CHECK(cudaMemcpy(S.pBase.p, pb.data(), (n + 1) * sizeof(long long), cudaMemcpyHostToDevice));
-  LVDIF_CUDA_CHECK(cudaMemcpy(S.cBase.p, cb.data(), (n + 1) * sizeof(long long), cudaMemcpyHostToDevice));
-  LVDIF_CUDA_CHECK(cudaMemset(S.vcount.p + P, 0, sizeof(unsigned int)));
-  LVDIF_CUDA_CHECK(cudaMemset(S.tcount.p + C, 0, sizeof(unsigned int)));
-  detail::mc_cuda::classifyPoints<<<dim3(blocks(maxP), n), 256>>>(S.boxes.p, S.pBase.p, S.masks.p, S.vcount.p);
-  LVDIF_CUDA_CHECK(cudaGetLastError());
-  detail::mc_cuda::classifyCells<<<dim3(blocks(maxC), n), 256>>>(S.boxes.p, S.cBase.p, S.cases.p, S.tcount.p);
-  LVDIF_CUDA_CHECK(cudaGetLastError());
-  S.scan(S.vcount.p, S.vfirst.p, P + 1);
-  S.scan(S.tcount.p, S.tfirst.p, C + 1);
-  detail::mc_cuda::chunkBases<<<blocks(n + 1), 256>>>(S.pBase.p, S.cBase.p, S.vfirst.p, S.tfirst.p, S.vBase.p, S.tBase.p, n);
-  LVDIF_CUDA_CHECK(cudaGetLastError());
+  uploadBatch(S, boxes.data(), n, pb, cb, P, C, 0);
   std::vector<unsigned int> vb, tb;
-  download(vb, S.vBase.p, n + 1);
-  download(tb, S.tBase.p, n + 1);
+  classifyBatch(S, n, P, C, maxP, maxC, vb, tb, 0);
 
   std::vector<ChunkMesh> out(n);
   for (int i = 0; i < n; ++i)
@@ -489,24 +508,8 @@ void packLocked(const ChunkedMarchingCubes::Impl& impl, MarchingCubesCudaState& 
     const int n = static_cast<int>(last - first);
     reserveBatch(S, n, P, C);
     cudaStream_t cs = S.compute;
-    LVDIF_CUDA_CHECK(cudaMemcpyAsync(S.boxes.p, all.data() + first, n * sizeof(Box), cudaMemcpyHostToDevice, cs));
-    LVDIF_CUDA_CHECK(cudaMemcpyAsync(S.pBase.p, pb.data(), (n + 1) * sizeof(long long), cudaMemcpyHostToDevice, cs));
-    LVDIF_CUDA_CHECK(cudaMemcpyAsync(S.cBase.p, cb.data(), (n + 1) * sizeof(long long), cudaMemcpyHostToDevice, cs));
-    LVDIF_CUDA_CHECK(cudaMemsetAsync(S.vcount.p + P, 0, sizeof(unsigned int), cs));
-    LVDIF_CUDA_CHECK(cudaMemsetAsync(S.tcount.p + C, 0, sizeof(unsigned int), cs));
-    detail::mc_cuda::classifyPoints<<<dim3(blocks(maxP), n), 256, 0, cs>>>(S.boxes.p, S.pBase.p, S.masks.p, S.vcount.p);
-    LVDIF_CUDA_CHECK(cudaGetLastError());
-    detail::mc_cuda::classifyCells<<<dim3(blocks(maxC), n), 256, 0, cs>>>(S.boxes.p, S.cBase.p, S.cases.p, S.tcount.p);
-    LVDIF_CUDA_CHECK(cudaGetLastError());
-    S.scan(S.vcount.p, S.vfirst.p, P + 1, cs);
-    S.scan(S.tcount.p, S.tfirst.p, C + 1, cs);
-    detail::mc_cuda::chunkBases<<<blocks(n + 1), 256, 0, cs>>>(S.pBase.p, S.cBase.p, S.vfirst.p, S.tfirst.p, S.vBase.p, S.tBase.p, n);
-    LVDIF_CUDA_CHECK(cudaGetLastError());
-    vb.resize(n + 1);
-    tb.resize(n + 1);
-    LVDIF_CUDA_CHECK(cudaMemcpyAsync(vb.data(), S.vBase.p, (n + 1) * sizeof(unsigned int), cudaMemcpyDeviceToHost, cs));
-    LVDIF_CUDA_CHECK(cudaMemcpyAsync(tb.data(), S.tBase.p, (n + 1) * sizeof(unsigned int), cudaMemcpyDeviceToHost, cs));
-    LVDIF_CUDA_CHECK(cudaStreamSynchronize(cs));
+    uploadBatch(S, all.data() + first, n, pb, cb, P, C, cs);
+    classifyBatch(S, n, P, C, maxP, maxC, vb, tb, cs);
     const std::uint64_t NV = vb[n], NT = tb[n];
     for (int i = 0; i < n; ++i)
     {
@@ -667,26 +670,10 @@ void packFromDeviceLocked(const ChunkedMarchingCubes::Impl& impl, MarchingCubesC
       b.colors = colors ? S.boxColors.p + gb[i] : nullptr;
       b.keys = keys ? S.boxKeys.p + gb[i] : nullptr;
     }
-    LVDIF_CUDA_CHECK(cudaMemcpyAsync(S.boxes.p, all.data() + first, n * sizeof(Box), cudaMemcpyHostToDevice, cs));
-    LVDIF_CUDA_CHECK(cudaMemcpyAsync(S.pBase.p, pb.data(), (n + 1) * sizeof(long long), cudaMemcpyHostToDevice, cs));
-    LVDIF_CUDA_CHECK(cudaMemcpyAsync(S.cBase.p, cb.data(), (n + 1) * sizeof(long long), cudaMemcpyHostToDevice, cs));
-    LVDIF_CUDA_CHECK(cudaMemsetAsync(S.vcount.p + P, 0, sizeof(unsigned int), cs));
-    LVDIF_CUDA_CHECK(cudaMemsetAsync(S.tcount.p + C, 0, sizeof(unsigned int), cs));
+    uploadBatch(S, all.data() + first, n, pb, cb, P, C, cs);
     gatherFromVolume<<<dim3(blocks(maxG), n), 256, 0, cs>>>(v, S.boxes.p);
     LVDIF_CUDA_CHECK(cudaGetLastError());
-    detail::mc_cuda::classifyPoints<<<dim3(blocks(maxP), n), 256, 0, cs>>>(S.boxes.p, S.pBase.p, S.masks.p, S.vcount.p);
-    LVDIF_CUDA_CHECK(cudaGetLastError());
-    detail::mc_cuda::classifyCells<<<dim3(blocks(maxC), n), 256, 0, cs>>>(S.boxes.p, S.cBase.p, S.cases.p, S.tcount.p);
-    LVDIF_CUDA_CHECK(cudaGetLastError());
-    S.scan(S.vcount.p, S.vfirst.p, P + 1, cs);
-    S.scan(S.tcount.p, S.tfirst.p, C + 1, cs);
-    detail::mc_cuda::chunkBases<<<blocks(n + 1), 256, 0, cs>>>(S.pBase.p, S.cBase.p, S.vfirst.p, S.tfirst.p, S.vBase.p, S.tBase.p, n);
-    LVDIF_CUDA_CHECK(cudaGetLastError());
-    vb.resize(n + 1);
-    tb.resize(n + 1);
-    LVDIF_CUDA_CHECK(cudaMemcpyAsync(vb.data(), S.vBase.p, (n + 1) * sizeof(unsigned int), cudaMemcpyDeviceToHost, cs));
-    LVDIF_CUDA_CHECK(cudaMemcpyAsync(tb.data(), S.tBase.p, (n + 1) * sizeof(unsigned int), cudaMemcpyDeviceToHost, cs));
-    LVDIF_CUDA_CHECK(cudaStreamSynchronize(cs));
+    classifyBatch(S, n, P, C, maxP, maxC, vb, tb, cs);
     const std::uint64_t NV = vb[n], NT = tb[n];
     for (int i = 0; i < n; ++i)
     {
