@@ -8,6 +8,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <map>
 #include <set>
 #include <sstream>
 
@@ -430,7 +431,7 @@ EditResult applyGather(DictionaryVolume& volume, const detail::edit::DabPlan& pl
   const Index3& n = volume.dims();
   const bool grab = c.op == static_cast<int>(BrushOp::Grab);
   EditResult result;
-  std::set<std::int64_t> changedChunks;
+  std::map<std::int64_t, VoxelBox> changedChunks; // and the box of each one's changed voxels
   const int g = c.groupSize;
   const int groups = static_cast<int>(plan.dabs.size()) / g;
   struct Change
@@ -522,13 +523,17 @@ EditResult applyGather(DictionaryVolume& volume, const detail::edit::DabPlan& pl
         volume.set(ch.x, ch.y, ch.z, ch.v);
         ++result.changedVoxels;
         result.changedBox.include(ch.x, ch.y, ch.z);
+        changedChunks[id].include(ch.x, ch.y, ch.z);
       }
     for (std::int64_t id : touched)
       if (!volume.isUniform(id))
         volume.tryCollapseChunk(id);
-    changedChunks.insert(touched.begin(), touched.end());
   }
-  result.changedChunks.assign(changedChunks.begin(), changedChunks.end());
+  for (const auto& c : changedChunks)
+  {
+    result.changedChunks.push_back(c.first);
+    result.changedChunkBoxes.push_back(c.second);
+  }
   return result;
 }
 } // namespace
@@ -627,6 +632,10 @@ EditResult applyDabs(DictionaryVolume& volume, const std::vector<Dab>& dabs, con
       const Voxel* readData = volume.chunkData(id);
       const Voxel uniformValue = volume.uniformValue(id);
       Voxel* writeData = nullptr;
+      // without symmetry or weights, each dab's distances are computed a row at a time
+      const bool perDabRows = g == 1 && ctx.unitWeight;
+      std::vector<Voxel> rowOld, rowNew;
+      std::vector<double> rowS;
       for (std::int64_t z = region.lo[2]; z <= region.hi[2]; ++z)
         for (std::int64_t y = region.lo[1]; y <= region.hi[1]; ++y)
         {
@@ -655,13 +664,71 @@ EditResult applyDabs(DictionaryVolume& volume, const std::vector<Dab>& dabs, con
               x1 = std::max(x1, hi);
             }
           }
+          if (x1 < x0)
+            continue;
+          const std::int64_t li0 = volume.localIndex(x0, y, z); // a row is contiguous in the chunk
+          const std::int64_t m = x1 - x0 + 1;
+          rowOld.resize(static_cast<std::size_t>(m));
+          if (writeData || readData)
+            std::copy_n((writeData ? writeData : readData) + li0, m, rowOld.begin());
+          else
+            std::fill(rowOld.begin(), rowOld.end(), uniformValue);
+          rowNew = rowOld;
+          if (perDabRows)
+          {
+            // Dab by dab over the row (voxels are independent, so this is the
+            // per-voxel order): each dab's s over its own x range in one tight
+            // loop, then the same combine as applyGroupToVoxel with t = 0.
+            for (int k : mine)
+            {
+              const VoxelBox& b = boxes[static_cast<size_t>(k)];
+              if (y < b.lo[1] || y > b.hi[1] || z < b.lo[2] || z > b.hi[2])
+                continue;
+              const std::int64_t a0 = std::max(b.lo[0], x0), a1 = std::min(b.hi[0], x1);
+              if (a1 < a0)
+                continue;
+              const Dab& d = active[static_cast<size_t>(k)];
+              rowS.resize(static_cast<std::size_t>(a1 - a0 + 1));
+              double* sv = rowS.data();
+              if (d.shape == BrushShape::Sphere)
+              {
+                // sphereDistance's arithmetic in its order (bit-identical), vectorisable
+                const double py = double(y) - d.center[1], pz = double(z) - d.center[2];
+                const double yy = py * py, zz = pz * pz, cx = d.center[0], r = d.radius, x0d = double(a0);
+                const int n = static_cast<int>(a1 - a0 + 1);
+                // x0d + i is exactly double(x) (integers far below 2^53); an int
+                // index lets the loop vectorise
+                for (int i = 0; i < n; ++i)
+                {
+                  const double px = (x0d + double(i)) - cx;
+                  sv[i] = std::sqrt(px * px + yy + zz) - r;
+                }
+              }
+              else
+                for (std::int64_t x = a0; x <= a1; ++x)
+                  sv[x - a0] = dabDistance(d, double(x), double(y), double(z), ctx.rounding);
+              Voxel* rv = rowNew.data() - x0;
+              for (std::int64_t x = a0; x <= a1; ++x)
+              {
+                const double sx = sv[x - a0];
+                if (sx > reach)
+                  continue;
+                detail::edit::combineVoxel(rv[x].sdf, rv[x].color, sx, 0.0, d, double(x), double(y), double(z), ctx, table, encode);
+              }
+            }
+          }
+          else
+            for (std::int64_t x = x0; x <= x1; ++x)
+            {
+              Voxel& v = rowNew[static_cast<std::size_t>(x - x0)];
+              for (int gi : mine)
+                detail::edit::applyGroupToVoxel(v.sdf, v.color, x, y, z, active.data(), boxes.data(), gi, ctx, table, encode);
+            }
           for (std::int64_t x = x0; x <= x1; ++x)
           {
-            const std::int64_t li = volume.localIndex(x, y, z);
-            const Voxel old = writeData ? writeData[li] : (readData ? readData[li] : uniformValue);
-            Voxel v = old;
-            for (int gi : mine)
-              detail::edit::applyGroupToVoxel(v.sdf, v.color, x, y, z, active.data(), boxes.data(), gi, ctx, table, encode);
+            const std::int64_t li = li0 + (x - x0);
+            const Voxel old = rowOld[static_cast<std::size_t>(x - x0)];
+            const Voxel v = rowNew[static_cast<std::size_t>(x - x0)];
             if (v != old)
             {
               if (!touched)
@@ -707,6 +774,7 @@ EditResult applyDabs(DictionaryVolume& volume, const std::vector<Dab>& dabs, con
     if (changedPerChunk[i] > 0)
     {
       result.changedChunks.push_back(chunks[i]);
+      result.changedChunkBoxes.push_back(changedBoxPerChunk[i]);
       result.changedVoxels += changedPerChunk[i];
       result.changedBox = result.changedBox.unite(changedBoxPerChunk[i]);
     }

@@ -288,6 +288,13 @@ struct EditResult
   /// Feed it to ChunkedMarchingCubes::chunksAffectedBy for the exact set of
   /// marching cubes chunks to re-mesh.
   VoxelBox changedBox;
+  /// Per changed chunk (parallel to changedChunks): the box of its changed voxels,
+  /// each inside its chunk and inside changedBox. Finer than changedBox for the
+  /// re-mesh (a stroke's crescent of changed voxels meets far fewer mesh chunks
+  /// than its bounding box). Empty when not known (then changedBox stands).
+  std::vector<VoxelBox> changedChunkBoxes;
+  /// True when changedChunkBoxes holds one box per changed chunk.
+  bool hasChunkBoxes() const { return !this->changedChunks.empty() && this->changedChunkBoxes.size() == this->changedChunks.size(); }
 };
 
 /// Applies the dabs in order (see the header comment). Adds the brush colour to the
