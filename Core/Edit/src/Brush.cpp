@@ -636,11 +636,15 @@ EditResult applyDabs(DictionaryVolume& volume, const std::vector<Dab>& dabs, con
       const bool perDabRows = g == 1 && ctx.unitWeight;
       std::vector<Voxel> rowOld, rowNew;
       std::vector<double> rowS;
+      std::vector<std::pair<std::int64_t, std::int64_t>> rowRange(perDabRows ? active.size() : 0);
       for (std::int64_t z = region.lo[2]; z <= region.hi[2]; ++z)
         for (std::int64_t y = region.lo[1]; y <= region.hi[1]; ++y)
         {
           // per row, the x range each dab can reach (a sphere trims it analytically)
           std::int64_t x0 = region.hi[0] + 1, x1 = region.lo[0] - 1;
+          if (perDabRows)
+            for (int k : mine)
+              rowRange[static_cast<size_t>(k)] = { 1, 0 }; // empty unless the row meets the dab
           for (int gi : mine)
           {
             for (int k = gi * g; k < (gi + 1) * g; ++k)
@@ -662,6 +666,8 @@ EditResult applyDabs(DictionaryVolume& volume, const std::vector<Dab>& dabs, con
               }
               x0 = std::min(x0, lo);
               x1 = std::max(x1, hi);
+              if (perDabRows)
+                rowRange[static_cast<size_t>(k)] = { lo, hi };
             }
           }
           if (x1 < x0)
@@ -679,12 +685,13 @@ EditResult applyDabs(DictionaryVolume& volume, const std::vector<Dab>& dabs, con
             // Dab by dab over the row (voxels are independent, so this is the
             // per-voxel order): each dab's s over its own x range in one tight
             // loop, then the same combine as applyGroupToVoxel with t = 0.
+            // a dab's own trimmed range (the union's other voxels are beyond its reach)
             for (int k : mine)
             {
               const VoxelBox& b = boxes[static_cast<size_t>(k)];
               if (y < b.lo[1] || y > b.hi[1] || z < b.lo[2] || z > b.hi[2])
                 continue;
-              const std::int64_t a0 = std::max(b.lo[0], x0), a1 = std::min(b.hi[0], x1);
+              const std::int64_t a0 = rowRange[static_cast<size_t>(k)].first, a1 = rowRange[static_cast<size_t>(k)].second;
               if (a1 < a0)
                 continue;
               const Dab& d = active[static_cast<size_t>(k)];
