@@ -564,7 +564,13 @@ EditResult applyDabs(DictionaryVolume& volume, const std::vector<Dab>& dabs, con
   const float* table = volume.sdfDictionary().table();
   const SdfDictionary& dict = volume.sdfDictionary();
   const float band = volume.bandWidth();
-  auto encode = [&dict, band](double v) { return dict.encodeClamped(static_cast<float>(v), band); };
+  // encodeClamped with the two saturated keys looked up once: most of a large
+  // dab's interior (and far side) encodes to them
+  const SdfKey belowBand = dict.encode(-band), aboveBand = dict.encode(band);
+  auto encode = [&dict, band, belowBand, aboveBand](double v) {
+    const float f = static_cast<float>(v);
+    return f <= -band ? belowBand : (f >= band ? aboveBand : dict.encode(f));
+  };
   const std::int64_t nChunks = static_cast<std::int64_t>(chunks.size());
   std::vector<std::int64_t> changedPerChunk(chunks.size(), 0);
   std::vector<VoxelBox> changedBoxPerChunk(chunks.size());

@@ -21,6 +21,9 @@
 // Latency of a sample = from its recorded time until every mesh chunk it
 // invalidated has a collected mesh showing it (exact: the session says when each
 // mesh's input was read, and the edit happened before). Nothing is drawn.
+// CPU s = user + system time of the process (all threads) from the stroke's start
+// until its last mesh: the work, which a loaded machine does not inflate as it does
+// wall times; CPU ms/request divides it by the requests (samples that changed voxels).
 // Frame = the editing thread's work per loop iteration (edit + mesh + collect on
 // the GPU; edit + settle + collect on the CPU); fps = 1000 / mean frame time is
 // what a drag could sustain if samples came faster than 50 Hz.
@@ -44,9 +47,20 @@
 #include <string>
 #include <thread>
 
+#include <sys/resource.h>
+
 namespace
 {
 using Clock = std::chrono::steady_clock;
+
+/// CPU time of the whole process (every thread: brush, worker), user + system:
+/// on a shared machine the work done, where wall times are mostly waiting.
+double processCpuSeconds()
+{
+  rusage u{};
+  getrusage(RUSAGE_SELF, &u);
+  return double(u.ru_utime.tv_sec + u.ru_stime.tv_sec) + 1e-6 * double(u.ru_utime.tv_usec + u.ru_stime.tv_usec);
+}
 
 struct Config
 {
@@ -123,6 +137,7 @@ std::vector<std::string> runStroke(const Config& cfg, double radius)
   std::vector<Request> requests;
   // per mesh chunk: (when its input was gathered, when it was collected), in order
   std::map<std::int64_t, std::vector<std::pair<double, double>>> delivered;
+  const double cpu0 = processCpuSeconds();
   const Clock::time_point t0 = Clock::now();
   auto at = [&](Clock::time_point t) { return std::chrono::duration<double>(t - t0).count(); };
   auto now = [&] { return at(Clock::now()); };
@@ -218,6 +233,7 @@ std::vector<std::string> runStroke(const Config& cfg, double radius)
     }
   }
   const double duration = now();
+  const double strokeCpu = processCpuSeconds() - cpu0;
   // A mesh chunk shows an edit from its first mesh gathered after the edit.
   std::vector<double> fromSample, fromEdit, chunkCounts;
   int missing = 0;
@@ -260,7 +276,7 @@ std::vector<std::string> runStroke(const Config& cfg, double radius)
     fmt(percentile(chunkCounts, 0.5), 0) + " (" + fmt(percentile(chunkCounts, 0.95), 0) + ")",
     fmt(percentile(fromSample, 0.5)), fmt(percentile(fromSample, 0.95)), fmt(percentile(fromSample, 1.0)),
     p50p95(fromEdit), p50p95(frameMs), fmt(meanFrame > 0 ? 1e3 / meanFrame : 0, 0), fmt(iterations / duration, 1),
-    p50p95(brushMs), p50p95(collectMs) };
+    p50p95(brushMs), p50p95(collectMs), fmt(strokeCpu, 2), fmt(1e3 * strokeCpu / static_cast<double>(std::max<std::size_t>(1, requests.size())), 1) };
 }
 } // namespace
 
@@ -316,7 +332,7 @@ int main(int argc, char* argv[])
     bench::printTable({ "volume/chunk", "session", "radius", "loop", "requests", "mesh chunks/request p50 (p95)",
                         "latency p50 ms", "latency p95 ms", "latency max ms", "from edit p50 (p95) ms",
                         "frame p50 (p95) ms", "fps (1/mean frame)", "loop it/s", "edit p50 (p95) ms",
-                        "collect p50 (p95) ms" },
+                        "collect p50 (p95) ms", "CPU s (stroke)", "CPU ms/request" },
       rows);
   }
   catch (const std::exception& e)
