@@ -640,6 +640,8 @@ EditResult applyDabs(DictionaryVolume& volume, const std::vector<Dab>& dabs, con
       Voxel* writeData = nullptr;
       // without symmetry or weights, each dab's distances are computed a row at a time
       const bool perDabRows = g == 1 && ctx.unitWeight;
+      const bool add = ctx.op == static_cast<int>(BrushOp::Add);
+      const bool hardCsg = perDabRows && ctx.blend <= 0 && (add || ctx.op == static_cast<int>(BrushOp::Subtract));
       std::vector<Voxel> rowOld, rowNew;
       std::vector<double> rowS;
       std::vector<std::pair<std::int64_t, std::int64_t>> rowRange(perDabRows ? active.size() : 0);
@@ -701,32 +703,115 @@ EditResult applyDabs(DictionaryVolume& volume, const std::vector<Dab>& dabs, con
               if (a1 < a0)
                 continue;
               const Dab& d = active[static_cast<size_t>(k)];
-              rowS.resize(static_cast<std::size_t>(a1 - a0 + 1));
-              double* sv = rowS.data();
-              if (d.shape == BrushShape::Sphere)
+              Voxel* rv = rowNew.data() - x0;
+              std::pair<std::int64_t, std::int64_t> rest[2] = { { a0, a1 }, { 1, 0 } }; // what is left voxel by voxel
+              int nRest = 1;
+              if (hardCsg && d.shape == BrushShape::Sphere)
               {
-                // sphereDistance's arithmetic in its order (bit-identical), vectorisable
+                // Whole spans settled without a distance per voxel (the same bits as
+                // the per-voxel rule). s(x) below is sphereDistance's arithmetic; it
+                // grows with |x - cx| op by op, so its extremes over [a0, a1] are at
+                // the ends and at the integers around cx.
                 const double py = double(y) - d.center[1], pz = double(z) - d.center[2];
-                const double yy = py * py, zz = pz * pz, cx = d.center[0], r = d.radius, x0d = double(a0);
-                const int n = static_cast<int>(a1 - a0 + 1);
-                // x0d + i is exactly double(x) (integers far below 2^53); an int
-                // index lets the loop vectorise
-                for (int i = 0; i < n; ++i)
+                const double yy = py * py, zz = pz * pz, cx = d.center[0], r = d.radius;
+                auto sAt = [&](std::int64_t x) {
+                  const double px = double(x) - cx;
+                  return std::sqrt(px * px + yy + zz) - r;
+                };
+                const std::int64_t xn = std::min(a1, std::max(a0, static_cast<std::int64_t>(std::floor(cx))));
+                const double sMin = std::min(sAt(xn), sAt(std::min(a1, xn + 1)));
+                if (sMin > 0)
                 {
-                  const double px = (x0d + double(i)) - cx;
-                  sv[i] = std::sqrt(px * px + yy + zz) - r;
+                  // outside the primitive: add changes a voxel only where s < d,
+                  // subtract only where -s > d; neither can happen when the row's
+                  // largest (smallest) distance is at most sMin (at least -sMin)
+                  SdfKey lo = rv[a0].sdf, hi = rv[a0].sdf;
+                  for (std::int64_t x = a0 + 1; x <= a1; ++x)
+                  {
+                    lo = std::min(lo, rv[x].sdf);
+                    hi = std::max(hi, rv[x].sdf);
+                  }
+                  if (add ? double(table[hi]) <= sMin : double(table[lo]) >= -sMin)
+                    continue;
+                }
+                // [i0, i1]: where s <= -band (an interval: s falls to xn, then rises)
+                const double deep = -double(band);
+                std::int64_t i0 = a1 + 1, i1 = a1;
+                if (std::min(sAt(xn), sAt(std::min(a1, xn + 1))) <= deep)
+                {
+                  const std::int64_t m = sAt(xn) <= deep ? xn : xn + 1;
+                  std::int64_t lo = a0, hi = m; // first x in [a0, m] with s <= deep
+                  while (lo < hi)
+                  {
+                    const std::int64_t mid = lo + (hi - lo) / 2;
+                    if (sAt(mid) <= deep) hi = mid;
+                    else lo = mid + 1;
+                  }
+                  i0 = lo;
+                  lo = m;
+                  hi = a1; // last x in [m, a1] with s <= deep
+                  while (lo < hi)
+                  {
+                    const std::int64_t mid = lo + (hi - lo + 1) / 2;
+                    if (sAt(mid) <= deep) lo = mid;
+                    else hi = mid - 1;
+                  }
+                  i1 = lo;
+                }
+                bool inBand = true; // every key of the span within the band (else: voxel by voxel)
+                for (std::int64_t x = i0; x <= i1 && inBand; ++x)
+                  inBand = add ? rv[x].sdf >= belowBand : rv[x].sdf <= aboveBand;
+                if (i0 <= i1 && inBand)
+                {
+                  // s <= -band there: add sets the distance to the key of -band
+                  // (and the brush colour), subtract to that of +band, for every key
+                  // within the band (encode(-band) is the nearest key to -band)
+                  for (std::int64_t x = i0; x <= i1; ++x)
+                  {
+                    Voxel& w = rv[x];
+                    w.sdf = add ? belowBand : aboveBand;
+                    if (add)
+                      w.color = ctx.colorKey;
+                  }
+                  // the rest of the range, voxel by voxel below
+                  if (i0 == a0 && i1 == a1)
+                    continue;
+                  rest[0] = { a0, i0 - 1 };
+                  rest[1] = { i1 + 1, a1 };
+                  nRest = 2;
                 }
               }
-              else
-                for (std::int64_t x = a0; x <= a1; ++x)
-                  sv[x - a0] = dabDistance(d, double(x), double(y), double(z), ctx.rounding);
-              Voxel* rv = rowNew.data() - x0;
-              for (std::int64_t x = a0; x <= a1; ++x)
+              for (int part = 0; part < nRest; ++part)
               {
-                const double sx = sv[x - a0];
-                if (sx > reach)
+                const std::int64_t b0 = rest[part].first, b1 = rest[part].second;
+                if (b1 < b0)
                   continue;
-                detail::edit::combineVoxel(rv[x].sdf, rv[x].color, sx, 0.0, d, double(x), double(y), double(z), ctx, table, encode);
+                rowS.resize(static_cast<std::size_t>(b1 - b0 + 1));
+                double* sv = rowS.data();
+                if (d.shape == BrushShape::Sphere)
+                {
+                  // sphereDistance's arithmetic in its order (bit-identical), vectorisable
+                  const double py = double(y) - d.center[1], pz = double(z) - d.center[2];
+                  const double yy = py * py, zz = pz * pz, cx = d.center[0], r = d.radius, x0d = double(b0);
+                  const int n = static_cast<int>(b1 - b0 + 1);
+                  // x0d + i is exactly double(x) (integers far below 2^53); an int
+                  // index lets the loop vectorise
+                  for (int i = 0; i < n; ++i)
+                  {
+                    const double px = (x0d + double(i)) - cx;
+                    sv[i] = std::sqrt(px * px + yy + zz) - r;
+                  }
+                }
+                else
+                  for (std::int64_t x = b0; x <= b1; ++x)
+                    sv[x - b0] = dabDistance(d, double(x), double(y), double(z), ctx.rounding);
+                for (std::int64_t x = b0; x <= b1; ++x)
+                {
+                  const double sx = sv[x - b0];
+                  if (sx > reach)
+                    continue;
+                  detail::edit::combineVoxel(rv[x].sdf, rv[x].color, sx, 0.0, d, double(x), double(y), double(z), ctx, table, encode);
+                }
               }
             }
           }
