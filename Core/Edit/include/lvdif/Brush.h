@@ -65,6 +65,14 @@
 // all-equal by the edit are collapsed back to uniform. Chunks are processed
 // in parallel (OpenMP), each by one thread; a list of dabs is applied per
 // voxel in list order, which is bit-identical to applying them one by one.
+// Without symmetry and with strength 1 and the Constant falloff the CPU works a
+// row at a time, dab after dab (the voxels are independent, so the order per
+// voxel is the same): a dab's distances over its part of the row in one
+// vectorised loop, and for a hard add/subtract of a sphere the span below -band
+// set at once (every key within the band goes to that of -band, or +band) and a
+// row it cannot change skipped (the row's largest distance at most the dab's
+// smallest, for add). Same bits as the per-voxel rule (TestBrush's
+// RowPathEqualsThePerVoxelPathBitForBit, and the CUDA comparisons).
 #pragma once
 
 #include "lvdif/HostDevice.h"
