@@ -691,9 +691,9 @@ EditResult applyDabs(DictionaryVolume& volume, const std::vector<Dab>& dabs, con
           if (perDabRows)
           {
             // Dab by dab over the row (voxels are independent, so this is the
-            // per-voxel order): each dab's s over its own x range in one tight
-            // loop, then the same combine as applyGroupToVoxel with t = 0.
-            // a dab's own trimmed range (the union's other voxels are beyond its reach)
+            // per-voxel order): each dab's s over its own trimmed x range (the
+            // union's other voxels are beyond its reach) in one tight loop, then
+            // the same combine as applyGroupToVoxel with t = 0.
             for (int k : mine)
             {
               const VoxelBox& b = boxes[static_cast<size_t>(k)];
@@ -739,8 +739,8 @@ EditResult applyDabs(DictionaryVolume& volume, const std::vector<Dab>& dabs, con
                 std::int64_t i0 = a1 + 1, i1 = a1;
                 if (std::min(sAt(xn), sAt(std::min(a1, xn + 1))) <= deep)
                 {
-                  const std::int64_t m = sAt(xn) <= deep ? xn : xn + 1;
-                  std::int64_t lo = a0, hi = m; // first x in [a0, m] with s <= deep
+                  const std::int64_t turn = sAt(xn) <= deep ? xn : xn + 1;
+                  std::int64_t lo = a0, hi = turn; // first x in [a0, turn] with s <= deep
                   while (lo < hi)
                   {
                     const std::int64_t mid = lo + (hi - lo) / 2;
@@ -748,8 +748,8 @@ EditResult applyDabs(DictionaryVolume& volume, const std::vector<Dab>& dabs, con
                     else lo = mid + 1;
                   }
                   i0 = lo;
-                  lo = m;
-                  hi = a1; // last x in [m, a1] with s <= deep
+                  lo = turn;
+                  hi = a1; // last x in [turn, a1] with s <= deep
                   while (lo < hi)
                   {
                     const std::int64_t mid = lo + (hi - lo + 1) / 2;
