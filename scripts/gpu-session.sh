@@ -2,8 +2,9 @@
 # The edit session on a GPU host (no VTK there): builds Core only with CUDA
 # (sm_90), runs the Session, Edit and MarchingCubes tests (CUDA ones included)
 # and bench_stroke_latency_core through lvdif::EditSession: GPU session at
-# 512^3, 1024^3 (twice) and 2048^3, CPU session at 512^3 on 2 cores (taskset)
-# and at 1024^3 on all cores, strokes of radius 15 and 40. Logs go to $OUT
+# 512^3, 1024^3 (twice) and 2048^3, CPU session at 512^3 on 2 cores (taskset,
+# three runs, and --phases on one core) and at 1024^3 on all cores, strokes of
+# radius 15 and 40. Logs go to $OUT
 # (default ./out-gpu). About 1.5 minutes on an H100 host with 16 cores (build 44 s).
 # usage: scripts/gpu-session.sh   (from the repository root)
 set -u
@@ -34,7 +35,10 @@ run $B 512 --device cuda
 run $B 1024 --device cuda
 run $B 1024 --device cuda
 run $B 2048 --device cuda
-run env OMP_NUM_THREADS=2 taskset -c 0,1 $B 512 --device cpu      # the 2-core CPU target
+for i in 1 2 3; do
+  run env OMP_NUM_THREADS=2 taskset -c 0,1 $B 512 --device cpu    # the 2-core CPU target, three runs
+done
+run env OMP_NUM_THREADS=1 taskset -c 0 $B 512 --phases             # CPU per sample: edit and re-mesh
 run $B 1024 --device cpu                                            # CPU session, all cores, for reference
 echo "bench done after $(( $(date +%s) - T0 )) s" | tee -a "$OUT/timing.txt"
 grep -E "^\| [0-9]|^notice|^warning|rc=[1-9]|error" "$L"

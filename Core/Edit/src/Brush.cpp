@@ -8,6 +8,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <map>
 #include <set>
 #include <sstream>
 
@@ -430,7 +431,7 @@ EditResult applyGather(DictionaryVolume& volume, const detail::edit::DabPlan& pl
   const Index3& n = volume.dims();
   const bool grab = c.op == static_cast<int>(BrushOp::Grab);
   EditResult result;
-  std::set<std::int64_t> changedChunks;
+  std::map<std::int64_t, VoxelBox> changedChunks; // and the box of each one's changed voxels
   const int g = c.groupSize;
   const int groups = static_cast<int>(plan.dabs.size()) / g;
   struct Change
@@ -522,13 +523,17 @@ EditResult applyGather(DictionaryVolume& volume, const detail::edit::DabPlan& pl
         volume.set(ch.x, ch.y, ch.z, ch.v);
         ++result.changedVoxels;
         result.changedBox.include(ch.x, ch.y, ch.z);
+        changedChunks[id].include(ch.x, ch.y, ch.z);
       }
     for (std::int64_t id : touched)
       if (!volume.isUniform(id))
         volume.tryCollapseChunk(id);
-    changedChunks.insert(touched.begin(), touched.end());
   }
-  result.changedChunks.assign(changedChunks.begin(), changedChunks.end());
+  for (const auto& c : changedChunks)
+  {
+    result.changedChunks.push_back(c.first);
+    result.changedChunkBoxes.push_back(c.second);
+  }
   return result;
 }
 } // namespace
@@ -559,7 +564,13 @@ EditResult applyDabs(DictionaryVolume& volume, const std::vector<Dab>& dabs, con
   const float* table = volume.sdfDictionary().table();
   const SdfDictionary& dict = volume.sdfDictionary();
   const float band = volume.bandWidth();
-  auto encode = [&dict, band](double v) { return dict.encodeClamped(static_cast<float>(v), band); };
+  // encodeClamped with the two saturated keys looked up once: most of a large
+  // dab's interior (and far side) encodes to them
+  const SdfKey belowBand = dict.encode(-band), aboveBand = dict.encode(band);
+  auto encode = [&dict, band, belowBand, aboveBand](double v) {
+    const float f = static_cast<float>(v);
+    return f <= -band ? belowBand : (f >= band ? aboveBand : dict.encode(f));
+  };
   const std::int64_t nChunks = static_cast<std::int64_t>(chunks.size());
   std::vector<std::int64_t> changedPerChunk(chunks.size(), 0);
   std::vector<VoxelBox> changedBoxPerChunk(chunks.size());
@@ -627,11 +638,21 @@ EditResult applyDabs(DictionaryVolume& volume, const std::vector<Dab>& dabs, con
       const Voxel* readData = volume.chunkData(id);
       const Voxel uniformValue = volume.uniformValue(id);
       Voxel* writeData = nullptr;
+      // without symmetry or weights, each dab's distances are computed a row at a time
+      const bool perDabRows = g == 1 && ctx.unitWeight;
+      const bool add = ctx.op == static_cast<int>(BrushOp::Add);
+      const bool hardCsg = perDabRows && ctx.blend <= 0 && (add || ctx.op == static_cast<int>(BrushOp::Subtract));
+      std::vector<Voxel> rowOld, rowNew;
+      std::vector<double> rowS;
+      std::vector<std::pair<std::int64_t, std::int64_t>> rowRange(perDabRows ? active.size() : 0);
       for (std::int64_t z = region.lo[2]; z <= region.hi[2]; ++z)
         for (std::int64_t y = region.lo[1]; y <= region.hi[1]; ++y)
         {
           // per row, the x range each dab can reach (a sphere trims it analytically)
           std::int64_t x0 = region.hi[0] + 1, x1 = region.lo[0] - 1;
+          if (perDabRows)
+            for (int k : mine)
+              rowRange[static_cast<size_t>(k)] = { 1, 0 }; // empty unless the row meets the dab
           for (int gi : mine)
           {
             for (int k = gi * g; k < (gi + 1) * g; ++k)
@@ -653,15 +674,159 @@ EditResult applyDabs(DictionaryVolume& volume, const std::vector<Dab>& dabs, con
               }
               x0 = std::min(x0, lo);
               x1 = std::max(x1, hi);
+              if (perDabRows)
+                rowRange[static_cast<size_t>(k)] = { lo, hi };
             }
           }
+          if (x1 < x0)
+            continue;
+          const std::int64_t li0 = volume.localIndex(x0, y, z); // a row is contiguous in the chunk
+          const std::int64_t m = x1 - x0 + 1;
+          rowOld.resize(static_cast<std::size_t>(m));
+          if (writeData || readData)
+            std::copy_n((writeData ? writeData : readData) + li0, m, rowOld.begin());
+          else
+            std::fill(rowOld.begin(), rowOld.end(), uniformValue);
+          rowNew = rowOld;
+          if (perDabRows)
+          {
+            // Dab by dab over the row (voxels are independent, so this is the
+            // per-voxel order): each dab's s over its own trimmed x range (the
+            // union's other voxels are beyond its reach) in one tight loop, then
+            // the same combine as applyGroupToVoxel with t = 0.
+            for (int k : mine)
+            {
+              const VoxelBox& b = boxes[static_cast<size_t>(k)];
+              if (y < b.lo[1] || y > b.hi[1] || z < b.lo[2] || z > b.hi[2])
+                continue;
+              const std::int64_t a0 = rowRange[static_cast<size_t>(k)].first, a1 = rowRange[static_cast<size_t>(k)].second;
+              if (a1 < a0)
+                continue;
+              const Dab& d = active[static_cast<size_t>(k)];
+              Voxel* rv = rowNew.data() - x0;
+              std::pair<std::int64_t, std::int64_t> rest[2] = { { a0, a1 }, { 1, 0 } }; // what is left voxel by voxel
+              int nRest = 1;
+              if (hardCsg && d.shape == BrushShape::Sphere)
+              {
+                // Whole spans settled without a distance per voxel (the same bits as
+                // the per-voxel rule). s(x) below is sphereDistance's arithmetic; it
+                // grows with |x - cx| op by op, so its extremes over [a0, a1] are at
+                // the ends and at the integers around cx.
+                const double py = double(y) - d.center[1], pz = double(z) - d.center[2];
+                const double yy = py * py, zz = pz * pz, cx = d.center[0], r = d.radius;
+                auto sAt = [&](std::int64_t x) {
+                  const double px = double(x) - cx;
+                  return std::sqrt(px * px + yy + zz) - r;
+                };
+                const std::int64_t xn = std::min(a1, std::max(a0, static_cast<std::int64_t>(std::floor(cx))));
+                const double sMin = std::min(sAt(xn), sAt(std::min(a1, xn + 1)));
+                if (sMin > 0)
+                {
+                  // outside the primitive: add changes a voxel only where s < d,
+                  // subtract only where -s > d; neither can happen when the row's
+                  // largest (smallest) distance is at most sMin (at least -sMin)
+                  SdfKey lo = rv[a0].sdf, hi = rv[a0].sdf;
+                  for (std::int64_t x = a0 + 1; x <= a1; ++x)
+                  {
+                    lo = std::min(lo, rv[x].sdf);
+                    hi = std::max(hi, rv[x].sdf);
+                  }
+                  if (add ? double(table[hi]) <= sMin : double(table[lo]) >= -sMin)
+                    continue;
+                }
+                // [i0, i1]: where s <= -band (an interval: s falls to xn, then rises)
+                const double deep = -double(band);
+                std::int64_t i0 = a1 + 1, i1 = a1;
+                if (std::min(sAt(xn), sAt(std::min(a1, xn + 1))) <= deep)
+                {
+                  const std::int64_t turn = sAt(xn) <= deep ? xn : xn + 1;
+                  std::int64_t lo = a0, hi = turn; // first x in [a0, turn] with s <= deep
+                  while (lo < hi)
+                  {
+                    const std::int64_t mid = lo + (hi - lo) / 2;
+                    if (sAt(mid) <= deep) hi = mid;
+                    else lo = mid + 1;
+                  }
+                  i0 = lo;
+                  lo = turn;
+                  hi = a1; // last x in [turn, a1] with s <= deep
+                  while (lo < hi)
+                  {
+                    const std::int64_t mid = lo + (hi - lo + 1) / 2;
+                    if (sAt(mid) <= deep) lo = mid;
+                    else hi = mid - 1;
+                  }
+                  i1 = lo;
+                }
+                bool inBand = true; // every key of the span within the band (else: voxel by voxel)
+                for (std::int64_t x = i0; x <= i1 && inBand; ++x)
+                  inBand = add ? rv[x].sdf >= belowBand : rv[x].sdf <= aboveBand;
+                if (i0 <= i1 && inBand)
+                {
+                  // s <= -band there: add sets the distance to the key of -band
+                  // (and the brush colour), subtract to that of +band, for every key
+                  // within the band (encode(-band) is the nearest key to -band)
+                  for (std::int64_t x = i0; x <= i1; ++x)
+                  {
+                    Voxel& w = rv[x];
+                    w.sdf = add ? belowBand : aboveBand;
+                    if (add)
+                      w.color = ctx.colorKey;
+                  }
+                  // the rest of the range, voxel by voxel below
+                  if (i0 == a0 && i1 == a1)
+                    continue;
+                  rest[0] = { a0, i0 - 1 };
+                  rest[1] = { i1 + 1, a1 };
+                  nRest = 2;
+                }
+              }
+              for (int part = 0; part < nRest; ++part)
+              {
+                const std::int64_t b0 = rest[part].first, b1 = rest[part].second;
+                if (b1 < b0)
+                  continue;
+                rowS.resize(static_cast<std::size_t>(b1 - b0 + 1));
+                double* sv = rowS.data();
+                if (d.shape == BrushShape::Sphere)
+                {
+                  // sphereDistance's arithmetic in its order (bit-identical), vectorisable
+                  const double py = double(y) - d.center[1], pz = double(z) - d.center[2];
+                  const double yy = py * py, zz = pz * pz, cx = d.center[0], r = d.radius, x0d = double(b0);
+                  const int n = static_cast<int>(b1 - b0 + 1);
+                  // x0d + i is exactly double(x) (integers far below 2^53); an int
+                  // index lets the loop vectorise
+                  for (int i = 0; i < n; ++i)
+                  {
+                    const double px = (x0d + double(i)) - cx;
+                    sv[i] = std::sqrt(px * px + yy + zz) - r;
+                  }
+                }
+                else
+                  for (std::int64_t x = b0; x <= b1; ++x)
+                    sv[x - b0] = dabDistance(d, double(x), double(y), double(z), ctx.rounding);
+                for (std::int64_t x = b0; x <= b1; ++x)
+                {
+                  const double sx = sv[x - b0];
+                  if (sx > reach)
+                    continue;
+                  detail::edit::combineVoxel(rv[x].sdf, rv[x].color, sx, 0.0, d, double(x), double(y), double(z), ctx, table, encode);
+                }
+              }
+            }
+          }
+          else
+            for (std::int64_t x = x0; x <= x1; ++x)
+            {
+              Voxel& v = rowNew[static_cast<std::size_t>(x - x0)];
+              for (int gi : mine)
+                detail::edit::applyGroupToVoxel(v.sdf, v.color, x, y, z, active.data(), boxes.data(), gi, ctx, table, encode);
+            }
           for (std::int64_t x = x0; x <= x1; ++x)
           {
-            const std::int64_t li = volume.localIndex(x, y, z);
-            const Voxel old = writeData ? writeData[li] : (readData ? readData[li] : uniformValue);
-            Voxel v = old;
-            for (int gi : mine)
-              detail::edit::applyGroupToVoxel(v.sdf, v.color, x, y, z, active.data(), boxes.data(), gi, ctx, table, encode);
+            const std::int64_t li = li0 + (x - x0);
+            const Voxel old = rowOld[static_cast<std::size_t>(x - x0)];
+            const Voxel v = rowNew[static_cast<std::size_t>(x - x0)];
             if (v != old)
             {
               if (!touched)
@@ -707,6 +872,7 @@ EditResult applyDabs(DictionaryVolume& volume, const std::vector<Dab>& dabs, con
     if (changedPerChunk[i] > 0)
     {
       result.changedChunks.push_back(chunks[i]);
+      result.changedChunkBoxes.push_back(changedBoxPerChunk[i]);
       result.changedVoxels += changedPerChunk[i];
       result.changedBox = result.changedBox.unite(changedBoxPerChunk[i]);
     }

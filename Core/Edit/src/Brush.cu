@@ -241,6 +241,7 @@ EditResult applyDabs(DictionaryVolume& volume, const std::vector<Dab>& dabs, con
       if (perChunk[t] > 0)
       {
         result.changedChunks.push_back(plan.chunks[first + todo[t]]);
+        result.changedChunkBoxes.push_back(boxes2[t]);
         result.changedVoxels += perChunk[t];
         result.changedBox = result.changedBox.unite(boxes2[t]);
       }

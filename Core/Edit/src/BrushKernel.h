@@ -68,8 +68,16 @@ LVDIF_HD std::uint16_t mixedColor(std::uint16_t color, int q, const BrushContext
 /// Combines one voxel (sdf key, colour key) at (x, y, z) with one dab group:
 /// its primitive distance s, radial fraction t and the member `dab` nearest in t.
 /// `table` decodes keys; `encode(double)` is the band-clamped encoder.
+// The CPU brush calls combineVoxel per voxel from two loops; inlined into both
+// (CUDA inlines LVDIF_HD functions anyway).
+#if !defined(__CUDACC__) && (defined(__GNUC__) || defined(__clang__))
+#define LVDIF_EDIT_ALWAYS_INLINE __attribute__((always_inline))
+#else
+#define LVDIF_EDIT_ALWAYS_INLINE
+#endif
+
 template <typename Encode>
-LVDIF_HD void combineVoxel(std::uint16_t& sdf, std::uint16_t& color, double s, double t, const Dab& dab, double x,
+LVDIF_HD LVDIF_EDIT_ALWAYS_INLINE void combineVoxel(std::uint16_t& sdf, std::uint16_t& color, double s, double t, const Dab& dab, double x,
   double y, double z, const BrushContext& c, const float* table, const Encode& encode)
 {
   const double d = table[sdf];

@@ -558,6 +558,7 @@ EditResult DeviceVolume::applyDabs(const std::vector<Dab>& dabs, const BrushSett
       b.hi[a] = j.origin[a] + c.hi[a];
     }
     result.changedBox = result.changedBox.unite(b);
+    result.changedChunkBoxes.push_back(b);
     p.markPending(id);
     if (j.dst != j.src)
     {
@@ -773,6 +774,7 @@ EditResult DeviceVolume::sync(ChunkWriteObserver* observer)
         result.changedChunks.push_back(ids[first + t]);
         result.changedVoxels += perChunk[t];
         result.changedBox = result.changedBox.unite(volume.chunkBox(static_cast<std::int64_t>(id)));
+        result.changedChunkBoxes.push_back(volume.chunkBox(static_cast<std::int64_t>(id)));
       }
       if (volume.isUniform(static_cast<std::int64_t>(id)) && p.slotOf[id] >= 0)
       {

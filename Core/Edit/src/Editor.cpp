@@ -14,10 +14,37 @@ void merge(EditResult& into, const EditResult& r)
 {
   into.changedVoxels += r.changedVoxels;
   into.changedBox = into.changedBox.unite(r.changedBox);
+  // per-chunk boxes survive only when both sides have them (or a side changed nothing)
+  const bool boxes = (into.changedChunks.empty() || into.hasChunkBoxes()) && (r.changedChunks.empty() || r.hasChunkBoxes());
   std::vector<std::int64_t> all;
-  std::set_union(into.changedChunks.begin(), into.changedChunks.end(), r.changedChunks.begin(),
-    r.changedChunks.end(), std::back_inserter(all));
+  std::vector<VoxelBox> allBoxes;
+  std::size_t i = 0, j = 0;
+  const std::size_t n = into.changedChunks.size(), m = r.changedChunks.size();
+  while (i < n || j < m)
+  {
+    const bool takeA = j == m || (i < n && into.changedChunks[i] <= r.changedChunks[j]);
+    const bool takeB = i == n || (j < m && r.changedChunks[j] <= into.changedChunks[i]);
+    VoxelBox b;
+    if (takeA)
+    {
+      all.push_back(into.changedChunks[i]);
+      if (boxes && into.hasChunkBoxes())
+        b = b.unite(into.changedChunkBoxes[i]);
+      ++i;
+    }
+    if (takeB)
+    {
+      if (!takeA)
+        all.push_back(r.changedChunks[j]);
+      if (boxes && r.hasChunkBoxes())
+        b = b.unite(r.changedChunkBoxes[j]);
+      ++j;
+    }
+    if (boxes)
+      allBoxes.push_back(b);
+  }
   into.changedChunks.swap(all);
+  into.changedChunkBoxes.swap(allBoxes);
 }
 } // namespace
 

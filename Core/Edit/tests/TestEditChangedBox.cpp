@@ -10,6 +10,7 @@
 
 #include <gtest/gtest.h>
 
+#include <map>
 #include <random>
 
 using namespace lvdif;
@@ -31,6 +32,38 @@ bool covers(const VoxelBox& outer, const VoxelBox& inner)
   if (inner.empty()) return true;
   return !outer.empty() && outer.intersect(inner).voxelCount() == inner.voxelCount();
 }
+
+/// Per storage chunk with a differing voxel: the bounding box of those voxels (by chunk id).
+std::map<std::int64_t, VoxelBox> differenceBoxesPerChunk(const DictionaryVolume& a, const DictionaryVolume& b)
+{
+  std::map<std::int64_t, VoxelBox> boxes;
+  edittest::forEachVoxel(a, [&](std::int64_t x, std::int64_t y, std::int64_t z) {
+    if (a.get(x, y, z) != b.get(x, y, z)) boxes[a.chunkOf(x, y, z)].include(x, y, z);
+  });
+  return boxes;
+}
+
+/// The per-chunk boxes of an edit: one per changed chunk, each inside its chunk,
+/// covering (exact: equal to) the chunk's changed voxels.
+void checkChunkBoxes(const EditResult& r, const std::map<std::int64_t, VoxelBox>& truth, const DictionaryVolume& v, bool exact)
+{
+  ASSERT_EQ(r.changedChunkBoxes.size(), r.changedChunks.size());
+  ASSERT_EQ(r.changedChunks.size(), truth.size());
+  for (std::size_t i = 0; i < r.changedChunks.size(); ++i)
+  {
+    const auto t = truth.find(r.changedChunks[i]);
+    ASSERT_TRUE(t != truth.end()) << "chunk " << r.changedChunks[i] << " reported but unchanged";
+    const VoxelBox& b = r.changedChunkBoxes[i];
+    EXPECT_TRUE(covers(v.chunkBox(r.changedChunks[i]), b));
+    EXPECT_TRUE(covers(b, t->second));
+    if (exact)
+    {
+      EXPECT_EQ(b.lo, t->second.lo);
+      EXPECT_EQ(b.hi, t->second.hi);
+    }
+  }
+}
+
 } // namespace
 
 TEST(EditChangedBox, CoversEveryChangedVoxel)
@@ -62,6 +95,7 @@ TEST(EditChangedBox, CoversEveryChangedVoxel)
     const EditResult r = applyDabs(vol, dabs, s);
     const VoxelBox truth = differenceBox(*before, vol);
     SCOPED_TRACE("round " + std::to_string(round));
+    checkChunkBoxes(r, differenceBoxesPerChunk(*before, vol), vol, s.blend > 0 || s.op == BrushOp::Paint);
     EXPECT_EQ(truth.empty(), r.changedBox.empty());
     EXPECT_EQ(truth.empty(), r.changedVoxels == 0);
     EXPECT_TRUE(covers(r.changedBox, truth));
@@ -77,6 +111,27 @@ TEST(EditChangedBox, CoversEveryChangedVoxel)
   }
   EXPECT_GT(nonEmpty, 20);
   EXPECT_GT(exactChecked, 10);
+}
+
+TEST(EditChangedBox, SmoothAndGrabReportExactChunkBoxes)
+{
+  DictionaryVolume vol(edittest::options(64, 16, 6.0f));
+  fillFromFunction(vol, sphereSdf(32, 31.5, 32.2, 18));
+  for (BrushOp op : { BrushOp::Smooth, BrushOp::Grab })
+  {
+    BrushSettings s;
+    s.op = op;
+    s.falloff = Falloff::Smooth;
+    Dab d;
+    d.center = { 32.0, 31.0, 50.5 };
+    d.radius = 9;
+    d.vec = { 1.5, -0.5, 2.0 };
+    const auto before = vol.clone();
+    const EditResult r = applyDabs(vol, { d, d }, s);
+    SCOPED_TRACE(toString(op));
+    EXPECT_GT(r.changedVoxels, 0);
+    checkChunkBoxes(r, differenceBoxesPerChunk(*before, vol), vol, true);
+  }
 }
 
 TEST(EditChangedBox, EditorStrokeUnitesTheBoxes)
@@ -102,6 +157,8 @@ TEST(EditChangedBox, EditorStrokeUnitesTheBoxes)
   all.changedBox = all.changedBox.unite(last.changedBox);
   const VoxelBox truth = differenceBox(*before, vol);
   ASSERT_FALSE(truth.empty());
+  // the stroke's merged per-chunk boxes are exact too (blend > 0: no whole-chunk fill)
+  checkChunkBoxes(last, differenceBoxesPerChunk(*before, vol), vol, true);
   EXPECT_EQ(all.changedBox.lo, truth.lo);
   EXPECT_EQ(all.changedBox.hi, truth.hi);
   // endStroke returns the whole stroke's merged result

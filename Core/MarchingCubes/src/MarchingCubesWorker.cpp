@@ -92,10 +92,16 @@ void MarchingCubesWorker::shutdown()
 
 void MarchingCubesWorker::run()
 {
-  // Takes up to one chunk per OpenMP thread at a time: each is gathered under
-  // the source lock (a snapshot, as before), then the batch is meshed in
-  // parallel without the lock. A GPU mesher serializes on the device anyway.
-  const int width = this->Mesher.options().device == Device::Cuda ? 1 : std::max(1, omp_get_max_threads());
+  // Takes a batch of up to BatchPerThread chunks per OpenMP thread: the batch
+  // is gathered under the source lock (a snapshot of one instant, as before),
+  // the threads gathering in parallel, then meshed in parallel without the
+  // lock. A batch of several chunks a thread spreads the work evenly and pays
+  // the parallel regions' start once per batch, not per chunk. A GPU mesher
+  // serializes on the device anyway: one chunk at a time.
+  constexpr int BatchPerThread = 4;
+  const bool gpu = this->Mesher.options().device == Device::Cuda;
+  const int threads = gpu ? 1 : std::max(1, omp_get_max_threads());
+  const int width = gpu ? 1 : threads * BatchPerThread;
   std::vector<std::int64_t> ids;
   // one reusable input per slot (no allocation per chunk once warm)
   std::vector<ChunkedMarchingCubes::ChunkInput> inputs(static_cast<std::size_t>(width));
@@ -120,9 +126,11 @@ void MarchingCubesWorker::run()
     std::vector<ChunkMesh> meshes(static_cast<std::size_t>(n));
     std::vector<char> ok(static_cast<std::size_t>(n), 1);
     std::chrono::steady_clock::time_point gathered;
+    const int team = std::min(n, threads);
     {
       std::lock_guard<std::mutex> source(this->SourceMutex);
       gathered = std::chrono::steady_clock::now();
+#pragma omp parallel for schedule(dynamic, 1) num_threads(team) if (team > 1)
       for (int i = 0; i < n; ++i)
       {
         try
@@ -135,7 +143,7 @@ void MarchingCubesWorker::run()
         }
       }
     }
-#pragma omp parallel for schedule(dynamic, 1) num_threads(n) if (n > 1)
+#pragma omp parallel for schedule(dynamic, 1) num_threads(team) if (team > 1)
     for (int i = 0; i < n; ++i)
     {
       if (!ok[i]) continue;

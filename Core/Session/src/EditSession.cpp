@@ -28,7 +28,19 @@ std::vector<std::int64_t> meshChunksToRemesh(const ChunkedMarchingCubes& mc,
   std::vector<std::int64_t> foreign;
   std::set_difference(dirtyStorageChunks.begin(), dirtyStorageChunks.end(), edit.changedChunks.begin(),
     edit.changedChunks.end(), std::back_inserter(foreign));
-  std::vector<std::int64_t> ids = edit.changedBox.empty() ? std::vector<std::int64_t>() : mc.chunksAffectedBy(edit.changedBox);
+  std::vector<std::int64_t> ids;
+  if (edit.hasChunkBoxes())
+  {
+    // the union of each changed storage chunk's own box: a moving dab's crescent
+    // meets far fewer mesh chunks than its bounding box does
+    for (const VoxelBox& b : edit.changedChunkBoxes)
+    {
+      const std::vector<std::int64_t> more = mc.chunksAffectedBy(b);
+      ids.insert(ids.end(), more.begin(), more.end());
+    }
+  }
+  else if (!edit.changedBox.empty())
+    ids = mc.chunksAffectedBy(edit.changedBox);
   if (!foreign.empty())
   {
     const std::vector<std::int64_t> more = mc.chunksAffectedByStorageChunks(foreign);

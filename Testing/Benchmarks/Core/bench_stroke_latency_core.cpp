@@ -21,12 +21,15 @@
 // Latency of a sample = from its recorded time until every mesh chunk it
 // invalidated has a collected mesh showing it (exact: the session says when each
 // mesh's input was read, and the edit happened before). Nothing is drawn.
+// CPU s = user + system time of the process (all threads) from the stroke's start
+// until its last mesh: the work, which a loaded machine does not inflate as it does
+// wall times; CPU ms/request divides it by the requests (samples that changed voxels).
 // Frame = the editing thread's work per loop iteration (edit + mesh + collect on
 // the GPU; edit + settle + collect on the CPU); fps = 1000 / mean frame time is
 // what a drag could sustain if samples came faster than 50 Hz.
 //
 // usage: bench_stroke_latency_core [N=512] [--device cpu|cuda] [--radius 15,40]
-//        [--samples 100] [--settle 6] [--loop event|tick] [--chunk E]
+//        [--samples 100] [--settle 6] [--loop event|tick] [--chunk E] [--phases]
 //        (E: storage and mesh chunk edge, 32 below 1024^3, 64 from 1024^3 as the paper)
 #include "BenchCommon.h"
 
@@ -44,9 +47,20 @@
 #include <string>
 #include <thread>
 
+#include <sys/resource.h>
+
 namespace
 {
 using Clock = std::chrono::steady_clock;
+
+/// CPU time of the whole process (every thread: brush, worker), user + system:
+/// on a shared machine the work done, where wall times are mostly waiting.
+double processCpuSeconds()
+{
+  rusage u{};
+  getrusage(RUSAGE_SELF, &u);
+  return double(u.ru_utime.tv_sec + u.ru_stime.tv_sec) + 1e-6 * double(u.ru_utime.tv_usec + u.ru_stime.tv_usec);
+}
 
 struct Config
 {
@@ -55,6 +69,7 @@ struct Config
   double settleMs = 6;
   lvdif::Device device = lvdif::Device::Cpu;
   std::string loop = "event";
+  bool phases = false;
 };
 
 struct Request
@@ -64,11 +79,9 @@ struct Request
   std::vector<std::int64_t> chunks;
 };
 
-std::vector<std::string> runStroke(const Config& cfg, double radius)
+/// The sphere volume of the benchmark (radius 0.35 N about the centre).
+std::shared_ptr<lvdif::DictionaryVolume> sphereVolume(int n, int edge)
 {
-  const int n = cfg.n;
-  const int edge = cfg.chunk > 0 ? cfg.chunk : (n >= 1024 ? 64 : 32);
-  bench::Stopwatch setup;
   lvdif::VolumeOptions o;
   o.dims = { n, n, n };
   o.chunkEdge = edge;
@@ -76,6 +89,97 @@ std::vector<std::string> runStroke(const Config& cfg, double radius)
   const double c = 0.5 * (n - 1), r = 0.35 * n;
   lvdif::fillFromFunction(*volume, lvdif::sphereSdf(c, c, c, r));
   volume->takeDirtyChunks();
+  return volume;
+}
+
+/// The stroke's samples: 50 Hz along a 90-degree arc on the sphere's surface.
+std::vector<lvdif::BrushSample> strokeSamples(int n, int count)
+{
+  const double c = 0.5 * (n - 1), r = 0.35 * n;
+  std::vector<lvdif::BrushSample> samples(count);
+  for (int i = 0; i < count; ++i)
+  {
+    const double a = 0.5 * M_PI * i / std::max(1, count - 1);
+    samples[i].position = { c + r * std::cos(a), c + r * std::sin(a), c };
+    samples[i].time = i / 50.0;
+    samples[i].buttons = 1;
+  }
+  return samples;
+}
+
+/// --phases: the same stroke without the clock, each sample's work done in turn
+/// on the calling thread's OpenMP team: the edit (brush + the remesh rule), then
+/// the mesh chunks it invalidated meshed at once (extractChunks, as the worker
+/// does). Process CPU time per phase (all threads), and how many of the meshes
+/// came out identical to the chunk's previous mesh (what a finer remesh rule
+/// could still skip).
+std::vector<std::string> runPhases(const Config& cfg, double radius)
+{
+  const int edge = cfg.chunk > 0 ? cfg.chunk : (cfg.n >= 1024 ? 64 : 32);
+  auto volume = sphereVolume(cfg.n, edge);
+  lvdif::EditSessionOptions so;
+  so.device = lvdif::Device::Cpu;
+  so.meshChunkEdge = edge;
+  so.meshing = false; // the meshes are made below, synchronously
+  lvdif::EditSession session(volume, so);
+  session.brush().op = lvdif::BrushOp::Add;
+  session.brush().color = lvdif::Rgba{ 230, 80, 50, 255 };
+  session.stroke().kind = lvdif::BrushKind::Drill;
+  session.stroke().radius = radius;
+  const lvdif::ChunkedMarchingCubes& mc = session.mesher();
+  std::map<std::int64_t, lvdif::ChunkMesh> previous; // the last mesh of every chunk the stroke meshed
+  for (std::int64_t id = 0; id < mc.chunkCount(); ++id)
+    if (!mc.chunkIsEmpty(id))
+      previous[id] = mc.extractChunk(id);
+  auto same = [](const lvdif::ChunkMesh& a, const lvdif::ChunkMesh& b) {
+    return a.triangles == b.triangles && a.edgeIds == b.edgeIds && a.colors == b.colors &&
+      a.cornerColors == b.cornerColors && a.points.size() == b.points.size() &&
+      std::equal(a.points.begin(), a.points.end(), b.points.begin()) && a.normals.size() == b.normals.size() &&
+      std::equal(a.normals.begin(), a.normals.end(), b.normals.begin());
+  };
+  double editCpu = 0, meshCpu = 0;
+  std::size_t chunks = 0, unchanged = 0, samplesWithWork = 0;
+  session.beginStroke();
+  const std::vector<lvdif::BrushSample> samples = strokeSamples(cfg.n, cfg.samples);
+  for (std::size_t i = 0; i <= samples.size(); ++i)
+  {
+    double t = processCpuSeconds();
+    if (i < samples.size())
+      session.addSample(samples[i]);
+    else
+      session.endStroke();
+    editCpu += processCpuSeconds() - t;
+    const std::vector<std::int64_t> ids = session.lastRequest();
+    if (ids.empty())
+      continue;
+    ++samplesWithWork;
+    t = processCpuSeconds();
+    const std::vector<lvdif::ChunkMesh> meshes = mc.extractChunks(ids);
+    meshCpu += processCpuSeconds() - t;
+    chunks += ids.size();
+    for (const lvdif::ChunkMesh& m : meshes)
+    {
+      auto it = previous.find(m.chunkId);
+      if (it == previous.end() ? m.empty() : same(it->second, m))
+        ++unchanged;
+      previous[m.chunkId] = m;
+    }
+  }
+  const double k = 1e3 / static_cast<double>(std::max<std::size_t>(1, samplesWithWork));
+  using bench::fmt;
+  return { std::to_string(cfg.n) + "^3/" + std::to_string(edge), fmt(radius, 0), std::to_string(samplesWithWork),
+    fmt(k * editCpu), fmt(k * meshCpu), fmt(static_cast<double>(chunks) / std::max<std::size_t>(1, samplesWithWork), 1),
+    fmt(1e3 * meshCpu / static_cast<double>(std::max<std::size_t>(1, chunks)), 3),
+    fmt(100.0 * static_cast<double>(unchanged) / static_cast<double>(std::max<std::size_t>(1, chunks)), 0) };
+}
+
+std::vector<std::string> runStroke(const Config& cfg, double radius)
+{
+  const int n = cfg.n;
+  const int edge = cfg.chunk > 0 ? cfg.chunk : (n >= 1024 ? 64 : 32);
+  bench::Stopwatch setup;
+  auto volume = sphereVolume(n, edge);
+  const double c = 0.5 * (n - 1), r = 0.35 * n;
   const double fillS = setup.seconds();
   lvdif::EditSessionOptions so;
   so.device = cfg.device;
@@ -110,19 +214,13 @@ std::vector<std::string> runStroke(const Config& cfg, double radius)
   const double setupS = setup.seconds();
 
   // The stroke: 50 Hz samples on the sphere's surface along a 90-degree arc.
-  std::vector<lvdif::BrushSample> samples(cfg.samples);
-  for (int i = 0; i < cfg.samples; ++i)
-  {
-    const double a = 0.5 * M_PI * i / std::max(1, cfg.samples - 1);
-    samples[i].position = { c + r * std::cos(a), c + r * std::sin(a), c };
-    samples[i].time = i / 50.0;
-    samples[i].buttons = 1;
-  }
+  const std::vector<lvdif::BrushSample> samples = strokeSamples(n, cfg.samples);
 
   std::vector<double> brushMs, frameMs, collectMs;
   std::vector<Request> requests;
   // per mesh chunk: (when its input was gathered, when it was collected), in order
   std::map<std::int64_t, std::vector<std::pair<double, double>>> delivered;
+  const double cpu0 = processCpuSeconds();
   const Clock::time_point t0 = Clock::now();
   auto at = [&](Clock::time_point t) { return std::chrono::duration<double>(t - t0).count(); };
   auto now = [&] { return at(Clock::now()); };
@@ -218,6 +316,7 @@ std::vector<std::string> runStroke(const Config& cfg, double radius)
     }
   }
   const double duration = now();
+  const double strokeCpu = processCpuSeconds() - cpu0;
   // A mesh chunk shows an edit from its first mesh gathered after the edit.
   std::vector<double> fromSample, fromEdit, chunkCounts;
   int missing = 0;
@@ -260,7 +359,7 @@ std::vector<std::string> runStroke(const Config& cfg, double radius)
     fmt(percentile(chunkCounts, 0.5), 0) + " (" + fmt(percentile(chunkCounts, 0.95), 0) + ")",
     fmt(percentile(fromSample, 0.5)), fmt(percentile(fromSample, 0.95)), fmt(percentile(fromSample, 1.0)),
     p50p95(fromEdit), p50p95(frameMs), fmt(meanFrame > 0 ? 1e3 / meanFrame : 0, 0), fmt(iterations / duration, 1),
-    p50p95(brushMs), p50p95(collectMs) };
+    p50p95(brushMs), p50p95(collectMs), fmt(strokeCpu, 2), fmt(1e3 * strokeCpu / static_cast<double>(std::max<std::size_t>(1, requests.size())), 1) };
 }
 } // namespace
 
@@ -286,6 +385,8 @@ int main(int argc, char* argv[])
         cfg.settleMs = std::atof(argv[++i]);
       else if (!std::strcmp(argv[i], "--chunk") && more)
         cfg.chunk = std::atoi(argv[++i]);
+      else if (!std::strcmp(argv[i], "--phases"))
+        cfg.phases = true;
       else if (!std::strcmp(argv[i], "--loop") && more)
         cfg.loop = argv[++i];
       else if (!std::strcmp(argv[i], "--device") && more)
@@ -311,12 +412,23 @@ int main(int argc, char* argv[])
               << "Latency = from the sample's recorded time until every mesh chunk it invalidated has a collected "
                  "mesh showing it (ready to draw). Not included: building VTK actors and drawing the frame.\n";
     std::vector<std::vector<std::string>> rows;
+    if (cfg.phases)
+    {
+      for (double r : cfg.radii)
+        rows.push_back(runPhases(cfg, r));
+      std::cout << "Phases (--phases): the stroke's samples one after the other without the clock, CPU session; "
+                   "process CPU ms (all threads) per sample that changed voxels.\n";
+      bench::printTable({ "volume/chunk", "radius", "samples", "edit CPU ms/sample", "mesh CPU ms/sample",
+                          "mesh chunks/sample", "mesh CPU ms/chunk", "% of meshes unchanged" },
+        rows);
+      return 0;
+    }
     for (double r : cfg.radii)
       rows.push_back(runStroke(cfg, r));
     bench::printTable({ "volume/chunk", "session", "radius", "loop", "requests", "mesh chunks/request p50 (p95)",
                         "latency p50 ms", "latency p95 ms", "latency max ms", "from edit p50 (p95) ms",
                         "frame p50 (p95) ms", "fps (1/mean frame)", "loop it/s", "edit p50 (p95) ms",
-                        "collect p50 (p95) ms" },
+                        "collect p50 (p95) ms", "CPU s (stroke)", "CPU ms/request" },
       rows);
   }
   catch (const std::exception& e)

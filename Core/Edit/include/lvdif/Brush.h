@@ -65,6 +65,14 @@
 // all-equal by the edit are collapsed back to uniform. Chunks are processed
 // in parallel (OpenMP), each by one thread; a list of dabs is applied per
 // voxel in list order, which is bit-identical to applying them one by one.
+// Without symmetry and with strength 1 and the Constant falloff the CPU works a
+// row at a time, dab after dab (the voxels are independent, so the order per
+// voxel is the same): a dab's distances over its part of the row in one
+// vectorised loop, and for a hard add/subtract of a sphere the span below -band
+// set at once (every key within the band goes to that of -band, or +band) and a
+// row it cannot change skipped (the row's largest distance at most the dab's
+// smallest, for add). Same bits as the per-voxel rule (TestBrush's
+// RowPathEqualsThePerVoxelPathBitForBit, and the CUDA comparisons).
 #pragma once
 
 #include "lvdif/HostDevice.h"
@@ -288,6 +296,13 @@ struct EditResult
   /// Feed it to ChunkedMarchingCubes::chunksAffectedBy for the exact set of
   /// marching cubes chunks to re-mesh.
   VoxelBox changedBox;
+  /// Per changed chunk (parallel to changedChunks): the box of its changed voxels,
+  /// each inside its chunk and inside changedBox. Finer than changedBox for the
+  /// re-mesh (a stroke's crescent of changed voxels meets far fewer mesh chunks
+  /// than its bounding box). Empty when not known (then changedBox stands).
+  std::vector<VoxelBox> changedChunkBoxes;
+  /// True when changedChunkBoxes holds one box per changed chunk.
+  bool hasChunkBoxes() const { return !this->changedChunks.empty() && this->changedChunkBoxes.size() == this->changedChunks.size(); }
 };
 
 /// Applies the dabs in order (see the header comment). Adds the brush colour to the

@@ -1,9 +1,9 @@
 // A background marching cubes worker (paper Sect. 3.3: the kernel runs in its
 // own thread so the interactive thread never waits for it).
 //
-// Snapshot semantics: the worker copies the input of one chunk at a time
-// (ChunkedMarchingCubes::gather) while holding sourceMutex(), then meshes the
-// copy without the lock. Whoever writes the volume (or float grid) holds
+// Snapshot semantics: the worker copies the input of a batch of chunks
+// (ChunkedMarchingCubes::gather, its threads in parallel) while holding
+// sourceMutex(), then meshes the copies without the lock. Whoever writes the volume (or float grid) holds
 // sourceMutex() during the write. Each finished chunk mesh therefore reflects
 // the volume as it was at one instant between two locked edits; different
 // chunks may reflect different instants. To converge, the editing thread

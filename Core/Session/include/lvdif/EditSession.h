@@ -68,7 +68,8 @@ struct EditSessionOptions
 
 /// The remesh rule: the mesh chunks whose meshes can change after `edit`
 /// (an Editor call's lastWrite()) when these storage chunks are dirty (changed
-/// since the last request): chunksAffectedBy(edit.changedBox), exact for what the
+/// since the last request): chunksAffectedBy of each changed storage chunk's own box
+/// (edit.changedChunkBoxes; edit.changedBox where those are not known), exact for what the
 /// edit wrote, and the storage-chunk rule (chunksAffectedByStorageChunks) for
 /// dirty storage chunks the edit does not name (undo, redo, a script's canvas).
 /// Both inputs increasing; the result sorted and unique.
