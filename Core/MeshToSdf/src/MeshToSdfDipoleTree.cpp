@@ -94,6 +94,7 @@ DipoleTree::Refined DipoleTree::refine(V3 q, double rho, const std::function<int
   heap.clear();
   double value = 0, err = 0, mag = 0; // sums over the open clusters (+ the exact leaves in value)
   int unbounded = 0;                  // open clusters too close for any bound
+  bool bulk = false; // while visiting a starting cut: one make_heap afterwards
   auto visit = [&](std::int32_t id) {
     const Node& nd = this->Nodes[id];
     const V3 y = nd.c - q;
@@ -114,7 +115,7 @@ DipoleTree::Refined DipoleTree::refine(V3 q, double rho, const std::function<int
       ++unbounded;
     }
     heap.push_back(o);
-    std::push_heap(heap.begin(), heap.end());
+    if (!bulk) std::push_heap(heap.begin(), heap.end());
   };
   if (this->Nodes.empty())
   {
@@ -123,7 +124,11 @@ DipoleTree::Refined DipoleTree::refine(V3 q, double rho, const std::function<int
   }
   if (cut && !cut->empty())
   {
+    bulk = true;
+    heap.reserve(cut->size() + 2);
     for (const std::int32_t id : *cut) visit(id);
+    std::make_heap(heap.begin(), heap.end());
+    bulk = false;
   }
   else
   {

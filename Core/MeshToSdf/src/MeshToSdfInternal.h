@@ -186,8 +186,13 @@ public:
   const std::vector<Tri>& cone() const { return this->coneOverMesh().cone; }
   const std::vector<Cluster>& clusters() const { return this->coneOverMesh().clusters; }
   std::size_t meshTriangles() const { return this->coneOverMesh().meshTris; }
-  /// Faces reversed (F) or removed as duplicates (R) for the CPU closure.
+  /// Faces reversed (F) or removed as duplicates (R) by the orientation pass
+  /// (Plus is M+ closed by caps when that is cheaper than caps over dM).
   std::size_t flippedTriangles() const { return this->CorrectedFaces; }
+  /// Whether the CPU closes M+ (the faces re-oriented); false when it closes
+  /// M itself by caps over dM (no reversed faces, or reversed patches whose
+  /// rims are shorter than F).
+  bool closesReorientedMesh() const { return this->CorrectedFaces != 0 && this->OrientState.empty(); }
 
 private:
   const Closure& coneOverMesh() const;
@@ -195,11 +200,20 @@ private:
   const PreparedMesh& Mesh;
   /// The correction s (w = K - s) of M as given, or of M+ (reoriented).
   const DipoleTree* correction(bool reoriented) const;
-  Closure Plus;                          // M+ (F reversed, R removed) closed by local caps S over dM+ (or a cone)
+  /// The closure whose crossings count: Plus, or M+ closed by its caps
+  /// (reoriented, when Plus closes M itself although the orientation pass
+  /// found reversed faces; built on first use).
+  const Closure& closure(bool reoriented) const;
+  Closure Plus;                          // M+ (F reversed, R removed) closed by local caps S over dM+, or M closed by caps over dM (or a cone)
   bool PlusIsCone = true;                // Plus is M closed by the cone over dM (what CUDA uses)
-  std::size_t CorrectedFaces = 0;        // |F| + |R|
+  std::size_t CorrectedFaces = 0;        // |F| + |R| found by the orientation pass
   std::unique_ptr<DipoleTree> Flipped;   // F reversed, weight 2, R reversed, weight 1, and the caps S (null if all empty)
   std::unique_ptr<DipoleTree> CapsOnly;  // the caps S alone (reoriented), when F or R is not empty
+  std::vector<std::uint8_t> OrientState;            // OrientedMesh::state when Plus closes M itself but F or R is not empty
+  std::vector<std::array<V3, 2>> OrientBoundary;     // the boundary of M+ then
+  mutable std::once_flag ReorientedOnce;
+  mutable std::unique_ptr<Closure> Reoriented;       // M+ closed by caps (reorientFaces), from OrientState
+  mutable std::unique_ptr<DipoleTree> ReorientedCaps; // its caps
   mutable std::once_flag LegacyOnce;
   mutable std::unique_ptr<Closure> Legacy; // M closed by the cone over dM (CUDA), when F or R is not empty
 };

@@ -87,6 +87,34 @@ TEST(MeshToSdfReorient, MatchesTheUndamagedMeshAfterReversalsAndDuplicates)
   }
 }
 
+TEST(MeshToSdfReorient, ReversedPatchesMatchTheUndamagedMesh)
+{
+  // patches reversed (more faces than rim edges: the CPU's own closure is
+  // M with caps over dM, the option needs M+ closed by its own caps)
+  const TriangleMesh clean = makeSphereMesh(0.05f, -0.03f, 0.02f, 1.0f, 16, 32);
+  TriangleMesh m = clean;
+  std::size_t n = 0;
+  for (auto& t : m.triangles)
+  {
+    const auto& a = m.points[t[0]];
+    if ((a[0] - 0.8f) * (a[0] - 0.8f) + (a[1] - 0.3f) * (a[1] - 0.3f) + (a[2] - 0.5f) * (a[2] - 0.5f) < 0.4f ||
+      a[2] < -0.75f)
+    {
+      std::swap(t[1], t[2]);
+      ++n;
+    }
+  }
+  ASSERT_GT(n, 60u);
+  for (const bool reorient : { true, false })
+  {
+    MeshToSdfStats st;
+    const Count c = compareWith(clean, m, reorient, grid(), st);
+    EXPECT_GT(c.far, grid().count() / 2);
+    if (reorient) EXPECT_EQ(c.wrong, 0) << c.wrong << " of " << c.far << " far voxels wrong";
+    else EXPECT_GT(c.wrong, 0) << "as given, the patches' neighbourhood differs from the undamaged mesh";
+  }
+}
+
 TEST(MeshToSdfReorient, TwoComponentsAndHolesKeepTheirOwnOrientation)
 {
   // two disjoint spheres, the second one entirely inside out plus 30 % of the
