@@ -156,8 +156,20 @@ public:
   /// world distance = out / toOut) where |w| >= 0.5. Positions x0 + i * h.
   /// fullSums (optional) counts voxels whose refinement summed every
   /// reversed/removed face exactly (or all of M, on an ambiguous oblique ray).
+  /// priorLo/priorHi (optional, n entries): bounds of the correction s at
+  /// each voxel already known (boundCorrection over a block of voxels; lo >
+  /// hi where none), used before any refinement of the row.
   void signRow(V3 rowStart, double h, std::int64_t n, float* out, std::int64_t& evaluations,
-    std::int64_t& fallbacks, std::int64_t* fullSums = nullptr, bool reoriented = false) const;
+    std::int64_t& fallbacks, std::int64_t* fullSums = nullptr, bool reoriented = false,
+    const double* priorLo = nullptr, const double* priorHi = nullptr) const;
+  /// Whether the sign needs the correction s (reversed, removed or capped faces).
+  bool hasCorrection(bool reoriented) const { return this->correction(reoriented) != nullptr; }
+  /// s over the ball (q, rho): true with [lo, hi] when it lies inside
+  /// (-1/2, 1/2), which decides every voxel in the ball whatever its
+  /// crossing count; false when it does not or cannot be bounded there.
+  /// cut (optional): as DipoleTree::refine (start from it, end with the final one).
+  bool boundCorrection(V3 q, double rho, double& lo, double& hi, std::int64_t& leafTris, bool reoriented,
+    std::vector<std::int32_t>* cut = nullptr) const;
   /// Exact winding number at p by a ray in a fixed oblique direction; the
   /// sum of all solid angles if that ray is ambiguous. reoriented: of M+
   /// (every component consistently oriented, exact duplicates once) instead

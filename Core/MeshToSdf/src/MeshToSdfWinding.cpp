@@ -448,8 +448,17 @@ bool WindingSigner::insideAt(V3 p, std::int64_t& fullSums, bool reoriented) cons
   return insideOf(u - 0.5 * (sLo + sHi));
 }
 
+bool WindingSigner::boundCorrection(V3 q, double rho, double& lo, double& hi, std::int64_t& leafTris, bool reoriented,
+  std::vector<std::int32_t>* cut) const
+{
+  const DipoleTree* s = this->correction(reoriented);
+  if (!s) return false;
+  return s->refine(q, rho, [](double l, double u) { return l > -0.5 && u < 0.5 ? 1 : (l >= 0.5 || u <= -0.5 ? -1 : 0); },
+           lo, hi, leafTris, cut) == DipoleTree::Refined::Done;
+}
+
 void WindingSigner::signRow(V3 rowStart, double h, std::int64_t n, float* out, std::int64_t& evaluations,
-  std::int64_t& fallbacks, std::int64_t* fullSums, bool reoriented) const
+  std::int64_t& fallbacks, std::int64_t* fullSums, bool reoriented, const double* priorLo, const double* priorHi) const
 {
   std::int64_t fullLocal = 0;
   std::int64_t& full = fullSums ? *fullSums : fullLocal;
@@ -542,6 +551,13 @@ void WindingSigner::signRow(V3 rowStart, double h, std::int64_t n, float* out, s
             segK[a] = k;
           }
         }
+        // blocks of voxels bounded already (priors) may decide the whole segment
+        bool priorsDecide = priorLo != nullptr;
+        for (std::int64_t a = 0; a < len && priorsDecide; ++a)
+        {
+          const double pl = priorLo[i + a], ph = priorHi[i + a];
+          priorsDecide = pl <= ph && (open ? pl > -0.5 && ph < 0.5 : decided(segK[a] - ph, segK[a] - pl));
+        }
         auto tryBall = [&](auto& self, std::int64_t a, std::int64_t m) -> void {
           const double half = 0.5 * static_cast<double>(m - 1) * h;
           const V3 centre = pos(i + a) + V3{ half, 0, 0 };
@@ -572,7 +588,7 @@ void WindingSigner::signRow(V3 rowStart, double h, std::int64_t n, float* out, s
             self(self, a + m / 2, m - m / 2);
           }
         };
-        tryBall(tryBall, 0, len);
+        if (!priorsDecide) tryBall(tryBall, 0, len);
         cut.clear();
         segStart = i;
         segEnd = i + len;
@@ -580,6 +596,11 @@ void WindingSigner::signRow(V3 rowStart, double h, std::int64_t n, float* out, s
       level = 1;
       sLo = segLo[i - segStart];
       sHi = segHi[i - segStart];
+      if (priorLo && priorLo[i] <= priorHi[i])
+      {
+        sLo = std::max(sLo, priorLo[i]);
+        sHi = std::min(sHi, priorHi[i]);
+      }
     }
     while (!decided(lo - sHi, hi - sLo))
     {
