@@ -588,7 +588,9 @@ void WindingSigner::signRow(V3 rowStart, double h, std::int64_t n, float* out, s
             self(self, a + m / 2, m - m / 2);
           }
         };
-        if (!priorsDecide) tryBall(tryBall, 0, len);
+        // with block bounds the segment's ball (radius 7.5 voxels) decides
+        // nothing they left: skipped (measured: the same voxels, 3 % slower)
+        if (!priorsDecide && !priorLo) tryBall(tryBall, 0, len);
         cut.clear();
         segStart = i;
         segEnd = i + len;
