@@ -64,6 +64,9 @@ run 40 $M "holes40:$A" 1024 winding auto bvh volume 8 2 warm
 run 60 $M "sub2:$A" 1024 winding auto bvh volume 8 2 cold,warm,prepared
 # reading a generated 10M-triangle mesh: binary PLY and OFF (files in /tmp, removed after)
 run 90 "$B/bench_mesh_read" 10000000 /tmp ply,off
+# the text readers on threads: ASCII PLY and OBJ (2M triangles; 1 thread, then all)
+run 60 env OMP_NUM_THREADS=1 "$B/bench_mesh_read" 2000000 /tmp asciiply,obj
+run 60 "$B/bench_mesh_read" 2000000 /tmp asciiply,obj
 # host builds on the 832k-triangle mesh: nearest index (CPU) with 1 thread and all threads, phase times
 run 60 env OMP_NUM_THREADS=1 $M "sub2:$A" 64 unsigned cpu bvh float 4 2 cold --trace
 run 60 $M "sub2:$A" 64 unsigned cpu bvh float 4 2 cold --trace
@@ -71,10 +74,10 @@ run 60 $M "patch10:sub2:$A" 64 winding cpu bvh float 4 2 cold --trace
 # CPU ratios on all cores: damaged / clean WindingNumber time at 256^3, with a
 # brute-force check of 200 far voxels each
 run 120 "$B/bench_winding_flip" --res 256 --samples 200 "$A" "patch10:$A" "duprev20:$A" "holes40:$A" "fins200:$A" \
-  "pair:$A"
+  "pair:$A" "patch30:$A" "flip10:$A"
 # 13.3M triangles (armadillo, 4 levels of subdivision; made in memory first) at 1024^3
 run 120 $M "sub4:$A" 1024 winding auto bvh volume 8 2 cold,warm
 # explicit CUDA on damaged meshes: the GPU's cone construction (slow there)
 run 30 $M "patch10:$A" 512 winding cuda bvh volume 8 2 warm
-grep -E "^mesh:|^\| (cold|warm|prepared|ply|off) |^\[mesh to SDF\]|^## SKIPPED|^rc=1[0-9][0-9]" "$L" >> "$OUT/summary.txt"
+grep -E "^mesh:|^\| (cold|warm|prepared|ply|off|asciiply|obj) |^\[mesh to SDF\]|^## SKIPPED|^rc=1[0-9][0-9]" "$L" >> "$OUT/summary.txt"
 echo "total $(( $(date +%s) - T0 )) s" | tee -a "$OUT/summary.txt"

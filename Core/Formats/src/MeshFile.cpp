@@ -67,8 +67,150 @@ void checkMeshHead(ByteSource& source, MeshFormat format, const std::string& nam
   }
 }
 
+/// A large OBJ file on OpenMP threads: a serial scan sorts the lines by
+/// their first token (and counts the vertices, texture coordinates and
+/// normals before each face); then the "v" lines (3 coordinates read whole,
+/// the rest ignored as by the serial reader) and the "f" lines (corners v,
+/// v/vt, v//vn or v/vt/vn with positive indices defined before the face;
+/// polygons as fans) are read in parallel. False (mesh untouched) for
+/// anything the serial reader may answer differently or with a message (a
+/// negative index, a '+' sign, a hex float, a value out of range, a bad
+/// corner): the serial reader then reads the file.
+bool parallelObj(const char* p, std::size_t size, TriangleMesh& mesh)
+{
+  if (size < (std::size_t(1) << 22)) return false; // small files (< 4 MiB): not worth it
+  const char* end = p + size;
+  struct Face
+  {
+    const char* b;
+    std::int64_t v, vt, vn; // counts defined before the face
+  };
+  std::vector<const char*> verts;
+  std::vector<Face> faces;
+  std::int64_t vt = 0, vn = 0;
+  for (const char* q = p; q < end;)
+  {
+    const char* e = static_cast<const char*>(std::memchr(q, '\n', static_cast<std::size_t>(end - q)));
+    if (!e) e = end;
+    const char* b = q;
+    const char* t = nullptr;
+    if (nextToken(b, e, t))
+    {
+      const std::size_t n = static_cast<std::size_t>(b - t);
+      if (n == 1 && t[0] == 'v') verts.push_back(b);
+      else if (n == 1 && t[0] == 'f') faces.push_back({ b, static_cast<std::int64_t>(verts.size()), vt, vn });
+      else if (n == 2 && t[0] == 'v' && t[1] == 't') ++vt;
+      else if (n == 2 && t[0] == 'v' && t[1] == 'n') ++vn;
+    }
+    q = e < end ? e + 1 : e;
+  }
+  const std::int64_t nv = static_cast<std::int64_t>(verts.size()), nf = static_cast<std::int64_t>(faces.size());
+  if (nv > std::int64_t(UINT32_MAX)) return false;
+  // one positive index read whole from [t, e), at most `count`
+  auto index = [](const char* t, const char* e, std::int64_t count, std::int64_t& out) {
+    long long v = 0;
+    const auto r = std::from_chars(t, e, v);
+    out = v - 1;
+    return r.ec == std::errc() && r.ptr == e && v >= 1 && v <= count;
+  };
+  // the corners of face f: their vertex indices into ids (when given), their number
+  auto corners = [&](const Face& f, std::int64_t* ids, int& count) {
+    const char* b = f.b;
+    const char* t = nullptr;
+    count = 0;
+    while (nextToken(b, end, t))
+    {
+      const char* a = static_cast<const char*>(std::memchr(t, '/', static_cast<std::size_t>(b - t)));
+      std::int64_t v = 0;
+      if (!index(t, a ? a : b, f.v, v)) return false;
+      if (a)
+      {
+        const char* c = static_cast<const char*>(std::memchr(a + 1, '/', static_cast<std::size_t>(b - a - 1)));
+        const char* texEnd = c ? c : b;
+        std::int64_t unused = 0;
+        if (texEnd > a + 1 && !index(a + 1, texEnd, f.vt, unused)) return false;
+        if (c && !index(c + 1, b, f.vn, unused)) return false; // also refuses an empty normal or a third '/'
+        if (!c && texEnd == a + 1) return false;               // "v/": the serial reader's message
+      }
+      if (ids) ids[count] = v;
+      ++count;
+    }
+    return count >= 3;
+  };
+  // pass 1: triangles per face (a fan of n - 2), checked; then their offsets
+  std::vector<std::int64_t> first(static_cast<std::size_t>(nf) + 1, 0);
+  bool ok = true;
+#pragma omp parallel for schedule(static) reduction(&& : ok)
+  for (std::int64_t f = 0; f < nf; ++f)
+  {
+    int n = 0;
+    const bool good = corners(faces[static_cast<std::size_t>(f)], nullptr, n);
+    first[static_cast<std::size_t>(f) + 1] = good ? n - 2 : 0;
+    ok = ok && good;
+  }
+  if (!ok) return false;
+  for (std::int64_t f = 0; f < nf; ++f) first[static_cast<std::size_t>(f) + 1] += first[static_cast<std::size_t>(f)];
+  mesh.points.resize(static_cast<std::size_t>(nv));
+  mesh.triangles.resize(static_cast<std::size_t>(first.back()));
+  const double m = 3.4e38; // point()'s range
+#pragma omp parallel for schedule(static) reduction(&& : ok)
+  for (std::int64_t i = 0; i < nv + nf; ++i)
+  {
+    bool good = true;
+    if (i < nv)
+    {
+      const char* b = verts[static_cast<std::size_t>(i)];
+      const char* t = nullptr;
+      double x[3];
+      for (int k = 0; k < 3 && good; ++k)
+      {
+        good = nextToken(b, end, t);
+        if (!good) break;
+        const auto r = std::from_chars(t, b, x[k]);
+        good = r.ec == std::errc() && r.ptr == b && std::fabs(x[k]) < m;
+      }
+      if (good)
+        mesh.points[static_cast<std::size_t>(i)] = { static_cast<float>(x[0]), static_cast<float>(x[1]),
+          static_cast<float>(x[2]) };
+    }
+    else
+    {
+      const std::size_t f = static_cast<std::size_t>(i - nv);
+      const std::int64_t n = first[f + 1] - first[f] + 2;
+      std::vector<std::int64_t> big;
+      std::int64_t small[16];
+      std::int64_t* ids = small;
+      if (n > 16)
+      {
+        big.resize(static_cast<std::size_t>(n));
+        ids = big.data();
+      }
+      int count = 0;
+      good = corners(faces[f], ids, count) && count == n;
+      for (std::int64_t k = 1; good && k + 1 < n; ++k)
+        mesh.triangles[static_cast<std::size_t>(first[f] + k - 1)] = { static_cast<std::uint32_t>(ids[0]),
+          static_cast<std::uint32_t>(ids[k]), static_cast<std::uint32_t>(ids[k + 1]) };
+    }
+    ok = ok && good;
+  }
+  if (!ok)
+  {
+    mesh.points.clear();
+    mesh.triangles.clear();
+  }
+  return ok;
+}
+
 TriangleMesh readObj(const std::vector<char>& data)
 {
+  {
+    TriangleMesh fast;
+    if (parallelObj(data.data(), data.size(), fast))
+    {
+      finish(fast, "OBJ");
+      return fast;
+    }
+  }
   TextScanner s(data.data(), data.size(), "OBJ");
   TriangleMesh mesh;
   std::vector<std::string> t;

@@ -65,6 +65,39 @@ public:
         return true;
     return false;
   }
+  /// Where each of the next `count` non-empty lines starts (its first
+  /// non-blank character), for the parallel readers; false, nothing taken,
+  /// when one of them starts with a '#' comment or fewer are left. On
+  /// success the scanner stands after the last of them.
+  bool takeLines(std::int64_t count, std::vector<const char*>& starts)
+  {
+    starts.clear();
+    starts.reserve(static_cast<std::size_t>(count));
+    const char* q = this->P;
+    std::int64_t lines = 0;
+    while (q < this->End && static_cast<std::int64_t>(starts.size()) < count)
+    {
+      const char* e = static_cast<const char*>(std::memchr(q, '\n', static_cast<size_t>(this->End - q)));
+      if (!e)
+        e = this->End;
+      const char* b = q;
+      while (b < e && blank(*b))
+        ++b;
+      if (b < e && *b == '#')
+        return false;
+      if (b < e)
+        starts.push_back(b);
+      ++lines;
+      q = e < this->End ? e + 1 : e;
+    }
+    if (static_cast<std::int64_t>(starts.size()) < count)
+      return false;
+    this->P = q;
+    this->Line += lines;
+    return true;
+  }
+  static bool blank(char c) { return c == ' ' || c == '\t' || c == '\r' || c == '\f' || c == '\v'; }
+  const char* end() const { return this->End; }
   std::string where() const { return this->Format + " line " + std::to_string(this->Line); }
   const char* position() const { return this->P; }
   std::size_t remaining() const { return static_cast<std::size_t>(this->End - this->P); }
@@ -75,6 +108,21 @@ private:
   std::string Format;
   std::int64_t Line = 0;
 };
+
+/// The next whitespace-separated token of a line from b (up to '\n' or
+/// end): [t, b) on return; false at the end of the line or at a '#' (the
+/// parallel readers then leave the line to the serial ones).
+inline bool nextToken(const char*& b, const char* end, const char*& t)
+{
+  while (b < end && TextScanner::blank(*b))
+    ++b;
+  if (b >= end || *b == '\n' || *b == '#')
+    return false;
+  t = b;
+  while (b < end && !TextScanner::blank(*b) && *b != '\n')
+    ++b;
+  return true;
+}
 
 inline double parseReal(const std::string& t, const std::string& where)
 {

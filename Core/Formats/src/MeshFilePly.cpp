@@ -5,6 +5,9 @@
 // left before anything is allocated.
 #include "MeshFileDetail.h"
 
+#include <charconv>
+#include <system_error>
+
 namespace lvdif
 {
 namespace detail::volumefile::meshfile
@@ -124,6 +127,94 @@ struct BinaryReader
   }
 };
 } // namespace
+
+/// An ASCII element on OpenMP threads: vertices whose records are all
+/// scalars, or faces whose only property is the index list, every record
+/// read as the serial loop reads it (std::from_chars reads a token whole as
+/// strtod / strtoll do). False, nothing taken, for anything the serial loop
+/// may answer differently or with a message (a '#', a '+' sign, a hex
+/// float, a value out of range, a record of another length, a polygon, an
+/// index out of range): that loop then reads the element.
+bool parallelAscii(const Element& e, bool isVertex, int ix, int iy, int iz, std::int64_t vertexCount,
+  TextScanner& body, TriangleMesh& mesh)
+{
+  if (e.count < 50000) return false; // small: not worth it
+  const std::size_t np = e.properties.size();
+  if (np > 64) return false;
+  for (const Property& p : e.properties)
+    if (p.list != !isVertex) return false;
+  if (!isVertex && (np != 1 || e.properties[0].kind == 'f')) return false;
+  TextScanner probe = body;
+  std::vector<const char*> line;
+  if (!probe.takeLines(e.count, line)) return false;
+  const char* end = probe.end();
+  const std::size_t base = isVertex ? mesh.points.size() : mesh.triangles.size();
+  if (isVertex) mesh.points.resize(base + static_cast<std::size_t>(e.count));
+  else mesh.triangles.resize(base + static_cast<std::size_t>(e.count));
+  bool ok = true;
+  const double m = 3.4e38; // point()'s range
+#pragma omp parallel for schedule(static) reduction(&& : ok)
+  for (std::int64_t r = 0; r < e.count; ++r)
+  {
+    const char* b = line[static_cast<std::size_t>(r)];
+    const char* t = nullptr;
+    bool good = true;
+    if (isVertex)
+    {
+      double v[3] = { 0, 0, 0 };
+      for (std::size_t i = 0; i < np && good; ++i)
+      {
+        good = nextToken(b, end, t);
+        if (!good) break;
+        double x = 0;
+        if (e.properties[i].kind == 'f')
+        {
+          const auto res = std::from_chars(t, b, x);
+          good = res.ec == std::errc() && res.ptr == b && std::isfinite(x);
+        }
+        else
+        {
+          long long k = 0;
+          const auto res = std::from_chars(t, b, k);
+          good = res.ec == std::errc() && res.ptr == b;
+          x = static_cast<double>(k);
+        }
+        if (int(i) == ix) v[0] = x;
+        if (int(i) == iy) v[1] = x;
+        if (int(i) == iz) v[2] = x;
+      }
+      good = good && !nextToken(b, end, t) && std::fabs(v[0]) < m && std::fabs(v[1]) < m && std::fabs(v[2]) < m;
+      if (good)
+        mesh.points[base + static_cast<std::size_t>(r)] = { static_cast<float>(v[0]), static_cast<float>(v[1]),
+          static_cast<float>(v[2]) };
+    }
+    else
+    {
+      long long v[4];
+      for (int i = 0; i < 4 && good; ++i)
+      {
+        good = nextToken(b, end, t);
+        if (!good) break;
+        const auto res = std::from_chars(t, b, v[i]);
+        good = res.ec == std::errc() && res.ptr == b;
+      }
+      good = good && !nextToken(b, end, t) && v[0] == 3 && v[1] >= 0 && v[1] < vertexCount && v[2] >= 0 &&
+        v[2] < vertexCount && v[3] >= 0 && v[3] < vertexCount;
+      if (good)
+        mesh.triangles[base + static_cast<std::size_t>(r)] = { static_cast<std::uint32_t>(v[1]),
+          static_cast<std::uint32_t>(v[2]), static_cast<std::uint32_t>(v[3]) };
+    }
+    ok = ok && good;
+  }
+  if (!ok)
+  {
+    if (isVertex) mesh.points.resize(base);
+    else mesh.triangles.resize(base);
+    return false;
+  }
+  body = probe;
+  return true;
+}
 
 TriangleMesh readPly(const std::vector<char>& data)
 {
@@ -284,6 +375,8 @@ TriangleMesh readPly(const std::vector<char>& data)
         }
       }
     }
+    if (enc == Encoding::Ascii && (isVertex || isFace) && parallelAscii(e, isVertex, ix, iy, iz, vertexCount, body, mesh))
+      r0 = e.count;
     for (std::int64_t r = r0; r < e.count; ++r)
     {
       // the record's name, made only for a message (not per record: binary

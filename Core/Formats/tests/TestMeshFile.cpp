@@ -292,3 +292,100 @@ TEST(MeshFile, LargeOffOnThreadsMatchesTheSerialReader)
   const std::string plus = "+" + body; // "+0 ...": strtod reads it, from_chars does not
   EXPECT_EQ(readText(file(plus, faces), MeshFormat::Off).points, fast.points);
 }
+
+TEST(MeshFile, LargeAsciiPlyOnThreadsMatchesTheSerialReader)
+{
+  // 250 x 250 grid (62,500 vertices, 124,002 faces: above the parallel
+  // path's threshold). The same records with a comment line in each element
+  // (which the parallel path leaves to the serial loop) must give the same
+  // mesh; a '+' sign, a quad, an index out of range and a value too many
+  // give the serial loop's result or message.
+  const int k = 250;
+  std::vector<std::string> verts, faces;
+  char buf[96];
+  for (int j = 0; j < k; ++j)
+    for (int i = 0; i < k; ++i)
+      verts.emplace_back(buf, static_cast<std::size_t>(std::snprintf(buf, sizeof buf, "%.9g %.9g %.9g 255\n",
+        0.1 * i + 1e-7 * j, 0.37 * j, std::sin(0.3 * i) * 1e-3)));
+  for (int j = 0; j + 1 < k; ++j)
+    for (int i = 0; i + 1 < k; ++i)
+    {
+      const int a = j * k + i, b = a + 1, c = a + k + 1, d = a + k;
+      faces.push_back("3 " + std::to_string(a) + " " + std::to_string(b) + " " + std::to_string(c) + "\n");
+      faces.push_back("3 " + std::to_string(a) + "\t" + std::to_string(c) + " " + std::to_string(d) + " \r\n");
+    }
+  faces.push_back("3 0 1 2\n");
+  faces.push_back("\n3 2 1 0\n");
+  auto file = [&](const std::vector<std::string>& vs, const std::vector<std::string>& fs, const std::string& extra) {
+    std::string s = "ply\nformat ascii 1.0\nelement vertex " + std::to_string(vs.size()) +
+      "\nproperty float x\nproperty float y\nproperty float z\nproperty uchar red\nelement face " +
+      std::to_string(fs.size()) + "\nproperty list uchar int vertex_indices\nend_header\n";
+    for (std::size_t i = 0; i < vs.size(); ++i) s += (i == 7 ? extra : "") + vs[i];
+    for (std::size_t i = 0; i < fs.size(); ++i) s += (i == 9 ? extra : "") + fs[i];
+    return s;
+  };
+  const TriangleMesh fast = readText(file(verts, faces, ""), MeshFormat::Ply);
+  const TriangleMesh serial = readText(file(verts, faces, "# serial\n"), MeshFormat::Ply);
+  ASSERT_EQ(fast.points.size(), std::size_t(k * k));
+  ASSERT_EQ(fast.triangles.size(), faces.size());
+  EXPECT_EQ(fast.points, serial.points);
+  EXPECT_EQ(fast.triangles, serial.triangles);
+  auto plus = verts;
+  plus[100] = "+" + plus[100]; // strtod reads it, from_chars does not
+  EXPECT_EQ(readText(file(plus, faces, ""), MeshFormat::Ply).points, fast.points);
+  auto quad = faces;
+  quad[5] = "4 0 1 251 250\n"; // a fan of two triangles
+  EXPECT_EQ(readText(file(verts, quad, ""), MeshFormat::Ply).triangles.size(), faces.size() + 1);
+  auto bad = faces;
+  bad[70000] = "3 0 1 62500\n";
+  expectError(file(verts, bad, ""), MeshFormat::Ply, "PLY face 70000: vertex index 62500 out of range");
+  auto extra = verts;
+  extra[3] = "1 2 3 4 5\n";
+  expectError(file(extra, faces, ""), MeshFormat::Ply, "PLY vertex 3: record has 1 values too many");
+}
+
+TEST(MeshFile, LargeObjOnThreadsMatchesTheSerialReader)
+{
+  // 300 x 300 grid: 90,000 vertices, texture coordinates and normals,
+  // faces in every corner form, quads, comments (above the parallel path's
+  // 4 MiB). A negative index (which the parallel path leaves to the serial
+  // reader) in one more face gives the same mesh plus that face; a '+' sign
+  // and an index not yet defined give the serial reader's result or message.
+  const int k = 300;
+  std::string body;
+  char buf[128];
+  for (int j = 0; j < k; ++j)
+  {
+    for (int i = 0; i < k; ++i)
+      body += std::string(buf, static_cast<std::size_t>(std::snprintf(buf, sizeof buf, "v %.9g %.9g %.9g%s\n",
+        0.1 * i + 1e-7 * j, 0.37 * j, std::sin(0.3 * i) * 1e-3, i % 7 == 0 ? " 1.0 # w" : "")));
+    body += "vt 0.5 0.5\nvn 0 0 1\n";
+    if (j == 0) continue;
+    for (int i = 0; i + 1 < k; ++i)
+    {
+      const int d = j * k + i + 1, a = d - k, b = a + 1, c = d + 1; // 1-based
+      const std::string t = std::to_string(j), n = std::to_string(j + 1);
+      if (i % 3 == 0)
+        body += "f " + std::to_string(a) + " " + std::to_string(b) + " " + std::to_string(c) + " " + std::to_string(d) + "\n";
+      else if (i % 3 == 1)
+        body += "f " + std::to_string(a) + "/" + t + "/" + n + " " + std::to_string(b) + "//" + n + " " +
+          std::to_string(c) + "/" + t + "\nf " + std::to_string(a) + " " + std::to_string(c) + " " + std::to_string(d) + " # tri\n";
+      else
+        body += "g part\nf\t" + std::to_string(a) + " " + std::to_string(b) + " " + std::to_string(c) + "\r\nf " +
+          std::to_string(a) + " " + std::to_string(c) + " " + std::to_string(d) + "\n";
+    }
+  }
+  ASSERT_GT(body.size(), std::size_t(1) << 22);
+  const TriangleMesh fast = readText(body, MeshFormat::Obj);
+  const TriangleMesh serial = readText(body + "f 1 2 -1\n", MeshFormat::Obj);
+  ASSERT_EQ(fast.points.size(), std::size_t(k * k));
+  EXPECT_EQ(fast.points, serial.points);
+  ASSERT_EQ(serial.triangles.size(), fast.triangles.size() + 1);
+  EXPECT_TRUE(std::equal(fast.triangles.begin(), fast.triangles.end(), serial.triangles.begin()));
+  EXPECT_EQ(serial.triangles.back(), (std::array<std::uint32_t, 3>{ 0, 1, std::uint32_t(k * k - 1) }));
+  std::string plus = body;
+  plus.replace(plus.find("v ") + 2, 0, "+");
+  EXPECT_EQ(readText(plus, MeshFormat::Obj).points, fast.points);
+  std::string early = "f 1 2 3\n" + body;
+  expectError(early, MeshFormat::Obj, "OBJ line 1: vertex index 1 out of range: 0 vertices defined so far");
+}

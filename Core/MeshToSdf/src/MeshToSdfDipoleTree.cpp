@@ -94,6 +94,7 @@ DipoleTree::Refined DipoleTree::refine(V3 q, double rho, const std::function<int
   heap.clear();
   double value = 0, err = 0, mag = 0; // sums over the open clusters (+ the exact leaves in value)
   int unbounded = 0;                  // open clusters too close for any bound
+  bool heapOrder = true; // a starting cut is visited unordered, made a heap only when refined
   auto visit = [&](std::int32_t id) {
     const Node& nd = this->Nodes[id];
     const V3 y = nd.c - q;
@@ -114,7 +115,7 @@ DipoleTree::Refined DipoleTree::refine(V3 q, double rho, const std::function<int
       ++unbounded;
     }
     heap.push_back(o);
-    std::push_heap(heap.begin(), heap.end());
+    if (heapOrder) std::push_heap(heap.begin(), heap.end());
   };
   if (this->Nodes.empty())
   {
@@ -123,6 +124,8 @@ DipoleTree::Refined DipoleTree::refine(V3 q, double rho, const std::function<int
   }
   if (cut && !cut->empty())
   {
+    heapOrder = false;
+    heap.reserve(cut->size() + 2);
     for (const std::int32_t id : *cut) visit(id);
   }
   else
@@ -150,6 +153,11 @@ DipoleTree::Refined DipoleTree::refine(V3 q, double rho, const std::function<int
       if (g > 0) return finish(Refined::Done);
       if (g < 0) return finish(Refined::Failed);
       if (heap.empty()) return finish(Refined::Exact);
+    }
+    if (!heapOrder)
+    {
+      std::make_heap(heap.begin(), heap.end());
+      heapOrder = true;
     }
     std::pop_heap(heap.begin(), heap.end());
     const Open o = heap.back();

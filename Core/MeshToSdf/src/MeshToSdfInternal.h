@@ -156,8 +156,20 @@ public:
   /// world distance = out / toOut) where |w| >= 0.5. Positions x0 + i * h.
   /// fullSums (optional) counts voxels whose refinement summed every
   /// reversed/removed face exactly (or all of M, on an ambiguous oblique ray).
+  /// priorLo/priorHi (optional, n entries): bounds of the correction s at
+  /// each voxel already known (boundCorrection over a block of voxels; lo >
+  /// hi where none), used before any refinement of the row.
   void signRow(V3 rowStart, double h, std::int64_t n, float* out, std::int64_t& evaluations,
-    std::int64_t& fallbacks, std::int64_t* fullSums = nullptr, bool reoriented = false) const;
+    std::int64_t& fallbacks, std::int64_t* fullSums = nullptr, bool reoriented = false,
+    const double* priorLo = nullptr, const double* priorHi = nullptr) const;
+  /// Whether the sign needs the correction s (reversed, removed or capped faces).
+  bool hasCorrection(bool reoriented) const { return this->correction(reoriented) != nullptr; }
+  /// s over the ball (q, rho): true with [lo, hi] when it lies inside
+  /// (-1/2, 1/2), which decides every voxel in the ball whatever its
+  /// crossing count; false when it does not or cannot be bounded there.
+  /// cut (optional): as DipoleTree::refine (start from it, end with the final one).
+  bool boundCorrection(V3 q, double rho, double& lo, double& hi, std::int64_t& leafTris, bool reoriented,
+    std::vector<std::int32_t>* cut = nullptr) const;
   /// Exact winding number at p by a ray in a fixed oblique direction; the
   /// sum of all solid angles if that ray is ambiguous. reoriented: of M+
   /// (every component consistently oriented, exact duplicates once) instead
@@ -186,8 +198,13 @@ public:
   const std::vector<Tri>& cone() const { return this->coneOverMesh().cone; }
   const std::vector<Cluster>& clusters() const { return this->coneOverMesh().clusters; }
   std::size_t meshTriangles() const { return this->coneOverMesh().meshTris; }
-  /// Faces reversed (F) or removed as duplicates (R) for the CPU closure.
+  /// Faces reversed (F) or removed as duplicates (R) by the orientation pass
+  /// (Plus is M+ closed by caps when that is cheaper than caps over dM).
   std::size_t flippedTriangles() const { return this->CorrectedFaces; }
+  /// Whether the CPU closes M+ (the faces re-oriented); false when it closes
+  /// M itself by caps over dM (no reversed faces, or reversed patches whose
+  /// rims are shorter than F).
+  bool closesReorientedMesh() const { return this->CorrectedFaces != 0 && this->OrientState.empty(); }
 
 private:
   const Closure& coneOverMesh() const;
@@ -195,11 +212,20 @@ private:
   const PreparedMesh& Mesh;
   /// The correction s (w = K - s) of M as given, or of M+ (reoriented).
   const DipoleTree* correction(bool reoriented) const;
-  Closure Plus;                          // M+ (F reversed, R removed) closed by local caps S over dM+ (or a cone)
+  /// The closure whose crossings count: Plus, or M+ closed by its caps
+  /// (reoriented, when Plus closes M itself although the orientation pass
+  /// found reversed faces; built on first use).
+  const Closure& closure(bool reoriented) const;
+  Closure Plus;                          // M+ (F reversed, R removed) closed by local caps S over dM+, or M closed by caps over dM (or a cone)
   bool PlusIsCone = true;                // Plus is M closed by the cone over dM (what CUDA uses)
-  std::size_t CorrectedFaces = 0;        // |F| + |R|
+  std::size_t CorrectedFaces = 0;        // |F| + |R| found by the orientation pass
   std::unique_ptr<DipoleTree> Flipped;   // F reversed, weight 2, R reversed, weight 1, and the caps S (null if all empty)
   std::unique_ptr<DipoleTree> CapsOnly;  // the caps S alone (reoriented), when F or R is not empty
+  std::vector<std::uint8_t> OrientState;            // OrientedMesh::state when Plus closes M itself but F or R is not empty
+  std::vector<std::array<V3, 2>> OrientBoundary;     // the boundary of M+ then
+  mutable std::once_flag ReorientedOnce;
+  mutable std::unique_ptr<Closure> Reoriented;       // M+ closed by caps (reorientFaces), from OrientState
+  mutable std::unique_ptr<DipoleTree> ReorientedCaps; // its caps
   mutable std::once_flag LegacyOnce;
   mutable std::unique_ptr<Closure> Legacy; // M closed by the cone over dM (CUDA), when F or R is not empty
 };

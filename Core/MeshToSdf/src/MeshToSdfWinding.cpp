@@ -299,10 +299,21 @@ WindingSigner::WindingSigner(const PreparedMesh& mesh)
   if (WindingSigner::mayHaveReversedFaces(mesh))
   {
     om = orientMesh(mesh.tris, mesh.welded);
-    if (om.flippedCount != 0 || om.removedCount != 0)
+    this->CorrectedFaces = om.flippedCount + om.removedCount;
+    // M+ pays when F, R and the boundary of M+ are fewer than the boundary
+    // edges of M (scattered reversed faces, duplicates); reversed patches
+    // have far more faces than rim edges, and caps over dM span a patch
+    // with few large triangles (measured on the armadillo, 10 % reversed in
+    // patches: 1.2x faster, 30 %: 2x). Either closure is exact.
+    if (this->CorrectedFaces != 0 && this->CorrectedFaces + om.boundary.size() <= mesh.boundary.size())
     {
       state = &om.state;
       boundary = &om.boundary;
+    }
+    else if (this->CorrectedFaces != 0)
+    {
+      this->OrientState = std::move(om.state); // for reorientFaces, built on first use
+      this->OrientBoundary = std::move(om.boundary);
     }
   }
   // the correction s with w_M = w_{M+} + w_S... written w_M = K - s: each
@@ -324,7 +335,6 @@ WindingSigner::WindingSigner(const PreparedMesh& mesh)
       f.push_back(w);
     }
   }
-  this->CorrectedFaces = f.size();
   std::vector<WeightedTri> caps;
   if (!boundary->empty() && capLoops(*boundary, caps))
   {
@@ -360,9 +370,34 @@ const WindingSigner::Closure& WindingSigner::coneOverMesh() const
   return *this->Legacy;
 }
 
+const WindingSigner::Closure& WindingSigner::closure(bool reoriented) const
+{
+  if (!reoriented || this->OrientState.empty()) return this->Plus;
+  std::call_once(this->ReorientedOnce, [this] {
+    // M+ closed by caps over its boundary, as the constructor would build it
+    this->Reoriented = std::make_unique<Closure>();
+    std::vector<WeightedTri> caps;
+    if (!this->OrientBoundary.empty() && capLoops(this->OrientBoundary, caps))
+    {
+      buildClosure(*this->Reoriented, this->Mesh.tris, &this->OrientState, this->OrientBoundary, &caps);
+      if (!caps.empty()) this->ReorientedCaps = std::make_unique<DipoleTree>(std::move(caps));
+    }
+    else
+    {
+      buildClosure(*this->Reoriented, this->Mesh.tris, &this->OrientState, this->OrientBoundary);
+    }
+  });
+  return *this->Reoriented;
+}
+
 const DipoleTree* WindingSigner::correction(bool reoriented) const
 {
   if (!reoriented || this->CorrectedFaces == 0) return this->Flipped.get();
+  if (!this->OrientState.empty())
+  {
+    this->closure(true);
+    return this->ReorientedCaps.get();
+  }
   return this->CapsOnly.get();
 }
 
@@ -370,17 +405,18 @@ double WindingSigner::evaluate(V3 p, bool reoriented) const
 {
   std::vector<Bvh::RayHit> hits;
   const DipoleTree* s = this->correction(reoriented);
-  if (this->Plus.bvh->rayHits(p, Oblique, 0.0, hits))
+  const Closure& c = this->closure(reoriented);
+  if (c.bvh->rayHits(p, Oblique, 0.0, hits))
   {
     double k = 0;
     for (const auto& h : hits) k += h.sign;
-    return k - coneWinding(this->Plus, p) - (s ? s->exact(p) : 0.0);
+    return k - coneWinding(c, p) - (s ? s->exact(p) : 0.0);
   }
   if (reoriented)
   {
     // w of M+ (the re-oriented faces, duplicates once): its triangles lead Plus.closed
-    return laneOrderedSum(this->Plus.meshTris, [&](std::size_t i) {
-      const Tri& t = this->Plus.closed[i];
+    return laneOrderedSum(c.meshTris, [&](std::size_t i) {
+      const Tri& t = c.closed[i];
       return solidAngle(p, t.v[0], t.v[1], t.v[2]);
     }) / FourPi;
   }
@@ -393,14 +429,15 @@ double WindingSigner::evaluate(V3 p, bool reoriented) const
 bool WindingSigner::insideAt(V3 p, std::int64_t& fullSums, bool reoriented) const
 {
   std::vector<Bvh::RayHit> hits;
-  if (!this->Plus.bvh->rayHits(p, Oblique, 0.0, hits))
+  const Closure& c = this->closure(reoriented);
+  if (!c.bvh->rayHits(p, Oblique, 0.0, hits))
   {
     ++fullSums;
     return insideOf(this->evaluate(p, reoriented)); // sums all solid angles of M (M+)
   }
   double k = 0;
   for (const auto& h : hits) k += h.sign;
-  const double u = k - coneWinding(this->Plus, p);
+  const double u = k - coneWinding(c, p);
   const DipoleTree* s = this->correction(reoriented);
   if (!s) return insideOf(u);
   double sLo = 0, sHi = 0;
@@ -411,12 +448,21 @@ bool WindingSigner::insideAt(V3 p, std::int64_t& fullSums, bool reoriented) cons
   return insideOf(u - 0.5 * (sLo + sHi));
 }
 
+bool WindingSigner::boundCorrection(V3 q, double rho, double& lo, double& hi, std::int64_t& leafTris, bool reoriented,
+  std::vector<std::int32_t>* cut) const
+{
+  const DipoleTree* s = this->correction(reoriented);
+  if (!s) return false;
+  return s->refine(q, rho, [](double l, double u) { return l > -0.5 && u < 0.5 ? 1 : (l >= 0.5 || u <= -0.5 ? -1 : 0); },
+           lo, hi, leafTris, cut) == DipoleTree::Refined::Done;
+}
+
 void WindingSigner::signRow(V3 rowStart, double h, std::int64_t n, float* out, std::int64_t& evaluations,
-  std::int64_t& fallbacks, std::int64_t* fullSums, bool reoriented) const
+  std::int64_t& fallbacks, std::int64_t* fullSums, bool reoriented, const double* priorLo, const double* priorHi) const
 {
   std::int64_t fullLocal = 0;
   std::int64_t& full = fullSums ? *fullSums : fullLocal;
-  const Closure& c = this->Plus;
+  const Closure& c = this->closure(reoriented);
   std::vector<Bvh::RayHit> hits;
   const V3 origin = rowStart - V3{ 0.5 * h, 0, 0 };
   auto pos = [&](std::int64_t i) { return rowStart + V3{ static_cast<double>(i) * h, 0, 0 }; };
@@ -505,6 +551,13 @@ void WindingSigner::signRow(V3 rowStart, double h, std::int64_t n, float* out, s
             segK[a] = k;
           }
         }
+        // blocks of voxels bounded already (priors) may decide the whole segment
+        bool priorsDecide = priorLo != nullptr;
+        for (std::int64_t a = 0; a < len && priorsDecide; ++a)
+        {
+          const double pl = priorLo[i + a], ph = priorHi[i + a];
+          priorsDecide = pl <= ph && (open ? pl > -0.5 && ph < 0.5 : decided(segK[a] - ph, segK[a] - pl));
+        }
         auto tryBall = [&](auto& self, std::int64_t a, std::int64_t m) -> void {
           const double half = 0.5 * static_cast<double>(m - 1) * h;
           const V3 centre = pos(i + a) + V3{ half, 0, 0 };
@@ -535,7 +588,9 @@ void WindingSigner::signRow(V3 rowStart, double h, std::int64_t n, float* out, s
             self(self, a + m / 2, m - m / 2);
           }
         };
-        tryBall(tryBall, 0, len);
+        // with block bounds the segment's ball (radius 7.5 voxels) decides
+        // nothing they left: skipped (measured: the same voxels, 3 % slower)
+        if (!priorsDecide && !priorLo) tryBall(tryBall, 0, len);
         cut.clear();
         segStart = i;
         segEnd = i + len;
@@ -543,6 +598,11 @@ void WindingSigner::signRow(V3 rowStart, double h, std::int64_t n, float* out, s
       level = 1;
       sLo = segLo[i - segStart];
       sHi = segHi[i - segStart];
+      if (priorLo && priorLo[i] <= priorHi[i])
+      {
+        sLo = std::max(sLo, priorLo[i]);
+        sHi = std::min(sHi, priorHi[i]);
+      }
     }
     while (!decided(lo - sHi, hi - sLo))
     {

@@ -11,6 +11,7 @@
 
 #include <gtest/gtest.h>
 
+#include <array>
 #include <cmath>
 #include <random>
 #include <string>
@@ -84,6 +85,42 @@ TEST(MeshToSdfReorient, MatchesTheUndamagedMeshAfterReversalsAndDuplicates)
     EXPECT_EQ(st.device, Device::Cpu);
     EXPECT_GT(c.far, grid().count() / 2);
     EXPECT_EQ(c.wrong, 0) << flip * 100 << " % reversed: " << c.wrong << " of " << c.far << " far voxels wrong";
+  }
+}
+
+TEST(MeshToSdfReorient, ReversedPatchesMatchTheUndamagedMesh)
+{
+  // patches reversed (more faces than rim edges: the CPU's own closure is
+  // M with caps over dM, the option needs M+ closed by its own caps): the
+  // patches of MeshToSdfWindingFlip.ReversedPatchesClosedByCapsOverTheirRimsAreExact,
+  // which checks that the CPU closes M itself there
+  const TriangleMesh clean = makeSphereMesh(0.05f, -0.03f, 0.02f, 1.0f, 16, 32);
+  TriangleMesh m = clean;
+  std::size_t n = 0;
+  for (auto& t : m.triangles)
+  {
+    std::array<float, 3> c{};
+    for (const std::uint32_t v : t)
+      for (int k = 0; k < 3; ++k) c[k] += m.points[v][k] / 3;
+    for (const std::array<float, 3>& q : { std::array<float, 3>{ 0.85f, 0.3f, 0.45f }, std::array<float, 3>{ -0.4f, -0.6f, -0.7f } })
+    {
+      const float d2 = (c[0] - q[0]) * (c[0] - q[0]) + (c[1] - q[1]) * (c[1] - q[1]) + (c[2] - q[2]) * (c[2] - q[2]);
+      if (d2 <= 0.6f * 0.6f)
+      {
+        std::swap(t[1], t[2]);
+        ++n;
+        break;
+      }
+    }
+  }
+  ASSERT_GT(n, 40u);
+  for (const bool reorient : { true, false })
+  {
+    MeshToSdfStats st;
+    const Count c = compareWith(clean, m, reorient, grid(), st);
+    EXPECT_GT(c.far, grid().count() / 2);
+    if (reorient) EXPECT_EQ(c.wrong, 0) << c.wrong << " of " << c.far << " far voxels wrong";
+    else EXPECT_GT(c.wrong, 0) << "as given, the patches' neighbourhood differs from the undamaged mesh";
   }
 }
 

@@ -256,6 +256,59 @@ TEST(MeshToSdfWindingFlip, FlippedFractionsAreExact)
   expectExactSigns("box, 2 of 12 flipped", box);
 }
 
+/// Reverses the faces whose centroid lies within `radius` of one of the
+/// centres (round patches, as a broken export flips whole parts); returns how many.
+std::size_t flipPatches(TriangleMesh& m, const std::vector<std::array<float, 3>>& centres, float radius)
+{
+  std::size_t n = 0;
+  for (auto& t : m.triangles)
+  {
+    std::array<float, 3> c{};
+    for (const std::uint32_t v : t)
+      for (int k = 0; k < 3; ++k) c[k] += m.points[v][k] / 3;
+    for (const auto& q : centres)
+    {
+      const float d2 = (c[0] - q[0]) * (c[0] - q[0]) + (c[1] - q[1]) * (c[1] - q[1]) + (c[2] - q[2]) * (c[2] - q[2]);
+      if (d2 <= radius * radius)
+      {
+        std::swap(t[1], t[2]);
+        ++n;
+        break;
+      }
+    }
+  }
+  return n;
+}
+
+TEST(MeshToSdfWindingFlip, ReversedPatchesClosedByCapsOverTheirRimsAreExact)
+{
+  // reversed patches have more faces than rim edges: the CPU closes M itself
+  // by caps over dM (the rims, each edge twice) instead of reversing them
+  TriangleMesh m = makeSphereMesh(0.05f, -0.03f, 0.02f, 1.0f, 16, 32);
+  const std::size_t n = flipPatches(m, { { 0.85f, 0.3f, 0.45f }, { -0.4f, -0.6f, -0.7f } }, 0.6f);
+  ASSERT_GT(n, 40u);
+  {
+    const auto prepared = detail::meshtosdf::prepareMesh(m);
+    const detail::meshtosdf::WindingSigner w(prepared);
+    EXPECT_EQ(w.flippedTriangles(), n); // found by the orientation pass (Device::Auto reads it)
+    EXPECT_FALSE(w.closesReorientedMesh());
+    EXPECT_LT(prepared.boundary.size(), n);
+  }
+  expectExactSigns("sphere, two reversed patches", m);
+  // with holes in a patch and elsewhere, and a patch reaching a hole
+  std::vector<std::array<std::uint32_t, 3>> kept;
+  for (std::size_t t = 0; t < m.triangles.size(); ++t)
+    if (t % 37 != 3) kept.push_back(m.triangles[t]);
+  m.triangles = kept;
+  expectExactSigns("sphere, two reversed patches and holes", m);
+  // scattered reversals on top: many more rim edges, M+ again
+  flip(m, 0.2, 21);
+  const auto prepared = detail::meshtosdf::prepareMesh(m);
+  const detail::meshtosdf::WindingSigner w(prepared);
+  EXPECT_TRUE(w.closesReorientedMesh());
+  expectExactSigns("sphere, two reversed patches, holes and 20% flipped", m);
+}
+
 TEST(MeshToSdfWindingFlip, LongRowsUseTheSegmentBounds)
 {
   // long rows past a small flipped sphere: most 16-voxel segments are far

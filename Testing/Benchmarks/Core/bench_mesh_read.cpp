@@ -3,7 +3,7 @@
 // binary STL, ASCII PLY and OFF, then times loadMesh on each (best of 3) and
 // the raw read of the same bytes, so the figure to compare across machines is
 // the ratio to the raw read of the file (from the page cache after the first).
-// usage: bench_mesh_read [N=10000000] [DIR=/tmp] [formats=ply,stl,asciiply,off]
+// usage: bench_mesh_read [N=10000000] [DIR=/tmp] [formats=ply,stl,asciiply,off,obj]
 #include "BenchCommon.h"
 
 #include "lvdif/MeshFile.h"
@@ -89,13 +89,23 @@ std::string text(const TriangleMesh& m, bool ply)
     s.append(buf, static_cast<std::size_t>(std::snprintf(buf, sizeof buf, "3 %u %u %u\n", t[0], t[1], t[2])));
   return s;
 }
+std::string obj(const TriangleMesh& m)
+{
+  std::string s;
+  char buf[96];
+  for (const auto& p : m.points)
+    s.append(buf, static_cast<std::size_t>(std::snprintf(buf, sizeof buf, "v %.9g %.9g %.9g\n", p[0], p[1], p[2])));
+  for (const auto& t : m.triangles)
+    s.append(buf, static_cast<std::size_t>(std::snprintf(buf, sizeof buf, "f %u %u %u\n", t[0] + 1, t[1] + 1, t[2] + 1)));
+  return s;
+}
 } // namespace
 
 int main(int argc, char** argv)
 {
   const std::int64_t n = argc > 1 ? std::atoll(argv[1]) : 10000000;
   const std::string dir = argc > 2 ? argv[2] : "/tmp";
-  const std::string formats = argc > 3 ? argv[3] : "ply,stl,asciiply,off";
+  const std::string formats = argc > 3 ? argv[3] : "ply,stl,asciiply,off,obj";
   const TriangleMesh m = torus(n);
   std::printf("machine: %s\n", bench::machineDescription().c_str());
   std::printf("mesh: %zu points, %zu triangles\n", m.points.size(), m.triangles.size());
@@ -107,7 +117,7 @@ int main(int argc, char** argv)
   };
   const F all[] = { { "ply", "ply", plyBinary }, { "stl", "stl", stlBinary },
     { "asciiply", "ply", [](const TriangleMesh& x) { return text(x, true); } },
-    { "off", "off", [](const TriangleMesh& x) { return text(x, false); } } };
+    { "off", "off", [](const TriangleMesh& x) { return text(x, false); } }, { "obj", "obj", obj } };
   for (const F& f : all)
   {
     if (formats.find(f.name) == std::string::npos) continue;
