@@ -36,5 +36,6 @@ tool inflate I --radius 9 --strength 0.6
 tool grab G --radius 14
 tool flatten T --radius 10 --strength 1
 tool crease C --radius 6 --strength 1
+tool pinch N --radius 8 --strength 1
 tool symmetry A --radius 6 --mirror x
 echo "pictures written to $OUT"

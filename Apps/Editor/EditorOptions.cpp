@@ -37,7 +37,7 @@ EditorOptions parseEditorOptions(const QStringList& arguments)
   const QCommandLineOption save("save", "Save the volume (.lvdv or .vti) and quit.", "file");
   const QCommandLineOption exp("export", "Export the mesh (.ply, .obj, .stl) and quit.", "file");
   const QCommandLineOption op("op",
-    "Tool: add, subtract, paint, smooth, inflate, grab, flatten, crease.", "op", "add");
+    "Tool: add, subtract, paint, smooth, inflate, grab, flatten, crease, pinch.", "op", "add");
   const QCommandLineOption strength("strength", "Brush strength in (0, 1] (default: the tool's).", "s");
   const QCommandLineOption falloff("falloff", "Brush falloff: constant, linear, smooth, sharp (default: the tool's).", "curve");
   const QCommandLineOption mirror("mirror", "Symmetry: the mirrored axes, e.g. x or xz.", "axes");
@@ -106,8 +106,8 @@ EditorOptions parseEditorOptions(const QStringList& arguments)
   o.save = p.value(save);
   o.exportMesh = p.value(exp);
   o.op = p.value(op).toLower();
-  if (!QStringList{ "add", "subtract", "paint", "smooth", "inflate", "grab", "flatten", "crease" }.contains(o.op))
-    fail("--op expects add, subtract, paint, smooth, inflate, grab, flatten or crease, got '" + o.op + "'");
+  if (!QStringList{ "add", "subtract", "paint", "smooth", "inflate", "grab", "flatten", "crease", "pinch" }.contains(o.op))
+    fail("--op expects add, subtract, paint, smooth, inflate, grab, flatten, crease or pinch, got '" + o.op + "'");
   if (p.isSet(strength))
   {
     o.strength = p.value(strength).toDouble();

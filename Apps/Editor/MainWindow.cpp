@@ -226,7 +226,7 @@ bool MainWindow::beginStroke()
   e.brush.op = static_cast<lvdif::BrushOp>(op);
   const bool ctrl = this->View->interactor()->GetControlKey() ||
     (QApplication::queryKeyboardModifiers() & Qt::ControlModifier);
-  e.brush.invert = ctrl && (op == 4 || op == 7);
+  e.brush.invert = ctrl && (op == 4 || op == 7 || op == 8);
   this->Grabbing = op == 5;
   updatePreview(nullptr, true);
   try

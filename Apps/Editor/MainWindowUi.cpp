@@ -155,7 +155,7 @@ QString MainWindow::shortcutHelp() const
   };
   for (QAction* a : this->ToolActions->actions())
     row(keyText(a->shortcut()), a->toolTip());
-  row("Ctrl + drag", "Invert the tool: add <-> subtract, inflate -> deflate, crease -> ridge");
+  row("Ctrl + drag", "Invert the tool: add <-> subtract, inflate -> deflate, crease -> ridge, pinch -> spread");
   row("Shift + drag", "Smooth, whatever the tool");
   row("Mouse wheel over the surface", "Brush radius");
   for (QAction* a : this->ShortcutActions)

@@ -12,7 +12,7 @@
 //   --removed V.vti     V is the sphere after a Subtract stroke (Ctrl + Add): no
 //                       voxel moved inwards, some lost material.
 //   --changed V.vti     V is the sphere after a shaping stroke (smooth, inflate,
-//                       grab, flatten, crease, paint): some voxel differs from the
+//                       grab, flatten, crease, pinch, paint): some voxel differs from the
 //                       untouched canvas (distance or colour).
 //   --smoothed V.vti    V is the sphere after a smoothing stroke: no distance moved
 //                       by more than 0.25 voxel (a crease moves it 1.5) and some moved.
