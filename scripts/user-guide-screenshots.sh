@@ -15,6 +15,7 @@ run "${common[@]}" --new 128 --fill sphere --radius 6 --color "#d03020" --replay
 run "${common[@]}" --new 128 --fill sphere --radius 6 --color "#d03020" --replay-drag "$stroke" --per-vertex-color --screenshot "$OUT/editor-pervertex.png"
 run "${common[@]}" --script docs/images/editor-tools.lvs --screenshot "$OUT/editor-tools.png"
 run "${common[@]}" --script Apps/Editor/Testing/sphere.lvs --screenshot "$OUT/editor-script.png"
+run "${common[@]}" --new 128 --fill sphere --radius 6 --color "#d03020" --keys Alt+4 --replay-drag "$stroke" --screenshot "$OUT/editor-matcap.png"
 # the whole window after one stroke
 run --size 1200x780 --no-recovery --autosave 0 --new 128 --radius 6 --color "#d03020" --replay-drag "$stroke" \
   --screenshot-window "$OUT/editor-window.png"

@@ -54,13 +54,14 @@ EditorOptions parseEditorOptions(const QStringList& arguments)
   const QCommandLineOption noRecovery("no-recovery", "Do not offer to recover an autosaved volume.");
   const QCommandLineOption recoveryDir("recovery-dir", "Folder of the autosave file.", "dir");
   const QCommandLineOption autosave("autosave", "Autosave interval in seconds (0: off).", "s", "60");
+  const QCommandLineOption matcap("matcap", "Matcap shading with this image (PNG, JPG).", "file");
   const QCommandLineOption perVertex("per-vertex-color", "Per-vertex colours instead of tetrahedral interpolation.");
   const QCommandLineOption benchmark("benchmark-stroke",
     "Replay a recorded stroke (JSON-lines samples or .lvr) at its speed, print the latency and FPS, quit.", "file");
   const QCommandLineOption timing("timing",
     "Print (stderr) when the first surface was shown and when every chunk was meshed and shown, in ms after the window was made.");
   p.addOptions({ open, openMesh, meshRes, meshSign, create, fill, script, drag, undo, shot, save, exp, op, shape, kind, radius, color, size, quit,
-    noRecovery, recoveryDir, autosave, perVertex, benchmark, strength, falloff, mirror, keys, keysAfter, dragMods,
+    noRecovery, recoveryDir, autosave, perVertex, matcap, benchmark, strength, falloff, mirror, keys, keysAfter, dragMods,
     saveAsAnswer, windowShot, dragShot, timing });
   p.process(arguments);
 
@@ -153,6 +154,7 @@ EditorOptions parseEditorOptions(const QStringList& arguments)
   o.recoveryDir = p.value(recoveryDir);
   o.autosaveSeconds = p.value(autosave).toInt();
   o.perVertexColor = p.isSet(perVertex);
+  o.matcap = p.value(matcap);
   o.benchmarkStroke = p.value(benchmark);
   o.timing = p.isSet(timing);
   return o;

@@ -1,4 +1,6 @@
 #include "MainWindow.h"
+#include "Matcap.h"
+#include "vtkTexture.h"
 
 #include <QThread>
 
@@ -61,6 +63,7 @@ MainWindow::MainWindow(const EditorOptions& options)
   this->Chunks->GetProperty()->SetSpecularPower(25);
   this->Chunks->SetInterpolationMode(
     options.perVertexColor ? vtkTetrahedralColorMapper::PerVertex : vtkTetrahedralColorMapper::Tetrahedral);
+  this->Matcap = matcapTexture(makeClayMatcap());
 
   this->Brush->SetInteractor(this->View->interactor());
   this->Brush->SetRepresentation(this->BrushRep);
