@@ -6,6 +6,7 @@
 #include "lvdif/Memory.h"
 
 #include <algorithm>
+#include <atomic>
 #include <cmath>
 #include <limits>
 #include <map>
@@ -453,7 +454,8 @@ void pinchOffset(const Dab& d, const double q[3], double r[3])
 
 // Smooth, Grab and Pinch: per group, every new value is computed from the
 // volume as the previous group left it, then written.
-EditResult applyGather(DictionaryVolume& volume, const detail::edit::DabPlan& plan, ChunkWriteObserver* observer)
+EditResult applyGather(
+  DictionaryVolume& volume, const detail::edit::DabPlan& plan, ChunkWriteObserver* observer, const Interrupter* interrupter)
 {
   const detail::edit::BrushContext& c = plan.ctx;
   const float* table = volume.sdfDictionary().table();
@@ -471,6 +473,11 @@ EditResult applyGather(DictionaryVolume& volume, const detail::edit::DabPlan& pl
   };
   for (int gi = 0; gi < groups; ++gi)
   {
+    if (interrupter && interrupter->wasInterrupted())
+    {
+      result.interrupted = true;
+      break;
+    }
     VoxelBox box;
     for (int k = gi * g; k < (gi + 1) * g; ++k)
       box = box.unite(plan.boxes[static_cast<std::size_t>(k)]);
@@ -595,10 +602,10 @@ DabPlan planDabs(DictionaryVolume& volume, const std::vector<Dab>& dabs, const B
 } // namespace detail::edit
 
 EditResult applyDabs(DictionaryVolume& volume, const std::vector<Dab>& dabs, const BrushSettings& settings,
-  ChunkWriteObserver* observer)
+  ChunkWriteObserver* observer, const Interrupter* interrupter)
 {
   if (readsNeighbours(settings.op))
-    return applyGather(volume, planGroups(volume, dabs, settings, observer), observer);
+    return applyGather(volume, planGroups(volume, dabs, settings, observer), observer, interrupter);
   detail::edit::DabPlan plan = detail::edit::planDabs(volume, dabs, settings, observer);
   EditResult result;
   const detail::edit::BrushContext& ctx = plan.ctx;
@@ -621,10 +628,17 @@ EditResult applyDabs(DictionaryVolume& volume, const std::vector<Dab>& dabs, con
   const double reach = ctx.reach;
   bool failed = false;
   Error firstError(ErrorCode::InvalidArgument, "");
+  std::atomic<bool> stopped{ false };
 
 #pragma omp parallel for schedule(dynamic, 1) if (nChunks > 1)
   for (std::int64_t ci = 0; ci < nChunks; ++ci)
   {
+    // each chunk is written whole or not at all: a cancel leaves no half chunk
+    if (interrupter && (stopped.load(std::memory_order_relaxed) || interrupter->wasInterrupted()))
+    {
+      stopped.store(true, std::memory_order_relaxed);
+      continue;
+    }
     try
     {
       const std::int64_t id = chunks[static_cast<size_t>(ci)];
@@ -911,6 +925,7 @@ EditResult applyDabs(DictionaryVolume& volume, const std::vector<Dab>& dabs, con
   {
     throw firstError;
   }
+  result.interrupted = stopped.load();
   for (size_t i = 0; i < chunks.size(); ++i)
   {
     if (changedPerChunk[i] > 0)

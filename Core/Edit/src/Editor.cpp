@@ -77,14 +77,14 @@ Editor::Editor(DictionaryVolume& volume, const UndoStack::Options& undo)
 EditResult Editor::applyNow(const std::vector<Dab>& dabs)
 {
   if (!this->Device)
-    return lvdif::applyDabs(this->Volume, dabs, this->brush, &this->Undo);
+    return lvdif::applyDabs(this->Volume, dabs, this->brush, &this->Undo, this->interrupter);
   if (!cuda::appliesOnDevice(this->brush))
   {
     // smooth, grab and pinch read neighbours, flatten and soft paint measure the host
     // volume: they run on the CPU, on the synced host copy, and the changed
     // storage chunks are handed to the device as part of its open step
     this->Device->sync();
-    const EditResult r = lvdif::applyDabs(this->Volume, dabs, this->brush, nullptr);
+    const EditResult r = lvdif::applyDabs(this->Volume, dabs, this->brush, nullptr, this->interrupter);
     this->Device->adoptHostChunks(r.changedChunks);
     return r;
   }
@@ -167,6 +167,16 @@ void Editor::record(const EditRecord& e)
   this->Rec->records.push_back(std::move(r));
 }
 
+void Editor::throwIfInterrupted(const EditResult& r)
+{
+  if (!r.interrupted)
+    return;
+  // a dab stopped part way: its written chunks are in the open undo step; they
+  // are reported before the cancel propagates, so views re-mesh them
+  this->touchStorageChunks(r.changedChunks);
+  throw Error(ErrorCode::Cancelled, "operation cancelled");
+}
+
 EditResult Editor::applyChecked(const std::vector<Dab>& dabs)
 {
   if (dabs.size() > this->limits.maxDabsPerEdit)
@@ -207,6 +217,7 @@ EditResult Editor::applyChecked(const std::vector<Dab>& dabs)
       this->interrupter->checkInterrupt();
     EditResult r = this->applyNow(dabs);
     this->DabsApplied += dabs.size();
+    this->throwIfInterrupted(r);
     return r;
   }
   EditResult all;
@@ -221,6 +232,7 @@ EditResult Editor::applyChecked(const std::vector<Dab>& dabs)
     this->DabsApplied += part.size();
     this->touchStorageChunks(r.changedChunks); // a cancelled edit still reports what it changed
     merge(all, r);
+    this->throwIfInterrupted(r);
   }
   return all;
 }

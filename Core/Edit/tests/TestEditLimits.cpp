@@ -13,6 +13,7 @@
 #include <gtest/gtest.h>
 
 #include <arpa/inet.h>
+#include <atomic>
 #include <chrono>
 #include <cmath>
 #include <limits>
@@ -206,14 +207,23 @@ TEST(EditLimits, LongEditsCancelBetweenBatchesAndUndoRestores)
   }
   struct AfterN : Interrupter
   {
-    mutable int left;
+    mutable std::atomic<int> left;
     explicit AfterN(int n) : left(n) {}
     bool wasInterrupted() const override { return --this->left < 0; }
   };
+  // cancelled once n batches are in (the batches' own chunk checks pass until then)
+  struct AfterBatches : Interrupter
+  {
+    const Editor* editor = nullptr;
+    std::uint64_t dabs = 0;
+    bool wasInterrupted() const override { return this->editor->dabsApplied() >= this->dabs; }
+  };
   for (int n : { 0, 1 })
   {
-    AfterN stop(n);
     Editor e(v);
+    AfterBatches stop;
+    stop.editor = &e;
+    stop.dabs = std::uint64_t(n) * 4096u;
     e.interrupter = &stop;
     try
     {
@@ -408,4 +418,51 @@ TEST(EditLimits, LoadRecordingRefusesNonRegularFilesAndGarbageFirst)
   ::unlink(fifo.c_str());
   ::unlink(big.c_str());
   ::rmdir(dir.c_str());
+}
+
+TEST(EditLimits, OneLargeDabCancelsBetweenChunksAndUndoRestores)
+{
+  // one dab over most of the volume: the cancel is seen between its chunks
+  DictionaryVolume v(edittest::options(128, 8, 3.0f));
+  fillFromFunction(v, sphereSdf(64, 64, 64, 30));
+  const auto original = v.clone();
+  const Dab big{ BrushShape::Sphere, { 60, 70, 64 }, 50, {} };
+  // the oracle of a finished dab: everything it would change
+  auto full = v.clone();
+  applyDabs(*full, { big }, BrushSettings());
+  const std::int64_t allChanged = edittest::countDifferences(*full, *original);
+  ASSERT_GT(allChanged, 10000);
+  struct AfterN : Interrupter
+  {
+    mutable std::atomic<int> left;
+    explicit AfterN(int n) : left(n) {}
+    bool wasInterrupted() const override { return --this->left < 0; }
+  };
+  for (int n : { 0, 800 })
+  {
+    AfterN stop(n);
+    Editor e(v);
+    e.interrupter = &stop;
+    try
+    {
+      e.dab(big);
+      ADD_FAILURE() << "not cancelled";
+    }
+    catch (const Error& x)
+    {
+      EXPECT_EQ(x.code(), ErrorCode::Cancelled);
+    }
+    const std::int64_t written = edittest::countDifferences(v, *original);
+    EXPECT_LT(written, allChanged) << "the dab ran to its end";
+    if (n == 0)
+      EXPECT_EQ(written, 0);
+    else
+    {
+      EXPECT_GT(written, 0);
+      // every chunk it wrote is whole: the voxels it changed are the finished dab's there
+      EXPECT_EQ(edittest::countDifferences(v, *full) + written, allChanged);
+      EXPECT_TRUE(e.undo());
+    }
+    EXPECT_EQ(edittest::countDifferences(v, *original), 0);
+  }
 }

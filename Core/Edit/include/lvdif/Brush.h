@@ -81,6 +81,7 @@
 // RowPathEqualsThePerVoxelPathBitForBit, and the CUDA comparisons).
 #pragma once
 
+#include "lvdif/Interrupter.h"
 #include "lvdif/HostDevice.h"
 
 #include "lvdif/DictionaryVolume.h"
@@ -309,6 +310,9 @@ struct EditResult
   /// re-mesh (a stroke's crescent of changed voxels meets far fewer mesh chunks
   /// than its bounding box). Empty when not known (then changedBox stands).
   std::vector<VoxelBox> changedChunkBoxes;
+  /// True when an interrupter stopped the edit part way: what was written is
+  /// reported above (an undo step that observed the writes restores it).
+  bool interrupted = false;
   /// True when changedChunkBoxes holds one box per changed chunk.
   bool hasChunkBoxes() const { return !this->changedChunks.empty() && this->changedChunkBoxes.size() == this->changedChunks.size(); }
 };
@@ -316,8 +320,11 @@ struct EditResult
 /// Applies the dabs in order (see the header comment). Adds the brush colour to the
 /// volume's colour dictionary first (Error DictionaryFull if it cannot). Invalid dabs
 /// (non-finite position or radius) are refused with Error(InvalidArgument) before any write.
+/// `interrupter`, when given, is checked between chunks (and between groups of the
+/// brushes that read neighbours): once it reports true the rest is left as it was
+/// and the result says `interrupted` (no exception: the caller decides).
 EditResult applyDabs(DictionaryVolume& volume, const std::vector<Dab>& dabs, const BrushSettings& settings,
-  ChunkWriteObserver* observer = nullptr);
+  ChunkWriteObserver* observer = nullptr, const Interrupter* interrupter = nullptr);
 
 /// The dabs with their mirror images (`symmetry`), in groups of 2^(mirrored axes):
 /// dab i's group is [i * g, (i + 1) * g), its first member the dab itself.

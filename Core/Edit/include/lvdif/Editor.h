@@ -111,6 +111,7 @@ private:
   void endStep();
   /// The budgets, then the dabs in batches with a cancellation check between them.
   EditResult applyChecked(const std::vector<Dab>& dabs);
+  void throwIfInterrupted(const EditResult& r);
   /// Dabs the next stroke may make: the per-edit limit or what is left of the total.
   std::uint64_t strokeBudget() const;
 
