@@ -15,6 +15,7 @@ run "${common[@]}" --new 128 --fill sphere --radius 6 --color "#d03020" --replay
 run "${common[@]}" --new 128 --fill sphere --radius 6 --color "#d03020" --replay-drag "$stroke" --per-vertex-color --screenshot "$OUT/editor-pervertex.png"
 run "${common[@]}" --script docs/images/editor-tools.lvs --screenshot "$OUT/editor-tools.png"
 run "${common[@]}" --script Apps/Editor/Testing/sphere.lvs --screenshot "$OUT/editor-script.png"
+run "${common[@]}" --new 128 --fill sphere --radius 6 --color "#d03020" --keys Alt+4 --replay-drag "$stroke" --screenshot "$OUT/editor-matcap.png"
 # the whole window after one stroke
 run --size 1200x780 --no-recovery --autosave 0 --new 128 --radius 6 --color "#d03020" --replay-drag "$stroke" \
   --screenshot-window "$OUT/editor-window.png"
@@ -36,5 +37,6 @@ tool inflate I --radius 9 --strength 0.6
 tool grab G --radius 14
 tool flatten T --radius 10 --strength 1
 tool crease C --radius 6 --strength 1
+tool pinch N --radius 8 --strength 1
 tool symmetry A --radius 6 --mirror x
 echo "pictures written to $OUT"

@@ -44,6 +44,8 @@ int EditorDriver::runBatch()
   // a script first: it sets the scene the keys and the drag then work on
   if (!o.script.isEmpty())
     ok = this->Window.runScript(o.script) && ok;
+  if (!o.matcap.isEmpty())
+    ok = this->Window.loadMatcap(o.matcap) && ok;
   if (!o.keys.isEmpty())
     ok = this->typeKeys(o.keys) && ok;
   if (!o.drag.isEmpty())

@@ -37,7 +37,7 @@ EditorOptions parseEditorOptions(const QStringList& arguments)
   const QCommandLineOption save("save", "Save the volume (.lvdv or .vti) and quit.", "file");
   const QCommandLineOption exp("export", "Export the mesh (.ply, .obj, .stl) and quit.", "file");
   const QCommandLineOption op("op",
-    "Tool: add, subtract, paint, smooth, inflate, grab, flatten, crease.", "op", "add");
+    "Tool: add, subtract, paint, smooth, inflate, grab, flatten, crease, pinch.", "op", "add");
   const QCommandLineOption strength("strength", "Brush strength in (0, 1] (default: the tool's).", "s");
   const QCommandLineOption falloff("falloff", "Brush falloff: constant, linear, smooth, sharp (default: the tool's).", "curve");
   const QCommandLineOption mirror("mirror", "Symmetry: the mirrored axes, e.g. x or xz.", "axes");
@@ -54,13 +54,14 @@ EditorOptions parseEditorOptions(const QStringList& arguments)
   const QCommandLineOption noRecovery("no-recovery", "Do not offer to recover an autosaved volume.");
   const QCommandLineOption recoveryDir("recovery-dir", "Folder of the autosave file.", "dir");
   const QCommandLineOption autosave("autosave", "Autosave interval in seconds (0: off).", "s", "60");
+  const QCommandLineOption matcap("matcap", "Matcap shading with this image (PNG, JPG).", "file");
   const QCommandLineOption perVertex("per-vertex-color", "Per-vertex colours instead of tetrahedral interpolation.");
   const QCommandLineOption benchmark("benchmark-stroke",
     "Replay a recorded stroke (JSON-lines samples or .lvr) at its speed, print the latency and FPS, quit.", "file");
   const QCommandLineOption timing("timing",
     "Print (stderr) when the first surface was shown and when every chunk was meshed and shown, in ms after the window was made.");
   p.addOptions({ open, openMesh, meshRes, meshSign, create, fill, script, drag, undo, shot, save, exp, op, shape, kind, radius, color, size, quit,
-    noRecovery, recoveryDir, autosave, perVertex, benchmark, strength, falloff, mirror, keys, keysAfter, dragMods,
+    noRecovery, recoveryDir, autosave, perVertex, matcap, benchmark, strength, falloff, mirror, keys, keysAfter, dragMods,
     saveAsAnswer, windowShot, dragShot, timing });
   p.process(arguments);
 
@@ -106,8 +107,8 @@ EditorOptions parseEditorOptions(const QStringList& arguments)
   o.save = p.value(save);
   o.exportMesh = p.value(exp);
   o.op = p.value(op).toLower();
-  if (!QStringList{ "add", "subtract", "paint", "smooth", "inflate", "grab", "flatten", "crease" }.contains(o.op))
-    fail("--op expects add, subtract, paint, smooth, inflate, grab, flatten or crease, got '" + o.op + "'");
+  if (!QStringList{ "add", "subtract", "paint", "smooth", "inflate", "grab", "flatten", "crease", "pinch" }.contains(o.op))
+    fail("--op expects add, subtract, paint, smooth, inflate, grab, flatten, crease or pinch, got '" + o.op + "'");
   if (p.isSet(strength))
   {
     o.strength = p.value(strength).toDouble();
@@ -153,6 +154,7 @@ EditorOptions parseEditorOptions(const QStringList& arguments)
   o.recoveryDir = p.value(recoveryDir);
   o.autosaveSeconds = p.value(autosave).toInt();
   o.perVertexColor = p.isSet(perVertex);
+  o.matcap = p.value(matcap);
   o.benchmarkStroke = p.value(benchmark);
   o.timing = p.isSet(timing);
   return o;

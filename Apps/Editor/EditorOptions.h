@@ -38,6 +38,7 @@ struct EditorOptions
   QString recoveryDir;        // --recovery-dir DIR (default: the app data folder)
   int autosaveSeconds = 60;   // --autosave S
   bool perVertexColor = false; // --per-vertex-color
+  QString matcap;             // --matcap FILE: matcap shading with this image
   QString benchmarkStroke;    // --benchmark-stroke FILE: replay a recorded stroke, print latency and FPS, quit
   bool timing = false;        // --timing: print when the first surface and the whole surface were shown
   bool batch() const { return this->quit || !this->screenshot.isEmpty() || !this->windowShot.isEmpty() || !this->save.isEmpty() || !this->exportMesh.isEmpty(); }

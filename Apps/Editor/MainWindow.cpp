@@ -1,4 +1,6 @@
 #include "MainWindow.h"
+#include "Matcap.h"
+#include "vtkTexture.h"
 
 #include <QThread>
 
@@ -61,6 +63,7 @@ MainWindow::MainWindow(const EditorOptions& options)
   this->Chunks->GetProperty()->SetSpecularPower(25);
   this->Chunks->SetInterpolationMode(
     options.perVertexColor ? vtkTetrahedralColorMapper::PerVertex : vtkTetrahedralColorMapper::Tetrahedral);
+  this->Matcap = matcapTexture(makeClayMatcap());
 
   this->Brush->SetInteractor(this->View->interactor());
   this->Brush->SetRepresentation(this->BrushRep);
@@ -226,7 +229,7 @@ bool MainWindow::beginStroke()
   e.brush.op = static_cast<lvdif::BrushOp>(op);
   const bool ctrl = this->View->interactor()->GetControlKey() ||
     (QApplication::queryKeyboardModifiers() & Qt::ControlModifier);
-  e.brush.invert = ctrl && (op == 4 || op == 7);
+  e.brush.invert = ctrl && (op == 4 || op == 7 || op == 8);
   this->Grabbing = op == 5;
   updatePreview(nullptr, true);
   try

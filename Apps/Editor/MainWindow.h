@@ -19,6 +19,8 @@
 #include "vtkNew.h"
 #include "vtkSmartPointer.h"
 
+class vtkTexture;
+
 class QAction;
 class QActionGroup;
 class QMenu;
@@ -70,6 +72,9 @@ public:
   bool playRecording(const QString& path);
   /// Runs a script (.lvs) or plays a recording (.lvr; .lvrec is accepted too), by extension.
   bool runScript(const QString& path);
+  /// Reads a matcap image (PNG, JPG, ...) and shows the surface with it
+  /// (Matcap shading); an unreadable file is reported and changes nothing.
+  bool loadMatcap(const QString& path);
   /// The shortcut table of Help > Keyboard shortcuts (HTML).
   QString shortcutHelp() const;
   void undo();
@@ -122,8 +127,9 @@ private:
   void setViewPreset(int preset);
   void frameSurface();
   void setOrthographic(bool on);
-  /// 0 smooth, 1 flat, 2 wireframe, 3 matcap-like clay.
+  /// 0 smooth, 1 flat, 2 wireframe, 3 matcap (the image in Matcap; clay by default).
   void setShading(int mode);
+  void loadMatcapDialog();
   void addRecentFile(const QString& path);
   void rebuildRecentMenu();
   void updateStatus();
@@ -179,6 +185,8 @@ private:
   vtkSmartPointer<vtkActor> Preview;
   std::vector<std::array<double, 3>> PreviewPoints;
   int Shading = 0;
+  QActionGroup* ShadingActions = nullptr;
+  vtkSmartPointer<vtkTexture> Matcap; // the matcap image: clay (made at start) or the user's
   int CursorOp = -1;
   bool Grabbing = false;    // a Grab stroke: samples on the view plane through its start
   double GrabDepth = 0;     // display depth of the grab's start point

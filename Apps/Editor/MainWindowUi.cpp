@@ -20,11 +20,18 @@
 #include "vtkRenderer.h"
 #include "vtkTubeFilter.h"
 
+#include "Matcap.h"
+#include "vtkTexture.h"
+
 #include <QAction>
 #include <QActionGroup>
 #include <QApplication>
 #include <QDateTime>
+#include <stdexcept>
+
+#include <QFileDialog>
 #include <QFileInfo>
+#include <QImageReader>
 #include <QKeyEvent>
 #include <QLabel>
 #include <QMenu>
@@ -57,7 +64,7 @@ const ViewPreset Presets[] = {
   { "Top", Qt::Key_7, { 0, 1, 0 }, { 0, 0, -1 } },
   { "Bottom", Qt::Key_8, { 0, -1, 0 }, { 0, 0, 1 } },
 };
-const char* ShadingNames[] = { "Smooth", "Flat", "Wireframe", "Matcap (clay)" };
+const char* ShadingNames[] = { "Smooth", "Flat", "Wireframe", "Matcap" };
 
 QString keyText(const QKeySequence& k)
 {
@@ -119,15 +126,18 @@ void MainWindow::buildViewMenu(QMenu* view)
   this->OrthoAction->setCheckable(true);
   this->OrthoAction->setShortcut(QKeySequence(Qt::Key_5));
   QMenu* shading = view->addMenu("&Shading");
-  auto* group = new QActionGroup(this);
+  this->ShadingActions = new QActionGroup(this);
   for (int i = 0; i < 4; ++i)
   {
     QAction* a = shading->addAction(ShadingNames[i], this, [this, i] { this->setShading(i); });
     a->setCheckable(true);
     a->setChecked(i == 0);
     a->setShortcut(QKeySequence(QString("Alt+%1").arg(i + 1)));
-    group->addAction(a);
+    a->setData(i);
+    this->ShadingActions->addAction(a);
   }
+  shading->addSeparator();
+  shading->addAction("&Load matcap image...", this, [this] { this->loadMatcapDialog(); });
   view->addAction("&Frame the surface", this, [this] { this->frameSurface(); });
 }
 
@@ -155,7 +165,7 @@ QString MainWindow::shortcutHelp() const
   };
   for (QAction* a : this->ToolActions->actions())
     row(keyText(a->shortcut()), a->toolTip());
-  row("Ctrl + drag", "Invert the tool: add <-> subtract, inflate -> deflate, crease -> ridge");
+  row("Ctrl + drag", "Invert the tool: add <-> subtract, inflate -> deflate, crease -> ridge, pinch -> spread");
   row("Shift + drag", "Smooth, whatever the tool");
   row("Mouse wheel over the surface", "Brush radius");
   for (QAction* a : this->ShortcutActions)
@@ -267,15 +277,40 @@ void MainWindow::setShading(int mode)
     p->SetRepresentationToWireframe();
   else if (mode == 3)
   {
-    // clay: a soft ambient floor, a broad highlight (a lit-sphere look; not a
-    // textured matcap)
-    p->SetAmbient(0.3);
-    p->SetDiffuse(0.75);
-    p->SetSpecular(0.45);
-    p->SetSpecularPower(8);
+    // the matcap's colour times the surface colour (the diffuse colour at
+    // diffuse 1), no scene lights: vtkTetrahedralColorMapper's Matcap
+    p->SetDiffuse(1.0);
+    p->SetSpecular(0.0);
   }
+  this->Chunks->SetMatcapTexture(mode == 3 ? this->Matcap.Get() : nullptr);
+  if (this->ShadingActions)
+    for (QAction* a : this->ShadingActions->actions())
+      if (a->data().toInt() == mode && !a->isChecked())
+        a->setChecked(true);
   this->Shading = mode;
   this->RenderWindow->Render();
+}
+
+bool MainWindow::loadMatcap(const QString& path)
+{
+  QImageReader reader(path);
+  const QImage image = reader.read();
+  if (image.isNull())
+  {
+    this->showError("Cannot read the matcap image " + path, std::runtime_error(reader.errorString().toStdString()));
+    return false;
+  }
+  this->Matcap = matcapTexture(image);
+  this->setShading(3);
+  return true;
+}
+
+void MainWindow::loadMatcapDialog()
+{
+  const QString path =
+    QFileDialog::getOpenFileName(this, "Load matcap image", QString(), "Images (*.png *.jpg *.jpeg);;All files (*)");
+  if (!path.isEmpty())
+    this->loadMatcap(path);
 }
 
 // ---- recent files ------------------------------------------------------------

@@ -27,6 +27,7 @@ const ToolInfo& toolInfo(int op)
     { "Grab", 'G', "Drag a region of the surface with the mouse" },
     { "Flatten", 'T', "Pull the surface to the plane tangent under the brush" },
     { "Crease", 'C', "Cut a sharp crease along the stroke (Ctrl: a ridge)" },
+    { "Pinch", 'N', "Pull the surface toward the stroke's line: sharpens ridges and creases (Ctrl: spread)" },
   };
   return tools[op >= 0 && op < ToolCount ? op : 0];
 }
@@ -56,8 +57,8 @@ ToolPanel::ToolPanel(QWidget* parent)
   : QWidget(parent)
 {
   // CSG tools start at the paper's hard rule; the shaping tools with a soft edge
-  const double strengths[ToolCount] = { 1, 1, 1, 0.5, 0.3, 1, 0.5, 0.5 };
-  const int falloffs[ToolCount] = { 0, 0, 0, 2, 2, 2, 2, 1 };
+  const double strengths[ToolCount] = { 1, 1, 1, 0.5, 0.3, 1, 0.5, 0.5, 0.5 };
+  const int falloffs[ToolCount] = { 0, 0, 0, 2, 2, 2, 2, 1, 2 };
   for (int i = 0; i < ToolCount; ++i)
   {
     this->ToolStrength[i] = strengths[i];

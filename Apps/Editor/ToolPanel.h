@@ -15,7 +15,7 @@ class QSlider;
 
 struct BrushState
 {
-  int op = 0;    // lvdif::BrushOp: 0 add, 1 subtract, 2 paint, 3 smooth, 4 inflate, 5 grab, 6 flatten, 7 crease
+  int op = 0;    // lvdif::BrushOp: 0 add, 1 subtract, 2 paint, 3 smooth, 4 inflate, 5 grab, 6 flatten, 7 crease, 8 pinch
   int shape = 0; // 0 sphere, 1 cube (lvdif::BrushShape)
   int kind = 1;  // 1 basic, 2 dynamic, 3 drill (lvdif::BrushKind)
   double radius = 4.0; // voxels
@@ -34,7 +34,7 @@ struct ToolInfo
   const char* tip;
 };
 const ToolInfo& toolInfo(int op);
-constexpr int ToolCount = 8;
+constexpr int ToolCount = 9;
 
 class ToolPanel : public QWidget
 {

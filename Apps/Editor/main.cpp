@@ -64,7 +64,7 @@ int main(int argc, char* argv[])
     return app.exec();
   }
   if (!options.batch() && options.drag.isEmpty() && options.script.isEmpty() && options.keys.isEmpty() &&
-    options.keysAfter.isEmpty())
+    options.keysAfter.isEmpty() && options.matcap.isEmpty())
     return app.exec();
 
   int status = loaded ? 0 : 1;

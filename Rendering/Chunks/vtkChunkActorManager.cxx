@@ -90,6 +90,34 @@ vtkProperty* vtkChunkActorManager::GetProperty()
   return this->Internal->Property;
 }
 
+void vtkChunkActorManager::SetMatcapTexture(vtkTexture* texture)
+{
+  vtkProperty* p = this->Internal->Property;
+  const char* name = vtkTetrahedralColorMapper::MatcapTextureName();
+  if (p->GetTexture(name) == texture)
+  {
+    return;
+  }
+  if (p->GetTexture(name))
+  {
+    p->RemoveTexture(name);
+  }
+  if (texture)
+  {
+    p->SetTexture(name, texture);
+  }
+  for (auto& kv : this->Internal->Chunks)
+  {
+    kv.second.Mapper->SetMatcap(texture != nullptr);
+  }
+  this->Modified();
+}
+
+vtkTexture* vtkChunkActorManager::GetMatcapTexture()
+{
+  return this->Internal->Property->GetTexture(vtkTetrahedralColorMapper::MatcapTextureName());
+}
+
 vtkSmartPointer<vtkPolyData> vtkChunkActorManager::PrepareChunk(vtkPolyData* mesh) const
 {
   if (!mesh || mesh->GetNumberOfCells() == 0)
@@ -124,6 +152,7 @@ void vtkChunkActorManager::SetChunk(vtkIdType chunkId, vtkPolyData* mesh, bool p
     Internals::Entry e;
     e.Mapper = vtkSmartPointer<vtkTetrahedralColorMapper>::New();
     e.Mapper->SetInterpolationMode(this->InterpolationMode);
+    e.Mapper->SetMatcap(this->GetMatcapTexture() != nullptr);
     e.Actor = vtkSmartPointer<vtkActor>::New();
     e.Actor->SetMapper(e.Mapper);
     e.Actor->SetProperty(this->Internal->Property);

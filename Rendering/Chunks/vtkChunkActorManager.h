@@ -38,6 +38,7 @@ class vtkPolyData;
 class vtkProp;
 class vtkProperty;
 class vtkRenderer;
+class vtkTexture;
 
 class LVDIFRENDERINGCHUNKS_EXPORT vtkChunkActorManager : public vtkObject
 {
@@ -65,6 +66,13 @@ public:
 
   /// The property every chunk actor shares (material, opacity, ...).
   vtkProperty* GetProperty();
+
+  /// Matcap shading of every chunk with this image (vtkTetrahedralColorMapper's
+  /// Matcap: the image's colour at the view-space normal times the surface
+  /// colour, no scene lights); nullptr: lit as usual. The texture goes on the
+  /// shared property under vtkTetrahedralColorMapper::MatcapTextureName().
+  void SetMatcapTexture(vtkTexture* texture);
+  vtkTexture* GetMatcapTexture();
 
   /// Prepares a mesh for rendering (un-shares vertices for the tetrahedral
   /// shader when the mesh carries corner colours). Thread-safe; SetChunk calls

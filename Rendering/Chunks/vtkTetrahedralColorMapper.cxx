@@ -5,6 +5,7 @@
 #include "vtkObjectFactory.h"
 #include "vtkPointData.h"
 #include "vtkPolyData.h"
+#include "vtkProperty.h"
 #include "vtkShaderProperty.h"
 
 #include <string>
@@ -68,6 +69,35 @@ const char* const FsImpl = R"(//VTK::Color::Impl
   }
 )";
 
+// Matcap: after VTK's lighting (kept tag first), the fragment's colour is
+// replaced by the image's colour at the view-space normal times the surface
+// colour. VTK declares the property texture as `uniform sampler2D lvdifMatcap`
+// (its name) and binds it; the mesh needs no texture coordinates.
+const char* const FsMatcap = R"(//VTK::Light::Impl
+  {
+    vec3 lvdifN = normalize(normalVCVSOutput);
+    vec2 lvdifUV = clamp(lvdifN.xy * 0.5 + 0.5, 0.0, 1.0);
+    gl_FragData[0] = vec4(texture(lvdifMatcap, lvdifUV).rgb * diffuseColor, opacity);
+  }
+)";
+
+// Whether the property holds a replacement of this tag (each tag checked
+// here is replaced in the fragment shader only).
+bool hasReplacement(vtkShaderProperty* property, const char* tag)
+{
+  for (int i = 0; i < property->GetNumberOfShaderReplacements(); ++i)
+  {
+    std::string name, value;
+    bool first = false, all = false;
+    property->GetNthShaderReplacement(i, name, first, value, all);
+    if (name == tag)
+    {
+      return true;
+    }
+  }
+  return false;
+}
+
 bool hasTetrahedralArrays(vtkPolyData* pd)
 {
   if (!pd || !pd->GetPointData()->GetArray(vtkCornerColorAttributes::LocalArrayName()))
@@ -96,20 +126,39 @@ void vtkTetrahedralColorMapper::InstallShaderReplacements(vtkShaderProperty* pro
 {
   // Removing and re-adding would bump the property's MTime and rebuild the
   // shader every frame, so only act on a change of state.
-  const bool installed = property->GetNumberOfShaderReplacements() > 0;
+  const bool installed = hasReplacement(property, "//VTK::Color::Impl");
   if (on == installed)
   {
     return;
   }
   if (!on)
   {
-    property->ClearAllShaderReplacements();
+    property->ClearVertexShaderReplacement("//VTK::Normal::Dec", true);
+    property->ClearVertexShaderReplacement("//VTK::Normal::Impl", true);
+    property->ClearFragmentShaderReplacement("//VTK::Normal::Dec", true);
+    property->ClearFragmentShaderReplacement("//VTK::Color::Impl", true);
     return;
   }
   property->AddVertexShaderReplacement("//VTK::Normal::Dec", true, VsDec, false);
   property->AddVertexShaderReplacement("//VTK::Normal::Impl", true, VsImpl, false);
   property->AddFragmentShaderReplacement("//VTK::Normal::Dec", true, FsDec, false);
   property->AddFragmentShaderReplacement("//VTK::Color::Impl", true, FsImpl, false);
+}
+
+void vtkTetrahedralColorMapper::InstallMatcapReplacement(vtkShaderProperty* property, bool on)
+{
+  if (on == hasReplacement(property, "//VTK::Light::Impl"))
+  {
+    return; // unchanged: keep the property's MTime (no shader rebuild)
+  }
+  if (on)
+  {
+    property->AddFragmentShaderReplacement("//VTK::Light::Impl", true, FsMatcap, false);
+  }
+  else
+  {
+    property->ClearFragmentShaderReplacement("//VTK::Light::Impl", true);
+  }
 }
 
 void vtkTetrahedralColorMapper::RenderPiece(vtkRenderer* ren, vtkActor* act)
@@ -134,6 +183,8 @@ void vtkTetrahedralColorMapper::RenderPiece(vtkRenderer* ren, vtkActor* act)
     this->UsedTetrahedral = tetra;
   }
   InstallShaderReplacements(act->GetShaderProperty(), tetra);
+  InstallMatcapReplacement(act->GetShaderProperty(),
+    this->Matcap && act->GetProperty()->GetTexture(MatcapTextureName()) != nullptr);
   this->Superclass::RenderPiece(ren, act);
 }
 
@@ -143,4 +194,5 @@ void vtkTetrahedralColorMapper::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "InterpolationMode: " << (this->InterpolationMode == Tetrahedral ? "Tetrahedral" : "PerVertex")
      << "\n";
   os << indent << "UsedTetrahedral: " << this->UsedTetrahedral << "\n";
+  os << indent << "Matcap: " << this->Matcap << "\n";
 }

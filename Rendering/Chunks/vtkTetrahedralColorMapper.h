@@ -21,6 +21,13 @@
  * Fallback: ColorMode PerVertex, or an input without those arrays, renders
  * the point array `rgba` as direct per-vertex colours (the shader
  * replacements are removed from the actor).
+ *
+ * Matcap (SetMatcap): the fragment's colour is the texture that the actor's
+ * property holds under the name MatcapTextureName() (see
+ * vtkChunkActorManager::SetMatcapTexture), looked up at u,v = n.xy * 0.5 + 0.5
+ * with n the view-space normal, times the surface colour (the diffuse colour
+ * the colour code above computed); the scene's lights play no part. Without
+ * that texture on the property the mapper renders lit as usual.
  */
 #ifndef vtkTetrahedralColorMapper_h
 #define vtkTetrahedralColorMapper_h
@@ -53,11 +60,21 @@ public:
   /// True if the last render used the tetrahedral shader (false: fallback).
   vtkGetMacro(UsedTetrahedral, bool);
 
+  ///@{
+  /// Matcap shading (see above); off by default.
+  vtkSetMacro(Matcap, bool);
+  vtkGetMacro(Matcap, bool);
+  ///@}
+  /// The property texture name (and GLSL sampler) of the matcap image.
+  static const char* MatcapTextureName() { return "lvdifMatcap"; }
+
   void RenderPiece(vtkRenderer* ren, vtkActor* act) override;
 
   /// Installs (or with on=false removes) the tetrahedral GLSL on a shader
   /// property. Public so that other mappers of the same data can share it.
   static void InstallShaderReplacements(vtkShaderProperty* property, bool on);
+  /// Installs (or removes) the matcap GLSL on a shader property.
+  static void InstallMatcapReplacement(vtkShaderProperty* property, bool on);
 
 protected:
   vtkTetrahedralColorMapper();
@@ -65,6 +82,7 @@ protected:
 
   int InterpolationMode = Tetrahedral;
   bool UsedTetrahedral = false;
+  bool Matcap = false;
 
 private:
   vtkTetrahedralColorMapper(const vtkTetrahedralColorMapper&) = delete;

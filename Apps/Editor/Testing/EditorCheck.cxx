@@ -12,7 +12,7 @@
 //   --removed V.vti     V is the sphere after a Subtract stroke (Ctrl + Add): no
 //                       voxel moved inwards, some lost material.
 //   --changed V.vti     V is the sphere after a shaping stroke (smooth, inflate,
-//                       grab, flatten, crease, paint): some voxel differs from the
+//                       grab, flatten, crease, pinch, paint): some voxel differs from the
 //                       untouched canvas (distance or colour).
 //   --smoothed V.vti    V is the sphere after a smoothing stroke: no distance moved
 //                       by more than 0.25 voxel (a crease moves it 1.5) and some moved.
@@ -23,6 +23,8 @@
 //   --script-shape V.vti  V is sphere.lvs's result: the analytic sphere minus the cube.
 //   --mesh M.ply        the exported mesh has triangles inside the volume.
 //   --write-cone-obj F.obj  writes a cone with its apex up (+y) for the upright test.
+//   --write-matcap-png F.png  writes a 64 x 64 matcap ramp (red = u, green = v,
+//                       blue 200; u, v from the lower left) for --matcap.
 //   --write-sphere-obj F.obj   writes a UV sphere (centre MeshC, radius MeshR,
 //                       128 x 64 segments) for --open-mesh (runs before the editor).
 //   --mesh-sphere V.vti V is that sphere converted by --open-mesh: every voxel's
@@ -37,6 +39,7 @@
 #include "vtkNew.h"
 #include "vtkPLYReader.h"
 #include "vtkPNGReader.h"
+#include "vtkPNGWriter.h"
 #include "vtkPointData.h"
 #include "vtkPolyData.h"
 #include "vtkUnsignedCharArray.h"
@@ -318,6 +321,26 @@ void checkMesh(const char* path)
 }
 } // namespace
 
+void writeMatcapPng(const char* path)
+{
+  vtkNew<vtkImageData> img;
+  img->SetDimensions(64, 64, 1);
+  img->AllocateScalars(VTK_UNSIGNED_CHAR, 3);
+  for (int j = 0; j < 64; ++j)
+    for (int i = 0; i < 64; ++i)
+    {
+      auto* p = static_cast<unsigned char*>(img->GetScalarPointer(i, j, 0));
+      p[0] = static_cast<unsigned char>(4 * i + 2);
+      p[1] = static_cast<unsigned char>(4 * j + 2);
+      p[2] = 200;
+    }
+  vtkNew<vtkPNGWriter> w;
+  w->SetFileName(path);
+  w->SetInputData(img);
+  w->Write();
+  check(w->GetErrorCode() == 0, std::string("wrote the matcap ramp ") + path);
+}
+
 int main(int argc, char* argv[])
 {
   for (int i = 1; i < argc; ++i)
@@ -388,6 +411,8 @@ int main(int argc, char* argv[])
     }
     else if (!std::strcmp(argv[i], "--write-cone-obj") && i + 1 < argc)
       writeConeObj(argv[++i]);
+    else if (!std::strcmp(argv[i], "--write-matcap-png") && i + 1 < argc)
+      writeMatcapPng(argv[++i]);
     else if (!std::strcmp(argv[i], "--write-sphere-obj") && i + 1 < argc)
       writeSphereObj(argv[++i]);
     else if (!std::strcmp(argv[i], "--mesh-sphere") && i + 1 < argc)

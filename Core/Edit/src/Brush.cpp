@@ -39,6 +39,7 @@ const char* toString(BrushOp op)
     case BrushOp::Grab: return "grab";
     case BrushOp::Flatten: return "flatten";
     case BrushOp::Crease: return "crease";
+    case BrushOp::Pinch: return "pinch";
   }
   return "unknown";
 }
@@ -423,8 +424,36 @@ detail::edit::DabPlan planGroups(DictionaryVolume& volume, const std::vector<Dab
   return plan;
 }
 
-// Smooth and Grab: per group, every new value is computed from the volume as
-// the previous group left it, then written.
+// Pinch's pull at q (the base dab's frame): q minus the nearest point of the
+// dab's centre (line), without its component along the stroke direction.
+void pinchOffset(const Dab& d, const double q[3], double r[3])
+{
+  double c[3] = { d.center[0], d.center[1], d.center[2] };
+  double dir[3] = { d.vec[0], d.vec[1], d.vec[2] };
+  if (d.shape == BrushShape::Capsule)
+  {
+    const double ba[3] = { d.end[0] - d.center[0], d.end[1] - d.center[1], d.end[2] - d.center[2] };
+    const double bb = ba[0] * ba[0] + ba[1] * ba[1] + ba[2] * ba[2];
+    double t = bb > 0 ? ((q[0] - c[0]) * ba[0] + (q[1] - c[1]) * ba[1] + (q[2] - c[2]) * ba[2]) / bb : 0.0;
+    t = std::min(1.0, std::max(0.0, t));
+    for (int a = 0; a < 3; ++a)
+      c[a] += t * ba[a];
+    if (dir[0] == 0 && dir[1] == 0 && dir[2] == 0)
+      dir[0] = ba[0], dir[1] = ba[1], dir[2] = ba[2];
+  }
+  for (int a = 0; a < 3; ++a)
+    r[a] = q[a] - c[a];
+  const double dd = dir[0] * dir[0] + dir[1] * dir[1] + dir[2] * dir[2];
+  if (dd > 0)
+  {
+    const double k = (r[0] * dir[0] + r[1] * dir[1] + r[2] * dir[2]) / dd;
+    for (int a = 0; a < 3; ++a)
+      r[a] -= k * dir[a];
+  }
+}
+
+// Smooth, Grab and Pinch: per group, every new value is computed from the
+// volume as the previous group left it, then written.
 EditResult applyGather(
   DictionaryVolume& volume, const detail::edit::DabPlan& plan, ChunkWriteObserver* observer, const Interrupter* interrupter)
 {
@@ -432,6 +461,7 @@ EditResult applyGather(
   const float* table = volume.sdfDictionary().table();
   const Index3& n = volume.dims();
   const bool grab = c.op == static_cast<int>(BrushOp::Grab);
+  const bool pinch = c.op == static_cast<int>(BrushOp::Pinch);
   EditResult result;
   std::map<std::int64_t, VoxelBox> changedChunks; // and the box of each one's changed voxels
   const int g = c.groupSize;
@@ -484,13 +514,27 @@ EditResult applyGather(
               for (int a = 0; a < 3; ++a)
                 disp[a] += wk * d.vec[a];
             }
+            if (pinch && sk <= 0)
+            {
+              // in the base dab's frame, then reflected back (negation is exact,
+              // so mirror images stay mirror images bit for bit)
+              const double wk = (c.invert ? -1.0 : 1.0) * c.strength * falloffCurve(c.falloff, tk);
+              double r[3];
+              pinchOffset(base, p, r);
+              double m[3] = { 1, 1, 1 };
+              for (int i = 0; (1 << i) < c.groupSize; ++i)
+                if (((k - gi * g) >> i) & 1)
+                  m[c.mirrorAxis[i]] = -1;
+              for (int a = 0; a < 3; ++a)
+                disp[a] -= m[a] * wk * r[a]; // sampled at p - disp
+            }
           }
           if (!in || s > 0)
             continue;
           const Voxel old = volume.get(x, y, z);
           const double d = table[old.sdf];
           double dn = d;
-          if (grab)
+          if (grab || pinch)
           {
             if (disp[0] == 0 && disp[1] == 0 && disp[2] == 0)
               continue;

@@ -92,7 +92,7 @@ EditResult applyDabs(DictionaryVolume& volume, const std::vector<Dab>& dabs, con
 {
   if (!available())
     throw Error(ErrorCode::Unsupported, "no CUDA device is available for the brush");
-  // (Smooth and Grab are refused by planDabs: they read neighbours, CPU only.)
+  // (Smooth, Grab and Pinch are refused by planDabs: they read neighbours, CPU only.)
   const detail::edit::DabPlan plan = detail::edit::planDabs(volume, dabs, settings);
   EditResult result;
   if (plan.chunks.empty())

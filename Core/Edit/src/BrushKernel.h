@@ -242,7 +242,7 @@ struct DabPlan
 /// (Error InvalidArgument / OutOfMemory; the undo snapshots count when an
 /// observer is given) and plans; adds the brush colour (and soft paint's
 /// mixes) to the dictionary; Flatten's planes are measured here. Refuses
-/// Smooth and Grab (they are not per-voxel rules).
+/// Smooth, Grab and Pinch (they are not per-voxel rules).
 DabPlan planDabs(DictionaryVolume& volume, const std::vector<Dab>& dabs, const BrushSettings& settings,
   const ChunkWriteObserver* observer = nullptr);
 

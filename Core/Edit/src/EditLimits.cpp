@@ -31,7 +31,7 @@ void validate(const BrushSettings& s)
   checkedNumber(s.blend, 0, EditLimits::MaxSize, "brush blend radius");
   checkedNumber(s.colorOffset, 0, EditLimits::MaxSize, "brush colour offset");
   checkedNumber(s.rounding, 0, EditLimits::MaxSize, "cube rounding");
-  require(static_cast<int>(s.op) >= 0 && static_cast<int>(s.op) <= static_cast<int>(BrushOp::Crease),
+  require(static_cast<int>(s.op) >= 0 && static_cast<int>(s.op) <= static_cast<int>(BrushOp::Pinch),
     "unknown brush operation");
   require(std::isfinite(s.strength) && s.strength > 0 && s.strength <= 1, "brush strength must be in (0, 1]");
   require(static_cast<int>(s.falloff) >= 0 && static_cast<int>(s.falloff) <= static_cast<int>(Falloff::Sharp),
@@ -51,7 +51,7 @@ void validate(const Dab& d, std::size_t index)
   for (int a = 0; a < 3; ++a)
   {
     checkedNumber(d.center[a], -EditLimits::MaxCoordinate, EditLimits::MaxCoordinate, name + " position");
-    checkedNumber(d.vec[a], -EditLimits::MaxSize, EditLimits::MaxSize, name + " grab displacement");
+    checkedNumber(d.vec[a], -EditLimits::MaxSize, EditLimits::MaxSize, name + " grab displacement or pinch direction");
     if (d.shape == BrushShape::Capsule)
       checkedNumber(d.end[a], -EditLimits::MaxCoordinate, EditLimits::MaxCoordinate, name + " capsule end");
   }

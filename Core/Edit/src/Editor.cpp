@@ -48,6 +48,26 @@ void merge(EditResult& into, const EditResult& r)
 }
 } // namespace
 
+namespace
+{
+// Pinch pulls toward the stroke's centre line: each dab gets the direction
+// from the stroke's previous dab (the first one: toward the next; a lone dab
+// keeps none and pulls radially).
+void orientPinch(std::vector<Dab>& dabs, const Dab* previous)
+{
+  for (std::size_t i = 0; i < dabs.size(); ++i)
+  {
+    const Dab* from = i > 0 ? &dabs[i - 1] : previous;
+    const Dab* to = &dabs[i];
+    if (!from && dabs.size() > 1)
+      from = &dabs[0], to = &dabs[1];
+    if (from)
+      for (int a = 0; a < 3; ++a)
+        dabs[i].vec[a] = to->center[a] - from->center[a];
+  }
+}
+} // namespace
+
 Editor::Editor(DictionaryVolume& volume, const UndoStack::Options& undo)
   : Volume(volume)
   , Undo(volume, undo)
@@ -60,7 +80,7 @@ EditResult Editor::applyNow(const std::vector<Dab>& dabs)
     return lvdif::applyDabs(this->Volume, dabs, this->brush, &this->Undo, this->interrupter);
   if (!cuda::appliesOnDevice(this->brush))
   {
-    // smooth and grab read neighbours, flatten and soft paint measure the host
+    // smooth, grab and pinch read neighbours, flatten and soft paint measure the host
     // volume: they run on the CPU, on the synced host copy, and the changed
     // storage chunks are handed to the device as part of its open step
     this->Device->sync();
@@ -251,7 +271,10 @@ EditResult Editor::dab(const Dab& d)
 
 EditResult Editor::strokeThrough(const std::vector<BrushSample>& samples)
 {
-  return this->applyDabs(strokeDabs(samples, this->stroke, this->strokeBudget()), this->stroke.kind);
+  std::vector<Dab> dabs = strokeDabs(samples, this->stroke, this->strokeBudget());
+  if (this->brush.op == BrushOp::Pinch)
+    orientPinch(dabs, nullptr);
+  return this->applyDabs(dabs, this->stroke.kind);
 }
 
 std::uint64_t Editor::strokeBudget() const
@@ -290,6 +313,8 @@ EditResult Editor::addSample(const BrushSample& s)
     this->GrabFrom = s.position;
     this->GrabStarted = true;
   }
+  if (this->brush.op == BrushOp::Pinch)
+    orientPinch(ready, this->StrokeDabs.empty() ? nullptr : &this->StrokeDabs.back());
   EditResult r;
   this->LastWrite = EditResult();
   if (!ready.empty())
@@ -309,6 +334,8 @@ EditResult Editor::endStroke()
   std::vector<Dab> rest = this->Builder->finish();
   if (this->brush.op == BrushOp::Grab)
     rest.clear(); // applied sample by sample
+  if (this->brush.op == BrushOp::Pinch)
+    orientPinch(rest, this->StrokeDabs.empty() ? nullptr : &this->StrokeDabs.back());
   EditResult r;
   this->LastWrite = EditResult();
   try

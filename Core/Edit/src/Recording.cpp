@@ -109,7 +109,7 @@ E lookup(const std::string& word, const std::map<std::string, E>& table, const W
 
 const std::map<std::string, BrushOp> Ops{ { "add", BrushOp::Add }, { "subtract", BrushOp::Subtract },
   { "paint", BrushOp::Paint }, { "smooth", BrushOp::Smooth }, { "inflate", BrushOp::Inflate }, { "grab", BrushOp::Grab },
-  { "flatten", BrushOp::Flatten }, { "crease", BrushOp::Crease } };
+  { "flatten", BrushOp::Flatten }, { "crease", BrushOp::Crease }, { "pinch", BrushOp::Pinch } };
 const std::map<std::string, Falloff> Falloffs{ { "constant", Falloff::Constant }, { "linear", Falloff::Linear },
   { "smooth", Falloff::Smooth }, { "sharp", Falloff::Sharp } };
 const std::map<std::string, BrushShape> Shapes{ { "sphere", BrushShape::Sphere }, { "cube", BrushShape::Cube },
@@ -152,7 +152,7 @@ void writeRecording(std::ostream& out, const Recording& r)
           << num(d.center[1]) << " " << num(d.center[2]) << " " << num(d.radius);
       if (d.shape == BrushShape::Capsule)
         out << " " << num(d.end[0]) << " " << num(d.end[1]) << " " << num(d.end[2]);
-      if (e.brush.op == BrushOp::Grab) // the drag of each grab dab
+      if (e.brush.op == BrushOp::Grab || e.brush.op == BrushOp::Pinch) // grab's drag, pinch's stroke direction
         out << " " << num(d.vec[0]) << " " << num(d.vec[1]) << " " << num(d.vec[2]);
       out << "\n";
     }
@@ -210,14 +210,15 @@ Recording readRecording(std::istream& in, const std::string& name)
         d.shape = lookup(head.text.substr(2), Shapes, at, head.column + 2, "shape");
       else if (head.text != "d")
         at.bad(head.column, "expected a dab line 'd x y z r', " + std::to_string(expectDabs) + " more due");
-      const bool grab = r.records.back().brush.op == BrushOp::Grab;
-      const std::size_t want = (d.shape == BrushShape::Capsule ? 7 : 4) + (grab ? 3 : 0);
+      const bool withVec = r.records.back().brush.op == BrushOp::Grab || r.records.back().brush.op == BrushOp::Pinch;
+      const std::size_t want = (d.shape == BrushShape::Capsule ? 7 : 4) + (withVec ? 3 : 0);
       if (words.size() - 1 != want)
         at.bad(words.size() - 1 > want ? words[want + 1].column : line.size() + 1,
           "a dab needs " + std::to_string(want) + " numbers, got " + std::to_string(words.size() - 1));
-      if (grab)
+      if (withVec)
         for (int a = 0; a < 3; ++a)
-          d.vec[a] = toNumber(words[want - 2 + a].text, at, words[want - 2 + a].column, "grab displacement");
+          d.vec[a] =
+            toNumber(words[want - 2 + a].text, at, words[want - 2 + a].column, "grab displacement or pinch direction");
       for (int a = 0; a < 3; ++a)
         d.center[a] = toNumber(words[1 + a].text, at, words[1 + a].column, "dab position");
       d.radius = toNumber(words[4].text, at, words[4].column, "dab radius");

@@ -1,7 +1,9 @@
 // The sculpting brushes (strength, falloff, smooth, inflate, grab, flatten,
-// crease, soft paint, symmetry) against oracles that do not use the brush's
+// crease, pinch, soft paint, symmetry) against oracles that do not use the brush's
 // formulas: marching cubes' surface area and a discrete curvature for smooth,
-// the centroid of the inside voxels for grab, the mirror image voxel by voxel
+// the centroid of the inside voxels for grab, the surface's zero crossings
+// along rays (trilinear, bisection) against analytic surfaces for pinch,
+// the mirror image voxel by voxel
 // for symmetry, analytic fields in long double for the per-voxel rules.
 #include "EditTestUtil.h"
 #include "lvdif/AnalyticFill.h"
@@ -52,6 +54,41 @@ double surfaceArea(const DictionaryVolume& v)
 double tol(long double d)
 {
   return std::fabs(double(d)) < 1 ? 3e-3 : 0.1;
+}
+
+// Trilinear interpolation of the stored distances (a point inside the volume).
+double sampleAt(const DictionaryVolume& v, double x, double y, double z)
+{
+  const double p[3] = { x, y, z };
+  std::int64_t i[3];
+  double f[3];
+  for (int a = 0; a < 3; ++a)
+  {
+    i[a] = static_cast<std::int64_t>(std::floor(p[a]));
+    f[a] = p[a] - double(i[a]);
+  }
+  double r = 0;
+  for (int c = 0; c < 8; ++c)
+  {
+    const double w = ((c & 1) ? f[0] : 1 - f[0]) * ((c & 2) ? f[1] : 1 - f[1]) * ((c & 4) ? f[2] : 1 - f[2]);
+    r += w * v.sdf(i[0] + (c & 1), i[1] + ((c >> 1) & 1), i[2] + ((c >> 2) & 1));
+  }
+  return r;
+}
+
+// Distance along the ray o + t u (unit u) to the surface, t in [lo, hi] with
+// the inside at lo and the outside at hi (bisection on the trilinear field).
+double zeroCrossing(const DictionaryVolume& v, const double o[3], const double u[3], double lo, double hi)
+{
+  auto f = [&](double t) { return sampleAt(v, o[0] + t * u[0], o[1] + t * u[1], o[2] + t * u[2]); };
+  EXPECT_LT(f(lo), 0);
+  EXPECT_GT(f(hi), 0);
+  for (int i = 0; i < 60; ++i)
+  {
+    const double m = 0.5 * (lo + hi);
+    (f(m) < 0 ? lo : hi) = m;
+  }
+  return 0.5 * (lo + hi);
 }
 
 std::int64_t insideCount(const DictionaryVolume& v)
@@ -279,6 +316,119 @@ TEST(BrushSculpt, CreaseDentsDeepestAtTheCentre)
   EXPECT_NEAR(v.sdf(32, 32, 58), 6.0, 0.1);
 }
 
+TEST(BrushSculpt, PinchPullsTheSurfaceTowardTheCentreAndInvertSpreadsIt)
+{
+  // A sphere of radius 10 wholly inside one dab of radius 16 at its centre,
+  // constant falloff: every surface point p moves to p / (1 + s) (pinch) or
+  // p / (1 - s) (invert); with a stroke direction along x only y and z
+  // shrink, so the sphere becomes the ellipsoid with semi-axes (10, 10/(1+s),
+  // 10/(1+s)). Measured by the zero crossings along rays from the centre.
+  const double o[3] = { 32, 32, 32 }, R = 10;
+  struct Case
+  {
+    bool invert;
+    double strength;
+    std::array<double, 3> dir;
+  };
+  for (const Case& k : { Case{ false, 0.5, { 0, 0, 0 } }, Case{ true, 0.25, { 0, 0, 0 } },
+         Case{ false, 0.5, { 2, 0, 0 } } })
+  {
+    DictionaryVolume v(options(64));
+    fillFromFunction(v, sphereSdf(o[0], o[1], o[2], R));
+    BrushSettings s;
+    s.op = BrushOp::Pinch;
+    s.strength = k.strength;
+    s.invert = k.invert;
+    Dab d{ BrushShape::Sphere, { o[0], o[1], o[2] }, 16, {} };
+    d.vec = k.dir;
+    const auto before = v.clone();
+    applyDab(v, d, s);
+    const double scale = k.invert ? 1 / (1 - k.strength) : 1 / (1 + k.strength); // of y, z (and x when radial)
+    const double ax[3] = { k.dir[0] != 0 ? R : R * scale, R * scale, R * scale };
+    std::mt19937 rng(11);
+    std::normal_distribution<double> g;
+    double worst = 0;
+    for (int i = 0; i < 200; ++i)
+    {
+      double u[3] = { g(rng), g(rng), g(rng) };
+      const double l = std::sqrt(u[0] * u[0] + u[1] * u[1] + u[2] * u[2]);
+      for (double& c : u)
+        c /= l;
+      // the ellipsoid's radius along u: 1 / sqrt(sum (u_a / a_a)^2)
+      const double e = 1 / std::sqrt((u[0] / ax[0]) * (u[0] / ax[0]) + (u[1] / ax[1]) * (u[1] / ax[1]) +
+                         (u[2] / ax[2]) * (u[2] / ax[2]));
+      const double got = zeroCrossing(v, o, u, 0, 15.5);
+      worst = std::max(worst, std::fabs(got - e));
+      EXPECT_NEAR(got, e, 0.1) << "invert " << k.invert << " dir " << k.dir[0];
+    }
+    // the inside volume against the ellipsoid's (each voxel weighted by its inside fraction)
+    double inside = 0;
+    edittest::forEachVoxel(v, [&](std::int64_t x, std::int64_t y, std::int64_t z) {
+      inside += std::min(1.0, std::max(0.0, 0.5 - double(v.sdf(x, y, z))));
+    });
+    const double ratio = inside / (4.0 / 3.0 * M_PI * ax[0] * ax[1] * ax[2]);
+    std::printf("pinch (invert %d, direction %g): surface within %.3f voxel of the oracle, volume ratio %.4f\n",
+      int(k.invert), k.dir[0], worst, ratio);
+    EXPECT_NEAR(ratio, 1.0, 0.03);
+    // nothing beyond the dab changes
+    edittest::forEachVoxel(v, [&](std::int64_t x, std::int64_t y, std::int64_t z) {
+      if (dist3(x, y, z, o[0], o[1], o[2]) > 16)
+        ASSERT_EQ(v.get(x, y, z), before->get(x, y, z)) << x << " " << y << " " << z;
+    });
+  }
+}
+
+TEST(BrushSculpt, PinchStrokeRaisesARidgeTowardItsLine)
+{
+  // The half space z < 30 and a pinch stroke along the line y = 32, z = 33
+  // (above the surface): the surface rises toward the line, most under it,
+  // symmetric in y, and nothing farther than the radius from the dabs changes.
+  // With invert it sinks. The field is the plane's exact distance z - 30.
+  for (bool invert : { false, true })
+  {
+    DictionaryVolume v(options(64));
+    fillFromFunction(v, [](double, double, double z) { return float(z - 30.0); });
+    const auto before = v.clone();
+    Editor ed(v);
+    ed.brush.op = BrushOp::Pinch;
+    ed.brush.falloff = Falloff::Smooth;
+    ed.brush.invert = invert;
+    ed.stroke.radius = 8;
+    ed.stroke.spacing = 2;
+    std::vector<BrushSample> samples(2);
+    samples[0].position = { 16, 32, 33 };
+    samples[1].position = { 48, 32, 33 };
+    ed.strokeThrough(samples);
+    const double up[3] = { 0, 0, 1 };
+    double prev = 0;
+    for (int dy = 0; dy <= 9; ++dy)
+    {
+      double at[3] = { 32, 32.0 + dy, 0 }, atm[3] = { 32, 32.0 - dy, 0 };
+      const double h = zeroCrossing(v, at, up, 20, 40) - 30;
+      const double hm = zeroCrossing(v, atm, up, 20, 40) - 30;
+      EXPECT_NEAR(h, hm, 1e-3) << dy;
+      if (dy == 0)
+        EXPECT_GT(invert ? -h : h, 0.5);
+      if (dy >= 8)
+        EXPECT_NEAR(h, 0, 2e-3) << dy; // beyond the radius
+      else if (dy <= 5)
+        EXPECT_GT(invert ? -h : h, 0.01) << dy;
+      if (dy > 0)
+        EXPECT_LE(invert ? -h : h, (invert ? -prev : prev) + 2e-3) << dy; // highest under the line
+      prev = h;
+    }
+    // along the stroke the ridge is straight (the pull has no component along it)
+    const double mid[3] = { 32, 32, 0 }, mid2[3] = { 36, 32, 0 };
+    EXPECT_NEAR(zeroCrossing(v, mid, up, 20, 40), zeroCrossing(v, mid2, up, 20, 40), 0.05);
+    edittest::forEachVoxel(v, [&](std::int64_t x, std::int64_t y, std::int64_t z) {
+      const long double far = x < 16 ? dist3(x, y, z, 16, 32, 33) : x > 48 ? dist3(x, y, z, 48, 32, 33)
+                                                                       : dist3(0, y, z, 0, 32, 33);
+      if (far > 8)
+        ASSERT_EQ(v.get(x, y, z), before->get(x, y, z)) << x << " " << y << " " << z;
+    });
+  }
+}
+
 TEST(BrushSculpt, SoftPaintKeepsEverySdfKeyAndBlendsByCoverage)
 {
   DictionaryVolume v(options(48));
@@ -352,7 +502,7 @@ TEST(BrushSculpt, PaintColoursNoVoxelFartherThanTheRadiusFromTheSurface)
 TEST(BrushSculpt, SymmetryGivesItsOwnMirrorImage)
 {
   const BrushOp ops[] = { BrushOp::Add, BrushOp::Subtract, BrushOp::Paint, BrushOp::Inflate, BrushOp::Crease,
-    BrushOp::Smooth };
+    BrushOp::Smooth, BrushOp::Pinch };
   for (int axes = 1; axes < 8; axes += 3) // x; x and z... (1, 4, 7)
   {
     DictionaryVolume v(options(64));
@@ -434,6 +584,11 @@ TEST(BrushSculpt, RecordingsReplayTheSculptingBrushesBitForBit)
   ed.brush.symmetry.plane = { 31.5, 0, 31.5 };
   stroke({ { 20, 40, 40 }, { 24, 44, 42 } });
   ed.brush = BrushSettings();
+  ed.brush.op = BrushOp::Pinch;
+  ed.brush.falloff = Falloff::Smooth;
+  ed.brush.strength = 0.6;
+  stroke({ { 31.5, 49.5, 31.5 }, { 34, 49, 33 }, { 37, 48, 34 } });
+  ed.brush = BrushSettings();
   ed.brush.op = BrushOp::Paint;
   ed.brush.falloff = Falloff::Linear;
   ed.brush.color = Rgba{ 9, 99, 199, 255 };
@@ -446,5 +601,6 @@ TEST(BrushSculpt, RecordingsReplayTheSculptingBrushesBitForBit)
   player.play(back);
   EXPECT_EQ(edittest::countDifferences(v, *start), 0);
   EXPECT_NE(text.str().find("op=grab"), std::string::npos);
+  EXPECT_NE(text.str().find("op=pinch"), std::string::npos);
   EXPECT_NE(text.str().find("mirrorz=31.5"), std::string::npos);
 }

@@ -113,11 +113,11 @@ TEST(EditChangedBox, CoversEveryChangedVoxel)
   EXPECT_GT(exactChecked, 10);
 }
 
-TEST(EditChangedBox, SmoothAndGrabReportExactChunkBoxes)
+TEST(EditChangedBox, GatherBrushesReportExactChunkBoxes)
 {
   DictionaryVolume vol(edittest::options(64, 16, 6.0f));
   fillFromFunction(vol, sphereSdf(32, 31.5, 32.2, 18));
-  for (BrushOp op : { BrushOp::Smooth, BrushOp::Grab })
+  for (BrushOp op : { BrushOp::Smooth, BrushOp::Grab, BrushOp::Pinch })
   {
     BrushSettings s;
     s.op = op;

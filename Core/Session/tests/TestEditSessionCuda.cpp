@@ -139,7 +139,7 @@ TEST(EditSessionCuda, SculptingBrushesOnTheDeviceEqualTheCpu)
 {
   if (!haveGpu())
     GTEST_SKIP() << "no CUDA device";
-  // every op (Smooth and Grab run on the synced host copy and hand their chunks to
+  // every op (Smooth, Grab and Pinch run on the synced host copy and hand their chunks to
   // the device step), soft falloffs and strengths (soft paint's mix tables on the device)
   auto start = sphereVolume(64, 16);
   lvdif::EditSessionOptions o;
@@ -151,7 +151,7 @@ TEST(EditSessionCuda, SculptingBrushesOnTheDeviceEqualTheCpu)
   MeshStore store;
   gpu.requestAllMeshes();
   store.take(gpu.collectMeshes());
-  for (int op = 0; op <= static_cast<int>(lvdif::BrushOp::Crease); ++op)
+  for (int op = 0; op <= static_cast<int>(lvdif::BrushOp::Pinch); ++op)
   {
     for (lvdif::EditSession* s : { &gpu, &cpu })
     {

@@ -35,8 +35,14 @@
 //   Smooth    d' = d + w (mean of the 6 neighbours - d)   (CPU only)
 //   Grab      d'(p) = d(p - w(p) D), D the dab's `vec` (the drag since the
 //             previous sample), d sampled trilinearly (CPU only)
-// Smooth and Grab read neighbours, so each dab reads the volume as the
-// previous dab left it (a Jacobi step per dab); they have no CUDA path
+//   Pinch     d'(p) = d(p + w(p) r(p)), r = p - c with c the dab's centre
+//             (a capsule's: the nearest point of its segment), projected
+//             perpendicular to the dab's `vec` (the stroke direction) when
+//             that is not zero; d sampled trilinearly (CPU only). Surface
+//             points move toward the centre (line): ridges and creases
+//             sharpen. `invert`: d(p - w r), the surface spreads.
+// Smooth, Grab and Pinch read neighbours, so each dab reads the volume as
+// the previous dab left it (a Jacobi step per dab); they have no CUDA path
 // (lvdif::applyDabs(Device::Auto, ...) runs them on the CPU).
 //
 // Colour (the exact rule):
@@ -106,7 +112,8 @@ enum class BrushOp : int
   Inflate = 4,
   Grab = 5,
   Flatten = 6,
-  Crease = 7
+  Crease = 7,
+  Pinch = 8
 };
 
 /// How a dab's weight falls from its core (t = 0) to its rim (t = 1); see above.
@@ -129,10 +136,10 @@ struct Symmetry
 const char* toString(BrushShape s);
 const char* toString(BrushOp op);
 const char* toString(Falloff f);
-/// True for the operations that read neighbouring voxels (Smooth, Grab): CPU only.
+/// True for the operations that read neighbouring voxels (Smooth, Grab, Pinch): CPU only.
 inline bool readsNeighbours(BrushOp op)
 {
-  return op == BrushOp::Smooth || op == BrushOp::Grab;
+  return op == BrushOp::Smooth || op == BrushOp::Grab || op == BrushOp::Pinch;
 }
 
 /// One placed primitive, in voxel coordinates.
@@ -144,8 +151,9 @@ struct Dab
   double radius = 1.0;
   /// Second end point of a capsule (ignored otherwise).
   std::array<double, 3> end{ 0, 0, 0 };
-  /// Grab: the displacement this dab applies (voxels); Flatten: set by the brush
-  /// (the plane's unit normal), ignored on input.
+  /// Grab: the displacement this dab applies (voxels); Pinch: the stroke's
+  /// direction at the dab (any length; zero: none, the pinch is radial);
+  /// Flatten: set by the brush (the plane's unit normal), ignored on input.
   std::array<double, 3> vec{ 0, 0, 0 };
   /// Flatten: set by the brush (the plane's offset n . p0), ignored on input.
   double value = 0;
@@ -164,7 +172,7 @@ struct BrushSettings
   /// Weight of every dab, (0, 1].
   double strength = 1.0;
   Falloff falloff = Falloff::Constant;
-  /// Inflate deflates, Crease raises a ridge (the UI's Ctrl).
+  /// Inflate deflates, Crease raises a ridge, Pinch spreads (the UI's Ctrl).
   bool invert = false;
   Symmetry symmetry;
 };

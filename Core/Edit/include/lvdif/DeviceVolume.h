@@ -39,12 +39,12 @@ namespace lvdif
 namespace cuda
 {
 
-/// Whether DeviceVolume::applyDabs takes this brush. Smooth and Grab read
+/// Whether DeviceVolume::applyDabs takes this brush. Smooth, Grab and Pinch read
 /// neighbouring voxels; Flatten measures its plane and soft paint its colours
 /// on the host volume: those run on the synced host copy (Editor does this).
 inline bool appliesOnDevice(const BrushSettings& s)
 {
-  if (s.op == BrushOp::Smooth || s.op == BrushOp::Grab || s.op == BrushOp::Flatten)
+  if (readsNeighbours(s.op) || s.op == BrushOp::Flatten)
     return false;
   return !(s.op == BrushOp::Paint && !(s.strength == 1 && s.falloff == Falloff::Constant));
 }

@@ -10,7 +10,7 @@
 //
 // With a device-resident volume attached (attachDevice), the same calls apply
 // the dabs on the GPU and keep the history there (DeviceVolume's copy-on-write
-// steps); Smooth and Grab run on the synced host copy and hand their chunks to
+// steps); Smooth, Grab and Pinch run on the synced host copy and hand their chunks to
 // the device. Front ends do not drive an Editor directly: lvdif::EditSession holds one.
 #pragma once
 
