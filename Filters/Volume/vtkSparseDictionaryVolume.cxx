@@ -1,5 +1,7 @@
 #include "vtkSparseDictionaryVolume.h"
 
+#include "LVDIFVolumeBridge.h"
+
 #include "lvdif/DictionaryVolume.h"
 #include "lvdif/Error.h"
 #include "lvdif/Memory.h"
@@ -7,7 +9,6 @@
 #include "vtkCompositeDataIterator.h"
 #include "vtkDataObjectTreeIterator.h"
 #include "vtkFieldData.h"
-#include "vtkFloatArray.h"
 #include "vtkIdTypeArray.h"
 #include "vtkImageData.h"
 #include "vtkInformation.h"
@@ -16,7 +17,6 @@
 #include "vtkObjectFactory.h"
 #include "vtkPointData.h"
 #include "vtkSmartPointer.h"
-#include "vtkUnsignedCharArray.h"
 
 #include <algorithm>
 #include <functional>
@@ -222,47 +222,17 @@ std::int64_t shellChunk(vtkDataObject* leaf)
   return id && id->GetNumberOfTuples() == 1 ? static_cast<std::int64_t>(id->GetValue(0)) : -1;
 }
 
-/// The shell with its decoded point arrays (a new image sharing the shell's field data).
+/// The shell with its decoded point arrays (a new image sharing the shell's field data),
+/// decoded by the bridge's one FillImage (which checks the memory guard).
 vtkSmartPointer<vtkImageData> fillPartition(
   const lvdif::DictionaryVolume& v, std::int64_t id, vtkImageData* shell, bool colors)
 {
   const lvdif::VoxelBox b = partitionBox(v, id);
-  const std::uint64_t points = static_cast<std::uint64_t>(b.voxelCount());
-  lvdif::requireMemory(points * (colors ? 8u : 4u), "an image partition of the sparse volume");
+  const int ext[6] = { static_cast<int>(b.lo[0]), static_cast<int>(b.hi[0]), static_cast<int>(b.lo[1]),
+    static_cast<int>(b.hi[1]), static_cast<int>(b.lo[2]), static_cast<int>(b.hi[2]) };
   auto image = vtkSmartPointer<vtkImageData>::New();
-  image->ShallowCopy(shell);
-  vtkNew<vtkFloatArray> sdf;
-  sdf->SetName("sdf");
-  sdf->SetNumberOfTuples(static_cast<vtkIdType>(points));
-  image->GetPointData()->SetScalars(sdf);
-  unsigned char* c = nullptr;
-  if (colors)
-  {
-    vtkNew<vtkUnsignedCharArray> rgba;
-    rgba->SetName("rgba");
-    rgba->SetNumberOfComponents(4);
-    rgba->SetNumberOfTuples(static_cast<vtkIdType>(points));
-    c = rgba->GetPointer(0);
-    image->GetPointData()->AddArray(rgba);
-  }
-  float* s = sdf->GetPointer(0);
-  const lvdif::ColorDictionary& palette = v.colors();
-  std::int64_t p = 0;
-  for (std::int64_t z = b.lo[2]; z <= b.hi[2]; ++z)
-    for (std::int64_t y = b.lo[1]; y <= b.hi[1]; ++y)
-      for (std::int64_t x = b.lo[0]; x <= b.hi[0]; ++x, ++p)
-      {
-        const lvdif::Voxel vox = v.get(x, y, z);
-        s[p] = v.decode(vox.sdf);
-        if (c)
-        {
-          const lvdif::Rgba col = vox.color < palette.size() ? palette[vox.color] : palette[0];
-          c[4 * p + 0] = col.r;
-          c[4 * p + 1] = col.g;
-          c[4 * p + 2] = col.b;
-          c[4 * p + 3] = col.a;
-        }
-      }
+  LVDIFVolumeBridge::FillImage(v, ext, image, colors);
+  image->GetFieldData()->ShallowCopy(shell->GetFieldData());
   return image;
 }
 
