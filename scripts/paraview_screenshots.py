@@ -40,7 +40,8 @@ def camera(v, position, up=(0, 1, 0)):
 
 
 # 1. The three filters with default properties, chained; what ParaView shows first
-#    for each: the image as its outline, the surface as a surface.
+#    for each: the sparse volume as its outline (one box per partition: the storage
+#    chunks that hold the surface), the surface as a surface.
 src, name = mesh("bunny00.off", [1.0, 0.7, 0.5])
 sdf = pvs.MeshToSDF(Input=src)
 svf = pvs.SignVoxelFilter(Input=sdf)
@@ -54,10 +55,16 @@ camera(v, (0.3, 0.4, 2.0))
 pvs.SaveScreenshot(os.path.join(out, "paraview-defaults.png"), v, ImageResolution=[640, 480])
 print("paraview-defaults.png:", name)
 
-# 2. A slice through the signed distances (band 8: |sdf| saturates 8 voxels from the surface).
-s = pvs.Show(svf, v)
-s.SetRepresentationType("Slice")
-s.SliceMode = "XY Plane"
+# 2. A slice through the signed distances (band 8: |sdf| saturates 8 voxels from the surface):
+#    ParaView's Slice filter on the sparse volume's partitions (the Slice representation
+#    takes images only); uniform chunks have no partition, so the slice covers the band.
+svf.UpdatePipeline()
+b = svf.GetDataInformation().GetBounds()
+cut = pvs.Slice(Input=svf)
+cut.SliceType = "Plane"
+cut.SliceType.Origin = [0.5 * (b[0] + b[1]), 0.5 * (b[2] + b[3]), 0.5 * (b[4] + b[5])]
+cut.SliceType.Normal = [0.0, 0.0, 1.0]
+s = pvs.Show(cut, v)
 pvs.ColorBy(s, ("POINTS", "sdf"))
 lut = pvs.GetColorTransferFunction("sdf")
 lut.ApplyPreset("Cool to Warm", True)

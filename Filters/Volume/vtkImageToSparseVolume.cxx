@@ -90,7 +90,10 @@ int vtkImageToSparseVolume::RequestData(
 {
   vtkImageData* image = vtkImageData::GetData(inputVector[0]);
   vtkSparseDictionaryVolume* output = vtkSparseDictionaryVolume::GetData(outputVector);
-  vtkDataArray* sdf = this->GetInputArrayToProcess(0, inputVector);
+  // an empty selection (a filter made on an input never updated) means the documented default
+  vtkDataArray* sdf = image ? LVDIFVolumeBridge::SdfArray(this->GetInputArrayInformation(0), image,
+                                this->GetInputArrayToProcess(0, inputVector))
+                            : nullptr;
   if (!image || !sdf)
   {
     vtkErrorMacro("no input image with an SDF point array (default name 'sdf')");

@@ -1,5 +1,7 @@
 #include "vtkSparseDictionaryVolume.h"
 
+#include "LVDIFVolumeBridge.h"
+
 #include "lvdif/DictionaryVolume.h"
 #include "lvdif/Error.h"
 #include "lvdif/Memory.h"
@@ -7,7 +9,6 @@
 #include "vtkCompositeDataIterator.h"
 #include "vtkDataObjectTreeIterator.h"
 #include "vtkFieldData.h"
-#include "vtkFloatArray.h"
 #include "vtkIdTypeArray.h"
 #include "vtkImageData.h"
 #include "vtkInformation.h"
@@ -16,9 +17,10 @@
 #include "vtkObjectFactory.h"
 #include "vtkPointData.h"
 #include "vtkSmartPointer.h"
-#include "vtkUnsignedCharArray.h"
 
 #include <algorithm>
+#include <functional>
+#include <string>
 #include <vector>
 
 vtkStandardNewMacro(vtkSparseDictionaryVolume);
@@ -185,85 +187,115 @@ double vtkSparseDictionaryVolume::GetPartitionBytes() const
   return static_cast<double>(partitionBytes(*this->Volume, neededPartitions(*this->Volume, this->OwnsAll ? nullptr : this->Owned), this->PartitionColors));
 }
 
+namespace
+{
+/// A partition without its point arrays: extent, origin, spacing and the chunk's field data.
+vtkSmartPointer<vtkImageData> partitionShell(const lvdif::DictionaryVolume& v, std::int64_t id)
+{
+  const lvdif::VoxelBox b = partitionBox(v, id);
+  const auto& o = v.options();
+  auto image = vtkSmartPointer<vtkImageData>::New();
+  image->SetExtent(static_cast<int>(b.lo[0]), static_cast<int>(b.hi[0]), static_cast<int>(b.lo[1]),
+    static_cast<int>(b.hi[1]), static_cast<int>(b.lo[2]), static_cast<int>(b.hi[2]));
+  image->SetOrigin(o.origin[0], o.origin[1], o.origin[2]);
+  image->SetSpacing(o.spacing[0], o.spacing[1], o.spacing[2]);
+  const lvdif::Index3 c = v.chunkCoord(id);
+  vtkNew<vtkIdTypeArray> chunkId;
+  chunkId->SetName("chunk_id");
+  chunkId->InsertNextValue(static_cast<vtkIdType>(id));
+  vtkNew<vtkIntArray> ijk;
+  ijk->SetName("chunk_ijk");
+  ijk->SetNumberOfComponents(3);
+  ijk->InsertNextTuple3(c[0], c[1], c[2]);
+  image->GetFieldData()->AddArray(chunkId);
+  image->GetFieldData()->AddArray(ijk);
+  return image;
+}
+
+/// The chunk id of a shell made by partitionShell, or -1 when `leaf` is not one
+/// (it has point arrays already, or is not an image of ours).
+std::int64_t shellChunk(vtkDataObject* leaf)
+{
+  auto* image = vtkImageData::SafeDownCast(leaf);
+  if (!image || image->GetPointData()->GetNumberOfArrays() != 0) return -1;
+  auto* id = vtkIdTypeArray::SafeDownCast(image->GetFieldData()->GetArray("chunk_id"));
+  return id && id->GetNumberOfTuples() == 1 ? static_cast<std::int64_t>(id->GetValue(0)) : -1;
+}
+
+/// The shell with its decoded point arrays (a new image sharing the shell's field data),
+/// decoded by the bridge's one FillImage (which checks the memory guard).
+vtkSmartPointer<vtkImageData> fillPartition(
+  const lvdif::DictionaryVolume& v, std::int64_t id, vtkImageData* shell, bool colors)
+{
+  const lvdif::VoxelBox b = partitionBox(v, id);
+  const int ext[6] = { static_cast<int>(b.lo[0]), static_cast<int>(b.hi[0]), static_cast<int>(b.lo[1]),
+    static_cast<int>(b.hi[1]), static_cast<int>(b.lo[2]), static_cast<int>(b.hi[2]) };
+  auto image = vtkSmartPointer<vtkImageData>::New();
+  LVDIFVolumeBridge::FillImage(v, ext, image, colors);
+  image->GetFieldData()->ShallowCopy(shell->GetFieldData());
+  return image;
+}
+
+/// The iterator of the sparse volume: a shell it visits is handed out decoded,
+/// and only while the iterator stands on it (the next step releases it unless
+/// the consumer kept a reference). So ParaView's data information, the outline
+/// and a per-partition filter hold one decoded partition at a time.
+class vtkSparseDictionaryVolumeIterator : public vtkDataObjectTreeIterator
+{
+public:
+  static vtkSparseDictionaryVolumeIterator* New();
+  vtkTypeMacro(vtkSparseDictionaryVolumeIterator, vtkDataObjectTreeIterator);
+
+  vtkDataObject* GetCurrentDataObject() override
+  {
+    return this->Decoded(
+      this->Superclass::GetCurrentDataObject(), vtkSparseDictionaryVolume::SafeDownCast(this->GetDataSet()));
+  }
+
+  /// `leaf` decoded when it is a shell of `owner` (held until the next leaf), else `leaf`.
+  vtkDataObject* Decoded(vtkDataObject* leaf, vtkSparseDictionaryVolume* owner)
+  {
+    const std::int64_t id = shellChunk(leaf);
+    if (id < 0 || !owner || !owner->HasVolume()) return leaf;
+    if (this->Shell != leaf)
+    {
+      this->Shell = leaf;
+      this->Current = nullptr;
+      try
+      {
+        this->Current =
+          fillPartition(*owner->GetVolume(), id, vtkImageData::SafeDownCast(leaf), owner->GetPartitionColors());
+      }
+      catch (const lvdif::Error& e)
+      {
+        vtkErrorWithObjectMacro(owner, << e.what());
+      }
+    }
+    return this->Current ? this->Current.GetPointer() : leaf;
+  }
+
+protected:
+  vtkSparseDictionaryVolumeIterator() = default;
+  ~vtkSparseDictionaryVolumeIterator() override = default;
+
+private:
+  vtkDataObject* Shell = nullptr; // compared only, never dereferenced
+  vtkSmartPointer<vtkImageData> Current;
+  vtkSparseDictionaryVolumeIterator(const vtkSparseDictionaryVolumeIterator&) = delete;
+  void operator=(const vtkSparseDictionaryVolumeIterator&) = delete;
+};
+vtkStandardNewMacro(vtkSparseDictionaryVolumeIterator);
+}
+
 bool vtkSparseDictionaryVolume::UpdatePartitions()
 {
   if (this->PartitionsBuilt || !this->Volume) return true;
   const lvdif::DictionaryVolume& v = *this->Volume;
   const std::vector<std::int64_t> ids = neededPartitions(v, this->OwnsAll ? nullptr : this->Owned);
-  try
-  {
-    lvdif::requireMemory(partitionBytes(v, ids, this->PartitionColors),
-      "the image partitions of the sparse volume (for generic VTK filters)");
-  }
-  catch (const lvdif::Error& e)
-  {
-    vtkErrorMacro(<< e.what());
-    return false;
-  }
-  const bool colors = this->PartitionColors;
-  const auto& o = v.options();
-  std::vector<float*> sdfData(ids.size());
-  std::vector<unsigned char*> rgbaData(ids.size(), nullptr);
   this->Superclass::SetNumberOfPartitions(static_cast<unsigned int>(ids.size()));
-  // VTK objects are made serially; the decoding below runs in parallel.
   for (std::size_t i = 0; i < ids.size(); ++i)
   {
-    const lvdif::VoxelBox b = partitionBox(v, ids[i]);
-    vtkNew<vtkImageData> image;
-    image->SetExtent(static_cast<int>(b.lo[0]), static_cast<int>(b.hi[0]), static_cast<int>(b.lo[1]),
-      static_cast<int>(b.hi[1]), static_cast<int>(b.lo[2]), static_cast<int>(b.hi[2]));
-    image->SetOrigin(o.origin[0], o.origin[1], o.origin[2]);
-    image->SetSpacing(o.spacing[0], o.spacing[1], o.spacing[2]);
-    vtkNew<vtkFloatArray> sdf;
-    sdf->SetName("sdf");
-    sdf->SetNumberOfTuples(static_cast<vtkIdType>(b.voxelCount()));
-    sdfData[i] = sdf->GetPointer(0);
-    image->GetPointData()->SetScalars(sdf);
-    if (colors)
-    {
-      vtkNew<vtkUnsignedCharArray> rgba;
-      rgba->SetName("rgba");
-      rgba->SetNumberOfComponents(4);
-      rgba->SetNumberOfTuples(static_cast<vtkIdType>(b.voxelCount()));
-      rgbaData[i] = rgba->GetPointer(0);
-      image->GetPointData()->AddArray(rgba);
-    }
-    const lvdif::Index3 c = v.chunkCoord(ids[i]);
-    vtkNew<vtkIdTypeArray> chunkId;
-    chunkId->SetName("chunk_id");
-    chunkId->InsertNextValue(static_cast<vtkIdType>(ids[i]));
-    vtkNew<vtkIntArray> ijk;
-    ijk->SetName("chunk_ijk");
-    ijk->SetNumberOfComponents(3);
-    ijk->InsertNextTuple3(c[0], c[1], c[2]);
-    image->GetFieldData()->AddArray(chunkId);
-    image->GetFieldData()->AddArray(ijk);
-    this->Superclass::SetPartition(static_cast<unsigned int>(i), image);
-  }
-  const lvdif::ColorDictionary& palette = v.colors();
-  const std::int64_t count = static_cast<std::int64_t>(ids.size());
-#pragma omp parallel for schedule(dynamic, 4)
-  for (std::int64_t i = 0; i < count; ++i)
-  {
-    const lvdif::VoxelBox b = partitionBox(v, ids[i]);
-    float* s = sdfData[i];
-    unsigned char* c = rgbaData[i];
-    std::int64_t p = 0;
-    for (std::int64_t z = b.lo[2]; z <= b.hi[2]; ++z)
-      for (std::int64_t y = b.lo[1]; y <= b.hi[1]; ++y)
-        for (std::int64_t x = b.lo[0]; x <= b.hi[0]; ++x, ++p)
-        {
-          const lvdif::Voxel vox = v.get(x, y, z);
-          s[p] = v.decode(vox.sdf);
-          if (c)
-          {
-            const lvdif::Rgba col = vox.color < palette.size() ? palette[vox.color] : palette[0];
-            c[4 * p + 0] = col.r;
-            c[4 * p + 1] = col.g;
-            c[4 * p + 2] = col.b;
-            c[4 * p + 3] = col.a;
-          }
-        }
+    this->Superclass::SetPartition(static_cast<unsigned int>(i), partitionShell(v, ids[i]));
   }
   this->PartitionsBuilt = true;
   return true;
@@ -278,19 +310,79 @@ unsigned int vtkSparseDictionaryVolume::GetNumberOfPartitions()
 vtkDataSet* vtkSparseDictionaryVolume::GetPartition(unsigned int idx)
 {
   this->UpdatePartitions();
-  return this->Superclass::GetPartition(idx);
+  vtkDataSet* leaf = this->Superclass::GetPartition(idx);
+  const std::int64_t id = shellChunk(leaf);
+  if (id < 0 || !this->Volume) return leaf;
+  // asked by index: decoded for good (the caller gets a pointer it does not own)
+  try
+  {
+    vtkSmartPointer<vtkImageData> image =
+      fillPartition(*this->Volume, id, vtkImageData::SafeDownCast(leaf), this->PartitionColors);
+    this->Superclass::SetPartition(idx, image);
+    return image;
+  }
+  catch (const lvdif::Error& e)
+  {
+    vtkErrorMacro(<< e.what());
+    return leaf;
+  }
 }
 
 vtkCompositeDataIterator* vtkSparseDictionaryVolume::NewIterator()
 {
-  this->UpdatePartitions();
-  return this->Superclass::NewIterator();
+  return this->NewTreeIterator();
 }
 
 vtkDataObjectTreeIterator* vtkSparseDictionaryVolume::NewTreeIterator()
 {
   this->UpdatePartitions();
-  return this->Superclass::NewTreeIterator();
+  vtkDataObjectTreeIterator* iter = vtkSparseDictionaryVolumeIterator::New();
+  iter->SetDataSet(this);
+  return iter;
+}
+
+vtkDataObject* vtkSparseDictionaryVolume::GetDataSet(vtkCompositeDataIterator* iter)
+{
+  // vtk::Range (ParaView's data information) reads the leaves this way, not
+  // through GetCurrentDataObject: decode through the iterator, which holds the result
+  vtkDataObject* leaf = this->Superclass::GetDataSet(iter);
+  auto* ours = vtkSparseDictionaryVolumeIterator::SafeDownCast(iter);
+  return ours ? ours->Decoded(leaf, this) : leaf;
+}
+
+#if VTK_MAJOR_VERSION > 9 || (VTK_MAJOR_VERSION == 9 && VTK_MINOR_VERSION >= 2)
+vtkDataObject* vtkSparseDictionaryVolume::GetDataSet(unsigned int flatIndex)
+{
+  // the superclass would return a leaf decoded by an iterator it then deletes
+  this->UpdatePartitions();
+  if (this->Volume && flatIndex >= 1 && flatIndex <= this->Superclass::GetNumberOfPartitions())
+  {
+    return this->GetPartition(flatIndex - 1);
+  }
+  return this->Superclass::GetDataSet(flatIndex);
+}
+#endif
+
+vtkIdType vtkSparseDictionaryVolume::GetNumberOfPoints()
+{
+  if (!this->Volume) return this->Superclass::GetNumberOfPoints();
+  // from the partitions' extents: nothing decoded
+  vtkIdType n = 0;
+  for (std::int64_t id : neededPartitions(*this->Volume, this->OwnsAll ? nullptr : this->Owned))
+    n += static_cast<vtkIdType>(partitionBox(*this->Volume, id).voxelCount());
+  return n;
+}
+
+vtkIdType vtkSparseDictionaryVolume::GetNumberOfCells()
+{
+  if (!this->Volume) return this->Superclass::GetNumberOfCells();
+  vtkIdType n = 0;
+  for (std::int64_t id : neededPartitions(*this->Volume, this->OwnsAll ? nullptr : this->Owned))
+  {
+    const lvdif::VoxelBox b = partitionBox(*this->Volume, id);
+    n += static_cast<vtkIdType>((b.hi[0] - b.lo[0]) * (b.hi[1] - b.lo[1]) * (b.hi[2] - b.lo[2]));
+  }
+  return n;
 }
 
 void vtkSparseDictionaryVolume::CopyStructure(vtkCompositeDataSet* input)
@@ -317,9 +409,31 @@ void vtkSparseDictionaryVolume::CopyStructure(vtkCompositeDataSet* input)
 
 void vtkSparseDictionaryVolume::SetDataSet(vtkCompositeDataIterator* iter, vtkDataObject* dataObj)
 {
-  if (this->Volume && dataObj && !vtkImageData::SafeDownCast(dataObj))
+  auto* image = vtkImageData::SafeDownCast(dataObj);
+  if (this->Volume && dataObj && !image)
   {
     this->Volume.reset(); // a filter's result over the partitions, not a view of the volume
+  }
+  if (this->Volume && image && image->GetFieldData()->GetArray("chunk_id"))
+  {
+    // ParaView copies an output leaf by leaf (CopyStructure, then a shallow
+    // copy of each leaf our iterator decoded): keep a shell of a leaf that holds
+    // only our own arrays, so the copy decodes on demand as the original does
+    vtkPointData* pd = image->GetPointData();
+    bool ours = true;
+    for (int a = 0; a < pd->GetNumberOfArrays() && ours; ++a)
+    {
+      const char* name = pd->GetArrayName(a);
+      ours = name && (std::string(name) == "sdf" || std::string(name) == "rgba");
+    }
+    if (ours && pd->GetNumberOfArrays() > 0)
+    {
+      vtkNew<vtkImageData> shell;
+      shell->CopyStructure(image);
+      shell->GetFieldData()->ShallowCopy(image->GetFieldData());
+      this->Superclass::SetDataSet(iter, shell);
+      return;
+    }
   }
   this->Superclass::SetDataSet(iter, dataObj);
 }
@@ -334,6 +448,18 @@ void vtkSparseDictionaryVolume::Initialize()
 
 void vtkSparseDictionaryVolume::ShallowCopy(vtkDataObject* src)
 {
+  this->ShareFrom(src, [this](vtkDataObject* s) { this->Superclass::ShallowCopy(s); });
+}
+
+#if VTK_MAJOR_VERSION > 9 || (VTK_MAJOR_VERSION == 9 && VTK_MINOR_VERSION >= 2)
+void vtkSparseDictionaryVolume::CompositeShallowCopy(vtkCompositeDataSet* src)
+{
+  this->ShareFrom(src, [this](vtkDataObject* s) { this->Superclass::CompositeShallowCopy(vtkCompositeDataSet::SafeDownCast(s)); });
+}
+#endif
+
+void vtkSparseDictionaryVolume::ShareFrom(vtkDataObject* src, const std::function<void(vtkDataObject*)>& superCopy)
+{
   if (src == this) return;
   auto* s = vtkSparseDictionaryVolume::SafeDownCast(src);
   if (s && !s->PartitionsBuilt)
@@ -344,7 +470,7 @@ void vtkSparseDictionaryVolume::ShallowCopy(vtkDataObject* src)
   }
   else
   {
-    this->Superclass::ShallowCopy(src);
+    superCopy(src);
   }
   this->Volume = s ? s->Volume : nullptr;
   this->PartitionColors = s ? s->PartitionColors : this->PartitionColors;
@@ -353,29 +479,6 @@ void vtkSparseDictionaryVolume::ShallowCopy(vtkDataObject* src)
   if (s) std::copy(s->Owned, s->Owned + 6, this->Owned);
   this->Modified();
 }
-
-#if VTK_MAJOR_VERSION > 9 || (VTK_MAJOR_VERSION == 9 && VTK_MINOR_VERSION >= 2)
-void vtkSparseDictionaryVolume::CompositeShallowCopy(vtkCompositeDataSet* src)
-{
-  if (src == this) return;
-  auto* s = vtkSparseDictionaryVolume::SafeDownCast(src);
-  if (s && !s->PartitionsBuilt)
-  {
-    this->Superclass::SetNumberOfPartitions(0);
-    this->vtkDataObject::ShallowCopy(src);
-  }
-  else
-  {
-    this->Superclass::CompositeShallowCopy(src);
-  }
-  this->Volume = s ? s->Volume : nullptr;
-  this->PartitionColors = s ? s->PartitionColors : this->PartitionColors;
-  this->PartitionsBuilt = s ? s->PartitionsBuilt : false;
-  this->OwnsAll = s ? s->OwnsAll : true;
-  if (s) std::copy(s->Owned, s->Owned + 6, this->Owned);
-  this->Modified();
-}
-#endif
 
 void vtkSparseDictionaryVolume::DeepCopy(vtkDataObject* src)
 {
@@ -401,9 +504,20 @@ void vtkSparseDictionaryVolume::DeepCopy(vtkDataObject* src)
 unsigned long vtkSparseDictionaryVolume::GetActualMemorySize()
 {
   unsigned long kib = this->Volume ? static_cast<unsigned long>(this->Volume->memoryBytes() / 1024) : 0;
-  if (this->PartitionsBuilt || !this->Volume)
+  if (!this->Volume)
   {
-    kib += this->Superclass::GetActualMemorySize();
+    return kib + this->Superclass::GetActualMemorySize();
+  }
+  if (this->PartitionsBuilt)
+  {
+    // the leaves as held (shells or decoded), not through this object's decoding iterator
+    kib += this->vtkDataObject::GetActualMemorySize();
+    vtkNew<vtkDataObjectTreeIterator> it;
+    it->SetDataSet(this);
+    for (it->InitTraversal(); !it->IsDoneWithTraversal(); it->GoToNextItem())
+    {
+      kib += it->GetCurrentDataObject()->GetActualMemorySize();
+    }
   }
   return kib;
 }

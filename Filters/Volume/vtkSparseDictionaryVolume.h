@@ -23,11 +23,17 @@
  * The partitions are built lazily, on the first request through the
  * composite API (NewIterator, NewTreeIterator, GetNumberOfPartitions,
  * GetPartition, CopyStructure, ShallowCopy of this object), so a pipeline of
- * our own filters never allocates them. Their memory is checked against
- * lvdif's limit (LVDIF_MEMORY_LIMIT) first; when refused, an error is
- * reported and there are no partitions. After editing the Core volume in
- * place, call VolumeModified() (drops the partitions; the dirty flags stay in
- * the Core volume for vtkChunkedMarchingCubes' incremental update).
+ * our own filters never makes them. Even then they are first shells:
+ * extent, origin, spacing and field data, no point arrays (about 1 KiB each).
+ * This object's iterator decodes the shell it stands on into a new image
+ * (checked against lvdif's memory limit, LVDIF_MEMORY_LIMIT) and releases it
+ * at the next step unless the consumer keeps a reference: ParaView's data
+ * information, the outline and per-partition filters (Contour, Cutter) hold
+ * one decoded partition at a time. GetPartition(i) decodes partition i for
+ * good. A consumer that walks the leaves with an iterator of its own (not
+ * NewIterator) sees the shells. After editing the Core volume in place, call
+ * VolumeModified() (drops the partitions; the dirty flags stay in the Core
+ * volume for vtkChunkedMarchingCubes' incremental update).
  *
  * ShallowCopy shares the Core volume; DeepCopy clones it (lvdif's clone()).
  */
@@ -39,6 +45,7 @@
 #include "vtkVersionMacros.h"
 
 #include <cstdint>
+#include <functional>
 #include <memory>
 
 namespace lvdif
@@ -73,7 +80,7 @@ public:
   double GetVolumeMemoryBytes() const;
   /// Bytes a dense float `sdf` + `rgba` image of the whole volume would need.
   double GetDenseImageBytes() const;
-  /// Bytes the partitions need (computed from the chunk states, nothing built).
+  /// Bytes all partitions would need decoded at once (from the chunk states, nothing built).
   double GetPartitionBytes() const;
   ///@}
 
@@ -95,8 +102,7 @@ public:
   void GetOwnedChunks(int box[6]) const;
   ///@}
 
-  /// Builds the partitions now if they are not built (idempotent). Returns
-  /// false (with an error) when the memory limit refuses them.
+  /// Builds the partitions' shells now if they are not built (idempotent).
   bool UpdatePartitions();
   bool GetPartitionsBuilt() const { return this->PartitionsBuilt; }
   /// Call after editing the Core volume in place: drops the partitions and Modified().
@@ -109,6 +115,22 @@ public:
   VTK_NEWINSTANCE vtkCompositeDataIterator* NewIterator() override;
   VTK_NEWINSTANCE vtkDataObjectTreeIterator* NewTreeIterator() override;
   void CopyStructure(vtkCompositeDataSet* input) override;
+  ///@}
+
+  ///@{
+  /// The leaf at an iterator's position: decoded (and held by the iterator)
+  /// when the iterator is this object's; by flat index: GetPartition's.
+  using Superclass::GetDataSet;
+  vtkDataObject* GetDataSet(vtkCompositeDataIterator* iter) override;
+#if VTK_MAJOR_VERSION > 9 || (VTK_MAJOR_VERSION == 9 && VTK_MINOR_VERSION >= 2)
+  vtkDataObject* GetDataSet(unsigned int flatIndex) override;
+#endif
+  ///@}
+
+  ///@{
+  /// Points and cells of the partitions, from their extents (nothing decoded).
+  vtkIdType GetNumberOfPoints() override;
+  vtkIdType GetNumberOfCells() override;
   ///@}
 
   /// Setting a leaf that is not a vtkImageData (a generic filter's result over
@@ -124,7 +146,7 @@ public:
   void CompositeShallowCopy(vtkCompositeDataSet* src) override;
 #endif
   void DeepCopy(vtkDataObject* src) override;
-  /// Kibibytes: the Core volume plus any built partitions.
+  /// Kibibytes: the Core volume plus the partitions as held (shells unless decoded by GetPartition).
   unsigned long GetActualMemorySize() override;
 
   ///@{
@@ -136,6 +158,12 @@ public:
 protected:
   vtkSparseDictionaryVolume();
   ~vtkSparseDictionaryVolume() override;
+
+#ifndef __VTK_WRAP__
+  /// The one shallow copy (ShallowCopy, CompositeShallowCopy): shares the Core
+  /// volume; the leaves are copied by superCopy only when the source built them.
+  void ShareFrom(vtkDataObject* src, const std::function<void(vtkDataObject*)>& superCopy);
+#endif
 
   std::shared_ptr<lvdif::DictionaryVolume> Volume;
   bool PartitionColors = true;

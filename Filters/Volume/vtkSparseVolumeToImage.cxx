@@ -13,6 +13,7 @@
 #include "vtkStreamingDemandDrivenPipeline.h"
 
 #include <sstream>
+#include <string>
 
 vtkStandardNewMacro(vtkSparseVolumeToImage);
 
@@ -113,7 +114,16 @@ int vtkSparseVolumeToImage::RequestData(
       what << n << (a < 2 ? " x " : " points");
     }
     what << (this->WithColor ? " (float sdf + rgba, 8 bytes a point)" : " (float sdf, 4 bytes a point)");
-    lvdif::requireMemory(lvdif::checkedMultiply(points, this->WithColor ? 8 : 4, "dense image"), what.str());
+    const std::uint64_t bytes = lvdif::checkedMultiply(points, this->WithColor ? 8 : 4, "dense image");
+    const std::uint64_t limit = lvdif::memoryLimitBytes();
+    if (bytes <= limit)
+    {
+      // said before the allocation, so a user sees why memory fills up
+      const std::string warning =
+        LVDIFVolumeBridge::DenseImageWarning(bytes, ext, limit, "the sparse volume's own filters need no dense image");
+      if (!warning.empty()) vtkWarningMacro(<< warning);
+    }
+    lvdif::requireMemory(bytes, what.str(), limit);
     LVDIFVolumeBridge::FillImage(volume, ext, output, this->WithColor);
   }) ? 1 : 0;
 }

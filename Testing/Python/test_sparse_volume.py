@@ -128,6 +128,23 @@ contour.Update()
 parts = [b for b in blocks(contour.GetOutputDataObject(0)) if b.GetNumberOfPoints() > 0]
 check(volume.GetPartitionsBuilt() and volume.GetNumberOfPartitions() > 1,
       "the contour ran on %d image partitions" % volume.GetNumberOfPartitions())
+# the partitions stay shells (no point arrays) after a filter iterated them: one decoded at a time
+held_kib = volume.GetActualMemorySize() - volume.GetVolumeMemoryBytes() / 1024
+check(held_kib < 0.02 * volume.GetPartitionBytes() / 1024,
+      "after the contour the partitions hold %d KiB (decoded all at once: %d KiB)" % (
+          held_kib, volume.GetPartitionBytes() / 1024))
+it = volume.NewIterator()
+it.InitTraversal()
+leaf = it.GetCurrentDataObject()
+check(leaf.GetPointData().GetArray("sdf") is not None and leaf.GetPointData().GetArray("rgba") is not None,
+      "the iterator hands out a decoded partition (sdf, rgba)")
+first = volume.GetPartition(0)
+check(first.GetPointData().GetArray("sdf") is not None and
+      first.GetPointData().GetArray("sdf").GetRange() == leaf.GetPointData().GetArray("sdf").GetRange(),
+      "GetPartition(0) is decoded too, with the iterator's values")
+check(volume.GetNumberOfPoints() == sum(volume.GetPartition(i).GetNumberOfPoints()
+                                        for i in range(volume.GetNumberOfPartitions())),
+      "GetNumberOfPoints from the extents = the decoded partitions' points")
 out = contour.GetOutputDataObject(0)
 check(not (out.IsA("vtkSparseDictionaryVolume") and out.HasVolume()),
       "the contour's composite output does not claim the Core volume")

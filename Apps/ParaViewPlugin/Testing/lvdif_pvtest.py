@@ -106,13 +106,16 @@ def dense(proxy):
     return pvs.SparseVolumeToImage(Input=proxy)
 
 
-def sdf_stage(present):
-    """mesh -> SDF (image with float point array `sdf`, voxel units, negative inside)."""
+def sdf_stage(present, sparse=False):
+    """mesh -> SDF (image with float point array `sdf`, voxel units, negative inside);
+    with sparse=True Mesh To SDF's own output, the sparse volume."""
     h = spacing()
     if present["vtkMeshToSDF"]:
         mesh = pvs.Sphere(Radius=RADIUS, ThetaResolution=128, PhiResolution=128)
         sdf = getattr(pvs, PROXY_NAMES["vtkMeshToSDF"])(Input=mesh)
         configure_mesh_to_sdf(sdf, h)
+        if sparse:
+            return sdf, "vtkMeshToSDF (sparse volume)"
         # the stages below corrupt and compare voxels: they take the dense image
         return dense(sdf), "vtkMeshToSDF (sparse volume) -> SparseVolumeToImage"
     p = {"n1": N - 1, "o": -HALF, "h": h, "r": RADIUS}
@@ -168,10 +171,28 @@ def sign_voxel_stage(source):
     return svf
 
 
+def is_sparse(proxy):
+    """True when the proxy's output is a partitioned dataset (the sparse volume)."""
+    return proxy.GetDataInformation().GetCompositeDataClassName() is not None
+
+
+def as_image(proxy):
+    """The proxy itself for an image, its explicit dense conversion for the sparse volume."""
+    return dense(proxy) if is_sparse(proxy) else proxy
+
+
+def contour_surface(proxy):
+    """ParaView's Contour at 0 of an image or of the sparse volume's partitions, as one polydata."""
+    c = pvs.Contour(Input=proxy, ContourBy=["POINTS", "sdf"], Isosurfaces=[0.0], ComputeNormals=0, ComputeScalars=0)
+    if is_sparse(proxy):
+        c = pvs.ExtractSurface(Input=pvs.MergeBlocks(Input=c))
+    return servermanager.Fetch(c)
+
+
 def inside_count(proxy):
-    """Voxels with sdf < 0 of a (single-process) image proxy."""
+    """Voxels with sdf < 0 of a (single-process) image or sparse volume proxy."""
     from vtkmodules.util.numpy_support import vtk_to_numpy
-    img = servermanager.Fetch(proxy)
+    img = servermanager.Fetch(as_image(proxy))
     return int((vtk_to_numpy(img.GetPointData().GetArray("sdf")) < 0).sum())
 
 
@@ -252,7 +273,7 @@ def write_read_stage(field, path, check):
     reader = pvs.OpenDataFile(path)
     check(reader is not None and reader.GetXMLName() == PROXY_NAMES["vtkDictionaryVolumeReader"],
           "OpenDataFile chose %s" % (reader.GetXMLName() if reader is not None else None))
-    a = vtk_to_numpy(servermanager.Fetch(field).GetPointData().GetArray("sdf")).astype(np.float64)
+    a = vtk_to_numpy(servermanager.Fetch(as_image(field)).GetPointData().GetArray("sdf")).astype(np.float64)
     img = servermanager.Fetch(dense(reader))
     b = vtk_to_numpy(img.GetPointData().GetArray("sdf")).astype(np.float64)
     check(a.shape == b.shape, "read back %d voxels, wrote %d" % (b.size, a.size))
@@ -325,14 +346,12 @@ def edit_stage(field, check):
     default_script = ed.Script
     check(default_script.lstrip().startswith("#") and "sphere" in default_script,
           "Volume Edit Filter's default script is a commented example")
-    c_pass = pvs.Contour(Input=ed, ContourBy=["POINTS", "sdf"], Isosurfaces=[0.0], ComputeNormals=0, ComputeScalars=0)
-    v_field = closed_volume(servermanager.Fetch(pvs.Contour(Input=field, ContourBy=["POINTS", "sdf"], Isosurfaces=[0.0],
-                                                             ComputeNormals=0, ComputeScalars=0)))
-    v_pass = closed_volume(servermanager.Fetch(c_pass))
+    v_field = closed_volume(contour_surface(field))
+    v_pass = closed_volume(contour_surface(ed))
     check(abs(v_pass - v_field) / v_field < 0.002, "default script passes the volume through: %.5f vs %.5f" % (v_pass, v_field))
     ed.Script = "# cut a ball on the sphere's +x pole\nop subtract\nsphere %r, %r, %r, %r\n" % (c + RADIUS / h, c, c, r_vox)
     ed.BandWidth = 8.0
-    v_edit = closed_volume(servermanager.Fetch(c_pass))
+    v_edit = closed_volume(contour_surface(ed))
     r_world = r_vox * h
     lens = lens_volume(RADIUS, r_world, RADIUS)
     v_ref = 4.0 / 3.0 * math.pi * RADIUS ** 3 - lens

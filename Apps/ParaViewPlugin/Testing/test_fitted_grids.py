@@ -3,14 +3,19 @@
 # as in the report) on grids fitted to elongated meshes (non-cubic), built both
 # as the GUI does (each filter updated, as Apply does, before the next is made:
 # then ParaView fills domain defaults from the data) and as a script does
-# (chained without any update). Oracle: ParaView's own Contour (iso value 0) of
-# the same filtered image. Checks for every mesh and flow: the fitted grid is not
-# cubic, the iso value is 0, the surface is closed and manifold (0 boundary and
-# 0 non-manifold edges), it has the Contour's triangles, area and bounds, it lies
-# on the input mesh (bounds within a voxel), and the sdf ranges ParaView reports
-# are those of the values. Also: the defaults agree with `lvdif mesh-to-sdf`, the
-# first display is an outline (image) or a surface (mesh), never a volume, and
-# Mesh To SDF and the .lvdv reader warn before a large dense image.
+# (chained without any update). The filters pass the sparse volume
+# (vtkSparseDictionaryVolume). Oracle: ParaView's own Contour (iso value 0) of the
+# explicit dense image of the same filtered volume (Sparse Volume To Image).
+# Checks for every mesh and flow: the fitted grid is not cubic, the iso value is
+# 0, the surface is closed and manifold (0 boundary and 0 non-manifold edges), it
+# has exactly the Contour's triangles (plus the zero-area ones at grid points of
+# distance exactly 0, which Contour drops), area and bounds, Contour on the
+# sparse volume's own partitions gives the dense image's triangles, the surface
+# lies on the input mesh (bounds within a voxel), and the sdf ranges ParaView
+# reports are those of the values. Also: the defaults agree with `lvdif
+# mesh-to-sdf`, the first display is an outline (volume) or a surface (mesh),
+# never a volume rendering, the sparse producers allocate no dense image and the
+# explicit dense conversion warns before a large one and refuses above the limit.
 #
 # Usage: pvpython --force-offscreen-rendering test_fitted_grids.py PLUGIN [MESH_DIR]
 #   MESH_DIR: optional folder with cow.off, elephant.off, bunny00.off
@@ -53,6 +58,35 @@ def open_edges(polydata):
         fe.Update()
         counts.append(fe.GetOutput().GetNumberOfLines())
     return tuple(counts)
+
+
+def split_degenerate(triangles):
+    """(triangles with three distinct rounded vertices, the others)."""
+    good = [t for t in triangles if len(set(t)) == 3]
+    return good, [t for t in triangles if len(set(t)) < 3]
+
+
+def unpaired_triangles(a, b, tol):
+    """Triangles of a (or b) without a partner in the other whose vertices are each within tol."""
+    import numpy as np
+    left, right = list(a), list(b)
+    unpaired = 0
+    for t in left:
+        p = np.array(t)
+        match = [i for i, u in enumerate(right)
+                 if all(np.abs(np.array(u) - v).max(axis=1).min() <= tol for v in p)]
+        if match:
+            right.pop(match[0])
+        else:
+            unpaired += 1
+    return unpaired + len(right)
+
+
+def zero_points(image, digits=5):
+    """Positions (rounded as triangle_key_list rounds) of the grid points whose sdf is exactly 0."""
+    import numpy as np
+    v = vtk_to_numpy(image.GetPointData().GetArray("sdf"))
+    return {tuple(round(c, digits) for c in image.GetPoint(int(i))) for i in np.flatnonzero(v == 0)}
 
 
 def generated_meshes():
@@ -110,24 +144,47 @@ for mesh_name, mesh, dims, band in generated_meshes() + file_meshes():
         check(mc.IsoValue == 0.0, "%s: Chunked Marching Cubes' default iso value is 0 (the SDF's zero set), is %r"
               % (name, mc.IsoValue))
         surface = servermanager.Fetch(mc)
-        img_info = sdf.GetDataInformation()
-        ext = img_info.GetExtent()
-        pts = [ext[2 * a + 1] - ext[2 * a] + 1 for a in range(3)]
-        check(len(set(pts)) > 1, "%s: fitted grid %s is not cubic" % (name, "x".join(map(str, pts))))
         # the filters pass the sparse volume; the oracle contours its explicit dense image
-        spacing = servermanager.Fetch(pvs.SparseVolumeToImage(Input=sdf)).GetSpacing()
+        dense_img = servermanager.Fetch(pvs.SparseVolumeToImage(Input=svf))
+        spacing = dense_img.GetSpacing()
+        pts = list(dense_img.GetDimensions())
+        check(len(set(pts)) > 1, "%s: fitted grid %s is not cubic" % (name, "x".join(map(str, pts))))
         dense = pvs.SparseVolumeToImage(Input=svf)
         oracle = pvs.Contour(Input=dense, ContourBy=["POINTS", "sdf"], Isosurfaces=[0.0], ComputeNormals=0,
                              ComputeScalars=0, ComputeGradients=0)
         ref = servermanager.Fetch(oracle)
+        # ParaView's Contour on the sparse object itself (its image partitions), merged into one polydata
+        on_parts = pvs.ExtractSurface(Input=pvs.MergeBlocks(Input=pvs.Contour(Input=svf, ContourBy=["POINTS", "sdf"], Isosurfaces=[0.0],
+                                                     ComputeNormals=0, ComputeScalars=0, ComputeGradients=0)))
+        parts = servermanager.Fetch(on_parts)
         b_mc, n_mc = open_edges(surface)
         b_ref, n_ref = open_edges(ref)
         check(b_ref == 0 and n_ref == 0, "%s: oracle Contour is closed and manifold (%d boundary, %d non-manifold edges)"
               % (name, b_ref, n_ref))
         check(b_mc == 0 and n_mc == 0, "%s: Chunked Marching Cubes is closed and manifold (%d boundary, %d non-manifold edges)"
               % (name, b_mc, n_mc))
-        check(surface.GetNumberOfCells() == ref.GetNumberOfCells(), "%s: %d triangles, Contour %d"
-              % (name, surface.GetNumberOfCells(), ref.GetNumberOfCells()))
+        # the same surface: the same triangles (vertices to 1e-5, orientation kept); where a voxel's
+        # decoded distance is exactly 0, marching cubes also keeps the zero-area triangles that meet
+        # at that grid point (Contour drops them): they must be exactly those
+        t_ref = T.triangle_key_list(ref)
+        check(T.triangle_key_list(parts) == t_ref, "%s: Contour on the sparse volume's partitions = Contour on its "
+              "dense image (%d triangles)" % (name, len(t_ref)))
+        t_mc, degenerate = split_degenerate(T.triangle_key_list(surface))
+        # marching cubes orients its triangles counter-clockwise seen from outside (the sdf's
+        # negative side is inside), VTK's Contour the other way: compare with Contour's reversed
+        t_rev = sorted((t[0], t[2], t[1]) for t in t_ref)
+        zeros = zero_points(dense_img)
+        # keys rounded to 1e-5 split a vertex that the two compute a few ulps apart across a
+        # rounding boundary (bunny: z = -0.1336050034 and -0.1336049885): such triangles must
+        # pair up within the rounding step plus a thousandth of a voxel
+        only_mc, only_ref = set(t_mc) - set(t_rev), set(t_rev) - set(t_mc)
+        unpaired = unpaired_triangles(only_mc, only_ref, 1e-5 + 1e-3 * min(spacing))
+        check(len(t_mc) == len(t_rev) and unpaired == 0,
+              "%s: Chunked Marching Cubes has Contour's %d triangles, reversed (%d; %d differ in the 5th digit, "
+              "%d of them unpaired)" % (name, len(t_ref), len(t_mc), len(only_mc), unpaired))
+        at_zero = all(any(v in zeros for v in t) for t in degenerate)
+        check(at_zero, "%s: its %d further triangles have zero area, at grid points of distance 0 (%d such points)"
+              % (name, len(degenerate), len(zeros)))
         a_mc, a_ref = T.area(mc), T.area(oracle)
         check(abs(a_mc - a_ref) <= 1e-5 * a_ref, "%s: area %.6f, Contour %.6f" % (name, a_mc, a_ref))
         bm, br = surface.GetBounds(), ref.GetBounds()
@@ -158,7 +215,7 @@ for mesh_name, mesh, dims, band in generated_meshes() + file_meshes():
             pvs.Delete(view)
             del view
             first = False
-        for p in (oracle, mc, svf, sdf):
+        for p in (on_parts, oracle, dense, mc, svf, sdf):
             pvs.Delete(p)
 
 
@@ -170,7 +227,9 @@ def repaired_range():
     so flipping far voxels (|d| > 4) changes the range."""
     box = pvs.Box(XLength=4.0, YLength=1.3, ZLength=0.7)
     sdf = pvs.MeshToSDF(Input=box, MaxDimension=80)
-    bad = T.corrupt_signs(sdf)
+    # corrupted voxels: the programmable filter needs the dense image; the sign filter gets it sparse again
+    bad_img = T.corrupt_signs(T.dense(sdf))
+    bad = pvs.ImageToSparseVolume(Input=bad_img)
     bad.UpdatePipeline()
     bad_range = bad.PointData["sdf"].GetRange()  # ParaView computes and caches it on the input
     svf = pvs.SignVoxelFilter(Input=bad)
@@ -180,7 +239,7 @@ def repaired_range():
     check(bad_range != clean, "corruption changes the range: clean %s, corrupted %s" % (clean, bad_range))
     check(shown == (float(vals.min()), float(vals.max())) == clean,
           "repaired range %s = values %s = clean %s" % (shown, (float(vals.min()), float(vals.max())), clean))
-    for p in (svf, bad, sdf, box):
+    for p in (svf, bad, bad_img, sdf, box):
         pvs.Delete(p)
 
 
@@ -213,28 +272,36 @@ def memory_messages(make, limit):
 
 
 def sphere_sdf():
-    """Mesh To SDF of a sphere at Max Dimension 128: 128^3 points, 8 MiB of floats."""
+    """Mesh To SDF of a sphere at Max Dimension 128: a sparse volume of 128^3 points."""
     return pvs.MeshToSDF(Input=pvs.Sphere(ThetaResolution=32, PhiResolution=32), MaxDimension=128)
 
 
-# a large dense image is announced before it is allocated, with its size ...
+def sphere_dense():
+    """Its explicit dense image: float sdf + rgba, 8 bytes a point, 16 MiB."""
+    return pvs.SparseVolumeToImage(Input=sphere_sdf())
+
+
+# the sparse producers allocate no dense image: nothing to announce under a 12 MiB limit
 warnings, errors = memory_messages(sphere_sdf, "12M")
-check(len(warnings) == 1 and "needs 8.00 MiB (memory limit 12.00 MiB" in warnings[0] and not errors,
-      "Mesh To SDF warns before a large allocation: %s %s" % (warnings, errors))
-# ... and refused above the limit, with one clear error
-warnings, errors = memory_messages(sphere_sdf, "4M")
-check(len(errors) >= 1 and "sdf array" in errors[0], "Mesh To SDF refuses above the memory limit: %s" % errors[:1])
+check(not warnings and not errors, "Mesh To SDF (sparse) says nothing under a 12 MiB limit: %s %s" % (warnings, errors))
+# the explicit dense conversion announces a large image before it allocates it, with its size ...
+warnings, errors = memory_messages(sphere_dense, "24M")
+check(len(warnings) == 1 and "needs 16.00 MiB (memory limit 24.00 MiB" in warnings[0] and not errors,
+      "Sparse Volume To Image warns before a large allocation: %s %s" % (warnings, errors))
+# ... and refuses above the limit, with one clear error
+warnings, errors = memory_messages(sphere_dense, "12M")
+check(len(errors) >= 1 and "dense image of 128 x 128 x 128 points" in errors[0],
+      "Sparse Volume To Image refuses above the memory limit: %s" % errors[:1])
 # small images say nothing
-warnings, errors = memory_messages(sphere_sdf, "1G")
+warnings, errors = memory_messages(sphere_dense, "1G")
 check(not warnings and not errors, "no message for a small image: %s %s" % (warnings, errors))
-# the .lvdv reader decodes into a dense image too (sdf and rgba: 8 bytes a point, 16 MiB here)
+# the .lvdv reader gives the sparse volume: no dense image, no message, even under a small limit
 lvdv = os.path.join(tempfile.mkdtemp(), "sphere.lvdv")
 written = sphere_sdf()
 pvs.SaveData(lvdv, proxy=written)
 pvs.Delete(written)
-warnings, errors = memory_messages(lambda: pvs.OpenDataFile(lvdv), "24M")
-check(len(warnings) == 1 and "needs 16.00 MiB (memory limit 24.00 MiB" in warnings[0] and not errors,
-      "the .lvdv reader warns before a large allocation: %s %s" % (warnings, errors))
+warnings, errors = memory_messages(lambda: pvs.OpenDataFile(lvdv), "12M")
+check(not warnings and not errors, "the .lvdv reader (sparse) says nothing under a 12 MiB limit: %s %s" % (warnings, errors))
 
 print("failures:", check.failures)
 sys.exit(1 if check.failures else 0)

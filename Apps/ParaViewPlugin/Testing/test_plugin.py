@@ -16,11 +16,14 @@ expected = sys.argv[4:]
 present = T.load_plugin(plugin, expected, remote=False)
 check = T.check
 
-# --- mesh -> SDF
-sdf, how = T.sdf_stage(present)
+# --- mesh -> SDF: the sparse volume travels through every stage below; voxels are
+# read and corrupted through its explicit dense conversion (T.as_image)
+sdf, how = T.sdf_stage(present, sparse=True)
 print("SDF stage:", how)
 sdf.UpdatePipeline()
-info = sdf.GetDataInformation()
+img = T.as_image(sdf)
+img.UpdatePipeline()
+info = img.GetDataInformation()
 check(info.GetNumberOfPoints() == T.N ** 3, "SDF grid has %d^3 points (%d)" % (T.N, info.GetNumberOfPoints()))
 rng = sdf.PointData["sdf"].GetRange()
 h = T.spacing()
@@ -34,10 +37,14 @@ if present["vtkSignVoxelFilter"]:
     # Oracle: isolated far voxels get a wrong sign; the filter must give back
     # exactly the inside set of the clean field.
     clean_inside = T.inside_count(sdf)
-    bad = T.corrupt_signs(sdf)
+    bad = T.corrupt_signs(T.as_image(sdf))
     bad_inside = T.inside_count(bad)
     check(bad_inside != clean_inside, "corruption moved the inside count by %d" % (bad_inside - clean_inside))
+    if T.is_sparse(sdf):
+        bad = pvs.ImageToSparseVolume(Input=bad)  # the sign filter takes the sparse volume
     field = T.sign_voxel_stage(bad)
+    check(T.is_sparse(field) == T.is_sparse(sdf), "Sign Voxel Filter's output is %s"
+          % ("the sparse volume" if T.is_sparse(field) else "an image"))
     fixed_inside = T.inside_count(field)
     check(fixed_inside == clean_inside, "Sign Voxel Filter restores the inside set: %d voxels vs %d clean (%d corrupted)"
           % (fixed_inside, clean_inside, bad_inside))
@@ -74,6 +81,7 @@ lvd = os.path.join(tmpdir, "test_plugin." + T.LVD_EXTENSION)
 if present["vtkDictionaryVolumeWriter"] and present["vtkDictionaryVolumeReader"]:
     reader = T.write_read_stage(field, lvd, check)
     # the surface of the read volume is the same sphere
+    check(T.is_sparse(reader), "the .lvdv reader gives the sparse volume")
     a_rd = T.area(pvs.Contour(Input=reader, ContourBy=["POINTS", "sdf"], Isosurfaces=[0.0], ComputeNormals=0,
                               ComputeScalars=0))
     check(abs(a_rd - a_pv) / a_pv < 0.002, "Contour area after write/read %.5f vs before %.5f" % (a_rd, a_pv))
