@@ -10,11 +10,13 @@
 #include "vtkPolyData.h"
 #include "vtkDataObject.h"
 #include "vtkDataSet.h"
+#include "vtkExtentTranslator.h"
 #include "vtkFloatArray.h"
 #include "vtkImageData.h"
 #include "vtkInformation.h"
 #include "vtkInformationDoubleVectorKey.h"
 #include "vtkInformationInformationVectorKey.h"
+#include "vtkInformationIntegerKey.h"
 #include "vtkInformationVector.h"
 #include "vtkNew.h"
 #include "vtkPointData.h"
@@ -159,6 +161,37 @@ void SetSparseInformation(vtkInformation* outInfo, const lvdif::VolumeOptions& o
   outInfo->Set(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT(), whole, 6);
   outInfo->Set(vtkDataObject::ORIGIN(), o.origin.data(), 3);
   outInfo->Set(vtkDataObject::SPACING(), o.spacing.data(), 3);
+  outInfo->Set(CHUNK_EDGE(), o.chunkEdge);
+}
+
+bool PieceChunks(int piece, int pieces, const lvdif::VolumeOptions& o, int owned[6], lvdif::VoxelBox& region)
+{
+  int bounds[6], block[6];
+  for (int a = 0; a < 3; ++a)
+  {
+    bounds[2 * a] = 0; // chunk boundaries 0..count: a split by cells gives disjoint chunk ranges
+    bounds[2 * a + 1] = static_cast<int>((o.dims[a] + o.chunkEdge - 1) / o.chunkEdge);
+  }
+  vtkNew<vtkExtentTranslator> t;
+  if (!t->PieceToExtentThreadSafe(piece, pieces, 0, bounds, block, vtkExtentTranslator::BLOCK_MODE, 0) ||
+    block[0] >= block[1] || block[2] >= block[3] || block[4] >= block[5])
+  {
+    return false;
+  }
+  for (int a = 0; a < 3; ++a)
+  {
+    owned[2 * a] = block[2 * a];
+    owned[2 * a + 1] = block[2 * a + 1] - 1;
+    region.lo[a] = static_cast<std::int64_t>(block[2 * a]) * o.chunkEdge;
+    region.hi[a] = std::min<std::int64_t>(static_cast<std::int64_t>(block[2 * a + 1]) * o.chunkEdge, o.dims[a] - 1);
+  }
+  return true;
+}
+
+vtkInformationIntegerKey* CHUNK_EDGE()
+{
+  static vtkInformationIntegerKey* key = vtkInformationIntegerKey::MakeKey("LVDIF_CHUNK_EDGE", "LVDIFVolumeBridge");
+  return key;
 }
 
 void FillImage(const lvdif::DictionaryVolume& volume, const int extentIn[6], vtkImageData* image, bool withColor)
