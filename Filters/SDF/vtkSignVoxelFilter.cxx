@@ -374,6 +374,7 @@ int vtkSignVoxelFilter::FilterSparse(
   LVDIFInterrupter interrupter(this);
   const lvdif::SignVoxelFilterParams p = this->CoreParams();
   std::shared_ptr<lvdif::DictionaryVolume> volume;
+  int owned[6] = { 0, -1, 0, -1, 0, -1 }; // a generic filter's piece: its block of chunks (else all)
   if (!this->Distributed())
   {
     const bool ok = LVDIFVolumeBridge::CallCore(this, [&] {
@@ -388,20 +389,41 @@ int vtkSignVoxelFilter::FilterSparse(
       return 0;
     }
   }
-  else if (!this->FilterSparsePiece(*input->GetVolume(), outInfo, output, volume, st))
+  else if (!this->FilterSparsePiece(*input->GetVolume(), outInfo, owned, volume, st))
   {
     output->Initialize();
     return 0;
   }
+  // what this rank did (serial: rank 0 of 1, every plane)
+  vtkNew<vtkIdTypeArray> piece;
+  piece->SetName("svf_piece");
+  const int a = this->Axis;
+  std::int64_t first = 0, last = input->GetVolume()->dims()[a] - 1;
+  if (this->Distributed())
+  {
+    PiecePlanes(this->Controller->GetLocalProcessId(), this->Controller->GetNumberOfProcesses(),
+      input->GetVolume()->dims()[a], input->GetVolume()->chunkEdge(), first, last);
+  }
+  for (const std::int64_t v : { std::int64_t(this->Distributed() ? this->Controller->GetLocalProcessId() : 0),
+         std::int64_t(this->Distributed() ? this->Controller->GetNumberOfProcesses() : 1), first, last,
+         input->GetVolume()->expandedChunkCount(), volume ? volume->expandedChunkCount() : std::int64_t(0) })
+  {
+    piece->InsertNextValue(static_cast<vtkIdType>(v));
+  }
   output->SetVolume(std::move(volume));
+  if (owned[1] >= owned[0])
+  {
+    output->SetOwnedChunks(owned);
+  }
   output->SetPartitionColors(input->GetPartitionColors());
   AddStats(output, st);
+  output->GetFieldData()->AddArray(piece);
   this->UpdateProgress(1.0);
   return 1;
 }
 
 bool vtkSignVoxelFilter::FilterSparsePiece(const lvdif::DictionaryVolume& in, vtkInformation* outInfo,
-  vtkSparseDictionaryVolume* output, std::shared_ptr<lvdif::DictionaryVolume>& volume, lvdif::SignVoxelFilterStats& st)
+  int ownedChunks[6], std::shared_ptr<lvdif::DictionaryVolume>& volume, lvdif::SignVoxelFilterStats& st)
 {
   using SDDP = vtkStreamingDemandDrivenPipeline;
   vtkMultiProcessController* c = this->Controller;
@@ -534,11 +556,8 @@ bool vtkSignVoxelFilter::FilterSparsePiece(const lvdif::DictionaryVolume& in, vt
   }
   if (pieces > 1)
   {
-    if (ownsChunks)
-    {
-      output->SetOwnedChunks(owned);
-    }
-    else
+    std::copy(owned, owned + 6, ownedChunks);
+    if (!ownsChunks)
     {
       volume.reset(); // a piece without chunks: empty
     }

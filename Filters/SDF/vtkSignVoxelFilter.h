@@ -33,7 +33,11 @@
  * extent to it (the marching cubes asks for its block plus one ghost layer),
  * so every rank's output holds exactly the chunks its consumer asked for, as
  * the serial result has them; chunks outside that extent are dropped
- * (uniform). The statistics are summed over the ranks.
+ * (uniform). A generic filter's piece request (ParaView's Contour) gets the
+ * block of chunks the .lvdv reader would give it (LVDIFVolumeBridge::PieceChunks).
+ * The statistics are summed over the ranks. Field data `svf_piece`
+ * (vtkIdTypeArray): rank, ranks, first and last plane filtered here, the
+ * input's and the output's expanded chunks.
  *
  * Image input, pieces: SVF1 scans whole rows and SVF2/SVF3 sweep whole planes,
  * so a piece filtered alone would read its cut as the volume's boundary. The
@@ -158,9 +162,8 @@ protected:
   /// True when the sparse path runs as one of several ranks (Controller with > 1 process).
   bool Distributed() const;
   /// The sparse path on one rank of several (see the class comment).
-  bool FilterSparsePiece(const lvdif::DictionaryVolume& input, vtkInformation* outInfo,
-    vtkSparseDictionaryVolume* output, std::shared_ptr<lvdif::DictionaryVolume>& volume,
-    lvdif::SignVoxelFilterStats& stats);
+  bool FilterSparsePiece(const lvdif::DictionaryVolume& input, vtkInformation* outInfo, int ownedChunks[6],
+    std::shared_ptr<lvdif::DictionaryVolume>& volume, lvdif::SignVoxelFilterStats& stats);
 
   vtkMultiProcessController* Controller = nullptr;
 

@@ -16,6 +16,7 @@
 #include "vtkInformation.h"
 #include "vtkInformationDoubleVectorKey.h"
 #include "vtkInformationInformationVectorKey.h"
+#include "vtkDemandDrivenPipeline.h"
 #include "vtkInformationIntegerKey.h"
 #include "vtkInformationVector.h"
 #include "vtkNew.h"
@@ -188,9 +189,30 @@ bool PieceChunks(int piece, int pieces, const lvdif::VolumeOptions& o, int owned
   return true;
 }
 
+namespace
+{
+/// Meta data that flows downstream with the information pass through any
+/// filter (ParaView puts a post filter after every source), as
+/// vtkInformationDataObjectMetaDataKey does for data objects.
+class ChunkEdgeKey : public vtkInformationIntegerKey
+{
+public:
+  ChunkEdgeKey() : vtkInformationIntegerKey("LVDIF_CHUNK_EDGE", "LVDIFVolumeBridge") {}
+  void CopyDefaultInformation(vtkInformation* request, vtkInformation* fromInfo, vtkInformation* toInfo) override
+  {
+    if (request->Has(vtkDemandDrivenPipeline::REQUEST_INFORMATION()))
+    {
+      this->ShallowCopy(fromInfo, toInfo);
+    }
+  }
+};
+} // namespace
+
 vtkInformationIntegerKey* CHUNK_EDGE()
 {
-  static vtkInformationIntegerKey* key = vtkInformationIntegerKey::MakeKey("LVDIF_CHUNK_EDGE", "LVDIFVolumeBridge");
+  // never deleted: VTK's key managers delete their keys at exit, after a
+  // plugin's library (and so this class's code) may have been unloaded
+  static vtkInformationIntegerKey* key = new ChunkEdgeKey;
   return key;
 }
 

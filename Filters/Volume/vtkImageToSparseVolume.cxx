@@ -91,7 +91,10 @@ int vtkImageToSparseVolume::RequestData(
 {
   vtkImageData* image = vtkImageData::GetData(inputVector[0]);
   vtkSparseDictionaryVolume* output = vtkSparseDictionaryVolume::GetData(outputVector);
-  vtkDataArray* sdf = this->GetInputArrayToProcess(0, inputVector);
+  // an empty selection (a ParaView proxy created before its input was updated) reads as `sdf`
+  vtkDataArray* sdf = image ? LVDIFVolumeBridge::SdfArray(
+                                this->GetInputArrayInformation(0), image, this->GetInputArrayToProcess(0, inputVector))
+                            : nullptr;
   if (!image || !sdf)
   {
     vtkErrorMacro("no input image with an SDF point array (default name 'sdf')");

@@ -16,6 +16,34 @@
 
 #include <cstdio>
 #include <cstdlib>
+#include <fstream>
+#include <string>
+
+namespace
+{
+/// Peak resident memory of this process so far (VmHWM), MiB.
+double peakMiB()
+{
+  std::ifstream f("/proc/self/status");
+  std::string key;
+  double kb = 0;
+  while (f >> key)
+  {
+    if (key == "VmHWM:")
+    {
+      f >> kb;
+      break;
+    }
+  }
+  return kb / 1024.0;
+}
+
+/// Starts a new peak at the current resident memory (Linux: clear_refs 5).
+void resetPeak()
+{
+  std::ofstream("/proc/self/clear_refs") << "5";
+}
+} // namespace
 
 int main(int argc, char** argv)
 {
@@ -41,19 +69,24 @@ int main(int argc, char** argv)
   mo.device = lvdif::Device::Cpu;
   lvdif::meshToSdf(mesh, volume, mo);
   const double tSdf = w.seconds();
-  std::printf("mesh to SDF: %.2f s, volume %.0f MiB (%lld of %lld chunks expanded), RSS %.0f MiB\n", tSdf,
-    mib(volume.memoryBytes()), static_cast<long long>(volume.expandedChunkCount()),
-    static_cast<long long>(volume.chunkCount()), mib(lvdif::residentMemoryBytes()));
+  const double peakSdf = peakMiB();
+  std::printf("mesh to SDF: %.2f s, volume %.0f MiB (%lld of %lld chunks expanded), RSS %.0f MiB, peak %.0f MiB\n",
+    tSdf, mib(volume.memoryBytes()), static_cast<long long>(volume.expandedChunkCount()),
+    static_cast<long long>(volume.chunkCount()), mib(lvdif::residentMemoryBytes()), peakSdf);
 
+  resetPeak();
+  const double before = mib(lvdif::residentMemoryBytes());
   w.reset();
   std::unique_ptr<lvdif::DictionaryVolume> filtered = volume.clone();
   lvdif::SignVoxelFilterParams sp;
   sp.device = lvdif::Device::Cpu;
   const lvdif::SignVoxelFilterStats st = lvdif::signVoxelFilter(*filtered, sp);
   const double tSvf = w.seconds();
-  std::printf("clone + sign voxel filters: %.2f s, %lld flips, RSS %.0f MiB\n", tSvf,
-    static_cast<long long>(st.totalFlips()), mib(lvdif::residentMemoryBytes()));
-  std::printf("BENCH n=%lld sdf_s=%.2f svf_s=%.2f volume_mib=%.0f\n", static_cast<long long>(n), tSdf, tSvf,
-    mib(volume.memoryBytes()));
+  const double peakSvf = peakMiB();
+  std::printf("clone + sign voxel filters: %.2f s, %lld flips, RSS %.0f MiB, peak %.0f MiB (+%.0f over the %.0f before)\n",
+    tSvf, static_cast<long long>(st.totalFlips()), mib(lvdif::residentMemoryBytes()), peakSvf, peakSvf - before,
+    before);
+  std::printf("BENCH n=%lld sdf_s=%.2f svf_s=%.2f volume_mib=%.0f sdf_peak_mib=%.0f svf_peak_mib=%.0f svf_added_mib=%.0f\n",
+    static_cast<long long>(n), tSdf, tSvf, mib(volume.memoryBytes()), peakSdf, peakSvf, peakSvf - before);
   return 0;
 }
