@@ -129,6 +129,48 @@ std::uint64_t slabBudget()
   return std::min<std::uint64_t>(128u << 20, memoryLimitBytes() / 8);
 }
 
+/// True when a uniform chunk keeps its stored value: every buffer value of its
+/// voxels in `box` and of their 6 neighbours (inside the volume; the buffer
+/// holds the planes box.lo[a] - 1 .. box.hi[a] + 1 where they exist) has the
+/// stored sign, so SVF4 finds no opposite neighbour (a virtual one opposes a
+/// negative chunk with the Outside boundary, at most 3 of them when every
+/// dimension is 2 or more) and no sign changed. `at` points at plane box.lo[a].
+bool quietChunk(const DictionaryVolume& vol, const Frame& f, std::int64_t id, const VoxelBox& box, const float* at,
+  SdfKey zero, int bsign)
+{
+  if (!vol.isUniform(id))
+  {
+    return false;
+  }
+  const SdfKey key = vol.uniformValue(id).sdf;
+  const int s = key < zero ? -1 : 1;
+  if (key == zero || (s != bsign && bsign != 0 && (f.nU < 2 || f.nV < 2 || f.nA < 2)))
+  {
+    return false;
+  }
+  const VoxelBox b = vol.chunkBox(id).intersect(box);
+  VoxelBox g = b; // grown by one voxel, clipped to the volume
+  for (int k = 0; k < 3; ++k)
+  {
+    g.lo[k] = std::max<std::int64_t>(g.lo[k] - 1, 0);
+    g.hi[k] = std::min<std::int64_t>(g.hi[k] + 1, vol.dims()[k] - 1);
+  }
+  Index3 lo{ g.lo[0], g.lo[1], g.lo[2] }, hi{ g.hi[0], g.hi[1], g.hi[2] };
+  for (std::int64_t pa = lo[f.a]; pa <= hi[f.a]; ++pa)
+    for (std::int64_t pv = lo[f.v]; pv <= hi[f.v]; ++pv)
+    {
+      const float* row = at + (pa - box.lo[f.a]) * f.nUV + pv * f.nU;
+      for (std::int64_t pu = lo[f.u]; pu <= hi[f.u]; ++pu)
+      {
+        if (signOf(row[pu]) != s)
+        {
+          return false;
+        }
+      }
+    }
+  return true;
+}
+
 int boundarySign(const SignVoxelFilterParams& p)
 {
   return p.boundary == SvfBoundary::Outside ? 1 : 0;
@@ -144,6 +186,71 @@ SignVoxelFilterStats planar(float* planes, const Frame& f, std::int64_t n, const
   view.data = planes;
   view.geometry.dims = { f.nU, f.nV, n };
   return signVoxelFilter(view, q, nullInterrupter());
+}
+
+/// The sign every value of [p, p + n) has, or 0 when they differ (or one has no sign).
+int commonSign(const float* p, std::int64_t n)
+{
+  const int s = signOf(p[0]);
+  bool same = s != 0;
+#pragma omp parallel for schedule(static) reduction(&& : same)
+  for (std::int64_t i = 1; i < n; ++i)
+  {
+    same = same && signOf(p[i]) == s;
+  }
+  return same ? s : 0;
+}
+
+/// True when SVF2/SVF3 cannot flip anything in a plane whose values all have
+/// sign s: every neighbour then has sign s, except virtual ones, which oppose
+/// only a negative plane with the Outside boundary; SVF2 needs an opposite
+/// neighbour of larger magnitude (a virtual one has 0), SVF3 four opposite
+/// neighbours (a voxel has at most 2 virtual ones when the plane is 2 x 2 or more).
+bool planeIsQuiet(int s, const Frame& f, int bsign)
+{
+  return s != 0 && (s == bsign || bsign == 0 || (f.nU >= 2 && f.nV >= 2));
+}
+
+/// SVF2/SVF3 on the planes [0, n) of `planes`: on each run of planes that hold
+/// more than one sign; a plane of one sign is left alone (it would take one
+/// iteration that changes nothing).
+SignVoxelFilterStats planarRuns(float* planes, const Frame& f, std::int64_t n, const SignVoxelFilterParams& params)
+{
+  SignVoxelFilterStats st;
+  const int bsign = params.boundary == SvfBoundary::Outside ? 1 : 0;
+  bool skipped = false;
+  for (std::int64_t p = 0; p < n;)
+  {
+    if (planeIsQuiet(commonSign(planes + p * f.nUV, f.nUV), f, bsign))
+    {
+      skipped = true;
+      ++p;
+      continue;
+    }
+    std::int64_t q = p + 1;
+    while (q < n && !planeIsQuiet(commonSign(planes + q * f.nUV, f.nUV), f, bsign))
+    {
+      ++q;
+    }
+    const SignVoxelFilterStats r = planar(planes + p * f.nUV, f, q - p, params);
+    for (int k = 1; k <= 2; ++k)
+    {
+      st.flips[k] += r.flips[k];
+      st.iterations[k] = std::max(st.iterations[k], r.iterations[k]);
+      st.planesAtCap[k] += r.planesAtCap[k];
+    }
+    st.device = r.device;
+    st.deviceMs += r.deviceMs;
+    p = q;
+  }
+  for (int k = 1; k <= 2; ++k)
+  {
+    if (skipped && (params.filters & (1u << k)))
+    {
+      st.iterations[k] = std::max(st.iterations[k], 1); // the pass that found nothing
+    }
+  }
+  return st;
 }
 
 void validate(const SignVoxelFilterParams& params)
@@ -282,7 +389,7 @@ SignVoxelFilterStats signVoxelFilter(
     }
     if (svf23)
     {
-      planar(g, f, 1, params);
+      planarRuns(g, f, 1, params);
     }
   }
 
@@ -313,11 +420,11 @@ SignVoxelFilterStats signVoxelFilter(
       const std::int64_t own1 = std::min(b1, last);
       if (own1 >= b0)
       {
-        addPlanar(planar(at0, f, own1 - b0 + 1, params));
+        addPlanar(planarRuns(at0, f, own1 - b0 + 1, params));
       }
       if (b1 > last)
       {
-        planar(buf.data() + (b1 - base) * f.nUV, f, 1, params); // the ghost plane after: not counted
+        planarRuns(buf.data() + (b1 - base) * f.nUV, f, 1, params); // the ghost plane after: not counted
       }
     }
 
@@ -336,6 +443,10 @@ SignVoxelFilterStats signVoxelFilter(
         const std::int64_t id = ids[static_cast<std::size_t>(i)];
         try
         {
+          if (quietChunk(volume, f, id, box, slot0 + (w0 - base) * f.nUV, zero, bsign))
+          {
+            continue;
+          }
           bool wrote = false;
           const std::int64_t shift = (w0 - base) * f.nUV; // offset of plane w0 in the buffer
           forChunkVoxels(volume, f, id, box, [&](std::int64_t x, std::int64_t y, std::int64_t z, std::int64_t o) {

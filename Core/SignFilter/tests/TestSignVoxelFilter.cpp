@@ -681,6 +681,41 @@ TEST(SignVoxelFilterVolume, StreamedSlabsEqualTheDenseFilter)
       }
 }
 
+TEST(SignVoxelFilterVolume, PlanesAndChunksOfOneSignEqualTheDenseFilter)
+{
+  // mostly uniform: a small sphere, whole planes outside (positive) and a slab
+  // of whole planes inside (negative), wrong signs in both and at the border,
+  // so that the filter's shortcuts for planes and chunks of one sign are taken
+  VolumeOptions o;
+  o.dims = { 36, 30, 44 };
+  o.chunkEdge = 4;
+  o.bandWidth = 4.0f;
+  DictionaryVolume start(o);
+  fillFromFunction(start, sphereSdf(18, 15, 12, 6));
+  for (std::int64_t z = 28; z < 36; ++z)
+    for (std::int64_t y = 0; y < 30; ++y)
+      for (std::int64_t x = 0; x < 36; ++x) start.setSdf(x, y, z, -4.0f);
+  for (const Index3 w : { Index3{ 3, 3, 40 }, Index3{ 20, 20, 31 }, Index3{ 0, 0, 30 }, Index3{ 35, 29, 43 },
+         Index3{ 18, 15, 12 } })
+    start.setSdf(w[0], w[1], w[2], -start.sdf(w[0], w[1], w[2]));
+  start.collapseUniformChunks();
+  for (int axis = 0; axis < 3; ++axis)
+    for (SvfBoundary b : { SvfBoundary::Outside, SvfBoundary::Free })
+      for (unsigned filters : { unsigned(SvfAll), unsigned(Svf2 | Svf3 | Svf4) })
+      {
+        SCOPED_TRACE("axis " + std::to_string(axis) + (b == SvfBoundary::Free ? " free" : " outside") +
+          " filters " + std::to_string(filters));
+        SignVoxelFilterParams p = params(filters, axis, b);
+        p.volumeSlabPlanes = 5;
+        SignVoxelFilterStats want;
+        const std::vector<Voxel> expected = expectedVoxels(start, p, want);
+        auto vol = start.clone();
+        expectSameStats(signVoxelFilter(*vol, p), want);
+        EXPECT_EQ(voxels(*vol), expected);
+        EXPECT_GT(want.totalFlips(), 0);
+      }
+}
+
 TEST(SignVoxelFilterVolume, EachFilterAloneEqualsTheDenseFilter)
 {
   const auto start = randomVolume(17, 23, 19, 11);
