@@ -819,3 +819,27 @@ TEST(SignVoxelFilterVolume, NeedsOnlyASlabOfMemory)
   EXPECT_LT(vol.sdf(64, 64, 192), 0.0f);
   EXPECT_GE(st.totalFlips(), 1);
 }
+
+TEST(SignVoxelFilterCuda, StreamedVolumeEqualsTheCpu)
+{
+  // the streamed volume filter sends its SVF2/SVF3 slabs to the device: the
+  // same voxels and statistics as on the CPU
+  if (!cuda::available())
+    GTEST_SKIP() << "no CUDA device";
+  const auto start = randomVolume(37, 29, 41, 5);
+  for (int axis = 0; axis < 3; ++axis)
+    for (std::int64_t slab : { 3, 0 })
+    {
+      SCOPED_TRACE("axis " + std::to_string(axis) + " slab " + std::to_string(slab));
+      SignVoxelFilterParams p = params(SvfAll, axis, SvfBoundary::Outside);
+      p.volumeSlabPlanes = slab;
+      auto cpu = start->clone();
+      const SignVoxelFilterStats a = signVoxelFilter(*cpu, p);
+      p.device = Device::Cuda;
+      auto gpu = start->clone();
+      const SignVoxelFilterStats b = signVoxelFilter(*gpu, p);
+      EXPECT_EQ(b.device, Device::Cuda);
+      EXPECT_EQ(voxels(*gpu), voxels(*cpu));
+      expectSameStats(b, a);
+    }
+}

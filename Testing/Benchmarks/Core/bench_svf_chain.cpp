@@ -19,6 +19,8 @@
 #include <fstream>
 #include <string>
 
+#include <sys/resource.h>
+
 namespace
 {
 /// Peak resident memory of this process so far (VmHWM), MiB.
@@ -36,6 +38,15 @@ double peakMiB()
     }
   }
   return kb / 1024.0;
+}
+
+/// CPU seconds (user + system) of this process so far: a loaded machine's
+/// wall times say little, its CPU times compare.
+double cpuSeconds()
+{
+  rusage u{};
+  getrusage(RUSAGE_SELF, &u);
+  return double(u.ru_utime.tv_sec + u.ru_stime.tv_sec) + 1e-6 * double(u.ru_utime.tv_usec + u.ru_stime.tv_usec);
 }
 
 /// Starts a new peak at the current resident memory (Linux: clear_refs 5).
@@ -64,11 +75,13 @@ int main(int argc, char** argv)
   std::printf("start: RSS %.0f MiB\n", mib(lvdif::residentMemoryBytes()));
 
   bench::Stopwatch w;
+  const double c0 = cpuSeconds();
   lvdif::DictionaryVolume volume(vo);
   lvdif::MeshToSdfOptions mo;
   mo.device = lvdif::Device::Cpu;
   lvdif::meshToSdf(mesh, volume, mo);
   const double tSdf = w.seconds();
+  const double cSdf = cpuSeconds() - c0;
   const double peakSdf = peakMiB();
   std::printf("mesh to SDF: %.2f s, volume %.0f MiB (%lld of %lld chunks expanded), RSS %.0f MiB, peak %.0f MiB\n",
     tSdf, mib(volume.memoryBytes()), static_cast<long long>(volume.expandedChunkCount()),
@@ -77,16 +90,19 @@ int main(int argc, char** argv)
   resetPeak();
   const double before = mib(lvdif::residentMemoryBytes());
   w.reset();
+  const double c1 = cpuSeconds();
   std::unique_ptr<lvdif::DictionaryVolume> filtered = volume.clone();
   lvdif::SignVoxelFilterParams sp;
   sp.device = lvdif::Device::Cpu;
   const lvdif::SignVoxelFilterStats st = lvdif::signVoxelFilter(*filtered, sp);
   const double tSvf = w.seconds();
+  const double cSvf = cpuSeconds() - c1;
   const double peakSvf = peakMiB();
   std::printf("clone + sign voxel filters: %.2f s, %lld flips, RSS %.0f MiB, peak %.0f MiB (+%.0f over the %.0f before)\n",
     tSvf, static_cast<long long>(st.totalFlips()), mib(lvdif::residentMemoryBytes()), peakSvf, peakSvf - before,
     before);
-  std::printf("BENCH n=%lld sdf_s=%.2f svf_s=%.2f volume_mib=%.0f sdf_peak_mib=%.0f svf_peak_mib=%.0f svf_added_mib=%.0f\n",
-    static_cast<long long>(n), tSdf, tSvf, mib(volume.memoryBytes()), peakSdf, peakSvf, peakSvf - before);
+  std::printf("BENCH n=%lld sdf_s=%.2f svf_s=%.2f sdf_cpu_s=%.2f svf_cpu_s=%.2f volume_mib=%.0f sdf_peak_mib=%.0f "
+              "svf_peak_mib=%.0f svf_added_mib=%.0f\n",
+    static_cast<long long>(n), tSdf, tSvf, cSdf, cSvf, mib(volume.memoryBytes()), peakSdf, peakSvf, peakSvf - before);
   return 0;
 }
