@@ -3,11 +3,12 @@
  * @brief   repairs wrong signs of a sparse volume or signed distance image (LVDIF's SVF1..SVF4)
  *
  * Input, one of:
- * - a vtkSparseDictionaryVolume: filtered chunk-aware by Core
- *   (lvdif::signVoxelFilter on the dictionary volume: uniform chunks stay
- *   collapsed, no dense copy) into a copy of the Core volume (the input is not
- *   modified); the output is a vtkSparseDictionaryVolume whose dirty flags
- *   mark the chunks whose signs changed;
+ * - a vtkSparseDictionaryVolume: filtered by Core (lvdif::signVoxelFilter on
+ *   the dictionary volume, streamed by slabs of planes: no dense copy, uniform
+ *   chunks stay collapsed) in a copy-on-write clone of the Core volume: the
+ *   input is not modified, and the output shares every chunk the filters did
+ *   not change with it (only the changed chunks are copied). The output is a
+ *   vtkSparseDictionaryVolume whose dirty flags mark the chunks whose signs changed;
  * - a vtkImageData, as follows.
  *
  * Runs the sign voxel filters of Wang et al. 2023 ("LVDIF", Sect. 3.2) on one
