@@ -140,6 +140,7 @@ int vtkMeshToSDF::RequestInformation(
   vo.dims = g.dims;
   vo.origin = g.origin;
   vo.spacing = g.spacing;
+  vo.chunkEdge = this->ChunkEdge;
   LVDIFVolumeBridge::SetSparseInformation(outputVector->GetInformationObject(0), vo);
   return 1;
 }

@@ -18,6 +18,7 @@
 #include "vtkInformation.h"
 #include "vtkInformationVector.h"
 #include "vtkIntArray.h"
+#include "vtkMultiProcessController.h"
 #include "vtkNew.h"
 #include "vtkObjectFactory.h"
 #include "vtkPointData.h"
@@ -25,15 +26,27 @@
 #include "vtkStreamingDemandDrivenPipeline.h"
 
 #include <algorithm>
+#include <cstring>
+#include <vector>
 
 vtkStandardNewMacro(vtkSignVoxelFilter);
+vtkCxxSetObjectMacro(vtkSignVoxelFilter, Controller, vtkMultiProcessController);
 
 vtkSignVoxelFilter::vtkSignVoxelFilter()
 {
   this->SetInputArrayToProcess(0, 0, 0, vtkDataObject::FIELD_ASSOCIATION_POINTS, "sdf");
+  this->SetController(vtkMultiProcessController::GetGlobalController());
 }
 
-vtkSignVoxelFilter::~vtkSignVoxelFilter() = default;
+vtkSignVoxelFilter::~vtkSignVoxelFilter()
+{
+  this->SetController(nullptr);
+}
+
+bool vtkSignVoxelFilter::Distributed() const
+{
+  return this->Controller && this->Controller->GetNumberOfProcesses() > 1;
+}
 
 namespace
 {
@@ -65,6 +78,89 @@ void RequestedPiece(vtkInformation* outInfo, int ext[6])
     ext[0] = ext[2] = ext[4] = 0; // an empty piece
     ext[1] = ext[3] = ext[5] = -1;
   }
+}
+
+/// The planes [first, last] along the filter axis that rank r of n filters:
+/// its chunk layers [L r / n, L (r + 1) / n) of the L layers (empty: last < first).
+void PiecePlanes(int r, int n, std::int64_t planes, std::int64_t edge, std::int64_t& first, std::int64_t& last)
+{
+  const std::int64_t layers = (planes + edge - 1) / edge;
+  first = layers * r / n * edge;
+  last = std::min(layers * (r + 1) / n * edge, planes) - 1;
+}
+
+// ---- the chunks one rank sends another ---------------------------------------
+// A message is a sequence of records: chunk id (int64), uniform flag (int64),
+// then one voxel (uniform) or the chunk's edge^3 voxels.
+
+void PackChunk(const lvdif::DictionaryVolume& v, std::int64_t id, std::vector<char>& out)
+{
+  const std::int64_t head[2] = { id, v.isUniform(id) ? 1 : 0 };
+  const std::size_t n = head[1] ? 1 : static_cast<std::size_t>(v.chunkEdge()) * v.chunkEdge() * v.chunkEdge();
+  const std::size_t at = out.size();
+  out.resize(at + sizeof(head) + n * sizeof(lvdif::Voxel));
+  std::memcpy(out.data() + at, head, sizeof(head));
+  const lvdif::Voxel u = v.uniformValue(id);
+  std::memcpy(out.data() + at + sizeof(head), head[1] ? &u : v.chunkData(id), n * sizeof(lvdif::Voxel));
+}
+
+void UnpackChunks(lvdif::DictionaryVolume& v, const std::vector<char>& in)
+{
+  const std::size_t full = static_cast<std::size_t>(v.chunkEdge()) * v.chunkEdge() * v.chunkEdge();
+  for (std::size_t at = 0; at < in.size();)
+  {
+    std::int64_t head[2];
+    std::memcpy(head, in.data() + at, sizeof(head));
+    at += sizeof(head);
+    lvdif::require(head[0] >= 0 && head[0] < v.chunkCount(), "vtkSignVoxelFilter: a received chunk id is out of range");
+    if (head[1])
+    {
+      lvdif::Voxel u;
+      std::memcpy(&u, in.data() + at, sizeof(u));
+      v.fillChunk(head[0], u);
+      at += sizeof(u);
+    }
+    else
+    {
+      std::memcpy(v.expandChunk(head[0]), in.data() + at, full * sizeof(lvdif::Voxel));
+      v.markDirty(head[0]);
+      at += full * sizeof(lvdif::Voxel);
+    }
+  }
+}
+
+constexpr int SizeTag = 84721, DataTag = 84722;
+constexpr vtkIdType Piece = vtkIdType(1) << 28; // bytes per message: far below MPI's int count
+
+void SendBytes(vtkMultiProcessController* c, const std::vector<char>& b, int to)
+{
+  const vtkIdType n = static_cast<vtkIdType>(b.size());
+  c->Send(&n, 1, to, SizeTag);
+  for (vtkIdType at = 0; at < n; at += Piece)
+  {
+    c->Send(b.data() + at, std::min(Piece, n - at), to, DataTag);
+  }
+}
+
+std::vector<char> ReceiveBytes(vtkMultiProcessController* c, int from)
+{
+  vtkIdType n = 0;
+  c->Receive(&n, 1, from, SizeTag);
+  std::vector<char> b(static_cast<std::size_t>(n));
+  for (vtkIdType at = 0; at < n; at += Piece)
+  {
+    c->Receive(b.data() + at, std::min(Piece, n - at), from, DataTag);
+  }
+  return b;
+}
+
+/// True on every rank when `ok` is true on every rank (so that a failure on
+/// one rank makes all leave before the next collective step).
+bool AllOk(vtkMultiProcessController* c, bool ok)
+{
+  int mine = ok ? 1 : 0, all = 0;
+  c->AllReduce(&mine, &all, 1, vtkCommunicator::MIN_OP);
+  return all == 1;
 }
 
 void AddStats(vtkDataObject* output, const lvdif::SignVoxelFilterStats& st)
@@ -111,22 +207,46 @@ int vtkSignVoxelFilter::RequestDataObject(
   return 1;
 }
 
-// The scans need whole rows and planes: always filter the whole input (see the header).
+int vtkSignVoxelFilter::RequestInformation(
+  vtkInformation*, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
+{
+  vtkInformation* inInfo = inputVector[0]->GetInformationObject(0);
+  if (inInfo->Has(LVDIFVolumeBridge::CHUNK_EDGE()))
+  {
+    outputVector->GetInformationObject(0)->Set(LVDIFVolumeBridge::CHUNK_EDGE(), inInfo->Get(LVDIFVolumeBridge::CHUNK_EDGE()));
+  }
+  return 1;
+}
+
+// The scans need whole rows and planes: an image is filtered whole, a sparse
+// volume under MPI by chunk layers along the axis (see the header).
 int vtkSignVoxelFilter::RequestUpdateExtent(
   vtkInformation*, vtkInformationVector** inputVector, vtkInformationVector*)
 {
+  using SDDP = vtkStreamingDemandDrivenPipeline;
   vtkInformation* inInfo = inputVector[0]->GetInformationObject(0);
-  if (inInfo->Has(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT()))
+  if (inInfo->Has(SDDP::WHOLE_EXTENT()))
   {
-    int whole[6];
-    inInfo->Get(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT(), whole);
-    inInfo->Set(vtkStreamingDemandDrivenPipeline::UPDATE_EXTENT(), whole, 6);
+    int ext[6];
+    inInfo->Get(SDDP::WHOLE_EXTENT(), ext);
+    const bool sparse = vtkSparseDictionaryVolume::SafeDownCast(inInfo->Get(vtkDataObject::DATA_OBJECT())) != nullptr;
+    if (sparse && this->Distributed() && inInfo->Has(LVDIFVolumeBridge::CHUNK_EDGE()))
+    {
+      // this rank's chunk layers and one ghost plane on each side
+      const int a = this->Axis, lo = ext[2 * a], hi = ext[2 * a + 1];
+      std::int64_t first, last;
+      PiecePlanes(this->Controller->GetLocalProcessId(), this->Controller->GetNumberOfProcesses(), hi - lo + 1,
+        inInfo->Get(LVDIFVolumeBridge::CHUNK_EDGE()), first, last);
+      ext[2 * a] = last < first ? lo : static_cast<int>(std::max<std::int64_t>(lo, lo + first - 1));
+      ext[2 * a + 1] = last < first ? lo : static_cast<int>(std::min<std::int64_t>(hi, lo + last + 1));
+    }
+    inInfo->Set(SDDP::UPDATE_EXTENT(), ext, 6);
   }
-  // a request for the whole extent is one piece of one, without ghosts
-  inInfo->Set(vtkStreamingDemandDrivenPipeline::UPDATE_PIECE_NUMBER(), 0);
-  inInfo->Set(vtkStreamingDemandDrivenPipeline::UPDATE_NUMBER_OF_PIECES(), 1);
-  inInfo->Set(vtkStreamingDemandDrivenPipeline::UPDATE_NUMBER_OF_GHOST_LEVELS(), 0);
-  inInfo->Set(vtkStreamingDemandDrivenPipeline::EXACT_EXTENT(), 1);
+  // one piece of one, without ghosts: the extent is the request
+  inInfo->Set(SDDP::UPDATE_PIECE_NUMBER(), 0);
+  inInfo->Set(SDDP::UPDATE_NUMBER_OF_PIECES(), 1);
+  inInfo->Set(SDDP::UPDATE_NUMBER_OF_GHOST_LEVELS(), 0);
+  inInfo->Set(SDDP::EXACT_EXTENT(), 1);
   return 1;
 }
 
@@ -135,7 +255,7 @@ int vtkSignVoxelFilter::RequestData(
 {
   if (auto* sparse = vtkSparseDictionaryVolume::GetData(inputVector[0]))
   {
-    return this->FilterSparse(sparse, vtkSparseDictionaryVolume::GetData(outputVector));
+    return this->FilterSparse(sparse, vtkSparseDictionaryVolume::GetData(outputVector), outputVector->GetInformationObject(0));
   }
   vtkImageData* input = vtkImageData::GetData(inputVector[0]);
   vtkImageData* output = vtkImageData::GetData(outputVector);
@@ -242,7 +362,8 @@ lvdif::SignVoxelFilterParams vtkSignVoxelFilter::CoreParams() const
   return p;
 }
 
-int vtkSignVoxelFilter::FilterSparse(vtkSparseDictionaryVolume* input, vtkSparseDictionaryVolume* output)
+int vtkSignVoxelFilter::FilterSparse(
+  vtkSparseDictionaryVolume* input, vtkSparseDictionaryVolume* output, vtkInformation* outInfo)
 {
   if (!input->HasVolume())
   {
@@ -251,21 +372,214 @@ int vtkSignVoxelFilter::FilterSparse(vtkSparseDictionaryVolume* input, vtkSparse
   }
   lvdif::SignVoxelFilterStats st;
   LVDIFInterrupter interrupter(this);
-  const bool ok = LVDIFVolumeBridge::CallCore(this, [&] {
-    // a copy: VTK filters leave their input alone (the copy is as sparse as the input)
-    std::shared_ptr<lvdif::DictionaryVolume> volume(input->GetVolume()->clone());
-    st = lvdif::signVoxelFilter(*volume, this->CoreParams(), interrupter);
-    output->SetVolume(std::move(volume));
-    output->SetPartitionColors(input->GetPartitionColors());
-  });
-  if (!ok)
+  const lvdif::SignVoxelFilterParams p = this->CoreParams();
+  std::shared_ptr<lvdif::DictionaryVolume> volume;
+  int owned[6] = { 0, -1, 0, -1, 0, -1 }; // a generic filter's piece: its block of chunks (else all)
+  if (!this->Distributed())
+  {
+    const bool ok = LVDIFVolumeBridge::CallCore(this, [&] {
+      // VTK filters leave their input alone: a copy-on-write clone costs the
+      // chunk table, and only the chunks the filters change are copied
+      volume = input->GetVolume()->clone();
+      st = lvdif::signVoxelFilter(*volume, p, interrupter);
+    });
+    if (!ok)
+    {
+      output->Initialize();
+      return 0;
+    }
+  }
+  else if (!this->FilterSparsePiece(*input->GetVolume(), outInfo, owned, volume, st))
   {
     output->Initialize();
     return 0;
   }
+  // what this rank did (serial: rank 0 of 1, every plane)
+  vtkNew<vtkIdTypeArray> piece;
+  piece->SetName("svf_piece");
+  const int a = this->Axis;
+  std::int64_t first = 0, last = input->GetVolume()->dims()[a] - 1;
+  if (this->Distributed())
+  {
+    PiecePlanes(this->Controller->GetLocalProcessId(), this->Controller->GetNumberOfProcesses(),
+      input->GetVolume()->dims()[a], input->GetVolume()->chunkEdge(), first, last);
+  }
+  for (const std::int64_t v : { std::int64_t(this->Distributed() ? this->Controller->GetLocalProcessId() : 0),
+         std::int64_t(this->Distributed() ? this->Controller->GetNumberOfProcesses() : 1), first, last,
+         input->GetVolume()->expandedChunkCount(), volume ? volume->expandedChunkCount() : std::int64_t(0) })
+  {
+    piece->InsertNextValue(static_cast<vtkIdType>(v));
+  }
+  output->SetVolume(std::move(volume));
+  if (owned[1] >= owned[0])
+  {
+    output->SetOwnedChunks(owned);
+  }
+  output->SetPartitionColors(input->GetPartitionColors());
   AddStats(output, st);
+  output->GetFieldData()->AddArray(piece);
   this->UpdateProgress(1.0);
   return 1;
+}
+
+bool vtkSignVoxelFilter::FilterSparsePiece(const lvdif::DictionaryVolume& in, vtkInformation* outInfo,
+  int ownedChunks[6], std::shared_ptr<lvdif::DictionaryVolume>& volume, lvdif::SignVoxelFilterStats& st)
+{
+  using SDDP = vtkStreamingDemandDrivenPipeline;
+  vtkMultiProcessController* c = this->Controller;
+  const int rank = c->GetLocalProcessId(), size = c->GetNumberOfProcesses();
+  const lvdif::SignVoxelFilterParams p = this->CoreParams();
+  const int a = p.axis;
+  std::int64_t first, last;
+  PiecePlanes(rank, size, in.dims()[a], in.chunkEdge(), first, last);
+  const std::int64_t rows = in.dims()[0] * in.dims()[1] * in.dims()[2] / in.dims()[a];
+  LVDIFInterrupter interrupter(this);
+
+  // 1. the sign each row leaves every rank's layers with after SVF1 (identity for an empty piece)
+  std::vector<std::int8_t> exits(static_cast<std::size_t>(3 * rows));
+  for (int k = 0; k < 3; ++k)
+  {
+    std::fill(exits.begin() + k * rows, exits.begin() + (k + 1) * rows, static_cast<std::int8_t>(k - 1));
+  }
+  bool ok = LVDIFVolumeBridge::CallCore(this, [&] {
+    if (last >= first && (p.filters & lvdif::Svf1))
+    {
+      exits = lvdif::svf1ExitSigns(in, p, first, last, interrupter);
+    }
+  });
+  if (!AllOk(c, ok))
+  {
+    return false;
+  }
+  std::vector<std::int8_t> all(exits.size() * static_cast<std::size_t>(size));
+  c->AllGather(reinterpret_cast<const signed char*>(exits.data()), reinterpret_cast<signed char*>(all.data()),
+    static_cast<vtkIdType>(exits.size()));
+
+  // 2. this rank's planes, entered with the signs composed over the ranks before
+  ok = LVDIFVolumeBridge::CallCore(this, [&] {
+    lvdif::SvfPlanes planes;
+    planes.first = first;
+    planes.last = last;
+    planes.entrySigns = lvdif::svf1BoundarySigns(in, p);
+    for (int q = 0; q < rank; ++q)
+    {
+      const auto from = all.begin() + static_cast<std::ptrdiff_t>(q * exits.size());
+      planes.entrySigns = lvdif::svf1Continue(planes.entrySigns, std::vector<std::int8_t>(from, from + exits.size()));
+    }
+    volume = in.clone();
+    if (last >= first)
+    {
+      st = lvdif::signVoxelFilter(*volume, p, planes, interrupter);
+    }
+  });
+  if (!AllOk(c, ok))
+  {
+    return false;
+  }
+
+  // 3. the extent every rank's consumer asked for; each rank sends its filtered
+  // chunks that overlap another's, pairs in a fixed order (no deadlock)
+  int req[6] = { 0, static_cast<int>(in.dims()[0] - 1), 0, static_cast<int>(in.dims()[1] - 1), 0,
+    static_cast<int>(in.dims()[2] - 1) };
+  int owned[6] = { 0, -1, 0, -1, 0, -1 };
+  bool ownsChunks = false;
+  const int pieces = outInfo->Has(SDDP::UPDATE_NUMBER_OF_PIECES()) ? outInfo->Get(SDDP::UPDATE_NUMBER_OF_PIECES()) : 1;
+  if (pieces > 1)
+  {
+    // a generic filter's piece: a block of chunks, as the .lvdv reader gives it
+    lvdif::VoxelBox region;
+    const int piece = outInfo->Has(SDDP::UPDATE_PIECE_NUMBER()) ? outInfo->Get(SDDP::UPDATE_PIECE_NUMBER()) : 0;
+    ownsChunks = LVDIFVolumeBridge::PieceChunks(piece, pieces, in.options(), owned, region);
+    for (int k = 0; k < 3; ++k)
+    {
+      req[2 * k] = static_cast<int>(ownsChunks ? region.lo[k] : 0);
+      req[2 * k + 1] = static_cast<int>(ownsChunks ? region.hi[k] : -1);
+    }
+  }
+  else if (outInfo->Has(SDDP::UPDATE_EXTENT()))
+  {
+    outInfo->Get(SDDP::UPDATE_EXTENT(), req);
+  }
+  std::vector<int> reqs(6 * static_cast<std::size_t>(size));
+  c->AllGather(req, reqs.data(), 6);
+  auto boxOf = [&](int q) {
+    lvdif::VoxelBox b;
+    for (int k = 0; k < 3; ++k)
+    {
+      b.lo[k] = reqs[6 * q + 2 * k];
+      b.hi[k] = reqs[6 * q + 2 * k + 1];
+    }
+    return b;
+  };
+  lvdif::VoxelBox mine = in.bounds();
+  mine.lo[a] = first;
+  mine.hi[a] = last;
+  ok = LVDIFVolumeBridge::CallCore(this, [&] {
+    for (int i = 0; i < size; ++i)
+      for (int j = i + 1; j < size; ++j)
+      {
+        if (rank != i && rank != j) continue;
+        const int partner = rank == i ? j : i;
+        std::vector<char> out;
+        const lvdif::VoxelBox wanted = boxOf(partner).intersect(mine);
+        if (!wanted.empty())
+        {
+          volume->forEachChunkInBox(wanted, [&](std::int64_t id) { PackChunk(*volume, id, out); });
+        }
+        std::vector<char> got;
+        if (rank == i)
+        {
+          SendBytes(c, out, partner);
+          got = ReceiveBytes(c, partner);
+        }
+        else
+        {
+          got = ReceiveBytes(c, partner);
+          SendBytes(c, out, partner);
+        }
+        UnpackChunks(*volume, got);
+      }
+    // chunks outside this rank's request are not its consumer's: drop them
+    const lvdif::VoxelBox keep = boxOf(rank);
+    const lvdif::Voxel outside = volume->outsideVoxel();
+    for (std::int64_t id = 0; id < volume->chunkCount(); ++id)
+    {
+      if (volume->chunkBox(id).intersect(keep).empty() && !(volume->isUniform(id) && volume->uniformValue(id) == outside))
+      {
+        volume->fillChunk(id, outside);
+      }
+    }
+  });
+  if (!AllOk(c, ok))
+  {
+    return false;
+  }
+  if (pieces > 1)
+  {
+    std::copy(owned, owned + 6, ownedChunks);
+    if (!ownsChunks)
+    {
+      volume.reset(); // a piece without chunks: empty
+    }
+  }
+
+  // 4. the statistics of the whole volume
+  vtkIdType flips[8], sums[8];
+  int iterations[4];
+  for (int k = 0; k < 4; ++k)
+  {
+    flips[k] = static_cast<vtkIdType>(st.flips[k]);
+    flips[4 + k] = static_cast<vtkIdType>(st.planesAtCap[k]);
+  }
+  c->AllReduce(flips, sums, 8, vtkCommunicator::SUM_OP);
+  c->AllReduce(st.iterations.data(), iterations, 4, vtkCommunicator::MAX_OP);
+  for (int k = 0; k < 4; ++k)
+  {
+    st.flips[k] = sums[k];
+    st.planesAtCap[k] = sums[4 + k];
+    st.iterations[k] = iterations[k];
+  }
+  return true;
 }
 
 void vtkSignVoxelFilter::PrintSelf(ostream& os, vtkIndent indent)

@@ -3,11 +3,12 @@
  * @brief   repairs wrong signs of a sparse volume or signed distance image (LVDIF's SVF1..SVF4)
  *
  * Input, one of:
- * - a vtkSparseDictionaryVolume: filtered chunk-aware by Core
- *   (lvdif::signVoxelFilter on the dictionary volume: uniform chunks stay
- *   collapsed, no dense copy) into a copy of the Core volume (the input is not
- *   modified); the output is a vtkSparseDictionaryVolume whose dirty flags
- *   mark the chunks whose signs changed;
+ * - a vtkSparseDictionaryVolume: filtered by Core (lvdif::signVoxelFilter on
+ *   the dictionary volume, streamed by slabs of planes: no dense copy, uniform
+ *   chunks stay collapsed) in a copy-on-write clone of the Core volume: the
+ *   input is not modified, and the output shares every chunk the filters did
+ *   not change with it (only the changed chunks are copied). The output is a
+ *   vtkSparseDictionaryVolume whose dirty flags mark the chunks whose signs changed;
  * - a vtkImageData, as follows.
  *
  * Runs the sign voxel filters of Wang et al. 2023 ("LVDIF", Sect. 3.2) on one
@@ -20,12 +21,31 @@
  * lvdif/SignVoxelFilter.h. Reports progress; AbortExecute cancels (the output
  * is then empty).
  *
- * Pieces: SVF1 scans whole rows and SVF2/SVF3 sweep whole planes, so a piece
- * filtered alone would read its cut as the volume's boundary. The filter
- * therefore asks its input for the WHOLE extent (as vtkProbeFilter does for
- * its source), filters all of it and outputs only the requested update
- * extent: every piece equals the same region of the serial result (correct,
- * not scalable: each rank holds and filters the whole volume).
+ * Sparse input under MPI (a controller with more than one process, e.g.
+ * pvbatch): rank r of n owns the chunk layers [r L / n, (r + 1) L / n) of the
+ * L layers of storage chunks along the filter axis. It asks its input for its
+ * layers plus one ghost plane on each side (the .lvdv reader then loads only
+ * those chunks), filters only its own planes in a copy-on-write clone, and
+ * needs from the other ranks only one exchange: the sign each row leaves
+ * their layers with after SVF1 (lvdif::svf1ExitSigns, all-gathered, then
+ * composed from rank 0 upwards), because SVF2/SVF3 stay inside one plane and
+ * SVF4 reads one plane on each side, which the rank filters itself. Then
+ * each rank sends the filtered chunks that overlap another rank's requested
+ * extent to it (the marching cubes asks for its block plus one ghost layer),
+ * so every rank's output holds exactly the chunks its consumer asked for, as
+ * the serial result has them; chunks outside that extent are dropped
+ * (uniform). A generic filter's piece request (ParaView's Contour) gets the
+ * block of chunks the .lvdv reader would give it (LVDIFVolumeBridge::PieceChunks).
+ * The statistics are summed over the ranks. Field data `svf_piece`
+ * (vtkIdTypeArray): rank, ranks, first and last plane filtered here, the
+ * input's and the output's expanded chunks.
+ *
+ * Image input, pieces: SVF1 scans whole rows and SVF2/SVF3 sweep whole planes,
+ * so a piece filtered alone would read its cut as the volume's boundary. The
+ * filter therefore asks its input for the WHOLE extent (as vtkProbeFilter
+ * does for its source), filters all of it and outputs only the requested
+ * update extent: every piece equals the same region of the serial result
+ * (correct, not scalable: each rank holds and filters the whole image).
  */
 #ifndef vtkSignVoxelFilter_h
 #define vtkSignVoxelFilter_h
@@ -33,10 +53,15 @@
 #include "lvdifFiltersSDFModule.h"
 #include "vtkDataObjectAlgorithm.h"
 
+class vtkMultiProcessController;
 class vtkSparseDictionaryVolume;
+#include <memory>
+
 namespace lvdif
 {
+class DictionaryVolume;
 struct SignVoxelFilterParams;
+struct SignVoxelFilterStats;
 }
 
 class LVDIFFILTERSSDF_EXPORT vtkSignVoxelFilter : public vtkDataObjectAlgorithm
@@ -110,6 +135,13 @@ public:
   ///@}
 
   ///@{
+  /// The ranks of a distributed run (default: the global controller; none or
+  /// one process: serial).
+  void SetController(vtkMultiProcessController* c);
+  vtkGetObjectMacro(Controller, vtkMultiProcessController);
+  ///@}
+
+  ///@{
   /// DEVICE_AUTO (default: CUDA when available), DEVICE_CPU or DEVICE_CUDA.
   vtkSetClampMacro(Device, int, DEVICE_AUTO, DEVICE_CUDA);
   vtkGetMacro(Device, int);
@@ -123,10 +155,18 @@ protected:
   int RequestDataObject(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
   int RequestUpdateExtent(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
   int RequestData(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
+  int RequestInformation(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
   void SetFilterBit(int bit, bool on) { this->SetFilters(on ? (this->Filters | bit) : (this->Filters & ~bit)); }
 
   lvdif::SignVoxelFilterParams CoreParams() const;
-  int FilterSparse(vtkSparseDictionaryVolume* input, vtkSparseDictionaryVolume* output);
+  int FilterSparse(vtkSparseDictionaryVolume* input, vtkSparseDictionaryVolume* output, vtkInformation* outInfo);
+  /// True when the sparse path runs as one of several ranks (Controller with > 1 process).
+  bool Distributed() const;
+  /// The sparse path on one rank of several (see the class comment).
+  bool FilterSparsePiece(const lvdif::DictionaryVolume& input, vtkInformation* outInfo, int ownedChunks[6],
+    std::shared_ptr<lvdif::DictionaryVolume>& volume, lvdif::SignVoxelFilterStats& stats);
+
+  vtkMultiProcessController* Controller = nullptr;
 
   double Threshold = 2.0;
   int Axis = 0;

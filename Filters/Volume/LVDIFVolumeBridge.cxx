@@ -10,11 +10,14 @@
 #include "vtkPolyData.h"
 #include "vtkDataObject.h"
 #include "vtkDataSet.h"
+#include "vtkExtentTranslator.h"
 #include "vtkFloatArray.h"
 #include "vtkImageData.h"
 #include "vtkInformation.h"
 #include "vtkInformationDoubleVectorKey.h"
 #include "vtkInformationInformationVectorKey.h"
+#include "vtkDemandDrivenPipeline.h"
+#include "vtkInformationIntegerKey.h"
 #include "vtkInformationVector.h"
 #include "vtkNew.h"
 #include "vtkPointData.h"
@@ -159,6 +162,58 @@ void SetSparseInformation(vtkInformation* outInfo, const lvdif::VolumeOptions& o
   outInfo->Set(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT(), whole, 6);
   outInfo->Set(vtkDataObject::ORIGIN(), o.origin.data(), 3);
   outInfo->Set(vtkDataObject::SPACING(), o.spacing.data(), 3);
+  outInfo->Set(CHUNK_EDGE(), o.chunkEdge);
+}
+
+bool PieceChunks(int piece, int pieces, const lvdif::VolumeOptions& o, int owned[6], lvdif::VoxelBox& region)
+{
+  int bounds[6], block[6];
+  for (int a = 0; a < 3; ++a)
+  {
+    bounds[2 * a] = 0; // chunk boundaries 0..count: a split by cells gives disjoint chunk ranges
+    bounds[2 * a + 1] = static_cast<int>((o.dims[a] + o.chunkEdge - 1) / o.chunkEdge);
+  }
+  vtkNew<vtkExtentTranslator> t;
+  if (!t->PieceToExtentThreadSafe(piece, pieces, 0, bounds, block, vtkExtentTranslator::BLOCK_MODE, 0) ||
+    block[0] >= block[1] || block[2] >= block[3] || block[4] >= block[5])
+  {
+    return false;
+  }
+  for (int a = 0; a < 3; ++a)
+  {
+    owned[2 * a] = block[2 * a];
+    owned[2 * a + 1] = block[2 * a + 1] - 1;
+    region.lo[a] = static_cast<std::int64_t>(block[2 * a]) * o.chunkEdge;
+    region.hi[a] = std::min<std::int64_t>(static_cast<std::int64_t>(block[2 * a + 1]) * o.chunkEdge, o.dims[a] - 1);
+  }
+  return true;
+}
+
+namespace
+{
+/// Meta data that flows downstream with the information pass through any
+/// filter (ParaView puts a post filter after every source), as
+/// vtkInformationDataObjectMetaDataKey does for data objects.
+class ChunkEdgeKey : public vtkInformationIntegerKey
+{
+public:
+  ChunkEdgeKey() : vtkInformationIntegerKey("LVDIF_CHUNK_EDGE", "LVDIFVolumeBridge") {}
+  void CopyDefaultInformation(vtkInformation* request, vtkInformation* fromInfo, vtkInformation* toInfo) override
+  {
+    if (request->Has(vtkDemandDrivenPipeline::REQUEST_INFORMATION()))
+    {
+      this->ShallowCopy(fromInfo, toInfo);
+    }
+  }
+};
+} // namespace
+
+vtkInformationIntegerKey* CHUNK_EDGE()
+{
+  // never deleted: VTK's key managers delete their keys at exit, after a
+  // plugin's library (and so this class's code) may have been unloaded
+  static vtkInformationIntegerKey* key = new ChunkEdgeKey;
+  return key;
 }
 
 void FillImage(const lvdif::DictionaryVolume& volume, const int extentIn[6], vtkImageData* image, bool withColor)

@@ -29,6 +29,7 @@ class vtkDataSet;
 class vtkFloatArray;
 class vtkImageData;
 class vtkInformation;
+class vtkInformationIntegerKey;
 class vtkInformationVector;
 class vtkPolyData;
 
@@ -61,8 +62,22 @@ LVDIFFILTERSVOLUME_EXPORT void EnsureSparseOutput(vtkInformationVector* outputVe
 
 /// What a sparse volume producer announces in RequestInformation: the volume's
 /// whole extent, origin and spacing (read by vtkSparseVolumeToImage and the
-/// piece logic of the consumers).
+/// piece logic of the consumers), and its chunk edge (CHUNK_EDGE).
 LVDIFFILTERSVOLUME_EXPORT void SetSparseInformation(vtkInformation* outInfo, const lvdif::VolumeOptions& options);
+
+/// The storage chunks a piece of a sparse volume owns when a generic filter
+/// asks for piece `piece` of `pieces` (ParaView's Contour under pvbatch): the
+/// chunk boundaries 0..C of each axis are split like a point extent
+/// (vtkExtentTranslator, block mode, by cells), and the piece owns the chunks
+/// between its boundaries, `owned` as an inclusive box of chunk coordinates.
+/// `region` gets the voxels it needs: its chunks plus the one layer of points
+/// their partitions share with the next chunks. False for a piece without chunks.
+LVDIFFILTERSVOLUME_EXPORT bool PieceChunks(
+  int piece, int pieces, const lvdif::VolumeOptions& options, int owned[6], lvdif::VoxelBox& region);
+
+/// The chunk edge of a sparse producer's volume, announced before the data
+/// exists, so that a consumer can ask for whole chunks (vtkSignVoxelFilter's pieces).
+LVDIFFILTERSVOLUME_EXPORT vtkInformationIntegerKey* CHUNK_EDGE();
 
 /// Writes the voxels of `extent` (clipped to the volume) into `image`:
 /// extent, origin, spacing, `sdf` and, if withColor, `rgba`.

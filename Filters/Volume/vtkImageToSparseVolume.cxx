@@ -61,6 +61,7 @@ int vtkImageToSparseVolume::RequestInformation(
   if (inInfo->Has(vtkDataObject::ORIGIN())) inInfo->Get(vtkDataObject::ORIGIN(), origin);
   if (inInfo->Has(vtkDataObject::SPACING())) inInfo->Get(vtkDataObject::SPACING(), spacing);
   lvdif::VolumeOptions o;
+  o.chunkEdge = this->ChunkEdge;
   for (int a = 0; a < 3; ++a)
   {
     o.dims[a] = whole[2 * a + 1] - whole[2 * a] + 1;

@@ -8,7 +8,6 @@
 #include "lvdif/VolumeFile.h"
 
 #include "vtkDataObject.h"
-#include "vtkExtentTranslator.h"
 #include "vtkImageData.h"
 #include "vtkInformation.h"
 #include "vtkInformationVector.h"
@@ -109,28 +108,12 @@ int vtkDictionaryVolumeReader::RequestData(
   {
     // A piece is a block of storage chunks (see the header); it reads them and
     // the one layer of points their partitions share with the next chunks.
-    const lvdif::VolumeOptions& o = this->Internal->Info.options;
-    int bounds[6], block[6];
-    for (int a = 0; a < 3; ++a)
-    {
-      bounds[2 * a] = 0; // chunk boundaries 0..count: a split by cells gives disjoint chunk ranges
-      bounds[2 * a + 1] = static_cast<int>((o.dims[a] + o.chunkEdge - 1) / o.chunkEdge);
-    }
-    vtkNew<vtkExtentTranslator> t;
-    if (!t->PieceToExtentThreadSafe(piece, pieces, 0, bounds, block, vtkExtentTranslator::BLOCK_MODE, 0) ||
-      block[0] >= block[1] || block[2] >= block[3] || block[4] >= block[5])
+    if (!LVDIFVolumeBridge::PieceChunks(piece, pieces, this->Internal->Info.options, owned, options.region))
     {
       output->Initialize(); // a piece without chunks: empty
       return 1;
     }
     options.wholeVolume = false;
-    for (int a = 0; a < 3; ++a)
-    {
-      owned[2 * a] = block[2 * a];
-      owned[2 * a + 1] = block[2 * a + 1] - 1;
-      options.region.lo[a] = static_cast<std::int64_t>(block[2 * a]) * o.chunkEdge;
-      options.region.hi[a] = std::min<std::int64_t>(static_cast<std::int64_t>(block[2 * a + 1]) * o.chunkEdge, o.dims[a] - 1);
-    }
   }
   else if (outInfo->Has(SDDP::UPDATE_EXTENT()) && outInfo->Has(SDDP::WHOLE_EXTENT()))
   {

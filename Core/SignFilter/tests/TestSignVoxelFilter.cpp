@@ -587,3 +587,259 @@ TEST(SignVoxelFilterVolume, RepairsAStoredSphere)
   EXPECT_NE(std::find(dirty.begin(), dirty.end(), vol.chunkOf(30, 24, 20)), dirty.end());
   EXPECT_NE(std::find(dirty.begin(), dirty.end(), vol.chunkOf(5, 5, 33)), dirty.end());
 }
+
+// ---- the streamed volume filter against the dense filter ---------------------
+
+namespace
+{
+/// A dictionary volume holding randomVol's values (wrong signs everywhere,
+/// uniform chunks far out), and the dense grid of its decoded values.
+std::unique_ptr<DictionaryVolume> randomVolume(std::int64_t x, std::int64_t y, std::int64_t z, unsigned seed)
+{
+  VolumeOptions o;
+  o.dims = { x, y, z };
+  o.chunkEdge = 8;
+  o.bandWidth = 4.0f; // saturates the far field: uniform chunks of both signs
+  auto vol = std::make_unique<DictionaryVolume>(o);
+  Vol g = randomVol(x, y, z, seed);
+  for (std::int64_t k = 0; k < z; ++k)
+    for (std::int64_t j = 0; j < y; ++j)
+      for (std::int64_t i = 0; i < x; ++i) vol->setSdf(i, j, k, g.at(i, j, k));
+  // a wrong-sign box far outside (saturated) crossing chunk and slab borders
+  for (std::int64_t k = 1; k < 6; ++k)
+    for (std::int64_t j = 1; j < 9; ++j)
+      for (std::int64_t i = 1; i < 4; ++i) vol->setSdf(i, j, k, -4.0f);
+  vol->collapseUniformChunks();
+  return vol;
+}
+
+Vol decoded(const DictionaryVolume& v)
+{
+  Vol g(v.dims()[0], v.dims()[1], v.dims()[2], 0);
+  for (std::int64_t k = 0; k < g.nz; ++k)
+    for (std::int64_t j = 0; j < g.ny; ++j)
+      for (std::int64_t i = 0; i < g.nx; ++i) g.at(i, j, k) = v.sdf(i, j, k);
+  return g;
+}
+
+/// What the volume filter must store: the dense filter's result on the
+/// decoded volume, written back as the key of each value whose sign changed.
+std::vector<Voxel> expectedVoxels(const DictionaryVolume& v, const SignVoxelFilterParams& p, SignVoxelFilterStats& st)
+{
+  Vol g = decoded(v);
+  st = signVoxelFilter(g.view(), p);
+  const SdfKey zero = v.sdfDictionary().zeroKey();
+  std::vector<Voxel> out;
+  for (std::int64_t k = 0; k < g.nz; ++k)
+    for (std::int64_t j = 0; j < g.ny; ++j)
+      for (std::int64_t i = 0; i < g.nx; ++i)
+      {
+        Voxel old = v.get(i, j, k);
+        const float f = g.at(i, j, k);
+        if ((f < 0.0f) != (old.sdf < zero)) old.sdf = v.encode(f);
+        out.push_back(old);
+      }
+  return out;
+}
+
+std::vector<Voxel> voxels(const DictionaryVolume& v)
+{
+  std::vector<Voxel> out;
+  for (std::int64_t k = 0; k < v.dims()[2]; ++k)
+    for (std::int64_t j = 0; j < v.dims()[1]; ++j)
+      for (std::int64_t i = 0; i < v.dims()[0]; ++i) out.push_back(v.get(i, j, k));
+  return out;
+}
+
+void expectSameStats(const SignVoxelFilterStats& a, const SignVoxelFilterStats& b)
+{
+  EXPECT_EQ(a.flips, b.flips);
+  EXPECT_EQ(a.iterations, b.iterations);
+  EXPECT_EQ(a.planesAtCap, b.planesAtCap);
+}
+} // namespace
+
+TEST(SignVoxelFilterVolume, StreamedSlabsEqualTheDenseFilter)
+{
+  const auto start = randomVolume(21, 18, 25, 7);
+  for (int axis = 0; axis < 3; ++axis)
+    for (SvfBoundary b : { SvfBoundary::Outside, SvfBoundary::Free })
+      for (std::int64_t slab : { 1, 2, 3, 7, 0 })
+      {
+        SCOPED_TRACE("axis " + std::to_string(axis) + " slab " + std::to_string(slab) +
+          (b == SvfBoundary::Free ? " free" : " outside"));
+        SignVoxelFilterParams p = params(SvfAll, axis, b);
+        p.volumeSlabPlanes = slab;
+        SignVoxelFilterStats want;
+        const std::vector<Voxel> expected = expectedVoxels(*start, p, want);
+        auto vol = start->clone();
+        const SignVoxelFilterStats got = signVoxelFilter(*vol, p);
+        ASSERT_GT(want.totalFlips(), 100);
+        EXPECT_EQ(voxels(*vol), expected);
+        expectSameStats(got, want);
+        EXPECT_EQ(voxels(*start), voxels(*start->clone())); // (the clone left the start alone)
+      }
+}
+
+TEST(SignVoxelFilterVolume, PlanesAndChunksOfOneSignEqualTheDenseFilter)
+{
+  // mostly uniform: a small sphere, whole planes outside (positive) and a slab
+  // of whole planes inside (negative), wrong signs in both and at the border,
+  // so that the filter's shortcuts for planes and chunks of one sign are taken
+  VolumeOptions o;
+  o.dims = { 36, 30, 44 };
+  o.chunkEdge = 4;
+  o.bandWidth = 4.0f;
+  DictionaryVolume start(o);
+  fillFromFunction(start, sphereSdf(18, 15, 12, 6));
+  for (std::int64_t z = 28; z < 36; ++z)
+    for (std::int64_t y = 0; y < 30; ++y)
+      for (std::int64_t x = 0; x < 36; ++x) start.setSdf(x, y, z, -4.0f);
+  for (const Index3 w : { Index3{ 3, 3, 40 }, Index3{ 20, 20, 31 }, Index3{ 0, 0, 30 }, Index3{ 35, 29, 43 },
+         Index3{ 18, 15, 12 } })
+    start.setSdf(w[0], w[1], w[2], -start.sdf(w[0], w[1], w[2]));
+  start.collapseUniformChunks();
+  for (int axis = 0; axis < 3; ++axis)
+    for (SvfBoundary b : { SvfBoundary::Outside, SvfBoundary::Free })
+      for (unsigned filters : { unsigned(SvfAll), unsigned(Svf2 | Svf3 | Svf4) })
+      {
+        SCOPED_TRACE("axis " + std::to_string(axis) + (b == SvfBoundary::Free ? " free" : " outside") +
+          " filters " + std::to_string(filters));
+        SignVoxelFilterParams p = params(filters, axis, b);
+        p.volumeSlabPlanes = 5;
+        SignVoxelFilterStats want;
+        const std::vector<Voxel> expected = expectedVoxels(start, p, want);
+        auto vol = start.clone();
+        expectSameStats(signVoxelFilter(*vol, p), want);
+        EXPECT_EQ(voxels(*vol), expected);
+        EXPECT_GT(want.totalFlips(), 0);
+      }
+}
+
+TEST(SignVoxelFilterVolume, EachFilterAloneEqualsTheDenseFilter)
+{
+  const auto start = randomVolume(17, 23, 19, 11);
+  for (unsigned f : { unsigned(Svf1), unsigned(Svf2), unsigned(Svf3), unsigned(Svf4), unsigned(Svf1 | Svf4) })
+  {
+    SCOPED_TRACE("filters " + std::to_string(f));
+    SignVoxelFilterParams p = params(f, 1, SvfBoundary::Outside);
+    p.volumeSlabPlanes = 4;
+    SignVoxelFilterStats want;
+    const std::vector<Voxel> expected = expectedVoxels(*start, p, want);
+    auto vol = start->clone();
+    expectSameStats(signVoxelFilter(*vol, p), want);
+    EXPECT_EQ(voxels(*vol), expected);
+  }
+}
+
+TEST(SignVoxelFilterVolume, PiecesWithEntrySignsEqualTheWholeRun)
+{
+  // pieces of planes along the axis, each filtered on its own clone from the
+  // original (as distributed ranks do), entry signs composed from the pieces before
+  const auto start = randomVolume(19, 22, 26, 3);
+  for (int axis = 0; axis < 3; ++axis)
+  {
+    SCOPED_TRACE("axis " + std::to_string(axis));
+    SignVoxelFilterParams p = params(SvfAll, axis, SvfBoundary::Outside);
+    p.volumeSlabPlanes = 3;
+    SignVoxelFilterStats want;
+    const std::vector<Voxel> expected = expectedVoxels(*start, p, want);
+    const std::int64_t n = start->dims()[axis];
+    const std::vector<std::int64_t> cuts{ 0, 5, 6, n / 2 + 1, n }; // a one-plane piece too
+    std::vector<std::unique_ptr<DictionaryVolume>> parts;
+    SignVoxelFilterStats sum;
+    std::vector<std::int8_t> entry = svf1BoundarySigns(*start, p);
+    std::vector<std::int8_t> unknown; // negative control: every piece enters with the boundary's signs
+    for (std::size_t k = 0; k + 1 < cuts.size(); ++k)
+    {
+      SvfPlanes planes;
+      planes.first = cuts[k];
+      planes.last = cuts[k + 1] - 1;
+      planes.entrySigns = entry;
+      parts.push_back(start->clone());
+      const SignVoxelFilterStats st = signVoxelFilter(*parts.back(), p, planes);
+      for (int q = 0; q < 4; ++q)
+      {
+        sum.flips[q] += st.flips[q];
+        sum.iterations[q] = std::max(sum.iterations[q], st.iterations[q]);
+        sum.planesAtCap[q] += st.planesAtCap[q];
+      }
+      entry = svf1Continue(entry, svf1ExitSigns(*start, p, planes.first, planes.last));
+    }
+    std::vector<Voxel> assembled;
+    for (std::int64_t k = 0; k < start->dims()[2]; ++k)
+      for (std::int64_t j = 0; j < start->dims()[1]; ++j)
+        for (std::int64_t i = 0; i < start->dims()[0]; ++i)
+        {
+          const std::int64_t a = axis == 0 ? i : (axis == 1 ? j : k);
+          std::size_t piece = 0;
+          while (a >= cuts[piece + 1]) ++piece;
+          assembled.push_back(parts[piece]->get(i, j, k));
+        }
+    EXPECT_EQ(assembled, expected);
+    EXPECT_EQ(sum.flips, want.flips);
+    EXPECT_EQ(sum.iterations, want.iterations);
+    EXPECT_EQ(sum.planesAtCap, want.planesAtCap);
+    // the same pieces entered with the boundary's signs: SVF1's rows are cut, results differ
+    auto wrong = start->clone();
+    SvfPlanes late;
+    late.first = cuts[3];
+    late.entrySigns = svf1BoundarySigns(*start, p);
+    signVoxelFilter(*wrong, p, late);
+    std::int64_t diff = 0;
+    for (std::int64_t k = 0; k < start->dims()[2]; ++k)
+      for (std::int64_t j = 0; j < start->dims()[1]; ++j)
+        for (std::int64_t i = 0; i < start->dims()[0]; ++i)
+          if ((axis == 0 ? i : (axis == 1 ? j : k)) >= cuts[3])
+            diff += wrong->get(i, j, k) != parts[3]->get(i, j, k) ? 1 : 0;
+    EXPECT_GT(diff, 0);
+  }
+  SignVoxelFilterParams p = params(SvfAll, 0, SvfBoundary::Outside);
+  SvfPlanes bad;
+  bad.first = 4;
+  auto vol = start->clone();
+  EXPECT_THROW(signVoxelFilter(*vol, p, bad), Error); // a later piece without entry signs
+}
+
+TEST(SignVoxelFilterVolume, NeedsOnlyASlabOfMemory)
+{
+  // 128 x 128 x 384: the dense float grid would be 24 MiB; a limit of 12 MiB
+  // holds a slab, not the grid
+  VolumeOptions o;
+  o.dims = { 128, 128, 384 };
+  o.chunkEdge = 32;
+  DictionaryVolume vol(o);
+  fillFromFunction(vol, sphereSdf(64, 64, 192, 50));
+  vol.setSdf(64, 64, 192, 5.0f); // a wrong sign deep inside
+  ::setenv("LVDIF_MEMORY_LIMIT", std::to_string(12u << 20).c_str(), 1);
+  SignVoxelFilterParams p = params(SvfAll, 2, SvfBoundary::Outside);
+  SignVoxelFilterStats st;
+  EXPECT_NO_THROW(st = signVoxelFilter(vol, p));
+  ::unsetenv("LVDIF_MEMORY_LIMIT");
+  EXPECT_LT(vol.sdf(64, 64, 192), 0.0f);
+  EXPECT_GE(st.totalFlips(), 1);
+}
+
+TEST(SignVoxelFilterCuda, StreamedVolumeEqualsTheCpu)
+{
+  // the streamed volume filter sends its SVF2/SVF3 slabs to the device: the
+  // same voxels and statistics as on the CPU
+  if (!cuda::available())
+    GTEST_SKIP() << "no CUDA device";
+  const auto start = randomVolume(37, 29, 41, 5);
+  for (int axis = 0; axis < 3; ++axis)
+    for (std::int64_t slab : { 3, 0 })
+    {
+      SCOPED_TRACE("axis " + std::to_string(axis) + " slab " + std::to_string(slab));
+      SignVoxelFilterParams p = params(SvfAll, axis, SvfBoundary::Outside);
+      p.volumeSlabPlanes = slab;
+      auto cpu = start->clone();
+      const SignVoxelFilterStats a = signVoxelFilter(*cpu, p);
+      p.device = Device::Cuda;
+      auto gpu = start->clone();
+      const SignVoxelFilterStats b = signVoxelFilter(*gpu, p);
+      EXPECT_EQ(b.device, Device::Cuda);
+      EXPECT_EQ(voxels(*gpu), voxels(*cpu));
+      expectSameStats(b, a);
+    }
+}

@@ -7,6 +7,7 @@
 #include <cmath>
 #include <cstring>
 #include <mutex>
+#include <new>
 #include <sstream>
 
 namespace lvdif
@@ -35,7 +36,44 @@ std::int64_t chunkSize(int edge)
 {
   return static_cast<std::int64_t>(edge) * edge * edge;
 }
+
+// A chunk buffer: a reference count (the volumes sharing it, see clone) in a
+// header of its own cache line, then the voxels.
+struct BufferHeader
+{
+  std::atomic<std::int32_t> refs{ 1 };
+};
+constexpr std::size_t HeaderBytes = 64;
+static_assert(sizeof(BufferHeader) <= HeaderBytes, "the header fits its line");
+
+BufferHeader* headerOf(const Voxel* d)
+{
+  return reinterpret_cast<BufferHeader*>(reinterpret_cast<char*>(const_cast<Voxel*>(d)) - HeaderBytes);
+}
+
+Voxel* allocateBuffer(std::int64_t n)
+{
+  char* raw = static_cast<char*>(::operator new(HeaderBytes + static_cast<std::size_t>(n) * sizeof(Voxel)));
+  new (raw) BufferHeader();
+  return reinterpret_cast<Voxel*>(raw + HeaderBytes);
+}
+
+/// Drops one reference; the last one frees the buffer.
+void releaseBuffer(Voxel* d)
+{
+  BufferHeader* h = headerOf(d);
+  if (h->refs.fetch_sub(1, std::memory_order_acq_rel) == 1)
+  {
+    h->~BufferHeader();
+    ::operator delete(reinterpret_cast<char*>(h));
+  }
+}
 } // namespace
+
+bool DictionaryVolume::ownsBuffer(const Voxel* d)
+{
+  return headerOf(d)->refs.load(std::memory_order_acquire) == 1;
+}
 
 VoxelBox VoxelBox::intersect(const VoxelBox& o) const
 {
@@ -150,7 +188,10 @@ DictionaryVolume::~DictionaryVolume()
 {
   for (std::int64_t i = 0; i < this->ChunkTotal; ++i)
   {
-    delete[] this->Chunks[i].Data.load();
+    if (Voxel* d = this->Chunks[i].Data.load())
+    {
+      releaseBuffer(d);
+    }
   }
 }
 
@@ -158,17 +199,31 @@ std::unique_ptr<DictionaryVolume> DictionaryVolume::clone() const
 {
   auto copy = std::make_unique<DictionaryVolume>(this->Options);
   copy->Colors = this->Colors;
-  const std::int64_t n = chunkSize(this->Options.chunkEdge);
+  std::int64_t shared = 0;
   for (std::int64_t i = 0; i < this->ChunkTotal; ++i)
   {
     copy->Chunks[i].Uniform = this->Chunks[i].Uniform;
-    if (const Voxel* d = this->chunkData(i))
+    if (Voxel* d = this->Chunks[i].Data.load(std::memory_order_acquire))
     {
-      Voxel* dst = copy->expandChunk(i);
-      std::memcpy(dst, d, static_cast<size_t>(n) * sizeof(Voxel));
+      // copy-on-write: both volumes hold the buffer; a write copies it (expandChunk)
+      headerOf(d)->refs.fetch_add(1, std::memory_order_relaxed);
+      copy->Chunks[i].Data.store(d, std::memory_order_release);
+      ++shared;
     }
   }
+  copy->Expanded.store(shared);
   return copy;
+}
+
+std::int64_t DictionaryVolume::sharedChunkCount() const
+{
+  std::int64_t n = 0;
+  for (std::int64_t i = 0; i < this->ChunkTotal; ++i)
+  {
+    const Voxel* d = this->chunkData(i);
+    n += d && !ownsBuffer(d) ? 1 : 0;
+  }
+  return n;
 }
 
 VoxelBox DictionaryVolume::bounds() const
@@ -197,6 +252,10 @@ void DictionaryVolume::set(std::int64_t x, std::int64_t y, std::int64_t z, Voxel
       return; // writing the uniform value changes nothing
     }
     d = this->expandChunk(id);
+  }
+  else if (!ownsBuffer(d))
+  {
+    d = this->expandChunk(id); // shared with a clone: copy it first
   }
   d[this->localIndex(x, y, z)] = v;
   c.RangeStale.store(1, std::memory_order_relaxed);
@@ -245,17 +304,27 @@ Voxel* DictionaryVolume::expandChunk(std::int64_t id)
 {
   Chunk& c = this->Chunks[id];
   Voxel* d = c.Data.load(std::memory_order_acquire);
-  if (d)
+  if (d && ownsBuffer(d))
   {
     return d;
   }
   std::lock_guard<std::mutex> lock(expansionLock(id));
   d = c.Data.load(std::memory_order_acquire);
+  const std::int64_t n = chunkSize(this->Options.chunkEdge);
   if (d)
   {
-    return d;
+    if (ownsBuffer(d))
+    {
+      return d;
+    }
+    // shared with a clone: this volume gets its own copy (already counted in
+    // its memory), the other keeps the buffer
+    Voxel* own = allocateBuffer(n);
+    std::memcpy(own, d, static_cast<std::size_t>(n) * sizeof(Voxel));
+    c.Data.store(own, std::memory_order_release);
+    releaseBuffer(d);
+    return own;
   }
-  const std::int64_t n = chunkSize(this->Options.chunkEdge);
   const std::uint64_t bytes = static_cast<std::uint64_t>(n) * sizeof(Voxel);
   const std::uint64_t used = this->memoryBytes();
   if (used + bytes > this->Limit)
@@ -265,7 +334,7 @@ Voxel* DictionaryVolume::expandChunk(std::int64_t id)
         << formatBytes(used) << " of its " << formatBytes(this->Limit) << " limit";
     throw Error(ErrorCode::OutOfMemory, msg.str());
   }
-  d = new Voxel[static_cast<size_t>(n)];
+  d = allocateBuffer(n);
   std::fill(d, d + n, c.Uniform);
   this->Expanded.fetch_add(1);
   c.Data.store(d, std::memory_order_release);
@@ -277,7 +346,7 @@ void DictionaryVolume::freeChunkData(Chunk& c)
   Voxel* d = c.Data.exchange(nullptr);
   if (d)
   {
-    delete[] d;
+    releaseBuffer(d);
     this->Expanded.fetch_sub(1);
   }
 }

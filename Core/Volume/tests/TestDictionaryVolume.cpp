@@ -7,6 +7,7 @@
 
 #include <cmath>
 #include <random>
+#include <vector>
 
 using namespace lvdif;
 
@@ -200,6 +201,92 @@ TEST(DictionaryVolume, CloneIsDeep)
   EXPECT_EQ(c->colors().size(), 2u);
   c->setSdf(25, 25, 25, 3.0f);
   EXPECT_FLOAT_EQ(v.sdf(25, 25, 25), -8.0f);
+}
+
+namespace
+{
+/// Every voxel of a volume, as an independent record to compare with later.
+std::vector<Voxel> snapshot(const DictionaryVolume& v)
+{
+  std::vector<Voxel> all;
+  all.reserve(static_cast<std::size_t>(v.voxelCount()));
+  for (std::int64_t z = 0; z < v.dims()[2]; ++z)
+    for (std::int64_t y = 0; y < v.dims()[1]; ++y)
+      for (std::int64_t x = 0; x < v.dims()[0]; ++x) all.push_back(v.get(x, y, z));
+  return all;
+}
+} // namespace
+
+TEST(DictionaryVolume, CloneIsCopyOnWrite)
+{
+  DictionaryVolume v(opts(50, 50, 50, 8));
+  fillFromFunction(v, sphereSdf(25, 25, 25, 15));
+  const std::int64_t expanded = v.expandedChunkCount();
+  ASSERT_GT(expanded, 20);
+  const std::vector<Voxel> original = snapshot(v);
+  auto c = v.clone();
+  // nothing copied yet: every expanded chunk is shared by both
+  EXPECT_EQ(v.sharedChunkCount(), expanded);
+  EXPECT_EQ(c->sharedChunkCount(), expanded);
+  EXPECT_EQ(c->expandedChunkCount(), expanded);
+  EXPECT_EQ(c->chunkData(v.chunkOf(25, 25, 10)), v.chunkData(v.chunkOf(25, 25, 10)));
+
+  // every way of writing the clone leaves the original alone and copies only that chunk
+  c->setSdf(25, 25, 10, 3.0f);                                    // set
+  EXPECT_EQ(c->sharedChunkCount(), expanded - 1);
+  EXPECT_NE(c->chunkData(v.chunkOf(25, 25, 10)), v.chunkData(v.chunkOf(25, 25, 10)));
+  Voxel* d = c->expandChunk(c->chunkOf(10, 25, 25));               // expandChunk
+  d[c->localIndex(10, 25, 25)] = Voxel{ 7, 1 };
+  c->fillChunk(c->chunkOf(25, 40, 25), c->insideVoxel());         // fillChunk
+  for (std::int64_t id = 0; id < c->chunkCount(); ++id) c->tryCollapseChunk(id);
+  EXPECT_EQ(snapshot(v), original);
+  EXPECT_FLOAT_EQ(c->sdf(25, 25, 10), 3.0f);
+  EXPECT_EQ(c->get(10, 25, 25), (Voxel{ 7, 1 }));
+  EXPECT_EQ(c->get(25, 40, 25), c->insideVoxel());
+  EXPECT_EQ(v.sharedChunkCount(), expanded - 3);
+
+  // and writing the original leaves the clone alone
+  const std::vector<Voxel> cloned = snapshot(*c);
+  v.setSdf(25, 10, 25, -2.0f);
+  v.fillChunk(v.chunkOf(40, 25, 25), v.outsideVoxel());
+  EXPECT_EQ(snapshot(*c), cloned);
+  EXPECT_FLOAT_EQ(v.sdf(25, 10, 25), -2.0f);
+
+  // a clone outlives its source; clones of clones share too
+  auto cc = c->clone();
+  auto ccc = cc->clone();
+  c.reset();
+  EXPECT_EQ(snapshot(*cc), cloned);
+  ccc->setSdf(25, 25, 12, -1.0f);
+  EXPECT_EQ(snapshot(*cc), cloned);
+  cc.reset();
+  EXPECT_FLOAT_EQ(ccc->sdf(25, 25, 12), -1.0f);
+  EXPECT_EQ(ccc->sharedChunkCount(), v.sharedChunkCount()); // what neither wrote is still v's buffer
+}
+
+TEST(DictionaryVolume, CloneCopiesOnConcurrentWrites)
+{
+  // threads write distinct chunks of a clone (the documented concurrency), each chunk copied once
+  DictionaryVolume v(opts(64, 64, 64, 8));
+  fillFromFunction(v, sphereSdf(32, 32, 32, 20));
+  const std::vector<Voxel> original = snapshot(v);
+  auto c = v.clone();
+#pragma omp parallel for schedule(dynamic, 1)
+  for (std::int64_t id = 0; id < c->chunkCount(); ++id)
+  {
+    const VoxelBox b = c->chunkBox(id);
+    if (c->isUniform(id)) continue;
+    for (std::int64_t z = b.lo[2]; z <= b.hi[2]; ++z)
+      for (std::int64_t y = b.lo[1]; y <= b.hi[1]; ++y)
+        for (std::int64_t x = b.lo[0]; x <= b.hi[0]; ++x) c->setSdf(x, y, z, -c->sdf(x, y, z));
+  }
+  EXPECT_EQ(snapshot(v), original);
+  EXPECT_EQ(c->sharedChunkCount(), 0);
+  EXPECT_EQ(v.sharedChunkCount(), 0);
+  for (std::int64_t z = 0; z < 64; z += 5)
+    for (std::int64_t y = 0; y < 64; y += 3)
+      for (std::int64_t x = 0; x < 64; ++x)
+        if (!v.isUniform(v.chunkOf(x, y, z))) ASSERT_EQ(c->sdf(x, y, z), v.decode(v.encode(-v.sdf(x, y, z))));
 }
 
 TEST(DictionaryVolume, BoundsCheckedAccess)

@@ -27,6 +27,7 @@
 
 #include <array>
 #include <cstdint>
+#include <vector>
 
 namespace lvdif
 {
@@ -72,6 +73,9 @@ struct SignVoxelFilterParams
   int maxIterations = 0;
   SvfBoundary boundary = SvfBoundary::Outside;
   Device device = Device::Auto;
+  /// Dictionary volumes only: planes decoded per slab (0 = automatic, about
+  /// 128 MiB). A test knob: the result does not depend on it.
+  std::int64_t volumeSlabPlanes = 0;
 };
 
 struct SignVoxelFilterStats
@@ -98,15 +102,55 @@ struct SignVoxelFilterStats
 SignVoxelFilterStats signVoxelFilter(const FloatGridView& grid, const SignVoxelFilterParams& params = {},
   Interrupter& interrupter = nullInterrupter());
 
-/// The same on a dictionary volume: decodes it into a dense float grid (4 bytes
-/// a voxel, checked with requireMemory first), filters that, and writes back
-/// only the voxels whose sign changed, as the key of the negated decoded value
-/// (colour kept; chunks marked dirty, collapsed again where they became
-/// uniform). Because keys are ordered like values, the filters see exactly
-/// the signs the volume stores; magnitudes are those of the dictionary.
-/// Cancelling leaves the volume unchanged (the write-back starts after the
-/// filters); an error during the write-back (OutOfMemory) leaves part of it.
+/// The planes [first, last] along the filter axis: a piece of a volume for the
+/// sign voxel filters (distributed runs). SVF1's rows cross the volume along
+/// the axis, SVF2/SVF3 work inside one plane, SVF4 reads one plane on each
+/// side: a piece needs the sign each row enters it with and one ghost plane
+/// on each side, nothing else.
+struct SvfPlanes
+{
+  std::int64_t first = 0;
+  /// Below first: through the volume's last plane.
+  std::int64_t last = -1;
+  /// The SVF1 sign (-1, 0, +1) each row enters plane `first` with: nU x nV
+  /// values, u fastest, (u, v) the in-plane axes in order ((y, z) for axis x,
+  /// (x, z) for y, (x, y) for z). Empty: the boundary's (first must be 0).
+  /// Obtained by composing svf1ExitSigns of the pieces before (svf1Continue).
+  std::vector<std::int8_t> entrySigns;
+};
+
+/// The same on a dictionary volume, streamed: planes perpendicular to the
+/// filter axis are decoded a slab at a time into a float buffer (at most
+/// 128 MiB or an eighth of the memory limit, but three planes at least), filtered there exactly as the dense grid
+/// would be, and the voxels whose sign changed are written back as the key of
+/// the negated decoded value (colour kept; chunks marked dirty, collapsed
+/// again where they became uniform). Because keys are ordered like values,
+/// the filters see exactly the signs the volume stores; magnitudes are those
+/// of the dictionary. The result and the statistics equal the dense
+/// filter's on the decoded volume. SVF1 and SVF4 run on the CPU; SVF2/SVF3
+/// on params.device (their planes go through the dense filter).
+///
+/// With `planes`, only that piece is written; its ghost planes first-1 and
+/// last+1 are read and must still hold unfiltered values. Cancelling (or an
+/// OutOfMemory error) leaves the planes written so far filtered: filter a
+/// clone (copy-on-write) to keep the original.
 SignVoxelFilterStats signVoxelFilter(DictionaryVolume& volume, const SignVoxelFilterParams& params = {},
   Interrupter& interrupter = nullInterrupter());
+SignVoxelFilterStats signVoxelFilter(DictionaryVolume& volume, const SignVoxelFilterParams& params,
+  const SvfPlanes& planes, Interrupter& interrupter = nullInterrupter());
+
+/// What SVF1 does to each row over the planes [first, last] (original,
+/// unfiltered values): the sign it leaves with, for each sign it enters with.
+/// 3 x nU x nV values: entering with -1, then 0, then +1 (layout of
+/// SvfPlanes::entrySigns).
+std::vector<std::int8_t> svf1ExitSigns(const DictionaryVolume& volume, const SignVoxelFilterParams& params,
+  std::int64_t first, std::int64_t last, Interrupter& interrupter = nullInterrupter());
+
+/// The signs rows enter the volume with (the boundary's), for the first piece.
+std::vector<std::int8_t> svf1BoundarySigns(const DictionaryVolume& volume, const SignVoxelFilterParams& params);
+
+/// The signs rows leave a piece with, given those they enter it with and the
+/// piece's svf1ExitSigns.
+std::vector<std::int8_t> svf1Continue(const std::vector<std::int8_t>& entry, const std::vector<std::int8_t>& exits);
 
 } // namespace lvdif

@@ -14,9 +14,15 @@
 // * Per-chunk key ranges (min/max SDF key) are recomputed lazily after
 //   writes, so chunkRange() is always exact.
 //
+// * clone() is copy-on-write: the copy shares the expanded chunks' voxel
+//   buffers (reference counted); the first write to a shared chunk, in either
+//   volume, copies that chunk only. So a filter that must leave its input
+//   alone (VTK) clones it and pays only for the chunks it changes.
+//
 // Threading: reads are safe from any thread. Writes to different chunks are
 // safe concurrently; concurrent writes to one chunk are safe only if the
 // chunk was expanded first (expandChunk) and the threads write distinct voxels.
+// clone() reads: it must not run while another thread writes the volume.
 #pragma once
 
 #include "lvdif/ColorDictionary.h"
@@ -116,8 +122,12 @@ public:
   DictionaryVolume(const DictionaryVolume&) = delete;
   DictionaryVolume& operator=(const DictionaryVolume&) = delete;
 
-  /// Deep copy (the same chunks expanded, same dictionaries, flags cleared).
+  /// A copy (the same chunks expanded, same dictionaries, flags cleared) that
+  /// shares the expanded chunks' buffers until one side writes to a chunk
+  /// (copy-on-write): cloning costs the chunk table only.
   std::unique_ptr<DictionaryVolume> clone() const;
+  /// Expanded chunks whose buffer another volume (a clone) shares now.
+  std::int64_t sharedChunkCount() const;
 
   // ---- geometry ---------------------------------------------------------
   const VolumeOptions& options() const { return this->Options; }
@@ -180,10 +190,12 @@ public:
   VoxelBox chunkBox(std::int64_t id) const;
   bool isUniform(std::int64_t id) const { return this->Chunks[id].Data.load(std::memory_order_acquire) == nullptr; }
   Voxel uniformValue(std::int64_t id) const { return this->Chunks[id].Uniform; }
-  /// Data of an expanded chunk (chunkEdge^3 voxels, layout of localIndex), or nullptr if uniform.
+  /// Data of an expanded chunk (chunkEdge^3 voxels, layout of localIndex), or
+  /// nullptr if uniform. Read-only: it may be shared with a clone.
   const Voxel* chunkData(std::int64_t id) const { return this->Chunks[id].Data.load(std::memory_order_acquire); }
-  /// Expands a uniform chunk (thread-safe, idempotent) and returns its data.
-  /// Does not mark the chunk dirty. Throws Error(OutOfMemory) past the limit.
+  /// Expands a uniform chunk (thread-safe, idempotent) and returns its data,
+  /// writable: a buffer shared with a clone is copied first. Does not mark
+  /// the chunk dirty. Throws Error(OutOfMemory) past the limit.
   Voxel* expandChunk(std::int64_t id);
   /// Makes the chunk uniform with value v (frees its data); marks it dirty.
   void fillChunk(std::int64_t id, Voxel v);
@@ -228,6 +240,8 @@ private:
 
   void init(const VolumeOptions& options, Voxel fill, bool useFill);
   void freeChunkData(Chunk& c);
+  /// True when no other volume holds the buffer (so it may be written).
+  static bool ownsBuffer(const Voxel* d);
 
   VolumeOptions Options;
   std::shared_ptr<const SdfDictionary> Sdf;

@@ -1,0 +1,150 @@
+// vtkSignVoxelFilter on a sparse volume: the input is left exactly as it was,
+// the output equals the filter's image path on the decoded volume (the dense
+// filter, an independent route through the pipeline), and the output shares
+// every chunk it did not change with the input (copy-on-write: no second volume).
+#include "vtkSignVoxelFilter.h"
+
+#include "vtkMeshToSDF.h"
+#include "vtkSparseDictionaryVolume.h"
+#include "vtkSparseVolumeToImage.h"
+
+#include "lvdif/DictionaryVolume.h"
+
+#include "vtkDataArray.h"
+#include "vtkFieldData.h"
+#include "vtkIdTypeArray.h"
+#include "vtkImageData.h"
+#include "vtkNew.h"
+#include "vtkPointData.h"
+#include "vtkSmartPointer.h"
+#include "vtkSphereSource.h"
+#include "vtkTrivialProducer.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <memory>
+#include <vector>
+
+namespace
+{
+std::vector<lvdif::Voxel> voxels(const lvdif::DictionaryVolume& v)
+{
+  std::vector<lvdif::Voxel> out;
+  for (std::int64_t z = 0; z < v.dims()[2]; ++z)
+    for (std::int64_t y = 0; y < v.dims()[1]; ++y)
+      for (std::int64_t x = 0; x < v.dims()[0]; ++x) out.push_back(v.get(x, y, z));
+  return out;
+}
+
+/// A sphere's sparse SDF with wrong signs: isolated voxels and a box crossing chunks.
+std::shared_ptr<lvdif::DictionaryVolume> corruptedSphere()
+{
+  vtkNew<vtkSphereSource> sphere;
+  sphere->SetThetaResolution(48);
+  sphere->SetPhiResolution(32);
+  vtkNew<vtkMeshToSDF> sdf;
+  sdf->SetInputConnection(sphere->GetOutputPort());
+  sdf->SetMaxDimension(72);
+  sdf->SetChunkEdge(16);
+  sdf->SetDevice(vtkMeshToSDF::DEVICE_CPU);
+  sdf->Update();
+  auto* out = vtkSparseDictionaryVolume::SafeDownCast(sdf->GetOutputDataObject(0));
+  std::shared_ptr<lvdif::DictionaryVolume> v = out->GetVolume()->clone();
+  const lvdif::Index3 d = v->dims();
+  for (std::int64_t z = 0; z < d[2]; ++z)
+    for (std::int64_t y = 0; y < d[1]; ++y)
+      for (std::int64_t x = 0; x < d[0]; ++x)
+      {
+        const float s = v->sdf(x, y, z);
+        const bool box = x > 20 && x < 40 && y > 25 && y < 35 && z > 10 && z < 50;
+        if (std::fabs(s) > 3.0f && (box || (x * 7 + y * 13 + z * 29) % 97 == 0))
+        {
+          v->setSdf(x, y, z, -s);
+        }
+      }
+  v->collapseUniformChunks();
+  return v;
+}
+} // namespace
+
+TEST(vtkSignVoxelFilterSparse, InputUnchangedOutputEqualsTheImagePathAndSharesChunks)
+{
+  const std::shared_ptr<lvdif::DictionaryVolume> in = corruptedSphere();
+  const std::vector<lvdif::Voxel> before = voxels(*in);
+  vtkNew<vtkSparseDictionaryVolume> input;
+  input->SetVolume(in);
+  vtkNew<vtkTrivialProducer> tp;
+  tp->SetOutput(input);
+
+  vtkNew<vtkSignVoxelFilter> svf;
+  svf->SetInputConnection(tp->GetOutputPort());
+  svf->SetDevice(vtkSignVoxelFilter::DEVICE_CPU);
+  svf->Update();
+  auto* output = vtkSparseDictionaryVolume::SafeDownCast(svf->GetOutputDataObject(0));
+  ASSERT_NE(output, nullptr);
+  ASSERT_TRUE(output->HasVolume());
+  const lvdif::DictionaryVolume& out = *output->GetVolume();
+
+  // the input is exactly as it was
+  EXPECT_EQ(voxels(*in), before);
+
+  // the oracle: the same filter's image path on the dense decoded input
+  vtkNew<vtkSparseVolumeToImage> toImage;
+  toImage->SetInputConnection(tp->GetOutputPort());
+  vtkNew<vtkSignVoxelFilter> dense;
+  dense->SetInputConnection(toImage->GetOutputPort());
+  dense->SetDevice(vtkSignVoxelFilter::DEVICE_CPU);
+  dense->Update();
+  vtkDataArray* want = vtkImageData::SafeDownCast(dense->GetOutputDataObject(0))->GetPointData()->GetArray("sdf");
+  ASSERT_NE(want, nullptr);
+  std::int64_t flipped = 0, wrong = 0;
+  vtkIdType i = 0;
+  for (std::int64_t z = 0; z < out.dims()[2]; ++z)
+    for (std::int64_t y = 0; y < out.dims()[1]; ++y)
+      for (std::int64_t x = 0; x < out.dims()[0]; ++x, ++i)
+      {
+        const float w = static_cast<float>(want->GetTuple1(i));
+        const lvdif::Voxel o = out.get(x, y, z), b = in->get(x, y, z);
+        if ((w < 0) != (in->sdf(x, y, z) < 0))
+        {
+          ++flipped; // a flip stores the key of the negated value
+          wrong += o.sdf != out.encode(-in->sdf(x, y, z)) || o.color != b.color ? 1 : 0;
+        }
+        else
+        {
+          wrong += o != b ? 1 : 0;
+        }
+      }
+  EXPECT_GT(flipped, 500);
+  EXPECT_EQ(wrong, 0);
+  auto* flips = vtkIdTypeArray::SafeDownCast(output->GetFieldData()->GetArray("svf_flips"));
+  auto* wantFlips =
+    vtkIdTypeArray::SafeDownCast(dense->GetOutputDataObject(0)->GetFieldData()->GetArray("svf_flips"));
+  ASSERT_NE(flips, nullptr);
+  ASSERT_NE(wantFlips, nullptr);
+  for (int f = 0; f < 4; ++f)
+  {
+    EXPECT_EQ(flips->GetValue(f), wantFlips->GetValue(f)) << "SVF" << f + 1;
+  }
+
+  // memory: the output shares every expanded chunk it did not write with the input
+  std::int64_t changedChunks = 0, sharedWithInput = 0;
+  for (std::int64_t id = 0; id < out.chunkCount(); ++id)
+  {
+    const lvdif::VoxelBox b = out.chunkBox(id);
+    bool changed = false;
+    for (std::int64_t z = b.lo[2]; z <= b.hi[2] && !changed; ++z)
+      for (std::int64_t y = b.lo[1]; y <= b.hi[1] && !changed; ++y)
+        for (std::int64_t x = b.lo[0]; x <= b.hi[0] && !changed; ++x) changed = out.get(x, y, z) != in->get(x, y, z);
+    changedChunks += changed ? 1 : 0;
+    sharedWithInput += out.chunkData(id) && out.chunkData(id) == in->chunkData(id) ? 1 : 0;
+    if (!changed && !in->isUniform(id) && !out.isUniform(id))
+    {
+      EXPECT_EQ(out.chunkData(id), in->chunkData(id)) << "chunk " << id;
+    }
+  }
+  EXPECT_GT(changedChunks, 5);
+  EXPECT_GT(sharedWithInput, in->expandedChunkCount() - changedChunks - 1);
+  EXPECT_EQ(out.sharedChunkCount(), sharedWithInput);
+}
