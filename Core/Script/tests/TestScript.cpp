@@ -81,56 +81,36 @@ TEST(Script, LoopsAndConditionals)
 
 TEST(Script, SyntaxErrorsGiveLineAndColumn)
 {
-  Where w = errorOf("x = 1 +\n");
-  EXPECT_EQ(w.code, ErrorCode::ParseError);
-  EXPECT_EQ(w.line, 1);
-  EXPECT_EQ(w.column, 8);
-  EXPECT_EQ(w.detail, "expected a value, found the end of the line");
-
-  w = errorOf("canvas 64\n  dab 1 2\n");
-  EXPECT_EQ(w.line, 2);
-  EXPECT_EQ(w.column, 3);
-  EXPECT_EQ(w.detail, "'dab' takes 3 arguments, got 2");
-
-  w = errorOf("for i in 0..3 {\n  dab 1 2 3\n");
-  EXPECT_EQ(w.line, 1);
-  EXPECT_EQ(w.column, 15);
-  EXPECT_EQ(w.detail, "this '{' is never closed");
-
-  w = errorOf("brush cylinder");
-  EXPECT_EQ(w.line, 1);
-  EXPECT_EQ(w.column, 7);
-  EXPECT_EQ(w.detail, "'brush' expects one of: cube, sphere; found 'cylinder'");
-
-  w = errorOf("\n\nx = 3 $ 4");
-  EXPECT_EQ(w.line, 3);
-  EXPECT_EQ(w.column, 7);
-  EXPECT_EQ(w.detail, "unexpected character '$'");
-
-  w = errorOf("x = 1\n   explode 1 2");
-  EXPECT_EQ(w.line, 2);
-  EXPECT_EQ(w.column, 4);
-  EXPECT_EQ(w.detail, "unknown command 'explode'");
-
-  w = errorOf("if 1 < 2 < 3 { }");
-  EXPECT_EQ(w.column, 10);
-  EXPECT_EQ(w.detail, "comparisons cannot be chained; use 'and'");
-
-  w = errorOf("x = (1 + 2");
-  EXPECT_EQ(w.line, 1);
-  EXPECT_EQ(w.column, 11);
-  EXPECT_EQ(w.detail, "expected ')', found the end of the script");
-
-  w = errorOf("for in 0..3 { }");
-  EXPECT_EQ(w.column, 5);
-  EXPECT_EQ(w.detail, "'in' is a reserved word and cannot be a variable");
-
-  w = errorOf("x = 12abc");
-  EXPECT_EQ(w.column, 7);
-  EXPECT_EQ(w.detail, "unexpected 'a' after a number");
-
-  w = errorOf("}");
-  EXPECT_EQ(w.detail, "unexpected '}' without a matching '{'");
+  // script, line and column of the error (0: not checked), the message
+  struct Case
+  {
+    const char* script;
+    int line, column;
+    const char* detail;
+  };
+  const Case cases[] = {
+    { "x = 1 +\n", 1, 8, "expected a value, found the end of the line" },
+    { "canvas 64\n  dab 1 2\n", 2, 3, "'dab' takes 3 arguments, got 2" },
+    { "for i in 0..3 {\n  dab 1 2 3\n", 1, 15, "this '{' is never closed" },
+    { "brush cylinder", 1, 7, "'brush' expects one of: cube, sphere; found 'cylinder'" },
+    { "\n\nx = 3 $ 4", 3, 7, "unexpected character '$'" },
+    { "x = 1\n   explode 1 2", 2, 4, "unknown command 'explode'" },
+    { "if 1 < 2 < 3 { }", 0, 10, "comparisons cannot be chained; use 'and'" },
+    { "x = (1 + 2", 1, 11, "expected ')', found the end of the script" },
+    { "for in 0..3 { }", 0, 5, "'in' is a reserved word and cannot be a variable" },
+    { "x = 12abc", 0, 7, "unexpected 'a' after a number" },
+    { "}", 0, 0, "unexpected '}' without a matching '{'" },
+  };
+  for (const Case& c : cases)
+  {
+    const Where w = errorOf(c.script);
+    EXPECT_EQ(w.code, ErrorCode::ParseError) << c.script;
+    if (c.line)
+      EXPECT_EQ(w.line, c.line) << c.script;
+    if (c.column)
+      EXPECT_EQ(w.column, c.column) << c.script;
+    EXPECT_EQ(w.detail, c.detail) << c.script;
+  }
 }
 
 TEST(Script, RunTimeErrorsGiveLineAndColumn)
