@@ -25,7 +25,7 @@ cmake --build "$BUILD_DIR" -j "$JOBS"
 
 # Everything that renders needs an X server (Debian's VTK is GLX-only).
 with_x() {
-  if [ -n "${DISPLAY:-}" ]; then "$@"; else xvfb-run -a -s "-screen 0 1280x1024x24" "$@"; fi
+  if [ -n "${DISPLAY:-}" ]; then "$@"; else xvfb-run -a -s "-screen 0 1280x1024x24 -noreset" "$@"; fi
 }
 
 case "$MODE" in

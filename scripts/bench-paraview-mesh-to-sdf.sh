@@ -42,7 +42,7 @@ for r in $(seq "$ROUNDS"); do
   runs=("")
   [ "${BENCH_NO_BAND:-0}" = 1 ] && [ "$r" = 1 ] && runs+=("0")
   for pvband in "${runs[@]}"; do
-    xvfb-run -a -s "-screen 0 1280x1024x24" /usr/bin/time -v "$SHIM/pvpy/usr/bin/pvpython3.11" --force-offscreen-rendering \
+    xvfb-run -a -s "-screen 0 1280x1024x24 -noreset" /usr/bin/time -v "$SHIM/pvpy/usr/bin/pvpython3.11" --force-offscreen-rendering \
       "$here/Apps/ParaViewPlugin/Testing/bench_mesh_to_sdf.py" "$plugin" "$MESH" "$N" $pvband >"$tmp/pv.out" 2>"$tmp/pv.time" \
       || { cat "$tmp/pv.out" "$tmp/pv.time" >&2; exit 1; }
     read -r pwall prss <<<"$(measure "$tmp/pv.time")"

@@ -19,7 +19,7 @@ echo
 echo "| ranks | SDF stage | surface | grid | pipeline (s) | write (s) | triangles |"
 echo "|---|---|---|---|---|---|---|"
 for np in 1 2 4; do
-  line=$(xvfb-run -a -s "-screen 0 1280x1024x24" mpirun --allow-run-as-root --oversubscribe -np "$np" \
+  line=$(xvfb-run -a -s "-screen 0 1280x1024x24 -noreset" mpirun --allow-run-as-root --oversubscribe -np "$np" \
     pvbatch --force-offscreen-rendering "$script" "$plugin" "$tmp" --bench --n "$N" 2>&1 | grep '^BENCH' || true)
   [ -n "$line" ] || { echo "bench-paraview-mpi: run with $np ranks failed" >&2; exit 1; }
   eval "$(echo "$line" | sed 's/^BENCH //; s/ /;/g')"

@@ -25,7 +25,7 @@ echo "mesh: $(basename "$MESH")"
 rows=()
 for N in "$@"; do
   echo "== N = $N"
-  /usr/bin/time -v xvfb-run -a -s "-screen 0 640x480x24" pvbatch --force-offscreen-rendering \
+  /usr/bin/time -v xvfb-run -a -s "-screen 0 640x480x24 -noreset" pvbatch --force-offscreen-rendering \
     "$here/Apps/ParaViewPlugin/Testing/bench_sparse_chain.py" "$plugin" "$MESH" "$N" "$tmp/out.lvdv" \
     2>"$tmp/time.log" | tee "$tmp/run.log"
   wall=$(awk -F': ' '/Elapsed \(wall clock\)/ {n=split($2,t,":"); s=0; for(i=1;i<=n;i++) s=s*60+t[i]; print s}' "$tmp/time.log")

@@ -10,7 +10,7 @@ plugin=$("$here/scripts/build-paraview-plugin.sh" "${1:-$here/build-pv}" "$SHIM"
 export LVDIF_PV_PYTHONPATH="$SHIM/pvpy/usr/lib/python3/dist-packages"
 export PYTHONPATH="$here/Apps/ParaViewPlugin/Testing:$LVDIF_PV_PYTHONPATH"
 export VTK_SMP_BACKEND_IN_USE="${VTK_SMP_BACKEND_IN_USE:-STDThread}"
-xvfb-run -a -s "-screen 0 1280x1024x24" "$SHIM/pvpy/usr/bin/pvpython3.11" --force-offscreen-rendering \
+xvfb-run -a -s "-screen 0 1280x1024x24 -noreset" "$SHIM/pvpy/usr/bin/pvpython3.11" --force-offscreen-rendering \
   "$here/scripts/paraview_screenshots.py" "$plugin" "$here/docs/images" "$here/Data/extracted"
 
 # The GUI with the plugin (its Properties panel): ParaView itself under a private
@@ -21,7 +21,7 @@ if [ -f "$mesh" ] && /usr/bin/python3 -c "import PIL.ImageGrab" 2>/dev/null; the
   mkdir -p "$home/.config/ParaView"
   printf '[General]\nGeneralSettings.ShowWelcomeDialog=false\n' >"$home/.config/ParaView/ParaView5.11.0.ini"
   dfile=$(mktemp)
-  Xvfb -displayfd 1 -screen 0 1400x900x24 -nolisten tcp >"$dfile" 2>/dev/null &
+  Xvfb -displayfd 1 -screen 0 1400x900x24 -nolisten tcp -noreset >"$dfile" 2>/dev/null &
   xpid=$!
   for _ in $(seq 100); do [ -s "$dfile" ] && break; sleep 0.1; done
   display=":$(head -n1 "$dfile")"

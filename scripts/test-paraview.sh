@@ -15,11 +15,14 @@ export VTK_SMP_BACKEND_IN_USE=STDThread OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_
 # Debian's ParaView is X/GLX only: every pvpython/pvbatch needs an X server,
 # plus --force-offscreen-rendering (the tests pass it). Our own Xvfb, on a
 # display it picks itself (-displayfd: no race with other xvfb-run -a users,
-# which gave "bad X server connection" aborts when several ran at once).
+# which gave "bad X server connection" aborts when several ran at once), and
+# -noreset: by default an X server resets when its last client leaves, and a
+# test that connects during that reset aborts the same way (seen between two
+# pvpython tests run one after the other).
 xpid=""
 if [ -z "${DISPLAY:-}" ]; then
   dfile=$(mktemp)
-  Xvfb -displayfd 1 -screen 0 1280x1024x24 -nolisten tcp >"$dfile" 2>/dev/null &
+  Xvfb -displayfd 1 -screen 0 1280x1024x24 -nolisten tcp -noreset >"$dfile" 2>/dev/null &
   xpid=$!
   trap 'kill "$xpid" 2>/dev/null; rm -f "$dfile"' EXIT
   for _ in $(seq 100); do [ -s "$dfile" ] && break; sleep 0.1; done

@@ -7,7 +7,7 @@ cd "$(dirname "$0")/.."
 EDITOR="${1:-build}/bin/lvdif-editor"
 OUT=docs/images
 run() {
-  if [ -n "${DISPLAY:-}" ]; then "$EDITOR" "$@"; else xvfb-run -a -s "-screen 0 1280x1024x24" "$EDITOR" "$@"; fi
+  if [ -n "${DISPLAY:-}" ]; then "$EDITOR" "$@"; else xvfb-run -a -s "-screen 0 1280x1024x24 -noreset" "$EDITOR" "$@"; fi
 }
 common=(--size 1000x700 --no-recovery --autosave 0)
 stroke="0.36,0.52/0.42,0.55/0.48,0.57/0.54,0.585/0.60,0.595/0.66,0.60"
