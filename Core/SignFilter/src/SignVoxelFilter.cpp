@@ -23,6 +23,16 @@ unsigned svfCumulative(int n)
 
 namespace detail::svf
 {
+void requireValidParams(const SignVoxelFilterParams& params)
+{
+  require(std::isfinite(params.threshold) && params.threshold >= 0.0f,
+    "signVoxelFilter: the threshold must be finite and >= 0");
+  require(params.axis >= 0 && params.axis <= 2, "signVoxelFilter: the axis must be 0 (x), 1 (y) or 2 (z)");
+  require((params.filters & ~static_cast<unsigned>(SvfAll)) == 0,
+    "signVoxelFilter: the filter mask may only contain Svf1..Svf4 bits");
+  require(params.maxIterations >= 0, "signVoxelFilter: maxIterations must be >= 0 (0 = automatic)");
+}
+
 double svfProgress(unsigned filters, int f, double within)
 {
   int total = 0, before = 0;
@@ -45,12 +55,7 @@ SignVoxelFilterStats signVoxelFilter(
   require(grid.data != nullptr, "signVoxelFilter: the grid has no data");
   require(g.dims[0] > 0 && g.dims[1] > 0 && g.dims[2] > 0,
     "signVoxelFilter: every grid dimension must be positive");
-  require(std::isfinite(params.threshold) && params.threshold >= 0.0f,
-    "signVoxelFilter: the threshold must be finite and >= 0");
-  require(params.axis >= 0 && params.axis <= 2, "signVoxelFilter: the axis must be 0 (x), 1 (y) or 2 (z)");
-  require((params.filters & ~static_cast<unsigned>(SvfAll)) == 0,
-    "signVoxelFilter: the filter mask may only contain Svf1..Svf4 bits");
-  require(params.maxIterations >= 0, "signVoxelFilter: maxIterations must be >= 0 (0 = automatic)");
+  detail::svf::requireValidParams(params);
 
   detail::svf::SvfSetup s;
   s.threshold = params.threshold;

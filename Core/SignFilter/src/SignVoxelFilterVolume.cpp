@@ -10,6 +10,7 @@
 // The slab buffer holds the planes in the axis frame (u fastest, the axis
 // slowest); the SVF2/SVF3 rules and colour classes depend on (u, v) only, so
 // the dense filter with axis z on that buffer is the same function.
+#include "SignVoxelFilterImpl.h"
 #include "SignVoxelFilterRules.h"
 
 #include "lvdif/DictionaryVolume.h"
@@ -255,13 +256,8 @@ SignVoxelFilterStats planarRuns(float* planes, const Frame& f, std::int64_t n, c
 
 void validate(const SignVoxelFilterParams& params)
 {
-  // the same rules as the dense filter's (which sees only the SVF2/SVF3 slabs)
-  require(std::isfinite(params.threshold) && params.threshold >= 0.0f,
-    "signVoxelFilter: the threshold must be finite and >= 0");
-  require(params.axis >= 0 && params.axis <= 2, "signVoxelFilter: the axis must be 0 (x), 1 (y) or 2 (z)");
-  require((params.filters & ~static_cast<unsigned>(SvfAll)) == 0,
-    "signVoxelFilter: the filter mask may only contain Svf1..Svf4 bits");
-  require(params.maxIterations >= 0, "signVoxelFilter: maxIterations must be >= 0 (0 = automatic)");
+  // the dense filter's rules (it sees only the SVF2/SVF3 slabs)
+  detail::svf::requireValidParams(params);
 }
 
 } // namespace
