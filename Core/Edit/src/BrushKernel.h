@@ -246,5 +246,13 @@ struct DabPlan
 DabPlan planDabs(DictionaryVolume& volume, const std::vector<Dab>& dabs, const BrushSettings& settings,
   const ChunkWriteObserver* observer = nullptr);
 
+/// The volume's SDF at a continuous point (trilinear, clamped to the volume).
+double trilinear(const DictionaryVolume& v, const float* table, double x, double y, double z);
+
+/// Applies a plan of a brush that reads neighbours (BrushGather.cpp); checks
+/// `interrupter` between groups.
+EditResult applyGather(
+  DictionaryVolume& volume, const DabPlan& plan, ChunkWriteObserver* observer, const Interrupter* interrupter);
+
 } // namespace detail::edit
 } // namespace lvdif
