@@ -2,11 +2,15 @@
 // clone and brute-force oracles.
 #pragma once
 
+#include "lvdif/Brush.h"
 #include "lvdif/DictionaryVolume.h"
+#include "lvdif/Stroke.h"
 
 #include <cstdint>
 #include <functional>
+#include <random>
 #include <set>
+#include <vector>
 
 namespace edittest
 {
@@ -54,6 +58,31 @@ inline void forEachVoxel(const lvdif::DictionaryVolume& v,
     for (std::int64_t y = 0; y < d[1]; ++y)
       for (std::int64_t x = 0; x < d[0]; ++x)
         fn(x, y, z);
+}
+
+/// The dabs of random edit number i: every seventh a dynamic stroke through four random
+/// samples, the others one dab whose shape i picks; positions drawn from pos, radii from rad.
+inline std::vector<lvdif::Dab> randomDabs(std::mt19937& rng, std::uniform_real_distribution<double>& pos,
+  std::uniform_real_distribution<double>& rad, int i)
+{
+  std::vector<lvdif::Dab> dabs;
+  if (i % 7 == 3)
+  {
+    lvdif::StrokeSettings st;
+    st.kind = lvdif::BrushKind::Dynamic;
+    st.radius = rad(rng) / 3 + 1;
+    std::vector<lvdif::BrushSample> samples(4);
+    for (auto& p : samples)
+      p.position = { pos(rng), pos(rng), pos(rng) };
+    return lvdif::strokeDabs(samples, st);
+  }
+  lvdif::Dab d;
+  d.shape = static_cast<lvdif::BrushShape>(i % 3);
+  d.center = { pos(rng), pos(rng), pos(rng) };
+  d.end = { pos(rng), pos(rng), pos(rng) };
+  d.radius = rad(rng);
+  dabs.push_back(d);
+  return dabs;
 }
 
 } // namespace edittest

@@ -6,7 +6,6 @@
 #include "lvdif/BrushCuda.h"
 #include "lvdif/Cuda.h"
 #include "lvdif/Error.h"
-#include "lvdif/Stroke.h"
 #include "lvdif/UndoStack.h"
 
 #include <gtest/gtest.h>
@@ -41,6 +40,23 @@ TEST(BrushEncoder, RestatedEncoderEqualsTheDictionary)
   }
 }
 
+namespace
+{
+// One edit through the CPU brush and through the CUDA brush on two equal volumes: the same
+// counts, the same dirty chunks, the same voxels.
+void expectSameEdit(DictionaryVolume& cpu, DictionaryVolume& gpu, const std::vector<Dab>& dabs, const BrushSettings& s)
+{
+  cpu.takeDirtyChunks();
+  gpu.takeDirtyChunks();
+  const EditResult a = applyDabs(cpu, dabs, s);
+  const EditResult b = cuda::applyDabs(gpu, dabs, s);
+  ASSERT_EQ(a.changedVoxels, b.changedVoxels);
+  ASSERT_EQ(a.changedChunks, b.changedChunks);
+  ASSERT_EQ(cpu.takeDirtyChunks(), gpu.takeDirtyChunks());
+  ASSERT_EQ(edittest::countDifferences(cpu, gpu), 0);
+}
+} // namespace
+
 TEST(BrushCuda, GpuDabsEqualCpuDabsBitForBit)
 {
   if (!cuda::available())
@@ -60,34 +76,11 @@ TEST(BrushCuda, GpuDabsEqualCpuDabsBitForBit)
     s.blend = i % 4 == 1 ? 3.5 : 0;
     s.rounding = i % 5 == 2 ? 2 : 0;
     s.color = Rgba{ static_cast<std::uint8_t>(i), 9, 9, 255 };
-    std::vector<Dab> dabs;
-    if (i % 7 == 3)
-    {
-      StrokeSettings st;
-      st.kind = BrushKind::Dynamic;
-      st.radius = rad(rng) / 3 + 1;
-      std::vector<BrushSample> samples(4);
-      for (auto& p : samples)
-        p.position = { pos(rng), pos(rng), pos(rng) };
-      dabs = strokeDabs(samples, st);
-    }
-    else
-    {
-      Dab d;
-      d.shape = static_cast<BrushShape>(i % 3);
-      d.center = { pos(rng), pos(rng), pos(rng) };
-      d.end = { pos(rng), pos(rng), pos(rng) };
-      d.radius = rad(rng);
-      dabs.push_back(d);
-    }
-    cpu.takeDirtyChunks();
-    gpu->takeDirtyChunks();
-    const EditResult a = applyDabs(cpu, dabs, s);
-    const EditResult b = cuda::applyDabs(*gpu, dabs, s);
-    ASSERT_EQ(a.changedVoxels, b.changedVoxels) << "edit " << i;
-    ASSERT_EQ(a.changedChunks, b.changedChunks) << "edit " << i;
-    ASSERT_EQ(cpu.takeDirtyChunks(), gpu->takeDirtyChunks()) << "edit " << i;
-    ASSERT_EQ(edittest::countDifferences(cpu, *gpu), 0) << "edit " << i;
+    const std::vector<Dab> dabs = edittest::randomDabs(rng, pos, rad, i);
+    SCOPED_TRACE("edit " + std::to_string(i) + " " + toString(s.op));
+    expectSameEdit(cpu, *gpu, dabs, s);
+    if (HasFatalFailure())
+      return;
   }
   // the undo observer sees the GPU edits too
   UndoStack undo(*gpu);
@@ -137,14 +130,10 @@ TEST(BrushCuda, GpuSculptBrushesEqualCpuBitForBit)
       d.radius = rad(rng);
       dabs.push_back(d);
     }
-    cpu.takeDirtyChunks();
-    gpu->takeDirtyChunks();
-    const EditResult a = applyDabs(cpu, dabs, s);
-    const EditResult b = cuda::applyDabs(*gpu, dabs, s);
-    ASSERT_EQ(a.changedVoxels, b.changedVoxels) << "edit " << i << " " << toString(s.op);
-    ASSERT_EQ(a.changedChunks, b.changedChunks) << "edit " << i;
-    ASSERT_EQ(cpu.takeDirtyChunks(), gpu->takeDirtyChunks()) << "edit " << i;
-    ASSERT_EQ(edittest::countDifferences(cpu, *gpu), 0) << "edit " << i << " " << toString(s.op);
+    SCOPED_TRACE("edit " + std::to_string(i) + " " + toString(s.op));
+    expectSameEdit(cpu, *gpu, dabs, s);
+    if (HasFatalFailure())
+      return;
   }
 }
 

@@ -7,7 +7,6 @@
 #include "lvdif/Cuda.h"
 #include "lvdif/DeviceVolume.h"
 #include "lvdif/Error.h"
-#include "lvdif/Stroke.h"
 #include "lvdif/UndoStack.h"
 
 #include <gtest/gtest.h>
@@ -45,26 +44,7 @@ std::vector<std::pair<std::vector<Dab>, BrushSettings>> editSequence(int count, 
       s.symmetry.mirror = { true, i % 2 == 0, false };
       s.symmetry.plane = { 0.5 * n, 0.4 * n, 0 };
     }
-    std::vector<Dab> dabs;
-    if (i % 7 == 3)
-    {
-      StrokeSettings st;
-      st.kind = BrushKind::Dynamic;
-      st.radius = rad(rng) / 3 + 1;
-      std::vector<BrushSample> samples(4);
-      for (auto& p : samples)
-        p.position = { pos(rng), pos(rng), pos(rng) };
-      dabs = strokeDabs(samples, st);
-    }
-    else
-    {
-      Dab d;
-      d.shape = static_cast<BrushShape>(i % 3);
-      d.center = { pos(rng), pos(rng), pos(rng) };
-      d.end = { pos(rng), pos(rng), pos(rng) };
-      d.radius = rad(rng);
-      dabs.push_back(d);
-    }
+    const std::vector<Dab> dabs = edittest::randomDabs(rng, pos, rad, i);
     out.emplace_back(dabs, s);
   }
   return out;

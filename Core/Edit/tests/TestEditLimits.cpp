@@ -3,6 +3,7 @@
 // long edits can be cancelled. Inputs are generated (random extremes), the
 // oracle is the untouched copy of the volume or the unbatched Core call.
 #include "EditTestUtil.h"
+#include "SocketTestUtil.h"
 #include "lvdif/AnalyticFill.h"
 #include "lvdif/Editor.h"
 #include "lvdif/Error.h"
@@ -12,12 +13,10 @@
 
 #include <gtest/gtest.h>
 
-#include <arpa/inet.h>
 #include <atomic>
 #include <chrono>
 #include <cmath>
 #include <limits>
-#include <netinet/in.h>
 #include <random>
 #include <sstream>
 #include <sys/socket.h>
@@ -27,6 +26,7 @@
 #include <unistd.h>
 
 using namespace lvdif;
+using sockettest::connectTo;
 
 namespace
 {
@@ -298,24 +298,6 @@ TEST(EditLimits, RecordingsRefuseBadNumbersWithNameLineAndColumn)
     EXPECT_EQ(m.find('\n'), std::string::npos);
   }
 }
-
-namespace
-{
-int connectTo(int port)
-{
-  const int fd = ::socket(AF_INET, SOCK_STREAM, 0);
-  sockaddr_in a{};
-  a.sin_family = AF_INET;
-  a.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
-  a.sin_port = htons(static_cast<std::uint16_t>(port));
-  if (::connect(fd, reinterpret_cast<sockaddr*>(&a), sizeof(a)) != 0)
-  {
-    ::close(fd);
-    return -1;
-  }
-  return fd;
-}
-} // namespace
 
 TEST(EditLimits, SocketDeviceIsBounded)
 {

@@ -1,14 +1,13 @@
 // Input devices: the JSON line protocol, the loopback socket, replay and script
 // devices driving the editor.
 #include "EditTestUtil.h"
+#include "SocketTestUtil.h"
 #include "lvdif/Editor.h"
 #include "lvdif/InputDevice.h"
 
 #include <gtest/gtest.h>
 
-#include <arpa/inet.h>
 #include <chrono>
-#include <netinet/in.h>
 #include <sys/socket.h>
 #include <unistd.h>
 
@@ -50,20 +49,8 @@ TEST(InputDevice, RejectsGarbageWithAColumn)
 
 namespace
 {
-int connectTo(int port)
-{
-  const int fd = ::socket(AF_INET, SOCK_STREAM, 0);
-  sockaddr_in a{};
-  a.sin_family = AF_INET;
-  a.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
-  a.sin_port = htons(static_cast<std::uint16_t>(port));
-  if (::connect(fd, reinterpret_cast<sockaddr*>(&a), sizeof(a)) != 0)
-  {
-    ::close(fd);
-    return -1;
-  }
-  return fd;
-}
+using sockettest::connectTo;
+
 void sendAll(int fd, const std::string& s)
 {
   ASSERT_EQ(::send(fd, s.data(), s.size(), 0), static_cast<ssize_t>(s.size()));

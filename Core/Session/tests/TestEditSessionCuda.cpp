@@ -15,20 +15,45 @@ bool haveGpu()
   return lvdif::resolveDevice(lvdif::Device::Cuda) == lvdif::Device::Cuda;
 }
 
+// The session under test on the device and its CPU peer, each over its own clone of one start
+// volume, with the same options but the device.
+struct SessionPair
+{
+  std::unique_ptr<lvdif::EditSession> gpu;
+  std::unique_ptr<lvdif::EditSession> cpu;
+};
+
+SessionPair makePair(const lvdif::DictionaryVolume& start, lvdif::EditSessionOptions options)
+{
+  SessionPair pair;
+  options.device = lvdif::Device::Cuda;
+  pair.gpu = std::make_unique<lvdif::EditSession>(start.clone(), options);
+  options.device = lvdif::Device::Cpu;
+  pair.cpu = std::make_unique<lvdif::EditSession>(start.clone(), options);
+  return pair;
+}
+
+// The meshes the device session handed out, frame after frame, against one CPU re-mesh of the
+// CPU session's volume.
+void expectMeshesEqualFullRemesh(const MeshStore& store, const SessionPair& pair)
+{
+  std::string problem;
+  EXPECT_EQ(compareWithFullRemesh(store, pair.cpu->volume(), pair.gpu->mesher().options(), &problem), 0)
+    << problem;
+}
+
 
 void runAgainstCpu(std::int64_t n, int edge, std::uint32_t seed, int count, std::uint64_t historyBytes,
   int meshChunkEdge = 0)
 {
   auto start = sphereVolume(n, edge);
-  lvdif::EditSessionOptions go;
-  go.device = lvdif::Device::Cuda;
-  go.undo.maxBytes = historyBytes;
-  go.meshChunkEdge = meshChunkEdge;
-  lvdif::EditSession gpu(start->clone(), go);
+  lvdif::EditSessionOptions o;
+  o.undo.maxBytes = historyBytes;
+  o.meshChunkEdge = meshChunkEdge;
+  const SessionPair pair = makePair(*start, o);
+  lvdif::EditSession& gpu = *pair.gpu;
+  lvdif::EditSession& cpu = *pair.cpu;
   ASSERT_TRUE(gpu.onDevice()) << gpu.notice();
-  lvdif::EditSessionOptions co = go;
-  co.device = lvdif::Device::Cpu;
-  lvdif::EditSession cpu(start->clone(), co);
   MeshStore store;
   gpu.requestAllMeshes();
   store.take(gpu.collectMeshes());
@@ -49,9 +74,8 @@ void runAgainstCpu(std::int64_t n, int edge, std::uint32_t seed, int count, std:
   EXPECT_EQ(differences(gpu.volume(), cpu.volume()), 0) << "seed " << seed;
   const auto oracle = replay(*start, ops);
   EXPECT_EQ(decodedDifferences(gpu.volume(), *oracle), 0) << "seed " << seed;
-  std::string problem;
-  EXPECT_EQ(compareWithFullRemesh(store, cpu.volume(), gpu.mesher().options(), &problem), 0)
-    << "seed " << seed << ": " << problem;
+  SCOPED_TRACE("seed " + std::to_string(seed));
+  expectMeshesEqualFullRemesh(store, pair);
 }
 } // namespace
 
@@ -84,14 +108,12 @@ TEST(EditSessionCuda, SmallHistoryDropsOldStepsLikeTheCpu)
   if (!haveGpu())
     GTEST_SKIP() << "no CUDA device";
   // a tiny history: both keep only the newest step(s); equality must hold whatever survives
-  auto start = sphereVolume(64, 16);
   lvdif::EditSessionOptions o;
-  o.device = lvdif::Device::Cuda;
   o.undo.maxBytes = 1; // below one snapshot: only minSteps (1) survive
-  lvdif::EditSession gpu(start->clone(), o);
+  const SessionPair pair = makePair(*sphereVolume(64, 16), o);
+  lvdif::EditSession& gpu = *pair.gpu;
+  lvdif::EditSession& cpu = *pair.cpu;
   ASSERT_TRUE(gpu.onDevice()) << gpu.notice();
-  o.device = lvdif::Device::Cpu;
-  lvdif::EditSession cpu(start->clone(), o);
   const std::vector<Op> ops = randomOps(9, 25, 64);
   for (const Op& op : ops)
   {
@@ -109,13 +131,10 @@ TEST(EditSessionCuda, ScriptsAndCanvasFillOnTheDevice)
 {
   if (!haveGpu())
     GTEST_SKIP() << "no CUDA device";
-  auto start = sphereVolume(64, 16);
-  lvdif::EditSessionOptions o;
-  o.device = lvdif::Device::Cuda;
-  lvdif::EditSession gpu(start->clone(), o);
+  const SessionPair pair = makePair(*sphereVolume(64, 16), {});
+  lvdif::EditSession& gpu = *pair.gpu;
+  lvdif::EditSession& cpu = *pair.cpu;
   ASSERT_TRUE(gpu.onDevice()) << gpu.notice();
-  o.device = lvdif::Device::Cpu;
-  lvdif::EditSession cpu(start->clone(), o);
   const std::string script = "op subtract\nfor i in 0..3 { sphere 16 + 10*i, 32, 50, 6 }\nundo\nop paint\ncolor 10 200 30\n"
                              "sphere 32 32 50 12";
   gpu.runScript(script);
@@ -131,8 +150,7 @@ TEST(EditSessionCuda, ScriptsAndCanvasFillOnTheDevice)
   MeshStore store;
   gpu.requestAllMeshes();
   store.take(gpu.collectMeshes());
-  std::string problem;
-  EXPECT_EQ(compareWithFullRemesh(store, cpu.volume(), gpu.mesher().options(), &problem), 0) << problem;
+  expectMeshesEqualFullRemesh(store, pair);
 }
 
 TEST(EditSessionCuda, SculptingBrushesOnTheDeviceEqualTheCpu)
@@ -141,13 +159,10 @@ TEST(EditSessionCuda, SculptingBrushesOnTheDeviceEqualTheCpu)
     GTEST_SKIP() << "no CUDA device";
   // every op (Smooth, Grab and Pinch run on the synced host copy and hand their chunks to
   // the device step), soft falloffs and strengths (soft paint's mix tables on the device)
-  auto start = sphereVolume(64, 16);
-  lvdif::EditSessionOptions o;
-  o.device = lvdif::Device::Cuda;
-  lvdif::EditSession gpu(start->clone(), o);
+  const SessionPair pair = makePair(*sphereVolume(64, 16), {});
+  lvdif::EditSession& gpu = *pair.gpu;
+  lvdif::EditSession& cpu = *pair.cpu;
   ASSERT_TRUE(gpu.onDevice()) << gpu.notice();
-  o.device = lvdif::Device::Cpu;
-  lvdif::EditSession cpu(start->clone(), o);
   MeshStore store;
   gpu.requestAllMeshes();
   store.take(gpu.collectMeshes());
@@ -185,6 +200,5 @@ TEST(EditSessionCuda, SculptingBrushesOnTheDeviceEqualTheCpu)
   cpu.redo();
   store.take(gpu.collectMeshes());
   EXPECT_EQ(differences(gpu.volume(), cpu.volume()), 0);
-  std::string problem;
-  EXPECT_EQ(compareWithFullRemesh(store, cpu.volume(), gpu.mesher().options(), &problem), 0) << problem;
+  expectMeshesEqualFullRemesh(store, pair);
 }
