@@ -2,6 +2,7 @@
 // the analytic values, watertightness after merging, chunk-size independence,
 // orientation, normals against the analytic gradient, corner colours against
 // the voxels, and the case table's crack-freeness over all neighbour pairs.
+#include "GridTestUtil.h"
 #include "MarchingCubesTestUtil.h"
 
 #include "lvdif/AnalyticFill.h"
@@ -20,31 +21,8 @@ namespace
 {
 const double Pi = 3.14159265358979323846;
 
-struct Grid
-{
-  std::vector<float> data;
-  FloatGridView view;
-  Grid(std::int64_t nx, std::int64_t ny, std::int64_t nz, const SdfFunction& f, std::array<double, 3> origin = { 0, 0, 0 },
-    std::array<double, 3> spacing = { 1, 1, 1 })
-  {
-    data.resize(static_cast<std::size_t>(nx * ny * nz));
-    view.data = data.data();
-    view.geometry.dims = { nx, ny, nz };
-    view.geometry.origin = origin;
-    view.geometry.spacing = spacing;
-    for (std::int64_t z = 0; z < nz; ++z)
-      for (std::int64_t y = 0; y < ny; ++y)
-        for (std::int64_t x = 0; x < nx; ++x) view.at(x, y, z) = f(double(x), double(y), double(z));
-  }
-};
-
-SdfFunction torusSdf(double cx, double cy, double cz, double R, double r)
-{
-  return [=](double x, double y, double z) {
-    const double q = std::sqrt((x - cx) * (x - cx) + (y - cy) * (y - cy)) - R;
-    return static_cast<float>(std::sqrt(q * q + (z - cz) * (z - cz)) - r);
-  };
-}
+using gridtest::Grid;
+using gridtest::torusSdf;
 
 MarchingCubesOptions withEdge(int e)
 {

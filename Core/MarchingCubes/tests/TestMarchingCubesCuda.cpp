@@ -2,6 +2,7 @@
 // of every cut edge (position, normal, colour) is bit-identical and the
 // triangles (as oriented edge-id triples, with their cell and corner colour
 // keys) are the same set. Skipped without a CUDA device.
+#include "GridTestUtil.h"
 #include "MarchingCubesAltTable.h"
 
 #include "lvdif/AnalyticFill.h"
@@ -82,23 +83,12 @@ bool haveDevice()
 TEST(MarchingCubesCuda, FloatGridEqualsCpu)
 {
   if (!haveDevice()) GTEST_SKIP() << "no CUDA device";
-  const std::int64_t nx = 83, ny = 71, nz = 66;
-  std::vector<float> values(static_cast<std::size_t>(nx * ny * nz));
-  std::vector<Rgba> colors(values.size());
-  for (std::int64_t z = 0; z < nz; ++z)
-    for (std::int64_t y = 0; y < ny; ++y)
-      for (std::int64_t x = 0; x < nx; ++x)
-      {
-        const std::int64_t i = x + nx * (y + ny * z);
-        const double q = std::sqrt((x - 41.3) * (x - 41.3) + (y - 35.2) * (y - 35.2)) - 22.1;
-        values[i] = static_cast<float>(std::sqrt(q * q + (z - 32.6) * (z - 32.6)) - 8.3);
-        colors[i] = Rgba{ static_cast<std::uint8_t>(3 * x), static_cast<std::uint8_t>(y), static_cast<std::uint8_t>(z), 77 };
-      }
-  FloatGridView g;
-  g.data = values.data();
-  g.geometry.dims = { nx, ny, nz };
-  g.geometry.origin = { -1.5, 0.25, 3.0 };
-  g.geometry.spacing = { 0.3, 0.7, 1.1 };
+  gridtest::Grid grid(83, 71, 66, gridtest::torusSdf(41.3, 35.2, 32.6, 22.1, 8.3), { -1.5, 0.25, 3.0 }, { 0.3, 0.7, 1.1 });
+  grid.paint([](std::int64_t x, std::int64_t y, std::int64_t z) {
+    return Rgba{ static_cast<std::uint8_t>(3 * x), static_cast<std::uint8_t>(y), static_cast<std::uint8_t>(z), 77 };
+  });
+  const FloatGridView& g = grid.view;
+  const Rgba* colors = grid.colorData();
   for (int edge : { 16, 23, 64 })
     for (float iso : { 0.0f, 1.37f })
     {
@@ -107,9 +97,9 @@ TEST(MarchingCubesCuda, FloatGridEqualsCpu)
       o.chunkEdge = edge;
       o.isoValue = iso;
       o.device = Device::Cpu;
-      ChunkedMarchingCubes cpu(g, colors.data(), o);
+      ChunkedMarchingCubes cpu(g, colors, o);
       o.device = Device::Cuda;
-      ChunkedMarchingCubes gpu(g, colors.data(), o);
+      ChunkedMarchingCubes gpu(g, colors, o);
       ASSERT_EQ(gpu.options().device, Device::Cuda);
       expectSame(cpu.extractAll(), gpu.extractAll());
     }
@@ -120,9 +110,9 @@ TEST(MarchingCubesCuda, FloatGridEqualsCpu)
   o.cellRegion.lo = { 3, 2, 1 };
   o.cellRegion.hi = { 60, 50, 40 };
   o.device = Device::Cpu;
-  ChunkedMarchingCubes cpu(g, colors.data(), o);
+  ChunkedMarchingCubes cpu(g, colors, o);
   o.device = Device::Cuda;
-  ChunkedMarchingCubes gpu(g, colors.data(), o);
+  ChunkedMarchingCubes gpu(g, colors, o);
   expectSame(cpu.extractAll(), gpu.extractAll());
 }
 
@@ -157,24 +147,14 @@ TEST(MarchingCubesCuda, FloatGridChangeIsSeenAfterInvalidate)
 {
   if (!haveDevice()) GTEST_SKIP() << "no CUDA device";
   const std::int64_t n = 48;
-  std::vector<float> values(static_cast<std::size_t>(n * n * n));
-  auto fill = [&](double r) {
-    for (std::int64_t z = 0; z < n; ++z)
-      for (std::int64_t y = 0; y < n; ++y)
-        for (std::int64_t x = 0; x < n; ++x)
-          values[x + n * (y + n * z)] =
-            static_cast<float>(std::sqrt((x - 23.4) * (x - 23.4) + (y - 24.1) * (y - 24.1) + (z - 22.8) * (z - 22.8)) - r);
-  };
-  fill(15.3);
-  FloatGridView g;
-  g.data = values.data();
-  g.geometry.dims = { n, n, n };
+  gridtest::Grid grid(n, n, n, sphereSdf(23.4, 24.1, 22.8, 15.3));
+  const FloatGridView& g = grid.view;
   MarchingCubesOptions o;
   o.chunkEdge = 16;
   o.device = Device::Cuda;
   ChunkedMarchingCubes gpu(g, nullptr, o);
   gpu.extractAll(); // uploads the grid
-  fill(11.7);
+  grid.fill(sphereSdf(23.4, 24.1, 22.8, 11.7));
   VoxelBox all;
   all.lo = { 0, 0, 0 };
   all.hi = { n - 1, n - 1, n - 1 };
@@ -187,16 +167,8 @@ TEST(MarchingCubesCuda, FloatGridChangeIsSeenAfterInvalidate)
 TEST(MarchingCubesCuda, BatchOfChunksInAnyOrderWithEmptyOnesEqualsCpu)
 {
   if (!haveDevice()) GTEST_SKIP() << "no CUDA device";
-  const std::int64_t n = 70;
-  std::vector<float> values(static_cast<std::size_t>(n * n * n));
-  for (std::int64_t z = 0; z < n; ++z)
-    for (std::int64_t y = 0; y < n; ++y)
-      for (std::int64_t x = 0; x < n; ++x)
-        values[x + n * (y + n * z)] =
-          static_cast<float>(std::sqrt((x - 30.4) * (x - 30.4) + (y - 33.1) * (y - 33.1) + (z - 28.8) * (z - 28.8)) - 19.6);
-  FloatGridView g;
-  g.data = values.data();
-  g.geometry.dims = { n, n, n };
+  gridtest::Grid grid(70, 70, 70, sphereSdf(30.4, 33.1, 28.8, 19.6));
+  const FloatGridView& g = grid.view;
   MarchingCubesOptions o;
   o.chunkEdge = 16;
   o.device = Device::Cpu;
@@ -222,29 +194,20 @@ TEST(MarchingCubesCuda, BatchOfChunksInAnyOrderWithEmptyOnesEqualsCpu)
 TEST(MarchingCubesCuda, PackedPipelineEqualsCpuOverManyBatches)
 {
   if (!haveDevice()) GTEST_SKIP() << "no CUDA device";
-  const std::int64_t n = 90;
-  std::vector<float> values(static_cast<std::size_t>(n * n * n));
-  std::vector<Rgba> colors(values.size());
-  for (std::int64_t z = 0; z < n; ++z)
-    for (std::int64_t y = 0; y < n; ++y)
-      for (std::int64_t x = 0; x < n; ++x)
-      {
-        const std::int64_t i = x + n * (y + n * z);
-        values[i] =
-          static_cast<float>(std::sqrt((x - 44.4) * (x - 44.4) + (y - 41.1) * (y - 41.1) + (z - 46.8) * (z - 46.8)) - 31.6);
-        colors[i] = Rgba{ static_cast<std::uint8_t>(x), static_cast<std::uint8_t>(2 * y), 9, 255 };
-      }
-  FloatGridView g;
-  g.data = values.data();
-  g.geometry.dims = { n, n, n };
+  gridtest::Grid grid(90, 90, 90, sphereSdf(44.4, 41.1, 46.8, 31.6));
+  grid.paint([](std::int64_t x, std::int64_t y, std::int64_t) {
+    return Rgba{ static_cast<std::uint8_t>(x), static_cast<std::uint8_t>(2 * y), 9, 255 };
+  });
+  const FloatGridView& g = grid.view;
+  const Rgba* colors = grid.colorData();
   MarchingCubesOptions o;
   o.chunkEdge = 16;
   o.device = Device::Cpu;
-  ChunkedMarchingCubes cpu(g, colors.data(), o);
+  ChunkedMarchingCubes cpu(g, colors, o);
   o.device = Device::Cuda;
   // batches of ~4 chunks: many batches, both output sets, the block grows on the way
   o.cudaBatchPoints = 20000;
-  ChunkedMarchingCubes gpu(g, colors.data(), o);
+  ChunkedMarchingCubes gpu(g, colors, o);
   const auto a = cpu.extractAll();
   PackedChunkMeshes packed;
   gpu.extractAllPacked(packed);

@@ -1,6 +1,7 @@
 // Incremental marching cubes: after random edits, re-meshing only the chunks
 // the edits touched gives the same surface as a full extraction of the edited
 // volume; the same through the background worker while another thread edits.
+#include "GridTestUtil.h"
 #include "MarchingCubesTestUtil.h"
 
 #include "lvdif/AnalyticFill.h"
@@ -149,15 +150,8 @@ TEST(MarchingCubesIncremental, BrushChangedBoxRemeshEqualsFullExtraction)
 
 TEST(MarchingCubesIncremental, FloatGridInvalidateThenRemesh)
 {
-  const std::int64_t n = 50;
-  std::vector<float> data(n * n * n);
-  FloatGridView g;
-  g.data = data.data();
-  g.geometry.dims = { n, n, n };
-  const SdfFunction f = sphereSdf(24, 25, 23, 12);
-  for (std::int64_t z = 0; z < n; ++z)
-    for (std::int64_t y = 0; y < n; ++y)
-      for (std::int64_t x = 0; x < n; ++x) g.at(x, y, z) = f(x, y, z);
+  gridtest::Grid grid(50, 50, 50, sphereSdf(24, 25, 23, 12));
+  FloatGridView& g = grid.view;
   MarchingCubesOptions o;
   o.chunkEdge = 16;
   ChunkedMarchingCubes mc(g, nullptr, o);
