@@ -2,7 +2,7 @@
 // input imports (skipping broken rows) or fails with one lvdif::Error; what it
 // imports must play onto a small volume (or be refused by the edit rules).
 // The first byte picks the original and target sizes, so scaling is fuzzed too.
-#include "lvdif/Editor.h"
+#include "FuzzPlay.h"
 #include "lvdif/Recording.h"
 
 #include <cstddef>
@@ -28,19 +28,6 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   {
     return 0;
   }
-  try
-  {
-    lvdif::VolumeOptions o;
-    o.dims = { 24, 24, 24 };
-    o.chunkEdge = 8;
-    lvdif::DictionaryVolume v(o);
-    lvdif::Editor e(v);
-    e.limits.maxDabsPerEdit = 2000;
-    e.limits.maxTotalDabs = 4000;
-    e.play(r.recording);
-  }
-  catch (const lvdif::Error&)
-  {
-  }
+  playOnSmallVolume(r.recording);
   return 0;
 }

@@ -1,7 +1,7 @@
 // libFuzzer target for the recording parser: any input either reads (and then
 // plays onto a small volume under small budgets) or fails with one
 // lvdif::Error; a crash, hang, sanitizer report or other exception is a bug.
-#include "lvdif/Editor.h"
+#include "FuzzPlay.h"
 #include "lvdif/Recording.h"
 
 #include <cstddef>
@@ -21,19 +21,6 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   {
     return 0;
   }
-  try
-  {
-    lvdif::VolumeOptions o;
-    o.dims = { 24, 24, 24 };
-    o.chunkEdge = 8;
-    lvdif::DictionaryVolume v(o);
-    lvdif::Editor e(v);
-    e.limits.maxDabsPerEdit = 2000;
-    e.limits.maxTotalDabs = 4000;
-    e.play(r);
-  }
-  catch (const lvdif::Error&)
-  {
-  }
+  playOnSmallVolume(r);
   return 0;
 }
