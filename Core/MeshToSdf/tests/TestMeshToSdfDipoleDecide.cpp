@@ -9,7 +9,7 @@
 // angle oracle on far voxels, and portableAtan2 against long double atan2.
 #include "../src/MeshToSdfDipoleDecide.h"
 #include "../src/MeshToSdfInternal.h"
-#include "../../../Testing/Benchmarks/Core/SignQualityMeshes.h" // the benchmarks' seeded damage, one definition
+#include "MeshToSdfDamagedMeshes.h"
 #include "MeshToSdfOracle.h"
 #include "lvdif/MeshToSdf.h"
 
@@ -26,30 +26,7 @@ using namespace lvdif::detail::meshtosdf;
 
 namespace
 {
-/// A sphere with bumps (no symmetry that could hide an error), 40 x 80.
-TriangleMesh bumpySphere()
-{
-  TriangleMesh m = makeSphereMesh(0.05f, -0.03f, 0.02f, 1.0f, 40, 80);
-  for (auto& p : m.points)
-  {
-    const double x = p[0] - 0.05, y = p[1] + 0.03, z = p[2] - 0.02;
-    const double s = 1 + 0.12 * std::sin(3 * x + 1) * std::cos(2 * y) + 0.08 * std::sin(4 * z);
-    p = { static_cast<float>(0.05 + s * x), static_cast<float>(-0.03 + s * y), static_cast<float>(0.02 + s * z) };
-  }
-  return m;
-}
-
-/// The damaged meshes of the GPU tests (the same names in TestMeshToSdfCuda.cpp).
-std::vector<std::pair<std::string, TriangleMesh>> damagedMeshes()
-{
-  const TriangleMesh m = bumpySphere();
-  std::vector<std::pair<std::string, TriangleMesh>> out;
-  for (const char* d : { "patch10", "patch30", "flip10", "duprev20", "holes40", "fins60", "pair" })
-    out.emplace_back(d, signquality::damaged(m, d));
-  out.emplace_back("patch10+holes", signquality::damaged(signquality::damaged(m, "patch10"), "holes"));
-  out.emplace_back("flip20+holes", signquality::damaged(signquality::damaged(m, "holes"), "flip20"));
-  return out;
-}
+using oracle::damagedMeshes;
 
 struct Emulated
 {
