@@ -139,8 +139,10 @@ LVDIF_HD bool insideDipole(const DipoleView& D, int K, V3 p, unsigned long long&
 }
 
 /// s over the ball about the voxels p0 .. p1 (a block): [lo, hi] when it lies
-/// inside (-1/2, 1/2), which decides every voxel of the block whatever its
-/// crossing count (the CPU's boundCorrection over blocks); lo > hi: none.
+/// inside (n - 1/2, n + 1/2) for an integer n (no half-integer inside), which
+/// decides every voxel of the block whatever its crossing count K (K - s
+/// then avoids +-1/2; n = 0 is the CPU's boundCorrection over blocks; s near
+/// 1 occurs inside caps over reversed patches); lo > hi: none.
 LVDIF_HD void dipoleBlockBound(const DipoleView& D, V3 p0, V3 p1, double& lo, double& hi)
 {
   const V3 centre = 0.5 * (p0 + p1);
@@ -155,13 +157,14 @@ LVDIF_HD void dipoleBlockBound(const DipoleView& D, V3 p0, V3 p1, double& lo, do
     double l = 0, u = 0;
     bool approx = false;
     if (!boundDipole(D, centre, rho, dipoleTolerance(D, margin), l, u, approx)) return;
-    if (l > -0.5 && u < 0.5)
+    const double c = 0.5 * (l + u), n = std::floor(c + 0.5);
+    if (l > n - 0.5 && u < n + 0.5)
     {
       lo = l;
       hi = u;
       return;
     }
-    const double left = 0.5 - std::fabs(0.5 * (l + u));
+    const double left = 0.5 - std::fabs(c - n);
     if (!approx || left < 0.05) return; // the voxels will do better
     margin = std::fmin(0.25 * margin, left);
   }
