@@ -298,7 +298,9 @@ WindingSigner::WindingSigner(const PreparedMesh& mesh)
   const std::vector<std::array<V3, 2>>* boundary = &mesh.boundary;
   if (WindingSigner::mayHaveReversedFaces(mesh))
   {
+    const double t0 = now();
     om = orientMesh(mesh.tris, mesh.welded);
+    trace("winding: orientation pass", now() - t0);
     this->CorrectedFaces = om.flippedCount + om.removedCount;
     // M+ pays when F, R and the boundary of M+ are fewer than the boundary
     // edges of M (scattered reversed faces, duplicates); reversed patches
@@ -336,9 +338,13 @@ WindingSigner::WindingSigner(const PreparedMesh& mesh)
     }
   }
   std::vector<WeightedTri> caps;
+  double t0 = now();
   if (!boundary->empty() && capLoops(*boundary, caps))
   {
+    trace("winding: caps", now() - t0);
+    t0 = now();
     buildClosure(this->Plus, mesh.tris, state, *boundary, &caps);
+    trace("winding: closure BVH", now() - t0);
     this->PlusIsCone = false;
     if (state && !caps.empty()) this->CapsOnly = std::make_unique<DipoleTree>(caps);
     f.insert(f.end(), caps.begin(), caps.end());
@@ -346,9 +352,12 @@ WindingSigner::WindingSigner(const PreparedMesh& mesh)
   else
   {
     buildClosure(this->Plus, mesh.tris, state, *boundary);
+    trace("winding: closure BVH", now() - t0);
     this->PlusIsCone = state == nullptr; // M+ = M: exactly the cone over dM (shared with the CUDA path)
   }
+  t0 = now();
   if (!f.empty()) this->Flipped = std::make_unique<DipoleTree>(std::move(f));
+  trace("winding: dipole tree", now() - t0);
 }
 
 WindingSigner::~WindingSigner() = default;
