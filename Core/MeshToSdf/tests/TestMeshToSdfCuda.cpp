@@ -117,7 +117,7 @@ TEST(MeshToSdfCuda, DamagedMeshesMatchCpuBitForBit)
   if (!cuda::available()) GTEST_SKIP() << "no CUDA device";
   for (const auto& [name, m] : oracle::damagedMeshes())
   {
-    const GridGeometry g = fitGridToMesh(m, 72, 2);
+    const GridGeometry g = fitGridToMesh(m, 64, 2);
     VoxelBox all;
     all.hi = { g.dims[0] - 1, g.dims[1] - 1, g.dims[2] - 1 };
     const MeshToSdfPrepared prepared = prepareMeshToSdf(m);
