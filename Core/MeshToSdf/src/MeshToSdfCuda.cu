@@ -487,15 +487,23 @@ private:
     {
       bx = (box.hi[0] - box.lo[0] + DipoleBlock) / DipoleBlock;
       by = (box.hi[1] - box.lo[1] + DipoleBlock) / DipoleBlock;
-      const long long blocks = bx * by * ((box.hi[2] - box.lo[2] + DipoleBlock) / DipoleBlock);
-      if (blocks > this->BoundCapacity)
+      const long long bz = (box.hi[2] - box.lo[2] + DipoleBlock) / DipoleBlock, blocks = bx * by * bz;
+      // coarse blocks (DipoleCoarse^3 blocks each) first: far from the
+      // corrected faces one bound serves them all
+      const long long cx = (bx + DipoleCoarse - 1) / DipoleCoarse, cy = (by + DipoleCoarse - 1) / DipoleCoarse;
+      const long long coarse = cx * cy * ((bz + DipoleCoarse - 1) / DipoleCoarse);
+      if (blocks + coarse > this->BoundCapacity)
       {
         if (this->Bounds) this->Arena.release(this->Bounds);
-        this->Bounds = this->Arena.alloc<double>(static_cast<std::size_t>(2 * blocks));
-        this->BoundCapacity = blocks;
+        this->Bounds = this->Arena.alloc<double>(static_cast<std::size_t>(2 * (blocks + coarse)));
+        this->BoundCapacity = blocks + coarse;
       }
+      double* coarseBounds = this->Bounds + 2 * blocks;
+      dipoleBlockKernel<<<static_cast<unsigned>((coarse + 127) / 128), 128>>>(
+        this->Mesh.D, P, DipoleBlock * DipoleCoarse, cx, cy, coarse, nullptr, coarseBounds);
+      LVDIF_CUDA_CHECK(cudaGetLastError());
       dipoleBlockKernel<<<static_cast<unsigned>((blocks + 127) / 128), 128>>>(
-        this->Mesh.D, P, bx, by, blocks, this->Bounds);
+        this->Mesh.D, P, DipoleBlock, bx, by, blocks, coarseBounds, this->Bounds);
       LVDIF_CUDA_CHECK(cudaGetLastError());
     }
     for (int p = 0; p < parts; ++p)

@@ -22,18 +22,32 @@ namespace
 using DipoleNode = DipoleTree::Node;
 using DipoleDev = DipoleView;
 
-/// One thread per block of DipoleBlock^3 voxels of the slab: dipoleBlockBound.
-__global__ void dipoleBlockKernel(DipoleDev D, Params P, long long bx, long long by, long long blocks, double* bounds)
+/// One thread per block of edge voxels (edge = DipoleBlock, or
+/// DipoleBlock x DipoleCoarse for the coarse pass) of the slab: dipoleBlockBound.
+/// coarse (fine pass only): the coarse blocks' bounds, bx / DipoleCoarse
+/// rounded up per row; a coarse bound is taken as it is (it holds over the
+/// fine block too).
+__global__ void dipoleBlockKernel(DipoleDev D, Params P, int edge, long long bx, long long by, long long blocks,
+  const double* coarse, double* bounds)
 {
   const long long b = static_cast<long long>(blockIdx.x) * blockDim.x + threadIdx.x;
   if (b >= blocks) return;
   const long long ix = b % bx, iy = (b / bx) % by, iz = b / (bx * by);
-  const long long x0 = P.lo[0] + DipoleBlock * ix, y0 = P.lo[1] + DipoleBlock * iy, z0 = P.lo[2] + DipoleBlock * iz;
-  const V3 p0 = positionOf(P, x0, y0, z0);
-  const V3 p1 = positionOf(P, min(x0 + DipoleBlock - 1, P.hi[0]), min(y0 + DipoleBlock - 1, P.hi[1]),
-    min(z0 + DipoleBlock - 1, P.hi[2]));
   double lo = 1, hi = 0;
-  dipoleBlockBound(D, p0, p1, lo, hi);
+  if (coarse)
+  {
+    const long long cx = (bx + DipoleCoarse - 1) / DipoleCoarse, cy = (by + DipoleCoarse - 1) / DipoleCoarse;
+    const long long c = ix / DipoleCoarse + cx * (iy / DipoleCoarse + cy * (iz / DipoleCoarse));
+    lo = coarse[2 * c];
+    hi = coarse[2 * c + 1];
+  }
+  if (!(lo <= hi))
+  {
+    const long long x0 = P.lo[0] + edge * ix, y0 = P.lo[1] + edge * iy, z0 = P.lo[2] + edge * iz;
+    const V3 p0 = positionOf(P, x0, y0, z0);
+    const V3 p1 = positionOf(P, min(x0 + edge - 1, P.hi[0]), min(y0 + edge - 1, P.hi[1]), min(z0 + edge - 1, P.hi[2]));
+    dipoleBlockBound(D, p0, p1, lo, hi);
+  }
   bounds[2 * b] = lo;
   bounds[2 * b + 1] = hi;
 }

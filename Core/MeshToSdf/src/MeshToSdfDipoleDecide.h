@@ -36,7 +36,8 @@ struct DipoleView
   double rootMass = 0;
 };
 
-constexpr int DipoleBlock = 4; // voxels per edge of the blocks bounded as a whole
+constexpr int DipoleBlock = 4;  // voxels per edge of the blocks bounded as a whole
+constexpr int DipoleCoarse = 4; // blocks per edge of a coarse block, bounded first (its bound serves them all)
 
 LVDIF_HD bool dipoleDecided(double lo, double hi) { return !(lo < 0.5 && hi >= 0.5) && !(lo <= -0.5 && hi > -0.5); }
 LVDIF_HD bool dipoleInsideOf(double w) { return std::fabs(w) >= 0.5; }

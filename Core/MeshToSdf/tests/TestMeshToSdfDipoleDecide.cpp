@@ -31,7 +31,7 @@ using oracle::damagedMeshes;
 struct Emulated
 {
   std::vector<char> inside;
-  unsigned long long evaluated = 0, full = 0, blocksBounded = 0;
+  unsigned long long evaluated = 0, full = 0, blocksBounded = 0, fromCoarse = 0;
 };
 
 /// The CUDA sign path (signDipoleKernel after dipoleBlockKernel), voxel by
@@ -56,16 +56,29 @@ Emulated emulateGpu(const WindingSigner& w, const GridGeometry& g)
   e.inside.assign(static_cast<std::size_t>(g.count()), 0);
   const std::int64_t bx = (nx + DipoleBlock - 1) / DipoleBlock, by = (ny + DipoleBlock - 1) / DipoleBlock,
                      bz = (nz + DipoleBlock - 1) / DipoleBlock;
+  // the coarse blocks (DipoleCoarse^3 blocks) first, then the blocks whose coarse block has no bound
+  const std::int64_t ce = DipoleBlock * DipoleCoarse, cx = (bx + DipoleCoarse - 1) / DipoleCoarse,
+                     cy = (by + DipoleCoarse - 1) / DipoleCoarse, cz = (bz + DipoleCoarse - 1) / DipoleCoarse;
+  auto blockBound = [&](std::int64_t x0, std::int64_t y0, std::int64_t z0, std::int64_t edge, double& lo, double& hi) {
+    lo = 1;
+    hi = 0;
+    if (s)
+      dipoleBlockBound(D, position(x0, y0, z0),
+        position(std::min(x0 + edge - 1, nx - 1), std::min(y0 + edge - 1, ny - 1), std::min(z0 + edge - 1, nz - 1)), lo,
+        hi);
+  };
+  std::vector<double> coarse(static_cast<std::size_t>(2 * cx * cy * cz));
+  for (std::int64_t c = 0; c < cx * cy * cz; ++c)
+    blockBound(ce * (c % cx), ce * ((c / cx) % cy), ce * (c / (cx * cy)), ce, coarse[static_cast<std::size_t>(2 * c)],
+      coarse[static_cast<std::size_t>(2 * c + 1)]);
   std::vector<double> bounds(static_cast<std::size_t>(2 * bx * by * bz), 0.0);
   for (std::int64_t b = 0; b < bx * by * bz; ++b)
   {
-    const std::int64_t x0 = DipoleBlock * (b % bx), y0 = DipoleBlock * ((b / bx) % by), z0 = DipoleBlock * (b / (bx * by));
-    double lo = 1, hi = 0;
-    if (s)
-      dipoleBlockBound(D, position(x0, y0, z0),
-        position(std::min(x0 + DipoleBlock - 1, nx - 1), std::min(y0 + DipoleBlock - 1, ny - 1),
-          std::min(z0 + DipoleBlock - 1, nz - 1)),
-        lo, hi);
+    const std::int64_t ix = b % bx, iy = (b / bx) % by, iz = b / (bx * by);
+    const std::size_t c = static_cast<std::size_t>(ix / DipoleCoarse + cx * (iy / DipoleCoarse + cy * (iz / DipoleCoarse)));
+    double lo = coarse[2 * c], hi = coarse[2 * c + 1];
+    e.fromCoarse += lo <= hi;
+    if (!(lo <= hi)) blockBound(DipoleBlock * ix, DipoleBlock * iy, DipoleBlock * iz, DipoleBlock, lo, hi);
     bounds[static_cast<std::size_t>(2 * b)] = lo;
     bounds[static_cast<std::size_t>(2 * b + 1)] = hi;
     e.blocksBounded += lo <= hi;
@@ -114,6 +127,56 @@ Emulated emulateGpu(const WindingSigner& w, const GridGeometry& g)
     }
   return e;
 }
+
+/// Every voxel of the grid: the emulated GPU decision = meshToSdf's sign on
+/// the CPU; the oracle on far voxels. Returns the blocks bounded by their coarse block.
+std::uint64_t compareWithCpu(const std::string& name, const TriangleMesh& m, int res, int& reoriented, int& capsOverM)
+{
+  const GridGeometry g = fitGridToMesh(m, res, 2);
+  VoxelBox all;
+  all.hi = { g.dims[0] - 1, g.dims[1] - 1, g.dims[2] - 1 };
+  std::vector<float> cpu(static_cast<std::size_t>(g.count()));
+  MeshToSdfOptions o;
+  o.sign = SignMode::WindingNumber;
+  o.device = Device::Cpu;
+  o.bandWidth = std::numeric_limits<float>::infinity();
+  meshToSdf(m, g, all, cpu.data(), o);
+
+  const PreparedMesh prepared = prepareMesh(m);
+  const WindingSigner w(prepared);
+  EXPECT_TRUE(w.gpuTakesCpuClosure()) << name;
+  // (the intersecting pair is closed: no correction, K alone)
+  EXPECT_EQ(w.cpuCorrection() == nullptr, name == "pair") << name;
+  reoriented += w.closesReorientedMesh();
+  capsOverM += w.cpuCorrection() && !w.closesReorientedMesh();
+  const Emulated e = emulateGpu(w, g);
+  std::int64_t differ = 0, inside = 0, far = 0, wrong = 0;
+  std::mt19937 rng(11);
+  const std::uint32_t sample = static_cast<std::uint32_t>(std::max<std::int64_t>(16, g.count() / 1600));
+  for (std::int64_t v = 0; v < g.count(); ++v)
+  {
+    const bool a = std::signbit(cpu[static_cast<std::size_t>(v)]), b = e.inside[static_cast<std::size_t>(v)] != 0;
+    differ += a != b;
+    inside += a;
+    // brute-force oracle on a sample of the voxels farther than 1 voxel
+    if (std::fabs(cpu[static_cast<std::size_t>(v)]) > 1.0f && rng() % sample == 0)
+    {
+      const std::int64_t i = v % g.dims[0], j = (v / g.dims[0]) % g.dims[1], k = v / (g.dims[0] * g.dims[1]);
+      const oracle::P p{ g.origin[0] + i * g.spacing[0], g.origin[1] + j * g.spacing[1], g.origin[2] + k * g.spacing[2] };
+      ++far;
+      wrong += (std::fabs(oracle::winding(m, p)) >= 0.5) != b;
+    }
+  }
+  std::printf("[ gpu decision ] %-14s %lld voxels, %lld inside, %lld differ from the CPU; %llu blocks bounded (%llu by their coarse block), "
+              "%llu voxels refined, %llu canonical; oracle: %lld wrong of %lld far\n",
+    name.c_str(), static_cast<long long>(g.count()), static_cast<long long>(inside), static_cast<long long>(differ),
+    e.blocksBounded, e.fromCoarse, e.evaluated, e.full, static_cast<long long>(wrong), static_cast<long long>(far));
+  EXPECT_EQ(differ, 0) << name;
+  EXPECT_EQ(wrong, 0) << name;
+  EXPECT_GT(inside, g.count() / 50) << name; // the guard: the mesh encloses something
+  EXPECT_GT(far, 500) << name;
+  return e.fromCoarse;
+}
 } // namespace
 
 TEST(MeshToSdfDipoleDecide, PortableAtan2IsWithinAFewUlps)
@@ -142,54 +205,18 @@ TEST(MeshToSdfDipoleDecide, PortableAtan2IsWithinAFewUlps)
 TEST(MeshToSdfDipoleDecide, GpuDecisionEqualsCpuOnEveryVoxelOfDamagedMeshes)
 {
   int reoriented = 0, capsOverM = 0;
-  for (const auto& [name, m] : damagedMeshes())
-  {
-    const GridGeometry g = fitGridToMesh(m, 32, 2);
-    VoxelBox all;
-    all.hi = { g.dims[0] - 1, g.dims[1] - 1, g.dims[2] - 1 };
-    std::vector<float> cpu(static_cast<std::size_t>(g.count()));
-    MeshToSdfOptions o;
-    o.sign = SignMode::WindingNumber;
-    o.device = Device::Cpu;
-    o.bandWidth = std::numeric_limits<float>::infinity();
-    meshToSdf(m, g, all, cpu.data(), o);
-
-    const PreparedMesh prepared = prepareMesh(m);
-    const WindingSigner w(prepared);
-    ASSERT_TRUE(w.gpuTakesCpuClosure()) << name;
-    // (the intersecting pair is closed: no correction, K alone)
-    EXPECT_EQ(w.cpuCorrection() == nullptr, name == "pair") << name;
-    reoriented += w.closesReorientedMesh();
-    capsOverM += w.cpuCorrection() && !w.closesReorientedMesh();
-    const Emulated e = emulateGpu(w, g);
-    std::int64_t differ = 0, inside = 0, far = 0, wrong = 0;
-    std::mt19937 rng(11);
-    for (std::int64_t v = 0; v < g.count(); ++v)
-    {
-      const bool a = std::signbit(cpu[static_cast<std::size_t>(v)]), b = e.inside[static_cast<std::size_t>(v)] != 0;
-      differ += a != b;
-      inside += a;
-      // brute-force oracle on a sample of the voxels farther than 1 voxel
-      if (std::fabs(cpu[static_cast<std::size_t>(v)]) > 1.0f && rng() % 16 == 0)
-      {
-        const std::int64_t i = v % g.dims[0], j = (v / g.dims[0]) % g.dims[1], k = v / (g.dims[0] * g.dims[1]);
-        const oracle::P p{ g.origin[0] + i * g.spacing[0], g.origin[1] + j * g.spacing[1], g.origin[2] + k * g.spacing[2] };
-        ++far;
-        wrong += (std::fabs(oracle::winding(m, p)) >= 0.5) != b;
-      }
-    }
-    std::printf("[ gpu decision ] %-14s %lld voxels, %lld inside, %lld differ from the CPU; %llu blocks bounded, "
-                "%llu voxels refined, %llu canonical; oracle: %lld wrong of %lld far\n",
-      name.c_str(), static_cast<long long>(g.count()), static_cast<long long>(inside), static_cast<long long>(differ),
-      e.blocksBounded, e.evaluated, e.full, static_cast<long long>(wrong), static_cast<long long>(far));
-    EXPECT_EQ(differ, 0) << name;
-    EXPECT_EQ(wrong, 0) << name;
-    EXPECT_GT(inside, g.count() / 50) << name; // the guard: the mesh encloses something
-    EXPECT_GT(far, 500) << name;
-  }
+  for (const auto& [name, m] : damagedMeshes()) compareWithCpu(name, m, 32, reoriented, capsOverM);
   // both closures are exercised: M+ (scattered reversals, duplicates) and M closed by caps (patches, holes)
   EXPECT_GT(reoriented, 0);
   EXPECT_GT(capsOverM, 0);
+}
+
+// A finer grid, where the coarse blocks (16 voxels) bound s too
+TEST(MeshToSdfDipoleDecide, GpuDecisionEqualsCpuOnAFinerGrid)
+{
+  int reoriented = 0, capsOverM = 0;
+  const auto meshes = damagedMeshes();
+  EXPECT_GT(compareWithCpu(meshes[0].first, meshes[0].second, 80, reoriented, capsOverM), 0u);
 }
 
 // Where w is within rounding of +-1/2 the canonical sum decides, on both
