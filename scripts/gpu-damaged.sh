@@ -62,6 +62,7 @@ fi
 
 # the table: warm end-to-end, sign time, device, ratio to the clean mesh on the same grid
 awk '
+  /^## SKIPPED/ { l = substr($0, 21); skipped[l] = 1; order[++k] = l; next }
   /^## / { split($0, h, " \\| "); label = substr(h[1], 4); next }
   /^\| warm / { n = split($0, c, "|"); dev[label] = c[3]; sign[label] = c[7]; e2e[label] = c[9]; refined[label] = c[10]; order[++k] = label; next }
   /^cpu check:/ { chk[label] = $0; order[++k] = label; next }
@@ -72,6 +73,7 @@ awk '
       l = order[i]; if (seen[l]++) continue
       if (l in chk) { sub(/^cpu check: /, "", chk[l]); printf "| %s | | | | | %s |\n", l, chk[l]; continue }
       if (l in to) { printf "| %s | | | timed out | | |\n", l; continue }
+      if (l in skipped) { printf "| %s | | | skipped (budget) | | |\n", l; continue }
       split(l, p, " "); base = "clean " p[2]; r = (base in e2e && e2e[base] + 0 > 0) ? sprintf("%.2f", e2e[l] / e2e[base]) : ""
       printf "| %s |%s|%s|%s| %s |%s|\n", l, dev[l], sign[l], e2e[l], r, refined[l]
     }
