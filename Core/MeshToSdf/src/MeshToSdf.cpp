@@ -223,6 +223,18 @@ std::unique_ptr<Engine> makeEngine(const MeshToSdfPrepared& prepared, const Grid
   return e;
 }
 
+/// Says (with --trace) which winding construction the GPU runs.
+void traceWindingPath(const WindingSigner& w)
+{
+  const DipoleTree* s = w.cpuCorrection();
+  const std::string what = !w.gpuTakesCpuClosure()
+    ? "winding sign on the GPU: cone over the boundary (the older construction)"
+    : s ? "winding sign on the GPU: the CPU's closure, correction s over " + std::to_string(s->size()) +
+          " faces (caps, reversed, removed) in the dipole tree"
+        : std::string("winding sign on the GPU: closed mesh, crossings only");
+  trace(what.c_str(), 0);
+}
+
 /// The CUDA session of a call, on the prepared mesh's device copy (uploaded
 /// on first use; the upload counts as build time). Winding structures not
 /// built yet (the one-call API) are built and uploaded by the session right
@@ -239,6 +251,7 @@ std::unique_ptr<detail::meshtosdf_cuda::Session> openCuda(const MeshToSdfPrepare
   const bool built = impl.hasWindingSigner();
   const detail::meshtosdf_cuda::DeviceMesh& dm = impl.deviceMesh(winding && built, normals, unused, winding && !built);
   std::function<void()> ensure;
+  if (winding && built) traceWindingPath(impl.windingSigner(unused));
   if (winding)
   {
     ensure = [&impl, &stats]() {
@@ -247,6 +260,7 @@ std::unique_ptr<detail::meshtosdf_cuda::Session> openCuda(const MeshToSdfPrepare
       impl.deviceMesh(true, false, s);
       stats.buildSeconds += now() - t1;
       trace("winding structures built and uploaded, overlapping the distance kernel", now() - t1);
+      traceWindingPath(impl.windingSigner(s));
     };
   }
   auto session = detail::meshtosdf_cuda::openSession(dm, e.geom, opts, e.toOut, e.band, stats, std::move(ensure));
@@ -255,22 +269,18 @@ std::unique_ptr<detail::meshtosdf_cuda::Session> openCuda(const MeshToSdfPrepare
   return session;
 }
 
-/// The device of a call. Auto prefers CUDA, except for WindingNumber on a mesh
-/// with reversed or duplicated faces: the CPU then decides most voxels with
-/// the orientation + dipole-tree construction (MeshToSdfWinding.cpp), while the
-/// CUDA sign kernel still closes M by a cone over every uncancelled edge,
-/// exact too but orders of magnitude slower on such meshes. An explicit
-/// Device::Cuda is obeyed.
+/// The device of a call. Auto prefers CUDA for every mesh: the CUDA sign
+/// kernel takes the CPU's winding construction (orientation pass, local caps,
+/// the dipole tree over caps, reversed and removed faces) and decides every
+/// voxel as the CPU does (MeshToSdfCudaDipole.cuh). Only reorientFaces stays
+/// on the CPU.
 Device chooseDevice(const MeshToSdfPrepared& prepared, const MeshToSdfOptions& options)
 {
+  (void)prepared;
   const Device d = resolveDevice(options.device);
   if (d != Device::Cuda || options.sign != SignMode::WindingNumber) return d;
   if (options.reorientFaces) return Device::Cpu; // not on CUDA (documented at the option)
-  if (options.device != Device::Auto) return d;
-  MeshToSdfPrepared::Impl& impl = prepared.impl();
-  if (!WindingSigner::mayHaveReversedFaces(impl.mesh)) return d;
-  double unused = 0;
-  return impl.windingSigner(unused).flippedTriangles() > 0 ? Device::Cpu : d;
+  return d;
 }
 
 /// Runs fn(row) for every (j, k) row of the box on OpenMP threads; progress

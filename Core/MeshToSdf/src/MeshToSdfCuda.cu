@@ -9,6 +9,7 @@
 // the next runs; dictionary-volume groups encoded on the GPU).
 #include "MeshToSdfCuda.h"
 #include "MeshToSdfCudaKernels.cuh"
+#include "MeshToSdfCudaDipole.cuh"
 
 #include "lvdif/CudaCheck.cuh"
 #include "lvdif/Error.h"
@@ -177,6 +178,11 @@ public:
       this->ReservedSlot = this->Arena.alloc<int>(mesh.tris.size());
       this->ReservedCone = this->Arena.alloc<GpuTri>(this->EdgeCap);
       this->ReservedClusters = this->Arena.alloc<WindingSigner::Cluster>(this->EdgeCap);
+      // the correction's faces: caps (fewer than the boundary edges of what they
+      // close) and F, R (chosen only when they and the caps of M+ are fewer than
+      // the boundary edges of M); its nodes: at most one per face
+      this->ReservedDipoleTris = this->Arena.alloc<WeightedTri>(this->EdgeCap);
+      this->ReservedDipoleNodes = this->Arena.alloc<DipoleNode>(this->EdgeCap + 2);
     }
     LVDIF_CUDA_CHECK(cudaDeviceSynchronize());
   }
@@ -201,12 +207,29 @@ public:
   {
     if (this->hasWinding()) return;
     const cudaStream_t st = this->Upload.s;
-    this->W.closed = uploadBvh(this->Arena, st, winding.closedBvh(), this->Reserved, this->ClosedCap);
-    this->W.meshTris = static_cast<int>(winding.meshTriangles());
+    this->W.allTris = static_cast<int>(this->MeshBvh.order().size());
     this->W.meshLeaf = this->Dbvh.leaf;
     std::vector<int> slot(this->MeshBvh.order().size());
     for (std::size_t i = 0; i < slot.size(); ++i) slot[static_cast<std::size_t>(this->MeshBvh.order()[i])] = static_cast<int>(i);
     this->W.meshSlot = this->Arena.uploadOn(st, slot, this->ReservedSlot, this->ReservedSlot ? slot.size() : 0);
+    if (winding.gpuTakesCpuClosure())
+    {
+      // the CPU's closure (M+ or M closed by local caps) and its correction s
+      const WindingSigner::Closure& c = winding.cpuClosure();
+      this->W.closed = uploadBvh(this->Arena, st, *c.bvh, this->Reserved, this->ClosedCap);
+      this->W.meshTris = static_cast<int>(c.meshTris);
+      if (const DipoleTree* s = winding.cpuCorrection())
+      {
+        this->D.tris = this->Arena.uploadOn(st, s->tris(), this->ReservedDipoleTris, this->EdgeCap);
+        this->D.nodes = this->Arena.uploadOn(st, s->nodes(), this->ReservedDipoleNodes, this->EdgeCap + 2);
+        this->D.count = static_cast<int>(s->tris().size());
+        this->D.rootMass = s->nodes().empty() ? 0.0 : s->nodes()[0].mass;
+      }
+      this->Winding.store(true, std::memory_order_release);
+      return;
+    }
+    this->W.closed = uploadBvh(this->Arena, st, winding.closedBvh(), this->Reserved, this->ClosedCap);
+    this->W.meshTris = static_cast<int>(winding.meshTriangles());
     this->W.cone = this->Arena.uploadOn(st, compactTris(winding.cone()), this->ReservedCone, this->EdgeCap);
     this->W.coneCount = static_cast<int>(winding.cone().size());
     this->W.clusters = this->Arena.uploadOn(st, winding.clusters(), this->ReservedClusters, this->EdgeCap);
@@ -217,6 +240,7 @@ public:
   std::uint64_t bytes() const override { return this->Arena.bytes(); }
   DevBvh Dbvh;  // immutable once constructed (tris: see meshBvh)
   WindingDev W; // written once by addWinding, before Winding is set
+  DipoleDev D;  // the correction s (count 0: none, or the cone closure); as W
 
 private:
   const PreparedMesh& Mesh; // owned by the prepared mesh, which owns this copy
@@ -230,6 +254,8 @@ private:
   int* ReservedSlot = nullptr;
   GpuTri* ReservedCone = nullptr;
   WindingSigner::Cluster* ReservedClusters = nullptr;
+  WeightedTri* ReservedDipoleTris = nullptr;
+  DipoleNode* ReservedDipoleNodes = nullptr;
 };
 
 /// A CUDA event pair timing kernels without synchronising at each launch.
@@ -285,7 +311,7 @@ public:
       "mesh to SDF: the device mesh has no winding structures");
     require(!(options.sign == SignMode::Normal || options.sign == SignMode::PseudoNormal) || mesh.hasNormals(),
       "mesh to SDF: the device mesh has no triangle normals");
-    this->Counters = this->Arena.alloc<unsigned long long>(2);
+    this->Counters = this->Arena.alloc<unsigned long long>(3);
     for (int a = 0; a < 3; ++a)
     {
       this->P.origin[a] = grid.origin[a];
@@ -299,7 +325,7 @@ public:
       : options.sign == SignMode::WindingNumber ? 2 : 3;
     this->P.useVertexNormals = options.useVertexNormals ? 1 : 0;
     this->P.bounded = (this->P.sign >= 2 && this->P.bandWorld < 1e299) ? 1 : 0;
-    LVDIF_CUDA_CHECK(cudaMemset(this->Counters, 0, 2 * sizeof(unsigned long long)));
+    LVDIF_CUDA_CHECK(cudaMemset(this->Counters, 0, 3 * sizeof(unsigned long long)));
     stats.devicePeakBytes = std::max(stats.devicePeakBytes, this->Mesh.bytes() + this->Arena.bytes());
   }
 
@@ -454,13 +480,47 @@ private:
       this->Stats.devicePeakBytes = std::max(this->Stats.devicePeakBytes, this->Mesh.bytes() + this->Arena.bytes());
     }
     LVDIF_CUDA_CHECK(cudaEventRecord(this->SignDone.a));
+    // the correction s: bounded per block of voxels first (MeshToSdfCudaDipole.cuh)
+    const bool dipole = this->HasWinding && this->Mesh.D.count > 0;
+    long long bx = 0, by = 0;
+    if (dipole)
+    {
+      bx = (box.hi[0] - box.lo[0] + DipoleBlock) / DipoleBlock;
+      by = (box.hi[1] - box.lo[1] + DipoleBlock) / DipoleBlock;
+      const long long bz = (box.hi[2] - box.lo[2] + DipoleBlock) / DipoleBlock, blocks = bx * by * bz;
+      // coarse blocks (DipoleCoarse^3 blocks each) first: far from the
+      // corrected faces one bound serves them all
+      const long long cx = (bx + DipoleCoarse - 1) / DipoleCoarse, cy = (by + DipoleCoarse - 1) / DipoleCoarse;
+      const long long coarse = cx * cy * ((bz + DipoleCoarse - 1) / DipoleCoarse);
+      if (blocks + coarse > this->BoundCapacity)
+      {
+        if (this->Bounds) this->Arena.release(this->Bounds);
+        this->Bounds = this->Arena.alloc<double>(static_cast<std::size_t>(2 * (blocks + coarse)));
+        this->BoundCapacity = blocks + coarse;
+      }
+      double* coarseBounds = this->Bounds + 2 * blocks;
+      dipoleBlockKernel<<<static_cast<unsigned>((coarse + 127) / 128), 128>>>(
+        this->Mesh.D, P, DipoleBlock * DipoleCoarse, cx, cy, coarse, nullptr, coarseBounds);
+      LVDIF_CUDA_CHECK(cudaGetLastError());
+      dipoleBlockKernel<<<static_cast<unsigned>((blocks + 127) / 128), 128>>>(
+        this->Mesh.D, P, DipoleBlock, bx, by, blocks, coarseBounds, this->Bounds);
+      LVDIF_CUDA_CHECK(cudaGetLastError());
+    }
     for (int p = 0; p < parts; ++p)
     {
       if (this->HasWinding)
       {
         const long long r0 = rows * p / parts, r1 = rows * (p + 1) / parts;
-        signKernel<<<static_cast<unsigned>((r1 - r0 + SignWarps - 1) / SignWarps), 32 * SignWarps>>>(
-          this->Mesh.W, P, r0, r1, this->Slab, this->Counters, this->Counters + 1);
+        const unsigned grid = static_cast<unsigned>((r1 - r0 + SignWarps - 1) / SignWarps);
+        if (dipole)
+        {
+          signDipoleKernel<<<grid, 32 * SignWarps>>>(
+            this->Mesh.W, this->Mesh.D, P, r0, r1, this->Bounds, bx, by, this->Slab, this->Counters);
+        }
+        else
+        {
+          signKernel<<<grid, 32 * SignWarps>>>(this->Mesh.W, P, r0, r1, this->Slab, this->Counters, this->Counters + 1);
+        }
         LVDIF_CUDA_CHECK(cudaGetLastError());
       }
       LVDIF_CUDA_CHECK(cudaEventRecord(this->PartDone[p]));
@@ -471,11 +531,12 @@ private:
 
   void readCounters(MeshToSdfStats& stats)
   {
-    unsigned long long host[2] = { 0, 0 };
+    unsigned long long host[3] = { 0, 0, 0 };
     LVDIF_CUDA_CHECK(cudaMemcpy(host, this->Counters, sizeof(host), cudaMemcpyDeviceToHost));
     LVDIF_CUDA_CHECK(cudaMemset(this->Counters, 0, sizeof(host)));
     stats.windingEvaluations += static_cast<std::int64_t>(host[0]);
     stats.windingExact += static_cast<std::int64_t>(host[1]);
+    stats.windingFullSums += static_cast<std::int64_t>(host[2]);
   }
 
   MeshToSdfOptions Options;
@@ -492,6 +553,8 @@ private:
   unsigned long long* Counters = nullptr;
   float* Slab = nullptr;
   std::size_t SlabCapacity = 0;
+  double* Bounds = nullptr; // per block of the slab: s's bound (lo, hi), lo > hi: none
+  long long BoundCapacity = 0;
   // the group of chunk layers of the last launchKeys
   VoxelBox KeyBox;
   int Edge = 32, Ccx = 0, Ccy = 0;

@@ -63,7 +63,8 @@ struct Params
 struct WindingDev
 {
   DevBvh closed;      // tris unused (null): leaf records only
-  int meshTris = 0;
+  int meshTris = 0;                 // closed triangles [0, meshTris) are the mesh's (crossings of the rest: caps or cone)
+  int allTris = 0;                  // triangles of M as given (the all-solid-angle fallback)
   const GpuTri* meshLeaf = nullptr; // the mesh BVH's leaves and the slot of each triangle there:
   const int* meshSlot = nullptr;    // the mesh in index order, for the all-solid-angle fallback
   const GpuTri* cone = nullptr;
@@ -345,9 +346,10 @@ __device__ double evaluateWarp(const WindingDev& W, V3 p, int lane)
   {
     return sum - coneWindingWarp(W, p, lane);
   }
-  return warpOrderedSum(W.meshTris, lane, [&](int i) {
+  // canonical solid angles: the same bits as the CPU's WindingSigner::evaluate
+  return warpOrderedSum(W.allTris, lane, [&](int i) {
     const GpuTri& t = W.meshLeaf[W.meshSlot[i]];
-    return solidAngle(p, t.v[0], t.v[1], t.v[2]);
+    return solidAngleCanonical(p, t.v[0], t.v[1], t.v[2]);
   }) / FourPi;
 }
 

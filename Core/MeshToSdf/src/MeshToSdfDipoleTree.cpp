@@ -204,5 +204,12 @@ double DipoleTree::exact(V3 p) const
   return s / FourPi;
 }
 
+double DipoleTree::exactCanonical(V3 p) const
+{
+  double s = 0;
+  for (const WeightedTri& t : this->Tris) s += t.w * solidAngleCanonical(p, t.v[0], t.v[1], t.v[2]);
+  return s / FourPi;
+}
+
 } // namespace detail::meshtosdf
 } // namespace lvdif

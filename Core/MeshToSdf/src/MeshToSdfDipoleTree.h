@@ -53,14 +53,22 @@ public:
     std::int64_t& leafTris, std::vector<std::int32_t>* cut = nullptr) const;
   /// The plain sum over all triangles (Van Oosterom & Strackee solid angles).
   double exact(V3 p) const;
+  /// The same sum in triangle order with solidAngleCanonical: the same bits
+  /// on the GPU (MeshToSdfCudaDipole.cuh), so a sign within rounding of +-1/2
+  /// is decided alike on both.
+  double exactCanonical(V3 p) const;
 
-private:
   struct Node
   {
     V3 c, dipole;        // centre; sum of w a n
     double r = 0, mass = 0; // radius about c; sum of |w| a
     std::int32_t left = -1, right = -1, first = 0, count = 0;
   };
+  // for the upload to the GPU (node 0 the root; leaves list tris()[first, first + count))
+  const std::vector<Node>& nodes() const { return this->Nodes; }
+  const std::vector<WeightedTri>& tris() const { return this->Tris; }
+
+private:
   std::vector<WeightedTri> Tris;
   std::vector<Node> Nodes;
 };

@@ -134,6 +134,44 @@ LVDIF_HD double solidAngle(V3 p, V3 a, V3 b, V3 c)
   return 2.0 * std::atan2(num, den);
 }
 
+/// atan2 from +, -, *, / and sqrt only: IEEE-rounded alike on the CPU and the
+/// GPU (contraction off on both), so both give the same bits, unlike the
+/// libm and CUDA atan2 (a few ulps apart). Within a few ulps of atan2; any
+/// signed zero and finite input. Range reduction atan(a) = pi/4 +
+/// atan((a - 1) / (a + 1)) above tan(pi/8), then one halving
+/// atan(t) = 2 atan(t / (1 + sqrt(1 + t^2))), then the Taylor series to
+/// u^23 (|u| <= 0.2: remainder < 4e-18).
+LVDIF_HD double portableAtan2(double y, double x)
+{
+  const double ay = y < 0 ? -y : y, ax = x < 0 ? -x : x;
+  if (ay == 0 && ax == 0) return 0.0;
+  const bool steep = ay > ax;
+  double a = steep ? ax / ay : ay / ax, off = 0;
+  if (a > 0.41421356237309503)
+  {
+    a = (a - 1) / (a + 1);
+    off = 0.7853981633974483;
+  }
+  const double u = a / (1 + std::sqrt(1 + a * a)), u2 = u * u;
+  double series = 1.0 / 23;
+  for (int k = 21; k >= 1; k -= 2) series = 1.0 / k - u2 * series;
+  double r = off + 2 * (u * series);
+  if (steep) r = 1.5707963267948966 - r;
+  if (x < 0 || (x == 0 && std::signbit(x))) r = 3.141592653589793 - r;
+  return std::signbit(y) ? -r : r;
+}
+
+/// solidAngle with portableAtan2: the same bits on the CPU and the GPU
+/// (the winding sign's last resort, where w is within rounding of +-1/2).
+LVDIF_HD double solidAngleCanonical(V3 p, V3 a, V3 b, V3 c)
+{
+  const V3 x = a - p, y = b - p, z = c - p;
+  const double lx = norm(x), ly = norm(y), lz = norm(z);
+  const double num = dot(x, cross(y, z));
+  const double den = lx * ly * lz + dot(x, y) * lz + dot(x, z) * ly + dot(y, z) * lx;
+  return 2.0 * portableAtan2(num, den);
+}
+
 /// Squared distance from p to the box [lo, hi] (0 inside).
 LVDIF_HD double pointBoxDist2(V3 p, const double lo[3], const double hi[3])
 {

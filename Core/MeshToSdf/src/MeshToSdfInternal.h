@@ -191,8 +191,16 @@ public:
     std::vector<Cluster> clusters; // of boundary edges, for the drift bound
     std::size_t meshTris = 0;
   };
-  // for the CUDA path, which keeps the cone over the boundary of M itself
-  // (built on first use when it differs from the CPU's closure)
+  /// The CPU's construction as the GPU takes it: the closed chain whose
+  /// crossings count (M+ or M, closed by local caps) and the correction s
+  /// (null when there is none). Unless the closure has a cone (only if the
+  /// boundary could not be split into closed walks), the CUDA sign kernel
+  /// uses exactly these (MeshToSdfCudaDipole.cuh), so both decide alike.
+  bool gpuTakesCpuClosure() const { return this->Plus.cone.empty(); }
+  const Closure& cpuClosure() const { return this->Plus; }
+  const DipoleTree* cpuCorrection() const { return this->Flipped.get(); }
+  // the older CUDA construction, for a closure with a cone: the cone over the
+  // boundary of M itself (built on first use when it differs from the CPU's closure)
   const std::vector<Tri>& closedTris() const { return this->coneOverMesh().closed; }
   const Bvh& closedBvh() const { return *this->coneOverMesh().bvh; }
   const std::vector<Tri>& cone() const { return this->coneOverMesh().cone; }

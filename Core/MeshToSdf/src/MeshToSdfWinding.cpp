@@ -298,7 +298,9 @@ WindingSigner::WindingSigner(const PreparedMesh& mesh)
   const std::vector<std::array<V3, 2>>* boundary = &mesh.boundary;
   if (WindingSigner::mayHaveReversedFaces(mesh))
   {
+    const double t0 = now();
     om = orientMesh(mesh.tris, mesh.welded);
+    trace("winding: orientation pass", now() - t0);
     this->CorrectedFaces = om.flippedCount + om.removedCount;
     // M+ pays when F, R and the boundary of M+ are fewer than the boundary
     // edges of M (scattered reversed faces, duplicates); reversed patches
@@ -336,9 +338,13 @@ WindingSigner::WindingSigner(const PreparedMesh& mesh)
     }
   }
   std::vector<WeightedTri> caps;
+  double t0 = now();
   if (!boundary->empty() && capLoops(*boundary, caps))
   {
+    trace("winding: caps", now() - t0);
+    t0 = now();
     buildClosure(this->Plus, mesh.tris, state, *boundary, &caps);
+    trace("winding: closure BVH", now() - t0);
     this->PlusIsCone = false;
     if (state && !caps.empty()) this->CapsOnly = std::make_unique<DipoleTree>(caps);
     f.insert(f.end(), caps.begin(), caps.end());
@@ -346,9 +352,12 @@ WindingSigner::WindingSigner(const PreparedMesh& mesh)
   else
   {
     buildClosure(this->Plus, mesh.tris, state, *boundary);
+    trace("winding: closure BVH", now() - t0);
     this->PlusIsCone = state == nullptr; // M+ = M: exactly the cone over dM (shared with the CUDA path)
   }
+  t0 = now();
   if (!f.empty()) this->Flipped = std::make_unique<DipoleTree>(std::move(f));
+  trace("winding: dipole tree", now() - t0);
 }
 
 WindingSigner::~WindingSigner() = default;
@@ -417,12 +426,13 @@ double WindingSigner::evaluate(V3 p, bool reoriented) const
     // w of M+ (the re-oriented faces, duplicates once): its triangles lead Plus.closed
     return laneOrderedSum(c.meshTris, [&](std::size_t i) {
       const Tri& t = c.closed[i];
-      return solidAngle(p, t.v[0], t.v[1], t.v[2]);
+      return solidAngleCanonical(p, t.v[0], t.v[1], t.v[2]);
     }) / FourPi;
   }
+  // canonical solid angles: the GPU's evaluateWarp adds the same bits in the same order
   return laneOrderedSum(this->Mesh.tris.size(), [&](std::size_t i) {
     const Tri& t = this->Mesh.tris[i];
-    return solidAngle(p, t.v[0], t.v[1], t.v[2]);
+    return solidAngleCanonical(p, t.v[0], t.v[1], t.v[2]);
   }) / FourPi;
 }
 
@@ -445,6 +455,9 @@ bool WindingSigner::insideAt(V3 p, std::int64_t& fullSums, bool reoriented) cons
   const auto r = s->refine(p, 0,
     [&](double lo, double hi) { return decided(u - 1e-9 - hi, u + 1e-9 - lo) ? 1 : 0; }, sLo, sHi, leafTris);
   if (r == DipoleTree::Refined::Exact) ++fullSums;
+  // within rounding of +-1/2 with everything summed: decided by the canonical
+  // sum (u = K exactly without a cone), as the GPU decides it
+  if (!decided(u - 1e-9 - sHi, u + 1e-9 - sLo) && c.cone.empty()) return insideOf(u - s->exactCanonical(p));
   return insideOf(u - 0.5 * (sLo + sHi));
 }
 
@@ -632,7 +645,12 @@ void WindingSigner::signRow(V3 rowStart, double h, std::int64_t n, float* out, s
       break; // within rounding of +-0.5 with everything exact
     }
     if (evaluated) ++evaluations;
-    if (insideOf(0.5 * ((lo - sHi) + (hi - sLo)))) out[i] = -out[i];
+    // undecided only within rounding of +-1/2 with every face of s summed
+    // exactly: then the canonical sum decides (u = K here without a cone),
+    // bit for bit as on the GPU (MeshToSdfCudaDipole.cuh)
+    const bool inside = !open && flips && !decided(lo - sHi, hi - sLo) ? insideOf(lo - flips->exactCanonical(pos(i)))
+                                                                      : insideOf(0.5 * ((lo - sHi) + (hi - sLo)));
+    if (inside) out[i] = -out[i];
   }
 }
 

@@ -1,6 +1,7 @@
 // CUDA mesh to SDF against the CPU path (itself tested against brute-force
 // oracles): distances within float rounding, signs equal except on voxels
 // lying on the surface (|d| < 1e-3 voxel). Skipped without a CUDA device.
+#include "MeshToSdfDamagedMeshes.h"
 #include "MeshToSdfOracle.h"
 #include "lvdif/Cuda.h"
 #include "lvdif/MeshToSdf.h"
@@ -83,16 +84,13 @@ TEST(MeshToSdfCuda, MatchesCpuOnEverySignMode)
   }
 }
 
-// Device::Auto keeps WindingNumber on the CPU for meshes with reversed faces
-// (the CUDA kernel lacks that construction and would be very slow), and uses
-// CUDA otherwise; the same field either way.
-TEST(MeshToSdfCuda, AutoKeepsReversedFacesOnTheCpu)
+// Device::Auto runs WindingNumber on the GPU for meshes with reversed faces
+// too (the kernel takes the CPU's construction): the same field as the CPU.
+TEST(MeshToSdfCuda, AutoKeepsReversedFacesOnTheGpu)
 {
   if (!cuda::available()) GTEST_SKIP() << "no CUDA device";
   TriangleMesh flipped = makeSphereMesh(0.05f, -0.03f, 0.02f, 1.0f, 24, 48);
   for (std::size_t t = 0; t < flipped.triangles.size(); t += 9) std::swap(flipped.triangles[t][1], flipped.triangles[t][2]);
-  TriangleMesh holed = makeSphereMesh(0.05f, -0.03f, 0.02f, 1.0f, 24, 48);
-  holed.triangles.erase(holed.triangles.begin(), holed.triangles.begin() + 48);
   const GridGeometry g = fitGridToMesh(flipped, 24, 2);
   VoxelBox all;
   all.hi = { g.dims[0] - 1, g.dims[1] - 1, g.dims[2] - 1 };
@@ -100,16 +98,71 @@ TEST(MeshToSdfCuda, AutoKeepsReversedFacesOnTheCpu)
   MeshToSdfOptions o;
   o.sign = SignMode::WindingNumber;
   o.device = Device::Auto;
-  EXPECT_EQ(meshToSdf(flipped, g, all, a.data(), o).device, Device::Cpu);
-  o.device = Device::Cuda;
-  EXPECT_EQ(meshToSdf(flipped, g, all, b.data(), o).device, Device::Cuda);
-  std::int64_t differ = 0;
-  for (std::size_t i = 0; i < a.size(); ++i) differ += std::fabs(a[i]) > 1e-3f && (a[i] < 0) != (b[i] < 0);
-  EXPECT_EQ(differ, 0);
-  o.device = Device::Auto;
-  EXPECT_EQ(meshToSdf(holed, g, all, a.data(), o).device, Device::Cuda);
-  o.sign = SignMode::PseudoNormal;
   EXPECT_EQ(meshToSdf(flipped, g, all, a.data(), o).device, Device::Cuda);
+  o.device = Device::Cpu;
+  EXPECT_EQ(meshToSdf(flipped, g, all, b.data(), o).device, Device::Cpu);
+  EXPECT_EQ(std::memcmp(a.data(), b.data(), a.size() * sizeof(float)), 0);
+  o.device = Device::Auto;
+  o.reorientFaces = true; // not on CUDA
+  EXPECT_EQ(meshToSdf(flipped, g, all, a.data(), o).device, Device::Cpu);
+}
+
+// The damaged meshes (reversed patches, scattered reversals, duplicates half
+// reversed, holes, fins, an intersecting pair, combinations): CUDA = CPU bit
+// for bit on the whole volume (distances and signs), with and without a
+// band, over several slabs; and the brute-force winding number on a sample
+// of the far voxels.
+TEST(MeshToSdfCuda, DamagedMeshesMatchCpuBitForBit)
+{
+  if (!cuda::available()) GTEST_SKIP() << "no CUDA device";
+  for (const auto& [name, m] : oracle::damagedMeshes())
+  {
+    const GridGeometry g = fitGridToMesh(m, 64, 2);
+    VoxelBox all;
+    all.hi = { g.dims[0] - 1, g.dims[1] - 1, g.dims[2] - 1 };
+    const MeshToSdfPrepared prepared = prepareMeshToSdf(m);
+    for (float band : { 3.0f, std::numeric_limits<float>::infinity() })
+    {
+      std::vector<float> cpu(static_cast<std::size_t>(g.count())), gpu(cpu.size());
+      MeshToSdfOptions o;
+      o.sign = SignMode::WindingNumber;
+      o.bandWidth = band;
+      o.device = Device::Cpu;
+      meshToSdf(prepared, g, all, cpu.data(), o);
+      o.device = Device::Auto;
+      o.cudaSlabBytes = static_cast<std::uint64_t>(g.dims[0] * g.dims[1]) * 4 * 11; // several slabs
+      const MeshToSdfStats st = meshToSdf(prepared, g, all, gpu.data(), o);
+      ASSERT_EQ(st.device, Device::Cuda) << name;
+      std::int64_t sign = 0, dist = 0, inside = 0;
+      for (std::size_t i = 0; i < cpu.size(); ++i)
+      {
+        sign += std::signbit(cpu[i]) != std::signbit(gpu[i]);
+        dist += std::fabs(cpu[i]) != std::fabs(gpu[i]);
+        inside += std::signbit(gpu[i]);
+      }
+      std::int64_t far = 0, wrong = 0;
+      for (std::size_t i = 0; std::isinf(band) && i < gpu.size(); i += 397)
+      {
+        if (!(std::fabs(gpu[i]) > 1.0f)) continue;
+        const std::int64_t x = static_cast<std::int64_t>(i) % g.dims[0], y = (static_cast<std::int64_t>(i) / g.dims[0]) % g.dims[1],
+                           z = static_cast<std::int64_t>(i) / (g.dims[0] * g.dims[1]);
+        const double w = oracle::winding(m, { g.origin[0] + x * g.spacing[0], g.origin[1] + y * g.spacing[1], g.origin[2] + z * g.spacing[2] });
+        ++far;
+        wrong += (std::fabs(w) >= 0.5) != std::signbit(gpu[i]);
+      }
+      std::printf("[ cpu vs cuda ] %-14s band %g: %lld sign, %lld distance differences of %zu voxels (%lld inside); "
+                  "%lld refined, %lld canonical on the GPU; oracle: %lld wrong of %lld far\n",
+        name.c_str(), static_cast<double>(band), static_cast<long long>(sign), static_cast<long long>(dist), cpu.size(),
+        static_cast<long long>(inside), static_cast<long long>(st.windingEvaluations),
+        static_cast<long long>(st.windingFullSums), static_cast<long long>(wrong), static_cast<long long>(far));
+      EXPECT_EQ(sign, 0) << name << " band " << band;
+      EXPECT_EQ(dist, 0) << name << " band " << band;
+      EXPECT_EQ(std::memcmp(cpu.data(), gpu.data(), cpu.size() * sizeof(float)), 0) << name << " band " << band;
+      EXPECT_EQ(wrong, 0) << name;
+      if (std::isinf(band)) EXPECT_GT(far, 300) << name;
+      EXPECT_GT(inside, g.count() / 50) << name;
+    }
+  }
 }
 
 TEST(MeshToSdfCuda, ClosedAndIntersectingMeshesAndSubExtent)

@@ -207,8 +207,10 @@ TEST(MeshToSdfWindingFlip, OrientationFindsExactlyTheReversedFaces)
     const detail::meshtosdf::WindingSigner w(prepared);
     const std::size_t minority = std::min(n, prepared.tris.size() - n);
     EXPECT_EQ(w.flippedTriangles(), minority) << f;
-    // what the CUDA kernel gets: M itself closed by a cone over dM (every
-    // edge of a reversed face is uncancelled there)
+    // the CUDA kernel takes the CPU's closure; the older cone construction
+    // (kept for a boundary that cannot be split into walks) closes M itself
+    // by a cone over dM (every edge of a reversed face is uncancelled there)
+    EXPECT_TRUE(w.gpuTakesCpuClosure());
     EXPECT_GT(prepared.boundary.size(), 0u);
     EXPECT_EQ(w.cone().size(), prepared.boundary.size());
     EXPECT_EQ(w.meshTriangles(), prepared.tris.size());

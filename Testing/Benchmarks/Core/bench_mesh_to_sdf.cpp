@@ -2,7 +2,7 @@
 // mesh file at a resolution, sign mode, accelerator, device and output.
 // usage: bench_mesh_to_sdf [DAMAGE:]MESH [RES=256] [SIGN=winding] [DEVICE=auto]
 //        [ACCEL=bvh] [OUTPUT=volume|float] [BAND=8] [PADDING=2]
-//        [RUNS=cold,warm,prepared,prepared]
+//        [RUNS=cold,warm,prepared,prepared] [--trace] [--check-cpu]
 // DAMAGE: a seeded variant of the mesh made in memory before timing (any of
 // signquality::damaged, SignQualityMeshes.h: patch10, duprev20, holes40,
 // fins200, pair, sub2, ...). The bunny is not in the repository: pass its path (e.g. /work/shared/data/lvdif-bunny-30k.ply).
@@ -17,6 +17,7 @@
 
 #include <omp.h>
 
+#include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <limits>
@@ -29,19 +30,25 @@ using namespace lvdif;
 int main(int argc, char** argv)
 {
   // --trace (anywhere): MeshToSdfOptions::tracePhases, the host phases' times on stderr
-  bool tracePhases = false;
-  for (int i = 1; i < argc; ++i)
-    if (std::string(argv[i]) == "--trace")
+  // --check-cpu (anywhere; float output): after the runs, the same grid on the
+  // CPU, compared bit for bit with the last run's floats (signs and distances)
+  bool tracePhases = false, checkCpu = false;
+  for (int i = 1; i < argc;)
+  {
+    const std::string a = argv[i];
+    if (a != "--trace" && a != "--check-cpu")
     {
-      tracePhases = true;
-      for (int j = i; j + 1 < argc; ++j) argv[j] = argv[j + 1];
-      --argc;
-      break;
+      ++i;
+      continue;
     }
+    (a == "--trace" ? tracePhases : checkCpu) = true;
+    for (int j = i; j + 1 < argc; ++j) argv[j] = argv[j + 1];
+    --argc;
+  }
   if (argc < 2)
   {
     std::fprintf(stderr, "usage: %s MESH [RES] [normal|pseudonormal|winding|unsigned] [cpu|cuda|auto] "
-                         "[bvh|faithful|bruteforce] [volume|float] [BAND] [PADDING] [RUNS] [--trace]\n", argv[0]);
+                         "[bvh|faithful|bruteforce] [volume|float] [BAND] [PADDING] [RUNS] [--trace] [--check-cpu]\n", argv[0]);
     return 2;
   }
   try
@@ -169,6 +176,24 @@ int main(int argc, char** argv)
     std::printf("prepareMeshToSdf: %.1f ms (%d OpenMP threads); the first prepared row includes the upload\n",
       prepareMs, omp_get_max_threads());
     if (st.devicePeakBytes) std::printf("device memory peak: %s\n", formatBytes(st.devicePeakBytes).c_str());
+    if (checkCpu && output == "float")
+    {
+      std::vector<float> cpu(out.size());
+      MeshToSdfOptions oc = o;
+      oc.device = Device::Cpu;
+      bench::Stopwatch call;
+      meshToSdf(prepared, FloatGridView{ cpu.data(), g }, oc);
+      const double cpuMs = call.ms();
+      std::int64_t sign = 0, dist = 0;
+      for (std::size_t i = 0; i < cpu.size(); ++i)
+      {
+        sign += std::signbit(cpu[i]) != std::signbit(out[i]);
+        dist += std::fabs(cpu[i]) != std::fabs(out[i]);
+      }
+      std::printf("cpu check: %lld sign and %lld distance differences of %lld voxels (%s run vs cpu; cpu %.1f ms)\n",
+        static_cast<long long>(sign), static_cast<long long>(dist), static_cast<long long>(cpu.size()),
+        toString(st.device), cpuMs);
+    }
   }
   catch (const std::exception& e)
   {

@@ -1,0 +1,145 @@
+// The winding sign of damaged meshes on CUDA (included by MeshToSdfCuda.cu,
+// after MeshToSdfCudaKernels.cuh): the CPU's construction
+// (MeshToSdfWinding.cpp), built on the host and uploaded. w_M = K - s, K the
+// crossings of the closed chain (M+ or M, closed by local caps) counted by
+// the scan-line ray as in signKernel, s the solid-angle sum of the caps, the
+// reversed faces F (weight 2) and the removed duplicates R, bounded by the
+// CPU's DipoleTree (MeshToSdfDipoleTree.cpp) with the same rigorous
+// per-cluster bounds (dipole term with its Taylor error, or area / d^2).
+//
+// Why the signs equal the CPU's bit for bit: MeshToSdfDipoleDecide.h.
+#pragma once
+
+#include "MeshToSdfCudaKernels.cuh"
+#include "MeshToSdfDipoleDecide.h"
+
+namespace lvdif
+{
+namespace detail::meshtosdf_cuda
+{
+namespace
+{
+using DipoleNode = DipoleTree::Node;
+using DipoleDev = DipoleView;
+
+/// One thread per block of edge voxels (edge = DipoleBlock, or
+/// DipoleBlock x DipoleCoarse for the coarse pass) of the slab: dipoleBlockBound.
+/// coarse (fine pass only): the coarse blocks' bounds, bx / DipoleCoarse
+/// rounded up per row; a coarse bound is taken as it is (it holds over the
+/// fine block too).
+__global__ void dipoleBlockKernel(DipoleDev D, Params P, int edge, long long bx, long long by, long long blocks,
+  const double* coarse, double* bounds)
+{
+  const long long b = static_cast<long long>(blockIdx.x) * blockDim.x + threadIdx.x;
+  if (b >= blocks) return;
+  const long long ix = b % bx, iy = (b / bx) % by, iz = b / (bx * by);
+  double lo = 1, hi = 0;
+  if (coarse)
+  {
+    const long long cx = (bx + DipoleCoarse - 1) / DipoleCoarse, cy = (by + DipoleCoarse - 1) / DipoleCoarse;
+    const long long c = ix / DipoleCoarse + cx * (iy / DipoleCoarse + cy * (iz / DipoleCoarse));
+    lo = coarse[2 * c];
+    hi = coarse[2 * c + 1];
+  }
+  if (!(lo <= hi))
+  {
+    const long long x0 = P.lo[0] + edge * ix, y0 = P.lo[1] + edge * iy, z0 = P.lo[2] + edge * iz;
+    const V3 p0 = positionOf(P, x0, y0, z0);
+    const V3 p1 = positionOf(P, min(x0 + edge - 1, P.hi[0]), min(y0 + edge - 1, P.hi[1]), min(z0 + edge - 1, P.hi[2]));
+    dipoleBlockBound(D, p0, p1, lo, hi);
+  }
+  bounds[2 * b] = lo;
+  bounds[2 * b + 1] = hi;
+}
+
+/// WindingSigner::signRow with the correction s (closure without a cone):
+/// one warp per scan line as signKernel; the lanes walk the crossings
+/// together, then each lane decides its voxel: the block's bound of s if it
+/// decides, else insideDipole. A row whose +x ray is ambiguous takes an
+/// oblique ray per voxel (WindingSigner::insideAt), and a voxel whose oblique
+/// ray is ambiguous too the sum over all of M.
+__global__ void signDipoleKernel(WindingDev W, DipoleDev D, Params P, long long rowBegin, long long rowEnd,
+  const double* bounds, long long bx, long long by, float* out, unsigned long long* counters)
+{
+  __shared__ Hit sharedHits[SignWarps][MaxHits];
+  const long long nx = P.hi[0] - P.lo[0] + 1, ny = P.hi[1] - P.lo[1] + 1;
+  const int lane = static_cast<int>(threadIdx.x % 32), warp = static_cast<int>(threadIdx.x / 32);
+  const long long row = rowBegin + static_cast<long long>(blockIdx.x) * SignWarps + warp;
+  if (row >= rowEnd) return; // the whole warp
+  const long long j = P.lo[1] + row % ny, k = P.lo[2] + row / ny;
+  float* rowOut = out + row * nx;
+  const double h = P.spacing[0];
+  const V3 start = positionOf(P, P.lo[0], j, k);
+  auto pos = [&](long long i) { return start + V3{ static_cast<double>(i) * h, 0, 0 }; };
+  Hit* hits = sharedHits[warp];
+  int count = 0, sum = 0, ok = 0;
+  if (lane == 0)
+  {
+    ok = rayDev(W.closed, start - V3{ 0.5 * h, 0, 0 }, V3{ 1, 0, 0 }, hits, &count, &sum) ? 1 : 0;
+    for (int a = 1; ok && a < count; ++a) // insertion sort by t
+    {
+      const Hit x = hits[a];
+      int b = a - 1;
+      while (b >= 0 && hits[b].t > x.t)
+      {
+        hits[b + 1] = hits[b];
+        --b;
+      }
+      hits[b + 1] = x;
+    }
+  }
+  __syncwarp();
+  ok = __shfl_sync(FullMask, ok, 0);
+  count = __shfl_sync(FullMask, count, 0);
+  sum = __shfl_sync(FullMask, sum, 0);
+  unsigned long long ev = 0, full = 0, fallback = 0;
+  const double* blockRow = bounds + 2 * bx * ((j - P.lo[1]) / DipoleBlock + by * ((k - P.lo[2]) / DipoleBlock));
+  int ahead = sum, next = 0;
+  for (long long base = 0; base < nx; base += 32)
+  {
+    const long long mine = base + lane;
+    const long long end = base + 32 < nx ? base + 32 : nx;
+    int myK = 0;
+    bool myRay = true, myInside = false;
+    for (long long i = base; i < end; ++i)
+    {
+      if (ok)
+      {
+        const double ti = 0.5 * h + static_cast<double>(i) * h;
+        while (next < count && hits[next].t <= ti) ahead -= hits[next++].sign;
+        if (i - base == lane) myK = ahead;
+        continue;
+      }
+      // ambiguous row: an oblique ray per voxel, all lanes alike
+      const V3 dir = normalized(V3{ 0.5773502691896258, 0.5780, 0.5767 });
+      int s = 0;
+      if (rayDev(W.closed, pos(i), dir, nullptr, nullptr, &s))
+      {
+        if (i - base == lane) myK = s;
+        continue;
+      }
+      const double w = evaluateWarp(W, pos(i), lane); // the same ray, then every solid angle of M
+      if (i - base == lane)
+      {
+        myRay = false;
+        myInside = insideOf(w);
+        ++full;
+      }
+    }
+    if (mine >= nx) continue;
+    if (!ok) ++fallback;
+    if (myRay)
+    {
+      // ambiguous rows use no block bounds (WindingSigner::insideAt)
+      const double lo = ok ? blockRow[2 * (mine / DipoleBlock)] : 1.0, hi = ok ? blockRow[2 * (mine / DipoleBlock) + 1] : 0.0;
+      myInside = insideWithBlock(D, myK, pos(mine), lo, hi, ev, full);
+    }
+    if (myInside) rowOut[mine] = -rowOut[mine];
+  }
+  if (ev) atomicAdd(counters, ev);
+  if (fallback) atomicAdd(counters + 1, fallback);
+  if (full) atomicAdd(counters + 2, full);
+}
+} // namespace
+} // namespace detail::meshtosdf_cuda
+} // namespace lvdif

@@ -1,0 +1,185 @@
+// The GPU's decision of the winding sign with the correction s (w = K - s,
+// MeshToSdfCudaDipole.cuh), as host/device functions: the CUDA kernels call
+// them, and the tests run them on the CPU too (the whole volume against
+// WindingSigner::signRow, bit for bit) where no GPU is at hand.
+//
+// Why the signs equal the CPU's bit for bit although the traversal differs
+// (a stack and a tolerance per unit of mass lowered pass by pass, instead of
+// the CPU's priority queue warm-started from the previous voxel): both sides
+// decide a voxel only when a rigorous interval of w (it contains the exact
+// value: the same per-cluster bounds, DipoleTree::refine's, and a slack of
+// 1e-9 and more for the rounding) lies on one side of +-1/2, so two decided
+// intervals cannot disagree. A voxel neither side can decide so (w within
+// ~1e-9 of +-1/2, every face summed) is decided by the canonical sum: every
+// face of s in tree order with solidAngleCanonical (portableAtan2: only +, -,
+// *, /, sqrt, so the same bits on both; DipoleTree::exactCanonical). If only
+// one side decides by an interval, the canonical value lies within rounding
+// of the exact one and so on the same side. Contraction is off on both
+// sides (--fmad=false, -ffp-contract=off).
+#pragma once
+
+#include "MeshToSdfDipoleTree.h"
+#include "MeshToSdfGeometry.h"
+
+#include <cmath>
+
+namespace lvdif
+{
+namespace detail::meshtosdf
+{
+
+struct DipoleView
+{
+  const DipoleTree::Node* nodes = nullptr; // node 0 the root
+  const WeightedTri* tris = nullptr;       // in tree order
+  int count = 0;                           // triangles (0: no correction)
+  double rootMass = 0;
+};
+
+constexpr int DipoleBlock = 4;  // voxels per edge of the blocks bounded as a whole
+constexpr int DipoleCoarse = 4; // blocks per edge of a coarse block, bounded first (its bound serves them all)
+
+LVDIF_HD bool dipoleDecided(double lo, double hi) { return !(lo < 0.5 && hi >= 0.5) && !(lo <= -0.5 && hi > -0.5); }
+LVDIF_HD bool dipoleInsideOf(double w) { return std::fabs(w) >= 0.5; }
+
+/// A rigorous interval [sLo, sHi] of s over the ball (q, rho). Clusters at
+/// d > 0 whose error is at most tolPerMass x their mass are taken as bounds
+/// (DipoleTree::refine's formulas), others opened; leaves are summed exactly
+/// (rho == 0) or bounded however loosely (rho > 0; false when one is too
+/// close). approx: some cluster was bounded, not summed (refining can help).
+LVDIF_HD bool boundDipole(const DipoleView& D, V3 q, double rho, double tolPerMass, double& sLo, double& sHi,
+  bool& approx)
+{
+  int stack[64];
+  int top = 0;
+  stack[top++] = 0;
+  double value = 0, err = 0, mag = 0;
+  long long terms = 0;
+  approx = false;
+  while (top > 0)
+  {
+    const DipoleTree::Node nd = D.nodes[stack[--top]];
+    const V3 y = nd.c - q;
+    const double r = norm(y);
+    const double d = r - rho - nd.r;
+    if (d > 0)
+    {
+      const double e0 = nd.mass / (d * d), e1 = 2 * nd.mass * (nd.r + rho) / (d * d * d);
+      const double e = e1 < e0 ? e1 : e0;
+      if (e <= tolPerMass * nd.mass || (nd.left < 0 && rho > 0))
+      {
+        const double v = e1 < e0 ? dot(nd.dipole, y) / (r * r * r) : 0.0;
+        value += v;
+        err += e;
+        mag += std::fabs(v);
+        ++terms;
+        approx = true;
+        continue;
+      }
+    }
+    if (nd.left >= 0)
+    {
+      if (top + 2 > 64) return false;
+      stack[top++] = nd.left;
+      stack[top++] = nd.right;
+      continue;
+    }
+    if (rho > 0) return false;
+    for (int i = nd.first; i < nd.first + nd.count; ++i)
+    {
+      const WeightedTri& t = D.tris[i];
+      const double a = t.w * solidAngle(q, t.v[0], t.v[1], t.v[2]);
+      value += a;
+      mag += std::fabs(a);
+      ++terms;
+    }
+  }
+  // rounding of the sums and of the exact solid angles (the CPU's slack,
+  // with every term counted instead of the open clusters: never smaller)
+  const double slack = 1e-9 + 1e-12 * (mag + err) * static_cast<double>(terms + 1);
+  sLo = (value - err) / FourPi - slack;
+  sHi = (value + err) / FourPi + slack;
+  return true;
+}
+
+/// DipoleTree::exactCanonical: the same terms in the same order.
+LVDIF_HD double dipoleExactCanonical(const DipoleView& D, V3 p)
+{
+  double s = 0;
+  for (int i = 0; i < D.count; ++i)
+  {
+    const WeightedTri& t = D.tris[i];
+    s += t.w * solidAngleCanonical(p, t.v[0], t.v[1], t.v[2]);
+  }
+  return s / FourPi;
+}
+
+/// Tolerance per unit of mass that keeps the total error of a bound below
+/// margin / 2 (in units of the winding number).
+LVDIF_HD double dipoleTolerance(const DipoleView& D, double margin) { return 0.5 * margin * FourPi / D.rootMass; }
+
+/// Inside or not at p, whose closed chain has K crossings: w = K - s decided
+/// by rigorous intervals, the tolerance lowered 4x a pass (or to the margin
+/// the last estimate left), else by the canonical sum (counted in full).
+LVDIF_HD bool insideDipole(const DipoleView& D, int K, V3 p, unsigned long long& full)
+{
+  double margin = 0.25;
+  while (margin > 1e-10)
+  {
+    double lo = 0, hi = 0;
+    bool approx = false;
+    if (!boundDipole(D, p, 0, dipoleTolerance(D, margin), lo, hi, approx)) break;
+    if (dipoleDecided(K - hi, K - lo)) return dipoleInsideOf(0.5 * ((K - hi) + (K - lo)));
+    if (!approx) break; // everything summed exactly, within rounding of +-1/2
+    const double c = K - 0.5 * (lo + hi);
+    const double left = std::fmin(std::fabs(c - 0.5), std::fabs(c + 0.5));
+    margin = std::fmin(0.25 * margin, left);
+  }
+  ++full;
+  return dipoleInsideOf(K - dipoleExactCanonical(D, p));
+}
+
+/// s over the ball about the voxels p0 .. p1 (a block): [lo, hi] when it lies
+/// inside (n - 1/2, n + 1/2) for an integer n (no half-integer inside), which
+/// decides every voxel of the block whatever its crossing count K (K - s
+/// then avoids +-1/2; n = 0 is the CPU's boundCorrection over blocks; s near
+/// 1 occurs inside caps over reversed patches); lo > hi: none.
+LVDIF_HD void dipoleBlockBound(const DipoleView& D, V3 p0, V3 p1, double& lo, double& hi)
+{
+  const V3 centre = 0.5 * (p0 + p1);
+  const double half = 0.5 * norm(p1 - p0);
+  // rho also covers the rounding of the voxel positions as the rows compute them
+  const double rho = half + 1e-9 * (half + std::fabs(centre.x) + std::fabs(centre.y) + std::fabs(centre.z));
+  lo = 1;
+  hi = 0;
+  double margin = 0.25;
+  for (int pass = 0; pass < 3; ++pass)
+  {
+    double l = 0, u = 0;
+    bool approx = false;
+    if (!boundDipole(D, centre, rho, dipoleTolerance(D, margin), l, u, approx)) return;
+    const double c = 0.5 * (l + u), n = std::floor(c + 0.5);
+    if (l > n - 0.5 && u < n + 0.5)
+    {
+      lo = l;
+      hi = u;
+      return;
+    }
+    const double left = 0.5 - std::fabs(c - n);
+    if (!approx || left < 0.05) return; // the voxels will do better
+    margin = std::fmin(0.25 * margin, left);
+  }
+}
+
+/// The decision of one voxel of a row whose +x ray gave K crossings, with
+/// its block's bound (lo > hi: none).
+LVDIF_HD bool insideWithBlock(const DipoleView& D, int K, V3 p, double lo, double hi, unsigned long long& evaluated,
+  unsigned long long& full)
+{
+  if (lo <= hi && dipoleDecided(K - hi, K - lo)) return dipoleInsideOf(0.5 * ((K - hi) + (K - lo)));
+  ++evaluated;
+  return insideDipole(D, K, p, full);
+}
+
+} // namespace detail::meshtosdf
+} // namespace lvdif

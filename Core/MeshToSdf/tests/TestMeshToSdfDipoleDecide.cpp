@@ -1,0 +1,242 @@
+// The GPU's winding-sign decision for damaged meshes (MeshToSdfDipoleDecide.h:
+// the CPU's closure and dipole tree, traversed by a stack with a tolerance
+// lowered pass by pass instead of the CPU's priority queue, blocks of 4^3
+// voxels bounded first, the canonical sum where w is within rounding of
+// +-1/2), run here on the CPU exactly as the CUDA kernel runs it per voxel,
+// against meshToSdf on the CPU: the same sign on every voxel of the volume
+// (the claim that lets Device::Auto keep every mesh on the GPU; the CUDA
+// test compares the real kernel the same way). Also the brute-force solid
+// angle oracle on far voxels, and portableAtan2 against long double atan2.
+#include "../src/MeshToSdfDipoleDecide.h"
+#include "../src/MeshToSdfInternal.h"
+#include "MeshToSdfDamagedMeshes.h"
+#include "MeshToSdfOracle.h"
+#include "lvdif/MeshToSdf.h"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <random>
+#include <string>
+#include <vector>
+
+using namespace lvdif;
+using namespace lvdif::detail::meshtosdf;
+
+namespace
+{
+using oracle::damagedMeshes;
+
+struct Emulated
+{
+  std::vector<char> inside;
+  unsigned long long evaluated = 0, full = 0, blocksBounded = 0, fromCoarse = 0;
+};
+
+/// The CUDA sign path (signDipoleKernel after dipoleBlockKernel), voxel by
+/// voxel on the CPU, over the whole grid.
+Emulated emulateGpu(const WindingSigner& w, const GridGeometry& g)
+{
+  const WindingSigner::Closure& c = w.cpuClosure();
+  const DipoleTree* s = w.cpuCorrection();
+  DipoleView D;
+  if (s)
+  {
+    D.nodes = s->nodes().data();
+    D.tris = s->tris().data();
+    D.count = static_cast<int>(s->tris().size());
+    D.rootMass = s->nodes()[0].mass;
+  }
+  const std::int64_t nx = g.dims[0], ny = g.dims[1], nz = g.dims[2];
+  auto position = [&](std::int64_t i, std::int64_t j, std::int64_t k) {
+    return V3{ g.origin[0] + i * g.spacing[0], g.origin[1] + j * g.spacing[1], g.origin[2] + k * g.spacing[2] };
+  };
+  Emulated e;
+  e.inside.assign(static_cast<std::size_t>(g.count()), 0);
+  const std::int64_t bx = (nx + DipoleBlock - 1) / DipoleBlock, by = (ny + DipoleBlock - 1) / DipoleBlock,
+                     bz = (nz + DipoleBlock - 1) / DipoleBlock;
+  // the coarse blocks (DipoleCoarse^3 blocks) first, then the blocks whose coarse block has no bound
+  const std::int64_t ce = DipoleBlock * DipoleCoarse, cx = (bx + DipoleCoarse - 1) / DipoleCoarse,
+                     cy = (by + DipoleCoarse - 1) / DipoleCoarse, cz = (bz + DipoleCoarse - 1) / DipoleCoarse;
+  auto blockBound = [&](std::int64_t x0, std::int64_t y0, std::int64_t z0, std::int64_t edge, double& lo, double& hi) {
+    lo = 1;
+    hi = 0;
+    if (s)
+      dipoleBlockBound(D, position(x0, y0, z0),
+        position(std::min(x0 + edge - 1, nx - 1), std::min(y0 + edge - 1, ny - 1), std::min(z0 + edge - 1, nz - 1)), lo,
+        hi);
+  };
+  std::vector<double> coarse(static_cast<std::size_t>(2 * cx * cy * cz));
+  for (std::int64_t c = 0; c < cx * cy * cz; ++c)
+    blockBound(ce * (c % cx), ce * ((c / cx) % cy), ce * (c / (cx * cy)), ce, coarse[static_cast<std::size_t>(2 * c)],
+      coarse[static_cast<std::size_t>(2 * c + 1)]);
+  std::vector<double> bounds(static_cast<std::size_t>(2 * bx * by * bz), 0.0);
+  for (std::int64_t b = 0; b < bx * by * bz; ++b)
+  {
+    const std::int64_t ix = b % bx, iy = (b / bx) % by, iz = b / (bx * by);
+    const std::size_t c = static_cast<std::size_t>(ix / DipoleCoarse + cx * (iy / DipoleCoarse + cy * (iz / DipoleCoarse)));
+    double lo = coarse[2 * c], hi = coarse[2 * c + 1];
+    e.fromCoarse += lo <= hi;
+    if (!(lo <= hi)) blockBound(DipoleBlock * ix, DipoleBlock * iy, DipoleBlock * iz, DipoleBlock, lo, hi);
+    bounds[static_cast<std::size_t>(2 * b)] = lo;
+    bounds[static_cast<std::size_t>(2 * b + 1)] = hi;
+    e.blocksBounded += lo <= hi;
+  }
+  const V3 oblique = normalized(V3{ 0.5773502691896258, 0.5780, 0.5767 });
+  std::vector<Bvh::RayHit> hits;
+  for (std::int64_t k = 0; k < nz; ++k)
+    for (std::int64_t j = 0; j < ny; ++j)
+    {
+      const double h = g.spacing[0];
+      const V3 start = position(0, j, k);
+      hits.clear(); // rayHits appends
+      const bool ok = c.bvh->rayHits(start - V3{ 0.5 * h, 0, 0 }, V3{ 1, 0, 0 }, 0.0, hits);
+      std::sort(hits.begin(), hits.end(), [](const Bvh::RayHit& a, const Bvh::RayHit& b) { return a.t < b.t; });
+      int ahead = 0;
+      for (const auto& x : hits) ahead += x.sign;
+      std::size_t next = 0;
+      const double* blockRow = bounds.data() + 2 * bx * (j / DipoleBlock + by * (k / DipoleBlock));
+      for (std::int64_t i = 0; i < nx; ++i)
+      {
+        const V3 p = start + V3{ static_cast<double>(i) * h, 0, 0 };
+        char& out = e.inside[static_cast<std::size_t>(g.index(i, j, k))];
+        int K = 0;
+        double lo = 1, hi = 0;
+        if (ok)
+        {
+          const double ti = 0.5 * h + static_cast<double>(i) * h;
+          while (next < hits.size() && hits[next].t <= ti) ahead -= hits[next++].sign;
+          K = ahead;
+          lo = blockRow[2 * (i / DipoleBlock)];
+          hi = blockRow[2 * (i / DipoleBlock) + 1];
+        }
+        else
+        {
+          std::vector<Bvh::RayHit> oh;
+          if (!c.bvh->rayHits(p, oblique, 0.0, oh))
+          {
+            out = std::fabs(w.evaluate(p)) >= 0.5; // every solid angle of M (canonical)
+            ++e.full;
+            continue;
+          }
+          for (const auto& x : oh) K += x.sign;
+        }
+        out = s ? insideWithBlock(D, K, p, lo, hi, e.evaluated, e.full) : std::abs(K) >= 1;
+      }
+    }
+  return e;
+}
+
+/// Every voxel of the grid: the emulated GPU decision = meshToSdf's sign on
+/// the CPU; the oracle on far voxels. Returns the blocks bounded by their coarse block.
+std::uint64_t compareWithCpu(const std::string& name, const TriangleMesh& m, int res, int& reoriented, int& capsOverM)
+{
+  const GridGeometry g = fitGridToMesh(m, res, 2);
+  VoxelBox all;
+  all.hi = { g.dims[0] - 1, g.dims[1] - 1, g.dims[2] - 1 };
+  std::vector<float> cpu(static_cast<std::size_t>(g.count()));
+  MeshToSdfOptions o;
+  o.sign = SignMode::WindingNumber;
+  o.device = Device::Cpu;
+  o.bandWidth = std::numeric_limits<float>::infinity();
+  meshToSdf(m, g, all, cpu.data(), o);
+
+  const PreparedMesh prepared = prepareMesh(m);
+  const WindingSigner w(prepared);
+  EXPECT_TRUE(w.gpuTakesCpuClosure()) << name;
+  // (the intersecting pair is closed: no correction, K alone)
+  EXPECT_EQ(w.cpuCorrection() == nullptr, name == "pair") << name;
+  reoriented += w.closesReorientedMesh();
+  capsOverM += w.cpuCorrection() && !w.closesReorientedMesh();
+  const Emulated e = emulateGpu(w, g);
+  std::int64_t differ = 0, inside = 0, far = 0, wrong = 0;
+  std::mt19937 rng(11);
+  const std::uint32_t sample = static_cast<std::uint32_t>(std::max<std::int64_t>(16, g.count() / 1600));
+  for (std::int64_t v = 0; v < g.count(); ++v)
+  {
+    const bool a = std::signbit(cpu[static_cast<std::size_t>(v)]), b = e.inside[static_cast<std::size_t>(v)] != 0;
+    differ += a != b;
+    inside += a;
+    // brute-force oracle on a sample of the voxels farther than 1 voxel
+    if (std::fabs(cpu[static_cast<std::size_t>(v)]) > 1.0f && rng() % sample == 0)
+    {
+      const std::int64_t i = v % g.dims[0], j = (v / g.dims[0]) % g.dims[1], k = v / (g.dims[0] * g.dims[1]);
+      const oracle::P p{ g.origin[0] + i * g.spacing[0], g.origin[1] + j * g.spacing[1], g.origin[2] + k * g.spacing[2] };
+      ++far;
+      wrong += (std::fabs(oracle::winding(m, p)) >= 0.5) != b;
+    }
+  }
+  std::printf("[ gpu decision ] %-14s %lld voxels, %lld inside, %lld differ from the CPU; %llu blocks bounded (%llu by their coarse block), "
+              "%llu voxels refined, %llu canonical; oracle: %lld wrong of %lld far\n",
+    name.c_str(), static_cast<long long>(g.count()), static_cast<long long>(inside), static_cast<long long>(differ),
+    e.blocksBounded, e.fromCoarse, e.evaluated, e.full, static_cast<long long>(wrong), static_cast<long long>(far));
+  EXPECT_EQ(differ, 0) << name;
+  EXPECT_EQ(wrong, 0) << name;
+  EXPECT_GT(inside, g.count() / 50) << name; // the guard: the mesh encloses something
+  EXPECT_GT(far, 500) << name;
+  return e.fromCoarse;
+}
+} // namespace
+
+TEST(MeshToSdfDipoleDecide, PortableAtan2IsWithinAFewUlps)
+{
+  std::mt19937_64 rng(4);
+  std::uniform_real_distribution<double> u(-1, 1);
+  double worst = 0;
+  for (int i = 0; i < 200000; ++i)
+  {
+    double y = u(rng) * std::pow(10.0, 4 * u(rng)), x = u(rng) * std::pow(10.0, 4 * u(rng));
+    if (i % 13 == 0) x = 0;
+    if (i % 17 == 0) y = 0;
+    const long double ref = std::atan2(static_cast<long double>(y), static_cast<long double>(x));
+    const double got = portableAtan2(y, x);
+    const double ulp = std::fabs(std::nextafter(static_cast<double>(ref), 10.0) - static_cast<double>(ref));
+    if (ref != 0) worst = std::max(worst, static_cast<double>(std::fabs(got - ref)) / ulp);
+    else EXPECT_EQ(got, 0.0);
+  }
+  EXPECT_LT(worst, 8.0);
+  EXPECT_EQ(portableAtan2(0.0, -1.0), 3.141592653589793);
+  EXPECT_EQ(portableAtan2(-0.0, -1.0), -3.141592653589793);
+  EXPECT_EQ(portableAtan2(2.0, 0.0), 1.5707963267948966);
+  EXPECT_EQ(portableAtan2(-2.0, -0.0), -1.5707963267948966);
+}
+
+TEST(MeshToSdfDipoleDecide, GpuDecisionEqualsCpuOnEveryVoxelOfDamagedMeshes)
+{
+  int reoriented = 0, capsOverM = 0;
+  for (const auto& [name, m] : damagedMeshes()) compareWithCpu(name, m, 32, reoriented, capsOverM);
+  // both closures are exercised: M+ (scattered reversals, duplicates) and M closed by caps (patches, holes)
+  EXPECT_GT(reoriented, 0);
+  EXPECT_GT(capsOverM, 0);
+}
+
+// A finer grid, where the coarse blocks (16 voxels) bound s too
+TEST(MeshToSdfDipoleDecide, GpuDecisionEqualsCpuOnAFinerGrid)
+{
+  int reoriented = 0, capsOverM = 0;
+  const auto meshes = damagedMeshes();
+  EXPECT_GT(compareWithCpu(meshes[0].first, meshes[0].second, 80, reoriented, capsOverM), 0u);
+}
+
+// Where w is within rounding of +-1/2 the canonical sum decides, on both
+// sides: a point on a reversed face's plane, exactly inside the face.
+TEST(MeshToSdfDipoleDecide, CanonicalSumDecidesTies)
+{
+  // one reversed face of weight 1 (a removed duplicate): at its centroid the
+  // solid angle is +-2 pi, so s = +-1/2 exactly and no interval decides
+  std::vector<WeightedTri> tris(1);
+  tris[0].v[0] = { 0, 0, 0 };
+  tris[0].v[1] = { 1, 0, 0 };
+  tris[0].v[2] = { 0, 1, 0 };
+  const DipoleTree tree(tris);
+  DipoleView D{ tree.nodes().data(), tree.tris().data(), 1, tree.nodes()[0].mass };
+  unsigned long long full = 0;
+  const V3 p{ 1.0 / 3, 1.0 / 3, 0 };
+  for (int K : { -1, 0, 1 })
+  {
+    const bool got = insideDipole(D, K, p, full);
+    EXPECT_EQ(got, std::fabs(K - tree.exactCanonical(p)) >= 0.5) << K;
+  }
+  EXPECT_EQ(full, 2u); // K = 0 and the K that puts w on the other threshold
+}

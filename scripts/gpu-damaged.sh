@@ -1,0 +1,82 @@
+#!/bin/bash
+# GPU-host session for the winding sign of damaged meshes on CUDA (the CPU's
+# construction: caps, reversed/removed faces in the dipole tree; Device::Auto
+# keeps every mesh on the GPU). Builds Core-only with CUDA (sm_90), runs the
+# CUDA tests (CUDA = CPU bit for bit on damaged meshes), times clean and
+# damaged armadillos at 512^3 and 1024^3 under Device::Auto into the
+# dictionary volume (warm), checks the damaged armadillos CUDA = CPU bit for
+# bit at 128^3 (float grids), and prints one table on stdout.
+# Every step has a time limit; no new run starts after BUDGET seconds (default
+# 540, the build included), so the script ends in under 9 minutes. Logs (five
+# files: machine, build, tests, bench, table) in $OUT.
+# usage: OUT=dir scripts/gpu-damaged.sh [ARMADILLO.off] [BUDGET]
+#   default mesh: .gpu/meshes/armadillo.off (scripts/extract-meshes.sh makes it)
+set -u
+A=${1:-.gpu/meshes/armadillo.off}
+BUDGET=${2:-540}
+OUT=${OUT:-out-gpu-damaged}
+mkdir -p "$OUT"
+T0=$(date +%s)
+left() { echo $((BUDGET - ($(date +%s) - T0))); }
+[ -f "$A" ] || { echo "no mesh at $A"; exit 1; }
+{ date -u; nvidia-smi -L; nvcc --version | tail -2; nproc; lscpu | grep "Model name"; git log --oneline -1; } > "$OUT/machine.txt" 2>&1
+cmake -S . -B b-damaged -DLVDIF_CORE_ONLY=ON -DLVDIF_CUDA=ON -DCMAKE_CUDA_ARCHITECTURES=90 -DCMAKE_BUILD_TYPE=Release \
+  > "$OUT/build.log" 2>&1 || { tail -40 "$OUT/build.log"; exit 1; }
+cmake --build b-damaged -j"$(nproc)" --target LVDIFMeshToSdfTests bench_mesh_to_sdf \
+  >> "$OUT/build.log" 2>&1 || { grep -B2 -A10 -i "error" "$OUT/build.log" | head -80; exit 1; }
+echo "build done after $(( $(date +%s) - T0 )) s" | tee "$OUT/summary.txt"
+
+
+# the CUDA tests (CUDA = CPU bit for bit on damaged meshes; their lines on stdout)
+timeout 150 b-damaged/Core/MeshToSdf/LVDIFMeshToSdfTests --gtest_filter='MeshToSdfCuda.*' > "$OUT/tests.log" 2>&1
+echo "MeshToSdfCuda tests rc=$?" | tee -a "$OUT/summary.txt"
+grep -E "^\[ cpu vs cuda \]|^\[  (PASSED|FAILED) |Failure" "$OUT/tests.log" | head -40 | tee -a "$OUT/summary.txt"
+
+B=b-damaged/Testing/Benchmarks/Core/bench_mesh_to_sdf
+L="$OUT/bench.log"
+: > "$L"
+# run LIMIT LABEL ARGS...: skipped when the budget is spent, else limited to what is left
+run() {
+  local lim=$1 label=$2; shift 2
+  local l; l=$(left)
+  if [ "$l" -lt 10 ]; then echo "## SKIPPED (budget) $label" >> "$L"; return; fi
+  [ "$lim" -gt "$l" ] && lim=$l
+  echo "## $label | $* (limit ${lim}s)" >> "$L"
+  timeout "$lim" "$B" "$@" >> "$L" 2>&1
+  echo "rc=$?" >> "$L"
+}
+DAMAGES="patch10 patch30 flip10 duprev20 holes40 fins200 pair"
+# timings: Device::Auto, dictionary volume, band 8 (cold: builds and uploads; warm: the table)
+run 40 "clean 512" "$A" 512 winding auto bvh volume 8 2 cold,warm --trace
+for d in $DAMAGES; do run 45 "$d 512" "$d:$A" 512 winding auto bvh volume 8 2 cold,warm --trace; done
+run 40 "clean 1024" "$A" 1024 winding auto bvh volume 8 2 cold,warm
+for d in $DAMAGES; do run 60 "$d 1024" "$d:$A" 1024 winding auto bvh volume 8 2 cold,warm; done
+# CUDA = CPU bit for bit on the real damaged armadillos (128^3 float grid, no band; the CPU on all cores)
+for d in $DAMAGES; do run 40 "check $d 128" "$d:$A" 128 winding auto bvh float 0 2 warm --check-cpu; done
+# the other MeshToSdf tests (CPU), if time is left
+l=$(left)
+if [ "$l" -gt 40 ]; then
+  timeout $((l - 5)) b-damaged/Core/MeshToSdf/LVDIFMeshToSdfTests --gtest_filter='-MeshToSdfCuda.*' > "$OUT/tests_cpu.log" 2>&1
+  echo "other MeshToSdf tests rc=$? $(grep -E '^\[  (PASSED|FAILED) ' "$OUT/tests_cpu.log" | tr '\n' ' ')" | tee -a "$OUT/summary.txt"
+fi
+
+# the table: warm end-to-end, sign time, device, ratio to the clean mesh on the same grid
+awk '
+  /^## SKIPPED/ { l = substr($0, 21); skipped[l] = 1; order[++k] = l; next }
+  /^## / { split($0, h, " \\| "); label = substr(h[1], 4); next }
+  /^\| warm / { n = split($0, c, "|"); dev[label] = c[3]; sign[label] = c[7]; e2e[label] = c[9]; refined[label] = c[10]; order[++k] = label; next }
+  /^cpu check:/ { chk[label] = $0; order[++k] = label; next }
+  /^rc=1[0-9][0-9]/ { if (!(label in e2e) && !(label in chk)) { to[label] = 1; order[++k] = label } }
+  END {
+    printf "| run | device | sign ms | end-to-end ms | x clean | voxels refined / check |\n|---|---|---|---|---|---|\n"
+    for (i = 1; i <= k; ++i) {
+      l = order[i]; if (seen[l]++) continue
+      if (l in chk) { sub(/^cpu check: /, "", chk[l]); printf "| %s | | | | | %s |\n", l, chk[l]; continue }
+      if (l in to) { printf "| %s | | | timed out | | |\n", l; continue }
+      if (l in skipped) { printf "| %s | | | skipped (budget) | | |\n", l; continue }
+      split(l, p, " "); base = "clean " p[2]; r = (base in e2e && e2e[base] + 0 > 0) ? sprintf("%.2f", e2e[l] / e2e[base]) : ""
+      printf "| %s |%s|%s|%s| %s |%s|\n", l, dev[l], sign[l], e2e[l], r, refined[l]
+    }
+  }' "$L" | tee "$OUT/table.md"
+grep -E "winding sign on the GPU" "$L" | sort | uniq -c | head -5
+echo "total $(( $(date +%s) - T0 )) s" | tee -a "$OUT/summary.txt"
