@@ -51,6 +51,8 @@ struct Engine
   GridGeometry geom;
   MeshToSdfOptions opts;
   bool far = false;       // far blocks (Normal/PseudoNormal, finite band, CPU BVH; MeshToSdfOptions::farBlocks)
+  const Bvh* farBvh = nullptr;                 // their tree and node cones
+  const std::vector<FarCone>* farCones = nullptr;
   double toOut = 1;       // world distance -> output units
   double band = 0;        // output units (may be infinite)
   double bandWorld2 = 0;  // squared band in world units, for bounded queries
@@ -219,6 +221,7 @@ std::unique_ptr<Engine> makeEngine(const MeshToSdfPrepared& prepared, const Grid
   }
   e->far = opts.farBlocks && e->index != nullptr && e->bandWorld2 < 1e299 && !opts.useVertexNormals &&
     (opts.sign == SignMode::Normal || opts.sign == SignMode::PseudoNormal);
+  if (e->far) e->farBvh = &impl.farTree(e->farCones, lazy);
   if (opts.sign == SignMode::WindingNumber && device == Device::Cpu)
   {
     e->winding = &impl.windingSigner(lazy);
@@ -339,7 +342,10 @@ void computeBox(const Engine& e, const VoxelBox& box, float* out, MeshToSdfStats
   FarCells far;
   if (e.far)
   {
-    stats.farVoxels += classifyFarCells(*e.index, *e.mesh, e.geom, box, static_cast<double>(e.band) / e.toOut, far);
+    stats.farVoxels += classifyFarCells(
+      *e.index, *e.farBvh, *e.farCones, *e.mesh, e.geom, box, static_cast<double>(e.band) / e.toOut,
+      e.opts.sign == SignMode::PseudoNormal, far);
+    if (std::getenv("LVDIF_FAR_ONLY")) return;
   }
   forRows(box, intr, progressBase, winding ? progressSpan * 0.5 : progressSpan,
     [&](std::int64_t j, std::int64_t k, std::int64_t r) {

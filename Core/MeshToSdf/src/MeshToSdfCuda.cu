@@ -188,9 +188,13 @@ public:
   bool hasNormals() const override { return this->Full.load(std::memory_order_acquire) != nullptr; }
   void addNormals() override
   {
-    if (!this->hasNormals())
-      this->Full.store(this->Arena.uploadOn(this->Upload.s, this->Mesh.tris), std::memory_order_release);
+    if (this->hasNormals()) return;
+    // with the normal cones of the tree's nodes (far blocks), published before the records
+    this->Cones = this->Arena.uploadOn(this->Upload.s, farCones(this->MeshBvh, this->Mesh.tris));
+    this->Full.store(this->Arena.uploadOn(this->Upload.s, this->Mesh.tris), std::memory_order_release);
   }
+  /// The node cones (valid once hasNormals()).
+  const FarCone* cones() const { return this->hasNormals() ? this->Cones : nullptr; }
   /// The mesh BVH as the distance kernel takes it (full records if uploaded).
   DevBvh meshBvh() const
   {
@@ -227,6 +231,7 @@ private:
   Stream Upload;
   std::atomic<bool> Winding{ false };
   std::atomic<const Tri*> Full{ nullptr }; // the full triangle records (Normal/PseudoNormal)
+  const FarCone* Cones = nullptr;          // the node cones, written before Full
   DevBvh Reserved; // windingLater buffers
   std::size_t ClosedCap = 0, EdgeCap = 0;
   int* ReservedSlot = nullptr;
@@ -485,13 +490,8 @@ private:
   /// The far cells of the slab in P (which then points the distance kernel at them).
   void launchFar(Params& P)
   {
-    long long count[3], blocks = 1;
-    for (int a = 0; a < 3; ++a)
-    {
-      const long long n = P.hi[a] - P.lo[a] + 1;
-      count[a] = (n + FarCell - 1) / FarCell;
-      blocks *= (n + FarBlock - 1) / FarBlock;
-    }
+    long long count[3];
+    for (int a = 0; a < 3; ++a) count[a] = (P.hi[a] - P.lo[a] + 1 + FarCell - 1) / FarCell;
     const long long cells = count[0] * count[1] * count[2];
     if (cells > this->FarCapacity)
     {
@@ -499,9 +499,15 @@ private:
       this->Far = this->Arena.alloc<signed char>(static_cast<std::size_t>(cells));
       this->FarCapacity = cells;
     }
-    farCellsKernel<<<static_cast<unsigned>((blocks + 127) / 128), 128>>>(this->Mesh.meshBvh(), P, this->FarMargin,
-      this->FarBig, count[0], count[1], count[2], this->Far, this->FarDecided);
-    LVDIF_CUDA_CHECK(cudaGetLastError());
+    LVDIF_CUDA_CHECK(cudaMemsetAsync(this->Far, 0, static_cast<std::size_t>(cells)));
+    for (int edge : { FarBlock, FarBlock / 2, FarCell })
+    {
+      long long boxes = 1;
+      for (int a = 0; a < 3; ++a) boxes *= (P.hi[a] - P.lo[a] + 1 + edge - 1) / edge;
+      farLevelKernel<<<static_cast<unsigned>((boxes + 127) / 128), 128>>>(this->Mesh.meshBvh(), this->Mesh.cones(),
+        P, this->FarMargin, this->FarBig, edge, count[0], count[1], count[2], this->Far, this->FarDecided);
+      LVDIF_CUDA_CHECK(cudaGetLastError());
+    }
     P.far = this->Far;
     P.farCount[0] = count[0];
     P.farCount[1] = count[1];

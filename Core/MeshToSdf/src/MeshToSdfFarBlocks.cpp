@@ -8,36 +8,15 @@
 #include <omp.h>
 
 #include <algorithm>
+#include <atomic>
+#include <cstdio>
 #include <cmath>
+#include <cstdlib>
 
 namespace lvdif
 {
 namespace detail::meshtosdf
 {
-
-namespace
-{
-/// The side every voxel of the box is on (-1, +1), or 0 when undecided.
-int farSide(const NearestIndex& index, const std::vector<Tri>& tris, const FarBox& box, double bandWorld,
-  double margin, std::int32_t& hint)
-{
-  const NearestResult r = index.nearest(box.centre, hint, 1e300);
-  if (r.tri < 0) return 0;
-  hint = r.tri;
-  const double dist = std::sqrt(r.dist2);
-  if (!farPastBand(dist, box, bandWorld, margin)) return 0;
-  const double reach = farRadius(dist, box, margin);
-  int side = 0;
-  const bool all = index.visitWithin(box.centre, reach * reach, [&](std::int32_t t, const V3* v) {
-    const int s = farFaceSide(v[0], v[1], v[2], tris[static_cast<std::size_t>(t)].n, box, reach, margin);
-    if (s == 2) return true;
-    if (s == 0 || (side != 0 && s != side)) return false;
-    side = s;
-    return true;
-  });
-  return all ? side : 0;
-}
-} // namespace
 
 double farScale(const PreparedMesh& mesh, const GridGeometry& grid)
 {
@@ -50,8 +29,9 @@ double farScale(const PreparedMesh& mesh, const GridGeometry& grid)
   return big;
 }
 
-std::int64_t classifyFarCells(const NearestIndex& index, const PreparedMesh& mesh, const GridGeometry& grid,
-  const VoxelBox& box, double bandWorld, FarCells& cells)
+std::int64_t classifyFarCells(const NearestIndex& index, const Bvh& bvh, const std::vector<FarCone>& cones,
+  const PreparedMesh& mesh, const GridGeometry& grid, const VoxelBox& box, double bandWorld, bool pseudo,
+  FarCells& cells)
 {
   const double big = farScale(mesh, grid);
   const double margin = farMargin(big, static_cast<double>(mesh.tris.size()));
@@ -74,30 +54,113 @@ std::int64_t classifyFarCells(const NearestIndex& index, const PreparedMesh& mes
     return farBox(pos(box.lo[0] + v0[0], box.lo[1] + v0[1], box.lo[2] + v0[2]),
       pos(box.lo[0] + hi[0], box.lo[1] + hi[1], box.lo[2] + hi[2]), big);
   };
-  constexpr int Sub = FarBlock / FarCell;
+  const double tStart = omp_get_wtime();
   const std::int64_t total = blocks[0] * blocks[1] * blocks[2];
+  const Bvh::Node* nodes = bvh.nodes().data();
+  const std::int32_t* order = bvh.order().data();
+  auto triAt = [&](int i) -> const Tri& { return mesh.tris[static_cast<std::size_t>(order[i])]; };
   std::int64_t decided = 0;
 #pragma omp parallel for schedule(dynamic, 16) reduction(+ : decided)
   for (std::int64_t b = 0; b < total; ++b)
   {
-    const std::int64_t bi[3] = { b % blocks[0], (b / blocks[0]) % blocks[1], b / (blocks[0] * blocks[1]) };
-    const std::int64_t v0[3] = { bi[0] * FarBlock, bi[1] * FarBlock, bi[2] * FarBlock };
+    const long long origin[3] = { (b % blocks[0]) * FarBlock, ((b / blocks[0]) % blocks[1]) * FarBlock,
+      (b / (blocks[0] * blocks[1])) * FarBlock };
+    const long long size[3] = { n[0], n[1], n[2] };
     std::int32_t hint = -1;
-    const int whole = farSide(index, mesh.tris, boxOf(v0, FarBlock), bandWorld, margin, hint);
-    for (int d = 0; d < Sub * Sub * Sub; ++d)
-    {
-      const std::int64_t c[3] = { bi[0] * Sub + d % Sub, bi[1] * Sub + (d / Sub) % Sub, bi[2] * Sub + d / (Sub * Sub) };
-      if (c[0] >= cells.count[0] || c[1] >= cells.count[1] || c[2] >= cells.count[2]) continue;
-      const std::int64_t c0[3] = { c[0] * FarCell, c[1] * FarCell, c[2] * FarCell };
-      const int s = whole != 0 ? whole : farSide(index, mesh.tris, boxOf(c0, FarCell), bandWorld, margin, hint);
-      if (s == 0) continue;
-      cells.sign[static_cast<std::size_t>(c[0] + cells.count[0] * (c[1] + cells.count[1] * c[2]))] =
-        static_cast<std::int8_t>(s);
-      decided += (std::min(c0[0] + FarCell, n[0]) - c0[0]) * (std::min(c0[1] + FarCell, n[1]) - c0[1]) *
-        (std::min(c0[2] + FarCell, n[2]) - c0[2]);
-    }
+    decided += farClassifyBlock(origin, size,
+      [&](const long long o[3], long long edge) {
+        const std::int64_t o64[3] = { o[0], o[1], o[2] };
+        const FarBox sub = boxOf(o64, edge);
+        const NearestResult q = index.nearest(sub.centre, hint, 1e300);
+        if (q.tri < 0) return 0;
+        hint = q.tri;
+        const double dq = std::sqrt(q.dist2);
+        const int expect = farSideAt(mesh.tris[static_cast<std::size_t>(q.tri)], q.closest, sub.centre, pseudo);
+        return farBoxSide(nodes, cones.data(), triAt, pseudo, sub, dq, dq, bandWorld, margin, expect);
+      },
+      [&](const long long c[3], int s) {
+        cells.sign[static_cast<std::size_t>(c[0] + cells.count[0] * (c[1] + cells.count[1] * c[2]))] =
+          static_cast<std::int8_t>(s);
+      });
   }
+  if (std::getenv("LVDIF_FAR_TRACE")) { static double tSum = 0; tSum += omp_get_wtime() - tStart; std::fprintf(stderr, "classify total %.3f s\n", tSum); }
   return decided;
+}
+
+std::vector<FarCone> farCones(const Bvh& bvh, const std::vector<Tri>& tris)
+{
+  // bottom-up (children have larger ids than their parent: preorder); angles
+  // by atan2 (accurate near 0, unlike acos), rounded up
+  const std::vector<Bvh::Node>& nodes = bvh.nodes();
+  const std::vector<std::int32_t>& order = bvh.order();
+  std::vector<FarCone> cones(nodes.size());
+  std::vector<double> angle(nodes.size(), 4.0);
+  auto angleTo = [](V3 a, V3 n) { return std::atan2(norm(cross(a, n)), dot(a, n)) * (1 + 1e-12) + 1e-12; };
+  for (std::size_t k = nodes.size(); k-- > 0;)
+  {
+    const Bvh::Node& n = nodes[k];
+    V3 axis;
+    bool ok = true;
+    double delta = 0;
+    // the sign planes' normals of a triangle and their deltas (farTriAgrees)
+    auto normalsOf = [&](const Tri& t, auto&& f) {
+      const V3 ab = t.v[1] - t.v[0], ac = t.v[2] - t.v[0];
+      f(t.n, 2 * (std::fabs(dot(ab, t.n)) + std::fabs(dot(ac, t.n))));
+      for (int e = 0; e < 3; ++e)
+      {
+        f(t.en[e], std::fabs(dot(t.v[(e + 1) % 3] - t.v[e], t.en[e])));
+        f(t.vn[e], 0.0);
+      }
+    };
+    if (n.left < 0)
+    {
+      for (std::int32_t i = n.first; i < n.first + n.count; ++i)
+      {
+        const Tri& t = tris[static_cast<std::size_t>(order[static_cast<std::size_t>(i)])];
+        ok = ok && farShaped(t);
+        normalsOf(t, [&](V3 m, double d) {
+          axis = axis + m;
+          delta = std::max(delta, d);
+        });
+      }
+    }
+    else
+    {
+      const FarCone &l = cones[static_cast<std::size_t>(n.left)], &r = cones[static_cast<std::size_t>(n.right)];
+      ok = l.ok && r.ok;
+      axis = V3{ l.axis[0], l.axis[1], l.axis[2] } + V3{ r.axis[0], r.axis[1], r.axis[2] };
+      delta = std::max(l.delta, r.delta);
+    }
+    const double len = norm(axis);
+    if (!ok || !(len > 0)) continue;
+    axis = (1.0 / len) * axis;
+    double t = 0;
+    if (n.left < 0)
+    {
+      for (std::int32_t i = n.first; i < n.first + n.count; ++i)
+        normalsOf(tris[static_cast<std::size_t>(order[static_cast<std::size_t>(i)])],
+          [&](V3 m, double) { t = std::max(t, angleTo(axis, m)); });
+    }
+    else
+    {
+      for (std::int32_t c : { n.left, n.right })
+      {
+        const FarCone& cc = cones[static_cast<std::size_t>(c)];
+        t = std::max(t, angleTo(axis, V3{ cc.axis[0], cc.axis[1], cc.axis[2] }) + angle[static_cast<std::size_t>(c)]);
+      }
+    }
+    angle[k] = t;
+    if (t >= 1.5) continue; // about 86 degrees: too wide to decide anything
+    FarCone& c = cones[k];
+    c.axis[0] = axis.x;
+    c.axis[1] = axis.y;
+    c.axis[2] = axis.z;
+    c.cosT = std::cos(t) - 1e-12;
+    c.sinT = std::sin(t) + 1e-12;
+    c.delta = delta * (1 + 1e-12);
+    c.ok = 1;
+  }
+  return cones;
 }
 
 } // namespace detail::meshtosdf

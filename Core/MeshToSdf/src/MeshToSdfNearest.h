@@ -42,12 +42,6 @@ public:
   static constexpr int RowPoints = 8;
   void nearestRow(const V3* p, int n, std::int32_t hint, const std::int32_t* laneHints, NearestResult* out) const;
 
-  /// Calls f(index, vertices) for every triangle whose box (float, rounded
-  /// outward) lies within sqrt(r2) of p: a superset of the triangles that
-  /// close. Stops when f returns false, and returns false then (far blocks).
-  template <typename F>
-  bool visitWithin(V3 p, double r2, F&& f) const;
-
   struct alignas(16) Node
   {
     float lo[3][4], hi[3][4]; // child boxes, per axis, four lanes
@@ -86,40 +80,6 @@ private:
   double Scale = 0;                  // largest |coordinate| of the mesh
   std::size_t Depth = 0;
 };
-
-template <typename F>
-bool NearestIndex::visitWithin(V3 p, double r2, F&& f) const
-{
-  if (this->Nodes.empty()) return true;
-  std::int32_t stack[256]; // as nearest(): three siblings per level wait at most
-  int top = 0;
-  stack[top++] = 0;
-  const double q[3] = { p.x, p.y, p.z };
-  while (top > 0)
-  {
-    const Node& n = this->Nodes[static_cast<std::size_t>(stack[--top])];
-    for (int i = 0; i < n.count; ++i)
-    {
-      double s = 0;
-      for (int a = 0; a < 3; ++a)
-      {
-        const double lo = n.lo[a][i], hi = n.hi[a][i];
-        const double g = q[a] < lo ? lo - q[a] : (q[a] > hi ? q[a] - hi : 0.0);
-        s += g * g;
-      }
-      if (s > r2) continue;
-      const std::int32_t c = n.child[i];
-      if (c >= 0)
-      {
-        stack[top++] = c;
-        continue;
-      }
-      const Packed& t = this->Tris[static_cast<std::size_t>(~c)];
-      if (!f(t.index, t.v)) return false;
-    }
-  }
-  return true;
-}
 
 } // namespace detail::meshtosdf
 } // namespace lvdif
