@@ -89,7 +89,15 @@ LVDIF_HD bool farTriAgrees(const Tri& t, bool pseudo, const FarBox& box, double 
   if (shaped)
   {
     const V3 ab = t.v[1] - t.v[0], ac = t.v[2] - t.v[0];
-    bool ok = farPlane(t.v[0], t.n, 2 * (std::fabs(dot(ab, t.n)) + std::fabs(dot(ac, t.n))), box, margin) == side;
+    // with pseudo-normals the face's own plane counts only where the face's
+    // interior can be nearest: in its prism (the projection inside the face)
+    bool face = true;
+    for (int k = 0; k < 3 && face && pseudo; ++k)
+    {
+      const V3 out = normalized(cross(t.v[(k + 1) % 3] - t.v[k], t.n)); // in-plane, outward of edge k
+      face = farPlane(t.v[k], out, 0.0, box, margin) != 1;                // not all beyond edge k
+    }
+    bool ok = !face || farPlane(t.v[0], t.n, 2 * (std::fabs(dot(ab, t.n)) + std::fabs(dot(ac, t.n))), box, margin) == side;
     for (int k = 0; k < 3 && ok && pseudo; ++k)
     {
       const V3 a = t.v[k], b = t.v[(k + 1) % 3];
