@@ -67,14 +67,26 @@ std::int64_t classifyFarCells(const NearestIndex& index, const Bvh& bvh, const s
       (b / (blocks[0] * blocks[1])) * FarBlock };
     const long long size[3] = { n[0], n[1], n[2] };
     std::int32_t hint = -1;
+    // the last box tried at each level and its centre's distance: the box
+    // enclosing the one being tried (farClassifyBlock tries the halves of a
+    // box right after it, its cells right after each half)
+    FarBox last[3];
+    double lastDist[3] = { 0, 0, 0 };
     decided += farClassifyBlock(origin, size,
       [&](const long long o[3], long long edge) {
         const std::int64_t o64[3] = { o[0], o[1], o[2] };
         const FarBox sub = boxOf(o64, edge);
+        const int level = edge == FarBlock ? 0 : (edge == FarBlock / 2 ? 1 : 2);
+        // certainly within the band by the enclosing box's distance: no query
+        // (only a shortcut: an undecided box is never wrong)
+        if (level > 0 && lastDist[level - 1] + farOffset(sub, last[level - 1], big) - sub.radius <= bandWorld)
+          return 0;
         const NearestResult q = index.nearest(sub.centre, hint, 1e300);
         if (q.tri < 0) return 0;
         hint = q.tri;
         const double dq = std::sqrt(q.dist2);
+        last[level] = sub;
+        lastDist[level] = dq;
         const int expect = farSideAt(mesh.tris[static_cast<std::size_t>(q.tri)], q.closest, sub.centre, pseudo);
         return farBoxSide(nodes, cones.data(), triAt, pseudo, sub, dq, dq, bandWorld, margin, expect);
       },
