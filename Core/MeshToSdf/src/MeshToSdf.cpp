@@ -342,10 +342,11 @@ void computeBox(const Engine& e, const VoxelBox& box, float* out, MeshToSdfStats
   FarCells far;
   if (e.far)
   {
+    const double tf = now();
     stats.farVoxels += classifyFarCells(
       *e.index, *e.farBvh, *e.farCones, *e.mesh, e.geom, box, static_cast<double>(e.band) / e.toOut,
       e.opts.sign == SignMode::PseudoNormal, far);
-    if (std::getenv("LVDIF_FAR_ONLY")) return;
+    trace("far blocks of a box", now() - tf);
   }
   forRows(box, intr, progressBase, winding ? progressSpan * 0.5 : progressSpan,
     [&](std::int64_t j, std::int64_t k, std::int64_t r) {

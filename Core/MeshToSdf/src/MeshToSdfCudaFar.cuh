@@ -19,10 +19,10 @@ namespace
 /// FarCells layout in `cells`, cx x cy x cz, cleared before the first
 /// level): one thread per box of edge^3 voxels whose enclosing box of the
 /// level before (2 edge) was not decided. Launched for edge = FarBlock, then
-/// FarBlock / 2, then FarCell, this decides the boxes farClassifyBlock
-/// decides on the CPU (each with its own nearest query and farBoxSide on the
-/// same BVH and cones), with 8 and 64 times more threads than one per block;
-/// decided voxels added to *decided.
+/// FarBlock / 2, then FarCell, this tries the boxes farClassifyBlock tries on
+/// the CPU (each with its own nearest query and farBoxSide on the same BVH
+/// and cones; the CPU skips some near the band without a query), with 8 and
+/// 64 times more threads than one per block; decided voxels added to *decided.
 __global__ void farLevelKernel(DevBvh bvh, const FarCone* cones, Params P, double margin, double big, int edge,
   long long cx, long long cy, long long cz, signed char* cells, unsigned long long* decided)
 {

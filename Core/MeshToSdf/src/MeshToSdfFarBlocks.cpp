@@ -8,10 +8,7 @@
 #include <omp.h>
 
 #include <algorithm>
-#include <atomic>
-#include <cstdio>
 #include <cmath>
-#include <cstdlib>
 
 namespace lvdif
 {
@@ -54,7 +51,6 @@ std::int64_t classifyFarCells(const NearestIndex& index, const Bvh& bvh, const s
     return farBox(pos(box.lo[0] + v0[0], box.lo[1] + v0[1], box.lo[2] + v0[2]),
       pos(box.lo[0] + hi[0], box.lo[1] + hi[1], box.lo[2] + hi[2]), big);
   };
-  const double tStart = omp_get_wtime();
   const std::int64_t total = blocks[0] * blocks[1] * blocks[2];
   const Bvh::Node* nodes = bvh.nodes().data();
   const std::int32_t* order = bvh.order().data();
@@ -95,7 +91,6 @@ std::int64_t classifyFarCells(const NearestIndex& index, const Bvh& bvh, const s
           static_cast<std::int8_t>(s);
       });
   }
-  if (std::getenv("LVDIF_FAR_TRACE")) { static double tSum = 0; tSum += omp_get_wtime() - tStart; std::fprintf(stderr, "classify total %.3f s\n", tSum); }
   return decided;
 }
 
