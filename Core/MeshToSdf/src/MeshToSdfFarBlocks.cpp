@@ -108,15 +108,14 @@ std::vector<FarCone> farCones(const Bvh& bvh, const std::vector<Tri>& tris)
     const Bvh::Node& n = nodes[k];
     V3 axis;
     bool ok = true;
-    double delta = 0;
-    // the sign planes' normals of a triangle and their deltas (farTriAgrees)
+    double edgeDelta = 0, faceDot = 0, minHeight = 1e300, longest = 0;
+    // the sign planes' normals of a triangle (farTriAgrees)
     auto normalsOf = [&](const Tri& t, auto&& f) {
-      const V3 ab = t.v[1] - t.v[0], ac = t.v[2] - t.v[0];
-      f(t.n, 2 * (std::fabs(dot(ab, t.n)) + std::fabs(dot(ac, t.n))));
+      f(t.n);
       for (int e = 0; e < 3; ++e)
       {
-        f(t.en[e], std::fabs(dot(t.v[(e + 1) % 3] - t.v[e], t.en[e])));
-        f(t.vn[e], 0.0);
+        f(t.en[e]);
+        f(t.vn[e]);
       }
     };
     if (n.left < 0)
@@ -125,10 +124,13 @@ std::vector<FarCone> farCones(const Bvh& bvh, const std::vector<Tri>& tris)
       {
         const Tri& t = tris[static_cast<std::size_t>(order[static_cast<std::size_t>(i)])];
         ok = ok && farShaped(t);
-        normalsOf(t, [&](V3 m, double d) {
-          axis = axis + m;
-          delta = std::max(delta, d);
-        });
+        normalsOf(t, [&](V3 m) { axis = axis + m; });
+        const V3 ab = t.v[1] - t.v[0], ac = t.v[2] - t.v[0];
+        const double l = std::max({ norm(ab), norm(ac), norm(t.v[2] - t.v[1]) });
+        longest = std::max(longest, l);
+        minHeight = std::min(minHeight, norm(cross(ab, ac)) / l);
+        faceDot = std::max(faceDot, std::fabs(dot(ab, t.n)) + std::fabs(dot(ac, t.n)));
+        for (int e = 0; e < 3; ++e) edgeDelta = std::max(edgeDelta, std::fabs(dot(t.v[(e + 1) % 3] - t.v[e], t.en[e])));
       }
     }
     else
@@ -136,7 +138,10 @@ std::vector<FarCone> farCones(const Bvh& bvh, const std::vector<Tri>& tris)
       const FarCone &l = cones[static_cast<std::size_t>(n.left)], &r = cones[static_cast<std::size_t>(n.right)];
       ok = l.ok && r.ok;
       axis = V3{ l.axis[0], l.axis[1], l.axis[2] } + V3{ r.axis[0], r.axis[1], r.axis[2] };
-      delta = std::max(l.delta, r.delta);
+      edgeDelta = std::max(l.edgeDelta, r.edgeDelta);
+      faceDot = std::max(l.faceDot, r.faceDot);
+      minHeight = std::min(l.minHeight, r.minHeight);
+      longest = std::max(l.longest, r.longest);
     }
     const double len = norm(axis);
     if (!ok || !(len > 0)) continue;
@@ -146,7 +151,7 @@ std::vector<FarCone> farCones(const Bvh& bvh, const std::vector<Tri>& tris)
     {
       for (std::int32_t i = n.first; i < n.first + n.count; ++i)
         normalsOf(tris[static_cast<std::size_t>(order[static_cast<std::size_t>(i)])],
-          [&](V3 m, double) { t = std::max(t, angleTo(axis, m)); });
+          [&](V3 m) { t = std::max(t, angleTo(axis, m)); });
     }
     else
     {
@@ -164,7 +169,10 @@ std::vector<FarCone> farCones(const Bvh& bvh, const std::vector<Tri>& tris)
     c.axis[2] = axis.z;
     c.cosT = std::cos(t) - 1e-12;
     c.sinT = std::sin(t) + 1e-12;
-    c.delta = delta * (1 + 1e-12);
+    c.edgeDelta = edgeDelta * (1 + 1e-12);
+    c.faceDot = faceDot * (1 + 1e-12);
+    c.minHeight = minHeight * (1 - 1e-12);
+    c.longest = longest * (1 + 1e-12);
     c.ok = 1;
   }
   return cones;

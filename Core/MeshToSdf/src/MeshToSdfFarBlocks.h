@@ -74,14 +74,22 @@ LVDIF_HD int farPlane(V3 a, V3 n, double delta, const FarBox& box, double margin
   return g - spread > m ? 1 : (g + spread < -m ? -1 : 0);
 }
 
+/// The face plane's allowance of farTriAgrees (region: the rounding band of
+/// the closest point's regions, h the smallest height, L bounding |p - vertex|).
+LVDIF_HD double farFaceDelta(double faceDot, double reachL, double h)
+{
+  const double region = 1e-14 * reachL * reachL / h;
+  return faceDot * (2 + region / h);
+}
+
 /// Whether triangle t leaves every voxel of the box the sign `side` if it is
 /// their nearest: each plane its sign may be taken against (the face; with
 /// pseudo-normals also its edges' and vertices', through the feature, with
 /// their stored normals) puts the box on that side. delta covers where the
 /// computed closest point lies on the feature (the sign is taken at it, the
 /// plane passes through a vertex): |B-A|.n for an edge (parameter in [0,1]),
-/// 2 (|AB.n| + |AC.n|) for the face (barycentrics of a shaped triangle), 0
-/// at a vertex. Otherwise true only when t is provably farther than reach
+/// (|AB.n| + |AC.n|) (2 + region / h) for the face (barycentrics, with their
+/// rounding), 0 at a vertex. Otherwise true only when t is provably farther than reach
 /// from the centre (by its exact distance if shaped, else its bounding box).
 LVDIF_HD bool farTriAgrees(const Tri& t, bool pseudo, const FarBox& box, double reach, double margin, int side)
 {
@@ -89,15 +97,25 @@ LVDIF_HD bool farTriAgrees(const Tri& t, bool pseudo, const FarBox& box, double 
   if (shaped)
   {
     const V3 ab = t.v[1] - t.v[0], ac = t.v[2] - t.v[0];
+    // the closest-point routine's region tests and barycentrics round like
+    // products of distances: their error in position grows as L^2 / h (L
+    // bounds |p - vertex| over the box, h the triangle's smallest height)
+    const double area2 = norm(cross(ab, ac));
+    const double longest = std::fmax(norm(ab), std::fmax(norm(ac), norm(t.v[2] - t.v[1])));
+    const double h = area2 / longest;
+    const double reachL = norm(box.centre - t.v[0]) + box.radius + longest;
+    const double region = 1e-14 * reachL * reachL / h; // as in farFaceDelta
     // with pseudo-normals the face's own plane counts only where the face's
     // interior can be nearest: in its prism (the projection inside the face)
     bool face = true;
     for (int k = 0; k < 3 && face && pseudo; ++k)
     {
       const V3 out = normalized(cross(t.v[(k + 1) % 3] - t.v[k], t.n)); // in-plane, outward of edge k
-      face = farPlane(t.v[k], out, 0.0, box, margin) != 1;                // not all beyond edge k
+      face = farPlane(t.v[k], out, region, box, margin) != 1;           // not all beyond edge k
     }
-    bool ok = !face || farPlane(t.v[0], t.n, 2 * (std::fabs(dot(ab, t.n)) + std::fabs(dot(ac, t.n))), box, margin) == side;
+    // in the face, c' = A + v AB + w AC with |v|, |w| <= 1 + region / h
+    const double faceDelta = farFaceDelta(std::fabs(dot(ab, t.n)) + std::fabs(dot(ac, t.n)), reachL, h);
+    bool ok = !face || farPlane(t.v[0], t.n, faceDelta, box, margin) == side;
     for (int k = 0; k < 3 && ok && pseudo; ++k)
     {
       const V3 a = t.v[k], b = t.v[(k + 1) % 3];
@@ -123,7 +141,9 @@ struct FarCone
 {
   double axis[3] = { 0, 0, 0 };
   double cosT = 0, sinT = 1;
-  double delta = 0; // the largest delta of farTriAgrees below
+  // for the deltas of farTriAgrees below: the largest edge delta, the largest
+  // |AB.n| + |AC.n|, the smallest height and the longest edge
+  double edgeDelta = 0, faceDot = 0, minHeight = 0, longest = 0;
   int ok = 0;
 };
 
@@ -142,7 +162,8 @@ LVDIF_HD int farConeSide(const FarCone& c, const double lo[3], const double hi[3
   const double along = dot(a, cw);
   const double spread = std::fabs(a.x) * hw.x + std::fabs(a.y) * hw.y + std::fabs(a.z) * hw.z;
   const double across = norm(cw - along * a) + norm(hw);
-  const double m = margin + c.delta;
+  const double reachL = norm(cw) + norm(hw) + box.radius + c.longest; // bounds |p - vertex| below
+  const double m = margin + std::fmax(c.edgeDelta, farFaceDelta(c.faceDot, reachL, c.minHeight));
   if (along - spread > 0 && c.cosT * (along - spread) - c.sinT * across > m) return 1;
   if (-along - spread > 0 && c.cosT * (-along - spread) - c.sinT * across > m) return -1;
   return 0;
