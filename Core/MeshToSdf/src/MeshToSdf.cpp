@@ -4,6 +4,7 @@
 #include "lvdif/MeshToSdf.h"
 
 #include "MeshToSdfCuda.h"
+#include "MeshToSdfFarBlocks.h"
 #include "MeshToSdfInternal.h"
 #include "MeshToSdfNearest.h"
 #include "lvdif/Memory.h"
@@ -49,6 +50,9 @@ struct Engine
   std::unique_ptr<FaithfulGrid> grid;
   GridGeometry geom;
   MeshToSdfOptions opts;
+  bool far = false;       // far blocks (Normal/PseudoNormal, finite band, CPU BVH; MeshToSdfOptions::farBlocks)
+  const Bvh* farBvh = nullptr;                 // their tree and node cones
+  const std::vector<FarCone>* farCones = nullptr;
   double toOut = 1;       // world distance -> output units
   double band = 0;        // output units (may be infinite)
   double bandWorld2 = 0;  // squared band in world units, for bounded queries
@@ -119,8 +123,10 @@ struct Engine
   /// lower bound (previous distance - steps) is still past the band.
   /// rowTris (nx entries): on entry the nearest triangles of the row below
   /// when belowValid (they seed the bounds), on exit this row's.
+  /// far (optional): the far cells of this row (FarCell voxels each from i0):
+  /// their voxels are +-band without a query.
   void distanceRow(std::int64_t j, std::int64_t k, std::int64_t i0, std::int64_t i1, float* out,
-    std::int32_t* rowTris, bool belowValid) const
+    std::int32_t* rowTris, bool belowValid, const std::int8_t* far = nullptr) const
   {
     const bool bounded = this->opts.accel == MeshToSdfAccel::Bvh &&
       (this->opts.sign == SignMode::WindingNumber || this->opts.sign == SignMode::Unsigned) &&
@@ -134,12 +140,21 @@ struct Engine
     const bool packets = !bounded && this->opts.accel == MeshToSdfAccel::Bvh;
     for (std::int64_t i = i0; i <= i1;)
     {
+      if (far && far[(i - i0) / FarCell] != 0)
+      {
+        out[i - i0] = static_cast<float>(far[(i - i0) / FarCell]) * static_cast<float>(this->band);
+        rowTris[i - i0] = -1;
+        ++i;
+        continue;
+      }
       NearestResult res[NearestIndex::RowPoints];
       V3 ps[NearestIndex::RowPoints];
       int count = 1;
       if (packets)
       {
         count = static_cast<int>(std::min<std::int64_t>(NearestIndex::RowPoints, i1 - i + 1));
+        for (int q = 1; far && q < count; ++q)
+          if (far[(i + q - i0) / FarCell] != 0) count = q;
         for (int q = 0; q < count; ++q) ps[q] = this->position(i + q, j, k);
         this->index->nearestRow(ps, count, hint, belowValid ? rowTris + (i - i0) : nullptr, res);
       }
@@ -204,6 +219,9 @@ std::unique_ptr<Engine> makeEngine(const MeshToSdfPrepared& prepared, const Grid
   {
     e->index = &impl.nearestIndex(lazy);
   }
+  e->far = opts.farBlocks && e->index != nullptr && e->bandWorld2 < 1e299 && !opts.useVertexNormals &&
+    (opts.sign == SignMode::Normal || opts.sign == SignMode::PseudoNormal);
+  if (e->far) e->farBvh = &impl.farTree(e->farCones, lazy);
   if (opts.sign == SignMode::WindingNumber && device == Device::Cpu)
   {
     e->winding = &impl.windingSigner(lazy);
@@ -331,11 +349,22 @@ void computeBox(const Engine& e, const VoxelBox& box, float* out, MeshToSdfStats
   requireMemory(static_cast<std::uint64_t>(threads) * static_cast<std::uint64_t>(nx) * 4, "mesh to SDF: row hints");
   std::vector<std::int32_t> rowTris(static_cast<std::size_t>(threads * nx), -1);
   std::vector<std::int64_t> lastRow(static_cast<std::size_t>(threads), -2);
+  FarCells far;
+  if (e.far)
+  {
+    const double tf = now();
+    stats.farVoxels += classifyFarCells(
+      *e.index, *e.farBvh, *e.farCones, *e.mesh, e.geom, box, static_cast<double>(e.band) / e.toOut,
+      e.opts.sign == SignMode::PseudoNormal, far);
+    trace("far blocks of a box", now() - tf);
+  }
   forRows(box, intr, progressBase, winding ? progressSpan * 0.5 : progressSpan,
     [&](std::int64_t j, std::int64_t k, std::int64_t r) {
       const int t = std::min(omp_get_thread_num(), threads - 1);
       const bool below = lastRow[static_cast<std::size_t>(t)] == r - 1 && j > box.lo[1];
-      e.distanceRow(j, k, box.lo[0], box.hi[0], out + r * nx, rowTris.data() + t * nx, below);
+      const std::int8_t* farRow = far.sign.empty() ? nullptr
+        : far.sign.data() + far.count[0] * ((j - box.lo[1]) / FarCell + far.count[1] * ((k - box.lo[2]) / FarCell));
+      e.distanceRow(j, k, box.lo[0], box.hi[0], out + r * nx, rowTris.data() + t * nx, below, farRow);
       lastRow[static_cast<std::size_t>(t)] = r;
     }, 8);
   stats.distanceSeconds += now() - t0;

@@ -8,6 +8,7 @@
 // sessions (float slabs whose sign pass runs in parts, each copied back while
 // the next runs; dictionary-volume groups encoded on the GPU).
 #include "MeshToSdfCuda.h"
+#include "MeshToSdfCudaFar.cuh"
 #include "MeshToSdfCudaKernels.cuh"
 #include "MeshToSdfCudaDipole.cuh"
 
@@ -193,9 +194,13 @@ public:
   bool hasNormals() const override { return this->Full.load(std::memory_order_acquire) != nullptr; }
   void addNormals() override
   {
-    if (!this->hasNormals())
-      this->Full.store(this->Arena.uploadOn(this->Upload.s, this->Mesh.tris), std::memory_order_release);
+    if (this->hasNormals()) return;
+    // with the normal cones of the tree's nodes (far blocks), published before the records
+    this->Cones = this->Arena.uploadOn(this->Upload.s, farCones(this->MeshBvh, this->Mesh.tris));
+    this->Full.store(this->Arena.uploadOn(this->Upload.s, this->Mesh.tris), std::memory_order_release);
   }
+  /// The node cones (valid once hasNormals()).
+  const FarCone* cones() const { return this->hasNormals() ? this->Cones : nullptr; }
   /// The mesh BVH as the distance kernel takes it (full records if uploaded).
   DevBvh meshBvh() const
   {
@@ -237,6 +242,7 @@ public:
     this->Winding.store(true, std::memory_order_release);
   }
   bool hasWinding() const override { return this->Winding.load(std::memory_order_acquire); }
+  const PreparedMesh& prepared() const { return this->Mesh; }
   std::uint64_t bytes() const override { return this->Arena.bytes(); }
   DevBvh Dbvh;  // immutable once constructed (tris: see meshBvh)
   WindingDev W; // written once by addWinding, before Winding is set
@@ -249,6 +255,7 @@ private:
   Stream Upload;
   std::atomic<bool> Winding{ false };
   std::atomic<const Tri*> Full{ nullptr }; // the full triangle records (Normal/PseudoNormal)
+  const FarCone* Cones = nullptr;          // the node cones, written before Full
   DevBvh Reserved; // windingLater buffers
   std::size_t ClosedCap = 0, EdgeCap = 0;
   int* ReservedSlot = nullptr;
@@ -326,6 +333,16 @@ public:
     this->P.useVertexNormals = options.useVertexNormals ? 1 : 0;
     this->P.bounded = (this->P.sign >= 2 && this->P.bandWorld < 1e299) ? 1 : 0;
     LVDIF_CUDA_CHECK(cudaMemset(this->Counters, 0, 3 * sizeof(unsigned long long)));
+    // far blocks: as makeEngine decides them for the CPU (the GPU always runs the BVH)
+    this->FarOn = options.farBlocks && (this->P.sign == 0 || this->P.sign == 1) && !options.useVertexNormals &&
+      this->P.bandWorld < 1e299;
+    if (this->FarOn)
+    {
+      this->FarBig = farScale(mesh.prepared(), grid);
+      this->FarMargin = farMargin(this->FarBig, static_cast<double>(mesh.prepared().tris.size()));
+      this->FarDecided = this->Arena.alloc<unsigned long long>(1);
+      LVDIF_CUDA_CHECK(cudaMemset(this->FarDecided, 0, sizeof(unsigned long long)));
+    }
     stats.devicePeakBytes = std::max(stats.devicePeakBytes, this->Mesh.bytes() + this->Arena.bytes());
   }
 
@@ -470,6 +487,7 @@ private:
     }
     const long long rows = (box.hi[1] - box.lo[1] + 1) * (box.hi[2] - box.lo[2] + 1);
     LVDIF_CUDA_CHECK(cudaEventRecord(this->DistanceDone.a));
+    if (this->FarOn) this->launchFar(P);
     launchDistance(this->Mesh.meshBvh(), P, this->Slab);
     LVDIF_CUDA_CHECK(cudaEventRecord(this->DistanceDone.b));
     if (this->HasWinding && !this->Mesh.hasWinding())
@@ -529,8 +547,41 @@ private:
     this->Launched = true;
   }
 
+  /// The far cells of the slab in P (which then points the distance kernel at them).
+  void launchFar(Params& P)
+  {
+    long long count[3];
+    for (int a = 0; a < 3; ++a) count[a] = (P.hi[a] - P.lo[a] + 1 + FarCell - 1) / FarCell;
+    const long long cells = count[0] * count[1] * count[2];
+    if (cells > this->FarCapacity)
+    {
+      if (this->Far) this->Arena.release(this->Far);
+      this->Far = this->Arena.alloc<signed char>(static_cast<std::size_t>(cells));
+      this->FarCapacity = cells;
+    }
+    LVDIF_CUDA_CHECK(cudaMemsetAsync(this->Far, 0, static_cast<std::size_t>(cells)));
+    for (int edge : { FarBlock, FarBlock / 2, FarCell })
+    {
+      long long boxes = 1;
+      for (int a = 0; a < 3; ++a) boxes *= (P.hi[a] - P.lo[a] + 1 + edge - 1) / edge;
+      farLevelKernel<<<static_cast<unsigned>((boxes + 127) / 128), 128>>>(this->Mesh.meshBvh(), this->Mesh.cones(),
+        P, this->FarMargin, this->FarBig, edge, count[0], count[1], count[2], this->Far, this->FarDecided);
+      LVDIF_CUDA_CHECK(cudaGetLastError());
+    }
+    P.far = this->Far;
+    P.farCount[0] = count[0];
+    P.farCount[1] = count[1];
+  }
+
   void readCounters(MeshToSdfStats& stats)
   {
+    if (this->FarOn)
+    {
+      unsigned long long far = 0;
+      LVDIF_CUDA_CHECK(cudaMemcpy(&far, this->FarDecided, sizeof(far), cudaMemcpyDeviceToHost));
+      LVDIF_CUDA_CHECK(cudaMemset(this->FarDecided, 0, sizeof(far)));
+      stats.farVoxels += static_cast<std::int64_t>(far);
+    }
     unsigned long long host[3] = { 0, 0, 0 };
     LVDIF_CUDA_CHECK(cudaMemcpy(host, this->Counters, sizeof(host), cudaMemcpyDeviceToHost));
     LVDIF_CUDA_CHECK(cudaMemset(this->Counters, 0, sizeof(host)));
@@ -551,6 +602,12 @@ private:
   PartEvents PartDone;
   Stream Copy; // device -> host copies, beside the kernels of the legacy stream
   unsigned long long* Counters = nullptr;
+  // far blocks (Normal/PseudoNormal with a band): one sign per FarCell^3 cell of the slab
+  bool FarOn = false;
+  double FarBig = 0, FarMargin = 0;
+  signed char* Far = nullptr;
+  long long FarCapacity = 0;
+  unsigned long long* FarDecided = nullptr;
   float* Slab = nullptr;
   std::size_t SlabCapacity = 0;
   double* Bounds = nullptr; // per block of the slab: s's bound (lo, hi), lo > hi: none

@@ -13,6 +13,7 @@
 // (vertices + normal, 96 bytes) rather than the 328-byte Tri.
 #pragma once
 
+#include "MeshToSdfFarBlocks.h"
 #include "MeshToSdfInternal.h"
 #include "lvdif/CudaCheck.cuh"
 #include "lvdif/SdfDictionary.h"
@@ -58,6 +59,9 @@ struct Params
   int sign; // 0 normal, 1 pseudo-normal, 2 winding, 3 unsigned
   int useVertexNormals;
   int bounded;
+  // far cells of the slab (MeshToSdfCudaFar.cuh; null: none): their voxels are +-band
+  const signed char* far = nullptr;
+  long long farCount[2] = { 0, 0 }; // cells along x and y
 };
 
 struct WindingDev
@@ -160,8 +164,14 @@ __global__ void __launch_bounds__(128, MinBlocks) distanceKernel(DevBvh bvh, Par
   const double h = P.spacing[0];
   double lower = -1;
   int hint = -1;
+  const signed char* farRow = P.far ? P.far + P.farCount[0] * (jj / FarCell + P.farCount[1] * (kk / FarCell)) : nullptr;
   for (long long i = i0; i <= i1; ++i)
   {
+    if (farRow && farRow[(i - P.lo[0]) / FarCell] != 0)
+    {
+      rowOut[i] = static_cast<float>(farRow[(i - P.lo[0]) / FarCell]) * static_cast<float>(P.band);
+      continue;
+    }
     lower -= h;
     if (P.bounded && lower >= P.bandWorld)
     {

@@ -243,6 +243,7 @@ private:
 bool triangleBoxOverlap(const V3 tri[3], const double centre[3], const double half[3]);
 
 class NearestIndex; // MeshToSdfNearest.h: the CPU nearest-triangle queries
+struct FarCone;     // MeshToSdfFarBlocks.h: normal cones of the BVH's nodes
 
 } // namespace detail::meshtosdf
 
@@ -261,6 +262,10 @@ struct MeshToSdfPrepared::Impl
   /// The CPU's NearestIndex, built on first use (seconds added; under Lock).
   const detail::meshtosdf::NearestIndex& nearestIndex(double& seconds);
   double prepareSeconds = 0;
+  /// For the far blocks of the Normal/PseudoNormal signs on the CPU: the
+  /// binary BVH (the GPU's tree) and its node cones, built on first use
+  /// (seconds added; under Lock).
+  const detail::meshtosdf::Bvh& farTree(const std::vector<detail::meshtosdf::FarCone>*& cones, double& seconds);
   /// The winding-number structures, built on first use (seconds added).
   const detail::meshtosdf::WindingSigner& windingSigner(double& seconds);
   /// Whether the winding-number structures are built already.
@@ -276,6 +281,7 @@ struct MeshToSdfPrepared::Impl
 private:
   std::mutex Lock;
   std::unique_ptr<detail::meshtosdf::WindingSigner> Winding;
+  std::unique_ptr<std::vector<detail::meshtosdf::FarCone>> FarConesOfBvh;
   std::unique_ptr<detail::meshtosdf_cuda::DeviceMesh> Device;
 };
 

@@ -3,6 +3,7 @@
 // device copy), each built once under the prepared mesh's lock, and the host
 // phase trace used by the benchmarks.
 #include "MeshToSdfCuda.h"
+#include "MeshToSdfFarBlocks.h"
 #include "MeshToSdfInternal.h"
 #include "MeshToSdfNearest.h"
 
@@ -58,6 +59,18 @@ const NearestIndex& MeshToSdfPrepared::Impl::nearestIndex(double& seconds)
     trace("nearest index", now() - t0);
   }
   return *this->nearest;
+}
+
+const Bvh& MeshToSdfPrepared::Impl::farTree(const std::vector<FarCone>*& cones, double& seconds)
+{
+  std::lock_guard<std::mutex> lock(this->Lock);
+  const double t0 = now();
+  if (!this->bvh) this->bvh = std::make_unique<Bvh>(this->mesh.tris);
+  if (!this->FarConesOfBvh) this->FarConesOfBvh = std::make_unique<std::vector<FarCone>>(farCones(*this->bvh, this->mesh.tris));
+  seconds += now() - t0;
+  trace("far-block tree", now() - t0);
+  cones = this->FarConesOfBvh.get();
+  return *this->bvh;
 }
 
 const WindingSigner& MeshToSdfPrepared::Impl::windingSigner(double& seconds)

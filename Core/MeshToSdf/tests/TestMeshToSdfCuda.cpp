@@ -2,6 +2,7 @@
 // oracles): distances within float rounding, signs equal except on voxels
 // lying on the surface (|d| < 1e-3 voxel). Skipped without a CUDA device.
 #include "MeshToSdfDamagedMeshes.h"
+#include "MeshToSdfFarCases.h"
 #include "MeshToSdfOracle.h"
 #include "lvdif/Cuda.h"
 #include "lvdif/MeshToSdf.h"
@@ -325,4 +326,85 @@ TEST(MeshToSdfCuda, PreparedMeshIsReusedAcrossCallsAndDevices)
   o.device = Device::Cuda;
   meshToSdf(prepared, FloatGridView{ again.data(), g }, o);
   EXPECT_EQ(first, again);
+}
+
+TEST(MeshToSdfCuda, FarBlocksMatchCpuAndThePerVoxelPath)
+{
+  // far blocks on the GPU (MeshToSdfCudaFar.cuh) against the GPU's per-voxel
+  // path (bit for bit) and the CPU's far blocks (the saturated voxels bit for
+  // bit, the others as in compare()), into floats over several slabs and into
+  // a dictionary volume
+  if (!cuda::available()) GTEST_SKIP() << "no CUDA device";
+  for (const farcases::Case& c : farcases::meshes())
+  {
+    const MeshToSdfPrepared prepared = prepareMeshToSdf(c.mesh, SignMode::PseudoNormal);
+    const GridGeometry g = fitGridToMesh(c.mesh, 72, 8);
+    VoxelBox all;
+    all.hi = { g.dims[0] - 1, g.dims[1] - 1, g.dims[2] - 1 };
+    for (SignMode s : { SignMode::Normal, SignMode::PseudoNormal })
+    {
+      for (float band : { 2.0f, std::numeric_limits<float>::infinity() })
+      {
+        const std::string what = c.name + ", " + toString(s) + ", band " + std::to_string(band);
+        MeshToSdfOptions o;
+        o.sign = s;
+        o.bandWidth = band;
+        o.cudaSlabBytes = static_cast<std::uint64_t>(g.dims[0] * g.dims[1]) * 4 * 13; // slabs of 13 layers
+        std::vector<float> cpu(static_cast<std::size_t>(g.count())), gpu(cpu.size()), perVoxel(cpu.size());
+        o.device = Device::Cpu;
+        const MeshToSdfStats sc = meshToSdf(prepared, g, all, cpu.data(), o);
+        o.device = Device::Cuda;
+        const MeshToSdfStats sg = meshToSdf(prepared, g, all, gpu.data(), o);
+        ASSERT_EQ(sg.device, Device::Cuda);
+        o.farBlocks = false;
+        const MeshToSdfStats sp = meshToSdf(prepared, g, all, perVoxel.data(), o);
+        EXPECT_EQ(sp.farVoxels, 0) << what;
+        std::int64_t bits = 0, saturatedBits = 0, badDistance = 0, badSign = 0;
+        for (std::size_t i = 0; i < cpu.size(); ++i)
+        {
+          bits += std::memcmp(&gpu[i], &perVoxel[i], sizeof(float)) != 0;
+          const float a = cpu[i], b = gpu[i];
+          if (std::fabs(a) == band || std::fabs(b) == band) saturatedBits += std::memcmp(&a, &b, sizeof(float)) != 0;
+          if (std::fabs(std::fabs(a) - std::fabs(b)) > 1e-5f * std::max(1.0f, std::fabs(a))) ++badDistance;
+          if (std::fabs(a) > 1e-3f && (a < 0) != (b < 0)) ++badSign;
+        }
+        EXPECT_EQ(bits, 0) << what;
+        EXPECT_EQ(saturatedBits, 0) << what;
+        EXPECT_EQ(badDistance, 0) << what;
+        EXPECT_EQ(badSign, 0) << what;
+        if (!std::isfinite(band)) EXPECT_EQ(sg.farVoxels, 0) << what;
+        if (c.name == "closed sphere" && std::isfinite(band))
+        {
+          EXPECT_GT(sg.farVoxels, g.count() / 2) << what;
+        }
+        std::printf("[ far blocks cuda ] %s: far voxels gpu %lld cpu %lld; %lld bit differences to the per-voxel GPU "
+                    "path, %lld saturated and %lld distance differences to the CPU\n",
+          what.c_str(), static_cast<long long>(sg.farVoxels), static_cast<long long>(sc.farVoxels),
+          static_cast<long long>(bits), static_cast<long long>(saturatedBits), static_cast<long long>(badDistance));
+      }
+      // dictionary volume: GPU with far blocks against the CPU without
+      VolumeOptions vo;
+      vo.dims = g.dims;
+      vo.origin = g.origin;
+      vo.spacing = g.spacing;
+      vo.chunkEdge = 16;
+      vo.bandWidth = 3;
+      DictionaryVolume a(vo), b(vo);
+      MeshToSdfOptions o;
+      o.sign = s;
+      o.device = Device::Cuda;
+      o.cudaVerifyKeys = true;
+      const MeshToSdfStats st = meshToSdf(prepared, a, o);
+      EXPECT_EQ(st.keyMismatches, 0);
+      o.device = Device::Cpu;
+      o.farBlocks = false;
+      o.cudaVerifyKeys = false;
+      meshToSdf(prepared, b, o);
+      std::int64_t bad = 0;
+      for (std::int64_t z = 0; z < g.dims[2]; ++z)
+        for (std::int64_t y = 0; y < g.dims[1]; ++y)
+          for (std::int64_t x = 0; x < g.dims[0]; ++x) bad += a.get(x, y, z).sdf != b.get(x, y, z).sdf;
+      EXPECT_EQ(bad, 0) << c.name << ", " << toString(s) << " (volume)";
+    }
+  }
 }

@@ -3,6 +3,10 @@
 // usage: bench_mesh_to_sdf [DAMAGE:]MESH [RES=256] [SIGN=winding] [DEVICE=auto]
 //        [ACCEL=bvh] [OUTPUT=volume|float] [BAND=8] [PADDING=2]
 //        [RUNS=cold,warm,prepared,prepared] [--trace] [--check-cpu]
+// A run may carry @SIGN (normal, pseudonormal, winding, unsigned: that run's
+// sign mode instead of SIGN) and @pervoxel (MeshToSdfOptions::farBlocks off),
+// e.g. prepared@winding,prepared@pseudonormal,prepared@pseudonormal@pervoxel:
+// sign modes and paths compared in one process.
 // DAMAGE: a seeded variant of the mesh made in memory before timing (any of
 // signquality::damaged, SignQualityMeshes.h: patch10, duprev20, holes40,
 // fins200, pair, sub2, ...). The bunny is not in the repository: pass its path (e.g. /work/shared/data/lvdif-bunny-30k.ply).
@@ -19,6 +23,7 @@
 
 #include <cmath>
 #include <cstdio>
+#include <ctime>
 #include <cstdlib>
 #include <limits>
 #include <memory>
@@ -91,10 +96,13 @@ int main(int argc, char** argv)
 
     MeshToSdfOptions o;
     o.tracePhases = tracePhases;
-    o.sign = sign == "normal" ? SignMode::Normal
-      : sign == "pseudonormal" ? SignMode::PseudoNormal
-      : sign == "unsigned"     ? SignMode::Unsigned
-                               : SignMode::WindingNumber;
+    auto signOf = [](const std::string& name) {
+      return name == "normal" ? SignMode::Normal
+        : name == "pseudonormal" ? SignMode::PseudoNormal
+        : name == "unsigned"     ? SignMode::Unsigned
+                                 : SignMode::WindingNumber;
+    };
+    o.sign = signOf(sign);
     o.device = device == "cpu" ? Device::Cpu : device == "cuda" ? Device::Cuda : Device::Auto;
     o.accel = accel == "faithful" ? MeshToSdfAccel::Faithful
       : accel == "bruteforce"     ? MeshToSdfAccel::BruteForce
@@ -123,10 +131,27 @@ int main(int argc, char** argv)
     bench::Stopwatch prepClock;
     const MeshToSdfPrepared prepared = prepareMeshToSdf(mesh, o.sign);
     const double prepareMs = prepClock.ms();
-    for (const std::string& run : runs)
+    const MeshToSdfOptions base = o;
+    for (const std::string& spec : runs)
     {
+      // RUN[@SIGN][@pervoxel]
+      const std::string run = spec.substr(0, spec.find('@'));
+      o = base;
+      for (std::size_t at = spec.find('@'); at != std::string::npos;)
+      {
+        const std::size_t next = spec.find('@', at + 1);
+        const std::string tag = spec.substr(at + 1, next == std::string::npos ? std::string::npos : next - at - 1);
+        if (tag == "pervoxel")
+          o.farBlocks = false;
+        else
+          o.sign = signOf(tag);
+        at = next;
+      }
       std::int64_t expanded = 0, inside = 0;
       double callMs = 0;
+      // process CPU time of the call (all threads): robust to a loaded machine
+      const std::clock_t cpu0 = std::clock();
+      double cpuSeconds = 0;
       const bool usePrepared = run == "prepared";
       if (output == "float")
       {
@@ -134,6 +159,7 @@ int main(int argc, char** argv)
         st = usePrepared ? meshToSdf(prepared, FloatGridView{ out.data(), g }, o)
                          : meshToSdf(mesh, FloatGridView{ out.data(), g }, o);
         callMs = call.ms();
+        cpuSeconds = static_cast<double>(std::clock() - cpu0) / CLOCKS_PER_SEC;
         for (float v : out) inside += v < 0;
       }
       else
@@ -148,6 +174,7 @@ int main(int argc, char** argv)
         bench::Stopwatch call;
         st = usePrepared ? meshToSdf(prepared, vol, o) : meshToSdf(mesh, vol, o);
         callMs = call.ms();
+        cpuSeconds = static_cast<double>(std::clock() - cpu0) / CLOCKS_PER_SEC;
         expanded = vol.expandedChunkCount();
         const SdfKey zero = vol.sdfDictionary().zeroKey();
         for (std::int64_t c = 0; c < vol.chunkCount(); ++c)
@@ -163,15 +190,15 @@ int main(int argc, char** argv)
               for (std::int64_t x = b.lo[0]; x <= b.hi[0]; ++x) inside += vol.get(x, y, z).sdf < zero;
         }
       }
-      rows.push_back({ run, toString(st.device), bench::fmt(readMs, 1), bench::fmt(st.buildSeconds * 1e3, 1),
+      rows.push_back({ spec, toString(st.device), bench::fmt(readMs, 1), bench::fmt(st.buildSeconds * 1e3, 1),
         bench::fmt(st.distanceSeconds * 1e3, 1), bench::fmt(st.signSeconds * 1e3, 1),
         bench::fmt(st.writeSeconds * 1e3, 1), bench::fmt(callMs, 1), std::to_string(st.windingEvaluations),
         std::to_string(st.windingExact), std::to_string(inside), std::to_string(expanded),
-        std::to_string(st.degenerateSkipped) });
+        std::to_string(st.degenerateSkipped), std::to_string(st.farVoxels), bench::fmt(cpuSeconds, 2) });
     }
     bench::printTable({ "run", "device", "read ms", "build ms", "distance ms", "sign ms", "write ms",
                         "end-to-end ms", "winding evals", "fallback", "inside voxels", "expanded chunks",
-                        "degenerate" },
+                        "degenerate", "far-block voxels", "CPU s" },
       rows);
     std::printf("prepareMeshToSdf: %.1f ms (%d OpenMP threads); the first prepared row includes the upload\n",
       prepareMs, omp_get_max_threads());

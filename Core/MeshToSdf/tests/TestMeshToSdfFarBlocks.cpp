@@ -1,0 +1,171 @@
+// Far blocks (MeshToSdfOptions::farBlocks) against the per-voxel path: the
+// Normal and PseudoNormal fields must be the same floats bit for bit on every
+// mesh (clean, sharp, open, flipped, duplicated, non-manifold, intersecting,
+// soups, slivers), on cubic and non-cubic grids, sub-extents and dictionary
+// volumes, with several bands; and the per-voxel path itself equals the
+// brute-force accelerator (no index, no far blocks) on a smaller grid.
+#include "MeshToSdfFarCases.h"
+#include "lvdif/DictionaryVolume.h"
+#include "lvdif/MeshToSdf.h"
+
+#include <gtest/gtest.h>
+
+#include <cstdio>
+#include <cstring>
+#include <limits>
+#include <string>
+#include <vector>
+
+using namespace lvdif;
+
+namespace
+{
+struct FarRun
+{
+  std::vector<float> out;
+  MeshToSdfStats stats;
+};
+
+FarRun run(const MeshToSdfPrepared& m, const GridGeometry& g, const VoxelBox& box, MeshToSdfOptions o, bool far)
+{
+  o.device = Device::Cpu;
+  o.farBlocks = far;
+  FarRun r;
+  r.out.assign(static_cast<std::size_t>(box.voxelCount()), 0.0f);
+  r.stats = meshToSdf(m, g, box, r.out.data(), o);
+  return r;
+}
+
+std::int64_t bitDifferences(const std::vector<float>& a, const std::vector<float>& b)
+{
+  std::int64_t bad = 0;
+  for (std::size_t i = 0; i < a.size(); ++i) bad += std::memcmp(&a[i], &b[i], sizeof(float)) != 0;
+  return bad;
+}
+
+VoxelBox whole(const GridGeometry& g)
+{
+  VoxelBox b;
+  b.hi = { g.dims[0] - 1, g.dims[1] - 1, g.dims[2] - 1 };
+  return b;
+}
+} // namespace
+
+TEST(MeshToSdfFarBlocks, SameFloatsAsPerVoxelOnEveryMeshGridAndBand)
+{
+  for (const farcases::Case& c : farcases::meshes())
+  {
+    const MeshToSdfPrepared prepared = prepareMeshToSdf(c.mesh, SignMode::PseudoNormal);
+    GridGeometry cubic = fitGridToMesh(c.mesh, 44, 6);
+    // non-cubic: other counts per axis, anisotropic spacing, origin off the mesh's bounds
+    GridGeometry odd;
+    odd.dims = { 37, 21, 29 };
+    odd.origin = { -1.71, -1.43, -1.52 };
+    odd.spacing = { 0.093, 0.141, 0.117 };
+    VoxelBox sub; // a sub-extent whose blocks do not start at the grid's
+    sub.lo = { 3, 5, 7 };
+    sub.hi = { 40, 33, 38 };
+    cubic.dims = { std::max<std::int64_t>(cubic.dims[0], 41), std::max<std::int64_t>(cubic.dims[1], 34),
+      std::max<std::int64_t>(cubic.dims[2], 39) };
+    struct Grid
+    {
+      const char* name;
+      GridGeometry g;
+      VoxelBox box;
+    };
+    for (const Grid& gr : { Grid{ "cubic", cubic, whole(cubic) }, Grid{ "non-cubic", odd, whole(odd) },
+           Grid{ "sub-extent", cubic, sub } })
+    {
+      for (SignMode s : { SignMode::Normal, SignMode::PseudoNormal })
+      {
+        for (float band : { 1.5f, 4.0f, std::numeric_limits<float>::infinity() })
+        {
+          for (DistanceUnit unit : { DistanceUnit::Voxel, DistanceUnit::World })
+          {
+            if (unit == DistanceUnit::World && std::string(gr.name) != "cubic") continue;
+            MeshToSdfOptions o;
+            o.sign = s;
+            o.bandWidth = unit == DistanceUnit::World ? band * 0.1f : band;
+            o.unit = unit;
+            const FarRun fast = run(prepared, gr.g, gr.box, o, true), slow = run(prepared, gr.g, gr.box, o, false);
+            const std::string what = c.name + ", " + gr.name + ", " + toString(s) + ", band " + std::to_string(band) +
+              (unit == DistanceUnit::World ? " world" : " voxels");
+            EXPECT_EQ(bitDifferences(fast.out, slow.out), 0) << what;
+            EXPECT_EQ(slow.stats.farVoxels, 0) << what;
+            if (!std::isfinite(band)) EXPECT_EQ(fast.stats.farVoxels, 0) << what;
+            std::int64_t saturated = 0;
+            for (float v : slow.out) saturated += std::fabs(v) == o.bandWidth;
+            EXPECT_LE(fast.stats.farVoxels, saturated) << what;
+            // the shortcut must actually work where the surface allows it
+            if (std::isfinite(band) && band < 2 && c.name == "closed sphere" && std::string(gr.name) == "cubic")
+              EXPECT_GT(fast.stats.farVoxels, saturated / 3) << what;
+            if (s == SignMode::PseudoNormal && band == 1.5f && unit == DistanceUnit::Voxel)
+              std::printf("[ far blocks ] %s, %s: %lld of %lld saturated voxels by far blocks\n", c.name.c_str(),
+                gr.name, static_cast<long long>(fast.stats.farVoxels), static_cast<long long>(saturated));
+          }
+        }
+      }
+    }
+    // vertex normals (Normal mode): no far blocks, same result
+    MeshToSdfOptions o;
+    o.sign = SignMode::Normal;
+    o.useVertexNormals = true;
+    o.bandWidth = 2;
+    const FarRun fast = run(prepared, cubic, whole(cubic), o, true), slow = run(prepared, cubic, whole(cubic), o, false);
+    EXPECT_EQ(bitDifferences(fast.out, slow.out), 0) << c.name;
+    EXPECT_EQ(fast.stats.farVoxels, 0) << c.name;
+  }
+}
+
+TEST(MeshToSdfFarBlocks, PerVoxelPathEqualsBruteForce)
+{
+  // the reference of the test above, against the brute-force accelerator
+  // (every triangle for every voxel; far blocks apply to the BVH only)
+  for (const farcases::Case& c : farcases::meshes())
+  {
+    const MeshToSdfPrepared prepared = prepareMeshToSdf(c.mesh, SignMode::PseudoNormal);
+    const GridGeometry g = fitGridToMesh(c.mesh, 20, 6);
+    for (SignMode s : { SignMode::Normal, SignMode::PseudoNormal })
+    {
+      MeshToSdfOptions o;
+      o.sign = s;
+      o.bandWidth = 1.5f;
+      const FarRun fast = run(prepared, g, whole(g), o, true);
+      o.accel = MeshToSdfAccel::BruteForce;
+      const FarRun brute = run(prepared, g, whole(g), o, true);
+      EXPECT_EQ(brute.stats.farVoxels, 0) << c.name;
+      EXPECT_EQ(bitDifferences(fast.out, brute.out), 0) << c.name << ", " << toString(s);
+    }
+  }
+}
+
+TEST(MeshToSdfFarBlocks, DictionaryVolumeSameKeys)
+{
+  for (const farcases::Case& c : farcases::meshes())
+  {
+    const MeshToSdfPrepared prepared = prepareMeshToSdf(c.mesh, SignMode::PseudoNormal);
+    const GridGeometry g = fitGridToMesh(c.mesh, 70, 8);
+    VolumeOptions vo;
+    vo.dims = g.dims;
+    vo.origin = g.origin;
+    vo.spacing = g.spacing;
+    vo.chunkEdge = 16;
+    vo.bandWidth = 3;
+    for (SignMode s : { SignMode::Normal, SignMode::PseudoNormal })
+    {
+      DictionaryVolume a(vo), b(vo);
+      MeshToSdfOptions o;
+      o.sign = s;
+      o.device = Device::Cpu;
+      const MeshToSdfStats st = meshToSdf(prepared, a, o);
+      o.farBlocks = false;
+      meshToSdf(prepared, b, o);
+      std::int64_t bad = 0;
+      for (std::int64_t z = 0; z < g.dims[2]; ++z)
+        for (std::int64_t y = 0; y < g.dims[1]; ++y)
+          for (std::int64_t x = 0; x < g.dims[0]; ++x) bad += a.get(x, y, z).sdf != b.get(x, y, z).sdf;
+      EXPECT_EQ(bad, 0) << c.name << ", " << toString(s);
+      if (c.name == "closed sphere") EXPECT_GT(st.farVoxels, g.count() / 2) << toString(s);
+    }
+  }
+}
