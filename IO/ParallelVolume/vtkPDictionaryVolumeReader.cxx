@@ -132,12 +132,9 @@ int vtkPDictionaryVolumeReader::RequestInformation(
 int vtkPDictionaryVolumeReader::RequestData(
   vtkInformation*, vtkInformationVector**, vtkInformationVector* outputVector)
 {
-  using SDDP = vtkStreamingDemandDrivenPipeline;
   vtkInformation* outInfo = outputVector->GetInformationObject(0);
   vtkSparseDictionaryVolume* output = vtkSparseDictionaryVolume::GetData(outInfo);
   this->PiecesRead = 0;
-  const int pieces = outInfo->Has(SDDP::UPDATE_NUMBER_OF_PIECES()) ? outInfo->Get(SDDP::UPDATE_NUMBER_OF_PIECES()) : 1;
-  const int piece = outInfo->Has(SDDP::UPDATE_PIECE_NUMBER()) ? outInfo->Get(SDDP::UPDATE_PIECE_NUMBER()) : 0;
   const std::string dir = lvdifvtk::directoryOf(this->FileName);
   LVDIFInterrupter interrupter(this, 0.0, 1.0);
   output->SetPartitionColors(this->WithColor);
@@ -147,25 +144,13 @@ int vtkPDictionaryVolumeReader::RequestData(
       const lvdifvtk::VolumeIndex index = lvdifvtk::readVolumeIndex(this->FileName);
       const lvdif::VolumeOptions options = indexOptions(index, dir);
       // the voxels this request needs, in the volume's indices (from 0)
-      lvdif::VoxelBox want{ { 0, 0, 0 }, { options.dims[0] - 1, options.dims[1] - 1, options.dims[2] - 1 } };
+      lvdif::VoxelBox want;
       int owned[6] = { 0, -1, 0, -1, 0, -1 };
-      if (pieces > 1)
+      const int kind = LVDIFVolumeBridge::RequestedVoxels(outInfo, options, owned, want);
+      if (kind < 0)
       {
-        if (!LVDIFVolumeBridge::PieceChunks(piece, pieces, options, owned, want))
-        {
-          output->Initialize(); // a piece without chunks: empty
-          return;
-        }
-      }
-      else if (outInfo->Has(SDDP::UPDATE_EXTENT()))
-      {
-        int ext[6];
-        outInfo->Get(SDDP::UPDATE_EXTENT(), ext);
-        for (int a = 0; a < 3; ++a)
-        {
-          want.lo[a] = std::max<std::int64_t>(ext[2 * a], 0);
-          want.hi[a] = std::min<std::int64_t>(ext[2 * a + 1], options.dims[a] - 1);
-        }
+        output->Initialize(); // a piece without chunks: empty
+        return;
       }
       std::vector<lvdif::VoxelBox> parts;
       for (const auto& p : index.pieces)
@@ -248,7 +233,7 @@ int vtkPDictionaryVolumeReader::RequestData(
       out.collapseUniformChunks();
       out.takeDirtyChunks(); // a volume as read: nothing to re-mesh
       output->SetVolume(std::move(volume));
-      if (pieces > 1)
+      if (kind == 1)
       {
         output->SetOwnedChunks(owned);
       }
