@@ -7,8 +7,10 @@
 # same volume (Sparse Volume To Image, UniformGridRepresentation), rendered in the
 # same view with the same camera and colour map: the pictures must be identical,
 # pixel for pixel, for the three slice directions and several slice indices (slice 1
-# in uniform chunks only, where the volume has no partition: one colour, drawn). Volumes: Mesh To SDF of an ellipsoid (band 8: uniform chunks
-# around the band) straight, and the same volume written as .lvdv and opened again.
+# lies where the sdf is +8 everywhere: the Slice filter over the partitions draws
+# nothing there, the representation must). Volumes: Mesh To SDF of an ellipsoid
+# (band 8, 16 voxels of padding) straight, and the same volume written as .lvdv
+# and opened again.
 # Under pvbatch with several ranks each rank slices only its own chunks (the
 # reader's pieces) and the composited picture must equal the serial run's dense one
 # (ParaView's Slice of the distributed dense image itself differs from it).
@@ -98,7 +100,7 @@ def compare(source, dense, label):
     for mode, axis, look in (("XY Plane", 2, "Z"), ("YZ Plane", 0, "X"), ("XZ Plane", 1, "Y")):
         getattr(view, "ResetActiveCameraToPositive" + look)()  # look along the slice's normal
         n = dims[axis]
-        for s in (n // 2, n // 3, 1, n - 1):  # 1 and n-1: near the faces, uniform chunks only
+        for s in (n // 2, n // 3, 1, n - 1):  # 1 and n-1: near the faces, in the padding
             for d in (ds, dd):
                 d.SliceMode = mode
                 d.Slice = s
