@@ -7,8 +7,8 @@
 # same volume (Sparse Volume To Image, UniformGridRepresentation), rendered in the
 # same view with the same camera and colour map: the pictures must be identical,
 # pixel for pixel, for the three slice directions and several slice indices (slice 1
-# lies where the sdf is +8 everywhere: the Slice filter over the partitions draws
-# nothing there, the representation must). Volumes: Mesh To SDF of an ellipsoid
+# lies in the padding, where the sdf is +8 everywhere: checked on the dense image).
+# Volumes: Mesh To SDF of an ellipsoid
 # (band 8, 16 voxels of padding) straight, and the same volume written as .lvdv
 # and opened again.
 # Under pvbatch with several ranks each rank slices only its own chunks (the
