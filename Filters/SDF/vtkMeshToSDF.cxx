@@ -175,6 +175,7 @@ int vtkMeshToSDF::RequestData(vtkInformation*, vtkInformationVector** inputVecto
     return 0;
   }
   lvdif::MeshToSdfStats st;
+  vtkIdType chunksComputed = 0;
   LVDIFInterrupter interrupter(this);
   const bool ok = LVDIFVolumeBridge::CallCore(this, [&] {
     const lvdif::GridGeometry g = gridFor(input, this->UseExplicitGrid, this->Dimensions, this->Origin,
@@ -201,9 +202,34 @@ int vtkMeshToSDF::RequestData(vtkInformation*, vtkInformationVector** inputVecto
     o.svfFilters = static_cast<unsigned>(this->SignVoxelFilters);
     o.device = LVDIFVolumeBridge::ToDevice(this->Device);
     o.svf.device = o.device;
+    // a piece (pvbatch) or a smaller extent: only the storage chunks holding
+    // its voxels, by the .lvdv reader's rule (the sign filters need them all)
+    int owned[6];
+    lvdif::VoxelBox voxels;
+    const int kind = o.svfFilters != 0 ? 0
+                                       : LVDIFVolumeBridge::RequestedVoxels(
+                                           outputVector->GetInformationObject(0), vo, owned, voxels);
+    if (kind < 0)
+    {
+      output->Initialize(); // a piece without chunks
+      return;
+    }
+    if (kind > 0)
+    {
+      for (int a = 0; a < 3; ++a)
+      {
+        o.chunkRegion.lo[a] = voxels.lo[a] / vo.chunkEdge;
+        o.chunkRegion.hi[a] = voxels.hi[a] / vo.chunkEdge;
+      }
+    }
     st = lvdif::meshToSdf(mesh, *volume, o, interrupter);
     volume->takeDirtyChunks(); // a new volume: nothing to re-mesh incrementally
     output->SetVolume(std::move(volume));
+    if (kind == 1)
+    {
+      output->SetOwnedChunks(owned);
+    }
+    chunksComputed = kind > 0 ? o.chunkRegion.voxelCount() : output->GetNumberOfChunks();
   });
   if (!ok)
   {
@@ -218,6 +244,10 @@ int vtkMeshToSDF::RequestData(vtkInformation*, vtkInformationVector** inputVecto
   degenerate->SetName("degenerate_triangles");
   degenerate->InsertNextValue(static_cast<vtkIdType>(st.degenerateSkipped));
   output->GetFieldData()->AddArray(degenerate);
+  vtkNew<vtkIdTypeArray> computed; // this process's share of the work (pvbatch ranks)
+  computed->SetName("mesh_to_sdf_chunks");
+  computed->InsertNextValue(chunksComputed);
+  output->GetFieldData()->AddArray(computed);
   this->UpdateProgress(1.0);
   return 1;
 }

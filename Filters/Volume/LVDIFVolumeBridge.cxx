@@ -189,6 +189,32 @@ bool PieceChunks(int piece, int pieces, const lvdif::VolumeOptions& o, int owned
   return true;
 }
 
+int RequestedVoxels(vtkInformation* outInfo, const lvdif::VolumeOptions& o, int owned[6], lvdif::VoxelBox& region)
+{
+  using SDDP = vtkStreamingDemandDrivenPipeline;
+  const int pieces = outInfo->Has(SDDP::UPDATE_NUMBER_OF_PIECES()) ? outInfo->Get(SDDP::UPDATE_NUMBER_OF_PIECES()) : 1;
+  const int piece = outInfo->Has(SDDP::UPDATE_PIECE_NUMBER()) ? outInfo->Get(SDDP::UPDATE_PIECE_NUMBER()) : 0;
+  region.lo = { 0, 0, 0 };
+  region.hi = { o.dims[0] - 1, o.dims[1] - 1, o.dims[2] - 1 };
+  if (pieces > 1)
+  {
+    return PieceChunks(piece, pieces, o, owned, region) ? 1 : -1;
+  }
+  if (outInfo->Has(SDDP::UPDATE_EXTENT()))
+  {
+    int ext[6];
+    outInfo->Get(SDDP::UPDATE_EXTENT(), ext);
+    const lvdif::VoxelBox all = region;
+    for (int a = 0; a < 3; ++a)
+    {
+      region.lo[a] = std::max<std::int64_t>(ext[2 * a], 0);
+      region.hi[a] = std::min<std::int64_t>(ext[2 * a + 1], o.dims[a] - 1);
+    }
+    return region.lo == all.lo && region.hi == all.hi ? 0 : 2;
+  }
+  return 0;
+}
+
 namespace
 {
 /// Meta data that flows downstream with the information pass through any

@@ -75,6 +75,12 @@ LVDIFFILTERSVOLUME_EXPORT void SetSparseInformation(vtkInformation* outInfo, con
 LVDIFFILTERSVOLUME_EXPORT bool PieceChunks(
   int piece, int pieces, const lvdif::VolumeOptions& options, int owned[6], lvdif::VoxelBox& region);
 
+/// The voxels a sparse producer's request needs, by the .lvdv reader's rule:
+/// piece p of n > 1: its chunk block (PieceChunks; `owned` set, returns 1, or
+/// -1 for a piece without chunks); else an update extent smaller than the
+/// whole: those voxels (returns 2); else the whole volume (returns 0).
+LVDIFFILTERSVOLUME_EXPORT int RequestedVoxels(
+  vtkInformation* outInfo, const lvdif::VolumeOptions& options, int owned[6], lvdif::VoxelBox& region);
 /// The chunk edge of a sparse producer's volume, announced before the data
 /// exists, so that a consumer can ask for whole chunks (vtkSignVoxelFilter's pieces).
 LVDIFFILTERSVOLUME_EXPORT vtkInformationIntegerKey* CHUNK_EDGE();

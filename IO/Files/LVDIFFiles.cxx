@@ -172,6 +172,12 @@ std::shared_ptr<lvdif::DictionaryVolume> LoadVolume(const std::string& path, lvd
     r->SetFileName(path.c_str());
     reader = last = r;
   }
+  else if (f->extension == "lvdvp")
+  {
+    auto r = vtkSmartPointer<vtkPDictionaryVolumeReader>::New(); // the pieces' keys, no re-encoding
+    r->SetFileName(path.c_str());
+    reader = last = r;
+  }
   else if (f->extension == "bv")
   {
     auto r = vtkSmartPointer<vtkLegacyBvReader>::New();
@@ -188,19 +194,10 @@ std::shared_ptr<lvdif::DictionaryVolume> LoadVolume(const std::string& path, lvd
 #endif
   else
   {
-    // images (.vti, .lvdvp) become the sparse volume with the defaults (band 8, chunk edge 32)
-    if (f->extension == "vti")
-    {
-      auto r = vtkSmartPointer<vtkXMLImageDataReader>::New();
-      r->SetFileName(path.c_str());
-      reader = r;
-    }
-    else
-    {
-      auto r = vtkSmartPointer<vtkPDictionaryVolumeReader>::New();
-      r->SetFileName(path.c_str());
-      reader = r;
-    }
+    // images (.vti) become the sparse volume with the defaults (band 8, chunk edge 32)
+    auto r = vtkSmartPointer<vtkXMLImageDataReader>::New();
+    r->SetFileName(path.c_str());
+    reader = r;
     auto toSparse = vtkSmartPointer<vtkImageToSparseVolume>::New();
     toSparse->SetInputConnection(reader->GetOutputPort());
     last = toSparse;

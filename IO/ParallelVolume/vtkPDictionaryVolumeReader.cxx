@@ -1,10 +1,12 @@
 #include "vtkPDictionaryVolumeReader.h"
 
 #include "LVDIFVolumeIndex.h"
-#include "vtkDictionaryVolumeReader.h"
-#include "vtkSparseVolumeToImage.h"
+#include "LVDIFInterrupter.h"
+#include "LVDIFVolumeBridge.h"
+#include "vtkSparseDictionaryVolume.h"
 
 #include "lvdif/Error.h"
+#include "lvdif/VolumeFile.h"
 
 #include "vtkDataArray.h"
 #include "vtkDataObject.h"
@@ -38,6 +40,73 @@ bool vtkPDictionaryVolumeReader::CanReadFile(const char* fileName)
   return static_cast<bool>(f >> word) && word == "LVDIF-PVOLUME";
 }
 
+int vtkPDictionaryVolumeReader::FillOutputPortInformation(int, vtkInformation* info)
+{
+  info->Set(vtkDataObject::DATA_TYPE_NAME(), "vtkSparseDictionaryVolume");
+  return 1;
+}
+
+int vtkPDictionaryVolumeReader::RequestDataObject(vtkInformation*, vtkInformationVector**, vtkInformationVector* out)
+{
+  LVDIFVolumeBridge::EnsureSparseOutput(out);
+  return 1;
+}
+
+namespace
+{
+/// The volume the index describes: its geometry, with the first piece's chunk
+/// edge, band and SDF dictionary (the writer gives every piece the same).
+lvdif::VolumeOptions indexOptions(const lvdifvtk::VolumeIndex& index, const std::string& dir)
+{
+  if (index.pieces.empty())
+  {
+    throw lvdif::Error(lvdif::ErrorCode::CorruptData, "the index lists no piece");
+  }
+  lvdif::VolumeOptions o = lvdif::readVolumeInfo(dir + index.pieces.front().file).options;
+  for (int a = 0; a < 3; ++a)
+  {
+    o.dims[a] = static_cast<std::int64_t>(index.wholeExtent[2 * a + 1]) - index.wholeExtent[2 * a] + 1;
+    // the sparse volume's indices start at 0: its origin is the whole extent's first point
+    o.origin[a] = index.origin[a] + index.spacing[a] * index.wholeExtent[2 * a];
+    o.spacing[a] = index.spacing[a];
+  }
+  o.memoryLimit = 0;
+  return o;
+}
+
+/// True when the boxes together hold every voxel of `want` (on the grid of their
+/// boundaries: a few cells per piece, whatever the volume's size).
+bool covers(const lvdif::VoxelBox& want, const std::vector<lvdif::VoxelBox>& parts)
+{
+  std::vector<std::int64_t> cuts[3];
+  for (int a = 0; a < 3; ++a)
+  {
+    cuts[a] = { want.lo[a], want.hi[a] + 1 };
+    for (const auto& b : parts)
+    {
+      cuts[a].push_back(b.lo[a]);
+      cuts[a].push_back(b.hi[a] + 1);
+    }
+    std::sort(cuts[a].begin(), cuts[a].end());
+    cuts[a].erase(std::unique(cuts[a].begin(), cuts[a].end()), cuts[a].end());
+  }
+  for (std::size_t i = 0; i + 1 < cuts[0].size(); ++i)
+    for (std::size_t j = 0; j + 1 < cuts[1].size(); ++j)
+      for (std::size_t k = 0; k + 1 < cuts[2].size(); ++k)
+      {
+        const std::int64_t x = cuts[0][i], y = cuts[1][j], z = cuts[2][k];
+        if (!want.contains(x, y, z))
+          continue;
+        bool in = false;
+        for (const auto& b : parts)
+          in = in || b.contains(x, y, z);
+        if (!in)
+          return false;
+      }
+  return true;
+}
+}
+
 int vtkPDictionaryVolumeReader::RequestInformation(
   vtkInformation*, vtkInformationVector**, vtkInformationVector* outputVector)
 {
@@ -46,22 +115,17 @@ int vtkPDictionaryVolumeReader::RequestInformation(
     vtkErrorMacro("no file name: call SetFileName() first");
     return 0;
   }
-  lvdifvtk::VolumeIndex index;
   try
   {
-    index = lvdifvtk::readVolumeIndex(this->FileName);
+    const lvdifvtk::VolumeIndex index = lvdifvtk::readVolumeIndex(this->FileName);
+    LVDIFVolumeBridge::SetSparseInformation(
+      outputVector->GetInformationObject(0), indexOptions(index, lvdifvtk::directoryOf(this->FileName)));
   }
   catch (const lvdif::Error& e)
   {
-    vtkErrorMacro(<< e.what());
+    vtkErrorMacro(<< "cannot read '" << this->FileName << "': " << e.what());
     return 0;
   }
-  vtkInformation* outInfo = outputVector->GetInformationObject(0);
-  outInfo->Set(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT(), index.wholeExtent, 6);
-  outInfo->Set(vtkDataObject::ORIGIN(), index.origin, 3);
-  outInfo->Set(vtkDataObject::SPACING(), index.spacing, 3);
-  outInfo->Set(vtkAlgorithm::CAN_PRODUCE_SUB_EXTENT(), 1);
-  vtkDataObject::SetPointDataActiveScalarInfo(outInfo, VTK_FLOAT, 1);
   return 1;
 }
 
@@ -69,124 +133,118 @@ int vtkPDictionaryVolumeReader::RequestData(
   vtkInformation*, vtkInformationVector**, vtkInformationVector* outputVector)
 {
   vtkInformation* outInfo = outputVector->GetInformationObject(0);
-  vtkImageData* output = vtkImageData::GetData(outInfo);
+  vtkSparseDictionaryVolume* output = vtkSparseDictionaryVolume::GetData(outInfo);
   this->PiecesRead = 0;
-  int ext[6];
-  outInfo->Get(vtkStreamingDemandDrivenPipeline::UPDATE_EXTENT(), ext);
-  lvdifvtk::VolumeIndex index;
-  try
-  {
-    index = lvdifvtk::readVolumeIndex(this->FileName);
-  }
-  catch (const lvdif::Error& e)
-  {
-    vtkErrorMacro(<< e.what());
-    return 0;
-  }
-  output->SetExtent(ext);
-  output->SetOrigin(index.origin);
-  output->SetSpacing(index.spacing);
-  const vtkIdType n = output->GetNumberOfPoints();
-  std::vector<char> filled(static_cast<size_t>(n), 0);
-  vtkIdType missing = n;
   const std::string dir = lvdifvtk::directoryOf(this->FileName);
-  for (size_t p = 0; p < index.pieces.size() && missing > 0; ++p)
-  {
-    const auto& piece = index.pieces[p];
-    int sub[6], local[6];
-    bool overlaps = true;
-    for (int a = 0; a < 3; ++a)
-    {
-      sub[2 * a] = std::max(ext[2 * a], piece.extent[2 * a]);
-      sub[2 * a + 1] = std::min(ext[2 * a + 1], piece.extent[2 * a + 1]);
-      overlaps = overlaps && sub[2 * a] <= sub[2 * a + 1];
-      local[2 * a] = sub[2 * a] - piece.extent[2 * a]; // the piece file's own indices start at 0
-      local[2 * a + 1] = sub[2 * a + 1] - piece.extent[2 * a];
-    }
-    if (!overlaps)
-    {
-      continue;
-    }
-    vtkNew<vtkDictionaryVolumeReader> r;
-    r->SetFileName((dir + piece.file).c_str());
-    r->SetWithColor(this->WithColor);
-    r->UpdateInformation();
-    int pieceWhole[6];
-    r->GetOutputInformation(0)->Get(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT(), pieceWhole);
-    for (int a = 0; a < 3; ++a)
-    {
-      if (pieceWhole[2 * a + 1] - pieceWhole[2 * a] != piece.extent[2 * a + 1] - piece.extent[2 * a])
+  LVDIFInterrupter interrupter(this, 0.0, 1.0);
+  output->SetPartitionColors(this->WithColor);
+  const bool ok = LVDIFVolumeBridge::CallCore(
+    this,
+    [&] {
+      const lvdifvtk::VolumeIndex index = lvdifvtk::readVolumeIndex(this->FileName);
+      const lvdif::VolumeOptions options = indexOptions(index, dir);
+      // the voxels this request needs, in the volume's indices (from 0)
+      lvdif::VoxelBox want;
+      int owned[6] = { 0, -1, 0, -1, 0, -1 };
+      const int kind = LVDIFVolumeBridge::RequestedVoxels(outInfo, options, owned, want);
+      if (kind < 0)
       {
-        vtkErrorMacro("piece file '" << piece.file << "' does not have the size the index gives it");
-        output->Initialize();
-        return 0;
+        output->Initialize(); // a piece without chunks: empty
+        return;
       }
-    }
-    vtkNew<vtkSparseVolumeToImage> decode; // the piece's part of the request only
-    decode->SetInputConnection(r->GetOutputPort());
-    decode->SetWithColor(this->WithColor);
-    decode->UpdateInformation();
-    if (!decode->UpdateExtent(local))
-    {
-      vtkErrorMacro("cannot read piece file '" << piece.file << "'");
-      output->Initialize();
-      return 0;
-    }
-    ++this->PiecesRead;
-    vtkImageData* img = decode->GetOutput();
-    vtkPointData* src = img->GetPointData();
-    vtkPointData* dst = output->GetPointData();
-    for (int q = 0; q < src->GetNumberOfArrays(); ++q)
-    {
-      vtkDataArray* s = src->GetArray(q);
-      if (!s || !s->GetName() || dst->GetArray(s->GetName()))
-        continue;
-      vtkSmartPointer<vtkDataArray> d = vtkSmartPointer<vtkDataArray>::Take(s->NewInstance());
-      d->SetName(s->GetName());
-      d->SetNumberOfComponents(s->GetNumberOfComponents());
-      d->SetNumberOfTuples(n);
-      d->Fill(0);
-      if (src->GetScalars() == s)
-        dst->SetScalars(d);
-      else
-        dst->AddArray(d);
-    }
-    // (destination, source) arrays, matched by name once per piece, not per voxel
-    std::vector<std::pair<vtkDataArray*, vtkDataArray*>> pairs;
-    for (int q = 0; q < dst->GetNumberOfArrays(); ++q)
-    {
-      if (vtkDataArray* sa = src->GetArray(dst->GetArray(q)->GetName()))
-        pairs.emplace_back(dst->GetArray(q), sa);
-    }
-    for (int k = sub[4]; k <= sub[5]; ++k)
-      for (int j = sub[2]; j <= sub[3]; ++j)
-        for (int i = sub[0]; i <= sub[1]; ++i)
+      std::vector<lvdif::VoxelBox> parts;
+      for (const auto& p : index.pieces)
+      {
+        lvdif::VoxelBox box;
+        for (int a = 0; a < 3; ++a)
         {
-          int gi[3] = { i, j, k };
-          int li[3] = { i - piece.extent[0], j - piece.extent[2], k - piece.extent[4] };
-          const vtkIdType o = output->ComputePointId(gi);
-          if (filled[static_cast<size_t>(o)])
-            continue;
-          const vtkIdType s = img->ComputePointId(li);
-          for (const auto& pr : pairs)
-            pr.first->SetTuple(o, s, pr.second);
-          filled[static_cast<size_t>(o)] = 1;
-          --missing;
+          box.lo[a] = static_cast<std::int64_t>(p.extent[2 * a]) - index.wholeExtent[2 * a];
+          box.hi[a] = static_cast<std::int64_t>(p.extent[2 * a + 1]) - index.wholeExtent[2 * a];
         }
-    this->UpdateProgress(0.05 + 0.95 * static_cast<double>(n - missing) / static_cast<double>(n > 0 ? n : 1));
-    if (this->AbortExecute)
-    {
-      output->Initialize();
-      return 0;
-    }
-  }
-  if (missing > 0)
+        parts.push_back(box.intersect(want));
+      }
+      if (!covers(want, parts))
+      {
+        throw lvdif::Error(lvdif::ErrorCode::CorruptData, "its pieces do not cover the requested voxels");
+      }
+      auto volume = std::make_shared<lvdif::DictionaryVolume>(options);
+      lvdif::DictionaryVolume& out = *volume;
+      const std::int64_t total = std::max<std::int64_t>(want.voxelCount(), 1);
+      std::int64_t done = 0;
+      // in reverse, so that on a shared plane the first piece listed writes last
+      for (auto it = index.pieces.rbegin(); it != index.pieces.rend(); ++it)
+      {
+        lvdif::VoxelBox box; // the piece in the volume's indices
+        for (int a = 0; a < 3; ++a)
+        {
+          box.lo[a] = static_cast<std::int64_t>(it->extent[2 * a]) - index.wholeExtent[2 * a];
+          box.hi[a] = static_cast<std::int64_t>(it->extent[2 * a + 1]) - index.wholeExtent[2 * a];
+        }
+        const lvdif::VoxelBox part = box.intersect(want);
+        if (part.empty())
+        {
+          continue;
+        }
+        lvdif::VolumeFileReadOptions read;
+        read.wholeVolume = false;
+        for (int a = 0; a < 3; ++a)
+        {
+          read.region.lo[a] = part.lo[a] - box.lo[a]; // the piece file's own indices start at 0
+          read.region.hi[a] = part.hi[a] - box.lo[a];
+        }
+        const std::unique_ptr<lvdif::DictionaryVolume> pv = lvdif::loadVolume(dir + it->file, read, interrupter);
+        for (int a = 0; a < 3; ++a)
+        {
+          if (pv->dims()[a] != box.hi[a] - box.lo[a] + 1)
+          {
+            throw lvdif::Error(lvdif::ErrorCode::CorruptData,
+              "piece file '" + it->file + "' does not have the size the index gives it");
+          }
+        }
+        ++this->PiecesRead;
+        // keys copied as they are; colours by value; distances re-encoded only
+        // when the piece's dictionary differs from the output's
+        const bool sameSdf = pv->options().dictionary == out.options().dictionary;
+        std::vector<lvdif::ColorKey> colorKey(pv->colors().size());
+        for (std::size_t k = 0; k < colorKey.size(); ++k)
+        {
+          colorKey[k] = out.colors().add(pv->colors()[static_cast<lvdif::ColorKey>(k)]);
+        }
+        for (std::int64_t z = part.lo[2]; z <= part.hi[2]; ++z)
+        {
+          for (std::int64_t y = part.lo[1]; y <= part.hi[1]; ++y)
+          {
+            for (std::int64_t x = part.lo[0]; x <= part.hi[0]; ++x)
+            {
+              lvdif::Voxel v = pv->get(x - box.lo[0], y - box.lo[1], z - box.lo[2]);
+              v.color = colorKey[v.color];
+              if (!sameSdf)
+              {
+                v.sdf = out.encode(pv->decode(v.sdf));
+              }
+              out.set(x, y, z, v); // a no-op where a uniform chunk already holds v
+            }
+          }
+          done += (part.hi[1] - part.lo[1] + 1) * (part.hi[0] - part.lo[0] + 1);
+          this->UpdateProgress(std::min(1.0, static_cast<double>(done) / static_cast<double>(total)));
+          interrupter.checkInterrupt();
+        }
+      }
+      out.collapseUniformChunks();
+      out.takeDirtyChunks(); // a volume as read: nothing to re-mesh
+      output->SetVolume(std::move(volume));
+      if (kind == 1)
+      {
+        output->SetOwnedChunks(owned);
+      }
+    },
+    "cannot read '" + this->FileName + "': ");
+  if (!ok)
   {
-    vtkErrorMacro("the pieces of '" << this->FileName << "' do not cover the requested extent (" << missing
-                                    << " points missing)");
     output->Initialize();
     return 0;
   }
+  this->UpdateProgress(1.0);
   return 1;
 }
 

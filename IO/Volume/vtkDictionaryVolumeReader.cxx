@@ -97,37 +97,20 @@ int vtkDictionaryVolumeReader::RequestInformation(
 int vtkDictionaryVolumeReader::RequestData(
   vtkInformation*, vtkInformationVector**, vtkInformationVector* outputVector)
 {
-  using SDDP = vtkStreamingDemandDrivenPipeline;
   vtkInformation* outInfo = outputVector->GetInformationObject(0);
   vtkSparseDictionaryVolume* output = vtkSparseDictionaryVolume::GetData(outInfo);
   lvdif::VolumeFileReadOptions options;
-  const int pieces = outInfo->Has(SDDP::UPDATE_NUMBER_OF_PIECES()) ? outInfo->Get(SDDP::UPDATE_NUMBER_OF_PIECES()) : 1;
-  const int piece = outInfo->Has(SDDP::UPDATE_PIECE_NUMBER()) ? outInfo->Get(SDDP::UPDATE_PIECE_NUMBER()) : 0;
   int owned[6] = { 0, -1, 0, -1, 0, -1 };
-  if (pieces > 1)
+  // a piece is a block of storage chunks (see the header): it reads them and
+  // the one layer of points their partitions share with the next chunks; a
+  // smaller update extent reads only its chunks
+  const int kind = LVDIFVolumeBridge::RequestedVoxels(outInfo, this->Internal->Info.options, owned, options.region);
+  if (kind < 0)
   {
-    // A piece is a block of storage chunks (see the header); it reads them and
-    // the one layer of points their partitions share with the next chunks.
-    if (!LVDIFVolumeBridge::PieceChunks(piece, pieces, this->Internal->Info.options, owned, options.region))
-    {
-      output->Initialize(); // a piece without chunks: empty
-      return 1;
-    }
-    options.wholeVolume = false;
+    output->Initialize(); // a piece without chunks: empty
+    return 1;
   }
-  else if (outInfo->Has(SDDP::UPDATE_EXTENT()) && outInfo->Has(SDDP::WHOLE_EXTENT()))
-  {
-    int ext[6], whole[6];
-    outInfo->Get(SDDP::UPDATE_EXTENT(), ext);
-    outInfo->Get(SDDP::WHOLE_EXTENT(), whole);
-    if (!std::equal(ext, ext + 6, whole))
-    {
-      // a consumer asked for part of the volume: read only its chunks
-      options.wholeVolume = false;
-      options.region.lo = { ext[0], ext[2], ext[4] };
-      options.region.hi = { ext[1], ext[3], ext[5] };
-    }
-  }
+  options.wholeVolume = kind == 0;
   LVDIFInterrupter interrupter(this, 0.0, 1.0);
   output->SetPartitionColors(this->WithColor);
   const bool ok = LVDIFVolumeBridge::CallCore(
@@ -135,7 +118,7 @@ int vtkDictionaryVolumeReader::RequestData(
     [&] {
       std::shared_ptr<lvdif::DictionaryVolume> volume = lvdif::loadVolume(this->FileName, options, interrupter);
       output->SetVolume(std::move(volume));
-      if (pieces > 1) output->SetOwnedChunks(owned);
+      if (kind == 1) output->SetOwnedChunks(owned);
     },
     "cannot read '" + this->FileName + "': ");
   if (!ok)

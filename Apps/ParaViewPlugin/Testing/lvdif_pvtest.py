@@ -42,6 +42,8 @@ PROXIES = {
     "vtkLVDIFMeshReader": ("sources", "LVDIFMeshReader"),
     "vtkSparseVolumeToImage": ("filters", "SparseVolumeToImage"),
     "vtkImageToSparseVolume": ("filters", "ImageToSparseVolume"),
+    # a representation (the Slice of LVDIFSparseVolumeRepresentation), not a filter
+    "vtkSparseVolumeSliceRepresentation": ("representations", "LVDIFSparseVolumeSliceRepresentation"),
 }
 PROXY_NAMES = {cls: name for cls, (group, name) in PROXIES.items()}
 LVD_EXTENSION = "lvdv"

@@ -114,8 +114,11 @@ def parallel_volume_stage():
     check(os.path.exists(path) and listed == [os.path.basename(p) for p in pieces] and builtins.all(os.path.exists(p) for p in pieces),
           "%d ranks wrote the index and %d piece files %s" % (nranks, len(listed), listed))
     rd = getattr(pvs, T.PROXY_NAMES["vtkPDictionaryVolumeReader"])(FileName=path)
-    rc = pvs.Contour(Input=rd, ContourBy=["POINTS", "sdf"], Isosurfaces=[0.0], ComputeNormals=0,
-                     ComputeScalars=0, ComputeGradients=0)
+    check(T.is_sparse(rd), "the .lvdvp reader gives the sparse volume")
+    # Contour over each rank's partitions (its own chunk block), merged to one polydata a rank
+    rc = pvs.ExtractSurface(Input=pvs.MergeBlocks(Input=pvs.Contour(
+        Input=rd, ContourBy=["POINTS", "sdf"], Isosurfaces=[0.0], ComputeNormals=0,
+        ComputeScalars=0, ComputeGradients=0)))
     rpid = servermanager.Fetch(pvs.ProcessIdScalars(Input=rc))
     prange = rpid.GetPointData().GetArray("ProcessId").GetRange()
     check(prange == (0.0, nranks - 1.0), "every rank read its part of the .lvdvp and contoured it (%s)" % (prange,))

@@ -20,7 +20,9 @@ if present["vtkPDictionaryVolumeReader"] and present["vtkDictionaryVolumeReader"
     with open(index) as f:
         listed = [line for line in f if line.startswith("piece ")]
     check(len(listed) == np_, "%s lists %d pieces (%d)" % (os.path.basename(index), len(listed), np_))
-    a = servermanager.Fetch(pvs.OpenDataFile(index))
+    rd = pvs.OpenDataFile(index)
+    check(T.is_sparse(rd), "the .lvdvp reader gives the sparse volume")
+    a = servermanager.Fetch(T.dense(rd))
     b = servermanager.Fetch(T.dense(getattr(pvs, T.PROXY_NAMES["vtkDictionaryVolumeReader"])(FileName=serial)))
     same, why = T.same_volume(a, b)
     check(same, "serial read of the %d-rank .lvdvp equals the serial pipeline's .lvdv: %s" % (np_, why))

@@ -100,7 +100,8 @@ if present["vtkPDictionaryVolumeWriter"] and present["vtkPDictionaryVolumeReader
     preader = pvs.OpenDataFile(plvd)
     check(preader is not None and preader.GetXMLName() == T.PROXY_NAMES["vtkPDictionaryVolumeReader"],
           "OpenDataFile chose %s" % (preader.GetXMLName() if preader is not None else None))
-    same, why = T.same_volume(servermanager.Fetch(preader), servermanager.Fetch(T.dense(pvs.OpenDataFile(lvd))))
+    check(T.is_sparse(preader), "the .lvdvp reader gives the sparse volume")
+    same, why = T.same_volume(servermanager.Fetch(T.dense(preader)), servermanager.Fetch(T.dense(pvs.OpenDataFile(lvd))))
     check(same, ".lvdvp read equals the .lvdv read: " + why)
     T.check_parallel_io_hints(field, check, plvd)
 else:

@@ -524,6 +524,65 @@ void volumeOnCpu(const Engine& e, DictionaryVolume& volume, MeshToSdfStats& stat
   }
 }
 
+/// Only the chunks of a region (MeshToSdfOptions::chunkRegion), on either
+/// device: bands of the region's chunk rows (at least one row, the float
+/// buffer within 32 MiB otherwise) computed as float boxes by `compute` and
+/// encoded on the host, as the CPU route encodes (the CUDA route's keys equal
+/// the host's encode). Boxes start on chunk boundaries, as the whole-volume
+/// routes' do, so every voxel gets the value of a whole-volume run.
+void volumeRegion(DictionaryVolume& volume, const VoxelBox& region, MeshToSdfStats& stats, Interrupter& intr,
+  const std::function<void(const VoxelBox&, float*, double, double)>& compute)
+{
+  const std::int64_t edge = volume.chunkEdge();
+  const Index3& cc = volume.chunkCounts();
+  const Index3& dims = volume.dims();
+  VoxelBox all;
+  all.hi = { cc[0] - 1, cc[1] - 1, cc[2] - 1 };
+  const VoxelBox rc = region.intersect(all);
+  require(!rc.empty(), "mesh to SDF: the chunk region holds no chunk of the volume");
+  const std::int64_t x0 = rc.lo[0] * edge, x1 = std::min(dims[0], (rc.hi[0] + 1) * edge) - 1;
+  const std::uint64_t rowFloats = static_cast<std::uint64_t>(x1 - x0 + 1) * static_cast<std::uint64_t>(edge) *
+    static_cast<std::uint64_t>(edge);
+  const std::int64_t rows = rc.hi[1] - rc.lo[1] + 1;
+  const std::int64_t rowsPerBand = std::max<std::int64_t>(1,
+    std::min<std::int64_t>(rows, static_cast<std::int64_t>((32ull << 20) / (rowFloats * sizeof(float)))));
+  const std::uint64_t bufferFloats = rowFloats * static_cast<std::uint64_t>(rowsPerBand);
+  requireMemory(bufferFloats * sizeof(float), "mesh to SDF: region band buffer");
+  std::vector<float> buffer(static_cast<std::size_t>(bufferFloats));
+  const std::int64_t bandsPerLayer = (rows + rowsPerBand - 1) / rowsPerBand;
+  const std::int64_t bands = bandsPerLayer * (rc.hi[2] - rc.lo[2] + 1);
+  for (std::int64_t b = 0; b < bands; ++b)
+  {
+    const std::int64_t cz = rc.lo[2] + b / bandsPerLayer, cy0 = rc.lo[1] + (b % bandsPerLayer) * rowsPerBand;
+    const std::int64_t cy1 = std::min(rc.hi[1] + 1, cy0 + rowsPerBand); // exclusive
+    VoxelBox box;
+    box.lo = { x0, cy0 * edge, cz * edge };
+    box.hi = { x1, std::min(dims[1], cy1 * edge) - 1, std::min(dims[2], (cz + 1) * edge) - 1 };
+    compute(box, buffer.data(), static_cast<double>(b) / static_cast<double>(bands), 1.0 / static_cast<double>(bands));
+    const double t0 = now();
+    const std::int64_t nx = box.hi[0] - box.lo[0] + 1, ny = box.hi[1] - box.lo[1] + 1;
+    const std::int64_t ncx = rc.hi[0] - rc.lo[0] + 1, chunksInBand = ncx * (cy1 - cy0);
+#pragma omp parallel for schedule(dynamic, 1)
+    for (std::int64_t c = 0; c < chunksInBand; ++c)
+    {
+      const std::int64_t id = volume.chunkId(rc.lo[0] + c % ncx, cy0 + c / ncx, cz);
+      const VoxelBox cb = volume.chunkBox(id);
+      auto keyAt = [&](std::int64_t x, std::int64_t y, std::int64_t z, std::int64_t) {
+        return volume.encode(
+          buffer[static_cast<std::size_t>((x - box.lo[0]) + nx * ((y - box.lo[1]) + ny * (z - box.lo[2])))]);
+      };
+      const SdfKey first = keyAt(cb.lo[0], cb.lo[1], cb.lo[2], 0);
+      bool uniform = true;
+      for (std::int64_t z = cb.lo[2]; z <= cb.hi[2] && uniform; ++z)
+        for (std::int64_t y = cb.lo[1]; y <= cb.hi[1] && uniform; ++y)
+          for (std::int64_t x = cb.lo[0]; x <= cb.hi[0] && uniform; ++x) uniform = keyAt(x, y, z, 0) == first;
+      storeChunk(volume, id, uniform, first, keyAt);
+    }
+    stats.writeSeconds += now() - t0;
+    intr.checkInterrupt();
+  }
+}
+
 /// CUDA: groups of chunk layers as large as cudaSlabBytes allows (at least
 /// one), encoded on the GPU (SdfDictionary::encodeWith, the host's own
 /// rounding); only the keys of non-uniform chunks come back, and the host
@@ -704,7 +763,22 @@ MeshToSdfStats meshToSdf(const MeshToSdfPrepared& mesh, DictionaryVolume& volume
   interrupter.start("mesh to SDF");
   stats.device = chooseDevice(mesh, options);
   auto engine = makeEngine(mesh, grid, opts, volume.bandWidth(), stats.device, stats);
-  if (stats.device == Device::Cuda)
+  const bool region = !options.chunkRegion.empty();
+  require(!region || options.svfFilters == 0,
+    "mesh to SDF: a chunk region cannot be combined with the sign voxel filters (they need the whole volume)");
+  if (region)
+  {
+    std::unique_ptr<detail::meshtosdf_cuda::Session> cuda;
+    if (stats.device == Device::Cuda) cuda = openCuda(mesh, *engine, opts, stats);
+    volumeRegion(volume, options.chunkRegion, stats, interrupter,
+      [&](const VoxelBox& box, float* out, double p0, double dp) {
+        if (cuda)
+          cuda->compute(box, out, stats, interrupter);
+        else
+          computeBox(*engine, box, out, stats, interrupter, p0, dp);
+      });
+  }
+  else if (stats.device == Device::Cuda)
   {
     volumeOnCuda(*openCuda(mesh, *engine, opts, stats), volume, opts, stats, interrupter);
   }
@@ -720,7 +794,7 @@ MeshToSdfStats meshToSdf(const MeshToSdfPrepared& mesh, DictionaryVolume& volume
     stats.svfFlips = signVoxelFilter(volume, p, interrupter).totalFlips();
     stats.svfSeconds = now() - t0;
   }
-  if (options.sign != SignMode::Unsigned)
+  if (options.sign != SignMode::Unsigned && !region) // a region may rightly have nothing inside
   {
     // voxels deeper than 1 voxel inside (as for float grids): uniform chunks
     // by their value, the others voxel by voxel until the first one

@@ -96,6 +96,12 @@ struct MeshToSdfOptions
   /// CUDA: bytes of the device slab buffer (z layers per slab follow from it;
   /// into a dictionary volume at least one layer of chunks per slab).
   std::uint64_t cudaSlabBytes = 256ull << 20;
+  /// Into a dictionary volume only: the storage chunks to compute, an
+  /// inclusive box of chunk coordinates (a pvbatch rank's chunk block);
+  /// every other chunk is left as it is. Empty (the default): every chunk.
+  /// The chunks get exactly the values of a whole-volume run. Not with
+  /// svfFilters (the sign filters need the whole volume).
+  VoxelBox chunkRegion;
   /// CUDA into a dictionary volume: also copy the float slabs back and check
   /// every GPU-encoded key against the host's encode (tests; costs the copy).
   bool cudaVerifyKeys = false;

@@ -5,6 +5,8 @@
 #include "vtkSparseDictionaryVolume.h"
 #include "vtkSparseVolumeToImage.h"
 
+#include "lvdif/DictionaryVolume.h"
+
 #include "vtkCallbackCommand.h"
 #include "vtkCellArray.h"
 #include "vtkCommand.h"
@@ -22,6 +24,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <string>
 
@@ -220,4 +223,91 @@ TEST(vtkMeshToSDF, AbortStopsAndProgressIsReported)
   EXPECT_GT(cb->Calls, 0);
   auto* sparse = vtkSparseDictionaryVolume::SafeDownCast(f->GetOutputDataObject(0));
   EXPECT_FALSE(sparse && sparse->HasVolume()); // cancelled: no volume
+}
+
+// A piece (UpdatePiece, as a pvbatch rank) or a smaller update extent computes
+// only the storage chunks holding its voxels (Core's chunkRegion), and those
+// chunks hold exactly the whole run's keys; the others stay untouched (+band).
+TEST(vtkMeshToSDF, PiecesComputeTheirChunksOnlyWithTheWholeRunsValues)
+{
+  vtkNew<vtkSphereSource> sphere;
+  sphere->SetRadius(1.0);
+  sphere->SetThetaResolution(24);
+  sphere->SetPhiResolution(16);
+  auto make = [&] {
+    auto f = vtkSmartPointer<vtkMeshToSDF>::New();
+    f->SetInputConnection(sphere->GetOutputPort());
+    f->SetMaxDimension(40);
+    f->SetChunkEdge(8);
+    f->SetDevice(vtkMeshToSDF::DEVICE_CPU);
+    return f;
+  };
+  auto whole = make();
+  whole->Update();
+  auto* w = vtkSparseDictionaryVolume::SafeDownCast(whole->GetOutputDataObject(0));
+  ASSERT_TRUE(w && w->HasVolume());
+  const lvdif::DictionaryVolume& wv = *w->GetVolume();
+  auto computedChunks = [](vtkAlgorithm* a) {
+    return vtkIdTypeArray::SafeDownCast(a->GetOutputDataObject(0)->GetFieldData()->GetArray("mesh_to_sdf_chunks"))->GetValue(0);
+  };
+  EXPECT_EQ(computedChunks(whole), wv.chunkCount());
+  // every voxel of the chunks a run computed equals the whole run's; the others are +band
+  auto compare = [&](vtkMeshToSDF* f, const lvdif::VoxelBox& chunks, const std::string& what) {
+    auto* s = vtkSparseDictionaryVolume::SafeDownCast(f->GetOutputDataObject(0));
+    ASSERT_TRUE(s && s->HasVolume()) << what;
+    const lvdif::DictionaryVolume& v = *s->GetVolume();
+    long wrong = 0, untouched = 0;
+    for (std::int64_t id = 0; id < v.chunkCount(); ++id)
+    {
+      const lvdif::Index3 c = v.chunkCoord(id);
+      const bool in = chunks.contains(c[0], c[1], c[2]);
+      const lvdif::VoxelBox b = v.chunkBox(id);
+      for (std::int64_t z = b.lo[2]; z <= b.hi[2]; ++z)
+        for (std::int64_t y = b.lo[1]; y <= b.hi[1]; ++y)
+          for (std::int64_t x = b.lo[0]; x <= b.hi[0]; ++x)
+          {
+            if (in)
+              wrong += v.get(x, y, z) != wv.get(x, y, z);
+            else
+              untouched += v.get(x, y, z) == v.outsideVoxel();
+          }
+    }
+    EXPECT_EQ(wrong, 0) << what;
+    EXPECT_EQ(computedChunks(f), chunks.voxelCount()) << what;
+    EXPECT_LT(chunks.voxelCount(), v.chunkCount()) << what;
+    EXPECT_GT(untouched, 0) << what;
+  };
+  const lvdif::Index3 cc = wv.chunkCounts();
+  for (int n : { 2, 3 })
+  {
+    for (int p = 0; p < n; ++p)
+    {
+      auto f = make();
+      f->UpdatePiece(p, n, 0);
+      auto* s = vtkSparseDictionaryVolume::SafeDownCast(f->GetOutputDataObject(0));
+      ASSERT_TRUE(s && s->HasVolume());
+      int owned[6];
+      s->GetOwnedChunks(owned);
+      // its chunks plus the next ones, whose first layer of points its partitions share
+      lvdif::VoxelBox chunks;
+      for (int a = 0; a < 3; ++a)
+      {
+        chunks.lo[a] = owned[2 * a];
+        chunks.hi[a] = std::min<std::int64_t>(owned[2 * a + 1] + 1, cc[a] - 1);
+      }
+      compare(f, chunks, "piece " + std::to_string(p) + " of " + std::to_string(n));
+    }
+  }
+  // a sub-extent: the chunks holding it
+  int sub[6] = { 3, 12, 9, 20, 17, 17 };
+  auto f = make();
+  f->UpdateInformation();
+  f->UpdateExtent(sub);
+  lvdif::VoxelBox chunks;
+  for (int a = 0; a < 3; ++a)
+  {
+    chunks.lo[a] = sub[2 * a] / 8;
+    chunks.hi[a] = sub[2 * a + 1] / 8;
+  }
+  compare(f, chunks, "extent");
 }

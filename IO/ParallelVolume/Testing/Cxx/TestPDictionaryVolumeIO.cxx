@@ -5,13 +5,19 @@
 // same image (the distributed read must equal it exactly, every array), the
 // analytic SDF (within the dictionary's quantisation), the piece files' sizes
 // (the translator's extents), a sub-extent read that opens one piece only, and
-// the error paths (missing piece, broken index).
+// the error paths (missing piece, broken index). The reader gives the sparse
+// volume: its whole read is decoded by vtkSparseVolumeToImage, and a piece read
+// (UpdatePiece, as a pvbatch rank) must hold the serial values on every point of
+// its chunks and open only the piece files overlapping them.
 #include "vtkDictionaryVolumeReader.h"
 #include "vtkImageToSparseVolume.h"
 #include "vtkSparseVolumeToImage.h"
 #include "vtkDictionaryVolumeWriter.h"
 #include "vtkPDictionaryVolumeReader.h"
 #include "vtkPDictionaryVolumeWriter.h"
+#include "vtkSparseDictionaryVolume.h"
+
+#include "lvdif/DictionaryVolume.h"
 
 #include "vtkFloatArray.h"
 #include "vtkImageClip.h"
@@ -66,6 +72,32 @@ vtkSmartPointer<vtkImageData> makeImage()
   img->GetPointData()->AddArray(sdf);
   img->GetPointData()->AddArray(rgba);
   return img;
+}
+
+/// The reader's sparse volume decoded (the whole extent, or `extent` when given).
+vtkSmartPointer<vtkImageData> decoded(vtkPDictionaryVolumeReader* r, const int* extent = nullptr)
+{
+  vtkNew<vtkSparseVolumeToImage> dense;
+  dense->SetInputConnection(r->GetOutputPort());
+  if (extent)
+  {
+    dense->UpdateInformation();
+    dense->UpdateExtent(extent);
+  }
+  else
+  {
+    dense->Update();
+  }
+  auto out = vtkSmartPointer<vtkImageData>::New();
+  out->DeepCopy(dense->GetOutput());
+  return out;
+}
+
+/// Voxels of the reader's sparse volume (0 when it holds none: an error).
+std::int64_t voxels(vtkPDictionaryVolumeReader* r)
+{
+  auto* v = vtkSparseDictionaryVolume::SafeDownCast(r->GetOutputDataObject(0));
+  return v && v->HasVolume() ? v->GetVolume()->voxelCount() : 0;
 }
 
 std::string tmpName(const std::string& stem)
@@ -142,18 +174,20 @@ TEST_P(PVolumeIO, DistributedWriteEqualsSerialRoundTrip)
 
   vtkNew<vtkPDictionaryVolumeReader> r;
   r->SetFileName(index.c_str());
-  r->Update();
-  vtkImageData* out = r->GetOutput();
+  vtkSmartPointer<vtkImageData> decodedAll = decoded(r);
+  vtkImageData* out = decodedAll;
   EXPECT_EQ(r->GetPiecesRead(), n);
+  EXPECT_TRUE(vtkSparseDictionaryVolume::SafeDownCast(r->GetOutputDataObject(0)) != nullptr);
   int e[6];
   out->GetExtent(e);
-  for (int q = 0; q < 6; ++q)
-    EXPECT_EQ(e[q], whole[q]);
-  double o[3], s[3];
-  out->GetOrigin(o);
+  for (int q = 0; q < 3; ++q) // the sparse volume's indices start at 0 ...
+    EXPECT_EQ(e[2 * q + 1] - e[2 * q], whole[2 * q + 1] - whole[2 * q]);
+  double p0[3], q0[3], s[3]; // ... at the same world positions
+  out->GetPoint(0, p0);
+  img->GetPoint(0, q0);
+  for (int a = 0; a < 3; ++a)
+    EXPECT_DOUBLE_EQ(p0[a], q0[a]);
   out->GetSpacing(s);
-  EXPECT_DOUBLE_EQ(o[0], -2.0);
-  EXPECT_DOUBLE_EQ(o[2], 3.0);
   EXPECT_DOUBLE_EQ(s[1], 0.5);
   // serial oracle: same values, every array (the serial reader gives 0-based indices)
   ASSERT_EQ(out->GetNumberOfPoints(), oracle->GetNumberOfPoints());
@@ -183,12 +217,16 @@ TEST_P(PVolumeIO, DistributedWriteEqualsSerialRoundTrip)
   // a sub-extent inside the first piece opens one piece only and equals the whole read there
   int e0[6];
   vtkPDictionaryVolumeWriter::PieceExtent(whole, 0, n, e0);
+  for (int a = 0; a < 3; ++a) // in the volume's indices (from 0)
+  {
+    e0[2 * a] -= whole[2 * a];
+    e0[2 * a + 1] -= whole[2 * a];
+  }
   int sub[6] = { e0[0] + 1, e0[0] + 5, e0[2] + 1, e0[2] + 4, e0[4] + 1, e0[4] + 3 };
   vtkNew<vtkPDictionaryVolumeReader> rs;
   rs->SetFileName(index.c_str());
-  rs->UpdateExtent(sub);
+  vtkSmartPointer<vtkImageData> so = decoded(rs, sub);
   EXPECT_EQ(rs->GetPiecesRead(), 1);
-  vtkImageData* so = rs->GetOutput();
   int got[6];
   so->GetExtent(got);
   for (int q = 0; q < 6; ++q)
@@ -229,8 +267,7 @@ TEST_P(PVolumeIO, SparseInputWritesThePiecesItsKeys)
   }
   vtkNew<vtkPDictionaryVolumeReader> r;
   r->SetFileName(index.c_str());
-  r->Update();
-  vtkImageData* out = r->GetOutput();
+  vtkSmartPointer<vtkImageData> out = decoded(r);
   ASSERT_EQ(out->GetNumberOfPoints(), oracle->GetNumberOfPoints());
   // the sparse volume's indices start at 0: the same world positions
   double p0[3], q0[3];
@@ -250,6 +287,88 @@ TEST_P(PVolumeIO, SparseInputWritesThePiecesItsKeys)
   }
 }
 
+// Read as pvbatch ranks do (piece p of m, m = 1..4, from files written by n
+// pieces): a piece holds its block of storage chunks (the ownership rule of
+// vtkDictionaryVolumeReader), equal to the serial values on every point of its
+// chunks and of the layer shared with the next ones, opens only the piece files
+// overlapping them, and the pieces' chunk blocks tile the chunk grid.
+TEST_P(PVolumeIO, PiecesHoldTheirChunksOnly)
+{
+  const int n = GetParam();
+  vtkSmartPointer<vtkImageData> img = makeImage();
+  vtkSmartPointer<vtkImageData> oracle = serialRoundTrip(img);
+  const std::string index = tmpName("pieces" + std::to_string(n) + ".lvdvp");
+  writePieces(img, index, n);
+  vtkFloatArray* osdf = vtkFloatArray::SafeDownCast(oracle->GetPointData()->GetArray("sdf"));
+  vtkUnsignedCharArray* orgba = vtkUnsignedCharArray::SafeDownCast(oracle->GetPointData()->GetArray("rgba"));
+  ASSERT_TRUE(osdf && orgba);
+  for (int m = 1; m <= 4; ++m)
+  {
+    std::int64_t ownedChunks = 0, chunkTotal = 0;
+    int emptyPieces = 0;
+    for (int p = 0; p < m; ++p)
+    {
+      vtkNew<vtkPDictionaryVolumeReader> r;
+      r->SetFileName(index.c_str());
+      r->UpdatePiece(p, m, 0);
+      auto* v = vtkSparseDictionaryVolume::SafeDownCast(r->GetOutputDataObject(0));
+      ASSERT_TRUE(v != nullptr);
+      if (!v->HasVolume())
+      {
+        // a piece the chunk grid leaves without chunks (m > chunk blocks): nothing read
+        EXPECT_EQ(r->GetPiecesRead(), 0) << "piece " << p << " of " << m;
+        ++emptyPieces;
+        continue;
+      }
+      const lvdif::DictionaryVolume& vol = *v->GetVolume();
+      chunkTotal = vol.chunkCount();
+      int owned[6];
+      v->GetOwnedChunks(owned);
+      ownedChunks += std::int64_t(owned[1] - owned[0] + 1) * (owned[3] - owned[2] + 1) * (owned[5] - owned[4] + 1);
+      // the points of its chunks and of the shared layer, in the volume's indices
+      lvdif::VoxelBox box;
+      for (int a = 0; a < 3; ++a)
+      {
+        box.lo[a] = std::int64_t(owned[2 * a]) * vol.chunkEdge();
+        box.hi[a] = std::min<std::int64_t>(std::int64_t(owned[2 * a + 1] + 1) * vol.chunkEdge(), vol.dims()[a] - 1);
+      }
+      long wrong = 0;
+      for (std::int64_t z = box.lo[2]; z <= box.hi[2]; ++z)
+        for (std::int64_t y = box.lo[1]; y <= box.hi[1]; ++y)
+          for (std::int64_t x = box.lo[0]; x <= box.hi[0]; ++x)
+          {
+            const vtkIdType id = x + NX * (y + NY * z);
+            const lvdif::Voxel vx = vol.get(x, y, z);
+            const lvdif::Rgba c = vol.colors()[vx.color];
+            unsigned char oc[4];
+            orgba->GetTypedTuple(id, oc);
+            wrong += vol.decode(vx.sdf) != osdf->GetValue(id) || c.r != oc[0] || c.g != oc[1] || c.b != oc[2] || c.a != oc[3];
+          }
+      EXPECT_EQ(wrong, 0) << "piece " << p << " of " << m << " read from " << n << " files";
+      // it opened exactly the piece files its points overlap
+      int whole[6], expected = 0;
+      img->GetExtent(whole);
+      for (int q = 0; q < n; ++q)
+      {
+        int e[6];
+        vtkPDictionaryVolumeWriter::PieceExtent(whole, q, n, e);
+        bool overlaps = true;
+        for (int a = 0; a < 3; ++a)
+          overlaps = overlaps && e[2 * a] - whole[2 * a] <= box.hi[a] && e[2 * a + 1] - whole[2 * a] >= box.lo[a];
+        expected += overlaps ? 1 : 0;
+      }
+      EXPECT_EQ(r->GetPiecesRead(), expected) << "piece " << p << " of " << m;
+      if (m > 1)
+        EXPECT_LT(box.voxelCount(), std::int64_t(NX) * NY * NZ) << "piece " << p << " of " << m;
+    }
+    EXPECT_EQ(ownedChunks, chunkTotal) << m << " pieces"; // disjoint blocks (PieceChunks) that tile the grid
+    EXPECT_LT(emptyPieces, m);
+  }
+  for (int p = 0; p < n; ++p)
+    std::remove(tmpName("pieces" + std::to_string(n) + "_" + std::to_string(p) + ".lvdv").c_str());
+  std::remove(index.c_str());
+}
+
 INSTANTIATE_TEST_SUITE_P(Pieces, PVolumeIO, ::testing::Values(1, 2, 3, 4));
 
 TEST(PVolumeIO, ErrorsAreReported)
@@ -266,11 +385,11 @@ TEST(PVolumeIO, ErrorsAreReported)
   std::rename(p1.c_str(), (p1 + ".away").c_str());
   r->Modified();
   r->Update();
-  EXPECT_EQ(r->GetOutput()->GetNumberOfPoints(), 0);
+  EXPECT_EQ(voxels(r), 0);
   std::rename((p1 + ".away").c_str(), p1.c_str());
   r->Modified();
   r->Update();
-  EXPECT_EQ(r->GetOutput()->GetNumberOfPoints(), NX * NY * NZ);
+  EXPECT_EQ(voxels(r), NX * NY * NZ);
 
   // broken indices: unknown key, piece outside the whole extent, wrong count, wrong magic
   const char* broken[] = {
@@ -288,7 +407,7 @@ TEST(PVolumeIO, ErrorsAreReported)
     b->GlobalWarningDisplayOff();
     b->SetFileName(bad.c_str());
     b->Update();
-    EXPECT_EQ(b->GetOutput()->GetNumberOfPoints(), 0) << text;
+    EXPECT_EQ(voxels(b), 0) << text;
   }
   std::remove(bad.c_str());
   std::remove(index.c_str());
