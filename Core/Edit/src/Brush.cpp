@@ -2,6 +2,7 @@
 #include "lvdif/EditLimits.h"
 
 #include "BrushKernel.h"
+#include "BrushSurface.h"
 #include "lvdif/Error.h"
 #include "lvdif/Memory.h"
 
@@ -445,7 +446,7 @@ DabPlan planDabs(DictionaryVolume& volume, const std::vector<Dab>& dabs, const B
 } // namespace detail::edit
 
 EditResult applyDabs(DictionaryVolume& volume, const std::vector<Dab>& dabs, const BrushSettings& settings,
-  ChunkWriteObserver* observer, const Interrupter* interrupter)
+  ChunkWriteObserver* observer, const Interrupter* interrupter, std::optional<float> surfaceIso)
 {
   if (readsNeighbours(settings.op))
     return detail::edit::applyGather(volume, planGroups(volume, dabs, settings, observer), observer, interrupter);
@@ -468,6 +469,16 @@ EditResult applyDabs(DictionaryVolume& volume, const std::vector<Dab>& dabs, con
   const std::int64_t nChunks = static_cast<std::int64_t>(chunks.size());
   std::vector<std::int64_t> changedPerChunk(chunks.size(), 0);
   std::vector<VoxelBox> changedBoxPerChunk(chunks.size());
+  // what can reach a mesh of surfaceIso (BrushSurface.cpp): voxels that changed
+  // side go in the box at once, the other changed voxels wait for the check of
+  // their neighbourhood after every write (bit rows up to SurfaceMaskMaxEdge;
+  // beyond that they count as they are)
+  const bool watch = surfaceIso.has_value();
+  const std::int32_t isoKey = watch ? volume.sdfDictionary().keysBelow(*surfaceIso) : 0;
+  const std::int64_t edge = volume.chunkEdge();
+  const bool bitRows = edge <= detail::edit::SurfaceMaskMaxEdge;
+  std::vector<VoxelBox> surfaceBoxPerChunk(watch ? chunks.size() : 0);
+  std::vector<detail::edit::SurfacePending> pendingPerChunk(watch && bitRows ? chunks.size() : 0);
   const double reach = ctx.reach;
   bool failed = false;
   Error firstError(ErrorCode::InvalidArgument, "");
@@ -527,12 +538,14 @@ EditResult applyDabs(DictionaryVolume& volume, const std::vector<Dab>& dabs, con
           changedPerChunk[static_cast<size_t>(ci)] = n;
           if (n > 0)
             changedBoxPerChunk[static_cast<size_t>(ci)] = cb;
+          if (n > 0 && watch)
+            surfaceBoxPerChunk[static_cast<size_t>(ci)] = cb; // sides not looked at: all of it counts
           continue;
         }
       }
       bool touched = false;
       std::int64_t changed = 0;
-      VoxelBox changedBox;
+      VoxelBox changedBox, surfaceBox;
       // Read through the chunk's own storage; after the first change (volume.set expands
       // the chunk and marks it dirty and its range stale) write straight into its data:
       // this thread owns the chunk for the whole call.
@@ -544,6 +557,17 @@ EditResult applyDabs(DictionaryVolume& volume, const std::vector<Dab>& dabs, con
       const bool add = ctx.op == static_cast<int>(BrushOp::Add);
       const bool hardCsg = perDabRows && ctx.blend <= 0 && (add || ctx.op == static_cast<int>(BrushOp::Subtract));
       std::vector<Voxel> rowOld, rowNew;
+      // the voxels of a hard add (subtract) deep enough in a sphere dab that their
+      // neighbourhood ends up on one side: not pending (see below); needs the
+      // band's extreme key on the other side of the iso value from +band (-band)
+      const bool quietOk = watch && bitRows && hardCsg &&
+        (add ? std::int32_t(belowBand) < isoKey && isoKey > 0 : std::int32_t(aboveBand) >= isoKey && isoKey < SdfDictionary::KeyCount);
+      // add: a distance <= the largest value below iso encodes below iso (the
+      // nearest key, or the band's extreme key, both below); subtract: -s >= the
+      // smallest value at or above iso encodes at or above it. Then 2 voxels of
+      // Lipschitz slack and a margin for the float conversion.
+      const double quietLevel = !quietOk ? 0.0
+        : (add ? double(table[isoKey - 1]) : -double(table[isoKey])) - 2.0 - 1e-3;
       std::vector<double> rowS;
       std::vector<std::pair<std::int64_t, std::int64_t>> rowRange(perDabRows ? active.size() : 0);
       for (std::int64_t z = region.lo[2]; z <= region.hi[2]; ++z)
@@ -582,6 +606,7 @@ EditResult applyDabs(DictionaryVolume& volume, const std::vector<Dab>& dabs, con
           if (x1 < x0)
             continue;
           const std::int64_t li0 = volume.localIndex(x0, y, z); // a row is contiguous in the chunk
+          std::uint64_t quietRow = 0; // chunk-local x bits
           const std::int64_t m = x1 - x0 + 1;
           rowOld.resize(static_cast<std::size_t>(m));
           if (writeData || readData)
@@ -635,29 +660,47 @@ EditResult applyDabs(DictionaryVolume& volume, const std::vector<Dab>& dabs, con
                   if (add ? double(table[hi]) <= sMin : double(table[lo]) >= -sMin)
                     continue;
                 }
-                // [i0, i1]: where s <= -band (an interval: s falls to xn, then rises)
-                const double deep = -double(band);
-                std::int64_t i0 = a1 + 1, i1 = a1;
-                if (std::min(sAt(xn), sAt(std::min(a1, xn + 1))) <= deep)
-                {
-                  const std::int64_t turn = sAt(xn) <= deep ? xn : xn + 1;
-                  std::int64_t lo = a0, hi = turn; // first x in [a0, turn] with s <= deep
+                // [from, to]: where s <= level (an interval: s falls to xn, then rises)
+                auto spanBelow = [&](double level, std::int64_t& from, std::int64_t& to) {
+                  from = a1 + 1;
+                  to = a1;
+                  if (std::min(sAt(xn), sAt(std::min(a1, xn + 1))) > level)
+                    return;
+                  const std::int64_t turn = sAt(xn) <= level ? xn : xn + 1;
+                  std::int64_t lo = a0, hi = turn; // first x in [a0, turn] with s <= level
                   while (lo < hi)
                   {
                     const std::int64_t mid = lo + (hi - lo) / 2;
-                    if (sAt(mid) <= deep) hi = mid;
+                    if (sAt(mid) <= level) hi = mid;
                     else lo = mid + 1;
                   }
-                  i0 = lo;
+                  from = lo;
                   lo = turn;
-                  hi = a1; // last x in [turn, a1] with s <= deep
+                  hi = a1; // last x in [turn, a1] with s <= level
                   while (lo < hi)
                   {
                     const std::int64_t mid = lo + (hi - lo + 1) / 2;
-                    if (sAt(mid) <= deep) lo = mid;
+                    if (sAt(mid) <= level) lo = mid;
                     else hi = mid - 1;
                   }
-                  i1 = lo;
+                  to = lo;
+                };
+                std::int64_t i0, i1;
+                spanBelow(-double(band), i0, i1);
+                if (quietOk)
+                {
+                  // Voxels with s <= quietLevel cannot reach a mesh unless they change
+                  // side: s is an exact distance (1-Lipschitz), so every voxel within 2
+                  // of them (the points a mesh would read them for, BrushSurface.cpp)
+                  // has s <= quietLevel + 2.001, which this dab encodes on the far
+                  // side of the iso value (add: below it, subtract: -s above it; see
+                  // quietLevel), and later dabs of the call (the same operation) only
+                  // push further. So their neighbourhood holds one side after the edit.
+                  std::int64_t q0, q1;
+                  spanBelow(quietLevel, q0, q1);
+                  if (q0 <= q1)
+                    quietRow |= (q1 - q0 + 1 >= 64 ? ~std::uint64_t(0) : ((std::uint64_t(1) << (q1 - q0 + 1)) - 1))
+                      << (q0 - cb.lo[0]);
                 }
                 bool inBand = true; // every key of the span within the band (else: voxel by voxel)
                 for (std::int64_t x = i0; x <= i1 && inBand; ++x)
@@ -723,6 +766,9 @@ EditResult applyDabs(DictionaryVolume& volume, const std::vector<Dab>& dabs, con
               for (int gi : mine)
                 detail::edit::applyGroupToVoxel(v.sdf, v.color, x, y, z, active.data(), boxes.data(), gi, ctx, table, encode);
             }
+          if (watch && bitRows)
+            pendingPerChunk[static_cast<size_t>(ci)].noteSides(x0 - cb.lo[0], x1 - x0 + 1, y - cb.lo[1], z - cb.lo[2],
+              detail::edit::sideBits(rowNew.data(), x1 - x0 + 1, isoKey), edge);
           for (std::int64_t x = x0; x <= x1; ++x)
           {
             const std::int64_t li = li0 + (x - x0);
@@ -744,6 +790,14 @@ EditResult applyDabs(DictionaryVolume& volume, const std::vector<Dab>& dabs, con
               }
               ++changed;
               changedBox.include(x, y, z);
+              if (watch)
+              {
+                const bool sideChanged = (std::int32_t(old.sdf) >= isoKey) != (std::int32_t(v.sdf) >= isoKey);
+                if (sideChanged || !bitRows)
+                  surfaceBox.include(x, y, z);
+                else if (!((quietRow >> (x - cb.lo[0])) & 1))
+                  pendingPerChunk[static_cast<size_t>(ci)].set(x - cb.lo[0], y - cb.lo[1], z - cb.lo[2], edge);
+              }
             }
           }
         }
@@ -753,6 +807,8 @@ EditResult applyDabs(DictionaryVolume& volume, const std::vector<Dab>& dabs, con
       }
       changedPerChunk[static_cast<size_t>(ci)] = changed;
       changedBoxPerChunk[static_cast<size_t>(ci)] = changedBox;
+      if (watch)
+        surfaceBoxPerChunk[static_cast<size_t>(ci)] = surfaceBox;
     }
     catch (const Error& e)
     {
@@ -769,12 +825,24 @@ EditResult applyDabs(DictionaryVolume& volume, const std::vector<Dab>& dabs, con
     throw firstError;
   }
   result.interrupted = stopped.load();
+  if (watch && bitRows)
+  {
+    // every write is done: the sides around the waiting voxels are final
+#pragma omp parallel for schedule(dynamic, 1) if (nChunks > 1)
+    for (std::int64_t ci = 0; ci < nChunks; ++ci)
+      detail::edit::addMixedPending(volume, isoKey, chunks[static_cast<size_t>(ci)], chunks, pendingPerChunk,
+        surfaceBoxPerChunk[static_cast<size_t>(ci)]);
+  }
+  if (watch)
+    result.surfaceIso = *surfaceIso;
   for (size_t i = 0; i < chunks.size(); ++i)
   {
     if (changedPerChunk[i] > 0)
     {
       result.changedChunks.push_back(chunks[i]);
       result.changedChunkBoxes.push_back(changedBoxPerChunk[i]);
+      if (watch)
+        result.surfaceChunkBoxes.push_back(surfaceBoxPerChunk[i]);
       result.changedVoxels += changedPerChunk[i];
       result.changedBox = result.changedBox.unite(changedBoxPerChunk[i]);
     }

@@ -230,6 +230,13 @@ public:
     /// the colours too: colour = palette[key], not decoded per voxel).
     std::vector<ColorKey> colorKeys;
     std::vector<Rgba> palette;        // copy of the colour dictionary when colours come as keys
+    /// Dictionary volumes on the CPU: the voxels themselves (distance key, colour
+    /// key), copied row by row; the mesher decodes only what it reads (sides by
+    /// key, values through sdfTable, colours through the palette). values,
+    /// colours and colorKeys are then empty.
+    std::vector<Voxel> voxels;
+    const float* sdfTable = nullptr; // the volume's SDF dictionary (immutable)
+    std::int32_t isoKey = 0;         // value >= iso exactly when key >= isoKey
     /// Points of storage chunks whose neighbourhood lies on one side of iso hold
     /// one placeholder value of that side and stale colours (never read by the mesher).
     /// Scratch of gather() (the storage chunks' sides of iso), kept for reuse.
