@@ -557,17 +557,6 @@ EditResult applyDabs(DictionaryVolume& volume, const std::vector<Dab>& dabs, con
       const bool add = ctx.op == static_cast<int>(BrushOp::Add);
       const bool hardCsg = perDabRows && ctx.blend <= 0 && (add || ctx.op == static_cast<int>(BrushOp::Subtract));
       std::vector<Voxel> rowOld, rowNew;
-      // the voxels of a hard add (subtract) deep enough in a sphere dab that their
-      // neighbourhood ends up on one side: not pending (see below); needs the
-      // band's extreme key on the other side of the iso value from +band (-band)
-      const bool quietOk = watch && bitRows && hardCsg &&
-        (add ? std::int32_t(belowBand) < isoKey && isoKey > 0 : std::int32_t(aboveBand) >= isoKey && isoKey < SdfDictionary::KeyCount);
-      // add: a distance <= the largest value below iso encodes below iso (the
-      // nearest key, or the band's extreme key, both below); subtract: -s >= the
-      // smallest value at or above iso encodes at or above it. Then 2 voxels of
-      // Lipschitz slack and a margin for the float conversion.
-      const double quietLevel = !quietOk ? 0.0
-        : (add ? double(table[isoKey - 1]) : -double(table[isoKey])) - 2.0 - 1e-3;
       std::vector<double> rowS;
       std::vector<std::pair<std::int64_t, std::int64_t>> rowRange(perDabRows ? active.size() : 0);
       for (std::int64_t z = region.lo[2]; z <= region.hi[2]; ++z)
@@ -606,7 +595,6 @@ EditResult applyDabs(DictionaryVolume& volume, const std::vector<Dab>& dabs, con
           if (x1 < x0)
             continue;
           const std::int64_t li0 = volume.localIndex(x0, y, z); // a row is contiguous in the chunk
-          std::uint64_t quietRow = 0; // chunk-local x bits
           const std::int64_t m = x1 - x0 + 1;
           rowOld.resize(static_cast<std::size_t>(m));
           if (writeData || readData)
@@ -687,21 +675,6 @@ EditResult applyDabs(DictionaryVolume& volume, const std::vector<Dab>& dabs, con
                 };
                 std::int64_t i0, i1;
                 spanBelow(-double(band), i0, i1);
-                if (quietOk)
-                {
-                  // Voxels with s <= quietLevel cannot reach a mesh unless they change
-                  // side: s is an exact distance (1-Lipschitz), so every voxel within 2
-                  // of them (the points a mesh would read them for, BrushSurface.cpp)
-                  // has s <= quietLevel + 2.001, which this dab encodes on the far
-                  // side of the iso value (add: below it, subtract: -s above it; see
-                  // quietLevel), and later dabs of the call (the same operation) only
-                  // push further. So their neighbourhood holds one side after the edit.
-                  std::int64_t q0, q1;
-                  spanBelow(quietLevel, q0, q1);
-                  if (q0 <= q1)
-                    quietRow |= (q1 - q0 + 1 >= 64 ? ~std::uint64_t(0) : ((std::uint64_t(1) << (q1 - q0 + 1)) - 1))
-                      << (q0 - cb.lo[0]);
-                }
                 bool inBand = true; // every key of the span within the band (else: voxel by voxel)
                 for (std::int64_t x = i0; x <= i1 && inBand; ++x)
                   inBand = add ? rv[x].sdf >= belowBand : rv[x].sdf <= aboveBand;
@@ -766,9 +739,6 @@ EditResult applyDabs(DictionaryVolume& volume, const std::vector<Dab>& dabs, con
               for (int gi : mine)
                 detail::edit::applyGroupToVoxel(v.sdf, v.color, x, y, z, active.data(), boxes.data(), gi, ctx, table, encode);
             }
-          if (watch && bitRows)
-            pendingPerChunk[static_cast<size_t>(ci)].noteSides(x0 - cb.lo[0], x1 - x0 + 1, y - cb.lo[1], z - cb.lo[2],
-              detail::edit::sideBits(rowNew.data(), x1 - x0 + 1, isoKey), edge);
           for (std::int64_t x = x0; x <= x1; ++x)
           {
             const std::int64_t li = li0 + (x - x0);
@@ -795,7 +765,7 @@ EditResult applyDabs(DictionaryVolume& volume, const std::vector<Dab>& dabs, con
                 const bool sideChanged = (std::int32_t(old.sdf) >= isoKey) != (std::int32_t(v.sdf) >= isoKey);
                 if (sideChanged || !bitRows)
                   surfaceBox.include(x, y, z);
-                else if (!((quietRow >> (x - cb.lo[0])) & 1))
+                else
                   pendingPerChunk[static_cast<size_t>(ci)].set(x - cb.lo[0], y - cb.lo[1], z - cb.lo[2], edge);
               }
             }
@@ -830,8 +800,8 @@ EditResult applyDabs(DictionaryVolume& volume, const std::vector<Dab>& dabs, con
     // every write is done: the sides around the waiting voxels are final
 #pragma omp parallel for schedule(dynamic, 1) if (nChunks > 1)
     for (std::int64_t ci = 0; ci < nChunks; ++ci)
-      detail::edit::addMixedPending(volume, isoKey, chunks[static_cast<size_t>(ci)], chunks, pendingPerChunk,
-        surfaceBoxPerChunk[static_cast<size_t>(ci)]);
+      detail::edit::addMixedPending(volume, isoKey, chunks[static_cast<size_t>(ci)],
+        pendingPerChunk[static_cast<size_t>(ci)], surfaceBoxPerChunk[static_cast<size_t>(ci)]);
   }
   if (watch)
     result.surfaceIso = *surfaceIso;

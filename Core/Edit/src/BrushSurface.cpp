@@ -48,7 +48,9 @@ int lowBit(std::uint64_t m) { return __builtin_ctzll(m); }
 int highBit(std::uint64_t m) { return 63 - __builtin_clzll(m); }
 } // namespace
 
-// a byte per voxel (vectorises), then 8 bytes of 0/1 into 8 bits by one
+namespace
+{
+// Bit i = (row[i].sdf >= isoKey), n <= 64: a byte per voxel (vectorises), then 8 bytes of 0/1 into 8 bits by one
 // multiply (byte k lands on bit 56 + k)
 std::uint64_t sideBits(const Voxel* row, std::int64_t n, std::int32_t isoKey)
 {
@@ -64,15 +66,11 @@ std::uint64_t sideBits(const Voxel* row, std::int64_t n, std::int32_t isoKey)
   }
   return bits;
 }
+} // namespace
 
-void addMixedPending(const DictionaryVolume& volume, std::int32_t isoKey, std::int64_t id,
-  const std::vector<std::int64_t>& chunks, const std::vector<SurfacePending>& notes, VoxelBox& box)
+void addMixedPending(const DictionaryVolume& volume, std::int32_t isoKey, std::int64_t id, const SurfacePending& pending,
+  VoxelBox& box)
 {
-  auto noteOf = [&](std::int64_t s) -> const SurfacePending* {
-    const auto it = std::lower_bound(chunks.begin(), chunks.end(), s);
-    return it != chunks.end() && *it == s ? &notes[static_cast<std::size_t>(it - chunks.begin())] : nullptr;
-  };
-  const SurfacePending& pending = *noteOf(id);
   if (pending.rows.empty())
     return;
   const std::int64_t E = volume.chunkEdge();
@@ -131,7 +129,6 @@ void addMixedPending(const DictionaryVolume& volume, std::int32_t isoKey, std::i
   // the chunks f can reach: this one and its neighbours (f is within 2 of it)
   struct Near
   {
-    const SurfacePending* note = nullptr;
     const Voxel* data = nullptr;
     bool uniformAbove = false;
   };
@@ -144,8 +141,6 @@ void addMixedPending(const DictionaryVolume& volume, std::int32_t isoKey, std::i
     if (cx < 0 || cy < 0 || cz < 0 || cx >= counts[0] || cy >= counts[1] || cz >= counts[2])
       continue;
     const std::int64_t s = volume.chunkId(cx, cy, cz);
-    const SurfacePending* n = noteOf(s);
-    near[k].note = n && !n->known.empty() ? n : nullptr;
     near[k].data = volume.chunkData(s);
     near[k].uniformAbove = std::int32_t(volume.uniformValue(s).sdf) >= isoKey;
   }
@@ -156,17 +151,13 @@ void addMixedPending(const DictionaryVolume& volume, std::int32_t isoKey, std::i
         continue;
       std::uint64_t up = 0;
       const std::int64_t kyz = 3 * (y / E - c0[1]) + 9 * (z / E - c0[2]);
-      const std::size_t lr = static_cast<std::size_t>(y % E + E * (z % E));
       for (std::int64_t x = f.lo[0]; x <= f.hi[0];)
       {
         const std::int64_t end = std::min(f.hi[0], (x / E + 1) * E - 1);
         const Near& c = near[x / E - c0[0] + kyz];
         const int shift = static_cast<int>(x - f.lo[0]);
-        const std::int64_t m = end - x + 1, lx = x % E;
-        // the sides the brush noted when it computed the whole segment, else read
-        if (c.note && ((c.note->known[lr] >> lx) & ones(m)) == ones(m))
-          up |= ((c.note->sides[lr] >> lx) & ones(m)) << shift;
-        else if (c.data)
+        const std::int64_t m = end - x + 1;
+        if (c.data)
           up |= sideBits(c.data + volume.localIndex(x, y, z), m, isoKey) << shift;
         else if (c.uniformAbove)
           up |= ones(m) << shift;
