@@ -2,7 +2,6 @@
 #include "lvdif/EditLimits.h"
 
 #include "BrushKernel.h"
-#include "BrushSurface.h"
 #include "lvdif/Error.h"
 #include "lvdif/Memory.h"
 
@@ -446,7 +445,7 @@ DabPlan planDabs(DictionaryVolume& volume, const std::vector<Dab>& dabs, const B
 } // namespace detail::edit
 
 EditResult applyDabs(DictionaryVolume& volume, const std::vector<Dab>& dabs, const BrushSettings& settings,
-  ChunkWriteObserver* observer, const Interrupter* interrupter, std::optional<float> surfaceIso)
+  ChunkWriteObserver* observer, const Interrupter* interrupter)
 {
   if (readsNeighbours(settings.op))
     return detail::edit::applyGather(volume, planGroups(volume, dabs, settings, observer), observer, interrupter);
@@ -469,16 +468,6 @@ EditResult applyDabs(DictionaryVolume& volume, const std::vector<Dab>& dabs, con
   const std::int64_t nChunks = static_cast<std::int64_t>(chunks.size());
   std::vector<std::int64_t> changedPerChunk(chunks.size(), 0);
   std::vector<VoxelBox> changedBoxPerChunk(chunks.size());
-  // what can reach a mesh of surfaceIso (BrushSurface.cpp): voxels that changed
-  // side go in the box at once, the other changed voxels wait for the check of
-  // their neighbourhood after every write (bit rows up to SurfaceMaskMaxEdge;
-  // beyond that they count as they are)
-  const bool watch = surfaceIso.has_value();
-  const std::int32_t isoKey = watch ? volume.sdfDictionary().keysBelow(*surfaceIso) : 0;
-  const std::int64_t edge = volume.chunkEdge();
-  const bool bitRows = edge <= detail::edit::SurfaceMaskMaxEdge;
-  std::vector<VoxelBox> surfaceBoxPerChunk(watch ? chunks.size() : 0);
-  std::vector<detail::edit::SurfacePending> pendingPerChunk(watch && bitRows ? chunks.size() : 0);
   const double reach = ctx.reach;
   bool failed = false;
   Error firstError(ErrorCode::InvalidArgument, "");
@@ -538,14 +527,12 @@ EditResult applyDabs(DictionaryVolume& volume, const std::vector<Dab>& dabs, con
           changedPerChunk[static_cast<size_t>(ci)] = n;
           if (n > 0)
             changedBoxPerChunk[static_cast<size_t>(ci)] = cb;
-          if (n > 0 && watch)
-            surfaceBoxPerChunk[static_cast<size_t>(ci)] = cb; // sides not looked at: all of it counts
           continue;
         }
       }
       bool touched = false;
       std::int64_t changed = 0;
-      VoxelBox changedBox, surfaceBox;
+      VoxelBox changedBox;
       // Read through the chunk's own storage; after the first change (volume.set expands
       // the chunk and marks it dirty and its range stale) write straight into its data:
       // this thread owns the chunk for the whole call.
@@ -648,33 +635,30 @@ EditResult applyDabs(DictionaryVolume& volume, const std::vector<Dab>& dabs, con
                   if (add ? double(table[hi]) <= sMin : double(table[lo]) >= -sMin)
                     continue;
                 }
-                // [from, to]: where s <= level (an interval: s falls to xn, then rises)
-                auto spanBelow = [&](double level, std::int64_t& from, std::int64_t& to) {
-                  from = a1 + 1;
-                  to = a1;
-                  if (std::min(sAt(xn), sAt(std::min(a1, xn + 1))) > level)
-                    return;
-                  const std::int64_t turn = sAt(xn) <= level ? xn : xn + 1;
-                  std::int64_t lo = a0, hi = turn; // first x in [a0, turn] with s <= level
+                // [i0, i1]: where s <= -band (an interval: s falls to xn, then rises)
+                const double deep = -double(band);
+                std::int64_t i0 = a1 + 1, i1 = a1;
+                if (std::min(sAt(xn), sAt(std::min(a1, xn + 1))) <= deep)
+                {
+                  const std::int64_t turn = sAt(xn) <= deep ? xn : xn + 1;
+                  std::int64_t lo = a0, hi = turn; // first x in [a0, turn] with s <= deep
                   while (lo < hi)
                   {
                     const std::int64_t mid = lo + (hi - lo) / 2;
-                    if (sAt(mid) <= level) hi = mid;
+                    if (sAt(mid) <= deep) hi = mid;
                     else lo = mid + 1;
                   }
-                  from = lo;
+                  i0 = lo;
                   lo = turn;
-                  hi = a1; // last x in [turn, a1] with s <= level
+                  hi = a1; // last x in [turn, a1] with s <= deep
                   while (lo < hi)
                   {
                     const std::int64_t mid = lo + (hi - lo + 1) / 2;
-                    if (sAt(mid) <= level) lo = mid;
+                    if (sAt(mid) <= deep) lo = mid;
                     else hi = mid - 1;
                   }
-                  to = lo;
-                };
-                std::int64_t i0, i1;
-                spanBelow(-double(band), i0, i1);
+                  i1 = lo;
+                }
                 bool inBand = true; // every key of the span within the band (else: voxel by voxel)
                 for (std::int64_t x = i0; x <= i1 && inBand; ++x)
                   inBand = add ? rv[x].sdf >= belowBand : rv[x].sdf <= aboveBand;
@@ -760,14 +744,6 @@ EditResult applyDabs(DictionaryVolume& volume, const std::vector<Dab>& dabs, con
               }
               ++changed;
               changedBox.include(x, y, z);
-              if (watch)
-              {
-                const bool sideChanged = (std::int32_t(old.sdf) >= isoKey) != (std::int32_t(v.sdf) >= isoKey);
-                if (sideChanged || !bitRows)
-                  surfaceBox.include(x, y, z);
-                else
-                  pendingPerChunk[static_cast<size_t>(ci)].set(x - cb.lo[0], y - cb.lo[1], z - cb.lo[2], edge);
-              }
             }
           }
         }
@@ -777,8 +753,6 @@ EditResult applyDabs(DictionaryVolume& volume, const std::vector<Dab>& dabs, con
       }
       changedPerChunk[static_cast<size_t>(ci)] = changed;
       changedBoxPerChunk[static_cast<size_t>(ci)] = changedBox;
-      if (watch)
-        surfaceBoxPerChunk[static_cast<size_t>(ci)] = surfaceBox;
     }
     catch (const Error& e)
     {
@@ -795,24 +769,12 @@ EditResult applyDabs(DictionaryVolume& volume, const std::vector<Dab>& dabs, con
     throw firstError;
   }
   result.interrupted = stopped.load();
-  if (watch && bitRows)
-  {
-    // every write is done: the sides around the waiting voxels are final
-#pragma omp parallel for schedule(dynamic, 1) if (nChunks > 1)
-    for (std::int64_t ci = 0; ci < nChunks; ++ci)
-      detail::edit::addMixedPending(volume, isoKey, chunks[static_cast<size_t>(ci)],
-        pendingPerChunk[static_cast<size_t>(ci)], surfaceBoxPerChunk[static_cast<size_t>(ci)]);
-  }
-  if (watch)
-    result.surfaceIso = *surfaceIso;
   for (size_t i = 0; i < chunks.size(); ++i)
   {
     if (changedPerChunk[i] > 0)
     {
       result.changedChunks.push_back(chunks[i]);
       result.changedChunkBoxes.push_back(changedBoxPerChunk[i]);
-      if (watch)
-        result.surfaceChunkBoxes.push_back(surfaceBoxPerChunk[i]);
       result.changedVoxels += changedPerChunk[i];
       result.changedBox = result.changedBox.unite(changedBoxPerChunk[i]);
     }

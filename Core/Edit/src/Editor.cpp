@@ -16,13 +16,6 @@ void merge(EditResult& into, const EditResult& r)
   into.changedBox = into.changedBox.unite(r.changedBox);
   // per-chunk boxes survive only when both sides have them (or a side changed nothing)
   const bool boxes = (into.changedChunks.empty() || into.hasChunkBoxes()) && (r.changedChunks.empty() || r.hasChunkBoxes());
-  // and the surface boxes when both sides have them for the same iso value
-  const bool surface = (into.changedChunks.empty() || into.hasSurfaceBoxes()) &&
-    (r.changedChunks.empty() || r.hasSurfaceBoxes()) &&
-    (into.changedChunks.empty() || r.changedChunks.empty() || into.surfaceIso == r.surfaceIso) &&
-    !(into.changedChunks.empty() && r.changedChunks.empty());
-  const float iso = into.changedChunks.empty() ? r.surfaceIso : into.surfaceIso;
-  std::vector<VoxelBox> allSurface;
   std::vector<std::int64_t> all;
   std::vector<VoxelBox> allBoxes;
   std::size_t i = 0, j = 0;
@@ -31,14 +24,12 @@ void merge(EditResult& into, const EditResult& r)
   {
     const bool takeA = j == m || (i < n && into.changedChunks[i] <= r.changedChunks[j]);
     const bool takeB = i == n || (j < m && r.changedChunks[j] <= into.changedChunks[i]);
-    VoxelBox b, sb;
+    VoxelBox b;
     if (takeA)
     {
       all.push_back(into.changedChunks[i]);
       if (boxes && into.hasChunkBoxes())
         b = b.unite(into.changedChunkBoxes[i]);
-      if (surface)
-        sb = sb.unite(into.surfaceChunkBoxes[i]);
       ++i;
     }
     if (takeB)
@@ -47,19 +38,13 @@ void merge(EditResult& into, const EditResult& r)
         all.push_back(r.changedChunks[j]);
       if (boxes && r.hasChunkBoxes())
         b = b.unite(r.changedChunkBoxes[j]);
-      if (surface)
-        sb = sb.unite(r.surfaceChunkBoxes[j]);
       ++j;
     }
     if (boxes)
       allBoxes.push_back(b);
-    if (surface)
-      allSurface.push_back(sb);
   }
   into.changedChunks.swap(all);
   into.changedChunkBoxes.swap(allBoxes);
-  into.surfaceChunkBoxes.swap(allSurface);
-  into.surfaceIso = iso;
 }
 } // namespace
 
@@ -92,7 +77,7 @@ Editor::Editor(DictionaryVolume& volume, const UndoStack::Options& undo)
 EditResult Editor::applyNow(const std::vector<Dab>& dabs)
 {
   if (!this->Device)
-    return lvdif::applyDabs(this->Volume, dabs, this->brush, &this->Undo, this->interrupter, this->surfaceIso);
+    return lvdif::applyDabs(this->Volume, dabs, this->brush, &this->Undo, this->interrupter);
   if (!cuda::appliesOnDevice(this->brush))
   {
     // smooth, grab and pinch read neighbours, flatten and soft paint measure the host

@@ -29,17 +29,7 @@ std::vector<std::int64_t> meshChunksToRemesh(const ChunkedMarchingCubes& mc,
   std::set_difference(dirtyStorageChunks.begin(), dirtyStorageChunks.end(), edit.changedChunks.begin(),
     edit.changedChunks.end(), std::back_inserter(foreign));
   std::vector<std::int64_t> ids;
-  if (edit.hasSurfaceBoxes() && edit.surfaceIso == mc.options().isoValue)
-  {
-    // only the changes that can reach this mesher's surface (BrushSurface.cpp):
-    // the band rewritten away from it and interiors recoloured are left out
-    for (const VoxelBox& b : edit.surfaceChunkBoxes)
-    {
-      const std::vector<std::int64_t> more = mc.chunksAffectedBy(b);
-      ids.insert(ids.end(), more.begin(), more.end());
-    }
-  }
-  else if (edit.hasChunkBoxes())
+  if (edit.hasChunkBoxes())
   {
     // the union of each changed storage chunk's own box: a moving dab's crescent
     // meets far fewer mesh chunks than its bounding box does
@@ -124,8 +114,6 @@ void EditSession::build(std::shared_ptr<DictionaryVolume> volume, const BrushSet
   // the mesher runs on the GPU only when the volume does (it then reads the device volume)
   mo.device = this->Dev && this->Opts.meshing ? Device::Cuda : Device::Cpu;
   this->Mesher = std::make_unique<ChunkedMarchingCubes>(*this->Vol, mo);
-  // host edits say which changes can reach the mesher's surface
-  this->Ed->surfaceIso = mo.isoValue;
   if (this->Opts.meshing && !this->Dev)
     this->Worker = std::make_unique<MarchingCubesWorker>(*this->Mesher);
   this->Vol->takeDirtyChunks();

@@ -30,18 +30,17 @@
 //
 // usage: bench_stroke_latency_core [N=512] [--device cpu|cuda] [--radius 15,40]
 //        [--samples 100] [--settle 6] [--loop event|tick] [--chunk E] [--phases]
-//        [--rule surface,changed] [--write-stroke FILE --radius R]
+//        [--write-stroke FILE.jsonl] [--write-volume FILE.lvdv]
 //        (E: storage and mesh chunk edge, 32 below 1024^3, 64 from 1024^3 as the paper)
-// --rule: the CPU session's remesh rule, each in turn in this process: surface
-// (the session's: only changes that can reach the surface, EditResult::
-// surfaceChunkBoxes) or changed (every changed voxel's mesh chunks, the rule
-// before; for comparison). --write-stroke: writes the stroke's samples for the
-// radius as socket-protocol lines (lvdif-editor --benchmark-stroke) and exits.
+// --write-stroke / --write-volume: write the stroke's samples as socket-protocol
+// lines and the sphere volume, and exit: the same stroke on the same volume for
+// lvdif-editor --open FILE.lvdv --benchmark-stroke FILE.jsonl (docs/BENCHMARKS.md).
 #include "BenchCommon.h"
 
 #include "lvdif/AnalyticFill.h"
 #include "lvdif/EditSession.h"
 #include "lvdif/Error.h"
+#include "lvdif/VolumeFile.h"
 
 #include <cmath>
 #include <cstdio>
@@ -76,16 +75,8 @@ struct Config
   lvdif::Device device = lvdif::Device::Cpu;
   std::string loop = "event";
   bool phases = false;
-  std::vector<std::string> rules{ "surface" };
-  std::string writeStroke;
+  std::string writeStroke, writeVolume;
 };
-
-/// The session's remesh rule, or the one before it (--rule changed).
-void useRule(lvdif::EditSession& session, const std::string& rule)
-{
-  if (rule == "changed")
-    session.editor().surfaceIso.reset();
-}
 
 struct Request
 {
@@ -128,7 +119,7 @@ std::vector<lvdif::BrushSample> strokeSamples(int n, int count)
 /// does). Process CPU time per phase (all threads), and how many of the meshes
 /// came out identical to the chunk's previous mesh (what a finer remesh rule
 /// could still skip).
-std::vector<std::string> runPhases(const Config& cfg, double radius, const std::string& rule)
+std::vector<std::string> runPhases(const Config& cfg, double radius)
 {
   const int edge = cfg.chunk > 0 ? cfg.chunk : (cfg.n >= 1024 ? 64 : 32);
   auto volume = sphereVolume(cfg.n, edge);
@@ -141,7 +132,6 @@ std::vector<std::string> runPhases(const Config& cfg, double radius, const std::
   session.brush().color = lvdif::Rgba{ 230, 80, 50, 255 };
   session.stroke().kind = lvdif::BrushKind::Drill;
   session.stroke().radius = radius;
-  useRule(session, rule);
   const lvdif::ChunkedMarchingCubes& mc = session.mesher();
   std::map<std::int64_t, lvdif::ChunkMesh> previous; // the last mesh of every chunk the stroke meshed
   for (std::int64_t id = 0; id < mc.chunkCount(); ++id)
@@ -183,13 +173,13 @@ std::vector<std::string> runPhases(const Config& cfg, double radius, const std::
   }
   const double k = 1e3 / static_cast<double>(std::max<std::size_t>(1, samplesWithWork));
   using bench::fmt;
-  return { std::to_string(cfg.n) + "^3/" + std::to_string(edge), fmt(radius, 0), rule, std::to_string(samplesWithWork),
+  return { std::to_string(cfg.n) + "^3/" + std::to_string(edge), fmt(radius, 0), std::to_string(samplesWithWork),
     fmt(k * editCpu), fmt(k * meshCpu), fmt(static_cast<double>(chunks) / std::max<std::size_t>(1, samplesWithWork), 1),
     fmt(1e3 * meshCpu / static_cast<double>(std::max<std::size_t>(1, chunks)), 3),
     fmt(100.0 * static_cast<double>(unchanged) / static_cast<double>(std::max<std::size_t>(1, chunks)), 0) };
 }
 
-std::vector<std::string> runStroke(const Config& cfg, double radius, const std::string& rule)
+std::vector<std::string> runStroke(const Config& cfg, double radius)
 {
   const int n = cfg.n;
   const int edge = cfg.chunk > 0 ? cfg.chunk : (n >= 1024 ? 64 : 32);
@@ -208,7 +198,6 @@ std::vector<std::string> runStroke(const Config& cfg, double radius, const std::
   session.brush().color = lvdif::Rgba{ 230, 80, 50, 255 };
   session.stroke().kind = lvdif::BrushKind::Drill; // applied as it goes, as the editor does
   session.stroke().radius = radius;
-  useRule(session, rule);
   // Warm-up away from the stroke (the opposite side), a few frames of the same
   // size as the stroke's: first launches of the brush and of the marching cubes,
   // the buffers and the meshes' page-locked block at their working size. Undone.
@@ -371,7 +360,7 @@ std::vector<std::string> runStroke(const Config& cfg, double radius, const std::
   auto p50p95 = [](const std::vector<double>& v) {
     return fmt(percentile(v, 0.5)) + " (" + fmt(percentile(v, 0.95)) + ")";
   };
-  return { std::to_string(n) + "^3/" + std::to_string(edge), gpu ? "gpu" : "cpu", fmt(radius, 0), gpu ? "-" : rule,
+  return { std::to_string(n) + "^3/" + std::to_string(edge), gpu ? "gpu" : "cpu", fmt(radius, 0),
     gpu ? "frame" : cfg.loop + ", settle " + fmt(cfg.settleMs, 0), std::to_string(requests.size()),
     fmt(percentile(chunkCounts, 0.5), 0) + " (" + fmt(percentile(chunkCounts, 0.95), 0) + ")",
     fmt(percentile(fromSample, 0.5)), fmt(percentile(fromSample, 0.95)), fmt(percentile(fromSample, 1.0)),
@@ -404,20 +393,10 @@ int main(int argc, char* argv[])
         cfg.chunk = std::atoi(argv[++i]);
       else if (!std::strcmp(argv[i], "--phases"))
         cfg.phases = true;
-      else if (!std::strcmp(argv[i], "--rule") && more)
-      {
-        cfg.rules.clear();
-        std::stringstream s(argv[++i]);
-        std::string item;
-        while (std::getline(s, item, ','))
-        {
-          if (item != "surface" && item != "changed")
-            throw lvdif::Error(lvdif::ErrorCode::InvalidArgument, "--rule takes surface and/or changed, not " + item);
-          cfg.rules.push_back(item);
-        }
-      }
       else if (!std::strcmp(argv[i], "--write-stroke") && more)
         cfg.writeStroke = argv[++i];
+      else if (!std::strcmp(argv[i], "--write-volume") && more)
+        cfg.writeVolume = argv[++i];
       else if (!std::strcmp(argv[i], "--loop") && more)
         cfg.loop = argv[++i];
       else if (!std::strcmp(argv[i], "--device") && more)
@@ -437,21 +416,22 @@ int main(int argc, char* argv[])
       radiiOk = radiiOk && r > 0;
     if (cfg.n < 64 || cfg.samples < 2 || !radiiOk || (cfg.loop != "event" && cfg.loop != "tick"))
       throw lvdif::Error(lvdif::ErrorCode::InvalidArgument, "need N >= 64, samples >= 2, radii > 0, loop event|tick");
+    if (!cfg.writeVolume.empty())
+      lvdif::saveVolume(*sphereVolume(cfg.n, cfg.chunk > 0 ? cfg.chunk : (cfg.n >= 1024 ? 64 : 32)), cfg.writeVolume);
     if (!cfg.writeStroke.empty())
     {
-      // the stroke for lvdif-editor --benchmark-stroke on --new N --fill sphere (the same sphere)
       std::FILE* f = std::fopen(cfg.writeStroke.c_str(), "w");
       if (!f)
         throw lvdif::Error(lvdif::ErrorCode::IoFailure, "cannot write " + cfg.writeStroke);
-      std::fprintf(f, "# bench_stroke_latency_core's stroke for lvdif-editor --new %d --fill sphere: %d samples at 50 Hz\n",
+      std::fprintf(f, "# bench_stroke_latency_core's stroke on its %d^3 sphere (--write-volume): %d samples at 50 Hz\n",
         cfg.n, cfg.samples);
       for (const lvdif::BrushSample& b : strokeSamples(cfg.n, cfg.samples))
         std::fprintf(f, "{\"position\":[%.6f,%.6f,%.6f],\"time\":%.4f}\n", b.position[0], b.position[1], b.position[2], b.time);
-      const bool ok = std::fclose(f) == 0;
-      if (!ok)
+      if (std::fclose(f) != 0)
         throw lvdif::Error(lvdif::ErrorCode::IoFailure, "cannot write " + cfg.writeStroke);
-      return 0;
     }
+    if (!cfg.writeStroke.empty() || !cfg.writeVolume.empty())
+      return 0;
     if (cfg.device == lvdif::Device::Cuda && lvdif::resolveDevice(cfg.device) != lvdif::Device::Cuda)
       throw lvdif::Error(lvdif::ErrorCode::Unsupported, "--device cuda: no usable CUDA device in this build/machine");
     std::cout << "bench_stroke_latency_core: " << bench::machineDescription() << "\n"
@@ -461,23 +441,17 @@ int main(int argc, char* argv[])
     if (cfg.phases)
     {
       for (double r : cfg.radii)
-        for (const std::string& rule : cfg.rules)
-          rows.push_back(runPhases(cfg, r, rule));
+        rows.push_back(runPhases(cfg, r));
       std::cout << "Phases (--phases): the stroke's samples one after the other without the clock, CPU session; "
                    "process CPU ms (all threads) per sample that changed voxels.\n";
-      bench::printTable({ "volume/chunk", "radius", "rule", "samples", "edit CPU ms/sample", "mesh CPU ms/sample",
+      bench::printTable({ "volume/chunk", "radius", "samples", "edit CPU ms/sample", "mesh CPU ms/sample",
                           "mesh chunks/sample", "mesh CPU ms/chunk", "% of meshes unchanged" },
         rows);
       return 0;
     }
     for (double r : cfg.radii)
-      for (const std::string& rule : cfg.rules)
-      {
-        rows.push_back(runStroke(cfg, r, rule));
-        if (cfg.device == lvdif::Device::Cuda)
-          break; // the device session has no host remesh rule to choose
-      }
-    bench::printTable({ "volume/chunk", "session", "radius", "rule", "loop", "requests", "mesh chunks/request p50 (p95)",
+      rows.push_back(runStroke(cfg, r));
+    bench::printTable({ "volume/chunk", "session", "radius", "loop", "requests", "mesh chunks/request p50 (p95)",
                         "latency p50 ms", "latency p95 ms", "latency max ms", "from edit p50 (p95) ms",
                         "frame p50 (p95) ms", "fps (1/mean frame)", "loop it/s", "edit p50 (p95) ms",
                         "collect p50 (p95) ms", "CPU s (stroke)", "CPU ms/request" },

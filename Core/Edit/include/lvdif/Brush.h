@@ -89,7 +89,6 @@
 #include <array>
 #include <cmath>
 #include <cstdint>
-#include <optional>
 #include <vector>
 
 // The primitive functions below also compile as CUDA device code (Brush.cu).
@@ -311,24 +310,11 @@ struct EditResult
   /// re-mesh (a stroke's crescent of changed voxels meets far fewer mesh chunks
   /// than its bounding box). Empty when not known (then changedBox stands).
   std::vector<VoxelBox> changedChunkBoxes;
-  /// Asked for with applyDabs(..., surfaceIso): per changed chunk (parallel to
-  /// changedChunks), the box of its changed voxels that can change a marching
-  /// cubes mesh of the iso value `surfaceIso` (each inside that chunk's
-  /// changedChunkBoxes entry; empty where none can). A changed voxel counts when
-  /// its side of the iso value changed, or when its 3^3 box and the 6 voxels 2
-  /// away along an axis (in the volume) hold both sides after the edit; a chunk
-  /// written whole counts whole. Why that suffices (ChunkedMarchingCubes reads a
-  /// voxel's value or colour only there): Core/Edit/src/BrushSurface.cpp.
-  /// Empty when not asked for or not known (the CUDA brushes, the gather brushes).
-  std::vector<VoxelBox> surfaceChunkBoxes;
-  float surfaceIso = 0;
   /// True when an interrupter stopped the edit part way: what was written is
   /// reported above (an undo step that observed the writes restores it).
   bool interrupted = false;
   /// True when changedChunkBoxes holds one box per changed chunk.
   bool hasChunkBoxes() const { return !this->changedChunks.empty() && this->changedChunkBoxes.size() == this->changedChunks.size(); }
-  /// True when surfaceChunkBoxes holds one box per changed chunk.
-  bool hasSurfaceBoxes() const { return !this->changedChunks.empty() && this->surfaceChunkBoxes.size() == this->changedChunks.size(); }
 };
 
 /// Applies the dabs in order (see the header comment). Adds the brush colour to the
@@ -337,11 +323,8 @@ struct EditResult
 /// `interrupter`, when given, is checked between chunks (and between groups of the
 /// brushes that read neighbours): once it reports true the rest is left as it was
 /// and the result says `interrupted` (no exception: the caller decides).
-/// `surfaceIso`, when given, asks for EditResult::surfaceChunkBoxes (CPU row and
-/// per-voxel brushes; the brushes that read neighbours leave them empty).
 EditResult applyDabs(DictionaryVolume& volume, const std::vector<Dab>& dabs, const BrushSettings& settings,
-  ChunkWriteObserver* observer = nullptr, const Interrupter* interrupter = nullptr,
-  std::optional<float> surfaceIso = std::nullopt);
+  ChunkWriteObserver* observer = nullptr, const Interrupter* interrupter = nullptr);
 
 /// The dabs with their mirror images (`symmetry`), in groups of 2^(mirrored axes):
 /// dab i's group is [i * g, (i + 1) * g), its first member the dab itself.

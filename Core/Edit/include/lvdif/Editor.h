@@ -22,7 +22,6 @@
 #include "lvdif/UndoStack.h"
 
 #include <memory>
-#include <optional>
 
 namespace lvdif
 {
@@ -60,9 +59,6 @@ public:
   /// inside long edits, strokes and playback
   /// (Error Cancelled; what was applied stays, as one undo step).
   Interrupter* interrupter = nullptr;
-  /// When set, edits on the host also report which changes can reach a mesh of this
-  /// iso value (EditResult::surfaceChunkBoxes); the edit session sets its mesher's.
-  std::optional<float> surfaceIso;
   /// Dabs applied by this editor so far (counts against limits.maxTotalDabs).
   std::uint64_t dabsApplied() const { return this->DabsApplied; }
 

@@ -68,11 +68,9 @@ struct EditSessionOptions
 
 /// The remesh rule: the mesh chunks whose meshes can change after `edit`
 /// (an Editor call's lastWrite()) when these storage chunks are dirty (changed
-/// since the last request): chunksAffectedBy of each changed storage chunk's box of
-/// the changes that can reach the surface (edit.surfaceChunkBoxes, when the edit
-/// reported them for mc's iso value: changed side, or both sides within 2 voxels;
-/// see Core/Edit/src/BrushSurface.cpp for why that suffices), else of its changed
-/// voxels (edit.changedChunkBoxes; edit.changedBox where those are not known), and the storage-chunk rule (chunksAffectedByStorageChunks) for
+/// since the last request): chunksAffectedBy of each changed storage chunk's own box
+/// (edit.changedChunkBoxes; edit.changedBox where those are not known), exact for what the
+/// edit wrote, and the storage-chunk rule (chunksAffectedByStorageChunks) for
 /// dirty storage chunks the edit does not name (undo, redo, a script's canvas).
 /// Both inputs increasing; the result sorted and unique.
 std::vector<std::int64_t> meshChunksToRemesh(const ChunkedMarchingCubes& mc,
