@@ -12,7 +12,7 @@ OUT=${OUT:-out-gpu}
 mkdir -p "$OUT"
 T0=$(date +%s)
 { date -u; nvidia-smi -L; nproc; lscpu | grep "Model name"; uptime; } > "$OUT/machine.txt" 2>&1
-head -1 "$OUT/machine.txt"; grep "Model name" "$OUT/machine.txt"
+head -2 "$OUT/machine.txt"; grep "Model name" "$OUT/machine.txt"
 J=$(nproc)
 cmake -S . -B b -DLVDIF_CORE_ONLY=ON -DLVDIF_CUDA=ON -DCMAKE_CUDA_ARCHITECTURES=90 -DCMAKE_BUILD_TYPE=Release \
   > "$OUT/build.log" 2>&1 || { tail -40 "$OUT/build.log"; exit 1; }
@@ -39,4 +39,5 @@ done
 uptime >> "$L"
 echo "done after $(( $(date +%s) - T0 )) s"
 # the rows: latency p50/p95/max are columns 7-9 of the stroke rows
+grep -E "load average" "$L"   # before and after the runs
 grep -E "^\| [0-9]|^warning|rc=[1-9]" "$L"
