@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <atomic>
+#include <cstring>
 #include <limits>
 #include <string>
 
@@ -121,6 +122,7 @@ ChunkedMarchingCubes::ChunkedMarchingCubes(const DictionaryVolume& volume, const
   P->Origin = volume.options().origin;
   P->Spacing = volume.options().spacing;
   P->init(volume.dims(), options);
+  P->IsoKey = volume.sdfDictionary().keysBelow(P->Options.isoValue);
 }
 
 ChunkedMarchingCubes::ChunkedMarchingCubes(const FloatGridView& grid, const Rgba* colors,
@@ -189,15 +191,19 @@ void ChunkedMarchingCubes::Impl::gatherInto(std::int64_t id, ChunkInput& input) 
     in->size[a] = hi[a] - in->lo[a] + 1;
   }
   const std::size_t n = static_cast<std::size_t>(in->size[0] * in->size[1] * in->size[2]);
+  // On the CPU a dictionary volume's voxels are copied as they are (a memcpy per
+  // row) and decoded only where the mesher reads them: colours through a
+  // palette copy; the GPU path wants values (and colours) decoded.
+  const bool raw = P->Volume && !P->Cuda;
   // resize keeps the capacity of a reused input (no page faults, no zeroing)
-  in->values.resize(n);
-  // on the CPU a dictionary volume's colours travel as keys + a palette copy
-  // (cheaper than decoding every voxel's colour); the GPU path wants them decoded
-  const bool keyed = P->Volume && !P->Cuda && P->wantsColors();
-  const bool colors = P->wantsColors() && !keyed, keys = P->wantsCornerColors() || keyed;
+  in->values.resize(raw ? 0 : n);
+  in->voxels.resize(raw ? n : 0);
+  in->sdfTable = raw ? P->Volume->sdfDictionary().table() : nullptr;
+  in->isoKey = raw ? P->IsoKey : 0;
+  const bool colors = P->wantsColors() && !raw, keys = P->wantsCornerColors() && !raw;
   in->colors.resize(colors ? n : 0);
   in->colorKeys.resize(keys ? n : 0);
-  if (keyed)
+  if (raw && P->wantsColors())
     in->palette = P->Volume->colors().colors();
   else
     in->palette.clear();
@@ -273,7 +279,18 @@ void ChunkedMarchingCubes::Impl::gatherInto(std::int64_t id, ChunkInput& input) 
           const std::int64_t s = v.chunkOf(x, y, z);
           const Voxel* d = v.chunkData(s);
           const float qv = quiet[qrow + static_cast<std::size_t>(x / E - q0[0])];
-          if (qv == qv)
+          if (raw)
+          {
+            const std::int64_t m = end - x + 1;
+            Voxel* out = in->voxels.data() + o;
+            if (qv == qv)
+              std::fill_n(out, m, Voxel{ v.chunkRange(s).first, 0 }); // only its side is read
+            else if (d)
+              std::memcpy(out, d + v.localIndex(x, y, z), static_cast<std::size_t>(m) * sizeof(Voxel));
+            else
+              std::fill_n(out, m, v.uniformValue(s));
+          }
+          else if (qv == qv)
           {
             std::fill(in->values.begin() + o, in->values.begin() + o + (end - x + 1), qv);
           }

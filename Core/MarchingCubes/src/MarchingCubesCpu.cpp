@@ -16,20 +16,45 @@ namespace lvdif
 namespace
 {
 
+/// Float values (a float grid, or a decoded copy) and decoded colours.
+struct FloatSource
+{
+  const float* values;
+  const Rgba* colors; // or null
+  const ColorKey* keys; // corner colour keys, or null
+  float iso;
+  bool hasColors() const { return colors != nullptr; }
+  float value(std::int64_t l) const { return values[l]; }
+  bool above(std::int64_t l) const { return values[l] >= iso; }
+  Rgba color(std::int64_t l) const { return colors[l]; }
+  ColorKey key(std::int64_t l) const { return keys[l]; }
+};
+
+/// A dictionary volume's voxels as they are (ChunkInput::voxels): the side by
+/// key, the value and colour decoded only where read (the same numbers).
+struct VoxelSource
+{
+  const Voxel* voxels;
+  const float* table;
+  const Rgba* palette; // or null (no colours)
+  std::int32_t isoKey;
+  bool hasColors() const { return palette != nullptr; }
+  float value(std::int64_t l) const { return table[voxels[l].sdf]; }
+  bool above(std::int64_t l) const { return std::int32_t(voxels[l].sdf) >= isoKey; }
+  Rgba color(std::int64_t l) const { return palette[voxels[l].color]; }
+  ColorKey key(std::int64_t l) const { return voxels[l].color; }
+};
+
+template <typename Source>
 struct Sweep
 {
   const ChunkedMarchingCubes::Impl& impl;
   const ChunkedMarchingCubes::ChunkInput& in;
   ChunkMesh& out;
   bool normals;
-  const float* values;
-  const Rgba* colors;      // decoded colours, or null
-  const ColorKey* keys;    // with palette: colour = palette[key] (dictionary volume on the CPU)
-  const Rgba* palette;
+  Source src;
 
-  Rgba colorAt(std::int64_t l) const { return colors ? colors[l] : palette[keys[l]]; }
-
-  float value(std::int64_t x, std::int64_t y, std::int64_t z) const { return values[in.local(x, y, z)]; }
+  float value(std::int64_t x, std::int64_t y, std::int64_t z) const { return src.value(in.local(x, y, z)); }
 
   void gradientAt(std::int64_t x, std::int64_t y, std::int64_t z, float g[3]) const
   {
@@ -78,9 +103,9 @@ struct Sweep
       detail::mc::normalize(nrm[0], nrm[1], nrm[2]);
       out.normals.push_back(nrm);
     }
-    if (colors || palette)
+    if (src.hasColors())
     {
-      const Rgba c0 = colorAt(in.local(x, y, z)), c1 = colorAt(in.local(q[0], q[1], q[2]));
+      const Rgba c0 = src.color(in.local(x, y, z)), c1 = src.color(in.local(q[0], q[1], q[2]));
       out.colors.push_back(Rgba{ detail::mc::lerpChannel(c0.r, c1.r, t), detail::mc::lerpChannel(c0.g, c1.g, t),
         detail::mc::lerpChannel(c0.b, c1.b, t), detail::mc::lerpChannel(c0.a, c1.a, t) });
     }
@@ -116,19 +141,19 @@ void forDiffering(const std::uint8_t* a, const std::uint8_t* b, RowTrim ta, RowT
 }
 } // namespace
 
-ChunkMesh meshChunkCpu(const ChunkedMarchingCubes::Impl& impl, const ChunkedMarchingCubes::ChunkInput& in)
+namespace
+{
+template <typename Source>
+ChunkMesh meshWith(const ChunkedMarchingCubes::Impl& impl, const ChunkedMarchingCubes::ChunkInput& in, const Source& source,
+  bool keys)
 {
   const MarchingCubesTables& T = *impl.Tables;
   ChunkMesh out;
   out.chunkId = in.chunkId;
   out.chunkCoord = impl.globalCoord(in.chunkId);
   out.cells = in.cells;
-  const bool keyed = !in.palette.empty() && !in.colorKeys.empty();
-  Sweep s{ impl, in, out, impl.Options.computeNormals, in.valueData(), in.colorData(),
-    keyed ? in.colorKeys.data() : nullptr, keyed ? in.palette.data() : nullptr };
-  const bool keys = impl.wantsCornerColors() && !in.colorKeys.empty();
+  Sweep<Source> s{ impl, in, out, impl.Options.computeNormals, source };
   const bool cells = impl.wantsTriangleCells();
-  const float iso = impl.Options.isoValue;
   const VoxelBox& c = in.cells;
   const std::int64_t ex = c.hi[0] - c.lo[0] + 1, ey = c.hi[1] - c.lo[1] + 1, ez = c.hi[2] - c.lo[2] + 1;
   const std::int64_t px = ex + 1, py = ey + 1, plane = px * py;
@@ -147,12 +172,12 @@ ChunkMesh meshChunkCpu(const ChunkedMarchingCubes::Impl& impl, const ChunkedMarc
     bool any = false, all = true;
     for (std::int64_t j = 0; j < py; ++j)
     {
-      const float* row = s.values + in.local(c.lo[0], c.lo[1] + j, z);
+      const std::int64_t row = in.local(c.lo[0], c.lo[1] + j, z);
       std::uint8_t* a = A + px * j;
       std::uint8_t rowOr = 0, rowAnd = 1;
       for (std::int64_t i = 0; i < px; ++i)
       {
-        const std::uint8_t f = row[i] >= iso;
+        const std::uint8_t f = source.above(row + i);
         a[i] = f;
         rowOr |= f;
         rowAnd &= f;
@@ -233,7 +258,7 @@ ChunkMesh meshChunkCpu(const ChunkedMarchingCubes::Impl& impl, const ChunkedMarc
             {
               std::array<ColorKey, 8> k;
               for (int q = 0; q < 8; ++q)
-                k[q] = in.colorKeys[in.local(x + (q & 1), y + ((q >> 1) & 1), zc + ((q >> 2) & 1))];
+                k[q] = source.key(in.local(x + (q & 1), y + ((q >> 1) & 1), zc + ((q >> 2) & 1)));
               out.cornerColors.insert(out.cornerColors.end(), static_cast<std::size_t>(nt), k);
             }
           }
@@ -254,6 +279,19 @@ ChunkMesh meshChunkCpu(const ChunkedMarchingCubes::Impl& impl, const ChunkedMarc
     }
   }
   return out;
+}
+
+} // namespace
+
+ChunkMesh meshChunkCpu(const ChunkedMarchingCubes::Impl& impl, const ChunkedMarchingCubes::ChunkInput& in)
+{
+  if (!in.voxels.empty())
+    return meshWith(impl, in,
+      VoxelSource{ in.voxels.data(), in.sdfTable, in.palette.empty() ? nullptr : in.palette.data(), in.isoKey },
+      impl.wantsCornerColors());
+  return meshWith(impl, in,
+    FloatSource{ in.valueData(), in.colorData(), in.colorKeys.empty() ? nullptr : in.colorKeys.data(), impl.Options.isoValue },
+    impl.wantsCornerColors() && !in.colorKeys.empty());
 }
 
 } // namespace lvdif

@@ -23,6 +23,7 @@ public:
   /// Options.triangleTable checked and completed, or lvdif's own table.
   std::shared_ptr<const MarchingCubesTables> Tables;
   const DictionaryVolume* Volume = nullptr;
+  std::int32_t IsoKey = 0; // Volume: value >= iso exactly when key >= IsoKey
   FloatGridView Grid;
   const Rgba* GridColors = nullptr;
   Index3 Dims{ 0, 0, 0 }; // points

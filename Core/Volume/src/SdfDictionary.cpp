@@ -81,4 +81,18 @@ const SdfDictionary& defaultSdfDictionary()
   return dictionary;
 }
 
+std::int32_t SdfDictionary::keysBelow(float value) const
+{
+  std::int32_t lo = 0, hi = KeyCount; // the first key whose value is >= value
+  while (lo < hi)
+  {
+    const std::int32_t mid = lo + (hi - lo) / 2;
+    if (this->Table[static_cast<std::size_t>(mid)] >= value)
+      hi = mid;
+    else
+      lo = mid + 1;
+  }
+  return lo;
+}
+
 } // namespace lvdif

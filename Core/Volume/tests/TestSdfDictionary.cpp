@@ -6,6 +6,7 @@
 #include <cmath>
 #include <limits>
 #include <random>
+#include <vector>
 
 using namespace lvdif;
 
@@ -35,6 +36,26 @@ TEST(SdfDictionary, EveryKeyRoundTripsAndOrderFollowsValues)
       ASSERT_LT(d.decode(static_cast<SdfKey>(k - 1)), d.decode(key)) << "key " << k;
     }
   }
+}
+
+TEST(SdfDictionary, KeysBelowSplitsTheKeysAtTheValue)
+{
+  // against counting every key: key values, values between keys, the ends, beyond them
+  const SdfDictionary& d = defaultSdfDictionary();
+  std::vector<float> values{ 0.0f, -0.0f, 0.0005f, -0.0005f, 4.05f, -4.05f, 2.5f, -1234.56f, d.minValue(), d.maxValue(),
+    -1e9f, 1e9f, std::nextafter(d.maxValue(), 1e9f) };
+  std::mt19937 rng(3);
+  std::uniform_int_distribution<int> key(0, SdfDictionary::KeyCount - 1);
+  for (int i = 0; i < 20; ++i)
+    values.push_back(d.decode(static_cast<SdfKey>(key(rng))));
+  for (float v : values)
+  {
+    std::int32_t below = 0;
+    for (int k = 0; k < SdfDictionary::KeyCount; ++k)
+      below += d.decode(static_cast<SdfKey>(k)) < v ? 1 : 0;
+    EXPECT_EQ(d.keysBelow(v), below) << "value " << v;
+  }
+  EXPECT_EQ(d.keysBelow(std::numeric_limits<float>::quiet_NaN()), SdfDictionary::KeyCount);
 }
 
 TEST(SdfDictionary, DenseSweepWithinDocumentedBound)

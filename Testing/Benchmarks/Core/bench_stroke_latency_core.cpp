@@ -30,12 +30,17 @@
 //
 // usage: bench_stroke_latency_core [N=512] [--device cpu|cuda] [--radius 15,40]
 //        [--samples 100] [--settle 6] [--loop event|tick] [--chunk E] [--phases]
+//        [--write-stroke FILE.jsonl] [--write-volume FILE.lvdv]
 //        (E: storage and mesh chunk edge, 32 below 1024^3, 64 from 1024^3 as the paper)
+// --write-stroke / --write-volume: write the stroke's samples as socket-protocol
+// lines and the sphere volume, and exit: the same stroke on the same volume for
+// lvdif-editor --open FILE.lvdv --benchmark-stroke FILE.jsonl (docs/BENCHMARKS.md).
 #include "BenchCommon.h"
 
 #include "lvdif/AnalyticFill.h"
 #include "lvdif/EditSession.h"
 #include "lvdif/Error.h"
+#include "lvdif/VolumeFile.h"
 
 #include <cmath>
 #include <cstdio>
@@ -70,6 +75,7 @@ struct Config
   lvdif::Device device = lvdif::Device::Cpu;
   std::string loop = "event";
   bool phases = false;
+  std::string writeStroke, writeVolume;
 };
 
 struct Request
@@ -387,6 +393,10 @@ int main(int argc, char* argv[])
         cfg.chunk = std::atoi(argv[++i]);
       else if (!std::strcmp(argv[i], "--phases"))
         cfg.phases = true;
+      else if (!std::strcmp(argv[i], "--write-stroke") && more)
+        cfg.writeStroke = argv[++i];
+      else if (!std::strcmp(argv[i], "--write-volume") && more)
+        cfg.writeVolume = argv[++i];
       else if (!std::strcmp(argv[i], "--loop") && more)
         cfg.loop = argv[++i];
       else if (!std::strcmp(argv[i], "--device") && more)
@@ -406,6 +416,22 @@ int main(int argc, char* argv[])
       radiiOk = radiiOk && r > 0;
     if (cfg.n < 64 || cfg.samples < 2 || !radiiOk || (cfg.loop != "event" && cfg.loop != "tick"))
       throw lvdif::Error(lvdif::ErrorCode::InvalidArgument, "need N >= 64, samples >= 2, radii > 0, loop event|tick");
+    if (!cfg.writeVolume.empty())
+      lvdif::saveVolume(*sphereVolume(cfg.n, cfg.chunk > 0 ? cfg.chunk : (cfg.n >= 1024 ? 64 : 32)), cfg.writeVolume);
+    if (!cfg.writeStroke.empty())
+    {
+      std::FILE* f = std::fopen(cfg.writeStroke.c_str(), "w");
+      if (!f)
+        throw lvdif::Error(lvdif::ErrorCode::IoFailure, "cannot write " + cfg.writeStroke);
+      std::fprintf(f, "# bench_stroke_latency_core's stroke on its %d^3 sphere (--write-volume): %d samples at 50 Hz\n",
+        cfg.n, cfg.samples);
+      for (const lvdif::BrushSample& b : strokeSamples(cfg.n, cfg.samples))
+        std::fprintf(f, "{\"position\":[%.6f,%.6f,%.6f],\"time\":%.4f}\n", b.position[0], b.position[1], b.position[2], b.time);
+      if (std::fclose(f) != 0)
+        throw lvdif::Error(lvdif::ErrorCode::IoFailure, "cannot write " + cfg.writeStroke);
+    }
+    if (!cfg.writeStroke.empty() || !cfg.writeVolume.empty())
+      return 0;
     if (cfg.device == lvdif::Device::Cuda && lvdif::resolveDevice(cfg.device) != lvdif::Device::Cuda)
       throw lvdif::Error(lvdif::ErrorCode::Unsupported, "--device cuda: no usable CUDA device in this build/machine");
     std::cout << "bench_stroke_latency_core: " << bench::machineDescription() << "\n"

@@ -226,12 +226,18 @@ public:
     Index3 size{ 0, 0, 0 }; // points per axis of the copied box
     std::vector<float> values;
     std::vector<Rgba> colors;         // empty without colours, or when given as keys + palette
-    /// Dictionary volumes: colour keys (for corner colours, and on the CPU for
-    /// the colours too: colour = palette[key], not decoded per voxel).
+    /// Dictionary volumes for a GPU mesher: colour keys (for corner colours).
     std::vector<ColorKey> colorKeys;
-    std::vector<Rgba> palette;        // copy of the colour dictionary when colours come as keys
+    std::vector<Rgba> palette;        // CPU: copy of the colour dictionary (colour = palette[voxel colour key])
+    /// Dictionary volumes on the CPU: the voxels themselves (distance key, colour
+    /// key), copied row by row; the mesher decodes only what it reads (sides by
+    /// key, values through sdfTable, colours through the palette). values,
+    /// colours and colorKeys are then empty.
+    std::vector<Voxel> voxels;
+    const float* sdfTable = nullptr; // the volume's SDF dictionary (immutable)
+    std::int32_t isoKey = 0;         // value >= iso exactly when key >= isoKey
     /// Points of storage chunks whose neighbourhood lies on one side of iso hold
-    /// one placeholder value of that side and stale colours (never read by the mesher).
+    /// one placeholder value (key) of that side and stale colours (never read by the mesher).
     /// Scratch of gather() (the storage chunks' sides of iso), kept for reuse.
     std::vector<std::int8_t> sideScratch;
     std::vector<float> quietScratch;

@@ -103,6 +103,9 @@ public:
 
   float decode(SdfKey key) const { return this->Table[key]; }
   const float* table() const { return this->Table.data(); }
+  /// How many keys decode below `value`: a key's value is >= `value` exactly when
+  /// key >= keysBelow(value) (KeyCount when none is; NaN: KeyCount).
+  std::int32_t keysBelow(float value) const;
 
   /// The key that decodes to exactly 0.
   SdfKey zeroKey() const { return static_cast<SdfKey>(this->Consts.zeroKey); }
