@@ -14,10 +14,10 @@ T0=$(date +%s)
 { date -u; nvidia-smi -L; nproc; lscpu | grep "Model name"; uptime; } > "$OUT/machine.txt" 2>&1
 head -2 "$OUT/machine.txt"; grep "Model name" "$OUT/machine.txt"
 J=$(nproc)
-cmake -S . -B b -DLVDIF_CORE_ONLY=ON -DLVDIF_CUDA=ON -DCMAKE_CUDA_ARCHITECTURES=90 -DCMAKE_BUILD_TYPE=Release \
+cmake -S . -B b -DLVDIF_CORE_ONLY=ON -DLVDIF_CUDA=ON -DCMAKE_CUDA_ARCHITECTURES=90 -DCMAKE_BUILD_TYPE=Release -DLVDIF_BUILD_BENCHMARKS=ON \
   > "$OUT/build.log" 2>&1 || { tail -40 "$OUT/build.log"; exit 1; }
 cmake --build b -j"$J" --target LVDIFSessionTests LVDIFEditTests LVDIFMarchingCubesTests bench_stroke_latency_core \
-  >> "$OUT/build.log" 2>&1 || { grep -B2 -A10 -i "error" "$OUT/build.log" | head -80; exit 1; }
+  >> "$OUT/build.log" 2>&1 || { grep -B2 -A10 -iE "error|Stop" "$OUT/build.log" | head -80; tail -5 "$OUT/build.log"; exit 1; }
 : > "$OUT/tests.log"
 for t in b/Core/Session/LVDIFSessionTests b/Core/Edit/LVDIFEditTests b/Core/MarchingCubes/LVDIFMarchingCubesTests; do
   timeout 150 "$t" >> "$OUT/tests.log" 2>&1
