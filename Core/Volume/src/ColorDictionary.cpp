@@ -12,15 +12,48 @@ ColorDictionary::ColorDictionary(Rgba defaultColor, FullPolicy policy)
   : Policy(policy)
 {
   this->Colors.push_back(defaultColor);
-  this->Index.emplace(defaultColor.packed(), 0);
+  this->reindex();
+}
+
+std::size_t ColorDictionary::probe(std::uint32_t packed) const
+{
+  const std::size_t mask = this->Slots.size() - 1;
+  std::uint32_t h = packed * 0x9E3779B1u; // Fibonacci hashing, high bits folded down
+  h ^= h >> 16;
+  std::size_t i = h & mask;
+  while (this->Slots[i] != 0 && this->Colors[this->Slots[i] - 1u].packed() != packed)
+  {
+    i = (i + 1) & mask;
+  }
+  return i;
+}
+
+std::size_t ColorDictionary::reindex()
+{
+  std::size_t n = 16;
+  while (n < 2 * this->Colors.size())
+  {
+    n *= 2;
+  }
+  this->Slots.assign(n, 0);
+  for (std::size_t k = 0; k < this->Colors.size(); ++k)
+  {
+    const std::size_t i = this->probe(this->Colors[k].packed());
+    if (this->Slots[i] != 0)
+    {
+      return k;
+    }
+    this->Slots[i] = static_cast<std::uint16_t>(k + 1); // k < Capacity, so k + 1 fits
+  }
+  return this->Colors.size();
 }
 
 ColorKey ColorDictionary::add(Rgba color)
 {
-  auto it = this->Index.find(color.packed());
-  if (it != this->Index.end())
+  const std::size_t slot = this->probe(color.packed());
+  if (this->Slots[slot] != 0)
   {
-    return it->second;
+    return static_cast<ColorKey>(this->Slots[slot] - 1u);
   }
   if (this->full())
   {
@@ -36,18 +69,25 @@ ColorKey ColorDictionary::add(Rgba color)
   }
   const ColorKey key = static_cast<ColorKey>(this->Colors.size());
   this->Colors.push_back(color);
-  this->Index.emplace(color.packed(), key);
+  if (2 * this->Colors.size() > this->Slots.size())
+  {
+    this->reindex();
+  }
+  else
+  {
+    this->Slots[slot] = static_cast<std::uint16_t>(key + 1u);
+  }
   return key;
 }
 
 bool ColorDictionary::find(Rgba color, ColorKey& key) const
 {
-  auto it = this->Index.find(color.packed());
-  if (it == this->Index.end())
+  const std::uint16_t s = this->Slots[this->probe(color.packed())];
+  if (s == 0)
   {
     return false;
   }
-  key = it->second;
+  key = static_cast<ColorKey>(s - 1u);
   return true;
 }
 
@@ -71,19 +111,17 @@ void ColorDictionary::assign(const std::vector<Rgba>& colors)
     msg << "colour dictionary must hold 1 to " << Capacity << " colours, got " << colors.size();
     throw Error(ErrorCode::CorruptData, msg.str());
   }
-  std::unordered_map<std::uint32_t, ColorKey> index;
-  index.reserve(colors.size());
-  for (std::size_t i = 0; i < colors.size(); ++i)
+  ColorDictionary next(colors[0], this->Policy);
+  next.Colors = colors;
+  const std::size_t duplicate = next.reindex();
+  if (duplicate != colors.size())
   {
-    if (!index.emplace(colors[i].packed(), static_cast<ColorKey>(i)).second)
-    {
-      std::ostringstream msg;
-      msg << "colour dictionary has a duplicate colour at key " << i;
-      throw Error(ErrorCode::CorruptData, msg.str());
-    }
+    std::ostringstream msg;
+    msg << "colour dictionary has a duplicate colour at key " << duplicate;
+    throw Error(ErrorCode::CorruptData, msg.str());
   }
-  this->Colors = colors;
-  this->Index.swap(index);
+  this->Colors.swap(next.Colors);
+  this->Slots.swap(next.Slots);
 }
 
 ColorKey ColorDictionary::nearest(Rgba c) const
