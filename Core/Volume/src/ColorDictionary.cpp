@@ -8,52 +8,62 @@
 namespace lvdif
 {
 
+// The index (Index, colour -> key) is built when add() first needs it, not
+// by assign(): readers assign up to 65,535 colours per file, most volumes
+// read are never given a new colour, and a map node per colour dominated
+// imports under the sanitizers' allocator. Index is empty or complete;
+// find() scans the colours while it is empty, so it never writes.
+
+namespace
+{
+/// The first key whose colour appeared at a lower key, or colors.size():
+/// one open-addressing table (key + 1 per slot, 0 = empty, at most half
+/// full), one allocation.
+std::size_t firstRepeat(const std::vector<Rgba>& colors)
+{
+  std::size_t n = 16;
+  while (n < 2 * colors.size())
+    n *= 2;
+  std::vector<std::uint32_t> slots(n, 0);
+  for (std::size_t k = 0; k < colors.size(); ++k)
+  {
+    const std::uint32_t packed = colors[k].packed();
+    std::uint32_t h = packed * 0x9E3779B1u; // Fibonacci hashing, high bits folded down
+    h ^= h >> 16;
+    for (std::size_t i = h & (n - 1);; i = (i + 1) & (n - 1))
+    {
+      if (slots[i] == 0)
+      {
+        slots[i] = static_cast<std::uint32_t>(k + 1);
+        break;
+      }
+      if (colors[slots[i] - 1].packed() == packed)
+        return k;
+    }
+  }
+  return colors.size();
+}
+} // namespace
+
 ColorDictionary::ColorDictionary(Rgba defaultColor, FullPolicy policy)
   : Policy(policy)
 {
   this->Colors.push_back(defaultColor);
-  this->reindex();
-}
-
-std::size_t ColorDictionary::probe(std::uint32_t packed) const
-{
-  const std::size_t mask = this->Slots.size() - 1;
-  std::uint32_t h = packed * 0x9E3779B1u; // Fibonacci hashing, high bits folded down
-  h ^= h >> 16;
-  std::size_t i = h & mask;
-  while (this->Slots[i] != 0 && this->Colors[this->Slots[i] - 1u].packed() != packed)
-  {
-    i = (i + 1) & mask;
-  }
-  return i;
-}
-
-std::size_t ColorDictionary::reindex()
-{
-  std::size_t n = 16;
-  while (n < 2 * this->Colors.size())
-  {
-    n *= 2;
-  }
-  this->Slots.assign(n, 0);
-  for (std::size_t k = 0; k < this->Colors.size(); ++k)
-  {
-    const std::size_t i = this->probe(this->Colors[k].packed());
-    if (this->Slots[i] != 0)
-    {
-      return k;
-    }
-    this->Slots[i] = static_cast<std::uint16_t>(k + 1); // k < Capacity, so k + 1 fits
-  }
-  return this->Colors.size();
+  this->Index.emplace(defaultColor.packed(), 0);
 }
 
 ColorKey ColorDictionary::add(Rgba color)
 {
-  const std::size_t slot = this->probe(color.packed());
-  if (this->Slots[slot] != 0)
+  if (this->Index.empty())
   {
-    return static_cast<ColorKey>(this->Slots[slot] - 1u);
+    this->Index.reserve(this->Colors.size());
+    for (std::size_t k = 0; k < this->Colors.size(); ++k)
+      this->Index.emplace(this->Colors[k].packed(), static_cast<ColorKey>(k));
+  }
+  auto it = this->Index.find(color.packed());
+  if (it != this->Index.end())
+  {
+    return it->second;
   }
   if (this->full())
   {
@@ -69,25 +79,28 @@ ColorKey ColorDictionary::add(Rgba color)
   }
   const ColorKey key = static_cast<ColorKey>(this->Colors.size());
   this->Colors.push_back(color);
-  if (2 * this->Colors.size() > this->Slots.size())
-  {
-    this->reindex();
-  }
-  else
-  {
-    this->Slots[slot] = static_cast<std::uint16_t>(key + 1u);
-  }
+  this->Index.emplace(color.packed(), key);
   return key;
 }
 
 bool ColorDictionary::find(Rgba color, ColorKey& key) const
 {
-  const std::uint16_t s = this->Slots[this->probe(color.packed())];
-  if (s == 0)
+  if (this->Index.empty())
+  {
+    for (std::size_t k = 0; k < this->Colors.size(); ++k)
+      if (this->Colors[k] == color)
+      {
+        key = static_cast<ColorKey>(k);
+        return true;
+      }
+    return false;
+  }
+  auto it = this->Index.find(color.packed());
+  if (it == this->Index.end())
   {
     return false;
   }
-  key = static_cast<ColorKey>(s - 1u);
+  key = it->second;
   return true;
 }
 
@@ -111,17 +124,15 @@ void ColorDictionary::assign(const std::vector<Rgba>& colors)
     msg << "colour dictionary must hold 1 to " << Capacity << " colours, got " << colors.size();
     throw Error(ErrorCode::CorruptData, msg.str());
   }
-  ColorDictionary next(colors[0], this->Policy);
-  next.Colors = colors;
-  const std::size_t duplicate = next.reindex();
-  if (duplicate != colors.size())
+  const std::size_t repeat = firstRepeat(colors);
+  if (repeat != colors.size())
   {
     std::ostringstream msg;
-    msg << "colour dictionary has a duplicate colour at key " << duplicate;
+    msg << "colour dictionary has a duplicate colour at key " << repeat;
     throw Error(ErrorCode::CorruptData, msg.str());
   }
-  this->Colors.swap(next.Colors);
-  this->Slots.swap(next.Slots);
+  this->Colors = colors;
+  std::unordered_map<std::uint32_t, ColorKey>().swap(this->Index); // built by the next add()
 }
 
 ColorKey ColorDictionary::nearest(Rgba c) const

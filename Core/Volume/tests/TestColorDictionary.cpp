@@ -126,15 +126,31 @@ TEST(ColorDictionary, MatchesAMapOnRandomColours)
     ASSERT_EQ(d.size(), oracle.size());
     for (const auto& [packed, key] : oracle)
       ASSERT_EQ(d[key].packed(), packed);
-    // assign() indexes a whole list at once: every colour found at its key
+    // after assign() (index built by the first add): some colours found by
+    // find(), then every one added again keeps its key, then all found
     ColorDictionary e;
     e.assign(d.colors());
+    int probed = 0;
     for (const auto& [packed, key] : oracle)
     {
+      if (probed++ % 97 != 0)
+        continue;
       ColorKey found = 0;
       ASSERT_TRUE(e.find(Rgba::unpack(packed), found));
       ASSERT_EQ(found, key);
     }
+    ColorKey found = 0;
+    EXPECT_FALSE(e.find(Rgba{ 255, 255, 255, 0 }, found));
+    for (const auto& [packed, key] : oracle)
+      ASSERT_EQ(e.add(Rgba::unpack(packed)), key);
+    ASSERT_EQ(e.size(), oracle.size());
+    for (const auto& [packed, key] : oracle)
+    {
+      ASSERT_TRUE(e.find(Rgba::unpack(packed), found));
+      ASSERT_EQ(found, key);
+    }
+    EXPECT_FALSE(e.find(Rgba{ 255, 255, 255, 0 }, found));
+    EXPECT_EQ(e.add(Rgba{ 255, 255, 255, 0 }), oracle.size()); // a new colour after the index is built
   }
 }
 

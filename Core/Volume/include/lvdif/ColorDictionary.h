@@ -9,6 +9,7 @@
 #pragma once
 
 #include <cstdint>
+#include <unordered_map>
 #include <vector>
 
 namespace lvdif
@@ -68,18 +69,9 @@ public:
 
 private:
   ColorKey nearest(Rgba color) const;
-  /// The slot holding the colour, or the empty slot where it would go.
-  std::size_t probe(std::uint32_t packed) const;
-  /// Rebuilds Slots for Colors; returns the first key whose colour appeared
-  /// before it (Slots then incomplete), or size() if the colours are unique.
-  std::size_t reindex();
 
   std::vector<Rgba> Colors;
-  // Open-addressing hash index over Colors: key + 1 per slot, 0 = empty,
-  // power-of-two size, at most half full. One allocation instead of a node
-  // per colour: readers assign up to 65,535 colours per file, and a node
-  // allocation each dominated imports under the sanitizers' allocator.
-  std::vector<std::uint16_t> Slots;
+  std::unordered_map<std::uint32_t, ColorKey> Index;
   FullPolicy Policy;
 };
 
