@@ -7,7 +7,6 @@
 #include <algorithm>
 #include <cctype>
 #include <cmath>
-#include <unordered_set>
 
 namespace lvdif
 {
@@ -93,20 +92,41 @@ namespace
   throw Error(ErrorCode::CorruptData, ".bv: " + what);
 }
 
-/// Palette entries for indices 0..count-1: the given palette, then distinct
-/// synthetic colours (the dictionary needs unique colours).
+/// Palette entries for indices 0..count-1: the given palette, then for each
+/// index i past it the synthetic colour (i & 255, i >> 8, 128, 255) with blue
+/// stepped up (mod 256) past colours taken earlier (the dictionary needs
+/// unique colours). Two synthetic colours never meet (red and green spell
+/// the index, count <= 65,536), so only a given colour of full alpha can be
+/// in the way, and only of the index its red and green spell: those indices
+/// step, the others take their colour as it is. (A hash set of every colour
+/// made an import of a file naming index 65,534 cost 65,535 node
+/// allocations.) Where all 256 blues are taken (a given palette of 256 such
+/// colours), alpha steps down, so every index gets a colour.
 std::vector<Rgba> paletteFor(std::vector<Rgba> palette, std::size_t count)
 {
-  std::unordered_set<std::uint32_t> used;
+  const std::size_t given = palette.size();
+  std::vector<std::uint32_t> sorted;
+  std::vector<std::size_t> blocked; // indices past the palette whose colour may be taken
   for (const Rgba& c : palette)
-    used.insert(c.packed());
-  for (std::size_t i = palette.size(); i < count; ++i)
   {
-    Rgba c{ static_cast<std::uint8_t>(i & 0xff), static_cast<std::uint8_t>((i >> 8) & 0xff), 128, 255 };
-    while (used.count(c.packed()))
+    sorted.push_back(c.packed());
+    const std::size_t i = c.r | (std::size_t(c.g) << 8);
+    if (c.a == 255 && i >= given && i < count)
+      blocked.push_back(i);
+  }
+  std::sort(sorted.begin(), sorted.end());
+  palette.resize(std::max(given, count));
+  for (std::size_t i = given; i < count; ++i)
+    palette[i] = Rgba{ static_cast<std::uint8_t>(i & 0xff), static_cast<std::uint8_t>(i >> 8), 128, 255 };
+  for (const std::size_t i : blocked)
+  {
+    Rgba& c = palette[i];
+    for (int step = 1; std::binary_search(sorted.begin(), sorted.end(), c.packed()); ++step)
+    {
       c.b = static_cast<std::uint8_t>(c.b + 1);
-    used.insert(c.packed());
-    palette.push_back(c);
+      if (step % 256 == 0)
+        c.a = static_cast<std::uint8_t>(c.a - 1);
+    }
   }
   return palette;
 }
@@ -137,10 +157,14 @@ std::unique_ptr<DictionaryVolume> readLegacyBv(
   vo.memoryLimit = options.memoryLimit;
   auto volume = std::make_unique<DictionaryVolume>(vo);
 
-  // their key -> our key: negate (inside-positive -> negative inside), scale, re-encode
-  std::vector<SdfKey> lut(65536);
-  for (int k = 0; k < 65536; ++k)
-    lut[k] = volume->encode(static_cast<float>(-options.distanceScale * legacy_bv::decodeKey(std::uint16_t(k))));
+  // their key -> our key: negate (inside-positive -> negative inside), scale, re-encode;
+  // a table of all 65,536 keys once the file has more records than that
+  auto convert = [&](std::uint16_t k) {
+    return volume->encode(static_cast<float>(-options.distanceScale * legacy_bv::decodeKey(k)));
+  };
+  std::vector<SdfKey> lut(records > 65536 ? 65536 : 0);
+  for (std::size_t k = 0; k < lut.size(); ++k)
+    lut[k] = convert(static_cast<std::uint16_t>(k));
 
   const int edge = volume->chunkEdge();
   const std::uint64_t slabBytes = checkedMultiply(std::uint64_t(n) * n * 4, std::uint64_t(edge), ".bv slab");
@@ -189,7 +213,8 @@ std::unique_ptr<DictionaryVolume> readLegacyBv(
             const std::uint8_t* r = slab.data() + 4 * (((fz - z0) * n + y) * n + fx);
             const std::uint32_t color = r[2] | (std::uint32_t(r[3]) << 8);
             slabMax = std::max(slabMax, color);
-            d[volume->localIndex(x, y, z)] = Voxel{ lut[r[0] | (r[1] << 8)], static_cast<ColorKey>(color) };
+            const std::uint16_t key = static_cast<std::uint16_t>(r[0] | (r[1] << 8));
+            d[volume->localIndex(x, y, z)] = Voxel{ lut.empty() ? convert(key) : lut[key], static_cast<ColorKey>(color) };
           }
       volume->tryCollapseChunk(id);
     }

@@ -8,6 +8,7 @@
 
 #include <cmath>
 #include <random>
+#include <set>
 
 using namespace lvdif;
 
@@ -177,4 +178,105 @@ TEST(LegacyBv, BadSizesAndNamesAreClearErrors)
   o.dims = { 8, 8, 8 };
   DictionaryVolume cubic(o);
   EXPECT_THROW(saveLegacyBv(cubic, ::testing::TempDir() + "SDF_16_wrong.bv"), Error);
+}
+
+namespace
+{
+/// The palette rule as first written (LegacyBv.h: index i past the given
+/// palette gets (i & 255, i >> 8, 128, 255), blue stepped past every colour
+/// taken earlier), by brute force over a set of every colour: the oracle for
+/// the import's cheaper construction.
+std::vector<Rgba> referencePalette(std::vector<Rgba> palette, std::size_t count)
+{
+  std::set<std::uint32_t> used;
+  for (const Rgba& c : palette)
+    used.insert(c.packed());
+  for (std::size_t i = palette.size(); i < count; ++i)
+  {
+    Rgba c{ std::uint8_t(i & 0xff), std::uint8_t((i >> 8) & 0xff), 128, 255 };
+    while (used.count(c.packed()))
+      c.b = std::uint8_t(c.b + 1);
+    used.insert(c.packed());
+    palette.push_back(c);
+  }
+  return palette;
+}
+} // namespace
+
+TEST(LegacyBv, ImportedPaletteMatchesTheRuleOnGeneratedFiles)
+{
+  std::mt19937 rng(18);
+  for (int round = 0; round < 24; ++round)
+  {
+    const std::int64_t n = 2 + rng() % 5;
+    // colour indices: small ones, and in half the rounds one near the top
+    const std::uint32_t top = round % 2 ? 65534 - rng() % 300 : 1 + rng() % 2000;
+    std::vector<std::uint16_t> index;
+    for (std::int64_t i = 0; i < n * n * n; ++i)
+      index.push_back(std::uint16_t(rng() % 4 == 0 ? rng() % (top + 1) : rng() % 12));
+    index[rng() % index.size()] = std::uint16_t(top);
+    Bytes file;
+    for (const std::uint16_t colour : index)
+    {
+      const Bytes r = record(std::uint16_t(rng()), colour);
+      file.insert(file.end(), r.begin(), r.end());
+    }
+    const std::uint32_t maxIndex = *std::max_element(index.begin(), index.end());
+    LegacyBvOptions o;
+    o.swapXZ = false;
+    o.chunkEdge = 4;
+    if (round % 3 != 0)
+    {
+      // a given palette that sits on synthetic colours: some indices past it
+      // must step their blue once or several times
+      const std::size_t size = 1 + rng() % 40;
+      auto give = [&](Rgba c) {
+        if (std::find(o.palette.begin(), o.palette.end(), c) == o.palette.end())
+          o.palette.push_back(c);
+      };
+      while (o.palette.size() < size)
+      {
+        // an index's own blue and up to three after it, with or without a gap
+        const std::uint32_t at = std::max<std::uint32_t>(rng() % (maxIndex + 1), std::uint32_t(size));
+        const int run = 1 + rng() % 4, gap = rng() % 3 == 0 ? 1 : 0;
+        for (int b = 0; b < run; ++b)
+          give(Rgba{ std::uint8_t(at & 0xff), std::uint8_t(at >> 8), std::uint8_t(128 + b + (b ? gap : 0)), 255 });
+        give(Rgba{ std::uint8_t(rng()), std::uint8_t(rng()), std::uint8_t(rng()), std::uint8_t(rng()) });
+      }
+    }
+    MemorySource src(file.data(), file.size());
+    auto v = readLegacyBv(src, "", o);
+    const std::vector<Rgba> base = o.palette.empty() ? legacy_bv::defaultPalette() : o.palette;
+    const std::vector<Rgba> want = referencePalette(base, std::max<std::size_t>(base.size(), maxIndex + 1));
+    ASSERT_TRUE(v->colors().colors() == want) << "round " << round;
+    for (std::int64_t i = 0; i < n * n * n; ++i)
+      ASSERT_EQ(v->get(i % n, (i / n) % n, i / (n * n)).color, index[i]) << "round " << round;
+  }
+}
+
+TEST(LegacyBv, PaletteFindsAColourWhenEveryBlueIsTaken)
+{
+  // a given palette holding (0, 1, b, 255) for every b: index 256 has no free
+  // blue at full alpha (the first construction looped forever here)
+  LegacyBvOptions o;
+  o.swapXZ = false;
+  for (int b = 0; b < 256; ++b)
+    o.palette.push_back(Rgba{ 0, 1, std::uint8_t(b), 255 });
+  const std::int64_t n = 3;
+  Bytes file;
+  for (std::int64_t i = 0; i < n * n * n; ++i)
+  {
+    const Bytes r = record(0, i == 5 ? 300 : 0);
+    file.insert(file.end(), r.begin(), r.end());
+  }
+  MemorySource src(file.data(), file.size());
+  auto v = readLegacyBv(src, "", o);
+  ASSERT_EQ(v->colors().size(), 301u);
+  const Rgba c = v->colors()[256];
+  EXPECT_EQ(c.r, 0);
+  EXPECT_EQ(c.g, 1);
+  EXPECT_EQ(c.a, 254); // the next alpha down, blue back at its start
+  EXPECT_EQ(c.b, 128);
+  EXPECT_EQ(v->colors()[300], (Rgba{ 44, 1, 128, 255 })); // the others as usual
+  EXPECT_EQ(v->get(2, 1, 0).color, 300);
 }

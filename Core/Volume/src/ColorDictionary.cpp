@@ -8,6 +8,43 @@
 namespace lvdif
 {
 
+// The index (Index, colour -> key) is built when add() first needs it, not
+// by assign(): readers assign up to 65,535 colours per file, most volumes
+// read are never given a new colour, and a map node per colour dominated
+// imports under the sanitizers' allocator. Index is empty or complete;
+// find() scans the colours while it is empty, so it never writes.
+
+namespace
+{
+/// The first key whose colour appeared at a lower key, or colors.size():
+/// one open-addressing table (key + 1 per slot, 0 = empty, at most half
+/// full), one allocation.
+std::size_t firstRepeat(const std::vector<Rgba>& colors)
+{
+  std::size_t n = 16;
+  while (n < 2 * colors.size())
+    n *= 2;
+  std::vector<std::uint32_t> slots(n, 0);
+  for (std::size_t k = 0; k < colors.size(); ++k)
+  {
+    const std::uint32_t packed = colors[k].packed();
+    std::uint32_t h = packed * 0x9E3779B1u; // Fibonacci hashing, high bits folded down
+    h ^= h >> 16;
+    for (std::size_t i = h & (n - 1);; i = (i + 1) & (n - 1))
+    {
+      if (slots[i] == 0)
+      {
+        slots[i] = static_cast<std::uint32_t>(k + 1);
+        break;
+      }
+      if (colors[slots[i] - 1].packed() == packed)
+        return k;
+    }
+  }
+  return colors.size();
+}
+} // namespace
+
 ColorDictionary::ColorDictionary(Rgba defaultColor, FullPolicy policy)
   : Policy(policy)
 {
@@ -17,6 +54,12 @@ ColorDictionary::ColorDictionary(Rgba defaultColor, FullPolicy policy)
 
 ColorKey ColorDictionary::add(Rgba color)
 {
+  if (this->Index.empty())
+  {
+    this->Index.reserve(this->Colors.size());
+    for (std::size_t k = 0; k < this->Colors.size(); ++k)
+      this->Index.emplace(this->Colors[k].packed(), static_cast<ColorKey>(k));
+  }
   auto it = this->Index.find(color.packed());
   if (it != this->Index.end())
   {
@@ -42,6 +85,16 @@ ColorKey ColorDictionary::add(Rgba color)
 
 bool ColorDictionary::find(Rgba color, ColorKey& key) const
 {
+  if (this->Index.empty())
+  {
+    for (std::size_t k = 0; k < this->Colors.size(); ++k)
+      if (this->Colors[k] == color)
+      {
+        key = static_cast<ColorKey>(k);
+        return true;
+      }
+    return false;
+  }
   auto it = this->Index.find(color.packed());
   if (it == this->Index.end())
   {
@@ -71,19 +124,15 @@ void ColorDictionary::assign(const std::vector<Rgba>& colors)
     msg << "colour dictionary must hold 1 to " << Capacity << " colours, got " << colors.size();
     throw Error(ErrorCode::CorruptData, msg.str());
   }
-  std::unordered_map<std::uint32_t, ColorKey> index;
-  index.reserve(colors.size());
-  for (std::size_t i = 0; i < colors.size(); ++i)
+  const std::size_t repeat = firstRepeat(colors);
+  if (repeat != colors.size())
   {
-    if (!index.emplace(colors[i].packed(), static_cast<ColorKey>(i)).second)
-    {
-      std::ostringstream msg;
-      msg << "colour dictionary has a duplicate colour at key " << i;
-      throw Error(ErrorCode::CorruptData, msg.str());
-    }
+    std::ostringstream msg;
+    msg << "colour dictionary has a duplicate colour at key " << repeat;
+    throw Error(ErrorCode::CorruptData, msg.str());
   }
   this->Colors = colors;
-  this->Index.swap(index);
+  std::unordered_map<std::uint32_t, ColorKey>().swap(this->Index); // built by the next add()
 }
 
 ColorKey ColorDictionary::nearest(Rgba c) const

@@ -3,6 +3,9 @@
 
 #include <gtest/gtest.h>
 
+#include <map>
+#include <random>
+
 using namespace lvdif;
 
 static Rgba colourOf(std::uint32_t i)
@@ -89,4 +92,87 @@ TEST(ColorDictionary, AssignValidates)
   d.assign({ Rgba{ 1, 1, 1, 1 }, Rgba{ 2, 2, 2, 2 } });
   EXPECT_EQ(d.size(), 2u);
   EXPECT_EQ(d.add(Rgba{ 2, 2, 2, 2 }), 1);
+}
+
+TEST(ColorDictionary, MatchesAMapOnRandomColours)
+{
+  // oracle: a std::map from packed colour to the key it got first; colours are
+  // drawn from a small set (many repeats) and differ in one channel at a time
+  // so that every byte of the packed value matters to the index
+  std::mt19937 rng(11);
+  for (int round = 0; round < 4; ++round)
+  {
+    ColorDictionary d(Rgba{ 0, 0, 0, 255 });
+    std::map<std::uint32_t, ColorKey> oracle{ { Rgba{ 0, 0, 0, 255 }.packed(), 0 } };
+    const int span = round == 0 ? 4 : 64;
+    for (int i = 0; i < 40000; ++i)
+    {
+      Rgba c{ std::uint8_t(rng() % span), std::uint8_t(rng() % span), std::uint8_t(rng() % span),
+        std::uint8_t(255 - rng() % span) };
+      ColorKey found = 0;
+      const auto it = oracle.find(c.packed());
+      ASSERT_EQ(d.find(c, found), it != oracle.end()) << i;
+      if (it != oracle.end())
+        ASSERT_EQ(found, it->second);
+      const ColorKey key = d.add(c);
+      if (it == oracle.end())
+      {
+        ASSERT_EQ(key, oracle.size()) << i;
+        oracle.emplace(c.packed(), key);
+      }
+      else
+        ASSERT_EQ(key, it->second) << i;
+    }
+    ASSERT_EQ(d.size(), oracle.size());
+    for (const auto& [packed, key] : oracle)
+      ASSERT_EQ(d[key].packed(), packed);
+    // after assign() (index built by the first add): some colours found by
+    // find(), then every one added again keeps its key, then all found
+    ColorDictionary e;
+    e.assign(d.colors());
+    int probed = 0;
+    for (const auto& [packed, key] : oracle)
+    {
+      if (probed++ % 97 != 0)
+        continue;
+      ColorKey found = 0;
+      ASSERT_TRUE(e.find(Rgba::unpack(packed), found));
+      ASSERT_EQ(found, key);
+    }
+    ColorKey found = 0;
+    EXPECT_FALSE(e.find(Rgba{ 255, 255, 255, 0 }, found));
+    for (const auto& [packed, key] : oracle)
+      ASSERT_EQ(e.add(Rgba::unpack(packed)), key);
+    ASSERT_EQ(e.size(), oracle.size());
+    for (const auto& [packed, key] : oracle)
+    {
+      ASSERT_TRUE(e.find(Rgba::unpack(packed), found));
+      ASSERT_EQ(found, key);
+    }
+    EXPECT_FALSE(e.find(Rgba{ 255, 255, 255, 0 }, found));
+    EXPECT_EQ(e.add(Rgba{ 255, 255, 255, 0 }), oracle.size()); // a new colour after the index is built
+  }
+}
+
+TEST(ColorDictionary, AssignNamesTheFirstRepeatedKey)
+{
+  std::vector<Rgba> colours;
+  for (std::uint32_t i = 0; i < 5000; ++i)
+    colours.push_back(colourOf(i));
+  colours[4321] = colours[1234];
+  colours[4500] = colours[17];
+  ColorDictionary d;
+  try
+  {
+    d.assign(colours);
+    ADD_FAILURE() << "accepted a repeated colour";
+  }
+  catch (const Error& e)
+  {
+    EXPECT_EQ(e.code(), ErrorCode::CorruptData);
+    EXPECT_NE(std::string(e.what()).find("duplicate colour at key 4321"), std::string::npos) << e.what();
+  }
+  EXPECT_EQ(d.size(), 1u); // unchanged
+  ColorKey k = 0;
+  EXPECT_TRUE(d.find(d[0], k));
 }
