@@ -114,14 +114,43 @@ LVDIF_HD bool boundDipole(const DipoleView& D, V3 q, double rho, double tolPerMa
     const double d = r - rho - nd.r;
     if (d > 0)
     {
+      // three rigorous bounds, the smallest taken: 0 (area / d^2), the
+      // dipole (DipoleTree::refine's), and the dipole plus the second-order
+      // term (Barill et al.'s; remainder 3 A R^2 / (r - R)^4: |D^3 (1/|y|)|
+      // <= 3! / |y|^4), moved over the ball by the Lipschitz bound 2 A / d^3
+      const double r3 = r * r * r, dq = r - nd.r;
       const double e0 = nd.mass / (d * d), e1 = 2 * nd.mass * (nd.r + rho) / (d * d * d);
-      const double e = e1 < e0 ? e1 : e0;
+      const double e2 = 3 * nd.mass * nd.r * nd.r / (dq * dq * dq * dq) + 2 * nd.mass * rho / (d * d * d);
+      const double e = e2 < e1 ? (e2 < e0 ? e2 : e0) : (e1 < e0 ? e1 : e0);
       if (e <= tolPerMass * nd.mass)
       {
-        const double v = e1 < e0 ? dot(nd.dipole, y) / (r * r * r) : 0.0;
+        const int order = e == e0 ? 0 : (e == e1 ? 1 : 2);
+        double v = 0, m = 0;
+        if (order >= 1)
+        {
+          v = dot(nd.dipole, y) / r3;
+          m = std::fabs(v);
+        }
+        if (order == 2)
+        {
+          // sum_ij T_ij d(y_i / |y|^3)/d y_j = tr T / r^3 - 3 y.T.y / r^5
+          const double* T = nd.quad;
+          const double yy[3] = { y.x, y.y, y.z };
+          double yTy = 0, yTyAbs = 0;
+          for (int i = 0; i < 3; ++i)
+            for (int j = 0; j < 3; ++j)
+            {
+              const double t = yy[i] * T[3 * i + j] * yy[j];
+              yTy += t;
+              yTyAbs += std::fabs(t);
+            }
+          const double r5 = r3 * r * r;
+          v += (T[0] + T[4] + T[8]) / r3 - 3 * yTy / r5;
+          m += (std::fabs(T[0]) + std::fabs(T[4]) + std::fabs(T[8])) / r3 + 3 * yTyAbs / r5;
+        }
         value += v;
         err += e;
-        mag += std::fabs(v);
+        mag += m;
         ++terms;
         approx = true;
         continue;
