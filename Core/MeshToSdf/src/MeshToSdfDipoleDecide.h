@@ -220,7 +220,7 @@ LVDIF_HD double dipoleTolerance(const DipoleView& D, double margin) { return 0.5
 /// the last estimate left), else by the canonical sum (counted in full).
 LVDIF_HD bool insideDipole(const DipoleView& D, int K, V3 p, unsigned long long& full)
 {
-  double margin = 0.25;
+  double margin = 0.8; // a first pass with a loose tolerance decides most voxels cheaply (w mostly near 0 or 1)
   while (margin > 1e-10)
   {
     double lo = 0, hi = 0;
@@ -249,7 +249,7 @@ LVDIF_HD void dipoleBlockBound(const DipoleView& D, V3 p0, V3 p1, double& lo, do
   const double rho = half + 1e-9 * (half + std::fabs(centre.x) + std::fabs(centre.y) + std::fabs(centre.z));
   lo = 1;
   hi = 0;
-  double margin = 0.25;
+  double margin = 0.8;
   for (int pass = 0; pass < 3; ++pass)
   {
     double l = 0, u = 0;
