@@ -37,15 +37,12 @@ struct DipoleView
   unsigned long long* visits = nullptr; // host only (work counts of the tests): nodes + triangles visited
 };
 
-#ifndef DIPOLE_EDGES
-#define DIPOLE_EDGES 16, 4, 2
-#endif
 // The blocks of voxels bounded as a whole, coarse to fine (edges in voxels,
 // each a multiple of the next): a block whose parent has a bound takes it
 // (it holds over the child too), the others are bounded themselves, the ball
 // and so the error floor halving with the edge; the sign kernel reads the
 // finest level.
-constexpr int DipoleEdges[] = { DIPOLE_EDGES };
+constexpr int DipoleEdges[] = { 16, 4, 2 };
 constexpr int DipoleLevels = static_cast<int>(sizeof(DipoleEdges) / sizeof(DipoleEdges[0]));
 constexpr int DipoleBlock = DipoleEdges[DipoleLevels - 1];
 
