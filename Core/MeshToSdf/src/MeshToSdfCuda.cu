@@ -503,26 +503,35 @@ private:
     long long bx = 0, by = 0;
     if (dipole)
     {
-      bx = (box.hi[0] - box.lo[0] + DipoleBlock) / DipoleBlock;
-      by = (box.hi[1] - box.lo[1] + DipoleBlock) / DipoleBlock;
-      const long long bz = (box.hi[2] - box.lo[2] + DipoleBlock) / DipoleBlock, blocks = bx * by * bz;
-      // coarse blocks (DipoleCoarse^3 blocks each) first: far from the
-      // corrected faces one bound serves them all
-      const long long cx = (bx + DipoleCoarse - 1) / DipoleCoarse, cy = (by + DipoleCoarse - 1) / DipoleCoarse;
-      const long long coarse = cx * cy * ((bz + DipoleCoarse - 1) / DipoleCoarse);
-      if (blocks + coarse > this->BoundCapacity)
+      // the levels of blocks coarse to fine, the finest first in Bounds:
+      // far from the corrected faces one coarse bound serves many voxels
+      long long count[DipoleLevels], total = 0;
+      for (int l = 0; l < DipoleLevels; ++l)
+      {
+        const long long e = DipoleEdges[l];
+        count[l] = ((box.hi[0] - box.lo[0] + e) / e) * ((box.hi[1] - box.lo[1] + e) / e) * ((box.hi[2] - box.lo[2] + e) / e);
+        total += count[l];
+      }
+      if (total > this->BoundCapacity)
       {
         if (this->Bounds) this->Arena.release(this->Bounds);
-        this->Bounds = this->Arena.alloc<double>(static_cast<std::size_t>(2 * (blocks + coarse)));
-        this->BoundCapacity = blocks + coarse;
+        this->Bounds = this->Arena.alloc<double>(static_cast<std::size_t>(2 * total));
+        this->BoundCapacity = total;
       }
-      double* coarseBounds = this->Bounds + 2 * blocks;
-      dipoleBlockKernel<<<static_cast<unsigned>((coarse + 127) / 128), 128>>>(
-        this->Mesh.D, P, DipoleBlock * DipoleCoarse, cx, cy, coarse, nullptr, coarseBounds);
-      LVDIF_CUDA_CHECK(cudaGetLastError());
-      dipoleBlockKernel<<<static_cast<unsigned>((blocks + 127) / 128), 128>>>(
-        this->Mesh.D, P, DipoleBlock, bx, by, blocks, coarseBounds, this->Bounds);
-      LVDIF_CUDA_CHECK(cudaGetLastError());
+      const double* parent = nullptr;
+      long long offset = total;
+      for (int l = 0; l < DipoleLevels; ++l)
+      {
+        const long long e = DipoleEdges[l];
+        offset -= count[l];
+        double* level = this->Bounds + 2 * offset; // the finest level at offset 0
+        bx = (box.hi[0] - box.lo[0] + e) / e;
+        by = (box.hi[1] - box.lo[1] + e) / e;
+        dipoleBlockKernel<<<static_cast<unsigned>((count[l] + 127) / 128), 128>>>(this->Mesh.D, P, static_cast<int>(e), bx,
+          by, count[l], parent, l ? DipoleEdges[l - 1] / DipoleEdges[l] : 1, level);
+        LVDIF_CUDA_CHECK(cudaGetLastError());
+        parent = level;
+      }
     }
     for (int p = 0; p < parts; ++p)
     {

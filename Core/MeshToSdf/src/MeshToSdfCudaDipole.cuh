@@ -22,24 +22,23 @@ namespace
 using DipoleNode = DipoleTree::Node;
 using DipoleDev = DipoleView;
 
-/// One thread per block of edge voxels (edge = DipoleBlock, or
-/// DipoleBlock x DipoleCoarse for the coarse pass) of the slab: dipoleBlockBound.
-/// coarse (fine pass only): the coarse blocks' bounds, bx / DipoleCoarse
-/// rounded up per row; a coarse bound is taken as it is (it holds over the
-/// fine block too).
+/// One thread per block of edge voxels (one level of DipoleEdges) of the
+/// slab: dipoleBlockBound. parent (every level but the coarsest): the bounds
+/// of the level above, whose edge is ratio x edge (bx / ratio rounded up per
+/// row); a parent's bound is taken as it is (it holds over the block too).
 __global__ void dipoleBlockKernel(DipoleDev D, Params P, int edge, long long bx, long long by, long long blocks,
-  const double* coarse, double* bounds)
+  const double* parent, int ratio, double* bounds)
 {
   const long long b = static_cast<long long>(blockIdx.x) * blockDim.x + threadIdx.x;
   if (b >= blocks) return;
   const long long ix = b % bx, iy = (b / bx) % by, iz = b / (bx * by);
   double lo = 1, hi = 0;
-  if (coarse)
+  if (parent)
   {
-    const long long cx = (bx + DipoleCoarse - 1) / DipoleCoarse, cy = (by + DipoleCoarse - 1) / DipoleCoarse;
-    const long long c = ix / DipoleCoarse + cx * (iy / DipoleCoarse + cy * (iz / DipoleCoarse));
-    lo = coarse[2 * c];
-    hi = coarse[2 * c + 1];
+    const long long cx = (bx + ratio - 1) / ratio, cy = (by + ratio - 1) / ratio;
+    const long long c = ix / ratio + cx * (iy / ratio + cy * (iz / ratio));
+    lo = parent[2 * c];
+    hi = parent[2 * c + 1];
   }
   if (!(lo <= hi))
   {

@@ -34,13 +34,57 @@ struct DipoleView
   const WeightedTri* tris = nullptr;       // in tree order
   int count = 0;                           // triangles (0: no correction)
   double rootMass = 0;
+  unsigned long long* visits = nullptr; // host only (work counts of the tests): nodes + triangles visited
 };
 
-constexpr int DipoleBlock = 4;  // voxels per edge of the blocks bounded as a whole
-constexpr int DipoleCoarse = 4; // blocks per edge of a coarse block, bounded first (its bound serves them all)
+// The blocks of voxels bounded as a whole, coarse to fine (edges in voxels,
+// each a multiple of the next): a block whose parent has a bound takes it
+// (it holds over the child too), the others are bounded themselves, the ball
+// and so the error floor halving with the edge; the sign kernel reads the
+// finest level.
+constexpr int DipoleEdges[] = { 16, 4, 2 };
+constexpr int DipoleLevels = static_cast<int>(sizeof(DipoleEdges) / sizeof(DipoleEdges[0]));
+constexpr int DipoleBlock = DipoleEdges[DipoleLevels - 1];
 
 LVDIF_HD bool dipoleDecided(double lo, double hi) { return !(lo < 0.5 && hi >= 0.5) && !(lo <= -0.5 && hi > -0.5); }
 LVDIF_HD bool dipoleInsideOf(double w) { return std::fabs(w) >= 0.5; }
+
+/// Distance from q to the segment ab.
+LVDIF_HD double segmentDistance(V3 q, V3 a, V3 b)
+{
+  const V3 ab = b - a;
+  const double l2 = dot(ab, ab);
+  double t = l2 > 0 ? dot(q - a, ab) / l2 : 0.0;
+  t = t < 0 ? 0 : (t > 1 ? 1 : t);
+  return norm(q - (a + t * ab));
+}
+
+/// An upper bound L of |grad Omega_t| over the ball (q, rho), true when the
+/// ball misses the triangle (Omega_t is smooth there). Two bounds, the
+/// smaller taken: the boundary integral (grad Omega = the Biot-Savart
+/// integral over the triangle's edges, |.| <= sum_e len_e / dist(p, e)^2;
+/// small near the middle of a large face) and the area one (|grad| of the
+/// integrand n.y/|y|^3 is <= 2/|y|^3, so <= 2 a / dist^3).
+LVDIF_HD bool triangleLipschitz(const WeightedTri& t, V3 q, double rho, double& L)
+{
+  const V3 a = t.v[0], b = t.v[1], c = t.v[2];
+  const double da = segmentDistance(q, a, b), db = segmentDistance(q, b, c), dc = segmentDistance(q, c, a);
+  const V3 n = cross(b - a, c - a);
+  const double nn = norm(n);
+  double dist = da < db ? da : db;
+  dist = dc < dist ? dc : dist;
+  if (nn > 0 && dot(cross(b - a, q - a), n) >= 0 && dot(cross(c - b, q - b), n) >= 0 && dot(cross(a - c, q - c), n) >= 0)
+  {
+    const double plane = std::fabs(dot(q - a, n)) / nn; // q projects inside the face
+    dist = plane < dist ? plane : dist;
+  }
+  if (!(dist > rho)) return false;
+  const double ea = da - rho, eb = db - rho, ec = dc - rho, g = dist - rho;
+  const double edges = norm(b - a) / (ea * ea) + norm(c - b) / (eb * eb) + norm(a - c) / (ec * ec);
+  const double area = nn / (g * g * g); // 2 (nn / 2) / g^3
+  L = edges < area ? edges : area;
+  return true;
+}
 
 /// A rigorous interval [sLo, sHi] of s over the ball (q, rho). Clusters at
 /// d > 0 whose error is at most tolPerMass x their mass are taken as bounds
@@ -59,19 +103,51 @@ LVDIF_HD bool boundDipole(const DipoleView& D, V3 q, double rho, double tolPerMa
   while (top > 0)
   {
     const DipoleTree::Node nd = D.nodes[stack[--top]];
+#ifndef __CUDA_ARCH__
+    if (D.visits) *D.visits += 1 + (nd.left < 0 ? nd.count : 0);
+#endif
     const V3 y = nd.c - q;
     const double r = norm(y);
     const double d = r - rho - nd.r;
     if (d > 0)
     {
+      // three rigorous bounds, the smallest taken: 0 (area / d^2), the
+      // dipole (DipoleTree::refine's), and the dipole plus the second-order
+      // term (Barill et al.'s; remainder 3 A R^2 / (r - R)^4: |D^3 (1/|y|)|
+      // <= 3! / |y|^4), moved over the ball by the Lipschitz bound 2 A / d^3
+      const double r3 = r * r * r, dq = r - nd.r;
       const double e0 = nd.mass / (d * d), e1 = 2 * nd.mass * (nd.r + rho) / (d * d * d);
-      const double e = e1 < e0 ? e1 : e0;
-      if (e <= tolPerMass * nd.mass || (nd.left < 0 && rho > 0))
+      const double e2 = 3 * nd.mass * nd.r * nd.r / (dq * dq * dq * dq) + 2 * nd.mass * rho / (d * d * d);
+      const double e = e2 < e1 ? (e2 < e0 ? e2 : e0) : (e1 < e0 ? e1 : e0);
+      if (e <= tolPerMass * nd.mass)
       {
-        const double v = e1 < e0 ? dot(nd.dipole, y) / (r * r * r) : 0.0;
+        const int order = e == e0 ? 0 : (e == e1 ? 1 : 2);
+        double v = 0, m = 0;
+        if (order >= 1)
+        {
+          v = dot(nd.dipole, y) / r3;
+          m = std::fabs(v);
+        }
+        if (order == 2)
+        {
+          // sum_ij T_ij d(y_i / |y|^3)/d y_j = tr T / r^3 - 3 y.T.y / r^5
+          const double* T = nd.quad;
+          const double yy[3] = { y.x, y.y, y.z };
+          double yTy = 0, yTyAbs = 0;
+          for (int i = 0; i < 3; ++i)
+            for (int j = 0; j < 3; ++j)
+            {
+              const double t = yy[i] * T[3 * i + j] * yy[j];
+              yTy += t;
+              yTyAbs += std::fabs(t);
+            }
+          const double r5 = r3 * r * r;
+          v += (T[0] + T[4] + T[8]) / r3 - 3 * yTy / r5;
+          m += (std::fabs(T[0]) + std::fabs(T[4]) + std::fabs(T[8])) / r3 + 3 * yTyAbs / r5;
+        }
         value += v;
         err += e;
-        mag += std::fabs(v);
+        mag += m;
         ++terms;
         approx = true;
         continue;
@@ -84,7 +160,25 @@ LVDIF_HD bool boundDipole(const DipoleView& D, V3 q, double rho, double tolPerMa
       stack[top++] = nd.right;
       continue;
     }
-    if (rho > 0) return false;
+    if (rho > 0)
+    {
+      // a leaf over the ball: each triangle's exact value at q, plus its
+      // Lipschitz bound over the ball (no d^-3 R term, so the error vanishes
+      // with rho); false when the ball meets a triangle
+      for (int i = nd.first; i < nd.first + nd.count; ++i)
+      {
+        const WeightedTri& t = D.tris[i];
+        double e = 0;
+        if (!triangleLipschitz(t, q, rho, e)) return false;
+        const double a = t.w * solidAngle(q, t.v[0], t.v[1], t.v[2]);
+        value += a;
+        err += std::fabs(t.w) * rho * e;
+        mag += std::fabs(a);
+        ++terms;
+      }
+      approx = true;
+      continue;
+    }
     for (int i = nd.first; i < nd.first + nd.count; ++i)
     {
       const WeightedTri& t = D.tris[i];
@@ -123,7 +217,7 @@ LVDIF_HD double dipoleTolerance(const DipoleView& D, double margin) { return 0.5
 /// the last estimate left), else by the canonical sum (counted in full).
 LVDIF_HD bool insideDipole(const DipoleView& D, int K, V3 p, unsigned long long& full)
 {
-  double margin = 0.25;
+  double margin = 0.8; // a first pass with a loose tolerance decides most voxels cheaply (w mostly near 0 or 1)
   while (margin > 1e-10)
   {
     double lo = 0, hi = 0;
@@ -152,7 +246,7 @@ LVDIF_HD void dipoleBlockBound(const DipoleView& D, V3 p0, V3 p1, double& lo, do
   const double rho = half + 1e-9 * (half + std::fabs(centre.x) + std::fabs(centre.y) + std::fabs(centre.z));
   lo = 1;
   hi = 0;
-  double margin = 0.25;
+  double margin = 0.8;
   for (int pass = 0; pass < 3; ++pass)
   {
     double l = 0, u = 0;

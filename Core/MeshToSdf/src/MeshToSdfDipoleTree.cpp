@@ -48,6 +48,10 @@ DipoleTree::DipoleTree(std::vector<WeightedTri> tris)
       nd.dipole = nd.dipole + t.w * an;
       nd.mass += std::fabs(t.w) * norm(an);
       for (const V3& v : t.v) nd.r = std::max(nd.r, norm(v - nd.c));
+      const V3 n = t.w * an, g = centroid(t) - nd.c;
+      const double ni[3] = { n.x, n.y, n.z }, gj[3] = { g.x, g.y, g.z };
+      for (int i = 0; i < 3; ++i)
+        for (int j = 0; j < 3; ++j) nd.quad[3 * i + j] += ni[i] * gj[j];
     }
     nd.r *= 1 + 1e-12; // rounding of the distances above
     if (d.count > LeafSize)

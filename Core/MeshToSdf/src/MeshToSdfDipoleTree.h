@@ -62,6 +62,7 @@ public:
   {
     V3 c, dipole;        // centre; sum of w a n
     double r = 0, mass = 0; // radius about c; sum of |w| a
+    double quad[9] = {};    // sum of w a n_i (g - c)_j, g the centroid (the GPU's second-order term)
     std::int32_t left = -1, right = -1, first = 0, count = 0;
   };
   // for the upload to the GPU (node 0 the root; leaves list tris()[first, first + count))

@@ -11,11 +11,14 @@
 #include "../src/MeshToSdfInternal.h"
 #include "MeshToSdfDamagedMeshes.h"
 #include "MeshToSdfOracle.h"
+#include "lvdif/MeshFile.h"
 #include "lvdif/MeshToSdf.h"
 
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <chrono>
+#include <cstdlib>
 #include <cmath>
 #include <random>
 #include <string>
@@ -32,11 +35,12 @@ struct Emulated
 {
   std::vector<char> inside;
   unsigned long long evaluated = 0, full = 0, blocksBounded = 0, fromCoarse = 0;
+  unsigned long long blockVisits = 0, voxelVisits = 0; // tree nodes + triangles visited by the two phases
 };
 
 /// The CUDA sign path (signDipoleKernel after dipoleBlockKernel), voxel by
 /// voxel on the CPU, over the whole grid.
-Emulated emulateGpu(const WindingSigner& w, const GridGeometry& g)
+Emulated emulateGpu(const WindingSigner& w, const GridGeometry& g, bool blocksOnly = false)
 {
   const WindingSigner::Closure& c = w.cpuClosure();
   const DipoleTree* s = w.cpuCorrection();
@@ -48,17 +52,13 @@ Emulated emulateGpu(const WindingSigner& w, const GridGeometry& g)
     D.count = static_cast<int>(s->tris().size());
     D.rootMass = s->nodes()[0].mass;
   }
+  Emulated e;
+  D.visits = &e.blockVisits;
   const std::int64_t nx = g.dims[0], ny = g.dims[1], nz = g.dims[2];
   auto position = [&](std::int64_t i, std::int64_t j, std::int64_t k) {
     return V3{ g.origin[0] + i * g.spacing[0], g.origin[1] + j * g.spacing[1], g.origin[2] + k * g.spacing[2] };
   };
-  Emulated e;
   e.inside.assign(static_cast<std::size_t>(g.count()), 0);
-  const std::int64_t bx = (nx + DipoleBlock - 1) / DipoleBlock, by = (ny + DipoleBlock - 1) / DipoleBlock,
-                     bz = (nz + DipoleBlock - 1) / DipoleBlock;
-  // the coarse blocks (DipoleCoarse^3 blocks) first, then the blocks whose coarse block has no bound
-  const std::int64_t ce = DipoleBlock * DipoleCoarse, cx = (bx + DipoleCoarse - 1) / DipoleCoarse,
-                     cy = (by + DipoleCoarse - 1) / DipoleCoarse, cz = (bz + DipoleCoarse - 1) / DipoleCoarse;
   auto blockBound = [&](std::int64_t x0, std::int64_t y0, std::int64_t z0, std::int64_t edge, double& lo, double& hi) {
     lo = 1;
     hi = 0;
@@ -67,22 +67,39 @@ Emulated emulateGpu(const WindingSigner& w, const GridGeometry& g)
         position(std::min(x0 + edge - 1, nx - 1), std::min(y0 + edge - 1, ny - 1), std::min(z0 + edge - 1, nz - 1)), lo,
         hi);
   };
-  std::vector<double> coarse(static_cast<std::size_t>(2 * cx * cy * cz));
-  for (std::int64_t c = 0; c < cx * cy * cz; ++c)
-    blockBound(ce * (c % cx), ce * ((c / cx) % cy), ce * (c / (cx * cy)), ce, coarse[static_cast<std::size_t>(2 * c)],
-      coarse[static_cast<std::size_t>(2 * c + 1)]);
-  std::vector<double> bounds(static_cast<std::size_t>(2 * bx * by * bz), 0.0);
-  for (std::int64_t b = 0; b < bx * by * bz; ++b)
+  // the levels coarse to fine as dipoleBlockKernel bounds them: a block
+  // takes its parent's bound if it has one
+  std::vector<double> parent, bounds;
+  std::int64_t px = 0, py = 0, bx = 0, by = 0;
+  for (int level = 0; level < DipoleLevels; ++level)
   {
-    const std::int64_t ix = b % bx, iy = (b / bx) % by, iz = b / (bx * by);
-    const std::size_t c = static_cast<std::size_t>(ix / DipoleCoarse + cx * (iy / DipoleCoarse + cy * (iz / DipoleCoarse)));
-    double lo = coarse[2 * c], hi = coarse[2 * c + 1];
-    e.fromCoarse += lo <= hi;
-    if (!(lo <= hi)) blockBound(DipoleBlock * ix, DipoleBlock * iy, DipoleBlock * iz, DipoleBlock, lo, hi);
-    bounds[static_cast<std::size_t>(2 * b)] = lo;
-    bounds[static_cast<std::size_t>(2 * b + 1)] = hi;
-    e.blocksBounded += lo <= hi;
+    const std::int64_t edge = DipoleEdges[level], ratio = level ? DipoleEdges[level - 1] / edge : 1;
+    bx = (nx + edge - 1) / edge;
+    by = (ny + edge - 1) / edge;
+    const std::int64_t bz = (nz + edge - 1) / edge;
+    bounds.assign(static_cast<std::size_t>(2 * bx * by * bz), 0.0);
+    for (std::int64_t b = 0; b < bx * by * bz; ++b)
+    {
+      const std::int64_t ix = b % bx, iy = (b / bx) % by, iz = b / (bx * by);
+      double lo = 1, hi = 0;
+      if (level)
+      {
+        const std::size_t c = static_cast<std::size_t>(ix / ratio + px * (iy / ratio + py * (iz / ratio)));
+        lo = parent[2 * c];
+        hi = parent[2 * c + 1];
+        if (level == DipoleLevels - 1) e.fromCoarse += lo <= hi;
+      }
+      if (!(lo <= hi)) blockBound(edge * ix, edge * iy, edge * iz, edge, lo, hi);
+      bounds[static_cast<std::size_t>(2 * b)] = lo;
+      bounds[static_cast<std::size_t>(2 * b + 1)] = hi;
+      if (level == DipoleLevels - 1) e.blocksBounded += lo <= hi;
+    }
+    parent.swap(bounds);
+    px = bx;
+    py = by;
   }
+  bounds.swap(parent);
+  D.visits = &e.voxelVisits;
   const V3 oblique = normalized(V3{ 0.5773502691896258, 0.5780, 0.5767 });
   std::vector<Bvh::RayHit> hits;
   for (std::int64_t k = 0; k < nz; ++k)
@@ -121,6 +138,11 @@ Emulated emulateGpu(const WindingSigner& w, const GridGeometry& g)
             continue;
           }
           for (const auto& x : oh) K += x.sign;
+        }
+        if (blocksOnly)
+        {
+          e.evaluated += s && !(lo <= hi && dipoleDecided(K - hi, K - lo));
+          continue;
         }
         out = s ? insideWithBlock(D, K, p, lo, hi, e.evaluated, e.full) : std::abs(K) >= 1;
       }
@@ -239,4 +261,53 @@ TEST(MeshToSdfDipoleDecide, CanonicalSumDecidesTies)
     EXPECT_EQ(got, std::fabs(K - tree.exactCanonical(p)) >= 0.5) << K;
   }
   EXPECT_EQ(full, 2u); // K = 0 and the K that puts w on the other threshold
+}
+
+// The work of the GPU's decision, counted on the CPU (no comparison): the
+// mesh in LVDIF_DIPOLE_WORK_MESH (e.g. the armadillo), damaged as the
+// benchmarks damage it, at the resolutions in LVDIF_DIPOLE_WORK_RES
+// (default "64 128"). Skipped when the variable is not set.
+TEST(MeshToSdfDipoleDecide, WorkCounts)
+{
+  const char* path = std::getenv("LVDIF_DIPOLE_WORK_MESH");
+  if (!path) GTEST_SKIP() << "set LVDIF_DIPOLE_WORK_MESH";
+  const char* resText = std::getenv("LVDIF_DIPOLE_WORK_RES");
+  const char* damages = std::getenv("LVDIF_DIPOLE_WORK_DAMAGES");
+  std::vector<int> res;
+  {
+    std::string t = resText ? resText : "64 128";
+    for (std::size_t a = 0; a < t.size();)
+    {
+      std::size_t b = t.find(' ', a);
+      if (b == std::string::npos) b = t.size();
+      if (b > a) res.push_back(std::stoi(t.substr(a, b - a)));
+      a = b + 1;
+    }
+  }
+  const TriangleMesh base = loadMesh(path);
+  std::string ds = damages ? damages : "patch10 patch30 flip10 duprev20 holes40";
+  for (std::size_t a = 0; a < ds.size();)
+  {
+    std::size_t b = ds.find(' ', a);
+    if (b == std::string::npos) b = ds.size();
+    const std::string d = ds.substr(a, b - a);
+    a = b + 1;
+    if (d.empty()) continue;
+    const TriangleMesh m = signquality::damaged(base, d);
+    const PreparedMesh prepared = prepareMesh(m);
+    const WindingSigner w(prepared);
+    for (int r : res)
+    {
+      const GridGeometry g = fitGridToMesh(m, r, 2);
+      const auto t0 = std::chrono::steady_clock::now();
+      const Emulated e = emulateGpu(w, g, std::getenv("LVDIF_DIPOLE_WORK_BLOCKS_ONLY") != nullptr);
+      const double sec = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+      std::printf("[ work ] %-9s %4d^3 %11lld voxels: %9llu blocks bounded (%9llu by coarse), %10llu voxels refined "
+                  "(%.4f of all), %llu canonical; visits: blocks %.3g, voxels %.3g, per voxel %.2f; %.1f s\n",
+        d.c_str(), r, static_cast<long long>(g.count()), e.blocksBounded, e.fromCoarse, e.evaluated,
+        static_cast<double>(e.evaluated) / static_cast<double>(g.count()), e.full, static_cast<double>(e.blockVisits),
+        static_cast<double>(e.voxelVisits), static_cast<double>(e.blockVisits + e.voxelVisits) / static_cast<double>(g.count()), sec);
+      std::fflush(stdout);
+    }
+  }
 }
