@@ -569,12 +569,29 @@ private:
       this->FarCapacity = cells;
     }
     LVDIF_CUDA_CHECK(cudaMemsetAsync(this->Far, 0, static_cast<std::size_t>(cells)));
-    for (int edge : { FarBlock, FarBlock / 2, FarCell })
+    // the centre distances of the blocks and of the halves, for the next level's band skip
+    long long levelBoxes[2];
+    for (int l = 0; l < 2; ++l)
     {
+      const long long edge = FarBlock >> l;
+      levelBoxes[l] = 1;
+      for (int a = 0; a < 3; ++a) levelBoxes[l] *= (P.hi[a] - P.lo[a] + 1 + edge - 1) / edge;
+    }
+    if (levelBoxes[0] + levelBoxes[1] > this->FarDistCapacity)
+    {
+      if (this->FarDist) this->Arena.release(this->FarDist);
+      this->FarDist = this->Arena.alloc<double>(static_cast<std::size_t>(levelBoxes[0] + levelBoxes[1]));
+      this->FarDistCapacity = levelBoxes[0] + levelBoxes[1];
+    }
+    double* const dist[3] = { this->FarDist, this->FarDist + levelBoxes[0], nullptr };
+    for (int l = 0; l < 3; ++l)
+    {
+      const int edge = FarBlock >> l;
       long long boxes = 1;
       for (int a = 0; a < 3; ++a) boxes *= (P.hi[a] - P.lo[a] + 1 + edge - 1) / edge;
       farLevelKernel<<<static_cast<unsigned>((boxes + 127) / 128), 128>>>(this->Mesh.meshBvh(), this->Mesh.cones(),
-        P, this->FarMargin, this->FarBig, edge, count[0], count[1], count[2], this->Far, this->FarDecided);
+        P, this->FarMargin, this->FarBig, edge, count[0], count[1], count[2], this->Far, l > 0 ? dist[l - 1] : nullptr,
+        dist[l], this->FarDecided);
       LVDIF_CUDA_CHECK(cudaGetLastError());
     }
     P.far = this->Far;
@@ -616,6 +633,8 @@ private:
   double FarBig = 0, FarMargin = 0;
   signed char* Far = nullptr;
   long long FarCapacity = 0;
+  double* FarDist = nullptr; // the blocks' then the halves' centre distances (or bounds) of the slab
+  long long FarDistCapacity = 0;
   unsigned long long* FarDecided = nullptr;
   float* Slab = nullptr;
   std::size_t SlabCapacity = 0;

@@ -21,10 +21,14 @@ namespace
 /// level before (2 edge) was not decided. Launched for edge = FarBlock, then
 /// FarBlock / 2, then FarCell, this tries the boxes farClassifyBlock tries on
 /// the CPU (each with its own nearest query and farBoxSide on the same BVH
-/// and cones; the CPU skips some near the band without a query), with 8 and
-/// 64 times more threads than one per block; decided voxels added to *decided.
+/// and cones), with 8 and 64 times more threads than one per block; decided
+/// voxels added to *decided. parentDist: the level before's distances (or
+/// bounds), by which a box certainly within the band is skipped without a
+/// query, as on the CPU; ownDist: this level's, for the next (null at the
+/// first level and the last).
 __global__ void farLevelKernel(DevBvh bvh, const FarCone* cones, Params P, double margin, double big, int edge,
-  long long cx, long long cy, long long cz, signed char* cells, unsigned long long* decided)
+  long long cx, long long cy, long long cz, signed char* cells, const double* parentDist, double* ownDist,
+  unsigned long long* decided)
 {
   const long long n[3] = { P.hi[0] - P.lo[0] + 1, P.hi[1] - P.lo[1] + 1, P.hi[2] - P.lo[2] + 1 };
   const long long mx = (n[0] + edge - 1) / edge, my = (n[1] + edge - 1) / edge, mz = (n[2] + edge - 1) / edge;
@@ -37,12 +41,37 @@ __global__ void farLevelKernel(DevBvh bvh, const FarCone* cones, Params P, doubl
   for (int a = 0; a < 3; ++a) hi[a] = min(o[a] + edge, n[a]) - 1;
   const FarBox box = farBox(positionOf(P, P.lo[0] + o[0], P.lo[1] + o[1], P.lo[2] + o[2]),
     positionOf(P, P.lo[0] + hi[0], P.lo[1] + hi[1], P.lo[2] + hi[2]), big);
+  if (parentDist)
+  {
+    // the enclosing box (edge 2 edge) and its distance or bound: a box
+    // certainly within the band is left undecided without a query, as on the CPU
+    const long long pe = 2 * edge, pmx = (n[0] + pe - 1) / pe, pmy = (n[1] + pe - 1) / pe;
+    long long po[3], phi[3];
+    for (int a = 0; a < 3; ++a)
+    {
+      po[a] = o[a] - o[a] % pe;
+      phi[a] = min(po[a] + pe, n[a]) - 1;
+    }
+    const FarBox parent = farBox(positionOf(P, P.lo[0] + po[0], P.lo[1] + po[1], P.lo[2] + po[2]),
+      positionOf(P, P.lo[0] + phi[0], P.lo[1] + phi[1], P.lo[2] + phi[2]), big);
+    const double bound = farChildBound(parentDist[po[0] / pe + pmx * (po[1] / pe + pmy * (po[2] / pe))], box, parent, big);
+    if (bound - box.radius <= P.bandWorld)
+    {
+      if (ownDist) ownDist[b] = bound; // for this box's own cells
+      return;
+    }
+  }
   int slot = -1;
   const NearestResult q = nearestDev(bvh, box.centre, -1, 1e300, slot);
-  if (q.tri < 0) return;
+  if (q.tri < 0)
+  {
+    if (ownDist) ownDist[b] = 0; // no triangle: nothing is decided below either
+    return;
+  }
   const bool pseudo = P.sign == 1;
   auto triAt = [&](int i) -> const Tri& { return bvh.tris[bvh.order[i]]; };
   const double dq = sqrt(q.dist2);
+  if (ownDist) ownDist[b] = dq;
   const int s = farBoxSide(bvh.nodes, cones, triAt, pseudo, box, dq, dq, P.bandWorld, margin,
     farSideAt(bvh.tris[q.tri], q.closest, box.centre, pseudo));
   if (s == 0) return;

@@ -75,8 +75,18 @@ std::int64_t classifyFarCells(const NearestIndex& index, const Bvh& bvh, const s
         const int level = edge == FarBlock ? 0 : (edge == FarBlock / 2 ? 1 : 2);
         // certainly within the band by the enclosing box's distance: no query
         // (only a shortcut: an undecided box is never wrong)
-        if (level > 0 && lastDist[level - 1] + farOffset(sub, last[level - 1], big) - sub.radius <= bandWorld)
-          return 0;
+        if (level > 0)
+        {
+          const double bound = farChildBound(lastDist[level - 1], sub, last[level - 1], big);
+          if (bound - sub.radius <= bandWorld)
+          {
+            // the bound stands in for this box's distance for its own cells,
+            // so that they are not tried against a stale box (as on the GPU)
+            last[level] = sub;
+            lastDist[level] = bound;
+            return 0;
+          }
+        }
         const NearestResult q = index.nearest(sub.centre, hint, 1e300);
         if (q.tri < 0) return 0;
         hint = q.tri;

@@ -239,6 +239,15 @@ LVDIF_HD double farOffset(const FarBox& sub, const FarBox& block, double big)
   return norm(sub.centre - block.centre) * (1 + 1e-12) + 1e-15 * big;
 }
 
+/// An upper bound of the nearest distance of a sub-box's centre from that of
+/// the box enclosing it (parentDist: its computed distance, or its own bound).
+/// A sub-box with bound - radius <= band is certainly not past the band: it is
+/// left undecided without a query (a shortcut only: undecided is never wrong).
+LVDIF_HD double farChildBound(double parentDist, const FarBox& sub, const FarBox& parent, double big)
+{
+  return parentDist + farOffset(sub, parent, big);
+}
+
 /// The cells of one block (voxel origin v0, box-relative; n: the box's size):
 /// side(origin, edge) decides the box of edge^3 voxels there (clipped to n),
 /// set(cell, sign) records a decided cell (cell = origin / FarCell). The block
