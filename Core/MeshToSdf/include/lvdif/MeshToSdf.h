@@ -96,6 +96,10 @@ struct MeshToSdfOptions
   /// CUDA: bytes of the device slab buffer (z layers per slab follow from it;
   /// into a dictionary volume at least one layer of chunks per slab).
   std::uint64_t cudaSlabBytes = 256ull << 20;
+  /// CPU into a dictionary volume: bytes of the float buffer the voxels are
+  /// computed into before they are encoded (whole x rows of as many rows of
+  /// chunks as fit, at least one): bounded, never a whole chunk layer.
+  std::uint64_t cpuBandBytes = 32ull << 20;
   /// CUDA into a dictionary volume: also copy the float slabs back and check
   /// every GPU-encoded key against the host's encode (tests; costs the copy).
   bool cudaVerifyKeys = false;
