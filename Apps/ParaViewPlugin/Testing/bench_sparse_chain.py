@@ -1,7 +1,8 @@
 # pvbatch benchmark of the sparse chain: a mesh file -> Mesh To SDF (longest
 # axis N points, otherwise default properties) -> Sign Voxel Filter (defaults)
 # -> Chunked Marching Cubes (defaults) -> the filtered volume saved as .lvdv.
-# Prints the time and the resident memory after each stage, then one line
+# Prints the time, the resident memory, the peak so far (VmHWM) and glibc's bytes in use
+# and held free (mallinfo2) after each stage, then one line
 #   BENCH n=.. dims=AxBxC sdf_s=.. svf_s=.. mc_s=.. write_s=.. triangles=.. sdf_output_mib=.. svf_output_mib=.. surface_mib=.. file_mib=..
 # (*_output_mib: the data object's GetActualMemorySize: the Core volume plus any partitions built for ParaView)
 # Peak RSS comes from the caller (/usr/bin/time -v; scripts/bench-sparse-chain-pvbatch.sh).
