@@ -17,10 +17,15 @@
 #include "vtkObjectFactory.h"
 #include "vtkPointData.h"
 #include "vtkSmartPointer.h"
+#include "vtkWeakPointer.h"
 
 #include <algorithm>
+#include <array>
 #include <functional>
+#include <iterator>
+#include <mutex>
 #include <string>
+#include <unordered_map>
 #include <vector>
 
 vtkStandardNewMacro(vtkSparseDictionaryVolume);
@@ -189,16 +194,9 @@ double vtkSparseDictionaryVolume::GetPartitionBytes() const
 
 namespace
 {
-/// A partition without its point arrays: extent, origin, spacing and the chunk's field data.
-vtkSmartPointer<vtkImageData> partitionShell(const lvdif::DictionaryVolume& v, std::int64_t id)
+/// The field data `chunk_id` and `chunk_ijk` of chunk `id`'s partition.
+void addChunkFields(const lvdif::DictionaryVolume& v, std::int64_t id, vtkImageData* image)
 {
-  const lvdif::VoxelBox b = partitionBox(v, id);
-  const auto& o = v.options();
-  auto image = vtkSmartPointer<vtkImageData>::New();
-  image->SetExtent(static_cast<int>(b.lo[0]), static_cast<int>(b.hi[0]), static_cast<int>(b.lo[1]),
-    static_cast<int>(b.hi[1]), static_cast<int>(b.lo[2]), static_cast<int>(b.hi[2]));
-  image->SetOrigin(o.origin[0], o.origin[1], o.origin[2]);
-  image->SetSpacing(o.spacing[0], o.spacing[1], o.spacing[2]);
   const lvdif::Index3 c = v.chunkCoord(id);
   vtkNew<vtkIdTypeArray> chunkId;
   chunkId->SetName("chunk_id");
@@ -209,8 +207,95 @@ vtkSmartPointer<vtkImageData> partitionShell(const lvdif::DictionaryVolume& v, s
   ijk->InsertNextTuple3(c[0], c[1], c[2]);
   image->GetFieldData()->AddArray(chunkId);
   image->GetFieldData()->AddArray(ijk);
+}
+
+/// A partition without its point arrays: extent, origin, spacing and the chunk's field data.
+vtkSmartPointer<vtkImageData> partitionShell(const lvdif::DictionaryVolume& v, std::int64_t id)
+{
+  const lvdif::VoxelBox b = partitionBox(v, id);
+  const auto& o = v.options();
+  auto image = vtkSmartPointer<vtkImageData>::New();
+  image->SetExtent(static_cast<int>(b.lo[0]), static_cast<int>(b.hi[0]), static_cast<int>(b.lo[1]),
+    static_cast<int>(b.hi[1]), static_cast<int>(b.lo[2]), static_cast<int>(b.hi[2]));
+  image->SetOrigin(o.origin[0], o.origin[1], o.origin[2]);
+  image->SetSpacing(o.spacing[0], o.spacing[1], o.spacing[2]);
+  addChunkFields(v, id, image);
   return image;
 }
+
+/// Shells depend on the grid alone (extent, origin, spacing, the chunk's
+/// field data; the values come from the volume that decodes them), so the
+/// volumes of one grid share them: ParaView holds every output of a chain
+/// (Mesh To SDF's and the sign filters' volumes have nearly the same
+/// partitions), and a vtkImageData costs about 8 KiB in VTK 9.2 even without
+/// arrays. The cache holds weak references: a shell lives while a volume holds it.
+class ShellCache
+{
+public:
+  static ShellCache& instance()
+  {
+    static ShellCache cache;
+    return cache;
+  }
+
+  /// The shells of chunks `ids` of `v`'s grid, made where none is alive.
+  std::vector<vtkSmartPointer<vtkImageData>> get(const lvdif::DictionaryVolume& v, const std::vector<std::int64_t>& ids)
+  {
+    const lvdif::VolumeOptions& o = v.options();
+    Key k;
+    k.geometry = { o.origin[0], o.origin[1], o.origin[2], o.spacing[0], o.spacing[1], o.spacing[2] };
+    k.dims = o.dims;
+    k.edge = o.chunkEdge;
+    std::vector<vtkSmartPointer<vtkImageData>> out(ids.size());
+    std::lock_guard<std::mutex> lock(this->Mutex);
+    if (this->Map.size() > this->SweepAt)
+    {
+      for (auto it = this->Map.begin(); it != this->Map.end();)
+        it = it->second ? std::next(it) : this->Map.erase(it);
+      this->SweepAt = 2 * this->Map.size() + 4096;
+    }
+    for (std::size_t i = 0; i < ids.size(); ++i)
+    {
+      k.id = ids[i];
+      vtkWeakPointer<vtkImageData>& slot = this->Map[k];
+      out[i] = slot.GetPointer();
+      if (!out[i])
+      {
+        out[i] = partitionShell(v, ids[i]);
+        slot = out[i];
+      }
+    }
+    return out;
+  }
+
+private:
+  struct Key
+  {
+    std::array<double, 6> geometry;
+    lvdif::Index3 dims;
+    int edge;
+    std::int64_t id;
+    bool operator==(const Key& o) const
+    {
+      return geometry == o.geometry && dims == o.dims && edge == o.edge && id == o.id;
+    }
+  };
+  struct Hash
+  {
+    std::size_t operator()(const Key& k) const
+    {
+      std::size_t h = std::hash<std::int64_t>()(k.id);
+      auto mix = [&h](std::size_t x) { h ^= x + 0x9e3779b97f4a7c15ull + (h << 6) + (h >> 2); };
+      for (double g : k.geometry) mix(std::hash<double>()(g));
+      for (std::int64_t d : k.dims) mix(std::hash<std::int64_t>()(d));
+      mix(static_cast<std::size_t>(k.edge));
+      return h;
+    }
+  };
+  std::mutex Mutex;
+  std::unordered_map<Key, vtkWeakPointer<vtkImageData>, Hash> Map;
+  std::size_t SweepAt = 4096;
+};
 
 /// The chunk id of a shell made by partitionShell, or -1 when `leaf` is not one
 /// (it has point arrays already, or is not an image of ours).
@@ -222,17 +307,19 @@ std::int64_t shellChunk(vtkDataObject* leaf)
   return id && id->GetNumberOfTuples() == 1 ? static_cast<std::int64_t>(id->GetValue(0)) : -1;
 }
 
-/// The shell with its decoded point arrays (a new image sharing the shell's field data),
-/// decoded by the bridge's one FillImage (which checks the memory guard).
-vtkSmartPointer<vtkImageData> fillPartition(
-  const lvdif::DictionaryVolume& v, std::int64_t id, vtkImageData* shell, bool colors)
+/// The shell's partition with its decoded point arrays, decoded by the
+/// bridge's one FillImage (which checks the memory guard). Its field arrays
+/// are its own, not the shell's: ParaView's data information caches every
+/// array's range in the array (about 2.5 KiB a component), which would stay
+/// with the shells for good (85 MiB for two 1024^3 outputs of the bunny).
+vtkSmartPointer<vtkImageData> fillPartition(const lvdif::DictionaryVolume& v, std::int64_t id, bool colors)
 {
   const lvdif::VoxelBox b = partitionBox(v, id);
   const int ext[6] = { static_cast<int>(b.lo[0]), static_cast<int>(b.hi[0]), static_cast<int>(b.lo[1]),
     static_cast<int>(b.hi[1]), static_cast<int>(b.lo[2]), static_cast<int>(b.hi[2]) };
   auto image = vtkSmartPointer<vtkImageData>::New();
   LVDIFVolumeBridge::FillImage(v, ext, image, colors);
-  image->GetFieldData()->ShallowCopy(shell->GetFieldData());
+  addChunkFields(v, id, image);
   return image;
 }
 
@@ -263,8 +350,7 @@ public:
       this->Current = nullptr;
       try
       {
-        this->Current =
-          fillPartition(*owner->GetVolume(), id, vtkImageData::SafeDownCast(leaf), owner->GetPartitionColors());
+        this->Current = fillPartition(*owner->GetVolume(), id, owner->GetPartitionColors());
       }
       catch (const lvdif::Error& e)
       {
@@ -292,10 +378,11 @@ bool vtkSparseDictionaryVolume::UpdatePartitions()
   if (this->PartitionsBuilt || !this->Volume) return true;
   const lvdif::DictionaryVolume& v = *this->Volume;
   const std::vector<std::int64_t> ids = neededPartitions(v, this->OwnsAll ? nullptr : this->Owned);
+  const std::vector<vtkSmartPointer<vtkImageData>> shells = ShellCache::instance().get(v, ids);
   this->Superclass::SetNumberOfPartitions(static_cast<unsigned int>(ids.size()));
   for (std::size_t i = 0; i < ids.size(); ++i)
   {
-    this->Superclass::SetPartition(static_cast<unsigned int>(i), partitionShell(v, ids[i]));
+    this->Superclass::SetPartition(static_cast<unsigned int>(i), shells[i]);
   }
   this->PartitionsBuilt = true;
   return true;
@@ -316,8 +403,7 @@ vtkDataSet* vtkSparseDictionaryVolume::GetPartition(unsigned int idx)
   // asked by index: decoded for good (the caller gets a pointer it does not own)
   try
   {
-    vtkSmartPointer<vtkImageData> image =
-      fillPartition(*this->Volume, id, vtkImageData::SafeDownCast(leaf), this->PartitionColors);
+    vtkSmartPointer<vtkImageData> image = fillPartition(*this->Volume, id, this->PartitionColors);
     this->Superclass::SetPartition(idx, image);
     return image;
   }
@@ -428,11 +514,20 @@ void vtkSparseDictionaryVolume::SetDataSet(vtkCompositeDataIterator* iter, vtkDa
     }
     if (ours && pd->GetNumberOfArrays() > 0)
     {
-      vtkNew<vtkImageData> shell;
-      shell->CopyStructure(image);
-      shell->GetFieldData()->ShallowCopy(image->GetFieldData());
-      this->Superclass::SetDataSet(iter, shell);
-      return;
+      // the chunk's shell, shared with the original (see ShellCache)
+      auto* id = vtkIdTypeArray::SafeDownCast(image->GetFieldData()->GetArray("chunk_id"));
+      int ext[6];
+      image->GetExtent(ext);
+      const lvdif::VoxelBox b = id && id->GetNumberOfTuples() == 1 && id->GetValue(0) >= 0 &&
+          id->GetValue(0) < this->Volume->chunkCount()
+        ? partitionBox(*this->Volume, id->GetValue(0))
+        : lvdif::VoxelBox{};
+      if (!b.empty() && b.lo[0] == ext[0] && b.hi[0] == ext[1] && b.lo[1] == ext[2] && b.hi[1] == ext[3] &&
+        b.lo[2] == ext[4] && b.hi[2] == ext[5])
+      {
+        this->Superclass::SetDataSet(iter, ShellCache::instance().get(*this->Volume, { id->GetValue(0) })[0]);
+        return;
+      }
     }
   }
   this->Superclass::SetDataSet(iter, dataObj);

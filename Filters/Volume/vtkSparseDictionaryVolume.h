@@ -24,12 +24,15 @@
  * composite API (NewIterator, NewTreeIterator, GetNumberOfPartitions,
  * GetPartition, CopyStructure, ShallowCopy of this object), so a pipeline of
  * our own filters never makes them. Even then they are first shells:
- * extent, origin, spacing and field data, no point arrays (about 1 KiB each).
+ * extent, origin, spacing and field data, no point arrays (about 8 KiB each in VTK 9.2).
  * This object's iterator decodes the shell it stands on into a new image
  * (checked against lvdif's memory limit, LVDIF_MEMORY_LIMIT) and releases it
  * at the next step unless the consumer keeps a reference: ParaView's data
  * information, the outline and per-partition filters (Contour, Cutter) hold
- * one decoded partition at a time. GetPartition(i) decodes partition i for
+ * one decoded partition at a time. Shells depend on the grid alone: the
+ * volumes of one grid share them (ParaView's copy of an output, made with
+ * CopyStructure and a shallow copy of each decoded leaf, and the outputs of
+ * a chain of filters). GetPartition(i) decodes partition i for
  * good. A consumer that walks the leaves with an iterator of its own (not
  * NewIterator) sees the shells. After editing the Core volume in place, call
  * VolumeModified() (drops the partitions; the dirty flags stay in the Core

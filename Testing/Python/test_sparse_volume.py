@@ -22,7 +22,7 @@ import sys
 
 import lvdif
 from vtkmodules.vtkCommonCore import vtkCommand, vtkPoints
-from vtkmodules.vtkCommonDataModel import vtkPlane, vtkPolyData
+from vtkmodules.vtkCommonDataModel import vtkPartitionedDataSet, vtkPlane, vtkPolyData
 from vtkmodules.vtkCommonExecutionModel import vtkTrivialProducer
 from vtkmodules.vtkFiltersCore import (vtkAppendPolyData, vtkCleanPolyData, vtkContourFilter, vtkCutter,
                                        vtkFeatureEdges, vtkMassProperties, vtkPassThrough, vtkTriangleFilter)
@@ -173,6 +173,46 @@ cutter.SetInputConnection(reader.GetOutputPort())
 cutter.Update()
 cut = sum(b.GetNumberOfCells() for b in blocks(cutter.GetOutputDataObject(0)))
 check(cut > 0, "vtkCutter slices the partitions (%d cells)" % cut)
+
+# ParaView copies every output (its post filter): CopyStructure, then a shallow copy of each leaf
+# the iterator decoded. The copy shares the original's shells (a vtkImageData is about 8 KiB
+# even without arrays; volumes of one grid share them) and decodes on demand as the original
+# does; a decoded leaf's field arrays are its own, so ranges cached in them (ParaView's data
+# information) go with it.
+fresh = lvdif.vtkDictionaryVolumeReader()
+fresh.SetFileName(small)
+fresh.Update()
+original = fresh.GetOutput()
+copy = lvdif.vtkSparseDictionaryVolume()
+copy.CopyStructure(original)
+it = original.NewIterator()
+it.InitTraversal()
+own_fields = True
+while not it.IsDoneWithTraversal():
+    leaf = it.GetCurrentDataObject()
+    shell = vtkPartitionedDataSet.GetPartition(original, it.GetCurrentFlatIndex() - 1)
+    own_fields = own_fields and leaf.GetFieldData().GetArray("chunk_id") is not shell.GetFieldData().GetArray("chunk_id") \
+        and leaf.GetFieldData().GetArray("chunk_id").GetValue(0) == shell.GetFieldData().GetArray("chunk_id").GetValue(0)
+    leaf_copy = leaf.NewInstance()
+    leaf_copy.ShallowCopy(leaf)
+    copy.SetDataSet(it, leaf_copy)
+    it.GoToNextItem()
+n = original.GetNumberOfPartitions()
+check(own_fields, "a decoded partition has its own chunk_id/chunk_ijk arrays, with the shell's values")
+check(copy.HasVolume() and copy.GetNumberOfPartitions() == n and
+      all(vtkPartitionedDataSet.GetPartition(copy, i) is vtkPartitionedDataSet.GetPartition(original, i) for i in range(n)),
+      "the leaf-by-leaf copy shares the original's %d shells" % n)
+check(all(vtkPartitionedDataSet.GetPartition(original, i).GetPointData().GetNumberOfArrays() == 0 for i in range(n)),
+      "the shared shells hold no point arrays")
+again = lvdif.vtkDictionaryVolumeReader()  # another volume of the same grid: the same shells
+again.SetFileName(small)
+again.Update()
+check(again.GetOutput().GetNumberOfPartitions() == n and
+      all(vtkPartitionedDataSet.GetPartition(again.GetOutput(), i) is vtkPartitionedDataSet.GetPartition(original, i)
+          for i in range(n)), "a second volume of the same grid shares the shells too")
+copied = [b.GetPointData().GetArray("sdf").GetRange() for b in blocks(copy)]
+check(copied == [b.GetPointData().GetArray("sdf").GetRange() for b in blocks(original)],
+      "the copy decodes the same partitions")
 outline = vtkOutlineFilter()
 outline.SetInputConnection(reader.GetOutputPort())
 outline.Update()

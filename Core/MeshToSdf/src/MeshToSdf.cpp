@@ -483,35 +483,47 @@ void storeChunk(DictionaryVolume& volume, std::int64_t id, bool uniform, SdfKey 
   volume.tryCollapseChunk(id);
 }
 
-/// CPU: one layer of chunks at a time (nx * ny * chunkEdge floats, 128 MiB
-/// at 1024^2 x 32), encoded on the host; never the full grid.
-void volumeOnCpu(const Engine& e, DictionaryVolume& volume, MeshToSdfStats& stats, Interrupter& intr)
+/// CPU: one band of chunks at a time (whole x rows, `rowsPerBand` rows of
+/// chunks along y, one chunk layer along z), encoded on the host: the float
+/// buffer stays within cpuBandBytes (at least one row of chunks) whatever the
+/// grid, where a whole chunk layer would be nx * ny * chunkEdge floats (532 MB
+/// at 2048^2 x 32). A band starts on a chunk boundary, so the 4-voxel winding
+/// blocks fall where they fall in the whole grid.
+void volumeOnCpu(const Engine& e, DictionaryVolume& volume, std::uint64_t bandBytes, MeshToSdfStats& stats,
+  Interrupter& intr)
 {
   const GridGeometry& grid = e.geom;
   const std::int64_t edge = volume.chunkEdge();
-  const std::uint64_t layerFloats = checkedMultiply(
-    checkedMultiply(static_cast<std::uint64_t>(grid.dims[0]), static_cast<std::uint64_t>(grid.dims[1]), "slab"),
-    static_cast<std::uint64_t>(edge), "slab");
   const Index3& cc = volume.chunkCounts();
-  requireMemory(layerFloats * sizeof(float), "mesh to SDF: slab buffer");
-  std::vector<float> slab(static_cast<std::size_t>(layerFloats));
-  const std::int64_t nx = grid.dims[0], ny = grid.dims[1];
-  for (std::int64_t cz = 0; cz < cc[2]; ++cz)
+  const std::uint64_t chunkRowFloats = checkedMultiply(
+    checkedMultiply(static_cast<std::uint64_t>(grid.dims[0]), static_cast<std::uint64_t>(edge), "band"),
+    static_cast<std::uint64_t>(edge), "band");
+  const std::int64_t rowsPerBand = static_cast<std::int64_t>(std::max<std::uint64_t>(1,
+    std::min<std::uint64_t>(static_cast<std::uint64_t>(cc[1]), bandBytes / (chunkRowFloats * sizeof(float)))));
+  const std::uint64_t bandFloats = checkedMultiply(chunkRowFloats, static_cast<std::uint64_t>(rowsPerBand), "band");
+  requireMemory(bandFloats * sizeof(float), "mesh to SDF: band buffer");
+  std::vector<float> band(static_cast<std::size_t>(bandFloats));
+  const std::int64_t bandsPerLayer = (cc[1] + rowsPerBand - 1) / rowsPerBand;
+  const std::int64_t bands = bandsPerLayer * cc[2];
+  for (std::int64_t b = 0; b < bands; ++b)
   {
+    const std::int64_t cz = b / bandsPerLayer, cy0 = (b % bandsPerLayer) * rowsPerBand;
+    const std::int64_t cy1 = std::min(cc[1], cy0 + rowsPerBand); // exclusive
     VoxelBox box;
-    box.lo = { 0, 0, cz * edge };
-    box.hi = { grid.dims[0] - 1, grid.dims[1] - 1, std::min(grid.dims[2], (cz + 1) * edge) - 1 };
-    computeBox(e, box, slab.data(), stats, intr, static_cast<double>(cz) / static_cast<double>(cc[2]),
-      1.0 / static_cast<double>(cc[2]));
+    box.lo = { 0, cy0 * edge, cz * edge };
+    box.hi = { grid.dims[0] - 1, std::min(grid.dims[1], cy1 * edge) - 1, std::min(grid.dims[2], (cz + 1) * edge) - 1 };
+    computeBox(e, box, band.data(), stats, intr, static_cast<double>(b) / static_cast<double>(bands),
+      1.0 / static_cast<double>(bands));
     const double t0 = now();
-    const std::int64_t chunksInSlab = cc[0] * cc[1];
+    const std::int64_t nx = grid.dims[0], ny = box.hi[1] - box.lo[1] + 1;
+    const std::int64_t chunksInBand = cc[0] * (cy1 - cy0);
 #pragma omp parallel for schedule(dynamic, 1)
-    for (std::int64_t c = 0; c < chunksInSlab; ++c)
+    for (std::int64_t c = 0; c < chunksInBand; ++c)
     {
-      const std::int64_t id = volume.chunkId(c % cc[0], c / cc[0], cz);
+      const std::int64_t id = volume.chunkId(c % cc[0], cy0 + c / cc[0], cz);
       const VoxelBox cb = volume.chunkBox(id);
       auto keyAt = [&](std::int64_t x, std::int64_t y, std::int64_t z, std::int64_t) {
-        return volume.encode(slab[static_cast<std::size_t>(x + nx * (y + ny * (z - box.lo[2])))]);
+        return volume.encode(band[static_cast<std::size_t>(x + nx * ((y - box.lo[1]) + ny * (z - box.lo[2])))]);
       };
       const SdfKey first = keyAt(cb.lo[0], cb.lo[1], cb.lo[2], 0);
       bool uniform = true;
@@ -784,7 +796,7 @@ MeshToSdfStats meshToSdf(const MeshToSdfPrepared& mesh, DictionaryVolume& volume
   }
   else
   {
-    volumeOnCpu(*engine, volume, stats, interrupter);
+    volumeOnCpu(*engine, volume, opts.cpuBandBytes, stats, interrupter);
   }
   if (options.svfFilters != 0)
   {

@@ -9,6 +9,7 @@
 
 #include <cmath>
 #include <limits>
+#include <utility>
 #include <vector>
 
 using namespace lvdif;
@@ -141,34 +142,46 @@ TEST(MeshToSdf, VoxelUnitsAndBand)
 
 TEST(MeshToSdf, DictionaryVolumeMatchesFloatPath)
 {
-  const TriangleMesh m = makeSphereMesh(0, 0, 0, 1.0f, 16, 32);
-  VolumeOptions vo;
-  vo.dims = { 45, 40, 37 }; // not multiples of the chunk edge
-  vo.chunkEdge = 8;
-  vo.origin = { -1.5, -1.4, -1.3 };
-  vo.spacing = { 0.07, 0.07, 0.07 };
-  vo.bandWidth = 3.0f;
-  DictionaryVolume vol(vo);
-  MeshToSdfOptions o;
-  o.device = Device::Cpu;
-  const MeshToSdfStats st = meshToSdf(m, vol, o);
-  EXPECT_EQ(st.triangles, m.triangles.size());
-  GridGeometry g;
-  g.dims = vo.dims;
-  g.origin = vo.origin;
-  g.spacing = vo.spacing;
-  o.bandWidth = 3.0f;
-  const std::vector<float> ref = run(m, g, o);
-  for (std::int64_t z = 0; z < g.dims[2]; ++z)
-    for (std::int64_t y = 0; y < g.dims[1]; ++y)
-      for (std::int64_t x = 0; x < g.dims[0]; ++x)
-      {
-        ASSERT_EQ(vol.get(x, y, z).sdf, vol.encode(ref[g.index(x, y, z)])) << x << " " << y << " " << z;
-      }
-  // far chunks are saturated and stay uniform
-  EXPECT_LT(vol.expandedChunkCount(), vol.chunkCount());
-  EXPECT_GT(vol.expandedChunkCount(), 0);
-  EXPECT_FALSE(vol.takeDirtyChunks().empty());
+  // a clean sphere, and one with every 7th face reversed (the winding
+  // correction's per-block bounds then run); the float buffer of the sparse
+  // route as large as the whole chunk layer, and as small as one row of chunks
+  TriangleMesh reversed = makeSphereMesh(0, 0, 0, 1.0f, 16, 32);
+  for (std::size_t t = 0; t < reversed.triangles.size(); t += 7) std::swap(reversed.triangles[t][1], reversed.triangles[t][2]);
+  const TriangleMesh meshes[] = { makeSphereMesh(0, 0, 0, 1.0f, 16, 32), reversed };
+  for (const TriangleMesh& m : meshes)
+    for (std::uint64_t bandBytes : { std::uint64_t{ 32 } << 20, std::uint64_t{ 1 } })
+    {
+      SCOPED_TRACE(&m == &meshes[0] ? "clean sphere" : "sphere, every 7th face reversed");
+      SCOPED_TRACE(bandBytes);
+      VolumeOptions vo;
+      vo.dims = { 45, 40, 37 }; // not multiples of the chunk edge
+      vo.chunkEdge = 8;
+      vo.origin = { -1.5, -1.4, -1.3 };
+      vo.spacing = { 0.07, 0.07, 0.07 };
+      vo.bandWidth = 3.0f;
+      DictionaryVolume vol(vo);
+      MeshToSdfOptions o;
+      o.device = Device::Cpu;
+      o.cpuBandBytes = bandBytes;
+      const MeshToSdfStats st = meshToSdf(m, vol, o);
+      EXPECT_EQ(st.triangles, m.triangles.size());
+      GridGeometry g;
+      g.dims = vo.dims;
+      g.origin = vo.origin;
+      g.spacing = vo.spacing;
+      o.bandWidth = 3.0f;
+      const std::vector<float> ref = run(m, g, o);
+      for (std::int64_t z = 0; z < g.dims[2]; ++z)
+        for (std::int64_t y = 0; y < g.dims[1]; ++y)
+          for (std::int64_t x = 0; x < g.dims[0]; ++x)
+          {
+            ASSERT_EQ(vol.get(x, y, z).sdf, vol.encode(ref[g.index(x, y, z)])) << x << " " << y << " " << z;
+          }
+      // far chunks are saturated and stay uniform
+      EXPECT_LT(vol.expandedChunkCount(), vol.chunkCount());
+      EXPECT_GT(vol.expandedChunkCount(), 0);
+      EXPECT_FALSE(vol.takeDirtyChunks().empty());
+    }
 }
 
 TEST(MeshToSdf, FitGridToMesh)

@@ -102,6 +102,10 @@ struct MeshToSdfOptions
   /// The chunks get exactly the values of a whole-volume run. Not with
   /// svfFilters (the sign filters need the whole volume).
   VoxelBox chunkRegion;
+  /// CPU into a dictionary volume: bytes of the float buffer the voxels are
+  /// computed into before they are encoded (whole x rows of as many rows of
+  /// chunks as fit, at least one): bounded, never a whole chunk layer.
+  std::uint64_t cpuBandBytes = 32ull << 20;
   /// CUDA into a dictionary volume: also copy the float slabs back and check
   /// every GPU-encoded key against the host's encode (tests; costs the copy).
   bool cudaVerifyKeys = false;
