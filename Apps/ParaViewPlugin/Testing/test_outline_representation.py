@@ -8,7 +8,8 @@
 # volume (Sparse Volume To Image, ParaView's data information); the box's edges are
 # vtkOutlineSource's for those bounds.
 # Volumes: Mesh To SDF of an ellipsoid (16 voxels of padding, so the outer chunks are
-# uniform and the partitions do not cover the volume) and the same volume as .lvdv.
+# uniform and the partitions do not cover the volume) and the same volume as .lvdv
+# (kept, with the dense image's bounds, for mpi_outline_representation.py).
 #
 # Usage: pvpython --force-offscreen-rendering test_outline_representation.py PLUGIN TMPDIR
 import lvdif_pvtest as T  # first: fixes sys.path for route B
@@ -111,6 +112,7 @@ def test(source, label):
     check(len(leaves(rep.GetRenderedDataObject(0))) == 1, "%s: outline again after Slice" % label)
     for v in (view, stock_view):
         pvs.Delete(v)
+    return bounds
 
 
 ellipsoid = pvs.Transform(Input=pvs.Sphere(ThetaResolution=48, PhiResolution=48))
@@ -119,7 +121,10 @@ sdf = pvs.MeshToSDF(Input=ellipsoid, MaxDimension=96, Padding=16.0)
 test(sdf, "MeshToSDF")
 path = os.path.join(tmpdir, "outline_rep.lvdv")
 pvs.SaveData(path, proxy=sdf)
-test(pvs.OpenDataFile(path), "lvdv")
+bounds = test(pvs.OpenDataFile(path), "lvdv")
+# the oracle of the pvbatch run (mpi_outline_representation.py), which opens the same file
+with open(os.path.join(tmpdir, "outline_rep_bounds.txt"), "w") as f:
+    f.write(" ".join(repr(b) for b in bounds) + "\n")
 print("failures:", check.failures)
 if check.failures:
     sys.exit(1)
