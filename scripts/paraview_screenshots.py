@@ -40,8 +40,8 @@ def camera(v, position, up=(0, 1, 0)):
 
 
 # 1. The three filters with default properties, chained; what ParaView shows first
-#    for each: the sparse volume as its outline (one box per partition: the storage
-#    chunks that hold the surface), the surface as a surface.
+#    for each: the sparse volume as its outline (one box: the whole volume), the
+#    surface as a surface.
 src, name = mesh("bunny00.off", [1.0, 0.7, 0.5])
 sdf = pvs.MeshToSDF(Input=src)
 svf = pvs.SignVoxelFilter(Input=sdf)
