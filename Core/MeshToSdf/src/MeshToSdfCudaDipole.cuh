@@ -71,26 +71,8 @@ __global__ void signDipoleKernel(WindingDev W, DipoleDev D, Params P, long long 
   const V3 start = positionOf(P, P.lo[0], j, k);
   auto pos = [&](long long i) { return start + V3{ static_cast<double>(i) * h, 0, 0 }; };
   Hit* hits = sharedHits[warp];
-  int count = 0, sum = 0, ok = 0;
-  if (lane == 0)
-  {
-    ok = rayDev(W.closed, start - V3{ 0.5 * h, 0, 0 }, V3{ 1, 0, 0 }, hits, &count, &sum) ? 1 : 0;
-    for (int a = 1; ok && a < count; ++a) // insertion sort by t
-    {
-      const Hit x = hits[a];
-      int b = a - 1;
-      while (b >= 0 && hits[b].t > x.t)
-      {
-        hits[b + 1] = hits[b];
-        --b;
-      }
-      hits[b + 1] = x;
-    }
-  }
-  __syncwarp();
-  ok = __shfl_sync(FullMask, ok, 0);
-  count = __shfl_sync(FullMask, count, 0);
-  sum = __shfl_sync(FullMask, sum, 0);
+  const RowRay ray = castRowRay(W, start, h, hits, lane);
+  const int ok = ray.ok, count = ray.count, sum = ray.sum;
   unsigned long long ev = 0, full = 0, fallback = 0;
   const double* blockRow = bounds + 2 * bx * ((j - P.lo[1]) / DipoleBlock + by * ((k - P.lo[2]) / DipoleBlock));
   int ahead = sum, next = 0;

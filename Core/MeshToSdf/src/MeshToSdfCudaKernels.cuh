@@ -366,21 +366,15 @@ __device__ double evaluateWarp(const WindingDev& W, V3 p, int lane)
 __device__ bool insideOf(double w) { return fabs(w) >= 0.5; }
 __device__ bool decidedDev(double lo, double hi) { return !(lo < 0.5 && hi >= 0.5) && !(lo <= -0.5 && hi > -0.5); }
 
-/// WindingSigner::signRow, one warp per scan line (see the file comment).
-__global__ void signKernel(WindingDev W, Params P, long long rowBegin, long long rowEnd, float* out,
-  unsigned long long* evals, unsigned long long* fallbacks)
+/// The +x ray of a scan line (from half a voxel before its first voxel) against the closed surface:
+/// lane 0 casts it into the warp's shared hits, sorted by t; every lane gets whether it was
+/// unambiguous, the number of crossings and their signed sum.
+struct RowRay
 {
-  __shared__ Hit sharedHits[SignWarps][MaxHits];
-  const long long nx = P.hi[0] - P.lo[0] + 1, ny = P.hi[1] - P.lo[1] + 1;
-  const int lane = static_cast<int>(threadIdx.x % 32), warp = static_cast<int>(threadIdx.x / 32);
-  const long long row = rowBegin + static_cast<long long>(blockIdx.x) * SignWarps + warp;
-  if (row >= rowEnd) return; // the whole warp
-  const long long j = P.lo[1] + row % ny, k = P.lo[2] + row / ny;
-  float* rowOut = out + row * nx;
-  const double h = P.spacing[0];
-  const V3 start = positionOf(P, P.lo[0], j, k);
-  auto pos = [&](long long i) { return start + V3{ static_cast<double>(i) * h, 0, 0 }; };
-  Hit* hits = sharedHits[warp];
+  int ok, count, sum;
+};
+__device__ RowRay castRowRay(const WindingDev& W, V3 start, double h, Hit* hits, int lane)
+{
   int count = 0, sum = 0, ok = 0;
   if (lane == 0)
   {
@@ -398,9 +392,30 @@ __global__ void signKernel(WindingDev W, Params P, long long rowBegin, long long
     }
   }
   __syncwarp();
-  ok = __shfl_sync(FullMask, ok, 0);
-  count = __shfl_sync(FullMask, count, 0);
-  sum = __shfl_sync(FullMask, sum, 0);
+  RowRay r;
+  r.ok = __shfl_sync(FullMask, ok, 0);
+  r.count = __shfl_sync(FullMask, count, 0);
+  r.sum = __shfl_sync(FullMask, sum, 0);
+  return r;
+}
+
+/// WindingSigner::signRow, one warp per scan line (see the file comment).
+__global__ void signKernel(WindingDev W, Params P, long long rowBegin, long long rowEnd, float* out,
+  unsigned long long* evals, unsigned long long* fallbacks)
+{
+  __shared__ Hit sharedHits[SignWarps][MaxHits];
+  const long long nx = P.hi[0] - P.lo[0] + 1, ny = P.hi[1] - P.lo[1] + 1;
+  const int lane = static_cast<int>(threadIdx.x % 32), warp = static_cast<int>(threadIdx.x / 32);
+  const long long row = rowBegin + static_cast<long long>(blockIdx.x) * SignWarps + warp;
+  if (row >= rowEnd) return; // the whole warp
+  const long long j = P.lo[1] + row % ny, k = P.lo[2] + row / ny;
+  float* rowOut = out + row * nx;
+  const double h = P.spacing[0];
+  const V3 start = positionOf(P, P.lo[0], j, k);
+  auto pos = [&](long long i) { return start + V3{ static_cast<double>(i) * h, 0, 0 }; };
+  Hit* hits = sharedHits[warp];
+  const RowRay ray = castRowRay(W, start, h, hits, lane);
+  const int ok = ray.ok, count = ray.count, sum = ray.sum;
   if (!ok)
   {
     for (long long i = 0; i < nx; ++i)
