@@ -483,67 +483,16 @@ void storeChunk(DictionaryVolume& volume, std::int64_t id, bool uniform, SdfKey 
   volume.tryCollapseChunk(id);
 }
 
-/// CPU: one band of chunks at a time (whole x rows, `rowsPerBand` rows of
-/// chunks along y, one chunk layer along z), encoded on the host: the float
-/// buffer stays within cpuBandBytes (at least one row of chunks) whatever the
-/// grid, where a whole chunk layer would be nx * ny * chunkEdge floats (532 MB
-/// at 2048^2 x 32). A band starts on a chunk boundary, so the 4-voxel winding
-/// blocks fall where they fall in the whole grid.
-void volumeOnCpu(const Engine& e, DictionaryVolume& volume, std::uint64_t bandBytes, MeshToSdfStats& stats,
-  Interrupter& intr)
-{
-  const GridGeometry& grid = e.geom;
-  const std::int64_t edge = volume.chunkEdge();
-  const Index3& cc = volume.chunkCounts();
-  const std::uint64_t chunkRowFloats = checkedMultiply(
-    checkedMultiply(static_cast<std::uint64_t>(grid.dims[0]), static_cast<std::uint64_t>(edge), "band"),
-    static_cast<std::uint64_t>(edge), "band");
-  const std::int64_t rowsPerBand = static_cast<std::int64_t>(std::max<std::uint64_t>(1,
-    std::min<std::uint64_t>(static_cast<std::uint64_t>(cc[1]), bandBytes / (chunkRowFloats * sizeof(float)))));
-  const std::uint64_t bandFloats = checkedMultiply(chunkRowFloats, static_cast<std::uint64_t>(rowsPerBand), "band");
-  requireMemory(bandFloats * sizeof(float), "mesh to SDF: band buffer");
-  std::vector<float> band(static_cast<std::size_t>(bandFloats));
-  const std::int64_t bandsPerLayer = (cc[1] + rowsPerBand - 1) / rowsPerBand;
-  const std::int64_t bands = bandsPerLayer * cc[2];
-  for (std::int64_t b = 0; b < bands; ++b)
-  {
-    const std::int64_t cz = b / bandsPerLayer, cy0 = (b % bandsPerLayer) * rowsPerBand;
-    const std::int64_t cy1 = std::min(cc[1], cy0 + rowsPerBand); // exclusive
-    VoxelBox box;
-    box.lo = { 0, cy0 * edge, cz * edge };
-    box.hi = { grid.dims[0] - 1, std::min(grid.dims[1], cy1 * edge) - 1, std::min(grid.dims[2], (cz + 1) * edge) - 1 };
-    computeBox(e, box, band.data(), stats, intr, static_cast<double>(b) / static_cast<double>(bands),
-      1.0 / static_cast<double>(bands));
-    const double t0 = now();
-    const std::int64_t nx = grid.dims[0], ny = box.hi[1] - box.lo[1] + 1;
-    const std::int64_t chunksInBand = cc[0] * (cy1 - cy0);
-#pragma omp parallel for schedule(dynamic, 1)
-    for (std::int64_t c = 0; c < chunksInBand; ++c)
-    {
-      const std::int64_t id = volume.chunkId(c % cc[0], cy0 + c / cc[0], cz);
-      const VoxelBox cb = volume.chunkBox(id);
-      auto keyAt = [&](std::int64_t x, std::int64_t y, std::int64_t z, std::int64_t) {
-        return volume.encode(band[static_cast<std::size_t>(x + nx * ((y - box.lo[1]) + ny * (z - box.lo[2])))]);
-      };
-      const SdfKey first = keyAt(cb.lo[0], cb.lo[1], cb.lo[2], 0);
-      bool uniform = true;
-      for (std::int64_t z = cb.lo[2]; z <= cb.hi[2] && uniform; ++z)
-        for (std::int64_t y = cb.lo[1]; y <= cb.hi[1] && uniform; ++y)
-          for (std::int64_t x = cb.lo[0]; x <= cb.hi[0] && uniform; ++x) uniform = keyAt(x, y, z, 0) == first;
-      storeChunk(volume, id, uniform, first, keyAt);
-    }
-    stats.writeSeconds += now() - t0;
-  }
-}
-
-/// Only the chunks of a region (MeshToSdfOptions::chunkRegion), on either
-/// device: bands of the region's chunk rows (at least one row, the float
-/// buffer within 32 MiB otherwise) computed as float boxes by `compute` and
-/// encoded on the host, as the CPU route encodes (the CUDA route's keys equal
-/// the host's encode). Boxes start on chunk boundaries, as the whole-volume
-/// routes' do, so every voxel gets the value of a whole-volume run.
-void volumeRegion(DictionaryVolume& volume, const VoxelBox& region, MeshToSdfStats& stats, Interrupter& intr,
-  const std::function<void(const VoxelBox&, float*, double, double)>& compute)
+/// The chunks of a region (MeshToSdfOptions::chunkRegion; the CPU's whole-volume route passes
+/// every chunk), one band of them at a time: whole x rows of the region, as many rows of chunks
+/// along y as fit in `bandBytes` (at least one), one chunk layer along z, computed as float boxes
+/// by `compute` and encoded on the host (the CUDA route's keys equal the host's encode). The
+/// buffer stays bounded whatever the grid, where a whole chunk layer would be nx * ny * chunkEdge
+/// floats (532 MB at 2048^2 x 32). Boxes start on chunk boundaries, as the whole-volume CUDA
+/// route's do, so the 4-voxel winding blocks fall where they fall in the whole grid and every
+/// voxel gets the value of a whole-volume run.
+void volumeRegion(DictionaryVolume& volume, const VoxelBox& region, std::uint64_t bandBytes, MeshToSdfStats& stats,
+  Interrupter& intr, const std::function<void(const VoxelBox&, float*, double, double)>& compute)
 {
   const std::int64_t edge = volume.chunkEdge();
   const Index3& cc = volume.chunkCounts();
@@ -553,12 +502,13 @@ void volumeRegion(DictionaryVolume& volume, const VoxelBox& region, MeshToSdfSta
   const VoxelBox rc = region.intersect(all);
   require(!rc.empty(), "mesh to SDF: the chunk region holds no chunk of the volume");
   const std::int64_t x0 = rc.lo[0] * edge, x1 = std::min(dims[0], (rc.hi[0] + 1) * edge) - 1;
-  const std::uint64_t rowFloats = static_cast<std::uint64_t>(x1 - x0 + 1) * static_cast<std::uint64_t>(edge) *
-    static_cast<std::uint64_t>(edge);
+  const std::uint64_t rowFloats = checkedMultiply(
+    checkedMultiply(static_cast<std::uint64_t>(x1 - x0 + 1), static_cast<std::uint64_t>(edge), "band"),
+    static_cast<std::uint64_t>(edge), "band");
   const std::int64_t rows = rc.hi[1] - rc.lo[1] + 1;
-  const std::int64_t rowsPerBand = std::max<std::int64_t>(1,
-    std::min<std::int64_t>(rows, static_cast<std::int64_t>((32ull << 20) / (rowFloats * sizeof(float)))));
-  const std::uint64_t bufferFloats = rowFloats * static_cast<std::uint64_t>(rowsPerBand);
+  const std::int64_t rowsPerBand = static_cast<std::int64_t>(std::max<std::uint64_t>(1,
+    std::min<std::uint64_t>(static_cast<std::uint64_t>(rows), bandBytes / (rowFloats * sizeof(float)))));
+  const std::uint64_t bufferFloats = checkedMultiply(rowFloats, static_cast<std::uint64_t>(rowsPerBand), "band");
   requireMemory(bufferFloats * sizeof(float), "mesh to SDF: region band buffer");
   std::vector<float> buffer(static_cast<std::size_t>(bufferFloats));
   const std::int64_t bandsPerLayer = (rows + rowsPerBand - 1) / rowsPerBand;
@@ -782,7 +732,7 @@ MeshToSdfStats meshToSdf(const MeshToSdfPrepared& mesh, DictionaryVolume& volume
   {
     std::unique_ptr<detail::meshtosdf_cuda::Session> cuda;
     if (stats.device == Device::Cuda) cuda = openCuda(mesh, *engine, opts, stats);
-    volumeRegion(volume, options.chunkRegion, stats, interrupter,
+    volumeRegion(volume, options.chunkRegion, opts.cpuBandBytes, stats, interrupter,
       [&](const VoxelBox& box, float* out, double p0, double dp) {
         if (cuda)
           cuda->compute(box, out, stats, interrupter);
@@ -796,7 +746,12 @@ MeshToSdfStats meshToSdf(const MeshToSdfPrepared& mesh, DictionaryVolume& volume
   }
   else
   {
-    volumeOnCpu(*engine, volume, opts.cpuBandBytes, stats, interrupter);
+    VoxelBox everyChunk;
+    everyChunk.hi = { volume.chunkCounts()[0] - 1, volume.chunkCounts()[1] - 1, volume.chunkCounts()[2] - 1 };
+    volumeRegion(volume, everyChunk, opts.cpuBandBytes, stats, interrupter,
+      [&](const VoxelBox& box, float* out, double p0, double dp) {
+        computeBox(*engine, box, out, stats, interrupter, p0, dp);
+      });
   }
   if (options.svfFilters != 0)
   {

@@ -102,7 +102,7 @@ struct MeshToSdfOptions
   /// The chunks get exactly the values of a whole-volume run. Not with
   /// svfFilters (the sign filters need the whole volume).
   VoxelBox chunkRegion;
-  /// CPU into a dictionary volume: bytes of the float buffer the voxels are
+  /// Into a dictionary volume on the CPU, and for a chunkRegion on either device: bytes of the float buffer the voxels are
   /// computed into before they are encoded (whole x rows of as many rows of
   /// chunks as fit, at least one): bounded, never a whole chunk layer.
   std::uint64_t cpuBandBytes = 32ull << 20;
