@@ -333,6 +333,8 @@ void forRows(const VoxelBox& box, Interrupter& intr, double progressBase, double
     }
   }
   if (failure) std::rethrow_exception(failure);
+  // thread 0 may not have run the last row: the span's end is reported here
+  if (!stop.load()) intr.progress(progressBase + progressSpan);
   intr.checkInterrupt();
 }
 

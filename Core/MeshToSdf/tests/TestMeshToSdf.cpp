@@ -9,6 +9,7 @@
 
 #include <cmath>
 #include <limits>
+#include <string>
 #include <utility>
 #include <vector>
 
@@ -287,6 +288,52 @@ TEST(MeshToSdf, CancelStopsWithCancelled)
   catch (const Error& e)
   {
     EXPECT_EQ(e.code(), ErrorCode::Cancelled);
+  }
+}
+
+namespace
+{
+/// Records each stage's name and the last fraction reported in it.
+struct StageRecorder : Interrupter
+{
+  std::vector<std::pair<std::string, double>> stages;
+  void start(const char* name) override { stages.emplace_back(name, -1.0); }
+  void progress(double f) override
+  {
+    ASSERT_FALSE(stages.empty()) << "progress before any stage";
+    stages.back().second = f;
+  }
+};
+} // namespace
+
+TEST(MeshToSdf, EveryStageReportsItsEndBeforeTheNextBegins)
+{
+  // progress comes from OpenMP thread 0, which need not run the last row: the
+  // CLI printed "mesh to SDF: done" only when it did (a CI failure)
+  const TriangleMesh m = makeSphereMesh(0, 0, 0, 1.0f, 12, 24);
+  const GridGeometry g = fitGridToMesh(m, 40, 3);
+  for (SignMode sign : { SignMode::WindingNumber, SignMode::Normal })
+  {
+    MeshToSdfOptions o;
+    o.device = Device::Cpu;
+    o.sign = sign;
+    o.svfFilters = SvfAll;
+    std::vector<float> out(static_cast<std::size_t>(g.count()));
+    StageRecorder grid;
+    meshToSdf(m, FloatGridView{ out.data(), g }, o, grid);
+    VolumeOptions vo;
+    vo.dims = g.dims;
+    vo.origin = g.origin;
+    vo.spacing = g.spacing;
+    DictionaryVolume volume(vo);
+    StageRecorder vol;
+    meshToSdf(m, volume, o, vol);
+    for (const StageRecorder* r : { &grid, &vol })
+    {
+      ASSERT_GE(r->stages.size(), 2u) << "mesh to SDF, then the sign voxel filters";
+      EXPECT_EQ(r->stages.front().first, "mesh to SDF");
+      for (const auto& [name, last] : r->stages) EXPECT_EQ(last, 1.0) << name << ", sign " << toString(sign);
+    }
   }
 }
 
