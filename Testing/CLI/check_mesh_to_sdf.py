@@ -57,6 +57,8 @@ for sign, extra in (("winding", []), ("pseudo", []), ("normal", ["--svf"])):
     print(run.stderr, file=sys.stderr)
     assert run.returncode == 0, f"{cmd} exited with {run.returncode}"
     assert "mesh to SDF: done" in run.stderr, "no progress report on stderr (one line per stage off a terminal)"
+    # "--device cpu" holds for every stage: no stage looks for a GPU (and says so)
+    assert "CUDA" not in run.stderr, "a stage looked for a CUDA device under --device cpu"
 
     reader = vtkDictionaryVolumeReader()
     reader.SetFileName(vol_path)

@@ -683,6 +683,7 @@ MeshToSdfStats meshToSdf(const MeshToSdfPrepared& mesh, const GridGeometry& grid
       extent.hi[2] - extent.lo[2] + 1 };
     SignVoxelFilterParams p = options.svf;
     p.filters = options.svfFilters;
+    if (p.device == Device::Auto) p.device = options.device; // "--device cpu" holds for the filters too
     stats.svfFlips = signVoxelFilter(view, p, interrupter).totalFlips();
     stats.svfSeconds = now() - t0;
   }
@@ -760,6 +761,7 @@ MeshToSdfStats meshToSdf(const MeshToSdfPrepared& mesh, DictionaryVolume& volume
     const double t0 = now();
     SignVoxelFilterParams p = options.svf;
     p.filters = options.svfFilters;
+    if (p.device == Device::Auto) p.device = options.device; // "--device cpu" holds for the filters too
     stats.svfFlips = signVoxelFilter(volume, p, interrupter).totalFlips();
     stats.svfSeconds = now() - t0;
   }

@@ -83,9 +83,9 @@ struct MeshToSdfOptions
   /// number of the mesh as given drops below 1/2 inside (30 % reversed: ~0.4),
   /// the re-oriented one does not. Computed on the CPU (any device request).
   bool reorientFaces = false;
-  /// Auto: CUDA when available, except WindingNumber on a mesh with reversed
-  /// or duplicated faces, which runs on the CPU (its sign construction for such
-  /// meshes is not ported to CUDA; docs/MESH_TO_SDF.md). Cuda/Cpu are obeyed.
+  /// Auto: CUDA when available (every sign mode and every mesh, damaged ones
+  /// included; only reorientFaces runs on the CPU), else the CPU; Cuda/Cpu are
+  /// obeyed. The sign voxel filters follow it unless svf.device says otherwise.
   Device device = Device::Auto;
   /// Sign voxel filters (SvfBits) run on the result afterwards, with svf's
   /// parameters (meant for SignMode::Normal, as in the paper; 0 = none). On a
