@@ -8,6 +8,7 @@
 #include "vtkSparseDictionaryVolume.h"
 #include "vtkSparseVolumeToImage.h"
 #include "vtkOpenVDBLevelSetWriter.h"
+#include "SdfImageTestUtil.h"
 
 #include "vtkCommand.h"
 #include "vtkExecutive.h"
@@ -51,27 +52,8 @@ std::array<unsigned char, 4> colourOf(int i, int j, int k)
 
 vtkSmartPointer<vtkImageData> makeImage(double sy = H)
 {
-  auto img = vtkSmartPointer<vtkImageData>::New();
-  img->SetDimensions(NX, NY, NZ);
-  img->SetOrigin(O[0], O[1], O[2]);
-  img->SetSpacing(H, sy, H);
-  vtkNew<vtkFloatArray> sdf;
-  sdf->SetName("sdf");
-  sdf->SetNumberOfTuples(NX * NY * NZ);
-  vtkNew<vtkUnsignedCharArray> rgba;
-  rgba->SetName("rgba");
-  rgba->SetNumberOfComponents(4);
-  rgba->SetNumberOfTuples(NX * NY * NZ);
-  for (int k = 0, id = 0; k < NZ; ++k)
-    for (int j = 0; j < NY; ++j)
-      for (int i = 0; i < NX; ++i, ++id)
-      {
-        sdf->SetValue(id, static_cast<float>(analytic(i, j, k)));
-        rgba->SetTypedTuple(id, colourOf(i, j, k).data());
-      }
-  img->GetPointData()->AddArray(sdf);
-  img->GetPointData()->AddArray(rgba);
-  return img;
+  return makeSdfImage({ 0, NX - 1, 0, NY - 1, 0, NZ - 1 }, { O[0], O[1], O[2] }, { H, sy, H },
+    [](int i, int j, int k) { return analytic(i, j, k); }, colourOf);
 }
 
 std::string tempFile(const char* name)

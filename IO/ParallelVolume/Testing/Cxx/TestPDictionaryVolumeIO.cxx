@@ -16,6 +16,7 @@
 #include "vtkPDictionaryVolumeReader.h"
 #include "vtkPDictionaryVolumeWriter.h"
 #include "vtkSparseDictionaryVolume.h"
+#include "SdfImageTestUtil.h"
 
 #include "lvdif/DictionaryVolume.h"
 
@@ -49,29 +50,12 @@ double analytic(int i, int j, int k)
 
 vtkSmartPointer<vtkImageData> makeImage()
 {
-  auto img = vtkSmartPointer<vtkImageData>::New();
-  img->SetExtent(3, 3 + NX - 1, -2, -2 + NY - 1, 5, 5 + NZ - 1); // not 0-based: the index keeps it
-  img->SetOrigin(-2.0, 0.5, 3.0);
-  img->SetSpacing(0.25, 0.5, 0.75);
-  vtkNew<vtkFloatArray> sdf;
-  sdf->SetName("sdf");
-  sdf->SetNumberOfTuples(NX * NY * NZ);
-  vtkNew<vtkUnsignedCharArray> rgba;
-  rgba->SetName("rgba");
-  rgba->SetNumberOfComponents(4);
-  rgba->SetNumberOfTuples(NX * NY * NZ);
-  for (int k = 0, id = 0; k < NZ; ++k)
-    for (int j = 0; j < NY; ++j)
-      for (int i = 0; i < NX; ++i, ++id)
-      {
-        sdf->SetValue(id, static_cast<float>(analytic(i, j, k)));
-        const unsigned char c[4] = { static_cast<unsigned char>(i < 20 ? 255 : 10),
-          static_cast<unsigned char>(j % 3 * 60), static_cast<unsigned char>(k < 10 ? 0 : 200), 255 };
-        rgba->SetTypedTuple(id, c);
-      }
-  img->GetPointData()->AddArray(sdf);
-  img->GetPointData()->AddArray(rgba);
-  return img;
+  // not 0-based: the index keeps it
+  return makeSdfImage({ 3, 3 + NX - 1, -2, -2 + NY - 1, 5, 5 + NZ - 1 }, { -2.0, 0.5, 3.0 }, { 0.25, 0.5, 0.75 },
+    analytic, [](int i, int j, int k) {
+      return std::array<unsigned char, 4>{ static_cast<unsigned char>(i < 20 ? 255 : 10),
+        static_cast<unsigned char>(j % 3 * 60), static_cast<unsigned char>(k < 10 ? 0 : 200), 255 };
+    });
 }
 
 /// The reader's sparse volume decoded (the whole extent, or `extent` when given).

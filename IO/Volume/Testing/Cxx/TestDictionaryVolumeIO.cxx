@@ -5,6 +5,7 @@
 #include "vtkDictionaryVolumeReader.h"
 #include "vtkDictionaryVolumeWriter.h"
 #include "vtkSparseVolumeToImage.h"
+#include "SdfImageTestUtil.h"
 
 #include "vtkCommand.h"
 #include "vtkExecutive.h"
@@ -35,29 +36,11 @@ double analytic(int i, int j, int k)
 
 vtkSmartPointer<vtkImageData> makeImage()
 {
-  auto img = vtkSmartPointer<vtkImageData>::New();
-  img->SetDimensions(NX, NY, NZ);
-  img->SetOrigin(-2.0, 0.5, 3.0);
-  img->SetSpacing(0.25, 0.5, 0.75);
-  vtkNew<vtkFloatArray> sdf;
-  sdf->SetName("sdf");
-  sdf->SetNumberOfTuples(NX * NY * NZ);
-  vtkNew<vtkUnsignedCharArray> rgba;
-  rgba->SetName("rgba");
-  rgba->SetNumberOfComponents(4);
-  rgba->SetNumberOfTuples(NX * NY * NZ);
-  for (int k = 0, id = 0; k < NZ; ++k)
-    for (int j = 0; j < NY; ++j)
-      for (int i = 0; i < NX; ++i, ++id)
-      {
-        sdf->SetValue(id, static_cast<float>(analytic(i, j, k)));
-        const unsigned char c[4] = { static_cast<unsigned char>(i < 20 ? 255 : 10), static_cast<unsigned char>(j % 3 * 60),
-          static_cast<unsigned char>(k < 10 ? 0 : 200), 255 };
-        rgba->SetTypedTuple(id, c);
-      }
-  img->GetPointData()->AddArray(sdf);
-  img->GetPointData()->AddArray(rgba);
-  return img;
+  return makeSdfImage({ 0, NX - 1, 0, NY - 1, 0, NZ - 1 }, { -2.0, 0.5, 3.0 }, { 0.25, 0.5, 0.75 }, analytic,
+    [](int i, int j, int k) {
+      return std::array<unsigned char, 4>{ static_cast<unsigned char>(i < 20 ? 255 : 10),
+        static_cast<unsigned char>(j % 3 * 60), static_cast<unsigned char>(k < 10 ? 0 : 200), 255 };
+    });
 }
 
 std::string tempFile(const char* name)
