@@ -48,6 +48,38 @@ std::string tempFile(const char* name)
   return ::testing::TempDir() + "lvdif_io_" + std::to_string(::getpid()) + "_" + name;
 }
 
+/// The voxels of `out` (a volume read back) whose sdf differs from the analytic
+/// field clamped to +-band by more than the dictionary's quantisation (group A,
+/// |d| <= 4.001: step 0.001; beyond: step 0.1), plus those whose colour differs
+/// from `in`'s; -1 (and a failure) when its dimensions or arrays are wrong.
+int voxelMismatches(vtkImageData* out, vtkImageData* in, double band)
+{
+  int dims[3];
+  out->GetDimensions(dims);
+  auto* sdf = vtkFloatArray::SafeDownCast(out->GetPointData()->GetArray("sdf"));
+  auto* rgba = vtkUnsignedCharArray::SafeDownCast(out->GetPointData()->GetArray("rgba"));
+  auto* inRgba = vtkUnsignedCharArray::SafeDownCast(in->GetPointData()->GetArray("rgba"));
+  if (dims[0] != NX || dims[1] != NY || dims[2] != NZ || !sdf || !rgba || !inRgba ||
+    rgba->GetNumberOfComponents() != 4)
+  {
+    ADD_FAILURE() << "read back as " << dims[0] << " x " << dims[1] << " x " << dims[2] << ", sdf "
+                  << (sdf != nullptr) << ", rgba " << (rgba != nullptr);
+    return -1;
+  }
+  int bad = 0;
+  for (int k = 0, id = 0; k < NZ; ++k)
+    for (int j = 0; j < NY; ++j)
+      for (int i = 0; i < NX; ++i, ++id)
+      {
+        const double expected = std::max(-band, std::min(band, analytic(i, j, k)));
+        const double tol = std::fabs(expected) <= 4.0 ? 0.0005 + 1e-6 : 0.05 + 1e-6;
+        bad += std::fabs(sdf->GetValue(id) - expected) > tol;
+        for (int c = 0; c < 4; ++c)
+          bad += rgba->GetValue(4 * id + c) != inRgba->GetValue(4 * id + c);
+      }
+  return bad;
+}
+
 struct ErrorCatcher : vtkCommand
 {
   static ErrorCatcher* New() { return new ErrorCatcher; }
@@ -83,35 +115,12 @@ TEST(DictionaryVolumeIO, WriteThenReadMatchesTheAnalyticField)
   dense->SetInputConnection(reader->GetOutputPort());
   dense->Update();
   vtkImageData* out = dense->GetOutput();
-  int dims[3];
-  out->GetDimensions(dims);
-  ASSERT_EQ(dims[0], NX);
-  ASSERT_EQ(dims[1], NY);
-  ASSERT_EQ(dims[2], NZ);
   double origin[3], spacing[3];
   out->GetOrigin(origin);
   out->GetSpacing(spacing);
   EXPECT_DOUBLE_EQ(origin[0], -2.0);
   EXPECT_DOUBLE_EQ(spacing[2], 0.75);
-  auto* sdf = vtkFloatArray::SafeDownCast(out->GetPointData()->GetArray("sdf"));
-  auto* rgba = vtkUnsignedCharArray::SafeDownCast(out->GetPointData()->GetArray("rgba"));
-  ASSERT_TRUE(sdf && rgba);
-  ASSERT_EQ(rgba->GetNumberOfComponents(), 4);
-  auto* inRgba = vtkUnsignedCharArray::SafeDownCast(img->GetPointData()->GetArray("rgba"));
-  int bad = 0;
-  for (int k = 0, id = 0; k < NZ; ++k)
-    for (int j = 0; j < NY; ++j)
-      for (int i = 0; i < NX; ++i, ++id)
-      {
-        const double d = analytic(i, j, k);
-        const double expected = std::max(-6.0, std::min(6.0, d));
-        // Group A (|d| <= 4.001): step 0.001; beyond: step 0.1 (default dictionary)
-        const double tol = std::fabs(expected) <= 4.0 ? 0.0005 + 1e-6 : 0.05 + 1e-6;
-        bad += std::fabs(sdf->GetValue(id) - expected) > tol;
-        for (int c = 0; c < 4; ++c)
-          bad += rgba->GetValue(4 * id + c) != inRgba->GetValue(4 * id + c);
-      }
-  EXPECT_EQ(bad, 0);
+  EXPECT_EQ(voxelMismatches(out, img, 6.0), 0);
   std::remove(path.c_str());
 }
 
@@ -223,32 +232,12 @@ TEST(DictionaryVolumeIO, VtiExportThroughVTKsXmlWriter)
   back->SetFileName(vti.c_str());
   back->Update();
   vtkImageData* out = back->GetOutput();
-  int dims[3];
-  out->GetDimensions(dims);
-  ASSERT_EQ(dims[0], NX);
-  ASSERT_EQ(dims[1], NY);
-  ASSERT_EQ(dims[2], NZ);
   double origin[3], spacing[3];
   out->GetOrigin(origin);
   out->GetSpacing(spacing);
   EXPECT_DOUBLE_EQ(origin[1], 0.5);
   EXPECT_DOUBLE_EQ(spacing[1], 0.5);
-  auto* sdf = vtkFloatArray::SafeDownCast(out->GetPointData()->GetArray("sdf"));
-  auto* rgba = vtkUnsignedCharArray::SafeDownCast(out->GetPointData()->GetArray("rgba"));
-  ASSERT_TRUE(sdf && rgba);
-  auto* inRgba = vtkUnsignedCharArray::SafeDownCast(img->GetPointData()->GetArray("rgba"));
-  int bad = 0;
-  for (int k = 0, id = 0; k < NZ; ++k)
-    for (int j = 0; j < NY; ++j)
-      for (int i = 0; i < NX; ++i, ++id)
-      {
-        const double expected = std::max(-8.0, std::min(8.0, analytic(i, j, k)));
-        const double tol = std::fabs(expected) <= 4.0 ? 0.0005 + 1e-6 : 0.05 + 1e-6;
-        bad += std::fabs(sdf->GetValue(id) - expected) > tol;
-        for (int c = 0; c < 4; ++c)
-          bad += rgba->GetValue(4 * id + c) != inRgba->GetValue(4 * id + c);
-      }
-  EXPECT_EQ(bad, 0);
+  EXPECT_EQ(voxelMismatches(out, img, 8.0), 0);
   std::remove(lvdv.c_str());
   std::remove(vti.c_str());
 }
