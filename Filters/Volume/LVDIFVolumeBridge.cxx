@@ -28,10 +28,12 @@
 #include "vtkUnsignedCharArray.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <limits>
 #include <cstring>
 #include <sstream>
+#include <vector>
 
 namespace LVDIFVolumeBridge
 {
@@ -299,11 +301,13 @@ void FillImage(const lvdif::DictionaryVolume& volume, const int extentIn[6], vtk
       }
     }
   }
-  StoreRange(sdf); // ParaView's data information then needs no range pass of its own
+  // ParaView's data information then needs no range pass of its own
+  StoreRange(sdf);
   image->GetPointData()->AddArray(sdf);
   image->GetPointData()->SetActiveScalars(SdfArrayName);
   if (withColor)
   {
+    StoreRange(rgba);
     image->GetPointData()->AddArray(rgba);
   }
 }
@@ -411,6 +415,59 @@ std::string DenseImageWarning(std::uint64_t bytes, const int extent[6], std::uin
   return msg.str();
 }
 
+namespace
+{
+/// Stores the given ranges as the array's cached ranges (VTK's information
+/// keys, newer than the array's MTime): per component and finite per
+/// component, and for several components the magnitude (L2 norm) range and its
+/// finite twin. Every value is finite here, so each range equals its finite one.
+void CacheRanges(vtkDataArray* array, const std::vector<std::array<double, 2>>& components,
+  const std::array<double, 2>& magnitude)
+{
+  vtkInformation* info = array->GetInformation();
+  for (vtkInformationInformationVectorKey* key :
+    { vtkAbstractArray::PER_COMPONENT(), vtkAbstractArray::PER_FINITE_COMPONENT() })
+  {
+    vtkNew<vtkInformationVector> perComponent;
+    perComponent->SetNumberOfInformationObjects(static_cast<int>(components.size()));
+    for (std::size_t c = 0; c < components.size(); ++c)
+    {
+      perComponent->GetInformationObject(static_cast<int>(c))
+        ->Set(vtkDataArray::COMPONENT_RANGE(), components[c].data(), 2);
+    }
+    info->Set(key, perComponent);
+  }
+  if (components.size() > 1)
+  {
+    info->Set(vtkDataArray::L2_NORM_RANGE(), magnitude.data(), 2);
+    info->Set(vtkDataArray::L2_NORM_FINITE_RANGE(), magnitude.data(), 2);
+  }
+}
+
+/// fn(begin, end, local) over [0, n) with one T per thread, merged by
+/// merge(total, local). Threads only for large arrays: a partition of the
+/// sparse volume (one chunk, ~36k values) costs VTK's STDThread backend a
+/// thread pool per call, more than the pass itself (ParaView's data
+/// information visits every partition).
+template <typename T, typename Fn, typename Merge>
+T ReduceOver(vtkIdType n, Fn&& fn, Merge&& merge)
+{
+  T total;
+  if (n < (vtkIdType(1) << 20))
+  {
+    fn(0, n, total);
+    return total;
+  }
+  vtkSMPThreadLocal<T> local;
+  vtkSMPTools::For(0, n, [&](vtkIdType begin, vtkIdType end) { fn(begin, end, local.Local()); });
+  for (const T& t : local)
+  {
+    merge(total, t);
+  }
+  return total;
+}
+} // namespace
+
 void StoreRange(vtkFloatArray* array)
 {
   if (!array || array->GetNumberOfComponents() != 1 || array->GetNumberOfTuples() == 0)
@@ -425,43 +482,80 @@ void StoreRange(vtkFloatArray* array)
     float hi = -std::numeric_limits<float>::infinity();
     bool finite = true;
   };
-  vtkSMPThreadLocal<MinMax> local;
-  vtkSMPTools::For(0, array->GetNumberOfTuples(), [&](vtkIdType begin, vtkIdType end) {
-    MinMax& m = local.Local();
-    float lo = m.lo, hi = m.hi;
-    bool finite = true;
-    for (vtkIdType i = begin; i < end; ++i)
-    {
-      const float x = v[i];
-      lo = std::min(lo, x);
-      hi = std::max(hi, x);
-      finite &= (x - x == 0.0f); // false for NaN and +-inf
-    }
-    m.lo = lo;
-    m.hi = hi;
-    m.finite = m.finite && finite;
-  });
-  MinMax all;
-  for (const MinMax& m : local)
-  {
-    all.lo = std::min(all.lo, m.lo);
-    all.hi = std::max(all.hi, m.hi);
-    all.finite = all.finite && m.finite;
-  }
+  const MinMax all = ReduceOver<MinMax>(
+    array->GetNumberOfTuples(),
+    [v](vtkIdType begin, vtkIdType end, MinMax& m) {
+      float lo = m.lo, hi = m.hi;
+      bool finite = true;
+      for (vtkIdType i = begin; i < end; ++i)
+      {
+        const float x = v[i];
+        lo = std::min(lo, x);
+        hi = std::max(hi, x);
+        finite &= (x - x == 0.0f); // false for NaN and +-inf
+      }
+      m.lo = lo;
+      m.hi = hi;
+      m.finite = m.finite && finite;
+    },
+    [](MinMax& a, const MinMax& b) {
+      a.lo = std::min(a.lo, b.lo);
+      a.hi = std::max(a.hi, b.hi);
+      a.finite = a.finite && b.finite;
+    });
   if (!all.finite)
   {
     return;
   }
-  const double range[2] = { all.lo, all.hi };
-  vtkInformation* info = array->GetInformation();
-  for (vtkInformationInformationVectorKey* key :
-    { vtkAbstractArray::PER_COMPONENT(), vtkAbstractArray::PER_FINITE_COMPONENT() })
+  CacheRanges(array, { { all.lo, all.hi } }, { all.lo, all.hi });
+}
+
+void StoreRange(vtkUnsignedCharArray* array)
+{
+  const int nc = array ? array->GetNumberOfComponents() : 0;
+  if (nc < 1 || nc > 4 || array->GetNumberOfTuples() == 0)
   {
-    vtkNew<vtkInformationVector> perComponent;
-    perComponent->SetNumberOfInformationObjects(1);
-    perComponent->GetInformationObject(0)->Set(vtkDataArray::COMPONENT_RANGE(), range, 2);
-    info->Set(key, perComponent);
+    return;
   }
+  array->Modified();
+  const unsigned char* v = array->GetPointer(0);
+  struct MinMax
+  {
+    int lo[4] = { 255, 255, 255, 255 }, hi[4] = { 0, 0, 0, 0 };
+    int normLo = std::numeric_limits<int>::max(), normHi = 0; // squared magnitudes
+  };
+  const MinMax all = ReduceOver<MinMax>(
+    array->GetNumberOfTuples(),
+    [v, nc](vtkIdType begin, vtkIdType end, MinMax& m) {
+      for (vtkIdType t = begin; t < end; ++t)
+      {
+        int norm = 0;
+        for (int c = 0; c < nc; ++c)
+        {
+          const int x = v[t * nc + c];
+          m.lo[c] = std::min(m.lo[c], x);
+          m.hi[c] = std::max(m.hi[c], x);
+          norm += x * x;
+        }
+        m.normLo = std::min(m.normLo, norm);
+        m.normHi = std::max(m.normHi, norm);
+      }
+    },
+    [nc](MinMax& a, const MinMax& b) {
+      for (int c = 0; c < nc; ++c)
+      {
+        a.lo[c] = std::min(a.lo[c], b.lo[c]);
+        a.hi[c] = std::max(a.hi[c], b.hi[c]);
+      }
+      a.normLo = std::min(a.normLo, b.normLo);
+      a.normHi = std::max(a.normHi, b.normHi);
+    });
+  std::vector<std::array<double, 2>> components(static_cast<std::size_t>(nc));
+  for (int c = 0; c < nc; ++c)
+  {
+    components[static_cast<std::size_t>(c)] = { static_cast<double>(all.lo[c]), static_cast<double>(all.hi[c]) };
+  }
+  CacheRanges(array, components, { std::sqrt(static_cast<double>(all.normLo)), std::sqrt(static_cast<double>(all.normHi)) });
 }
 
 std::unique_ptr<lvdif::DictionaryVolume> VolumeFromImage(

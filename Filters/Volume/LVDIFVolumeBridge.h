@@ -32,6 +32,7 @@ class vtkInformation;
 class vtkInformationIntegerKey;
 class vtkInformationVector;
 class vtkPolyData;
+class vtkUnsignedCharArray;
 
 namespace LVDIFVolumeBridge
 {
@@ -136,6 +137,10 @@ LVDIFFILTERSVOLUME_EXPORT vtkDataArray* SdfArray(vtkInformation* selection, vtkD
 /// 10^8 values, this one pass a fraction of that. Nothing is cached when a
 /// value is not finite (VTK then computes as usual).
 LVDIFFILTERSVOLUME_EXPORT void StoreRange(vtkFloatArray* array);
+/// The same for a colour array (1 to 4 unsigned char components): every
+/// component's range and the magnitude's, which ParaView's data information
+/// asks of every partition.
+LVDIFFILTERSVOLUME_EXPORT void StoreRange(vtkUnsignedCharArray* array);
 }
 
 #endif
