@@ -6,6 +6,7 @@
 #include "vtkAlgorithm.h"
 #include "vtkCellArray.h"
 #include "vtkIdTypeArray.h"
+#include "vtkIntArray.h"
 #include "vtkPoints.h"
 #include "vtkPolyData.h"
 #include "vtkDataObject.h"
@@ -33,6 +34,7 @@
 #include <limits>
 #include <cstring>
 #include <sstream>
+#include <type_traits>
 #include <vector>
 
 namespace LVDIFVolumeBridge
@@ -468,74 +470,43 @@ T ReduceOver(vtkIdType n, Fn&& fn, Merge&& merge)
 }
 } // namespace
 
-void StoreRange(vtkFloatArray* array)
+namespace
 {
-  if (!array || array->GetNumberOfComponents() != 1 || array->GetNumberOfTuples() == 0)
-  {
-    return;
-  }
-  array->Modified(); // written through the pointer: drop whatever was cached before
-  const float* v = array->GetPointer(0);
-  struct MinMax
-  {
-    float lo = std::numeric_limits<float>::infinity();
-    float hi = -std::numeric_limits<float>::infinity();
-    bool finite = true;
-  };
-  const MinMax all = ReduceOver<MinMax>(
-    array->GetNumberOfTuples(),
-    [v](vtkIdType begin, vtkIdType end, MinMax& m) {
-      float lo = m.lo, hi = m.hi;
-      bool finite = true;
-      for (vtkIdType i = begin; i < end; ++i)
-      {
-        const float x = v[i];
-        lo = std::min(lo, x);
-        hi = std::max(hi, x);
-        finite &= (x - x == 0.0f); // false for NaN and +-inf
-      }
-      m.lo = lo;
-      m.hi = hi;
-      m.finite = m.finite && finite;
-    },
-    [](MinMax& a, const MinMax& b) {
-      a.lo = std::min(a.lo, b.lo);
-      a.hi = std::max(a.hi, b.hi);
-      a.finite = a.finite && b.finite;
-    });
-  if (!all.finite)
-  {
-    return;
-  }
-  CacheRanges(array, { { all.lo, all.hi } }, { all.lo, all.hi });
-}
-
-void StoreRange(vtkUnsignedCharArray* array)
+/// StoreRange for any array of VTK's own layout (1 to 4 components): one pass
+/// for every component's range and the squared magnitudes' range; floating
+/// types cache nothing when a value is not finite (VTK then computes).
+template <typename T>
+void StoreRangeOf(vtkAOSDataArrayTemplate<T>* array)
 {
   const int nc = array ? array->GetNumberOfComponents() : 0;
   if (nc < 1 || nc > 4 || array->GetNumberOfTuples() == 0)
   {
     return;
   }
-  array->Modified();
-  const unsigned char* v = array->GetPointer(0);
+  array->Modified(); // written through the pointer: drop whatever was cached before
+  const T* v = array->GetPointer(0);
   struct MinMax
   {
-    int lo[4] = { 255, 255, 255, 255 }, hi[4] = { 0, 0, 0, 0 };
-    int normLo = std::numeric_limits<int>::max(), normHi = 0; // squared magnitudes
+    double lo[4] = { std::numeric_limits<double>::infinity(), std::numeric_limits<double>::infinity(),
+      std::numeric_limits<double>::infinity(), std::numeric_limits<double>::infinity() };
+    double hi[4] = { -std::numeric_limits<double>::infinity(), -std::numeric_limits<double>::infinity(),
+      -std::numeric_limits<double>::infinity(), -std::numeric_limits<double>::infinity() };
+    double normLo = std::numeric_limits<double>::infinity(), normHi = 0; // squared magnitudes
+    bool finite = true;
   };
   const MinMax all = ReduceOver<MinMax>(
     array->GetNumberOfTuples(),
     [v, nc](vtkIdType begin, vtkIdType end, MinMax& m) {
       for (vtkIdType t = begin; t < end; ++t)
       {
-        int norm = 0;
+        double norm = 0;
         for (int c = 0; c < nc; ++c)
         {
-          const int x = v[t * nc + c];
+          const double x = static_cast<double>(v[t * nc + c]);
           m.lo[c] = std::min(m.lo[c], x);
           m.hi[c] = std::max(m.hi[c], x);
           norm += x * x;
+          if (std::is_floating_point<T>::value) m.finite &= (x - x == 0.0); // false for NaN and +-inf
         }
         m.normLo = std::min(m.normLo, norm);
         m.normHi = std::max(m.normHi, norm);
@@ -549,13 +520,39 @@ void StoreRange(vtkUnsignedCharArray* array)
       }
       a.normLo = std::min(a.normLo, b.normLo);
       a.normHi = std::max(a.normHi, b.normHi);
+      a.finite = a.finite && b.finite;
     });
+  if (!all.finite)
+  {
+    return;
+  }
   std::vector<std::array<double, 2>> components(static_cast<std::size_t>(nc));
   for (int c = 0; c < nc; ++c)
   {
-    components[static_cast<std::size_t>(c)] = { static_cast<double>(all.lo[c]), static_cast<double>(all.hi[c]) };
+    components[static_cast<std::size_t>(c)] = { all.lo[c], all.hi[c] };
   }
-  CacheRanges(array, components, { std::sqrt(static_cast<double>(all.normLo)), std::sqrt(static_cast<double>(all.normHi)) });
+  CacheRanges(array, components, { std::sqrt(all.normLo), std::sqrt(all.normHi) });
+}
+} // namespace
+
+void StoreRange(vtkFloatArray* array)
+{
+  StoreRangeOf(array);
+}
+
+void StoreRange(vtkUnsignedCharArray* array)
+{
+  StoreRangeOf(array);
+}
+
+void StoreRange(vtkIntArray* array)
+{
+  StoreRangeOf(array);
+}
+
+void StoreRange(vtkIdTypeArray* array)
+{
+  StoreRangeOf(array);
 }
 
 std::unique_ptr<lvdif::DictionaryVolume> VolumeFromImage(

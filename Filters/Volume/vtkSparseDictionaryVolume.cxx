@@ -320,6 +320,11 @@ vtkSmartPointer<vtkImageData> fillPartition(const lvdif::DictionaryVolume& v, st
   auto image = vtkSmartPointer<vtkImageData>::New();
   LVDIFVolumeBridge::FillImage(v, ext, image, colors);
   addChunkFields(v, id, image);
+  // their ranges too, as FillImage's: else ParaView's data information runs
+  // VTK's range passes on them for every partition
+  vtkFieldData* fields = image->GetFieldData();
+  LVDIFVolumeBridge::StoreRange(vtkIdTypeArray::SafeDownCast(fields->GetArray("chunk_id")));
+  LVDIFVolumeBridge::StoreRange(vtkIntArray::SafeDownCast(fields->GetArray("chunk_ijk")));
   return image;
 }
 
@@ -469,6 +474,13 @@ vtkIdType vtkSparseDictionaryVolume::GetNumberOfCells()
     n += static_cast<vtkIdType>((b.hi[0] - b.lo[0]) * (b.hi[1] - b.lo[1]) * (b.hi[2] - b.lo[2]));
   }
   return n;
+}
+
+vtkIdType vtkSparseDictionaryVolume::GetNumberOfElements(int type)
+{
+  if (this->Volume && type == vtkDataObject::POINT) return this->GetNumberOfPoints();
+  if (this->Volume && type == vtkDataObject::CELL) return this->GetNumberOfCells();
+  return this->Superclass::GetNumberOfElements(type);
 }
 
 void vtkSparseDictionaryVolume::CopyStructure(vtkCompositeDataSet* input)

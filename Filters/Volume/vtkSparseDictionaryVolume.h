@@ -134,6 +134,10 @@ public:
   /// Points and cells of the partitions, from their extents (nothing decoded).
   vtkIdType GetNumberOfPoints() override;
   vtkIdType GetNumberOfCells() override;
+  /// POINT and CELL from the partitions' extents (as the two above); other
+  /// types as the superclass. ParaView's data information asks for them, and
+  /// the superclass's loop would decode every partition once more.
+  vtkIdType GetNumberOfElements(int type) override;
   ///@}
 
   /// Setting a leaf that is not a vtkImageData (a generic filter's result over

@@ -2,15 +2,19 @@
 // sub-extents, and the error paths.
 #include "vtkDictionaryVolumeToImage.h"
 #include "LVDIFVolumeBridge.h"
+#include "vtkSparseDictionaryVolume.h"
 
 #include "lvdif/AnalyticFill.h"
 #include "lvdif/Error.h"
 
+#include "vtkCompositeDataIterator.h"
 #include "vtkDataObject.h"
+#include "vtkFieldData.h"
 #include "vtkFloatArray.h"
 #include "vtkImageData.h"
 #include "vtkInformation.h"
 #include "vtkNew.h"
+#include "vtkSmartPointer.h"
 #include "vtkPointData.h"
 #include "vtkRTAnalyticSource.h"
 #include "vtkUnsignedCharArray.h"
@@ -208,6 +212,57 @@ TEST(VolumeBridge, StoredColourRangesEqualVTKsRanges)
     a->GetRange(green, 1);
     EXPECT_EQ(green[0], 0.0);
   }
+}
+
+// Every array of every decoded partition the sparse volume's iterator hands
+// out (ParaView's data information visits them all) answers its ranges from
+// the cache, and the cached ranges equal VTK's own pass over an uncached copy.
+TEST(VolumeBridge, DecodedPartitionsCarryTheirRanges)
+{
+  vtkNew<vtkSparseDictionaryVolume> sparse;
+  sparse->SetVolume(sphereVolume());
+  vtkSmartPointer<vtkCompositeDataIterator> it;
+  it.TakeReference(sparse->NewIterator());
+  int partitions = 0, arrays = 0;
+  vtkIdType points = 0, cells = 0;
+  for (it->InitTraversal(); !it->IsDoneWithTraversal(); it->GoToNextItem())
+  {
+    auto* image = vtkImageData::SafeDownCast(it->GetCurrentDataObject());
+    ASSERT_NE(image, nullptr);
+    ++partitions;
+    points += image->GetNumberOfPoints();
+    cells += image->GetNumberOfCells();
+    for (vtkFieldData* fd : { static_cast<vtkFieldData*>(image->GetPointData()), image->GetFieldData() })
+    {
+      for (int a = 0; a < fd->GetNumberOfArrays(); ++a)
+      {
+        vtkDataArray* array = fd->GetArray(a);
+        ASSERT_NE(array, nullptr);
+        ++arrays;
+        EXPECT_TRUE(array->GetInformation()->Has(vtkAbstractArray::PER_COMPONENT())) << array->GetName();
+        EXPECT_TRUE(array->GetInformation()->Has(vtkAbstractArray::PER_FINITE_COMPONENT())) << array->GetName();
+        vtkSmartPointer<vtkDataArray> fresh;
+        fresh.TakeReference(array->NewInstance());
+        fresh->DeepCopy(array);
+        fresh->Modified();
+        const int nc = array->GetNumberOfComponents();
+        for (int c = nc > 1 ? -1 : 0; c < nc; ++c)
+        {
+          double cached[2], vtk[2];
+          array->GetFiniteRange(cached, c);
+          fresh->GetFiniteRange(vtk, c);
+          EXPECT_DOUBLE_EQ(cached[0], vtk[0]) << array->GetName() << " component " << c;
+          EXPECT_DOUBLE_EQ(cached[1], vtk[1]) << array->GetName() << " component " << c;
+        }
+      }
+    }
+  }
+  EXPECT_GT(partitions, 0);
+  EXPECT_EQ(arrays, partitions * 4); // sdf, rgba, chunk_id, chunk_ijk
+  // the element counts ParaView asks for come from the extents, and equal the decoded partitions'
+  EXPECT_EQ(sparse->GetNumberOfElements(vtkDataObject::POINT), points);
+  EXPECT_EQ(sparse->GetNumberOfElements(vtkDataObject::CELL), cells);
+  EXPECT_EQ(sparse->GetNumberOfElements(vtkDataObject::FIELD), partitions); // one chunk_id per partition
 }
 
 // An empty array selection (what ParaView sends before the input has data)
