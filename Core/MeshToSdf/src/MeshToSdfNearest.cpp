@@ -13,8 +13,6 @@
 #include <cmath>
 #include <limits>
 
-#include <omp.h>
-
 #if defined(__SSE2__) || defined(_M_X64)
 #include <emmintrin.h>
 #define LVDIF_NEAREST_SSE 1
@@ -30,7 +28,6 @@ namespace
 constexpr int Bins = 16;
 constexpr int SahDepthLimit = 48; // deeper: median splits (bounds the depth)
 constexpr std::int32_t Grain = 4096; // subtrees of at most this many triangles are built in parallel
-constexpr std::int32_t ParallelSplit = 1 << 16; // top-level splits of at least this many run on all threads
 
 struct Ref
 {
@@ -95,8 +92,7 @@ public:
         return id;
       }
       top.push_back(id);
-      // (only large ranges: a parallel region per small split costs more than it gains)
-      const std::int32_t mid = this->split(first, count, depth, count >= ParallelSplit);
+      const std::int32_t mid = this->split(first, count, depth);
       const std::int32_t l = self(self, first, mid - first, depth + 1);
       const std::int32_t r = self(self, mid, first + count - mid, depth + 1);
       this->Nodes[id].left = l;
@@ -179,30 +175,11 @@ public:
 private:
   /// The first index of the right half: binned SAH on the longest centroid
   /// axis; the median when the centroids coincide, SAH finds no split or the
-  /// tree is already deep. parallel: the passes over the range run on all
-  /// threads (the top levels, built before the subtrees are). The tree does
-  /// not depend on it: bins take exact counts and min/max, and the order of
-  /// the range after a split does not matter (the sides are sets; every leaf
-  /// holds one triangle, so the final order is the tree's).
-  std::int32_t split(std::int32_t first, std::int32_t count, int depth, bool parallel = false)
+  /// tree is already deep.
+  std::int32_t split(std::int32_t first, std::int32_t count, int depth)
   {
     double clo[3] = { 1e300, 1e300, 1e300 }, chi[3] = { -1e300, -1e300, -1e300 };
-    if (!parallel)
-    {
-      for (std::int32_t i = first; i < first + count; ++i) grow(clo, chi, this->Refs[this->Order[i]].c, this->Refs[this->Order[i]].c);
-    }
-    else
-    {
-      double lx = clo[0], ly = clo[1], lz = clo[2], hx = chi[0], hy = chi[1], hz = chi[2];
-#pragma omp parallel for schedule(static) reduction(min : lx, ly, lz) reduction(max : hx, hy, hz)
-      for (std::int32_t i = first; i < first + count; ++i)
-      {
-        const double* c = this->Refs[this->Order[i]].c;
-        lx = std::min(lx, c[0]), ly = std::min(ly, c[1]), lz = std::min(lz, c[2]);
-        hx = std::max(hx, c[0]), hy = std::max(hy, c[1]), hz = std::max(hz, c[2]);
-      }
-      clo[0] = lx, clo[1] = ly, clo[2] = lz, chi[0] = hx, chi[1] = hy, chi[2] = hz;
-    }
+    for (std::int32_t i = first; i < first + count; ++i) grow(clo, chi, this->Refs[this->Order[i]].c, this->Refs[this->Order[i]].c);
     int axis = 0;
     for (int a = 1; a < 3; ++a)
       if (chi[a] - clo[a] > chi[axis] - clo[axis]) axis = a;
@@ -216,39 +193,11 @@ private:
       double blo[Bins][3], bhi[Bins][3];
       for (int b = 0; b < Bins; ++b)
         for (int a = 0; a < 3; ++a) blo[b][a] = 1e300, bhi[b][a] = -1e300;
-      if (!parallel)
+      for (auto it = begin; it != end; ++it)
       {
-        for (auto it = begin; it != end; ++it)
-        {
-          const int b = binOf(*it);
-          ++n[b];
-          grow(blo[b], bhi[b], this->Refs[*it].lo, this->Refs[*it].hi);
-        }
-      }
-      else
-      {
-        // per-thread bins, merged (counts and min/max: the same bins)
-#pragma omp parallel
-        {
-          std::int32_t tn[Bins] = {};
-          double tlo[Bins][3], thi[Bins][3];
-          for (int b = 0; b < Bins; ++b)
-            for (int a = 0; a < 3; ++a) tlo[b][a] = 1e300, thi[b][a] = -1e300;
-#pragma omp for schedule(static) nowait
-          for (std::int32_t i = first; i < first + count; ++i)
-          {
-            const std::int32_t t = this->Order[i];
-            const int b = binOf(t);
-            ++tn[b];
-            grow(tlo[b], thi[b], this->Refs[t].lo, this->Refs[t].hi);
-          }
-#pragma omp critical(lvdifNearestBins)
-          for (int b = 0; b < Bins; ++b)
-          {
-            n[b] += tn[b];
-            grow(blo[b], bhi[b], tlo[b], thi[b]);
-          }
-        }
+        const int b = binOf(*it);
+        ++n[b];
+        grow(blo[b], bhi[b], this->Refs[*it].lo, this->Refs[*it].hi);
       }
       double rightCost[Bins];
       double lo[3] = { 1e300, 1e300, 1e300 }, hi[3] = { -1e300, -1e300, -1e300 };
@@ -277,7 +226,6 @@ private:
       }
       if (bestBin >= 0)
       {
-        if (parallel) return first + this->partitionParallel(first, count, [&](std::int32_t t) { return binOf(t) <= bestBin; });
         auto midIt = std::partition(begin, end, [&](std::int32_t t) { return binOf(t) <= bestBin; });
         return static_cast<std::int32_t>(midIt - this->Order.begin());
       }
@@ -288,41 +236,6 @@ private:
       return cx < cy || (cx == cy && x < y);
     });
     return first + half;
-  }
-
-  /// Order[first, first + count) with the entries satisfying `left` first
-  /// (each side in its previous order), on all threads; returns their count.
-  template <typename Left>
-  std::int32_t partitionParallel(std::int32_t first, std::int32_t count, Left&& left)
-  {
-    std::vector<std::int32_t> out(static_cast<std::size_t>(count));
-    std::vector<std::int32_t> lefts;
-    std::int32_t total = 0;
-#pragma omp parallel
-    {
-      const int parts = omp_get_num_threads(), p = omp_get_thread_num();
-#pragma omp single
-      lefts.assign(static_cast<std::size_t>(parts) + 1, 0);
-      const std::int32_t a = static_cast<std::int32_t>(static_cast<std::int64_t>(count) * p / parts);
-      const std::int32_t b = static_cast<std::int32_t>(static_cast<std::int64_t>(count) * (p + 1) / parts);
-      std::int32_t mine = 0;
-      for (std::int32_t i = a; i < b; ++i) mine += left(this->Order[first + i]) ? 1 : 0;
-      lefts[static_cast<std::size_t>(p) + 1] = mine;
-#pragma omp barrier
-#pragma omp single
-      {
-        for (int q = 0; q < parts; ++q) lefts[static_cast<std::size_t>(q) + 1] += lefts[static_cast<std::size_t>(q)];
-        total = lefts[static_cast<std::size_t>(parts)];
-      }
-      std::int32_t l = lefts[static_cast<std::size_t>(p)], r = total + (a - lefts[static_cast<std::size_t>(p)]);
-      for (std::int32_t i = a; i < b; ++i)
-      {
-        const std::int32_t t = this->Order[first + i];
-        out[static_cast<std::size_t>(left(t) ? l++ : r++)] = t;
-      }
-    }
-    std::copy(out.begin(), out.end(), this->Order.begin() + first);
-    return total;
   }
 
   const std::vector<Ref>& Refs;
@@ -377,18 +290,12 @@ NearestIndex::NearestIndex(const std::vector<Tri>& tris)
   Builder b(refs);
   b.buildAll();
   this->PosOf.assign(n, -1);
+  this->Tris.reserve(n);
   this->Nodes.reserve(n / 2 + 1);
 
-  // the collapse below only places the triangles (preorder); their packed
-  // records (planes) are filled afterwards in parallel, each at its place
-  std::vector<std::int32_t> placed;
-  placed.reserve(n);
   auto addTri = [&](std::int32_t t) {
-    placed.push_back(t);
-    return ~static_cast<std::int32_t>(placed.size() - 1);
-  };
-  auto packTri = [&](std::int32_t t, Packed& p, PlanesF& f) {
     const Tri& src = tris[static_cast<std::size_t>(t)];
+    Packed p;
     for (int k = 0; k < 3; ++k) p.v[k] = src.v[k];
     // plane bound only where the normal's direction is accurate: the cross
     // product's rounding tilts it by about 2^-50 |e1||e2| / |e1 x e2|; slivers
@@ -415,6 +322,9 @@ NearestIndex::NearestIndex(const std::vector<Tri>& tris)
       }
     }
     p.index = t;
+    this->PosOf[static_cast<std::size_t>(t)] = static_cast<std::int32_t>(this->Tris.size());
+    this->Tris.push_back(p);
+    PlanesF f;
     for (int k = 0; k < 4; ++k)
     {
       f.x[k] = static_cast<float>(p.plane[k][0]);
@@ -422,6 +332,8 @@ NearestIndex::NearestIndex(const std::vector<Tri>& tris)
       f.z[k] = static_cast<float>(p.plane[k][2]);
       f.w[k] = static_cast<float>(p.plane[k][3]);
     }
+    this->TriPlanes.push_back(f);
+    return ~static_cast<std::int32_t>(this->Tris.size() - 1);
   };
 
   // a child's slab: its area-weighted mean normal rounded to float, and the
@@ -522,15 +434,6 @@ NearestIndex::NearestIndex(const std::vector<Tri>& tris)
     return id;
   };
   emit(emit, 0, 1);
-  this->Tris.resize(placed.size());
-  this->TriPlanes.resize(placed.size());
-#pragma omp parallel for schedule(static)
-  for (std::int64_t i = 0; i < static_cast<std::int64_t>(placed.size()); ++i)
-  {
-    const std::int32_t t = placed[static_cast<std::size_t>(i)];
-    packTri(t, this->Tris[static_cast<std::size_t>(i)], this->TriPlanes[static_cast<std::size_t>(i)]);
-    this->PosOf[static_cast<std::size_t>(t)] = static_cast<std::int32_t>(i);
-  }
   this->Depth = maxDepth;
   require(this->Depth <= 80, "mesh to SDF: nearest-triangle tree too deep");
 }

@@ -2,9 +2,9 @@
 // plain serial reference written here (welding by a std::map in order of
 // first appearance, pseudo-normals and edge normals summed in triangle order,
 // the boundary chain by net edge multiplicity), bit for bit, with 1 and 4
-// threads; the Bvh and NearestIndex (top-level splits on threads) the same
-// for any thread count and exact against brute force; a closed mesh's
-// winding closure shares the mesh's tree.
+// threads; the Bvh (boxes bottom-up) and NearestIndex the same for any
+// thread count and exact against brute force; a closed mesh's winding
+// closure shares the mesh's tree.
 #include "../src/MeshToSdfInternal.h"
 #include "../src/MeshToSdfNearest.h"
 #include "MeshToSdfOracle.h"
@@ -155,8 +155,8 @@ TEST(MeshToSdfBuild, PrepareMeshEqualsASerialReferenceOnAnyThreadCount)
 
 TEST(MeshToSdfBuild, BvhAndNearestIndexAreTheSameOnAnyThreadCountAndExact)
 {
-  // more than 2^16 triangles: NearestIndex splits its top levels on threads,
-  // the Bvh builds subtrees as tasks
+  // more than 2^16 triangles: many subtrees built on threads (tasks in the
+  // Bvh, parallel subtrees in NearestIndex)
   const TriangleMesh mesh = makeSphereMesh(0.1f, -0.2f, 0.05f, 1.0f, 190, 190);
   const PreparedMesh pm = prepareMesh(mesh);
   ASSERT_GT(pm.tris.size(), 65536u);

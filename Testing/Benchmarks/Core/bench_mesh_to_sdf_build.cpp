@@ -4,7 +4,8 @@
 // dipole tree) and the CPU's NearestIndex; the median of REPEATS runs each,
 // and a hash of what each phase built (equal hashes: the same structure, e.g.
 // for two thread counts or two versions of the code run back to back).
-// usage: bench_mesh_to_sdf_build [DAMAGE:]MESH [REPEATS=3] [PHASES=prepare,bvh,winding,nearest]
+// usage: bench_mesh_to_sdf_build [DAMAGE:]MESH [REPEATS=3] [PHASES=prepare,bvh,winding,gpuhost,nearest]
+// (gpuhost: the three host builds of the one-call CUDA path in a row)
 // (DAMAGE as in bench_mesh_to_sdf, e.g. sub2:armadillo.off for 832k triangles)
 #include "BenchCommon.h"
 #include "SignQualityMeshes.h"
@@ -116,7 +117,7 @@ int main(int argc, char** argv)
 {
   if (argc < 2)
   {
-    std::fprintf(stderr, "usage: %s [DAMAGE:]MESH [REPEATS=3] [PHASES=prepare,bvh,winding,nearest]\n", argv[0]);
+    std::fprintf(stderr, "usage: %s [DAMAGE:]MESH [REPEATS=3] [PHASES=prepare,bvh,winding,gpuhost,nearest]\n", argv[0]);
     return 2;
   }
   try
@@ -129,7 +130,7 @@ int main(int argc, char** argv)
       path = path.substr(colon + 1);
     }
     const int repeats = argc > 2 ? std::max(1, std::atoi(argv[2])) : 3;
-    const std::string phases = argc > 3 ? argv[3] : "prepare,bvh,winding,nearest";
+    const std::string phases = argc > 3 ? argv[3] : "prepare,bvh,winding,gpuhost,nearest";
     auto wants = [&](const char* p) { return phases.find(p) != std::string::npos; };
     TriangleMesh mesh = loadMesh(path);
     for (auto d = damages.rbegin(); d != damages.rend(); ++d) mesh = signquality::damaged(mesh, *d);
@@ -159,6 +160,22 @@ int main(int argc, char** argv)
       rows.push_back({ "WindingSigner", bench::fmt(ms, 1),
         hashBvh(*w->cpuClosure().bvh) + " (closure: " + std::to_string(w->cpuClosure().bvh->order().size()) +
           " triangles, correction " + std::to_string(w->cpuCorrection() ? w->cpuCorrection()->size() : 0) + ")" });
+    }
+    if (wants("gpuhost"))
+    {
+      // what the one-call CUDA path builds on the host before and beside the
+      // upload: preparation, the mesh's tree, the winding structures (a
+      // closed mesh's closure takes the mesh's tree)
+      PreparedMesh x;
+      std::shared_ptr<const Bvh> b;
+      std::unique_ptr<WindingSigner> w;
+      const double ms = medianBuildMs(repeats, [&] { w.reset(), b.reset(), x = PreparedMesh(); }, [&] {
+        x = prepareMesh(mesh);
+        b = std::make_shared<const Bvh>(x.tris);
+        w = std::make_unique<WindingSigner>(x, b);
+      });
+      rows.push_back({ "GPU path host build (prepareMesh + Bvh + WindingSigner)", bench::fmt(ms, 1),
+        hashBvh(*w->cpuClosure().bvh) });
     }
     if (wants("nearest"))
     {
