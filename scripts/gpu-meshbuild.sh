@@ -60,7 +60,7 @@ run 60 "$B/bench_mesh_to_sdf_build" "sub2:$A" 3
 
 {
   echo "## warm/prepared rows (ms): run | device | read | build | distance | sign | write | end-to-end"
-  grep -E "^## |^\| (cold|warm|prepared) |^cpu check:|^prepareMeshToSdf|^\| (prepareMesh|mesh Bvh|WindingSigner|NearestIndex) |rc=[1-9]" "$L" |
+  grep -E "^## |^\| (cold|warm|prepared) |^cpu check:|^prepareMeshToSdf|^\| (prepareMesh|mesh Bvh|WindingSigner|GPU path|NearestIndex) |rc=[1-9]" "$L" |
     awk -F'|' '/^\| (cold|warm|prepared) / { printf "|%s|%s|%s|%s|%s|%s|%s|%s|\n", $2, $3, $4, $5, $6, $7, $8, $9; next } { print }'
   echo "## host phases (--trace), in run order"
   grep -E "^## |\[mesh to SDF\] (prepareMesh|mesh BVH|winding|upload and session)" "$L" | head -60
