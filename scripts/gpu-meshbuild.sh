@@ -55,12 +55,13 @@ M="$B/bench_mesh_to_sdf"
 run 60 $M "sub2:$A" 1024 winding auto bvh volume 8 2 cold,warm,warm,prepared --trace
 # CUDA = CPU bit for bit on sub2 (128^3 float grid, no band; the CPU on all cores)
 run 60 $M "sub2:$A" 128 winding auto bvh float 0 2 warm --check-cpu
-# the host build phases alone (all cores), with hashes of what they built
-run 60 "$B/bench_mesh_to_sdf_build" "sub2:$A" 3
+# the host build phases alone (all cores), with hashes of what they built, and how
+# the first touch of fresh memory scales (1 thread, all, huge pages)
+run 60 "$B/bench_mesh_to_sdf_build" "sub2:$A" 3 prepare,bvh,winding,gpuhost,nearest,touch
 
 {
   echo "## warm/prepared rows (ms): run | device | read | build | distance | sign | write | end-to-end"
-  grep -E "^## |^\| (cold|warm|prepared) |^cpu check:|^prepareMeshToSdf|^\| (prepareMesh|mesh Bvh|WindingSigner|GPU path|NearestIndex) |rc=[1-9]" "$L" |
+  grep -E "^## |^\| (cold|warm|prepared) |^cpu check:|^prepareMeshToSdf|^\| (prepareMesh|mesh Bvh|WindingSigner|GPU path|NearestIndex|first touch) |rc=[1-9]" "$L" |
     awk -F'|' '/^\| (cold|warm|prepared) / { printf "|%s|%s|%s|%s|%s|%s|%s|%s|\n", $2, $3, $4, $5, $6, $7, $8, $9; next } { print }'
   echo "## host phases (--trace), in run order"
   grep -E "^## |\[mesh to SDF\] (prepareMesh|mesh BVH|winding|upload and session)" "$L" | head -60

@@ -4,8 +4,10 @@
 // dipole tree) and the CPU's NearestIndex; the median of REPEATS runs each,
 // and a hash of what each phase built (equal hashes: the same structure, e.g.
 // for two thread counts or two versions of the code run back to back).
-// usage: bench_mesh_to_sdf_build [DAMAGE:]MESH [REPEATS=3] [PHASES=prepare,bvh,winding,gpuhost,nearest]
-// (gpuhost: the three host builds of the one-call CUDA path in a row)
+// usage: bench_mesh_to_sdf_build [DAMAGE:]MESH [REPEATS=3] [PHASES=prepare,bvh,winding,gpuhost,nearest,touch]
+// (gpuhost: the three host builds of the one-call CUDA path in a row; touch:
+// the first touch of 256 MB of fresh memory by 1 thread, by all, and by one
+// with transparent huge pages asked for)
 // (DAMAGE as in bench_mesh_to_sdf, e.g. sub2:armadillo.off for 832k triangles)
 #include "BenchCommon.h"
 #include "SignQualityMeshes.h"
@@ -15,6 +17,10 @@
 #include "lvdif/MeshFile.h"
 
 #include <omp.h>
+
+#ifdef __linux__
+#include <sys/mman.h>
+#endif
 
 #include <algorithm>
 #include <cstdio>
@@ -117,7 +123,7 @@ int main(int argc, char** argv)
 {
   if (argc < 2)
   {
-    std::fprintf(stderr, "usage: %s [DAMAGE:]MESH [REPEATS=3] [PHASES=prepare,bvh,winding,gpuhost,nearest]\n", argv[0]);
+    std::fprintf(stderr, "usage: %s [DAMAGE:]MESH [REPEATS=3] [PHASES=prepare,bvh,winding,gpuhost,nearest,touch]\n", argv[0]);
     return 2;
   }
   try
@@ -130,7 +136,7 @@ int main(int argc, char** argv)
       path = path.substr(colon + 1);
     }
     const int repeats = argc > 2 ? std::max(1, std::atoi(argv[2])) : 3;
-    const std::string phases = argc > 3 ? argv[3] : "prepare,bvh,winding,gpuhost,nearest";
+    const std::string phases = argc > 3 ? argv[3] : "prepare,bvh,winding,gpuhost,nearest,touch";
     auto wants = [&](const char* p) { return phases.find(p) != std::string::npos; };
     TriangleMesh mesh = loadMesh(path);
     for (auto d = damages.rbegin(); d != damages.rend(); ++d) mesh = signquality::damaged(mesh, *d);
@@ -184,6 +190,37 @@ int main(int argc, char** argv)
       Hash x;
       x.addVector(n->nodes());
       rows.push_back({ "NearestIndex", bench::fmt(ms, 1), x.hex() });
+    }
+    if (wants("touch"))
+    {
+      // How the host's page faults scale: the first touch of fresh memory (as
+      // the 273 MB of triangle records of 832k triangles get) by one thread
+      // and by all; if all are much faster, a parallel first touch of the
+      // large arrays would shorten the serial part of the build.
+      constexpr std::size_t Bytes = std::size_t(256) << 20;
+      for (int all = 0; all < 2; ++all)
+      {
+        const int threads = all ? omp_get_max_threads() : 1;
+        const double ms = medianBuildMs(repeats, [] {}, [&] {
+          std::unique_ptr<unsigned char[]> m(new unsigned char[Bytes]);
+          const std::int64_t pages = static_cast<std::int64_t>(Bytes / 4096);
+#pragma omp parallel for schedule(static) num_threads(threads)
+          for (std::int64_t i = 0; i < pages; ++i) m[static_cast<std::size_t>(i) * 4096] = 1;
+        });
+        rows.push_back({ "first touch of 256 MB, " + std::to_string(threads) + " thread(s) (incl. free)", bench::fmt(ms, 1), "" });
+      }
+#ifdef __linux__
+      // the same with transparent huge pages asked for (madvise): 512x fewer faults
+      const double ms = medianBuildMs(repeats, [] {}, [&] {
+        void* p = mmap(nullptr, Bytes, PROT_READ | PROT_WRITE, MAP_PRIVATE | MAP_ANONYMOUS, -1, 0);
+        if (p == MAP_FAILED) return;
+        madvise(p, Bytes, MADV_HUGEPAGE);
+        auto* m = static_cast<unsigned char*>(p);
+        for (std::size_t i = 0; i < Bytes; i += 4096) m[i] = 1;
+        munmap(p, Bytes);
+      });
+      rows.push_back({ "first touch of 256 MB, 1 thread, MADV_HUGEPAGE (incl. unmap)", bench::fmt(ms, 1), "" });
+#endif
     }
     bench::printTable({ "phase", "ms", "hash of the result" }, rows);
   }
