@@ -15,47 +15,64 @@ namespace
 constexpr int LeafSize = 4;
 } // namespace
 
-namespace
-{
 /// Nodes of a subtree over `count` triangles (median splits, leaves of at
 /// most LeafSize): lets parallel tasks place their nodes deterministically.
-std::int32_t subtreeNodes(std::int32_t count, int depth)
+/// The counts of one depth differ by at most one, so the recursion meets
+/// O(log n) distinct counts: they are computed once (memo) and looked up
+/// read-only by the build's tasks (recomputing them per node visited every
+/// node of the left subtree again: O(n log n)). (Depth never reaches 60: 31
+/// halvings bring any int32 count to LeafSize.)
+class BvhSubtreeNodes
 {
-  if (count <= LeafSize || depth >= 60) return 1;
-  const std::int32_t half = count / 2;
-  return 1 + subtreeNodes(half, depth + 1) + subtreeNodes(count - half, depth + 1);
-}
-} // namespace
+public:
+  explicit BvhSubtreeNodes(std::int32_t n) { this->of(n); }
+  std::int32_t operator()(std::int32_t count) const
+  {
+    for (const auto& e : this->Memo)
+      if (e.first == count) return e.second;
+    return 1; // count <= LeafSize (never stored)
+  }
 
-/// Per-triangle bounds and centroids, computed once in parallel; the
-/// recursive build then touches only these compact arrays (the triangle
-/// records are 328 bytes each), and the median splits permute the centroids
-/// themselves (contiguous, no indirection; the same permutation as sorting
-/// indices by them). Subtrees of more than 2048 triangles build as OpenMP
-/// tasks; the node layout (preorder) does not depend on the threads.
+private:
+  std::int32_t of(std::int32_t count)
+  {
+    if (count <= LeafSize) return 1;
+    for (const auto& e : this->Memo)
+      if (e.first == count) return e.second;
+    const std::int32_t half = count / 2;
+    const std::int32_t nodes = 1 + this->of(half) + this->of(count - half);
+    this->Memo.push_back({ count, nodes });
+    return nodes;
+  }
+  std::vector<std::pair<std::int32_t, std::int32_t>> Memo;
+};
+
+/// Centroids computed once in parallel; the recursive build then touches
+/// only this compact array (the triangle records are 328 bytes each), and the
+/// median splits permute the centroids themselves (contiguous, no
+/// indirection; the same permutation as sorting indices by them). Subtrees of
+/// more than 2048 triangles build as OpenMP tasks; the node layout (preorder)
+/// does not depend on the threads. The boxes come last, bottom-up, from the
+/// leaf-ordered compact copies (exact min/max: the same bits as boxes taken
+/// during the build).
 Bvh::Bvh(const std::vector<Tri>& tris)
   : Tris(tris)
 {
   const std::int32_t n = static_cast<std::int32_t>(tris.size());
   this->Order.resize(tris.size());
   BuildData d;
-  d.box.resize(tris.size());
   d.ref.resize(tris.size());
 #pragma omp parallel for schedule(static)
   for (std::int32_t i = 0; i < n; ++i)
   {
     const Tri& t = tris[i];
-    auto& b = d.box[i];
     auto& r = d.ref[i];
-    for (int a = 0; a < 3; ++a)
-    {
-      b[a] = std::min(t.v[0][a], std::min(t.v[1][a], t.v[2][a]));
-      b[a + 3] = std::max(t.v[0][a], std::max(t.v[1][a], t.v[2][a]));
-      r.c[a] = t.v[0][a] + t.v[1][a] + t.v[2][a];
-    }
+    for (int a = 0; a < 3; ++a) r.c[a] = t.v[0][a] + t.v[1][a] + t.v[2][a];
     r.tri = i;
   }
-  this->Nodes.resize(static_cast<std::size_t>(subtreeNodes(n, 0)));
+  const BvhSubtreeNodes nodesOf(n);
+  d.subtreeNodes = &nodesOf;
+  this->Nodes.resize(static_cast<std::size_t>(nodesOf(n)));
 #pragma omp parallel
 #pragma omp single
   this->build(d, 0, 0, n, 0);
@@ -68,6 +85,42 @@ Bvh::Bvh(const std::vector<Tri>& tris)
     LeafTri& l = this->Leaves[i];
     for (int k = 0; k < 3; ++k) l.v[k] = t.v[k];
     l.n = t.n;
+  }
+  // leaf boxes in parallel, then the inner nodes from their children
+  // (preorder: children come after their parent)
+  const std::int64_t nodeCount = static_cast<std::int64_t>(this->Nodes.size());
+#pragma omp parallel for schedule(static)
+  for (std::int64_t id = 0; id < nodeCount; ++id)
+  {
+    Node& node = this->Nodes[id];
+    if (node.left >= 0) continue;
+    for (int a = 0; a < 3; ++a)
+    {
+      node.lo[a] = 1e300;
+      node.hi[a] = -1e300;
+    }
+    for (std::int32_t i = node.first; i < node.first + node.count; ++i)
+    {
+      const V3* v = this->Leaves[i].v;
+      for (int a = 0; a < 3; ++a)
+      {
+        // the triangle's box first (the order of a build that kept boxes:
+        // min/max of +0 and -0 depend on it)
+        node.lo[a] = std::min(node.lo[a], std::min(v[0][a], std::min(v[1][a], v[2][a])));
+        node.hi[a] = std::max(node.hi[a], std::max(v[0][a], std::max(v[1][a], v[2][a])));
+      }
+    }
+  }
+  for (std::int64_t id = nodeCount - 1; id >= 0; --id)
+  {
+    Node& node = this->Nodes[id];
+    if (node.left < 0) continue;
+    const Node &l = this->Nodes[node.left], &r = this->Nodes[node.right];
+    for (int a = 0; a < 3; ++a)
+    {
+      node.lo[a] = std::min(l.lo[a], r.lo[a]);
+      node.hi[a] = std::max(l.hi[a], r.hi[a]);
+    }
   }
 }
 
@@ -97,11 +150,11 @@ void Bvh::build(BuildData& d, std::int32_t id, std::int32_t first, std::int32_t 
     std::nth_element(d.ref.begin() + first, d.ref.begin() + first + half, d.ref.begin() + first + count,
       [axis](const BuildData::Ref& x, const BuildData::Ref& y) { return x.c[axis] < y.c[axis]; });
     node.left = id + 1;
-    node.right = id + 1 + subtreeNodes(half, depth + 1);
+    node.right = id + 1 + (*d.subtreeNodes)(half);
     if (count > 2048)
     {
       // shared(d): by default a task takes a firstprivate COPY of the object
-      // a reference refers to (2 MB of boxes and centroids per task)
+      // a reference refers to (the centroids, per task)
 #pragma omp task shared(d)
       this->build(d, node.left, first, half, depth + 1);
 #pragma omp task shared(d)
@@ -113,29 +166,9 @@ void Bvh::build(BuildData& d, std::int32_t id, std::int32_t first, std::int32_t 
       this->build(d, node.left, first, half, depth + 1);
       this->build(d, node.right, first + half, count - half, depth + 1);
     }
-    const Node &l = this->Nodes[node.left], &r = this->Nodes[node.right];
-    for (int a = 0; a < 3; ++a)
-    {
-      node.lo[a] = std::min(l.lo[a], r.lo[a]);
-      node.hi[a] = std::max(l.hi[a], r.hi[a]);
-    }
     return;
   }
   node.left = node.right = -1;
-  for (int a = 0; a < 3; ++a)
-  {
-    node.lo[a] = 1e300;
-    node.hi[a] = -1e300;
-  }
-  for (std::int32_t i = first; i < first + count; ++i)
-  {
-    const auto& b = d.box[d.ref[i].tri];
-    for (int a = 0; a < 3; ++a)
-    {
-      node.lo[a] = std::min(node.lo[a], b[a]);
-      node.hi[a] = std::max(node.hi[a], b[a + 3]);
-    }
-  }
 }
 
 NearestResult Bvh::nearest(V3 p, std::int32_t hint, double maxDist2) const

@@ -19,6 +19,7 @@
 #include <algorithm>
 #include <atomic>
 #include <chrono>
+#include <cstddef>
 #include <cstdlib>
 #include <cmath>
 #include <vector>
@@ -98,26 +99,13 @@ private:
   std::atomic<std::uint64_t> Bytes{ 0 }; // read by sessions of other threads (statistics)
 };
 
-std::vector<GpuNode> convertNodes(const Bvh& b)
-{
-  std::vector<GpuNode> out;
-  out.reserve(b.nodes().size());
-  for (const Bvh::Node& n : b.nodes())
-  {
-    GpuNode g;
-    for (int a = 0; a < 3; ++a)
-    {
-      g.lo[a] = n.lo[a];
-      g.hi[a] = n.hi[a];
-    }
-    g.left = n.left;
-    g.right = n.right;
-    g.first = n.first;
-    g.count = n.count;
-    out.push_back(g);
-  }
-  return out;
-}
+// The host tree's nodes are uploaded as they are (no converted copy of
+// every node): both records have the same layout.
+static_assert(sizeof(GpuNode) == sizeof(Bvh::Node) && offsetof(GpuNode, lo) == offsetof(Bvh::Node, lo) &&
+    offsetof(GpuNode, hi) == offsetof(Bvh::Node, hi) && offsetof(GpuNode, left) == offsetof(Bvh::Node, left) &&
+    offsetof(GpuNode, right) == offsetof(Bvh::Node, right) && offsetof(GpuNode, first) == offsetof(Bvh::Node, first) &&
+    offsetof(GpuNode, count) == offsetof(Bvh::Node, count),
+  "GpuNode must mirror Bvh::Node");
 
 std::vector<GpuTri> compactTris(const std::vector<Tri>& tris)
 {
@@ -137,7 +125,8 @@ DevBvh uploadBvh(DeviceArena& arena, cudaStream_t stream, const Bvh& b, const De
 {
   DevBvh d;
   d.leaf = arena.uploadOn(stream, b.leaves(), const_cast<GpuTri*>(into.leaf), cap);
-  d.nodes = arena.uploadOn(stream, convertNodes(b), const_cast<GpuNode*>(into.nodes), 2 * cap);
+  d.nodes = reinterpret_cast<const GpuNode*>(arena.uploadOn(stream, b.nodes(),
+    reinterpret_cast<Bvh::Node*>(const_cast<GpuNode*>(into.nodes)), 2 * cap));
   d.order = arena.uploadOn(stream, b.order(), const_cast<int*>(into.order), cap);
   return d;
 }
@@ -169,8 +158,9 @@ public:
     {
       this->addWinding(*winding);
     }
-    else if (windingLater)
+    else if (windingLater && !mesh.boundary.empty())
     {
+      // (a closed mesh is its own closure: addWinding reuses the mesh's tree)
       this->ClosedCap = mesh.tris.size() + mesh.boundary.size();
       this->EdgeCap = mesh.boundary.size();
       this->Reserved.leaf = this->Arena.alloc<GpuTri>(this->ClosedCap);
@@ -221,7 +211,9 @@ public:
     {
       // the CPU's closure (M+ or M closed by local caps) and its correction s
       const WindingSigner::Closure& c = winding.cpuClosure();
-      this->W.closed = uploadBvh(this->Arena, st, *c.bvh, this->Reserved, this->ClosedCap);
+      // a closed mesh's closure shares the mesh's tree (the same object): its copy is already here
+      this->W.closed = c.bvh.get() == &this->MeshBvh ? this->Dbvh
+                                                     : uploadBvh(this->Arena, st, *c.bvh, this->Reserved, this->ClosedCap);
       this->W.meshTris = static_cast<int>(c.meshTris);
       if (const DipoleTree* s = winding.cpuCorrection())
       {

@@ -60,6 +60,8 @@ struct NearestResult
   Closest closest;
 };
 
+class BvhSubtreeNodes; // MeshToSdfBvh.cpp
+
 /// Binary BVH over the triangles (median split on the longest axis of the
 /// centroid bounds, leaves of at most 4), built in parallel (OpenMP tasks).
 class Bvh
@@ -100,13 +102,13 @@ public:
 private:
   struct BuildData
   {
-    std::vector<std::array<double, 6>> box; // per triangle: lo, hi
     struct Ref
     {
       double c[3];      // sum of the vertices (3x the centroid: only compared)
       std::int32_t tri; // triangle index
     };
     std::vector<Ref> ref; // permuted in place by the build; becomes Order
+    const BvhSubtreeNodes* subtreeNodes = nullptr; // nodes of a subtree by its triangle count
   };
   void build(BuildData& d, std::int32_t id, std::int32_t first, std::int32_t count, int depth);
   const std::vector<Tri>& Tris;
@@ -146,7 +148,10 @@ private:
 class WindingSigner
 {
 public:
-  explicit WindingSigner(const PreparedMesh& mesh);
+  /// meshBvh (optional): a Bvh over mesh.tris already built (the GPU's mesh
+  /// tree); a closed mesh's closure is the mesh itself and takes that tree
+  /// instead of building a second, identical one.
+  explicit WindingSigner(const PreparedMesh& mesh, std::shared_ptr<const Bvh> meshBvh = nullptr);
   ~WindingSigner();
   /// False when the boundary is empty or a few edges of multiplicity 1 (holes):
   /// then no orientation pass runs and the closure is the cone over dM, as on
@@ -185,8 +190,12 @@ public:
   /// possibly reversed), the rest the caps (or the cone) over its boundary.
   struct Closure
   {
-    std::vector<Tri> closed;
-    std::unique_ptr<Bvh> bvh;
+    /// The closed chain's triangles: `own`, or the mesh's own list when the
+    /// mesh is closed as given (no copy; bvh is then a tree over mesh.tris).
+    const std::vector<Tri>& closed() const { return this->shared ? *this->shared : this->own; }
+    std::vector<Tri> own;
+    const std::vector<Tri>* shared = nullptr;
+    std::shared_ptr<const Bvh> bvh;
     std::vector<Tri> cone;
     std::vector<Cluster> clusters; // of boundary edges, for the drift bound
     std::size_t meshTris = 0;
@@ -201,11 +210,14 @@ public:
   const DipoleTree* cpuCorrection() const { return this->Flipped.get(); }
   // the older CUDA construction, for a closure with a cone: the cone over the
   // boundary of M itself (built on first use when it differs from the CPU's closure)
-  const std::vector<Tri>& closedTris() const { return this->coneOverMesh().closed; }
+  const std::vector<Tri>& closedTris() const { return this->coneOverMesh().closed(); }
   const Bvh& closedBvh() const { return *this->coneOverMesh().bvh; }
   const std::vector<Tri>& cone() const { return this->coneOverMesh().cone; }
   const std::vector<Cluster>& clusters() const { return this->coneOverMesh().clusters; }
   std::size_t meshTriangles() const { return this->coneOverMesh().meshTris; }
+  /// The closure's tree when the closure is the mesh itself (a closed mesh as
+  /// given: the same tree as Bvh(mesh.tris)), else null.
+  std::shared_ptr<const Bvh> meshBvh() const { return this->Plus.shared ? this->Plus.bvh : nullptr; }
   /// Faces reversed (F) or removed as duplicates (R) by the orientation pass
   /// (Plus is M+ closed by caps when that is cheaper than caps over dM).
   std::size_t flippedTriangles() const { return this->CorrectedFaces; }
@@ -257,8 +269,12 @@ class DeviceMesh; // MeshToSdfCuda.h
 struct MeshToSdfPrepared::Impl
 {
   detail::meshtosdf::PreparedMesh mesh;
-  std::unique_ptr<detail::meshtosdf::Bvh> bvh;             // the GPU's tree, built on first upload (under Lock)
+  /// The GPU's tree (and the far blocks'), built on first use (under Lock);
+  /// for a closed mesh the same object as the winding closure's tree.
+  std::shared_ptr<const detail::meshtosdf::Bvh> bvh;
   std::unique_ptr<detail::meshtosdf::NearestIndex> nearest; // the CPU's distance queries, built on first CPU use
+  /// this->bvh, built (or taken from the winding closure) if missing; under Lock.
+  const detail::meshtosdf::Bvh& meshBvhLocked();
   /// The CPU's NearestIndex, built on first use (seconds added; under Lock).
   const detail::meshtosdf::NearestIndex& nearestIndex(double& seconds);
   double prepareSeconds = 0;

@@ -7,9 +7,14 @@
 
 #include "lvdif/Error.h"
 
-#include <cmath>
 #include <algorithm>
+#include <atomic>
+#include <cmath>
 #include <cstring>
+#include <limits>
+#include <memory>
+
+#include <omp.h>
 
 namespace lvdif
 {
@@ -20,42 +25,116 @@ namespace
 {
 /// Welds points of bitwise equal coordinates (as the hash map this replaced
 /// did in effect: it hashed the bits; NaN is refused by validate()): ids in
-/// order of first appearance. Open addressing in one flat table (no node per
-/// point, no rehashing).
+/// order of first appearance. One flat open-addressing table filled by all
+/// threads: a key's slot holds the smallest index seen with that key (CAS,
+/// then atomic min), so when the fill ends every key holds its first
+/// occurrence whatever the threads did; the ids follow by a prefix count.
 std::uint32_t weldPoints(const std::vector<Vec3f>& points, std::vector<std::uint32_t>& weld, std::vector<std::uint32_t>& firstOf)
 {
+  constexpr std::uint32_t Empty = 0xffffffffu;
   const std::size_t n = points.size();
   std::size_t cap = 16;
   while (cap < 2 * n) cap *= 2;
-  std::vector<std::uint32_t> table(cap, 0xffffffffu); // point index of the first occurrence
-  weld.resize(n);
-  firstOf.clear();
-  firstOf.reserve(n);
-  for (std::size_t i = 0; i < n; ++i)
-  {
-    std::uint32_t b[3];
-    std::memcpy(b, points[i].data(), sizeof(b));
+  std::unique_ptr<std::atomic<std::uint32_t>[]> table(new std::atomic<std::uint32_t>[cap]);
+  const std::int64_t capI = static_cast<std::int64_t>(cap), nI = static_cast<std::int64_t>(n);
+#pragma omp parallel for schedule(static)
+  for (std::int64_t s = 0; s < capI; ++s) table[s].store(Empty, std::memory_order_relaxed);
+  auto slotOf = [&](const std::uint32_t* b) {
     std::uint64_t h = 1469598103934665603ull;
-    for (std::uint32_t v : b) h = (h ^ v) * 1099511628211ull;
-    std::size_t slot = static_cast<std::size_t>(h ^ (h >> 29)) & (cap - 1);
-    for (;; slot = (slot + 1) & (cap - 1))
+    for (int k = 0; k < 3; ++k) h = (h ^ b[k]) * 1099511628211ull;
+    return static_cast<std::size_t>(h ^ (h >> 29)) & (cap - 1);
+  };
+  std::vector<std::size_t> slotOfPoint(n); // where point i's key lives
+#pragma omp parallel for schedule(static)
+  for (std::int64_t i = 0; i < nI; ++i)
+  {
+    const std::uint32_t me = static_cast<std::uint32_t>(i);
+    std::uint32_t b[3];
+    std::memcpy(b, points[static_cast<std::size_t>(i)].data(), sizeof(b));
+    for (std::size_t slot = slotOf(b);; slot = (slot + 1) & (cap - 1))
     {
-      const std::uint32_t e = table[slot];
-      if (e == 0xffffffffu)
+      std::uint32_t e = table[slot].load(std::memory_order_acquire);
+      if (e == Empty)
       {
-        table[slot] = static_cast<std::uint32_t>(i);
-        weld[i] = static_cast<std::uint32_t>(firstOf.size());
-        firstOf.push_back(static_cast<std::uint32_t>(i));
-        break;
+        if (table[slot].compare_exchange_strong(e, me, std::memory_order_acq_rel))
+        {
+          slotOfPoint[static_cast<std::size_t>(i)] = slot;
+          break;
+        }
+        // another thread took the slot: e is its point, compare below
       }
-      if (std::memcmp(points[e].data(), b, sizeof(b)) == 0)
+      // a slot's key never changes (only its index, to a smaller one of the same key)
+      if (std::memcmp(points[e].data(), b, sizeof(b)) != 0) continue;
+      while (me < e && !table[slot].compare_exchange_weak(e, me, std::memory_order_acq_rel))
       {
-        weld[i] = weld[e];
-        break;
       }
+      slotOfPoint[static_cast<std::size_t>(i)] = slot;
+      break;
     }
   }
-  return static_cast<std::uint32_t>(firstOf.size());
+  // rep = first occurrence of each point's key; ids = prefix count of firsts
+  weld.resize(n);
+#pragma omp parallel for schedule(static)
+  for (std::int64_t i = 0; i < nI; ++i) weld[i] = table[slotOfPoint[static_cast<std::size_t>(i)]].load(std::memory_order_relaxed);
+  table.reset();
+  std::vector<std::uint32_t> id(n + 1, 0);
+  for (std::size_t i = 0; i < n; ++i) id[i + 1] = id[i] + (weld[i] == i ? 1 : 0);
+  const std::uint32_t nv = id[n];
+  firstOf.resize(nv);
+#pragma omp parallel for schedule(static)
+  for (std::int64_t i = 0; i < nI; ++i)
+  {
+    if (weld[i] == static_cast<std::uint32_t>(i)) firstOf[id[i]] = static_cast<std::uint32_t>(i);
+  }
+  // weld[i] = id of its first occurrence (ids of firsts are set above: id[rep])
+#pragma omp parallel for schedule(static)
+  for (std::int64_t i = 0; i < nI; ++i) weld[i] = id[weld[i]];
+  return nv;
+}
+
+/// Runs f(lo, hi) on every OpenMP thread with its own contiguous part
+/// [lo, hi) of [0, n): each thread writes only the entries of its part, in
+/// the order a serial loop would (no atomics, no per-thread copies).
+template <typename F>
+void ownerParts(std::size_t n, F&& f)
+{
+#pragma omp parallel
+  {
+    const std::size_t p = static_cast<std::size_t>(omp_get_thread_num());
+    const std::size_t parts = static_cast<std::size_t>(omp_get_num_threads());
+    f(n * p / parts, n * (p + 1) / parts);
+  }
+}
+
+/// Counting sort of the 3n corners c = 3t + k into nb buckets by
+/// bucketOf(c) (CSR: start gets nb + 1 offsets), each bucket in corner order
+/// as a serial counting sort leaves it: every thread owns a range of buckets
+/// and scans all corners for them (the scans are cheap, the scattered writes
+/// are split). Returns valueOf(c) bucket by bucket.
+template <typename Value, typename BucketOf, typename ValueOf>
+std::vector<Value> bucketCorners(std::size_t n, std::size_t nb, std::vector<std::uint32_t>& start, BucketOf&& bucketOf,
+  ValueOf&& valueOf)
+{
+  const std::uint32_t nc = static_cast<std::uint32_t>(3 * n);
+  start.assign(nb + 1, 0);
+  ownerParts(nb, [&](std::size_t lo, std::size_t hi) {
+    for (std::uint32_t c = 0; c < nc; ++c)
+    {
+      const std::size_t b = bucketOf(c);
+      if (b - lo < hi - lo) ++start[b + 1];
+    }
+  });
+  for (std::size_t b = 0; b < nb; ++b) start[b + 1] += start[b];
+  std::vector<Value> out(nc);
+  ownerParts(nb, [&](std::size_t lo, std::size_t hi) {
+    std::vector<std::uint32_t> fill(start.begin() + static_cast<std::ptrdiff_t>(lo), start.begin() + static_cast<std::ptrdiff_t>(hi));
+    for (std::uint32_t c = 0; c < nc; ++c)
+    {
+      const std::size_t b = bucketOf(c);
+      if (b - lo < hi - lo) out[fill[b - lo]++] = valueOf(c);
+    }
+  });
+  return out;
 }
 
 double angleAt(V3 p, V3 q, V3 r) // angle at p of triangle p q r
@@ -79,7 +158,9 @@ PreparedMesh prepareMesh(const TriangleMesh& mesh)
   const std::size_t nv = weldPoints(mesh.points, weld, firstOf);
   auto toV3 = [](const Vec3f& p) { return V3{ p[0], p[1], p[2] }; };
   std::vector<V3> weldPos(nv);
-  for (std::size_t v = 0; v < nv; ++v) weldPos[v] = toV3(mesh.points[firstOf[v]]);
+  const std::int64_t nvAll = static_cast<std::int64_t>(nv);
+#pragma omp parallel for schedule(static)
+  for (std::int64_t v = 0; v < nvAll; ++v) weldPos[v] = toV3(mesh.points[firstOf[v]]);
 
   // triangle records and corner angles, in parallel, written straight to
   // their final (compacted) place: which triangles are kept is known first
@@ -104,7 +185,11 @@ PreparedMesh prepareMesh(const TriangleMesh& mesh)
   out.tris.resize(n);
   std::vector<std::array<std::uint32_t, 3>> welded(n);
   std::vector<std::array<double, 3>> keptAngles(n);
-#pragma omp parallel for schedule(static)
+  // bounds of the kept triangles on the way: min/max are exact, so the
+  // parallel reduction gives the same values
+  constexpr double Inf = std::numeric_limits<double>::infinity();
+  double lx = Inf, ly = Inf, lz = Inf, hx = -Inf, hy = -Inf, hz = -Inf;
+#pragma omp parallel for schedule(static) reduction(min : lx, ly, lz) reduction(max : hx, hy, hz)
   for (std::int64_t t = 0; t < ntI; ++t)
   {
     if (slot[t + 1] == slot[t]) continue; // degenerate
@@ -128,28 +213,42 @@ PreparedMesh prepareMesh(const TriangleMesh& mesh)
       keptAngles[o][k] = angleAt(tri.v[k], tri.v[(k + 1) % 3], tri.v[(k + 2) % 3]);
     }
     welded[o] = { weld[ix[0]], weld[ix[1]], weld[ix[2]] };
-  }
-
-  // vertex pseudo-normals: summed in triangle order (deterministic)
-  std::vector<V3> vertexNormal(nv);
-  for (std::size_t t = 0; t < n; ++t)
-  {
-    for (int k = 0; k < 3; ++k)
+    for (const V3& v : tri.v)
     {
-      vertexNormal[welded[t][k]] = vertexNormal[welded[t][k]] + keptAngles[t][k] * out.tris[t].n;
+      lx = std::min(lx, v.x), ly = std::min(ly, v.y), lz = std::min(lz, v.z);
+      hx = std::max(hx, v.x), hy = std::max(hy, v.y), hz = std::max(hz, v.z);
     }
   }
+  out.lo[0] = lx, out.lo[1] = ly, out.lo[2] = lz;
+  out.hi[0] = hx, out.hi[1] = hy, out.hi[2] = hz;
 
-  // Edges grouped by their smaller welded vertex (counting sort, no hashing):
-  // entry = corner (t, k) whose edge goes w[k] -> w[k+1].
-  std::vector<std::uint32_t> start(nv + 1, 0);
-  for (std::size_t t = 0; t < n; ++t)
-    for (int k = 0; k < 3; ++k) ++start[std::min(welded[t][k], welded[t][(k + 1) % 3]) + 1];
-  for (std::size_t v = 0; v < nv; ++v) start[v + 1] += start[v];
-  std::vector<std::uint32_t> corners(3 * n), fill(start.begin(), start.end() - 1);
-  for (std::size_t t = 0; t < n; ++t)
-    for (int k = 0; k < 3; ++k)
-      corners[fill[std::min(welded[t][k], welded[t][(k + 1) % 3])]++] = static_cast<std::uint32_t>(3 * t + k);
+  // vertex pseudo-normals, summed in triangle order (deterministic): each
+  // thread owns a range of vertices and adds only to those
+  std::vector<V3> vertexNormal(nv);
+  ownerParts(nv, [&](std::size_t lo, std::size_t hi) {
+    for (std::size_t t = 0; t < n; ++t)
+    {
+      for (int k = 0; k < 3; ++k)
+      {
+        const std::size_t v = welded[t][k];
+        if (v - lo < hi - lo) vertexNormal[v] = vertexNormal[v] + keptAngles[t][k] * out.tris[t].n;
+      }
+    }
+  });
+
+  // Edges grouped by their smaller welded vertex: entry = (larger vertex,
+  // corner (t, k) whose edge goes w[k] -> w[k+1]), each group then sorted,
+  // so that an edge's corners are consecutive, in triangle order.
+  std::vector<std::uint32_t> start;
+  std::vector<std::uint64_t> corners = bucketCorners<std::uint64_t>(n, nv, start,
+    [&](std::uint32_t c) {
+      const auto& w = welded[c / 3];
+      return std::min(w[c % 3], w[(c % 3 + 1) % 3]);
+    },
+    [&](std::uint32_t c) {
+      const auto& w = welded[c / 3];
+      return static_cast<std::uint64_t>(std::max(w[c % 3], w[(c % 3 + 1) % 3])) << 32 | c;
+    });
 
   // per vertex: the distinct edges, their summed normals (triangle order) and
   // oriented multiplicities; boundary edges collected per vertex, then in
@@ -162,31 +261,24 @@ PreparedMesh prepareMesh(const TriangleMesh& mesh)
   for (std::int64_t v = 0; v < nvI; ++v)
   {
     const std::uint32_t b0 = start[v], b1 = start[v + 1];
-    auto hiOf = [&](std::uint32_t c) {
-      const auto& w = welded[c / 3];
-      return std::max(w[c % 3], w[(c % 3 + 1) % 3]);
-    };
-    // group the corners by edge; within an edge, triangle order (c = 3t + k)
-    std::sort(corners.begin() + b0, corners.begin() + b1, [&](std::uint32_t x, std::uint32_t y) {
-      const std::uint32_t hx = hiOf(x), hy = hiOf(y);
-      return hx != hy ? hx < hy : x < y;
-    });
+    std::sort(corners.begin() + b0, corners.begin() + b1);
     for (std::uint32_t e = b0; e < b1;)
     {
-      const std::uint32_t hiE = hiOf(corners[e]);
+      const std::uint32_t hiE = static_cast<std::uint32_t>(corners[e] >> 32);
       std::uint32_t e1 = e;
       V3 en;
       int mult = 0;
-      for (; e1 < b1 && hiOf(corners[e1]) == hiE; ++e1)
+      for (; e1 < b1 && static_cast<std::uint32_t>(corners[e1] >> 32) == hiE; ++e1)
       {
-        const std::uint32_t cf = corners[e1];
+        const std::uint32_t cf = static_cast<std::uint32_t>(corners[e1]);
         en = en + out.tris[cf / 3].n;
         mult += welded[cf / 3][cf % 3] < hiE ? 1 : -1; // a -> b with a < b counts +1
       }
       const V3 enu = normalized(en);
       for (std::uint32_t f = e; f < e1; ++f)
       {
-        out.tris[corners[f] / 3].en[corners[f] % 3] = enu; // each corner is in exactly one list
+        const std::uint32_t cf = static_cast<std::uint32_t>(corners[f]);
+        out.tris[cf / 3].en[cf % 3] = enu; // each corner is in exactly one list
       }
       e = e1;
       if (mult != 0)
@@ -224,20 +316,6 @@ PreparedMesh prepareMesh(const TriangleMesh& mesh)
     }
   }
 
-  // bounds: min/max are exact, so the parallel reduction gives the same values
-  double lx = out.tris[0].v[0].x, ly = out.tris[0].v[0].y, lz = out.tris[0].v[0].z;
-  double hx = lx, hy = ly, hz = lz;
-#pragma omp parallel for schedule(static) reduction(min : lx, ly, lz) reduction(max : hx, hy, hz)
-  for (std::int64_t t = 0; t < nI; ++t)
-  {
-    for (const V3& v : out.tris[t].v)
-    {
-      lx = std::min(lx, v.x), ly = std::min(ly, v.y), lz = std::min(lz, v.z);
-      hx = std::max(hx, v.x), hy = std::max(hy, v.y), hz = std::max(hz, v.z);
-    }
-  }
-  out.lo[0] = lx, out.lo[1] = ly, out.lo[2] = lz;
-  out.hi[0] = hx, out.hi[1] = hy, out.hi[2] = hz;
   out.welded = std::move(welded);
   return out;
 }

@@ -65,11 +65,23 @@ const Bvh& MeshToSdfPrepared::Impl::farTree(const std::vector<FarCone>*& cones, 
 {
   std::lock_guard<std::mutex> lock(this->Lock);
   const double t0 = now();
-  if (!this->bvh) this->bvh = std::make_unique<Bvh>(this->mesh.tris);
+  this->meshBvhLocked();
   if (!this->FarConesOfBvh) this->FarConesOfBvh = std::make_unique<std::vector<FarCone>>(farCones(*this->bvh, this->mesh.tris));
   seconds += now() - t0;
   trace("far-block tree", now() - t0);
   cones = this->FarConesOfBvh.get();
+  return *this->bvh;
+}
+
+const Bvh& MeshToSdfPrepared::Impl::meshBvhLocked()
+{
+  if (!this->bvh && this->Winding) this->bvh = this->Winding->meshBvh();
+  if (!this->bvh)
+  {
+    const double tb = now();
+    this->bvh = std::make_shared<const Bvh>(this->mesh.tris);
+    trace("mesh BVH", now() - tb);
+  }
   return *this->bvh;
 }
 
@@ -79,7 +91,7 @@ const WindingSigner& MeshToSdfPrepared::Impl::windingSigner(double& seconds)
   if (!this->Winding)
   {
     const double t0 = now();
-    this->Winding = std::make_unique<WindingSigner>(this->mesh);
+    this->Winding = std::make_unique<WindingSigner>(this->mesh, this->bvh);
     seconds += now() - t0;
   }
   return *this->Winding;
@@ -100,12 +112,7 @@ const detail::meshtosdf_cuda::DeviceMesh& MeshToSdfPrepared::Impl::deviceMesh(
   std::lock_guard<std::mutex> lock(this->Lock);
   const double t0 = now();
   // the GPU's tree: only the device path needs it (the CPU queries NearestIndex)
-  if (!this->bvh)
-  {
-    const double tb = now();
-    this->bvh = std::make_unique<Bvh>(this->mesh.tris);
-    trace("mesh BVH", now() - tb);
-  }
+  this->meshBvhLocked();
   if (!this->Device)
   {
     this->Device = detail::meshtosdf_cuda::uploadMesh(this->mesh, *this->bvh, w, normals, windingLater);

@@ -139,27 +139,27 @@ std::vector<WindingSigner::Cluster> clusterEdges(std::vector<std::array<V3, 2>> 
 void buildClosure(WindingSigner::Closure& c, const std::vector<Tri>& tris, const std::vector<std::uint8_t>* state,
   const std::vector<std::array<V3, 2>>& boundary, const std::vector<WeightedTri>* caps = nullptr)
 {
-  c.closed.reserve(tris.size() + boundary.size() + (caps ? caps->size() : 0));
+  c.own.reserve(tris.size() + boundary.size() + (caps ? caps->size() : 0));
   for (std::size_t t = 0; t < tris.size(); ++t)
   {
     const std::uint8_t st = state ? (*state)[t] : static_cast<std::uint8_t>(OrientedMesh::Keep);
     if (st == OrientedMesh::Remove) continue;
-    c.closed.push_back(tris[t]);
+    c.own.push_back(tris[t]);
     if (st == OrientedMesh::Reverse)
     {
-      Tri& x = c.closed.back();
+      Tri& x = c.own.back();
       std::swap(x.v[1], x.v[2]);
       x.n = -1.0 * x.n;
     }
   }
-  c.meshTris = c.closed.size();
+  c.meshTris = c.own.size();
   if (caps)
   {
     for (const WeightedTri& w : *caps)
     {
       bool ok = false;
       const Tri t = makeTri(w.v[0], w.v[1], w.v[2], ok);
-      if (ok) c.closed.push_back(t);
+      if (ok) c.own.push_back(t);
     }
   }
   else if (!boundary.empty())
@@ -175,12 +175,12 @@ void buildClosure(WindingSigner::Closure& c, const std::vector<Tri>& tris, const
       if (ok)
       {
         c.cone.push_back(t);
-        c.closed.push_back(t);
+        c.own.push_back(t);
       }
     }
     c.clusters = clusterEdges(boundary);
   }
-  c.bvh = std::make_unique<Bvh>(c.closed);
+  c.bvh = std::make_shared<const Bvh>(c.own);
 }
 
 /// Local caps S with dS = -(boundary): the boundary chain (a 1-cycle: every
@@ -279,14 +279,19 @@ double driftPerLength(const WindingSigner::Closure& c, V3 p, V3 q, double h)
 const V3 Oblique = normalized(V3{ 0.5773502691896258, 0.5780, 0.5767 });
 } // namespace
 
-WindingSigner::WindingSigner(const PreparedMesh& mesh)
+WindingSigner::WindingSigner(const PreparedMesh& mesh, std::shared_ptr<const Bvh> meshBvh)
   : Mesh(mesh)
 {
   if (mesh.boundary.empty())
   {
     // M is already a closed chain (every oriented edge cancels): w = K, no
-    // orientation pass needed
-    buildClosure(this->Plus, mesh.tris, nullptr, mesh.boundary);
+    // orientation pass needed; the closure is M itself, its tree the mesh's
+    // (the build is deterministic: Bvh(mesh.tris) is that same tree)
+    this->Plus.shared = &mesh.tris;
+    this->Plus.meshTris = mesh.tris.size();
+    const double t0 = now();
+    this->Plus.bvh = meshBvh ? std::move(meshBvh) : std::make_shared<const Bvh>(mesh.tris);
+    trace("winding: closure BVH (the mesh's)", now() - t0);
     return;
   }
   // The orientation pass (a sort of every edge) only pays when the boundary
@@ -425,7 +430,7 @@ double WindingSigner::evaluate(V3 p, bool reoriented) const
   {
     // w of M+ (the re-oriented faces, duplicates once): its triangles lead Plus.closed
     return laneOrderedSum(c.meshTris, [&](std::size_t i) {
-      const Tri& t = c.closed[i];
+      const Tri& t = c.closed()[i];
       return solidAngleCanonical(p, t.v[0], t.v[1], t.v[2]);
     }) / FourPi;
   }

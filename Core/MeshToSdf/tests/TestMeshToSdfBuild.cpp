@@ -1,0 +1,230 @@
+// The host build of mesh to SDF on OpenMP threads: prepareMesh against a
+// plain serial reference written here (welding by a std::map in order of
+// first appearance, pseudo-normals and edge normals summed in triangle order,
+// the boundary chain by net edge multiplicity), bit for bit, with 1 and 4
+// threads; the Bvh (boxes bottom-up) and NearestIndex the same for any
+// thread count and exact against brute force; a closed mesh's winding
+// closure shares the mesh's tree.
+#include "../src/MeshToSdfInternal.h"
+#include "../src/MeshToSdfNearest.h"
+#include "MeshToSdfOracle.h"
+
+#include <gtest/gtest.h>
+#include <omp.h>
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstring>
+#include <map>
+#include <random>
+#include <vector>
+
+using namespace lvdif;
+using namespace lvdif::detail::meshtosdf;
+
+namespace
+{
+/// Runs f with n OpenMP threads, then restores the previous count.
+template <typename F>
+auto withThreads(int n, F&& f)
+{
+  const int before = omp_get_max_threads();
+  omp_set_num_threads(n);
+  auto r = f();
+  omp_set_num_threads(before);
+  return r;
+}
+
+bool sameBits(const V3& a, const V3& b) { return std::memcmp(&a, &b, sizeof(V3)) == 0; }
+
+/// A damaged soup: a sphere with every triangle on its own three points
+/// (welding must find the shared vertices), a few faces removed (holes),
+/// reversed and duplicated, plus zero-area triangles.
+TriangleMesh damagedSoup()
+{
+  const TriangleMesh s = makeSphereMesh(0.1f, -0.05f, 0.02f, 1.0f, 24, 40);
+  TriangleMesh m;
+  std::mt19937 rng(5);
+  for (std::size_t t = 0; t < s.triangles.size(); ++t)
+  {
+    if (t % 97 == 13) continue; // a hole
+    auto ix = s.triangles[t];
+    if (t % 61 == 7) std::swap(ix[1], ix[2]); // reversed
+    const int copies = t % 83 == 5 ? 2 : 1;   // duplicated
+    for (int c = 0; c < copies; ++c)
+    {
+      const auto base = static_cast<std::uint32_t>(m.points.size());
+      for (int k = 0; k < 3; ++k) m.points.push_back(s.points[ix[k]]);
+      m.triangles.push_back({ base, base + 1, base + 2 });
+    }
+  }
+  // zero-area triangles (two equal corners), skipped by prepareMesh
+  for (int i = 0; i < 5; ++i) m.triangles.push_back({ static_cast<std::uint32_t>(3 * i), static_cast<std::uint32_t>(3 * i), 7 });
+  std::shuffle(m.triangles.begin(), m.triangles.end(), rng);
+  return m;
+}
+
+double angleAtRef(V3 p, V3 q, V3 r)
+{
+  const V3 u = normalized(q - p), v = normalized(r - p);
+  double c = dot(u, v);
+  c = c > 1 ? 1 : (c < -1 ? -1 : c);
+  return std::acos(c);
+}
+} // namespace
+
+TEST(MeshToSdfBuild, PrepareMeshEqualsASerialReferenceOnAnyThreadCount)
+{
+  const TriangleMesh m = damagedSoup();
+  // the reference: weld ids in order of first appearance
+  std::map<std::array<std::uint32_t, 3>, std::uint32_t> idOf;
+  std::vector<std::uint32_t> weld(m.points.size());
+  std::vector<V3> pos;
+  for (std::size_t i = 0; i < m.points.size(); ++i)
+  {
+    std::array<std::uint32_t, 3> key;
+    std::memcpy(key.data(), m.points[i].data(), sizeof(key));
+    const auto it = idOf.emplace(key, static_cast<std::uint32_t>(idOf.size())).first;
+    weld[i] = it->second;
+    if (it->second == pos.size()) pos.push_back({ m.points[i][0], m.points[i][1], m.points[i][2] });
+  }
+  // kept triangles, normals, pseudo-normals summed in triangle order
+  std::vector<std::array<std::uint32_t, 3>> w;
+  std::vector<V3> n;
+  std::vector<V3> vsum(pos.size());
+  for (const auto& ix : m.triangles)
+  {
+    const std::array<std::uint32_t, 3> t{ weld[ix[0]], weld[ix[1]], weld[ix[2]] };
+    const V3 v[3] = { { m.points[ix[0]][0], m.points[ix[0]][1], m.points[ix[0]][2] },
+      { m.points[ix[1]][0], m.points[ix[1]][1], m.points[ix[1]][2] },
+      { m.points[ix[2]][0], m.points[ix[2]][1], m.points[ix[2]][2] } };
+    const V3 c = cross(v[1] - v[0], v[2] - v[0]);
+    if (!(norm(c) > 0)) continue;
+    w.push_back(t);
+    n.push_back((1.0 / norm(c)) * c);
+    for (int k = 0; k < 3; ++k) vsum[t[k]] = vsum[t[k]] + angleAtRef(v[k], v[(k + 1) % 3], v[(k + 2) % 3]) * n.back();
+  }
+  // edges: summed normals in triangle order, net multiplicity lo -> hi
+  std::map<std::pair<std::uint32_t, std::uint32_t>, std::pair<V3, int>> edges;
+  for (std::size_t t = 0; t < w.size(); ++t)
+  {
+    for (int k = 0; k < 3; ++k)
+    {
+      const std::uint32_t a = w[t][k], b = w[t][(k + 1) % 3];
+      auto& e = edges[{ std::min(a, b), std::max(a, b) }];
+      e.first = e.first + n[t];
+      e.second += a < b ? 1 : -1;
+    }
+  }
+  std::vector<std::array<V3, 2>> boundary;
+  for (const auto& [key, e] : edges)
+  {
+    for (int k = 0; k < std::abs(e.second); ++k)
+    {
+      const V3 a = pos[key.first], b = pos[key.second];
+      boundary.push_back(e.second > 0 ? std::array<V3, 2>{ a, b } : std::array<V3, 2>{ b, a });
+    }
+  }
+  ASSERT_GT(boundary.size(), 10u);
+
+  for (int threads : { 1, 4 })
+  {
+    const PreparedMesh p = withThreads(threads, [&] { return prepareMesh(m); });
+    ASSERT_EQ(p.tris.size(), w.size()) << threads;
+    EXPECT_EQ(p.degenerate, 5u);
+    EXPECT_EQ(p.welded, w) << threads;
+    std::size_t bad = 0;
+    for (std::size_t t = 0; t < w.size(); ++t)
+    {
+      for (int k = 0; k < 3; ++k)
+      {
+        V3 vn = normalized(vsum[w[t][k]]);
+        if (dot(vn, vn) == 0) vn = n[t];
+        const std::uint32_t a = w[t][k], b = w[t][(k + 1) % 3];
+        V3 en = normalized(edges[{ std::min(a, b), std::max(a, b) }].first);
+        if (dot(en, en) == 0) en = n[t];
+        bad += !sameBits(p.tris[t].vn[k], vn) || !sameBits(p.tris[t].en[k], en) || !sameBits(p.tris[t].n, n[t]);
+      }
+    }
+    EXPECT_EQ(bad, 0u) << threads;
+    ASSERT_EQ(p.boundary.size(), boundary.size()) << threads;
+    EXPECT_EQ(std::memcmp(p.boundary.data(), boundary.data(), boundary.size() * sizeof(boundary[0])), 0) << threads;
+  }
+}
+
+TEST(MeshToSdfBuild, BvhAndNearestIndexAreTheSameOnAnyThreadCountAndExact)
+{
+  // more than 2^16 triangles: many subtrees built on threads (tasks in the
+  // Bvh, parallel subtrees in NearestIndex)
+  const TriangleMesh mesh = makeSphereMesh(0.1f, -0.2f, 0.05f, 1.0f, 190, 190);
+  const PreparedMesh pm = prepareMesh(mesh);
+  ASSERT_GT(pm.tris.size(), 65536u);
+  const auto oneBvh = withThreads(1, [&] { return std::make_unique<Bvh>(pm.tris); });
+  const auto manyBvh = withThreads(4, [&] { return std::make_unique<Bvh>(pm.tris); });
+  ASSERT_EQ(oneBvh->nodes().size(), manyBvh->nodes().size());
+  EXPECT_EQ(std::memcmp(oneBvh->nodes().data(), manyBvh->nodes().data(), oneBvh->nodes().size() * sizeof(Bvh::Node)), 0);
+  EXPECT_EQ(oneBvh->order(), manyBvh->order());
+  const auto oneIndex = withThreads(1, [&] { return std::make_unique<NearestIndex>(pm.tris); });
+  const auto manyIndex = withThreads(4, [&] { return std::make_unique<NearestIndex>(pm.tris); });
+  ASSERT_EQ(oneIndex->nodes().size(), manyIndex->nodes().size());
+  EXPECT_EQ(std::memcmp(oneIndex->nodes().data(), manyIndex->nodes().data(),
+              oneIndex->nodes().size() * sizeof(NearestIndex::Node)),
+    0);
+  // every box of the Bvh holds its triangles (the boxes are built bottom-up)
+  for (const Bvh::Node& nd : manyBvh->nodes())
+  {
+    for (std::int32_t i = nd.first; i < nd.first + nd.count; ++i)
+      for (const V3& v : pm.tris[static_cast<std::size_t>(manyBvh->order()[static_cast<std::size_t>(i)])].v)
+        for (int a = 0; a < 3; ++a) ASSERT_TRUE(nd.lo[a] <= v[a] && v[a] <= nd.hi[a]);
+  }
+  std::mt19937 rng(3);
+  std::uniform_real_distribution<double> u(-1.5, 1.5);
+  for (int q = 0; q < 200; ++q)
+  {
+    const V3 p{ u(rng), u(rng), u(rng) };
+    NearestResult want;
+    want.dist2 = 1e300;
+    for (std::size_t t = 0; t < pm.tris.size(); ++t)
+    {
+      const Closest c = closestPointOnTriangle(p, pm.tris[t].v[0], pm.tris[t].v[1], pm.tris[t].v[2]);
+      const double d2 = dot(c.point - p, c.point - p);
+      if (d2 < want.dist2) want = { d2, static_cast<std::int32_t>(t), c };
+    }
+    const NearestResult a = manyBvh->nearest(p, -1, 1e300), b = manyIndex->nearest(p, -1, 1e300);
+    EXPECT_EQ(a.tri, want.tri);
+    EXPECT_EQ(a.dist2, want.dist2);
+    EXPECT_EQ(b.tri, want.tri);
+    EXPECT_EQ(b.dist2, want.dist2);
+  }
+}
+
+TEST(MeshToSdfBuild, ClosedMeshClosureIsTheMeshWithItsTree)
+{
+  const TriangleMesh mesh = makeSphereMesh(0.05f, -0.03f, 0.02f, 1.0f, 20, 40);
+  const PreparedMesh pm = prepareMesh(mesh);
+  ASSERT_TRUE(pm.boundary.empty());
+  const auto tree = std::make_shared<const Bvh>(pm.tris);
+  const WindingSigner shared(pm, tree), own(pm);
+  EXPECT_EQ(shared.meshBvh().get(), tree.get()); // no second tree
+  EXPECT_EQ(&shared.closedTris(), &pm.tris);    // no copy of the triangles
+  EXPECT_EQ(&own.closedTris(), &pm.tris);
+  ASSERT_NE(own.meshBvh(), nullptr);
+  ASSERT_EQ(own.meshBvh()->nodes().size(), tree->nodes().size());
+  EXPECT_EQ(std::memcmp(own.meshBvh()->nodes().data(), tree->nodes().data(), tree->nodes().size() * sizeof(Bvh::Node)), 0);
+  EXPECT_EQ(shared.cpuCorrection(), nullptr);
+  // the winding number through the shared tree against the long-double oracle
+  std::mt19937 rng(8);
+  std::uniform_real_distribution<double> u(-1.3, 1.3);
+  int checked = 0;
+  for (int q = 0; q < 300; ++q)
+  {
+    const V3 p{ u(rng), u(rng), u(rng) };
+    const double want = oracle::winding(mesh, { p.x, p.y, p.z });
+    if (std::fabs(std::fabs(want) - 0.5) < 0.05) continue; // too close to the surface to compare signs
+    EXPECT_EQ(std::fabs(shared.evaluate(p)) >= 0.5, std::fabs(want) >= 0.5);
+    EXPECT_EQ(std::fabs(shared.evaluate(p, true)) >= 0.5, std::fabs(want) >= 0.5);
+    ++checked;
+  }
+  EXPECT_GT(checked, 250);
+}

@@ -1,0 +1,233 @@
+// Host build phases of mesh to SDF, one by one: prepareMesh (weld, records,
+// pseudo-normals, boundary), the binary Bvh (the GPU's mesh tree), the
+// winding structures (WindingSigner: orientation pass, closure, its Bvh,
+// dipole tree) and the CPU's NearestIndex; the median of REPEATS runs each,
+// and a hash of what each phase built (equal hashes: the same structure, e.g.
+// for two thread counts or two versions of the code run back to back).
+// usage: bench_mesh_to_sdf_build [DAMAGE:]MESH [REPEATS=3] [PHASES=prepare,bvh,winding,gpuhost,nearest,touch]
+// (gpuhost: the three host builds of the one-call CUDA path in a row; touch:
+// the first touch of 256 MB of fresh memory by 1 thread, by all, and by one
+// with transparent huge pages asked for)
+// (DAMAGE as in bench_mesh_to_sdf, e.g. sub2:armadillo.off for 832k triangles)
+#include "BenchCommon.h"
+#include "SignQualityMeshes.h"
+
+#include "../../../Core/MeshToSdf/src/MeshToSdfInternal.h"
+#include "../../../Core/MeshToSdf/src/MeshToSdfNearest.h"
+#include "lvdif/MeshFile.h"
+
+#include <omp.h>
+
+#ifdef __linux__
+#include <sys/mman.h>
+#endif
+
+#include <algorithm>
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
+#include <memory>
+#include <string>
+#include <vector>
+
+using namespace lvdif;
+using namespace lvdif::detail::meshtosdf;
+
+namespace
+{
+/// FNV-1a over raw bytes, 8 at a time (structures of plain doubles and ints)
+struct Hash
+{
+  std::uint64_t h = 1469598103934665603ull;
+  void add(const void* p, std::size_t n)
+  {
+    const auto* b = static_cast<const unsigned char*>(p);
+    std::size_t i = 0;
+    for (; i + 8 <= n; i += 8)
+    {
+      std::uint64_t w;
+      std::memcpy(&w, b + i, 8);
+      h = (h ^ w) * 1099511628211ull;
+    }
+    for (; i < n; ++i) h = (h ^ b[i]) * 1099511628211ull;
+  }
+  template <typename T>
+  void addVector(const std::vector<T>& v)
+  {
+    if (!v.empty()) this->add(v.data(), v.size() * sizeof(T));
+  }
+  std::string hex() const
+  {
+    char s[17];
+    std::snprintf(s, sizeof(s), "%016llx", static_cast<unsigned long long>(h));
+    return s;
+  }
+};
+
+/// Median ms of `repeats` calls of build(); drop() (not timed) frees the
+/// previous result first, so that no call pays for freeing the last one.
+template <typename D, typename B>
+double medianBuildMs(int repeats, D&& drop, B&& build)
+{
+  std::vector<double> t;
+  for (int i = 0; i < repeats; ++i)
+  {
+    drop();
+    bench::Stopwatch w;
+    build();
+    t.push_back(w.ms());
+  }
+  std::sort(t.begin(), t.end());
+  return t[t.size() / 2];
+}
+
+std::string hashBvh(const Bvh& b)
+{
+  Hash h;
+  for (const Bvh::Node& n : b.nodes())
+  {
+    h.add(n.lo, sizeof(n.lo));
+    h.add(n.hi, sizeof(n.hi));
+    h.add(&n.left, sizeof(n.left));
+    h.add(&n.right, sizeof(n.right));
+    h.add(&n.first, sizeof(n.first));
+    h.add(&n.count, sizeof(n.count));
+  }
+  h.addVector(b.order());
+  return h.hex();
+}
+
+std::string hashPrepared(const PreparedMesh& m)
+{
+  Hash h;
+  for (const Tri& t : m.tris)
+  {
+    h.add(t.v, sizeof(t.v));
+    h.add(&t.n, sizeof(t.n));
+    h.add(t.en, sizeof(t.en));
+    h.add(t.vn, sizeof(t.vn));
+    h.add(t.nv, sizeof(t.nv));
+    h.add(&t.area, sizeof(t.area));
+    h.add(&t.source, sizeof(t.source));
+  }
+  h.addVector(m.welded);
+  h.addVector(m.boundary);
+  h.add(&m.boundaryLength, sizeof(m.boundaryLength));
+  h.add(m.lo, sizeof(m.lo));
+  h.add(m.hi, sizeof(m.hi));
+  return h.hex();
+}
+} // namespace
+
+int main(int argc, char** argv)
+{
+  if (argc < 2)
+  {
+    std::fprintf(stderr, "usage: %s [DAMAGE:]MESH [REPEATS=3] [PHASES=prepare,bvh,winding,gpuhost,nearest,touch]\n", argv[0]);
+    return 2;
+  }
+  try
+  {
+    std::string path = argv[1];
+    std::vector<std::string> damages;
+    for (auto colon = path.find(':'); colon != std::string::npos && path.find('/') > colon; colon = path.find(':'))
+    {
+      damages.push_back(path.substr(0, colon));
+      path = path.substr(colon + 1);
+    }
+    const int repeats = argc > 2 ? std::max(1, std::atoi(argv[2])) : 3;
+    const std::string phases = argc > 3 ? argv[3] : "prepare,bvh,winding,gpuhost,nearest,touch";
+    auto wants = [&](const char* p) { return phases.find(p) != std::string::npos; };
+    TriangleMesh mesh = loadMesh(path);
+    for (auto d = damages.rbegin(); d != damages.rend(); ++d) mesh = signquality::damaged(mesh, *d);
+    std::printf("machine: %s\n", bench::machineDescription().c_str());
+    std::printf("mesh: %s (%zu points, %zu triangles), median of %d\n", argv[1], mesh.points.size(),
+      mesh.triangles.size(), repeats);
+
+    std::vector<std::vector<std::string>> rows;
+    const PhaseTraceScope tracing(std::getenv("LVDIF_BUILD_TRACE") != nullptr);
+    PreparedMesh pm = prepareMesh(mesh); // kept for the later phases
+    if (wants("prepare"))
+    {
+      PreparedMesh x;
+      const double ms = medianBuildMs(repeats, [&] { x = PreparedMesh(); }, [&] { x = prepareMesh(mesh); });
+      rows.push_back({ "prepareMesh", bench::fmt(ms, 1), hashPrepared(x) });
+    }
+    if (wants("bvh"))
+    {
+      std::unique_ptr<Bvh> b;
+      const double ms = medianBuildMs(repeats, [&] { b.reset(); }, [&] { b = std::make_unique<Bvh>(pm.tris); });
+      rows.push_back({ "mesh Bvh", bench::fmt(ms, 1), hashBvh(*b) });
+    }
+    if (wants("winding"))
+    {
+      std::unique_ptr<WindingSigner> w;
+      const double ms = medianBuildMs(repeats, [&] { w.reset(); }, [&] { w = std::make_unique<WindingSigner>(pm); });
+      rows.push_back({ "WindingSigner", bench::fmt(ms, 1),
+        hashBvh(*w->cpuClosure().bvh) + " (closure: " + std::to_string(w->cpuClosure().bvh->order().size()) +
+          " triangles, correction " + std::to_string(w->cpuCorrection() ? w->cpuCorrection()->size() : 0) + ")" });
+    }
+    if (wants("gpuhost"))
+    {
+      // what the one-call CUDA path builds on the host before and beside the
+      // upload: preparation, the mesh's tree, the winding structures (a
+      // closed mesh's closure takes the mesh's tree)
+      PreparedMesh x;
+      std::shared_ptr<const Bvh> b;
+      std::unique_ptr<WindingSigner> w;
+      const double ms = medianBuildMs(repeats, [&] { w.reset(), b.reset(), x = PreparedMesh(); }, [&] {
+        x = prepareMesh(mesh);
+        b = std::make_shared<const Bvh>(x.tris);
+        w = std::make_unique<WindingSigner>(x, b);
+      });
+      rows.push_back({ "GPU path host build (prepareMesh + Bvh + WindingSigner)", bench::fmt(ms, 1),
+        hashBvh(*w->cpuClosure().bvh) });
+    }
+    if (wants("nearest"))
+    {
+      std::unique_ptr<NearestIndex> n;
+      const double ms = medianBuildMs(repeats, [&] { n.reset(); }, [&] { n = std::make_unique<NearestIndex>(pm.tris); });
+      Hash x;
+      x.addVector(n->nodes());
+      rows.push_back({ "NearestIndex", bench::fmt(ms, 1), x.hex() });
+    }
+    if (wants("touch"))
+    {
+      // How the host's page faults scale: the first touch of fresh memory (as
+      // the 273 MB of triangle records of 832k triangles get) by one thread
+      // and by all; if all are much faster, a parallel first touch of the
+      // large arrays would shorten the serial part of the build.
+      constexpr std::size_t Bytes = std::size_t(256) << 20;
+      for (int all = 0; all < 2; ++all)
+      {
+        const int threads = all ? omp_get_max_threads() : 1;
+        const double ms = medianBuildMs(repeats, [] {}, [&] {
+          std::unique_ptr<unsigned char[]> m(new unsigned char[Bytes]);
+          const std::int64_t pages = static_cast<std::int64_t>(Bytes / 4096);
+#pragma omp parallel for schedule(static) num_threads(threads)
+          for (std::int64_t i = 0; i < pages; ++i) m[static_cast<std::size_t>(i) * 4096] = 1;
+        });
+        rows.push_back({ "first touch of 256 MB, " + std::to_string(threads) + " thread(s) (incl. free)", bench::fmt(ms, 1), "" });
+      }
+#ifdef __linux__
+      // the same with transparent huge pages asked for (madvise): 512x fewer faults
+      const double ms = medianBuildMs(repeats, [] {}, [&] {
+        void* p = mmap(nullptr, Bytes, PROT_READ | PROT_WRITE, MAP_PRIVATE | MAP_ANONYMOUS, -1, 0);
+        if (p == MAP_FAILED) return;
+        madvise(p, Bytes, MADV_HUGEPAGE);
+        auto* m = static_cast<unsigned char*>(p);
+        for (std::size_t i = 0; i < Bytes; i += 4096) m[i] = 1;
+        munmap(p, Bytes);
+      });
+      rows.push_back({ "first touch of 256 MB, 1 thread, MADV_HUGEPAGE (incl. unmap)", bench::fmt(ms, 1), "" });
+#endif
+    }
+    bench::printTable({ "phase", "ms", "hash of the result" }, rows);
+  }
+  catch (const std::exception& e)
+  {
+    std::fprintf(stderr, "error: %s\n", e.what());
+    return 1;
+  }
+  return 0;
+}

@@ -1,0 +1,69 @@
+#!/bin/bash
+# GPU-host check of the host build of mesh to SDF (mesh preparation, the
+# mesh BVH shared with a closed mesh's winding closure, the upload): builds
+# Core-only with CUDA (sm_90), runs the CUDA tests of MeshToSdf (CUDA = CPU
+# bit for bit), then times the paper's bunny and the 832k-triangle armadillo
+# (sub2, two midpoint subdivisions made in memory) at 1024^3, WindingNumber,
+# Device::Auto, into the dictionary volume, band 8 (cold, warm, warm,
+# prepared; --trace gives the host phases), and checks sub2 CUDA = CPU bit for
+# bit at 128^3. Every step has a time limit; no new step starts after BUDGET
+# seconds (default 300), so the script ends in under 6 minutes (about 2 on an
+# H100 host with 16 cores). Logs in $OUT (machine, build, tests, bench,
+# summary).
+# usage: OUT=dir scripts/gpu-meshbuild.sh [ARMADILLO.off] [BUNNY.ply] [BUDGET]
+#   defaults: .gpu/meshes/armadillo.off and .gpu/meshes/lvdif-bunny-30k.ply
+set -u
+A=${1:-.gpu/meshes/armadillo.off}
+BUNNY=${2:-.gpu/meshes/lvdif-bunny-30k.ply}
+BUDGET=${3:-300}
+OUT=${OUT:-out-gpu-meshbuild}
+mkdir -p "$OUT"
+T0=$(date +%s)
+left() { echo $((BUDGET - ($(date +%s) - T0))); }
+[ -f "$A" ] || { echo "no mesh at $A"; exit 1; }
+{ date -u; nvidia-smi -L; nvcc --version | tail -2; nproc; lscpu | grep "Model name"; git log --oneline -1; } > "$OUT/machine.txt" 2>&1
+cmake -S . -B b-meshbuild -DLVDIF_CORE_ONLY=ON -DLVDIF_CUDA=ON -DCMAKE_CUDA_ARCHITECTURES=90 -DCMAKE_BUILD_TYPE=Release \
+  > "$OUT/build.log" 2>&1 || { tail -40 "$OUT/build.log"; exit 1; }
+cmake --build b-meshbuild -j"$(nproc)" --target LVDIFMeshToSdfTests bench_mesh_to_sdf bench_mesh_to_sdf_build \
+  >> "$OUT/build.log" 2>&1 || { grep -B2 -A10 -i "error" "$OUT/build.log" | head -80; exit 1; }
+echo "build done after $(( $(date +%s) - T0 )) s" | tee "$OUT/summary.txt"
+
+# the CUDA tests (CUDA = CPU bit for bit: closed, intersecting, damaged meshes, prepared reuse)
+timeout 150 b-meshbuild/Core/MeshToSdf/LVDIFMeshToSdfTests --gtest_filter='MeshToSdfCuda.*:MeshToSdfRegion.Cuda*' \
+  > "$OUT/tests.log" 2>&1
+echo "MeshToSdf CUDA tests rc=$?" | tee -a "$OUT/summary.txt"
+grep -E "^\[  (PASSED|FAILED|SKIPPED) |Failure" "$OUT/tests.log" | head -20 | tee -a "$OUT/summary.txt"
+
+B=b-meshbuild/Testing/Benchmarks/Core
+L="$OUT/bench.log"
+: > "$L"
+# run LIMIT CMD...: skipped when the budget is spent, else limited to what is left
+run() {
+  local lim=$1
+  shift
+  local l
+  l=$(left)
+  if [ "$l" -lt 10 ]; then echo "## SKIPPED (budget): $*" >> "$L"; return; fi
+  [ "$lim" -gt "$l" ] && lim=$l
+  echo "## $* (limit ${lim}s)" >> "$L"
+  timeout "$lim" "$@" >> "$L" 2>&1
+  echo "rc=$?" >> "$L"
+}
+M="$B/bench_mesh_to_sdf"
+# the targets: the bunny <= 200 ms warm, sub2 (832k) <= 400 ms warm including the build
+[ -f "$BUNNY" ] && run 40 $M "$BUNNY" 1024 winding auto bvh volume 8 2 cold,warm,warm,prepared --trace
+run 60 $M "sub2:$A" 1024 winding auto bvh volume 8 2 cold,warm,warm,prepared --trace
+# CUDA = CPU bit for bit on sub2 (128^3 float grid, no band; the CPU on all cores)
+run 60 $M "sub2:$A" 128 winding auto bvh float 0 2 warm --check-cpu
+# the host build phases alone (all cores), with hashes of what they built, and how
+# the first touch of fresh memory scales (1 thread, all, huge pages)
+run 60 "$B/bench_mesh_to_sdf_build" "sub2:$A" 3 prepare,bvh,winding,gpuhost,nearest,touch
+
+{
+  echo "## warm/prepared rows (ms): run | device | read | build | distance | sign | write | end-to-end"
+  grep -E "^## |^\| (cold|warm|prepared) |^cpu check:|^prepareMeshToSdf|^\| (prepareMesh|mesh Bvh|WindingSigner|GPU path|NearestIndex|first touch) |rc=[1-9]" "$L" |
+    awk -F'|' '/^\| (cold|warm|prepared) / { printf "|%s|%s|%s|%s|%s|%s|%s|%s|\n", $2, $3, $4, $5, $6, $7, $8, $9; next } { print }'
+  echo "## host phases (--trace), in run order"
+  grep -E "^## |\[mesh to SDF\] (prepareMesh|mesh BVH|winding|upload and session)" "$L" | head -60
+} | tee -a "$OUT/summary.txt"
+echo "total $(( $(date +%s) - T0 )) s" | tee -a "$OUT/summary.txt"
