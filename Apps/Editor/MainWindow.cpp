@@ -13,6 +13,7 @@
 #include "vtkCallbackCommand.h"
 #include "vtkCamera.h"
 #include "vtkChunkActorManager.h"
+#include "vtkPartialRedrawCuller.h"
 #include "LVDIFChunkMesh.h"
 #include "vtkGenericOpenGLRenderWindow.h"
 #include "vtkPolyData.h"
@@ -54,11 +55,18 @@ MainWindow::MainWindow(const EditorOptions& options)
   this->Renderer->SetBackground(0.16, 0.17, 0.2);
   this->Renderer->SetBackground2(0.05, 0.05, 0.07);
   this->Renderer->GradientBackgroundOn();
+  // While the camera stands still (a stroke, the cursor moving over the
+  // surface) a frame redraws only the screen region that changed, with the
+  // chunk actors that cover it: the cost of a stroke's frame follows the
+  // brush, not the model's size. The picture equals a full redraw's.
+  this->Redraw->SetEnabled(!options.fullRedraw);
+  this->Renderer->AddCuller(this->Redraw);
   this->setCentralWidget(this->View);
   this->View->installEventFilter(this);
   this->resize(options.width, options.height);
 
   this->Chunks->SetRenderer(this->Renderer);
+  this->Chunks->SetRedrawCuller(this->Redraw); // a re-meshed chunk damages only around its changed triangles
   this->Chunks->GetProperty()->SetSpecular(0.25);
   this->Chunks->GetProperty()->SetSpecularPower(25);
   this->Chunks->SetInterpolationMode(

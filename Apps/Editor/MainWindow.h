@@ -32,6 +32,7 @@ class vtkBrushRepresentation;
 class vtkBrushWidget;
 class vtkChunkActorManager;
 class vtkGenericOpenGLRenderWindow;
+class vtkPartialRedrawCuller;
 class vtkRenderer;
 
 /// What one frame that showed newly finished chunk meshes installed (the
@@ -171,6 +172,7 @@ private:
   vtkNew<vtkGenericOpenGLRenderWindow> RenderWindow;
   vtkNew<vtkRenderer> Renderer;
   vtkNew<vtkChunkActorManager> Chunks;
+  vtkNew<vtkPartialRedrawCuller> Redraw; // partial redraws while the camera stands still
   vtkNew<vtkBrushRepresentation> BrushRep;
   vtkNew<vtkBrushWidget> Brush;
   bool ViewInitialized = false;

@@ -3,7 +3,11 @@
 #include "EditorDriver.h"
 #include "MainWindow.h"
 
+#include "vtkCullerCollection.h"
 #include "vtkGenericOpenGLRenderWindow.h"
+#include "vtkPartialRedrawCuller.h"
+#include "vtkRenderer.h"
+#include "vtkRendererCollection.h"
 
 #include "lvdif/Error.h"
 #include "lvdif/InputDevice.h"
@@ -96,8 +100,50 @@ StrokeBenchmark::StrokeBenchmark(MainWindow& window, std::vector<lvdif::BrushSam
 {
 }
 
+vtkPartialRedrawCuller* StrokeBenchmark::redrawCuller()
+{
+  vtkRenderer* ren = EditorDriver::view(this->Window)->renderWindow()->GetRenderers()->GetFirstRenderer();
+  vtkCollectionSimpleIterator it;
+  ren->GetCullers()->InitTraversal(it);
+  while (vtkCuller* c = ren->GetCullers()->GetNextCuller(it))
+    if (auto* p = vtkPartialRedrawCuller::SafeDownCast(c))
+      return p->GetEnabled() ? p : nullptr;
+  return nullptr;
+}
+
+void StrokeBenchmark::measureStillFrames()
+{
+  // The floor of a frame: the still scene drawn whole, and drawn again
+  // unchanged (with partial redraws: nothing to draw, the frame's fixed cost).
+  vtkRenderWindow* rw = EditorDriver::view(this->Window)->renderWindow();
+  vtkPartialRedrawCuller* culler = this->redrawCuller();
+  auto timed = [&](bool whole) {
+    if (whole && culler)
+      culler->RequestFullRedraw();
+    const auto t0 = std::chrono::steady_clock::now();
+    rw->Render();
+    rw->WaitForCompletion();
+    return ms(std::chrono::steady_clock::now() - t0);
+  };
+  std::vector<double> whole, unchanged;
+  for (int i = 0; i < 3; ++i)
+    whole.push_back(timed(true));
+  for (int i = 0; i < 3; ++i)
+    unchanged.push_back(timed(false));
+  std::printf("benchmark-stroke: still scene before the stroke (render + glFinish, median of 3): drawn whole %.2f ms, "
+              "unchanged %.2f ms (%s)\n",
+    percentile(whole, 0.5), percentile(unchanged, 0.5),
+    culler ? "partial redraw: nothing to draw" : "--full-redraw: drawn whole");
+  if (culler)
+  {
+    this->FullBefore = culler->GetNumberOfFullRedraws();
+    this->PartialBefore = culler->GetNumberOfPartialRedraws();
+  }
+}
+
 void StrokeBenchmark::start()
 {
+  this->measureStillFrames();
   connect(&this->Window, &MainWindow::meshesShown, this, &StrokeBenchmark::frameRendered);
   this->Start = std::chrono::steady_clock::now();
   this->LastFrame = this->Start;
@@ -207,6 +253,11 @@ void StrokeBenchmark::report()
     this->Frames, seconds, this->Frames / seconds, percentile(this->RenderMs, 0.5), percentile(this->RenderMs, 0.95));
   std::printf("benchmark-stroke: frames are drawn by this display's OpenGL; under Xvfb (Mesa llvmpipe, software) "
               "frame times are not representative of a GPU\n");
+  if (vtkPartialRedrawCuller* culler = this->redrawCuller())
+    std::printf("benchmark-stroke: renders during the stroke: %d drawn in part, %d drawn whole\n",
+      culler->GetNumberOfPartialRedraws() - this->PartialBefore, culler->GetNumberOfFullRedraws() - this->FullBefore);
+  else
+    std::printf("benchmark-stroke: renders during the stroke: every one drawn whole (--full-redraw)\n");
   if (missing)
     std::printf("benchmark-stroke: error: %d requested chunk meshes never showed\n", missing);
   std::fflush(stdout);

@@ -33,6 +33,7 @@
 #include <vector>
 
 class MainWindow;
+class vtkPartialRedrawCuller;
 struct ShownMeshes;
 
 class StrokeBenchmark : public QObject
@@ -52,6 +53,10 @@ public:
   void start();
 
 private:
+  /// The view's partial-redraw culler if it is on, else nullptr.
+  vtkPartialRedrawCuller* redrawCuller();
+  /// Prints the still scene's frame time drawn whole and unchanged.
+  void measureStillFrames();
   /// After the window applied a sample: the chunks it asked to re-mesh.
   void sampleApplied();
   /// MainWindow::meshesShown: waits for the frame to be drawn, notes when.
@@ -78,4 +83,5 @@ private:
   std::vector<double> RenderMs;
   TimePoint LastFrame;
   int Frames = 0;
+  int FullBefore = 0, PartialBefore = 0; // the culler's counts at the stroke's start
 };
