@@ -61,6 +61,7 @@ MainWindow::MainWindow(const EditorOptions& options)
   // brush, not the model's size. The picture equals a full redraw's.
   this->Redraw->SetEnabled(!options.fullRedraw);
   this->Renderer->AddCuller(this->Redraw);
+  this->RenderWindow->SetPartialRedraw(this->Redraw); // and presents only that region
   this->setCentralWidget(this->View);
   this->View->installEventFilter(this);
   this->resize(options.width, options.height);

@@ -3,6 +3,7 @@
 #pragma once
 
 #include "EditorOptions.h"
+#include "EditorRenderWindow.h"
 #include "MeshImport.h"
 #include "ToolPanel.h"
 #include "VolumeDocument.h"
@@ -169,7 +170,7 @@ private:
   QAction* OpenMeshAction = nullptr;
   MeshImportSettings MeshSettings;
   QElapsedTimer Clock;
-  vtkNew<vtkGenericOpenGLRenderWindow> RenderWindow;
+  vtkNew<EditorRenderWindow> RenderWindow;
   vtkNew<vtkRenderer> Renderer;
   vtkNew<vtkChunkActorManager> Chunks;
   vtkNew<vtkPartialRedrawCuller> Redraw; // partial redraws while the camera stands still

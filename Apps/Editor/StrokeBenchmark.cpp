@@ -7,7 +7,11 @@
 #include "vtkGenericOpenGLRenderWindow.h"
 #include "vtkPartialRedrawCuller.h"
 #include "vtkRenderer.h"
+#include "vtkImageData.h"
+#include "vtkPointData.h"
 #include "vtkRendererCollection.h"
+#include "vtkUnsignedCharArray.h"
+#include "vtkWindowToImageFilter.h"
 
 #include "lvdif/Error.h"
 #include "lvdif/InputDevice.h"
@@ -141,6 +145,36 @@ void StrokeBenchmark::measureStillFrames()
   }
 }
 
+long StrokeBenchmark::pixelsDifferingFromFullRedraw()
+{
+  // The picture shown (the display framebuffer, as Qt presents it) against
+  // the same scene drawn whole.
+  vtkRenderWindow* rw = EditorDriver::view(this->Window)->renderWindow();
+  auto grab = [rw] {
+    vtkNew<vtkWindowToImageFilter> w2i;
+    w2i->SetInput(rw);
+    w2i->SetInputBufferTypeToRGB();
+    w2i->ReadFrontBufferOn();
+    w2i->ShouldRerenderOff();
+    w2i->Update();
+    vtkSmartPointer<vtkUnsignedCharArray> a = vtkUnsignedCharArray::New();
+    a->Delete();
+    a->DeepCopy(w2i->GetOutput()->GetPointData()->GetScalars());
+    return a;
+  };
+  auto shown = grab();
+  this->redrawCuller()->RequestFullRedraw();
+  rw->Render();
+  auto whole = grab();
+  if (shown->GetNumberOfValues() != whole->GetNumberOfValues())
+    return -1;
+  long n = 0;
+  for (vtkIdType i = 0; i < shown->GetNumberOfValues(); i += 3)
+    n += shown->GetValue(i) != whole->GetValue(i) || shown->GetValue(i + 1) != whole->GetValue(i + 1) ||
+      shown->GetValue(i + 2) != whole->GetValue(i + 2);
+  return n;
+}
+
 void StrokeBenchmark::start()
 {
   this->measureStillFrames();
@@ -253,13 +287,21 @@ void StrokeBenchmark::report()
     this->Frames, seconds, this->Frames / seconds, percentile(this->RenderMs, 0.5), percentile(this->RenderMs, 0.95));
   std::printf("benchmark-stroke: frames are drawn by this display's OpenGL; under Xvfb (Mesa llvmpipe, software) "
               "frame times are not representative of a GPU\n");
+  long differ = 0;
   if (vtkPartialRedrawCuller* culler = this->redrawCuller())
+  {
     std::printf("benchmark-stroke: renders during the stroke: %d drawn in part, %d drawn whole\n",
       culler->GetNumberOfPartialRedraws() - this->PartialBefore, culler->GetNumberOfFullRedraws() - this->FullBefore);
+    differ = this->pixelsDifferingFromFullRedraw();
+    if (differ == 0)
+      std::printf("benchmark-stroke: the picture after the stroke equals the scene drawn whole\n");
+    else
+      std::printf("benchmark-stroke: error: the picture after the stroke differs from the scene drawn whole (%ld pixels)\n", differ);
+  }
   else
     std::printf("benchmark-stroke: renders during the stroke: every one drawn whole (--full-redraw)\n");
   if (missing)
     std::printf("benchmark-stroke: error: %d requested chunk meshes never showed\n", missing);
   std::fflush(stdout);
-  QApplication::exit(missing || this->Requests.empty() ? 1 : 0);
+  QApplication::exit(missing || differ || this->Requests.empty() ? 1 : 0);
 }

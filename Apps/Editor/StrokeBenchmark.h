@@ -57,6 +57,8 @@ private:
   vtkPartialRedrawCuller* redrawCuller();
   /// Prints the still scene's frame time drawn whole and unchanged.
   void measureStillFrames();
+  /// Pixels of the picture shown that differ from the scene drawn whole (-1: sizes differ).
+  long pixelsDifferingFromFullRedraw();
   /// After the window applied a sample: the chunks it asked to re-mesh.
   void sampleApplied();
   /// MainWindow::meshesShown: waits for the frame to be drawn, notes when.

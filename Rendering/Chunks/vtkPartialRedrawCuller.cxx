@@ -249,6 +249,17 @@ void vtkPartialRedrawCuller::EndChange(vtkProp* prop, const double bounds[6])
   }
 }
 
+bool vtkPartialRedrawCuller::GetLastFramePartial(int damage[4])
+{
+  const Internals& in = *this->Internal;
+  if (!this->Enabled || !this->LastPartial || !in.Renderer || in.FramesCulled != in.FramesStarted)
+  {
+    return false;
+  }
+  std::copy(this->LastDamage, this->LastDamage + 4, damage);
+  return true;
+}
+
 void vtkPartialRedrawCuller::SetEnabled(bool enabled)
 {
   if (enabled == this->Enabled)
@@ -398,6 +409,7 @@ double vtkPartialRedrawCuller::Cull(vtkRenderer* ren, vtkProp** propList, int& l
   in.Valid = ren->GetSelector() == nullptr; // a selection pass draws ids, not the picture
   in.FramesCulled = in.FramesStarted;
   this->FullRedrawRequested = false;
+  this->LastPartial = !full;
   if (full)
   {
     ++this->NumberOfFullRedraws;

@@ -91,6 +91,12 @@ public:
   vtkGetVector4Macro(LastDamage, int);
   ///@}
 
+  /// Whether the renderer's latest frame (the one started last) was culled
+  /// here and drawn in part; if so, `damage` gets its rectangle (x, y,
+  /// width, height in window pixels): outside it the frame left the
+  /// framebuffer as it was (a render window may then present only that part).
+  bool GetLastFramePartial(int damage[4]);
+
   double Cull(vtkRenderer* ren, vtkProp** propList, int& listLength, int& initialized) override;
 
 protected:
@@ -104,6 +110,7 @@ protected:
   int NumberOfPartialRedraws = 0;
   int LastNumberOfPropsDrawn = 0;
   int LastDamage[4] = { 0, 0, 0, 0 };
+  bool LastPartial = false;
 
 private:
   vtkPartialRedrawCuller(const vtkPartialRedrawCuller&) = delete;
