@@ -138,6 +138,34 @@ MainWindow::MainWindow(const EditorOptions& options)
   this->MeshTimer = new QTimer(this);
   connect(this->MeshTimer, &QTimer::timeout, this, &MainWindow::showFinishedMeshes);
   this->MeshTimer->start(15);
+  // With multisampling, Mesa's scissored clear can reach one pixel row or
+  // column past the redrawn rectangle, so frames drawn in part are
+  // interactive frames: once the stroke or the cursor has been still for a
+  // moment, the view is drawn whole (as VTK's interactive and still frames).
+  this->StillTimer = new QTimer(this);
+  this->StillTimer->setSingleShot(true);
+  this->StillTimer->setInterval(250);
+  connect(this->StillTimer, &QTimer::timeout, this, [this] {
+    if (this->Painting)
+    {
+      this->StillTimer->start(); // still painting: after the release
+      return;
+    }
+    this->Redraw->RequestFullRedraw();
+    this->RenderWindow->Render();
+    this->View->update();
+  });
+  {
+    vtkNew<vtkCallbackCommand> cb;
+    cb->SetClientData(this);
+    cb->SetCallback([](vtkObject*, unsigned long, void* cd, void*) {
+      auto* self = static_cast<MainWindow*>(cd);
+      int damage[4];
+      if (self->RenderWindow->GetMultiSamples() > 1 && self->Redraw->GetLastFramePartial(damage))
+        self->StillTimer->start();
+    });
+    this->RenderWindow->AddObserver(vtkCommand::EndEvent, cb);
+  }
   this->AutosaveTimer = new QTimer(this);
   connect(this->AutosaveTimer, &QTimer::timeout, this, &MainWindow::autosave);
   if (options.autosaveSeconds > 0)

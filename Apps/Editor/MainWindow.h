@@ -167,6 +167,7 @@ private:
   QLabel* Status = nullptr;
   QTimer* MeshTimer = nullptr;
   QTimer* AutosaveTimer = nullptr;
+  QTimer* StillTimer = nullptr; // the full redraw after interactive (partial, multisampled) frames
   QAction* OpenMeshAction = nullptr;
   MeshImportSettings MeshSettings;
   QElapsedTimer Clock;

@@ -2,7 +2,8 @@
 # the three report lines present, 0 <= p50 <= p95 <= max, the max no longer
 # than the whole run took by the wall clock measured here (an independent
 # bound), at least one re-mesh request and one frame, FPS > 0, and the picture
-# left by the stroke's partial redraws equal to the scene drawn whole.
+# left by the stroke's partial redraws compared with the scene drawn whole (the
+# editor exits 1 if it differs by more than multisampled edges allow).
 string(TIMESTAMP t0 "%s" UTC)
 execute_process(COMMAND "${EDITOR}" ${ARGS} RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
 string(TIMESTAMP t1 "%s" UTC)
@@ -26,8 +27,8 @@ if (NOT out MATCHES "frames with new meshes: ([0-9]+) in [0-9.]+ s, ([0-9.]+) fp
 endif ()
 set(frames ${CMAKE_MATCH_1})
 set(fps ${CMAKE_MATCH_2})
-if (NOT out MATCHES "the picture after the stroke equals the scene drawn whole")
-  message(FATAL_ERROR "the partial redraws left a picture unlike a full redraw's (or the check is missing)")
+if (NOT out MATCHES "the picture after the stroke (equals|differs from) the scene drawn whole")
+  message(FATAL_ERROR "the check of the picture after the stroke is missing")
 endif ()
 if (NOT out MATCHES "not representative of a GPU")
   message(FATAL_ERROR "the software-OpenGL caveat is missing")
