@@ -138,6 +138,10 @@ MainWindow::MainWindow(const EditorOptions& options)
   this->MeshTimer = new QTimer(this);
   connect(this->MeshTimer, &QTimer::timeout, this, &MainWindow::showFinishedMeshes);
   this->MeshTimer->start(15);
+  this->FrameTimer = new QTimer(this);
+  this->FrameTimer->setSingleShot(true);
+  this->FrameTimer->setInterval(0);
+  connect(this->FrameTimer, &QTimer::timeout, this, &MainWindow::drawFrame);
   // With multisampling, Mesa's scissored clear can reach one pixel row or
   // column past the redrawn rectangle, so frames drawn in part are
   // interactive frames: once the stroke or the cursor has been still for a
@@ -355,7 +359,13 @@ void MainWindow::settleMeshes()
   {
     QThread::usleep(250);
   }
-  this->showFinishedMeshes();
+  // The meshes are installed now (the brush picks on them); the frame comes
+  // when the event loop is next free: samples that arrived while the last
+  // frame was drawn are all applied first and shown in one frame, so a slow
+  // frame delays the view by one frame, not by a queue of frames (one per sample).
+  this->installFinishedMeshes();
+  if (!this->FrameTimer->isActive())
+    this->FrameTimer->start();
 }
 
 void MainWindow::endStroke()
@@ -379,16 +389,24 @@ void MainWindow::endStroke()
 
 void MainWindow::showFinishedMeshes()
 {
+  this->installFinishedMeshes();
+  this->drawFrame();
+}
+
+void MainWindow::installFinishedMeshes()
+{
   if (!this->Doc.hasVolume())
     return;
-  ShownMeshes shown;
-  std::vector<lvdif::ChunkMesh> meshes = this->Doc.collectMeshes(&shown.gatheredAt);
+  std::vector<ShownMeshes::TimePoint> gatheredAt;
+  std::vector<lvdif::ChunkMesh> meshes = this->Doc.collectMeshes(&gatheredAt);
   if (meshes.empty())
     return;
-  shown.chunks.reserve(meshes.size());
+  ShownMeshes& shown = this->Pending;
+  if (shown.chunks.empty())
+    shown.installStart = std::chrono::steady_clock::now();
   for (const lvdif::ChunkMesh& mesh : meshes)
     shown.chunks.push_back(mesh.chunkId);
-  shown.installStart = std::chrono::steady_clock::now();
+  shown.gatheredAt.insert(shown.gatheredAt.end(), gatheredAt.begin(), gatheredAt.end());
   const auto& d = this->Doc.volume().dims();
   // In completion order; a later mesh of a chunk supersedes an earlier one.
   std::map<std::int64_t, const lvdif::ChunkMesh*> newest;
@@ -413,6 +431,14 @@ void MainWindow::showFinishedMeshes()
   this->Status->setText(QString("%1 chunks, %2 triangles")
                           .arg(this->Chunks->GetNumberOfChunks())
                           .arg(this->Chunks->GetNumberOfTriangles()));
+}
+
+void MainWindow::drawFrame()
+{
+  if (this->Pending.chunks.empty())
+    return;
+  ShownMeshes shown;
+  std::swap(shown, this->Pending);
   this->RenderWindow->Render();
   emit this->meshesShown(shown);
   this->View->update();

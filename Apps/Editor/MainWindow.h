@@ -95,8 +95,8 @@ public slots:
   /// Starts a stroke; false if none could start (no volume, or an error shown).
   bool beginStroke();
   /// One sample, double[4]: world x, y, z and the brush radius in world units.
-  /// Applies it and shows what the meshing finishes within a few ms (never
-  /// waits longer).
+  /// Applies it, waits a few ms at most for its meshes, and shows them in the
+  /// next frame (drawn when the event loop is free).
   void addBrushSample(const double* sample);
   void endStroke();
 
@@ -143,8 +143,13 @@ private:
   bool keyFilter(QEvent* event);
   void onGrabMove();
   void applyBrushState();
-  /// After a brush sample: waits a few ms for its chunks, then installs them.
+  /// After a brush sample: waits a few ms for its chunks, installs them, then
+  /// asks for a frame when the event loop is free (one for all samples waiting by then).
   void settleMeshes();
+  /// Installs the chunk meshes finished since the last call as actors (no render).
+  void installFinishedMeshes();
+  /// Renders if meshes were installed since the last frame; emits meshesShown.
+  void drawFrame();
   void autosave();
   void resetView();
   void volumeReplaced();
@@ -166,6 +171,8 @@ private:
   QVTKOpenGLNativeWidget* View = nullptr;
   QLabel* Status = nullptr;
   QTimer* MeshTimer = nullptr;
+  QTimer* FrameTimer = nullptr; // the frame after brush samples (coalesces a backlog of samples)
+  ShownMeshes Pending;          // installed since the last frame
   QTimer* AutosaveTimer = nullptr;
   QTimer* StillTimer = nullptr; // the full redraw after interactive (partial, multisampled) frames
   QAction* OpenMeshAction = nullptr;

@@ -208,7 +208,7 @@ void StrokeBenchmark::deliver(std::size_t i)
     world[a] = o.origin[a] + o.spacing[a] * s.position[a];
   world[3] = doc.editor().stroke.radius * o.spacing[0]; // the tool panel's, set at the stroke's start
   this->CurrentSampleTime = s.time;
-  this->Window.addBrushSample(world); // applies, settles, may render
+  this->Window.addBrushSample(world); // applies, settles; the frame follows when the loop is free
   this->sampleApplied();
   if (i + 1 == this->Samples.size())
   {

@@ -6,6 +6,9 @@
 // changed triangles to the culler, as in the editor). After each group of frames drawn in part, the
 // window's pixels must equal, exactly, those of a full redraw of the same
 // scene; each partial frame must have drawn fewer props than the scene holds.
+// With 8 samples per pixel (the Qt view's default), the pixels may differ only
+// on the one-pixel ring around a frame's damage rectangle, where Mesa's
+// scissored clear of a multisampled framebuffer reaches.
 // A camera change, a translucent prop in the damage and a large damage must
 // fall back to full frames.
 #include "ChunkTestData.h"
@@ -24,6 +27,7 @@
 #include "RenderTestHarness.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -64,9 +68,13 @@ vtkSmartPointer<vtkImageData> pixels(vtkRenderWindow* rw)
   return img;
 }
 
-// Pixels that differ between two grabs.
-long differing(vtkImageData* a, vtkImageData* b)
+// Pixels that differ between two grabs, but for those `allowed` excuses
+// (their number in *excused).
+long differing(vtkImageData* a, vtkImageData* b, const std::function<bool(int, int)>& allowed, long* excused)
 {
+  int dims[3];
+  a->GetDimensions(dims);
+  *excused = 0;
   auto* pa = vtkUnsignedCharArray::SafeDownCast(a->GetPointData()->GetScalars());
   auto* pb = vtkUnsignedCharArray::SafeDownCast(b->GetPointData()->GetScalars());
   if (!pa || !pb || pa->GetNumberOfValues() != pb->GetNumberOfValues())
@@ -76,15 +84,17 @@ long differing(vtkImageData* a, vtkImageData* b)
     for (int c = 0; c < 3; ++c)
       if (pa->GetValue(3 * t + c) != pb->GetValue(3 * t + c))
       {
-        ++n;
+        const bool ok = allowed(static_cast<int>(t % dims[0]), static_cast<int>(t / dims[0]));
+        (ok ? *excused : n) += 1;
         break;
       }
   return n;
 }
-} // namespace
 
-int TestPartialRedraw(int, char*[])
+// The scene drawn with this many samples per pixel; the number of failed checks.
+int runScene(int samples)
 {
+  std::printf("---- %d samples per pixel\n", samples);
   const auto checker = [](int i, int j, int k) { return checkerColor(i, j, k); };
   auto before = splitChunks(contractMesh(sdfImage(Cells + 1, sphere), checker), Edge, Cells);
   auto after = splitChunks(contractMesh(sdfImage(Cells + 1, dented), checker), Edge, Cells);
@@ -94,6 +104,7 @@ int TestPartialRedraw(int, char*[])
   ren->SetBackground2(0.05, 0.05, 0.07);
   ren->GradientBackgroundOn();
   auto rw = makeTestWindow(320, 300);
+  rw->SetMultiSamples(samples);
   rw->AddRenderer(ren);
   vtkNew<vtkChunkActorManager> mgr;
   mgr->SetRenderer(ren);
@@ -137,11 +148,14 @@ int TestPartialRedraw(int, char*[])
   auto partialFrames = [&](const char* what, const std::function<void(int)>& edit, int frames, bool few = true) {
     const int partialBefore = culler->GetNumberOfPartialRedraws();
     int most = 0;
+    std::vector<std::array<int, 4>> damages;
     for (int f = 0; f < frames; ++f)
     {
       edit(f);
       rw->Render();
       most = std::max(most, culler->GetLastNumberOfPropsDrawn());
+      const int* d = culler->GetLastDamage();
+      damages.push_back({ d[0], d[1], d[0] + d[2], d[1] + d[3] });
       std::printf("  %s, frame %d: damage %d x %d at (%d, %d), %d props drawn\n", what, f, culler->GetLastDamage()[2],
         culler->GetLastDamage()[3], culler->GetLastDamage()[0], culler->GetLastDamage()[1],
         culler->GetLastNumberOfPropsDrawn());
@@ -150,8 +164,22 @@ int TestPartialRedraw(int, char*[])
     culler->RequestFullRedraw();
     rw->Render();
     auto full = pixels(rw);
-    const long diff = differing(partial, full);
-    std::printf("  %s: %ld pixels differ from the full redraw\n", what, diff);
+    // Multisampled: Mesa's scissored clear may reach the one-pixel ring just
+    // outside a damage rectangle (the editor then redraws whole when still).
+    auto onRing = [&](int x, int y) {
+      for (const auto& r : damages)
+      {
+        const bool inGrown = x >= r[0] - 1 && x <= r[2] && y >= r[1] - 1 && y <= r[3];
+        const bool inside = x >= r[0] && x < r[2] && y >= r[1] && y < r[3];
+        if (samples > 1 && inGrown && !inside)
+          return true;
+      }
+      return false;
+    };
+    long ring = 0;
+    const long diff = differing(partial, full, onRing, &ring);
+    std::printf("  %s: %ld pixels differ from the full redraw (and %ld on the ring around a damage rectangle)\n", what,
+      diff, ring);
     check(culler->GetNumberOfPartialRedraws() == partialBefore + frames && (!few || most < props / 2),
       (std::string(what) + ": every frame drawn in part" + (few ? ", with fewer than half the props" : "")).c_str());
     check(diff == 0, (std::string(what) + ": the picture equals the full redraw's").c_str());
@@ -216,5 +244,12 @@ int TestPartialRedraw(int, char*[])
   rw->Render();
   check(culler->GetLastNumberOfPropsDrawn() == props, "disabled: nothing is culled");
 
+  return failures;
+}
+} // namespace
+
+int TestPartialRedraw(int, char*[])
+{
+  const int failures = runScene(0) + runScene(8);
   return failures ? EXIT_FAILURE : EXIT_SUCCESS;
 }
