@@ -140,7 +140,10 @@ MainWindow::MainWindow(const EditorOptions& options)
   this->MeshTimer->start(15);
   this->FrameTimer = new QTimer(this);
   this->FrameTimer->setSingleShot(true);
-  this->FrameTimer->setInterval(0);
+  // 1 ms, not 0: Qt runs zero timers only when nothing else is pending, so a
+  // stream of samples would starve the frame
+  this->FrameTimer->setInterval(1);
+  this->FrameTimer->setTimerType(Qt::PreciseTimer);
   connect(this->FrameTimer, &QTimer::timeout, this, &MainWindow::drawFrame);
   // With multisampling, Mesa's scissored clear can reach one pixel row or
   // column past the redrawn rectangle, so frames drawn in part are
@@ -439,6 +442,7 @@ void MainWindow::drawFrame()
     return;
   ShownMeshes shown;
   std::swap(shown, this->Pending);
+  shown.renderStart = std::chrono::steady_clock::now();
   this->RenderWindow->Render();
   emit this->meshesShown(shown);
   this->View->update();

@@ -46,7 +46,8 @@ struct ShownMeshes
   using TimePoint = std::chrono::steady_clock::time_point;
   std::vector<std::int64_t> chunks;
   std::vector<TimePoint> gatheredAt;
-  TimePoint installStart;
+  TimePoint installStart; // the first install since the last frame (brush samples share a frame)
+  TimePoint renderStart;  // the frame's Render() call
 };
 
 class MainWindow : public QMainWindow
