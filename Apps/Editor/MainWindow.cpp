@@ -140,8 +140,8 @@ MainWindow::MainWindow(const EditorOptions& options)
   this->MeshTimer->start(15);
   this->FrameTimer = new QTimer(this);
   this->FrameTimer->setSingleShot(true);
-  // 1 ms, not 0: Qt runs zero timers only when nothing else is pending, so a
-  // stream of samples would starve the frame
+  // 1 ms, not 0: a zero timer fires only once the window system's event
+  // queue is empty (Qt's documentation), which a stream of samples may delay
   this->FrameTimer->setInterval(1);
   this->FrameTimer->setTimerType(Qt::PreciseTimer);
   connect(this->FrameTimer, &QTimer::timeout, this, &MainWindow::drawFrame);
