@@ -6,10 +6,12 @@
 # latency from each sample's recorded time to the end of the render of the frame
 # that shows it (p50/p95/max), frames drawn included (Mesa llvmpipe under Xvfb:
 # software OpenGL, which also takes those 2 cores).
-# usage: scripts/bench-editor-stroke.sh BUILD_DIR [N=512] [RUNS=1]
+# usage: [EDITOR_ARGS=--full-redraw] scripts/bench-editor-stroke.sh BUILD_DIR [N=512] [RUNS=1]
 #   BUILD_DIR: a full build (bin/lvdif-editor) with the Core benchmarks
 #   (Testing/Benchmarks/Core/bench_stroke_latency_core). Files and logs in $OUT
 #   (default ./out-editor-stroke); stdout: the load and each run's report.
+#   EDITOR_ARGS: more lvdif-editor options, e.g. --full-redraw (every frame
+#   drawn whole, as before partial redraws) for the comparison.
 set -u
 B=${1:?usage: scripts/bench-editor-stroke.sh BUILD_DIR [N] [RUNS]}
 N=${2:-512}
@@ -25,11 +27,11 @@ done
 { date -u; lscpu | grep "Model name"; } | tee "$OUT/machine.txt"
 for r in 15 40; do
   for i in $(seq "$RUNS"); do
-    L="$OUT/editor-r$r-run$i.log"
+    L="$OUT/editor-r$r-run$i${EDITOR_ARGS:+-full}.log"
     echo "## radius $r run $i, load before: $(cut -d' ' -f1-3 /proc/loadavg)"
     OMP_NUM_THREADS=2 taskset -c 0,1 timeout 900 xvfb-run -a -s "-screen 0 1280x1024x24 -noreset" \
       "$EDITOR" --open "$OUT/sphere$N.lvdv" --op add --brush drill --radius "$r" --color "#e65032" \
-      --size 640x480 --no-recovery --autosave 0 --benchmark-stroke "$OUT/stroke$N.jsonl" > "$L" 2>&1
+      --size 640x480 --no-recovery --autosave 0 --benchmark-stroke "$OUT/stroke$N.jsonl" ${EDITOR_ARGS:-} > "$L" 2>&1
     echo "rc=$?, load after: $(cut -d' ' -f1-3 /proc/loadavg)" | tee -a "$L"
     grep "^benchmark-stroke:" "$L" | grep -v "frames are drawn by"
   done

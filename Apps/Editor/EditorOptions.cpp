@@ -60,9 +60,11 @@ EditorOptions parseEditorOptions(const QStringList& arguments)
     "Replay a recorded stroke (JSON-lines samples or .lvr) at its speed, print the latency and FPS, quit.", "file");
   const QCommandLineOption timing("timing",
     "Print (stderr) when the first surface was shown and when every chunk was meshed and shown, in ms after the window was made.");
+  const QCommandLineOption fullRedraw("full-redraw",
+    "Draw every frame whole (by default a frame in which the camera stands still redraws only the screen region that changed).");
   p.addOptions({ open, openMesh, meshRes, meshSign, create, fill, script, drag, undo, shot, save, exp, op, shape, kind, radius, color, size, quit,
     noRecovery, recoveryDir, autosave, perVertex, matcap, benchmark, strength, falloff, mirror, keys, keysAfter, dragMods,
-    saveAsAnswer, windowShot, dragShot, timing });
+    saveAsAnswer, windowShot, dragShot, timing, fullRedraw });
   p.process(arguments);
 
   EditorOptions o;
@@ -157,5 +159,6 @@ EditorOptions parseEditorOptions(const QStringList& arguments)
   o.matcap = p.value(matcap);
   o.benchmarkStroke = p.value(benchmark);
   o.timing = p.isSet(timing);
+  o.fullRedraw = p.isSet(fullRedraw);
   return o;
 }

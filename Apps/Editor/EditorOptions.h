@@ -41,6 +41,7 @@ struct EditorOptions
   QString matcap;             // --matcap FILE: matcap shading with this image
   QString benchmarkStroke;    // --benchmark-stroke FILE: replay a recorded stroke, print latency and FPS, quit
   bool timing = false;        // --timing: print when the first surface and the whole surface were shown
+  bool fullRedraw = false;    // --full-redraw: draw every frame whole (no partial redraw of what changed)
   bool batch() const { return this->quit || !this->screenshot.isEmpty() || !this->windowShot.isEmpty() || !this->save.isEmpty() || !this->exportMesh.isEmpty(); }
 };
 

@@ -13,6 +13,7 @@
 #include "vtkCallbackCommand.h"
 #include "vtkCamera.h"
 #include "vtkChunkActorManager.h"
+#include "vtkPartialRedrawCuller.h"
 #include "LVDIFChunkMesh.h"
 #include "vtkGenericOpenGLRenderWindow.h"
 #include "vtkPolyData.h"
@@ -54,11 +55,19 @@ MainWindow::MainWindow(const EditorOptions& options)
   this->Renderer->SetBackground(0.16, 0.17, 0.2);
   this->Renderer->SetBackground2(0.05, 0.05, 0.07);
   this->Renderer->GradientBackgroundOn();
+  // While the camera stands still (a stroke, the cursor moving over the
+  // surface) a frame redraws only the screen region that changed, with the
+  // chunk actors that cover it: the cost of a stroke's frame follows the
+  // brush, not the model's size. The picture equals a full redraw's.
+  this->Redraw->SetEnabled(!options.fullRedraw);
+  this->Renderer->AddCuller(this->Redraw);
+  this->RenderWindow->SetPartialRedraw(this->Redraw); // and presents only that region
   this->setCentralWidget(this->View);
   this->View->installEventFilter(this);
   this->resize(options.width, options.height);
 
   this->Chunks->SetRenderer(this->Renderer);
+  this->Chunks->SetRedrawCuller(this->Redraw); // a re-meshed chunk damages only around its changed triangles
   this->Chunks->GetProperty()->SetSpecular(0.25);
   this->Chunks->GetProperty()->SetSpecularPower(25);
   this->Chunks->SetInterpolationMode(
@@ -129,6 +138,41 @@ MainWindow::MainWindow(const EditorOptions& options)
   this->MeshTimer = new QTimer(this);
   connect(this->MeshTimer, &QTimer::timeout, this, &MainWindow::showFinishedMeshes);
   this->MeshTimer->start(15);
+  this->FrameTimer = new QTimer(this);
+  this->FrameTimer->setSingleShot(true);
+  // 1 ms, not 0: a zero timer fires only once the window system's event
+  // queue is empty (Qt's documentation), which a stream of samples may delay
+  this->FrameTimer->setInterval(1);
+  this->FrameTimer->setTimerType(Qt::PreciseTimer);
+  connect(this->FrameTimer, &QTimer::timeout, this, &MainWindow::drawFrame);
+  // With multisampling, Mesa's scissored clear can reach one pixel row or
+  // column past the redrawn rectangle, so frames drawn in part are
+  // interactive frames: once the stroke or the cursor has been still for a
+  // moment, the view is drawn whole (as VTK's interactive and still frames).
+  this->StillTimer = new QTimer(this);
+  this->StillTimer->setSingleShot(true);
+  this->StillTimer->setInterval(250);
+  connect(this->StillTimer, &QTimer::timeout, this, [this] {
+    if (this->Painting)
+    {
+      this->StillTimer->start(); // still painting: after the release
+      return;
+    }
+    this->Redraw->RequestFullRedraw();
+    this->RenderWindow->Render();
+    this->View->update();
+  });
+  {
+    vtkNew<vtkCallbackCommand> cb;
+    cb->SetClientData(this);
+    cb->SetCallback([](vtkObject*, unsigned long, void* cd, void*) {
+      auto* self = static_cast<MainWindow*>(cd);
+      int damage[4];
+      if (self->RenderWindow->GetMultiSamples() > 1 && self->Redraw->GetLastFramePartial(damage))
+        self->StillTimer->start();
+    });
+    this->RenderWindow->AddObserver(vtkCommand::EndEvent, cb);
+  }
   this->AutosaveTimer = new QTimer(this);
   connect(this->AutosaveTimer, &QTimer::timeout, this, &MainWindow::autosave);
   if (options.autosaveSeconds > 0)
@@ -318,7 +362,13 @@ void MainWindow::settleMeshes()
   {
     QThread::usleep(250);
   }
-  this->showFinishedMeshes();
+  // The meshes are installed now (the brush picks on them); the frame comes
+  // when the event loop is next free: samples that arrived while the last
+  // frame was drawn are all applied first and shown in one frame, so a slow
+  // frame delays the view by one frame, not by a queue of frames (one per sample).
+  this->installFinishedMeshes();
+  if (!this->FrameTimer->isActive())
+    this->FrameTimer->start();
 }
 
 void MainWindow::endStroke()
@@ -342,16 +392,24 @@ void MainWindow::endStroke()
 
 void MainWindow::showFinishedMeshes()
 {
+  this->installFinishedMeshes();
+  this->drawFrame();
+}
+
+void MainWindow::installFinishedMeshes()
+{
   if (!this->Doc.hasVolume())
     return;
-  ShownMeshes shown;
-  std::vector<lvdif::ChunkMesh> meshes = this->Doc.collectMeshes(&shown.gatheredAt);
+  std::vector<ShownMeshes::TimePoint> gatheredAt;
+  std::vector<lvdif::ChunkMesh> meshes = this->Doc.collectMeshes(&gatheredAt);
   if (meshes.empty())
     return;
-  shown.chunks.reserve(meshes.size());
+  ShownMeshes& shown = this->Pending;
+  if (shown.chunks.empty())
+    shown.installStart = std::chrono::steady_clock::now();
   for (const lvdif::ChunkMesh& mesh : meshes)
     shown.chunks.push_back(mesh.chunkId);
-  shown.installStart = std::chrono::steady_clock::now();
+  shown.gatheredAt.insert(shown.gatheredAt.end(), gatheredAt.begin(), gatheredAt.end());
   const auto& d = this->Doc.volume().dims();
   // In completion order; a later mesh of a chunk supersedes an earlier one.
   std::map<std::int64_t, const lvdif::ChunkMesh*> newest;
@@ -376,6 +434,15 @@ void MainWindow::showFinishedMeshes()
   this->Status->setText(QString("%1 chunks, %2 triangles")
                           .arg(this->Chunks->GetNumberOfChunks())
                           .arg(this->Chunks->GetNumberOfTriangles()));
+}
+
+void MainWindow::drawFrame()
+{
+  if (this->Pending.chunks.empty())
+    return;
+  ShownMeshes shown;
+  std::swap(shown, this->Pending);
+  shown.renderStart = std::chrono::steady_clock::now();
   this->RenderWindow->Render();
   emit this->meshesShown(shown);
   this->View->update();

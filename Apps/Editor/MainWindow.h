@@ -3,6 +3,7 @@
 #pragma once
 
 #include "EditorOptions.h"
+#include "EditorRenderWindow.h"
 #include "MeshImport.h"
 #include "ToolPanel.h"
 #include "VolumeDocument.h"
@@ -32,6 +33,7 @@ class vtkBrushRepresentation;
 class vtkBrushWidget;
 class vtkChunkActorManager;
 class vtkGenericOpenGLRenderWindow;
+class vtkPartialRedrawCuller;
 class vtkRenderer;
 
 /// What one frame that showed newly finished chunk meshes installed (the
@@ -44,7 +46,8 @@ struct ShownMeshes
   using TimePoint = std::chrono::steady_clock::time_point;
   std::vector<std::int64_t> chunks;
   std::vector<TimePoint> gatheredAt;
-  TimePoint installStart;
+  TimePoint installStart; // the first install since the last frame (brush samples share a frame)
+  TimePoint renderStart;  // the frame's Render() call
 };
 
 class MainWindow : public QMainWindow
@@ -93,8 +96,8 @@ public slots:
   /// Starts a stroke; false if none could start (no volume, or an error shown).
   bool beginStroke();
   /// One sample, double[4]: world x, y, z and the brush radius in world units.
-  /// Applies it and shows what the meshing finishes within a few ms (never
-  /// waits longer).
+  /// Applies it, waits a few ms at most for its meshes, and shows them in the
+  /// next frame (drawn when the event loop is free).
   void addBrushSample(const double* sample);
   void endStroke();
 
@@ -141,8 +144,13 @@ private:
   bool keyFilter(QEvent* event);
   void onGrabMove();
   void applyBrushState();
-  /// After a brush sample: waits a few ms for its chunks, then installs them.
+  /// After a brush sample: waits a few ms for its chunks, installs them, then
+  /// asks for a frame when the event loop is free (one for all samples waiting by then).
   void settleMeshes();
+  /// Installs the chunk meshes finished since the last call as actors (no render).
+  void installFinishedMeshes();
+  /// Renders if meshes were installed since the last frame; emits meshesShown.
+  void drawFrame();
   void autosave();
   void resetView();
   void volumeReplaced();
@@ -164,13 +172,17 @@ private:
   QVTKOpenGLNativeWidget* View = nullptr;
   QLabel* Status = nullptr;
   QTimer* MeshTimer = nullptr;
+  QTimer* FrameTimer = nullptr; // the frame after brush samples (coalesces a backlog of samples)
+  ShownMeshes Pending;          // installed since the last frame
   QTimer* AutosaveTimer = nullptr;
+  QTimer* StillTimer = nullptr; // the full redraw after interactive (partial, multisampled) frames
   QAction* OpenMeshAction = nullptr;
   MeshImportSettings MeshSettings;
   QElapsedTimer Clock;
-  vtkNew<vtkGenericOpenGLRenderWindow> RenderWindow;
+  vtkNew<EditorRenderWindow> RenderWindow;
   vtkNew<vtkRenderer> Renderer;
   vtkNew<vtkChunkActorManager> Chunks;
+  vtkNew<vtkPartialRedrawCuller> Redraw; // partial redraws while the camera stands still
   vtkNew<vtkBrushRepresentation> BrushRep;
   vtkNew<vtkBrushWidget> Brush;
   bool ViewInitialized = false;

@@ -1,5 +1,6 @@
 // MainWindow: the file dialogs, mesh export and screenshots.
 #include "MainWindow.h"
+#include "vtkPartialRedrawCuller.h"
 
 #include "LVDIFFiles.h"
 
@@ -132,6 +133,7 @@ bool MainWindow::saveWindowShot(const QString& path)
 {
   // the whole window (menus, toolbar, tool panel, status bar); Qt composes the
   // OpenGL view's current frame into it
+  this->Redraw->RequestFullRedraw();
   this->RenderWindow->Render();
   const QPixmap shot = this->grab();
   if (shot.isNull() || !shot.save(path, "PNG"))
@@ -147,6 +149,7 @@ bool MainWindow::saveScreenshot(const QString& path)
   // QVTKOpenGLNativeWidget renders in its paintGL: a render requested from
   // here is deferred, so reading the render window's buffer could give the
   // previous frame. grabFramebuffer() paints now and returns that frame.
+  this->Redraw->RequestFullRedraw(); // a picture to keep: drawn whole, not an interactive frame
   this->RenderWindow->Render();
   const QImage image = this->View->grabFramebuffer().convertToFormat(QImage::Format_RGB888);
   if (image.isNull() || !image.save(path, "PNG"))

@@ -7,7 +7,12 @@
 // brush input, the slots the brush widget calls (MainWindow::beginStroke,
 // addBrushSample, endStroke): the Core editor applies it, the worker re-meshes
 // the chunks it changed, the sample's settle / the 15 ms mesh timer install
-// the finished meshes as chunk actors and render. Latency of a sample = from
+// the finished meshes as chunk actors, and the next frame (one for every
+// sample applied by then) renders them. Reported per frame: the render alone
+// (Render + glFinish) and install + render (from the first install since the
+// previous frame, so it includes the samples applied meanwhile); before the
+// stroke, the still scene's frame drawn whole and unchanged; after it, how far
+// the picture is from the scene drawn whole. Latency of a sample = from
 // its recorded time until the end of the render (glFinish) of the frame at
 // which every chunk it changed shows a mesh gathered after the edit (the
 // window's meshesShown signal says when each mesh's input was read). Qt's
@@ -33,6 +38,7 @@
 #include <vector>
 
 class MainWindow;
+class vtkPartialRedrawCuller;
 struct ShownMeshes;
 
 class StrokeBenchmark : public QObject
@@ -52,6 +58,12 @@ public:
   void start();
 
 private:
+  /// The view's partial-redraw culler if it is on, else nullptr.
+  vtkPartialRedrawCuller* redrawCuller();
+  /// Prints the still scene's frame time drawn whole and unchanged.
+  void measureStillFrames();
+  /// Pixels of the picture shown that differ from the scene drawn whole (-1: sizes differ).
+  long pixelsDifferingFromFullRedraw();
   /// After the window applied a sample: the chunks it asked to re-mesh.
   void sampleApplied();
   /// MainWindow::meshesShown: waits for the frame to be drawn, notes when.
@@ -75,7 +87,9 @@ private:
   std::vector<Request> Requests;
   // per chunk: (gathered, rendered) of every mesh installed, in order
   std::map<std::int64_t, std::vector<std::pair<TimePoint, TimePoint>>> Delivered;
-  std::vector<double> RenderMs;
+  std::vector<double> RenderMs; // from the first install of a frame's meshes to its end
+  std::vector<double> DrawMs;   // the frame's Render() and glFinish
   TimePoint LastFrame;
   int Frames = 0;
+  int FullBefore = 0, PartialBefore = 0; // the culler's counts at the stroke's start
 };

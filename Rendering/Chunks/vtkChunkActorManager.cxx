@@ -8,13 +8,21 @@
 #include "vtkNew.h"
 #include "vtkFieldData.h"
 #include "vtkObjectFactory.h"
+#include "vtkPartialRedrawCuller.h"
 #include "vtkPartitionedDataSet.h"
+#include "vtkCellArray.h"
+#include "vtkCellData.h"
+#include "vtkPointData.h"
 #include "vtkPolyData.h"
 #include "vtkProperty.h"
 #include "vtkRenderer.h"
 #include "vtkTetrahedralColorMapper.h"
 
+#include <algorithm>
+#include <cstdint>
+#include <cstring>
 #include <map>
+#include <unordered_map>
 #include <vector>
 
 vtkStandardNewMacro(vtkChunkActorManager);
@@ -27,12 +35,180 @@ struct vtkChunkActorManager::Internals
     vtkSmartPointer<vtkTetrahedralColorMapper> Mapper;
     vtkSmartPointer<vtkPolyData> Source; // the mesh as given
     vtkMTimeType SourceMTime = 0;         // its MTime when it was given
+    double PreparedOrigin[3] = { 0, 0, 0 }; // the geometry it was prepared with
+    double PreparedSpacing[3] = { 1, 1, 1 };
   };
   std::map<vtkIdType, Entry> Chunks;
   vtkSmartPointer<vtkRenderer> Renderer;
   vtkNew<vtkProperty> Property;
   bool Visible = true;
+  vtkSmartPointer<vtkPartialRedrawCuller> Culler;
 };
+
+namespace
+{
+std::uint64_t hashBytes(std::uint64_t h, const void* data, std::size_t n)
+{
+  const auto* b = static_cast<const unsigned char*>(data);
+  for (std::size_t i = 0; i < n; ++i)
+  {
+    h ^= b[i];
+    h *= 1099511628211ull; // FNV-1a
+  }
+  return h;
+}
+
+// One tuple of every array of `data` (contiguous arrays: the raw bytes; others
+// through doubles).
+std::uint64_t hashTuple(std::uint64_t h, vtkFieldData* data, vtkIdType t)
+{
+  for (int a = 0; a < data->GetNumberOfArrays(); ++a)
+  {
+    vtkAbstractArray* arr = data->GetAbstractArray(a);
+    vtkDataArray* da = vtkDataArray::SafeDownCast(arr);
+    if (!da)
+    {
+      continue; // string arrays and the like are not drawn
+    }
+    const int nc = da->GetNumberOfComponents();
+    if (da->HasStandardMemoryLayout())
+    {
+      h = hashBytes(h, da->GetVoidPointer(t * nc), static_cast<std::size_t>(nc) * da->GetDataTypeSize());
+    }
+    else
+    {
+      for (int c = 0; c < nc; ++c)
+      {
+        const double v = da->GetComponent(t, c);
+        h = hashBytes(h, &v, sizeof v);
+      }
+    }
+  }
+  return h;
+}
+
+// Per triangle: a hash of its three points (position and point arrays, the
+// cyclic order kept, starting at the smallest) and its cell arrays; false if
+// the mesh holds other cells.
+bool triangleHashes(vtkPolyData* pd, std::vector<std::uint64_t>& out)
+{
+  out.clear();
+  if (!pd)
+  {
+    return true;
+  }
+  if (pd->GetNumberOfVerts() || pd->GetNumberOfLines() || pd->GetNumberOfStrips())
+  {
+    return false;
+  }
+  std::vector<std::uint64_t> point(static_cast<std::size_t>(pd->GetNumberOfPoints()));
+  vtkDataArray* pts = pd->GetPoints() ? pd->GetPoints()->GetData() : nullptr;
+  for (vtkIdType p = 0; p < pd->GetNumberOfPoints(); ++p)
+  {
+    std::uint64_t h = 1469598103934665603ull;
+    double x[3];
+    pts->GetTuple(p, x);
+    h = hashBytes(h, x, sizeof x);
+    point[static_cast<std::size_t>(p)] = hashTuple(h, pd->GetPointData(), p);
+  }
+  vtkCellArray* polys = pd->GetPolys();
+  out.reserve(static_cast<std::size_t>(polys->GetNumberOfCells()));
+  vtkIdType npts = 0;
+  const vtkIdType* ids = nullptr;
+  vtkIdType cell = 0;
+  for (polys->InitTraversal(); polys->GetNextCell(npts, ids); ++cell)
+  {
+    if (npts != 3)
+    {
+      return false;
+    }
+    std::uint64_t v[3] = { point[static_cast<std::size_t>(ids[0])], point[static_cast<std::size_t>(ids[1])],
+      point[static_cast<std::size_t>(ids[2])] };
+    std::rotate(v, std::min_element(v, v + 3), v + 3);
+    std::uint64_t h = hashBytes(1469598103934665603ull, v, sizeof v);
+    out.push_back(hashTuple(h, pd->GetCellData(), cell)); // polys are the only cells: cell id = poly index
+  }
+  return true;
+}
+
+void addTriangle(vtkPolyData* pd, vtkIdType t, double b[6])
+{
+  const vtkIdType* ids = nullptr;
+  vtkIdType npts = 0;
+  pd->GetPolys()->GetCellAtId(t, npts, ids);
+  for (vtkIdType i = 0; i < npts; ++i)
+  {
+    double x[3];
+    pd->GetPoint(ids[i], x);
+    for (int a = 0; a < 3; ++a)
+    {
+      b[2 * a] = std::min(b[2 * a], x[a]);
+      b[2 * a + 1] = std::max(b[2 * a + 1], x[a]);
+    }
+  }
+}
+} // namespace
+
+bool vtkChunkActorManager::ChangedBounds(vtkPolyData* before, vtkPolyData* after, double bounds[6])
+{
+  vtkMath::UninitializeBounds(bounds);
+  double b[6] = { VTK_DOUBLE_MAX, -VTK_DOUBLE_MAX, VTK_DOUBLE_MAX, -VTK_DOUBLE_MAX, VTK_DOUBLE_MAX, -VTK_DOUBLE_MAX };
+  std::vector<std::uint64_t> hb, ha;
+  if (!triangleHashes(before, hb) || !triangleHashes(after, ha))
+  {
+    vtkBoundingBox box;
+    for (vtkPolyData* pd : { before, after })
+    {
+      if (pd && pd->GetNumberOfPoints())
+      {
+        box.AddBounds(pd->GetBounds());
+      }
+    }
+    if (!box.IsValid())
+    {
+      return false;
+    }
+    box.GetBounds(bounds);
+    return true;
+  }
+  std::unordered_map<std::uint64_t, int> count; // before minus after
+  count.reserve(hb.size() + ha.size());
+  for (std::uint64_t h : hb)
+  {
+    ++count[h];
+  }
+  for (std::uint64_t h : ha)
+  {
+    --count[h];
+  }
+  bool changed = false;
+  for (std::size_t t = 0; t < hb.size(); ++t)
+  {
+    if (count[hb[t]] != 0)
+    {
+      addTriangle(before, static_cast<vtkIdType>(t), b);
+      changed = true;
+    }
+  }
+  for (std::size_t t = 0; t < ha.size(); ++t)
+  {
+    if (count[ha[t]] != 0)
+    {
+      addTriangle(after, static_cast<vtkIdType>(t), b);
+      changed = true;
+    }
+  }
+  if (changed)
+  {
+    std::copy(b, b + 6, bounds);
+  }
+  return changed;
+}
+
+void vtkChunkActorManager::SetRedrawCuller(vtkPartialRedrawCuller* culler)
+{
+  this->Internal->Culler = culler;
+}
 
 vtkChunkActorManager::vtkChunkActorManager()
   : Internal(new Internals)
@@ -153,6 +329,10 @@ void vtkChunkActorManager::SetChunk(vtkIdType chunkId, vtkPolyData* mesh, bool p
     e.Mapper = vtkSmartPointer<vtkTetrahedralColorMapper>::New();
     e.Mapper->SetInterpolationMode(this->InterpolationMode);
     e.Mapper->SetMatcap(this->GetMatcapTexture() != nullptr);
+    // The input is set as data, never produced by a pipeline: no pipeline
+    // update per render and per bounds query (with hundreds of chunk actors
+    // those updates were most of the cost of a frame that draws little).
+    e.Mapper->StaticOn();
     e.Actor = vtkSmartPointer<vtkActor>::New();
     e.Actor->SetMapper(e.Mapper);
     e.Actor->SetProperty(this->Internal->Property);
@@ -164,7 +344,27 @@ void vtkChunkActorManager::SetChunk(vtkIdType chunkId, vtkPolyData* mesh, bool p
     it = chunks.emplace(chunkId, e).first;
   }
   // Only this mapper sees a new input: only its buffers are rebuilt.
-  it->second.Mapper->SetInputData(ready);
+  Internals::Entry& e = it->second;
+  vtkPartialRedrawCuller* culler = this->Internal->Culler;
+  const bool declare = culler && culler->GetEnabled() && e.Source && mesh &&
+    std::equal(this->Origin, this->Origin + 3, e.PreparedOrigin) &&
+    std::equal(this->Spacing, this->Spacing + 3, e.PreparedSpacing);
+  if (declare)
+  {
+    culler->BeginChange(e.Actor);
+  }
+  e.Mapper->SetInputData(ready);
+  if (declare)
+  {
+    // Preparation is per triangle (vtkCornerColorAttributes), so the prepared
+    // meshes differ only where the given ones do.
+    double changed[6];
+    vtkPolyData* before = e.Source;
+    ChangedBounds(before, mesh, changed);
+    culler->EndChange(e.Actor, changed);
+  }
+  std::copy(this->Origin, this->Origin + 3, e.PreparedOrigin);
+  std::copy(this->Spacing, this->Spacing + 3, e.PreparedSpacing);
   it->second.Source = mesh;
   it->second.SourceMTime = mesh ? mesh->GetMTime() : 0;
   ++this->NumberOfChunkUpdates;

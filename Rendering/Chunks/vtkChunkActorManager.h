@@ -33,6 +33,7 @@
 #include <memory> // for unique_ptr
 
 class vtkActor;
+class vtkPartialRedrawCuller;
 class vtkPartitionedDataSet;
 class vtkPolyData;
 class vtkProp;
@@ -103,6 +104,19 @@ public:
   vtkGetMacro(NumberOfChunkUpdates, vtkIdType);
 
   void SetVisibility(bool visible);
+
+  /// The renderer's partial-redraw culler, if any: SetChunk then declares a
+  /// replaced mesh's change to it as the box of the triangles that differ
+  /// (vtkPartialRedrawCuller::BeginChange/EndChange), so that a frame redraws
+  /// only around them rather than around the whole chunk.
+  void SetRedrawCuller(vtkPartialRedrawCuller* culler);
+
+  /// The bounds of the triangles of one mesh that the other lacks, and of the
+  /// other's that the first lacks, comparing each triangle's points (position
+  /// and every point array, any starting vertex) and cell arrays; false if
+  /// they hold the same triangles. Meshes with cells other than triangles
+  /// compare whole (their union's bounds).
+  static bool ChangedBounds(vtkPolyData* before, vtkPolyData* after, double bounds[6]);
 
 protected:
   vtkChunkActorManager();

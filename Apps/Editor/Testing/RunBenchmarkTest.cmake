@@ -1,7 +1,9 @@
 # Runs lvdif-editor --benchmark-stroke (ARGS) and checks its report: exit 0,
 # the three report lines present, 0 <= p50 <= p95 <= max, the max no longer
 # than the whole run took by the wall clock measured here (an independent
-# bound), at least one re-mesh request and one frame, FPS > 0.
+# bound), at least one re-mesh request and one frame, FPS > 0, and the picture
+# left by the stroke's partial redraws compared with the scene drawn whole (the
+# editor exits 1 if it differs by more than multisampled edges allow).
 string(TIMESTAMP t0 "%s" UTC)
 execute_process(COMMAND "${EDITOR}" ${ARGS} RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
 string(TIMESTAMP t1 "%s" UTC)
@@ -25,6 +27,9 @@ if (NOT out MATCHES "frames with new meshes: ([0-9]+) in [0-9.]+ s, ([0-9.]+) fp
 endif ()
 set(frames ${CMAKE_MATCH_1})
 set(fps ${CMAKE_MATCH_2})
+if (NOT out MATCHES "the picture after the stroke (equals|differs from) the scene drawn whole")
+  message(FATAL_ERROR "the check of the picture after the stroke is missing")
+endif ()
 if (NOT out MATCHES "not representative of a GPU")
   message(FATAL_ERROR "the software-OpenGL caveat is missing")
 endif ()

@@ -1,9 +1,13 @@
 // Non-rendering checks of the chunk pipeline: vtkCornerColorAttributes
 // against the input arrays recomputed in double, and the actor manager's
-// bookkeeping (only the replaced chunk's mapper gets a new input).
+// bookkeeping (only the replaced chunk's mapper gets a new input), and the
+// changed-triangle bounds against a brute-force triangle comparison.
 #include "ChunkTestData.h"
 
 #include "vtkActor.h"
+#include "vtkBoundingBox.h"
+#include "vtkCellData.h"
+#include "vtkPointData.h"
 #include "vtkCallbackCommand.h"
 #include "vtkChunkActorManager.h"
 #include "vtkCornerColorAttributes.h"
@@ -13,6 +17,9 @@
 #include "vtkTetrahedralColorMapper.h"
 
 #include <gtest/gtest.h>
+
+#include <algorithm>
+#include <vector>
 
 using namespace lvdiftest;
 
@@ -168,4 +175,158 @@ TEST(ChunkActorManager, PlainMeshesKeepTheirPoints)
   auto* mapper = vtkTetrahedralColorMapper::SafeDownCast(mgr->GetChunkActor(0)->GetMapper());
   ASSERT_NE(mapper, nullptr);
   EXPECT_EQ(mapper->GetInput()->GetNumberOfPoints(), mesh->GetNumberOfPoints());
+}
+
+namespace
+{
+// The same triangles in another order, each starting at another vertex, the
+// points renumbered (reversed): the same surface as drawn.
+vtkSmartPointer<vtkPolyData> shuffled(vtkPolyData* in)
+{
+  const vtkIdType np = in->GetNumberOfPoints(), nt = in->GetNumberOfPolys();
+  auto out = vtkSmartPointer<vtkPolyData>::New();
+  vtkNew<vtkPoints> pts;
+  pts->SetNumberOfPoints(np);
+  out->GetPointData()->CopyAllocate(in->GetPointData(), np);
+  for (vtkIdType p = 0; p < np; ++p)
+  {
+    pts->SetPoint(np - 1 - p, in->GetPoint(p));
+    out->GetPointData()->CopyData(in->GetPointData(), p, np - 1 - p);
+  }
+  out->SetPoints(pts);
+  vtkNew<vtkCellArray> polys;
+  out->GetCellData()->CopyAllocate(in->GetCellData(), nt);
+  for (vtkIdType k = 0; k < nt; ++k)
+  {
+    const vtkIdType t = (k * 7919) % nt; // nt is not a multiple of the prime
+    vtkIdType n;
+    const vtkIdType* ids;
+    in->GetCellPoints(t, n, ids);
+    const vtkIdType r[3] = { np - 1 - ids[(k + 1) % 3], np - 1 - ids[(k + 2) % 3], np - 1 - ids[k % 3] };
+    polys->InsertNextCell(3, r);
+    out->GetCellData()->CopyData(in->GetCellData(), t, k);
+  }
+  out->SetPolys(polys);
+  return out;
+}
+
+// Brute force: whether triangle t of a has an equal in b (every point value
+// and cell value compared, each rotation of b's triangle tried).
+bool hasEqual(vtkPolyData* a, vtkIdType t, vtkPolyData* b)
+{
+  auto pointValues = [](vtkPolyData* pd, vtkIdType p) {
+    std::vector<double> v(3);
+    pd->GetPoint(p, v.data());
+    for (int i = 0; i < pd->GetPointData()->GetNumberOfArrays(); ++i)
+    {
+      vtkDataArray* arr = pd->GetPointData()->GetArray(i);
+      for (int c = 0; c < arr->GetNumberOfComponents(); ++c)
+        v.push_back(arr->GetComponent(p, c));
+    }
+    return v;
+  };
+  auto cellValues = [](vtkPolyData* pd, vtkIdType c) {
+    std::vector<double> v;
+    for (int i = 0; i < pd->GetCellData()->GetNumberOfArrays(); ++i)
+    {
+      vtkDataArray* arr = pd->GetCellData()->GetArray(i);
+      for (int k = 0; k < arr->GetNumberOfComponents(); ++k)
+        v.push_back(arr->GetComponent(c, k));
+    }
+    return v;
+  };
+  vtkIdType n;
+  const vtkIdType* ia;
+  a->GetCellPoints(t, n, ia);
+  const auto ca = cellValues(a, t);
+  for (vtkIdType u = 0; u < b->GetNumberOfPolys(); ++u)
+  {
+    const vtkIdType* ib;
+    b->GetCellPoints(u, n, ib);
+    if (cellValues(b, u) != ca)
+      continue;
+    for (int r = 0; r < 3; ++r)
+    {
+      bool same = true;
+      for (int v = 0; v < 3 && same; ++v)
+        same = pointValues(a, ia[v]) == pointValues(b, ib[(v + r) % 3]);
+      if (same)
+        return true;
+    }
+  }
+  return false;
+}
+
+void expectBruteForceBounds(vtkPolyData* before, vtkPolyData* after)
+{
+  vtkBoundingBox expected;
+  for (vtkPolyData* pd : { before, after })
+  {
+    vtkPolyData* other = pd == before ? after : before;
+    for (vtkIdType t = 0; t < pd->GetNumberOfPolys(); ++t)
+      if (!hasEqual(pd, t, other))
+      {
+        vtkIdType n;
+        const vtkIdType* ids;
+        pd->GetCellPoints(t, n, ids);
+        for (int v = 0; v < 3; ++v)
+          expected.AddPoint(pd->GetPoint(ids[v]));
+      }
+  }
+  double b[6];
+  const bool changed = vtkChunkActorManager::ChangedBounds(before, after, b);
+  ASSERT_EQ(changed, expected.IsValid());
+  if (changed)
+  {
+    double e[6];
+    expected.GetBounds(e);
+    for (int i = 0; i < 6; ++i)
+      EXPECT_EQ(b[i], e[i]) << "bound " << i;
+  }
+}
+} // namespace
+
+TEST(ChunkActorManager, ChangedBoundsAreThoseOfTheDifferingTriangles)
+{
+  const int n = 16;
+  const double c = 0.5 * (n - 1);
+  auto sphere = [=](double x, double y, double z) {
+    return std::sqrt((x - c) * (x - c) + (y - c) * (y - c) + (z - c) * (z - c)) - 0.33 * n;
+  };
+  auto before = contractMesh(sdfImage(n, sphere), checkerColor);
+  // a dent on the +x side
+  auto dented = contractMesh(sdfImage(n, [=](double x, double y, double z) {
+    const double d = std::sqrt((x - c - 0.33 * n) * (x - c - 0.33 * n) + (y - c) * (y - c) + (z - c) * (z - c));
+    return std::max(sphere(x, y, z), 2.5 - d);
+  }), checkerColor);
+  SCOPED_TRACE("dent");
+  expectBruteForceBounds(before, dented);
+  double b[6];
+  ASSERT_TRUE(vtkChunkActorManager::ChangedBounds(before, dented, b));
+  EXPECT_GT(b[0], c); // only around the dent
+  // The same triangles, reordered and renumbered: nothing changed.
+  auto same = shuffled(before);
+  EXPECT_FALSE(vtkChunkActorManager::ChangedBounds(before, same, b));
+  expectBruteForceBounds(before, same);
+  // One triangle's corner colour changed: that triangle alone.
+  auto painted = vtkSmartPointer<vtkPolyData>::New();
+  painted->DeepCopy(same);
+  painted->GetCellData()->GetArray("corner_rgba")->SetComponent(5, 7, 1);
+  expectBruteForceBounds(before, painted);
+  ASSERT_TRUE(vtkChunkActorManager::ChangedBounds(before, painted, b));
+  vtkIdType np;
+  const vtkIdType* ids;
+  painted->GetCellPoints(5, np, ids);
+  vtkBoundingBox tri;
+  for (int v = 0; v < 3; ++v)
+    tri.AddPoint(painted->GetPoint(ids[v]));
+  double e[6];
+  tri.GetBounds(e);
+  for (int i = 0; i < 6; ++i)
+    EXPECT_EQ(b[i], e[i]);
+  // Nothing before: the whole new mesh.
+  vtkNew<vtkPolyData> empty;
+  ASSERT_TRUE(vtkChunkActorManager::ChangedBounds(empty, before, b));
+  for (int i = 0; i < 6; ++i)
+    EXPECT_EQ(b[i], before->GetBounds()[i]);
 }

@@ -1,0 +1,442 @@
+#include "vtkPartialRedrawCuller.h"
+
+#include "vtkActor.h"
+#include "vtkCallbackCommand.h"
+#include "vtkCamera.h"
+#include "vtkLight.h"
+#include "vtkLightCollection.h"
+#include "vtkMapper.h"
+#include "vtkMath.h"
+#include "vtkDataObject.h"
+#include "vtkMatrix4x4.h"
+#include "vtkObjectFactory.h"
+#include "vtkProp.h"
+#include "vtkPropCollection.h"
+#include "vtkProperty.h"
+#include "vtkRect.h"
+#include "vtkRenderWindow.h"
+#include "vtkRenderer.h"
+#include "vtkTexture.h"
+#include "vtkWeakPointer.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <unordered_map>
+#include <vector>
+
+vtkStandardNewMacro(vtkPartialRedrawCuller);
+
+namespace
+{
+// Window pixels, half-open: [x0, x1) x [y0, y1); empty when x0 >= x1 or y0 >= y1.
+struct Rect
+{
+  int x0 = 0, y0 = 0, x1 = 0, y1 = 0;
+  bool empty() const { return x0 >= x1 || y0 >= y1; }
+  long long area() const { return empty() ? 0 : static_cast<long long>(x1 - x0) * (y1 - y0); }
+  void unite(const Rect& o)
+  {
+    if (o.empty())
+    {
+      return;
+    }
+    if (this->empty())
+    {
+      *this = o;
+      return;
+    }
+    x0 = std::min(x0, o.x0);
+    y0 = std::min(y0, o.y0);
+    x1 = std::max(x1, o.x1);
+    y1 = std::max(y1, o.y1);
+  }
+  bool meets(const Rect& o) const
+  {
+    return !empty() && !o.empty() && x0 < o.x1 && o.x0 < x1 && y0 < o.y1 && o.y0 < y1;
+  }
+};
+
+// Lines and points are drawn a little wider than the geometry's projection.
+constexpr int Pad = 3;
+
+std::uint64_t mix(std::uint64_t h, std::uint64_t v)
+{
+  // FNV-1a over the value's bytes
+  for (int i = 0; i < 8; ++i)
+  {
+    h ^= (v >> (8 * i)) & 0xff;
+    h *= 1099511628211ull;
+  }
+  return h;
+}
+} // namespace
+
+struct vtkPartialRedrawCuller::Internals
+{
+  struct Drawn
+  {
+    Rect rect;
+    std::uint64_t signature = 0;
+  };
+  vtkWeakPointer<vtkRenderer> Renderer;
+  unsigned long StartObserver = 0;
+  unsigned long FramesStarted = 0; // the renderer's StartEvents
+  unsigned long FramesCulled = 0;  // FramesStarted at the last Cull
+  bool Valid = false;              // the framebuffer holds the frame recorded below
+  std::vector<double> ViewKey;
+  std::unordered_map<vtkProp*, Drawn> Props;
+  struct Declared
+  {
+    std::uint64_t first = 0;  // signature before the first BeginChange
+    std::uint64_t after = 0;  // signature after the last EndChange
+    bool chained = true;      // nothing changed between one EndChange and the next BeginChange
+    bool open = false;        // BeginChange without EndChange yet
+    double box[6] = { VTK_DOUBLE_MAX, -VTK_DOUBLE_MAX, VTK_DOUBLE_MAX, -VTK_DOUBLE_MAX, VTK_DOUBLE_MAX, -VTK_DOUBLE_MAX };
+  };
+  std::unordered_map<vtkProp*, Declared> Changes;
+  vtkNew<vtkPropCollection> Actors; // scratch
+
+  void Attach(vtkRenderer* ren)
+  {
+    this->Detach();
+    this->Renderer = ren;
+    vtkNew<vtkCallbackCommand> cb;
+    cb->SetClientData(this);
+    cb->SetCallback([](vtkObject*, unsigned long, void* cd, void*) { ++static_cast<Internals*>(cd)->FramesStarted; });
+    this->StartObserver = ren->AddObserver(vtkCommand::StartEvent, cb);
+    this->FramesStarted = 1; // this frame's StartEvent came before the observer
+    this->FramesCulled = 0;
+    this->Valid = false;
+  }
+  void Detach()
+  {
+    if (this->Renderer && this->StartObserver)
+    {
+      this->Renderer->RemoveObserver(this->StartObserver);
+    }
+    this->Renderer = nullptr;
+    this->StartObserver = 0;
+    this->Valid = false;
+    this->Props.clear();
+  }
+
+  // Everything outside the props that decides the picture: window, viewport,
+  // camera matrices, renderer settings and lights.
+  std::vector<double> MakeViewKey(vtkRenderer* ren)
+  {
+    std::vector<double> k;
+    vtkRenderWindow* win = ren->GetRenderWindow();
+    k.push_back(static_cast<double>(reinterpret_cast<std::uintptr_t>(win)));
+    const int* size = win->GetSize();
+    k.push_back(size[0]);
+    k.push_back(size[1]);
+    double tile[4];
+    win->GetTileViewport(tile);
+    k.insert(k.end(), tile, tile + 4);
+    const double* vp = ren->GetViewport();
+    k.insert(k.end(), vp, vp + 4);
+    int w = 0, h = 0, x = 0, y = 0;
+    ren->GetTiledSizeAndOrigin(&w, &h, &x, &y);
+    k.insert(k.end(), { double(w), double(h), double(x), double(y) });
+    vtkCamera* cam = ren->GetActiveCamera();
+    vtkMatrix4x4* m = cam->GetCompositeProjectionTransformMatrix(ren->GetTiledAspectRatio(), -1, 1);
+    k.insert(k.end(), &m->Element[0][0], &m->Element[0][0] + 16);
+    m = cam->GetViewTransformMatrix();
+    k.insert(k.end(), &m->Element[0][0], &m->Element[0][0] + 16);
+    // the renderer's own settings (its GetMTime includes the camera's, which
+    // the one-shot scissor below modifies)
+    k.push_back(static_cast<double>(ren->vtkObject::GetMTime()));
+    vtkLightCollection* lights = ren->GetLights();
+    vtkCollectionSimpleIterator it;
+    lights->InitTraversal(it);
+    while (vtkLight* l = lights->GetNextLight(it))
+    {
+      k.push_back(static_cast<double>(l->GetMTime()));
+    }
+    return k;
+  }
+
+  // What the prop draws depends on: its own and its actors' modification
+  // times (an actor's includes its mapper and the mapper's input),
+  // visibility, properties and textures.
+  std::uint64_t Signature(vtkProp* p)
+  {
+    std::uint64_t h = 1469598103934665603ull;
+    h = mix(h, p->GetRedrawMTime());
+    h = mix(h, p->GetMTime());
+    this->Actors->RemoveAllItems();
+    p->GetActors(this->Actors);
+    vtkCollectionSimpleIterator it;
+    this->Actors->InitTraversal(it);
+    while (vtkProp* q = this->Actors->GetNextProp(it))
+    {
+      auto* a = vtkActor::SafeDownCast(q);
+      vtkMapper* mapper = a ? a->GetMapper() : nullptr;
+      if (mapper && mapper->GetStatic())
+      {
+        // a static mapper's input is up to date by contract: its redraw time
+        // without the pipeline update that GetRedrawMTime makes
+        vtkDataObject* input = mapper->GetNumberOfInputConnections(0) ? mapper->GetInputDataObject(0, 0) : nullptr;
+        h = mix(h, std::max(mapper->GetMTime(), input ? input->GetMTime() : 0));
+      }
+      else
+      {
+        h = mix(h, q->GetRedrawMTime());
+      }
+      h = mix(h, q->GetMTime());
+      h = mix(h, q->GetVisibility());
+      if (a)
+      {
+        h = mix(h, a->GetProperty() ? a->GetProperty()->GetMTime() : 0);
+        h = mix(h, a->GetBackfaceProperty() ? a->GetBackfaceProperty()->GetMTime() : 0);
+        h = mix(h, a->GetTexture() ? a->GetTexture()->GetMTime() : 0);
+      }
+    }
+    return h;
+  }
+};
+
+vtkPartialRedrawCuller::vtkPartialRedrawCuller()
+  : Internal(new Internals)
+{
+}
+
+vtkPartialRedrawCuller::~vtkPartialRedrawCuller()
+{
+  this->Internal->Detach();
+}
+
+void vtkPartialRedrawCuller::BeginChange(vtkProp* prop)
+{
+  if (!this->Enabled || !prop)
+  {
+    return;
+  }
+  const std::uint64_t sig = this->Internal->Signature(prop);
+  auto it = this->Internal->Changes.find(prop);
+  if (it == this->Internal->Changes.end())
+  {
+    Internals::Declared d;
+    d.first = sig;
+    d.open = true;
+    this->Internal->Changes.emplace(prop, d);
+    return;
+  }
+  it->second.chained = it->second.chained && !it->second.open && sig == it->second.after;
+  it->second.open = true;
+}
+
+void vtkPartialRedrawCuller::EndChange(vtkProp* prop, const double bounds[6])
+{
+  auto it = prop ? this->Internal->Changes.find(prop) : this->Internal->Changes.end();
+  if (it == this->Internal->Changes.end())
+  {
+    return;
+  }
+  Internals::Declared& d = it->second;
+  d.chained = d.chained && d.open;
+  d.open = false;
+  d.after = this->Internal->Signature(prop);
+  if (bounds && vtkMath::AreBoundsInitialized(bounds) && bounds[0] <= bounds[1] && bounds[2] <= bounds[3] &&
+    bounds[4] <= bounds[5])
+  {
+    for (int a = 0; a < 3; ++a)
+    {
+      d.box[2 * a] = std::min(d.box[2 * a], bounds[2 * a]);
+      d.box[2 * a + 1] = std::max(d.box[2 * a + 1], bounds[2 * a + 1]);
+    }
+  }
+}
+
+bool vtkPartialRedrawCuller::GetLastFramePartial(int damage[4])
+{
+  const Internals& in = *this->Internal;
+  if (!this->Enabled || !this->LastPartial || !in.Renderer || in.FramesCulled != in.FramesStarted)
+  {
+    return false;
+  }
+  std::copy(this->LastDamage, this->LastDamage + 4, damage);
+  return true;
+}
+
+void vtkPartialRedrawCuller::SetEnabled(bool enabled)
+{
+  if (enabled == this->Enabled)
+  {
+    return;
+  }
+  this->Enabled = enabled;
+  this->Internal->Valid = false;
+  this->Internal->Props.clear();
+  this->Internal->Changes.clear();
+  this->Modified();
+}
+
+double vtkPartialRedrawCuller::Cull(vtkRenderer* ren, vtkProp** propList, int& listLength, int& initialized)
+{
+  Internals& in = *this->Internal;
+  auto total = [&] {
+    double t = 0;
+    for (int i = 0; i < listLength; ++i)
+    {
+      t += initialized ? propList[i]->GetRenderTimeMultiplier() : 1.0;
+    }
+    return t;
+  };
+  if (!this->Enabled)
+  {
+    this->LastNumberOfPropsDrawn = listLength;
+    return total();
+  }
+  if (ren != in.Renderer)
+  {
+    in.Attach(ren);
+  }
+
+  int vw = 0, vh = 0, vx = 0, vy = 0;
+  ren->GetTiledSizeAndOrigin(&vw, &vh, &vx, &vy);
+  const Rect viewport{ vx, vy, vx + vw, vy + vh };
+
+  // Screen rectangles of this frame's props.
+  vtkMatrix4x4* m = ren->GetActiveCamera()->GetCompositeProjectionTransformMatrix(ren->GetTiledAspectRatio(), -1, 1);
+  auto boxRect = [&](const double* b) {
+    if (!b)
+    {
+      return viewport; // 2D props and the like: assume everywhere
+    }
+    if (!vtkMath::AreBoundsInitialized(b) || b[0] > b[1] || b[2] > b[3] || b[4] > b[5])
+    {
+      return Rect{}; // draws nothing
+    }
+    double lo[2] = { VTK_DOUBLE_MAX, VTK_DOUBLE_MAX }, hi[2] = { -VTK_DOUBLE_MAX, -VTK_DOUBLE_MAX };
+    for (int c = 0; c < 8; ++c)
+    {
+      const double p4[4] = { b[c & 1], b[2 + ((c >> 1) & 1)], b[4 + ((c >> 2) & 1)], 1.0 };
+      double q[4];
+      m->MultiplyPoint(p4, q);
+      if (!(q[3] > 1e-12))
+      {
+        return viewport; // reaches behind the eye: the projection does not bound it
+      }
+      for (int a = 0; a < 2; ++a)
+      {
+        const double d = (q[a] / q[3] + 1.0) * 0.5 * (a == 0 ? vw : vh) + (a == 0 ? vx : vy);
+        lo[a] = std::min(lo[a], d);
+        hi[a] = std::max(hi[a], d);
+      }
+    }
+    auto clampTo = [](double v, int a, int z) { return static_cast<int>(std::max<double>(a, std::min<double>(z, v))); };
+    Rect r;
+    r.x0 = clampTo(std::floor(lo[0]) - Pad, viewport.x0, viewport.x1);
+    r.y0 = clampTo(std::floor(lo[1]) - Pad, viewport.y0, viewport.y1);
+    r.x1 = clampTo(std::ceil(hi[0]) + 1 + Pad, viewport.x0, viewport.x1);
+    r.y1 = clampTo(std::ceil(hi[1]) + 1 + Pad, viewport.y0, viewport.y1);
+    return r;
+  };
+  auto screenRect = [&](vtkProp* p) { return boxRect(p->GetBounds()); };
+
+  std::unordered_map<vtkProp*, Internals::Drawn> now;
+  now.reserve(static_cast<std::size_t>(listLength));
+  Rect damage;
+  for (int i = 0; i < listLength; ++i)
+  {
+    vtkProp* p = propList[i];
+    Internals::Drawn d{ screenRect(p), in.Signature(p) };
+    auto old = in.Props.find(p);
+    if (old == in.Props.end())
+    {
+      damage.unite(d.rect); // new, or shown again
+    }
+    else
+    {
+      auto declared = in.Changes.find(p);
+      if (declared != in.Changes.end() && declared->second.chained && !declared->second.open &&
+        declared->second.first == old->second.signature && declared->second.after == d.signature)
+      {
+        damage.unite(boxRect(declared->second.box)); // only the declared box differs
+      }
+      else if (old->second.signature != d.signature ||
+        !(old->second.rect.x0 == d.rect.x0 && old->second.rect.y0 == d.rect.y0 && old->second.rect.x1 == d.rect.x1 &&
+          old->second.rect.y1 == d.rect.y1))
+      {
+        damage.unite(old->second.rect);
+        damage.unite(d.rect);
+      }
+      in.Props.erase(old);
+    }
+    now.emplace(p, d);
+  }
+  for (const auto& gone : in.Props) // removed, hidden or culled since the last frame
+  {
+    damage.unite(gone.second.rect);
+  }
+
+  std::vector<double> key = in.MakeViewKey(ren);
+  bool full = !in.Valid || this->FullRedrawRequested || key != in.ViewKey || ren->GetSelector() != nullptr ||
+    in.FramesStarted != in.FramesCulled + 1 ||
+    static_cast<double>(damage.area()) > this->MaximumDamageFraction * static_cast<double>(viewport.area());
+
+  int kept = listLength;
+  if (!full)
+  {
+    // Keep, in order, the props that cover the damage.
+    std::vector<vtkProp*> drawn;
+    for (int i = 0; i < listLength && !full; ++i)
+    {
+      if (now[propList[i]].rect.meets(damage))
+      {
+        drawn.push_back(propList[i]);
+        full = propList[i]->HasTranslucentPolygonalGeometry() != 0; // blended passes read the whole frame
+      }
+    }
+    if (!full)
+    {
+      kept = static_cast<int>(drawn.size());
+      std::copy(drawn.begin(), drawn.end(), propList);
+      vtkCamera* cam = ren->GetActiveCamera();
+      cam->SetScissorRect(damage.empty()
+          ? vtkRecti(viewport.x0, viewport.y0, 0, 0)
+          : vtkRecti(damage.x0, damage.y0, damage.x1 - damage.x0, damage.y1 - damage.y0));
+      cam->SetUseScissor(true); // one-shot: vtkOpenGLCamera::Render clears and draws inside it
+    }
+  }
+
+  // This frame, as it will be on screen: the next one is compared with it.
+  in.Props.swap(now);
+  in.Changes.clear();
+  in.ViewKey.swap(key);
+  in.Valid = ren->GetSelector() == nullptr; // a selection pass draws ids, not the picture
+  in.FramesCulled = in.FramesStarted;
+  this->FullRedrawRequested = false;
+  this->LastPartial = !full;
+  if (full)
+  {
+    ++this->NumberOfFullRedraws;
+    this->LastDamage[0] = viewport.x0;
+    this->LastDamage[1] = viewport.y0;
+    this->LastDamage[2] = vw;
+    this->LastDamage[3] = vh;
+  }
+  else
+  {
+    ++this->NumberOfPartialRedraws;
+    this->LastDamage[0] = damage.x0;
+    this->LastDamage[1] = damage.y0;
+    this->LastDamage[2] = damage.empty() ? 0 : damage.x1 - damage.x0;
+    this->LastDamage[3] = damage.empty() ? 0 : damage.y1 - damage.y0;
+  }
+  listLength = kept;
+  this->LastNumberOfPropsDrawn = kept;
+  return total();
+}
+
+void vtkPartialRedrawCuller::PrintSelf(ostream& os, vtkIndent indent)
+{
+  this->Superclass::PrintSelf(os, indent);
+  os << indent << "Enabled: " << this->Enabled << "\n";
+  os << indent << "MaximumDamageFraction: " << this->MaximumDamageFraction << "\n";
+  os << indent << "NumberOfFullRedraws: " << this->NumberOfFullRedraws << "\n";
+  os << indent << "NumberOfPartialRedraws: " << this->NumberOfPartialRedraws << "\n";
+  os << indent << "LastNumberOfPropsDrawn: " << this->LastNumberOfPropsDrawn << "\n";
+}
