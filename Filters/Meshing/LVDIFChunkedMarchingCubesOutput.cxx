@@ -12,6 +12,7 @@
 #include "vtkPolyData.h"
 #include "vtkUnsignedCharArray.h"
 
+#include <algorithm>
 #include <cstring>
 #include <functional>
 #include <unordered_map>
@@ -224,26 +225,37 @@ vtkSmartPointer<vtkPolyData> MergeChunks(const std::vector<lvdif::ChunkMesh>& me
 vtkSmartPointer<vtkPolyData> MergeBatches(
   const std::function<std::vector<lvdif::ChunkMesh>(std::size_t, int)>& batch, std::size_t batches, const Context& ctx)
 {
-  // pass 1: count the points off the chunk faces and collect the face points' edge ids
-  std::unordered_map<std::uint64_t, vtkIdType> shared;
+  // pass 1: count the points off the chunk faces and collect the face points'
+  // edge ids, sorted and unique (16 bytes a face point with their ids below; a
+  // hash map took about 40, and it is held while the output is filled)
+  std::vector<std::uint64_t> faces, mine;
   vtkIdType inner = 0, nt = 0;
   for (std::size_t b = 0; b < batches; ++b)
   {
+    mine.clear();
     for (const lvdif::ChunkMesh& m : batch(b, 0))
     {
       for (std::size_t i = 0; i < m.points.size(); ++i)
       {
         if (onChunkFace(m.edgeIds[i], m.cells, ctx.gridDims))
-          shared.emplace(m.edgeIds[i], -1);
+          mine.push_back(m.edgeIds[i]);
         else
           ++inner;
       }
       nt += static_cast<vtkIdType>(m.triangles.size());
     }
+    std::sort(mine.begin(), mine.end());
+    mine.erase(std::unique(mine.begin(), mine.end()), mine.end());
+    faces.insert(faces.end(), mine.begin(), mine.end()); // a point on a batch's border comes twice
   }
+  std::vector<std::uint64_t>().swap(mine);
+  std::sort(faces.begin(), faces.end());
+  faces.erase(std::unique(faces.begin(), faces.end()), faces.end());
+  faces.shrink_to_fit();
+  std::vector<vtkIdType> faceIds(faces.size(), -1);
   // pass 2: the same batches again, numbered on the fly (a face point takes an
   // id when first met), so nothing depends on the order chunks come in
-  Arrays a(ctx, inner + static_cast<vtkIdType>(shared.size()), nt);
+  Arrays a(ctx, inner + static_cast<vtkIdType>(faces.size()), nt);
   vtkIdType np = 0, t0 = 0;
   std::vector<vtkIdType> r;
   for (std::size_t b = 0; b < batches; ++b)
@@ -255,7 +267,8 @@ vtkSmartPointer<vtkPolyData> MergeBatches(
       {
         if (onChunkFace(m.edgeIds[i], m.cells, ctx.gridDims))
         {
-          vtkIdType& id = shared[m.edgeIds[i]];
+          const auto at = std::lower_bound(faces.begin(), faces.end(), m.edgeIds[i]);
+          vtkIdType& id = faceIds[static_cast<std::size_t>(at - faces.begin())];
           if (id < 0)
           {
             id = np++;

@@ -40,7 +40,9 @@ vtkSmartPointer<vtkPolyData> MergeChunks(const std::vector<lvdif::ChunkMesh>& me
 /// The same merge over chunk meshes made batch by batch, so only one batch
 /// is held at a time: batch(b, pass) returns batch b's meshes and is called
 /// twice for every batch (pass 0 counts, pass 1 fills the arrays, allocated
-/// once at their final size). For volumes far larger than their surface.
+/// once at their final size). For volumes far larger than their surface:
+/// the face points' edge ids are kept in a sorted array (16 bytes a point
+/// with their ids), which is held while the output is filled.
 vtkSmartPointer<vtkPolyData> MergeBatches(
   const std::function<std::vector<lvdif::ChunkMesh>(std::size_t, int)>& batch, std::size_t batches,
   const Context& ctx);

@@ -17,15 +17,10 @@
 #include "vtkObjectFactory.h"
 #include "vtkPointData.h"
 #include "vtkSmartPointer.h"
-#include "vtkWeakPointer.h"
 
 #include <algorithm>
-#include <array>
 #include <functional>
-#include <iterator>
-#include <mutex>
 #include <string>
-#include <unordered_map>
 #include <vector>
 
 vtkStandardNewMacro(vtkSparseDictionaryVolume);
@@ -104,6 +99,7 @@ void vtkSparseDictionaryVolume::SetVolume(std::shared_ptr<lvdif::DictionaryVolum
   this->Superclass::Initialize();
   this->Volume = std::move(volume);
   this->PartitionsBuilt = false;
+  this->PartitionChunks.clear();
   this->OwnsAll = true;
   this->Modified();
 }
@@ -133,6 +129,7 @@ void vtkSparseDictionaryVolume::VolumeModified()
 {
   this->Superclass::SetNumberOfPartitions(0);
   this->PartitionsBuilt = false;
+  this->PartitionChunks.clear();
   this->Modified();
 }
 
@@ -209,109 +206,8 @@ void addChunkFields(const lvdif::DictionaryVolume& v, std::int64_t id, vtkImageD
   image->GetFieldData()->AddArray(ijk);
 }
 
-/// A partition without its point arrays: extent, origin, spacing and the chunk's field data.
-vtkSmartPointer<vtkImageData> partitionShell(const lvdif::DictionaryVolume& v, std::int64_t id)
-{
-  const lvdif::VoxelBox b = partitionBox(v, id);
-  const auto& o = v.options();
-  auto image = vtkSmartPointer<vtkImageData>::New();
-  image->SetExtent(static_cast<int>(b.lo[0]), static_cast<int>(b.hi[0]), static_cast<int>(b.lo[1]),
-    static_cast<int>(b.hi[1]), static_cast<int>(b.lo[2]), static_cast<int>(b.hi[2]));
-  image->SetOrigin(o.origin[0], o.origin[1], o.origin[2]);
-  image->SetSpacing(o.spacing[0], o.spacing[1], o.spacing[2]);
-  addChunkFields(v, id, image);
-  return image;
-}
-
-/// Shells depend on the grid alone (extent, origin, spacing, the chunk's
-/// field data; the values come from the volume that decodes them), so the
-/// volumes of one grid share them: ParaView holds every output of a chain
-/// (Mesh To SDF's and the sign filters' volumes have nearly the same
-/// partitions), and a vtkImageData costs about 8 KiB in VTK 9.2 even without
-/// arrays. The cache holds weak references: a shell lives while a volume holds it.
-class ShellCache
-{
-public:
-  static ShellCache& instance()
-  {
-    static ShellCache cache;
-    return cache;
-  }
-
-  /// The shells of chunks `ids` of `v`'s grid, made where none is alive.
-  std::vector<vtkSmartPointer<vtkImageData>> get(const lvdif::DictionaryVolume& v, const std::vector<std::int64_t>& ids)
-  {
-    const lvdif::VolumeOptions& o = v.options();
-    Key k;
-    k.geometry = { o.origin[0], o.origin[1], o.origin[2], o.spacing[0], o.spacing[1], o.spacing[2] };
-    k.dims = o.dims;
-    k.edge = o.chunkEdge;
-    std::vector<vtkSmartPointer<vtkImageData>> out(ids.size());
-    std::lock_guard<std::mutex> lock(this->Mutex);
-    if (this->Map.size() > this->SweepAt)
-    {
-      for (auto it = this->Map.begin(); it != this->Map.end();)
-        it = it->second ? std::next(it) : this->Map.erase(it);
-      this->SweepAt = 2 * this->Map.size() + 4096;
-    }
-    for (std::size_t i = 0; i < ids.size(); ++i)
-    {
-      k.id = ids[i];
-      vtkWeakPointer<vtkImageData>& slot = this->Map[k];
-      out[i] = slot.GetPointer();
-      if (!out[i])
-      {
-        out[i] = partitionShell(v, ids[i]);
-        slot = out[i];
-      }
-    }
-    return out;
-  }
-
-private:
-  struct Key
-  {
-    std::array<double, 6> geometry;
-    lvdif::Index3 dims;
-    int edge;
-    std::int64_t id;
-    bool operator==(const Key& o) const
-    {
-      return geometry == o.geometry && dims == o.dims && edge == o.edge && id == o.id;
-    }
-  };
-  struct Hash
-  {
-    std::size_t operator()(const Key& k) const
-    {
-      std::size_t h = std::hash<std::int64_t>()(k.id);
-      auto mix = [&h](std::size_t x) { h ^= x + 0x9e3779b97f4a7c15ull + (h << 6) + (h >> 2); };
-      for (double g : k.geometry) mix(std::hash<double>()(g));
-      for (std::int64_t d : k.dims) mix(std::hash<std::int64_t>()(d));
-      mix(static_cast<std::size_t>(k.edge));
-      return h;
-    }
-  };
-  std::mutex Mutex;
-  std::unordered_map<Key, vtkWeakPointer<vtkImageData>, Hash> Map;
-  std::size_t SweepAt = 4096;
-};
-
-/// The chunk id of a shell made by partitionShell, or -1 when `leaf` is not one
-/// (it has point arrays already, or is not an image of ours).
-std::int64_t shellChunk(vtkDataObject* leaf)
-{
-  auto* image = vtkImageData::SafeDownCast(leaf);
-  if (!image || image->GetPointData()->GetNumberOfArrays() != 0) return -1;
-  auto* id = vtkIdTypeArray::SafeDownCast(image->GetFieldData()->GetArray("chunk_id"));
-  return id && id->GetNumberOfTuples() == 1 ? static_cast<std::int64_t>(id->GetValue(0)) : -1;
-}
-
-/// The shell's partition with its decoded point arrays, decoded by the
-/// bridge's one FillImage (which checks the memory guard). Its field arrays
-/// are its own, not the shell's: ParaView's data information caches every
-/// array's range in the array (about 2.5 KiB a component), which would stay
-/// with the shells for good (85 MiB for two 1024^3 outputs of the bunny).
+/// Chunk `id`'s partition with its decoded point arrays and field data, made
+/// by the bridge's one FillImage (which checks the memory guard).
 vtkSmartPointer<vtkImageData> fillPartition(const lvdif::DictionaryVolume& v, std::int64_t id, bool colors)
 {
   const lvdif::VoxelBox b = partitionBox(v, id);
@@ -328,30 +224,49 @@ vtkSmartPointer<vtkImageData> fillPartition(const lvdif::DictionaryVolume& v, st
   return image;
 }
 
-/// The iterator of the sparse volume: a shell it visits is handed out decoded,
-/// and only while the iterator stands on it (the next step releases it unless
-/// the consumer kept a reference). So ParaView's data information, the outline
-/// and a per-partition filter hold one decoded partition at a time.
+/// The iterator of the sparse volume: an empty leaf of a volume (a partition
+/// not decoded for good) is handed out decoded, and only while the iterator
+/// stands on it (the next step releases it unless the consumer kept a
+/// reference). So ParaView's data information, the outline and a
+/// per-partition filter hold one decoded partition at a time. The empty
+/// leaves are visited even when the consumer asks to skip empty nodes: they
+/// are partitions, only not held.
 class vtkSparseDictionaryVolumeIterator : public vtkDataObjectTreeIterator
 {
 public:
   static vtkSparseDictionaryVolumeIterator* New();
   vtkTypeMacro(vtkSparseDictionaryVolumeIterator, vtkDataObjectTreeIterator);
 
-  vtkDataObject* GetCurrentDataObject() override
+  void SetSkipEmptyNodes(vtkTypeBool skip) override
   {
-    return this->Decoded(
-      this->Superclass::GetCurrentDataObject(), vtkSparseDictionaryVolume::SafeDownCast(this->GetDataSet()));
+    this->WantSkip = skip != 0;
+    this->ApplySkip();
   }
 
-  /// `leaf` decoded when it is a shell of `owner` (held until the next leaf), else `leaf`.
-  vtkDataObject* Decoded(vtkDataObject* leaf, vtkSparseDictionaryVolume* owner)
+  void GoToFirstItem() override
   {
-    const std::int64_t id = shellChunk(leaf);
-    if (id < 0 || !owner || !owner->HasVolume()) return leaf;
-    if (this->Shell != leaf)
+    this->ApplySkip();
+    this->Index = 0;
+    this->Current = nullptr;
+    this->Superclass::GoToFirstItem();
+  }
+
+  vtkDataObject* GetCurrentDataObject() override
+  {
+    return this->Decoded(this->Superclass::GetCurrentDataObject(),
+      vtkSparseDictionaryVolume::SafeDownCast(this->GetDataSet()), this->GetCurrentFlatIndex());
+  }
+
+  /// `leaf` (at `flatIndex`), decoded when it is an empty leaf of `owner`'s
+  /// volume (held until the next leaf), else `leaf`.
+  vtkDataObject* Decoded(vtkDataObject* leaf, vtkSparseDictionaryVolume* owner, unsigned int flatIndex)
+  {
+    if (leaf || !owner || !owner->HasVolume() || flatIndex < 1) return leaf;
+    const std::int64_t id = owner->GetPartitionChunk(flatIndex - 1);
+    if (id < 0) return leaf;
+    if (this->Index != flatIndex)
     {
-      this->Shell = leaf;
+      this->Index = flatIndex;
       this->Current = nullptr;
       try
       {
@@ -362,7 +277,7 @@ public:
         vtkErrorWithObjectMacro(owner, << e.what());
       }
     }
-    return this->Current ? this->Current.GetPointer() : leaf;
+    return this->Current;
   }
 
 protected:
@@ -370,7 +285,16 @@ protected:
   ~vtkSparseDictionaryVolumeIterator() override = default;
 
 private:
-  vtkDataObject* Shell = nullptr; // compared only, never dereferenced
+  /// A volume's empty leaves are its partitions: never skipped (other objects
+  /// of this class, e.g. a generic filter's output, keep the consumer's choice).
+  void ApplySkip()
+  {
+    auto* owner = vtkSparseDictionaryVolume::SafeDownCast(this->GetDataSet());
+    this->SkipEmptyNodes = this->WantSkip && !(owner && owner->HasVolume());
+  }
+
+  bool WantSkip = true;
+  unsigned int Index = 0; // flat index of Current (0: none)
   vtkSmartPointer<vtkImageData> Current;
   vtkSparseDictionaryVolumeIterator(const vtkSparseDictionaryVolumeIterator&) = delete;
   void operator=(const vtkSparseDictionaryVolumeIterator&) = delete;
@@ -381,16 +305,18 @@ vtkStandardNewMacro(vtkSparseDictionaryVolumeIterator);
 bool vtkSparseDictionaryVolume::UpdatePartitions()
 {
   if (this->PartitionsBuilt || !this->Volume) return true;
-  const lvdif::DictionaryVolume& v = *this->Volume;
-  const std::vector<std::int64_t> ids = neededPartitions(v, this->OwnsAll ? nullptr : this->Owned);
-  const std::vector<vtkSmartPointer<vtkImageData>> shells = ShellCache::instance().get(v, ids);
-  this->Superclass::SetNumberOfPartitions(static_cast<unsigned int>(ids.size()));
-  for (std::size_t i = 0; i < ids.size(); ++i)
-  {
-    this->Superclass::SetPartition(static_cast<unsigned int>(i), shells[i]);
-  }
+  // the partitions are empty leaves (16 bytes each), decoded by the iterator
+  // or by GetPartition: a vtkImageData without arrays would cost about 8 KiB
+  this->PartitionChunks = neededPartitions(*this->Volume, this->OwnsAll ? nullptr : this->Owned);
+  this->Superclass::SetNumberOfPartitions(0);
+  this->Superclass::SetNumberOfPartitions(static_cast<unsigned int>(this->PartitionChunks.size()));
   this->PartitionsBuilt = true;
   return true;
+}
+
+std::int64_t vtkSparseDictionaryVolume::GetPartitionChunk(unsigned int idx) const
+{
+  return this->Volume && this->PartitionsBuilt && idx < this->PartitionChunks.size() ? this->PartitionChunks[idx] : -1;
 }
 
 unsigned int vtkSparseDictionaryVolume::GetNumberOfPartitions()
@@ -403,8 +329,8 @@ vtkDataSet* vtkSparseDictionaryVolume::GetPartition(unsigned int idx)
 {
   this->UpdatePartitions();
   vtkDataSet* leaf = this->Superclass::GetPartition(idx);
-  const std::int64_t id = shellChunk(leaf);
-  if (id < 0 || !this->Volume) return leaf;
+  const std::int64_t id = this->GetPartitionChunk(idx);
+  if (leaf || id < 0) return leaf;
   // asked by index: decoded for good (the caller gets a pointer it does not own)
   try
   {
@@ -438,7 +364,7 @@ vtkDataObject* vtkSparseDictionaryVolume::GetDataSet(vtkCompositeDataIterator* i
   // through GetCurrentDataObject: decode through the iterator, which holds the result
   vtkDataObject* leaf = this->Superclass::GetDataSet(iter);
   auto* ours = vtkSparseDictionaryVolumeIterator::SafeDownCast(iter);
-  return ours ? ours->Decoded(leaf, this) : leaf;
+  return ours ? ours->Decoded(leaf, this, iter->GetCurrentFlatIndex()) : leaf;
 }
 
 #if VTK_MAJOR_VERSION > 9 || (VTK_MAJOR_VERSION == 9 && VTK_MINOR_VERSION >= 2)
@@ -497,6 +423,7 @@ void vtkSparseDictionaryVolume::CopyStructure(vtkCompositeDataSet* input)
   // below drops the volume then).
   this->Volume = s ? s->Volume : nullptr;
   this->PartitionsBuilt = s != nullptr && s->PartitionsBuilt;
+  this->PartitionChunks = s ? s->PartitionChunks : std::vector<std::int64_t>();
   this->OwnsAll = s ? s->OwnsAll : true;
   if (s)
   {
@@ -515,8 +442,8 @@ void vtkSparseDictionaryVolume::SetDataSet(vtkCompositeDataIterator* iter, vtkDa
   if (this->Volume && image && image->GetFieldData()->GetArray("chunk_id"))
   {
     // ParaView copies an output leaf by leaf (CopyStructure, then a shallow
-    // copy of each leaf our iterator decoded): keep a shell of a leaf that holds
-    // only our own arrays, so the copy decodes on demand as the original does
+    // copy of each leaf our iterator decoded): a leaf that holds only our own
+    // arrays stays empty, so the copy decodes on demand as the original does
     vtkPointData* pd = image->GetPointData();
     bool ours = true;
     for (int a = 0; a < pd->GetNumberOfArrays() && ours; ++a)
@@ -526,7 +453,6 @@ void vtkSparseDictionaryVolume::SetDataSet(vtkCompositeDataIterator* iter, vtkDa
     }
     if (ours && pd->GetNumberOfArrays() > 0)
     {
-      // the chunk's shell, shared with the original (see ShellCache)
       auto* id = vtkIdTypeArray::SafeDownCast(image->GetFieldData()->GetArray("chunk_id"));
       int ext[6];
       image->GetExtent(ext);
@@ -534,10 +460,11 @@ void vtkSparseDictionaryVolume::SetDataSet(vtkCompositeDataIterator* iter, vtkDa
           id->GetValue(0) < this->Volume->chunkCount()
         ? partitionBox(*this->Volume, id->GetValue(0))
         : lvdif::VoxelBox{};
-      if (!b.empty() && b.lo[0] == ext[0] && b.hi[0] == ext[1] && b.lo[1] == ext[2] && b.hi[1] == ext[3] &&
+      if (!b.empty() && id->GetValue(0) == this->GetPartitionChunk(iter->GetCurrentFlatIndex() - 1) &&
+        b.lo[0] == ext[0] && b.hi[0] == ext[1] && b.lo[1] == ext[2] && b.hi[1] == ext[3] &&
         b.lo[2] == ext[4] && b.hi[2] == ext[5])
       {
-        this->Superclass::SetDataSet(iter, ShellCache::instance().get(*this->Volume, { id->GetValue(0) })[0]);
+        this->Superclass::SetDataSet(iter, nullptr);
         return;
       }
     }
@@ -550,6 +477,7 @@ void vtkSparseDictionaryVolume::Initialize()
   this->Superclass::Initialize();
   this->Volume.reset();
   this->PartitionsBuilt = false;
+  this->PartitionChunks.clear();
   this->OwnsAll = true;
 }
 
@@ -582,6 +510,7 @@ void vtkSparseDictionaryVolume::ShareFrom(vtkDataObject* src, const std::functio
   this->Volume = s ? s->Volume : nullptr;
   this->PartitionColors = s ? s->PartitionColors : this->PartitionColors;
   this->PartitionsBuilt = s ? s->PartitionsBuilt : false;
+  this->PartitionChunks = s && s->PartitionsBuilt ? s->PartitionChunks : std::vector<std::int64_t>();
   this->OwnsAll = s ? s->OwnsAll : true;
   if (s) std::copy(s->Owned, s->Owned + 6, this->Owned);
   this->Modified();
@@ -596,6 +525,7 @@ void vtkSparseDictionaryVolume::DeepCopy(vtkDataObject* src)
     this->Superclass::DeepCopy(src);
     this->Volume.reset();
     this->PartitionsBuilt = false;
+    this->PartitionChunks.clear();
     return;
   }
   this->Superclass::SetNumberOfPartitions(0);
@@ -603,6 +533,7 @@ void vtkSparseDictionaryVolume::DeepCopy(vtkDataObject* src)
   this->Volume = s->Volume ? std::shared_ptr<lvdif::DictionaryVolume>(s->Volume->clone()) : nullptr;
   this->PartitionColors = s->PartitionColors;
   this->PartitionsBuilt = false;
+  this->PartitionChunks.clear();
   this->OwnsAll = s->OwnsAll;
   std::copy(s->Owned, s->Owned + 6, this->Owned);
   this->Modified();
@@ -617,8 +548,9 @@ unsigned long vtkSparseDictionaryVolume::GetActualMemorySize()
   }
   if (this->PartitionsBuilt)
   {
-    // the leaves as held (shells or decoded), not through this object's decoding iterator
+    // the leaves as held (those decoded for good), not through this object's decoding iterator
     kib += this->vtkDataObject::GetActualMemorySize();
+    kib += static_cast<unsigned long>(this->PartitionChunks.capacity() * sizeof(std::int64_t) / 1024);
     vtkNew<vtkDataObjectTreeIterator> it;
     it->SetDataSet(this);
     for (it->InitTraversal(); !it->IsDoneWithTraversal(); it->GoToNextItem())

@@ -23,20 +23,22 @@
  * The partitions are built lazily, on the first request through the
  * composite API (NewIterator, NewTreeIterator, GetNumberOfPartitions,
  * GetPartition, CopyStructure, ShallowCopy of this object), so a pipeline of
- * our own filters never makes them. Even then they are first shells:
- * extent, origin, spacing and field data, no point arrays (about 8 KiB each in VTK 9.2).
- * This object's iterator decodes the shell it stands on into a new image
- * (checked against lvdif's memory limit, LVDIF_MEMORY_LIMIT) and releases it
- * at the next step unless the consumer keeps a reference: ParaView's data
- * information, the outline and per-partition filters (Contour, Cutter) hold
- * one decoded partition at a time. Shells depend on the grid alone: the
- * volumes of one grid share them (ParaView's copy of an output, made with
- * CopyStructure and a shallow copy of each decoded leaf, and the outputs of
- * a chain of filters). GetPartition(i) decodes partition i for
+ * our own filters never makes them. Even then they are empty leaves (the
+ * object keeps the chunk id of each, 16 + 8 bytes a partition; a vtkImageData
+ * without arrays would cost about 8 KiB in VTK 9.2). This object's iterator
+ * decodes the leaf it stands on into a new image (checked against lvdif's
+ * memory limit, LVDIF_MEMORY_LIMIT) and releases it at the next step unless
+ * the consumer keeps a reference: ParaView's data information, the outline
+ * and per-partition filters (Contour, Cutter) hold one decoded partition at a
+ * time. The iterator visits the empty leaves even when asked to skip empty
+ * nodes (they are partitions, only not held). ParaView's copy of an output
+ * (CopyStructure and a shallow copy of each decoded leaf) keeps its leaves
+ * empty too and decodes on demand. GetPartition(i) decodes partition i for
  * good. A consumer that walks the leaves with an iterator of its own (not
- * NewIterator) sees the shells. After editing the Core volume in place, call
- * VolumeModified() (drops the partitions; the dirty flags stay in the Core
- * volume for vtkChunkedMarchingCubes' incremental update).
+ * NewIterator), or calls vtkPartitionedDataSet::GetPartition, sees empty
+ * leaves. After editing the Core volume in place, call VolumeModified()
+ * (drops the partitions; the dirty flags stay in the Core volume for
+ * vtkChunkedMarchingCubes' incremental update).
  *
  * ShallowCopy shares the Core volume; DeepCopy clones it (lvdif's clone()).
  */
@@ -50,6 +52,7 @@
 #include <cstdint>
 #include <functional>
 #include <memory>
+#include <vector>
 
 namespace lvdif
 {
@@ -105,11 +108,15 @@ public:
   void GetOwnedChunks(int box[6]) const;
   ///@}
 
-  /// Builds the partitions' shells now if they are not built (idempotent).
+  /// Builds the partitions (empty leaves) now if they are not built (idempotent).
   bool UpdatePartitions();
   bool GetPartitionsBuilt() const { return this->PartitionsBuilt; }
   /// Call after editing the Core volume in place: drops the partitions and Modified().
   void VolumeModified();
+#ifndef __VTK_WRAP__
+  /// The storage chunk of partition `idx`, or -1 (no volume, not built, out of range).
+  std::int64_t GetPartitionChunk(unsigned int idx) const;
+#endif
 
   ///@{
   /// The composite API builds the partitions first (see the class comment).
@@ -153,7 +160,7 @@ public:
   void CompositeShallowCopy(vtkCompositeDataSet* src) override;
 #endif
   void DeepCopy(vtkDataObject* src) override;
-  /// Kibibytes: the Core volume plus the partitions as held (shells unless decoded by GetPartition).
+  /// Kibibytes: the Core volume plus the partitions as held (none unless decoded by GetPartition).
   unsigned long GetActualMemorySize() override;
 
   ///@{
@@ -177,6 +184,8 @@ protected:
   bool PartitionsBuilt = false;
   bool OwnsAll = true;
   int Owned[6] = { 0, -1, 0, -1, 0, -1 };
+  /// The storage chunk of each partition (built with them).
+  std::vector<std::int64_t> PartitionChunks;
 
 private:
   vtkSparseDictionaryVolume(const vtkSparseDictionaryVolume&) = delete;

@@ -37,8 +37,9 @@ std::vector<lvdif::Voxel> voxels(const lvdif::DictionaryVolume& v)
   return out;
 }
 
-/// A sphere's sparse SDF with wrong signs: isolated voxels and a box crossing chunks.
-std::shared_ptr<lvdif::DictionaryVolume> corruptedSphere()
+/// A sphere's sparse SDF with wrong signs: a box crossing chunks and, with
+/// `scattered`, isolated voxels everywhere (then every chunk changes).
+std::shared_ptr<lvdif::DictionaryVolume> corruptedSphere(bool scattered = true)
 {
   vtkNew<vtkSphereSource> sphere;
   sphere->SetThetaResolution(48);
@@ -58,7 +59,7 @@ std::shared_ptr<lvdif::DictionaryVolume> corruptedSphere()
       {
         const float s = v->sdf(x, y, z);
         const bool box = x > 20 && x < 40 && y > 25 && y < 35 && z > 10 && z < 50;
-        if (std::fabs(s) > 3.0f && (box || (x * 7 + y * 13 + z * 29) % 97 == 0))
+        if (std::fabs(s) > 3.0f && (box || (scattered && (x * 7 + y * 13 + z * 29) % 97 == 0)))
         {
           v->setSdf(x, y, z, -s);
         }
@@ -147,4 +148,81 @@ TEST(vtkSignVoxelFilterSparse, InputUnchangedOutputEqualsTheImagePathAndSharesCh
   EXPECT_GT(changedChunks, 5);
   EXPECT_GT(sharedWithInput, in->expandedChunkCount() - changedChunks - 1);
   EXPECT_EQ(out.sharedChunkCount(), sharedWithInput);
+
+}
+
+TEST(vtkSignVoxelFilterSparse, OutputSharesUnchangedChunksAndEditsStaySeparate)
+{
+  // wrong signs in one box only: the chunks away from it are unchanged
+  const std::shared_ptr<lvdif::DictionaryVolume> in = corruptedSphere(false);
+  const std::vector<lvdif::Voxel> before = voxels(*in);
+  vtkNew<vtkSparseDictionaryVolume> input;
+  input->SetVolume(in);
+  vtkNew<vtkTrivialProducer> tp;
+  tp->SetOutput(input);
+  vtkNew<vtkSignVoxelFilter> svf;
+  svf->SetInputConnection(tp->GetOutputPort());
+  svf->SetDevice(vtkSignVoxelFilter::DEVICE_CPU);
+  svf->Update();
+  auto* output = vtkSparseDictionaryVolume::SafeDownCast(svf->GetOutputDataObject(0));
+  ASSERT_NE(output, nullptr);
+  ASSERT_TRUE(output->HasVolume());
+  lvdif::DictionaryVolume& out = *output->GetVolume();
+  EXPECT_EQ(voxels(*in), before);
+
+  // every expanded chunk whose voxels the filters left as they were is the
+  // input's buffer itself; a changed one is the output's own
+  std::int64_t unchanged = 0, changed = 0;
+  std::vector<std::int64_t> shared;
+  for (std::int64_t id = 0; id < out.chunkCount(); ++id)
+  {
+    const lvdif::VoxelBox b = out.chunkBox(id);
+    bool same = true;
+    for (std::int64_t z = b.lo[2]; z <= b.hi[2] && same; ++z)
+      for (std::int64_t y = b.lo[1]; y <= b.hi[1] && same; ++y)
+        for (std::int64_t x = b.lo[0]; x <= b.hi[0] && same; ++x) same = out.get(x, y, z) == in->get(x, y, z);
+    if (!in->chunkData(id)) continue;
+    if (same)
+    {
+      ++unchanged;
+      EXPECT_EQ(out.chunkData(id), in->chunkData(id)) << "unchanged chunk " << id << " is not shared";
+      shared.push_back(id);
+    }
+    else
+    {
+      ++changed;
+      EXPECT_NE(out.chunkData(id), in->chunkData(id)) << "changed chunk " << id;
+    }
+  }
+  EXPECT_GT(changed, 0);
+  ASSERT_GE(unchanged, 2);
+  EXPECT_EQ(out.sharedChunkCount(), unchanged);
+  EXPECT_EQ(in->sharedChunkCount(), unchanged);
+
+  // a later edit of either volume in a shared chunk leaves the other alone:
+  // the writer gets its own copy of that chunk, the others stay shared
+  const auto editCorner = [](lvdif::DictionaryVolume& v, std::int64_t id) {
+    const lvdif::VoxelBox b = v.chunkBox(id);
+    lvdif::Voxel w = v.get(b.lo[0], b.lo[1], b.lo[2]);
+    w.sdf = w.sdf == v.encode(1.5f) ? v.encode(-1.5f) : v.encode(1.5f);
+    v.set(b.lo[0], b.lo[1], b.lo[2], w);
+    return w;
+  };
+  const std::vector<lvdif::Voxel> outBefore = voxels(out);
+  const lvdif::Voxel* inBuffer = in->chunkData(shared.front());
+  const lvdif::Voxel w = editCorner(out, shared.front());
+  output->VolumeModified();
+  const lvdif::VoxelBox b0 = out.chunkBox(shared.front());
+  EXPECT_EQ(out.get(b0.lo[0], b0.lo[1], b0.lo[2]), w);
+  EXPECT_EQ(voxels(*in), before) << "an edit of the output changed the input";
+  EXPECT_EQ(in->chunkData(shared.front()), inBuffer) << "the input keeps its buffer";
+  EXPECT_NE(out.chunkData(shared.front()), inBuffer) << "the output wrote to a copy";
+  EXPECT_EQ(out.sharedChunkCount(), unchanged - 1);
+  const std::vector<lvdif::Voxel> outEdited = voxels(out);
+  EXPECT_NE(outEdited, outBefore);
+  editCorner(*in, shared.back());
+  EXPECT_NE(voxels(*in), before);
+  EXPECT_EQ(voxels(out), outEdited) << "an edit of the input changed the output";
+  EXPECT_EQ(out.sharedChunkCount(), unchanged - 2);
+  EXPECT_EQ(in->sharedChunkCount(), unchanged - 2);
 }
