@@ -14,7 +14,7 @@
 #include "vtkCamera.h"
 #include "vtkChunkActorManager.h"
 #include "vtkPartialRedrawCuller.h"
-#include "LVDIFChunkMesh.h"
+#include "LVDIFChunkedMarchingCubesOutput.h"
 #include "vtkGenericOpenGLRenderWindow.h"
 #include "vtkPolyData.h"
 #include "vtkProperty.h"
@@ -410,7 +410,6 @@ void MainWindow::installFinishedMeshes()
   for (const lvdif::ChunkMesh& mesh : meshes)
     shown.chunks.push_back(mesh.chunkId);
   shown.gatheredAt.insert(shown.gatheredAt.end(), gatheredAt.begin(), gatheredAt.end());
-  const auto& d = this->Doc.volume().dims();
   // In completion order; a later mesh of a chunk supersedes an earlier one.
   std::map<std::int64_t, const lvdif::ChunkMesh*> newest;
   for (const lvdif::ChunkMesh& mesh : meshes)
@@ -421,7 +420,7 @@ void MainWindow::installFinishedMeshes()
     if (m.empty())
       this->Chunks->RemoveChunk(m.chunkId);
     else
-      this->Chunks->SetChunk(m.chunkId, LVDIFChunkMesh::ToPolyData(m, this->Doc.volume().colors(), d));
+      this->Chunks->SetChunk(m.chunkId, LVDIFChunkedMarchingCubesOutput::VolumeChunkToPolyData(m, this->Doc.volume()));
   }
   if (!this->ViewInitialized && this->Chunks->GetNumberOfChunks() > 0)
   {

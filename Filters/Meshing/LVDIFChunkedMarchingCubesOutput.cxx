@@ -1,5 +1,7 @@
 #include "LVDIFChunkedMarchingCubesOutput.h"
 
+#include "lvdif/DictionaryVolume.h"
+
 #include "vtkCellArray.h"
 #include "vtkCellData.h"
 #include "vtkFloatArray.h"
@@ -172,6 +174,17 @@ vtkSmartPointer<vtkPolyData> ChunkToPolyData(const lvdif::ChunkMesh& m, const Co
     a.setTriangle(static_cast<vtkIdType>(t), m, t, ids);
   }
   return a.finish();
+}
+
+vtkSmartPointer<vtkPolyData> VolumeChunkToPolyData(const lvdif::ChunkMesh& mesh, const lvdif::DictionaryVolume& volume)
+{
+  Context ctx;
+  ctx.gridDims = volume.dims();
+  ctx.palette = volume.colors().colors().data();
+  ctx.normals = mesh.normals.size() == mesh.points.size();
+  ctx.pointColors = mesh.colors.size() == mesh.points.size();
+  ctx.cellData = mesh.cornerColors.size() == mesh.triangles.size() && mesh.triangleCells.size() == mesh.triangles.size();
+  return ChunkToPolyData(mesh, ctx);
 }
 
 vtkSmartPointer<vtkPolyData> MergeChunks(const std::vector<lvdif::ChunkMesh>& meshes, const Context& ctx)

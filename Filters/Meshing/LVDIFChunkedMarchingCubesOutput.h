@@ -2,13 +2,16 @@
  * @file   LVDIFChunkedMarchingCubesOutput.h
  * @brief  lvdif::ChunkMesh -> vtkPolyData (one chunk, or all chunks merged)
  *
- * Internal to vtkChunkedMarchingCubes. Array names: point `Normals`, `rgba`;
- * cell `cell_ijk` (int x3), `corner_rgba` (unsigned char x32).
+ * The one conversion of Core's chunk meshes: vtkChunkedMarchingCubes' outputs
+ * and the editors' chunk actors (VolumeChunkToPolyData). Array names: point
+ * `Normals`, `rgba`; cell `cell_ijk` (int x3), `corner_rgba` (unsigned char
+ * x32), the rendering contract of Rendering/Chunks.
  */
 #ifndef LVDIFChunkedMarchingCubesOutput_h
 #define LVDIFChunkedMarchingCubesOutput_h
 
 #include "lvdif/ChunkedMarchingCubes.h"
+#include "lvdifFiltersMeshingModule.h" // for export macro
 
 #include "vtkSmartPointer.h"
 
@@ -16,6 +19,10 @@
 #include <vector>
 
 class vtkPolyData;
+namespace lvdif
+{
+class DictionaryVolume;
+}
 
 namespace LVDIFChunkedMarchingCubesOutput
 {
@@ -32,6 +39,12 @@ struct Context
 
 /// One chunk's mesh as it is (boundary vertices not shared with neighbours).
 vtkSmartPointer<vtkPolyData> ChunkToPolyData(const lvdif::ChunkMesh& mesh, const Context& ctx);
+
+/// One chunk mesh of a dictionary volume (from lvdif::MarchingCubesWorker or an
+/// edit session) with the arrays it carries: normals, point colours, and the
+/// corner colours (keys of the volume's colour dictionary) with `cell_ijk`.
+LVDIFFILTERSMESHING_EXPORT vtkSmartPointer<vtkPolyData> VolumeChunkToPolyData(
+  const lvdif::ChunkMesh& mesh, const lvdif::DictionaryVolume& volume);
 
 /// All chunks in one mesh, one point per cut grid edge: only the points on a
 /// chunk's faces are looked up in a hash map, the rest are unique by construction.

@@ -8,7 +8,7 @@
 //   lvdif::EditSession as the Qt editor: deliver the samples whose time has
 //     come -> EditSession::addSample (live application; the session queues the
 //     mesh chunks the sample invalidated, lvdif::meshChunksToRemesh) -> collect
-//     the meshes ready -> LVDIFChunkMesh + vtkChunkActorManager::SetChunk
+//     the meshes ready -> VolumeChunkToPolyData + vtkChunkActorManager::SetChunk
 //     (vertex un-sharing for the tetrahedral shader included) -> [optional:
 //     render a frame]
 //   meshing: the session's marching cubes worker thread (CPU), or one batched
@@ -40,7 +40,7 @@
 
 #include "vtkCamera.h"
 #include "vtkChunkActorManager.h"
-#include "LVDIFChunkMesh.h"
+#include "LVDIFChunkedMarchingCubesOutput.h"
 #include "vtkNew.h"
 #include "vtkPolyData.h"
 #include "vtkRenderWindow.h"
@@ -81,7 +81,7 @@ std::vector<std::string> runStroke(int n, int samples, double radius, bool rende
   session.waitMeshingIdle();
   for (const auto& m : session.collectMeshes())
     if (!m.empty())
-      actors->SetChunk(m.chunkId, LVDIFChunkMesh::ToPolyData(m, volume.colors(), volume.dims()));
+      actors->SetChunk(m.chunkId, LVDIFChunkedMarchingCubesOutput::VolumeChunkToPolyData(m, volume));
   if (render)
   {
     rw->SetSize(640, 480);
@@ -172,7 +172,7 @@ std::vector<std::string> runStroke(int n, int samples, double radius, bool rende
       if (m.empty())
         actors->RemoveChunk(m.chunkId);
       else
-        actors->SetChunk(m.chunkId, LVDIFChunkMesh::ToPolyData(m, volume.colors(), volume.dims()));
+        actors->SetChunk(m.chunkId, LVDIFChunkedMarchingCubesOutput::VolumeChunkToPolyData(m, volume));
     }
     installMs.push_back(inst.ms());
     if (!newest.empty())

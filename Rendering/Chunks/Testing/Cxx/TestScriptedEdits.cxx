@@ -6,7 +6,7 @@
 // replaced); the oracle is a second manager fed with a full re-mesh of the
 // final volume: both images must be identical. Then a regression image.
 #include "vtkChunkActorManager.h"
-#include "LVDIFChunkMesh.h"
+#include "LVDIFChunkedMarchingCubesOutput.h"
 
 #include "lvdif/AnalyticFill.h"
 #include "lvdif/ChunkedMarchingCubes.h"
@@ -37,7 +37,7 @@ void show(vtkChunkActorManager* mgr, const std::vector<lvdif::ChunkMesh>& meshes
     if (m.empty())
       mgr->RemoveChunk(m.chunkId);
     else
-      mgr->SetChunk(m.chunkId, LVDIFChunkMesh::ToPolyData(m, v.colors(), v.dims()));
+      mgr->SetChunk(m.chunkId, LVDIFChunkedMarchingCubesOutput::VolumeChunkToPolyData(m, v));
   }
 }
 
