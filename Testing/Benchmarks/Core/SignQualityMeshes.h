@@ -269,4 +269,40 @@ inline TriangleMesh damaged(const TriangleMesh& m, const std::string& damage)
   throw std::invalid_argument("unknown damage '" + damage + "' (flipNN, patchNN, dupNN, duprevNN, holes[NN], finsNN, pair, subN)");
 }
 
+/// A benchmark's mesh argument "DAMAGE:...:PATH": the path and the damages in
+/// the order written (applied from the right: patch10:sub2:m = patches on the
+/// subdivided mesh). A colon inside the path (after its first '/') is kept.
+struct DamagedPath
+{
+  std::string path;
+  std::vector<std::string> damages;
+  /// "patch10:sub2" ("" for none)
+  std::string label() const
+  {
+    std::string s;
+    for (const std::string& d : damages) s += (s.empty() ? "" : ":") + d;
+    return s;
+  }
+  /// The mesh read from `path` (loader: a function of the path) with the damages applied.
+  template <typename Load>
+  TriangleMesh load(Load&& loader) const
+  {
+    TriangleMesh mesh = loader(path);
+    for (auto d = damages.rbegin(); d != damages.rend(); ++d) mesh = damaged(mesh, *d);
+    return mesh;
+  }
+};
+
+inline DamagedPath parseDamagedPath(std::string path)
+{
+  DamagedPath r;
+  for (auto colon = path.find(':'); colon != std::string::npos && path.find('/') > colon; colon = path.find(':'))
+  {
+    r.damages.push_back(path.substr(0, colon));
+    path = path.substr(colon + 1);
+  }
+  r.path = path;
+  return r;
+}
+
 } // namespace signquality

@@ -59,17 +59,10 @@ int main(int argc, char** argv)
   try
   {
     // DAMAGE:...:PATH, applied from the right (patch10:sub2:m = patches on the subdivided mesh)
-    std::string path = argv[1];
-    std::vector<std::string> damages;
-    for (auto colon = path.find(':'); colon != std::string::npos && path.find('/') > colon; colon = path.find(':'))
-    {
-      damages.push_back(path.substr(0, colon));
-      path = path.substr(colon + 1);
-    }
-    std::string damage;
-    for (const std::string& d : damages) damage += d + ":";
-    const bool damaged = !damages.empty();
-    if (damaged) damage.pop_back();
+    const signquality::DamagedPath input = signquality::parseDamagedPath(argv[1]);
+    const std::string& path = input.path;
+    const std::string damage = input.label();
+    const bool damaged = !input.damages.empty();
     const std::int64_t res = argc > 2 ? std::atoll(argv[2]) : 256;
     const std::string sign = argc > 3 ? argv[3] : "winding";
     const std::string device = argc > 4 ? argv[4] : "auto";
@@ -90,8 +83,7 @@ int main(int argc, char** argv)
     }
 
     bench::Stopwatch readClock;
-    TriangleMesh mesh = loadMesh(path);
-    for (auto d = damages.rbegin(); d != damages.rend(); ++d) mesh = signquality::damaged(mesh, *d);
+    TriangleMesh mesh = input.load([](const std::string& p) { return loadMesh(p); });
     const double readMs = readClock.ms(); // includes making the damaged variant
 
     MeshToSdfOptions o;

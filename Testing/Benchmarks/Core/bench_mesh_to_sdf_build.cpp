@@ -128,18 +128,11 @@ int main(int argc, char** argv)
   }
   try
   {
-    std::string path = argv[1];
-    std::vector<std::string> damages;
-    for (auto colon = path.find(':'); colon != std::string::npos && path.find('/') > colon; colon = path.find(':'))
-    {
-      damages.push_back(path.substr(0, colon));
-      path = path.substr(colon + 1);
-    }
+    const signquality::DamagedPath input = signquality::parseDamagedPath(argv[1]);
     const int repeats = argc > 2 ? std::max(1, std::atoi(argv[2])) : 3;
     const std::string phases = argc > 3 ? argv[3] : "prepare,bvh,winding,gpuhost,nearest,touch";
     auto wants = [&](const char* p) { return phases.find(p) != std::string::npos; };
-    TriangleMesh mesh = loadMesh(path);
-    for (auto d = damages.rbegin(); d != damages.rend(); ++d) mesh = signquality::damaged(mesh, *d);
+    const TriangleMesh mesh = input.load([](const std::string& p) { return loadMesh(p); });
     std::printf("machine: %s\n", bench::machineDescription().c_str());
     std::printf("mesh: %s (%zu points, %zu triangles), median of %d\n", argv[1], mesh.points.size(),
       mesh.triangles.size(), repeats);

@@ -67,21 +67,27 @@ std::shared_ptr<lvdif::DictionaryVolume> corruptedSphere(bool scattered = true)
   v->collapseUniformChunks();
   return v;
 }
+/// The sign filters (CPU) run on `in` as a sparse input; the filter, updated
+/// (its pipeline keeps the input alive).
+vtkSmartPointer<vtkSignVoxelFilter> filterOnCpu(const std::shared_ptr<lvdif::DictionaryVolume>& in)
+{
+  vtkNew<vtkSparseDictionaryVolume> input;
+  input->SetVolume(in);
+  vtkNew<vtkTrivialProducer> tp;
+  tp->SetOutput(input);
+  auto svf = vtkSmartPointer<vtkSignVoxelFilter>::New();
+  svf->SetInputConnection(tp->GetOutputPort());
+  svf->SetDevice(vtkSignVoxelFilter::DEVICE_CPU);
+  svf->Update();
+  return svf;
+}
 } // namespace
 
 TEST(vtkSignVoxelFilterSparse, InputUnchangedOutputEqualsTheImagePathAndSharesChunks)
 {
   const std::shared_ptr<lvdif::DictionaryVolume> in = corruptedSphere();
   const std::vector<lvdif::Voxel> before = voxels(*in);
-  vtkNew<vtkSparseDictionaryVolume> input;
-  input->SetVolume(in);
-  vtkNew<vtkTrivialProducer> tp;
-  tp->SetOutput(input);
-
-  vtkNew<vtkSignVoxelFilter> svf;
-  svf->SetInputConnection(tp->GetOutputPort());
-  svf->SetDevice(vtkSignVoxelFilter::DEVICE_CPU);
-  svf->Update();
+  vtkSmartPointer<vtkSignVoxelFilter> svf = filterOnCpu(in);
   auto* output = vtkSparseDictionaryVolume::SafeDownCast(svf->GetOutputDataObject(0));
   ASSERT_NE(output, nullptr);
   ASSERT_TRUE(output->HasVolume());
@@ -92,7 +98,7 @@ TEST(vtkSignVoxelFilterSparse, InputUnchangedOutputEqualsTheImagePathAndSharesCh
 
   // the oracle: the same filter's image path on the dense decoded input
   vtkNew<vtkSparseVolumeToImage> toImage;
-  toImage->SetInputConnection(tp->GetOutputPort());
+  toImage->SetInputConnection(svf->GetInputConnection(0, 0)); // the same sparse input
   vtkNew<vtkSignVoxelFilter> dense;
   dense->SetInputConnection(toImage->GetOutputPort());
   dense->SetDevice(vtkSignVoxelFilter::DEVICE_CPU);
@@ -156,14 +162,7 @@ TEST(vtkSignVoxelFilterSparse, OutputSharesUnchangedChunksAndEditsStaySeparate)
   // wrong signs in one box only: the chunks away from it are unchanged
   const std::shared_ptr<lvdif::DictionaryVolume> in = corruptedSphere(false);
   const std::vector<lvdif::Voxel> before = voxels(*in);
-  vtkNew<vtkSparseDictionaryVolume> input;
-  input->SetVolume(in);
-  vtkNew<vtkTrivialProducer> tp;
-  tp->SetOutput(input);
-  vtkNew<vtkSignVoxelFilter> svf;
-  svf->SetInputConnection(tp->GetOutputPort());
-  svf->SetDevice(vtkSignVoxelFilter::DEVICE_CPU);
-  svf->Update();
+  vtkSmartPointer<vtkSignVoxelFilter> svf = filterOnCpu(in);
   auto* output = vtkSparseDictionaryVolume::SafeDownCast(svf->GetOutputDataObject(0));
   ASSERT_NE(output, nullptr);
   ASSERT_TRUE(output->HasVolume());
