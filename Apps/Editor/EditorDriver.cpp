@@ -8,6 +8,7 @@
 #include "vtkRenderWindowInteractor.h"
 
 #include <QApplication>
+#include <QElapsedTimer>
 #include <QFileDialog>
 #include <QFileInfo>
 #include <QKeyEvent>
@@ -15,6 +16,7 @@
 #include <QMouseEvent>
 #include <QTimer>
 #include <QVTKOpenGLNativeWidget.h>
+#include <QWindow>
 #ifdef LVDIF_EDITOR_HAVE_QTTEST
 #include <QTest>
 #endif
@@ -85,10 +87,32 @@ void EditorDriver::waitForSurface()
       static_cast<long long>(this->SinceWindow.elapsed()));
 }
 
+void EditorDriver::waitForLayout()
+{
+  QVTKOpenGLNativeWidget* v = view(this->Window);
+  QElapsedTimer waited;
+  waited.start();
+  int last[2] = { -1, -1 };
+  while (waited.elapsed() < 10000)
+  {
+    QApplication::processEvents(QEventLoop::AllEvents, 50);
+    const int* size = v->renderWindow()->GetSize();
+    const double ratio = v->devicePixelRatioF();
+    const bool exposed = v->window()->windowHandle() && v->window()->windowHandle()->isExposed();
+    const bool fits = size[0] == std::lround(v->width() * ratio) && size[1] == std::lround(v->height() * ratio);
+    if (exposed && fits && size[0] == last[0] && size[1] == last[1])
+      return;
+    last[0] = size[0];
+    last[1] = size[1];
+  }
+  std::fprintf(stderr, "lvdif-editor: the window was not laid out after 10 s; going on\n");
+}
+
 void EditorDriver::drag(const QVector<QPointF>& points, bool ctrl, bool shift, const QString& shotBeforeRelease)
 {
   if (points.isEmpty())
     return;
+  this->waitForLayout();
   QVTKOpenGLNativeWidget* v = view(this->Window);
   vtkRenderWindowInteractor* iren = v->interactor();
   // Points with both coordinates in [0, 1] are fractions of the view's size.

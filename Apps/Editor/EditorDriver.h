@@ -35,6 +35,11 @@ public:
   /// view never waits: the batch's screenshots and the drag's picking need the
   /// whole surface).
   void waitForSurface();
+  /// Processes events until the window is exposed and the view's render
+  /// window has the widget's size, the same on two turns in a row (at most
+  /// 10 s): batch steps start on the event loop's first turn, and a drag given
+  /// in fractions of the view must not map them through a size still changing.
+  void waitForLayout();
   /// waitForSurface without the --timing report (between a drag's samples).
   void showAllMeshes();
 
