@@ -150,6 +150,12 @@ double angleAt(V3 p, V3 q, V3 r) // angle at p of triangle p q r
 
 PreparedMesh prepareMesh(const TriangleMesh& mesh)
 {
+  double tp = now(); // sub-phase times on the trace (tracePhases)
+  auto lap = [&tp](const char* what) {
+    const double t = now();
+    trace(what, t - tp);
+    tp = t;
+  };
   mesh.validate();
   PreparedMesh out;
   const std::size_t nt = mesh.triangles.size();
@@ -164,6 +170,7 @@ PreparedMesh prepareMesh(const TriangleMesh& mesh)
   const std::int64_t nvAll = static_cast<std::int64_t>(nv);
 #pragma omp parallel for schedule(static)
   for (std::int64_t v = 0; v < nvAll; ++v) weldPos[v] = toV3(mesh.points[firstOf[v]]);
+  lap("prepare: validate and weld");
 
   // triangle records and corner angles, in parallel, written straight to
   // their final (compacted) place: which triangles are kept is known first
@@ -192,6 +199,7 @@ PreparedMesh prepareMesh(const TriangleMesh& mesh)
   std::vector<std::array<double, 3>> keptAngles;
   resizeLarge(welded, n);
   resizeLarge(keptAngles, n);
+  lap("prepare: records allocated");
   // bounds of the kept triangles on the way: min/max are exact, so the
   // parallel reduction gives the same values
   constexpr double Inf = std::numeric_limits<double>::infinity();
@@ -228,6 +236,7 @@ PreparedMesh prepareMesh(const TriangleMesh& mesh)
   }
   out.lo[0] = lx, out.lo[1] = ly, out.lo[2] = lz;
   out.hi[0] = hx, out.hi[1] = hy, out.hi[2] = hz;
+  lap("prepare: triangle records");
 
   // vertex pseudo-normals, summed in triangle order (deterministic): each
   // thread owns a range of vertices and adds only to those
@@ -244,6 +253,8 @@ PreparedMesh prepareMesh(const TriangleMesh& mesh)
     }
   });
 
+  lap("prepare: vertex normals");
+
   // Edges grouped by their smaller welded vertex: entry = (larger vertex,
   // corner (t, k) whose edge goes w[k] -> w[k+1]), each group then sorted,
   // so that an edge's corners are consecutive, in triangle order.
@@ -257,6 +268,8 @@ PreparedMesh prepareMesh(const TriangleMesh& mesh)
       const auto& w = welded[c / 3];
       return static_cast<std::uint64_t>(std::max(w[c % 3], w[(c % 3 + 1) % 3])) << 32 | c;
     });
+
+  lap("prepare: edge grouping");
 
   // per vertex: the distinct edges, their summed normals (triangle order) and
   // oriented multiplicities; boundary edges collected per vertex, then in
@@ -309,6 +322,7 @@ PreparedMesh prepareMesh(const TriangleMesh& mesh)
     out.boundary.insert(out.boundary.end(), boundaryOf[v].begin(), boundaryOf[v].end());
   }
 
+  lap("prepare: edges and boundary");
   const std::int64_t nI = static_cast<std::int64_t>(n);
 #pragma omp parallel for schedule(static)
   for (std::int64_t t = 0; t < nI; ++t)
@@ -325,6 +339,7 @@ PreparedMesh prepareMesh(const TriangleMesh& mesh)
   }
 
   out.welded = std::move(welded);
+  lap("prepare: pseudo-normals");
   return out;
 }
 
