@@ -64,6 +64,6 @@ run 60 "$B/bench_mesh_to_sdf_build" "sub2:$A" 3 prepare,bvh,winding,gpuhost,near
   grep -E "^## |^\| (cold|warm|prepared) |^cpu check:|^prepareMeshToSdf|^\| (prepareMesh|mesh Bvh|WindingSigner|GPU path|NearestIndex|first touch) |rc=[1-9]" "$L" |
     awk -F'|' '/^\| (cold|warm|prepared) / { printf "|%s|%s|%s|%s|%s|%s|%s|%s|\n", $2, $3, $4, $5, $6, $7, $8, $9; next } { print }'
   echo "## host phases (--trace), in run order"
-  grep -E "^## |\[mesh to SDF\] (prepareMesh|mesh BVH|winding|upload and session)" "$L" | head -60
+  grep -E "^## |\[mesh to SDF\] (prepareMesh|prepare:|mesh BVH|winding|upload and session|write)" "$L" | head -200
 } | tee -a "$OUT/summary.txt"
 echo "total $(( $(date +%s) - T0 )) s" | tee -a "$OUT/summary.txt"

@@ -8,6 +8,9 @@
 #include <sstream>
 #include <string>
 #include <unistd.h>
+#if defined(__linux__)
+#include <sys/mman.h>
+#endif
 
 namespace lvdif
 {
@@ -92,6 +95,21 @@ std::uint64_t checkedMultiply(std::uint64_t a, std::uint64_t b, const std::strin
     throw Error(ErrorCode::OutOfMemory, what + " size overflows 64 bits");
   }
   return a * b;
+}
+
+void adviseHugePages(void* p, std::size_t bytes)
+{
+#if defined(__linux__) && defined(MADV_HUGEPAGE)
+  constexpr std::uintptr_t Huge = std::uintptr_t(2) << 20;
+  if (!p || bytes < 4 * Huge) return;
+  const std::uintptr_t a = reinterpret_cast<std::uintptr_t>(p);
+  const std::uintptr_t lo = (a + Huge - 1) & ~(Huge - 1), hi = (a + bytes) & ~(Huge - 1);
+  // only pages wholly inside the block; a refusal (THP off) just leaves 4 KiB pages
+  if (hi > lo) (void)madvise(reinterpret_cast<void*>(lo), hi - lo, MADV_HUGEPAGE);
+#else
+  (void)p;
+  (void)bytes;
+#endif
 }
 
 std::uint64_t residentMemoryBytes()

@@ -464,6 +464,9 @@ void computeBox(const Engine& e, const VoxelBox& box, float* out, MeshToSdfStats
 
 /// Stores one chunk's keys (the CPU and GPU paths): a uniform chunk over a
 /// uniform one is filled, anything else expanded and written (colours kept).
+/// `uniform` is whether the keys of the chunk's voxels inside the volume are
+/// all equal: when they are not, the chunk cannot collapse, so only a
+/// uniform key over varied colours tries.
 template <typename KeyAt>
 void storeChunk(DictionaryVolume& volume, std::int64_t id, bool uniform, SdfKey first, KeyAt&& keyAt)
 {
@@ -474,15 +477,19 @@ void storeChunk(DictionaryVolume& volume, std::int64_t id, bool uniform, SdfKey 
   }
   const VoxelBox cb = volume.chunkBox(id);
   Voxel* data = volume.expandChunk(id);
+  const std::int64_t nx = cb.hi[0] - cb.lo[0] + 1;
   for (std::int64_t z = cb.lo[2]; z <= cb.hi[2]; ++z)
     for (std::int64_t y = cb.lo[1]; y <= cb.hi[1]; ++y)
-      for (std::int64_t x = cb.lo[0]; x <= cb.hi[0]; ++x)
-      {
-        const std::int64_t l = volume.localIndex(x, y, z);
-        data[l].sdf = uniform ? first : keyAt(x, y, z, l);
-      }
+    {
+      const std::int64_t l0 = volume.localIndex(cb.lo[0], y, z); // x is the fastest local index
+      Voxel* row = data + l0;
+      if (uniform)
+        for (std::int64_t i = 0; i < nx; ++i) row[i].sdf = first;
+      else
+        for (std::int64_t i = 0; i < nx; ++i) row[i].sdf = keyAt(cb.lo[0] + i, y, z, l0 + i);
+    }
   volume.markDirty(id);
-  volume.tryCollapseChunk(id);
+  if (uniform) volume.tryCollapseChunk(id);
 }
 
 /// The chunks of a region (MeshToSdfOptions::chunkRegion; the CPU's whole-volume route passes
@@ -572,10 +579,13 @@ void volumeOnCuda(detail::meshtosdf_cuda::Session& session, DictionaryVolume& vo
   detail::meshtosdf_cuda::ChunkKeys keys;
   session.launchKeys(boxOf(0), static_cast<int>(edge), enc, band, stats);
   const std::int64_t e3 = edge * edge * edge;
+  double fetchSeconds = 0, storeSeconds = 0; // the two parts of writeSeconds (tracePhases)
   for (std::int64_t g0 = 0; g0 < cc[2]; g0 += group)
   {
     intr.checkInterrupt();
-    session.fetchKeys(keys, stats);
+    const double fetch0 = stats.writeSeconds;
+    session.fetchKeys(keys, stats); // its time after the kernels' wait counts as write
+    fetchSeconds += stats.writeSeconds - fetch0;
     if (g0 + group < cc[2]) session.launchKeys(boxOf(g0 + group), static_cast<int>(edge), enc, band, stats);
     const double t0 = now();
     const VoxelBox box = boxOf(g0);
@@ -611,8 +621,13 @@ void volumeOnCuda(detail::meshtosdf_cuda::Session& session, DictionaryVolume& vo
     stats.keyMismatches += mismatches;
     stats.keysVerified += verified;
     stats.writeSeconds += now() - t0;
+    storeSeconds += now() - t0;
     intr.progress(static_cast<double>(std::min(cc[2], g0 + group)) / static_cast<double>(cc[2]));
   }
+  // the keys' kernel and copy run while the GPU waits for the next group;
+  // the host's store overlaps the next group's kernels
+  trace("write: keys from the GPU (GPU idle meanwhile)", fetchSeconds);
+  trace("write: store into the volume (overlaps the next group)", storeSeconds);
 }
 
 /// stats.warnings when a signed field over the whole grid has no voxel

@@ -2,6 +2,8 @@
 // box distances) and ray crossings for the winding-number signs.
 #include "MeshToSdfInternal.h"
 
+#include "lvdif/Memory.h"
+
 #include <algorithm>
 #include <cmath>
 
@@ -59,9 +61,10 @@ Bvh::Bvh(const std::vector<Tri>& tris)
   : Tris(tris)
 {
   const std::int32_t n = static_cast<std::int32_t>(tris.size());
-  this->Order.resize(tris.size());
+  // fresh arrays first touched by resize(), serially: huge pages (Memory.h)
+  resizeLarge(this->Order, tris.size());
   BuildData d;
-  d.ref.resize(tris.size());
+  resizeLarge(d.ref, tris.size());
 #pragma omp parallel for schedule(static)
   for (std::int32_t i = 0; i < n; ++i)
   {
@@ -72,11 +75,11 @@ Bvh::Bvh(const std::vector<Tri>& tris)
   }
   const BvhSubtreeNodes nodesOf(n);
   d.subtreeNodes = &nodesOf;
-  this->Nodes.resize(static_cast<std::size_t>(nodesOf(n)));
+  resizeLarge(this->Nodes, static_cast<std::size_t>(nodesOf(n)));
 #pragma omp parallel
 #pragma omp single
   this->build(d, 0, 0, n, 0);
-  this->Leaves.resize(tris.size());
+  resizeLarge(this->Leaves, tris.size());
 #pragma omp parallel for schedule(static)
   for (std::int32_t i = 0; i < n; ++i)
   {

@@ -425,7 +425,7 @@ public:
     }
     const long long e3 = static_cast<long long>(this->Edge) * this->Edge * this->Edge;
     const std::size_t keyCount = out.listed.size() * static_cast<std::size_t>(e3);
-    out.keys.resize(keyCount);
+    resizeLarge(out.keys, keyCount); // first touched here, serially: huge pages (Memory.h)
     if (!out.listed.empty())
     {
       if (keyCount > this->KeyCapacity)

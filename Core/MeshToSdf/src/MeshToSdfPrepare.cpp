@@ -6,6 +6,7 @@
 #include "MeshToSdfInternal.h"
 
 #include "lvdif/Error.h"
+#include "lvdif/Memory.h"
 
 #include <algorithm>
 #include <atomic>
@@ -125,7 +126,8 @@ std::vector<Value> bucketCorners(std::size_t n, std::size_t nb, std::vector<std:
     }
   });
   for (std::size_t b = 0; b < nb; ++b) start[b + 1] += start[b];
-  std::vector<Value> out(nc);
+  std::vector<Value> out;
+  resizeLarge(out, nc);
   ownerParts(nb, [&](std::size_t lo, std::size_t hi) {
     std::vector<std::uint32_t> fill(start.begin() + static_cast<std::ptrdiff_t>(lo), start.begin() + static_cast<std::ptrdiff_t>(hi));
     for (std::uint32_t c = 0; c < nc; ++c)
@@ -148,6 +150,12 @@ double angleAt(V3 p, V3 q, V3 r) // angle at p of triangle p q r
 
 PreparedMesh prepareMesh(const TriangleMesh& mesh)
 {
+  double tp = now(); // sub-phase times on the trace (tracePhases)
+  auto lap = [&tp](const char* what) {
+    const double t = now();
+    trace(what, t - tp);
+    tp = t;
+  };
   mesh.validate();
   PreparedMesh out;
   const std::size_t nt = mesh.triangles.size();
@@ -157,10 +165,12 @@ PreparedMesh prepareMesh(const TriangleMesh& mesh)
   std::vector<std::uint32_t> weld, firstOf;
   const std::size_t nv = weldPoints(mesh.points, weld, firstOf);
   auto toV3 = [](const Vec3f& p) { return V3{ p[0], p[1], p[2] }; };
-  std::vector<V3> weldPos(nv);
+  std::vector<V3> weldPos;
+  resizeLarge(weldPos, nv);
   const std::int64_t nvAll = static_cast<std::int64_t>(nv);
 #pragma omp parallel for schedule(static)
   for (std::int64_t v = 0; v < nvAll; ++v) weldPos[v] = toV3(mesh.points[firstOf[v]]);
+  lap("prepare: validate and weld");
 
   // triangle records and corner angles, in parallel, written straight to
   // their final (compacted) place: which triangles are kept is known first
@@ -182,9 +192,14 @@ PreparedMesh prepareMesh(const TriangleMesh& mesh)
   out.degenerate = nt - n;
   require(n > 0, "mesh has no triangle of non-zero area (" + std::to_string(out.degenerate) +
       " degenerate triangles)");
-  out.tris.resize(n);
-  std::vector<std::array<std::uint32_t, 3>> welded(n);
-  std::vector<std::array<double, 3>> keptAngles(n);
+  // the records (328 bytes each: 273 MB for 832k triangles) are first
+  // touched by resize(), serially: huge pages make that 512x fewer faults
+  resizeLarge(out.tris, n);
+  std::vector<std::array<std::uint32_t, 3>> welded;
+  std::vector<std::array<double, 3>> keptAngles;
+  resizeLarge(welded, n);
+  resizeLarge(keptAngles, n);
+  lap("prepare: records allocated");
   // bounds of the kept triangles on the way: min/max are exact, so the
   // parallel reduction gives the same values
   constexpr double Inf = std::numeric_limits<double>::infinity();
@@ -221,10 +236,12 @@ PreparedMesh prepareMesh(const TriangleMesh& mesh)
   }
   out.lo[0] = lx, out.lo[1] = ly, out.lo[2] = lz;
   out.hi[0] = hx, out.hi[1] = hy, out.hi[2] = hz;
+  lap("prepare: triangle records");
 
   // vertex pseudo-normals, summed in triangle order (deterministic): each
   // thread owns a range of vertices and adds only to those
-  std::vector<V3> vertexNormal(nv);
+  std::vector<V3> vertexNormal;
+  resizeLarge(vertexNormal, nv);
   ownerParts(nv, [&](std::size_t lo, std::size_t hi) {
     for (std::size_t t = 0; t < n; ++t)
     {
@@ -235,6 +252,8 @@ PreparedMesh prepareMesh(const TriangleMesh& mesh)
       }
     }
   });
+
+  lap("prepare: vertex normals");
 
   // Edges grouped by their smaller welded vertex: entry = (larger vertex,
   // corner (t, k) whose edge goes w[k] -> w[k+1]), each group then sorted,
@@ -249,6 +268,8 @@ PreparedMesh prepareMesh(const TriangleMesh& mesh)
       const auto& w = welded[c / 3];
       return static_cast<std::uint64_t>(std::max(w[c % 3], w[(c % 3 + 1) % 3])) << 32 | c;
     });
+
+  lap("prepare: edge grouping");
 
   // per vertex: the distinct edges, their summed normals (triangle order) and
   // oriented multiplicities; boundary edges collected per vertex, then in
@@ -301,6 +322,7 @@ PreparedMesh prepareMesh(const TriangleMesh& mesh)
     out.boundary.insert(out.boundary.end(), boundaryOf[v].begin(), boundaryOf[v].end());
   }
 
+  lap("prepare: edges and boundary");
   const std::int64_t nI = static_cast<std::int64_t>(n);
 #pragma omp parallel for schedule(static)
   for (std::int64_t t = 0; t < nI; ++t)
@@ -317,6 +339,7 @@ PreparedMesh prepareMesh(const TriangleMesh& mesh)
   }
 
   out.welded = std::move(welded);
+  lap("prepare: pseudo-normals");
   return out;
 }
 

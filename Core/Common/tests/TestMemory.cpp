@@ -1,0 +1,42 @@
+#include "lvdif/Memory.h"
+
+#include <gtest/gtest.h>
+
+#include <array>
+#include <cstdint>
+#include <vector>
+
+using namespace lvdif;
+
+// resizeLarge is resize() with a hint to the kernel: the same elements
+// (value-initialized, old ones kept) whatever the kernel does with the hint.
+TEST(Memory, ResizeLargeIsResize)
+{
+  struct Rec
+  {
+    std::array<double, 5> v{};
+    std::uint32_t id = 7;
+  };
+  for (std::size_t n : { std::size_t(0), std::size_t(3), std::size_t(1) << 20 }) // 0, tiny, 48 MB
+  {
+    std::vector<Rec> a, b;
+    resizeLarge(a, n);
+    b.resize(n);
+    ASSERT_EQ(a.size(), n);
+    for (std::size_t i = 0; i < n; i += 4099)
+    {
+      EXPECT_EQ(a[i].id, b[i].id);
+      EXPECT_EQ(a[i].v, b[i].v);
+    }
+  }
+  std::vector<std::uint64_t> grow = { 1, 2, 3 };
+  resizeLarge(grow, std::size_t(3) << 20); // 24 MB: reallocates, keeps the old ones
+  ASSERT_EQ(grow.size(), std::size_t(3) << 20);
+  EXPECT_EQ(grow[0], 1u);
+  EXPECT_EQ(grow[2], 3u);
+  EXPECT_EQ(grow[3], 0u);
+  EXPECT_EQ(grow.back(), 0u);
+  resizeLarge(grow, 2); // shrinking is resize too
+  EXPECT_EQ(grow.size(), 2u);
+  adviseHugePages(nullptr, 0); // nothing to advise: no effect
+}
