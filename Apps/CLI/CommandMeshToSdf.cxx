@@ -72,10 +72,7 @@ int CommandMeshToSdf(int argc, char** argv)
   CheckVolumeOutput(out);
   const lvdif::TriangleMesh mesh = lvdif::loadMesh(in);
   const lvdif::GridGeometry grid = lvdif::fitGridToMesh(mesh, dims, padding);
-  lvdif::VolumeOptions vo;
-  vo.dims = grid.dims;
-  vo.origin = grid.origin;
-  vo.spacing = grid.spacing;
+  lvdif::VolumeOptions vo = lvdif::volumeOptionsOn(grid);
   vo.bandWidth = static_cast<float>(band);
   lvdif::DictionaryVolume volume(vo);
   const lvdif::MeshToSdfStats stats = lvdif::meshToSdf(mesh, volume, options, progress);

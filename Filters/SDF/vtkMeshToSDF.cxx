@@ -136,10 +136,7 @@ int vtkMeshToSDF::RequestInformation(
     vtkErrorMacro(<< e.what());
     return 0;
   }
-  lvdif::VolumeOptions vo;
-  vo.dims = g.dims;
-  vo.origin = g.origin;
-  vo.spacing = g.spacing;
+  lvdif::VolumeOptions vo = lvdif::volumeOptionsOn(g);
   vo.chunkEdge = this->ChunkEdge;
   LVDIFVolumeBridge::SetSparseInformation(outputVector->GetInformationObject(0), vo);
   return 1;
@@ -180,10 +177,7 @@ int vtkMeshToSDF::RequestData(vtkInformation*, vtkInformationVector** inputVecto
   const bool ok = LVDIFVolumeBridge::CallCore(this, [&] {
     const lvdif::GridGeometry g = gridFor(input, this->UseExplicitGrid, this->Dimensions, this->Origin,
       this->Spacing, this->MaxDimension, this->SampleSpacing, this->Padding);
-    lvdif::VolumeOptions vo;
-    vo.dims = g.dims;
-    vo.origin = g.origin;
-    vo.spacing = g.spacing;
+    lvdif::VolumeOptions vo = lvdif::volumeOptionsOn(g);
     vo.chunkEdge = this->ChunkEdge;
     vo.bandWidth =
       this->BandWidth > 0 ? static_cast<float>(this->BandWidth) : std::numeric_limits<float>::infinity();

@@ -732,11 +732,7 @@ MeshToSdfStats meshToSdf(const MeshToSdfPrepared& mesh, DictionaryVolume& volume
   Interrupter& interrupter)
 {
   const PhaseTraceScope tracing(options.tracePhases);
-  const VolumeOptions& vo = volume.options();
-  GridGeometry grid;
-  grid.dims = vo.dims;
-  grid.origin = vo.origin;
-  grid.spacing = vo.spacing;
+  const GridGeometry grid = gridOf(volume.options());
   MeshToSdfOptions opts = options;
   opts.unit = DistanceUnit::Voxel;
   MeshToSdfStats stats;

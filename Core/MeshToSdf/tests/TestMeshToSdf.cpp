@@ -166,10 +166,7 @@ TEST(MeshToSdf, DictionaryVolumeMatchesFloatPath)
       o.cpuBandBytes = bandBytes;
       const MeshToSdfStats st = meshToSdf(m, vol, o);
       EXPECT_EQ(st.triangles, m.triangles.size());
-      GridGeometry g;
-      g.dims = vo.dims;
-      g.origin = vo.origin;
-      g.spacing = vo.spacing;
+      const GridGeometry g = gridOf(vo);
       o.bandWidth = 3.0f;
       const std::vector<float> ref = run(m, g, o);
       for (std::int64_t z = 0; z < g.dims[2]; ++z)
@@ -321,10 +318,7 @@ TEST(MeshToSdf, EveryStageReportsItsEndBeforeTheNextBegins)
     std::vector<float> out(static_cast<std::size_t>(g.count()));
     StageRecorder grid;
     meshToSdf(m, FloatGridView{ out.data(), g }, o, grid);
-    VolumeOptions vo;
-    vo.dims = g.dims;
-    vo.origin = g.origin;
-    vo.spacing = g.spacing;
+    VolumeOptions vo = volumeOptionsOn(g);
     DictionaryVolume volume(vo);
     StageRecorder vol;
     meshToSdf(m, volume, o, vol);

@@ -237,10 +237,7 @@ TEST(MeshToSdfCuda, DictionaryVolumeMatchesCpu)
   if (!cuda::available()) GTEST_SKIP() << "no CUDA device";
   const TriangleMesh m = holedFlipped();
   const GridGeometry g = fitGridToMesh(m, 75, 2); // not a multiple of the chunk edge: partial chunks
-  VolumeOptions vo;
-  vo.dims = g.dims;
-  vo.origin = g.origin;
-  vo.spacing = g.spacing;
+  VolumeOptions vo = volumeOptionsOn(g);
   vo.chunkEdge = 16;
   vo.bandWidth = 4.0f;
   DictionaryVolume a(vo), b(vo);
@@ -383,10 +380,7 @@ TEST(MeshToSdfCuda, FarBlocksMatchCpuAndThePerVoxelPath)
           static_cast<long long>(bits), static_cast<long long>(saturatedBits), static_cast<long long>(badDistance));
       }
       // dictionary volume: GPU with far blocks against the CPU without
-      VolumeOptions vo;
-      vo.dims = g.dims;
-      vo.origin = g.origin;
-      vo.spacing = g.spacing;
+      VolumeOptions vo = volumeOptionsOn(g);
       vo.chunkEdge = 16;
       vo.bandWidth = 3;
       DictionaryVolume a(vo), b(vo);

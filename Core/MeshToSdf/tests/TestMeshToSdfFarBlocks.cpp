@@ -145,10 +145,7 @@ TEST(MeshToSdfFarBlocks, DictionaryVolumeSameKeys)
   {
     const MeshToSdfPrepared prepared = prepareMeshToSdf(c.mesh, SignMode::PseudoNormal);
     const GridGeometry g = fitGridToMesh(c.mesh, 70, 8);
-    VolumeOptions vo;
-    vo.dims = g.dims;
-    vo.origin = g.origin;
-    vo.spacing = g.spacing;
+    VolumeOptions vo = volumeOptionsOn(g);
     vo.chunkEdge = 16;
     vo.bandWidth = 3;
     for (SignMode s : { SignMode::Normal, SignMode::PseudoNormal })

@@ -18,10 +18,7 @@ namespace
 {
 VolumeOptions volumeFor(const GridGeometry& g)
 {
-  VolumeOptions vo;
-  vo.dims = g.dims;
-  vo.origin = g.origin;
-  vo.spacing = g.spacing;
+  VolumeOptions vo = volumeOptionsOn(g);
   vo.chunkEdge = 8;
   vo.bandWidth = 4.0f;
   return vo;

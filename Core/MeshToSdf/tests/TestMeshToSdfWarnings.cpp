@@ -95,10 +95,7 @@ TEST(MeshToSdfWarnings, OpenSheetEnclosesNoVolume)
   EXPECT_TRUE(runFloat(m, 40, SignMode::Unsigned).stats.warnings.empty());
   // into a dictionary volume too
   const GridGeometry g = fitGridToMesh(m, 40, 2.0);
-  VolumeOptions vo;
-  vo.dims = g.dims;
-  vo.origin = g.origin;
-  vo.spacing = g.spacing;
+  VolumeOptions vo = volumeOptionsOn(g);
   vo.chunkEdge = 16;
   DictionaryVolume vol(vo);
   MeshToSdfOptions o;

@@ -128,6 +128,24 @@ std::uint64_t DictionaryVolume::denseBytes(const VolumeOptions& o)
   return table + checkedMultiply(chunks, static_cast<std::uint64_t>(chunkSize(o.chunkEdge)) * sizeof(Voxel), "dense volume");
 }
 
+VolumeOptions volumeOptionsOn(const GridGeometry& grid)
+{
+  VolumeOptions o;
+  o.dims = grid.dims;
+  o.origin = grid.origin;
+  o.spacing = grid.spacing;
+  return o;
+}
+
+GridGeometry gridOf(const VolumeOptions& options)
+{
+  GridGeometry g;
+  g.dims = options.dims;
+  g.origin = options.origin;
+  g.spacing = options.spacing;
+  return g;
+}
+
 std::string DictionaryVolume::checkGeometry(const VolumeOptions& o)
 {
   for (int a = 0; a < 3; ++a)

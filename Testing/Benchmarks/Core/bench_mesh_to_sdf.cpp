@@ -156,10 +156,7 @@ int main(int argc, char** argv)
       }
       else
       {
-        VolumeOptions vo;
-        vo.dims = g.dims;
-        vo.origin = g.origin;
-        vo.spacing = g.spacing;
+        VolumeOptions vo = volumeOptionsOn(g);
         vo.chunkEdge = 32;
         vo.bandWidth = o.bandWidth;
         DictionaryVolume vol(vo);

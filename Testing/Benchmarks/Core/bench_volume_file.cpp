@@ -121,12 +121,7 @@ int main(int argc, char** argv)
   if (!meshPath.empty()) mesh = loadMesh(meshPath);
   auto makeVolume = [&](std::int64_t n) {
     if (meshPath.empty()) return bench::makePaintedShape(n);
-    VolumeOptions o;
-    const GridGeometry g = fitGridToMesh(mesh, n, 2.0);
-    o.dims = g.dims;
-    o.origin = g.origin;
-    o.spacing = g.spacing;
-    auto v = std::make_unique<DictionaryVolume>(o);
+    auto v = std::make_unique<DictionaryVolume>(volumeOptionsOn(fitGridToMesh(mesh, n, 2.0)));
     MeshToSdfOptions mo;
     mo.sign = SignMode::WindingNumber;
     mo.device = Device::Auto;

@@ -26,6 +26,7 @@
 #pragma once
 
 #include "lvdif/ColorDictionary.h"
+#include "lvdif/DenseGrid.h"
 #include "lvdif/SdfDictionary.h"
 
 #include <array>
@@ -100,6 +101,11 @@ struct VolumeOptions
   /// Bytes this volume may allocate; 0 means memoryLimitBytes() at construction.
   std::uint64_t memoryLimit = 0;
 };
+
+/// The options of a volume on `grid` (its dimensions, origin and spacing; the
+/// rest as the defaults above), and back: the one conversion between the two.
+VolumeOptions volumeOptionsOn(const GridGeometry& grid);
+GridGeometry gridOf(const VolumeOptions& options);
 
 class DictionaryVolume
 {
