@@ -15,16 +15,11 @@ set -u
 A=${1:-.gpu/meshes/armadillo.off}
 BUDGET=${2:-540}
 OUT=${OUT:-out-gpu-damaged}
-mkdir -p "$OUT"
-T0=$(date +%s)
-left() { echo $((BUDGET - ($(date +%s) - T0))); }
+L="$OUT/bench.log"
+. "$(dirname "$0")/gpu-common.sh"
 [ -f "$A" ] || { echo "no mesh at $A"; exit 1; }
-{ date -u; nvidia-smi -L; nvcc --version | tail -2; nproc; lscpu | grep "Model name"; git log --oneline -1; } > "$OUT/machine.txt" 2>&1
-cmake -S . -B b-damaged -DLVDIF_CORE_ONLY=ON -DLVDIF_CUDA=ON -DCMAKE_CUDA_ARCHITECTURES=90 -DCMAKE_BUILD_TYPE=Release \
-  > "$OUT/build.log" 2>&1 || { tail -40 "$OUT/build.log"; exit 1; }
-cmake --build b-damaged -j"$(nproc)" --target LVDIFMeshToSdfTests bench_mesh_to_sdf \
-  >> "$OUT/build.log" 2>&1 || { grep -B2 -A10 -i "error" "$OUT/build.log" | head -80; exit 1; }
-echo "build done after $(( $(date +%s) - T0 )) s" | tee "$OUT/summary.txt"
+gpu_begin
+gpu_build b-damaged LVDIFMeshToSdfTests bench_mesh_to_sdf
 
 
 # the CUDA tests (CUDA = CPU bit for bit on damaged meshes; their lines on stdout)
@@ -33,27 +28,18 @@ echo "MeshToSdfCuda tests rc=$?" | tee -a "$OUT/summary.txt"
 grep -E "^\[ cpu vs cuda \]|^\[  (PASSED|FAILED) |Failure" "$OUT/tests.log" | head -40 | tee -a "$OUT/summary.txt"
 
 B=b-damaged/Testing/Benchmarks/Core/bench_mesh_to_sdf
-L="$OUT/bench.log"
 : > "$L"
-# run LIMIT LABEL ARGS...: skipped when the budget is spent, else limited to what is left
-run() {
-  local lim=$1 label=$2; shift 2
-  local l; l=$(left)
-  if [ "$l" -lt 10 ]; then echo "## SKIPPED (budget) $label" >> "$L"; return; fi
-  [ "$lim" -gt "$l" ] && lim=$l
-  echo "## $label | $* (limit ${lim}s)" >> "$L"
-  timeout "$lim" "$B" "$@" >> "$L" 2>&1
-  echo "rc=$?" >> "$L"
-}
+# bench LIMIT LABEL ARGS...: bench_mesh_to_sdf ARGS as `run` step LABEL (the table's row)
+bench() { local lim=$1 label=$2; shift 2; RUN_LABEL=$label run "$lim" "$B" "$@"; }
 DAMAGES="patch10 patch30 flip10 duprev20 holes40 fins200 pair"
 # timings: Device::Auto, dictionary volume, band 8 (cold: builds and uploads; warm: the table)
-run 40 "clean 512" "$A" 512 winding auto bvh volume 8 2 cold,warm --trace
-for d in $DAMAGES; do run 45 "$d 512" "$d:$A" 512 winding auto bvh volume 8 2 cold,warm --trace; done
+bench 40 "clean 512" "$A" 512 winding auto bvh volume 8 2 cold,warm --trace
+for d in $DAMAGES; do bench 45 "$d 512" "$d:$A" 512 winding auto bvh volume 8 2 cold,warm --trace; done
 # CUDA = CPU bit for bit on the real damaged armadillos (128^3 float grid, no band; the CPU on all cores)
-for d in $DAMAGES; do run 40 "check $d 128" "$d:$A" 128 winding auto bvh float 0 2 warm --check-cpu; done
+for d in $DAMAGES; do bench 40 "check $d 128" "$d:$A" 128 winding auto bvh float 0 2 warm --check-cpu; done
 # 1024^3 last, the slowest damages last (a spent budget skips only those)
-run 40 "clean 1024" "$A" 1024 winding auto bvh volume 8 2 cold,warm
-for d in fins200 pair holes40 patch10 flip10 duprev20 patch30; do run 60 "$d 1024" "$d:$A" 1024 winding auto bvh volume 8 2 cold,warm; done
+bench 40 "clean 1024" "$A" 1024 winding auto bvh volume 8 2 cold,warm
+for d in fins200 pair holes40 patch10 flip10 duprev20 patch30; do bench 60 "$d 1024" "$d:$A" 1024 winding auto bvh volume 8 2 cold,warm; done
 # the other MeshToSdf tests (CPU), if time is left
 l=$(left)
 if [ "$l" -gt 40 ]; then
@@ -63,7 +49,7 @@ fi
 
 # the table: warm end-to-end, sign time, device, ratio to the clean mesh on the same grid
 awk '
-  /^## SKIPPED/ { l = substr($0, 21); skipped[l] = 1; order[++k] = l; next }
+  /^## SKIPPED/ { split(substr($0, 22), h, " \\| "); l = h[1]; skipped[l] = 1; order[++k] = l; next }
   /^## / { split($0, h, " \\| "); label = substr(h[1], 4); next }
   /^\| warm / { n = split($0, c, "|"); dev[label] = c[3]; sign[label] = c[7]; e2e[label] = c[9]; refined[label] = c[10]; order[++k] = label; next }
   /^cpu check:/ { chk[label] = $0; order[++k] = label; next }

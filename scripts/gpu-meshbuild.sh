@@ -17,16 +17,11 @@ A=${1:-.gpu/meshes/armadillo.off}
 BUNNY=${2:-.gpu/meshes/lvdif-bunny-30k.ply}
 BUDGET=${3:-300}
 OUT=${OUT:-out-gpu-meshbuild}
-mkdir -p "$OUT"
-T0=$(date +%s)
-left() { echo $((BUDGET - ($(date +%s) - T0))); }
+L="$OUT/bench.log"
+. "$(dirname "$0")/gpu-common.sh"
 [ -f "$A" ] || { echo "no mesh at $A"; exit 1; }
-{ date -u; nvidia-smi -L; nvcc --version | tail -2; nproc; lscpu | grep "Model name"; git log --oneline -1; } > "$OUT/machine.txt" 2>&1
-cmake -S . -B b-meshbuild -DLVDIF_CORE_ONLY=ON -DLVDIF_CUDA=ON -DCMAKE_CUDA_ARCHITECTURES=90 -DCMAKE_BUILD_TYPE=Release \
-  > "$OUT/build.log" 2>&1 || { tail -40 "$OUT/build.log"; exit 1; }
-cmake --build b-meshbuild -j"$(nproc)" --target LVDIFMeshToSdfTests bench_mesh_to_sdf bench_mesh_to_sdf_build \
-  >> "$OUT/build.log" 2>&1 || { grep -B2 -A10 -i "error" "$OUT/build.log" | head -80; exit 1; }
-echo "build done after $(( $(date +%s) - T0 )) s" | tee "$OUT/summary.txt"
+gpu_begin
+gpu_build b-meshbuild LVDIFMeshToSdfTests bench_mesh_to_sdf bench_mesh_to_sdf_build
 
 # the CUDA tests (CUDA = CPU bit for bit: closed, intersecting, damaged meshes, prepared reuse)
 timeout 150 b-meshbuild/Core/MeshToSdf/LVDIFMeshToSdfTests --gtest_filter='MeshToSdfCuda.*:MeshToSdfRegion.Cuda*' \
@@ -35,20 +30,7 @@ echo "MeshToSdf CUDA tests rc=$?" | tee -a "$OUT/summary.txt"
 grep -E "^\[  (PASSED|FAILED|SKIPPED) |Failure" "$OUT/tests.log" | head -20 | tee -a "$OUT/summary.txt"
 
 B=b-meshbuild/Testing/Benchmarks/Core
-L="$OUT/bench.log"
 : > "$L"
-# run LIMIT CMD...: skipped when the budget is spent, else limited to what is left
-run() {
-  local lim=$1
-  shift
-  local l
-  l=$(left)
-  if [ "$l" -lt 10 ]; then echo "## SKIPPED (budget): $*" >> "$L"; return; fi
-  [ "$lim" -gt "$l" ] && lim=$l
-  echo "## $* (limit ${lim}s)" >> "$L"
-  timeout "$lim" "$@" >> "$L" 2>&1
-  echo "rc=$?" >> "$L"
-}
 M="$B/bench_mesh_to_sdf"
 # the targets: the bunny <= 200 ms warm, sub2 (832k) <= 400 ms warm including the build
 [ -f "$BUNNY" ] && run 40 $M "$BUNNY" 1024 winding auto bvh volume 8 2 cold,warm,warm,prepared --trace

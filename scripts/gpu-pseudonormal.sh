@@ -15,15 +15,10 @@ BUDGET=${2:-480}
 A=$D/armadillo.off
 BUNNY=$D/lvdif-bunny-30k.ply
 OUT=${OUT:-out-gpu-pseudonormal}
-mkdir -p "$OUT"
-T0=$(date +%s)
-left() { echo $((BUDGET - ($(date +%s) - T0))); }
-{ date -u; nvidia-smi -L; nvcc --version | tail -2; nproc; lscpu | grep "Model name"; git log --oneline -1; } > "$OUT/machine.txt" 2>&1
-cmake -S . -B b-pn -DLVDIF_CORE_ONLY=ON -DLVDIF_CUDA=ON -DCMAKE_CUDA_ARCHITECTURES=90 -DCMAKE_BUILD_TYPE=Release \
-  > "$OUT/build.log" 2>&1 || { tail -40 "$OUT/build.log"; exit 1; }
-cmake --build b-pn -j"$(nproc)" --target LVDIFMeshToSdfTests bench_mesh_to_sdf >> "$OUT/build.log" 2>&1 ||
-  { grep -B2 -A10 -i "error" "$OUT/build.log" | head -80; exit 1; }
-echo "build done after $(( $(date +%s) - T0 )) s" | tee "$OUT/summary.txt"
+L="$OUT/bench.log"
+. "$(dirname "$0")/gpu-common.sh"
+gpu_begin
+gpu_build b-pn LVDIFMeshToSdfTests bench_mesh_to_sdf
 
 # tests: every MeshToSdf test (CUDA ones included), then the far-block lines
 timeout 240 b-pn/Core/MeshToSdf/LVDIFMeshToSdfTests > "$OUT/tests.log" 2>&1
@@ -31,16 +26,6 @@ echo "MeshToSdf tests rc=$?" | tee -a "$OUT/summary.txt"
 grep -E "^\[  (PASSED|FAILED|SKIPPED) |^\[  FAILED  \]" "$OUT/tests.log" | sort -u | tee -a "$OUT/summary.txt"
 grep -E "^\[ far blocks cuda \]" "$OUT/tests.log" | grep -E "sphere|armadillo|slivers" | head -8 | tee -a "$OUT/summary.txt"
 
-L="$OUT/bench.log"
-run() { # run LIMIT CMD...: skipped when the budget is spent, else limited to what is left
-  local lim=$1; shift
-  local l; l=$(left)
-  if [ "$l" -lt 10 ]; then echo "## SKIPPED (budget): $*" >> "$L"; return; fi
-  [ "$lim" -gt "$l" ] && lim=$l
-  echo "## $* (limit ${lim}s)" >> "$L"
-  timeout "$lim" "$@" >> "$L" 2>&1
-  echo "rc=$?" >> "$L"
-}
 M=b-pn/Testing/Benchmarks/Core/bench_mesh_to_sdf
 # bench_mesh_to_sdf MESH RES SIGN DEVICE ACCEL OUTPUT BAND PADDING RUNS (RUN@SIGN[@pervoxel])
 GPU_RUNS=cold,warm@winding,warm@pseudonormal,warm@normal,warm@winding,warm@pseudonormal,warm@normal

@@ -13,15 +13,10 @@ A=${1:?armadillo mesh}
 BUNNY=${2:?bunny mesh}
 BUDGET=${3:-420}
 OUT=${OUT:-out-gpu-signs}
-mkdir -p "$OUT"
-T0=$(date +%s)
-left() { echo $((BUDGET - ($(date +%s) - T0))); }
-{ date -u; nvidia-smi -L; nvcc --version | tail -2; nproc; lscpu | grep "Model name"; } > "$OUT/machine.txt" 2>&1
-cmake -S . -B b-signs -DLVDIF_CORE_ONLY=ON -DLVDIF_CUDA=ON -DCMAKE_CUDA_ARCHITECTURES=90 -DCMAKE_BUILD_TYPE=Release \
-  > "$OUT/build.log" 2>&1 || { tail -40 "$OUT/build.log"; exit 1; }
-cmake --build b-signs -j"$(nproc)" --target LVDIFMeshToSdfTests LVDIFFormatsTests bench_mesh_to_sdf bench_winding_flip bench_mesh_read \
-  >> "$OUT/build.log" 2>&1 || { grep -B2 -A10 -i "error" "$OUT/build.log" | head -80; exit 1; }
-echo "build done after $(( $(date +%s) - T0 )) s" | tee -a "$OUT/summary.txt"
+L="$OUT/bench.log"
+. "$(dirname "$0")/gpu-common.sh"
+gpu_begin
+gpu_build b-signs LVDIFMeshToSdfTests LVDIFFormatsTests bench_mesh_to_sdf bench_winding_flip bench_mesh_read
 
 # tests: every MeshToSdf test, the CUDA = CPU equality ones included
 timeout 180 b-signs/Core/MeshToSdf/LVDIFMeshToSdfTests > "$OUT/tests.log" 2>&1
@@ -31,17 +26,6 @@ timeout 60 b-signs/Core/Formats/LVDIFFormatsTests > "$OUT/tests_formats.log" 2>&
 echo "Formats tests rc=$?" | tee -a "$OUT/summary.txt"
 
 B=b-signs/Testing/Benchmarks/Core
-L="$OUT/bench.log"
-# run LIMIT CMD...: skipped when the budget is spent, else limited to what is left
-run() {
-  local lim=$1; shift
-  local l; l=$(left)
-  if [ "$l" -lt 10 ]; then echo "## SKIPPED (budget): $*" >> "$L"; return; fi
-  [ "$lim" -gt "$l" ] && lim=$l
-  echo "## $* (limit ${lim}s)" >> "$L"
-  timeout "$lim" "$@" >> "$L" 2>&1
-  echo "rc=$?" >> "$L"
-}
 # bench_mesh_to_sdf SPEC RES SIGN DEVICE ACCEL OUTPUT BAND PADDING RUNS
 M="$B/bench_mesh_to_sdf"
 # the paper's bunny at 1024^3, one call (cold then warm), and prepared
