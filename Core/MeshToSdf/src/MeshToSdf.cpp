@@ -53,6 +53,7 @@ struct Engine
   bool far = false;       // far blocks (Normal/PseudoNormal, finite band, CPU BVH; MeshToSdfOptions::farBlocks)
   const Bvh* farBvh = nullptr;                 // their tree and node cones
   const std::vector<FarCone>* farCones = nullptr;
+  bool bandCells = false; // the same blocks by distance alone (WindingNumber/Unsigned, finite band, CPU BVH)
   double toOut = 1;       // world distance -> output units
   double band = 0;        // output units (may be infinite)
   double bandWorld2 = 0;  // squared band in world units, for bounded queries
@@ -118,9 +119,9 @@ struct Engine
 
   /// Distances (and the local sign) of one row; out holds output units.
   /// With a finite band and no normal-based sign, the distance being
-  /// 1-Lipschitz lets far voxels skip the query: each query looks a margin
-  /// beyond the band, and the following voxels stay saturated while the
-  /// lower bound (previous distance - steps) is still past the band.
+  /// 1-Lipschitz lets far voxels skip the query: each query past the band
+  /// looks a margin beyond it, and the following voxels stay saturated while
+  /// the lower bound (previous distance - steps) is still past the band.
   /// rowTris (nx entries): on entry the nearest triangles of the row below
   /// when belowValid (they seed the bounds), on exit this row's.
   /// far (optional): the far cells of this row (FarCell voxels each from i0):
@@ -136,21 +137,27 @@ struct Engine
     const double reach = bandWorld + 4 * h;
     double lower = -1; // lower bound of the current voxel's world distance
     std::int32_t hint = -1;
-    // the unbounded BVH case takes the voxels RowPoints at a time (one shared traversal)
-    const bool packets = !bounded && this->opts.accel == MeshToSdfAccel::Bvh;
+    // the BVH takes the voxels RowPoints at a time (one shared traversal,
+    // seeded by the row below) where they need their nearest triangle: every
+    // voxel without a band, and after a voxel within the band with one; past
+    // the band one bounded query at a time finds the next voxel to query
+    const bool packets = this->opts.accel == MeshToSdfAccel::Bvh;
+    bool withinBand = false; // the last voxel queried was
     for (std::int64_t i = i0; i <= i1;)
     {
       if (far && far[(i - i0) / FarCell] != 0)
       {
         out[i - i0] = static_cast<float>(far[(i - i0) / FarCell]) * static_cast<float>(this->band);
         rowTris[i - i0] = -1;
+        lower -= h; // keeps the bound of the voxels after the cell valid
+        withinBand = false;
         ++i;
         continue;
       }
       NearestResult res[NearestIndex::RowPoints];
       V3 ps[NearestIndex::RowPoints];
       int count = 1;
-      if (packets)
+      if (packets && (!bounded || withinBand))
       {
         count = static_cast<int>(std::min<std::int64_t>(NearestIndex::RowPoints, i1 - i + 1));
         for (int q = 1; far && q < count; ++q)
@@ -189,6 +196,7 @@ struct Engine
         }
         out[i - i0] = s * static_cast<float>(d);
       }
+      withinBand = lower < bandWorld;
     }
   }
 };
@@ -222,6 +230,8 @@ std::unique_ptr<Engine> makeEngine(const MeshToSdfPrepared& prepared, const Grid
   e->far = opts.farBlocks && e->index != nullptr && e->bandWorld2 < 1e299 && !opts.useVertexNormals &&
     (opts.sign == SignMode::Normal || opts.sign == SignMode::PseudoNormal);
   if (e->far) e->farBvh = &impl.farTree(e->farCones, lazy);
+  e->bandCells = opts.farBlocks && e->index != nullptr && e->bandWorld2 < 1e299 &&
+    (opts.sign == SignMode::WindingNumber || opts.sign == SignMode::Unsigned);
   if (opts.sign == SignMode::WindingNumber && device == Device::Cpu)
   {
     e->winding = &impl.windingSigner(lazy);
@@ -359,6 +369,12 @@ void computeBox(const Engine& e, const VoxelBox& box, float* out, MeshToSdfStats
       *e.index, *e.farBvh, *e.farCones, *e.mesh, e.geom, box, static_cast<double>(e.band) / e.toOut,
       e.opts.sign == SignMode::PseudoNormal, far);
     trace("far blocks of a box", now() - tf);
+  }
+  else if (e.bandCells)
+  {
+    const double tf = now();
+    stats.farVoxels += classifyBandCells(*e.index, *e.mesh, e.geom, box, static_cast<double>(e.band) / e.toOut, far);
+    trace("blocks past the band of a box", now() - tf);
   }
   forRows(box, intr, progressBase, winding ? progressSpan * 0.5 : progressSpan,
     [&](std::int64_t j, std::int64_t k, std::int64_t r) {

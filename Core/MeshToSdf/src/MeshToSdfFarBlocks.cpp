@@ -104,6 +104,74 @@ std::int64_t classifyFarCells(const NearestIndex& index, const Bvh& bvh, const s
   return decided;
 }
 
+std::int64_t classifyBandCells(const NearestIndex& index, const PreparedMesh& mesh, const GridGeometry& grid,
+  const VoxelBox& box, double bandWorld, FarCells& cells)
+{
+  const double big = farScale(mesh, grid);
+  const double margin = farMargin(big, static_cast<double>(mesh.tris.size()));
+  std::int64_t n[3], blocks[3];
+  for (int a = 0; a < 3; ++a)
+  {
+    n[a] = box.hi[a] - box.lo[a] + 1;
+    cells.count[a] = (n[a] + FarCell - 1) / FarCell;
+    blocks[a] = (n[a] + FarBlock - 1) / FarBlock;
+  }
+  cells.sign.assign(static_cast<std::size_t>(cells.count[0] * cells.count[1] * cells.count[2]), 0);
+  auto pos = [&](std::int64_t i, std::int64_t j, std::int64_t k) {
+    return V3{ grid.origin[0] + i * grid.spacing[0], grid.origin[1] + j * grid.spacing[1],
+      grid.origin[2] + k * grid.spacing[2] };
+  };
+  auto boxOf = [&](const std::int64_t v0[3], std::int64_t edge) {
+    std::int64_t hi[3];
+    for (int a = 0; a < 3; ++a) hi[a] = std::min(v0[a] + edge, n[a]) - 1;
+    return farBox(pos(box.lo[0] + v0[0], box.lo[1] + v0[1], box.lo[2] + v0[2]),
+      pos(box.lo[0] + hi[0], box.lo[1] + hi[1], box.lo[2] + hi[2]), big);
+  };
+  const std::int64_t total = blocks[0] * blocks[1] * blocks[2];
+  std::int64_t decided = 0;
+#pragma omp parallel for schedule(dynamic, 16) reduction(+ : decided)
+  for (std::int64_t b = 0; b < total; ++b)
+  {
+    const long long origin[3] = { (b % blocks[0]) * FarBlock, ((b / blocks[0]) % blocks[1]) * FarBlock,
+      (b / (blocks[0] * blocks[1])) * FarBlock };
+    const long long size[3] = { n[0], n[1], n[2] };
+    std::int32_t hint = -1;
+    FarBox last[3];
+    double lastDist[3] = { 0, 0, 0 };
+    decided += farClassifyBlock(origin, size,
+      [&](const long long o[3], long long edge) {
+        const std::int64_t o64[3] = { o[0], o[1], o[2] };
+        const FarBox sub = boxOf(o64, edge);
+        const int level = edge == FarBlock ? 0 : (edge == FarBlock / 2 ? 1 : 2);
+        if (level > 0) // certainly within the band by the enclosing box's distance: no query
+        {
+          const double bound = farChildBound(lastDist[level - 1], sub, last[level - 1], big);
+          if (bound - sub.radius <= bandWorld)
+          {
+            last[level] = sub;
+            lastDist[level] = bound;
+            return 0;
+          }
+        }
+        // nothing within `reach` proves the box past the band (farPastBand
+        // holds for every distance beyond it): the query need not look farther
+        const double reach = (bandWorld * (1 + 1e-12) + sub.radius + margin) / (1 - 1e-12) * (1 + 1e-12);
+        const NearestResult q = index.nearest(sub.centre, hint, reach * reach * (1 + 1e-12));
+        if (q.tri < 0) return 1;
+        hint = q.tri;
+        const double dq = std::sqrt(q.dist2);
+        last[level] = sub;
+        lastDist[level] = dq;
+        return farPastBand(dq, sub, bandWorld, margin) ? 1 : 0;
+      },
+      [&](const long long c[3], int s) {
+        cells.sign[static_cast<std::size_t>(c[0] + cells.count[0] * (c[1] + cells.count[1] * c[2]))] =
+          static_cast<std::int8_t>(s);
+      });
+  }
+  return decided;
+}
+
 std::vector<FarCone> farCones(const Bvh& bvh, const std::vector<Tri>& tris)
 {
   // bottom-up (children have larger ids than their parent: preorder); angles

@@ -125,7 +125,7 @@ TEST(MeshToSdfFarBlocks, PerVoxelPathEqualsBruteForce)
   {
     const MeshToSdfPrepared prepared = prepareMeshToSdf(c.mesh, SignMode::PseudoNormal);
     const GridGeometry g = fitGridToMesh(c.mesh, 20, 6);
-    for (SignMode s : { SignMode::Normal, SignMode::PseudoNormal })
+    for (SignMode s : { SignMode::Normal, SignMode::PseudoNormal, SignMode::WindingNumber, SignMode::Unsigned })
     {
       MeshToSdfOptions o;
       o.sign = s;
@@ -164,5 +164,74 @@ TEST(MeshToSdfFarBlocks, DictionaryVolumeSameKeys)
       EXPECT_EQ(bad, 0) << c.name << ", " << toString(s);
       if (c.name == "closed sphere") EXPECT_GT(st.farVoxels, g.count() / 2) << toString(s);
     }
+  }
+}
+
+TEST(MeshToSdfFarBlocks, WindingAndUnsignedBlocksPastTheBandSameFloats)
+{
+  // the same blocks by distance alone (the winding sign pass comes after):
+  // bit for bit the per-voxel path, on a cubic and a non-cubic grid and a
+  // sub-extent, in voxels and world units, and into a dictionary volume
+  for (const farcases::Case& c : farcases::meshes())
+  {
+    const MeshToSdfPrepared prepared = prepareMeshToSdf(c.mesh, SignMode::WindingNumber);
+    const GridGeometry cubic = fitGridToMesh(c.mesh, 40, 6);
+    GridGeometry odd;
+    odd.dims = { 37, 21, 29 };
+    odd.origin = { -1.71, -1.43, -1.52 };
+    odd.spacing = { 0.093, 0.141, 0.117 };
+    VoxelBox sub;
+    sub.lo = { 3, 5, 7 };
+    sub.hi = { std::min<std::int64_t>(33, cubic.dims[0] - 1), std::min<std::int64_t>(30, cubic.dims[1] - 1),
+      std::min<std::int64_t>(35, cubic.dims[2] - 1) };
+    struct Grid
+    {
+      const char* name;
+      GridGeometry g;
+      VoxelBox box;
+    };
+    for (const Grid& gr : { Grid{ "cubic", cubic, whole(cubic) }, Grid{ "non-cubic", odd, whole(odd) },
+           Grid{ "sub-extent", cubic, sub } })
+    {
+      for (SignMode s : { SignMode::WindingNumber, SignMode::Unsigned })
+      {
+        for (float band : { 1.5f, 4.0f })
+        {
+          for (DistanceUnit unit : { DistanceUnit::Voxel, DistanceUnit::World })
+          {
+            MeshToSdfOptions o;
+            o.sign = s;
+            o.bandWidth = unit == DistanceUnit::World ? band * 0.1f : band;
+            o.unit = unit;
+            const FarRun fast = run(prepared, gr.g, gr.box, o, true), slow = run(prepared, gr.g, gr.box, o, false);
+            const std::string what = c.name + ", " + gr.name + ", " + toString(s) + ", band " + std::to_string(band) +
+              (unit == DistanceUnit::World ? " world" : " voxels");
+            EXPECT_EQ(bitDifferences(fast.out, slow.out), 0) << what;
+            EXPECT_EQ(slow.stats.farVoxels, 0) << what;
+            std::int64_t saturated = 0;
+            for (float v : slow.out) saturated += std::fabs(v) == o.bandWidth;
+            EXPECT_LE(fast.stats.farVoxels, saturated) << what;
+            if (c.name == "closed sphere" && std::string(gr.name) == "cubic")
+              EXPECT_GT(fast.stats.farVoxels, saturated / 2) << what;
+          }
+        }
+      }
+    }
+    VolumeOptions vo = volumeOptionsOn(cubic);
+    vo.chunkEdge = 16;
+    vo.bandWidth = 3;
+    DictionaryVolume a(vo), b(vo);
+    MeshToSdfOptions o;
+    o.sign = SignMode::WindingNumber;
+    o.device = Device::Cpu;
+    const MeshToSdfStats st = meshToSdf(prepared, a, o);
+    o.farBlocks = false;
+    meshToSdf(prepared, b, o);
+    std::int64_t bad = 0;
+    for (std::int64_t z = 0; z < cubic.dims[2]; ++z)
+      for (std::int64_t y = 0; y < cubic.dims[1]; ++y)
+        for (std::int64_t x = 0; x < cubic.dims[0]; ++x) bad += a.get(x, y, z).sdf != b.get(x, y, z).sdf;
+    EXPECT_EQ(bad, 0) << c.name << ", dictionary volume";
+    if (c.name == "closed sphere") EXPECT_GT(st.farVoxels, cubic.count() / 2) << "dictionary volume";
   }
 }

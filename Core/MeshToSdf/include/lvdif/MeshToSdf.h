@@ -109,11 +109,13 @@ struct MeshToSdfOptions
   /// CUDA into a dictionary volume: also copy the float slabs back and check
   /// every GPU-encoded key against the host's encode (tests; costs the copy).
   bool cudaVerifyKeys = false;
-  /// Normal and PseudoNormal with a finite band: blocks of voxels that are
-  /// provably all +band or all -band (past the band, on one side of every
-  /// nearby triangle's plane) are filled without per-voxel queries; the
-  /// result is the same, voxel for voxel (docs/MESH_TO_SDF.md, "Far blocks").
-  /// false: every voxel queried (tests and benchmarks compare the two).
+  /// With a finite band: blocks of voxels that are provably past the band
+  /// are filled without per-voxel queries; the result is the same, voxel for
+  /// voxel (docs/MESH_TO_SDF.md, "Far blocks"). Normal and PseudoNormal also
+  /// need every nearby triangle's plane to put the block on one side (its
+  /// sign); WindingNumber and Unsigned (CPU) need the distance alone, their
+  /// sign pass comes after. false: every voxel queried (tests and benchmarks
+  /// compare the two).
   bool farBlocks = true;
   /// Print the host phases' times (preparation, search structures, upload) to
   /// stderr as they finish: for benchmarks (bench_mesh_to_sdf --trace).
@@ -133,7 +135,7 @@ struct MeshToSdfStats
   std::uint64_t devicePeakBytes = 0;   // CUDA: device memory used
   std::int64_t keysVerified = 0;       // cudaVerifyKeys: voxels whose GPU key was checked
   std::int64_t keyMismatches = 0;      // cudaVerifyKeys: GPU keys != host encode (must be 0)
-  std::int64_t farVoxels = 0;          // Normal/PseudoNormal: voxels filled by far blocks (MeshToSdfOptions::farBlocks)
+  std::int64_t farVoxels = 0;          // voxels filled by far blocks (MeshToSdfOptions::farBlocks)
   std::int64_t svfFlips = 0;           // signs changed by the sign voxel filters
   double svfSeconds = 0;
   /// When the result cannot be what the user expects, one sentence each
