@@ -269,6 +269,61 @@ TEST(MeshToSdfCuda, DictionaryVolumeMatchesCpu)
   }
 }
 
+TEST(MeshToSdfCuda, DictionaryVolumeKeysInPiecesPinnedAndPageable)
+{
+  // the keys come back in pieces through a few staging slots: many pieces
+  // per group (more than the slots), a last piece shorter than the others,
+  // and the pageable fallback; every run equals the CPU's volume key for key
+  if (!cuda::available()) GTEST_SKIP() << "no CUDA device";
+  const TriangleMesh m = holedFlipped();
+  const GridGeometry g = fitGridToMesh(m, 75, 2);
+  VolumeOptions vo = volumeOptionsOn(g);
+  vo.chunkEdge = 16;
+  vo.bandWidth = 4.0f;
+  DictionaryVolume cpu(vo);
+  MeshToSdfOptions o;
+  o.device = Device::Cpu;
+  meshToSdf(m, cpu, o);
+  const MeshToSdfPrepared prepared = prepareMeshToSdf(m);
+  o.device = Device::Cuda;
+  o.cudaSlabBytes = static_cast<std::uint64_t>(g.dims[0] * g.dims[1]) * 16 * 4 * 2; // groups of 2 chunk layers
+  const std::uint64_t chunkKeyBytes = 16 * 16 * 16 * 2;
+  struct Case
+  {
+    std::uint64_t pieceBytes;
+    bool pageable;
+  };
+  for (const Case c : { Case{ 3 * chunkKeyBytes + 1, false }, Case{ chunkKeyBytes / 2, false },
+         Case{ 5 * chunkKeyBytes, true }, Case{ o.cudaKeyPieceBytes, true } })
+  {
+    o.cudaKeyPieceBytes = c.pieceBytes;
+    detail::meshtosdf_cuda::refusePinnedKeys(c.pageable);
+    const detail::meshtosdf_cuda::KeyCopyCounts before = detail::meshtosdf_cuda::keyCopyCounts();
+    DictionaryVolume gpu(vo);
+    const MeshToSdfStats st = meshToSdf(prepared, gpu, o);
+    detail::meshtosdf_cuda::refusePinnedKeys(false);
+    const detail::meshtosdf_cuda::KeyCopyCounts after = detail::meshtosdf_cuda::keyCopyCounts();
+    ASSERT_EQ(st.device, Device::Cuda);
+    const std::int64_t pieces = after.pieces - before.pieces, pageable = after.pageable - before.pageable;
+    const std::int64_t perPiece = std::max<std::int64_t>(1, static_cast<std::int64_t>(c.pieceBytes / chunkKeyBytes));
+    // at least the expanded chunks over the piece size, per group rounded up
+    EXPECT_GE(pieces * perPiece, gpu.expandedChunkCount()) << c.pieceBytes;
+    if (perPiece <= 3) EXPECT_GT(pieces, 3 * (g.dims[2] / 32 + 1)) << "more pieces than slots per group";
+    EXPECT_EQ(pageable, c.pageable ? pieces : 0) << c.pieceBytes;
+    std::int64_t diff = 0, structure = 0;
+    for (std::int64_t ch = 0; ch < cpu.chunkCount(); ++ch) structure += cpu.isUniform(ch) != gpu.isUniform(ch);
+    for (std::int64_t z = 0; z < g.dims[2]; ++z)
+      for (std::int64_t y = 0; y < g.dims[1]; ++y)
+        for (std::int64_t x = 0; x < g.dims[0]; ++x) diff += cpu.get(x, y, z).sdf != gpu.get(x, y, z).sdf;
+    EXPECT_EQ(diff, 0) << c.pieceBytes << (c.pageable ? " pageable" : " pinned");
+    EXPECT_EQ(structure, 0) << c.pieceBytes;
+    std::printf("[ cpu vs cuda ] keys in pieces of %llu bytes (%s): %lld pieces, %lld key differences, %lld "
+                "expanded chunks\n",
+      static_cast<unsigned long long>(c.pieceBytes), c.pageable ? "pageable" : "pinned",
+      static_cast<long long>(pieces), static_cast<long long>(diff), static_cast<long long>(gpu.expandedChunkCount()));
+  }
+}
+
 TEST(MeshToSdfCuda, DeviceEncodeMatchesHostEncode)
 {
   if (!cuda::available()) GTEST_SKIP() << "no CUDA device";
