@@ -75,6 +75,9 @@ __global__ void signDipoleKernel(WindingDev W, DipoleDev D, Params P, long long 
   const int ok = ray.ok, count = ray.count, sum = ray.sum;
   unsigned long long ev = 0, full = 0, fallback = 0;
   const double* blockRow = bounds + 2 * bx * ((j - P.lo[1]) / DipoleBlock + by * ((k - P.lo[2]) / DipoleBlock));
+  // each lane walks the sorted crossings up to its own voxels (they advance
+  // by 32 a step): K = sum minus the crossings before the voxel, the value
+  // the CPU carries voxel by voxel
   int ahead = sum, next = 0;
   for (long long base = 0; base < nx; base += 32)
   {
@@ -82,15 +85,14 @@ __global__ void signDipoleKernel(WindingDev W, DipoleDev D, Params P, long long 
     const long long end = base + 32 < nx ? base + 32 : nx;
     int myK = 0;
     bool myRay = true, myInside = false;
-    for (long long i = base; i < end; ++i)
+    if (ok)
     {
-      if (ok)
-      {
-        const double ti = 0.5 * h + static_cast<double>(i) * h;
-        while (next < count && hits[next].t <= ti) ahead -= hits[next++].sign;
-        if (i - base == lane) myK = ahead;
-        continue;
-      }
+      const double ti = 0.5 * h + static_cast<double>(mine) * h;
+      while (next < count && hits[next].t <= ti) ahead -= hits[next++].sign;
+      myK = ahead;
+    }
+    for (long long i = base; i < end && !ok; ++i)
+    {
       // ambiguous row: an oblique ray per voxel, all lanes alike
       const V3 dir = normalized(V3{ 0.5773502691896258, 0.5780, 0.5767 });
       int s = 0;

@@ -1,11 +1,14 @@
 // Device side of mesh to SDF on CUDA (included by MeshToSdfCuda.cu only):
 // the data layouts on the GPU, the distance kernel (one thread per run of 16
 // voxels along x, nearest triangle on the BVH, warm-started, far voxels
-// skipped by the Lipschitz bound; a warp takes that run in 32 neighbouring
-// rows so its queries follow similar paths), the sign kernel (one warp per
-// scan line: lane 0 casts the ray of the closed chain into shared memory, the
-// lanes compute the drift bounds of 32 voxels at a time, every lane walks the
-// carried interval with the same values so control flow stays uniform, and an
+// skipped by the Lipschitz bound, a run farther than the band from every leaf
+// box of the tree saturated after one traversal; a warp takes that run in 32
+// neighbouring rows so its queries follow similar paths), the sign kernel (one
+// warp per scan line: lane 0 casts the ray of the closed chain into shared
+// memory, the lanes compute the drift bounds of 32 voxels at a time, every lane
+// walks the carried interval with the same values so control flow stays
+// uniform (a closed chain carries none: each lane counts the crossings up to
+// its own voxels), and an
 // exact evaluation of the cone's solid angle is split over the lanes as
 // lane-strided partial sums reduced by an xor butterfly: the order the CPU's
 // laneOrderedSum reproduces) and the chunk-encoding kernels of the
@@ -142,6 +145,38 @@ __device__ NearestResult nearestDev(const DevBvh& b, V3 p, int hintSlot, double 
   return best;
 }
 
+/// Whether every leaf box of the tree lies farther than sqrt(r2) from the box
+/// [a, b] (so every triangle does); nearer children first, so that a box near
+/// the surface meets a leaf soon and stops.
+__device__ bool boxFarDev(const DevBvh& bvh, V3 a, V3 b, double r2)
+{
+  auto dist2 = [&](const GpuNode& n) {
+    double s = 0;
+    for (int ax = 0; ax < 3; ++ax)
+    {
+      const double d = b[ax] < n.lo[ax] ? n.lo[ax] - b[ax] : (a[ax] > n.hi[ax] ? a[ax] - n.hi[ax] : 0.0);
+      s += d * d;
+    }
+    return s;
+  };
+  if (dist2(bvh.nodes[0]) > r2) return true;
+  int stack[64];
+  int top = 0;
+  stack[top++] = 0;
+  while (top > 0)
+  {
+    const GpuNode n = bvh.nodes[stack[--top]];
+    if (n.left < 0) return false;
+    const double dl = dist2(bvh.nodes[n.left]), dr = dist2(bvh.nodes[n.right]);
+    const int nearC = dl <= dr ? n.left : n.right, farC = dl <= dr ? n.right : n.left;
+    const double nearD = dl <= dr ? dl : dr, farD = dl <= dr ? dr : dl;
+    if (top + 2 > 64) return false;
+    if (farD <= r2) stack[top++] = farC;
+    if (nearD <= r2) stack[top++] = nearC;
+  }
+  return true;
+}
+
 template <int Run, int TileRuns, int MinBlocks>
 __global__ void __launch_bounds__(128, MinBlocks) distanceKernel(DevBvh bvh, Params P, float* out)
 {
@@ -165,6 +200,14 @@ __global__ void __launch_bounds__(128, MinBlocks) distanceKernel(DevBvh bvh, Par
   double lower = -1;
   int hint = -1;
   const signed char* farRow = P.far ? P.far + P.farCount[0] * (jj / FarCell + P.farCount[1] * (kk / FarCell)) : nullptr;
+  if (P.bounded && boxFarDev(bvh, positionOf(P, i0, j, k), positionOf(P, i1, j, k), P.bandWorld * P.bandWorld))
+  {
+    // every voxel of the run is farther than the band from every triangle:
+    // saturated, as its query would leave it (one traversal instead of a
+    // query every few voxels; the CPU skips by its own bounds, to the same values)
+    for (long long i = i0; i <= i1; ++i) rowOut[i] = static_cast<float>(P.band);
+    return;
+  }
   for (long long i = i0; i <= i1; ++i)
   {
     if (farRow && farRow[(i - P.lo[0]) / FarCell] != 0)
@@ -433,6 +476,18 @@ __global__ void signKernel(WindingDev W, Params P, long long rowBegin, long long
   int ahead = sum;
   int next = 0;
   const bool open = W.coneCount > 0;
+  if (!open)
+  {
+    // a closed chain: w is the crossing count, each lane walks the sorted
+    // crossings up to its own voxels (they advance by 32 a step)
+    for (long long mine = lane; mine < nx; mine += 32)
+    {
+      const double ti = 0.5 * h + static_cast<double>(mine) * h;
+      while (next < count && hits[next].t <= ti) ahead -= hits[next++].sign;
+      if (insideOf(ahead)) rowOut[mine] = -rowOut[mine];
+    }
+    return;
+  }
   bool have = false;
   double lo = 0, hi = 0;
   unsigned long long ev = 0;
