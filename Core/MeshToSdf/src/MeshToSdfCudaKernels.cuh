@@ -4,20 +4,21 @@
 // skipped by the Lipschitz bound, a run farther than the band from every leaf
 // box of the tree saturated after one traversal; a warp takes that run in 32
 // neighbouring rows so its queries follow similar paths), the sign kernel (one
-// warp per scan line: lane 0 casts the ray of the closed chain into shared
-// memory, the lanes compute the drift bounds of 32 voxels at a time, every lane
-// walks the carried interval with the same values so control flow stays
+// warp per scan line: the lanes cast the ray of the closed chain together,
+// each walking one subtree of the BVH (MeshToSdfRayWalk.h), into shared
+// memory; the lanes compute the drift bounds of 32 voxels at a time, every
+// lane walks the carried interval with the same values so control flow stays
 // uniform (a closed chain carries none: each lane counts the crossings up to
-// its own voxels), and an
-// exact evaluation of the cone's solid angle is split over the lanes as
-// lane-strided partial sums reduced by an xor butterfly: the order the CPU's
-// laneOrderedSum reproduces) and the chunk-encoding kernels of the
-// dictionary-volume path. Triangles are read from compact leaf-ordered records
-// (vertices + normal, 96 bytes) rather than the 328-byte Tri.
+// its own voxels), and an exact evaluation of the cone's solid angle is split
+// over the lanes as lane-strided partial sums reduced by an xor butterfly: the
+// order the CPU's laneOrderedSum reproduces) and the chunk-encoding kernels of
+// the dictionary-volume path. Triangles are read from compact leaf-ordered
+// records (vertices + normal, 96 bytes) rather than the 328-byte Tri.
 #pragma once
 
 #include "MeshToSdfFarBlocks.h"
 #include "MeshToSdfInternal.h"
+#include "MeshToSdfRayWalk.h"
 #include "lvdif/CudaCheck.cuh"
 #include "lvdif/SdfDictionary.h"
 
@@ -279,80 +280,20 @@ struct Hit
   int sign;
 };
 
-/// Mirrors Bvh::rayHits. Returns false when ambiguous or (collecting) when
-/// more than MaxHits crossings; otherwise the signed sum is in *sum.
+/// Mirrors Bvh::rayHits (MeshToSdfRayWalk.h). Returns false when ambiguous
+/// or (collecting) when more than MaxHits crossings; otherwise the signed sum
+/// is in *sum.
 __device__ bool rayDev(const DevBvh& b, V3 o, V3 dir, Hit* hits, int* count, int* sum)
 {
-  constexpr double Eps = 1e-9;
-  const double tmin = 0.0;
   const double inv[3] = { 1.0 / dir.x, 1.0 / dir.y, 1.0 / dir.z };
-  int stack[64];
-  int top = 0;
-  stack[top++] = 0;
   *sum = 0;
   if (count) *count = 0;
-  while (top > 0)
-  {
-    const GpuNode n = b.nodes[stack[--top]];
-    double t0 = tmin, t1 = 1e300;
-    bool miss = false;
-    for (int a = 0; a < 3 && !miss; ++a)
-    {
-      const double da = dir[a], oa = o[a];
-      if (da == 0)
-      {
-        miss = oa < n.lo[a] || oa > n.hi[a];
-        continue;
-      }
-      double ta = (n.lo[a] - oa) * inv[a], tb = (n.hi[a] - oa) * inv[a];
-      if (ta > tb) { const double x = ta; ta = tb; tb = x; }
-      const double pad = 1e-9 * (fabs(ta) + fabs(tb)) + 1e-300;
-      t0 = fmax(t0, ta - pad);
-      t1 = fmin(t1, tb + pad);
-      miss = t0 > t1;
-    }
-    if (miss) continue;
-    if (n.left >= 0)
-    {
-      if (top + 2 > 64) return false;
-      stack[top++] = n.left;
-      stack[top++] = n.right;
-      continue;
-    }
-    for (int i = n.first; i < n.first + n.count; ++i)
-    {
-      const int ti = b.order[i];
-      const GpuTri& t = b.leaf[i];
-      const V3 e1 = t.v[1] - t.v[0], e2 = t.v[2] - t.v[0];
-      const V3 pv = cross(dir, e2);
-      const double det = dot(e1, pv);
-      const double scale = norm(e1) * norm(e2) * norm(dir);
-      const V3 tv = o - t.v[0];
-      if (fabs(det) <= Eps * scale)
-      {
-        if (fabs(dot(tv, t.n)) <= Eps * (norm(tv) + norm(e1))) return false;
-        continue;
-      }
-      const double invDet = 1.0 / det;
-      const double u = dot(tv, pv) * invDet;
-      const V3 qv = cross(tv, e1);
-      const double v = dot(dir, qv) * invDet;
-      const double tt = dot(e2, qv) * invDet;
-      const double w = 1 - u - v;
-      if (u < -Eps || v < -Eps || w < -Eps) continue;
-      const double tScale = 1e-9 * (fabs(tt) + fabs(tmin) + norm(e1) / norm(dir));
-      if (tt < tmin - tScale) continue;
-      if (u <= Eps || v <= Eps || w <= Eps || fabs(tt - tmin) <= tScale) return false;
-      const int sg = dot(dir, t.n) > 0 ? 1 : -1;
-      *sum += sg;
-      if (hits)
-      {
-        if (*count >= MaxHits) return false;
-        hits[(*count)++] = { tt, ti, sg };
-      }
-    }
-  }
-  return true;
+  return rayWalk(b.nodes, b.leaf, b.order, 0, o, dir, inv, *sum, [&](double t, int tri, int sg) {
+    if (!hits) return true;
+    if (*count >= MaxHits) return false;
+    hits[(*count)++] = { t, tri, sg };
+    return true;
+  });
 }
 
 /// Sum of f(c) for c in [0, n) in the order of the CPU's laneOrderedSum:
@@ -409,20 +350,58 @@ __device__ double evaluateWarp(const WindingDev& W, V3 p, int lane)
 __device__ bool insideOf(double w) { return fabs(w) >= 0.5; }
 __device__ bool decidedDev(double lo, double hi) { return !(lo < 0.5 && hi >= 0.5) && !(lo <= -0.5 && hi > -0.5); }
 
-/// The +x ray of a scan line (from half a voxel before its first voxel) against the closed surface:
-/// lane 0 casts it into the warp's shared hits, sorted by t; every lane gets whether it was
-/// unambiguous, the number of crossings and their signed sum.
+/// The +x ray of a scan line (from half a voxel before its first voxel)
+/// against the closed surface, the whole warp together: lane 0 splits the
+/// walk into at most 32 subtrees (rayFrontier), each lane walks one and
+/// appends its crossings to the warp's shared hits, lane 0 sorts them by t.
+/// Every lane gets whether the ray was unambiguous (and held at most MaxHits
+/// crossings), their number and their signed sum: what one walk gives
+/// (MeshToSdfRayWalk.h). shared: the warp's RayShared.
 struct RowRay
 {
   int ok, count, sum;
 };
-__device__ RowRay castRowRay(const WindingDev& W, V3 start, double h, Hit* hits, int lane)
+struct RayShared
 {
-  int count = 0, sum = 0, ok = 0;
+  Hit hits[MaxHits];
+  int frontier[32], scratch[64];
+  int count;
+};
+__device__ RowRay castRowRay(const WindingDev& W, V3 start, double h, RayShared& shared, int lane)
+{
+  const V3 o = start - V3{ 0.5 * h, 0, 0 }, dir{ 1, 0, 0 };
+  const double inv[3] = { 1.0 / dir.x, 1.0 / dir.y, 1.0 / dir.z };
+  int subtrees = 0;
   if (lane == 0)
   {
-    ok = rayDev(W.closed, start - V3{ 0.5 * h, 0, 0 }, V3{ 1, 0, 0 }, hits, &count, &sum) ? 1 : 0;
-    for (int a = 1; ok && a < count; ++a) // insertion sort by t
+    shared.count = 0;
+    subtrees = rayFrontier(W.closed.nodes, o, dir, inv, 32, shared.frontier, shared.scratch);
+  }
+  subtrees = __shfl_sync(FullMask, subtrees, 0);
+  __syncwarp();
+  int sum = 0, ok = 1;
+  if (lane < subtrees)
+  {
+    ok = rayWalk(W.closed.nodes, W.closed.leaf, W.closed.order, shared.frontier[lane], o, dir, inv, sum,
+           [&](double t, int tri, int sg) {
+             const int slot = atomicAdd(&shared.count, 1);
+             if (slot >= MaxHits) return false;
+             shared.hits[slot] = { t, tri, sg };
+             return true;
+           })
+      ? 1
+      : 0;
+  }
+  __syncwarp();
+  RowRay r;
+  r.ok = __all_sync(FullMask, ok) ? 1 : 0;
+  for (int off = 16; off > 0; off >>= 1) sum += __shfl_xor_sync(FullMask, sum, off);
+  r.sum = sum;
+  r.count = min(shared.count, MaxHits);
+  if (lane == 0 && r.ok)
+  {
+    Hit* hits = shared.hits;
+    for (int a = 1; a < r.count; ++a) // insertion sort by t
     {
       const Hit x = hits[a];
       int b = a - 1;
@@ -435,10 +414,6 @@ __device__ RowRay castRowRay(const WindingDev& W, V3 start, double h, Hit* hits,
     }
   }
   __syncwarp();
-  RowRay r;
-  r.ok = __shfl_sync(FullMask, ok, 0);
-  r.count = __shfl_sync(FullMask, count, 0);
-  r.sum = __shfl_sync(FullMask, sum, 0);
   return r;
 }
 
@@ -446,7 +421,7 @@ __device__ RowRay castRowRay(const WindingDev& W, V3 start, double h, Hit* hits,
 __global__ void signKernel(WindingDev W, Params P, long long rowBegin, long long rowEnd, float* out,
   unsigned long long* evals, unsigned long long* fallbacks)
 {
-  __shared__ Hit sharedHits[SignWarps][MaxHits];
+  __shared__ RayShared sharedRay[SignWarps];
   const long long nx = P.hi[0] - P.lo[0] + 1, ny = P.hi[1] - P.lo[1] + 1;
   const int lane = static_cast<int>(threadIdx.x % 32), warp = static_cast<int>(threadIdx.x / 32);
   const long long row = rowBegin + static_cast<long long>(blockIdx.x) * SignWarps + warp;
@@ -456,8 +431,8 @@ __global__ void signKernel(WindingDev W, Params P, long long rowBegin, long long
   const double h = P.spacing[0];
   const V3 start = positionOf(P, P.lo[0], j, k);
   auto pos = [&](long long i) { return start + V3{ static_cast<double>(i) * h, 0, 0 }; };
-  Hit* hits = sharedHits[warp];
-  const RowRay ray = castRowRay(W, start, h, hits, lane);
+  const Hit* hits = sharedRay[warp].hits;
+  const RowRay ray = castRowRay(W, start, h, sharedRay[warp], lane);
   const int ok = ray.ok, count = ray.count, sum = ray.sum;
   if (!ok)
   {
