@@ -398,6 +398,13 @@ public:
     require(!(options.sign == SignMode::Normal || options.sign == SignMode::PseudoNormal) || mesh.hasNormals(),
       "mesh to SDF: the device mesh has no triangle normals");
     this->Counters = this->Arena.alloc<unsigned long long>(3);
+    if (this->HasWinding)
+    {
+      // the rays of at most this many scan lines at a time (no slab has more lines than the grid)
+      this->RayRows = std::max<long long>(1, std::min<long long>(1ll << 17, grid.dims[1] * grid.dims[2]));
+      this->RayHits = this->Arena.alloc<Hit>(static_cast<std::size_t>(this->RayRows * RowHits));
+      this->RayMeta = this->Arena.alloc<int4>(static_cast<std::size_t>(this->RayRows));
+    }
     for (int a = 0; a < 3; ++a)
     {
       this->P.origin[a] = grid.origin[a];
@@ -664,18 +671,25 @@ private:
     }
     for (int p = 0; p < parts; ++p)
     {
-      if (this->HasWinding)
+      // the scan lines' rays first (one thread per line), then the sign
+      // kernel, in pieces of at most RayRows lines (the rays' buffers)
+      const long long r0 = rows * p / parts, r1 = rows * (p + 1) / parts;
+      for (long long c0 = r0; this->HasWinding && c0 < r1; c0 += this->RayRows)
       {
-        const long long r0 = rows * p / parts, r1 = rows * (p + 1) / parts;
-        const unsigned grid = static_cast<unsigned>((r1 - r0 + SignWarps - 1) / SignWarps);
+        const long long c1 = std::min(r1, c0 + this->RayRows);
+        rowRayKernel<<<static_cast<unsigned>((c1 - c0 + 127) / 128), 128>>>(
+          this->Mesh.W, P, c0, c1, this->RayHits, this->RayMeta);
+        LVDIF_CUDA_CHECK(cudaGetLastError());
+        const unsigned grid = static_cast<unsigned>((c1 - c0 + SignWarps - 1) / SignWarps);
         if (dipole)
         {
-          signDipoleKernel<<<grid, 32 * SignWarps>>>(
-            this->Mesh.W, this->Mesh.D, P, r0, r1, this->Bounds, bx, by, this->Slab, this->Counters);
+          signDipoleKernel<<<grid, 32 * SignWarps>>>(this->Mesh.W, this->Mesh.D, P, c0, c1, this->RayMeta,
+            this->RayHits, this->Bounds, bx, by, this->Slab, this->Counters);
         }
         else
         {
-          signKernel<<<grid, 32 * SignWarps>>>(this->Mesh.W, P, r0, r1, this->Slab, this->Counters, this->Counters + 1);
+          signKernel<<<grid, 32 * SignWarps>>>(
+            this->Mesh.W, P, c0, c1, this->RayMeta, this->RayHits, this->Slab, this->Counters, this->Counters + 1);
         }
         LVDIF_CUDA_CHECK(cudaGetLastError());
       }
@@ -757,6 +771,10 @@ private:
   PartEvents PartDone;
   Stream Copy; // device -> host copies, beside the kernels of the legacy stream
   unsigned long long* Counters = nullptr;
+  // the scan lines' rays (rowRayKernel), RayRows lines at a time
+  long long RayRows = 1;
+  Hit* RayHits = nullptr;
+  int4* RayMeta = nullptr;
   // far blocks (Normal/PseudoNormal with a band): one sign per FarCell^3 cell of the slab
   bool FarOn = false;
   double FarBig = 0, FarMargin = 0;

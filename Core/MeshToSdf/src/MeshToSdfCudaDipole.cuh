@@ -58,7 +58,8 @@ __global__ void dipoleBlockKernel(DipoleDev D, Params P, int edge, long long bx,
 /// oblique ray per voxel (WindingSigner::insideAt), and a voxel whose oblique
 /// ray is ambiguous too the sum over all of M.
 __global__ void signDipoleKernel(WindingDev W, DipoleDev D, Params P, long long rowBegin, long long rowEnd,
-  const double* bounds, long long bx, long long by, float* out, unsigned long long* counters)
+  const int4* rayMeta, const Hit* rayHits, const double* bounds, long long bx, long long by, float* out,
+  unsigned long long* counters)
 {
   __shared__ RayShared sharedRay[SignWarps];
   const long long nx = P.hi[0] - P.lo[0] + 1, ny = P.hi[1] - P.lo[1] + 1;
@@ -71,7 +72,7 @@ __global__ void signDipoleKernel(WindingDev W, DipoleDev D, Params P, long long 
   const V3 start = positionOf(P, P.lo[0], j, k);
   auto pos = [&](long long i) { return start + V3{ static_cast<double>(i) * h, 0, 0 }; };
   const Hit* hits = sharedRay[warp].hits;
-  const RowRay ray = castRowRay(W, start, h, sharedRay[warp], lane);
+  const RowRay ray = rowRayOf(W, start, h, sharedRay[warp], lane, rayMeta, rayHits, row - rowBegin);
   const int ok = ray.ok, count = ray.count, sum = ray.sum;
   unsigned long long ev = 0, full = 0, fallback = 0;
   const double* blockRow = bounds + 2 * bx * ((j - P.lo[1]) / DipoleBlock + by * ((k - P.lo[2]) / DipoleBlock));

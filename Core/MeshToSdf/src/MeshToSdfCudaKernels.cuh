@@ -417,9 +417,76 @@ __device__ RowRay castRowRay(const WindingDev& W, V3 start, double h, RayShared&
   return r;
 }
 
+/// The +x rays of the scan lines [rowBegin, rowEnd) of the slab, one thread
+/// per line, before the sign kernels: each walk from the root (rayWalk, what
+/// rayDev does) keeps at most RowHits crossings, sorted by t, in hits (RowHits
+/// per line) and its outcome in meta: x = 1 unambiguous, 0 ambiguous, 2 more
+/// than RowHits crossings (the sign kernel's warp casts that line again, up
+/// to MaxHits); y = the crossings, z = their signed sum. A warp-wide cast per
+/// line left the ray's walk to one latency-bound lane or a few (the tree's
+/// nodes met by one ray are a thin path): here 32 lines walk at once.
+constexpr int RowHits = 8;
+__global__ void rowRayKernel(WindingDev W, Params P, long long rowBegin, long long rowEnd, Hit* hits, int4* meta)
+{
+  const long long row = rowBegin + static_cast<long long>(blockIdx.x) * blockDim.x + threadIdx.x;
+  if (row >= rowEnd) return;
+  const long long ny = P.hi[1] - P.lo[1] + 1;
+  const long long j = P.lo[1] + row % ny, k = P.lo[2] + row / ny;
+  const double h = P.spacing[0];
+  const V3 start = positionOf(P, P.lo[0], j, k);
+  const V3 o = start - V3{ 0.5 * h, 0, 0 }, dir{ 1, 0, 0 };
+  const double inv[3] = { 1.0 / dir.x, 1.0 / dir.y, 1.0 / dir.z };
+  Hit local[RowHits];
+  int count = 0, sum = 0;
+  bool overflow = false;
+  const bool ok = rayWalk(W.closed.nodes, W.closed.leaf, W.closed.order, 0, o, dir, inv, sum, [&](double t, int tri, int sg) {
+    if (count >= RowHits)
+    {
+      overflow = true;
+      return false;
+    }
+    local[count++] = { t, tri, sg };
+    return true;
+  });
+  Hit* out = hits + (row - rowBegin) * RowHits;
+  if (ok)
+  {
+    for (int a = 1; a < count; ++a) // insertion sort by t
+    {
+      const Hit x = local[a];
+      int b = a - 1;
+      while (b >= 0 && local[b].t > x.t)
+      {
+        local[b + 1] = local[b];
+        --b;
+      }
+      local[b + 1] = x;
+    }
+    for (int a = 0; a < count; ++a) out[a] = local[a];
+  }
+  meta[row - rowBegin] = make_int4(ok ? 1 : (overflow ? 2 : 0), count, sum, 0);
+}
+
+/// The ray of scan line `row` as castRowRay gives it, from rowRayKernel's
+/// results for the lines from rowBegin (a line with more than RowHits
+/// crossings is cast again by the warp); the crossings end up in shared.hits.
+__device__ RowRay rowRayOf(const WindingDev& W, V3 start, double h, RayShared& shared, int lane, const int4* meta,
+  const Hit* hits, long long local)
+{
+  const int4 m = meta[local];
+  if (m.x == 2) return castRowRay(W, start, h, shared, lane);
+  if (m.x == 1 && lane < m.y) shared.hits[lane] = hits[local * RowHits + lane];
+  __syncwarp();
+  RowRay r;
+  r.ok = m.x;
+  r.count = m.y;
+  r.sum = m.z;
+  return r;
+}
+
 /// WindingSigner::signRow, one warp per scan line (see the file comment).
-__global__ void signKernel(WindingDev W, Params P, long long rowBegin, long long rowEnd, float* out,
-  unsigned long long* evals, unsigned long long* fallbacks)
+__global__ void signKernel(WindingDev W, Params P, long long rowBegin, long long rowEnd, const int4* rayMeta,
+  const Hit* rayHits, float* out, unsigned long long* evals, unsigned long long* fallbacks)
 {
   __shared__ RayShared sharedRay[SignWarps];
   const long long nx = P.hi[0] - P.lo[0] + 1, ny = P.hi[1] - P.lo[1] + 1;
@@ -432,7 +499,7 @@ __global__ void signKernel(WindingDev W, Params P, long long rowBegin, long long
   const V3 start = positionOf(P, P.lo[0], j, k);
   auto pos = [&](long long i) { return start + V3{ static_cast<double>(i) * h, 0, 0 }; };
   const Hit* hits = sharedRay[warp].hits;
-  const RowRay ray = castRowRay(W, start, h, sharedRay[warp], lane);
+  const RowRay ray = rowRayOf(W, start, h, sharedRay[warp], lane, rayMeta, rayHits, row - rowBegin);
   const int ok = ray.ok, count = ray.count, sum = ray.sum;
   if (!ok)
   {

@@ -269,6 +269,55 @@ TEST(MeshToSdfCuda, DictionaryVolumeMatchesCpu)
   }
 }
 
+TEST(MeshToSdfCuda, ScanLinesWithManyCrossingsMatchCpu)
+{
+  // five nested spheres: a scan line through the middle crosses 10 times,
+  // more than the ray pre-pass keeps per line (its warp casts it again);
+  // closed (crossings only) and with holes (the correction s), several slabs
+  if (!cuda::available()) GTEST_SKIP() << "no CUDA device";
+  for (const bool holes : { false, true })
+  {
+    TriangleMesh m;
+    for (int s = 0; s < 5; ++s)
+    {
+      const TriangleMesh sphere = makeSphereMesh(0.03f, -0.02f, 0.01f, 1.0f - 0.19f * static_cast<float>(s), 20, 40);
+      const std::uint32_t base = static_cast<std::uint32_t>(m.points.size());
+      m.points.insert(m.points.end(), sphere.points.begin(), sphere.points.end());
+      for (std::size_t t = 0; t < sphere.triangles.size(); ++t)
+      {
+        if (holes && t % 37 == 5) continue;
+        auto tri = sphere.triangles[t];
+        for (auto& v : tri) v += base;
+        m.triangles.push_back(tri);
+      }
+    }
+    const GridGeometry g = fitGridToMesh(m, 56, 2);
+    VoxelBox all;
+    all.hi = { g.dims[0] - 1, g.dims[1] - 1, g.dims[2] - 1 };
+    const MeshToSdfPrepared prepared = prepareMeshToSdf(m);
+    for (float band : { 3.0f, std::numeric_limits<float>::infinity() })
+    {
+      std::vector<float> cpu(static_cast<std::size_t>(g.count())), gpu(cpu.size());
+      MeshToSdfOptions o;
+      o.bandWidth = band;
+      o.device = Device::Cpu;
+      meshToSdf(prepared, g, all, cpu.data(), o);
+      o.device = Device::Cuda;
+      o.cudaSlabBytes = static_cast<std::uint64_t>(g.dims[0] * g.dims[1]) * 4 * 9; // several slabs
+      const MeshToSdfStats st = meshToSdf(prepared, g, all, gpu.data(), o);
+      ASSERT_EQ(st.device, Device::Cuda);
+      std::int64_t inside = 0;
+      for (float v : gpu) inside += std::signbit(v);
+      EXPECT_GT(inside, g.count() / 20);
+      EXPECT_EQ(std::memcmp(cpu.data(), gpu.data(), cpu.size() * sizeof(float)), 0)
+        << (holes ? "holes" : "closed") << " band " << band;
+      std::printf("[ cpu vs cuda ] nested spheres%s band %g: %s, %lld inside\n", holes ? " with holes" : "",
+        static_cast<double>(band), std::memcmp(cpu.data(), gpu.data(), cpu.size() * sizeof(float)) ? "DIFFER" : "equal",
+        static_cast<long long>(inside));
+    }
+  }
+}
+
 TEST(MeshToSdfCuda, DictionaryVolumeKeysInPiecesPinnedAndPageable)
 {
   // the keys come back in pieces through a few staging slots: many pieces
