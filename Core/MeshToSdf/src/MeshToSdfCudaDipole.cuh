@@ -57,7 +57,15 @@ __global__ void dipoleBlockKernel(DipoleDev D, Params P, int edge, long long bx,
 /// decides, else insideDipole. A row whose +x ray is ambiguous takes an
 /// oblique ray per voxel (WindingSigner::insideAt), and a voxel whose oblique
 /// ray is ambiguous too the sum over all of M.
-__global__ void signDipoleKernel(WindingDev W, DipoleDev D, Params P, long long rowBegin, long long rowEnd,
+// Blocks of the sign kernel that must fit on an SM at once (registers capped
+// to allow it; 1: no cap, 110 registers, 4 blocks). A build-time tuning knob
+// for scripts/gpu-write.sh's A/B (6: 80 registers with some spills); the
+// values are the same either way.
+#ifndef LVDIF_SIGN_MIN_BLOCKS
+#define LVDIF_SIGN_MIN_BLOCKS 1
+#endif
+__global__ void __launch_bounds__(32 * SignWarps, LVDIF_SIGN_MIN_BLOCKS) signDipoleKernel(WindingDev W,
+  DipoleDev D, Params P, long long rowBegin, long long rowEnd,
   const int4* rayMeta, const Hit* rayHits, const double* bounds, long long bx, long long by, float* out,
   unsigned long long* counters)
 {
