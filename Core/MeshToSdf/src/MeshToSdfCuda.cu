@@ -336,7 +336,8 @@ public:
         LVDIF_CUDA_CHECK(cudaFreeHost(b.p));
       }
       void* p = nullptr;
-      const cudaError_t e = cudaHostAlloc(&p, bytes, cudaHostAllocDefault);
+      // portable: pinned for every device, whichever a later session runs on
+      const cudaError_t e = cudaHostAlloc(&p, bytes, cudaHostAllocPortable);
       if (e == cudaSuccess) return { static_cast<std::uint16_t*>(p), bytes, true };
       (void)cudaGetLastError(); // not sticky: clear it so later launch checks do not see it
       if (!this->Noticed)
