@@ -62,7 +62,7 @@ fi
   echo "## rows (ms): run | device | read | build | distance | sign | write | end-to-end | inside voxels | expanded chunks"
   grep -E "^## |^\| (cold|warm|prepared)|^cpu check:|^device memory|rc=[1-9]" "$L" |
     awk -F'|' '/^\| (cold|warm|prepared)/ { printf "|%s|%s|%s|%s|%s|%s|%s|%s|%s|%s|\n", $2, $3, $4, $5, $6, $7, $8, $9, $12, $13; next } { print }'
-  echo "## the write's parts (--trace), in run order"
-  grep -E "^## |\[mesh to SDF\] (write|upload and session|winding structures built)|pinned host memory" "$L" | head -150
+  echo "## the write's parts and the sign's (--trace), in run order"
+  grep -E "^## |\[mesh to SDF\] (write|upload and session|winding structures built|winding sign on the GPU, dictionary)|pinned host memory" "$L" | head -200
 } | tee -a "$OUT/summary.txt"
 echo "total $(( $(date +%s) - T0 )) s" | tee -a "$OUT/summary.txt"

@@ -435,6 +435,8 @@ public:
 
   ~CudaSession() override
   {
+    if (this->BoundsSeconds > 0) trace("winding sign on the GPU, dictionary volume: the correction's block bounds", this->BoundsSeconds);
+    if (this->RaysSeconds > 0) trace("winding sign on the GPU, dictionary volume: the scan lines' rays", this->RaysSeconds);
     // never free buffers under running kernels, nor give back staging that a copy still fills
     if (this->Launched || this->Pieces > 0) cudaDeviceSynchronize();
     pinnedPool().give(this->Staging);
@@ -514,7 +516,14 @@ public:
       cudaMemcpyDeviceToHost)); // waits for the kernels
     this->Launched = false;
     stats.distanceSeconds += this->DistanceDone.seconds();
-    if (this->HasWinding) stats.signSeconds += this->SignDone.seconds();
+    if (this->HasWinding)
+    {
+      stats.signSeconds += this->SignDone.seconds();
+      float ms = 0;
+      LVDIF_CUDA_CHECK(cudaEventElapsedTime(&ms, this->SignDone.a, this->SignSplit.a));
+      this->BoundsSeconds += 1e-3 * ms;
+      this->RaysSeconds += this->SignSplit.seconds();
+    }
     const double t0 = now();
     out.listed.clear();
     for (long long c = 0; c < this->Chunks; ++c)
@@ -670,6 +679,7 @@ private:
         parent = level;
       }
     }
+    if (this->HasWinding) LVDIF_CUDA_CHECK(cudaEventRecord(this->SignSplit.a)); // the block bounds end here
     for (int p = 0; p < parts; ++p)
     {
       // the scan lines' rays first (one thread per line), then the sign
@@ -681,6 +691,7 @@ private:
         rowRayKernel<<<static_cast<unsigned>((c1 - c0 + 127) / 128), 128>>>(
           this->Mesh.W, P, c0, c1, this->RayHits, this->RayMeta);
         LVDIF_CUDA_CHECK(cudaGetLastError());
+        if (p == 0 && c0 == r0) LVDIF_CUDA_CHECK(cudaEventRecord(this->SignSplit.b)); // (--trace: the first rays)
         const unsigned grid = static_cast<unsigned>((c1 - c0 + SignWarps - 1) / SignWarps);
         if (dipole)
         {
@@ -769,6 +780,8 @@ private:
   DeviceArena Arena;
   Params P;
   EventTimer DistanceDone, SignDone;
+  EventTimer SignSplit; // a: after the block bounds, b: after the first rays of a slab (volume path: --trace)
+  double BoundsSeconds = 0, RaysSeconds = 0;
   PartEvents PartDone;
   Stream Copy; // device -> host copies, beside the kernels of the legacy stream
   unsigned long long* Counters = nullptr;
