@@ -572,8 +572,11 @@ void volumeRegion(DictionaryVolume& volume, const VoxelBox& region, std::uint64_
 
 /// CUDA: groups of chunk layers as large as cudaSlabBytes allows (at least
 /// one), encoded on the GPU (SdfDictionary::encodeWith, the host's own
-/// rounding); only the keys of non-uniform chunks come back, and the host
-/// stores group g while the GPU computes group g + 1.
+/// rounding); only the keys of non-uniform chunks come back. For group g the
+/// host lists its chunks, queues its keys and group g + 1's kernels, stores the
+/// uniform chunks, then the keys piece by piece as they arrive in pinned
+/// memory (piece k stored while k + 1 is copied), all while the GPU computes
+/// group g + 1.
 void volumeOnCuda(detail::meshtosdf_cuda::Session& session, DictionaryVolume& volume, const MeshToSdfOptions& opts,
   MeshToSdfStats& stats, Interrupter& intr)
 {
@@ -595,55 +598,78 @@ void volumeOnCuda(detail::meshtosdf_cuda::Session& session, DictionaryVolume& vo
   detail::meshtosdf_cuda::ChunkKeys keys;
   session.launchKeys(boxOf(0), static_cast<int>(edge), enc, band, stats);
   const std::int64_t e3 = edge * edge * edge;
-  double fetchSeconds = 0, storeSeconds = 0; // the two parts of writeSeconds (tracePhases)
+  double listSeconds = 0, waitSeconds = 0, storeSeconds = 0; // the parts of writeSeconds (tracePhases)
   for (std::int64_t g0 = 0; g0 < cc[2]; g0 += group)
   {
     intr.checkInterrupt();
     const double fetch0 = stats.writeSeconds;
     session.fetchKeys(keys, stats); // its time after the kernels' wait counts as write
-    fetchSeconds += stats.writeSeconds - fetch0;
+    listSeconds += stats.writeSeconds - fetch0;
     if (g0 + group < cc[2]) session.launchKeys(boxOf(g0 + group), static_cast<int>(edge), enc, band, stats);
     const double t0 = now();
     const VoxelBox box = boxOf(g0);
+    const std::int64_t perLayer = cc[0] * cc[1];
+    auto idOf = [&](std::int64_t c) { return volume.chunkId(c % cc[0], (c / cc[0]) % cc[1], g0 + c / perLayer); };
+    std::atomic<std::int64_t> mismatches{ 0 }, verified{ 0 };
+    // tests: every GPU key against the host's encode of the same float
+    auto verify = [&](std::int64_t id, auto&& keyAt) {
+      if (keys.floats.empty()) return;
+      const VoxelBox cb = volume.chunkBox(id);
+      std::int64_t bad = 0, n = 0;
+      for (std::int64_t z = cb.lo[2]; z <= cb.hi[2]; ++z)
+        for (std::int64_t y = cb.lo[1]; y <= cb.hi[1]; ++y)
+          for (std::int64_t x = cb.lo[0]; x <= cb.hi[0]; ++x)
+          {
+            const SdfKey want =
+              volume.encode(keys.floats[static_cast<std::size_t>(x + dims[0] * (y + dims[1] * (z - box.lo[2])))]);
+            bad += want != keyAt(volume.localIndex(x, y, z));
+            ++n;
+          }
+      mismatches += bad;
+      verified += n;
+    };
+    // the uniform chunks, while the first pieces of keys are copied
     const std::int64_t chunks = static_cast<std::int64_t>(keys.uniform.size());
-    std::vector<std::int64_t> slot(static_cast<std::size_t>(chunks), -1); // index in keys.listed
-    for (std::size_t i = 0; i < keys.listed.size(); ++i) slot[static_cast<std::size_t>(keys.listed[i])] = static_cast<std::int64_t>(i);
-    std::int64_t mismatches = 0, verified = 0;
-#pragma omp parallel for schedule(dynamic, 1) reduction(+ : mismatches, verified)
+#pragma omp parallel for schedule(dynamic, 16)
     for (std::int64_t c = 0; c < chunks; ++c)
     {
-      const std::int64_t id = volume.chunkId(c % cc[0], (c / cc[0]) % cc[1], g0 + c / (cc[0] * cc[1]));
       const std::uint32_t u = keys.uniform[static_cast<std::size_t>(c)];
-      const bool uniform = u != detail::meshtosdf_cuda::ChunkKeys::NotUniform;
-      const std::uint16_t* k = uniform ? nullptr : keys.keys.data() + slot[static_cast<std::size_t>(c)] * e3;
-      auto keyAt = [&](std::int64_t, std::int64_t, std::int64_t, std::int64_t l) { return k[l]; };
-      if (!keys.floats.empty())
-      {
-        // tests: every GPU key against the host's encode of the same float
-        const VoxelBox cb = volume.chunkBox(id);
-        for (std::int64_t z = cb.lo[2]; z <= cb.hi[2]; ++z)
-          for (std::int64_t y = cb.lo[1]; y <= cb.hi[1]; ++y)
-            for (std::int64_t x = cb.lo[0]; x <= cb.hi[0]; ++x)
-            {
-              const SdfKey want = volume.encode(
-                keys.floats[static_cast<std::size_t>(x + dims[0] * (y + dims[1] * (z - box.lo[2])))]);
-              const SdfKey got = uniform ? static_cast<SdfKey>(u) : k[volume.localIndex(x, y, z)];
-              mismatches += want != got;
-              ++verified;
-            }
-      }
-      storeChunk(volume, id, uniform, static_cast<SdfKey>(uniform ? u : 0), keyAt);
+      if (u == detail::meshtosdf_cuda::ChunkKeys::NotUniform) continue;
+      const std::int64_t id = idOf(c);
+      verify(id, [&](std::int64_t) { return static_cast<SdfKey>(u); });
+      storeChunk(volume, id, true, static_cast<SdfKey>(u), [](std::int64_t, std::int64_t, std::int64_t, std::int64_t) {
+        return SdfKey(0);
+      });
     }
-    stats.keyMismatches += mismatches;
-    stats.keysVerified += verified;
+    const double store0 = now() - t0;
+    // then the others, one piece of keys at a time
+    double storePieces = 0;
+    const double waited = session.takeKeys([&](std::size_t first, std::size_t last, const std::uint16_t* pieceKeys) {
+      const double s0 = now();
+      const std::int64_t n = static_cast<std::int64_t>(last - first);
+#pragma omp parallel for schedule(dynamic, 1)
+      for (std::int64_t i = 0; i < n; ++i)
+      {
+        const std::uint16_t* k = pieceKeys + i * e3;
+        const std::int64_t id = idOf(keys.listed[first + static_cast<std::size_t>(i)]);
+        verify(id, [&](std::int64_t l) { return static_cast<SdfKey>(k[l]); });
+        storeChunk(volume, id, false, SdfKey(0),
+          [&](std::int64_t, std::int64_t, std::int64_t, std::int64_t l) { return static_cast<SdfKey>(k[l]); });
+      }
+      storePieces += now() - s0;
+    });
+    stats.keyMismatches += mismatches.load();
+    stats.keysVerified += verified.load();
     stats.writeSeconds += now() - t0;
-    storeSeconds += now() - t0;
+    waitSeconds += waited;
+    storeSeconds += store0 + storePieces;
     intr.progress(static_cast<double>(std::min(cc[2], g0 + group)) / static_cast<double>(cc[2]));
   }
-  // the keys' kernel and copy run while the GPU waits for the next group;
-  // the host's store overlaps the next group's kernels
-  trace("write: keys from the GPU (GPU idle meanwhile)", fetchSeconds);
-  trace("write: store into the volume (overlaps the next group)", storeSeconds);
+  // the GPU waits only for the listing (the keys kernel runs before the next
+  // group's); copies and stores overlap the next group's kernels
+  trace("write: list the chunks and queue their keys (GPU idle meanwhile)", listSeconds);
+  trace("write: wait for the keys' pieces (copies overlap the next group)", waitSeconds);
+  trace("write: store into the volume (overlaps the next group and the copies)", storeSeconds);
 }
 
 /// stats.warnings when a signed field over the whole grid has no voxel

@@ -22,6 +22,8 @@
 #include <cstddef>
 #include <cstdlib>
 #include <cmath>
+#include <cstdio>
+#include <mutex>
 #include <vector>
 
 namespace lvdif
@@ -279,7 +281,7 @@ struct EventTimer
   }
 };
 
-/// Events without timing, one per part of the sign pass.
+/// Events without timing, one per part of the sign pass (or staging slot of the keys).
 struct PartEvents
 {
   static constexpr int Max = 4;
@@ -294,6 +296,92 @@ struct PartEvents
   }
   cudaEvent_t operator[](int i) const { return this->e[i]; }
 };
+
+/// Host memory the keys' pieces are copied into. Pinned blocks are kept for
+/// the process and shared by its sessions (one session per block at a time):
+/// page-locking is slow (every page touched and locked), so warm calls reuse
+/// what earlier ones locked; they are freed at exit. When pinned memory
+/// is refused the block is plain malloc memory (the copies then wait for the
+/// GPU and go through the driver's own staging), said once on stderr.
+struct HostBlock
+{
+  std::uint16_t* p = nullptr;
+  std::size_t bytes = 0;
+  bool pinned = false;
+};
+
+class PinnedPool
+{
+public:
+  ~PinnedPool()
+  {
+    // at exit the runtime may be gone already: nothing to report then
+    for (const HostBlock& b : this->Free) cudaFreeHost(b.p);
+  }
+  /// A block of at least `bytes` (contents undefined).
+  HostBlock take(std::size_t bytes)
+  {
+    std::lock_guard<std::mutex> lock(this->Mutex);
+    if (!this->Refuse)
+    {
+      // the largest kept block; one too small is replaced by a larger one
+      std::size_t best = this->Free.size();
+      for (std::size_t i = 0; i < this->Free.size(); ++i)
+        if (best == this->Free.size() || this->Free[i].bytes > this->Free[best].bytes) best = i;
+      if (best < this->Free.size())
+      {
+        HostBlock b = this->Free[best];
+        this->Free.erase(this->Free.begin() + static_cast<std::ptrdiff_t>(best));
+        if (b.bytes >= bytes) return b;
+        LVDIF_CUDA_CHECK(cudaFreeHost(b.p));
+      }
+      void* p = nullptr;
+      // portable: pinned for every device, whichever a later session runs on
+      const cudaError_t e = cudaHostAlloc(&p, bytes, cudaHostAllocPortable);
+      if (e == cudaSuccess) return { static_cast<std::uint16_t*>(p), bytes, true };
+      (void)cudaGetLastError(); // not sticky: clear it so later launch checks do not see it
+      if (!this->Noticed)
+      {
+        std::fprintf(stderr, "mesh to SDF: pinned host memory refused (%s); the chunk keys come back through "
+                             "pageable memory (slower)\n", cudaGetErrorString(e));
+        this->Noticed = true;
+      }
+    }
+    void* p = std::malloc(bytes);
+    require(p != nullptr, "mesh to SDF: out of host memory for the chunk keys' pieces");
+    return { static_cast<std::uint16_t*>(p), bytes, false };
+  }
+  /// Back to the pool (pinned) or freed (pageable); no copy may still write into it.
+  void give(const HostBlock& b)
+  {
+    if (!b.p) return;
+    if (!b.pinned)
+    {
+      std::free(b.p);
+      return;
+    }
+    std::lock_guard<std::mutex> lock(this->Mutex);
+    this->Free.push_back(b);
+  }
+  void refuse(bool r)
+  {
+    std::lock_guard<std::mutex> lock(this->Mutex);
+    this->Refuse = r;
+  }
+
+private:
+  std::mutex Mutex;
+  std::vector<HostBlock> Free;
+  bool Refuse = false, Noticed = false;
+};
+
+PinnedPool& pinnedPool()
+{
+  static PinnedPool pool;
+  return pool;
+}
+
+std::atomic<std::int64_t> piecesCopied{ 0 }, piecesPageable{ 0 };
 
 class CudaSession : public Session
 {
@@ -311,6 +399,13 @@ public:
     require(!(options.sign == SignMode::Normal || options.sign == SignMode::PseudoNormal) || mesh.hasNormals(),
       "mesh to SDF: the device mesh has no triangle normals");
     this->Counters = this->Arena.alloc<unsigned long long>(3);
+    if (this->HasWinding)
+    {
+      // the rays of at most this many scan lines at a time (no slab has more lines than the grid)
+      this->RayRows = std::max<long long>(1, std::min<long long>(1ll << 17, grid.dims[1] * grid.dims[2]));
+      this->RayHits = this->Arena.alloc<Hit>(static_cast<std::size_t>(this->RayRows * RowHits));
+      this->RayMeta = this->Arena.alloc<int4>(static_cast<std::size_t>(this->RayRows));
+    }
     for (int a = 0; a < 3; ++a)
     {
       this->P.origin[a] = grid.origin[a];
@@ -340,7 +435,11 @@ public:
 
   ~CudaSession() override
   {
-    if (this->Launched) cudaDeviceSynchronize(); // never free buffers under running kernels
+    if (this->BoundsSeconds > 0) trace("winding sign on the GPU, dictionary volume: the correction's block bounds", this->BoundsSeconds);
+    if (this->RaysSeconds > 0) trace("winding sign on the GPU, dictionary volume: the scan lines' rays", this->RaysSeconds);
+    // never free buffers under running kernels, nor give back staging that a copy still fills
+    if (this->Launched || this->Pieces > 0) cudaDeviceSynchronize();
+    pinnedPool().give(this->Staging);
   }
 
   void compute(const VoxelBox& extent, float* out, MeshToSdfStats& stats, Interrupter& interrupter) override
@@ -409,6 +508,7 @@ public:
 
   void fetchKeys(ChunkKeys& out, MeshToSdfStats& stats) override
   {
+    require(this->Pieces == 0, "mesh to SDF: fetchKeys before the last group's takeKeys");
     const long long nx = this->KeyBox.hi[0] - this->KeyBox.lo[0] + 1, ny = this->KeyBox.hi[1] - this->KeyBox.lo[1] + 1;
     const long long nz = this->KeyBox.hi[2] - this->KeyBox.lo[2] + 1;
     out.uniform.resize(static_cast<std::size_t>(this->Chunks));
@@ -416,18 +516,23 @@ public:
       cudaMemcpyDeviceToHost)); // waits for the kernels
     this->Launched = false;
     stats.distanceSeconds += this->DistanceDone.seconds();
-    if (this->HasWinding) stats.signSeconds += this->SignDone.seconds();
+    if (this->HasWinding)
+    {
+      stats.signSeconds += this->SignDone.seconds();
+      float ms = 0;
+      LVDIF_CUDA_CHECK(cudaEventElapsedTime(&ms, this->SignDone.a, this->SignSplit.a));
+      this->BoundsSeconds += 1e-3 * ms;
+      this->RaysSeconds += this->SignSplit.seconds();
+    }
     const double t0 = now();
     out.listed.clear();
     for (long long c = 0; c < this->Chunks; ++c)
     {
       if (out.uniform[static_cast<std::size_t>(c)] == ChunkKeys::NotUniform) out.listed.push_back(c);
     }
-    const long long e3 = static_cast<long long>(this->Edge) * this->Edge * this->Edge;
-    const std::size_t keyCount = out.listed.size() * static_cast<std::size_t>(e3);
-    // a plain resize: advised for huge pages, the copy from the GPU into this
-    // pageable buffer took longer on the H100 host (bunny at 1024^3, same run A/B)
-    out.keys.resize(keyCount);
+    const std::size_t e3 = static_cast<std::size_t>(this->Edge) * this->Edge * this->Edge;
+    const std::size_t keyCount = out.listed.size() * e3;
+    this->Listed = out.listed.size();
     if (!out.listed.empty())
     {
       if (keyCount > this->KeyCapacity)
@@ -441,8 +546,23 @@ public:
       chunkKeysKernel<<<static_cast<unsigned>(out.listed.size()), 256>>>(this->Slab, nx, ny, nz, this->Edge,
         this->Ccx, this->Ccy, this->Encode, this->Band, this->List, this->Keys);
       LVDIF_CUDA_CHECK(cudaGetLastError());
-      LVDIF_CUDA_CHECK(cudaMemcpy(out.keys.data(), this->Keys, keyCount * sizeof(unsigned short),
-        cudaMemcpyDeviceToHost));
+      this->Launched = true;
+      LVDIF_CUDA_CHECK(cudaEventRecord(this->KeysReady[0]));
+      LVDIF_CUDA_CHECK(cudaStreamWaitEvent(this->Copy.s, this->KeysReady[0], 0));
+      // pieces of whole chunks, at most the group's (the staging block then
+      // fits every later group of the call, and a small grid pins little)
+      this->PieceChunks = std::max<std::size_t>(1, std::min<std::size_t>(static_cast<std::size_t>(this->Chunks),
+        static_cast<std::size_t>(this->Options.cudaKeyPieceBytes / (e3 * sizeof(std::uint16_t)))));
+      const std::size_t need = Slots * this->PieceChunks * e3 * sizeof(std::uint16_t);
+      if (this->Staging.bytes < need)
+      {
+        pinnedPool().give(this->Staging);
+        this->Staging = HostBlock();
+        this->Staging = pinnedPool().take(need);
+      }
+      this->Pieces = (this->Listed + this->PieceChunks - 1) / this->PieceChunks;
+      // the first pieces start now, under the next group's kernels
+      for (std::size_t k = 0; k < Slots && k < this->Pieces; ++k) this->copyPiece(k);
     }
     if (this->Options.cudaVerifyKeys)
     {
@@ -455,7 +575,39 @@ public:
     this->readCounters(stats);
   }
 
+  double takeKeys(const KeyPieceFn& store) override
+  {
+    const std::size_t e3 = static_cast<std::size_t>(this->Edge) * this->Edge * this->Edge;
+    double waited = 0;
+    for (std::size_t k = 0; k < this->Pieces; ++k)
+    {
+      const std::size_t slot = k % Slots;
+      const double t0 = now();
+      LVDIF_CUDA_CHECK(cudaEventSynchronize(this->PieceDone[static_cast<int>(slot)]));
+      waited += now() - t0;
+      const std::size_t first = k * this->PieceChunks, last = std::min(this->Listed, first + this->PieceChunks);
+      store(first, last, this->Staging.p + slot * this->PieceChunks * e3);
+      // the slot is free again: the piece Slots further on goes into it
+      if (k + Slots < this->Pieces) this->copyPiece(k + Slots);
+    }
+    this->Pieces = 0;
+    return waited;
+  }
+
 private:
+  /// Queues the copy of listed piece k into its staging slot (on Copy, after the keys kernel).
+  void copyPiece(std::size_t k)
+  {
+    const std::size_t e3 = static_cast<std::size_t>(this->Edge) * this->Edge * this->Edge;
+    const std::size_t first = k * this->PieceChunks, last = std::min(this->Listed, first + this->PieceChunks);
+    const int slot = static_cast<int>(k % Slots);
+    LVDIF_CUDA_CHECK(cudaMemcpyAsync(this->Staging.p + static_cast<std::size_t>(slot) * this->PieceChunks * e3,
+      this->Keys + first * e3, (last - first) * e3 * sizeof(std::uint16_t), cudaMemcpyDeviceToHost, this->Copy.s));
+    LVDIF_CUDA_CHECK(cudaEventRecord(this->PieceDone[slot], this->Copy.s));
+    ++piecesCopied;
+    if (!this->Staging.pinned) ++piecesPageable;
+  }
+
   void reserveSlab(std::size_t floats, MeshToSdfStats& stats)
   {
     if (floats > this->SlabCapacity)
@@ -527,20 +679,29 @@ private:
         parent = level;
       }
     }
+    if (this->HasWinding) LVDIF_CUDA_CHECK(cudaEventRecord(this->SignSplit.a)); // the block bounds end here
     for (int p = 0; p < parts; ++p)
     {
-      if (this->HasWinding)
+      // the scan lines' rays first (one thread per line), then the sign
+      // kernel, in pieces of at most RayRows lines (the rays' buffers)
+      const long long r0 = rows * p / parts, r1 = rows * (p + 1) / parts;
+      for (long long c0 = r0; this->HasWinding && c0 < r1; c0 += this->RayRows)
       {
-        const long long r0 = rows * p / parts, r1 = rows * (p + 1) / parts;
-        const unsigned grid = static_cast<unsigned>((r1 - r0 + SignWarps - 1) / SignWarps);
+        const long long c1 = std::min(r1, c0 + this->RayRows);
+        rowRayKernel<<<static_cast<unsigned>((c1 - c0 + 127) / 128), 128>>>(
+          this->Mesh.W, P, c0, c1, this->RayHits, this->RayMeta);
+        LVDIF_CUDA_CHECK(cudaGetLastError());
+        if (p == 0 && c0 == r0) LVDIF_CUDA_CHECK(cudaEventRecord(this->SignSplit.b)); // (--trace: the first rays)
+        const unsigned grid = static_cast<unsigned>((c1 - c0 + SignWarps - 1) / SignWarps);
         if (dipole)
         {
-          signDipoleKernel<<<grid, 32 * SignWarps>>>(
-            this->Mesh.W, this->Mesh.D, P, r0, r1, this->Bounds, bx, by, this->Slab, this->Counters);
+          signDipoleKernel<<<grid, 32 * SignWarps>>>(this->Mesh.W, this->Mesh.D, P, c0, c1, this->RayMeta,
+            this->RayHits, this->Bounds, bx, by, this->Slab, this->Counters);
         }
         else
         {
-          signKernel<<<grid, 32 * SignWarps>>>(this->Mesh.W, P, r0, r1, this->Slab, this->Counters, this->Counters + 1);
+          signKernel<<<grid, 32 * SignWarps>>>(
+            this->Mesh.W, P, c0, c1, this->RayMeta, this->RayHits, this->Slab, this->Counters, this->Counters + 1);
         }
         LVDIF_CUDA_CHECK(cudaGetLastError());
       }
@@ -619,9 +780,15 @@ private:
   DeviceArena Arena;
   Params P;
   EventTimer DistanceDone, SignDone;
+  EventTimer SignSplit; // a: after the block bounds, b: after the first rays of a slab (volume path: --trace)
+  double BoundsSeconds = 0, RaysSeconds = 0;
   PartEvents PartDone;
   Stream Copy; // device -> host copies, beside the kernels of the legacy stream
   unsigned long long* Counters = nullptr;
+  // the scan lines' rays (rowRayKernel), RayRows lines at a time
+  long long RayRows = 1;
+  Hit* RayHits = nullptr;
+  int4* RayMeta = nullptr;
   // far blocks (Normal/PseudoNormal with a band): one sign per FarCell^3 cell of the slab
   bool FarOn = false;
   double FarBig = 0, FarMargin = 0;
@@ -644,6 +811,13 @@ private:
   long long* List = nullptr;
   unsigned short* Keys = nullptr;
   std::size_t KeyCapacity = 0;
+  // the keys' way back: Slots staging slots of PieceChunks chunks each
+  static constexpr std::size_t Slots = 3;
+  static_assert(Slots <= PartEvents::Max, "one event per slot");
+  HostBlock Staging;
+  std::size_t PieceChunks = 1, Listed = 0, Pieces = 0; // Pieces > 0: takeKeys pending
+  PartEvents PieceDone; // per slot: its copy done
+  PartEvents KeysReady; // [0]: the keys kernel of the last fetchKeys done
 };
 } // namespace
 
@@ -659,6 +833,19 @@ std::unique_ptr<Session> openSession(const DeviceMesh& mesh, const GridGeometry&
 {
   return std::make_unique<CudaSession>(
     static_cast<const CudaMesh&>(mesh), grid, options, toOut, band, stats, std::move(ensureWinding));
+}
+
+KeyCopyCounts keyCopyCounts()
+{
+  KeyCopyCounts c;
+  c.pieces = piecesCopied.load();
+  c.pageable = piecesPageable.load();
+  return c;
+}
+
+void refusePinnedKeys(bool refuse)
+{
+  pinnedPool().refuse(refuse);
 }
 
 std::vector<std::uint16_t> encodeOnDevice(

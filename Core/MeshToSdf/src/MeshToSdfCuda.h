@@ -36,22 +36,26 @@ public:
 std::unique_ptr<DeviceMesh> uploadMesh(const detail::meshtosdf::PreparedMesh& mesh, const detail::meshtosdf::Bvh& bvh,
   const detail::meshtosdf::WindingSigner* winding, bool normals, bool windingLater);
 
-/// The keys of one group of chunk layers, encoded on the GPU.
+/// The chunks of one group of chunk layers, encoded on the GPU.
 struct ChunkKeys
 {
   static constexpr std::uint32_t NotUniform = 0xffffffffu;
   std::vector<std::uint32_t> uniform; // per chunk (cx + ccx * (cy + ccy * czLocal)): its key or NotUniform
-  std::vector<std::int64_t> listed;   // the NotUniform chunks, in order
-  std::vector<std::uint16_t> keys;    // chunkEdge^3 per listed chunk, localIndex layout (outside the grid: junk)
+  std::vector<std::int64_t> listed;   // the NotUniform chunks, in order (their keys: Session::takeKeys)
   std::vector<float> floats;          // options.cudaVerifyKeys: the slab's floats (box layout)
 };
+
+/// takeKeys' callback: listed chunks [first, last), chunk i's chunkEdge^3 keys
+/// at keys + (i - first) * chunkEdge^3 (localIndex layout; outside the grid:
+/// junk). The keys are valid during the call only.
+using KeyPieceFn = std::function<void(std::size_t first, std::size_t last, const std::uint16_t* keys)>;
 
 /// compute() fills any extent of the grid with the same contract as the CPU
 /// path (distances and signs in output units, band-saturated), one slab of z
 /// layers at a time so device memory stays bounded. Always uses the BVH (the
-/// accelerators give the same distances). launchKeys/fetchKeys: the
+/// accelerators give the same distances). launchKeys/fetchKeys/takeKeys: the
 /// dictionary-volume path, where the chunks are encoded on the GPU and only
-/// their keys come back, while the host stores the previous group.
+/// their keys come back, while the GPU computes the next group.
 class Session
 {
 public:
@@ -61,10 +65,17 @@ public:
   /// over the full x and y extent of the grid, chunks of `edge` voxels.
   virtual void launchKeys(const VoxelBox& box, int edge, const SdfDictionary::EncodeConstants& encode, float band,
     MeshToSdfStats& stats) = 0;
-  /// Waits for the last launchKeys and copies its keys back.
+  /// Waits for the last launchKeys, lists its uniform and non-uniform chunks
+  /// into `out`, queues the keys of the non-uniform ones and starts copying
+  /// them back (the next launchKeys may follow at once). Their keys come
+  /// through takeKeys, which must be called before the next fetchKeys.
   virtual void fetchKeys(ChunkKeys& out, MeshToSdfStats& stats) = 0;
+  /// The keys of the last fetchKeys' listed chunks, in order, a piece at a
+  /// time (MeshToSdfOptions::cudaKeyPieceBytes) through pinned host memory:
+  /// `store` runs on piece k while piece k + 1 is copied. Returns the seconds
+  /// spent waiting for copies.
+  virtual double takeKeys(const KeyPieceFn& store) = 0;
 };
-
 /// ensureWinding: when the sign mode is WindingNumber and `mesh` has no
 /// winding structures yet, called right after the first distance kernel is
 /// queued (so the host builds and uploads them while the GPU computes
@@ -72,6 +83,17 @@ public:
 std::unique_ptr<Session> openSession(const DeviceMesh& mesh, const GridGeometry& grid,
   const MeshToSdfOptions& options, double toOut, double band, MeshToSdfStats& stats,
   std::function<void()> ensureWinding);
+
+/// Tests: the pieces the keys came back in since the process started, and
+/// how many of them through pageable memory (pinned memory was refused).
+struct KeyCopyCounts
+{
+  std::int64_t pieces = 0, pageable = 0;
+};
+KeyCopyCounts keyCopyCounts();
+/// Tests: true makes the sessions opened afterwards take the pageable
+/// fallback, as if pinned host memory were refused.
+void refusePinnedKeys(bool refuse);
 
 /// Tests: SdfDictionary::encodeWith (band-clamped as DictionaryVolume::encode) run on the GPU.
 std::vector<std::uint16_t> encodeOnDevice(

@@ -57,10 +57,19 @@ __global__ void dipoleBlockKernel(DipoleDev D, Params P, int edge, long long bx,
 /// decides, else insideDipole. A row whose +x ray is ambiguous takes an
 /// oblique ray per voxel (WindingSigner::insideAt), and a voxel whose oblique
 /// ray is ambiguous too the sum over all of M.
-__global__ void signDipoleKernel(WindingDev W, DipoleDev D, Params P, long long rowBegin, long long rowEnd,
-  const double* bounds, long long bx, long long by, float* out, unsigned long long* counters)
+// Blocks of the sign kernel that must fit on an SM at once (registers capped
+// to allow it; 1: no cap, 110 registers, 4 blocks). A build-time tuning knob
+// for scripts/gpu-write.sh's A/B (6: 80 registers with some spills); the
+// values are the same either way.
+#ifndef LVDIF_SIGN_MIN_BLOCKS
+#define LVDIF_SIGN_MIN_BLOCKS 1
+#endif
+__global__ void __launch_bounds__(32 * SignWarps, LVDIF_SIGN_MIN_BLOCKS) signDipoleKernel(WindingDev W,
+  DipoleDev D, Params P, long long rowBegin, long long rowEnd,
+  const int4* rayMeta, const Hit* rayHits, const double* bounds, long long bx, long long by, float* out,
+  unsigned long long* counters)
 {
-  __shared__ Hit sharedHits[SignWarps][MaxHits];
+  __shared__ RayShared sharedRay[SignWarps];
   const long long nx = P.hi[0] - P.lo[0] + 1, ny = P.hi[1] - P.lo[1] + 1;
   const int lane = static_cast<int>(threadIdx.x % 32), warp = static_cast<int>(threadIdx.x / 32);
   const long long row = rowBegin + static_cast<long long>(blockIdx.x) * SignWarps + warp;
@@ -70,11 +79,14 @@ __global__ void signDipoleKernel(WindingDev W, DipoleDev D, Params P, long long 
   const double h = P.spacing[0];
   const V3 start = positionOf(P, P.lo[0], j, k);
   auto pos = [&](long long i) { return start + V3{ static_cast<double>(i) * h, 0, 0 }; };
-  Hit* hits = sharedHits[warp];
-  const RowRay ray = castRowRay(W, start, h, hits, lane);
+  const Hit* hits = sharedRay[warp].hits;
+  const RowRay ray = rowRayOf(W, start, h, sharedRay[warp], lane, rayMeta, rayHits, row - rowBegin);
   const int ok = ray.ok, count = ray.count, sum = ray.sum;
   unsigned long long ev = 0, full = 0, fallback = 0;
   const double* blockRow = bounds + 2 * bx * ((j - P.lo[1]) / DipoleBlock + by * ((k - P.lo[2]) / DipoleBlock));
+  // each lane walks the sorted crossings up to its own voxels (they advance
+  // by 32 a step): K = sum minus the crossings before the voxel, the value
+  // the CPU carries voxel by voxel
   int ahead = sum, next = 0;
   for (long long base = 0; base < nx; base += 32)
   {
@@ -82,15 +94,14 @@ __global__ void signDipoleKernel(WindingDev W, DipoleDev D, Params P, long long 
     const long long end = base + 32 < nx ? base + 32 : nx;
     int myK = 0;
     bool myRay = true, myInside = false;
-    for (long long i = base; i < end; ++i)
+    if (ok)
     {
-      if (ok)
-      {
-        const double ti = 0.5 * h + static_cast<double>(i) * h;
-        while (next < count && hits[next].t <= ti) ahead -= hits[next++].sign;
-        if (i - base == lane) myK = ahead;
-        continue;
-      }
+      const double ti = 0.5 * h + static_cast<double>(mine) * h;
+      while (next < count && hits[next].t <= ti) ahead -= hits[next++].sign;
+      myK = ahead;
+    }
+    for (long long i = base; i < end && !ok; ++i)
+    {
       // ambiguous row: an oblique ray per voxel, all lanes alike
       const V3 dir = normalized(V3{ 0.5773502691896258, 0.5780, 0.5767 });
       int s = 0;

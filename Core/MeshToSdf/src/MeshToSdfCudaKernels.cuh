@@ -1,20 +1,24 @@
 // Device side of mesh to SDF on CUDA (included by MeshToSdfCuda.cu only):
 // the data layouts on the GPU, the distance kernel (one thread per run of 16
 // voxels along x, nearest triangle on the BVH, warm-started, far voxels
-// skipped by the Lipschitz bound; a warp takes that run in 32 neighbouring
-// rows so its queries follow similar paths), the sign kernel (one warp per
-// scan line: lane 0 casts the ray of the closed chain into shared memory, the
-// lanes compute the drift bounds of 32 voxels at a time, every lane walks the
-// carried interval with the same values so control flow stays uniform, and an
-// exact evaluation of the cone's solid angle is split over the lanes as
-// lane-strided partial sums reduced by an xor butterfly: the order the CPU's
-// laneOrderedSum reproduces) and the chunk-encoding kernels of the
-// dictionary-volume path. Triangles are read from compact leaf-ordered records
-// (vertices + normal, 96 bytes) rather than the 328-byte Tri.
+// skipped by the Lipschitz bound, a run farther than the band from every leaf
+// box of the tree saturated after one traversal; a warp takes that run in 32
+// neighbouring rows so its queries follow similar paths), the sign kernel (one
+// warp per scan line: the lanes cast the ray of the closed chain together,
+// each walking one subtree of the BVH (MeshToSdfRayWalk.h), into shared
+// memory; the lanes compute the drift bounds of 32 voxels at a time, every
+// lane walks the carried interval with the same values so control flow stays
+// uniform (a closed chain carries none: each lane counts the crossings up to
+// its own voxels), and an exact evaluation of the cone's solid angle is split
+// over the lanes as lane-strided partial sums reduced by an xor butterfly: the
+// order the CPU's laneOrderedSum reproduces) and the chunk-encoding kernels of
+// the dictionary-volume path. Triangles are read from compact leaf-ordered
+// records (vertices + normal, 96 bytes) rather than the 328-byte Tri.
 #pragma once
 
 #include "MeshToSdfFarBlocks.h"
 #include "MeshToSdfInternal.h"
+#include "MeshToSdfRayWalk.h"
 #include "lvdif/CudaCheck.cuh"
 #include "lvdif/SdfDictionary.h"
 
@@ -142,6 +146,38 @@ __device__ NearestResult nearestDev(const DevBvh& b, V3 p, int hintSlot, double 
   return best;
 }
 
+/// Whether every leaf box of the tree lies farther than sqrt(r2) from the box
+/// [a, b] (so every triangle does); nearer children first, so that a box near
+/// the surface meets a leaf soon and stops.
+__device__ bool boxFarDev(const DevBvh& bvh, V3 a, V3 b, double r2)
+{
+  auto dist2 = [&](const GpuNode& n) {
+    double s = 0;
+    for (int ax = 0; ax < 3; ++ax)
+    {
+      const double d = b[ax] < n.lo[ax] ? n.lo[ax] - b[ax] : (a[ax] > n.hi[ax] ? a[ax] - n.hi[ax] : 0.0);
+      s += d * d;
+    }
+    return s;
+  };
+  if (dist2(bvh.nodes[0]) > r2) return true;
+  int stack[64];
+  int top = 0;
+  stack[top++] = 0;
+  while (top > 0)
+  {
+    const GpuNode n = bvh.nodes[stack[--top]];
+    if (n.left < 0) return false;
+    const double dl = dist2(bvh.nodes[n.left]), dr = dist2(bvh.nodes[n.right]);
+    const int nearC = dl <= dr ? n.left : n.right, farC = dl <= dr ? n.right : n.left;
+    const double nearD = dl <= dr ? dl : dr, farD = dl <= dr ? dr : dl;
+    if (top + 2 > 64) return false;
+    if (farD <= r2) stack[top++] = farC;
+    if (nearD <= r2) stack[top++] = nearC;
+  }
+  return true;
+}
+
 template <int Run, int TileRuns, int MinBlocks>
 __global__ void __launch_bounds__(128, MinBlocks) distanceKernel(DevBvh bvh, Params P, float* out)
 {
@@ -165,6 +201,14 @@ __global__ void __launch_bounds__(128, MinBlocks) distanceKernel(DevBvh bvh, Par
   double lower = -1;
   int hint = -1;
   const signed char* farRow = P.far ? P.far + P.farCount[0] * (jj / FarCell + P.farCount[1] * (kk / FarCell)) : nullptr;
+  if (P.bounded && boxFarDev(bvh, positionOf(P, i0, j, k), positionOf(P, i1, j, k), P.bandWorld * P.bandWorld))
+  {
+    // every voxel of the run is farther than the band from every triangle:
+    // saturated, as its query would leave it (one traversal instead of a
+    // query every few voxels; the CPU skips by its own bounds, to the same values)
+    for (long long i = i0; i <= i1; ++i) rowOut[i] = static_cast<float>(P.band);
+    return;
+  }
   for (long long i = i0; i <= i1; ++i)
   {
     if (farRow && farRow[(i - P.lo[0]) / FarCell] != 0)
@@ -236,80 +280,20 @@ struct Hit
   int sign;
 };
 
-/// Mirrors Bvh::rayHits. Returns false when ambiguous or (collecting) when
-/// more than MaxHits crossings; otherwise the signed sum is in *sum.
+/// Mirrors Bvh::rayHits (MeshToSdfRayWalk.h). Returns false when ambiguous
+/// or (collecting) when more than MaxHits crossings; otherwise the signed sum
+/// is in *sum.
 __device__ bool rayDev(const DevBvh& b, V3 o, V3 dir, Hit* hits, int* count, int* sum)
 {
-  constexpr double Eps = 1e-9;
-  const double tmin = 0.0;
   const double inv[3] = { 1.0 / dir.x, 1.0 / dir.y, 1.0 / dir.z };
-  int stack[64];
-  int top = 0;
-  stack[top++] = 0;
   *sum = 0;
   if (count) *count = 0;
-  while (top > 0)
-  {
-    const GpuNode n = b.nodes[stack[--top]];
-    double t0 = tmin, t1 = 1e300;
-    bool miss = false;
-    for (int a = 0; a < 3 && !miss; ++a)
-    {
-      const double da = dir[a], oa = o[a];
-      if (da == 0)
-      {
-        miss = oa < n.lo[a] || oa > n.hi[a];
-        continue;
-      }
-      double ta = (n.lo[a] - oa) * inv[a], tb = (n.hi[a] - oa) * inv[a];
-      if (ta > tb) { const double x = ta; ta = tb; tb = x; }
-      const double pad = 1e-9 * (fabs(ta) + fabs(tb)) + 1e-300;
-      t0 = fmax(t0, ta - pad);
-      t1 = fmin(t1, tb + pad);
-      miss = t0 > t1;
-    }
-    if (miss) continue;
-    if (n.left >= 0)
-    {
-      if (top + 2 > 64) return false;
-      stack[top++] = n.left;
-      stack[top++] = n.right;
-      continue;
-    }
-    for (int i = n.first; i < n.first + n.count; ++i)
-    {
-      const int ti = b.order[i];
-      const GpuTri& t = b.leaf[i];
-      const V3 e1 = t.v[1] - t.v[0], e2 = t.v[2] - t.v[0];
-      const V3 pv = cross(dir, e2);
-      const double det = dot(e1, pv);
-      const double scale = norm(e1) * norm(e2) * norm(dir);
-      const V3 tv = o - t.v[0];
-      if (fabs(det) <= Eps * scale)
-      {
-        if (fabs(dot(tv, t.n)) <= Eps * (norm(tv) + norm(e1))) return false;
-        continue;
-      }
-      const double invDet = 1.0 / det;
-      const double u = dot(tv, pv) * invDet;
-      const V3 qv = cross(tv, e1);
-      const double v = dot(dir, qv) * invDet;
-      const double tt = dot(e2, qv) * invDet;
-      const double w = 1 - u - v;
-      if (u < -Eps || v < -Eps || w < -Eps) continue;
-      const double tScale = 1e-9 * (fabs(tt) + fabs(tmin) + norm(e1) / norm(dir));
-      if (tt < tmin - tScale) continue;
-      if (u <= Eps || v <= Eps || w <= Eps || fabs(tt - tmin) <= tScale) return false;
-      const int sg = dot(dir, t.n) > 0 ? 1 : -1;
-      *sum += sg;
-      if (hits)
-      {
-        if (*count >= MaxHits) return false;
-        hits[(*count)++] = { tt, ti, sg };
-      }
-    }
-  }
-  return true;
+  return rayWalk(b.nodes, b.leaf, b.order, 0, o, dir, inv, *sum, [&](double t, int tri, int sg) {
+    if (!hits) return true;
+    if (*count >= MaxHits) return false;
+    hits[(*count)++] = { t, tri, sg };
+    return true;
+  });
 }
 
 /// Sum of f(c) for c in [0, n) in the order of the CPU's laneOrderedSum:
@@ -366,20 +350,58 @@ __device__ double evaluateWarp(const WindingDev& W, V3 p, int lane)
 __device__ bool insideOf(double w) { return fabs(w) >= 0.5; }
 __device__ bool decidedDev(double lo, double hi) { return !(lo < 0.5 && hi >= 0.5) && !(lo <= -0.5 && hi > -0.5); }
 
-/// The +x ray of a scan line (from half a voxel before its first voxel) against the closed surface:
-/// lane 0 casts it into the warp's shared hits, sorted by t; every lane gets whether it was
-/// unambiguous, the number of crossings and their signed sum.
+/// The +x ray of a scan line (from half a voxel before its first voxel)
+/// against the closed surface, the whole warp together: lane 0 splits the
+/// walk into at most 32 subtrees (rayFrontier), each lane walks one and
+/// appends its crossings to the warp's shared hits, lane 0 sorts them by t.
+/// Every lane gets whether the ray was unambiguous (and held at most MaxHits
+/// crossings), their number and their signed sum: what one walk gives
+/// (MeshToSdfRayWalk.h). shared: the warp's RayShared.
 struct RowRay
 {
   int ok, count, sum;
 };
-__device__ RowRay castRowRay(const WindingDev& W, V3 start, double h, Hit* hits, int lane)
+struct RayShared
 {
-  int count = 0, sum = 0, ok = 0;
+  Hit hits[MaxHits];
+  int frontier[32], scratch[64];
+  int count;
+};
+__device__ RowRay castRowRay(const WindingDev& W, V3 start, double h, RayShared& shared, int lane)
+{
+  const V3 o = start - V3{ 0.5 * h, 0, 0 }, dir{ 1, 0, 0 };
+  const double inv[3] = { 1.0 / dir.x, 1.0 / dir.y, 1.0 / dir.z };
+  int subtrees = 0;
   if (lane == 0)
   {
-    ok = rayDev(W.closed, start - V3{ 0.5 * h, 0, 0 }, V3{ 1, 0, 0 }, hits, &count, &sum) ? 1 : 0;
-    for (int a = 1; ok && a < count; ++a) // insertion sort by t
+    shared.count = 0;
+    subtrees = rayFrontier(W.closed.nodes, o, dir, inv, 32, shared.frontier, shared.scratch);
+  }
+  subtrees = __shfl_sync(FullMask, subtrees, 0);
+  __syncwarp();
+  int sum = 0, ok = 1;
+  if (lane < subtrees)
+  {
+    ok = rayWalk(W.closed.nodes, W.closed.leaf, W.closed.order, shared.frontier[lane], o, dir, inv, sum,
+           [&](double t, int tri, int sg) {
+             const int slot = atomicAdd(&shared.count, 1);
+             if (slot >= MaxHits) return false;
+             shared.hits[slot] = { t, tri, sg };
+             return true;
+           })
+      ? 1
+      : 0;
+  }
+  __syncwarp();
+  RowRay r;
+  r.ok = __all_sync(FullMask, ok) ? 1 : 0;
+  for (int off = 16; off > 0; off >>= 1) sum += __shfl_xor_sync(FullMask, sum, off);
+  r.sum = sum;
+  r.count = min(shared.count, MaxHits);
+  if (lane == 0 && r.ok)
+  {
+    Hit* hits = shared.hits;
+    for (int a = 1; a < r.count; ++a) // insertion sort by t
     {
       const Hit x = hits[a];
       int b = a - 1;
@@ -392,18 +414,81 @@ __device__ RowRay castRowRay(const WindingDev& W, V3 start, double h, Hit* hits,
     }
   }
   __syncwarp();
+  return r;
+}
+
+/// The +x rays of the scan lines [rowBegin, rowEnd) of the slab, one thread
+/// per line, before the sign kernels: each walk from the root (rayWalk, what
+/// rayDev does) keeps at most RowHits crossings, sorted by t, in hits (RowHits
+/// per line) and its outcome in meta: x = 1 unambiguous, 0 ambiguous, 2 more
+/// than RowHits crossings (the sign kernel's warp casts that line again, up
+/// to MaxHits); y = the crossings, z = their signed sum. A warp-wide cast per
+/// line left the ray's walk to one latency-bound lane or a few (the tree's
+/// nodes met by one ray are a thin path): here 32 lines walk at once.
+constexpr int RowHits = 8;
+__global__ void rowRayKernel(WindingDev W, Params P, long long rowBegin, long long rowEnd, Hit* hits, int4* meta)
+{
+  const long long row = rowBegin + static_cast<long long>(blockIdx.x) * blockDim.x + threadIdx.x;
+  if (row >= rowEnd) return;
+  const long long ny = P.hi[1] - P.lo[1] + 1;
+  const long long j = P.lo[1] + row % ny, k = P.lo[2] + row / ny;
+  const double h = P.spacing[0];
+  const V3 start = positionOf(P, P.lo[0], j, k);
+  const V3 o = start - V3{ 0.5 * h, 0, 0 }, dir{ 1, 0, 0 };
+  const double inv[3] = { 1.0 / dir.x, 1.0 / dir.y, 1.0 / dir.z };
+  Hit local[RowHits];
+  int count = 0, sum = 0;
+  bool overflow = false;
+  const bool ok = rayWalk(W.closed.nodes, W.closed.leaf, W.closed.order, 0, o, dir, inv, sum, [&](double t, int tri, int sg) {
+    if (count >= RowHits)
+    {
+      overflow = true;
+      return false;
+    }
+    local[count++] = { t, tri, sg };
+    return true;
+  });
+  Hit* out = hits + (row - rowBegin) * RowHits;
+  if (ok)
+  {
+    for (int a = 1; a < count; ++a) // insertion sort by t
+    {
+      const Hit x = local[a];
+      int b = a - 1;
+      while (b >= 0 && local[b].t > x.t)
+      {
+        local[b + 1] = local[b];
+        --b;
+      }
+      local[b + 1] = x;
+    }
+    for (int a = 0; a < count; ++a) out[a] = local[a];
+  }
+  meta[row - rowBegin] = make_int4(ok ? 1 : (overflow ? 2 : 0), count, sum, 0);
+}
+
+/// The ray of scan line `row` as castRowRay gives it, from rowRayKernel's
+/// results for the lines from rowBegin (a line with more than RowHits
+/// crossings is cast again by the warp); the crossings end up in shared.hits.
+__device__ RowRay rowRayOf(const WindingDev& W, V3 start, double h, RayShared& shared, int lane, const int4* meta,
+  const Hit* hits, long long local)
+{
+  const int4 m = meta[local];
+  if (m.x == 2) return castRowRay(W, start, h, shared, lane);
+  if (m.x == 1 && lane < m.y) shared.hits[lane] = hits[local * RowHits + lane];
+  __syncwarp();
   RowRay r;
-  r.ok = __shfl_sync(FullMask, ok, 0);
-  r.count = __shfl_sync(FullMask, count, 0);
-  r.sum = __shfl_sync(FullMask, sum, 0);
+  r.ok = m.x;
+  r.count = m.y;
+  r.sum = m.z;
   return r;
 }
 
 /// WindingSigner::signRow, one warp per scan line (see the file comment).
-__global__ void signKernel(WindingDev W, Params P, long long rowBegin, long long rowEnd, float* out,
-  unsigned long long* evals, unsigned long long* fallbacks)
+__global__ void signKernel(WindingDev W, Params P, long long rowBegin, long long rowEnd, const int4* rayMeta,
+  const Hit* rayHits, float* out, unsigned long long* evals, unsigned long long* fallbacks)
 {
-  __shared__ Hit sharedHits[SignWarps][MaxHits];
+  __shared__ RayShared sharedRay[SignWarps];
   const long long nx = P.hi[0] - P.lo[0] + 1, ny = P.hi[1] - P.lo[1] + 1;
   const int lane = static_cast<int>(threadIdx.x % 32), warp = static_cast<int>(threadIdx.x / 32);
   const long long row = rowBegin + static_cast<long long>(blockIdx.x) * SignWarps + warp;
@@ -413,8 +498,8 @@ __global__ void signKernel(WindingDev W, Params P, long long rowBegin, long long
   const double h = P.spacing[0];
   const V3 start = positionOf(P, P.lo[0], j, k);
   auto pos = [&](long long i) { return start + V3{ static_cast<double>(i) * h, 0, 0 }; };
-  Hit* hits = sharedHits[warp];
-  const RowRay ray = castRowRay(W, start, h, hits, lane);
+  const Hit* hits = sharedRay[warp].hits;
+  const RowRay ray = rowRayOf(W, start, h, sharedRay[warp], lane, rayMeta, rayHits, row - rowBegin);
   const int ok = ray.ok, count = ray.count, sum = ray.sum;
   if (!ok)
   {
@@ -433,6 +518,18 @@ __global__ void signKernel(WindingDev W, Params P, long long rowBegin, long long
   int ahead = sum;
   int next = 0;
   const bool open = W.coneCount > 0;
+  if (!open)
+  {
+    // a closed chain: w is the crossing count, each lane walks the sorted
+    // crossings up to its own voxels (they advance by 32 a step)
+    for (long long mine = lane; mine < nx; mine += 32)
+    {
+      const double ti = 0.5 * h + static_cast<double>(mine) * h;
+      while (next < count && hits[next].t <= ti) ahead -= hits[next++].sign;
+      if (insideOf(ahead)) rowOut[mine] = -rowOut[mine];
+    }
+    return;
+  }
   bool have = false;
   double lo = 0, hi = 0;
   unsigned long long ev = 0;

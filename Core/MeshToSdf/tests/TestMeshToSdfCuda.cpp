@@ -269,6 +269,110 @@ TEST(MeshToSdfCuda, DictionaryVolumeMatchesCpu)
   }
 }
 
+TEST(MeshToSdfCuda, ScanLinesWithManyCrossingsMatchCpu)
+{
+  // five nested spheres: a scan line through the middle crosses 10 times,
+  // more than the ray pre-pass keeps per line (its warp casts it again);
+  // closed (crossings only) and with holes (the correction s), several slabs
+  if (!cuda::available()) GTEST_SKIP() << "no CUDA device";
+  for (const bool holes : { false, true })
+  {
+    TriangleMesh m;
+    for (int s = 0; s < 5; ++s)
+    {
+      const TriangleMesh sphere = makeSphereMesh(0.03f, -0.02f, 0.01f, 1.0f - 0.19f * static_cast<float>(s), 20, 40);
+      const std::uint32_t base = static_cast<std::uint32_t>(m.points.size());
+      m.points.insert(m.points.end(), sphere.points.begin(), sphere.points.end());
+      for (std::size_t t = 0; t < sphere.triangles.size(); ++t)
+      {
+        if (holes && t % 37 == 5) continue;
+        auto tri = sphere.triangles[t];
+        for (auto& v : tri) v += base;
+        m.triangles.push_back(tri);
+      }
+    }
+    const GridGeometry g = fitGridToMesh(m, 56, 2);
+    VoxelBox all;
+    all.hi = { g.dims[0] - 1, g.dims[1] - 1, g.dims[2] - 1 };
+    const MeshToSdfPrepared prepared = prepareMeshToSdf(m);
+    for (float band : { 3.0f, std::numeric_limits<float>::infinity() })
+    {
+      std::vector<float> cpu(static_cast<std::size_t>(g.count())), gpu(cpu.size());
+      MeshToSdfOptions o;
+      o.bandWidth = band;
+      o.device = Device::Cpu;
+      meshToSdf(prepared, g, all, cpu.data(), o);
+      o.device = Device::Cuda;
+      o.cudaSlabBytes = static_cast<std::uint64_t>(g.dims[0] * g.dims[1]) * 4 * 9; // several slabs
+      const MeshToSdfStats st = meshToSdf(prepared, g, all, gpu.data(), o);
+      ASSERT_EQ(st.device, Device::Cuda);
+      std::int64_t inside = 0;
+      for (float v : gpu) inside += std::signbit(v);
+      EXPECT_GT(inside, g.count() / 20);
+      EXPECT_EQ(std::memcmp(cpu.data(), gpu.data(), cpu.size() * sizeof(float)), 0)
+        << (holes ? "holes" : "closed") << " band " << band;
+      std::printf("[ cpu vs cuda ] nested spheres%s band %g: %s, %lld inside\n", holes ? " with holes" : "",
+        static_cast<double>(band), std::memcmp(cpu.data(), gpu.data(), cpu.size() * sizeof(float)) ? "DIFFER" : "equal",
+        static_cast<long long>(inside));
+    }
+  }
+}
+
+TEST(MeshToSdfCuda, DictionaryVolumeKeysInPiecesPinnedAndPageable)
+{
+  // the keys come back in pieces through a few staging slots: many pieces
+  // per group (more than the slots), a last piece shorter than the others,
+  // and the pageable fallback; every run equals the CPU's volume key for key
+  if (!cuda::available()) GTEST_SKIP() << "no CUDA device";
+  const TriangleMesh m = holedFlipped();
+  const GridGeometry g = fitGridToMesh(m, 75, 2);
+  VolumeOptions vo = volumeOptionsOn(g);
+  vo.chunkEdge = 16;
+  vo.bandWidth = 4.0f;
+  DictionaryVolume cpu(vo);
+  MeshToSdfOptions o;
+  o.device = Device::Cpu;
+  meshToSdf(m, cpu, o);
+  const MeshToSdfPrepared prepared = prepareMeshToSdf(m);
+  o.device = Device::Cuda;
+  o.cudaSlabBytes = static_cast<std::uint64_t>(g.dims[0] * g.dims[1]) * 16 * 4 * 2; // groups of 2 chunk layers
+  const std::uint64_t chunkKeyBytes = 16 * 16 * 16 * 2;
+  struct Case
+  {
+    std::uint64_t pieceBytes;
+    bool pageable;
+  };
+  for (const Case c : { Case{ 3 * chunkKeyBytes + 1, false }, Case{ chunkKeyBytes / 2, false },
+         Case{ 5 * chunkKeyBytes, true }, Case{ o.cudaKeyPieceBytes, true } })
+  {
+    o.cudaKeyPieceBytes = c.pieceBytes;
+    detail::meshtosdf_cuda::refusePinnedKeys(c.pageable);
+    const detail::meshtosdf_cuda::KeyCopyCounts before = detail::meshtosdf_cuda::keyCopyCounts();
+    DictionaryVolume gpu(vo);
+    const MeshToSdfStats st = meshToSdf(prepared, gpu, o);
+    detail::meshtosdf_cuda::refusePinnedKeys(false);
+    const detail::meshtosdf_cuda::KeyCopyCounts after = detail::meshtosdf_cuda::keyCopyCounts();
+    ASSERT_EQ(st.device, Device::Cuda);
+    const std::int64_t pieces = after.pieces - before.pieces, pageable = after.pageable - before.pageable;
+    const std::int64_t perPiece = std::max<std::int64_t>(1, static_cast<std::int64_t>(c.pieceBytes / chunkKeyBytes));
+    // at least the expanded chunks over the piece size, per group rounded up
+    EXPECT_GE(pieces * perPiece, gpu.expandedChunkCount()) << c.pieceBytes;
+    if (perPiece <= 3) EXPECT_GT(pieces, 3 * (g.dims[2] / 32 + 1)) << "more pieces than slots per group";
+    EXPECT_EQ(pageable, c.pageable ? pieces : 0) << c.pieceBytes;
+    std::int64_t diff = 0, structure = 0;
+    for (std::int64_t ch = 0; ch < cpu.chunkCount(); ++ch) structure += cpu.isUniform(ch) != gpu.isUniform(ch);
+    for (std::int64_t z = 0; z < g.dims[2]; ++z)
+      for (std::int64_t y = 0; y < g.dims[1]; ++y)
+        for (std::int64_t x = 0; x < g.dims[0]; ++x) diff += cpu.get(x, y, z).sdf != gpu.get(x, y, z).sdf;
+    EXPECT_EQ(diff, 0) << c.pieceBytes << (c.pageable ? " pageable" : " pinned");
+    EXPECT_EQ(structure, 0) << c.pieceBytes;
+    std::printf("[ cpu vs cuda ] keys in pieces of %llu bytes (%s): %lld pieces, %lld key differences, %lld "
+                "expanded chunks\n",
+      static_cast<unsigned long long>(c.pieceBytes), c.pageable ? "pageable" : "pinned",
+      static_cast<long long>(pieces), static_cast<long long>(diff), static_cast<long long>(gpu.expandedChunkCount()));
+  }
+}
+
 TEST(MeshToSdfCuda, DeviceEncodeMatchesHostEncode)
 {
   if (!cuda::available()) GTEST_SKIP() << "no CUDA device";

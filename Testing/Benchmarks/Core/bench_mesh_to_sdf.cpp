@@ -4,14 +4,18 @@
 //        [ACCEL=bvh] [OUTPUT=volume|float] [BAND=8] [PADDING=2]
 //        [RUNS=cold,warm,prepared,prepared] [--trace] [--check-cpu]
 // A run may carry @SIGN (normal, pseudonormal, winding, unsigned: that run's
-// sign mode instead of SIGN) and @pervoxel (MeshToSdfOptions::farBlocks off),
-// e.g. prepared@winding,prepared@pseudonormal,prepared@pseudonormal@pervoxel:
+// sign mode instead of SIGN), @pervoxel (MeshToSdfOptions::farBlocks off) and
+// @pageable (CUDA into a volume: the chunk keys come back through pageable
+// memory, as when pinned memory is refused), e.g.
+// prepared@winding,prepared@pseudonormal,prepared@pseudonormal@pervoxel:
 // sign modes and paths compared in one process.
 // DAMAGE: a seeded variant of the mesh made in memory before timing (any of
 // signquality::damaged, SignQualityMeshes.h: patch10, duprev20, holes40,
 // fins200, pair, sub2, ...). The bunny is not in the repository: pass its path (e.g. /work/shared/data/lvdif-bunny-30k.ply).
 #include "BenchCommon.h"
 #include "SignQualityMeshes.h"
+
+#include "../../../Core/MeshToSdf/src/MeshToSdfCuda.h"
 
 #include "lvdif/Cuda.h"
 #include "lvdif/DictionaryVolume.h"
@@ -129,16 +133,20 @@ int main(int argc, char** argv)
       // RUN[@SIGN][@pervoxel]
       const std::string run = spec.substr(0, spec.find('@'));
       o = base;
+      bool pageable = false;
       for (std::size_t at = spec.find('@'); at != std::string::npos;)
       {
         const std::size_t next = spec.find('@', at + 1);
         const std::string tag = spec.substr(at + 1, next == std::string::npos ? std::string::npos : next - at - 1);
         if (tag == "pervoxel")
           o.farBlocks = false;
+        else if (tag == "pageable")
+          pageable = true;
         else
           o.sign = signOf(tag);
         at = next;
       }
+      detail::meshtosdf_cuda::refusePinnedKeys(pageable);
       std::int64_t expanded = 0, inside = 0;
       double callMs = 0;
       // process CPU time of the call (all threads): robust to a loaded machine

@@ -109,6 +109,11 @@ struct MeshToSdfOptions
   /// CUDA into a dictionary volume: also copy the float slabs back and check
   /// every GPU-encoded key against the host's encode (tests; costs the copy).
   bool cudaVerifyKeys = false;
+  /// CUDA into a dictionary volume: the keys of the non-uniform chunks come
+  /// back in pieces of about this many bytes (at least one chunk each) through
+  /// pinned host memory kept for the process; the host stores piece k while
+  /// piece k + 1 is copied and the GPU computes the next group of chunks.
+  std::uint64_t cudaKeyPieceBytes = 8ull << 20;
   /// With a finite band: blocks of voxels that are provably past the band
   /// are filled without per-voxel queries; the result is the same, voxel for
   /// voxel (docs/MESH_TO_SDF.md, "Far blocks"). Normal and PseudoNormal also

@@ -18,6 +18,13 @@ std::unique_ptr<Session> openSession(const DeviceMesh&, const GridGeometry&, con
   throw Error(ErrorCode::Unsupported, "mesh to SDF: this build has no CUDA");
 }
 
+KeyCopyCounts keyCopyCounts()
+{
+  return {};
+}
+
+void refusePinnedKeys(bool) {}
+
 std::vector<std::uint16_t> encodeOnDevice(const SdfDictionary::EncodeConstants&, float, const std::vector<float>&)
 {
   throw Error(ErrorCode::Unsupported, "mesh to SDF: this build has no CUDA");
