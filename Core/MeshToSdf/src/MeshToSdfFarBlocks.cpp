@@ -39,66 +39,48 @@ std::int64_t classifyFarCells(const NearestIndex& index, const Bvh& bvh, const s
     cells.count[a] = (n[a] + FarCell - 1) / FarCell;
     blocks[a] = (n[a] + FarBlock - 1) / FarBlock;
   }
-  cells.sign.assign(static_cast<std::size_t>(cells.count[0] * cells.count[1] * cells.count[2]), 0);
+  const std::size_t cellCount = static_cast<std::size_t>(cells.count[0] * cells.count[1] * cells.count[2]);
+  cells.sign.assign(cellCount, 0);
+  cells.mask.assign(cellCount, 0);
   auto pos = [&](std::int64_t i, std::int64_t j, std::int64_t k) {
     return V3{ grid.origin[0] + i * grid.spacing[0], grid.origin[1] + j * grid.spacing[1],
       grid.origin[2] + k * grid.spacing[2] };
   };
   // the box of voxels [v0, v0 + edge) (box-relative, clipped)
-  auto boxOf = [&](const std::int64_t v0[3], std::int64_t edge) {
+  auto boxOf = [&](const long long v0[3], long long edge, FarBox& out) {
     std::int64_t hi[3];
-    for (int a = 0; a < 3; ++a) hi[a] = std::min(v0[a] + edge, n[a]) - 1;
-    return farBox(pos(box.lo[0] + v0[0], box.lo[1] + v0[1], box.lo[2] + v0[2]),
+    for (int a = 0; a < 3; ++a) hi[a] = std::min<std::int64_t>(v0[a] + edge, n[a]) - 1;
+    out = farBox(pos(box.lo[0] + v0[0], box.lo[1] + v0[1], box.lo[2] + v0[2]),
       pos(box.lo[0] + hi[0], box.lo[1] + hi[1], box.lo[2] + hi[2]), big);
   };
   const std::int64_t total = blocks[0] * blocks[1] * blocks[2];
   const Bvh::Node* nodes = bvh.nodes().data();
   const std::int32_t* order = bvh.order().data();
   auto triAt = [&](int i) -> const Tri& { return mesh.tris[static_cast<std::size_t>(order[i])]; };
+  const long long size[3] = { n[0], n[1], n[2] };
   std::int64_t decided = 0;
 #pragma omp parallel for schedule(dynamic, 16) reduction(+ : decided)
   for (std::int64_t b = 0; b < total; ++b)
   {
     const long long origin[3] = { (b % blocks[0]) * FarBlock, ((b / blocks[0]) % blocks[1]) * FarBlock,
       (b / (blocks[0] * blocks[1])) * FarBlock };
-    const long long size[3] = { n[0], n[1], n[2] };
     std::int32_t hint = -1;
-    // the last box tried at each level and its centre's distance: the box
-    // enclosing the one being tried (farClassifyBlock tries the halves of a
-    // box right after it, its cells right after each half)
-    FarBox last[3];
-    double lastDist[3] = { 0, 0, 0 };
-    decided += farClassifyBlock(origin, size,
-      [&](const long long o[3], long long edge) {
-        const std::int64_t o64[3] = { o[0], o[1], o[2] };
-        const FarBox sub = boxOf(o64, edge);
-        const int level = edge == FarBlock ? 0 : (edge == FarBlock / 2 ? 1 : 2);
-        // certainly within the band by the enclosing box's distance: no query
-        // (only a shortcut: an undecided box is never wrong)
-        if (level > 0)
-        {
-          const double bound = farChildBound(lastDist[level - 1], sub, last[level - 1], big);
-          if (bound - sub.radius <= bandWorld)
-          {
-            // the bound stands in for this box's distance for its own cells,
-            // so that they are not tried against a stale box (as on the GPU)
-            last[level] = sub;
-            lastDist[level] = bound;
-            return 0;
-          }
-        }
-        const NearestResult q = index.nearest(sub.centre, hint, 1e300);
-        if (q.tri < 0) return 0;
-        hint = q.tri;
-        const double dq = std::sqrt(q.dist2);
-        last[level] = sub;
-        lastDist[level] = dq;
-        const int expect = farSideAt(mesh.tris[static_cast<std::size_t>(q.tri)], q.closest, sub.centre, pseudo);
-        return farBoxSide(nodes, cones.data(), triAt, pseudo, sub, dq, dq, bandWorld, margin, expect);
-      },
-      [&](const long long c[3], int s) {
-        cells.sign[static_cast<std::size_t>(c[0] + cells.count[0] * (c[1] + cells.count[1] * c[2]))] =
-          static_cast<std::int8_t>(s);
+    auto nearest = [&](V3 centre) {
+      const NearestResult q = index.nearest(centre, hint, 1e300);
+      FarQuery r;
+      if (q.tri < 0) return r;
+      hint = q.tri;
+      r.found = true;
+      r.tri = &mesh.tris[static_cast<std::size_t>(q.tri)];
+      r.dist = std::sqrt(q.dist2);
+      r.side = farSideAt(mesh.tris[static_cast<std::size_t>(q.tri)], q.closest, centre, pseudo);
+      return r;
+    };
+    decided += farClassifyBlock(nodes, cones.data(), triAt, nearest, pseudo, bandWorld, margin, big, origin, size,
+      boxOf, [&](const long long c[3], int s, int m) {
+        const std::size_t at = static_cast<std::size_t>(c[0] + cells.count[0] * (c[1] + cells.count[1] * c[2]));
+        cells.sign[at] = static_cast<std::int8_t>(s);
+        cells.mask[at] = static_cast<std::uint8_t>(cells.mask[at] | m);
       });
   }
   return decided;
