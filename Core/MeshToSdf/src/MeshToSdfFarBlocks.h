@@ -298,19 +298,34 @@ struct FarQuery
   int side = 0;
 };
 
-/// Tries the box st.box (set by the caller) of edge^3 voxels inside the box
-/// of `parent` (null for a block): the side (+1 / -1) when all its voxels are
-/// side * band, else 0, with st filled for its sub-boxes. A sub-box of a box
-/// past the band inherits that and first tests only the parent's list (with
-/// its centre's bound, no query): that decides it when every listed triangle
-/// agrees with the parent's side over it or lies beyond its reach. Otherwise
-/// a box (never a single voxel: its query is the per-voxel computation) gets
-/// its own query: within the band by it, undecided; with the parent's side,
-/// its list filtered again with the tighter reach; else a walk of the tree.
-/// A box certainly within the band by its parent's bound is not queried.
+/// The upper bound of the nearest distance of a sub-box's centre from the
+/// box `parent` enclosing it: the parent's bound plus the offset, or the
+/// distance to the nearest triangle found above (much tighter where that is
+/// the sub-box's nearest too).
+LVDIF_HD double farSubBound(const FarState& parent, const FarBox& box, double big)
+{
+  double d = farChildBound(parent.dHi, box, parent.box, big);
+  if (parent.near)
+  {
+    const Tri& t = *parent.near;
+    const V3 v = closestPointOnTriangle(box.centre, t.v[0], t.v[1], t.v[2]).point - box.centre;
+    d = std::fmin(d, std::sqrt(dot(v, v)) * (1 + 1e-12));
+  }
+  return d;
+}
+
+/// Tries the box st.box (set by the caller) inside the box of `parent` (null
+/// for a block): the side (+1 / -1) when all its voxels are side * band,
+/// else 0, with st filled for its sub-boxes. A sub-box of a box past the band
+/// inherits that and first tests only the parent's list (with its centre's
+/// bound, no query): that decides it when every listed triangle agrees with
+/// the parent's side over it or lies beyond its reach. Otherwise it gets its
+/// own query: within the band by it, undecided; with the parent's side, its
+/// list filtered again with the tighter reach; else a walk of the tree. A box
+/// certainly within the band by its parent's bound is not queried.
 template <typename Node, typename TriAt, typename Nearest>
 LVDIF_HD int farTryBox(const Node* nodes, const FarCone* cones, TriAt&& triAt, Nearest&& nearest, bool pseudo,
-  double bandWorld, double margin, double big, const FarState* parent, long long edge, FarState& st)
+  double bandWorld, double margin, double big, const FarState* parent, FarState& st)
 {
   st.count = -1;
   st.side = 0;
@@ -318,16 +333,8 @@ LVDIF_HD int farTryBox(const Node* nodes, const FarCone* cones, TriAt&& triAt, N
   st.near = nullptr;
   if (parent)
   {
-    st.dHi = farChildBound(parent->dHi, st.box, parent->box, big);
+    st.dHi = farSubBound(*parent, st.box, big);
     st.near = parent->near;
-    if (st.near)
-    {
-      // the distance to that triangle bounds the nearest one's, much tighter
-      // than the parent's distance plus the offset where they are the same
-      const Tri& t = *st.near;
-      const V3 d = closestPointOnTriangle(st.box.centre, t.v[0], t.v[1], t.v[2]).point - st.box.centre;
-      st.dHi = std::fmin(st.dHi, std::sqrt(dot(d, d)) * (1 + 1e-12));
-    }
     if (!parent->past)
     {
       // certainly within the band: no query (a shortcut: undecided is never wrong)
@@ -345,7 +352,6 @@ LVDIF_HD int farTryBox(const Node* nodes, const FarCone* cones, TriAt&& triAt, N
       }
     }
   }
-  if (edge == 1) return 0;
   const FarQuery q = nearest(st.box.centre);
   if (!q.found)
   {
@@ -373,6 +379,20 @@ LVDIF_HD int farTryBox(const Node* nodes, const FarCone* cones, TriAt&& triAt, N
 
   }
   return st.count == 0 ? st.side : 0;
+}
+
+/// A voxel (box: its position alone) of a cell left undecided (state cell):
+/// the cell's side when the cell is past the band and every triangle on its
+/// list agrees at the voxel or lies beyond its reach, else 0. No query: a
+/// voxel's query is the per-voxel computation itself.
+template <typename TriAt>
+LVDIF_HD int farVoxelSide(TriAt&& triAt, bool pseudo, double margin, double big, const FarState& cell, const FarBox& box)
+{
+  if (!cell.past || cell.count < 0 || cell.side == 0) return 0;
+  const double reach = farRadius(farSubBound(cell, box, big), box, margin);
+  for (int c = 0; c < cell.count; ++c)
+    if (!farTriAgrees(triAt(cell.list[c]), pseudo, box, reach, margin, cell.side)) return 0;
+  return cell.side;
 }
 
 /// Records the box of edge^3 voxels at o (clipped to n) as side * band
@@ -409,9 +429,9 @@ LVDIF_HD long long farClassifyHalf(const Node* nodes, const FarCone* cones, TriA
   const long long n[3], BoxOf&& boxOf, Set&& set)
 {
   constexpr long long Half = FarBlock / 2;
-  FarState s1, s2, s3;
+  FarState s1, s2;
   boxOf(o1, Half, s1.box);
-  const int r1 = farTryBox(nodes, cones, triAt, nearest, pseudo, bandWorld, margin, big, &s0, Half, s1);
+  const int r1 = farTryBox(nodes, cones, triAt, nearest, pseudo, bandWorld, margin, big, &s0, s1);
   if (r1 != 0) return farFill(o1, Half, n, r1, set);
   long long decided = 0;
   for (int q = 0; q < 8; ++q)
@@ -419,8 +439,7 @@ LVDIF_HD long long farClassifyHalf(const Node* nodes, const FarCone* cones, TriA
     const long long o2[3] = { o1[0] + FarCell * (q & 1), o1[1] + FarCell * ((q >> 1) & 1), o1[2] + FarCell * (q >> 2) };
     if (o2[0] >= n[0] || o2[1] >= n[1] || o2[2] >= n[2]) continue;
     boxOf(o2, static_cast<long long>(FarCell), s2.box);
-    const int r2 = farTryBox(nodes, cones, triAt, nearest, pseudo, bandWorld, margin, big, &s1,
-      static_cast<long long>(FarCell), s2);
+    const int r2 = farTryBox(nodes, cones, triAt, nearest, pseudo, bandWorld, margin, big, &s1, s2);
     if (r2 != 0)
     {
       decided += farFill(o2, FarCell, n, r2, set);
@@ -433,8 +452,9 @@ LVDIF_HD long long farClassifyHalf(const Node* nodes, const FarCone* cones, TriA
     {
       const long long o3[3] = { o2[0] + (v & 1), o2[1] + ((v >> 1) & 1), o2[2] + (v >> 2) };
       if (o3[0] >= n[0] || o3[1] >= n[1] || o3[2] >= n[2]) continue;
-      boxOf(o3, 1LL, s3.box);
-      if (farTryBox(nodes, cones, triAt, nearest, pseudo, bandWorld, margin, big, &s2, 1LL, s3) != 0)
+      FarBox voxel;
+      boxOf(o3, 1LL, voxel);
+      if (farVoxelSide(triAt, pseudo, margin, big, s2, voxel) != 0)
       {
         mask |= 1 << v;
         ++decided;
@@ -457,8 +477,7 @@ LVDIF_HD long long farClassifyBlock(const Node* nodes, const FarCone* cones, Tri
 {
   FarState s0;
   boxOf(v0, static_cast<long long>(FarBlock), s0.box);
-  const int r0 = farTryBox(nodes, cones, triAt, nearest, pseudo, bandWorld, margin, big, nullptr,
-    static_cast<long long>(FarBlock), s0);
+  const int r0 = farTryBox(nodes, cones, triAt, nearest, pseudo, bandWorld, margin, big, nullptr, s0);
   if (r0 != 0) return farFill(v0, FarBlock, n, r0, set);
   constexpr long long Half = FarBlock / 2;
   long long decided = 0;
