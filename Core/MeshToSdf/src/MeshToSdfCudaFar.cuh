@@ -89,8 +89,10 @@ __global__ void farBlockKernel(DevBvh bvh, const FarCone* cones, Params P, doubl
 }
 
 /// One thread per half (FarBlock / 2)^3 of a block farBlockKernel left
-/// undecided: farClassifyHalf from the block's state.
-__global__ void farHalfKernel(DevBvh bvh, const FarCone* cones, Params P, double margin, double big,
+/// undecided: farClassifyHalf from the block's state. At most 128 registers
+/// (4 blocks of 128 threads per SM, as the old per-level kernel had; 166
+/// uncapped).
+__global__ void __launch_bounds__(128, 4) farHalfKernel(DevBvh bvh, const FarCone* cones, Params P, double margin, double big,
   signed char* sign, unsigned char* mask, const FarState* states, unsigned long long* decided)
 {
   constexpr long long Half = FarBlock / 2;
