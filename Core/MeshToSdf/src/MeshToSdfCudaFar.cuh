@@ -57,8 +57,8 @@ __device__ FarSlab farSlab(const DevBvh& bvh, const Params& P, double big, signe
 
 /// One thread per FarBlock^3 block of the slab: its own test (farTryBox);
 /// its state, for the halves, in states[block]. The cells (sign, mask) are
-/// cleared before.
-__global__ void farBlockKernel(DevBvh bvh, const FarCone* cones, Params P, double margin, double big,
+/// cleared before. At most 128 registers, as farHalfKernel.
+__global__ void __launch_bounds__(128, 4) farBlockKernel(DevBvh bvh, const FarCone* cones, Params P, double margin, double big,
   signed char* sign, unsigned char* mask, FarState* states, unsigned long long* decided)
 {
   const FarSlab f = farSlab(bvh, P, big, sign, mask);
