@@ -7,7 +7,10 @@
 // plane, that side is every voxel's sign (the sign is taken against a
 // positive combination of the normals of triangles containing the closest
 // point, all of them that close), and if D - r is past the band, every voxel
-// is the clamped value. Margins and the proof: docs/MESH_TO_SDF.md, "Far blocks".
+// is the clamped value. A box that fails hands its sub-boxes the few
+// candidates that disagreed (the others agree over every sub-box), so most
+// sub-boxes and single voxels are decided without a query or a tree walk.
+// Margins and the proof: docs/MESH_TO_SDF.md, "Far blocks".
 #pragma once
 
 #include "MeshToSdfInternal.h"
@@ -21,8 +24,8 @@ namespace detail::meshtosdf
 {
 
 /// Blocks of FarBlock^3 voxels are tried first, those that fail as their 8
-/// halves, those as their 8 cells of FarCell^3; cells that fail too are
-/// computed voxel by voxel.
+/// halves, those as their 8 cells of FarCell^3, those voxel by voxel (by the
+/// cell's candidates alone); voxels that fail too get the per-voxel query.
 constexpr int FarBlock = 8;
 constexpr int FarCell = 2;
 /// Triangles less well shaped than this ((|AB|^2 + |AC|^2) / |AB x AC|, about
