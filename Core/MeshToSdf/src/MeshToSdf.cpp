@@ -124,11 +124,16 @@ struct Engine
   /// the lower bound (previous distance - steps) is still past the band.
   /// rowTris (nx entries): on entry the nearest triangles of the row below
   /// when belowValid (they seed the bounds), on exit this row's.
-  /// far (optional): the far cells of this row (FarCell voxels each from i0):
-  /// their voxels are +-band without a query.
+  /// far (optional): the far cells of this row (FarCell voxels each from i0)
+  /// and their masks; farBit: the row's bit in them (2 y + 4 z inside the
+  /// cell): a voxel whose bit farBit + x is set is +-band without a query.
   void distanceRow(std::int64_t j, std::int64_t k, std::int64_t i0, std::int64_t i1, float* out,
-    std::int32_t* rowTris, bool belowValid, const std::int8_t* far = nullptr) const
+    std::int32_t* rowTris, bool belowValid, const std::int8_t* far = nullptr, const std::uint8_t* farMask = nullptr,
+    int farBit = 0) const
   {
+    auto isFar = [&](std::int64_t i) {
+      return far && ((farMask[(i - i0) / FarCell] >> (farBit + ((i - i0) & 1))) & 1) != 0;
+    };
     const bool bounded = this->opts.accel == MeshToSdfAccel::Bvh &&
       (this->opts.sign == SignMode::WindingNumber || this->opts.sign == SignMode::Unsigned) &&
       this->bandWorld2 < 1e299;
@@ -145,7 +150,7 @@ struct Engine
     bool withinBand = false; // the last voxel queried was
     for (std::int64_t i = i0; i <= i1;)
     {
-      if (far && far[(i - i0) / FarCell] != 0)
+      if (isFar(i))
       {
         out[i - i0] = static_cast<float>(far[(i - i0) / FarCell]) * static_cast<float>(this->band);
         rowTris[i - i0] = -1;
@@ -161,7 +166,7 @@ struct Engine
       {
         count = static_cast<int>(std::min<std::int64_t>(NearestIndex::RowPoints, i1 - i + 1));
         for (int q = 1; far && q < count; ++q)
-          if (far[(i + q - i0) / FarCell] != 0) count = q;
+          if (isFar(i + q)) count = q;
         for (int q = 0; q < count; ++q) ps[q] = this->position(i + q, j, k);
         this->index->nearestRow(ps, count, hint, belowValid ? rowTris + (i - i0) : nullptr, res);
       }
@@ -380,9 +385,11 @@ void computeBox(const Engine& e, const VoxelBox& box, float* out, MeshToSdfStats
     [&](std::int64_t j, std::int64_t k, std::int64_t r) {
       const int t = std::min(omp_get_thread_num(), threads - 1);
       const bool below = lastRow[static_cast<std::size_t>(t)] == r - 1 && j > box.lo[1];
-      const std::int8_t* farRow = far.sign.empty() ? nullptr
-        : far.sign.data() + far.count[0] * ((j - box.lo[1]) / FarCell + far.count[1] * ((k - box.lo[2]) / FarCell));
-      e.distanceRow(j, k, box.lo[0], box.hi[0], out + r * nx, rowTris.data() + t * nx, below, farRow);
+      const std::int64_t farAt = far.count[0] * ((j - box.lo[1]) / FarCell + far.count[1] * ((k - box.lo[2]) / FarCell));
+      const bool anyFar = !far.sign.empty();
+      e.distanceRow(j, k, box.lo[0], box.hi[0], out + r * nx, rowTris.data() + t * nx, below,
+        anyFar ? far.sign.data() + farAt : nullptr, anyFar ? far.mask.data() + farAt : nullptr,
+        static_cast<int>(2 * ((j - box.lo[1]) & 1) + 4 * ((k - box.lo[2]) & 1)));
       lastRow[static_cast<std::size_t>(t)] = r;
     }, 8);
   stats.distanceSeconds += now() - t0;

@@ -714,42 +714,40 @@ private:
   /// The far cells of the slab in P (which then points the distance kernel at them).
   void launchFar(Params& P)
   {
-    long long count[3];
-    for (int a = 0; a < 3; ++a) count[a] = (P.hi[a] - P.lo[a] + 1 + FarCell - 1) / FarCell;
+    long long count[3], blocks = 1, halves = 1;
+    for (int a = 0; a < 3; ++a)
+    {
+      const long long n = P.hi[a] - P.lo[a] + 1;
+      count[a] = (n + FarCell - 1) / FarCell;
+      blocks *= (n + FarBlock - 1) / FarBlock;
+      halves *= (n + FarBlock / 2 - 1) / (FarBlock / 2);
+    }
     const long long cells = count[0] * count[1] * count[2];
     if (cells > this->FarCapacity)
     {
       if (this->Far) this->Arena.release(this->Far);
+      if (this->FarMask) this->Arena.release(this->FarMask);
       this->Far = this->Arena.alloc<signed char>(static_cast<std::size_t>(cells));
+      this->FarMask = this->Arena.alloc<unsigned char>(static_cast<std::size_t>(cells));
       this->FarCapacity = cells;
     }
+    // the blocks' states (candidate lists) for their halves
+    if (blocks > this->FarStateCapacity)
+    {
+      if (this->FarStates) this->Arena.release(this->FarStates);
+      this->FarStates = this->Arena.alloc<FarState>(static_cast<std::size_t>(blocks));
+      this->FarStateCapacity = blocks;
+    }
     LVDIF_CUDA_CHECK(cudaMemsetAsync(this->Far, 0, static_cast<std::size_t>(cells)));
-    // the centre distances of the blocks and of the halves, for the next level's band skip
-    long long levelBoxes[2];
-    for (int l = 0; l < 2; ++l)
-    {
-      const long long edge = FarBlock >> l;
-      levelBoxes[l] = 1;
-      for (int a = 0; a < 3; ++a) levelBoxes[l] *= (P.hi[a] - P.lo[a] + 1 + edge - 1) / edge;
-    }
-    if (levelBoxes[0] + levelBoxes[1] > this->FarDistCapacity)
-    {
-      if (this->FarDist) this->Arena.release(this->FarDist);
-      this->FarDist = this->Arena.alloc<double>(static_cast<std::size_t>(levelBoxes[0] + levelBoxes[1]));
-      this->FarDistCapacity = levelBoxes[0] + levelBoxes[1];
-    }
-    double* const dist[3] = { this->FarDist, this->FarDist + levelBoxes[0], nullptr };
-    for (int l = 0; l < 3; ++l)
-    {
-      const int edge = FarBlock >> l;
-      long long boxes = 1;
-      for (int a = 0; a < 3; ++a) boxes *= (P.hi[a] - P.lo[a] + 1 + edge - 1) / edge;
-      farLevelKernel<<<static_cast<unsigned>((boxes + 127) / 128), 128>>>(this->Mesh.meshBvh(), this->Mesh.cones(),
-        P, this->FarMargin, this->FarBig, edge, count[0], count[1], count[2], this->Far, l > 0 ? dist[l - 1] : nullptr,
-        dist[l], this->FarDecided);
-      LVDIF_CUDA_CHECK(cudaGetLastError());
-    }
+    LVDIF_CUDA_CHECK(cudaMemsetAsync(this->FarMask, 0, static_cast<std::size_t>(cells)));
+    farBlockKernel<<<static_cast<unsigned>((blocks + 127) / 128), 128>>>(this->Mesh.meshBvh(), this->Mesh.cones(), P,
+      this->FarMargin, this->FarBig, this->Far, this->FarMask, this->FarStates, this->FarDecided);
+    LVDIF_CUDA_CHECK(cudaGetLastError());
+    farHalfKernel<<<static_cast<unsigned>((halves + 127) / 128), 128>>>(this->Mesh.meshBvh(), this->Mesh.cones(), P,
+      this->FarMargin, this->FarBig, this->Far, this->FarMask, this->FarStates, this->FarDecided);
+    LVDIF_CUDA_CHECK(cudaGetLastError());
     P.far = this->Far;
+    P.farMask = this->FarMask;
     P.farCount[0] = count[0];
     P.farCount[1] = count[1];
   }
@@ -789,13 +787,15 @@ private:
   long long RayRows = 1;
   Hit* RayHits = nullptr;
   int4* RayMeta = nullptr;
-  // far blocks (Normal/PseudoNormal with a band): one sign per FarCell^3 cell of the slab
+  // far blocks (Normal/PseudoNormal with a band): per FarCell^3 cell of the
+  // slab the side and the mask of its decided voxels; per block its state
   bool FarOn = false;
   double FarBig = 0, FarMargin = 0;
   signed char* Far = nullptr;
+  unsigned char* FarMask = nullptr;
   long long FarCapacity = 0;
-  double* FarDist = nullptr; // the blocks' then the halves' centre distances (or bounds) of the slab
-  long long FarDistCapacity = 0;
+  FarState* FarStates = nullptr;
+  long long FarStateCapacity = 0;
   unsigned long long* FarDecided = nullptr;
   float* Slab = nullptr;
   std::size_t SlabCapacity = 0;

@@ -63,8 +63,10 @@ struct Params
   int sign; // 0 normal, 1 pseudo-normal, 2 winding, 3 unsigned
   int useVertexNormals;
   int bounded;
-  // far cells of the slab (MeshToSdfCudaFar.cuh; null: none): their voxels are +-band
+  // far cells of the slab (MeshToSdfCudaFar.cuh; null: none): per cell the
+  // side and the mask of its voxels (bit x + 2 y + 4 z) that are side * band
   const signed char* far = nullptr;
+  const unsigned char* farMask = nullptr;
   long long farCount[2] = { 0, 0 }; // cells along x and y
 };
 
@@ -200,7 +202,10 @@ __global__ void __launch_bounds__(128, MinBlocks) distanceKernel(DevBvh bvh, Par
   const double h = P.spacing[0];
   double lower = -1;
   int hint = -1;
-  const signed char* farRow = P.far ? P.far + P.farCount[0] * (jj / FarCell + P.farCount[1] * (kk / FarCell)) : nullptr;
+  const long long farAt = P.farCount[0] * (jj / FarCell + P.farCount[1] * (kk / FarCell));
+  const signed char* farRow = P.far ? P.far + farAt : nullptr;
+  const unsigned char* farMaskRow = P.far ? P.farMask + farAt : nullptr;
+  const int farBit = static_cast<int>(2 * (jj & 1) + 4 * (kk & 1));
   if (P.bounded && boxFarDev(bvh, positionOf(P, i0, j, k), positionOf(P, i1, j, k), P.bandWorld * P.bandWorld))
   {
     // every voxel of the run is farther than the band from every triangle:
@@ -211,7 +216,7 @@ __global__ void __launch_bounds__(128, MinBlocks) distanceKernel(DevBvh bvh, Par
   }
   for (long long i = i0; i <= i1; ++i)
   {
-    if (farRow && farRow[(i - P.lo[0]) / FarCell] != 0)
+    if (farRow && ((farMaskRow[(i - P.lo[0]) / FarCell] >> (farBit + ((i - P.lo[0]) & 1))) & 1) != 0)
     {
       rowOut[i] = static_cast<float>(farRow[(i - P.lo[0]) / FarCell]) * static_cast<float>(P.band);
       continue;

@@ -26,80 +26,97 @@ double farScale(const PreparedMesh& mesh, const GridGeometry& grid)
   return big;
 }
 
+namespace
+{
+/// What both classifications share: the box's size and blocks, the cells
+/// sized and cleared, the FarBox of a sub-box, and the recording of a
+/// decided cell's voxels.
+struct FarSetup
+{
+  const GridGeometry& grid;
+  const VoxelBox& box;
+  FarCells& cells;
+  double big;
+  long long n[3];
+  std::int64_t blocks[3], total;
+
+  FarSetup(const GridGeometry& g, const VoxelBox& b, FarCells& c, double scale)
+    : grid(g)
+    , box(b)
+    , cells(c)
+    , big(scale)
+  {
+    for (int a = 0; a < 3; ++a)
+    {
+      n[a] = box.hi[a] - box.lo[a] + 1;
+      cells.count[a] = (n[a] + FarCell - 1) / FarCell;
+      blocks[a] = (n[a] + FarBlock - 1) / FarBlock;
+    }
+    total = blocks[0] * blocks[1] * blocks[2];
+    const std::size_t cellCount = static_cast<std::size_t>(cells.count[0] * cells.count[1] * cells.count[2]);
+    cells.sign.assign(cellCount, 0);
+    cells.mask.assign(cellCount, 0);
+  }
+  V3 pos(std::int64_t i, std::int64_t j, std::int64_t k) const
+  {
+    return V3{ grid.origin[0] + i * grid.spacing[0], grid.origin[1] + j * grid.spacing[1],
+      grid.origin[2] + k * grid.spacing[2] };
+  }
+  /// The box of voxels [v0, v0 + edge) (box-relative, clipped).
+  void boxOf(const long long v0[3], long long edge, FarBox& out) const
+  {
+    std::int64_t hi[3];
+    for (int a = 0; a < 3; ++a) hi[a] = std::min<std::int64_t>(v0[a] + edge, n[a]) - 1;
+    out = farBox(pos(box.lo[0] + v0[0], box.lo[1] + v0[1], box.lo[2] + v0[2]),
+      pos(box.lo[0] + hi[0], box.lo[1] + hi[1], box.lo[2] + hi[2]), big);
+  }
+  void blockOrigin(std::int64_t b, long long origin[3]) const
+  {
+    origin[0] = (b % blocks[0]) * FarBlock;
+    origin[1] = ((b / blocks[0]) % blocks[1]) * FarBlock;
+    origin[2] = (b / (blocks[0] * blocks[1])) * FarBlock;
+  }
+  /// set(cell, sign, mask) of farClassifyBlock / farFill.
+  void set(const long long c[3], int s, int m) const
+  {
+    const std::size_t at = static_cast<std::size_t>(c[0] + cells.count[0] * (c[1] + cells.count[1] * c[2]));
+    cells.sign[at] = static_cast<std::int8_t>(s);
+    cells.mask[at] = static_cast<std::uint8_t>(cells.mask[at] | m);
+  }
+};
+} // namespace
+
 std::int64_t classifyFarCells(const NearestIndex& index, const Bvh& bvh, const std::vector<FarCone>& cones,
   const PreparedMesh& mesh, const GridGeometry& grid, const VoxelBox& box, double bandWorld, bool pseudo,
   FarCells& cells)
 {
-  const double big = farScale(mesh, grid);
-  const double margin = farMargin(big, static_cast<double>(mesh.tris.size()));
-  std::int64_t n[3], blocks[3];
-  for (int a = 0; a < 3; ++a)
-  {
-    n[a] = box.hi[a] - box.lo[a] + 1;
-    cells.count[a] = (n[a] + FarCell - 1) / FarCell;
-    blocks[a] = (n[a] + FarBlock - 1) / FarBlock;
-  }
-  cells.sign.assign(static_cast<std::size_t>(cells.count[0] * cells.count[1] * cells.count[2]), 0);
-  auto pos = [&](std::int64_t i, std::int64_t j, std::int64_t k) {
-    return V3{ grid.origin[0] + i * grid.spacing[0], grid.origin[1] + j * grid.spacing[1],
-      grid.origin[2] + k * grid.spacing[2] };
-  };
-  // the box of voxels [v0, v0 + edge) (box-relative, clipped)
-  auto boxOf = [&](const std::int64_t v0[3], std::int64_t edge) {
-    std::int64_t hi[3];
-    for (int a = 0; a < 3; ++a) hi[a] = std::min(v0[a] + edge, n[a]) - 1;
-    return farBox(pos(box.lo[0] + v0[0], box.lo[1] + v0[1], box.lo[2] + v0[2]),
-      pos(box.lo[0] + hi[0], box.lo[1] + hi[1], box.lo[2] + hi[2]), big);
-  };
-  const std::int64_t total = blocks[0] * blocks[1] * blocks[2];
+  const FarSetup fs(grid, box, cells, farScale(mesh, grid));
+  const double margin = farMargin(fs.big, static_cast<double>(mesh.tris.size()));
   const Bvh::Node* nodes = bvh.nodes().data();
   const std::int32_t* order = bvh.order().data();
   auto triAt = [&](int i) -> const Tri& { return mesh.tris[static_cast<std::size_t>(order[i])]; };
+  auto boxOf = [&](const long long v0[3], long long edge, FarBox& out) { fs.boxOf(v0, edge, out); };
+  auto set = [&](const long long c[3], int s, int m) { fs.set(c, s, m); };
   std::int64_t decided = 0;
 #pragma omp parallel for schedule(dynamic, 16) reduction(+ : decided)
-  for (std::int64_t b = 0; b < total; ++b)
+  for (std::int64_t b = 0; b < fs.total; ++b)
   {
-    const long long origin[3] = { (b % blocks[0]) * FarBlock, ((b / blocks[0]) % blocks[1]) * FarBlock,
-      (b / (blocks[0] * blocks[1])) * FarBlock };
-    const long long size[3] = { n[0], n[1], n[2] };
+    long long origin[3];
+    fs.blockOrigin(b, origin);
     std::int32_t hint = -1;
-    // the last box tried at each level and its centre's distance: the box
-    // enclosing the one being tried (farClassifyBlock tries the halves of a
-    // box right after it, its cells right after each half)
-    FarBox last[3];
-    double lastDist[3] = { 0, 0, 0 };
-    decided += farClassifyBlock(origin, size,
-      [&](const long long o[3], long long edge) {
-        const std::int64_t o64[3] = { o[0], o[1], o[2] };
-        const FarBox sub = boxOf(o64, edge);
-        const int level = edge == FarBlock ? 0 : (edge == FarBlock / 2 ? 1 : 2);
-        // certainly within the band by the enclosing box's distance: no query
-        // (only a shortcut: an undecided box is never wrong)
-        if (level > 0)
-        {
-          const double bound = farChildBound(lastDist[level - 1], sub, last[level - 1], big);
-          if (bound - sub.radius <= bandWorld)
-          {
-            // the bound stands in for this box's distance for its own cells,
-            // so that they are not tried against a stale box (as on the GPU)
-            last[level] = sub;
-            lastDist[level] = bound;
-            return 0;
-          }
-        }
-        const NearestResult q = index.nearest(sub.centre, hint, 1e300);
-        if (q.tri < 0) return 0;
-        hint = q.tri;
-        const double dq = std::sqrt(q.dist2);
-        last[level] = sub;
-        lastDist[level] = dq;
-        const int expect = farSideAt(mesh.tris[static_cast<std::size_t>(q.tri)], q.closest, sub.centre, pseudo);
-        return farBoxSide(nodes, cones.data(), triAt, pseudo, sub, dq, dq, bandWorld, margin, expect);
-      },
-      [&](const long long c[3], int s) {
-        cells.sign[static_cast<std::size_t>(c[0] + cells.count[0] * (c[1] + cells.count[1] * c[2]))] =
-          static_cast<std::int8_t>(s);
-      });
+    auto nearest = [&](V3 centre) {
+      const NearestResult q = index.nearest(centre, hint, 1e300);
+      FarQuery r;
+      if (q.tri < 0) return r;
+      hint = q.tri;
+      r.found = true;
+      r.tri = &mesh.tris[static_cast<std::size_t>(q.tri)];
+      r.dist = std::sqrt(q.dist2);
+      r.side = farSideAt(mesh.tris[static_cast<std::size_t>(q.tri)], q.closest, centre, pseudo);
+      return r;
+    };
+    decided += farClassifyBlock(nodes, cones.data(), triAt, nearest, pseudo, bandWorld, margin, fs.big, origin, fs.n,
+      boxOf, set);
   }
   return decided;
 }
@@ -107,67 +124,66 @@ std::int64_t classifyFarCells(const NearestIndex& index, const Bvh& bvh, const s
 std::int64_t classifyBandCells(const NearestIndex& index, const PreparedMesh& mesh, const GridGeometry& grid,
   const VoxelBox& box, double bandWorld, FarCells& cells)
 {
-  const double big = farScale(mesh, grid);
-  const double margin = farMargin(big, static_cast<double>(mesh.tris.size()));
-  std::int64_t n[3], blocks[3];
-  for (int a = 0; a < 3; ++a)
-  {
-    n[a] = box.hi[a] - box.lo[a] + 1;
-    cells.count[a] = (n[a] + FarCell - 1) / FarCell;
-    blocks[a] = (n[a] + FarBlock - 1) / FarBlock;
-  }
-  cells.sign.assign(static_cast<std::size_t>(cells.count[0] * cells.count[1] * cells.count[2]), 0);
-  auto pos = [&](std::int64_t i, std::int64_t j, std::int64_t k) {
-    return V3{ grid.origin[0] + i * grid.spacing[0], grid.origin[1] + j * grid.spacing[1],
-      grid.origin[2] + k * grid.spacing[2] };
-  };
-  auto boxOf = [&](const std::int64_t v0[3], std::int64_t edge) {
-    std::int64_t hi[3];
-    for (int a = 0; a < 3; ++a) hi[a] = std::min(v0[a] + edge, n[a]) - 1;
-    return farBox(pos(box.lo[0] + v0[0], box.lo[1] + v0[1], box.lo[2] + v0[2]),
-      pos(box.lo[0] + hi[0], box.lo[1] + hi[1], box.lo[2] + hi[2]), big);
-  };
-  const std::int64_t total = blocks[0] * blocks[1] * blocks[2];
+  const FarSetup fs(grid, box, cells, farScale(mesh, grid));
+  const double margin = farMargin(fs.big, static_cast<double>(mesh.tris.size()));
+  auto set = [&](const long long c[3], int s, int m) { fs.set(c, s, m); };
+  constexpr long long Half = FarBlock / 2;
   std::int64_t decided = 0;
 #pragma omp parallel for schedule(dynamic, 16) reduction(+ : decided)
-  for (std::int64_t b = 0; b < total; ++b)
+  for (std::int64_t b = 0; b < fs.total; ++b)
   {
-    const long long origin[3] = { (b % blocks[0]) * FarBlock, ((b / blocks[0]) % blocks[1]) * FarBlock,
-      (b / (blocks[0] * blocks[1])) * FarBlock };
-    const long long size[3] = { n[0], n[1], n[2] };
+    long long v0[3];
+    fs.blockOrigin(b, v0);
     std::int32_t hint = -1;
-    FarBox last[3];
-    double lastDist[3] = { 0, 0, 0 };
-    decided += farClassifyBlock(origin, size,
-      [&](const long long o[3], long long edge) {
-        const std::int64_t o64[3] = { o[0], o[1], o[2] };
-        const FarBox sub = boxOf(o64, edge);
-        const int level = edge == FarBlock ? 0 : (edge == FarBlock / 2 ? 1 : 2);
-        if (level > 0) // certainly within the band by the enclosing box's distance: no query
+    // whether the box of edge^3 voxels at o is past the band; dist: its
+    // centre's distance when a query found it (an upper bound that spares
+    // its sub-boxes a query when it shows them within the band), else -1
+    auto past = [&](const long long o[3], long long edge, const FarBox* parent, double parentDist, FarBox& fb,
+                  double& dist) {
+      fs.boxOf(o, edge, fb);
+      dist = -1;
+      if (parent && parentDist >= 0)
+      {
+        const double bound = farChildBound(parentDist, fb, *parent, fs.big);
+        if (bound - fb.radius <= bandWorld)
         {
-          const double bound = farChildBound(lastDist[level - 1], sub, last[level - 1], big);
-          if (bound - sub.radius <= bandWorld)
-          {
-            last[level] = sub;
-            lastDist[level] = bound;
-            return 0;
-          }
+          dist = bound;
+          return false;
         }
-        // nothing within `reach` proves the box past the band (farPastBand
-        // holds for every distance beyond it): the query need not look farther
-        const double reach = (bandWorld * (1 + 1e-12) + sub.radius + margin) / (1 - 1e-12) * (1 + 1e-12);
-        const NearestResult q = index.nearest(sub.centre, hint, reach * reach * (1 + 1e-12));
-        if (q.tri < 0) return 1;
-        hint = q.tri;
-        const double dq = std::sqrt(q.dist2);
-        last[level] = sub;
-        lastDist[level] = dq;
-        return farPastBand(dq, sub, bandWorld, margin) ? 1 : 0;
-      },
-      [&](const long long c[3], int s) {
-        cells.sign[static_cast<std::size_t>(c[0] + cells.count[0] * (c[1] + cells.count[1] * c[2]))] =
-          static_cast<std::int8_t>(s);
-      });
+      }
+      // nothing within `reach` proves the box past the band (farPastBand
+      // holds for every distance beyond it): the query need not look farther
+      const double reach = (bandWorld * (1 + 1e-12) + fb.radius + margin) / (1 - 1e-12) * (1 + 1e-12);
+      const NearestResult q = index.nearest(fb.centre, hint, reach * reach * (1 + 1e-12));
+      if (q.tri < 0) return true;
+      hint = q.tri;
+      dist = std::sqrt(q.dist2);
+      return farPastBand(dist, fb, bandWorld, margin);
+    };
+    FarBox b0, b1, b2;
+    double d0, d1, d2;
+    if (past(v0, FarBlock, nullptr, -1, b0, d0))
+    {
+      decided += farFill(v0, FarBlock, fs.n, 1, set);
+      continue;
+    }
+    for (int h = 0; h < 8; ++h)
+    {
+      const long long o1[3] = { v0[0] + Half * (h & 1), v0[1] + Half * ((h >> 1) & 1), v0[2] + Half * (h >> 2) };
+      if (o1[0] >= fs.n[0] || o1[1] >= fs.n[1] || o1[2] >= fs.n[2]) continue;
+      if (past(o1, Half, &b0, d0, b1, d1))
+      {
+        decided += farFill(o1, Half, fs.n, 1, set);
+        continue;
+      }
+      for (int q = 0; q < 8; ++q)
+      {
+        const long long o2[3] = { o1[0] + FarCell * (q & 1), o1[1] + FarCell * ((q >> 1) & 1),
+          o1[2] + FarCell * (q >> 2) };
+        if (o2[0] >= fs.n[0] || o2[1] >= fs.n[1] || o2[2] >= fs.n[2]) continue;
+        if (past(o2, FarCell, &b1, d1, b2, d2)) decided += farFill(o2, FarCell, fs.n, 1, set);
+      }
+    }
   }
   return decided;
 }

@@ -7,7 +7,10 @@
 // plane, that side is every voxel's sign (the sign is taken against a
 // positive combination of the normals of triangles containing the closest
 // point, all of them that close), and if D - r is past the band, every voxel
-// is the clamped value. Margins and the proof: docs/MESH_TO_SDF.md, "Far blocks".
+// is the clamped value. A box that fails hands its sub-boxes the few
+// candidates that disagreed (the others agree over every sub-box), so most
+// sub-boxes and single voxels are decided without a query or a tree walk.
+// Margins and the proof: docs/MESH_TO_SDF.md, "Far blocks".
 #pragma once
 
 #include "MeshToSdfInternal.h"
@@ -21,8 +24,8 @@ namespace detail::meshtosdf
 {
 
 /// Blocks of FarBlock^3 voxels are tried first, those that fail as their 8
-/// halves, those as their 8 cells of FarCell^3; cells that fail too are
-/// computed voxel by voxel.
+/// halves, those as their 8 cells of FarCell^3, those voxel by voxel (by the
+/// cell's candidates alone); voxels that fail too get the per-voxel query.
 constexpr int FarBlock = 8;
 constexpr int FarCell = 2;
 /// Triangles less well shaped than this ((|AB|^2 + |AC|^2) / |AB x AC|, about
@@ -89,13 +92,18 @@ LVDIF_HD double farFaceDelta(double faceDot, double reachL, double h)
 /// computed closest point lies on the feature (the sign is taken at it, the
 /// plane passes through a vertex): |B-A|.n for an edge (parameter in [0,1]),
 /// (|AB.n| + |AC.n|) (2 + region / h) for the face (barycentrics, with their
-/// rounding), 0 at a vertex. Otherwise true only when t is provably farther than reach
-/// from the centre (by its exact distance if shaped, else its bounding box).
+/// rounding), 0 at a vertex. Also true when t is provably farther than reach
+/// from the centre (by its exact distance if shaped, else its bounding box):
+/// tested first, since the candidates handed down to sub-boxes (FarState)
+/// mostly drop out by it.
 LVDIF_HD bool farTriAgrees(const Tri& t, bool pseudo, const FarBox& box, double reach, double margin, int side)
 {
-  const bool shaped = farShaped(t);
-  if (shaped)
+  if (farShaped(t))
   {
+    // |distance to the plane| <= the distance: the cheap bound first
+    if (std::fabs(dot(box.centre - t.v[0], t.n)) - margin > reach) return true;
+    const V3 d = closestPointOnTriangle(box.centre, t.v[0], t.v[1], t.v[2]).point - box.centre;
+    if (dot(d, d) > reach * reach) return true;
     const V3 ab = t.v[1] - t.v[0], ac = t.v[2] - t.v[0];
     // the closest-point routine's region tests and barycentrics round like
     // products of distances: their error in position grows as L^2 / h (L
@@ -105,27 +113,37 @@ LVDIF_HD bool farTriAgrees(const Tri& t, bool pseudo, const FarBox& box, double 
     const double h = area2 / longest;
     const double reachL = norm(box.centre - t.v[0]) + box.radius + longest;
     const double region = 1e-14 * reachL * reachL / h; // as in farFaceDelta
-    // with pseudo-normals the face's own plane counts only where the face's
-    // interior can be nearest: in its prism (the projection inside the face)
-    bool face = true;
-    for (int k = 0; k < 3 && face && pseudo; ++k)
-    {
-      const V3 out = normalized(cross(t.v[(k + 1) % 3] - t.v[k], t.n)); // in-plane, outward of edge k
-      face = farPlane(t.v[k], out, region, box, margin) != 1;           // not all beyond edge k
-    }
     // in the face, c' = A + v AB + w AC with |v|, |w| <= 1 + region / h
     const double faceDelta = farFaceDelta(std::fabs(dot(ab, t.n)) + std::fabs(dot(ac, t.n)), reachL, h);
-    bool ok = !face || farPlane(t.v[0], t.n, faceDelta, box, margin) == side;
-    for (int k = 0; k < 3 && ok && pseudo; ++k)
+    if (!pseudo) return farPlane(t.v[0], t.n, faceDelta, box, margin) == side;
+    // With pseudo-normals only the planes of the features the routine may
+    // report for a point of the box count (its region tests, with the
+    // rounding band `region`): the face in its prism (the projection inside
+    // it); edge k (V_k V_k+1, direction u_k) where the box is not all inside
+    // its line, before V_k or past V_k+1 along u_k; vertex k where it is not
+    // all past V_k along u_k nor before V_k along u_k-1.
+    V3 u[3];
+    int line[3]; // 1: the box is all beyond edge k's line, -1: all inside, 0: neither
+    for (int k = 0; k < 3; ++k)
+    {
+      const V3 e = t.v[(k + 1) % 3] - t.v[k];
+      u[k] = normalized(e);
+      line[k] = farPlane(t.v[k], normalized(cross(e, t.n)), region, box, margin); // in-plane, outward of edge k
+    }
+    if (line[0] != 1 && line[1] != 1 && line[2] != 1 && farPlane(t.v[0], t.n, faceDelta, box, margin) != side)
+      return false;
+    for (int k = 0; k < 3; ++k)
     {
       const V3 a = t.v[k], b = t.v[(k + 1) % 3];
-      ok = farPlane(a, t.en[k], std::fabs(dot(b - a, t.en[k])), box, margin) == side &&
-        farPlane(a, t.vn[k], 0.0, box, margin) == side;
+      const int alongA = farPlane(a, u[k], region, box, margin); // -1: all before V_k, 1: all past it
+      if (line[k] != -1 && alongA != -1 && farPlane(b, u[k], region, box, margin) != 1 &&
+        farPlane(a, t.en[k], std::fabs(dot(b - a, t.en[k])), box, margin) != side)
+        return false;
+      if (alongA != 1 && farPlane(a, u[(k + 2) % 3], region, box, margin) != -1 &&
+        farPlane(a, t.vn[k], 0.0, box, margin) != side)
+        return false;
     }
-    if (ok) return true;
-    const Closest q = closestPointOnTriangle(box.centre, t.v[0], t.v[1], t.v[2]);
-    const V3 d = q.point - box.centre;
-    return dot(d, d) > reach * reach;
+    return true;
   }
   const double lo[3] = { std::fmin(t.v[0].x, std::fmin(t.v[1].x, t.v[2].x)),
     std::fmin(t.v[0].y, std::fmin(t.v[1].y, t.v[2].y)), std::fmin(t.v[0].z, std::fmin(t.v[1].z, t.v[2].z)) };
@@ -169,18 +187,24 @@ LVDIF_HD int farConeSide(const FarCone& c, const double lo[3], const double hi[3
   return 0;
 }
 
-/// The side every triangle within `reach` of the box's centre puts the whole
-/// box on (+1 / -1), or 0: the binary BVH (Node: Bvh::Node or the GPU's copy,
-/// leaf: its leaf-ordered triangles) walked with the node cones, so that a
-/// subtree whose cone decides needs no triangle. side: the expected side (the
-/// nearest triangle's), so that no farther one sets it; 0 for none.
+/// The most candidates a box hands down to its sub-boxes (FarState::list).
+constexpr int FarListMax = 64;
+
+
+/// The walk of the binary BVH (Node: Bvh::Node or the GPU's copy, leaf: its
+/// leaf-ordered triangles, at triAt(position)) over the triangles within
+/// `reach` of the box's centre, with the node cones, so that a subtree whose
+/// cone decides needs no triangle: writes to list the leaf positions of the
+/// candidates that do not put the whole box on `side` (farTriAgrees) and
+/// returns their count, or -1 when there are more than FarListMax (or the
+/// tree is deeper than the stack, or side is 0).
 template <typename Node, typename TriAt>
-LVDIF_HD int farTreeSide(const Node* nodes, const FarCone* cones, TriAt&& triAt, bool pseudo, const FarBox& box,
-  double reach, double margin, int side)
+LVDIF_HD int farTreeCollect(const Node* nodes, const FarCone* cones, TriAt&& triAt, bool pseudo, const FarBox& box,
+  double reach, double margin, int side, int* list)
 {
-  if (side == 0) return 0;
+  if (side == 0) return -1;
   int stack[64];
-  int top = 0;
+  int top = 0, count = 0;
   stack[top++] = 0;
   while (top > 0)
   {
@@ -191,18 +215,34 @@ LVDIF_HD int farTreeSide(const Node* nodes, const FarCone* cones, TriAt&& triAt,
     if (n.left < 0)
     {
       for (int i = n.first; i < n.first + n.count; ++i)
-        if (!farTriAgrees(triAt(i), pseudo, box, reach, margin, side)) return 0;
+        if (!farTriAgrees(triAt(i), pseudo, box, reach, margin, side))
+        {
+          if (count == FarListMax) return -1;
+          list[count++] = i;
+        }
       continue;
     }
-    if (top + 2 > 64) return 0; // deeper than the stack: undecided, never wrong
+    if (top + 2 > 64) return -1; // deeper than the stack: undecided, never wrong
     stack[top++] = n.right;
     stack[top++] = n.left;
   }
-  return side;
+  return count;
+}
+
+/// The candidates of in[0, count) that do not put the box on side (those
+/// farther than reach drop out too), written to out (may be in); their count.
+template <typename TriAt>
+LVDIF_HD int farListFilter(TriAt&& triAt, bool pseudo, const FarBox& box, double reach, double margin, int side,
+  const int* in, int count, int* out)
+{
+  int kept = 0;
+  for (int c = 0; c < count; ++c)
+    if (!farTriAgrees(triAt(in[c]), pseudo, box, reach, margin, side)) out[kept++] = in[c];
+  return kept;
 }
 
 /// The radius within which the candidates of a box lie: D (the centre's
-/// computed nearest distance) + 2r, plus the margin.
+/// computed nearest distance, or an upper bound of it) + 2r, plus the margin.
 LVDIF_HD double farRadius(double nearestDist, const FarBox& box, double margin)
 {
   return nearestDist * (1 + 1e-12) + 2 * box.radius + margin;
@@ -212,16 +252,6 @@ LVDIF_HD double farRadius(double nearestDist, const FarBox& box, double margin)
 LVDIF_HD bool farPastBand(double nearestDist, const FarBox& box, double bandWorld, double margin)
 {
   return nearestDist * (1 - 1e-12) - box.radius - margin > bandWorld * (1 + 1e-12);
-}
-
-/// The verdict on a box whose centre's nearest distance lies in [dLo, dHi]:
-/// side (+1 / -1) when all its voxels are side * band, 0 when undecided.
-template <typename Node, typename TriAt>
-LVDIF_HD int farBoxSide(const Node* nodes, const FarCone* cones, TriAt&& triAt, bool pseudo, const FarBox& box,
-  double dLo, double dHi, double bandWorld, double margin, int side)
-{
-  if (!farPastBand(dLo, box, bandWorld, margin)) return 0;
-  return farTreeSide(nodes, cones, triAt, pseudo, box, farRadius(dHi, box, margin), margin, side);
 }
 
 /// The sign the mode would give the point p from its nearest triangle t and
@@ -241,69 +271,238 @@ LVDIF_HD double farOffset(const FarBox& sub, const FarBox& block, double big)
 
 /// An upper bound of the nearest distance of a sub-box's centre from that of
 /// the box enclosing it (parentDist: its computed distance, or its own bound).
-/// A sub-box with bound - radius <= band is certainly not past the band: it is
-/// left undecided without a query (a shortcut only: undecided is never wrong).
 LVDIF_HD double farChildBound(double parentDist, const FarBox& sub, const FarBox& parent, double big)
 {
   return parentDist + farOffset(sub, parent, big);
 }
 
-/// The cells of one block (voxel origin v0, box-relative; n: the box's size):
-/// side(origin, edge) decides the box of edge^3 voxels there (clipped to n),
-/// set(cell, sign) records a decided cell (cell = origin / FarCell). The block
-/// is tried whole, then its halves, then their cells. Returns the voxels decided.
-template <typename Side, typename Set>
-LVDIF_HD long long farClassifyBlock(const long long v0[3], const long long n[3], Side&& side, Set&& set)
+/// What a box tried leaves to its sub-boxes. dHi: its centre's computed
+/// nearest distance, or an upper bound of it. past: every voxel of the box
+/// lies past the band (so every voxel of a sub-box does). count >= 0: every
+/// triangle that may be the reported nearest of a voxel of the box either puts
+/// all its voxels on `side` with every sign plane (farTriAgrees) or is one of
+/// list[0, count) (leaf positions); -1: no such list.
+struct FarState
 {
-  long long decided = 0;
-  auto fill = [&](const long long o[3], long long edge, int s) {
-    for (long long z = o[2]; z < o[2] + edge && z < n[2]; z += FarCell)
-      for (long long y = o[1]; y < o[1] + edge && y < n[1]; y += FarCell)
-        for (long long x = o[0]; x < o[0] + edge && x < n[0]; x += FarCell)
-        {
-          const long long cell[3] = { x / FarCell, y / FarCell, z / FarCell };
-          set(cell, s);
-        }
-    long long count = 1;
-    for (int a = 0; a < 3; ++a) count *= (o[a] + edge < n[a] ? o[a] + edge : n[a]) - o[a];
-    decided += count;
-  };
-  const int whole = side(v0, static_cast<long long>(FarBlock));
-  if (whole != 0)
+  FarBox box;
+  double dHi = 0;
+  const Tri* near = nullptr; // the nearest triangle of the last box queried above (or this one)
+  int side = 0, past = 0, count = -1;
+  int list[FarListMax];
+};
+
+/// The nearest query of a box's centre (q.tri < 0: no triangle) as the
+/// callers' functor returns it: its distance and the side farSideAt gives.
+struct FarQuery
+{
+  const Tri* tri = nullptr; // null: none
+  bool found = false;
+  double dist = 0;
+  int side = 0;
+};
+
+/// The upper bound of the nearest distance of a sub-box's centre from the
+/// box `parent` enclosing it: the parent's bound plus the offset, or the
+/// distance to the nearest triangle found above (much tighter where that is
+/// the sub-box's nearest too).
+LVDIF_HD double farSubBound(const FarState& parent, const FarBox& box, double big)
+{
+  double d = farChildBound(parent.dHi, box, parent.box, big);
+  if (parent.near)
   {
-    fill(v0, FarBlock, whole);
-    return decided;
+    const Tri& t = *parent.near;
+    const V3 v = closestPointOnTriangle(box.centre, t.v[0], t.v[1], t.v[2]).point - box.centre;
+    d = std::fmin(d, std::sqrt(dot(v, v)) * (1 + 1e-12));
   }
-  constexpr long long Half = FarBlock / 2;
-  for (int h = 0; h < 8; ++h)
+  return d;
+}
+
+/// Tries the box st.box (set by the caller) inside the box of `parent` (null
+/// for a block): the side (+1 / -1) when all its voxels are side * band,
+/// else 0, with st filled for its sub-boxes. A sub-box of a box past the band
+/// inherits that and first tests only the parent's list (with its centre's
+/// bound, no query): that decides it when every listed triangle agrees with
+/// the parent's side over it or lies beyond its reach. Otherwise it gets its
+/// own query: within the band by it, undecided; with the parent's side, its
+/// list filtered again with the tighter reach; else a walk of the tree. A box
+/// certainly within the band by its parent's bound is not queried.
+template <typename Node, typename TriAt, typename Nearest>
+LVDIF_HD int farTryBox(const Node* nodes, const FarCone* cones, TriAt&& triAt, Nearest&& nearest, bool pseudo,
+  double bandWorld, double margin, double big, const FarState* parent, FarState& st)
+{
+  st.count = -1;
+  st.side = 0;
+  st.past = 0;
+  st.near = nullptr;
+  if (parent)
   {
-    const long long o1[3] = { v0[0] + Half * (h & 1), v0[1] + Half * ((h >> 1) & 1), v0[2] + Half * (h >> 2) };
-    if (o1[0] >= n[0] || o1[1] >= n[1] || o1[2] >= n[2]) continue;
-    const int s1 = side(o1, Half);
-    if (s1 != 0)
+    st.dHi = farSubBound(*parent, st.box, big);
+    st.near = parent->near;
+    if (!parent->past)
     {
-      fill(o1, Half, s1);
+      // certainly within the band: no query (a shortcut: undecided is never wrong)
+      if (st.dHi - st.box.radius <= bandWorld) return 0;
+    }
+    else
+    {
+      st.past = 1;
+      if (parent->count >= 0)
+      {
+        st.side = parent->side;
+        st.count = farListFilter(triAt, pseudo, st.box, farRadius(st.dHi, st.box, margin), margin, st.side,
+          parent->list, parent->count, st.list);
+        if (st.count == 0) return st.side;
+      }
+    }
+  }
+  const FarQuery q = nearest(st.box.centre);
+  if (!q.found)
+  {
+    // no triangle: nothing is decided below either
+    st.dHi = 0;
+    st.past = 0;
+    st.count = -1;
+    return 0;
+  }
+  st.dHi = q.dist;
+  st.near = q.tri;
+  if (!st.past) st.past = farPastBand(q.dist, st.box, bandWorld, margin) ? 1 : 0;
+  if (!st.past)
+  {
+    st.count = -1;
+    return 0;
+  }
+  const double reach = farRadius(q.dist, st.box, margin);
+  if (st.count > 0 && q.side == st.side)
+    st.count = farListFilter(triAt, pseudo, st.box, reach, margin, st.side, st.list, st.count, st.list);
+  else
+  {
+    st.side = q.side;
+    st.count = farTreeCollect(nodes, cones, triAt, pseudo, st.box, reach, margin, st.side, st.list);
+
+  }
+  return st.count == 0 ? st.side : 0;
+}
+
+/// A voxel (box: its position alone) of a cell left undecided (state cell):
+/// the cell's side when the cell is past the band and every triangle on its
+/// list agrees at the voxel or lies beyond its reach, else 0. No query: a
+/// voxel's query is the per-voxel computation itself.
+template <typename TriAt>
+LVDIF_HD int farVoxelSide(TriAt&& triAt, bool pseudo, double margin, double big, const FarState& cell, const FarBox& box)
+{
+  if (!cell.past || cell.count < 0 || cell.side == 0) return 0;
+  const double reach = farRadius(farSubBound(cell, box, big), box, margin);
+  for (int c = 0; c < cell.count; ++c)
+    if (!farTriAgrees(triAt(cell.list[c]), pseudo, box, reach, margin, cell.side)) return 0;
+  return cell.side;
+}
+
+/// Records the box of edge^3 voxels at o (clipped to n) as side * band
+/// (set: as below); returns its voxel count.
+template <typename Set>
+LVDIF_HD long long farFill(const long long o[3], long long edge, const long long n[3], int side, Set&& set)
+{
+  long long count = 1;
+  for (int a = 0; a < 3; ++a) count *= (o[a] + edge < n[a] ? o[a] + edge : n[a]) - o[a];
+  for (long long z = o[2]; z < o[2] + edge && z < n[2]; z += FarCell)
+    for (long long y = o[1]; y < o[1] + edge && y < n[1]; y += FarCell)
+      for (long long x = o[0]; x < o[0] + edge && x < n[0]; x += FarCell)
+      {
+        const long long cell[3] = { x / FarCell, y / FarCell, z / FarCell };
+        set(cell, side, 0xff);
+      }
+  return count;
+}
+
+/// The far voxels of a block (voxel origin v0, box-relative; n: the box's
+/// size): FarBlock^3 voxels tried whole, then its 8 halves, their 8 cells of
+/// FarCell^3 and the cells' voxels, each level inside a box the level before
+/// left undecided (farTryBox). boxOf(origin, edge, FarBox&): the box of
+/// edge^3 voxels there (clipped to n); set(cell, sign, mask): the voxels
+/// `mask` of a cell (cell = origin / FarCell, bit x + 2 y + 4 z of the voxel
+/// inside it) are sign * band. The block's own test and its halves are apart
+/// so that the GPU runs them as two kernels (the blocks, then one thread per
+/// half). Each returns the voxels decided.
+/// One half (origin o1) of a block left undecided (state s0), with its cells
+/// and their voxels.
+template <typename Node, typename TriAt, typename Nearest, typename BoxOf, typename Set>
+LVDIF_HD long long farClassifyHalf(const Node* nodes, const FarCone* cones, TriAt&& triAt, Nearest&& nearest,
+  bool pseudo, double bandWorld, double margin, double big, const FarState& s0, const long long o1[3],
+  const long long n[3], BoxOf&& boxOf, Set&& set)
+{
+  constexpr long long Half = FarBlock / 2;
+  FarState s1, s2;
+  boxOf(o1, Half, s1.box);
+  const int r1 = farTryBox(nodes, cones, triAt, nearest, pseudo, bandWorld, margin, big, &s0, s1);
+  if (r1 != 0) return farFill(o1, Half, n, r1, set);
+  long long decided = 0;
+  for (int q = 0; q < 8; ++q)
+  {
+    const long long o2[3] = { o1[0] + FarCell * (q & 1), o1[1] + FarCell * ((q >> 1) & 1), o1[2] + FarCell * (q >> 2) };
+    if (o2[0] >= n[0] || o2[1] >= n[1] || o2[2] >= n[2]) continue;
+    boxOf(o2, static_cast<long long>(FarCell), s2.box);
+    const int r2 = farTryBox(nodes, cones, triAt, nearest, pseudo, bandWorld, margin, big, &s1, s2);
+    if (r2 != 0)
+    {
+      decided += farFill(o2, FarCell, n, r2, set);
       continue;
     }
-    for (int q = 0; q < 8; ++q)
+    if (!s2.past || s2.count < 0) continue;
+    // the cell's voxels, by its list alone
+    int mask = 0;
+    for (int v = 0; v < 8; ++v)
     {
-      const long long o2[3] = { o1[0] + FarCell * (q & 1), o1[1] + FarCell * ((q >> 1) & 1), o1[2] + FarCell * (q >> 2) };
-      if (o2[0] >= n[0] || o2[1] >= n[1] || o2[2] >= n[2]) continue;
-      const int s2 = side(o2, static_cast<long long>(FarCell));
-      if (s2 != 0) fill(o2, FarCell, s2);
+      const long long o3[3] = { o2[0] + (v & 1), o2[1] + ((v >> 1) & 1), o2[2] + (v >> 2) };
+      if (o3[0] >= n[0] || o3[1] >= n[1] || o3[2] >= n[2]) continue;
+      FarBox voxel;
+      boxOf(o3, 1LL, voxel);
+      if (farVoxelSide(triAt, pseudo, margin, big, s2, voxel) != 0)
+      {
+        mask |= 1 << v;
+        ++decided;
+      }
+    }
+    if (mask != 0)
+    {
+      const long long cell[3] = { o2[0] / FarCell, o2[1] / FarCell, o2[2] / FarCell };
+      set(cell, s2.side, mask);
     }
   }
   return decided;
 }
-static_assert(FarBlock == 4 * FarCell, "three levels: block, halves, cells");
 
-/// The far cells of a box of voxels (box-relative, FarCell^3 voxels each,
-/// cx + count[0] * (cy + count[1] * cz)): -1 or +1 when every voxel of the
-/// cell is -band or +band, 0 when its voxels are computed one by one.
+/// A whole block: its own test, then its halves (farClassifyHalf).
+template <typename Node, typename TriAt, typename Nearest, typename BoxOf, typename Set>
+LVDIF_HD long long farClassifyBlock(const Node* nodes, const FarCone* cones, TriAt&& triAt, Nearest&& nearest,
+  bool pseudo, double bandWorld, double margin, double big, const long long v0[3], const long long n[3],
+  BoxOf&& boxOf, Set&& set)
+{
+  FarState s0;
+  boxOf(v0, static_cast<long long>(FarBlock), s0.box);
+  const int r0 = farTryBox(nodes, cones, triAt, nearest, pseudo, bandWorld, margin, big, nullptr, s0);
+  if (r0 != 0) return farFill(v0, FarBlock, n, r0, set);
+  constexpr long long Half = FarBlock / 2;
+  long long decided = 0;
+  for (int h = 0; h < 8; ++h)
+  {
+    const long long o1[3] = { v0[0] + Half * (h & 1), v0[1] + Half * ((h >> 1) & 1), v0[2] + Half * (h >> 2) };
+    if (o1[0] >= n[0] || o1[1] >= n[1] || o1[2] >= n[2]) continue;
+    decided += farClassifyHalf(nodes, cones, triAt, nearest, pseudo, bandWorld, margin, big, s0, o1, n, boxOf, set);
+  }
+  return decided;
+}
+static_assert(FarBlock == 4 * FarCell && FarCell == 2, "levels: block, halves, cells of 2^3, voxels");
+
+/// The far voxels of a box of voxels (box-relative): per cell of FarCell^3
+/// voxels (cx + count[0] * (cy + count[1] * cz)) the voxels in mask (bit
+/// x + 2 y + 4 z inside the cell) are sign * band; the others (mask 0 for
+/// all of them when sign is 0) are computed one by one.
 struct FarCells
 {
   std::int64_t count[3] = { 0, 0, 0 };
   std::vector<std::int8_t> sign;
+  std::vector<std::uint8_t> mask;
 };
 
 /// The largest |coordinate| of the mesh and of the grid's voxel positions.

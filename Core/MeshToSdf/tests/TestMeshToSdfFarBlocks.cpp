@@ -99,6 +99,12 @@ TEST(MeshToSdfFarBlocks, SameFloatsAsPerVoxelOnEveryMeshGridAndBand)
             // the shortcut must actually work where the surface allows it
             if (std::isfinite(band) && band < 2 && c.name == "closed sphere" && std::string(gr.name) == "cubic")
               EXPECT_GT(fast.stats.farVoxels, saturated / 3) << what;
+            // with pseudo-normals the voxel level and the per-feature planes decide most of the saturated
+            // voxels off corners and fins too (before them: 23 % of the box's, 3 % of the fin's)
+            if (s == SignMode::PseudoNormal && band == 1.5f && unit == DistanceUnit::Voxel &&
+              std::string(gr.name) == "cubic" &&
+              (c.name == "closed sphere" || c.name == "closed box" || c.name == "non-manifold boxes + fin"))
+              EXPECT_GT(fast.stats.farVoxels, saturated * 8 / 10) << what;
             if (s == SignMode::PseudoNormal && band == 1.5f && unit == DistanceUnit::Voxel)
               std::printf("[ far blocks ] %s, %s: %lld of %lld saturated voxels by far blocks\n", c.name.c_str(),
                 gr.name, static_cast<long long>(fast.stats.farVoxels), static_cast<long long>(saturated));
