@@ -22,7 +22,7 @@ run 90 "$B/bench_mesh_read" 10000000 /tmp ply,off
 # the target: a 10M-triangle mesh at 1024^3 in <= 2 s (warm, the file's reading excluded)
 run 150 "$B/bench_mesh_to_sdf" "sub4:$A" 1024 winding auto bvh volume 8 2 cold,warm,warm --trace
 {
-  grep -E "^## |^\| (binary PLY|OFF|ply|off)|^\| (cold|warm) |rc=[1-9]" "$L"
+  grep -E "^## |^\| (format|[a-z ]*ply|off|stl)|^\| (cold|warm) |rc=[1-9]" "$L"
   grep -E "\[mesh to SDF\] (prepareMesh|mesh BVH|winding|upload and session)" "$L" | head -20
 } | tee -a "$OUT/summary.txt"
 echo "total $(( $(date +%s) - T0 )) s" | tee -a "$OUT/summary.txt"
