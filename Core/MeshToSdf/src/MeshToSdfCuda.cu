@@ -509,23 +509,55 @@ private:
       if (total > this->BoundCapacity)
       {
         if (this->Bounds) this->Arena.release(this->Bounds);
+        if (this->BlockLists) this->Arena.release(this->BlockLists);
         this->Bounds = this->Arena.alloc<double>(static_cast<std::size_t>(2 * total));
+        this->BlockLists = this->Arena.alloc<long long>(static_cast<std::size_t>(total)); // levels but the finest
         this->BoundCapacity = total;
       }
+      if (!this->ListCounts) this->ListCounts = this->Arena.alloc<unsigned long long>(DipoleLevels + 1);
+      // the voxels the blocks leave undecided, listed per part of the sign pass
+      // (a quarter of the part's voxels; beyond that they are refined in place)
+      const long long queueCap = (rows / parts + 1) * (box.hi[0] - box.lo[0] + 1) / 4 + 1024;
+      if (queueCap > this->QueueCapacity)
+      {
+        if (this->Queue) this->Arena.release(this->Queue);
+        this->Queue = this->Arena.alloc<unsigned long long>(static_cast<std::size_t>(queueCap));
+        this->QueueCapacity = queueCap;
+      }
+      this->Stats.devicePeakBytes = std::max(this->Stats.devicePeakBytes, this->Mesh.bytes() + this->Arena.bytes());
+      LVDIF_CUDA_CHECK(cudaMemsetAsync(this->ListCounts, 0, (DipoleLevels + 1) * sizeof(unsigned long long)));
       const double* parent = nullptr;
-      long long offset = total;
+      long long offset = total, listOffset = 0, pbx = 0, pby = 0;
       for (int l = 0; l < DipoleLevels; ++l)
       {
         const long long e = DipoleEdges[l];
+        const int ratio = l ? DipoleEdges[l - 1] / DipoleEdges[l] : 1;
         offset -= count[l];
         double* level = this->Bounds + 2 * offset; // the finest level at offset 0
         bx = (box.hi[0] - box.lo[0] + e) / e;
         by = (box.hi[1] - box.lo[1] + e) / e;
+        const long long bz = (box.hi[2] - box.lo[2] + e) / e;
+        // the blocks without a bound of this level (none for the finest)
+        long long* list = l + 1 < DipoleLevels ? this->BlockLists + listOffset : nullptr;
         dipoleBlockKernel<<<static_cast<unsigned>((count[l] + 127) / 128), 128>>>(this->Mesh.D, P, static_cast<int>(e), bx,
-          by, count[l], parent, l ? DipoleEdges[l - 1] / DipoleEdges[l] : 1, level);
+          by, count[l], parent, ratio, level, l ? nullptr : list, this->ListCounts);
         LVDIF_CUDA_CHECK(cudaGetLastError());
+        if (l)
+        {
+          // the blocks inside the listed parents, full warps of them (the grid
+          // strides over however many the parents' level listed)
+          const long long most = std::min<long long>((count[l] + 127) / 128, 2048);
+          dipoleListedBlockKernel<<<static_cast<unsigned>(most), 128>>>(this->Mesh.D, P, static_cast<int>(e), bx, by, bz, pbx,
+            pby, ratio, this->BlockLists + listOffset - count[l - 1], this->ListCounts + l - 1, level, list,
+            this->ListCounts + l);
+          LVDIF_CUDA_CHECK(cudaGetLastError());
+        }
+        listOffset += count[l];
+        pbx = bx;
+        pby = by;
         parent = level;
       }
+      this->QueueCap = queueCap;
     }
     for (int p = 0; p < parts; ++p)
     {
@@ -535,8 +567,12 @@ private:
         const unsigned grid = static_cast<unsigned>((r1 - r0 + SignWarps - 1) / SignWarps);
         if (dipole)
         {
-          signDipoleKernel<<<grid, 32 * SignWarps>>>(
-            this->Mesh.W, this->Mesh.D, P, r0, r1, this->Bounds, bx, by, this->Slab, this->Counters);
+          unsigned long long* queueCount = this->ListCounts + DipoleLevels;
+          LVDIF_CUDA_CHECK(cudaMemsetAsync(queueCount, 0, sizeof(unsigned long long)));
+          signDipoleKernel<<<grid, 32 * SignWarps>>>(this->Mesh.W, this->Mesh.D, P, r0, r1, this->Bounds, bx, by,
+            this->Slab, this->Counters, this->Queue, queueCount, this->QueueCap);
+          LVDIF_CUDA_CHECK(cudaGetLastError());
+          dipoleRefineKernel<<<2048, 128>>>(this->Mesh.D, P, this->Queue, queueCount, this->QueueCap, this->Slab, this->Counters);
         }
         else
         {
@@ -634,6 +670,10 @@ private:
   std::size_t SlabCapacity = 0;
   double* Bounds = nullptr; // per block of the slab: s's bound (lo, hi), lo > hi: none
   long long BoundCapacity = 0;
+  long long* BlockLists = nullptr;          // per level but the finest: its blocks without a bound
+  unsigned long long* ListCounts = nullptr; // their counts, then the queue's
+  unsigned long long* Queue = nullptr;      // the voxels of a part the blocks left undecided (dipoleListVoxel)
+  long long QueueCapacity = 0, QueueCap = 0;
   // the group of chunk layers of the last launchKeys
   VoxelBox KeyBox;
   int Edge = 32, Ccx = 0, Ccy = 0;

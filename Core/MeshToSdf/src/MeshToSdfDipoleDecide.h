@@ -28,13 +28,20 @@ namespace lvdif
 namespace detail::meshtosdf
 {
 
+/// Work of the decision, counted on the host only (the tests' work counts).
+struct DipoleWork
+{
+  unsigned long long nodes = 0, tris = 0, triBounds = 0; // nodes visited; triangles summed exactly / bounded over a ball
+  unsigned long long calls = 0;                          // boundDipole traversals
+};
+
 struct DipoleView
 {
   const DipoleTree::Node* nodes = nullptr; // node 0 the root
   const WeightedTri* tris = nullptr;       // in tree order
   int count = 0;                           // triangles (0: no correction)
   double rootMass = 0;
-  unsigned long long* visits = nullptr; // host only (work counts of the tests): nodes + triangles visited
+  DipoleWork* work = nullptr;               // host only (work counts of the tests)
 };
 
 // The blocks of voxels bounded as a whole, coarse to fine (edges in voxels,
@@ -100,11 +107,14 @@ LVDIF_HD bool boundDipole(const DipoleView& D, V3 q, double rho, double tolPerMa
   double value = 0, err = 0, mag = 0;
   long long terms = 0;
   approx = false;
+#ifndef __CUDA_ARCH__
+  if (D.work) ++D.work->calls;
+#endif
   while (top > 0)
   {
     const DipoleTree::Node nd = D.nodes[stack[--top]];
 #ifndef __CUDA_ARCH__
-    if (D.visits) *D.visits += 1 + (nd.left < 0 ? nd.count : 0);
+    if (D.work) ++D.work->nodes;
 #endif
     const V3 y = nd.c - q;
     const double r = norm(y);
@@ -165,6 +175,9 @@ LVDIF_HD bool boundDipole(const DipoleView& D, V3 q, double rho, double tolPerMa
       // a leaf over the ball: each triangle's exact value at q, plus its
       // Lipschitz bound over the ball (no d^-3 R term, so the error vanishes
       // with rho); false when the ball meets a triangle
+#ifndef __CUDA_ARCH__
+      if (D.work) D.work->triBounds += nd.count;
+#endif
       for (int i = nd.first; i < nd.first + nd.count; ++i)
       {
         const WeightedTri& t = D.tris[i];
@@ -179,6 +192,9 @@ LVDIF_HD bool boundDipole(const DipoleView& D, V3 q, double rho, double tolPerMa
       approx = true;
       continue;
     }
+#ifndef __CUDA_ARCH__
+    if (D.work) D.work->tris += nd.count;
+#endif
     for (int i = nd.first; i < nd.first + nd.count; ++i)
     {
       const WeightedTri& t = D.tris[i];
@@ -265,14 +281,48 @@ LVDIF_HD void dipoleBlockBound(const DipoleView& D, V3 p0, V3 p1, double& lo, do
   }
 }
 
-/// The decision of one voxel of a row whose +x ray gave K crossings, with
-/// its block's bound (lo > hi: none).
-LVDIF_HD bool insideWithBlock(const DipoleView& D, int K, V3 p, double lo, double hi, unsigned long long& evaluated,
-  unsigned long long& full)
+// Work lists. On the GPU the blocks of a level whose parent has no bound,
+// and the voxels their block leaves undecided, are listed first and then
+// bounded or refined one per thread of full warps: with one thread per block
+// of the level or per voxel of the row, most lanes of a warp idled while a
+// few refined (MeshToSdfDipoleDecide.WorkCounts: the warps' largest work
+// summed, 2-3x the listed order's on damaged armadillos). Only the order of
+// the work changes: each block's bound and each voxel's decision is the same
+// function of the same inputs (the tests run these helpers too).
+
+/// Block c (0 .. ratio^3 - 1, x fastest) inside the block `parent` of the
+/// level above (pbx x pby blocks per layer): its index at this level (bx x by
+/// x bz blocks), -1 when it lies outside the grid.
+LVDIF_HD long long dipoleChildBlock(long long parent, long long c, long long ratio, long long pbx, long long pby,
+  long long bx, long long by, long long bz)
 {
-  if (lo <= hi && dipoleDecided(K - hi, K - lo)) return dipoleInsideOf(0.5 * ((K - hi) + (K - lo)));
-  ++evaluated;
-  return insideDipole(D, K, p, full);
+  const long long x = (parent % pbx) * ratio + c % ratio, y = ((parent / pbx) % pby) * ratio + (c / ratio) % ratio;
+  const long long z = (parent / (pbx * pby)) * ratio + c / (ratio * ratio);
+  return x < bx && y < by && z < bz ? x + bx * (y + by * z) : -1;
+}
+
+/// A listed voxel: its index in the slab and its crossing count in one word
+/// (|K| < 2^19: larger counts are decided where they are found).
+constexpr int DipoleKBits = 20;
+LVDIF_HD bool dipoleListable(int K) { return K > -(1 << (DipoleKBits - 1)) && K < (1 << (DipoleKBits - 1)); }
+LVDIF_HD unsigned long long dipoleListVoxel(long long v, int K)
+{
+  return (static_cast<unsigned long long>(v) << DipoleKBits) | static_cast<unsigned long long>(K + (1 << (DipoleKBits - 1)));
+}
+LVDIF_HD void dipoleListedVoxel(unsigned long long e, long long& v, int& K)
+{
+  v = static_cast<long long>(e >> DipoleKBits);
+  K = static_cast<int>(e & ((1ull << DipoleKBits) - 1)) - (1 << (DipoleKBits - 1));
+}
+
+/// A voxel of a row whose +x ray gave K crossings, decided by its block's
+/// bound (lo > hi: none) when that bound decides it; else false and the
+/// voxel is refined (insideDipole).
+LVDIF_HD bool dipoleBlockDecides(int K, double lo, double hi, bool& inside)
+{
+  if (!(lo <= hi && dipoleDecided(K - hi, K - lo))) return false;
+  inside = dipoleInsideOf(0.5 * ((K - hi) + (K - lo)));
+  return true;
 }
 
 } // namespace detail::meshtosdf
