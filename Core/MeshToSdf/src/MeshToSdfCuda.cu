@@ -510,22 +510,30 @@ private:
       {
         if (this->Bounds) this->Arena.release(this->Bounds);
         if (this->BlockLists) this->Arena.release(this->BlockLists);
+        if (this->BlockPending) this->Arena.release(this->BlockPending);
         this->Bounds = this->Arena.alloc<double>(static_cast<std::size_t>(2 * total));
         this->BlockLists = this->Arena.alloc<long long>(static_cast<std::size_t>(total)); // levels but the finest
+        // blocks between passes (a quarter of the finest level's, twice: in
+        // and out; beyond that a block's passes go on in its thread)
+        this->PendingCap = count[DipoleLevels - 1] / 4 + 1024;
+        this->BlockPending = this->Arena.alloc<DipolePending>(static_cast<std::size_t>(2 * this->PendingCap));
         this->BoundCapacity = total;
       }
-      if (!this->ListCounts) this->ListCounts = this->Arena.alloc<unsigned long long>(DipoleLevels + 1);
+      if (!this->ListCounts) this->ListCounts = this->Arena.alloc<unsigned long long>(ListCountSlots);
       // the voxels the blocks leave undecided, listed per part of the sign pass
-      // (a quarter of the part's voxels; beyond that they are refined in place)
+      // (a quarter of the part's voxels, a sixteenth between passes; beyond
+      // that they are refined in place)
       const long long queueCap = (rows / parts + 1) * (box.hi[0] - box.lo[0] + 1) / 4 + 1024;
       if (queueCap > this->QueueCapacity)
       {
         if (this->Queue) this->Arena.release(this->Queue);
+        if (this->VoxelPending) this->Arena.release(this->VoxelPending);
         this->Queue = this->Arena.alloc<unsigned long long>(static_cast<std::size_t>(queueCap));
+        this->VoxelPending = this->Arena.alloc<DipolePending>(static_cast<std::size_t>(2 * (queueCap / 4 + 1024)));
         this->QueueCapacity = queueCap;
       }
       this->Stats.devicePeakBytes = std::max(this->Stats.devicePeakBytes, this->Mesh.bytes() + this->Arena.bytes());
-      LVDIF_CUDA_CHECK(cudaMemsetAsync(this->ListCounts, 0, (DipoleLevels + 1) * sizeof(unsigned long long)));
+      LVDIF_CUDA_CHECK(cudaMemsetAsync(this->ListCounts, 0, ListCountSlots * sizeof(unsigned long long)));
       const double* parent = nullptr;
       long long offset = total, listOffset = 0, pbx = 0, pby = 0;
       for (int l = 0; l < DipoleLevels; ++l)
@@ -537,19 +545,40 @@ private:
         bx = (box.hi[0] - box.lo[0] + e) / e;
         by = (box.hi[1] - box.lo[1] + e) / e;
         const long long bz = (box.hi[2] - box.lo[2] + e) / e;
-        // the blocks without a bound of this level (none for the finest)
-        long long* list = l + 1 < DipoleLevels ? this->BlockLists + listOffset : nullptr;
+        // the lists of this level: its blocks without a bound (none for the
+        // finest), and the blocks between passes (counts per level and pass)
+        unsigned long long* passCounts = this->ListCounts + DipoleLevels + l * DipoleBlockPasses;
+        auto lists = [&](int pass) {
+          DipoleBlockLists L;
+          if (l + 1 < DipoleLevels)
+          {
+            L.fail = this->BlockLists + listOffset;
+            L.failCount = this->ListCounts + l;
+          }
+          if (pass + 1 < DipoleBlockPasses)
+          {
+            L.next = this->BlockPending + (pass % 2) * this->PendingCap;
+            L.nextCount = passCounts + pass;
+            L.nextCap = this->PendingCap;
+          }
+          return L;
+        };
+        const long long most = std::min<long long>((count[l] + 127) / 128, 2048); // grid-stride kernels
         dipoleBlockKernel<<<static_cast<unsigned>((count[l] + 127) / 128), 128>>>(this->Mesh.D, P, static_cast<int>(e), bx,
-          by, count[l], parent, ratio, level, l ? nullptr : list, this->ListCounts);
+          by, count[l], parent, ratio, level, lists(0));
         LVDIF_CUDA_CHECK(cudaGetLastError());
         if (l)
         {
-          // the blocks inside the listed parents, full warps of them (the grid
-          // strides over however many the parents' level listed)
-          const long long most = std::min<long long>((count[l] + 127) / 128, 2048);
+          // the blocks inside the parents without a bound, full warps of them
           dipoleListedBlockKernel<<<static_cast<unsigned>(most), 128>>>(this->Mesh.D, P, static_cast<int>(e), bx, by, bz, pbx,
-            pby, ratio, this->BlockLists + listOffset - count[l - 1], this->ListCounts + l - 1, level, list,
-            this->ListCounts + l);
+            pby, ratio, this->BlockLists + listOffset - count[l - 1], this->ListCounts + l - 1, level, lists(0));
+          LVDIF_CUDA_CHECK(cudaGetLastError());
+        }
+        for (int pass = 1; pass < DipoleBlockPasses; ++pass)
+        {
+          dipoleBlockPassKernel<<<static_cast<unsigned>(most), 128>>>(this->Mesh.D, P, static_cast<int>(e), bx, by, pass,
+            this->BlockPending + ((pass - 1) % 2) * this->PendingCap, passCounts + pass - 1, this->PendingCap, level,
+            lists(pass));
           LVDIF_CUDA_CHECK(cudaGetLastError());
         }
         listOffset += count[l];
@@ -567,12 +596,22 @@ private:
         const unsigned grid = static_cast<unsigned>((r1 - r0 + SignWarps - 1) / SignWarps);
         if (dipole)
         {
-          unsigned long long* queueCount = this->ListCounts + DipoleLevels;
-          LVDIF_CUDA_CHECK(cudaMemsetAsync(queueCount, 0, sizeof(unsigned long long)));
+          // the queue and the voxels between passes: VoxelPasses kernels, the
+          // last one finishing every voxel it takes
+          unsigned long long* counts = this->ListCounts + DipoleLevels * (1 + DipoleBlockPasses);
+          LVDIF_CUDA_CHECK(cudaMemsetAsync(counts, 0, VoxelPasses * sizeof(unsigned long long)));
           signDipoleKernel<<<grid, 32 * SignWarps>>>(this->Mesh.W, this->Mesh.D, P, r0, r1, this->Bounds, bx, by,
-            this->Slab, this->Counters, this->Queue, queueCount, this->QueueCap);
+            this->Slab, this->Counters, this->Queue, counts, this->QueueCap);
           LVDIF_CUDA_CHECK(cudaGetLastError());
-          dipoleRefineKernel<<<2048, 128>>>(this->Mesh.D, P, this->Queue, queueCount, this->QueueCap, this->Slab, this->Counters);
+          const long long pendingCap = this->QueueCap / 4 + 1024;
+          for (int pass = 0; pass < VoxelPasses; ++pass)
+          {
+            DipolePending* in = pass ? this->VoxelPending + ((pass - 1) % 2) * pendingCap : nullptr;
+            DipolePending* out = pass + 1 < VoxelPasses ? this->VoxelPending + (pass % 2) * pendingCap : nullptr;
+            dipoleRefineKernel<<<2048, 128>>>(this->Mesh.D, P, pass ? nullptr : this->Queue, in, counts + pass,
+              pass ? pendingCap : this->QueueCap, out, out ? counts + pass + 1 : nullptr, pendingCap, this->Slab, this->Counters);
+            LVDIF_CUDA_CHECK(cudaGetLastError());
+          }
         }
         else
         {
@@ -670,9 +709,15 @@ private:
   std::size_t SlabCapacity = 0;
   double* Bounds = nullptr; // per block of the slab: s's bound (lo, hi), lo > hi: none
   long long BoundCapacity = 0;
+  // the work lists of the winding decision (MeshToSdfCudaDipole.cuh)
+  static constexpr int VoxelPasses = 3; // refinement kernels per part of the sign pass
+  static constexpr int ListCountSlots = DipoleLevels * (1 + DipoleBlockPasses) + VoxelPasses;
   long long* BlockLists = nullptr;          // per level but the finest: its blocks without a bound
-  unsigned long long* ListCounts = nullptr; // their counts, then the queue's
+  DipolePending* BlockPending = nullptr;    // blocks between passes (in, out)
+  long long PendingCap = 0;
+  unsigned long long* ListCounts = nullptr; // per level, per level and pass, then the voxels' per pass
   unsigned long long* Queue = nullptr;      // the voxels of a part the blocks left undecided (dipoleListVoxel)
+  DipolePending* VoxelPending = nullptr;    // voxels between passes (in, out)
   long long QueueCapacity = 0, QueueCap = 0;
   // the group of chunk layers of the last launchKeys
   VoxelBox KeyBox;

@@ -228,25 +228,76 @@ LVDIF_HD double dipoleExactCanonical(const DipoleView& D, V3 p)
 /// margin / 2 (in units of the winding number).
 LVDIF_HD double dipoleTolerance(const DipoleView& D, double margin) { return 0.5 * margin * FourPi / D.rootMass; }
 
+/// One pass of insideDipole at the given margin: 1 decided (inside set), 0
+/// not yet (margin lowered for the next pass), -1 no interval will decide
+/// (the canonical sum does).
+LVDIF_HD int insideDipolePass(const DipoleView& D, int K, V3 p, double& margin, bool& inside)
+{
+  double lo = 0, hi = 0;
+  bool approx = false;
+  if (!boundDipole(D, p, 0, dipoleTolerance(D, margin), lo, hi, approx)) return -1;
+  if (dipoleDecided(K - hi, K - lo))
+  {
+    inside = dipoleInsideOf(0.5 * ((K - hi) + (K - lo)));
+    return 1;
+  }
+  if (!approx) return -1; // everything summed exactly, within rounding of +-1/2
+  const double c = K - 0.5 * (lo + hi);
+  const double left = std::fmin(std::fabs(c - 0.5), std::fabs(c + 0.5));
+  margin = std::fmin(0.25 * margin, left);
+  return margin > 1e-10 ? 0 : -1;
+}
+
+/// The first pass's margin: a loose tolerance decides most voxels cheaply (w mostly near 0 or 1).
+constexpr double DipoleFirstMargin = 0.8;
+
 /// Inside or not at p, whose closed chain has K crossings: w = K - s decided
 /// by rigorous intervals, the tolerance lowered 4x a pass (or to the margin
 /// the last estimate left), else by the canonical sum (counted in full).
-LVDIF_HD bool insideDipole(const DipoleView& D, int K, V3 p, unsigned long long& full)
+/// margin: the pass to start with (a listed voxel's next pass).
+LVDIF_HD bool insideDipole(const DipoleView& D, int K, V3 p, unsigned long long& full, double margin = DipoleFirstMargin)
 {
-  double margin = 0.8; // a first pass with a loose tolerance decides most voxels cheaply (w mostly near 0 or 1)
-  while (margin > 1e-10)
+  bool inside = false;
+  while (true)
   {
-    double lo = 0, hi = 0;
-    bool approx = false;
-    if (!boundDipole(D, p, 0, dipoleTolerance(D, margin), lo, hi, approx)) break;
-    if (dipoleDecided(K - hi, K - lo)) return dipoleInsideOf(0.5 * ((K - hi) + (K - lo)));
-    if (!approx) break; // everything summed exactly, within rounding of +-1/2
-    const double c = K - 0.5 * (lo + hi);
-    const double left = std::fmin(std::fabs(c - 0.5), std::fabs(c + 0.5));
-    margin = std::fmin(0.25 * margin, left);
+    const int r = insideDipolePass(D, K, p, margin, inside);
+    if (r > 0) return inside;
+    if (r < 0) break;
   }
   ++full;
   return dipoleInsideOf(K - dipoleExactCanonical(D, p));
+}
+
+/// The ball around the voxels p0 .. p1 (a block); rho also covers the
+/// rounding of the voxel positions as the rows compute them.
+LVDIF_HD void dipoleBlockBall(V3 p0, V3 p1, V3& centre, double& rho)
+{
+  centre = 0.5 * (p0 + p1);
+  const double half = 0.5 * norm(p1 - p0);
+  rho = half + 1e-9 * (half + std::fabs(centre.x) + std::fabs(centre.y) + std::fabs(centre.z));
+}
+
+/// At most this many passes bound a block.
+constexpr int DipoleBlockPasses = 3;
+
+/// One pass of dipoleBlockBound at the given margin: 1 a bound [lo, hi], 0
+/// not yet (margin lowered for the next pass), -1 none.
+LVDIF_HD int dipoleBlockPass(const DipoleView& D, V3 centre, double rho, double& margin, double& lo, double& hi)
+{
+  double l = 0, u = 0;
+  bool approx = false;
+  if (!boundDipole(D, centre, rho, dipoleTolerance(D, margin), l, u, approx)) return -1;
+  const double c = 0.5 * (l + u), n = std::floor(c + 0.5);
+  if (l > n - 0.5 && u < n + 0.5)
+  {
+    lo = l;
+    hi = u;
+    return 1;
+  }
+  const double left = 0.5 - std::fabs(c - n);
+  if (!approx || left < 0.05) return -1; // the voxels will do better
+  margin = std::fmin(0.25 * margin, left);
+  return 0;
 }
 
 /// s over the ball about the voxels p0 .. p1 (a block): [lo, hi] when it lies
@@ -256,28 +307,16 @@ LVDIF_HD bool insideDipole(const DipoleView& D, int K, V3 p, unsigned long long&
 /// 1 occurs inside caps over reversed patches); lo > hi: none.
 LVDIF_HD void dipoleBlockBound(const DipoleView& D, V3 p0, V3 p1, double& lo, double& hi)
 {
-  const V3 centre = 0.5 * (p0 + p1);
-  const double half = 0.5 * norm(p1 - p0);
-  // rho also covers the rounding of the voxel positions as the rows compute them
-  const double rho = half + 1e-9 * (half + std::fabs(centre.x) + std::fabs(centre.y) + std::fabs(centre.z));
+  V3 centre;
+  double rho = 0;
+  dipoleBlockBall(p0, p1, centre, rho);
   lo = 1;
   hi = 0;
-  double margin = 0.8;
-  for (int pass = 0; pass < 3; ++pass)
+  double margin = DipoleFirstMargin;
+  for (int pass = 0; pass < DipoleBlockPasses; ++pass)
   {
-    double l = 0, u = 0;
-    bool approx = false;
-    if (!boundDipole(D, centre, rho, dipoleTolerance(D, margin), l, u, approx)) return;
-    const double c = 0.5 * (l + u), n = std::floor(c + 0.5);
-    if (l > n - 0.5 && u < n + 0.5)
-    {
-      lo = l;
-      hi = u;
-      return;
-    }
-    const double left = 0.5 - std::fabs(c - n);
-    if (!approx || left < 0.05) return; // the voxels will do better
-    margin = std::fmin(0.25 * margin, left);
+    const int r = dipoleBlockPass(D, centre, rho, margin, lo, hi);
+    if (r != 0) return;
   }
 }
 

@@ -41,6 +41,8 @@ struct Emulated
   // row (the kernels before the work lists), "listed": one per listed block
   // (children of the parents without a bound) and per listed voxel
   unsigned long long simtBlocks = 0, simtVoxels = 0, simtBlocksListed = 0, simtVoxelsListed = 0;
+  // listed pass by pass (the items that need another pass listed again)
+  unsigned long long simtBlocksPasses = 0, simtVoxelsPasses = 0;
   unsigned long long blockVisits() const
   {
     unsigned long long v = 0;
@@ -63,10 +65,13 @@ unsigned long long simtOf(const std::vector<unsigned long long>& work, std::size
 
 /// The CUDA sign path, on the CPU over the whole grid, with its work lists
 /// (the same helpers as the kernels): dipoleBlockKernel (the coarsest level
-/// bounds every block, the others take their parent's bound, none or one)
-/// and dipoleListedBlockKernel (the blocks under a listed parent) level by
-/// level, then signDipoleKernel (crossings; a voxel its block decides, else
-/// listed) and dipoleRefineKernel (the listed voxels).
+/// bounds every block, the others take their parent's bound, none or one),
+/// dipoleListedBlockKernel (the blocks under a listed parent) and
+/// dipoleBlockPassKernel (the blocks' further passes) level by level, then
+/// signDipoleKernel (crossings; a voxel its block decides, else listed) and
+/// dipoleRefineKernel (the listed voxels, pass by pass). Every block and
+/// voxel runs the passes the kernels run, in the order of their lists, and
+/// the work of each pass is counted for the SIMT estimates.
 Emulated emulateGpu(const WindingSigner& w, const GridGeometry& g, bool blocksOnly = false)
 {
   const WindingSigner::Closure& c = w.cpuClosure();
@@ -99,15 +104,28 @@ Emulated emulateGpu(const WindingSigner& w, const GridGeometry& g, bool blocksOn
     work.assign(static_cast<std::size_t>(bx * by * bz), 0);
     listedWork.clear();
     D.work = &e.blocks[level];
+    std::vector<unsigned long long> passWork[DipoleBlockPasses];
     auto bound = [&](std::int64_t b) {
       const std::int64_t ix = b % bx, iy = (b / bx) % by, iz = b / (bx * by);
       const std::int64_t x0 = edge * ix, y0 = edge * iy, z0 = edge * iz;
       double lo = 1, hi = 0;
       const unsigned long long before = workOf(e.blocks[level]);
       if (s)
-        dipoleBlockBound(D, position(x0, y0, z0),
+      {
+        // dipoleBlockBound pass by pass
+        V3 centre;
+        double rho = 0, margin = DipoleFirstMargin;
+        dipoleBlockBall(position(x0, y0, z0),
           position(std::min(x0 + edge - 1, nx - 1), std::min(y0 + edge - 1, ny - 1), std::min(z0 + edge - 1, nz - 1)),
-          lo, hi);
+          centre, rho);
+        for (int pass = 0; pass < DipoleBlockPasses; ++pass)
+        {
+          const unsigned long long w0 = workOf(e.blocks[level]);
+          const int r = dipoleBlockPass(D, centre, rho, margin, lo, hi);
+          passWork[pass].push_back(workOf(e.blocks[level]) - w0);
+          if (r != 0) break;
+        }
+      }
       work[static_cast<std::size_t>(b)] = workOf(e.blocks[level]) - before;
       bounds[static_cast<std::size_t>(2 * b)] = lo;
       bounds[static_cast<std::size_t>(2 * b + 1)] = hi;
@@ -133,6 +151,7 @@ Emulated emulateGpu(const WindingSigner& w, const GridGeometry& g, bool blocksOn
       listedWork.push_back(b >= 0 ? work[static_cast<std::size_t>(b)] : 0);
     }
     e.simtBlocks += simtOf(work, 0, work.size());
+    for (const auto& pw : passWork) e.simtBlocksPasses += simtOf(pw, 0, pw.size());
     e.simtBlocksListed += level ? simtOf(listedWork, 0, listedWork.size()) : simtOf(work, 0, work.size());
     if (level == DipoleLevels - 1)
       for (std::size_t b = 0; b < work.size(); ++b) e.blocksBounded += bounds[2 * b] <= bounds[2 * b + 1];
@@ -148,9 +167,27 @@ Emulated emulateGpu(const WindingSigner& w, const GridGeometry& g, bool blocksOn
   std::vector<Bvh::RayHit> hits;
   std::vector<unsigned long long> queue;
   std::vector<unsigned long long> voxelWork(static_cast<std::size_t>(s ? g.count() : 0), 0);
+  std::vector<std::vector<unsigned long long>> voxelPasses;
   auto refine = [&](std::int64_t v, int K, V3 p) {
     const unsigned long long before = workOf(e.voxels);
-    e.inside[static_cast<std::size_t>(v)] = insideDipole(D, K, p, e.full);
+    // insideDipole pass by pass
+    double margin = DipoleFirstMargin;
+    bool inside = false;
+    for (std::size_t pass = 0;; ++pass)
+    {
+      if (voxelPasses.size() <= pass) voxelPasses.emplace_back();
+      const unsigned long long w0 = workOf(e.voxels);
+      const int r = insideDipolePass(D, K, p, margin, inside);
+      voxelPasses[pass].push_back(workOf(e.voxels) - w0);
+      if (r > 0) break;
+      if (r < 0)
+      {
+        ++e.full;
+        inside = dipoleInsideOf(K - dipoleExactCanonical(D, p));
+        break;
+      }
+    }
+    e.inside[static_cast<std::size_t>(v)] = inside;
     voxelWork[static_cast<std::size_t>(v)] = workOf(e.voxels) - before;
   };
   const double h = g.spacing[0];
@@ -223,6 +260,7 @@ Emulated emulateGpu(const WindingSigner& w, const GridGeometry& g, bool blocksOn
   for (std::size_t row = 0; s && row < voxelWork.size(); row += static_cast<std::size_t>(nx))
     e.simtVoxels += simtOf(voxelWork, row, row + static_cast<std::size_t>(nx));
   e.simtVoxelsListed = simtOf(listedVoxelWork, 0, listedVoxelWork.size());
+  for (const auto& pw : voxelPasses) e.simtVoxelsPasses += simtOf(pw, 0, pw.size());
   return e;
 }
 
@@ -433,10 +471,11 @@ TEST(MeshToSdfDipoleDecide, WorkCounts)
           static_cast<double>(e.blocks[l].calls), static_cast<double>(e.blocks[l].nodes),
           static_cast<double>(e.blocks[l].triBounds), static_cast<double>(e.blocks[l].tris));
       std::printf("[ work ]   voxels: %.3g passes, %.3g nodes, %.3g triangles summed; SIMT (warp maxima, per voxel): "
-                  "blocks %.2f, voxels %.2f; listed first: blocks %.2f, voxels %.2f\n",
+                  "blocks %.2f, voxels %.2f; listed first: blocks %.2f, voxels %.2f; listed per pass: blocks %.2f, voxels %.2f\n",
         static_cast<double>(e.voxels.calls), static_cast<double>(e.voxels.nodes), static_cast<double>(e.voxels.tris),
         static_cast<double>(e.simtBlocks) * 32 / n, static_cast<double>(e.simtVoxels) * 32 / n,
-        static_cast<double>(e.simtBlocksListed) * 32 / n, static_cast<double>(e.simtVoxelsListed) * 32 / n);
+        static_cast<double>(e.simtBlocksListed) * 32 / n, static_cast<double>(e.simtVoxelsListed) * 32 / n,
+        static_cast<double>(e.simtBlocksPasses) * 32 / n, static_cast<double>(e.simtVoxelsPasses) * 32 / n);
       std::fflush(stdout);
     }
   }
