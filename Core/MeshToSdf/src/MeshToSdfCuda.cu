@@ -467,6 +467,15 @@ private:
     stats.devicePeakBytes = std::max(stats.devicePeakBytes, this->Mesh.bytes() + this->Arena.bytes());
   }
 
+  /// A work list's capacity: n, or LVDIF_CUDA_DIPOLE_LIST_CAP when set (the
+  /// tests make the lists overflow, so that the work a full list leaves in
+  /// its thread is checked too).
+  static long long listCapacity(long long n)
+  {
+    const char* e = std::getenv("LVDIF_CUDA_DIPOLE_LIST_CAP");
+    return e ? std::max(1LL, std::atoll(e)) : n;
+  }
+
   /// Queues the distance and sign kernels of one slab (box layout in Slab).
   /// parts: the sign kernel in that many launches over consecutive rows,
   /// PartDone[p] recorded after launch p (after the distance kernel when
@@ -515,7 +524,7 @@ private:
         this->BlockLists = this->Arena.alloc<long long>(static_cast<std::size_t>(total)); // levels but the finest
         // blocks between passes (a quarter of the finest level's, twice: in
         // and out; beyond that a block's passes go on in its thread)
-        this->PendingCap = count[DipoleLevels - 1] / 4 + 1024;
+        this->PendingCap = listCapacity(count[DipoleLevels - 1] / 4 + 1024);
         this->BlockPending = this->Arena.alloc<DipolePending>(static_cast<std::size_t>(2 * this->PendingCap));
         this->BoundCapacity = total;
       }
@@ -523,13 +532,13 @@ private:
       // the voxels the blocks leave undecided, listed per part of the sign pass
       // (a quarter of the part's voxels, a sixteenth between passes; beyond
       // that they are refined in place)
-      const long long queueCap = (rows / parts + 1) * (box.hi[0] - box.lo[0] + 1) / 4 + 1024;
+      const long long queueCap = listCapacity((rows / parts + 1) * (box.hi[0] - box.lo[0] + 1) / 4 + 1024);
       if (queueCap > this->QueueCapacity)
       {
         if (this->Queue) this->Arena.release(this->Queue);
         if (this->VoxelPending) this->Arena.release(this->VoxelPending);
         this->Queue = this->Arena.alloc<unsigned long long>(static_cast<std::size_t>(queueCap));
-        this->VoxelPending = this->Arena.alloc<DipolePending>(static_cast<std::size_t>(2 * (queueCap / 4 + 1024)));
+        this->VoxelPending = this->Arena.alloc<DipolePending>(static_cast<std::size_t>(2 * listCapacity(queueCap / 4 + 1024)));
         this->QueueCapacity = queueCap;
       }
       this->Stats.devicePeakBytes = std::max(this->Stats.devicePeakBytes, this->Mesh.bytes() + this->Arena.bytes());
@@ -603,7 +612,7 @@ private:
           signDipoleKernel<<<grid, 32 * SignWarps>>>(this->Mesh.W, this->Mesh.D, P, r0, r1, this->Bounds, bx, by,
             this->Slab, this->Counters, this->Queue, counts, this->QueueCap);
           LVDIF_CUDA_CHECK(cudaGetLastError());
-          const long long pendingCap = this->QueueCap / 4 + 1024;
+          const long long pendingCap = listCapacity(this->QueueCap / 4 + 1024);
           for (int pass = 0; pass < VoxelPasses; ++pass)
           {
             DipolePending* in = pass ? this->VoxelPending + ((pass - 1) % 2) * pendingCap : nullptr;
