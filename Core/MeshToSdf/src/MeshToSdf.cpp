@@ -429,6 +429,8 @@ void computeBox(const Engine& e, const VoxelBox& box, float* out, MeshToSdfStats
       }
     }
   }
+  trace("winding: block bounds of the correction s", now() - t0);
+  const double tr = now();
   std::atomic<std::int64_t> evals{ 0 }, exact{ 0 }, fullSums{ 0 };
   forRows(box, intr, progressBase + 0.5 * progressSpan, 0.5 * progressSpan,
     [&](std::int64_t j, std::int64_t k, std::int64_t r) {
@@ -456,6 +458,7 @@ void computeBox(const Engine& e, const VoxelBox& box, float* out, MeshToSdfStats
       fullSums += fs;
     });
   (void)ny;
+  trace("winding: rows (crossings, voxels refined one by one)", now() - tr);
   stats.windingEvaluations += evals.load();
   stats.windingExact += exact.load();
   stats.windingFullSums += fullSums.load();
