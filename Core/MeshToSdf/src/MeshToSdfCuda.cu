@@ -521,10 +521,11 @@ private:
         if (this->BlockLists) this->Arena.release(this->BlockLists);
         if (this->BlockPending) this->Arena.release(this->BlockPending);
         this->Bounds = this->Arena.alloc<double>(static_cast<std::size_t>(2 * total));
-        this->BlockLists = this->Arena.alloc<long long>(static_cast<std::size_t>(total)); // levels but the finest
-        // blocks between passes (a quarter of the finest level's, twice: in
+        // the blocks without a bound of every level but the finest
+        this->BlockLists = this->Arena.alloc<long long>(static_cast<std::size_t>(total - count[DipoleLevels - 1]));
+        // blocks between passes (an eighth of the finest level's, twice: in
         // and out; beyond that a block's passes go on in its thread)
-        this->PendingCap = listCapacity(count[DipoleLevels - 1] / 4 + 1024);
+        this->PendingCap = listCapacity(count[DipoleLevels - 1] / 8 + 1024);
         this->BlockPending = this->Arena.alloc<DipolePending>(static_cast<std::size_t>(2 * this->PendingCap));
         this->BoundCapacity = total;
       }
