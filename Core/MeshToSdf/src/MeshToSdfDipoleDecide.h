@@ -282,7 +282,7 @@ LVDIF_HD void dipoleBlockBall(V3 p0, V3 p1, V3& centre, double& rho)
 }
 
 /// At most this many passes bound a block.
-constexpr int DipoleBlockPasses = 3;
+constexpr int DipoleBlockPasses = 2;
 
 /// One pass of dipoleBlockBound at the given margin: 1 a bound [lo, hi], 0
 /// not yet (margin lowered for the next pass), -1 none.
