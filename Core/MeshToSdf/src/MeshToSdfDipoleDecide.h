@@ -13,8 +13,9 @@
 // that are all rigorous, DipoleTree::refine's and the ones below, the leaf's
 // per-triangle bound over a ball on both sides, and a slack of 1e-9 and more
 // for the rounding) lies on one side of +-1/2, so two decided intervals
-// cannot disagree, whichever block or pass produced them. A voxel neither side can decide so (w within
-// ~1e-9 of +-1/2, every face summed) is decided by the canonical sum: every
+// cannot disagree, whichever block or pass produced them. A voxel neither
+// side can decide so (w within ~1e-9 of +-1/2, every face summed) is
+// decided by the canonical sum: every
 // face of s in tree order with solidAngleCanonical (portableAtan2: only +, -,
 // *, /, sqrt, so the same bits on both; DipoleTree::exactCanonical). If only
 // one side decides by an interval, the canonical value lies within rounding

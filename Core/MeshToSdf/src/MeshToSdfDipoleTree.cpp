@@ -156,7 +156,7 @@ DipoleTree::Refined DipoleTree::refine(V3 q, double rho, const std::function<int
   while (true)
   {
     // slack: rounding of the running sums and of the exact solid angles
-    const double slack = 1e-9 + 1e-12 * (mag + err) * static_cast<double>(heap.size() + 1);
+    const double slack = 1e-9 + 1e-12 * (mag + err) * static_cast<double>(heap.size() + frozen.size() + 1);
     if (unbounded == 0)
     {
       sLo = (value - err) / FourPi - slack;
