@@ -40,7 +40,7 @@ for d in $DAMAGES; do bench 30 "$d 512" "$d:$A" 512 winding auto bvh volume 8 2 
 for d in $DAMAGES; do bench 30 "check $d 128" "$d:$A" 128 winding auto bvh float 0 2 warm --check-cpu; done
 # 1024^3 last, patch30 last of all (a spent budget skips only that)
 bench 30 "clean 1024" "$A" 1024 winding auto bvh volume 8 2 cold,warm
-for d in $DAMAGES; do bench 45 "$d 1024" "$d:$A" 1024 winding auto bvh volume 8 2 cold,warm; done
+for d in $DAMAGES; do bench 60 "$d 1024" "$d:$A" 1024 winding auto bvh volume 8 2 cold,warm; done
 
 # the table: warm end-to-end, sign time, device, ratio to the clean mesh on the same grid
 awk '
