@@ -396,10 +396,11 @@ void computeBox(const Engine& e, const VoxelBox& box, float* out, MeshToSdfStats
   if (!winding) return;
   t0 = now();
   // The correction s (reversed, removed, capped faces) bounded once per
-  // block of 4^3 voxels, and where that fails per 2^3 (starting from the
-  // larger block's cut): away from those faces a block's bound decides all
-  // its voxels, where row segments of 16 (a ball of radius 7.5 voxels)
-  // would reach a face; the rows then refine only what is left.
+  // group of 16^3 voxels, where that fails per block of 4^3, and where that
+  // fails per 2^3 (each starting from the larger block's cut): away from
+  // those faces a block's bound decides all its voxels, where row segments
+  // of 16 (a ball of radius 7.5 voxels) would reach a face; the rows then
+  // refine only what is left.
   constexpr std::int64_t Block = 2; // the finer blocks; the coarse ones are 2 x 2 x 2 of them
   const bool reorient = e.opts.reorientFaces;
   const std::int64_t bx = (nx + Block - 1) / Block, by = (ny + Block - 1) / Block,
@@ -409,7 +410,7 @@ void computeBox(const Engine& e, const VoxelBox& box, float* out, MeshToSdfStats
   {
     blockLo.assign(static_cast<std::size_t>(bx * by * bz), 1.0);
     blockHi.assign(blockLo.size(), 0.0);
-    const std::int64_t cx = (bx + 1) / 2, cy = (by + 1) / 2, coarse = cx * cy * ((bz + 1) / 2);
+    const std::int64_t cx = (bx + 1) / 2, cy = (by + 1) / 2;
     // the ball about the voxels [v0, v0 + edge)^3 of the box (clipped)
     auto ball = [&](std::int64_t x0, std::int64_t y0, std::int64_t z0, std::int64_t edge, V3& centre) {
       const V3 p0 = e.position(x0, y0, z0);
@@ -420,38 +421,59 @@ void computeBox(const Engine& e, const VoxelBox& box, float* out, MeshToSdfStats
       // rho also covers the rounding of the voxel positions as the rows compute them
       return half + 1e-9 * (half + std::fabs(centre.x) + std::fabs(centre.y) + std::fabs(centre.z));
     };
-#pragma omp parallel for schedule(dynamic, 4)
-    for (std::int64_t c = 0; c < coarse; ++c)
+    // the coarse blocks in groups of 4 x 4 x 4 (16^3 voxels): one ball first
+    // (far from the corrected faces it bounds them all), then each coarse
+    // block from the group's cut
+    const std::int64_t gx = (cx + 3) / 4, gy = (cy + 3) / 4, groups = gx * gy * ((((bz + 1) / 2) + 3) / 4);
+#pragma omp parallel for schedule(dynamic, 1)
+    for (std::int64_t grp = 0; grp < groups; ++grp)
     {
-      const std::int64_t fx = 2 * (c % cx), fy = 2 * ((c / cx) % cy), fz = 2 * (c / (cx * cy)); // first fine block
-      std::vector<std::int32_t> cut;
+      const std::int64_t ox = 4 * (grp % gx), oy = 4 * ((grp / gx) % gy), oz = 4 * (grp / (gx * gy)); // first coarse block
+      std::vector<std::int32_t> groupCut;
       V3 centre;
-      double rho = ball(box.lo[0] + Block * fx, box.lo[1] + Block * fy, box.lo[2] + Block * fz, 2 * Block, centre);
-      double lo = 0, hi = 0;
+      double rho = ball(box.lo[0] + 2 * Block * ox, box.lo[1] + 2 * Block * oy, box.lo[2] + 2 * Block * oz, 8 * Block, centre);
+      double glo = 0, ghi = 0;
       std::int64_t leafTris = 0;
-      const bool whole = e.winding->boundCorrection(centre, rho, lo, hi, leafTris, reorient, &cut);
-      for (std::int64_t d = 0; d < 8; ++d)
+      const bool groupWhole = e.winding->boundCorrection(centre, rho, glo, ghi, leafTris, reorient, &groupCut);
+      for (std::int64_t q = 0; q < 64; ++q)
       {
-        const std::int64_t ix = fx + (d & 1), iy = fy + ((d >> 1) & 1), iz = fz + (d >> 2);
-        if (ix >= bx || iy >= by || iz >= bz) continue;
-        const std::size_t f = static_cast<std::size_t>(ix + bx * (iy + by * iz));
-        if (whole)
+        const std::int64_t qx = ox + (q & 3), qy = oy + ((q >> 2) & 3), qz = oz + (q >> 4);
+        if (qx >= cx || qy >= cy || qz >= (bz + 1) / 2) continue;
+        const std::int64_t fx = 2 * qx, fy = 2 * qy, fz = 2 * qz; // first fine block
+        std::vector<std::int32_t> cut;
+        double lo = glo, hi = ghi;
+        bool whole = groupWhole;
+        if (!whole)
         {
-          blockLo[f] = lo;
-          blockHi[f] = hi;
-          continue;
+          cut = groupCut;
+          rho = ball(box.lo[0] + Block * fx, box.lo[1] + Block * fy, box.lo[2] + Block * fz, 2 * Block, centre);
+          whole = e.winding->boundCorrection(centre, rho, lo, hi, leafTris, reorient, &cut);
         }
-        std::vector<std::int32_t> sub = cut;
-        rho = ball(box.lo[0] + Block * ix, box.lo[1] + Block * iy, box.lo[2] + Block * iz, Block, centre);
-        double l = 0, u = 0;
-        if (e.winding->boundCorrection(centre, rho, l, u, leafTris, reorient, &sub))
+        for (std::int64_t d = 0; d < 8; ++d)
         {
-          blockLo[f] = l;
-          blockHi[f] = u;
+          const std::int64_t ix = fx + (d & 1), iy = fy + ((d >> 1) & 1), iz = fz + (d >> 2);
+          if (ix >= bx || iy >= by || iz >= bz) continue;
+          const std::size_t f = static_cast<std::size_t>(ix + bx * (iy + by * iz));
+          if (whole)
+          {
+            blockLo[f] = lo;
+            blockHi[f] = hi;
+            continue;
+          }
+          std::vector<std::int32_t> sub = cut;
+          rho = ball(box.lo[0] + Block * ix, box.lo[1] + Block * iy, box.lo[2] + Block * iz, Block, centre);
+          double l = 0, u = 0;
+          if (e.winding->boundCorrection(centre, rho, l, u, leafTris, reorient, &sub))
+          {
+            blockLo[f] = l;
+            blockHi[f] = u;
+          }
         }
       }
     }
   }
+  trace("winding: block bounds of the correction s", now() - t0);
+  const double tr = now();
   std::atomic<std::int64_t> evals{ 0 }, exact{ 0 }, fullSums{ 0 };
   forRows(box, intr, progressBase + 0.5 * progressSpan, 0.5 * progressSpan,
     [&](std::int64_t j, std::int64_t k, std::int64_t r) {
@@ -479,6 +501,7 @@ void computeBox(const Engine& e, const VoxelBox& box, float* out, MeshToSdfStats
       fullSums += fs;
     });
   (void)ny;
+  trace("winding: rows (crossings, voxels refined one by one)", now() - tr);
   stats.windingEvaluations += evals.load();
   stats.windingExact += exact.load();
   stats.windingFullSums += fullSums.load();

@@ -619,6 +619,15 @@ private:
     stats.devicePeakBytes = std::max(stats.devicePeakBytes, this->Mesh.bytes() + this->Arena.bytes());
   }
 
+  /// A work list's capacity: n, or LVDIF_CUDA_DIPOLE_LIST_CAP when set (the
+  /// tests make the lists overflow, so that the work a full list leaves in
+  /// its thread is checked too).
+  static long long listCapacity(long long n)
+  {
+    const char* e = std::getenv("LVDIF_CUDA_DIPOLE_LIST_CAP");
+    return e ? std::max(1LL, std::atoll(e)) : n;
+  }
+
   /// Queues the distance and sign kernels of one slab (box layout in Slab).
   /// parts: the sign kernel in that many launches over consecutive rows,
   /// PartDone[p] recorded after launch p (after the distance kernel when
@@ -661,23 +670,85 @@ private:
       if (total > this->BoundCapacity)
       {
         if (this->Bounds) this->Arena.release(this->Bounds);
+        if (this->BlockLists) this->Arena.release(this->BlockLists);
+        if (this->BlockPending) this->Arena.release(this->BlockPending);
         this->Bounds = this->Arena.alloc<double>(static_cast<std::size_t>(2 * total));
+        // the blocks without a bound of every level but the finest
+        this->BlockLists = this->Arena.alloc<long long>(static_cast<std::size_t>(total - count[DipoleLevels - 1]));
+        // blocks between passes (an eighth of the finest level's, twice: in
+        // and out; beyond that a block's passes go on in its thread)
+        this->PendingCap = listCapacity(count[DipoleLevels - 1] / 8 + 1024);
+        this->BlockPending = this->Arena.alloc<DipolePending>(static_cast<std::size_t>(2 * this->PendingCap));
         this->BoundCapacity = total;
       }
+      if (!this->ListCounts) this->ListCounts = this->Arena.alloc<unsigned long long>(ListCountSlots);
+      // the voxels the blocks leave undecided, listed per part of the sign pass
+      // (a quarter of the part's voxels, a sixteenth between passes; beyond
+      // that they are refined in place)
+      const long long queueCap = listCapacity((rows / parts + 1) * (box.hi[0] - box.lo[0] + 1) / 4 + 1024);
+      if (queueCap > this->QueueCapacity)
+      {
+        if (this->Queue) this->Arena.release(this->Queue);
+        if (this->VoxelPending) this->Arena.release(this->VoxelPending);
+        this->Queue = this->Arena.alloc<unsigned long long>(static_cast<std::size_t>(queueCap));
+        this->VoxelPending = this->Arena.alloc<DipolePending>(static_cast<std::size_t>(2 * listCapacity(queueCap / 4 + 1024)));
+        this->QueueCapacity = queueCap;
+      }
+      this->Stats.devicePeakBytes = std::max(this->Stats.devicePeakBytes, this->Mesh.bytes() + this->Arena.bytes());
+      LVDIF_CUDA_CHECK(cudaMemsetAsync(this->ListCounts, 0, ListCountSlots * sizeof(unsigned long long)));
       const double* parent = nullptr;
-      long long offset = total;
+      long long offset = total, listOffset = 0, pbx = 0, pby = 0;
       for (int l = 0; l < DipoleLevels; ++l)
       {
         const long long e = DipoleEdges[l];
+        const int ratio = l ? DipoleEdges[l - 1] / DipoleEdges[l] : 1;
         offset -= count[l];
         double* level = this->Bounds + 2 * offset; // the finest level at offset 0
         bx = (box.hi[0] - box.lo[0] + e) / e;
         by = (box.hi[1] - box.lo[1] + e) / e;
+        const long long bz = (box.hi[2] - box.lo[2] + e) / e;
+        // the lists of this level: its blocks without a bound (none for the
+        // finest), and the blocks between passes (counts per level and pass)
+        unsigned long long* passCounts = this->ListCounts + DipoleLevels + l * DipoleBlockPasses;
+        auto lists = [&](int pass) {
+          DipoleBlockLists L;
+          if (l + 1 < DipoleLevels)
+          {
+            L.fail = this->BlockLists + listOffset;
+            L.failCount = this->ListCounts + l;
+          }
+          if (pass + 1 < DipoleBlockPasses)
+          {
+            L.next = this->BlockPending + (pass % 2) * this->PendingCap;
+            L.nextCount = passCounts + pass;
+            L.nextCap = this->PendingCap;
+          }
+          return L;
+        };
+        const long long most = std::min<long long>((count[l] + 127) / 128, 2048); // grid-stride kernels
         dipoleBlockKernel<<<static_cast<unsigned>((count[l] + 127) / 128), 128>>>(this->Mesh.D, P, static_cast<int>(e), bx,
-          by, count[l], parent, l ? DipoleEdges[l - 1] / DipoleEdges[l] : 1, level);
+          by, count[l], parent, ratio, level, lists(0));
         LVDIF_CUDA_CHECK(cudaGetLastError());
+        if (l)
+        {
+          // the blocks inside the parents without a bound, full warps of them
+          dipoleListedBlockKernel<<<static_cast<unsigned>(most), 128>>>(this->Mesh.D, P, static_cast<int>(e), bx, by, bz, pbx,
+            pby, ratio, this->BlockLists + listOffset - count[l - 1], this->ListCounts + l - 1, level, lists(0));
+          LVDIF_CUDA_CHECK(cudaGetLastError());
+        }
+        for (int pass = 1; pass < DipoleBlockPasses; ++pass)
+        {
+          dipoleBlockPassKernel<<<static_cast<unsigned>(most), 128>>>(this->Mesh.D, P, static_cast<int>(e), bx, by, pass,
+            this->BlockPending + ((pass - 1) % 2) * this->PendingCap, passCounts + pass - 1, this->PendingCap, level,
+            lists(pass));
+          LVDIF_CUDA_CHECK(cudaGetLastError());
+        }
+        listOffset += count[l];
+        pbx = bx;
+        pby = by;
         parent = level;
       }
+      this->QueueCap = queueCap;
     }
     if (this->HasWinding) LVDIF_CUDA_CHECK(cudaEventRecord(this->SignSplit.a)); // the block bounds end here
     for (int p = 0; p < parts; ++p)
@@ -695,8 +766,22 @@ private:
         const unsigned grid = static_cast<unsigned>((c1 - c0 + SignWarps - 1) / SignWarps);
         if (dipole)
         {
+          // the queue and the voxels between passes: VoxelPasses kernels, the
+          // last one finishing every voxel it takes
+          unsigned long long* counts = this->ListCounts + DipoleLevels * (1 + DipoleBlockPasses);
+          LVDIF_CUDA_CHECK(cudaMemsetAsync(counts, 0, VoxelPasses * sizeof(unsigned long long)));
           signDipoleKernel<<<grid, 32 * SignWarps>>>(this->Mesh.W, this->Mesh.D, P, c0, c1, this->RayMeta,
-            this->RayHits, this->Bounds, bx, by, this->Slab, this->Counters);
+            this->RayHits, this->Bounds, bx, by, this->Slab, this->Counters, this->Queue, counts, this->QueueCap);
+          LVDIF_CUDA_CHECK(cudaGetLastError());
+          const long long pendingCap = listCapacity(this->QueueCap / 4 + 1024);
+          for (int pass = 0; pass < VoxelPasses; ++pass)
+          {
+            DipolePending* in = pass ? this->VoxelPending + ((pass - 1) % 2) * pendingCap : nullptr;
+            DipolePending* out = pass + 1 < VoxelPasses ? this->VoxelPending + (pass % 2) * pendingCap : nullptr;
+            dipoleRefineKernel<<<2048, 128>>>(this->Mesh.D, P, pass ? nullptr : this->Queue, in, counts + pass,
+              pass ? pendingCap : this->QueueCap, out, out ? counts + pass + 1 : nullptr, pendingCap, this->Slab, this->Counters);
+            LVDIF_CUDA_CHECK(cudaGetLastError());
+          }
         }
         else
         {
@@ -801,6 +886,16 @@ private:
   std::size_t SlabCapacity = 0;
   double* Bounds = nullptr; // per block of the slab: s's bound (lo, hi), lo > hi: none
   long long BoundCapacity = 0;
+  // the work lists of the winding decision (MeshToSdfCudaDipole.cuh)
+  static constexpr int VoxelPasses = 3; // refinement kernels per part of the sign pass
+  static constexpr int ListCountSlots = DipoleLevels * (1 + DipoleBlockPasses) + VoxelPasses;
+  long long* BlockLists = nullptr;          // per level but the finest: its blocks without a bound
+  DipolePending* BlockPending = nullptr;    // blocks between passes (in, out)
+  long long PendingCap = 0;
+  unsigned long long* ListCounts = nullptr; // per level, per level and pass, then the voxels' per pass
+  unsigned long long* Queue = nullptr;      // the voxels of a part the blocks left undecided (dipoleListVoxel)
+  DipolePending* VoxelPending = nullptr;    // voxels between passes (in, out)
+  long long QueueCapacity = 0, QueueCap = 0;
   // the group of chunk layers of the last launchKeys
   VoxelBox KeyBox;
   int Edge = 32, Ccx = 0, Ccy = 0;

@@ -13,6 +13,8 @@
 #include "MeshToSdfCudaKernels.cuh"
 #include "MeshToSdfDipoleDecide.h"
 
+#include <cooperative_groups.h>
+
 namespace lvdif
 {
 namespace detail::meshtosdf_cuda
@@ -22,52 +24,139 @@ namespace
 using DipoleNode = DipoleTree::Node;
 using DipoleDev = DipoleView;
 
-/// One thread per block of edge voxels (one level of DipoleEdges) of the
-/// slab: dipoleBlockBound. parent (every level but the coarsest): the bounds
-/// of the level above, whose edge is ratio x edge (bx / ratio rounded up per
-/// row); a parent's bound is taken as it is (it holds over the block too).
-__global__ void dipoleBlockKernel(DipoleDev D, Params P, int edge, long long bx, long long by, long long blocks,
-  const double* parent, int ratio, double* bounds)
+/// The corners of block (ix, iy, iz) of edge voxels of the slab (clipped to it).
+__device__ void dipoleBlockCorners(const Params& P, int edge, long long ix, long long iy, long long iz, V3& p0, V3& p1)
 {
-  const long long b = static_cast<long long>(blockIdx.x) * blockDim.x + threadIdx.x;
-  if (b >= blocks) return;
-  const long long ix = b % bx, iy = (b / bx) % by, iz = b / (bx * by);
-  double lo = 1, hi = 0;
-  if (parent)
+  const long long x0 = P.lo[0] + edge * ix, y0 = P.lo[1] + edge * iy, z0 = P.lo[2] + edge * iz;
+  p0 = positionOf(P, x0, y0, z0);
+  p1 = positionOf(P, min(x0 + edge - 1, P.hi[0]), min(y0 + edge - 1, P.hi[1]), min(z0 + edge - 1, P.hi[2]));
+}
+
+/// A block or voxel (dipoleListVoxel) with the margin of its next pass.
+struct DipolePending
+{
+  long long item;
+  double margin;
+};
+
+/// Appends e to list (count entries, capacity cap), one atomic per group of
+/// converged threads; false when the list is full (the caller goes on).
+template <class T>
+__device__ bool dipoleAppend(T* list, unsigned long long* count, long long cap, const T& e)
+{
+  namespace cg = cooperative_groups;
+  const cg::coalesced_group g = cg::coalesced_threads();
+  unsigned long long first = 0;
+  if (g.thread_rank() == 0) first = atomicAdd(count, static_cast<unsigned long long>(g.size()));
+  first = g.shfl(first, 0);
+  const unsigned long long at = first + g.thread_rank();
+  if (at >= static_cast<unsigned long long>(cap)) return false;
+  list[at] = e;
+  return true;
+}
+
+/// Where the lists of one slab's block levels go (MeshToSdfCuda.cu).
+struct DipoleBlockLists
+{
+  long long* fail = nullptr;           // this level's blocks without a bound (null: the finest level)
+  unsigned long long* failCount = nullptr;
+  DipolePending* next = nullptr;       // blocks for the next pass (null: the last pass)
+  unsigned long long* nextCount = nullptr;
+  long long nextCap = 0;
+};
+
+/// Block b of edge voxels (bx x by per layer), dipoleBlockBound from pass
+/// `pass` with its margin: the bound (or none) is written, unless the block
+/// is listed for the next pass (L.next, when not full); a block left
+/// without a bound is listed for the level below.
+__device__ void dipoleBlockFrom(const DipoleDev& D, const Params& P, int edge, long long bx, long long by, long long b,
+  int pass, double margin, const DipoleBlockLists& L, double* bounds)
+{
+  V3 p0, p1, centre;
+  dipoleBlockCorners(P, edge, b % bx, (b / bx) % by, b / (bx * by), p0, p1);
+  double rho = 0, lo = 1, hi = 0;
+  dipoleBlockBall(p0, p1, centre, rho);
+  bool listNext = L.next != nullptr;
+  for (; pass < DipoleBlockPasses; ++pass)
   {
-    const long long cx = (bx + ratio - 1) / ratio, cy = (by + ratio - 1) / ratio;
-    const long long c = ix / ratio + cx * (iy / ratio + cy * (iz / ratio));
-    lo = parent[2 * c];
-    hi = parent[2 * c + 1];
-  }
-  if (!(lo <= hi))
-  {
-    const long long x0 = P.lo[0] + edge * ix, y0 = P.lo[1] + edge * iy, z0 = P.lo[2] + edge * iz;
-    const V3 p0 = positionOf(P, x0, y0, z0);
-    const V3 p1 = positionOf(P, min(x0 + edge - 1, P.hi[0]), min(y0 + edge - 1, P.hi[1]), min(z0 + edge - 1, P.hi[2]));
-    dipoleBlockBound(D, p0, p1, lo, hi);
+    if (dipoleBlockPass(D, centre, rho, margin, lo, hi) != 0) break;
+    if (pass + 1 < DipoleBlockPasses && listNext)
+    {
+      if (dipoleAppend(L.next, L.nextCount, L.nextCap, DipolePending{ b, margin })) return;
+      listNext = false; // full: the passes go on here
+    }
   }
   bounds[2 * b] = lo;
   bounds[2 * b + 1] = hi;
+  if (!(lo <= hi) && L.fail) dipoleAppend(L.fail, L.failCount, 1ll << 62, static_cast<long long>(b));
+}
+
+/// One thread per block of edge voxels (one level of DipoleEdges) of the
+/// slab. The coarsest level (parent null): the first pass of
+/// dipoleBlockBound (dipoleBlockFrom). The others take their parent's bound,
+/// none or one (a parent's bound holds over the block too; its edge is
+/// ratio x edge, bx / ratio rounded up per row); dipoleListedBlockKernel
+/// then bounds the blocks of the parents without one.
+__global__ void dipoleBlockKernel(DipoleDev D, Params P, int edge, long long bx, long long by, long long blocks,
+  const double* parent, int ratio, double* bounds, DipoleBlockLists L)
+{
+  const long long b = static_cast<long long>(blockIdx.x) * blockDim.x + threadIdx.x;
+  if (b >= blocks) return;
+  if (!parent)
+  {
+    dipoleBlockFrom(D, P, edge, bx, by, b, 0, DipoleFirstMargin, L, bounds);
+    return;
+  }
+  const long long ix = b % bx, iy = (b / bx) % by, iz = b / (bx * by);
+  const long long cx = (bx + ratio - 1) / ratio, cy = (by + ratio - 1) / ratio;
+  const long long c = ix / ratio + cx * (iy / ratio + cy * (iz / ratio));
+  bounds[2 * b] = parent[2 * c];
+  bounds[2 * b + 1] = parent[2 * c + 1];
+}
+
+/// The blocks of edge voxels inside the listed blocks of the level above
+/// (parents, parentCount of them; edge ratio x edge, pbx x pby per layer),
+/// one per thread of a grid-stride loop, so that full warps bound blocks:
+/// the first pass of dipoleBlockBound (dipoleBlockFrom).
+__global__ void dipoleListedBlockKernel(DipoleDev D, Params P, int edge, long long bx, long long by, long long bz,
+  long long pbx, long long pby, int ratio, const long long* parents, const unsigned long long* parentCount,
+  double* bounds, DipoleBlockLists L)
+{
+  const long long r3 = static_cast<long long>(ratio) * ratio * ratio;
+  const long long total = static_cast<long long>(*parentCount) * r3;
+  const long long stride = static_cast<long long>(gridDim.x) * blockDim.x;
+  for (long long t = static_cast<long long>(blockIdx.x) * blockDim.x + threadIdx.x; t < total; t += stride)
+  {
+    const long long b = dipoleChildBlock(parents[t / r3], t % r3, ratio, pbx, pby, bx, by, bz);
+    if (b >= 0) dipoleBlockFrom(D, P, edge, bx, by, b, 0, DipoleFirstMargin, L, bounds);
+  }
+}
+
+/// Pass `pass` (and on) of dipoleBlockBound for the blocks an earlier pass
+/// listed (in, min(inCount, inCap) of them), one per thread of a
+/// grid-stride loop: the passes that need another one are listed again, so
+/// that every pass runs in full warps.
+__global__ void dipoleBlockPassKernel(DipoleDev D, Params P, int edge, long long bx, long long by, int pass,
+  const DipolePending* in, const unsigned long long* inCount, long long inCap, double* bounds, DipoleBlockLists L)
+{
+  const long long n = min(static_cast<long long>(*inCount), inCap);
+  const long long stride = static_cast<long long>(gridDim.x) * blockDim.x;
+  for (long long t = static_cast<long long>(blockIdx.x) * blockDim.x + threadIdx.x; t < n; t += stride)
+    dipoleBlockFrom(D, P, edge, bx, by, in[t].item, pass, in[t].margin, L, bounds);
 }
 
 /// WindingSigner::signRow with the correction s (closure without a cone):
 /// one warp per scan line as signKernel; the lanes walk the crossings
-/// together, then each lane decides its voxel: the block's bound of s if it
-/// decides, else insideDipole. A row whose +x ray is ambiguous takes an
-/// oblique ray per voxel (WindingSigner::insideAt), and a voxel whose oblique
-/// ray is ambiguous too the sum over all of M.
-// Blocks of the sign kernel that must fit on an SM at once (registers capped
-// to allow it; 1: no cap, 110 registers, 4 blocks). A build-time tuning knob
-// for scripts/gpu-write.sh's A/B (6: 80 registers with some spills); the
-// values are the same either way.
-#ifndef LVDIF_SIGN_MIN_BLOCKS
-#define LVDIF_SIGN_MIN_BLOCKS 1
-#endif
-__global__ void __launch_bounds__(32 * SignWarps, LVDIF_SIGN_MIN_BLOCKS) signDipoleKernel(WindingDev W,
-  DipoleDev D, Params P, long long rowBegin, long long rowEnd,
+/// together, then each lane takes its voxel: decided by the block's bound of
+/// s if that decides it, else listed (queue; dipoleRefineKernel refines the
+/// listed voxels with full warps), or refined here (insideDipole) when the
+/// list is full. A row whose +x ray is ambiguous takes an oblique ray per
+/// voxel (WindingSigner::insideAt), and a voxel whose oblique ray is
+/// ambiguous too the sum over all of M. The rows' +x rays come from
+/// rowRayKernel (rayMeta, rayHits: row - rowBegin).
+__global__ void signDipoleKernel(WindingDev W, DipoleDev D, Params P, long long rowBegin, long long rowEnd,
   const int4* rayMeta, const Hit* rayHits, const double* bounds, long long bx, long long by, float* out,
-  unsigned long long* counters)
+  unsigned long long* counters, unsigned long long* queue, unsigned long long* queueCount, long long queueCap)
 {
   __shared__ RayShared sharedRay[SignWarps];
   const long long nx = P.hi[0] - P.lo[0] + 1, ny = P.hi[1] - P.lo[1] + 1;
@@ -118,18 +207,88 @@ __global__ void __launch_bounds__(32 * SignWarps, LVDIF_SIGN_MIN_BLOCKS) signDip
         ++full;
       }
     }
-    if (mine >= nx) continue;
-    if (!ok) ++fallback;
-    if (myRay)
+    bool refine = false;
+    if (mine < nx)
     {
-      // ambiguous rows use no block bounds (WindingSigner::insideAt)
-      const double lo = ok ? blockRow[2 * (mine / DipoleBlock)] : 1.0, hi = ok ? blockRow[2 * (mine / DipoleBlock) + 1] : 0.0;
-      myInside = insideWithBlock(D, myK, pos(mine), lo, hi, ev, full);
+      if (!ok) ++fallback;
+      if (myRay)
+      {
+        // ambiguous rows use no block bounds (WindingSigner::insideAt)
+        const double lo = ok ? blockRow[2 * (mine / DipoleBlock)] : 1.0, hi = ok ? blockRow[2 * (mine / DipoleBlock) + 1] : 0.0;
+        refine = !dipoleBlockDecides(myK, lo, hi, myInside);
+        ev += refine;
+      }
     }
-    if (myInside) rowOut[mine] = -rowOut[mine];
+    // list the voxels to refine, in lane order (one atomic per warp)
+    const bool listable = refine && dipoleListable(myK);
+    const unsigned mask = __ballot_sync(0xffffffffu, listable);
+    if (mask)
+    {
+      const int leader = __ffs(mask) - 1;
+      unsigned long long first = 0;
+      if (lane == leader) first = atomicAdd(queueCount, static_cast<unsigned long long>(__popc(mask)));
+      first = __shfl_sync(0xffffffffu, first, leader);
+      const unsigned long long at = first + static_cast<unsigned long long>(__popc(mask & ((1u << lane) - 1u)));
+      if (listable && at < static_cast<unsigned long long>(queueCap))
+      {
+        queue[at] = dipoleListVoxel(row * nx + mine, myK);
+        refine = false;
+      }
+    }
+    if (refine) myInside = insideDipole(D, myK, pos(mine), full);
+    if (mine < nx && myInside) rowOut[mine] = -rowOut[mine];
   }
   if (ev) atomicAdd(counters, ev);
   if (fallback) atomicAdd(counters + 1, fallback);
+  if (full) atomicAdd(counters + 2, full);
+}
+
+/// The voxels signDipoleKernel listed (queue: their first pass) or an
+/// earlier pass of this kernel listed (in: their next pass and its margin),
+/// min(inCount, inCap) of them, one per thread of a grid-stride loop:
+/// insideDipole at the position the row computes (pos(i) of
+/// signDipoleKernel, the same operations) pass by pass; a voxel that needs
+/// another pass is listed in out (null or full: it is finished here), so
+/// that every pass runs in full warps. Inside: the sign is flipped.
+__global__ void dipoleRefineKernel(DipoleDev D, Params P, const unsigned long long* queue, const DipolePending* in,
+  const unsigned long long* inCount, long long inCap, DipolePending* out, unsigned long long* outCount, long long outCap,
+  float* slab, unsigned long long* counters)
+{
+  const long long n = min(static_cast<long long>(*inCount), inCap);
+  const long long nx = P.hi[0] - P.lo[0] + 1, ny = P.hi[1] - P.lo[1] + 1;
+  const long long stride = static_cast<long long>(gridDim.x) * blockDim.x;
+  const double h = P.spacing[0];
+  unsigned long long full = 0;
+  for (long long t = static_cast<long long>(blockIdx.x) * blockDim.x + threadIdx.x; t < n; t += stride)
+  {
+    const long long item = queue ? static_cast<long long>(queue[t]) : in[t].item;
+    double margin = queue ? DipoleFirstMargin : in[t].margin;
+    long long v = 0;
+    int K = 0;
+    dipoleListedVoxel(static_cast<unsigned long long>(item), v, K);
+    const long long row = v / nx, i = v % nx;
+    const V3 start = positionOf(P, P.lo[0], P.lo[1] + row % ny, P.lo[2] + row / ny);
+    const V3 p = start + V3{ static_cast<double>(i) * h, 0, 0 };
+    bool inside = false, listNext = out != nullptr, listed = false;
+    while (true)
+    {
+      const int r = insideDipolePass(D, K, p, margin, inside);
+      if (r > 0) break;
+      if (r < 0)
+      {
+        ++full; // insideDipole's canonical sum
+        inside = dipoleInsideOf(K - dipoleExactCanonical(D, p));
+        break;
+      }
+      if (listNext)
+      {
+        listed = dipoleAppend(out, outCount, outCap, DipolePending{ item, margin });
+        if (listed) break;
+        listNext = false; // full: the passes go on here
+      }
+    }
+    if (!listed && inside) slab[v] = -slab[v];
+  }
   if (full) atomicAdd(counters + 2, full);
 }
 } // namespace

@@ -5,12 +5,17 @@
 //
 // Why the signs equal the CPU's bit for bit although the traversal differs
 // (a stack and a tolerance per unit of mass lowered pass by pass, instead of
-// the CPU's priority queue warm-started from the previous voxel): both sides
-// decide a voxel only when a rigorous interval of w (it contains the exact
-// value: the same per-cluster bounds, DipoleTree::refine's, and a slack of
-// 1e-9 and more for the rounding) lies on one side of +-1/2, so two decided
-// intervals cannot disagree. A voxel neither side can decide so (w within
-// ~1e-9 of +-1/2, every face summed) is decided by the canonical sum: every
+// the CPU's priority queue warm-started from the previous voxel), and
+// although the blocks and voxels are bounded in another order (the GPU's
+// work lists, below) and the two sides bound different blocks (CPU: 4^3 and
+// 2^3, GPU: 16^3, 4^3 and 2^3): both sides decide a voxel only when a
+// rigorous interval of w (it contains the exact value: per-cluster bounds
+// that are all rigorous, DipoleTree::refine's and the ones below, the leaf's
+// per-triangle bound over a ball on both sides, and a slack of 1e-9 and more
+// for the rounding) lies on one side of +-1/2, so two decided intervals
+// cannot disagree, whichever block or pass produced them. A voxel neither
+// side can decide so (w within ~1e-9 of +-1/2, every face summed) is
+// decided by the canonical sum: every
 // face of s in tree order with solidAngleCanonical (portableAtan2: only +, -,
 // *, /, sqrt, so the same bits on both; DipoleTree::exactCanonical). If only
 // one side decides by an interval, the canonical value lies within rounding
@@ -28,13 +33,20 @@ namespace lvdif
 namespace detail::meshtosdf
 {
 
+/// Work of the decision, counted on the host only (the tests' work counts).
+struct DipoleWork
+{
+  unsigned long long nodes = 0, tris = 0, triBounds = 0; // nodes visited; triangles summed exactly / bounded over a ball
+  unsigned long long calls = 0;                          // boundDipole traversals
+};
+
 struct DipoleView
 {
   const DipoleTree::Node* nodes = nullptr; // node 0 the root
   const WeightedTri* tris = nullptr;       // in tree order
   int count = 0;                           // triangles (0: no correction)
   double rootMass = 0;
-  unsigned long long* visits = nullptr; // host only (work counts of the tests): nodes + triangles visited
+  DipoleWork* work = nullptr;               // host only (work counts of the tests)
 };
 
 // The blocks of voxels bounded as a whole, coarse to fine (edges in voxels,
@@ -100,11 +112,14 @@ LVDIF_HD bool boundDipole(const DipoleView& D, V3 q, double rho, double tolPerMa
   double value = 0, err = 0, mag = 0;
   long long terms = 0;
   approx = false;
+#ifndef __CUDA_ARCH__
+  if (D.work) ++D.work->calls;
+#endif
   while (top > 0)
   {
     const DipoleTree::Node nd = D.nodes[stack[--top]];
 #ifndef __CUDA_ARCH__
-    if (D.visits) *D.visits += 1 + (nd.left < 0 ? nd.count : 0);
+    if (D.work) ++D.work->nodes;
 #endif
     const V3 y = nd.c - q;
     const double r = norm(y);
@@ -165,6 +180,9 @@ LVDIF_HD bool boundDipole(const DipoleView& D, V3 q, double rho, double tolPerMa
       // a leaf over the ball: each triangle's exact value at q, plus its
       // Lipschitz bound over the ball (no d^-3 R term, so the error vanishes
       // with rho); false when the ball meets a triangle
+#ifndef __CUDA_ARCH__
+      if (D.work) D.work->triBounds += nd.count;
+#endif
       for (int i = nd.first; i < nd.first + nd.count; ++i)
       {
         const WeightedTri& t = D.tris[i];
@@ -179,6 +197,9 @@ LVDIF_HD bool boundDipole(const DipoleView& D, V3 q, double rho, double tolPerMa
       approx = true;
       continue;
     }
+#ifndef __CUDA_ARCH__
+    if (D.work) D.work->tris += nd.count;
+#endif
     for (int i = nd.first; i < nd.first + nd.count; ++i)
     {
       const WeightedTri& t = D.tris[i];
@@ -212,25 +233,76 @@ LVDIF_HD double dipoleExactCanonical(const DipoleView& D, V3 p)
 /// margin / 2 (in units of the winding number).
 LVDIF_HD double dipoleTolerance(const DipoleView& D, double margin) { return 0.5 * margin * FourPi / D.rootMass; }
 
+/// One pass of insideDipole at the given margin: 1 decided (inside set), 0
+/// not yet (margin lowered for the next pass), -1 no interval will decide
+/// (the canonical sum does).
+LVDIF_HD int insideDipolePass(const DipoleView& D, int K, V3 p, double& margin, bool& inside)
+{
+  double lo = 0, hi = 0;
+  bool approx = false;
+  if (!boundDipole(D, p, 0, dipoleTolerance(D, margin), lo, hi, approx)) return -1;
+  if (dipoleDecided(K - hi, K - lo))
+  {
+    inside = dipoleInsideOf(0.5 * ((K - hi) + (K - lo)));
+    return 1;
+  }
+  if (!approx) return -1; // everything summed exactly, within rounding of +-1/2
+  const double c = K - 0.5 * (lo + hi);
+  const double left = std::fmin(std::fabs(c - 0.5), std::fabs(c + 0.5));
+  margin = std::fmin(0.25 * margin, left);
+  return margin > 1e-10 ? 0 : -1;
+}
+
+/// The first pass's margin: a loose tolerance decides most voxels cheaply (w mostly near 0 or 1).
+constexpr double DipoleFirstMargin = 0.8;
+
 /// Inside or not at p, whose closed chain has K crossings: w = K - s decided
 /// by rigorous intervals, the tolerance lowered 4x a pass (or to the margin
 /// the last estimate left), else by the canonical sum (counted in full).
-LVDIF_HD bool insideDipole(const DipoleView& D, int K, V3 p, unsigned long long& full)
+/// margin: the pass to start with (a listed voxel's next pass).
+LVDIF_HD bool insideDipole(const DipoleView& D, int K, V3 p, unsigned long long& full, double margin = DipoleFirstMargin)
 {
-  double margin = 0.8; // a first pass with a loose tolerance decides most voxels cheaply (w mostly near 0 or 1)
-  while (margin > 1e-10)
+  bool inside = false;
+  while (true)
   {
-    double lo = 0, hi = 0;
-    bool approx = false;
-    if (!boundDipole(D, p, 0, dipoleTolerance(D, margin), lo, hi, approx)) break;
-    if (dipoleDecided(K - hi, K - lo)) return dipoleInsideOf(0.5 * ((K - hi) + (K - lo)));
-    if (!approx) break; // everything summed exactly, within rounding of +-1/2
-    const double c = K - 0.5 * (lo + hi);
-    const double left = std::fmin(std::fabs(c - 0.5), std::fabs(c + 0.5));
-    margin = std::fmin(0.25 * margin, left);
+    const int r = insideDipolePass(D, K, p, margin, inside);
+    if (r > 0) return inside;
+    if (r < 0) break;
   }
   ++full;
   return dipoleInsideOf(K - dipoleExactCanonical(D, p));
+}
+
+/// The ball around the voxels p0 .. p1 (a block); rho also covers the
+/// rounding of the voxel positions as the rows compute them.
+LVDIF_HD void dipoleBlockBall(V3 p0, V3 p1, V3& centre, double& rho)
+{
+  centre = 0.5 * (p0 + p1);
+  const double half = 0.5 * norm(p1 - p0);
+  rho = half + 1e-9 * (half + std::fabs(centre.x) + std::fabs(centre.y) + std::fabs(centre.z));
+}
+
+/// At most this many passes bound a block.
+constexpr int DipoleBlockPasses = 2;
+
+/// One pass of dipoleBlockBound at the given margin: 1 a bound [lo, hi], 0
+/// not yet (margin lowered for the next pass), -1 none.
+LVDIF_HD int dipoleBlockPass(const DipoleView& D, V3 centre, double rho, double& margin, double& lo, double& hi)
+{
+  double l = 0, u = 0;
+  bool approx = false;
+  if (!boundDipole(D, centre, rho, dipoleTolerance(D, margin), l, u, approx)) return -1;
+  const double c = 0.5 * (l + u), n = std::floor(c + 0.5);
+  if (l > n - 0.5 && u < n + 0.5)
+  {
+    lo = l;
+    hi = u;
+    return 1;
+  }
+  const double left = 0.5 - std::fabs(c - n);
+  if (!approx || left < 0.05) return -1; // the voxels will do better
+  margin = std::fmin(0.25 * margin, left);
+  return 0;
 }
 
 /// s over the ball about the voxels p0 .. p1 (a block): [lo, hi] when it lies
@@ -240,39 +312,61 @@ LVDIF_HD bool insideDipole(const DipoleView& D, int K, V3 p, unsigned long long&
 /// 1 occurs inside caps over reversed patches); lo > hi: none.
 LVDIF_HD void dipoleBlockBound(const DipoleView& D, V3 p0, V3 p1, double& lo, double& hi)
 {
-  const V3 centre = 0.5 * (p0 + p1);
-  const double half = 0.5 * norm(p1 - p0);
-  // rho also covers the rounding of the voxel positions as the rows compute them
-  const double rho = half + 1e-9 * (half + std::fabs(centre.x) + std::fabs(centre.y) + std::fabs(centre.z));
+  V3 centre;
+  double rho = 0;
+  dipoleBlockBall(p0, p1, centre, rho);
   lo = 1;
   hi = 0;
-  double margin = 0.8;
-  for (int pass = 0; pass < 3; ++pass)
+  double margin = DipoleFirstMargin;
+  for (int pass = 0; pass < DipoleBlockPasses; ++pass)
   {
-    double l = 0, u = 0;
-    bool approx = false;
-    if (!boundDipole(D, centre, rho, dipoleTolerance(D, margin), l, u, approx)) return;
-    const double c = 0.5 * (l + u), n = std::floor(c + 0.5);
-    if (l > n - 0.5 && u < n + 0.5)
-    {
-      lo = l;
-      hi = u;
-      return;
-    }
-    const double left = 0.5 - std::fabs(c - n);
-    if (!approx || left < 0.05) return; // the voxels will do better
-    margin = std::fmin(0.25 * margin, left);
+    const int r = dipoleBlockPass(D, centre, rho, margin, lo, hi);
+    if (r != 0) return;
   }
 }
 
-/// The decision of one voxel of a row whose +x ray gave K crossings, with
-/// its block's bound (lo > hi: none).
-LVDIF_HD bool insideWithBlock(const DipoleView& D, int K, V3 p, double lo, double hi, unsigned long long& evaluated,
-  unsigned long long& full)
+// Work lists. On the GPU the blocks of a level whose parent has no bound,
+// and the voxels their block leaves undecided, are listed first and then
+// bounded or refined one per thread of full warps: with one thread per block
+// of the level or per voxel of the row, most lanes of a warp idled while a
+// few refined (MeshToSdfDipoleDecide.WorkCounts: the warps' largest work
+// summed, 2-3x the listed order's on damaged armadillos). Only the order of
+// the work changes: each block's bound and each voxel's decision is the same
+// function of the same inputs (the tests run these helpers too).
+
+/// Block c (0 .. ratio^3 - 1, x fastest) inside the block `parent` of the
+/// level above (pbx x pby blocks per layer): its index at this level (bx x by
+/// x bz blocks), -1 when it lies outside the grid.
+LVDIF_HD long long dipoleChildBlock(long long parent, long long c, long long ratio, long long pbx, long long pby,
+  long long bx, long long by, long long bz)
 {
-  if (lo <= hi && dipoleDecided(K - hi, K - lo)) return dipoleInsideOf(0.5 * ((K - hi) + (K - lo)));
-  ++evaluated;
-  return insideDipole(D, K, p, full);
+  const long long x = (parent % pbx) * ratio + c % ratio, y = ((parent / pbx) % pby) * ratio + (c / ratio) % ratio;
+  const long long z = (parent / (pbx * pby)) * ratio + c / (ratio * ratio);
+  return x < bx && y < by && z < bz ? x + bx * (y + by * z) : -1;
+}
+
+/// A listed voxel: its index in the slab and its crossing count in one word
+/// (|K| < 2^19: larger counts are decided where they are found).
+constexpr int DipoleKBits = 20;
+LVDIF_HD bool dipoleListable(int K) { return K > -(1 << (DipoleKBits - 1)) && K < (1 << (DipoleKBits - 1)); }
+LVDIF_HD unsigned long long dipoleListVoxel(long long v, int K)
+{
+  return (static_cast<unsigned long long>(v) << DipoleKBits) | static_cast<unsigned long long>(K + (1 << (DipoleKBits - 1)));
+}
+LVDIF_HD void dipoleListedVoxel(unsigned long long e, long long& v, int& K)
+{
+  v = static_cast<long long>(e >> DipoleKBits);
+  K = static_cast<int>(e & ((1ull << DipoleKBits) - 1)) - (1 << (DipoleKBits - 1));
+}
+
+/// A voxel of a row whose +x ray gave K crossings, decided by its block's
+/// bound (lo > hi: none) when that bound decides it; else false and the
+/// voxel is refined (insideDipole).
+LVDIF_HD bool dipoleBlockDecides(int K, double lo, double hi, bool& inside)
+{
+  if (!(lo <= hi && dipoleDecided(K - hi, K - lo))) return false;
+  inside = dipoleInsideOf(0.5 * ((K - hi) + (K - lo)));
+  return true;
 }
 
 } // namespace detail::meshtosdf

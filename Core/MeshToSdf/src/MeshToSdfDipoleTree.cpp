@@ -1,6 +1,8 @@
 // Dipole tree with rigorous error bounds: see MeshToSdfDipoleTree.h.
 #include "MeshToSdfDipoleTree.h"
 
+#include "MeshToSdfDipoleDecide.h" // triangleLipschitz, shared with the GPU's block bounds
+
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -96,6 +98,11 @@ DipoleTree::Refined DipoleTree::refine(V3 q, double rho, const std::function<int
   };
   thread_local std::vector<Open> heap;
   heap.clear();
+  // leaves bounded over the ball triangle by triangle (rho > 0): they cannot
+  // get tighter, so they leave the heap but stay in the sums and the cut
+  thread_local std::vector<Open> frozen;
+  frozen.clear();
+  double frozenErr = 0;
   double value = 0, err = 0, mag = 0; // sums over the open clusters (+ the exact leaves in value)
   int unbounded = 0;                  // open clusters too close for any bound
   bool heapOrder = true; // a starting cut is visited unordered, made a heap only when refined
@@ -141,6 +148,7 @@ DipoleTree::Refined DipoleTree::refine(V3 q, double rho, const std::function<int
     {
       cut->clear();
       for (const Open& o : heap) cut->push_back(o.node);
+      for (const Open& o : frozen) cut->push_back(o.node);
       cut->insert(cut->end(), summed.begin(), summed.end());
     }
     return r;
@@ -148,7 +156,7 @@ DipoleTree::Refined DipoleTree::refine(V3 q, double rho, const std::function<int
   while (true)
   {
     // slack: rounding of the running sums and of the exact solid angles
-    const double slack = 1e-9 + 1e-12 * (mag + err) * static_cast<double>(heap.size() + 1);
+    const double slack = 1e-9 + 1e-12 * (mag + err) * static_cast<double>(heap.size() + frozen.size() + 1);
     if (unbounded == 0)
     {
       sLo = (value - err) / FourPi - slack;
@@ -156,7 +164,7 @@ DipoleTree::Refined DipoleTree::refine(V3 q, double rho, const std::function<int
       const int g = goal(sLo, sHi);
       if (g > 0) return finish(Refined::Done);
       if (g < 0) return finish(Refined::Failed);
-      if (heap.empty()) return finish(Refined::Exact);
+      if (heap.empty()) return finish(frozen.empty() ? Refined::Exact : Refined::Failed);
     }
     if (!heapOrder)
     {
@@ -185,8 +193,42 @@ DipoleTree::Refined DipoleTree::refine(V3 q, double rho, const std::function<int
     }
     if (rho > 0)
     {
-      heap.push_back(o); // keep the cut whole
-      return finish(Refined::Failed);
+      // a leaf over the ball: each triangle's exact value at q plus rho times
+      // a Lipschitz bound of its solid angle on the ball (the GPU's block
+      // bound, MeshToSdfDipoleDecide.h: no error floor 2 A R / d^3, so it
+      // shrinks with the ball), kept if tighter than the cluster's bound
+      double v = 0, e = 0, m = 0;
+      bool bounded = true;
+      for (std::int32_t i = nd.first; i < nd.first + nd.count && bounded; ++i)
+      {
+        const WeightedTri& t = this->Tris[i];
+        double L = 0;
+        bounded = triangleLipschitz(t, q, rho, L);
+        const double a = t.w * solidAngle(q, t.v[0], t.v[1], t.v[2]);
+        v += a;
+        e += std::fabs(t.w) * rho * L;
+        m += std::fabs(a);
+      }
+      const bool tighter = bounded && e < o.err;
+      const Open b = tighter ? Open{ e, v, o.node } : o;
+      if (!std::isfinite(b.err))
+      {
+        heap.push_back(o); // the ball meets a triangle: keep the cut whole
+        return finish(Refined::Failed);
+      }
+      value += b.value;
+      err += b.err;
+      mag += tighter ? m : std::fabs(b.value);
+      frozen.push_back(b);
+      frozenErr += b.err;
+      // give up when even exact values for everything else would leave the
+      // goal unmet (the frozen error alone around the present estimate):
+      // only a guess (the estimate moves as clusters open), so it costs no
+      // rigour, only the work a ball that cannot be bounded would waste
+      const double slack = 1e-9 + 1e-12 * (mag + err) * static_cast<double>(heap.size() + frozen.size() + 1);
+      if (goal((value - frozenErr) / FourPi - slack, (value + frozenErr) / FourPi + slack) <= 0)
+        return finish(Refined::Failed);
+      continue;
     }
     for (std::int32_t i = nd.first; i < nd.first + nd.count; ++i)
     {
@@ -197,7 +239,7 @@ DipoleTree::Refined DipoleTree::refine(V3 q, double rho, const std::function<int
     }
     leafTris += nd.count;
     summed.push_back(o.node);
-    if (heap.empty()) err = 0; // only exact sums left: drop the rounding of the running error
+    if (heap.empty() && frozen.empty()) err = 0; // only exact sums left: drop the rounding of the running error
   }
 }
 

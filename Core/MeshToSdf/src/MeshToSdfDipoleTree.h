@@ -34,7 +34,7 @@ public:
   {
     Done,   // goal(sLo, sHi) said so
     Exact,  // everything summed exactly, goal still not reached (within rounding)
-    Failed  // goal gave up, or rho > 0 and a leaf is too close to bound over the ball
+    Failed  // goal gave up, or rho > 0 and the ball meets a leaf's triangle or bounded leaves alone miss the goal
   };
   /// s = sum_t w_t Omega_t(p) / (4 pi) lies in [sLo, sHi] for EVERY p with
   /// |p - q| <= rho. The interval starts as the root's bound, and the cluster with the largest error is
@@ -45,6 +45,11 @@ public:
   /// the smaller of two rigorous bounds: its dipole term at q with error
   /// 2 A (R + rho) / d^3 (Taylor: |grad (y / |y|^3)| <= 2 / |y|^3), or 0
   /// with error A / d^2 (|Omega_t| <= area / dist^2); d <= 0: no bound.
+  /// With rho > 0 a leaf is bounded triangle by triangle (the exact value at
+  /// q plus rho times a Lipschitz bound of the solid angle on the ball,
+  /// triangleLipschitz, the GPU's block bound) where that is tighter; such a
+  /// leaf cannot get tighter, and the call fails as soon as the bounded
+  /// leaves' error alone, around the present estimate, misses the goal.
   /// leafTris counts the triangles summed exactly.
   /// cut (optional): clusters to start from instead of the root (any set of
   /// nodes that covers every triangle exactly once, e.g. the cut a previous

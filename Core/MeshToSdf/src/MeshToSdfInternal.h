@@ -170,8 +170,9 @@ public:
   /// Whether the sign needs the correction s (reversed, removed or capped faces).
   bool hasCorrection(bool reoriented) const { return this->correction(reoriented) != nullptr; }
   /// s over the ball (q, rho): true with [lo, hi] when it lies inside
-  /// (-1/2, 1/2), which decides every voxel in the ball whatever its
-  /// crossing count; false when it does not or cannot be bounded there.
+  /// (n - 1/2, n + 1/2) for an integer n, which decides every voxel in the
+  /// ball whatever its crossing count; false when it does not or cannot be
+  /// bounded there.
   /// cut (optional): as DipoleTree::refine (start from it, end with the final one).
   bool boundCorrection(V3 q, double rho, double& lo, double& hi, std::int64_t& leafTris, bool reoriented,
     std::vector<std::int32_t>* cut = nullptr) const;

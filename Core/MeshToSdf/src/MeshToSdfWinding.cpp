@@ -471,7 +471,13 @@ bool WindingSigner::boundCorrection(V3 q, double rho, double& lo, double& hi, st
 {
   const DipoleTree* s = this->correction(reoriented);
   if (!s) return false;
-  return s->refine(q, rho, [](double l, double u) { return l > -0.5 && u < 0.5 ? 1 : (l >= 0.5 || u <= -0.5 ? -1 : 0); },
+  // inside (n - 1/2, n + 1/2) for an integer n, as on the GPU (dipoleBlockBound):
+  // K - s then avoids +-1/2 whatever K (s near 1 inside caps over reversed patches)
+  return s->refine(q, rho,
+           [](double l, double u) {
+             const double n = std::floor(0.5 * (l + u) + 0.5);
+             return l > n - 0.5 && u < n + 0.5 ? 1 : 0;
+           },
            lo, hi, leafTris, cut) == DipoleTree::Refined::Done;
 }
 

@@ -12,6 +12,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdlib>
 #include <cstring>
 #include <cstdio>
 #include <limits>
@@ -113,9 +114,10 @@ TEST(MeshToSdfCuda, AutoKeepsReversedFacesOnTheGpu)
 // for bit on the whole volume (distances and signs), with and without a
 // band, over several slabs; and the brute-force winding number on a sample
 // of the far voxels.
-TEST(MeshToSdfCuda, DamagedMeshesMatchCpuBitForBit)
+namespace
 {
-  if (!cuda::available()) GTEST_SKIP() << "no CUDA device";
+void damagedMeshesMatchCpu(const char* lists)
+{
   for (const auto& [name, m] : oracle::damagedMeshes())
   {
     const GridGeometry g = fitGridToMesh(m, 64, 2);
@@ -151,9 +153,9 @@ TEST(MeshToSdfCuda, DamagedMeshesMatchCpuBitForBit)
         ++far;
         wrong += (std::fabs(w) >= 0.5) != std::signbit(gpu[i]);
       }
-      std::printf("[ cpu vs cuda ] %-14s band %g: %lld sign, %lld distance differences of %zu voxels (%lld inside); "
+      std::printf("[ cpu vs cuda ] %-14s band %g%s: %lld sign, %lld distance differences of %zu voxels (%lld inside); "
                   "%lld refined, %lld canonical on the GPU; oracle: %lld wrong of %lld far\n",
-        name.c_str(), static_cast<double>(band), static_cast<long long>(sign), static_cast<long long>(dist), cpu.size(),
+        name.c_str(), static_cast<double>(band), lists, static_cast<long long>(sign), static_cast<long long>(dist), cpu.size(),
         static_cast<long long>(inside), static_cast<long long>(st.windingEvaluations),
         static_cast<long long>(st.windingFullSums), static_cast<long long>(wrong), static_cast<long long>(far));
       EXPECT_EQ(sign, 0) << name << " band " << band;
@@ -164,6 +166,24 @@ TEST(MeshToSdfCuda, DamagedMeshesMatchCpuBitForBit)
       EXPECT_GT(inside, g.count() / 50) << name;
     }
   }
+}
+} // namespace
+
+TEST(MeshToSdfCuda, DamagedMeshesMatchCpuBitForBit)
+{
+  if (!cuda::available()) GTEST_SKIP() << "no CUDA device";
+  damagedMeshesMatchCpu("");
+}
+
+// The winding decision's work lists (the listed voxels, blocks and voxels
+// between passes, MeshToSdfCudaDipole.cuh) cut to 5 entries: what a full list leaves is
+// finished in its thread, and the result stays the CPU's bit for bit.
+TEST(MeshToSdfCuda, DamagedMeshesMatchCpuWithFullWorkLists)
+{
+  if (!cuda::available()) GTEST_SKIP() << "no CUDA device";
+  ::setenv("LVDIF_CUDA_DIPOLE_LIST_CAP", "5", 1);
+  damagedMeshesMatchCpu(", lists of 5");
+  ::unsetenv("LVDIF_CUDA_DIPOLE_LIST_CAP");
 }
 
 TEST(MeshToSdfCuda, ClosedAndIntersectingMeshesAndSubExtent)

@@ -35,11 +35,43 @@ struct Emulated
 {
   std::vector<char> inside;
   unsigned long long evaluated = 0, full = 0, blocksBounded = 0, fromCoarse = 0;
-  unsigned long long blockVisits = 0, voxelVisits = 0; // tree nodes + triangles visited by the two phases
+  DipoleWork blocks[DipoleLevels], voxels; // tree nodes and triangles visited by the two phases
+  // SIMT cost: per warp of 32 threads, the most work of one lane, summed over
+  // the warps; "raster": one thread per block of a level and per voxel of a
+  // row (the kernels before the work lists), "listed": one per listed block
+  // (children of the parents without a bound) and per listed voxel
+  unsigned long long simtBlocks = 0, simtVoxels = 0, simtBlocksListed = 0, simtVoxelsListed = 0;
+  // listed pass by pass (the items that need another pass listed again)
+  unsigned long long simtBlocksPasses = 0, simtVoxelsPasses = 0;
+  unsigned long long blockVisits() const
+  {
+    unsigned long long v = 0;
+    for (const DipoleWork& w : blocks) v += w.nodes + w.tris + w.triBounds;
+    return v;
+  }
+  unsigned long long voxelVisits() const { return voxels.nodes + voxels.tris + voxels.triBounds; }
 };
+unsigned long long workOf(const DipoleWork& w) { return w.nodes + w.tris + w.triBounds; }
 
-/// The CUDA sign path (signDipoleKernel after dipoleBlockKernel), voxel by
-/// voxel on the CPU, over the whole grid.
+/// Sum over consecutive groups of 32 of the largest entry.
+unsigned long long simtOf(const std::vector<unsigned long long>& work, std::size_t from, std::size_t to)
+{
+  unsigned long long sum = 0;
+  for (std::size_t a = from; a < to; a += 32)
+    sum += *std::max_element(work.begin() + static_cast<std::ptrdiff_t>(a),
+      work.begin() + static_cast<std::ptrdiff_t>(std::min(to, a + 32)));
+  return sum;
+}
+
+/// The CUDA sign path, on the CPU over the whole grid, with its work lists
+/// (the same helpers as the kernels): dipoleBlockKernel (the coarsest level
+/// bounds every block, the others take their parent's bound, none or one),
+/// dipoleListedBlockKernel (the blocks under a listed parent) and
+/// dipoleBlockPassKernel (the blocks' further passes) level by level, then
+/// signDipoleKernel (crossings; a voxel its block decides, else listed) and
+/// dipoleRefineKernel (the listed voxels, pass by pass). Every block and
+/// voxel runs the passes the kernels run, in the order of their lists, and
+/// the work of each pass is counted for the SIMT estimates.
 Emulated emulateGpu(const WindingSigner& w, const GridGeometry& g, bool blocksOnly = false)
 {
   const WindingSigner::Closure& c = w.cpuClosure();
@@ -53,23 +85,14 @@ Emulated emulateGpu(const WindingSigner& w, const GridGeometry& g, bool blocksOn
     D.rootMass = s->nodes()[0].mass;
   }
   Emulated e;
-  D.visits = &e.blockVisits;
   const std::int64_t nx = g.dims[0], ny = g.dims[1], nz = g.dims[2];
   auto position = [&](std::int64_t i, std::int64_t j, std::int64_t k) {
     return V3{ g.origin[0] + i * g.spacing[0], g.origin[1] + j * g.spacing[1], g.origin[2] + k * g.spacing[2] };
   };
   e.inside.assign(static_cast<std::size_t>(g.count()), 0);
-  auto blockBound = [&](std::int64_t x0, std::int64_t y0, std::int64_t z0, std::int64_t edge, double& lo, double& hi) {
-    lo = 1;
-    hi = 0;
-    if (s)
-      dipoleBlockBound(D, position(x0, y0, z0),
-        position(std::min(x0 + edge - 1, nx - 1), std::min(y0 + edge - 1, ny - 1), std::min(z0 + edge - 1, nz - 1)), lo,
-        hi);
-  };
-  // the levels coarse to fine as dipoleBlockKernel bounds them: a block
-  // takes its parent's bound if it has one
   std::vector<double> parent, bounds;
+  std::vector<long long> parents, listed; // blocks without a bound of the level above / of this level
+  std::vector<unsigned long long> work, listedWork;
   std::int64_t px = 0, py = 0, bx = 0, by = 0;
   for (int level = 0; level < DipoleLevels; ++level)
   {
@@ -78,34 +101,99 @@ Emulated emulateGpu(const WindingSigner& w, const GridGeometry& g, bool blocksOn
     by = (ny + edge - 1) / edge;
     const std::int64_t bz = (nz + edge - 1) / edge;
     bounds.assign(static_cast<std::size_t>(2 * bx * by * bz), 0.0);
-    for (std::int64_t b = 0; b < bx * by * bz; ++b)
-    {
+    work.assign(static_cast<std::size_t>(bx * by * bz), 0);
+    listedWork.clear();
+    D.work = &e.blocks[level];
+    std::vector<unsigned long long> passWork[DipoleBlockPasses];
+    auto bound = [&](std::int64_t b) {
       const std::int64_t ix = b % bx, iy = (b / bx) % by, iz = b / (bx * by);
+      const std::int64_t x0 = edge * ix, y0 = edge * iy, z0 = edge * iz;
       double lo = 1, hi = 0;
-      if (level)
+      const unsigned long long before = workOf(e.blocks[level]);
+      if (s)
       {
-        const std::size_t c = static_cast<std::size_t>(ix / ratio + px * (iy / ratio + py * (iz / ratio)));
-        lo = parent[2 * c];
-        hi = parent[2 * c + 1];
-        if (level == DipoleLevels - 1) e.fromCoarse += lo <= hi;
+        // dipoleBlockBound pass by pass
+        V3 centre;
+        double rho = 0, margin = DipoleFirstMargin;
+        dipoleBlockBall(position(x0, y0, z0),
+          position(std::min(x0 + edge - 1, nx - 1), std::min(y0 + edge - 1, ny - 1), std::min(z0 + edge - 1, nz - 1)),
+          centre, rho);
+        for (int pass = 0; pass < DipoleBlockPasses; ++pass)
+        {
+          const unsigned long long w0 = workOf(e.blocks[level]);
+          const int r = dipoleBlockPass(D, centre, rho, margin, lo, hi);
+          passWork[pass].push_back(workOf(e.blocks[level]) - w0);
+          if (r != 0) break;
+        }
       }
-      if (!(lo <= hi)) blockBound(edge * ix, edge * iy, edge * iz, edge, lo, hi);
+      work[static_cast<std::size_t>(b)] = workOf(e.blocks[level]) - before;
       bounds[static_cast<std::size_t>(2 * b)] = lo;
       bounds[static_cast<std::size_t>(2 * b + 1)] = hi;
-      if (level == DipoleLevels - 1) e.blocksBounded += lo <= hi;
+      if (!(lo <= hi) && level + 1 < DipoleLevels) listed.push_back(b);
+    };
+    for (std::int64_t b = 0; b < bx * by * bz; ++b)
+    {
+      if (!level)
+      {
+        bound(b);
+        continue;
+      }
+      const std::size_t p = static_cast<std::size_t>((b % bx) / ratio + px * (((b / bx) % by) / ratio + py * ((b / (bx * by)) / ratio)));
+      bounds[static_cast<std::size_t>(2 * b)] = parent[2 * p];
+      bounds[static_cast<std::size_t>(2 * b + 1)] = parent[2 * p + 1];
+      if (level == DipoleLevels - 1) e.fromCoarse += parent[2 * p] <= parent[2 * p + 1];
     }
+    const std::int64_t r3 = ratio * ratio * ratio;
+    for (std::int64_t t = 0; level && t < static_cast<std::int64_t>(parents.size()) * r3; ++t)
+    {
+      const long long b = dipoleChildBlock(parents[static_cast<std::size_t>(t / r3)], t % r3, ratio, px, py, bx, by, bz);
+      if (b >= 0) bound(b);
+      listedWork.push_back(b >= 0 ? work[static_cast<std::size_t>(b)] : 0);
+    }
+    e.simtBlocks += simtOf(work, 0, work.size());
+    for (const auto& pw : passWork) e.simtBlocksPasses += simtOf(pw, 0, pw.size());
+    e.simtBlocksListed += level ? simtOf(listedWork, 0, listedWork.size()) : simtOf(work, 0, work.size());
+    if (level == DipoleLevels - 1)
+      for (std::size_t b = 0; b < work.size(); ++b) e.blocksBounded += bounds[2 * b] <= bounds[2 * b + 1];
+    parents.swap(listed);
+    listed.clear();
     parent.swap(bounds);
     px = bx;
     py = by;
   }
   bounds.swap(parent);
-  D.visits = &e.voxelVisits;
+  D.work = &e.voxels;
   const V3 oblique = normalized(V3{ 0.5773502691896258, 0.5780, 0.5767 });
   std::vector<Bvh::RayHit> hits;
+  std::vector<unsigned long long> queue;
+  std::vector<unsigned long long> voxelWork(static_cast<std::size_t>(s ? g.count() : 0), 0);
+  std::vector<std::vector<unsigned long long>> voxelPasses;
+  auto refine = [&](std::int64_t v, int K, V3 p) {
+    const unsigned long long before = workOf(e.voxels);
+    // insideDipole pass by pass
+    double margin = DipoleFirstMargin;
+    bool inside = false;
+    for (std::size_t pass = 0;; ++pass)
+    {
+      if (voxelPasses.size() <= pass) voxelPasses.emplace_back();
+      const unsigned long long w0 = workOf(e.voxels);
+      const int r = insideDipolePass(D, K, p, margin, inside);
+      voxelPasses[pass].push_back(workOf(e.voxels) - w0);
+      if (r > 0) break;
+      if (r < 0)
+      {
+        ++e.full;
+        inside = dipoleInsideOf(K - dipoleExactCanonical(D, p));
+        break;
+      }
+    }
+    e.inside[static_cast<std::size_t>(v)] = inside;
+    voxelWork[static_cast<std::size_t>(v)] = workOf(e.voxels) - before;
+  };
+  const double h = g.spacing[0];
   for (std::int64_t k = 0; k < nz; ++k)
     for (std::int64_t j = 0; j < ny; ++j)
     {
-      const double h = g.spacing[0];
       const V3 start = position(0, j, k);
       hits.clear(); // rayHits appends
       const bool ok = c.bvh->rayHits(start - V3{ 0.5 * h, 0, 0 }, V3{ 1, 0, 0 }, 0.0, hits);
@@ -117,7 +205,8 @@ Emulated emulateGpu(const WindingSigner& w, const GridGeometry& g, bool blocksOn
       for (std::int64_t i = 0; i < nx; ++i)
       {
         const V3 p = start + V3{ static_cast<double>(i) * h, 0, 0 };
-        char& out = e.inside[static_cast<std::size_t>(g.index(i, j, k))];
+        const std::int64_t v = g.index(i, j, k);
+        char& out = e.inside[static_cast<std::size_t>(v)];
         int K = 0;
         double lo = 1, hi = 0;
         if (ok)
@@ -139,14 +228,39 @@ Emulated emulateGpu(const WindingSigner& w, const GridGeometry& g, bool blocksOn
           }
           for (const auto& x : oh) K += x.sign;
         }
-        if (blocksOnly)
+        if (!s)
         {
-          e.evaluated += s && !(lo <= hi && dipoleDecided(K - hi, K - lo));
+          out = std::abs(K) >= 1;
           continue;
         }
-        out = s ? insideWithBlock(D, K, p, lo, hi, e.evaluated, e.full) : std::abs(K) >= 1;
+        bool inside = false;
+        if (dipoleBlockDecides(K, lo, hi, inside))
+        {
+          out = inside;
+          continue;
+        }
+        ++e.evaluated;
+        if (blocksOnly) continue;
+        if (dipoleListable(K)) queue.push_back(dipoleListVoxel(v, K));
+        else refine(v, K, p);
       }
     }
+  // dipoleRefineKernel: the listed voxels, positions as the rows compute them
+  std::vector<unsigned long long> listedVoxelWork;
+  for (const unsigned long long q : queue)
+  {
+    long long v = 0;
+    int K = 0;
+    dipoleListedVoxel(q, v, K);
+    const std::int64_t i = v % nx, row = v / nx;
+    const V3 start = position(0, row % ny, row / ny);
+    refine(v, K, start + V3{ static_cast<double>(i) * h, 0, 0 });
+    listedVoxelWork.push_back(voxelWork[static_cast<std::size_t>(v)]);
+  }
+  for (std::size_t row = 0; s && row < voxelWork.size(); row += static_cast<std::size_t>(nx))
+    e.simtVoxels += simtOf(voxelWork, row, row + static_cast<std::size_t>(nx));
+  e.simtVoxelsListed = simtOf(listedVoxelWork, 0, listedVoxelWork.size());
+  for (const auto& pw : voxelPasses) e.simtVoxelsPasses += simtOf(pw, 0, pw.size());
   return e;
 }
 
@@ -241,6 +355,50 @@ TEST(MeshToSdfDipoleDecide, GpuDecisionEqualsCpuOnAFinerGrid)
   EXPECT_GT(compareWithCpu(meshes[0].first, meshes[0].second, 80, reoriented, capsOverM), 0u);
 }
 
+// The work lists' index helpers: the blocks inside the parents of a level
+// cover every block of the level below exactly once (partial parents at the
+// grid's end), and a listed voxel keeps its index and crossing count.
+TEST(MeshToSdfDipoleDecide, WorkListsCoverEveryBlockOnceAndKeepTheirVoxels)
+{
+  for (const std::int64_t n : { 1, 5, 16, 37, 64 })
+    for (int l = 1; l < DipoleLevels; ++l)
+    {
+      const std::int64_t ratio = DipoleEdges[l - 1] / DipoleEdges[l];
+      const std::int64_t dims[3] = { n, n + 3, 2 * n + 1 }; // voxels
+      std::int64_t b[3], p[3];
+      for (int a = 0; a < 3; ++a)
+      {
+        b[a] = (dims[a] + DipoleEdges[l] - 1) / DipoleEdges[l];
+        p[a] = (dims[a] + DipoleEdges[l - 1] - 1) / DipoleEdges[l - 1];
+      }
+      std::vector<int> seen(static_cast<std::size_t>(b[0] * b[1] * b[2]), 0);
+      for (std::int64_t parent = 0; parent < p[0] * p[1] * p[2]; ++parent)
+        for (std::int64_t c = 0; c < ratio * ratio * ratio; ++c)
+        {
+          const long long child = dipoleChildBlock(parent, c, ratio, p[0], p[1], b[0], b[1], b[2]);
+          if (child < 0) continue;
+          ASSERT_LT(child, b[0] * b[1] * b[2]);
+          ++seen[static_cast<std::size_t>(child)];
+          // the child lies inside its parent
+          const std::int64_t x = child % b[0], y = (child / b[0]) % b[1], z = child / (b[0] * b[1]);
+          EXPECT_EQ(x / ratio + p[0] * (y / ratio + p[1] * (z / ratio)), parent);
+        }
+      for (const int k : seen) ASSERT_EQ(k, 1) << n << " level " << l;
+    }
+  for (const long long v : { 0LL, 1LL, 12345678901LL, (1LL << 43) - 1 })
+    for (const int K : { 0, 1, -1, 96, -96, (1 << 19) - 1, -(1 << 19) + 1 })
+    {
+      ASSERT_TRUE(dipoleListable(K));
+      long long v2 = -1;
+      int K2 = 0;
+      dipoleListedVoxel(dipoleListVoxel(v, K), v2, K2);
+      EXPECT_EQ(v2, v);
+      EXPECT_EQ(K2, K);
+    }
+  EXPECT_FALSE(dipoleListable(1 << 19));
+  EXPECT_FALSE(dipoleListable(-(1 << 19)));
+}
+
 // Where w is within rounding of +-1/2 the canonical sum decides, on both
 // sides: a point on a reversed face's plane, exactly inside the face.
 TEST(MeshToSdfDipoleDecide, CanonicalSumDecidesTies)
@@ -302,11 +460,22 @@ TEST(MeshToSdfDipoleDecide, WorkCounts)
       const auto t0 = std::chrono::steady_clock::now();
       const Emulated e = emulateGpu(w, g, std::getenv("LVDIF_DIPOLE_WORK_BLOCKS_ONLY") != nullptr);
       const double sec = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+      const double n = static_cast<double>(g.count());
       std::printf("[ work ] %-9s %4d^3 %11lld voxels: %9llu blocks bounded (%9llu by coarse), %10llu voxels refined "
                   "(%.4f of all), %llu canonical; visits: blocks %.3g, voxels %.3g, per voxel %.2f; %.1f s\n",
         d.c_str(), r, static_cast<long long>(g.count()), e.blocksBounded, e.fromCoarse, e.evaluated,
-        static_cast<double>(e.evaluated) / static_cast<double>(g.count()), e.full, static_cast<double>(e.blockVisits),
-        static_cast<double>(e.voxelVisits), static_cast<double>(e.blockVisits + e.voxelVisits) / static_cast<double>(g.count()), sec);
+        static_cast<double>(e.evaluated) / n, e.full, static_cast<double>(e.blockVisits()),
+        static_cast<double>(e.voxelVisits()), static_cast<double>(e.blockVisits() + e.voxelVisits()) / n, sec);
+      for (int l = 0; l < DipoleLevels; ++l)
+        std::printf("[ work ]   blocks %2d^3: %.3g calls, %.3g nodes, %.3g triangles bounded, %.3g summed\n", DipoleEdges[l],
+          static_cast<double>(e.blocks[l].calls), static_cast<double>(e.blocks[l].nodes),
+          static_cast<double>(e.blocks[l].triBounds), static_cast<double>(e.blocks[l].tris));
+      std::printf("[ work ]   voxels: %.3g passes, %.3g nodes, %.3g triangles summed; SIMT (warp maxima, per voxel): "
+                  "blocks %.2f, voxels %.2f; listed first: blocks %.2f, voxels %.2f; listed per pass: blocks %.2f, voxels %.2f\n",
+        static_cast<double>(e.voxels.calls), static_cast<double>(e.voxels.nodes), static_cast<double>(e.voxels.tris),
+        static_cast<double>(e.simtBlocks) * 32 / n, static_cast<double>(e.simtVoxels) * 32 / n,
+        static_cast<double>(e.simtBlocksListed) * 32 / n, static_cast<double>(e.simtVoxelsListed) * 32 / n,
+        static_cast<double>(e.simtBlocksPasses) * 32 / n, static_cast<double>(e.simtVoxelsPasses) * 32 / n);
       std::fflush(stdout);
     }
   }

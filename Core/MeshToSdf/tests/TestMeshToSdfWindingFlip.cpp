@@ -196,6 +196,49 @@ TEST(MeshToSdfWindingFlip, DipoleTreeIntervalsHoldAgainstLongDoubleSolidAngles)
   EXPECT_GT(leafTris, 0);
 }
 
+// A ball close to a face (its leaf's cluster bound has none: the ball
+// meets the leaf's bounding sphere) is bounded triangle by triangle: the
+// exact value at the centre plus rho times the Lipschitz bound, an interval
+// that holds at every point of the ball and narrows with rho; a ball that
+// meets the triangle still fails.
+TEST(MeshToSdfWindingFlip, BallsNextToALeafAreBoundedTriangleByTriangle)
+{
+  using namespace detail::meshtosdf;
+  std::vector<WeightedTri> tris(1);
+  tris[0].v[0] = { 0, 0, 0 };
+  tris[0].v[1] = { 1, 0, 0 };
+  tris[0].v[2] = { 0, 1, 0 };
+  TriangleMesh ref;
+  ref.points = { { 0, 0, 0 }, { 1, 0, 0 }, { 0, 1, 0 } };
+  ref.triangles = { { 0, 1, 2 } };
+  const DipoleTree tree(tris);
+  std::mt19937 rng(5);
+  std::uniform_real_distribution<double> u(-1, 1);
+  std::int64_t leafTris = 0;
+  double lastWidth = 1;
+  for (const double rho : { 0.02, 0.01, 0.005 })
+  {
+    const V3 q{ 0.3, 0.3, 0.05 };
+    double lo = 0, hi = 0;
+    const auto r = tree.refine(q, rho, [](double a, double b) { return b - a < 0.2 ? 1 : 0; }, lo, hi, leafTris);
+    ASSERT_EQ(r, DipoleTree::Refined::Done) << rho;
+    EXPECT_LT(hi - lo, lastWidth);
+    lastWidth = hi - lo;
+    for (int k = 0; k < 200; ++k)
+    {
+      V3 d{ u(rng), u(rng), u(rng) };
+      d = (k == 0 ? 0.0 : rho * std::fabs(u(rng)) / std::max(norm(d), 1e-12)) * d;
+      const V3 p = q + d;
+      const double w = oracle::winding(ref, { p.x, p.y, p.z });
+      EXPECT_LE(lo, w) << rho;
+      EXPECT_GE(hi, w) << rho;
+    }
+  }
+  double lo = 0, hi = 0;
+  EXPECT_EQ(tree.refine({ 0.3, 0.3, 0.01 }, 0.02, [](double, double) { return 0; }, lo, hi, leafTris),
+    DipoleTree::Refined::Failed); // the ball meets the face
+}
+
 TEST(MeshToSdfWindingFlip, OrientationFindsExactlyTheReversedFaces)
 {
   // a closed manifold sphere: F must be exactly the reversed minority
