@@ -8,9 +8,8 @@
 # bit at 128^3, then times the paper's bunny and the 832k-triangle armadillo
 # (sub2, made in memory) at 1024^3, WindingNumber, Device::Auto, into the
 # volume, band 8, warm, with --trace (the write's parts), and the same warm
-# call with the keys through pageable memory (@pageable) in the same process;
-# then, if the budget allows, an A/B of the sign kernel's register cap
-# (LVDIF_SIGN_MIN_BLOCKS=6, a second build) against the default build.
+# call with the keys through pageable memory (@pageable) in the same process,
+# and warm calls without --trace (its phase timers wait for the GPU).
 # Every step has a time limit; no new step starts after BUDGET seconds
 # (default 270), so the script ends within about 5 minutes. Logs in $OUT
 # (machine, build, tests, bench, summary).
@@ -44,19 +43,8 @@ run 60 $M "sub2:$A" 128 winding auto bvh float 0 2 warm --check-cpu
 run 60 $M "$BUNNY" 1024 winding auto bvh volume 8 2 cold,warm,warm,warm,warm@pageable,warm,prepared --trace
 run 60 $M "sub2:$A" 1024 winding auto bvh volume 8 2 cold,warm,warm,warm@pageable,prepared --trace
 
-# A/B of a build-time knob (same values): the dipole sign kernel's registers
-# capped so that 6 blocks fit per SM (LVDIF_SIGN_MIN_BLOCKS=6; default: no
-# cap, 4 blocks), then the default build again, when the budget allows
-if [ "$(left)" -gt 100 ]; then
-  cmake -S . -B b-write-lb6 -DLVDIF_CORE_ONLY=ON -DLVDIF_CUDA=ON -DCMAKE_CUDA_ARCHITECTURES=90 -DCMAKE_BUILD_TYPE=Release \
-    -DCMAKE_CUDA_FLAGS=-DLVDIF_SIGN_MIN_BLOCKS=6 >> "$OUT/build-lb6.log" 2>&1 &&
-    timeout $(( $(left) - 45 )) cmake --build b-write-lb6 -j"$(nproc)" --target bench_mesh_to_sdf >> "$OUT/build-lb6.log" 2>&1 &&
-    RUN_LABEL="sign kernel capped for 6 blocks per SM" run 40 b-write-lb6/Testing/Benchmarks/Core/bench_mesh_to_sdf \
-      "$BUNNY" 1024 winding auto bvh volume 8 2 cold,warm,warm,warm
-  RUN_LABEL="default build again" run 40 $M "$BUNNY" 1024 winding auto bvh volume 8 2 cold,warm,warm,warm
-else
-  echo "## SKIPPED (budget): the LVDIF_SIGN_MIN_BLOCKS=6 A/B" >> "$L"
-fi
+# the same without --trace
+run 40 $M "$BUNNY" 1024 winding auto bvh volume 8 2 cold,warm,warm,warm
 
 {
   echo "## rows (ms): run | device | read | build | distance | sign | write | end-to-end | inside voxels | expanded chunks"
