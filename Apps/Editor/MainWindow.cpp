@@ -45,6 +45,14 @@
 #include <map>
 #include <stdexcept>
 
+namespace
+{
+double msSince(std::chrono::steady_clock::time_point t0)
+{
+  return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+}
+} // namespace
+
 MainWindow::MainWindow(const EditorOptions& options)
   : Options(options)
 {
@@ -144,7 +152,7 @@ MainWindow::MainWindow(const EditorOptions& options)
   // queue is empty (Qt's documentation), which a stream of samples may delay
   this->FrameTimer->setInterval(1);
   this->FrameTimer->setTimerType(Qt::PreciseTimer);
-  connect(this->FrameTimer, &QTimer::timeout, this, &MainWindow::drawFrame);
+  connect(this->FrameTimer, &QTimer::timeout, this, &MainWindow::frameAfterSamples);
   // With multisampling, Mesa's scissored clear can reach one pixel row or
   // column past the redrawn rectangle, so frames drawn in part are
   // interactive frames: once the stroke or the cursor has been still for a
@@ -322,7 +330,14 @@ void MainWindow::addBrushSample(const double* sample)
   s.time = this->Clock.elapsed() * 1e-3;
   try
   {
+    const auto t0 = std::chrono::steady_clock::now();
+    // The chunks this sample invalidates go to the worker with those of every
+    // sample applied before the next frame (frameAfterSamples): a backlog of
+    // samples is meshed once, not once per sample.
+    this->Doc.session().holdMeshing();
     this->Doc.addSample(s);
+    this->Profile.brushMs += msSince(t0);
+    ++this->Profile.samples;
   }
   catch (const std::exception& e)
   {
@@ -331,7 +346,12 @@ void MainWindow::addBrushSample(const double* sample)
     return;
   }
   this->LastEdit = QDateTime::currentDateTime();
-  this->settleMeshes();
+  // The frame comes when the event loop is next free: samples that arrived
+  // while the last frame was drawn are all applied first and shown in one
+  // frame, so a slow frame delays the view by one frame, not by a queue of
+  // frames (one per sample).
+  if (!this->FrameTimer->isActive())
+    this->FrameTimer->start();
 }
 
 void MainWindow::onGrabMove()
@@ -349,26 +369,25 @@ void MainWindow::onGrabMove()
   this->Grabbing = true;
 }
 
-void MainWindow::settleMeshes()
+void MainWindow::frameAfterSamples()
 {
-  // A dab usually re-meshes a few chunks in 1-5 ms. Giving the worker that
-  // long shows the edit in this frame instead of the next mesh poll (up to
-  // 15 ms later); past SettleMs the UI goes on and the timer collects the rest,
-  // so the view never waits longer (bench_stroke_latency --settle measures it).
-  constexpr qint64 SettleMs = 6;
-  QElapsedTimer waited;
-  waited.start();
-  while (!this->Doc.meshingIdle() && waited.elapsed() < SettleMs)
+  if (!this->Doc.hasVolume())
+    return;
+  this->Doc.session().releaseMeshing();
+  // Re-meshing a frame's chunks usually takes a few ms. Waiting for it shows
+  // the edits in this frame; what is not done by then needs another frame, so
+  // the wait is bounded by the last frame's render time (at least SettleMs,
+  // at most MaxSettleMs): never longer than the frame it may save.
+  constexpr double SettleMs = 6, MaxSettleMs = 100;
+  const double bound = std::min(MaxSettleMs, std::max(SettleMs, this->LastRenderMs));
+  const auto t0 = std::chrono::steady_clock::now();
+  while (!this->Doc.meshingIdle() && msSince(t0) < bound)
   {
     QThread::usleep(250);
   }
-  // The meshes are installed now (the brush picks on them); the frame comes
-  // when the event loop is next free: samples that arrived while the last
-  // frame was drawn are all applied first and shown in one frame, so a slow
-  // frame delays the view by one frame, not by a queue of frames (one per sample).
+  this->Profile.settleMs += msSince(t0);
   this->installFinishedMeshes();
-  if (!this->FrameTimer->isActive())
-    this->FrameTimer->start();
+  this->drawFrame();
 }
 
 void MainWindow::endStroke()
@@ -385,6 +404,7 @@ void MainWindow::endStroke()
   {
     this->showError("The brush failed", e);
   }
+  this->Doc.session().releaseMeshing(); // the stroke's last dabs too; the frame timer or the mesh timer shows them
   this->updatePreview(nullptr, true);
   this->LastEdit = QDateTime::currentDateTime();
   this->updateTitle();
@@ -420,7 +440,15 @@ void MainWindow::installFinishedMeshes()
     if (m.empty())
       this->Chunks->RemoveChunk(m.chunkId);
     else
-      this->Chunks->SetChunk(m.chunkId, LVDIFChunkedMarchingCubesOutput::VolumeChunkToPolyData(m, this->Doc.volume()));
+    {
+      const auto t0 = std::chrono::steady_clock::now();
+      vtkSmartPointer<vtkPolyData> pd = LVDIFChunkedMarchingCubesOutput::VolumeChunkToPolyData(m, this->Doc.volume());
+      const auto t1 = std::chrono::steady_clock::now();
+      this->Chunks->SetChunk(m.chunkId, pd);
+      this->Profile.convertMs += std::chrono::duration<double, std::milli>(t1 - t0).count();
+      this->Profile.setChunkMs += msSince(t1);
+    }
+    ++this->Profile.meshes;
   }
   if (!this->ViewInitialized && this->Chunks->GetNumberOfChunks() > 0)
   {
@@ -443,6 +471,9 @@ void MainWindow::drawFrame()
   std::swap(shown, this->Pending);
   shown.renderStart = std::chrono::steady_clock::now();
   this->RenderWindow->Render();
+  this->LastRenderMs = msSince(shown.renderStart);
+  this->Profile.renderMs += this->LastRenderMs;
+  ++this->Profile.frames;
   emit this->meshesShown(shown);
   this->View->update();
 }
