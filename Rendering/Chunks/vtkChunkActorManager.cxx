@@ -12,6 +12,8 @@
 #include "vtkPartitionedDataSet.h"
 #include "vtkCellArray.h"
 #include "vtkCellData.h"
+#include "vtkDataSetAttributes.h"
+#include "vtkPoints.h"
 #include "vtkPointData.h"
 #include "vtkPolyData.h"
 #include "vtkProperty.h"
@@ -22,7 +24,6 @@
 #include <cstdint>
 #include <cstring>
 #include <map>
-#include <unordered_map>
 #include <vector>
 
 vtkStandardNewMacro(vtkChunkActorManager);
@@ -37,6 +38,9 @@ struct vtkChunkActorManager::Internals
     vtkMTimeType SourceMTime = 0;         // its MTime when it was given
     double PreparedOrigin[3] = { 0, 0, 0 }; // the geometry it was prepared with
     double PreparedSpacing[3] = { 1, 1, 1 };
+    std::vector<std::uint64_t> SourceHashes; // triangleHashes(Source), for the next ChangedBounds
+    bool HashesValid = false;
+    bool OwnsInput = false; // the mapper's input was made here (PrepareChunk): it may be refilled
   };
   std::map<vtkIdType, Entry> Chunks;
   vtkSmartPointer<vtkRenderer> Renderer;
@@ -49,11 +53,20 @@ namespace
 {
 std::uint64_t hashBytes(std::uint64_t h, const void* data, std::size_t n)
 {
+  // 8 bytes a step (a multiply-xorshift mix), the tail byte by byte: the
+  // triangles of a re-meshed chunk are hashed at every replacement
   const auto* b = static_cast<const unsigned char*>(data);
-  for (std::size_t i = 0; i < n; ++i)
+  std::size_t i = 0;
+  for (; i + 8 <= n; i += 8)
   {
-    h ^= b[i];
-    h *= 1099511628211ull; // FNV-1a
+    std::uint64_t w;
+    std::memcpy(&w, b + i, 8);
+    h = (h ^ w) * 0x9e3779b97f4a7c15ull;
+    h ^= h >> 29;
+  }
+  for (; i < n; ++i)
+  {
+    h = (h ^ b[i]) * 1099511628211ull;
   }
   return h;
 }
@@ -149,60 +162,151 @@ void addTriangle(vtkPolyData* pd, vtkIdType t, double b[6])
 }
 } // namespace
 
-bool vtkChunkActorManager::ChangedBounds(vtkPolyData* before, vtkPolyData* after, double bounds[6])
+namespace
+{
+// ChangedBounds with the triangles' hashes known (triangleHashes of each mesh).
+bool changedBoundsOf(vtkPolyData* before, const std::vector<std::uint64_t>& hb, vtkPolyData* after,
+  const std::vector<std::uint64_t>& ha, double bounds[6])
 {
   vtkMath::UninitializeBounds(bounds);
   double b[6] = { VTK_DOUBLE_MAX, -VTK_DOUBLE_MAX, VTK_DOUBLE_MAX, -VTK_DOUBLE_MAX, VTK_DOUBLE_MAX, -VTK_DOUBLE_MAX };
-  std::vector<std::uint64_t> hb, ha;
-  if (!triangleHashes(before, hb) || !triangleHashes(after, ha))
+  // the hashes whose counts differ between the two meshes (sorted multisets)
+  std::vector<std::uint64_t> sb(hb), sa(ha), differ;
+  std::sort(sb.begin(), sb.end());
+  std::sort(sa.begin(), sa.end());
+  std::size_t i = 0, j = 0;
+  while (i < sb.size() || j < sa.size())
   {
-    vtkBoundingBox box;
-    for (vtkPolyData* pd : { before, after })
+    const std::uint64_t h = j == sa.size() || (i < sb.size() && sb[i] < sa[j]) ? sb[i] : sa[j];
+    std::size_t nb = 0, na = 0;
+    for (; i < sb.size() && sb[i] == h; ++i)
     {
-      if (pd && pd->GetNumberOfPoints())
-      {
-        box.AddBounds(pd->GetBounds());
-      }
+      ++nb;
     }
-    if (!box.IsValid())
+    for (; j < sa.size() && sa[j] == h; ++j)
     {
-      return false;
+      ++na;
     }
-    box.GetBounds(bounds);
-    return true;
+    if (nb != na)
+    {
+      differ.push_back(h);
+    }
   }
-  std::unordered_map<std::uint64_t, int> count; // before minus after
-  count.reserve(hb.size() + ha.size());
-  for (std::uint64_t h : hb)
+  if (differ.empty())
   {
-    ++count[h];
+    return false;
   }
-  for (std::uint64_t h : ha)
-  {
-    --count[h];
-  }
-  bool changed = false;
   for (std::size_t t = 0; t < hb.size(); ++t)
   {
-    if (count[hb[t]] != 0)
+    if (std::binary_search(differ.begin(), differ.end(), hb[t]))
     {
       addTriangle(before, static_cast<vtkIdType>(t), b);
-      changed = true;
     }
   }
   for (std::size_t t = 0; t < ha.size(); ++t)
   {
-    if (count[ha[t]] != 0)
+    if (std::binary_search(differ.begin(), differ.end(), ha[t]))
     {
       addTriangle(after, static_cast<vtkIdType>(t), b);
-      changed = true;
     }
   }
-  if (changed)
+  std::copy(b, b + 6, bounds);
+  return true;
+}
+
+bool unionBounds(vtkPolyData* before, vtkPolyData* after, double bounds[6])
+{
+  vtkMath::UninitializeBounds(bounds);
+  vtkBoundingBox box;
+  for (vtkPolyData* pd : { before, after })
   {
-    std::copy(b, b + 6, bounds);
+    if (pd && pd->GetNumberOfPoints())
+    {
+      box.AddBounds(pd->GetBounds());
+    }
   }
-  return changed;
+  if (!box.IsValid())
+  {
+    return false;
+  }
+  box.GetBounds(bounds);
+  return true;
+}
+
+// Same arrays (names, types, components, attribute roles) in the same order.
+bool sameArrays(vtkDataSetAttributes* a, vtkDataSetAttributes* b)
+{
+  if (a->GetNumberOfArrays() != b->GetNumberOfArrays())
+  {
+    return false;
+  }
+  for (int i = 0; i < a->GetNumberOfArrays(); ++i)
+  {
+    vtkAbstractArray* x = a->GetAbstractArray(i);
+    vtkAbstractArray* y = b->GetAbstractArray(i);
+    const char* nx = x->GetName();
+    const char* ny = y->GetName();
+    if (x->GetDataType() != y->GetDataType() || x->GetNumberOfComponents() != y->GetNumberOfComponents() ||
+      (nx == nullptr) != (ny == nullptr) || (nx && std::strcmp(nx, ny) != 0))
+    {
+      return false;
+    }
+  }
+  int ia[vtkDataSetAttributes::NUM_ATTRIBUTES], ib[vtkDataSetAttributes::NUM_ATTRIBUTES];
+  a->GetAttributeIndices(ia);
+  b->GetAttributeIndices(ib);
+  return std::equal(ia, ia + vtkDataSetAttributes::NUM_ATTRIBUTES, ib);
+}
+
+// Refills `shown` with `next` when they hold the same arrays: every array
+// object stays, so the render window's vertex buffer cache (keyed by array)
+// re-uploads the chunk's buffers in place instead of freeing and creating
+// them, which in VTK searches the whole cache per freed buffer (thousands
+// of entries with hundreds of chunks). False if the layouts differ.
+bool refill(vtkPolyData* shown, vtkPolyData* next)
+{
+  vtkPoints* ps = shown->GetPoints();
+  vtkPoints* pn = next->GetPoints();
+  if (!ps || !pn || ps->GetDataType() != pn->GetDataType() || !sameArrays(shown->GetPointData(), next->GetPointData()) ||
+    !sameArrays(shown->GetCellData(), next->GetCellData()) || next->GetFieldData()->GetNumberOfArrays() ||
+    shown->GetFieldData()->GetNumberOfArrays())
+  {
+    return false;
+  }
+  // (vtkDataArray::DeepCopy does not mark the array modified: the buffer
+  // upload and the cached ranges go by the array's MTime)
+  ps->GetData()->DeepCopy(pn->GetData());
+  ps->GetData()->Modified();
+  ps->Modified();
+  for (vtkDataSetAttributes* d : { static_cast<vtkDataSetAttributes*>(shown->GetPointData()),
+         static_cast<vtkDataSetAttributes*>(shown->GetCellData()) })
+  {
+    vtkDataSetAttributes* from = d == shown->GetPointData() ? static_cast<vtkDataSetAttributes*>(next->GetPointData())
+                                                             : static_cast<vtkDataSetAttributes*>(next->GetCellData());
+    for (int i = 0; i < d->GetNumberOfArrays(); ++i)
+    {
+      d->GetAbstractArray(i)->DeepCopy(from->GetAbstractArray(i));
+      d->GetAbstractArray(i)->Modified();
+    }
+    d->Modified();
+  }
+  shown->SetVerts(next->GetVerts());
+  shown->SetLines(next->GetLines());
+  shown->SetPolys(next->GetPolys());
+  shown->SetStrips(next->GetStrips());
+  shown->Modified();
+  return true;
+}
+} // namespace
+
+bool vtkChunkActorManager::ChangedBounds(vtkPolyData* before, vtkPolyData* after, double bounds[6])
+{
+  std::vector<std::uint64_t> hb, ha;
+  if (!triangleHashes(before, hb) || !triangleHashes(after, ha))
+  {
+    return unionBounds(before, after, bounds);
+  }
+  return changedBoundsOf(before, hb, after, ha, bounds);
 }
 
 void vtkChunkActorManager::SetRedrawCuller(vtkPartialRedrawCuller* culler)
@@ -353,20 +457,40 @@ void vtkChunkActorManager::SetChunk(vtkIdType chunkId, vtkPolyData* mesh, bool p
   {
     culler->BeginChange(e.Actor);
   }
-  e.Mapper->SetInputData(ready);
+  // A mesh prepared here (a new object) may be refilled into the previous one
+  // (made here too, so nobody else holds it); a caller's object is shown as given.
+  const bool owned = !prepared && ready.Get() != mesh;
+  vtkPolyData* shown = vtkPolyData::SafeDownCast(e.Mapper->GetInputDataObject(0, 0));
+  if (!(owned && e.OwnsInput && shown && refill(shown, ready)))
+  {
+    e.Mapper->SetInputData(ready);
+    e.OwnsInput = owned;
+  }
+  std::vector<std::uint64_t> hashes; // only with a culler to declare changes to
+  const bool hashed = culler && culler->GetEnabled() && triangleHashes(mesh, hashes);
   if (declare)
   {
     // Preparation is per triangle (vtkCornerColorAttributes), so the prepared
-    // meshes differ only where the given ones do.
+    // meshes differ only where the given ones do. The previous mesh's hashes
+    // were kept when it was given.
     double changed[6];
     vtkPolyData* before = e.Source;
-    ChangedBounds(before, mesh, changed);
+    if (hashed && e.HashesValid)
+    {
+      changedBoundsOf(before, e.SourceHashes, mesh, hashes, changed);
+    }
+    else
+    {
+      ChangedBounds(before, mesh, changed);
+    }
     culler->EndChange(e.Actor, changed);
   }
   std::copy(this->Origin, this->Origin + 3, e.PreparedOrigin);
   std::copy(this->Spacing, this->Spacing + 3, e.PreparedSpacing);
-  it->second.Source = mesh;
-  it->second.SourceMTime = mesh ? mesh->GetMTime() : 0;
+  e.Source = mesh;
+  e.SourceMTime = mesh ? mesh->GetMTime() : 0;
+  e.SourceHashes.swap(hashes);
+  e.HashesValid = hashed;
   ++this->NumberOfChunkUpdates;
   this->Modified();
 }

@@ -12,13 +12,17 @@
 #include "vtkChunkActorManager.h"
 #include "vtkCornerColorAttributes.h"
 #include "vtkExecutive.h"
+#include "vtkIdList.h"
 #include "vtkMapper.h"
+#include "vtkPoints.h"
+#include "vtkPolyData.h"
 #include "vtkRenderer.h"
 #include "vtkTetrahedralColorMapper.h"
 
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <string>
 #include <vector>
 
 using namespace lvdiftest;
@@ -129,12 +133,14 @@ TEST(ChunkActorManager, ReplacesOnlyTheChangedChunk)
 
   // Remember every actor and the data object its mapper draws.
   std::map<vtkIdType, std::pair<vtkActor*, vtkDataObject*>> before;
+  std::map<vtkIdType, vtkMTimeType> mtimes;
   for (auto& kv : chunks)
   {
     vtkActor* a = mgr->GetChunkActor(kv.first);
     ASSERT_NE(a, nullptr);
     EXPECT_EQ(mgr->GetChunkId(a), kv.first);
     before[kv.first] = { a, a->GetMapper()->GetInputDataObject(0, 0) };
+    mtimes[kv.first] = a->GetMapper()->GetInputDataObject(0, 0)->GetMTime();
   }
   const vtkIdType changed = chunks.begin()->first;
   auto other = sphereMesh(40); // a fresh mesh object for the changed chunk
@@ -146,13 +152,12 @@ TEST(ChunkActorManager, ReplacesOnlyTheChangedChunk)
   {
     vtkActor* a = mgr->GetChunkActor(kv.first);
     EXPECT_EQ(a, kv.second.first); // actors are kept
-    if (kv.first == changed)
+    // the changed chunk's prepared mesh is refilled in place (same object, new
+    // contents: ReplacingAChunkRefillsItsArrays); the others are untouched
+    EXPECT_EQ(a->GetMapper()->GetInputDataObject(0, 0), kv.second.second);
+    if (kv.first != changed)
     {
-      EXPECT_NE(a->GetMapper()->GetInputDataObject(0, 0), kv.second.second);
-    }
-    else
-    {
-      EXPECT_EQ(a->GetMapper()->GetInputDataObject(0, 0), kv.second.second);
+      EXPECT_EQ(a->GetMapper()->GetInputDataObject(0, 0)->GetMTime(), mtimes[kv.first]);
     }
   }
   // An empty mesh removes the chunk's actor.
@@ -162,6 +167,98 @@ TEST(ChunkActorManager, ReplacesOnlyTheChangedChunk)
   EXPECT_EQ(ren->GetActors()->GetNumberOfItems(), static_cast<int>(chunks.size()) - 1);
   mgr->RemoveAllChunks();
   EXPECT_EQ(ren->GetActors()->GetNumberOfItems(), 0);
+}
+
+namespace
+{
+// "" when the two poly data hold the same points, arrays (by name, value for
+// value) and cells, else what differs.
+std::string differsFrom(vtkPolyData* a, vtkPolyData* b)
+{
+  if (a->GetNumberOfPoints() != b->GetNumberOfPoints() || a->GetNumberOfPolys() != b->GetNumberOfPolys() ||
+    a->GetNumberOfCells() != b->GetNumberOfCells())
+    return "counts";
+  for (vtkIdType i = 0; i < a->GetNumberOfPoints(); ++i)
+  {
+    double x[3], y[3];
+    a->GetPoint(i, x);
+    b->GetPoint(i, y);
+    if (!std::equal(x, x + 3, y))
+      return "point " + std::to_string(i);
+  }
+  for (int which = 0; which < 2; ++which)
+  {
+    vtkDataSetAttributes* da = which ? static_cast<vtkDataSetAttributes*>(a->GetCellData()) : a->GetPointData();
+    vtkDataSetAttributes* db = which ? static_cast<vtkDataSetAttributes*>(b->GetCellData()) : b->GetPointData();
+    if (da->GetNumberOfArrays() != db->GetNumberOfArrays())
+      return "array count";
+    for (int k = 0; k < da->GetNumberOfArrays(); ++k)
+    {
+      vtkDataArray* x = da->GetArray(k);
+      vtkDataArray* y = x && x->GetName() ? db->GetArray(x->GetName()) : nullptr;
+      if (!x || !y || x->GetNumberOfValues() != y->GetNumberOfValues())
+        return std::string("array ") + (x && x->GetName() ? x->GetName() : "?");
+      for (vtkIdType v = 0; v < x->GetNumberOfValues(); ++v)
+        if (x->GetComponent(v / x->GetNumberOfComponents(), static_cast<int>(v % x->GetNumberOfComponents())) !=
+          y->GetComponent(v / y->GetNumberOfComponents(), static_cast<int>(v % y->GetNumberOfComponents())))
+          return std::string("value of ") + x->GetName();
+    }
+  }
+  for (vtkIdType c = 0; c < a->GetNumberOfCells(); ++c)
+  {
+    vtkNew<vtkIdList> x, y;
+    a->GetCellPoints(c, x);
+    b->GetCellPoints(c, y);
+    if (x->GetNumberOfIds() != y->GetNumberOfIds())
+      return "cell " + std::to_string(c);
+    for (vtkIdType k = 0; k < x->GetNumberOfIds(); ++k)
+      if (x->GetId(k) != y->GetId(k))
+        return "cell " + std::to_string(c);
+  }
+  return "";
+}
+} // namespace
+
+TEST(ChunkActorManager, ReplacingAChunkRefillsItsArrays)
+{
+  // A re-meshed chunk keeps its data object and array objects (the render
+  // window's buffer cache is keyed by array) and shows exactly what a fresh
+  // preparation of the new mesh holds, even with another number of triangles.
+  auto chunks = splitChunks(sphereMesh(40), 16, 39);
+  auto bigger = splitChunks(sphereMesh(46), 16, 45);
+  vtkNew<vtkRenderer> ren;
+  vtkNew<vtkChunkActorManager> mgr;
+  mgr->SetRenderer(ren);
+  int compared = 0;
+  for (auto& kv : chunks)
+  {
+    if (!bigger.count(kv.first))
+      continue;
+    mgr->SetChunk(kv.first, kv.second);
+    auto* shown = vtkPolyData::SafeDownCast(mgr->GetChunkActor(kv.first)->GetMapper()->GetInputDataObject(0, 0));
+    ASSERT_NE(shown, nullptr);
+    std::vector<vtkAbstractArray*> arrays{ shown->GetPoints()->GetData() };
+    for (int k = 0; k < shown->GetPointData()->GetNumberOfArrays(); ++k)
+      arrays.push_back(shown->GetPointData()->GetAbstractArray(k));
+    const vtkMTimeType mtime = shown->GetMTime();
+    std::vector<vtkMTimeType> arrayTimes;
+    for (vtkAbstractArray* a : arrays)
+      arrayTimes.push_back(a->GetMTime());
+    vtkPolyData* next = bigger[kv.first];
+    mgr->SetChunk(kv.first, next);
+    auto* now = vtkPolyData::SafeDownCast(mgr->GetChunkActor(kv.first)->GetMapper()->GetInputDataObject(0, 0));
+    EXPECT_EQ(now, shown);
+    EXPECT_GT(now->GetMTime(), mtime);
+    EXPECT_EQ(now->GetPoints()->GetData(), arrays[0]);
+    for (std::size_t k = 0; k < arrays.size(); ++k)
+      EXPECT_GT(arrays[k]->GetMTime(), arrayTimes[k]) << "array " << k << " not marked modified: its buffer would not be re-uploaded";
+    for (int k = 0; k < now->GetPointData()->GetNumberOfArrays(); ++k)
+      EXPECT_EQ(now->GetPointData()->GetAbstractArray(k), arrays[static_cast<std::size_t>(k) + 1]);
+    vtkSmartPointer<vtkPolyData> fresh = mgr->PrepareChunk(next);
+    EXPECT_EQ(differsFrom(now, fresh), "") << "chunk " << kv.first;
+    ++compared;
+  }
+  EXPECT_GE(compared, 8);
 }
 
 TEST(ChunkActorManager, PlainMeshesKeepTheirPoints)
