@@ -12,6 +12,8 @@
 #include "vtkBrushWidget.h"
 #include "vtkCallbackCommand.h"
 #include "vtkCamera.h"
+#include "vtkCuller.h"
+#include "vtkCullerCollection.h"
 #include "vtkChunkActorManager.h"
 #include "vtkPartialRedrawCuller.h"
 #include "LVDIFChunkedMarchingCubesOutput.h"
@@ -72,7 +74,19 @@ MainWindow::MainWindow(const EditorOptions& options)
   // chunk actors that cover it: the cost of a stroke's frame follows the
   // brush, not the model's size. The picture equals a full redraw's.
   this->Redraw->SetEnabled(!options.fullRedraw);
-  this->Renderer->AddCuller(this->Redraw);
+  // First, so that the renderer's frustum culler then sees only the props a
+  // partial frame draws (each culler asks every prop it is given for its bounds).
+  {
+    std::vector<vtkSmartPointer<vtkCuller>> others;
+    vtkCollectionSimpleIterator it;
+    this->Renderer->GetCullers()->InitTraversal(it);
+    while (vtkCuller* c = this->Renderer->GetCullers()->GetNextCuller(it))
+      others.emplace_back(c);
+    this->Renderer->GetCullers()->RemoveAllItems();
+    this->Renderer->AddCuller(this->Redraw);
+    for (vtkCuller* c : others)
+      this->Renderer->AddCuller(c);
+  }
   this->RenderWindow->SetPartialRedraw(this->Redraw); // and presents only that region
   this->setCentralWidget(this->View);
   this->View->installEventFilter(this);
