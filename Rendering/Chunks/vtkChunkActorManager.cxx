@@ -18,6 +18,7 @@
 #include "vtkPolyData.h"
 #include "vtkProperty.h"
 #include "vtkRenderer.h"
+#include "vtkSMPTools.h"
 #include "vtkTetrahedralColorMapper.h"
 
 #include <algorithm>
@@ -420,6 +421,38 @@ vtkSmartPointer<vtkPolyData> vtkChunkActorManager::PrepareChunk(vtkPolyData* mes
 void vtkChunkActorManager::SetChunk(vtkIdType chunkId, vtkPolyData* mesh, bool prepared)
 {
   vtkSmartPointer<vtkPolyData> ready = prepared ? vtkSmartPointer<vtkPolyData>(mesh) : this->PrepareChunk(mesh);
+  std::vector<std::uint64_t> hashes; // only with a culler to declare changes to
+  vtkPartialRedrawCuller* culler = this->Internal->Culler;
+  const bool hashed = culler && culler->GetEnabled() && triangleHashes(mesh, hashes);
+  this->ApplyChunk(chunkId, mesh, ready, !prepared && ready.Get() != mesh, hashed ? &hashes : nullptr);
+}
+
+void vtkChunkActorManager::SetChunks(const std::vector<vtkIdType>& chunkIds, const std::vector<vtkPolyData*>& meshes)
+{
+  const std::size_t n = std::min(chunkIds.size(), meshes.size());
+  std::vector<vtkSmartPointer<vtkPolyData>> ready(n);
+  std::vector<std::vector<std::uint64_t>> hashes(n);
+  std::vector<char> hashed(n, 0);
+  vtkPartialRedrawCuller* culler = this->Internal->Culler;
+  const bool declare = culler && culler->GetEnabled();
+  // the per-triangle work of each chunk (preparation, hashes) in parallel;
+  // the actors, mappers and the culler on this thread
+  vtkSMPTools::For(0, static_cast<vtkIdType>(n), [&](vtkIdType begin, vtkIdType end) {
+    for (vtkIdType i = begin; i < end; ++i)
+    {
+      ready[i] = this->PrepareChunk(meshes[i]);
+      hashed[i] = declare && triangleHashes(meshes[i], hashes[i]);
+    }
+  });
+  for (std::size_t i = 0; i < n; ++i)
+  {
+    this->ApplyChunk(chunkIds[i], meshes[i], ready[i], ready[i].Get() != meshes[i], hashed[i] ? &hashes[i] : nullptr);
+  }
+}
+
+void vtkChunkActorManager::ApplyChunk(
+  vtkIdType chunkId, vtkPolyData* mesh, vtkPolyData* ready, bool owned, std::vector<std::uint64_t>* hashes)
+{
   if (!ready || ready->GetNumberOfCells() == 0)
   {
     this->RemoveChunk(chunkId);
@@ -459,15 +492,13 @@ void vtkChunkActorManager::SetChunk(vtkIdType chunkId, vtkPolyData* mesh, bool p
   }
   // A mesh prepared here (a new object) may be refilled into the previous one
   // (made here too, so nobody else holds it); a caller's object is shown as given.
-  const bool owned = !prepared && ready.Get() != mesh;
   vtkPolyData* shown = vtkPolyData::SafeDownCast(e.Mapper->GetInputDataObject(0, 0));
   if (!(owned && e.OwnsInput && shown && refill(shown, ready)))
   {
     e.Mapper->SetInputData(ready);
     e.OwnsInput = owned;
   }
-  std::vector<std::uint64_t> hashes; // only with a culler to declare changes to
-  const bool hashed = culler && culler->GetEnabled() && triangleHashes(mesh, hashes);
+  const bool hashed = hashes != nullptr;
   if (declare)
   {
     // Preparation is per triangle (vtkCornerColorAttributes), so the prepared
@@ -477,7 +508,7 @@ void vtkChunkActorManager::SetChunk(vtkIdType chunkId, vtkPolyData* mesh, bool p
     vtkPolyData* before = e.Source;
     if (hashed && e.HashesValid)
     {
-      changedBoundsOf(before, e.SourceHashes, mesh, hashes, changed);
+      changedBoundsOf(before, e.SourceHashes, mesh, *hashes, changed);
     }
     else
     {
@@ -489,7 +520,10 @@ void vtkChunkActorManager::SetChunk(vtkIdType chunkId, vtkPolyData* mesh, bool p
   std::copy(this->Spacing, this->Spacing + 3, e.PreparedSpacing);
   e.Source = mesh;
   e.SourceMTime = mesh ? mesh->GetMTime() : 0;
-  e.SourceHashes.swap(hashes);
+  if (hashed)
+  {
+    e.SourceHashes.swap(*hashes);
+  }
   e.HashesValid = hashed;
   ++this->NumberOfChunkUpdates;
   this->Modified();

@@ -14,6 +14,7 @@
 #include "vtkExecutive.h"
 #include "vtkIdList.h"
 #include "vtkMapper.h"
+#include "vtkPartialRedrawCuller.h"
 #include "vtkPoints.h"
 #include "vtkPolyData.h"
 #include "vtkRenderer.h"
@@ -259,6 +260,44 @@ TEST(ChunkActorManager, ReplacingAChunkRefillsItsArrays)
     ++compared;
   }
   EXPECT_GE(compared, 8);
+}
+
+TEST(ChunkActorManager, SetChunksEqualsSetChunkOneByOne)
+{
+  // the parallel path shows, chunk by chunk, what SetChunk shows, and declares
+  // the same changed boxes to a culler
+  auto first = splitChunks(sphereMesh(40), 16, 39);
+  auto second = splitChunks(sphereMesh(46), 16, 45);
+  vtkNew<vtkRenderer> r1, r2;
+  vtkNew<vtkChunkActorManager> one, many;
+  one->SetRenderer(r1);
+  many->SetRenderer(r2);
+  vtkNew<vtkPartialRedrawCuller> c1, c2;
+  c1->SetEnabled(true);
+  c2->SetEnabled(true);
+  one->SetRedrawCuller(c1);
+  many->SetRedrawCuller(c2);
+  for (auto* step : { &first, &second })
+  {
+    std::vector<vtkIdType> ids;
+    std::vector<vtkPolyData*> meshes;
+    for (auto& kv : *step)
+    {
+      one->SetChunk(kv.first, kv.second);
+      ids.push_back(kv.first);
+      meshes.push_back(kv.second);
+    }
+    many->SetChunks(ids, meshes);
+  }
+  ASSERT_EQ(one->GetNumberOfChunks(), many->GetNumberOfChunks());
+  EXPECT_EQ(one->GetNumberOfChunkUpdates(), many->GetNumberOfChunkUpdates());
+  for (auto& kv : second)
+  {
+    auto* a = vtkPolyData::SafeDownCast(one->GetChunkActor(kv.first)->GetMapper()->GetInputDataObject(0, 0));
+    auto* b = vtkPolyData::SafeDownCast(many->GetChunkActor(kv.first)->GetMapper()->GetInputDataObject(0, 0));
+    ASSERT_TRUE(a && b);
+    EXPECT_EQ(differsFrom(a, b), "") << "chunk " << kv.first;
+  }
 }
 
 TEST(ChunkActorManager, PlainMeshesKeepTheirPoints)

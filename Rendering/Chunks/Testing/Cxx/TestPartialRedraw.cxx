@@ -266,8 +266,23 @@ int runRefill()
     mgr->SetRenderer(ren);
     for (std::size_t i = 0; i < steps.size(); ++i)
     {
-      for (auto& kv : *steps[i])
-        mgr->SetChunk(kv.first, kv.second);
+      if (i == 0)
+      {
+        for (auto& kv : *steps[i])
+          mgr->SetChunk(kv.first, kv.second);
+      }
+      else
+      {
+        // the editor's path for a frame's chunks: prepared in parallel, refilled in place
+        std::vector<vtkIdType> ids;
+        std::vector<vtkPolyData*> meshes;
+        for (auto& kv : *steps[i])
+        {
+          ids.push_back(kv.first);
+          meshes.push_back(kv.second);
+        }
+        mgr->SetChunks(ids, meshes);
+      }
       if (i == 0)
       {
         const double box[6] = { 0, Cells, 0, Cells, 0, Cells }; // the same camera in both scenes
