@@ -29,6 +29,12 @@
 
 vtkStandardNewMacro(vtkChunkActorManager);
 
+// A mesh's triangle hashes (triangleHashes) in triangle order and sorted.
+struct vtkChunkActorManager::Hashes
+{
+  std::vector<std::uint64_t> order, sorted;
+};
+
 struct vtkChunkActorManager::Internals
 {
   struct Entry
@@ -39,7 +45,7 @@ struct vtkChunkActorManager::Internals
     vtkMTimeType SourceMTime = 0;         // its MTime when it was given
     double PreparedOrigin[3] = { 0, 0, 0 }; // the geometry it was prepared with
     double PreparedSpacing[3] = { 1, 1, 1 };
-    std::vector<std::uint64_t> SourceHashes; // triangleHashes(Source), for the next ChangedBounds
+    Hashes SourceHashes; // of Source, for the next ChangedBounds
     bool HashesValid = false;
     bool OwnsInput = false; // the mapper's input was made here (PrepareChunk): it may be refilled
   };
@@ -165,16 +171,15 @@ void addTriangle(vtkPolyData* pd, vtkIdType t, double b[6])
 
 namespace
 {
-// ChangedBounds with the triangles' hashes known (triangleHashes of each mesh).
-bool changedBoundsOf(vtkPolyData* before, const std::vector<std::uint64_t>& hb, vtkPolyData* after,
-  const std::vector<std::uint64_t>& ha, double bounds[6])
+// ChangedBounds with the triangles' hashes known (triangleHashes of each mesh,
+// in triangle order and sorted).
+bool changedBoundsOf(vtkPolyData* before, const std::vector<std::uint64_t>& hb, const std::vector<std::uint64_t>& sb,
+  vtkPolyData* after, const std::vector<std::uint64_t>& ha, const std::vector<std::uint64_t>& sa, double bounds[6])
 {
   vtkMath::UninitializeBounds(bounds);
   double b[6] = { VTK_DOUBLE_MAX, -VTK_DOUBLE_MAX, VTK_DOUBLE_MAX, -VTK_DOUBLE_MAX, VTK_DOUBLE_MAX, -VTK_DOUBLE_MAX };
   // the hashes whose counts differ between the two meshes (sorted multisets)
-  std::vector<std::uint64_t> sb(hb), sa(ha), differ;
-  std::sort(sb.begin(), sb.end());
-  std::sort(sa.begin(), sa.end());
+  std::vector<std::uint64_t> differ;
   std::size_t i = 0, j = 0;
   while (i < sb.size() || j < sa.size())
   {
@@ -274,9 +279,10 @@ bool refill(vtkPolyData* shown, vtkPolyData* next)
   {
     return false;
   }
-  // (vtkDataArray::DeepCopy does not mark the array modified: the buffer
-  // upload and the cached ranges go by the array's MTime)
-  ps->GetData()->DeepCopy(pn->GetData());
+  // (the new arrays' buffers are shared, not copied: `next` is dropped after;
+  // copying does not mark an array modified, and the buffer upload and the
+  // cached ranges go by the array's MTime)
+  ps->GetData()->ShallowCopy(pn->GetData());
   ps->GetData()->Modified();
   ps->Modified();
   for (vtkDataSetAttributes* d : { static_cast<vtkDataSetAttributes*>(shown->GetPointData()),
@@ -286,8 +292,18 @@ bool refill(vtkPolyData* shown, vtkPolyData* next)
                                                              : static_cast<vtkDataSetAttributes*>(next->GetCellData());
     for (int i = 0; i < d->GetNumberOfArrays(); ++i)
     {
-      d->GetAbstractArray(i)->DeepCopy(from->GetAbstractArray(i));
-      d->GetAbstractArray(i)->Modified();
+      vtkAbstractArray* to = d->GetAbstractArray(i);
+      vtkDataArray* toData = vtkDataArray::SafeDownCast(to);
+      vtkDataArray* fromData = vtkDataArray::SafeDownCast(from->GetAbstractArray(i));
+      if (toData && fromData)
+      {
+        toData->ShallowCopy(fromData);
+      }
+      else
+      {
+        to->DeepCopy(from->GetAbstractArray(i));
+      }
+      to->Modified();
     }
     d->Modified();
   }
@@ -307,7 +323,10 @@ bool vtkChunkActorManager::ChangedBounds(vtkPolyData* before, vtkPolyData* after
   {
     return unionBounds(before, after, bounds);
   }
-  return changedBoundsOf(before, hb, after, ha, bounds);
+  std::vector<std::uint64_t> sb(hb), sa(ha);
+  std::sort(sb.begin(), sb.end());
+  std::sort(sa.begin(), sa.end());
+  return changedBoundsOf(before, hb, sb, after, ha, sa, bounds);
 }
 
 void vtkChunkActorManager::SetRedrawCuller(vtkPartialRedrawCuller* culler)
@@ -421,9 +440,9 @@ vtkSmartPointer<vtkPolyData> vtkChunkActorManager::PrepareChunk(vtkPolyData* mes
 void vtkChunkActorManager::SetChunk(vtkIdType chunkId, vtkPolyData* mesh, bool prepared)
 {
   vtkSmartPointer<vtkPolyData> ready = prepared ? vtkSmartPointer<vtkPolyData>(mesh) : this->PrepareChunk(mesh);
-  std::vector<std::uint64_t> hashes; // only with a culler to declare changes to
+  Hashes hashes; // only with a culler to declare changes to
   vtkPartialRedrawCuller* culler = this->Internal->Culler;
-  const bool hashed = culler && culler->GetEnabled() && triangleHashes(mesh, hashes);
+  const bool hashed = culler && culler->GetEnabled() && hashesOf(mesh, hashes);
   this->ApplyChunk(chunkId, mesh, ready, !prepared && ready.Get() != mesh, hashed ? &hashes : nullptr);
 }
 
@@ -431,7 +450,7 @@ void vtkChunkActorManager::SetChunks(const std::vector<vtkIdType>& chunkIds, con
 {
   const std::size_t n = std::min(chunkIds.size(), meshes.size());
   std::vector<vtkSmartPointer<vtkPolyData>> ready(n);
-  std::vector<std::vector<std::uint64_t>> hashes(n);
+  std::vector<Hashes> hashes(n);
   std::vector<char> hashed(n, 0);
   vtkPartialRedrawCuller* culler = this->Internal->Culler;
   const bool declare = culler && culler->GetEnabled();
@@ -441,7 +460,7 @@ void vtkChunkActorManager::SetChunks(const std::vector<vtkIdType>& chunkIds, con
     for (vtkIdType i = begin; i < end; ++i)
     {
       ready[i] = this->PrepareChunk(meshes[i]);
-      hashed[i] = declare && triangleHashes(meshes[i], hashes[i]);
+      hashed[i] = declare && hashesOf(meshes[i], hashes[i]);
     }
   });
   for (std::size_t i = 0; i < n; ++i)
@@ -450,8 +469,19 @@ void vtkChunkActorManager::SetChunks(const std::vector<vtkIdType>& chunkIds, con
   }
 }
 
+bool vtkChunkActorManager::hashesOf(vtkPolyData* mesh, Hashes& out)
+{
+  if (!triangleHashes(mesh, out.order))
+  {
+    return false;
+  }
+  out.sorted = out.order;
+  std::sort(out.sorted.begin(), out.sorted.end());
+  return true;
+}
+
 void vtkChunkActorManager::ApplyChunk(
-  vtkIdType chunkId, vtkPolyData* mesh, vtkPolyData* ready, bool owned, std::vector<std::uint64_t>* hashes)
+  vtkIdType chunkId, vtkPolyData* mesh, vtkPolyData* ready, bool owned, Hashes* hashes)
 {
   if (!ready || ready->GetNumberOfCells() == 0)
   {
@@ -508,7 +538,7 @@ void vtkChunkActorManager::ApplyChunk(
     vtkPolyData* before = e.Source;
     if (hashed && e.HashesValid)
     {
-      changedBoundsOf(before, e.SourceHashes, mesh, *hashes, changed);
+      changedBoundsOf(before, e.SourceHashes.order, e.SourceHashes.sorted, mesh, hashes->order, hashes->sorted, changed);
     }
     else
     {
@@ -522,7 +552,7 @@ void vtkChunkActorManager::ApplyChunk(
   e.SourceMTime = mesh ? mesh->GetMTime() : 0;
   if (hashed)
   {
-    e.SourceHashes.swap(*hashes);
+    std::swap(e.SourceHashes, *hashes);
   }
   e.HashesValid = hashed;
   ++this->NumberOfChunkUpdates;

@@ -30,7 +30,6 @@
 #include "vtkObject.h"
 #include "vtkSmartPointer.h" // for return type
 
-#include <cstdint> // for uint64_t
 #include <memory>  // for unique_ptr
 #include <vector>  // for SetChunks
 
@@ -138,7 +137,10 @@ private:
 
   /// Shows `ready` (prepared from `mesh`; `owned`: made here, may be refilled
   /// into the next time) for a chunk; `hashes`: triangleHashes of `mesh`, if known.
-  void ApplyChunk(vtkIdType chunkId, vtkPolyData* mesh, vtkPolyData* ready, bool owned, std::vector<std::uint64_t>* hashes);
+  struct Hashes;
+  void ApplyChunk(vtkIdType chunkId, vtkPolyData* mesh, vtkPolyData* ready, bool owned, Hashes* hashes);
+  /// triangleHashes of `mesh`, in order and sorted; false if it has cells other than triangles.
+  static bool hashesOf(vtkPolyData* mesh, Hashes& out);
 
   struct Internals;
   std::unique_ptr<Internals> Internal;
