@@ -360,6 +360,7 @@ void MainWindow::addBrushSample(const double* sample)
   catch (const std::exception& e)
   {
     this->Painting = false;
+    this->Doc.session().releaseMeshing(); // what the stroke changed before the failure
     this->showError("The brush failed", e);
     return;
   }
