@@ -86,12 +86,21 @@ TEST(CornerColorAttributes, UnsharesAndCarriesCornerColours)
       {
         ASSERT_EQ(outRgba->GetComponent(o[v], q4), inRgba->GetComponent(in[v], q4));
       }
+      float packed[12];
+      for (int c = 0; c < 3; ++c)
+      {
+        vtkDataArray* pa = out->GetPointData()->GetArray(vtkCornerColorAttributes::PackedCornerArrayName(c));
+        ASSERT_NE(pa, nullptr);
+        for (int q4 = 0; q4 < 4; ++q4)
+          packed[4 * c + q4] = static_cast<float>(pa->GetComponent(o[v], q4));
+      }
+      unsigned char rgba[32];
+      vtkCornerColorAttributes::UnpackCorners(packed, rgba);
       for (int c = 0; c < 8; ++c)
       {
-        vtkDataArray* ca = out->GetPointData()->GetArray(vtkCornerColorAttributes::CornerArrayName(c));
         for (int q4 = 0; q4 < 4; ++q4)
         {
-          ASSERT_EQ(ca->GetComponent(o[v], q4), corners->GetComponent(t, 4 * c + q4));
+          ASSERT_EQ(rgba[4 * c + q4], corners->GetComponent(t, 4 * c + q4));
         }
       }
     }
