@@ -154,6 +154,8 @@ void EditorDriver::drag(const QVector<QPointF>& points, bool ctrl, bool shift, c
   modifierKeys(QEvent::KeyPress);
   mouse(QEvent::MouseMove, points.front(), Qt::NoButton, Qt::NoButton);
   mouse(QEvent::MouseButtonPress, points.front(), Qt::LeftButton, Qt::LeftButton);
+  QApplication::processEvents();
+  this->showAllMeshes(); // the press's sample too: the first move picks on its result
   for (int i = 1; i < points.size(); ++i)
   {
     mouse(QEvent::MouseMove, points[i], Qt::NoButton, Qt::LeftButton);

@@ -62,7 +62,9 @@ EditorOptions parseEditorOptions(const QStringList& arguments)
     "Print (stderr) when the first surface was shown and when every chunk was meshed and shown, in ms after the window was made.");
   const QCommandLineOption fullRedraw("full-redraw",
     "Draw every frame whole (by default a frame in which the camera stands still redraws only the screen region that changed).");
-  p.addOptions({ open, openMesh, meshRes, meshSign, create, fill, script, drag, undo, shot, save, exp, op, shape, kind, radius, color, size, quit,
+  const QCommandLineOption samples("samples",
+    "Samples per pixel of the view (multisampling; 0: none). Default: VTK's (up to 8; Mesa llvmpipe gives 4).", "n");
+  p.addOptions({ samples, open, openMesh, meshRes, meshSign, create, fill, script, drag, undo, shot, save, exp, op, shape, kind, radius, color, size, quit,
     noRecovery, recoveryDir, autosave, perVertex, matcap, benchmark, strength, falloff, mirror, keys, keysAfter, dragMods,
     saveAsAnswer, windowShot, dragShot, timing, fullRedraw });
   p.process(arguments);
@@ -160,5 +162,12 @@ EditorOptions parseEditorOptions(const QStringList& arguments)
   o.benchmarkStroke = p.value(benchmark);
   o.timing = p.isSet(timing);
   o.fullRedraw = p.isSet(fullRedraw);
+  if (p.isSet(samples))
+  {
+    bool ok = false;
+    o.samples = p.value(samples).toInt(&ok);
+    if (!ok || o.samples < 0 || o.samples > 16)
+      fail("--samples must be an integer from 0 to 16");
+  }
   return o;
 }

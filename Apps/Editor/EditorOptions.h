@@ -42,6 +42,7 @@ struct EditorOptions
   QString benchmarkStroke;    // --benchmark-stroke FILE: replay a recorded stroke, print latency and FPS, quit
   bool timing = false;        // --timing: print when the first surface and the whole surface were shown
   bool fullRedraw = false;    // --full-redraw: draw every frame whole (no partial redraw of what changed)
+  int samples = -1;           // --samples N: multisamples per pixel of the view (-1: VTK's default)
   bool batch() const { return this->quit || !this->screenshot.isEmpty() || !this->windowShot.isEmpty() || !this->save.isEmpty() || !this->exportMesh.isEmpty(); }
 };
 

@@ -12,6 +12,8 @@
 #include "vtkBrushWidget.h"
 #include "vtkCallbackCommand.h"
 #include "vtkCamera.h"
+#include "vtkCuller.h"
+#include "vtkCullerCollection.h"
 #include "vtkChunkActorManager.h"
 #include "vtkPartialRedrawCuller.h"
 #include "LVDIFChunkedMarchingCubesOutput.h"
@@ -45,11 +47,23 @@
 #include <map>
 #include <stdexcept>
 
+namespace
+{
+double msSince(std::chrono::steady_clock::time_point t0)
+{
+  return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+}
+} // namespace
+
 MainWindow::MainWindow(const EditorOptions& options)
   : Options(options)
 {
   this->Clock.start();
   this->View = new QVTKOpenGLNativeWidget(this);
+  // Software OpenGL (Mesa llvmpipe) rasterizes a multisampled frame about
+  // twice as slowly: --samples 0 trades the edges' smoothing for that.
+  if (options.samples >= 0)
+    this->RenderWindow->SetMultiSamples(options.samples);
   this->View->setRenderWindow(this->RenderWindow);
   this->RenderWindow->AddRenderer(this->Renderer);
   this->Renderer->SetBackground(0.16, 0.17, 0.2);
@@ -60,7 +74,19 @@ MainWindow::MainWindow(const EditorOptions& options)
   // chunk actors that cover it: the cost of a stroke's frame follows the
   // brush, not the model's size. The picture equals a full redraw's.
   this->Redraw->SetEnabled(!options.fullRedraw);
-  this->Renderer->AddCuller(this->Redraw);
+  // First, so that the renderer's frustum culler then sees only the props a
+  // partial frame draws (each culler asks every prop it is given for its bounds).
+  {
+    std::vector<vtkSmartPointer<vtkCuller>> others;
+    vtkCollectionSimpleIterator it;
+    this->Renderer->GetCullers()->InitTraversal(it);
+    while (vtkCuller* c = this->Renderer->GetCullers()->GetNextCuller(it))
+      others.emplace_back(c);
+    this->Renderer->GetCullers()->RemoveAllItems();
+    this->Renderer->AddCuller(this->Redraw);
+    for (vtkCuller* c : others)
+      this->Renderer->AddCuller(c);
+  }
   this->RenderWindow->SetPartialRedraw(this->Redraw); // and presents only that region
   this->setCentralWidget(this->View);
   this->View->installEventFilter(this);
@@ -144,7 +170,7 @@ MainWindow::MainWindow(const EditorOptions& options)
   // queue is empty (Qt's documentation), which a stream of samples may delay
   this->FrameTimer->setInterval(1);
   this->FrameTimer->setTimerType(Qt::PreciseTimer);
-  connect(this->FrameTimer, &QTimer::timeout, this, &MainWindow::drawFrame);
+  connect(this->FrameTimer, &QTimer::timeout, this, &MainWindow::frameAfterSamples);
   // With multisampling, Mesa's scissored clear can reach one pixel row or
   // column past the redrawn rectangle, so frames drawn in part are
   // interactive frames: once the stroke or the cursor has been still for a
@@ -322,16 +348,29 @@ void MainWindow::addBrushSample(const double* sample)
   s.time = this->Clock.elapsed() * 1e-3;
   try
   {
+    const auto t0 = std::chrono::steady_clock::now();
+    // The chunks this sample invalidates go to the worker with those of every
+    // sample applied before the next frame (frameAfterSamples): a backlog of
+    // samples is meshed once, not once per sample.
+    this->Doc.session().holdMeshing();
     this->Doc.addSample(s);
+    this->Profile.brushMs += msSince(t0);
+    ++this->Profile.samples;
   }
   catch (const std::exception& e)
   {
     this->Painting = false;
+    this->Doc.session().releaseMeshing(); // what the stroke changed before the failure
     this->showError("The brush failed", e);
     return;
   }
   this->LastEdit = QDateTime::currentDateTime();
-  this->settleMeshes();
+  // The frame comes when the event loop is next free: samples that arrived
+  // while the last frame was drawn are all applied first and shown in one
+  // frame, so a slow frame delays the view by one frame, not by a queue of
+  // frames (one per sample).
+  if (!this->FrameTimer->isActive())
+    this->FrameTimer->start();
 }
 
 void MainWindow::onGrabMove()
@@ -349,26 +388,25 @@ void MainWindow::onGrabMove()
   this->Grabbing = true;
 }
 
-void MainWindow::settleMeshes()
+void MainWindow::frameAfterSamples()
 {
-  // A dab usually re-meshes a few chunks in 1-5 ms. Giving the worker that
-  // long shows the edit in this frame instead of the next mesh poll (up to
-  // 15 ms later); past SettleMs the UI goes on and the timer collects the rest,
-  // so the view never waits longer (bench_stroke_latency --settle measures it).
-  constexpr qint64 SettleMs = 6;
-  QElapsedTimer waited;
-  waited.start();
-  while (!this->Doc.meshingIdle() && waited.elapsed() < SettleMs)
+  if (!this->Doc.hasVolume())
+    return;
+  this->Doc.session().releaseMeshing();
+  // Re-meshing a frame's chunks usually takes a few ms. Waiting for it shows
+  // the edits in this frame; what is not done by then needs another frame, so
+  // the wait is bounded by the last frame's render time (at least SettleMs,
+  // at most MaxSettleMs): never longer than the frame it may save.
+  constexpr double SettleMs = 6, MaxSettleMs = 100;
+  const double bound = std::min(MaxSettleMs, std::max(SettleMs, this->LastRenderMs));
+  const auto t0 = std::chrono::steady_clock::now();
+  while (!this->Doc.meshingIdle() && msSince(t0) < bound)
   {
     QThread::usleep(250);
   }
-  // The meshes are installed now (the brush picks on them); the frame comes
-  // when the event loop is next free: samples that arrived while the last
-  // frame was drawn are all applied first and shown in one frame, so a slow
-  // frame delays the view by one frame, not by a queue of frames (one per sample).
+  this->Profile.settleMs += msSince(t0);
   this->installFinishedMeshes();
-  if (!this->FrameTimer->isActive())
-    this->FrameTimer->start();
+  this->drawFrame();
 }
 
 void MainWindow::endStroke()
@@ -385,6 +423,7 @@ void MainWindow::endStroke()
   {
     this->showError("The brush failed", e);
   }
+  this->Doc.session().releaseMeshing(); // the stroke's last dabs too; the frame timer or the mesh timer shows them
   this->updatePreview(nullptr, true);
   this->LastEdit = QDateTime::currentDateTime();
   this->updateTitle();
@@ -414,14 +453,25 @@ void MainWindow::installFinishedMeshes()
   std::map<std::int64_t, const lvdif::ChunkMesh*> newest;
   for (const lvdif::ChunkMesh& mesh : meshes)
     newest[mesh.chunkId] = &mesh;
+  // the actors of a frame's chunks in one call: SetChunks prepares them in parallel
+  const auto t0 = std::chrono::steady_clock::now();
+  std::vector<vtkIdType> ids;
+  std::vector<vtkSmartPointer<vtkPolyData>> polys;
   for (const auto& kv : newest)
   {
-    const lvdif::ChunkMesh& m = *kv.second;
-    if (m.empty())
-      this->Chunks->RemoveChunk(m.chunkId);
+    if (kv.second->empty())
+      this->Chunks->RemoveChunk(kv.first);
     else
-      this->Chunks->SetChunk(m.chunkId, LVDIFChunkedMarchingCubesOutput::VolumeChunkToPolyData(m, this->Doc.volume()));
+    {
+      ids.push_back(kv.first);
+      polys.push_back(LVDIFChunkedMarchingCubesOutput::VolumeChunkToPolyData(*kv.second, this->Doc.volume()));
+    }
   }
+  const auto t1 = std::chrono::steady_clock::now();
+  this->Chunks->SetChunks(ids, std::vector<vtkPolyData*>(polys.begin(), polys.end()));
+  this->Profile.convertMs += std::chrono::duration<double, std::milli>(t1 - t0).count();
+  this->Profile.setChunkMs += msSince(t1);
+  this->Profile.meshes += static_cast<int>(newest.size());
   if (!this->ViewInitialized && this->Chunks->GetNumberOfChunks() > 0)
   {
     this->resetView();
@@ -443,6 +493,9 @@ void MainWindow::drawFrame()
   std::swap(shown, this->Pending);
   shown.renderStart = std::chrono::steady_clock::now();
   this->RenderWindow->Render();
+  this->LastRenderMs = msSince(shown.renderStart);
+  this->Profile.renderMs += this->LastRenderMs;
+  ++this->Profile.frames;
   emit this->meshesShown(shown);
   this->View->update();
 }

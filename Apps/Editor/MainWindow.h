@@ -50,6 +50,20 @@ struct ShownMeshes
   TimePoint renderStart;  // the frame's Render() call
 };
 
+/// Where the UI thread's time went during brush input (summed since
+/// resetStrokeProfile; --benchmark-stroke prints it): milliseconds and counts.
+struct StrokeProfile
+{
+  double brushMs = 0;    // applying samples (Core editor: dabs, undo step, re-mesh request)
+  double settleMs = 0;   // waiting for the worker after a sample
+  double convertMs = 0;  // chunk meshes to vtkPolyData
+  double setChunkMs = 0; // actor updates (corner colours, mapper input, damage)
+  double renderMs = 0;   // Render() of frames with new meshes (without glFinish)
+  int samples = 0;
+  int meshes = 0;        // chunk meshes installed
+  int frames = 0;
+};
+
 class MainWindow : public QMainWindow
 {
   Q_OBJECT
@@ -106,6 +120,9 @@ public slots:
   /// renders (the 15 ms mesh timer calls it); never waits for the meshing.
   void showFinishedMeshes();
 
+  const StrokeProfile& strokeProfile() const { return this->Profile; }
+  void resetStrokeProfile() { this->Profile = StrokeProfile(); }
+
 signals:
   /// After the render of a frame that installed newly finished chunk meshes
   /// (before Qt composes the widget): for latency measurements (--benchmark-stroke).
@@ -144,9 +161,10 @@ private:
   bool keyFilter(QEvent* event);
   void onGrabMove();
   void applyBrushState();
-  /// After a brush sample: waits a few ms for its chunks, installs them, then
-  /// asks for a frame when the event loop is free (one for all samples waiting by then).
-  void settleMeshes();
+  /// The frame after brush samples (when the event loop is free: one for all
+  /// samples applied by then): hands their chunks to the worker at once, waits
+  /// a little for the meshes, installs them and renders.
+  void frameAfterSamples();
   /// Installs the chunk meshes finished since the last call as actors (no render).
   void installFinishedMeshes();
   /// Renders if meshes were installed since the last frame; emits meshesShown.
@@ -174,6 +192,8 @@ private:
   QTimer* MeshTimer = nullptr;
   QTimer* FrameTimer = nullptr; // the frame after brush samples (coalesces a backlog of samples)
   ShownMeshes Pending;          // installed since the last frame
+  StrokeProfile Profile;
+  double LastRenderMs = 0; // Render() of the last frame with new meshes
   QTimer* AutosaveTimer = nullptr;
   QTimer* StillTimer = nullptr; // the full redraw after interactive (partial, multisampled) frames
   QAction* OpenMeshAction = nullptr;

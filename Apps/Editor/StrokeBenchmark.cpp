@@ -179,6 +179,7 @@ void StrokeBenchmark::start()
 {
   this->measureStillFrames();
   connect(&this->Window, &MainWindow::meshesShown, this, &StrokeBenchmark::frameRendered);
+  this->Window.resetStrokeProfile();
   this->Start = std::chrono::steady_clock::now();
   this->LastFrame = this->Start;
   if (!this->Window.beginStroke())
@@ -288,6 +289,10 @@ void StrokeBenchmark::report()
     this->Frames, seconds, this->Frames / seconds, percentile(this->RenderMs, 0.5), percentile(this->RenderMs, 0.95));
   std::printf("benchmark-stroke: render (drawing the frame, glFinish included) p50 %.2f ms, p95 %.2f ms, max %.2f ms\n",
     percentile(this->DrawMs, 0.5), percentile(this->DrawMs, 0.95), percentile(this->DrawMs, 1.0));
+  const StrokeProfile& p = this->Window.strokeProfile();
+  std::printf("benchmark-stroke: UI thread, summed over the stroke: brush %.0f ms (%d samples), settle wait %.0f ms, "
+              "mesh to polydata %.0f ms + actor update %.0f ms (%d chunk meshes), Render() %.0f ms (%d frames)\n",
+    p.brushMs, p.samples, p.settleMs, p.convertMs, p.setChunkMs, p.meshes, p.renderMs, p.frames);
   std::printf("benchmark-stroke: frames are drawn by this display's OpenGL; under Xvfb (Mesa llvmpipe, software) "
               "frame times are not representative of a GPU\n");
   long differ = 0;

@@ -12,20 +12,28 @@
 #include "vtkPartitionedDataSet.h"
 #include "vtkCellArray.h"
 #include "vtkCellData.h"
+#include "vtkDataSetAttributes.h"
+#include "vtkPoints.h"
 #include "vtkPointData.h"
 #include "vtkPolyData.h"
 #include "vtkProperty.h"
 #include "vtkRenderer.h"
+#include "vtkSMPTools.h"
 #include "vtkTetrahedralColorMapper.h"
 
 #include <algorithm>
 #include <cstdint>
 #include <cstring>
 #include <map>
-#include <unordered_map>
 #include <vector>
 
 vtkStandardNewMacro(vtkChunkActorManager);
+
+// A mesh's triangle hashes (triangleHashes) in triangle order and sorted.
+struct vtkChunkActorManager::Hashes
+{
+  std::vector<std::uint64_t> order, sorted;
+};
 
 struct vtkChunkActorManager::Internals
 {
@@ -37,6 +45,9 @@ struct vtkChunkActorManager::Internals
     vtkMTimeType SourceMTime = 0;         // its MTime when it was given
     double PreparedOrigin[3] = { 0, 0, 0 }; // the geometry it was prepared with
     double PreparedSpacing[3] = { 1, 1, 1 };
+    Hashes SourceHashes; // of Source, for the next ChangedBounds
+    bool HashesValid = false;
+    bool OwnsInput = false; // the mapper's input was made here (PrepareChunk): it may be refilled
   };
   std::map<vtkIdType, Entry> Chunks;
   vtkSmartPointer<vtkRenderer> Renderer;
@@ -49,11 +60,20 @@ namespace
 {
 std::uint64_t hashBytes(std::uint64_t h, const void* data, std::size_t n)
 {
+  // 8 bytes a step (a multiply-xorshift mix), the tail byte by byte: the
+  // triangles of a re-meshed chunk are hashed at every replacement
   const auto* b = static_cast<const unsigned char*>(data);
-  for (std::size_t i = 0; i < n; ++i)
+  std::size_t i = 0;
+  for (; i + 8 <= n; i += 8)
   {
-    h ^= b[i];
-    h *= 1099511628211ull; // FNV-1a
+    std::uint64_t w;
+    std::memcpy(&w, b + i, 8);
+    h = (h ^ w) * 0x9e3779b97f4a7c15ull;
+    h ^= h >> 29;
+  }
+  for (; i < n; ++i)
+  {
+    h = (h ^ b[i]) * 1099511628211ull;
   }
   return h;
 }
@@ -149,60 +169,164 @@ void addTriangle(vtkPolyData* pd, vtkIdType t, double b[6])
 }
 } // namespace
 
-bool vtkChunkActorManager::ChangedBounds(vtkPolyData* before, vtkPolyData* after, double bounds[6])
+namespace
+{
+// ChangedBounds with the triangles' hashes known (triangleHashes of each mesh,
+// in triangle order and sorted).
+bool changedBoundsOf(vtkPolyData* before, const std::vector<std::uint64_t>& hb, const std::vector<std::uint64_t>& sb,
+  vtkPolyData* after, const std::vector<std::uint64_t>& ha, const std::vector<std::uint64_t>& sa, double bounds[6])
 {
   vtkMath::UninitializeBounds(bounds);
   double b[6] = { VTK_DOUBLE_MAX, -VTK_DOUBLE_MAX, VTK_DOUBLE_MAX, -VTK_DOUBLE_MAX, VTK_DOUBLE_MAX, -VTK_DOUBLE_MAX };
-  std::vector<std::uint64_t> hb, ha;
-  if (!triangleHashes(before, hb) || !triangleHashes(after, ha))
+  // the hashes whose counts differ between the two meshes (sorted multisets)
+  std::vector<std::uint64_t> differ;
+  std::size_t i = 0, j = 0;
+  while (i < sb.size() || j < sa.size())
   {
-    vtkBoundingBox box;
-    for (vtkPolyData* pd : { before, after })
+    const std::uint64_t h = j == sa.size() || (i < sb.size() && sb[i] < sa[j]) ? sb[i] : sa[j];
+    std::size_t nb = 0, na = 0;
+    for (; i < sb.size() && sb[i] == h; ++i)
     {
-      if (pd && pd->GetNumberOfPoints())
-      {
-        box.AddBounds(pd->GetBounds());
-      }
+      ++nb;
     }
-    if (!box.IsValid())
+    for (; j < sa.size() && sa[j] == h; ++j)
     {
-      return false;
+      ++na;
     }
-    box.GetBounds(bounds);
-    return true;
+    if (nb != na)
+    {
+      differ.push_back(h);
+    }
   }
-  std::unordered_map<std::uint64_t, int> count; // before minus after
-  count.reserve(hb.size() + ha.size());
-  for (std::uint64_t h : hb)
+  if (differ.empty())
   {
-    ++count[h];
+    return false;
   }
-  for (std::uint64_t h : ha)
-  {
-    --count[h];
-  }
-  bool changed = false;
   for (std::size_t t = 0; t < hb.size(); ++t)
   {
-    if (count[hb[t]] != 0)
+    if (std::binary_search(differ.begin(), differ.end(), hb[t]))
     {
       addTriangle(before, static_cast<vtkIdType>(t), b);
-      changed = true;
     }
   }
   for (std::size_t t = 0; t < ha.size(); ++t)
   {
-    if (count[ha[t]] != 0)
+    if (std::binary_search(differ.begin(), differ.end(), ha[t]))
     {
       addTriangle(after, static_cast<vtkIdType>(t), b);
-      changed = true;
     }
   }
-  if (changed)
+  std::copy(b, b + 6, bounds);
+  return true;
+}
+
+bool unionBounds(vtkPolyData* before, vtkPolyData* after, double bounds[6])
+{
+  vtkMath::UninitializeBounds(bounds);
+  vtkBoundingBox box;
+  for (vtkPolyData* pd : { before, after })
   {
-    std::copy(b, b + 6, bounds);
+    if (pd && pd->GetNumberOfPoints())
+    {
+      box.AddBounds(pd->GetBounds());
+    }
   }
-  return changed;
+  if (!box.IsValid())
+  {
+    return false;
+  }
+  box.GetBounds(bounds);
+  return true;
+}
+
+// Same arrays (names, types, components, attribute roles) in the same order.
+bool sameArrays(vtkDataSetAttributes* a, vtkDataSetAttributes* b)
+{
+  if (a->GetNumberOfArrays() != b->GetNumberOfArrays())
+  {
+    return false;
+  }
+  for (int i = 0; i < a->GetNumberOfArrays(); ++i)
+  {
+    vtkAbstractArray* x = a->GetAbstractArray(i);
+    vtkAbstractArray* y = b->GetAbstractArray(i);
+    const char* nx = x->GetName();
+    const char* ny = y->GetName();
+    if (x->GetDataType() != y->GetDataType() || x->GetNumberOfComponents() != y->GetNumberOfComponents() ||
+      (nx == nullptr) != (ny == nullptr) || (nx && std::strcmp(nx, ny) != 0))
+    {
+      return false;
+    }
+  }
+  int ia[vtkDataSetAttributes::NUM_ATTRIBUTES], ib[vtkDataSetAttributes::NUM_ATTRIBUTES];
+  a->GetAttributeIndices(ia);
+  b->GetAttributeIndices(ib);
+  return std::equal(ia, ia + vtkDataSetAttributes::NUM_ATTRIBUTES, ib);
+}
+
+// Refills `shown` with `next` when they hold the same arrays: every array
+// object stays, so the render window's vertex buffer cache (keyed by array)
+// re-uploads the chunk's buffers in place instead of freeing and creating
+// them, which in VTK searches the whole cache per freed buffer (thousands
+// of entries with hundreds of chunks). False if the layouts differ.
+bool refill(vtkPolyData* shown, vtkPolyData* next)
+{
+  vtkPoints* ps = shown->GetPoints();
+  vtkPoints* pn = next->GetPoints();
+  if (!ps || !pn || ps->GetDataType() != pn->GetDataType() || !sameArrays(shown->GetPointData(), next->GetPointData()) ||
+    !sameArrays(shown->GetCellData(), next->GetCellData()) || next->GetFieldData()->GetNumberOfArrays() ||
+    shown->GetFieldData()->GetNumberOfArrays())
+  {
+    return false;
+  }
+  // (the new arrays' buffers are shared, not copied: `next` is dropped after;
+  // copying does not mark an array modified, and the buffer upload and the
+  // cached ranges go by the array's MTime)
+  ps->GetData()->ShallowCopy(pn->GetData());
+  ps->GetData()->Modified();
+  ps->Modified();
+  for (vtkDataSetAttributes* d : { static_cast<vtkDataSetAttributes*>(shown->GetPointData()),
+         static_cast<vtkDataSetAttributes*>(shown->GetCellData()) })
+  {
+    vtkDataSetAttributes* from = d == shown->GetPointData() ? static_cast<vtkDataSetAttributes*>(next->GetPointData())
+                                                             : static_cast<vtkDataSetAttributes*>(next->GetCellData());
+    for (int i = 0; i < d->GetNumberOfArrays(); ++i)
+    {
+      vtkAbstractArray* to = d->GetAbstractArray(i);
+      vtkDataArray* toData = vtkDataArray::SafeDownCast(to);
+      vtkDataArray* fromData = vtkDataArray::SafeDownCast(from->GetAbstractArray(i));
+      if (toData && fromData)
+      {
+        toData->ShallowCopy(fromData);
+      }
+      else
+      {
+        to->DeepCopy(from->GetAbstractArray(i));
+      }
+      to->Modified();
+    }
+    d->Modified();
+  }
+  shown->SetVerts(next->GetVerts());
+  shown->SetLines(next->GetLines());
+  shown->SetPolys(next->GetPolys());
+  shown->SetStrips(next->GetStrips());
+  shown->Modified();
+  return true;
+}
+} // namespace
+
+bool vtkChunkActorManager::ChangedBounds(vtkPolyData* before, vtkPolyData* after, double bounds[6])
+{
+  std::vector<std::uint64_t> hb, ha;
+  if (!triangleHashes(before, hb) || !triangleHashes(after, ha))
+  {
+    return unionBounds(before, after, bounds);
+  }
+  std::vector<std::uint64_t> sb(hb), sa(ha);
+  std::sort(sb.begin(), sb.end());
+  std::sort(sa.begin(), sa.end());
+  return changedBoundsOf(before, hb, sb, after, ha, sa, bounds);
 }
 
 void vtkChunkActorManager::SetRedrawCuller(vtkPartialRedrawCuller* culler)
@@ -316,6 +440,49 @@ vtkSmartPointer<vtkPolyData> vtkChunkActorManager::PrepareChunk(vtkPolyData* mes
 void vtkChunkActorManager::SetChunk(vtkIdType chunkId, vtkPolyData* mesh, bool prepared)
 {
   vtkSmartPointer<vtkPolyData> ready = prepared ? vtkSmartPointer<vtkPolyData>(mesh) : this->PrepareChunk(mesh);
+  Hashes hashes; // only with a culler to declare changes to
+  vtkPartialRedrawCuller* culler = this->Internal->Culler;
+  const bool hashed = culler && culler->GetEnabled() && hashesOf(mesh, hashes);
+  this->ApplyChunk(chunkId, mesh, ready, !prepared && ready.Get() != mesh, hashed ? &hashes : nullptr);
+}
+
+void vtkChunkActorManager::SetChunks(const std::vector<vtkIdType>& chunkIds, const std::vector<vtkPolyData*>& meshes)
+{
+  const std::size_t n = std::min(chunkIds.size(), meshes.size());
+  std::vector<vtkSmartPointer<vtkPolyData>> ready(n);
+  std::vector<Hashes> hashes(n);
+  std::vector<char> hashed(n, 0);
+  vtkPartialRedrawCuller* culler = this->Internal->Culler;
+  const bool declare = culler && culler->GetEnabled();
+  // the per-triangle work of each chunk (preparation, hashes) in parallel;
+  // the actors, mappers and the culler on this thread
+  vtkSMPTools::For(0, static_cast<vtkIdType>(n), [&](vtkIdType begin, vtkIdType end) {
+    for (vtkIdType i = begin; i < end; ++i)
+    {
+      ready[i] = this->PrepareChunk(meshes[i]);
+      hashed[i] = declare && hashesOf(meshes[i], hashes[i]);
+    }
+  });
+  for (std::size_t i = 0; i < n; ++i)
+  {
+    this->ApplyChunk(chunkIds[i], meshes[i], ready[i], ready[i].Get() != meshes[i], hashed[i] ? &hashes[i] : nullptr);
+  }
+}
+
+bool vtkChunkActorManager::hashesOf(vtkPolyData* mesh, Hashes& out)
+{
+  if (!triangleHashes(mesh, out.order))
+  {
+    return false;
+  }
+  out.sorted = out.order;
+  std::sort(out.sorted.begin(), out.sorted.end());
+  return true;
+}
+
+void vtkChunkActorManager::ApplyChunk(
+  vtkIdType chunkId, vtkPolyData* mesh, vtkPolyData* ready, bool owned, Hashes* hashes)
+{
   if (!ready || ready->GetNumberOfCells() == 0)
   {
     this->RemoveChunk(chunkId);
@@ -353,20 +520,41 @@ void vtkChunkActorManager::SetChunk(vtkIdType chunkId, vtkPolyData* mesh, bool p
   {
     culler->BeginChange(e.Actor);
   }
-  e.Mapper->SetInputData(ready);
+  // A mesh prepared here (a new object) may be refilled into the previous one
+  // (made here too, so nobody else holds it); a caller's object is shown as given.
+  vtkPolyData* shown = vtkPolyData::SafeDownCast(e.Mapper->GetInputDataObject(0, 0));
+  if (!(owned && e.OwnsInput && shown && refill(shown, ready)))
+  {
+    e.Mapper->SetInputData(ready);
+    e.OwnsInput = owned;
+  }
+  const bool hashed = hashes != nullptr;
   if (declare)
   {
     // Preparation is per triangle (vtkCornerColorAttributes), so the prepared
-    // meshes differ only where the given ones do.
+    // meshes differ only where the given ones do. The previous mesh's hashes
+    // were kept when it was given.
     double changed[6];
     vtkPolyData* before = e.Source;
-    ChangedBounds(before, mesh, changed);
+    if (hashed && e.HashesValid)
+    {
+      changedBoundsOf(before, e.SourceHashes.order, e.SourceHashes.sorted, mesh, hashes->order, hashes->sorted, changed);
+    }
+    else
+    {
+      ChangedBounds(before, mesh, changed);
+    }
     culler->EndChange(e.Actor, changed);
   }
   std::copy(this->Origin, this->Origin + 3, e.PreparedOrigin);
   std::copy(this->Spacing, this->Spacing + 3, e.PreparedSpacing);
-  it->second.Source = mesh;
-  it->second.SourceMTime = mesh ? mesh->GetMTime() : 0;
+  e.Source = mesh;
+  e.SourceMTime = mesh ? mesh->GetMTime() : 0;
+  if (hashed)
+  {
+    std::swap(e.SourceHashes, *hashes);
+  }
+  e.HashesValid = hashed;
   ++this->NumberOfChunkUpdates;
   this->Modified();
 }

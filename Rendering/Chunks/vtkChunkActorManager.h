@@ -30,7 +30,8 @@
 #include "vtkObject.h"
 #include "vtkSmartPointer.h" // for return type
 
-#include <memory> // for unique_ptr
+#include <memory>  // for unique_ptr
+#include <vector>  // for SetChunks
 
 class vtkActor;
 class vtkPartialRedrawCuller;
@@ -82,6 +83,9 @@ public:
 
   /// Replaces the mesh of one chunk. A null or empty mesh removes the chunk.
   void SetChunk(vtkIdType chunkId, vtkPolyData* mesh, bool prepared = false);
+  /// SetChunk of each (id, mesh) in order, the meshes prepared (and their
+  /// changes measured) in parallel (vtkSMPTools): a frame's re-meshed chunks.
+  void SetChunks(const std::vector<vtkIdType>& chunkIds, const std::vector<vtkPolyData*>& meshes);
   void RemoveChunk(vtkIdType chunkId);
   /// Shows every partition of vtkChunkedMarchingCubes' partitioned output
   /// (field data `chunk_id` names the chunk; partitions without it get their
@@ -130,6 +134,13 @@ protected:
 private:
   vtkChunkActorManager(const vtkChunkActorManager&) = delete;
   void operator=(const vtkChunkActorManager&) = delete;
+
+  /// Shows `ready` (prepared from `mesh`; `owned`: made here, may be refilled
+  /// into the next time) for a chunk; `hashes`: triangleHashes of `mesh`, if known.
+  struct Hashes;
+  void ApplyChunk(vtkIdType chunkId, vtkPolyData* mesh, vtkPolyData* ready, bool owned, Hashes* hashes);
+  /// triangleHashes of `mesh`, in order and sorted; false if it has cells other than triangles.
+  static bool hashesOf(vtkPolyData* mesh, Hashes& out);
 
   struct Internals;
   std::unique_ptr<Internals> Internal;

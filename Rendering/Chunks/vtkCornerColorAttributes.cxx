@@ -19,11 +19,32 @@ vtkStandardNewMacro(vtkCornerColorAttributes);
 
 vtkCornerColorAttributes::vtkCornerColorAttributes() = default;
 
-const char* vtkCornerColorAttributes::CornerArrayName(int corner)
+const char* vtkCornerColorAttributes::PackedCornerArrayName(int i)
 {
-  static const char* names[8] = { "lvdif_corner0", "lvdif_corner1", "lvdif_corner2", "lvdif_corner3",
-    "lvdif_corner4", "lvdif_corner5", "lvdif_corner6", "lvdif_corner7" };
-  return (corner >= 0 && corner < 8) ? names[corner] : nullptr;
+  static const char* names[3] = { "lvdif_corners_packed0", "lvdif_corners_packed1", "lvdif_corners_packed2" };
+  return (i >= 0 && i < 3) ? names[i] : nullptr;
+}
+
+void vtkCornerColorAttributes::PackCorners(const unsigned char rgba[32], float packed[12])
+{
+  // byte i goes to float i/3, digit i%3 in base 256: below 2^24, so exact in a float
+  for (int j = 0; j < 12; ++j)
+  {
+    packed[j] = 0;
+  }
+  for (int i = 0; i < 32; ++i)
+  {
+    packed[i / 3] += static_cast<float>(rgba[i]) * (i % 3 == 0 ? 1.0f : (i % 3 == 1 ? 256.0f : 65536.0f));
+  }
+}
+
+void vtkCornerColorAttributes::UnpackCorners(const float packed[12], unsigned char rgba[32])
+{
+  for (int i = 0; i < 32; ++i)
+  {
+    const auto v = static_cast<unsigned long>(packed[i / 3]);
+    rgba[i] = static_cast<unsigned char>((v >> (8 * (i % 3))) & 0xff);
+  }
 }
 
 bool vtkCornerColorAttributes::HasCornerColors(vtkPolyData* pd)
@@ -88,10 +109,10 @@ int vtkCornerColorAttributes::RequestData(
   local->SetName(LocalArrayName());
   local->SetNumberOfComponents(3);
   local->SetNumberOfTuples(3 * triangles);
-  vtkNew<vtkUnsignedCharArray> cornerArrays[8];
-  for (int c = 0; c < 8; ++c)
+  vtkNew<vtkFloatArray> cornerArrays[3];
+  for (int c = 0; c < 3; ++c)
   {
-    cornerArrays[c]->SetName(CornerArrayName(c));
+    cornerArrays[c]->SetName(PackedCornerArrayName(c));
     cornerArrays[c]->SetNumberOfComponents(4);
     cornerArrays[c]->SetNumberOfTuples(3 * triangles);
   }
@@ -114,7 +135,8 @@ int vtkCornerColorAttributes::RequestData(
     {
       cellOrigin[a] = this->Origin[a] + ijk->GetComponent(cellId, a) * this->Spacing[a];
     }
-    const unsigned char* rgba = corners->GetPointer(32 * cellId);
+    float packed[12];
+    PackCorners(corners->GetPointer(32 * cellId), packed);
     for (vtkIdType k = 1; k + 1 < n; ++k)
     {
       const vtkIdType fan[3] = { ids->GetId(0), ids->GetId(k), ids->GetId(k + 1) };
@@ -132,9 +154,9 @@ int vtkCornerColorAttributes::RequestData(
           u[a] = static_cast<float>((p[a] - cellOrigin[a]) / this->Spacing[a]);
         }
         local->SetTypedTuple(next, u);
-        for (int c = 0; c < 8; ++c)
+        for (int c = 0; c < 3; ++c)
         {
-          cornerArrays[c]->SetTypedTuple(next, rgba + 4 * c);
+          cornerArrays[c]->SetTypedTuple(next, packed + 4 * c);
         }
         outIds[v] = next;
       }
@@ -154,7 +176,7 @@ int vtkCornerColorAttributes::RequestData(
   output->SetPoints(pts);
   output->SetPolys(outPolys);
   outPd->AddArray(local);
-  for (int c = 0; c < 8; ++c)
+  for (int c = 0; c < 3; ++c)
   {
     outPd->AddArray(cornerArrays[c]);
   }

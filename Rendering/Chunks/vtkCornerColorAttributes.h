@@ -18,18 +18,19 @@
  *   It is affine in P, so the rasteriser's interpolation gives every
  *   fragment its exact local coordinate (no barycentric reconstruction as in
  *   the original Unity shader).
- * - `lvdif_corner0` .. `lvdif_corner7` (unsigned char, 4): the corner
- *   colours, equal on the triangle's three vertices.
+ * - `lvdif_corners_packed0` .. `lvdif_corners_packed2` (float, 4): the 32
+ *   bytes of the corner colours, equal on the triangle's three vertices,
+ *   packed 3 to a float (byte i at float i/3, times 256^(i%3): below 2^24,
+ *   exact; PackCorners/UnpackCorners): 3 vertex attributes instead of 8,
+ *   which is what software OpenGL's vertex stage pays for.
  *
  * Memory: the GPU needs per-vertex attributes, and a vertex shared by
  * several triangles would need several corner sets, hence un-sharing. An
  * indexed marching cubes mesh has about T/2 points for T triangles (28 bytes
  * each with float position+normal and rgba) plus 12 bytes of indices per
  * triangle, ~26 B/triangle; the output holds 3 points per triangle of
- * 12 (position) + 12 (normal) + 4 (rgba) + 12 (local) + 32 (corners) bytes,
- * 216 B/triangle (+ 12 B of connectivity), about 8x more. The
- * mapper uploads the corner colours as floats (VTK converts extra vertex
- * attributes to float), 128 more bytes per vertex on the GPU.
+ * 12 (position) + 12 (normal) + 4 (rgba) + 12 (local) + 48 (packed corners)
+ * bytes, 264 B/triangle (+ 12 B of connectivity), about 10x more.
  */
 #ifndef vtkCornerColorAttributes_h
 #define vtkCornerColorAttributes_h
@@ -54,7 +55,10 @@ public:
 
   /// Names of the output point arrays (shared with vtkTetrahedralColorMapper).
   static const char* LocalArrayName() { return "lvdif_cell_local"; }
-  static const char* CornerArrayName(int corner);
+  static const char* PackedCornerArrayName(int i);
+  /// The packing of the 8 corners' RGBA (corner_rgba's 32 bytes) into 12 floats, and back.
+  static void PackCorners(const unsigned char rgba[32], float packed[12]);
+  static void UnpackCorners(const float packed[12], unsigned char rgba[32]);
 
   /// True if the poly data carries the input contract (corner_rgba + cell_ijk cell arrays).
   static bool HasCornerColors(vtkPolyData* pd);

@@ -163,7 +163,13 @@ struct vtkPartialRedrawCuller::Internals
   std::uint64_t Signature(vtkProp* p)
   {
     std::uint64_t h = 1469598103934665603ull;
-    h = mix(h, p->GetRedrawMTime());
+    // An actor is its own only part (GetActors below), which covers its
+    // redraw time; vtkActor::GetRedrawMTime would also update the mapper's
+    // pipeline, per prop and frame, even for a static mapper.
+    if (!vtkActor::SafeDownCast(p))
+    {
+      h = mix(h, p->GetRedrawMTime());
+    }
     h = mix(h, p->GetMTime());
     this->Actors->RemoveAllItems();
     p->GetActors(this->Actors);

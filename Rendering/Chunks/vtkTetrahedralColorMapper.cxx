@@ -19,28 +19,48 @@ namespace
 // so the colours arrive in 0..255.
 const char* const VsDec = R"(//VTK::Normal::Dec
 in vec3 lvdifLocal;
-in vec4 lvdifC0; in vec4 lvdifC1; in vec4 lvdifC2; in vec4 lvdifC3;
-in vec4 lvdifC4; in vec4 lvdifC5; in vec4 lvdifC6; in vec4 lvdifC7;
+in vec4 lvdifP0; in vec4 lvdifP1; in vec4 lvdifP2;
 out vec3 lvdifLocalVS;
-flat out vec4 lvdifCV0; flat out vec4 lvdifCV1; flat out vec4 lvdifCV2; flat out vec4 lvdifCV3;
-flat out vec4 lvdifCV4; flat out vec4 lvdifCV5; flat out vec4 lvdifCV6; flat out vec4 lvdifCV7;
+flat out vec4 lvdifPV0; flat out vec4 lvdifPV1; flat out vec4 lvdifPV2;
 )";
 
 const char* const VsImpl = R"(//VTK::Normal::Impl
   lvdifLocalVS = lvdifLocal;
-  lvdifCV0 = lvdifC0; lvdifCV1 = lvdifC1; lvdifCV2 = lvdifC2; lvdifCV3 = lvdifC3;
-  lvdifCV4 = lvdifC4; lvdifCV5 = lvdifC5; lvdifCV6 = lvdifC6; lvdifCV7 = lvdifC7;
+  lvdifPV0 = lvdifP0; lvdifPV1 = lvdifP1; lvdifPV2 = lvdifP2;
 )";
 
 // Corner c = x + 2y + 4z: C0=c000 C1=c100 C2=c010 C3=c110 C4=c001 C5=c101 C6=c011 C7=c111.
 // The six tetrahedra share the diagonal c000-c111; the order of x, y, z
 // picks one, and the weights are the differences of the sorted coordinates.
+// The corner colours arrive packed (vtkCornerColorAttributes::PackCorners:
+// byte i at float i/3, times 256^(i%3)); integers below 2^24, so the
+// divisions by powers of two, floor and the differences are exact.
 const char* const FsDec = R"(//VTK::Normal::Dec
 in vec3 lvdifLocalVS;
-flat in vec4 lvdifCV0; flat in vec4 lvdifCV1; flat in vec4 lvdifCV2; flat in vec4 lvdifCV3;
-flat in vec4 lvdifCV4; flat in vec4 lvdifCV5; flat in vec4 lvdifCV6; flat in vec4 lvdifCV7;
+flat in vec4 lvdifPV0; flat in vec4 lvdifPV1; flat in vec4 lvdifPV2;
 vec4 lvdifTetrahedral(vec3 u)
 {
+  float lvdifP[12] = float[12](lvdifPV0.x, lvdifPV0.y, lvdifPV0.z, lvdifPV0.w, lvdifPV1.x, lvdifPV1.y,
+    lvdifPV1.z, lvdifPV1.w, lvdifPV2.x, lvdifPV2.y, lvdifPV2.z, lvdifPV2.w);
+  float lvdifB[36];
+  for (int j = 0; j < 12; ++j)
+  {
+    float v = lvdifP[j];
+    float hi = floor(v / 65536.0);
+    float rest = v - hi * 65536.0;
+    float mid = floor(rest / 256.0);
+    lvdifB[3 * j] = rest - mid * 256.0;
+    lvdifB[3 * j + 1] = mid;
+    lvdifB[3 * j + 2] = hi;
+  }
+  vec4 lvdifCV0 = vec4(lvdifB[0], lvdifB[1], lvdifB[2], lvdifB[3]);
+  vec4 lvdifCV1 = vec4(lvdifB[4], lvdifB[5], lvdifB[6], lvdifB[7]);
+  vec4 lvdifCV2 = vec4(lvdifB[8], lvdifB[9], lvdifB[10], lvdifB[11]);
+  vec4 lvdifCV3 = vec4(lvdifB[12], lvdifB[13], lvdifB[14], lvdifB[15]);
+  vec4 lvdifCV4 = vec4(lvdifB[16], lvdifB[17], lvdifB[18], lvdifB[19]);
+  vec4 lvdifCV5 = vec4(lvdifB[20], lvdifB[21], lvdifB[22], lvdifB[23]);
+  vec4 lvdifCV6 = vec4(lvdifB[24], lvdifB[25], lvdifB[26], lvdifB[27]);
+  vec4 lvdifCV7 = vec4(lvdifB[28], lvdifB[29], lvdifB[30], lvdifB[31]);
   u = clamp(u, 0.0, 1.0);
   float x = u.x, y = u.y, z = u.z;
   vec4 c;
@@ -104,9 +124,9 @@ bool hasTetrahedralArrays(vtkPolyData* pd)
   {
     return false;
   }
-  for (int c = 0; c < 8; ++c)
+  for (int c = 0; c < 3; ++c)
   {
-    if (!pd->GetPointData()->GetArray(vtkCornerColorAttributes::CornerArrayName(c)))
+    if (!pd->GetPointData()->GetArray(vtkCornerColorAttributes::PackedCornerArrayName(c)))
     {
       return false;
     }
@@ -169,13 +189,12 @@ void vtkTetrahedralColorMapper::RenderPiece(vtkRenderer* ren, vtkActor* act)
     this->RemoveAllVertexAttributeMappings();
     if (tetra)
     {
-      static const char* shaderNames[8] = { "lvdifC0", "lvdifC1", "lvdifC2", "lvdifC3", "lvdifC4", "lvdifC5",
-        "lvdifC6", "lvdifC7" };
+      static const char* shaderNames[3] = { "lvdifP0", "lvdifP1", "lvdifP2" };
       this->MapDataArrayToVertexAttribute(
         "lvdifLocal", vtkCornerColorAttributes::LocalArrayName(), vtkDataObject::FIELD_ASSOCIATION_POINTS, -1);
-      for (int c = 0; c < 8; ++c)
+      for (int c = 0; c < 3; ++c)
       {
-        this->MapDataArrayToVertexAttribute(shaderNames[c], vtkCornerColorAttributes::CornerArrayName(c),
+        this->MapDataArrayToVertexAttribute(shaderNames[c], vtkCornerColorAttributes::PackedCornerArrayName(c),
           vtkDataObject::FIELD_ASSOCIATION_POINTS, -1);
       }
     }

@@ -71,6 +71,7 @@ void EditSession::teardown()
   this->Ed.reset();
   this->Dev.reset();
   this->DeviceQueue.clear();
+  this->Held.clear(); // a new volume is meshed whole
 }
 
 void EditSession::build(std::shared_ptr<DictionaryVolume> volume, const BrushSettings* brush, const StrokeSettings* stroke)
@@ -174,10 +175,23 @@ void EditSession::request(const std::vector<std::int64_t>& ids)
   uniteSorted(this->Changed, ids);
   if (!this->Opts.meshing)
     return;
+  if (!this->Worker)
+    uniteSorted(this->DeviceQueue, ids);
+  else if (this->Holding)
+    uniteSorted(this->Held, ids);
+  else
+    this->Worker->request(ids);
+}
+
+void EditSession::releaseMeshing()
+{
+  this->Holding = false;
+  if (this->Held.empty())
+    return;
+  std::vector<std::int64_t> ids;
+  ids.swap(this->Held);
   if (this->Worker)
     this->Worker->request(ids);
-  else
-    uniteSorted(this->DeviceQueue, ids);
 }
 
 void EditSession::afterEdit(const EditResult& edit, bool changed)
@@ -356,11 +370,12 @@ std::vector<ChunkMesh> EditSession::collectMeshes(std::vector<Clock::time_point>
 
 bool EditSession::meshingIdle() const
 {
-  return this->Worker ? this->Worker->idle() : this->DeviceQueue.empty();
+  return this->Worker ? this->Held.empty() && this->Worker->idle() : this->DeviceQueue.empty();
 }
 
 void EditSession::waitMeshingIdle()
 {
+  this->releaseMeshing();
   if (this->Worker)
     this->Worker->waitIdle();
 }

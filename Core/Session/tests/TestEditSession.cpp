@@ -50,6 +50,90 @@ TEST(EditSession, RandomStrokesUndoRedoEqualReplayAndMeshesEqualFullRemesh)
   }
 }
 
+TEST(EditSession, HeldMeshingMeshesTheUnionOnceAndEqualsSampleBySample)
+{
+  // A backlog of samples applied with meshing held and released once per
+  // "frame": the volume equals the same samples applied one by one with a
+  // request each, every chunk the burst invalidated is meshed once, and the
+  // meshes equal a full re-mesh of the final volume.
+  for (std::uint32_t seed : { 11u, 12u })
+  {
+    auto start = sphereVolume(64, 16);
+    lvdif::EditSession held(start->clone(), cpuOptions());
+    lvdif::EditSession oneByOne(start->clone(), cpuOptions());
+    held.requestAllMeshes();
+    held.waitMeshingIdle();
+    MeshStore store;
+    store.take(held.collectMeshes());
+    for (const Op& op : randomOps(seed, 12, 64))
+    {
+      if (op.kind != Op::Stroke)
+        continue;
+      apply(oneByOne, op);
+      held.brush() = op.brush;
+      held.stroke() = op.stroke;
+      held.beginStroke();
+      std::vector<std::int64_t> invalidated;
+      std::size_t burst = 0;
+      for (std::size_t i = 0; i < op.samples.size(); ++i)
+      {
+        held.holdMeshing();
+        EXPECT_TRUE(held.meshingHeld());
+        held.addSample(op.samples[i]);
+        const auto& ids = held.lastRequest();
+        invalidated.insert(invalidated.end(), ids.begin(), ids.end());
+        if (!ids.empty())
+          EXPECT_FALSE(held.meshingIdle()) << "held requests count as pending";
+        if (++burst == 3 || i + 1 == op.samples.size())
+        {
+          held.releaseMeshing();
+          EXPECT_FALSE(held.meshingHeld());
+          held.waitMeshingIdle();
+          std::vector<lvdif::ChunkMesh> got = held.collectMeshes();
+          std::sort(invalidated.begin(), invalidated.end());
+          invalidated.erase(std::unique(invalidated.begin(), invalidated.end()), invalidated.end());
+          std::vector<std::int64_t> meshed;
+          for (const lvdif::ChunkMesh& m : got)
+            meshed.push_back(m.chunkId);
+          std::sort(meshed.begin(), meshed.end());
+          EXPECT_EQ(meshed, invalidated) << "seed " << seed << ": the burst's union, each chunk once";
+          store.take(std::move(got));
+          invalidated.clear();
+          burst = 0;
+        }
+      }
+      held.endStroke(); // not held: straight to the worker
+      held.waitMeshingIdle();
+      store.take(held.collectMeshes());
+    }
+    held.waitMeshingIdle();
+    oneByOne.waitMeshingIdle();
+    store.take(held.collectMeshes());
+    EXPECT_EQ(differences(held.volume(), oneByOne.volume()), 0) << "seed " << seed;
+    std::string problem;
+    EXPECT_EQ(compareWithFullRemesh(store, held.volume(), held.mesher().options(), &problem), 0)
+      << "seed " << seed << ": " << problem;
+  }
+}
+
+TEST(EditSession, WaitMeshingIdleReleasesHeldRequests)
+{
+  auto v = sphereVolume(64, 16);
+  lvdif::EditSession s(v, cpuOptions());
+  s.waitMeshingIdle();
+  s.collectMeshes();
+  s.holdMeshing();
+  lvdif::Dab d;
+  d.center = { 32, 32, 51 };
+  d.radius = 5;
+  s.dab(d);
+  ASSERT_FALSE(s.lastRequest().empty());
+  EXPECT_FALSE(s.meshingIdle());
+  s.waitMeshingIdle();
+  EXPECT_TRUE(s.meshingIdle());
+  EXPECT_EQ(s.collectMeshes().size(), s.lastRequest().size());
+}
+
 TEST(EditSession, ChangedMeshChunksCoverEveryMeshThatChanged)
 {
   auto v = sphereVolume(64, 16);

@@ -156,8 +156,22 @@ public:
   /// `gatheredAt`: when each mesh's input was read (it shows every edit made
   /// before that time and none after).
   std::vector<ChunkMesh> collectMeshes(std::vector<Clock::time_point>* gatheredAt = nullptr);
+  /// False while meshes are being made or held (holdMeshing) for a later release.
   bool meshingIdle() const;
+  /// Releases held requests, then waits for the CPU worker.
   void waitMeshingIdle();
+  /// Batching for a front end that applies several samples per frame (a
+  /// backlog of input): from now on the mesh chunks that edits invalidate are
+  /// gathered (lastRequest() still names each edit's own) and reach the CPU
+  /// worker together at releaseMeshing(), so a chunk that a burst of samples
+  /// touches again and again is meshed once, from the volume after all of
+  /// them, instead of once per sample while the next samples are applied. The
+  /// edits themselves are applied at once, exactly as without holding. On the
+  /// GPU nothing changes (the device meshes at collectMeshes anyway).
+  void holdMeshing() { this->Holding = true; }
+  /// Hands the held requests to the worker (one request, their union).
+  void releaseMeshing();
+  bool meshingHeld() const { return this->Holding; }
   /// The mesh chunks the last edit call invalidated, and when (right after the edit).
   const std::vector<std::int64_t>& lastRequest() const { return this->LastRequest; }
   Clock::time_point lastRequestTime() const { return this->LastRequestAt; }
@@ -179,6 +193,8 @@ private:
   std::unique_ptr<Editor> Ed;
   std::unique_ptr<ChunkedMarchingCubes> Mesher;
   std::unique_ptr<MarchingCubesWorker> Worker;
+  bool Holding = false;
+  std::vector<std::int64_t> Held;        // CPU: held requests (sorted), for releaseMeshing
   std::vector<std::int64_t> DeviceQueue; // GPU: mesh chunks to mesh at the next collect (sorted)
   PackedChunkMeshes Packed;              // GPU: the device meshes' page-locked block (reused)
   std::vector<std::int64_t> Changed;     // since takeChangedMeshChunks

@@ -12,13 +12,18 @@
 #include "vtkChunkActorManager.h"
 #include "vtkCornerColorAttributes.h"
 #include "vtkExecutive.h"
+#include "vtkIdList.h"
 #include "vtkMapper.h"
+#include "vtkPartialRedrawCuller.h"
+#include "vtkPoints.h"
+#include "vtkPolyData.h"
 #include "vtkRenderer.h"
 #include "vtkTetrahedralColorMapper.h"
 
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <string>
 #include <vector>
 
 using namespace lvdiftest;
@@ -81,12 +86,21 @@ TEST(CornerColorAttributes, UnsharesAndCarriesCornerColours)
       {
         ASSERT_EQ(outRgba->GetComponent(o[v], q4), inRgba->GetComponent(in[v], q4));
       }
+      float packed[12];
+      for (int c = 0; c < 3; ++c)
+      {
+        vtkDataArray* pa = out->GetPointData()->GetArray(vtkCornerColorAttributes::PackedCornerArrayName(c));
+        ASSERT_NE(pa, nullptr);
+        for (int q4 = 0; q4 < 4; ++q4)
+          packed[4 * c + q4] = static_cast<float>(pa->GetComponent(o[v], q4));
+      }
+      unsigned char rgba[32];
+      vtkCornerColorAttributes::UnpackCorners(packed, rgba);
       for (int c = 0; c < 8; ++c)
       {
-        vtkDataArray* ca = out->GetPointData()->GetArray(vtkCornerColorAttributes::CornerArrayName(c));
         for (int q4 = 0; q4 < 4; ++q4)
         {
-          ASSERT_EQ(ca->GetComponent(o[v], q4), corners->GetComponent(t, 4 * c + q4));
+          ASSERT_EQ(rgba[4 * c + q4], corners->GetComponent(t, 4 * c + q4));
         }
       }
     }
@@ -129,12 +143,14 @@ TEST(ChunkActorManager, ReplacesOnlyTheChangedChunk)
 
   // Remember every actor and the data object its mapper draws.
   std::map<vtkIdType, std::pair<vtkActor*, vtkDataObject*>> before;
+  std::map<vtkIdType, vtkMTimeType> mtimes;
   for (auto& kv : chunks)
   {
     vtkActor* a = mgr->GetChunkActor(kv.first);
     ASSERT_NE(a, nullptr);
     EXPECT_EQ(mgr->GetChunkId(a), kv.first);
     before[kv.first] = { a, a->GetMapper()->GetInputDataObject(0, 0) };
+    mtimes[kv.first] = a->GetMapper()->GetInputDataObject(0, 0)->GetMTime();
   }
   const vtkIdType changed = chunks.begin()->first;
   auto other = sphereMesh(40); // a fresh mesh object for the changed chunk
@@ -146,13 +162,12 @@ TEST(ChunkActorManager, ReplacesOnlyTheChangedChunk)
   {
     vtkActor* a = mgr->GetChunkActor(kv.first);
     EXPECT_EQ(a, kv.second.first); // actors are kept
-    if (kv.first == changed)
+    // the changed chunk's prepared mesh is refilled in place (same object, new
+    // contents: ReplacingAChunkRefillsItsArrays); the others are untouched
+    EXPECT_EQ(a->GetMapper()->GetInputDataObject(0, 0), kv.second.second);
+    if (kv.first != changed)
     {
-      EXPECT_NE(a->GetMapper()->GetInputDataObject(0, 0), kv.second.second);
-    }
-    else
-    {
-      EXPECT_EQ(a->GetMapper()->GetInputDataObject(0, 0), kv.second.second);
+      EXPECT_EQ(a->GetMapper()->GetInputDataObject(0, 0)->GetMTime(), mtimes[kv.first]);
     }
   }
   // An empty mesh removes the chunk's actor.
@@ -162,6 +177,136 @@ TEST(ChunkActorManager, ReplacesOnlyTheChangedChunk)
   EXPECT_EQ(ren->GetActors()->GetNumberOfItems(), static_cast<int>(chunks.size()) - 1);
   mgr->RemoveAllChunks();
   EXPECT_EQ(ren->GetActors()->GetNumberOfItems(), 0);
+}
+
+namespace
+{
+// "" when the two poly data hold the same points, arrays (by name, value for
+// value) and cells, else what differs.
+std::string differsFrom(vtkPolyData* a, vtkPolyData* b)
+{
+  if (a->GetNumberOfPoints() != b->GetNumberOfPoints() || a->GetNumberOfPolys() != b->GetNumberOfPolys() ||
+    a->GetNumberOfCells() != b->GetNumberOfCells())
+    return "counts";
+  for (vtkIdType i = 0; i < a->GetNumberOfPoints(); ++i)
+  {
+    double x[3], y[3];
+    a->GetPoint(i, x);
+    b->GetPoint(i, y);
+    if (!std::equal(x, x + 3, y))
+      return "point " + std::to_string(i);
+  }
+  for (int which = 0; which < 2; ++which)
+  {
+    vtkDataSetAttributes* da = which ? static_cast<vtkDataSetAttributes*>(a->GetCellData()) : a->GetPointData();
+    vtkDataSetAttributes* db = which ? static_cast<vtkDataSetAttributes*>(b->GetCellData()) : b->GetPointData();
+    if (da->GetNumberOfArrays() != db->GetNumberOfArrays())
+      return "array count";
+    for (int k = 0; k < da->GetNumberOfArrays(); ++k)
+    {
+      vtkDataArray* x = da->GetArray(k);
+      vtkDataArray* y = x && x->GetName() ? db->GetArray(x->GetName()) : nullptr;
+      if (!x || !y || x->GetNumberOfValues() != y->GetNumberOfValues())
+        return std::string("array ") + (x && x->GetName() ? x->GetName() : "?");
+      for (vtkIdType v = 0; v < x->GetNumberOfValues(); ++v)
+        if (x->GetComponent(v / x->GetNumberOfComponents(), static_cast<int>(v % x->GetNumberOfComponents())) !=
+          y->GetComponent(v / y->GetNumberOfComponents(), static_cast<int>(v % y->GetNumberOfComponents())))
+          return std::string("value of ") + x->GetName();
+    }
+  }
+  for (vtkIdType c = 0; c < a->GetNumberOfCells(); ++c)
+  {
+    vtkNew<vtkIdList> x, y;
+    a->GetCellPoints(c, x);
+    b->GetCellPoints(c, y);
+    if (x->GetNumberOfIds() != y->GetNumberOfIds())
+      return "cell " + std::to_string(c);
+    for (vtkIdType k = 0; k < x->GetNumberOfIds(); ++k)
+      if (x->GetId(k) != y->GetId(k))
+        return "cell " + std::to_string(c);
+  }
+  return "";
+}
+} // namespace
+
+TEST(ChunkActorManager, ReplacingAChunkRefillsItsArrays)
+{
+  // A re-meshed chunk keeps its data object and array objects (the render
+  // window's buffer cache is keyed by array) and shows exactly what a fresh
+  // preparation of the new mesh holds, even with another number of triangles.
+  auto chunks = splitChunks(sphereMesh(40), 16, 39);
+  auto bigger = splitChunks(sphereMesh(46), 16, 45);
+  vtkNew<vtkRenderer> ren;
+  vtkNew<vtkChunkActorManager> mgr;
+  mgr->SetRenderer(ren);
+  int compared = 0;
+  for (auto& kv : chunks)
+  {
+    if (!bigger.count(kv.first))
+      continue;
+    mgr->SetChunk(kv.first, kv.second);
+    auto* shown = vtkPolyData::SafeDownCast(mgr->GetChunkActor(kv.first)->GetMapper()->GetInputDataObject(0, 0));
+    ASSERT_NE(shown, nullptr);
+    std::vector<vtkAbstractArray*> arrays{ shown->GetPoints()->GetData() };
+    for (int k = 0; k < shown->GetPointData()->GetNumberOfArrays(); ++k)
+      arrays.push_back(shown->GetPointData()->GetAbstractArray(k));
+    const vtkMTimeType mtime = shown->GetMTime();
+    std::vector<vtkMTimeType> arrayTimes;
+    for (vtkAbstractArray* a : arrays)
+      arrayTimes.push_back(a->GetMTime());
+    vtkPolyData* next = bigger[kv.first];
+    mgr->SetChunk(kv.first, next);
+    auto* now = vtkPolyData::SafeDownCast(mgr->GetChunkActor(kv.first)->GetMapper()->GetInputDataObject(0, 0));
+    EXPECT_EQ(now, shown);
+    EXPECT_GT(now->GetMTime(), mtime);
+    EXPECT_EQ(now->GetPoints()->GetData(), arrays[0]);
+    for (std::size_t k = 0; k < arrays.size(); ++k)
+      EXPECT_GT(arrays[k]->GetMTime(), arrayTimes[k]) << "array " << k << " not marked modified: its buffer would not be re-uploaded";
+    for (int k = 0; k < now->GetPointData()->GetNumberOfArrays(); ++k)
+      EXPECT_EQ(now->GetPointData()->GetAbstractArray(k), arrays[static_cast<std::size_t>(k) + 1]);
+    vtkSmartPointer<vtkPolyData> fresh = mgr->PrepareChunk(next);
+    EXPECT_EQ(differsFrom(now, fresh), "") << "chunk " << kv.first;
+    ++compared;
+  }
+  EXPECT_GE(compared, 8);
+}
+
+TEST(ChunkActorManager, SetChunksEqualsSetChunkOneByOne)
+{
+  // the parallel path shows, chunk by chunk, what SetChunk shows, and declares
+  // the same changed boxes to a culler
+  auto first = splitChunks(sphereMesh(40), 16, 39);
+  auto second = splitChunks(sphereMesh(46), 16, 45);
+  vtkNew<vtkRenderer> r1, r2;
+  vtkNew<vtkChunkActorManager> one, many;
+  one->SetRenderer(r1);
+  many->SetRenderer(r2);
+  vtkNew<vtkPartialRedrawCuller> c1, c2;
+  c1->SetEnabled(true);
+  c2->SetEnabled(true);
+  one->SetRedrawCuller(c1);
+  many->SetRedrawCuller(c2);
+  for (auto* step : { &first, &second })
+  {
+    std::vector<vtkIdType> ids;
+    std::vector<vtkPolyData*> meshes;
+    for (auto& kv : *step)
+    {
+      one->SetChunk(kv.first, kv.second);
+      ids.push_back(kv.first);
+      meshes.push_back(kv.second);
+    }
+    many->SetChunks(ids, meshes);
+  }
+  ASSERT_EQ(one->GetNumberOfChunks(), many->GetNumberOfChunks());
+  EXPECT_EQ(one->GetNumberOfChunkUpdates(), many->GetNumberOfChunkUpdates());
+  for (auto& kv : second)
+  {
+    auto* a = vtkPolyData::SafeDownCast(one->GetChunkActor(kv.first)->GetMapper()->GetInputDataObject(0, 0));
+    auto* b = vtkPolyData::SafeDownCast(many->GetChunkActor(kv.first)->GetMapper()->GetInputDataObject(0, 0));
+    ASSERT_TRUE(a && b);
+    EXPECT_EQ(differsFrom(a, b), "") << "chunk " << kv.first;
+  }
 }
 
 TEST(ChunkActorManager, PlainMeshesKeepTheirPoints)
