@@ -228,6 +228,8 @@ std::unique_ptr<Engine> makeEngine(const MeshToSdfPrepared& prepared, const Grid
   const double bw = static_cast<double>(band) / e->toOut;
   e->bandWorld2 = std::isfinite(bw) ? bw * bw * (1 + 1e-9) : 1e300;
   double lazy = 0; // only what this call had to build (timed inside)
+  // the records' pseudo-normals: read only by these signs (CPU and GPU alike)
+  if (opts.sign == SignMode::Normal || opts.sign == SignMode::PseudoNormal) impl.pseudoNormals(lazy);
   if (device == Device::Cpu && opts.accel == MeshToSdfAccel::Bvh)
   {
     e->index = &impl.nearestIndex(lazy);
@@ -872,13 +874,17 @@ MeshToSdfStats meshToSdf(const MeshToSdfPrepared& mesh, DictionaryVolume& volume
   return stats;
 }
 
-/// prepareMeshToSdf; the winding structures only when `winding` (otherwise
-/// built on first use: on CUDA while the GPU computes distances).
-static MeshToSdfPrepared prepareInternal(const TriangleMesh& mesh, bool winding)
+/// prepareMeshToSdf; the winding structures only when sign is WindingNumber
+/// (otherwise built on first use: on CUDA while the GPU computes distances).
+/// The pseudo-normals only when `sign` reads them (Normal, PseudoNormal): the
+/// others (e.g. the GPU's winding-number path) skip that work; a later call
+/// with such a sign builds them then (Impl::pseudoNormals).
+static MeshToSdfPrepared prepareInternal(const TriangleMesh& mesh, SignMode sign)
 {
+  const bool winding = sign == SignMode::WindingNumber;
   const double t0 = now();
   auto impl = std::make_shared<MeshToSdfPrepared::Impl>();
-  impl->mesh = prepareMesh(mesh);
+  impl->mesh = prepareMesh(mesh, sign == SignMode::Normal || sign == SignMode::PseudoNormal);
   const double t2 = now();
   // the search structures are built on first use: the CPU's NearestIndex by
   // makeEngine, the GPU's Bvh by deviceMesh (each path needs only its own)
@@ -896,7 +902,7 @@ MeshToSdfStats prepareAndRun(const TriangleMesh& mesh, Out&& out, const MeshToSd
   Interrupter& interrupter)
 {
   const PhaseTraceScope tracing(options.tracePhases);
-  const MeshToSdfPrepared prepared = prepareInternal(mesh, false);
+  const MeshToSdfPrepared prepared = prepareInternal(mesh, options.sign);
   MeshToSdfStats stats = meshToSdf(prepared, std::forward<Out>(out), options, interrupter);
   stats.buildSeconds += prepared.prepareSeconds();
   return stats;
@@ -906,7 +912,7 @@ MeshToSdfStats meshToSdf(const TriangleMesh& mesh, const GridGeometry& grid, con
   const MeshToSdfOptions& options, Interrupter& interrupter)
 {
   const PhaseTraceScope tracing(options.tracePhases);
-  const MeshToSdfPrepared prepared = prepareInternal(mesh, false);
+  const MeshToSdfPrepared prepared = prepareInternal(mesh, options.sign);
   MeshToSdfStats stats = meshToSdf(prepared, grid, extent, out, options, interrupter);
   stats.buildSeconds += prepared.prepareSeconds();
   return stats;
@@ -926,7 +932,7 @@ MeshToSdfStats meshToSdf(const TriangleMesh& mesh, DictionaryVolume& volume, con
 
 MeshToSdfPrepared prepareMeshToSdf(const TriangleMesh& mesh, SignMode sign)
 {
-  return prepareInternal(mesh, sign == SignMode::WindingNumber);
+  return prepareInternal(mesh, sign);
 }
 
 

@@ -46,12 +46,21 @@ struct PreparedMesh
   std::vector<std::array<V3, 2>> boundary;
   /// Per triangle of tris: its corners' vertex ids, welded by exact position.
   std::vector<std::array<std::uint32_t, 3>> welded;
+  std::size_t vertices = 0; // welded vertices (ids in [0, vertices))
   double lo[3] = { 0, 0, 0 }, hi[3] = { 0, 0, 0 }; // bounds of the kept triangles
+  /// Whether the records' pseudo-normals (Tri::en, Tri::vn) are filled: only
+  /// the Normal/PseudoNormal signs read them (featureNormal, far blocks).
+  bool pseudoNormals = false;
 };
 
-/// Validates the mesh and builds the triangle records, the pseudo-normals
-/// (vertices welded by exact position) and the boundary chain.
-PreparedMesh prepareMesh(const TriangleMesh& mesh);
+/// Validates the mesh and builds the triangle records (vertices welded by
+/// exact position), the boundary chain and, when `pseudoNormals`, the
+/// pseudo-normals (else left zero, for addPseudoNormals).
+PreparedMesh prepareMesh(const TriangleMesh& mesh, bool pseudoNormals = true);
+/// Fills the pseudo-normals of a mesh prepared without them, bit for bit as
+/// prepareMesh(mesh, true) does; nothing if they are there. Writes only
+/// Tri::en and Tri::vn (readers of other fields may run meanwhile).
+void addPseudoNormals(PreparedMesh& mesh);
 
 struct NearestResult
 {
@@ -285,6 +294,9 @@ struct MeshToSdfPrepared::Impl
   const detail::meshtosdf::Bvh& farTree(const std::vector<detail::meshtosdf::FarCone>*& cones, double& seconds);
   /// The winding-number structures, built on first use (seconds added).
   const detail::meshtosdf::WindingSigner& windingSigner(double& seconds);
+  /// The records' pseudo-normals, built on first use (seconds added; under
+  /// Lock): by every call whose sign reads them (Normal, PseudoNormal).
+  void pseudoNormals(double& seconds);
   /// Whether the winding-number structures are built already.
   bool hasWindingSigner();
   /// The mesh (and, when asked, the winding structures) on the GPU, uploaded

@@ -12,6 +12,7 @@
 #include <atomic>
 #include <cmath>
 #include <cstring>
+#include <functional>
 #include <limits>
 #include <memory>
 
@@ -146,12 +147,135 @@ double angleAt(V3 p, V3 q, V3 r) // angle at p of triangle p q r
   c = c > 1 ? 1 : (c < -1 ? -1 : c);
   return std::acos(c);
 }
+
+/// Per welded vertex: the sum of its corners' angle-weighted face normals,
+/// in triangle order (deterministic): each thread owns a range of vertices
+/// and adds only to those.
+std::vector<V3> vertexNormalSums(const PreparedMesh& out, std::size_t nv,
+  const std::vector<std::array<double, 3>>& angles)
+{
+  std::vector<V3> vertexNormal;
+  resizeLarge(vertexNormal, nv);
+  const std::size_t n = out.tris.size();
+  ownerParts(nv, [&](std::size_t lo, std::size_t hi) {
+    for (std::size_t t = 0; t < n; ++t)
+    {
+      for (int k = 0; k < 3; ++k)
+      {
+        const std::size_t v = out.welded[t][k];
+        if (v - lo < hi - lo) vertexNormal[v] = vertexNormal[v] + angles[t][k] * out.tris[t].n;
+      }
+    }
+  });
+  return vertexNormal;
+}
+
+/// Edges grouped by their smaller welded vertex: entry = (larger vertex,
+/// corner (t, k) whose edge goes w[k] -> w[k+1]), each group then sorted, so
+/// that an edge's corners are consecutive, in triangle order. Then per
+/// vertex: the distinct edges, their summed normals (triangle order, written
+/// to en when `normals`) and oriented multiplicities (the boundary chain when
+/// weldPos is given); boundary edges collected per vertex, then in vertex
+/// order so the chain does not depend on the threads.
+void edgePass(PreparedMesh& out, std::size_t nv, const std::vector<V3>* weldPos, bool normals,
+  const std::function<void(const char*)>& lap)
+{
+  const std::size_t n = out.tris.size();
+  const auto& welded = out.welded;
+  std::vector<std::uint32_t> start;
+  std::vector<std::uint64_t> corners = bucketCorners<std::uint64_t>(n, nv, start,
+    [&](std::uint32_t c) {
+      const auto& w = welded[c / 3];
+      return std::min(w[c % 3], w[(c % 3 + 1) % 3]);
+    },
+    [&](std::uint32_t c) {
+      const auto& w = welded[c / 3];
+      return static_cast<std::uint64_t>(std::max(w[c % 3], w[(c % 3 + 1) % 3])) << 32 | c;
+    });
+  lap("prepare: edge grouping");
+
+  const bool boundary = weldPos != nullptr;
+  std::vector<std::vector<std::array<V3, 2>>> boundaryOf(boundary ? nv : 0);
+  std::vector<double> lengthOf(boundary ? nv : 0, 0);
+  std::vector<std::uint32_t> edgesOf(boundary ? nv : 0, 0);
+  const std::int64_t nvI = static_cast<std::int64_t>(nv);
+#pragma omp parallel for schedule(dynamic, 256)
+  for (std::int64_t v = 0; v < nvI; ++v)
+  {
+    const std::uint32_t b0 = start[v], b1 = start[v + 1];
+    std::sort(corners.begin() + b0, corners.begin() + b1);
+    for (std::uint32_t e = b0; e < b1;)
+    {
+      const std::uint32_t hiE = static_cast<std::uint32_t>(corners[e] >> 32);
+      std::uint32_t e1 = e;
+      V3 en;
+      int mult = 0;
+      for (; e1 < b1 && static_cast<std::uint32_t>(corners[e1] >> 32) == hiE; ++e1)
+      {
+        const std::uint32_t cf = static_cast<std::uint32_t>(corners[e1]);
+        if (normals) en = en + out.tris[cf / 3].n;
+        mult += welded[cf / 3][cf % 3] < hiE ? 1 : -1; // a -> b with a < b counts +1
+      }
+      if (normals)
+      {
+        const V3 enu = normalized(en);
+        for (std::uint32_t f = e; f < e1; ++f)
+        {
+          const std::uint32_t cf = static_cast<std::uint32_t>(corners[f]);
+          out.tris[cf / 3].en[cf % 3] = enu; // each corner is in exactly one list
+        }
+      }
+      e = e1;
+      if (boundary && mult != 0)
+      {
+        const V3 a = (*weldPos)[v], b = (*weldPos)[hiE];
+        lengthOf[v] += std::abs(mult) * norm(b - a);
+        ++edgesOf[v];
+        for (int k = 0; k < std::abs(mult); ++k)
+        {
+          // key (lo, hi) with positive multiplicity means lo -> hi
+          boundaryOf[v].push_back(mult > 0 ? std::array<V3, 2>{ a, b } : std::array<V3, 2>{ b, a });
+        }
+      }
+    }
+  }
+  if (boundary)
+  {
+    for (std::size_t v = 0; v < nv; ++v)
+    {
+      out.boundaryLength += lengthOf[v];
+      out.boundaryEdges += edgesOf[v];
+      out.boundary.insert(out.boundary.end(), boundaryOf[v].begin(), boundaryOf[v].end());
+    }
+  }
+  lap(boundary ? "prepare: edges and boundary" : "prepare: edge normals");
+}
+
+/// vn from the vertex sums; a pseudo-normal that cancels (e.g. a face and its
+/// flipped duplicate) falls back to the face normal: the sign there is
+/// ambiguous anyway.
+void finishPseudoNormals(PreparedMesh& out, const std::vector<V3>& vertexNormal)
+{
+  const std::int64_t nI = static_cast<std::int64_t>(out.tris.size());
+#pragma omp parallel for schedule(static)
+  for (std::int64_t t = 0; t < nI; ++t)
+  {
+    Tri& tri = out.tris[t];
+    for (int k = 0; k < 3; ++k)
+    {
+      tri.vn[k] = normalized(vertexNormal[out.welded[t][k]]);
+      if (dot(tri.vn[k], tri.vn[k]) == 0) tri.vn[k] = tri.n;
+      if (dot(tri.en[k], tri.en[k]) == 0) tri.en[k] = tri.n;
+    }
+  }
+  out.pseudoNormals = true;
+}
 } // namespace
 
-PreparedMesh prepareMesh(const TriangleMesh& mesh)
+PreparedMesh prepareMesh(const TriangleMesh& mesh, bool pseudoNormals)
 {
   double tp = now(); // sub-phase times on the trace (tracePhases)
-  auto lap = [&tp](const char* what) {
+  const std::function<void(const char*)> lap = [&tp](const char* what) {
     const double t = now();
     trace(what, t - tp);
     tp = t;
@@ -164,6 +288,7 @@ PreparedMesh prepareMesh(const TriangleMesh& mesh)
   // surface's topology even in a soup with duplicated points.
   std::vector<std::uint32_t> weld, firstOf;
   const std::size_t nv = weldPoints(mesh.points, weld, firstOf);
+  out.vertices = nv;
   auto toV3 = [](const Vec3f& p) { return V3{ p[0], p[1], p[2] }; };
   std::vector<V3> weldPos;
   resizeLarge(weldPos, nv);
@@ -195,10 +320,9 @@ PreparedMesh prepareMesh(const TriangleMesh& mesh)
   // the records (328 bytes each: 273 MB for 832k triangles) are first
   // touched by resize(), serially: huge pages make that 512x fewer faults
   resizeLarge(out.tris, n);
-  std::vector<std::array<std::uint32_t, 3>> welded;
+  resizeLarge(out.welded, n);
   std::vector<std::array<double, 3>> keptAngles;
-  resizeLarge(welded, n);
-  resizeLarge(keptAngles, n);
+  if (pseudoNormals) resizeLarge(keptAngles, n);
   lap("prepare: records allocated");
   // bounds of the kept triangles on the way: min/max are exact, so the
   // parallel reduction gives the same values
@@ -223,11 +347,14 @@ PreparedMesh prepareMesh(const TriangleMesh& mesh)
         tri.nv[k] = normalized(toV3(mesh.normals[ix[k]]));
       }
     }
-    for (int k = 0; k < 3; ++k)
+    if (pseudoNormals)
     {
-      keptAngles[o][k] = angleAt(tri.v[k], tri.v[(k + 1) % 3], tri.v[(k + 2) % 3]);
+      for (int k = 0; k < 3; ++k)
+      {
+        keptAngles[o][k] = angleAt(tri.v[k], tri.v[(k + 1) % 3], tri.v[(k + 2) % 3]);
+      }
     }
-    welded[o] = { weld[ix[0]], weld[ix[1]], weld[ix[2]] };
+    out.welded[o] = { weld[ix[0]], weld[ix[1]], weld[ix[2]] };
     for (const V3& v : tri.v)
     {
       lx = std::min(lx, v.x), ly = std::min(ly, v.y), lz = std::min(lz, v.z);
@@ -238,109 +365,45 @@ PreparedMesh prepareMesh(const TriangleMesh& mesh)
   out.hi[0] = hx, out.hi[1] = hy, out.hi[2] = hz;
   lap("prepare: triangle records");
 
-  // vertex pseudo-normals, summed in triangle order (deterministic): each
-  // thread owns a range of vertices and adds only to those
   std::vector<V3> vertexNormal;
-  resizeLarge(vertexNormal, nv);
-  ownerParts(nv, [&](std::size_t lo, std::size_t hi) {
-    for (std::size_t t = 0; t < n; ++t)
-    {
-      for (int k = 0; k < 3; ++k)
-      {
-        const std::size_t v = welded[t][k];
-        if (v - lo < hi - lo) vertexNormal[v] = vertexNormal[v] + keptAngles[t][k] * out.tris[t].n;
-      }
-    }
-  });
-
-  lap("prepare: vertex normals");
-
-  // Edges grouped by their smaller welded vertex: entry = (larger vertex,
-  // corner (t, k) whose edge goes w[k] -> w[k+1]), each group then sorted,
-  // so that an edge's corners are consecutive, in triangle order.
-  std::vector<std::uint32_t> start;
-  std::vector<std::uint64_t> corners = bucketCorners<std::uint64_t>(n, nv, start,
-    [&](std::uint32_t c) {
-      const auto& w = welded[c / 3];
-      return std::min(w[c % 3], w[(c % 3 + 1) % 3]);
-    },
-    [&](std::uint32_t c) {
-      const auto& w = welded[c / 3];
-      return static_cast<std::uint64_t>(std::max(w[c % 3], w[(c % 3 + 1) % 3])) << 32 | c;
-    });
-
-  lap("prepare: edge grouping");
-
-  // per vertex: the distinct edges, their summed normals (triangle order) and
-  // oriented multiplicities; boundary edges collected per vertex, then in
-  // vertex order so the chain does not depend on the threads
-  std::vector<std::vector<std::array<V3, 2>>> boundaryOf(nv);
-  std::vector<double> lengthOf(nv, 0);
-  std::vector<std::uint32_t> edgesOf(nv, 0);
-  const std::int64_t nvI = static_cast<std::int64_t>(nv);
-#pragma omp parallel for schedule(dynamic, 256)
-  for (std::int64_t v = 0; v < nvI; ++v)
+  if (pseudoNormals)
   {
-    const std::uint32_t b0 = start[v], b1 = start[v + 1];
-    std::sort(corners.begin() + b0, corners.begin() + b1);
-    for (std::uint32_t e = b0; e < b1;)
-    {
-      const std::uint32_t hiE = static_cast<std::uint32_t>(corners[e] >> 32);
-      std::uint32_t e1 = e;
-      V3 en;
-      int mult = 0;
-      for (; e1 < b1 && static_cast<std::uint32_t>(corners[e1] >> 32) == hiE; ++e1)
-      {
-        const std::uint32_t cf = static_cast<std::uint32_t>(corners[e1]);
-        en = en + out.tris[cf / 3].n;
-        mult += welded[cf / 3][cf % 3] < hiE ? 1 : -1; // a -> b with a < b counts +1
-      }
-      const V3 enu = normalized(en);
-      for (std::uint32_t f = e; f < e1; ++f)
-      {
-        const std::uint32_t cf = static_cast<std::uint32_t>(corners[f]);
-        out.tris[cf / 3].en[cf % 3] = enu; // each corner is in exactly one list
-      }
-      e = e1;
-      if (mult != 0)
-      {
-        const V3 a = weldPos[v], b = weldPos[hiE];
-        lengthOf[v] += std::abs(mult) * norm(b - a);
-        ++edgesOf[v];
-        for (int k = 0; k < std::abs(mult); ++k)
-        {
-          // key (lo, hi) with positive multiplicity means lo -> hi
-          boundaryOf[v].push_back(mult > 0 ? std::array<V3, 2>{ a, b } : std::array<V3, 2>{ b, a });
-        }
-      }
-    }
+    vertexNormal = vertexNormalSums(out, nv, keptAngles);
+    lap("prepare: vertex normals");
   }
-  for (std::size_t v = 0; v < nv; ++v)
+  edgePass(out, nv, &weldPos, pseudoNormals, lap);
+  if (pseudoNormals)
   {
-    out.boundaryLength += lengthOf[v];
-    out.boundaryEdges += edgesOf[v];
-    out.boundary.insert(out.boundary.end(), boundaryOf[v].begin(), boundaryOf[v].end());
+    finishPseudoNormals(out, vertexNormal);
+    lap("prepare: pseudo-normals");
   }
+  return out;
+}
 
-  lap("prepare: edges and boundary");
-  const std::int64_t nI = static_cast<std::int64_t>(n);
+void addPseudoNormals(PreparedMesh& out)
+{
+  if (out.pseudoNormals) return;
+  double tp = now();
+  const std::function<void(const char*)> lap = [&tp](const char* what) {
+    const double t = now();
+    trace(what, t - tp);
+    tp = t;
+  };
+  // the corner angles as prepareMesh computes them (from the same vertices)
+  std::vector<std::array<double, 3>> angles;
+  resizeLarge(angles, out.tris.size());
+  const std::int64_t nI = static_cast<std::int64_t>(out.tris.size());
 #pragma omp parallel for schedule(static)
   for (std::int64_t t = 0; t < nI; ++t)
   {
-    Tri& tri = out.tris[t];
-    for (int k = 0; k < 3; ++k)
-    {
-      tri.vn[k] = normalized(vertexNormal[welded[t][k]]);
-      // a pseudo-normal that cancels (e.g. a face and its flipped duplicate)
-      // falls back to the face normal: the sign there is ambiguous anyway
-      if (dot(tri.vn[k], tri.vn[k]) == 0) tri.vn[k] = tri.n;
-      if (dot(tri.en[k], tri.en[k]) == 0) tri.en[k] = tri.n;
-    }
+    const Tri& tri = out.tris[t];
+    for (int k = 0; k < 3; ++k) angles[t][k] = angleAt(tri.v[k], tri.v[(k + 1) % 3], tri.v[(k + 2) % 3]);
   }
-
-  out.welded = std::move(welded);
+  const std::vector<V3> vertexNormal = vertexNormalSums(out, out.vertices, angles);
+  lap("prepare: vertex normals");
+  edgePass(out, out.vertices, nullptr, true, lap);
+  finishPseudoNormals(out, vertexNormal);
   lap("prepare: pseudo-normals");
-  return out;
 }
 
 } // namespace detail::meshtosdf

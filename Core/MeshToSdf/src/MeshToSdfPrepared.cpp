@@ -97,6 +97,16 @@ const WindingSigner& MeshToSdfPrepared::Impl::windingSigner(double& seconds)
   return *this->Winding;
 }
 
+void MeshToSdfPrepared::Impl::pseudoNormals(double& seconds)
+{
+  std::lock_guard<std::mutex> lock(this->Lock);
+  if (this->mesh.pseudoNormals) return;
+  const double t0 = now();
+  addPseudoNormals(this->mesh);
+  seconds += now() - t0;
+  trace("pseudo-normals (first Normal/PseudoNormal call)", now() - t0);
+}
+
 bool MeshToSdfPrepared::Impl::hasWindingSigner()
 {
   std::lock_guard<std::mutex> lock(this->Lock);

@@ -334,7 +334,10 @@ TEST(MeshToSdf, EveryStageReportsItsEndBeforeTheNextBegins)
 TEST(MeshToSdf, PreparedMeshEqualsOneCallAndIsNeverStale)
 {
   // a holed sphere (open: boundary cone) checked against the oracle, then the
-  // prepared path against it bit for bit, before and after editing the mesh
+  // prepared path against it bit for bit, before and after editing the mesh;
+  // prepared for Unsigned, the pseudo-normals are built by the first
+  // PseudoNormal call (after the winding structures), and must be those of
+  // the one-call path, which prepares them at once
   TriangleMesh m = makeSphereMesh(0.1f, 0.0f, -0.05f, 1.0f, 12, 24);
   m.triangles.erase(m.triangles.begin(), m.triangles.begin() + 24);
   const GridGeometry g = fitGridToMesh(m, 24, 2);

@@ -2,7 +2,7 @@
 // plain serial reference written here (welding by a std::map in order of
 // first appearance, pseudo-normals and edge normals summed in triangle order,
 // the boundary chain by net edge multiplicity), bit for bit, with 1 and 4
-// threads; the Bvh (boxes bottom-up) and NearestIndex the same for any
+// threads, also when the pseudo-normals are added later (addPseudoNormals); the Bvh (boxes bottom-up) and NearestIndex the same for any
 // thread count and exact against brute force; a closed mesh's winding
 // closure shares the mesh's tree.
 #include "../src/MeshToSdfInternal.h"
@@ -150,6 +150,36 @@ TEST(MeshToSdfBuild, PrepareMeshEqualsASerialReferenceOnAnyThreadCount)
     EXPECT_EQ(bad, 0u) << threads;
     ASSERT_EQ(p.boundary.size(), boundary.size()) << threads;
     EXPECT_EQ(std::memcmp(p.boundary.data(), boundary.data(), boundary.size() * sizeof(boundary[0])), 0) << threads;
+    EXPECT_TRUE(p.pseudoNormals);
+
+    // prepared without the pseudo-normals (the WindingNumber/Unsigned route):
+    // the same records but for en/vn (left zero), the same boundary; then
+    // addPseudoNormals (on another thread count) makes every record the above
+    PreparedMesh lean = withThreads(threads, [&] { return prepareMesh(m, false); });
+    EXPECT_FALSE(lean.pseudoNormals);
+    EXPECT_EQ(lean.welded, w) << threads;
+    EXPECT_EQ(lean.boundary.size(), p.boundary.size());
+    EXPECT_EQ(std::memcmp(lean.boundary.data(), boundary.data(), boundary.size() * sizeof(boundary[0])), 0) << threads;
+    EXPECT_EQ(lean.boundaryLength, p.boundaryLength);
+    std::size_t leanBad = 0;
+    for (std::size_t t = 0; t < w.size(); ++t)
+    {
+      const Tri &a = lean.tris[t], &b = p.tris[t];
+      leanBad += std::memcmp(a.v, b.v, sizeof(a.v)) != 0 || !sameBits(a.n, b.n) || a.area != b.area || a.source != b.source ||
+        std::memcmp(a.nv, b.nv, sizeof(a.nv)) != 0;
+      for (int k = 0; k < 3; ++k) leanBad += !sameBits(a.en[k], V3{}) || !sameBits(a.vn[k], V3{});
+    }
+    EXPECT_EQ(leanBad, 0u) << threads;
+    withThreads(5 - threads, [&] { return addPseudoNormals(lean), 0; });
+    EXPECT_TRUE(lean.pseudoNormals);
+    std::size_t lazyBad = 0;
+    for (std::size_t t = 0; t < w.size(); ++t)
+    {
+      const Tri &a = lean.tris[t], &b = p.tris[t];
+      lazyBad += std::memcmp(a.en, b.en, sizeof(a.en)) != 0 || std::memcmp(a.vn, b.vn, sizeof(a.vn)) != 0 ||
+        std::memcmp(a.v, b.v, sizeof(a.v)) != 0 || !sameBits(a.n, b.n);
+    }
+    EXPECT_EQ(lazyBad, 0u) << threads;
   }
 }
 

@@ -4,8 +4,10 @@
 // dipole tree) and the CPU's NearestIndex; the median of REPEATS runs each,
 // and a hash of what each phase built (equal hashes: the same structure, e.g.
 // for two thread counts or two versions of the code run back to back).
+// prepare also times prepareMesh without the pseudo-normals (what the
+// WindingNumber and Unsigned signs build) and addPseudoNormals after it.
 // usage: bench_mesh_to_sdf_build [DAMAGE:]MESH [REPEATS=3] [PHASES=prepare,bvh,winding,gpuhost,nearest,touch]
-// (gpuhost: the three host builds of the one-call CUDA path in a row; touch:
+// (gpuhost: the three host builds of the one-call CUDA WindingNumber path in a row; touch:
 // the first touch of 256 MB of fresh memory by 1 thread, by all, and by one
 // with transparent huge pages asked for)
 // (DAMAGE as in bench_mesh_to_sdf, e.g. sub2:armadillo.off for 832k triangles)
@@ -145,6 +147,16 @@ int main(int argc, char** argv)
       PreparedMesh x;
       const double ms = medianBuildMs(repeats, [&] { x = PreparedMesh(); }, [&] { x = prepareMesh(mesh); });
       rows.push_back({ "prepareMesh", bench::fmt(ms, 1), hashPrepared(x) });
+      // what the WindingNumber and Unsigned signs prepare (no pseudo-normals),
+      // and the pseudo-normals added later (first Normal/PseudoNormal call):
+      // the hash must then be prepareMesh's
+      const double msLean = medianBuildMs(repeats, [&] { x = PreparedMesh(); }, [&] { x = prepareMesh(mesh, false); });
+      rows.push_back({ "prepareMesh without pseudo-normals", bench::fmt(msLean, 1), hashPrepared(x) });
+      std::vector<PreparedMesh> lean(static_cast<std::size_t>(repeats));
+      for (PreparedMesh& l : lean) l = prepareMesh(mesh, false);
+      std::size_t next = 0;
+      const double msAdd = medianBuildMs(repeats, [] {}, [&] { addPseudoNormals(lean[next++]); });
+      rows.push_back({ "  then addPseudoNormals", bench::fmt(msAdd, 1), hashPrepared(lean.back()) });
     }
     if (wants("bvh"))
     {
@@ -169,12 +181,19 @@ int main(int argc, char** argv)
       std::shared_ptr<const Bvh> b;
       std::unique_ptr<WindingSigner> w;
       const double ms = medianBuildMs(repeats, [&] { w.reset(), b.reset(), x = PreparedMesh(); }, [&] {
-        x = prepareMesh(mesh);
+        x = prepareMesh(mesh, false); // a WindingNumber call prepares no pseudo-normals
         b = std::make_shared<const Bvh>(x.tris);
         w = std::make_unique<WindingSigner>(x, b);
       });
       rows.push_back({ "GPU path host build (prepareMesh + Bvh + WindingSigner)", bench::fmt(ms, 1),
         hashBvh(*w->cpuClosure().bvh) });
+      // the same with the pseudo-normals built too (as every call did before): the ratio in one run
+      const double msFull = medianBuildMs(repeats, [&] { w.reset(), b.reset(), x = PreparedMesh(); }, [&] {
+        x = prepareMesh(mesh, true);
+        b = std::make_shared<const Bvh>(x.tris);
+        w = std::make_unique<WindingSigner>(x, b);
+      });
+      rows.push_back({ "  the same with the pseudo-normals (before)", bench::fmt(msFull, 1), hashBvh(*w->cpuClosure().bvh) });
     }
     if (wants("nearest"))
     {
