@@ -3,9 +3,10 @@
 // classified as classifyFarCells does on the CPU, by the same functions
 // (MeshToSdfFarBlocks.h, docs/MESH_TO_SDF.md "Far blocks") in two launches:
 // one thread per block tries it whole and keeps its state (candidate list)
-// for its halves, then one thread per half tries the half, its cells and
-// their voxels. The distance kernel then writes +-band for the decided voxels
-// without a query.
+// for its halves, listing the blocks it leaves undecided; then one CUDA block
+// of 64 threads per listed block: 8 threads try its halves (states in shared
+// memory), then one thread per cell tries the cell and its voxels. The
+// distance kernel then writes +-band for the decided voxels without a query.
 #pragma once
 
 #include "MeshToSdfCudaKernels.cuh"
@@ -56,10 +57,12 @@ __device__ FarSlab farSlab(const DevBvh& bvh, const Params& P, double big, signe
 }
 
 /// One thread per FarBlock^3 block of the slab: its own test (farTryBox);
-/// its state, for the halves, in states[block]. The cells (sign, mask) are
-/// cleared before. At most 128 registers, as farHalfKernel.
+/// its state, for the halves, in states[block], and the block appended to
+/// undecided (work[0]: their count) when the test leaves it so. The cells
+/// (sign, mask) and work are cleared before. At most 128 registers.
 __global__ void __launch_bounds__(128, 4) farBlockKernel(DevBvh bvh, const FarCone* cones, Params P, double margin, double big,
-  signed char* sign, unsigned char* mask, FarState* states, unsigned long long* decided)
+  signed char* sign, unsigned char* mask, FarState* states, long long* undecided, unsigned long long* work,
+  unsigned long long* decided)
 {
   const FarSlab f = farSlab(bvh, P, big, sign, mask);
   const long long mx = (f.n[0] + FarBlock - 1) / FarBlock, my = (f.n[1] + FarBlock - 1) / FarBlock,
@@ -83,28 +86,41 @@ __global__ void __launch_bounds__(128, 4) farBlockKernel(DevBvh bvh, const FarCo
   FarState& st = states[b];
   f.boxOf(o, FarBlock, st.box);
   const int s = farTryBox(bvh.nodes, cones, triAt, nearest, pseudo, P.bandWorld, margin, big, nullptr, st);
-  if (s == 0) return;
+  if (s == 0)
+  {
+    undecided[atomicAdd(work, 1ull)] = b;
+    return;
+  }
   const long long count = farFill(o, FarBlock, f.n, s, [&](const long long c[3], int sd, int m) { f.set(c, sd, m); });
   atomicAdd(decided, static_cast<unsigned long long>(count));
 }
 
-/// One thread per half (FarBlock / 2)^3 of a block farBlockKernel left
-/// undecided: farClassifyHalf from the block's state. At most 128 registers
-/// (4 blocks of 128 threads per SM, as the old per-level kernel had; 166
-/// uncapped).
-__global__ void __launch_bounds__(128, 4) farHalfKernel(DevBvh bvh, const FarCone* cones, Params P, double margin, double big,
-  signed char* sign, unsigned char* mask, const FarState* states, unsigned long long* decided)
+/// Threads per CUDA block of farCellKernel: one per cell of a FarBlock^3 block.
+constexpr int FarCellThreads = 64;
+static_assert(FarCellThreads == 8 * 8 && FarBlock == 4 * FarCell, "8 halves of 8 cells each");
+
+/// The blocks farBlockKernel left undecided (undecided[0, work[0])), one per
+/// CUDA block of 64 threads at a time, taken in turn (work[1]: the next) so
+/// that a grid sized to the GPU needs no count on the host: threads 0-7 try
+/// half t from the block's state, keeping the half's state in shared memory;
+/// then thread t takes cell t % 8 of half t / 8 left undecided, with its
+/// voxels (farClassifyCell). The same functions as the CPU's farClassifyHalf,
+/// spread over threads (a thread per half did 8 cells and 64 voxels one after
+/// the other, beside threads of decided blocks with nothing to do). At most
+/// 128 registers, as farBlockKernel.
+__global__ void __launch_bounds__(FarCellThreads, 8) farCellKernel(DevBvh bvh, const FarCone* cones, Params P, double margin,
+  double big, signed char* sign, unsigned char* mask, const FarState* states, const long long* undecided,
+  unsigned long long* work, unsigned long long* decided)
 {
   constexpr long long Half = FarBlock / 2;
+  // FarState has default initialisers, which __shared__ forbids: raw storage,
+  // every field read below written by boxOf and farTryBox first
+  __shared__ alignas(FarState) unsigned char raw[8 * sizeof(FarState)];
+  __shared__ int halfSide[8];
+  __shared__ long long current;
+  FarState* halves = reinterpret_cast<FarState*>(raw);
   const FarSlab f = farSlab(bvh, P, big, sign, mask);
-  const long long hx = (f.n[0] + Half - 1) / Half, hy = (f.n[1] + Half - 1) / Half, hz = (f.n[2] + Half - 1) / Half;
-  const long long h = static_cast<long long>(blockIdx.x) * blockDim.x + threadIdx.x;
-  if (h >= hx * hy * hz) return;
-  const long long o[3] = { (h % hx) * Half, ((h / hx) % hy) * Half, (h / (hx * hy)) * Half };
-  // decided with its block: the block filled every cell
-  if (sign[o[0] / FarCell + f.cx * (o[1] / FarCell + f.cy * (o[2] / FarCell))] != 0) return;
   const long long mx = (f.n[0] + FarBlock - 1) / FarBlock, my = (f.n[1] + FarBlock - 1) / FarBlock;
-  const FarState& block = states[o[0] / FarBlock + mx * (o[1] / FarBlock + my * (o[2] / FarBlock))];
   const bool pseudo = P.sign == 1;
   auto triAt = [&](int i) -> const Tri& { return bvh.tris[bvh.order[i]]; };
   int slot = -1;
@@ -118,10 +134,53 @@ __global__ void __launch_bounds__(128, 4) farHalfKernel(DevBvh bvh, const FarCon
     r.side = farSideAt(bvh.tris[q.tri], q.closest, c, pseudo);
     return r;
   };
-  const long long count = farClassifyHalf(bvh.nodes, cones, triAt, nearest, pseudo, P.bandWorld, margin, big, block,
-    o, f.n, [&](const long long at[3], long long edge, FarBox& out) { f.boxOf(at, edge, out); },
-    [&](const long long c[3], int sd, int m) { f.set(c, sd, m); });
-  if (count > 0) atomicAdd(decided, static_cast<unsigned long long>(count));
+  auto boxOf = [&](const long long at[3], long long edge, FarBox& out) { f.boxOf(at, edge, out); };
+  auto set = [&](const long long c[3], int sd, int m) { f.set(c, sd, m); };
+  const int t = static_cast<int>(threadIdx.x);
+  unsigned long long mine = 0;
+  for (;;)
+  {
+    if (t == 0)
+    {
+      const unsigned long long k = atomicAdd(work + 1, 1ull);
+      current = k < work[0] ? undecided[k] : -1;
+    }
+    __syncthreads();
+    const long long b = current;
+    if (b < 0) break; // the same for every thread of the CUDA block
+    const long long o[3] = { (b % mx) * FarBlock, ((b / mx) % my) * FarBlock, (b / (mx * my)) * FarBlock };
+    // half h's origin; whether it lies in the slab
+    auto halfAt = [&](int h, long long o1[3]) {
+      o1[0] = o[0] + Half * (h & 1);
+      o1[1] = o[1] + Half * ((h >> 1) & 1);
+      o1[2] = o[2] + Half * (h >> 2);
+      return o1[0] < f.n[0] && o1[1] < f.n[1] && o1[2] < f.n[2];
+    };
+    long long o1[3];
+    if (t < 8)
+    {
+      halfSide[t] = 0;
+      if (halfAt(t, o1))
+      {
+        FarState& s1 = halves[t];
+        boxOf(o1, Half, s1.box);
+        const int r1 = farTryBox(bvh.nodes, cones, triAt, nearest, pseudo, P.bandWorld, margin, big, &states[b], s1);
+        if (r1 != 0) mine += static_cast<unsigned long long>(farFill(o1, Half, f.n, r1, set));
+        halfSide[t] = r1;
+      }
+    }
+    __syncthreads();
+    const int h = t >> 3;
+    if (halfAt(h, o1) && halfSide[h] == 0)
+    {
+      long long o2[3];
+      farCellOrigin(o1, t & 7, o2);
+      mine += static_cast<unsigned long long>(farClassifyCell(
+        bvh.nodes, cones, triAt, nearest, pseudo, P.bandWorld, margin, big, halves[h], o2, f.n, boxOf, set));
+    }
+    __syncthreads(); // current and the halves' states are rewritten for the next block
+  }
+  if (mine > 0) atomicAdd(decided, mine);
 }
 
 } // namespace
