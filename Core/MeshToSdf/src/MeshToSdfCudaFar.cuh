@@ -4,8 +4,8 @@
 // (MeshToSdfFarBlocks.h, docs/MESH_TO_SDF.md "Far blocks") in two launches:
 // one thread per block tries it whole and keeps its state (candidate list)
 // for its halves, listing the blocks it leaves undecided; then one CUDA block
-// of 64 threads per listed block: 8 threads try its halves (states in shared
-// memory), then one thread per cell tries the cell and its voxels. The
+// of 64 threads per listed block: 8 threads try its halves, one thread per
+// cell its cells (states in shared memory), 8 threads per cell their voxels. The
 // distance kernel then writes +-band for the decided voxels without a query.
 #pragma once
 
@@ -101,13 +101,14 @@ static_assert(FarCellThreads == 8 * 8 && FarBlock == 4 * FarCell, "8 halves of 8
 
 /// The blocks farBlockKernel left undecided (undecided[0, work[0])), one per
 /// CUDA block of 64 threads at a time, taken in turn (work[1]: the next) so
-/// that a grid sized to the GPU needs no count on the host: threads 0-7 try
-/// half t from the block's state, keeping the half's state in shared memory;
-/// then thread t takes cell t % 8 of half t / 8 left undecided, with its
-/// voxels (farClassifyCell). The same functions as the CPU's farClassifyHalf,
-/// spread over threads (a thread per half did 8 cells and 64 voxels one after
-/// the other, beside threads of decided blocks with nothing to do). At most
-/// 128 registers, as farBlockKernel.
+/// that a grid sized to the GPU needs no count on the host. Three steps, the
+/// states in shared memory: threads 0-7 try half t from the block's state;
+/// thread t tries cell t % 8 of half t / 8 (if that half is undecided); then
+/// the voxels of the cells left undecided by their lists, 8 threads per cell
+/// (one per voxel) and 8 cells at a time, so that a warp's threads loop over
+/// lists of the same cell (a thread per cell looped over its 8 voxels, the
+/// warp as long as its longest list 8 times). The same functions as the CPU's
+/// farClassifyHalf. At most 128 registers, as farBlockKernel.
 __global__ void __launch_bounds__(FarCellThreads, 8) farCellKernel(DevBvh bvh, const FarCone* cones, Params P, double margin,
   double big, signed char* sign, unsigned char* mask, const FarState* states, const long long* undecided,
   unsigned long long* work, unsigned long long* decided)
@@ -115,10 +116,13 @@ __global__ void __launch_bounds__(FarCellThreads, 8) farCellKernel(DevBvh bvh, c
   constexpr long long Half = FarBlock / 2;
   // FarState has default initialisers, which __shared__ forbids: raw storage,
   // every field read below written by boxOf and farTryBox first
-  __shared__ alignas(FarState) unsigned char raw[8 * sizeof(FarState)];
+  __shared__ alignas(FarState) unsigned char rawHalves[8 * sizeof(FarState)];
+  __shared__ alignas(FarState) unsigned char rawCells[FarCellThreads * sizeof(FarState)];
   __shared__ int halfSide[8];
+  __shared__ unsigned char cellVoxels[FarCellThreads]; // 1: the cell's voxels are tried by its list
   __shared__ long long current;
-  FarState* halves = reinterpret_cast<FarState*>(raw);
+  FarState* halves = reinterpret_cast<FarState*>(rawHalves);
+  FarState* cells = reinterpret_cast<FarState*>(rawCells);
   const FarSlab f = farSlab(bvh, P, big, sign, mask);
   const long long mx = (f.n[0] + FarBlock - 1) / FarBlock, my = (f.n[1] + FarBlock - 1) / FarBlock;
   const bool pseudo = P.sign == 1;
@@ -136,7 +140,7 @@ __global__ void __launch_bounds__(FarCellThreads, 8) farCellKernel(DevBvh bvh, c
   };
   auto boxOf = [&](const long long at[3], long long edge, FarBox& out) { f.boxOf(at, edge, out); };
   auto set = [&](const long long c[3], int sd, int m) { f.set(c, sd, m); };
-  const int t = static_cast<int>(threadIdx.x);
+  const int t = static_cast<int>(threadIdx.x), lane = t & 31;
   unsigned long long mine = 0;
   for (;;)
   {
@@ -149,36 +153,60 @@ __global__ void __launch_bounds__(FarCellThreads, 8) farCellKernel(DevBvh bvh, c
     const long long b = current;
     if (b < 0) break; // the same for every thread of the CUDA block
     const long long o[3] = { (b % mx) * FarBlock, ((b / mx) % my) * FarBlock, (b / (mx * my)) * FarBlock };
-    // half h's origin; whether it lies in the slab
-    auto halfAt = [&](int h, long long o1[3]) {
-      o1[0] = o[0] + Half * (h & 1);
-      o1[1] = o[1] + Half * ((h >> 1) & 1);
-      o1[2] = o[2] + Half * (h >> 2);
-      return o1[0] < f.n[0] && o1[1] < f.n[1] && o1[2] < f.n[2];
+    // the origin of cell q of half h (q < 0: of the half); whether it lies in the slab
+    auto originOf = [&](int h, int q, long long at[3]) {
+      const long long o1[3] = { o[0] + Half * (h & 1), o[1] + Half * ((h >> 1) & 1), o[2] + Half * (h >> 2) };
+      if (q < 0)
+        for (int a = 0; a < 3; ++a) at[a] = o1[a];
+      else
+        farCellOrigin(o1, q, at);
+      return at[0] < f.n[0] && at[1] < f.n[1] && at[2] < f.n[2];
     };
-    long long o1[3];
+    long long at[3];
     if (t < 8)
     {
       halfSide[t] = 0;
-      if (halfAt(t, o1))
+      if (originOf(t, -1, at))
       {
         FarState& s1 = halves[t];
-        boxOf(o1, Half, s1.box);
+        boxOf(at, Half, s1.box);
         const int r1 = farTryBox(bvh.nodes, cones, triAt, nearest, pseudo, P.bandWorld, margin, big, &states[b], s1);
-        if (r1 != 0) mine += static_cast<unsigned long long>(farFill(o1, Half, f.n, r1, set));
+        if (r1 != 0) mine += static_cast<unsigned long long>(farFill(at, Half, f.n, r1, set));
         halfSide[t] = r1;
       }
     }
     __syncthreads();
-    const int h = t >> 3;
-    if (halfAt(h, o1) && halfSide[h] == 0)
+    // a half outside the slab has halfSide 0, but its cells are outside too
+    cellVoxels[t] = 0;
+    if (halfSide[t >> 3] == 0 && originOf(t >> 3, t & 7, at))
     {
-      long long o2[3];
-      farCellOrigin(o1, t & 7, o2);
-      mine += static_cast<unsigned long long>(farClassifyCell(
-        bvh.nodes, cones, triAt, nearest, pseudo, P.bandWorld, margin, big, halves[h], o2, f.n, boxOf, set));
+      FarState& s2 = cells[t];
+      boxOf(at, static_cast<long long>(FarCell), s2.box);
+      const int r2 =
+        farTryBox(bvh.nodes, cones, triAt, nearest, pseudo, P.bandWorld, margin, big, &halves[t >> 3], s2);
+      if (r2 != 0)
+        mine += static_cast<unsigned long long>(farFill(at, static_cast<long long>(FarCell), f.n, r2, set));
+      else if (s2.past && s2.count >= 0)
+        cellVoxels[t] = 1;
     }
-    __syncthreads(); // current and the halves' states are rewritten for the next block
+    __syncthreads();
+    // cell c = 8 i + t / 8 (the cells of half i), voxel t % 8; the 8 lanes of
+    // a cell combine their bits by a ballot, its first lane records them
+    for (int i = 0; i < 8; ++i)
+    {
+      const int c = 8 * i + (t >> 3);
+      int side = 0;
+      if (cellVoxels[c] && originOf(i, c & 7, at))
+        side = farCellVoxel(triAt, pseudo, margin, big, cells[c], at, t & 7, f.n, boxOf);
+      const unsigned bits = (__ballot_sync(FullMask, side != 0) >> (lane & 24)) & 0xffu;
+      if ((lane & 7) == 0 && bits != 0)
+      {
+        const long long cell[3] = { at[0] / FarCell, at[1] / FarCell, at[2] / FarCell };
+        set(cell, cells[c].side, static_cast<int>(bits));
+        mine += static_cast<unsigned long long>(__popc(bits));
+      }
+    }
+    __syncthreads(); // current and the states are rewritten for the next block
   }
   if (mine > 0) atomicAdd(decided, mine);
 }

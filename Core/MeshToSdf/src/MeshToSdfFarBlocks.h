@@ -424,6 +424,20 @@ LVDIF_HD long long farFill(const long long o[3], long long edge, const long long
 /// inside it) are sign * band. The levels are apart so that the GPU runs them
 /// as its threads see fit (a thread per block, then per half and per cell of
 /// a block left undecided). Each returns the voxels decided.
+/// Voxel v (bit x + 2 y + 4 z) of a cell (origin o2) that its own test left
+/// undecided (state s2): the cell's side when its list alone decides the
+/// voxel (farVoxelSide), else 0 (also outside n).
+template <typename TriAt, typename BoxOf>
+LVDIF_HD int farCellVoxel(TriAt&& triAt, bool pseudo, double margin, double big, const FarState& s2,
+  const long long o2[3], int v, const long long n[3], BoxOf&& boxOf)
+{
+  const long long o3[3] = { o2[0] + (v & 1), o2[1] + ((v >> 1) & 1), o2[2] + (v >> 2) };
+  if (o3[0] >= n[0] || o3[1] >= n[1] || o3[2] >= n[2]) return 0;
+  FarBox voxel;
+  boxOf(o3, 1LL, voxel);
+  return farVoxelSide(triAt, pseudo, margin, big, s2, voxel);
+}
+
 /// One cell (origin o2) of a half left undecided (state s1), with its voxels.
 template <typename Node, typename TriAt, typename Nearest, typename BoxOf, typename Set>
 LVDIF_HD long long farClassifyCell(const Node* nodes, const FarCone* cones, TriAt&& triAt, Nearest&& nearest,
@@ -440,17 +454,11 @@ LVDIF_HD long long farClassifyCell(const Node* nodes, const FarCone* cones, TriA
   long long decided = 0;
   int mask = 0;
   for (int v = 0; v < 8; ++v)
-  {
-    const long long o3[3] = { o2[0] + (v & 1), o2[1] + ((v >> 1) & 1), o2[2] + (v >> 2) };
-    if (o3[0] >= n[0] || o3[1] >= n[1] || o3[2] >= n[2]) continue;
-    FarBox voxel;
-    boxOf(o3, 1LL, voxel);
-    if (farVoxelSide(triAt, pseudo, margin, big, s2, voxel) != 0)
+    if (farCellVoxel(triAt, pseudo, margin, big, s2, o2, v, n, boxOf) != 0)
     {
       mask |= 1 << v;
       ++decided;
     }
-  }
   if (mask != 0)
   {
     const long long cell[3] = { o2[0] / FarCell, o2[1] / FarCell, o2[2] / FarCell };
