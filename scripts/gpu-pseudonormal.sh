@@ -44,7 +44,7 @@ grep -E "^mesh:|^\| (cold|warm|prepared)|^## SKIPPED|^rc=[1-9]" "$L" | cut -c1-1
 # --trace at 1024^3: the GPU distance pass of each far-block call (warm pseudo-normal, normal,
 # pseudo-normal, normal, then prepared pseudo-normal, normal: the runs' order) split into
 # farBlockKernel, farCellKernel and the per-voxel kernel, under each process's command
-grep -E "^## .* 1024 |distance pass on the GPU" "$L" | cut -c1-150 | tee "$OUT/far-split.txt" >> "$OUT/summary.txt"
+grep -E "^## .* 1024 |distance pass on the GPU|node cones of the mesh BVH" "$L" | cut -c1-150 | tee "$OUT/far-split.txt" >> "$OUT/summary.txt"
 echo "total $(( $(date +%s) - T0 )) s" | tee -a "$OUT/summary.txt"
 # the short table on stdout: run, device, end-to-end ms, far-block voxels
 cat "$OUT/far-split.txt"

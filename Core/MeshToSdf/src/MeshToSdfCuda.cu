@@ -188,7 +188,10 @@ public:
   {
     if (this->hasNormals()) return;
     // with the normal cones of the tree's nodes (far blocks), published before the records
-    this->Cones = this->Arena.uploadOn(this->Upload.s, farCones(this->MeshBvh, this->Mesh.tris));
+    const double t0 = now();
+    const std::vector<FarCone> cones = farCones(this->MeshBvh, this->Mesh.tris);
+    trace("far blocks: the node cones of the mesh BVH (host)", now() - t0);
+    this->Cones = this->Arena.uploadOn(this->Upload.s, cones);
     this->Full.store(this->Arena.uploadOn(this->Upload.s, this->Mesh.tris), std::memory_order_release);
   }
   /// The node cones (valid once hasNormals()).
