@@ -777,7 +777,11 @@ private:
     LVDIF_CUDA_CHECK(cudaMemsetAsync(this->Far, 0, static_cast<std::size_t>(cells)));
     LVDIF_CUDA_CHECK(cudaMemsetAsync(this->FarMask, 0, static_cast<std::size_t>(cells)));
     LVDIF_CUDA_CHECK(cudaMemsetAsync(this->FarWork, 0, 2 * sizeof(unsigned long long)));
-    farBlockKernel<<<static_cast<unsigned>((blocks + 127) / 128), 128>>>(this->Mesh.meshBvh(), this->Mesh.cones(), P,
+    long long m[3], tiles[3];
+    for (int a = 0; a < 3; ++a) m[a] = (P.hi[a] - P.lo[a] + FarBlock) / FarBlock;
+    farTiles(m, tiles);
+    const long long threads = 32 * tiles[0] * tiles[1] * tiles[2];
+    farBlockKernel<<<static_cast<unsigned>((threads + 127) / 128), 128>>>(this->Mesh.meshBvh(), this->Mesh.cones(), P,
       this->FarMargin, this->FarBig, this->Far, this->FarMask, this->FarStates, this->FarList, this->FarWork,
       this->FarDecided);
     LVDIF_CUDA_CHECK(cudaGetLastError());

@@ -56,20 +56,43 @@ __device__ FarSlab farSlab(const DevBvh& bvh, const Params& P, double big, signe
   return f;
 }
 
-/// One thread per FarBlock^3 block of the slab: its own test (farTryBox);
-/// its state, for the halves, in states[block], and the block appended to
-/// undecided (work[0]: their count) when the test leaves it so. The cells
-/// (sign, mask) and work are cleared before. At most 128 registers.
+/// A warp of farBlockKernel takes a tile of 4 x 4 x 2 blocks (lane bits 0-1:
+/// x, 2-3: y, 4: z), so that its threads' queries and walks follow similar
+/// paths down the tree (a row of 32 blocks along x spans 256 voxels).
+constexpr long long FarTileX = 4, FarTileY = 4, FarTileZ = 2;
+static_assert(FarTileX * FarTileY * FarTileZ == 32, "a tile per warp");
+
+/// The tiles of farBlockKernel along each axis of m blocks.
+__host__ __device__ inline void farTiles(const long long m[3], long long t[3])
+{
+  t[0] = (m[0] + FarTileX - 1) / FarTileX;
+  t[1] = (m[1] + FarTileY - 1) / FarTileY;
+  t[2] = (m[2] + FarTileZ - 1) / FarTileZ;
+}
+
+/// One thread per FarBlock^3 block of the slab (a warp per tile, FarTileX):
+/// its own test (farTryBox); its state, for the halves, in states[block],
+/// and the block appended to undecided (work[0]: their count) when the test
+/// leaves it so. The cells (sign, mask) and work are cleared before. At most
+/// 128 registers.
 __global__ void __launch_bounds__(128, 4) farBlockKernel(DevBvh bvh, const FarCone* cones, Params P, double margin, double big,
   signed char* sign, unsigned char* mask, FarState* states, long long* undecided, unsigned long long* work,
   unsigned long long* decided)
 {
   const FarSlab f = farSlab(bvh, P, big, sign, mask);
-  const long long mx = (f.n[0] + FarBlock - 1) / FarBlock, my = (f.n[1] + FarBlock - 1) / FarBlock,
-                  mz = (f.n[2] + FarBlock - 1) / FarBlock;
-  const long long b = static_cast<long long>(blockIdx.x) * blockDim.x + threadIdx.x;
-  if (b >= mx * my * mz) return;
-  const long long o[3] = { (b % mx) * FarBlock, ((b / mx) % my) * FarBlock, (b / (mx * my)) * FarBlock };
+  const long long m[3] = { (f.n[0] + FarBlock - 1) / FarBlock, (f.n[1] + FarBlock - 1) / FarBlock,
+    (f.n[2] + FarBlock - 1) / FarBlock };
+  long long tiles[3];
+  farTiles(m, tiles);
+  const long long thread = static_cast<long long>(blockIdx.x) * blockDim.x + threadIdx.x;
+  const long long tile = thread / 32;
+  const int lane = static_cast<int>(thread % 32);
+  if (tile >= tiles[0] * tiles[1] * tiles[2]) return;
+  const long long at[3] = { (tile % tiles[0]) * FarTileX + (lane & 3), ((tile / tiles[0]) % tiles[1]) * FarTileY + ((lane >> 2) & 3),
+    (tile / (tiles[0] * tiles[1])) * FarTileZ + (lane >> 4) };
+  if (at[0] >= m[0] || at[1] >= m[1] || at[2] >= m[2]) return;
+  const long long b = at[0] + m[0] * (at[1] + m[1] * at[2]);
+  const long long o[3] = { at[0] * FarBlock, at[1] * FarBlock, at[2] * FarBlock };
   const bool pseudo = P.sign == 1;
   auto triAt = [&](int i) -> const Tri& { return bvh.tris[bvh.order[i]]; };
   int slot = -1;
