@@ -188,7 +188,10 @@ public:
   {
     if (this->hasNormals()) return;
     // with the normal cones of the tree's nodes (far blocks), published before the records
-    this->Cones = this->Arena.uploadOn(this->Upload.s, farCones(this->MeshBvh, this->Mesh.tris));
+    const double t0 = now();
+    const std::vector<FarCone> cones = farCones(this->MeshBvh, this->Mesh.tris);
+    trace("far blocks: the node cones of the mesh BVH (host)", now() - t0);
+    this->Cones = this->Arena.uploadOn(this->Upload.s, cones);
     this->Full.store(this->Arena.uploadOn(this->Upload.s, this->Mesh.tris), std::memory_order_release);
   }
   /// The node cones (valid once hasNormals()).
@@ -428,6 +431,7 @@ public:
       this->FarBig = farScale(mesh.prepared(), grid);
       this->FarMargin = farMargin(this->FarBig, static_cast<double>(mesh.prepared().tris.size()));
       this->FarDecided = this->Arena.alloc<unsigned long long>(1);
+      this->FarWork = this->Arena.alloc<unsigned long long>(2);
       LVDIF_CUDA_CHECK(cudaMemset(this->FarDecided, 0, sizeof(unsigned long long)));
     }
     stats.devicePeakBytes = std::max(stats.devicePeakBytes, this->Mesh.bytes() + this->Arena.bytes());
@@ -437,6 +441,12 @@ public:
   {
     if (this->BoundsSeconds > 0) trace("winding sign on the GPU, dictionary volume: the correction's block bounds", this->BoundsSeconds);
     if (this->RaysSeconds > 0) trace("winding sign on the GPU, dictionary volume: the scan lines' rays", this->RaysSeconds);
+    if (this->FarOn)
+    {
+      trace("distance pass on the GPU: far blocks (farBlockKernel)", this->FarBlockSeconds);
+      trace("distance pass on the GPU: far halves, cells and voxels (farCellKernel)", this->FarHalfSeconds);
+      trace("distance pass on the GPU: the per-voxel kernel on what the far blocks leave", this->FarRestSeconds);
+    }
     // never free buffers under running kernels, nor give back staging that a copy still fills
     if (this->Launched || this->Pieces > 0) cudaDeviceSynchronize();
     pinnedPool().give(this->Staging);
@@ -474,6 +484,7 @@ public:
       }
       LVDIF_CUDA_CHECK(cudaEventSynchronize(this->SignDone.b));
       stats.distanceSeconds += this->DistanceDone.seconds();
+      this->addFarSplit();
       if (this->HasWinding) stats.signSeconds += this->SignDone.seconds();
       interrupter.progress(static_cast<double>(z1 - extent.lo[2] + 1) / static_cast<double>(nz));
     }
@@ -516,6 +527,7 @@ public:
       cudaMemcpyDeviceToHost)); // waits for the kernels
     this->Launched = false;
     stats.distanceSeconds += this->DistanceDone.seconds();
+    this->addFarSplit();
     if (this->HasWinding)
     {
       stats.signSeconds += this->SignDone.seconds();
@@ -595,6 +607,19 @@ public:
   }
 
 private:
+  /// Adds the far kernels' and the per-voxel kernel's shares of the last
+  /// slab's distance pass (--trace; the events are done once DistanceDone is).
+  void addFarSplit()
+  {
+    if (!this->FarOn) return;
+    float ms = 0;
+    LVDIF_CUDA_CHECK(cudaEventElapsedTime(&ms, this->DistanceDone.a, this->FarSplit.a));
+    this->FarBlockSeconds += 1e-3 * ms;
+    this->FarHalfSeconds += this->FarSplit.seconds();
+    LVDIF_CUDA_CHECK(cudaEventElapsedTime(&ms, this->FarSplit.b, this->DistanceDone.b));
+    this->FarRestSeconds += 1e-3 * ms;
+  }
+
   /// Queues the copy of listed piece k into its staging slot (on Copy, after the keys kernel).
   void copyPiece(std::size_t k)
   {
@@ -799,13 +824,12 @@ private:
   /// The far cells of the slab in P (which then points the distance kernel at them).
   void launchFar(Params& P)
   {
-    long long count[3], blocks = 1, halves = 1;
+    long long count[3], blocks = 1;
     for (int a = 0; a < 3; ++a)
     {
       const long long n = P.hi[a] - P.lo[a] + 1;
       count[a] = (n + FarCell - 1) / FarCell;
       blocks *= (n + FarBlock - 1) / FarBlock;
-      halves *= (n + FarBlock / 2 - 1) / (FarBlock / 2);
     }
     const long long cells = count[0] * count[1] * count[2];
     if (cells > this->FarCapacity)
@@ -816,21 +840,42 @@ private:
       this->FarMask = this->Arena.alloc<unsigned char>(static_cast<std::size_t>(cells));
       this->FarCapacity = cells;
     }
-    // the blocks' states (candidate lists) for their halves
+    // the blocks' states (candidate lists) for their halves, and the list of
+    // those left undecided
     if (blocks > this->FarStateCapacity)
     {
       if (this->FarStates) this->Arena.release(this->FarStates);
+      if (this->FarList) this->Arena.release(this->FarList);
       this->FarStates = this->Arena.alloc<FarState>(static_cast<std::size_t>(blocks));
+      this->FarList = this->Arena.alloc<long long>(static_cast<std::size_t>(blocks));
       this->FarStateCapacity = blocks;
+    }
+    if (this->FarCellGrid == 0)
+    {
+      // enough CUDA blocks of farCellKernel to fill the GPU (they take the listed blocks in turn)
+      int device = 0, sms = 0, perSm = 0;
+      LVDIF_CUDA_CHECK(cudaGetDevice(&device));
+      LVDIF_CUDA_CHECK(cudaDeviceGetAttribute(&sms, cudaDevAttrMultiProcessorCount, device));
+      LVDIF_CUDA_CHECK(cudaOccupancyMaxActiveBlocksPerMultiprocessor(&perSm, farCellKernel, FarCellThreads, 0));
+      this->FarCellGrid = std::max(1, sms * std::max(1, perSm));
     }
     LVDIF_CUDA_CHECK(cudaMemsetAsync(this->Far, 0, static_cast<std::size_t>(cells)));
     LVDIF_CUDA_CHECK(cudaMemsetAsync(this->FarMask, 0, static_cast<std::size_t>(cells)));
-    farBlockKernel<<<static_cast<unsigned>((blocks + 127) / 128), 128>>>(this->Mesh.meshBvh(), this->Mesh.cones(), P,
-      this->FarMargin, this->FarBig, this->Far, this->FarMask, this->FarStates, this->FarDecided);
+    LVDIF_CUDA_CHECK(cudaMemsetAsync(this->FarWork, 0, 2 * sizeof(unsigned long long)));
+    long long m[3], tiles[3];
+    for (int a = 0; a < 3; ++a) m[a] = (P.hi[a] - P.lo[a] + FarBlock) / FarBlock;
+    farTiles(m, tiles);
+    const long long threads = 32 * tiles[0] * tiles[1] * tiles[2];
+    farBlockKernel<<<static_cast<unsigned>((threads + 127) / 128), 128>>>(this->Mesh.meshBvh(), this->Mesh.cones(), P,
+      this->FarMargin, this->FarBig, this->Far, this->FarMask, this->FarStates, this->FarList, this->FarWork,
+      this->FarDecided);
     LVDIF_CUDA_CHECK(cudaGetLastError());
-    farHalfKernel<<<static_cast<unsigned>((halves + 127) / 128), 128>>>(this->Mesh.meshBvh(), this->Mesh.cones(), P,
-      this->FarMargin, this->FarBig, this->Far, this->FarMask, this->FarStates, this->FarDecided);
+    LVDIF_CUDA_CHECK(cudaEventRecord(this->FarSplit.a));
+    farCellKernel<<<static_cast<unsigned>(std::min<long long>(blocks, this->FarCellGrid)), FarCellThreads>>>(
+      this->Mesh.meshBvh(), this->Mesh.cones(), P, this->FarMargin, this->FarBig, this->Far, this->FarMask,
+      this->FarStates, this->FarList, this->FarWork, this->FarDecided);
     LVDIF_CUDA_CHECK(cudaGetLastError());
+    LVDIF_CUDA_CHECK(cudaEventRecord(this->FarSplit.b));
     P.far = this->Far;
     P.farMask = this->FarMask;
     P.farCount[0] = count[0];
@@ -865,6 +910,8 @@ private:
   EventTimer DistanceDone, SignDone;
   EventTimer SignSplit; // a: after the block bounds, b: after the first rays of a slab (volume path: --trace)
   double BoundsSeconds = 0, RaysSeconds = 0;
+  EventTimer FarSplit; // a: after farBlockKernel, b: after farCellKernel (--trace)
+  double FarBlockSeconds = 0, FarHalfSeconds = 0, FarRestSeconds = 0;
   PartEvents PartDone;
   Stream Copy; // device -> host copies, beside the kernels of the legacy stream
   unsigned long long* Counters = nullptr;
@@ -880,7 +927,10 @@ private:
   unsigned char* FarMask = nullptr;
   long long FarCapacity = 0;
   FarState* FarStates = nullptr;
+  long long* FarList = nullptr; // the blocks farBlockKernel leaves undecided
+  unsigned long long* FarWork = nullptr; // their count, the next one farCellKernel takes
   long long FarStateCapacity = 0;
+  int FarCellGrid = 0; // CUDA blocks of farCellKernel
   unsigned long long* FarDecided = nullptr;
   float* Slab = nullptr;
   std::size_t SlabCapacity = 0;

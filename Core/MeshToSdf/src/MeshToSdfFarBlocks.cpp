@@ -191,14 +191,16 @@ std::int64_t classifyBandCells(const NearestIndex& index, const PreparedMesh& me
 std::vector<FarCone> farCones(const Bvh& bvh, const std::vector<Tri>& tris)
 {
   // bottom-up (children have larger ids than their parent: preorder); angles
-  // by atan2 (accurate near 0, unlike acos), rounded up
+  // by atan2 (accurate near 0, unlike acos), rounded up. The leaves, most of
+  // the work (every triangle's 7 normals), are independent: on the OpenMP
+  // threads first (a warm GPU call computes this every time), then the inner
+  // nodes in turn; each node's arithmetic is the same either way.
   const std::vector<Bvh::Node>& nodes = bvh.nodes();
   const std::vector<std::int32_t>& order = bvh.order();
   std::vector<FarCone> cones(nodes.size());
   std::vector<double> angle(nodes.size(), 4.0);
   auto angleTo = [](V3 a, V3 n) { return std::atan2(norm(cross(a, n)), dot(a, n)) * (1 + 1e-12) + 1e-12; };
-  for (std::size_t k = nodes.size(); k-- > 0;)
-  {
+  auto coneOf = [&](std::size_t k) {
     const Bvh::Node& n = nodes[k];
     V3 axis;
     bool ok = true;
@@ -238,7 +240,7 @@ std::vector<FarCone> farCones(const Bvh& bvh, const std::vector<Tri>& tris)
       longest = std::max(l.longest, r.longest);
     }
     const double len = norm(axis);
-    if (!ok || !(len > 0)) continue;
+    if (!ok || !(len > 0)) return;
     axis = (1.0 / len) * axis;
     double t = 0;
     if (n.left < 0)
@@ -256,7 +258,7 @@ std::vector<FarCone> farCones(const Bvh& bvh, const std::vector<Tri>& tris)
       }
     }
     angle[k] = t;
-    if (t >= 1.5) continue; // about 86 degrees: too wide to decide anything
+    if (t >= 1.5) return; // about 86 degrees: too wide to decide anything
     FarCone& c = cones[k];
     c.axis[0] = axis.x;
     c.axis[1] = axis.y;
@@ -268,7 +270,13 @@ std::vector<FarCone> farCones(const Bvh& bvh, const std::vector<Tri>& tris)
     c.minHeight = minHeight * (1 - 1e-12);
     c.longest = longest * (1 + 1e-12);
     c.ok = 1;
-  }
+  };
+  const std::int64_t count = static_cast<std::int64_t>(nodes.size());
+#pragma omp parallel for schedule(dynamic, 256)
+  for (std::int64_t k = 0; k < count; ++k)
+    if (nodes[static_cast<std::size_t>(k)].left < 0) coneOf(static_cast<std::size_t>(k));
+  for (std::size_t k = nodes.size(); k-- > 0;)
+    if (nodes[k].left >= 0) coneOf(k);
   return cones;
 }
 

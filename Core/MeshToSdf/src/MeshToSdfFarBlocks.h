@@ -421,9 +421,60 @@ LVDIF_HD long long farFill(const long long o[3], long long edge, const long long
 /// left undecided (farTryBox). boxOf(origin, edge, FarBox&): the box of
 /// edge^3 voxels there (clipped to n); set(cell, sign, mask): the voxels
 /// `mask` of a cell (cell = origin / FarCell, bit x + 2 y + 4 z of the voxel
-/// inside it) are sign * band. The block's own test and its halves are apart
-/// so that the GPU runs them as two kernels (the blocks, then one thread per
-/// half). Each returns the voxels decided.
+/// inside it) are sign * band. The levels are apart so that the GPU runs them
+/// as its threads see fit (a thread per block, then per half and per cell of
+/// a block left undecided). Each returns the voxels decided.
+/// Voxel v (bit x + 2 y + 4 z) of a cell (origin o2) that its own test left
+/// undecided (state s2): the cell's side when its list alone decides the
+/// voxel (farVoxelSide), else 0 (also outside n).
+template <typename TriAt, typename BoxOf>
+LVDIF_HD int farCellVoxel(TriAt&& triAt, bool pseudo, double margin, double big, const FarState& s2,
+  const long long o2[3], int v, const long long n[3], BoxOf&& boxOf)
+{
+  const long long o3[3] = { o2[0] + (v & 1), o2[1] + ((v >> 1) & 1), o2[2] + (v >> 2) };
+  if (o3[0] >= n[0] || o3[1] >= n[1] || o3[2] >= n[2]) return 0;
+  FarBox voxel;
+  boxOf(o3, 1LL, voxel);
+  return farVoxelSide(triAt, pseudo, margin, big, s2, voxel);
+}
+
+/// One cell (origin o2) of a half left undecided (state s1), with its voxels.
+template <typename Node, typename TriAt, typename Nearest, typename BoxOf, typename Set>
+LVDIF_HD long long farClassifyCell(const Node* nodes, const FarCone* cones, TriAt&& triAt, Nearest&& nearest,
+  bool pseudo, double bandWorld, double margin, double big, const FarState& s1, const long long o2[3],
+  const long long n[3], BoxOf&& boxOf, Set&& set)
+{
+  if (o2[0] >= n[0] || o2[1] >= n[1] || o2[2] >= n[2]) return 0;
+  FarState s2;
+  boxOf(o2, static_cast<long long>(FarCell), s2.box);
+  const int r2 = farTryBox(nodes, cones, triAt, nearest, pseudo, bandWorld, margin, big, &s1, s2);
+  if (r2 != 0) return farFill(o2, FarCell, n, r2, set);
+  if (!s2.past || s2.count < 0) return 0;
+  // the cell's voxels, by its list alone
+  long long decided = 0;
+  int mask = 0;
+  for (int v = 0; v < 8; ++v)
+    if (farCellVoxel(triAt, pseudo, margin, big, s2, o2, v, n, boxOf) != 0)
+    {
+      mask |= 1 << v;
+      ++decided;
+    }
+  if (mask != 0)
+  {
+    const long long cell[3] = { o2[0] / FarCell, o2[1] / FarCell, o2[2] / FarCell };
+    set(cell, s2.side, mask);
+  }
+  return decided;
+}
+
+/// The origin of cell q (bit x + 2 y + 4 z) of the half at o1.
+LVDIF_HD void farCellOrigin(const long long o1[3], int q, long long o2[3])
+{
+  o2[0] = o1[0] + FarCell * (q & 1);
+  o2[1] = o1[1] + FarCell * ((q >> 1) & 1);
+  o2[2] = o1[2] + FarCell * (q >> 2);
+}
+
 /// One half (origin o1) of a block left undecided (state s0), with its cells
 /// and their voxels.
 template <typename Node, typename TriAt, typename Nearest, typename BoxOf, typename Set>
@@ -432,42 +483,16 @@ LVDIF_HD long long farClassifyHalf(const Node* nodes, const FarCone* cones, TriA
   const long long n[3], BoxOf&& boxOf, Set&& set)
 {
   constexpr long long Half = FarBlock / 2;
-  FarState s1, s2;
+  FarState s1;
   boxOf(o1, Half, s1.box);
   const int r1 = farTryBox(nodes, cones, triAt, nearest, pseudo, bandWorld, margin, big, &s0, s1);
   if (r1 != 0) return farFill(o1, Half, n, r1, set);
   long long decided = 0;
   for (int q = 0; q < 8; ++q)
   {
-    const long long o2[3] = { o1[0] + FarCell * (q & 1), o1[1] + FarCell * ((q >> 1) & 1), o1[2] + FarCell * (q >> 2) };
-    if (o2[0] >= n[0] || o2[1] >= n[1] || o2[2] >= n[2]) continue;
-    boxOf(o2, static_cast<long long>(FarCell), s2.box);
-    const int r2 = farTryBox(nodes, cones, triAt, nearest, pseudo, bandWorld, margin, big, &s1, s2);
-    if (r2 != 0)
-    {
-      decided += farFill(o2, FarCell, n, r2, set);
-      continue;
-    }
-    if (!s2.past || s2.count < 0) continue;
-    // the cell's voxels, by its list alone
-    int mask = 0;
-    for (int v = 0; v < 8; ++v)
-    {
-      const long long o3[3] = { o2[0] + (v & 1), o2[1] + ((v >> 1) & 1), o2[2] + (v >> 2) };
-      if (o3[0] >= n[0] || o3[1] >= n[1] || o3[2] >= n[2]) continue;
-      FarBox voxel;
-      boxOf(o3, 1LL, voxel);
-      if (farVoxelSide(triAt, pseudo, margin, big, s2, voxel) != 0)
-      {
-        mask |= 1 << v;
-        ++decided;
-      }
-    }
-    if (mask != 0)
-    {
-      const long long cell[3] = { o2[0] / FarCell, o2[1] / FarCell, o2[2] / FarCell };
-      set(cell, s2.side, mask);
-    }
+    long long o2[3];
+    farCellOrigin(o1, q, o2);
+    decided += farClassifyCell(nodes, cones, triAt, nearest, pseudo, bandWorld, margin, big, s1, o2, n, boxOf, set);
   }
   return decided;
 }
