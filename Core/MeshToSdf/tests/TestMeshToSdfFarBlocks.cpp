@@ -49,6 +49,32 @@ VoxelBox whole(const GridGeometry& g)
   b.hi = { g.dims[0] - 1, g.dims[1] - 1, g.dims[2] - 1 };
   return b;
 }
+
+struct Grid
+{
+  const char* name;
+  GridGeometry g;
+  VoxelBox box;
+};
+
+/// The grids every far-block test runs on: a cubic one fitted to the mesh
+/// (at least 41 x 34 x 39), a non-cubic one (other counts per axis,
+/// anisotropic spacing, origin off the mesh's bounds) and a sub-extent of the
+/// cubic one whose blocks do not start at the grid's.
+std::vector<Grid> testGrids(const TriangleMesh& mesh, std::int64_t resolution)
+{
+  GridGeometry cubic = fitGridToMesh(mesh, resolution, 6);
+  cubic.dims = { std::max<std::int64_t>(cubic.dims[0], 41), std::max<std::int64_t>(cubic.dims[1], 34),
+    std::max<std::int64_t>(cubic.dims[2], 39) };
+  GridGeometry odd;
+  odd.dims = { 37, 21, 29 };
+  odd.origin = { -1.71, -1.43, -1.52 };
+  odd.spacing = { 0.093, 0.141, 0.117 };
+  VoxelBox sub;
+  sub.lo = { 3, 5, 7 };
+  sub.hi = { 40, 33, 38 };
+  return { Grid{ "cubic", cubic, whole(cubic) }, Grid{ "non-cubic", odd, whole(odd) }, Grid{ "sub-extent", cubic, sub } };
+}
 } // namespace
 
 TEST(MeshToSdfFarBlocks, SameFloatsAsPerVoxelOnEveryMeshGridAndBand)
@@ -56,25 +82,9 @@ TEST(MeshToSdfFarBlocks, SameFloatsAsPerVoxelOnEveryMeshGridAndBand)
   for (const farcases::Case& c : farcases::meshes())
   {
     const MeshToSdfPrepared prepared = prepareMeshToSdf(c.mesh, SignMode::PseudoNormal);
-    GridGeometry cubic = fitGridToMesh(c.mesh, 44, 6);
-    // non-cubic: other counts per axis, anisotropic spacing, origin off the mesh's bounds
-    GridGeometry odd;
-    odd.dims = { 37, 21, 29 };
-    odd.origin = { -1.71, -1.43, -1.52 };
-    odd.spacing = { 0.093, 0.141, 0.117 };
-    VoxelBox sub; // a sub-extent whose blocks do not start at the grid's
-    sub.lo = { 3, 5, 7 };
-    sub.hi = { 40, 33, 38 };
-    cubic.dims = { std::max<std::int64_t>(cubic.dims[0], 41), std::max<std::int64_t>(cubic.dims[1], 34),
-      std::max<std::int64_t>(cubic.dims[2], 39) };
-    struct Grid
-    {
-      const char* name;
-      GridGeometry g;
-      VoxelBox box;
-    };
-    for (const Grid& gr : { Grid{ "cubic", cubic, whole(cubic) }, Grid{ "non-cubic", odd, whole(odd) },
-           Grid{ "sub-extent", cubic, sub } })
+    const std::vector<Grid> grids = testGrids(c.mesh, 44);
+    const GridGeometry& cubic = grids[0].g;
+    for (const Grid& gr : grids)
     {
       for (SignMode s : { SignMode::Normal, SignMode::PseudoNormal })
       {
@@ -181,23 +191,9 @@ TEST(MeshToSdfFarBlocks, WindingAndUnsignedBlocksPastTheBandSameFloats)
   for (const farcases::Case& c : farcases::meshes())
   {
     const MeshToSdfPrepared prepared = prepareMeshToSdf(c.mesh, SignMode::WindingNumber);
-    const GridGeometry cubic = fitGridToMesh(c.mesh, 40, 6);
-    GridGeometry odd;
-    odd.dims = { 37, 21, 29 };
-    odd.origin = { -1.71, -1.43, -1.52 };
-    odd.spacing = { 0.093, 0.141, 0.117 };
-    VoxelBox sub;
-    sub.lo = { 3, 5, 7 };
-    sub.hi = { std::min<std::int64_t>(33, cubic.dims[0] - 1), std::min<std::int64_t>(30, cubic.dims[1] - 1),
-      std::min<std::int64_t>(35, cubic.dims[2] - 1) };
-    struct Grid
-    {
-      const char* name;
-      GridGeometry g;
-      VoxelBox box;
-    };
-    for (const Grid& gr : { Grid{ "cubic", cubic, whole(cubic) }, Grid{ "non-cubic", odd, whole(odd) },
-           Grid{ "sub-extent", cubic, sub } })
+    const std::vector<Grid> grids = testGrids(c.mesh, 40);
+    const GridGeometry& cubic = grids[0].g;
+    for (const Grid& gr : grids)
     {
       for (SignMode s : { SignMode::WindingNumber, SignMode::Unsigned })
       {
