@@ -2,6 +2,7 @@
 
 #include "lvdif/Error.h"
 
+#include <algorithm>
 #include <cstdio>
 #include <cstdlib>
 #include <fstream>
@@ -110,6 +111,22 @@ void adviseHugePages(void* p, std::size_t bytes)
   (void)p;
   (void)bytes;
 #endif
+}
+
+void prefaultLarge(void* p, std::size_t bytes)
+{
+  constexpr std::size_t Threshold = std::size_t(8) << 20, Page = 4096, Piece = std::size_t(2) << 20;
+  if (!p || bytes < Threshold) return;
+  char* const c = static_cast<char*>(p);
+  const std::int64_t pieces = static_cast<std::int64_t>((bytes + Piece - 1) / Piece);
+  // one write per 4 KiB page faults it in (a whole huge page where the
+  // advice took); pieces of 2 MiB so that each thread faults its own pages
+#pragma omp parallel for schedule(static)
+  for (std::int64_t i = 0; i < pieces; ++i)
+  {
+    const std::size_t lo = static_cast<std::size_t>(i) * Piece, hi = std::min(bytes, lo + Piece);
+    for (std::size_t b = lo; b < hi; b += Page) static_cast<volatile char*>(c)[b] = 0;
+  }
 }
 
 std::uint64_t residentMemoryBytes()

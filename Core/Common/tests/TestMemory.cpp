@@ -4,6 +4,7 @@
 
 #include <array>
 #include <cstdint>
+#include <memory>
 #include <vector>
 
 using namespace lvdif;
@@ -39,4 +40,19 @@ TEST(Memory, ResizeLargeIsResize)
   resizeLarge(grow, 2); // shrinking is resize too
   EXPECT_EQ(grow.size(), 2u);
   adviseHugePages(nullptr, 0); // nothing to advise: no effect
+}
+
+TEST(Memory, PrefaultLargeMapsTheBlockOnTheThreads)
+{
+  // a fresh 64 MiB block is not resident until touched; after prefaultLarge
+  // it is (the resident set grows by about its size), and its bytes are zero
+  constexpr std::size_t n = std::size_t(64) << 20;
+  std::unique_ptr<char[]> block(new char[n]); // not value-initialized: untouched
+  const std::uint64_t before = residentMemoryBytes();
+  prefaultLarge(block.get(), n);
+  const std::uint64_t after = residentMemoryBytes();
+  if (before == 0) GTEST_SKIP() << "no /proc/self/statm";
+  EXPECT_GE(after, before + n * 9 / 10);
+  for (std::size_t b = 0; b < n; b += 4096) ASSERT_EQ(block[b], 0);
+  prefaultLarge(nullptr, 0); // nothing to touch: no effect
 }

@@ -33,8 +33,17 @@ std::string formatBytes(std::uint64_t bytes);
 /// page faults, not the writes, are what a serial fill of fresh memory pays.
 void adviseHugePages(void* p, std::size_t bytes);
 
+/// The first touch of every page of [p, p + bytes) on the OpenMP threads (a
+/// no-op below 8 MiB): the kernel zeroes the pages it maps at the fault, so
+/// a serial first touch of a large block is bound by one core's page faults
+/// (256 MB on the H100 host: 122 ms on one thread, 43 ms with huge pages, 19
+/// ms on 16 threads). Writes raw storage: call it only where no object lives yet.
+void prefaultLarge(void* p, std::size_t bytes);
+
 /// v.resize(n) where v grows into fresh memory (large arrays of the mesh
-/// build): the new block is advised for huge pages before resize() touches it.
+/// build): the new block is advised for huge pages, and its part past the
+/// elements v keeps is faulted in on the threads (prefaultLarge), before
+/// resize() constructs the new elements.
 template <typename T, typename A>
 void resizeLarge(std::vector<T, A>& v, std::size_t n)
 {
@@ -42,6 +51,7 @@ void resizeLarge(std::vector<T, A>& v, std::size_t n)
   {
     v.reserve(n);
     adviseHugePages(v.data(), n * sizeof(T));
+    prefaultLarge(v.data() + v.size(), (n - v.size()) * sizeof(T));
   }
   v.resize(n);
 }
