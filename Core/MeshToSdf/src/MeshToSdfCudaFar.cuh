@@ -56,6 +56,27 @@ __device__ FarSlab farSlab(const DevBvh& bvh, const Params& P, double big, signe
   return f;
 }
 
+/// The nearest query of a box's centre for farTryBox (both far kernels),
+/// seeded by the thread's previous answer.
+struct FarNearestDev
+{
+  const DevBvh& bvh;
+  bool pseudo;
+  int slot = -1;
+
+  __device__ FarQuery operator()(V3 c)
+  {
+    const NearestResult q = nearestDev(bvh, c, this->slot, 1e300, this->slot);
+    FarQuery r;
+    if (q.tri < 0) return r;
+    r.tri = &bvh.tris[q.tri];
+    r.found = true;
+    r.dist = sqrt(q.dist2);
+    r.side = farSideAt(bvh.tris[q.tri], q.closest, c, this->pseudo);
+    return r;
+  }
+};
+
 /// A warp of farBlockKernel takes a tile of 4 x 4 x 2 blocks (lane bits 0-1:
 /// x, 2-3: y, 4: z), so that its threads' queries and walks follow similar
 /// paths down the tree (a row of 32 blocks along x spans 256 voxels).
@@ -95,17 +116,7 @@ __global__ void __launch_bounds__(128, 4) farBlockKernel(DevBvh bvh, const FarCo
   const long long o[3] = { at[0] * FarBlock, at[1] * FarBlock, at[2] * FarBlock };
   const bool pseudo = P.sign == 1;
   auto triAt = [&](int i) -> const Tri& { return bvh.tris[bvh.order[i]]; };
-  int slot = -1;
-  auto nearest = [&](V3 c) {
-    const NearestResult q = nearestDev(bvh, c, slot, 1e300, slot);
-    FarQuery r;
-    if (q.tri < 0) return r;
-    r.tri = &bvh.tris[q.tri];
-    r.found = true;
-    r.dist = sqrt(q.dist2);
-    r.side = farSideAt(bvh.tris[q.tri], q.closest, c, pseudo);
-    return r;
-  };
+  FarNearestDev nearest{ bvh, pseudo };
   FarState& st = states[b];
   f.boxOf(o, FarBlock, st.box);
   const int s = farTryBox(bvh.nodes, cones, triAt, nearest, pseudo, P.bandWorld, margin, big, nullptr, st);
@@ -150,17 +161,7 @@ __global__ void __launch_bounds__(FarCellThreads, 8) farCellKernel(DevBvh bvh, c
   const long long mx = (f.n[0] + FarBlock - 1) / FarBlock, my = (f.n[1] + FarBlock - 1) / FarBlock;
   const bool pseudo = P.sign == 1;
   auto triAt = [&](int i) -> const Tri& { return bvh.tris[bvh.order[i]]; };
-  int slot = -1;
-  auto nearest = [&](V3 c) {
-    const NearestResult q = nearestDev(bvh, c, slot, 1e300, slot);
-    FarQuery r;
-    if (q.tri < 0) return r;
-    r.tri = &bvh.tris[q.tri];
-    r.found = true;
-    r.dist = sqrt(q.dist2);
-    r.side = farSideAt(bvh.tris[q.tri], q.closest, c, pseudo);
-    return r;
-  };
+  FarNearestDev nearest{ bvh, pseudo };
   auto boxOf = [&](const long long at[3], long long edge, FarBox& out) { f.boxOf(at, edge, out); };
   auto set = [&](const long long c[3], int sd, int m) { f.set(c, sd, m); };
   const int t = static_cast<int>(threadIdx.x), lane = t & 31;
