@@ -129,6 +129,21 @@ void prefaultLarge(void* p, std::size_t bytes)
   }
 }
 
+namespace detail
+{
+void forPiecesOnThreads(std::size_t n, const std::function<void(std::size_t, std::size_t)>& fn)
+{
+  constexpr std::size_t Piece = std::size_t(1) << 16; // elements: large enough to amortize the call
+  const std::int64_t pieces = static_cast<std::int64_t>((n + Piece - 1) / Piece);
+#pragma omp parallel for schedule(static)
+  for (std::int64_t i = 0; i < pieces; ++i)
+  {
+    const std::size_t first = static_cast<std::size_t>(i) * Piece;
+    fn(first, std::min(n, first + Piece));
+  }
+}
+} // namespace detail
+
 std::uint64_t residentMemoryBytes()
 {
   std::FILE* f = std::fopen("/proc/self/statm", "r");

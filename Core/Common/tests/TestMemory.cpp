@@ -2,6 +2,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <array>
 #include <cstdint>
 #include <memory>
@@ -40,6 +41,58 @@ TEST(Memory, ResizeLargeIsResize)
   resizeLarge(grow, 2); // shrinking is resize too
   EXPECT_EQ(grow.size(), 2u);
   adviseHugePages(nullptr, 0); // nothing to advise: no effect
+}
+
+// A LargeVector's resizeLarge constructs the new elements on the threads:
+// every one equals a value-initialized element (default member initializers
+// that are not zero included), whatever the storage held before; the old
+// ones are kept; every other way to grow it constructs as std::vector does.
+TEST(Memory, LargeVectorResizeLargeConstructsEveryNewElement)
+{
+  struct Rec
+  {
+    std::array<double, 5> v{};
+    std::int32_t left = -1;
+    std::uint32_t id = 7;
+  };
+  const Rec fresh{};
+  for (std::size_t n : { std::size_t(0), std::size_t(3), std::size_t(65537), std::size_t(1) << 20 })
+  {
+    LargeVector<Rec> a;
+    // storage that held other bytes before: reserve, fill, shrink to 0
+    a.resize(n, Rec{ { 1, 2, 3, 4, 5 }, 9, 9 });
+    a.clear();
+    resizeLarge(a, n);
+    ASSERT_EQ(a.size(), n);
+    for (std::size_t i = 0; i < n; ++i)
+    {
+      ASSERT_EQ(a[i].v, fresh.v) << i;
+      ASSERT_EQ(a[i].left, -1) << i;
+      ASSERT_EQ(a[i].id, 7u) << i;
+    }
+  }
+  LargeVector<std::uint64_t> grow = { 1, 2, 3 };
+  grow.reserve(std::size_t(4) << 20);
+  std::fill(grow.data() + 3, grow.data() + grow.capacity(), ~std::uint64_t(0)); // garbage past the end
+  resizeLarge(grow, std::size_t(3) << 20); // within the capacity: the garbage must be overwritten
+  ASSERT_EQ(grow.size(), std::size_t(3) << 20);
+  EXPECT_EQ(grow[0], 1u);
+  EXPECT_EQ(grow[2], 3u);
+  for (std::size_t i = 3; i < grow.size(); ++i) ASSERT_EQ(grow[i], 0u) << i;
+  resizeLarge(grow, std::size_t(5) << 20); // reallocates, keeps the old ones
+  EXPECT_EQ(grow[1], 2u);
+  EXPECT_EQ(grow.back(), 0u);
+  // plain resize and push_back construct as usual
+  LargeVector<Rec> plain;
+  plain.resize(5);
+  plain.push_back(Rec{});
+  for (const Rec& r : plain)
+  {
+    EXPECT_EQ(r.left, -1);
+    EXPECT_EQ(r.id, 7u);
+  }
+  resizeLarge(grow, 2); // shrinking is resize too
+  EXPECT_EQ(grow.size(), 2u);
 }
 
 TEST(Memory, PrefaultLargeMapsTheBlockOnTheThreads)

@@ -57,7 +57,7 @@ private:
 /// does not depend on the threads. The boxes come last, bottom-up, from the
 /// leaf-ordered compact copies (exact min/max: the same bits as boxes taken
 /// during the build).
-Bvh::Bvh(const std::vector<Tri>& tris)
+Bvh::Bvh(const TriList& tris)
   : Tris(tris)
 {
   const std::int32_t n = static_cast<std::int32_t>(tris.size());

@@ -109,7 +109,7 @@ static_assert(sizeof(GpuNode) == sizeof(Bvh::Node) && offsetof(GpuNode, lo) == o
     offsetof(GpuNode, count) == offsetof(Bvh::Node, count),
   "GpuNode must mirror Bvh::Node");
 
-std::vector<GpuTri> compactTris(const std::vector<Tri>& tris)
+std::vector<GpuTri> compactTris(const TriList& tris)
 {
   std::vector<GpuTri> out(tris.size());
   for (std::size_t i = 0; i < tris.size(); ++i)

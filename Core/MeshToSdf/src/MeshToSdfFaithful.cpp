@@ -49,7 +49,7 @@ bool triangleBoxOverlap(const V3 tri[3], const double centre[3], const double ha
   return true;
 }
 
-FaithfulGrid::FaithfulGrid(const std::vector<Tri>& tris, const double lo[3], const double hi[3], int m, double scale)
+FaithfulGrid::FaithfulGrid(const TriList& tris, const double lo[3], const double hi[3], int m, double scale)
   : Tris(tris)
   , M(m)
 {

@@ -188,15 +188,15 @@ std::int64_t classifyBandCells(const NearestIndex& index, const PreparedMesh& me
   return decided;
 }
 
-std::vector<FarCone> farCones(const Bvh& bvh, const std::vector<Tri>& tris)
+std::vector<FarCone> farCones(const Bvh& bvh, const TriList& tris)
 {
   // bottom-up (children have larger ids than their parent: preorder); angles
   // by atan2 (accurate near 0, unlike acos), rounded up. The leaves, most of
   // the work (every triangle's 7 normals), are independent: on the OpenMP
   // threads first (a warm GPU call computes this every time), then the inner
   // nodes in turn; each node's arithmetic is the same either way.
-  const std::vector<Bvh::Node>& nodes = bvh.nodes();
-  const std::vector<std::int32_t>& order = bvh.order();
+  const auto& nodes = bvh.nodes();
+  const auto& order = bvh.order();
   std::vector<FarCone> cones(nodes.size());
   std::vector<double> angle(nodes.size(), 4.0);
   auto angleTo = [](V3 a, V3 n) { return std::atan2(norm(cross(a, n)), dot(a, n)) * (1 + 1e-12) + 1e-12; };

@@ -534,7 +534,7 @@ struct FarCells
 double farScale(const PreparedMesh& mesh, const GridGeometry& grid);
 
 /// The normal cones of the BVH's nodes over the sign planes of `tris`.
-std::vector<FarCone> farCones(const Bvh& bvh, const std::vector<Tri>& tris);
+std::vector<FarCone> farCones(const Bvh& bvh, const TriList& tris);
 
 /// CPU: fills cells for `box` (on OpenMP threads); returns the voxels decided.
 /// pseudo: PseudoNormal (else Normal) signs.

@@ -4,6 +4,7 @@
 #pragma once
 
 #include "lvdif/HostDevice.h"
+#include "lvdif/Memory.h"
 
 #include <array>
 #include <cmath>
@@ -60,6 +61,10 @@ struct Tri
   double area = 0;
   std::uint32_t source = 0; // index in the input mesh
 };
+
+/// The triangle records of a mesh: a LargeVector, whose resizeLarge
+/// constructs the records on the threads (Memory.h).
+using TriList = LargeVector<Tri>;
 
 /// A triangle's vertices and unit normal: the compact copy the BVH keeps in
 /// leaf order (the GPU reads these 96 bytes rather than the 328-byte Tri).

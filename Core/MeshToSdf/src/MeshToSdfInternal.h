@@ -37,7 +37,7 @@ private:
 
 struct PreparedMesh
 {
-  std::vector<Tri> tris;          // non-degenerate triangles only
+  TriList tris;          // non-degenerate triangles only
   std::size_t degenerate = 0;     // skipped zero-area triangles
   double boundaryLength = 0;      // total length of the boundary chain (0 when closed)
   std::size_t boundaryEdges = 0;  // edges of non-zero net multiplicity
@@ -45,7 +45,7 @@ struct PreparedMesh
   /// multiplicity): the oriented edges of the triangles that do not cancel.
   std::vector<std::array<V3, 2>> boundary;
   /// Per triangle of tris: its corners' vertex ids, welded by exact position.
-  std::vector<std::array<std::uint32_t, 3>> welded;
+  LargeVector<std::array<std::uint32_t, 3>> welded;
   std::size_t vertices = 0; // welded vertices (ids in [0, vertices))
   double lo[3] = { 0, 0, 0 }, hi[3] = { 0, 0, 0 }; // bounds of the kept triangles
   /// Whether the records' pseudo-normals (Tri::en, Tri::vn) are filled: only
@@ -83,7 +83,7 @@ public:
     std::int32_t first = 0, count = 0;  // leaf range in Order
   };
 
-  explicit Bvh(const std::vector<Tri>& tris);
+  explicit Bvh(const TriList& tris);
 
   /// Nearest triangle to p among those closer than sqrt(bestDist2): starts
   /// from the given hint (tri index, -1 for none), exact.
@@ -103,10 +103,10 @@ public:
   /// or the ray lies in a triangle's plane (the count would be ambiguous).
   bool rayHits(V3 o, V3 dir, double tmin, std::vector<RayHit>& hits) const;
 
-  const std::vector<Node>& nodes() const { return this->Nodes; }
-  const std::vector<std::int32_t>& order() const { return this->Order; }
+  const LargeVector<Node>& nodes() const { return this->Nodes; }
+  const LargeVector<std::int32_t>& order() const { return this->Order; }
   /// leaves()[i] = vertices and normal of triangle order()[i] (for the GPU).
-  const std::vector<LeafTri>& leaves() const { return this->Leaves; }
+  const LargeVector<LeafTri>& leaves() const { return this->Leaves; }
 
 private:
   struct BuildData
@@ -116,14 +116,14 @@ private:
       double c[3];      // sum of the vertices (3x the centroid: only compared)
       std::int32_t tri; // triangle index
     };
-    std::vector<Ref> ref; // permuted in place by the build; becomes Order
+    LargeVector<Ref> ref; // permuted in place by the build; becomes Order
     const BvhSubtreeNodes* subtreeNodes = nullptr; // nodes of a subtree by its triangle count
   };
   void build(BuildData& d, std::int32_t id, std::int32_t first, std::int32_t count, int depth);
-  const std::vector<Tri>& Tris;
-  std::vector<Node> Nodes;
-  std::vector<std::int32_t> Order;
-  std::vector<LeafTri> Leaves;
+  const TriList& Tris;
+  LargeVector<Node> Nodes;
+  LargeVector<std::int32_t> Order;
+  LargeVector<LeafTri> Leaves;
 };
 
 /// The paper's "octree of overlapping chunks" (Sect. 3.1, spec 1.7): a uniform
@@ -134,7 +134,7 @@ private:
 class FaithfulGrid
 {
 public:
-  FaithfulGrid(const std::vector<Tri>& tris, const double lo[3], const double hi[3], int m, double scale);
+  FaithfulGrid(const TriList& tris, const double lo[3], const double hi[3], int m, double scale);
   /// Paper's step: brute force over the list of the cell nearest to p that
   /// has triangles; then, to be exact, every other cell whose own (unscaled)
   /// region is within the current best distance is searched too (the true
@@ -145,7 +145,7 @@ public:
 private:
   std::int64_t cellIndex(int i, int j, int k) const { return i + this->M * (j + static_cast<std::int64_t>(this->M) * k); }
   void scanCell(std::int64_t cell, V3 p, NearestResult& best) const;
-  const std::vector<Tri>& Tris;
+  const TriList& Tris;
   int M;
   double Lo[3], Step[3];
   std::vector<std::int64_t> Start; // M^3 + 1 offsets into Entries
@@ -202,11 +202,11 @@ public:
   {
     /// The closed chain's triangles: `own`, or the mesh's own list when the
     /// mesh is closed as given (no copy; bvh is then a tree over mesh.tris).
-    const std::vector<Tri>& closed() const { return this->shared ? *this->shared : this->own; }
-    std::vector<Tri> own;
-    const std::vector<Tri>* shared = nullptr;
+    const TriList& closed() const { return this->shared ? *this->shared : this->own; }
+    TriList own;
+    const TriList* shared = nullptr;
     std::shared_ptr<const Bvh> bvh;
-    std::vector<Tri> cone;
+    TriList cone;
     std::vector<Cluster> clusters; // of boundary edges, for the drift bound
     std::size_t meshTris = 0;
   };
@@ -220,9 +220,9 @@ public:
   const DipoleTree* cpuCorrection() const { return this->Flipped.get(); }
   // the older CUDA construction, for a closure with a cone: the cone over the
   // boundary of M itself (built on first use when it differs from the CPU's closure)
-  const std::vector<Tri>& closedTris() const { return this->coneOverMesh().closed(); }
+  const TriList& closedTris() const { return this->coneOverMesh().closed(); }
   const Bvh& closedBvh() const { return *this->coneOverMesh().bvh; }
-  const std::vector<Tri>& cone() const { return this->coneOverMesh().cone; }
+  const TriList& cone() const { return this->coneOverMesh().cone; }
   const std::vector<Cluster>& clusters() const { return this->coneOverMesh().clusters; }
   std::size_t meshTriangles() const { return this->coneOverMesh().meshTris; }
   /// The closure's tree when the closure is the mesh itself (a closed mesh as

@@ -263,7 +263,7 @@ float roundDown(double x) { return roundDownToFloat(x); }
 float roundUp(double x) { return roundUpToFloat(x); }
 } // namespace
 
-NearestIndex::NearestIndex(const std::vector<Tri>& tris)
+NearestIndex::NearestIndex(const TriList& tris)
 {
   const std::size_t n = tris.size();
   // peak: the index (~350 bytes a triangle: packed records, float planes,

@@ -24,7 +24,7 @@ struct NearestRowState; // MeshToSdfNearestRow.h
 class NearestIndex
 {
 public:
-  explicit NearestIndex(const std::vector<Tri>& tris);
+  explicit NearestIndex(const TriList& tris);
 
   /// The same answer as a brute-force scan of closestPointOnTriangle over
   /// every triangle (ties to the lowest index), among the triangles whose

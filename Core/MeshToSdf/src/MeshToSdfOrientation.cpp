@@ -27,7 +27,7 @@ struct EdgeUse
 };
 } // namespace
 
-OrientedMesh orientMesh(const std::vector<Tri>& tris, const std::vector<std::array<std::uint32_t, 3>>& welded)
+OrientedMesh orientMesh(const TriList& tris, const LargeVector<std::array<std::uint32_t, 3>>& welded)
 {
   OrientedMesh out;
   const std::size_t n = tris.size();

@@ -50,7 +50,7 @@ struct OrientedMesh
 /// `welded`: per triangle, its corners' vertex ids welded by exact position
 /// (PreparedMesh::welded). Sorts on OpenMP threads; the result does not
 /// depend on the thread count.
-OrientedMesh orientMesh(const std::vector<Tri>& tris, const std::vector<std::array<std::uint32_t, 3>>& welded);
+OrientedMesh orientMesh(const TriList& tris, const LargeVector<std::array<std::uint32_t, 3>>& welded);
 
 } // namespace detail::meshtosdf
 } // namespace lvdif

@@ -137,7 +137,7 @@ std::vector<WindingSigner::Cluster> clusterEdges(std::vector<std::array<V3, 2>> 
 /// Fills c (in place: its BVH refers to c.closed) with the mesh, the faces
 /// reversed or removed as `state` says (OrientedMesh::State), closed by a
 /// cone over `boundary`.
-void buildClosure(WindingSigner::Closure& c, const std::vector<Tri>& tris, const std::vector<std::uint8_t>* state,
+void buildClosure(WindingSigner::Closure& c, const TriList& tris, const std::vector<std::uint8_t>* state,
   const std::vector<std::array<V3, 2>>& boundary, const std::vector<WeightedTri>* caps = nullptr)
 {
   c.own.reserve(tris.size() + boundary.size() + (caps ? caps->size() : 0));

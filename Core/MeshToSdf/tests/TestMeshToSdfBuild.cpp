@@ -90,7 +90,7 @@ TEST(MeshToSdfBuild, PrepareMeshEqualsASerialReferenceOnAnyThreadCount)
     if (it->second == pos.size()) pos.push_back({ m.points[i][0], m.points[i][1], m.points[i][2] });
   }
   // kept triangles, normals, pseudo-normals summed in triangle order
-  std::vector<std::array<std::uint32_t, 3>> w;
+  LargeVector<std::array<std::uint32_t, 3>> w; // the type of PreparedMesh::welded
   std::vector<V3> n;
   std::vector<V3> vsum(pos.size());
   for (const auto& ix : m.triangles)

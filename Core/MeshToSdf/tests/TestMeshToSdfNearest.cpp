@@ -20,7 +20,7 @@ using namespace lvdif::detail::meshtosdf;
 
 namespace
 {
-NearestResult bruteForce(const std::vector<Tri>& tris, V3 p, double maxDist2)
+NearestResult bruteForce(const TriList& tris, V3 p, double maxDist2)
 {
   NearestResult best;
   best.dist2 = maxDist2;

@@ -53,8 +53,8 @@ struct Hash
     }
     for (; i < n; ++i) h = (h ^ b[i]) * 1099511628211ull;
   }
-  template <typename T>
-  void addVector(const std::vector<T>& v)
+  template <typename T, typename A>
+  void addVector(const std::vector<T, A>& v)
   {
     if (!v.empty()) this->add(v.data(), v.size() * sizeof(T));
   }
