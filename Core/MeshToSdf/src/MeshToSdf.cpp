@@ -19,6 +19,7 @@
 #include <cmath>
 #include <exception>
 #include <functional>
+#include <future>
 #include <memory>
 #include <sstream>
 #include <utility>
@@ -309,9 +310,8 @@ std::unique_ptr<detail::meshtosdf_cuda::Session> openCuda(const MeshToSdfPrepare
 /// the dipole tree over caps, reversed and removed faces) and decides every
 /// voxel as the CPU does (MeshToSdfCudaDipole.cuh). Only reorientFaces stays
 /// on the CPU.
-Device chooseDevice(const MeshToSdfPrepared& prepared, const MeshToSdfOptions& options)
+Device chooseDevice(const MeshToSdfOptions& options)
 {
-  (void)prepared;
   const Device d = resolveDevice(options.device);
   if (d != Device::Cuda || options.sign != SignMode::WindingNumber) return d;
   if (options.reorientFaces) return Device::Cpu; // not on CUDA (documented at the option)
@@ -753,7 +753,7 @@ MeshToSdfStats meshToSdf(const MeshToSdfPrepared& mesh, const GridGeometry& grid
   }
   MeshToSdfStats stats;
   interrupter.start("mesh to SDF");
-  stats.device = chooseDevice(mesh, options);
+  stats.device = chooseDevice(options);
   auto engine = makeEngine(mesh, grid, options, options.bandWidth, stats.device, stats);
   if (stats.device == Device::Cuda)
   {
@@ -811,7 +811,7 @@ MeshToSdfStats meshToSdf(const MeshToSdfPrepared& mesh, DictionaryVolume& volume
   opts.unit = DistanceUnit::Voxel;
   MeshToSdfStats stats;
   interrupter.start("mesh to SDF");
-  stats.device = chooseDevice(mesh, options);
+  stats.device = chooseDevice(options);
   auto engine = makeEngine(mesh, grid, opts, volume.bandWidth(), stats.device, stats);
   const bool region = !options.chunkRegion.empty();
   require(!region || options.svfFilters == 0,
@@ -879,12 +879,34 @@ MeshToSdfStats meshToSdf(const MeshToSdfPrepared& mesh, DictionaryVolume& volume
 /// The pseudo-normals only when `sign` reads them (Normal, PseudoNormal): the
 /// others (e.g. the GPU's winding-number path) skip that work; a later call
 /// with such a sign builds them then (Impl::pseudoNormals).
-static MeshToSdfPrepared prepareInternal(const TriangleMesh& mesh, SignMode sign)
+/// meshTreeNow (a call that will run on CUDA, whose distance kernel needs
+/// the mesh BVH): the tree is built on its own thread as soon as the triangle
+/// records are, beside the edge pass (boundary, pseudo-normals) that only the
+/// signs need; the same tree as built afterwards.
+static MeshToSdfPrepared prepareInternal(const TriangleMesh& mesh, SignMode sign, bool meshTreeNow = false)
 {
   const bool winding = sign == SignMode::WindingNumber;
   const double t0 = now();
   auto impl = std::make_shared<MeshToSdfPrepared::Impl>();
-  impl->mesh = prepareMesh(mesh, sign == SignMode::Normal || sign == SignMode::PseudoNormal);
+  // declared after impl: destroyed (joined) first, also when the edge pass throws
+  std::future<std::shared_ptr<const Bvh>> tree;
+  const bool tracing = tracePhasesActive();
+  std::function<void()> startTree;
+  if (meshTreeNow)
+  {
+    startTree = [&tree, &impl, tracing]() {
+      const PreparedMesh* m = &impl->mesh;
+      tree = std::async(std::launch::async, [m, tracing]() {
+        const PhaseTraceScope scope(tracing);
+        const double tb = now();
+        auto bvh = std::make_shared<const Bvh>(m->tris);
+        trace("mesh BVH (beside the edge pass)", now() - tb);
+        return bvh;
+      });
+    };
+  }
+  prepareMesh(mesh, impl->mesh, sign == SignMode::Normal || sign == SignMode::PseudoNormal, startTree);
+  if (tree.valid()) impl->bvh = tree.get();
   const double t2 = now();
   // the search structures are built on first use: the CPU's NearestIndex by
   // makeEngine, the GPU's Bvh by deviceMesh (each path needs only its own)
@@ -902,7 +924,7 @@ MeshToSdfStats prepareAndRun(const TriangleMesh& mesh, Out&& out, const MeshToSd
   Interrupter& interrupter)
 {
   const PhaseTraceScope tracing(options.tracePhases);
-  const MeshToSdfPrepared prepared = prepareInternal(mesh, options.sign);
+  const MeshToSdfPrepared prepared = prepareInternal(mesh, options.sign, chooseDevice(options) == Device::Cuda);
   MeshToSdfStats stats = meshToSdf(prepared, std::forward<Out>(out), options, interrupter);
   stats.buildSeconds += prepared.prepareSeconds();
   return stats;
@@ -912,7 +934,7 @@ MeshToSdfStats meshToSdf(const TriangleMesh& mesh, const GridGeometry& grid, con
   const MeshToSdfOptions& options, Interrupter& interrupter)
 {
   const PhaseTraceScope tracing(options.tracePhases);
-  const MeshToSdfPrepared prepared = prepareInternal(mesh, options.sign);
+  const MeshToSdfPrepared prepared = prepareInternal(mesh, options.sign, chooseDevice(options) == Device::Cuda);
   MeshToSdfStats stats = meshToSdf(prepared, grid, extent, out, options, interrupter);
   stats.buildSeconds += prepared.prepareSeconds();
   return stats;

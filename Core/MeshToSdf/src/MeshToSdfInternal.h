@@ -9,6 +9,7 @@
 #include "lvdif/TriangleMesh.h"
 
 #include <cstdint>
+#include <functional>
 #include <memory>
 #include <mutex>
 #include <vector>
@@ -23,6 +24,8 @@ namespace detail::meshtosdf
 /// (benchmarks). MeshToSdfPrepared.cpp.
 double now();
 void trace(const char* what, double seconds);
+/// Whether this thread traces (a thread started by a call passes it on).
+bool tracePhasesActive();
 class PhaseTraceScope
 {
 public:
@@ -57,6 +60,14 @@ struct PreparedMesh
 /// exact position), the boundary chain and, when `pseudoNormals`, the
 /// pseudo-normals (else left zero, for addPseudoNormals).
 PreparedMesh prepareMesh(const TriangleMesh& mesh, bool pseudoNormals = true);
+/// The same, into `out` (which must stay where it is: a reader started by
+/// recordsReady holds references into it). recordsReady (optional) is called
+/// once tris, welded, vertices and the bounds are final, before the edge
+/// pass (boundary, edge pseudo-normals): it may start a reader of those
+/// fields alone (the mesh BVH reads Tri::v and Tri::n) on another thread; the
+/// rest of prepareMesh writes no field such a reader reads.
+void prepareMesh(const TriangleMesh& mesh, PreparedMesh& out, bool pseudoNormals,
+  const std::function<void()>& recordsReady);
 /// Fills the pseudo-normals of a mesh prepared without them, bit for bit as
 /// prepareMesh(mesh, true) does; nothing if they are there. Writes only
 /// Tri::en and Tri::vn (readers of other fields may run meanwhile).

@@ -274,6 +274,14 @@ void finishPseudoNormals(PreparedMesh& out, const std::vector<V3>& vertexNormal)
 
 PreparedMesh prepareMesh(const TriangleMesh& mesh, bool pseudoNormals)
 {
+  PreparedMesh out;
+  prepareMesh(mesh, out, pseudoNormals, {});
+  return out;
+}
+
+void prepareMesh(const TriangleMesh& mesh, PreparedMesh& out, bool pseudoNormals,
+  const std::function<void()>& recordsReady)
+{
   double tp = now(); // sub-phase times on the trace (tracePhases)
   const std::function<void(const char*)> lap = [&tp](const char* what) {
     const double t = now();
@@ -281,7 +289,7 @@ PreparedMesh prepareMesh(const TriangleMesh& mesh, bool pseudoNormals)
     tp = t;
   };
   mesh.validate();
-  PreparedMesh out;
+  out = PreparedMesh();
   const std::size_t nt = mesh.triangles.size();
 
   // Weld by exact position so pseudo-normals and the boundary chain see the
@@ -364,6 +372,9 @@ PreparedMesh prepareMesh(const TriangleMesh& mesh, bool pseudoNormals)
   out.lo[0] = lx, out.lo[1] = ly, out.lo[2] = lz;
   out.hi[0] = hx, out.hi[1] = hy, out.hi[2] = hz;
   lap("prepare: triangle records");
+  // the records, welded ids and bounds are final: work that reads only those
+  // (the mesh BVH) may start beside the edge pass
+  if (recordsReady) recordsReady();
 
   std::vector<V3> vertexNormal;
   if (pseudoNormals)
@@ -377,7 +388,6 @@ PreparedMesh prepareMesh(const TriangleMesh& mesh, bool pseudoNormals)
     finishPseudoNormals(out, vertexNormal);
     lap("prepare: pseudo-normals");
   }
-  return out;
 }
 
 void addPseudoNormals(PreparedMesh& out)

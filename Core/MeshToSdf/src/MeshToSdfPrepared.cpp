@@ -35,6 +35,8 @@ PhaseTraceScope::PhaseTraceScope(bool on)
 
 PhaseTraceScope::~PhaseTraceScope() { tracePhasesOn = previous; }
 
+bool tracePhasesActive() { return tracePhasesOn; }
+
 void trace(const char* what, double seconds)
 {
   if (tracePhasesOn) std::fprintf(stderr, "[mesh to SDF] %s: %.2f ms\n", what, seconds * 1e3);

@@ -16,7 +16,9 @@
 #include <array>
 #include <cmath>
 #include <cstring>
+#include <future>
 #include <map>
+#include <memory>
 #include <random>
 #include <vector>
 
@@ -180,6 +182,41 @@ TEST(MeshToSdfBuild, PrepareMeshEqualsASerialReferenceOnAnyThreadCount)
         std::memcmp(a.v, b.v, sizeof(a.v)) != 0 || !sameBits(a.n, b.n);
     }
     EXPECT_EQ(lazyBad, 0u) << threads;
+  }
+}
+
+// The one-call CUDA route builds the mesh BVH on its own thread beside the
+// edge pass (prepareMesh's recordsReady): the prepared mesh and the tree are
+// bit for bit those built one after the other, with and without the
+// pseudo-normals (whose edge pass writes the records the tree reads from).
+TEST(MeshToSdfBuild, TreeBuiltBesideTheEdgePassEqualsTheTreeBuiltAfter)
+{
+  const TriangleMesh m = damagedSoup();
+  for (bool pseudo : { false, true })
+  {
+    const PreparedMesh ref = prepareMesh(m, pseudo);
+    const Bvh refTree(ref.tris);
+    PreparedMesh out;
+    std::future<std::unique_ptr<Bvh>> tree;
+    bool called = false;
+    prepareMesh(m, out, pseudo, [&] {
+      called = true;
+      ASSERT_EQ(out.tris.size(), ref.tris.size()); // the records are there already
+      tree = std::async(std::launch::async, [&out] { return std::make_unique<Bvh>(out.tris); });
+    });
+    ASSERT_TRUE(called);
+    const std::unique_ptr<Bvh> beside = tree.get();
+    ASSERT_EQ(out.tris.size(), ref.tris.size());
+    EXPECT_EQ(std::memcmp(out.tris.data(), ref.tris.data(), ref.tris.size() * sizeof(Tri)), 0) << pseudo;
+    EXPECT_EQ(out.welded, ref.welded);
+    ASSERT_EQ(out.boundary.size(), ref.boundary.size());
+    EXPECT_EQ(std::memcmp(out.boundary.data(), ref.boundary.data(), ref.boundary.size() * sizeof(ref.boundary[0])), 0);
+    EXPECT_EQ(out.boundaryEdges, ref.boundaryEdges);
+    EXPECT_EQ(out.pseudoNormals, pseudo);
+    ASSERT_EQ(beside->nodes().size(), refTree.nodes().size());
+    EXPECT_EQ(std::memcmp(beside->nodes().data(), refTree.nodes().data(), refTree.nodes().size() * sizeof(Bvh::Node)), 0);
+    EXPECT_EQ(beside->order(), refTree.order());
+    EXPECT_EQ(std::memcmp(beside->leaves().data(), refTree.leaves().data(), refTree.leaves().size() * sizeof(LeafTri)), 0);
   }
 }
 

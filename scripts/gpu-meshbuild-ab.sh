@@ -1,0 +1,66 @@
+#!/bin/bash
+# GPU-host A/B of the one-call CUDA path's host build, in one lease: builds
+# Core alone with CUDA (sm_90) twice, from a source tarball of the old code
+# (BEFORE, made here with `git archive REV > .gpu/before.tar`) and from the
+# working tree, in parallel; runs the working tree's MeshToSdf CUDA and build
+# tests and the Memory tests; then alternates the two builds' bench_mesh_to_sdf
+# on the paper's bunny and the 832k-triangle armadillo (sub2) at 1024^3 and the
+# 13.3M-triangle sub4 at 1024^3 (WindingNumber, Device::Auto, dictionary
+# volume, band 8; cold then warm calls, --trace on the last round), and checks
+# sub2 CUDA = CPU bit for bit at 128^3 with the new build. No new step starts
+# after BUDGET seconds (default 420). Logs in $OUT.
+# usage: OUT=dir scripts/gpu-meshbuild-ab.sh [BEFORE.tar] [ARMADILLO.off] [BUNNY.ply] [BUDGET]
+set -u
+BEFORE=${1:-.gpu/before.tar}
+A=${2:-.gpu/meshes/armadillo.off}
+BUNNY=${3:-.gpu/meshes/lvdif-bunny-30k.ply}
+BUDGET=${4:-420}
+OUT=${OUT:-out-gpu-meshbuild-ab}
+L="$OUT/bench.log"
+. "$(dirname "$0")/gpu-common.sh"
+[ -f "$A" ] || { echo "no mesh at $A"; exit 1; }
+[ -f "$BEFORE" ] || { echo "no tarball of the old code at $BEFORE"; exit 1; }
+gpu_begin
+mkdir -p /tmp/before && tar -xf "$BEFORE" -C /tmp/before
+CFG="-DLVDIF_CORE_ONLY=ON -DLVDIF_CUDA=ON -DCMAKE_CUDA_ARCHITECTURES=90 -DCMAKE_BUILD_TYPE=Release"
+half=$(( $(nproc) / 2 ))
+( cmake -S /tmp/before -B b-before $CFG && cmake --build b-before -j"$half" --target bench_mesh_to_sdf ) \
+  > "$OUT/build-before.log" 2>&1 &
+( cmake -S . -B b-after $CFG && cmake --build b-after -j"$half" --target bench_mesh_to_sdf LVDIFMeshToSdfTests LVDIFCommonTests ) \
+  > "$OUT/build.log" 2>&1
+after_rc=$?
+wait
+[ "$after_rc" = 0 ] || { grep -B2 -A10 -i "error" "$OUT/build.log" | head -80; exit 1; }
+[ -x b-before/Testing/Benchmarks/Core/bench_mesh_to_sdf ] || { tail -40 "$OUT/build-before.log"; exit 1; }
+echo "builds done after $(( $(date +%s) - T0 )) s" | tee "$OUT/summary.txt"
+
+timeout 200 b-after/Core/MeshToSdf/LVDIFMeshToSdfTests \
+  --gtest_filter='MeshToSdfCuda.*:MeshToSdfRegion.Cuda*:MeshToSdfBuild.*:MeshToSdf.PreparedMesh*' > "$OUT/tests.log" 2>&1
+echo "MeshToSdf CUDA and build tests rc=$?" | tee -a "$OUT/summary.txt"
+timeout 60 b-after/Core/Common/LVDIFCommonTests --gtest_filter='Memory.*' >> "$OUT/tests.log" 2>&1
+echo "Memory tests rc=$?" | tee -a "$OUT/summary.txt"
+grep -E "^\[  (PASSED|FAILED|SKIPPED) |Failure" "$OUT/tests.log" | head -20 | tee -a "$OUT/summary.txt"
+
+: > "$L"
+for round in 1 2; do
+  trace=""
+  [ "$round" = 2 ] && trace=--trace
+  for v in before after; do
+    M=b-$v/Testing/Benchmarks/Core/bench_mesh_to_sdf
+    RUN_LABEL="$v r$round" run 40 $M "$BUNNY" 1024 winding auto bvh volume 8 2 cold,warm,warm,warm $trace
+    RUN_LABEL="$v r$round" run 60 $M "sub2:$A" 1024 winding auto bvh volume 8 2 cold,warm,warm,warm $trace
+  done
+done
+for v in before after; do
+  RUN_LABEL="$v" run 90 b-$v/Testing/Benchmarks/Core/bench_mesh_to_sdf "sub4:$A" 1024 winding auto bvh volume 8 2 cold,warm,warm --trace
+done
+RUN_LABEL=after run 60 b-after/Testing/Benchmarks/Core/bench_mesh_to_sdf "sub2:$A" 128 winding auto bvh float 0 2 warm --check-cpu
+
+{
+  echo "## rows (ms): run | device | read | build | distance | sign | write | end-to-end"
+  grep -E "^## |^\| (cold|warm) |^cpu check:|rc=[1-9]" "$L" |
+    awk -F'|' '/^\| (cold|warm) / { printf "|%s|%s|%s|%s|%s|%s|%s|%s|\n", $2, $3, $4, $5, $6, $7, $8, $9; next } { print }'
+  echo "## host phases (--trace), in run order"
+  grep -E "^## |\[mesh to SDF\] (prepareMesh|prepare:|mesh BVH|winding structures|upload and session)" "$L" | head -150
+} | tee -a "$OUT/summary.txt"
+echo "total $(( $(date +%s) - T0 )) s" | tee -a "$OUT/summary.txt"
