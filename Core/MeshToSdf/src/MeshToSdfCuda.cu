@@ -48,8 +48,8 @@ public:
   {
     for (void* p : this->Ptrs) cudaFree(p);
   }
-  template <typename T>
-  T* upload(const std::vector<T>& v)
+  template <typename T, typename A>
+  T* upload(const std::vector<T, A>& v)
   {
     T* d = this->alloc<T>(v.size());
     if (!v.empty()) LVDIF_CUDA_CHECK(cudaMemcpy(d, v.data(), v.size() * sizeof(T), cudaMemcpyHostToDevice));
@@ -57,8 +57,8 @@ public:
   }
   /// Copies v into `into` (capacity `cap` elements) or, if it does not fit, a
   /// new buffer, on a non-blocking stream: never waits for running kernels.
-  template <typename T>
-  T* uploadOn(cudaStream_t stream, const std::vector<T>& v, T* into = nullptr, std::size_t cap = 0)
+  template <typename T, typename A>
+  T* uploadOn(cudaStream_t stream, const std::vector<T, A>& v, T* into = nullptr, std::size_t cap = 0)
   {
     T* d = into && v.size() <= cap ? into : this->alloc<T>(v.size());
     if (!v.empty())
