@@ -901,7 +901,10 @@ static MeshToSdfPrepared prepareInternal(const TriangleMesh& mesh, SignMode sign
   {
     startTree = [&tree, &impl, tracing]() {
       const PreparedMesh* m = &impl->mesh;
-      tree = std::async(std::launch::async, [m, tracing]() {
+      // a new thread starts from the default thread count: pass the caller's on
+      const int threads = omp_get_max_threads();
+      tree = std::async(std::launch::async, [m, tracing, threads]() {
+        omp_set_num_threads(threads);
         const PhaseTraceScope scope(tracing);
         const double tb = now();
         auto bvh = std::make_shared<const Bvh>(m->tris);
