@@ -7,7 +7,9 @@
 
 #include "MeshToSdfInternal.h"
 
+#include <cmath>
 #include <cstdint>
+#include <limits>
 #include <vector>
 
 namespace lvdif
@@ -15,9 +17,20 @@ namespace lvdif
 namespace detail::meshtosdf
 {
 
-/// float bounds rounded outward (the boxes must contain the double ones)
-float roundDownToFloat(double x);
-float roundUpToFloat(double x);
+/// float bounds rounded outward (the boxes must contain the double ones);
+/// inline: every improvement of a query's best distance rounds its threshold
+inline float roundDownToFloat(double x)
+{
+  float f = static_cast<float>(x);
+  if (static_cast<double>(f) > x) f = std::nextafter(f, -std::numeric_limits<float>::infinity());
+  return f;
+}
+inline float roundUpToFloat(double x)
+{
+  float f = static_cast<float>(x);
+  if (static_cast<double>(f) < x) f = std::nextafter(f, std::numeric_limits<float>::infinity());
+  return f;
+}
 
 struct NearestRowState; // MeshToSdfNearestRow.h
 
