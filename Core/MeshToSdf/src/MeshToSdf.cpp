@@ -586,13 +586,37 @@ void volumeRegion(DictionaryVolume& volume, const VoxelBox& region, std::uint64_
     {
       const std::int64_t id = volume.chunkId(rc.lo[0] + c % ncx, cy0 + c / ncx, cz);
       const VoxelBox cb = volume.chunkBox(id);
-      auto keyAt = [&](std::int64_t x, std::int64_t y, std::int64_t z, std::int64_t) {
-        return volume.encode(
-          buffer[static_cast<std::size_t>((x - box.lo[0]) + nx * ((y - box.lo[1]) + ny * (z - box.lo[2])))]);
+      auto valueAt = [&](std::int64_t x, std::int64_t y, std::int64_t z) {
+        return buffer[static_cast<std::size_t>((x - box.lo[0]) + nx * ((y - box.lo[1]) + ny * (z - box.lo[2])))];
       };
-      const SdfKey first = keyAt(cb.lo[0], cb.lo[1], cb.lo[2], 0);
+      // equal floats encode to equal keys (encode reads the value only by
+      // comparisons and |value|, so +0 and -0 alike; NaN never compares equal
+      // and is encoded): the saturated +-band voxels, most of a banded
+      // volume, reuse the previous voxel's key instead of encoding again
+      float lastValue = valueAt(cb.lo[0], cb.lo[1], cb.lo[2]);
+      SdfKey lastKey = volume.encode(lastValue);
+      auto keyAt = [&](std::int64_t x, std::int64_t y, std::int64_t z, std::int64_t) {
+        const float v = valueAt(x, y, z);
+        if (v == lastValue) return lastKey;
+        lastValue = v;
+        lastKey = volume.encode(v);
+        return lastKey;
+      };
+      const SdfKey first = lastKey;
+      const float firstValue = lastValue;
+      // a chunk of one float is uniform; otherwise its keys may still be
+      bool sameFloat = true;
+      for (std::int64_t z = cb.lo[2]; z <= cb.hi[2] && sameFloat; ++z)
+        for (std::int64_t y = cb.lo[1]; y <= cb.hi[1] && sameFloat; ++y)
+        {
+          const float* row = buffer.data() + ((cb.lo[0] - box.lo[0]) + nx * ((y - box.lo[1]) + ny * (z - box.lo[2])));
+          const std::int64_t n = cb.hi[0] - cb.lo[0] + 1;
+          bool same = true;
+          for (std::int64_t i = 0; i < n; ++i) same &= row[i] == firstValue;
+          sameFloat = same;
+        }
       bool uniform = true;
-      for (std::int64_t z = cb.lo[2]; z <= cb.hi[2] && uniform; ++z)
+      for (std::int64_t z = cb.lo[2]; z <= cb.hi[2] && !sameFloat && uniform; ++z)
         for (std::int64_t y = cb.lo[1]; y <= cb.hi[1] && uniform; ++y)
           for (std::int64_t x = cb.lo[0]; x <= cb.hi[0] && uniform; ++x) uniform = keyAt(x, y, z, 0) == first;
       storeChunk(volume, id, uniform, first, keyAt);
