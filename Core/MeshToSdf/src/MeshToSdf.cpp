@@ -358,21 +358,23 @@ void forRows(const VoxelBox& box, Interrupter& intr, double progressBase, double
   intr.checkInterrupt();
 }
 
-/// Bricks of Brick^3 voxels within the band: 4 measured faster than the rows
-/// on the bunny at 512 (8 gathers too many candidates per voxel).
-constexpr std::int64_t Brick = 4;
+/// Bricks of BrickX x Brick x Brick voxels within the band. 8 x 4 x 4
+/// measured fastest on the bunny and the armadillo at 512 (4^3: more bricks,
+/// each with a query and a list; 8^3: lists too long for each voxel; 2 or 16
+/// along x: slower or no better).
+constexpr std::int64_t BrickX = 8, Brick = 4;
 
 /// The distance pass of a banded box (WindingNumber, Unsigned: the sign comes
-/// later) brick by brick: the voxels of a brick that the far cells left get
+/// later) brick by brick (from the box's first voxel): the voxels of a brick that the far cells left get
 /// NearestIndex::nearestBrick bounded at the band (the same values as the
 /// rows' queries: a voxel with no triangle within the band is +band either
 /// way), on OpenMP threads; progress from thread 0, cancellation per brick.
 void Engine::distanceBricks(const VoxelBox& box, float* out, const FarCells& far, Interrupter& intr,
   double progressBase, double progressSpan) const
 {
-  constexpr std::int64_t B = Brick;
+  constexpr std::int64_t BX = BrickX, B = Brick;
   const std::int64_t n[3] = { box.hi[0] - box.lo[0] + 1, box.hi[1] - box.lo[1] + 1, box.hi[2] - box.lo[2] + 1 };
-  const std::int64_t nb[3] = { (n[0] + B - 1) / B, (n[1] + B - 1) / B, (n[2] + B - 1) / B };
+  const std::int64_t nb[3] = { (n[0] + BX - 1) / BX, (n[1] + B - 1) / B, (n[2] + B - 1) / B };
   const std::int64_t bricks = nb[0] * nb[1] * nb[2];
   const bool anyFar = !far.sign.empty();
   static_assert(FarCell == 2, "cells of 2^3 voxels: one bit each");
@@ -409,10 +411,10 @@ void Engine::distanceBricks(const VoxelBox& box, float* out, const FarCells& far
       if (stop.load(std::memory_order_relaxed)) continue;
       try
       {
-        const std::int64_t o[3] = { B * (b % nb[0]), B * ((b / nb[0]) % nb[1]), B * (b / (nb[0] * nb[1])) };
+        const std::int64_t o[3] = { BX * (b % nb[0]), B * ((b / nb[0]) % nb[1]), B * (b / (nb[0] * nb[1])) };
         ps.clear();
         at.clear();
-        const std::int64_t x1 = std::min(n[0], o[0] + B), y1 = std::min(n[1], o[1] + B), z1 = std::min(n[2], o[2] + B);
+        const std::int64_t x1 = std::min(n[0], o[0] + BX), y1 = std::min(n[1], o[1] + B), z1 = std::min(n[2], o[2] + B);
         // the far voxels are written (above); a brick of whole far cells has nothing else
         bool allFar = anyFar;
         for (std::int64_t z = o[2]; z < z1 && allFar; z += FarCell)

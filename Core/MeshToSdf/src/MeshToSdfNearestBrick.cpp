@@ -20,11 +20,32 @@
 #include <emmintrin.h>
 #define LVDIF_BRICK_SSE 1
 #endif
+#if defined(__GNUC__) && defined(__x86_64__)
+#include <immintrin.h>
+#endif
 
 namespace lvdif
 {
 namespace detail::meshtosdf
 {
+
+namespace
+{
+/// One brick's candidate list as the per-point scans read it.
+struct BrickScan
+{
+  const float* planes = nullptr;                        // groups of W candidates (see nearestBrick)
+  const std::pair<double, std::int32_t>* gaps = nullptr; // squared box gaps, ascending
+  const std::int32_t* cand = nullptr;                   // positions in the packed triangles
+  int count = 0;
+  const NearestIndex::Packed* tris = nullptr;
+  float eps = 0;
+};
+void scanBrick4(const BrickScan& b, NearestRowState& s);
+#if defined(__GNUC__) && defined(__x86_64__)
+void scanBrickAvx2(const BrickScan& b, NearestRowState& s);
+#endif
+} // namespace
 
 void NearestIndex::nearestBrick(const V3* p, int n, double maxDist2, std::int32_t hint, NearestResult* out,
   BrickScratch& scratch) const
@@ -86,27 +107,36 @@ void NearestIndex::nearestBrick(const V3* p, int n, double maxDist2, std::int32_
   std::sort(scratch.near.begin(), scratch.near.end());
   for (const auto& c2 : scratch.near) cand.push_back(c2.second);
   const int K = static_cast<int>(cand.size());
-  const int groups = (K + 3) / 4;
-  // the candidates' float planes in groups of four (lanes = candidates):
-  // group g holds plane j's x, y, z, w at 16 g + 4 j + (0..3), four lanes each;
-  // padding lanes get zero planes (their bound is 0: they pass, and are skipped)
+  // the candidates' float planes in groups of W (lanes = candidates, W = 8
+  // with AVX2, else 4): group g holds coefficient c (x, y, z, w) of plane j at
+  // 16 W g + W (4 j + c) + lane; padding lanes get zero planes (their bound
+  // is 0: they pass, and are skipped)
+  const bool avx2 = nearestRowUseAvx2;
+  const int W = avx2 ? 8 : 4;
+  const int groups = (K + W - 1) / W;
   std::vector<float>& f = scratch.planes;
-  f.assign(static_cast<std::size_t>(64 * groups), 0.0f);
+  f.assign(static_cast<std::size_t>(16 * W * groups), 0.0f);
   for (int k = 0; k < K; ++k)
   {
     const PlanesF& pl = this->TriPlanes[static_cast<std::size_t>(cand[static_cast<std::size_t>(k)])];
-    float* g = f.data() + 64 * (k / 4) + (k % 4);
+    float* g = f.data() + 16 * W * (k >> (avx2 ? 3 : 2)) + (k & (W - 1));
     for (int j = 0; j < 4; ++j)
     {
-      g[4 * (4 * j + 0)] = pl.x[j];
-      g[4 * (4 * j + 1)] = pl.y[j];
-      g[4 * (4 * j + 2)] = pl.z[j];
-      g[4 * (4 * j + 3)] = pl.w[j];
+      g[W * (4 * j + 0)] = pl.x[j];
+      g[W * (4 * j + 1)] = pl.y[j];
+      g[W * (4 * j + 2)] = pl.z[j];
+      g[W * (4 * j + 3)] = pl.w[j];
     }
   }
 
+  BrickScan scan;
+  scan.planes = f.data();
+  scan.gaps = scratch.near.data();
+  scan.cand = cand.data();
+  scan.count = K;
+  scan.tris = this->Tris.data();
+  scan.eps = static_cast<float>(4e-6 * big); // nearestRow's plane margin
   const double tau = 1e-10 * big; // as nearest() with this (larger or equal) big
-  const float planeEps = static_cast<float>(4e-6 * big);
   std::int32_t prev = centre.tri;
   for (int i = 0; i < n; ++i)
   {
@@ -116,47 +146,95 @@ void NearestIndex::nearestBrick(const V3* p, int n, double maxDist2, std::int32_
     s.out = out + i;
     s.tau = tau;
     s.setThreshold(0);
-    // seeds: the previous point's triangle and the centre's (taken as nearest() takes its hint)
-    for (const std::int32_t seed : { prev, centre.tri })
-      if (seed >= 0) s.exact(0, this->Tris[static_cast<std::size_t>(this->PosOf[static_cast<std::size_t>(seed)])]);
-    const float px = static_cast<float>(p[i].x), py = static_cast<float>(p[i].y), pz = static_cast<float>(p[i].z);
-    for (int g = 0; g < groups; ++g)
-    {
-      if (scratch.near[static_cast<std::size_t>(4 * g)].first > s.thr2[0]) break;
-      // the plane and edge bounds of four candidates, as nearestRow computes them
-      const float* q = f.data() + 64 * g;
-      int pass = 0;
-#ifdef LVDIF_BRICK_SSE
-      const __m128 vx = _mm_set1_ps(px), vy = _mm_set1_ps(py), vz = _mm_set1_ps(pz), eps = _mm_set1_ps(planeEps),
-                   zero = _mm_setzero_ps();
-      auto val = [&](int j) {
-        const float* c = q + 16 * j;
-        return _mm_add_ps(_mm_mul_ps(_mm_loadu_ps(c), vx),
-          _mm_add_ps(_mm_add_ps(_mm_mul_ps(_mm_loadu_ps(c + 4), vy), _mm_mul_ps(_mm_loadu_ps(c + 8), vz)), _mm_loadu_ps(c + 12)));
-      };
-      const __m128 absMask = _mm_castsi128_ps(_mm_set1_epi32(0x7fffffff));
-      const __m128 pd = _mm_max_ps(_mm_sub_ps(_mm_and_ps(val(0), absMask), eps), zero);
-      const __m128 ed = _mm_max_ps(_mm_sub_ps(_mm_max_ps(val(1), _mm_max_ps(val(2), val(3))), eps), zero);
-      const __m128 lt = _mm_mul_ps(_mm_add_ps(_mm_mul_ps(pd, pd), _mm_mul_ps(ed, ed)), _mm_set1_ps(0.999999f));
-      pass = _mm_movemask_ps(_mm_cmple_ps(lt, _mm_set1_ps(s.thrF[0])));
-#else
-      for (int l = 0; l < 4; ++l)
-      {
-        auto val = [&](int j) { return q[16 * j + l] * px + ((q[16 * j + 4 + l] * py + q[16 * j + 8 + l] * pz) + q[16 * j + 12 + l]); };
-        const float pd = std::max(std::fabs(val(0)) - planeEps, 0.0f);
-        const float ed = std::max(std::max(val(1), std::max(val(2), val(3))) - planeEps, 0.0f);
-        pass |= (pd * pd + ed * ed) * 0.999999f <= s.thrF[0] ? 1 << l : 0;
-      }
+    // seed: the previous point's triangle (the centre's for the first), taken
+    // as nearest() takes its hint; seeding with both measured no fewer exact tests
+    if (prev >= 0) s.exact(0, this->Tris[static_cast<std::size_t>(this->PosOf[static_cast<std::size_t>(prev)])]);
+#if defined(__GNUC__) && defined(__x86_64__)
+    if (avx2)
+      scanBrickAvx2(scan, s);
+    else
 #endif
-      for (; pass; pass &= pass - 1)
-      {
-        const int k = 4 * g + __builtin_ctz(static_cast<unsigned>(pass));
-        if (k < K) s.exact(0, this->Tris[static_cast<std::size_t>(cand[static_cast<std::size_t>(k)])]);
-      }
-    }
+      scanBrick4(scan, s);
     if (out[i].tri >= 0) prev = out[i].tri;
   }
 }
+
+namespace
+{
+void scanBrick4(const BrickScan& b, NearestRowState& s)
+{
+  const float px = static_cast<float>(s.p[0].x), py = static_cast<float>(s.p[0].y), pz = static_cast<float>(s.p[0].z);
+  const int groups = (b.count + 3) / 4;
+  for (int g = 0; g < groups; ++g)
+  {
+    if (b.gaps[4 * g].first > s.thr2[0]) break;
+    // the plane and edge bounds of four candidates, as nearestRow computes them
+    const float* q = b.planes + 64 * g;
+    int pass = 0;
+#ifdef LVDIF_BRICK_SSE
+    const __m128 vx = _mm_set1_ps(px), vy = _mm_set1_ps(py), vz = _mm_set1_ps(pz), eps = _mm_set1_ps(b.eps),
+                 zero = _mm_setzero_ps();
+    auto val = [&](int j) {
+      const float* c = q + 16 * j;
+      return _mm_add_ps(_mm_mul_ps(_mm_loadu_ps(c), vx),
+        _mm_add_ps(_mm_add_ps(_mm_mul_ps(_mm_loadu_ps(c + 4), vy), _mm_mul_ps(_mm_loadu_ps(c + 8), vz)), _mm_loadu_ps(c + 12)));
+    };
+    const __m128 absMask = _mm_castsi128_ps(_mm_set1_epi32(0x7fffffff));
+    const __m128 pd = _mm_max_ps(_mm_sub_ps(_mm_and_ps(val(0), absMask), eps), zero);
+    const __m128 ed = _mm_max_ps(_mm_sub_ps(_mm_max_ps(val(1), _mm_max_ps(val(2), val(3))), eps), zero);
+    const __m128 lt = _mm_mul_ps(_mm_add_ps(_mm_mul_ps(pd, pd), _mm_mul_ps(ed, ed)), _mm_set1_ps(0.999999f));
+    pass = _mm_movemask_ps(_mm_cmple_ps(lt, _mm_set1_ps(s.thrF[0])));
+#else
+    for (int l = 0; l < 4; ++l)
+    {
+      auto val = [&](int j) { return q[16 * j + l] * px + ((q[16 * j + 4 + l] * py + q[16 * j + 8 + l] * pz) + q[16 * j + 12 + l]); };
+      const float pd = std::max(std::fabs(val(0)) - b.eps, 0.0f);
+      const float ed = std::max(std::max(val(1), std::max(val(2), val(3))) - b.eps, 0.0f);
+      pass |= (pd * pd + ed * ed) * 0.999999f <= s.thrF[0] ? 1 << l : 0;
+    }
+#endif
+    for (; pass; pass &= pass - 1)
+    {
+      const int k = 4 * g + __builtin_ctz(static_cast<unsigned>(pass));
+      if (k < b.count) s.exact(0, b.tris[static_cast<std::size_t>(b.cand[k])]);
+    }
+  }
+}
+
+#if defined(__GNUC__) && defined(__x86_64__)
+__attribute__((target("avx2"))) void scanBrickAvx2(const BrickScan& b, NearestRowState& s)
+{
+  const __m256 vx = _mm256_set1_ps(static_cast<float>(s.p[0].x)), vy = _mm256_set1_ps(static_cast<float>(s.p[0].y)),
+               vz = _mm256_set1_ps(static_cast<float>(s.p[0].z)), eps = _mm256_set1_ps(b.eps),
+               zero = _mm256_setzero_ps(), shrink = _mm256_set1_ps(0.999999f),
+               absMask = _mm256_castsi256_ps(_mm256_set1_epi32(0x7fffffff));
+  const int groups = (b.count + 7) / 8;
+  for (int g = 0; g < groups; ++g)
+  {
+    if (b.gaps[8 * g].first > s.thr2[0]) break;
+    // the same bounds for eight candidates (the same operations per lane)
+    const float* q = b.planes + 128 * g;
+    __m256 v[4];
+    for (int j = 0; j < 4; ++j)
+    {
+      const float* c = q + 32 * j;
+      v[j] = _mm256_add_ps(_mm256_mul_ps(_mm256_loadu_ps(c), vx),
+        _mm256_add_ps(_mm256_add_ps(_mm256_mul_ps(_mm256_loadu_ps(c + 8), vy), _mm256_mul_ps(_mm256_loadu_ps(c + 16), vz)),
+          _mm256_loadu_ps(c + 24)));
+    }
+    const __m256 pd = _mm256_max_ps(_mm256_sub_ps(_mm256_and_ps(v[0], absMask), eps), zero);
+    const __m256 ed = _mm256_max_ps(_mm256_sub_ps(_mm256_max_ps(v[1], _mm256_max_ps(v[2], v[3])), eps), zero);
+    const __m256 lt = _mm256_mul_ps(_mm256_add_ps(_mm256_mul_ps(pd, pd), _mm256_mul_ps(ed, ed)), shrink);
+    int pass = _mm256_movemask_ps(_mm256_cmp_ps(lt, _mm256_set1_ps(s.thrF[0]), _CMP_LE_OQ));
+    for (; pass; pass &= pass - 1)
+    {
+      const int k = 8 * g + __builtin_ctz(static_cast<unsigned>(pass));
+      if (k < b.count) s.exact(0, b.tris[static_cast<std::size_t>(b.cand[k])]);
+    }
+  }
+}
+#endif
+} // namespace
 
 } // namespace detail::meshtosdf
 } // namespace lvdif

@@ -5,6 +5,7 @@
 // volumes, with several bands; and the per-voxel path itself equals the
 // brute-force accelerator (no index, no far blocks) on a smaller grid.
 #include "MeshToSdfFarCases.h"
+#include "../src/MeshToSdfNearestRow.h" // nearestRowUseAvx2
 #include "lvdif/DictionaryVolume.h"
 #include "lvdif/MeshToSdf.h"
 
@@ -240,7 +241,7 @@ TEST(MeshToSdfFarBlocks, WindingAndUnsignedBlocksPastTheBandSameFloats)
 
 TEST(MeshToSdfFarBlocks, BandBricksEqualBruteForce)
 {
-  // the voxels within the band go through bricks of 4^3 with one candidate
+  // the voxels within the band go through bricks (8 x 4 x 4) with one candidate
   // list each (NearestIndex::nearestBrick): bit for bit the brute-force
   // accelerator (every triangle for every voxel) on open, flipped, duplicated,
   // non-manifold and intersecting meshes and soups, on the non-cubic grid
@@ -262,12 +263,18 @@ TEST(MeshToSdfFarBlocks, BandBricksEqualBruteForce)
         o.sign = s;
         o.unit = unit;
         o.bandWidth = unit == DistanceUnit::World ? band * 0.1f : band;
+        // the candidate scan four lanes at a time, and eight where the CPU has AVX2
+        const bool avx2 = detail::meshtosdf::nearestRowUseAvx2;
+        detail::meshtosdf::nearestRowUseAvx2 = false;
+        const FarRun bricks4 = run(prepared, gr.g, gr.box, o, true);
+        detail::meshtosdf::nearestRowUseAvx2 = avx2;
         const FarRun bricks = run(prepared, gr.g, gr.box, o, true);
         o.accel = MeshToSdfAccel::BruteForce;
         const FarRun brute = run(prepared, gr.g, gr.box, o, true);
         const std::string what = c.name + ", " + gr.name + ", " + toString(s) + ", band " + std::to_string(band) +
           (unit == DistanceUnit::World ? " world" : " voxels");
         EXPECT_EQ(bitDifferences(bricks.out, brute.out), 0) << what;
+        EXPECT_EQ(bitDifferences(bricks4.out, brute.out), 0) << what << ", four lanes";
         std::int64_t within = 0;
         for (float v : brute.out) within += std::fabs(v) < o.bandWidth;
         EXPECT_GT(within, 0) << what; // the band holds voxels that the bricks computed
