@@ -391,8 +391,18 @@ void Engine::distanceBricks(const VoxelBox& box, float* out, const FarCells& far
     for (std::int64_t r = 0; r < n[1] * n[2]; ++r)
     {
       const std::int64_t y = r % n[1], z = r / n[1];
-      for (std::int64_t x = 0; x < n[0]; ++x)
-        if (isFar(x, y, z)) out[x + n[0] * r] = static_cast<float>(far.sign[cellOf(x, y, z)]) * static_cast<float>(this->band);
+      const std::size_t c0 = cellOf(0, y, z);
+      const int rowBit = static_cast<int>(2 * (y & 1) + 4 * (z & 1));
+      float* row = out + n[0] * r;
+      for (std::int64_t cx = 0; 2 * cx < n[0]; ++cx)
+      {
+        // this row's two bits of the cell
+        const int bits = (far.mask[c0 + static_cast<std::size_t>(cx)] >> rowBit) & 3;
+        if (bits == 0) continue;
+        const float v = static_cast<float>(far.sign[c0 + static_cast<std::size_t>(cx)]) * static_cast<float>(this->band);
+        if (bits & 1) row[2 * cx] = v;
+        if ((bits & 2) && 2 * cx + 1 < n[0]) row[2 * cx + 1] = v;
+      }
     }
   }
   std::atomic<std::int64_t> done{ 0 };
