@@ -118,6 +118,9 @@ struct Engine
     return dot(p - r.closest.point, n) < 0 ? -1.0f : 1.0f;
   }
 
+  void distanceBricks(const VoxelBox& box, float* out, const FarCells& far, Interrupter& intr, double progressBase,
+    double progressSpan) const;
+
   /// Distances (and the local sign) of one row; out holds output units.
   /// With a finite band and no normal-based sign, the distance being
   /// 1-Lipschitz lets far voxels skip the query: each query past the band
@@ -355,6 +358,120 @@ void forRows(const VoxelBox& box, Interrupter& intr, double progressBase, double
   intr.checkInterrupt();
 }
 
+/// Bricks of BrickX x Brick x Brick voxels within the band. 8 x 4 x 4
+/// measured fastest on the bunny and the armadillo at 512 (4^3: more bricks,
+/// each with a query and a list; 8^3: lists too long for each voxel; 2 or 16
+/// along x: slower or no better).
+constexpr std::int64_t BrickX = 8, Brick = 4;
+
+/// The distance pass of a banded box (WindingNumber, Unsigned: the sign comes
+/// later) brick by brick (from the box's first voxel): the voxels of a brick that the far cells left get
+/// NearestIndex::nearestBrick bounded at the band (the same values as the
+/// rows' queries: a voxel with no triangle within the band is +band either
+/// way), on OpenMP threads; progress from thread 0, cancellation per brick.
+void Engine::distanceBricks(const VoxelBox& box, float* out, const FarCells& far, Interrupter& intr,
+  double progressBase, double progressSpan) const
+{
+  constexpr std::int64_t BX = BrickX, B = Brick;
+  const std::int64_t n[3] = { box.hi[0] - box.lo[0] + 1, box.hi[1] - box.lo[1] + 1, box.hi[2] - box.lo[2] + 1 };
+  const std::int64_t nb[3] = { (n[0] + BX - 1) / BX, (n[1] + B - 1) / B, (n[2] + B - 1) / B };
+  const std::int64_t bricks = nb[0] * nb[1] * nb[2];
+  const bool anyFar = !far.sign.empty();
+  static_assert(FarCell == 2, "cells of 2^3 voxels: one bit each");
+  auto cellOf = [&](std::int64_t x, std::int64_t y, std::int64_t z) {
+    return static_cast<std::size_t>((x >> 1) + far.count[0] * ((y >> 1) + far.count[1] * (z >> 1)));
+  };
+  auto isFar = [&](std::int64_t x, std::int64_t y, std::int64_t z) {
+    return ((far.mask[cellOf(x, y, z)] >> ((x & 1) + 2 * (y & 1) + 4 * (z & 1))) & 1) != 0;
+  };
+  // the far voxels first, row by row (in brick order their stores would stride across the buffer)
+  if (anyFar)
+  {
+#pragma omp parallel for schedule(static)
+    for (std::int64_t r = 0; r < n[1] * n[2]; ++r)
+    {
+      const std::int64_t y = r % n[1], z = r / n[1];
+      const std::size_t c0 = cellOf(0, y, z);
+      const int rowBit = static_cast<int>(2 * (y & 1) + 4 * (z & 1));
+      float* row = out + n[0] * r;
+      for (std::int64_t cx = 0; 2 * cx < n[0]; ++cx)
+      {
+        // this row's two bits of the cell
+        const int bits = (far.mask[c0 + static_cast<std::size_t>(cx)] >> rowBit) & 3;
+        if (bits == 0) continue;
+        const float v = static_cast<float>(far.sign[c0 + static_cast<std::size_t>(cx)]) * static_cast<float>(this->band);
+        if (bits & 1) row[2 * cx] = v;
+        if ((bits & 2) && 2 * cx + 1 < n[0]) row[2 * cx + 1] = v;
+      }
+    }
+  }
+  std::atomic<std::int64_t> done{ 0 };
+  std::atomic<bool> stop{ false };
+  std::exception_ptr failure;
+#pragma omp parallel
+  {
+    NearestIndex::BrickScratch scratch;
+    std::vector<V3> ps;
+    std::vector<std::int64_t> at;
+    std::vector<NearestResult> res;
+    std::int32_t hint = -1;
+#pragma omp for schedule(dynamic, 16)
+    for (std::int64_t b = 0; b < bricks; ++b)
+    {
+      if (stop.load(std::memory_order_relaxed)) continue;
+      try
+      {
+        const std::int64_t o[3] = { BX * (b % nb[0]), B * ((b / nb[0]) % nb[1]), B * (b / (nb[0] * nb[1])) };
+        ps.clear();
+        at.clear();
+        const std::int64_t x1 = std::min(n[0], o[0] + BX), y1 = std::min(n[1], o[1] + B), z1 = std::min(n[2], o[2] + B);
+        // the far voxels are written (above); a brick of whole far cells has nothing else
+        bool allFar = anyFar;
+        for (std::int64_t z = o[2]; z < z1 && allFar; z += FarCell)
+          for (std::int64_t y = o[1]; y < y1 && allFar; y += FarCell)
+            for (std::int64_t x = o[0]; x < x1 && allFar; x += FarCell)
+              allFar = far.mask[cellOf(x, y, z)] == 0xff;
+        for (std::int64_t z = o[2]; z < z1 && !allFar; ++z)
+          for (std::int64_t y = o[1]; y < y1; ++y)
+            for (std::int64_t x = o[0]; x < x1; ++x)
+            {
+              if (anyFar && isFar(x, y, z)) continue;
+              ps.push_back(this->position(box.lo[0] + x, box.lo[1] + y, box.lo[2] + z));
+              at.push_back(x + n[0] * (y + n[1] * z));
+            }
+        if (!ps.empty())
+        {
+          res.resize(ps.size());
+          this->index->nearestBrick(ps.data(), static_cast<int>(ps.size()), this->bandWorld2, hint, res.data(), scratch);
+          for (std::size_t q = 0; q < ps.size(); ++q)
+          {
+            const NearestResult& r = res[q];
+            double d = r.tri < 0 ? this->band : std::sqrt(r.dist2) * this->toOut;
+            d = std::min(d, this->band);
+            if (r.tri >= 0) hint = r.tri;
+            out[at[q]] = static_cast<float>(d);
+          }
+        }
+        const std::int64_t k = done.fetch_add(1) + 1;
+        if (omp_get_thread_num() == 0 && (k & 255) == 0)
+        {
+          if (intr.wasInterrupted()) stop = true;
+          intr.progress(progressBase + progressSpan * static_cast<double>(k) / static_cast<double>(bricks));
+        }
+      }
+      catch (...)
+      {
+#pragma omp critical(lvdif_mesh_to_sdf_failure)
+        if (!failure) failure = std::current_exception();
+        stop = true;
+      }
+    }
+  }
+  if (failure) std::rethrow_exception(failure);
+  if (!stop.load()) intr.progress(progressBase + progressSpan);
+  intr.checkInterrupt();
+}
+
 /// The distance and sign passes over one box of voxels into out (box layout).
 void computeBox(const Engine& e, const VoxelBox& box, float* out, MeshToSdfStats& stats, Interrupter& intr,
   double progressBase, double progressSpan)
@@ -383,7 +500,10 @@ void computeBox(const Engine& e, const VoxelBox& box, float* out, MeshToSdfStats
     stats.farVoxels += classifyBandCells(*e.index, *e.mesh, e.geom, box, static_cast<double>(e.band) / e.toOut, far);
     trace("blocks past the band of a box", now() - tf);
   }
-  forRows(box, intr, progressBase, winding ? progressSpan * 0.5 : progressSpan,
+  if (e.bandCells)
+    e.distanceBricks(box, out, far, intr, progressBase, winding ? progressSpan * 0.5 : progressSpan);
+  else
+    forRows(box, intr, progressBase, winding ? progressSpan * 0.5 : progressSpan,
     [&](std::int64_t j, std::int64_t k, std::int64_t r) {
       const int t = std::min(omp_get_thread_num(), threads - 1);
       const bool below = lastRow[static_cast<std::size_t>(t)] == r - 1 && j > box.lo[1];
@@ -586,13 +706,37 @@ void volumeRegion(DictionaryVolume& volume, const VoxelBox& region, std::uint64_
     {
       const std::int64_t id = volume.chunkId(rc.lo[0] + c % ncx, cy0 + c / ncx, cz);
       const VoxelBox cb = volume.chunkBox(id);
-      auto keyAt = [&](std::int64_t x, std::int64_t y, std::int64_t z, std::int64_t) {
-        return volume.encode(
-          buffer[static_cast<std::size_t>((x - box.lo[0]) + nx * ((y - box.lo[1]) + ny * (z - box.lo[2])))]);
+      auto valueAt = [&](std::int64_t x, std::int64_t y, std::int64_t z) {
+        return buffer[static_cast<std::size_t>((x - box.lo[0]) + nx * ((y - box.lo[1]) + ny * (z - box.lo[2])))];
       };
-      const SdfKey first = keyAt(cb.lo[0], cb.lo[1], cb.lo[2], 0);
+      // equal floats encode to equal keys (encode reads the value only by
+      // comparisons and |value|, so +0 and -0 alike; NaN never compares equal
+      // and is encoded): the saturated +-band voxels, most of a banded
+      // volume, reuse the previous voxel's key instead of encoding again
+      float lastValue = valueAt(cb.lo[0], cb.lo[1], cb.lo[2]);
+      SdfKey lastKey = volume.encode(lastValue);
+      auto keyAt = [&](std::int64_t x, std::int64_t y, std::int64_t z, std::int64_t) {
+        const float v = valueAt(x, y, z);
+        if (v == lastValue) return lastKey;
+        lastValue = v;
+        lastKey = volume.encode(v);
+        return lastKey;
+      };
+      const SdfKey first = lastKey;
+      const float firstValue = lastValue;
+      // a chunk of one float is uniform; otherwise its keys may still be
+      bool sameFloat = true;
+      for (std::int64_t z = cb.lo[2]; z <= cb.hi[2] && sameFloat; ++z)
+        for (std::int64_t y = cb.lo[1]; y <= cb.hi[1] && sameFloat; ++y)
+        {
+          const float* row = buffer.data() + ((cb.lo[0] - box.lo[0]) + nx * ((y - box.lo[1]) + ny * (z - box.lo[2])));
+          const std::int64_t n = cb.hi[0] - cb.lo[0] + 1;
+          bool same = true;
+          for (std::int64_t i = 0; i < n; ++i) same &= row[i] == firstValue;
+          sameFloat = same;
+        }
       bool uniform = true;
-      for (std::int64_t z = cb.lo[2]; z <= cb.hi[2] && uniform; ++z)
+      for (std::int64_t z = cb.lo[2]; z <= cb.hi[2] && !sameFloat && uniform; ++z)
         for (std::int64_t y = cb.lo[1]; y <= cb.hi[1] && uniform; ++y)
           for (std::int64_t x = cb.lo[0]; x <= cb.hi[0] && uniform; ++x) uniform = keyAt(x, y, z, 0) == first;
       storeChunk(volume, id, uniform, first, keyAt);

@@ -160,29 +160,21 @@ std::int64_t classifyBandCells(const NearestIndex& index, const PreparedMesh& me
       dist = std::sqrt(q.dist2);
       return farPastBand(dist, fb, bandWorld, margin);
     };
-    FarBox b0, b1, b2;
-    double d0, d1, d2;
+    FarBox b0, b1;
+    double d0, d1;
     if (past(v0, FarBlock, nullptr, -1, b0, d0))
     {
       decided += farFill(v0, FarBlock, fs.n, 1, set);
       continue;
     }
+    // blocks and their halves only: the band bricks (MeshToSdf.cpp) take the
+    // rest, a brick past the band for one bounded query, cheaper than the
+    // cells' eight (measured: the bunny at 512 about 10 % faster without them)
     for (int h = 0; h < 8; ++h)
     {
       const long long o1[3] = { v0[0] + Half * (h & 1), v0[1] + Half * ((h >> 1) & 1), v0[2] + Half * (h >> 2) };
       if (o1[0] >= fs.n[0] || o1[1] >= fs.n[1] || o1[2] >= fs.n[2]) continue;
-      if (past(o1, Half, &b0, d0, b1, d1))
-      {
-        decided += farFill(o1, Half, fs.n, 1, set);
-        continue;
-      }
-      for (int q = 0; q < 8; ++q)
-      {
-        const long long o2[3] = { o1[0] + FarCell * (q & 1), o1[1] + FarCell * ((q >> 1) & 1),
-          o1[2] + FarCell * (q >> 2) };
-        if (o2[0] >= fs.n[0] || o2[1] >= fs.n[1] || o2[2] >= fs.n[2]) continue;
-        if (past(o2, FarCell, &b1, d1, b2, d2)) decided += farFill(o2, FarCell, fs.n, 1, set);
-      }
+      if (past(o1, Half, &b0, d0, b1, d1)) decided += farFill(o1, Half, fs.n, 1, set);
     }
   }
   return decided;

@@ -544,9 +544,10 @@ std::int64_t classifyFarCells(const NearestIndex& index, const Bvh& bvh, const s
 
 /// CPU, the signs not taken from the nearest triangle (WindingNumber,
 /// Unsigned: the sign pass comes after): fills cells with +1 where every voxel
-/// is past the band, so +band before its sign, by the same blocks, halves and
-/// cells and the same margins (farPastBand) without the side test; returns
-/// the voxels decided. Each box costs one query bounded a little past the band.
+/// is past the band, so +band before its sign, by the same blocks and halves
+/// (not cells: the band bricks take the rest) and the same margins
+/// (farPastBand) without the side test; returns the voxels decided. Each box
+/// costs one query bounded a little past the band.
 std::int64_t classifyBandCells(const NearestIndex& index, const PreparedMesh& mesh, const GridGeometry& grid,
   const VoxelBox& box, double bandWorld, FarCells& cells);
 

@@ -243,20 +243,6 @@ private:
 
 } // namespace
 
-float roundDownToFloat(double x)
-{
-  float f = static_cast<float>(x);
-  if (static_cast<double>(f) > x) f = std::nextafter(f, -std::numeric_limits<float>::infinity());
-  return f;
-}
-
-float roundUpToFloat(double x)
-{
-  float f = static_cast<float>(x);
-  if (static_cast<double>(f) < x) f = std::nextafter(f, std::numeric_limits<float>::infinity());
-  return f;
-}
-
 namespace
 {
 float roundDown(double x) { return roundDownToFloat(x); }

@@ -7,7 +7,10 @@
 
 #include "MeshToSdfInternal.h"
 
+#include <cmath>
 #include <cstdint>
+#include <limits>
+#include <utility>
 #include <vector>
 
 namespace lvdif
@@ -15,9 +18,20 @@ namespace lvdif
 namespace detail::meshtosdf
 {
 
-/// float bounds rounded outward (the boxes must contain the double ones)
-float roundDownToFloat(double x);
-float roundUpToFloat(double x);
+/// float bounds rounded outward (the boxes must contain the double ones);
+/// inline: every improvement of a query's best distance rounds its threshold
+inline float roundDownToFloat(double x)
+{
+  float f = static_cast<float>(x);
+  if (static_cast<double>(f) > x) f = std::nextafter(f, -std::numeric_limits<float>::infinity());
+  return f;
+}
+inline float roundUpToFloat(double x)
+{
+  float f = static_cast<float>(x);
+  if (static_cast<double>(f) < x) f = std::nextafter(f, std::numeric_limits<float>::infinity());
+  return f;
+}
 
 struct NearestRowState; // MeshToSdfNearestRow.h
 
@@ -41,6 +55,19 @@ public:
   /// triangles of the row below.
   static constexpr int RowPoints = 8;
   void nearestRow(const V3* p, int n, std::int32_t hint, const std::int32_t* laneHints, NearestResult* out) const;
+
+  /// nearest(p[i], ., maxDist2) for the n points of one small box (a brick
+  /// of voxels within a band: maxDist2 finite), from one list of candidate
+  /// triangles for the whole box (MeshToSdfNearestBrick.cpp). The hint seeds
+  /// the query of the box's centre.
+  struct BrickScratch
+  {
+    std::vector<std::pair<double, std::int32_t>> near; // squared box gap, position
+    std::vector<std::int32_t> cand;
+    std::vector<float> planes;
+  };
+  void nearestBrick(const V3* p, int n, double maxDist2, std::int32_t hint, NearestResult* out,
+    BrickScratch& scratch) const;
 
   struct alignas(16) Node
   {

@@ -175,6 +175,18 @@ TEST(MeshToSdf, DictionaryVolumeMatchesFloatPath)
           {
             ASSERT_EQ(vol.get(x, y, z).sdf, vol.encode(ref[g.index(x, y, z)])) << x << " " << y << " " << z;
           }
+      // a chunk is expanded exactly when its keys differ (equal keys from
+      // different floats collapse too)
+      for (std::int64_t id = 0; id < vol.chunkCount(); ++id)
+      {
+        const VoxelBox cb = vol.chunkBox(id);
+        const SdfKey first = vol.get(cb.lo[0], cb.lo[1], cb.lo[2]).sdf;
+        bool same = true;
+        for (std::int64_t z = cb.lo[2]; z <= cb.hi[2]; ++z)
+          for (std::int64_t y = cb.lo[1]; y <= cb.hi[1]; ++y)
+            for (std::int64_t x = cb.lo[0]; x <= cb.hi[0]; ++x) same = same && vol.get(x, y, z).sdf == first;
+        EXPECT_EQ(vol.isUniform(id), same) << "chunk " << id;
+      }
       // far chunks are saturated and stay uniform
       EXPECT_LT(vol.expandedChunkCount(), vol.chunkCount());
       EXPECT_GT(vol.expandedChunkCount(), 0);

@@ -5,6 +5,7 @@
 // volumes, with several bands; and the per-voxel path itself equals the
 // brute-force accelerator (no index, no far blocks) on a smaller grid.
 #include "MeshToSdfFarCases.h"
+#include "../src/MeshToSdfNearestRow.h" // nearestRowUseAvx2
 #include "lvdif/DictionaryVolume.h"
 #include "lvdif/MeshToSdf.h"
 
@@ -235,5 +236,49 @@ TEST(MeshToSdfFarBlocks, WindingAndUnsignedBlocksPastTheBandSameFloats)
         for (std::int64_t x = 0; x < cubic.dims[0]; ++x) bad += a.get(x, y, z).sdf != b.get(x, y, z).sdf;
     EXPECT_EQ(bad, 0) << c.name << ", dictionary volume";
     if (c.name == "closed sphere") EXPECT_GT(st.farVoxels, cubic.count() / 2) << "dictionary volume";
+  }
+}
+
+TEST(MeshToSdfFarBlocks, BandBricksEqualBruteForce)
+{
+  // the voxels within the band go through bricks (8 x 4 x 4) with one candidate
+  // list each (NearestIndex::nearestBrick): bit for bit the brute-force
+  // accelerator (every triangle for every voxel) on open, flipped, duplicated,
+  // non-manifold and intersecting meshes and soups, on the non-cubic grid
+  // (37 x 21 x 29: partial bricks on every axis, anisotropic spacing) and a
+  // sub-extent whose bricks start off the grid's, with bands that cut
+  // through bricks: a third of a voxel, 2.7 voxels, and one wider than the
+  // grid (nothing far: every brick is exact), in voxels and world units
+  for (const farcases::Case& c : farcases::meshes())
+  {
+    const MeshToSdfPrepared prepared = prepareMeshToSdf(c.mesh, SignMode::WindingNumber);
+    const std::vector<Grid> grids = testGrids(c.mesh, 24);
+    for (const Grid& gr : { grids[1], grids[2] })
+    {
+      for (float band : { 0.3f, 2.7f, 40.0f })
+      {
+        const SignMode s = std::string(gr.name) == "non-cubic" ? SignMode::WindingNumber : SignMode::Unsigned;
+        const DistanceUnit unit = band == 2.7f ? DistanceUnit::World : DistanceUnit::Voxel;
+        MeshToSdfOptions o;
+        o.sign = s;
+        o.unit = unit;
+        o.bandWidth = unit == DistanceUnit::World ? band * 0.1f : band;
+        // the candidate scan four lanes at a time, and eight where the CPU has AVX2
+        const bool avx2 = detail::meshtosdf::nearestRowUseAvx2;
+        detail::meshtosdf::nearestRowUseAvx2 = false;
+        const FarRun bricks4 = run(prepared, gr.g, gr.box, o, true);
+        detail::meshtosdf::nearestRowUseAvx2 = avx2;
+        const FarRun bricks = run(prepared, gr.g, gr.box, o, true);
+        o.accel = MeshToSdfAccel::BruteForce;
+        const FarRun brute = run(prepared, gr.g, gr.box, o, true);
+        const std::string what = c.name + ", " + gr.name + ", " + toString(s) + ", band " + std::to_string(band) +
+          (unit == DistanceUnit::World ? " world" : " voxels");
+        EXPECT_EQ(bitDifferences(bricks.out, brute.out), 0) << what;
+        EXPECT_EQ(bitDifferences(bricks4.out, brute.out), 0) << what << ", four lanes";
+        std::int64_t within = 0;
+        for (float v : brute.out) within += std::fabs(v) < o.bandWidth;
+        EXPECT_GT(within, 0) << what; // the band holds voxels that the bricks computed
+      }
+    }
   }
 }

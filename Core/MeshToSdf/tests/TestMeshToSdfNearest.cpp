@@ -91,7 +91,16 @@ int checkAll(const TriangleMesh& mesh, const std::vector<V3>& queries, std::mt19
           const NearestResult want = bruteForce(pm.tris, row[i], 1e300);
           EXPECT_EQ(res[i].tri, want.tri) << "row point " << i << " of " << n << " hint " << hint << " avx2 " << withAvx2;
           EXPECT_EQ(res[i].dist2, want.dist2);
-          if (res[i].tri == want.tri) EXPECT_EQ(res[i].closest.feature, want.closest.feature);
+          if (res[i].tri == want.tri)
+          {
+            // the whole closest point, bit for bit (the AVX2 traversal computes it four points at a time)
+            EXPECT_EQ(res[i].closest.feature, want.closest.feature);
+            EXPECT_EQ(res[i].closest.point.x, want.closest.point.x);
+            EXPECT_EQ(res[i].closest.point.y, want.closest.point.y);
+            EXPECT_EQ(res[i].closest.point.z, want.closest.point.z);
+            EXPECT_EQ(res[i].closest.b1, want.closest.b1);
+            EXPECT_EQ(res[i].closest.b2, want.closest.b2);
+          }
           ++checked;
         }
       }
