@@ -1,0 +1,521 @@
+// The CPU engine of mesh to SDF (MeshToSdfEngine.h): nearest queries by the
+// chosen accelerator, the per-row distance pass, the band bricks, and the
+// sign pass, on OpenMP threads with progress and cancellation.
+#include "MeshToSdfEngine.h"
+
+#include "MeshToSdfNearest.h"
+#include "lvdif/Memory.h"
+
+#include <omp.h>
+
+#include <algorithm>
+#include <atomic>
+#include <cmath>
+#include <exception>
+#include <string>
+#include <utility>
+
+namespace lvdif
+{
+namespace detail::meshtosdf
+{
+
+void validateGrid(const GridGeometry& g)
+{
+  for (int a = 0; a < 3; ++a)
+  {
+    require(g.dims[a] >= 1 && g.dims[a] <= DictionaryVolume::MaxDimension,
+      "mesh to SDF: grid dimension " + std::to_string(g.dims[a]) + " out of range [1, " +
+        std::to_string(DictionaryVolume::MaxDimension) + "]");
+    require(std::isfinite(g.origin[a]), "mesh to SDF: grid origin is not finite");
+    require(std::isfinite(g.spacing[a]) && g.spacing[a] > 0, "mesh to SDF: grid spacing must be positive and finite");
+  }
+}
+
+NearestResult Engine::nearest(V3 p, std::int32_t hint) const
+{
+  switch (this->opts.accel)
+  {
+    case MeshToSdfAccel::Faithful: return this->grid->nearest(p);
+    case MeshToSdfAccel::BruteForce:
+    {
+      NearestResult best;
+      best.dist2 = 1e300;
+      for (std::size_t t = 0; t < this->mesh->tris.size(); ++t)
+      {
+        const Tri& tri = this->mesh->tris[t];
+        const Closest c = closestPointOnTriangle(p, tri.v[0], tri.v[1], tri.v[2]);
+        const V3 d = c.point - p;
+        const double d2 = dot(d, d);
+        if (d2 < best.dist2)
+        {
+          best = { d2, static_cast<std::int32_t>(t), c };
+        }
+      }
+      return best;
+    }
+    default:
+    {
+      // only the winding-number and unsigned modes may stop at the band:
+      // the others need the closest triangle for its normal
+      const bool bounded = this->opts.sign == SignMode::WindingNumber || this->opts.sign == SignMode::Unsigned;
+      return this->index->nearest(p, hint, bounded ? this->bandWorld2 : 1e300);
+    }
+  }
+}
+
+float Engine::localSign(V3 p, const NearestResult& r) const
+{
+  const Tri& t = this->mesh->tris[r.tri];
+  V3 n;
+  if (this->opts.sign == SignMode::PseudoNormal)
+  {
+    n = featureNormal(t, r.closest.feature);
+  }
+  else if (this->opts.useVertexNormals && dot(t.nv[0], t.nv[0]) > 0)
+  {
+    const double b0 = 1 - r.closest.b1 - r.closest.b2;
+    n = b0 * t.nv[0] + r.closest.b1 * t.nv[1] + r.closest.b2 * t.nv[2];
+  }
+  else
+  {
+    n = t.n;
+  }
+  return dot(p - r.closest.point, n) < 0 ? -1.0f : 1.0f;
+}
+
+void Engine::distanceRow(std::int64_t j, std::int64_t k, std::int64_t i0, std::int64_t i1, float* out,
+  std::int32_t* rowTris, bool belowValid, const std::int8_t* far, const std::uint8_t* farMask,
+  int farBit) const
+{
+  auto isFar = [&](std::int64_t i) {
+    return far && ((farMask[(i - i0) / FarCell] >> (farBit + ((i - i0) & 1))) & 1) != 0;
+  };
+  const bool bounded = this->opts.accel == MeshToSdfAccel::Bvh &&
+    (this->opts.sign == SignMode::WindingNumber || this->opts.sign == SignMode::Unsigned) &&
+    this->bandWorld2 < 1e299;
+  const double h = this->geom.spacing[0];
+  const double bandWorld = std::sqrt(this->bandWorld2);
+  const double reach = bandWorld + 4 * h;
+  double lower = -1; // lower bound of the current voxel's world distance
+  std::int32_t hint = -1;
+  // the BVH takes the voxels RowPoints at a time (one shared traversal,
+  // seeded by the row below) where they need their nearest triangle: every
+  // voxel without a band, and after a voxel within the band with one; past
+  // the band one bounded query at a time finds the next voxel to query
+  const bool packets = this->opts.accel == MeshToSdfAccel::Bvh;
+  bool withinBand = false; // the last voxel queried was
+  for (std::int64_t i = i0; i <= i1;)
+  {
+    if (isFar(i))
+    {
+      out[i - i0] = static_cast<float>(far[(i - i0) / FarCell]) * static_cast<float>(this->band);
+      rowTris[i - i0] = -1;
+      lower -= h; // keeps the bound of the voxels after the cell valid
+      withinBand = false;
+      ++i;
+      continue;
+    }
+    NearestResult res[NearestIndex::RowPoints];
+    V3 ps[NearestIndex::RowPoints];
+    int count = 1;
+    if (packets && (!bounded || withinBand))
+    {
+      count = static_cast<int>(std::min<std::int64_t>(NearestIndex::RowPoints, i1 - i + 1));
+      for (int q = 1; far && q < count; ++q)
+        if (isFar(i + q)) count = q;
+      for (int q = 0; q < count; ++q) ps[q] = this->position(i + q, j, k);
+      this->index->nearestRow(ps, count, hint, belowValid ? rowTris + (i - i0) : nullptr, res);
+    }
+    else
+    {
+      lower -= h;
+      if (bounded && lower >= bandWorld)
+      {
+        out[i - i0] = static_cast<float>(this->band);
+        rowTris[i - i0] = -1;
+        ++i;
+        continue;
+      }
+      ps[0] = this->position(i, j, k);
+      res[0] = bounded ? this->index->nearest(ps[0], hint, reach * reach) : this->nearest(ps[0], hint);
+    }
+    for (int q = 0; q < count; ++q, ++i)
+    {
+      const NearestResult& r = res[q];
+      rowTris[i - i0] = r.tri;
+      double d = r.tri < 0 ? this->band : std::sqrt(r.dist2) * this->toOut;
+      lower = r.tri < 0 ? reach : std::sqrt(r.dist2);
+      d = std::min(d, this->band);
+      float s = 1.0f;
+      if (r.tri >= 0)
+      {
+        hint = r.tri;
+        if (this->opts.sign == SignMode::Normal || this->opts.sign == SignMode::PseudoNormal)
+        {
+          s = this->localSign(ps[q], r);
+        }
+      }
+      out[i - i0] = s * static_cast<float>(d);
+    }
+    withinBand = lower < bandWorld;
+  }
+}
+
+std::unique_ptr<Engine> makeEngine(const MeshToSdfPrepared& prepared, const GridGeometry& geom,
+  const MeshToSdfOptions& opts, float band, Device device, MeshToSdfStats& stats)
+{
+  validateGrid(geom);
+  require(opts.faithfulCellsPerAxis >= 1 && opts.faithfulCellsPerAxis <= 256,
+    "mesh to SDF: faithfulCellsPerAxis must be in [1, 256]");
+  require(opts.faithfulScale >= 1 && opts.faithfulScale <= 16, "mesh to SDF: faithfulScale must be in [1, 16]");
+  require(band > 0, "mesh to SDF: band width must be positive");
+  const double t0 = now();
+  auto e = std::make_unique<Engine>();
+  MeshToSdfPrepared::Impl& impl = prepared.impl();
+  e->mesh = &impl.mesh;
+  e->geom = geom;
+  e->opts = opts;
+  const double unit = std::min(geom.spacing[0], std::min(geom.spacing[1], geom.spacing[2]));
+  e->toOut = opts.unit == DistanceUnit::Voxel ? 1.0 / unit : 1.0;
+  e->band = band;
+  const double bw = static_cast<double>(band) / e->toOut;
+  e->bandWorld2 = std::isfinite(bw) ? bw * bw * (1 + 1e-9) : 1e300;
+  double lazy = 0; // only what this call had to build (timed inside)
+  // the records' pseudo-normals: read only by these signs (CPU and GPU alike)
+  if (opts.sign == SignMode::Normal || opts.sign == SignMode::PseudoNormal) impl.pseudoNormals(lazy);
+  if (device == Device::Cpu && opts.accel == MeshToSdfAccel::Bvh)
+  {
+    e->index = &impl.nearestIndex(lazy);
+  }
+  e->far = opts.farBlocks && e->index != nullptr && e->bandWorld2 < 1e299 && !opts.useVertexNormals &&
+    (opts.sign == SignMode::Normal || opts.sign == SignMode::PseudoNormal);
+  if (e->far) e->farBvh = &impl.farTree(e->farCones, lazy);
+  e->bandCells = opts.farBlocks && e->index != nullptr && e->bandWorld2 < 1e299 &&
+    (opts.sign == SignMode::WindingNumber || opts.sign == SignMode::Unsigned);
+  if (opts.sign == SignMode::WindingNumber && device == Device::Cpu)
+  {
+    e->winding = &impl.windingSigner(lazy);
+  }
+  if (opts.accel == MeshToSdfAccel::Faithful)
+  {
+    const std::uint64_t cells = static_cast<std::uint64_t>(opts.faithfulCellsPerAxis) *
+      opts.faithfulCellsPerAxis * opts.faithfulCellsPerAxis;
+    requireMemory(cells * 48, "mesh to SDF: faithful cell lists");
+    e->grid = std::make_unique<FaithfulGrid>(
+      e->mesh->tris, e->mesh->lo, e->mesh->hi, opts.faithfulCellsPerAxis, opts.faithfulScale);
+  }
+  stats.triangles = e->mesh->tris.size();
+  stats.degenerateSkipped = e->mesh->degenerate;
+  stats.boundaryEdges = e->mesh->boundaryEdges;
+  stats.buildSeconds += now() - t0;
+  return e;
+}
+
+namespace
+{
+/// Runs fn(state, i) for every i in [0, count) on the OpenMP threads
+/// (`chunk` items at a time), state = makeState() once per thread; progress
+/// and the cancellation check from thread 0 every `progressEvery` items (a
+/// power of two); rethrows the first exception. Thread 0 need not run the
+/// last item: the span's end is reported here.
+template <typename MakeState, typename F>
+void forEachOnThreads(std::int64_t count, int chunk, std::int64_t progressEvery, Interrupter& intr,
+  double progressBase, double progressSpan, MakeState&& makeState, F&& fn)
+{
+  std::atomic<std::int64_t> done{ 0 };
+  std::atomic<bool> stop{ false };
+  std::exception_ptr failure;
+#pragma omp parallel
+  {
+    auto state = makeState();
+#pragma omp for schedule(dynamic, chunk)
+    for (std::int64_t i = 0; i < count; ++i)
+    {
+      if (stop.load(std::memory_order_relaxed)) continue;
+      try
+      {
+        fn(state, i);
+        const std::int64_t n = done.fetch_add(1) + 1;
+        if (omp_get_thread_num() == 0 && (n & (progressEvery - 1)) == 0)
+        {
+          if (intr.wasInterrupted()) stop = true;
+          intr.progress(progressBase + progressSpan * static_cast<double>(n) / static_cast<double>(count));
+        }
+      }
+      catch (...)
+      {
+#pragma omp critical(lvdif_mesh_to_sdf_failure)
+        if (!failure) failure = std::current_exception();
+        stop = true;
+      }
+    }
+  }
+  if (failure) std::rethrow_exception(failure);
+  if (!stop.load()) intr.progress(progressBase + progressSpan);
+  intr.checkInterrupt();
+}
+
+/// fn(j, k, r) for every (j, k) row r of the box on the OpenMP threads
+/// (forEachOnThreads: progress and cancellation per row).
+template <typename F>
+void forRows(const VoxelBox& box, Interrupter& intr, double progressBase, double progressSpan, F&& fn, int chunk = 2)
+{
+  const std::int64_t ny = box.hi[1] - box.lo[1] + 1, nz = box.hi[2] - box.lo[2] + 1;
+  forEachOnThreads(ny * nz, chunk, 1, intr, progressBase, progressSpan, [] { return 0; },
+    [&](int&, std::int64_t r) { fn(box.lo[1] + r % ny, box.lo[2] + r / ny, r); });
+}
+
+/// Bricks of BrickX x Brick x Brick voxels within the band. 8 x 4 x 4
+/// measured fastest on the bunny and the armadillo at 512 (4^3: more bricks,
+/// each with a query and a list; 8^3: lists too long for each voxel; 2 or 16
+/// along x: slower or no better).
+constexpr std::int64_t BrickX = 8, Brick = 4;
+} // namespace
+
+/// The distance pass of a banded box (WindingNumber, Unsigned: the sign comes
+/// later) brick by brick (from the box's first voxel): the voxels of a brick that the far cells left get
+/// NearestIndex::nearestBrick bounded at the band (the same values as the
+/// rows' queries: a voxel with no triangle within the band is +band either
+/// way), on OpenMP threads; progress from thread 0, cancellation per brick.
+void Engine::distanceBricks(const VoxelBox& box, float* out, const FarCells& far, Interrupter& intr,
+  double progressBase, double progressSpan) const
+{
+  constexpr std::int64_t BX = BrickX, B = Brick;
+  const std::int64_t n[3] = { box.hi[0] - box.lo[0] + 1, box.hi[1] - box.lo[1] + 1, box.hi[2] - box.lo[2] + 1 };
+  const std::int64_t nb[3] = { (n[0] + BX - 1) / BX, (n[1] + B - 1) / B, (n[2] + B - 1) / B };
+  const std::int64_t bricks = nb[0] * nb[1] * nb[2];
+  const bool anyFar = !far.sign.empty();
+  static_assert(FarCell == 2, "cells of 2^3 voxels: one bit each");
+  auto cellOf = [&](std::int64_t x, std::int64_t y, std::int64_t z) {
+    return static_cast<std::size_t>((x >> 1) + far.count[0] * ((y >> 1) + far.count[1] * (z >> 1)));
+  };
+  auto isFar = [&](std::int64_t x, std::int64_t y, std::int64_t z) {
+    return ((far.mask[cellOf(x, y, z)] >> ((x & 1) + 2 * (y & 1) + 4 * (z & 1))) & 1) != 0;
+  };
+  // the far voxels first, row by row (in brick order their stores would stride across the buffer)
+  if (anyFar)
+  {
+#pragma omp parallel for schedule(static)
+    for (std::int64_t r = 0; r < n[1] * n[2]; ++r)
+    {
+      const std::int64_t y = r % n[1], z = r / n[1];
+      const std::size_t c0 = cellOf(0, y, z);
+      const int rowBit = static_cast<int>(2 * (y & 1) + 4 * (z & 1));
+      float* row = out + n[0] * r;
+      for (std::int64_t cx = 0; 2 * cx < n[0]; ++cx)
+      {
+        // this row's two bits of the cell
+        const int bits = (far.mask[c0 + static_cast<std::size_t>(cx)] >> rowBit) & 3;
+        if (bits == 0) continue;
+        const float v = static_cast<float>(far.sign[c0 + static_cast<std::size_t>(cx)]) * static_cast<float>(this->band);
+        if (bits & 1) row[2 * cx] = v;
+        if ((bits & 2) && 2 * cx + 1 < n[0]) row[2 * cx + 1] = v;
+      }
+    }
+  }
+  struct PerThread
+  {
+    NearestIndex::BrickScratch scratch;
+    std::vector<V3> ps;
+    std::vector<std::int64_t> at;
+    std::vector<NearestResult> res;
+    std::int32_t hint = -1; // the last nearest triangle: the next brick's seed
+  };
+  forEachOnThreads(bricks, 16, 256, intr, progressBase, progressSpan, [] { return PerThread(); },
+    [&](PerThread& st, std::int64_t b) {
+      const std::int64_t o[3] = { BX * (b % nb[0]), B * ((b / nb[0]) % nb[1]), B * (b / (nb[0] * nb[1])) };
+      st.ps.clear();
+      st.at.clear();
+      const std::int64_t x1 = std::min(n[0], o[0] + BX), y1 = std::min(n[1], o[1] + B), z1 = std::min(n[2], o[2] + B);
+      // the far voxels are written (above); a brick of whole far cells has nothing else
+      bool allFar = anyFar;
+      for (std::int64_t z = o[2]; z < z1 && allFar; z += FarCell)
+        for (std::int64_t y = o[1]; y < y1 && allFar; y += FarCell)
+          for (std::int64_t x = o[0]; x < x1 && allFar; x += FarCell)
+            allFar = far.mask[cellOf(x, y, z)] == 0xff;
+      for (std::int64_t z = o[2]; z < z1 && !allFar; ++z)
+        for (std::int64_t y = o[1]; y < y1; ++y)
+          for (std::int64_t x = o[0]; x < x1; ++x)
+          {
+            if (anyFar && isFar(x, y, z)) continue;
+            st.ps.push_back(this->position(box.lo[0] + x, box.lo[1] + y, box.lo[2] + z));
+            st.at.push_back(x + n[0] * (y + n[1] * z));
+          }
+      if (!st.ps.empty())
+      {
+        st.res.resize(st.ps.size());
+        this->index->nearestBrick(st.ps.data(), static_cast<int>(st.ps.size()), this->bandWorld2, st.hint, st.res.data(),
+          st.scratch);
+        for (std::size_t q = 0; q < st.ps.size(); ++q)
+        {
+          const NearestResult& r = st.res[q];
+          double d = r.tri < 0 ? this->band : std::sqrt(r.dist2) * this->toOut;
+          d = std::min(d, this->band);
+          if (r.tri >= 0) st.hint = r.tri;
+          out[st.at[q]] = static_cast<float>(d);
+        }
+      }
+    });
+}
+
+/// The distance and sign passes over one box of voxels into out (box layout).
+void computeBox(const Engine& e, const VoxelBox& box, float* out, MeshToSdfStats& stats, Interrupter& intr,
+  double progressBase, double progressSpan)
+{
+  const std::int64_t nx = box.hi[0] - box.lo[0] + 1, ny = box.hi[1] - box.lo[1] + 1;
+  const bool winding = e.opts.sign == SignMode::WindingNumber;
+  double t0 = now();
+  // per thread: the nearest triangles of its last row; rows come in chunks of
+  // 8 consecutive ones, so most rows find the row below in their buffer
+  const int threads = omp_get_max_threads();
+  requireMemory(static_cast<std::uint64_t>(threads) * static_cast<std::uint64_t>(nx) * 4, "mesh to SDF: row hints");
+  std::vector<std::int32_t> rowTris(static_cast<std::size_t>(threads * nx), -1);
+  std::vector<std::int64_t> lastRow(static_cast<std::size_t>(threads), -2);
+  FarCells far;
+  if (e.far)
+  {
+    const double tf = now();
+    stats.farVoxels += classifyFarCells(
+      *e.index, *e.farBvh, *e.farCones, *e.mesh, e.geom, box, static_cast<double>(e.band) / e.toOut,
+      e.opts.sign == SignMode::PseudoNormal, far);
+    trace("far blocks of a box", now() - tf);
+  }
+  else if (e.bandCells)
+  {
+    const double tf = now();
+    stats.farVoxels += classifyBandCells(*e.index, *e.mesh, e.geom, box, static_cast<double>(e.band) / e.toOut, far);
+    trace("blocks past the band of a box", now() - tf);
+  }
+  if (e.bandCells)
+    e.distanceBricks(box, out, far, intr, progressBase, winding ? progressSpan * 0.5 : progressSpan);
+  else
+    forRows(box, intr, progressBase, winding ? progressSpan * 0.5 : progressSpan,
+    [&](std::int64_t j, std::int64_t k, std::int64_t r) {
+      const int t = std::min(omp_get_thread_num(), threads - 1);
+      const bool below = lastRow[static_cast<std::size_t>(t)] == r - 1 && j > box.lo[1];
+      const std::int64_t farAt = far.count[0] * ((j - box.lo[1]) / FarCell + far.count[1] * ((k - box.lo[2]) / FarCell));
+      const bool anyFar = !far.sign.empty();
+      e.distanceRow(j, k, box.lo[0], box.hi[0], out + r * nx, rowTris.data() + t * nx, below,
+        anyFar ? far.sign.data() + farAt : nullptr, anyFar ? far.mask.data() + farAt : nullptr,
+        static_cast<int>(2 * ((j - box.lo[1]) & 1) + 4 * ((k - box.lo[2]) & 1)));
+      lastRow[static_cast<std::size_t>(t)] = r;
+    }, 8);
+  stats.distanceSeconds += now() - t0;
+  if (!winding) return;
+  t0 = now();
+  // The correction s (reversed, removed, capped faces) bounded once per
+  // group of 16^3 voxels, where that fails per block of 4^3, and where that
+  // fails per 2^3 (each starting from the larger block's cut): away from
+  // those faces a block's bound decides all its voxels, where row segments
+  // of 16 (a ball of radius 7.5 voxels) would reach a face; the rows then
+  // refine only what is left.
+  constexpr std::int64_t Block = 2; // the finer blocks; the coarse ones are 2 x 2 x 2 of them
+  const bool reorient = e.opts.reorientFaces;
+  const std::int64_t bx = (nx + Block - 1) / Block, by = (ny + Block - 1) / Block,
+                     bz = (box.hi[2] - box.lo[2] + Block) / Block;
+  std::vector<double> blockLo, blockHi;
+  if (e.winding->hasCorrection(reorient))
+  {
+    blockLo.assign(static_cast<std::size_t>(bx * by * bz), 1.0);
+    blockHi.assign(blockLo.size(), 0.0);
+    const std::int64_t cx = (bx + 1) / 2, cy = (by + 1) / 2;
+    // the ball about the voxels [v0, v0 + edge)^3 of the box (clipped)
+    auto ball = [&](std::int64_t x0, std::int64_t y0, std::int64_t z0, std::int64_t edge, V3& centre) {
+      const V3 p0 = e.position(x0, y0, z0);
+      const V3 p1 = e.position(std::min(x0 + edge - 1, box.hi[0]), std::min(y0 + edge - 1, box.hi[1]),
+        std::min(z0 + edge - 1, box.hi[2]));
+      centre = 0.5 * (p0 + p1);
+      const double half = 0.5 * norm(p1 - p0);
+      // rho also covers the rounding of the voxel positions as the rows compute them
+      return half + 1e-9 * (half + std::fabs(centre.x) + std::fabs(centre.y) + std::fabs(centre.z));
+    };
+    // the coarse blocks in groups of 4 x 4 x 4 (16^3 voxels): one ball first
+    // (far from the corrected faces it bounds them all), then each coarse
+    // block from the group's cut
+    const std::int64_t gx = (cx + 3) / 4, gy = (cy + 3) / 4, groups = gx * gy * ((((bz + 1) / 2) + 3) / 4);
+#pragma omp parallel for schedule(dynamic, 1)
+    for (std::int64_t grp = 0; grp < groups; ++grp)
+    {
+      const std::int64_t ox = 4 * (grp % gx), oy = 4 * ((grp / gx) % gy), oz = 4 * (grp / (gx * gy)); // first coarse block
+      std::vector<std::int32_t> groupCut;
+      V3 centre;
+      double rho = ball(box.lo[0] + 2 * Block * ox, box.lo[1] + 2 * Block * oy, box.lo[2] + 2 * Block * oz, 8 * Block, centre);
+      double glo = 0, ghi = 0;
+      std::int64_t leafTris = 0;
+      const bool groupWhole = e.winding->boundCorrection(centre, rho, glo, ghi, leafTris, reorient, &groupCut);
+      for (std::int64_t q = 0; q < 64; ++q)
+      {
+        const std::int64_t qx = ox + (q & 3), qy = oy + ((q >> 2) & 3), qz = oz + (q >> 4);
+        if (qx >= cx || qy >= cy || qz >= (bz + 1) / 2) continue;
+        const std::int64_t fx = 2 * qx, fy = 2 * qy, fz = 2 * qz; // first fine block
+        std::vector<std::int32_t> cut;
+        double lo = glo, hi = ghi;
+        bool whole = groupWhole;
+        if (!whole)
+        {
+          cut = groupCut;
+          rho = ball(box.lo[0] + Block * fx, box.lo[1] + Block * fy, box.lo[2] + Block * fz, 2 * Block, centre);
+          whole = e.winding->boundCorrection(centre, rho, lo, hi, leafTris, reorient, &cut);
+        }
+        for (std::int64_t d = 0; d < 8; ++d)
+        {
+          const std::int64_t ix = fx + (d & 1), iy = fy + ((d >> 1) & 1), iz = fz + (d >> 2);
+          if (ix >= bx || iy >= by || iz >= bz) continue;
+          const std::size_t f = static_cast<std::size_t>(ix + bx * (iy + by * iz));
+          if (whole)
+          {
+            blockLo[f] = lo;
+            blockHi[f] = hi;
+            continue;
+          }
+          std::vector<std::int32_t> sub = cut;
+          rho = ball(box.lo[0] + Block * ix, box.lo[1] + Block * iy, box.lo[2] + Block * iz, Block, centre);
+          double l = 0, u = 0;
+          if (e.winding->boundCorrection(centre, rho, l, u, leafTris, reorient, &sub))
+          {
+            blockLo[f] = l;
+            blockHi[f] = u;
+          }
+        }
+      }
+    }
+  }
+  trace("winding: block bounds of the correction s", now() - t0);
+  const double tr = now();
+  std::atomic<std::int64_t> evals{ 0 }, exact{ 0 }, fullSums{ 0 };
+  forRows(box, intr, progressBase + 0.5 * progressSpan, 0.5 * progressSpan,
+    [&](std::int64_t j, std::int64_t k, std::int64_t r) {
+      std::int64_t ev = 0, ex = 0, fs = 0;
+      thread_local std::vector<double> priorLo, priorHi;
+      const double* pl = nullptr;
+      const double* ph = nullptr;
+      if (!blockLo.empty())
+      {
+        priorLo.resize(static_cast<std::size_t>(nx));
+        priorHi.resize(static_cast<std::size_t>(nx));
+        const std::int64_t row = bx * ((j - box.lo[1]) / Block + by * ((k - box.lo[2]) / Block));
+        for (std::int64_t i = 0; i < nx; ++i)
+        {
+          priorLo[static_cast<std::size_t>(i)] = blockLo[static_cast<std::size_t>(row + i / Block)];
+          priorHi[static_cast<std::size_t>(i)] = blockHi[static_cast<std::size_t>(row + i / Block)];
+        }
+        pl = priorLo.data();
+        ph = priorHi.data();
+      }
+      e.winding->signRow(e.position(box.lo[0], j, k), e.geom.spacing[0], nx, out + r * nx, ev, ex, &fs, reorient,
+        pl, ph);
+      evals += ev;
+      exact += ex;
+      fullSums += fs;
+    });
+  (void)ny;
+  trace("winding: rows (crossings, voxels refined one by one)", now() - tr);
+  stats.windingEvaluations += evals.load();
+  stats.windingExact += exact.load();
+  stats.windingFullSums += fullSums.load();
+  stats.signSeconds += now() - t0;
+}
+
+} // namespace detail::meshtosdf
+} // namespace lvdif
