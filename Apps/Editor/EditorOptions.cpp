@@ -64,7 +64,10 @@ EditorOptions parseEditorOptions(const QStringList& arguments)
     "Draw every frame whole (by default a frame in which the camera stands still redraws only the screen region that changed).");
   const QCommandLineOption samples("samples",
     "Samples per pixel of the view (multisampling; 0: none). Default: VTK's (up to 8; Mesa llvmpipe gives 4).", "n");
-  p.addOptions({ samples, open, openMesh, meshRes, meshSign, create, fill, script, drag, undo, shot, save, exp, op, shape, kind, radius, color, size, quit,
+  const QCommandLineOption drawRanges("draw-ranges",
+    "Triangles per draw range of a chunk (default 32; 0: each chunk in one draw call): a frame drawn in part draws only "
+    "the ranges of a chunk that reach into the redrawn region.", "n");
+  p.addOptions({ drawRanges, samples, open, openMesh, meshRes, meshSign, create, fill, script, drag, undo, shot, save, exp, op, shape, kind, radius, color, size, quit,
     noRecovery, recoveryDir, autosave, perVertex, matcap, benchmark, strength, falloff, mirror, keys, keysAfter, dragMods,
     saveAsAnswer, windowShot, dragShot, timing, fullRedraw });
   p.process(arguments);
@@ -162,6 +165,13 @@ EditorOptions parseEditorOptions(const QStringList& arguments)
   o.benchmarkStroke = p.value(benchmark);
   o.timing = p.isSet(timing);
   o.fullRedraw = p.isSet(fullRedraw);
+  if (p.isSet(drawRanges))
+  {
+    bool ok = false;
+    o.drawRangeTriangles = p.value(drawRanges).toInt(&ok);
+    if (!ok || o.drawRangeTriangles < 0)
+      fail("--draw-ranges must be a non-negative integer");
+  }
   if (p.isSet(samples))
   {
     bool ok = false;

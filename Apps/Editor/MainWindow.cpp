@@ -94,6 +94,7 @@ MainWindow::MainWindow(const EditorOptions& options)
 
   this->Chunks->SetRenderer(this->Renderer);
   this->Chunks->SetRedrawCuller(this->Redraw); // a re-meshed chunk damages only around its changed triangles
+  this->Chunks->SetDrawRangeTriangles(options.drawRangeTriangles); // a partial frame draws only the ranges it reaches
   this->Chunks->GetProperty()->SetSpecular(0.25);
   this->Chunks->GetProperty()->SetSpecularPower(25);
   this->Chunks->SetInterpolationMode(

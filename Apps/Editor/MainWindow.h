@@ -72,6 +72,8 @@ public:
   ~MainWindow() override;
 
   VolumeDocument& document() { return this->Doc; }
+  /// The chunk actors of the view.
+  vtkChunkActorManager* chunkActors() { return this->Chunks; }
 
   // ---- file and edit operations: the menus call these, so does the command line
   bool newCanvas(int nx, int ny, int nz, VolumeDocument::Fill fill);

@@ -4,6 +4,7 @@
 #include "MainWindow.h"
 
 #include "vtkCullerCollection.h"
+#include "vtkChunkActorManager.h"
 #include "vtkGenericOpenGLRenderWindow.h"
 #include "vtkPartialRedrawCuller.h"
 #include "vtkRenderer.h"
@@ -243,6 +244,9 @@ void StrokeBenchmark::frameRendered(const ShownMeshes& shown)
   this->RenderMs.push_back(ms(renderEnd - shown.installStart));
   this->DrawMs.push_back(ms(renderEnd - shown.renderStart));
   this->LastFrame = renderEnd;
+  int calls = 0;
+  this->TrianglesDrawn.push_back(static_cast<double>(this->Window.chunkActors()->GetLastNumberOfTrianglesDrawn(&calls)));
+  this->DrawCalls.push_back(calls);
   ++this->Frames;
 }
 
@@ -289,6 +293,11 @@ void StrokeBenchmark::report()
     this->Frames, seconds, this->Frames / seconds, percentile(this->RenderMs, 0.5), percentile(this->RenderMs, 0.95));
   std::printf("benchmark-stroke: render (drawing the frame, glFinish included) p50 %.2f ms, p95 %.2f ms, max %.2f ms\n",
     percentile(this->DrawMs, 0.5), percentile(this->DrawMs, 0.95), percentile(this->DrawMs, 1.0));
+  std::printf("benchmark-stroke: chunk triangles drawn per frame p50 %.0f, p95 %.0f, in p50 %.0f draw calls "
+              "(of %lld triangles in %d chunks; draw ranges of %d triangles)\n",
+    percentile(this->TrianglesDrawn, 0.5), percentile(this->TrianglesDrawn, 0.95), percentile(this->DrawCalls, 0.5),
+    static_cast<long long>(this->Window.chunkActors()->GetNumberOfTriangles()),
+    this->Window.chunkActors()->GetNumberOfChunks(), this->Window.chunkActors()->GetDrawRangeTriangles());
   const StrokeProfile& p = this->Window.strokeProfile();
   std::printf("benchmark-stroke: UI thread, summed over the stroke: brush %.0f ms (%d samples), settle wait %.0f ms, "
               "mesh to polydata %.0f ms + actor update %.0f ms (%d chunk meshes), Render() %.0f ms (%d frames)\n",

@@ -3,6 +3,7 @@
 #include "vtkActor.h"
 #include "vtkAppendPolyData.h"
 #include "vtkBoundingBox.h"
+#include "vtkCallbackCommand.h"
 #include "vtkCornerColorAttributes.h"
 #include "vtkMath.h"
 #include "vtkNew.h"
@@ -54,6 +55,8 @@ struct vtkChunkActorManager::Internals
   vtkNew<vtkProperty> Property;
   bool Visible = true;
   vtkSmartPointer<vtkPartialRedrawCuller> Culler;
+  vtkTimeStamp FrameStart;        // the renderer's last StartEvent
+  unsigned long StartObserver = 0; // on Renderer
 };
 
 namespace
@@ -343,6 +346,10 @@ vtkChunkActorManager::vtkChunkActorManager()
 vtkChunkActorManager::~vtkChunkActorManager()
 {
   this->RemoveAllChunks();
+  if (this->Internal->Renderer && this->Internal->StartObserver)
+  {
+    this->Internal->Renderer->RemoveObserver(this->Internal->StartObserver);
+  }
 }
 
 void vtkChunkActorManager::SetRenderer(vtkRenderer* renderer)
@@ -362,7 +369,20 @@ void vtkChunkActorManager::SetRenderer(vtkRenderer* renderer)
       renderer->AddActor(kv.second.Actor);
     }
   }
+  if (this->Internal->Renderer && this->Internal->StartObserver)
+  {
+    this->Internal->Renderer->RemoveObserver(this->Internal->StartObserver);
+    this->Internal->StartObserver = 0;
+  }
   this->Internal->Renderer = renderer;
+  if (renderer)
+  {
+    vtkNew<vtkCallbackCommand> cb;
+    cb->SetClientData(this->Internal.get());
+    cb->SetCallback(
+      [](vtkObject*, unsigned long, void* cd, void*) { static_cast<Internals*>(cd)->FrameStart.Modified(); });
+    this->Internal->StartObserver = renderer->AddObserver(vtkCommand::StartEvent, cb);
+  }
   this->Modified();
 }
 
@@ -431,6 +451,7 @@ vtkSmartPointer<vtkPolyData> vtkChunkActorManager::PrepareChunk(vtkPolyData* mes
   vtkNew<vtkCornerColorAttributes> attributes;
   attributes->SetOrigin(const_cast<double*>(this->Origin));
   attributes->SetSpacing(const_cast<double*>(this->Spacing));
+  attributes->SpatialOrderOn(); // consecutive triangles together: the mapper's draw ranges
   attributes->SetInputData(mesh);
   attributes->Update();
   vtkSmartPointer<vtkPolyData> out = attributes->GetOutput();
@@ -496,6 +517,7 @@ void vtkChunkActorManager::ApplyChunk(
     e.Mapper = vtkSmartPointer<vtkTetrahedralColorMapper>::New();
     e.Mapper->SetInterpolationMode(this->InterpolationMode);
     e.Mapper->SetMatcap(this->GetMatcapTexture() != nullptr);
+    e.Mapper->SetDrawRangeTriangles(this->DrawRangeTriangles);
     // The input is set as data, never produced by a pipeline: no pipeline
     // update per render and per bounds query (with hundreds of chunk actors
     // those updates were most of the cost of a frame that draws little).
@@ -696,6 +718,37 @@ void vtkChunkActorManager::SetVisibility(bool visible)
   {
     kv.second.Actor->SetVisibility(visible);
   }
+}
+
+void vtkChunkActorManager::SetDrawRangeTriangles(int triangles)
+{
+  this->DrawRangeTriangles = std::max(0, triangles);
+  for (auto& kv : this->Internal->Chunks)
+  {
+    kv.second.Mapper->SetDrawRangeTriangles(this->DrawRangeTriangles);
+  }
+}
+
+vtkIdType vtkChunkActorManager::GetLastNumberOfTrianglesDrawn(int* drawCalls)
+{
+  vtkIdType n = 0;
+  int calls = 0;
+  vtkRenderer* ren = this->Internal->Renderer;
+  for (auto& kv : this->Internal->Chunks)
+  {
+    vtkTetrahedralColorMapper* m = kv.second.Mapper;
+    // drawn in the renderer's last frame: since its start
+    if (ren && kv.second.Actor->GetVisibility() && m->GetLastDrawTime() > this->Internal->FrameStart.GetMTime())
+    {
+      n += m->GetLastNumberOfTrianglesDrawn();
+      calls += m->GetLastNumberOfDrawCalls();
+    }
+  }
+  if (drawCalls)
+  {
+    *drawCalls = calls;
+  }
+  return n;
 }
 
 void vtkChunkActorManager::PrintSelf(ostream& os, vtkIndent indent)

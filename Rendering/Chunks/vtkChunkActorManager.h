@@ -109,6 +109,19 @@ public:
 
   void SetVisibility(bool visible);
 
+  /// vtkTetrahedralColorMapper::SetDrawRangeTriangles for every chunk (default
+  /// 32; 0: each chunk drawn with one call): a frame drawn in part draws only
+  /// the ranges of a chunk's triangles whose screen rectangles meet its scissor
+  /// box. Chunks are prepared with their triangles in Morton order
+  /// (vtkCornerColorAttributes::SpatialOrder), so a range lies in a few cells.
+  void SetDrawRangeTriangles(int triangles);
+  vtkGetMacro(DrawRangeTriangles, int);
+
+  /// The triangles the chunk actors drew in their last renders, summed over the
+  /// chunks that the renderer's last frame drew (those whose mappers rendered
+  /// at its time or later), and their draw calls.
+  vtkIdType GetLastNumberOfTrianglesDrawn(int* drawCalls = nullptr);
+
   /// The renderer's partial-redraw culler, if any: SetChunk then declares a
   /// replaced mesh's change to it as the box of the triangles that differ
   /// (vtkPartialRedrawCuller::BeginChange/EndChange), so that a frame redraws
@@ -129,6 +142,7 @@ protected:
   double Origin[3] = { 0, 0, 0 };
   double Spacing[3] = { 1, 1, 1 };
   int InterpolationMode = 0;
+  int DrawRangeTriangles = 32;
   vtkIdType NumberOfChunkUpdates = 0;
 
 private:

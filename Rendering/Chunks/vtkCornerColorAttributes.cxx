@@ -15,6 +15,10 @@
 #include "vtkPolyData.h"
 #include "vtkUnsignedCharArray.h"
 
+#include <algorithm>
+#include <utility>
+#include <vector>
+
 vtkStandardNewMacro(vtkCornerColorAttributes);
 
 vtkCornerColorAttributes::vtkCornerColorAttributes() = default;
@@ -45,6 +49,21 @@ void vtkCornerColorAttributes::UnpackCorners(const float packed[12], unsigned ch
     const auto v = static_cast<unsigned long>(packed[i / 3]);
     rgba[i] = static_cast<unsigned char>((v >> (8 * (i % 3))) & 0xff);
   }
+}
+
+unsigned long long vtkCornerColorAttributes::MortonCode(int i, int j, int k)
+{
+  auto spread = [](unsigned long long v) {
+    v &= 0x1fffffull; // 21 bits
+    v = (v | (v << 32)) & 0x1f00000000ffffull;
+    v = (v | (v << 16)) & 0x1f0000ff0000ffull;
+    v = (v | (v << 8)) & 0x100f00f00f00f00full;
+    v = (v | (v << 4)) & 0x10c30c30c30c30c3ull;
+    v = (v | (v << 2)) & 0x1249249249249249ull;
+    return v;
+  };
+  return spread(static_cast<unsigned int>(i)) | (spread(static_cast<unsigned int>(j)) << 1) |
+    (spread(static_cast<unsigned int>(k)) << 2);
 }
 
 bool vtkCornerColorAttributes::HasCornerColors(vtkPolyData* pd)
@@ -123,12 +142,41 @@ int vtkCornerColorAttributes::RequestData(
   vtkNew<vtkCellArray> outPolys;
   outPolys->AllocateExact(triangles, 3 * triangles);
 
-  vtkIdType next = 0, tri = 0, cellId = firstPoly;
-  const vtkIdType reportEvery = triangles / 50 + 1;
-  auto it = vtk::TakeSmartPointer(polys->NewIterator());
-  for (it->GoToFirstCell(); !it->IsDoneWithTraversal(); it->GoToNextCell(), ++cellId)
+  // the polygons in output order: as given, or by their cells' Morton codes
+  const vtkIdType nPolys = polys->GetNumberOfCells();
+  std::vector<vtkIdType> order(static_cast<std::size_t>(nPolys));
+  if (this->SpatialOrder)
   {
-    vtkIdList* ids = it->GetCurrentCell();
+    std::vector<std::pair<unsigned long long, vtkIdType>> keyed(static_cast<std::size_t>(nPolys));
+    for (vtkIdType p = 0; p < nPolys; ++p)
+    {
+      const vtkIdType c = firstPoly + p;
+      keyed[static_cast<std::size_t>(p)] = { MortonCode(static_cast<int>(ijk->GetComponent(c, 0)),
+                                               static_cast<int>(ijk->GetComponent(c, 1)),
+                                               static_cast<int>(ijk->GetComponent(c, 2))),
+        p };
+    }
+    std::sort(keyed.begin(), keyed.end()); // ties by input index: stable
+    for (vtkIdType p = 0; p < nPolys; ++p)
+    {
+      order[static_cast<std::size_t>(p)] = keyed[static_cast<std::size_t>(p)].second;
+    }
+  }
+  else
+  {
+    for (vtkIdType p = 0; p < nPolys; ++p)
+    {
+      order[static_cast<std::size_t>(p)] = p;
+    }
+  }
+
+  vtkIdType next = 0, tri = 0;
+  const vtkIdType reportEvery = triangles / 50 + 1;
+  vtkNew<vtkIdList> ids;
+  for (vtkIdType p : order)
+  {
+    const vtkIdType cellId = firstPoly + p;
+    polys->GetCellAtId(p, ids);
     const vtkIdType n = ids->GetNumberOfIds();
     double cellOrigin[3];
     for (int a = 0; a < 3; ++a)
@@ -143,15 +191,15 @@ int vtkCornerColorAttributes::RequestData(
       vtkIdType outIds[3];
       for (int v = 0; v < 3; ++v, ++next)
       {
-        double p[3];
-        inPts->GetPoint(fan[v], p);
-        pts->SetPoint(next, p);
+        double pt[3];
+        inPts->GetPoint(fan[v], pt);
+        pts->SetPoint(next, pt);
         fromIds->SetId(next, fan[v]);
         toIds->SetId(next, next);
         float u[3];
         for (int a = 0; a < 3; ++a)
         {
-          u[a] = static_cast<float>((p[a] - cellOrigin[a]) / this->Spacing[a]);
+          u[a] = static_cast<float>((pt[a] - cellOrigin[a]) / this->Spacing[a]);
         }
         local->SetTypedTuple(next, u);
         for (int c = 0; c < 3; ++c)
@@ -187,5 +235,6 @@ void vtkCornerColorAttributes::PrintSelf(ostream& os, vtkIndent indent)
 {
   this->Superclass::PrintSelf(os, indent);
   os << indent << "Origin: " << this->Origin[0] << " " << this->Origin[1] << " " << this->Origin[2] << "\n";
+  os << indent << "SpatialOrder: " << this->SpatialOrder << "\n";
   os << indent << "Spacing: " << this->Spacing[0] << " " << this->Spacing[1] << " " << this->Spacing[2] << "\n";
 }

@@ -24,6 +24,14 @@
  *   exact; PackCorners/UnpackCorners): 3 vertex attributes instead of 8,
  *   which is what software OpenGL's vertex stage pays for.
  *
+ * Triangle order (SpatialOrder): off (default), the output triangles follow
+ * the input's polygons; on, they follow the Morton (Z-order) code of their
+ * cells' cell_ijk, input order among equal codes, a polygon's fan triangles
+ * together. Consecutive triangles then lie close together, which is what
+ * vtkTetrahedralColorMapper's draw ranges need to skip the triangles outside
+ * a partial redraw's scissor box (a marching cubes scan order gives ranges
+ * that are long rows through the chunk).
+ *
  * Memory: the GPU needs per-vertex attributes, and a vertex shared by
  * several triangles would need several corner sets, hence un-sharing. An
  * indexed marching cubes mesh has about T/2 points for T triangles (28 bytes
@@ -53,6 +61,16 @@ public:
   vtkGetVector3Macro(Spacing, double);
   ///@}
 
+  ///@{
+  /// Output triangles in the Morton order of their cells (see above); off by default.
+  vtkSetMacro(SpatialOrder, bool);
+  vtkGetMacro(SpatialOrder, bool);
+  vtkBooleanMacro(SpatialOrder, bool);
+  ///@}
+
+  /// The Morton (Z-order) code of a cell index: the bits of i, j, k (21 each) interleaved.
+  static unsigned long long MortonCode(int i, int j, int k);
+
   /// Names of the output point arrays (shared with vtkTetrahedralColorMapper).
   static const char* LocalArrayName() { return "lvdif_cell_local"; }
   static const char* PackedCornerArrayName(int i);
@@ -71,6 +89,7 @@ protected:
 
   double Origin[3] = { 0, 0, 0 };
   double Spacing[3] = { 1, 1, 1 };
+  bool SpatialOrder = false;
 
 private:
   vtkCornerColorAttributes(const vtkCornerColorAttributes&) = delete;

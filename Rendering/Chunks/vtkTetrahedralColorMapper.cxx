@@ -1,13 +1,25 @@
 #include "vtkTetrahedralColorMapper.h"
 
 #include "vtkActor.h"
+#include "vtkCamera.h"
+#include "vtkCellArray.h"
 #include "vtkCornerColorAttributes.h"
+#include "vtkMatrix4x4.h"
 #include "vtkObjectFactory.h"
+#include "vtkOpenGLHelper.h"
+#include "vtkOpenGLIndexBufferObject.h"
+#include "vtkOpenGLVertexBufferObjectGroup.h"
+#include "vtkPoints.h"
+#include "vtkRenderer.h"
+#include "vtk_glew.h"
 #include "vtkPointData.h"
 #include "vtkPolyData.h"
 #include "vtkProperty.h"
 #include "vtkShaderProperty.h"
 
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
 #include <string>
 
 vtkStandardNewMacro(vtkTetrahedralColorMapper);
@@ -207,6 +219,225 @@ void vtkTetrahedralColorMapper::RenderPiece(vtkRenderer* ren, vtkActor* act)
   this->Superclass::RenderPiece(ren, act);
 }
 
+bool vtkTetrahedralColorMapper::UpdateDrawRanges()
+{
+  const vtkMTimeType built = this->VBOBuildTime.GetMTime();
+  if (built == this->RangesBuildTime && this->RangesTriangles == this->DrawRangeTriangles)
+  {
+    return this->RangesValid;
+  }
+  this->RangesBuildTime = built;
+  this->RangesTriangles = this->DrawRangeTriangles;
+  this->RangesValid = false;
+  this->Ranges.clear();
+  vtkPolyData* pd = this->CurrentInput;
+  const vtkIdType perRange = this->DrawRangeTriangles;
+  if (!pd || perRange <= 0 || !pd->GetPoints() || pd->GetNumberOfVerts() || pd->GetNumberOfLines() ||
+    pd->GetNumberOfStrips())
+  {
+    return false;
+  }
+  vtkCellArray* polys = pd->GetPolys();
+  const vtkIdType n = polys->GetNumberOfCells();
+  if (n == 0 || polys->GetNumberOfConnectivityIds() != 3 * n)
+  {
+    return false; // not only triangles
+  }
+  vtkPoints* pts = pd->GetPoints();
+  const vtkIdType np = pts->GetNumberOfPoints();
+  this->Ranges.reserve(static_cast<std::size_t>((n + perRange - 1) / perRange));
+  vtkIdType npts = 0;
+  const vtkIdType* ids = nullptr;
+  vtkIdType t = 0; // triangles in the index buffer so far
+  Range r;
+  for (polys->InitTraversal(); polys->GetNextCell(npts, ids);)
+  {
+    double x[3][3];
+    for (int v = 0; v < 3; ++v)
+    {
+      if (ids[v] < 0 || ids[v] >= np)
+      {
+        this->Ranges.clear();
+        return false;
+      }
+      pts->GetPoint(ids[v], x[v]);
+    }
+    // VTK's index buffer leaves out the triangles with two equal points
+    // (vtkOpenGLIndexBufferObject::AppendTriangleIndexBuffer): so do the ranges
+    auto same = [&](int a, int b) { return x[a][0] == x[b][0] && x[a][1] == x[b][1] && x[a][2] == x[b][2]; };
+    if (same(0, 1) || same(0, 2) || same(1, 2))
+    {
+      continue;
+    }
+    if (r.Count == 0)
+    {
+      r.First = t;
+      r.MinIndex = ~0u;
+      r.MaxIndex = 0;
+      r.Box[0] = r.Box[2] = r.Box[4] = VTK_DOUBLE_MAX;
+      r.Box[1] = r.Box[3] = r.Box[5] = -VTK_DOUBLE_MAX;
+    }
+    for (int v = 0; v < 3; ++v)
+    {
+      for (int a = 0; a < 3; ++a)
+      {
+        r.Box[2 * a] = std::min(r.Box[2 * a], x[v][a]);
+        r.Box[2 * a + 1] = std::max(r.Box[2 * a + 1], x[v][a]);
+      }
+      r.MinIndex = std::min(r.MinIndex, static_cast<unsigned int>(ids[v]));
+      r.MaxIndex = std::max(r.MaxIndex, static_cast<unsigned int>(ids[v]));
+    }
+    ++t;
+    if (++r.Count == perRange)
+    {
+      this->Ranges.push_back(r);
+      r.Count = 0;
+    }
+  }
+  if (r.Count > 0)
+  {
+    this->Ranges.push_back(r);
+  }
+  // the ranges must cover the index buffer exactly, triangle for triangle
+  if (this->Primitives[PrimitiveTris].IBO->IndexCount != static_cast<std::size_t>(3 * t))
+  {
+    this->Ranges.clear();
+    return false;
+  }
+  this->RangesValid = !this->Ranges.empty();
+  return this->RangesValid;
+}
+
+void vtkTetrahedralColorMapper::RenderPieceDraw(vtkRenderer* ren, vtkActor* act)
+{
+  vtkOpenGLHelper& tris = this->Primitives[PrimitiveTris];
+  const vtkIdType all = static_cast<vtkIdType>(tris.IBO->IndexCount / 3);
+  this->LastTrianglesDrawn = all;
+  this->LastDrawCalls = all ? 1 : 0;
+  this->DrawTime.Modified();
+  vtkProperty* prop = act->GetProperty();
+  const bool plain = this->DrawRangeTriangles > 0 && !ren->GetSelector() && !this->GetSelection() &&
+    prop->GetRepresentation() == VTK_SURFACE && !prop->GetEdgeVisibility() && !prop->GetVertexVisibility() &&
+    !this->HaveCellScalars && !this->HaveCellNormals &&
+    this->Primitives[PrimitivePoints].IBO->IndexCount == 0 && this->Primitives[PrimitiveLines].IBO->IndexCount == 0 &&
+    this->Primitives[PrimitiveTriStrips].IBO->IndexCount == 0 && all > 0;
+  if (!plain || !this->UpdateDrawRanges())
+  {
+    this->Superclass::RenderPieceDraw(ren, act);
+    return;
+  }
+
+  // The region fragments may reach: the viewport, within the scissor box if the test is on.
+  GLint vp[4] = { 0, 0, 0, 0 }, sb[4] = { 0, 0, 0, 0 };
+  glGetIntegerv(GL_VIEWPORT, vp);
+  int clip[4] = { vp[0], vp[1], vp[0] + vp[2], vp[1] + vp[3] }; // x0, y0, x1, y1 (half-open)
+  if (glIsEnabled(GL_SCISSOR_TEST))
+  {
+    glGetIntegerv(GL_SCISSOR_BOX, sb);
+    clip[0] = std::max(clip[0], static_cast<int>(sb[0]));
+    clip[1] = std::max(clip[1], static_cast<int>(sb[1]));
+    clip[2] = std::min(clip[2], static_cast<int>(sb[0] + sb[2]));
+    clip[3] = std::min(clip[3], static_cast<int>(sb[1] + sb[3]));
+  }
+
+  // model to normalized device coordinates, as the camera and actor draw it
+  vtkCamera* cam = ren->GetActiveCamera();
+  vtkMatrix4x4* proj = cam->GetCompositeProjectionTransformMatrix(ren->GetTiledAspectRatio(), -1, 1);
+  double m[16];
+  if (act->GetIsIdentity())
+  {
+    std::copy(&proj->Element[0][0], &proj->Element[0][0] + 16, m);
+  }
+  else
+  {
+    vtkMatrix4x4::Multiply4x4(&proj->Element[0][0], &act->GetMatrix()->Element[0][0], m);
+  }
+  const int pad = this->DrawRangePad;
+  auto meets = [&](const Range& r) {
+    if (clip[0] >= clip[2] || clip[1] >= clip[3])
+    {
+      return false; // no pixel can be written
+    }
+    double lo[2] = { VTK_DOUBLE_MAX, VTK_DOUBLE_MAX }, hi[2] = { -VTK_DOUBLE_MAX, -VTK_DOUBLE_MAX };
+    for (int c = 0; c < 8; ++c)
+    {
+      const double p[3] = { r.Box[c & 1], r.Box[2 + ((c >> 1) & 1)], r.Box[4 + ((c >> 2) & 1)] };
+      double q[4];
+      for (int i = 0; i < 4; ++i)
+      {
+        q[i] = m[4 * i] * p[0] + m[4 * i + 1] * p[1] + m[4 * i + 2] * p[2] + m[4 * i + 3];
+      }
+      if (!(q[3] > 1e-12))
+      {
+        return true; // reaches behind the eye: the projection does not bound it
+      }
+      for (int a = 0; a < 2; ++a)
+      {
+        const double d = (q[a] / q[3] + 1.0) * 0.5 * vp[2 + a] + vp[a];
+        lo[a] = std::min(lo[a], d);
+        hi[a] = std::max(hi[a], d);
+      }
+    }
+    // pixels [floor(lo) - pad, ceil(hi) + 1 + pad) against the clip box
+    return std::floor(lo[0]) - pad < clip[2] && clip[0] < std::ceil(hi[0]) + 1 + pad &&
+      std::floor(lo[1]) - pad < clip[3] && clip[1] < std::ceil(hi[1]) + 1 + pad;
+  };
+
+  // runs of consecutive ranges that meet it
+  struct Run
+  {
+    vtkIdType First, Count;
+    unsigned int MinIndex, MaxIndex;
+  };
+  std::vector<Run> runs;
+  vtkIdType drawn = 0;
+  bool open = false;
+  for (const Range& r : this->Ranges)
+  {
+    if (!meets(r))
+    {
+      open = false;
+      continue;
+    }
+    drawn += r.Count;
+    if (open)
+    {
+      Run& last = runs.back();
+      last.Count += r.Count;
+      last.MinIndex = std::min(last.MinIndex, r.MinIndex);
+      last.MaxIndex = std::max(last.MaxIndex, r.MaxIndex);
+    }
+    else
+    {
+      runs.push_back({ r.First, r.Count, r.MinIndex, r.MaxIndex });
+      open = true;
+    }
+  }
+  if (drawn == all)
+  {
+    this->Superclass::RenderPieceDraw(ren, act); // every triangle: VTK's own single draw
+    return;
+  }
+  this->LastTrianglesDrawn = drawn;
+  this->LastDrawCalls = static_cast<int>(runs.size());
+  // as the base class draws the triangles, one call per run
+  this->DrawingVertices = false;
+  this->DrawingSelection = false;
+  this->PointPicking = false;
+  this->UpdateShaders(tris, ren, act);
+  if (!runs.empty())
+  {
+    tris.IBO->Bind();
+    for (const Run& run : runs)
+    {
+      glDrawRangeElements(GL_TRIANGLES, run.MinIndex, run.MaxIndex, static_cast<GLsizei>(3 * run.Count),
+        GL_UNSIGNED_INT, reinterpret_cast<const GLvoid*>(static_cast<std::uintptr_t>(3 * run.First) * sizeof(GLuint)));
+    }
+    tris.IBO->Release();
+  }
+  this->PrimitiveIDOffset += static_cast<int>(all);
+}
+
 void vtkTetrahedralColorMapper::PrintSelf(ostream& os, vtkIndent indent)
 {
   this->Superclass::PrintSelf(os, indent);
@@ -214,4 +445,6 @@ void vtkTetrahedralColorMapper::PrintSelf(ostream& os, vtkIndent indent)
      << "\n";
   os << indent << "UsedTetrahedral: " << this->UsedTetrahedral << "\n";
   os << indent << "Matcap: " << this->Matcap << "\n";
+  os << indent << "DrawRangeTriangles: " << this->DrawRangeTriangles << "\n";
+  os << indent << "DrawRangePad: " << this->DrawRangePad << "\n";
 }

@@ -28,12 +28,31 @@
  * with n the view-space normal, times the surface colour (the diffuse colour
  * the colour code above computed); the scene's lights play no part. Without
  * that texture on the property the mapper renders lit as usual.
+ *
+ * Draw ranges (SetDrawRangeTriangles): the input's triangles are drawn as
+ * consecutive ranges of that many triangles, each with the box of its points;
+ * a range whose screen rectangle (the box projected with the camera and the
+ * actor's matrix into the GL viewport, grown by DrawRangePad pixels) misses the
+ * GL scissor box is not drawn. Its fragments would all fail the scissor test,
+ * so the picture is the same as drawing every triangle (TestDrawRanges); what
+ * is saved is the vertex work and triangle setup of software OpenGL, where a
+ * partial redraw (vtkPartialRedrawCuller's scissor) otherwise draws every
+ * triangle of each chunk that meets the damage. The ranges pay off when
+ * consecutive triangles lie together (vtkCornerColorAttributes orders them by
+ * cell in Morton order). Adjacent drawn ranges are one draw call; a frame in
+ * which every range meets the scissor draws as VTK does. Only for the plain
+ * case: triangles only, surface representation without edges or vertices, no
+ * hardware selection or selection highlight, no cell scalars or cell normals
+ * (those read gl_PrimitiveID, which restarts with each draw call); otherwise
+ * VTK's draw.
  */
 #ifndef vtkTetrahedralColorMapper_h
 #define vtkTetrahedralColorMapper_h
 
 #include "lvdifRenderingChunksModule.h" // for export macro
 #include "vtkOpenGLPolyDataMapper.h"
+
+#include <vector> // for the draw ranges
 
 class vtkShaderProperty;
 
@@ -70,6 +89,30 @@ public:
 
   void RenderPiece(vtkRenderer* ren, vtkActor* act) override;
 
+  ///@{
+  /// Triangles per draw range (see above; default 32; 0: VTK's single draw).
+  /// Not a modification: it does not change the picture.
+  void SetDrawRangeTriangles(int n) { this->DrawRangeTriangles = n < 0 ? 0 : n; }
+  int GetDrawRangeTriangles() const { return this->DrawRangeTriangles; }
+  ///@}
+
+  ///@{
+  /// Pixels added on each side of a range's screen rectangle before it is
+  /// tested against the scissor box (default 2). For tests: a negative pad
+  /// skips ranges that do reach into the scissor box (a wrong picture).
+  void SetDrawRangePad(int pixels) { this->DrawRangePad = pixels; }
+  int GetDrawRangePad() const { return this->DrawRangePad; }
+  ///@}
+
+  ///@{
+  /// Of the last render: the triangles drawn (all of them when the ranges
+  /// were not used) and the number of triangle draw calls.
+  vtkIdType GetLastNumberOfTrianglesDrawn() const { return this->LastTrianglesDrawn; }
+  int GetLastNumberOfDrawCalls() const { return this->LastDrawCalls; }
+  /// When the mapper last drew (a vtkTimeStamp value).
+  vtkMTimeType GetLastDrawTime() const { return this->DrawTime.GetMTime(); }
+  ///@}
+
   /// Installs (or with on=false removes) the tetrahedral GLSL on a shader
   /// property. Public so that other mappers of the same data can share it.
   static void InstallShaderReplacements(vtkShaderProperty* property, bool on);
@@ -80,11 +123,32 @@ protected:
   vtkTetrahedralColorMapper();
   ~vtkTetrahedralColorMapper() override = default;
 
+  void RenderPieceDraw(vtkRenderer* ren, vtkActor* act) override;
+
   int InterpolationMode = Tetrahedral;
   bool UsedTetrahedral = false;
   bool Matcap = false;
+  int DrawRangeTriangles = 32;
+  int DrawRangePad = 2;
+  vtkIdType LastTrianglesDrawn = 0;
+  int LastDrawCalls = 0;
+  vtkTimeStamp DrawTime;
 
 private:
+  /// Rebuilds Ranges when the buffers were rebuilt; false if the input does not qualify.
+  bool UpdateDrawRanges();
+
+  struct Range
+  {
+    vtkIdType First = 0, Count = 0;          // triangles
+    unsigned int MinIndex = 0, MaxIndex = 0; // point ids they use
+    double Box[6];
+  };
+  std::vector<Range> Ranges;
+  bool RangesValid = false;
+  vtkMTimeType RangesBuildTime = 0; // VBOBuildTime the ranges were made for
+  int RangesTriangles = 0;          // DrawRangeTriangles they were made with
+
   vtkTetrahedralColorMapper(const vtkTetrahedralColorMapper&) = delete;
   void operator=(const vtkTetrahedralColorMapper&) = delete;
 };

@@ -23,6 +23,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <map>
 #include <string>
 #include <vector>
 
@@ -105,6 +106,90 @@ TEST(CornerColorAttributes, UnsharesAndCarriesCornerColours)
       }
     }
   }
+}
+
+// SpatialOrder: the same triangles (each with its points, local coordinates and
+// corner colours, as without it), in non-decreasing Morton order of their cells.
+TEST(CornerColorAttributes, SpatialOrderPermutesTrianglesByMortonCode)
+{
+  auto mesh = sphereMesh(24, 0.5);
+  vtkNew<vtkCornerColorAttributes> plain, ordered;
+  for (vtkCornerColorAttributes* f : { plain.Get(), ordered.Get() })
+  {
+    f->SetInputData(mesh);
+    f->SetSpacing(0.5, 0.5, 0.5);
+  }
+  ordered->SpatialOrderOn();
+  plain->Update();
+  ordered->Update();
+  vtkPolyData* a = plain->GetOutput();
+  vtkPolyData* b = ordered->GetOutput();
+  const vtkIdType nt = mesh->GetNumberOfPolys();
+  ASSERT_EQ(b->GetNumberOfPolys(), nt);
+  ASSERT_EQ(b->GetNumberOfPoints(), 3 * nt);
+  vtkDataArray* ijk = mesh->GetCellData()->GetArray("cell_ijk");
+  // each output triangle as the bytes of its three points' position and point arrays
+  auto key = [](vtkPolyData* pd, vtkIdType t) {
+    vtkIdType n;
+    const vtkIdType* ids;
+    pd->GetCellPoints(t, n, ids);
+    std::vector<double> k;
+    for (vtkIdType v = 0; v < n; ++v)
+    {
+      double x[3];
+      pd->GetPoint(ids[v], x);
+      k.insert(k.end(), x, x + 3);
+      for (int i = 0; i < pd->GetPointData()->GetNumberOfArrays(); ++i)
+      {
+        vtkDataArray* arr = pd->GetPointData()->GetArray(i);
+        for (int c = 0; c < arr->GetNumberOfComponents(); ++c)
+          k.push_back(arr->GetComponent(ids[v], c));
+      }
+    }
+    return k;
+  };
+  std::vector<std::vector<double>> ka, kb;
+  for (vtkIdType t = 0; t < nt; ++t)
+  {
+    ka.push_back(key(a, t));
+    kb.push_back(key(b, t));
+  }
+  // the Morton codes along the output: non-decreasing (the input triangle of
+  // each output one found by its points)
+  std::map<std::vector<double>, std::vector<vtkIdType>> inputOf;
+  for (vtkIdType t = 0; t < nt; ++t)
+    inputOf[ka[static_cast<std::size_t>(t)]].push_back(t);
+  unsigned long long last = 0;
+  bool ordered_ = true, permutation = true;
+  for (vtkIdType t = 0; t < nt; ++t)
+  {
+    auto it = inputOf.find(kb[static_cast<std::size_t>(t)]);
+    if (it == inputOf.end() || it->second.empty())
+    {
+      permutation = false;
+      break;
+    }
+    const vtkIdType in = it->second.back();
+    it->second.pop_back();
+    const unsigned long long code = vtkCornerColorAttributes::MortonCode(static_cast<int>(ijk->GetComponent(in, 0)),
+      static_cast<int>(ijk->GetComponent(in, 1)), static_cast<int>(ijk->GetComponent(in, 2)));
+    ordered_ = ordered_ && code >= last;
+    last = code;
+  }
+  EXPECT_TRUE(permutation);
+  EXPECT_TRUE(ordered_);
+  std::sort(ka.begin(), ka.end());
+  std::sort(kb.begin(), kb.end());
+  EXPECT_EQ(ka, kb);
+  // and the order did change (the scan order of the input is not Morton order)
+  bool moved = false;
+  for (vtkIdType t = 0; t < nt && !moved; ++t)
+    moved = key(a, t) != key(b, t);
+  EXPECT_TRUE(moved);
+  EXPECT_EQ(vtkCornerColorAttributes::MortonCode(1, 0, 0), 1ull);
+  EXPECT_EQ(vtkCornerColorAttributes::MortonCode(0, 1, 0), 2ull);
+  EXPECT_EQ(vtkCornerColorAttributes::MortonCode(0, 0, 1), 4ull);
+  EXPECT_EQ(vtkCornerColorAttributes::MortonCode(3, 5, 6), 0b110101011ull);
 }
 
 TEST(CornerColorAttributes, RefusesInputWithoutContract)
