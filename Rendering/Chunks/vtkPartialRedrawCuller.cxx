@@ -9,6 +9,7 @@
 #include "vtkMath.h"
 #include "vtkDataObject.h"
 #include "vtkMatrix4x4.h"
+#include "vtkPolyData.h"
 #include "vtkObjectFactory.h"
 #include "vtkProp.h"
 #include "vtkPropCollection.h"
@@ -59,6 +60,31 @@ struct Rect
 
 // Lines and points are drawn a little wider than the geometry's projection.
 constexpr int Pad = 3;
+// Triangles are not: their fragments lie in the pixels their projection
+// meets, [floor(lo), ceil(hi) + 1) already; one more pixel for the rounding
+// of the GPU's single-precision transform.
+constexpr int SurfacePad = 1;
+
+// Whether the prop draws only filled polygons (an actor showing a poly data
+// of polygons and strips as a surface, without edges or vertices): nothing of
+// it is drawn wider than its projection.
+bool surfaceOnly(vtkProp* p)
+{
+  auto* a = vtkActor::SafeDownCast(p);
+  vtkProperty* prop = a ? a->GetProperty() : nullptr;
+  vtkMapper* mapper = a ? a->GetMapper() : nullptr;
+  // (a poly data mapper drawing its input's cells: not glyphs or splats, whose
+  // bounds the mapper computes otherwise)
+  if (!prop || !mapper || !mapper->IsA("vtkPolyDataMapper") || mapper->IsA("vtkPointGaussianMapper") ||
+    prop->GetRepresentation() != VTK_SURFACE || prop->GetEdgeVisibility() || prop->GetVertexVisibility() ||
+    mapper->GetNumberOfInputConnections(0) == 0)
+  {
+    return false;
+  }
+  auto* pd = vtkPolyData::SafeDownCast(mapper->GetInputDataObject(0, 0));
+  return pd && pd->GetNumberOfVerts() == 0 && pd->GetNumberOfLines() == 0 &&
+    pd->GetNumberOfPolys() + pd->GetNumberOfStrips() > 0;
+}
 
 std::uint64_t mix(std::uint64_t h, std::uint64_t v)
 {
@@ -306,7 +332,7 @@ double vtkPartialRedrawCuller::Cull(vtkRenderer* ren, vtkProp** propList, int& l
 
   // Screen rectangles of this frame's props.
   vtkMatrix4x4* m = ren->GetActiveCamera()->GetCompositeProjectionTransformMatrix(ren->GetTiledAspectRatio(), -1, 1);
-  auto boxRect = [&](const double* b) {
+  auto boxRect = [&](const double* b, int pad) {
     if (!b)
     {
       return viewport; // 2D props and the like: assume everywhere
@@ -334,22 +360,39 @@ double vtkPartialRedrawCuller::Cull(vtkRenderer* ren, vtkProp** propList, int& l
     }
     auto clampTo = [](double v, int a, int z) { return static_cast<int>(std::max<double>(a, std::min<double>(z, v))); };
     Rect r;
-    r.x0 = clampTo(std::floor(lo[0]) - Pad, viewport.x0, viewport.x1);
-    r.y0 = clampTo(std::floor(lo[1]) - Pad, viewport.y0, viewport.y1);
-    r.x1 = clampTo(std::ceil(hi[0]) + 1 + Pad, viewport.x0, viewport.x1);
-    r.y1 = clampTo(std::ceil(hi[1]) + 1 + Pad, viewport.y0, viewport.y1);
+    r.x0 = clampTo(std::floor(lo[0]) - pad, viewport.x0, viewport.x1);
+    r.y0 = clampTo(std::floor(lo[1]) - pad, viewport.y0, viewport.y1);
+    r.x1 = clampTo(std::ceil(hi[0]) + 1 + pad, viewport.x0, viewport.x1);
+    r.y1 = clampTo(std::ceil(hi[1]) + 1 + pad, viewport.y0, viewport.y1);
     return r;
   };
-  auto screenRect = [&](vtkProp* p) { return boxRect(p->GetBounds()); };
+  auto padOf = [](vtkProp* p) { return surfaceOnly(p) ? SurfacePad : Pad; };
 
+  std::vector<double> key = in.MakeViewKey(ren);
+  const bool sameView = in.Valid && key == in.ViewKey;
   std::unordered_map<vtkProp*, Internals::Drawn> now;
   now.reserve(static_cast<std::size_t>(listLength));
   Rect damage;
   for (int i = 0; i < listLength; ++i)
   {
     vtkProp* p = propList[i];
-    Internals::Drawn d{ screenRect(p), in.Signature(p) };
+    const int pad = padOf(p);
+    Internals::Drawn d;
+    d.signature = in.Signature(p);
     auto old = in.Props.find(p);
+    // An actor of a static mapper whose signature and view are those of the
+    // last frame has the same bounds, so the same rectangle: no bounds query
+    // (which checks the input's modification times, per actor and frame).
+    auto* actor = vtkActor::SafeDownCast(p);
+    if (sameView && old != in.Props.end() && old->second.signature == d.signature && actor && actor->GetMapper() &&
+      actor->GetMapper()->GetStatic())
+    {
+      d.rect = old->second.rect;
+    }
+    else
+    {
+      d.rect = boxRect(p->GetBounds(), pad);
+    }
     if (old == in.Props.end())
     {
       damage.unite(d.rect); // new, or shown again
@@ -360,7 +403,7 @@ double vtkPartialRedrawCuller::Cull(vtkRenderer* ren, vtkProp** propList, int& l
       if (declared != in.Changes.end() && declared->second.chained && !declared->second.open &&
         declared->second.first == old->second.signature && declared->second.after == d.signature)
       {
-        damage.unite(boxRect(declared->second.box)); // only the declared box differs
+        damage.unite(boxRect(declared->second.box, pad)); // only the declared box differs
       }
       else if (old->second.signature != d.signature ||
         !(old->second.rect.x0 == d.rect.x0 && old->second.rect.y0 == d.rect.y0 && old->second.rect.x1 == d.rect.x1 &&
@@ -378,7 +421,6 @@ double vtkPartialRedrawCuller::Cull(vtkRenderer* ren, vtkProp** propList, int& l
     damage.unite(gone.second.rect);
   }
 
-  std::vector<double> key = in.MakeViewKey(ren);
   bool full = !in.Valid || this->FullRedrawRequested || key != in.ViewKey || ren->GetSelector() != nullptr ||
     in.FramesStarted != in.FramesCulled + 1 ||
     static_cast<double>(damage.area()) > this->MaximumDamageFraction * static_cast<double>(viewport.area());

@@ -12,7 +12,9 @@
  * culler does that for a vtkRenderer:
  *
  * - It remembers, for every prop drawn in the last frame, its screen
- *   rectangle (the projected corners of its bounds) and a signature (the
+ *   rectangle (the projected corners of its bounds, grown by 3 pixels for
+ *   lines and points, by 1 for a prop that draws only filled polygons: its
+ *   fragments lie within its projection) and a signature (the
  *   modification times of the prop, its actors, their mappers' inputs,
  *   properties and textures, and their visibility).
  * - The damage is the union of the old and new rectangles of every prop that

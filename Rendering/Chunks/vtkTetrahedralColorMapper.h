@@ -98,7 +98,7 @@ public:
 
   ///@{
   /// Pixels added on each side of a range's screen rectangle before it is
-  /// tested against the scissor box (default 2). For tests: a negative pad
+  /// tested against the scissor box (default 1). For tests: a negative pad
   /// skips ranges that do reach into the scissor box (a wrong picture).
   void SetDrawRangePad(int pixels) { this->DrawRangePad = pixels; }
   int GetDrawRangePad() const { return this->DrawRangePad; }
@@ -129,7 +129,7 @@ protected:
   bool UsedTetrahedral = false;
   bool Matcap = false;
   int DrawRangeTriangles = 32;
-  int DrawRangePad = 2;
+  int DrawRangePad = 1;
   vtkIdType LastTrianglesDrawn = 0;
   int LastDrawCalls = 0;
   vtkTimeStamp DrawTime;

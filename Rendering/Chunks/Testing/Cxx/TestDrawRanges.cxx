@@ -288,7 +288,7 @@ int TestDrawRanges(int, char*[])
     frame([&](Scene& s) { s.Manager->SetChunk(dentChunk, dents[3].at(dentChunk)); });
     frame([&](Scene& s) { s.Manager->SetChunk(dentChunk, dents[1].at(dentChunk)); });
     compare("pad -6 (negative control)", false);
-    ranged.SetPad(2);
+    ranged.SetPad(1);
   }
   std::printf("%s\n", failures ? "FAILED" : "passed");
   return failures ? EXIT_FAILURE : EXIT_SUCCESS;
