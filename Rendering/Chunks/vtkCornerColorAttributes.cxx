@@ -173,6 +173,15 @@ int vtkCornerColorAttributes::RequestData(
   vtkIdType next = 0, tri = 0;
   const vtkIdType reportEvery = triangles / 50 + 1;
   vtkNew<vtkIdList> ids;
+  // the output arrays written directly (per vertex: position, ids, local
+  // coordinates, 3 packed corner tuples)
+  float* outXyz = vtkFloatArray::SafeDownCast(pts->GetData())->GetPointer(0);
+  vtkIdType* from = fromIds->GetPointer(0);
+  vtkIdType* to = toIds->GetPointer(0);
+  float* outLocal = local->GetPointer(0);
+  float* outCorners[3] = { cornerArrays[0]->GetPointer(0), cornerArrays[1]->GetPointer(0),
+    cornerArrays[2]->GetPointer(0) };
+  const bool copyCells = outCd->GetNumberOfArrays() > 0;
   for (vtkIdType p : order)
   {
     const vtkIdType cellId = firstPoly + p;
@@ -193,23 +202,24 @@ int vtkCornerColorAttributes::RequestData(
       {
         double pt[3];
         inPts->GetPoint(fan[v], pt);
-        pts->SetPoint(next, pt);
-        fromIds->SetId(next, fan[v]);
-        toIds->SetId(next, next);
-        float u[3];
         for (int a = 0; a < 3; ++a)
         {
-          u[a] = static_cast<float>((pt[a] - cellOrigin[a]) / this->Spacing[a]);
+          outXyz[3 * next + a] = static_cast<float>(pt[a]);
+          outLocal[3 * next + a] = static_cast<float>((pt[a] - cellOrigin[a]) / this->Spacing[a]);
         }
-        local->SetTypedTuple(next, u);
+        from[next] = fan[v];
+        to[next] = next;
         for (int c = 0; c < 3; ++c)
         {
-          cornerArrays[c]->SetTypedTuple(next, packed + 4 * c);
+          std::copy(packed + 4 * c, packed + 4 * c + 4, outCorners[c] + 4 * next);
         }
         outIds[v] = next;
       }
       outPolys->InsertNextCell(3, outIds);
-      outCd->CopyData(input->GetCellData(), cellId, tri);
+      if (copyCells)
+      {
+        outCd->CopyData(input->GetCellData(), cellId, tri);
+      }
       if (++tri % reportEvery == 0)
       {
         this->UpdateProgress(static_cast<double>(tri) / triangles);
