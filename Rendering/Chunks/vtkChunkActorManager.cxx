@@ -26,14 +26,15 @@
 #include <cstdint>
 #include <cstring>
 #include <map>
+#include <utility>
 #include <vector>
 
 vtkStandardNewMacro(vtkChunkActorManager);
 
-// A mesh's triangle hashes (triangleHashes) in triangle order and sorted.
+// A mesh's triangle hashes (triangleHashes), sorted, each with its triangle's index.
 struct vtkChunkActorManager::Hashes
 {
-  std::vector<std::uint64_t> order, sorted;
+  std::vector<std::pair<std::uint64_t, vtkIdType>> sorted;
 };
 
 struct vtkChunkActorManager::Internals
@@ -174,50 +175,54 @@ void addTriangle(vtkPolyData* pd, vtkIdType t, double b[6])
 
 namespace
 {
-// ChangedBounds with the triangles' hashes known (triangleHashes of each mesh,
-// in triangle order and sorted).
-bool changedBoundsOf(vtkPolyData* before, const std::vector<std::uint64_t>& hb, const std::vector<std::uint64_t>& sb,
-  vtkPolyData* after, const std::vector<std::uint64_t>& ha, const std::vector<std::uint64_t>& sa, double bounds[6])
+// The triangle hashes of a mesh, sorted, with their triangles' indices.
+std::vector<std::pair<std::uint64_t, vtkIdType>> sortedWithIndex(const std::vector<std::uint64_t>& order)
+{
+  std::vector<std::pair<std::uint64_t, vtkIdType>> sorted(order.size());
+  for (std::size_t t = 0; t < order.size(); ++t)
+  {
+    sorted[t] = { order[t], static_cast<vtkIdType>(t) };
+  }
+  std::sort(sorted.begin(), sorted.end());
+  return sorted;
+}
+
+// ChangedBounds with the triangles' hashes known (sortedWithIndex of each
+// mesh's triangleHashes): one walk over both sorted lists; the triangles of
+// each hash whose count differs between the meshes are the changed ones.
+bool changedBoundsOf(vtkPolyData* before, const std::vector<std::pair<std::uint64_t, vtkIdType>>& sb,
+  vtkPolyData* after, const std::vector<std::pair<std::uint64_t, vtkIdType>>& sa, double bounds[6])
 {
   vtkMath::UninitializeBounds(bounds);
   double b[6] = { VTK_DOUBLE_MAX, -VTK_DOUBLE_MAX, VTK_DOUBLE_MAX, -VTK_DOUBLE_MAX, VTK_DOUBLE_MAX, -VTK_DOUBLE_MAX };
-  // the hashes whose counts differ between the two meshes (sorted multisets)
-  std::vector<std::uint64_t> differ;
+  bool any = false;
   std::size_t i = 0, j = 0;
   while (i < sb.size() || j < sa.size())
   {
-    const std::uint64_t h = j == sa.size() || (i < sb.size() && sb[i] < sa[j]) ? sb[i] : sa[j];
-    std::size_t nb = 0, na = 0;
-    for (; i < sb.size() && sb[i] == h; ++i)
+    const std::uint64_t h = j == sa.size() || (i < sb.size() && sb[i].first < sa[j].first) ? sb[i].first : sa[j].first;
+    const std::size_t i0 = i, j0 = j;
+    for (; i < sb.size() && sb[i].first == h; ++i)
     {
-      ++nb;
     }
-    for (; j < sa.size() && sa[j] == h; ++j)
+    for (; j < sa.size() && sa[j].first == h; ++j)
     {
-      ++na;
     }
-    if (nb != na)
+    if (i - i0 != j - j0)
     {
-      differ.push_back(h);
+      any = true;
+      for (std::size_t k = i0; k < i; ++k)
+      {
+        addTriangle(before, sb[k].second, b);
+      }
+      for (std::size_t k = j0; k < j; ++k)
+      {
+        addTriangle(after, sa[k].second, b);
+      }
     }
   }
-  if (differ.empty())
+  if (!any)
   {
     return false;
-  }
-  for (std::size_t t = 0; t < hb.size(); ++t)
-  {
-    if (std::binary_search(differ.begin(), differ.end(), hb[t]))
-    {
-      addTriangle(before, static_cast<vtkIdType>(t), b);
-    }
-  }
-  for (std::size_t t = 0; t < ha.size(); ++t)
-  {
-    if (std::binary_search(differ.begin(), differ.end(), ha[t]))
-    {
-      addTriangle(after, static_cast<vtkIdType>(t), b);
-    }
   }
   std::copy(b, b + 6, bounds);
   return true;
@@ -326,10 +331,7 @@ bool vtkChunkActorManager::ChangedBounds(vtkPolyData* before, vtkPolyData* after
   {
     return unionBounds(before, after, bounds);
   }
-  std::vector<std::uint64_t> sb(hb), sa(ha);
-  std::sort(sb.begin(), sb.end());
-  std::sort(sa.begin(), sa.end());
-  return changedBoundsOf(before, hb, sb, after, ha, sa, bounds);
+  return changedBoundsOf(before, sortedWithIndex(hb), after, sortedWithIndex(ha), bounds);
 }
 
 void vtkChunkActorManager::SetRedrawCuller(vtkPartialRedrawCuller* culler)
@@ -492,12 +494,12 @@ void vtkChunkActorManager::SetChunks(const std::vector<vtkIdType>& chunkIds, con
 
 bool vtkChunkActorManager::hashesOf(vtkPolyData* mesh, Hashes& out)
 {
-  if (!triangleHashes(mesh, out.order))
+  std::vector<std::uint64_t> order;
+  if (!triangleHashes(mesh, order))
   {
     return false;
   }
-  out.sorted = out.order;
-  std::sort(out.sorted.begin(), out.sorted.end());
+  out.sorted = sortedWithIndex(order);
   return true;
 }
 
@@ -560,7 +562,7 @@ void vtkChunkActorManager::ApplyChunk(
     vtkPolyData* before = e.Source;
     if (hashed && e.HashesValid)
     {
-      changedBoundsOf(before, e.SourceHashes.order, e.SourceHashes.sorted, mesh, hashes->order, hashes->sorted, changed);
+      changedBoundsOf(before, e.SourceHashes.sorted, mesh, hashes->sorted, changed);
     }
     else
     {

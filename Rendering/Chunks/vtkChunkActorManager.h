@@ -153,7 +153,7 @@ private:
   /// into the next time) for a chunk; `hashes`: triangleHashes of `mesh`, if known.
   struct Hashes;
   void ApplyChunk(vtkIdType chunkId, vtkPolyData* mesh, vtkPolyData* ready, bool owned, Hashes* hashes);
-  /// triangleHashes of `mesh`, in order and sorted; false if it has cells other than triangles.
+  /// triangleHashes of `mesh`, sorted with their triangles' indices; false if it has cells other than triangles.
   static bool hashesOf(vtkPolyData* mesh, Hashes& out);
 
   struct Internals;
