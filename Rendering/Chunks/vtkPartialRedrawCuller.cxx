@@ -376,7 +376,6 @@ double vtkPartialRedrawCuller::Cull(vtkRenderer* ren, vtkProp** propList, int& l
   for (int i = 0; i < listLength; ++i)
   {
     vtkProp* p = propList[i];
-    const int pad = padOf(p);
     Internals::Drawn d;
     d.signature = in.Signature(p);
     auto old = in.Props.find(p);
@@ -391,7 +390,7 @@ double vtkPartialRedrawCuller::Cull(vtkRenderer* ren, vtkProp** propList, int& l
     }
     else
     {
-      d.rect = boxRect(p->GetBounds(), pad);
+      d.rect = boxRect(p->GetBounds(), padOf(p));
     }
     if (old == in.Props.end())
     {
@@ -403,7 +402,7 @@ double vtkPartialRedrawCuller::Cull(vtkRenderer* ren, vtkProp** propList, int& l
       if (declared != in.Changes.end() && declared->second.chained && !declared->second.open &&
         declared->second.first == old->second.signature && declared->second.after == d.signature)
       {
-        damage.unite(boxRect(declared->second.box, pad)); // only the declared box differs
+        damage.unite(boxRect(declared->second.box, padOf(p))); // only the declared box differs
       }
       else if (old->second.signature != d.signature ||
         !(old->second.rect.x0 == d.rect.x0 && old->second.rect.y0 == d.rect.y0 && old->second.rect.x1 == d.rect.x1 &&
