@@ -82,28 +82,57 @@ std::uint64_t hashBytes(std::uint64_t h, const void* data, std::size_t n)
   return h;
 }
 
-// One tuple of every array of `data` (contiguous arrays: the raw bytes; others
-// through doubles).
-std::uint64_t hashTuple(std::uint64_t h, vtkFieldData* data, vtkIdType t)
+// The arrays of `data` that are hashed per tuple (data arrays: contiguous
+// ones by their raw bytes, others through doubles), looked up once per mesh.
+struct TupleFields
 {
-  for (int a = 0; a < data->GetNumberOfArrays(); ++a)
+  struct Field
   {
-    vtkAbstractArray* arr = data->GetAbstractArray(a);
-    vtkDataArray* da = vtkDataArray::SafeDownCast(arr);
-    if (!da)
+    const unsigned char* Base = nullptr; // contiguous: tuple t at Base + t * Bytes
+    std::size_t Bytes = 0;
+    vtkDataArray* Generic = nullptr; // otherwise
+    int Components = 0;
+  };
+  std::vector<Field> Fields;
+  explicit TupleFields(vtkFieldData* data)
+  {
+    for (int a = 0; a < data->GetNumberOfArrays(); ++a)
     {
-      continue; // string arrays and the like are not drawn
+      vtkDataArray* da = vtkDataArray::SafeDownCast(data->GetAbstractArray(a));
+      if (!da)
+      {
+        continue; // string arrays and the like are not drawn
+      }
+      Field f;
+      f.Components = da->GetNumberOfComponents();
+      if (da->HasStandardMemoryLayout())
+      {
+        f.Base = static_cast<const unsigned char*>(da->GetVoidPointer(0));
+        f.Bytes = static_cast<std::size_t>(f.Components) * da->GetDataTypeSize();
+      }
+      else
+      {
+        f.Generic = da;
+      }
+      this->Fields.push_back(f);
     }
-    const int nc = da->GetNumberOfComponents();
-    if (da->HasStandardMemoryLayout())
+  }
+};
+
+// One tuple of every hashed array.
+std::uint64_t hashTuple(std::uint64_t h, const TupleFields& fields, vtkIdType t)
+{
+  for (const TupleFields::Field& f : fields.Fields)
+  {
+    if (f.Base)
     {
-      h = hashBytes(h, da->GetVoidPointer(t * nc), static_cast<std::size_t>(nc) * da->GetDataTypeSize());
+      h = hashBytes(h, f.Base + static_cast<std::size_t>(t) * f.Bytes, f.Bytes);
     }
     else
     {
-      for (int c = 0; c < nc; ++c)
+      for (int c = 0; c < f.Components; ++c)
       {
-        const double v = da->GetComponent(t, c);
+        const double v = f.Generic->GetComponent(t, c);
         h = hashBytes(h, &v, sizeof v);
       }
     }
@@ -127,13 +156,14 @@ bool triangleHashes(vtkPolyData* pd, std::vector<std::uint64_t>& out)
   }
   std::vector<std::uint64_t> point(static_cast<std::size_t>(pd->GetNumberOfPoints()));
   vtkDataArray* pts = pd->GetPoints() ? pd->GetPoints()->GetData() : nullptr;
+  const TupleFields pointFields(pd->GetPointData()), cellFields(pd->GetCellData());
   for (vtkIdType p = 0; p < pd->GetNumberOfPoints(); ++p)
   {
     std::uint64_t h = 1469598103934665603ull;
     double x[3];
     pts->GetTuple(p, x);
     h = hashBytes(h, x, sizeof x);
-    point[static_cast<std::size_t>(p)] = hashTuple(h, pd->GetPointData(), p);
+    point[static_cast<std::size_t>(p)] = hashTuple(h, pointFields, p);
   }
   vtkCellArray* polys = pd->GetPolys();
   out.reserve(static_cast<std::size_t>(polys->GetNumberOfCells()));
@@ -150,7 +180,7 @@ bool triangleHashes(vtkPolyData* pd, std::vector<std::uint64_t>& out)
       point[static_cast<std::size_t>(ids[2])] };
     std::rotate(v, std::min_element(v, v + 3), v + 3);
     std::uint64_t h = hashBytes(1469598103934665603ull, v, sizeof v);
-    out.push_back(hashTuple(h, pd->GetCellData(), cell)); // polys are the only cells: cell id = poly index
+    out.push_back(hashTuple(h, cellFields, cell)); // polys are the only cells: cell id = poly index
   }
   return true;
 }

@@ -34,11 +34,12 @@ void vtkCornerColorAttributes::PackCorners(const unsigned char rgba[32], float p
   // byte i goes to float i/3, digit i%3 in base 256: below 2^24, so exact in a float
   for (int j = 0; j < 12; ++j)
   {
-    packed[j] = 0;
-  }
-  for (int i = 0; i < 32; ++i)
-  {
-    packed[i / 3] += static_cast<float>(rgba[i]) * (i % 3 == 0 ? 1.0f : (i % 3 == 1 ? 256.0f : 65536.0f));
+    unsigned int v = 0;
+    for (int d = 0; d < 3 && 3 * j + d < 32; ++d)
+    {
+      v |= static_cast<unsigned int>(rgba[3 * j + d]) << (8 * d);
+    }
+    packed[j] = static_cast<float>(v);
   }
 }
 
