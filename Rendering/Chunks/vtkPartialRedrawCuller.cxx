@@ -61,9 +61,8 @@ struct Rect
 // Lines and points are drawn a little wider than the geometry's projection.
 constexpr int Pad = 3;
 // Triangles are not: their fragments lie in the pixels their projection
-// meets, [floor(lo), ceil(hi) + 1) already; one more pixel for the rounding
-// of the GPU's single-precision transform.
-constexpr int SurfacePad = 1;
+// meets, [floor(lo), ceil(hi) + 1) already; SurfaceMargin (1) adds one more
+// pixel for the rounding of the GPU's single-precision transform.
 
 // Whether the prop draws only filled polygons (an actor showing a poly data
 // of polygons and strips as a surface, without edges or vertices): nothing of
@@ -366,7 +365,8 @@ double vtkPartialRedrawCuller::Cull(vtkRenderer* ren, vtkProp** propList, int& l
     r.y1 = clampTo(std::ceil(hi[1]) + 1 + pad, viewport.y0, viewport.y1);
     return r;
   };
-  auto padOf = [](vtkProp* p) { return surfaceOnly(p) ? SurfacePad : Pad; };
+  const int surfacePad = this->SurfaceMargin;
+  auto padOf = [surfacePad](vtkProp* p) { return surfaceOnly(p) ? surfacePad : Pad; };
 
   std::vector<double> key = in.MakeViewKey(ren);
   const bool sameView = in.Valid && key == in.ViewKey;
@@ -483,6 +483,7 @@ void vtkPartialRedrawCuller::PrintSelf(ostream& os, vtkIndent indent)
   this->Superclass::PrintSelf(os, indent);
   os << indent << "Enabled: " << this->Enabled << "\n";
   os << indent << "MaximumDamageFraction: " << this->MaximumDamageFraction << "\n";
+  os << indent << "SurfaceMargin: " << this->SurfaceMargin << "\n";
   os << indent << "NumberOfFullRedraws: " << this->NumberOfFullRedraws << "\n";
   os << indent << "NumberOfPartialRedraws: " << this->NumberOfPartialRedraws << "\n";
   os << indent << "LastNumberOfPropsDrawn: " << this->LastNumberOfPropsDrawn << "\n";

@@ -64,6 +64,14 @@ public:
   vtkGetMacro(MaximumDamageFraction, double);
   ///@}
 
+  ///@{
+  /// Pixels added around the screen rectangle of a prop that draws only
+  /// filled polygons (default 1; lines and points get 3). For tests: a
+  /// negative margin makes damages too small (a wrong picture).
+  vtkSetMacro(SurfaceMargin, int);
+  vtkGetMacro(SurfaceMargin, int);
+  ///@}
+
   /// The next frame is drawn whole.
   void RequestFullRedraw() { this->FullRedrawRequested = true; }
 
@@ -107,6 +115,7 @@ protected:
 
   bool Enabled = false;
   double MaximumDamageFraction = 0.5;
+  int SurfaceMargin = 1;
   bool FullRedrawRequested = true;
   int NumberOfFullRedraws = 0;
   int NumberOfPartialRedraws = 0;

@@ -247,6 +247,65 @@ int runScene(int samples)
 
   return failures;
 }
+// The margin of surface props (vtkPartialRedrawCuller::SurfaceMargin, 1 pixel)
+// against a negative control: the dent's frames drawn in part with margin 1
+// equal the full redraw; with margin -4 (damages and rectangles 4 pixels too
+// small on each side) they must not, or the comparisons above could not see a
+// margin that is too small.
+int runMarginControl()
+{
+  std::printf("---- surface margin: 1 against -4 (negative control)\n");
+  const auto checker = [](int i, int j, int k) { return checkerColor(i, j, k); };
+  auto before = splitChunks(contractMesh(sdfImage(Cells + 1, sphere), checker), Edge, Cells);
+  auto after = splitChunks(contractMesh(sdfImage(Cells + 1, dented), checker), Edge, Cells);
+  int failures = 0;
+  for (int margin : { 1, -4 })
+  {
+    vtkNew<vtkRenderer> ren;
+    auto rw = makeTestWindow(320, 300);
+    rw->SetMultiSamples(0);
+    rw->AddRenderer(ren);
+    vtkNew<vtkChunkActorManager> mgr;
+    mgr->SetRenderer(ren);
+    for (auto& kv : before)
+      mgr->SetChunk(kv.first, kv.second);
+    ren->ResetCamera();
+    ren->GetActiveCamera()->Azimuth(50);
+    ren->GetActiveCamera()->Elevation(20);
+    ren->ResetCameraClippingRange();
+    vtkNew<vtkPartialRedrawCuller> culler;
+    culler->SetEnabled(true);
+    culler->SetSurfaceMargin(margin);
+    ren->AddCuller(culler);
+    mgr->SetRedrawCuller(culler);
+    rw->Render();
+    rw->Render();
+    const int partial = culler->GetNumberOfPartialRedraws();
+    int frames = 0;
+    for (auto& kv : after)
+    {
+      auto b = before.find(kv.first);
+      if (b != before.end() && b->second->GetNumberOfCells() != kv.second->GetNumberOfCells())
+      {
+        mgr->SetChunk(kv.first, kv.second);
+        rw->Render();
+        ++frames;
+      }
+    }
+    auto drawn = pixels(rw);
+    culler->RequestFullRedraw();
+    rw->Render();
+    long ring = 0;
+    const long diff = differing(drawn, pixels(rw), [](int, int) { return false; }, &ring);
+    const bool inPart = culler->GetNumberOfPartialRedraws() == partial + frames && frames > 0;
+    const bool ok = inPart && (margin >= 0 ? diff == 0 : diff > 0);
+    std::printf("%s: margin %d, %d frames drawn in part: %ld pixels differ from the full redraw (%s)\n",
+      ok ? "ok" : "FAILED", margin, frames, diff, margin >= 0 ? "expected none" : "expected some");
+    failures += ok ? 0 : 1;
+  }
+  return failures;
+}
+
 // Replaced chunks refill the arrays they show (vtkChunkActorManager keeps the
 // array objects, so the buffer cache re-uploads them in place): the picture
 // after replacing every changed chunk must equal, exactly, that of a new
@@ -316,6 +375,6 @@ int runRefill()
 
 int TestPartialRedraw(int, char*[])
 {
-  const int failures = runScene(0) + runScene(8) + runRefill();
+  const int failures = runScene(0) + runScene(8) + runRefill() + runMarginControl();
   return failures ? EXIT_FAILURE : EXIT_SUCCESS;
 }
