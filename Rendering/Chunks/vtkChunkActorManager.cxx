@@ -185,7 +185,8 @@ bool triangleHashes(vtkPolyData* pd, std::vector<std::uint64_t>& out)
   return true;
 }
 
-void addTriangle(vtkPolyData* pd, vtkIdType t, double b[6])
+// Adds a triangle's points to a box and, if given, to a list of points (x, y, z).
+void addTriangle(vtkPolyData* pd, vtkIdType t, double b[6], std::vector<double>* points = nullptr)
 {
   const vtkIdType* ids = nullptr;
   vtkIdType npts = 0;
@@ -198,6 +199,10 @@ void addTriangle(vtkPolyData* pd, vtkIdType t, double b[6])
     {
       b[2 * a] = std::min(b[2 * a], x[a]);
       b[2 * a + 1] = std::max(b[2 * a + 1], x[a]);
+    }
+    if (points)
+    {
+      points->insert(points->end(), x, x + 3);
     }
   }
 }
@@ -221,7 +226,8 @@ std::vector<std::pair<std::uint64_t, vtkIdType>> sortedWithIndex(const std::vect
 // mesh's triangleHashes): one walk over both sorted lists; the triangles of
 // each hash whose count differs between the meshes are the changed ones.
 bool changedBoundsOf(vtkPolyData* before, const std::vector<std::pair<std::uint64_t, vtkIdType>>& sb,
-  vtkPolyData* after, const std::vector<std::pair<std::uint64_t, vtkIdType>>& sa, double bounds[6])
+  vtkPolyData* after, const std::vector<std::pair<std::uint64_t, vtkIdType>>& sa, double bounds[6],
+  std::vector<double>* points = nullptr)
 {
   vtkMath::UninitializeBounds(bounds);
   double b[6] = { VTK_DOUBLE_MAX, -VTK_DOUBLE_MAX, VTK_DOUBLE_MAX, -VTK_DOUBLE_MAX, VTK_DOUBLE_MAX, -VTK_DOUBLE_MAX };
@@ -242,11 +248,11 @@ bool changedBoundsOf(vtkPolyData* before, const std::vector<std::pair<std::uint6
       any = true;
       for (std::size_t k = i0; k < i; ++k)
       {
-        addTriangle(before, sb[k].second, b);
+        addTriangle(before, sb[k].second, b, points);
       }
       for (std::size_t k = j0; k < j; ++k)
       {
-        addTriangle(after, sa[k].second, b);
+        addTriangle(after, sa[k].second, b, points);
       }
     }
   }
@@ -567,7 +573,7 @@ void vtkChunkActorManager::ApplyChunk(
   // Only this mapper sees a new input: only its buffers are rebuilt.
   Internals::Entry& e = it->second;
   vtkPartialRedrawCuller* culler = this->Internal->Culler;
-  const bool declare = culler && culler->GetEnabled() && e.Source && mesh &&
+  const bool declare = culler && culler->GetEnabled() && e.Source && mesh && e.Actor->GetIsIdentity() &&
     std::equal(this->Origin, this->Origin + 3, e.PreparedOrigin) &&
     std::equal(this->Spacing, this->Spacing + 3, e.PreparedSpacing);
   if (declare)
@@ -588,17 +594,21 @@ void vtkChunkActorManager::ApplyChunk(
     // Preparation is per triangle (vtkCornerColorAttributes), so the prepared
     // meshes differ only where the given ones do. The previous mesh's hashes
     // were kept when it was given.
+    // The changed triangles' points, when known: the culler bounds their
+    // projections, which is tighter than the projection of their box.
     double changed[6];
     vtkPolyData* before = e.Source;
     if (hashed && e.HashesValid)
     {
-      changedBoundsOf(before, e.SourceHashes.sorted, mesh, hashes->sorted, changed);
+      std::vector<double> points;
+      changedBoundsOf(before, e.SourceHashes.sorted, mesh, hashes->sorted, changed, &points);
+      culler->EndChange(e.Actor, changed, points.data(), static_cast<vtkIdType>(points.size() / 3));
     }
     else
     {
       ChangedBounds(before, mesh, changed);
+      culler->EndChange(e.Actor, changed);
     }
-    culler->EndChange(e.Actor, changed);
   }
   std::copy(this->Origin, this->Origin + 3, e.PreparedOrigin);
   std::copy(this->Spacing, this->Spacing + 3, e.PreparedSpacing);

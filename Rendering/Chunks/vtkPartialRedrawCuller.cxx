@@ -118,6 +118,7 @@ struct vtkPartialRedrawCuller::Internals
     bool chained = true;      // nothing changed between one EndChange and the next BeginChange
     bool open = false;        // BeginChange without EndChange yet
     double box[6] = { VTK_DOUBLE_MAX, -VTK_DOUBLE_MAX, VTK_DOUBLE_MAX, -VTK_DOUBLE_MAX, VTK_DOUBLE_MAX, -VTK_DOUBLE_MAX };
+    std::vector<double> points; // of the declarations that gave points (their boxes are not in `box`)
   };
   std::unordered_map<vtkProp*, Declared> Changes;
   vtkNew<vtkPropCollection> Actors; // scratch
@@ -260,6 +261,12 @@ void vtkPartialRedrawCuller::BeginChange(vtkProp* prop)
 
 void vtkPartialRedrawCuller::EndChange(vtkProp* prop, const double bounds[6])
 {
+  this->EndChange(prop, bounds, nullptr, 0);
+}
+
+void vtkPartialRedrawCuller::EndChange(
+  vtkProp* prop, const double bounds[6], const double* points, vtkIdType numberOfPoints)
+{
   auto it = prop ? this->Internal->Changes.find(prop) : this->Internal->Changes.end();
   if (it == this->Internal->Changes.end())
   {
@@ -269,6 +276,11 @@ void vtkPartialRedrawCuller::EndChange(vtkProp* prop, const double bounds[6])
   d.chained = d.chained && d.open;
   d.open = false;
   d.after = this->Internal->Signature(prop);
+  if (points && numberOfPoints > 0)
+  {
+    d.points.insert(d.points.end(), points, points + 3 * numberOfPoints);
+    return;
+  }
   if (bounds && vtkMath::AreBoundsInitialized(bounds) && bounds[0] <= bounds[1] && bounds[2] <= bounds[3] &&
     bounds[4] <= bounds[5])
   {
@@ -365,6 +377,37 @@ double vtkPartialRedrawCuller::Cull(vtkRenderer* ren, vtkProp** propList, int& l
     r.y1 = clampTo(std::ceil(hi[1]) + 1 + pad, viewport.y0, viewport.y1);
     return r;
   };
+  // The rectangle of projected points (x, y, z each), as boxRect's.
+  auto pointsRect = [&](const std::vector<double>& pts, int pad) {
+    if (pts.empty())
+    {
+      return Rect{};
+    }
+    double lo[2] = { VTK_DOUBLE_MAX, VTK_DOUBLE_MAX }, hi[2] = { -VTK_DOUBLE_MAX, -VTK_DOUBLE_MAX };
+    for (std::size_t i = 0; i + 2 < pts.size(); i += 3)
+    {
+      const double p4[4] = { pts[i], pts[i + 1], pts[i + 2], 1.0 };
+      double q[4];
+      m->MultiplyPoint(p4, q);
+      if (!(q[3] > 1e-12))
+      {
+        return viewport; // behind the eye
+      }
+      for (int a = 0; a < 2; ++a)
+      {
+        const double d = (q[a] / q[3] + 1.0) * 0.5 * (a == 0 ? vw : vh) + (a == 0 ? vx : vy);
+        lo[a] = std::min(lo[a], d);
+        hi[a] = std::max(hi[a], d);
+      }
+    }
+    auto clampTo = [](double v, int a, int z) { return static_cast<int>(std::max<double>(a, std::min<double>(z, v))); };
+    Rect r;
+    r.x0 = clampTo(std::floor(lo[0]) - pad, viewport.x0, viewport.x1);
+    r.y0 = clampTo(std::floor(lo[1]) - pad, viewport.y0, viewport.y1);
+    r.x1 = clampTo(std::ceil(hi[0]) + 1 + pad, viewport.x0, viewport.x1);
+    r.y1 = clampTo(std::ceil(hi[1]) + 1 + pad, viewport.y0, viewport.y1);
+    return r;
+  };
   const int surfacePad = this->SurfaceMargin;
   auto padOf = [surfacePad](vtkProp* p) { return surfaceOnly(p) ? surfacePad : Pad; };
 
@@ -402,7 +445,10 @@ double vtkPartialRedrawCuller::Cull(vtkRenderer* ren, vtkProp** propList, int& l
       if (declared != in.Changes.end() && declared->second.chained && !declared->second.open &&
         declared->second.first == old->second.signature && declared->second.after == d.signature)
       {
-        damage.unite(boxRect(declared->second.box, padOf(p))); // only the declared box differs
+        // only the declared boxes and points differ
+        const int pad = padOf(p);
+        damage.unite(boxRect(declared->second.box, pad));
+        damage.unite(pointsRect(declared->second.points, pad));
       }
       else if (old->second.signature != d.signature ||
         !(old->second.rect.x0 == d.rect.x0 && old->second.rect.y0 == d.rect.y0 && old->second.rect.x1 == d.rect.x1 &&

@@ -88,6 +88,11 @@ public:
   /// and new rectangles; otherwise the declaration is ignored.
   void BeginChange(vtkProp* prop);
   void EndChange(vtkProp* prop, const double bounds[6]);
+  /// EndChange with the points of what changed (e.g. the changed triangles'
+  /// vertices, world x, y, z each): the damage is the screen rectangle of
+  /// their projections (tighter than that of their box), when each point is
+  /// in front of the eye; `bounds` should hold them.
+  void EndChange(vtkProp* prop, const double bounds[6], const double* points, vtkIdType numberOfPoints);
   ///@}
 
   ///@{
