@@ -525,7 +525,8 @@ private:
     const long long rows = (box.hi[1] - box.lo[1] + 1) * (box.hi[2] - box.lo[2] + 1);
     LVDIF_CUDA_CHECK(cudaEventRecord(this->DistanceDone.a));
     if (this->FarOn) this->launchFar(P);
-    launchDistance(this->Mesh.meshBvh(), P, this->Slab);
+    this->reserveDistanceLists(distanceRuns(P));
+    launchDistance(this->Mesh.meshBvh(), P, this->Slab, this->Distance);
     LVDIF_CUDA_CHECK(cudaEventRecord(this->DistanceDone.b));
     if (this->HasWinding && !this->Mesh.hasWinding())
     {
@@ -678,6 +679,26 @@ private:
     this->Launched = true;
   }
 
+  /// Room for the run list of a slab of `runs` runs (DistanceLists).
+  void reserveDistanceLists(long long runs)
+  {
+    if (!this->Distance.work)
+    {
+      this->Distance.work = this->Arena.alloc<unsigned long long>(2);
+      int device = 0, sms = 0, perSm = 0;
+      LVDIF_CUDA_CHECK(cudaGetDevice(&device));
+      LVDIF_CUDA_CHECK(cudaDeviceGetAttribute(&sms, cudaDevAttrMultiProcessorCount, device));
+      LVDIF_CUDA_CHECK(cudaOccupancyMaxActiveBlocksPerMultiprocessor(&perSm, distanceRunKernel, 128, 0));
+      this->Distance.runGrid = std::max(1, sms * std::max(1, perSm));
+    }
+    if (runs > this->Distance.capacity)
+    {
+      if (this->Distance.list) this->Arena.release(this->Distance.list);
+      this->Distance.list = this->Arena.alloc<long long>(static_cast<std::size_t>(runs));
+      this->Distance.capacity = runs;
+    }
+  }
+
   /// The far cells of the slab in P (which then points the distance kernel at them).
   void launchFar(Params& P)
   {
@@ -789,6 +810,7 @@ private:
   long long FarStateCapacity = 0;
   int FarCellGrid = 0; // CUDA blocks of farCellKernel
   unsigned long long* FarDecided = nullptr;
+  DistanceLists Distance; // the distance pass's runs that need queries
   float* Slab = nullptr;
   std::size_t SlabCapacity = 0;
   double* Bounds = nullptr; // per block of the slab: s's bound (lo, hi), lo > hi: none
