@@ -96,6 +96,7 @@ public:
     , MeshBvh(bvh)
   {
     this->Dbvh = uploadBvh(this->Arena, this->Upload.s, bvh);
+    this->addChildPairs();
     if (normals) this->addNormals();
     if (winding)
     {
@@ -119,6 +120,32 @@ public:
       this->ReservedDipoleNodes = this->Arena.alloc<DipoleNode>(this->EdgeCap + 2);
     }
     LVDIF_CUDA_CHECK(cudaDeviceSynchronize());
+    this->checkChildPairs();
+  }
+  /// The distance pass's form of the mesh BVH (GpuChildPair), made on the
+  /// GPU from the uploaded nodes; checked by checkChildPairs once the
+  /// uploads are done. (Temporary A/B switch: LVDIF_CUDA_CHILD_PAIRS=0.)
+  void addChildPairs()
+  {
+    const char* e = std::getenv("LVDIF_CUDA_CHILD_PAIRS");
+    if (e && std::atoi(e) == 0) return;
+    const long long n = static_cast<long long>(this->MeshBvh.nodes().size());
+    GpuChildPair* pairs = this->Arena.alloc<GpuChildPair>(static_cast<std::size_t>(n));
+    this->PairsBad = this->Arena.alloc<int>(1);
+    LVDIF_CUDA_CHECK(cudaMemsetAsync(this->PairsBad, 0, sizeof(int), this->Upload.s));
+    const long long blocks = std::max<long long>(1, std::min<long long>((n + 255) / 256, 4096));
+    childPairsKernel<<<static_cast<unsigned>(blocks), 256, 0, this->Upload.s>>>(this->Dbvh.nodes, n, pairs, this->PairsBad);
+    LVDIF_CUDA_CHECK(cudaGetLastError());
+    this->Dbvh.pairs = pairs;
+  }
+  void checkChildPairs()
+  {
+    if (!this->PairsBad) return;
+    int flag = 0;
+    LVDIF_CUDA_CHECK(cudaMemcpy(&flag, this->PairsBad, sizeof(int), cudaMemcpyDeviceToHost));
+    this->Arena.release(this->PairsBad);
+    this->PairsBad = nullptr;
+    require(flag == 0, "mesh to SDF: a BVH leaf holds more than 255 triangles (internal error)");
   }
   // addNormals/addWinding run under the prepared mesh's lock while sessions
   // of other threads may be launching kernels: the parts they add are
@@ -194,6 +221,7 @@ private:
   std::atomic<bool> Winding{ false };
   std::atomic<const Tri*> Full{ nullptr }; // the full triangle records (Normal/PseudoNormal)
   const FarCone* Cones = nullptr;          // the node cones, written before Full
+  int* PairsBad = nullptr; // childPairsKernel's flag until checked
   DevBvh Reserved; // windingLater buffers
   std::size_t ClosedCap = 0, EdgeCap = 0;
   int* ReservedSlot = nullptr;
@@ -525,7 +553,8 @@ private:
     const long long rows = (box.hi[1] - box.lo[1] + 1) * (box.hi[2] - box.lo[2] + 1);
     LVDIF_CUDA_CHECK(cudaEventRecord(this->DistanceDone.a));
     if (this->FarOn) this->launchFar(P);
-    launchDistance(this->Mesh.meshBvh(), P, this->Slab);
+    this->reserveDistanceLists(distanceRuns(P));
+    launchDistance(this->Mesh.meshBvh(), P, this->Slab, this->Distance);
     LVDIF_CUDA_CHECK(cudaEventRecord(this->DistanceDone.b));
     if (this->HasWinding && !this->Mesh.hasWinding())
     {
@@ -678,6 +707,26 @@ private:
     this->Launched = true;
   }
 
+  /// Room for the run list of a slab of `runs` runs (DistanceLists).
+  void reserveDistanceLists(long long runs)
+  {
+    if (!this->Distance.work)
+    {
+      this->Distance.work = this->Arena.alloc<unsigned long long>(2);
+      int device = 0, sms = 0, perSm = 0;
+      LVDIF_CUDA_CHECK(cudaGetDevice(&device));
+      LVDIF_CUDA_CHECK(cudaDeviceGetAttribute(&sms, cudaDevAttrMultiProcessorCount, device));
+      LVDIF_CUDA_CHECK(cudaOccupancyMaxActiveBlocksPerMultiprocessor(&perSm, distanceRunKernel, 128, 0));
+      this->Distance.runGrid = std::max(1, sms * std::max(1, perSm));
+    }
+    if (runs > this->Distance.capacity)
+    {
+      if (this->Distance.list) this->Arena.release(this->Distance.list);
+      this->Distance.list = this->Arena.alloc<long long>(static_cast<std::size_t>(runs));
+      this->Distance.capacity = runs;
+    }
+  }
+
   /// The far cells of the slab in P (which then points the distance kernel at them).
   void launchFar(Params& P)
   {
@@ -789,6 +838,7 @@ private:
   long long FarStateCapacity = 0;
   int FarCellGrid = 0; // CUDA blocks of farCellKernel
   unsigned long long* FarDecided = nullptr;
+  DistanceLists Distance; // the distance pass's runs that need queries
   float* Slab = nullptr;
   std::size_t SlabCapacity = 0;
   double* Bounds = nullptr; // per block of the slab: s's bound (lo, hi), lo > hi: none

@@ -1,9 +1,9 @@
 // Device side of mesh to SDF on CUDA (included by MeshToSdfCuda.cu only):
-// the data layouts on the GPU, the distance kernel (one thread per run of 16
-// voxels along x, nearest triangle on the BVH, warm-started, far voxels
-// skipped by the Lipschitz bound, a run farther than the band from every leaf
-// box of the tree saturated after one traversal; a warp takes that run in 32
-// neighbouring rows so its queries follow similar paths), the sign kernel (one
+// the data layouts on the GPU, the distance pass (runs of 16 voxels along x:
+// a run farther than the band from every leaf box of the tree saturated after
+// one traversal, the others listed and queried by full warps, one thread per
+// run: nearest triangle on the BVH, warm-started, far voxels skipped by the
+// Lipschitz bound), the sign kernel (one
 // warp per scan line: the lanes cast the ray of the closed chain together,
 // each walking one subtree of the BVH (MeshToSdfRayWalk.h), into shared
 // memory; the lanes compute the drift bounds of 32 voxels at a time, every
@@ -33,8 +33,6 @@ using namespace detail::meshtosdf;
 
 namespace
 {
-// distance kernel: a thread takes a run of voxels along x, a warp a tile of
-// runs x rows (see launchDistance for the shape in use)
 constexpr int SignWarps = 4;   // warps (scan lines) per block of the sign kernel
 constexpr unsigned FullMask = 0xffffffffu;
 constexpr int MaxHits = 96;    // crossings a scan line may hold (more: per-voxel fallback)
@@ -47,12 +45,28 @@ struct GpuNode
 
 using GpuTri = LeafTri; // vertices and unit normal, in BVH leaf order
 
+/// The mesh BVH as the distance pass walks it: per inner node of the GpuNode
+/// tree (same index), its two children's boxes as floats rounded outward and
+/// where they lead, in 64 bytes: one load per visit instead of the node and
+/// its two children's boxes (160 bytes in three loads). Distances to the
+/// rounded boxes are lower bounds of those to the exact boxes, so a child is
+/// dropped only where Bvh::nearest drops it too.
+struct GpuChildPair
+{
+  float lo[2][3], hi[2][3];
+  int child[2];           // >= 0: an inner node; < 0: a leaf, its first slot -child - 1
+  unsigned char count[2]; // a leaf's triangles (at most LeafSize)
+  unsigned char pad[6];
+};
+static_assert(sizeof(GpuChildPair) == 64, "one 64-byte load per visit");
+
 struct DevBvh
 {
   const Tri* tris = nullptr;    // full records by triangle index: mesh BVH, Normal/PseudoNormal sessions only
   const GpuTri* leaf = nullptr; // leaf[i] = triangle order[i]
   const GpuNode* nodes = nullptr;
   const int* order = nullptr;
+  const GpuChildPair* pairs = nullptr; // the mesh BVH only (childPairsKernel); else null
 };
 
 struct Params
@@ -89,6 +103,14 @@ __device__ V3 positionOf(const Params& P, long long i, long long j, long long k)
 }
 
 /// Bvh::nearest; the hint and the result's place are leaf slots (bestSlot).
+/// The stack keeps each node's box distance as a float rounded down: a lower
+/// bound of the double, so a node is only ever dropped where Bvh::nearest
+/// drops it too (at worst visited where the double would have dropped it,
+/// which finds nothing nearer), and the stack takes half the local memory
+/// (its spills were the kernel's main traffic; 13.3M triangles at 1024^3 on
+/// an H200: distance pass 6 % shorter). Skipping a leaf's triangles by their
+/// own boxes (with NearestIndex's tau) was measured too and cost more than it
+/// saved (docs/BENCHMARKS.md).
 __device__ NearestResult nearestDev(const DevBvh& b, V3 p, int hintSlot, double maxDist2, int& bestSlot)
 {
   NearestResult best;
@@ -109,14 +131,14 @@ __device__ NearestResult nearestDev(const DevBvh& b, V3 p, int hintSlot, double 
     }
   }
   int stackNode[64];
-  double stackD2[64];
+  float stackD2[64];
   int top = 0;
   stackNode[top] = 0;
-  stackD2[top++] = pointBoxDist2(p, b.nodes[0].lo, b.nodes[0].hi);
+  stackD2[top++] = __double2float_rd(pointBoxDist2(p, b.nodes[0].lo, b.nodes[0].hi));
   while (top > 0)
   {
     --top;
-    if (stackD2[top] > best.dist2) continue;
+    if (static_cast<double>(stackD2[top]) > best.dist2) continue;
     const GpuNode n = b.nodes[stackNode[top]];
     if (n.left < 0)
     {
@@ -142,8 +164,120 @@ __device__ NearestResult nearestDev(const DevBvh& b, V3 p, int hintSlot, double 
     const double dr = pointBoxDist2(p, b.nodes[n.right].lo, b.nodes[n.right].hi);
     const int nearC = dl <= dr ? n.left : n.right, farC = dl <= dr ? n.right : n.left;
     const double nearD = dl <= dr ? dl : dr, farD = dl <= dr ? dr : dl;
-    if (farD <= best.dist2 && top < 64) { stackNode[top] = farC; stackD2[top++] = farD; }
-    if (nearD <= best.dist2 && top < 64) { stackNode[top] = nearC; stackD2[top++] = nearD; }
+    // the pushes compare the exact doubles, as Bvh::nearest does
+    if (farD <= best.dist2 && top < 64) { stackNode[top] = farC; stackD2[top++] = __double2float_rd(farD); }
+    if (nearD <= best.dist2 && top < 64) { stackNode[top] = nearC; stackD2[top++] = __double2float_rd(nearD); }
+  }
+  return best;
+}
+
+/// pairs[id] for every inner node id of the tree (leaves' entries unused);
+/// *bad set if a leaf holds more triangles than a count byte.
+__global__ void childPairsKernel(const GpuNode* nodes, long long n, GpuChildPair* pairs, int* bad)
+{
+  for (long long id = static_cast<long long>(blockIdx.x) * blockDim.x + threadIdx.x; id < n;
+       id += static_cast<long long>(gridDim.x) * blockDim.x)
+  {
+    const GpuNode nd = nodes[id];
+    if (nd.left < 0) continue;
+    GpuChildPair q;
+    for (int s = 0; s < 2; ++s)
+    {
+      const int c = s == 0 ? nd.left : nd.right;
+      const GpuNode ch = nodes[c];
+      for (int a = 0; a < 3; ++a)
+      {
+        q.lo[s][a] = __double2float_rd(ch.lo[a]);
+        q.hi[s][a] = __double2float_ru(ch.hi[a]);
+      }
+      if (ch.left < 0)
+      {
+        if (ch.count > 255) *bad = 1;
+        q.child[s] = -ch.first - 1;
+        q.count[s] = static_cast<unsigned char>(ch.count);
+      }
+      else
+      {
+        q.child[s] = c;
+        q.count[s] = 0;
+      }
+    }
+    for (int k = 0; k < 6; ++k) q.pad[k] = 0;
+    pairs[id] = q;
+  }
+}
+
+/// nearestDev on the child pairs (the same result: the nearest triangle,
+/// ties to the lowest index). A leaf child within reach is tested at once,
+/// nearer first (no stack entry); inner children are pushed, nearer on top.
+__device__ NearestResult nearestPairsDev(const DevBvh& b, V3 p, int hintSlot, double maxDist2, int& bestSlot)
+{
+  NearestResult best;
+  best.dist2 = maxDist2;
+  bestSlot = -1;
+  auto test = [&](int i) {
+    const int ti = b.order[i];
+    if (ti == best.tri) return;
+    const GpuTri& t = b.leaf[i];
+    const Closest c = closestPointOnTriangle(p, t.v[0], t.v[1], t.v[2]);
+    const V3 d = c.point - p;
+    const double d2 = dot(d, d);
+    if (d2 < best.dist2 || (d2 == best.dist2 && (best.tri < 0 || ti < best.tri)))
+    {
+      best.dist2 = d2;
+      best.tri = ti;
+      best.closest = c;
+      bestSlot = i;
+    }
+  };
+  if (hintSlot >= 0)
+  {
+    const GpuTri& t = b.leaf[hintSlot];
+    const Closest c = closestPointOnTriangle(p, t.v[0], t.v[1], t.v[2]);
+    const V3 d = c.point - p;
+    const double d2 = dot(d, d);
+    if (d2 <= best.dist2)
+    {
+      best.dist2 = d2;
+      best.tri = b.order[hintSlot];
+      best.closest = c;
+      bestSlot = hintSlot;
+    }
+  }
+  const GpuNode root = b.nodes[0];
+  const double rootD2 = pointBoxDist2(p, root.lo, root.hi);
+  if (rootD2 > best.dist2) return best;
+  if (root.left < 0)
+  {
+    for (int i = root.first; i < root.first + root.count; ++i) test(i);
+    return best;
+  }
+  int stackNode[64];
+  float stackD2[64];
+  int top = 0;
+  stackNode[top] = 0;
+  stackD2[top++] = __double2float_rd(rootD2);
+  while (top > 0)
+  {
+    --top;
+    if (static_cast<double>(stackD2[top]) > best.dist2) continue;
+    const GpuChildPair q = b.pairs[stackNode[top]];
+    double d[2];
+    for (int s = 0; s < 2; ++s)
+    {
+      const double lo[3] = { q.lo[s][0], q.lo[s][1], q.lo[s][2] }, hi[3] = { q.hi[s][0], q.hi[s][1], q.hi[s][2] };
+      d[s] = pointBoxDist2(p, lo, hi);
+    }
+    const int nearS = d[0] <= d[1] ? 0 : 1, farS = 1 - nearS;
+    for (int s : { nearS, farS })
+      if (q.child[s] < 0 && d[s] <= best.dist2)
+        for (int i = -q.child[s] - 1, e = i + q.count[s]; i < e; ++i) test(i);
+    for (int s : { farS, nearS })
+      if (q.child[s] >= 0 && d[s] <= best.dist2 && top < 64)
+      {
+        stackNode[top] = q.child[s];
+        stackD2[top++] = __double2float_rd(d[s]);
+      }
   }
   return best;
 }
@@ -180,45 +314,86 @@ __device__ bool boxFarDev(const DevBvh& bvh, V3 a, V3 b, double r2)
   return true;
 }
 
-template <int Run, int TileRuns, int MinBlocks>
-__global__ void __launch_bounds__(128, MinBlocks) distanceKernel(DevBvh bvh, Params P, float* out)
+/// The distance pass in two kernels. distanceSettleKernel takes every run of
+/// DistanceRun voxels along x (a warp: that run in 32 neighbouring rows) and
+/// settles the runs that need no query: farther than the band from every
+/// leaf box of the tree (saturated after one traversal), or decided voxel by
+/// voxel by the far cells; it lists the others. distanceRunKernel then runs
+/// the queries of the listed runs, each warp taking the next 32 (in list
+/// order: neighbouring rows, so its queries follow similar paths). Before,
+/// one kernel did both: most lanes of a warp settled at once and idled while
+/// the few in the band queried (NVIDIA H200, 13.3M triangles at 1024^3, the
+/// first slab: 4.7 of 32 lanes active; the 832k-triangle mesh's distance
+/// pass 9 % shorter with the list, docs/BENCHMARKS.md). A run's values
+/// depend on that run alone (its hint and bound start afresh), so the list's
+/// order, which the atomics make vary, changes no value.
+constexpr int DistanceRun = 16;
+
+struct DistanceRunAt
 {
-  constexpr int TileRows = 32 / TileRuns;
-  const long long nx = P.hi[0] - P.lo[0] + 1, ny = P.hi[1] - P.lo[1] + 1, nz = P.hi[2] - P.lo[2] + 1;
-  const long long runs = (nx + Run - 1) / Run;
-  const long long tilesX = (runs + TileRuns - 1) / TileRuns, tilesY = (ny + TileRows - 1) / TileRows;
-  const long long t = static_cast<long long>(blockIdx.x) * blockDim.x + threadIdx.x;
-  const long long tile = t / 32;
-  const int lane = static_cast<int>(t % 32);
-  if (tile >= tilesX * tilesY * nz) return;
-  const long long run = (tile % tilesX) * TileRuns + lane % TileRuns;
-  const long long jj = ((tile / tilesX) % tilesY) * TileRows + lane / TileRuns;
-  if (run >= runs || jj >= ny) return;
-  const long long kk = tile / (tilesX * tilesY);
-  const long long row = jj + ny * kk;
-  const long long j = P.lo[1] + jj, k = P.lo[2] + kk;
-  const long long i0 = P.lo[0] + run * Run, i1 = min(P.hi[0], i0 + Run - 1);
-  float* rowOut = out + row * nx - P.lo[0];
-  const double h = P.spacing[0];
-  double lower = -1;
-  int hint = -1;
-  const long long farAt = P.farCount[0] * (jj / FarCell + P.farCount[1] * (kk / FarCell));
-  const signed char* farRow = P.far ? P.far + farAt : nullptr;
-  const unsigned char* farMaskRow = P.far ? P.farMask + farAt : nullptr;
-  const int farBit = static_cast<int>(2 * (jj & 1) + 4 * (kk & 1));
-  if (P.bounded && boxFarDev(bvh, positionOf(P, i0, j, k), positionOf(P, i1, j, k), P.bandWorld * P.bandWorld))
+  long long i0, i1, j, k, row;
+};
+
+__device__ DistanceRunAt distanceRunAt(const Params& P, long long run, long long row)
+{
+  const long long ny = P.hi[1] - P.lo[1] + 1;
+  DistanceRunAt r;
+  r.row = row;
+  r.j = P.lo[1] + row % ny;
+  r.k = P.lo[2] + row / ny;
+  r.i0 = P.lo[0] + run * DistanceRun;
+  r.i1 = min(P.hi[0], r.i0 + DistanceRun - 1);
+  return r;
+}
+
+/// Whether voxel i of the run is decided by the far cells; then its value.
+__device__ bool farCellValue(const Params& P, const DistanceRunAt& r, long long i, float& value)
+{
+  if (!P.far) return false;
+  const long long jj = r.j - P.lo[1], kk = r.k - P.lo[2];
+  const long long at = P.farCount[0] * (jj / FarCell + P.farCount[1] * (kk / FarCell)) + (i - P.lo[0]) / FarCell;
+  const int bit = static_cast<int>(2 * (jj & 1) + 4 * (kk & 1) + ((i - P.lo[0]) & 1));
+  if (((P.farMask[at] >> bit) & 1) == 0) return false;
+  value = static_cast<float>(P.far[at]) * static_cast<float>(P.band);
+  return true;
+}
+
+/// Settles the run if it needs no query (true), writing its voxels.
+__device__ bool settleRun(const DevBvh& bvh, const Params& P, const DistanceRunAt& r, float* rowOut)
+{
+  if (P.bounded && boxFarDev(bvh, positionOf(P, r.i0, r.j, r.k), positionOf(P, r.i1, r.j, r.k), P.bandWorld * P.bandWorld))
   {
     // every voxel of the run is farther than the band from every triangle:
     // saturated, as its query would leave it (one traversal instead of a
     // query every few voxels; the CPU skips by its own bounds, to the same values)
-    for (long long i = i0; i <= i1; ++i) rowOut[i] = static_cast<float>(P.band);
-    return;
+    for (long long i = r.i0; i <= r.i1; ++i) rowOut[i] = static_cast<float>(P.band);
+    return true;
   }
-  for (long long i = i0; i <= i1; ++i)
+  if (!P.far) return false;
+  float v;
+  for (long long i = r.i0; i <= r.i1; ++i)
+    if (!farCellValue(P, r, i, v)) return false;
+  for (long long i = r.i0; i <= r.i1; ++i)
   {
-    if (farRow && ((farMaskRow[(i - P.lo[0]) / FarCell] >> (farBit + ((i - P.lo[0]) & 1))) & 1) != 0)
+    farCellValue(P, r, i, v);
+    rowOut[i] = v;
+  }
+  return true;
+}
+
+/// The queries of one run, warm-started from the previous voxel's triangle,
+/// voxels within the previous distance's Lipschitz bound of the band skipped.
+__device__ void queryRun(const DevBvh& bvh, const Params& P, const DistanceRunAt& r, float* rowOut)
+{
+  const double h = P.spacing[0];
+  double lower = -1;
+  int hint = -1;
+  for (long long i = r.i0; i <= r.i1; ++i)
+  {
+    float farValue;
+    if (farCellValue(P, r, i, farValue))
     {
-      rowOut[i] = static_cast<float>(farRow[(i - P.lo[0]) / FarCell]) * static_cast<float>(P.band);
+      rowOut[i] = farValue;
       continue;
     }
     lower -= h;
@@ -227,55 +402,126 @@ __global__ void __launch_bounds__(128, MinBlocks) distanceKernel(DevBvh bvh, Par
       rowOut[i] = static_cast<float>(P.band);
       continue;
     }
-    const V3 p = positionOf(P, i, j, k);
+    const V3 p = positionOf(P, i, r.j, r.k);
     int slot = -1;
-    const NearestResult r = nearestDev(bvh, p, hint, P.bounded ? P.reach * P.reach : 1e300, slot);
-    double d = r.tri < 0 ? P.band : sqrt(r.dist2) * P.toOut;
-    lower = r.tri < 0 ? P.reach : sqrt(r.dist2);
+    const double reach2 = P.bounded ? P.reach * P.reach : 1e300;
+    const NearestResult nr = bvh.pairs ? nearestPairsDev(bvh, p, hint, reach2, slot) : nearestDev(bvh, p, hint, reach2, slot);
+    double d = nr.tri < 0 ? P.band : sqrt(nr.dist2) * P.toOut;
+    lower = nr.tri < 0 ? P.reach : sqrt(nr.dist2);
     d = fmin(d, P.band);
     float s = 1.0f;
-    if (r.tri >= 0)
+    if (nr.tri >= 0)
     {
       hint = slot;
       if (P.sign == 0 || P.sign == 1)
       {
-        const Tri& tr = bvh.tris[r.tri];
+        const Tri& tr = bvh.tris[nr.tri];
         V3 n = tr.n;
         if (P.sign == 1)
         {
-          n = featureNormal(tr, r.closest.feature);
+          n = featureNormal(tr, nr.closest.feature);
         }
         else if (P.useVertexNormals && dot(tr.nv[0], tr.nv[0]) > 0)
         {
-          const double b0 = 1 - r.closest.b1 - r.closest.b2;
-          n = b0 * tr.nv[0] + r.closest.b1 * tr.nv[1] + r.closest.b2 * tr.nv[2];
+          const double b0 = 1 - nr.closest.b1 - nr.closest.b2;
+          n = b0 * tr.nv[0] + nr.closest.b1 * tr.nv[1] + nr.closest.b2 * tr.nv[2];
         }
-        s = dot(p - r.closest.point, n) < 0 ? -1.0f : 1.0f;
+        s = dot(p - nr.closest.point, n) < 0 ? -1.0f : 1.0f;
       }
     }
     rowOut[i] = s * static_cast<float>(d);
   }
 }
 
-template <int Run, int TileRuns, int MinBlocks>
-void launchDistanceAs(const DevBvh& bvh, const Params& P, float* out)
+/// The runs of the slab in P: settles what needs no query, lists the rest
+/// (run + runs * row) in list[0, work[0]) (work[0] zeroed before).
+__global__ void __launch_bounds__(128) distanceSettleKernel(DevBvh bvh, Params P, float* out, long long* list,
+  unsigned long long* work)
 {
-  constexpr int TileRows = 32 / TileRuns;
   const long long nx = P.hi[0] - P.lo[0] + 1, ny = P.hi[1] - P.lo[1] + 1, nz = P.hi[2] - P.lo[2] + 1;
-  const long long runs = (nx + Run - 1) / Run;
-  const long long tiles = ((runs + TileRuns - 1) / TileRuns) * ((ny + TileRows - 1) / TileRows) * nz;
-  distanceKernel<Run, TileRuns, MinBlocks><<<static_cast<unsigned>((tiles * 32 + 127) / 128), 128>>>(bvh, P, out);
-  LVDIF_CUDA_CHECK(cudaGetLastError());
+  const long long runs = (nx + DistanceRun - 1) / DistanceRun;
+  const long long tilesY = (ny + 31) / 32;
+  const long long t = static_cast<long long>(blockIdx.x) * blockDim.x + threadIdx.x;
+  const long long tile = t / 32;
+  const int lane = static_cast<int>(t % 32);
+  // a warp: run (tile % runs) in rows 32 (tile / runs % tilesY) + lane of layer tile / (runs tilesY)
+  const long long run = tile % runs;
+  const long long jj = ((tile / runs) % tilesY) * 32 + lane;
+  const long long kk = tile / (runs * tilesY);
+  bool listed = false;
+  long long id = 0;
+  if (kk < nz && jj < ny)
+  {
+    const long long row = jj + ny * kk;
+    const DistanceRunAt r = distanceRunAt(P, run, row);
+    float* rowOut = out + row * nx - P.lo[0];
+    listed = !settleRun(bvh, P, r, rowOut);
+    id = run + runs * row;
+  }
+  // one atomic per warp; the lanes keep their order in the list
+  const unsigned mask = __ballot_sync(FullMask, listed);
+  if (mask == 0) return;
+  unsigned long long base = 0;
+  if (lane == 0) base = atomicAdd(work, static_cast<unsigned long long>(__popc(mask)));
+  base = __shfl_sync(FullMask, base, 0);
+  if (listed) list[base + __popc(mask & ((1u << lane) - 1u))] = id;
 }
 
-/// Runs of 16 voxels along x, a warp = one run in each of 32 neighbouring
-/// rows (y), at most 64 registers (8 blocks of 128 per SM; the spills cost
-/// less than the occupancy gains): the fastest shape measured on the H200
-/// among those tried (no register cap, 80 registers, warps of 4 runs x 8 rows;
-/// docs/BENCHMARKS.md). Every shape computes the same values.
-void launchDistance(const DevBvh& bvh, const Params& P, float* out)
+/// The listed runs' queries; each warp takes the next 32 runs of the list
+/// (work[1] the next unclaimed) until none is left. At most 64 registers (8
+/// blocks of 128 per SM; the spills cost less than the occupancy gains, as
+/// measured for the single kernel before).
+__global__ void __launch_bounds__(128, 8) distanceRunKernel(DevBvh bvh, Params P, float* out, const long long* list,
+  unsigned long long* work)
 {
-  launchDistanceAs<16, 1, 8>(bvh, P, out);
+  const long long nx = P.hi[0] - P.lo[0] + 1;
+  const long long runs = (nx + DistanceRun - 1) / DistanceRun;
+  const int lane = static_cast<int>(threadIdx.x % 32);
+  const unsigned long long n = work[0];
+  for (;;)
+  {
+    unsigned long long base = 0;
+    if (lane == 0) base = atomicAdd(work + 1, 32ull);
+    base = __shfl_sync(FullMask, base, 0);
+    if (base >= n) break;
+    const unsigned long long k = base + static_cast<unsigned long long>(lane);
+    if (k < n)
+    {
+      const long long id = list[k];
+      const long long row = id / runs;
+      const DistanceRunAt r = distanceRunAt(P, id % runs, row);
+      queryRun(bvh, P, r, out + row * nx - P.lo[0]);
+    }
+  }
+}
+
+/// Where the distance pass keeps its run list between its two kernels.
+struct DistanceLists
+{
+  long long* list = nullptr;
+  unsigned long long* work = nullptr; // [0] listed runs, [1] the next to claim
+  long long capacity = 0;
+  int runGrid = 0; // CUDA blocks of distanceRunKernel that fill the GPU
+};
+
+/// Runs in a slab of P (what DistanceLists::list must hold).
+inline long long distanceRuns(const Params& P)
+{
+  const long long nx = P.hi[0] - P.lo[0] + 1, ny = P.hi[1] - P.lo[1] + 1, nz = P.hi[2] - P.lo[2] + 1;
+  return ((nx + DistanceRun - 1) / DistanceRun) * ny * nz;
+}
+
+/// Queues both kernels of the distance pass on the legacy stream.
+void launchDistance(const DevBvh& bvh, const Params& P, float* out, const DistanceLists& w)
+{
+  const long long ny = P.hi[1] - P.lo[1] + 1, nz = P.hi[2] - P.lo[2] + 1;
+  const long long runs = (P.hi[0] - P.lo[0] + DistanceRun) / DistanceRun;
+  const long long warps = runs * ((ny + 31) / 32) * nz;
+  LVDIF_CUDA_CHECK(cudaMemsetAsync(w.work, 0, 2 * sizeof(unsigned long long)));
+  distanceSettleKernel<<<static_cast<unsigned>((warps * 32 + 127) / 128), 128>>>(bvh, P, out, w.list, w.work);
+  LVDIF_CUDA_CHECK(cudaGetLastError());
+  distanceRunKernel<<<static_cast<unsigned>(w.runGrid), 128>>>(bvh, P, out, w.list, w.work);
+  LVDIF_CUDA_CHECK(cudaGetLastError());
 }
 
 struct Hit
