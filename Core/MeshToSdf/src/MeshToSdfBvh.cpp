@@ -3,9 +3,14 @@
 #include "MeshToSdfInternal.h"
 
 #include "lvdif/Memory.h"
+#include "lvdif/Error.h"
+
+#include <omp.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
+#include <limits>
 
 namespace lvdif
 {
@@ -15,6 +20,181 @@ namespace detail::meshtosdf
 namespace
 {
 constexpr int LeafSize = 4;
+/// The split's total order: centroid coordinate on the axis, then triangle
+/// index (the left child gets the count / 2 smallest: a function of the
+/// triangles, not of the order std::nth_element leaves equal keys in).
+template <typename R>
+bool refLess(const R& x, const R& y, int axis)
+{
+  return x.c[axis] < y.c[axis] || (x.c[axis] == y.c[axis] && x.tri < y.tri);
+}
+
+int longestAxis(const double clo[3], const double chi[3])
+{
+  int axis = 0;
+  for (int a = 1; a < 3; ++a)
+  {
+    if (chi[a] - clo[a] > chi[axis] - clo[axis]) axis = a;
+  }
+  return axis;
+}
+
+/// Parts of [0, n) for the parallel passes: part p is [n p / P, n (p+1) / P).
+/// P is fixed before the region (a loop over parts, not over the team), so
+/// per-part counts stay valid whatever team runs them; no result depends on P.
+struct Parts
+{
+  explicit Parts(std::size_t n_)
+    : n(n_)
+    , count(omp_get_max_threads())
+  {
+  }
+  std::size_t lo(int p) const { return n * static_cast<std::size_t>(p) / static_cast<std::size_t>(count); }
+  std::size_t hi(int p) const { return lo(p + 1); }
+  std::size_t n;
+  int count;
+};
+
+/// The element of rank k (0-based, refLess order) of a[0, n), a unchanged:
+/// a bucket select (selection by distribution counting; e.g. Alabi et al.,
+/// "Fast k-Selection Algorithms for Graphics Processing Units", JEA 2012):
+/// per-part histograms of the key over Bins equal bins of [lo, hi] on the
+/// threads, the one bin holding rank k copied out and searched the same way
+/// until it is small, then std::nth_element on it. The bin of a key is
+/// monotone in it (a subtraction, a product and a truncation, each monotone
+/// in IEEE arithmetic), so bins follow the order. The key is the coordinate,
+/// or the triangle index once every coordinate left is equal. lo, hi: the
+/// coordinates' bounds over a (the caller has them); small: where to stop.
+template <typename R>
+R selectRank(const R* a, std::size_t n, std::size_t k, int axis, double lo, double hi, std::size_t small)
+{
+  constexpr int Bins = 4096;
+  std::vector<R> cur, next;
+  std::vector<std::uint32_t> hist;
+  const R* src = a;
+  bool byTri = false;
+  bool haveBounds = true;
+  while (n > small)
+  {
+    const auto key = [axis, byTri](const R& r) { return byTri ? static_cast<double>(r.tri) : r.c[axis]; };
+    const std::int64_t nI = static_cast<std::int64_t>(n);
+    if (!haveBounds)
+    {
+      double l = std::numeric_limits<double>::infinity(), h = -l;
+#pragma omp parallel for schedule(static) reduction(min : l) reduction(max : h)
+      for (std::int64_t i = 0; i < nI; ++i)
+      {
+        l = std::min(l, key(src[i]));
+        h = std::max(h, key(src[i]));
+      }
+      lo = l, hi = h;
+    }
+    haveBounds = false;
+    if (!(lo < hi))
+    {
+      if (byTri) break; // distinct indices: not reached
+      byTri = true;     // every coordinate equal: by index
+      continue;
+    }
+    const double scale = Bins / (hi - lo);
+    if (!(scale <= std::numeric_limits<double>::max())) break; // too narrow to bin: nth_element
+    const auto binOf = [&](const R& r) { return std::min(Bins - 1, static_cast<int>((key(r) - lo) * scale)); };
+    const Parts parts(n);
+    hist.assign(static_cast<std::size_t>(parts.count) * Bins, 0);
+#pragma omp parallel for schedule(static, 1)
+    for (int p = 0; p < parts.count; ++p)
+    {
+      std::uint32_t* h = hist.data() + static_cast<std::size_t>(p) * Bins;
+      for (std::size_t i = parts.lo(p); i < parts.hi(p); ++i) ++h[binOf(src[i])];
+    }
+    std::size_t below = 0;
+    int b = 0;
+    for (;; ++b)
+    {
+      std::size_t inBin = 0;
+      for (int p = 0; p < parts.count; ++p) inBin += hist[static_cast<std::size_t>(p) * Bins + b];
+      if (k < below + inBin) break;
+      below += inBin;
+    }
+    std::vector<std::size_t> at(static_cast<std::size_t>(parts.count) + 1, 0);
+    for (int p = 0; p < parts.count; ++p) at[p + 1] = at[p] + hist[static_cast<std::size_t>(p) * Bins + b];
+    next.resize(at[parts.count]);
+#pragma omp parallel for schedule(static, 1)
+    for (int p = 0; p < parts.count; ++p)
+    {
+      std::size_t o = at[p];
+      for (std::size_t i = parts.lo(p); i < parts.hi(p); ++i)
+        if (binOf(src[i]) == b) next[o++] = src[i];
+    }
+    k -= below;
+    n = next.size();
+    cur.swap(next);
+    src = cur.data();
+  }
+  std::vector<R> rest(src, src + n);
+  std::nth_element(rest.begin(), rest.begin() + static_cast<std::ptrdiff_t>(k), rest.end(),
+    [axis](const R& x, const R& y) { return refLess(x, y, axis); });
+  return rest[k];
+}
+
+/// Stable partition of src[0, n) into dst[0, n) on the threads: the elements
+/// refLess than pivot first, then the others, each side in src's order (per
+/// part: count, then place; Blelloch's split by a prefix sum). The centroid
+/// bounds of both sides on the way (exact min/max, in any order the same).
+/// Returns the left count.
+template <typename R>
+std::size_t partitionRefs(const R* src, R* dst, std::size_t n, const R& pivot, int axis, double lo[2][3], double hi[2][3])
+{
+  const Parts parts(n);
+  const std::size_t P = static_cast<std::size_t>(parts.count);
+  std::vector<std::size_t> left(P + 1, 0);
+#pragma omp parallel for schedule(static, 1)
+  for (int p = 0; p < parts.count; ++p)
+  {
+    std::size_t c = 0;
+    for (std::size_t i = parts.lo(p); i < parts.hi(p); ++i) c += refLess(src[i], pivot, axis) ? 1 : 0;
+    left[p + 1] = c;
+  }
+  for (std::size_t p = 0; p < P; ++p) left[p + 1] += left[p];
+  const std::size_t nLeft = left[P];
+  std::vector<std::array<double, 12>> box(P); // per part: lo/hi of the left, lo/hi of the right
+#pragma omp parallel for schedule(static, 1)
+  for (int p = 0; p < parts.count; ++p)
+  {
+    std::array<double, 12> bx;
+    for (int s = 0; s < 2; ++s)
+      for (int a = 0; a < 3; ++a)
+      {
+        bx[6 * s + a] = std::numeric_limits<double>::infinity();
+        bx[6 * s + 3 + a] = -std::numeric_limits<double>::infinity();
+      }
+    std::size_t l = left[p], r = nLeft + parts.lo(p) - left[p];
+    for (std::size_t i = parts.lo(p); i < parts.hi(p); ++i)
+    {
+      const R& x = src[i];
+      const int s = refLess(x, pivot, axis) ? 0 : 1;
+      dst[s == 0 ? l++ : r++] = x;
+      for (int a = 0; a < 3; ++a)
+      {
+        bx[6 * s + a] = std::min(bx[6 * s + a], x.c[a]);
+        bx[6 * s + 3 + a] = std::max(bx[6 * s + 3 + a], x.c[a]);
+      }
+    }
+    box[p] = bx;
+  }
+  for (int s = 0; s < 2; ++s)
+    for (int a = 0; a < 3; ++a)
+    {
+      lo[s][a] = std::numeric_limits<double>::infinity();
+      hi[s][a] = -std::numeric_limits<double>::infinity();
+      for (std::size_t p = 0; p < P; ++p)
+      {
+        lo[s][a] = std::min(lo[s][a], box[p][6 * s + a]);
+        hi[s][a] = std::max(hi[s][a], box[p][6 * s + 3 + a]);
+      }
+    }
+  return nLeft;
+}
 } // namespace
 
 /// Nodes of a subtree over `count` triangles (median splits, leaves of at
@@ -49,36 +229,56 @@ private:
   std::vector<std::pair<std::int32_t, std::int32_t>> Memo;
 };
 
-/// Centroids computed once in parallel; the recursive build then touches
-/// only this compact array (the triangle records are 328 bytes each), and the
-/// median splits permute the centroids themselves (contiguous, no
-/// indirection; the same permutation as sorting indices by them). Subtrees of
-/// more than 2048 triangles build as OpenMP tasks; the node layout (preorder)
-/// does not depend on the threads. The boxes come last, bottom-up, from the
-/// leaf-ordered compact copies (exact min/max: the same bits as boxes taken
-/// during the build).
-Bvh::Bvh(const TriList& tris)
+/// Centroids computed once in parallel; the build then touches only this
+/// compact array (the triangle records are 328 bytes each). The top nodes
+/// (parallelSplitMin triangles or more: 2^18 by default) split one after the other, each with
+/// all threads: centroid bounds from the parent's partition, the median by
+/// selectRank, a stable partition into the other buffer (ref <-> spare); no
+/// step runs on one thread over more than a small part of the triangles (the
+/// root's nth_element over all of them did: the serial head of the build).
+/// The subtrees below are OpenMP tasks that split with std::nth_element by
+/// the same total order. The node layout (preorder) does not depend on the
+/// threads. The boxes come last, bottom-up, from the leaf-ordered compact
+/// copies (exact min/max: the same bits as boxes taken during the build).
+Bvh::Bvh(const TriList& tris, std::int32_t parallelSplitMin)
   : Tris(tris)
 {
   const std::int32_t n = static_cast<std::int32_t>(tris.size());
   // fresh arrays first touched by resize(), serially: huge pages (Memory.h)
   resizeLarge(this->Order, tris.size());
   BuildData d;
+  d.parallelSplitMin = std::max(parallelSplitMin, 2 * LeafSize + 2);
   resizeLarge(d.ref, tris.size());
-#pragma omp parallel for schedule(static)
+  if (n >= d.parallelSplitMin) resizeLarge(d.spare, tris.size());
+  double lx = std::numeric_limits<double>::infinity(), ly = lx, lz = lx, hx = -lx, hy = -lx, hz = -lx;
+#pragma omp parallel for schedule(static) reduction(min : lx, ly, lz) reduction(max : hx, hy, hz)
   for (std::int32_t i = 0; i < n; ++i)
   {
     const Tri& t = tris[i];
     auto& r = d.ref[i];
     for (int a = 0; a < 3; ++a) r.c[a] = t.v[0][a] + t.v[1][a] + t.v[2][a];
     r.tri = i;
+    lx = std::min(lx, r.c[0]), ly = std::min(ly, r.c[1]), lz = std::min(lz, r.c[2]);
+    hx = std::max(hx, r.c[0]), hy = std::max(hy, r.c[1]), hz = std::max(hz, r.c[2]);
   }
   const BvhSubtreeNodes nodesOf(n);
   d.subtreeNodes = &nodesOf;
   resizeLarge(this->Nodes, static_cast<std::size_t>(nodesOf(n)));
+  const double clo[3] = { lx, ly, lz }, chi[3] = { hx, hy, hz };
+  this->splitTop(d, 0, 0, n, 0, false, clo, chi);
+  const std::int64_t subtrees = static_cast<std::int64_t>(d.subtrees.size());
 #pragma omp parallel
 #pragma omp single
-  this->build(d, 0, 0, n, 0);
+  for (std::int64_t s = 0; s < subtrees; ++s)
+  {
+    const BuildData::Subtree st = d.subtrees[static_cast<std::size_t>(s)];
+#pragma omp task shared(d) firstprivate(st)
+    {
+      if (st.inSpare)
+        std::copy(d.spare.begin() + st.first, d.spare.begin() + st.first + st.count, d.ref.begin() + st.first);
+      this->build(d, st.id, st.first, st.count, st.depth);
+    }
+  }
   resizeLarge(this->Leaves, tris.size());
 #pragma omp parallel for schedule(static)
   for (std::int32_t i = 0; i < n; ++i)
@@ -127,6 +327,32 @@ Bvh::Bvh(const TriList& tris)
   }
 }
 
+void Bvh::splitTop(BuildData& d, std::int32_t id, std::int32_t first, std::int32_t count, int depth, bool inSpare,
+  const double clo[3], const double chi[3])
+{
+  if (count < d.parallelSplitMin)
+  {
+    d.subtrees.push_back({ id, first, count, depth, inSpare });
+    return;
+  }
+  Node& node = this->Nodes[id];
+  node.first = first;
+  node.count = count;
+  const int axis = longestAxis(clo, chi);
+  const std::int32_t half = count / 2;
+  BuildData::Ref* src = (inSpare ? d.spare : d.ref).data() + first;
+  BuildData::Ref* dst = (inSpare ? d.ref : d.spare).data() + first;
+  const BuildData::Ref pivot = selectRank(src, static_cast<std::size_t>(count), static_cast<std::size_t>(half), axis,
+    clo[axis], chi[axis], std::min<std::size_t>(std::size_t(1) << 14, static_cast<std::size_t>(d.parallelSplitMin) / 8));
+  double lo[2][3], hi[2][3];
+  const std::size_t nLeft = partitionRefs(src, dst, static_cast<std::size_t>(count), pivot, axis, lo, hi);
+  require(nLeft == static_cast<std::size_t>(half), "mesh to SDF: BVH median split lost triangles");
+  node.left = id + 1;
+  node.right = id + 1 + (*d.subtreeNodes)(half);
+  this->splitTop(d, node.left, first, half, depth + 1, !inSpare, lo[0], hi[0]);
+  this->splitTop(d, node.right, first + half, count - half, depth + 1, !inSpare, lo[1], hi[1]);
+}
+
 void Bvh::build(BuildData& d, std::int32_t id, std::int32_t first, std::int32_t count, int depth)
 {
   Node& node = this->Nodes[id];
@@ -144,14 +370,10 @@ void Bvh::build(BuildData& d, std::int32_t id, std::int32_t first, std::int32_t 
         chi[a] = std::max(chi[a], c[a]);
       }
     }
-    int axis = 0;
-    for (int a = 1; a < 3; ++a)
-    {
-      if (chi[a] - clo[a] > chi[axis] - clo[axis]) axis = a;
-    }
+    const int axis = longestAxis(clo, chi);
     const std::int32_t half = count / 2;
     std::nth_element(d.ref.begin() + first, d.ref.begin() + first + half, d.ref.begin() + first + count,
-      [axis](const BuildData::Ref& x, const BuildData::Ref& y) { return x.c[axis] < y.c[axis]; });
+      [axis](const BuildData::Ref& x, const BuildData::Ref& y) { return refLess(x, y, axis); });
     node.left = id + 1;
     node.right = id + 1 + (*d.subtreeNodes)(half);
     if (count > 2048)
@@ -172,6 +394,9 @@ void Bvh::build(BuildData& d, std::int32_t id, std::int32_t first, std::int32_t 
     return;
   }
   node.left = node.right = -1;
+  // a leaf's triangles by index: Order is a function of the triangles too
+  std::sort(d.ref.begin() + first, d.ref.begin() + first + count,
+    [](const BuildData::Ref& x, const BuildData::Ref& y) { return x.tri < y.tri; });
 }
 
 NearestResult Bvh::nearest(V3 p, std::int32_t hint, double maxDist2) const
