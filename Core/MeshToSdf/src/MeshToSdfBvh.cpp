@@ -244,6 +244,12 @@ Bvh::Bvh(const TriList& tris, std::int32_t parallelSplitMin)
   : Tris(tris)
 {
   const std::int32_t n = static_cast<std::int32_t>(tris.size());
+  double tp = now(); // sub-phase times on the trace (tracePhases)
+  const auto lap = [&tp](const char* what) {
+    const double t = now();
+    trace(what, t - tp);
+    tp = t;
+  };
   // fresh arrays first touched by resize(), serially: huge pages (Memory.h)
   resizeLarge(this->Order, tris.size());
   BuildData d;
@@ -265,7 +271,9 @@ Bvh::Bvh(const TriList& tris, std::int32_t parallelSplitMin)
   d.subtreeNodes = &nodesOf;
   resizeLarge(this->Nodes, static_cast<std::size_t>(nodesOf(n)));
   const double clo[3] = { lx, ly, lz }, chi[3] = { hx, hy, hz };
+  lap("mesh BVH: centroids");
   this->splitTop(d, 0, 0, n, 0, false, clo, chi);
+  lap("mesh BVH: top splits");
   const std::int64_t subtrees = static_cast<std::int64_t>(d.subtrees.size());
 #pragma omp parallel
 #pragma omp single
@@ -279,6 +287,7 @@ Bvh::Bvh(const TriList& tris, std::int32_t parallelSplitMin)
       this->build(d, st.id, st.first, st.count, st.depth);
     }
   }
+  lap("mesh BVH: subtrees");
   resizeLarge(this->Leaves, tris.size());
 #pragma omp parallel for schedule(static)
   for (std::int32_t i = 0; i < n; ++i)
@@ -314,17 +323,26 @@ Bvh::Bvh(const TriList& tris, std::int32_t parallelSplitMin)
       }
     }
   }
-  for (std::int64_t id = nodeCount - 1; id >= 0; --id)
-  {
+  const auto innerBox = [this](std::int64_t id) {
     Node& node = this->Nodes[id];
-    if (node.left < 0) continue;
+    if (node.left < 0) return;
     const Node &l = this->Nodes[node.left], &r = this->Nodes[node.right];
     for (int a = 0; a < 3; ++a)
     {
       node.lo[a] = std::min(l.lo[a], r.lo[a]);
       node.hi[a] = std::max(l.hi[a], r.hi[a]);
     }
+  };
+  // each subtree's nodes are contiguous (preorder): the subtrees on the
+  // threads, then the top nodes, last first
+#pragma omp parallel for schedule(dynamic, 1)
+  for (std::int64_t s = 0; s < subtrees; ++s)
+  {
+    const BuildData::Subtree& st = d.subtrees[static_cast<std::size_t>(s)];
+    for (std::int64_t id = st.id + nodesOf(st.count) - 1; id >= st.id; --id) innerBox(id);
   }
+  for (auto id = d.topNodes.rbegin(); id != d.topNodes.rend(); ++id) innerBox(*id);
+  lap("mesh BVH: leaves and boxes");
 }
 
 void Bvh::splitTop(BuildData& d, std::int32_t id, std::int32_t first, std::int32_t count, int depth, bool inSpare,
@@ -335,6 +353,7 @@ void Bvh::splitTop(BuildData& d, std::int32_t id, std::int32_t first, std::int32
     d.subtrees.push_back({ id, first, count, depth, inSpare });
     return;
   }
+  d.topNodes.push_back(id);
   Node& node = this->Nodes[id];
   node.first = first;
   node.count = count;

@@ -142,6 +142,7 @@ private:
       bool inSpare; // its triangles lie in spare
     };
     std::vector<Subtree> subtrees; // below the top splits: built as tasks
+    std::vector<std::int32_t> topNodes; // the top splits' nodes, in preorder
     std::int32_t parallelSplitMin = DefaultParallelSplitMin;
   };
   /// The top splits, each with all threads (bounds, selection, partition);

@@ -108,38 +108,6 @@ void ownerParts(std::size_t n, F&& f)
   }
 }
 
-/// Counting sort of the 3n corners c = 3t + k into nb buckets by
-/// bucketOf(c) (CSR: start gets nb + 1 offsets), each bucket in corner order
-/// as a serial counting sort leaves it: every thread owns a range of buckets
-/// and scans all corners for them (the scans are cheap, the scattered writes
-/// are split). Returns valueOf(c) bucket by bucket.
-template <typename Value, typename BucketOf, typename ValueOf>
-std::vector<Value> bucketCorners(std::size_t n, std::size_t nb, std::vector<std::uint32_t>& start, BucketOf&& bucketOf,
-  ValueOf&& valueOf)
-{
-  const std::uint32_t nc = static_cast<std::uint32_t>(3 * n);
-  start.assign(nb + 1, 0);
-  ownerParts(nb, [&](std::size_t lo, std::size_t hi) {
-    for (std::uint32_t c = 0; c < nc; ++c)
-    {
-      const std::size_t b = bucketOf(c);
-      if (b - lo < hi - lo) ++start[b + 1];
-    }
-  });
-  for (std::size_t b = 0; b < nb; ++b) start[b + 1] += start[b];
-  std::vector<Value> out;
-  resizeLarge(out, nc);
-  ownerParts(nb, [&](std::size_t lo, std::size_t hi) {
-    std::vector<std::uint32_t> fill(start.begin() + static_cast<std::ptrdiff_t>(lo), start.begin() + static_cast<std::ptrdiff_t>(hi));
-    for (std::uint32_t c = 0; c < nc; ++c)
-    {
-      const std::size_t b = bucketOf(c);
-      if (b - lo < hi - lo) out[fill[b - lo]++] = valueOf(c);
-    }
-  });
-  return out;
-}
-
 double angleAt(V3 p, V3 q, V3 r) // angle at p of triangle p q r
 {
   const V3 u = normalized(q - p), v = normalized(r - p);
@@ -175,77 +143,155 @@ std::vector<V3> vertexNormalSums(const PreparedMesh& out, std::size_t nv,
 /// that an edge's corners are consecutive, in triangle order. Then per
 /// vertex: the distinct edges, their summed normals (triangle order, written
 /// to en when `normals`) and oriented multiplicities (the boundary chain when
-/// weldPos is given); boundary edges collected per vertex, then in vertex
-/// order so the chain does not depend on the threads.
+/// weldPos is given), in vertex order, so nothing depends on the threads.
+/// The grouping is a two-level counting sort (MSD radix by the smaller
+/// vertex): the corners into about 4096 buckets of consecutive vertices, on
+/// the threads by per-part counts (each part's corners in order: a stable
+/// scatter); then each bucket on its own (a task of the loop) counted into
+/// its vertices, whose groups are sorted and walked while they are in the
+/// cache. The groups, their order and every sum are those of the one-level
+/// counting sort this replaced (each thread scanned all 3n corners for its
+/// own vertices: 16 threads read every corner 32 times).
 void edgePass(PreparedMesh& out, std::size_t nv, const std::vector<V3>* weldPos, bool normals,
   const std::function<void(const char*)>& lap)
 {
   const std::size_t n = out.tris.size();
   const auto& welded = out.welded;
-  std::vector<std::uint32_t> start;
-  std::vector<std::uint64_t> corners = bucketCorners<std::uint64_t>(n, nv, start,
-    [&](std::uint32_t c) {
-      const auto& w = welded[c / 3];
-      return std::min(w[c % 3], w[(c % 3 + 1) % 3]);
-    },
-    [&](std::uint32_t c) {
-      const auto& w = welded[c / 3];
-      return static_cast<std::uint64_t>(std::max(w[c % 3], w[(c % 3 + 1) % 3])) << 32 | c;
-    });
+  const std::size_t nc = 3 * n;
+  int shift = 0;
+  while ((nv >> shift) > 4096) ++shift;
+  const std::size_t nb = ((nv - 1) >> shift) + 1; // buckets of 2^shift vertices
+  struct Entry
+  {
+    std::uint64_t key; // larger vertex << 32 | corner
+    std::uint32_t lo;  // smaller vertex
+    std::int32_t dir;  // +1: the corner's edge runs lo -> hi
+  };
+  auto edgeOf = [&](std::size_t c) {
+    const auto& w = welded[c / 3];
+    const std::uint32_t a = w[c % 3], b = w[(c % 3 + 1) % 3];
+    return Entry{ static_cast<std::uint64_t>(std::max(a, b)) << 32 | c, std::min(a, b), a < b ? 1 : -1 };
+  };
+  const int parts = omp_get_max_threads();
+  auto partLo = [&](int p) { return nc * static_cast<std::size_t>(p) / static_cast<std::size_t>(parts); };
+  std::vector<std::size_t> at(static_cast<std::size_t>(parts) * nb, 0); // per part and bucket: count, then place
+#pragma omp parallel for schedule(static, 1)
+  for (int p = 0; p < parts; ++p)
+  {
+    std::size_t* count = at.data() + static_cast<std::size_t>(p) * nb;
+    for (std::size_t c = partLo(p); c < partLo(p + 1); ++c) ++count[edgeOf(c).lo >> shift];
+  }
+  std::vector<std::size_t> bucketStart(nb + 1);
+  std::size_t o = 0;
+  for (std::size_t b = 0; b < nb; ++b)
+  {
+    bucketStart[b] = o;
+    for (int p = 0; p < parts; ++p)
+    {
+      const std::size_t k = at[static_cast<std::size_t>(p) * nb + b];
+      at[static_cast<std::size_t>(p) * nb + b] = o;
+      o += k;
+    }
+  }
+  bucketStart[nb] = o;
+  LargeVector<Entry> entries;
+  resizeLarge(entries, nc);
+#pragma omp parallel for schedule(static, 1)
+  for (int p = 0; p < parts; ++p)
+  {
+    std::size_t* place = at.data() + static_cast<std::size_t>(p) * nb;
+    for (std::size_t c = partLo(p); c < partLo(p + 1); ++c)
+    {
+      const Entry e = edgeOf(c);
+      entries[place[e.lo >> shift]++] = e;
+    }
+  }
   lap("prepare: edge grouping");
 
   const bool boundary = weldPos != nullptr;
-  std::vector<std::vector<std::array<V3, 2>>> boundaryOf(boundary ? nv : 0);
-  std::vector<double> lengthOf(boundary ? nv : 0, 0);
-  std::vector<std::uint32_t> edgesOf(boundary ? nv : 0, 0);
-  const std::int64_t nvI = static_cast<std::int64_t>(nv);
-#pragma omp parallel for schedule(dynamic, 256)
-  for (std::int64_t v = 0; v < nvI; ++v)
+  struct BucketBoundary
   {
-    const std::uint32_t b0 = start[v], b1 = start[v + 1];
-    std::sort(corners.begin() + b0, corners.begin() + b1);
-    for (std::uint32_t e = b0; e < b1;)
+    std::vector<std::array<V3, 2>> segments; // in vertex order
+    std::vector<double> lengthOf;            // per vertex with boundary edges, in vertex order
+    std::size_t edges = 0;
+  };
+  std::vector<BucketBoundary> bucketBoundary(boundary ? nb : 0);
+  const std::int64_t nbI = static_cast<std::int64_t>(nb);
+#pragma omp parallel
+  {
+    std::vector<std::uint32_t> end;
+    std::vector<Entry> group;
+#pragma omp for schedule(dynamic, 1)
+    for (std::int64_t b = 0; b < nbI; ++b)
     {
-      const std::uint32_t hiE = static_cast<std::uint32_t>(corners[e] >> 32);
-      std::uint32_t e1 = e;
-      V3 en;
-      int mult = 0;
-      for (; e1 < b1 && static_cast<std::uint32_t>(corners[e1] >> 32) == hiE; ++e1)
+      const std::size_t e0 = bucketStart[b], e1 = bucketStart[b + 1];
+      const std::size_t v0 = static_cast<std::size_t>(b) << shift;
+      const std::size_t vCount = std::min(nv - v0, std::size_t(1) << shift);
+      // counting sort of the bucket by vertex (stable: corner order)
+      end.assign(vCount + 1, 0);
+      for (std::size_t e = e0; e < e1; ++e) ++end[entries[e].lo - v0 + 1];
+      for (std::size_t i = 0; i < vCount; ++i) end[i + 1] += end[i];
+      group.resize(e1 - e0);
+      for (std::size_t e = e0; e < e1; ++e) group[end[entries[e].lo - v0]++] = entries[e];
+      // now end[i] is the end of vertex v0 + i's group
+      for (std::size_t i = 0, g0 = 0; i < vCount; g0 = end[i], ++i)
       {
-        const std::uint32_t cf = static_cast<std::uint32_t>(corners[e1]);
-        if (normals) en = en + out.tris[cf / 3].n;
-        mult += welded[cf / 3][cf % 3] < hiE ? 1 : -1; // a -> b with a < b counts +1
-      }
-      if (normals)
-      {
-        const V3 enu = normalized(en);
-        for (std::uint32_t f = e; f < e1; ++f)
+        const std::size_t v = v0 + i, g1 = end[i];
+        std::sort(group.begin() + static_cast<std::ptrdiff_t>(g0), group.begin() + static_cast<std::ptrdiff_t>(g1),
+          [](const Entry& x, const Entry& y) { return x.key < y.key; });
+        double length = 0;
+        std::size_t edges = 0;
+        for (std::size_t e = g0; e < g1;)
         {
-          const std::uint32_t cf = static_cast<std::uint32_t>(corners[f]);
-          out.tris[cf / 3].en[cf % 3] = enu; // each corner is in exactly one list
+          const std::uint32_t hiE = static_cast<std::uint32_t>(group[e].key >> 32);
+          std::size_t e1g = e;
+          V3 en;
+          int mult = 0;
+          for (; e1g < g1 && static_cast<std::uint32_t>(group[e1g].key >> 32) == hiE; ++e1g)
+          {
+            const std::uint32_t cf = static_cast<std::uint32_t>(group[e1g].key);
+            if (normals) en = en + out.tris[cf / 3].n;
+            mult += group[e1g].dir; // a -> b with a < b counts +1
+          }
+          if (normals)
+          {
+            const V3 enu = normalized(en);
+            for (std::size_t f = e; f < e1g; ++f)
+            {
+              const std::uint32_t cf = static_cast<std::uint32_t>(group[f].key);
+              out.tris[cf / 3].en[cf % 3] = enu; // each corner is in exactly one group
+            }
+          }
+          e = e1g;
+          if (boundary && mult != 0)
+          {
+            const V3 a = (*weldPos)[v], bv = (*weldPos)[hiE];
+            length += std::abs(mult) * norm(bv - a);
+            ++edges;
+            for (int k = 0; k < std::abs(mult); ++k)
+            {
+              // key (lo, hi) with positive multiplicity means lo -> hi
+              bucketBoundary[b].segments.push_back(mult > 0 ? std::array<V3, 2>{ a, bv } : std::array<V3, 2>{ bv, a });
+            }
+          }
         }
-      }
-      e = e1;
-      if (boundary && mult != 0)
-      {
-        const V3 a = (*weldPos)[v], b = (*weldPos)[hiE];
-        lengthOf[v] += std::abs(mult) * norm(b - a);
-        ++edgesOf[v];
-        for (int k = 0; k < std::abs(mult); ++k)
+        if (edges > 0)
         {
-          // key (lo, hi) with positive multiplicity means lo -> hi
-          boundaryOf[v].push_back(mult > 0 ? std::array<V3, 2>{ a, b } : std::array<V3, 2>{ b, a });
+          bucketBoundary[b].lengthOf.push_back(length);
+          bucketBoundary[b].edges += edges;
         }
       }
     }
   }
   if (boundary)
   {
-    for (std::size_t v = 0; v < nv; ++v)
+    // the vertices' lengths added in vertex order, as one loop over the
+    // vertices did (those without boundary edges added +0)
+    for (const BucketBoundary& bb : bucketBoundary)
     {
-      out.boundaryLength += lengthOf[v];
-      out.boundaryEdges += edgesOf[v];
-      out.boundary.insert(out.boundary.end(), boundaryOf[v].begin(), boundaryOf[v].end());
+      for (const double l : bb.lengthOf) out.boundaryLength += l;
+      out.boundaryEdges += bb.edges;
+      out.boundary.insert(out.boundary.end(), bb.segments.begin(), bb.segments.end());
     }
   }
   lap(boundary ? "prepare: edges and boundary" : "prepare: edge normals");
