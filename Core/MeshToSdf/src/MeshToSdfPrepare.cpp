@@ -25,13 +25,37 @@ namespace detail::meshtosdf
 
 namespace
 {
+/// a[i] = a[0] + ... + a[i] for i < n on the threads: each part's sum, the
+/// parts' offsets, then each part again from its offset (integers: the same
+/// as the serial loop).
+void inclusiveSum(std::uint32_t* a, std::size_t n)
+{
+  const int parts = omp_get_max_threads();
+  auto lo = [&](int p) { return n * static_cast<std::size_t>(p) / static_cast<std::size_t>(parts); };
+  std::vector<std::uint32_t> offset(static_cast<std::size_t>(parts) + 1, 0);
+#pragma omp parallel for schedule(static, 1)
+  for (int p = 0; p < parts; ++p)
+  {
+    std::uint32_t sum = 0;
+    for (std::size_t i = lo(p); i < lo(p + 1); ++i) sum += a[i];
+    offset[static_cast<std::size_t>(p) + 1] = sum;
+  }
+  for (int p = 0; p < parts; ++p) offset[static_cast<std::size_t>(p) + 1] += offset[static_cast<std::size_t>(p)];
+#pragma omp parallel for schedule(static, 1)
+  for (int p = 0; p < parts; ++p)
+  {
+    std::uint32_t sum = offset[static_cast<std::size_t>(p)];
+    for (std::size_t i = lo(p); i < lo(p + 1); ++i) a[i] = sum += a[i];
+  }
+}
+
 /// Welds points of bitwise equal coordinates (as the hash map this replaced
 /// did in effect: it hashed the bits; NaN is refused by validate()): ids in
 /// order of first appearance. One flat open-addressing table filled by all
 /// threads: a key's slot holds the smallest index seen with that key (CAS,
 /// then atomic min), so when the fill ends every key holds its first
 /// occurrence whatever the threads did; the ids follow by a prefix count.
-std::uint32_t weldPoints(const std::vector<Vec3f>& points, std::vector<std::uint32_t>& weld, std::vector<std::uint32_t>& firstOf)
+std::uint32_t weldPoints(const std::vector<Vec3f>& points, LargeVector<std::uint32_t>& weld, LargeVector<std::uint32_t>& firstOf)
 {
   constexpr std::uint32_t Empty = 0xffffffffu;
   const std::size_t n = points.size();
@@ -46,7 +70,8 @@ std::uint32_t weldPoints(const std::vector<Vec3f>& points, std::vector<std::uint
     for (int k = 0; k < 3; ++k) h = (h ^ b[k]) * 1099511628211ull;
     return static_cast<std::size_t>(h ^ (h >> 29)) & (cap - 1);
   };
-  std::vector<std::size_t> slotOfPoint(n); // where point i's key lives
+  LargeVector<std::size_t> slotOfPoint; // where point i's key lives
+  resizeLarge(slotOfPoint, n);
 #pragma omp parallel for schedule(static)
   for (std::int64_t i = 0; i < nI; ++i)
   {
@@ -75,14 +100,17 @@ std::uint32_t weldPoints(const std::vector<Vec3f>& points, std::vector<std::uint
     }
   }
   // rep = first occurrence of each point's key; ids = prefix count of firsts
-  weld.resize(n);
+  resizeLarge(weld, n);
 #pragma omp parallel for schedule(static)
   for (std::int64_t i = 0; i < nI; ++i) weld[i] = table[slotOfPoint[static_cast<std::size_t>(i)]].load(std::memory_order_relaxed);
   table.reset();
-  std::vector<std::uint32_t> id(n + 1, 0);
-  for (std::size_t i = 0; i < n; ++i) id[i + 1] = id[i] + (weld[i] == i ? 1 : 0);
+  LargeVector<std::uint32_t> id; // id[i] = firsts before i
+  resizeLarge(id, n + 1);
+#pragma omp parallel for schedule(static)
+  for (std::int64_t i = 0; i < nI; ++i) id[i + 1] = weld[i] == static_cast<std::uint32_t>(i) ? 1 : 0;
+  inclusiveSum(id.data() + 1, n);
   const std::uint32_t nv = id[n];
-  firstOf.resize(nv);
+  resizeLarge(firstOf, nv);
 #pragma omp parallel for schedule(static)
   for (std::int64_t i = 0; i < nI; ++i)
   {
@@ -152,7 +180,7 @@ std::vector<V3> vertexNormalSums(const PreparedMesh& out, std::size_t nv,
 /// cache. The groups, their order and every sum are those of the one-level
 /// counting sort this replaced (each thread scanned all 3n corners for its
 /// own vertices: 16 threads read every corner 32 times).
-void edgePass(PreparedMesh& out, std::size_t nv, const std::vector<V3>* weldPos, bool normals,
+void edgePass(PreparedMesh& out, std::size_t nv, const LargeVector<V3>* weldPos, bool normals,
   const std::function<void(const char*)>& lap)
 {
   const std::size_t n = out.tris.size();
@@ -316,6 +344,23 @@ void finishPseudoNormals(PreparedMesh& out, const std::vector<V3>& vertexNormal)
   }
   out.pseudoNormals = true;
 }
+/// TriangleMesh::validate()'s checks of every point and index on the
+/// threads; where one fails (or the cheap checks do), validate() itself
+/// runs and throws its message (the first bad point or index).
+void validateOnThreads(const TriangleMesh& mesh)
+{
+  const std::int64_t np = static_cast<std::int64_t>(mesh.points.size());
+  const std::int64_t nt = static_cast<std::int64_t>(mesh.triangles.size());
+  const std::size_t points = mesh.points.size();
+  int bad = 0;
+#pragma omp parallel for schedule(static) reduction(| : bad)
+  for (std::int64_t i = 0; i < np; ++i)
+    for (float c : mesh.points[static_cast<std::size_t>(i)]) bad |= std::isfinite(c) ? 0 : 1;
+#pragma omp parallel for schedule(static) reduction(| : bad)
+  for (std::int64_t t = 0; t < nt; ++t)
+    for (std::uint32_t v : mesh.triangles[static_cast<std::size_t>(t)]) bad |= v < points ? 0 : 1;
+  if (bad || nt == 0 || (!mesh.normals.empty() && mesh.normals.size() != points)) mesh.validate();
+}
 } // namespace
 
 PreparedMesh prepareMesh(const TriangleMesh& mesh, bool pseudoNormals)
@@ -334,17 +379,17 @@ void prepareMesh(const TriangleMesh& mesh, PreparedMesh& out, bool pseudoNormals
     trace(what, t - tp);
     tp = t;
   };
-  mesh.validate();
+  validateOnThreads(mesh);
   out = PreparedMesh();
   const std::size_t nt = mesh.triangles.size();
 
   // Weld by exact position so pseudo-normals and the boundary chain see the
   // surface's topology even in a soup with duplicated points.
-  std::vector<std::uint32_t> weld, firstOf;
+  LargeVector<std::uint32_t> weld, firstOf;
   const std::size_t nv = weldPoints(mesh.points, weld, firstOf);
   out.vertices = nv;
   auto toV3 = [](const Vec3f& p) { return V3{ p[0], p[1], p[2] }; };
-  std::vector<V3> weldPos;
+  LargeVector<V3> weldPos;
   resizeLarge(weldPos, nv);
   const std::int64_t nvAll = static_cast<std::int64_t>(nv);
 #pragma omp parallel for schedule(static)
@@ -359,14 +404,15 @@ void prepareMesh(const TriangleMesh& mesh, PreparedMesh& out, bool pseudoNormals
     for (int k = 0; k < 3; ++k) v[k] = toV3(mesh.points[ix[k]]);
     return cross(v[1] - v[0], v[2] - v[0]);
   };
-  std::vector<std::uint32_t> slot(nt + 1, 0);
+  LargeVector<std::uint32_t> slot; // slot[t] = kept triangles before t
+  resizeLarge(slot, nt + 1);
 #pragma omp parallel for schedule(static)
   for (std::int64_t t = 0; t < ntI; ++t)
   {
     V3 v[3];
     slot[t + 1] = norm(faceCross(t, v)) > 0 ? 1 : 0;
   }
-  for (std::size_t t = 0; t < nt; ++t) slot[t + 1] += slot[t];
+  inclusiveSum(slot.data() + 1, nt);
   const std::size_t n = slot[nt];
   out.degenerate = nt - n;
   require(n > 0, "mesh has no triangle of non-zero area (" + std::to_string(out.degenerate) +

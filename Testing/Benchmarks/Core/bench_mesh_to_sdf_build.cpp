@@ -7,7 +7,8 @@
 // prepare also times prepareMesh without the pseudo-normals (what the
 // WindingNumber and Unsigned signs build) and addPseudoNormals after it.
 // usage: bench_mesh_to_sdf_build [DAMAGE:]MESH [REPEATS=3] [PHASES=prepare,bvh,winding,gpuhost,nearest,touch]
-// (gpuhost: the three host builds of the one-call CUDA WindingNumber path in a row; touch:
+// (beside: prepareMesh without pseudo-normals with the mesh Bvh on its own thread beside the
+// edge pass, as the one-call CUDA route builds them; gpuhost: the three host builds of the one-call CUDA WindingNumber path in a row; touch:
 // the first touch of 256 MB of fresh memory by 1 thread, by all, and by one
 // with transparent huge pages asked for)
 // (DAMAGE as in bench_mesh_to_sdf, e.g. sub2:armadillo.off for 832k triangles)
@@ -28,6 +29,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
+#include <future>
 #include <memory>
 #include <string>
 #include <vector>
@@ -163,6 +165,33 @@ int main(int argc, char** argv)
       std::unique_ptr<Bvh> b;
       const double ms = medianBuildMs(repeats, [&] { b.reset(); }, [&] { b = std::make_unique<Bvh>(pm.tris); });
       rows.push_back({ "mesh Bvh", bench::fmt(ms, 1), hashBvh(*b) });
+    }
+    if (wants("beside"))
+    {
+      // the one-call CUDA WindingNumber route's host build before the upload
+      // (prepareInternal): prepareMesh without the pseudo-normals, the mesh
+      // tree on its own thread from when the records are final, beside the
+      // edge pass
+      PreparedMesh x;
+      std::unique_ptr<Bvh> b;
+      const double ms = medianBuildMs(repeats, [&] { b.reset(), x = PreparedMesh(); }, [&] {
+        std::future<std::unique_ptr<Bvh>> tree;
+        const int threads = omp_get_max_threads();
+        const bool tracing = tracePhasesActive();
+        prepareMesh(mesh, x, false, [&] {
+          tree = std::async(std::launch::async, [&x, threads, tracing] {
+            omp_set_num_threads(threads);
+            const PhaseTraceScope scope(tracing);
+            const double tb = now();
+            auto t = std::make_unique<Bvh>(x.tris);
+            trace("mesh BVH (beside the edge pass)", now() - tb);
+            return t;
+          });
+        });
+        b = tree.get();
+      });
+      rows.push_back({ "prepareMesh, the tree beside the edge pass (one-call CUDA route)", bench::fmt(ms, 1),
+        hashPrepared(x) + " " + hashBvh(*b) });
     }
     if (wants("winding"))
     {
