@@ -200,7 +200,8 @@ int main(int argc, char** argv)
       // one thread (centroid bounds, then std::nth_element by the coordinate),
       // as the tree's root split ran before the top splits went parallel (m =
       // all triangles) and as the largest split that still runs on one thread
-      // does now (a subtree's root, m < Bvh::DefaultParallelSplitMin)
+      // does now (a subtree's root, m < 2^18 = Bvh::DefaultParallelSplitMin;
+      // spelled out so that this file also builds against older code)
       struct Ref
       {
         double c[3];
@@ -212,7 +213,7 @@ int main(int argc, char** argv)
         for (int a = 0; a < 3; ++a) all[i].c[a] = pm.tris[i].v[0][a] + pm.tris[i].v[1][a] + pm.tris[i].v[2][a];
         all[i].tri = static_cast<std::int32_t>(i);
       }
-      for (const std::size_t m : { all.size(), std::min(all.size(), std::size_t(Bvh::DefaultParallelSplitMin) - 1) })
+      for (const std::size_t m : { all.size(), std::min(all.size(), (std::size_t(1) << 18) - 1) })
       {
         std::vector<Ref> r;
         const double ms = medianBuildMs(repeats, [&] { r.assign(all.begin(), all.begin() + static_cast<std::ptrdiff_t>(m)); }, [&] {
