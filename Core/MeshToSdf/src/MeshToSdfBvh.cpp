@@ -245,15 +245,16 @@ private:
 
 /// Centroids computed once in parallel; the build then touches only this
 /// compact array (the triangle records are 328 bytes each). The top nodes
-/// (parallelSplitMin triangles or more: 2^18 by default) split one after the other, each with
+/// (parallelSplitMin triangles or more: 2^19 by default) split one after the other, each with
 /// all threads: centroid bounds from the parent's partition, the median by
 /// selectRank, a stable partition into the other buffer (ref <-> spare); no
 /// step runs on one thread over more than a small part of the triangles (the
 /// root's nth_element over all of them did: the serial head of the build).
 /// The subtrees below are OpenMP tasks that split with std::nth_element by
-/// the same total order. The node layout (preorder) does not depend on the
-/// threads. The boxes come last, bottom-up, from the leaf-ordered compact
-/// copies (exact min/max: the same bits as boxes taken during the build).
+/// the same total order; their leaves write the compact copies and the
+/// boxes, their inner nodes the union of their children's boxes once those
+/// are done; the top nodes' boxes come last. The node layout (preorder) does
+/// not depend on the threads.
 Bvh::Bvh(const TriList& tris, std::int32_t parallelSplitMin)
   : Tris(tris)
 {
@@ -284,6 +285,7 @@ Bvh::Bvh(const TriList& tris, std::int32_t parallelSplitMin)
   const BvhSubtreeNodes nodesOf(n);
   d.subtreeNodes = &nodesOf;
   resizeLarge(this->Nodes, static_cast<std::size_t>(nodesOf(n)));
+  resizeLarge(this->Leaves, tris.size());
   const double clo[3] = { lx, ly, lz }, chi[3] = { hx, hy, hz };
   lap("mesh BVH: centroids");
   this->splitTop(d, 0, 0, n, 0, false, clo, chi);
@@ -301,62 +303,10 @@ Bvh::Bvh(const TriList& tris, std::int32_t parallelSplitMin)
       this->build(d, st.id, st.first, st.count, st.depth);
     }
   }
-  lap("mesh BVH: subtrees");
-  resizeLarge(this->Leaves, tris.size());
-#pragma omp parallel for schedule(static)
-  for (std::int32_t i = 0; i < n; ++i)
-  {
-    this->Order[i] = d.ref[i].tri;
-    const Tri& t = tris[this->Order[i]];
-    LeafTri& l = this->Leaves[i];
-    for (int k = 0; k < 3; ++k) l.v[k] = t.v[k];
-    l.n = t.n;
-  }
-  // leaf boxes in parallel, then the inner nodes from their children
-  // (preorder: children come after their parent)
-  const std::int64_t nodeCount = static_cast<std::int64_t>(this->Nodes.size());
-#pragma omp parallel for schedule(static)
-  for (std::int64_t id = 0; id < nodeCount; ++id)
-  {
-    Node& node = this->Nodes[id];
-    if (node.left >= 0) continue;
-    for (int a = 0; a < 3; ++a)
-    {
-      node.lo[a] = 1e300;
-      node.hi[a] = -1e300;
-    }
-    for (std::int32_t i = node.first; i < node.first + node.count; ++i)
-    {
-      const V3* v = this->Leaves[i].v;
-      for (int a = 0; a < 3; ++a)
-      {
-        // the triangle's box first (the order of a build that kept boxes:
-        // min/max of +0 and -0 depend on it)
-        node.lo[a] = std::min(node.lo[a], std::min(v[0][a], std::min(v[1][a], v[2][a])));
-        node.hi[a] = std::max(node.hi[a], std::max(v[0][a], std::max(v[1][a], v[2][a])));
-      }
-    }
-  }
-  const auto innerBox = [this](std::int64_t id) {
-    Node& node = this->Nodes[id];
-    if (node.left < 0) return;
-    const Node &l = this->Nodes[node.left], &r = this->Nodes[node.right];
-    for (int a = 0; a < 3; ++a)
-    {
-      node.lo[a] = std::min(l.lo[a], r.lo[a]);
-      node.hi[a] = std::max(l.hi[a], r.hi[a]);
-    }
-  };
-  // each subtree's nodes are contiguous (preorder): the subtrees on the
-  // threads, then the top nodes, last first
-#pragma omp parallel for schedule(dynamic, 1)
-  for (std::int64_t s = 0; s < subtrees; ++s)
-  {
-    const BuildData::Subtree& st = d.subtrees[static_cast<std::size_t>(s)];
-    for (std::int64_t id = st.id + nodesOf(st.count) - 1; id >= st.id; --id) innerBox(id);
-  }
-  for (auto id = d.topNodes.rbegin(); id != d.topNodes.rend(); ++id) innerBox(*id);
-  lap("mesh BVH: leaves and boxes");
+  lap("mesh BVH: subtrees, leaves and their boxes");
+  // the top nodes' boxes from their children, last first (preorder:
+  // children come after their parent)
+  for (auto id = d.topNodes.rbegin(); id != d.topNodes.rend(); ++id) this->innerBox(*id);
 }
 
 void Bvh::splitTop(BuildData& d, std::int32_t id, std::int32_t first, std::int32_t count, int depth, bool inSpare,
@@ -424,12 +374,45 @@ void Bvh::build(BuildData& d, std::int32_t id, std::int32_t first, std::int32_t 
       this->build(d, node.left, first, half, depth + 1);
       this->build(d, node.right, first + half, count - half, depth + 1);
     }
+    this->innerBox(id);
     return;
   }
   node.left = node.right = -1;
   // a leaf's triangles by index: Order is a function of the triangles too
   std::sort(d.ref.begin() + first, d.ref.begin() + first + count,
     [](const BuildData::Ref& x, const BuildData::Ref& y) { return x.tri < y.tri; });
+  // its compact copies and its box (exact min/max: the bits of boxes taken
+  // during the build; the triangle's box first, the order of a build that
+  // kept per-triangle boxes: min/max of +0 and -0 depend on it)
+  for (int a = 0; a < 3; ++a)
+  {
+    node.lo[a] = 1e300;
+    node.hi[a] = -1e300;
+  }
+  for (std::int32_t i = first; i < first + count; ++i)
+  {
+    this->Order[i] = d.ref[i].tri;
+    const Tri& t = this->Tris[this->Order[i]];
+    LeafTri& l = this->Leaves[i];
+    for (int k = 0; k < 3; ++k) l.v[k] = t.v[k];
+    l.n = t.n;
+    for (int a = 0; a < 3; ++a)
+    {
+      node.lo[a] = std::min(node.lo[a], std::min(t.v[0][a], std::min(t.v[1][a], t.v[2][a])));
+      node.hi[a] = std::max(node.hi[a], std::max(t.v[0][a], std::max(t.v[1][a], t.v[2][a])));
+    }
+  }
+}
+
+void Bvh::innerBox(std::int32_t id)
+{
+  Node& node = this->Nodes[id];
+  const Node &l = this->Nodes[node.left], &r = this->Nodes[node.right];
+  for (int a = 0; a < 3; ++a)
+  {
+    node.lo[a] = std::min(l.lo[a], r.lo[a]);
+    node.hi[a] = std::max(l.hi[a], r.hi[a]);
+  }
 }
 
 NearestResult Bvh::nearest(V3 p, std::int32_t hint, double maxDist2) const

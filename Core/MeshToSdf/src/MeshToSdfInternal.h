@@ -99,7 +99,7 @@ public:
   /// Nodes of at least this many triangles split with all threads together
   /// (parallel selection and partition); below, whole subtrees are tasks.
   /// The tree does not depend on it (tests build with a small one).
-  static constexpr std::int32_t DefaultParallelSplitMin = std::int32_t(1) << 18;
+  static constexpr std::int32_t DefaultParallelSplitMin = std::int32_t(1) << 19;
   explicit Bvh(const TriList& tris, std::int32_t parallelSplitMin = DefaultParallelSplitMin);
 
   /// Nearest triangle to p among those closer than sqrt(bestDist2): starts
@@ -149,7 +149,10 @@ private:
   /// lists the subtrees below them in d.subtrees.
   void splitTop(BuildData& d, std::int32_t id, std::int32_t first, std::int32_t count, int depth, bool inSpare,
     const double clo[3], const double chi[3]);
+  /// A subtree: its nodes, then (a leaf) its entries of Order and Leaves and
+  /// its box, (an inner node) its box from its children's.
   void build(BuildData& d, std::int32_t id, std::int32_t first, std::int32_t count, int depth);
+  void innerBox(std::int32_t id); // the union of the children's boxes
   const TriList& Tris;
   LargeVector<Node> Nodes;
   LargeVector<std::int32_t> Order;

@@ -324,7 +324,7 @@ TEST(MeshToSdfBuild, BvhIsAFunctionOfTheTrianglesWhateverSplitsInParallel)
   {
     const PreparedMesh pm = prepareMesh(mesh, false);
     const auto ref = withThreads(1, [&] { return std::make_unique<Bvh>(pm.tris); });
-    for (const auto& [threads, splitMin] : { std::pair{ 1, 64 }, std::pair{ 4, 64 }, std::pair{ 3, 1000 }, std::pair{ 4, 1 << 18 } })
+    for (const auto& [threads, splitMin] : { std::pair{ 1, 64 }, std::pair{ 4, 64 }, std::pair{ 3, 1000 }, std::pair{ 4, 1 << 19 } })
     {
       const auto b = withThreads(threads, [&] { return std::make_unique<Bvh>(pm.tris, splitMin); });
       ASSERT_EQ(b->nodes().size(), ref->nodes().size());

@@ -9,7 +9,7 @@
 // usage: bench_mesh_to_sdf_build [DAMAGE:]MESH [REPEATS=3] [PHASES=prepare,bvh,winding,gpuhost,nearest,touch]
 // (beside: prepareMesh without pseudo-normals with the mesh Bvh on its own thread beside the
 // edge pass, as the one-call CUDA route builds them; serialhead: one median split on one
-// thread over all triangles and over a subtree's 2^18 - 1; gpuhost: the three host builds of the one-call CUDA WindingNumber path in a row; touch:
+// thread over all triangles and over a subtree's 2^19 - 1; gpuhost: the three host builds of the one-call CUDA WindingNumber path in a row; touch:
 // the first touch of 256 MB of fresh memory by 1 thread, by all, and by one
 // with transparent huge pages asked for)
 // (DAMAGE as in bench_mesh_to_sdf, e.g. sub2:armadillo.off for 832k triangles)
@@ -200,7 +200,7 @@ int main(int argc, char** argv)
       // one thread (centroid bounds, then std::nth_element by the coordinate),
       // as the tree's root split ran before the top splits went parallel (m =
       // all triangles) and as the largest split that still runs on one thread
-      // does now (a subtree's root, m < 2^18 = Bvh::DefaultParallelSplitMin;
+      // does now (a subtree's root, m < 2^19 = Bvh::DefaultParallelSplitMin;
       // spelled out so that this file also builds against older code)
       struct Ref
       {
@@ -213,7 +213,7 @@ int main(int argc, char** argv)
         for (int a = 0; a < 3; ++a) all[i].c[a] = pm.tris[i].v[0][a] + pm.tris[i].v[1][a] + pm.tris[i].v[2][a];
         all[i].tri = static_cast<std::int32_t>(i);
       }
-      for (const std::size_t m : { all.size(), std::min(all.size(), (std::size_t(1) << 18) - 1) })
+      for (const std::size_t m : { all.size(), std::min(all.size(), (std::size_t(1) << 19) - 1) })
       {
         std::vector<Ref> r;
         const double ms = medianBuildMs(repeats, [&] { r.assign(all.begin(), all.begin() + static_cast<std::ptrdiff_t>(m)); }, [&] {
