@@ -29,15 +29,6 @@ bool refLess(const R& x, const R& y, int axis)
   return x.c[axis] < y.c[axis] || (x.c[axis] == y.c[axis] && x.tri < y.tri);
 }
 
-/// refLess(x, pivot) without branches (the partition's side of x is a coin
-/// flip: a branch mispredicts half the time).
-template <typename R>
-int leftOf(const R& x, double pc, std::int32_t pt, int axis)
-{
-  const double c = x.c[axis];
-  return static_cast<int>(c < pc) | (static_cast<int>(c == pc) & static_cast<int>(x.tri < pt));
-}
-
 int longestAxis(const double clo[3], const double chi[3])
 {
   int axis = 0;
@@ -50,7 +41,7 @@ int longestAxis(const double clo[3], const double chi[3])
 
 /// Parts of [0, n) for the parallel passes: part p is [n p / P, n (p+1) / P).
 /// P is fixed before the region (a loop over parts, not over the team), so
-/// per-part counts stay valid whatever team runs them; no result depends on P.
+/// per-part counts stay valid whatever team runs them.
 struct Parts
 {
   explicit Parts(std::size_t n_)
@@ -64,150 +55,127 @@ struct Parts
   int count;
 };
 
-/// The element of rank k (0-based, refLess order) of a[0, n), a unchanged:
-/// a bucket select (selection by distribution counting; e.g. Alabi et al.,
-/// "Fast k-Selection Algorithms for Graphics Processing Units", JEA 2012):
-/// per-part histograms of the key over Bins equal bins of [lo, hi] on the
-/// threads, the one bin holding rank k copied out and searched the same way
-/// until it is small, then std::nth_element on it. The bin of a key is
-/// monotone in it (a subtraction, a product and a truncation, each monotone
-/// in IEEE arithmetic), so bins follow the order. The key is the coordinate,
-/// or the triangle index once every coordinate left is equal. lo, hi: the
-/// coordinates' bounds over a (the caller has them); small: where to stop.
+/// Bounds of the centroids, [0] the left side, [1] the right.
+struct SideBounds
+{
+  double lo[2][3], hi[2][3];
+  SideBounds()
+  {
+    for (int s = 0; s < 2; ++s)
+      for (int a = 0; a < 3; ++a) lo[s][a] = std::numeric_limits<double>::infinity(), hi[s][a] = -lo[s][a];
+  }
+  template <typename R>
+  void add(int s, const R& x)
+  {
+    for (int a = 0; a < 3; ++a) lo[s][a] = std::min(lo[s][a], x.c[a]), hi[s][a] = std::max(hi[s][a], x.c[a]);
+  }
+  void add(const SideBounds& o)
+  {
+    for (int s = 0; s < 2; ++s)
+      for (int a = 0; a < 3; ++a) lo[s][a] = std::min(lo[s][a], o.lo[s][a]), hi[s][a] = std::max(hi[s][a], o.hi[s][a]);
+  }
+};
+
+/// Moves src[0, n) to dst[0, n) so that dst[0, k) holds the k smallest in
+/// refLess order and dst[k, n) the others, each side in no particular order
+/// (the tree depends on the sets alone: every split selects by the total
+/// order, every leaf sorts its triangles), on the threads; adds the
+/// centroid bounds of both sides to `bounds`. A bucket partition
+/// (selection by distribution counting, e.g. Alabi et al., "Fast
+/// k-Selection Algorithms for Graphics Processing Units", JEA 2012): per-part
+/// histograms of the key over Bins equal bins of [lo, hi]; one scatter puts
+/// the bins below the bin that holds rank k to the left, those above to the
+/// right and that bin between them, which is then split by std::nth_element,
+/// or, when it is large, by this function again (src as its buffer). The
+/// bin of a key is monotone in it (a subtraction, a product and a
+/// truncation, each monotone in IEEE arithmetic), so the bins follow the
+/// order. The key is the coordinate, or the triangle index once every
+/// coordinate is equal (byTri). lo, hi: the keys' bounds over src; small:
+/// what this thread splits alone.
 template <typename R>
-R selectRank(const R* a, std::size_t n, std::size_t k, int axis, double lo, double hi, std::size_t small)
+void splitAtRank(R* src, R* dst, std::size_t n, std::size_t k, int axis, bool byTri, double lo, double hi,
+  std::size_t small, SideBounds& bounds)
 {
   constexpr int Bins = 4096;
-  std::vector<R> cur, next;
-  std::vector<std::uint32_t> hist;
-  const R* src = a;
-  bool byTri = false;
-  bool haveBounds = true;
-  while (n > small)
+  const auto key = [axis, byTri](const R& r) { return byTri ? static_cast<double>(r.tri) : r.c[axis]; };
+  const std::int64_t nI = static_cast<std::int64_t>(n);
+  if (!(lo < hi) && !byTri && n > small)
   {
-    const auto key = [axis, byTri](const R& r) { return byTri ? static_cast<double>(r.tri) : r.c[axis]; };
-    const std::int64_t nI = static_cast<std::int64_t>(n);
-    if (!haveBounds)
-    {
-      double l = std::numeric_limits<double>::infinity(), h = -l;
+    // every coordinate equal: by index
+    double l = std::numeric_limits<double>::infinity(), h = -l;
 #pragma omp parallel for schedule(static) reduction(min : l) reduction(max : h)
-      for (std::int64_t i = 0; i < nI; ++i)
-      {
-        l = std::min(l, key(src[i]));
-        h = std::max(h, key(src[i]));
-      }
-      lo = l, hi = h;
-    }
-    haveBounds = false;
-    if (!(lo < hi))
-    {
-      if (byTri) break; // distinct indices: not reached
-      byTri = true;     // every coordinate equal: by index
-      continue;
-    }
-    const double scale = Bins / (hi - lo);
-    if (!(scale <= std::numeric_limits<double>::max())) break; // too narrow to bin: nth_element
-    const auto binOf = [&](const R& r) { return std::min(Bins - 1, static_cast<int>((key(r) - lo) * scale)); };
-    const Parts parts(n);
-    hist.assign(static_cast<std::size_t>(parts.count) * Bins, 0);
-#pragma omp parallel for schedule(static, 1)
-    for (int p = 0; p < parts.count; ++p)
-    {
-      std::uint32_t* h = hist.data() + static_cast<std::size_t>(p) * Bins;
-      for (std::size_t i = parts.lo(p); i < parts.hi(p); ++i) ++h[binOf(src[i])];
-    }
-    std::size_t below = 0;
-    int b = 0;
-    for (;; ++b)
-    {
-      std::size_t inBin = 0;
-      for (int p = 0; p < parts.count; ++p) inBin += hist[static_cast<std::size_t>(p) * Bins + b];
-      if (k < below + inBin) break;
-      below += inBin;
-    }
-    std::vector<std::size_t> at(static_cast<std::size_t>(parts.count) + 1, 0);
-    for (int p = 0; p < parts.count; ++p) at[p + 1] = at[p] + hist[static_cast<std::size_t>(p) * Bins + b];
-    next.resize(at[parts.count]);
-#pragma omp parallel for schedule(static, 1)
-    for (int p = 0; p < parts.count; ++p)
-    {
-      std::size_t o = at[p];
-      for (std::size_t i = parts.lo(p); i < parts.hi(p); ++i)
-        if (binOf(src[i]) == b) next[o++] = src[i];
-    }
-    k -= below;
-    n = next.size();
-    cur.swap(next);
-    src = cur.data();
+    for (std::int64_t i = 0; i < nI; ++i) l = std::min(l, static_cast<double>(src[i].tri)), h = std::max(h, static_cast<double>(src[i].tri));
+    splitAtRank(src, dst, n, k, axis, true, l, h, small, bounds);
+    return;
   }
-  std::vector<R> rest(src, src + n);
-  std::nth_element(rest.begin(), rest.begin() + static_cast<std::ptrdiff_t>(k), rest.end(),
-    [axis](const R& x, const R& y) { return refLess(x, y, axis); });
-  return rest[k];
-}
-
-/// Stable partition of src[0, n) into dst[0, n) on the threads: the elements
-/// refLess than pivot first, then the others, each side in src's order (per
-/// part: count, then place; Blelloch's split by a prefix sum). The centroid
-/// bounds of both sides on the way (exact min/max, in any order the same).
-/// Returns the left count.
-template <typename R>
-std::size_t partitionRefs(const R* src, R* dst, std::size_t n, const R& pivot, int axis, double lo[2][3], double hi[2][3])
-{
+  const double scale = Bins / (hi - lo);
+  if (n <= small || !(lo < hi) || !(scale <= std::numeric_limits<double>::max()))
+  {
+    // small (or too narrow to bin): on this thread
+    std::copy(src, src + n, dst);
+    std::nth_element(dst, dst + k, dst + n, [axis](const R& x, const R& y) { return refLess(x, y, axis); });
+    for (std::size_t i = 0; i < n; ++i) bounds.add(i < k ? 0 : 1, dst[i]);
+    return;
+  }
+  const auto binOf = [&](const R& r) { return std::min(Bins - 1, static_cast<int>((key(r) - lo) * scale)); };
   const Parts parts(n);
   const std::size_t P = static_cast<std::size_t>(parts.count);
-  const double pc = pivot.c[axis];
-  const std::int32_t pt = pivot.tri;
-  std::vector<std::size_t> left(P + 1, 0);
+  std::vector<std::uint32_t> hist(P * Bins, 0);
 #pragma omp parallel for schedule(static, 1)
   for (int p = 0; p < parts.count; ++p)
   {
-    std::size_t c = 0;
-    for (std::size_t i = parts.lo(p); i < parts.hi(p); ++i) c += static_cast<std::size_t>(leftOf(src[i], pc, pt, axis));
-    left[p + 1] = c;
+    std::uint32_t* h = hist.data() + static_cast<std::size_t>(p) * Bins;
+    for (std::size_t i = parts.lo(p); i < parts.hi(p); ++i) ++h[binOf(src[i])];
   }
-  for (std::size_t p = 0; p < P; ++p) left[p + 1] += left[p];
-  const std::size_t nLeft = left[P];
-  std::vector<std::array<double, 12>> box(P); // per part: lo/hi of the left, lo/hi of the right
+  // the bin b holding rank k; per part, where its elements below b, in b
+  // and above b go (bin-major, part-minor)
+  std::vector<std::size_t> inBins(Bins, 0);
+  for (std::size_t p = 0; p < P; ++p)
+    for (int i = 0; i < Bins; ++i) inBins[i] += hist[p * Bins + i];
+  std::size_t below = 0;
+  int b = 0;
+  while (k >= below + inBins[b]) below += inBins[b++];
+  const std::size_t inBin = inBins[b];
+  std::vector<std::array<std::size_t, 3>> at(P);
+  std::array<std::size_t, 3> next = { 0, below, below + inBin };
+  for (std::size_t p = 0; p < P; ++p)
+  {
+    at[p] = next;
+    const std::uint32_t* h = hist.data() + p * Bins;
+    for (int i = 0; i < Bins; ++i) next[i < b ? 0 : (i == b ? 1 : 2)] += h[i];
+  }
+  std::vector<SideBounds> partBounds(P);
 #pragma omp parallel for schedule(static, 1)
   for (int p = 0; p < parts.count; ++p)
   {
-    std::array<double, 12> bx;
-    for (int s = 0; s < 2; ++s)
-      for (int a = 0; a < 3; ++a)
-      {
-        bx[6 * s + a] = std::numeric_limits<double>::infinity();
-        bx[6 * s + 3 + a] = -std::numeric_limits<double>::infinity();
-      }
-    std::size_t l = left[p], r = nLeft + parts.lo(p) - left[p];
+    std::array<std::size_t, 3> o = at[static_cast<std::size_t>(p)];
+    SideBounds& pb = partBounds[static_cast<std::size_t>(p)];
     for (std::size_t i = parts.lo(p); i < parts.hi(p); ++i)
     {
-      const R& x = src[i];
-      const int isLeft = leftOf(x, pc, pt, axis), s = 1 - isLeft;
-      const std::size_t at = isLeft ? l : r;
-      l += static_cast<std::size_t>(isLeft);
-      r += static_cast<std::size_t>(s);
-      dst[at] = x;
-      for (int a = 0; a < 3; ++a)
-      {
-        bx[6 * s + a] = std::min(bx[6 * s + a], x.c[a]);
-        bx[6 * s + 3 + a] = std::max(bx[6 * s + 3 + a], x.c[a]);
-      }
+      const int bin = binOf(src[i]);
+      const int where = bin < b ? 0 : (bin == b ? 1 : 2);
+      dst[o[where]++] = src[i];
+      if (where != 1) pb.add(where / 2, src[i]);
     }
-    box[p] = bx;
   }
-  for (int s = 0; s < 2; ++s)
-    for (int a = 0; a < 3; ++a)
-    {
-      lo[s][a] = std::numeric_limits<double>::infinity();
-      hi[s][a] = -std::numeric_limits<double>::infinity();
-      for (std::size_t p = 0; p < P; ++p)
-      {
-        lo[s][a] = std::min(lo[s][a], box[p][6 * s + a]);
-        hi[s][a] = std::max(hi[s][a], box[p][6 * s + 3 + a]);
-      }
-    }
-  return nLeft;
+  for (const SideBounds& pb : partBounds) bounds.add(pb);
+  // the bin of rank k, dst[below, below + inBin): rank k - below in it
+  R* mid = dst + below;
+  if (inBin > small)
+  {
+    double l = std::numeric_limits<double>::infinity(), h = -l;
+    const std::int64_t mI = static_cast<std::int64_t>(inBin);
+#pragma omp parallel for schedule(static) reduction(min : l) reduction(max : h)
+    for (std::int64_t i = 0; i < mI; ++i) l = std::min(l, key(mid[i])), h = std::max(h, key(mid[i]));
+    splitAtRank(mid, src + below, inBin, k - below, axis, byTri, l, h, small, bounds);
+#pragma omp parallel for schedule(static)
+    for (std::int64_t i = 0; i < mI; ++i) mid[i] = src[below + static_cast<std::size_t>(i)];
+  }
+  else
+  {
+    std::nth_element(mid, dst + k, mid + inBin, [axis](const R& x, const R& y) { return refLess(x, y, axis); });
+    for (std::size_t i = below; i < below + inBin; ++i) bounds.add(i < k ? 0 : 1, dst[i]);
+  }
 }
 } // namespace
 
@@ -245,11 +213,11 @@ private:
 
 /// Centroids computed once in parallel; the build then touches only this
 /// compact array (the triangle records are 328 bytes each). The top nodes
-/// (parallelSplitMin triangles or more: 2^19 by default) split one after the other, each with
-/// all threads: centroid bounds from the parent's partition, the median by
-/// selectRank, a stable partition into the other buffer (ref <-> spare); no
-/// step runs on one thread over more than a small part of the triangles (the
-/// root's nth_element over all of them did: the serial head of the build).
+/// (parallelSplitMin triangles or more: 2^19 by default) split one after the
+/// other, each with all threads (splitAtRank: centroid bounds from the
+/// parent's split, into the other buffer, ref <-> spare); no step runs on
+/// one thread over more than a small part of the triangles (the root's
+/// nth_element over all of them did: the serial head of the build).
 /// The subtrees below are OpenMP tasks that split with std::nth_element by
 /// the same total order; their leaves write the compact copies and the
 /// boxes, their inner nodes the union of their children's boxes once those
@@ -325,15 +293,13 @@ void Bvh::splitTop(BuildData& d, std::int32_t id, std::int32_t first, std::int32
   const std::int32_t half = count / 2;
   BuildData::Ref* src = (inSpare ? d.spare : d.ref).data() + first;
   BuildData::Ref* dst = (inSpare ? d.ref : d.spare).data() + first;
-  const BuildData::Ref pivot = selectRank(src, static_cast<std::size_t>(count), static_cast<std::size_t>(half), axis,
-    clo[axis], chi[axis], std::min<std::size_t>(std::size_t(1) << 14, static_cast<std::size_t>(d.parallelSplitMin) / 8));
-  double lo[2][3], hi[2][3];
-  const std::size_t nLeft = partitionRefs(src, dst, static_cast<std::size_t>(count), pivot, axis, lo, hi);
-  require(nLeft == static_cast<std::size_t>(half), "mesh to SDF: BVH median split lost triangles");
+  SideBounds sides;
+  splitAtRank(src, dst, static_cast<std::size_t>(count), static_cast<std::size_t>(half), axis, false, clo[axis], chi[axis],
+    std::min<std::size_t>(std::size_t(1) << 12, static_cast<std::size_t>(d.parallelSplitMin) / 8), sides);
   node.left = id + 1;
   node.right = id + 1 + (*d.subtreeNodes)(half);
-  this->splitTop(d, node.left, first, half, depth + 1, !inSpare, lo[0], hi[0]);
-  this->splitTop(d, node.right, first + half, count - half, depth + 1, !inSpare, lo[1], hi[1]);
+  this->splitTop(d, node.left, first, half, depth + 1, !inSpare, sides.lo[0], sides.hi[0]);
+  this->splitTop(d, node.right, first + half, count - half, depth + 1, !inSpare, sides.lo[1], sides.hi[1]);
 }
 
 void Bvh::build(BuildData& d, std::int32_t id, std::int32_t first, std::int32_t count, int depth)
