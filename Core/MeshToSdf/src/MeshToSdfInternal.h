@@ -97,7 +97,7 @@ public:
   };
 
   /// Nodes of at least this many triangles split with all threads together
-  /// (parallel selection and partition); below, whole subtrees are tasks.
+  /// (a parallel bucket partition at the median); below, whole subtrees are tasks.
   /// The tree does not depend on it (tests build with a small one).
   static constexpr std::int32_t DefaultParallelSplitMin = std::int32_t(1) << 19;
   explicit Bvh(const TriList& tris, std::int32_t parallelSplitMin = DefaultParallelSplitMin);
@@ -145,7 +145,7 @@ private:
     std::vector<std::int32_t> topNodes; // the top splits' nodes, in preorder
     std::int32_t parallelSplitMin = DefaultParallelSplitMin;
   };
-  /// The top splits, each with all threads (bounds, selection, partition);
+  /// The top splits, each with all threads (a bucket partition at the median, the children's bounds on the way);
   /// lists the subtrees below them in d.subtrees.
   void splitTop(BuildData& d, std::int32_t id, std::int32_t first, std::int32_t count, int depth, bool inSpare,
     const double clo[3], const double chi[3]);
