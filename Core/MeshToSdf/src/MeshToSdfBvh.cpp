@@ -3,9 +3,14 @@
 #include "MeshToSdfInternal.h"
 
 #include "lvdif/Memory.h"
+#include "lvdif/Error.h"
+
+#include <omp.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
+#include <limits>
 
 namespace lvdif
 {
@@ -15,6 +20,163 @@ namespace detail::meshtosdf
 namespace
 {
 constexpr int LeafSize = 4;
+/// The split's total order: centroid coordinate on the axis, then triangle
+/// index (the left child gets the count / 2 smallest: a function of the
+/// triangles, not of the order std::nth_element leaves equal keys in).
+template <typename R>
+bool refLess(const R& x, const R& y, int axis)
+{
+  return x.c[axis] < y.c[axis] || (x.c[axis] == y.c[axis] && x.tri < y.tri);
+}
+
+int longestAxis(const double clo[3], const double chi[3])
+{
+  int axis = 0;
+  for (int a = 1; a < 3; ++a)
+  {
+    if (chi[a] - clo[a] > chi[axis] - clo[axis]) axis = a;
+  }
+  return axis;
+}
+
+/// Parts of [0, n) for the parallel passes: part p is [n p / P, n (p+1) / P).
+/// P is fixed before the region (a loop over parts, not over the team), so
+/// per-part counts stay valid whatever team runs them.
+struct Parts
+{
+  explicit Parts(std::size_t n_)
+    : n(n_)
+    , count(omp_get_max_threads())
+  {
+  }
+  std::size_t lo(int p) const { return n * static_cast<std::size_t>(p) / static_cast<std::size_t>(count); }
+  std::size_t hi(int p) const { return lo(p + 1); }
+  std::size_t n;
+  int count;
+};
+
+/// Bounds of the centroids, [0] the left side, [1] the right.
+struct SideBounds
+{
+  double lo[2][3], hi[2][3];
+  SideBounds()
+  {
+    for (int s = 0; s < 2; ++s)
+      for (int a = 0; a < 3; ++a) lo[s][a] = std::numeric_limits<double>::infinity(), hi[s][a] = -lo[s][a];
+  }
+  template <typename R>
+  void add(int s, const R& x)
+  {
+    for (int a = 0; a < 3; ++a) lo[s][a] = std::min(lo[s][a], x.c[a]), hi[s][a] = std::max(hi[s][a], x.c[a]);
+  }
+  void add(const SideBounds& o)
+  {
+    for (int s = 0; s < 2; ++s)
+      for (int a = 0; a < 3; ++a) lo[s][a] = std::min(lo[s][a], o.lo[s][a]), hi[s][a] = std::max(hi[s][a], o.hi[s][a]);
+  }
+};
+
+/// Moves src[0, n) to dst[0, n) so that dst[0, k) holds the k smallest in
+/// refLess order and dst[k, n) the others, each side in no particular order
+/// (the tree depends on the sets alone: every split selects by the total
+/// order, every leaf sorts its triangles), on the threads; adds the
+/// centroid bounds of both sides to `bounds`. A bucket partition
+/// (selection by distribution counting, e.g. Alabi et al., "Fast
+/// k-Selection Algorithms for Graphics Processing Units", JEA 2012): per-part
+/// histograms of the key over Bins equal bins of [lo, hi]; one scatter puts
+/// the bins below the bin that holds rank k to the left, those above to the
+/// right and that bin between them, which is then split by std::nth_element,
+/// or, when it is large, by this function again (src as its buffer). The
+/// bin of a key is monotone in it (a subtraction, a product and a
+/// truncation, each monotone in IEEE arithmetic), so the bins follow the
+/// order. The key is the coordinate, or the triangle index once every
+/// coordinate is equal (byTri). lo, hi: the keys' bounds over src; small:
+/// what this thread splits alone.
+template <typename R>
+void splitAtRank(R* src, R* dst, std::size_t n, std::size_t k, int axis, bool byTri, double lo, double hi,
+  std::size_t small, SideBounds& bounds)
+{
+  constexpr int Bins = 4096;
+  const auto key = [axis, byTri](const R& r) { return byTri ? static_cast<double>(r.tri) : r.c[axis]; };
+  const std::int64_t nI = static_cast<std::int64_t>(n);
+  if (!(lo < hi) && !byTri && n > small)
+  {
+    // every coordinate equal: by index
+    double l = std::numeric_limits<double>::infinity(), h = -l;
+#pragma omp parallel for schedule(static) reduction(min : l) reduction(max : h)
+    for (std::int64_t i = 0; i < nI; ++i) l = std::min(l, static_cast<double>(src[i].tri)), h = std::max(h, static_cast<double>(src[i].tri));
+    splitAtRank(src, dst, n, k, axis, true, l, h, small, bounds);
+    return;
+  }
+  const double scale = Bins / (hi - lo);
+  if (n <= small || !(lo < hi) || !(scale <= std::numeric_limits<double>::max()))
+  {
+    // small (or too narrow to bin): on this thread
+    std::copy(src, src + n, dst);
+    std::nth_element(dst, dst + k, dst + n, [axis](const R& x, const R& y) { return refLess(x, y, axis); });
+    for (std::size_t i = 0; i < n; ++i) bounds.add(i < k ? 0 : 1, dst[i]);
+    return;
+  }
+  const auto binOf = [&](const R& r) { return std::min(Bins - 1, static_cast<int>((key(r) - lo) * scale)); };
+  const Parts parts(n);
+  const std::size_t P = static_cast<std::size_t>(parts.count);
+  std::vector<std::uint32_t> hist(P * Bins, 0);
+#pragma omp parallel for schedule(static, 1)
+  for (int p = 0; p < parts.count; ++p)
+  {
+    std::uint32_t* h = hist.data() + static_cast<std::size_t>(p) * Bins;
+    for (std::size_t i = parts.lo(p); i < parts.hi(p); ++i) ++h[binOf(src[i])];
+  }
+  // the bin b holding rank k; per part, where its elements below b, in b
+  // and above b go (bin-major, part-minor)
+  std::vector<std::size_t> inBins(Bins, 0);
+  for (std::size_t p = 0; p < P; ++p)
+    for (int i = 0; i < Bins; ++i) inBins[i] += hist[p * Bins + i];
+  std::size_t below = 0;
+  int b = 0;
+  while (k >= below + inBins[b]) below += inBins[b++];
+  const std::size_t inBin = inBins[b];
+  std::vector<std::array<std::size_t, 3>> at(P);
+  std::array<std::size_t, 3> next = { 0, below, below + inBin };
+  for (std::size_t p = 0; p < P; ++p)
+  {
+    at[p] = next;
+    const std::uint32_t* h = hist.data() + p * Bins;
+    for (int i = 0; i < Bins; ++i) next[i < b ? 0 : (i == b ? 1 : 2)] += h[i];
+  }
+  std::vector<SideBounds> partBounds(P);
+#pragma omp parallel for schedule(static, 1)
+  for (int p = 0; p < parts.count; ++p)
+  {
+    std::array<std::size_t, 3> o = at[static_cast<std::size_t>(p)];
+    SideBounds& pb = partBounds[static_cast<std::size_t>(p)];
+    for (std::size_t i = parts.lo(p); i < parts.hi(p); ++i)
+    {
+      const int bin = binOf(src[i]);
+      const int where = bin < b ? 0 : (bin == b ? 1 : 2);
+      dst[o[where]++] = src[i];
+      if (where != 1) pb.add(where / 2, src[i]);
+    }
+  }
+  for (const SideBounds& pb : partBounds) bounds.add(pb);
+  // the bin of rank k, dst[below, below + inBin): rank k - below in it
+  R* mid = dst + below;
+  if (inBin > small)
+  {
+    double l = std::numeric_limits<double>::infinity(), h = -l;
+    const std::int64_t mI = static_cast<std::int64_t>(inBin);
+#pragma omp parallel for schedule(static) reduction(min : l) reduction(max : h)
+    for (std::int64_t i = 0; i < mI; ++i) l = std::min(l, key(mid[i])), h = std::max(h, key(mid[i]));
+    splitAtRank(mid, src + below, inBin, k - below, axis, byTri, l, h, small, bounds);
+#pragma omp parallel for schedule(static)
+    for (std::int64_t i = 0; i < mI; ++i) mid[i] = src[below + static_cast<std::size_t>(i)];
+  }
+  else
+  {
+    std::nth_element(mid, dst + k, mid + inBin, [axis](const R& x, const R& y) { return refLess(x, y, axis); });
+    for (std::size_t i = below; i < below + inBin; ++i) bounds.add(i < k ? 0 : 1, dst[i]);
+  }
+}
 } // namespace
 
 /// Nodes of a subtree over `count` triangles (median splits, leaves of at
@@ -49,82 +211,95 @@ private:
   std::vector<std::pair<std::int32_t, std::int32_t>> Memo;
 };
 
-/// Centroids computed once in parallel; the recursive build then touches
-/// only this compact array (the triangle records are 328 bytes each), and the
-/// median splits permute the centroids themselves (contiguous, no
-/// indirection; the same permutation as sorting indices by them). Subtrees of
-/// more than 2048 triangles build as OpenMP tasks; the node layout (preorder)
-/// does not depend on the threads. The boxes come last, bottom-up, from the
-/// leaf-ordered compact copies (exact min/max: the same bits as boxes taken
-/// during the build).
-Bvh::Bvh(const TriList& tris)
+/// Centroids computed once in parallel; the build then touches only this
+/// compact array (the triangle records are 328 bytes each). The top nodes
+/// (parallelSplitMin triangles or more: 2^19 by default) split one after the
+/// other, each with all threads (splitAtRank: centroid bounds from the
+/// parent's split, into the other buffer, ref <-> spare); no step runs on
+/// one thread over more than a small part of the triangles (the root's
+/// nth_element over all of them did: the serial head of the build).
+/// The subtrees below are OpenMP tasks that split with std::nth_element by
+/// the same total order; their leaves write the compact copies and the
+/// boxes, their inner nodes the union of their children's boxes once those
+/// are done; the top nodes' boxes come last. The node layout (preorder) does
+/// not depend on the threads.
+Bvh::Bvh(const TriList& tris, std::int32_t parallelSplitMin)
   : Tris(tris)
 {
   const std::int32_t n = static_cast<std::int32_t>(tris.size());
+  double tp = now(); // sub-phase times on the trace (tracePhases)
+  const auto lap = [&tp](const char* what) {
+    const double t = now();
+    trace(what, t - tp);
+    tp = t;
+  };
   // fresh arrays first touched by resize(), serially: huge pages (Memory.h)
   resizeLarge(this->Order, tris.size());
   BuildData d;
+  d.parallelSplitMin = std::max(parallelSplitMin, 2 * LeafSize + 2);
   resizeLarge(d.ref, tris.size());
-#pragma omp parallel for schedule(static)
+  if (n >= d.parallelSplitMin) resizeLarge(d.spare, tris.size());
+  double lx = std::numeric_limits<double>::infinity(), ly = lx, lz = lx, hx = -lx, hy = -lx, hz = -lx;
+#pragma omp parallel for schedule(static) reduction(min : lx, ly, lz) reduction(max : hx, hy, hz)
   for (std::int32_t i = 0; i < n; ++i)
   {
     const Tri& t = tris[i];
     auto& r = d.ref[i];
     for (int a = 0; a < 3; ++a) r.c[a] = t.v[0][a] + t.v[1][a] + t.v[2][a];
     r.tri = i;
+    lx = std::min(lx, r.c[0]), ly = std::min(ly, r.c[1]), lz = std::min(lz, r.c[2]);
+    hx = std::max(hx, r.c[0]), hy = std::max(hy, r.c[1]), hz = std::max(hz, r.c[2]);
   }
   const BvhSubtreeNodes nodesOf(n);
   d.subtreeNodes = &nodesOf;
   resizeLarge(this->Nodes, static_cast<std::size_t>(nodesOf(n)));
+  resizeLarge(this->Leaves, tris.size());
+  const double clo[3] = { lx, ly, lz }, chi[3] = { hx, hy, hz };
+  lap("mesh BVH: centroids");
+  this->splitTop(d, 0, 0, n, 0, false, clo, chi);
+  lap("mesh BVH: top splits");
+  const std::int64_t subtrees = static_cast<std::int64_t>(d.subtrees.size());
 #pragma omp parallel
 #pragma omp single
-  this->build(d, 0, 0, n, 0);
-  resizeLarge(this->Leaves, tris.size());
-#pragma omp parallel for schedule(static)
-  for (std::int32_t i = 0; i < n; ++i)
+  for (std::int64_t s = 0; s < subtrees; ++s)
   {
-    this->Order[i] = d.ref[i].tri;
-    const Tri& t = tris[this->Order[i]];
-    LeafTri& l = this->Leaves[i];
-    for (int k = 0; k < 3; ++k) l.v[k] = t.v[k];
-    l.n = t.n;
-  }
-  // leaf boxes in parallel, then the inner nodes from their children
-  // (preorder: children come after their parent)
-  const std::int64_t nodeCount = static_cast<std::int64_t>(this->Nodes.size());
-#pragma omp parallel for schedule(static)
-  for (std::int64_t id = 0; id < nodeCount; ++id)
-  {
-    Node& node = this->Nodes[id];
-    if (node.left >= 0) continue;
-    for (int a = 0; a < 3; ++a)
+    const BuildData::Subtree st = d.subtrees[static_cast<std::size_t>(s)];
+#pragma omp task shared(d) firstprivate(st)
     {
-      node.lo[a] = 1e300;
-      node.hi[a] = -1e300;
-    }
-    for (std::int32_t i = node.first; i < node.first + node.count; ++i)
-    {
-      const V3* v = this->Leaves[i].v;
-      for (int a = 0; a < 3; ++a)
-      {
-        // the triangle's box first (the order of a build that kept boxes:
-        // min/max of +0 and -0 depend on it)
-        node.lo[a] = std::min(node.lo[a], std::min(v[0][a], std::min(v[1][a], v[2][a])));
-        node.hi[a] = std::max(node.hi[a], std::max(v[0][a], std::max(v[1][a], v[2][a])));
-      }
+      if (st.inSpare)
+        std::copy(d.spare.begin() + st.first, d.spare.begin() + st.first + st.count, d.ref.begin() + st.first);
+      this->build(d, st.id, st.first, st.count, st.depth);
     }
   }
-  for (std::int64_t id = nodeCount - 1; id >= 0; --id)
+  lap("mesh BVH: subtrees, leaves and their boxes");
+  // the top nodes' boxes from their children, last first (preorder:
+  // children come after their parent)
+  for (auto id = d.topNodes.rbegin(); id != d.topNodes.rend(); ++id) this->innerBox(*id);
+}
+
+void Bvh::splitTop(BuildData& d, std::int32_t id, std::int32_t first, std::int32_t count, int depth, bool inSpare,
+  const double clo[3], const double chi[3])
+{
+  if (count < d.parallelSplitMin)
   {
-    Node& node = this->Nodes[id];
-    if (node.left < 0) continue;
-    const Node &l = this->Nodes[node.left], &r = this->Nodes[node.right];
-    for (int a = 0; a < 3; ++a)
-    {
-      node.lo[a] = std::min(l.lo[a], r.lo[a]);
-      node.hi[a] = std::max(l.hi[a], r.hi[a]);
-    }
+    d.subtrees.push_back({ id, first, count, depth, inSpare });
+    return;
   }
+  d.topNodes.push_back(id);
+  Node& node = this->Nodes[id];
+  node.first = first;
+  node.count = count;
+  const int axis = longestAxis(clo, chi);
+  const std::int32_t half = count / 2;
+  BuildData::Ref* src = (inSpare ? d.spare : d.ref).data() + first;
+  BuildData::Ref* dst = (inSpare ? d.ref : d.spare).data() + first;
+  SideBounds sides;
+  splitAtRank(src, dst, static_cast<std::size_t>(count), static_cast<std::size_t>(half), axis, false, clo[axis], chi[axis],
+    std::min<std::size_t>(std::size_t(1) << 12, static_cast<std::size_t>(d.parallelSplitMin) / 8), sides);
+  node.left = id + 1;
+  node.right = id + 1 + (*d.subtreeNodes)(half);
+  this->splitTop(d, node.left, first, half, depth + 1, !inSpare, sides.lo[0], sides.hi[0]);
+  this->splitTop(d, node.right, first + half, count - half, depth + 1, !inSpare, sides.lo[1], sides.hi[1]);
 }
 
 void Bvh::build(BuildData& d, std::int32_t id, std::int32_t first, std::int32_t count, int depth)
@@ -144,14 +319,10 @@ void Bvh::build(BuildData& d, std::int32_t id, std::int32_t first, std::int32_t 
         chi[a] = std::max(chi[a], c[a]);
       }
     }
-    int axis = 0;
-    for (int a = 1; a < 3; ++a)
-    {
-      if (chi[a] - clo[a] > chi[axis] - clo[axis]) axis = a;
-    }
+    const int axis = longestAxis(clo, chi);
     const std::int32_t half = count / 2;
     std::nth_element(d.ref.begin() + first, d.ref.begin() + first + half, d.ref.begin() + first + count,
-      [axis](const BuildData::Ref& x, const BuildData::Ref& y) { return x.c[axis] < y.c[axis]; });
+      [axis](const BuildData::Ref& x, const BuildData::Ref& y) { return refLess(x, y, axis); });
     node.left = id + 1;
     node.right = id + 1 + (*d.subtreeNodes)(half);
     if (count > 2048)
@@ -169,9 +340,45 @@ void Bvh::build(BuildData& d, std::int32_t id, std::int32_t first, std::int32_t 
       this->build(d, node.left, first, half, depth + 1);
       this->build(d, node.right, first + half, count - half, depth + 1);
     }
+    this->innerBox(id);
     return;
   }
   node.left = node.right = -1;
+  // a leaf's triangles by index: Order is a function of the triangles too
+  std::sort(d.ref.begin() + first, d.ref.begin() + first + count,
+    [](const BuildData::Ref& x, const BuildData::Ref& y) { return x.tri < y.tri; });
+  // its compact copies and its box (exact min/max: the bits of boxes taken
+  // during the build; the triangle's box first, the order of a build that
+  // kept per-triangle boxes: min/max of +0 and -0 depend on it)
+  for (int a = 0; a < 3; ++a)
+  {
+    node.lo[a] = 1e300;
+    node.hi[a] = -1e300;
+  }
+  for (std::int32_t i = first; i < first + count; ++i)
+  {
+    this->Order[i] = d.ref[i].tri;
+    const Tri& t = this->Tris[this->Order[i]];
+    LeafTri& l = this->Leaves[i];
+    for (int k = 0; k < 3; ++k) l.v[k] = t.v[k];
+    l.n = t.n;
+    for (int a = 0; a < 3; ++a)
+    {
+      node.lo[a] = std::min(node.lo[a], std::min(t.v[0][a], std::min(t.v[1][a], t.v[2][a])));
+      node.hi[a] = std::max(node.hi[a], std::max(t.v[0][a], std::max(t.v[1][a], t.v[2][a])));
+    }
+  }
+}
+
+void Bvh::innerBox(std::int32_t id)
+{
+  Node& node = this->Nodes[id];
+  const Node &l = this->Nodes[node.left], &r = this->Nodes[node.right];
+  for (int a = 0; a < 3; ++a)
+  {
+    node.lo[a] = std::min(l.lo[a], r.lo[a]);
+    node.hi[a] = std::max(l.hi[a], r.hi[a]);
+  }
 }
 
 NearestResult Bvh::nearest(V3 p, std::int32_t hint, double maxDist2) const

@@ -83,7 +83,9 @@ struct NearestResult
 class BvhSubtreeNodes; // MeshToSdfBvh.cpp
 
 /// Binary BVH over the triangles (median split on the longest axis of the
-/// centroid bounds, leaves of at most 4), built in parallel (OpenMP tasks).
+/// centroid bounds, leaves of at most 4), built in parallel: a function of
+/// the triangles alone (the median by the total order (centroid coordinate,
+/// triangle index), a leaf's triangles by index), the same on any thread count.
 class Bvh
 {
 public:
@@ -94,7 +96,11 @@ public:
     std::int32_t first = 0, count = 0;  // leaf range in Order
   };
 
-  explicit Bvh(const TriList& tris);
+  /// Nodes of at least this many triangles split with all threads together
+  /// (a parallel bucket partition at the median); below, whole subtrees are tasks.
+  /// The tree does not depend on it (tests build with a small one).
+  static constexpr std::int32_t DefaultParallelSplitMin = std::int32_t(1) << 19;
+  explicit Bvh(const TriList& tris, std::int32_t parallelSplitMin = DefaultParallelSplitMin);
 
   /// Nearest triangle to p among those closer than sqrt(bestDist2): starts
   /// from the given hint (tri index, -1 for none), exact.
@@ -127,10 +133,26 @@ private:
       double c[3];      // sum of the vertices (3x the centroid: only compared)
       std::int32_t tri; // triangle index
     };
-    LargeVector<Ref> ref; // permuted in place by the build; becomes Order
+    LargeVector<Ref> ref;   // permuted by the build; becomes Order
+    LargeVector<Ref> spare; // the top splits partition ref into spare and back (large meshes only)
     const BvhSubtreeNodes* subtreeNodes = nullptr; // nodes of a subtree by its triangle count
+    struct Subtree
+    {
+      std::int32_t id, first, count, depth;
+      bool inSpare; // its triangles lie in spare
+    };
+    std::vector<Subtree> subtrees; // below the top splits: built as tasks
+    std::vector<std::int32_t> topNodes; // the top splits' nodes, in preorder
+    std::int32_t parallelSplitMin = DefaultParallelSplitMin;
   };
+  /// The top splits, each with all threads (a bucket partition at the median, the children's bounds on the way);
+  /// lists the subtrees below them in d.subtrees.
+  void splitTop(BuildData& d, std::int32_t id, std::int32_t first, std::int32_t count, int depth, bool inSpare,
+    const double clo[3], const double chi[3]);
+  /// A subtree: its nodes, then (a leaf) its entries of Order and Leaves and
+  /// its box, (an inner node) its box from its children's.
   void build(BuildData& d, std::int32_t id, std::int32_t first, std::int32_t count, int depth);
+  void innerBox(std::int32_t id); // the union of the children's boxes
   const TriList& Tris;
   LargeVector<Node> Nodes;
   LargeVector<std::int32_t> Order;

@@ -25,13 +25,37 @@ namespace detail::meshtosdf
 
 namespace
 {
+/// a[i] = a[0] + ... + a[i] for i < n on the threads: each part's sum, the
+/// parts' offsets, then each part again from its offset (integers: the same
+/// as the serial loop).
+void inclusiveSum(std::uint32_t* a, std::size_t n)
+{
+  const int parts = omp_get_max_threads();
+  auto lo = [&](int p) { return n * static_cast<std::size_t>(p) / static_cast<std::size_t>(parts); };
+  std::vector<std::uint32_t> offset(static_cast<std::size_t>(parts) + 1, 0);
+#pragma omp parallel for schedule(static, 1)
+  for (int p = 0; p < parts; ++p)
+  {
+    std::uint32_t sum = 0;
+    for (std::size_t i = lo(p); i < lo(p + 1); ++i) sum += a[i];
+    offset[static_cast<std::size_t>(p) + 1] = sum;
+  }
+  for (int p = 0; p < parts; ++p) offset[static_cast<std::size_t>(p) + 1] += offset[static_cast<std::size_t>(p)];
+#pragma omp parallel for schedule(static, 1)
+  for (int p = 0; p < parts; ++p)
+  {
+    std::uint32_t sum = offset[static_cast<std::size_t>(p)];
+    for (std::size_t i = lo(p); i < lo(p + 1); ++i) a[i] = sum += a[i];
+  }
+}
+
 /// Welds points of bitwise equal coordinates (as the hash map this replaced
 /// did in effect: it hashed the bits; NaN is refused by validate()): ids in
 /// order of first appearance. One flat open-addressing table filled by all
 /// threads: a key's slot holds the smallest index seen with that key (CAS,
 /// then atomic min), so when the fill ends every key holds its first
 /// occurrence whatever the threads did; the ids follow by a prefix count.
-std::uint32_t weldPoints(const std::vector<Vec3f>& points, std::vector<std::uint32_t>& weld, std::vector<std::uint32_t>& firstOf)
+std::uint32_t weldPoints(const std::vector<Vec3f>& points, LargeVector<std::uint32_t>& weld, LargeVector<std::uint32_t>& firstOf)
 {
   constexpr std::uint32_t Empty = 0xffffffffu;
   const std::size_t n = points.size();
@@ -46,7 +70,8 @@ std::uint32_t weldPoints(const std::vector<Vec3f>& points, std::vector<std::uint
     for (int k = 0; k < 3; ++k) h = (h ^ b[k]) * 1099511628211ull;
     return static_cast<std::size_t>(h ^ (h >> 29)) & (cap - 1);
   };
-  std::vector<std::size_t> slotOfPoint(n); // where point i's key lives
+  LargeVector<std::size_t> slotOfPoint; // where point i's key lives
+  resizeLarge(slotOfPoint, n);
 #pragma omp parallel for schedule(static)
   for (std::int64_t i = 0; i < nI; ++i)
   {
@@ -75,14 +100,17 @@ std::uint32_t weldPoints(const std::vector<Vec3f>& points, std::vector<std::uint
     }
   }
   // rep = first occurrence of each point's key; ids = prefix count of firsts
-  weld.resize(n);
+  resizeLarge(weld, n);
 #pragma omp parallel for schedule(static)
   for (std::int64_t i = 0; i < nI; ++i) weld[i] = table[slotOfPoint[static_cast<std::size_t>(i)]].load(std::memory_order_relaxed);
   table.reset();
-  std::vector<std::uint32_t> id(n + 1, 0);
-  for (std::size_t i = 0; i < n; ++i) id[i + 1] = id[i] + (weld[i] == i ? 1 : 0);
+  LargeVector<std::uint32_t> id; // id[i] = firsts before i
+  resizeLarge(id, n + 1);
+#pragma omp parallel for schedule(static)
+  for (std::int64_t i = 0; i < nI; ++i) id[i + 1] = weld[i] == static_cast<std::uint32_t>(i) ? 1 : 0;
+  inclusiveSum(id.data() + 1, n);
   const std::uint32_t nv = id[n];
-  firstOf.resize(nv);
+  resizeLarge(firstOf, nv);
 #pragma omp parallel for schedule(static)
   for (std::int64_t i = 0; i < nI; ++i)
   {
@@ -106,38 +134,6 @@ void ownerParts(std::size_t n, F&& f)
     const std::size_t parts = static_cast<std::size_t>(omp_get_num_threads());
     f(n * p / parts, n * (p + 1) / parts);
   }
-}
-
-/// Counting sort of the 3n corners c = 3t + k into nb buckets by
-/// bucketOf(c) (CSR: start gets nb + 1 offsets), each bucket in corner order
-/// as a serial counting sort leaves it: every thread owns a range of buckets
-/// and scans all corners for them (the scans are cheap, the scattered writes
-/// are split). Returns valueOf(c) bucket by bucket.
-template <typename Value, typename BucketOf, typename ValueOf>
-std::vector<Value> bucketCorners(std::size_t n, std::size_t nb, std::vector<std::uint32_t>& start, BucketOf&& bucketOf,
-  ValueOf&& valueOf)
-{
-  const std::uint32_t nc = static_cast<std::uint32_t>(3 * n);
-  start.assign(nb + 1, 0);
-  ownerParts(nb, [&](std::size_t lo, std::size_t hi) {
-    for (std::uint32_t c = 0; c < nc; ++c)
-    {
-      const std::size_t b = bucketOf(c);
-      if (b - lo < hi - lo) ++start[b + 1];
-    }
-  });
-  for (std::size_t b = 0; b < nb; ++b) start[b + 1] += start[b];
-  std::vector<Value> out;
-  resizeLarge(out, nc);
-  ownerParts(nb, [&](std::size_t lo, std::size_t hi) {
-    std::vector<std::uint32_t> fill(start.begin() + static_cast<std::ptrdiff_t>(lo), start.begin() + static_cast<std::ptrdiff_t>(hi));
-    for (std::uint32_t c = 0; c < nc; ++c)
-    {
-      const std::size_t b = bucketOf(c);
-      if (b - lo < hi - lo) out[fill[b - lo]++] = valueOf(c);
-    }
-  });
-  return out;
 }
 
 double angleAt(V3 p, V3 q, V3 r) // angle at p of triangle p q r
@@ -175,77 +171,155 @@ std::vector<V3> vertexNormalSums(const PreparedMesh& out, std::size_t nv,
 /// that an edge's corners are consecutive, in triangle order. Then per
 /// vertex: the distinct edges, their summed normals (triangle order, written
 /// to en when `normals`) and oriented multiplicities (the boundary chain when
-/// weldPos is given); boundary edges collected per vertex, then in vertex
-/// order so the chain does not depend on the threads.
-void edgePass(PreparedMesh& out, std::size_t nv, const std::vector<V3>* weldPos, bool normals,
+/// weldPos is given), in vertex order, so nothing depends on the threads.
+/// The grouping is a two-level counting sort (MSD radix by the smaller
+/// vertex): the corners into about 4096 buckets of consecutive vertices, on
+/// the threads by per-part counts (each part's corners in order: a stable
+/// scatter); then each bucket on its own (a task of the loop) counted into
+/// its vertices, whose groups are sorted and walked while they are in the
+/// cache. The groups, their order and every sum are those of the one-level
+/// counting sort this replaced (each thread scanned all 3n corners for its
+/// own vertices: 16 threads read every corner 32 times).
+void edgePass(PreparedMesh& out, std::size_t nv, const LargeVector<V3>* weldPos, bool normals,
   const std::function<void(const char*)>& lap)
 {
   const std::size_t n = out.tris.size();
   const auto& welded = out.welded;
-  std::vector<std::uint32_t> start;
-  std::vector<std::uint64_t> corners = bucketCorners<std::uint64_t>(n, nv, start,
-    [&](std::uint32_t c) {
-      const auto& w = welded[c / 3];
-      return std::min(w[c % 3], w[(c % 3 + 1) % 3]);
-    },
-    [&](std::uint32_t c) {
-      const auto& w = welded[c / 3];
-      return static_cast<std::uint64_t>(std::max(w[c % 3], w[(c % 3 + 1) % 3])) << 32 | c;
-    });
+  const std::size_t nc = 3 * n;
+  int shift = 0;
+  while ((nv >> shift) > 4096) ++shift;
+  const std::size_t nb = ((nv - 1) >> shift) + 1; // buckets of 2^shift vertices
+  struct Entry
+  {
+    std::uint64_t key; // larger vertex << 32 | corner
+    std::uint32_t lo;  // smaller vertex
+    std::int32_t dir;  // +1: the corner's edge runs lo -> hi
+  };
+  auto edgeOf = [&](std::size_t c) {
+    const auto& w = welded[c / 3];
+    const std::uint32_t a = w[c % 3], b = w[(c % 3 + 1) % 3];
+    return Entry{ static_cast<std::uint64_t>(std::max(a, b)) << 32 | c, std::min(a, b), a < b ? 1 : -1 };
+  };
+  const int parts = omp_get_max_threads();
+  auto partLo = [&](int p) { return nc * static_cast<std::size_t>(p) / static_cast<std::size_t>(parts); };
+  std::vector<std::size_t> at(static_cast<std::size_t>(parts) * nb, 0); // per part and bucket: count, then place
+#pragma omp parallel for schedule(static, 1)
+  for (int p = 0; p < parts; ++p)
+  {
+    std::size_t* count = at.data() + static_cast<std::size_t>(p) * nb;
+    for (std::size_t c = partLo(p); c < partLo(p + 1); ++c) ++count[edgeOf(c).lo >> shift];
+  }
+  std::vector<std::size_t> bucketStart(nb + 1);
+  std::size_t o = 0;
+  for (std::size_t b = 0; b < nb; ++b)
+  {
+    bucketStart[b] = o;
+    for (int p = 0; p < parts; ++p)
+    {
+      const std::size_t k = at[static_cast<std::size_t>(p) * nb + b];
+      at[static_cast<std::size_t>(p) * nb + b] = o;
+      o += k;
+    }
+  }
+  bucketStart[nb] = o;
+  LargeVector<Entry> entries;
+  resizeLarge(entries, nc);
+#pragma omp parallel for schedule(static, 1)
+  for (int p = 0; p < parts; ++p)
+  {
+    std::size_t* place = at.data() + static_cast<std::size_t>(p) * nb;
+    for (std::size_t c = partLo(p); c < partLo(p + 1); ++c)
+    {
+      const Entry e = edgeOf(c);
+      entries[place[e.lo >> shift]++] = e;
+    }
+  }
   lap("prepare: edge grouping");
 
   const bool boundary = weldPos != nullptr;
-  std::vector<std::vector<std::array<V3, 2>>> boundaryOf(boundary ? nv : 0);
-  std::vector<double> lengthOf(boundary ? nv : 0, 0);
-  std::vector<std::uint32_t> edgesOf(boundary ? nv : 0, 0);
-  const std::int64_t nvI = static_cast<std::int64_t>(nv);
-#pragma omp parallel for schedule(dynamic, 256)
-  for (std::int64_t v = 0; v < nvI; ++v)
+  struct BucketBoundary
   {
-    const std::uint32_t b0 = start[v], b1 = start[v + 1];
-    std::sort(corners.begin() + b0, corners.begin() + b1);
-    for (std::uint32_t e = b0; e < b1;)
+    std::vector<std::array<V3, 2>> segments; // in vertex order
+    std::vector<double> lengthOf;            // per vertex with boundary edges, in vertex order
+    std::size_t edges = 0;
+  };
+  std::vector<BucketBoundary> bucketBoundary(boundary ? nb : 0);
+  const std::int64_t nbI = static_cast<std::int64_t>(nb);
+#pragma omp parallel
+  {
+    std::vector<std::uint32_t> end;
+    std::vector<Entry> group;
+#pragma omp for schedule(dynamic, 1)
+    for (std::int64_t b = 0; b < nbI; ++b)
     {
-      const std::uint32_t hiE = static_cast<std::uint32_t>(corners[e] >> 32);
-      std::uint32_t e1 = e;
-      V3 en;
-      int mult = 0;
-      for (; e1 < b1 && static_cast<std::uint32_t>(corners[e1] >> 32) == hiE; ++e1)
+      const std::size_t e0 = bucketStart[b], e1 = bucketStart[b + 1];
+      const std::size_t v0 = static_cast<std::size_t>(b) << shift;
+      const std::size_t vCount = std::min(nv - v0, std::size_t(1) << shift);
+      // counting sort of the bucket by vertex (stable: corner order)
+      end.assign(vCount + 1, 0);
+      for (std::size_t e = e0; e < e1; ++e) ++end[entries[e].lo - v0 + 1];
+      for (std::size_t i = 0; i < vCount; ++i) end[i + 1] += end[i];
+      group.resize(e1 - e0);
+      for (std::size_t e = e0; e < e1; ++e) group[end[entries[e].lo - v0]++] = entries[e];
+      // now end[i] is the end of vertex v0 + i's group
+      for (std::size_t i = 0, g0 = 0; i < vCount; g0 = end[i], ++i)
       {
-        const std::uint32_t cf = static_cast<std::uint32_t>(corners[e1]);
-        if (normals) en = en + out.tris[cf / 3].n;
-        mult += welded[cf / 3][cf % 3] < hiE ? 1 : -1; // a -> b with a < b counts +1
-      }
-      if (normals)
-      {
-        const V3 enu = normalized(en);
-        for (std::uint32_t f = e; f < e1; ++f)
+        const std::size_t v = v0 + i, g1 = end[i];
+        std::sort(group.begin() + static_cast<std::ptrdiff_t>(g0), group.begin() + static_cast<std::ptrdiff_t>(g1),
+          [](const Entry& x, const Entry& y) { return x.key < y.key; });
+        double length = 0;
+        std::size_t edges = 0;
+        for (std::size_t e = g0; e < g1;)
         {
-          const std::uint32_t cf = static_cast<std::uint32_t>(corners[f]);
-          out.tris[cf / 3].en[cf % 3] = enu; // each corner is in exactly one list
+          const std::uint32_t hiE = static_cast<std::uint32_t>(group[e].key >> 32);
+          std::size_t e1g = e;
+          V3 en;
+          int mult = 0;
+          for (; e1g < g1 && static_cast<std::uint32_t>(group[e1g].key >> 32) == hiE; ++e1g)
+          {
+            const std::uint32_t cf = static_cast<std::uint32_t>(group[e1g].key);
+            if (normals) en = en + out.tris[cf / 3].n;
+            mult += group[e1g].dir; // a -> b with a < b counts +1
+          }
+          if (normals)
+          {
+            const V3 enu = normalized(en);
+            for (std::size_t f = e; f < e1g; ++f)
+            {
+              const std::uint32_t cf = static_cast<std::uint32_t>(group[f].key);
+              out.tris[cf / 3].en[cf % 3] = enu; // each corner is in exactly one group
+            }
+          }
+          e = e1g;
+          if (boundary && mult != 0)
+          {
+            const V3 a = (*weldPos)[v], bv = (*weldPos)[hiE];
+            length += std::abs(mult) * norm(bv - a);
+            ++edges;
+            for (int k = 0; k < std::abs(mult); ++k)
+            {
+              // key (lo, hi) with positive multiplicity means lo -> hi
+              bucketBoundary[b].segments.push_back(mult > 0 ? std::array<V3, 2>{ a, bv } : std::array<V3, 2>{ bv, a });
+            }
+          }
         }
-      }
-      e = e1;
-      if (boundary && mult != 0)
-      {
-        const V3 a = (*weldPos)[v], b = (*weldPos)[hiE];
-        lengthOf[v] += std::abs(mult) * norm(b - a);
-        ++edgesOf[v];
-        for (int k = 0; k < std::abs(mult); ++k)
+        if (edges > 0)
         {
-          // key (lo, hi) with positive multiplicity means lo -> hi
-          boundaryOf[v].push_back(mult > 0 ? std::array<V3, 2>{ a, b } : std::array<V3, 2>{ b, a });
+          bucketBoundary[b].lengthOf.push_back(length);
+          bucketBoundary[b].edges += edges;
         }
       }
     }
   }
   if (boundary)
   {
-    for (std::size_t v = 0; v < nv; ++v)
+    // the vertices' lengths added in vertex order, as one loop over the
+    // vertices did (those without boundary edges added +0)
+    for (const BucketBoundary& bb : bucketBoundary)
     {
-      out.boundaryLength += lengthOf[v];
-      out.boundaryEdges += edgesOf[v];
-      out.boundary.insert(out.boundary.end(), boundaryOf[v].begin(), boundaryOf[v].end());
+      for (const double l : bb.lengthOf) out.boundaryLength += l;
+      out.boundaryEdges += bb.edges;
+      out.boundary.insert(out.boundary.end(), bb.segments.begin(), bb.segments.end());
     }
   }
   lap(boundary ? "prepare: edges and boundary" : "prepare: edge normals");
@@ -270,6 +344,23 @@ void finishPseudoNormals(PreparedMesh& out, const std::vector<V3>& vertexNormal)
   }
   out.pseudoNormals = true;
 }
+/// TriangleMesh::validate()'s checks of every point and index on the
+/// threads; where one fails (or the cheap checks do), validate() itself
+/// runs and throws its message (the first bad point or index).
+void validateOnThreads(const TriangleMesh& mesh)
+{
+  const std::int64_t np = static_cast<std::int64_t>(mesh.points.size());
+  const std::int64_t nt = static_cast<std::int64_t>(mesh.triangles.size());
+  const std::size_t points = mesh.points.size();
+  int bad = 0;
+#pragma omp parallel for schedule(static) reduction(| : bad)
+  for (std::int64_t i = 0; i < np; ++i)
+    for (float c : mesh.points[static_cast<std::size_t>(i)]) bad |= std::isfinite(c) ? 0 : 1;
+#pragma omp parallel for schedule(static) reduction(| : bad)
+  for (std::int64_t t = 0; t < nt; ++t)
+    for (std::uint32_t v : mesh.triangles[static_cast<std::size_t>(t)]) bad |= v < points ? 0 : 1;
+  if (bad || nt == 0 || (!mesh.normals.empty() && mesh.normals.size() != points)) mesh.validate();
+}
 } // namespace
 
 PreparedMesh prepareMesh(const TriangleMesh& mesh, bool pseudoNormals)
@@ -288,17 +379,17 @@ void prepareMesh(const TriangleMesh& mesh, PreparedMesh& out, bool pseudoNormals
     trace(what, t - tp);
     tp = t;
   };
-  mesh.validate();
+  validateOnThreads(mesh);
   out = PreparedMesh();
   const std::size_t nt = mesh.triangles.size();
 
   // Weld by exact position so pseudo-normals and the boundary chain see the
   // surface's topology even in a soup with duplicated points.
-  std::vector<std::uint32_t> weld, firstOf;
+  LargeVector<std::uint32_t> weld, firstOf;
   const std::size_t nv = weldPoints(mesh.points, weld, firstOf);
   out.vertices = nv;
   auto toV3 = [](const Vec3f& p) { return V3{ p[0], p[1], p[2] }; };
-  std::vector<V3> weldPos;
+  LargeVector<V3> weldPos;
   resizeLarge(weldPos, nv);
   const std::int64_t nvAll = static_cast<std::int64_t>(nv);
 #pragma omp parallel for schedule(static)
@@ -313,14 +404,15 @@ void prepareMesh(const TriangleMesh& mesh, PreparedMesh& out, bool pseudoNormals
     for (int k = 0; k < 3; ++k) v[k] = toV3(mesh.points[ix[k]]);
     return cross(v[1] - v[0], v[2] - v[0]);
   };
-  std::vector<std::uint32_t> slot(nt + 1, 0);
+  LargeVector<std::uint32_t> slot; // slot[t] = kept triangles before t
+  resizeLarge(slot, nt + 1);
 #pragma omp parallel for schedule(static)
   for (std::int64_t t = 0; t < ntI; ++t)
   {
     V3 v[3];
     slot[t + 1] = norm(faceCross(t, v)) > 0 ? 1 : 0;
   }
-  for (std::size_t t = 0; t < nt; ++t) slot[t + 1] += slot[t];
+  inclusiveSum(slot.data() + 1, nt);
   const std::size_t n = slot[nt];
   out.degenerate = nt - n;
   require(n > 0, "mesh has no triangle of non-zero area (" + std::to_string(out.degenerate) +

@@ -268,6 +268,149 @@ TEST(MeshToSdfBuild, BvhAndNearestIndexAreTheSameOnAnyThreadCountAndExact)
   }
 }
 
+/// Two parallel grids of 1/8 squares (z = 0 and z = 1, the second reversed)
+/// and 200 copies of one triangle: many equal centroid coordinates (ties of
+/// the split's order) and query points equidistant from many triangles.
+TriangleMesh tiedGrids()
+{
+  TriangleMesh m;
+  constexpr int N = 64;
+  for (int z = 0; z < 2; ++z)
+  {
+    const auto base = static_cast<std::uint32_t>(m.points.size());
+    for (int j = 0; j <= N; ++j)
+      for (int i = 0; i <= N; ++i) m.points.push_back({ i / 8.0f, j / 8.0f, static_cast<float>(z) });
+    for (int j = 0; j < N; ++j)
+      for (int i = 0; i < N; ++i)
+      {
+        const std::uint32_t a = base + static_cast<std::uint32_t>(j * (N + 1) + i), b = a + 1, c = a + N + 1, d = c + 1;
+        if (z == 0)
+        {
+          m.triangles.push_back({ a, b, d });
+          m.triangles.push_back({ a, d, c });
+        }
+        else
+        {
+          m.triangles.push_back({ a, d, b });
+          m.triangles.push_back({ a, c, d });
+        }
+      }
+  }
+  const auto base = static_cast<std::uint32_t>(m.points.size());
+  m.points.push_back({ 1.0f, 1.0f, 0.5f });
+  m.points.push_back({ 1.5f, 1.0f, 0.5f });
+  m.points.push_back({ 1.0f, 1.5f, 0.5f });
+  for (int c = 0; c < 200; ++c) m.triangles.push_back({ base, base + 1, base + 2 });
+  return m;
+}
+
+/// Centroid sums as the Bvh compares them.
+std::array<double, 3> centroidSum(const Tri& t)
+{
+  std::array<double, 3> c;
+  for (int a = 0; a < 3; ++a) c[a] = t.v[0][a] + t.v[1][a] + t.v[2][a];
+  return c;
+}
+
+// The Bvh is a function of the triangles: every inner node puts the count / 2
+// smallest of its triangles by (centroid coordinate on the longest axis of
+// their centroid bounds, index) on the left, every leaf lists its triangles
+// by index; the same tree whether the top splits run on all threads
+// (selection and partition in parallel, down to a small threshold here) or
+// as tasks, on any thread count.
+TEST(MeshToSdfBuild, BvhIsAFunctionOfTheTrianglesWhateverSplitsInParallel)
+{
+  for (const TriangleMesh& mesh : { tiedGrids(), makeSphereMesh(0.1f, -0.2f, 0.05f, 1.0f, 190, 190) })
+  {
+    const PreparedMesh pm = prepareMesh(mesh, false);
+    const auto ref = withThreads(1, [&] { return std::make_unique<Bvh>(pm.tris); });
+    for (const auto& [threads, splitMin] : { std::pair{ 1, 64 }, std::pair{ 4, 64 }, std::pair{ 3, 1000 }, std::pair{ 4, 1 << 19 } })
+    {
+      const auto b = withThreads(threads, [&] { return std::make_unique<Bvh>(pm.tris, splitMin); });
+      ASSERT_EQ(b->nodes().size(), ref->nodes().size());
+      EXPECT_EQ(std::memcmp(b->nodes().data(), ref->nodes().data(), ref->nodes().size() * sizeof(Bvh::Node)), 0)
+        << threads << " " << splitMin;
+      EXPECT_EQ(b->order(), ref->order()) << threads << " " << splitMin;
+      EXPECT_EQ(std::memcmp(b->leaves().data(), ref->leaves().data(), ref->leaves().size() * sizeof(LeafTri)), 0);
+    }
+    const auto& order = ref->order();
+    std::size_t inner = 0;
+    for (const Bvh::Node& nd : ref->nodes())
+    {
+      if (nd.left < 0)
+      {
+        for (std::int32_t i = nd.first + 1; i < nd.first + nd.count; ++i) ASSERT_LT(order[i - 1], order[i]);
+        continue;
+      }
+      ++inner;
+      double lo[3] = { 1e300, 1e300, 1e300 }, hi[3] = { -1e300, -1e300, -1e300 };
+      for (std::int32_t i = nd.first; i < nd.first + nd.count; ++i)
+      {
+        const auto c = centroidSum(pm.tris[static_cast<std::size_t>(order[i])]);
+        for (int a = 0; a < 3; ++a) lo[a] = std::min(lo[a], c[a]), hi[a] = std::max(hi[a], c[a]);
+      }
+      int axis = 0;
+      for (int a = 1; a < 3; ++a)
+        if (hi[a] - lo[a] > hi[axis] - lo[axis]) axis = a;
+      const Bvh::Node& l = ref->nodes()[static_cast<std::size_t>(nd.left)];
+      ASSERT_EQ(l.count, nd.count / 2);
+      auto key = [&](std::int32_t i) {
+        const std::int32_t t = order[static_cast<std::size_t>(i)];
+        return std::pair{ centroidSum(pm.tris[static_cast<std::size_t>(t)])[axis], t };
+      };
+      auto maxLeft = key(l.first), minRight = key(l.first + l.count);
+      for (std::int32_t i = l.first; i < l.first + l.count; ++i) maxLeft = std::max(maxLeft, key(i));
+      for (std::int32_t i = l.first + l.count; i < nd.first + nd.count; ++i) minRight = std::min(minRight, key(i));
+      ASSERT_LT(maxLeft, minRight);
+    }
+    EXPECT_GT(inner, 1000u);
+  }
+}
+
+// nearest() against brute force where distances tie everywhere: lattice
+// points over two grids of equal squares (several triangles at the same
+// distance, the midplane equidistant from both grids) and 200 copies of one
+// triangle; the lowest index wins, with or without a hint, on trees split in
+// parallel or not.
+TEST(MeshToSdfBuild, BvhNearestEqualsBruteForceWithManyTies)
+{
+  const TriangleMesh mesh = tiedGrids();
+  const PreparedMesh pm = prepareMesh(mesh, false);
+  const auto tasks = std::make_unique<Bvh>(pm.tris);
+  const auto split = withThreads(4, [&] { return std::make_unique<Bvh>(pm.tris, 64); });
+  std::mt19937 rng(11);
+  std::uniform_int_distribution<std::int32_t> anyTri(0, static_cast<std::int32_t>(pm.tris.size()) - 1);
+  int tied = 0, queries = 0;
+  for (const double z : { 0.5, 0.25, 0.0, 1.0, -0.125, 0.75 })
+    for (int j = -2; j <= 130; j += 3)
+      for (int i = -2; i <= 130; i += 5)
+      {
+        const V3 p{ i / 16.0, j / 16.0, z };
+        NearestResult want;
+        want.dist2 = 1e300;
+        int atBest = 0;
+        for (std::size_t t = 0; t < pm.tris.size(); ++t)
+        {
+          const Closest c = closestPointOnTriangle(p, pm.tris[t].v[0], pm.tris[t].v[1], pm.tris[t].v[2]);
+          const double d2 = dot(c.point - p, c.point - p);
+          if (d2 < want.dist2) want = { d2, static_cast<std::int32_t>(t), c }, atBest = 0;
+          atBest += d2 == want.dist2;
+        }
+        tied += atBest > 1;
+        ++queries;
+        for (const Bvh* b : { tasks.get(), split.get() })
+        {
+          const NearestResult r = b->nearest(p, -1, 1e300);
+          ASSERT_EQ(r.tri, want.tri) << p.x << " " << p.y << " " << p.z;
+          ASSERT_EQ(r.dist2, want.dist2);
+          const NearestResult h = b->nearest(p, anyTri(rng), 1e300);
+          ASSERT_EQ(h.tri, want.tri);
+          ASSERT_EQ(h.dist2, want.dist2);
+        }
+      }
+  EXPECT_GT(tied, queries / 2); // the ties are there
+}
+
 TEST(MeshToSdfBuild, ClosedMeshClosureIsTheMeshWithItsTree)
 {
   const TriangleMesh mesh = makeSphereMesh(0.05f, -0.03f, 0.02f, 1.0f, 20, 40);

@@ -7,7 +7,9 @@
 // prepare also times prepareMesh without the pseudo-normals (what the
 // WindingNumber and Unsigned signs build) and addPseudoNormals after it.
 // usage: bench_mesh_to_sdf_build [DAMAGE:]MESH [REPEATS=3] [PHASES=prepare,bvh,winding,gpuhost,nearest,touch]
-// (gpuhost: the three host builds of the one-call CUDA WindingNumber path in a row; touch:
+// (beside: prepareMesh without pseudo-normals with the mesh Bvh on its own thread beside the
+// edge pass, as the one-call CUDA route builds them; serialhead: one median split on one
+// thread over all triangles and over a subtree's 2^19 - 1; gpuhost: the three host builds of the one-call CUDA WindingNumber path in a row; touch:
 // the first touch of 256 MB of fresh memory by 1 thread, by all, and by one
 // with transparent huge pages asked for)
 // (DAMAGE as in bench_mesh_to_sdf, e.g. sub2:armadillo.off for 832k triangles)
@@ -28,6 +30,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
+#include <future>
 #include <memory>
 #include <string>
 #include <vector>
@@ -163,6 +166,68 @@ int main(int argc, char** argv)
       std::unique_ptr<Bvh> b;
       const double ms = medianBuildMs(repeats, [&] { b.reset(); }, [&] { b = std::make_unique<Bvh>(pm.tris); });
       rows.push_back({ "mesh Bvh", bench::fmt(ms, 1), hashBvh(*b) });
+    }
+    if (wants("beside"))
+    {
+      // the one-call CUDA WindingNumber route's host build before the upload
+      // (prepareInternal): prepareMesh without the pseudo-normals, the mesh
+      // tree on its own thread from when the records are final, beside the
+      // edge pass
+      PreparedMesh x;
+      std::unique_ptr<Bvh> b;
+      const double ms = medianBuildMs(repeats, [&] { b.reset(), x = PreparedMesh(); }, [&] {
+        std::future<std::unique_ptr<Bvh>> tree;
+        const int threads = omp_get_max_threads();
+        const bool tracing = tracePhasesActive();
+        prepareMesh(mesh, x, false, [&] {
+          tree = std::async(std::launch::async, [&x, threads, tracing] {
+            omp_set_num_threads(threads);
+            const PhaseTraceScope scope(tracing);
+            const double tb = now();
+            auto t = std::make_unique<Bvh>(x.tris);
+            trace("mesh BVH (beside the edge pass)", now() - tb);
+            return t;
+          });
+        });
+        b = tree.get();
+      });
+      rows.push_back({ "prepareMesh, the tree beside the edge pass (one-call CUDA route)", bench::fmt(ms, 1),
+        hashPrepared(x) + " " + hashBvh(*b) });
+    }
+    if (wants("serialhead"))
+    {
+      // the serial head of a median-split build: one split of m triangles on
+      // one thread (centroid bounds, then std::nth_element by the coordinate),
+      // as the tree's root split ran before the top splits went parallel (m =
+      // all triangles) and as the largest split that still runs on one thread
+      // does now (a subtree's root, m < 2^19 = Bvh::DefaultParallelSplitMin;
+      // spelled out so that this file also builds against older code)
+      struct Ref
+      {
+        double c[3];
+        std::int32_t tri;
+      };
+      std::vector<Ref> all(pm.tris.size());
+      for (std::size_t i = 0; i < all.size(); ++i)
+      {
+        for (int a = 0; a < 3; ++a) all[i].c[a] = pm.tris[i].v[0][a] + pm.tris[i].v[1][a] + pm.tris[i].v[2][a];
+        all[i].tri = static_cast<std::int32_t>(i);
+      }
+      for (const std::size_t m : { all.size(), std::min(all.size(), (std::size_t(1) << 19) - 1) })
+      {
+        std::vector<Ref> r;
+        const double ms = medianBuildMs(repeats, [&] { r.assign(all.begin(), all.begin() + static_cast<std::ptrdiff_t>(m)); }, [&] {
+          double lo[3] = { 1e300, 1e300, 1e300 }, hi[3] = { -1e300, -1e300, -1e300 };
+          for (const Ref& x : r)
+            for (int a = 0; a < 3; ++a) lo[a] = std::min(lo[a], x.c[a]), hi[a] = std::max(hi[a], x.c[a]);
+          int axis = 0;
+          for (int a = 1; a < 3; ++a)
+            if (hi[a] - lo[a] > hi[axis] - lo[axis]) axis = a;
+          std::nth_element(r.begin(), r.begin() + static_cast<std::ptrdiff_t>(m / 2), r.end(),
+            [axis](const Ref& x, const Ref& y) { return x.c[axis] < y.c[axis]; });
+        });
+        rows.push_back({ "one split on one thread, " + std::to_string(m) + " triangles", bench::fmt(ms, 1), "" });
+      }
     }
     if (wants("winding"))
     {
