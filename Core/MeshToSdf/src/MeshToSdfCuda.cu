@@ -96,7 +96,6 @@ public:
     , MeshBvh(bvh)
   {
     this->Dbvh = uploadBvh(this->Arena, this->Upload.s, bvh);
-    this->addChildPairs();
     if (normals) this->addNormals();
     if (winding)
     {
@@ -120,32 +119,6 @@ public:
       this->ReservedDipoleNodes = this->Arena.alloc<DipoleNode>(this->EdgeCap + 2);
     }
     LVDIF_CUDA_CHECK(cudaDeviceSynchronize());
-    this->checkChildPairs();
-  }
-  /// The distance pass's form of the mesh BVH (GpuChildPair), made on the
-  /// GPU from the uploaded nodes; checked by checkChildPairs once the
-  /// uploads are done. (Temporary A/B switch: LVDIF_CUDA_CHILD_PAIRS=0.)
-  void addChildPairs()
-  {
-    const char* e = std::getenv("LVDIF_CUDA_CHILD_PAIRS");
-    if (e && std::atoi(e) == 0) return;
-    const long long n = static_cast<long long>(this->MeshBvh.nodes().size());
-    GpuChildPair* pairs = this->Arena.alloc<GpuChildPair>(static_cast<std::size_t>(n));
-    this->PairsBad = this->Arena.alloc<int>(1);
-    LVDIF_CUDA_CHECK(cudaMemsetAsync(this->PairsBad, 0, sizeof(int), this->Upload.s));
-    const long long blocks = std::max<long long>(1, std::min<long long>((n + 255) / 256, 4096));
-    childPairsKernel<<<static_cast<unsigned>(blocks), 256, 0, this->Upload.s>>>(this->Dbvh.nodes, n, pairs, this->PairsBad);
-    LVDIF_CUDA_CHECK(cudaGetLastError());
-    this->Dbvh.pairs = pairs;
-  }
-  void checkChildPairs()
-  {
-    if (!this->PairsBad) return;
-    int flag = 0;
-    LVDIF_CUDA_CHECK(cudaMemcpy(&flag, this->PairsBad, sizeof(int), cudaMemcpyDeviceToHost));
-    this->Arena.release(this->PairsBad);
-    this->PairsBad = nullptr;
-    require(flag == 0, "mesh to SDF: a BVH leaf holds more than 255 triangles (internal error)");
   }
   // addNormals/addWinding run under the prepared mesh's lock while sessions
   // of other threads may be launching kernels: the parts they add are
@@ -221,7 +194,6 @@ private:
   std::atomic<bool> Winding{ false };
   std::atomic<const Tri*> Full{ nullptr }; // the full triangle records (Normal/PseudoNormal)
   const FarCone* Cones = nullptr;          // the node cones, written before Full
-  int* PairsBad = nullptr; // childPairsKernel's flag until checked
   DevBvh Reserved; // windingLater buffers
   std::size_t ClosedCap = 0, EdgeCap = 0;
   int* ReservedSlot = nullptr;

@@ -45,28 +45,12 @@ struct GpuNode
 
 using GpuTri = LeafTri; // vertices and unit normal, in BVH leaf order
 
-/// The mesh BVH as the distance pass walks it: per inner node of the GpuNode
-/// tree (same index), its two children's boxes as floats rounded outward and
-/// where they lead, in 64 bytes: one load per visit instead of the node and
-/// its two children's boxes (160 bytes in three loads). Distances to the
-/// rounded boxes are lower bounds of those to the exact boxes, so a child is
-/// dropped only where Bvh::nearest drops it too.
-struct GpuChildPair
-{
-  float lo[2][3], hi[2][3];
-  int child[2];           // >= 0: an inner node; < 0: a leaf, its first slot -child - 1
-  unsigned char count[2]; // a leaf's triangles (at most LeafSize)
-  unsigned char pad[6];
-};
-static_assert(sizeof(GpuChildPair) == 64, "one 64-byte load per visit");
-
 struct DevBvh
 {
   const Tri* tris = nullptr;    // full records by triangle index: mesh BVH, Normal/PseudoNormal sessions only
   const GpuTri* leaf = nullptr; // leaf[i] = triangle order[i]
   const GpuNode* nodes = nullptr;
   const int* order = nullptr;
-  const GpuChildPair* pairs = nullptr; // the mesh BVH only (childPairsKernel); else null
 };
 
 struct Params
@@ -110,7 +94,10 @@ __device__ V3 positionOf(const Params& P, long long i, long long j, long long k)
 /// (its spills were the kernel's main traffic; 13.3M triangles at 1024^3 on
 /// an H200: distance pass 6 % shorter). Skipping a leaf's triangles by their
 /// own boxes (with NearestIndex's tau) was measured too and cost more than it
-/// saved (docs/BENCHMARKS.md).
+/// saved, and so did a tree of child pairs (both children's boxes as floats
+/// rounded outward in one 64-byte record: one load per visit instead of
+/// three; the bunny's and the armadillo's distance pass 20-35 % longer, the
+/// large meshes' unchanged; docs/BENCHMARKS.md).
 __device__ NearestResult nearestDev(const DevBvh& b, V3 p, int hintSlot, double maxDist2, int& bestSlot)
 {
   NearestResult best;
@@ -167,117 +154,6 @@ __device__ NearestResult nearestDev(const DevBvh& b, V3 p, int hintSlot, double 
     // the pushes compare the exact doubles, as Bvh::nearest does
     if (farD <= best.dist2 && top < 64) { stackNode[top] = farC; stackD2[top++] = __double2float_rd(farD); }
     if (nearD <= best.dist2 && top < 64) { stackNode[top] = nearC; stackD2[top++] = __double2float_rd(nearD); }
-  }
-  return best;
-}
-
-/// pairs[id] for every inner node id of the tree (leaves' entries unused);
-/// *bad set if a leaf holds more triangles than a count byte.
-__global__ void childPairsKernel(const GpuNode* nodes, long long n, GpuChildPair* pairs, int* bad)
-{
-  for (long long id = static_cast<long long>(blockIdx.x) * blockDim.x + threadIdx.x; id < n;
-       id += static_cast<long long>(gridDim.x) * blockDim.x)
-  {
-    const GpuNode nd = nodes[id];
-    if (nd.left < 0) continue;
-    GpuChildPair q;
-    for (int s = 0; s < 2; ++s)
-    {
-      const int c = s == 0 ? nd.left : nd.right;
-      const GpuNode ch = nodes[c];
-      for (int a = 0; a < 3; ++a)
-      {
-        q.lo[s][a] = __double2float_rd(ch.lo[a]);
-        q.hi[s][a] = __double2float_ru(ch.hi[a]);
-      }
-      if (ch.left < 0)
-      {
-        if (ch.count > 255) *bad = 1;
-        q.child[s] = -ch.first - 1;
-        q.count[s] = static_cast<unsigned char>(ch.count);
-      }
-      else
-      {
-        q.child[s] = c;
-        q.count[s] = 0;
-      }
-    }
-    for (int k = 0; k < 6; ++k) q.pad[k] = 0;
-    pairs[id] = q;
-  }
-}
-
-/// nearestDev on the child pairs (the same result: the nearest triangle,
-/// ties to the lowest index). A leaf child within reach is tested at once,
-/// nearer first (no stack entry); inner children are pushed, nearer on top.
-__device__ NearestResult nearestPairsDev(const DevBvh& b, V3 p, int hintSlot, double maxDist2, int& bestSlot)
-{
-  NearestResult best;
-  best.dist2 = maxDist2;
-  bestSlot = -1;
-  auto test = [&](int i) {
-    const int ti = b.order[i];
-    if (ti == best.tri) return;
-    const GpuTri& t = b.leaf[i];
-    const Closest c = closestPointOnTriangle(p, t.v[0], t.v[1], t.v[2]);
-    const V3 d = c.point - p;
-    const double d2 = dot(d, d);
-    if (d2 < best.dist2 || (d2 == best.dist2 && (best.tri < 0 || ti < best.tri)))
-    {
-      best.dist2 = d2;
-      best.tri = ti;
-      best.closest = c;
-      bestSlot = i;
-    }
-  };
-  if (hintSlot >= 0)
-  {
-    const GpuTri& t = b.leaf[hintSlot];
-    const Closest c = closestPointOnTriangle(p, t.v[0], t.v[1], t.v[2]);
-    const V3 d = c.point - p;
-    const double d2 = dot(d, d);
-    if (d2 <= best.dist2)
-    {
-      best.dist2 = d2;
-      best.tri = b.order[hintSlot];
-      best.closest = c;
-      bestSlot = hintSlot;
-    }
-  }
-  const GpuNode root = b.nodes[0];
-  const double rootD2 = pointBoxDist2(p, root.lo, root.hi);
-  if (rootD2 > best.dist2) return best;
-  if (root.left < 0)
-  {
-    for (int i = root.first; i < root.first + root.count; ++i) test(i);
-    return best;
-  }
-  int stackNode[64];
-  float stackD2[64];
-  int top = 0;
-  stackNode[top] = 0;
-  stackD2[top++] = __double2float_rd(rootD2);
-  while (top > 0)
-  {
-    --top;
-    if (static_cast<double>(stackD2[top]) > best.dist2) continue;
-    const GpuChildPair q = b.pairs[stackNode[top]];
-    double d[2];
-    for (int s = 0; s < 2; ++s)
-    {
-      const double lo[3] = { q.lo[s][0], q.lo[s][1], q.lo[s][2] }, hi[3] = { q.hi[s][0], q.hi[s][1], q.hi[s][2] };
-      d[s] = pointBoxDist2(p, lo, hi);
-    }
-    const int nearS = d[0] <= d[1] ? 0 : 1, farS = 1 - nearS;
-    for (int s : { nearS, farS })
-      if (q.child[s] < 0 && d[s] <= best.dist2)
-        for (int i = -q.child[s] - 1, e = i + q.count[s]; i < e; ++i) test(i);
-    for (int s : { farS, nearS })
-      if (q.child[s] >= 0 && d[s] <= best.dist2 && top < 64)
-      {
-        stackNode[top] = q.child[s];
-        stackD2[top++] = __double2float_rd(d[s]);
-      }
   }
   return best;
 }
@@ -404,8 +280,7 @@ __device__ void queryRun(const DevBvh& bvh, const Params& P, const DistanceRunAt
     }
     const V3 p = positionOf(P, i, r.j, r.k);
     int slot = -1;
-    const double reach2 = P.bounded ? P.reach * P.reach : 1e300;
-    const NearestResult nr = bvh.pairs ? nearestPairsDev(bvh, p, hint, reach2, slot) : nearestDev(bvh, p, hint, reach2, slot);
+    const NearestResult nr = nearestDev(bvh, p, hint, P.bounded ? P.reach * P.reach : 1e300, slot);
     double d = nr.tri < 0 ? P.band : sqrt(nr.dist2) * P.toOut;
     lower = nr.tri < 0 ? P.reach : sqrt(nr.dist2);
     d = fmin(d, P.band);
