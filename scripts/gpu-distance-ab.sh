@@ -27,17 +27,7 @@ L="$OUT/bench.log"
 [ -f "$BEFORE" ] || { echo "no tarball of the old code at $BEFORE"; exit 1; }
 gpu_begin
 mkdir -p /tmp/before && tar -xf "$BEFORE" -C /tmp/before
-CFG="-DLVDIF_CORE_ONLY=ON -DLVDIF_CUDA=ON -DCMAKE_CUDA_ARCHITECTURES=90 -DCMAKE_BUILD_TYPE=Release"
-half=$(( $(nproc) / 2 ))
-( cmake -S /tmp/before -B b-before $CFG && cmake --build b-before -j"$half" --target bench_mesh_to_sdf ) \
-  > "$OUT/build-before.log" 2>&1 &
-( cmake -S . -B b-after $CFG && cmake --build b-after -j"$half" --target bench_mesh_to_sdf LVDIFMeshToSdfTests ) \
-  > "$OUT/build.log" 2>&1
-after_rc=$?
-wait
-[ "$after_rc" = 0 ] || { grep -B2 -A10 -i "error" "$OUT/build.log" | head -80; exit 1; }
-[ -x b-before/Testing/Benchmarks/Core/bench_mesh_to_sdf ] || { tail -40 "$OUT/build-before.log"; exit 1; }
-echo "builds done after $(( $(date +%s) - T0 )) s" | tee "$OUT/summary.txt"
+gpu_build_ab "bench_mesh_to_sdf" "bench_mesh_to_sdf LVDIFMeshToSdfTests"
 
 TESTS='MeshToSdfCuda.*:MeshToSdfRegion.Cuda*:MeshToSdfFarBlocks.*:MeshToSdfBuild.*:MeshToSdf.PreparedMesh*'
 timeout 200 b-after/Core/MeshToSdf/LVDIFMeshToSdfTests --gtest_filter="$TESTS" > "$OUT/tests.log" 2>&1

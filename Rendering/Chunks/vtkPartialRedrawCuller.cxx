@@ -343,24 +343,20 @@ double vtkPartialRedrawCuller::Cull(vtkRenderer* ren, vtkProp** propList, int& l
 
   // Screen rectangles of this frame's props.
   vtkMatrix4x4* m = ren->GetActiveCamera()->GetCompositeProjectionTransformMatrix(ren->GetTiledAspectRatio(), -1, 1);
-  auto boxRect = [&](const double* b, int pad) {
-    if (!b)
-    {
-      return viewport; // 2D props and the like: assume everywhere
-    }
-    if (!vtkMath::AreBoundsInitialized(b) || b[0] > b[1] || b[2] > b[3] || b[4] > b[5])
-    {
-      return Rect{}; // draws nothing
-    }
+  // The pixel rectangle (padded, clamped to the viewport) of n projected
+  // points, point(i, p4) giving the i-th; the viewport when one lies behind
+  // the eye (the projection does not bound it).
+  auto projectedRect = [&](std::size_t n, int pad, auto point) {
     double lo[2] = { VTK_DOUBLE_MAX, VTK_DOUBLE_MAX }, hi[2] = { -VTK_DOUBLE_MAX, -VTK_DOUBLE_MAX };
-    for (int c = 0; c < 8; ++c)
+    for (std::size_t i = 0; i < n; ++i)
     {
-      const double p4[4] = { b[c & 1], b[2 + ((c >> 1) & 1)], b[4 + ((c >> 2) & 1)], 1.0 };
-      double q[4];
+      double p4[4], q[4];
+      point(i, p4);
+      p4[3] = 1.0;
       m->MultiplyPoint(p4, q);
       if (!(q[3] > 1e-12))
       {
-        return viewport; // reaches behind the eye: the projection does not bound it
+        return viewport;
       }
       for (int a = 0; a < 2; ++a)
       {
@@ -377,36 +373,31 @@ double vtkPartialRedrawCuller::Cull(vtkRenderer* ren, vtkProp** propList, int& l
     r.y1 = clampTo(std::ceil(hi[1]) + 1 + pad, viewport.y0, viewport.y1);
     return r;
   };
-  // The rectangle of projected points (x, y, z each), as boxRect's.
+  // The rectangle of a box's 8 corners.
+  auto boxRect = [&](const double* b, int pad) {
+    if (!b)
+    {
+      return viewport; // 2D props and the like: assume everywhere
+    }
+    if (!vtkMath::AreBoundsInitialized(b) || b[0] > b[1] || b[2] > b[3] || b[4] > b[5])
+    {
+      return Rect{}; // draws nothing
+    }
+    return projectedRect(8, pad, [b](std::size_t c, double* p4) {
+      p4[0] = b[c & 1];
+      p4[1] = b[2 + ((c >> 1) & 1)];
+      p4[2] = b[4 + ((c >> 2) & 1)];
+    });
+  };
+  // The rectangle of projected points (x, y, z each).
   auto pointsRect = [&](const std::vector<double>& pts, int pad) {
     if (pts.empty())
     {
       return Rect{};
     }
-    double lo[2] = { VTK_DOUBLE_MAX, VTK_DOUBLE_MAX }, hi[2] = { -VTK_DOUBLE_MAX, -VTK_DOUBLE_MAX };
-    for (std::size_t i = 0; i + 2 < pts.size(); i += 3)
-    {
-      const double p4[4] = { pts[i], pts[i + 1], pts[i + 2], 1.0 };
-      double q[4];
-      m->MultiplyPoint(p4, q);
-      if (!(q[3] > 1e-12))
-      {
-        return viewport; // behind the eye
-      }
-      for (int a = 0; a < 2; ++a)
-      {
-        const double d = (q[a] / q[3] + 1.0) * 0.5 * (a == 0 ? vw : vh) + (a == 0 ? vx : vy);
-        lo[a] = std::min(lo[a], d);
-        hi[a] = std::max(hi[a], d);
-      }
-    }
-    auto clampTo = [](double v, int a, int z) { return static_cast<int>(std::max<double>(a, std::min<double>(z, v))); };
-    Rect r;
-    r.x0 = clampTo(std::floor(lo[0]) - pad, viewport.x0, viewport.x1);
-    r.y0 = clampTo(std::floor(lo[1]) - pad, viewport.y0, viewport.y1);
-    r.x1 = clampTo(std::ceil(hi[0]) + 1 + pad, viewport.x0, viewport.x1);
-    r.y1 = clampTo(std::ceil(hi[1]) + 1 + pad, viewport.y0, viewport.y1);
-    return r;
+    return projectedRect(pts.size() / 3, pad, [&pts](std::size_t i, double* p4) {
+      for (int a = 0; a < 3; ++a) p4[a] = pts[3 * i + a];
+    });
   };
   const int surfacePad = this->SurfaceMargin;
   auto padOf = [surfacePad](vtkProp* p) { return surfaceOnly(p) ? surfacePad : Pad; };

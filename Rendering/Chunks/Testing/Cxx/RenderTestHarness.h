@@ -23,18 +23,26 @@ inline vtkSmartPointer<vtkRenderWindow> makeTestWindow(int width, int height)
   return rw;
 }
 
-/// Renders and returns a copy of the window's RGB pixels.
-inline vtkSmartPointer<vtkImageData> grabWindow(vtkRenderWindow* rw)
+/// A copy of the window's RGB pixels as they are now (no render: a partial
+/// frame's picture stays what it drew).
+inline vtkSmartPointer<vtkImageData> windowPixels(vtkRenderWindow* rw)
 {
-  rw->Render();
   vtkNew<vtkWindowToImageFilter> w2i;
   w2i->SetInput(rw);
   w2i->SetInputBufferTypeToRGB();
   w2i->ReadFrontBufferOff();
+  w2i->ShouldRerenderOff();
   w2i->Update();
   auto img = vtkSmartPointer<vtkImageData>::New();
   img->DeepCopy(w2i->GetOutput());
   return img;
+}
+
+/// Renders and returns a copy of the window's RGB pixels.
+inline vtkSmartPointer<vtkImageData> grabWindow(vtkRenderWindow* rw)
+{
+  rw->Render();
+  return windowPixels(rw);
 }
 
 /// Renders, compares with the test's baseline; true when it matched (or the

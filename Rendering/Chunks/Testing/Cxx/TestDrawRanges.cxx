@@ -62,19 +62,6 @@ std::function<double(double, double, double)> dented(double radius, double dz)
 
 using Chunks = std::map<vtkIdType, vtkSmartPointer<vtkPolyData>>;
 
-vtkSmartPointer<vtkImageData> pixels(vtkRenderWindow* rw)
-{
-  vtkNew<vtkWindowToImageFilter> w2i;
-  w2i->SetInput(rw);
-  w2i->SetInputBufferTypeToRGB();
-  w2i->ReadFrontBufferOff();
-  w2i->ShouldRerenderOff();
-  w2i->Update();
-  auto img = vtkSmartPointer<vtkImageData>::New();
-  img->DeepCopy(w2i->GetOutput());
-  return img;
-}
-
 long differing(vtkImageData* a, vtkImageData* b)
 {
   auto* pa = vtkUnsignedCharArray::SafeDownCast(a->GetPointData()->GetScalars());
@@ -192,8 +179,8 @@ int TestDrawRanges(int, char*[])
     // After frames drawn in part: the two pictures, and (without multisampling) a full redraw without ranges.
     auto compare = [&](const std::string& what, bool expectEqual = true) {
       const int partialRanged = ranged.Culler->GetNumberOfPartialRedraws();
-      auto a = pixels(ranged.Window);
-      auto b = pixels(plain.Window);
+      auto a = windowPixels(ranged.Window);
+      auto b = windowPixels(plain.Window);
       const long diff = differing(a, b);
       std::printf("  %s: %ld pixels differ between the ranged and the plain draw (%ld pixels not background)\n",
         what.c_str(), diff, coloured(a));
@@ -209,7 +196,7 @@ int TestDrawRanges(int, char*[])
         ranged.Manager->SetDrawRangeTriangles(0);
         ranged.Culler->RequestFullRedraw();
         ranged.Window->Render();
-        const long full = differing(a, pixels(ranged.Window));
+        const long full = differing(a, windowPixels(ranged.Window));
         std::printf("  %s: %ld pixels differ from a full redraw without ranges\n", what.c_str(), full);
         check(full == 0, what + ": the picture equals a full redraw");
         ranged.Manager->SetDrawRangeTriangles(32);

@@ -55,20 +55,6 @@ double dented(double x, double y, double z)
   return std::max(sphere(x, y, z), 5.5 - d);
 }
 
-// The window's pixels as they are now (no render).
-vtkSmartPointer<vtkImageData> pixels(vtkRenderWindow* rw)
-{
-  vtkNew<vtkWindowToImageFilter> w2i;
-  w2i->SetInput(rw);
-  w2i->SetInputBufferTypeToRGB();
-  w2i->ReadFrontBufferOff();
-  w2i->ShouldRerenderOff();
-  w2i->Update();
-  auto img = vtkSmartPointer<vtkImageData>::New();
-  img->DeepCopy(w2i->GetOutput());
-  return img;
-}
-
 // Pixels that differ between two grabs, but for those `allowed` excuses
 // (their number in *excused).
 long differing(vtkImageData* a, vtkImageData* b, const std::function<bool(int, int)>& allowed, long* excused)
@@ -161,10 +147,10 @@ int runScene(int samples)
         culler->GetLastDamage()[3], culler->GetLastDamage()[0], culler->GetLastDamage()[1],
         culler->GetLastNumberOfPropsDrawn());
     }
-    auto partial = pixels(rw);
+    auto partial = windowPixels(rw);
     culler->RequestFullRedraw();
     rw->Render();
-    auto full = pixels(rw);
+    auto full = windowPixels(rw);
     // Multisampled: Mesa's scissored clear may reach the one-pixel ring just
     // outside a damage rectangle (the editor then redraws whole when still).
     auto onRing = [&](int x, int y) {
@@ -296,11 +282,11 @@ int runMarginControl()
         ++frames;
       }
     }
-    auto drawn = pixels(rw);
+    auto drawn = windowPixels(rw);
     culler->RequestFullRedraw();
     rw->Render();
     long ring = 0;
-    const long diff = differing(drawn, pixels(rw), [](int, int) { return false; }, &ring);
+    const long diff = differing(drawn, windowPixels(rw), [](int, int) { return false; }, &ring);
     const bool inPart = culler->GetNumberOfPartialRedraws() == partial + frames && frames > 0;
     const bool ok = inPart && (margin >= 0 ? diff == 0 : diff > 0);
     std::printf("%s: margin %d, %d frames drawn in part: %ld pixels differ from the full redraw (%s)\n",
@@ -356,7 +342,7 @@ int runRefill()
       }
       rw->Render();
     }
-    return pixels(rw);
+    return windowPixels(rw);
   };
   std::map<vtkIdType, vtkSmartPointer<vtkPolyData>> replaced;
   for (auto& kv : after)
