@@ -67,7 +67,7 @@ struct SideBounds
   template <typename R>
   void add(int s, const R& x)
   {
-    for (int a = 0; a < 3; ++a) lo[s][a] = std::min(lo[s][a], x.c[a]), hi[s][a] = std::max(hi[s][a], x.c[a]);
+    for (int a = 0; a < 3; ++a) lo[s][a] = std::min<double>(lo[s][a], x.c[a]), hi[s][a] = std::max<double>(hi[s][a], x.c[a]);
   }
   void add(const SideBounds& o)
   {
@@ -233,27 +233,33 @@ Bvh::Bvh(const TriList& tris, std::int32_t parallelSplitMin)
     trace(what, t - tp);
     tp = t;
   };
-  // fresh arrays first touched by resize(), serially: huge pages (Memory.h)
-  resizeLarge(this->Order, tris.size());
+  // every element of these arrays is written by the build, on the threads:
+  // their pages are first touched there (Memory.h)
+  resizeLargeForOverwrite(this->Order, tris.size());
   BuildData d;
   d.parallelSplitMin = std::max(parallelSplitMin, 2 * LeafSize + 2);
-  resizeLarge(d.ref, tris.size());
-  if (n >= d.parallelSplitMin) resizeLarge(d.spare, tris.size());
+  resizeLargeForOverwrite(d.ref, tris.size());
+  if (n >= d.parallelSplitMin) resizeLargeForOverwrite(d.spare, tris.size());
   double lx = std::numeric_limits<double>::infinity(), ly = lx, lz = lx, hx = -lx, hy = -lx, hz = -lx;
+  // The key: the vertices' sum less 3x an origin inside the mesh (the first
+  // vertex), rounded to float. Both steps are monotone, so the key orders
+  // the centroids (ties by index); relative to the mesh, not to the
+  // coordinates' magnitude, its 24 bits resolve 1e-7 of the mesh's extent.
+  const V3 origin = n > 0 ? 3.0 * tris[0].v[0] : V3{};
 #pragma omp parallel for schedule(static) reduction(min : lx, ly, lz) reduction(max : hx, hy, hz)
   for (std::int32_t i = 0; i < n; ++i)
   {
     const Tri& t = tris[i];
     auto& r = d.ref[i];
-    for (int a = 0; a < 3; ++a) r.c[a] = t.v[0][a] + t.v[1][a] + t.v[2][a];
+    for (int a = 0; a < 3; ++a) r.c[a] = static_cast<float>((t.v[0][a] + t.v[1][a] + t.v[2][a]) - origin[a]);
     r.tri = i;
-    lx = std::min(lx, r.c[0]), ly = std::min(ly, r.c[1]), lz = std::min(lz, r.c[2]);
-    hx = std::max(hx, r.c[0]), hy = std::max(hy, r.c[1]), hz = std::max(hz, r.c[2]);
+    lx = std::min<double>(lx, r.c[0]), ly = std::min<double>(ly, r.c[1]), lz = std::min<double>(lz, r.c[2]);
+    hx = std::max<double>(hx, r.c[0]), hy = std::max<double>(hy, r.c[1]), hz = std::max<double>(hz, r.c[2]);
   }
   const BvhSubtreeNodes nodesOf(n);
   d.subtreeNodes = &nodesOf;
-  resizeLarge(this->Nodes, static_cast<std::size_t>(nodesOf(n)));
-  resizeLarge(this->Leaves, tris.size());
+  resizeLargeForOverwrite(this->Nodes, static_cast<std::size_t>(nodesOf(n)));
+  resizeLargeForOverwrite(this->Leaves, tris.size());
   const double clo[3] = { lx, ly, lz }, chi[3] = { hx, hy, hz };
   lap("mesh BVH: centroids");
   this->splitTop(d, 0, 0, n, 0, false, clo, chi);
@@ -312,11 +318,11 @@ void Bvh::build(BuildData& d, std::int32_t id, std::int32_t first, std::int32_t 
     double clo[3] = { 1e300, 1e300, 1e300 }, chi[3] = { -1e300, -1e300, -1e300 };
     for (std::int32_t i = first; i < first + count; ++i)
     {
-      const double* c = d.ref[i].c;
+      const float* c = d.ref[i].c;
       for (int a = 0; a < 3; ++a)
       {
-        clo[a] = std::min(clo[a], c[a]);
-        chi[a] = std::max(chi[a], c[a]);
+        clo[a] = std::min<double>(clo[a], c[a]);
+        chi[a] = std::max<double>(chi[a], c[a]);
       }
     }
     const int axis = longestAxis(clo, chi);

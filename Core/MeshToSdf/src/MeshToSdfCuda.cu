@@ -130,9 +130,11 @@ public:
     if (this->hasNormals()) return;
     // with the normal cones of the tree's nodes (far blocks), published before the records
     const double t0 = now();
-    const std::vector<FarCone> cones = farCones(this->MeshBvh, this->Mesh.tris);
+    const std::vector<FarCone> cones = farCones(this->MeshBvh, this->Mesh);
     trace("far blocks: the node cones of the mesh BVH (host)", now() - t0);
     this->Cones = this->Arena.uploadOn(this->Upload.s, cones);
+    this->Normals = this->Arena.uploadOn(this->Upload.s, this->Mesh.normals);
+    if (!this->Mesh.cornerNormals.empty()) this->Corners = this->Arena.uploadOn(this->Upload.s, this->Mesh.cornerNormals);
     this->Full.store(this->Arena.uploadOn(this->Upload.s, this->Mesh.tris), std::memory_order_release);
   }
   /// The node cones (valid once hasNormals()).
@@ -142,6 +144,11 @@ public:
   {
     DevBvh b = this->Dbvh;
     b.tris = this->Full.load(std::memory_order_acquire);
+    if (b.tris)
+    {
+      b.normals = this->Normals;
+      b.corners = this->Corners;
+    }
     return b;
   }
   void addWinding(const WindingSigner& winding) override
@@ -192,8 +199,10 @@ private:
   DeviceArena Arena;
   Stream Upload;
   std::atomic<bool> Winding{ false };
-  std::atomic<const Tri*> Full{ nullptr }; // the full triangle records (Normal/PseudoNormal)
+  std::atomic<const Tri*> Full{ nullptr }; // the triangle records by index (Normal/PseudoNormal)
   const FarCone* Cones = nullptr;          // the node cones, written before Full
+  const TriNormals* Normals = nullptr;     // the records' pseudo-normals, written before Full
+  const CornerNormals* Corners = nullptr;  // the mesh's vertex normals at the corners (if any), written before Full
   DevBvh Reserved; // windingLater buffers
   std::size_t ClosedCap = 0, EdgeCap = 0;
   int* ReservedSlot = nullptr;

@@ -56,6 +56,12 @@ __device__ FarSlab farSlab(const DevBvh& bvh, const Params& P, double big, signe
   return f;
 }
 
+/// Triangle `tri` of the device copy as the far tests read it.
+__device__ inline FarTri farTriDev(const DevBvh& bvh, int tri, bool pseudo)
+{
+  return { &bvh.tris[tri], pseudo ? &bvh.normals[tri] : nullptr };
+}
+
 /// The nearest query of a box's centre for farTryBox (both far kernels),
 /// seeded by the thread's previous answer.
 struct FarNearestDev
@@ -72,7 +78,7 @@ struct FarNearestDev
     r.tri = &bvh.tris[q.tri];
     r.found = true;
     r.dist = sqrt(q.dist2);
-    r.side = farSideAt(bvh.tris[q.tri], q.closest, c, this->pseudo);
+    r.side = farSideAt(farTriDev(bvh, q.tri, this->pseudo), q.closest, c, this->pseudo);
     return r;
   }
 };
@@ -115,7 +121,7 @@ __global__ void __launch_bounds__(128, 4) farBlockKernel(DevBvh bvh, const FarCo
   const long long b = at[0] + m[0] * (at[1] + m[1] * at[2]);
   const long long o[3] = { at[0] * FarBlock, at[1] * FarBlock, at[2] * FarBlock };
   const bool pseudo = P.sign == 1;
-  auto triAt = [&](int i) -> const Tri& { return bvh.tris[bvh.order[i]]; };
+  auto triAt = [&](int i) { return farTriDev(bvh, bvh.order[i], pseudo); };
   FarNearestDev nearest{ bvh, pseudo };
   FarState& st = states[b];
   f.boxOf(o, FarBlock, st.box);
@@ -160,7 +166,7 @@ __global__ void __launch_bounds__(FarCellThreads, 8) farCellKernel(DevBvh bvh, c
   const FarSlab f = farSlab(bvh, P, big, sign, mask);
   const long long mx = (f.n[0] + FarBlock - 1) / FarBlock, my = (f.n[1] + FarBlock - 1) / FarBlock;
   const bool pseudo = P.sign == 1;
-  auto triAt = [&](int i) -> const Tri& { return bvh.tris[bvh.order[i]]; };
+  auto triAt = [&](int i) { return farTriDev(bvh, bvh.order[i], pseudo); };
   FarNearestDev nearest{ bvh, pseudo };
   auto boxOf = [&](const long long at[3], long long edge, FarBox& out) { f.boxOf(at, edge, out); };
   auto set = [&](const long long c[3], int sd, int m) { f.set(c, sd, m); };

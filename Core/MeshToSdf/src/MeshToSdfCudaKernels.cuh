@@ -47,7 +47,11 @@ using GpuTri = LeafTri; // vertices and unit normal, in BVH leaf order
 
 struct DevBvh
 {
-  const Tri* tris = nullptr;    // full records by triangle index: mesh BVH, Normal/PseudoNormal sessions only
+  // by triangle index, mesh BVH of Normal/PseudoNormal sessions only: the records,
+  // their pseudo-normals, the mesh's vertex normals at their corners (null if none)
+  const Tri* tris = nullptr;
+  const TriNormals* normals = nullptr;
+  const CornerNormals* corners = nullptr;
   const GpuTri* leaf = nullptr; // leaf[i] = triangle order[i]
   const GpuNode* nodes = nullptr;
   const int* order = nullptr;
@@ -291,16 +295,9 @@ __device__ void queryRun(const DevBvh& bvh, const Params& P, const DistanceRunAt
       if (P.sign == 0 || P.sign == 1)
       {
         const Tri& tr = bvh.tris[nr.tri];
-        V3 n = tr.n;
-        if (P.sign == 1)
-        {
-          n = featureNormal(tr, nr.closest.feature);
-        }
-        else if (P.useVertexNormals && dot(tr.nv[0], tr.nv[0]) > 0)
-        {
-          const double b0 = 1 - nr.closest.b1 - nr.closest.b2;
-          n = b0 * tr.nv[0] + nr.closest.b1 * tr.nv[1] + nr.closest.b2 * tr.nv[2];
-        }
+        const V3 n = P.sign == 1 ? featureNormal(tr, bvh.normals[nr.tri], nr.closest.feature)
+                                 : interpolatedNormal(tr, P.useVertexNormals && bvh.corners ? &bvh.corners[nr.tri] : nullptr,
+                                     nr.closest.b1, nr.closest.b2);
         s = dot(p - nr.closest.point, n) < 0 ? -1.0f : 1.0f;
       }
     }

@@ -67,20 +67,10 @@ NearestResult Engine::nearest(V3 p, std::int32_t hint) const
 float Engine::localSign(V3 p, const NearestResult& r) const
 {
   const Tri& t = this->mesh->tris[r.tri];
-  V3 n;
-  if (this->opts.sign == SignMode::PseudoNormal)
-  {
-    n = featureNormal(t, r.closest.feature);
-  }
-  else if (this->opts.useVertexNormals && dot(t.nv[0], t.nv[0]) > 0)
-  {
-    const double b0 = 1 - r.closest.b1 - r.closest.b2;
-    n = b0 * t.nv[0] + r.closest.b1 * t.nv[1] + r.closest.b2 * t.nv[2];
-  }
-  else
-  {
-    n = t.n;
-  }
+  const V3 n = this->opts.sign == SignMode::PseudoNormal
+    ? featureNormal(t, this->mesh->normals[r.tri], r.closest.feature)
+    : interpolatedNormal(t, this->opts.useVertexNormals ? this->mesh->cornersOf(r.tri) : nullptr, r.closest.b1,
+        r.closest.b2);
   return dot(p - r.closest.point, n) < 0 ? -1.0f : 1.0f;
 }
 

@@ -94,7 +94,7 @@ std::int64_t classifyFarCells(const NearestIndex& index, const Bvh& bvh, const s
   const double margin = farMargin(fs.big, static_cast<double>(mesh.tris.size()));
   const Bvh::Node* nodes = bvh.nodes().data();
   const std::int32_t* order = bvh.order().data();
-  auto triAt = [&](int i) -> const Tri& { return mesh.tris[static_cast<std::size_t>(order[i])]; };
+  auto triAt = [&](int i) { return farTriOf(mesh, static_cast<std::size_t>(order[i]), pseudo); };
   auto boxOf = [&](const long long v0[3], long long edge, FarBox& out) { fs.boxOf(v0, edge, out); };
   auto set = [&](const long long c[3], int s, int m) { fs.set(c, s, m); };
   std::int64_t decided = 0;
@@ -112,7 +112,7 @@ std::int64_t classifyFarCells(const NearestIndex& index, const Bvh& bvh, const s
       r.found = true;
       r.tri = &mesh.tris[static_cast<std::size_t>(q.tri)];
       r.dist = std::sqrt(q.dist2);
-      r.side = farSideAt(mesh.tris[static_cast<std::size_t>(q.tri)], q.closest, centre, pseudo);
+      r.side = farSideAt(farTriOf(mesh, static_cast<std::size_t>(q.tri), pseudo), q.closest, centre, pseudo);
       return r;
     };
     decided += farClassifyBlock(nodes, cones.data(), triAt, nearest, pseudo, bandWorld, margin, fs.big, origin, fs.n,
@@ -180,8 +180,10 @@ std::int64_t classifyBandCells(const NearestIndex& index, const PreparedMesh& me
   return decided;
 }
 
-std::vector<FarCone> farCones(const Bvh& bvh, const TriList& tris)
+std::vector<FarCone> farCones(const Bvh& bvh, const PreparedMesh& mesh)
 {
+  require(mesh.pseudoNormals, "far blocks: the node cones need the pseudo-normals");
+  const TriList& tris = mesh.tris;
   // bottom-up (children have larger ids than their parent: preorder); angles
   // by atan2 (accurate near 0, unlike acos), rounded up. The leaves, most of
   // the work (every triangle's 7 normals), are independent: on the OpenMP
@@ -198,27 +200,30 @@ std::vector<FarCone> farCones(const Bvh& bvh, const TriList& tris)
     bool ok = true;
     double edgeDelta = 0, faceDot = 0, minHeight = 1e300, longest = 0;
     // the sign planes' normals of a triangle (farTriAgrees)
-    auto normalsOf = [&](const Tri& t, auto&& f) {
-      f(t.n);
+    auto normalsOf = [&](std::size_t tri, auto&& f) {
+      f(tris[tri].n);
+      const TriNormals& pn = mesh.normals[tri];
       for (int e = 0; e < 3; ++e)
       {
-        f(t.en[e]);
-        f(t.vn[e]);
+        f(pn.en[e]);
+        f(pn.vn[e]);
       }
     };
     if (n.left < 0)
     {
       for (std::int32_t i = n.first; i < n.first + n.count; ++i)
       {
-        const Tri& t = tris[static_cast<std::size_t>(order[static_cast<std::size_t>(i)])];
+        const std::size_t tri = static_cast<std::size_t>(order[static_cast<std::size_t>(i)]);
+        const Tri& t = tris[tri];
+        const TriNormals& pn = mesh.normals[tri];
         ok = ok && farShaped(t);
-        normalsOf(t, [&](V3 m) { axis = axis + m; });
+        normalsOf(tri, [&](V3 m) { axis = axis + m; });
         const V3 ab = t.v[1] - t.v[0], ac = t.v[2] - t.v[0];
         const double l = std::max({ norm(ab), norm(ac), norm(t.v[2] - t.v[1]) });
         longest = std::max(longest, l);
         minHeight = std::min(minHeight, norm(cross(ab, ac)) / l);
         faceDot = std::max(faceDot, std::fabs(dot(ab, t.n)) + std::fabs(dot(ac, t.n)));
-        for (int e = 0; e < 3; ++e) edgeDelta = std::max(edgeDelta, std::fabs(dot(t.v[(e + 1) % 3] - t.v[e], t.en[e])));
+        for (int e = 0; e < 3; ++e) edgeDelta = std::max(edgeDelta, std::fabs(dot(t.v[(e + 1) % 3] - t.v[e], pn.en[e])));
       }
     }
     else
@@ -238,7 +243,7 @@ std::vector<FarCone> farCones(const Bvh& bvh, const TriList& tris)
     if (n.left < 0)
     {
       for (std::int32_t i = n.first; i < n.first + n.count; ++i)
-        normalsOf(tris[static_cast<std::size_t>(order[static_cast<std::size_t>(i)])],
+        normalsOf(static_cast<std::size_t>(order[static_cast<std::size_t>(i)]),
           [&](V3 m) { t = std::max(t, angleTo(axis, m)); });
     }
     else

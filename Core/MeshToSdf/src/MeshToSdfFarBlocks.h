@@ -60,6 +60,21 @@ LVDIF_HD FarBox farBox(V3 p0, V3 p1, double big)
   return b;
 }
 
+/// A triangle as the far blocks test it: its record and, for the
+/// PseudoNormal sign, its feature normals (null for the Normal sign, which
+/// takes the face plane alone). The callers' triAt(i) returns these.
+struct FarTri
+{
+  const Tri* t;
+  const TriNormals* pn;
+};
+
+/// Triangle `tri` of a prepared mesh on the CPU (pseudo: with its normals).
+inline FarTri farTriOf(const PreparedMesh& mesh, std::size_t tri, bool pseudo)
+{
+  return { &mesh.tris[tri], pseudo ? &mesh.normals[tri] : nullptr };
+}
+
 /// Whether a triangle is shaped: (|AB|^2 + |AC|^2) <= FarKappaMax |AB x AC|.
 LVDIF_HD bool farShaped(const Tri& t)
 {
@@ -96,8 +111,9 @@ LVDIF_HD double farFaceDelta(double faceDot, double reachL, double h)
 /// from the centre (by its exact distance if shaped, else its bounding box):
 /// tested first, since the candidates handed down to sub-boxes (FarState)
 /// mostly drop out by it.
-LVDIF_HD bool farTriAgrees(const Tri& t, bool pseudo, const FarBox& box, double reach, double margin, int side)
+LVDIF_HD bool farTriAgrees(const FarTri& ft, bool pseudo, const FarBox& box, double reach, double margin, int side)
 {
+  const Tri& t = *ft.t;
   if (farShaped(t))
   {
     // |distance to the plane| <= the distance: the cheap bound first
@@ -137,10 +153,10 @@ LVDIF_HD bool farTriAgrees(const Tri& t, bool pseudo, const FarBox& box, double 
       const V3 a = t.v[k], b = t.v[(k + 1) % 3];
       const int alongA = farPlane(a, u[k], region, box, margin); // -1: all before V_k, 1: all past it
       if (line[k] != -1 && alongA != -1 && farPlane(b, u[k], region, box, margin) != 1 &&
-        farPlane(a, t.en[k], std::fabs(dot(b - a, t.en[k])), box, margin) != side)
+        farPlane(a, ft.pn->en[k], std::fabs(dot(b - a, ft.pn->en[k])), box, margin) != side)
         return false;
       if (alongA != 1 && farPlane(a, u[(k + 2) % 3], region, box, margin) != -1 &&
-        farPlane(a, t.vn[k], 0.0, box, margin) != side)
+        farPlane(a, ft.pn->vn[k], 0.0, box, margin) != side)
         return false;
     }
     return true;
@@ -256,9 +272,9 @@ LVDIF_HD bool farPastBand(double nearestDist, const FarBox& box, double bandWorl
 
 /// The sign the mode would give the point p from its nearest triangle t and
 /// closest point c (the side a box around p is expected on; 0 on the plane).
-LVDIF_HD int farSideAt(const Tri& t, const Closest& c, V3 p, bool pseudo)
+LVDIF_HD int farSideAt(const FarTri& t, const Closest& c, V3 p, bool pseudo)
 {
-  const double g = dot(p - c.point, pseudo ? featureNormal(t, c.feature) : t.n);
+  const double g = dot(p - c.point, pseudo ? featureNormal(*t.t, *t.pn, c.feature) : t.t->n);
   return g > 0 ? 1 : (g < 0 ? -1 : 0);
 }
 
@@ -534,7 +550,7 @@ struct FarCells
 double farScale(const PreparedMesh& mesh, const GridGeometry& grid);
 
 /// The normal cones of the BVH's nodes over the sign planes of `tris`.
-std::vector<FarCone> farCones(const Bvh& bvh, const TriList& tris);
+std::vector<FarCone> farCones(const Bvh& bvh, const PreparedMesh& mesh);
 
 /// CPU: fills cells for `box` (on OpenMP threads); returns the voxels decided.
 /// pseudo: PseudoNormal (else Normal) signs.

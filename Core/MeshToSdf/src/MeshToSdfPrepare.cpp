@@ -71,7 +71,7 @@ std::uint32_t weldPoints(const std::vector<Vec3f>& points, LargeVector<std::uint
     return static_cast<std::size_t>(h ^ (h >> 29)) & (cap - 1);
   };
   LargeVector<std::size_t> slotOfPoint; // where point i's key lives
-  resizeLarge(slotOfPoint, n);
+  resizeLargeForOverwrite(slotOfPoint, n);
 #pragma omp parallel for schedule(static)
   for (std::int64_t i = 0; i < nI; ++i)
   {
@@ -100,17 +100,18 @@ std::uint32_t weldPoints(const std::vector<Vec3f>& points, LargeVector<std::uint
     }
   }
   // rep = first occurrence of each point's key; ids = prefix count of firsts
-  resizeLarge(weld, n);
+  resizeLargeForOverwrite(weld, n);
 #pragma omp parallel for schedule(static)
   for (std::int64_t i = 0; i < nI; ++i) weld[i] = table[slotOfPoint[static_cast<std::size_t>(i)]].load(std::memory_order_relaxed);
   table.reset();
   LargeVector<std::uint32_t> id; // id[i] = firsts before i
-  resizeLarge(id, n + 1);
+  resizeLargeForOverwrite(id, n + 1);
+  id[0] = 0;
 #pragma omp parallel for schedule(static)
   for (std::int64_t i = 0; i < nI; ++i) id[i + 1] = weld[i] == static_cast<std::uint32_t>(i) ? 1 : 0;
   inclusiveSum(id.data() + 1, n);
   const std::uint32_t nv = id[n];
-  resizeLarge(firstOf, nv);
+  resizeLargeForOverwrite(firstOf, nv);
 #pragma omp parallel for schedule(static)
   for (std::int64_t i = 0; i < nI; ++i)
   {
@@ -223,7 +224,7 @@ void edgePass(PreparedMesh& out, std::size_t nv, const LargeVector<V3>* weldPos,
   }
   bucketStart[nb] = o;
   LargeVector<Entry> entries;
-  resizeLarge(entries, nc);
+  resizeLargeForOverwrite(entries, nc); // every entry placed by the scatter below
 #pragma omp parallel for schedule(static, 1)
   for (int p = 0; p < parts; ++p)
   {
@@ -287,7 +288,7 @@ void edgePass(PreparedMesh& out, std::size_t nv, const LargeVector<V3>* weldPos,
             for (std::size_t f = e; f < e1g; ++f)
             {
               const std::uint32_t cf = static_cast<std::uint32_t>(group[f].key);
-              out.tris[cf / 3].en[cf % 3] = enu; // each corner is in exactly one group
+              out.normals[cf / 3].en[cf % 3] = enu; // each corner is in exactly one group
             }
           }
           e = e1g;
@@ -334,12 +335,13 @@ void finishPseudoNormals(PreparedMesh& out, const std::vector<V3>& vertexNormal)
 #pragma omp parallel for schedule(static)
   for (std::int64_t t = 0; t < nI; ++t)
   {
-    Tri& tri = out.tris[t];
+    const Tri& tri = out.tris[t];
+    TriNormals& pn = out.normals[t];
     for (int k = 0; k < 3; ++k)
     {
-      tri.vn[k] = normalized(vertexNormal[out.welded[t][k]]);
-      if (dot(tri.vn[k], tri.vn[k]) == 0) tri.vn[k] = tri.n;
-      if (dot(tri.en[k], tri.en[k]) == 0) tri.en[k] = tri.n;
+      pn.vn[k] = normalized(vertexNormal[out.welded[t][k]]);
+      if (dot(pn.vn[k], pn.vn[k]) == 0) pn.vn[k] = tri.n;
+      if (dot(pn.en[k], pn.en[k]) == 0) pn.en[k] = tri.n;
     }
   }
   out.pseudoNormals = true;
@@ -390,7 +392,7 @@ void prepareMesh(const TriangleMesh& mesh, PreparedMesh& out, bool pseudoNormals
   out.vertices = nv;
   auto toV3 = [](const Vec3f& p) { return V3{ p[0], p[1], p[2] }; };
   LargeVector<V3> weldPos;
-  resizeLarge(weldPos, nv);
+  resizeLargeForOverwrite(weldPos, nv);
   const std::int64_t nvAll = static_cast<std::int64_t>(nv);
 #pragma omp parallel for schedule(static)
   for (std::int64_t v = 0; v < nvAll; ++v) weldPos[v] = toV3(mesh.points[firstOf[v]]);
@@ -405,7 +407,8 @@ void prepareMesh(const TriangleMesh& mesh, PreparedMesh& out, bool pseudoNormals
     return cross(v[1] - v[0], v[2] - v[0]);
   };
   LargeVector<std::uint32_t> slot; // slot[t] = kept triangles before t
-  resizeLarge(slot, nt + 1);
+  resizeLargeForOverwrite(slot, nt + 1);
+  slot[0] = 0;
 #pragma omp parallel for schedule(static)
   for (std::int64_t t = 0; t < ntI; ++t)
   {
@@ -417,12 +420,17 @@ void prepareMesh(const TriangleMesh& mesh, PreparedMesh& out, bool pseudoNormals
   out.degenerate = nt - n;
   require(n > 0, "mesh has no triangle of non-zero area (" + std::to_string(out.degenerate) +
       " degenerate triangles)");
-  // the records (328 bytes each: 273 MB for 832k triangles) are first
-  // touched by resize(), serially: huge pages make that 512x fewer faults
-  resizeLarge(out.tris, n);
-  resizeLarge(out.welded, n);
+  // the records and welded ids are written whole below, on the threads,
+  // which fault their pages in; the edge normals are sums (zero first)
+  resizeLargeForOverwrite(out.tris, n);
+  resizeLargeForOverwrite(out.welded, n);
+  if (!mesh.normals.empty()) resizeLargeForOverwrite(out.cornerNormals, n);
   std::vector<std::array<double, 3>> keptAngles;
-  if (pseudoNormals) resizeLarge(keptAngles, n);
+  if (pseudoNormals)
+  {
+    resizeLarge(keptAngles, n);
+    resizeLarge(out.normals, n);
+  }
   lap("prepare: records allocated");
   // bounds of the kept triangles on the way: min/max are exact, so the
   // parallel reduction gives the same values
@@ -444,7 +452,7 @@ void prepareMesh(const TriangleMesh& mesh, PreparedMesh& out, bool pseudoNormals
     {
       for (int k = 0; k < 3; ++k)
       {
-        tri.nv[k] = normalized(toV3(mesh.normals[ix[k]]));
+        out.cornerNormals[o].n[k] = normalized(toV3(mesh.normals[ix[k]]));
       }
     }
     if (pseudoNormals)
@@ -503,6 +511,7 @@ void addPseudoNormals(PreparedMesh& out)
   }
   const std::vector<V3> vertexNormal = vertexNormalSums(out, out.vertices, angles);
   lap("prepare: vertex normals");
+  resizeLarge(out.normals, out.tris.size());
   edgePass(out, out.vertices, nullptr, true, lap);
   finishPseudoNormals(out, vertexNormal);
   lap("prepare: pseudo-normals");

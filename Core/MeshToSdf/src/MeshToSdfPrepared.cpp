@@ -68,7 +68,7 @@ const Bvh& MeshToSdfPrepared::Impl::farTree(const std::vector<FarCone>*& cones, 
   std::lock_guard<std::mutex> lock(this->Lock);
   const double t0 = now();
   this->meshBvhLocked();
-  if (!this->FarConesOfBvh) this->FarConesOfBvh = std::make_unique<std::vector<FarCone>>(farCones(*this->bvh, this->mesh.tris));
+  if (!this->FarConesOfBvh) this->FarConesOfBvh = std::make_unique<std::vector<FarCone>>(farCones(*this->bvh, this->mesh));
   seconds += now() - t0;
   trace("far-block tree", now() - t0);
   cones = this->FarConesOfBvh.get();
@@ -119,6 +119,7 @@ const detail::meshtosdf_cuda::DeviceMesh& MeshToSdfPrepared::Impl::deviceMesh(
   bool winding, bool normals, double& seconds, bool windingLater)
 {
   const WindingSigner* w = winding ? &this->windingSigner(seconds) : nullptr;
+  if (normals) this->pseudoNormals(seconds); // the device copy's normals are the host's
   // Sessions of other threads may use the copy: the winding part is only
   // added (never replaced), and only sessions in WindingNumber mode read it.
   std::lock_guard<std::mutex> lock(this->Lock);

@@ -145,14 +145,7 @@ void buildClosure(WindingSigner::Closure& c, const TriList& tris, const std::vec
   {
     const std::uint8_t st = state ? (*state)[t] : static_cast<std::uint8_t>(OrientedMesh::Keep);
     if (st == OrientedMesh::Remove) continue;
-    // only what crossings and solid angles read: not the pseudo-normals,
-    // which a first PseudoNormal call may be filling meanwhile (addPseudoNormals)
-    Tri copy;
-    std::copy(std::begin(tris[t].v), std::end(tris[t].v), copy.v);
-    copy.n = tris[t].n;
-    copy.area = tris[t].area;
-    copy.source = tris[t].source;
-    c.own.push_back(copy);
+    c.own.push_back(tris[t]);
     if (st == OrientedMesh::Reverse)
     {
       Tri& x = c.own.back();

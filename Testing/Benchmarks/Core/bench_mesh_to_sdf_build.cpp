@@ -104,14 +104,21 @@ std::string hashBvh(const Bvh& b)
 
 std::string hashPrepared(const PreparedMesh& m)
 {
+  // per triangle in the order of the one 328-byte record they once were
+  // (zeros for the normals not computed): the same hashes as before the split
   Hash h;
-  for (const Tri& t : m.tris)
+  const TriNormals none{};
+  const CornerNormals noCorners{};
+  for (std::size_t i = 0; i < m.tris.size(); ++i)
   {
+    const Tri& t = m.tris[i];
+    const TriNormals& pn = m.normals.empty() ? none : m.normals[i];
+    const CornerNormals& nv = m.cornerNormals.empty() ? noCorners : m.cornerNormals[i];
     h.add(t.v, sizeof(t.v));
     h.add(&t.n, sizeof(t.n));
-    h.add(t.en, sizeof(t.en));
-    h.add(t.vn, sizeof(t.vn));
-    h.add(t.nv, sizeof(t.nv));
+    h.add(pn.en, sizeof(pn.en));
+    h.add(pn.vn, sizeof(pn.vn));
+    h.add(nv.n, sizeof(nv.n));
     h.add(&t.area, sizeof(t.area));
     h.add(&t.source, sizeof(t.source));
   }

@@ -143,6 +143,31 @@ void resizeLarge(LargeVector<T>& v, std::size_t n)
   });
 }
 
+/// v.resize(n) for storage that its producer overwrites whole, on the threads
+/// (the mesh BVH's nodes, leaves and keys): the new elements are left
+/// unconstructed (these types are trivially copyable and destructible, so
+/// their storage is just bytes until written), so the pages are first
+/// touched by the writes themselves, on the threads that make them, instead
+/// of by a zeroing pass before them. Reading an element before it is
+/// written is a bug.
+template <typename T>
+void resizeLargeForOverwrite(LargeVector<T>& v, std::size_t n)
+{
+  if (n <= v.size())
+  {
+    v.resize(n);
+    return;
+  }
+  if (v.capacity() < n)
+  {
+    v.reserve(n);
+    adviseHugePages(v.data(), n * sizeof(T));
+  }
+  detail::constructLater = true;
+  v.resize(n); // reserved above: no reallocation, no construction
+  detail::constructLater = false;
+}
+
 /// Resident set size of this process in bytes (from /proc/self/statm), 0 if unknown.
 std::uint64_t residentMemoryBytes();
 
