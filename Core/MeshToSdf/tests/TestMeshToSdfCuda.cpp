@@ -84,6 +84,19 @@ TEST(MeshToSdfCuda, MatchesCpuOnEverySignMode)
       compare(m, g, all, o, std::string(toString(s)) + " band " + std::to_string(band));
     }
   }
+  // the Normal sign with the mesh's vertex normals (the corner normals' copy on the device)
+  TriangleMesh withNormals = m;
+  withNormals.normals.resize(m.points.size());
+  for (std::size_t i = 0; i < m.points.size(); ++i)
+  {
+    const Vec3f& p = m.points[i];
+    withNormals.normals[i] = { p[0] + 0.3f * p[1], p[1] - 0.2f * p[2], p[2] + 0.1f }; // not the face normals
+  }
+  MeshToSdfOptions o;
+  o.sign = SignMode::Normal;
+  o.useVertexNormals = true;
+  o.bandWidth = 3;
+  compare(withNormals, g, all, o, "Normal with vertex normals");
 }
 
 // Device::Auto runs WindingNumber on the GPU for meshes with reversed faces

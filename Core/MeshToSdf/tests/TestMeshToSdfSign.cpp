@@ -8,6 +8,7 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <cstdio>
 #include <random>
 #include <string>
@@ -210,4 +211,59 @@ TEST(MeshToSdfSign, SignVoxelFilterHookEqualsFilteringAfterwards)
   EXPECT_EQ(hooked, plain);
   EXPECT_EQ(st.svfFlips, ref.totalFlips());
   EXPECT_GT(st.svfFlips, 0);
+}
+
+// The Normal sign with useVertexNormals takes the mesh's vertex normals
+// interpolated at the closest point (PreparedMesh::cornerNormals). On a sphere
+// whose normals point outwards every voxel farther than a voxel from the
+// surface gets the sphere's inside/outside; with the normals pointing inwards
+// every sign flips, which the face normals alone (the control) do not do.
+TEST(MeshToSdfSign, VertexNormalsAreInterpolatedAtTheClosestPoint)
+{
+  const float c[3] = { 0.1f, -0.05f, 0.02f }, r = 1.0f;
+  TriangleMesh out = makeSphereMesh(c[0], c[1], c[2], r, 20, 40);
+  out.normals.resize(out.points.size());
+  for (std::size_t i = 0; i < out.points.size(); ++i)
+  {
+    const Vec3f& p = out.points[i];
+    const float d[3] = { p[0] - c[0], p[1] - c[1], p[2] - c[2] };
+    const float l = std::sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
+    out.normals[i] = { d[0] / l, d[1] / l, d[2] / l };
+  }
+  TriangleMesh in = out;
+  for (Vec3f& n : in.normals) n = { -n[0], -n[1], -n[2] };
+  const GridGeometry g = fitGridToMesh(out, 28, 3);
+  VoxelBox all;
+  all.hi = { g.dims[0] - 1, g.dims[1] - 1, g.dims[2] - 1 };
+  auto run = [&](const TriangleMesh& m, bool vertexNormals) {
+    std::vector<float> f(static_cast<std::size_t>(all.voxelCount()));
+    MeshToSdfOptions o;
+    o.sign = SignMode::Normal;
+    o.useVertexNormals = vertexNormals;
+    o.device = Device::Cpu;
+    meshToSdf(m, g, all, f.data(), o);
+    return f;
+  };
+  const std::vector<float> fOut = run(out, true), fIn = run(in, true), faceIn = run(in, false);
+  const double h = g.spacing[0];
+  std::size_t far = 0, wrongOut = 0, notFlipped = 0, faceWrong = 0;
+  for (std::int64_t k = 0; k < g.dims[2]; ++k)
+    for (std::int64_t j = 0; j < g.dims[1]; ++j)
+      for (std::int64_t i = 0; i < g.dims[0]; ++i)
+      {
+        const std::size_t at = static_cast<std::size_t>(i + g.dims[0] * (j + g.dims[1] * k));
+        const double x = g.origin[0] + i * h - c[0], y = g.origin[1] + j * g.spacing[1] - c[1],
+                     z = g.origin[2] + k * g.spacing[2] - c[2];
+        const double rho = std::sqrt(x * x + y * y + z * z);
+        if (std::fabs(rho - r) < 2 * h) continue; // the tessellation lies within a voxel of the sphere
+        ++far;
+        const bool inside = rho < r;
+        wrongOut += (fOut[at] < 0) != inside;
+        notFlipped += (fIn[at] < 0) == (fOut[at] < 0);
+        faceWrong += (faceIn[at] < 0) != inside;
+      }
+  ASSERT_GT(far, 10000u);
+  EXPECT_EQ(wrongOut, 0u);
+  EXPECT_EQ(notFlipped, 0u);
+  EXPECT_EQ(faceWrong, 0u); // the control: without them the inward normals change nothing
 }
