@@ -1,4 +1,4 @@
-# Sourced by the budgeted GPU-host scripts (scripts/gpu-{signs,damaged,
+# Sourced by the budgeted GPU-host scripts (scripts/gpu-{signs,damaged,meshtosdf-ab,
 # pseudonormal,meshbuild}.sh), from the repository root. The caller sets OUT
 # (log folder), BUDGET (seconds after which no new step starts) and L (the log
 # `run` appends to).
