@@ -59,6 +59,7 @@ std::unique_ptr<detail::meshtosdf_cuda::Session> openCuda(const MeshToSdfPrepare
   const bool normals = opts.sign == SignMode::Normal || opts.sign == SignMode::PseudoNormal;
   const bool built = impl.hasWindingSigner();
   const detail::meshtosdf_cuda::DeviceMesh& dm = impl.deviceMesh(winding && built, normals, unused, winding && !built);
+  trace("upload: the device copy of the mesh (or its reuse)", now() - t0);
   std::function<void()> ensure;
   if (winding && built) traceWindingPath(impl.windingSigner(unused));
   if (winding)

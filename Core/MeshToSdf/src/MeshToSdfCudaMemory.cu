@@ -1,9 +1,12 @@
 // The pinned pool and the staged uploads of MeshToSdfCudaMemory.cuh.
 #include "MeshToSdfCudaMemory.cuh"
+#include "MeshToSdfInternal.h"
 
 #include "lvdif/Memory.h"
 
+#include <chrono>
 #include <cstring>
+#include <string>
 
 namespace lvdif
 {
@@ -20,7 +23,25 @@ void uploadBytes(void* dst, const void* src, std::size_t bytes, cudaStream_t str
 {
   constexpr std::size_t Half = std::size_t(32) << 20;
   HostBlock block;
+  const auto t0 = std::chrono::steady_clock::now();
   if (bytes >= 2 * Half) block = pinnedPool().take(2 * Half);
+  const auto took = std::chrono::steady_clock::now();
+  // large uploads on the trace: the time to take the staging block, the copy's
+  struct Report
+  {
+    std::size_t bytes;
+    std::chrono::steady_clock::time_point t0, took;
+    bool pinned;
+    ~Report()
+    {
+      if (this->bytes < (std::size_t(64) << 20)) return;
+      const auto t1 = std::chrono::steady_clock::now();
+      const std::string what = "upload of " + std::to_string(this->bytes >> 20) + " MiB" +
+        (this->pinned ? " through pinned halves" : " from pageable memory") + " (taking the staging block: " +
+        std::to_string(std::chrono::duration<double, std::milli>(this->took - this->t0).count()) + " ms)";
+      detail::meshtosdf::trace(what.c_str(), std::chrono::duration<double>(t1 - this->t0).count());
+    }
+  } report{ bytes, t0, took, block.pinned };
   if (!block.pinned)
   {
     pinnedPool().give(block);
