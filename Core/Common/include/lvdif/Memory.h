@@ -117,32 +117,6 @@ bool operator!=(const ParallelInitAllocator<T>&, const ParallelInitAllocator<U>&
 template <typename T>
 using LargeVector = std::vector<T, ParallelInitAllocator<T>>;
 
-/// resizeLarge for a LargeVector: the same elements as v.resize(n) (each new
-/// one value-initialized), constructed in pieces on the OpenMP threads, which
-/// also fault the fresh pages in there.
-template <typename T>
-void resizeLarge(LargeVector<T>& v, std::size_t n)
-{
-  const std::size_t old = v.size();
-  if (n <= old)
-  {
-    v.resize(n);
-    return;
-  }
-  if (v.capacity() < n)
-  {
-    v.reserve(n);
-    adviseHugePages(v.data(), n * sizeof(T));
-  }
-  detail::constructLater = true;
-  v.resize(n); // no reallocation (reserved above), so nothing to throw here
-  detail::constructLater = false;
-  T* const fresh = v.data() + old;
-  detail::forPiecesOnThreads(n - old, [fresh](std::size_t first, std::size_t last) {
-    for (std::size_t i = first; i < last; ++i) ::new (static_cast<void*>(fresh + i)) T();
-  });
-}
-
 /// v.resize(n) for storage that its producer overwrites whole, on the threads
 /// (the mesh BVH's nodes, leaves and keys): the new elements are left
 /// unconstructed (these types are trivially copyable and destructible, so
@@ -166,6 +140,21 @@ void resizeLargeForOverwrite(LargeVector<T>& v, std::size_t n)
   detail::constructLater = true;
   v.resize(n); // reserved above: no reallocation, no construction
   detail::constructLater = false;
+}
+
+/// resizeLarge for a LargeVector: the same elements as v.resize(n) (each new
+/// one value-initialized), constructed in pieces on the OpenMP threads, which
+/// also fault the fresh pages in there.
+template <typename T>
+void resizeLarge(LargeVector<T>& v, std::size_t n)
+{
+  const std::size_t old = v.size();
+  resizeLargeForOverwrite(v, n);
+  if (n <= old) return;
+  T* const fresh = v.data() + old;
+  detail::forPiecesOnThreads(n - old, [fresh](std::size_t first, std::size_t last) {
+    for (std::size_t i = first; i < last; ++i) ::new (static_cast<void*>(fresh + i)) T();
+  });
 }
 
 /// Resident set size of this process in bytes (from /proc/self/statm), 0 if unknown.
