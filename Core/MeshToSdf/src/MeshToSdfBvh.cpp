@@ -212,15 +212,15 @@ private:
 };
 
 /// Centroids computed once in parallel; the build then touches only this
-/// compact array (the triangle records are 328 bytes each). The top nodes
+/// compact array (the triangle records are 112 bytes each). The top nodes
 /// (parallelSplitMin triangles or more: 2^19 by default) split one after the
 /// other, each with all threads (splitAtRank: centroid bounds from the
 /// parent's split, into the other buffer, ref <-> spare); no step runs on
 /// one thread over more than a small part of the triangles (the root's
 /// nth_element over all of them did: the serial head of the build).
 /// The subtrees below are OpenMP tasks that split with std::nth_element by
-/// the same total order; their leaves write the compact copies and the
-/// boxes, their inner nodes the union of their children's boxes once those
+/// the same total order; their leaves write their entries of Order and
+/// their boxes, their inner nodes the union of their children's boxes once those
 /// are done; the top nodes' boxes come last. The node layout (preorder) does
 /// not depend on the threads.
 Bvh::Bvh(const TriList& tris, std::int32_t parallelSplitMin)
@@ -259,7 +259,6 @@ Bvh::Bvh(const TriList& tris, std::int32_t parallelSplitMin)
   const BvhSubtreeNodes nodesOf(n);
   d.subtreeNodes = &nodesOf;
   resizeLargeForOverwrite(this->Nodes, static_cast<std::size_t>(nodesOf(n)));
-  resizeLargeForOverwrite(this->Leaves, tris.size());
   const double clo[3] = { lx, ly, lz }, chi[3] = { hx, hy, hz };
   lap("mesh BVH: centroids");
   this->splitTop(d, 0, 0, n, 0, false, clo, chi);
@@ -353,7 +352,7 @@ void Bvh::build(BuildData& d, std::int32_t id, std::int32_t first, std::int32_t 
   // a leaf's triangles by index: Order is a function of the triangles too
   std::sort(d.ref.begin() + first, d.ref.begin() + first + count,
     [](const BuildData::Ref& x, const BuildData::Ref& y) { return x.tri < y.tri; });
-  // its compact copies and its box (exact min/max: the bits of boxes taken
+  // its entries of Order and its box (exact min/max: the bits of boxes taken
   // during the build; the triangle's box first, the order of a build that
   // kept per-triangle boxes: min/max of +0 and -0 depend on it)
   for (int a = 0; a < 3; ++a)
@@ -365,9 +364,6 @@ void Bvh::build(BuildData& d, std::int32_t id, std::int32_t first, std::int32_t 
   {
     this->Order[i] = d.ref[i].tri;
     const Tri& t = this->Tris[this->Order[i]];
-    LeafTri& l = this->Leaves[i];
-    for (int k = 0; k < 3; ++k) l.v[k] = t.v[k];
-    l.n = t.n;
     for (int a = 0; a < 3; ++a)
     {
       node.lo[a] = std::min(node.lo[a], std::min(t.v[0][a], std::min(t.v[1][a], t.v[2][a])));
@@ -385,6 +381,22 @@ void Bvh::innerBox(std::int32_t id)
     node.lo[a] = std::min(l.lo[a], r.lo[a]);
     node.hi[a] = std::max(l.hi[a], r.hi[a]);
   }
+}
+
+LargeVector<LeafTri> leafCopies(const Bvh& b)
+{
+  LargeVector<LeafTri> out;
+  resizeLargeForOverwrite(out, b.order().size());
+  const std::int64_t n = static_cast<std::int64_t>(out.size());
+#pragma omp parallel for schedule(static)
+  for (std::int64_t i = 0; i < n; ++i)
+  {
+    const Tri& t = b.tris()[static_cast<std::size_t>(b.order()[static_cast<std::size_t>(i)])];
+    LeafTri& l = out[static_cast<std::size_t>(i)];
+    for (int k = 0; k < 3; ++k) l.v[k] = t.v[k];
+    l.n = t.n;
+  }
+  return out;
 }
 
 NearestResult Bvh::nearest(V3 p, std::int32_t hint, double maxDist2) const

@@ -95,6 +95,11 @@ KeyCopyCounts keyCopyCounts();
 /// fallback, as if pinned host memory were refused.
 void refusePinnedKeys(bool refuse);
 
+/// Tests: the mesh tree's leaf copies as the device copy gathers them from
+/// the welded mesh (they must equal leafCopies(bvh)).
+std::vector<detail::meshtosdf::LeafTri> meshLeavesOnDevice(
+  const detail::meshtosdf::PreparedMesh& mesh, const detail::meshtosdf::Bvh& bvh);
+
 /// Tests: SdfDictionary::encodeWith (band-clamped as DictionaryVolume::encode) run on the GPU.
 std::vector<std::uint16_t> encodeOnDevice(
   const SdfDictionary::EncodeConstants& encode, float band, const std::vector<float>& values);

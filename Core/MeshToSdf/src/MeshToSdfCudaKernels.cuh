@@ -45,6 +45,29 @@ struct GpuNode
 
 using GpuTri = LeafTri; // vertices and unit normal, in BVH leaf order
 
+/// The mesh tree's leaf copies from the welded mesh: leaf[i] = triangle
+/// order[i]'s corners points[welded[t][k]] (the input's floats, exact in
+/// double) and its unit normal by the records' own expression (faceCross,
+/// unitFaceNormal; no FMA contraction): the bits of leafCopies on the host.
+__global__ void gatherLeavesKernel(const unsigned* welded, const float* points, const int* order, long long n,
+  GpuTri* leaf)
+{
+  for (long long i = blockIdx.x * static_cast<long long>(blockDim.x) + threadIdx.x; i < n;
+       i += static_cast<long long>(gridDim.x) * blockDim.x)
+  {
+    const long long t = order[i];
+    GpuTri l;
+    for (int k = 0; k < 3; ++k)
+    {
+      const long long p = welded[3 * t + k];
+      l.v[k] = V3{ points[3 * p], points[3 * p + 1], points[3 * p + 2] };
+    }
+    const V3 c = faceCross(l.v);
+    l.n = unitFaceNormal(c, norm(c));
+    leaf[i] = l;
+  }
+}
+
 struct DevBvh
 {
   // by triangle index, mesh BVH of Normal/PseudoNormal sessions only: the records,

@@ -36,6 +36,12 @@ LVDIF_HD V3 normalized(V3 a)
   return n > 0 ? (1.0 / n) * a : V3{};
 }
 
+/// (B - A) x (C - A): the face normal times twice the area.
+LVDIF_HD V3 faceCross(const V3 v[3]) { return cross(v[1] - v[0], v[2] - v[0]); }
+/// The record's unit normal from faceCross and its norm: one expression for
+/// the host's records and the device's leaf copies (the same bits).
+LVDIF_HD V3 unitFaceNormal(V3 c, double len) { return (1.0 / len) * c; }
+
 /// Which feature of triangle (A, B, C) the closest point lies on.
 enum Feature : std::uint8_t
 {

@@ -393,18 +393,23 @@ void prepareMesh(const TriangleMesh& mesh, PreparedMesh& out, bool pseudoNormals
   auto toV3 = [](const Vec3f& p) { return V3{ p[0], p[1], p[2] }; };
   LargeVector<V3> weldPos;
   resizeLargeForOverwrite(weldPos, nv);
+  resizeLargeForOverwrite(out.points, nv);
   const std::int64_t nvAll = static_cast<std::int64_t>(nv);
 #pragma omp parallel for schedule(static)
-  for (std::int64_t v = 0; v < nvAll; ++v) weldPos[v] = toV3(mesh.points[firstOf[v]]);
+  for (std::int64_t v = 0; v < nvAll; ++v)
+  {
+    out.points[v] = mesh.points[firstOf[v]];
+    weldPos[v] = toV3(out.points[v]);
+  }
   lap("prepare: validate and weld");
 
   // triangle records and corner angles, in parallel, written straight to
   // their final (compacted) place: which triangles are kept is known first
   const std::int64_t ntI = static_cast<std::int64_t>(nt);
-  auto faceCross = [&](std::int64_t t, V3* v) {
+  auto crossOf = [&](std::int64_t t, V3* v) {
     const auto& ix = mesh.triangles[static_cast<std::size_t>(t)];
     for (int k = 0; k < 3; ++k) v[k] = toV3(mesh.points[ix[k]]);
-    return cross(v[1] - v[0], v[2] - v[0]);
+    return faceCross(v);
   };
   LargeVector<std::uint32_t> slot; // slot[t] = kept triangles before t
   resizeLargeForOverwrite(slot, nt + 1);
@@ -413,7 +418,7 @@ void prepareMesh(const TriangleMesh& mesh, PreparedMesh& out, bool pseudoNormals
   for (std::int64_t t = 0; t < ntI; ++t)
   {
     V3 v[3];
-    slot[t + 1] = norm(faceCross(t, v)) > 0 ? 1 : 0;
+    slot[t + 1] = norm(crossOf(t, v)) > 0 ? 1 : 0;
   }
   inclusiveSum(slot.data() + 1, nt);
   const std::size_t n = slot[nt];
@@ -443,9 +448,9 @@ void prepareMesh(const TriangleMesh& mesh, PreparedMesh& out, bool pseudoNormals
     const std::size_t o = slot[t];
     const auto& ix = mesh.triangles[static_cast<std::size_t>(t)];
     Tri& tri = out.tris[o];
-    const V3 c = faceCross(t, tri.v);
+    const V3 c = crossOf(t, tri.v);
     const double len = norm(c);
-    tri.n = (1.0 / len) * c;
+    tri.n = unitFaceNormal(c, len);
     tri.area = 0.5 * len;
     tri.source = static_cast<std::uint32_t>(t);
     if (!mesh.normals.empty())

@@ -76,12 +76,12 @@ Tri makeTri(V3 a, V3 b, V3 c, bool& ok)
   t.v[0] = a;
   t.v[1] = b;
   t.v[2] = c;
-  const V3 n = cross(b - a, c - a);
+  const V3 n = faceCross(t.v);
   const double len = norm(n);
   ok = len > 0;
   if (ok)
   {
-    t.n = (1.0 / len) * n;
+    t.n = unitFaceNormal(n, len);
     t.area = 0.5 * len;
   }
   return t;

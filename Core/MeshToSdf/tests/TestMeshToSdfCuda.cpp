@@ -8,6 +8,7 @@
 #include "lvdif/MeshToSdf.h"
 #include "lvdif/SdfDictionary.h"
 #include "../src/MeshToSdfCuda.h"
+#include "../src/MeshToSdfInternal.h"
 
 #include <gtest/gtest.h>
 
@@ -431,6 +432,40 @@ TEST(MeshToSdfCuda, DeviceEncodeMatchesHostEncode)
     std::int64_t bad = 0;
     for (std::size_t i = 0; i < v.size(); ++i) bad += gpu[i] != d.encodeClamped(v[i], band);
     EXPECT_EQ(bad, 0) << "band " << band;
+  }
+}
+
+TEST(MeshToSdfCuda, MeshTreeLeavesGatheredOnTheDeviceEqualTheHostCopies)
+{
+  if (!cuda::available()) GTEST_SKIP() << "no CUDA device";
+  using namespace detail::meshtosdf;
+  std::vector<std::pair<std::string, TriangleMesh>> meshes = oracle::damagedMeshes();
+  meshes.emplace_back("holed and flipped", holedFlipped());
+  // a soup: every corner its own point (duplicated positions weld), a
+  // degenerate triangle skipped, signed zeros and far coordinates
+  TriangleMesh soup;
+  std::mt19937 rng(11);
+  std::uniform_real_distribution<float> u(-1.0f, 1.0f);
+  for (int t = 0; t < 3000; ++t)
+  {
+    const float big = t % 5 == 0 ? 1e6f : 1.0f;
+    for (int k = 0; k < 3; ++k)
+      soup.points.push_back({ t % 7 == 0 ? -0.0f : u(rng) * big, u(rng), t % 11 == 0 ? 0.0f : u(rng) });
+    const std::uint32_t b = static_cast<std::uint32_t>(3 * t);
+    soup.triangles.push_back({ b, b + 1, t % 13 == 0 ? b + 1 : b + 2 });
+    if (t % 3 == 0) soup.triangles.push_back({ b, b + 2, b + 1 }); // the reversed copy, sharing the points
+  }
+  meshes.emplace_back("soup", soup);
+  for (const auto& [name, mesh] : meshes)
+  {
+    const PreparedMesh pm = prepareMesh(mesh, false);
+    const Bvh bvh(pm.tris);
+    const LargeVector<LeafTri> host = leafCopies(bvh);
+    const std::vector<LeafTri> device = detail::meshtosdf_cuda::meshLeavesOnDevice(pm, bvh);
+    ASSERT_EQ(device.size(), host.size()) << name;
+    std::int64_t differ = 0;
+    for (std::size_t i = 0; i < host.size(); ++i) differ += std::memcmp(&device[i], &host[i], sizeof(LeafTri)) != 0;
+    EXPECT_EQ(differ, 0) << name << ": " << host.size() << " leaves";
   }
 }
 

@@ -56,7 +56,7 @@ Outcome cpuRay(const Bvh& b, V3 o, V3 dir)
 }
 
 /// What castRowRay does, one lane after another: at most `cap` crossings in all.
-Outcome splitRay(const Bvh& b, V3 o, V3 dir, int lanes, int cap, int& subtrees)
+Outcome splitRay(const Bvh& b, const LargeVector<LeafTri>& leaves, V3 o, V3 dir, int lanes, int cap, int& subtrees)
 {
   const double inv[3] = { 1.0 / dir.x, 1.0 / dir.y, 1.0 / dir.z };
   std::vector<int> frontier(static_cast<std::size_t>(lanes)), scratch(2 * static_cast<std::size_t>(lanes));
@@ -66,7 +66,7 @@ Outcome splitRay(const Bvh& b, V3 o, V3 dir, int lanes, int cap, int& subtrees)
   for (int lane = 0; lane < subtrees; ++lane)
   {
     int sum = 0;
-    const bool ok = rayWalk(b.nodes().data(), b.leaves().data(), b.order().data(), frontier[static_cast<std::size_t>(lane)],
+    const bool ok = rayWalk(b.nodes().data(), leaves.data(), b.order().data(), frontier[static_cast<std::size_t>(lane)],
       o, dir, inv, sum, [&](double t, int tri, int sg) {
         if (count++ >= cap) return false;
         r.hits.push_back({ t, tri, sg });
@@ -90,6 +90,7 @@ TEST(MeshToSdfRayWalk, SplitWalkFindsWhatRayHitsFinds)
   {
     const PreparedMesh pm = prepareMesh(mesh);
     const Bvh b(pm.tris);
+    const LargeVector<LeafTri> leaves = leafCopies(b);
     const GridGeometry g = fitGridToMesh(mesh, 64, 2);
     std::vector<std::pair<V3, V3>> list;
     const V3 oblique = normalized(V3{ 0.5773502691896258, 0.5780, 0.5767 });
@@ -110,8 +111,8 @@ TEST(MeshToSdfRayWalk, SplitWalkFindsWhatRayHitsFinds)
       const Outcome want = cpuRay(b, o, dir);
       // one walk from the root (rayDev) and the walk split over 32 lanes (castRowRay), no cap
       int subtrees = 0, one = 0;
-      const Outcome whole = splitRay(b, o, dir, 1, 1 << 30, one);
-      const Outcome lanes = splitRay(b, o, dir, 32, 1 << 30, subtrees);
+      const Outcome whole = splitRay(b, leaves, o, dir, 1, 1 << 30, one);
+      const Outcome lanes = splitRay(b, leaves, o, dir, 32, 1 << 30, subtrees);
       ++rays;
       ambiguous += !want.ok;
       split += subtrees > 1;
@@ -128,7 +129,7 @@ TEST(MeshToSdfRayWalk, SplitWalkFindsWhatRayHitsFinds)
       // the cap: refused exactly when the CPU finds more crossings than it holds
       for (int cap : { 0, 1, 2, MaxHits })
       {
-        const Outcome capped = splitRay(b, o, dir, 32, cap, subtrees);
+        const Outcome capped = splitRay(b, leaves, o, dir, 32, cap, subtrees);
         const bool fits = want.ok && static_cast<int>(want.hits.size()) <= cap;
         ASSERT_EQ(capped.ok, fits) << name << " cap " << cap;
         overflows += want.ok && !fits;

@@ -25,6 +25,11 @@ KeyCopyCounts keyCopyCounts()
 
 void refusePinnedKeys(bool) {}
 
+std::vector<detail::meshtosdf::LeafTri> meshLeavesOnDevice(const detail::meshtosdf::PreparedMesh&, const detail::meshtosdf::Bvh&)
+{
+  throw Error(ErrorCode::Unsupported, "mesh to SDF: this build has no CUDA");
+}
+
 std::vector<std::uint16_t> encodeOnDevice(const SdfDictionary::EncodeConstants&, float, const std::vector<float>&)
 {
   throw Error(ErrorCode::Unsupported, "mesh to SDF: this build has no CUDA");
