@@ -98,6 +98,51 @@ LVDIF_HD bool triangleLipschitz(const WeightedTri& t, V3 q, double rho, double& 
   return true;
 }
 
+/// The error of a cluster's best rigorous bound over the ball (q, rho), r =
+/// |c - q|, d = r - rho - R > 0 (R the cluster's radius, A its mass), the
+/// smallest of three: 0 (order 0: |Omega| <= A / d^2), the dipole term at q
+/// (order 1: error 2 A (R + rho) / d^3, |grad (y / |y|^3)| <= 2 / |y|^3) and
+/// the dipole plus the second-order term (order 2, Barill et al.'s: the
+/// Taylor remainder 3 A R^2 / (r - R)^4, |D^3 (1/|y|)| <= 3! / |y|^4, moved
+/// over the ball by the Lipschitz bound 2 A / d^3). In units of 4 pi.
+LVDIF_HD double clusterError(const DipoleTree::Node& nd, double r, double rho, double d, int& order)
+{
+  const double dq = r - nd.r;
+  const double e0 = nd.mass / (d * d), e1 = 2 * nd.mass * (nd.r + rho) / (d * d * d);
+  const double e2 = 3 * nd.mass * nd.r * nd.r / (dq * dq * dq * dq) + 2 * nd.mass * rho / (d * d * d);
+  order = e2 < e1 ? (e2 < e0 ? 2 : 0) : (e1 < e0 ? 1 : 0);
+  return order == 2 ? e2 : (order == 1 ? e1 : e0);
+}
+
+/// The value of that bound's expansion at q (y = c - q, r = |y|) and a bound
+/// mag of its terms' magnitudes (for the rounding slack). In units of 4 pi.
+LVDIF_HD double clusterValue(const DipoleTree::Node& nd, V3 y, double r, int order, double& mag)
+{
+  mag = 0;
+  if (order == 0) return 0;
+  const double r3 = r * r * r;
+  double v = dot(nd.dipole, y) / r3;
+  mag = std::fabs(v);
+  if (order == 2)
+  {
+    // sum_ij T_ij d(y_i / |y|^3)/d y_j = tr T / r^3 - 3 y.T.y / r^5
+    const double* T = nd.quad;
+    const double yy[3] = { y.x, y.y, y.z };
+    double yTy = 0, yTyAbs = 0;
+    for (int i = 0; i < 3; ++i)
+      for (int j = 0; j < 3; ++j)
+      {
+        const double t = yy[i] * T[3 * i + j] * yy[j];
+        yTy += t;
+        yTyAbs += std::fabs(t);
+      }
+    const double r5 = r3 * r * r;
+    v += (T[0] + T[4] + T[8]) / r3 - 3 * yTy / r5;
+    mag += (std::fabs(T[0]) + std::fabs(T[4]) + std::fabs(T[8])) / r3 + 3 * yTyAbs / r5;
+  }
+  return v;
+}
+
 /// A rigorous interval [sLo, sHi] of s over the ball (q, rho). Clusters at
 /// d > 0 whose error is at most tolPerMass x their mass are taken as bounds
 /// (DipoleTree::refine's formulas), others opened; leaves are summed exactly
@@ -126,40 +171,12 @@ LVDIF_HD bool boundDipole(const DipoleView& D, V3 q, double rho, double tolPerMa
     const double d = r - rho - nd.r;
     if (d > 0)
     {
-      // three rigorous bounds, the smallest taken: 0 (area / d^2), the
-      // dipole (DipoleTree::refine's), and the dipole plus the second-order
-      // term (Barill et al.'s; remainder 3 A R^2 / (r - R)^4: |D^3 (1/|y|)|
-      // <= 3! / |y|^4), moved over the ball by the Lipschitz bound 2 A / d^3
-      const double r3 = r * r * r, dq = r - nd.r;
-      const double e0 = nd.mass / (d * d), e1 = 2 * nd.mass * (nd.r + rho) / (d * d * d);
-      const double e2 = 3 * nd.mass * nd.r * nd.r / (dq * dq * dq * dq) + 2 * nd.mass * rho / (d * d * d);
-      const double e = e2 < e1 ? (e2 < e0 ? e2 : e0) : (e1 < e0 ? e1 : e0);
+      int order = 0;
+      const double e = clusterError(nd, r, rho, d, order);
       if (e <= tolPerMass * nd.mass)
       {
-        const int order = e == e0 ? 0 : (e == e1 ? 1 : 2);
-        double v = 0, m = 0;
-        if (order >= 1)
-        {
-          v = dot(nd.dipole, y) / r3;
-          m = std::fabs(v);
-        }
-        if (order == 2)
-        {
-          // sum_ij T_ij d(y_i / |y|^3)/d y_j = tr T / r^3 - 3 y.T.y / r^5
-          const double* T = nd.quad;
-          const double yy[3] = { y.x, y.y, y.z };
-          double yTy = 0, yTyAbs = 0;
-          for (int i = 0; i < 3; ++i)
-            for (int j = 0; j < 3; ++j)
-            {
-              const double t = yy[i] * T[3 * i + j] * yy[j];
-              yTy += t;
-              yTyAbs += std::fabs(t);
-            }
-          const double r5 = r3 * r * r;
-          v += (T[0] + T[4] + T[8]) / r3 - 3 * yTy / r5;
-          m += (std::fabs(T[0]) + std::fabs(T[4]) + std::fabs(T[8])) / r3 + 3 * yTyAbs / r5;
-        }
+        double m = 0;
+        const double v = clusterValue(nd, y, r, order, m);
         value += v;
         err += e;
         mag += m;

@@ -92,7 +92,7 @@ DipoleTree::Refined DipoleTree::refine(V3 q, double rho, const std::function<int
   summed.clear();
   struct Open
   {
-    double err, value; // in units of 4 pi
+    double err, value, mag; // in units of 4 pi; mag bounds |value|'s terms (the rounding slack)
     std::int32_t node;
     bool operator<(const Open& o) const { return this->err < o.err; }
   };
@@ -111,15 +111,18 @@ DipoleTree::Refined DipoleTree::refine(V3 q, double rho, const std::function<int
     const V3 y = nd.c - q;
     const double r = norm(y);
     const double d = r - rho - nd.r;
-    Open o{ std::numeric_limits<double>::infinity(), 0, id };
+    Open o{ std::numeric_limits<double>::infinity(), 0, 0, id };
     if (d > 0)
     {
-      const double e0 = nd.mass / (d * d), e1 = 2 * nd.mass * (nd.r + rho) / (d * d * d);
-      if (e1 < e0) o = { e1, dot(nd.dipole, y) / (r * r * r), id };
-      else o = { e0, 0, id };
+      // the GPU's bounds (order 0, 1 or 2: the second-order term shrinks the
+      // error of a cluster a few radii away by (R + rho) / d against the
+      // dipole's, so fewer clusters open where s must be known closely)
+      int order = 0;
+      o.err = clusterError(nd, r, rho, d, order);
+      o.value = clusterValue(nd, y, r, order, o.mag);
       value += o.value;
       err += o.err;
-      mag += std::fabs(o.value);
+      mag += o.mag;
     }
     else
     {
@@ -178,7 +181,7 @@ DipoleTree::Refined DipoleTree::refine(V3 q, double rho, const std::function<int
     {
       value -= o.value;
       err -= o.err;
-      mag -= std::fabs(o.value);
+      mag -= o.mag;
     }
     else
     {
@@ -210,7 +213,7 @@ DipoleTree::Refined DipoleTree::refine(V3 q, double rho, const std::function<int
         m += std::fabs(a);
       }
       const bool tighter = bounded && e < o.err;
-      const Open b = tighter ? Open{ e, v, o.node } : o;
+      const Open b = tighter ? Open{ e, v, m, o.node } : o;
       if (!std::isfinite(b.err))
       {
         heap.push_back(o); // the ball meets a triangle: keep the cut whole
@@ -218,7 +221,7 @@ DipoleTree::Refined DipoleTree::refine(V3 q, double rho, const std::function<int
       }
       value += b.value;
       err += b.err;
-      mag += tighter ? m : std::fabs(b.value);
+      mag += b.mag;
       frozen.push_back(b);
       frozenErr += b.err;
       // give up when even exact values for everything else would leave the

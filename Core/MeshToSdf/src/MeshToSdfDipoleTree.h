@@ -42,9 +42,11 @@ public:
   /// returns 1 (done) or -1 (give up); 0 means go on. Barnes-Hut style, but
   /// driven by the sign decision instead of a fixed opening angle. A cluster
   /// (centre c, radius R, weighted area A) at d = |c - q| - rho - R > 0 uses
-  /// the smaller of two rigorous bounds: its dipole term at q with error
-  /// 2 A (R + rho) / d^3 (Taylor: |grad (y / |y|^3)| <= 2 / |y|^3), or 0
-  /// with error A / d^2 (|Omega_t| <= area / dist^2); d <= 0: no bound.
+  /// the smallest of three rigorous bounds (clusterError, shared with the
+  /// GPU): 0 with error A / d^2 (|Omega_t| <= area / dist^2), its dipole term
+  /// at q with error 2 A (R + rho) / d^3 (Taylor: |grad (y / |y|^3)| <=
+  /// 2 / |y|^3), or the dipole plus the second-order term with error
+  /// 3 A R^2 / (|c - q| - R)^4 + 2 A rho / d^3; d <= 0: no bound.
   /// With rho > 0 a leaf is bounded triangle by triangle (the exact value at
   /// q plus rho times a Lipschitz bound of the solid angle on the ball,
   /// triangleLipschitz, the GPU's block bound) where that is tighter; such a
@@ -67,7 +69,7 @@ public:
   {
     V3 c, dipole;        // centre; sum of w a n
     double r = 0, mass = 0; // radius about c; sum of |w| a
-    double quad[9] = {};    // sum of w a n_i (g - c)_j, g the centroid (the GPU's second-order term)
+    double quad[9] = {};    // sum of w a n_i (g - c)_j, g the centroid (the second-order term)
     std::int32_t left = -1, right = -1, first = 0, count = 0;
   };
   // for the upload to the GPU (node 0 the root; leaves list tris()[first, first + count))
