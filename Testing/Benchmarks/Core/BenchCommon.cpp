@@ -4,6 +4,7 @@
 #include "lvdif/Memory.h"
 
 #include <cstdio>
+#include <exception>
 #include <fstream>
 #include <iostream>
 #include <sstream>
@@ -66,6 +67,21 @@ void printTable(const std::vector<std::string>& header, const std::vector<std::v
   std::cout << "\n";
   for (const auto& r : rows) printRow(r);
   std::cout.flush();
+}
+
+int guardedMain(int argc, char** argv, int (*body)(int, char**))
+{
+  try
+  {
+    return body(argc, argv);
+  }
+  catch (const std::exception& e)
+  {
+    std::string name = argc > 0 ? argv[0] : "benchmark";
+    name = name.substr(name.find_last_of('/') + 1);
+    std::fprintf(stderr, "%s: %s\n", name.c_str(), e.what());
+    return 1;
+  }
 }
 
 } // namespace bench

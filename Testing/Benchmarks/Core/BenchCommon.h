@@ -1,5 +1,6 @@
 // Shared helpers for the benchmarks: a wall clock, the machine description
-// every table starts with, and a plain-text table printer.
+// every table starts with, a plain-text table printer, and the error guard
+// of their main functions.
 #pragma once
 
 #include <algorithm>
@@ -33,6 +34,10 @@ std::string machineDescription();
 void printTable(const std::vector<std::string>& header, const std::vector<std::vector<std::string>>& rows);
 
 std::string fmt(double value, int decimals = 2);
+
+/// Runs a benchmark's body: an exception (a missing or malformed mesh, a refused size) becomes one line
+/// "NAME: message" on stderr and exit status 1, not std::terminate.
+int guardedMain(int argc, char** argv, int (*body)(int, char**));
 
 /// The p-quantile (0..1, nearest rank) of the values; 0 for none.
 inline double percentile(std::vector<double> v, double p)

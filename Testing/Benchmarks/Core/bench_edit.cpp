@@ -67,7 +67,7 @@ std::string readFile(const std::string& path)
 
 } // namespace
 
-int main(int argc, char** argv)
+static int benchMain(int argc, char** argv)
 {
   const std::int64_t edge = argc > 1 ? std::atoll(argv[1]) : 1024;
   const int dabs = argc > 2 ? std::atoi(argv[2]) : 40;
@@ -207,3 +207,5 @@ int main(int argc, char** argv)
   }
   return 0;
 }
+
+int main(int argc, char** argv) { return bench::guardedMain(argc, argv, benchMain); }

@@ -92,7 +92,7 @@ void gpuTable(std::int64_t n, int repeats)
 }
 } // namespace
 
-int main(int argc, char** argv)
+static int benchMain(int argc, char** argv)
 {
   const std::int64_t maxN = argc > 1 ? std::atoll(argv[1]) : 1024;
   const int repeats = argc > 2 ? std::atoi(argv[2]) : 3;
@@ -187,3 +187,5 @@ int main(int argc, char** argv)
   }
   return 0;
 }
+
+int main(int argc, char** argv) { return bench::guardedMain(argc, argv, benchMain); }

@@ -101,7 +101,7 @@ std::string obj(const TriangleMesh& m)
 }
 } // namespace
 
-int main(int argc, char** argv)
+static int benchMain(int argc, char** argv)
 {
   const std::int64_t n = argc > 1 ? std::atoll(argv[1]) : 10000000;
   const std::string dir = argc > 2 ? argv[2] : "/tmp";
@@ -152,3 +152,5 @@ int main(int argc, char** argv)
   bench::printTable({ "format", "points", "triangles", "raw read ms", "loadMesh ms", "ratio" }, rows);
   return 0;
 }
+
+int main(int argc, char** argv) { return bench::guardedMain(argc, argv, benchMain); }

@@ -80,7 +80,7 @@ double rowSweep(const GridGeometry& g, const NearestIndex& index, std::vector<do
 }
 } // namespace
 
-int main(int argc, char** argv)
+static int benchMain(int argc, char** argv)
 {
   if (argc < 2)
   {
@@ -143,3 +143,5 @@ int main(int argc, char** argv)
   }
   return diff == 0 ? 0 : 1;
 }
+
+int main(int argc, char** argv) { return bench::guardedMain(argc, argv, benchMain); }

@@ -369,98 +369,92 @@ std::vector<std::string> runStroke(const Config& cfg, double radius)
 }
 } // namespace
 
-int main(int argc, char* argv[])
+static int benchMain(int argc, char** argv)
 {
   Config cfg;
-  try
+  for (int i = 1; i < argc; ++i)
   {
-    for (int i = 1; i < argc; ++i)
+    const bool more = i + 1 < argc;
+    if (!std::strcmp(argv[i], "--samples") && more)
+      cfg.samples = std::atoi(argv[++i]);
+    else if (!std::strcmp(argv[i], "--radius") && more)
     {
-      const bool more = i + 1 < argc;
-      if (!std::strcmp(argv[i], "--samples") && more)
-        cfg.samples = std::atoi(argv[++i]);
-      else if (!std::strcmp(argv[i], "--radius") && more)
-      {
-        cfg.radii.clear();
-        std::stringstream s(argv[++i]);
-        std::string item;
-        while (std::getline(s, item, ','))
-          cfg.radii.push_back(std::atof(item.c_str()));
-      }
-      else if (!std::strcmp(argv[i], "--settle") && more)
-        cfg.settleMs = std::atof(argv[++i]);
-      else if (!std::strcmp(argv[i], "--chunk") && more)
-        cfg.chunk = std::atoi(argv[++i]);
-      else if (!std::strcmp(argv[i], "--phases"))
-        cfg.phases = true;
-      else if (!std::strcmp(argv[i], "--write-stroke") && more)
-        cfg.writeStroke = argv[++i];
-      else if (!std::strcmp(argv[i], "--write-volume") && more)
-        cfg.writeVolume = argv[++i];
-      else if (!std::strcmp(argv[i], "--loop") && more)
-        cfg.loop = argv[++i];
-      else if (!std::strcmp(argv[i], "--device") && more)
-      {
-        const std::string d = argv[++i];
-        if (d != "cpu" && d != "cuda")
-          throw lvdif::Error(lvdif::ErrorCode::InvalidArgument, "--device must be cpu or cuda, not " + d);
-        cfg.device = d == "cuda" ? lvdif::Device::Cuda : lvdif::Device::Cpu;
-      }
-      else if (argv[i][0] != '-')
-        cfg.n = std::atoi(argv[i]);
-      else
-        throw lvdif::Error(lvdif::ErrorCode::InvalidArgument, std::string("unknown option ") + argv[i]);
+      cfg.radii.clear();
+      std::stringstream s(argv[++i]);
+      std::string item;
+      while (std::getline(s, item, ','))
+        cfg.radii.push_back(std::atof(item.c_str()));
     }
-    bool radiiOk = !cfg.radii.empty();
+    else if (!std::strcmp(argv[i], "--settle") && more)
+      cfg.settleMs = std::atof(argv[++i]);
+    else if (!std::strcmp(argv[i], "--chunk") && more)
+      cfg.chunk = std::atoi(argv[++i]);
+    else if (!std::strcmp(argv[i], "--phases"))
+      cfg.phases = true;
+    else if (!std::strcmp(argv[i], "--write-stroke") && more)
+      cfg.writeStroke = argv[++i];
+    else if (!std::strcmp(argv[i], "--write-volume") && more)
+      cfg.writeVolume = argv[++i];
+    else if (!std::strcmp(argv[i], "--loop") && more)
+      cfg.loop = argv[++i];
+    else if (!std::strcmp(argv[i], "--device") && more)
+    {
+      const std::string d = argv[++i];
+      if (d != "cpu" && d != "cuda")
+        throw lvdif::Error(lvdif::ErrorCode::InvalidArgument, "--device must be cpu or cuda, not " + d);
+      cfg.device = d == "cuda" ? lvdif::Device::Cuda : lvdif::Device::Cpu;
+    }
+    else if (argv[i][0] != '-')
+      cfg.n = std::atoi(argv[i]);
+    else
+      throw lvdif::Error(lvdif::ErrorCode::InvalidArgument, std::string("unknown option ") + argv[i]);
+  }
+  bool radiiOk = !cfg.radii.empty();
+  for (double r : cfg.radii)
+    radiiOk = radiiOk && r > 0;
+  if (cfg.n < 64 || cfg.samples < 2 || !radiiOk || (cfg.loop != "event" && cfg.loop != "tick"))
+    throw lvdif::Error(lvdif::ErrorCode::InvalidArgument, "need N >= 64, samples >= 2, radii > 0, loop event|tick");
+  if (!cfg.writeVolume.empty())
+    lvdif::saveVolume(*sphereVolume(cfg.n, cfg.chunk > 0 ? cfg.chunk : (cfg.n >= 1024 ? 64 : 32)), cfg.writeVolume);
+  if (!cfg.writeStroke.empty())
+  {
+    std::FILE* f = std::fopen(cfg.writeStroke.c_str(), "w");
+    if (!f)
+      throw lvdif::Error(lvdif::ErrorCode::IoFailure, "cannot write " + cfg.writeStroke);
+    std::fprintf(f, "# bench_stroke_latency_core's stroke on its %d^3 sphere (--write-volume): %d samples at 50 Hz\n",
+      cfg.n, cfg.samples);
+    for (const lvdif::BrushSample& b : strokeSamples(cfg.n, cfg.samples))
+      std::fprintf(f, "{\"position\":[%.6f,%.6f,%.6f],\"time\":%.4f}\n", b.position[0], b.position[1], b.position[2], b.time);
+    if (std::fclose(f) != 0)
+      throw lvdif::Error(lvdif::ErrorCode::IoFailure, "cannot write " + cfg.writeStroke);
+  }
+  if (!cfg.writeStroke.empty() || !cfg.writeVolume.empty())
+    return 0;
+  if (cfg.device == lvdif::Device::Cuda && lvdif::resolveDevice(cfg.device) != lvdif::Device::Cuda)
+    throw lvdif::Error(lvdif::ErrorCode::Unsupported, "--device cuda: no usable CUDA device in this build/machine");
+  std::cout << "bench_stroke_latency_core: " << bench::machineDescription() << "\n"
+            << "Latency = from the sample's recorded time until every mesh chunk it invalidated has a collected "
+               "mesh showing it (ready to draw). Not included: building VTK actors and drawing the frame.\n";
+  std::vector<std::vector<std::string>> rows;
+  if (cfg.phases)
+  {
     for (double r : cfg.radii)
-      radiiOk = radiiOk && r > 0;
-    if (cfg.n < 64 || cfg.samples < 2 || !radiiOk || (cfg.loop != "event" && cfg.loop != "tick"))
-      throw lvdif::Error(lvdif::ErrorCode::InvalidArgument, "need N >= 64, samples >= 2, radii > 0, loop event|tick");
-    if (!cfg.writeVolume.empty())
-      lvdif::saveVolume(*sphereVolume(cfg.n, cfg.chunk > 0 ? cfg.chunk : (cfg.n >= 1024 ? 64 : 32)), cfg.writeVolume);
-    if (!cfg.writeStroke.empty())
-    {
-      std::FILE* f = std::fopen(cfg.writeStroke.c_str(), "w");
-      if (!f)
-        throw lvdif::Error(lvdif::ErrorCode::IoFailure, "cannot write " + cfg.writeStroke);
-      std::fprintf(f, "# bench_stroke_latency_core's stroke on its %d^3 sphere (--write-volume): %d samples at 50 Hz\n",
-        cfg.n, cfg.samples);
-      for (const lvdif::BrushSample& b : strokeSamples(cfg.n, cfg.samples))
-        std::fprintf(f, "{\"position\":[%.6f,%.6f,%.6f],\"time\":%.4f}\n", b.position[0], b.position[1], b.position[2], b.time);
-      if (std::fclose(f) != 0)
-        throw lvdif::Error(lvdif::ErrorCode::IoFailure, "cannot write " + cfg.writeStroke);
-    }
-    if (!cfg.writeStroke.empty() || !cfg.writeVolume.empty())
-      return 0;
-    if (cfg.device == lvdif::Device::Cuda && lvdif::resolveDevice(cfg.device) != lvdif::Device::Cuda)
-      throw lvdif::Error(lvdif::ErrorCode::Unsupported, "--device cuda: no usable CUDA device in this build/machine");
-    std::cout << "bench_stroke_latency_core: " << bench::machineDescription() << "\n"
-              << "Latency = from the sample's recorded time until every mesh chunk it invalidated has a collected "
-                 "mesh showing it (ready to draw). Not included: building VTK actors and drawing the frame.\n";
-    std::vector<std::vector<std::string>> rows;
-    if (cfg.phases)
-    {
-      for (double r : cfg.radii)
-        rows.push_back(runPhases(cfg, r));
-      std::cout << "Phases (--phases): the stroke's samples one after the other without the clock, CPU session; "
-                   "process CPU ms (all threads) per sample that changed voxels.\n";
-      bench::printTable({ "volume/chunk", "radius", "samples", "edit CPU ms/sample", "mesh CPU ms/sample",
-                          "mesh chunks/sample", "mesh CPU ms/chunk", "% of meshes unchanged" },
-        rows);
-      return 0;
-    }
-    for (double r : cfg.radii)
-      rows.push_back(runStroke(cfg, r));
-    bench::printTable({ "volume/chunk", "session", "radius", "loop", "requests", "mesh chunks/request p50 (p95)",
-                        "latency p50 ms", "latency p95 ms", "latency max ms", "from edit p50 (p95) ms",
-                        "frame p50 (p95) ms", "fps (1/mean frame)", "loop it/s", "edit p50 (p95) ms",
-                        "collect p50 (p95) ms", "CPU s (stroke)", "CPU ms/request" },
+      rows.push_back(runPhases(cfg, r));
+    std::cout << "Phases (--phases): the stroke's samples one after the other without the clock, CPU session; "
+                 "process CPU ms (all threads) per sample that changed voxels.\n";
+    bench::printTable({ "volume/chunk", "radius", "samples", "edit CPU ms/sample", "mesh CPU ms/sample",
+                        "mesh chunks/sample", "mesh CPU ms/chunk", "% of meshes unchanged" },
       rows);
+    return 0;
   }
-  catch (const std::exception& e)
-  {
-    std::cerr << "bench_stroke_latency_core: " << e.what() << "\n";
-    return 1;
-  }
+  for (double r : cfg.radii)
+    rows.push_back(runStroke(cfg, r));
+  bench::printTable({ "volume/chunk", "session", "radius", "loop", "requests", "mesh chunks/request p50 (p95)",
+                      "latency p50 ms", "latency p95 ms", "latency max ms", "from edit p50 (p95) ms",
+                      "frame p50 (p95) ms", "fps (1/mean frame)", "loop it/s", "edit p50 (p95) ms",
+                      "collect p50 (p95) ms", "CPU s (stroke)", "CPU ms/request" },
+    rows);
   return 0;
 }
+
+int main(int argc, char** argv) { return bench::guardedMain(argc, argv, benchMain); }

@@ -56,7 +56,7 @@ void resetPeak()
 }
 } // namespace
 
-int main(int argc, char** argv)
+static int benchMain(int argc, char** argv)
 {
   if (argc != 2)
   {
@@ -106,3 +106,5 @@ int main(int argc, char** argv)
     static_cast<long long>(n), tSdf, tSvf, cSdf, cSvf, mib(volume.memoryBytes()), peakSdf, peakSvf, peakSvf - before);
   return 0;
 }
+
+int main(int argc, char** argv) { return bench::guardedMain(argc, argv, benchMain); }

@@ -18,7 +18,7 @@
 
 using namespace lvdif;
 
-int main(int argc, char** argv)
+static int benchMain(int argc, char** argv)
 {
   std::int64_t n = 1024;
   bool dense = true;
@@ -152,3 +152,5 @@ int main(int argc, char** argv)
   std::cerr << "(checksum " << sink << ")\n";
   return 0;
 }
+
+int main(int argc, char** argv) { return bench::guardedMain(argc, argv, benchMain); }

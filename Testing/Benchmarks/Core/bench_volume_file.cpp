@@ -111,7 +111,7 @@ Row measureRaw(std::int64_t n, const std::string& path)
 
 } // namespace
 
-int main(int argc, char** argv)
+static int benchMain(int argc, char** argv)
 {
   const std::int64_t maxEdge = argc > 1 ? std::atoll(argv[1]) : 1024;
   const std::string dir = argc > 2 ? argv[2] : "/tmp";
@@ -166,3 +166,5 @@ int main(int argc, char** argv)
   bench::printTable({ "level", "MiB", "save ms", "save CPU s", "load ms", "load CPU s" }, levels);
   return 0;
 }
+
+int main(int argc, char** argv) { return bench::guardedMain(argc, argv, benchMain); }

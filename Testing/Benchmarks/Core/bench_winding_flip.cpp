@@ -65,7 +65,7 @@ std::vector<double> parseList(const std::string& s)
 }
 } // namespace
 
-int main(int argc, char** argv)
+static int benchMain(int argc, char** argv)
 {
   std::vector<double> resolutions{ 64, 128 };
   std::int64_t samples = 1000;
@@ -167,3 +167,5 @@ int main(int argc, char** argv)
     rows);
   return 0;
 }
+
+int main(int argc, char** argv) { return bench::guardedMain(argc, argv, benchMain); }

@@ -31,7 +31,7 @@
 
 using namespace lvdiftest;
 
-int main(int argc, char* argv[])
+static int benchMain(int argc, char** argv)
 {
   const int n = argc > 1 ? std::atoi(argv[1]) : 160;
   const int edge = argc > 2 ? std::atoi(argv[2]) : 32;
@@ -131,3 +131,5 @@ int main(int argc, char* argv[])
   bench::printTable({ "colour", "case", "per-chunk actors (ms)", "one merged actor (ms)", "merged / per-chunk" }, rows);
   return 0;
 }
+
+int main(int argc, char** argv) { return bench::guardedMain(argc, argv, benchMain); }

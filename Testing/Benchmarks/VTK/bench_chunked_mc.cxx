@@ -57,7 +57,7 @@ vtkIdType triangles(vtkDataObject* d)
 }
 } // namespace
 
-int main(int argc, char** argv)
+static int benchMain(int argc, char** argv)
 {
   const int maxN = argc > 1 ? std::atoi(argv[1]) : 1024;
   const int repeats = argc > 2 ? std::atoi(argv[2]) : 3;
@@ -113,3 +113,5 @@ int main(int argc, char** argv)
   bench::printTable({ "volume", "filter", "triangles", "ms", "ratio FE/ours" }, rows);
   return 0;
 }
+
+int main(int argc, char** argv) { return bench::guardedMain(argc, argv, benchMain); }

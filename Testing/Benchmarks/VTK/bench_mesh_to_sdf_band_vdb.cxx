@@ -71,7 +71,7 @@ std::unique_ptr<DictionaryVolume> oursBand(const TriangleMesh& mesh, const GridG
 
 } // namespace
 
-int main(int argc, char** argv)
+static int benchMain(int argc, char** argv)
 {
   if (argc < 2)
   {
@@ -95,79 +95,73 @@ int main(int argc, char** argv)
   omp_set_num_threads(threads);
   tbb::global_control tbbThreads(tbb::global_control::max_allowed_parallelism, static_cast<std::size_t>(threads));
   openvdb::initialize();
-  try
+  const TriangleMesh mesh = loadMesh(path);
+  const GridGeometry g = fitGridToMesh(mesh, res, 2.0);
+  std::printf("machine: %s; OpenMP %d threads, TBB (OpenVDB) %d\n", bench::machineDescription().c_str(), threads,
+    threads);
+  std::printf("mesh %s: %zu points, %zu triangles; grid %lldx%lldx%lld; band %.1f voxels; our sign %s\n",
+    path.c_str(), mesh.points.size(), mesh.triangles.size(), (long long)g.dims[0], (long long)g.dims[1],
+    (long long)g.dims[2], band, signName.c_str());
+
+  Timing ours, vdb;
+  std::unique_ptr<DictionaryVolume> vol;
+  openvdb::FloatGrid::Ptr grid;
+  for (int r = 0; r < rounds; ++r)
   {
-    const TriangleMesh mesh = loadMesh(path);
-    const GridGeometry g = fitGridToMesh(mesh, res, 2.0);
-    std::printf("machine: %s; OpenMP %d threads, TBB (OpenVDB) %d\n", bench::machineDescription().c_str(), threads,
-      threads);
-    std::printf("mesh %s: %zu points, %zu triangles; grid %lldx%lldx%lld; band %.1f voxels; our sign %s\n",
-      path.c_str(), mesh.points.size(), mesh.triangles.size(), (long long)g.dims[0], (long long)g.dims[1],
-      (long long)g.dims[2], band, signName.c_str());
-
-    Timing ours, vdb;
-    std::unique_ptr<DictionaryVolume> vol;
-    openvdb::FloatGrid::Ptr grid;
-    for (int r = 0; r < rounds; ++r)
+    // alternate the order each round
+    for (int k = 0; k < 2; ++k)
     {
-      // alternate the order each round
-      for (int k = 0; k < 2; ++k)
-      {
-        const bool oursNow = (k == 0) == (r % 2 == 0);
-        const double c0 = cpuSeconds();
-        bench::Stopwatch w;
-        if (oursNow)
-          vol = oursBand(mesh, g, band, sign);
-        else
-          grid = openvdbBand(mesh, g, band);
-        Timing& t = oursNow ? ours : vdb;
-        t.wall.push_back(w.seconds());
-        t.cpu.push_back(cpuSeconds() - c0);
-      }
+      const bool oursNow = (k == 0) == (r % 2 == 0);
+      const double c0 = cpuSeconds();
+      bench::Stopwatch w;
+      if (oursNow)
+        vol = oursBand(mesh, g, band, sign);
+      else
+        grid = openvdbBand(mesh, g, band);
+      Timing& t = oursNow ? ours : vdb;
+      t.wall.push_back(w.seconds());
+      t.cpu.push_back(cpuSeconds() - c0);
     }
-
-    // the check on OpenVDB's active voxels well inside the band (index space = our voxels)
-    const float toVoxel = static_cast<float>(1.0 / g.spacing[0]);
-    double maxDiff = 0;
-    std::int64_t compared = 0, signDiffer = 0;
-    for (auto it = grid->cbeginValueOn(); it; ++it)
-    {
-      const openvdb::Coord c = it.getCoord();
-      if (c.x() < 0 || c.y() < 0 || c.z() < 0 || c.x() >= g.dims[0] || c.y() >= g.dims[1] || c.z() >= g.dims[2])
-        continue;
-      const float dv = *it * toVoxel;
-      if (std::fabs(dv) > band - 1.0f) continue;
-      const float d = vol->sdf(c.x(), c.y(), c.z());
-      ++compared;
-      maxDiff = std::max(maxDiff, double(std::fabs(std::fabs(d) - std::fabs(dv))));
-      signDiffer += (d < 0) != (dv < 0) && std::fabs(dv) > 1.0f;
-    }
-
-    const double oursWall = bench::percentile(ours.wall, 50), vdbWall = bench::percentile(vdb.wall, 50);
-    const double oursCpu = bench::percentile(ours.cpu, 50), vdbCpu = bench::percentile(vdb.cpu, 50);
-    std::vector<std::vector<std::string>> rows;
-    auto all = [](const std::vector<double>& v) {
-      std::string s;
-      for (double x : v) s += (s.empty() ? "" : " / ") + bench::fmt(x, 3);
-      return s;
-    };
-    rows.push_back({ "ours meshToSdf -> DictionaryVolume (" + signName + ")", bench::fmt(oursWall, 3), all(ours.wall),
-      bench::fmt(oursCpu, 2), "1.00", std::to_string(vol->expandedChunkCount()) + " of " +
-        std::to_string(vol->chunkCount()) + " chunks expanded" });
-    rows.push_back({ "OpenVDB meshToLevelSet (sparse FloatGrid)", bench::fmt(vdbWall, 3), all(vdb.wall),
-      bench::fmt(vdbCpu, 2), bench::fmt(vdbWall / oursWall, 2),
-      std::to_string(grid->activeVoxelCount()) + " active voxels" });
-    bench::printTable({ "method", "median s (wall)", "every round", "median CPU s", "time / ours", "output" }, rows);
-    std::printf("OpenVDB / ours: %.2f by wall time, %.2f by process CPU time (median of %d rounds)\n",
-      vdbWall / oursWall, vdbCpu / oursCpu, rounds);
-    std::printf("check on %lld OpenVDB voxels within %.0f voxels of the surface: max | |d| - |d_vdb| | = %.4f voxels, "
-                "%lld signs differ (farther than 1 voxel)\n",
-      (long long)compared, band - 1.0f, maxDiff, (long long)signDiffer);
-    return 0;
   }
-  catch (const std::exception& e)
+
+  // the check on OpenVDB's active voxels well inside the band (index space = our voxels)
+  const float toVoxel = static_cast<float>(1.0 / g.spacing[0]);
+  double maxDiff = 0;
+  std::int64_t compared = 0, signDiffer = 0;
+  for (auto it = grid->cbeginValueOn(); it; ++it)
   {
-    std::fprintf(stderr, "bench_mesh_to_sdf_band_vdb: %s\n", e.what());
-    return 1;
+    const openvdb::Coord c = it.getCoord();
+    if (c.x() < 0 || c.y() < 0 || c.z() < 0 || c.x() >= g.dims[0] || c.y() >= g.dims[1] || c.z() >= g.dims[2])
+      continue;
+    const float dv = *it * toVoxel;
+    if (std::fabs(dv) > band - 1.0f) continue;
+    const float d = vol->sdf(c.x(), c.y(), c.z());
+    ++compared;
+    maxDiff = std::max(maxDiff, double(std::fabs(std::fabs(d) - std::fabs(dv))));
+    signDiffer += (d < 0) != (dv < 0) && std::fabs(dv) > 1.0f;
   }
+
+  const double oursWall = bench::percentile(ours.wall, 50), vdbWall = bench::percentile(vdb.wall, 50);
+  const double oursCpu = bench::percentile(ours.cpu, 50), vdbCpu = bench::percentile(vdb.cpu, 50);
+  std::vector<std::vector<std::string>> rows;
+  auto all = [](const std::vector<double>& v) {
+    std::string s;
+    for (double x : v) s += (s.empty() ? "" : " / ") + bench::fmt(x, 3);
+    return s;
+  };
+  rows.push_back({ "ours meshToSdf -> DictionaryVolume (" + signName + ")", bench::fmt(oursWall, 3), all(ours.wall),
+    bench::fmt(oursCpu, 2), "1.00", std::to_string(vol->expandedChunkCount()) + " of " +
+      std::to_string(vol->chunkCount()) + " chunks expanded" });
+  rows.push_back({ "OpenVDB meshToLevelSet (sparse FloatGrid)", bench::fmt(vdbWall, 3), all(vdb.wall),
+    bench::fmt(vdbCpu, 2), bench::fmt(vdbWall / oursWall, 2),
+    std::to_string(grid->activeVoxelCount()) + " active voxels" });
+  bench::printTable({ "method", "median s (wall)", "every round", "median CPU s", "time / ours", "output" }, rows);
+  std::printf("OpenVDB / ours: %.2f by wall time, %.2f by process CPU time (median of %d rounds)\n",
+    vdbWall / oursWall, vdbCpu / oursCpu, rounds);
+  std::printf("check on %lld OpenVDB voxels within %.0f voxels of the surface: max | |d| - |d_vdb| | = %.4f voxels, "
+              "%lld signs differ (farther than 1 voxel)\n",
+    (long long)compared, band - 1.0f, maxDiff, (long long)signDiffer);
+  return 0;
 }
+
+int main(int argc, char** argv) { return bench::guardedMain(argc, argv, benchMain); }

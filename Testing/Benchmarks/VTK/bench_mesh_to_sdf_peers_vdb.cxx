@@ -114,7 +114,7 @@ std::vector<float> ours(const TriangleMesh& mesh, const GridGeometry& g, SignMod
 
 } // namespace
 
-int main(int argc, char** argv)
+static int benchMain(int argc, char** argv)
 {
   if (argc < 2)
   {
@@ -131,130 +131,124 @@ int main(int argc, char** argv)
   vtkSMPTools::Initialize(threads);
   openvdb::initialize();
   const float inf = std::numeric_limits<float>::infinity();
-  try
+  const TriangleMesh mesh = loadMesh(path);
+  const GridGeometry g = fitGridToMesh(mesh, res, 2.0);
+  std::printf("machine: %s; OpenMP %d threads, TBB (OpenVDB) %d, vtkSMPTools backend %s %d threads\n",
+    bench::machineDescription().c_str(), threads, threads, vtkSMPTools::GetBackend(),
+    vtkSMPTools::GetEstimatedNumberOfThreads());
+  std::printf("mesh %s: %zu points, %zu triangles; grid %lldx%lldx%lld (%lld voxels)\n", path.c_str(),
+    mesh.points.size(), mesh.triangles.size(), (long long)g.dims[0], (long long)g.dims[1], (long long)g.dims[2],
+    (long long)g.count());
+
+  double tWn = 0, tPn = 0, tWnBand = 0;
+  // process CPU time (all threads) beside the wall time: on a shared machine
+  // it is far less sensitive to the other processes' load
+  auto cpuNow = [] { return static_cast<double>(std::clock()) / CLOCKS_PER_SEC; };
+  double c0 = cpuNow();
+  const std::vector<float> wn = ours(mesh, g, SignMode::WindingNumber, tWn, inf);
+  const double cpuWn = cpuNow() - c0;
+  c0 = cpuNow();
+  const std::vector<float> pn = ours(mesh, g, SignMode::PseudoNormal, tPn, inf);
+  const double cpuPn = cpuNow() - c0;
+  ours(mesh, g, SignMode::WindingNumber, tWnBand, 3.0f);
+  float maxDist = 0;
+  for (float v : wn) maxDist = std::max(maxDist, std::fabs(v));
+  // OpenVDB: exterior band just covering the grid's farthest voxel; interior unbounded (fills it all).
+  const float exBand = std::ceil(maxDist) + 1.0f;
+  double vdbSec = 0, vdbCopy = 0, vdbNbSec = 0, vdbNbCopy = 0;
+  std::size_t active = 0, activeNb = 0;
+  c0 = cpuNow();
+  const std::vector<float> vdb = openvdbDense(mesh, g, exBand, inf, vdbSec, vdbCopy, active);
+  const double cpuVdb = cpuNow() - c0;
+  openvdbDense(mesh, g, 3.0f, 3.0f, vdbNbSec, vdbNbCopy, activeNb);
+  // vtkImplicitPolyDataDistance at vtkRes (per voxel, extrapolated), with ours at the same resolution.
+  const GridGeometry gv = fitGridToMesh(mesh, vtkRes, 2.0);
+  vtkNew<vtkPolyData> pd;
+  vtkNew<vtkPoints> vp;
+  vtkNew<vtkCellArray> cells;
+  for (const auto& p : mesh.points) vp->InsertNextPoint(p[0], p[1], p[2]);
+  for (const auto& t : mesh.triangles)
   {
-    const TriangleMesh mesh = loadMesh(path);
-    const GridGeometry g = fitGridToMesh(mesh, res, 2.0);
-    std::printf("machine: %s; OpenMP %d threads, TBB (OpenVDB) %d, vtkSMPTools backend %s %d threads\n",
-      bench::machineDescription().c_str(), threads, threads, vtkSMPTools::GetBackend(),
-      vtkSMPTools::GetEstimatedNumberOfThreads());
-    std::printf("mesh %s: %zu points, %zu triangles; grid %lldx%lldx%lld (%lld voxels)\n", path.c_str(),
-      mesh.points.size(), mesh.triangles.size(), (long long)g.dims[0], (long long)g.dims[1], (long long)g.dims[2],
-      (long long)g.count());
-
-    double tWn = 0, tPn = 0, tWnBand = 0;
-    // process CPU time (all threads) beside the wall time: on a shared machine
-    // it is far less sensitive to the other processes' load
-    auto cpuNow = [] { return static_cast<double>(std::clock()) / CLOCKS_PER_SEC; };
-    double c0 = cpuNow();
-    const std::vector<float> wn = ours(mesh, g, SignMode::WindingNumber, tWn, inf);
-    const double cpuWn = cpuNow() - c0;
-    c0 = cpuNow();
-    const std::vector<float> pn = ours(mesh, g, SignMode::PseudoNormal, tPn, inf);
-    const double cpuPn = cpuNow() - c0;
-    ours(mesh, g, SignMode::WindingNumber, tWnBand, 3.0f);
-    float maxDist = 0;
-    for (float v : wn) maxDist = std::max(maxDist, std::fabs(v));
-    // OpenVDB: exterior band just covering the grid's farthest voxel; interior unbounded (fills it all).
-    const float exBand = std::ceil(maxDist) + 1.0f;
-    double vdbSec = 0, vdbCopy = 0, vdbNbSec = 0, vdbNbCopy = 0;
-    std::size_t active = 0, activeNb = 0;
-    c0 = cpuNow();
-    const std::vector<float> vdb = openvdbDense(mesh, g, exBand, inf, vdbSec, vdbCopy, active);
-    const double cpuVdb = cpuNow() - c0;
-    openvdbDense(mesh, g, 3.0f, 3.0f, vdbNbSec, vdbNbCopy, activeNb);
-    // vtkImplicitPolyDataDistance at vtkRes (per voxel, extrapolated), with ours at the same resolution.
-    const GridGeometry gv = fitGridToMesh(mesh, vtkRes, 2.0);
-    vtkNew<vtkPolyData> pd;
-    vtkNew<vtkPoints> vp;
-    vtkNew<vtkCellArray> cells;
-    for (const auto& p : mesh.points) vp->InsertNextPoint(p[0], p[1], p[2]);
-    for (const auto& t : mesh.triangles)
-    {
-      const vtkIdType ids[3] = { t[0], t[1], t[2] };
-      cells->InsertNextCell(3, ids);
-    }
-    pd->SetPoints(vp);
-    pd->SetPolys(cells);
-    // vtkImplicitPolyDataDistance is not thread-safe (its locator and cell
-    // scratch are shared): vtkSampleFunction's SMP threads crashed it once
-    // ("realloc(): invalid next size"), so it is sampled here in a plain loop
-    // on ONE thread, on the same points vtkSampleFunction would use.
-    bench::Stopwatch wv;
-    vtkNew<vtkImplicitPolyDataDistance> ipd;
-    ipd->SetInput(pd);
-    std::vector<float> vtkField(static_cast<std::size_t>(gv.count()));
-    for (std::int64_t k = 0, i = 0; k < gv.dims[2]; ++k)
-      for (std::int64_t j = 0; j < gv.dims[1]; ++j)
-        for (std::int64_t x = 0; x < gv.dims[0]; ++x, ++i)
-        {
-          double q[3] = { gv.origin[0] + x * gv.spacing[0], gv.origin[1] + j * gv.spacing[1],
-            gv.origin[2] + k * gv.spacing[2] };
-          vtkField[static_cast<std::size_t>(i)] = static_cast<float>(ipd->EvaluateFunction(q) / gv.spacing[0]);
-        }
-    const double vtkSec = wv.seconds();
-    double tWnLow = 0;
-    const std::vector<float> wnLow = ours(mesh, gv, SignMode::WindingNumber, tWnLow, inf);
-
-    const Compare cPn = compare(pn, wn), cVdb = compare(vdb, wn), cVtk = compare(vtkField, wnLow);
-    const double perVoxelVtk = vtkSec / double(gv.count());
-    const double vtkExtrap = perVoxelVtk * double(g.count());
-    std::vector<std::vector<std::string>> rows;
-    rows.push_back({ "ours WindingNumber (BVH), no band", bench::fmt(tWn, 3), "1.00", "reference", "reference",
-      "reference", "-" });
-    rows.push_back({ "ours PseudoNormal (BVH), no band", bench::fmt(tPn, 3), bench::fmt(tPn / tWn, 2),
-      bench::fmt(cPn.maxDiff, 4), pct(cPn.signWrongFar, cPn.far), pct(cPn.signWrongAll, g.count()), "-" });
-    rows.push_back({ "OpenVDB meshToSignedDistanceField (ex " + bench::fmt(exBand, 0) + ", in inf) + dense copy",
-      bench::fmt(vdbSec + vdbCopy, 3) + " (" + bench::fmt(vdbCopy, 3) + " copy)", bench::fmt((vdbSec + vdbCopy) / tWn, 2),
-      bench::fmt(cVdb.maxDiff, 4), pct(cVdb.signWrongFar, cVdb.far), pct(cVdb.signWrongAll, g.count()),
-      std::to_string(active) + " active" });
-    rows.push_back({ "ours WindingNumber, band 3 (narrow band, every voxel written)", bench::fmt(tWnBand, 3),
-      bench::fmt(tWnBand / tWn, 2), "-", "-", "-", "-" });
-    rows.push_back({ "OpenVDB meshToSignedDistanceField, band 3/3 (sparse) + dense copy",
-      bench::fmt(vdbNbSec + vdbNbCopy, 3), bench::fmt((vdbNbSec + vdbNbCopy) / tWn, 2), "-", "-", "-",
-      std::to_string(activeNb) + " active" });
-    rows.push_back({ "vtkImplicitPolyDataDistance (1 thread, plain loop) at " + std::to_string(vtkRes) + " (" +
-                       std::to_string(gv.count()) + " voxels), extrapolated x" + bench::fmt(double(g.count()) / gv.count(), 1),
-      bench::fmt(vtkExtrap, 1) + " (measured " + bench::fmt(vtkSec, 3) + ")", bench::fmt(vtkExtrap / tWn, 1),
-      bench::fmt(cVtk.maxDiff, 4) + " (at " + std::to_string(vtkRes) + ")", pct(cVtk.signWrongFar, cVtk.far),
-      pct(cVtk.signWrongAll, gv.count()), "ours at same res: " + bench::fmt(tWnLow, 3) + " s, ratio " +
-        bench::fmt(vtkSec / tWnLow, 1) });
-    std::printf("process CPU seconds (all threads): ours WindingNumber %.2f, ours PseudoNormal %.2f, OpenVDB dense "
-                "(with copy) %.2f; OpenVDB / ours: %.2f (WN), %.2f (PN)\n",
-      cpuWn, cpuPn, cpuVdb, cpuVdb / cpuWn, cpuVdb / cpuPn);
-    bench::printTable({ "method", "seconds", "time / ours WN", "max |d| diff (voxels)", "sign != WN (far)",
-                        "sign != WN (all)", "notes" },
-      rows);
-
-    if (!openPath.empty())
-    {
-      const TriangleMesh open = loadMesh(openPath);
-      const GridGeometry go = fitGridToMesh(open, res, 2.0);
-      double t1 = 0, t2 = 0, t3 = 0, t4 = 0;
-      std::size_t a1 = 0, a2 = 0;
-      const std::vector<float> wnOpen = ours(open, go, SignMode::WindingNumber, t1, inf);
-      float md = 0;
-      for (float v : wnOpen) md = std::max(md, std::fabs(v));
-      const std::vector<float> vdbOpen = openvdbDense(open, go, std::ceil(md) + 1.0f, inf, t2, t3, a1);
-      const std::vector<float> vdbOpenNb = openvdbDense(open, go, 3.0f, 3.0f, t4, t3, a2);
-      std::int64_t insideWn = 0, insideVdb = 0, insideNb = 0;
-      for (std::size_t i = 0; i < wnOpen.size(); ++i)
-        insideWn += wnOpen[i] < 0, insideVdb += vdbOpen[i] < 0, insideNb += vdbOpenNb[i] < 0;
-      const Compare c1 = compare(vdbOpen, wnOpen), c2 = compare(vdbOpenNb, wnOpen);
-      std::printf("\nopen mesh %s (%zu triangles), grid %lldx%lldx%lld: inside voxels by our WindingNumber %lld\n",
-        openPath.c_str(), open.triangles.size(), (long long)go.dims[0], (long long)go.dims[1], (long long)go.dims[2],
-        (long long)insideWn);
-      bench::printTable({ "OpenVDB meshToSignedDistanceField", "inside voxels", "sign != WN (far)", "sign != WN (all)" },
-        { { "dense (ex " + bench::fmt(std::ceil(md) + 1, 0) + ", in inf)", std::to_string(insideVdb),
-            pct(c1.signWrongFar, c1.far), pct(c1.signWrongAll, go.count()) },
-          { "level set band 3 (background sign)", std::to_string(insideNb), pct(c2.signWrongFar, c2.far),
-            pct(c2.signWrongAll, go.count()) } });
-    }
+    const vtkIdType ids[3] = { t[0], t[1], t[2] };
+    cells->InsertNextCell(3, ids);
   }
-  catch (const std::exception& e)
+  pd->SetPoints(vp);
+  pd->SetPolys(cells);
+  // vtkImplicitPolyDataDistance is not thread-safe (its locator and cell
+  // scratch are shared): vtkSampleFunction's SMP threads crashed it once
+  // ("realloc(): invalid next size"), so it is sampled here in a plain loop
+  // on ONE thread, on the same points vtkSampleFunction would use.
+  bench::Stopwatch wv;
+  vtkNew<vtkImplicitPolyDataDistance> ipd;
+  ipd->SetInput(pd);
+  std::vector<float> vtkField(static_cast<std::size_t>(gv.count()));
+  for (std::int64_t k = 0, i = 0; k < gv.dims[2]; ++k)
+    for (std::int64_t j = 0; j < gv.dims[1]; ++j)
+      for (std::int64_t x = 0; x < gv.dims[0]; ++x, ++i)
+      {
+        double q[3] = { gv.origin[0] + x * gv.spacing[0], gv.origin[1] + j * gv.spacing[1],
+          gv.origin[2] + k * gv.spacing[2] };
+        vtkField[static_cast<std::size_t>(i)] = static_cast<float>(ipd->EvaluateFunction(q) / gv.spacing[0]);
+      }
+  const double vtkSec = wv.seconds();
+  double tWnLow = 0;
+  const std::vector<float> wnLow = ours(mesh, gv, SignMode::WindingNumber, tWnLow, inf);
+
+  const Compare cPn = compare(pn, wn), cVdb = compare(vdb, wn), cVtk = compare(vtkField, wnLow);
+  const double perVoxelVtk = vtkSec / double(gv.count());
+  const double vtkExtrap = perVoxelVtk * double(g.count());
+  std::vector<std::vector<std::string>> rows;
+  rows.push_back({ "ours WindingNumber (BVH), no band", bench::fmt(tWn, 3), "1.00", "reference", "reference",
+    "reference", "-" });
+  rows.push_back({ "ours PseudoNormal (BVH), no band", bench::fmt(tPn, 3), bench::fmt(tPn / tWn, 2),
+    bench::fmt(cPn.maxDiff, 4), pct(cPn.signWrongFar, cPn.far), pct(cPn.signWrongAll, g.count()), "-" });
+  rows.push_back({ "OpenVDB meshToSignedDistanceField (ex " + bench::fmt(exBand, 0) + ", in inf) + dense copy",
+    bench::fmt(vdbSec + vdbCopy, 3) + " (" + bench::fmt(vdbCopy, 3) + " copy)", bench::fmt((vdbSec + vdbCopy) / tWn, 2),
+    bench::fmt(cVdb.maxDiff, 4), pct(cVdb.signWrongFar, cVdb.far), pct(cVdb.signWrongAll, g.count()),
+    std::to_string(active) + " active" });
+  rows.push_back({ "ours WindingNumber, band 3 (narrow band, every voxel written)", bench::fmt(tWnBand, 3),
+    bench::fmt(tWnBand / tWn, 2), "-", "-", "-", "-" });
+  rows.push_back({ "OpenVDB meshToSignedDistanceField, band 3/3 (sparse) + dense copy",
+    bench::fmt(vdbNbSec + vdbNbCopy, 3), bench::fmt((vdbNbSec + vdbNbCopy) / tWn, 2), "-", "-", "-",
+    std::to_string(activeNb) + " active" });
+  rows.push_back({ "vtkImplicitPolyDataDistance (1 thread, plain loop) at " + std::to_string(vtkRes) + " (" +
+                     std::to_string(gv.count()) + " voxels), extrapolated x" + bench::fmt(double(g.count()) / gv.count(), 1),
+    bench::fmt(vtkExtrap, 1) + " (measured " + bench::fmt(vtkSec, 3) + ")", bench::fmt(vtkExtrap / tWn, 1),
+    bench::fmt(cVtk.maxDiff, 4) + " (at " + std::to_string(vtkRes) + ")", pct(cVtk.signWrongFar, cVtk.far),
+    pct(cVtk.signWrongAll, gv.count()), "ours at same res: " + bench::fmt(tWnLow, 3) + " s, ratio " +
+      bench::fmt(vtkSec / tWnLow, 1) });
+  std::printf("process CPU seconds (all threads): ours WindingNumber %.2f, ours PseudoNormal %.2f, OpenVDB dense "
+              "(with copy) %.2f; OpenVDB / ours: %.2f (WN), %.2f (PN)\n",
+    cpuWn, cpuPn, cpuVdb, cpuVdb / cpuWn, cpuVdb / cpuPn);
+  bench::printTable({ "method", "seconds", "time / ours WN", "max |d| diff (voxels)", "sign != WN (far)",
+                      "sign != WN (all)", "notes" },
+    rows);
+
+  if (!openPath.empty())
   {
-    std::fprintf(stderr, "bench_mesh_to_sdf_peers_vdb: %s\n", e.what());
-    return 1;
+    const TriangleMesh open = loadMesh(openPath);
+    const GridGeometry go = fitGridToMesh(open, res, 2.0);
+    double t1 = 0, t2 = 0, t3 = 0, t4 = 0;
+    std::size_t a1 = 0, a2 = 0;
+    const std::vector<float> wnOpen = ours(open, go, SignMode::WindingNumber, t1, inf);
+    float md = 0;
+    for (float v : wnOpen) md = std::max(md, std::fabs(v));
+    const std::vector<float> vdbOpen = openvdbDense(open, go, std::ceil(md) + 1.0f, inf, t2, t3, a1);
+    const std::vector<float> vdbOpenNb = openvdbDense(open, go, 3.0f, 3.0f, t4, t3, a2);
+    std::int64_t insideWn = 0, insideVdb = 0, insideNb = 0;
+    for (std::size_t i = 0; i < wnOpen.size(); ++i)
+      insideWn += wnOpen[i] < 0, insideVdb += vdbOpen[i] < 0, insideNb += vdbOpenNb[i] < 0;
+    const Compare c1 = compare(vdbOpen, wnOpen), c2 = compare(vdbOpenNb, wnOpen);
+    std::printf("\nopen mesh %s (%zu triangles), grid %lldx%lldx%lld: inside voxels by our WindingNumber %lld\n",
+      openPath.c_str(), open.triangles.size(), (long long)go.dims[0], (long long)go.dims[1], (long long)go.dims[2],
+      (long long)insideWn);
+    bench::printTable({ "OpenVDB meshToSignedDistanceField", "inside voxels", "sign != WN (far)", "sign != WN (all)" },
+      { { "dense (ex " + bench::fmt(std::ceil(md) + 1, 0) + ", in inf)", std::to_string(insideVdb),
+          pct(c1.signWrongFar, c1.far), pct(c1.signWrongAll, go.count()) },
+        { "level set band 3 (background sign)", std::to_string(insideNb), pct(c2.signWrongFar, c2.far),
+          pct(c2.signWrongAll, go.count()) } });
   }
   return 0;
 }
+
+int main(int argc, char** argv) { return bench::guardedMain(argc, argv, benchMain); }

@@ -243,7 +243,7 @@ std::vector<std::string> runStroke(int n, int samples, double radius, bool rende
     render ? "yes" : "no" };
 }
 
-int main(int argc, char* argv[])
+static int benchMain(int argc, char** argv)
 {
   int n = 512, samples = 100;
   double radius = 8;
@@ -276,3 +276,5 @@ int main(int argc, char* argv[])
     rows);
   return 0;
 }
+
+int main(int argc, char** argv) { return bench::guardedMain(argc, argv, benchMain); }

@@ -77,7 +77,7 @@ std::uint64_t sizeOf(const std::string& path)
 
 } // namespace
 
-int main(int argc, char** argv)
+static int benchMain(int argc, char** argv)
 {
   const std::int64_t maxEdge = argc > 1 ? std::atoll(argv[1]) : 1024;
   const std::string dir = argc > 2 ? argv[2] : "/tmp";
@@ -142,3 +142,5 @@ int main(int argc, char** argv)
   bench::printTable({ "volume", "file", "MiB", "save ms", "save CPU s", "load ms", "load CPU s", "note" }, rows);
   return 0;
 }
+
+int main(int argc, char** argv) { return bench::guardedMain(argc, argv, benchMain); }
