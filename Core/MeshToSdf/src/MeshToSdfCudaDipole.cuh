@@ -21,9 +21,6 @@ namespace detail::meshtosdf_cuda
 {
 namespace
 {
-using DipoleNode = DipoleTree::Node;
-using DipoleDev = DipoleView;
-
 /// The corners of block (ix, iy, iz) of edge voxels of the slab (clipped to it).
 __device__ void dipoleBlockCorners(const Params& P, int edge, long long ix, long long iy, long long iz, V3& p0, V3& p1)
 {

@@ -13,9 +13,11 @@
 // over the lanes as lane-strided partial sums reduced by an xor butterfly: the
 // order the CPU's laneOrderedSum reproduces) and the chunk-encoding kernels of
 // the dictionary-volume path. Triangles are read from compact leaf-ordered
-// records (vertices + normal, 96 bytes) rather than the 328-byte Tri.
+// records (vertices + normal, 96 bytes; MeshToSdfCudaLayout.cuh) rather than
+// the triangle records.
 #pragma once
 
+#include "MeshToSdfCudaLayout.cuh"
 #include "MeshToSdfFarBlocks.h"
 #include "MeshToSdfInternal.h"
 #include "MeshToSdfRayWalk.h"
@@ -37,49 +39,6 @@ constexpr int SignWarps = 4;   // warps (scan lines) per block of the sign kerne
 constexpr unsigned FullMask = 0xffffffffu;
 constexpr int MaxHits = 96;    // crossings a scan line may hold (more: per-voxel fallback)
 
-struct GpuNode
-{
-  double lo[3], hi[3];
-  int left, right, first, count;
-};
-
-using GpuTri = LeafTri; // vertices and unit normal, in BVH leaf order
-
-/// The mesh tree's leaf copies from the welded mesh: leaf[i] = triangle
-/// order[i]'s corners points[welded[t][k]] (the input's floats, exact in
-/// double) and its unit normal by the records' own expression (faceCross,
-/// unitFaceNormal; no FMA contraction): the bits of leafCopies on the host.
-__global__ void gatherLeavesKernel(const unsigned* welded, const float* points, const int* order, long long n,
-  GpuTri* leaf)
-{
-  for (long long i = blockIdx.x * static_cast<long long>(blockDim.x) + threadIdx.x; i < n;
-       i += static_cast<long long>(gridDim.x) * blockDim.x)
-  {
-    const long long t = order[i];
-    GpuTri l;
-    for (int k = 0; k < 3; ++k)
-    {
-      const long long p = welded[3 * t + k];
-      l.v[k] = V3{ points[3 * p], points[3 * p + 1], points[3 * p + 2] };
-    }
-    const V3 c = faceCross(l.v);
-    l.n = unitFaceNormal(c, norm(c));
-    leaf[i] = l;
-  }
-}
-
-struct DevBvh
-{
-  // by triangle index, mesh BVH of Normal/PseudoNormal sessions only: the records,
-  // their pseudo-normals, the mesh's vertex normals at their corners (null if none)
-  const Tri* tris = nullptr;
-  const TriNormals* normals = nullptr;
-  const CornerNormals* corners = nullptr;
-  const GpuTri* leaf = nullptr; // leaf[i] = triangle order[i]
-  const GpuNode* nodes = nullptr;
-  const int* order = nullptr;
-};
-
 struct Params
 {
   double origin[3], spacing[3];
@@ -93,19 +52,6 @@ struct Params
   const signed char* far = nullptr;
   const unsigned char* farMask = nullptr;
   long long farCount[2] = { 0, 0 }; // cells along x and y
-};
-
-struct WindingDev
-{
-  DevBvh closed;      // tris unused (null): leaf records only
-  int meshTris = 0;                 // closed triangles [0, meshTris) are the mesh's (crossings of the rest: caps or cone)
-  int allTris = 0;                  // triangles of M as given (the all-solid-angle fallback)
-  const GpuTri* meshLeaf = nullptr; // the mesh BVH's leaves and the slot of each triangle there:
-  const int* meshSlot = nullptr;    // the mesh in index order, for the all-solid-angle fallback
-  const GpuTri* cone = nullptr;
-  int coneCount = 0;
-  const WindingSigner::Cluster* clusters = nullptr;
-  int clusterCount = 0;
 };
 
 __device__ V3 positionOf(const Params& P, long long i, long long j, long long k)

@@ -1,6 +1,6 @@
-// Host and device memory of the CUDA mesh to SDF path (MeshToSdfCuda.cu):
+// Host and device memory of the CUDA mesh to SDF path (MeshToSdfCuda.cu, MeshToSdfCudaMesh.cu):
 // device buffers freed with their owner, the process's pool of pinned host
-// blocks, and uploads that go through it.
+// blocks, uploads that go through it, and a non-blocking stream.
 #pragma once
 
 #include "lvdif/CudaCheck.cuh"
@@ -164,6 +164,16 @@ private:
   std::vector<void*> Ptrs;
   std::vector<std::uint64_t> Sizes;
   std::atomic<std::uint64_t> Bytes{ 0 }; // read by sessions of other threads (statistics)
+};
+
+/// A non-blocking CUDA stream (no implicit ordering with the legacy stream).
+struct Stream
+{
+  cudaStream_t s = nullptr;
+  Stream() { LVDIF_CUDA_CHECK(cudaStreamCreateWithFlags(&this->s, cudaStreamNonBlocking)); }
+  ~Stream() { cudaStreamDestroy(this->s); }
+  Stream(const Stream&) = delete;
+  Stream& operator=(const Stream&) = delete;
 };
 
 } // namespace detail::meshtosdf_cuda
