@@ -6,8 +6,9 @@
 # MeshToSdfCuda tests (CUDA = CPU bit for bit on damaged meshes, with the work
 # lists as they are and cut to 5 entries), times the clean armadillo and
 # patch10, patch30, flip10, duprev20 at 512^3 and 1024^3 under Device::Auto
-# into the dictionary volume (warm), checks those damaged armadillos CUDA =
-# CPU bit for bit at 128^3 (float grids), and prints one table on stdout.
+# into the dictionary volume (warm), as given and re-oriented (--reorient, at
+# 1024^3), checks those damaged armadillos CUDA = CPU bit for bit at 128^3
+# (float grids, both ways), and prints one table on stdout.
 # Every step has a time limit; no new run starts after BUDGET seconds (default
 # 300, the build included), so the script ends in about 5 minutes. Logs
 # (machine, build, tests, bench, summary, table) in $OUT.
@@ -24,7 +25,7 @@ gpu_begin
 gpu_build b-damaged LVDIFMeshToSdfTests bench_mesh_to_sdf
 
 # the CUDA tests (CUDA = CPU bit for bit on damaged meshes; their lines on stdout)
-timeout 90 b-damaged/Core/MeshToSdf/LVDIFMeshToSdfTests --gtest_filter='MeshToSdfCuda.*' > "$OUT/tests.log" 2>&1
+timeout 180 b-damaged/Core/MeshToSdf/LVDIFMeshToSdfTests --gtest_filter='MeshToSdfCuda.*' > "$OUT/tests.log" 2>&1
 echo "MeshToSdfCuda tests rc=$?" | tee -a "$OUT/summary.txt"
 grep -E "^\[ cpu vs cuda \].*(patch|flip|duprev)|^\[  (PASSED|FAILED) |Failure" "$OUT/tests.log" | head -40 | tee -a "$OUT/summary.txt"
 
@@ -38,8 +39,11 @@ bench 30 "clean 512" "$A" 512 winding auto bvh volume 8 2 cold,warm --trace
 for d in $DAMAGES; do bench 30 "$d 512" "$d:$A" 512 winding auto bvh volume 8 2 cold,warm --trace; done
 # CUDA = CPU bit for bit on the real damaged armadillos (128^3 float grid, no band; the CPU on all cores)
 for d in $DAMAGES; do bench 30 "check $d 128" "$d:$A" 128 winding auto bvh float 0 2 warm --check-cpu; done
+# the re-oriented mesh (reorientFaces, on CUDA since session 12): CUDA = CPU, then its times
+for d in $DAMAGES; do bench 30 "check $d 128 reoriented" "$d:$A" 128 winding auto bvh float 0 2 warm --check-cpu --reorient; done
 # 1024^3 last, patch30 last of all (a spent budget skips only that)
 bench 30 "clean 1024" "$A" 1024 winding auto bvh volume 8 2 cold,warm
+for d in $DAMAGES; do bench 30 "$d 1024 reoriented" "$d:$A" 1024 winding auto bvh volume 8 2 cold,warm --reorient; done
 for d in $DAMAGES; do bench 60 "$d 1024" "$d:$A" 1024 winding auto bvh volume 8 2 cold,warm; done
 
 # the table: warm end-to-end, sign time, device, ratio to the clean mesh on the same grid

@@ -127,7 +127,9 @@ public:
   /// WINDING_NUMBER mode: re-orient every connected component consistently and
   /// count exact duplicate faces once before taking the winding number, for
   /// meshes whose face orientation cannot be trusted (default off: the mesh as
-  /// given). Runs on the CPU whatever the Device.
+  /// given). Runs on the GPU too (Device Auto/Cuda), the same field as the CPU.
+  /// Without it, a mesh with faces reversed against their neighbours gets a
+  /// warning that names this option.
   vtkSetMacro(ReorientFaces, bool);
   vtkGetMacro(ReorientFaces, bool);
   vtkBooleanMacro(ReorientFaces, bool);

@@ -33,10 +33,10 @@ using namespace detail::meshtosdf;
 namespace
 {
 /// Says (with --trace) which winding construction the GPU runs.
-void traceWindingPath(const WindingSigner& w)
+void traceWindingPath(const WindingSigner& w, bool reoriented)
 {
-  const DipoleTree* s = w.cpuCorrection();
-  const std::string what = !w.gpuTakesCpuClosure()
+  const DipoleTree* s = w.cpuCorrection(reoriented);
+  const std::string what = !w.gpuTakesCpuClosure(reoriented)
     ? "winding sign on the GPU: cone over the boundary (the older construction)"
     : s ? "winding sign on the GPU: the CPU's closure, correction s over " + std::to_string(s->size()) +
           " faces (caps, reversed, removed) in the dipole tree"
@@ -57,20 +57,22 @@ std::unique_ptr<detail::meshtosdf_cuda::Session> openCuda(const MeshToSdfPrepare
   MeshToSdfPrepared::Impl& impl = prepared.impl();
   const bool winding = opts.sign == SignMode::WindingNumber;
   const bool normals = opts.sign == SignMode::Normal || opts.sign == SignMode::PseudoNormal;
+  const bool reoriented = winding && opts.reorientFaces; // chooseDevice built the structures
   const bool built = impl.hasWindingSigner();
-  const detail::meshtosdf_cuda::DeviceMesh& dm = impl.deviceMesh(winding && built, normals, unused, winding && !built);
+  const detail::meshtosdf_cuda::DeviceMesh& dm =
+    impl.deviceMesh(winding && built, normals, unused, winding && !built, reoriented);
   trace("upload: the device copy of the mesh (or its reuse)", now() - t0);
   std::function<void()> ensure;
-  if (winding && built) traceWindingPath(impl.windingSigner(unused));
+  if (winding && built) traceWindingPath(impl.windingSigner(unused), reoriented);
   if (winding)
   {
-    ensure = [&impl, &stats]() {
+    ensure = [&impl, &stats, reoriented]() {
       const double t1 = now();
       double s = 0;
-      impl.deviceMesh(true, false, s);
+      impl.deviceMesh(true, false, s, false, reoriented);
       stats.buildSeconds += now() - t1;
       trace("winding structures built and uploaded, overlapping the distance kernel", now() - t1);
-      traceWindingPath(impl.windingSigner(s));
+      traceWindingPath(impl.windingSigner(s), reoriented);
     };
   }
   auto session = detail::meshtosdf_cuda::openSession(dm, e.geom, opts, e.toOut, e.band, stats, std::move(ensure));
@@ -79,17 +81,29 @@ std::unique_ptr<detail::meshtosdf_cuda::Session> openCuda(const MeshToSdfPrepare
   return session;
 }
 
-/// The device of a call. Auto prefers CUDA for every mesh: the CUDA sign
+/// The device a call prefers. Auto prefers CUDA for every mesh: the CUDA sign
 /// kernel takes the CPU's winding construction (orientation pass, local caps,
-/// the dipole tree over caps, reversed and removed faces) and decides every
-/// voxel as the CPU does (MeshToSdfCudaDipole.cuh). Only reorientFaces stays
-/// on the CPU.
+/// the dipole tree over caps, reversed and removed faces; or those of the
+/// re-oriented mesh M+) and decides every voxel as the CPU does
+/// (MeshToSdfCudaDipole.cuh).
 Device chooseDevice(const MeshToSdfOptions& options)
 {
-  const Device d = resolveDevice(options.device);
-  if (d != Device::Cuda || options.sign != SignMode::WindingNumber) return d;
-  if (options.reorientFaces) return Device::Cpu; // not on CUDA (documented at the option)
-  return d;
+  return resolveDevice(options.device);
+}
+
+/// The device of a call on a prepared mesh: the preference, except that the
+/// re-oriented winding number (reorientFaces) stays on the CPU when M+ could
+/// not be closed by local caps (its closure has a cone, which the GPU takes
+/// only for M as given). Builds the winding structures for that check: the
+/// GPU session then uploads them before its first kernel (no overlap).
+Device chooseDevice(const MeshToSdfPrepared& mesh, const MeshToSdfOptions& options, MeshToSdfStats& stats)
+{
+  const Device d = chooseDevice(options);
+  if (d != Device::Cuda || options.sign != SignMode::WindingNumber || !options.reorientFaces) return d;
+  double seconds = 0;
+  const bool capped = mesh.impl().windingSigner(seconds).gpuTakesCpuClosure(true);
+  stats.buildSeconds += seconds;
+  return capped ? d : Device::Cpu;
 }
 
 /// Stores one chunk's keys (the CPU and GPU paths): a uniform chunk over a
@@ -337,6 +351,41 @@ void warnIfNothingInside(const MeshToSdfPrepared& mesh, const GridGeometry& grid
   stats.warnings.push_back(w.str());
 }
 
+/// stats.warnings when the winding number of the mesh as given met faces
+/// reversed against their neighbours, or exact duplicates that cancel, and
+/// the re-oriented mesh was not asked for. Under each reversed face the
+/// winding number drops below 1/2 (w_M = w_M+ - 2 w_t), which carves an
+/// extra surface into the solid; cancelled pairs leave one-face holes that
+/// the winding number bridges, but slowly. Either way the exact field of the
+/// faces as given is also several times slower to compute than the
+/// re-oriented one (docs/MESH_TO_SDF.md, "Damaged meshes").
+void warnIfFacesReversed(const MeshToSdfPrepared& mesh, const MeshToSdfOptions& options, MeshToSdfStats& stats)
+{
+  if (options.sign != SignMode::WindingNumber || options.reorientFaces || !mesh.impl().hasWindingSigner()) return;
+  double unused = 0;
+  const detail::meshtosdf::WindingSigner& w = mesh.impl().windingSigner(unused);
+  const std::size_t reversed = w.reversedFaces(), opposed = w.opposedDuplicates();
+  if (reversed == 0 && opposed == 0) return;
+  const double faces = static_cast<double>(std::max<std::size_t>(1, mesh.triangles()));
+  std::ostringstream m;
+  m.precision(3);
+  m << "mesh to SDF: the faces' orientation is inconsistent: ";
+  if (reversed > 0)
+  {
+    m << reversed << " of " << mesh.triangles() << " faces (" << 100.0 * static_cast<double>(reversed) / faces
+      << " %) run against their neighbours, so the winding number of the faces as given falls below 1/2 under "
+         "them and the field has extra surfaces inside the solid there";
+  }
+  if (opposed > 0)
+  {
+    m << (reversed > 0 ? "; " : "") << opposed
+      << " faces are cancelled by exact duplicates of opposite orientation (a hole each)";
+  }
+  m << ", and the exact field of such faces is slower to compute; if the faces bound one solid, re-orient them "
+       "(--reorient, ReorientFaces), which is also faster";
+  stats.warnings.push_back(m.str());
+}
+
 bool wholeGrid(const GridGeometry& grid, const VoxelBox& extent)
 {
   for (int a = 0; a < 3; ++a)
@@ -359,7 +408,7 @@ MeshToSdfStats meshToSdf(const MeshToSdfPrepared& mesh, const GridGeometry& grid
   }
   MeshToSdfStats stats;
   interrupter.start("mesh to SDF");
-  stats.device = chooseDevice(options);
+  stats.device = chooseDevice(mesh, options, stats);
   auto engine = makeEngine(mesh, grid, options, options.bandWidth, stats.device, stats);
   if (stats.device == Device::Cuda)
   {
@@ -396,6 +445,7 @@ MeshToSdfStats meshToSdf(const MeshToSdfPrepared& mesh, const GridGeometry& grid
     for (std::int64_t i = 0; i < n; ++i) inside += out[i] < deep;
     warnIfNothingInside(mesh, grid, options, inside, stats);
   }
+  warnIfFacesReversed(mesh, options, stats);
   interrupter.end();
   return stats;
 }
@@ -417,7 +467,7 @@ MeshToSdfStats meshToSdf(const MeshToSdfPrepared& mesh, DictionaryVolume& volume
   opts.unit = DistanceUnit::Voxel;
   MeshToSdfStats stats;
   interrupter.start("mesh to SDF");
-  stats.device = chooseDevice(options);
+  stats.device = chooseDevice(mesh, options, stats);
   auto engine = makeEngine(mesh, grid, opts, volume.bandWidth(), stats.device, stats);
   const bool region = !options.chunkRegion.empty();
   require(!region || options.svfFilters == 0,
@@ -476,6 +526,7 @@ MeshToSdfStats meshToSdf(const MeshToSdfPrepared& mesh, DictionaryVolume& volume
     }
     warnIfNothingInside(mesh, grid, options, inside, stats);
   }
+  warnIfFacesReversed(mesh, options, stats);
   interrupter.end();
   return stats;
 }

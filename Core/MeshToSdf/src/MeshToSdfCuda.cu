@@ -84,10 +84,11 @@ public:
     : Options(options)
     , Mesh(mesh)
     , HasWinding(options.sign == SignMode::WindingNumber)
+    , Variant(options.reorientFaces ? 1 : 0)
     , EnsureWinding(std::move(ensureWinding))
     , Stats(stats)
   {
-    require(!this->HasWinding || mesh.hasWinding() || this->EnsureWinding,
+    require(!this->HasWinding || mesh.hasWinding(this->Variant == 1) || this->EnsureWinding,
       "mesh to SDF: the device mesh has no winding structures");
     require(!(options.sign == SignMode::Normal || options.sign == SignMode::PseudoNormal) || mesh.hasNormals(),
       "mesh to SDF: the device mesh has no triangle normals");
@@ -361,16 +362,16 @@ private:
     this->reserveDistanceLists(distanceRuns(P));
     launchDistance(this->Mesh.meshBvh(), P, this->Slab, this->Distance);
     LVDIF_CUDA_CHECK(cudaEventRecord(this->DistanceDone.b));
-    if (this->HasWinding && !this->Mesh.hasWinding())
+    if (this->HasWinding && !this->Mesh.hasWinding(this->Variant == 1))
     {
       // built and uploaded on the host while the distance kernel runs
       this->EnsureWinding();
-      require(this->Mesh.hasWinding(), "mesh to SDF: the device mesh has no winding structures");
+      require(this->Mesh.hasWinding(this->Variant == 1), "mesh to SDF: the device mesh has no winding structures");
       this->Stats.devicePeakBytes = std::max(this->Stats.devicePeakBytes, this->Mesh.bytes() + this->Arena.bytes());
     }
     LVDIF_CUDA_CHECK(cudaEventRecord(this->SignDone.a));
     // the correction s: bounded per block of voxels first (MeshToSdfCudaDipole.cuh)
-    const bool dipole = this->HasWinding && this->Mesh.D.count > 0;
+    const bool dipole = this->HasWinding && this->Mesh.D[this->Variant].count > 0;
     long long bx = 0, by = 0;
     if (dipole)
     {
@@ -442,19 +443,19 @@ private:
           return L;
         };
         const long long most = std::min<long long>((count[l] + 127) / 128, 2048); // grid-stride kernels
-        dipoleBlockKernel<<<static_cast<unsigned>((count[l] + 127) / 128), 128>>>(this->Mesh.D, P, static_cast<int>(e), bx,
+        dipoleBlockKernel<<<static_cast<unsigned>((count[l] + 127) / 128), 128>>>(this->Mesh.D[this->Variant], P, static_cast<int>(e), bx,
           by, count[l], parent, ratio, level, lists(0));
         LVDIF_CUDA_CHECK(cudaGetLastError());
         if (l)
         {
           // the blocks inside the parents without a bound, full warps of them
-          dipoleListedBlockKernel<<<static_cast<unsigned>(most), 128>>>(this->Mesh.D, P, static_cast<int>(e), bx, by, bz, pbx,
+          dipoleListedBlockKernel<<<static_cast<unsigned>(most), 128>>>(this->Mesh.D[this->Variant], P, static_cast<int>(e), bx, by, bz, pbx,
             pby, ratio, this->BlockLists + listOffset - count[l - 1], this->ListCounts + l - 1, level, lists(0));
           LVDIF_CUDA_CHECK(cudaGetLastError());
         }
         for (int pass = 1; pass < DipoleBlockPasses; ++pass)
         {
-          dipoleBlockPassKernel<<<static_cast<unsigned>(most), 128>>>(this->Mesh.D, P, static_cast<int>(e), bx, by, pass,
+          dipoleBlockPassKernel<<<static_cast<unsigned>(most), 128>>>(this->Mesh.D[this->Variant], P, static_cast<int>(e), bx, by, pass,
             this->BlockPending + ((pass - 1) % 2) * this->PendingCap, passCounts + pass - 1, this->PendingCap, level,
             lists(pass));
           LVDIF_CUDA_CHECK(cudaGetLastError());
@@ -476,7 +477,7 @@ private:
       {
         const long long c1 = std::min(r1, c0 + this->RayRows);
         rowRayKernel<<<static_cast<unsigned>((c1 - c0 + 127) / 128), 128>>>(
-          this->Mesh.W, P, c0, c1, this->RayHits, this->RayMeta);
+          this->Mesh.W[this->Variant], P, c0, c1, this->RayHits, this->RayMeta);
         LVDIF_CUDA_CHECK(cudaGetLastError());
         if (p == 0 && c0 == r0) LVDIF_CUDA_CHECK(cudaEventRecord(this->SignSplit.b)); // (--trace: the first rays)
         const unsigned grid = static_cast<unsigned>((c1 - c0 + SignWarps - 1) / SignWarps);
@@ -486,7 +487,7 @@ private:
           // last one finishing every voxel it takes
           unsigned long long* counts = this->ListCounts + DipoleLevels * (1 + DipoleBlockPasses);
           LVDIF_CUDA_CHECK(cudaMemsetAsync(counts, 0, VoxelPasses * sizeof(unsigned long long)));
-          signDipoleKernel<<<grid, 32 * SignWarps>>>(this->Mesh.W, this->Mesh.D, P, c0, c1, this->RayMeta,
+          signDipoleKernel<<<grid, 32 * SignWarps>>>(this->Mesh.W[this->Variant], this->Mesh.D[this->Variant], P, c0, c1, this->RayMeta,
             this->RayHits, this->Bounds, bx, by, this->Slab, this->Counters, this->Queue, counts, this->QueueCap);
           LVDIF_CUDA_CHECK(cudaGetLastError());
           const long long pendingCap = listCapacity(this->QueueCap / 4 + 1024);
@@ -494,7 +495,7 @@ private:
           {
             DipolePending* in = pass ? this->VoxelPending + ((pass - 1) % 2) * pendingCap : nullptr;
             DipolePending* out = pass + 1 < VoxelPasses ? this->VoxelPending + (pass % 2) * pendingCap : nullptr;
-            dipoleRefineKernel<<<2048, 128>>>(this->Mesh.D, P, pass ? nullptr : this->Queue, in, counts + pass,
+            dipoleRefineKernel<<<2048, 128>>>(this->Mesh.D[this->Variant], P, pass ? nullptr : this->Queue, in, counts + pass,
               pass ? pendingCap : this->QueueCap, out, out ? counts + pass + 1 : nullptr, pendingCap, this->Slab, this->Counters);
             LVDIF_CUDA_CHECK(cudaGetLastError());
           }
@@ -502,7 +503,7 @@ private:
         else
         {
           signKernel<<<grid, 32 * SignWarps>>>(
-            this->Mesh.W, P, c0, c1, this->RayMeta, this->RayHits, this->Slab, this->Counters, this->Counters + 1);
+            this->Mesh.W[this->Variant], P, c0, c1, this->RayMeta, this->RayHits, this->Slab, this->Counters, this->Counters + 1);
         }
         LVDIF_CUDA_CHECK(cudaGetLastError());
       }
@@ -613,6 +614,7 @@ private:
   MeshToSdfOptions Options;
   const CudaMesh& Mesh;
   bool HasWinding;
+  int Variant; // which winding structures of the device copy: 0 M as given, 1 M+ (reorientFaces)
   std::function<void()> EnsureWinding;
   MeshToSdfStats& Stats;
   bool Launched = false;

@@ -21,11 +21,14 @@ class DeviceMesh
 {
 public:
   virtual ~DeviceMesh() = default;
-  virtual bool hasWinding() const = 0;
+  /// The winding structures of M as given, or of M+ (reoriented:
+  /// MeshToSdfOptions::reorientFaces); a copy may hold both.
+  virtual bool hasWinding(bool reoriented) const = 0;
   virtual std::uint64_t bytes() const = 0;
-  /// Uploads the winding structures to a copy made without them (called
-  /// once, under the prepared mesh's lock).
-  virtual void addWinding(const detail::meshtosdf::WindingSigner& winding) = 0;
+  /// Uploads one variant of the winding structures to a copy made without it
+  /// (called once per variant, under the prepared mesh's lock). reoriented
+  /// requires winding.gpuTakesCpuClosure(true).
+  virtual void addWinding(const detail::meshtosdf::WindingSigner& winding, bool reoriented) = 0;
   /// The full triangle records (normals), which only the Normal and
   /// PseudoNormal modes read: uploaded on first need, like addWinding.
   virtual bool hasNormals() const = 0;

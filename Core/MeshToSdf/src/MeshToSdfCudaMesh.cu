@@ -113,7 +113,7 @@ CudaMesh::CudaMesh(
   if (normals) this->addNormals();
   if (winding)
   {
-    this->addWinding(*winding);
+    this->addWinding(*winding, false);
   }
   else if (windingLater && !mesh.boundary.empty())
   {
@@ -160,40 +160,55 @@ DevBvh CudaMesh::meshBvh() const
   return b;
 }
 
-void CudaMesh::addWinding(const WindingSigner& winding)
+void CudaMesh::addWinding(const WindingSigner& winding, bool reoriented)
 {
-  if (this->hasWinding()) return;
+  const int v = reoriented ? 1 : 0;
+  if (this->hasWinding(reoriented)) return;
+  require(!reoriented || winding.gpuTakesCpuClosure(true),
+    "mesh to SDF: the re-oriented winding structures have a cone closure, which the GPU does not take");
   const cudaStream_t st = this->Upload.s;
-  this->W.allTris = static_cast<int>(this->MeshBvh.order().size());
-  this->W.meshLeaf = this->Dbvh.leaf;
-  std::vector<int> slot(this->MeshBvh.order().size());
-  for (std::size_t i = 0; i < slot.size(); ++i) slot[static_cast<std::size_t>(this->MeshBvh.order()[i])] = static_cast<int>(i);
-  this->W.meshSlot = this->Arena.uploadOn(st, slot, this->ReservedSlot, this->ReservedSlot ? slot.size() : 0);
-  if (winding.gpuTakesCpuClosure())
+  // the reserved buffers (windingLater) are for the one-call route's first
+  // variant, M as given; the re-oriented one is allocated as it comes
+  const bool reserved = !reoriented;
+  WindingDev& w = this->W[v];
+  DipoleDev& d = this->D[v];
+  w.allTris = static_cast<int>(this->MeshBvh.order().size());
+  w.meshLeaf = this->Dbvh.leaf;
+  if (!this->Slot)
+  {
+    std::vector<int> slot(this->MeshBvh.order().size());
+    for (std::size_t i = 0; i < slot.size(); ++i) slot[static_cast<std::size_t>(this->MeshBvh.order()[i])] = static_cast<int>(i);
+    this->Slot = this->Arena.uploadOn(st, slot, reserved ? this->ReservedSlot : nullptr,
+      reserved && this->ReservedSlot ? slot.size() : 0);
+  }
+  w.meshSlot = this->Slot;
+  if (winding.gpuTakesCpuClosure(reoriented))
   {
     // the CPU's closure (M+ or M closed by local caps) and its correction s
-    const WindingSigner::Closure& c = winding.cpuClosure();
+    const WindingSigner::Closure& c = winding.cpuClosure(reoriented);
     // a closed mesh's closure shares the mesh's tree (the same object): its copy is already here
-    this->W.closed = c.bvh.get() == &this->MeshBvh ? this->Dbvh
-                                                   : uploadBvh(this->Arena, st, *c.bvh, this->Reserved, this->ClosedCap);
-    this->W.meshTris = static_cast<int>(c.meshTris);
-    if (const DipoleTree* s = winding.cpuCorrection())
+    w.closed = c.bvh.get() == &this->MeshBvh
+      ? this->Dbvh
+      : uploadBvh(this->Arena, st, *c.bvh, reserved ? this->Reserved : DevBvh(), reserved ? this->ClosedCap : 0);
+    w.meshTris = static_cast<int>(c.meshTris);
+    if (const DipoleTree* s = winding.cpuCorrection(reoriented))
     {
-      this->D.tris = this->Arena.uploadOn(st, s->tris(), this->ReservedDipoleTris, this->EdgeCap);
-      this->D.nodes = this->Arena.uploadOn(st, s->nodes(), this->ReservedDipoleNodes, this->EdgeCap + 2);
-      this->D.count = static_cast<int>(s->tris().size());
-      this->D.rootMass = s->nodes().empty() ? 0.0 : s->nodes()[0].mass;
+      d.tris = this->Arena.uploadOn(st, s->tris(), reserved ? this->ReservedDipoleTris : nullptr, reserved ? this->EdgeCap : 0);
+      d.nodes = this->Arena.uploadOn(st, s->nodes(), reserved ? this->ReservedDipoleNodes : nullptr,
+        reserved ? this->EdgeCap + 2 : 0);
+      d.count = static_cast<int>(s->tris().size());
+      d.rootMass = s->nodes().empty() ? 0.0 : s->nodes()[0].mass;
     }
-    this->Winding.store(true, std::memory_order_release);
+    this->Winding[v].store(true, std::memory_order_release);
     return;
   }
-  this->W.closed = uploadBvh(this->Arena, st, winding.closedBvh(), this->Reserved, this->ClosedCap);
-  this->W.meshTris = static_cast<int>(winding.meshTriangles());
-  this->W.cone = this->Arena.uploadOn(st, compactTris(winding.cone()), this->ReservedCone, this->EdgeCap);
-  this->W.coneCount = static_cast<int>(winding.cone().size());
-  this->W.clusters = this->Arena.uploadOn(st, winding.clusters(), this->ReservedClusters, this->EdgeCap);
-  this->W.clusterCount = static_cast<int>(winding.clusters().size());
-  this->Winding.store(true, std::memory_order_release);
+  w.closed = uploadBvh(this->Arena, st, winding.closedBvh(), this->Reserved, this->ClosedCap);
+  w.meshTris = static_cast<int>(winding.meshTriangles());
+  w.cone = this->Arena.uploadOn(st, compactTris(winding.cone()), this->ReservedCone, this->EdgeCap);
+  w.coneCount = static_cast<int>(winding.cone().size());
+  w.clusters = this->Arena.uploadOn(st, winding.clusters(), this->ReservedClusters, this->EdgeCap);
+  w.clusterCount = static_cast<int>(winding.clusters().size());
+  this->Winding[v].store(true, std::memory_order_release);
 }
 
 std::unique_ptr<DeviceMesh> uploadMesh(

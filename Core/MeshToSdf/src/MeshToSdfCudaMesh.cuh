@@ -37,20 +37,24 @@ public:
   const FarCone* cones() const { return this->hasNormals() ? this->Cones : nullptr; }
   /// The mesh BVH as the distance kernel takes it (full records if uploaded).
   DevBvh meshBvh() const;
-  void addWinding(const WindingSigner& winding) override;
-  bool hasWinding() const override { return this->Winding.load(std::memory_order_acquire); }
+  void addWinding(const WindingSigner& winding, bool reoriented) override;
+  bool hasWinding(bool reoriented) const override
+  {
+    return this->Winding[reoriented ? 1 : 0].load(std::memory_order_acquire);
+  }
   const PreparedMesh& prepared() const { return this->Mesh; }
   std::uint64_t bytes() const override { return this->Arena.bytes(); }
-  DevBvh Dbvh;  // immutable once constructed (tris: see meshBvh)
-  WindingDev W; // written once by addWinding, before Winding is set
-  DipoleDev D;  // the correction s (count 0: none, or the cone closure); as W
+  DevBvh Dbvh;     // immutable once constructed (tris: see meshBvh)
+  WindingDev W[2]; // [0]: M as given, [1]: M+ (reorientFaces); each written once by addWinding, before Winding[i] is set
+  DipoleDev D[2];  // the correction s (count 0: none, or the cone closure); as W
 
 private:
   const PreparedMesh& Mesh; // owned by the prepared mesh, which owns this copy
   const Bvh& MeshBvh;
   DeviceArena Arena;
   Stream Upload;
-  std::atomic<bool> Winding{ false };
+  std::atomic<bool> Winding[2] = { false, false };
+  const int* Slot = nullptr; // each mesh triangle's slot in the tree's leaf order (both winding variants)
   std::atomic<const Tri*> Full{ nullptr }; // the triangle records by index (Normal/PseudoNormal)
   const FarCone* Cones = nullptr;          // the node cones, written before Full
   const TriNormals* Normals = nullptr;     // the records' pseudo-normals, written before Full

@@ -265,9 +265,11 @@ public:
   /// (null when there is none). Unless the closure has a cone (only if the
   /// boundary could not be split into closed walks), the CUDA sign kernel
   /// uses exactly these (MeshToSdfCudaDipole.cuh), so both decide alike.
-  bool gpuTakesCpuClosure() const { return this->Plus.cone.empty(); }
-  const Closure& cpuClosure() const { return this->Plus; }
-  const DipoleTree* cpuCorrection() const { return this->Flipped.get(); }
+  /// reoriented: the winding number of M+ (MeshToSdfOptions::reorientFaces),
+  /// the same kind of closure and correction, which signRow(reoriented) reads.
+  bool gpuTakesCpuClosure(bool reoriented = false) const { return this->closure(reoriented).cone.empty(); }
+  const Closure& cpuClosure(bool reoriented = false) const { return this->closure(reoriented); }
+  const DipoleTree* cpuCorrection(bool reoriented = false) const { return this->correction(reoriented); }
   // the older CUDA construction, for a closure with a cone: the cone over the
   // boundary of M itself (built on first use when it differs from the CPU's closure)
   const TriList& closedTris() const { return this->coneOverMesh().closed(); }
@@ -281,6 +283,11 @@ public:
   /// Faces reversed (F) or removed as duplicates (R) by the orientation pass
   /// (Plus is M+ closed by caps when that is cheaper than caps over dM).
   std::size_t flippedTriangles() const { return this->CorrectedFaces; }
+  /// Of those, the faces reversed against their neighbours (|F|), and the
+  /// faces cancelled by an exact duplicate of opposite orientation: what the
+  /// reversed-faces warning reports (0 when the pass did not run).
+  std::size_t reversedFaces() const { return this->ReversedFaces; }
+  std::size_t opposedDuplicates() const { return this->OpposedDuplicates; }
   /// Whether the CPU closes M+ (the faces re-oriented); false when it closes
   /// M itself by caps over dM (no reversed faces, or reversed patches whose
   /// rims are shorter than F).
@@ -299,6 +306,8 @@ private:
   Closure Plus;                          // M+ (F reversed, R removed) closed by local caps S over dM+, or M closed by caps over dM (or a cone)
   bool PlusIsCone = true;                // Plus is M closed by the cone over dM (what CUDA uses)
   std::size_t CorrectedFaces = 0;        // |F| + |R| found by the orientation pass
+  std::size_t ReversedFaces = 0;         // |F|
+  std::size_t OpposedDuplicates = 0;     // OrientedMesh::opposedDuplicates
   std::unique_ptr<DipoleTree> Flipped;   // F reversed, weight 2, R reversed, weight 1, and the caps S (null if all empty)
   std::unique_ptr<DipoleTree> CapsOnly;  // the caps S alone (reoriented), when F or R is not empty
   std::vector<std::uint8_t> OrientState;            // OrientedMesh::state when Plus closes M itself but F or R is not empty
@@ -354,7 +363,9 @@ struct MeshToSdfPrepared::Impl
   /// part may be added later (once) to a copy uploaded without it: sessions
   /// that do not use it never read it.
   /// windingLater: the winding part will be added soon (its memory is reserved now).
-  const detail::meshtosdf_cuda::DeviceMesh& deviceMesh(bool winding, bool normals, double& seconds, bool windingLater = false);
+  /// reoriented: the winding part of M+ (reorientFaces) instead of M's.
+  const detail::meshtosdf_cuda::DeviceMesh& deviceMesh(
+    bool winding, bool normals, double& seconds, bool windingLater = false, bool reoriented = false);
   ~Impl();
 
 private:

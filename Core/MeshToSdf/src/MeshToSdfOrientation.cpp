@@ -9,6 +9,7 @@
 #include "lvdif/Memory.h"
 
 #include <algorithm>
+#include <cstdlib>
 #include <functional>
 #include <tuple>
 
@@ -76,6 +77,7 @@ OrientedMesh orientMesh(const TriList& tris, const LargeVector<std::array<std::u
         net += parity(key[g1][3], key[g1]);
       if (g1 - g > 1)
       {
+        out.opposedDuplicates += (g1 - g) - static_cast<std::size_t>(std::abs(net));
         bool kept = false;
         for (std::size_t i = g; i < g1; ++i)
         {

@@ -29,6 +29,7 @@ struct OrientedMesh
   std::vector<std::uint8_t> state;
   std::size_t flippedCount = 0;     // faces reversed
   std::size_t removedCount = 0;     // duplicate faces removed
+  std::size_t opposedDuplicates = 0; // faces cancelled by a duplicate of opposite orientation (group size - |net|)
   std::size_t components = 0;       // connected over manifold edges
   std::size_t nonManifoldEdges = 0; // edges with 1 or more than 2 faces are not crossed by the BFS
   std::size_t conflicts = 0;        // manifold edges left inconsistent (non-orientable parts)

@@ -116,25 +116,23 @@ bool MeshToSdfPrepared::Impl::hasWindingSigner()
 }
 
 const detail::meshtosdf_cuda::DeviceMesh& MeshToSdfPrepared::Impl::deviceMesh(
-  bool winding, bool normals, double& seconds, bool windingLater)
+  bool winding, bool normals, double& seconds, bool windingLater, bool reoriented)
 {
   const WindingSigner* w = winding ? &this->windingSigner(seconds) : nullptr;
   if (normals) this->pseudoNormals(seconds); // the device copy's normals are the host's
-  // Sessions of other threads may use the copy: the winding part is only
-  // added (never replaced), and only sessions in WindingNumber mode read it.
+  // Sessions of other threads may use the copy: the winding parts are only
+  // added (never replaced), and only sessions in WindingNumber mode read them.
   std::lock_guard<std::mutex> lock(this->Lock);
   const double t0 = now();
   // the GPU's tree: only the device path needs it (the CPU queries NearestIndex)
   this->meshBvhLocked();
   if (!this->Device)
   {
-    this->Device = detail::meshtosdf_cuda::uploadMesh(this->mesh, *this->bvh, w, normals, windingLater);
+    this->Device =
+      detail::meshtosdf_cuda::uploadMesh(this->mesh, *this->bvh, reoriented ? nullptr : w, normals, windingLater);
   }
-  else
-  {
-    if (w && !this->Device->hasWinding()) this->Device->addWinding(*w);
-    if (normals && !this->Device->hasNormals()) this->Device->addNormals();
-  }
+  if (w && !this->Device->hasWinding(reoriented)) this->Device->addWinding(*w, reoriented);
+  if (normals && !this->Device->hasNormals()) this->Device->addNormals();
   seconds += now() - t0;
   return *this->Device;
 }

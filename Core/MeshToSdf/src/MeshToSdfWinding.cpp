@@ -308,6 +308,8 @@ WindingSigner::WindingSigner(const PreparedMesh& mesh, std::shared_ptr<const Bvh
     om = orientMesh(mesh.tris, mesh.welded);
     trace("winding: orientation pass", now() - t0);
     this->CorrectedFaces = om.flippedCount + om.removedCount;
+    this->ReversedFaces = om.flippedCount;
+    this->OpposedDuplicates = om.opposedDuplicates;
     // M+ pays when F, R and the boundary of M+ are fewer than the boundary
     // edges of M (scattered reversed faces, duplicates); reversed patches
     // have far more faces than rim edges, and caps over dM span a patch

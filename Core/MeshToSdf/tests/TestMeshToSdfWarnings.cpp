@@ -2,12 +2,16 @@
 // the whole grid with no voxel inside (an open sheet that encloses no volume,
 // or voxels larger than the mesh's parts). Checked against the output itself:
 // a warning exactly when no voxel is deeper than 1 voxel inside, naming the
-// cause and the option that helps (and the option is shown to help).
+// cause and the option that helps (and the option is shown to help). And a
+// warning when the winding sign met faces reversed against their neighbours
+// or duplicates that cancel, with counts checked against the damage done.
+#include "MeshToSdfDamagedMeshes.h"
 #include "lvdif/DictionaryVolume.h"
 #include "lvdif/MeshToSdf.h"
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <string>
 #include <vector>
 
@@ -133,4 +137,93 @@ TEST(MeshToSdfWarnings, NoneForAClosedMeshOrAPiece)
   MeshToSdfOptions o;
   o.device = Device::Cpu;
   EXPECT_TRUE(meshToSdf(m, g, piece, out.data(), o).warnings.empty());
+}
+
+namespace
+{
+double area2(const TriangleMesh& m, const std::array<std::uint32_t, 3>& t)
+{
+  const auto& a = m.points[t[0]];
+  const auto& b = m.points[t[1]];
+  const auto& c = m.points[t[2]];
+  const double u[3] = { double(b[0]) - a[0], double(b[1]) - a[1], double(b[2]) - a[2] };
+  const double v[3] = { double(c[0]) - a[0], double(c[1]) - a[1], double(c[2]) - a[2] };
+  const double x = u[1] * v[2] - u[2] * v[1], y = u[2] * v[0] - u[0] * v[2], z = u[0] * v[1] - u[1] * v[0];
+  return x * x + y * y + z * z;
+}
+
+/// The number in the warning right before `what` ("123 of ..." / "45 faces are cancelled").
+long long countBefore(const std::string& w, const std::string& what)
+{
+  const std::size_t at = w.find(what);
+  if (at == std::string::npos || at == 0) return -1;
+  std::size_t b = at;
+  while (b > 0 && w[b - 1] >= '0' && w[b - 1] <= '9') --b;
+  return b == at ? -1 : std::stoll(w.substr(b, at - b));
+}
+} // namespace
+
+TEST(MeshToSdfWarnings, ReversedFacesNameReorient)
+{
+  const TriangleMesh clean = oracle::bumpySphere();
+  const TriangleMesh patched = signquality::damaged(clean, "patch10");
+  // the oracle: faces whose corners the damage put in reverse order (of
+  // non-zero area: degenerate faces are skipped by the preparation)
+  long long reversed = 0;
+  for (std::size_t t = 0; t < clean.triangles.size(); ++t)
+    reversed += patched.triangles[t] != clean.triangles[t] && area2(clean, clean.triangles[t]) > 0;
+  ASSERT_GT(reversed, 0);
+
+  const Result given = runFloat(patched, 48, SignMode::WindingNumber);
+  ASSERT_EQ(given.stats.warnings.size(), 1u);
+  const std::string& w = given.stats.warnings[0];
+  EXPECT_NE(w.find("--reorient"), std::string::npos) << w;
+  EXPECT_NE(w.find("ReorientFaces"), std::string::npos) << w;
+  EXPECT_EQ(countBefore(w, " of " + std::to_string(given.stats.triangles) + " faces"), reversed) << w;
+
+  // what it says holds: the field as given has voxels outside that lie deep
+  // inside the re-oriented solid (extra surfaces), and the option it names
+  // removes them and the warning
+  const GridGeometry g = fitGridToMesh(patched, 48, 2.0);
+  std::vector<float> asGiven(static_cast<std::size_t>(g.count())), fixed(asGiven.size());
+  MeshToSdfOptions o;
+  o.device = Device::Cpu;
+  meshToSdf(patched, FloatGridView{ asGiven.data(), g }, o);
+  o.reorientFaces = true;
+  EXPECT_TRUE(meshToSdf(patched, FloatGridView{ fixed.data(), g }, o).warnings.empty());
+  std::int64_t carved = 0;
+  for (std::size_t i = 0; i < fixed.size(); ++i) carved += fixed[i] < -1.0f && asGiven[i] > 0.0f;
+  EXPECT_GT(carved, 0);
+
+  // into a dictionary volume too; and never for a consistent mesh, nor for
+  // signs that do not run the orientation pass
+  VolumeOptions vo = volumeOptionsOn(g);
+  vo.chunkEdge = 16;
+  DictionaryVolume vol(vo);
+  o.reorientFaces = false;
+  EXPECT_TRUE(mentions(meshToSdf(patched, vol, o), "run against their neighbours"));
+  EXPECT_TRUE(runFloat(clean, 48, SignMode::WindingNumber).stats.warnings.empty());
+  EXPECT_TRUE(runFloat(patched, 48, SignMode::Unsigned).stats.warnings.empty());
+}
+
+TEST(MeshToSdfWarnings, DuplicatesOfOppositeOrientation)
+{
+  const TriangleMesh clean = oracle::bumpySphere();
+  const TriangleMesh dup = signquality::damaged(clean, "duprev20");
+  // the oracle: every appended copy in reverse order cancels its original
+  long long opposed = 0;
+  ASSERT_GT(dup.triangles.size(), clean.triangles.size());
+  for (std::size_t t = clean.triangles.size(); t < dup.triangles.size(); ++t)
+  {
+    const auto& f = dup.triangles[t];
+    const bool reversedCopy = std::find(clean.triangles.begin(), clean.triangles.end(), f) == clean.triangles.end();
+    opposed += reversedCopy && area2(dup, f) > 0 ? 2 : 0;
+  }
+  ASSERT_GT(opposed, 0);
+  const Result r = runFloat(dup, 32, SignMode::WindingNumber);
+  ASSERT_EQ(r.stats.warnings.size(), 1u);
+  EXPECT_EQ(countBefore(r.stats.warnings[0], " faces are cancelled by exact duplicates"), opposed) << r.stats.warnings[0];
+  EXPECT_NE(r.stats.warnings[0].find("--reorient"), std::string::npos);
+  // same-orientation duplicates alone change nothing: no warning
+  EXPECT_TRUE(runFloat(signquality::damaged(clean, "dup20"), 32, SignMode::WindingNumber).stats.warnings.empty());
 }

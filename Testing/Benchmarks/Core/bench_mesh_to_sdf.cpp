@@ -2,7 +2,7 @@
 // mesh file at a resolution, sign mode, accelerator, device and output.
 // usage: bench_mesh_to_sdf [DAMAGE:]MESH [RES=256] [SIGN=winding] [DEVICE=auto]
 //        [ACCEL=bvh] [OUTPUT=volume|float] [BAND=8] [PADDING=2]
-//        [RUNS=cold,warm,prepared,prepared] [--trace] [--check-cpu]
+//        [RUNS=cold,warm,prepared,prepared] [--trace] [--check-cpu] [--reorient]
 // A run may carry @SIGN (normal, pseudonormal, winding, unsigned: that run's
 // sign mode instead of SIGN), @pervoxel (MeshToSdfOptions::farBlocks off) and
 // @pageable (CUDA into a volume: the chunk keys come back through pageable
@@ -41,23 +41,24 @@ static int benchMain(int argc, char** argv)
   // --trace (anywhere): MeshToSdfOptions::tracePhases, the host phases' times on stderr
   // --check-cpu (anywhere; float output): after the runs, the same grid on the
   // CPU, compared bit for bit with the last run's floats (signs and distances)
-  bool tracePhases = false, checkCpu = false;
+  // --reorient (anywhere): MeshToSdfOptions::reorientFaces (winding sign)
+  bool tracePhases = false, checkCpu = false, reorient = false;
   for (int i = 1; i < argc;)
   {
     const std::string a = argv[i];
-    if (a != "--trace" && a != "--check-cpu")
+    if (a != "--trace" && a != "--check-cpu" && a != "--reorient")
     {
       ++i;
       continue;
     }
-    (a == "--trace" ? tracePhases : checkCpu) = true;
+    (a == "--trace" ? tracePhases : a == "--check-cpu" ? checkCpu : reorient) = true;
     for (int j = i; j + 1 < argc; ++j) argv[j] = argv[j + 1];
     --argc;
   }
   if (argc < 2)
   {
     std::fprintf(stderr, "usage: %s MESH [RES] [normal|pseudonormal|winding|unsigned] [cpu|cuda|auto] "
-                         "[bvh|faithful|bruteforce] [volume|float] [BAND] [PADDING] [RUNS] [--trace] [--check-cpu]\n", argv[0]);
+                         "[bvh|faithful|bruteforce] [volume|float] [BAND] [PADDING] [RUNS] [--trace] [--check-cpu] [--reorient]\n", argv[0]);
     return 2;
   }
   // DAMAGE:...:PATH, applied from the right (patch10:sub2:m = patches on the subdivided mesh)
@@ -97,6 +98,7 @@ static int benchMain(int argc, char** argv)
                                : SignMode::WindingNumber;
   };
   o.sign = signOf(sign);
+  o.reorientFaces = reorient;
   o.device = device == "cpu" ? Device::Cpu : device == "cuda" ? Device::Cuda : Device::Auto;
   o.accel = accel == "faithful" ? MeshToSdfAccel::Faithful
     : accel == "bruteforce"     ? MeshToSdfAccel::BruteForce
@@ -106,10 +108,10 @@ static int benchMain(int argc, char** argv)
 
   std::printf("machine: %s\n", bench::machineDescription().c_str());
   std::printf("mesh: %s%s%s (%zu points, %zu triangles), grid %lld x %lld x %lld, sign %s, accel %s, output %s, "
-              "band %s\n",
+              "band %s%s\n",
     damage.c_str(), damaged ? ":" : "", path.c_str(), mesh.points.size(), mesh.triangles.size(), static_cast<long long>(g.dims[0]),
     static_cast<long long>(g.dims[1]), static_cast<long long>(g.dims[2]), toString(o.sign), toString(o.accel),
-    output.c_str(), band > 0 ? bench::fmt(band, 1).c_str() : "none");
+    output.c_str(), band > 0 ? bench::fmt(band, 1).c_str() : "none", reorient ? ", faces re-oriented" : "");
 
   resolveDevice(o.device); // CUDA context creation is not part of the timing
   std::vector<std::vector<std::string>> rows;
