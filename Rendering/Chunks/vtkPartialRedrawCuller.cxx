@@ -19,6 +19,7 @@
 #include "vtkRenderer.h"
 #include "vtkTexture.h"
 #include "vtkWeakPointer.h"
+#include "lvdifProjectedRect.h"
 
 #include <algorithm>
 #include <cmath>
@@ -343,34 +344,21 @@ double vtkPartialRedrawCuller::Cull(vtkRenderer* ren, vtkProp** propList, int& l
 
   // Screen rectangles of this frame's props.
   vtkMatrix4x4* m = ren->GetActiveCamera()->GetCompositeProjectionTransformMatrix(ren->GetTiledAspectRatio(), -1, 1);
-  // The pixel rectangle (padded, clamped to the viewport) of n projected
-  // points, point(i, p4) giving the i-th; the viewport when one lies behind
-  // the eye (the projection does not bound it).
-  auto projectedRect = [&](std::size_t n, int pad, auto point) {
-    double lo[2] = { VTK_DOUBLE_MAX, VTK_DOUBLE_MAX }, hi[2] = { -VTK_DOUBLE_MAX, -VTK_DOUBLE_MAX };
-    for (std::size_t i = 0; i < n; ++i)
+  const double* mm = &m->Element[0][0];
+  const int vpi[4] = { vx, vy, vw, vh };
+  // A projected rectangle (lvdifProjectedRect.h) clamped to the viewport; the
+  // viewport when a point lies behind the eye (the projection does not bound it).
+  auto clamped = [&](bool bounded, const double* p) {
+    if (!bounded)
     {
-      double p4[4], q[4];
-      point(i, p4);
-      p4[3] = 1.0;
-      m->MultiplyPoint(p4, q);
-      if (!(q[3] > 1e-12))
-      {
-        return viewport;
-      }
-      for (int a = 0; a < 2; ++a)
-      {
-        const double d = (q[a] / q[3] + 1.0) * 0.5 * (a == 0 ? vw : vh) + (a == 0 ? vx : vy);
-        lo[a] = std::min(lo[a], d);
-        hi[a] = std::max(hi[a], d);
-      }
+      return viewport;
     }
     auto clampTo = [](double v, int a, int z) { return static_cast<int>(std::max<double>(a, std::min<double>(z, v))); };
     Rect r;
-    r.x0 = clampTo(std::floor(lo[0]) - pad, viewport.x0, viewport.x1);
-    r.y0 = clampTo(std::floor(lo[1]) - pad, viewport.y0, viewport.y1);
-    r.x1 = clampTo(std::ceil(hi[0]) + 1 + pad, viewport.x0, viewport.x1);
-    r.y1 = clampTo(std::ceil(hi[1]) + 1 + pad, viewport.y0, viewport.y1);
+    r.x0 = clampTo(p[0], viewport.x0, viewport.x1);
+    r.y0 = clampTo(p[1], viewport.y0, viewport.y1);
+    r.x1 = clampTo(p[2], viewport.x0, viewport.x1);
+    r.y1 = clampTo(p[3], viewport.y0, viewport.y1);
     return r;
   };
   // The rectangle of a box's 8 corners.
@@ -383,11 +371,9 @@ double vtkPartialRedrawCuller::Cull(vtkRenderer* ren, vtkProp** propList, int& l
     {
       return Rect{}; // draws nothing
     }
-    return projectedRect(8, pad, [b](std::size_t c, double* p4) {
-      p4[0] = b[c & 1];
-      p4[1] = b[2 + ((c >> 1) & 1)];
-      p4[2] = b[4 + ((c >> 2) & 1)];
-    });
+    double p[4];
+    const bool bounded = lvdif::render::projectedBoxPixelRect(mm, vpi, b, pad, p);
+    return clamped(bounded, p);
   };
   // The rectangle of projected points (x, y, z each).
   auto pointsRect = [&](const std::vector<double>& pts, int pad) {
@@ -395,9 +381,13 @@ double vtkPartialRedrawCuller::Cull(vtkRenderer* ren, vtkProp** propList, int& l
     {
       return Rect{};
     }
-    return projectedRect(pts.size() / 3, pad, [&pts](std::size_t i, double* p4) {
-      for (int a = 0; a < 3; ++a) p4[a] = pts[3 * i + a];
-    });
+    double p[4];
+    const bool bounded = lvdif::render::projectedPixelRect(mm, vpi, pts.size() / 3, pad,
+      [&pts](std::size_t i, double* x) {
+        for (int a = 0; a < 3; ++a) x[a] = pts[3 * i + a];
+      },
+      p);
+    return clamped(bounded, p);
   };
   const int surfacePad = this->SurfaceMargin;
   auto padOf = [surfacePad](vtkProp* p) { return surfaceOnly(p) ? surfacePad : Pad; };

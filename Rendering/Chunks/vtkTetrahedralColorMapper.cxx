@@ -12,6 +12,7 @@
 #include "vtkPoints.h"
 #include "vtkRenderer.h"
 #include "vtk_glew.h"
+#include "lvdifProjectedRect.h"
 #include "vtkPointData.h"
 #include "vtkPolyData.h"
 #include "vtkProperty.h"
@@ -353,34 +354,18 @@ void vtkTetrahedralColorMapper::RenderPieceDraw(vtkRenderer* ren, vtkActor* act)
     vtkMatrix4x4::Multiply4x4(&proj->Element[0][0], &act->GetMatrix()->Element[0][0], m);
   }
   const int pad = this->DrawRangePad;
+  const int viewport[4] = { vp[0], vp[1], vp[2], vp[3] };
   auto meets = [&](const Range& r) {
     if (clip[0] >= clip[2] || clip[1] >= clip[3])
     {
       return false; // no pixel can be written
     }
-    double lo[2] = { VTK_DOUBLE_MAX, VTK_DOUBLE_MAX }, hi[2] = { -VTK_DOUBLE_MAX, -VTK_DOUBLE_MAX };
-    for (int c = 0; c < 8; ++c)
+    double rect[4]; // the pixels the range may reach (lvdifProjectedRect.h)
+    if (!lvdif::render::projectedBoxPixelRect(m, viewport, r.Box, pad, rect))
     {
-      const double p[3] = { r.Box[c & 1], r.Box[2 + ((c >> 1) & 1)], r.Box[4 + ((c >> 2) & 1)] };
-      double q[4];
-      for (int i = 0; i < 4; ++i)
-      {
-        q[i] = m[4 * i] * p[0] + m[4 * i + 1] * p[1] + m[4 * i + 2] * p[2] + m[4 * i + 3];
-      }
-      if (!(q[3] > 1e-12))
-      {
-        return true; // reaches behind the eye: the projection does not bound it
-      }
-      for (int a = 0; a < 2; ++a)
-      {
-        const double d = (q[a] / q[3] + 1.0) * 0.5 * vp[2 + a] + vp[a];
-        lo[a] = std::min(lo[a], d);
-        hi[a] = std::max(hi[a], d);
-      }
+      return true; // reaches behind the eye: the projection does not bound it
     }
-    // pixels [floor(lo) - pad, ceil(hi) + 1 + pad) against the clip box
-    return std::floor(lo[0]) - pad < clip[2] && clip[0] < std::ceil(hi[0]) + 1 + pad &&
-      std::floor(lo[1]) - pad < clip[3] && clip[1] < std::ceil(hi[1]) + 1 + pad;
+    return rect[0] < clip[2] && clip[0] < rect[2] && rect[1] < clip[3] && clip[1] < rect[3];
   };
 
   // runs of consecutive ranges that meet it

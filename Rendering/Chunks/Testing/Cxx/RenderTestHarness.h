@@ -6,11 +6,15 @@
 
 #include "vtkImageData.h"
 #include "vtkNew.h"
+#include "vtkPointData.h"
 #include "vtkRegressionTestImage.h"
 #include "vtkRenderWindow.h"
 #include "vtkRenderWindowInteractor.h"
 #include "vtkSmartPointer.h"
+#include "vtkUnsignedCharArray.h"
 #include "vtkWindowToImageFilter.h"
+
+#include <functional>
 
 namespace lvdiftest
 {
@@ -36,6 +40,36 @@ inline vtkSmartPointer<vtkImageData> windowPixels(vtkRenderWindow* rw)
   auto img = vtkSmartPointer<vtkImageData>::New();
   img->DeepCopy(w2i->GetOutput());
   return img;
+}
+
+/// The pixels (x, y) whose RGB differs between two grabs of the same size,
+/// except those `allowed` excuses (counted in *excused when given); -1 when
+/// the grabs are not comparable (no colour bytes, different sizes).
+inline long differingPixels(vtkImageData* a, vtkImageData* b,
+  const std::function<bool(int, int)>& allowed = nullptr, long* excused = nullptr)
+{
+  if (excused)
+    *excused = 0;
+  auto* pa = vtkUnsignedCharArray::SafeDownCast(a->GetPointData()->GetScalars());
+  auto* pb = vtkUnsignedCharArray::SafeDownCast(b->GetPointData()->GetScalars());
+  int da[3], db[3];
+  a->GetDimensions(da);
+  b->GetDimensions(db);
+  if (!pa || !pb || pa->GetNumberOfComponents() != 3 || pb->GetNumberOfComponents() != 3 ||
+    pa->GetNumberOfValues() != pb->GetNumberOfValues() || da[0] != db[0] || da[1] != db[1])
+    return -1;
+  long n = 0, ok = 0;
+  for (vtkIdType t = 0; t < pa->GetNumberOfTuples(); ++t)
+    for (int c = 0; c < 3; ++c)
+      if (pa->GetValue(3 * t + c) != pb->GetValue(3 * t + c))
+      {
+        const bool excuse = allowed && allowed(static_cast<int>(t % da[0]), static_cast<int>(t / da[0]));
+        (excuse ? ok : n) += 1;
+        break;
+      }
+  if (excused)
+    *excused = ok;
+  return n;
 }
 
 /// Renders and returns a copy of the window's RGB pixels.

@@ -62,23 +62,6 @@ std::function<double(double, double, double)> dented(double radius, double dz)
 
 using Chunks = std::map<vtkIdType, vtkSmartPointer<vtkPolyData>>;
 
-long differing(vtkImageData* a, vtkImageData* b)
-{
-  auto* pa = vtkUnsignedCharArray::SafeDownCast(a->GetPointData()->GetScalars());
-  auto* pb = vtkUnsignedCharArray::SafeDownCast(b->GetPointData()->GetScalars());
-  if (!pa || !pb || pa->GetNumberOfValues() != pb->GetNumberOfValues())
-    return -1;
-  long n = 0;
-  for (vtkIdType t = 0; t < pa->GetNumberOfTuples(); ++t)
-    for (int c = 0; c < 3; ++c)
-      if (pa->GetValue(3 * t + c) != pb->GetValue(3 * t + c))
-      {
-        ++n;
-        break;
-      }
-  return n;
-}
-
 // Background pixels (the renderer's background colour) of a grab.
 long coloured(vtkImageData* a)
 {
@@ -181,7 +164,7 @@ int TestDrawRanges(int, char*[])
       const int partialRanged = ranged.Culler->GetNumberOfPartialRedraws();
       auto a = windowPixels(ranged.Window);
       auto b = windowPixels(plain.Window);
-      const long diff = differing(a, b);
+      const long diff = differingPixels(a, b);
       std::printf("  %s: %ld pixels differ between the ranged and the plain draw (%ld pixels not background)\n",
         what.c_str(), diff, coloured(a));
       if (expectEqual)
@@ -196,7 +179,7 @@ int TestDrawRanges(int, char*[])
         ranged.Manager->SetDrawRangeTriangles(0);
         ranged.Culler->RequestFullRedraw();
         ranged.Window->Render();
-        const long full = differing(a, windowPixels(ranged.Window));
+        const long full = differingPixels(a, windowPixels(ranged.Window));
         std::printf("  %s: %ld pixels differ from a full redraw without ranges\n", what.c_str(), full);
         check(full == 0, what + ": the picture equals a full redraw");
         ranged.Manager->SetDrawRangeTriangles(32);

@@ -55,29 +55,6 @@ double dented(double x, double y, double z)
   return std::max(sphere(x, y, z), 5.5 - d);
 }
 
-// Pixels that differ between two grabs, but for those `allowed` excuses
-// (their number in *excused).
-long differing(vtkImageData* a, vtkImageData* b, const std::function<bool(int, int)>& allowed, long* excused)
-{
-  int dims[3];
-  a->GetDimensions(dims);
-  *excused = 0;
-  auto* pa = vtkUnsignedCharArray::SafeDownCast(a->GetPointData()->GetScalars());
-  auto* pb = vtkUnsignedCharArray::SafeDownCast(b->GetPointData()->GetScalars());
-  if (!pa || !pb || pa->GetNumberOfValues() != pb->GetNumberOfValues())
-    return -1;
-  long n = 0;
-  for (vtkIdType t = 0; t < pa->GetNumberOfTuples(); ++t)
-    for (int c = 0; c < 3; ++c)
-      if (pa->GetValue(3 * t + c) != pb->GetValue(3 * t + c))
-      {
-        const bool ok = allowed(static_cast<int>(t % dims[0]), static_cast<int>(t / dims[0]));
-        (ok ? *excused : n) += 1;
-        break;
-      }
-  return n;
-}
-
 // The scene drawn with this many samples per pixel; the number of failed checks.
 int runScene(int samples)
 {
@@ -164,7 +141,7 @@ int runScene(int samples)
       return false;
     };
     long ring = 0;
-    const long diff = differing(partial, full, onRing, &ring);
+    const long diff = differingPixels(partial, full, onRing, &ring);
     std::printf("  %s: %ld pixels differ from the full redraw (and %ld on the ring around a damage rectangle)\n", what,
       diff, ring);
     check(culler->GetNumberOfPartialRedraws() == partialBefore + frames && (!few || most < props / 2),
@@ -285,8 +262,7 @@ int runMarginControl()
     auto drawn = windowPixels(rw);
     culler->RequestFullRedraw();
     rw->Render();
-    long ring = 0;
-    const long diff = differing(drawn, windowPixels(rw), [](int, int) { return false; }, &ring);
+    const long diff = differingPixels(drawn, windowPixels(rw));
     const bool inPart = culler->GetNumberOfPartialRedraws() == partial + frames && frames > 0;
     const bool ok = inPart && (margin >= 0 ? diff == 0 : diff > 0);
     std::printf("%s: margin %d, %d frames drawn in part: %ld pixels differ from the full redraw (%s)\n",
@@ -356,8 +332,7 @@ int runRefill()
       start.erase(kv.first);
   auto edited = scene({ &start, &replaced });
   auto made = scene({ &fresh });
-  long ring = 0;
-  const long diff = differing(edited, made, [](int, int) { return false; }, &ring);
+  const long diff = differingPixels(edited, made);
   std::printf("%s: the replaced chunks show their new meshes (%ld pixels differ)\n", diff == 0 ? "ok" : "FAILED", diff);
   return diff == 0 ? 0 : 1;
 }
