@@ -67,7 +67,10 @@ EditorOptions parseEditorOptions(const QStringList& arguments)
   const QCommandLineOption drawRanges("draw-ranges",
     "Triangles per draw range of a chunk (default 32; 0: each chunk in one draw call): a frame drawn in part draws only "
     "the ranges of a chunk that reach into the redrawn region.", "n");
-  p.addOptions({ drawRanges, samples, open, openMesh, meshRes, meshSign, create, fill, script, drag, undo, shot, save, exp, op, shape, kind, radius, color, size, quit,
+  const QCommandLineOption stockBackground("stock-background",
+    "Draw the gradient background as VTK does, with a new quad each frame (by default the quad is kept between frames; "
+    "the same picture). For comparisons.");
+  p.addOptions({ stockBackground, drawRanges, samples, open, openMesh, meshRes, meshSign, create, fill, script, drag, undo, shot, save, exp, op, shape, kind, radius, color, size, quit,
     noRecovery, recoveryDir, autosave, perVertex, matcap, benchmark, strength, falloff, mirror, keys, keysAfter, dragMods,
     saveAsAnswer, windowShot, dragShot, timing, fullRedraw });
   p.process(arguments);
@@ -165,6 +168,7 @@ EditorOptions parseEditorOptions(const QStringList& arguments)
   o.benchmarkStroke = p.value(benchmark);
   o.timing = p.isSet(timing);
   o.fullRedraw = p.isSet(fullRedraw);
+  o.stockBackground = p.isSet(stockBackground);
   if (p.isSet(drawRanges))
   {
     bool ok = false;

@@ -69,6 +69,7 @@ MainWindow::MainWindow(const EditorOptions& options)
   this->Renderer->SetBackground(0.16, 0.17, 0.2);
   this->Renderer->SetBackground2(0.05, 0.05, 0.07);
   this->Renderer->GradientBackgroundOn();
+  this->Renderer->SetKeepBackgroundActor(!options.stockBackground);
   // While the camera stands still (a stroke, the cursor moving over the
   // surface) a frame redraws only the screen region that changed, with the
   // chunk actors that cover it: the cost of a stroke's frame follows the

@@ -4,6 +4,7 @@
 
 #include "EditorOptions.h"
 #include "EditorRenderWindow.h"
+#include "vtkGradientBackgroundRenderer.h"
 #include "MeshImport.h"
 #include "ToolPanel.h"
 #include "VolumeDocument.h"
@@ -202,7 +203,7 @@ private:
   MeshImportSettings MeshSettings;
   QElapsedTimer Clock;
   vtkNew<EditorRenderWindow> RenderWindow;
-  vtkNew<vtkRenderer> Renderer;
+  vtkNew<vtkGradientBackgroundRenderer> Renderer; // its gradient background's quad kept between frames
   vtkNew<vtkChunkActorManager> Chunks;
   vtkNew<vtkPartialRedrawCuller> Redraw; // partial redraws while the camera stands still
   vtkNew<vtkBrushRepresentation> BrushRep;
