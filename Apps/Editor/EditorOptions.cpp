@@ -70,7 +70,10 @@ EditorOptions parseEditorOptions(const QStringList& arguments)
   const QCommandLineOption stockBackground("stock-background",
     "Draw the gradient background as VTK does, with a new quad each frame (by default the quad is kept between frames; "
     "the same picture). For comparisons.");
-  p.addOptions({ stockBackground, drawRanges, samples, open, openMesh, meshRes, meshSign, create, fill, script, drag, undo, shot, save, exp, op, shape, kind, radius, color, size, quit,
+  const QCommandLineOption multisampledDrag("multisampled-drag",
+    "Draw a stroke's frames with the view's multisampling (by default they have one sample per pixel and the view is "
+    "drawn whole, multisampled, once the stroke is still). For comparisons.");
+  p.addOptions({ multisampledDrag, stockBackground, drawRanges, samples, open, openMesh, meshRes, meshSign, create, fill, script, drag, undo, shot, save, exp, op, shape, kind, radius, color, size, quit,
     noRecovery, recoveryDir, autosave, perVertex, matcap, benchmark, strength, falloff, mirror, keys, keysAfter, dragMods,
     saveAsAnswer, windowShot, dragShot, timing, fullRedraw });
   p.process(arguments);
@@ -169,6 +172,7 @@ EditorOptions parseEditorOptions(const QStringList& arguments)
   o.timing = p.isSet(timing);
   o.fullRedraw = p.isSet(fullRedraw);
   o.stockBackground = p.isSet(stockBackground);
+  o.multisampledDrag = p.isSet(multisampledDrag);
   if (p.isSet(drawRanges))
   {
     bool ok = false;

@@ -186,6 +186,9 @@ MainWindow::MainWindow(const EditorOptions& options)
       this->StillTimer->start(); // still painting: after the release
       return;
     }
+    // the still frame: drawn whole, with the view's multisampling (the
+    // stroke's frames may have been drawn with one sample per pixel)
+    this->RenderWindow->SetSingleSampleFrames(false);
     this->Redraw->RequestFullRedraw();
     this->RenderWindow->Render();
     this->View->update();
@@ -196,7 +199,8 @@ MainWindow::MainWindow(const EditorOptions& options)
     cb->SetCallback([](vtkObject*, unsigned long, void* cd, void*) {
       auto* self = static_cast<MainWindow*>(cd);
       int damage[4];
-      if (self->RenderWindow->GetMultiSamples() > 1 && self->Redraw->GetLastFramePartial(damage))
+      if (self->RenderWindow->GetLastFrameSingleSampled() ||
+        (self->RenderWindow->GetMultiSamples() > 1 && self->Redraw->GetLastFramePartial(damage)))
         self->StillTimer->start();
     });
     this->RenderWindow->AddObserver(vtkCommand::EndEvent, cb);
@@ -304,6 +308,9 @@ bool MainWindow::beginStroke()
   e.brush.invert = ctrl && (op == 4 || op == 7 || op == 8);
   this->Grabbing = op == 5;
   updatePreview(nullptr, true);
+  // The stroke's frames with one sample per pixel (a multisampled view is
+  // drawn whole again, multisampled, once still: the still timer).
+  this->RenderWindow->SetSingleSampleFrames(!this->Options.multisampledDrag);
   try
   {
     this->Doc.beginStroke();

@@ -133,9 +133,12 @@ bool MainWindow::saveWindowShot(const QString& path)
 {
   // the whole window (menus, toolbar, tool panel, status bar); Qt composes the
   // OpenGL view's current frame into it
+  const bool single = this->RenderWindow->GetSingleSampleFrames();
+  this->RenderWindow->SetSingleSampleFrames(false); // with the view's multisampling
   this->Redraw->RequestFullRedraw();
   this->RenderWindow->Render();
   const QPixmap shot = this->grab();
+  this->RenderWindow->SetSingleSampleFrames(single);
   if (shot.isNull() || !shot.save(path, "PNG"))
   {
     this->showError("Cannot write " + path, std::runtime_error("no window image to save"));
@@ -149,9 +152,12 @@ bool MainWindow::saveScreenshot(const QString& path)
   // QVTKOpenGLNativeWidget renders in its paintGL: a render requested from
   // here is deferred, so reading the render window's buffer could give the
   // previous frame. grabFramebuffer() paints now and returns that frame.
+  const bool single = this->RenderWindow->GetSingleSampleFrames();
+  this->RenderWindow->SetSingleSampleFrames(false); // with the view's multisampling
   this->Redraw->RequestFullRedraw(); // a picture to keep: drawn whole, not an interactive frame
   this->RenderWindow->Render();
   const QImage image = this->View->grabFramebuffer().convertToFormat(QImage::Format_RGB888);
+  this->RenderWindow->SetSingleSampleFrames(single);
   if (image.isNull() || !image.save(path, "PNG"))
   {
     this->showError("Cannot write " + path, std::runtime_error("no frame to save"));

@@ -1,6 +1,7 @@
 #include "StrokeBenchmark.h"
 
 #include "EditorDriver.h"
+#include "EditorRenderWindow.h"
 #include "MainWindow.h"
 
 #include "vtkCullerCollection.h"
@@ -144,36 +145,46 @@ void StrokeBenchmark::measureStillFrames()
     this->FullBefore = culler->GetNumberOfFullRedraws();
     this->PartialBefore = culler->GetNumberOfPartialRedraws();
   }
+  if (auto* erw = EditorRenderWindow::SafeDownCast(rw))
+    this->SingleSampledBefore = erw->GetNumberOfSingleSampledFrames();
 }
 
-long StrokeBenchmark::pixelsDifferingFromFullRedraw()
+vtkSmartPointer<vtkUnsignedCharArray> StrokeBenchmark::grabShown()
+{
+  vtkRenderWindow* rw = EditorDriver::view(this->Window)->renderWindow();
+  vtkNew<vtkWindowToImageFilter> w2i;
+  w2i->SetInput(rw);
+  w2i->SetInputBufferTypeToRGB();
+  w2i->ReadFrontBufferOn();
+  w2i->ShouldRerenderOff();
+  w2i->Update();
+  vtkSmartPointer<vtkUnsignedCharArray> a = vtkUnsignedCharArray::New();
+  a->Delete();
+  a->DeepCopy(w2i->GetOutput()->GetPointData()->GetScalars());
+  return a;
+}
+
+long StrokeBenchmark::pixelsDifferingFromFullRedraw(vtkUnsignedCharArray* earlier, long* earlierDiffer)
 {
   // The picture shown (the display framebuffer, as Qt presents it) against
   // the same scene drawn whole.
   vtkRenderWindow* rw = EditorDriver::view(this->Window)->renderWindow();
-  auto grab = [rw] {
-    vtkNew<vtkWindowToImageFilter> w2i;
-    w2i->SetInput(rw);
-    w2i->SetInputBufferTypeToRGB();
-    w2i->ReadFrontBufferOn();
-    w2i->ShouldRerenderOff();
-    w2i->Update();
-    vtkSmartPointer<vtkUnsignedCharArray> a = vtkUnsignedCharArray::New();
-    a->Delete();
-    a->DeepCopy(w2i->GetOutput()->GetPointData()->GetScalars());
-    return a;
-  };
-  auto shown = grab();
+  auto shown = this->grabShown();
   this->redrawCuller()->RequestFullRedraw();
   rw->Render();
-  auto whole = grab();
-  if (shown->GetNumberOfValues() != whole->GetNumberOfValues())
-    return -1;
-  long n = 0;
-  for (vtkIdType i = 0; i < shown->GetNumberOfValues(); i += 3)
-    n += shown->GetValue(i) != whole->GetValue(i) || shown->GetValue(i + 1) != whole->GetValue(i + 1) ||
-      shown->GetValue(i + 2) != whole->GetValue(i + 2);
-  return n;
+  auto whole = this->grabShown();
+  auto differ = [&whole](vtkUnsignedCharArray* a) {
+    if (a->GetNumberOfValues() != whole->GetNumberOfValues())
+      return -1L;
+    long n = 0;
+    for (vtkIdType i = 0; i < a->GetNumberOfValues(); i += 3)
+      n += a->GetValue(i) != whole->GetValue(i) || a->GetValue(i + 1) != whole->GetValue(i + 1) ||
+        a->GetValue(i + 2) != whole->GetValue(i + 2);
+    return n;
+  };
+  if (earlier && earlierDiffer)
+    *earlierDiffer = differ(earlier);
+  return differ(shown);
 }
 
 void StrokeBenchmark::start()
@@ -258,6 +269,16 @@ void StrokeBenchmark::finishWhenIdle()
     return;
   }
   this->Window.showFinishedMeshes(); // what the worker finished since the last poll
+  auto* erw = EditorRenderWindow::SafeDownCast(EditorDriver::view(this->Window)->renderWindow());
+  if (erw && erw->GetNumberOfSingleSampledFrames() > this->SingleSampledBefore && this->redrawCuller())
+  {
+    // The stroke's frames had one sample per pixel: their picture now, then
+    // the window's own still frame (MainWindow's still timer, 250 ms after the
+    // last frame once the stroke has ended) is what the report checks.
+    this->StrokePicture = this->grabShown();
+    QTimer::singleShot(600, Qt::PreciseTimer, this, [this] { this->report(); });
+    return;
+  }
   this->report();
 }
 
@@ -311,7 +332,27 @@ void StrokeBenchmark::report()
       culler->GetNumberOfPartialRedraws() - this->PartialBefore, culler->GetNumberOfFullRedraws() - this->FullBefore);
     vtkRenderWindow* rw = EditorDriver::view(this->Window)->renderWindow();
     const long pixels = static_cast<long>(rw->GetSize()[0]) * rw->GetSize()[1];
-    differ = this->pixelsDifferingFromFullRedraw();
+    auto* erw = EditorRenderWindow::SafeDownCast(rw);
+    const int single = erw ? erw->GetNumberOfSingleSampledFrames() - this->SingleSampledBefore : 0;
+    long strokeDiffer = 0;
+    bool controlFailed = false;
+    const bool stillDrawn = this->StrokePicture && erw && !erw->GetLastFrameSingleSampled();
+    differ = this->pixelsDifferingFromFullRedraw(this->StrokePicture, &strokeDiffer);
+    if (this->StrokePicture)
+    {
+      std::printf("benchmark-stroke: %d frames of the stroke drawn with one sample per pixel (the view has %d); their "
+                  "picture differs from the scene drawn whole in %ld of %ld pixels; the still frame after the stroke %s\n",
+        single, rw->GetMultiSamples(), strokeDiffer, pixels,
+        stillDrawn ? "was drawn whole, multisampled" : "was NOT drawn (error)");
+      // Negative control: the comparison must see the single-sampled frames'
+      // picture, or it could not tell whether the still frame replaced it.
+      if (strokeDiffer <= 0 || !stillDrawn)
+      {
+        std::printf("benchmark-stroke: error: %s\n",
+          stillDrawn ? "the comparison did not see the single-sampled frames" : "no still frame after the stroke");
+        controlFailed = true;
+      }
+    }
     if (differ == 0)
       std::printf("benchmark-stroke: the picture after the stroke equals the scene drawn whole\n");
     else
@@ -320,7 +361,9 @@ void StrokeBenchmark::report()
         differ, pixels, rw->GetMultiSamples());
     // Multisampled partial frames may differ on their rectangles' edges;
     // more than that (1% of the view) is an error, as is any difference without multisampling.
-    differ = differ < 0 || (rw->GetMultiSamples() > 1 ? differ * 100 > pixels : differ > 0);
+    // After single-sampled stroke frames the still frame must equal it exactly.
+    differ = controlFailed || differ < 0 ||
+      (rw->GetMultiSamples() > 1 && !this->StrokePicture ? differ * 100 > pixels : differ > 0);
   }
   else
     std::printf("benchmark-stroke: renders during the stroke: every one drawn whole (--full-redraw)\n");

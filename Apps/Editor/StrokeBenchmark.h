@@ -29,6 +29,8 @@
 
 #include "lvdif/Stroke.h"
 
+#include "vtkSmartPointer.h"
+
 #include <QObject>
 #include <QString>
 
@@ -39,6 +41,7 @@
 
 class MainWindow;
 class vtkPartialRedrawCuller;
+class vtkUnsignedCharArray;
 struct ShownMeshes;
 
 class StrokeBenchmark : public QObject
@@ -62,8 +65,11 @@ private:
   vtkPartialRedrawCuller* redrawCuller();
   /// Prints the still scene's frame time drawn whole and unchanged.
   void measureStillFrames();
-  /// Pixels of the picture shown that differ from the scene drawn whole (-1: sizes differ).
-  long pixelsDifferingFromFullRedraw();
+  /// Pixels of the picture shown that differ from the scene drawn whole (-1:
+  /// sizes differ); with `earlier`, also those of that earlier grab (*earlierDiffer).
+  long pixelsDifferingFromFullRedraw(vtkUnsignedCharArray* earlier = nullptr, long* earlierDiffer = nullptr);
+  /// The picture shown now (the display framebuffer, as Qt presents it).
+  vtkSmartPointer<vtkUnsignedCharArray> grabShown();
   /// After the window applied a sample: the chunks it asked to re-mesh.
   void sampleApplied();
   /// MainWindow::meshesShown: waits for the frame to be drawn, notes when.
@@ -94,4 +100,6 @@ private:
   std::vector<double> TrianglesDrawn; // per frame, by the chunk actors
   std::vector<double> DrawCalls;      // per frame, the chunk actors' triangle draw calls
   int FullBefore = 0, PartialBefore = 0; // the culler's counts at the stroke's start
+  int SingleSampledBefore = 0;           // the window's single-sampled frames at the stroke's start
+  vtkSmartPointer<vtkUnsignedCharArray> StrokePicture; // the picture the stroke's frames left, before the still frame
 };
