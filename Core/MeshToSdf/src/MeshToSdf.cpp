@@ -382,7 +382,7 @@ void warnIfFacesReversed(const MeshToSdfPrepared& mesh, const MeshToSdfOptions& 
       << " faces are cancelled by exact duplicates of opposite orientation (a hole each)";
   }
   m << ", and the exact field of such faces is slower to compute; if the faces bound one solid, re-orient them "
-       "(--reorient, ReorientFaces), which is also faster";
+       "(--reorient, ReorientFaces, the editor's \"Re-orient faces\"), which is also faster";
   stats.warnings.push_back(m.str());
 }
 
