@@ -12,6 +12,7 @@
 #include "vtkNew.h"
 #include "vtkPointData.h"
 
+#include <QCheckBox>
 #include <QComboBox>
 #include <QDialog>
 #include <QDialogButtonBox>
@@ -91,6 +92,17 @@ bool askMeshImportSettings(QWidget* parent, MeshImportSettings& settings)
   sign->addItem("Face normal (the paper's)", int(vtkMeshToSDF::NORMAL));
   sign->setCurrentIndex(sign->findData(settings.signMode));
   form->addRow("Sign", sign);
+  // the option the reversed-faces warning names (winding sign only)
+  auto* reorient = new QCheckBox("Re-orient faces", &dlg);
+  reorient->setChecked(settings.reorientFaces);
+  reorient->setToolTip("Orient each connected part's faces consistently and count duplicate faces once: for scans "
+                       "and exports whose face orientation cannot be trusted (winding number sign)");
+  auto enableReorient = [sign, reorient] {
+    reorient->setEnabled(sign->currentData().toInt() == int(vtkMeshToSDF::WINDING_NUMBER));
+  };
+  enableReorient();
+  QObject::connect(sign, QOverload<int>::of(&QComboBox::currentIndexChanged), reorient, enableReorient);
+  form->addRow("", reorient);
   auto* buttons = new QDialogButtonBox(QDialogButtonBox::Ok | QDialogButtonBox::Cancel, &dlg);
   form->addRow(buttons);
   QObject::connect(buttons, &QDialogButtonBox::accepted, &dlg, &QDialog::accept);
@@ -99,6 +111,7 @@ bool askMeshImportSettings(QWidget* parent, MeshImportSettings& settings)
     return false;
   settings.resolution = resolution->value();
   settings.signMode = sign->currentData().toInt();
+  settings.reorientFaces = reorient->isChecked();
   return true;
 }
 
@@ -115,13 +128,14 @@ std::shared_ptr<lvdif::DictionaryVolume> importMesh(
   toSdf->SetMaxDimension(settings.resolution);
   toSdf->SetSignMode(settings.signMode);
   toSdf->SetPadding(settings.padding);
+  toSdf->SetReorientFaces(settings.reorientFaces && settings.signMode == vtkMeshToSDF::WINDING_NUMBER);
   vtkNew<ErrorCollector> errors;
   for (vtkAlgorithm* a : { static_cast<vtkAlgorithm*>(reader), static_cast<vtkAlgorithm*>(toSdf) })
   {
     a->AddObserver(vtkCommand::ErrorEvent, errors);
     a->GetExecutive()->AddObserver(vtkCommand::ErrorEvent, errors);
   }
-  // the filter's warnings (a mesh that encloses no volume, voxels too coarse)
+  // the filter's warnings (a mesh that encloses no volume, voxels too coarse, reversed faces)
   vtkNew<ErrorCollector> warnings;
   toSdf->AddObserver(vtkCommand::WarningEvent, warnings);
   vtkNew<ProgressWatcher> progress;

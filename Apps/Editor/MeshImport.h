@@ -18,9 +18,11 @@ struct MeshImportSettings
   int resolution = 128; // points along the mesh's longest axis
   int signMode = 2;     // vtkMeshToSDF::NORMAL / PSEUDO_NORMAL / WINDING_NUMBER (default)
   double padding = 2.0; // voxels of margin around the mesh
+  bool reorientFaces = false; // winding sign: of the consistently re-oriented mesh (vtkMeshToSDF::ReorientFaces)
 };
 
-/// Asks for the resolution and the sign mode; false if cancelled.
+/// Asks for the resolution, the sign mode and (winding sign) whether to
+/// re-orient the faces; false if cancelled.
 bool askMeshImportSettings(QWidget* parent, MeshImportSettings& settings);
 
 /// "winding", "pseudo" or "normal" to a sign mode; -1 if none of them.

@@ -5,7 +5,8 @@ voxel's distance must equal (|p - c| - r) / spacing, saturated at the band,
 within the tessellation's sagitta plus the dictionary's precision. Each sign
 mode is run (normal with the sign voxel filters); the progress bar is drawn on
 stderr; bad options fail with one line and a non-zero exit code; an open sheet
-gets the warning that it encloses no volume, the sphere none."""
+gets the warning that it encloses no volume, the sphere none, the sphere with
+a reversed patch the warning that names --reorient."""
 import math
 import os
 import subprocess
@@ -123,4 +124,32 @@ assert len(warnings) == 1 and "encloses no volume" in warnings[0] and "pseudo-no
 run = subprocess.run([exe, "mesh-to-sdf", mesh, f"{out}/sphere_again.lvdv", "--dims", "24", "--device", "cpu"],
                      capture_output=True, text=True, timeout=60)
 assert run.returncode == 0 and "warning:" not in run.stderr, run.stderr
+
+# warnings: the sphere with its faces near the top pole reversed (counted here
+# from the file): one warning with that count naming --reorient, for the
+# winding and the pseudo-normal sign; none with --reorient
+with open(mesh) as f:
+    obj = f.read().splitlines()
+verts = [tuple(map(float, l.split()[1:4])) for l in obj if l.startswith("v ")]
+flipped, reversed_faces = [], 0
+for l in obj:
+    if l.startswith("f "):
+        a, b, c = l.split()[1:4]
+        if all(verts[int(i) - 1][2] > C[2] + 0.7 * R for i in (a, b, c)):
+            l, reversed_faces = f"f {a} {c} {b}", reversed_faces + 1
+    flipped.append(l)
+patch = f"{out}/sphere_patch.obj"
+with open(patch, "w") as f:
+    f.write("\n".join(flipped) + "\n")
+assert reversed_faces > 0
+for sign, reorient, expect in (("winding", [], f"{reversed_faces} of "), ("pseudo", [], "edges join faces of opposite"),
+                               ("winding", ["--reorient"], None)):
+    run = subprocess.run([exe, "mesh-to-sdf", patch, f"{out}/patch.lvdv", "--dims", "24", "--sign", sign,
+                          "--device", "cpu"] + reorient, capture_output=True, text=True, timeout=60)
+    warnings = [l for l in run.stderr.splitlines() if l.startswith("warning: ")]
+    assert run.returncode == 0, run.stderr
+    if expect is None:
+        assert not warnings, run.stderr
+    else:
+        assert len(warnings) == 1 and expect in warnings[0] and "--reorient" in warnings[0], (sign, run.stderr)
 print("mesh-to-sdf OK")

@@ -351,16 +351,33 @@ void warnIfNothingInside(const MeshToSdfPrepared& mesh, const GridGeometry& grid
   stats.warnings.push_back(w.str());
 }
 
-/// stats.warnings when the winding number of the mesh as given met faces
-/// reversed against their neighbours, or exact duplicates that cancel, and
-/// the re-oriented mesh was not asked for. Under each reversed face the
-/// winding number drops below 1/2 (w_M = w_M+ - 2 w_t), which carves an
-/// extra surface into the solid; cancelled pairs leave one-face holes that
-/// the winding number bridges, but slowly. Either way the exact field of the
-/// faces as given is also several times slower to compute than the
-/// re-oriented one (docs/MESH_TO_SDF.md, "Damaged meshes").
+/// stats.warnings when the faces' orientation is inconsistent and the sign
+/// cannot be what the user means. Winding sign without reorientFaces: faces
+/// reversed against their neighbours (the orientation pass's F; under each the
+/// winding number drops below 1/2, w_M = w_M+ - 2 w_t, which carves an extra
+/// surface into the solid) or cancelled by an exact duplicate of opposite
+/// orientation (one-face holes the winding number bridges, but slowly);
+/// either way the exact field of the faces as given is also several times
+/// slower to compute than the re-oriented one (docs/MESH_TO_SDF.md, "Damaged
+/// meshes"). Normal and pseudo-normal signs: edges whose two faces run them
+/// the same way (the prepared mesh's orientation seams), near which those
+/// signs read the reversed faces' normals.
 void warnIfFacesReversed(const MeshToSdfPrepared& mesh, const MeshToSdfOptions& options, MeshToSdfStats& stats)
 {
+  constexpr const char* option = "--reorient, ReorientFaces, the editor's \"Re-orient faces\"";
+  if (options.sign == SignMode::Normal || options.sign == SignMode::PseudoNormal)
+  {
+    const std::size_t seams = mesh.impl().mesh.orientationSeams;
+    if (seams == 0) return;
+    std::ostringstream m;
+    m << "mesh to SDF: " << seams << " edges join faces of opposite orientation (faces reversed against their "
+      << "neighbours), so the " << (options.sign == SignMode::Normal ? "normal" : "pseudo-normal")
+      << " sign is wrong on the far side of the reversed faces; if the faces bound one solid, use the winding-number "
+         "sign with its faces re-oriented ("
+      << option << ")";
+    stats.warnings.push_back(m.str());
+    return;
+  }
   if (options.sign != SignMode::WindingNumber || options.reorientFaces || !mesh.impl().hasWindingSigner()) return;
   double unused = 0;
   const detail::meshtosdf::WindingSigner& w = mesh.impl().windingSigner(unused);
@@ -381,8 +398,8 @@ void warnIfFacesReversed(const MeshToSdfPrepared& mesh, const MeshToSdfOptions& 
     m << (reversed > 0 ? "; " : "") << opposed
       << " faces are cancelled by exact duplicates of opposite orientation (a hole each)";
   }
-  m << ", and the exact field of such faces is slower to compute; if the faces bound one solid, re-orient them "
-       "(--reorient, ReorientFaces), which is also faster";
+  m << ", and the exact field of such faces is slower to compute; if the faces bound one solid, re-orient them ("
+    << option << "), which is also faster";
   stats.warnings.push_back(m.str());
 }
 

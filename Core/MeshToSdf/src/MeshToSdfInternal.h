@@ -44,6 +44,7 @@ struct PreparedMesh
   std::size_t degenerate = 0;     // skipped zero-area triangles
   double boundaryLength = 0;      // total length of the boundary chain (0 when closed)
   std::size_t boundaryEdges = 0;  // edges of non-zero net multiplicity
+  std::size_t orientationSeams = 0; // of those, edges of exactly two faces running them the same way
   /// The boundary chain as directed segments (a -> b, repeated per unit of
   /// multiplicity): the oriented edges of the triangles that do not cancel.
   std::vector<std::array<V3, 2>> boundary;

@@ -243,6 +243,7 @@ void edgePass(PreparedMesh& out, std::size_t nv, const LargeVector<V3>* weldPos,
     std::vector<std::array<V3, 2>> segments; // in vertex order
     std::vector<double> lengthOf;            // per vertex with boundary edges, in vertex order
     std::size_t edges = 0;
+    std::size_t seams = 0; // edges of two faces that run them the same way (one of the two is reversed)
   };
   std::vector<BucketBoundary> bucketBoundary(boundary ? nb : 0);
   const std::int64_t nbI = static_cast<std::int64_t>(nb);
@@ -291,12 +292,14 @@ void edgePass(PreparedMesh& out, std::size_t nv, const LargeVector<V3>* weldPos,
               out.normals[cf / 3].en[cf % 3] = enu; // each corner is in exactly one group
             }
           }
+          const std::size_t uses = e1g - e;
           e = e1g;
           if (boundary && mult != 0)
           {
             const V3 a = (*weldPos)[v], bv = (*weldPos)[hiE];
             length += std::abs(mult) * norm(bv - a);
             ++edges;
+            bucketBoundary[b].seams += uses == 2 && std::abs(mult) == 2;
             for (int k = 0; k < std::abs(mult); ++k)
             {
               // key (lo, hi) with positive multiplicity means lo -> hi
@@ -320,6 +323,7 @@ void edgePass(PreparedMesh& out, std::size_t nv, const LargeVector<V3>* weldPos,
     {
       for (const double l : bb.lengthOf) out.boundaryLength += l;
       out.boundaryEdges += bb.edges;
+      out.orientationSeams += bb.seams;
       out.boundary.insert(out.boundary.end(), bb.segments.begin(), bb.segments.end());
     }
   }

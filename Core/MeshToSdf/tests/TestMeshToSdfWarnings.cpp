@@ -12,7 +12,11 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <array>
+#include <cmath>
+#include <map>
 #include <string>
+#include <utility>
 #include <vector>
 
 using namespace lvdif;
@@ -226,4 +230,60 @@ TEST(MeshToSdfWarnings, DuplicatesOfOppositeOrientation)
   EXPECT_NE(r.stats.warnings[0].find("--reorient"), std::string::npos);
   // same-orientation duplicates alone change nothing: no warning
   EXPECT_TRUE(runFloat(signquality::damaged(clean, "dup20"), 32, SignMode::WindingNumber).stats.warnings.empty());
+}
+
+TEST(MeshToSdfWarnings, PseudoNormalAndNormalNameTheReorientedWindingSign)
+{
+  const TriangleMesh clean = oracle::bumpySphere();
+  const TriangleMesh patched = signquality::damaged(clean, "patch10");
+  // the oracle: edges (corners welded by position) of exactly two faces that
+  // run them the same way
+  std::map<std::array<float, 3>, std::uint32_t> weld;
+  auto id = [&](std::uint32_t v) { return weld.emplace(patched.points[v], std::uint32_t(weld.size())).first->second; };
+  std::map<std::pair<std::uint32_t, std::uint32_t>, std::vector<int>> uses; // (lo, hi) -> +1 lo->hi, -1 hi->lo
+  for (const auto& t : patched.triangles)
+  {
+    if (area2(patched, t) == 0) continue;
+    for (int k = 0; k < 3; ++k)
+    {
+      const std::uint32_t a = id(t[k]), b = id(t[(k + 1) % 3]);
+      uses[{ std::min(a, b), std::max(a, b) }].push_back(a < b ? 1 : -1);
+    }
+  }
+  long long seams = 0;
+  for (const auto& [edge, dirs] : uses) seams += dirs.size() == 2 && dirs[0] == dirs[1];
+  ASSERT_GT(seams, 0);
+
+  for (const SignMode s : { SignMode::PseudoNormal, SignMode::Normal })
+  {
+    const Result r = runFloat(patched, 48, s);
+    ASSERT_EQ(r.stats.warnings.size(), 1u) << toString(s);
+    const std::string& w = r.stats.warnings[0];
+    EXPECT_EQ(countBefore(w, " edges join faces of opposite orientation"), seams) << w;
+    EXPECT_NE(w.find("winding-number"), std::string::npos) << w;
+    EXPECT_NE(w.find("--reorient"), std::string::npos) << w;
+    EXPECT_TRUE(runFloat(clean, 48, s).stats.warnings.empty()) << toString(s);
+  }
+  // what it says holds: the pseudo-normal sign of the damaged mesh differs
+  // from the undamaged mesh's on voxels away from the surface, and the
+  // option it names gives the undamaged mesh's signs there
+  const GridGeometry g = fitGridToMesh(clean, 48, 2.0);
+  std::vector<float> pn(static_cast<std::size_t>(g.count())), ref(pn.size()), fixed(pn.size());
+  MeshToSdfOptions o;
+  o.device = Device::Cpu;
+  o.sign = SignMode::PseudoNormal;
+  meshToSdf(patched, FloatGridView{ pn.data(), g }, o);
+  o.sign = SignMode::WindingNumber;
+  meshToSdf(clean, FloatGridView{ ref.data(), g }, o);
+  o.reorientFaces = true;
+  meshToSdf(patched, FloatGridView{ fixed.data(), g }, o);
+  std::int64_t wrongPn = 0, wrongFixed = 0;
+  for (std::size_t i = 0; i < ref.size(); ++i)
+  {
+    if (std::fabs(ref[i]) <= 1.0f) continue;
+    wrongPn += std::signbit(pn[i]) != std::signbit(ref[i]);
+    wrongFixed += std::signbit(fixed[i]) != std::signbit(ref[i]);
+  }
+  EXPECT_GT(wrongPn, 0);
+  EXPECT_EQ(wrongFixed, 0);
 }
