@@ -66,16 +66,20 @@ void EditorRenderWindow::Frame()
   const bool partial = this->Culler && this->Culler->GetLastFramePartial(damage) &&
     this->GetRenderers()->GetNumberOfItems() == 1 && this->GetSwapBuffers();
   // A single-sampled frame: the window's own framebuffer and sample count
-  // again first; VTK's Frame below then resolves that (multisampled)
-  // framebuffer, whose pixels in the frame's rectangle are stale, and the copy
-  // after it puts this frame's pixels there (VTK's copy of a single-sampled
-  // framebuffer to the display ignores the scissor: it would copy everything).
+  // again, and VTK's Frame without its copy to the display (SwapBuffers off
+  // for the call: its copy of a single-sampled framebuffer ignores the
+  // scissor, it would copy everything); the copy after it puts this frame's
+  // rectangle there.
   const bool single = this->Swapped;
+  const vtkTypeBool swapBuffers = this->SwapBuffers;
   if (single)
   {
     this->SwapFramebuffers();
+    this->SwapBuffers = 0; // direct: no Modified
+    this->Superclass::Frame(); // the generic window's frame event
+    this->SwapBuffers = swapBuffers;
   }
-  if (!partial)
+  else if (!partial)
   {
     this->Superclass::Frame();
   }
@@ -126,7 +130,7 @@ void EditorRenderWindow::Frame()
     state->PopFramebufferBindings();
     if (!this->UseOffScreenBuffers && this->FrameBlitMode != NoBlit)
     {
-      // VTK's Frame copied the display framebuffer on before this copy: again
+      // as VTK's Frame copies the display framebuffer on
       if (this->FrameBlitMode == BlitToHardware)
         this->BlitDisplayFramebuffersToHardware();
       else
