@@ -414,6 +414,7 @@ void MainWindow::frameAfterSamples()
     QThread::usleep(250);
   }
   this->Profile.settleMs += msSince(t0);
+  this->Profile.settleTimeouts += this->Doc.meshingIdle() ? 0 : 1;
   this->installFinishedMeshes();
   this->drawFrame();
 }

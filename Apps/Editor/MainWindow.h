@@ -63,6 +63,7 @@ struct StrokeProfile
   int samples = 0;
   int meshes = 0;        // chunk meshes installed
   int frames = 0;
+  int settleTimeouts = 0; // frames whose settle wait ended before the worker was idle
 };
 
 class MainWindow : public QMainWindow

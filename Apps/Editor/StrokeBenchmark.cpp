@@ -27,6 +27,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <fstream>
 
 namespace
@@ -255,6 +256,10 @@ void StrokeBenchmark::frameRendered(const ShownMeshes& shown)
   this->RenderMs.push_back(ms(renderEnd - shown.installStart));
   this->DrawMs.push_back(ms(renderEnd - shown.renderStart));
   this->LastFrame = renderEnd;
+  // LVDIF_BENCH_TRACE=1: each frame's and each sample's times (ms after the stroke's start) on stderr
+  if (std::getenv("LVDIF_BENCH_TRACE"))
+    std::fprintf(stderr, "benchmark-stroke-trace: frame install %.1f render %.1f end %.1f chunks %zu\n", ms(shown.installStart - this->Start),
+      ms(shown.renderStart - this->Start), ms(renderEnd - this->Start), shown.chunks.size());
   int calls = 0;
   this->TrianglesDrawn.push_back(static_cast<double>(this->Window.chunkActors()->GetLastNumberOfTrianglesDrawn(&calls)));
   this->DrawCalls.push_back(calls);
@@ -302,6 +307,9 @@ void StrokeBenchmark::report()
       shown = std::max(shown, it->second);
     }
     latency.push_back(ms(shown - this->Start) - 1e3 * r.sampleTime);
+    if (std::getenv("LVDIF_BENCH_TRACE"))
+      std::fprintf(stderr, "benchmark-stroke-trace: sample %.1f edited %.1f shown %.1f lat %.1f\n", 1e3 * r.sampleTime,
+        ms(r.editedAt - this->Start), ms(shown - this->Start), latency.back());
   }
   const double seconds = std::max(1e-9, ms(this->LastFrame - this->Start) / 1e3);
   const auto& d = this->Window.document().volume().dims();
@@ -321,8 +329,9 @@ void StrokeBenchmark::report()
     this->Window.chunkActors()->GetNumberOfChunks(), this->Window.chunkActors()->GetDrawRangeTriangles());
   const StrokeProfile& p = this->Window.strokeProfile();
   std::printf("benchmark-stroke: UI thread, summed over the stroke: brush %.0f ms (%d samples), settle wait %.0f ms, "
-              "mesh to polydata %.0f ms + actor update %.0f ms (%d chunk meshes), Render() %.0f ms (%d frames)\n",
-    p.brushMs, p.samples, p.settleMs, p.convertMs, p.setChunkMs, p.meshes, p.renderMs, p.frames);
+              "mesh to polydata %.0f ms + actor update %.0f ms (%d chunk meshes), Render() %.0f ms (%d frames); "
+              "%d frames stopped waiting for the worker before it was idle\n",
+    p.brushMs, p.samples, p.settleMs, p.convertMs, p.setChunkMs, p.meshes, p.renderMs, p.frames, p.settleTimeouts);
   std::printf("benchmark-stroke: frames are drawn by this display's OpenGL; under Xvfb (Mesa llvmpipe, software) "
               "frame times are not representative of a GPU\n");
   long differ = 0;
