@@ -25,6 +25,8 @@ EditorOptions parseEditorOptions(const QStringList& arguments)
   const QCommandLineOption openMesh("open-mesh", "Convert a mesh (.obj .off .stl .ply) to a volume and open it.", "file");
   const QCommandLineOption meshRes("mesh-resolution", "Voxels along the mesh's longest axis (--open-mesh).", "n", "128");
   const QCommandLineOption meshSign("mesh-sign", "Sign of --open-mesh: winding, pseudo or normal.", "mode", "winding");
+  const QCommandLineOption meshReorient("mesh-reorient",
+    "--open-mesh with the winding sign: re-orient the faces consistently (the CLI's --reorient).");
   const QCommandLineOption create("new", "New canvas of N^3 or NXxNYxNZ voxels.", "size");
   const QCommandLineOption fill("fill", "Fill of a new canvas: empty, full or sphere.", "fill", "sphere");
   const QCommandLineOption script("script", "Run a script (.lvs) or play a recording (.lvr) after loading.", "file");
@@ -73,7 +75,7 @@ EditorOptions parseEditorOptions(const QStringList& arguments)
   const QCommandLineOption multisampledDrag("multisampled-drag",
     "Draw a stroke's frames with the view's multisampling (by default they have one sample per pixel and the view is "
     "drawn whole, multisampled, once the stroke is still). For comparisons.");
-  p.addOptions({ multisampledDrag, stockBackground, drawRanges, samples, open, openMesh, meshRes, meshSign, create, fill, script, drag, undo, shot, save, exp, op, shape, kind, radius, color, size, quit,
+  p.addOptions({ multisampledDrag, stockBackground, drawRanges, samples, open, openMesh, meshRes, meshSign, meshReorient, create, fill, script, drag, undo, shot, save, exp, op, shape, kind, radius, color, size, quit,
     noRecovery, recoveryDir, autosave, perVertex, matcap, benchmark, strength, falloff, mirror, keys, keysAfter, dragMods,
     saveAsAnswer, windowShot, dragShot, timing, fullRedraw });
   p.process(arguments);
@@ -87,6 +89,9 @@ EditorOptions parseEditorOptions(const QStringList& arguments)
   o.meshSign = p.value(meshSign);
   if (o.meshSign != "winding" && o.meshSign != "pseudo" && o.meshSign != "normal")
     fail("--mesh-sign expects winding, pseudo or normal, got '" + o.meshSign + "'");
+  o.meshReorient = p.isSet(meshReorient);
+  if (o.meshReorient && o.meshSign != "winding")
+    fail("--mesh-reorient needs --mesh-sign winding");
   if (p.isSet(create))
   {
     const QStringList parts = p.value(create).split('x');

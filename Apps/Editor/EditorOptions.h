@@ -13,6 +13,7 @@ struct EditorOptions
   QString openMesh;           // --open-mesh FILE (.obj .off .stl .ply), converted to a volume
   int meshResolution = 128;   // --mesh-resolution N (points along the mesh's longest axis)
   QString meshSign = "winding"; // --mesh-sign winding|pseudo|normal
+  bool meshReorient = false;  // --mesh-reorient (winding sign: the faces re-oriented consistently)
   std::array<int, 3> newDims{ 0, 0, 0 }; // --new N or NXxNYxNZ
   QString fill = "sphere";    // --fill empty|full|sphere
   QString script;             // --script FILE (a recording to play)

@@ -561,7 +561,13 @@ bool MainWindow::openMesh(const QString& path, const MeshImportSettings& setting
     return false;
   }
   if (!warning.isEmpty())
-    QMessageBox::warning(this, "Open mesh", warning);
+  {
+    // a batch run has nobody to close a message box
+    if (this->Options.batch())
+      std::fprintf(stderr, "lvdif-editor: warning: %s\n", warning.toLocal8Bit().constData());
+    else
+      QMessageBox::warning(this, "Open mesh", warning);
+  }
   try
   {
     this->Chunks->RemoveAllChunks();

@@ -36,7 +36,7 @@ struct ErrorCollector : vtkCommand
   {
     std::lock_guard<std::mutex> lock(this->Mutex);
     if (this->Text.empty() && data)
-      this->Text = static_cast<const char*>(data);
+      this->Text = LVDIFVolumeBridge::MessageText(static_cast<const char*>(data));
   }
   std::string text()
   {

@@ -37,6 +37,7 @@ int main(int argc, char* argv[])
       MeshImportSettings settings;
       settings.resolution = options.meshResolution;
       settings.signMode = meshSignModeFromName(options.meshSign);
+      settings.reorientFaces = options.meshReorient;
       loaded = window.openMesh(options.openMesh, settings);
     }
     else if (!options.open.isEmpty())

@@ -39,6 +39,15 @@
 
 namespace LVDIFVolumeBridge
 {
+std::string MessageText(const char* vtkMessage)
+{
+  std::string text = vtkMessage ? vtkMessage : "";
+  const auto colon = text.find("): ");
+  if (colon != std::string::npos) text = text.substr(colon + 3);
+  while (!text.empty() && (text.back() == '\n' || text.back() == ' ')) text.pop_back();
+  return text;
+}
+
 
 lvdif::Device ToDevice(int device)
 {

@@ -52,6 +52,11 @@ LVDIFFILTERSVOLUME_EXPORT lvdif::Device ToDevice(int device);
 LVDIFFILTERSVOLUME_EXPORT bool CallCore(vtkAlgorithm* algorithm, const std::function<void()>& work,
   const std::string& context = std::string(), bool* cancelled = nullptr);
 
+/// The message itself of a VTK error or warning event's text (the call data
+/// of vtkCommand::ErrorEvent / WarningEvent): without VTK's "ERROR: In file,
+/// line N" preamble and "Class (0x...): " prefix, trailing newlines dropped.
+LVDIFFILTERSVOLUME_EXPORT std::string MessageText(const char* vtkMessage);
+
 /// A vtkPolyData's polygons (fan-triangulated: exact for convex polygons) and
 /// triangle strips (split keeping the strip's orientation) as an lvdif mesh;
 /// with withNormals, its 3-component point normals too.

@@ -1,5 +1,7 @@
 #include "LVDIFFiles.h"
 
+#include "LVDIFVolumeBridge.h"
+
 #include "vtkDictionaryVolumeReader.h"
 #include "vtkDictionaryVolumeWriter.h"
 #include "vtkImageToSparseVolume.h"
@@ -58,11 +60,7 @@ struct Watch
     this->onError->SetClientData(this);
     this->onError->SetCallback([](vtkObject*, unsigned long, void* client, void* call) {
       auto* w = static_cast<Watch*>(client);
-      std::string text = call ? static_cast<const char*>(call) : "";
-      // keep the message itself, not VTK's "ERROR: In file, line ..." preamble
-      const auto colon = text.find("): ");
-      if (colon != std::string::npos) text = text.substr(colon + 3);
-      while (!text.empty() && (text.back() == '\n' || text.back() == ' ')) text.pop_back();
+      const std::string text = LVDIFVolumeBridge::MessageText(static_cast<const char*>(call));
       if (w->errors.empty()) w->errors = text; // the first error names the cause
     });
     for (vtkAlgorithm* a : algorithms)

@@ -27,6 +27,8 @@
 //                       blue 200; u, v from the lower left) for --matcap.
 //   --write-sphere-obj F.obj   writes a UV sphere (centre MeshC, radius MeshR,
 //                       128 x 64 segments) for --open-mesh (runs before the editor).
+//   --write-sphere-obj-reversed-cap F.obj   the same sphere with its top quarter's
+//                       faces reversed (a damaged export; --mesh-reorient repairs it).
 //   --mesh-sphere V.vti V is that sphere converted by --open-mesh: every voxel's
 //                       distance equals the analytic sphere's in voxel units
 //                       (world distance / spacing, saturated at the 8-voxel
@@ -164,7 +166,9 @@ void writeConeObj(const char* path)
   check(true, std::string("wrote ") + path);
 }
 
-void writeSphereObj(const char* path)
+/// reversedCap: the faces of the top quarter (the pole's fan and the first
+/// quarter of the stacks) written clockwise, as a broken export flips a patch.
+void writeSphereObj(const char* path, bool reversedCap = false)
 {
   const double pi = std::acos(-1.0);
   std::FILE* f = std::fopen(path, "w");
@@ -187,14 +191,19 @@ void writeSphereObj(const char* path)
     }
   }
   auto ring = [](int s, int l) { return 3 + (s - 1) * MeshSlices + (l % MeshSlices); }; // 1-based
+  auto face = [&](bool reversed, int a, int b, int c) {
+    if (reversed) std::swap(b, c);
+    std::fprintf(f, "f %d %d %d\n", a, b, c);
+  };
   for (int l = 0; l < MeshSlices; ++l)
   {
-    std::fprintf(f, "f 1 %d %d\n", ring(1, l), ring(1, l + 1));
-    std::fprintf(f, "f 2 %d %d\n", ring(MeshStacks - 1, l + 1), ring(MeshStacks - 1, l));
+    face(reversedCap, 1, ring(1, l), ring(1, l + 1));
+    face(false, 2, ring(MeshStacks - 1, l + 1), ring(MeshStacks - 1, l));
     for (int s = 1; s + 1 < MeshStacks; ++s)
     {
-      std::fprintf(f, "f %d %d %d\n", ring(s, l), ring(s + 1, l), ring(s + 1, l + 1));
-      std::fprintf(f, "f %d %d %d\n", ring(s, l), ring(s + 1, l + 1), ring(s, l + 1));
+      const bool cap = reversedCap && s < MeshStacks / 4;
+      face(cap, ring(s, l), ring(s + 1, l), ring(s + 1, l + 1));
+      face(cap, ring(s, l), ring(s + 1, l + 1), ring(s, l + 1));
     }
   }
   std::fclose(f);
@@ -415,13 +424,15 @@ int main(int argc, char* argv[])
       writeMatcapPng(argv[++i]);
     else if (!std::strcmp(argv[i], "--write-sphere-obj") && i + 1 < argc)
       writeSphereObj(argv[++i]);
+    else if (!std::strcmp(argv[i], "--write-sphere-obj-reversed-cap") && i + 1 < argc)
+      writeSphereObj(argv[++i], true);
     else if (!std::strcmp(argv[i], "--mesh-sphere") && i + 1 < argc)
       checkMeshSphere(argv[++i]);
     else if (!std::strcmp(argv[i], "--mesh") && i + 1 < argc)
       checkMesh(argv[++i]);
     else
     {
-      std::fprintf(stderr, "usage: %s [--sphere V.vti] [--added V.vti] [--script-shape V.vti] [--image T.png B.png] [--mesh M.ply] [--write-sphere-obj F.obj] [--mesh-sphere V.vti]\n", argv[0]);
+      std::fprintf(stderr, "usage: %s [--sphere V.vti] [--added V.vti] [--script-shape V.vti] [--image T.png B.png] [--mesh M.ply] [--write-sphere-obj F.obj] [--write-sphere-obj-reversed-cap F.obj] [--mesh-sphere V.vti]\n", argv[0]);
       return 2;
     }
   }

@@ -13,6 +13,13 @@ message("${out}${err}")
 if (NOT rc EQUAL 0)
   message(FATAL_ERROR "lvdif-editor failed (${rc})")
 endif ()
+# EXPECT_OUTPUT / REFUSE_OUTPUT: a regular expression the editor's output must / must not match
+if (DEFINED EXPECT_OUTPUT AND NOT "${out}${err}" MATCHES "${EXPECT_OUTPUT}")
+  message(FATAL_ERROR "lvdif-editor's output does not match '${EXPECT_OUTPUT}'")
+endif ()
+if (DEFINED REFUSE_OUTPUT AND "${out}${err}" MATCHES "${REFUSE_OUTPUT}")
+  message(FATAL_ERROR "lvdif-editor's output matches '${REFUSE_OUTPUT}'")
+endif ()
 if (DEFINED ARGS2)
   # A second editor run (e.g. reopening what the first saved).
   execute_process(COMMAND "${EDITOR}" ${ARGS2} RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
