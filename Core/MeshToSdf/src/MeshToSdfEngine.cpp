@@ -324,14 +324,26 @@ void Engine::distanceBricks(const VoxelBox& box, float* out, const FarCells& far
         for (std::int64_t y = o[1]; y < y1 && allFar; y += FarCell)
           for (std::int64_t x = o[0]; x < x1 && allFar; x += FarCell)
             allFar = far.mask[cellOf(x, y, z)] == 0xff;
-      for (std::int64_t z = o[2]; z < z1 && !allFar; ++z)
-        for (std::int64_t y = o[1]; y < y1; ++y)
-          for (std::int64_t x = o[0]; x < x1; ++x)
+      // serpentine order (x back and forth, y back and forth per layer):
+      // nearestBrick seeds each voxel with its predecessor's triangle, and
+      // here the predecessor is always a neighbour (in x, y, z order a row's
+      // first voxel was seeded from 7 voxels away), so fewer candidates pass
+      // the first bounds. Only the order of the queries changes: each voxel's
+      // answer is its own bounded nearest (ties to the lowest index), the
+      // same float whatever the seed.
+      bool yUp = true, xUp = true;
+      for (std::int64_t z = o[2]; z < z1 && !allFar; ++z, yUp = !yUp)
+        for (std::int64_t yi = o[1]; yi < y1; ++yi, xUp = !xUp)
+        {
+          const std::int64_t y = yUp ? yi : o[1] + y1 - 1 - yi;
+          for (std::int64_t xi = o[0]; xi < x1; ++xi)
           {
+            const std::int64_t x = xUp ? xi : o[0] + x1 - 1 - xi;
             if (anyFar && isFar(x, y, z)) continue;
             st.ps.push_back(this->position(box.lo[0] + x, box.lo[1] + y, box.lo[2] + z));
             st.at.push_back(x + n[0] * (y + n[1] * z));
           }
+        }
       if (!st.ps.empty())
       {
         st.res.resize(st.ps.size());

@@ -62,7 +62,9 @@ public:
   /// the query of the box's centre.
   struct BrickScratch
   {
-    std::vector<std::pair<double, std::int32_t>> near; // squared box gap, position
+    std::vector<std::pair<double, std::int32_t>> near; // squared box gap, position (without SSE)
+    std::vector<std::uint64_t> keys;                    // the same as one sort key (SSE)
+    std::vector<double> gaps;                           // the gaps in the list's order
     std::vector<std::int32_t> cand;
     std::vector<float> planes;
   };

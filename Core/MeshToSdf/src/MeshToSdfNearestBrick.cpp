@@ -15,6 +15,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
+#include <cstring>
 
 #if defined(__SSE2__) || defined(_M_X64)
 #include <emmintrin.h>
@@ -35,7 +37,7 @@ namespace
 struct BrickScan
 {
   const float* planes = nullptr;                        // groups of W candidates (see nearestBrick)
-  const std::pair<double, std::int32_t>* gaps = nullptr; // squared box gaps, ascending
+  const double* gaps = nullptr;                         // squared box gaps, ascending
   const std::int32_t* cand = nullptr;                   // positions in the packed triangles
   int count = 0;
   const NearestIndex::Packed* tris = nullptr;
@@ -81,6 +83,8 @@ void NearestIndex::nearestBrick(const V3* p, int n, double maxDist2, std::int32_
   std::vector<std::int32_t>& cand = scratch.cand;
   cand.clear();
   scratch.near.clear();
+  scratch.keys.clear();
+  scratch.gaps.clear();
   std::int32_t stack[256];
   int top = 0;
   stack[top++] = 0;
@@ -115,10 +119,27 @@ void NearestIndex::nearestBrick(const V3* p, int n, double maxDist2, std::int32_
     {
       const int k = __builtin_ctz(static_cast<unsigned>(pass));
       if (nd.child[k] < 0)
-        scratch.near.push_back({ static_cast<double>(g2[k]), ~nd.child[k] });
+      {
+        // one 64-bit key: the gap's float bits (a gap is >= +0, so its bits
+        // order as the float does), then the position (>= 0): the order of
+        // the (gap, position) pairs, sorted as integers (the pairs' sort was
+        // about 1.5 % of the banded call)
+        std::uint32_t bits;
+        std::memcpy(&bits, &g2[k], sizeof bits);
+        scratch.keys.push_back((static_cast<std::uint64_t>(bits) << 32) | static_cast<std::uint32_t>(~nd.child[k]));
+      }
       else
         stack[top++] = nd.child[k];
     }
+  }
+  std::sort(scratch.keys.begin(), scratch.keys.end());
+  for (const std::uint64_t key : scratch.keys)
+  {
+    const std::uint32_t bits = static_cast<std::uint32_t>(key >> 32);
+    float g;
+    std::memcpy(&g, &bits, sizeof g);
+    scratch.gaps.push_back(static_cast<double>(g));
+    cand.push_back(static_cast<std::int32_t>(key & 0xffffffffu));
   }
 #else
   while (top > 0)
@@ -139,11 +160,15 @@ void NearestIndex::nearestBrick(const V3* p, int n, double maxDist2, std::int32_
         stack[top++] = nd.child[k];
     }
   }
-#endif
-  // nearest to the box first: a point stops at the first group whose gap
-  // (a lower bound of the distance from any point of the box) exceeds its bound
   std::sort(scratch.near.begin(), scratch.near.end());
-  for (const auto& c2 : scratch.near) cand.push_back(c2.second);
+  for (const auto& c2 : scratch.near)
+  {
+    scratch.gaps.push_back(c2.first);
+    cand.push_back(c2.second);
+  }
+#endif
+  // nearest to the box first (sorted above): a point stops at the first group whose gap
+  // (a lower bound of the distance from any point of the box) exceeds its bound
   const int K = static_cast<int>(cand.size());
   // the candidates' float planes in groups of W (lanes = candidates, W = 8
   // with AVX2, else 4): group g holds coefficient c (x, y, z, w) of plane j at
@@ -169,7 +194,7 @@ void NearestIndex::nearestBrick(const V3* p, int n, double maxDist2, std::int32_
 
   BrickScan scan;
   scan.planes = f.data();
-  scan.gaps = scratch.near.data();
+  scan.gaps = scratch.gaps.data();
   scan.cand = cand.data();
   scan.count = K;
   scan.tris = this->Tris.data();
@@ -205,7 +230,7 @@ void scanBrick4(const BrickScan& b, NearestRowState& s)
   const int groups = (b.count + 3) / 4;
   for (int g = 0; g < groups; ++g)
   {
-    if (b.gaps[4 * g].first > s.thr2[0]) break;
+    if (b.gaps[4 * g] > s.thr2[0]) break;
     // the plane and edge bounds of four candidates, as nearestRow computes them
     const float* q = b.planes + 64 * g;
     int pass = 0;
@@ -249,7 +274,7 @@ __attribute__((target("avx2"))) void scanBrickAvx2(const BrickScan& b, NearestRo
   const int groups = (b.count + 7) / 8;
   for (int g = 0; g < groups; ++g)
   {
-    if (b.gaps[8 * g].first > s.thr2[0]) break;
+    if (b.gaps[8 * g] > s.thr2[0]) break;
     // the same bounds for eight candidates (the same operations per lane)
     const float* q = b.planes + 128 * g;
     __m256 v[4];
