@@ -200,6 +200,12 @@ void NearestIndex::nearestBrick(const V3* p, int n, double maxDist2, std::int32_
   scan.tris = this->Tris.data();
   scan.eps = static_cast<float>(4e-6 * big); // nearestRow's plane margin
   const double tau = 1e-10 * big; // as nearest() with this (larger or equal) big
+  // every point starts from out[i].dist2 = maxDist2: its threshold
+  // (setThreshold's sqrt and rounding) computed once for the brick
+  NearestRowState start;
+  start.out = out;
+  start.tau = tau;
+  start.setThreshold(0);
   std::int32_t prev = centre.tri;
   for (int i = 0; i < n; ++i)
   {
@@ -208,7 +214,8 @@ void NearestIndex::nearestBrick(const V3* p, int n, double maxDist2, std::int32_
     s.n = 1;
     s.out = out + i;
     s.tau = tau;
-    s.setThreshold(0);
+    s.thr2[0] = start.thr2[0]; // = s.setThreshold(0): out[i].dist2 == maxDist2 here
+    s.thrF[0] = start.thrF[0];
     // seed: the previous point's triangle (the centre's for the first), taken
     // as nearest() takes its hint; seeding with both measured no fewer exact tests
     if (prev >= 0) s.exact(0, this->Tris[static_cast<std::size_t>(this->PosOf[static_cast<std::size_t>(prev)])]);
