@@ -254,19 +254,26 @@ void scanBrick4(const BrickScan& b, NearestRowState& s)
     const __m128 ed = _mm_max_ps(_mm_sub_ps(_mm_max_ps(val(1), _mm_max_ps(val(2), val(3))), eps), zero);
     const __m128 lt = _mm_mul_ps(_mm_add_ps(_mm_mul_ps(pd, pd), _mm_mul_ps(ed, ed)), _mm_set1_ps(0.999999f));
     pass = _mm_movemask_ps(_mm_cmple_ps(lt, _mm_set1_ps(s.thrF[0])));
+    alignas(16) float lts[4];
+    _mm_store_ps(lts, lt);
 #else
+    float lts[4];
     for (int l = 0; l < 4; ++l)
     {
       auto val = [&](int j) { return q[16 * j + l] * px + ((q[16 * j + 4 + l] * py + q[16 * j + 8 + l] * pz) + q[16 * j + 12 + l]); };
       const float pd = std::max(std::fabs(val(0)) - b.eps, 0.0f);
       const float ed = std::max(std::max(val(1), std::max(val(2), val(3))) - b.eps, 0.0f);
-      pass |= (pd * pd + ed * ed) * 0.999999f <= s.thrF[0] ? 1 << l : 0;
+      lts[l] = (pd * pd + ed * ed) * 0.999999f;
+      pass |= lts[l] <= s.thrF[0] ? 1 << l : 0;
     }
 #endif
     for (; pass; pass &= pass - 1)
     {
-      const int k = 4 * g + __builtin_ctz(static_cast<unsigned>(pass));
-      if (k < b.count) s.exact(0, b.tris[static_cast<std::size_t>(b.cand[k])]);
+      const int l = __builtin_ctz(static_cast<unsigned>(pass));
+      const int k = 4 * g + l;
+      // the same test again against the threshold as the exact tests of this
+      // group left it (see scanBrickAvx2)
+      if (k < b.count && lts[l] <= s.thrF[0]) s.exact(0, b.tris[static_cast<std::size_t>(b.cand[k])]);
     }
   }
 }
@@ -296,10 +303,19 @@ __attribute__((target("avx2"))) void scanBrickAvx2(const BrickScan& b, NearestRo
     const __m256 ed = _mm256_max_ps(_mm256_sub_ps(_mm256_max_ps(v[1], _mm256_max_ps(v[2], v[3])), eps), zero);
     const __m256 lt = _mm256_mul_ps(_mm256_add_ps(_mm256_mul_ps(pd, pd), _mm256_mul_ps(ed, ed)), shrink);
     int pass = _mm256_movemask_ps(_mm256_cmp_ps(lt, _mm256_set1_ps(s.thrF[0]), _CMP_LE_OQ));
+    alignas(32) float lts[8];
+    _mm256_store_ps(lts, lt);
     for (; pass; pass &= pass - 1)
     {
-      const int k = 8 * g + __builtin_ctz(static_cast<unsigned>(pass));
-      if (k < b.count) s.exact(0, b.tris[static_cast<std::size_t>(b.cand[k])]);
+      const int l = __builtin_ctz(static_cast<unsigned>(pass));
+      const int k = 8 * g + l;
+      // a lane that passed against the group's starting threshold is tested
+      // again (the same <= on the same float) against the threshold as the
+      // exact tests before it in this group left it: a bound above it cannot
+      // beat or tie the best, which is what the next group's test would say
+      // too, so the answer is the same; it spares the exact closest point of
+      // the lanes after the one that tightened it
+      if (k < b.count && lts[l] <= s.thrF[0]) s.exact(0, b.tris[static_cast<std::size_t>(b.cand[k])]);
     }
   }
 }
