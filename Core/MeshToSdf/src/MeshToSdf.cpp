@@ -12,6 +12,10 @@
 
 #include <omp.h>
 
+#if defined(__SSE2__) || defined(_M_X64)
+#include <emmintrin.h>
+#endif
+
 #include <algorithm>
 #include <cstdio>
 #include <cstdlib>
@@ -208,7 +212,18 @@ void volumeRegion(DictionaryVolume& volume, const VoxelBox& region, std::uint64_
           const float* row = buffer.data() + ((cb.lo[0] - box.lo[0]) + nx * ((y - box.lo[1]) + ny * (z - box.lo[2])));
           const std::int64_t n = cb.hi[0] - cb.lo[0] + 1;
           bool same = true;
-          for (std::int64_t i = 0; i < n; ++i) same &= row[i] == firstValue;
+          std::int64_t i = 0;
+#if defined(__SSE2__) || defined(_M_X64)
+          // four at a time: this scan reads every voxel of the grid, and the
+          // scalar loop (not vectorized by the compiler) was 2-3 % of the
+          // banded call's CPU time. cmpeq_ps is the ordered == of the loop
+          // below (+0 == -0, NaN never equal): the same answer
+          const __m128 f4 = _mm_set1_ps(firstValue);
+          __m128 eq = _mm_cmpeq_ps(f4, f4);
+          for (; i + 4 <= n; i += 4) eq = _mm_and_ps(eq, _mm_cmpeq_ps(_mm_loadu_ps(row + i), f4));
+          same = _mm_movemask_ps(eq) == 0xf; // a NaN first value: never equal, as below
+#endif
+          for (; i < n; ++i) same &= row[i] == firstValue;
           sameFloat = same;
         }
       bool uniform = true;

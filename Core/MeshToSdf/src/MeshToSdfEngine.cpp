@@ -280,11 +280,32 @@ void Engine::distanceBricks(const VoxelBox& box, float* out, const FarCells& far
   auto cellOf = [&](std::int64_t x, std::int64_t y, std::int64_t z) {
     return static_cast<std::size_t>((x >> 1) + far.count[0] * ((y >> 1) + far.count[1] * (z >> 1)));
   };
-  auto isFar = [&](std::int64_t x, std::int64_t y, std::int64_t z) {
-    return ((far.mask[cellOf(x, y, z)] >> ((x & 1) + 2 * (y & 1) + 4 * (z & 1))) & 1) != 0;
-  };
   // the far voxels first, row by row (in brick order their stores would stride across the buffer)
+  bool wholeCells = anyFar;
   if (anyFar)
+  {
+    // classifyBandCells marks whole cells (mask 0xff) with sign +1, so every
+    // far voxel is +band: then every row is filled with +band at once (a
+    // plain fill, no per-cell mask test: the mask walk below was ~6 % of the
+    // call's instructions on the armadillo at 512) and the bricks overwrite
+    // the voxels that are not far (each one is written, see below). Checked
+    // here, cheaply (one byte per 8 voxels), so any other cells keep the walk.
+    unsigned char odd = 0;
+    const std::size_t cells = far.mask.size();
+    for (std::size_t c = 0; c < cells; ++c)
+    {
+      const unsigned char m = far.mask[c];
+      odd |= static_cast<unsigned char>((m != 0 && m != 0xff) | (far.sign[c] != (m != 0 ? 1 : 0)));
+    }
+    wholeCells = odd == 0;
+  }
+  if (wholeCells)
+  {
+    const float v = static_cast<float>(this->band); // static_cast<float>(+1) * band, as below
+#pragma omp parallel for schedule(static)
+    for (std::int64_t r = 0; r < n[1] * n[2]; ++r) std::fill(out + n[0] * r, out + n[0] * (r + 1), v);
+  }
+  else if (anyFar)
   {
 #pragma omp parallel for schedule(static)
     for (std::int64_t r = 0; r < n[1] * n[2]; ++r)
@@ -307,16 +328,16 @@ void Engine::distanceBricks(const VoxelBox& box, float* out, const FarCells& far
   struct PerThread
   {
     NearestIndex::BrickScratch scratch;
-    std::vector<V3> ps;
-    std::vector<std::int64_t> at;
-    std::vector<NearestResult> res;
+    // one brick's voxels that are not far (fixed arrays: a brick holds BX * B * B)
+    V3 ps[BX * B * B];
+    std::int64_t at[BX * B * B];
+    NearestResult res[BX * B * B];
     std::int32_t hint = -1; // the last nearest triangle: the next brick's seed
   };
-  forEachOnThreads(bricks, 16, 256, intr, progressBase, progressSpan, [] { return PerThread(); },
-    [&](PerThread& st, std::int64_t b) {
+  forEachOnThreads(bricks, 16, 256, intr, progressBase, progressSpan, [] { return std::make_unique<PerThread>(); },
+    [&](std::unique_ptr<PerThread>& stp, std::int64_t b) {
+      PerThread& st = *stp;
       const std::int64_t o[3] = { BX * (b % nb[0]), B * ((b / nb[0]) % nb[1]), B * (b / (nb[0] * nb[1])) };
-      st.ps.clear();
-      st.at.clear();
       const std::int64_t x1 = std::min(n[0], o[0] + BX), y1 = std::min(n[1], o[1] + B), z1 = std::min(n[2], o[2] + B);
       // the far voxels are written (above); a brick of whole far cells has nothing else
       bool allFar = anyFar;
@@ -324,20 +345,52 @@ void Engine::distanceBricks(const VoxelBox& box, float* out, const FarCells& far
         for (std::int64_t y = o[1]; y < y1 && allFar; y += FarCell)
           for (std::int64_t x = o[0]; x < x1 && allFar; x += FarCell)
             allFar = far.mask[cellOf(x, y, z)] == 0xff;
-      for (std::int64_t z = o[2]; z < z1 && !allFar; ++z)
-        for (std::int64_t y = o[1]; y < y1; ++y)
-          for (std::int64_t x = o[0]; x < x1; ++x)
+      if (allFar) return;
+      // the brick's voxel coordinates, each as position() computes it, and per
+      // row (y, z) its far voxels as bits (x - o[0]; o[0] is even, so a
+      // cell's two bits of the row land on bits 2 cx, 2 cx + 1): the loops
+      // below then look neither at the cells nor at the grid per voxel
+      double xs[BX], ys[B], zs[B];
+      for (std::int64_t x = o[0]; x < x1; ++x) xs[x - o[0]] = this->position(box.lo[0] + x, 0, 0).x;
+      for (std::int64_t y = o[1]; y < y1; ++y) ys[y - o[1]] = this->position(0, box.lo[1] + y, 0).y;
+      for (std::int64_t z = o[2]; z < z1; ++z) zs[z - o[2]] = this->position(0, 0, box.lo[2] + z).z;
+      auto farBits = [&](std::int64_t y, std::int64_t z) {
+        unsigned bits = 0;
+        if (!anyFar) return bits;
+        const int rowBit = static_cast<int>(2 * (y & 1) + 4 * (z & 1));
+        for (std::int64_t x = o[0]; x < x1; x += FarCell)
+          bits |= ((static_cast<unsigned>(far.mask[cellOf(x, y, z)]) >> rowBit) & 3u) << (x - o[0]);
+        return bits;
+      };
+      // serpentine order (x back and forth, y back and forth per layer):
+      // nearestBrick seeds each voxel with its predecessor's triangle, and
+      // here the predecessor is always a neighbour (in x, y, z order a row's
+      // first voxel was seeded from 7 voxels away), so fewer candidates pass
+      // the first bounds. Only the order of the queries changes: each voxel's
+      // answer is its own bounded nearest (ties to the lowest index), the
+      // same float whatever the seed.
+      int m = 0;
+      bool yUp = true, xUp = true;
+      for (std::int64_t z = o[2]; z < z1; ++z, yUp = !yUp)
+        for (std::int64_t yi = o[1]; yi < y1; ++yi, xUp = !xUp)
+        {
+          const std::int64_t y = yUp ? yi : o[1] + y1 - 1 - yi;
+          const unsigned fb = farBits(y, z);
+          const double py = ys[y - o[1]], pz = zs[z - o[2]];
+          const std::int64_t row = n[0] * (y + n[1] * z);
+          for (std::int64_t xi = o[0]; xi < x1; ++xi)
           {
-            if (anyFar && isFar(x, y, z)) continue;
-            st.ps.push_back(this->position(box.lo[0] + x, box.lo[1] + y, box.lo[2] + z));
-            st.at.push_back(x + n[0] * (y + n[1] * z));
+            const std::int64_t x = xUp ? xi : o[0] + x1 - 1 - xi;
+            if ((fb >> (x - o[0])) & 1u) continue;
+            st.ps[m] = V3{ xs[x - o[0]], py, pz };
+            st.at[m] = x + row;
+            ++m;
           }
-      if (!st.ps.empty())
+        }
+      if (m > 0)
       {
-        st.res.resize(st.ps.size());
-        this->index->nearestBrick(st.ps.data(), static_cast<int>(st.ps.size()), this->bandWorld2, st.hint, st.res.data(),
-          st.scratch);
-        for (std::size_t q = 0; q < st.ps.size(); ++q)
+        this->index->nearestBrick(st.ps, m, this->bandWorld2, st.hint, st.res, st.scratch);
+        for (int q = 0; q < m; ++q)
         {
           const NearestResult& r = st.res[q];
           double d = r.tri < 0 ? this->band : std::sqrt(r.dist2) * this->toOut;

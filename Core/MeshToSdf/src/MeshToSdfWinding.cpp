@@ -510,6 +510,45 @@ void WindingSigner::signRow(V3 rowStart, double h, std::int64_t n, float* out, s
   std::size_t next = 0; // first hit not yet passed
   const bool open = !c.cone.empty();
   const DipoleTree* flips = this->correction(reoriented);
+  if (!open && !flips)
+  {
+    // Closed M+ and no correction (a clean closed mesh: the common case): w is
+    // the crossing count K, an integer that only changes where the ray crosses
+    // a triangle, so the row is a few runs of constant sign. The general loop
+    // below spent ~10 instructions on every voxel of the grid (9 % of the
+    // banded armadillo's CPU time at 512) for a sign that is constant between
+    // hits. Here each run's end is found with the same voxel positions
+    // t_i = h/2 + i h and the same test (hit.t <= t_i) as the general loop,
+    // so each voxel passes the same hits and gets the same K: the same signs,
+    // bit for bit; inside runs are negated as one loop (vectorized).
+    auto tAt = [h](std::int64_t i) { return 0.5 * h + static_cast<double>(i) * h; };
+    std::int64_t i = 0;
+    while (i < n)
+    {
+      const double ti = tAt(i);
+      while (next < hits.size() && hits[next].t <= ti)
+      {
+        ahead -= hits[next].sign;
+        ++next;
+      }
+      // the run [i, e): every voxel j in it has t_j < the next hit's t (t_j is
+      // monotone in j), so it passes no further hit
+      std::int64_t e = n;
+      if (next < hits.size())
+      {
+        const double t = hits[next].t;
+        e = i + 1;
+        const double guess = (t - 0.5 * h) / h - 1; // a voxel just before the hit: few steps below
+        if (guess > static_cast<double>(e)) e = guess >= static_cast<double>(n) ? n : static_cast<std::int64_t>(guess);
+        while (e > i + 1 && !(tAt(e - 1) < t)) --e;
+        while (e < n && tAt(e) < t) ++e;
+      }
+      if (ahead != 0) // |K| >= 1/2: inside
+        for (std::int64_t j = i; j < e; ++j) out[j] = -out[j];
+      i = e;
+    }
+    return;
+  }
   bool have = false;
   double lo = 0, hi = 0;                 // interval of u = w_{M+}
   std::int64_t segEnd = 0;               // the bounded segment covers voxels < segEnd
