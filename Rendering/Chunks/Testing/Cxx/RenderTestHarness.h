@@ -14,10 +14,22 @@
 #include "vtkUnsignedCharArray.h"
 #include "vtkWindowToImageFilter.h"
 
+#include <cstdio>
 #include <functional>
+#include <string>
 
 namespace lvdiftest
 {
+
+/// The tests' check: prints "ok: what" or "FAILED: what" and counts the
+/// failures into `failures` (the test's exit status).
+inline std::function<void(bool, const std::string&)> checkCounter(int& failures)
+{
+  return [&failures](bool ok, const std::string& what) {
+    std::printf("%s: %s\n", ok ? "ok" : "FAILED", what.c_str());
+    failures += ok ? 0 : 1;
+  };
+}
 
 inline vtkSmartPointer<vtkRenderWindow> makeTestWindow(int width, int height)
 {

@@ -122,10 +122,7 @@ int TestBrushWidget(int argc, char* argv[])
   recorder->Off();
 
   int failures = 0;
-  auto check = [&failures](bool ok, const char* what) {
-    std::printf("%s: %s\n", ok ? "ok" : "FAILED", what);
-    failures += ok ? 0 : 1;
-  };
+  const auto check = checkCounter(failures);
   const double expectRadius = 2.0 * 1.1 * 1.1;
   check(std::fabs(log.lastRadius - expectRadius) < 1e-9, "two wheel steps grow the radius by 1.1^2");
   check(log.starts == 1 && log.ends == 1, "one stroke (the press beside the surface is not one)");

@@ -121,10 +121,7 @@ int TestDrawRanges(int, char*[])
     dents.push_back(splitChunks(contractMesh(sdfImage(Cells + 1, dented(3.0 + f, 1.5 * f)), checker), Edge, Cells));
 
   int failures = 0;
-  auto check = [&failures](bool ok, const std::string& what) {
-    std::printf("%s: %s\n", ok ? "ok" : "FAILED", what.c_str());
-    failures += ok ? 0 : 1;
-  };
+  const auto check = checkCounter(failures);
 
   for (int samples : { 0, 8 })
   {

@@ -77,10 +77,7 @@ struct Scene
 int TestGradientBackground(int, char*[])
 {
   int failures = 0;
-  auto check = [&failures](bool ok, const std::string& what) {
-    std::printf("%s: %s\n", ok ? "ok" : "FAILED", what.c_str());
-    failures += ok ? 0 : 1;
-  };
+  const auto check = checkCounter(failures);
 
   for (int samples : { 0, 8 })
   {

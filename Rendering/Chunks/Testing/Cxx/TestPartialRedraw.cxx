@@ -93,10 +93,7 @@ int runScene(int samples)
   mgr->SetRedrawCuller(culler); // replaced chunks declare the box of their changed triangles
 
   int failures = 0;
-  auto check = [&failures](bool ok, const char* what) {
-    std::printf("%s: %s\n", ok ? "ok" : "FAILED", what);
-    failures += ok ? 0 : 1;
-  };
+  const auto check = checkCounter(failures);
   const int props = mgr->GetNumberOfChunks() + 1;
   std::printf("scene: %d chunk actors and the cursor\n", props - 1);
 
