@@ -85,24 +85,18 @@ std::unique_ptr<detail::meshtosdf_cuda::Session> openCuda(const MeshToSdfPrepare
   return session;
 }
 
-/// The device a call prefers. Auto prefers CUDA for every mesh: the CUDA sign
-/// kernel takes the CPU's winding construction (orientation pass, local caps,
-/// the dipole tree over caps, reversed and removed faces; or those of the
-/// re-oriented mesh M+) and decides every voxel as the CPU does
-/// (MeshToSdfCudaDipole.cuh).
-Device chooseDevice(const MeshToSdfOptions& options)
-{
-  return resolveDevice(options.device);
-}
-
-/// The device of a call on a prepared mesh: the preference, except that the
-/// re-oriented winding number (reorientFaces) stays on the CPU when M+ could
-/// not be closed by local caps (its closure has a cone, which the GPU takes
-/// only for M as given). Builds the winding structures for that check: the
-/// GPU session then uploads them before its first kernel (no overlap).
+/// The device of a call on a prepared mesh. Auto prefers CUDA for every mesh:
+/// the CUDA sign kernel takes the CPU's winding construction (orientation
+/// pass, local caps, the dipole tree over caps, reversed and removed faces; or
+/// those of the re-oriented mesh M+) and decides every voxel as the CPU does
+/// (MeshToSdfCudaDipole.cuh). The one exception: the re-oriented winding
+/// number (reorientFaces) stays on the CPU when M+ could not be closed by
+/// local caps (its closure has a cone, which the GPU takes only for M as
+/// given). Builds the winding structures for that check: the GPU session then
+/// uploads them before its first kernel (no overlap).
 Device chooseDevice(const MeshToSdfPrepared& mesh, const MeshToSdfOptions& options, MeshToSdfStats& stats)
 {
-  const Device d = chooseDevice(options);
+  const Device d = resolveDevice(options.device);
   if (d != Device::Cuda || options.sign != SignMode::WindingNumber || !options.reorientFaces) return d;
   double seconds = 0;
   const bool capped = mesh.impl().windingSigner(seconds).gpuTakesCpuClosure(true);
@@ -621,7 +615,7 @@ MeshToSdfStats prepareAndRun(const TriangleMesh& mesh, Out&& out, const MeshToSd
   Interrupter& interrupter)
 {
   const PhaseTraceScope tracing(options.tracePhases);
-  const MeshToSdfPrepared prepared = prepareInternal(mesh, options.sign, chooseDevice(options) == Device::Cuda);
+  const MeshToSdfPrepared prepared = prepareInternal(mesh, options.sign, resolveDevice(options.device) == Device::Cuda);
   MeshToSdfStats stats = meshToSdf(prepared, std::forward<Out>(out), options, interrupter);
   stats.buildSeconds += prepared.prepareSeconds();
   return stats;
@@ -631,7 +625,7 @@ MeshToSdfStats meshToSdf(const TriangleMesh& mesh, const GridGeometry& grid, con
   const MeshToSdfOptions& options, Interrupter& interrupter)
 {
   const PhaseTraceScope tracing(options.tracePhases);
-  const MeshToSdfPrepared prepared = prepareInternal(mesh, options.sign, chooseDevice(options) == Device::Cuda);
+  const MeshToSdfPrepared prepared = prepareInternal(mesh, options.sign, resolveDevice(options.device) == Device::Cuda);
   MeshToSdfStats stats = meshToSdf(prepared, grid, extent, out, options, interrupter);
   stats.buildSeconds += prepared.prepareSeconds();
   return stats;
