@@ -230,9 +230,15 @@ int vtkMeshToSDF::RequestData(vtkInformation*, vtkInformationVector** inputVecto
     output->Initialize();
     return 0;
   }
-  for (const std::string& w : st.warnings)
+  // The warnings are about the mesh (or the whole grid, which only a whole
+  // run judges), the same on every piece: a pvbatch run of N ranks prints them
+  // once, from piece 0.
+  vtkInformation* outInfo = outputVector->GetInformationObject(0);
+  const bool firstPiece = !outInfo->Has(vtkStreamingDemandDrivenPipeline::UPDATE_PIECE_NUMBER()) ||
+    outInfo->Get(vtkStreamingDemandDrivenPipeline::UPDATE_PIECE_NUMBER()) == 0;
+  for (std::size_t i = 0; firstPiece && i < st.warnings.size(); ++i)
   {
-    vtkWarningMacro(<< w);
+    vtkWarningMacro(<< st.warnings[i]);
   }
   vtkNew<vtkIdTypeArray> degenerate;
   degenerate->SetName("degenerate_triangles");

@@ -311,3 +311,56 @@ TEST(vtkMeshToSDF, PiecesComputeTheirChunksOnlyWithTheWholeRunsValues)
   }
   compare(f, chunks, "extent");
 }
+
+// The reversed-faces warning is about the mesh, so a run split into pieces
+// (pvbatch ranks) prints it once, from piece 0, like a whole run; a clean mesh
+// prints none (negative control).
+TEST(vtkMeshToSDF, PiecesWarnOnceAboutReversedFaces)
+{
+  vtkObject::GlobalWarningDisplayOn(); // WarningEvent fires only with it on
+  vtkNew<vtkSphereSource> sphere;
+  sphere->SetThetaResolution(24);
+  sphere->SetPhiResolution(16);
+  sphere->Update();
+  vtkNew<vtkPolyData> damaged; // the faces of the top cap reversed
+  damaged->DeepCopy(sphere->GetOutput());
+  damaged->BuildCells();
+  vtkIdType reversed = 0;
+  for (vtkIdType c = 0; c < damaged->GetNumberOfCells(); ++c)
+  {
+    double b[6];
+    damaged->GetCellBounds(c, b);
+    if (b[4] > 0.3)
+    {
+      damaged->ReverseCell(c);
+      ++reversed;
+    }
+  }
+  ASSERT_GT(reversed, 10);
+  auto warningsOf = [](vtkPolyData* mesh, int pieces) {
+    int count = 0;
+    for (int p = 0; p < pieces; ++p)
+    {
+      vtkNew<vtkMeshToSDF> f;
+      f->SetInputData(mesh);
+      f->SetMaxDimension(40);
+      f->SetChunkEdge(8);
+      f->SetDevice(vtkMeshToSDF::DEVICE_CPU);
+      vtkNew<vtkCallbackCommand> cb;
+      cb->SetClientData(&count);
+      cb->SetCallback([](vtkObject*, unsigned long, void* client, void* call) {
+        if (std::string(static_cast<const char*>(call)).find("orientation") != std::string::npos)
+          ++*static_cast<int*>(client);
+      });
+      f->AddObserver(vtkCommand::WarningEvent, cb);
+      if (pieces > 1)
+        f->UpdatePiece(p, pieces, 0);
+      else
+        f->Update();
+    }
+    return count;
+  };
+  EXPECT_EQ(warningsOf(damaged, 1), 1);
+  EXPECT_EQ(warningsOf(damaged, 3), 1);
+  EXPECT_EQ(warningsOf(sphere->GetOutput(), 3), 0);
+}
