@@ -45,6 +45,15 @@ int main(int argc, char** argv)
   {
     if (std::strcmp(argv[1], c.name) == 0)
     {
+      // `lvdif COMMAND --help` anywhere on the line: that command's usage, nothing run
+      for (int i = 2; i < argc; ++i)
+      {
+        if (!std::strcmp(argv[i], "--help") || !std::strcmp(argv[i], "-h"))
+        {
+          std::printf("usage: lvdif %s\n", c.help);
+          return 0;
+        }
+      }
       try
       {
         return c.run(argc, argv);

@@ -10,6 +10,12 @@ def run(*args):
     return r.returncode, r.stderr.strip()
 
 
+# COMMAND --help: that command's usage on stdout, exit 0, nothing run (no file written)
+r = subprocess.run([exe, "mesh-to-sdf", "--help"], capture_output=True, text=True, timeout=60)
+assert r.returncode == 0 and r.stdout.startswith("usage: lvdif mesh-to-sdf MESH") and "--reorient" in r.stdout, r
+r = subprocess.run([exe, "demo", "--out", out + "-help", "-h"], capture_output=True, text=True, timeout=60)
+assert r.returncode == 0 and r.stdout.startswith("usage: lvdif demo") and not __import__("os").path.exists(out + "-help"), r
+
 code, err = run("no-such-command")
 assert code == 2 and "unknown command" in err, (code, err)
 code, err = run("demo", "--bogus", "1")
