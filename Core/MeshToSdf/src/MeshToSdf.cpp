@@ -381,9 +381,9 @@ void warnIfFacesReversed(const MeshToSdfPrepared& mesh, const MeshToSdfOptions& 
     std::ostringstream m;
     m << "mesh to SDF: " << seams << " edges join faces of opposite orientation (faces reversed against their "
       << "neighbours), so the " << (options.sign == SignMode::Normal ? "normal" : "pseudo-normal")
-      << " sign is wrong on the far side of the reversed faces; if the faces bound one solid, use the winding-number "
-         "sign with its faces re-oriented ("
-      << option << ")";
+      << " sign is wrong on the far side of the reversed faces"
+      << (options.svfFilters != 0 ? " (the sign voxel filters that ran may have repaired part of it)" : "")
+      << "; if the faces bound one solid, use the winding-number sign with its faces re-oriented (" << option << ")";
     stats.warnings.push_back(m.str());
     return;
   }

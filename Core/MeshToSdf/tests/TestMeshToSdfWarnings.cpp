@@ -68,13 +68,14 @@ struct Result
   std::int64_t inside = 0;
 };
 
-Result runFloat(const TriangleMesh& m, std::int64_t res, SignMode sign)
+Result runFloat(const TriangleMesh& m, std::int64_t res, SignMode sign, unsigned svfFilters = 0)
 {
   const GridGeometry g = fitGridToMesh(m, res, 2.0);
   std::vector<float> out(static_cast<std::size_t>(g.count()));
   MeshToSdfOptions o;
   o.sign = sign;
   o.device = Device::Cpu;
+  o.svfFilters = svfFilters;
   Result r;
   r.stats = meshToSdf(m, FloatGridView{ out.data(), g }, o);
   r.inside = deepInside(out);
@@ -262,8 +263,15 @@ TEST(MeshToSdfWarnings, PseudoNormalAndNormalNameTheReorientedWindingSign)
     EXPECT_EQ(countBefore(w, " edges join faces of opposite orientation"), seams) << w;
     EXPECT_NE(w.find("winding-number"), std::string::npos) << w;
     EXPECT_NE(w.find("--reorient"), std::string::npos) << w;
+    EXPECT_EQ(w.find("sign voxel filters"), std::string::npos) << w; // none ran
     EXPECT_TRUE(runFloat(clean, 48, s).stats.warnings.empty()) << toString(s);
   }
+  // with the sign voxel filters (they may repair part of the damage) the
+  // warning says so, and still counts the same seams
+  const Result svf = runFloat(patched, 48, SignMode::Normal, 0xF);
+  ASSERT_EQ(svf.stats.warnings.size(), 1u);
+  EXPECT_NE(svf.stats.warnings[0].find("sign voxel filters"), std::string::npos) << svf.stats.warnings[0];
+  EXPECT_EQ(countBefore(svf.stats.warnings[0], " edges join faces of opposite orientation"), seams);
   // what it says holds: the pseudo-normal sign of the damaged mesh differs
   // from the undamaged mesh's on voxels away from the surface, and the
   // option it names gives the undamaged mesh's signs there
