@@ -199,7 +199,7 @@ int localBounds(const DipoleTree& tree, V3 centre, double rho, const V3* pts, in
     visit(0);
   // intervals of every point not yet decided; checked again each time the
   // error has halved (a check costs a quadratic per point)
-  double checkAt = std::numeric_limits<double>::infinity();
+  double checkAt = std::numeric_limits<double>::infinity(), checkedErr = checkAt;
   auto check = [&] {
     const double slackBase = 1e-9;
     std::size_t kept = 0;
@@ -219,10 +219,15 @@ int localBounds(const DipoleTree& tree, V3 centre, double rho, const V3* pts, in
     work += static_cast<std::int64_t>(open.size()) / 8;
     open.resize(kept);
     checkAt = 0.5 * err;
+    checkedErr = err;
   };
   while (decided < n)
   {
-    if (unbounded == 0 && (err <= checkAt || heap.empty()))
+    // checked when the error has halved, and before a leaf is summed at
+    // every open point if the error fell since (a check costs a quadratic
+    // per point, a leaf a few solid angles per point)
+    const bool leafNext = !heap.empty() && nodes[static_cast<std::size_t>(heap.front().node)].left < 0;
+    if (unbounded == 0 && (err <= checkAt || heap.empty() || (leafNext && err < checkedErr)))
     {
       check();
       if (decided == n || heap.empty()) break;
