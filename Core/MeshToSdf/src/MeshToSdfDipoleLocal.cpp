@@ -159,8 +159,27 @@ int localBounds(const DipoleTree& tree, V3 centre, double rho, const V3* pts, in
     const double s = rho / rMin;
     return 200 * (nd.mass / (rMin * rMin) + t / (rMin * rMin * rMin)) * (1 + s + s * s);
   };
+  // id >= 0: a node of the tree; id = -(t + 1): triangle t of a leaf on its
+  // own, a cluster about its centroid (second-order term 0, radius its
+  // farthest vertex), so a leaf too near for its own expansion is first
+  // split into its triangles, and only those still too near are summed
+  DipoleTree::Node triNode;
+  auto nodeOf = [&](std::int32_t id) -> const DipoleTree::Node& {
+    if (id >= 0) return nodes[static_cast<std::size_t>(id)];
+    const WeightedTri& t = tris[static_cast<std::size_t>(-id - 1)];
+    triNode = DipoleTree::Node{};
+    triNode.c = (1.0 / 3.0) * (t.v[0] + t.v[1] + t.v[2]);
+    const V3 an = 0.5 * cross(t.v[1] - t.v[0], t.v[2] - t.v[0]);
+    triNode.dipole = t.w * an;
+    triNode.mass = std::fabs(t.w) * norm(an);
+    for (const V3& v : t.v) triNode.r = std::max(triNode.r, norm(v - triNode.c));
+    triNode.r *= 1 + 1e-12; // rounding of the distances above
+    triNode.first = -id - 1;
+    triNode.count = 1;
+    return triNode;
+  };
   auto visit = [&](std::int32_t id) {
-    const DipoleTree::Node& nd = nodes[static_cast<std::size_t>(id)];
+    const DipoleTree::Node& nd = nodeOf(id);
     const V3 y = nd.c - centre;
     const double r0 = norm(y);
     Open o{ 0, id, 0, {} };
@@ -226,7 +245,7 @@ int localBounds(const DipoleTree& tree, V3 centre, double rho, const V3* pts, in
     // checked when the error has halved, and before a leaf is summed at
     // every open point if the error fell since (a check costs a quadratic
     // per point, a leaf a few solid angles per point)
-    const bool leafNext = !heap.empty() && nodes[static_cast<std::size_t>(heap.front().node)].left < 0;
+    const bool leafNext = !heap.empty() && heap.front().node < 0;
     if (unbounded == 0 && (err <= checkAt || heap.empty() || (leafNext && err < checkedErr)))
     {
       check();
@@ -237,14 +256,19 @@ int localBounds(const DipoleTree& tree, V3 centre, double rho, const V3* pts, in
     const Open o = heap.back();
     heap.pop_back();
     close(o);
-    const DipoleTree::Node& nd = nodes[static_cast<std::size_t>(o.node)];
+    const DipoleTree::Node& nd = nodeOf(o.node);
     if (nd.left >= 0)
     {
       visit(nd.left);
       visit(nd.right);
       continue;
     }
-    // a near leaf: its triangles summed exactly at every point
+    if (o.node >= 0 && nd.count > 1)
+    {
+      for (std::int32_t t = nd.first; t < nd.first + nd.count; ++t) visit(-t - 1);
+      continue;
+    }
+    // a near triangle (or a leaf of one): summed exactly at every open point
     for (std::int32_t t = nd.first; t < nd.first + nd.count; ++t)
     {
       const WeightedTri& tri = tris[static_cast<std::size_t>(t)];
