@@ -53,8 +53,9 @@ double clusterLocalError(const DipoleTree::Node& nd, double r0, double rho, int&
 
 /// s at each of the points pts[0, n) (all within rho of centre): rigorous
 /// intervals [lo[i], hi[i]] from far clusters summed as one local
-/// polynomial and near leaves summed exactly at each point. Clusters are
-/// opened largest error first (starting from `start`, a cut as
+/// polynomial and near triangles summed exactly at each point (a leaf is
+/// first split into its triangles, each a cluster about its centroid).
+/// Clusters are opened largest error first (starting from `start`, a cut as
 /// DipoleTree::refine's, else the root) until every interval lies inside
 /// (m - 1/2, m + 1/2) for an integer m (which decides the point whatever its
 /// crossing count), or the work (node expansions + triangles x points)

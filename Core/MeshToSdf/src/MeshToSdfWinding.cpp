@@ -19,9 +19,11 @@
 //     could change.
 //   * s is bounded by a dipole tree with rigorous error bounds
 //     (MeshToSdfDipoleTree.h, after Barill et al. 2018) over balls around
-//     16-voxel row segments (halved down to 4 voxels where a face is too
-//     close) and, where that does not decide, per voxel: a fixed opening
-//     angle first, then refined (largest error first, starting from the
+//     blocks of 16^3 and 4^3 voxels (computeBox, MeshToSdfEngine.cpp), the
+//     voxels of a 4^3 block no ball decides one by one from a local
+//     expansion about the block (boundCorrectionAt, MeshToSdfDipoleLocal.h),
+//     else over balls around 16-voxel row segments; where that does not
+//     decide, per voxel, refined (largest error first, starting from the
 //     previous voxel's clusters) until decided.
 //   The voxel's sign is decided once the interval of u - s lies on one side
 //   of +-0.5.
@@ -55,9 +57,9 @@ namespace
 constexpr std::int64_t Segment = 16, MinSegment = 16;
 // work (node expansions x 2 + triangles x points) a block's local expansion
 // may spend per voxel before it leaves the rest to the rows (measured on the
-// damaged armadillos at 128^3, one thread: 200 left most of patch30's deep
-// voxels to the rows, 2000 cost more than it saved; a refined voxel costs
-// the rows about as much as 300-500 such units)
+// damaged armadillos at 128^3, one thread: 200-300 left many of patch30's
+// deep voxels to the rows, 1.3-1.7x its sign time; 1000 to 3000 within
+// noise of each other)
 constexpr std::int64_t LocalBudgetPerPoint = 1000;
 
 bool insideOf(double w) { return std::fabs(w) >= 0.5; }
