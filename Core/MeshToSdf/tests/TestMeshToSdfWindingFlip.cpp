@@ -311,6 +311,8 @@ TEST(MeshToSdfWindingFlip, LocalExpansionOfAClusterHoldsOverItsBall)
       }
     }
   }
+  std::printf("[ local expansion ] %lld points checked, %lld misses, %lld with a tenth of the remainder\n",
+    static_cast<long long>(checked), static_cast<long long>(misses), static_cast<long long>(missesWithoutRemainder));
   EXPECT_EQ(misses, 0) << "of " << checked;
   EXPECT_GT(missesWithoutRemainder, 0) << "the negative control: a tenth of the Taylor remainder must miss somewhere";
   EXPECT_GT(checked, 2000);
@@ -368,6 +370,8 @@ TEST(MeshToSdfWindingFlip, LocalBoundsHoldAgainstLongDoubleSolidAngles)
         if (budget > 50) EXPECT_EQ(k, static_cast<int>(pts.size())) << "rho " << rho;
       }
   }
+  std::printf("[ local bounds ] %lld points checked, %lld of %lld decided\n", static_cast<long long>(checked),
+    static_cast<long long>(decided), static_cast<long long>(points));
   EXPECT_GT(checked, 8000);
   EXPECT_GT(decided, points / 2);
 }
