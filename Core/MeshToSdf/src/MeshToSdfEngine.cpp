@@ -12,6 +12,7 @@
 #include <atomic>
 #include <cmath>
 #include <exception>
+#include <mutex>
 #include <string>
 #include <utility>
 
@@ -459,11 +460,13 @@ void computeBox(const Engine& e, const VoxelBox& box, float* out, MeshToSdfStats
   const std::int64_t bx = (nx + Block - 1) / Block, by = (ny + Block - 1) / Block,
                      bz = (box.hi[2] - box.lo[2] + Block) / Block;
   std::vector<double> blockLo, blockHi;
-  // voxels bounded one by one by a block's local expansion: per fine block a
-  // slot (thread << 40 | entry) into that thread's pool of 2^3 voxel
-  // intervals (lo[8], hi[8]; lo > hi: none), -1 where the block has none
-  std::vector<std::int64_t> voxelSlot;
-  std::vector<std::vector<double>> voxelPool(static_cast<std::size_t>(threads));
+  // voxels bounded one by one by a block's local expansion: per fine block
+  // an entry of the pool of 2^3 voxel intervals (lo[8], hi[8]; lo > hi:
+  // none), -1 where the block has none (4 bytes per 2^3 block; the pool
+  // grows with the blocks near the corrected faces only)
+  std::vector<std::int32_t> voxelSlot;
+  std::vector<double> voxelPool;
+  std::mutex voxelPoolLock;
   if (e.winding->hasCorrection(reorient))
   {
     blockLo.assign(static_cast<std::size_t>(bx * by * bz), 1.0);
@@ -509,22 +512,21 @@ void computeBox(const Engine& e, const VoxelBox& box, float* out, MeshToSdfStats
       lo.resize(pts.size());
       hi.resize(pts.size());
       e.winding->boundCorrectionAt(centre, rho, pts.data(), n, lo.data(), hi.data(), reorient, start);
-      const std::int64_t t = std::min(omp_get_thread_num(), threads - 1);
-      std::vector<double>& pool = voxelPool[static_cast<std::size_t>(t)];
+      const std::lock_guard<std::mutex> lock(voxelPoolLock); // one append per 4^3 block
       for (int v = 0; v < n; ++v)
       {
         const std::size_t f = static_cast<std::size_t>(at[static_cast<std::size_t>(v)] / 8);
         const std::int64_t sub = at[static_cast<std::size_t>(v)] % 8;
         if (voxelSlot[f] < 0)
         {
-          voxelSlot[f] = (t << 40) | static_cast<std::int64_t>(pool.size() / 16);
-          pool.resize(pool.size() + 16);
-          std::fill(pool.end() - 16, pool.end() - 8, 1.0); // lo > hi: none
-          std::fill(pool.end() - 8, pool.end(), 0.0);
+          voxelSlot[f] = static_cast<std::int32_t>(voxelPool.size() / 16);
+          voxelPool.resize(voxelPool.size() + 16);
+          std::fill(voxelPool.end() - 16, voxelPool.end() - 8, 1.0); // lo > hi: none
+          std::fill(voxelPool.end() - 8, voxelPool.end(), 0.0);
         }
-        const std::size_t base = 16 * static_cast<std::size_t>(voxelSlot[f] & ((std::int64_t{ 1 } << 40) - 1));
-        pool[base + static_cast<std::size_t>(sub)] = lo[static_cast<std::size_t>(v)];
-        pool[base + 8 + static_cast<std::size_t>(sub)] = hi[static_cast<std::size_t>(v)];
+        const std::size_t base = 16 * static_cast<std::size_t>(voxelSlot[f]);
+        voxelPool[base + static_cast<std::size_t>(sub)] = lo[static_cast<std::size_t>(v)];
+        voxelPool[base + 8 + static_cast<std::size_t>(sub)] = hi[static_cast<std::size_t>(v)];
       }
     };
     // the coarse blocks in groups of 4 x 4 x 4 (16^3 voxels): one ball first
@@ -591,14 +593,11 @@ void computeBox(const Engine& e, const VoxelBox& box, float* out, MeshToSdfStats
         for (std::int64_t i = 0; i < nx; ++i)
         {
           const std::size_t f = static_cast<std::size_t>(row + i / Block);
-          const std::int64_t slot = voxelSlot[f];
-          if (slot >= 0)
+          if (voxelSlot[f] >= 0)
           {
-            const std::vector<double>& pool = voxelPool[static_cast<std::size_t>(slot >> 40)];
-            const std::size_t at = 16 * static_cast<std::size_t>(slot & ((std::int64_t{ 1 } << 40) - 1)) +
-              static_cast<std::size_t>(i % Block + subRow);
-            priorLo[static_cast<std::size_t>(i)] = pool[at];
-            priorHi[static_cast<std::size_t>(i)] = pool[at + 8];
+            const std::size_t at = 16 * static_cast<std::size_t>(voxelSlot[f]) + static_cast<std::size_t>(i % Block + subRow);
+            priorLo[static_cast<std::size_t>(i)] = voxelPool[at];
+            priorHi[static_cast<std::size_t>(i)] = voxelPool[at + 8];
             continue;
           }
           priorLo[static_cast<std::size_t>(i)] = blockLo[f];
