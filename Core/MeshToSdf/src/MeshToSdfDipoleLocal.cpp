@@ -141,7 +141,7 @@ int localBounds(const DipoleTree& tree, V3 centre, double rho, const V3* pts, in
     bool operator<(const Open& o) const { return this->err < o.err; }
   };
   thread_local std::vector<Open> heap;
-  thread_local std::vector<double> direct, directMag; // per point: exact sums of the near leaves
+  thread_local std::vector<double> direct, directMag; // per point: exact sums of the near triangles
   thread_local std::vector<int> open; // the points not decided yet
   heap.clear();
   direct.assign(static_cast<std::size_t>(n), 0.0);
