@@ -7,10 +7,12 @@
 // (a stack and a tolerance per unit of mass lowered pass by pass, instead of
 // the CPU's priority queue warm-started from the previous voxel), and
 // although the blocks and voxels are bounded in another order (the GPU's
-// work lists, below) and the two sides bound different blocks (CPU: 4^3 and
-// 2^3, GPU: 16^3, 4^3 and 2^3): both sides decide a voxel only when a
+// work lists, below) and the two sides bound different blocks (CPU: balls
+// about 16^3 and 4^3, then the voxels of a failed 4^3 block one by one from
+// a local expansion, MeshToSdfDipoleLocal.h; GPU: 16^3, 4^3 and 2^3): both
+// sides decide a voxel only when a
 // rigorous interval of w (it contains the exact value: per-cluster bounds
-// that are all rigorous, DipoleTree::refine's and the ones below, the leaf's
+// that are all rigorous, DipoleTree::refine's, localBounds' and the ones below, the leaf's
 // per-triangle bound over a ball on both sides, and a slack of 1e-9 and more
 // for the rounding) lies on one side of +-1/2, so two decided intervals
 // cannot disagree, whichever block or pass produced them. A voxel neither

@@ -12,6 +12,7 @@
 #include <atomic>
 #include <cmath>
 #include <exception>
+#include <mutex>
 #include <string>
 #include <utility>
 
@@ -448,20 +449,29 @@ void computeBox(const Engine& e, const VoxelBox& box, float* out, MeshToSdfStats
   if (!winding) return;
   t0 = now();
   // The correction s (reversed, removed, capped faces) bounded once per
-  // group of 16^3 voxels, where that fails per block of 4^3, and where that
-  // fails per 2^3 (each starting from the larger block's cut): away from
-  // those faces a block's bound decides all its voxels, where row segments
-  // of 16 (a ball of radius 7.5 voxels) would reach a face; the rows then
-  // refine only what is left.
-  constexpr std::int64_t Block = 2; // the finer blocks; the coarse ones are 2 x 2 x 2 of them
+  // group of 16^3 voxels, where that fails per block of 4^3 (from the
+  // group's cut): away from those faces a block's bound decides all its
+  // voxels, where row segments of 16 (a ball of radius 7.5 voxels) would
+  // reach a face. Where the 4^3 ball fails, its voxels get intervals one by
+  // one from a local expansion about the block (boundCorrectionAt); the rows
+  // then refine only what is left.
+  constexpr std::int64_t Block = 2; // the bounds' unit; the coarse blocks are 2 x 2 x 2 of them
   const bool reorient = e.opts.reorientFaces;
   const std::int64_t bx = (nx + Block - 1) / Block, by = (ny + Block - 1) / Block,
                      bz = (box.hi[2] - box.lo[2] + Block) / Block;
   std::vector<double> blockLo, blockHi;
+  // voxels bounded one by one by a block's local expansion: per fine block
+  // an entry of the pool of 2^3 voxel intervals (lo[8], hi[8]; lo > hi:
+  // none), -1 where the block has none (4 bytes per 2^3 block; the pool
+  // grows with the blocks near the corrected faces only)
+  std::vector<std::int32_t> voxelSlot;
+  std::vector<double> voxelPool;
+  std::mutex voxelPoolLock;
   if (e.winding->hasCorrection(reorient))
   {
     blockLo.assign(static_cast<std::size_t>(bx * by * bz), 1.0);
     blockHi.assign(blockLo.size(), 0.0);
+    voxelSlot.assign(blockLo.size(), -1);
     const std::int64_t cx = (bx + 1) / 2, cy = (by + 1) / 2;
     // the ball about the voxels [v0, v0 + edge)^3 of the box (clipped)
     auto ball = [&](std::int64_t x0, std::int64_t y0, std::int64_t z0, std::int64_t edge, V3& centre) {
@@ -472,6 +482,52 @@ void computeBox(const Engine& e, const VoxelBox& box, float* out, MeshToSdfStats
       const double half = 0.5 * norm(p1 - p0);
       // rho also covers the rounding of the voxel positions as the rows compute them
       return half + 1e-9 * (half + std::fabs(centre.x) + std::fabs(centre.y) + std::fabs(centre.z));
+    };
+    // the voxels [v0, v0 + edge)^3 of the box (clipped) bounded one by one by
+    // a local expansion about their ball (WindingSigner::boundCorrectionAt),
+    // at the positions signRow gives them; their intervals go to the pools
+    auto boundVoxels = [&](std::int64_t x0, std::int64_t y0, std::int64_t z0, std::int64_t edge,
+                         const std::vector<std::int32_t>* start) {
+      V3 centre;
+      const double rho = ball(x0, y0, z0, edge, centre);
+      thread_local std::vector<V3> pts;
+      thread_local std::vector<std::int64_t> at; // fine block * 8 + voxel within it
+      thread_local std::vector<double> lo, hi;
+      pts.clear();
+      at.clear();
+      const double h = e.geom.spacing[0];
+      for (std::int64_t z = z0; z < std::min(z0 + edge, box.hi[2] + 1); ++z)
+        for (std::int64_t y = y0; y < std::min(y0 + edge, box.hi[1] + 1); ++y)
+        {
+          const V3 rowStart = e.position(box.lo[0], y, z);
+          for (std::int64_t x = x0; x < std::min(x0 + edge, box.hi[0] + 1); ++x)
+          {
+            const std::int64_t i = x - box.lo[0], jy = y - box.lo[1], kz = z - box.lo[2];
+            pts.push_back(rowStart + V3{ static_cast<double>(i) * h, 0, 0 });
+            const std::int64_t f = i / Block + bx * (jy / Block + by * (kz / Block));
+            at.push_back(8 * f + (i % Block) + 2 * (jy % Block) + 4 * (kz % Block));
+          }
+        }
+      const int n = static_cast<int>(pts.size());
+      lo.resize(pts.size());
+      hi.resize(pts.size());
+      e.winding->boundCorrectionAt(centre, rho, pts.data(), n, lo.data(), hi.data(), reorient, start);
+      const std::lock_guard<std::mutex> lock(voxelPoolLock); // one append per 4^3 block
+      for (int v = 0; v < n; ++v)
+      {
+        const std::size_t f = static_cast<std::size_t>(at[static_cast<std::size_t>(v)] / 8);
+        const std::int64_t sub = at[static_cast<std::size_t>(v)] % 8;
+        if (voxelSlot[f] < 0)
+        {
+          voxelSlot[f] = static_cast<std::int32_t>(voxelPool.size() / 16);
+          voxelPool.resize(voxelPool.size() + 16);
+          std::fill(voxelPool.end() - 16, voxelPool.end() - 8, 1.0); // lo > hi: none
+          std::fill(voxelPool.end() - 8, voxelPool.end(), 0.0);
+        }
+        const std::size_t base = 16 * static_cast<std::size_t>(voxelSlot[f]);
+        voxelPool[base + static_cast<std::size_t>(sub)] = lo[static_cast<std::size_t>(v)];
+        voxelPool[base + 8 + static_cast<std::size_t>(sub)] = hi[static_cast<std::size_t>(v)];
+      }
     };
     // the coarse blocks in groups of 4 x 4 x 4 (16^3 voxels): one ball first
     // (far from the corrected faces it bounds them all), then each coarse
@@ -492,34 +548,29 @@ void computeBox(const Engine& e, const VoxelBox& box, float* out, MeshToSdfStats
         const std::int64_t qx = ox + (q & 3), qy = oy + ((q >> 2) & 3), qz = oz + (q >> 4);
         if (qx >= cx || qy >= cy || qz >= (bz + 1) / 2) continue;
         const std::int64_t fx = 2 * qx, fy = 2 * qy, fz = 2 * qz; // first fine block
-        std::vector<std::int32_t> cut;
         double lo = glo, hi = ghi;
-        bool whole = groupWhole;
-        if (!whole)
+        if (!groupWhole)
         {
-          cut = groupCut;
+          std::vector<std::int32_t> cut = groupCut;
           rho = ball(box.lo[0] + Block * fx, box.lo[1] + Block * fy, box.lo[2] + Block * fz, 2 * Block, centre);
-          whole = e.winding->boundCorrection(centre, rho, lo, hi, leafTris, reorient, &cut);
+          if (!e.winding->boundCorrection(centre, rho, lo, hi, leafTris, reorient, &cut))
+          {
+            // no ball decides the coarse block: its voxels one by one from
+            // one local expansion (measured on the damaged armadillos at
+            // 128^3: cheaper than balls about its 2^3 blocks and the rows'
+            // refinements they left; the 2^3 balls first, or a local
+            // expansion per 2^3 block, were slower)
+            boundVoxels(box.lo[0] + Block * fx, box.lo[1] + Block * fy, box.lo[2] + Block * fz, 2 * Block, &cut);
+            continue;
+          }
         }
         for (std::int64_t d = 0; d < 8; ++d)
         {
           const std::int64_t ix = fx + (d & 1), iy = fy + ((d >> 1) & 1), iz = fz + (d >> 2);
           if (ix >= bx || iy >= by || iz >= bz) continue;
           const std::size_t f = static_cast<std::size_t>(ix + bx * (iy + by * iz));
-          if (whole)
-          {
-            blockLo[f] = lo;
-            blockHi[f] = hi;
-            continue;
-          }
-          std::vector<std::int32_t> sub = cut;
-          rho = ball(box.lo[0] + Block * ix, box.lo[1] + Block * iy, box.lo[2] + Block * iz, Block, centre);
-          double l = 0, u = 0;
-          if (e.winding->boundCorrection(centre, rho, l, u, leafTris, reorient, &sub))
-          {
-            blockLo[f] = l;
-            blockHi[f] = u;
-          }
+          blockLo[f] = lo;
+          blockHi[f] = hi;
         }
       }
     }
@@ -538,10 +589,19 @@ void computeBox(const Engine& e, const VoxelBox& box, float* out, MeshToSdfStats
         priorLo.resize(static_cast<std::size_t>(nx));
         priorHi.resize(static_cast<std::size_t>(nx));
         const std::int64_t row = bx * ((j - box.lo[1]) / Block + by * ((k - box.lo[2]) / Block));
+        const std::int64_t subRow = 2 * ((j - box.lo[1]) % Block) + 4 * ((k - box.lo[2]) % Block);
         for (std::int64_t i = 0; i < nx; ++i)
         {
-          priorLo[static_cast<std::size_t>(i)] = blockLo[static_cast<std::size_t>(row + i / Block)];
-          priorHi[static_cast<std::size_t>(i)] = blockHi[static_cast<std::size_t>(row + i / Block)];
+          const std::size_t f = static_cast<std::size_t>(row + i / Block);
+          if (voxelSlot[f] >= 0)
+          {
+            const std::size_t at = 16 * static_cast<std::size_t>(voxelSlot[f]) + static_cast<std::size_t>(i % Block + subRow);
+            priorLo[static_cast<std::size_t>(i)] = voxelPool[at];
+            priorHi[static_cast<std::size_t>(i)] = voxelPool[at + 8];
+            continue;
+          }
+          priorLo[static_cast<std::size_t>(i)] = blockLo[f];
+          priorHi[static_cast<std::size_t>(i)] = blockHi[f];
         }
         pl = priorLo.data();
         ph = priorHi.data();

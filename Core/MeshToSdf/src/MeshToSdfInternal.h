@@ -236,6 +236,15 @@ public:
   /// cut (optional): as DipoleTree::refine (start from it, end with the final one).
   bool boundCorrection(V3 q, double rho, double& lo, double& hi, std::int64_t& leafTris, bool reoriented,
     std::vector<std::int32_t>* cut = nullptr) const;
+  /// s at each of the points pts[0, n), all within rho of centre (a block's
+  /// voxels, positioned exactly as signRow positions them): rigorous
+  /// intervals from one local expansion of the far clusters and the near
+  /// faces summed at each point (localBounds, MeshToSdfDipoleLocal.h),
+  /// refined until each lies inside (m - 1/2, m + 1/2) or a work budget per
+  /// point is spent. Returns how many are so decided; start: a cut to begin
+  /// from (the block's own failed ball bound's).
+  int boundCorrectionAt(V3 centre, double rho, const V3* pts, int n, double* lo, double* hi, bool reoriented,
+    const std::vector<std::int32_t>* start = nullptr) const;
   /// Exact winding number at p by a ray in a fixed oblique direction; the
   /// sum of all solid angles if that ray is ambiguous. reoriented: of M+
   /// (every component consistently oriented, exact duplicates once) instead

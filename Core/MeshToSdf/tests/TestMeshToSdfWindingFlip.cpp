@@ -6,6 +6,8 @@
 // orientable) and three faces on one edge (non manifold). Also: the dipole
 // tree's intervals hold against long double solid angles, and the
 // orientation finds exactly the reversed faces of a closed sphere.
+#include "../src/MeshToSdfDipoleDecide.h"
+#include "../src/MeshToSdfDipoleLocal.h"
 #include "../src/MeshToSdfDipoleTree.h"
 #include "../src/MeshToSdfInternal.h"
 #include "../src/MeshToSdfOrientation.h"
@@ -72,6 +74,32 @@ TriangleMesh moebius(int n, float width)
   return m;
 }
 
+/// 600 small random triangles of weight 2 in a slab (float points, as a
+/// mesh has), and the same triangles as a mesh of two copies each for the
+/// long-double oracle (which then sees the same points).
+void randomWeightedSoup(std::mt19937& rng, std::vector<detail::meshtosdf::WeightedTri>& tris, TriangleMesh& ref)
+{
+  using namespace detail::meshtosdf;
+  std::uniform_real_distribution<float> uf(-1, 1), sf(-0.1f, 0.1f);
+  tris.assign(600, WeightedTri{});
+  for (auto& t : tris)
+  {
+    const float cx = uf(rng), cy = uf(rng), cz = 0.3f * uf(rng);
+    for (auto& v : t.v)
+    {
+      const Vec3f f{ cx + sf(rng), cy + sf(rng), cz + sf(rng) };
+      v = V3{ f[0], f[1], f[2] };
+    }
+    t.w = 2;
+    for (int copy = 0; copy < 2; ++copy)
+    {
+      const std::uint32_t b = static_cast<std::uint32_t>(ref.points.size());
+      for (const auto& v : t.v) ref.points.push_back({ static_cast<float>(v.x), static_cast<float>(v.y), static_cast<float>(v.z) });
+      ref.triangles.push_back({ b, b + 1, b + 2 });
+    }
+  }
+}
+
 /// Every voxel farther than 1 voxel from the mesh must have the sign of the
 /// exact winding number (|w| >= 0.5 inside).
 MeshToSdfStats expectExactSigns(const std::string& name, const TriangleMesh& mesh, GridGeometry g = {})
@@ -117,30 +145,9 @@ TEST(MeshToSdfWindingFlip, DipoleTreeIntervalsHoldAgainstLongDoubleSolidAngles)
   using namespace detail::meshtosdf;
   std::mt19937 rng(3);
   std::uniform_real_distribution<double> u(-1, 1);
-  std::uniform_real_distribution<float> uf(-1, 1), sf(-0.1f, 0.1f);
-  std::vector<WeightedTri> tris(600);
+  std::vector<WeightedTri> tris;
   TriangleMesh ref; // the same triangles, weight 2 as two copies
-  for (auto& t : tris)
-  {
-    const float cx = uf(rng), cy = uf(rng), cz = 0.3f * uf(rng);
-    for (auto& v : t.v)
-    {
-      // float points (as a mesh has), converted exactly to double
-      const Vec3f f{ cx + sf(rng), cy + sf(rng), cz + sf(rng) };
-      v = V3{ f[0], f[1], f[2] };
-    }
-    t.w = 2;
-    for (int copy = 0; copy < 2; ++copy)
-    {
-      const std::uint32_t b = static_cast<std::uint32_t>(ref.points.size());
-      for (const auto& v : t.v)
-      {
-        ref.points.push_back({ static_cast<float>(v.x), static_cast<float>(v.y), static_cast<float>(v.z) });
-        ASSERT_EQ(static_cast<double>(ref.points.back()[0]), v.x); // the oracle sees the same points
-      }
-      ref.triangles.push_back({ b, b + 1, b + 2 });
-    }
-  }
+  randomWeightedSoup(rng, tris, ref);
   const DipoleTree tree(tris);
   int done = 0, checked = 0, failed = 0;
   std::int64_t leafTris = 0;
@@ -237,6 +244,136 @@ TEST(MeshToSdfWindingFlip, BallsNextToALeafAreBoundedTriangleByTriangle)
   double lo = 0, hi = 0;
   EXPECT_EQ(tree.refine({ 0.3, 0.3, 0.01 }, 0.02, [](double, double) { return 0; }, lo, hi, leafTris),
     DipoleTree::Refined::Failed); // the ball meets the face
+}
+
+// The local expansion of one cluster (MeshToSdfDipoleLocal.h): at every
+// point of a ball its quadratic lies within the cluster's error bound of the
+// long-double sum of the cluster's solid angles (the expansion's truncation
+// plus the Taylor remainder over the ball), and within the Taylor remainder
+// of the expansion itself, for clusters near and far; with a tenth of the
+// remainder some point misses: the check catches a remainder too small.
+TEST(MeshToSdfWindingFlip, LocalExpansionOfAClusterHoldsOverItsBall)
+{
+  using namespace detail::meshtosdf;
+  std::mt19937 rng(11);
+  std::uniform_real_distribution<double> u(-1, 1);
+  std::vector<WeightedTri> tris;
+  TriangleMesh ref;
+  randomWeightedSoup(rng, tris, ref);
+  const DipoleTree tree(tris);
+  std::int64_t checked = 0, bounded[3] = {}, misses = 0, missesWithoutRemainder = 0;
+  for (std::size_t id = 0; id < tree.nodes().size(); id += 7)
+  {
+    const DipoleTree::Node& nd = tree.nodes()[id];
+    TriangleMesh part; // the cluster's triangles, two copies each (weight 2)
+    for (std::int32_t t = nd.first; t < nd.first + nd.count; ++t)
+      for (int copy = 0; copy < 2; ++copy)
+      {
+        const std::uint32_t b = static_cast<std::uint32_t>(part.points.size());
+        for (const auto& v : tree.tris()[static_cast<std::size_t>(t)].v)
+          part.points.push_back({ static_cast<float>(v.x), static_cast<float>(v.y), static_cast<float>(v.z) });
+        part.triangles.push_back({ b, b + 1, b + 2 });
+      }
+    for (int k = 0; k < 6; ++k)
+    {
+      // a ball at 1.2 to 6 cluster radii (plus rho) from the centre
+      V3 dir{ u(rng), u(rng), u(rng) };
+      dir = (1 / std::max(norm(dir), 1e-12)) * dir;
+      const double rho = nd.r * (k < 3 ? 0.3 : 1.5) * std::fabs(u(rng));
+      const double r0 = rho + nd.r * (1.2 + 4.8 * std::fabs(u(rng)));
+      const V3 b = nd.c - r0 * dir;
+      int order = 0;
+      ASSERT_TRUE(std::isfinite(clusterLocalError(nd, r0, rho, order))); // the ball clears the cluster
+      for (int o = 1; o <= 2; ++o)
+      {
+        ++bounded[o];
+        const LocalPoly poly = clusterLocal(nd, nd.c - b, o);
+        const double trunc = o == 1 ? 2 * nd.mass * nd.r / std::pow(r0 - rho - nd.r, 3)
+                                    : 3 * nd.mass * nd.r * nd.r / std::pow(r0 - rho - nd.r, 4);
+        const double rem = clusterLocalRemainder(nd, r0 - rho, rho, o);
+        for (int p = 0; p < 8; ++p)
+        {
+          V3 x{ u(rng), u(rng), u(rng) };
+          x = (p == 0 ? 0.0 : rho * (p < 4 ? 1.0 : std::fabs(u(rng))) / std::max(norm(x), 1e-12)) * x;
+          const V3 q = b + x;
+          const double exact = oracle::winding(part, { q.x, q.y, q.z }) * FourPi;
+          const double slack = 1e-9 * (1 + std::fabs(exact));
+          misses += std::fabs(poly.at(x) - exact) > trunc + rem + slack;
+          // the Taylor part alone: the quadratic against the expansion itself at q
+          const V3 y = nd.c - q;
+          double mag = 0;
+          const double expansion = clusterValue(nd, y, norm(y), o, mag);
+          const double taylor = std::fabs(poly.at(x) - expansion);
+          misses += taylor > rem + slack;
+          missesWithoutRemainder += taylor > 0.1 * rem + slack;
+          ++checked;
+        }
+      }
+    }
+  }
+  std::printf("[ local expansion ] %lld points checked, %lld misses, %lld with a tenth of the remainder\n",
+    static_cast<long long>(checked), static_cast<long long>(misses), static_cast<long long>(missesWithoutRemainder));
+  EXPECT_EQ(misses, 0) << "of " << checked;
+  EXPECT_GT(missesWithoutRemainder, 0) << "the negative control: a tenth of the Taylor remainder must miss somewhere";
+  EXPECT_GT(checked, 2000);
+  EXPECT_GT(bounded[1] + bounded[2], 200);
+}
+
+// localBounds: far clusters as one local polynomial per ball, near leaves
+// summed at each point; every interval (decided or not, whatever the budget)
+// holds against the long-double sum at points of balls near and far, the
+// decided ones avoid the half-integers, and a cut to start from gives the
+// same guarantee.
+TEST(MeshToSdfWindingFlip, LocalBoundsHoldAgainstLongDoubleSolidAngles)
+{
+  using namespace detail::meshtosdf;
+  std::mt19937 rng(12);
+  std::uniform_real_distribution<double> u(-1, 1);
+  std::vector<WeightedTri> tris;
+  TriangleMesh ref;
+  randomWeightedSoup(rng, tris, ref);
+  const DipoleTree tree(tris);
+  std::int64_t checked = 0, decided = 0, points = 0;
+  std::int64_t leafTris = 0;
+  for (int n = 0; n < 120; ++n)
+  {
+    const V3 c{ 1.5 * u(rng), 1.5 * u(rng), (n % 2 ? 0.3 : 1.5) * u(rng) }; // half of them in the slab
+    for (const double rho : { 0.02, 0.1, 0.3 })
+      for (const std::int64_t budget : { std::int64_t{ 50 }, std::int64_t{ 1000000 } })
+      {
+        std::vector<V3> pts(12);
+        for (std::size_t p = 0; p < pts.size(); ++p)
+        {
+          V3 x{ u(rng), u(rng), u(rng) };
+          x = (p == 0 ? 0.0 : rho * std::fabs(u(rng)) / std::max(norm(x), 1e-12)) * x;
+          pts[p] = c + x;
+        }
+        std::vector<double> lo(pts.size()), hi(pts.size());
+        std::vector<std::int32_t> start;
+        if (n % 3 == 0)
+        {
+          double a = 0, b = 0; // a cut from a failed ball bound, as the engine passes
+          tree.refine(c, rho, [](double, double) { return 0; }, a, b, leafTris, &start);
+        }
+        const int k = localBounds(tree, c, rho, pts.data(), static_cast<int>(pts.size()), lo.data(), hi.data(), budget,
+          start.empty() ? nullptr : &start);
+        decided += k;
+        points += static_cast<std::int64_t>(pts.size());
+        for (std::size_t p = 0; p < pts.size(); ++p)
+        {
+          const double w = oracle::winding(ref, { pts[p].x, pts[p].y, pts[p].z });
+          EXPECT_LE(lo[p], w) << "rho " << rho << " budget " << budget;
+          EXPECT_GE(hi[p], w) << "rho " << rho << " budget " << budget;
+          ++checked;
+        }
+        // an unlimited budget sums what it must: every point decided (none lies within rounding of a half-integer)
+        if (budget > 50) EXPECT_EQ(k, static_cast<int>(pts.size())) << "rho " << rho;
+      }
+  }
+  std::printf("[ local bounds ] %lld points checked, %lld of %lld decided\n", static_cast<long long>(checked),
+    static_cast<long long>(decided), static_cast<long long>(points));
+  EXPECT_GT(checked, 8000);
+  EXPECT_GT(decided, points / 2);
 }
 
 TEST(MeshToSdfWindingFlip, OrientationFindsExactlyTheReversedFaces)

@@ -12,6 +12,8 @@
 // any damage of signquality::damaged (SignQualityMeshes.h: flipNN, patchNN,
 // dupNN, duprevNN, holes[NN], finsNN, pair). "WN/clean WN": the WindingNumber
 // CPU time against the undamaged mesh's on a grid of the same size, same process.
+// A line "signs: LABEL RES inside N hash H" fingerprints each WindingNumber
+// sign field (compare two builds: equal hashes, the same signs).
 #include "BenchCommon.h"
 #include "SignQualityMeshes.h"
 
@@ -22,6 +24,7 @@
 #include <sys/resource.h>
 
 #include <cmath>
+#include <cstdint>
 #include <cstdio>
 #include <cstdlib>
 #include <limits>
@@ -147,6 +150,18 @@ static int benchMain(int argc, char** argv)
           const bool inside = std::fabs(signquality::bruteWinding(mesh, p)) >= 0.5L;
           wrong += (wn[static_cast<std::size_t>(idx)] < 0) != inside;
         }
+        // the sign field's fingerprint (FNV-1a over the voxels' inside bits): equal
+        // before and after a change of the decision means the same signs everywhere
+        std::uint64_t signHash = 1469598103934665603ull;
+        std::int64_t insideCount = 0;
+        for (const float v : wn)
+        {
+          const bool in = std::signbit(v);
+          insideCount += in;
+          signHash = (signHash ^ static_cast<std::uint64_t>(in)) * 1099511628211ull;
+        }
+        std::printf("signs: %s %lld inside %lld hash %016llx\n", label.c_str(), static_cast<long long>(res),
+          static_cast<long long>(insideCount), static_cast<unsigned long long>(signHash));
         rows.push_back({ label, std::to_string(res),
           std::to_string(st.triangles), std::to_string(st.boundaryEdges), bench::fmt(pnCpu, 2), bench::fmt(wnCpu, 2),
           bench::fmt(wnCpu / pnCpu, 2), bench::fmt(wnCpu / cleanCpu[key], 2),

@@ -1,0 +1,290 @@
+// Local expansions of the correction s over a block: see MeshToSdfDipoleLocal.h.
+#include "MeshToSdfDipoleLocal.h"
+
+#include "MeshToSdfDipoleDecide.h" // clusterValue (the value at the centre is the same term)
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+namespace lvdif
+{
+namespace detail::meshtosdf
+{
+
+namespace
+{
+// symmetric 3x3 as 6 entries: xx, xy, xz, yy, yz, zz
+constexpr int Sym[3][3] = { { 0, 1, 2 }, { 1, 3, 4 }, { 2, 4, 5 } };
+} // namespace
+
+void LocalPoly::add(const LocalPoly& o, double sign)
+{
+  this->v += sign * o.v;
+  for (int i = 0; i < 3; ++i) this->g[i] += sign * o.g[i];
+  for (int i = 0; i < 6; ++i) this->H[i] += sign * o.H[i];
+}
+
+double LocalPoly::at(V3 x) const
+{
+  const double xx[3] = { x.x, x.y, x.z };
+  double q = 0;
+  for (int i = 0; i < 3; ++i)
+    for (int j = 0; j < 3; ++j) q += xx[i] * this->H[Sym[i][j]] * xx[j];
+  return this->v + (this->g[0] * x.x + this->g[1] * x.y + this->g[2] * x.z) + 0.5 * q;
+}
+
+LocalPoly clusterLocal(const DipoleTree::Node& nd, V3 y0, int order)
+{
+  // With phi = 1 / |y| and y = c - p, the cluster's term is
+  //   m(y) = -D_i phi_i(y) - T_ij phi_ij(y)   (clusterValue: D.y / r^3 + tr T / r^3 - 3 y.T.y / r^5),
+  // and p = b + x gives y = y0 - x: m = m(y0) - grad m . x + x' Hess m x / 2 + O(|x|^3).
+  // The derivative tensors of 1/|y| (Kronecker deltas d):
+  //   phi_ij   = 3 y_i y_j / r^5 - d_ij / r^3
+  //   phi_ijk  = -15 y_i y_j y_k / r^7 + 3 (d_ij y_k + d_ik y_j + d_jk y_i) / r^5
+  //   phi_ijkl = 105 y_i y_j y_k y_l / r^9 - 15 (d_ij y_k y_l + 5 more pairs) / r^7 + 3 (d_ij d_kl + d_ik d_jl + d_il d_jk) / r^5
+  // contracted with D and T in closed form (a = y.T.y, t = tr T, u = T y, v = T' y):
+  //   D_i phi_ik    = 3 (D.y) y_k / r^5 - D_k / r^3
+  //   D_i phi_ikl   = -15 (D.y) y_k y_l / r^7 + 3 (D_k y_l + D_l y_k + d_kl D.y) / r^5
+  //   T_ij phi_ijk  = -15 a y_k / r^7 + 3 (t y_k + u_k + v_k) / r^5
+  //   T_ij phi_ijkl = 105 a y_k y_l / r^9 - 15 (t y_k y_l + (u + v)_k y_l + (u + v)_l y_k + d_kl a) / r^7
+  //                   + 3 (d_kl t + T_kl + T_lk) / r^5
+  const double y[3] = { y0.x, y0.y, y0.z };
+  const double r2 = y0.x * y0.x + y0.y * y0.y + y0.z * y0.z, r = std::sqrt(r2);
+  const double i3 = 1 / (r2 * r), i5 = i3 / r2, i7 = i5 / r2, i9 = i7 / r2;
+  const double D[3] = { nd.dipole.x, nd.dipole.y, nd.dipole.z };
+  const double Dy = D[0] * y[0] + D[1] * y[1] + D[2] * y[2];
+  const double* T = nd.quad;
+  double a = 0, t = 0, w[3] = {}; // w = u + v
+  if (order == 2)
+  {
+    t = T[0] + T[4] + T[8];
+    for (int i = 0; i < 3; ++i)
+      for (int j = 0; j < 3; ++j)
+      {
+        a += y[i] * T[3 * i + j] * y[j];
+        w[i] += T[3 * i + j] * y[j];
+        w[j] += T[3 * i + j] * y[i];
+      }
+  }
+  LocalPoly p;
+  double mag = 0;
+  p.v = clusterValue(nd, y0, r, order, mag);
+  for (int k = 0; k < 3; ++k)
+  {
+    double gk = -(3 * Dy * y[k] * i5 - D[k] * i3); // grad_y m
+    if (order == 2) gk -= -15 * a * y[k] * i7 + 3 * (t * y[k] + w[k]) * i5;
+    p.g[k] = -gk; // d/dx = -d/dy
+  }
+  for (int k = 0; k < 3; ++k)
+    for (int l = k; l < 3; ++l)
+    {
+      const double dkl = k == l ? 1.0 : 0.0;
+      double h = -(-15 * Dy * y[k] * y[l] * i7 + 3 * (D[k] * y[l] + D[l] * y[k] + dkl * Dy) * i5);
+      if (order == 2)
+        h -= 105 * a * y[k] * y[l] * i9 - 15 * (t * y[k] * y[l] + w[k] * y[l] + w[l] * y[k] + dkl * a) * i7 +
+          3 * (dkl * t + T[3 * k + l] + T[3 * l + k]) * i5;
+      p.H[Sym[k][l]] = h;
+    }
+  return p;
+}
+
+double clusterLocalRemainder(const DipoleTree::Node& nd, double rMin, double rho, int order)
+{
+  // |x|^3 / 3! times the third derivatives: |D| 4! / rMin^5 (dipole), sum |T_ij| 5! / rMin^6 (second order)
+  const double r5 = rMin * rMin * rMin * rMin * rMin;
+  double third = 24 * norm(nd.dipole) / r5;
+  if (order == 2)
+  {
+    double t = 0;
+    for (const double q : nd.quad) t += std::fabs(q);
+    third += 120 * t / (r5 * rMin);
+  }
+  return rho * rho * rho * third / 6;
+}
+
+double clusterLocalError(const DipoleTree::Node& nd, double r0, double rho, int& order, double remainderScale)
+{
+  const double d = r0 - rho - nd.r;
+  order = 0;
+  if (!(d > 0)) return std::numeric_limits<double>::infinity();
+  const double rMin = r0 - rho, R = nd.r, A = nd.mass;
+  const double e0 = A / (d * d);
+  const double e1 = 2 * A * R / (d * d * d) + remainderScale * clusterLocalRemainder(nd, rMin, rho, 1);
+  const double e2 = 3 * A * R * R / (d * d * d * d) + remainderScale * clusterLocalRemainder(nd, rMin, rho, 2);
+  order = e2 < e1 ? (e2 < e0 ? 2 : 0) : (e1 < e0 ? 1 : 0);
+  return order == 2 ? e2 : (order == 1 ? e1 : e0);
+}
+
+int localBounds(const DipoleTree& tree, V3 centre, double rho, const V3* pts, int n, double* lo, double* hi,
+  std::int64_t budget, const std::vector<std::int32_t>* start, double remainderScale)
+{
+  for (int i = 0; i < n; ++i)
+  {
+    lo[i] = -std::numeric_limits<double>::infinity();
+    hi[i] = std::numeric_limits<double>::infinity();
+  }
+  if (tree.empty())
+  {
+    std::fill(lo, lo + n, 0.0);
+    std::fill(hi, hi + n, 0.0);
+    return n;
+  }
+  const auto& nodes = tree.nodes();
+  const auto& tris = tree.tris();
+  struct Open
+  {
+    double err;
+    std::int32_t node;
+    int order;
+    LocalPoly poly; // the cluster's expansion, subtracted again when it is opened
+    bool operator<(const Open& o) const { return this->err < o.err; }
+  };
+  thread_local std::vector<Open> heap;
+  thread_local std::vector<double> direct, directMag; // per point: exact sums of the near triangles
+  thread_local std::vector<int> open; // the points not decided yet
+  heap.clear();
+  direct.assign(static_cast<std::size_t>(n), 0.0);
+  directMag.assign(static_cast<std::size_t>(n), 0.0);
+  open.resize(static_cast<std::size_t>(n));
+  for (int i = 0; i < n; ++i) open[static_cast<std::size_t>(i)] = i;
+  LocalPoly poly;            // the far clusters' expansions summed
+  double err = 0, mag = 0;   // their error over the ball; a bound of their terms (rounding slack)
+  int unbounded = 0, decided = 0;
+  std::int64_t work = 0, terms = 0;
+  auto magOf = [&](const DipoleTree::Node& nd, double rMin) {
+    // generous bound of every term's size in the expansion's sums (the rounding slack)
+    double t = 0;
+    for (const double q : nd.quad) t += std::fabs(q);
+    const double s = rho / rMin;
+    return 200 * (nd.mass / (rMin * rMin) + t / (rMin * rMin * rMin)) * (1 + s + s * s);
+  };
+  // id >= 0: a node of the tree; id = -(t + 1): triangle t of a leaf on its
+  // own, a cluster about its centroid (second-order term 0, radius its
+  // farthest vertex), so a leaf too near for its own expansion is first
+  // split into its triangles, and only those still too near are summed
+  DipoleTree::Node triNode;
+  auto nodeOf = [&](std::int32_t id) -> const DipoleTree::Node& {
+    if (id >= 0) return nodes[static_cast<std::size_t>(id)];
+    const WeightedTri& t = tris[static_cast<std::size_t>(-id - 1)];
+    triNode = DipoleTree::Node{};
+    triNode.c = (1.0 / 3.0) * (t.v[0] + t.v[1] + t.v[2]);
+    const V3 an = 0.5 * cross(t.v[1] - t.v[0], t.v[2] - t.v[0]);
+    triNode.dipole = t.w * an;
+    triNode.mass = std::fabs(t.w) * norm(an);
+    for (const V3& v : t.v) triNode.r = std::max(triNode.r, norm(v - triNode.c));
+    triNode.r *= 1 + 1e-12; // rounding of the distances above
+    triNode.first = -id - 1;
+    triNode.count = 1;
+    return triNode;
+  };
+  auto visit = [&](std::int32_t id) {
+    const DipoleTree::Node& nd = nodeOf(id);
+    const V3 y = nd.c - centre;
+    const double r0 = norm(y);
+    Open o{ 0, id, 0, {} };
+    o.err = clusterLocalError(nd, r0, rho, o.order, remainderScale);
+    if (std::isfinite(o.err))
+    {
+      err += o.err;
+      mag += magOf(nd, r0 - rho);
+      if (o.order > 0)
+      {
+        o.poly = clusterLocal(nd, y, o.order);
+        poly.add(o.poly, 1);
+      }
+    }
+    else
+    {
+      ++unbounded;
+    }
+    work += 2;
+    ++terms;
+    heap.push_back(o);
+    std::push_heap(heap.begin(), heap.end());
+  };
+  auto close = [&](const Open& o) {
+    if (!std::isfinite(o.err))
+    {
+      --unbounded;
+      return;
+    }
+    err -= o.err; // mag keeps the closed terms: their rounding stays in the sums
+    if (o.order > 0) poly.add(o.poly, -1);
+  };
+  if (start && !start->empty())
+    for (const std::int32_t id : *start) visit(id);
+  else
+    visit(0);
+  // intervals of every point not yet decided; checked again each time the
+  // error has halved (a check costs a quadratic per point)
+  double checkAt = std::numeric_limits<double>::infinity(), checkedErr = checkAt;
+  auto check = [&] {
+    const double slackBase = 1e-9;
+    std::size_t kept = 0;
+    for (const int i : open)
+    {
+      const double v = poly.at(pts[i] - centre) + direct[static_cast<std::size_t>(i)];
+      const double slack =
+        slackBase + 1e-12 * (std::fabs(mag) + err + directMag[static_cast<std::size_t>(i)]) * static_cast<double>(terms + 1);
+      const double l = (v - err) / FourPi - slack, u = (v + err) / FourPi + slack;
+      lo[i] = l;
+      hi[i] = u;
+      if (avoidsHalfIntegers(l, u))
+        ++decided;
+      else
+        open[kept++] = i;
+    }
+    work += static_cast<std::int64_t>(open.size()) / 8;
+    open.resize(kept);
+    checkAt = 0.5 * err;
+    checkedErr = err;
+  };
+  while (decided < n)
+  {
+    // checked when the error has halved, and before a leaf is summed at
+    // every open point if the error fell since (a check costs a quadratic
+    // per point, a leaf a few solid angles per point)
+    const bool leafNext = !heap.empty() && heap.front().node < 0;
+    if (unbounded == 0 && (err <= checkAt || heap.empty() || (leafNext && err < checkedErr)))
+    {
+      check();
+      if (decided == n || heap.empty()) break;
+    }
+    if (work > budget) break;
+    std::pop_heap(heap.begin(), heap.end());
+    const Open o = heap.back();
+    heap.pop_back();
+    close(o);
+    const DipoleTree::Node& nd = nodeOf(o.node);
+    if (nd.left >= 0)
+    {
+      visit(nd.left);
+      visit(nd.right);
+      continue;
+    }
+    if (o.node >= 0 && nd.count > 1)
+    {
+      for (std::int32_t t = nd.first; t < nd.first + nd.count; ++t) visit(-t - 1);
+      continue;
+    }
+    // a near triangle (or a leaf of one): summed exactly at every open point
+    for (std::int32_t t = nd.first; t < nd.first + nd.count; ++t)
+    {
+      const WeightedTri& tri = tris[static_cast<std::size_t>(t)];
+      for (const int i : open)
+      {
+        const double a = tri.w * solidAngle(pts[i], tri.v[0], tri.v[1], tri.v[2]);
+        direct[static_cast<std::size_t>(i)] += a;
+        directMag[static_cast<std::size_t>(i)] += std::fabs(a);
+      }
+      ++terms;
+    }
+    work += static_cast<std::int64_t>(nd.count) * static_cast<std::int64_t>(open.size());
+    if (heap.empty()) err = 0; // nothing bounded left: drop the rounding of the running error
+  }
+  return decided;
+}
+
+} // namespace detail::meshtosdf
+} // namespace lvdif
