@@ -128,6 +128,8 @@ struct vtkPartialRedrawCuller::Internals
     vtkWeakPointer<vtkActor> Actor;   // null once the actor is gone (its address may be reused)
     vtkDataObject* Input = nullptr;   // the input it was read from
     vtkMTimeType MTime = 0;
+    vtkMapper* Mapper = nullptr;      // the mapper Input was looked up from, at its MTime
+    vtkMTimeType MapperMTime = 0;
     bool Stale = true;                // announced changed since: read again
   };
   std::unordered_map<vtkProp*, AnnouncedInput> Announced;
@@ -219,6 +221,25 @@ struct vtkPartialRedrawCuller::Internals
     return r.MTime;
   }
 
+  // A static mapper's input (the pipeline lookup costs more than the rest of
+  // an actor's signature); an announced actor's as of its last announcement
+  // or mapper change (its owner replaces the input only with an announcement).
+  vtkDataObject* StaticInput(vtkActor* a, vtkMapper* mapper, bool reread)
+  {
+    AnnouncedInput* r = this->FindAnnounced(a);
+    if (r && !reread && !r->Stale && r->Mapper == mapper && r->MapperMTime == mapper->GetMTime())
+    {
+      return r->Input;
+    }
+    vtkDataObject* input = mapper->GetNumberOfInputConnections(0) ? mapper->GetInputDataObject(0, 0) : nullptr;
+    if (r)
+    {
+      r->Mapper = mapper;
+      r->MapperMTime = mapper->GetMTime();
+    }
+    return input;
+  }
+
   // One actor's part of a signature.
   std::uint64_t MixActor(std::uint64_t h, vtkActor* a, bool reread)
   {
@@ -227,7 +248,7 @@ struct vtkPartialRedrawCuller::Internals
     {
       // a static mapper's input is up to date by contract: its redraw time
       // without the pipeline update that GetRedrawMTime makes
-      vtkDataObject* input = mapper->GetNumberOfInputConnections(0) ? mapper->GetInputDataObject(0, 0) : nullptr;
+      vtkDataObject* input = this->StaticInput(a, mapper, reread);
       h = mix(h, reinterpret_cast<std::uintptr_t>(input));
       h = mix(h, std::max(mapper->GetMTime(), this->InputMTime(a, input, reread)));
     }
