@@ -111,9 +111,11 @@ MainWindow::MainWindow(const EditorOptions& options)
   }
   this->RenderWindow->SetPartialRedraw(this->Redraw); // and presents only that region
   this->setCentralWidget(this->ViewWidget);
-  this->ViewWidget->installEventFilter(this); // keys
+  // tablet events and keys: those of the widget view; a native view's go to
+  // its window (the container gets keys only when it has the focus itself)
+  this->ViewWidget->installEventFilter(this);
   if (this->NativeView)
-    this->NativeView->installEventFilter(this); // tablet, and keys while the native view has the focus
+    this->NativeView->installEventFilter(this);
   this->resize(options.width, options.height);
 
   this->Chunks->SetRenderer(this->Renderer);

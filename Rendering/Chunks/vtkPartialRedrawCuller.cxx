@@ -195,15 +195,16 @@ struct vtkPartialRedrawCuller::Internals
     return k;
   }
 
-  // The MTime of a static mapper's input; for an announced actor the one
-  // recorded at its last announcement (`reread`: read it now, as at an
-  // announcement).
+  // The record of an announced actor that is still alive, or null.
   AnnouncedInput* FindAnnounced(vtkProp* p)
   {
     auto it = this->Announced.find(p);
     return it != this->Announced.end() && it->second.Actor.Get() == p ? &it->second : nullptr;
   }
 
+  // The MTime of a static mapper's input; for an announced actor the one
+  // recorded at its last announcement (`reread`: read it now, as at an
+  // announcement).
   vtkMTimeType InputMTime(vtkActor* a, vtkDataObject* input, bool reread)
   {
     AnnouncedInput* announced = this->FindAnnounced(a);
