@@ -107,10 +107,11 @@ public:
   /// input's modification time as recorded at the last announcement instead
   /// of asking the input each frame (vtkPolyData::GetMTime visits every array
   /// and cell array: with hundreds of chunk actors that was most of the
-  /// culler's time in a frame that changes a few). Everything else in the
-  /// signature (actor, mapper, input object, property, texture, visibility)
-  /// is still read each frame. An unannounced change of such an input may
-  /// leave stale pixels: the owner promises to announce.
+  /// culler's time in a frame that changes a few), and the input object as
+  /// looked up when the mapper last changed (SetInputData modifies it). The
+  /// rest of the signature (actor, mapper, property, texture, visibility) is
+  /// still read each frame. An unannounced change of such an input may leave
+  /// stale pixels: the owner promises to announce.
   void SetInputChangesAnnounced(vtkActor* actor, bool announced);
   void InputDataChanged(vtkActor* actor);
   ///@}
