@@ -193,8 +193,20 @@ bool EditorDriver::typeKeys(const QString& keys)
     v->setFocus();
     const int key = k & ~Qt::KeyboardModifierMask;
     const Qt::KeyboardModifiers mods(k & Qt::KeyboardModifierMask);
+    // A native view's keys come to its own window, the focus window once the
+    // view is clicked: typed there, through Qt's window-system path (shortcut
+    // matching included), as a keyboard would.
+    if (auto* nativeView = qobject_cast<QWindow*>(this->Window.viewInputTarget()))
+    {
+      nativeView->requestActivate();
+      QApplication::processEvents();
+      if (key >= 0x20 && key <= 0x7e)
+        QTest::keyClick(nativeView, static_cast<char>(std::tolower(key)), mods);
+      else
+        QTest::keyClick(nativeView, Qt::Key(key), mods);
+    }
     // printable keys by their character (QTest knows the text of every one of them)
-    if (key >= 0x20 && key <= 0x7e)
+    else if (key >= 0x20 && key <= 0x7e)
       QTest::keyClick(v, static_cast<char>(std::tolower(key)), mods);
     else
       QTest::keyClick(v, Qt::Key(key), mods);
