@@ -15,7 +15,6 @@
 #include <QKeySequence>
 #include <QMouseEvent>
 #include <QTimer>
-#include <QVTKOpenGLNativeWidget.h>
 #include <QWindow>
 #ifdef LVDIF_EDITOR_HAVE_QTTEST
 #include <QTest>
@@ -32,15 +31,12 @@ EditorDriver::EditorDriver(MainWindow& window, const EditorOptions& options, QEl
 {
 }
 
-QVTKOpenGLNativeWidget* EditorDriver::view(MainWindow& window)
-{
-  return qobject_cast<QVTKOpenGLNativeWidget*>(window.centralWidget());
-}
 
 int EditorDriver::runBatch()
 {
   const EditorOptions& o = this->Options;
   bool ok = true;
+  this->waitForLayout(); // a native view draws (and so gives screenshots) only once its window is exposed
   if (!o.saveAsAnswer.isEmpty())
     this->answerSaveDialogs(o.saveAsAnswer);
   // a script first: it sets the scene the keys and the drag then work on
@@ -76,7 +72,7 @@ void EditorDriver::showAllMeshes()
   if (this->Window.document().hasVolume())
     this->Window.document().waitMeshingIdle();
   this->Window.showFinishedMeshes();
-  view(this->Window)->renderWindow()->Render();
+  this->Window.renderWindow()->Render();
 }
 
 void EditorDriver::waitForSurface()
@@ -89,16 +85,18 @@ void EditorDriver::waitForSurface()
 
 void EditorDriver::waitForLayout()
 {
-  QVTKOpenGLNativeWidget* v = view(this->Window);
+  QWidget* v = this->Window.viewWidget();
   QElapsedTimer waited;
   waited.start();
   int last[2] = { -1, -1 };
   while (waited.elapsed() < 10000)
   {
     QApplication::processEvents(QEventLoop::AllEvents, 50);
-    const int* size = v->renderWindow()->GetSize();
+    const int* size = this->Window.renderWindow()->GetSize();
     const double ratio = v->devicePixelRatioF();
-    const bool exposed = v->window()->windowHandle() && v->window()->windowHandle()->isExposed();
+    auto* nativeView = qobject_cast<QWindow*>(this->Window.viewInputTarget()); // the native view's own window
+    const bool exposed = v->window()->windowHandle() && v->window()->windowHandle()->isExposed() &&
+      (!nativeView || nativeView->isExposed());
     const bool fits = size[0] == std::lround(v->width() * ratio) && size[1] == std::lround(v->height() * ratio);
     if (exposed && fits && size[0] == last[0] && size[1] == last[1])
       return;
@@ -113,13 +111,14 @@ void EditorDriver::drag(const QVector<QPointF>& points, bool ctrl, bool shift, c
   if (points.isEmpty())
     return;
   this->waitForLayout();
-  QVTKOpenGLNativeWidget* v = view(this->Window);
-  vtkRenderWindowInteractor* iren = v->interactor();
+  QWidget* v = this->Window.viewWidget();
+  QObject* target = this->Window.viewInputTarget(); // the widget, or the native view's window
+  vtkRenderWindowInteractor* iren = this->Window.viewInteractor();
   // Points with both coordinates in [0, 1] are fractions of the view's size.
   bool fractions = true;
   for (const QPointF& p : points)
     fractions = fractions && p.x() >= 0 && p.x() <= 1 && p.y() >= 0 && p.y() <= 1;
-  const int* size = v->renderWindow()->GetSize();
+  const int* size = this->Window.renderWindow()->GetSize();
   const double sx = fractions ? size[0] : 1.0, sy = fractions ? size[1] : 1.0;
   // VTK display pixels (origin bottom-left) to the widget's Qt coordinates
   // (origin top-left, device-independent pixels): the inverse of what the
@@ -138,7 +137,7 @@ void EditorDriver::drag(const QVector<QPointF>& points, bool ctrl, bool shift, c
   auto mouse = [&](QEvent::Type type, const QPointF& p, Qt::MouseButton button, Qt::MouseButtons buttons) {
     const QPointF local = widgetPoint(p);
     QMouseEvent event(type, local, local, local + v->mapToGlobal(QPoint(0, 0)), button, buttons, mods);
-    QApplication::sendEvent(v, &event);
+    QApplication::sendEvent(target, &event);
   };
   // the modifier keys go down before the press and up after the release
   auto modifierKeys = [&](QEvent::Type type) {
@@ -148,7 +147,7 @@ void EditorDriver::drag(const QVector<QPointF>& points, bool ctrl, bool shift, c
       if (held[i])
       {
         QKeyEvent event(type, keys[i], type == QEvent::KeyPress ? mods : Qt::KeyboardModifiers());
-        QApplication::sendEvent(v, &event);
+        QApplication::sendEvent(target, &event);
       }
   };
   modifierKeys(QEvent::KeyPress);
@@ -175,7 +174,7 @@ void EditorDriver::drag(const QVector<QPointF>& points, bool ctrl, bool shift, c
 bool EditorDriver::typeKeys(const QString& keys)
 {
 #ifdef LVDIF_EDITOR_HAVE_QTTEST
-  QVTKOpenGLNativeWidget* v = view(this->Window);
+  QWidget* v = this->Window.viewWidget();
   for (QString word : keys.split(' ', Qt::SkipEmptyParts))
   {
     // bracket names for callers that cannot pass brackets (CMake lists)
@@ -194,8 +193,20 @@ bool EditorDriver::typeKeys(const QString& keys)
     v->setFocus();
     const int key = k & ~Qt::KeyboardModifierMask;
     const Qt::KeyboardModifiers mods(k & Qt::KeyboardModifierMask);
+    // A native view's keys come to its own window, the focus window once the
+    // view is clicked: typed there, through Qt's window-system path (shortcut
+    // matching included), as a keyboard would.
+    if (auto* nativeView = qobject_cast<QWindow*>(this->Window.viewInputTarget()))
+    {
+      nativeView->requestActivate();
+      QApplication::processEvents();
+      if (key >= 0x20 && key <= 0x7e)
+        QTest::keyClick(nativeView, static_cast<char>(std::tolower(key)), mods);
+      else
+        QTest::keyClick(nativeView, Qt::Key(key), mods);
+    }
     // printable keys by their character (QTest knows the text of every one of them)
-    if (key >= 0x20 && key <= 0x7e)
+    else if (key >= 0x20 && key <= 0x7e)
       QTest::keyClick(v, static_cast<char>(std::tolower(key)), mods);
     else
       QTest::keyClick(v, Qt::Key(key), mods);
@@ -240,6 +251,7 @@ bool EditorDriver::startStrokeBenchmark(const QString& path)
   try
   {
     auto* bench = new StrokeBenchmark(this->Window, StrokeBenchmark::loadSamples(path), QFileInfo(path).fileName());
+    this->waitForLayout(); // a native view renders nothing before its window is exposed
     this->waitForSurface();
     bench->start();
     return true;

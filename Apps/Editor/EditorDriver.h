@@ -18,7 +18,6 @@
 
 struct EditorOptions;
 class MainWindow;
-class QVTKOpenGLNativeWidget;
 
 class EditorDriver : public QObject
 {
@@ -62,9 +61,6 @@ public:
   /// `path` through the brush input (StrokeBenchmark.h), prints the latency and
   /// quits the application; false (with a message) if the file cannot be read.
   bool startStrokeBenchmark(const QString& path);
-
-  /// The window's VTK view (its central widget).
-  static QVTKOpenGLNativeWidget* view(MainWindow& window);
 
 private:
   void answerShownSaveDialog();

@@ -72,12 +72,16 @@ EditorOptions parseEditorOptions(const QStringList& arguments)
   const QCommandLineOption stockBackground("stock-background",
     "Draw the gradient background as VTK does, with a new quad each frame (by default the quad is kept between frames; "
     "the same picture). For comparisons.");
+  const QCommandLineOption widgetView("widget-view",
+    "Show the view as a widget that Qt composes into the window after each frame (QVTKOpenGLNativeWidget), as before; "
+    "by default it is a native window of its own (QVTKOpenGLWindow in a window container), presented alone. For "
+    "comparisons.");
   const QCommandLineOption multisampledDrag("multisampled-drag",
     "Draw a stroke's frames with the view's multisampling (by default they have one sample per pixel and the view is "
     "drawn whole, multisampled, once the stroke is still). For comparisons.");
   p.addOptions({ multisampledDrag, stockBackground, drawRanges, samples, open, openMesh, meshRes, meshSign, meshReorient, create, fill, script, drag, undo, shot, save, exp, op, shape, kind, radius, color, size, quit,
     noRecovery, recoveryDir, autosave, perVertex, matcap, benchmark, strength, falloff, mirror, keys, keysAfter, dragMods,
-    saveAsAnswer, windowShot, dragShot, timing, fullRedraw });
+    saveAsAnswer, windowShot, dragShot, timing, fullRedraw, widgetView });
   p.process(arguments);
 
   EditorOptions o;
@@ -177,6 +181,7 @@ EditorOptions parseEditorOptions(const QStringList& arguments)
   o.timing = p.isSet(timing);
   o.fullRedraw = p.isSet(fullRedraw);
   o.stockBackground = p.isSet(stockBackground);
+  o.nativeView = !p.isSet(widgetView);
   o.multisampledDrag = p.isSet(multisampledDrag);
   if (p.isSet(drawRanges))
   {

@@ -45,6 +45,7 @@ struct EditorOptions
   bool fullRedraw = false;    // --full-redraw: draw every frame whole (no partial redraw of what changed)
   int samples = -1;           // --samples N: multisamples per pixel of the view (-1: VTK's default)
   bool multisampledDrag = false; // --multisampled-drag: a stroke's frames with the view's multisampling (as before)
+  bool nativeView = true;     // the view in a native window of its own (QVTKOpenGLWindow), presented alone; --widget-view: false
   bool stockBackground = false; // --stock-background: VTK's gradient background, a new quad per frame (comparisons)
   int drawRangeTriangles = 32; // --draw-ranges N: triangles per draw range of a chunk (0: one draw per chunk)
   bool batch() const { return this->quit || !this->screenshot.isEmpty() || !this->windowShot.isEmpty() || !this->save.isEmpty() || !this->exportMesh.isEmpty(); }

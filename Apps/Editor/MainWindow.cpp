@@ -18,6 +18,10 @@
 #include "vtkPartialRedrawCuller.h"
 #include "LVDIFChunkedMarchingCubesOutput.h"
 #include "vtkGenericOpenGLRenderWindow.h"
+#include "vtkImageData.h"
+#include "vtkPointData.h"
+#include "vtkUnsignedCharArray.h"
+#include "vtkWindowToImageFilter.h"
 #include "vtkPolyData.h"
 #include "vtkProperty.h"
 #include "vtkRenderWindowInteractor.h"
@@ -32,6 +36,7 @@
 #include <QFile>
 #include <QFileDialog>
 #include <QFileInfo>
+#include <QImage>
 #include <QInputDialog>
 #include <QLabel>
 #include <QMenuBar>
@@ -40,8 +45,10 @@
 #include <QTabletEvent>
 #include <QTimer>
 #include <QVTKOpenGLNativeWidget.h>
+#include <QVTKOpenGLWindow.h>
 
 #include <cmath>
+#include <cstring>
 #include <cstdio>
 #include <cstdlib>
 #include <map>
@@ -59,12 +66,26 @@ MainWindow::MainWindow(const EditorOptions& options)
   : Options(options)
 {
   this->Clock.start();
-  this->View = new QVTKOpenGLNativeWidget(this);
+  if (options.nativeView)
+  {
+    // presented alone: Qt does not compose the whole window after each frame
+    this->NativeView = new QVTKOpenGLWindow();
+    this->ViewWidget = QWidget::createWindowContainer(this->NativeView, this); // owns it
+    this->ViewWidget->setFocusPolicy(Qt::StrongFocus);
+  }
+  else
+  {
+    this->View = new QVTKOpenGLNativeWidget(this);
+    this->ViewWidget = this->View;
+  }
   // Software OpenGL (Mesa llvmpipe) rasterizes a multisampled frame about
   // twice as slowly: --samples 0 trades the edges' smoothing for that.
   if (options.samples >= 0)
     this->RenderWindow->SetMultiSamples(options.samples);
-  this->View->setRenderWindow(this->RenderWindow);
+  if (this->NativeView)
+    this->NativeView->setRenderWindow(this->RenderWindow);
+  else
+    this->View->setRenderWindow(this->RenderWindow);
   this->RenderWindow->AddRenderer(this->Renderer);
   this->Renderer->SetBackground(0.16, 0.17, 0.2);
   this->Renderer->SetBackground2(0.05, 0.05, 0.07);
@@ -89,8 +110,12 @@ MainWindow::MainWindow(const EditorOptions& options)
       this->Renderer->AddCuller(c);
   }
   this->RenderWindow->SetPartialRedraw(this->Redraw); // and presents only that region
-  this->setCentralWidget(this->View);
-  this->View->installEventFilter(this);
+  this->setCentralWidget(this->ViewWidget);
+  // tablet events and keys: those of the widget view; a native view's go to
+  // its window (the container gets keys only when it has the focus itself)
+  this->ViewWidget->installEventFilter(this);
+  if (this->NativeView)
+    this->NativeView->installEventFilter(this);
   this->resize(options.width, options.height);
 
   this->Chunks->SetRenderer(this->Renderer);
@@ -102,7 +127,7 @@ MainWindow::MainWindow(const EditorOptions& options)
     options.perVertexColor ? vtkTetrahedralColorMapper::PerVertex : vtkTetrahedralColorMapper::Tetrahedral);
   this->Matcap = matcapTexture(makeClayMatcap());
 
-  this->Brush->SetInteractor(this->View->interactor());
+  this->Brush->SetInteractor(this->viewInteractor());
   this->Brush->SetRepresentation(this->BrushRep);
   auto observe = [this](unsigned long event, auto handler) {
     vtkNew<vtkCallbackCommand> cb;
@@ -191,7 +216,7 @@ MainWindow::MainWindow(const EditorOptions& options)
     this->RenderWindow->SetSingleSampleFrames(false);
     this->Redraw->RequestFullRedraw();
     this->RenderWindow->Render();
-    this->View->update();
+    this->updateView();
   });
   {
     vtkNew<vtkCallbackCommand> cb;
@@ -210,6 +235,51 @@ MainWindow::MainWindow(const EditorOptions& options)
   if (options.autosaveSeconds > 0)
     this->AutosaveTimer->start(options.autosaveSeconds * 1000);
   this->updateTitle();
+}
+
+vtkRenderWindowInteractor* MainWindow::viewInteractor() const
+{
+  return this->NativeView ? this->NativeView->interactor() : this->View->interactor();
+}
+
+QObject* MainWindow::viewInputTarget()
+{
+  return this->NativeView ? static_cast<QObject*>(this->NativeView) : this->View;
+}
+
+void MainWindow::updateView()
+{
+  if (this->NativeView)
+    this->NativeView->update();
+  else
+    this->View->update();
+}
+
+QImage MainWindow::grabView()
+{
+  // QVTKOpenGLNativeWidget renders in its paintGL: a render requested from
+  // outside is deferred, so reading the render window's buffer could give the
+  // previous frame. Its grabFramebuffer() paints now and returns that frame.
+  if (!this->NativeView)
+    return this->View->grabFramebuffer();
+  // QOpenGLWindow::grabFramebuffer() reads the window's back buffer, which
+  // holds no frame after a swap; the render window's display framebuffer
+  // holds the last Render()'s frame (the caller's).
+  vtkNew<vtkWindowToImageFilter> w2i;
+  w2i->SetInput(this->RenderWindow);
+  w2i->SetInputBufferTypeToRGB();
+  w2i->ReadFrontBufferOn();
+  w2i->ShouldRerenderOff();
+  w2i->Update();
+  vtkImageData* pixels = w2i->GetOutput();
+  const int* dims = pixels->GetDimensions();
+  auto* rgb = vtkUnsignedCharArray::SafeDownCast(pixels->GetPointData()->GetScalars());
+  if (!rgb || dims[0] <= 0 || dims[1] <= 0)
+    return QImage();
+  QImage image(dims[0], dims[1], QImage::Format_RGB888);
+  for (int y = 0; y < dims[1]; ++y) // VTK's rows go up, QImage's down
+    std::memcpy(image.scanLine(dims[1] - 1 - y), rgb->GetPointer(3 * dims[0] * y), 3 * static_cast<size_t>(dims[0]));
+  return image;
 }
 
 MainWindow::~MainWindow()
@@ -303,7 +373,7 @@ bool MainWindow::beginStroke()
   const int op = this->effectiveOp();
   lvdif::Editor& e = this->Doc.editor();
   e.brush.op = static_cast<lvdif::BrushOp>(op);
-  const bool ctrl = this->View->interactor()->GetControlKey() ||
+  const bool ctrl = this->viewInteractor()->GetControlKey() ||
     (QApplication::queryKeyboardModifiers() & Qt::ControlModifier);
   e.brush.invert = ctrl && (op == 4 || op == 7 || op == 8);
   this->Grabbing = op == 5;
@@ -387,7 +457,7 @@ void MainWindow::onGrabMove()
   if (!this->Painting || !this->Grabbing || this->PreviewPoints.empty())
     return;
   // the point under the cursor on the view plane through the grab's start
-  const int* pos = this->View->interactor()->GetEventPosition();
+  const int* pos = this->viewInteractor()->GetEventPosition();
   this->Renderer->SetDisplayPoint(pos[0], pos[1], this->GrabDepth);
   this->Renderer->DisplayToWorld();
   const double* w = this->Renderer->GetWorldPoint();
@@ -507,11 +577,23 @@ void MainWindow::drawFrame()
   this->Profile.renderMs += this->LastRenderMs;
   ++this->Profile.frames;
   emit this->meshesShown(shown);
-  this->View->update();
+  this->updateView();
 }
 
 void MainWindow::resetView()
 {
+  // The camera fits the surface to the view's aspect. A native view sizes its
+  // render window when its window is first exposed, which may come after the
+  // first surface: take the size from the layout now, as the widget view has it.
+  if (this->NativeView)
+  {
+    const double ratio = this->ViewWidget->devicePixelRatioF();
+    const int w = static_cast<int>(std::lround(this->ViewWidget->width() * ratio));
+    const int h = static_cast<int>(std::lround(this->ViewWidget->height() * ratio));
+    const int* size = this->RenderWindow->GetSize();
+    if (w > 0 && h > 0 && (size[0] != w || size[1] != h))
+      this->RenderWindow->SetSize(w, h);
+  }
   this->setViewPreset(-1);
 }
 

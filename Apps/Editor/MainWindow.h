@@ -24,12 +24,15 @@
 class vtkTexture;
 
 class QAction;
+class QImage;
 class QActionGroup;
 class QMenu;
 class vtkActor;
 class QLabel;
 class QTimer;
 class QVTKOpenGLNativeWidget;
+class QVTKOpenGLWindow;
+class vtkRenderWindowInteractor;
 class vtkBrushRepresentation;
 class vtkBrushWidget;
 class vtkChunkActorManager;
@@ -76,6 +79,14 @@ public:
   VolumeDocument& document() { return this->Doc; }
   /// The chunk actors of the view.
   vtkChunkActorManager* chunkActors() { return this->Chunks; }
+  /// The view's render window and interactor.
+  EditorRenderWindow* renderWindow() { return this->RenderWindow; }
+  vtkRenderWindowInteractor* viewInteractor() const;
+  /// The view's widget in the window's layout (the QVTKOpenGLNativeWidget, or
+  /// by default the container of its QVTKOpenGLWindow) and the object
+  /// that takes its mouse events (the widget, or that window).
+  QWidget* viewWidget() { return this->ViewWidget; }
+  QObject* viewInputTarget();
 
   // ---- file and edit operations: the menus call these, so does the command line
   bool newCanvas(int nx, int ny, int nz, VolumeDocument::Fill fill);
@@ -191,7 +202,16 @@ private:
   EditorOptions Options;
   VolumeDocument Doc;
   ToolPanel* Tools = nullptr;
+  // The view: a native window of its own (QVTKOpenGLWindow, in ViewWidget, a
+  // window container) that presents only itself after a frame, or with
+  // --widget-view a widget that Qt composes into the whole window after each
+  // frame (QVTKOpenGLNativeWidget: under Xvfb about 5 ms more between a
+  // frame's render and the next brush sample); exactly one of them is set.
   QVTKOpenGLNativeWidget* View = nullptr;
+  QVTKOpenGLWindow* NativeView = nullptr;
+  QWidget* ViewWidget = nullptr;
+  void updateView();
+  QImage grabView();
   QLabel* Status = nullptr;
   QTimer* MeshTimer = nullptr;
   QTimer* FrameTimer = nullptr; // the frame after brush samples (coalesces a backlog of samples)

@@ -17,8 +17,8 @@
 #include <QFileInfo>
 #include <QFormLayout>
 #include <QImage>
+#include <QPainter>
 #include <QPixmap>
-#include <QVTKOpenGLNativeWidget.h>
 #include <QMessageBox>
 #include <QSpinBox>
 
@@ -132,12 +132,18 @@ bool MainWindow::exportMesh(const QString& path)
 bool MainWindow::saveWindowShot(const QString& path)
 {
   // the whole window (menus, toolbar, tool panel, status bar); Qt composes the
-  // OpenGL view's current frame into it
+  // OpenGL view's current frame into it, except a native view's (its own
+  // window): that frame is drawn over its container's place
   const bool single = this->RenderWindow->GetSingleSampleFrames();
   this->RenderWindow->SetSingleSampleFrames(false); // with the view's multisampling
   this->Redraw->RequestFullRedraw();
   this->RenderWindow->Render();
-  const QPixmap shot = this->grab();
+  QPixmap shot = this->grab();
+  if (this->NativeView && !shot.isNull())
+  {
+    QPainter painter(&shot);
+    painter.drawImage(QRect(this->ViewWidget->mapTo(this, QPoint(0, 0)), this->ViewWidget->size()), this->grabView());
+  }
   this->RenderWindow->SetSingleSampleFrames(single);
   if (shot.isNull() || !shot.save(path, "PNG"))
   {
@@ -149,14 +155,11 @@ bool MainWindow::saveWindowShot(const QString& path)
 
 bool MainWindow::saveScreenshot(const QString& path)
 {
-  // QVTKOpenGLNativeWidget renders in its paintGL: a render requested from
-  // here is deferred, so reading the render window's buffer could give the
-  // previous frame. grabFramebuffer() paints now and returns that frame.
   const bool single = this->RenderWindow->GetSingleSampleFrames();
   this->RenderWindow->SetSingleSampleFrames(false); // with the view's multisampling
   this->Redraw->RequestFullRedraw(); // a picture to keep: drawn whole, not an interactive frame
   this->RenderWindow->Render();
-  const QImage image = this->View->grabFramebuffer().convertToFormat(QImage::Format_RGB888);
+  const QImage image = this->grabView().convertToFormat(QImage::Format_RGB888);
   this->RenderWindow->SetSingleSampleFrames(single);
   if (image.isNull() || !image.save(path, "PNG"))
   {

@@ -43,6 +43,7 @@
 #include <QTimer>
 #include <QToolBar>
 #include <QVTKOpenGLNativeWidget.h>
+#include <QVTKOpenGLWindow.h>
 
 #include <cmath>
 
@@ -81,7 +82,7 @@ void MainWindow::buildTools()
     static_cast<vtkCallbackCommand*>(self)->SetAbortFlag(1);
   });
   swallow->SetClientData(swallow.GetPointer());
-  this->View->interactor()->AddObserver(vtkCommand::CharEvent, swallow, 100.0);
+  this->viewInteractor()->AddObserver(vtkCommand::CharEvent, swallow, 100.0);
 
   QToolBar* bar = this->addToolBar("Tools");
   bar->setObjectName("ToolsBar");
@@ -379,7 +380,7 @@ void MainWindow::updateStatus()
 int MainWindow::effectiveOp() const
 {
   const Qt::KeyboardModifiers m = QApplication::queryKeyboardModifiers();
-  vtkRenderWindowInteractor* iren = this->View->interactor();
+  vtkRenderWindowInteractor* iren = this->viewInteractor();
   const bool ctrl = (m & Qt::ControlModifier) || iren->GetControlKey();
   const bool shift = (m & Qt::ShiftModifier) || iren->GetShiftKey();
   const int op = this->Tools->state().op;
@@ -429,7 +430,10 @@ void MainWindow::updateCursor()
     p.drawText(corner, Qt::AlignCenter, QString(QChar(toolInfo(op).key)));
   }
   p.end();
-  this->View->setCursor(QCursor(pix, 16, 16));
+  if (this->NativeView)
+    this->NativeView->setCursor(QCursor(pix, 16, 16));
+  else
+    this->View->setCursor(QCursor(pix, 16, 16));
   this->CursorOp = op;
 }
 

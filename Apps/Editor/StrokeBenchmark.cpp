@@ -109,7 +109,7 @@ StrokeBenchmark::StrokeBenchmark(MainWindow& window, std::vector<lvdif::BrushSam
 
 vtkPartialRedrawCuller* StrokeBenchmark::redrawCuller()
 {
-  vtkRenderer* ren = EditorDriver::view(this->Window)->renderWindow()->GetRenderers()->GetFirstRenderer();
+  vtkRenderer* ren = this->Window.renderWindow()->GetRenderers()->GetFirstRenderer();
   vtkCollectionSimpleIterator it;
   ren->GetCullers()->InitTraversal(it);
   while (vtkCuller* c = ren->GetCullers()->GetNextCuller(it))
@@ -122,7 +122,7 @@ void StrokeBenchmark::measureStillFrames()
 {
   // The floor of a frame: the still scene drawn whole, and drawn again
   // unchanged (with partial redraws: nothing to draw, the frame's fixed cost).
-  vtkRenderWindow* rw = EditorDriver::view(this->Window)->renderWindow();
+  vtkRenderWindow* rw = this->Window.renderWindow();
   vtkPartialRedrawCuller* culler = this->redrawCuller();
   auto timed = [&](bool whole) {
     if (whole && culler)
@@ -152,7 +152,7 @@ void StrokeBenchmark::measureStillFrames()
 
 vtkSmartPointer<vtkUnsignedCharArray> StrokeBenchmark::grabShown()
 {
-  vtkRenderWindow* rw = EditorDriver::view(this->Window)->renderWindow();
+  vtkRenderWindow* rw = this->Window.renderWindow();
   vtkNew<vtkWindowToImageFilter> w2i;
   w2i->SetInput(rw);
   w2i->SetInputBufferTypeToRGB();
@@ -169,7 +169,7 @@ long StrokeBenchmark::pixelsDifferingFromFullRedraw(vtkUnsignedCharArray* earlie
 {
   // The picture shown (the display framebuffer, as Qt presents it) against
   // the same scene drawn whole.
-  vtkRenderWindow* rw = EditorDriver::view(this->Window)->renderWindow();
+  vtkRenderWindow* rw = this->Window.renderWindow();
   auto shown = this->grabShown();
   this->redrawCuller()->RequestFullRedraw();
   rw->Render();
@@ -249,7 +249,7 @@ void StrokeBenchmark::sampleApplied()
 void StrokeBenchmark::frameRendered(const ShownMeshes& shown)
 {
   // called right after the window's Render(): the frame is drawn, not just queued
-  EditorDriver::view(this->Window)->renderWindow()->WaitForCompletion();
+  this->Window.renderWindow()->WaitForCompletion();
   const TimePoint renderEnd = std::chrono::steady_clock::now();
   for (std::size_t i = 0; i < shown.chunks.size() && i < shown.gatheredAt.size(); ++i)
     this->Delivered[shown.chunks[i]].emplace_back(shown.gatheredAt[i], renderEnd);
@@ -274,7 +274,7 @@ void StrokeBenchmark::finishWhenIdle()
     return;
   }
   this->Window.showFinishedMeshes(); // what the worker finished since the last poll
-  auto* erw = EditorRenderWindow::SafeDownCast(EditorDriver::view(this->Window)->renderWindow());
+  auto* erw = EditorRenderWindow::SafeDownCast(this->Window.renderWindow());
   if (erw && erw->GetNumberOfSingleSampledFrames() > this->SingleSampledBefore && this->redrawCuller())
   {
     // The stroke's frames had one sample per pixel: their picture now, then
@@ -339,7 +339,7 @@ void StrokeBenchmark::report()
   {
     std::printf("benchmark-stroke: renders during the stroke: %d drawn in part, %d drawn whole\n",
       culler->GetNumberOfPartialRedraws() - this->PartialBefore, culler->GetNumberOfFullRedraws() - this->FullBefore);
-    vtkRenderWindow* rw = EditorDriver::view(this->Window)->renderWindow();
+    vtkRenderWindow* rw = this->Window.renderWindow();
     const long pixels = static_cast<long>(rw->GetSize()[0]) * rw->GetSize()[1];
     auto* erw = EditorRenderWindow::SafeDownCast(rw);
     const int single = erw ? erw->GetNumberOfSingleSampledFrames() - this->SingleSampledBefore : 0;

@@ -372,6 +372,24 @@ bool vtkChunkActorManager::ChangedBounds(vtkPolyData* before, vtkPolyData* after
 
 void vtkChunkActorManager::SetRedrawCuller(vtkPartialRedrawCuller* culler)
 {
+  vtkPartialRedrawCuller* old = this->Internal->Culler;
+  if (old == culler)
+  {
+    return;
+  }
+  // Every change of a chunk actor's input goes through ApplyChunk, which
+  // announces it: the culler need not read the inputs' MTimes each frame.
+  for (auto& kv : this->Internal->Chunks)
+  {
+    if (old)
+    {
+      old->SetInputChangesAnnounced(kv.second.Actor, false);
+    }
+    if (culler)
+    {
+      culler->SetInputChangesAnnounced(kv.second.Actor, true);
+    }
+  }
   this->Internal->Culler = culler;
 }
 
@@ -568,6 +586,10 @@ void vtkChunkActorManager::ApplyChunk(
     {
       this->Internal->Renderer->AddActor(e.Actor);
     }
+    if (this->Internal->Culler)
+    {
+      this->Internal->Culler->SetInputChangesAnnounced(e.Actor, true);
+    }
     it = chunks.emplace(chunkId, e).first;
   }
   // Only this mapper sees a new input: only its buffers are rebuilt.
@@ -587,6 +609,10 @@ void vtkChunkActorManager::ApplyChunk(
   {
     e.Mapper->SetInputData(ready);
     e.OwnsInput = owned;
+  }
+  if (culler)
+  {
+    culler->InputDataChanged(e.Actor); // refilled in place, or a new input: announced
   }
   const bool hashed = hashes != nullptr;
   if (declare)
@@ -672,17 +698,25 @@ void vtkChunkActorManager::RemoveChunk(vtkIdType chunkId)
   {
     this->Internal->Renderer->RemoveActor(it->second.Actor);
   }
+  if (this->Internal->Culler)
+  {
+    this->Internal->Culler->SetInputChangesAnnounced(it->second.Actor, false);
+  }
   this->Internal->Chunks.erase(it);
   this->Modified();
 }
 
 void vtkChunkActorManager::RemoveAllChunks()
 {
-  if (this->Internal->Renderer)
+  for (auto& kv : this->Internal->Chunks)
   {
-    for (auto& kv : this->Internal->Chunks)
+    if (this->Internal->Renderer)
     {
       this->Internal->Renderer->RemoveActor(kv.second.Actor);
+    }
+    if (this->Internal->Culler)
+    {
+      this->Internal->Culler->SetInputChangesAnnounced(kv.second.Actor, false);
     }
   }
   this->Internal->Chunks.clear();

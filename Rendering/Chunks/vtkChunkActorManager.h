@@ -125,7 +125,10 @@ public:
   /// The renderer's partial-redraw culler, if any: SetChunk then declares a
   /// replaced mesh's change to it as the box of the triangles that differ
   /// (vtkPartialRedrawCuller::BeginChange/EndChange), so that a frame redraws
-  /// only around them rather than around the whole chunk.
+  /// only around them rather than around the whole chunk. The chunk actors'
+  /// inputs change only here, so they are the culler's announced actors
+  /// (vtkPartialRedrawCuller::SetInputChangesAnnounced): a frame does not read
+  /// the unchanged chunks' inputs' MTimes.
   void SetRedrawCuller(vtkPartialRedrawCuller* culler);
 
   /// The bounds of the triangles of one mesh that the other lacks, and of the

@@ -122,6 +122,17 @@ struct vtkPartialRedrawCuller::Internals
     std::vector<double> points; // of the declarations that gave points (their boxes are not in `box`)
   };
   std::unordered_map<vtkProp*, Declared> Changes;
+  // SetInputChangesAnnounced actors: their input's MTime as last read.
+  struct AnnouncedInput
+  {
+    vtkWeakPointer<vtkActor> Actor;   // null once the actor is gone (its address may be reused)
+    vtkDataObject* Input = nullptr;   // the input it was read from
+    vtkMTimeType MTime = 0;
+    vtkMapper* Mapper = nullptr;      // the mapper Input was looked up from, at its MTime
+    vtkMTimeType MapperMTime = 0;
+    bool Stale = true;                // announced changed since: read again
+  };
+  std::unordered_map<vtkProp*, AnnouncedInput> Announced;
   vtkNew<vtkPropCollection> Actors; // scratch
 
   void Attach(vtkRenderer* ren)
@@ -184,16 +195,94 @@ struct vtkPartialRedrawCuller::Internals
     return k;
   }
 
+  // The record of an announced actor that is still alive, or null.
+  AnnouncedInput* FindAnnounced(vtkProp* p)
+  {
+    auto it = this->Announced.find(p);
+    return it != this->Announced.end() && it->second.Actor.Get() == p ? &it->second : nullptr;
+  }
+
+  // The MTime of a static mapper's input; for an announced actor the one
+  // recorded at its last announcement (`reread`: read it now, as at an
+  // announcement).
+  vtkMTimeType InputMTime(vtkActor* a, vtkDataObject* input, bool reread)
+  {
+    AnnouncedInput* announced = this->FindAnnounced(a);
+    if (!announced)
+    {
+      return input ? input->GetMTime() : 0;
+    }
+    AnnouncedInput& r = *announced;
+    if (reread || r.Stale || r.Input != input)
+    {
+      r.Input = input;
+      r.MTime = input ? input->GetMTime() : 0;
+      r.Stale = false;
+    }
+    return r.MTime;
+  }
+
+  // A static mapper's input (the pipeline lookup costs more than the rest of
+  // an actor's signature); an announced actor's as of its last announcement
+  // or mapper change (its owner replaces the input only with an announcement).
+  vtkDataObject* StaticInput(vtkActor* a, vtkMapper* mapper, bool reread)
+  {
+    AnnouncedInput* r = this->FindAnnounced(a);
+    if (r && !reread && !r->Stale && r->Mapper == mapper && r->MapperMTime == mapper->GetMTime())
+    {
+      return r->Input;
+    }
+    vtkDataObject* input = mapper->GetNumberOfInputConnections(0) ? mapper->GetInputDataObject(0, 0) : nullptr;
+    if (r)
+    {
+      r->Mapper = mapper;
+      r->MapperMTime = mapper->GetMTime();
+    }
+    return input;
+  }
+
+  // One actor's part of a signature.
+  std::uint64_t MixActor(std::uint64_t h, vtkActor* a, bool reread)
+  {
+    vtkMapper* mapper = a->GetMapper();
+    if (mapper && mapper->GetStatic())
+    {
+      // a static mapper's input is up to date by contract: its redraw time
+      // without the pipeline update that GetRedrawMTime makes
+      vtkDataObject* input = this->StaticInput(a, mapper, reread);
+      h = mix(h, reinterpret_cast<std::uintptr_t>(input));
+      h = mix(h, std::max(mapper->GetMTime(), this->InputMTime(a, input, reread)));
+    }
+    else
+    {
+      h = mix(h, a->GetRedrawMTime());
+    }
+    h = mix(h, a->GetMTime());
+    h = mix(h, a->GetVisibility());
+    h = mix(h, a->GetProperty() ? a->GetProperty()->GetMTime() : 0);
+    h = mix(h, a->GetBackfaceProperty() ? a->GetBackfaceProperty()->GetMTime() : 0);
+    h = mix(h, a->GetTexture() ? a->GetTexture()->GetMTime() : 0);
+    return h;
+  }
+
   // What the prop draws depends on: its own and its actors' modification
   // times (an actor's includes its mapper and the mapper's input),
-  // visibility, properties and textures.
-  std::uint64_t Signature(vtkProp* p)
+  // visibility, properties and textures. `reread`: announced inputs' MTimes
+  // read now (at BeginChange and EndChange).
+  std::uint64_t Signature(vtkProp* p, bool reread = false)
   {
     std::uint64_t h = 1469598103934665603ull;
+    auto* actor = vtkActor::SafeDownCast(p);
+    if (actor && this->FindAnnounced(p))
+    {
+      // an announced actor is a plain actor (its own only part): no
+      // collection of its parts, per actor and frame
+      return this->MixActor(mix(h, p->GetMTime()), actor, reread);
+    }
     // An actor is its own only part (GetActors below), which covers its
     // redraw time; vtkActor::GetRedrawMTime would also update the mapper's
     // pipeline, per prop and frame, even for a static mapper.
-    if (!vtkActor::SafeDownCast(p))
+    if (!actor)
     {
       h = mix(h, p->GetRedrawMTime());
     }
@@ -204,26 +293,15 @@ struct vtkPartialRedrawCuller::Internals
     this->Actors->InitTraversal(it);
     while (vtkProp* q = this->Actors->GetNextProp(it))
     {
-      auto* a = vtkActor::SafeDownCast(q);
-      vtkMapper* mapper = a ? a->GetMapper() : nullptr;
-      if (mapper && mapper->GetStatic())
+      if (auto* a = vtkActor::SafeDownCast(q))
       {
-        // a static mapper's input is up to date by contract: its redraw time
-        // without the pipeline update that GetRedrawMTime makes
-        vtkDataObject* input = mapper->GetNumberOfInputConnections(0) ? mapper->GetInputDataObject(0, 0) : nullptr;
-        h = mix(h, std::max(mapper->GetMTime(), input ? input->GetMTime() : 0));
+        h = this->MixActor(h, a, reread);
       }
       else
       {
         h = mix(h, q->GetRedrawMTime());
-      }
-      h = mix(h, q->GetMTime());
-      h = mix(h, q->GetVisibility());
-      if (a)
-      {
-        h = mix(h, a->GetProperty() ? a->GetProperty()->GetMTime() : 0);
-        h = mix(h, a->GetBackfaceProperty() ? a->GetBackfaceProperty()->GetMTime() : 0);
-        h = mix(h, a->GetTexture() ? a->GetTexture()->GetMTime() : 0);
+        h = mix(h, q->GetMTime());
+        h = mix(h, q->GetVisibility());
       }
     }
     return h;
@@ -246,7 +324,7 @@ void vtkPartialRedrawCuller::BeginChange(vtkProp* prop)
   {
     return;
   }
-  const std::uint64_t sig = this->Internal->Signature(prop);
+  const std::uint64_t sig = this->Internal->Signature(prop, true);
   auto it = this->Internal->Changes.find(prop);
   if (it == this->Internal->Changes.end())
   {
@@ -276,7 +354,7 @@ void vtkPartialRedrawCuller::EndChange(
   Internals::Declared& d = it->second;
   d.chained = d.chained && d.open;
   d.open = false;
-  d.after = this->Internal->Signature(prop);
+  d.after = this->Internal->Signature(prop, true);
   if (points && numberOfPoints > 0)
   {
     d.points.insert(d.points.end(), points, points + 3 * numberOfPoints);
@@ -290,6 +368,31 @@ void vtkPartialRedrawCuller::EndChange(
       d.box[2 * a] = std::min(d.box[2 * a], bounds[2 * a]);
       d.box[2 * a + 1] = std::max(d.box[2 * a + 1], bounds[2 * a + 1]);
     }
+  }
+}
+
+void vtkPartialRedrawCuller::SetInputChangesAnnounced(vtkActor* actor, bool announced)
+{
+  if (!actor)
+  {
+    return;
+  }
+  if (!announced)
+  {
+    this->Internal->Announced.erase(actor);
+    return;
+  }
+  Internals::AnnouncedInput& r = this->Internal->Announced[actor];
+  r.Actor = actor;
+  r.Stale = true;
+}
+
+void vtkPartialRedrawCuller::InputDataChanged(vtkActor* actor)
+{
+  auto it = actor ? this->Internal->Announced.find(actor) : this->Internal->Announced.end();
+  if (it != this->Internal->Announced.end())
+  {
+    it->second.Stale = true;
   }
 }
 
@@ -314,6 +417,10 @@ void vtkPartialRedrawCuller::SetEnabled(bool enabled)
   this->Internal->Valid = false;
   this->Internal->Props.clear();
   this->Internal->Changes.clear();
+  for (auto& kv : this->Internal->Announced)
+  {
+    kv.second.Stale = true; // changes made while disabled were not announced
+  }
   this->Modified();
 }
 

@@ -16,7 +16,9 @@
  *   lines and points, by 1 for a prop that draws only filled polygons: its
  *   fragments lie within its projection) and a signature (the
  *   modification times of the prop, its actors, their mappers' inputs,
- *   properties and textures, and their visibility).
+ *   properties and textures, and their visibility; for an actor whose owner
+ *   announces its input's changes, SetInputChangesAnnounced, the input's
+ *   modification time as of the last announcement).
  * - The damage is the union of the old and new rectangles of every prop that
  *   was added, removed, hidden, shown, moved or modified since.
  * - If the view is unchanged (camera matrices, viewport, window size,
@@ -42,6 +44,8 @@
 #include "vtkCuller.h"
 
 #include <memory> // for unique_ptr
+
+class vtkActor;
 
 class LVDIFRENDERINGCHUNKS_EXPORT vtkPartialRedrawCuller : public vtkCuller
 {
@@ -93,6 +97,23 @@ public:
   /// their projections (tighter than that of their box), when each point is
   /// in front of the eye; `bounds` should hold them.
   void EndChange(vtkProp* prop, const double bounds[6], const double* points, vtkIdType numberOfPoints);
+  ///@}
+
+  ///@{
+  /// Announced data changes, for an actor with a static mapper whose owner
+  /// changes the mapper's input (its arrays and cells, in place or not) only
+  /// between BeginChange and EndChange or right before calling
+  /// InputDataChanged(actor). The signature of such an actor then takes its
+  /// input's modification time as recorded at the last announcement instead
+  /// of asking the input each frame (vtkPolyData::GetMTime visits every array
+  /// and cell array: with hundreds of chunk actors that was most of the
+  /// culler's time in a frame that changes a few), and the input object as
+  /// looked up when the mapper last changed (SetInputData modifies it). The
+  /// rest of the signature (actor, mapper, property, texture, visibility) is
+  /// still read each frame. An unannounced change of such an input may leave
+  /// stale pixels: the owner promises to announce.
+  void SetInputChangesAnnounced(vtkActor* actor, bool announced);
+  void InputDataChanged(vtkActor* actor);
   ///@}
 
   ///@{

@@ -10,13 +10,20 @@
 // on the one-pixel ring around a frame's damage rectangle, where Mesa's
 // scissored clear of a multisampled framebuffer reaches.
 // A camera change, a translucent prop in the damage and a large damage must
-// fall back to full frames.
+// fall back to full frames. The chunk actors' inputs change only through the
+// manager, which announces them (a moved chunk announced: equal; the same
+// move unannounced, negative control: differs).
 #include "ChunkTestData.h"
 
+#include "vtkActor.h"
 #include "vtkBrushRepresentation.h"
 #include "vtkCamera.h"
 #include "vtkChunkActorManager.h"
+#include "vtkDataArray.h"
 #include "vtkImageData.h"
+#include "vtkMapper.h"
+#include "vtkPoints.h"
+#include "vtkPolyData.h"
 #include "vtkPartialRedrawCuller.h"
 #include "vtkProperty.h"
 #include "vtkRenderWindow.h"
@@ -333,10 +340,78 @@ int runRefill()
   std::printf("%s: the replaced chunks show their new meshes (%ld pixels differ)\n", diff == 0 ? "ok" : "FAILED", diff);
   return diff == 0 ? 0 : 1;
 }
+// The manager's chunk actors are the culler's announced actors
+// (SetInputChangesAnnounced): a frame takes their inputs' MTimes as of the
+// last announcement. A chunk's input moved in place and announced
+// (InputDataChanged) must give a partial frame equal to the full redraw; the
+// same move unannounced (negative control) must leave the old picture, or
+// this test could not tell that the announcement is what the culler goes by.
+int runAnnouncedInputs()
+{
+  std::printf("---- announced input changes, against an unannounced one (negative control)\n");
+  const auto checker = [](int i, int j, int k) { return checkerColor(i, j, k); };
+  auto before = splitChunks(contractMesh(sdfImage(Cells + 1, sphere), checker), Edge, Cells);
+  auto after = splitChunks(contractMesh(sdfImage(Cells + 1, dented), checker), Edge, Cells);
+  int failures = 0;
+  for (bool announce : { true, false })
+  {
+    vtkNew<vtkRenderer> ren;
+    auto rw = makeTestWindow(320, 300);
+    rw->SetMultiSamples(0);
+    rw->AddRenderer(ren);
+    vtkNew<vtkChunkActorManager> mgr;
+    mgr->SetRenderer(ren);
+    vtkNew<vtkPartialRedrawCuller> culler;
+    culler->SetEnabled(true);
+    mgr->SetRedrawCuller(culler);
+    for (auto& kv : before)
+      mgr->SetChunk(kv.first, kv.second);
+    ren->ResetCamera();
+    ren->GetActiveCamera()->Azimuth(50);
+    ren->GetActiveCamera()->Elevation(20);
+    ren->ResetCameraClippingRange();
+    ren->AddCuller(culler);
+    rw->Render();
+    rw->Render();
+    // a chunk in view: one the dent changes
+    vtkIdType id = -1;
+    for (auto& kv : after)
+      if (before.count(kv.first) && before[kv.first]->GetNumberOfCells() != kv.second->GetNumberOfCells())
+        id = kv.first;
+    vtkActor* actor = mgr->GetChunkActor(id);
+    auto* shown = actor ? vtkPolyData::SafeDownCast(actor->GetMapper()->GetInputDataObject(0, 0)) : nullptr;
+    if (!shown)
+    {
+      std::printf("FAILED: no chunk in view\n");
+      ++failures;
+      continue;
+    }
+    vtkDataArray* xyz = shown->GetPoints()->GetData();
+    for (vtkIdType p = 0; p < xyz->GetNumberOfTuples(); ++p)
+      for (int a = 0; a < 3; ++a)
+        xyz->SetComponent(p, a, xyz->GetComponent(p, a) + 0.7);
+    xyz->Modified();
+    shown->GetPoints()->Modified();
+    if (announce)
+      culler->InputDataChanged(actor);
+    const int partial = culler->GetNumberOfPartialRedraws();
+    rw->Render();
+    auto drawn = windowPixels(rw);
+    const bool inPart = culler->GetNumberOfPartialRedraws() == partial + 1;
+    culler->RequestFullRedraw();
+    rw->Render();
+    const long diff = differingPixels(drawn, windowPixels(rw));
+    const bool ok = inPart && (announce ? diff == 0 : diff > 0);
+    std::printf("%s: a chunk moved in place, %s, drawn in part: %ld pixels differ from the full redraw (%s)\n",
+      ok ? "ok" : "FAILED", announce ? "announced" : "not announced", diff, announce ? "expected none" : "expected some");
+    failures += ok ? 0 : 1;
+  }
+  return failures;
+}
 } // namespace
 
 int TestPartialRedraw(int, char*[])
 {
-  const int failures = runScene(0) + runScene(8) + runRefill() + runMarginControl();
+  const int failures = runScene(0) + runScene(8) + runRefill() + runMarginControl() + runAnnouncedInputs();
   return failures ? EXIT_FAILURE : EXIT_SUCCESS;
 }
