@@ -243,14 +243,18 @@ int localBounds(const DipoleTree& tree, V3 centre, double rho, const V3* pts, in
   // error has halved (a check costs a quadratic per point)
   double checkAt = std::numeric_limits<double>::infinity(), checkedErr = checkAt;
   auto check = [&] {
-    const double slackBase = 1e-9;
+    // the rounding slack: 1e-9 + 1e-12 (|mag| + err + directMag) (terms + 1),
+    // its common factors hoisted; 1 / (4 pi) multiplied (within an ulp of the
+    // division, far inside the slack)
+    const double slackBase = 1e-9, slackScale = 1e-12 * static_cast<double>(terms + 1), slackFar = std::fabs(mag) + err;
+    constexpr double InvFourPi = 1.0 / FourPi;
     std::size_t kept = 0;
     for (const int i : open)
     {
-      const double v = poly.at(off[static_cast<std::size_t>(i)]) + direct[static_cast<std::size_t>(i)];
-      const double slack =
-        slackBase + 1e-12 * (std::fabs(mag) + err + directMag[static_cast<std::size_t>(i)]) * static_cast<double>(terms + 1);
-      const double l = (v - err) / FourPi - slack, u = (v + err) / FourPi + slack;
+      const auto k = static_cast<std::size_t>(i);
+      const double v = poly.at(off[k]) + direct[k];
+      const double slack = slackBase + slackScale * (slackFar + directMag[k]);
+      const double l = (v - err) * InvFourPi - slack, u = (v + err) * InvFourPi + slack;
       lo[i] = l;
       hi[i] = u;
       if (avoidsHalfIntegers(l, u))

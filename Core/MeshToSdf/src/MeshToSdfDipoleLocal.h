@@ -35,13 +35,12 @@ struct LocalPoly
   static constexpr int Sym[3][3] = { { 0, 1, 2 }, { 1, 3, 4 }, { 2, 4, 5 } };
   double v = 0, g[3] = {}, H[6] = {};
   void add(const LocalPoly& o, double sign);
-  /// inline: called for every open voxel at every check
+  /// inline: called for every open voxel at every check (the quadratic form
+  /// from its 6 distinct products)
   double at(V3 x) const
   {
-    const double xx[3] = { x.x, x.y, x.z };
-    double q = 0;
-    for (int i = 0; i < 3; ++i)
-      for (int j = 0; j < 3; ++j) q += xx[i] * this->H[Sym[i][j]] * xx[j];
+    const double q = this->H[0] * x.x * x.x + this->H[3] * x.y * x.y + this->H[5] * x.z * x.z +
+      2 * (this->H[1] * x.x * x.y + this->H[2] * x.x * x.z + this->H[4] * x.y * x.z);
     return this->v + (this->g[0] * x.x + this->g[1] * x.y + this->g[2] * x.z) + 0.5 * q;
   }
 };
