@@ -14,8 +14,18 @@ namespace detail::meshtosdf
 
 namespace
 {
-// symmetric 3x3 as 6 entries: xx, xy, xz, yy, yz, zz
-constexpr int Sym[3][3] = { { 0, 1, 2 }, { 1, 3, 4 }, { 2, 4, 5 } };
+constexpr auto& Sym = LocalPoly::Sym;
+// solidAngle (Van Oosterom & Strackee 1983) for the near triangles' sums
+// here: atan(num / den) where den > 0 (the same angle within an ulp or two,
+// far inside the check's 1e-9 slack; libm's atan2 was 15 % of patch30's time)
+double nearSolidAngle(V3 p, V3 a, V3 b, V3 c)
+{
+  const V3 x = a - p, y = b - p, z = c - p;
+  const double lx = norm(x), ly = norm(y), lz = norm(z);
+  const double num = dot(x, cross(y, z));
+  const double den = lx * ly * lz + dot(x, y) * lz + dot(x, z) * ly + dot(y, z) * lx;
+  return 2.0 * (den > 0 ? std::atan(num / den) : std::atan2(num, den));
+}
 } // namespace
 
 void LocalPoly::add(const LocalPoly& o, double sign)
@@ -23,15 +33,6 @@ void LocalPoly::add(const LocalPoly& o, double sign)
   this->v += sign * o.v;
   for (int i = 0; i < 3; ++i) this->g[i] += sign * o.g[i];
   for (int i = 0; i < 6; ++i) this->H[i] += sign * o.H[i];
-}
-
-double LocalPoly::at(V3 x) const
-{
-  const double xx[3] = { x.x, x.y, x.z };
-  double q = 0;
-  for (int i = 0; i < 3; ++i)
-    for (int j = 0; j < 3; ++j) q += xx[i] * this->H[Sym[i][j]] * xx[j];
-  return this->v + (this->g[0] * x.x + this->g[1] * x.y + this->g[2] * x.z) + 0.5 * q;
 }
 
 LocalPoly clusterLocal(const DipoleTree::Node& nd, V3 y0, int order)
@@ -89,18 +90,30 @@ LocalPoly clusterLocal(const DipoleTree::Node& nd, V3 y0, int order)
   return p;
 }
 
-double clusterLocalRemainder(const DipoleTree::Node& nd, double rMin, double rho, int order)
+namespace
+{
+// sum |T_ij| of a cluster's second-order term
+double quadAbsSum(const DipoleTree::Node& nd)
+{
+  double t = 0;
+  for (const double q : nd.quad) t += std::fabs(q);
+  return t;
+}
+
+// clusterLocalRemainder from |D| and sum |T_ij| (computed once per cluster by clusterLocalError)
+double localRemainder(double dipoleNorm, double quadAbs, double rMin, double rho, int order)
 {
   // |x|^3 / 3! times the third derivatives: |D| 4! / rMin^5 (dipole), sum |T_ij| 5! / rMin^6 (second order)
   const double r5 = rMin * rMin * rMin * rMin * rMin;
-  double third = 24 * norm(nd.dipole) / r5;
-  if (order == 2)
-  {
-    double t = 0;
-    for (const double q : nd.quad) t += std::fabs(q);
-    third += 120 * t / (r5 * rMin);
-  }
+  double third = 24 * dipoleNorm / r5;
+  if (order == 2) third += 120 * quadAbs / (r5 * rMin);
   return rho * rho * rho * third / 6;
+}
+} // namespace
+
+double clusterLocalRemainder(const DipoleTree::Node& nd, double rMin, double rho, int order)
+{
+  return localRemainder(norm(nd.dipole), order == 2 ? quadAbsSum(nd) : 0.0, rMin, rho, order);
 }
 
 double clusterLocalError(const DipoleTree::Node& nd, double r0, double rho, int& order, double remainderScale)
@@ -109,9 +122,10 @@ double clusterLocalError(const DipoleTree::Node& nd, double r0, double rho, int&
   order = 0;
   if (!(d > 0)) return std::numeric_limits<double>::infinity();
   const double rMin = r0 - rho, R = nd.r, A = nd.mass;
+  const double dn = norm(nd.dipole), qa = quadAbsSum(nd);
   const double e0 = A / (d * d);
-  const double e1 = 2 * A * R / (d * d * d) + remainderScale * clusterLocalRemainder(nd, rMin, rho, 1);
-  const double e2 = 3 * A * R * R / (d * d * d * d) + remainderScale * clusterLocalRemainder(nd, rMin, rho, 2);
+  const double e1 = 2 * A * R / (d * d * d) + remainderScale * localRemainder(dn, qa, rMin, rho, 1);
+  const double e2 = 3 * A * R * R / (d * d * d * d) + remainderScale * localRemainder(dn, qa, rMin, rho, 2);
   order = e2 < e1 ? (e2 < e0 ? 2 : 0) : (e1 < e0 ? 1 : 0);
   return order == 2 ? e2 : (order == 1 ? e1 : e0);
 }
@@ -138,12 +152,31 @@ int localBounds(const DipoleTree& tree, V3 centre, double rho, const V3* pts, in
     std::int32_t node;
     int order;
     LocalPoly poly; // the cluster's expansion, subtracted again when it is opened
-    bool operator<(const Open& o) const { return this->err < o.err; }
   };
-  thread_local std::vector<Open> heap;
-  thread_local std::vector<double> direct, directMag; // per point: exact sums of the near triangles
-  thread_local std::vector<int> open; // the points not decided yet
+  // the heap holds (error, slot in the pool): the sift moves 16 bytes, not
+  // the 104 of an Open (the same comparisons, so the same order of opening)
+  struct Key
+  {
+    double err;
+    std::int32_t slot;
+    bool operator<(const Key& o) const { return this->err < o.err; }
+  };
+  thread_local std::vector<Key> heapTL;
+  thread_local std::vector<Open> poolTL;
+  thread_local std::vector<double> directTL, directMagTL; // per point: exact sums of the near triangles
+  thread_local std::vector<int> openTL; // the points not decided yet
+  thread_local std::vector<V3> offTL; // per point: its offset from the centre
+  // bound once: each use of a thread_local in the loops would look its address up again
+  std::vector<Key>& heap = heapTL;
+  std::vector<Open>& pool = poolTL;
+  std::vector<double>& direct = directTL;
+  std::vector<double>& directMag = directMagTL;
+  std::vector<int>& open = openTL;
+  std::vector<V3>& off = offTL;
   heap.clear();
+  pool.clear();
+  off.resize(static_cast<std::size_t>(n));
+  for (int i = 0; i < n; ++i) off[static_cast<std::size_t>(i)] = pts[i] - centre;
   direct.assign(static_cast<std::size_t>(n), 0.0);
   directMag.assign(static_cast<std::size_t>(n), 0.0);
   open.resize(static_cast<std::size_t>(n));
@@ -200,7 +233,8 @@ int localBounds(const DipoleTree& tree, V3 centre, double rho, const V3* pts, in
     }
     work += 2;
     ++terms;
-    heap.push_back(o);
+    heap.push_back(Key{ o.err, static_cast<std::int32_t>(pool.size()) });
+    pool.push_back(o);
     std::push_heap(heap.begin(), heap.end());
   };
   auto close = [&](const Open& o) {
@@ -220,14 +254,18 @@ int localBounds(const DipoleTree& tree, V3 centre, double rho, const V3* pts, in
   // error has halved (a check costs a quadratic per point)
   double checkAt = std::numeric_limits<double>::infinity(), checkedErr = checkAt;
   auto check = [&] {
-    const double slackBase = 1e-9;
+    // the rounding slack: 1e-9 + 1e-12 (|mag| + err + directMag) (terms + 1),
+    // its common factors hoisted; 1 / (4 pi) multiplied (within an ulp of the
+    // division, far inside the slack)
+    const double slackBase = 1e-9, slackScale = 1e-12 * static_cast<double>(terms + 1), slackFar = std::fabs(mag) + err;
+    constexpr double InvFourPi = 1.0 / FourPi;
     std::size_t kept = 0;
     for (const int i : open)
     {
-      const double v = poly.at(pts[i] - centre) + direct[static_cast<std::size_t>(i)];
-      const double slack =
-        slackBase + 1e-12 * (std::fabs(mag) + err + directMag[static_cast<std::size_t>(i)]) * static_cast<double>(terms + 1);
-      const double l = (v - err) / FourPi - slack, u = (v + err) / FourPi + slack;
+      const auto k = static_cast<std::size_t>(i);
+      const double v = poly.at(off[k]) + direct[k];
+      const double slack = slackBase + slackScale * (slackFar + directMag[k]);
+      const double l = (v - err) * InvFourPi - slack, u = (v + err) * InvFourPi + slack;
       lo[i] = l;
       hi[i] = u;
       if (avoidsHalfIntegers(l, u))
@@ -245,7 +283,7 @@ int localBounds(const DipoleTree& tree, V3 centre, double rho, const V3* pts, in
     // checked when the error has halved, and before a leaf is summed at
     // every open point if the error fell since (a check costs a quadratic
     // per point, a leaf a few solid angles per point)
-    const bool leafNext = !heap.empty() && heap.front().node < 0;
+    const bool leafNext = !heap.empty() && pool[static_cast<std::size_t>(heap.front().slot)].node < 0;
     if (unbounded == 0 && (err <= checkAt || heap.empty() || (leafNext && err < checkedErr)))
     {
       check();
@@ -253,7 +291,7 @@ int localBounds(const DipoleTree& tree, V3 centre, double rho, const V3* pts, in
     }
     if (work > budget) break;
     std::pop_heap(heap.begin(), heap.end());
-    const Open o = heap.back();
+    const Open o = pool[static_cast<std::size_t>(heap.back().slot)];
     heap.pop_back();
     close(o);
     const DipoleTree::Node& nd = nodeOf(o.node);
@@ -274,7 +312,7 @@ int localBounds(const DipoleTree& tree, V3 centre, double rho, const V3* pts, in
       const WeightedTri& tri = tris[static_cast<std::size_t>(t)];
       for (const int i : open)
       {
-        const double a = tri.w * solidAngle(pts[i], tri.v[0], tri.v[1], tri.v[2]);
+        const double a = tri.w * nearSolidAngle(pts[i], tri.v[0], tri.v[1], tri.v[2]);
         direct[static_cast<std::size_t>(i)] += a;
         directMag[static_cast<std::size_t>(i)] += std::fabs(a);
       }

@@ -31,9 +31,18 @@ namespace detail::meshtosdf
 /// v + g.x + x'Hx / 2 (H symmetric: xx, xy, xz, yy, yz, zz). In units of 4 pi.
 struct LocalPoly
 {
+  /// symmetric 3x3 as 6 entries: xx, xy, xz, yy, yz, zz
+  static constexpr int Sym[3][3] = { { 0, 1, 2 }, { 1, 3, 4 }, { 2, 4, 5 } };
   double v = 0, g[3] = {}, H[6] = {};
   void add(const LocalPoly& o, double sign);
-  double at(V3 x) const;
+  /// inline: called for every open voxel at every check (the quadratic form
+  /// from its 6 distinct products)
+  double at(V3 x) const
+  {
+    const double q = this->H[0] * x.x * x.x + this->H[3] * x.y * x.y + this->H[5] * x.z * x.z +
+      2 * (this->H[1] * x.x * x.y + this->H[2] * x.x * x.z + this->H[4] * x.y * x.z);
+    return this->v + (this->g[0] * x.x + this->g[1] * x.y + this->g[2] * x.z) + 0.5 * q;
+  }
 };
 
 /// The Taylor expansion about b of a cluster's multipole term (order 1: the
