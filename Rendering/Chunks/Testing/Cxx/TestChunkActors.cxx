@@ -13,6 +13,7 @@
 #include "vtkCornerColorAttributes.h"
 #include "vtkExecutive.h"
 #include "vtkIdList.h"
+#include "vtkIntArray.h"
 #include "vtkMapper.h"
 #include "vtkPartialRedrawCuller.h"
 #include "vtkPoints.h"
@@ -190,6 +191,89 @@ TEST(CornerColorAttributes, SpatialOrderPermutesTrianglesByMortonCode)
   EXPECT_EQ(vtkCornerColorAttributes::MortonCode(0, 1, 0), 2ull);
   EXPECT_EQ(vtkCornerColorAttributes::MortonCode(0, 0, 1), 4ull);
   EXPECT_EQ(vtkCornerColorAttributes::MortonCode(3, 5, 6), 0b110101011ull);
+}
+
+namespace
+{
+// Every output array value and the connectivity of two preparations (same
+// point array names in the same order); the first difference, or "".
+std::string firstDifference(vtkPolyData* a, vtkPolyData* b)
+{
+  if (a->GetNumberOfPoints() != b->GetNumberOfPoints() || a->GetNumberOfPolys() != b->GetNumberOfPolys())
+    return "sizes";
+  for (vtkIdType p = 0; p < a->GetNumberOfPoints(); ++p)
+  {
+    double x[3], y[3];
+    a->GetPoint(p, x);
+    b->GetPoint(p, y);
+    if (!std::equal(x, x + 3, y))
+      return "point " + std::to_string(p);
+  }
+  if (a->GetPointData()->GetNumberOfArrays() != b->GetPointData()->GetNumberOfArrays())
+    return "point array count";
+  for (int i = 0; i < a->GetPointData()->GetNumberOfArrays(); ++i)
+  {
+    vtkDataArray* u = a->GetPointData()->GetArray(i);
+    vtkDataArray* v = b->GetPointData()->GetArray(i);
+    if (std::string(u->GetName()) != v->GetName() || u->GetDataType() != v->GetDataType() ||
+      u->GetNumberOfComponents() != v->GetNumberOfComponents())
+      return std::string("array ") + u->GetName();
+    for (vtkIdType t = 0; t < u->GetNumberOfTuples(); ++t)
+      for (int c = 0; c < u->GetNumberOfComponents(); ++c)
+        if (u->GetComponent(t, c) != v->GetComponent(t, c))
+          return std::string("array ") + u->GetName() + " tuple " + std::to_string(t);
+  }
+  if (a->GetPolys()->IsStorage64Bit() != b->GetPolys()->IsStorage64Bit())
+    return "cell storage";
+  for (vtkIdType t = 0; t < a->GetNumberOfPolys(); ++t)
+  {
+    vtkNew<vtkIdList> ia, ib;
+    a->GetPolys()->GetCellAtId(t, ia);
+    b->GetPolys()->GetCellAtId(t, ib);
+    if (ia->GetNumberOfIds() != ib->GetNumberOfIds() ||
+      !std::equal(ia->begin(), ia->end(), ib->begin()))
+      return "triangle " + std::to_string(t);
+  }
+  return "";
+}
+
+vtkSmartPointer<vtkPolyData> prepared(vtkPolyData* mesh, const double origin[3])
+{
+  vtkNew<vtkCornerColorAttributes> f;
+  f->SetInputData(mesh);
+  f->SetOrigin(const_cast<double*>(origin));
+  f->SetSpacing(0.5, 0.5, 0.5);
+  f->SpatialOrderOn();
+  f->Update();
+  return f->GetOutput();
+}
+} // namespace
+
+// Marching cubes' meshes (float points, int cell_ijk, triangles only) take the
+// filter's typed loops; any other input the generic ones. Both give the same
+// output: here the same mesh with double points (the generic path).
+TEST(CornerColorAttributes, TypedPathEqualsGenericPath)
+{
+  auto mesh = sphereMesh(24, 0.5);
+  ASSERT_EQ(mesh->GetPoints()->GetDataType(), VTK_FLOAT);
+  ASSERT_NE(vtkIntArray::SafeDownCast(mesh->GetCellData()->GetArray("cell_ijk")), nullptr);
+  vtkNew<vtkPolyData> asDouble;
+  asDouble->ShallowCopy(mesh);
+  vtkNew<vtkPoints> dp;
+  dp->SetDataTypeToDouble();
+  dp->SetNumberOfPoints(mesh->GetNumberOfPoints());
+  for (vtkIdType p = 0; p < mesh->GetNumberOfPoints(); ++p)
+    dp->SetPoint(p, mesh->GetPoint(p)); // float values, exact in double
+  asDouble->SetPoints(dp);
+  ASSERT_EQ(asDouble->GetPoints()->GetDataType(), VTK_DOUBLE);
+  const double origin[3] = { 0.25, -1.5, 3.0 };
+  auto typed = prepared(mesh, origin);
+  auto generic = prepared(asDouble, origin);
+  ASSERT_GT(typed->GetNumberOfPolys(), 100);
+  EXPECT_EQ(firstDifference(typed, generic), "");
+  // negative control: another origin changes the local coordinates, and the comparison sees it
+  const double shifted[3] = { 0.5, -1.5, 3.0 };
+  EXPECT_NE(firstDifference(typed, prepared(asDouble, shifted)), "");
 }
 
 TEST(CornerColorAttributes, RefusesInputWithoutContract)
