@@ -37,6 +37,14 @@ struct vtkChunkActorManager::Hashes
   std::vector<std::pair<std::uint64_t, vtkIdType>> sorted;
 };
 
+// The triangles by which a new mesh differs from a chunk's current one.
+struct vtkChunkActorManager::Change
+{
+  bool Known = false;
+  double Bounds[6];
+  std::vector<double> Points; // x, y, z of each changed triangle's points
+};
+
 struct vtkChunkActorManager::Internals
 {
   struct Entry
@@ -529,20 +537,40 @@ void vtkChunkActorManager::SetChunks(const std::vector<vtkIdType>& chunkIds, con
   std::vector<vtkSmartPointer<vtkPolyData>> ready(n);
   std::vector<Hashes> hashes(n);
   std::vector<char> hashed(n, 0);
+  std::vector<Change> changes(n);
   vtkPartialRedrawCuller* culler = this->Internal->Culler;
   const bool declare = culler && culler->GetEnabled();
-  // the per-triangle work of each chunk (preparation, hashes) in parallel;
-  // the actors, mappers and the culler on this thread
+  // A chunk named once in this call is compared with its current mesh in the
+  // parallel part (ApplyChunk then only declares the result); one named twice
+  // is compared in ApplyChunk, with the mesh its first occurrence installed.
+  std::map<vtkIdType, int> named;
+  for (std::size_t i = 0; i < n; ++i)
+  {
+    ++named[chunkIds[i]];
+  }
+  // the per-triangle work of each chunk (preparation, hashes, the changed
+  // triangles) in parallel, reading the chunk table (nothing writes it
+  // meanwhile: this thread waits in For); the actors, mappers and the culler
+  // on this thread
+  const auto& chunks = this->Internal->Chunks;
   vtkSMPTools::For(0, static_cast<vtkIdType>(n), [&](vtkIdType begin, vtkIdType end) {
     for (vtkIdType i = begin; i < end; ++i)
     {
       ready[i] = this->PrepareChunk(meshes[i]);
       hashed[i] = declare && hashesOf(meshes[i], hashes[i]);
+      auto it = chunks.find(chunkIds[i]);
+      if (hashed[i] && named.at(chunkIds[i]) == 1 && it != chunks.end() && it->second.Source && it->second.HashesValid)
+      {
+        changedBoundsOf(it->second.Source, it->second.SourceHashes.sorted, meshes[i], hashes[i].sorted,
+          changes[i].Bounds, &changes[i].Points);
+        changes[i].Known = true;
+      }
     }
   });
   for (std::size_t i = 0; i < n; ++i)
   {
-    this->ApplyChunk(chunkIds[i], meshes[i], ready[i], ready[i].Get() != meshes[i], hashed[i] ? &hashes[i] : nullptr);
+    this->ApplyChunk(chunkIds[i], meshes[i], ready[i], ready[i].Get() != meshes[i], hashed[i] ? &hashes[i] : nullptr,
+      &changes[i]);
   }
 }
 
@@ -558,7 +586,7 @@ bool vtkChunkActorManager::hashesOf(vtkPolyData* mesh, Hashes& out)
 }
 
 void vtkChunkActorManager::ApplyChunk(
-  vtkIdType chunkId, vtkPolyData* mesh, vtkPolyData* ready, bool owned, Hashes* hashes)
+  vtkIdType chunkId, vtkPolyData* mesh, vtkPolyData* ready, bool owned, Hashes* hashes, const Change* change)
 {
   if (!ready || ready->GetNumberOfCells() == 0)
   {
@@ -624,7 +652,12 @@ void vtkChunkActorManager::ApplyChunk(
     // projections, which is tighter than the projection of their box.
     double changed[6];
     vtkPolyData* before = e.Source;
-    if (hashed && e.HashesValid)
+    if (change && change->Known)
+    {
+      culler->EndChange(e.Actor, change->Bounds, change->Points.data(),
+        static_cast<vtkIdType>(change->Points.size() / 3));
+    }
+    else if (hashed && e.HashesValid)
     {
       std::vector<double> points;
       changedBoundsOf(before, e.SourceHashes.sorted, mesh, hashes->sorted, changed, &points);

@@ -154,8 +154,12 @@ private:
 
   /// Shows `ready` (prepared from `mesh`; `owned`: made here, may be refilled
   /// into the next time) for a chunk; `hashes`: triangleHashes of `mesh`, if known.
+  /// `change`: the changed triangles' bounds and points against the chunk's
+  /// current mesh, if SetChunks measured them in its parallel part.
   struct Hashes;
-  void ApplyChunk(vtkIdType chunkId, vtkPolyData* mesh, vtkPolyData* ready, bool owned, Hashes* hashes);
+  struct Change;
+  void ApplyChunk(vtkIdType chunkId, vtkPolyData* mesh, vtkPolyData* ready, bool owned, Hashes* hashes,
+    const Change* change = nullptr);
   /// triangleHashes of `mesh`, sorted with their triangles' indices; false if it has cells other than triangles.
   static bool hashesOf(vtkPolyData* mesh, Hashes& out);
 
