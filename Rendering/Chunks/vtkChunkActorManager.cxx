@@ -8,6 +8,7 @@
 #include "vtkMath.h"
 #include "vtkNew.h"
 #include "vtkFieldData.h"
+#include "vtkInformation.h"
 #include "vtkObjectFactory.h"
 #include "vtkPartialRedrawCuller.h"
 #include "vtkPartitionedDataSet.h"
@@ -335,8 +336,12 @@ bool refill(vtkPolyData* shown, vtkPolyData* next)
   // copying does not mark an array modified, and the buffer upload and the
   // cached ranges go by the array's MTime)
   ps->GetData()->ShallowCopy(pn->GetData());
-  ps->GetData()->Modified();
-  ps->Modified();
+  ps->Modified(); // the points and their array
+  // the ranges cached with the new coordinates (PrepareChunk), set after the
+  // modification so that they count as current; the old ones cleared first
+  // (an entry left over would count as current too)
+  ps->GetData()->GetInformation()->Clear();
+  ps->GetData()->GetInformation()->Copy(pn->GetData()->GetInformation(), 1);
   for (vtkDataSetAttributes* d : { static_cast<vtkDataSetAttributes*>(shown->GetPointData()),
          static_cast<vtkDataSetAttributes*>(shown->GetCellData()) })
   {
@@ -519,6 +524,16 @@ vtkSmartPointer<vtkPolyData> vtkChunkActorManager::PrepareChunk(vtkPolyData* mes
   attributes->SetInputData(mesh);
   attributes->Update();
   vtkSmartPointer<vtkPolyData> out = attributes->GetOutput();
+  // The buffer upload asks for the coordinates' ranges (VTK's automatic shift
+  // and scale of the vertex buffer); the array caches them, so they are
+  // computed here, where the chunks are prepared in parallel, not in the
+  // render (refill carries them over).
+  vtkDataArray* xyz = out->GetPoints()->GetData();
+  for (int c = 0; c < xyz->GetNumberOfComponents(); ++c)
+  {
+    double range[2];
+    xyz->GetRange(range, c);
+  }
   return out;
 }
 

@@ -478,6 +478,60 @@ TEST(ChunkActorManager, SetChunksEqualsSetChunkOneByOne)
   }
 }
 
+// The coordinates' ranges (which the vertex buffer upload asks for) are
+// computed when a chunk is prepared and cached in the array; a refilled array
+// carries the new mesh's ranges, never the old ones.
+TEST(ChunkActorManager, RefilledCoordinatesCarryTheirOwnRanges)
+{
+  auto first = splitChunks(sphereMesh(40), 16, 39);
+  auto second = splitChunks(sphereMesh(46), 16, 45);
+  vtkNew<vtkChunkActorManager> mgr;
+  std::vector<vtkIdType> ids;
+  std::vector<vtkPolyData*> meshes;
+  for (auto& kv : first)
+  {
+    mgr->SetChunk(kv.first, kv.second);
+    if (second.count(kv.first))
+    {
+      ids.push_back(kv.first);
+      meshes.push_back(second[kv.first]);
+    }
+  }
+  ASSERT_FALSE(ids.empty());
+  std::map<vtkIdType, vtkDataArray*> shownBefore;
+  for (vtkIdType id : ids)
+    shownBefore[id] = vtkPolyData::SafeDownCast(mgr->GetChunkActor(id)->GetMapper()->GetInputDataObject(0, 0))
+                        ->GetPoints()->GetData();
+  mgr->SetChunks(ids, meshes);
+  int refilled = 0, differ = 0;
+  for (vtkIdType id : ids)
+  {
+    vtkDataArray* xyz = vtkPolyData::SafeDownCast(mgr->GetChunkActor(id)->GetMapper()->GetInputDataObject(0, 0))
+                          ->GetPoints()->GetData();
+    refilled += xyz == shownBefore[id];
+    for (int c = 0; c < 3; ++c)
+    {
+      double cached[2], computed[2] = { VTK_DOUBLE_MAX, -VTK_DOUBLE_MAX };
+      xyz->GetRange(cached, c);
+      for (vtkIdType t = 0; t < xyz->GetNumberOfTuples(); ++t) // (a copy would carry the cache)
+      {
+        computed[0] = std::min(computed[0], xyz->GetComponent(t, c));
+        computed[1] = std::max(computed[1], xyz->GetComponent(t, c));
+      }
+      EXPECT_EQ(cached[0], computed[0]) << "chunk " << id << " component " << c;
+      EXPECT_EQ(cached[1], computed[1]) << "chunk " << id << " component " << c;
+    }
+    // negative control: the first mesh's ranges differ from the second's
+    vtkSmartPointer<vtkPolyData> old = mgr->PrepareChunk(first[id]);
+    double a[2], b[2];
+    old->GetPoints()->GetData()->GetRange(a, 0);
+    xyz->GetRange(b, 0);
+    differ += a[0] != b[0] || a[1] != b[1];
+  }
+  EXPECT_EQ(refilled, static_cast<int>(ids.size())); // the refill path was taken
+  EXPECT_GT(differ, 0);
+}
+
 TEST(ChunkActorManager, PlainMeshesKeepTheirPoints)
 {
   auto mesh = sphereMesh(20);
@@ -644,3 +698,4 @@ TEST(ChunkActorManager, ChangedBoundsAreThoseOfTheDifferingTriangles)
   for (int i = 0; i < 6; ++i)
     EXPECT_EQ(b[i], before->GetBounds()[i]);
 }
+
