@@ -534,6 +534,10 @@ vtkSmartPointer<vtkPolyData> vtkChunkActorManager::PrepareChunk(vtkPolyData* mes
     double range[2];
     xyz->GetRange(range, c);
   }
+  // Likewise the cells' bounds, which the culler asks the mapper for
+  // (ApplyChunk hands them to it: vtkTetrahedralColorMapper::SetInputBounds).
+  double bounds[6];
+  out->GetCellsBounds(bounds);
   return out;
 }
 
@@ -656,6 +660,14 @@ void vtkChunkActorManager::ApplyChunk(
   if (culler)
   {
     culler->InputDataChanged(e.Actor); // refilled in place, or a new input: announced
+  }
+  if (owned)
+  {
+    // made by PrepareChunk, which computed the cells' bounds (cached in
+    // `ready`); refilled or not, the mapper's input holds the same cells
+    double bounds[6];
+    ready->GetCellsBounds(bounds);
+    e.Mapper->SetInputBounds(bounds);
   }
   const bool hashed = hashes != nullptr;
   if (declare)

@@ -532,6 +532,64 @@ TEST(ChunkActorManager, RefilledCoordinatesCarryTheirOwnRanges)
   EXPECT_GT(differ, 0);
 }
 
+// The cells' bounds are computed when a chunk is prepared and handed to its
+// mapper (vtkTetrahedralColorMapper::SetInputBounds): the mapper's bounds are
+// those of the mesh it shows, after a refill too, and once the mesh is
+// changed in place, those of the changed mesh.
+TEST(ChunkActorManager, MapperBoundsAreThoseOfTheShownMesh)
+{
+  auto first = splitChunks(sphereMesh(40), 16, 39);
+  auto second = splitChunks(sphereMesh(46), 16, 45);
+  vtkNew<vtkChunkActorManager> mgr;
+  std::vector<vtkIdType> ids;
+  std::vector<vtkPolyData*> meshes;
+  for (auto& kv : first)
+  {
+    mgr->SetChunk(kv.first, kv.second);
+    if (second.count(kv.first))
+    {
+      ids.push_back(kv.first);
+      meshes.push_back(second[kv.first]);
+    }
+  }
+  mgr->SetChunks(ids, meshes); // refilled
+  // the cells' bounds of a poly data, from its cells' points
+  auto cellsBounds = [](vtkPolyData* pd) {
+    std::vector<double> b = { VTK_DOUBLE_MAX, -VTK_DOUBLE_MAX, VTK_DOUBLE_MAX, -VTK_DOUBLE_MAX, VTK_DOUBLE_MAX,
+      -VTK_DOUBLE_MAX };
+    vtkNew<vtkIdList> cell;
+    for (vtkIdType c = 0; c < pd->GetNumberOfCells(); ++c)
+    {
+      pd->GetCellPoints(c, cell);
+      for (vtkIdType k = 0; k < cell->GetNumberOfIds(); ++k)
+        for (int a = 0; a < 3; ++a)
+        {
+          b[2 * a] = std::min(b[2 * a], pd->GetPoint(cell->GetId(k))[a]);
+          b[2 * a + 1] = std::max(b[2 * a + 1], pd->GetPoint(cell->GetId(k))[a]);
+        }
+    }
+    return b;
+  };
+  for (vtkIdType id : ids)
+  {
+    vtkMapper* m = mgr->GetChunkActor(id)->GetMapper();
+    auto* shown = vtkPolyData::SafeDownCast(m->GetInputDataObject(0, 0));
+    const double* mb = m->GetBounds();
+    EXPECT_EQ(std::vector<double>(mb, mb + 6), cellsBounds(shown)) << "chunk " << id;
+  }
+  // changed in place (a point moved out of the box): the mapper's bounds follow
+  vtkMapper* m = mgr->GetChunkActor(ids.front())->GetMapper();
+  auto* shown = vtkPolyData::SafeDownCast(m->GetInputDataObject(0, 0));
+  double p[3];
+  shown->GetPoint(0, p);
+  p[0] += 100;
+  shown->GetPoints()->SetPoint(0, p);
+  shown->GetPoints()->Modified();
+  const double* mb = m->GetBounds();
+  EXPECT_EQ(std::vector<double>(mb, mb + 6), cellsBounds(shown));
+  EXPECT_GE(mb[1], p[0]);
+}
+
 TEST(ChunkActorManager, PlainMeshesKeepTheirPoints)
 {
   auto mesh = sphereMesh(20);
