@@ -559,33 +559,60 @@ void vtkChunkActorManager::SetChunks(const std::vector<vtkIdType>& chunkIds, con
   std::vector<Change> changes(n);
   vtkPartialRedrawCuller* culler = this->Internal->Culler;
   const bool declare = culler && culler->GetEnabled();
-  // A chunk named once in this call is compared with its current mesh in the
-  // parallel part (ApplyChunk then only declares the result); one named twice
-  // is compared in ApplyChunk, with the mesh its first occurrence installed.
+  // Each mesh object is read by one thread only: a chunk is compared with its
+  // current mesh in the parallel part (ApplyChunk then only declares the
+  // result) when it is named once in this call and its current mesh is no
+  // other chunk's and none of this call's; otherwise in ApplyChunk, in order.
+  // A mesh given twice is prepared on this thread.
+  const auto& chunks = this->Internal->Chunks;
   std::map<vtkIdType, int> named;
+  std::map<vtkPolyData*, int> reads; // per mesh object: the threads' readers
   for (std::size_t i = 0; i < n; ++i)
   {
     ++named[chunkIds[i]];
+    ++reads[meshes[i]];
+  }
+  bool distinct = true;
+  for (const auto& kv : reads)
+  {
+    distinct = distinct && (kv.first == nullptr || kv.second == 1);
+  }
+  std::vector<vtkPolyData*> before(n, nullptr);
+  for (std::size_t i = 0; i < n; ++i)
+  {
+    auto it = chunks.find(chunkIds[i]);
+    if (named[chunkIds[i]] == 1 && it != chunks.end() && it->second.Source && it->second.HashesValid)
+    {
+      before[i] = it->second.Source;
+      ++reads[before[i]];
+    }
   }
   // the per-triangle work of each chunk (preparation, hashes, the changed
-  // triangles) in parallel, reading the chunk table (nothing writes it
-  // meanwhile: this thread waits in For); the actors, mappers and the culler
-  // on this thread
-  const auto& chunks = this->Internal->Chunks;
-  vtkSMPTools::For(0, static_cast<vtkIdType>(n), [&](vtkIdType begin, vtkIdType end) {
+  // triangles) in parallel, reading the chunk table's meshes (nothing writes
+  // them meanwhile: this thread waits in For); the actors, mappers and the
+  // culler on this thread
+  auto prepare = [&](vtkIdType begin, vtkIdType end) {
     for (vtkIdType i = begin; i < end; ++i)
     {
       ready[i] = this->PrepareChunk(meshes[i]);
       hashed[i] = declare && hashesOf(meshes[i], hashes[i]);
-      auto it = chunks.find(chunkIds[i]);
-      if (hashed[i] && named.at(chunkIds[i]) == 1 && it != chunks.end() && it->second.Source && it->second.HashesValid)
+      if (hashed[i] && before[i] && reads.at(before[i]) == 1)
       {
-        changedBoundsOf(it->second.Source, it->second.SourceHashes.sorted, meshes[i], hashes[i].sorted,
-          changes[i].Bounds, &changes[i].Points);
+        const Internals::Entry& e = chunks.at(chunkIds[i]);
+        changedBoundsOf(before[i], e.SourceHashes.sorted, meshes[i], hashes[i].sorted, changes[i].Bounds,
+          &changes[i].Points);
         changes[i].Known = true;
       }
     }
-  });
+  };
+  if (distinct)
+  {
+    vtkSMPTools::For(0, static_cast<vtkIdType>(n), prepare);
+  }
+  else
+  {
+    prepare(0, static_cast<vtkIdType>(n));
+  }
   for (std::size_t i = 0; i < n; ++i)
   {
     this->ApplyChunk(chunkIds[i], meshes[i], ready[i], ready[i].Get() != meshes[i], hashed[i] ? &hashes[i] : nullptr,

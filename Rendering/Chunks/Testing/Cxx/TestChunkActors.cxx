@@ -590,6 +590,44 @@ TEST(ChunkActorManager, MapperBoundsAreThoseOfTheShownMesh)
   EXPECT_GE(mb[1], p[0]);
 }
 
+// One mesh object given for two chunks, then replaced in both with one call
+// (each object read by one thread at a time: such calls take the serial
+// path): the same pictures' inputs as SetChunk one by one.
+TEST(ChunkActorManager, SetChunksWithSharedMeshesEqualsSetChunk)
+{
+  auto first = splitChunks(sphereMesh(40), 16, 39);
+  auto second = splitChunks(sphereMesh(46), 16, 45);
+  ASSERT_GE(first.size(), 2u);
+  const vtkIdType a = first.begin()->first, b = std::next(first.begin())->first;
+  vtkNew<vtkRenderer> r1, r2;
+  vtkNew<vtkChunkActorManager> one, many;
+  one->SetRenderer(r1);
+  many->SetRenderer(r2);
+  vtkNew<vtkPartialRedrawCuller> c1, c2;
+  c1->SetEnabled(true);
+  c2->SetEnabled(true);
+  one->SetRedrawCuller(c1);
+  many->SetRedrawCuller(c2);
+  vtkPolyData* shared = first[a];
+  for (vtkChunkActorManager* m : { one.Get(), many.Get() })
+  {
+    m->SetChunk(a, shared);
+    m->SetChunk(b, shared);
+  }
+  // b gets the mesh a had (still a's current one), a gets a new one, then b once more
+  one->SetChunk(a, second[a]);
+  one->SetChunk(b, shared);
+  one->SetChunk(b, second[a]);
+  many->SetChunks({ a, b, b }, { second[a].Get(), shared, second[a].Get() });
+  for (vtkIdType id : { a, b })
+  {
+    auto* x = vtkPolyData::SafeDownCast(one->GetChunkActor(id)->GetMapper()->GetInputDataObject(0, 0));
+    auto* y = vtkPolyData::SafeDownCast(many->GetChunkActor(id)->GetMapper()->GetInputDataObject(0, 0));
+    ASSERT_TRUE(x && y);
+    EXPECT_EQ(differsFrom(x, y), "") << "chunk " << id;
+  }
+}
+
 TEST(ChunkActorManager, PlainMeshesKeepTheirPoints)
 {
   auto mesh = sphereMesh(20);
