@@ -526,18 +526,15 @@ vtkSmartPointer<vtkPolyData> vtkChunkActorManager::PrepareChunk(vtkPolyData* mes
   vtkSmartPointer<vtkPolyData> out = attributes->GetOutput();
   // The buffer upload asks for the coordinates' ranges (VTK's automatic shift
   // and scale of the vertex buffer); the array caches them, so they are
-  // computed here, where the chunks are prepared in parallel, not in the
-  // render (refill carries them over).
+  // computed here (by the filter itself for marching cubes' meshes), where the
+  // chunks are prepared in parallel, not in the render (refill carries them
+  // over). They are also the cells' bounds (preparedBounds).
   vtkDataArray* xyz = out->GetPoints()->GetData();
   for (int c = 0; c < xyz->GetNumberOfComponents(); ++c)
   {
     double range[2];
     xyz->GetRange(range, c);
   }
-  // Likewise the cells' bounds, which the culler asks the mapper for
-  // (ApplyChunk hands them to it: vtkTetrahedralColorMapper::SetInputBounds).
-  double bounds[6];
-  out->GetCellsBounds(bounds);
   return out;
 }
 
@@ -690,10 +687,15 @@ void vtkChunkActorManager::ApplyChunk(
   }
   if (owned)
   {
-    // made by PrepareChunk, which computed the cells' bounds (cached in
-    // `ready`); refilled or not, the mapper's input holds the same cells
+    // Made by PrepareChunk: every point is a corner of one triangle (the
+    // points are un-shared), so the cells' bounds are the coordinates' ranges,
+    // cached there; refilled or not, the mapper's input holds the same cells.
+    vtkDataArray* xyz = ready->GetPoints()->GetData();
     double bounds[6];
-    ready->GetCellsBounds(bounds);
+    for (int a = 0; a < 3; ++a)
+    {
+      xyz->GetRange(bounds + 2 * a, a);
+    }
     e.Mapper->SetInputBounds(bounds);
   }
   const bool hashed = hashes != nullptr;

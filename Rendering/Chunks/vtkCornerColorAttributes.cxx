@@ -6,6 +6,8 @@
 #include "vtkFloatArray.h"
 #include "vtkIdList.h"
 #include "vtkInformation.h"
+#include "vtkInformationDoubleVectorKey.h"
+#include "vtkInformationInformationVectorKey.h"
 #include "vtkInformationVector.h"
 #include "vtkIntArray.h"
 #include "vtkNew.h"
@@ -329,6 +331,36 @@ int vtkCornerColorAttributes::RequestData(
   for (int c = 0; c < 3; ++c)
   {
     outPd->AddArray(cornerArrays[c]);
+  }
+  if (typed && triangles > 0)
+  {
+    // The coordinates' ranges, cached in the array as vtkDataArray::GetRange
+    // caches them (PER_COMPONENT, COMPONENT_RANGE; set after the array's last
+    // modification, so they count as current): one tight pass here instead of
+    // VTK's generic one when the vertex buffer upload (its automatic shift and
+    // scale) or vtkChunkActorManager asks. The typed path's points are finite
+    // marching cubes vertices.
+    float lo[3], hi[3];
+    for (int a = 0; a < 3; ++a)
+    {
+      lo[a] = hi[a] = outXyz[a];
+    }
+    for (vtkIdType i = 0; i < 3 * triangles; ++i)
+    {
+      for (int a = 0; a < 3; ++a)
+      {
+        lo[a] = std::min(lo[a], outXyz[3 * i + a]);
+        hi[a] = std::max(hi[a], outXyz[3 * i + a]);
+      }
+    }
+    vtkNew<vtkInformationVector> perComponent;
+    perComponent->SetNumberOfInformationObjects(3);
+    for (int a = 0; a < 3; ++a)
+    {
+      const double range[2] = { lo[a], hi[a] };
+      perComponent->GetInformationObject(a)->Set(vtkDataArray::COMPONENT_RANGE(), range, 2);
+    }
+    pts->GetData()->GetInformation()->Set(vtkAbstractArray::PER_COMPONENT(), perComponent);
   }
   return 1;
 }

@@ -271,6 +271,24 @@ TEST(CornerColorAttributes, TypedPathEqualsGenericPath)
   auto generic = prepared(asDouble, origin);
   ASSERT_GT(typed->GetNumberOfPolys(), 100);
   EXPECT_EQ(firstDifference(typed, generic), "");
+  // the typed path caches its coordinates' ranges: those of the values, as
+  // VTK computes them for the generic path's output
+  for (int c = 0; c < 3; ++c)
+  {
+    vtkDataArray* xyz = typed->GetPoints()->GetData();
+    double cached[2], computed[2], brute[2] = { VTK_DOUBLE_MAX, -VTK_DOUBLE_MAX };
+    xyz->GetRange(cached, c);
+    generic->GetPoints()->GetData()->GetRange(computed, c);
+    for (vtkIdType t = 0; t < xyz->GetNumberOfTuples(); ++t)
+    {
+      brute[0] = std::min(brute[0], xyz->GetComponent(t, c));
+      brute[1] = std::max(brute[1], xyz->GetComponent(t, c));
+    }
+    EXPECT_EQ(cached[0], brute[0]);
+    EXPECT_EQ(cached[1], brute[1]);
+    EXPECT_EQ(cached[0], computed[0]);
+    EXPECT_EQ(cached[1], computed[1]);
+  }
   // negative control: another origin changes the local coordinates, and the comparison sees it
   const double shifted[3] = { 0.5, -1.5, 3.0 };
   EXPECT_NE(firstDifference(typed, prepared(asDouble, shifted)), "");
