@@ -1,6 +1,3 @@
-// before any Qt header: TBB (under vtkSMPTools) uses the name Qt defines as the keyword `emit`
-#include "vtkSMPTools.h"
-
 #include "MainWindow.h"
 #include "Matcap.h"
 #include "vtkTexture.h"
@@ -539,7 +536,7 @@ void MainWindow::installFinishedMeshes()
   // the actors of a frame's chunks in one call: SetChunks prepares them in parallel
   const auto t0 = std::chrono::steady_clock::now();
   std::vector<vtkIdType> ids;
-  std::vector<const lvdif::ChunkMesh*> made;
+  std::vector<vtkSmartPointer<vtkPolyData>> polys;
   for (const auto& kv : newest)
   {
     if (kv.second->empty())
@@ -547,17 +544,9 @@ void MainWindow::installFinishedMeshes()
     else
     {
       ids.push_back(kv.first);
-      made.push_back(kv.second);
+      polys.push_back(LVDIFChunkedMarchingCubesOutput::VolumeChunkToPolyData(*kv.second, this->Doc.volume()));
     }
   }
-  // Converted in parallel too: each reads its mesh and the volume's colour
-  // table, which only this thread writes (the brush), and it waits here.
-  std::vector<vtkSmartPointer<vtkPolyData>> polys(made.size());
-  const lvdif::DictionaryVolume& volume = this->Doc.volume();
-  vtkSMPTools::For(0, static_cast<vtkIdType>(made.size()), [&](vtkIdType begin, vtkIdType end) {
-    for (vtkIdType i = begin; i < end; ++i)
-      polys[i] = LVDIFChunkedMarchingCubesOutput::VolumeChunkToPolyData(*made[i], volume);
-  });
   const auto t1 = std::chrono::steady_clock::now();
   this->Chunks->SetChunks(ids, std::vector<vtkPolyData*>(polys.begin(), polys.end()));
   this->Profile.convertMs += std::chrono::duration<double, std::milli>(t1 - t0).count();
