@@ -77,14 +77,18 @@ public:
   vtkTexture* GetMatcapTexture();
 
   /// Prepares a mesh for rendering (un-shares vertices for the tetrahedral
-  /// shader when the mesh carries corner colours). Thread-safe; SetChunk calls
-  /// it unless told the mesh is prepared.
+  /// shader when the mesh carries corner colours; the coordinates' ranges,
+  /// which the buffer upload and the mapper's bounds use, cached in their
+  /// array). Thread-safe for distinct meshes; SetChunk calls it unless told
+  /// the mesh is prepared.
   vtkSmartPointer<vtkPolyData> PrepareChunk(vtkPolyData* mesh) const;
 
   /// Replaces the mesh of one chunk. A null or empty mesh removes the chunk.
   void SetChunk(vtkIdType chunkId, vtkPolyData* mesh, bool prepared = false);
   /// SetChunk of each (id, mesh) in order, the meshes prepared (and their
   /// changes measured) in parallel (vtkSMPTools): a frame's re-meshed chunks.
+  /// A mesh object is read by one thread at a time (one given twice makes the
+  /// call prepare on this thread).
   void SetChunks(const std::vector<vtkIdType>& chunkIds, const std::vector<vtkPolyData*>& meshes);
   void RemoveChunk(vtkIdType chunkId);
   /// Shows every partition of vtkChunkedMarchingCubes' partitioned output
