@@ -528,7 +528,8 @@ vtkSmartPointer<vtkPolyData> vtkChunkActorManager::PrepareChunk(vtkPolyData* mes
   // and scale of the vertex buffer); the array caches them, so they are
   // computed here (by the filter itself for marching cubes' meshes), where the
   // chunks are prepared in parallel, not in the render (refill carries them
-  // over). They are also the cells' bounds (preparedBounds).
+  // over). They are also the cells' bounds, which ApplyChunk hands to the
+  // mapper.
   vtkDataArray* xyz = out->GetPoints()->GetData();
   for (int c = 0; c < xyz->GetNumberOfComponents(); ++c)
   {
