@@ -8,6 +8,7 @@
 #include "vtkMath.h"
 #include "vtkNew.h"
 #include "vtkFieldData.h"
+#include "vtkInformation.h"
 #include "vtkObjectFactory.h"
 #include "vtkPartialRedrawCuller.h"
 #include "vtkPartitionedDataSet.h"
@@ -35,6 +36,14 @@ vtkStandardNewMacro(vtkChunkActorManager);
 struct vtkChunkActorManager::Hashes
 {
   std::vector<std::pair<std::uint64_t, vtkIdType>> sorted;
+};
+
+// The triangles by which a new mesh differs from a chunk's current one.
+struct vtkChunkActorManager::Change
+{
+  bool Known = false;
+  double Bounds[6];
+  std::vector<double> Points; // x, y, z of each changed triangle's points
 };
 
 struct vtkChunkActorManager::Internals
@@ -327,8 +336,12 @@ bool refill(vtkPolyData* shown, vtkPolyData* next)
   // copying does not mark an array modified, and the buffer upload and the
   // cached ranges go by the array's MTime)
   ps->GetData()->ShallowCopy(pn->GetData());
-  ps->GetData()->Modified();
-  ps->Modified();
+  ps->Modified(); // the points and their array
+  // the ranges cached with the new coordinates (PrepareChunk), set after the
+  // modification so that they count as current; the old ones cleared first
+  // (an entry left over would count as current too)
+  ps->GetData()->GetInformation()->Clear();
+  ps->GetData()->GetInformation()->Copy(pn->GetData()->GetInformation(), 1);
   for (vtkDataSetAttributes* d : { static_cast<vtkDataSetAttributes*>(shown->GetPointData()),
          static_cast<vtkDataSetAttributes*>(shown->GetCellData()) })
   {
@@ -511,6 +524,18 @@ vtkSmartPointer<vtkPolyData> vtkChunkActorManager::PrepareChunk(vtkPolyData* mes
   attributes->SetInputData(mesh);
   attributes->Update();
   vtkSmartPointer<vtkPolyData> out = attributes->GetOutput();
+  // The buffer upload asks for the coordinates' ranges (VTK's automatic shift
+  // and scale of the vertex buffer); the array caches them, so they are
+  // computed here (by the filter itself for marching cubes' meshes), where the
+  // chunks are prepared in parallel, not in the render (refill carries them
+  // over). They are also the cells' bounds, which ApplyChunk hands to the
+  // mapper.
+  vtkDataArray* xyz = out->GetPoints()->GetData();
+  for (int c = 0; c < xyz->GetNumberOfComponents(); ++c)
+  {
+    double range[2];
+    xyz->GetRange(range, c);
+  }
   return out;
 }
 
@@ -529,20 +554,67 @@ void vtkChunkActorManager::SetChunks(const std::vector<vtkIdType>& chunkIds, con
   std::vector<vtkSmartPointer<vtkPolyData>> ready(n);
   std::vector<Hashes> hashes(n);
   std::vector<char> hashed(n, 0);
+  std::vector<Change> changes(n);
   vtkPartialRedrawCuller* culler = this->Internal->Culler;
   const bool declare = culler && culler->GetEnabled();
-  // the per-triangle work of each chunk (preparation, hashes) in parallel;
-  // the actors, mappers and the culler on this thread
-  vtkSMPTools::For(0, static_cast<vtkIdType>(n), [&](vtkIdType begin, vtkIdType end) {
+  // Each mesh object is read by one thread only: a chunk is compared with its
+  // current mesh in the parallel part (ApplyChunk then only declares the
+  // result) when it is named once in this call and its current mesh is no
+  // other chunk's and none of this call's; otherwise in ApplyChunk, in order.
+  // A mesh given twice is prepared on this thread.
+  const auto& chunks = this->Internal->Chunks;
+  std::map<vtkIdType, int> named;
+  std::map<vtkPolyData*, int> reads; // per mesh object: the threads' readers
+  for (std::size_t i = 0; i < n; ++i)
+  {
+    ++named[chunkIds[i]];
+    ++reads[meshes[i]];
+  }
+  bool distinct = true;
+  for (const auto& kv : reads)
+  {
+    distinct = distinct && (kv.first == nullptr || kv.second == 1);
+  }
+  std::vector<vtkPolyData*> before(n, nullptr);
+  for (std::size_t i = 0; i < n; ++i)
+  {
+    auto it = chunks.find(chunkIds[i]);
+    if (named[chunkIds[i]] == 1 && it != chunks.end() && it->second.Source && it->second.HashesValid)
+    {
+      before[i] = it->second.Source;
+      ++reads[before[i]];
+    }
+  }
+  // the per-triangle work of each chunk (preparation, hashes, the changed
+  // triangles) in parallel, reading the chunk table's meshes (nothing writes
+  // them meanwhile: this thread waits in For); the actors, mappers and the
+  // culler on this thread
+  auto prepare = [&](vtkIdType begin, vtkIdType end) {
     for (vtkIdType i = begin; i < end; ++i)
     {
       ready[i] = this->PrepareChunk(meshes[i]);
       hashed[i] = declare && hashesOf(meshes[i], hashes[i]);
+      if (hashed[i] && before[i] && reads.at(before[i]) == 1)
+      {
+        const Internals::Entry& e = chunks.at(chunkIds[i]);
+        changedBoundsOf(before[i], e.SourceHashes.sorted, meshes[i], hashes[i].sorted, changes[i].Bounds,
+          &changes[i].Points);
+        changes[i].Known = true;
+      }
     }
-  });
+  };
+  if (distinct)
+  {
+    vtkSMPTools::For(0, static_cast<vtkIdType>(n), prepare);
+  }
+  else
+  {
+    prepare(0, static_cast<vtkIdType>(n));
+  }
   for (std::size_t i = 0; i < n; ++i)
   {
-    this->ApplyChunk(chunkIds[i], meshes[i], ready[i], ready[i].Get() != meshes[i], hashed[i] ? &hashes[i] : nullptr);
+    this->ApplyChunk(chunkIds[i], meshes[i], ready[i], ready[i].Get() != meshes[i], hashed[i] ? &hashes[i] : nullptr,
+      &changes[i]);
   }
 }
 
@@ -558,7 +630,7 @@ bool vtkChunkActorManager::hashesOf(vtkPolyData* mesh, Hashes& out)
 }
 
 void vtkChunkActorManager::ApplyChunk(
-  vtkIdType chunkId, vtkPolyData* mesh, vtkPolyData* ready, bool owned, Hashes* hashes)
+  vtkIdType chunkId, vtkPolyData* mesh, vtkPolyData* ready, bool owned, Hashes* hashes, const Change* change)
 {
   if (!ready || ready->GetNumberOfCells() == 0)
   {
@@ -614,6 +686,19 @@ void vtkChunkActorManager::ApplyChunk(
   {
     culler->InputDataChanged(e.Actor); // refilled in place, or a new input: announced
   }
+  if (owned)
+  {
+    // Made by PrepareChunk: every point is a corner of one triangle (the
+    // points are un-shared), so the cells' bounds are the coordinates' ranges,
+    // cached there; refilled or not, the mapper's input holds the same cells.
+    vtkDataArray* xyz = ready->GetPoints()->GetData();
+    double bounds[6];
+    for (int a = 0; a < 3; ++a)
+    {
+      xyz->GetRange(bounds + 2 * a, a);
+    }
+    e.Mapper->SetInputBounds(bounds);
+  }
   const bool hashed = hashes != nullptr;
   if (declare)
   {
@@ -624,7 +709,12 @@ void vtkChunkActorManager::ApplyChunk(
     // projections, which is tighter than the projection of their box.
     double changed[6];
     vtkPolyData* before = e.Source;
-    if (hashed && e.HashesValid)
+    if (change && change->Known)
+    {
+      culler->EndChange(e.Actor, change->Bounds, change->Points.data(),
+        static_cast<vtkIdType>(change->Points.size() / 3));
+    }
+    else if (hashed && e.HashesValid)
     {
       std::vector<double> points;
       changedBoundsOf(before, e.SourceHashes.sorted, mesh, hashes->sorted, changed, &points);

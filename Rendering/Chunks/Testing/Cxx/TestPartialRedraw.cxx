@@ -185,6 +185,30 @@ int runScene(int samples)
     auto it = after.find(hole);
     mgr->SetChunk(hole, it == after.end() ? nullptr : it->second.Get());
   }, 1);
+  // the editor's path: a frame's chunks in one SetChunks, which measures each
+  // chunk's changed triangles in its parallel part
+  partialFrames("the dent undone in one SetChunks call", [&](int) {
+    std::vector<vtkIdType> ids;
+    std::vector<vtkPolyData*> meshes;
+    for (vtkIdType id : changed)
+    {
+      auto it = before.find(id);
+      ids.push_back(id);
+      meshes.push_back(it == before.end() ? nullptr : it->second.Get());
+    }
+    mgr->SetChunks(ids, meshes);
+  }, 1);
+  partialFrames("the dent again in one SetChunks call", [&](int) {
+    std::vector<vtkIdType> ids;
+    std::vector<vtkPolyData*> meshes;
+    for (vtkIdType id : changed)
+    {
+      auto it = after.find(id);
+      ids.push_back(id);
+      meshes.push_back(it == after.end() ? nullptr : it->second.Get());
+    }
+    mgr->SetChunks(ids, meshes);
+  }, 1);
 
   // Fallbacks to full frames.
   int fulls = culler->GetNumberOfFullRedraws();
