@@ -40,6 +40,36 @@ vtkSmartPointer<vtkPolyData> sphereMesh(int n = 24, double spacing = 1.0)
   }, spacing);
   return contractMesh(img, checkerColor);
 }
+
+/// The mesh a manager's chunk actor shows (its mapper's input).
+vtkPolyData* shownMesh(vtkChunkActorManager* mgr, vtkIdType id)
+{
+  return vtkPolyData::SafeDownCast(mgr->GetChunkActor(id)->GetMapper()->GetInputDataObject(0, 0));
+}
+
+/// A manager showing the chunks of one sphere, and the chunks of a larger
+/// sphere that replace those it shares with it, ready for one SetChunks call
+/// (ids, meshes).
+struct RefillScene
+{
+  RefillScene()
+  {
+    for (auto& kv : first)
+    {
+      mgr->SetChunk(kv.first, kv.second);
+      if (second.count(kv.first))
+      {
+        ids.push_back(kv.first);
+        meshes.push_back(second[kv.first]);
+      }
+    }
+  }
+  std::map<vtkIdType, vtkSmartPointer<vtkPolyData>> first = splitChunks(sphereMesh(40), 16, 39);
+  std::map<vtkIdType, vtkSmartPointer<vtkPolyData>> second = splitChunks(sphereMesh(46), 16, 45);
+  vtkNew<vtkChunkActorManager> mgr;
+  std::vector<vtkIdType> ids;
+  std::vector<vtkPolyData*> meshes;
+};
 } // namespace
 
 TEST(CornerColorAttributes, UnsharesAndCarriesCornerColours)
@@ -432,7 +462,7 @@ TEST(ChunkActorManager, ReplacingAChunkRefillsItsArrays)
     if (!bigger.count(kv.first))
       continue;
     mgr->SetChunk(kv.first, kv.second);
-    auto* shown = vtkPolyData::SafeDownCast(mgr->GetChunkActor(kv.first)->GetMapper()->GetInputDataObject(0, 0));
+    auto* shown = shownMesh(mgr, kv.first);
     ASSERT_NE(shown, nullptr);
     std::vector<vtkAbstractArray*> arrays{ shown->GetPoints()->GetData() };
     for (int k = 0; k < shown->GetPointData()->GetNumberOfArrays(); ++k)
@@ -443,7 +473,7 @@ TEST(ChunkActorManager, ReplacingAChunkRefillsItsArrays)
       arrayTimes.push_back(a->GetMTime());
     vtkPolyData* next = bigger[kv.first];
     mgr->SetChunk(kv.first, next);
-    auto* now = vtkPolyData::SafeDownCast(mgr->GetChunkActor(kv.first)->GetMapper()->GetInputDataObject(0, 0));
+    auto* now = shownMesh(mgr, kv.first);
     EXPECT_EQ(now, shown);
     EXPECT_GT(now->GetMTime(), mtime);
     EXPECT_EQ(now->GetPoints()->GetData(), arrays[0]);
@@ -489,8 +519,8 @@ TEST(ChunkActorManager, SetChunksEqualsSetChunkOneByOne)
   EXPECT_EQ(one->GetNumberOfChunkUpdates(), many->GetNumberOfChunkUpdates());
   for (auto& kv : second)
   {
-    auto* a = vtkPolyData::SafeDownCast(one->GetChunkActor(kv.first)->GetMapper()->GetInputDataObject(0, 0));
-    auto* b = vtkPolyData::SafeDownCast(many->GetChunkActor(kv.first)->GetMapper()->GetInputDataObject(0, 0));
+    auto* a = shownMesh(one, kv.first);
+    auto* b = shownMesh(many, kv.first);
     ASSERT_TRUE(a && b);
     EXPECT_EQ(differsFrom(a, b), "") << "chunk " << kv.first;
   }
@@ -501,31 +531,17 @@ TEST(ChunkActorManager, SetChunksEqualsSetChunkOneByOne)
 // carries the new mesh's ranges, never the old ones.
 TEST(ChunkActorManager, RefilledCoordinatesCarryTheirOwnRanges)
 {
-  auto first = splitChunks(sphereMesh(40), 16, 39);
-  auto second = splitChunks(sphereMesh(46), 16, 45);
-  vtkNew<vtkChunkActorManager> mgr;
-  std::vector<vtkIdType> ids;
-  std::vector<vtkPolyData*> meshes;
-  for (auto& kv : first)
-  {
-    mgr->SetChunk(kv.first, kv.second);
-    if (second.count(kv.first))
-    {
-      ids.push_back(kv.first);
-      meshes.push_back(second[kv.first]);
-    }
-  }
+  RefillScene scene;
+  auto& [first, second, mgr, ids, meshes] = scene;
   ASSERT_FALSE(ids.empty());
   std::map<vtkIdType, vtkDataArray*> shownBefore;
   for (vtkIdType id : ids)
-    shownBefore[id] = vtkPolyData::SafeDownCast(mgr->GetChunkActor(id)->GetMapper()->GetInputDataObject(0, 0))
-                        ->GetPoints()->GetData();
+    shownBefore[id] = shownMesh(mgr, id)->GetPoints()->GetData();
   mgr->SetChunks(ids, meshes);
   int refilled = 0, differ = 0;
   for (vtkIdType id : ids)
   {
-    vtkDataArray* xyz = vtkPolyData::SafeDownCast(mgr->GetChunkActor(id)->GetMapper()->GetInputDataObject(0, 0))
-                          ->GetPoints()->GetData();
+    vtkDataArray* xyz = shownMesh(mgr, id)->GetPoints()->GetData();
     refilled += xyz == shownBefore[id];
     for (int c = 0; c < 3; ++c)
     {
@@ -556,20 +572,8 @@ TEST(ChunkActorManager, RefilledCoordinatesCarryTheirOwnRanges)
 // changed in place, those of the changed mesh.
 TEST(ChunkActorManager, MapperBoundsAreThoseOfTheShownMesh)
 {
-  auto first = splitChunks(sphereMesh(40), 16, 39);
-  auto second = splitChunks(sphereMesh(46), 16, 45);
-  vtkNew<vtkChunkActorManager> mgr;
-  std::vector<vtkIdType> ids;
-  std::vector<vtkPolyData*> meshes;
-  for (auto& kv : first)
-  {
-    mgr->SetChunk(kv.first, kv.second);
-    if (second.count(kv.first))
-    {
-      ids.push_back(kv.first);
-      meshes.push_back(second[kv.first]);
-    }
-  }
+  RefillScene scene;
+  auto& [first, second, mgr, ids, meshes] = scene;
   mgr->SetChunks(ids, meshes); // refilled
   // the cells' bounds of a poly data, from its cells' points
   auto cellsBounds = [](vtkPolyData* pd) {
@@ -639,8 +643,8 @@ TEST(ChunkActorManager, SetChunksWithSharedMeshesEqualsSetChunk)
   many->SetChunks({ a, b, b }, { second[a].Get(), shared, second[a].Get() });
   for (vtkIdType id : { a, b })
   {
-    auto* x = vtkPolyData::SafeDownCast(one->GetChunkActor(id)->GetMapper()->GetInputDataObject(0, 0));
-    auto* y = vtkPolyData::SafeDownCast(many->GetChunkActor(id)->GetMapper()->GetInputDataObject(0, 0));
+    auto* x = shownMesh(one, id);
+    auto* y = shownMesh(many, id);
     ASSERT_TRUE(x && y);
     EXPECT_EQ(differsFrom(x, y), "") << "chunk " << id;
   }
