@@ -47,6 +47,27 @@ vtkPolyData* shownMesh(vtkChunkActorManager* mgr, vtkIdType id)
   return vtkPolyData::SafeDownCast(mgr->GetChunkActor(id)->GetMapper()->GetInputDataObject(0, 0));
 }
 
+/// Two managers, each with its own renderer and enabled culler: one given
+/// chunks one by one (SetChunk), the other the same chunks in one SetChunks.
+struct TwinManagers
+{
+  TwinManagers()
+  {
+    for (int i = 0; i < 2; ++i)
+    {
+      vtkChunkActorManager* m = i == 0 ? one.Get() : many.Get();
+      m->SetRenderer(renderers[i]);
+      cullers[i]->SetEnabled(true);
+      m->SetRedrawCuller(cullers[i]);
+    }
+  }
+  vtkNew<vtkChunkActorManager> one, many;
+
+private:
+  vtkNew<vtkRenderer> renderers[2];
+  vtkNew<vtkPartialRedrawCuller> cullers[2];
+};
+
 /// A manager showing the chunks of one sphere, and the chunks of a larger
 /// sphere that replace those it shares with it, ready for one SetChunks call
 /// (ids, meshes).
@@ -494,15 +515,9 @@ TEST(ChunkActorManager, SetChunksEqualsSetChunkOneByOne)
   // the same changed boxes to a culler
   auto first = splitChunks(sphereMesh(40), 16, 39);
   auto second = splitChunks(sphereMesh(46), 16, 45);
-  vtkNew<vtkRenderer> r1, r2;
-  vtkNew<vtkChunkActorManager> one, many;
-  one->SetRenderer(r1);
-  many->SetRenderer(r2);
-  vtkNew<vtkPartialRedrawCuller> c1, c2;
-  c1->SetEnabled(true);
-  c2->SetEnabled(true);
-  one->SetRedrawCuller(c1);
-  many->SetRedrawCuller(c2);
+  TwinManagers twins;
+  vtkNew<vtkChunkActorManager>& one = twins.one;
+  vtkNew<vtkChunkActorManager>& many = twins.many;
   for (auto* step : { &first, &second })
   {
     std::vector<vtkIdType> ids;
@@ -621,15 +636,9 @@ TEST(ChunkActorManager, SetChunksWithSharedMeshesEqualsSetChunk)
   auto second = splitChunks(sphereMesh(46), 16, 45);
   ASSERT_GE(first.size(), 2u);
   const vtkIdType a = first.begin()->first, b = std::next(first.begin())->first;
-  vtkNew<vtkRenderer> r1, r2;
-  vtkNew<vtkChunkActorManager> one, many;
-  one->SetRenderer(r1);
-  many->SetRenderer(r2);
-  vtkNew<vtkPartialRedrawCuller> c1, c2;
-  c1->SetEnabled(true);
-  c2->SetEnabled(true);
-  one->SetRedrawCuller(c1);
-  many->SetRedrawCuller(c2);
+  TwinManagers twins;
+  vtkNew<vtkChunkActorManager>& one = twins.one;
+  vtkNew<vtkChunkActorManager>& many = twins.many;
   vtkPolyData* shared = first[a];
   for (vtkChunkActorManager* m : { one.Get(), many.Get() })
   {
