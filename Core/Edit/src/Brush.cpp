@@ -549,9 +549,6 @@ EditResult applyDabs(DictionaryVolume& volume, const std::vector<Dab>& dabs, con
       // exact s ("pending") and encoded once after the row's last dab; the
       // sequence of the per-voxel rule is reproduced exactly (see below).
       const bool pendingAdd = hardCsg && add;
-      // hard subtract likewise: p is the smallest s of the call, the key encode(-p)
-      const bool pendingSub = hardCsg && !add;
-      const bool pending = pendingAdd || pendingSub;
       std::vector<double> rowPend;
       std::vector<std::pair<std::int64_t, std::int64_t>> rowRange(perDabRows ? active.size() : 0);
       for (std::int64_t z = region.lo[2]; z <= region.hi[2]; ++z)
@@ -597,7 +594,7 @@ EditResult applyDabs(DictionaryVolume& volume, const std::vector<Dab>& dabs, con
           else
             std::fill(rowOld.begin(), rowOld.end(), uniformValue);
           rowNew = rowOld;
-          if (pending)
+          if (pendingAdd)
             rowPend.assign(static_cast<std::size_t>(m), std::numeric_limits<double>::infinity());
           if (perDabRows)
           {
@@ -687,7 +684,7 @@ EditResult applyDabs(DictionaryVolume& volume, const std::vector<Dab>& dabs, con
                     w.sdf = add ? belowBand : aboveBand;
                     if (add)
                       w.color = ctx.colorKey;
-                    if (pending)
+                    if (pendingAdd)
                       rowPend[static_cast<std::size_t>(x - x0)] = std::numeric_limits<double>::infinity();
                   }
                   // the rest of the range, voxel by voxel below
@@ -722,27 +719,6 @@ EditResult applyDabs(DictionaryVolume& volume, const std::vector<Dab>& dabs, con
                 else
                   for (std::int64_t x = b0; x <= b1; ++x)
                     sv[x - b0] = dabDistance(d, double(x), double(y), double(z), ctx.rounding);
-                if (pendingSub)
-                {
-                  // combineVoxel's hard subtract (-s > d: key = encode(-s)); the same
-                  // argument: a later s' >= p changes nothing, s' < p gives encode(-s')
-                  double* pend = rowPend.data() - x0;
-                  for (std::int64_t x = b0; x <= b1; ++x)
-                  {
-                    const double sx = sv[x - b0];
-                    if (sx > reach)
-                      continue;
-                    double& p = pend[x];
-                    if (p != std::numeric_limits<double>::infinity())
-                    {
-                      if (sx < p)
-                        p = sx;
-                    }
-                    else if (-sx > double(table[rv[x].sdf]))
-                      p = sx;
-                  }
-                  continue;
-                }
                 if (pendingAdd)
                 {
                   // combineVoxel's hard add (s < d: key = encode(s), colour if
@@ -799,13 +775,10 @@ EditResult applyDabs(DictionaryVolume& volume, const std::vector<Dab>& dabs, con
               for (int gi : mine)
                 detail::edit::applyGroupToVoxel(v.sdf, v.color, x, y, z, active.data(), boxes.data(), gi, ctx, table, encode);
             }
-          if (pending)
+          if (pendingAdd)
             for (std::int64_t i = 0; i < m; ++i)
-            {
-              const double p = rowPend[static_cast<std::size_t>(i)];
-              if (p != std::numeric_limits<double>::infinity())
-                rowNew[static_cast<std::size_t>(i)].sdf = encode(pendingAdd ? p : -p);
-            }
+              if (rowPend[static_cast<std::size_t>(i)] != std::numeric_limits<double>::infinity())
+                rowNew[static_cast<std::size_t>(i)].sdf = encode(rowPend[static_cast<std::size_t>(i)]);
           for (std::int64_t x = x0; x <= x1; ++x)
           {
             const std::int64_t li = li0 + (x - x0);
