@@ -22,6 +22,7 @@
 #include "vtkProperty.h"
 #include "vtkRenderWindow.h"
 
+#include <cstdio>
 #include <cstdlib>
 #include "vtkRenderer.h"
 #include "vtkSTLWriter.h"
@@ -63,6 +64,10 @@ vtkSmartPointer<vtkPolyData> MeshVolume(const lvdif::DictionaryVolume& volume, l
   }
   auto mesh = vtkSmartPointer<vtkPolyData>::New();
   mesh->ShallowCopy(mc->GetOutput());
+  // an empty mesh is still written (a valid file), but never silently
+  if (mesh->GetNumberOfPolys() == 0)
+    std::fprintf(stderr, "warning: the volume has no surface (its distances never change sign at 0), so the mesh has "
+                         "no triangles\n");
   return mesh;
 }
 

@@ -42,4 +42,16 @@ with open(os.path.join(out, "junk.lvdv"), "wb") as f:
     f.write(b"not a volume file at all" * 10)
 code, err = run("info", os.path.join(out, "junk.lvdv"))
 assert code == 1 and err.count("\n") == 0, (code, err)
+# A volume with no surface (every distance on one side of 0): the mesh is
+# written, empty, and one warning line says why (it was silent: "0 triangles").
+empty_script = os.path.join(out, "empty.lvs")
+with open(empty_script, "w") as f:
+    f.write("canvas 40 7 19\n")
+empty_vol, empty_ply = os.path.join(out, "empty.lvdv"), os.path.join(out, "empty.ply")
+code, err = run("script", empty_script, "--out", empty_vol, "--mesh", empty_ply)
+warnings = [line for line in err.splitlines() if line.startswith("warning:")]
+assert code == 0 and len(warnings) == 1 and "no surface" in warnings[0] and os.path.exists(empty_ply), (code, err)
+code, err = run("mesh", empty_vol, os.path.join(out, "empty.stl"))
+warnings = [line for line in err.splitlines() if line.startswith("warning:")]
+assert code == 0 and len(warnings) == 1 and "no surface" in warnings[0], (code, err)
 print("error handling OK")
