@@ -333,8 +333,18 @@ void volumeOnCuda(detail::meshtosdf_cuda::Session& session, DictionaryVolume& vo
   trace("write: store into the volume (overlaps the next group and the copies)", storeSeconds);
 }
 
+/// How deep inside a voxel must lie to count for warnIfNothingInside (a
+/// negative distance): 1 voxel (`oneVoxel` in output units), since open
+/// sheets are lined with a film of inside voxels, or half the band when the
+/// band is narrower: every inside voxel then saturates at -band (before, a
+/// closed mesh with --band 1 got the "no surface" warning).
+float deepInsideLimit(float oneVoxel, float band)
+{
+  return -std::min(oneVoxel, 0.5f * band);
+}
+
 /// stats.warnings when a signed field over the whole grid has no voxel
-/// inside (`inside`: voxels deeper than 1 voxel inside the surface).
+/// inside (`inside`: voxels deeper than deepInsideLimit inside the surface).
 void warnIfNothingInside(const MeshToSdfPrepared& mesh, const GridGeometry& grid, const MeshToSdfOptions& options,
   std::int64_t inside, MeshToSdfStats& stats)
 {
@@ -464,7 +474,7 @@ MeshToSdfStats meshToSdf(const MeshToSdfPrepared& mesh, const GridGeometry& grid
     // curved open sheet has a film of them (|w| just above 1/2), and
     // meshing them gives slivers at best
     const double h = std::min({ grid.spacing[0], grid.spacing[1], grid.spacing[2] });
-    const float deep = options.unit == DistanceUnit::World ? static_cast<float>(-h) : -1.0f;
+    const float deep = deepInsideLimit(options.unit == DistanceUnit::World ? static_cast<float>(h) : 1.0f, options.bandWidth);
     std::int64_t inside = 0;
     const std::int64_t n = extent.voxelCount();
 #pragma omp parallel for reduction(+ : inside)
@@ -534,9 +544,9 @@ MeshToSdfStats meshToSdf(const MeshToSdfPrepared& mesh, DictionaryVolume& volume
   }
   if (options.sign != SignMode::Unsigned && !region) // a region may rightly have nothing inside
   {
-    // voxels deeper than 1 voxel inside (as for float grids): uniform chunks
-    // by their value, the others voxel by voxel until the first one
-    const SdfKey zero = volume.sdfDictionary().encode(-1.0f);
+    // voxels deep inside (as for float grids): uniform chunks by their
+    // value, the others voxel by voxel until the first one
+    const SdfKey zero = volume.encode(deepInsideLimit(1.0f, volume.bandWidth()));
     std::int64_t inside = 0;
     for (std::int64_t c = 0; c < volume.chunkCount() && inside == 0; ++c)
     {

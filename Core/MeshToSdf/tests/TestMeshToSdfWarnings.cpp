@@ -144,6 +144,53 @@ TEST(MeshToSdfWarnings, NoneForAClosedMeshOrAPiece)
   EXPECT_TRUE(meshToSdf(m, g, piece, out.data(), o).warnings.empty());
 }
 
+// A band of at most 1 voxel saturates every inside voxel at -band, so none is
+// "deeper than 1 voxel": the closed sphere got the warning that meshing gives
+// no surface (CLI --band 1, vtkMeshToSDF BandWidth 0.5) although it does.
+TEST(MeshToSdfWarnings, NoneForAClosedMeshWithANarrowBand)
+{
+  const TriangleMesh sphere = makeSphereMesh(0, 0, 0, 1, 16, 32);
+  for (float band : { 1.0f, 0.5f, 0.25f })
+  {
+    const GridGeometry g = fitGridToMesh(sphere, 24, 2.0);
+    // the oracle: voxel centres more than 1 voxel inside the analytic sphere
+    // (radius 1 less the tessellation's sagitta) exist, and are negative
+    const double h = g.spacing[0], r = 1.0 - 0.03;
+    std::int64_t deep = 0;
+    for (std::int64_t z = 0; z < g.dims[2]; ++z)
+      for (std::int64_t y = 0; y < g.dims[1]; ++y)
+        for (std::int64_t x = 0; x < g.dims[0]; ++x)
+        {
+          const double p[3] = { g.origin[0] + h * x, g.origin[1] + h * y, g.origin[2] + h * z };
+          deep += std::sqrt(p[0] * p[0] + p[1] * p[1] + p[2] * p[2]) < r - h;
+        }
+    ASSERT_GT(deep, 0);
+    VolumeOptions vo = volumeOptionsOn(g);
+    vo.bandWidth = band;
+    vo.chunkEdge = 16;
+    DictionaryVolume vol(vo);
+    MeshToSdfOptions o;
+    o.device = Device::Cpu;
+    const MeshToSdfStats s = meshToSdf(sphere, vol, o);
+    EXPECT_TRUE(s.warnings.empty()) << "band " << band << ": " << s.warnings[0];
+    EXPECT_LT(vol.sdf(g.dims[0] / 2, g.dims[1] / 2, g.dims[2] / 2), 0.0f);
+    // the float grid with the same band
+    std::vector<float> out(static_cast<std::size_t>(g.count()));
+    o.bandWidth = band;
+    const MeshToSdfStats f = meshToSdf(sphere, FloatGridView{ out.data(), g }, o);
+    EXPECT_TRUE(f.warnings.empty()) << "band " << band << ": " << f.warnings[0];
+  }
+  // voxels larger than the parts still get the warning with a narrow band
+  const TriangleMesh boxes = twoSmallBoxes();
+  const GridGeometry g = fitGridToMesh(boxes, 8, 2.0);
+  VolumeOptions vo = volumeOptionsOn(g);
+  vo.bandWidth = 0.5f;
+  DictionaryVolume vol(vo);
+  MeshToSdfOptions o;
+  o.device = Device::Cpu;
+  EXPECT_TRUE(mentions(meshToSdf(boxes, vol, o), "more voxels"));
+}
+
 namespace
 {
 double area2(const TriangleMesh& m, const std::array<std::uint32_t, 3>& t)
