@@ -3,6 +3,7 @@
 #include "LVDIFFiles.h"
 
 #include "lvdif/AnalyticFill.h"
+#include "lvdif/Cuda.h"
 #include "lvdif/Error.h"
 
 #include <cmath>
@@ -19,8 +20,11 @@ void VolumeDocument::hold(std::shared_ptr<lvdif::DictionaryVolume> volume)
   else
   {
     this->Session = std::make_unique<lvdif::EditSession>(std::move(volume));
-    static bool told = false; // one notice per run
-    if (!this->Session->notice().empty() && !told)
+    // one notice per run: a missing GPU was already told by lvdif's one
+    // fallback line (none in a build without CUDA); say only why a volume
+    // stays on the host of a machine that has one
+    static bool told = false;
+    if (!this->Session->notice().empty() && !told && lvdif::cuda::available())
     {
       std::cerr << "lvdif-editor: " << this->Session->notice() << "\n";
       told = true;

@@ -83,7 +83,9 @@ void EditSession::build(std::shared_ptr<DictionaryVolume> volume, const BrushSet
   this->Notice.clear();
   if (wantGpu)
   {
-    if (resolveDevice(Device::Cuda) != Device::Cuda)
+    // the options' own request: Auto in a build without CUDA stays quiet, and
+    // the process's one fallback notice is resolveDevice's (notice() still says why)
+    if (resolveDevice(this->Opts.device) != Device::Cuda)
       this->Notice = cuda::compiled() ? "no usable CUDA device: editing and meshing run on the CPU"
                                       : "this build has no CUDA: editing and meshing run on the CPU";
     else

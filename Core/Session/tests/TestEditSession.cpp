@@ -3,6 +3,7 @@
 // remesh rule against brute force.
 #include "SessionTestUtil.h"
 
+#include "lvdif/Cuda.h"
 #include "lvdif/Error.h"
 #include "lvdif/InputDevice.h"
 
@@ -297,6 +298,30 @@ TEST(EditSession, AutoWithoutAGpuRunsOnTheCpuWithOneNotice)
   d.center = { 16, 16, 26 };
   d.radius = 4;
   EXPECT_GT(s.dab(d).changedVoxels, 0);
+}
+
+// The CPU path is quiet: sessions that fall back from Auto print at most the
+// process's one notice (resolveDevice's), none in a build without CUDA, while
+// notice() still says why. Before, every session asked resolveDevice for Cuda
+// whatever its options: a CPU-only build printed "built without CUDA" for an
+// Auto session, and the editor printed the session's notice beside it.
+TEST(EditSession, AutoFallbackPrintsAtMostOneNotice)
+{
+  if (lvdif::cuda::available())
+    GTEST_SKIP() << "a GPU is present";
+  lvdif::EditSessionOptions o;
+  o.device = lvdif::Device::Auto;
+  testing::internal::CaptureStderr();
+  {
+    lvdif::EditSession a(sphereVolume(32, 16), o);
+    EXPECT_NE(a.notice(), "");
+    lvdif::EditSession b(sphereVolume(32, 16), o);
+  }
+  const std::string err = testing::internal::GetCapturedStderr();
+  if (lvdif::cuda::compiled())
+    EXPECT_LE(std::count(err.begin(), err.end(), '\n'), 1) << err;
+  else
+    EXPECT_EQ(err, "");
 }
 
 TEST(EditSession, MeshingOffStillReportsChangedMeshChunks)
