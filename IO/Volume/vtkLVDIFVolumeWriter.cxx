@@ -12,6 +12,7 @@
 #include "vtkImageData.h"
 #include "vtkInformation.h"
 #include "vtkPointData.h"
+#include "vtkStreamingDemandDrivenPipeline.h"
 
 vtkLVDIFVolumeWriter::vtkLVDIFVolumeWriter() = default;
 vtkLVDIFVolumeWriter::~vtkLVDIFVolumeWriter() = default;
@@ -33,6 +34,22 @@ std::unique_ptr<lvdif::DictionaryVolume> vtkLVDIFVolumeWriter::ImageToVolume(
   vtkImageData* image, vtkDataArray* sdf, vtkDataArray* rgba)
 {
   return LVDIFVolumeBridge::VolumeFromImage(image, sdf, rgba, this->ImageVolumeOptions());
+}
+
+int vtkLVDIFVolumeWriter::Write()
+{
+  auto* exec = vtkStreamingDemandDrivenPipeline::SafeDownCast(this->GetExecutive());
+  if (this->GetNumberOfInputConnections(0) < 1 || !exec)
+    return this->Superclass::Write(); // VTK's "No input provided!"
+  // vtkWriter::Write ignores a failed RequestInformation upstream (a reader's
+  // error then comes twice) and answers by the writer's error code alone,
+  // which stays NoError when WriteData never ran
+  this->SetErrorCode(vtkErrorCode::NoError);
+  this->Modified(); // always write, even if the data did not change
+  const bool ran = exec->UpdateInformation() && exec->UpdateWholeExtent();
+  if (!ran && this->GetErrorCode() == vtkErrorCode::NoError)
+    this->SetErrorCode(vtkErrorCode::UnknownError);
+  return this->GetErrorCode() == vtkErrorCode::NoError ? 1 : 0;
 }
 
 void vtkLVDIFVolumeWriter::WriteData()

@@ -7,7 +7,8 @@
  * optionally `rgba` (made into a dictionary volume first). WriteData checks the
  * file name and the input, makes the volume of an image input, calls Save, and
  * reports a failure once (vtkErrorMacro and the writer's error code); a cancel
- * (AbortExecute) is not an error. Subclasses say how an image becomes a volume
+ * (AbortExecute) is not an error. Write() returns 0 whenever nothing was
+ * written, also when the input failed upstream (its own error says why). Subclasses say how an image becomes a volume
  * and how a volume is saved. Every save is crash-safe (lvdif::saveAtomically).
  */
 #ifndef vtkLVDIFVolumeWriter_h
@@ -40,6 +41,10 @@ public:
 
   /// The input when it is an image (nullptr for a sparse volume).
   vtkImageData* GetInput();
+
+  /// vtkWriter::Write, but 0 when the input failed upstream (vtkWriter's
+  /// answered 1, nothing written, and ran a failed reader a second time).
+  int Write() override;
 
 protected:
   vtkLVDIFVolumeWriter();

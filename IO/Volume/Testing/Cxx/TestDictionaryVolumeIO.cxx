@@ -22,6 +22,8 @@
 #include <cmath>
 #include <cstdio>
 #include <fstream>
+#include <iterator>
+#include <string>
 #include <unistd.h>
 
 namespace
@@ -240,4 +242,48 @@ TEST(DictionaryVolumeIO, VtiExportThroughVTKsXmlWriter)
   EXPECT_EQ(voxelMismatches(out, img, 8.0), 0);
   std::remove(lvdv.c_str());
   std::remove(vti.c_str());
+}
+
+// reader -> writer with a damaged input file: Write() must say it failed (it
+// answered 1 with nothing written), the file written over must survive
+// byte for byte, and the reader's error must come once (vtkWriter::Write ran
+// the failed reader a second time). The oracle is the file system.
+TEST(DictionaryVolumeIO, WriteFailsWhenTheInputFailsUpstream)
+{
+  auto img = makeImage();
+  const std::string damaged = tempFile("damaged.lvdv"), kept = tempFile("kept.lvdv");
+  {
+    vtkNew<vtkDictionaryVolumeWriter> writer;
+    writer->SetInputData(img);
+    writer->SetFileName(damaged.c_str());
+    ASSERT_EQ(writer->Write(), 1);
+    writer->SetFileName(kept.c_str());
+    ASSERT_EQ(writer->Write(), 1);
+  }
+  ASSERT_EQ(::truncate(damaged.c_str(), 300), 0);
+  auto bytes = [](const std::string& p) {
+    std::ifstream f(p, std::ios::binary);
+    return std::string(std::istreambuf_iterator<char>(f), std::istreambuf_iterator<char>());
+  };
+  const std::string before = bytes(kept);
+
+  vtkNew<ErrorCatcher> readerErrors;
+  vtkNew<vtkDictionaryVolumeReader> reader;
+  reader->AddObserver(vtkCommand::ErrorEvent, readerErrors);
+  reader->SetFileName(damaged.c_str());
+  vtkNew<vtkDictionaryVolumeWriter> writer;
+  writer->SetInputConnection(reader->GetOutputPort());
+  writer->SetFileName(kept.c_str());
+  EXPECT_EQ(writer->Write(), 0);
+  EXPECT_NE(writer->GetErrorCode(), 0UL);
+  EXPECT_EQ(readerErrors->Count, 1) << readerErrors->Last;
+  EXPECT_EQ(bytes(kept), before);
+
+  // the same writer succeeds again once the input is good
+  reader->SetFileName(kept.c_str());
+  writer->SetFileName(damaged.c_str());
+  EXPECT_EQ(writer->Write(), 1);
+  EXPECT_EQ(writer->GetErrorCode(), 0UL);
+  std::remove(damaged.c_str());
+  std::remove(kept.c_str());
 }
