@@ -50,18 +50,18 @@ vtkSmartPointer<vtkPolyData> MeshVolume(const lvdif::DictionaryVolume& volume, l
   forward->SetClientData(&interrupter);
   forward->SetCallback([](vtkObject* caller, unsigned long, void* client, void* call) {
     auto* in = static_cast<lvdif::Interrupter*>(client);
-    in->progress(*static_cast<double*>(call));
+    in->progress(std::min(*static_cast<double*>(call), 0.99)); // "done" only by end(), below
     if (in->wasInterrupted()) static_cast<vtkAlgorithm*>(caller)->SetAbortExecute(1);
   });
   mc->AddObserver(vtkCommand::ProgressEvent, forward);
   interrupter.start("marching cubes");
   mc->Update();
-  interrupter.end();
   interrupter.checkInterrupt();
   if (mc->GetErrorCode() != 0 || !mc->GetOutput())
   {
     throw lvdif::Error(lvdif::ErrorCode::InvalidArgument, "marching cubes failed");
   }
+  interrupter.end(); // only a stage that succeeded is "done"
   auto mesh = vtkSmartPointer<vtkPolyData>::New();
   mesh->ShallowCopy(mc->GetOutput());
   // an empty mesh is still written (a valid file), but never silently

@@ -23,6 +23,9 @@ ProgressBar::ProgressBar()
 ProgressBar::~ProgressBar()
 {
   std::signal(SIGINT, SIG_DFL);
+  // a stage that failed or was cancelled never says "done": end its bar's
+  // line so that the error message starts on a line of its own
+  if (this->Tty && this->LastPercent >= 0 && this->LastPercent < 100) std::fputc('\n', stderr);
 }
 
 void ProgressBar::start(const char* name)

@@ -54,7 +54,9 @@ struct Watch
     this->onProgress->SetClientData(this);
     this->onProgress->SetCallback([](vtkObject* caller, unsigned long, void* client, void* call) {
       auto* w = static_cast<Watch*>(client);
-      w->interrupter.progress(*static_cast<double*>(call));
+      // VTK reports 1.0 after every RequestData, failed or not: "done" is
+      // said by end(), after check()
+      w->interrupter.progress(std::min(*static_cast<double*>(call), 0.99));
       if (w->interrupter.wasInterrupted()) static_cast<vtkAlgorithm*>(caller)->SetAbortExecute(1);
     });
     this->onError->SetClientData(this);
@@ -203,8 +205,8 @@ std::shared_ptr<lvdif::DictionaryVolume> LoadVolume(const std::string& path, lvd
   Watch watch(interrupter, { reader, last });
   interrupter.start("read volume");
   const bool ok = last->GetExecutive()->Update() != 0;
-  interrupter.end();
   watch.check(ok, what);
+  interrupter.end(); // only a stage that succeeded is "done"
   std::shared_ptr<lvdif::DictionaryVolume> volume = volumeOf(last);
   if (!volume) throw lvdif::Error(lvdif::ErrorCode::IoFailure, what + ": no volume");
   return volume;
@@ -261,8 +263,8 @@ void SaveVolume(const std::shared_ptr<lvdif::DictionaryVolume>& volume, const st
   Watch watch(interrupter, watched);
   interrupter.start("save volume");
   const bool ok = writer->GetExecutive()->Update() != 0;
-  interrupter.end();
   watch.check(ok, "cannot write '" + path + "'");
+  interrupter.end();
 }
 
 vtkSmartPointer<vtkPolyData> LoadMesh(const std::string& path)

@@ -42,6 +42,11 @@ with open(os.path.join(out, "junk.lvdv"), "wb") as f:
     f.write(b"not a volume file at all" * 10)
 code, err = run("info", os.path.join(out, "junk.lvdv"))
 assert code == 1 and err.count("\n") == 0, (code, err)
+# a volume that cannot be read is never "read volume: done" before the error
+code, err = run("mesh", os.path.join(out, "junk.lvdv"), os.path.join(out, "junk.ply"))
+assert code == 1 and err.count("\n") == 0 and "junk.lvdv" in err, (code, err)
+code, err = run("convert", os.path.join(out, "junk.lvdv"), os.path.join(out, "junk2.lvdv"))
+assert code == 1 and err.count("\n") == 0 and not os.path.exists(os.path.join(out, "junk2.lvdv")), (code, err)
 # A volume with no surface (every distance on one side of 0): the mesh is
 # written, empty, and one warning line says why (it was silent: "0 triangles").
 empty_script = os.path.join(out, "empty.lvs")
@@ -54,4 +59,7 @@ assert code == 0 and len(warnings) == 1 and "no surface" in warnings[0] and os.p
 code, err = run("mesh", empty_vol, os.path.join(out, "empty.stl"))
 warnings = [line for line in err.splitlines() if line.startswith("warning:")]
 assert code == 0 and len(warnings) == 1 and "no surface" in warnings[0], (code, err)
+# a save that fails is not "save volume: done" either (.bv holds cubic volumes only)
+code, err = run("convert", empty_vol, os.path.join(out, "empty.bv"))
+assert code == 1 and "save volume: done" not in err and "cubic" in err and not os.path.exists(os.path.join(out, "empty.bv")), (code, err)
 print("error handling OK")
