@@ -94,18 +94,22 @@ void CheckPngOutput(const std::string& path)
   if (!display || !*display)
     throw lvdif::Error(lvdif::ErrorCode::InvalidArgument,
       "cannot render " + path + ": no X display (DISPLAY is not set); run under xvfb-run -a");
+  // The connection stays open until the process exits: Xvfb (xvfb-run without
+  // -noreset) resets when its last client leaves, and VTK's own connection
+  // made during that reset failed with "bad X server connection" and an abort
+  // (6 runs in 8 of `xvfb-run -a lvdif mesh v.lvdv m.ply --png m.png`).
+  static void* held = nullptr;
+  if (held)
+    return;
   void* x11 = ::dlopen("libX11.so.6", RTLD_LAZY | RTLD_LOCAL);
   using Open = void* (*)(const char*);
-  using Close = int (*)(void*);
   Open open = x11 ? reinterpret_cast<Open>(::dlsym(x11, "XOpenDisplay")) : nullptr;
-  Close close = x11 ? reinterpret_cast<Close>(::dlsym(x11, "XCloseDisplay")) : nullptr;
-  if (open && close)
+  if (open)
   {
-    void* d = open(display);
-    if (!d)
+    held = open(display);
+    if (!held)
       throw lvdif::Error(lvdif::ErrorCode::InvalidArgument, "cannot render " + path + ": cannot open the X display '" +
           display + "'; run under xvfb-run -a");
-    close(d);
   }
 }
 
