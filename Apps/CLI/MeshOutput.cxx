@@ -17,6 +17,7 @@
 #include "vtkPLYWriter.h"
 #include "vtkPNGWriter.h"
 #include "vtkPointData.h"
+#include "vtkPoints.h"
 #include "vtkPolyData.h"
 #include "vtkPolyDataMapper.h"
 #include "vtkProperty.h"
@@ -64,10 +65,14 @@ vtkSmartPointer<vtkPolyData> MeshVolume(const lvdif::DictionaryVolume& volume, l
   interrupter.end(); // only a stage that succeeded is "done"
   auto mesh = vtkSmartPointer<vtkPolyData>::New();
   mesh->ShallowCopy(mc->GetOutput());
-  // an empty mesh is still written (a valid file), but never silently
+  // an empty mesh is still written (a valid file), but never silently; with
+  // no points object at all (a volume of one voxel or one chunk-less row)
+  // VTK's writers refused it ("cannot write 'x.ply.tmp-...': No data to write!")
   if (mesh->GetNumberOfPolys() == 0)
     std::fprintf(stderr, "warning: the volume has no surface (its distances never change sign at 0), so the mesh has "
                          "no triangles\n");
+  if (!mesh->GetPoints())
+    mesh->SetPoints(vtkSmartPointer<vtkPoints>::New());
   return mesh;
 }
 

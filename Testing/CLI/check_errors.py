@@ -59,6 +59,16 @@ assert code == 0 and len(warnings) == 1 and "no surface" in warnings[0] and os.p
 code, err = run("mesh", empty_vol, os.path.join(out, "empty.stl"))
 warnings = [line for line in err.splitlines() if line.startswith("warning:")]
 assert code == 0 and len(warnings) == 1 and "no surface" in warnings[0], (code, err)
+# the same for a one-voxel volume, in every mesh format (it had no points
+# object and the writers refused it, naming the temporary file)
+one_script, one_vol = os.path.join(out, "one.lvs"), os.path.join(out, "one.lvdv")
+with open(one_script, "w") as f:
+    f.write("canvas 1 1 1\n")
+code, err = run("script", one_script, "--out", one_vol)
+assert code == 0, (code, err)
+for ext in ("ply", "obj", "stl", "vtp"):
+    code, err = run("mesh", one_vol, os.path.join(out, "one." + ext))
+    assert code == 0 and "tmp" not in err and os.path.exists(os.path.join(out, "one." + ext)), (ext, code, err)
 # a save that fails is not "save volume: done" either (.bv holds cubic volumes only)
 code, err = run("convert", empty_vol, os.path.join(out, "empty.bv"))
 assert code == 1 and "save volume: done" not in err and "cubic" in err and not os.path.exists(os.path.join(out, "empty.bv")), (code, err)
