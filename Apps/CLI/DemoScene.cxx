@@ -18,7 +18,16 @@ DemoResult BuildDemoVolume(long size, const std::string& outDir, lvdif::Interrup
   lvdif::ScriptOptions options;
   options.interrupter = &progress;
   lvdif::ScriptRunner runner(options);
-  runner.run(script);
+  try
+  {
+    runner.run(script);
+  }
+  catch (const lvdif::ScriptError& e)
+  {
+    // the embedded script's line and column mean nothing to the user: name the option
+    if (e.code() == lvdif::ErrorCode::Cancelled) throw;
+    throw lvdif::Error(e.code(), "--size " + std::to_string(size) + ": " + e.detail());
+  }
   DemoResult r;
   r.volume = runner.takeVolume();
   if (!r.volume)

@@ -23,7 +23,13 @@ assert code == 1 and err == "lvdif demo: unknown option --bogus", (code, err)
 code, err = run("demo", "--size", "ten")
 assert code == 1 and "expects an integer" in err, (code, err)
 code, err = run("demo", "--size", "100000000", "--out", out)
-assert code == 1 and ("out of range" in err or "limit" in err or "1..1048576" in err), (code, err)
+assert code == 1 and ("out of range" in err or "limit" in err or "1..1048576" in err or "[2, 1048576]" in err), (code, err)
+# a refused --size names the option, not the embedded script's line, and makes no folder
+code, err = run("demo", "--size", "0", "--out", out + "-size0")
+assert code == 1 and err.startswith("lvdif demo: --size") and "line" not in err, (code, err)
+assert not __import__("os").path.exists(out + "-size0"), "demo --size 0 left its output folder"
+code, err = run("demo", "--size", "100000", "--out", out + "-size1e5")
+assert code == 1 and err.startswith("lvdif demo: --size 100000: ") and "line" not in err, (code, err)
 
 import os  # noqa: E402
 
