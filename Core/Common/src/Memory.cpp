@@ -3,9 +3,12 @@
 #include "lvdif/Error.h"
 
 #include <algorithm>
+#include <atomic>
+#include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <fstream>
+#include <limits>
 #include <sstream>
 #include <string>
 #include <unistd.h>
@@ -16,11 +19,15 @@
 namespace lvdif
 {
 
+/// A size in bytes, with an optional k, M, G or T (binary) suffix; 0 when the
+/// text is none (not a number, not finite, not positive). Sizes beyond 64
+/// bits are the largest one (no limit); the cast of such doubles, and of NaN
+/// and infinity, was undefined.
 static std::uint64_t parseSize(const char* text)
 {
   char* end = nullptr;
   const double v = std::strtod(text, &end);
-  if (end == text || v <= 0)
+  if (end == text || !std::isfinite(v) || v <= 0)
   {
     return 0;
   }
@@ -33,7 +40,12 @@ static std::uint64_t parseSize(const char* text)
     case 't': case 'T': mult = 1024.0 * 1024 * 1024 * 1024; break;
     default: break;
   }
-  return static_cast<std::uint64_t>(v * mult);
+  const double bytes = v * mult;
+  if (bytes >= 18446744073709551616.0) // 2^64
+  {
+    return std::numeric_limits<std::uint64_t>::max();
+  }
+  return std::max<std::uint64_t>(1, static_cast<std::uint64_t>(bytes));
 }
 
 std::uint64_t memoryLimitBytes()
@@ -44,6 +56,11 @@ std::uint64_t memoryLimitBytes()
     {
       return v;
     }
+    // a limit the user meant to set is never dropped without a word
+    static std::atomic<bool> told{ false };
+    if (!told.exchange(true))
+      std::fprintf(stderr, "lvdif: LVDIF_MEMORY_LIMIT='%s' is not a size (bytes > 0, optionally with K, M, G or T): "
+                           "ignored, the limit is 90%% of the available memory\n", env);
   }
   std::ifstream meminfo("/proc/meminfo");
   std::string key;

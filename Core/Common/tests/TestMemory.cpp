@@ -5,6 +5,9 @@
 #include <algorithm>
 #include <array>
 #include <cstdint>
+#include <cstdlib>
+#include <limits>
+#include <string>
 #include <memory>
 #include <vector>
 
@@ -108,4 +111,38 @@ TEST(Memory, PrefaultLargeMapsTheBlockOnTheThreads)
   EXPECT_GE(after, before + n * 9 / 10);
   for (std::size_t b = 0; b < n; b += 4096) ASSERT_EQ(block[b], 0);
   prefaultLarge(nullptr, 0); // nothing to touch: no effect
+}
+
+// LVDIF_MEMORY_LIMIT as a user types it: sizes with a suffix, a number too
+// large for 64 bits (no limit), and text that is no size (ignored, with one
+// notice). "nan", "inf" and 1e30 were cast to an integer (undefined; on x86
+// 2^63 bytes), and "abc" was ignored without a word.
+TEST(Memory, LimitFromTheEnvironment)
+{
+  const char* saved = std::getenv("LVDIF_MEMORY_LIMIT");
+  const std::string keep = saved ? saved : "";
+  ::unsetenv("LVDIF_MEMORY_LIMIT");
+  const std::uint64_t fallback = memoryLimitBytes();
+  auto with = [](const char* v) {
+    ::setenv("LVDIF_MEMORY_LIMIT", v, 1);
+    return memoryLimitBytes();
+  };
+  EXPECT_EQ(with("2G"), std::uint64_t(2) << 30);
+  EXPECT_EQ(with("1.5k"), 1536u);
+  EXPECT_EQ(with("1e30"), std::numeric_limits<std::uint64_t>::max());
+  testing::internal::CaptureStderr();
+  for (const char* bad : { "nan", "inf", "-inf", "abc", "-5", "0" })
+  {
+    const std::uint64_t v = with(bad);
+    // the machine's own limit (its available memory changes a little between calls)
+    EXPECT_LT(v, std::uint64_t(1) << 56) << bad;
+    EXPECT_GT(v, fallback / 2) << bad;
+  }
+  const std::string err = testing::internal::GetCapturedStderr();
+  EXPECT_NE(err.find("LVDIF_MEMORY_LIMIT"), std::string::npos) << err;
+  EXPECT_EQ(std::count(err.begin(), err.end(), '\n'), 1) << err; // one notice per process
+  if (saved)
+    ::setenv("LVDIF_MEMORY_LIMIT", keep.c_str(), 1);
+  else
+    ::unsetenv("LVDIF_MEMORY_LIMIT");
 }
