@@ -72,23 +72,23 @@ lvdif::GridGeometry gridFor(vtkPolyData* pd, bool explicitGrid, const int dims[3
     }
     return g;
   }
-  lvdif::require(pd && pd->GetNumberOfPoints() > 0, "vtkMeshToSDF: the input mesh has no points");
+  lvdif::require(pd && pd->GetNumberOfPoints() > 0, "the input mesh has no points");
   double b[6];
   pd->GetBounds(b);
   for (double v : b)
   {
-    lvdif::require(std::isfinite(v), "vtkMeshToSDF: the input has NaN or infinite points");
+    lvdif::require(std::isfinite(v), "the input has NaN or infinite points");
   }
   if (sampleSpacing > 0)
   {
     double longest = 0;
     for (int a = 0; a < 3; ++a) longest = std::max(longest, b[2 * a + 1] - b[2 * a]);
-    lvdif::require(longest > 0, "vtkMeshToSDF: the mesh bounds have zero size");
+    lvdif::require(longest > 0, "the mesh bounds have zero size");
     for (int a = 0; a < 3; ++a)
     {
       const double n = std::ceil((b[2 * a + 1] - b[2 * a]) / sampleSpacing + 2 * padding - 1e-9) + 1;
       lvdif::require(n <= static_cast<double>(1 << 20),
-        "vtkMeshToSDF: SampleSpacing gives more than 2^20 points along an axis");
+        "SampleSpacing gives more than 2^20 points along an axis");
       g.dims[a] = static_cast<std::int64_t>(n);
       g.spacing[a] = sampleSpacing;
       g.origin[a] = 0.5 * (b[2 * a] + b[2 * a + 1]) - 0.5 * static_cast<double>(g.dims[a] - 1) * sampleSpacing;
@@ -128,7 +128,7 @@ int vtkMeshToSDF::RequestInformation(
     for (int a = 0; a < 3; ++a)
     {
       lvdif::require(g.dims[a] >= 1 && g.dims[a] <= VTK_INT_MAX && g.spacing[a] > 0,
-        "vtkMeshToSDF: grid dimensions must be >= 1 and spacings > 0");
+        "grid dimensions must be >= 1 and spacings > 0");
     }
   }
   catch (const lvdif::Error& e)

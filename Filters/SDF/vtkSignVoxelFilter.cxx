@@ -191,8 +191,10 @@ int vtkSignVoxelFilter::RequestDataObject(
   vtkInformation*, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
 {
   // the output is of the input's kind: sparse in, sparse out; image in, image out
+  // without an input the output is an image, so that the executive's input
+  // check says what is missing (returning 0 here gave only its cryptic
+  // "returned failure for request: REQUEST_DATA_OBJECT")
   vtkDataObject* input = vtkDataObject::GetData(inputVector[0]);
-  if (!input) return 0;
   vtkInformation* outInfo = outputVector->GetInformationObject(0);
   vtkDataObject* current = outInfo->Get(vtkDataObject::DATA_OBJECT());
   if (vtkSparseDictionaryVolume::SafeDownCast(input))

@@ -8,7 +8,10 @@
 #include "vtkSparseVolumeToImage.h"
 
 #include "vtkDictionaryVolumeToImage.h"
+#include "vtkCallbackCommand.h"
+#include "vtkCommand.h"
 #include "vtkDoubleArray.h"
+#include "vtkExecutive.h"
 #include "vtkFloatArray.h"
 #include "vtkImageData.h"
 #include "vtkNew.h"
@@ -22,6 +25,7 @@
 #include <cstdio>
 #include <cstring>
 #include <string>
+#include <vector>
 
 namespace
 {
@@ -187,4 +191,23 @@ TEST(VolumeEditFilter, RecordingPlaysBitExactlyLikeTheEditor)
   EXPECT_EQ(std::memcmp(a->GetPointer(0), bs->GetPointer(0), sizeof(float) * a->GetNumberOfValues()), 0);
   EXPECT_EQ(std::memcmp(ca->GetPointer(0), cs->GetPointer(0), 4 * ca->GetNumberOfTuples()), 0);
   std::remove(path.c_str());
+}
+
+// Default properties and no input: one error that says what is missing (it
+// was only the executive's "returned failure for request: REQUEST_DATA_OBJECT").
+TEST(VolumeEditFilter, NoInputIsOneClearError)
+{
+  vtkObject::GlobalWarningDisplayOn(); // ErrorEvent fires only with it on
+  std::vector<std::string> errors;
+  vtkNew<vtkCallbackCommand> cb;
+  cb->SetClientData(&errors);
+  cb->SetCallback([](vtkObject*, unsigned long, void* client, void* call) {
+    static_cast<std::vector<std::string>*>(client)->push_back(static_cast<const char*>(call));
+  });
+  vtkNew<vtkVolumeEditFilter> f;
+  f->AddObserver(vtkCommand::ErrorEvent, cb);
+  f->GetExecutive()->AddObserver(vtkCommand::ErrorEvent, cb);
+  f->Update();
+  ASSERT_EQ(errors.size(), 1u) << (errors.empty() ? "" : errors[0] + " / " + errors.back());
+  EXPECT_NE(errors[0].find("Input port 0"), std::string::npos) << errors[0];
 }

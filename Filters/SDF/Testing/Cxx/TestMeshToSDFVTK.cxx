@@ -191,6 +191,15 @@ TEST(vtkMeshToSDF, ClearErrors)
   errors.last.clear();
   f->Update();
   EXPECT_NE(errors.last.find("limit"), std::string::npos) << errors.last;
+
+  // the fitted grid of an empty mesh: the message names the class once
+  // (vtkErrorMacro's prefix; it read "vtkMeshToSDF (0x..): vtkMeshToSDF: ...")
+  vtkNew<vtkMeshToSDF> fitted;
+  ErrorCatcher fittedErrors(fitted);
+  fitted->SetInputData(empty);
+  fitted->Update();
+  EXPECT_NE(fittedErrors.last.find("no points"), std::string::npos) << fittedErrors.last;
+  EXPECT_EQ(fittedErrors.last.find("vtkMeshToSDF: "), std::string::npos) << fittedErrors.last;
 }
 
 namespace

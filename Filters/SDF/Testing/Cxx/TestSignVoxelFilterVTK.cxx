@@ -4,7 +4,9 @@
 // chosen array and the filter mask, refuses non-float arrays, and aborts.
 #include "vtkSignVoxelFilter.h"
 
+#include "vtkCallbackCommand.h"
 #include "vtkCommand.h"
+#include "vtkExecutive.h"
 #include "vtkFlyingEdges3D.h"
 #include "vtkPolyData.h"
 #include "vtkPolyDataConnectivityFilter.h"
@@ -22,6 +24,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <string>
 #include <vector>
 
 namespace
@@ -310,4 +313,24 @@ TEST(vtkSignVoxelFilter, CheckboxesAreTheMaskBits)
     EXPECT_EQ(range[0], lo);
     EXPECT_EQ(range[1], hi);
   }
+}
+
+// Default properties and no input: one error that says what is missing (it
+// was only the executive's "returned failure for request: REQUEST_DATA_OBJECT"
+// with a dump of the request, not naming the input).
+TEST(vtkSignVoxelFilter, NoInputIsOneClearError)
+{
+  vtkObject::GlobalWarningDisplayOn(); // ErrorEvent fires only with it on
+  std::vector<std::string> errors;
+  vtkNew<vtkCallbackCommand> cb;
+  cb->SetClientData(&errors);
+  cb->SetCallback([](vtkObject*, unsigned long, void* client, void* call) {
+    static_cast<std::vector<std::string>*>(client)->push_back(static_cast<const char*>(call));
+  });
+  vtkNew<vtkSignVoxelFilter> f;
+  f->AddObserver(vtkCommand::ErrorEvent, cb);
+  f->GetExecutive()->AddObserver(vtkCommand::ErrorEvent, cb);
+  f->Update();
+  ASSERT_EQ(errors.size(), 1u) << (errors.empty() ? "" : errors[0] + " / " + errors.back());
+  EXPECT_NE(errors[0].find("Input port 0"), std::string::npos) << errors[0];
 }
