@@ -1,14 +1,59 @@
 // lvdif: the command-line tool. `lvdif help` lists the commands.
 #include "Commands.h"
 
+#include "LVDIFVolumeBridge.h"
 #include "lvdif/Error.h"
 
+#include "vtkLogger.h"
+#include "vtkNew.h"
+#include "vtkObjectFactory.h"
+#include "vtkOutputWindow.h"
+
+#include <csignal>
 #include <cstdio>
 #include <cstring>
 #include <exception>
+#include <unistd.h>
 
 namespace
 {
+/// VTK's messages in the CLI: a failure reaches the user as the one line of
+/// the lvdif::Error it becomes (LVDIFFiles watches every algorithm it runs),
+/// so VTK's own error text, which objects nobody watches print in VTK's log
+/// format through vtkLogger (e.g. the XML parser under a .vti reader: a
+/// second error line), is dropped; warnings come as one "warning: ..." line.
+class CliOutputWindow : public vtkOutputWindow
+{
+public:
+  static CliOutputWindow* New();
+  vtkTypeMacro(CliOutputWindow, vtkOutputWindow);
+  void DisplayText(const char* text) override { std::fprintf(stderr, "%s", text ? text : ""); }
+  void DisplayErrorText(const char* text) override
+  {
+    // kept for an abort (VTK aborts on a lost X display right after its error)
+    std::snprintf(LastError, sizeof(LastError), "%s", LVDIFVolumeBridge::MessageText(text).c_str());
+  }
+  static char LastError[1024];
+  void DisplayWarningText(const char* text) override
+  {
+    std::fprintf(stderr, "warning: %s\n", LVDIFVolumeBridge::MessageText(text).c_str());
+  }
+  void DisplayGenericWarningText(const char* text) override { this->DisplayWarningText(text); }
+  void DisplayDebugText(const char*) override {}
+};
+vtkStandardNewMacro(CliOutputWindow);
+char CliOutputWindow::LastError[1024] = "";
+
+extern "C" void onAbort(int sig)
+{
+  const char* head = "lvdif: aborted: ";
+  if (CliOutputWindow::LastError[0] != '\0' && ::write(STDERR_FILENO, head, std::strlen(head)) >= 0 &&
+    ::write(STDERR_FILENO, CliOutputWindow::LastError, std::strlen(CliOutputWindow::LastError)) >= 0)
+    (void)!::write(STDERR_FILENO, "\n", 1);
+  std::signal(sig, SIG_DFL);
+  std::raise(sig);
+}
+
 struct Command
 {
   const char* name;
@@ -40,6 +85,10 @@ int usage(FILE* f)
 int main(int argc, char** argv)
 {
   if (argc < 2) return usage(stderr);
+  vtkNew<CliOutputWindow> messages;
+  vtkOutputWindow::SetInstance(messages);
+  vtkLogger::SetStderrVerbosity(vtkLogger::VERBOSITY_OFF); // VTK logs each message there too
+  std::signal(SIGABRT, onAbort);
   if (!std::strcmp(argv[1], "help") || !std::strcmp(argv[1], "--help") || !std::strcmp(argv[1], "-h")) return usage(stdout);
   for (const auto& c : commands)
   {

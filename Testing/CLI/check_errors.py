@@ -48,6 +48,13 @@ with open(os.path.join(out, "junk.lvdv"), "wb") as f:
     f.write(b"not a volume file at all" * 10)
 code, err = run("info", os.path.join(out, "junk.lvdv"))
 assert code == 1 and err.count("\n") == 0, (code, err)
+# a .vti that is not XML: one line (VTK's XML parser printed its own error in
+# VTK's log format before it)
+with open(os.path.join(out, "junk.vti"), "w") as f:
+    f.write("not xml\n")
+code, err = run("mesh", os.path.join(out, "junk.vti"), os.path.join(out, "junk.ply"))
+lines = [line for line in err.splitlines() if not line.endswith(": done")]
+assert code == 1 and len(lines) == 1 and lines[0].startswith("lvdif mesh: cannot read") and "ERR|" not in err, (code, err)
 # a volume that cannot be read is never "read volume: done" before the error
 code, err = run("mesh", os.path.join(out, "junk.lvdv"), os.path.join(out, "junk.ply"))
 assert code == 1 and err.count("\n") == 0 and "junk.lvdv" in err, (code, err)
