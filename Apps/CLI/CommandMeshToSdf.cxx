@@ -70,7 +70,18 @@ int CommandMeshToSdf(int argc, char** argv)
 
   ProgressBar progress;
   CheckVolumeOutput(out);
-  const lvdif::TriangleMesh mesh = lvdif::loadMesh(in);
+  const lvdif::TriangleMesh mesh = [&] {
+    try
+    {
+      return lvdif::loadMesh(in);
+    }
+    catch (const lvdif::Error& e)
+    {
+      // the reader's message says where in the file; this says which file
+      const std::string what = e.what();
+      throw lvdif::Error(e.code(), what.rfind("cannot ", 0) == 0 ? what : "cannot read '" + in + "': " + what);
+    }
+  }();
   const lvdif::GridGeometry grid = lvdif::fitGridToMesh(mesh, dims, padding);
   lvdif::VolumeOptions vo = lvdif::volumeOptionsOn(grid);
   vo.bandWidth = static_cast<float>(band);

@@ -48,6 +48,14 @@ with open(os.path.join(out, "junk.lvdv"), "wb") as f:
     f.write(b"not a volume file at all" * 10)
 code, err = run("info", os.path.join(out, "junk.lvdv"))
 assert code == 1 and err.count("\n") == 0, (code, err)
+# a mesh file that cannot be read names the file once, whatever the fault
+for name, data in (("empty.obj", b""), ("junk.ply", b"ply\nformat ascii 1.0\nelement vertex 4000000000\n"),
+                   ("junk.stl", b"\x00" * 90), ("junk.off", b"OFF\n3 1 0\n0 0 0\n")):
+    mesh_path = os.path.join(out, name)
+    with open(mesh_path, "wb") as f:
+        f.write(data)
+    code, err = run("mesh-to-sdf", mesh_path, os.path.join(out, "m.lvdv"), "--dims", "8")
+    assert code == 1 and err.count("\n") == 0 and err.count(mesh_path) == 1, (name, code, err)
 # a .vti that is not XML: one line (VTK's XML parser printed its own error in
 # VTK's log format before it)
 with open(os.path.join(out, "junk.vti"), "w") as f:

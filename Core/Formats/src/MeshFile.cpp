@@ -23,7 +23,7 @@ using namespace detail::volumefile::meshfile;
 // The format check that needs only the first bytes (and the size), made
 // before the whole file is read: a garbage file of any size is refused after
 // reading at most 4 KiB.
-void checkMeshHead(ByteSource& source, MeshFormat format, const std::string& name)
+void checkMeshHead(ByteSource& source, MeshFormat format)
 {
   const std::uint64_t size = source.size();
   std::vector<char> head(static_cast<std::size_t>(std::min<std::uint64_t>(size, 4096)));
@@ -39,7 +39,7 @@ void checkMeshHead(ByteSource& source, MeshFormat format, const std::string& nam
   {
     case MeshFormat::Ply:
       if (h.compare(0, 4, "ply\n") != 0 && h.compare(0, 5, "ply\r\n") != 0)
-        fail(ErrorCode::ParseError, name + ": PLY line 1", "missing the 'ply' magic line");
+        fail(ErrorCode::ParseError, "PLY line 1", "missing the 'ply' magic line");
       return;
     case MeshFormat::Stl:
     {
@@ -52,15 +52,14 @@ void checkMeshHead(ByteSource& source, MeshFormat format, const std::string& nam
       }
       const std::size_t b = h.find_first_not_of(" \t\r\n");
       if (b == std::string::npos || h.compare(b, 5, "solid") != 0 || !text())
-        fail(ErrorCode::CorruptData, name,
+        fail(ErrorCode::CorruptData, "STL",
           "neither a binary STL (size is not 84 + 50 x triangle count) nor an ASCII one (no 'solid')");
       return;
     }
     case MeshFormat::Obj:
     case MeshFormat::Off:
       if (!text())
-        fail(ErrorCode::ParseError, name, std::string("not a text ") + (format == MeshFormat::Obj ? "OBJ" : "OFF") +
-            " file (a NUL byte in its first 4 KiB)");
+        fail(ErrorCode::ParseError, format == MeshFormat::Obj ? "OBJ" : "OFF", "not a text file (a NUL byte in its first 4 KiB)");
       return;
     default:
       return;
@@ -536,7 +535,7 @@ TriangleMesh readMesh(ByteSource& source, MeshFormat format, const std::string& 
   if (format == MeshFormat::Auto)
     format = meshFormatFromName(name);
   const std::uint64_t size = source.size();
-  checkMeshHead(source, format, name);
+  checkMeshHead(source, format);
   // the text and the mesh together take a few times the file size
   requireMemory(checkedMultiply(size, 4, "mesh file"), "reading the mesh file " + name);
   std::vector<char> data(static_cast<size_t>(size));
