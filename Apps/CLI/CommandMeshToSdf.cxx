@@ -56,6 +56,10 @@ int CommandMeshToSdf(int argc, char** argv)
   if (dims < 2 || dims > lvdif::DictionaryVolume::MaxDimension)
     throw lvdif::Error(lvdif::ErrorCode::InvalidArgument, "--dims must be in [2, " +
         std::to_string(lvdif::DictionaryVolume::MaxDimension) + "], not " + std::to_string(dims));
+  // fitGridToMesh's own words ("maxDim - 1 - 2 * padding < 1") name no option
+  if (std::isfinite(padding) && padding >= 0 && static_cast<double>(dims) - 1.0 - 2.0 * padding < 1.0)
+    throw lvdif::Error(lvdif::ErrorCode::InvalidArgument, "--dims " + std::to_string(dims) + " leaves no voxel for the mesh inside --padding " +
+        args.get("padding", "2") + " on every side: use --dims of at least 2 x padding + 2, or less padding");
   if (!(band > 0) || !std::isfinite(band))
     throw lvdif::Error(lvdif::ErrorCode::InvalidArgument, "--band must be a finite number > 0");
   lvdif::MeshToSdfOptions options;

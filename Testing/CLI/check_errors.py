@@ -56,6 +56,9 @@ for name, data in (("empty.obj", b""), ("junk.ply", b"ply\nformat ascii 1.0\nele
         f.write(data)
     code, err = run("mesh-to-sdf", mesh_path, os.path.join(out, "m.lvdv"), "--dims", "8")
     assert code == 1 and err.count("\n") == 0 and err.count(mesh_path) == 1, (name, code, err)
+# --dims too small for the padding names both options (not fitGridToMesh's "maxDim")
+code, err = run("mesh-to-sdf", os.path.join(out, "empty.obj"), os.path.join(out, "m.lvdv"), "--dims", "3")
+assert code == 1 and "--dims 3" in err and "--padding 2" in err and "maxDim" not in err, (code, err)
 # a .vti that is not XML: one line (VTK's XML parser printed its own error in
 # VTK's log format before it)
 with open(os.path.join(out, "junk.vti"), "w") as f:
