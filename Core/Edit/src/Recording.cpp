@@ -306,7 +306,10 @@ Recording readRecording(std::istream& in, const std::string& name)
     r.records.push_back(e);
   }
   if (!header)
+  {
+    at.Line = std::max<std::size_t>(at.Line, 1); // an empty file's error is on line 1 (it said line 0)
     at.bad(1, "empty recording (no version line)");
+  }
   if (expectDabs > 0)
     at.bad(1, "recording ends " + std::to_string(expectDabs) + " dab lines early");
   return r;

@@ -91,6 +91,9 @@ TEST(Recording, ParseErrorsNameTheLine)
   EXPECT_EQ(errorOf(head + edit + "d 1 2 3 4\nd 1 2 x 4\n"), "recording:4:7: dab position is not a finite number: 'x'");
   EXPECT_EQ(errorOf(head + "\n# c\nedit time=0 op=melt\n"), "recording:4:16: unknown op 'melt'");
   EXPECT_EQ(errorOf(head + "bogus time=1\n"), "recording:2:1: unknown record 'bogus'");
+  // an empty file: line 1, as every position is 1-based (it said "recording:0:1")
+  EXPECT_EQ(errorOf(""), "recording:1:1: empty recording (no version line)");
+  EXPECT_EQ(errorOf("# only a comment\n"), "recording:1:1: empty recording (no version line)");
 }
 
 TEST(Recording, ImportsTheOriginalCsvWithAxisSwapAndScaling)
