@@ -1,5 +1,9 @@
 #include "EditorOptions.h"
 
+#include "LVDIFFiles.h"
+#include "lvdif/ByteStream.h"
+#include "lvdif/Error.h"
+
 #include <QCommandLineParser>
 #include <QPointF>
 #include <QRegularExpression>
@@ -13,6 +17,30 @@ namespace
 {
   std::fprintf(stderr, "lvdif-editor: %s\n", message.toLocal8Bit().constData());
   std::exit(2);
+}
+
+/// A batch output checked before any work, as the CLI does: a format the
+/// editor writes there and a folder it can write to (it converted a mesh or
+/// ran a script first and then failed on a missing folder or an unknown
+/// extension; a screenshot into a missing folder said "no frame to save").
+void checkOutput(const char* option, const QString& path, const LVDIFFiles::Kind* kind)
+{
+  if (path.isEmpty())
+    return;
+  const std::string p = path.toStdString();
+  const LVDIFFiles::Format* f = kind ? LVDIFFiles::Find(p, *kind) : nullptr;
+  if (kind ? !f || f->writerClass.empty() : LVDIFFiles::Extension(p) != "png")
+    fail(QString("--%1 %2: not a format it writes (%3)")
+           .arg(option, path,
+             kind ? QString::fromStdString(LVDIFFiles::DialogFilter(*kind, true)) : QString("a .png picture")));
+  try
+  {
+    lvdif::requireWritable(p);
+  }
+  catch (const lvdif::Error& e)
+  {
+    fail(QString("--%1 %2: %3").arg(option, path, e.what()));
+  }
 }
 } // namespace
 
@@ -197,5 +225,11 @@ EditorOptions parseEditorOptions(const QStringList& arguments)
     if (!ok || o.samples < 0 || o.samples > 16)
       fail("--samples must be an integer from 0 to 16");
   }
+  const LVDIFFiles::Kind volume = LVDIFFiles::Kind::Volume, mesh = LVDIFFiles::Kind::Mesh;
+  checkOutput("save", o.save, &volume);
+  checkOutput("export", o.exportMesh, &mesh);
+  checkOutput("screenshot", o.screenshot, nullptr);
+  checkOutput("screenshot-window", o.windowShot, nullptr);
+  checkOutput("screenshot-during-drag", o.dragShot, nullptr);
   return o;
 }
