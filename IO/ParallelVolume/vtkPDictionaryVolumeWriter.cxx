@@ -61,6 +61,16 @@ void vtkPDictionaryVolumeWriter::PieceExtent(const int whole[6], int piece, int 
   }
 }
 
+int vtkPDictionaryVolumeWriter::Write()
+{
+  if (this->GetNumberOfInputConnections(0) < 1)
+    return this->Superclass::Write(); // VTK's "No input provided!"
+  this->SetErrorCode(vtkErrorCode::NoError);
+  if (!vtkLVDIFVolumeWriter::UpdateWholeInput(this) && this->GetErrorCode() == vtkErrorCode::NoError)
+    this->SetErrorCode(vtkErrorCode::UnknownError);
+  return this->GetErrorCode() == vtkErrorCode::NoError ? 1 : 0;
+}
+
 // Ask the input for exactly this piece's extent (the one piece 0 lists in the index).
 vtkTypeBool vtkPDictionaryVolumeWriter::ProcessRequest(
   vtkInformation* request, vtkInformationVector** inputVector, vtkInformationVector* outputVector)

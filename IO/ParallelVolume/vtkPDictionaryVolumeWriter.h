@@ -42,6 +42,10 @@ public:
   vtkTypeMacro(vtkPDictionaryVolumeWriter, vtkWriter);
   void PrintSelf(ostream& os, vtkIndent indent) override;
 
+  /// vtkWriter::Write, but 0 when the input failed upstream (as every LVDIF
+  /// writer: vtkLVDIFVolumeWriter::UpdateWholeInput).
+  int Write() override;
+
   /// The index file (`name.lvdvp`); pieces go to `name_<piece>.lvdv` beside it.
   vtkSetStdStringFromCharMacro(FileName);
   vtkGetCharFromStdStringMacro(FileName);

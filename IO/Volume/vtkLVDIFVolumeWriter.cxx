@@ -36,18 +36,22 @@ std::unique_ptr<lvdif::DictionaryVolume> vtkLVDIFVolumeWriter::ImageToVolume(
   return LVDIFVolumeBridge::VolumeFromImage(image, sdf, rgba, this->ImageVolumeOptions());
 }
 
-int vtkLVDIFVolumeWriter::Write()
+bool vtkLVDIFVolumeWriter::UpdateWholeInput(vtkWriter* writer)
 {
-  auto* exec = vtkStreamingDemandDrivenPipeline::SafeDownCast(this->GetExecutive());
-  if (this->GetNumberOfInputConnections(0) < 1 || !exec)
-    return this->Superclass::Write(); // VTK's "No input provided!"
   // vtkWriter::Write ignores a failed RequestInformation upstream (a reader's
   // error then comes twice) and answers by the writer's error code alone,
   // which stays NoError when WriteData never ran
+  auto* exec = vtkStreamingDemandDrivenPipeline::SafeDownCast(writer->GetExecutive());
+  writer->Modified(); // always write, even if the data did not change
+  return exec && exec->UpdateInformation() && exec->UpdateWholeExtent();
+}
+
+int vtkLVDIFVolumeWriter::Write()
+{
+  if (this->GetNumberOfInputConnections(0) < 1)
+    return this->Superclass::Write(); // VTK's "No input provided!"
   this->SetErrorCode(vtkErrorCode::NoError);
-  this->Modified(); // always write, even if the data did not change
-  const bool ran = exec->UpdateInformation() && exec->UpdateWholeExtent();
-  if (!ran && this->GetErrorCode() == vtkErrorCode::NoError)
+  if (!UpdateWholeInput(this) && this->GetErrorCode() == vtkErrorCode::NoError)
     this->SetErrorCode(vtkErrorCode::UnknownError);
   return this->GetErrorCode() == vtkErrorCode::NoError ? 1 : 0;
 }

@@ -46,6 +46,11 @@ public:
   /// answered 1, nothing written, and ran a failed reader a second time).
   int Write() override;
 
+  /// What Write() runs, for every LVDIF writer (vtkPDictionaryVolumeWriter
+  /// too): the pipeline for the whole input, stopping when its information
+  /// fails; false when it did not run to the end.
+  static bool UpdateWholeInput(vtkWriter* writer);
+
 protected:
   vtkLVDIFVolumeWriter();
   ~vtkLVDIFVolumeWriter() override;

@@ -35,6 +35,7 @@
 #include <cmath>
 #include <cstdio>
 #include <fstream>
+#include <iterator>
 #include <string>
 #include <unistd.h>
 
@@ -397,4 +398,37 @@ TEST(PVolumeIO, ErrorsAreReported)
   std::remove(index.c_str());
   std::remove(tmpName("err_0.lvdv").c_str());
   std::remove(p1.c_str());
+}
+
+// reader of a damaged file -> the distributed writer: Write() says it failed
+// (it answered 1, nothing written) and the index written over survives byte
+// for byte; the same rule as the single-file writers (vtkLVDIFVolumeWriter).
+TEST(PVolumeIO, WriteFailsWhenTheInputFailsUpstream)
+{
+  vtkSmartPointer<vtkImageData> img = makeImage();
+  const std::string index = tmpName("upstream.lvdvp"), damaged = tmpName("upstream_damaged.lvdv");
+  writePieces(img, index, 1);
+  {
+    vtkNew<vtkDictionaryVolumeWriter> w;
+    w->SetInputData(img);
+    w->SetFileName(damaged.c_str());
+    ASSERT_EQ(w->Write(), 1);
+  }
+  ASSERT_EQ(::truncate(damaged.c_str(), 300), 0);
+  auto bytes = [](const std::string& p) {
+    std::ifstream f(p, std::ios::binary);
+    return std::string(std::istreambuf_iterator<char>(f), std::istreambuf_iterator<char>());
+  };
+  const std::string before = bytes(index);
+  vtkNew<vtkDictionaryVolumeReader> reader;
+  reader->GlobalWarningDisplayOff();
+  reader->SetFileName(damaged.c_str());
+  vtkNew<vtkPDictionaryVolumeWriter> writer;
+  writer->SetInputConnection(reader->GetOutputPort());
+  writer->SetFileName(index.c_str());
+  EXPECT_EQ(writer->Write(), 0);
+  EXPECT_EQ(bytes(index), before);
+  std::remove(damaged.c_str());
+  std::remove(index.c_str());
+  std::remove(tmpName("upstream_0.lvdv").c_str());
 }
