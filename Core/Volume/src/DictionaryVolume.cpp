@@ -108,6 +108,14 @@ static void validateOptions(const VolumeOptions& o)
     throw Error(ErrorCode::InvalidArgument, msg.str());
   }
   require(o.bandWidth > 0 && !std::isnan(o.bandWidth), "band width must be > 0 (or infinity for full)");
+  // narrower, every distance would be stored as 0: no sign, no surface
+  if (o.bandWidth < o.dictionary.stepA)
+  {
+    std::ostringstream msg;
+    msg << "band width " << o.bandWidth << " is below the distance dictionary's step of " << o.dictionary.stepA
+        << " voxel: every distance would be stored as 0 and the signs lost";
+    throw Error(ErrorCode::InvalidArgument, msg.str());
+  }
 }
 
 std::uint64_t DictionaryVolume::tableBytes(const VolumeOptions& o)

@@ -7,6 +7,7 @@
 
 #include <cmath>
 #include <random>
+#include <string>
 #include <vector>
 
 using namespace lvdif;
@@ -128,6 +129,35 @@ TEST(DictionaryVolume, BandSaturatesDistances)
   EXPECT_NEAR(f.sdf(1, 1, 1), 100.0f, 1e-3);
   f.setSdf(1, 1, 1, 1e9f);
   EXPECT_FLOAT_EQ(f.sdf(1, 1, 1), 2880.7f);
+}
+
+// A band narrower than the dictionary's finest step stored every distance as
+// 0: all signs lost, no surface (vtkMeshToSDF BandWidth 1e-9 gave 0 triangles
+// and the warning that the voxels are too large). Refused; the step itself keeps signs.
+TEST(DictionaryVolume, BandBelowTheDictionaryStepIsRefused)
+{
+  for (float band : { 1e-9f, 0.0004f })
+  {
+    VolumeOptions o = opts(8, 8, 8, 8);
+    o.bandWidth = band;
+    try
+    {
+      DictionaryVolume v(o);
+      ADD_FAILURE() << "band " << band << " accepted";
+    }
+    catch (const Error& e)
+    {
+      EXPECT_EQ(e.code(), ErrorCode::InvalidArgument);
+      EXPECT_NE(std::string(e.what()).find("band width"), std::string::npos) << e.what();
+    }
+  }
+  VolumeOptions o = opts(8, 8, 8, 8);
+  o.bandWidth = static_cast<float>(o.dictionary.stepA);
+  DictionaryVolume v(o);
+  v.setSdf(1, 1, 1, -5.0f);
+  v.setSdf(2, 2, 2, 5.0f);
+  EXPECT_LT(v.sdf(1, 1, 1), 0.0f);
+  EXPECT_GT(v.sdf(2, 2, 2), 0.0f);
 }
 
 TEST(DictionaryVolume, RefusesAbsurdSizesBeforeAllocating)
