@@ -33,6 +33,7 @@
 
 #include <algorithm>
 #include <cctype>
+#include <cstdio>
 #include <dlfcn.h>
 
 vtkSmartPointer<vtkPolyData> MeshVolume(const lvdif::DictionaryVolume& volume, lvdif::Interrupter& interrupter)
@@ -63,6 +64,13 @@ vtkSmartPointer<vtkPolyData> MeshVolume(const lvdif::DictionaryVolume& volume, l
   }
   auto mesh = vtkSmartPointer<vtkPolyData>::New();
   mesh->ShallowCopy(mc->GetOutput());
+  // an empty mesh is a valid result, but rarely the one expected: say why it is empty
+  if (mesh->GetNumberOfPolys() == 0)
+  {
+    std::fprintf(stderr,
+      "warning: marching cubes: the volume has no surface (no zero crossing: every voxel is outside, or every "
+      "voxel inside), so the mesh is empty\n");
+  }
   return mesh;
 }
 
