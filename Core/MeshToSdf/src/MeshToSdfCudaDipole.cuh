@@ -12,6 +12,7 @@
 
 #include "MeshToSdfCudaKernels.cuh"
 #include "MeshToSdfDipoleDecide.h"
+#include "MeshToSdfDipoleLocal.h"
 
 #include <cooperative_groups.h>
 
@@ -112,15 +113,18 @@ __global__ void dipoleBlockKernel(DipoleDev D, Params P, int edge, long long bx,
 }
 
 /// The blocks of edge voxels inside the listed blocks of the level above
-/// (parents, parentCount of them; edge ratio x edge, pbx x pby per layer),
+/// (parents, parentCount of them, but the first skipParents; edge ratio x
+/// edge, pbx x pby per layer),
 /// one per thread of a grid-stride loop, so that full warps bound blocks:
 /// the first pass of dipoleBlockBound (dipoleBlockFrom).
 __global__ void dipoleListedBlockKernel(DipoleDev D, Params P, int edge, long long bx, long long by, long long bz,
   long long pbx, long long pby, int ratio, const long long* parents, const unsigned long long* parentCount,
-  double* bounds, DipoleBlockLists L)
+  long long skipParents, double* bounds, DipoleBlockLists L)
 {
   const long long r3 = static_cast<long long>(ratio) * ratio * ratio;
-  const long long total = static_cast<long long>(*parentCount) * r3;
+  // the first skipParents parents went to the local step (dipoleLocalKernel): their voxels have intervals of their own
+  parents += skipParents;
+  const long long total = max(0ll, static_cast<long long>(*parentCount) - skipParents) * r3;
   const long long stride = static_cast<long long>(gridDim.x) * blockDim.x;
   for (long long t = static_cast<long long>(blockIdx.x) * blockDim.x + threadIdx.x; t < total; t += stride)
   {
@@ -142,6 +146,70 @@ __global__ void dipoleBlockPassKernel(DipoleDev D, Params P, int edge, long long
     dipoleBlockFrom(D, P, edge, bx, by, in[t].item, pass, in[t].margin, L, bounds);
 }
 
+/// Where the local step's intervals go (MeshToSdfCuda.cu): per listed 4^3
+/// block t < cap its voxels' lo (pool[128 t + v]) and hi (pool[128 t + 64 +
+/// v]), v = a + 4 (b + 4 c); slot[b] = t for block b of the 4^3 level (-1:
+/// none, the voxels are refined one by one).
+struct DipoleLocalLists
+{
+  double* pool = nullptr;
+  int* slot = nullptr;
+  long long cap = 0;
+  long long bx = 0, by = 0;             // 4^3 blocks per row and per layer of the slab
+  unsigned long long* counts = nullptr; // blocks expanded, blocks failed, voxels decided by the intervals
+};
+
+/// The 4^3 blocks the ball bounds left without one (failed, min(*failedCount,
+/// L.cap) of them), one per thread of a grid-stride loop: dipoleLocalBlock
+/// at the voxels' positions as signDipoleKernel computes them.
+__global__ void dipoleLocalKernel(DipoleDev D, Params P, const long long* failed, const unsigned long long* failedCount,
+  DipoleLocalLists L)
+{
+  const long long n = min(static_cast<long long>(*failedCount), L.cap);
+  const long long stride = static_cast<long long>(gridDim.x) * blockDim.x;
+  const long long nx = P.hi[0] - P.lo[0] + 1, ny = P.hi[1] - P.lo[1] + 1, nz = P.hi[2] - P.lo[2] + 1;
+  const double h = P.spacing[0];
+  unsigned long long expanded = 0, failures = 0;
+  for (long long t = static_cast<long long>(blockIdx.x) * blockDim.x + threadIdx.x; t < n; t += stride)
+  {
+    const long long b = failed[t];
+    const long long ix = b % L.bx, iy = (b / L.bx) % L.by, iz = b / (L.bx * L.by);
+    DipoleLocalBlockVoxels X;
+    X.h = h;
+    X.x0 = DipoleLocalEdge * ix;
+    X.n[0] = static_cast<int>(min(static_cast<long long>(DipoleLocalEdge), nx - DipoleLocalEdge * ix));
+    X.n[1] = static_cast<int>(min(static_cast<long long>(DipoleLocalEdge), ny - DipoleLocalEdge * iy));
+    X.n[2] = static_cast<int>(min(static_cast<long long>(DipoleLocalEdge), nz - DipoleLocalEdge * iz));
+    for (int c = 0; c < X.n[2]; ++c)
+      for (int r = 0; r < X.n[1]; ++r)
+        X.rowStart[r + DipoleLocalEdge * c] =
+          positionOf(P, P.lo[0], P.lo[1] + DipoleLocalEdge * iy + r, P.lo[2] + DipoleLocalEdge * iz + c);
+    V3 p0, p1, centre;
+    double rho = 0;
+    dipoleBlockCorners(P, DipoleLocalEdge, ix, iy, iz, p0, p1);
+    dipoleBlockBall(p0, p1, centre, rho);
+    double lo[DipoleLocalVoxels], hi[DipoleLocalVoxels];
+    const int r = dipoleLocalBlock(D, X, centre, rho, lo, hi);
+    double* out = L.pool + 2 * DipoleLocalVoxels * t;
+    for (int v = 0; v < DipoleLocalVoxels; ++v)
+    {
+      out[v] = lo[v];
+      out[DipoleLocalVoxels + v] = hi[v];
+    }
+    if (r >= 0)
+    {
+      L.slot[b] = static_cast<int>(t);
+      ++expanded;
+    }
+    else
+    {
+      ++failures;
+    }
+  }
+  if (expanded) atomicAdd(L.counts, expanded);
+  if (failures) atomicAdd(L.counts + 1, failures);
+}
+
 /// WindingSigner::signRow with the correction s (closure without a cone):
 /// one warp per scan line as signKernel; the lanes walk the crossings
 /// together, then each lane takes its voxel: decided by the block's bound of
@@ -153,7 +221,8 @@ __global__ void dipoleBlockPassKernel(DipoleDev D, Params P, int edge, long long
 /// rowRayKernel (rayMeta, rayHits: row - rowBegin).
 __global__ void signDipoleKernel(WindingDev W, DipoleDev D, Params P, long long rowBegin, long long rowEnd,
   const int4* rayMeta, const Hit* rayHits, const double* bounds, long long bx, long long by, float* out,
-  unsigned long long* counters, unsigned long long* queue, unsigned long long* queueCount, long long queueCap)
+  unsigned long long* counters, unsigned long long* queue, unsigned long long* queueCount, long long queueCap,
+  DipoleLocalLists local)
 {
   __shared__ RayShared sharedRay[SignWarps];
   const long long nx = P.hi[0] - P.lo[0] + 1, ny = P.hi[1] - P.lo[1] + 1;
@@ -168,7 +237,11 @@ __global__ void signDipoleKernel(WindingDev W, DipoleDev D, Params P, long long 
   const Hit* hits = sharedRay[warp].hits;
   const RowRay ray = rowRayOf(W, start, h, sharedRay[warp], lane, rayMeta, rayHits, row - rowBegin);
   const int ok = ray.ok, count = ray.count, sum = ray.sum;
-  unsigned long long ev = 0, full = 0, fallback = 0;
+  unsigned long long ev = 0, full = 0, fallback = 0, fromLocal = 0;
+  // this row's 4^3 blocks (their local intervals, where they have them)
+  const long long localRow = local.bx * ((j - P.lo[1]) / DipoleLocalEdge + local.by * ((k - P.lo[2]) / DipoleLocalEdge));
+  const int localSub = DipoleLocalEdge * (static_cast<int>((j - P.lo[1]) % DipoleLocalEdge) +
+    DipoleLocalEdge * static_cast<int>((k - P.lo[2]) % DipoleLocalEdge));
   const double* blockRow = bounds + 2 * bx * ((j - P.lo[1]) / DipoleBlock + by * ((k - P.lo[2]) / DipoleBlock));
   // each lane walks the sorted crossings up to its own voxels (they advance
   // by 32 a step): K = sum minus the crossings before the voxel, the value
@@ -213,6 +286,14 @@ __global__ void signDipoleKernel(WindingDev W, DipoleDev D, Params P, long long 
         // ambiguous rows use no block bounds (WindingSigner::insideAt)
         const double lo = ok ? blockRow[2 * (mine / DipoleBlock)] : 1.0, hi = ok ? blockRow[2 * (mine / DipoleBlock) + 1] : 0.0;
         refine = !dipoleBlockDecides(myK, lo, hi, myInside);
+        // then the voxel's own interval from its 4^3 block's local expansion
+        const int slot = refine && ok && local.slot ? local.slot[localRow + mine / DipoleLocalEdge] : -1;
+        if (slot >= 0)
+        {
+          const double* in = local.pool + 2 * DipoleLocalVoxels * static_cast<long long>(slot) + localSub + mine % DipoleLocalEdge;
+          refine = !dipoleBlockDecides(myK, in[0], in[DipoleLocalVoxels], myInside);
+          fromLocal += !refine;
+        }
         ev += refine;
       }
     }
@@ -238,6 +319,7 @@ __global__ void signDipoleKernel(WindingDev W, DipoleDev D, Params P, long long 
   if (ev) atomicAdd(counters, ev);
   if (fallback) atomicAdd(counters + 1, fallback);
   if (full) atomicAdd(counters + 2, full);
+  if (fromLocal && local.counts) atomicAdd(local.counts + 2, fromLocal);
 }
 
 /// The voxels signDipoleKernel listed (queue: their first pass) or an
