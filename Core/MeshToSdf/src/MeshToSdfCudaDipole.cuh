@@ -159,18 +159,38 @@ struct DipoleLocalLists
   unsigned long long* counts = nullptr; // blocks expanded, blocks failed, voxels decided by the intervals
 };
 
+/// dipoleLocalBlock's group on the GPU: the 32 lanes of a warp (any voxel
+/// still open, the smallest gap), so that every lane takes the same passes.
+struct DipoleLocalWarp
+{
+  __host__ __device__ void operator()(bool& anyOpen, double& gap) const
+  {
+#ifdef __CUDA_ARCH__
+    anyOpen = __any_sync(0xffffffffu, anyOpen);
+    for (int o = 16; o > 0; o >>= 1) gap = fmin(gap, __shfl_xor_sync(0xffffffffu, gap, o));
+#endif
+  }
+};
+
+/// The voxels of a 4^3 block per lane of its warp (64 / 32).
+constexpr int DipoleLocalPerLane = DipoleLocalVoxels / 32;
+
 /// The 4^3 blocks the ball bounds left without one (failed, min(*failedCount,
-/// L.cap) of them), one per thread of a grid-stride loop: dipoleLocalBlock
-/// at the voxels' positions as signDipoleKernel computes them.
+/// L.cap) of them), one per warp of a grid-stride loop, lane l taking the
+/// voxels l and l + 32: dipoleLocalBlock at the voxels' positions as
+/// signDipoleKernel computes them. The lanes walk the same clusters in step
+/// (the traversal does not depend on the voxel) and each sums the near
+/// triangles at its own voxels, the bulk of the work.
 __global__ void dipoleLocalKernel(DipoleDev D, Params P, const long long* failed, const unsigned long long* failedCount,
   DipoleLocalLists L)
 {
   const long long n = min(static_cast<long long>(*failedCount), L.cap);
-  const long long stride = static_cast<long long>(gridDim.x) * blockDim.x;
+  const int lane = static_cast<int>(threadIdx.x % 32);
+  const long long warps = static_cast<long long>(gridDim.x) * (blockDim.x / 32);
   const long long nx = P.hi[0] - P.lo[0] + 1, ny = P.hi[1] - P.lo[1] + 1, nz = P.hi[2] - P.lo[2] + 1;
   const double h = P.spacing[0];
   unsigned long long expanded = 0, failures = 0;
-  for (long long t = static_cast<long long>(blockIdx.x) * blockDim.x + threadIdx.x; t < n; t += stride)
+  for (long long t = static_cast<long long>(blockIdx.x) * (blockDim.x / 32) + threadIdx.x / 32; t < n; t += warps)
   {
     const long long b = failed[t];
     const long long ix = b % L.bx, iy = (b / L.bx) % L.by, iz = b / (L.bx * L.by);
@@ -188,22 +208,28 @@ __global__ void dipoleLocalKernel(DipoleDev D, Params P, const long long* failed
     double rho = 0;
     dipoleBlockCorners(P, DipoleLocalEdge, ix, iy, iz, p0, p1);
     dipoleBlockBall(p0, p1, centre, rho);
-    double lo[DipoleLocalVoxels], hi[DipoleLocalVoxels];
-    const int r = dipoleLocalBlock(D, X, centre, rho, lo, hi);
+    int slots[DipoleLocalPerLane];
+    double lo[DipoleLocalPerLane], hi[DipoleLocalPerLane];
+    for (int i = 0; i < DipoleLocalPerLane; ++i) slots[i] = lane + 32 * i;
+    const int r = dipoleLocalBlock(D, X, centre, rho, slots, lo, hi, DipoleLocalWarp{});
     double* out = L.pool + 2 * DipoleLocalVoxels * t;
-    for (int v = 0; v < DipoleLocalVoxels; ++v)
+    for (int i = 0; i < DipoleLocalPerLane; ++i)
     {
-      out[v] = lo[v];
-      out[DipoleLocalVoxels + v] = hi[v];
+      out[slots[i]] = lo[i];
+      out[DipoleLocalVoxels + slots[i]] = hi[i];
     }
-    if (r >= 0)
+    // r < 0 in every lane alike (the traversal is the warp's)
+    if (lane == 0)
     {
-      L.slot[b] = static_cast<int>(t);
-      ++expanded;
-    }
-    else
-    {
-      ++failures;
+      if (r >= 0)
+      {
+        L.slot[b] = static_cast<int>(t);
+        ++expanded;
+      }
+      else
+      {
+        ++failures;
+      }
     }
   }
   if (expanded) atomicAdd(L.counts, expanded);

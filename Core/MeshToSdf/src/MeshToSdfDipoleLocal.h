@@ -267,20 +267,26 @@ struct DipoleLocalBlockVoxels
   }
 };
 
-/// One pass at tolPerMass over the voxels in `open` (bit v: slot v): their
-/// intervals [lo[v], hi[v]] (the others are left as they are). False when
-/// the stack overflows (nothing written then is an interval). errorScale
-/// multiplies every cluster's error bound: only a test sets it below 1 (an
-/// error bound too small, which the containment check must catch).
+/// One pass at tolPerMass for this thread's voxels: slots[i] (a slot of X,
+/// -1: none) whose bit i of `open` is set get their intervals [lo[i], hi[i]]
+/// (the others are left as they are). The traversal does not depend on the
+/// voxels, so the threads of a group that split a block's voxels walk it in
+/// step and differ only in their near triangles' sums. False when the stack
+/// overflows (nothing written then is an interval). errorScale multiplies
+/// every cluster's error bound: only a test sets it below 1 (an error bound
+/// too small, which the containment check must catch).
+template <int N>
 LVDIF_HD bool dipoleLocalPass(const DipoleView& D, const DipoleLocalBlockVoxels& X, V3 centre, double rho,
-  double tolPerMass, unsigned long long open, double* lo, double* hi, double errorScale = 1)
+  double tolPerMass, const int (&slots)[N], unsigned long long open, double (&lo)[N], double (&hi)[N], double errorScale)
 {
   // lo and hi first collect each voxel's near triangles (their sum and the sum of their sizes)
-  for (int v = 0; v < DipoleLocalVoxels; ++v)
-    if ((open >> v) & 1)
+  V3 at[N];
+  for (int i = 0; i < N; ++i)
+    if ((open >> i) & 1)
     {
-      lo[v] = 0;
-      hi[v] = 0;
+      lo[i] = 0;
+      hi[i] = 0;
+      at[i] = X.at(slots[i]);
     }
   LocalPoly poly;
   double err = 0, mag = 0;
@@ -321,75 +327,97 @@ LVDIF_HD bool dipoleLocalPass(const DipoleView& D, const DipoleLocalBlockVoxels&
     for (int t = nd.first; t < nd.first + nd.count; ++t)
     {
       const WeightedTri& tri = D.tris[t];
+#ifndef __CUDA_ARCH__
+      if (D.work) ++D.work->triBounds; // triangles tried as clusters
+#endif
       if (accept(triangleCluster(tri, t))) continue;
 #ifndef __CUDA_ARCH__
-      if (D.work) D.work->tris += static_cast<unsigned long long>(__builtin_popcountll(open));
+      if (D.work && N == DipoleLocalVoxels) D.work->laneTris += (open & (open >> 32) & 0xffffffffull) ? 2 : (open ? 1 : 0);
 #endif
-      for (int v = 0; v < DipoleLocalVoxels; ++v)
-        if ((open >> v) & 1)
+      for (int i = 0; i < N; ++i)
+        if ((open >> i) & 1)
         {
-          const double a = tri.w * nearSolidAngle(X.at(v), tri.v[0], tri.v[1], tri.v[2]);
-          lo[v] += a;
-          hi[v] += std::fabs(a);
+          const double a = tri.w * nearSolidAngle(at[i], tri.v[0], tri.v[1], tri.v[2]);
+          lo[i] += a;
+          hi[i] += std::fabs(a);
+#ifndef __CUDA_ARCH__
+          if (D.work) ++D.work->tris; // triangle x voxel solid angles
+#endif
         }
       ++terms;
     }
   }
-  for (int v = 0; v < DipoleLocalVoxels; ++v)
-    if ((open >> v) & 1)
+  for (int i = 0; i < N; ++i)
+    if ((open >> i) & 1)
     {
-      const double direct = lo[v], directMag = hi[v];
-      localInterval(poly.at(X.at(v) - centre) + direct, err, std::fabs(mag), directMag, terms, lo[v], hi[v]);
+      const double direct = lo[i], directMag = hi[i];
+      localInterval(poly.at(at[i] - centre) + direct, err, std::fabs(mag), directMag, terms, lo[i], hi[i]);
     }
   return true;
 }
 
-/// The voxels of a block (X, inside the ball (centre, rho)), pass by pass
-/// from DipoleFirstMargin: each gets an interval of s (lo > hi: none), a
-/// voxel whose interval avoids every half-integer is decided whatever its
-/// crossing count and takes no further pass. Returns the voxels so decided,
-/// -1 when a pass failed (no intervals at all then). errorScale: as dipoleLocalPass's.
-LVDIF_HD int dipoleLocalBlock(const DipoleView& D, const DipoleLocalBlockVoxels& X, V3 centre, double rho, double* lo,
-  double* hi, double errorScale = 1)
+/// The group's view of a pass (identity for one thread doing a whole block):
+/// whether any thread of the group has a voxel still open, and the smallest
+/// gap to a half-integer among them, so that every thread lowers the
+/// tolerance alike and takes the same passes.
+struct DipoleLocalAlone
+{
+  LVDIF_HD void operator()(bool&, double&) const {}
+};
+
+/// A block's voxels (X, inside the ball (centre, rho)) split among the
+/// threads of a group (combine: their pass results, DipoleLocalAlone for
+/// one thread): this thread's slots[i] (-1: none), pass by pass from
+/// DipoleFirstMargin. Each gets an interval of s in [lo[i], hi[i]] (lo > hi:
+/// none); a voxel whose interval avoids every half-integer is decided
+/// whatever its crossing count and takes no further pass. Returns this
+/// thread's voxels so decided, -1 when a pass failed (then no intervals at
+/// all, in every thread alike: the traversal is the group's). errorScale: as
+/// dipoleLocalPass's.
+template <int N, class Combine>
+LVDIF_HD int dipoleLocalBlock(const DipoleView& D, const DipoleLocalBlockVoxels& X, V3 centre, double rho,
+  const int (&slots)[N], double (&lo)[N], double (&hi)[N], const Combine& combine, double errorScale = 1)
 {
   unsigned long long open = 0;
-  for (int v = 0; v < DipoleLocalVoxels; ++v)
+  for (int i = 0; i < N; ++i)
   {
-    lo[v] = 1;
-    hi[v] = 0;
-    if (X.has(v)) open |= 1ull << v;
+    lo[i] = 1;
+    hi[i] = 0;
+    if (slots[i] >= 0 && X.has(slots[i])) open |= 1ull << i;
   }
-  const unsigned long long all = open;
+  const unsigned long long mine = open;
   double margin = DipoleFirstMargin;
-  for (int pass = 0; pass < DipoleLocalPasses && open; ++pass)
+  for (int pass = 0; pass < DipoleLocalPasses; ++pass)
   {
-    if (!dipoleLocalPass(D, X, centre, rho, dipoleTolerance(D, margin), open, lo, hi, errorScale))
+    if (!dipoleLocalPass(D, X, centre, rho, dipoleTolerance(D, margin), slots, open, lo, hi, errorScale))
     {
-      for (int v = 0; v < DipoleLocalVoxels; ++v)
+      for (int i = 0; i < N; ++i)
       {
-        lo[v] = 1;
-        hi[v] = 0;
+        lo[i] = 1;
+        hi[i] = 0;
       }
       return -1;
     }
     // the next pass: the tolerance the open voxels need (as insideDipolePass lowers it)
-    double left = margin;
+    double gap = margin;
     unsigned long long still = 0;
-    for (int v = 0; v < DipoleLocalVoxels; ++v)
-      if ((open >> v) & 1)
+    for (int i = 0; i < N; ++i)
+      if ((open >> i) & 1)
       {
-        if (avoidsHalfIntegers(lo[v], hi[v])) continue;
-        still |= 1ull << v;
-        const double c = 0.5 * (lo[v] + hi[v]);
-        const double gap = 0.5 - std::fabs(c - std::floor(c + 0.5));
-        left = gap < left ? gap : left;
+        if (avoidsHalfIntegers(lo[i], hi[i])) continue;
+        still |= 1ull << i;
+        const double c = 0.5 * (lo[i] + hi[i]);
+        const double g = 0.5 - std::fabs(c - std::floor(c + 0.5));
+        gap = g < gap ? g : gap;
       }
     open = still;
-    margin = std::fmin(0.25 * margin, left);
-    if (!(margin > DipoleLocalMinMargin)) break;
+    bool anyOpen = still != 0;
+    combine(anyOpen, gap);
+    margin = std::fmin(0.25 * margin, gap);
+    if (!anyOpen || !(margin > DipoleLocalMinMargin)) break;
   }
   int decided = 0;
-  for (int v = 0; v < DipoleLocalVoxels; ++v) decided += ((all >> v) & 1) && !((open >> v) & 1);
+  for (int i = 0; i < N; ++i) decided += ((mine >> i) & 1) && !((open >> i) & 1);
   return decided;
 }
 

@@ -40,7 +40,8 @@ struct Emulated
   // intervals), voxels their intervals decide in the sign kernel; the blocks
   // of the failed list left to the 2^3 balls (beyond the pool's capacity)
   unsigned long long localBlocks = 0, localFailed = 0, localDecided = 0, localOverflow = 0;
-  DipoleWork local;
+  DipoleWork local;           // nodes visited, triangle x voxel solid angles (tris)
+  unsigned long long simtLocal = 0; // one warp per listed block: its steps summed
   DipoleWork blocks[DipoleLevels], voxels; // tree nodes and triangles visited by the two phases
   // SIMT cost: per warp of 32 threads, the most work of one lane, summed over
   // the warps; "raster": one thread per block of a level and per voxel of a
@@ -193,6 +194,7 @@ Emulated emulateGpu(const WindingSigner& w, const GridGeometry& g, bool blocksOn
       localPool.assign(static_cast<std::size_t>(2 * DipoleLocalVoxels * localTaken), 0.0);
       e.localOverflow = listed.size() - static_cast<std::size_t>(localTaken);
       D.work = &e.local;
+      std::vector<unsigned long long> localWork;
       for (std::int64_t t = 0; t < localTaken; ++t)
       {
         const long long b = listed[static_cast<std::size_t>(t)];
@@ -212,8 +214,23 @@ Emulated emulateGpu(const WindingSigner& w, const GridGeometry& g, bool blocksOn
         dipoleBlockBall(position(x0, y0, z0),
           position(std::min(x0 + edge - 1, nx - 1), std::min(y0 + edge - 1, ny - 1), std::min(z0 + edge - 1, nz - 1)),
           centre, rho);
-        double* out = localPool.data() + 2 * DipoleLocalVoxels * t;
-        const int r = dipoleLocalBlock(D, X, centre, rho, out, out + DipoleLocalVoxels, localStep.errorScale);
+        // the kernel's warp (lane l: voxels l and l + 32, their passes
+        // combined over the warp) computes what one thread given all 64
+        // voxels computes: the same clusters, the same passes (any voxel
+        // open, the smallest gap, over the block), each voxel's sums in the
+        // same order
+        int slots[DipoleLocalVoxels];
+        double lo[DipoleLocalVoxels], hi[DipoleLocalVoxels];
+        for (int v = 0; v < DipoleLocalVoxels; ++v) slots[v] = v;
+        const DipoleWork w0 = e.local;
+        const int r = dipoleLocalBlock(D, X, centre, rho, slots, lo, hi, DipoleLocalAlone{}, localStep.errorScale);
+        for (int v = 0; v < DipoleLocalVoxels; ++v)
+        {
+          localPool[static_cast<std::size_t>(2 * DipoleLocalVoxels * t + v)] = lo[v];
+          localPool[static_cast<std::size_t>(2 * DipoleLocalVoxels * t + DipoleLocalVoxels + v)] = hi[v];
+        }
+        // one warp per block: the traversal in step, the triangle x voxel sums split over 32 lanes
+        localWork.push_back((e.local.nodes - w0.nodes) + (e.local.triBounds - w0.triBounds) + (e.local.laneTris - w0.laneTris));
         if (r >= 0)
         {
           localSlot[static_cast<std::size_t>(b)] = static_cast<int>(t);
@@ -224,6 +241,7 @@ Emulated emulateGpu(const WindingSigner& w, const GridGeometry& g, bool blocksOn
           ++e.localFailed;
         }
       }
+      for (const unsigned long long lw : localWork) e.simtLocal += lw;
       D.work = &e.blocks[level];
     }
     parents.swap(listed);
@@ -536,8 +554,10 @@ TEST(MeshToSdfDipoleDecide, LocalStepIntervalsHoldAgainstLongDoubleSolidAngles)
     dipoleBlockBall(corner, corner + V3{ (X.n[0] - 1) * h, (X.n[1] - 1) * h, (X.n[2] - 1) * h }, centre, rho);
     for (const double scale : { 1.0, 0.01 })
     {
+      int slots[DipoleLocalVoxels];
       double lo[DipoleLocalVoxels], hi[DipoleLocalVoxels];
-      const int k = dipoleLocalBlock(D, X, centre, rho, lo, hi, scale);
+      for (int v = 0; v < DipoleLocalVoxels; ++v) slots[v] = v;
+      const int k = dipoleLocalBlock(D, X, centre, rho, slots, lo, hi, DipoleLocalAlone{}, scale);
       ASSERT_GE(k, 0);
       int avoid = 0;
       for (int v = 0; v < DipoleLocalVoxels; ++v)
@@ -698,9 +718,9 @@ TEST(MeshToSdfDipoleDecide, WorkCounts)
           static_cast<double>(e.blocks[l].calls), static_cast<double>(e.blocks[l].nodes),
           static_cast<double>(e.blocks[l].triBounds), static_cast<double>(e.blocks[l].tris));
       std::printf("[ work ]   local step %s: %llu blocks of 4^3 (%llu failed), %llu voxels decided by them; "
-                  "%.3g nodes, %.3g triangle x voxel solid angles\n",
+                  "%.3g nodes, %.3g triangle x voxel solid angles; SIMT (one warp per block, per voxel) %.2f\n",
         local.on ? "on" : "off", e.localBlocks, e.localFailed, e.localDecided, static_cast<double>(e.local.nodes),
-        static_cast<double>(e.local.tris));
+        static_cast<double>(e.local.tris), static_cast<double>(e.simtLocal) * 32 / n);
       std::printf("[ work ]   voxels: %.3g passes, %.3g nodes, %.3g triangles summed; SIMT (warp maxima, per voxel): "
                   "blocks %.2f, voxels %.2f; listed first: blocks %.2f, voxels %.2f; listed per pass: blocks %.2f, voxels %.2f\n",
         static_cast<double>(e.voxels.calls), static_cast<double>(e.voxels.nodes), static_cast<double>(e.voxels.tris),
