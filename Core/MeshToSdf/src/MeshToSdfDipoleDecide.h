@@ -9,7 +9,8 @@
 // although the blocks and voxels are bounded in another order (the GPU's
 // work lists, below) and the two sides bound different blocks (CPU: balls
 // about 16^3 and 4^3, then the voxels of a failed 4^3 block one by one from
-// a local expansion, MeshToSdfDipoleLocal.h; GPU: 16^3, 4^3 and 2^3): both
+// a local expansion, MeshToSdfDipoleLocal.h; GPU: 16^3, 4^3, then a local
+// expansion per failed 4^3 block and 2^3 balls beyond its pool): both
 // sides decide a voxel only when a
 // rigorous interval of w (it contains the exact value: per-cluster bounds
 // that are all rigorous, DipoleTree::refine's, localBounds' and the ones below, the leaf's
