@@ -418,6 +418,15 @@ private:
           this->LocalPool = this->Arena.alloc<double>(static_cast<std::size_t>(2 * DipoleLocalVoxels * this->LocalCap));
           this->LocalSlotCapacity = blocks4;
         }
+        if (!this->LocalNear)
+        {
+          // the near-triangle lists of the blocks in flight: DipoleLocalNearCap x 32 per warp of a fixed grid
+          int device = 0, sms = 0;
+          LVDIF_CUDA_CHECK(cudaGetDevice(&device));
+          LVDIF_CUDA_CHECK(cudaDeviceGetAttribute(&sms, cudaDevAttrMultiProcessorCount, device));
+          this->LocalGrid = std::max(1, 2 * sms);
+          this->LocalNear = this->Arena.alloc<int>(static_cast<std::size_t>(this->LocalGrid) * (LocalThreads / 32) * 32 * DipoleLocalNearCap);
+        }
         if (!this->LocalCounts)
         {
           this->LocalCounts = this->Arena.alloc<unsigned long long>(3);
@@ -496,8 +505,8 @@ private:
           // the blocks of this level left without a bound: their voxels' intervals from one local expansion each
           local.bx = bx;
           local.by = by;
-          dipoleLocalKernel<<<static_cast<unsigned>(most), 128>>>(this->Mesh.D[this->Variant], P, this->BlockLists + listOffset,
-            this->ListCounts + l, local);
+          dipoleLocalKernel<<<static_cast<unsigned>(this->LocalGrid), LocalThreads>>>(this->Mesh.D[this->Variant], P,
+            this->BlockLists + listOffset, this->ListCounts + l, local, this->LocalNear);
           LVDIF_CUDA_CHECK(cudaGetLastError());
         }
         listOffset += count[l];
@@ -719,6 +728,9 @@ private:
   static constexpr int LocalLevel = 1;
   static_assert(DipoleEdges[LocalLevel] == DipoleLocalEdge && LocalLevel + 1 < DipoleLevels, "the local step's blocks");
   DipoleLocalLists Local; // the last slab's (the sign kernel reads it)
+  static constexpr int LocalThreads = 128; // dipoleLocalKernel's CUDA block (4 warps)
+  int LocalGrid = 0;                       // its CUDA blocks (a grid-stride loop)
+  int* LocalNear = nullptr;                // its warps' near-triangle lists
   int* LocalSlot = nullptr;
   double* LocalPool = nullptr;
   long long LocalSlotCapacity = 0, LocalCap = 0;

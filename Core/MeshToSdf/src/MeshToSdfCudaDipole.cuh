@@ -159,78 +159,127 @@ struct DipoleLocalLists
   unsigned long long* counts = nullptr; // blocks expanded, blocks failed, voxels decided by the intervals
 };
 
-/// dipoleLocalBlock's group on the GPU: the 32 lanes of a warp (any voxel
-/// still open, the smallest gap), so that every lane takes the same passes.
-struct DipoleLocalWarp
-{
-  __host__ __device__ void operator()(bool& anyOpen, double& gap) const
-  {
-#ifdef __CUDA_ARCH__
-    anyOpen = __any_sync(0xffffffffu, anyOpen);
-    for (int o = 16; o > 0; o >>= 1) gap = fmin(gap, __shfl_xor_sync(0xffffffffu, gap, o));
-#endif
-  }
-};
-
-/// The voxels of a 4^3 block per lane of its warp (64 / 32).
-constexpr int DipoleLocalPerLane = DipoleLocalVoxels / 32;
-
-/// The 4^3 blocks the ball bounds left without one (failed, min(*failedCount,
-/// L.cap) of them), one per warp of a grid-stride loop, lane l taking the
-/// voxels l and l + 32: dipoleLocalBlock at the voxels' positions as
-/// signDipoleKernel computes them. The lanes walk the same clusters in step
-/// (the traversal does not depend on the voxel) and each sums the near
-/// triangles at its own voxels, the bulk of the work.
+/// The failed 4^3 blocks (failed, min(*failedCount, L.cap) of them), 32 per
+/// warp of a grid-stride loop, pass by pass as dipoleLocalBlock runs them
+/// (the same functions in the same order, so the same intervals): each lane
+/// walks its own block's clusters (dipoleLocalCut, its near triangles
+/// listed in `near`, this warp's DipoleLocalNearCap x 32 entries,
+/// interleaved), then the warp takes the 32 blocks in turn, lane l summing
+/// at voxels l and l + 32 (dipoleLocalVoxel): the near triangles' solid
+/// angles, the bulk of the work, in full warps. Voxels at the positions
+/// signDipoleKernel computes.
 __global__ void dipoleLocalKernel(DipoleDev D, Params P, const long long* failed, const unsigned long long* failedCount,
-  DipoleLocalLists L)
+  DipoleLocalLists L, int* near)
 {
   const long long n = min(static_cast<long long>(*failedCount), L.cap);
   const int lane = static_cast<int>(threadIdx.x % 32);
+  const long long warp = static_cast<long long>(blockIdx.x) * (blockDim.x / 32) + threadIdx.x / 32;
   const long long warps = static_cast<long long>(gridDim.x) * (blockDim.x / 32);
   const long long nx = P.hi[0] - P.lo[0] + 1, ny = P.hi[1] - P.lo[1] + 1, nz = P.hi[2] - P.lo[2] + 1;
   const double h = P.spacing[0];
+  int* list = near + warp * 32 * DipoleLocalNearCap; // entry i of lane l's block at list[32 i + l]
   unsigned long long expanded = 0, failures = 0;
-  for (long long t = static_cast<long long>(blockIdx.x) * (blockDim.x / 32) + threadIdx.x / 32; t < n; t += warps)
-  {
-    const long long b = failed[t];
-    const long long ix = b % L.bx, iy = (b / L.bx) % L.by, iz = b / (L.bx * L.by);
-    DipoleLocalBlockVoxels X;
-    X.h = h;
-    X.x0 = DipoleLocalEdge * ix;
-    X.n[0] = static_cast<int>(min(static_cast<long long>(DipoleLocalEdge), nx - DipoleLocalEdge * ix));
-    X.n[1] = static_cast<int>(min(static_cast<long long>(DipoleLocalEdge), ny - DipoleLocalEdge * iy));
-    X.n[2] = static_cast<int>(min(static_cast<long long>(DipoleLocalEdge), nz - DipoleLocalEdge * iz));
-    for (int c = 0; c < X.n[2]; ++c)
-      for (int r = 0; r < X.n[1]; ++r)
-        X.rowStart[r + DipoleLocalEdge * c] =
-          positionOf(P, P.lo[0], P.lo[1] + DipoleLocalEdge * iy + r, P.lo[2] + DipoleLocalEdge * iz + c);
-    V3 p0, p1, centre;
-    double rho = 0;
+  // block (ix, iy, iz) of the 4^3 level: its extent, ball and voxel v's position
+  auto blockOf = [&](long long b, long long& ix, long long& iy, long long& iz, int (&m)[3], V3& centre, double& rho) {
+    ix = b % L.bx;
+    iy = (b / L.bx) % L.by;
+    iz = b / (L.bx * L.by);
+    m[0] = static_cast<int>(min(static_cast<long long>(DipoleLocalEdge), nx - DipoleLocalEdge * ix));
+    m[1] = static_cast<int>(min(static_cast<long long>(DipoleLocalEdge), ny - DipoleLocalEdge * iy));
+    m[2] = static_cast<int>(min(static_cast<long long>(DipoleLocalEdge), nz - DipoleLocalEdge * iz));
+    V3 p0, p1;
     dipoleBlockCorners(P, DipoleLocalEdge, ix, iy, iz, p0, p1);
     dipoleBlockBall(p0, p1, centre, rho);
-    int slots[DipoleLocalPerLane];
-    double lo[DipoleLocalPerLane], hi[DipoleLocalPerLane];
-    for (int i = 0; i < DipoleLocalPerLane; ++i) slots[i] = lane + 32 * i;
-    const int r = dipoleLocalBlock(D, X, centre, rho, slots, lo, hi, DipoleLocalWarp{});
-    double* out = L.pool + 2 * DipoleLocalVoxels * t;
-    for (int i = 0; i < DipoleLocalPerLane; ++i)
+  };
+  for (long long base = warp * 32; base < n; base += warps * 32) // the whole warp alike
+  {
+    // this lane's block and its state across passes
+    const long long t = base + lane;
+    const bool mine = t < n;
+    long long myBlock = mine ? failed[t] : 0, ix = 0, iy = 0, iz = 0;
+    int m[3] = { 0, 0, 0 };
+    V3 myCentre;
+    double myRho = 0;
+    if (mine) blockOf(myBlock, ix, iy, iz, m, myCentre, myRho);
+    unsigned long long open = 0; // the voxels of my block still open
+    for (int v = 0; mine && v < DipoleLocalVoxels; ++v)
+      if (v % DipoleLocalEdge < m[0] && (v / DipoleLocalEdge) % DipoleLocalEdge < m[1] && v / (DipoleLocalEdge * DipoleLocalEdge) < m[2])
+        open |= 1ull << v;
+    bool active = mine, failedHere = false;
+    double margin = DipoleFirstMargin;
+    for (int pass = 0; pass < DipoleLocalPasses; ++pass)
     {
-      out[slots[i]] = lo[i];
-      out[DipoleLocalVoxels + slots[i]] = hi[i];
+      // each lane its own block's clusters
+      DipoleLocalFar far;
+      bool ok = true;
+      if (active) ok = dipoleLocalCut(D, myCentre, myRho, dipoleTolerance(D, margin), far, list + lane, 32);
+      // then the warp over the 32 blocks, lane l at voxels l and l + 32
+      bool anyActive = false;
+      for (int b = 0; b < 32; ++b)
+      {
+        if (!__shfl_sync(0xffffffffu, active, b)) continue; // (the same in every lane)
+        const long long tb = base + b;
+        double* out = L.pool + 2 * DipoleLocalVoxels * tb;
+        if (!__shfl_sync(0xffffffffu, ok, b))
+        {
+          // a pass failed: no intervals at all for that block
+          for (int i = 0; i < 2; ++i)
+          {
+            out[lane + 32 * i] = 1;
+            out[DipoleLocalVoxels + lane + 32 * i] = 0;
+          }
+          if (lane == b)
+          {
+            failedHere = true;
+            active = false;
+          }
+          continue;
+        }
+        DipoleLocalFar fb;
+        fb.poly.v = __shfl_sync(0xffffffffu, far.poly.v, b);
+        for (int k = 0; k < 3; ++k) fb.poly.g[k] = __shfl_sync(0xffffffffu, far.poly.g[k], b);
+        for (int k = 0; k < 6; ++k) fb.poly.H[k] = __shfl_sync(0xffffffffu, far.poly.H[k], b);
+        fb.err = __shfl_sync(0xffffffffu, far.err, b);
+        fb.mag = __shfl_sync(0xffffffffu, far.mag, b);
+        fb.terms = __shfl_sync(0xffffffffu, far.terms, b);
+        fb.near = __shfl_sync(0xffffffffu, far.near, b);
+        const unsigned long long openB = __shfl_sync(0xffffffffu, open, b);
+        long long bx = 0, by = 0, bz = 0;
+        int mb[3];
+        V3 centre;
+        double rho = 0;
+        blockOf(failed[tb], bx, by, bz, mb, centre, rho);
+        double gap = __shfl_sync(0xffffffffu, margin, b);
+        bool still[2] = { false, false };
+        for (int i = 0; i < 2; ++i)
+        {
+          const int v = lane + 32 * i;
+          if (!((openB >> v) & 1)) continue;
+          const long long y = P.lo[1] + DipoleLocalEdge * by + (v / DipoleLocalEdge) % DipoleLocalEdge;
+          const long long z = P.lo[2] + DipoleLocalEdge * bz + v / (DipoleLocalEdge * DipoleLocalEdge);
+          const V3 p = positionOf(P, P.lo[0], y, z) + V3{ static_cast<double>(DipoleLocalEdge * bx + v % DipoleLocalEdge) * h, 0, 0 };
+          dipoleLocalVoxel(D, fb, list + b, 32, p, centre, out[v], out[DipoleLocalVoxels + v]);
+          still[i] = dipoleLocalStillOpen(out[v], out[DipoleLocalVoxels + v], gap);
+        }
+        // the block's open voxels and smallest gap, to its lane
+        const unsigned long long stillB = static_cast<unsigned long long>(__ballot_sync(0xffffffffu, still[0])) |
+          (static_cast<unsigned long long>(__ballot_sync(0xffffffffu, still[1])) << 32);
+        for (int o = 16; o > 0; o >>= 1) gap = fmin(gap, __shfl_xor_sync(0xffffffffu, gap, o));
+        if (lane == b)
+        {
+          open = stillB;
+          active = dipoleLocalNextPass(pass, stillB != 0, gap, margin);
+        }
+      }
+      anyActive = __any_sync(0xffffffffu, active);
+      if (!anyActive) break;
     }
-    // r < 0 in every lane alike (the traversal is the warp's)
-    if (lane == 0)
+    if (mine && !failedHere)
     {
-      if (r >= 0)
-      {
-        L.slot[b] = static_cast<int>(t);
-        ++expanded;
-      }
-      else
-      {
-        ++failures;
-      }
+      L.slot[myBlock] = static_cast<int>(t);
+      ++expanded;
     }
+    failures += failedHere;
   }
   if (expanded) atomicAdd(L.counts, expanded);
   if (failures) atomicAdd(L.counts + 1, failures);

@@ -41,8 +41,8 @@ struct DipoleWork
 {
   unsigned long long nodes = 0, tris = 0, triBounds = 0; // nodes visited; triangles summed exactly / bounded over a ball
   unsigned long long calls = 0;                          // boundDipole traversals
-  // dipoleLocalPass with a whole block (64 voxels): per near triangle the
-  // solid angles of the busiest lane of the kernel's warp (lane l: voxels l, l + 32)
+  // dipoleLocalBlock: per pass its near triangles x the voxels of the
+  // busiest lane of dipoleLocalKernel's warp (lane l: voxels l, l + 32)
   unsigned long long laneTris = 0;
 };
 

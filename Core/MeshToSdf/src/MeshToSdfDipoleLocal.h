@@ -267,30 +267,33 @@ struct DipoleLocalBlockVoxels
   }
 };
 
-/// One pass at tolPerMass for this thread's voxels: slots[i] (a slot of X,
-/// -1: none) whose bit i of `open` is set get their intervals [lo[i], hi[i]]
-/// (the others are left as they are). The traversal does not depend on the
-/// voxels, so the threads of a group that split a block's voxels walk it in
-/// step and differ only in their near triangles' sums. False when the stack
-/// overflows (nothing written then is an interval). errorScale multiplies
-/// every cluster's error bound: only a test sets it below 1 (an error bound
-/// too small, which the containment check must catch).
-template <int N>
-LVDIF_HD bool dipoleLocalPass(const DipoleView& D, const DipoleLocalBlockVoxels& X, V3 centre, double rho,
-  double tolPerMass, const int (&slots)[N], unsigned long long open, double (&lo)[N], double (&hi)[N], double errorScale)
+/// At most this many near triangles per block and pass (the GPU's scratch
+/// list; a block with more gets no intervals: its voxels are refined one by one).
+constexpr int DipoleLocalNearCap = 1024;
+
+/// A pass's sums over a block that do not depend on the voxel: the far
+/// clusters' polynomial, their error and size bound (rounding slack), the
+/// terms counted, and the near triangles listed for the voxels' exact sums.
+struct DipoleLocalFar
 {
-  // lo and hi first collect each voxel's near triangles (their sum and the sum of their sizes)
-  V3 at[N];
-  for (int i = 0; i < N; ++i)
-    if ((open >> i) & 1)
-    {
-      lo[i] = 0;
-      hi[i] = 0;
-      at[i] = X.at(slots[i]);
-    }
   LocalPoly poly;
   double err = 0, mag = 0;
   long long terms = 0;
+  int near = 0; // near triangles listed (entry i at list[i * stride])
+};
+
+/// The traversal of one pass about the ball (centre, rho) at tolPerMass: a
+/// cluster whose local error over the ball (clusterLocalError) is at most
+/// tolPerMass x its mass joins the polynomial, others are opened, a leaf into
+/// its triangles (triangleCluster), and a triangle still too near is listed
+/// (the tree's triangle index). False when the stack or the list overflows
+/// (no interval then). errorScale multiplies every cluster's error bound:
+/// only a test sets it below 1 (an error bound too small, which the
+/// containment check must catch).
+LVDIF_HD bool dipoleLocalCut(const DipoleView& D, V3 centre, double rho, double tolPerMass, DipoleLocalFar& far,
+  int* list, int stride, double errorScale = 1)
+{
+  far = DipoleLocalFar{};
   // accepted: the cluster's expansion joins the polynomial
   auto accept = [&](const DipoleTree::Node& nd) {
     const V3 y = nd.c - centre;
@@ -298,10 +301,10 @@ LVDIF_HD bool dipoleLocalPass(const DipoleView& D, const DipoleLocalBlockVoxels&
     int order = 0;
     const double e = errorScale * clusterLocalError(nd, r0, rho, order);
     if (!(e <= tolPerMass * nd.mass)) return false;
-    err += e;
-    mag += clusterLocalMag(nd, r0 - rho, rho);
-    if (order > 0) poly.add(clusterLocal(nd, y, order), 1);
-    ++terms;
+    far.err += e;
+    far.mag += clusterLocalMag(nd, r0 - rho, rho);
+    if (order > 0) far.poly.add(clusterLocal(nd, y, order), 1);
+    ++far.terms;
     return true;
   };
   int stack[DipoleLocalStack];
@@ -326,99 +329,110 @@ LVDIF_HD bool dipoleLocalPass(const DipoleView& D, const DipoleLocalBlockVoxels&
     }
     for (int t = nd.first; t < nd.first + nd.count; ++t)
     {
-      const WeightedTri& tri = D.tris[t];
 #ifndef __CUDA_ARCH__
       if (D.work) ++D.work->triBounds; // triangles tried as clusters
 #endif
-      if (accept(triangleCluster(tri, t))) continue;
-#ifndef __CUDA_ARCH__
-      if (D.work && N == DipoleLocalVoxels) D.work->laneTris += (open & (open >> 32) & 0xffffffffull) ? 2 : (open ? 1 : 0);
-#endif
-      for (int i = 0; i < N; ++i)
-        if ((open >> i) & 1)
-        {
-          const double a = tri.w * nearSolidAngle(at[i], tri.v[0], tri.v[1], tri.v[2]);
-          lo[i] += a;
-          hi[i] += std::fabs(a);
-#ifndef __CUDA_ARCH__
-          if (D.work) ++D.work->tris; // triangle x voxel solid angles
-#endif
-        }
-      ++terms;
+      if (accept(triangleCluster(D.tris[t], t))) continue;
+      if (far.near == DipoleLocalNearCap) return false;
+      list[static_cast<long long>(far.near++) * stride] = t;
+      ++far.terms;
     }
   }
-  for (int i = 0; i < N; ++i)
-    if ((open >> i) & 1)
-    {
-      const double direct = lo[i], directMag = hi[i];
-      localInterval(poly.at(at[i] - centre) + direct, err, std::fabs(mag), directMag, terms, lo[i], hi[i]);
-    }
   return true;
 }
 
-/// The group's view of a pass (identity for one thread doing a whole block):
-/// whether any thread of the group has a voxel still open, and the smallest
-/// gap to a half-integer among them, so that every thread lowers the
-/// tolerance alike and takes the same passes.
-struct DipoleLocalAlone
+/// s at the voxel p of the block (within rho of centre) from its pass's far
+/// sums and near triangles (list: dipoleLocalCut's): the interval [lo, hi].
+LVDIF_HD void dipoleLocalVoxel(const DipoleView& D, const DipoleLocalFar& far, const int* list, int stride, V3 p, V3 centre,
+  double& lo, double& hi)
 {
-  LVDIF_HD void operator()(bool&, double&) const {}
-};
+  double direct = 0, directMag = 0;
+  for (int i = 0; i < far.near; ++i)
+  {
+    const WeightedTri& tri = D.tris[list[static_cast<long long>(i) * stride]];
+    const double a = tri.w * nearSolidAngle(p, tri.v[0], tri.v[1], tri.v[2]);
+    direct += a;
+    directMag += std::fabs(a);
+  }
+#ifndef __CUDA_ARCH__
+  if (D.work) D.work->tris += static_cast<unsigned long long>(far.near); // triangle x voxel solid angles
+#endif
+  localInterval(far.poly.at(p - centre) + direct, far.err, std::fabs(far.mag), directMag, far.terms, lo, hi);
+}
 
-/// A block's voxels (X, inside the ball (centre, rho)) split among the
-/// threads of a group (combine: their pass results, DipoleLocalAlone for
-/// one thread): this thread's slots[i] (-1: none), pass by pass from
-/// DipoleFirstMargin. Each gets an interval of s in [lo[i], hi[i]] (lo > hi:
-/// none); a voxel whose interval avoids every half-integer is decided
-/// whatever its crossing count and takes no further pass. Returns this
-/// thread's voxels so decided, -1 when a pass failed (then no intervals at
-/// all, in every thread alike: the traversal is the group's). errorScale: as
-/// dipoleLocalPass's.
-template <int N, class Combine>
-LVDIF_HD int dipoleLocalBlock(const DipoleView& D, const DipoleLocalBlockVoxels& X, V3 centre, double rho,
-  const int (&slots)[N], double (&lo)[N], double (&hi)[N], const Combine& combine, double errorScale = 1)
+/// A voxel's interval after a pass: true when it stays open (no integer m
+/// with [lo, hi] inside (m - 1/2, m + 1/2)); gap then takes the distance of
+/// its midpoint to the nearest half-integer, if smaller.
+LVDIF_HD bool dipoleLocalStillOpen(double lo, double hi, double& gap)
+{
+  if (avoidsHalfIntegers(lo, hi)) return false;
+  const double c = 0.5 * (lo + hi);
+  const double g = 0.5 - std::fabs(c - std::floor(c + 0.5));
+  gap = g < gap ? g : gap;
+  return true;
+}
+
+/// The next pass's margin (the tolerance the open voxels need, as
+/// insideDipolePass lowers it), and whether there is one.
+LVDIF_HD bool dipoleLocalNextPass(int pass, bool anyOpen, double gap, double& margin)
+{
+  margin = std::fmin(0.25 * margin, gap);
+  return anyOpen && pass + 1 < DipoleLocalPasses && margin > DipoleLocalMinMargin;
+}
+
+/// A block's voxels (X, inside the ball (centre, rho)) pass by pass from
+/// DipoleFirstMargin, as dipoleLocalKernel runs them (list: room for
+/// DipoleLocalNearCap entries): each gets an interval of s in [lo[v], hi[v]]
+/// (lo > hi: none); a voxel whose interval avoids every half-integer is
+/// decided whatever its crossing count and takes no further pass. Returns
+/// the voxels so decided, -1 when a pass failed (then no intervals at all).
+/// errorScale: as dipoleLocalCut's.
+LVDIF_HD int dipoleLocalBlock(const DipoleView& D, const DipoleLocalBlockVoxels& X, V3 centre, double rho, double* lo,
+  double* hi, int* list, double errorScale = 1)
 {
   unsigned long long open = 0;
-  for (int i = 0; i < N; ++i)
+  int present = 0;
+  for (int v = 0; v < DipoleLocalVoxels; ++v)
   {
-    lo[i] = 1;
-    hi[i] = 0;
-    if (slots[i] >= 0 && X.has(slots[i])) open |= 1ull << i;
-  }
-  const unsigned long long mine = open;
-  double margin = DipoleFirstMargin;
-  for (int pass = 0; pass < DipoleLocalPasses; ++pass)
-  {
-    if (!dipoleLocalPass(D, X, centre, rho, dipoleTolerance(D, margin), slots, open, lo, hi, errorScale))
+    lo[v] = 1;
+    hi[v] = 0;
+    if (X.has(v))
     {
-      for (int i = 0; i < N; ++i)
+      open |= 1ull << v;
+      ++present;
+    }
+  }
+  double margin = DipoleFirstMargin;
+  for (int pass = 0;; ++pass)
+  {
+    DipoleLocalFar far;
+    if (!dipoleLocalCut(D, centre, rho, dipoleTolerance(D, margin), far, list, 1, errorScale))
+    {
+      for (int v = 0; v < DipoleLocalVoxels; ++v)
       {
-        lo[i] = 1;
-        hi[i] = 0;
+        lo[v] = 1;
+        hi[v] = 0;
       }
       return -1;
     }
-    // the next pass: the tolerance the open voxels need (as insideDipolePass lowers it)
+#ifndef __CUDA_ARCH__
+    // the kernel's warp: lane l sums at voxels l and l + 32, those open
+    if (D.work) D.work->laneTris += static_cast<unsigned long long>(far.near) * ((open & (open >> 32) & 0xffffffffull) ? 2 : 1);
+#endif
     double gap = margin;
     unsigned long long still = 0;
-    for (int i = 0; i < N; ++i)
-      if ((open >> i) & 1)
+    for (int v = 0; v < DipoleLocalVoxels; ++v)
+      if ((open >> v) & 1)
       {
-        if (avoidsHalfIntegers(lo[i], hi[i])) continue;
-        still |= 1ull << i;
-        const double c = 0.5 * (lo[i] + hi[i]);
-        const double g = 0.5 - std::fabs(c - std::floor(c + 0.5));
-        gap = g < gap ? g : gap;
+        dipoleLocalVoxel(D, far, list, 1, X.at(v), centre, lo[v], hi[v]);
+        if (dipoleLocalStillOpen(lo[v], hi[v], gap)) still |= 1ull << v;
       }
     open = still;
-    bool anyOpen = still != 0;
-    combine(anyOpen, gap);
-    margin = std::fmin(0.25 * margin, gap);
-    if (!anyOpen || !(margin > DipoleLocalMinMargin)) break;
+    if (!dipoleLocalNextPass(pass, open != 0, gap, margin)) break;
   }
-  int decided = 0;
-  for (int i = 0; i < N; ++i) decided += ((mine >> i) & 1) && !((open >> i) & 1);
-  return decided;
+  int openCount = 0;
+  for (int v = 0; v < DipoleLocalVoxels; ++v) openCount += static_cast<int>((open >> v) & 1);
+  return present - openCount;
 }
 
 /// s at each of the points pts[0, n) (all within rho of centre): rigorous

@@ -41,7 +41,7 @@ struct Emulated
   // of the failed list left to the 2^3 balls (beyond the pool's capacity)
   unsigned long long localBlocks = 0, localFailed = 0, localDecided = 0, localOverflow = 0;
   DipoleWork local;           // nodes visited, triangle x voxel solid angles (tris)
-  unsigned long long simtLocal = 0; // one warp per listed block: its steps summed
+  unsigned long long simtLocal = 0; // dipoleLocalKernel: the traversals' warp maxima (a lane per block) + the warps' sums
   DipoleWork blocks[DipoleLevels], voxels; // tree nodes and triangles visited by the two phases
   // SIMT cost: per warp of 32 threads, the most work of one lane, summed over
   // the warps; "raster": one thread per block of a level and per voxel of a
@@ -194,7 +194,9 @@ Emulated emulateGpu(const WindingSigner& w, const GridGeometry& g, bool blocksOn
       localPool.assign(static_cast<std::size_t>(2 * DipoleLocalVoxels * localTaken), 0.0);
       e.localOverflow = listed.size() - static_cast<std::size_t>(localTaken);
       D.work = &e.local;
-      std::vector<unsigned long long> localWork;
+      std::vector<unsigned long long> traversalWork;
+      std::vector<int> nearList(DipoleLocalNearCap);
+      unsigned long long sumWork = 0;
       for (std::int64_t t = 0; t < localTaken; ++t)
       {
         const long long b = listed[static_cast<std::size_t>(t)];
@@ -214,23 +216,13 @@ Emulated emulateGpu(const WindingSigner& w, const GridGeometry& g, bool blocksOn
         dipoleBlockBall(position(x0, y0, z0),
           position(std::min(x0 + edge - 1, nx - 1), std::min(y0 + edge - 1, ny - 1), std::min(z0 + edge - 1, nz - 1)),
           centre, rho);
-        // the kernel's warp (lane l: voxels l and l + 32, their passes
-        // combined over the warp) computes what one thread given all 64
-        // voxels computes: the same clusters, the same passes (any voxel
-        // open, the smallest gap, over the block), each voxel's sums in the
-        // same order
-        int slots[DipoleLocalVoxels];
-        double lo[DipoleLocalVoxels], hi[DipoleLocalVoxels];
-        for (int v = 0; v < DipoleLocalVoxels; ++v) slots[v] = v;
+        // dipoleLocalKernel's passes over this block (the same functions in the same order)
         const DipoleWork w0 = e.local;
-        const int r = dipoleLocalBlock(D, X, centre, rho, slots, lo, hi, DipoleLocalAlone{}, localStep.errorScale);
-        for (int v = 0; v < DipoleLocalVoxels; ++v)
-        {
-          localPool[static_cast<std::size_t>(2 * DipoleLocalVoxels * t + v)] = lo[v];
-          localPool[static_cast<std::size_t>(2 * DipoleLocalVoxels * t + DipoleLocalVoxels + v)] = hi[v];
-        }
-        // one warp per block: the traversal in step, the triangle x voxel sums split over 32 lanes
-        localWork.push_back((e.local.nodes - w0.nodes) + (e.local.triBounds - w0.triBounds) + (e.local.laneTris - w0.laneTris));
+        double* out = localPool.data() + 2 * DipoleLocalVoxels * t;
+        const int r = dipoleLocalBlock(D, X, centre, rho, out, out + DipoleLocalVoxels, nearList.data(), localStep.errorScale);
+        // a lane walks the block's clusters (32 blocks per warp), the warp sums its near triangles
+        traversalWork.push_back((e.local.nodes - w0.nodes) + (e.local.triBounds - w0.triBounds));
+        sumWork += e.local.laneTris - w0.laneTris;
         if (r >= 0)
         {
           localSlot[static_cast<std::size_t>(b)] = static_cast<int>(t);
@@ -241,7 +233,7 @@ Emulated emulateGpu(const WindingSigner& w, const GridGeometry& g, bool blocksOn
           ++e.localFailed;
         }
       }
-      for (const unsigned long long lw : localWork) e.simtLocal += lw;
+      e.simtLocal = simtOf(traversalWork, 0, traversalWork.size()) + sumWork;
       D.work = &e.blocks[level];
     }
     parents.swap(listed);
@@ -481,7 +473,7 @@ TEST(MeshToSdfDipoleDecide, GpuDecisionEqualsCpuOnAFinerGrid)
 TEST(MeshToSdfDipoleDecide, LocalStepDecidesWhatTheBallsLeave)
 {
   int reoriented = 0, capsOverM = 0;
-  unsigned long long refinedOff = 0, refinedOn = 0, decidedOn = 0, blocksOn = 0, overflowCut = 0;
+  unsigned long long refinedOff = 0, refinedOn = 0, decidedOn = 0, blocksOn = 0, overflowCut = 0, failedOn = 0;
   int index = 0;
   for (const auto& [name, m] : damagedMeshes())
   {
@@ -495,7 +487,10 @@ TEST(MeshToSdfDipoleDecide, LocalStepDecidesWhatTheBallsLeave)
     const Emulated c = compareWithCpu(name, m, 36, reoriented, capsOverM, false, cut);
     EXPECT_EQ(a.localBlocks + a.localDecided, 0u) << name;
     EXPECT_LE(b.evaluated, a.evaluated) << name;
-    EXPECT_EQ(b.localFailed, 0u) << name; // the stack never overflows on these trees
+    // a block fails only when its near triangles overflow the list (DipoleLocalNearCap: coarse grids, where
+    // a block's ball holds many small triangles); its voxels are then refined one by one, as without the step
+    EXPECT_LE(4 * b.localFailed, b.localBlocks + b.localFailed) << name;
+    failedOn += b.localFailed;
     refinedOff += a.evaluated;
     refinedOn += b.evaluated;
     decidedOn += b.localDecided;
@@ -503,9 +498,9 @@ TEST(MeshToSdfDipoleDecide, LocalStepDecidesWhatTheBallsLeave)
     overflowCut += c.localOverflow;
     EXPECT_LE(c.localBlocks, 5u) << name;
   }
-  std::printf("[ local step ] voxels refined one by one: %llu without it, %llu with it; %llu blocks expanded, %llu voxels "
-              "decided by their intervals; pool of 5: %llu blocks left to the 2^3 balls\n",
-    refinedOff, refinedOn, blocksOn, decidedOn, overflowCut);
+  std::printf("[ local step ] voxels refined one by one: %llu without it, %llu with it; %llu blocks expanded (%llu failed), "
+              "%llu voxels decided by their intervals; pool of 5: %llu blocks left to the 2^3 balls\n",
+    refinedOff, refinedOn, blocksOn, failedOn, decidedOn, overflowCut);
   EXPECT_GT(decidedOn, 0u);
   EXPECT_LT(refinedOn * 2, refinedOff); // at least halved over the damaged meshes
   EXPECT_GT(overflowCut, 0u);           // the cut pool was exercised
@@ -554,10 +549,9 @@ TEST(MeshToSdfDipoleDecide, LocalStepIntervalsHoldAgainstLongDoubleSolidAngles)
     dipoleBlockBall(corner, corner + V3{ (X.n[0] - 1) * h, (X.n[1] - 1) * h, (X.n[2] - 1) * h }, centre, rho);
     for (const double scale : { 1.0, 0.01 })
     {
-      int slots[DipoleLocalVoxels];
       double lo[DipoleLocalVoxels], hi[DipoleLocalVoxels];
-      for (int v = 0; v < DipoleLocalVoxels; ++v) slots[v] = v;
-      const int k = dipoleLocalBlock(D, X, centre, rho, slots, lo, hi, DipoleLocalAlone{}, scale);
+      std::vector<int> list(DipoleLocalNearCap);
+      const int k = dipoleLocalBlock(D, X, centre, rho, lo, hi, list.data(), scale);
       ASSERT_GE(k, 0);
       int avoid = 0;
       for (int v = 0; v < DipoleLocalVoxels; ++v)
@@ -718,7 +712,7 @@ TEST(MeshToSdfDipoleDecide, WorkCounts)
           static_cast<double>(e.blocks[l].calls), static_cast<double>(e.blocks[l].nodes),
           static_cast<double>(e.blocks[l].triBounds), static_cast<double>(e.blocks[l].tris));
       std::printf("[ work ]   local step %s: %llu blocks of 4^3 (%llu failed), %llu voxels decided by them; "
-                  "%.3g nodes, %.3g triangle x voxel solid angles; SIMT (one warp per block, per voxel) %.2f\n",
+                  "%.3g nodes, %.3g triangle x voxel solid angles; SIMT (traversals a lane per block, sums a warp per block; per voxel) %.2f\n",
         local.on ? "on" : "off", e.localBlocks, e.localFailed, e.localDecided, static_cast<double>(e.local.nodes),
         static_cast<double>(e.local.tris), static_cast<double>(e.simtLocal) * 32 / n);
       std::printf("[ work ]   voxels: %.3g passes, %.3g nodes, %.3g triangles summed; SIMT (warp maxima, per voxel): "
