@@ -162,15 +162,18 @@ struct DipoleLocalLists
 /// The failed 4^3 blocks (failed, min(*failedCount, L.cap) of them), 32 per
 /// warp of a grid-stride loop, pass by pass as dipoleLocalBlock runs them
 /// (the same functions in the same order, so the same intervals): each lane
-/// walks its own block's clusters (dipoleLocalCut, its near triangles
-/// listed in `near`, this warp's DipoleLocalNearCap x 32 entries,
-/// interleaved), then the warp takes the 32 blocks in turn, lane l summing
-/// at voxels l and l + 32 (dipoleLocalVoxel): the near triangles' solid
-/// angles, the bulk of the work, in full warps. Voxels at the positions
-/// signDipoleKernel computes.
+/// walks its own block's clusters (dipoleLocalWalk) until its near list
+/// (`near`: DipoleLocalNearCap x 32 entries per warp, interleaved) is full
+/// or the walk is done; then the warp sums the 32 lists in turn, lane l at
+/// voxels l and l + 32 (dipoleLocalNearSum: the near triangles' solid
+/// angles, the bulk of the work, in full warps), the running sums in the
+/// pool; at the end of a pass each voxel's interval (dipoleLocalFinish) and
+/// the block's open voxels and smallest gap (ballot, shuffle). Voxels at the
+/// positions signDipoleKernel computes.
 __global__ void dipoleLocalKernel(DipoleDev D, Params P, const long long* failed, const unsigned long long* failedCount,
   DipoleLocalLists L, int* near)
 {
+  constexpr unsigned Full = 0xffffffffu;
   const long long n = min(static_cast<long long>(*failedCount), L.cap);
   const int lane = static_cast<int>(threadIdx.x % 32);
   const long long warp = static_cast<long long>(blockIdx.x) * (blockDim.x / 32) + threadIdx.x / 32;
@@ -179,50 +182,90 @@ __global__ void dipoleLocalKernel(DipoleDev D, Params P, const long long* failed
   const double h = P.spacing[0];
   int* list = near + warp * 32 * DipoleLocalNearCap; // entry i of lane l's block at list[32 i + l]
   unsigned long long expanded = 0, failures = 0;
-  // block (ix, iy, iz) of the 4^3 level: its extent, ball and voxel v's position
-  auto blockOf = [&](long long b, long long& ix, long long& iy, long long& iz, int (&m)[3], V3& centre, double& rho) {
-    ix = b % L.bx;
-    iy = (b / L.bx) % L.by;
-    iz = b / (L.bx * L.by);
-    m[0] = static_cast<int>(min(static_cast<long long>(DipoleLocalEdge), nx - DipoleLocalEdge * ix));
-    m[1] = static_cast<int>(min(static_cast<long long>(DipoleLocalEdge), ny - DipoleLocalEdge * iy));
-    m[2] = static_cast<int>(min(static_cast<long long>(DipoleLocalEdge), nz - DipoleLocalEdge * iz));
+  // block b of the 4^3 level: its indices, extent and ball
+  auto blockOf = [&](long long b, long long (&i)[3], int (&m)[3], V3& centre, double& rho) {
+    i[0] = b % L.bx;
+    i[1] = (b / L.bx) % L.by;
+    i[2] = b / (L.bx * L.by);
+    m[0] = static_cast<int>(min(static_cast<long long>(DipoleLocalEdge), nx - DipoleLocalEdge * i[0]));
+    m[1] = static_cast<int>(min(static_cast<long long>(DipoleLocalEdge), ny - DipoleLocalEdge * i[1]));
+    m[2] = static_cast<int>(min(static_cast<long long>(DipoleLocalEdge), nz - DipoleLocalEdge * i[2]));
     V3 p0, p1;
-    dipoleBlockCorners(P, DipoleLocalEdge, ix, iy, iz, p0, p1);
+    dipoleBlockCorners(P, DipoleLocalEdge, i[0], i[1], i[2], p0, p1);
     dipoleBlockBall(p0, p1, centre, rho);
   };
+  // voxel v of the block with indices i, as the rows position it
+  auto voxelAt = [&](const long long (&i)[3], int v) {
+    const long long y = P.lo[1] + DipoleLocalEdge * i[1] + (v / DipoleLocalEdge) % DipoleLocalEdge;
+    const long long z = P.lo[2] + DipoleLocalEdge * i[2] + v / (DipoleLocalEdge * DipoleLocalEdge);
+    return positionOf(P, P.lo[0], y, z) + V3{ static_cast<double>(DipoleLocalEdge * i[0] + v % DipoleLocalEdge) * h, 0, 0 };
+  };
+  DipoleLocalWalk walk;
   for (long long base = warp * 32; base < n; base += warps * 32) // the whole warp alike
   {
     // this lane's block and its state across passes
     const long long t = base + lane;
     const bool mine = t < n;
-    long long myBlock = mine ? failed[t] : 0, ix = 0, iy = 0, iz = 0;
+    const long long myBlock = mine ? failed[t] : 0;
+    long long myIndex[3] = { 0, 0, 0 };
     int m[3] = { 0, 0, 0 };
     V3 myCentre;
     double myRho = 0;
-    if (mine) blockOf(myBlock, ix, iy, iz, m, myCentre, myRho);
+    if (mine) blockOf(myBlock, myIndex, m, myCentre, myRho);
     unsigned long long open = 0; // the voxels of my block still open
     for (int v = 0; mine && v < DipoleLocalVoxels; ++v)
       if (v % DipoleLocalEdge < m[0] && (v / DipoleLocalEdge) % DipoleLocalEdge < m[1] && v / (DipoleLocalEdge * DipoleLocalEdge) < m[2])
         open |= 1ull << v;
     bool active = mine, failedHere = false;
     double margin = DipoleFirstMargin;
-    for (int pass = 0; pass < DipoleLocalPasses; ++pass)
+    for (int pass = 0; pass < DipoleLocalPasses && __any_sync(Full, active); ++pass)
     {
-      // each lane its own block's clusters
-      DipoleLocalFar far;
-      bool ok = true;
-      if (active) ok = dipoleLocalCut(D, myCentre, myRho, dipoleTolerance(D, margin), far, list + lane, 32);
-      // then the warp over the 32 blocks, lane l at voxels l and l + 32
-      bool anyActive = false;
+      // the open voxels' running near sums start at 0 (in the pool: lo, hi)
       for (int b = 0; b < 32; ++b)
       {
-        if (!__shfl_sync(0xffffffffu, active, b)) continue; // (the same in every lane)
-        const long long tb = base + b;
-        double* out = L.pool + 2 * DipoleLocalVoxels * tb;
-        if (!__shfl_sync(0xffffffffu, ok, b))
+        const unsigned long long openB = __shfl_sync(Full, active ? open : 0ull, b);
+        double* out = L.pool + 2 * DipoleLocalVoxels * (base + b);
+        for (int i = 0; i < 2; ++i)
+          if ((openB >> (lane + 32 * i)) & 1) out[lane + 32 * i] = out[DipoleLocalVoxels + lane + 32 * i] = 0;
+      }
+      if (active) walk.start();
+      bool done = !active;
+      while (true)
+      {
+        if (!done) done = dipoleLocalWalk(D, myCentre, myRho, dipoleTolerance(D, margin), walk, list + lane, 32);
+        // the 32 lists in turn, each at its block's open voxels
+        for (int b = 0; b < 32; ++b)
         {
-          // a pass failed: no intervals at all for that block
+          const int count = __shfl_sync(Full, active && !walk.overflow ? walk.far.near : 0, b);
+          if (count == 0) continue;
+          const unsigned long long openB = __shfl_sync(Full, open, b);
+          long long ib[3];
+          int mb[3];
+          V3 centre;
+          double rho = 0;
+          blockOf(failed[base + b], ib, mb, centre, rho);
+          double* out = L.pool + 2 * DipoleLocalVoxels * (base + b);
+          for (int i = 0; i < 2; ++i)
+          {
+            const int v = lane + 32 * i;
+            if (!((openB >> v) & 1)) continue;
+            double direct = out[v], directMag = out[DipoleLocalVoxels + v]; // (in registers while summing)
+            dipoleLocalNearSum(D, list + b, 32, count, voxelAt(ib, v), direct, directMag);
+            out[v] = direct;
+            out[DipoleLocalVoxels + v] = directMag;
+          }
+        }
+        if (active) walk.far.near = 0;
+        if (__all_sync(Full, done)) break;
+      }
+      // the pass's intervals, block by block
+      for (int b = 0; b < 32; ++b)
+      {
+        if (!__shfl_sync(Full, active, b)) continue; // (the same in every lane)
+        double* out = L.pool + 2 * DipoleLocalVoxels * (base + b);
+        if (__shfl_sync(Full, walk.overflow, b))
+        {
+          // no intervals at all for that block
           for (int i = 0; i < 2; ++i)
           {
             out[lane + 32 * i] = 1;
@@ -236,43 +279,37 @@ __global__ void dipoleLocalKernel(DipoleDev D, Params P, const long long* failed
           continue;
         }
         DipoleLocalFar fb;
-        fb.poly.v = __shfl_sync(0xffffffffu, far.poly.v, b);
-        for (int k = 0; k < 3; ++k) fb.poly.g[k] = __shfl_sync(0xffffffffu, far.poly.g[k], b);
-        for (int k = 0; k < 6; ++k) fb.poly.H[k] = __shfl_sync(0xffffffffu, far.poly.H[k], b);
-        fb.err = __shfl_sync(0xffffffffu, far.err, b);
-        fb.mag = __shfl_sync(0xffffffffu, far.mag, b);
-        fb.terms = __shfl_sync(0xffffffffu, far.terms, b);
-        fb.near = __shfl_sync(0xffffffffu, far.near, b);
-        const unsigned long long openB = __shfl_sync(0xffffffffu, open, b);
-        long long bx = 0, by = 0, bz = 0;
+        fb.poly.v = __shfl_sync(Full, walk.far.poly.v, b);
+        for (int k = 0; k < 3; ++k) fb.poly.g[k] = __shfl_sync(Full, walk.far.poly.g[k], b);
+        for (int k = 0; k < 6; ++k) fb.poly.H[k] = __shfl_sync(Full, walk.far.poly.H[k], b);
+        fb.err = __shfl_sync(Full, walk.far.err, b);
+        fb.mag = __shfl_sync(Full, walk.far.mag, b);
+        fb.terms = __shfl_sync(Full, walk.far.terms, b);
+        const unsigned long long openB = __shfl_sync(Full, open, b);
+        long long ib[3];
         int mb[3];
         V3 centre;
         double rho = 0;
-        blockOf(failed[tb], bx, by, bz, mb, centre, rho);
-        double gap = __shfl_sync(0xffffffffu, margin, b);
+        blockOf(failed[base + b], ib, mb, centre, rho);
+        double gap = __shfl_sync(Full, margin, b);
         bool still[2] = { false, false };
         for (int i = 0; i < 2; ++i)
         {
           const int v = lane + 32 * i;
           if (!((openB >> v) & 1)) continue;
-          const long long y = P.lo[1] + DipoleLocalEdge * by + (v / DipoleLocalEdge) % DipoleLocalEdge;
-          const long long z = P.lo[2] + DipoleLocalEdge * bz + v / (DipoleLocalEdge * DipoleLocalEdge);
-          const V3 p = positionOf(P, P.lo[0], y, z) + V3{ static_cast<double>(DipoleLocalEdge * bx + v % DipoleLocalEdge) * h, 0, 0 };
-          dipoleLocalVoxel(D, fb, list + b, 32, p, centre, out[v], out[DipoleLocalVoxels + v]);
+          const double direct = out[v], directMag = out[DipoleLocalVoxels + v];
+          dipoleLocalFinish(fb, voxelAt(ib, v), centre, direct, directMag, out[v], out[DipoleLocalVoxels + v]);
           still[i] = dipoleLocalStillOpen(out[v], out[DipoleLocalVoxels + v], gap);
         }
-        // the block's open voxels and smallest gap, to its lane
-        const unsigned long long stillB = static_cast<unsigned long long>(__ballot_sync(0xffffffffu, still[0])) |
-          (static_cast<unsigned long long>(__ballot_sync(0xffffffffu, still[1])) << 32);
-        for (int o = 16; o > 0; o >>= 1) gap = fmin(gap, __shfl_xor_sync(0xffffffffu, gap, o));
+        const unsigned long long stillB = static_cast<unsigned long long>(__ballot_sync(Full, still[0])) |
+          (static_cast<unsigned long long>(__ballot_sync(Full, still[1])) << 32);
+        for (int o = 16; o > 0; o >>= 1) gap = fmin(gap, __shfl_xor_sync(Full, gap, o));
         if (lane == b)
         {
           open = stillB;
           active = dipoleLocalNextPass(pass, stillB != 0, gap, margin);
         }
       }
-      anyActive = __any_sync(0xffffffffu, active);
-      if (!anyActive) break;
     }
     if (mine && !failedHere)
     {

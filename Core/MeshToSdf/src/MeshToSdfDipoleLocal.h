@@ -267,33 +267,51 @@ struct DipoleLocalBlockVoxels
   }
 };
 
-/// At most this many near triangles per block and pass (the GPU's scratch
-/// list; a block with more gets no intervals: its voxels are refined one by one).
-constexpr int DipoleLocalNearCap = 1024;
+/// The near triangles listed at a time (the GPU's scratch list per block in
+/// flight): a full list is summed at the voxels, emptied, and the walk goes on.
+constexpr int DipoleLocalNearCap = 256;
 
 /// A pass's sums over a block that do not depend on the voxel: the far
 /// clusters' polynomial, their error and size bound (rounding slack), the
-/// terms counted, and the near triangles listed for the voxels' exact sums.
+/// terms counted (near triangles included), and the near triangles listed
+/// since the list was last emptied.
 struct DipoleLocalFar
 {
   LocalPoly poly;
   double err = 0, mag = 0;
   long long terms = 0;
-  int near = 0; // near triangles listed (entry i at list[i * stride])
+  int near = 0; // listed (entry i at list[i * stride])
 };
 
-/// The traversal of one pass about the ball (centre, rho) at tolPerMass: a
-/// cluster whose local error over the ball (clusterLocalError) is at most
-/// tolPerMass x its mass joins the polynomial, others are opened, a leaf into
-/// its triangles (triangleCluster), and a triangle still too near is listed
-/// (the tree's triangle index). False when the stack or the list overflows
-/// (no interval then). errorScale multiplies every cluster's error bound:
-/// only a test sets it below 1 (an error bound too small, which the
-/// containment check must catch).
-LVDIF_HD bool dipoleLocalCut(const DipoleView& D, V3 centre, double rho, double tolPerMass, DipoleLocalFar& far,
-  int* list, int stride, double errorScale = 1)
+/// One pass's walk over the clusters about a block's ball, resumable where
+/// the near list fills up.
+struct DipoleLocalWalk
 {
-  far = DipoleLocalFar{};
+  int stack[DipoleLocalStack];
+  int top = 0;
+  int leafNext = 0, leafEnd = 0; // the triangles of the leaf being opened not tried yet
+  bool overflow = false;         // the stack overflowed: no interval
+  DipoleLocalFar far;
+  LVDIF_HD void start()
+  {
+    *this = DipoleLocalWalk{};
+    this->stack[this->top++] = 0;
+  }
+};
+
+/// Walks on about the ball (centre, rho) at tolPerMass: a cluster whose local
+/// error over the ball (clusterLocalError) is at most tolPerMass x its mass
+/// joins the polynomial, others are opened, a leaf into its triangles
+/// (triangleCluster), and a triangle still too near is listed (its index in
+/// the tree's triangles). Returns false when the list is full (sum it at the
+/// voxels, set w.far.near = 0 and call again), true when the walk is done
+/// (w.overflow: the stack overflowed, no interval). errorScale multiplies
+/// every cluster's error bound: only a test sets it below 1 (an error bound
+/// too small, which the containment check must catch).
+LVDIF_HD bool dipoleLocalWalk(const DipoleView& D, V3 centre, double rho, double tolPerMass, DipoleLocalWalk& w, int* list,
+  int stride, double errorScale = 1)
+{
+  DipoleLocalFar& far = w.far;
   // accepted: the cluster's expansion joins the polynomial
   auto accept = [&](const DipoleTree::Node& nd) {
     const V3 y = nd.c - centre;
@@ -307,47 +325,46 @@ LVDIF_HD bool dipoleLocalCut(const DipoleView& D, V3 centre, double rho, double 
     ++far.terms;
     return true;
   };
-  int stack[DipoleLocalStack];
-  int top = 0;
-  stack[top++] = 0;
-#ifndef __CUDA_ARCH__
-  if (D.work) ++D.work->calls;
-#endif
-  while (top > 0)
+  while (true)
   {
-    const DipoleTree::Node nd = D.nodes[stack[--top]];
+    while (w.leafNext < w.leafEnd)
+    {
+      if (far.near == DipoleLocalNearCap) return false;
+      const int t = w.leafNext++;
+#ifndef __CUDA_ARCH__
+      if (D.work) ++D.work->triBounds; // triangles tried as clusters
+#endif
+      if (accept(triangleCluster(D.tris[t], t))) continue;
+      list[static_cast<long long>(far.near++) * stride] = t;
+      ++far.terms;
+    }
+    if (w.top == 0) return true;
+    const DipoleTree::Node nd = D.nodes[w.stack[--w.top]];
 #ifndef __CUDA_ARCH__
     if (D.work) ++D.work->nodes;
 #endif
     if (accept(nd)) continue;
     if (nd.left >= 0)
     {
-      if (top + 2 > DipoleLocalStack) return false;
-      stack[top++] = nd.left;
-      stack[top++] = nd.right;
+      if (w.top + 2 > DipoleLocalStack)
+      {
+        w.overflow = true;
+        return true;
+      }
+      w.stack[w.top++] = nd.left;
+      w.stack[w.top++] = nd.right;
       continue;
     }
-    for (int t = nd.first; t < nd.first + nd.count; ++t)
-    {
-#ifndef __CUDA_ARCH__
-      if (D.work) ++D.work->triBounds; // triangles tried as clusters
-#endif
-      if (accept(triangleCluster(D.tris[t], t))) continue;
-      if (far.near == DipoleLocalNearCap) return false;
-      list[static_cast<long long>(far.near++) * stride] = t;
-      ++far.terms;
-    }
+    w.leafNext = nd.first;
+    w.leafEnd = nd.first + nd.count;
   }
-  return true;
 }
 
-/// s at the voxel p of the block (within rho of centre) from its pass's far
-/// sums and near triangles (list: dipoleLocalCut's): the interval [lo, hi].
-LVDIF_HD void dipoleLocalVoxel(const DipoleView& D, const DipoleLocalFar& far, const int* list, int stride, V3 p, V3 centre,
-  double& lo, double& hi)
+/// Adds the listed near triangles' solid angles at p (count of them, entry i
+/// at list[i * stride]) to its running sums, in list order.
+LVDIF_HD void dipoleLocalNearSum(const DipoleView& D, const int* list, int stride, int count, V3 p, double& direct, double& directMag)
 {
-  double direct = 0, directMag = 0;
-  for (int i = 0; i < far.near; ++i)
+  for (int i = 0; i < count; ++i)
   {
     const WeightedTri& tri = D.tris[list[static_cast<long long>(i) * stride]];
     const double a = tri.w * nearSolidAngle(p, tri.v[0], tri.v[1], tri.v[2]);
@@ -355,8 +372,14 @@ LVDIF_HD void dipoleLocalVoxel(const DipoleView& D, const DipoleLocalFar& far, c
     directMag += std::fabs(a);
   }
 #ifndef __CUDA_ARCH__
-  if (D.work) D.work->tris += static_cast<unsigned long long>(far.near); // triangle x voxel solid angles
+  if (D.work) D.work->tris += static_cast<unsigned long long>(count); // triangle x voxel solid angles
 #endif
+}
+
+/// The interval [lo, hi] of s at the voxel p of the block from its pass's far
+/// sums and its near triangles' sums.
+LVDIF_HD void dipoleLocalFinish(const DipoleLocalFar& far, V3 p, V3 centre, double direct, double directMag, double& lo, double& hi)
+{
   localInterval(far.poly.at(p - centre) + direct, far.err, std::fabs(far.mag), directMag, far.terms, lo, hi);
 }
 
@@ -383,10 +406,11 @@ LVDIF_HD bool dipoleLocalNextPass(int pass, bool anyOpen, double gap, double& ma
 /// A block's voxels (X, inside the ball (centre, rho)) pass by pass from
 /// DipoleFirstMargin, as dipoleLocalKernel runs them (list: room for
 /// DipoleLocalNearCap entries): each gets an interval of s in [lo[v], hi[v]]
-/// (lo > hi: none); a voxel whose interval avoids every half-integer is
-/// decided whatever its crossing count and takes no further pass. Returns
-/// the voxels so decided, -1 when a pass failed (then no intervals at all).
-/// errorScale: as dipoleLocalCut's.
+/// (lo > hi: none; during a pass lo and hi hold the open voxels' near sums);
+/// a voxel whose interval avoids every half-integer is decided whatever its
+/// crossing count and takes no further pass. Returns the voxels so decided,
+/// -1 when a pass failed (then no intervals at all). errorScale: as
+/// dipoleLocalWalk's.
 LVDIF_HD int dipoleLocalBlock(const DipoleView& D, const DipoleLocalBlockVoxels& X, V3 centre, double rho, double* lo,
   double* hi, int* list, double errorScale = 1)
 {
@@ -403,10 +427,26 @@ LVDIF_HD int dipoleLocalBlock(const DipoleView& D, const DipoleLocalBlockVoxels&
     }
   }
   double margin = DipoleFirstMargin;
+  DipoleLocalWalk w;
   for (int pass = 0;; ++pass)
   {
-    DipoleLocalFar far;
-    if (!dipoleLocalCut(D, centre, rho, dipoleTolerance(D, margin), far, list, 1, errorScale))
+    for (int v = 0; v < DipoleLocalVoxels; ++v)
+      if ((open >> v) & 1) lo[v] = hi[v] = 0;
+    w.start();
+    while (true)
+    {
+      const bool done = dipoleLocalWalk(D, centre, rho, dipoleTolerance(D, margin), w, list, 1, errorScale);
+      if (w.overflow) break;
+#ifndef __CUDA_ARCH__
+      // the kernel's warp: lane l sums at voxels l and l + 32, those open
+      if (D.work) D.work->laneTris += static_cast<unsigned long long>(w.far.near) * ((open & (open >> 32) & 0xffffffffull) ? 2 : 1);
+#endif
+      for (int v = 0; v < DipoleLocalVoxels; ++v)
+        if ((open >> v) & 1) dipoleLocalNearSum(D, list, 1, w.far.near, X.at(v), lo[v], hi[v]);
+      w.far.near = 0;
+      if (done) break;
+    }
+    if (w.overflow)
     {
       for (int v = 0; v < DipoleLocalVoxels; ++v)
       {
@@ -415,16 +455,13 @@ LVDIF_HD int dipoleLocalBlock(const DipoleView& D, const DipoleLocalBlockVoxels&
       }
       return -1;
     }
-#ifndef __CUDA_ARCH__
-    // the kernel's warp: lane l sums at voxels l and l + 32, those open
-    if (D.work) D.work->laneTris += static_cast<unsigned long long>(far.near) * ((open & (open >> 32) & 0xffffffffull) ? 2 : 1);
-#endif
     double gap = margin;
     unsigned long long still = 0;
     for (int v = 0; v < DipoleLocalVoxels; ++v)
       if ((open >> v) & 1)
       {
-        dipoleLocalVoxel(D, far, list, 1, X.at(v), centre, lo[v], hi[v]);
+        const double direct = lo[v], directMag = hi[v];
+        dipoleLocalFinish(w.far, X.at(v), centre, direct, directMag, lo[v], hi[v]);
         if (dipoleLocalStillOpen(lo[v], hi[v], gap)) still |= 1ull << v;
       }
     open = still;
