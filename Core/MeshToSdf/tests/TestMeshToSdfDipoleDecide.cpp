@@ -42,6 +42,7 @@ struct Emulated
   unsigned long long localBlocks = 0, localFailed = 0, localDecided = 0, localOverflow = 0;
   DipoleWork local;           // nodes visited, triangle x voxel solid angles (tris)
   unsigned long long simtLocal = 0; // dipoleLocalKernel: the traversals' warp maxima (a lane per block) + the warps' sums
+  unsigned long long simtLocalWalks = 0; // the first part alone
   DipoleWork blocks[DipoleLevels], voxels; // tree nodes and triangles visited by the two phases
   // SIMT cost: per warp of 32 threads, the most work of one lane, summed over
   // the warps; "raster": one thread per block of a level and per voxel of a
@@ -233,7 +234,8 @@ Emulated emulateGpu(const WindingSigner& w, const GridGeometry& g, bool blocksOn
           ++e.localFailed;
         }
       }
-      e.simtLocal = simtOf(traversalWork, 0, traversalWork.size()) + sumWork;
+      e.simtLocalWalks = simtOf(traversalWork, 0, traversalWork.size());
+      e.simtLocal = e.simtLocalWalks + sumWork;
       D.work = &e.blocks[level];
     }
     parents.swap(listed);
@@ -710,9 +712,9 @@ TEST(MeshToSdfDipoleDecide, WorkCounts)
           static_cast<double>(e.blocks[l].calls), static_cast<double>(e.blocks[l].nodes),
           static_cast<double>(e.blocks[l].triBounds), static_cast<double>(e.blocks[l].tris));
       std::printf("[ work ]   local step %s: %llu blocks of 4^3 (%llu failed), %llu voxels decided by them; "
-                  "%.3g nodes, %.3g triangle x voxel solid angles; SIMT (traversals a lane per block, sums a warp per block; per voxel) %.2f\n",
+                  "%.3g nodes, %.3g triangle x voxel solid angles; SIMT (traversals a lane per block, sums a warp per block; per voxel) %.2f (walks %.2f)\n",
         local.on ? "on" : "off", e.localBlocks, e.localFailed, e.localDecided, static_cast<double>(e.local.nodes),
-        static_cast<double>(e.local.tris), static_cast<double>(e.simtLocal) * 32 / n);
+        static_cast<double>(e.local.tris), static_cast<double>(e.simtLocal) * 32 / n, static_cast<double>(e.simtLocalWalks) * 32 / n);
       std::printf("[ work ]   voxels: %.3g passes, %.3g nodes, %.3g triangles summed; SIMT (warp maxima, per voxel): "
                   "blocks %.2f, voxels %.2f; listed first: blocks %.2f, voxels %.2f; listed per pass: blocks %.2f, voxels %.2f\n",
         static_cast<double>(e.voxels.calls), static_cast<double>(e.voxels.nodes), static_cast<double>(e.voxels.tris),
