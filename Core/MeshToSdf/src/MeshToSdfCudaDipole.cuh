@@ -299,7 +299,7 @@ __global__ void dipoleLocalKernel(DipoleDev D, Params P, const long long* failed
           if (!((openB >> v) & 1)) continue;
           const double direct = out[v], directMag = out[DipoleLocalVoxels + v];
           dipoleLocalFinish(fb, voxelAt(ib, v), centre, direct, directMag, out[v], out[DipoleLocalVoxels + v]);
-          still[i] = dipoleLocalStillOpen(out[v], out[DipoleLocalVoxels + v], gap);
+          still[i] = dipoleLocalVoxelState(out[v], out[DipoleLocalVoxels + v], gap) == 1;
         }
         const unsigned long long stillB = static_cast<unsigned long long>(__ballot_sync(Full, still[0])) |
           (static_cast<unsigned long long>(__ballot_sync(Full, still[1])) << 32);

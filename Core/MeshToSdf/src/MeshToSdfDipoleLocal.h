@@ -383,16 +383,19 @@ LVDIF_HD void dipoleLocalFinish(const DipoleLocalFar& far, V3 p, V3 centre, doub
   localInterval(far.poly.at(p - centre) + direct, far.err, std::fabs(far.mag), directMag, far.terms, lo, hi);
 }
 
-/// A voxel's interval after a pass: true when it stays open (no integer m
-/// with [lo, hi] inside (m - 1/2, m + 1/2)); gap then takes the distance of
-/// its midpoint to the nearest half-integer, if smaller.
-LVDIF_HD bool dipoleLocalStillOpen(double lo, double hi, double& gap)
+/// A voxel's interval after a pass: 0 decided (inside (m - 1/2, m + 1/2)
+/// for an integer m), 1 open for another pass (gap then takes the distance
+/// of its midpoint to the nearest half-integer, if smaller), 2 open but
+/// within DipoleLocalMinMargin of a half-integer (left to the voxel's own
+/// refinement: such a voxel must not drag the block's tolerance down).
+LVDIF_HD int dipoleLocalVoxelState(double lo, double hi, double& gap)
 {
-  if (avoidsHalfIntegers(lo, hi)) return false;
+  if (avoidsHalfIntegers(lo, hi)) return 0;
   const double c = 0.5 * (lo + hi);
   const double g = 0.5 - std::fabs(c - std::floor(c + 0.5));
+  if (!(g > DipoleLocalMinMargin)) return 2;
   gap = g < gap ? g : gap;
-  return true;
+  return 1;
 }
 
 /// The next pass's margin (the tolerance the open voxels need, as
@@ -426,6 +429,7 @@ LVDIF_HD int dipoleLocalBlock(const DipoleView& D, const DipoleLocalBlockVoxels&
       ++present;
     }
   }
+  unsigned long long undecided = 0; // open voxels too near a half-integer for another pass
   double margin = DipoleFirstMargin;
   DipoleLocalWalk w;
   for (int pass = 0;; ++pass)
@@ -462,14 +466,17 @@ LVDIF_HD int dipoleLocalBlock(const DipoleView& D, const DipoleLocalBlockVoxels&
       {
         const double direct = lo[v], directMag = hi[v];
         dipoleLocalFinish(w.far, X.at(v), centre, direct, directMag, lo[v], hi[v]);
-        if (dipoleLocalStillOpen(lo[v], hi[v], gap)) still |= 1ull << v;
+        const int state = dipoleLocalVoxelState(lo[v], hi[v], gap);
+        if (state == 1) still |= 1ull << v;
+        if (state == 2) undecided |= 1ull << v;
       }
     open = still;
     if (!dipoleLocalNextPass(pass, open != 0, gap, margin)) break;
   }
-  int openCount = 0;
-  for (int v = 0; v < DipoleLocalVoxels; ++v) openCount += static_cast<int>((open >> v) & 1);
-  return present - openCount;
+  undecided |= open;
+  int undecidedCount = 0;
+  for (int v = 0; v < DipoleLocalVoxels; ++v) undecidedCount += static_cast<int>((undecided >> v) & 1);
+  return present - undecidedCount;
 }
 
 /// s at each of the points pts[0, n) (all within rho of centre): rigorous
