@@ -167,8 +167,9 @@ struct DipoleLocalLists
 /// or the walk is done; then the warp sums the 32 lists in turn, lane l at
 /// voxels l and l + 32 (dipoleLocalNearSum: the near triangles' solid
 /// angles, the bulk of the work, in full warps), the running sums in the
-/// pool; at the end of a pass each voxel's interval (dipoleLocalFinish) and
-/// the block's open voxels and smallest gap (ballot, shuffle). Voxels at the
+/// pool (carried to the next pass while the voxel stays open); at the end of
+/// a pass each voxel's interval (dipoleLocalFinish) and the block's open
+/// voxels and smallest gap (ballot, shuffle). Voxels at the
 /// positions signDipoleKernel computes.
 __global__ void dipoleLocalKernel(DipoleDev D, Params P, const long long* failed, const unsigned long long* failedCount,
   DipoleLocalLists L, int* near)
@@ -217,22 +218,26 @@ __global__ void dipoleLocalKernel(DipoleDev D, Params P, const long long* failed
       if (v % DipoleLocalEdge < m[0] && (v / DipoleLocalEdge) % DipoleLocalEdge < m[1] && v / (DipoleLocalEdge * DipoleLocalEdge) < m[2])
         open |= 1ull << v;
     bool active = mine, failedHere = false;
-    double margin = DipoleFirstMargin;
+    double margin = DipoleFirstMargin, prevMargin = 0;
     for (int pass = 0; pass < DipoleLocalPasses && __any_sync(Full, active); ++pass)
     {
-      // the open voxels' running near sums start at 0 (in the pool: lo, hi)
-      for (int b = 0; b < 32; ++b)
+      // the voxels' near sums start at 0 (in the pool: lo, hi), carried from
+      // pass to pass while a voxel stays open (dipoleLocalWalk lists only the
+      // triangles the previous pass did not sum)
+      for (int b = 0; pass == 0 && b < 32; ++b)
       {
         const unsigned long long openB = __shfl_sync(Full, active ? open : 0ull, b);
         double* out = L.pool + 2 * DipoleLocalVoxels * (base + b);
         for (int i = 0; i < 2; ++i)
           if ((openB >> (lane + 32 * i)) & 1) out[lane + 32 * i] = out[DipoleLocalVoxels + lane + 32 * i] = 0;
       }
-      if (active) walk.start();
+      if (active) walk.start(pass > 0);
       bool done = !active;
       while (true)
       {
-        if (!done) done = dipoleLocalWalk(D, myCentre, myRho, dipoleTolerance(D, margin), walk, list + lane, 32);
+        if (!done)
+          done = dipoleLocalWalk(D, myCentre, myRho, dipoleTolerance(D, margin), pass > 0 ? dipoleTolerance(D, prevMargin) : 0.0,
+            walk, list + lane, 32);
         // the 32 lists in turn, each at its block's open voxels
         for (int b = 0; b < 32; ++b)
         {
@@ -293,13 +298,13 @@ __global__ void dipoleLocalKernel(DipoleDev D, Params P, const long long* failed
         blockOf(failed[base + b], ib, mb, centre, rho);
         double gap = __shfl_sync(Full, margin, b);
         bool still[2] = { false, false };
+        double l[2] = { 1, 1 }, u[2] = { 0, 0 };
         for (int i = 0; i < 2; ++i)
         {
           const int v = lane + 32 * i;
           if (!((openB >> v) & 1)) continue;
-          const double direct = out[v], directMag = out[DipoleLocalVoxels + v];
-          dipoleLocalFinish(fb, voxelAt(ib, v), centre, direct, directMag, out[v], out[DipoleLocalVoxels + v]);
-          still[i] = dipoleLocalVoxelState(out[v], out[DipoleLocalVoxels + v], gap) == 1;
+          dipoleLocalFinish(fb, voxelAt(ib, v), centre, out[v], out[DipoleLocalVoxels + v], l[i], u[i]);
+          still[i] = dipoleLocalVoxelState(l[i], u[i], gap) == 1;
         }
         const unsigned long long stillB = static_cast<unsigned long long>(__ballot_sync(Full, still[0])) |
           (static_cast<unsigned long long>(__ballot_sync(Full, still[1])) << 32);
@@ -307,7 +312,17 @@ __global__ void dipoleLocalKernel(DipoleDev D, Params P, const long long* failed
         if (lane == b)
         {
           open = stillB;
+          prevMargin = margin;
           active = dipoleLocalNextPass(pass, stillB != 0, gap, margin);
+        }
+        // a voxel that takes the next pass keeps its near sums in the pool; the others their interval
+        const bool goesOn = __shfl_sync(Full, active, b);
+        for (int i = 0; i < 2; ++i)
+        {
+          const int v = lane + 32 * i;
+          if (!((openB >> v) & 1) || (goesOn && still[i])) continue;
+          out[v] = l[i];
+          out[DipoleLocalVoxels + v] = u[i];
         }
       }
     }

@@ -284,18 +284,24 @@ struct DipoleLocalFar
 };
 
 /// One pass's walk over the clusters about a block's ball, resumable where
-/// the near list fills up.
+/// the near list fills up. A stack entry is a node and whether the previous
+/// pass reached it too (opened every ancestor): the tolerance only falls
+/// from pass to pass, so what the previous pass opened this one opens too,
+/// and a triangle it summed exactly is summed again here; such a triangle is
+/// not listed (its sums at the voxels carry over), only counted.
 struct DipoleLocalWalk
 {
-  int stack[DipoleLocalStack];
+  int stack[DipoleLocalStack]; // node << 1 | reached by the previous pass
   int top = 0;
   int leafNext = 0, leafEnd = 0; // the triangles of the leaf being opened not tried yet
+  bool leafBefore = false;       // the previous pass opened that leaf too
   bool overflow = false;         // the stack overflowed: no interval
   DipoleLocalFar far;
-  LVDIF_HD void start()
+  /// previous: a pass ran before (its tolerance passed to dipoleLocalWalk)
+  LVDIF_HD void start(bool previous)
   {
     *this = DipoleLocalWalk{};
-    this->stack[this->top++] = 0;
+    this->stack[this->top++] = previous ? 1 : 0;
   }
 };
 
@@ -303,21 +309,24 @@ struct DipoleLocalWalk
 /// error over the ball (clusterLocalError) is at most tolPerMass x its mass
 /// joins the polynomial, others are opened, a leaf into its triangles
 /// (triangleCluster), and a triangle still too near is listed (its index in
-/// the tree's triangles). Returns false when the list is full (sum it at the
+/// the tree's triangles) unless the previous pass (at prevTolPerMass)
+/// summed it already. Returns false when the list is full (sum it at the
 /// voxels, set w.far.near = 0 and call again), true when the walk is done
 /// (w.overflow: the stack overflowed, no interval). errorScale multiplies
 /// every cluster's error bound: only a test sets it below 1 (an error bound
 /// too small, which the containment check must catch).
-LVDIF_HD bool dipoleLocalWalk(const DipoleView& D, V3 centre, double rho, double tolPerMass, DipoleLocalWalk& w, int* list,
-  int stride, double errorScale = 1)
+LVDIF_HD bool dipoleLocalWalk(const DipoleView& D, V3 centre, double rho, double tolPerMass, double prevTolPerMass,
+  DipoleLocalWalk& w, int* list, int stride, double errorScale = 1)
 {
   DipoleLocalFar& far = w.far;
-  // accepted: the cluster's expansion joins the polynomial
-  auto accept = [&](const DipoleTree::Node& nd) {
+  // accepted: the cluster's expansion joins the polynomial; openedBefore:
+  // the previous pass reached it and opened it (or summed it, a triangle)
+  auto consider = [&](const DipoleTree::Node& nd, bool reachedBefore, bool& openedBefore) {
     const V3 y = nd.c - centre;
     const double r0 = norm(y);
     int order = 0;
     const double e = errorScale * clusterLocalError(nd, r0, rho, order);
+    openedBefore = reachedBefore && !(e <= prevTolPerMass * nd.mass);
     if (!(e <= tolPerMass * nd.mass)) return false;
     far.err += e;
     far.mag += clusterLocalMag(nd, r0 - rho, rho);
@@ -334,16 +343,19 @@ LVDIF_HD bool dipoleLocalWalk(const DipoleView& D, V3 centre, double rho, double
 #ifndef __CUDA_ARCH__
       if (D.work) ++D.work->triBounds; // triangles tried as clusters
 #endif
-      if (accept(triangleCluster(D.tris[t], t))) continue;
-      list[static_cast<long long>(far.near++) * stride] = t;
+      bool summedBefore = false;
+      if (consider(triangleCluster(D.tris[t], t), w.leafBefore, summedBefore)) continue;
+      if (!summedBefore) list[static_cast<long long>(far.near++) * stride] = t;
       ++far.terms;
     }
     if (w.top == 0) return true;
-    const DipoleTree::Node nd = D.nodes[w.stack[--w.top]];
+    const int entry = w.stack[--w.top];
+    const DipoleTree::Node nd = D.nodes[entry >> 1];
 #ifndef __CUDA_ARCH__
     if (D.work) ++D.work->nodes;
 #endif
-    if (accept(nd)) continue;
+    bool openedBefore = false;
+    if (consider(nd, (entry & 1) != 0, openedBefore)) continue;
     if (nd.left >= 0)
     {
       if (w.top + 2 > DipoleLocalStack)
@@ -351,12 +363,13 @@ LVDIF_HD bool dipoleLocalWalk(const DipoleView& D, V3 centre, double rho, double
         w.overflow = true;
         return true;
       }
-      w.stack[w.top++] = nd.left;
-      w.stack[w.top++] = nd.right;
+      w.stack[w.top++] = (nd.left << 1) | (openedBefore ? 1 : 0);
+      w.stack[w.top++] = (nd.right << 1) | (openedBefore ? 1 : 0);
       continue;
     }
     w.leafNext = nd.first;
     w.leafEnd = nd.first + nd.count;
+    w.leafBefore = openedBefore;
   }
 }
 
@@ -409,8 +422,7 @@ LVDIF_HD bool dipoleLocalNextPass(int pass, bool anyOpen, double gap, double& ma
 /// A block's voxels (X, inside the ball (centre, rho)) pass by pass from
 /// DipoleFirstMargin, as dipoleLocalKernel runs them (list: room for
 /// DipoleLocalNearCap entries): each gets an interval of s in [lo[v], hi[v]]
-/// (lo > hi: none; during a pass lo and hi hold the open voxels' near sums);
-/// a voxel whose interval avoids every half-integer is decided whatever its
+/// (lo > hi: none); a voxel whose interval avoids every half-integer is decided whatever its
 /// crossing count and takes no further pass. Returns the voxels so decided,
 /// -1 when a pass failed (then no intervals at all). errorScale: as
 /// dipoleLocalWalk's.
@@ -430,23 +442,27 @@ LVDIF_HD int dipoleLocalBlock(const DipoleView& D, const DipoleLocalBlockVoxels&
     }
   }
   unsigned long long undecided = 0; // open voxels too near a half-integer for another pass
-  double margin = DipoleFirstMargin;
+  double margin = DipoleFirstMargin, prevMargin = 0;
+  double direct[DipoleLocalVoxels], directMag[DipoleLocalVoxels]; // the near sums, carried from pass to pass
+  for (int v = 0; v < DipoleLocalVoxels; ++v) direct[v] = directMag[v] = 0;
   DipoleLocalWalk w;
   for (int pass = 0;; ++pass)
   {
-    for (int v = 0; v < DipoleLocalVoxels; ++v)
-      if ((open >> v) & 1) lo[v] = hi[v] = 0;
-    w.start();
+#ifndef __CUDA_ARCH__
+    if (D.work) ++D.work->calls; // passes
+#endif
+    w.start(pass > 0);
     while (true)
     {
-      const bool done = dipoleLocalWalk(D, centre, rho, dipoleTolerance(D, margin), w, list, 1, errorScale);
+      const bool done = dipoleLocalWalk(D, centre, rho, dipoleTolerance(D, margin), pass > 0 ? dipoleTolerance(D, prevMargin) : 0.0,
+        w, list, 1, errorScale);
       if (w.overflow) break;
 #ifndef __CUDA_ARCH__
       // the kernel's warp: lane l sums at voxels l and l + 32, those open
       if (D.work) D.work->laneTris += static_cast<unsigned long long>(w.far.near) * ((open & (open >> 32) & 0xffffffffull) ? 2 : 1);
 #endif
       for (int v = 0; v < DipoleLocalVoxels; ++v)
-        if ((open >> v) & 1) dipoleLocalNearSum(D, list, 1, w.far.near, X.at(v), lo[v], hi[v]);
+        if ((open >> v) & 1) dipoleLocalNearSum(D, list, 1, w.far.near, X.at(v), direct[v], directMag[v]);
       w.far.near = 0;
       if (done) break;
     }
@@ -464,13 +480,13 @@ LVDIF_HD int dipoleLocalBlock(const DipoleView& D, const DipoleLocalBlockVoxels&
     for (int v = 0; v < DipoleLocalVoxels; ++v)
       if ((open >> v) & 1)
       {
-        const double direct = lo[v], directMag = hi[v];
-        dipoleLocalFinish(w.far, X.at(v), centre, direct, directMag, lo[v], hi[v]);
+        dipoleLocalFinish(w.far, X.at(v), centre, direct[v], directMag[v], lo[v], hi[v]);
         const int state = dipoleLocalVoxelState(lo[v], hi[v], gap);
         if (state == 1) still |= 1ull << v;
         if (state == 2) undecided |= 1ull << v;
       }
     open = still;
+    prevMargin = margin;
     if (!dipoleLocalNextPass(pass, open != 0, gap, margin)) break;
   }
   undecided |= open;

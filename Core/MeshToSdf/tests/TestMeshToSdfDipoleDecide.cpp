@@ -40,7 +40,8 @@ struct Emulated
   // intervals), voxels their intervals decide in the sign kernel; the blocks
   // of the failed list left to the 2^3 balls (beyond the pool's capacity)
   unsigned long long localBlocks = 0, localFailed = 0, localDecided = 0, localOverflow = 0;
-  DipoleWork local;           // nodes visited, triangle x voxel solid angles (tris)
+  DipoleWork local;           // passes (calls), nodes visited, triangle x voxel solid angles (tris)
+  unsigned long long intervalsChecked = 0, intervalMisses = 0; // LocalStep::checkIntervals
   unsigned long long simtLocal = 0; // dipoleLocalKernel: the traversals' warp maxima (a lane per block) + the warps' sums
   unsigned long long simtLocalWalks = 0; // the first part alone
   DipoleWork blocks[DipoleLevels], voxels; // tree nodes and triangles visited by the two phases
@@ -91,6 +92,7 @@ struct LocalStep
   bool on = true;
   long long cap = 1ll << 40;
   double errorScale = 1;
+  bool checkIntervals = false; // every voxel interval against DipoleTree::exact (Emulated::intervalMisses)
 };
 
 Emulated emulateGpu(const WindingSigner& w, const GridGeometry& g, bool blocksOnly = false, bool reoriented = false,
@@ -224,6 +226,13 @@ Emulated emulateGpu(const WindingSigner& w, const GridGeometry& g, bool blocksOn
         // a lane walks the block's clusters (32 blocks per warp), the warp sums its near triangles
         traversalWork.push_back((e.local.nodes - w0.nodes) + (e.local.triBounds - w0.triBounds));
         sumWork += e.local.laneTris - w0.laneTris;
+        for (int v = 0; localStep.checkIntervals && v < DipoleLocalVoxels; ++v)
+        {
+          if (!(out[v] <= out[DipoleLocalVoxels + v])) continue;
+          const double exact = s->exact(X.at(v)); // the plain double sum: within 1e-12, far inside the slack
+          ++e.intervalsChecked;
+          e.intervalMisses += !(out[v] <= exact && exact <= out[DipoleLocalVoxels + v]);
+        }
         if (r >= 0)
         {
           localSlot[static_cast<std::size_t>(b)] = static_cast<int>(t);
@@ -476,17 +485,19 @@ TEST(MeshToSdfDipoleDecide, LocalStepDecidesWhatTheBallsLeave)
 {
   int reoriented = 0, capsOverM = 0;
   unsigned long long refinedOff = 0, refinedOn = 0, decidedOn = 0, blocksOn = 0, overflowCut = 0, failedOn = 0;
+  unsigned long long intervals = 0, passes = 0;
   int index = 0;
   for (const auto& [name, m] : damagedMeshes())
   {
     LocalStep off;
     off.on = false;
     const Emulated a = compareWithCpu(name, m, 36, reoriented, capsOverM, false, off);
-    const Emulated b = compareWithCpu(name, m, 36, reoriented, capsOverM);
-    if (index++ >= 3) continue; // the cut pool on the first meshes only (the test's time)
-    LocalStep cut;
-    cut.cap = 5;
-    const Emulated c = compareWithCpu(name, m, 36, reoriented, capsOverM, false, cut);
+    LocalStep checked;
+    checked.checkIntervals = true;
+    const Emulated b = compareWithCpu(name, m, 36, reoriented, capsOverM, false, checked);
+    EXPECT_EQ(b.intervalMisses, 0u) << name; // every interval holds the exact s
+    intervals += b.intervalsChecked;
+    passes += b.local.calls;
     EXPECT_EQ(a.localBlocks + a.localDecided, 0u) << name;
     EXPECT_LE(b.evaluated, a.evaluated) << name;
     EXPECT_EQ(b.localFailed, 0u) << name; // only a stack overflow fails a block (the near lists are summed when full)
@@ -495,12 +506,18 @@ TEST(MeshToSdfDipoleDecide, LocalStepDecidesWhatTheBallsLeave)
     refinedOn += b.evaluated;
     decidedOn += b.localDecided;
     blocksOn += b.localBlocks;
+    if (index++ >= 3) continue; // the cut pool on the first meshes only (the test's time)
+    LocalStep cut;
+    cut.cap = 5;
+    const Emulated c = compareWithCpu(name, m, 36, reoriented, capsOverM, false, cut);
     overflowCut += c.localOverflow;
     EXPECT_LE(c.localBlocks, 5u) << name;
   }
   std::printf("[ local step ] voxels refined one by one: %llu without it, %llu with it; %llu blocks expanded (%llu failed), "
-              "%llu voxels decided by their intervals; pool of 5: %llu blocks left to the 2^3 balls\n",
-    refinedOff, refinedOn, blocksOn, failedOn, decidedOn, overflowCut);
+              "%llu voxels decided by their intervals; %llu passes; %llu intervals checked against the exact s; pool of 5: %llu "
+              "blocks left to the 2^3 balls\n",
+    refinedOff, refinedOn, blocksOn, failedOn, decidedOn, passes, intervals, overflowCut);
+  EXPECT_GT(passes, blocksOn + blocksOn / 10); // later passes (their carried near sums) ran and were checked
   EXPECT_GT(decidedOn, 0u);
   EXPECT_LT(refinedOn * 2, refinedOff); // at least halved over the damaged meshes
   EXPECT_GT(overflowCut, 0u);           // the cut pool was exercised
