@@ -1,5 +1,7 @@
 #include "vtkChunkActorManager.h"
 
+#include "lvdifTriangleChanges.h"
+
 #include "vtkActor.h"
 #include "vtkAppendPolyData.h"
 #include "vtkBoundingBox.h"
@@ -8,6 +10,7 @@
 #include "vtkMath.h"
 #include "vtkNew.h"
 #include "vtkFieldData.h"
+#include "vtkInformation.h"
 #include "vtkObjectFactory.h"
 #include "vtkPartialRedrawCuller.h"
 #include "vtkPartitionedDataSet.h"
@@ -31,10 +34,23 @@
 
 vtkStandardNewMacro(vtkChunkActorManager);
 
+using lvdif::render::changedBoundsOf;
+using lvdif::render::sortedWithIndex;
+using lvdif::render::triangleHashes;
+using lvdif::render::unionBounds;
+
 // A mesh's triangle hashes (triangleHashes), sorted, each with its triangle's index.
 struct vtkChunkActorManager::Hashes
 {
-  std::vector<std::pair<std::uint64_t, vtkIdType>> sorted;
+  lvdif::render::SortedTriangleHashes sorted;
+};
+
+// The triangles by which a new mesh differs from a chunk's current one.
+struct vtkChunkActorManager::Change
+{
+  bool Known = false;
+  double Bounds[6];
+  std::vector<double> Points; // x, y, z of each changed triangle's points
 };
 
 struct vtkChunkActorManager::Internals
@@ -62,227 +78,6 @@ struct vtkChunkActorManager::Internals
 
 namespace
 {
-std::uint64_t hashBytes(std::uint64_t h, const void* data, std::size_t n)
-{
-  // 8 bytes a step (a multiply-xorshift mix), the tail byte by byte: the
-  // triangles of a re-meshed chunk are hashed at every replacement
-  const auto* b = static_cast<const unsigned char*>(data);
-  std::size_t i = 0;
-  for (; i + 8 <= n; i += 8)
-  {
-    std::uint64_t w;
-    std::memcpy(&w, b + i, 8);
-    h = (h ^ w) * 0x9e3779b97f4a7c15ull;
-    h ^= h >> 29;
-  }
-  for (; i < n; ++i)
-  {
-    h = (h ^ b[i]) * 1099511628211ull;
-  }
-  return h;
-}
-
-// The arrays of `data` that are hashed per tuple (data arrays: contiguous
-// ones by their raw bytes, others through doubles), looked up once per mesh.
-struct TupleFields
-{
-  struct Field
-  {
-    const unsigned char* Base = nullptr; // contiguous: tuple t at Base + t * Bytes
-    std::size_t Bytes = 0;
-    vtkDataArray* Generic = nullptr; // otherwise
-    int Components = 0;
-  };
-  std::vector<Field> Fields;
-  explicit TupleFields(vtkFieldData* data)
-  {
-    for (int a = 0; a < data->GetNumberOfArrays(); ++a)
-    {
-      vtkDataArray* da = vtkDataArray::SafeDownCast(data->GetAbstractArray(a));
-      if (!da)
-      {
-        continue; // string arrays and the like are not drawn
-      }
-      Field f;
-      f.Components = da->GetNumberOfComponents();
-      if (da->HasStandardMemoryLayout())
-      {
-        f.Base = static_cast<const unsigned char*>(da->GetVoidPointer(0));
-        f.Bytes = static_cast<std::size_t>(f.Components) * da->GetDataTypeSize();
-      }
-      else
-      {
-        f.Generic = da;
-      }
-      this->Fields.push_back(f);
-    }
-  }
-};
-
-// One tuple of every hashed array.
-std::uint64_t hashTuple(std::uint64_t h, const TupleFields& fields, vtkIdType t)
-{
-  for (const TupleFields::Field& f : fields.Fields)
-  {
-    if (f.Base)
-    {
-      h = hashBytes(h, f.Base + static_cast<std::size_t>(t) * f.Bytes, f.Bytes);
-    }
-    else
-    {
-      for (int c = 0; c < f.Components; ++c)
-      {
-        const double v = f.Generic->GetComponent(t, c);
-        h = hashBytes(h, &v, sizeof v);
-      }
-    }
-  }
-  return h;
-}
-
-// Per triangle: a hash of its three points (position and point arrays, the
-// cyclic order kept, starting at the smallest) and its cell arrays; false if
-// the mesh holds other cells.
-bool triangleHashes(vtkPolyData* pd, std::vector<std::uint64_t>& out)
-{
-  out.clear();
-  if (!pd)
-  {
-    return true;
-  }
-  if (pd->GetNumberOfVerts() || pd->GetNumberOfLines() || pd->GetNumberOfStrips())
-  {
-    return false;
-  }
-  std::vector<std::uint64_t> point(static_cast<std::size_t>(pd->GetNumberOfPoints()));
-  vtkDataArray* pts = pd->GetPoints() ? pd->GetPoints()->GetData() : nullptr;
-  const TupleFields pointFields(pd->GetPointData()), cellFields(pd->GetCellData());
-  for (vtkIdType p = 0; p < pd->GetNumberOfPoints(); ++p)
-  {
-    std::uint64_t h = 1469598103934665603ull;
-    double x[3];
-    pts->GetTuple(p, x);
-    h = hashBytes(h, x, sizeof x);
-    point[static_cast<std::size_t>(p)] = hashTuple(h, pointFields, p);
-  }
-  vtkCellArray* polys = pd->GetPolys();
-  out.reserve(static_cast<std::size_t>(polys->GetNumberOfCells()));
-  vtkIdType npts = 0;
-  const vtkIdType* ids = nullptr;
-  vtkIdType cell = 0;
-  for (polys->InitTraversal(); polys->GetNextCell(npts, ids); ++cell)
-  {
-    if (npts != 3)
-    {
-      return false;
-    }
-    std::uint64_t v[3] = { point[static_cast<std::size_t>(ids[0])], point[static_cast<std::size_t>(ids[1])],
-      point[static_cast<std::size_t>(ids[2])] };
-    std::rotate(v, std::min_element(v, v + 3), v + 3);
-    std::uint64_t h = hashBytes(1469598103934665603ull, v, sizeof v);
-    out.push_back(hashTuple(h, cellFields, cell)); // polys are the only cells: cell id = poly index
-  }
-  return true;
-}
-
-// Adds a triangle's points to a box and, if given, to a list of points (x, y, z).
-void addTriangle(vtkPolyData* pd, vtkIdType t, double b[6], std::vector<double>* points = nullptr)
-{
-  const vtkIdType* ids = nullptr;
-  vtkIdType npts = 0;
-  pd->GetPolys()->GetCellAtId(t, npts, ids);
-  for (vtkIdType i = 0; i < npts; ++i)
-  {
-    double x[3];
-    pd->GetPoint(ids[i], x);
-    for (int a = 0; a < 3; ++a)
-    {
-      b[2 * a] = std::min(b[2 * a], x[a]);
-      b[2 * a + 1] = std::max(b[2 * a + 1], x[a]);
-    }
-    if (points)
-    {
-      points->insert(points->end(), x, x + 3);
-    }
-  }
-}
-} // namespace
-
-namespace
-{
-// The triangle hashes of a mesh, sorted, with their triangles' indices.
-std::vector<std::pair<std::uint64_t, vtkIdType>> sortedWithIndex(const std::vector<std::uint64_t>& order)
-{
-  std::vector<std::pair<std::uint64_t, vtkIdType>> sorted(order.size());
-  for (std::size_t t = 0; t < order.size(); ++t)
-  {
-    sorted[t] = { order[t], static_cast<vtkIdType>(t) };
-  }
-  std::sort(sorted.begin(), sorted.end());
-  return sorted;
-}
-
-// ChangedBounds with the triangles' hashes known (sortedWithIndex of each
-// mesh's triangleHashes): one walk over both sorted lists; the triangles of
-// each hash whose count differs between the meshes are the changed ones.
-bool changedBoundsOf(vtkPolyData* before, const std::vector<std::pair<std::uint64_t, vtkIdType>>& sb,
-  vtkPolyData* after, const std::vector<std::pair<std::uint64_t, vtkIdType>>& sa, double bounds[6],
-  std::vector<double>* points = nullptr)
-{
-  vtkMath::UninitializeBounds(bounds);
-  double b[6] = { VTK_DOUBLE_MAX, -VTK_DOUBLE_MAX, VTK_DOUBLE_MAX, -VTK_DOUBLE_MAX, VTK_DOUBLE_MAX, -VTK_DOUBLE_MAX };
-  bool any = false;
-  std::size_t i = 0, j = 0;
-  while (i < sb.size() || j < sa.size())
-  {
-    const std::uint64_t h = j == sa.size() || (i < sb.size() && sb[i].first < sa[j].first) ? sb[i].first : sa[j].first;
-    const std::size_t i0 = i, j0 = j;
-    for (; i < sb.size() && sb[i].first == h; ++i)
-    {
-    }
-    for (; j < sa.size() && sa[j].first == h; ++j)
-    {
-    }
-    if (i - i0 != j - j0)
-    {
-      any = true;
-      for (std::size_t k = i0; k < i; ++k)
-      {
-        addTriangle(before, sb[k].second, b, points);
-      }
-      for (std::size_t k = j0; k < j; ++k)
-      {
-        addTriangle(after, sa[k].second, b, points);
-      }
-    }
-  }
-  if (!any)
-  {
-    return false;
-  }
-  std::copy(b, b + 6, bounds);
-  return true;
-}
-
-bool unionBounds(vtkPolyData* before, vtkPolyData* after, double bounds[6])
-{
-  vtkMath::UninitializeBounds(bounds);
-  vtkBoundingBox box;
-  for (vtkPolyData* pd : { before, after })
-  {
-    if (pd && pd->GetNumberOfPoints())
-    {
-      box.AddBounds(pd->GetBounds());
-    }
-  }
-  if (!box.IsValid())
-  {
-    return false;
-  }
-  box.GetBounds(bounds);
-  return true;
-}
-
 // Same arrays (names, types, components, attribute roles) in the same order.
 bool sameArrays(vtkDataSetAttributes* a, vtkDataSetAttributes* b)
 {
@@ -327,8 +122,12 @@ bool refill(vtkPolyData* shown, vtkPolyData* next)
   // copying does not mark an array modified, and the buffer upload and the
   // cached ranges go by the array's MTime)
   ps->GetData()->ShallowCopy(pn->GetData());
-  ps->GetData()->Modified();
-  ps->Modified();
+  ps->Modified(); // the points and their array
+  // the ranges cached with the new coordinates (PrepareChunk), set after the
+  // modification so that they count as current; the old ones cleared first
+  // (an entry left over would count as current too)
+  ps->GetData()->GetInformation()->Clear();
+  ps->GetData()->GetInformation()->Copy(pn->GetData()->GetInformation(), 1);
   for (vtkDataSetAttributes* d : { static_cast<vtkDataSetAttributes*>(shown->GetPointData()),
          static_cast<vtkDataSetAttributes*>(shown->GetCellData()) })
   {
@@ -511,6 +310,18 @@ vtkSmartPointer<vtkPolyData> vtkChunkActorManager::PrepareChunk(vtkPolyData* mes
   attributes->SetInputData(mesh);
   attributes->Update();
   vtkSmartPointer<vtkPolyData> out = attributes->GetOutput();
+  // The buffer upload asks for the coordinates' ranges (VTK's automatic shift
+  // and scale of the vertex buffer); the array caches them, so they are
+  // computed here (by the filter itself for marching cubes' meshes), where the
+  // chunks are prepared in parallel, not in the render (refill carries them
+  // over). They are also the cells' bounds, which ApplyChunk hands to the
+  // mapper.
+  vtkDataArray* xyz = out->GetPoints()->GetData();
+  for (int c = 0; c < xyz->GetNumberOfComponents(); ++c)
+  {
+    double range[2];
+    xyz->GetRange(range, c);
+  }
   return out;
 }
 
@@ -529,20 +340,67 @@ void vtkChunkActorManager::SetChunks(const std::vector<vtkIdType>& chunkIds, con
   std::vector<vtkSmartPointer<vtkPolyData>> ready(n);
   std::vector<Hashes> hashes(n);
   std::vector<char> hashed(n, 0);
+  std::vector<Change> changes(n);
   vtkPartialRedrawCuller* culler = this->Internal->Culler;
   const bool declare = culler && culler->GetEnabled();
-  // the per-triangle work of each chunk (preparation, hashes) in parallel;
-  // the actors, mappers and the culler on this thread
-  vtkSMPTools::For(0, static_cast<vtkIdType>(n), [&](vtkIdType begin, vtkIdType end) {
+  // Each mesh object is read by one thread only: a chunk is compared with its
+  // current mesh in the parallel part (ApplyChunk then only declares the
+  // result) when it is named once in this call and its current mesh is no
+  // other chunk's and none of this call's; otherwise in ApplyChunk, in order.
+  // A mesh given twice is prepared on this thread.
+  const auto& chunks = this->Internal->Chunks;
+  std::map<vtkIdType, int> named;
+  std::map<vtkPolyData*, int> reads; // per mesh object: the threads' readers
+  for (std::size_t i = 0; i < n; ++i)
+  {
+    ++named[chunkIds[i]];
+    ++reads[meshes[i]];
+  }
+  bool distinct = true;
+  for (const auto& kv : reads)
+  {
+    distinct = distinct && (kv.first == nullptr || kv.second == 1);
+  }
+  std::vector<vtkPolyData*> before(n, nullptr);
+  for (std::size_t i = 0; i < n; ++i)
+  {
+    auto it = chunks.find(chunkIds[i]);
+    if (named[chunkIds[i]] == 1 && it != chunks.end() && it->second.Source && it->second.HashesValid)
+    {
+      before[i] = it->second.Source;
+      ++reads[before[i]];
+    }
+  }
+  // the per-triangle work of each chunk (preparation, hashes, the changed
+  // triangles) in parallel, reading the chunk table's meshes (nothing writes
+  // them meanwhile: this thread waits in For); the actors, mappers and the
+  // culler on this thread
+  auto prepare = [&](vtkIdType begin, vtkIdType end) {
     for (vtkIdType i = begin; i < end; ++i)
     {
       ready[i] = this->PrepareChunk(meshes[i]);
       hashed[i] = declare && hashesOf(meshes[i], hashes[i]);
+      if (hashed[i] && before[i] && reads.at(before[i]) == 1)
+      {
+        const Internals::Entry& e = chunks.at(chunkIds[i]);
+        changedBoundsOf(before[i], e.SourceHashes.sorted, meshes[i], hashes[i].sorted, changes[i].Bounds,
+          &changes[i].Points);
+        changes[i].Known = true;
+      }
     }
-  });
+  };
+  if (distinct)
+  {
+    vtkSMPTools::For(0, static_cast<vtkIdType>(n), prepare);
+  }
+  else
+  {
+    prepare(0, static_cast<vtkIdType>(n));
+  }
   for (std::size_t i = 0; i < n; ++i)
   {
-    this->ApplyChunk(chunkIds[i], meshes[i], ready[i], ready[i].Get() != meshes[i], hashed[i] ? &hashes[i] : nullptr);
+    this->ApplyChunk(chunkIds[i], meshes[i], ready[i], ready[i].Get() != meshes[i], hashed[i] ? &hashes[i] : nullptr,
+      &changes[i]);
   }
 }
 
@@ -558,7 +416,7 @@ bool vtkChunkActorManager::hashesOf(vtkPolyData* mesh, Hashes& out)
 }
 
 void vtkChunkActorManager::ApplyChunk(
-  vtkIdType chunkId, vtkPolyData* mesh, vtkPolyData* ready, bool owned, Hashes* hashes)
+  vtkIdType chunkId, vtkPolyData* mesh, vtkPolyData* ready, bool owned, Hashes* hashes, const Change* change)
 {
   if (!ready || ready->GetNumberOfCells() == 0)
   {
@@ -614,6 +472,19 @@ void vtkChunkActorManager::ApplyChunk(
   {
     culler->InputDataChanged(e.Actor); // refilled in place, or a new input: announced
   }
+  if (owned)
+  {
+    // Made by PrepareChunk: every point is a corner of one triangle (the
+    // points are un-shared), so the cells' bounds are the coordinates' ranges,
+    // cached there; refilled or not, the mapper's input holds the same cells.
+    vtkDataArray* xyz = ready->GetPoints()->GetData();
+    double bounds[6];
+    for (int a = 0; a < 3; ++a)
+    {
+      xyz->GetRange(bounds + 2 * a, a);
+    }
+    e.Mapper->SetInputBounds(bounds);
+  }
   const bool hashed = hashes != nullptr;
   if (declare)
   {
@@ -624,7 +495,12 @@ void vtkChunkActorManager::ApplyChunk(
     // projections, which is tighter than the projection of their box.
     double changed[6];
     vtkPolyData* before = e.Source;
-    if (hashed && e.HashesValid)
+    if (change && change->Known)
+    {
+      culler->EndChange(e.Actor, change->Bounds, change->Points.data(),
+        static_cast<vtkIdType>(change->Points.size() / 3));
+    }
+    else if (hashed && e.HashesValid)
     {
       std::vector<double> points;
       changedBoundsOf(before, e.SourceHashes.sorted, mesh, hashes->sorted, changed, &points);

@@ -77,14 +77,18 @@ public:
   vtkTexture* GetMatcapTexture();
 
   /// Prepares a mesh for rendering (un-shares vertices for the tetrahedral
-  /// shader when the mesh carries corner colours). Thread-safe; SetChunk calls
-  /// it unless told the mesh is prepared.
+  /// shader when the mesh carries corner colours; the coordinates' ranges,
+  /// which the buffer upload and the mapper's bounds use, cached in their
+  /// array). Thread-safe for distinct meshes; SetChunk calls it unless told
+  /// the mesh is prepared.
   vtkSmartPointer<vtkPolyData> PrepareChunk(vtkPolyData* mesh) const;
 
   /// Replaces the mesh of one chunk. A null or empty mesh removes the chunk.
   void SetChunk(vtkIdType chunkId, vtkPolyData* mesh, bool prepared = false);
   /// SetChunk of each (id, mesh) in order, the meshes prepared (and their
   /// changes measured) in parallel (vtkSMPTools): a frame's re-meshed chunks.
+  /// A mesh object is read by one thread at a time (one given twice makes the
+  /// call prepare on this thread).
   void SetChunks(const std::vector<vtkIdType>& chunkIds, const std::vector<vtkPolyData*>& meshes);
   void RemoveChunk(vtkIdType chunkId);
   /// Shows every partition of vtkChunkedMarchingCubes' partitioned output
@@ -154,8 +158,12 @@ private:
 
   /// Shows `ready` (prepared from `mesh`; `owned`: made here, may be refilled
   /// into the next time) for a chunk; `hashes`: triangleHashes of `mesh`, if known.
+  /// `change`: the changed triangles' bounds and points against the chunk's
+  /// current mesh, if SetChunks measured them in its parallel part.
   struct Hashes;
-  void ApplyChunk(vtkIdType chunkId, vtkPolyData* mesh, vtkPolyData* ready, bool owned, Hashes* hashes);
+  struct Change;
+  void ApplyChunk(vtkIdType chunkId, vtkPolyData* mesh, vtkPolyData* ready, bool owned, Hashes* hashes,
+    const Change* change = nullptr);
   /// triangleHashes of `mesh`, sorted with their triangles' indices; false if it has cells other than triangles.
   static bool hashesOf(vtkPolyData* mesh, Hashes& out);
 

@@ -6,6 +6,8 @@
 #include "vtkFloatArray.h"
 #include "vtkIdList.h"
 #include "vtkInformation.h"
+#include "vtkInformationDoubleVectorKey.h"
+#include "vtkInformationInformationVectorKey.h"
 #include "vtkInformationVector.h"
 #include "vtkIntArray.h"
 #include "vtkNew.h"
@@ -105,7 +107,22 @@ int vtkCornerColorAttributes::RequestData(
   vtkCellArray* polys = input->GetPolys();
   // Cell ids of polygons start after the vertices and lines (vtkPolyData's cell order).
   const vtkIdType firstPoly = input->GetNumberOfVerts() + input->GetNumberOfLines();
-  vtkIdType triangles = 0;
+  const vtkIdType nPolys = polys->GetNumberOfCells();
+  auto allTriangles = [nPolys](auto* offsets) {
+    const auto* off = offsets->GetPointer(0);
+    for (vtkIdType p = 0; p < nPolys; ++p)
+    {
+      if (off[p + 1] - off[p] != 3)
+      {
+        return false;
+      }
+    }
+    return true;
+  };
+  const bool triangleOnly =
+    polys->IsStorage64Bit() ? allTriangles(polys->GetOffsetsArray64()) : allTriangles(polys->GetOffsetsArray32());
+  vtkIdType triangles = triangleOnly ? nPolys : 0;
+  if (!triangleOnly)
   {
     auto it = vtk::TakeSmartPointer(polys->NewIterator());
     for (it->GoToFirstCell(); !it->IsDoneWithTraversal(); it->GoToNextCell())
@@ -144,17 +161,25 @@ int vtkCornerColorAttributes::RequestData(
   outPolys->AllocateExact(triangles, 3 * triangles);
 
   // the polygons in output order: as given, or by their cells' Morton codes
-  const vtkIdType nPolys = polys->GetNumberOfCells();
   std::vector<vtkIdType> order(static_cast<std::size_t>(nPolys));
+  // The marching cubes' meshes (float points, int cell_ijk, triangles only, no
+  // other cell arrays) take typed loops below: the same values, written
+  // without a virtual call per component, point and cell (the editor prepares
+  // every re-meshed chunk in the frame that shows it).
+  auto* floatPts = vtkFloatArray::SafeDownCast(inPts ? inPts->GetData() : nullptr);
+  auto* intIjk = vtkIntArray::SafeDownCast(ijk);
+  const bool typed = triangleOnly && floatPts && intIjk && outCd->GetNumberOfArrays() == 0;
+  const int* ijkData = intIjk ? intIjk->GetPointer(0) : nullptr;
   if (this->SpatialOrder)
   {
     std::vector<std::pair<unsigned long long, vtkIdType>> keyed(static_cast<std::size_t>(nPolys));
     for (vtkIdType p = 0; p < nPolys; ++p)
     {
       const vtkIdType c = firstPoly + p;
-      keyed[static_cast<std::size_t>(p)] = { MortonCode(static_cast<int>(ijk->GetComponent(c, 0)),
-                                               static_cast<int>(ijk->GetComponent(c, 1)),
-                                               static_cast<int>(ijk->GetComponent(c, 2))),
+      keyed[static_cast<std::size_t>(p)] = { typed
+          ? MortonCode(ijkData[3 * c], ijkData[3 * c + 1], ijkData[3 * c + 2])
+          : MortonCode(static_cast<int>(ijk->GetComponent(c, 0)), static_cast<int>(ijk->GetComponent(c, 1)),
+              static_cast<int>(ijk->GetComponent(c, 2))),
         p };
     }
     std::sort(keyed.begin(), keyed.end()); // ties by input index: stable
@@ -183,7 +208,75 @@ int vtkCornerColorAttributes::RequestData(
   float* outCorners[3] = { cornerArrays[0]->GetPointer(0), cornerArrays[1]->GetPointer(0),
     cornerArrays[2]->GetPointer(0) };
   const bool copyCells = outCd->GetNumberOfArrays() > 0;
-  for (vtkIdType p : order)
+  if (typed)
+  {
+    // every polygon a triangle: output triangle i is polygon order[i]
+    const float* inXyz = floatPts->GetPointer(0);
+    auto fill = [&](auto* offsets, auto* connectivity) {
+      const auto* off = offsets->GetPointer(0);
+      const auto* conn = connectivity->GetPointer(0);
+      for (vtkIdType p : order)
+      {
+        const vtkIdType cellId = firstPoly + p;
+        double cellOrigin[3];
+        for (int a = 0; a < 3; ++a)
+        {
+          cellOrigin[a] = this->Origin[a] + ijkData[3 * cellId + a] * this->Spacing[a];
+        }
+        float packed[12];
+        PackCorners(corners->GetPointer(32 * cellId), packed);
+        const auto* fan = conn + off[p];
+        for (int v = 0; v < 3; ++v, ++next)
+        {
+          const vtkIdType id = static_cast<vtkIdType>(fan[v]);
+          for (int a = 0; a < 3; ++a)
+          {
+            const double x = inXyz[3 * id + a]; // as vtkPoints::GetPoint gives it
+            outXyz[3 * next + a] = static_cast<float>(x);
+            outLocal[3 * next + a] = static_cast<float>((x - cellOrigin[a]) / this->Spacing[a]);
+          }
+          from[next] = id;
+          to[next] = next;
+          for (int c = 0; c < 3; ++c)
+          {
+            std::copy(packed + 4 * c, packed + 4 * c + 4, outCorners[c] + 4 * next);
+          }
+        }
+      }
+    };
+    if (polys->IsStorage64Bit())
+    {
+      fill(polys->GetOffsetsArray64(), polys->GetConnectivityArray64());
+    }
+    else
+    {
+      fill(polys->GetOffsetsArray32(), polys->GetConnectivityArray32());
+    }
+    // triangle t is output points 3t..3t+2, as InsertNextCell below makes
+    // them, in the storage AllocateExact chose
+    auto iota = [&](auto* offsets, auto* connectivity) {
+      offsets->SetNumberOfValues(triangles + 1);
+      connectivity->SetNumberOfValues(3 * triangles);
+      for (vtkIdType t = 0; t <= triangles; ++t)
+      {
+        offsets->SetValue(t, 3 * t);
+      }
+      for (vtkIdType i = 0; i < 3 * triangles; ++i)
+      {
+        connectivity->SetValue(i, i);
+      }
+    };
+    if (outPolys->IsStorage64Bit())
+    {
+      iota(outPolys->GetOffsetsArray64(), outPolys->GetConnectivityArray64());
+    }
+    else
+    {
+      iota(outPolys->GetOffsetsArray32(), outPolys->GetConnectivityArray32());
+    }
+    tri = triangles;
+  }
+  else for (vtkIdType p : order)
   {
     const vtkIdType cellId = firstPoly + p;
     polys->GetCellAtId(p, ids);
@@ -238,6 +331,36 @@ int vtkCornerColorAttributes::RequestData(
   for (int c = 0; c < 3; ++c)
   {
     outPd->AddArray(cornerArrays[c]);
+  }
+  if (typed && triangles > 0)
+  {
+    // The coordinates' ranges, cached in the array as vtkDataArray::GetRange
+    // caches them (PER_COMPONENT, COMPONENT_RANGE; set after the array's last
+    // modification, so they count as current): one tight pass here instead of
+    // VTK's generic one when the vertex buffer upload (its automatic shift and
+    // scale) or vtkChunkActorManager asks. The typed path's points are finite
+    // marching cubes vertices.
+    float lo[3], hi[3];
+    for (int a = 0; a < 3; ++a)
+    {
+      lo[a] = hi[a] = outXyz[a];
+    }
+    for (vtkIdType i = 0; i < 3 * triangles; ++i)
+    {
+      for (int a = 0; a < 3; ++a)
+      {
+        lo[a] = std::min(lo[a], outXyz[3 * i + a]);
+        hi[a] = std::max(hi[a], outXyz[3 * i + a]);
+      }
+    }
+    vtkNew<vtkInformationVector> perComponent;
+    perComponent->SetNumberOfInformationObjects(3);
+    for (int a = 0; a < 3; ++a)
+    {
+      const double range[2] = { lo[a], hi[a] };
+      perComponent->GetInformationObject(a)->Set(vtkDataArray::COMPONENT_RANGE(), range, 2);
+    }
+    pts->GetData()->GetInformation()->Set(vtkAbstractArray::PER_COMPONENT(), perComponent);
   }
   return 1;
 }

@@ -24,6 +24,10 @@
  *   exact; PackCorners/UnpackCorners): 3 vertex attributes instead of 8,
  *   which is what software OpenGL's vertex stage pays for.
  *
+ * For marching cubes' meshes (float points, int cell_ijk, triangles only) the
+ * output points' ranges are cached in their array (vtkDataArray::GetRange
+ * finds them), as the vertex buffer upload asks for them.
+ *
  * Triangle order (SpatialOrder): off (default), the output triangles follow
  * the input's polygons; on, they follow the Morton (Z-order) code of their
  * cells' cell_ijk, input order among equal codes, a polygon's fan triangles

@@ -309,6 +309,34 @@ bool vtkTetrahedralColorMapper::UpdateDrawRanges()
   return this->RangesValid;
 }
 
+void vtkTetrahedralColorMapper::SetInputBounds(const double bounds[6])
+{
+  vtkPolyData* input = this->GetInput();
+  this->InputBoundsData = input;
+  if (!input)
+  {
+    return;
+  }
+  std::copy(bounds, bounds + 6, this->InputBounds);
+  // the object's own time (a new points or cell array set) and its geometry's
+  // (points and cells modified in place); vtkPolyData::GetMTime would also
+  // visit every attribute array, which the bounds do not depend on
+  this->InputBoundsTime = input->vtkObject::GetMTime();
+  this->InputBoundsMeshTime = input->GetMeshMTime();
+}
+
+void vtkTetrahedralColorMapper::ComputeBounds()
+{
+  vtkPolyData* input = this->GetInput();
+  if (input && input == this->InputBoundsData && input->vtkObject::GetMTime() == this->InputBoundsTime &&
+    input->GetMeshMTime() == this->InputBoundsMeshTime)
+  {
+    std::copy(this->InputBounds, this->InputBounds + 6, this->Bounds);
+    return;
+  }
+  this->Superclass::ComputeBounds();
+}
+
 void vtkTetrahedralColorMapper::RenderPieceDraw(vtkRenderer* ren, vtkActor* act)
 {
   vtkOpenGLHelper& tris = this->Primitives[PrimitiveTris];

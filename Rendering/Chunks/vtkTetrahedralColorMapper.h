@@ -113,6 +113,13 @@ public:
   vtkMTimeType GetLastDrawTime() const { return this->DrawTime.GetMTime(); }
   ///@}
 
+  /// The bounds of the current input's cells as whoever made the input computed
+  /// them (vtkChunkActorManager: where the chunks are prepared in parallel):
+  /// GetBounds() returns them without a pass over the points for as long as
+  /// the input object, its geometry and its cells are unchanged (its own
+  /// MTime and GetMeshMTime()); after that, it computes them again.
+  void SetInputBounds(const double bounds[6]);
+
   /// Installs (or with on=false removes) the tetrahedral GLSL on a shader
   /// property. Public so that other mappers of the same data can share it.
   static void InstallShaderReplacements(vtkShaderProperty* property, bool on);
@@ -124,6 +131,7 @@ protected:
   ~vtkTetrahedralColorMapper() override = default;
 
   void RenderPieceDraw(vtkRenderer* ren, vtkActor* act) override;
+  void ComputeBounds() override;
 
   int InterpolationMode = Tetrahedral;
   bool UsedTetrahedral = false;
@@ -135,6 +143,11 @@ protected:
   vtkTimeStamp DrawTime;
 
 private:
+  // SetInputBounds: the bounds, and the input and times they hold for
+  double InputBounds[6];
+  vtkPolyData* InputBoundsData = nullptr; // compared, never dereferenced
+  vtkMTimeType InputBoundsTime = 0, InputBoundsMeshTime = 0;
+
   /// Rebuilds Ranges when the buffers were rebuilt; false if the input does not qualify.
   bool UpdateDrawRanges();
 

@@ -545,6 +545,11 @@ EditResult applyDabs(DictionaryVolume& volume, const std::vector<Dab>& dabs, con
       const bool hardCsg = perDabRows && ctx.blend <= 0 && (add || ctx.op == static_cast<int>(BrushOp::Subtract));
       std::vector<Voxel> rowOld, rowNew;
       std::vector<double> rowS;
+      // Hard add, row path: a voxel's distance lowered by a dab is kept as the
+      // exact s ("pending") and encoded once after the row's last dab; the
+      // sequence of the per-voxel rule is reproduced exactly (see below).
+      const bool pendingAdd = hardCsg && add;
+      std::vector<double> rowPend;
       std::vector<std::pair<std::int64_t, std::int64_t>> rowRange(perDabRows ? active.size() : 0);
       for (std::int64_t z = region.lo[2]; z <= region.hi[2]; ++z)
         for (std::int64_t y = region.lo[1]; y <= region.hi[1]; ++y)
@@ -589,6 +594,8 @@ EditResult applyDabs(DictionaryVolume& volume, const std::vector<Dab>& dabs, con
           else
             std::fill(rowOld.begin(), rowOld.end(), uniformValue);
           rowNew = rowOld;
+          if (pendingAdd)
+            rowPend.assign(static_cast<std::size_t>(m), std::numeric_limits<double>::infinity());
           if (perDabRows)
           {
             // Dab by dab over the row (voxels are independent, so this is the
@@ -641,23 +648,27 @@ EditResult applyDabs(DictionaryVolume& volume, const std::vector<Dab>& dabs, con
                 if (std::min(sAt(xn), sAt(std::min(a1, xn + 1))) <= deep)
                 {
                   const std::int64_t turn = sAt(xn) <= deep ? xn : xn + 1;
-                  std::int64_t lo = a0, hi = turn; // first x in [a0, turn] with s <= deep
-                  while (lo < hi)
-                  {
-                    const std::int64_t mid = lo + (hi - lo) / 2;
-                    if (sAt(mid) <= deep) hi = mid;
-                    else lo = mid + 1;
-                  }
-                  i0 = lo;
-                  lo = turn;
-                  hi = a1; // last x in [turn, a1] with s <= deep
-                  while (lo < hi)
-                  {
-                    const std::int64_t mid = lo + (hi - lo + 1) / 2;
-                    if (sAt(mid) <= deep) lo = mid;
-                    else hi = mid - 1;
-                  }
-                  i1 = lo;
+                  // s <= deep is monotone on each side of turn: start at the
+                  // analytic boundary (|x - cx| <= sqrt((r - band)^2 - yy - zz))
+                  // and step to the exact one with sAt, which gives the same x as
+                  // a bisection with sAt, in about two square roots instead of ~12
+                  const double rd = r + deep, w2 = rd * rd - yy - zz;
+                  const double w = w2 > 0 ? std::sqrt(w2) : 0.0;
+                  auto clampTo = [](double v, std::int64_t l, std::int64_t h) {
+                    return v <= double(l) ? l : (v >= double(h) ? h : static_cast<std::int64_t>(v));
+                  };
+                  std::int64_t g = clampTo(std::ceil(cx - w), a0, turn); // first x in [a0, turn] with s <= deep
+                  while (g > a0 && sAt(g - 1) <= deep)
+                    --g;
+                  while (g < turn && !(sAt(g) <= deep))
+                    ++g;
+                  i0 = g;
+                  g = clampTo(std::floor(cx + w), turn, a1); // last x in [turn, a1] with s <= deep
+                  while (g < a1 && sAt(g + 1) <= deep)
+                    ++g;
+                  while (g > turn && !(sAt(g) <= deep))
+                    --g;
+                  i1 = g;
                 }
                 bool inBand = true; // every key of the span within the band (else: voxel by voxel)
                 for (std::int64_t x = i0; x <= i1 && inBand; ++x)
@@ -673,6 +684,8 @@ EditResult applyDabs(DictionaryVolume& volume, const std::vector<Dab>& dabs, con
                     w.sdf = add ? belowBand : aboveBand;
                     if (add)
                       w.color = ctx.colorKey;
+                    if (pendingAdd)
+                      rowPend[static_cast<std::size_t>(x - x0)] = std::numeric_limits<double>::infinity();
                   }
                   // the rest of the range, voxel by voxel below
                   if (i0 == a0 && i1 == a1)
@@ -706,6 +719,45 @@ EditResult applyDabs(DictionaryVolume& volume, const std::vector<Dab>& dabs, con
                 else
                   for (std::int64_t x = b0; x <= b1; ++x)
                     sv[x - b0] = dabDistance(d, double(x), double(y), double(z), ctx.rounding);
+                if (pendingAdd)
+                {
+                  // combineVoxel's hard add (s < d: key = encode(s), colour if
+                  // s <= colorOffset; colour if s <= 0) with the key of a voxel
+                  // this call already lowered left as its exact s = p. encode is
+                  // monotone and encode(table[k]) == k for the band's keys
+                  // (Brush.PendingEncodeIsExact), so for k = encode(p):
+                  // s >= p: table[k] <= s would leave the voxel, table[k] > s
+                  //   gives encode(s) == k and a colour p already gave: no-op;
+                  // s < p: the key becomes encode(s) either way (table[k] <= s
+                  //   < p), the colour as the rule says (table[k] only there).
+                  const double co = ctx.colorOffset;
+                  double* pend = rowPend.data() - x0;
+                  for (std::int64_t x = b0; x <= b1; ++x)
+                  {
+                    const double sx = sv[x - b0];
+                    if (sx > reach)
+                      continue;
+                    Voxel& w = rv[x];
+                    double& p = pend[x];
+                    if (p != std::numeric_limits<double>::infinity())
+                    {
+                      if (sx >= p)
+                        continue;
+                      if (w.color != ctx.colorKey && (sx <= 0 || (sx <= co && sx < double(table[encode(p)]))))
+                        w.color = ctx.colorKey;
+                      p = sx;
+                    }
+                    else if (sx < double(table[w.sdf]))
+                    {
+                      p = sx;
+                      if (sx <= co || sx <= 0)
+                        w.color = ctx.colorKey;
+                    }
+                    else if (sx <= 0)
+                      w.color = ctx.colorKey;
+                  }
+                  continue;
+                }
                 for (std::int64_t x = b0; x <= b1; ++x)
                 {
                   const double sx = sv[x - b0];
@@ -723,6 +775,10 @@ EditResult applyDabs(DictionaryVolume& volume, const std::vector<Dab>& dabs, con
               for (int gi : mine)
                 detail::edit::applyGroupToVoxel(v.sdf, v.color, x, y, z, active.data(), boxes.data(), gi, ctx, table, encode);
             }
+          if (pendingAdd)
+            for (std::int64_t i = 0; i < m; ++i)
+              if (rowPend[static_cast<std::size_t>(i)] != std::numeric_limits<double>::infinity())
+                rowNew[static_cast<std::size_t>(i)].sdf = encode(rowPend[static_cast<std::size_t>(i)]);
           for (std::int64_t x = x0; x <= x1; ++x)
           {
             const std::int64_t li = li0 + (x - x0);

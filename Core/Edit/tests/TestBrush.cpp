@@ -3,12 +3,15 @@
 #include "EditTestUtil.h"
 #include "lvdif/AnalyticFill.h"
 #include "lvdif/Brush.h"
+#include "lvdif/Editor.h"
 #include "lvdif/Error.h"
+#include "lvdif/Stroke.h"
 
 #include <gtest/gtest.h>
 
 #include <algorithm>
 #include <cmath>
+#include <memory>
 
 using namespace lvdif;
 using edittest::options;
@@ -352,4 +355,165 @@ TEST(Brush, LargePrimitivesCoveringWholeChunksMatchTheAnalyticCsg)
     ASSERT_EQ(v.get(x, y, z).color, own ? key : start->get(x, y, z).color);
   });
   EXPECT_LE(worst, tolerance(v, 3));
+}
+
+namespace
+{
+// A volume that is not cubic, with a sphere and a band of a second colour.
+std::unique_ptr<DictionaryVolume> strokeTestVolume()
+{
+  VolumeOptions o = options(0);
+  o.dims = { 150, 118, 97 };
+  auto v = std::make_unique<DictionaryVolume>(o);
+  fillFromFunction(*v, sphereSdf(74.3, 58.6, 47.9, 36.5));
+  BrushSettings paint;
+  paint.op = BrushOp::Paint;
+  paint.color = Rgba{ 20, 200, 60, 255 };
+  applyDab(*v, Dab{ BrushShape::Sphere, { 60, 40, 50 }, 30, {} }, paint);
+  return v;
+}
+
+// Samples along an arc over the sphere's top, 2.8 voxels apart (50 Hz drag).
+std::vector<BrushSample> strokeTestSamples(int n, double phase)
+{
+  std::vector<BrushSample> out;
+  for (int i = 0; i < n; ++i)
+  {
+    const double a = phase + 0.045 * i;
+    BrushSample s;
+    s.position = { 74.3 + 62.0 * std::cos(a) * 0.7, 58.6 + 62.0 * std::sin(a) * 0.6, 47.9 + 36.5 * 0.4 };
+    s.time = 0.02 * i;
+    out.push_back(s);
+  }
+  return out;
+}
+} // namespace
+
+TEST(Brush, StrokeSamplesEqualThePerVoxelRuleBitForBit)
+{
+  // An interactive stroke applies each sample's dabs (3-4 overlapping ones at
+  // radius 40) in one call; the hard add keeps a lowered voxel's exact distance
+  // and encodes it once per row. Replayed through the Editor (Drill: applied as
+  // it goes; Basic: one call at the end), every voxel (distance key and colour)
+  // must equal the per-voxel rule (a mirror plane whose images miss the volume
+  // selects it) and dab-by-dab application (one call per dab).
+  struct Case
+  {
+    BrushOp op;
+    BrushKind kind;
+    double radius;
+    Rgba color;
+  };
+  const Case cases[] = {
+    { BrushOp::Add, BrushKind::Drill, 15, Rgba{ 200, 40, 90, 255 } },
+    { BrushOp::Subtract, BrushKind::Drill, 15, Rgba{ 0, 0, 0, 255 } },
+    { BrushOp::Paint, BrushKind::Drill, 15, Rgba{ 90, 10, 160, 255 } },
+    { BrushOp::Paint, BrushKind::Drill, 40, Rgba{ 250, 250, 0, 255 } },
+    { BrushOp::Add, BrushKind::Drill, 40, Rgba{ 200, 40, 90, 255 } },
+    { BrushOp::Add, BrushKind::Basic, 40, Rgba{ 10, 40, 250, 255 } },
+    { BrushOp::Subtract, BrushKind::Drill, 40, Rgba{ 0, 0, 0, 255 } },
+  };
+  // every case on the result of the previous ones: colours and keys mixed
+  auto rows = strokeTestVolume(), perVoxel = strokeTestVolume(), dabByDab = strokeTestVolume();
+  int c = 0;
+  for (const Case& k : cases)
+  {
+    const std::vector<BrushSample> samples = strokeTestSamples(24, 1.1 * c++);
+    BrushSettings s;
+    s.op = k.op;
+    s.color = k.color;
+    StrokeSettings st;
+    st.kind = k.kind;
+    st.radius = k.radius;
+    st.spacing = 1.0; // 2-3 dabs per sample at 2.8 voxels a sample
+    std::int64_t changedA = 0, changedB = 0;
+    for (int pass = 0; pass < 2; ++pass)
+    {
+      DictionaryVolume& v = pass == 0 ? *rows : *perVoxel;
+      Editor ed(v);
+      ed.brush = s;
+      ed.stroke = st;
+      if (pass == 1)
+      {
+        ed.brush.symmetry.mirror[0] = true;
+        ed.brush.symmetry.plane[0] = -500; // images at x < -800: outside the volume
+      }
+      ed.beginStroke();
+      std::int64_t changed = 0;
+      for (const BrushSample& smp : samples)
+        changed += ed.addSample(smp).changedVoxels;
+      changed += ed.endStroke().changedVoxels;
+      (pass == 0 ? changedA : changedB) = changed;
+    }
+    for (const Dab& d : strokeDabs(samples, st))
+      applyDab(*dabByDab, d, s);
+    EXPECT_GT(changedA, 0) << toString(k.op) << " radius " << k.radius;
+    EXPECT_EQ(changedA, changedB) << toString(k.op) << " radius " << k.radius;
+    EXPECT_EQ(edittest::countDifferences(*rows, *perVoxel), 0) << toString(k.op) << " radius " << k.radius;
+    EXPECT_EQ(edittest::countDifferences(*rows, *dabByDab), 0) << toString(k.op) << " radius " << k.radius;
+  }
+  // negative control: the comparison sees one voxel's colour
+  Voxel v = rows->get(70, 60, 84);
+  v.color = static_cast<std::uint16_t>(v.color + 1);
+  rows->set(70, 60, 84, v);
+  EXPECT_EQ(edittest::countDifferences(*rows, *perVoxel), 1);
+}
+
+TEST(Brush, PendingEncodeIsExact)
+{
+  // The hard add's pending distances rely on encode being monotone over the
+  // band (with encode(decode(k)) == k: SdfRoundTripMakesKeySpaceMinExact).
+  const SdfDictionary& d = defaultSdfDictionary();
+  const float band = 8.0f;
+  const SdfKey lo = d.encodeClamped(-band, band), hi = d.encodeClamped(band, band);
+  for (int k = lo; k < hi; ++k)
+  {
+    const float a = d.decode(static_cast<SdfKey>(k)), b = d.decode(static_cast<SdfKey>(k + 1));
+    ASSERT_LT(a, b);
+    ASSERT_EQ(d.encode(a), k);
+    ASSERT_EQ(d.encode(b), k + 1);
+    // around the midpoint, where encode turns from k to k+1: non-decreasing, k or k+1
+    float x = a + 0.5f * (b - a);
+    for (int i = 0; i < 64 && x > a; ++i)
+      x = std::nextafter(x, a);
+    SdfKey prev = static_cast<SdfKey>(k);
+    for (int i = 0; i < 129 && x <= b; ++i, x = std::nextafter(x, b))
+    {
+      const SdfKey e = d.encode(x);
+      ASSERT_GE(e, prev) << x;
+      ASSERT_LE(e, k + 1) << x;
+      prev = e;
+    }
+  }
+}
+
+TEST(Brush, HardAddColoursOnlyWhereTheSequenceWould)
+{
+  // Two add dabs in one call on an empty volume, built so that at voxel P the
+  // first gives s1 just above colorOffset (no colour; its key rounds down to a
+  // value at or below colorOffset) and the second s2 < s1 but at least that
+  // rounded value: the per-voxel rule leaves P's distance key and does not
+  // colour it. Taking min(s1, s2) and then the colour rule (not what the rule
+  // does) would colour P: this is the case where the hard add's pending
+  // distance must read table[encode(s1)].
+  DictionaryVolume rows(options(40)), perVoxel(options(40)), dabByDab(options(40));
+  BrushSettings s;
+  s.color = Rgba{ 200, 40, 90, 255 };
+  s.colorOffset = 1.5003; // keys at 1.500 and 1.501 (stepA 0.001): s1 1.5004 rounds to 1.500
+  const double r = 5, s1 = 1.5004, s2 = 1.50015;
+  const std::vector<Dab> dabs{ Dab{ BrushShape::Sphere, { 20 - (r + s1), 20, 20 }, r, {} },
+    Dab{ BrushShape::Sphere, { 20 + (r + s2), 20, 20 }, r, {} } };
+  applyDabs(rows, dabs, s);
+  for (const Dab& d : dabs)
+    applyDab(dabByDab, d, s);
+  BrushSettings m = s;
+  m.symmetry.mirror[0] = true;
+  m.symmetry.plane[0] = -500;
+  applyDabs(perVoxel, dabs, m);
+  const std::uint16_t brush = rows.colors().add(s.color);
+  EXPECT_NEAR(rows.sdf(20, 20, 20), 1.5, 1e-6);
+  EXPECT_NE(perVoxel.get(20, 20, 20).color, brush);
+  EXPECT_NE(rows.get(20, 20, 20).color, brush);
+  EXPECT_EQ(edittest::countDifferences(rows, perVoxel), 0);
+  EXPECT_EQ(edittest::countDifferences(rows, dabByDab), 0);
 }

@@ -126,7 +126,7 @@ void MarchingCubesWorker::run()
     std::vector<ChunkMesh> meshes(static_cast<std::size_t>(n));
     std::vector<char> ok(static_cast<std::size_t>(n), 1);
     std::chrono::steady_clock::time_point gathered;
-    const int team = std::min(n, threads);
+    [[maybe_unused]] const int team = std::min(n, threads); // read only by the pragmas (unused without OpenMP)
     {
       std::lock_guard<std::mutex> source(this->SourceMutex);
       gathered = std::chrono::steady_clock::now();

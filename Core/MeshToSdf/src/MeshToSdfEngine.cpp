@@ -211,7 +211,7 @@ namespace
 /// power of two); rethrows the first exception. Thread 0 need not run the
 /// last item: the span's end is reported here.
 template <typename MakeState, typename F>
-void forEachOnThreads(std::int64_t count, int chunk, std::int64_t progressEvery, Interrupter& intr,
+void forEachOnThreads(std::int64_t count, [[maybe_unused]] int chunk, std::int64_t progressEvery, Interrupter& intr,
   double progressBase, double progressSpan, MakeState&& makeState, F&& fn)
 {
   std::atomic<std::int64_t> done{ 0 };

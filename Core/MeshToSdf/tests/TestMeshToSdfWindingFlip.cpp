@@ -77,11 +77,11 @@ TriangleMesh moebius(int n, float width)
 /// 600 small random triangles of weight 2 in a slab (float points, as a
 /// mesh has), and the same triangles as a mesh of two copies each for the
 /// long-double oracle (which then sees the same points).
-void randomWeightedSoup(std::mt19937& rng, std::vector<detail::meshtosdf::WeightedTri>& tris, TriangleMesh& ref)
+std::vector<detail::meshtosdf::WeightedTri> randomWeightedSoup(std::mt19937& rng, TriangleMesh& ref)
 {
   using namespace detail::meshtosdf;
   std::uniform_real_distribution<float> uf(-1, 1), sf(-0.1f, 0.1f);
-  tris.assign(600, WeightedTri{});
+  std::vector<WeightedTri> tris(600);
   for (auto& t : tris)
   {
     const float cx = uf(rng), cy = uf(rng), cz = 0.3f * uf(rng);
@@ -98,7 +98,22 @@ void randomWeightedSoup(std::mt19937& rng, std::vector<detail::meshtosdf::Weight
       ref.triangles.push_back({ b, b + 1, b + 2 });
     }
   }
+  return tris;
 }
+
+/// The tests' random soup (randomWeightedSoup, seeded), its oracle mesh and
+/// its dipole tree.
+struct RandomSoup
+{
+  explicit RandomSoup(unsigned seed)
+    : rng(seed)
+    , tree(randomWeightedSoup(rng, ref))
+  {
+  }
+  std::mt19937 rng;
+  TriangleMesh ref; // the same triangles, weight 2 as two copies
+  detail::meshtosdf::DipoleTree tree;
+};
 
 /// Every voxel farther than 1 voxel from the mesh must have the sign of the
 /// exact winding number (|w| >= 0.5 inside).
@@ -143,12 +158,11 @@ MeshToSdfStats expectExactSigns(const std::string& name, const TriangleMesh& mes
 TEST(MeshToSdfWindingFlip, DipoleTreeIntervalsHoldAgainstLongDoubleSolidAngles)
 {
   using namespace detail::meshtosdf;
-  std::mt19937 rng(3);
+  RandomSoup soup(3);
+  std::mt19937& rng = soup.rng;
+  const TriangleMesh& ref = soup.ref;
+  const DipoleTree& tree = soup.tree;
   std::uniform_real_distribution<double> u(-1, 1);
-  std::vector<WeightedTri> tris;
-  TriangleMesh ref; // the same triangles, weight 2 as two copies
-  randomWeightedSoup(rng, tris, ref);
-  const DipoleTree tree(tris);
   int done = 0, checked = 0, failed = 0;
   std::int64_t leafTris = 0;
   for (int n = 0; n < 300; ++n)
@@ -255,12 +269,11 @@ TEST(MeshToSdfWindingFlip, BallsNextToALeafAreBoundedTriangleByTriangle)
 TEST(MeshToSdfWindingFlip, LocalExpansionOfAClusterHoldsOverItsBall)
 {
   using namespace detail::meshtosdf;
-  std::mt19937 rng(11);
+  RandomSoup soup(11);
+  std::mt19937& rng = soup.rng;
+  const TriangleMesh& ref = soup.ref;
+  const DipoleTree& tree = soup.tree;
   std::uniform_real_distribution<double> u(-1, 1);
-  std::vector<WeightedTri> tris;
-  TriangleMesh ref;
-  randomWeightedSoup(rng, tris, ref);
-  const DipoleTree tree(tris);
   std::int64_t checked = 0, bounded[3] = {}, misses = 0, missesWithoutRemainder = 0;
   for (std::size_t id = 0; id < tree.nodes().size(); id += 7)
   {
@@ -327,12 +340,11 @@ TEST(MeshToSdfWindingFlip, LocalExpansionOfAClusterHoldsOverItsBall)
 TEST(MeshToSdfWindingFlip, LocalBoundsHoldAgainstLongDoubleSolidAngles)
 {
   using namespace detail::meshtosdf;
-  std::mt19937 rng(12);
+  RandomSoup soup(12);
+  std::mt19937& rng = soup.rng;
+  const TriangleMesh& ref = soup.ref;
+  const DipoleTree& tree = soup.tree;
   std::uniform_real_distribution<double> u(-1, 1);
-  std::vector<WeightedTri> tris;
-  TriangleMesh ref;
-  randomWeightedSoup(rng, tris, ref);
-  const DipoleTree tree(tris);
   std::int64_t checked = 0, decided = 0, points = 0;
   std::int64_t leafTris = 0;
   for (int n = 0; n < 120; ++n)

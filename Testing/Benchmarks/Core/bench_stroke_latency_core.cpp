@@ -29,7 +29,7 @@
 // what a drag could sustain if samples came faster than 50 Hz.
 //
 // usage: bench_stroke_latency_core [N=512] [--device cpu|cuda] [--radius 15,40]
-//        [--samples 100] [--settle 6] [--loop event|tick] [--chunk E] [--phases]
+//        [--samples 100] [--settle 6] [--loop event|tick] [--chunk E] [--phases] [--op add|subtract]
 //        [--write-stroke FILE.jsonl] [--write-volume FILE.lvdv]
 //        (E: storage and mesh chunk edge, 32 below 1024^3, 64 from 1024^3 as the paper)
 // --write-stroke / --write-volume: write the stroke's samples as socket-protocol
@@ -75,6 +75,7 @@ struct Config
   lvdif::Device device = lvdif::Device::Cpu;
   std::string loop = "event";
   bool phases = false;
+  lvdif::BrushOp op = lvdif::BrushOp::Add;
   std::string writeStroke, writeVolume;
 };
 
@@ -128,7 +129,7 @@ std::vector<std::string> runPhases(const Config& cfg, double radius)
   so.meshChunkEdge = edge;
   so.meshing = false; // the meshes are made below, synchronously
   lvdif::EditSession session(volume, so);
-  session.brush().op = lvdif::BrushOp::Add;
+  session.brush().op = cfg.op;
   session.brush().color = lvdif::Rgba{ 230, 80, 50, 255 };
   session.stroke().kind = lvdif::BrushKind::Drill;
   session.stroke().radius = radius;
@@ -194,7 +195,7 @@ std::vector<std::string> runStroke(const Config& cfg, double radius)
   if (!session.notice().empty())
     std::printf("notice: %s\n", session.notice().c_str());
   const bool gpu = session.onDevice();
-  session.brush().op = lvdif::BrushOp::Add;
+  session.brush().op = cfg.op;
   session.brush().color = lvdif::Rgba{ 230, 80, 50, 255 };
   session.stroke().kind = lvdif::BrushKind::Drill; // applied as it goes, as the editor does
   session.stroke().radius = radius;
@@ -391,6 +392,8 @@ static int benchMain(int argc, char** argv)
       cfg.chunk = std::atoi(argv[++i]);
     else if (!std::strcmp(argv[i], "--phases"))
       cfg.phases = true;
+    else if (!std::strcmp(argv[i], "--op") && more)
+      cfg.op = !std::strcmp(argv[++i], "subtract") ? lvdif::BrushOp::Subtract : lvdif::BrushOp::Add;
     else if (!std::strcmp(argv[i], "--write-stroke") && more)
       cfg.writeStroke = argv[++i];
     else if (!std::strcmp(argv[i], "--write-volume") && more)

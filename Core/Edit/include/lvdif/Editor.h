@@ -125,7 +125,6 @@ private:
   std::unique_ptr<Recording> Rec;
   std::vector<std::int64_t> Touched; // storage chunks, since the last takeTouchedStorageChunks()
   double Time = -1;
-  bool Pressed = false;
   std::uint64_t DabsApplied = 0;
   std::array<double, 3> GrabFrom{ 0, 0, 0 }; // the previous sample of a Grab stroke
   bool GrabStarted = false;

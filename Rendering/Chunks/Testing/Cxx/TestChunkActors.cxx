@@ -13,6 +13,7 @@
 #include "vtkCornerColorAttributes.h"
 #include "vtkExecutive.h"
 #include "vtkIdList.h"
+#include "vtkIntArray.h"
 #include "vtkMapper.h"
 #include "vtkPartialRedrawCuller.h"
 #include "vtkPoints.h"
@@ -39,6 +40,57 @@ vtkSmartPointer<vtkPolyData> sphereMesh(int n = 24, double spacing = 1.0)
   }, spacing);
   return contractMesh(img, checkerColor);
 }
+
+/// The mesh a manager's chunk actor shows (its mapper's input).
+vtkPolyData* shownMesh(vtkChunkActorManager* mgr, vtkIdType id)
+{
+  return vtkPolyData::SafeDownCast(mgr->GetChunkActor(id)->GetMapper()->GetInputDataObject(0, 0));
+}
+
+/// Two managers, each with its own renderer and enabled culler: one given
+/// chunks one by one (SetChunk), the other the same chunks in one SetChunks.
+struct TwinManagers
+{
+  TwinManagers()
+  {
+    for (int i = 0; i < 2; ++i)
+    {
+      vtkChunkActorManager* m = i == 0 ? one.Get() : many.Get();
+      m->SetRenderer(renderers[i]);
+      cullers[i]->SetEnabled(true);
+      m->SetRedrawCuller(cullers[i]);
+    }
+  }
+  vtkNew<vtkChunkActorManager> one, many;
+
+private:
+  vtkNew<vtkRenderer> renderers[2];
+  vtkNew<vtkPartialRedrawCuller> cullers[2];
+};
+
+/// A manager showing the chunks of one sphere, and the chunks of a larger
+/// sphere that replace those it shares with it, ready for one SetChunks call
+/// (ids, meshes).
+struct RefillScene
+{
+  RefillScene()
+  {
+    for (auto& kv : first)
+    {
+      mgr->SetChunk(kv.first, kv.second);
+      if (second.count(kv.first))
+      {
+        ids.push_back(kv.first);
+        meshes.push_back(second[kv.first]);
+      }
+    }
+  }
+  std::map<vtkIdType, vtkSmartPointer<vtkPolyData>> first = splitChunks(sphereMesh(40), 16, 39);
+  std::map<vtkIdType, vtkSmartPointer<vtkPolyData>> second = splitChunks(sphereMesh(46), 16, 45);
+  vtkNew<vtkChunkActorManager> mgr;
+  std::vector<vtkIdType> ids;
+  std::vector<vtkPolyData*> meshes;
+};
 } // namespace
 
 TEST(CornerColorAttributes, UnsharesAndCarriesCornerColours)
@@ -192,6 +244,107 @@ TEST(CornerColorAttributes, SpatialOrderPermutesTrianglesByMortonCode)
   EXPECT_EQ(vtkCornerColorAttributes::MortonCode(3, 5, 6), 0b110101011ull);
 }
 
+namespace
+{
+// Every output array value and the connectivity of two preparations (same
+// point array names in the same order); the first difference, or "".
+std::string firstDifference(vtkPolyData* a, vtkPolyData* b)
+{
+  if (a->GetNumberOfPoints() != b->GetNumberOfPoints() || a->GetNumberOfPolys() != b->GetNumberOfPolys())
+    return "sizes";
+  for (vtkIdType p = 0; p < a->GetNumberOfPoints(); ++p)
+  {
+    double x[3], y[3];
+    a->GetPoint(p, x);
+    b->GetPoint(p, y);
+    if (!std::equal(x, x + 3, y))
+      return "point " + std::to_string(p);
+  }
+  if (a->GetPointData()->GetNumberOfArrays() != b->GetPointData()->GetNumberOfArrays())
+    return "point array count";
+  for (int i = 0; i < a->GetPointData()->GetNumberOfArrays(); ++i)
+  {
+    vtkDataArray* u = a->GetPointData()->GetArray(i);
+    vtkDataArray* v = b->GetPointData()->GetArray(i);
+    if (std::string(u->GetName()) != v->GetName() || u->GetDataType() != v->GetDataType() ||
+      u->GetNumberOfComponents() != v->GetNumberOfComponents())
+      return std::string("array ") + u->GetName();
+    for (vtkIdType t = 0; t < u->GetNumberOfTuples(); ++t)
+      for (int c = 0; c < u->GetNumberOfComponents(); ++c)
+        if (u->GetComponent(t, c) != v->GetComponent(t, c))
+          return std::string("array ") + u->GetName() + " tuple " + std::to_string(t);
+  }
+  if (a->GetPolys()->IsStorage64Bit() != b->GetPolys()->IsStorage64Bit())
+    return "cell storage";
+  for (vtkIdType t = 0; t < a->GetNumberOfPolys(); ++t)
+  {
+    vtkNew<vtkIdList> ia, ib;
+    a->GetPolys()->GetCellAtId(t, ia);
+    b->GetPolys()->GetCellAtId(t, ib);
+    if (ia->GetNumberOfIds() != ib->GetNumberOfIds() ||
+      !std::equal(ia->begin(), ia->end(), ib->begin()))
+      return "triangle " + std::to_string(t);
+  }
+  return "";
+}
+
+vtkSmartPointer<vtkPolyData> prepared(vtkPolyData* mesh, const double origin[3])
+{
+  vtkNew<vtkCornerColorAttributes> f;
+  f->SetInputData(mesh);
+  f->SetOrigin(const_cast<double*>(origin));
+  f->SetSpacing(0.5, 0.5, 0.5);
+  f->SpatialOrderOn();
+  f->Update();
+  return f->GetOutput();
+}
+} // namespace
+
+// Marching cubes' meshes (float points, int cell_ijk, triangles only) take the
+// filter's typed loops; any other input the generic ones. Both give the same
+// output: here the same mesh with double points (the generic path).
+TEST(CornerColorAttributes, TypedPathEqualsGenericPath)
+{
+  auto mesh = sphereMesh(24, 0.5);
+  ASSERT_EQ(mesh->GetPoints()->GetDataType(), VTK_FLOAT);
+  ASSERT_NE(vtkIntArray::SafeDownCast(mesh->GetCellData()->GetArray("cell_ijk")), nullptr);
+  vtkNew<vtkPolyData> asDouble;
+  asDouble->ShallowCopy(mesh);
+  vtkNew<vtkPoints> dp;
+  dp->SetDataTypeToDouble();
+  dp->SetNumberOfPoints(mesh->GetNumberOfPoints());
+  for (vtkIdType p = 0; p < mesh->GetNumberOfPoints(); ++p)
+    dp->SetPoint(p, mesh->GetPoint(p)); // float values, exact in double
+  asDouble->SetPoints(dp);
+  ASSERT_EQ(asDouble->GetPoints()->GetDataType(), VTK_DOUBLE);
+  const double origin[3] = { 0.25, -1.5, 3.0 };
+  auto typed = prepared(mesh, origin);
+  auto generic = prepared(asDouble, origin);
+  ASSERT_GT(typed->GetNumberOfPolys(), 100);
+  EXPECT_EQ(firstDifference(typed, generic), "");
+  // the typed path caches its coordinates' ranges: those of the values, as
+  // VTK computes them for the generic path's output
+  for (int c = 0; c < 3; ++c)
+  {
+    vtkDataArray* xyz = typed->GetPoints()->GetData();
+    double cached[2], computed[2], brute[2] = { VTK_DOUBLE_MAX, -VTK_DOUBLE_MAX };
+    xyz->GetRange(cached, c);
+    generic->GetPoints()->GetData()->GetRange(computed, c);
+    for (vtkIdType t = 0; t < xyz->GetNumberOfTuples(); ++t)
+    {
+      brute[0] = std::min(brute[0], xyz->GetComponent(t, c));
+      brute[1] = std::max(brute[1], xyz->GetComponent(t, c));
+    }
+    EXPECT_EQ(cached[0], brute[0]);
+    EXPECT_EQ(cached[1], brute[1]);
+    EXPECT_EQ(cached[0], computed[0]);
+    EXPECT_EQ(cached[1], computed[1]);
+  }
+  // negative control: another origin changes the local coordinates, and the comparison sees it
+  const double shifted[3] = { 0.5, -1.5, 3.0 };
+  EXPECT_NE(firstDifference(typed, prepared(asDouble, shifted)), "");
+}
+
 TEST(CornerColorAttributes, RefusesInputWithoutContract)
 {
   vtkNew<vtkPolyData> empty;
@@ -330,7 +483,7 @@ TEST(ChunkActorManager, ReplacingAChunkRefillsItsArrays)
     if (!bigger.count(kv.first))
       continue;
     mgr->SetChunk(kv.first, kv.second);
-    auto* shown = vtkPolyData::SafeDownCast(mgr->GetChunkActor(kv.first)->GetMapper()->GetInputDataObject(0, 0));
+    auto* shown = shownMesh(mgr, kv.first);
     ASSERT_NE(shown, nullptr);
     std::vector<vtkAbstractArray*> arrays{ shown->GetPoints()->GetData() };
     for (int k = 0; k < shown->GetPointData()->GetNumberOfArrays(); ++k)
@@ -341,7 +494,7 @@ TEST(ChunkActorManager, ReplacingAChunkRefillsItsArrays)
       arrayTimes.push_back(a->GetMTime());
     vtkPolyData* next = bigger[kv.first];
     mgr->SetChunk(kv.first, next);
-    auto* now = vtkPolyData::SafeDownCast(mgr->GetChunkActor(kv.first)->GetMapper()->GetInputDataObject(0, 0));
+    auto* now = shownMesh(mgr, kv.first);
     EXPECT_EQ(now, shown);
     EXPECT_GT(now->GetMTime(), mtime);
     EXPECT_EQ(now->GetPoints()->GetData(), arrays[0]);
@@ -362,15 +515,9 @@ TEST(ChunkActorManager, SetChunksEqualsSetChunkOneByOne)
   // the same changed boxes to a culler
   auto first = splitChunks(sphereMesh(40), 16, 39);
   auto second = splitChunks(sphereMesh(46), 16, 45);
-  vtkNew<vtkRenderer> r1, r2;
-  vtkNew<vtkChunkActorManager> one, many;
-  one->SetRenderer(r1);
-  many->SetRenderer(r2);
-  vtkNew<vtkPartialRedrawCuller> c1, c2;
-  c1->SetEnabled(true);
-  c2->SetEnabled(true);
-  one->SetRedrawCuller(c1);
-  many->SetRedrawCuller(c2);
+  TwinManagers twins;
+  vtkNew<vtkChunkActorManager>& one = twins.one;
+  vtkNew<vtkChunkActorManager>& many = twins.many;
   for (auto* step : { &first, &second })
   {
     std::vector<vtkIdType> ids;
@@ -387,10 +534,128 @@ TEST(ChunkActorManager, SetChunksEqualsSetChunkOneByOne)
   EXPECT_EQ(one->GetNumberOfChunkUpdates(), many->GetNumberOfChunkUpdates());
   for (auto& kv : second)
   {
-    auto* a = vtkPolyData::SafeDownCast(one->GetChunkActor(kv.first)->GetMapper()->GetInputDataObject(0, 0));
-    auto* b = vtkPolyData::SafeDownCast(many->GetChunkActor(kv.first)->GetMapper()->GetInputDataObject(0, 0));
+    auto* a = shownMesh(one, kv.first);
+    auto* b = shownMesh(many, kv.first);
     ASSERT_TRUE(a && b);
     EXPECT_EQ(differsFrom(a, b), "") << "chunk " << kv.first;
+  }
+}
+
+// The coordinates' ranges (which the vertex buffer upload asks for) are
+// computed when a chunk is prepared and cached in the array; a refilled array
+// carries the new mesh's ranges, never the old ones.
+TEST(ChunkActorManager, RefilledCoordinatesCarryTheirOwnRanges)
+{
+  RefillScene scene;
+  auto& [first, second, mgr, ids, meshes] = scene;
+  ASSERT_FALSE(ids.empty());
+  std::map<vtkIdType, vtkDataArray*> shownBefore;
+  for (vtkIdType id : ids)
+    shownBefore[id] = shownMesh(mgr, id)->GetPoints()->GetData();
+  mgr->SetChunks(ids, meshes);
+  int refilled = 0, differ = 0;
+  for (vtkIdType id : ids)
+  {
+    vtkDataArray* xyz = shownMesh(mgr, id)->GetPoints()->GetData();
+    refilled += xyz == shownBefore[id];
+    for (int c = 0; c < 3; ++c)
+    {
+      double cached[2], computed[2] = { VTK_DOUBLE_MAX, -VTK_DOUBLE_MAX };
+      xyz->GetRange(cached, c);
+      for (vtkIdType t = 0; t < xyz->GetNumberOfTuples(); ++t) // (a copy would carry the cache)
+      {
+        computed[0] = std::min(computed[0], xyz->GetComponent(t, c));
+        computed[1] = std::max(computed[1], xyz->GetComponent(t, c));
+      }
+      EXPECT_EQ(cached[0], computed[0]) << "chunk " << id << " component " << c;
+      EXPECT_EQ(cached[1], computed[1]) << "chunk " << id << " component " << c;
+    }
+    // negative control: the first mesh's ranges differ from the second's
+    vtkSmartPointer<vtkPolyData> old = mgr->PrepareChunk(first[id]);
+    double a[2], b[2];
+    old->GetPoints()->GetData()->GetRange(a, 0);
+    xyz->GetRange(b, 0);
+    differ += a[0] != b[0] || a[1] != b[1];
+  }
+  EXPECT_EQ(refilled, static_cast<int>(ids.size())); // the refill path was taken
+  EXPECT_GT(differ, 0);
+}
+
+// The cells' bounds are computed when a chunk is prepared and handed to its
+// mapper (vtkTetrahedralColorMapper::SetInputBounds): the mapper's bounds are
+// those of the mesh it shows, after a refill too, and once the mesh is
+// changed in place, those of the changed mesh.
+TEST(ChunkActorManager, MapperBoundsAreThoseOfTheShownMesh)
+{
+  RefillScene scene;
+  auto& [first, second, mgr, ids, meshes] = scene;
+  mgr->SetChunks(ids, meshes); // refilled
+  // the cells' bounds of a poly data, from its cells' points
+  auto cellsBounds = [](vtkPolyData* pd) {
+    std::vector<double> b = { VTK_DOUBLE_MAX, -VTK_DOUBLE_MAX, VTK_DOUBLE_MAX, -VTK_DOUBLE_MAX, VTK_DOUBLE_MAX,
+      -VTK_DOUBLE_MAX };
+    vtkNew<vtkIdList> cell;
+    for (vtkIdType c = 0; c < pd->GetNumberOfCells(); ++c)
+    {
+      pd->GetCellPoints(c, cell);
+      for (vtkIdType k = 0; k < cell->GetNumberOfIds(); ++k)
+        for (int a = 0; a < 3; ++a)
+        {
+          b[2 * a] = std::min(b[2 * a], pd->GetPoint(cell->GetId(k))[a]);
+          b[2 * a + 1] = std::max(b[2 * a + 1], pd->GetPoint(cell->GetId(k))[a]);
+        }
+    }
+    return b;
+  };
+  for (vtkIdType id : ids)
+  {
+    vtkMapper* m = mgr->GetChunkActor(id)->GetMapper();
+    auto* shown = vtkPolyData::SafeDownCast(m->GetInputDataObject(0, 0));
+    const double* mb = m->GetBounds();
+    EXPECT_EQ(std::vector<double>(mb, mb + 6), cellsBounds(shown)) << "chunk " << id;
+  }
+  // changed in place (a point moved out of the box): the mapper's bounds follow
+  vtkMapper* m = mgr->GetChunkActor(ids.front())->GetMapper();
+  auto* shown = vtkPolyData::SafeDownCast(m->GetInputDataObject(0, 0));
+  double p[3];
+  shown->GetPoint(0, p);
+  p[0] += 100;
+  shown->GetPoints()->SetPoint(0, p);
+  shown->GetPoints()->Modified();
+  const double* mb = m->GetBounds();
+  EXPECT_EQ(std::vector<double>(mb, mb + 6), cellsBounds(shown));
+  EXPECT_GE(mb[1], p[0]);
+}
+
+// One mesh object given for two chunks, then replaced in both with one call
+// (each object read by one thread at a time: such calls take the serial
+// path): the same pictures' inputs as SetChunk one by one.
+TEST(ChunkActorManager, SetChunksWithSharedMeshesEqualsSetChunk)
+{
+  auto first = splitChunks(sphereMesh(40), 16, 39);
+  auto second = splitChunks(sphereMesh(46), 16, 45);
+  ASSERT_GE(first.size(), 2u);
+  const vtkIdType a = first.begin()->first, b = std::next(first.begin())->first;
+  TwinManagers twins;
+  vtkNew<vtkChunkActorManager>& one = twins.one;
+  vtkNew<vtkChunkActorManager>& many = twins.many;
+  vtkPolyData* shared = first[a];
+  for (vtkChunkActorManager* m : { one.Get(), many.Get() })
+  {
+    m->SetChunk(a, shared);
+    m->SetChunk(b, shared);
+  }
+  // b gets the mesh a had (still a's current one), a gets a new one, then b once more
+  one->SetChunk(a, second[a]);
+  one->SetChunk(b, shared);
+  one->SetChunk(b, second[a]);
+  many->SetChunks({ a, b, b }, { second[a].Get(), shared, second[a].Get() });
+  for (vtkIdType id : { a, b })
+  {
+    auto* x = shownMesh(one, id);
+    auto* y = shownMesh(many, id);
+    ASSERT_TRUE(x && y);
+    EXPECT_EQ(differsFrom(x, y), "") << "chunk " << id;
   }
 }
 
@@ -560,3 +825,4 @@ TEST(ChunkActorManager, ChangedBoundsAreThoseOfTheDifferingTriangles)
   for (int i = 0; i < 6; ++i)
     EXPECT_EQ(b[i], before->GetBounds()[i]);
 }
+

@@ -185,6 +185,21 @@ int runScene(int samples)
     auto it = after.find(hole);
     mgr->SetChunk(hole, it == after.end() ? nullptr : it->second.Get());
   }, 1);
+  // the editor's path: a frame's chunks in one SetChunks, which measures each
+  // chunk's changed triangles in its parallel part
+  auto showChanged = [&](const auto& chunks) {
+    std::vector<vtkIdType> ids;
+    std::vector<vtkPolyData*> meshes;
+    for (vtkIdType id : changed)
+    {
+      auto it = chunks.find(id);
+      ids.push_back(id);
+      meshes.push_back(it == chunks.end() ? nullptr : it->second.Get());
+    }
+    mgr->SetChunks(ids, meshes);
+  };
+  partialFrames("the dent undone in one SetChunks call", [&](int) { showChanged(before); }, 1);
+  partialFrames("the dent again in one SetChunks call", [&](int) { showChanged(after); }, 1);
 
   // Fallbacks to full frames.
   int fulls = culler->GetNumberOfFullRedraws();
@@ -214,6 +229,37 @@ int runScene(int samples)
 
   return failures;
 }
+// A window showing chunks through a manager with an enabled culler set
+// before the first meshes (so that those are hashed too, and replacements
+// declare their changed triangles' points; the runs above, with the culler
+// set after the first meshes, declare boxes), with the surface margin given,
+// the camera of the tests, and two frames drawn.
+struct CulledScene
+{
+  CulledScene(const std::map<vtkIdType, vtkSmartPointer<vtkPolyData>>& chunks, int margin)
+  {
+    rw->SetMultiSamples(0);
+    rw->AddRenderer(ren);
+    mgr->SetRenderer(ren);
+    culler->SetEnabled(true);
+    culler->SetSurfaceMargin(margin);
+    mgr->SetRedrawCuller(culler);
+    for (auto& kv : chunks)
+      mgr->SetChunk(kv.first, kv.second);
+    ren->ResetCamera();
+    ren->GetActiveCamera()->Azimuth(50);
+    ren->GetActiveCamera()->Elevation(20);
+    ren->ResetCameraClippingRange();
+    ren->AddCuller(culler);
+    rw->Render();
+    rw->Render();
+  }
+  vtkNew<vtkRenderer> ren;
+  vtkSmartPointer<vtkRenderWindow> rw = makeTestWindow(320, 300);
+  vtkNew<vtkChunkActorManager> mgr;
+  vtkNew<vtkPartialRedrawCuller> culler;
+};
+
 // The margin of surface props (vtkPartialRedrawCuller::SurfaceMargin, 1 pixel)
 // and the damage from the changed triangles' points, against a negative
 // control: the dent's frames drawn in part with margin 1 equal the full
@@ -229,28 +275,8 @@ int runMarginControl()
   int failures = 0;
   for (int margin : { 1, -4 })
   {
-    vtkNew<vtkRenderer> ren;
-    auto rw = makeTestWindow(320, 300);
-    rw->SetMultiSamples(0);
-    rw->AddRenderer(ren);
-    vtkNew<vtkChunkActorManager> mgr;
-    mgr->SetRenderer(ren);
-    // the culler first: the first meshes are hashed too, so the dent's
-    // replacements declare their changed triangles' points (the runs above,
-    // with the culler set after the first meshes, declare boxes)
-    vtkNew<vtkPartialRedrawCuller> culler;
-    culler->SetEnabled(true);
-    culler->SetSurfaceMargin(margin);
-    mgr->SetRedrawCuller(culler);
-    for (auto& kv : before)
-      mgr->SetChunk(kv.first, kv.second);
-    ren->ResetCamera();
-    ren->GetActiveCamera()->Azimuth(50);
-    ren->GetActiveCamera()->Elevation(20);
-    ren->ResetCameraClippingRange();
-    ren->AddCuller(culler);
-    rw->Render();
-    rw->Render();
+    CulledScene scene(before, margin);
+    auto& [ren, rw, mgr, culler] = scene;
     const int partial = culler->GetNumberOfPartialRedraws();
     int frames = 0;
     for (auto& kv : after)
@@ -355,24 +381,8 @@ int runAnnouncedInputs()
   int failures = 0;
   for (bool announce : { true, false })
   {
-    vtkNew<vtkRenderer> ren;
-    auto rw = makeTestWindow(320, 300);
-    rw->SetMultiSamples(0);
-    rw->AddRenderer(ren);
-    vtkNew<vtkChunkActorManager> mgr;
-    mgr->SetRenderer(ren);
-    vtkNew<vtkPartialRedrawCuller> culler;
-    culler->SetEnabled(true);
-    mgr->SetRedrawCuller(culler);
-    for (auto& kv : before)
-      mgr->SetChunk(kv.first, kv.second);
-    ren->ResetCamera();
-    ren->GetActiveCamera()->Azimuth(50);
-    ren->GetActiveCamera()->Elevation(20);
-    ren->ResetCameraClippingRange();
-    ren->AddCuller(culler);
-    rw->Render();
-    rw->Render();
+    CulledScene scene(before, 1);
+    auto& [ren, rw, mgr, culler] = scene;
     // a chunk in view: one the dent changes
     vtkIdType id = -1;
     for (auto& kv : after)
