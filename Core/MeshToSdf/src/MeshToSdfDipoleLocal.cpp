@@ -178,9 +178,7 @@ int localBounds(const DipoleTree& tree, V3 centre, double rho, const V3* pts, in
       }
       else
       {
-        std::pop_heap(heap.begin(), heap.end());
-        const std::int32_t slot = heap.back().slot;
-        heap.pop_back();
+        const std::int32_t slot = heap.front().slot;
         close(pool[static_cast<std::size_t>(slot)]);
         double tmag = 0;
         Open t{ e, top.node, 3, triangleTaylor(centre, rho, tri.v[0], tri.v[1], tri.v[2], tri.w, tmag), Taylor };
@@ -190,9 +188,21 @@ int localBounds(const DipoleTree& tree, V3 centre, double rho, const V3* pts, in
         work += TriangleTaylorWork;
         ++terms;
         if (triangleTaylors) ++*triangleTaylors;
-        pool[static_cast<std::size_t>(slot)] = t; // the slot is free again: reused
-        heap.push_back(Key{ e, slot });
-        std::push_heap(heap.begin(), heap.end());
+        pool[static_cast<std::size_t>(slot)] = t; // the same slot, its key lowered:
+        // sifted down from the root in place (a pop and a push cost twice that:
+        // 11 % of patch30's samples at 256^3)
+        const Key key{ e, slot };
+        std::size_t at = 0;
+        while (true)
+        {
+          std::size_t child = 2 * at + 1;
+          if (child >= heap.size()) break;
+          if (child + 1 < heap.size() && heap[child] < heap[child + 1]) ++child;
+          if (!(key < heap[child])) break;
+          heap[at] = heap[child];
+          at = child;
+        }
+        heap[at] = key;
         continue;
       }
     }
