@@ -17,7 +17,7 @@
 // of phi: the symmetric form D^4 phi(z) has norm 4! / |z|^5 (the k-th
 // derivative along a unit direction is k! P_k(cos) / |z|^(k+1), |P_k| <= 1,
 // and a symmetric form's norm is its largest value on one unit direction,
-// Banach 1938), so |D^3 Omega(p)[u, u, u]| <= 24 A / dist(p, face)^5. Over the
+// Banach, Studia Math. 1938), so |D^3 Omega(p)[u, u, u]| <= 24 A / dist(p, face)^5. Over the
 // ball (b, rho), dist >= g = dist(b, face) - rho, and Lagrange's remainder
 // after the quadratic is at most rho^3 / 3! times that: 4 A rho^3 / g^5.
 //
@@ -95,7 +95,8 @@ inline LocalPoly triangleTaylor(V3 b, double rho, V3 a0, V3 a1, V3 a2, double w,
 /// The Taylor remainder of triangleTaylor over the ball (b, rho): 4 A rho^3
 /// / g^5 (A = |w| x area, g = dist(b, face) - rho), times remainderScale
 /// (only a test sets it below 1). Infinite when the ball meets the face.
-/// dist: dist(b, face), returned for triangleTaylorMag.
+/// dist (out): dist(b, face), by the closest point (Ericson's routine; a
+/// degenerate face has A = 0, and a distance that is NaN gives no bound).
 inline double triangleTaylorError(V3 b, double rho, const WeightedTri& t, double& dist, double remainderScale = 1)
 {
   dist = norm(closestPointOnTriangle(b, t.v[0], t.v[1], t.v[2]).point - b);
