@@ -504,9 +504,15 @@ LVDIF_HD int dipoleLocalBlock(const DipoleView& D, const DipoleLocalBlockVoxels&
 /// (m - 1/2, m + 1/2) for an integer m (which decides the point whatever its
 /// crossing count), or the work (node expansions + triangles x points)
 /// passes `budget`. Returns the number of points so decided; every interval
-/// holds either way (those not decided are returned too).
+/// holds either way (those not decided are returned too). A near triangle
+/// is first replaced by its exact solid angle's Taylor polynomial about the
+/// centre where that bound is tighter (triangleTaylor,
+/// MeshToSdfTriangleLocal.h), and summed exactly only when opened again.
+/// remainderScale multiplies the Taylor remainders (only a test sets it
+/// below 1); triangleTaylors (optional) counts the triangles so expanded.
 int localBounds(const DipoleTree& tree, V3 centre, double rho, const V3* pts, int n, double* lo, double* hi,
-  std::int64_t budget, const std::vector<std::int32_t>* start = nullptr, double remainderScale = 1);
+  std::int64_t budget, const std::vector<std::int32_t>* start = nullptr, double remainderScale = 1,
+  std::int64_t* triangleTaylors = nullptr);
 
 
 } // namespace detail::meshtosdf
