@@ -4,8 +4,10 @@
 # keeps every mesh on the GPU; the decision's work lists,
 # MeshToSdfCudaDipole.cuh). Builds Core-only with CUDA (sm_90), runs the
 # MeshToSdfCuda tests (CUDA = CPU bit for bit on damaged meshes, with the work
-# lists as they are and cut to 5 entries), times the clean armadillo and
-# patch10, patch30, flip10, duprev20 at 512^3 and 1024^3 under Device::Auto
+# lists as they are and cut to 5 entries, without the local step of the 4^3
+# blocks; the refined counts with and without it), times the clean armadillo and
+# patch10, patch30, flip10, duprev20 at 512^3 (patch10 and patch30 also
+# without the local step) and 1024^3 under Device::Auto
 # into the dictionary volume (warm), as given and re-oriented (--reorient, at
 # 1024^3), checks those damaged armadillos CUDA = CPU bit for bit at 128^3
 # (float grids, both ways), and prints one table on stdout.
@@ -25,9 +27,9 @@ gpu_begin
 gpu_build b-damaged LVDIFMeshToSdfTests bench_mesh_to_sdf
 
 # the CUDA tests (CUDA = CPU bit for bit on damaged meshes; their lines on stdout)
-timeout 180 b-damaged/Core/MeshToSdf/LVDIFMeshToSdfTests --gtest_filter='MeshToSdfCuda.*' > "$OUT/tests.log" 2>&1
+timeout 240 b-damaged/Core/MeshToSdf/LVDIFMeshToSdfTests --gtest_filter='MeshToSdfCuda.*' > "$OUT/tests.log" 2>&1
 echo "MeshToSdfCuda tests rc=$?" | tee -a "$OUT/summary.txt"
-grep -E "^\[ cpu vs cuda \].*(patch|flip|duprev)|^\[  (PASSED|FAILED) |Failure" "$OUT/tests.log" | head -40 | tee -a "$OUT/summary.txt"
+grep -E "^\[ cpu vs cuda \].*(patch|flip|duprev)|^\[ local step \]|^\[  (PASSED|FAILED) |Failure" "$OUT/tests.log" | head -60 | tee -a "$OUT/summary.txt"
 
 B=b-damaged/Testing/Benchmarks/Core/bench_mesh_to_sdf
 : > "$L"
@@ -37,6 +39,8 @@ DAMAGES="patch10 flip10 duprev20 patch30"
 # timings: Device::Auto, dictionary volume, band 8 (cold: builds and uploads; warm: the table)
 bench 30 "clean 512" "$A" 512 winding auto bvh volume 8 2 cold,warm --trace
 for d in $DAMAGES; do bench 30 "$d 512" "$d:$A" 512 winding auto bvh volume 8 2 cold,warm --trace; done
+# the same without the local step of the 4^3 blocks (LVDIF_CUDA_DIPOLE_LOCAL=0: the 2^3 balls, then voxel by voxel)
+for d in patch10 patch30; do LVDIF_CUDA_DIPOLE_LOCAL=0 bench 30 "$d 512 no-local" "$d:$A" 512 winding auto bvh volume 8 2 cold,warm --trace; done
 # CUDA = CPU bit for bit on the real damaged armadillos (128^3 float grid, no band; the CPU on all cores)
 for d in $DAMAGES; do bench 30 "check $d 128" "$d:$A" 128 winding auto bvh float 0 2 warm --check-cpu; done
 # the re-oriented mesh (reorientFaces, on CUDA since session 12): CUDA = CPU, then its times
@@ -64,5 +68,7 @@ awk '
       printf "| %s |%s|%s|%s| %s |%s|\n", l, dev[l], sign[l], e2e[l], r, refined[l]
     }
   }' "$L" | tee "$OUT/table.md"
-grep -E "winding sign on the GPU" "$L" | sort | uniq -c | head -5
+grep -E "winding sign on the GPU" "$L" | grep -v "local step" | sort | uniq -c | head -5
+# the local step's counts per run (blocks of 4^3 expanded, failed, voxels their intervals decided)
+grep -E "^## |local step" "$L" | grep -B1 "local step" | grep -v "^--" | head -40
 echo "total $(( $(date +%s) - T0 )) s" | tee -a "$OUT/summary.txt"

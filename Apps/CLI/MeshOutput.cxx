@@ -35,6 +35,7 @@
 
 #include <algorithm>
 #include <cctype>
+#include <cstdio>
 #include <dlfcn.h>
 
 vtkSmartPointer<vtkPolyData> MeshVolume(const lvdif::DictionaryVolume& volume, lvdif::Interrupter& interrupter)

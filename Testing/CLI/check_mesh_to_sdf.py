@@ -124,6 +124,15 @@ assert len(warnings) == 1 and "encloses no volume" in warnings[0] and "pseudo-no
 run = subprocess.run([exe, "mesh-to-sdf", mesh, f"{out}/sphere_again.lvdv", "--dims", "24", "--device", "cpu"],
                      capture_output=True, text=True, timeout=60)
 assert run.returncode == 0 and "warning:" not in run.stderr, run.stderr
+# meshing that volume: an empty mesh, written, with one warning saying why;
+# meshing the sphere's volume: triangles and no warning
+run = subprocess.run([exe, "mesh", f"{out}/sheet.lvdv", f"{out}/sheet.ply"], capture_output=True, text=True, timeout=60)
+warnings = [l for l in run.stderr.splitlines() if l.startswith("warning: ")]
+assert run.returncode == 0 and os.path.exists(f"{out}/sheet.ply") and "0 triangles" in run.stdout, run
+assert len(warnings) == 1 and "no surface" in warnings[0], run.stderr
+run = subprocess.run([exe, "mesh", f"{out}/sphere_again.lvdv", f"{out}/sphere_again.ply"], capture_output=True,
+                     text=True, timeout=60)
+assert run.returncode == 0 and "warning:" not in run.stderr and not run.stdout.startswith("0 "), run
 
 # warnings: the sphere with its faces near the top pole reversed (counted here
 # from the file): one warning with that count naming --reorient, for the

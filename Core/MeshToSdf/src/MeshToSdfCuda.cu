@@ -132,6 +132,9 @@ public:
   {
     if (this->BoundsSeconds > 0) trace("winding sign on the GPU, dictionary volume: the correction's block bounds", this->BoundsSeconds);
     if (this->RaysSeconds > 0) trace("winding sign on the GPU, dictionary volume: the scan lines' rays", this->RaysSeconds);
+    if (this->LocalCounts && tracePhasesActive())
+      std::fprintf(stderr, "[mesh to SDF] winding sign on the GPU: local step: %llu blocks of 4^3 expanded, %llu failed, %llu voxels decided by their intervals\n",
+        this->LocalTotals[0], this->LocalTotals[1], this->LocalTotals[2]);
     if (this->FarOn)
     {
       trace("distance pass on the GPU: far blocks (farBlockKernel)", this->FarBlockSeconds);
@@ -399,6 +402,42 @@ private:
         this->BoundCapacity = total;
       }
       if (!this->ListCounts) this->ListCounts = this->Arena.alloc<unsigned long long>(ListCountSlots);
+      // the local step (dipoleLocalKernel): per 4^3 block a slot, and the
+      // intervals of the failed ones' voxels (a quarter of the level's
+      // blocks; beyond that their 2^3 blocks are bounded as before)
+      DipoleLocalLists local;
+      if (localStepOn())
+      {
+        const long long blocks4 = count[LocalLevel];
+        if (blocks4 > this->LocalSlotCapacity)
+        {
+          if (this->LocalSlot) this->Arena.release(this->LocalSlot);
+          if (this->LocalPool) this->Arena.release(this->LocalPool);
+          this->LocalSlot = this->Arena.alloc<int>(static_cast<std::size_t>(blocks4));
+          this->LocalCap = listCapacity(blocks4 / 4 + 1024);
+          this->LocalPool = this->Arena.alloc<double>(static_cast<std::size_t>(2 * DipoleLocalVoxels * this->LocalCap));
+          this->LocalSlotCapacity = blocks4;
+        }
+        if (!this->LocalNear)
+        {
+          // the near-triangle lists of the blocks in flight: DipoleLocalNearCap x 32 per warp of a fixed grid
+          int device = 0, sms = 0;
+          LVDIF_CUDA_CHECK(cudaGetDevice(&device));
+          LVDIF_CUDA_CHECK(cudaDeviceGetAttribute(&sms, cudaDevAttrMultiProcessorCount, device));
+          this->LocalGrid = std::max(1, 2 * sms);
+          this->LocalNear = this->Arena.alloc<int>(static_cast<std::size_t>(this->LocalGrid) * (LocalThreads / 32) * 32 * DipoleLocalNearCap);
+        }
+        if (!this->LocalCounts)
+        {
+          this->LocalCounts = this->Arena.alloc<unsigned long long>(3);
+          LVDIF_CUDA_CHECK(cudaMemset(this->LocalCounts, 0, 3 * sizeof(unsigned long long)));
+        }
+        LVDIF_CUDA_CHECK(cudaMemsetAsync(this->LocalSlot, 0xff, static_cast<std::size_t>(blocks4) * sizeof(int))); // -1: none
+        local.pool = this->LocalPool;
+        local.slot = this->LocalSlot;
+        local.cap = this->LocalCap;
+        local.counts = this->LocalCounts;
+      }
       // the voxels the blocks leave undecided, listed per part of the sign pass
       // (a quarter of the part's voxels, a sixteenth between passes; beyond
       // that they are refined in place)
@@ -450,7 +489,8 @@ private:
         {
           // the blocks inside the parents without a bound, full warps of them
           dipoleListedBlockKernel<<<static_cast<unsigned>(most), 128>>>(this->Mesh.D[this->Variant], P, static_cast<int>(e), bx, by, bz, pbx,
-            pby, ratio, this->BlockLists + listOffset - count[l - 1], this->ListCounts + l - 1, level, lists(0));
+            pby, ratio, this->BlockLists + listOffset - count[l - 1], this->ListCounts + l - 1,
+            l == LocalLevel + 1 ? local.cap : 0, level, lists(0));
           LVDIF_CUDA_CHECK(cudaGetLastError());
         }
         for (int pass = 1; pass < DipoleBlockPasses; ++pass)
@@ -460,12 +500,22 @@ private:
             lists(pass));
           LVDIF_CUDA_CHECK(cudaGetLastError());
         }
+        if (l == LocalLevel && local.slot)
+        {
+          // the blocks of this level left without a bound: their voxels' intervals from one local expansion each
+          local.bx = bx;
+          local.by = by;
+          dipoleLocalKernel<<<static_cast<unsigned>(this->LocalGrid), LocalThreads>>>(this->Mesh.D[this->Variant], P,
+            this->BlockLists + listOffset, this->ListCounts + l, local, this->LocalNear);
+          LVDIF_CUDA_CHECK(cudaGetLastError());
+        }
         listOffset += count[l];
         pbx = bx;
         pby = by;
         parent = level;
       }
       this->QueueCap = queueCap;
+      this->Local = local;
     }
     if (this->HasWinding) LVDIF_CUDA_CHECK(cudaEventRecord(this->SignSplit.a)); // the block bounds end here
     for (int p = 0; p < parts; ++p)
@@ -488,7 +538,7 @@ private:
           unsigned long long* counts = this->ListCounts + DipoleLevels * (1 + DipoleBlockPasses);
           LVDIF_CUDA_CHECK(cudaMemsetAsync(counts, 0, VoxelPasses * sizeof(unsigned long long)));
           signDipoleKernel<<<grid, 32 * SignWarps>>>(this->Mesh.W[this->Variant], this->Mesh.D[this->Variant], P, c0, c1, this->RayMeta,
-            this->RayHits, this->Bounds, bx, by, this->Slab, this->Counters, this->Queue, counts, this->QueueCap);
+            this->RayHits, this->Bounds, bx, by, this->Slab, this->Counters, this->Queue, counts, this->QueueCap, this->Local);
           LVDIF_CUDA_CHECK(cudaGetLastError());
           const long long pendingCap = listCapacity(this->QueueCap / 4 + 1024);
           for (int pass = 0; pass < VoxelPasses; ++pass)
@@ -609,6 +659,20 @@ private:
     stats.windingEvaluations += static_cast<std::int64_t>(host[0]);
     stats.windingExact += static_cast<std::int64_t>(host[1]);
     stats.windingFullSums += static_cast<std::int64_t>(host[2]);
+    if (this->LocalCounts)
+    {
+      unsigned long long local[3] = { 0, 0, 0 };
+      LVDIF_CUDA_CHECK(cudaMemcpy(local, this->LocalCounts, sizeof(local), cudaMemcpyDeviceToHost));
+      LVDIF_CUDA_CHECK(cudaMemset(this->LocalCounts, 0, sizeof(local)));
+      for (int i = 0; i < 3; ++i) this->LocalTotals[i] += local[i];
+    }
+  }
+
+  /// The local step is on unless LVDIF_CUDA_DIPOLE_LOCAL=0 (the benches time both).
+  static bool localStepOn()
+  {
+    const char* e = std::getenv("LVDIF_CUDA_DIPOLE_LOCAL");
+    return !(e && e[0] == '0');
   }
 
   MeshToSdfOptions Options;
@@ -660,6 +724,18 @@ private:
   unsigned long long* Queue = nullptr;      // the voxels of a part the blocks left undecided (dipoleListVoxel)
   DipolePending* VoxelPending = nullptr;    // voxels between passes (in, out)
   long long QueueCapacity = 0, QueueCap = 0;
+  // the local step (dipoleLocalKernel) on the failed blocks of level LocalLevel
+  static constexpr int LocalLevel = 1;
+  static_assert(DipoleEdges[LocalLevel] == DipoleLocalEdge && LocalLevel + 1 < DipoleLevels, "the local step's blocks");
+  DipoleLocalLists Local; // the last slab's (the sign kernel reads it)
+  static constexpr int LocalThreads = 128; // dipoleLocalKernel's CUDA block (4 warps)
+  int LocalGrid = 0;                       // its CUDA blocks (a grid-stride loop)
+  int* LocalNear = nullptr;                // its warps' near-triangle lists
+  int* LocalSlot = nullptr;
+  double* LocalPool = nullptr;
+  long long LocalSlotCapacity = 0, LocalCap = 0;
+  unsigned long long* LocalCounts = nullptr; // blocks expanded, blocks failed, voxels decided (since the last readCounters)
+  unsigned long long LocalTotals[3] = { 0, 0, 0 };
   // the group of chunk layers of the last launchKeys
   VoxelBox KeyBox;
   int Edge = 32, Ccx = 0, Ccy = 0;

@@ -12,6 +12,7 @@
 
 #include "MeshToSdfCudaKernels.cuh"
 #include "MeshToSdfDipoleDecide.h"
+#include "MeshToSdfDipoleLocal.h"
 
 #include <cooperative_groups.h>
 
@@ -112,15 +113,18 @@ __global__ void dipoleBlockKernel(DipoleDev D, Params P, int edge, long long bx,
 }
 
 /// The blocks of edge voxels inside the listed blocks of the level above
-/// (parents, parentCount of them; edge ratio x edge, pbx x pby per layer),
+/// (parents, parentCount of them, but the first skipParents; edge ratio x
+/// edge, pbx x pby per layer),
 /// one per thread of a grid-stride loop, so that full warps bound blocks:
 /// the first pass of dipoleBlockBound (dipoleBlockFrom).
 __global__ void dipoleListedBlockKernel(DipoleDev D, Params P, int edge, long long bx, long long by, long long bz,
   long long pbx, long long pby, int ratio, const long long* parents, const unsigned long long* parentCount,
-  double* bounds, DipoleBlockLists L)
+  long long skipParents, double* bounds, DipoleBlockLists L)
 {
   const long long r3 = static_cast<long long>(ratio) * ratio * ratio;
-  const long long total = static_cast<long long>(*parentCount) * r3;
+  // the first skipParents parents went to the local step (dipoleLocalKernel): their voxels have intervals of their own
+  parents += skipParents;
+  const long long total = max(0ll, static_cast<long long>(*parentCount) - skipParents) * r3;
   const long long stride = static_cast<long long>(gridDim.x) * blockDim.x;
   for (long long t = static_cast<long long>(blockIdx.x) * blockDim.x + threadIdx.x; t < total; t += stride)
   {
@@ -142,6 +146,197 @@ __global__ void dipoleBlockPassKernel(DipoleDev D, Params P, int edge, long long
     dipoleBlockFrom(D, P, edge, bx, by, in[t].item, pass, in[t].margin, L, bounds);
 }
 
+/// Where the local step's intervals go (MeshToSdfCuda.cu): per listed 4^3
+/// block t < cap its voxels' lo (pool[128 t + v]) and hi (pool[128 t + 64 +
+/// v]), v = a + 4 (b + 4 c); slot[b] = t for block b of the 4^3 level (-1:
+/// none, the voxels are refined one by one).
+struct DipoleLocalLists
+{
+  double* pool = nullptr;
+  int* slot = nullptr;
+  long long cap = 0;
+  long long bx = 0, by = 0;             // 4^3 blocks per row and per layer of the slab
+  unsigned long long* counts = nullptr; // blocks expanded, blocks failed, voxels decided by the intervals
+};
+
+/// The failed 4^3 blocks (failed, min(*failedCount, L.cap) of them), 32 per
+/// warp of a grid-stride loop, pass by pass as dipoleLocalBlock runs them
+/// (the same functions in the same order, so the same intervals): each lane
+/// walks its own block's clusters (dipoleLocalWalk) until its near list
+/// (`near`: DipoleLocalNearCap x 32 entries per warp, interleaved) is full
+/// or the walk is done; then the warp sums the 32 lists in turn, lane l at
+/// voxels l and l + 32 (dipoleLocalNearSum: the near triangles' solid
+/// angles, the bulk of the work, in full warps), the running sums in the
+/// pool (carried to the next pass while the voxel stays open); at the end of
+/// a pass each voxel's interval (dipoleLocalFinish) and the block's open
+/// voxels and smallest gap (ballot, shuffle). Voxels at the
+/// positions signDipoleKernel computes.
+__global__ void dipoleLocalKernel(DipoleDev D, Params P, const long long* failed, const unsigned long long* failedCount,
+  DipoleLocalLists L, int* near)
+{
+  constexpr unsigned Full = 0xffffffffu;
+  const long long n = min(static_cast<long long>(*failedCount), L.cap);
+  const int lane = static_cast<int>(threadIdx.x % 32);
+  const long long warp = static_cast<long long>(blockIdx.x) * (blockDim.x / 32) + threadIdx.x / 32;
+  const long long warps = static_cast<long long>(gridDim.x) * (blockDim.x / 32);
+  const long long nx = P.hi[0] - P.lo[0] + 1, ny = P.hi[1] - P.lo[1] + 1, nz = P.hi[2] - P.lo[2] + 1;
+  const double h = P.spacing[0];
+  int* list = near + warp * 32 * DipoleLocalNearCap; // entry i of lane l's block at list[32 i + l]
+  unsigned long long expanded = 0, failures = 0;
+  // block b of the 4^3 level: its indices, extent and ball
+  auto blockOf = [&](long long b, long long (&i)[3], int (&m)[3], V3& centre, double& rho) {
+    i[0] = b % L.bx;
+    i[1] = (b / L.bx) % L.by;
+    i[2] = b / (L.bx * L.by);
+    m[0] = static_cast<int>(min(static_cast<long long>(DipoleLocalEdge), nx - DipoleLocalEdge * i[0]));
+    m[1] = static_cast<int>(min(static_cast<long long>(DipoleLocalEdge), ny - DipoleLocalEdge * i[1]));
+    m[2] = static_cast<int>(min(static_cast<long long>(DipoleLocalEdge), nz - DipoleLocalEdge * i[2]));
+    V3 p0, p1;
+    dipoleBlockCorners(P, DipoleLocalEdge, i[0], i[1], i[2], p0, p1);
+    dipoleBlockBall(p0, p1, centre, rho);
+  };
+  // voxel v of the block with indices i, as the rows position it
+  auto voxelAt = [&](const long long (&i)[3], int v) {
+    const long long y = P.lo[1] + DipoleLocalEdge * i[1] + (v / DipoleLocalEdge) % DipoleLocalEdge;
+    const long long z = P.lo[2] + DipoleLocalEdge * i[2] + v / (DipoleLocalEdge * DipoleLocalEdge);
+    return positionOf(P, P.lo[0], y, z) + V3{ static_cast<double>(DipoleLocalEdge * i[0] + v % DipoleLocalEdge) * h, 0, 0 };
+  };
+  DipoleLocalWalk walk;
+  for (long long base = warp * 32; base < n; base += warps * 32) // the whole warp alike
+  {
+    // this lane's block and its state across passes
+    const long long t = base + lane;
+    const bool mine = t < n;
+    const long long myBlock = mine ? failed[t] : 0;
+    long long myIndex[3] = { 0, 0, 0 };
+    int m[3] = { 0, 0, 0 };
+    V3 myCentre;
+    double myRho = 0;
+    if (mine) blockOf(myBlock, myIndex, m, myCentre, myRho);
+    unsigned long long open = 0; // the voxels of my block still open
+    for (int v = 0; mine && v < DipoleLocalVoxels; ++v)
+      if (v % DipoleLocalEdge < m[0] && (v / DipoleLocalEdge) % DipoleLocalEdge < m[1] && v / (DipoleLocalEdge * DipoleLocalEdge) < m[2])
+        open |= 1ull << v;
+    bool active = mine, failedHere = false;
+    double margin = DipoleFirstMargin, prevMargin = 0;
+    for (int pass = 0; pass < DipoleLocalPasses && __any_sync(Full, active); ++pass)
+    {
+      // the voxels' near sums start at 0 (in the pool: lo, hi), carried from
+      // pass to pass while a voxel stays open (dipoleLocalWalk lists only the
+      // triangles the previous pass did not sum)
+      for (int b = 0; pass == 0 && b < 32; ++b)
+      {
+        const unsigned long long openB = __shfl_sync(Full, active ? open : 0ull, b);
+        double* out = L.pool + 2 * DipoleLocalVoxels * (base + b);
+        for (int i = 0; i < 2; ++i)
+          if ((openB >> (lane + 32 * i)) & 1) out[lane + 32 * i] = out[DipoleLocalVoxels + lane + 32 * i] = 0;
+      }
+      if (active) walk.start(pass > 0);
+      bool done = !active;
+      while (true)
+      {
+        if (!done)
+          done = dipoleLocalWalk(D, myCentre, myRho, dipoleTolerance(D, margin), pass > 0 ? dipoleTolerance(D, prevMargin) : 0.0,
+            walk, list + lane, 32);
+        // the 32 lists in turn, each at its block's open voxels
+        for (int b = 0; b < 32; ++b)
+        {
+          const int count = __shfl_sync(Full, active && !walk.overflow ? walk.far.near : 0, b);
+          if (count == 0) continue;
+          const unsigned long long openB = __shfl_sync(Full, open, b);
+          long long ib[3];
+          int mb[3];
+          V3 centre;
+          double rho = 0;
+          blockOf(failed[base + b], ib, mb, centre, rho);
+          double* out = L.pool + 2 * DipoleLocalVoxels * (base + b);
+          for (int i = 0; i < 2; ++i)
+          {
+            const int v = lane + 32 * i;
+            if (!((openB >> v) & 1)) continue;
+            double direct = out[v], directMag = out[DipoleLocalVoxels + v]; // (in registers while summing)
+            dipoleLocalNearSum(D, list + b, 32, count, voxelAt(ib, v), direct, directMag);
+            out[v] = direct;
+            out[DipoleLocalVoxels + v] = directMag;
+          }
+        }
+        if (active) walk.far.near = 0;
+        if (__all_sync(Full, done)) break;
+      }
+      // the pass's intervals, block by block
+      for (int b = 0; b < 32; ++b)
+      {
+        if (!__shfl_sync(Full, active, b)) continue; // (the same in every lane)
+        double* out = L.pool + 2 * DipoleLocalVoxels * (base + b);
+        if (__shfl_sync(Full, walk.overflow, b))
+        {
+          // no intervals at all for that block
+          for (int i = 0; i < 2; ++i)
+          {
+            out[lane + 32 * i] = 1;
+            out[DipoleLocalVoxels + lane + 32 * i] = 0;
+          }
+          if (lane == b)
+          {
+            failedHere = true;
+            active = false;
+          }
+          continue;
+        }
+        DipoleLocalFar fb;
+        fb.poly.v = __shfl_sync(Full, walk.far.poly.v, b);
+        for (int k = 0; k < 3; ++k) fb.poly.g[k] = __shfl_sync(Full, walk.far.poly.g[k], b);
+        for (int k = 0; k < 6; ++k) fb.poly.H[k] = __shfl_sync(Full, walk.far.poly.H[k], b);
+        fb.err = __shfl_sync(Full, walk.far.err, b);
+        fb.mag = __shfl_sync(Full, walk.far.mag, b);
+        fb.terms = __shfl_sync(Full, walk.far.terms, b);
+        const unsigned long long openB = __shfl_sync(Full, open, b);
+        long long ib[3];
+        int mb[3];
+        V3 centre;
+        double rho = 0;
+        blockOf(failed[base + b], ib, mb, centre, rho);
+        double gap = __shfl_sync(Full, margin, b);
+        bool still[2] = { false, false };
+        double l[2] = { 1, 1 }, u[2] = { 0, 0 };
+        for (int i = 0; i < 2; ++i)
+        {
+          const int v = lane + 32 * i;
+          if (!((openB >> v) & 1)) continue;
+          dipoleLocalFinish(fb, voxelAt(ib, v), centre, out[v], out[DipoleLocalVoxels + v], l[i], u[i]);
+          still[i] = dipoleLocalVoxelState(l[i], u[i], gap) == 1;
+        }
+        const unsigned long long stillB = static_cast<unsigned long long>(__ballot_sync(Full, still[0])) |
+          (static_cast<unsigned long long>(__ballot_sync(Full, still[1])) << 32);
+        for (int o = 16; o > 0; o >>= 1) gap = fmin(gap, __shfl_xor_sync(Full, gap, o));
+        if (lane == b)
+        {
+          open = stillB;
+          prevMargin = margin;
+          active = dipoleLocalNextPass(pass, stillB != 0, gap, margin);
+        }
+        // a voxel that takes the next pass keeps its near sums in the pool; the others their interval
+        const bool goesOn = __shfl_sync(Full, active, b);
+        for (int i = 0; i < 2; ++i)
+        {
+          const int v = lane + 32 * i;
+          if (!((openB >> v) & 1) || (goesOn && still[i])) continue;
+          out[v] = l[i];
+          out[DipoleLocalVoxels + v] = u[i];
+        }
+      }
+    }
+    if (mine && !failedHere)
+    {
+      L.slot[myBlock] = static_cast<int>(t);
+      ++expanded;
+    }
+    failures += failedHere;
+  }
+  if (expanded) atomicAdd(L.counts, expanded);
+  if (failures) atomicAdd(L.counts + 1, failures);
+}
+
 /// WindingSigner::signRow with the correction s (closure without a cone):
 /// one warp per scan line as signKernel; the lanes walk the crossings
 /// together, then each lane takes its voxel: decided by the block's bound of
@@ -153,7 +348,8 @@ __global__ void dipoleBlockPassKernel(DipoleDev D, Params P, int edge, long long
 /// rowRayKernel (rayMeta, rayHits: row - rowBegin).
 __global__ void signDipoleKernel(WindingDev W, DipoleDev D, Params P, long long rowBegin, long long rowEnd,
   const int4* rayMeta, const Hit* rayHits, const double* bounds, long long bx, long long by, float* out,
-  unsigned long long* counters, unsigned long long* queue, unsigned long long* queueCount, long long queueCap)
+  unsigned long long* counters, unsigned long long* queue, unsigned long long* queueCount, long long queueCap,
+  DipoleLocalLists local)
 {
   __shared__ RayShared sharedRay[SignWarps];
   const long long nx = P.hi[0] - P.lo[0] + 1, ny = P.hi[1] - P.lo[1] + 1;
@@ -168,7 +364,11 @@ __global__ void signDipoleKernel(WindingDev W, DipoleDev D, Params P, long long 
   const Hit* hits = sharedRay[warp].hits;
   const RowRay ray = rowRayOf(W, start, h, sharedRay[warp], lane, rayMeta, rayHits, row - rowBegin);
   const int ok = ray.ok, count = ray.count, sum = ray.sum;
-  unsigned long long ev = 0, full = 0, fallback = 0;
+  unsigned long long ev = 0, full = 0, fallback = 0, fromLocal = 0;
+  // this row's 4^3 blocks (their local intervals, where they have them)
+  const long long localRow = local.bx * ((j - P.lo[1]) / DipoleLocalEdge + local.by * ((k - P.lo[2]) / DipoleLocalEdge));
+  const int localSub = DipoleLocalEdge * (static_cast<int>((j - P.lo[1]) % DipoleLocalEdge) +
+    DipoleLocalEdge * static_cast<int>((k - P.lo[2]) % DipoleLocalEdge));
   const double* blockRow = bounds + 2 * bx * ((j - P.lo[1]) / DipoleBlock + by * ((k - P.lo[2]) / DipoleBlock));
   // each lane walks the sorted crossings up to its own voxels (they advance
   // by 32 a step): K = sum minus the crossings before the voxel, the value
@@ -213,6 +413,14 @@ __global__ void signDipoleKernel(WindingDev W, DipoleDev D, Params P, long long 
         // ambiguous rows use no block bounds (WindingSigner::insideAt)
         const double lo = ok ? blockRow[2 * (mine / DipoleBlock)] : 1.0, hi = ok ? blockRow[2 * (mine / DipoleBlock) + 1] : 0.0;
         refine = !dipoleBlockDecides(myK, lo, hi, myInside);
+        // then the voxel's own interval from its 4^3 block's local expansion
+        const int slot = refine && ok && local.slot ? local.slot[localRow + mine / DipoleLocalEdge] : -1;
+        if (slot >= 0)
+        {
+          const double* in = local.pool + 2 * DipoleLocalVoxels * static_cast<long long>(slot) + localSub + mine % DipoleLocalEdge;
+          refine = !dipoleBlockDecides(myK, in[0], in[DipoleLocalVoxels], myInside);
+          fromLocal += !refine;
+        }
         ev += refine;
       }
     }
@@ -238,6 +446,7 @@ __global__ void signDipoleKernel(WindingDev W, DipoleDev D, Params P, long long 
   if (ev) atomicAdd(counters, ev);
   if (fallback) atomicAdd(counters + 1, fallback);
   if (full) atomicAdd(counters + 2, full);
+  if (fromLocal && local.counts) atomicAdd(local.counts + 2, fromLocal);
 }
 
 /// The voxels signDipoleKernel listed (queue: their first pass) or an

@@ -9,7 +9,8 @@
 // although the blocks and voxels are bounded in another order (the GPU's
 // work lists, below) and the two sides bound different blocks (CPU: balls
 // about 16^3 and 4^3, then the voxels of a failed 4^3 block one by one from
-// a local expansion, MeshToSdfDipoleLocal.h; GPU: 16^3, 4^3 and 2^3): both
+// a local expansion, MeshToSdfDipoleLocal.h; GPU: 16^3, 4^3, then a local
+// expansion per failed 4^3 block and 2^3 balls beyond its pool): both
 // sides decide a voxel only when a
 // rigorous interval of w (it contains the exact value: per-cluster bounds
 // that are all rigorous, DipoleTree::refine's, localBounds' and the ones below, the leaf's
@@ -40,6 +41,9 @@ struct DipoleWork
 {
   unsigned long long nodes = 0, tris = 0, triBounds = 0; // nodes visited; triangles summed exactly / bounded over a ball
   unsigned long long calls = 0;                          // boundDipole traversals
+  // dipoleLocalBlock: per pass its near triangles x the voxels of the
+  // busiest lane of dipoleLocalKernel's warp (lane l: voxels l, l + 32)
+  unsigned long long laneTris = 0;
 };
 
 struct DipoleView

@@ -196,14 +196,59 @@ TEST(MeshToSdfCuda, DamagedMeshesMatchCpuBitForBit)
 }
 
 // The winding decision's work lists (the listed voxels, blocks and voxels
-// between passes, MeshToSdfCudaDipole.cuh) cut to 5 entries: what a full list leaves is
-// finished in its thread, and the result stays the CPU's bit for bit.
+// between passes, the local step's pool of 4^3 blocks, MeshToSdfCudaDipole.cuh)
+// cut to 5 entries: what a full list leaves is finished in its thread (the
+// blocks beyond the pool go to the 2^3 balls), and the result stays the
+// CPU's bit for bit.
 TEST(MeshToSdfCuda, DamagedMeshesMatchCpuWithFullWorkLists)
 {
   if (!cuda::available()) GTEST_SKIP() << "no CUDA device";
   ::setenv("LVDIF_CUDA_DIPOLE_LIST_CAP", "5", 1);
   damagedMeshesMatchCpu(", lists of 5");
   ::unsetenv("LVDIF_CUDA_DIPOLE_LIST_CAP");
+}
+
+// Without the local step (LVDIF_CUDA_DIPOLE_LOCAL=0: the 2^3 balls and the
+// voxels one by one, as before it): still the CPU's bit for bit.
+TEST(MeshToSdfCuda, DamagedMeshesMatchCpuWithoutTheLocalStep)
+{
+  if (!cuda::available()) GTEST_SKIP() << "no CUDA device";
+  ::setenv("LVDIF_CUDA_DIPOLE_LOCAL", "0", 1);
+  damagedMeshesMatchCpu(", no local step");
+  ::unsetenv("LVDIF_CUDA_DIPOLE_LOCAL");
+}
+
+// The local step decides on the GPU what the balls leave: over the damaged
+// meshes the voxels refined one by one (windingEvaluations) at least halve
+// with it (the CPU emulation's counts: MeshToSdfDipoleDecide.LocalStepDecidesWhatTheBallsLeave).
+TEST(MeshToSdfCuda, LocalStepCutsTheVoxelsRefinedOneByOne)
+{
+  if (!cuda::available()) GTEST_SKIP() << "no CUDA device";
+  std::int64_t refined[2] = { 0, 0 };
+  for (const auto& [name, m] : oracle::damagedMeshes())
+  {
+    const GridGeometry g = fitGridToMesh(m, 64, 2);
+    VoxelBox all;
+    all.hi = { g.dims[0] - 1, g.dims[1] - 1, g.dims[2] - 1 };
+    const MeshToSdfPrepared prepared = prepareMeshToSdf(m);
+    for (int on = 0; on < 2; ++on)
+    {
+      ::setenv("LVDIF_CUDA_DIPOLE_LOCAL", on ? "1" : "0", 1);
+      std::vector<float> gpu(static_cast<std::size_t>(g.count()));
+      MeshToSdfOptions o;
+      o.sign = SignMode::WindingNumber;
+      o.bandWidth = std::numeric_limits<float>::infinity();
+      o.device = Device::Auto;
+      const MeshToSdfStats st = meshToSdf(prepared, g, all, gpu.data(), o);
+      ASSERT_EQ(st.device, Device::Cuda) << name;
+      refined[on] += st.windingEvaluations;
+      std::printf("[ local step ] %-14s local %s: %lld voxels refined one by one on the GPU\n", name.c_str(), on ? "on " : "off",
+        static_cast<long long>(st.windingEvaluations));
+    }
+  }
+  ::unsetenv("LVDIF_CUDA_DIPOLE_LOCAL");
+  EXPECT_GT(refined[0], 0);
+  EXPECT_LT(2 * refined[1], refined[0]);
 }
 
 TEST(MeshToSdfCuda, ClosedAndIntersectingMeshesAndSubExtent)

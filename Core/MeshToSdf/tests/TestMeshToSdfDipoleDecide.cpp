@@ -8,6 +8,7 @@
 // test compares the real kernel the same way). Also the brute-force solid
 // angle oracle on far voxels, and portableAtan2 against long double atan2.
 #include "../src/MeshToSdfDipoleDecide.h"
+#include "../src/MeshToSdfDipoleLocal.h"
 #include "../src/MeshToSdfInternal.h"
 #include "MeshToSdfDamagedMeshes.h"
 #include "MeshToSdfOracle.h"
@@ -35,6 +36,14 @@ struct Emulated
 {
   std::vector<char> inside;
   unsigned long long evaluated = 0, full = 0, blocksBounded = 0, fromCoarse = 0;
+  // the local step (dipoleLocalKernel): 4^3 blocks expanded, failed (no
+  // intervals), voxels their intervals decide in the sign kernel; the blocks
+  // of the failed list left to the 2^3 balls (beyond the pool's capacity)
+  unsigned long long localBlocks = 0, localFailed = 0, localDecided = 0, localOverflow = 0;
+  DipoleWork local;           // passes (calls), nodes visited, triangle x voxel solid angles (tris)
+  unsigned long long intervalsChecked = 0, intervalMisses = 0; // LocalStep::checkIntervals
+  unsigned long long simtLocal = 0; // dipoleLocalKernel: the traversals' warp maxima (a lane per block) + the warps' sums
+  unsigned long long simtLocalWalks = 0; // the first part alone
   DipoleWork blocks[DipoleLevels], voxels; // tree nodes and triangles visited by the two phases
   // SIMT cost: per warp of 32 threads, the most work of one lane, summed over
   // the warps; "raster": one thread per block of a level and per voxel of a
@@ -69,10 +78,25 @@ unsigned long long simtOf(const std::vector<unsigned long long>& work, std::size
 /// dipoleListedBlockKernel (the blocks under a listed parent) and
 /// dipoleBlockPassKernel (the blocks' further passes) level by level, then
 /// signDipoleKernel (crossings; a voxel its block decides, else listed) and
-/// dipoleRefineKernel (the listed voxels, pass by pass). Every block and
+/// dipoleRefineKernel (the listed voxels, pass by pass); with the local
+/// step, dipoleLocalKernel on the 4^3 blocks left without a bound (up to the
+/// pool's capacity; the 2^3 level then bounds only the children of the
+/// others) and the sign kernel's look-up of their voxels' intervals. Every block and
 /// voxel runs the passes the kernels run, in the order of their lists, and
 /// the work of each pass is counted for the SIMT estimates.
-Emulated emulateGpu(const WindingSigner& w, const GridGeometry& g, bool blocksOnly = false, bool reoriented = false)
+/// The local step as the session sets it: on or off (LVDIF_CUDA_DIPOLE_LOCAL=0),
+/// the pool's capacity in 4^3 blocks (the rest go to the 2^3 balls), and
+/// errorScale (only the negative control sets it below 1).
+struct LocalStep
+{
+  bool on = true;
+  long long cap = 1ll << 40;
+  double errorScale = 1;
+  bool checkIntervals = false; // every voxel interval against DipoleTree::exact (Emulated::intervalMisses)
+};
+
+Emulated emulateGpu(const WindingSigner& w, const GridGeometry& g, bool blocksOnly = false, bool reoriented = false,
+  const LocalStep& localStep = LocalStep{})
 {
   const WindingSigner::Closure& c = w.cpuClosure(reoriented);
   const DipoleTree* s = w.cpuCorrection(reoriented);
@@ -94,6 +118,12 @@ Emulated emulateGpu(const WindingSigner& w, const GridGeometry& g, bool blocksOn
   std::vector<long long> parents, listed; // blocks without a bound of the level above / of this level
   std::vector<unsigned long long> work, listedWork;
   std::int64_t px = 0, py = 0, bx = 0, by = 0;
+  // the local step's level (its failed blocks), slots and pool (MeshToSdfCuda.cu's LocalLevel, DipoleLocalLists)
+  const int localLevel = 1;
+  static_assert(DipoleEdges[1] == DipoleLocalEdge, "the local step's blocks");
+  std::int64_t localTaken = 0, localBx = 0, localBy = 0;
+  std::vector<int> localSlot;
+  std::vector<double> localPool;
   for (int level = 0; level < DipoleLevels; ++level)
   {
     const std::int64_t edge = DipoleEdges[level], ratio = level ? DipoleEdges[level - 1] / edge : 1;
@@ -144,9 +174,11 @@ Emulated emulateGpu(const WindingSigner& w, const GridGeometry& g, bool blocksOn
       if (level == DipoleLevels - 1) e.fromCoarse += parent[2 * p] <= parent[2 * p + 1];
     }
     const std::int64_t r3 = ratio * ratio * ratio;
-    for (std::int64_t t = 0; level && t < static_cast<std::int64_t>(parents.size()) * r3; ++t)
+    // the parents the local step took have no children bounded here (dipoleListedBlockKernel's skipParents)
+    const std::int64_t skip = level == localLevel + 1 ? localTaken : 0;
+    for (std::int64_t t = 0; level && t < (static_cast<std::int64_t>(parents.size()) - skip) * r3; ++t)
     {
-      const long long b = dipoleChildBlock(parents[static_cast<std::size_t>(t / r3)], t % r3, ratio, px, py, bx, by, bz);
+      const long long b = dipoleChildBlock(parents[static_cast<std::size_t>(skip + t / r3)], t % r3, ratio, px, py, bx, by, bz);
       if (b >= 0) bound(b);
       listedWork.push_back(b >= 0 ? work[static_cast<std::size_t>(b)] : 0);
     }
@@ -155,6 +187,66 @@ Emulated emulateGpu(const WindingSigner& w, const GridGeometry& g, bool blocksOn
     e.simtBlocksListed += level ? simtOf(listedWork, 0, listedWork.size()) : simtOf(work, 0, work.size());
     if (level == DipoleLevels - 1)
       for (std::size_t b = 0; b < work.size(); ++b) e.blocksBounded += bounds[2 * b] <= bounds[2 * b + 1];
+    if (level == localLevel && s && localStep.on)
+    {
+      // dipoleLocalKernel: the failed blocks of this level, in list order, up to the capacity
+      localBx = bx;
+      localBy = by;
+      localSlot.assign(static_cast<std::size_t>(bx * by * bz), -1);
+      localTaken = std::min<std::int64_t>(static_cast<std::int64_t>(listed.size()), localStep.cap);
+      localPool.assign(static_cast<std::size_t>(2 * DipoleLocalVoxels * localTaken), 0.0);
+      e.localOverflow = listed.size() - static_cast<std::size_t>(localTaken);
+      D.work = &e.local;
+      std::vector<unsigned long long> traversalWork;
+      std::vector<int> nearList(DipoleLocalNearCap);
+      unsigned long long sumWork = 0;
+      for (std::int64_t t = 0; t < localTaken; ++t)
+      {
+        const long long b = listed[static_cast<std::size_t>(t)];
+        const std::int64_t ix = b % bx, iy = (b / bx) % by, iz = b / (bx * by);
+        DipoleLocalBlockVoxels X;
+        X.h = g.spacing[0];
+        X.x0 = DipoleLocalEdge * ix;
+        X.n[0] = static_cast<int>(std::min<std::int64_t>(DipoleLocalEdge, nx - DipoleLocalEdge * ix));
+        X.n[1] = static_cast<int>(std::min<std::int64_t>(DipoleLocalEdge, ny - DipoleLocalEdge * iy));
+        X.n[2] = static_cast<int>(std::min<std::int64_t>(DipoleLocalEdge, nz - DipoleLocalEdge * iz));
+        for (int c = 0; c < X.n[2]; ++c)
+          for (int r = 0; r < X.n[1]; ++r)
+            X.rowStart[r + DipoleLocalEdge * c] = position(0, DipoleLocalEdge * iy + r, DipoleLocalEdge * iz + c);
+        V3 centre;
+        double rho = 0;
+        const std::int64_t x0 = edge * ix, y0 = edge * iy, z0 = edge * iz;
+        dipoleBlockBall(position(x0, y0, z0),
+          position(std::min(x0 + edge - 1, nx - 1), std::min(y0 + edge - 1, ny - 1), std::min(z0 + edge - 1, nz - 1)),
+          centre, rho);
+        // dipoleLocalKernel's passes over this block (the same functions in the same order)
+        const DipoleWork w0 = e.local;
+        double* out = localPool.data() + 2 * DipoleLocalVoxels * t;
+        const int r = dipoleLocalBlock(D, X, centre, rho, out, out + DipoleLocalVoxels, nearList.data(), localStep.errorScale);
+        // a lane walks the block's clusters (32 blocks per warp), the warp sums its near triangles
+        traversalWork.push_back((e.local.nodes - w0.nodes) + (e.local.triBounds - w0.triBounds));
+        sumWork += e.local.laneTris - w0.laneTris;
+        for (int v = 0; localStep.checkIntervals && v < DipoleLocalVoxels; ++v)
+        {
+          if (!(out[v] <= out[DipoleLocalVoxels + v])) continue;
+          const double exact = s->exact(X.at(v)); // the plain double sum: within 1e-12, far inside the slack
+          ++e.intervalsChecked;
+          e.intervalMisses += !(out[v] <= exact && exact <= out[DipoleLocalVoxels + v]);
+        }
+        if (r >= 0)
+        {
+          localSlot[static_cast<std::size_t>(b)] = static_cast<int>(t);
+          ++e.localBlocks;
+        }
+        else
+        {
+          ++e.localFailed;
+        }
+      }
+      e.simtLocalWalks = simtOf(traversalWork, 0, traversalWork.size());
+      e.simtLocal = e.simtLocalWalks + sumWork;
+      D.work = &e.blocks[level];
+    }
     parents.swap(listed);
     listed.clear();
     parent.swap(bounds);
@@ -239,6 +331,21 @@ Emulated emulateGpu(const WindingSigner& w, const GridGeometry& g, bool blocksOn
           out = inside;
           continue;
         }
+        // signDipoleKernel: the voxel's interval from its 4^3 block's local expansion
+        const int slot = ok && !localSlot.empty()
+          ? localSlot[static_cast<std::size_t>(i / DipoleLocalEdge + localBx * (j / DipoleLocalEdge + localBy * (k / DipoleLocalEdge)))]
+          : -1;
+        if (slot >= 0)
+        {
+          const double* in = localPool.data() + 2 * DipoleLocalVoxels * static_cast<std::int64_t>(slot) +
+            DipoleLocalEdge * (j % DipoleLocalEdge + DipoleLocalEdge * (k % DipoleLocalEdge)) + i % DipoleLocalEdge;
+          if (dipoleBlockDecides(K, in[0], in[DipoleLocalVoxels], inside))
+          {
+            out = inside;
+            ++e.localDecided;
+            continue;
+          }
+        }
         ++e.evaluated;
         if (blocksOnly) continue;
         if (dipoleListable(K)) queue.push_back(dipoleListVoxel(v, K));
@@ -265,11 +372,11 @@ Emulated emulateGpu(const WindingSigner& w, const GridGeometry& g, bool blocksOn
 }
 
 /// Every voxel of the grid: the emulated GPU decision = meshToSdf's sign on
-/// the CPU; the oracle on far voxels. Returns the blocks bounded by their coarse block.
+/// the CPU; the oracle on far voxels. Returns the emulation (its counts).
 /// reorient: of the re-oriented mesh M+ (reorientFaces), with the structures
-/// the GPU then takes; no oracle (it sums M as given).
-std::uint64_t compareWithCpu(
-  const std::string& name, const TriangleMesh& m, int res, int& reoriented, int& capsOverM, bool reorient = false)
+/// the GPU then takes; no oracle (it sums M as given). local: the local step's settings.
+Emulated compareWithCpu(const std::string& name, const TriangleMesh& m, int res, int& reoriented, int& capsOverM,
+  bool reorient = false, const LocalStep& local = LocalStep{})
 {
   const GridGeometry g = fitGridToMesh(m, res, 2);
   VoxelBox all;
@@ -289,7 +396,7 @@ std::uint64_t compareWithCpu(
   if (!reorient) EXPECT_EQ(w.cpuCorrection() == nullptr, name == "pair") << name;
   reoriented += w.closesReorientedMesh();
   capsOverM += w.cpuCorrection() && !w.closesReorientedMesh();
-  const Emulated e = emulateGpu(w, g, false, reorient);
+  const Emulated e = emulateGpu(w, g, false, reorient, local);
   std::int64_t differ = 0, inside = 0, far = 0, wrong = 0;
   std::mt19937 rng(11);
   const std::uint32_t sample = static_cast<std::uint32_t>(std::max<std::int64_t>(16, g.count() / 1600));
@@ -308,14 +415,16 @@ std::uint64_t compareWithCpu(
     }
   }
   std::printf("[ gpu decision ] %-14s%s %lld voxels, %lld inside, %lld differ from the CPU; %llu blocks bounded (%llu by their coarse block), "
+              "local step %s: %llu blocks of 4^3 (%llu failed, %llu left to the 2^3 balls), %llu voxels decided by them; "
               "%llu voxels refined, %llu canonical; oracle: %lld wrong of %lld far\n",
     name.c_str(), reorient ? " (re-oriented)" : "", static_cast<long long>(g.count()), static_cast<long long>(inside), static_cast<long long>(differ),
-    e.blocksBounded, e.fromCoarse, e.evaluated, e.full, static_cast<long long>(wrong), static_cast<long long>(far));
+    e.blocksBounded, e.fromCoarse, local.on ? "on" : "off", e.localBlocks, e.localFailed, e.localOverflow, e.localDecided,
+    e.evaluated, e.full, static_cast<long long>(wrong), static_cast<long long>(far));
   EXPECT_EQ(differ, 0) << name;
   EXPECT_EQ(wrong, 0) << name;
   EXPECT_GT(inside, g.count() / 50) << name; // the guard: the mesh encloses something
   if (!reorient) EXPECT_GT(far, 500) << name;
-  return e.fromCoarse;
+  return e;
 }
 } // namespace
 
@@ -364,7 +473,141 @@ TEST(MeshToSdfDipoleDecide, GpuDecisionEqualsCpuOnAFinerGrid)
 {
   int reoriented = 0, capsOverM = 0;
   const auto meshes = damagedMeshes();
-  EXPECT_GT(compareWithCpu(meshes[0].first, meshes[0].second, 80, reoriented, capsOverM), 0u);
+  EXPECT_GT(compareWithCpu(meshes[0].first, meshes[0].second, 80, reoriented, capsOverM).fromCoarse, 0u);
+}
+
+// The local step (dipoleLocalKernel's decision, run here on the CPU): the
+// damaged meshes decided with and without it, every voxel = the CPU (and
+// the oracle on far voxels) both ways; with it the voxels refined one by one
+// must fall and its intervals must decide voxels. With the pool cut to 5
+// blocks, the blocks beyond it go to the 2^3 balls as before: still = the CPU.
+TEST(MeshToSdfDipoleDecide, LocalStepDecidesWhatTheBallsLeave)
+{
+  int reoriented = 0, capsOverM = 0;
+  unsigned long long refinedOff = 0, refinedOn = 0, decidedOn = 0, blocksOn = 0, overflowCut = 0, failedOn = 0;
+  unsigned long long intervals = 0, passes = 0;
+  int index = 0;
+  for (const auto& [name, m] : damagedMeshes())
+  {
+    LocalStep off;
+    off.on = false;
+    const Emulated a = compareWithCpu(name, m, 36, reoriented, capsOverM, false, off);
+    LocalStep checked;
+    checked.checkIntervals = true;
+    const Emulated b = compareWithCpu(name, m, 36, reoriented, capsOverM, false, checked);
+    EXPECT_EQ(b.intervalMisses, 0u) << name; // every interval holds the exact s
+    intervals += b.intervalsChecked;
+    passes += b.local.calls;
+    EXPECT_EQ(a.localBlocks + a.localDecided, 0u) << name;
+    EXPECT_LE(b.evaluated, a.evaluated) << name;
+    EXPECT_EQ(b.localFailed, 0u) << name; // only a stack overflow fails a block (the near lists are summed when full)
+    failedOn += b.localFailed;
+    refinedOff += a.evaluated;
+    refinedOn += b.evaluated;
+    decidedOn += b.localDecided;
+    blocksOn += b.localBlocks;
+    if (index++ >= 3) continue; // the cut pool on the first meshes only (the test's time)
+    LocalStep cut;
+    cut.cap = 5;
+    const Emulated c = compareWithCpu(name, m, 36, reoriented, capsOverM, false, cut);
+    overflowCut += c.localOverflow;
+    EXPECT_LE(c.localBlocks, 5u) << name;
+  }
+  std::printf("[ local step ] voxels refined one by one: %llu without it, %llu with it; %llu blocks expanded (%llu failed), "
+              "%llu voxels decided by their intervals; %llu passes; %llu intervals checked against the exact s; pool of 5: %llu "
+              "blocks left to the 2^3 balls\n",
+    refinedOff, refinedOn, blocksOn, failedOn, decidedOn, passes, intervals, overflowCut);
+  EXPECT_GT(passes, blocksOn + blocksOn / 10); // later passes (their carried near sums) ran and were checked
+  EXPECT_GT(decidedOn, 0u);
+  EXPECT_LT(refinedOn * 2, refinedOff); // at least halved over the damaged meshes
+  EXPECT_GT(overflowCut, 0u);           // the cut pool was exercised
+}
+
+// dipoleLocalBlock's intervals against the long-double sum of the solid
+// angles (a soup of weight-2 triangles, blocks of 4^3 voxels near and inside
+// it, some clipped): every interval holds, a voxel reported decided avoids
+// the half-integers; with every cluster's error bound a hundredth of itself
+// (the negative control) some interval misses.
+TEST(MeshToSdfDipoleDecide, LocalStepIntervalsHoldAgainstLongDoubleSolidAngles)
+{
+  std::mt19937 rng(21);
+  std::uniform_real_distribution<double> u(-1, 1);
+  std::uniform_real_distribution<float> uf(-1, 1), sf(-0.1f, 0.1f);
+  std::vector<WeightedTri> tris(500);
+  TriangleMesh ref; // each triangle twice (weight 2)
+  for (auto& t : tris)
+  {
+    const float cx = uf(rng), cy = uf(rng), cz = 0.3f * uf(rng);
+    for (auto& v : t.v) v = V3{ cx + sf(rng), cy + sf(rng), cz + sf(rng) };
+    t.w = 2;
+    for (int copy = 0; copy < 2; ++copy)
+    {
+      const std::uint32_t b = static_cast<std::uint32_t>(ref.points.size());
+      for (const auto& v : t.v) ref.points.push_back({ static_cast<float>(v.x), static_cast<float>(v.y), static_cast<float>(v.z) });
+      ref.triangles.push_back({ b, b + 1, b + 2 });
+    }
+  }
+  const DipoleTree tree(tris);
+  const DipoleView D{ tree.nodes().data(), tree.tris().data(), static_cast<int>(tree.size()), tree.nodes()[0].mass };
+  long long checked = 0, misses = 0, decided = 0, reported = 0, missesScaled = 0;
+  for (int n = 0; n < 90; ++n)
+  {
+    const double h = n % 3 == 0 ? 0.01 : (n % 3 == 1 ? 0.04 : 0.1);
+    const V3 corner{ 1.4 * u(rng), 1.4 * u(rng), (n % 2 ? 0.3 : 1.2) * u(rng) };
+    DipoleLocalBlockVoxels X;
+    X.h = h;
+    X.x0 = 3;
+    for (int a = 0; a < 3; ++a) X.n[a] = n % 5 == 0 ? 1 + (n / 5 + a) % DipoleLocalEdge : DipoleLocalEdge;
+    const V3 rowOrigin = corner - V3{ 3 * h, 0, 0 };
+    for (int c = 0; c < X.n[2]; ++c)
+      for (int r = 0; r < X.n[1]; ++r) X.rowStart[r + DipoleLocalEdge * c] = rowOrigin + V3{ 0, r * h, c * h };
+    V3 centre;
+    double rho = 0;
+    dipoleBlockBall(corner, corner + V3{ (X.n[0] - 1) * h, (X.n[1] - 1) * h, (X.n[2] - 1) * h }, centre, rho);
+    for (const double scale : { 1.0, 0.01 })
+    {
+      double lo[DipoleLocalVoxels], hi[DipoleLocalVoxels];
+      std::vector<int> list(DipoleLocalNearCap);
+      const int k = dipoleLocalBlock(D, X, centre, rho, lo, hi, list.data(), scale);
+      ASSERT_GE(k, 0);
+      int avoid = 0;
+      for (int v = 0; v < DipoleLocalVoxels; ++v)
+      {
+        if (!X.has(v))
+        {
+          EXPECT_GT(lo[v], hi[v]); // no voxel there: no interval
+          continue;
+        }
+        ASSERT_LE(lo[v], hi[v]);
+        const V3 p = X.at(v);
+        ASSERT_LE(norm(p - centre), rho);
+        const double w = oracle::winding(ref, { p.x, p.y, p.z });
+        const bool miss = !(lo[v] <= w && w <= hi[v]);
+        if (scale == 1.0)
+        {
+          misses += miss;
+          avoid += avoidsHalfIntegers(lo[v], hi[v]);
+          ++checked;
+        }
+        else
+        {
+          missesScaled += miss;
+        }
+      }
+      if (scale == 1.0)
+      {
+        EXPECT_EQ(k, avoid); // the decided count is the voxels whose interval avoids the half-integers
+        decided += k;
+        reported += X.n[0] * X.n[1] * X.n[2];
+      }
+    }
+  }
+  std::printf("[ local step ] %lld voxel intervals checked, %lld misses, %lld of %lld decided; with a hundredth of the error: "
+              "%lld misses\n", checked, misses, decided, reported, missesScaled);
+  EXPECT_EQ(misses, 0);
+  EXPECT_GT(checked, 3000);
+  EXPECT_GT(decided, reported / 2);
+  EXPECT_GT(missesScaled, 0) << "the negative control: an error bound too small must miss somewhere";
 }
 
 // The work lists' index helpers: the blocks inside the parents of a level
@@ -470,7 +713,10 @@ TEST(MeshToSdfDipoleDecide, WorkCounts)
     {
       const GridGeometry g = fitGridToMesh(m, r, 2);
       const auto t0 = std::chrono::steady_clock::now();
-      const Emulated e = emulateGpu(w, g, std::getenv("LVDIF_DIPOLE_WORK_BLOCKS_ONLY") != nullptr);
+      LocalStep local; // LVDIF_CUDA_DIPOLE_LOCAL=0: without the local step, as the session
+      const char* localEnv = std::getenv("LVDIF_CUDA_DIPOLE_LOCAL");
+      local.on = !(localEnv && localEnv[0] == '0');
+      const Emulated e = emulateGpu(w, g, std::getenv("LVDIF_DIPOLE_WORK_BLOCKS_ONLY") != nullptr, false, local);
       const double sec = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
       const double n = static_cast<double>(g.count());
       std::printf("[ work ] %-9s %4d^3 %11lld voxels: %9llu blocks bounded (%9llu by coarse), %10llu voxels refined "
@@ -482,6 +728,10 @@ TEST(MeshToSdfDipoleDecide, WorkCounts)
         std::printf("[ work ]   blocks %2d^3: %.3g calls, %.3g nodes, %.3g triangles bounded, %.3g summed\n", DipoleEdges[l],
           static_cast<double>(e.blocks[l].calls), static_cast<double>(e.blocks[l].nodes),
           static_cast<double>(e.blocks[l].triBounds), static_cast<double>(e.blocks[l].tris));
+      std::printf("[ work ]   local step %s: %llu blocks of 4^3 (%llu failed), %llu voxels decided by them; "
+                  "%.3g nodes, %.3g triangle x voxel solid angles; SIMT (traversals a lane per block, sums a warp per block; per voxel) %.2f (walks %.2f)\n",
+        local.on ? "on" : "off", e.localBlocks, e.localFailed, e.localDecided, static_cast<double>(e.local.nodes),
+        static_cast<double>(e.local.tris), static_cast<double>(e.simtLocal) * 32 / n, static_cast<double>(e.simtLocalWalks) * 32 / n);
       std::printf("[ work ]   voxels: %.3g passes, %.3g nodes, %.3g triangles summed; SIMT (warp maxima, per voxel): "
                   "blocks %.2f, voxels %.2f; listed first: blocks %.2f, voxels %.2f; listed per pass: blocks %.2f, voxels %.2f\n",
         static_cast<double>(e.voxels.calls), static_cast<double>(e.voxels.nodes), static_cast<double>(e.voxels.tris),
