@@ -23,8 +23,6 @@
 #include "vtkProperty.h"
 #include "vtkRenderWindow.h"
 
-#include <cstdio>
-#include <cstdlib>
 #include "vtkRenderer.h"
 #include "vtkSTLWriter.h"
 #include "vtkUnsignedCharArray.h"
@@ -36,6 +34,7 @@
 #include <algorithm>
 #include <cctype>
 #include <cstdio>
+#include <cstdlib>
 #include <dlfcn.h>
 
 vtkSmartPointer<vtkPolyData> MeshVolume(const lvdif::DictionaryVolume& volume, lvdif::Interrupter& interrupter)
