@@ -22,7 +22,6 @@
 #include "vtkPolyDataMapper.h"
 #include "vtkProperty.h"
 #include "vtkRenderWindow.h"
-
 #include "vtkRenderer.h"
 #include "vtkSTLWriter.h"
 #include "vtkUnsignedCharArray.h"
