@@ -15,6 +15,10 @@
 #     bunny, every call with --trace; sub4's host phases by the working tree's
 #     bench_mesh_to_sdf_build (the old tree gets that file; where it does not
 #     compile against the old code, its rows are missing); CUDA = CPU on sub2.
+#   damaged: the winding sign of damaged armadillos (patch10, flip10,
+#     duprev20, patch30; the clean mesh in the same round) at 512^3 and
+#     1024^3, two rounds of opposite order, --trace; CUDA = CPU at 128^3 for
+#     each damage (the working tree).
 # AFTER_VARIANTS (optional, both focuses): space-separated environment
 # settings, each run as one more variant of the new build ("after:NAME=VALUE")
 # in the CUDA tests and the benchmarks, for the A/B of a switch.
@@ -33,7 +37,7 @@ L="$OUT/bench.log"
 . "$(dirname "$0")/gpu-common.sh"
 [ -f "$A" ] && [ -f "$BUNNY" ] || { echo "no meshes in $D"; exit 1; }
 [ -f "$BEFORE" ] || { echo "no tarball of the old code at $BEFORE"; exit 1; }
-case "$FOCUS" in distance | build) ;; *) echo "FOCUS is distance or build, not $FOCUS"; exit 1 ;; esac
+case "$FOCUS" in distance | build | damaged) ;; *) echo "FOCUS is distance, build or damaged, not $FOCUS"; exit 1 ;; esac
 gpu_begin
 mkdir -p /tmp/before && tar -xf "$BEFORE" -C /tmp/before
 BEFORE_TARGETS=bench_mesh_to_sdf
@@ -84,6 +88,27 @@ if [ "$FOCUS" = distance ]; then
   for e in ${AFTER_VARIANTS:-}; do bench "after:$e" 60 "$A" 128 pseudonormal auto bvh float 8 2 warm --check-cpu; done
   bench after 90 "sub4:$A" 1024 winding auto bvh volume 8 2 warm --trace
   grep -E "^## |^\| (cold|warm|prepared)|check|differ|^rc=[1-9]" "$L" | cut -c1-160 >> "$OUT/summary.txt"
+elif [ "$FOCUS" = damaged ]; then
+  DAMAGES="patch10 flip10 duprev20 patch30"
+  for N in 512 1024; do
+    ROUND=1
+    for v in $VARIANTS; do for d in clean $DAMAGES; do
+      m="$d:$A"; [ "$d" = clean ] && m=$A
+      bench "$v" 60 "$m" $N winding auto bvh volume 8 2 cold,warm --trace
+    done; done
+    ROUND=2
+    for v in $(reversed $VARIANTS); do for d in clean $DAMAGES; do
+      m="$d:$A"; [ "$d" = clean ] && m=$A
+      bench "$v" 60 "$m" $N winding auto bvh volume 8 2 cold,warm
+    done; done
+  done
+  ROUND=
+  for d in $DAMAGES; do bench after 40 "$d:$A" 128 winding auto bvh float 0 2 warm --check-cpu; done
+  grep -E "^## |^\| warm|^cpu check|local step|^rc=[1-9]" "$L" | cut -c1-200 >> "$OUT/summary.txt"
+  # one row per warm run: variant and round, mesh, grid, sign and end-to-end ms
+  awk -F'|' '/^## / { split($2, w, " "); for (i = 1; i <= length(w); ++i) if (w[i] ~ /bench_mesh_to_sdf$/) { m = w[i + 1]; n = w[i + 2] }
+      sub(/:.*/, "", m); if (m ~ /\//) m = "clean"; lab = substr($1, 4); next }
+    /^\| warm / { printf "DAMAGED %-10s %-9s %5s sign %9s e2e %9s\n", lab, m, n, $7, $9 }' "$L" | tee -a "$OUT/summary.txt"
 else
   # sub4 first (the open target), then sub2 and the bunny, then sub4 again in the other order
   ROUND=1
