@@ -17,8 +17,8 @@
 #     compile against the old code, its rows are missing); CUDA = CPU on sub2.
 #   damaged: the winding sign of damaged armadillos (patch10, flip10,
 #     duprev20, patch30; the clean mesh in the same round) at 512^3 and
-#     1024^3, two rounds of opposite order, --trace; CUDA = CPU at 128^3 for
-#     each damage (the working tree).
+#     1024^3, two rounds of opposite order, --trace; first CUDA = CPU at 128^3
+#     for each damage (the working tree).
 # AFTER_VARIANTS (optional, both focuses): space-separated environment
 # settings, each run as one more variant of the new build ("after:NAME=VALUE")
 # in the CUDA tests and the benchmarks, for the A/B of a switch.
@@ -90,20 +90,18 @@ if [ "$FOCUS" = distance ]; then
   grep -E "^## |^\| (cold|warm|prepared)|check|differ|^rc=[1-9]" "$L" | cut -c1-160 >> "$OUT/summary.txt"
 elif [ "$FOCUS" = damaged ]; then
   DAMAGES="patch10 flip10 duprev20 patch30"
-  for N in 512 1024; do
-    ROUND=1
-    for v in $VARIANTS; do for d in clean $DAMAGES; do
-      m="$d:$A"; [ "$d" = clean ] && m=$A
+  # CUDA = CPU first (the working tree), then the rounds: each at both grids, the second in the other order
+  for d in $DAMAGES; do bench after 40 "$d:$A" 128 winding auto bvh float 0 2 warm --check-cpu; done
+  for ROUND in 1 2; do
+    order=$VARIANTS
+    [ $ROUND = 2 ] && order=$(reversed $VARIANTS)
+    for N in 512 1024; do for v in $order; do for d in clean $DAMAGES; do
+      m="$d:$A"
+      [ "$d" = clean ] && m=$A
       bench "$v" 60 "$m" $N winding auto bvh volume 8 2 cold,warm --trace
-    done; done
-    ROUND=2
-    for v in $(reversed $VARIANTS); do for d in clean $DAMAGES; do
-      m="$d:$A"; [ "$d" = clean ] && m=$A
-      bench "$v" 60 "$m" $N winding auto bvh volume 8 2 cold,warm
-    done; done
+    done; done; done
   done
   ROUND=
-  for d in $DAMAGES; do bench after 40 "$d:$A" 128 winding auto bvh float 0 2 warm --check-cpu; done
   grep -E "^## |^\| warm|^cpu check|local step|^rc=[1-9]" "$L" | cut -c1-200 >> "$OUT/summary.txt"
   # one row per warm run: variant and round, mesh, grid, sign and end-to-end ms
   awk -F'|' '/^## / { split($2, w, " "); for (i = 1; i <= length(w); ++i) if (w[i] ~ /bench_mesh_to_sdf$/) { m = w[i + 1]; n = w[i + 2] }
@@ -135,4 +133,4 @@ else
   } >> "$OUT/summary.txt"
 fi
 echo "total $(( $(date +%s) - T0 )) s" | tee -a "$OUT/summary.txt"
-awk -F'|' '/^## / { print substr($0, 1, 120) } /^\| (cold|warm|prepared)/ { printf "  %-24s %-5s dist %9s  e2e %9s\n", $2, $3, $6, $9 }' "$L"
+[ "$FOCUS" = damaged ] || awk -F'|' '/^## / { print substr($0, 1, 120) } /^\| (cold|warm|prepared)/ { printf "  %-24s %-5s dist %9s  e2e %9s\n", $2, $3, $6, $9 }' "$L"
