@@ -63,7 +63,9 @@ struct Command
 
 const Command commands[] = {
   { "demo", CommandDemo, "demo [--out DIR] [--size N]   build, save, mesh and render the bundled example" },
-  { "info", CommandInfo, "info VOLUME.lvdv   describe a volume file (header, chunks, colours, metadata)" },
+  { "info", CommandInfo,
+    "info VOLUME.lvdv [--header-only]   describe a volume file (header, chunks, colours, metadata) after checking "
+    "every chunk; --header-only skips the chunks" },
   { "mesh", CommandMesh, "mesh VOLUME OUT.(ply|obj|stl|vtp) [--png OUT.png]   extract the surface of a volume" },
   { "convert", CommandConvert, "convert IN OUT   between .lvdv and the original's .bv" },
   { "mesh-to-sdf", CommandMeshToSdf,

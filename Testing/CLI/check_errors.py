@@ -48,6 +48,32 @@ with open(os.path.join(out, "junk.lvdv"), "wb") as f:
     f.write(b"not a volume file at all" * 10)
 code, err = run("info", os.path.join(out, "junk.lvdv"))
 assert code == 1 and err.count("\n") == 0, (code, err)
+# a volume whose header is sound but one chunk's payload has a flipped bit: `info`
+# checks every chunk (as `mesh` reads them) and fails naming the file and the chunk;
+# --header-only does not look at the payload and says so
+import struct  # noqa: E402
+small_script, small_vol = os.path.join(out, "small.lvs"), os.path.join(out, "small.lvdv")
+with open(small_script, "w") as f:
+    f.write("canvas 40\nradius 8\ndab 20 20 20\n")
+code, err = run("script", small_script, "--out", small_vol)
+assert code == 0, (code, err)
+r = subprocess.run([exe, "info", small_vol], capture_output=True, text=True, timeout=60)
+assert r.returncode == 0 and "every chunk's checksum" in r.stdout, r
+with open(small_vol, "rb") as f:
+    data = bytearray(f.read())
+table_offset = struct.unpack_from("<Q", data, len(data) - 32)[0]
+payloads = [struct.unpack_from("<QI", data, e) for e in range(table_offset, len(data) - 32, 24)]
+chunk, (at, size) = next((i, p) for i, p in enumerate(payloads) if p[1] > 0)
+data[at + size // 2] ^= 0x04
+damaged = os.path.join(out, "damaged.lvdv")
+with open(damaged, "wb") as f:
+    f.write(data)
+code, err = run("info", damaged)
+assert code == 1 and err == f"lvdif info: cannot read '{damaged}': chunk {chunk}: checksum mismatch (payload damaged)", (code, err)
+code, err = run("mesh", damaged, os.path.join(out, "damaged.ply"))
+assert code == 1 and f"chunk {chunk}: checksum mismatch" in err, (code, err)
+r = subprocess.run([exe, "info", damaged, "--header-only"], capture_output=True, text=True, timeout=60)
+assert r.returncode == 0 and "--header-only" in r.stdout, r
 # a mesh file that cannot be read names the file once, whatever the fault
 for name, data in (("empty.obj", b""), ("junk.ply", b"ply\nformat ascii 1.0\nelement vertex 4000000000\n"),
                    ("junk.stl", b"\x00" * 90), ("junk.off", b"OFF\n3 1 0\n0 0 0\n")):

@@ -206,6 +206,81 @@ void decodeChunk(ByteSource& src, const ParsedFile& pf, std::int64_t id, ZSTD_DC
     }
   }
 }
+
+/// Decodes and validates the chunks `wanted` (checksum, zstd frame, colour keys:
+/// decodeChunk) on OpenMP threads, into `volume`'s expanded chunks, or, with
+/// no volume (verifyVolume), into one scratch chunk per thread that is then
+/// dropped. Throws the first failure; a cancel throws Error(Cancelled).
+void decodeChunks(ByteSource& source, const ParsedFile& pf, const std::vector<std::int64_t>& wanted,
+  Interrupter& interrupter, DictionaryVolume* volume)
+{
+  const int edge = pf.header.options.chunkEdge;
+  const std::size_t voxels = static_cast<std::size_t>(edge) * edge * edge;
+  const std::uint64_t raw = voxels * sizeof(Voxel);
+  bool failed = false;
+  Error failure(ErrorCode::CorruptData, "");
+  std::int64_t done = 0;
+  const std::int64_t total = static_cast<std::int64_t>(wanted.size());
+#pragma omp parallel if (total > 16) // a thread team costs more than a few small chunks
+  {
+    ZSTD_DCtx* dctx = ZSTD_createDCtx();
+    std::vector<std::uint8_t> packed, planes(static_cast<size_t>(raw));
+    std::vector<Voxel> scratch(volume ? 0 : voxels);
+#pragma omp for schedule(dynamic, 4)
+    for (std::int64_t i = 0; i < total; ++i)
+    {
+      if (failed)
+      {
+        continue;
+      }
+      try
+      {
+        if (!dctx)
+        {
+          throw Error(ErrorCode::OutOfMemory, "cannot create a zstd decompression context");
+        }
+        const std::int64_t id = wanted[static_cast<size_t>(i)];
+        decodeChunk(source, pf, id, dctx, packed, planes, volume ? volume->expandChunk(id) : scratch.data());
+      }
+      catch (const Error& e)
+      {
+#pragma omp critical(lvdif_load_failure)
+        if (!failed)
+        {
+          failed = true;
+          failure = e;
+        }
+      }
+      catch (const std::exception& e)
+      {
+#pragma omp critical(lvdif_load_failure)
+        if (!failed)
+        {
+          failed = true;
+          failure = Error(ErrorCode::OutOfMemory, e.what());
+        }
+      }
+#pragma omp critical(lvdif_load_progress)
+      {
+        ++done;
+        if (interrupter.wasInterrupted())
+        {
+          failed = true;
+          failure = Error(ErrorCode::Cancelled, "operation cancelled");
+        }
+        else if ((done & 63) == 0)
+        {
+          interrupter.progress(static_cast<double>(done) / static_cast<double>(total));
+        }
+      }
+    }
+    ZSTD_freeDCtx(dctx);
+  }
+  if (failed)
+  {
+    throw failure; // the caller frees a partly filled volume
+  }
+}
 } // namespace
 
 VolumeFileInfo readVolumeInfo(ByteSource& source)
@@ -217,6 +292,30 @@ VolumeFileInfo readVolumeInfo(const std::string& path)
 {
   FileSource src(path);
   return readVolumeInfo(src);
+}
+
+VolumeFileInfo verifyVolume(ByteSource& source, Interrupter& interrupter)
+{
+  interrupter.start("verify volume");
+  ParsedFile pf = parse(source, memoryLimitBytes());
+  std::vector<std::int64_t> stored; // the chunks with a payload: all the table's checksums
+  for (std::size_t id = 0; id < pf.table.size(); ++id)
+  {
+    if (pf.table[id].size)
+    {
+      stored.push_back(static_cast<std::int64_t>(id));
+    }
+  }
+  decodeChunks(source, pf, stored, interrupter, nullptr);
+  interrupter.progress(1.0);
+  interrupter.end();
+  return pf.info;
+}
+
+VolumeFileInfo verifyVolume(const std::string& path, Interrupter& interrupter)
+{
+  FileSource src(path);
+  return verifyVolume(src, interrupter);
 }
 
 std::unique_ptr<DictionaryVolume> readVolume(
@@ -264,68 +363,7 @@ std::unique_ptr<DictionaryVolume> readVolume(
     volume->fillChunk(id, e.size ? volume->outsideVoxel() : unpackVoxel(e.uniform));
   }
 
-  bool failed = false;
-  Error failure(ErrorCode::CorruptData, "");
-  std::int64_t done = 0;
-  const std::int64_t total = static_cast<std::int64_t>(wanted.size());
-#pragma omp parallel if (total > 16) // a thread team costs more than a few small chunks
-  {
-    ZSTD_DCtx* dctx = ZSTD_createDCtx();
-    std::vector<std::uint8_t> packed, planes(static_cast<size_t>(raw));
-#pragma omp for schedule(dynamic, 4)
-    for (std::int64_t i = 0; i < total; ++i)
-    {
-      if (failed)
-      {
-        continue;
-      }
-      try
-      {
-        if (!dctx)
-        {
-          throw Error(ErrorCode::OutOfMemory, "cannot create a zstd decompression context");
-        }
-        const std::int64_t id = wanted[static_cast<size_t>(i)];
-        decodeChunk(source, pf, id, dctx, packed, planes, volume->expandChunk(id));
-      }
-      catch (const Error& e)
-      {
-#pragma omp critical(lvdif_load_failure)
-        if (!failed)
-        {
-          failed = true;
-          failure = e;
-        }
-      }
-      catch (const std::exception& e)
-      {
-#pragma omp critical(lvdif_load_failure)
-        if (!failed)
-        {
-          failed = true;
-          failure = Error(ErrorCode::OutOfMemory, e.what());
-        }
-      }
-#pragma omp critical(lvdif_load_progress)
-      {
-        ++done;
-        if (interrupter.wasInterrupted())
-        {
-          failed = true;
-          failure = Error(ErrorCode::Cancelled, "operation cancelled");
-        }
-        else if ((done & 63) == 0)
-        {
-          interrupter.progress(static_cast<double>(done) / static_cast<double>(total));
-        }
-      }
-    }
-    ZSTD_freeDCtx(dctx);
-  }
-  if (failed)
-  {
-    throw failure; // the partly filled volume is freed here
-  }
+  decodeChunks(source, pf, wanted, interrupter, volume.get());
   volume->takeDirtyChunks(); // a freshly read volume has nothing to re-mesh incrementally
   interrupter.progress(1.0);
   interrupter.end();

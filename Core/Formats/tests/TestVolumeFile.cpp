@@ -447,6 +447,53 @@ TEST(VolumeFileMalformed, FlippedBytesAnywhere)
   }
 }
 
+// `lvdif info` verifies a file without loading it: every damage the reader
+// finds in a payload, verifyVolume finds too, with the reader's message,
+// while readVolumeInfo (header, dictionaries, table) does not look there.
+TEST(VolumeFileMalformed, VerifyFindsPayloadDamageLikeTheReader)
+{
+  const Bytes b = smallFile();
+  {
+    MemorySource src(b.data(), b.size());
+    const VolumeFileInfo info = verifyVolume(src);
+    EXPECT_EQ(src.bytesRead(), b.size()); // every stored chunk was read
+    EXPECT_EQ(info.chunkCount, 12);
+  }
+  const std::size_t t = tableOffset(b);
+  const std::size_t dictEnd = kHeader + getLe(b, kColorCount, 4) * 4 + getLe(b, kMetaBytes, 8) + 8;
+  int damaged = 0;
+  for (std::size_t i = dictEnd; i < t; i += 5)
+  {
+    Bytes f = b;
+    f[i] ^= 0x01;
+    std::string readError;
+    try
+    {
+      fromBytes(f);
+    }
+    catch (const Error& e)
+    {
+      readError = e.what();
+    }
+    ASSERT_FALSE(readError.empty()) << "byte " << i;
+    MemorySource src(f.data(), f.size());
+    EXPECT_NO_THROW(readVolumeInfo(src)) << "byte " << i;
+    try
+    {
+      MemorySource again(f.data(), f.size());
+      verifyVolume(again);
+      ADD_FAILURE() << "byte " << i << " flipped: verifyVolume accepted it";
+    }
+    catch (const Error& e)
+    {
+      EXPECT_EQ(e.code(), ErrorCode::CorruptData);
+      EXPECT_EQ(std::string(e.what()), readError) << "byte " << i;
+    }
+    ++damaged;
+  }
+  EXPECT_GT(damaged, 10);
+}
+
 TEST(VolumeFileMalformed, CraftedHeadersAndTables)
 {
   const Bytes b = smallFile();

@@ -85,6 +85,13 @@ void saveVolume(const DictionaryVolume& volume, const std::string& path,
 VolumeFileInfo readVolumeInfo(ByteSource& source);
 VolumeFileInfo readVolumeInfo(const std::string& path);
 
+/// Reads the header, dictionaries and table, then checks every stored chunk
+/// the way readVolume does (checksum, zstd frame, colour keys), one chunk per
+/// thread in memory, never the whole volume. Throws Error(CorruptData) naming
+/// the first damaged part, Error(Cancelled) when interrupted.
+VolumeFileInfo verifyVolume(ByteSource& source, Interrupter& interrupter = nullInterrupter());
+VolumeFileInfo verifyVolume(const std::string& path, Interrupter& interrupter = nullInterrupter());
+
 /// Reads a volume (or the chunks overlapping options.region). Throws
 /// Error(CorruptData) for any invalid content, Error(OutOfMemory) when the
 /// volume would exceed the limit, Error(Cancelled) when interrupted.
