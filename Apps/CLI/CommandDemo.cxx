@@ -23,10 +23,10 @@ int CommandDemo(int argc, char** argv)
   args.allowOnly({ "out", "size" });
   const std::string out = args.get("out", "out");
   const long size = args.getInt("size", 128);
-  // before the output folder is made (it was left behind by a refused size)
-  if (size < 2 || size > lvdif::DictionaryVolume::MaxDimension)
-    throw lvdif::Error(lvdif::ErrorCode::InvalidArgument, "--size must be in [2, " +
-        std::to_string(lvdif::DictionaryVolume::MaxDimension) + "], not " + std::to_string(size));
+  // before the output folder is made: the editors' one smallest canvas
+  const std::string tooThin = lvdif::DictionaryVolume::checkCanvasDimensions({ size, size, size });
+  if (!tooThin.empty())
+    throw lvdif::Error(lvdif::ErrorCode::InvalidArgument, "--size " + std::to_string(size) + ": " + tooThin);
   ::mkdir(out.c_str(), 0755);
   CheckMeshOutput(out + "/demo.ply");
   CheckPngOutput(out + "/demo.png");

@@ -2,6 +2,7 @@
 
 #include "LVDIFFiles.h"
 #include "lvdif/ByteStream.h"
+#include "lvdif/DictionaryVolume.h"
 #include "lvdif/Error.h"
 
 #include <QCommandLineParser>
@@ -131,8 +132,12 @@ EditorOptions parseEditorOptions(const QStringList& arguments)
       o.newDims = { parts[0].toInt(), parts[0].toInt(), parts[0].toInt() };
     else if (parts.size() == 3)
       o.newDims = { parts[0].toInt(), parts[1].toInt(), parts[2].toInt() };
-    if (o.newDims[0] < 2 || o.newDims[1] < 2 || o.newDims[2] < 2)
-      fail("--new expects N or NXxNYxNZ with every size >= 2, got '" + p.value(create) + "'");
+    if (parts.size() != 1 && parts.size() != 3)
+      fail("--new expects N or NXxNYxNZ, got '" + p.value(create) + "'");
+    // the editors' one smallest canvas (a part that is not a number reads as 0)
+    const std::string tooThin = lvdif::DictionaryVolume::checkCanvasDimensions({ o.newDims[0], o.newDims[1], o.newDims[2] });
+    if (!tooThin.empty())
+      fail("--new " + p.value(create) + ": " + QString::fromStdString(tooThin));
   }
   o.fill = p.value(fill);
   if (o.fill != "empty" && o.fill != "full" && o.fill != "sphere")

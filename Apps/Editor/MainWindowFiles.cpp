@@ -36,7 +36,7 @@ void MainWindow::newDialog()
   for (int a = 0; a < 3; ++a)
   {
     sizes[a] = new QSpinBox(&dlg);
-    sizes[a]->setRange(8, 4096);
+    sizes[a]->setRange(static_cast<int>(lvdif::DictionaryVolume::MinCanvasDimension), 4096); // the editors' one smallest canvas
     sizes[a]->setValue(128);
     form->addRow(names[a], sizes[a]);
   }

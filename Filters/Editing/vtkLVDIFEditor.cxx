@@ -171,6 +171,9 @@ int vtkLVDIFEditor::NewVolume(int nx, int ny, int nz, bool filled)
   return this->Guard("NewVolume", [&] {
     lvdif::VolumeOptions o;
     o.dims = { nx, ny, nz };
+    // the editors' one rule, before the volume's own (wider) one
+    const std::string tooThin = lvdif::DictionaryVolume::checkCanvasDimensions(o.dims);
+    lvdif::require(tooThin.empty(), tooThin);
     o.chunkEdge = this->ChunkEdge;
     o.bandWidth = static_cast<float>(this->BandWidth);
     auto v = std::make_shared<lvdif::DictionaryVolume>(o);

@@ -437,11 +437,14 @@ struct ScriptRunner::Impl
     for (int i = 0; i < 3; ++i)
     {
       const double d = a.size() == 1 ? a[0] : a[static_cast<size_t>(i)];
-      if (!(d >= 1 && d <= double(DictionaryVolume::MaxDimension)) || d != std::floor(d))
-        fail(s.line, s.column, "canvas dimensions must be whole numbers in 1.." +
-            std::to_string(DictionaryVolume::MaxDimension));
-      dims[i] = static_cast<std::int64_t>(d);
+      if (d != std::floor(d)) // also NaN and infinities
+        fail(s.line, s.column, "canvas dimensions must be whole numbers");
+      // clamped only to convert; the range is the editors' one rule below
+      dims[i] = static_cast<std::int64_t>(std::max(-1.0, std::min(d, double(DictionaryVolume::MaxDimension) + 1)));
     }
+    const std::string tooThin = DictionaryVolume::checkCanvasDimensions(dims);
+    if (!tooThin.empty())
+      fail(s.line, s.column, tooThin);
     if (double(dims[0]) * double(dims[1]) * double(dims[2]) > double(this->Options.maxCanvasVoxels))
       fail(s.line, s.column, "canvas of " + std::to_string(dims[0]) + " x " + std::to_string(dims[1]) + " x " +
           std::to_string(dims[2]) + " voxels exceeds the limit of " + std::to_string(this->Options.maxCanvasVoxels));

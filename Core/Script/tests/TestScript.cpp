@@ -130,6 +130,15 @@ TEST(Script, RunTimeErrorsGiveLineAndColumn)
   EXPECT_EQ(w.detail, "no canvas: start with 'canvas N' (or attach a volume)");
   w = errorOf("canvas 100000 100000 100000");
   EXPECT_NE(w.detail.find("exceeds the limit"), std::string::npos);
+  // the editors' one smallest canvas (DictionaryVolume::checkCanvasDimensions), same words
+  w = errorOf("canvas 1 1 1");
+  EXPECT_EQ(w.detail, DictionaryVolume::checkCanvasDimensions({ 1, 1, 1 }));
+  EXPECT_NE(w.detail.find("each axis needs 2.."), std::string::npos) << w.detail;
+  w = errorOf("canvas 8 0 8");
+  EXPECT_EQ(w.detail, DictionaryVolume::checkCanvasDimensions({ 8, 0, 8 }));
+  w = errorOf("canvas 2.5");
+  EXPECT_EQ(w.detail, "canvas dimensions must be whole numbers");
+  EXPECT_EQ(errorOf("canvas 2 2 2").detail, "no error");
   w = errorOf("canvas 16\nradius -2");
   EXPECT_EQ(w.line, 2);
   EXPECT_EQ(w.detail, "radius must be > 0");

@@ -285,6 +285,38 @@ TEST(EditSession, SetVolumeKeepsTheBrushAndClearsHistory)
   EXPECT_EQ(s.volume().dims()[0], 48);
 }
 
+// The one smallest canvas of every editor: 2 voxels per axis (the session's
+// marching cubes needs a cell), refused with checkCanvasDimensions' message
+// (before, the mesher's own words); a refused setVolume keeps the session.
+TEST(EditSession, RefusesAVolumeThinnerThanTwoVoxelsAndKeepsItsOwn)
+{
+  lvdif::VolumeOptions o;
+  o.dims = { 8, 1, 8 };
+  o.chunkEdge = 8;
+  auto thin = std::make_shared<lvdif::DictionaryVolume>(o);
+  const std::string rule = lvdif::DictionaryVolume::checkCanvasDimensions(o.dims);
+  ASSERT_NE(rule, "");
+  try
+  {
+    lvdif::EditSession refused(thin, cpuOptions());
+    ADD_FAILURE() << "a session on an 8 x 1 x 8 volume";
+  }
+  catch (const lvdif::Error& e)
+  {
+    EXPECT_EQ(std::string(e.what()), rule);
+  }
+  lvdif::EditSession s(sphereVolume(32, 16), cpuOptions());
+  EXPECT_THROW(s.setVolume(thin), lvdif::Error);
+  EXPECT_EQ(s.volume().dims()[1], 32);
+  lvdif::Dab d;
+  d.center = { 16, 16, 26 };
+  d.radius = 4;
+  EXPECT_GT(s.dab(d).changedVoxels, 0); // the session still edits its volume
+  o.dims = { 2, 2, 2 };
+  EXPECT_EQ(lvdif::DictionaryVolume::checkCanvasDimensions(o.dims), "");
+  EXPECT_NO_THROW(lvdif::EditSession(std::make_shared<lvdif::DictionaryVolume>(o), cpuOptions()));
+}
+
 TEST(EditSession, AutoWithoutAGpuRunsOnTheCpuWithOneNotice)
 {
   if (lvdif::resolveDevice(lvdif::Device::Cuda) == lvdif::Device::Cuda)

@@ -154,6 +154,21 @@ GridGeometry gridOf(const VolumeOptions& options)
   return g;
 }
 
+std::string DictionaryVolume::checkCanvasDimensions(const Index3& dims)
+{
+  for (int a = 0; a < 3; ++a)
+  {
+    if (dims[a] < MinCanvasDimension || dims[a] > MaxDimension)
+    {
+      std::ostringstream msg;
+      msg << "a canvas of " << dims[0] << " x " << dims[1] << " x " << dims[2] << " voxels cannot be edited: each axis needs "
+          << MinCanvasDimension << ".." << MaxDimension << " voxels (marching cubes needs one cell per axis)";
+      return msg.str();
+    }
+  }
+  return "";
+}
+
 std::string DictionaryVolume::checkGeometry(const VolumeOptions& o)
 {
   for (int a = 0; a < 3; ++a)

@@ -118,6 +118,15 @@ public:
   static constexpr double MinSpacing = 1e-30;
   /// The rule above for these options; "" if they pass, else the reason.
   static std::string checkGeometry(const VolumeOptions& o);
+  /// The smallest volume an edit session (and so every editor front end: the
+  /// script's `canvas`, the Qt editor, vtkLVDIFEditor, `lvdif demo --size`)
+  /// takes, per axis: the session meshes its volume, and marching cubes needs
+  /// one cell, 2 points, per axis. Files may hold thinner volumes (they mesh to
+  /// nothing); only editing refuses them.
+  static constexpr std::int64_t MinCanvasDimension = 2;
+  /// "" if every axis is in [MinCanvasDimension, MaxDimension], else the one
+  /// message each front end reports.
+  static std::string checkCanvasDimensions(const Index3& dims);
 
   /// Creates an all-outside volume (every voxel +band, colour 0), or filled with
   /// `fill` when given. Validates the options and refuses absurd sizes before

@@ -13,6 +13,8 @@
 #include "vtkPointData.h"
 #include "vtkUnsignedCharArray.h"
 
+#include "lvdif/DictionaryVolume.h"
+
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -313,3 +315,23 @@ TEST(LVDIFEditor, SaveAndLoadRoundTrip)
   EXPECT_TRUE(snap(b) == snap(a));
   std::remove(path.c_str());
 }
+
+// The editors' one smallest canvas (2 voxels per axis: the session meshes its
+// volume), with the words of DictionaryVolume::checkCanvasDimensions that the
+// script, the Qt editor and `lvdif demo` report; a refused canvas keeps the volume.
+TEST(LVDIFEditor, NewVolumeRefusesAThinCanvasWithTheOneRule)
+{
+  vtkNew<vtkLVDIFEditor> ed;
+  ed->GlobalWarningDisplayOff();
+  ASSERT_EQ(ed->NewVolume(20, 20, 20, false), 1) << ed->GetLastError();
+  for (const lvdif::Index3& d : { lvdif::Index3{ 1, 1, 1 }, lvdif::Index3{ 20, 1, 20 }, lvdif::Index3{ 0, 5, 5 } })
+  {
+    EXPECT_EQ(ed->NewVolume(int(d[0]), int(d[1]), int(d[2]), false), 0);
+    EXPECT_EQ(std::string(ed->GetLastError()), "NewVolume: " + lvdif::DictionaryVolume::checkCanvasDimensions(d));
+    int dims[3];
+    ed->GetDimensions(dims);
+    EXPECT_EQ(dims[1], 20); // the previous canvas stays
+  }
+  EXPECT_EQ(ed->NewVolume(2, 2, 2, false), 1) << ed->GetLastError();
+}
+
