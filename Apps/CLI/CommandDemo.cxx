@@ -16,6 +16,7 @@
 #include <chrono>
 #include <cstdio>
 #include <sys/stat.h>
+#include <unistd.h>
 
 int CommandDemo(int argc, char** argv)
 {
@@ -27,22 +28,40 @@ int CommandDemo(int argc, char** argv)
   const std::string tooThin = lvdif::DictionaryVolume::checkCanvasDimensions({ size, size, size });
   if (!tooThin.empty())
     throw lvdif::Error(lvdif::ErrorCode::InvalidArgument, "--size " + std::to_string(size) + ": " + tooThin);
-  ::mkdir(out.c_str(), 0755);
-  CheckMeshOutput(out + "/demo.ply");
-  CheckPngOutput(out + "/demo.png");
+  // a folder this command makes is removed again if the command then fails
+  // (e.g. a --size over the memory limit, found only by the build)
+  const bool made = ::mkdir(out.c_str(), 0755) == 0;
+  const std::string plyPath = out + "/demo.ply", pngPath = out + "/demo.png", volumePath = out + "/demo.lvdv";
+  DemoResult demo;
+  vtkSmartPointer<vtkPolyData> mesh;
+  double tBuild = 0, tMesh = 0;
   ProgressBar progress;
   const auto t0 = std::chrono::steady_clock::now();
   auto seconds = [&] {
     return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   };
-
-  DemoResult demo = BuildDemoVolume(size, out, progress);
-  const double tBuild = seconds();
-  vtkSmartPointer<vtkPolyData> mesh = MeshVolume(*demo.volume, progress);
-  const double tMesh = seconds() - tBuild;
-  const std::string plyPath = out + "/demo.ply", pngPath = out + "/demo.png";
-  WriteMesh(mesh, plyPath);
-  RenderPng(mesh, pngPath);
+  try
+  {
+    CheckMeshOutput(plyPath);
+    CheckPngOutput(pngPath);
+    demo = BuildDemoVolume(size, out, progress);
+    tBuild = seconds();
+    mesh = MeshVolume(*demo.volume, progress);
+    tMesh = seconds() - tBuild;
+    WriteMesh(mesh, plyPath);
+    RenderPng(mesh, pngPath);
+  }
+  catch (...)
+  {
+    if (made)
+    {
+      // only the files this command writes (each saved atomically: none is partial); a
+      // folder someone else filled meanwhile is not emptied (rmdir fails on it)
+      for (const std::string& f : { volumePath, plyPath, pngPath }) ::unlink(f.c_str());
+      ::rmdir(out.c_str());
+    }
+    throw;
+  }
 
   const auto& d = demo.volume->dims();
   std::printf("LVDIF demo\n");

@@ -30,6 +30,8 @@ assert code == 1 and err.startswith("lvdif demo: --size") and "line" not in err,
 assert not __import__("os").path.exists(out + "-size0"), "demo --size 0 left its output folder"
 code, err = run("demo", "--size", "100000", "--out", out + "-size1e5")
 assert code == 1 and err.startswith("lvdif demo: --size 100000: ") and "line" not in err, (code, err)
+# a failure after the output folder was made (here the canvas limit) removes the folder it made
+assert not __import__("os").path.exists(out + "-size1e5"), "demo --size 100000 left its output folder"
 
 import os  # noqa: E402
 
