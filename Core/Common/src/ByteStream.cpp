@@ -214,17 +214,12 @@ struct Target
 
 Target prepareSave(const std::string& givenPath)
 {
-  if (givenPath.empty())
-  {
-    throw Error(ErrorCode::InvalidArgument, "cannot save: empty file name");
-  }
+  // the front ends' own early check, so that every save (vtkLVDIFEditor, the
+  // writers) names a missing folder as the CLI does, not the temporary file
+  requireWritable(givenPath);
   Target t;
   t.path = resolveLinks(givenPath);
   t.exists = ::stat(t.path.c_str(), &t.old) == 0;
-  if (t.exists && !S_ISREG(t.old.st_mode))
-  {
-    throw Error(ErrorCode::IoFailure, "cannot save over '" + givenPath + "': not a regular file");
-  }
   removeStaleTemps(t.path);
   return t;
 }

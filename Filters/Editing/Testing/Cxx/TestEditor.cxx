@@ -335,3 +335,15 @@ TEST(LVDIFEditor, NewVolumeRefusesAThinCanvasWithTheOneRule)
   EXPECT_EQ(ed->NewVolume(2, 2, 2, false), 1) << ed->GetLastError();
 }
 
+// SaveVolume into a missing folder names the folder (lvdif::requireWritable,
+// the CLI's output check), not the temporary file it could not create.
+TEST(LVDIFEditor, SaveVolumeIntoAMissingFolderNamesTheFolder)
+{
+  const std::string dir = "/nonexistent_lvdif_folder";
+  vtkNew<vtkLVDIFEditor> ed;
+  ed->GlobalWarningDisplayOff();
+  ASSERT_EQ(ed->NewVolume(16, 16, 16, false), 1);
+  EXPECT_EQ(ed->SaveVolume((dir + "/v.lvdv").c_str()), 0);
+  EXPECT_EQ(std::string(ed->GetLastError()),
+    "SaveVolume: cannot write '" + dir + "/v.lvdv': the folder '" + dir + "' does not exist");
+}
