@@ -7,11 +7,10 @@
 #include "vtkSparseDictionaryVolume.h"
 #include "vtkSparseVolumeToImage.h"
 
+#include "AlgorithmErrorsTestUtil.h"
+
 #include "vtkDictionaryVolumeToImage.h"
-#include "vtkCallbackCommand.h"
-#include "vtkCommand.h"
 #include "vtkDoubleArray.h"
-#include "vtkExecutive.h"
 #include "vtkFloatArray.h"
 #include "vtkImageData.h"
 #include "vtkNew.h"
@@ -197,17 +196,9 @@ TEST(VolumeEditFilter, RecordingPlaysBitExactlyLikeTheEditor)
 // was only the executive's "returned failure for request: REQUEST_DATA_OBJECT").
 TEST(VolumeEditFilter, NoInputIsOneClearError)
 {
-  vtkObject::GlobalWarningDisplayOn(); // ErrorEvent fires only with it on
-  std::vector<std::string> errors;
-  vtkNew<vtkCallbackCommand> cb;
-  cb->SetClientData(&errors);
-  cb->SetCallback([](vtkObject*, unsigned long, void* client, void* call) {
-    static_cast<std::vector<std::string>*>(client)->push_back(static_cast<const char*>(call));
-  });
   vtkNew<vtkVolumeEditFilter> f;
-  f->AddObserver(vtkCommand::ErrorEvent, cb);
-  f->GetExecutive()->AddObserver(vtkCommand::ErrorEvent, cb);
+  const AlgorithmErrors errors(f);
   f->Update();
-  ASSERT_EQ(errors.size(), 1u) << (errors.empty() ? "" : errors[0] + " / " + errors.back());
-  EXPECT_NE(errors[0].find("Input port 0"), std::string::npos) << errors[0];
+  ASSERT_EQ(errors.messages().size(), 1u) << errors.summary();
+  EXPECT_NE(errors.messages()[0].find("Input port 0"), std::string::npos) << errors.summary();
 }

@@ -4,9 +4,10 @@
 // chosen array and the filter mask, refuses non-float arrays, and aborts.
 #include "vtkSignVoxelFilter.h"
 
+#include "AlgorithmErrorsTestUtil.h"
+
 #include "vtkCallbackCommand.h"
 #include "vtkCommand.h"
-#include "vtkExecutive.h"
 #include "vtkFlyingEdges3D.h"
 #include "vtkPolyData.h"
 #include "vtkPolyDataConnectivityFilter.h"
@@ -320,17 +321,9 @@ TEST(vtkSignVoxelFilter, CheckboxesAreTheMaskBits)
 // with a dump of the request, not naming the input).
 TEST(vtkSignVoxelFilter, NoInputIsOneClearError)
 {
-  vtkObject::GlobalWarningDisplayOn(); // ErrorEvent fires only with it on
-  std::vector<std::string> errors;
-  vtkNew<vtkCallbackCommand> cb;
-  cb->SetClientData(&errors);
-  cb->SetCallback([](vtkObject*, unsigned long, void* client, void* call) {
-    static_cast<std::vector<std::string>*>(client)->push_back(static_cast<const char*>(call));
-  });
   vtkNew<vtkSignVoxelFilter> f;
-  f->AddObserver(vtkCommand::ErrorEvent, cb);
-  f->GetExecutive()->AddObserver(vtkCommand::ErrorEvent, cb);
+  const AlgorithmErrors errors(f);
   f->Update();
-  ASSERT_EQ(errors.size(), 1u) << (errors.empty() ? "" : errors[0] + " / " + errors.back());
-  EXPECT_NE(errors[0].find("Input port 0"), std::string::npos) << errors[0];
+  ASSERT_EQ(errors.messages().size(), 1u) << errors.summary();
+  EXPECT_NE(errors.messages()[0].find("Input port 0"), std::string::npos) << errors.summary();
 }
