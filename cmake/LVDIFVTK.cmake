@@ -14,7 +14,7 @@ find_package(VTK 9.1 REQUIRED COMPONENTS
   ImagingCore ImagingGeneral ImagingHybrid IOImage IOXML IOGeometry IOPLY IOLegacy
   InteractionStyle InteractionWidgets RenderingCore RenderingOpenGL2 RenderingUI RenderingFreeType
   RenderingAnnotation TestingCore TestingRendering ParallelCore
-  OPTIONAL_COMPONENTS GUISupportQt Python WrappingPythonCore)
+  OPTIONAL_COMPONENTS GUISupportQt Python WrappingPythonCore ParallelMPI)
 
 set(LVDIF_MODULE_FILES)
 foreach (area IN ITEMS Filters IO Rendering)

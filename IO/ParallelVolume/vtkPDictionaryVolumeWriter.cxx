@@ -63,12 +63,42 @@ void vtkPDictionaryVolumeWriter::PieceExtent(const int whole[6], int piece, int 
 
 int vtkPDictionaryVolumeWriter::Write()
 {
+  this->Agreed = false;
+  int written = 0;
   if (this->GetNumberOfInputConnections(0) < 1)
-    return this->Superclass::Write(); // VTK's "No input provided!"
-  this->SetErrorCode(vtkErrorCode::NoError);
-  if (!vtkLVDIFVolumeWriter::UpdateWholeInput(this) && this->GetErrorCode() == vtkErrorCode::NoError)
-    this->SetErrorCode(vtkErrorCode::UnknownError);
-  return this->GetErrorCode() == vtkErrorCode::NoError ? 1 : 0;
+    written = this->Superclass::Write(); // VTK's "No input provided!"
+  else
+  {
+    this->SetErrorCode(vtkErrorCode::NoError);
+    if (!vtkLVDIFVolumeWriter::UpdateWholeInput(this) && this->GetErrorCode() == vtkErrorCode::NoError)
+      this->SetErrorCode(vtkErrorCode::UnknownError);
+    written = this->GetErrorCode() == vtkErrorCode::NoError ? 1 : 0;
+  }
+  if (!this->Agreed && this->IsCollective())
+  {
+    // this rank's input failed upstream (WriteData never ran) or WriteData
+    // refused before the agreement: join it as a failed piece, and the
+    // barrier after it, or the other ranks wait for this one forever
+    this->AgreeOnPieces(0);
+    this->Controller->Barrier();
+    written = 0;
+  }
+  return written;
+}
+
+bool vtkPDictionaryVolumeWriter::IsCollective() const
+{
+  return this->Controller && this->Controller->GetNumberOfProcesses() == this->NumberOfPieces &&
+    this->NumberOfPieces > 1;
+}
+
+int vtkPDictionaryVolumeWriter::AgreeOnPieces(int ok)
+{
+  this->Agreed = true;
+  int all = ok;
+  if (this->IsCollective())
+    this->Controller->AllReduce(&ok, &all, 1, vtkCommunicator::MIN_OP);
+  return all;
 }
 
 // Ask the input for exactly this piece's extent (the one piece 0 lists in the index).
@@ -186,18 +216,12 @@ void vtkPDictionaryVolumeWriter::WriteData()
     : sparse                            ? (this->WritePiece(sparse, ext) ? 1 : 0)
                                         : (this->WritePiece(image, ext) ? 1 : 0);
 
-  vtkMultiProcessController* c = this->Controller;
-  const bool collective = c && c->GetNumberOfProcesses() == this->NumberOfPieces && this->NumberOfPieces > 1;
-  if (collective)
+  const int all = this->AgreeOnPieces(ok);
+  if (!all && ok)
   {
-    int all = 0;
-    c->AllReduce(&ok, &all, 1, vtkCommunicator::MIN_OP);
-    if (!all && ok)
-    {
-      vtkErrorMacro("another piece failed; the index is not written");
-    }
-    ok = all;
+    vtkErrorMacro("another piece failed; the index is not written");
   }
+  ok = all;
   if (ok && this->Piece == 0)
   {
     lvdifvtk::VolumeIndex index;
@@ -234,9 +258,9 @@ void vtkPDictionaryVolumeWriter::WriteData()
       ok = 0;
     }
   }
-  if (collective)
+  if (this->IsCollective())
   {
-    c->Barrier(); // the index and every piece exist when Write() returns on any rank
+    this->Controller->Barrier(); // the index and every piece exist when Write() returns on any rank
   }
   if (!ok)
   {

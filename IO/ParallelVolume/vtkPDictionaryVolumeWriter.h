@@ -19,6 +19,9 @@
  * (the index is written only if every piece was) and wait for each other, so
  * the index is complete when Write() returns. Without one (serial, or a test
  * calling Write for each piece in turn), pieces are written independently.
+ * A rank whose input fails upstream (WriteData never runs there) or that
+ * refuses its settings still joins the agreement, as a failed piece: every
+ * rank's Write() then returns 0, none waits for it.
  *
  * vtkPDictionaryVolumeReader reads the index (only the pieces overlapping its
  * update extent).
@@ -100,6 +103,12 @@ protected:
   vtkMultiProcessController* Controller = nullptr;
 
 private:
+  /// Whether the ranks of the Controller write one piece each (collectively).
+  bool IsCollective() const;
+  /// The all-reduce of every rank's success (the minimum); the first of the
+  /// two collective calls of a write, the barrier the second.
+  int AgreeOnPieces(int ok);
+  bool Agreed = false; // this Write() reached AgreeOnPieces
   bool WritePiece(vtkImageData* image, const int extent[6]);
   bool WritePiece(vtkSparseDictionaryVolume* sparse, const int extent[6]);
   vtkPDictionaryVolumeWriter(const vtkPDictionaryVolumeWriter&) = delete;

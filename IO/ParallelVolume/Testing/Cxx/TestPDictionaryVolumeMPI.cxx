@@ -1,0 +1,90 @@
+// Under `mpirun -np 2`: the ranks of a .lvdvp write agree on success even when
+// one rank's input fails upstream (its WriteData never runs). Before, the
+// other rank waited in the all-reduce for it forever (the test timed out).
+// Also the good case: both pieces and the index are written.
+#include "vtkDictionaryVolumeReader.h"
+#include "vtkMPIController.h"
+#include "vtkNew.h"
+#include "vtkPDictionaryVolumeWriter.h"
+
+#include "lvdif/DictionaryVolume.h"
+#include "lvdif/VolumeFile.h"
+
+#include <cstdio>
+#include <string>
+#include <sys/stat.h>
+
+namespace
+{
+bool exists(const std::string& path)
+{
+  struct stat st;
+  return ::stat(path.c_str(), &st) == 0;
+}
+
+/// Every rank writes its piece of `index` from `input`; returns Write()'s answer.
+int writePieces(vtkMultiProcessController* c, const std::string& input, const std::string& index)
+{
+  vtkNew<vtkDictionaryVolumeReader> reader;
+  reader->SetFileName(input.c_str());
+  vtkNew<vtkPDictionaryVolumeWriter> writer;
+  writer->SetInputConnection(reader->GetOutputPort());
+  writer->SetFileName(index.c_str());
+  writer->SetController(c);
+  writer->SetNumberOfPieces(c->GetNumberOfProcesses());
+  writer->SetPiece(c->GetLocalProcessId());
+  return writer->Write();
+}
+}
+
+int main(int argc, char* argv[])
+{
+  vtkNew<vtkMPIController> c;
+  c->Initialize(&argc, &argv);
+  vtkMultiProcessController::SetGlobalController(c);
+  const int rank = c->GetLocalProcessId();
+  int failures = 0;
+  auto check = [&](bool ok, const char* what) {
+    if (!ok)
+    {
+      std::fprintf(stderr, "rank %d: FAIL %s\n", rank, what);
+      ++failures;
+    }
+  };
+  if (argc < 2 || c->GetNumberOfProcesses() != 2)
+  {
+    std::fprintf(stderr, "usage: mpirun -np 2 %s DIR\n", argv[0]);
+    c->Finalize();
+    return 1;
+  }
+  const std::string dir = argv[1];
+  const std::string good = dir + "/mpi_input.lvdv", missing = dir + "/mpi_missing.lvdv";
+  const std::string okIndex = dir + "/mpi_ok.lvdvp", failedIndex = dir + "/mpi_failed.lvdvp";
+  if (rank == 0)
+  {
+    ::mkdir(dir.c_str(), 0755);
+    std::remove(okIndex.c_str());
+    std::remove(failedIndex.c_str());
+    std::remove(missing.c_str());
+    lvdif::VolumeOptions o;
+    o.dims = { 24, 20, 16 };
+    o.chunkEdge = 8;
+    lvdif::saveVolume(lvdif::DictionaryVolume(o), good);
+  }
+  c->Barrier();
+
+  check(writePieces(c, good, okIndex) == 1, "both inputs good: Write() answers 1");
+  check(exists(okIndex), "both inputs good: the index exists");
+
+  // rank 1's reader fails (no such file): both ranks return, with 0, and no index
+  vtkObject::GlobalWarningDisplayOff(); // the expected reader error, once per run is enough
+  check(writePieces(c, rank == 1 ? missing : good, failedIndex) == 0, "one input failed: Write() answers 0");
+  check(!exists(failedIndex), "one input failed: no index");
+
+  int all = 0;
+  c->AllReduce(&failures, &all, 1, vtkCommunicator::SUM_OP);
+  if (rank == 0 && all == 0)
+    std::printf("PDictionaryVolume MPI OK\n");
+  c->Finalize();
+  return all == 0 ? 0 : 1;
+}
