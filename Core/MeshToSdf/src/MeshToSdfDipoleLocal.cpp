@@ -17,10 +17,28 @@ namespace
 /// many solid angles (its value, three edges' fields, the closest point), so
 /// it is taken only where more voxels than that are open.
 constexpr int TriangleTaylorWork = 4;
+/// The running error is a sum of bounds added and subtracted as terms come
+/// and go: one term far above the rest (a cluster whose ball nearly touches
+/// the block's: A / d^2 with d tiny, finite) absorbs the others in floating
+/// point, and when it is subtracted their errors are lost (the sum may even
+/// turn negative). Such a sum's rounding is at most (operations, < 3 terms)
+/// x eps x its largest value since it was last summed afresh. localInterval's
+/// slack, 1e-12 x terms x (err + the terms' size bound mag), covers that
+/// while the peak is at most 1024 x (err + mag): 3 x 1.2e-16 x 1024 < 1e-12.
+/// Beyond (a term whose error bound far exceeds its size bound, which only
+/// such a nearly touching cluster has) the sum is taken afresh from the
+/// live terms: rarely, as mag keeps every term's size, closed ones too.
+constexpr double ErrPeakRatio = 1024;
 } // namespace
 
+void LocalBoundsCounts::add(const LocalBoundsCounts& o)
+{
+  this->triangleTaylors += o.triangleTaylors;
+  this->exactSolidAngles += o.exactSolidAngles;
+}
+
 int localBounds(const DipoleTree& tree, V3 centre, double rho, const V3* pts, int n, double* lo, double* hi,
-  std::int64_t budget, const std::vector<std::int32_t>* start, double remainderScale, std::int64_t* triangleTaylors)
+  std::int64_t budget, const std::vector<std::int32_t>* start, double remainderScale, LocalBoundsCounts* counts)
 {
   for (int i = 0; i < n; ++i)
   {
@@ -81,10 +99,16 @@ int localBounds(const DipoleTree& tree, V3 centre, double rho, const V3* pts, in
   directMag.assign(static_cast<std::size_t>(n), 0.0);
   open.resize(static_cast<std::size_t>(n));
   for (int i = 0; i < n; ++i) open[static_cast<std::size_t>(i)] = i;
+  LocalBoundsCounts count;
   LocalPoly poly;            // the far clusters' expansions summed
   double err = 0, mag = 0;   // their error over the ball; a bound of their terms (rounding slack)
+  double errPeak = 0;        // err's largest value since it was last summed afresh
   int unbounded = 0, decided = 0;
   std::int64_t work = 0, terms = 0;
+  auto addErr = [&](double e) {
+    err += e;
+    errPeak = std::max(errPeak, err);
+  };
   // id >= 0: a node of the tree; id = -(t + 1): triangle t of a leaf on its
   // own, a cluster about its centroid (second-order term 0, radius its
   // farthest vertex), so a leaf too near for its own expansion is first
@@ -103,7 +127,7 @@ int localBounds(const DipoleTree& tree, V3 centre, double rho, const V3* pts, in
     o.err = clusterLocalError(nd, r0, rho, o.order, remainderScale);
     if (std::isfinite(o.err))
     {
-      err += o.err;
+      addErr(o.err);
       mag += clusterLocalMag(nd, r0 - rho, rho);
       if (o.order > 0)
       {
@@ -130,6 +154,18 @@ int localBounds(const DipoleTree& tree, V3 centre, double rho, const V3* pts, in
     err -= o.err; // mag keeps the closed terms: their rounding stays in the sums
     if (o.order > 0) poly.add(o.poly, -1);
   };
+  // the running error summed afresh from the live terms (the heap's) where
+  // its peak passed ErrPeakRatio x what the slack scales with (see there)
+  auto resum = [&] {
+    if (errPeak <= ErrPeakRatio * (err + std::fabs(mag))) return;
+    err = 0;
+    for (const Key& key : heap)
+    {
+      const Open& o = pool[static_cast<std::size_t>(key.slot)];
+      if (std::isfinite(o.err)) err += o.err;
+    }
+    errPeak = err;
+  };
   if (start && !start->empty())
     for (const std::int32_t id : *start) visit(id);
   else
@@ -138,6 +174,7 @@ int localBounds(const DipoleTree& tree, V3 centre, double rho, const V3* pts, in
   // error has halved (a check costs a quadratic per point)
   double checkAt = std::numeric_limits<double>::infinity(), checkedErr = checkAt;
   auto check = [&] {
+    resum();
     std::size_t kept = 0;
     for (const int i : open)
     {
@@ -170,8 +207,8 @@ int localBounds(const DipoleTree& tree, V3 centre, double rho, const V3* pts, in
       double dist = 0;
       const double e = open.size() > TriangleTaylorWork ? triangleTaylorError(centre, rho, tri, dist, remainderScale) : HUGE_VAL;
       ++work;
-      // and only a bound below 4 pi: a huge one added to the running error and
-      // subtracted again would wipe out the other terms' errors (absorption)
+      // and only a bound below 4 pi: a wider one cannot decide a point (its
+      // interval is wider than 1), and it would only delay the exact sum
       if (!(e < top.err && e < FourPi))
       {
         top.kind = NoTaylor;
@@ -182,12 +219,12 @@ int localBounds(const DipoleTree& tree, V3 centre, double rho, const V3* pts, in
         close(pool[static_cast<std::size_t>(slot)]);
         double tmag = 0;
         Open t{ e, top.node, 3, triangleTaylor(centre, rho, tri.v[0], tri.v[1], tri.v[2], tri.w, tmag), Taylor };
-        err += e;
+        addErr(e);
         mag += tmag;
         poly.add(t.poly, 1);
         work += TriangleTaylorWork;
         ++terms;
-        if (triangleTaylors) ++*triangleTaylors;
+        ++count.triangleTaylors;
         pool[static_cast<std::size_t>(slot)] = t; // the same slot, its key lowered:
         // sifted down from the root in place (a pop and a push cost twice that:
         // 11 % of patch30's samples at 256^3)
@@ -244,9 +281,12 @@ int localBounds(const DipoleTree& tree, V3 centre, double rho, const V3* pts, in
       }
       ++terms;
     }
-    work += static_cast<std::int64_t>(nd.count) * static_cast<std::int64_t>(open.size());
+    const std::int64_t summed = static_cast<std::int64_t>(nd.count) * static_cast<std::int64_t>(open.size());
+    work += summed;
+    count.exactSolidAngles += summed;
     if (heap.empty()) err = 0; // nothing bounded left: drop the rounding of the running error
   }
+  if (counts) counts->add(count);
   return decided;
 }
 

@@ -509,10 +509,16 @@ LVDIF_HD int dipoleLocalBlock(const DipoleView& D, const DipoleLocalBlockVoxels&
 /// centre where that bound is tighter (triangleTaylor,
 /// MeshToSdfTriangleLocal.h), and summed exactly only when opened again.
 /// remainderScale multiplies the Taylor remainders (only a test sets it
-/// below 1); triangleTaylors (optional) counts the triangles so expanded.
+/// below 1); counts (optional) is added to.
+struct LocalBoundsCounts
+{
+  std::int64_t triangleTaylors = 0;  // triangles expanded about the centre
+  std::int64_t exactSolidAngles = 0; // triangle x point solid angles summed exactly
+  void add(const LocalBoundsCounts& o);
+};
 int localBounds(const DipoleTree& tree, V3 centre, double rho, const V3* pts, int n, double* lo, double* hi,
   std::int64_t budget, const std::vector<std::int32_t>* start = nullptr, double remainderScale = 1,
-  std::int64_t* triangleTaylors = nullptr);
+  LocalBoundsCounts* counts = nullptr);
 
 
 } // namespace detail::meshtosdf

@@ -3,6 +3,7 @@
 // sign pass, on OpenMP threads with progress and cancellation.
 #include "MeshToSdfEngine.h"
 
+#include "MeshToSdfDipoleLocal.h"
 #include "MeshToSdfNearest.h"
 #include "lvdif/Memory.h"
 
@@ -11,6 +12,7 @@
 #include <algorithm>
 #include <atomic>
 #include <cmath>
+#include <cstdio>
 #include <exception>
 #include <mutex>
 #include <string>
@@ -467,6 +469,7 @@ void computeBox(const Engine& e, const VoxelBox& box, float* out, MeshToSdfStats
   std::vector<std::int32_t> voxelSlot;
   std::vector<double> voxelPool;
   std::mutex voxelPoolLock;
+  LocalBoundsCounts localCounts; // summed under voxelPoolLock, traced
   if (e.winding->hasCorrection(reorient))
   {
     blockLo.assign(static_cast<std::size_t>(bx * by * bz), 1.0);
@@ -511,8 +514,10 @@ void computeBox(const Engine& e, const VoxelBox& box, float* out, MeshToSdfStats
       const int n = static_cast<int>(pts.size());
       lo.resize(pts.size());
       hi.resize(pts.size());
-      e.winding->boundCorrectionAt(centre, rho, pts.data(), n, lo.data(), hi.data(), reorient, start);
+      LocalBoundsCounts counts;
+      e.winding->boundCorrectionAt(centre, rho, pts.data(), n, lo.data(), hi.data(), reorient, start, &counts);
       const std::lock_guard<std::mutex> lock(voxelPoolLock); // one append per 4^3 block
+      localCounts.add(counts);
       for (int v = 0; v < n; ++v)
       {
         const std::size_t f = static_cast<std::size_t>(at[static_cast<std::size_t>(v)] / 8);
@@ -576,6 +581,11 @@ void computeBox(const Engine& e, const VoxelBox& box, float* out, MeshToSdfStats
     }
   }
   trace("winding: block bounds of the correction s", now() - t0);
+  if (tracePhasesActive() && !voxelSlot.empty())
+    std::fprintf(stderr,
+      "[mesh to SDF] winding: local bounds: %lld triangles expanded about a block's centre, %lld exact solid "
+      "angles (triangle x voxel)\n",
+      static_cast<long long>(localCounts.triangleTaylors), static_cast<long long>(localCounts.exactSolidAngles));
   const double tr = now();
   std::atomic<std::int64_t> evals{ 0 }, exact{ 0 }, fullSums{ 0 };
   forRows(box, intr, progressBase + 0.5 * progressSpan, 0.5 * progressSpan,

@@ -93,6 +93,7 @@ struct NearestResult
 };
 
 class BvhSubtreeNodes; // MeshToSdfBvh.cpp
+struct LocalBoundsCounts; // MeshToSdfDipoleLocal.h
 
 /// Binary BVH over the triangles (median split on the longest axis of the
 /// centroid bounds, leaves of at most 4), built in parallel: a function of
@@ -242,9 +243,10 @@ public:
   /// faces summed at each point (localBounds, MeshToSdfDipoleLocal.h),
   /// refined until each lies inside (m - 1/2, m + 1/2) or a work budget per
   /// point is spent. Returns how many are so decided; start: a cut to begin
-  /// from (the block's own failed ball bound's).
+  /// from (the block's own failed ball bound's); counts (optional): what
+  /// the expansion took, added to.
   int boundCorrectionAt(V3 centre, double rho, const V3* pts, int n, double* lo, double* hi, bool reoriented,
-    const std::vector<std::int32_t>* start = nullptr) const;
+    const std::vector<std::int32_t>* start = nullptr, LocalBoundsCounts* counts = nullptr) const;
   /// Exact winding number at p by a ray in a fixed oblique direction; the
   /// sum of all solid angles if that ray is ambiguous. reoriented: of M+
   /// (every component consistently oriented, exact duplicates once) instead

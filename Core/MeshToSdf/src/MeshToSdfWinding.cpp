@@ -494,11 +494,11 @@ bool WindingSigner::boundCorrection(V3 q, double rho, double& lo, double& hi, st
 }
 
 int WindingSigner::boundCorrectionAt(V3 centre, double rho, const V3* pts, int n, double* lo, double* hi,
-  bool reoriented, const std::vector<std::int32_t>* start) const
+  bool reoriented, const std::vector<std::int32_t>* start, LocalBoundsCounts* counts) const
 {
   const DipoleTree* s = this->correction(reoriented);
   if (!s) return 0;
-  return localBounds(*s, centre, rho, pts, n, lo, hi, LocalBudgetPerPoint * n, start);
+  return localBounds(*s, centre, rho, pts, n, lo, hi, LocalBudgetPerPoint * n, start, 1, counts);
 }
 
 void WindingSigner::signRow(V3 rowStart, double h, std::int64_t n, float* out, std::int64_t& evaluations,

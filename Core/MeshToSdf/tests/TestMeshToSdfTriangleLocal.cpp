@@ -9,7 +9,9 @@
 // winding number on soups where it takes many of them.
 #include "../src/MeshToSdfDipoleLocal.h"
 #include "../src/MeshToSdfDipoleTree.h"
+#include "../src/MeshToSdfInternal.h"
 #include "../src/MeshToSdfTriangleLocal.h"
+#include "MeshToSdfDamagedMeshes.h"
 
 #include <gtest/gtest.h>
 
@@ -109,9 +111,10 @@ TEST(MeshToSdfTriangleLocal, TaylorOfATriangleHoldsOverItsBall)
 // Taylor expansions are taken): every interval holds against the long-double
 // winding number, and with an unlimited budget every point is decided. A
 // third of the balls just clear a triangle, whose Taylor bound is then huge:
-// taken, it would be added to the running error and subtracted again, wiping
-// out the other terms' errors (without the cap on such bounds, 3,600 of these
-// 10,800 intervals missed).
+// added to the running error and subtracted again, it wiped out the other
+// terms' errors (3,600 of these 10,800 intervals missed before such bounds
+// were capped at 4 pi; the running error is now summed afresh too, see
+// RunningErrorSurvivesAHugeTerm).
 TEST(MeshToSdfTriangleLocal, LocalBoundsWithTriangleTaylorHold)
 {
   std::mt19937 rng(22);
@@ -130,7 +133,8 @@ TEST(MeshToSdfTriangleLocal, LocalBoundsWithTriangleTaylorHold)
     for (const auto& t : soup) s += t.w * solidAngleLong(p, t.v[0], t.v[1], t.v[2]);
     return static_cast<double>(s / (4 * 3.14159265358979323846264338327950288L));
   };
-  std::int64_t checked = 0, misses = 0, decided = 0, points = 0, taylors = 0;
+  std::int64_t checked = 0, misses = 0, decided = 0, points = 0;
+  LocalBoundsCounts counts;
   for (int n = 0; n < 150; ++n)
   {
     const V3 c0{ 1.6 * u(rng), 1.6 * u(rng), (n % 2 ? 0.4 : 1.2) * u(rng) };
@@ -149,7 +153,7 @@ TEST(MeshToSdfTriangleLocal, LocalBoundsWithTriangleTaylorHold)
       for (std::size_t p = 0; p < pts.size(); ++p) wl[p] = windingLong(pts[p]);
       std::vector<double> lo(pts.size()), hi(pts.size());
       const int k = localBounds(tree, c, rho, pts.data(), static_cast<int>(pts.size()), lo.data(), hi.data(), 1000000,
-        nullptr, 1, &taylors);
+        nullptr, 1, &counts);
       for (std::size_t p = 0; p < pts.size(); ++p)
       {
         misses += lo[p] > wl[p] || hi[p] < wl[p];
@@ -161,8 +165,144 @@ TEST(MeshToSdfTriangleLocal, LocalBoundsWithTriangleTaylorHold)
   }
   std::printf("[ local bounds, triangle Taylor ] %lld points checked, %lld misses, %lld of %lld decided, %lld triangles expanded\n",
     static_cast<long long>(checked), static_cast<long long>(misses), static_cast<long long>(decided),
-    static_cast<long long>(points), static_cast<long long>(taylors));
+    static_cast<long long>(points), static_cast<long long>(counts.triangleTaylors));
   EXPECT_EQ(misses, 0) << "of " << checked;
   EXPECT_EQ(decided, points);
-  EXPECT_GT(taylors, 1000); // the expansions were taken
+  EXPECT_GT(counts.triangleTaylors, 1000); // the expansions were taken
+}
+
+namespace
+{
+/// The 4^3 voxels of edge h about c (as the engine's blocks: offsets +-h/2, +-3h/2).
+std::vector<V3> block4(V3 c, double h)
+{
+  std::vector<V3> pts;
+  for (int z = 0; z < 4; ++z)
+    for (int y = 0; y < 4; ++y)
+      for (int x = 0; x < 4; ++x) pts.push_back(c + h * V3{ x - 1.5, y - 1.5, z - 1.5 });
+  return pts;
+}
+} // namespace
+
+// localBounds on the damaged test meshes' corrections s (WindingSigner's
+// dipole tree): 4^3 blocks of a 64^3 grid's voxels next to the corrected
+// faces and deep inside, the engine's budget. Every interval holds against
+// DipoleTree::exact, and triangles are expanded about the centre. The
+// negative control: with the remainders scaled to 1e-4 some intervals miss
+// (an interval is only as tight as its voxel's margin needs, so only voxels
+// near a half-integer can show it).
+TEST(MeshToSdfTriangleLocal, LocalBoundsHoldOnDamagedMeshes)
+{
+  const auto meshes = oracle::damagedMeshes();
+  std::int64_t missesScaledAll = 0;
+  for (const char* name : { "patch10", "patch30", "flip10", "duprev20" })
+  {
+    const TriangleMesh* m = nullptr;
+    for (const auto& [n, mesh] : meshes)
+      if (n == name) m = &mesh;
+    ASSERT_NE(m, nullptr) << name;
+    const PreparedMesh prepared = prepareMesh(*m);
+    const WindingSigner w(prepared);
+    const DipoleTree* s = w.cpuCorrection();
+    ASSERT_NE(s, nullptr) << name;
+    std::mt19937 rng(24);
+    std::uniform_real_distribution<double> u(-1, 1);
+    const double h = 2.6 / 64;
+    LocalBoundsCounts counts;
+    std::int64_t checked = 0, misses = 0, missesScaled = 0, decided = 0;
+    for (int b = 0; b < 60; ++b)
+    {
+      V3 c{ 0.8 * u(rng), 0.8 * u(rng), 0.8 * u(rng) }; // deep inside
+      if (b % 2 == 0)
+      {
+        // next to a corrected face: 0 to 4 voxels off its centroid
+        const WeightedTri& t = s->tris()[static_cast<std::size_t>(rng() % s->tris().size())];
+        c = (1.0 / 3.0) * (t.v[0] + t.v[1] + t.v[2]) + 4 * h * std::fabs(u(rng)) * randomUnit(rng);
+      }
+      const std::vector<V3> pts = block4(c, h);
+      const double rho = std::sqrt(3.0) * 1.5 * h * (1 + 1e-9);
+      std::vector<double> lo(64), hi(64), loS(64), hiS(64);
+      decided += localBounds(*s, c, rho, pts.data(), 64, lo.data(), hi.data(), 64000, nullptr, 1, &counts);
+      localBounds(*s, c, rho, pts.data(), 64, loS.data(), hiS.data(), 64000, nullptr, 1e-4);
+      for (std::size_t i = 0; i < pts.size(); ++i)
+      {
+        const double ex = s->exact(pts[i]);
+        misses += lo[i] > ex || hi[i] < ex;
+        missesScaled += loS[i] > ex || hiS[i] < ex;
+        ++checked;
+      }
+    }
+    std::printf("[ local bounds, %s ] %lld points, %lld misses, %lld with the remainders scaled to 1e-4; %lld decided; "
+                "%lld triangles expanded, %lld exact solid angles\n",
+      name, static_cast<long long>(checked), static_cast<long long>(misses), static_cast<long long>(missesScaled),
+      static_cast<long long>(decided), static_cast<long long>(counts.triangleTaylors),
+      static_cast<long long>(counts.exactSolidAngles));
+    EXPECT_EQ(misses, 0) << name;
+    EXPECT_GT(counts.triangleTaylors, 0) << name;
+    missesScaledAll += missesScaled;
+  }
+  EXPECT_GT(missesScaledAll, 0) << "the negative control: remainders scaled to 1e-4 must miss somewhere";
+}
+
+// The running error of localBounds is a sum of bounds added and subtracted:
+// a term of 1e30 (a triangle whose cluster ball all but touches the block's)
+// entering absorbs the other terms' errors, and leaving (its own Taylor
+// polynomial taken instead) it left the sum at 0, the others' errors lost:
+// intervals too narrow, and the next terms subtracted took it below 0. Every
+// interval must still hold (and not be empty).
+TEST(MeshToSdfTriangleLocal, RunningErrorSurvivesAHugeTerm)
+{
+  std::mt19937 rng(25);
+  std::uniform_real_distribution<double> u(-1, 1);
+  // triangle 0 near the block, 40 small ones about (2.5, 0, 0)
+  std::vector<WeightedTri> soup(41);
+  soup[0].v[0] = V3{ 0, 0, 0 };
+  soup[0].v[1] = V3{ 1, 0, 0 };
+  soup[0].v[2] = V3{ 0.5, 0.8, 0 };
+  soup[0].w = 1;
+  for (std::size_t i = 1; i < soup.size(); ++i)
+  {
+    const V3 c{ 2.5 + 0.4 * u(rng), 0.4 * u(rng), 0.4 * u(rng) };
+    for (auto& v : soup[i].v) v = c + 0.2 * V3{ u(rng), u(rng), u(rng) };
+    soup[i].w = i % 3 ? 1.0 : -1.0;
+  }
+  const DipoleTree tree(soup);
+  std::vector<std::int32_t> start; // every triangle on its own
+  std::int32_t near = -1;
+  for (std::size_t t = 0; t < tree.tris().size(); ++t)
+  {
+    start.push_back(-static_cast<std::int32_t>(t) - 1);
+    if (tree.tris()[t].v[2].y == 0.8) near = static_cast<std::int32_t>(t);
+  }
+  ASSERT_GE(near, 0);
+  const DipoleTree::Node cl = triangleCluster(tree.tris()[static_cast<std::size_t>(near)], near);
+  std::int64_t checked = 0, misses = 0;
+  for (int k = 0; k < 20; ++k)
+  {
+    // the centre over the face, its ball (rho) a few ulps clear of the cluster's
+    const double rho0 = 0.01 + 0.002 * k;
+    const V3 c = cl.c + (cl.r + rho0) * V3{ 0.05 * u(rng), 0.05 * u(rng), 1 };
+    const double r0 = norm(c - cl.c);
+    double rho = r0 - cl.r;
+    while (!(r0 - rho - cl.r > 0)) rho = std::nextafter(rho, 0.0);
+    int order = 0;
+    const double huge = clusterLocalError(cl, r0, rho, order);
+    ASSERT_TRUE(std::isfinite(huge));
+    ASSERT_GT(huge, 1e25);
+    std::vector<V3> pts(16);
+    for (std::size_t p = 0; p < pts.size(); ++p) pts[p] = c + (p == 0 ? 0.0 : rho * std::fabs(u(rng))) * randomUnit(rng);
+    std::vector<double> lo(pts.size()), hi(pts.size());
+    localBounds(tree, c, rho, pts.data(), static_cast<int>(pts.size()), lo.data(), hi.data(), 1000000, &start);
+    for (std::size_t p = 0; p < pts.size(); ++p)
+    {
+      long double wl = 0;
+      for (const auto& t : soup) wl += t.w * solidAngleLong(pts[p], t.v[0], t.v[1], t.v[2]);
+      const double wn = static_cast<double>(wl / (4 * 3.14159265358979323846264338327950288L));
+      misses += !(lo[p] <= wn && wn <= hi[p]);
+      ++checked;
+    }
+  }
+  std::printf("[ running error ] %lld points checked, %lld misses\n", static_cast<long long>(checked),
+    static_cast<long long>(misses));
+  EXPECT_EQ(misses, 0) << "of " << checked;
 }
