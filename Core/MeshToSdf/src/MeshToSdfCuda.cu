@@ -424,7 +424,11 @@ private:
           int device = 0, sms = 0;
           LVDIF_CUDA_CHECK(cudaGetDevice(&device));
           LVDIF_CUDA_CHECK(cudaDeviceGetAttribute(&sms, cudaDevAttrMultiProcessorCount, device));
-          this->LocalGrid = std::max(1, 2 * sms);
+          // as many CUDA blocks as the SMs hold at once (its registers set that: 3 of 128 threads
+          // at 162 on sm_90): the walks wait on the tree's loads, so every resident warp counts
+          int perSm = 0;
+          LVDIF_CUDA_CHECK(cudaOccupancyMaxActiveBlocksPerMultiprocessor(&perSm, dipoleLocalKernel, LocalThreads, 0));
+          this->LocalGrid = std::max(1, std::max(1, perSm) * sms);
           this->LocalNear = this->Arena.alloc<int>(static_cast<std::size_t>(this->LocalGrid) * (LocalThreads / 32) * 32 * DipoleLocalNearCap);
         }
         if (!this->LocalCounts)
