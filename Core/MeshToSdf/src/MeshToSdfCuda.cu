@@ -425,7 +425,7 @@ private:
           LVDIF_CUDA_CHECK(cudaGetDevice(&device));
           LVDIF_CUDA_CHECK(cudaDeviceGetAttribute(&sms, cudaDevAttrMultiProcessorCount, device));
           // as many CUDA blocks as the SMs hold at once (its registers set that: 3 of 128 threads
-          // at 162 on sm_90): the walks wait on the tree's loads, so every resident warp counts
+          // at its 158-162 on sm_90): the walks wait on the tree's loads, so every resident warp counts
           int perSm = 0;
           LVDIF_CUDA_CHECK(cudaOccupancyMaxActiveBlocksPerMultiprocessor(&perSm, dipoleLocalKernel, LocalThreads, 0));
           this->LocalGrid = std::max(1, std::max(1, perSm) * sms);
