@@ -23,7 +23,7 @@
 # settings, each run as one more variant of the new build ("after:NAME=VALUE")
 # in the CUDA tests and the benchmarks, for the A/B of a switch.
 # No new step starts after BUDGET seconds (default 420). Logs in $OUT.
-# usage: OUT=dir [FOCUS=distance|build] scripts/gpu-meshtosdf-ab.sh [BEFORE.tar] [MESHDIR=.gpu/meshes] [BUDGET]
+# usage: OUT=dir [FOCUS=distance|build|damaged] scripts/gpu-meshtosdf-ab.sh [BEFORE.tar] [MESHDIR=.gpu/meshes] [BUDGET]
 #   MESHDIR holds armadillo.off and lvdif-bunny-30k.ply (run from the repository root)
 set -u
 BEFORE=${1:-.gpu/before.tar}
