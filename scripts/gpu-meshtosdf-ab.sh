@@ -17,8 +17,8 @@
 #     compile against the old code, its rows are missing); CUDA = CPU on sub2.
 #   damaged: the winding sign of damaged armadillos (patch10, flip10,
 #     duprev20, patch30; the clean mesh in the same round) at 512^3 and
-#     1024^3, two rounds of opposite order, --trace; first CUDA = CPU at 128^3
-#     for each damage (the working tree).
+#     1024^3 (GRIDS, e.g. GRIDS=512), two rounds of opposite order, --trace;
+#     first CUDA = CPU at 128^3 for each damage (the working tree).
 # AFTER_VARIANTS (optional, both focuses): space-separated environment
 # settings, each run as one more variant of the new build ("after:NAME=VALUE")
 # in the CUDA tests and the benchmarks, for the A/B of a switch.
@@ -95,7 +95,7 @@ elif [ "$FOCUS" = damaged ]; then
   for ROUND in 1 2; do
     order=$VARIANTS
     [ $ROUND = 2 ] && order=$(reversed $VARIANTS)
-    for N in 512 1024; do for v in $order; do for d in clean $DAMAGES; do
+    for N in ${GRIDS:-512 1024}; do for v in $order; do for d in clean $DAMAGES; do
       m="$d:$A"
       [ "$d" = clean ] && m=$A
       bench "$v" 60 "$m" $N winding auto bvh volume 8 2 cold,warm --trace
