@@ -420,12 +420,12 @@ private:
         }
         if (!this->LocalNear)
         {
-          // the near-triangle lists of the blocks in flight: DipoleLocalNearCap x 32 per warp of a fixed grid
+          // the near-triangle lists of the blocks in flight: DipoleLocalNearCap x 32 per warp (one block each) of a fixed grid
           int device = 0, sms = 0;
           LVDIF_CUDA_CHECK(cudaGetDevice(&device));
           LVDIF_CUDA_CHECK(cudaDeviceGetAttribute(&sms, cudaDevAttrMultiProcessorCount, device));
           // as many CUDA blocks as the SMs hold at once (its registers set that: 3 of 128 threads
-          // at its 158-162 on sm_90): the walks wait on the tree's loads, so every resident warp counts
+          // at its 168 on sm_90): the walks wait on the tree's loads, so every resident warp counts
           int perSm = 0;
           LVDIF_CUDA_CHECK(cudaOccupancyMaxActiveBlocksPerMultiprocessor(&perSm, dipoleLocalKernel, LocalThreads, 0));
           this->LocalGrid = std::max(1, std::max(1, perSm) * sms);
@@ -732,7 +732,7 @@ private:
   static constexpr int LocalLevel = 1;
   static_assert(DipoleEdges[LocalLevel] == DipoleLocalEdge && LocalLevel + 1 < DipoleLevels, "the local step's blocks");
   DipoleLocalLists Local; // the last slab's (the sign kernel reads it)
-  static constexpr int LocalThreads = 128; // dipoleLocalKernel's CUDA block (4 warps)
+  static constexpr int LocalThreads = 32 * LocalWarpsPerBlock; // dipoleLocalKernel's CUDA block (4 warps, a block of voxels each)
   int LocalGrid = 0;                       // its CUDA blocks (a grid-stride loop)
   int* LocalNear = nullptr;                // its warps' near-triangle lists
   int* LocalSlot = nullptr;

@@ -159,179 +159,237 @@ struct DipoleLocalLists
   unsigned long long* counts = nullptr; // blocks expanded, blocks failed, voxels decided by the intervals
 };
 
-/// The failed 4^3 blocks (failed, min(*failedCount, L.cap) of them), 32 per
-/// warp of a grid-stride loop, pass by pass as dipoleLocalBlock runs them
-/// (the same functions in the same order, so the same intervals): each lane
-/// walks its own block's clusters (dipoleLocalWalk) until its near list
-/// (`near`: DipoleLocalNearCap x 32 entries per warp, interleaved) is full
-/// or the walk is done; then the warp sums the 32 lists in turn, lane l at
-/// voxels l and l + 32 (dipoleLocalNearSum: the near triangles' solid
-/// angles, the bulk of the work, in full warps), the running sums in the
-/// pool (carried to the next pass while the voxel stays open); at the end of
-/// a pass each voxel's interval (dipoleLocalFinish) and the block's open
-/// voxels and smallest gap (ballot, shuffle). Voxels at the
-/// positions signDipoleKernel computes.
-__global__ void dipoleLocalKernel(DipoleDev D, Params P, const long long* failed, const unsigned long long* failedCount,
+/// The local step: the failed 4^3 blocks (failed, min(*failedCount, L.cap)
+/// of them), one per warp of a grid-stride loop, pass by pass as
+/// dipoleLocalBlock runs them (the same tolerances, per-cluster terms and
+/// acceptance: clusterLocalError, clusterLocal, triangleCluster). The
+/// block's walk is shared by the warp: each round the lanes take up to 32
+/// entries (nodes, or triangles of opened leaves) from the top of a stack in
+/// shared memory, accept them into lane-partial sums (reduced over the warp
+/// at the end of the pass), push the children of those they open (a prefix
+/// sum of the counts) and list the near triangles (a ballot); the listed
+/// triangles' solid angles are summed at the open voxels (lane l at voxels l
+/// and l + 32), the running sums in the pool, carried to the next pass while
+/// a voxel stays open; at the end of a pass each voxel's interval
+/// (dipoleLocalFinish) and the block's open voxels and smallest gap.
+/// Why one warp per block: with a lane per block (the kernel before session
+/// 17) the 32 lanes walked 32 different trees and their branches ran one
+/// after the other, 16.8 of 32 lanes active on average (docs/BENCHMARKS.md,
+/// "Session 17"). The walk visits the clusters dipoleLocalWalk visits (which
+/// are accepted, opened or listed does not depend on the order), but adds
+/// the accepted ones in another order, so an interval may differ from the
+/// emulation's in its last bits; each is rigorous (localInterval's slack
+/// bounds the rounding of any order), so the signs are the same. A stack
+/// overflow leaves the block without intervals (its voxels are refined one
+/// by one). Voxels at the positions signDipoleKernel computes.
+constexpr int LocalWarpStack = 1024;
+constexpr int LocalWarpsPerBlock = 4; // the CUDA block of 128 threads (MeshToSdfCuda.cu's LocalThreads)
+// (3 CUDA blocks per SM: 168 registers, 20 bytes spilled, against 2 at its own 172)
+__global__ void __launch_bounds__(32 * LocalWarpsPerBlock, 3) dipoleLocalKernel(DipoleDev D, Params P, const long long* failed, const unsigned long long* failedCount,
   DipoleLocalLists L, int* near)
 {
   constexpr unsigned Full = 0xffffffffu;
+  __shared__ int stacks[LocalWarpsPerBlock][LocalWarpStack];
+  const int lane = static_cast<int>(threadIdx.x % 32), inBlock = static_cast<int>(threadIdx.x / 32);
+  int* stack = stacks[inBlock];
   const long long n = min(static_cast<long long>(*failedCount), L.cap);
-  const int lane = static_cast<int>(threadIdx.x % 32);
-  const long long warp = static_cast<long long>(blockIdx.x) * (blockDim.x / 32) + threadIdx.x / 32;
+  const long long warp = static_cast<long long>(blockIdx.x) * (blockDim.x / 32) + inBlock;
   const long long warps = static_cast<long long>(gridDim.x) * (blockDim.x / 32);
   const long long nx = P.hi[0] - P.lo[0] + 1, ny = P.hi[1] - P.lo[1] + 1, nz = P.hi[2] - P.lo[2] + 1;
   const double h = P.spacing[0];
-  int* list = near + warp * 32 * DipoleLocalNearCap; // entry i of lane l's block at list[32 i + l]
+  int* list = near + warp * 32 * DipoleLocalNearCap; // this warp's near triangles (32 x DipoleLocalNearCap)
   unsigned long long expanded = 0, failures = 0;
-  // block b of the 4^3 level: its indices, extent and ball
-  auto blockOf = [&](long long b, long long (&i)[3], int (&m)[3], V3& centre, double& rho) {
-    i[0] = b % L.bx;
-    i[1] = (b / L.bx) % L.by;
-    i[2] = b / (L.bx * L.by);
-    m[0] = static_cast<int>(min(static_cast<long long>(DipoleLocalEdge), nx - DipoleLocalEdge * i[0]));
-    m[1] = static_cast<int>(min(static_cast<long long>(DipoleLocalEdge), ny - DipoleLocalEdge * i[1]));
-    m[2] = static_cast<int>(min(static_cast<long long>(DipoleLocalEdge), nz - DipoleLocalEdge * i[2]));
-    V3 p0, p1;
-    dipoleBlockCorners(P, DipoleLocalEdge, i[0], i[1], i[2], p0, p1);
-    dipoleBlockBall(p0, p1, centre, rho);
-  };
-  // voxel v of the block with indices i, as the rows position it
-  auto voxelAt = [&](const long long (&i)[3], int v) {
-    const long long y = P.lo[1] + DipoleLocalEdge * i[1] + (v / DipoleLocalEdge) % DipoleLocalEdge;
-    const long long z = P.lo[2] + DipoleLocalEdge * i[2] + v / (DipoleLocalEdge * DipoleLocalEdge);
-    return positionOf(P, P.lo[0], y, z) + V3{ static_cast<double>(DipoleLocalEdge * i[0] + v % DipoleLocalEdge) * h, 0, 0 };
-  };
-  DipoleLocalWalk walk;
-  for (long long base = warp * 32; base < n; base += warps * 32) // the whole warp alike
+  for (long long t = warp; t < n; t += warps) // the whole warp alike
   {
-    // this lane's block and its state across passes
-    const long long t = base + lane;
-    const bool mine = t < n;
-    const long long myBlock = mine ? failed[t] : 0;
-    long long myIndex[3] = { 0, 0, 0 };
-    int m[3] = { 0, 0, 0 };
-    V3 myCentre;
-    double myRho = 0;
-    if (mine) blockOf(myBlock, myIndex, m, myCentre, myRho);
-    unsigned long long open = 0; // the voxels of my block still open
-    for (int v = 0; mine && v < DipoleLocalVoxels; ++v)
+    const long long block = failed[t];
+    const long long bi[3] = { block % L.bx, (block / L.bx) % L.by, block / (L.bx * L.by) };
+    const int m[3] = { static_cast<int>(min(static_cast<long long>(DipoleLocalEdge), nx - DipoleLocalEdge * bi[0])),
+      static_cast<int>(min(static_cast<long long>(DipoleLocalEdge), ny - DipoleLocalEdge * bi[1])),
+      static_cast<int>(min(static_cast<long long>(DipoleLocalEdge), nz - DipoleLocalEdge * bi[2])) };
+    V3 p0, p1, centre;
+    double rho = 0;
+    dipoleBlockCorners(P, DipoleLocalEdge, bi[0], bi[1], bi[2], p0, p1);
+    dipoleBlockBall(p0, p1, centre, rho);
+    // voxel v of the block, as the rows position it (dipoleLocalKernel's voxelAt)
+    auto voxelAt = [&](int v) {
+      const long long y = P.lo[1] + DipoleLocalEdge * bi[1] + (v / DipoleLocalEdge) % DipoleLocalEdge;
+      const long long z = P.lo[2] + DipoleLocalEdge * bi[2] + v / (DipoleLocalEdge * DipoleLocalEdge);
+      return positionOf(P, P.lo[0], y, z) + V3{ static_cast<double>(DipoleLocalEdge * bi[0] + v % DipoleLocalEdge) * h, 0, 0 };
+    };
+    unsigned long long open = 0; // the same in every lane
+    for (int v = 0; v < DipoleLocalVoxels; ++v)
       if (v % DipoleLocalEdge < m[0] && (v / DipoleLocalEdge) % DipoleLocalEdge < m[1] && v / (DipoleLocalEdge * DipoleLocalEdge) < m[2])
         open |= 1ull << v;
-    bool active = mine, failedHere = false;
+    double* out = L.pool + 2 * DipoleLocalVoxels * t;
+    for (int i = 0; i < 2; ++i)
+      if ((open >> (lane + 32 * i)) & 1) out[lane + 32 * i] = out[DipoleLocalVoxels + lane + 32 * i] = 0;
+    // the listed near triangles at this lane's open voxels (running sums in the pool)
+    auto sumNear = [&](int count) {
+      __syncwarp();
+      for (int i = 0; i < 2 && count > 0; ++i)
+      {
+        const int v = lane + 32 * i;
+        if (!((open >> v) & 1)) continue;
+        double direct = out[v], directMag = out[DipoleLocalVoxels + v];
+        dipoleLocalNearSum(D, list, 1, count, voxelAt(v), direct, directMag);
+        out[v] = direct;
+        out[DipoleLocalVoxels + v] = directMag;
+      }
+      __syncwarp();
+    };
+    bool failedHere = false;
     double margin = DipoleFirstMargin, prevMargin = 0;
-    for (int pass = 0; pass < DipoleLocalPasses && __any_sync(Full, active); ++pass)
+    for (int pass = 0; pass < DipoleLocalPasses; ++pass)
     {
-      // the voxels' near sums start at 0 (in the pool: lo, hi), carried from
-      // pass to pass while a voxel stays open (dipoleLocalWalk lists only the
-      // triangles the previous pass did not sum)
-      for (int b = 0; pass == 0 && b < 32; ++b)
+      const double tol = dipoleTolerance(D, margin), prevTol = pass > 0 ? dipoleTolerance(D, prevMargin) : 0.0;
+      DipoleLocalFar far; // this lane's part
+      // an entry: index << 2 | triangle << 1 | reached by the previous pass (dipoleLocalWalk's flags)
+      if (lane == 0) stack[0] = pass > 0 ? 1 : 0;
+      __syncwarp();
+      int top = 1, nearCount = 0;
+      bool overflow = false;
+      while (top > 0)
       {
-        const unsigned long long openB = __shfl_sync(Full, active ? open : 0ull, b);
-        double* out = L.pool + 2 * DipoleLocalVoxels * (base + b);
-        for (int i = 0; i < 2; ++i)
-          if ((openB >> (lane + 32 * i)) & 1) out[lane + 32 * i] = out[DipoleLocalVoxels + lane + 32 * i] = 0;
-      }
-      if (active) walk.start(pass > 0);
-      bool done = !active;
-      while (true)
-      {
-        if (!done)
-          done = dipoleLocalWalk(D, myCentre, myRho, dipoleTolerance(D, margin), pass > 0 ? dipoleTolerance(D, prevMargin) : 0.0,
-            walk, list + lane, 32);
-        // the 32 lists in turn, each at its block's open voxels
-        for (int b = 0; b < 32; ++b)
+        if (nearCount > 32 * DipoleLocalNearCap - 32) // (room for one round's)
         {
-          const int count = __shfl_sync(Full, active && !walk.overflow ? walk.far.near : 0, b);
-          if (count == 0) continue;
-          const unsigned long long openB = __shfl_sync(Full, open, b);
-          long long ib[3];
-          int mb[3];
-          V3 centre;
-          double rho = 0;
-          blockOf(failed[base + b], ib, mb, centre, rho);
-          double* out = L.pool + 2 * DipoleLocalVoxels * (base + b);
-          for (int i = 0; i < 2; ++i)
+          sumNear(nearCount);
+          nearCount = 0;
+        }
+        const int k = min(32, top);
+        const int entry = lane < k ? stack[top - 1 - lane] : -1;
+        top -= k;
+        __syncwarp();
+        // what this lane's entry adds: two children of a node, a leaf's
+        // triangles (pushes from `first`), or a near triangle (listed)
+        int pushes = 0, first = 0, second = -1, flag = 0;
+        bool listIt = false;
+        if (entry >= 0)
+        {
+          const bool isTri = (entry >> 1) & 1, reached = entry & 1;
+          const int index = entry >> 2;
+          const DipoleTree::Node nd = isTri ? triangleCluster(D.tris[index], index) : D.nodes[index];
+          const V3 y = nd.c - centre;
+          const double r0 = norm(y);
+          int order = 0;
+          const double e = clusterLocalError(nd, r0, rho, order);
+          const bool openedBefore = reached && !(e <= prevTol * nd.mass);
+          if (e <= tol * nd.mass)
           {
-            const int v = lane + 32 * i;
-            if (!((openB >> v) & 1)) continue;
-            double direct = out[v], directMag = out[DipoleLocalVoxels + v]; // (in registers while summing)
-            dipoleLocalNearSum(D, list + b, 32, count, voxelAt(ib, v), direct, directMag);
-            out[v] = direct;
-            out[DipoleLocalVoxels + v] = directMag;
+            // accepted: joins the polynomial (dipoleLocalWalk's consider)
+            far.err += e;
+            far.mag += clusterLocalMag(nd, r0 - rho, rho);
+            if (order > 0) far.poly.add(clusterLocal(nd, y, order), 1);
+            ++far.terms;
+          }
+          else if (isTri)
+          {
+            listIt = !openedBefore; // summed by the previous pass: its sums carry over
+            first = index;
+            ++far.terms;
+          }
+          else
+          {
+            flag = openedBefore ? 1 : 0;
+            if (nd.left >= 0)
+            {
+              pushes = 2;
+              first = nd.left << 2 | flag;
+              second = nd.right << 2 | flag;
+            }
+            else
+            {
+              pushes = nd.count;
+              first = nd.first;
+              flag |= 2; // triangle entries
+            }
           }
         }
-        if (active) walk.far.near = 0;
-        if (__all_sync(Full, done)) break;
+        // the entries' places on the stack: a prefix sum of the pushes
+        int incl = pushes;
+        for (int o = 1; o < 32; o <<= 1)
+        {
+          const int y = __shfl_up_sync(Full, incl, o);
+          if (lane >= o) incl += y;
+        }
+        const int total = __shfl_sync(Full, incl, 31);
+        if (top + total > LocalWarpStack) // (the same in every lane)
+        {
+          overflow = true;
+          break;
+        }
+        const int at = top + incl - pushes;
+        if (second >= 0)
+        {
+          stack[at] = first;
+          stack[at + 1] = second;
+        }
+        else
+          for (int j = 0; j < pushes; ++j) stack[at + j] = (first + j) << 2 | flag;
+        top += total;
+        const unsigned listed = __ballot_sync(Full, listIt);
+        if (listIt) list[nearCount + __popc(listed & ((1u << lane) - 1u))] = first;
+        nearCount += __popc(listed);
+        __syncwarp();
       }
-      // the pass's intervals, block by block
-      for (int b = 0; b < 32; ++b)
+      if (overflow)
       {
-        if (!__shfl_sync(Full, active, b)) continue; // (the same in every lane)
-        double* out = L.pool + 2 * DipoleLocalVoxels * (base + b);
-        if (__shfl_sync(Full, walk.overflow, b))
-        {
-          // no intervals at all for that block
-          for (int i = 0; i < 2; ++i)
-          {
-            out[lane + 32 * i] = 1;
-            out[DipoleLocalVoxels + lane + 32 * i] = 0;
-          }
-          if (lane == b)
-          {
-            failedHere = true;
-            active = false;
-          }
-          continue;
-        }
-        DipoleLocalFar fb;
-        fb.poly.v = __shfl_sync(Full, walk.far.poly.v, b);
-        for (int k = 0; k < 3; ++k) fb.poly.g[k] = __shfl_sync(Full, walk.far.poly.g[k], b);
-        for (int k = 0; k < 6; ++k) fb.poly.H[k] = __shfl_sync(Full, walk.far.poly.H[k], b);
-        fb.err = __shfl_sync(Full, walk.far.err, b);
-        fb.mag = __shfl_sync(Full, walk.far.mag, b);
-        fb.terms = __shfl_sync(Full, walk.far.terms, b);
-        const unsigned long long openB = __shfl_sync(Full, open, b);
-        long long ib[3];
-        int mb[3];
-        V3 centre;
-        double rho = 0;
-        blockOf(failed[base + b], ib, mb, centre, rho);
-        double gap = __shfl_sync(Full, margin, b);
-        bool still[2] = { false, false };
-        double l[2] = { 1, 1 }, u[2] = { 0, 0 };
+        // no intervals at all for that block
         for (int i = 0; i < 2; ++i)
         {
-          const int v = lane + 32 * i;
-          if (!((openB >> v) & 1)) continue;
-          dipoleLocalFinish(fb, voxelAt(ib, v), centre, out[v], out[DipoleLocalVoxels + v], l[i], u[i]);
-          still[i] = dipoleLocalVoxelState(l[i], u[i], gap) == 1;
+          out[lane + 32 * i] = 1;
+          out[DipoleLocalVoxels + lane + 32 * i] = 0;
         }
-        const unsigned long long stillB = static_cast<unsigned long long>(__ballot_sync(Full, still[0])) |
-          (static_cast<unsigned long long>(__ballot_sync(Full, still[1])) << 32);
-        for (int o = 16; o > 0; o >>= 1) gap = fmin(gap, __shfl_xor_sync(Full, gap, o));
-        if (lane == b)
-        {
-          open = stillB;
-          prevMargin = margin;
-          active = dipoleLocalNextPass(pass, stillB != 0, gap, margin);
-        }
-        // a voxel that takes the next pass keeps its near sums in the pool; the others their interval
-        const bool goesOn = __shfl_sync(Full, active, b);
-        for (int i = 0; i < 2; ++i)
-        {
-          const int v = lane + 32 * i;
-          if (!((openB >> v) & 1) || (goesOn && still[i])) continue;
-          out[v] = l[i];
-          out[DipoleLocalVoxels + v] = u[i];
-        }
+        failedHere = true;
+        break;
       }
+      sumNear(nearCount);
+      // the pass's far sums, over the lanes
+      for (int o = 16; o > 0; o >>= 1)
+      {
+        far.poly.v += __shfl_xor_sync(Full, far.poly.v, o);
+        for (int k = 0; k < 3; ++k) far.poly.g[k] += __shfl_xor_sync(Full, far.poly.g[k], o);
+        for (int k = 0; k < 6; ++k) far.poly.H[k] += __shfl_xor_sync(Full, far.poly.H[k], o);
+        far.err += __shfl_xor_sync(Full, far.err, o);
+        far.mag += __shfl_xor_sync(Full, far.mag, o);
+        far.terms += __shfl_xor_sync(Full, far.terms, o);
+      }
+      double gap = margin;
+      bool still[2] = { false, false };
+      double l[2] = { 1, 1 }, u[2] = { 0, 0 };
+      for (int i = 0; i < 2; ++i)
+      {
+        const int v = lane + 32 * i;
+        if (!((open >> v) & 1)) continue;
+        dipoleLocalFinish(far, voxelAt(v), centre, out[v], out[DipoleLocalVoxels + v], l[i], u[i]);
+        still[i] = dipoleLocalVoxelState(l[i], u[i], gap) == 1;
+      }
+      const unsigned long long stillB = static_cast<unsigned long long>(__ballot_sync(Full, still[0])) |
+        (static_cast<unsigned long long>(__ballot_sync(Full, still[1])) << 32);
+      for (int o = 16; o > 0; o >>= 1) gap = fmin(gap, __shfl_xor_sync(Full, gap, o));
+      const unsigned long long wasOpen = open;
+      open = stillB;
+      prevMargin = margin;
+      const bool goesOn = dipoleLocalNextPass(pass, stillB != 0, gap, margin);
+      // a voxel that takes the next pass keeps its near sums in the pool; the others their interval
+      for (int i = 0; i < 2; ++i)
+      {
+        const int v = lane + 32 * i;
+        if (!((wasOpen >> v) & 1) || (goesOn && still[i])) continue;
+        out[v] = l[i];
+        out[DipoleLocalVoxels + v] = u[i];
+      }
+      __syncwarp();
+      if (!goesOn) break;
     }
-    if (mine && !failedHere)
+    if (lane == 0)
     {
-      L.slot[myBlock] = static_cast<int>(t);
-      ++expanded;
+      if (!failedHere)
+      {
+        L.slot[block] = static_cast<int>(t);
+        ++expanded;
+      }
+      failures += failedHere;
     }
-    failures += failedHere;
   }
   if (expanded) atomicAdd(L.counts, expanded);
   if (failures) atomicAdd(L.counts + 1, failures);

@@ -42,7 +42,7 @@ struct DipoleWork
   unsigned long long nodes = 0, tris = 0, triBounds = 0; // nodes visited; triangles summed exactly / bounded over a ball
   unsigned long long calls = 0;                          // boundDipole traversals
   // dipoleLocalBlock: per pass its near triangles x the voxels of the
-  // busiest lane of dipoleLocalKernel's warp (lane l: voxels l, l + 32)
+  // busiest lane of the near sums (lane l: voxels l, l + 32)
   unsigned long long laneTris = 0;
 };
 

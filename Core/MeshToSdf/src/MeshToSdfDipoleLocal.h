@@ -420,7 +420,9 @@ LVDIF_HD bool dipoleLocalNextPass(int pass, bool anyOpen, double gap, double& ma
 }
 
 /// A block's voxels (X, inside the ball (centre, rho)) pass by pass from
-/// DipoleFirstMargin, as dipoleLocalKernel runs them (list: room for
+/// DipoleFirstMargin, as dipoleLocalKernel runs them (the same clusters
+/// visited, accepted and listed; the kernel's warp adds them in another
+/// order, so its intervals may differ in the last bits) (list: room for
 /// DipoleLocalNearCap entries): each gets an interval of s in [lo[v], hi[v]]
 /// (lo > hi: none); a voxel whose interval avoids every half-integer is decided whatever its
 /// crossing count and takes no further pass. Returns the voxels so decided,
