@@ -443,15 +443,12 @@ private:
         local.counts = this->LocalCounts;
       }
       // the voxels the blocks leave undecided, listed per part of the sign pass
-      // (a quarter of the part's voxels, a sixteenth between passes; beyond
-      // that they are refined in place)
+      // (a quarter of the part's voxels; beyond that they are refined in place)
       const long long queueCap = listCapacity((rows / parts + 1) * (box.hi[0] - box.lo[0] + 1) / 4 + 1024);
       if (queueCap > this->QueueCapacity)
       {
         if (this->Queue) this->Arena.release(this->Queue);
-        if (this->VoxelPending) this->Arena.release(this->VoxelPending);
         this->Queue = this->Arena.alloc<unsigned long long>(static_cast<std::size_t>(queueCap));
-        this->VoxelPending = this->Arena.alloc<DipolePending>(static_cast<std::size_t>(2 * listCapacity(queueCap / 4 + 1024)));
         this->QueueCapacity = queueCap;
       }
       this->Stats.devicePeakBytes = std::max(this->Stats.devicePeakBytes, this->Mesh.bytes() + this->Arena.bytes());
@@ -537,22 +534,15 @@ private:
         const unsigned grid = static_cast<unsigned>((c1 - c0 + SignWarps - 1) / SignWarps);
         if (dipole)
         {
-          // the queue and the voxels between passes: VoxelPasses kernels, the
-          // last one finishing every voxel it takes
-          unsigned long long* counts = this->ListCounts + DipoleLevels * (1 + DipoleBlockPasses);
-          LVDIF_CUDA_CHECK(cudaMemsetAsync(counts, 0, VoxelPasses * sizeof(unsigned long long)));
+          // the queue: the voxels the rows leave, each refined by a warp (dipoleRefineKernel)
+          unsigned long long* queueCount = this->ListCounts + DipoleLevels * (1 + DipoleBlockPasses);
+          LVDIF_CUDA_CHECK(cudaMemsetAsync(queueCount, 0, sizeof(unsigned long long)));
           signDipoleKernel<<<grid, 32 * SignWarps>>>(this->Mesh.W[this->Variant], this->Mesh.D[this->Variant], P, c0, c1, this->RayMeta,
-            this->RayHits, this->Bounds, bx, by, this->Slab, this->Counters, this->Queue, counts, this->QueueCap, this->Local);
+            this->RayHits, this->Bounds, bx, by, this->Slab, this->Counters, this->Queue, queueCount, this->QueueCap, this->Local);
           LVDIF_CUDA_CHECK(cudaGetLastError());
-          const long long pendingCap = listCapacity(this->QueueCap / 4 + 1024);
-          for (int pass = 0; pass < VoxelPasses; ++pass)
-          {
-            DipolePending* in = pass ? this->VoxelPending + ((pass - 1) % 2) * pendingCap : nullptr;
-            DipolePending* out = pass + 1 < VoxelPasses ? this->VoxelPending + (pass % 2) * pendingCap : nullptr;
-            dipoleRefineKernel<<<2048, 128>>>(this->Mesh.D[this->Variant], P, pass ? nullptr : this->Queue, in, counts + pass,
-              pass ? pendingCap : this->QueueCap, out, out ? counts + pass + 1 : nullptr, pendingCap, this->Slab, this->Counters);
-            LVDIF_CUDA_CHECK(cudaGetLastError());
-          }
+          dipoleRefineKernel<<<2048, 128>>>(this->Mesh.D[this->Variant], P, this->Queue, queueCount, this->QueueCap, this->Slab,
+            this->Counters);
+          LVDIF_CUDA_CHECK(cudaGetLastError());
         }
         else
         {
@@ -719,14 +709,12 @@ private:
   double* Bounds = nullptr; // per block of the slab: s's bound (lo, hi), lo > hi: none
   long long BoundCapacity = 0;
   // the work lists of the winding decision (MeshToSdfCudaDipole.cuh)
-  static constexpr int VoxelPasses = 3; // refinement kernels per part of the sign pass
-  static constexpr int ListCountSlots = DipoleLevels * (1 + DipoleBlockPasses) + VoxelPasses;
+  static constexpr int ListCountSlots = DipoleLevels * (1 + DipoleBlockPasses) + 1; // the levels' lists, their passes, the queue
   long long* BlockLists = nullptr;          // per level but the finest: its blocks without a bound
   DipolePending* BlockPending = nullptr;    // blocks between passes (in, out)
   long long PendingCap = 0;
   unsigned long long* ListCounts = nullptr; // per level, per level and pass, then the voxels' per pass
   unsigned long long* Queue = nullptr;      // the voxels of a part the blocks left undecided (dipoleListVoxel)
-  DipolePending* VoxelPending = nullptr;    // voxels between passes (in, out)
   long long QueueCapacity = 0, QueueCap = 0;
   // the local step (dipoleLocalKernel) on the failed blocks of level LocalLevel
   static constexpr int LocalLevel = 1;

@@ -89,6 +89,91 @@ __device__ void dipoleBlockFrom(const DipoleDev& D, const Params& P, int edge, l
   if (!(lo <= hi) && L.fail) dipoleAppend(L.fail, L.failCount, 1ll << 62, static_cast<long long>(b));
 }
 
+/// boundDipole with the whole warp on one ball (q, rho and tolPerMass the
+/// same in every lane): the lanes take up to 32 nodes a round from the top
+/// of a stack in shared memory (BoundWarpStack entries per warp) and step
+/// them (boundDipoleNode) into lane-partial sums, reduced over the warp at
+/// the end. The nodes taken, opened and summed are boundDipole's (that does
+/// not depend on the order); the sums are added in another order, inside the
+/// slack (boundDipoleInterval). False in every lane where boundDipole fails
+/// (the ball meets a triangle) and when the stack is full. Why: with a lane
+/// per ball the 32 lanes walked 32 different trees one branch after the
+/// other (docs/BENCHMARKS.md, "Session 17").
+constexpr int BoundWarpStack = 512;
+constexpr int BoundWarpsPerBlock = 4; // the CUDA blocks of 128 threads the callers run in
+__device__ bool boundDipoleWarp(const DipoleView& D, V3 q, double rho, double tolPerMass, double& sLo, double& sHi,
+  bool& approx, int* stack, int lane)
+{
+  constexpr unsigned Full = 0xffffffffu;
+  if (lane == 0) stack[0] = 0;
+  __syncwarp();
+  int top = 1;
+  double value = 0, err = 0, mag = 0;
+  long long terms = 0;
+  bool anyApprox = false;
+  while (top > 0)
+  {
+    const int k = min(32, top);
+    const int node = lane < k ? stack[top - 1 - lane] : -1;
+    top -= k;
+    __syncwarp();
+    int step = 0, left = 0, right = 0;
+    if (node >= 0)
+    {
+      const DipoleTree::Node nd = D.nodes[node];
+      step = boundDipoleNode(D, nd, q, rho, tolPerMass, value, err, mag, terms, anyApprox);
+      left = nd.left;
+      right = nd.right;
+    }
+    if (__any_sync(Full, step < 0)) return false;
+    const unsigned opened = __ballot_sync(Full, step > 0);
+    const int total = 2 * __popc(opened);
+    if (top + total > BoundWarpStack) return false; // (the same in every lane)
+    if (step > 0)
+    {
+      const int at = top + 2 * __popc(opened & ((1u << lane) - 1u));
+      stack[at] = left;
+      stack[at + 1] = right;
+    }
+    top += total;
+    __syncwarp();
+  }
+  for (int o = 16; o > 0; o >>= 1)
+  {
+    value += __shfl_xor_sync(Full, value, o);
+    err += __shfl_xor_sync(Full, err, o);
+    mag += __shfl_xor_sync(Full, mag, o);
+    terms += __shfl_xor_sync(Full, terms, o);
+  }
+  approx = __any_sync(Full, anyApprox);
+  boundDipoleInterval(value, err, mag, terms, sLo, sHi);
+  return true;
+}
+
+/// dipoleBlockFrom with the whole warp on block b (the same in every lane):
+/// its passes from `pass` one after the other (boundDipoleWarp runs each in
+/// a full warp, so no list between passes); lane 0 writes the bound and
+/// lists a block left without one for the level below.
+__device__ void dipoleBlockFromWarp(const DipoleDev& D, const Params& P, int edge, long long bx, long long by, long long b,
+  int pass, double margin, const DipoleBlockLists& L, double* bounds, int* stack, int lane)
+{
+  V3 p0, p1, centre;
+  dipoleBlockCorners(P, edge, b % bx, (b / bx) % by, b / (bx * by), p0, p1);
+  double rho = 0, lo = 1, hi = 0;
+  dipoleBlockBall(p0, p1, centre, rho);
+  for (; pass < DipoleBlockPasses; ++pass)
+  {
+    double l = 0, u = 0;
+    bool approx = false;
+    const bool ok = boundDipoleWarp(D, centre, rho, dipoleTolerance(D, margin), l, u, approx, stack, lane);
+    if (dipoleBlockDecide(ok, l, u, approx, margin, lo, hi) != 0) break;
+  }
+  if (lane != 0) return;
+  bounds[2 * b] = lo;
+  bounds[2 * b + 1] = hi;
+  if (!(lo <= hi) && L.fail) dipoleAppend(L.fail, L.failCount, 1ll << 62, static_cast<long long>(b));
+}
+
 /// One thread per block of edge voxels (one level of DipoleEdges) of the
 /// slab. The coarsest level (parent null): the first pass of
 /// dipoleBlockBound (dipoleBlockFrom). The others take their parent's bound,
@@ -115,35 +200,38 @@ __global__ void dipoleBlockKernel(DipoleDev D, Params P, int edge, long long bx,
 /// The blocks of edge voxels inside the listed blocks of the level above
 /// (parents, parentCount of them, but the first skipParents; edge ratio x
 /// edge, pbx x pby per layer),
-/// one per thread of a grid-stride loop, so that full warps bound blocks:
-/// the first pass of dipoleBlockBound (dipoleBlockFrom).
+/// one per warp of a grid-stride loop: dipoleBlockBound's passes
+/// (dipoleBlockFromWarp).
 __global__ void dipoleListedBlockKernel(DipoleDev D, Params P, int edge, long long bx, long long by, long long bz,
   long long pbx, long long pby, int ratio, const long long* parents, const unsigned long long* parentCount,
   long long skipParents, double* bounds, DipoleBlockLists L)
 {
+  __shared__ int stacks[BoundWarpsPerBlock][BoundWarpStack];
+  const int lane = static_cast<int>(threadIdx.x % 32);
   const long long r3 = static_cast<long long>(ratio) * ratio * ratio;
   // the first skipParents parents went to the local step (dipoleLocalKernel): their voxels have intervals of their own
   parents += skipParents;
   const long long total = max(0ll, static_cast<long long>(*parentCount) - skipParents) * r3;
-  const long long stride = static_cast<long long>(gridDim.x) * blockDim.x;
-  for (long long t = static_cast<long long>(blockIdx.x) * blockDim.x + threadIdx.x; t < total; t += stride)
+  const long long warps = static_cast<long long>(gridDim.x) * (blockDim.x / 32);
+  for (long long t = static_cast<long long>(blockIdx.x) * (blockDim.x / 32) + threadIdx.x / 32; t < total; t += warps)
   {
     const long long b = dipoleChildBlock(parents[t / r3], t % r3, ratio, pbx, pby, bx, by, bz);
-    if (b >= 0) dipoleBlockFrom(D, P, edge, bx, by, b, 0, DipoleFirstMargin, L, bounds);
+    if (b >= 0) dipoleBlockFromWarp(D, P, edge, bx, by, b, 0, DipoleFirstMargin, L, bounds, stacks[threadIdx.x / 32], lane);
   }
 }
 
-/// Pass `pass` (and on) of dipoleBlockBound for the blocks an earlier pass
-/// listed (in, min(inCount, inCap) of them), one per thread of a
-/// grid-stride loop: the passes that need another one are listed again, so
-/// that every pass runs in full warps.
+/// Pass `pass` (and on) of dipoleBlockBound for the blocks the coarsest
+/// level's first pass listed (in, min(inCount, inCap) of them), one per warp
+/// of a grid-stride loop (dipoleBlockFromWarp).
 __global__ void dipoleBlockPassKernel(DipoleDev D, Params P, int edge, long long bx, long long by, int pass,
   const DipolePending* in, const unsigned long long* inCount, long long inCap, double* bounds, DipoleBlockLists L)
 {
+  __shared__ int stacks[BoundWarpsPerBlock][BoundWarpStack];
   const long long n = min(static_cast<long long>(*inCount), inCap);
-  const long long stride = static_cast<long long>(gridDim.x) * blockDim.x;
-  for (long long t = static_cast<long long>(blockIdx.x) * blockDim.x + threadIdx.x; t < n; t += stride)
-    dipoleBlockFrom(D, P, edge, bx, by, in[t].item, pass, in[t].margin, L, bounds);
+  const long long warps = static_cast<long long>(gridDim.x) * (blockDim.x / 32);
+  for (long long t = static_cast<long long>(blockIdx.x) * (blockDim.x / 32) + threadIdx.x / 32; t < n; t += warps)
+    dipoleBlockFromWarp(D, P, edge, bx, by, in[t].item, pass, in[t].margin, L, bounds, stacks[threadIdx.x / 32],
+      static_cast<int>(threadIdx.x % 32));
 }
 
 /// Where the local step's intervals go (MeshToSdfCuda.cu): per listed 4^3
@@ -507,36 +595,40 @@ __global__ void signDipoleKernel(WindingDev W, DipoleDev D, Params P, long long 
   if (fromLocal && local.counts) atomicAdd(local.counts + 2, fromLocal);
 }
 
-/// The voxels signDipoleKernel listed (queue: their first pass) or an
-/// earlier pass of this kernel listed (in: their next pass and its margin),
-/// min(inCount, inCap) of them, one per thread of a grid-stride loop:
-/// insideDipole at the position the row computes (pos(i) of
-/// signDipoleKernel, the same operations) pass by pass; a voxel that needs
-/// another pass is listed in out (null or full: it is finished here), so
-/// that every pass runs in full warps. Inside: the sign is flipped.
-__global__ void dipoleRefineKernel(DipoleDev D, Params P, const unsigned long long* queue, const DipolePending* in,
-  const unsigned long long* inCount, long long inCap, DipolePending* out, unsigned long long* outCount, long long outCap,
-  float* slab, unsigned long long* counters)
+/// The voxels signDipoleKernel listed (queue, min(*queueCount, queueCap) of
+/// them), one per warp of a grid-stride loop: insideDipole at the position
+/// the row computes (pos(i) of signDipoleKernel, the same operations), every
+/// pass by the whole warp (boundDipoleWarp), so the warp finishes each voxel
+/// it takes (before session 17, one voxel per thread and a list between
+/// passes). Inside: the sign is flipped.
+__global__ void dipoleRefineKernel(DipoleDev D, Params P, const unsigned long long* queue, const unsigned long long* queueCount,
+  long long queueCap, float* slab, unsigned long long* counters)
 {
-  const long long n = min(static_cast<long long>(*inCount), inCap);
+  __shared__ int stacks[BoundWarpsPerBlock][BoundWarpStack];
+  int* stack = stacks[threadIdx.x / 32];
+  const int lane = static_cast<int>(threadIdx.x % 32);
+  const long long n = min(static_cast<long long>(*queueCount), queueCap);
   const long long nx = P.hi[0] - P.lo[0] + 1, ny = P.hi[1] - P.lo[1] + 1;
-  const long long stride = static_cast<long long>(gridDim.x) * blockDim.x;
+  const long long warps = static_cast<long long>(gridDim.x) * (blockDim.x / 32);
   const double h = P.spacing[0];
   unsigned long long full = 0;
-  for (long long t = static_cast<long long>(blockIdx.x) * blockDim.x + threadIdx.x; t < n; t += stride)
+  for (long long t = static_cast<long long>(blockIdx.x) * (blockDim.x / 32) + threadIdx.x / 32; t < n; t += warps)
   {
-    const long long item = queue ? static_cast<long long>(queue[t]) : in[t].item;
-    double margin = queue ? DipoleFirstMargin : in[t].margin;
+    const long long item = static_cast<long long>(queue[t]);
+    double margin = DipoleFirstMargin;
     long long v = 0;
     int K = 0;
     dipoleListedVoxel(static_cast<unsigned long long>(item), v, K);
     const long long row = v / nx, i = v % nx;
     const V3 start = positionOf(P, P.lo[0], P.lo[1] + row % ny, P.lo[2] + row / ny);
     const V3 p = start + V3{ static_cast<double>(i) * h, 0, 0 };
-    bool inside = false, listNext = out != nullptr, listed = false;
+    bool inside = false;
     while (true)
     {
-      const int r = insideDipolePass(D, K, p, margin, inside);
+      double lo = 0, hi = 0;
+      bool approx = false;
+      const bool ok = boundDipoleWarp(D, p, 0, dipoleTolerance(D, margin), lo, hi, approx, stack, lane);
+      const int r = insideDipoleDecide(ok, lo, hi, approx, K, margin, inside);
       if (r > 0) break;
       if (r < 0)
       {
@@ -544,16 +636,10 @@ __global__ void dipoleRefineKernel(DipoleDev D, Params P, const unsigned long lo
         inside = dipoleInsideOf(K - dipoleExactCanonical(D, p));
         break;
       }
-      if (listNext)
-      {
-        listed = dipoleAppend(out, outCount, outCap, DipolePending{ item, margin });
-        if (listed) break;
-        listNext = false; // full: the passes go on here
-      }
     }
-    if (!listed && inside) slab[v] = -slab[v];
+    if (lane == 0 && inside) slab[v] = -slab[v];
   }
-  if (full) atomicAdd(counters + 2, full);
+  if (full && lane == 0) atomicAdd(counters + 2, full);
 }
 } // namespace
 } // namespace detail::meshtosdf_cuda

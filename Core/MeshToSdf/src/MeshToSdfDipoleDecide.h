@@ -149,6 +149,81 @@ LVDIF_HD double clusterValue(const DipoleTree::Node& nd, V3 y, double r, int ord
   return v;
 }
 
+/// boundDipole's step on one node over the ball (q, rho): 0 taken (its
+/// terms added to the sums: the cluster's bound when its error is at most
+/// tolPerMass x its mass, else a leaf summed exactly (rho == 0) or bounded
+/// however loosely (rho > 0)), 1 opened (an inner node: its children are
+/// next), -1 the ball meets a leaf's triangle (no bound at all).
+LVDIF_HD int boundDipoleNode(const DipoleView& D, const DipoleTree::Node& nd, V3 q, double rho, double tolPerMass,
+  double& value, double& err, double& mag, long long& terms, bool& approx)
+{
+  const V3 y = nd.c - q;
+  const double r = norm(y);
+  const double d = r - rho - nd.r;
+  if (d > 0)
+  {
+    int order = 0;
+    const double e = clusterError(nd, r, rho, d, order);
+    if (e <= tolPerMass * nd.mass)
+    {
+      double m = 0;
+      const double v = clusterValue(nd, y, r, order, m);
+      value += v;
+      err += e;
+      mag += m;
+      ++terms;
+      approx = true;
+      return 0;
+    }
+  }
+  if (nd.left >= 0) return 1;
+  if (rho > 0)
+  {
+    // a leaf over the ball: each triangle's exact value at q, plus its
+    // Lipschitz bound over the ball (no d^-3 R term, so the error vanishes
+    // with rho); none when the ball meets a triangle
+#ifndef __CUDA_ARCH__
+    if (D.work) D.work->triBounds += nd.count;
+#endif
+    for (int i = nd.first; i < nd.first + nd.count; ++i)
+    {
+      const WeightedTri& t = D.tris[i];
+      double e = 0;
+      if (!triangleLipschitz(t, q, rho, e)) return -1;
+      const double a = t.w * solidAngle(q, t.v[0], t.v[1], t.v[2]);
+      value += a;
+      err += std::fabs(t.w) * rho * e;
+      mag += std::fabs(a);
+      ++terms;
+    }
+    approx = true;
+    return 0;
+  }
+#ifndef __CUDA_ARCH__
+  if (D.work) D.work->tris += nd.count;
+#endif
+  for (int i = nd.first; i < nd.first + nd.count; ++i)
+  {
+    const WeightedTri& t = D.tris[i];
+    const double a = t.w * solidAngle(q, t.v[0], t.v[1], t.v[2]);
+    value += a;
+    mag += std::fabs(a);
+    ++terms;
+  }
+  return 0;
+}
+
+/// boundDipole's interval from its sums: the rounding of the sums and of the
+/// exact solid angles (the CPU's slack, with every term counted instead of
+/// the open clusters: never smaller; it bounds the rounding of any order of
+/// the sums, so the GPU's warp bound shares it).
+LVDIF_HD void boundDipoleInterval(double value, double err, double mag, long long terms, double& sLo, double& sHi)
+{
+  const double slack = 1e-9 + 1e-12 * (mag + err) * static_cast<double>(terms + 1);
+  sLo = (value - err) / FourPi - slack;
+  sHi = (value + err) / FourPi + slack;
+}
+
 /// A rigorous interval [sLo, sHi] of s over the ball (q, rho). Clusters at
 /// d > 0 whose error is at most tolPerMass x their mass are taken as bounds
 /// (DipoleTree::refine's formulas), others opened; leaves are summed exactly
@@ -172,71 +247,16 @@ LVDIF_HD bool boundDipole(const DipoleView& D, V3 q, double rho, double tolPerMa
 #ifndef __CUDA_ARCH__
     if (D.work) ++D.work->nodes;
 #endif
-    const V3 y = nd.c - q;
-    const double r = norm(y);
-    const double d = r - rho - nd.r;
-    if (d > 0)
-    {
-      int order = 0;
-      const double e = clusterError(nd, r, rho, d, order);
-      if (e <= tolPerMass * nd.mass)
-      {
-        double m = 0;
-        const double v = clusterValue(nd, y, r, order, m);
-        value += v;
-        err += e;
-        mag += m;
-        ++terms;
-        approx = true;
-        continue;
-      }
-    }
-    if (nd.left >= 0)
+    const int step = boundDipoleNode(D, nd, q, rho, tolPerMass, value, err, mag, terms, approx);
+    if (step < 0) return false;
+    if (step > 0)
     {
       if (top + 2 > 64) return false;
       stack[top++] = nd.left;
       stack[top++] = nd.right;
-      continue;
-    }
-    if (rho > 0)
-    {
-      // a leaf over the ball: each triangle's exact value at q, plus its
-      // Lipschitz bound over the ball (no d^-3 R term, so the error vanishes
-      // with rho); false when the ball meets a triangle
-#ifndef __CUDA_ARCH__
-      if (D.work) D.work->triBounds += nd.count;
-#endif
-      for (int i = nd.first; i < nd.first + nd.count; ++i)
-      {
-        const WeightedTri& t = D.tris[i];
-        double e = 0;
-        if (!triangleLipschitz(t, q, rho, e)) return false;
-        const double a = t.w * solidAngle(q, t.v[0], t.v[1], t.v[2]);
-        value += a;
-        err += std::fabs(t.w) * rho * e;
-        mag += std::fabs(a);
-        ++terms;
-      }
-      approx = true;
-      continue;
-    }
-#ifndef __CUDA_ARCH__
-    if (D.work) D.work->tris += nd.count;
-#endif
-    for (int i = nd.first; i < nd.first + nd.count; ++i)
-    {
-      const WeightedTri& t = D.tris[i];
-      const double a = t.w * solidAngle(q, t.v[0], t.v[1], t.v[2]);
-      value += a;
-      mag += std::fabs(a);
-      ++terms;
     }
   }
-  // rounding of the sums and of the exact solid angles (the CPU's slack,
-  // with every term counted instead of the open clusters: never smaller)
-  const double slack = 1e-9 + 1e-12 * (mag + err) * static_cast<double>(terms + 1);
-  sLo = (value - err) / FourPi - slack;
-  sHi = (value + err) / FourPi + slack;
+  boundDipoleInterval(value, err, mag, terms, sLo, sHi);
   return true;
 }
 
@@ -256,14 +276,13 @@ LVDIF_HD double dipoleExactCanonical(const DipoleView& D, V3 p)
 /// margin / 2 (in units of the winding number).
 LVDIF_HD double dipoleTolerance(const DipoleView& D, double margin) { return 0.5 * margin * FourPi / D.rootMass; }
 
-/// One pass of insideDipole at the given margin: 1 decided (inside set), 0
-/// not yet (margin lowered for the next pass), -1 no interval will decide
-/// (the canonical sum does).
-LVDIF_HD int insideDipolePass(const DipoleView& D, int K, V3 p, double& margin, bool& inside)
+/// What one pass of insideDipole makes of its bound (ok: boundDipole's
+/// result, the interval [lo, hi] of s at p and approx; the GPU's warp bound
+/// shares it): 1 decided (inside set), 0 not yet (margin lowered for the
+/// next pass), -1 no interval will decide (the canonical sum does).
+LVDIF_HD int insideDipoleDecide(bool ok, double lo, double hi, bool approx, int K, double& margin, bool& inside)
 {
-  double lo = 0, hi = 0;
-  bool approx = false;
-  if (!boundDipole(D, p, 0, dipoleTolerance(D, margin), lo, hi, approx)) return -1;
+  if (!ok) return -1;
   if (dipoleDecided(K - hi, K - lo))
   {
     inside = dipoleInsideOf(0.5 * ((K - hi) + (K - lo)));
@@ -274,6 +293,15 @@ LVDIF_HD int insideDipolePass(const DipoleView& D, int K, V3 p, double& margin, 
   const double left = std::fmin(std::fabs(c - 0.5), std::fabs(c + 0.5));
   margin = std::fmin(0.25 * margin, left);
   return margin > 1e-10 ? 0 : -1;
+}
+
+/// One pass of insideDipole at the given margin (insideDipoleDecide's results).
+LVDIF_HD int insideDipolePass(const DipoleView& D, int K, V3 p, double& margin, bool& inside)
+{
+  double lo = 0, hi = 0;
+  bool approx = false;
+  const bool ok = boundDipole(D, p, 0, dipoleTolerance(D, margin), lo, hi, approx);
+  return insideDipoleDecide(ok, lo, hi, approx, K, margin, inside);
 }
 
 /// The first pass's margin: a loose tolerance decides most voxels cheaply (w mostly near 0 or 1).
@@ -308,13 +336,12 @@ LVDIF_HD void dipoleBlockBall(V3 p0, V3 p1, V3& centre, double& rho)
 /// At most this many passes bound a block.
 constexpr int DipoleBlockPasses = 2;
 
-/// One pass of dipoleBlockBound at the given margin: 1 a bound [lo, hi], 0
-/// not yet (margin lowered for the next pass), -1 none.
-LVDIF_HD int dipoleBlockPass(const DipoleView& D, V3 centre, double rho, double& margin, double& lo, double& hi)
+/// What one pass of dipoleBlockBound makes of its bound (ok: boundDipole's
+/// result over the ball, [l, u] and approx; the GPU's warp bound shares it):
+/// 1 a bound [lo, hi], 0 not yet (margin lowered for the next pass), -1 none.
+LVDIF_HD int dipoleBlockDecide(bool ok, double l, double u, bool approx, double& margin, double& lo, double& hi)
 {
-  double l = 0, u = 0;
-  bool approx = false;
-  if (!boundDipole(D, centre, rho, dipoleTolerance(D, margin), l, u, approx)) return -1;
+  if (!ok) return -1;
   const double c = 0.5 * (l + u), n = std::floor(c + 0.5);
   if (l > n - 0.5 && u < n + 0.5)
   {
@@ -326,6 +353,15 @@ LVDIF_HD int dipoleBlockPass(const DipoleView& D, V3 centre, double rho, double&
   if (!approx || left < 0.05) return -1; // the voxels will do better
   margin = std::fmin(0.25 * margin, left);
   return 0;
+}
+
+/// One pass of dipoleBlockBound at the given margin (dipoleBlockDecide's results).
+LVDIF_HD int dipoleBlockPass(const DipoleView& D, V3 centre, double rho, double& margin, double& lo, double& hi)
+{
+  double l = 0, u = 0;
+  bool approx = false;
+  const bool ok = boundDipole(D, centre, rho, dipoleTolerance(D, margin), l, u, approx);
+  return dipoleBlockDecide(ok, l, u, approx, margin, lo, hi);
 }
 
 /// s over the ball about the voxels p0 .. p1 (a block): [lo, hi] when it lies
@@ -350,12 +386,14 @@ LVDIF_HD void dipoleBlockBound(const DipoleView& D, V3 p0, V3 p1, double& lo, do
 
 // Work lists. On the GPU the blocks of a level whose parent has no bound,
 // and the voxels their block leaves undecided, are listed first and then
-// bounded or refined one per thread of full warps: with one thread per block
-// of the level or per voxel of the row, most lanes of a warp idled while a
-// few refined (MeshToSdfDipoleDecide.WorkCounts: the warps' largest work
-// summed, 2-3x the listed order's on damaged armadillos). Only the order of
-// the work changes: each block's bound and each voxel's decision is the same
-// function of the same inputs (the tests run these helpers too).
+// bounded or refined, each by a whole warp (boundDipoleWarp, since session
+// 17; one per thread of full warps before): with one thread per block of
+// the level or per voxel of the row, most lanes of a warp idled while a few
+// refined (MeshToSdfDipoleDecide.WorkCounts: the warps' largest work summed,
+// 2-3x the listed order's on damaged armadillos). Only the order of the work
+// changes: each block's bound and each voxel's decision is the same function
+// of the same inputs (the tests run these helpers too; the warp adds the
+// same terms in another order, inside the slack).
 
 /// Block c (0 .. ratio^3 - 1, x fastest) inside the block `parent` of the
 /// level above (pbx x pby blocks per layer): its index at this level (bx x by
