@@ -42,6 +42,7 @@ struct ScriptRunner::Impl
   BrushShape Shape = BrushShape::Sphere;
   double Radius = 3;
   int StrokeLine = 0, StrokeColumn = 0;
+  bool StrokeOpen = false; // a stroke this script began is open (the editor may be the caller's)
   std::size_t TopDone = 0, TopTotal = 1;
 
   [[noreturn]] static void fail(int line, int col, const std::string& what)
@@ -395,6 +396,7 @@ struct ScriptRunner::Impl
     else if (c == "begin")
     {
       ed.beginStroke();
+      this->StrokeOpen = true;
       this->StrokeLine = s.line;
       this->StrokeColumn = s.column;
     }
@@ -412,6 +414,7 @@ struct ScriptRunner::Impl
     {
       if (!ed.strokeOpen())
         fail(s.line, s.column, "'end' without 'begin'");
+      this->StrokeOpen = false; // endStroke closes it even when it fails
       ed.endStroke();
       ++this->Owner->Edits;
     }
@@ -419,6 +422,24 @@ struct ScriptRunner::Impl
       ed.undo();
     else if (c == "redo")
       ed.redo();
+  }
+
+  /// Ends a stroke this script began and left open; true if there was one.
+  /// Its own failure (a cancel, a budget) is dropped: the script's error is the one reported.
+  bool endScriptStroke()
+  {
+    if (!this->StrokeOpen || !this->Ed || !this->Ed->strokeOpen())
+      return false;
+    this->StrokeOpen = false;
+    try
+    {
+      this->Ed->endStroke();
+    }
+    catch (const Error&)
+    {
+      // endStroke closes the stroke and its undo step even when it throws
+    }
+    return true;
   }
 
   void canvas(const Stmt& s, const std::vector<double>& a)
@@ -454,6 +475,7 @@ struct ScriptRunner::Impl
     o.dims = dims;
     this->Ed = nullptr;
     this->OwnedEd.reset();
+    this->StrokeOpen = false;
     this->Owned = std::make_unique<DictionaryVolume>(o);
     this->setVolume(this->Owned.get());
   }
@@ -497,13 +519,22 @@ void ScriptRunner::run(const std::string& source)
     in->start("script");
   this->P->TopDone = 0;
   this->P->TopTotal = std::max<std::size_t>(1, prog.statements.size());
-  this->P->run(prog.statements, true);
-  if (this->P->Ed && this->P->Ed->strokeOpen())
+  this->P->StrokeOpen = false;
+  try
   {
-    this->P->Ed->endStroke(); // keep the work, but report the mistake
+    this->P->run(prog.statements, true);
+  }
+  catch (...)
+  {
+    // A stroke the script began is ended as the end of the script ends it
+    // (its points so far kept, one undo step): left open, it would lock the
+    // caller's editor (no undo, no new stroke) after the error.
+    this->P->endScriptStroke();
+    throw;
+  }
+  if (this->P->endScriptStroke())
     throw ScriptError(ErrorCode::InvalidArgument, this->P->StrokeLine, this->P->StrokeColumn,
       "'begin' without 'end' (the stroke was ended at the end of the script)");
-  }
   if (in)
     in->end();
 }

@@ -234,6 +234,33 @@ TEST(EditSession, ScriptErrorKeepsEarlierEditsAndSyntaxErrorChangesNothing)
   EXPECT_EQ(differences(s.volume(), *before), 0);
 }
 
+TEST(EditSession, ScriptErrorInsideAStrokeEndsTheStroke)
+{
+  // A run-time error between 'begin' and 'end' used to leave the session's
+  // stroke open: no undo ("finish the open stroke first"), no new stroke.
+  auto v = sphereVolume(48, 16);
+  lvdif::EditSession s(v, cpuOptions());
+  const auto before = s.volume().clone();
+  EXPECT_THROW(s.runScript("radius 4\nbegin\npoint 10 24 34\npoint 38 24 34\nprint zz\nend"), lvdif::ScriptError);
+  EXPECT_FALSE(s.strokeOpen());
+  ASSERT_EQ(s.undoCount(), 1u); // the stroke's points so far, as at the end of a script
+  // the oracle: the same two samples as one stroke, dab by dab on a copy
+  auto oracle = before->clone();
+  lvdif::StrokeSettings st;
+  st.radius = 4;
+  lvdif::BrushSample a, b;
+  a.position = { 10, 24, 34 };
+  b.position = { 38, 24, 34 };
+  lvdif::applyDabs(*oracle, lvdif::strokeDabs({ a, b }, st), lvdif::BrushSettings());
+  EXPECT_EQ(decodedDifferences(s.volume(), *oracle), 0);
+  EXPECT_TRUE(s.undo());
+  EXPECT_EQ(differences(s.volume(), *before), 0);
+  s.beginStroke(); // the session takes new strokes again
+  s.addSample(a);
+  s.endStroke();
+  EXPECT_EQ(s.undoCount(), 1u);
+}
+
 TEST(EditSession, ScriptCanvasReplacesTheVolumeAndKeepsTheScriptsBrush)
 {
   lvdif::EditSession s(sphereVolume(32, 16), cpuOptions());
