@@ -96,6 +96,52 @@ TEST(Recording, ParseErrorsNameTheLine)
   EXPECT_EQ(errorOf("# only a comment\n"), "recording:1:1: empty recording (no version line)");
 }
 
+TEST(Recording, MalformedFieldsAreRefusedNotGuessed)
+{
+  // Each of these was read as something else before: "1.5,..." as the colour
+  // 1,5,190,255, a fifth component or other separators ignored, a misspelt
+  // optional key ignored (the edit played with strength 1), the last of two
+  // op= keys used, invert=0.5 as 1, and stray dab lines named "expected key=value".
+  auto errorOf = [](const std::string& s) {
+    std::istringstream in(s);
+    try
+    {
+      readRecording(in);
+    }
+    catch (const Error& e)
+    {
+      EXPECT_EQ(e.code(), ErrorCode::ParseError);
+      return std::string(e.what());
+    }
+    return std::string("no error");
+  };
+  const std::string head = "LVDIF-RECORDING 1\n";
+  auto edit = [](const std::string& color, const std::string& more) {
+    return "edit time=0 op=add shape=sphere kind=basic spacing=1.6 blend=0 coloroffset=1.5 color=" + color + more +
+      " dabs=1\nd 1 2 3 4\n";
+  };
+  const std::string bad = "color must be r,g,b,a (four whole numbers 0..255), got '";
+  EXPECT_EQ(errorOf(head + edit("1.5,190,255,255", "")), "recording:2:86: " + bad + "1.5,190,255,255'");
+  EXPECT_EQ(errorOf(head + edit("1,2,3,4,5", "")), "recording:2:86: " + bad + "1,2,3,4,5'");
+  EXPECT_EQ(errorOf(head + edit("1;2;3;4", "")), "recording:2:86: " + bad + "1;2;3;4'");
+  EXPECT_EQ(errorOf(head + edit("1,2,3", "")), "recording:2:86: " + bad + "1,2,3'");
+  EXPECT_EQ(errorOf(head + edit("-1,2,3,4", "")), "recording:2:86: " + bad + "-1,2,3,4'");
+  EXPECT_EQ(errorOf(head + edit("1,2,3,256", "")), "recording:2:86: color components must be 0..255, got '1,2,3,256'");
+  EXPECT_EQ(errorOf(head + edit("1,2,3,4", " strenght=0.5")), "recording:2:94: unknown key 'strenght' in a 'edit' record");
+  EXPECT_EQ(errorOf(head + edit("1,2,3,4", " op=subtract")), "recording:2:94: key 'op' given twice");
+  EXPECT_EQ(errorOf(head + edit("1,2,3,4", " invert=0.5")), "recording:2:101: invert must be 0 or 1 (got 0.5)");
+  EXPECT_EQ(errorOf(head + "undo time=1 dabs=2\n"), "recording:2:13: unknown key 'dabs' in a 'undo' record");
+  EXPECT_EQ(errorOf(head + edit("1,2,3,4", "") + "d 5 6 7 8\n"),
+    "recording:4:1: dab line outside an edit (the edit's dabs= count is already read)");
+  EXPECT_EQ(errorOf(head + "d 5 6 7 8\n"), "recording:2:1: dab line outside an edit (the edit's dabs= count is already read)");
+  // the writer's own output still reads, every optional key included
+  std::istringstream ok(head + edit("0,0,0,0", " rounding=2 strength=0.5 falloff=smooth invert=1 mirrorx=3 mirrory=4 mirrorz=5"));
+  const Recording r = readRecording(ok);
+  ASSERT_EQ(r.records.size(), 1u);
+  EXPECT_EQ(r.records[0].brush.strength, 0.5);
+  EXPECT_TRUE(r.records[0].brush.invert);
+}
+
 TEST(Recording, ImportsTheOriginalCsvWithAxisSwapAndScaling)
 {
   // synthetic rows in the original's format: kernel order (z, y, x), '-' separators
