@@ -463,10 +463,18 @@ void Editor::play(const Recording& r, Interrupter& interrupter)
   for (const EditRecord& e : r.records)
   {
     interrupter.checkInterrupt();
-    if (e.type == EditRecord::Type::Undo)
-      this->undo();
-    else if (e.type == EditRecord::Type::Redo)
-      this->redo();
+    if (e.type == EditRecord::Type::Undo || e.type == EditRecord::Type::Redo)
+    {
+      // The recorder writes only undos and redos that happened: one with nothing
+      // to act on means another start (an undo of an edit made before the recording
+      // began, another volume or history): going on would silently give another model.
+      const bool undo = e.type == EditRecord::Type::Undo;
+      if (!(undo ? this->undo() : this->redo()))
+        throw Error(ErrorCode::InvalidArgument,
+          "record " + std::to_string(i + 1) + " of " + std::to_string(r.records.size()) + " ('" +
+            (undo ? "undo" : "redo") + "') has nothing to " + (undo ? "undo" : "redo") +
+            ": the recording does not start from this volume and history, so it cannot be played back exactly");
+    }
     else
     {
       this->brush = e.brush;

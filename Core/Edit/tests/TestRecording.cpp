@@ -67,6 +67,47 @@ TEST(Recording, RecordWriteReadPlayIsBitExact)
   EXPECT_EQ(edittest::countDifferences(*start, v), 0);
 }
 
+TEST(Recording, AnUndoWithNothingToUndoStopsPlayback)
+{
+  // The recording starts after an edit and undoes it: played on the volume it
+  // started from, the undo has nothing to act on. It was skipped, and the
+  // playback gave a model with the edit the session had undone.
+  DictionaryVolume v(edittest::options(48, 16));
+  fillFromFunction(v, sphereSdf(24, 24, 24, 12));
+  Editor e(v);
+  e.dab(Dab{ BrushShape::Sphere, { 24, 24, 38 }, 5, {} }); // before the recording
+  auto start = v.clone();
+  e.startRecording();
+  e.undo();
+  e.dab(Dab{ BrushShape::Sphere, { 24, 10, 24 }, 4, {} });
+  const Recording rec = e.stopRecording();
+  ASSERT_EQ(rec.records.size(), 2u);
+
+  auto played = start->clone();
+  Editor p(*played);
+  try
+  {
+    p.play(rec);
+    ADD_FAILURE() << "played an undo with nothing to undo";
+  }
+  catch (const Error& err)
+  {
+    EXPECT_EQ(err.code(), ErrorCode::InvalidArgument);
+    EXPECT_NE(std::string(err.what()).find("record 1 of 2 ('undo') has nothing to undo"), std::string::npos) << err.what();
+  }
+  EXPECT_EQ(edittest::countDifferences(*played, *start), 0); // nothing was applied before it
+
+  // a redo with nothing to redo, after an edit that stays applied
+  std::istringstream text("LVDIF-RECORDING 1\n"
+                          "edit time=0 op=add shape=sphere kind=single spacing=1.6 blend=0 coloroffset=1.5 "
+                          "color=1,2,3,255 dabs=1\nd 24 24 10 4\nredo time=1\n");
+  Editor q(*played);
+  EXPECT_THROW(q.play(readRecording(text)), Error);
+  EXPECT_EQ(q.undoCount(), 1u);
+  EXPECT_TRUE(q.undo());
+  EXPECT_EQ(edittest::countDifferences(*played, *start), 0);
+}
+
 TEST(Recording, ParseErrorsNameTheLine)
 {
   auto errorOf = [](const std::string& s) {
