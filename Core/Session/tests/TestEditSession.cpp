@@ -261,6 +261,37 @@ TEST(EditSession, ScriptErrorInsideAStrokeEndsTheStroke)
   EXPECT_EQ(s.undoCount(), 1u);
 }
 
+TEST(EditSession, StrokeThroughIsTheEditorsStroke)
+{
+  // The session made its own dabs for strokeThrough: a pinch stroke lost its
+  // stroke direction (each dab pinched radially) and the editor's dab budget was not applied.
+  auto v = sphereVolume(48, 16);
+  lvdif::BrushSample a, b;
+  a.position = { 14, 24, 34 };
+  b.position = { 34, 24, 34 };
+  lvdif::EditSession s(v->clone(), cpuOptions());
+  s.brush().op = lvdif::BrushOp::Pinch;
+  s.stroke().radius = 6;
+  s.strokeThrough({ a, b });
+  // the oracle: the same stroke's dabs, each directed along the stroke (the pinch rule, Brush.h)
+  auto oracle = v->clone();
+  std::vector<lvdif::Dab> dabs = lvdif::strokeDabs({ a, b }, s.stroke());
+  ASSERT_GT(dabs.size(), 2u);
+  for (std::size_t i = 0; i < dabs.size(); ++i)
+  {
+    const lvdif::Dab& from = dabs[i == 0 ? 0 : i - 1];
+    const lvdif::Dab& to = dabs[i == 0 ? 1 : i];
+    for (int k = 0; k < 3; ++k)
+      dabs[i].vec[k] = to.center[k] - from.center[k];
+  }
+  lvdif::applyDabs(*oracle, dabs, s.brush());
+  EXPECT_EQ(differences(s.volume(), *oracle), 0);
+
+  s.editor().limits.maxDabsPerEdit = 3;
+  EXPECT_THROW(s.strokeThrough({ a, b }), lvdif::Error); // the editor's budget: 14 dabs > 3
+  EXPECT_EQ(s.undoCount(), 1u);
+}
+
 TEST(EditSession, ScriptCanvasReplacesTheVolumeAndKeepsTheScriptsBrush)
 {
   lvdif::EditSession s(sphereVolume(32, 16), cpuOptions());
