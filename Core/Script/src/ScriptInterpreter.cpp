@@ -5,6 +5,9 @@
 
 #include "lvdif/Script.h"
 
+#include "lvdif/ByteStream.h"
+#include "lvdif/Memory.h"
+
 #include <algorithm>
 #include <cmath>
 #include <iostream>
@@ -25,6 +28,16 @@ ScriptError::ScriptError(ErrorCode code, int line, int column, const std::string
 void checkScript(const std::string& source)
 {
   detail::script::parse(detail::script::lex(source));
+}
+
+std::string readScriptFile(const std::string& path)
+{
+  FileSource src(path); // refuses FIFOs, directories and devices without blocking
+  requireMemory(src.size(), "reading the script " + path);
+  std::string text(static_cast<std::size_t>(src.size()), '\0');
+  if (!text.empty())
+    src.read(0, &text[0], text.size());
+  return text;
 }
 
 using detail::script::Expr;

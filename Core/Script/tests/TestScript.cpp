@@ -7,6 +7,9 @@
 
 #include <gtest/gtest.h>
 
+#include <cstdio>
+#include <sys/stat.h>
+
 #include <chrono>
 #include <cmath>
 #include <fstream>
@@ -404,4 +407,36 @@ TEST(Script, DabsCountAsStepsAndRunawayLinesAreRefusedFirst)
     EXPECT_EQ(w.column, 1) << cmd;
     EXPECT_NE(w.detail.find("must be a finite number in"), std::string::npos) << w.detail;
   }
+}
+
+TEST(Script, ReadScriptFileRefusesFoldersAndFifosWithoutBlocking)
+{
+  const std::string dir = ::testing::TempDir();
+  auto errorOf = [](const std::string& path) {
+    try
+    {
+      lvdif::readScriptFile(path);
+    }
+    catch (const lvdif::Error& e)
+    {
+      return std::string(e.what());
+    }
+    return std::string("no error");
+  };
+  EXPECT_NE(errorOf(dir).find("not a regular file"), std::string::npos) << errorOf(dir);
+  const std::string fifo = dir + "/lvdif_script_fifo.lvs";
+  std::remove(fifo.c_str());
+  ASSERT_EQ(::mkfifo(fifo.c_str(), 0600), 0);
+  EXPECT_NE(errorOf(fifo).find("not a regular file"), std::string::npos) << errorOf(fifo); // no writer: open would block
+  std::remove(fifo.c_str());
+  const std::string path = dir + "/lvdif_script_text.lvs";
+  FILE* f = std::fopen(path.c_str(), "wb");
+  ASSERT_NE(f, nullptr);
+  std::fputs("x = 1\r\ny = 2\n", f);
+  std::fclose(f);
+  EXPECT_EQ(lvdif::readScriptFile(path), "x = 1\r\ny = 2\n"); // bytes as they are (the lexer takes CRLF)
+  f = std::fopen(path.c_str(), "wb");
+  std::fclose(f);
+  EXPECT_EQ(lvdif::readScriptFile(path), "");
+  std::remove(path.c_str());
 }
