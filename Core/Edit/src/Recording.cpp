@@ -125,6 +125,8 @@ const std::map<std::string, BrushKind> Kinds{ { "single", BrushKind::Single }, {
 void writeRecording(std::ostream& out, const Recording& r)
 {
   out << "LVDIF-RECORDING " << Recording::Version << "\n";
+  if (r.canvas[0] > 0)
+    out << "canvas " << r.canvas[0] << " " << r.canvas[1] << " " << r.canvas[2] << "\n";
   for (const EditRecord& e : r.records)
   {
     if (e.type == EditRecord::Type::Undo || e.type == EditRecord::Type::Redo)
@@ -234,6 +236,25 @@ Recording readRecording(std::istream& in, const std::string& name)
       rule([&] { validate(d, r.records.back().dabs.size()); }, words[1].column);
       r.records.back().dabs.push_back(d);
       --expectDabs;
+      continue;
+    }
+    if (head.text == "canvas")
+    {
+      // the recorded volume's dimensions: once, before the first record
+      if (!r.records.empty() || r.canvas[0] > 0)
+        at.bad(head.column, "the canvas line must come once, right after the version line");
+      if (words.size() != 4)
+        at.bad(head.column, "expected 'canvas NX NY NZ'");
+      for (int a = 0; a < 3; ++a)
+      {
+        const Word& w = words[static_cast<std::size_t>(1 + a)];
+        char* end = nullptr;
+        const long long n = std::strtoll(w.text.c_str(), &end, 10);
+        if (w.text.empty() || *end != '\0' || n < 1 || n > DictionaryVolume::MaxDimension)
+          at.bad(w.column, "canvas dimensions must be whole numbers 1.." + std::to_string(DictionaryVolume::MaxDimension) +
+              ", got '" + w.text + "'");
+        r.canvas[static_cast<std::size_t>(a)] = n;
+      }
       continue;
     }
     // the record word first: a stray dab line is named as one, not as a bad key=value

@@ -108,6 +108,72 @@ TEST(Recording, AnUndoWithNothingToUndoStopsPlayback)
   EXPECT_EQ(edittest::countDifferences(*played, *start), 0);
 }
 
+TEST(Recording, AnotherCanvasIsRefusedBeforePlaying)
+{
+  // A recording carries its canvas: played on a volume of other dimensions it
+  // used to run (rc 0) with its dabs elsewhere or outside, a different model.
+  DictionaryVolume v(edittest::options(48, 16));
+  Editor e(v);
+  e.startRecording();
+  e.dab(Dab{ BrushShape::Sphere, { 40, 24, 24 }, 5, {} });
+  const Recording rec = e.stopRecording();
+  std::stringstream text;
+  writeRecording(text, rec);
+  EXPECT_EQ(text.str().rfind("LVDIF-RECORDING 1\ncanvas 48 48 48\nedit ", 0), 0u) << text.str();
+  const Recording back = readRecording(text);
+  EXPECT_EQ(back.canvas, (Index3{ 48, 48, 48 }));
+
+  VolumeOptions o = edittest::options(48, 16);
+  o.dims = { 48, 48, 32 };
+  DictionaryVolume other(o);
+  auto untouched = other.clone();
+  Editor p(other);
+  try
+  {
+    p.play(back);
+    ADD_FAILURE() << "played a 48^3 recording on a 48 x 48 x 32 volume";
+  }
+  catch (const Error& err)
+  {
+    EXPECT_EQ(err.code(), ErrorCode::InvalidArgument);
+    EXPECT_STREQ(err.what(), "the recording was made on a 48 x 48 x 48 canvas; this volume is 48 x 48 x 32 (nothing was played)");
+  }
+  EXPECT_EQ(edittest::countDifferences(other, *untouched), 0);
+  EXPECT_FALSE(p.canUndo());
+
+  // the same canvas plays; a recording without the line (older files, CSV imports) plays anywhere
+  DictionaryVolume same(edittest::options(48, 16));
+  Editor q(same);
+  q.play(back);
+  EXPECT_EQ(edittest::countDifferences(same, v), 0);
+  Recording old = back;
+  old.canvas = { 0, 0, 0 };
+  p.play(old);
+  EXPECT_TRUE(p.canUndo());
+
+  auto errorOf = [](const std::string& s) {
+    std::istringstream in(s);
+    try
+    {
+      readRecording(in);
+    }
+    catch (const Error& e)
+    {
+      return std::string(e.what());
+    }
+    return std::string("no error");
+  };
+  EXPECT_EQ(errorOf("LVDIF-RECORDING 1\ncanvas 48 48\n"), "recording:2:1: expected 'canvas NX NY NZ'");
+  EXPECT_EQ(errorOf("LVDIF-RECORDING 1\ncanvas 48 0 48\n"),
+    "recording:2:11: canvas dimensions must be whole numbers 1..1048576, got '0'");
+  EXPECT_EQ(errorOf("LVDIF-RECORDING 1\ncanvas 48 4.5 48\n"),
+    "recording:2:11: canvas dimensions must be whole numbers 1..1048576, got '4.5'");
+  EXPECT_EQ(errorOf("LVDIF-RECORDING 1\ncanvas 8 8 8\ncanvas 8 8 8\n"),
+    "recording:3:1: the canvas line must come once, right after the version line");
+  EXPECT_EQ(errorOf("LVDIF-RECORDING 1\nundo time=0\ncanvas 8 8 8\n"),
+    "recording:3:1: the canvas line must come once, right after the version line");
+}
+
 TEST(Recording, ParseErrorsNameTheLine)
 {
   auto errorOf = [](const std::string& s) {
