@@ -473,8 +473,9 @@ struct ScriptRunner::Impl
       const double d = a.size() == 1 ? a[0] : a[static_cast<size_t>(i)];
       if (d != std::floor(d)) // also NaN and infinities
         fail(s.line, s.column, "canvas dimensions must be whole numbers");
-      // clamped only to convert; the range is the editors' one rule below
-      dims[i] = static_cast<std::int64_t>(std::max(-1.0, std::min(d, double(DictionaryVolume::MaxDimension) + 1)));
+      // clamped only to convert (to +-1e18, exact in 64 bits, so the message of the
+      // editors' one rule below shows the number asked for: 'canvas -5' said -1)
+      dims[i] = static_cast<std::int64_t>(std::max(-1e18, std::min(d, 1e18)));
     }
     const std::string tooThin = DictionaryVolume::checkCanvasDimensions(dims);
     if (!tooThin.empty())

@@ -139,6 +139,11 @@ TEST(Script, RunTimeErrorsGiveLineAndColumn)
   EXPECT_NE(w.detail.find("each axis needs 2.."), std::string::npos) << w.detail;
   w = errorOf("canvas 8 0 8");
   EXPECT_EQ(w.detail, DictionaryVolume::checkCanvasDimensions({ 8, 0, 8 }));
+  // the numbers asked for, not clamped ones (it said "-1 x -1 x -1" and "1048577")
+  EXPECT_NE(errorOf("canvas -5").detail.find("a canvas of -5 x -5 x -5 voxels"), std::string::npos)
+    << errorOf("canvas -5").detail;
+  EXPECT_NE(errorOf("canvas 64, 3000000, -3").detail.find("a canvas of 64 x 3000000 x -3 voxels"), std::string::npos)
+    << errorOf("canvas 64, 3000000, -3").detail;
   w = errorOf("canvas 2.5");
   EXPECT_EQ(w.detail, "canvas dimensions must be whole numbers");
   EXPECT_EQ(errorOf("canvas 2 2 2").detail, "no error");
