@@ -443,5 +443,18 @@ TEST(Script, ReadScriptFileRefusesFoldersAndFifosWithoutBlocking)
   f = std::fopen(path.c_str(), "wb");
   std::fclose(f);
   EXPECT_EQ(lvdif::readScriptFile(path), "");
+  // lone CRs end lines too: the error is on line 3 (it was line 1, the file read as one line)
+  try
+  {
+    lvdif::checkScript("canvas 32\r# note\rsphere 16, 16, 16, 8\rfrobnicate 1\r");
+    ADD_FAILURE() << "no error";
+  }
+  catch (const lvdif::ScriptError& e)
+  {
+    EXPECT_EQ(e.line(), 4);
+    EXPECT_EQ(e.column(), 1);
+    EXPECT_EQ(e.detail(), "unknown command 'frobnicate'");
+  }
+  lvdif::checkScript("canvas 32\r\nsphere 16, 16, 16, 8\r\n"); // CRLF as before
   std::remove(path.c_str());
 }
