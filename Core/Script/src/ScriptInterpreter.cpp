@@ -438,12 +438,17 @@ struct ScriptRunner::Impl
   }
 
   /// Ends a stroke this script began and left open; true if there was one.
-  /// Its own failure (a cancel, a budget) is dropped: the script's error is the one reported.
+  /// Under the script's interrupter: after a cancel the stroke's pending dabs
+  /// (all of a Basic stroke's) are not applied, and a long rest stays cancellable.
+  /// Its own failure (that cancel, a budget) is dropped: the script's error is the one reported.
   bool endScriptStroke()
   {
     if (!this->StrokeOpen || !this->Ed || !this->Ed->strokeOpen())
       return false;
     this->StrokeOpen = false;
+    Interrupter* saved = this->Ed->interrupter;
+    if (this->Options.interrupter)
+      this->Ed->interrupter = this->Options.interrupter;
     try
     {
       this->Ed->endStroke();
@@ -452,6 +457,7 @@ struct ScriptRunner::Impl
     {
       // endStroke closes the stroke and its undo step even when it throws
     }
+    this->Ed->interrupter = saved;
     return true;
   }
 

@@ -259,6 +259,30 @@ TEST(EditSession, ScriptErrorInsideAStrokeEndsTheStroke)
   s.addSample(a);
   s.endStroke();
   EXPECT_EQ(s.undoCount(), 1u);
+
+  // cancelled while a Basic stroke collects its points: the stroke is closed
+  // and none of its dabs is applied after the cancel (all of them wait for 'end')
+  struct CancelLater : lvdif::Interrupter
+  {
+    mutable int checks = 0;
+    bool wasInterrupted() const override { return ++checks > 3; }
+  } cancel;
+  lvdif::ScriptOptions o;
+  o.interrupter = &cancel;
+  const auto beforeCancel = s.volume().clone();
+  const std::size_t steps = s.undoCount();
+  try
+  {
+    s.runScript("kind basic\nbegin\nfor i in 0..100000 { point 10 + i % 28, 24, 34 }\nend", o);
+    ADD_FAILURE() << "not cancelled";
+  }
+  catch (const lvdif::Error& e)
+  {
+    EXPECT_EQ(e.code(), lvdif::ErrorCode::Cancelled) << e.what();
+  }
+  EXPECT_FALSE(s.strokeOpen());
+  EXPECT_EQ(s.undoCount(), steps);
+  EXPECT_EQ(differences(s.volume(), *beforeCancel), 0);
 }
 
 TEST(EditSession, StrokeThroughIsTheEditorsStroke)
