@@ -7,27 +7,12 @@
 
 #include "lvdif/Editor.h"
 #include "lvdif/Error.h"
-#include "lvdif/ByteStream.h"
-#include "lvdif/Memory.h"
 #include "lvdif/Recording.h"
 #include "lvdif/Script.h"
 
 #include <cstdio>
 #include <fstream>
 #include <sstream>
-
-namespace
-{
-// FileSource refuses FIFOs, directories and devices without blocking.
-std::string readText(const std::string& path)
-{
-  lvdif::FileSource src(path);
-  lvdif::requireMemory(src.size(), "reading the script " + path);
-  std::string text(static_cast<std::size_t>(src.size()), '\0');
-  src.read(0, &text[0], text.size());
-  return text;
-}
-}
 
 int CommandScript(int argc, char** argv)
 {
@@ -58,7 +43,7 @@ int CommandScript(int argc, char** argv)
   runner.attach(*start);
   try
   {
-    runner.run(readText(path));
+    runner.run(lvdif::readScriptFile(path));
   }
   catch (const lvdif::ScriptError& e)
   {

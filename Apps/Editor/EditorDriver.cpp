@@ -55,6 +55,13 @@ int EditorDriver::runBatch()
     ok = this->typeKeys(o.keysAfter) && ok;
   for (int i = 0; i < o.undo; ++i)
     this->Window.undo();
+  if (!ok)
+  {
+    // as in the command line: after a failure nothing is written, so a script
+    // that fails midway never replaces the --save file with its half-done model
+    std::fprintf(stderr, "lvdif-editor: an earlier step failed: no output written\n");
+    return 1;
+  }
   this->waitForSurface();
   if (!o.screenshot.isEmpty())
     ok = this->Window.saveScreenshot(o.screenshot) && ok;

@@ -744,13 +744,16 @@ bool MainWindow::runScript(const QString& path)
 {
   if (QFileInfo(path).suffix().toLower() == "lvr" || QFileInfo(path).suffix().toLower() == "lvrec")
     return this->playRecording(path);
-  QFile file(path);
-  if (!file.open(QIODevice::ReadOnly | QIODevice::Text))
+  std::string source;
+  try
   {
-    this->showError("Cannot read " + path, std::runtime_error(file.errorString().toStdString()));
+    source = lvdif::readScriptFile(path.toLocal8Bit().toStdString()); // the one script reader (no FIFO, no folder)
+  }
+  catch (const std::exception& e)
+  {
+    this->showError("Cannot read " + path, e);
     return false;
   }
-  const std::string source = file.readAll().toStdString();
   const int before = this->Doc.hasVolume() ? this->Doc.generation() : -1;
   try
   {
@@ -760,6 +763,10 @@ bool MainWindow::runScript(const QString& path)
   }
   catch (const std::exception& e)
   {
+    // a `canvas N` before the error replaced the volume all the same: show it
+    if (this->Doc.hasVolume() && this->Doc.generation() != before)
+      this->volumeReplaced();
+    this->updateTitle();
     this->showError("The script " + QFileInfo(path).fileName() + " failed", e);
     return false;
   }

@@ -153,23 +153,28 @@ void VolumeDocument::play(const lvdif::Recording& r)
 void VolumeDocument::runScript(const std::string& source)
 {
   const int generation = this->Session->generation();
+  // whether the script succeeded or failed later: edits made before an error
+  // stay (each undoable), and a `canvas N` volume is kept (the session adopts it)
+  auto after = [&] {
+    this->noteChanges();
+    if (this->Session->generation() != generation)
+    {
+      // a new volume: no file yet (Save must not write it over the file that was open)
+      this->Path.clear();
+      this->Session->requestAllMeshes();
+      this->Modified = true;
+    }
+  };
   try
   {
     this->Session->runScript(source);
   }
   catch (...)
   {
-    this->noteChanges(); // edits made before the error stay (each undoable)
+    after();
     throw;
   }
-  this->noteChanges();
-  if (this->Session->generation() != generation)
-  {
-    // a `canvas N` made a new volume: no file yet
-    this->Path.clear();
-    this->Session->requestAllMeshes();
-    this->Modified = true;
-  }
+  after();
 }
 
 std::vector<lvdif::ChunkMesh> VolumeDocument::collectMeshes(std::vector<std::chrono::steady_clock::time_point>* gatheredAt)

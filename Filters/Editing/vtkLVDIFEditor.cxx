@@ -564,17 +564,14 @@ int vtkLVDIFEditor::RunScript(const char* text)
 
 int vtkLVDIFEditor::RunScriptFile(const char* path)
 {
-  std::ifstream in(path ? path : "");
-  if (!in)
-  {
-    this->LastError = std::string("RunScriptFile: cannot open '") + (path ? path : "") + "'";
-    this->LastErrorLine = this->LastErrorColumn = 0;
-    vtkErrorMacro(<< this->LastError);
+  // the one script reader: a directory read as an empty script (success) and a FIFO blocked before
+  std::string text;
+  if (!this->Guard("RunScriptFile", [&] {
+        lvdif::require(path && *path, "no file name");
+        text = lvdif::readScriptFile(path);
+      }))
     return 0;
-  }
-  std::ostringstream text;
-  text << in.rdbuf();
-  return this->RunScript(text.str().c_str());
+  return this->RunScript(text.c_str());
 }
 
 vtkDictionaryVolumeToImage* vtkLVDIFEditor::GetImageSource()

@@ -78,6 +78,13 @@ printf 'LVDIF-RECORDING 1\n%s\nd 10 10 10 -4\n' "$edit" >neg.lvr
 run neg 1 "neg.lvr:3:12: dab radius must be >= 0" -- "$exe" play neg.lvr --in base.lvdv --out base.lvdv
 printf 'LVDIF-RECORDING 1\n%s\nd 10 10 1e300 4\n' "${edit/blend=0/blend=1e300}" >big.lvr
 run bigblend 1 "big.lvr:2:" -- "$exe" play big.lvr --in base.lvdv --out base.lvdv
+# a recording for another canvas, an undo it cannot replay, a malformed colour: one error, nothing written
+printf 'LVDIF-RECORDING 1\ncanvas 999 999 999\n%s\nd 10 10 10 4\n' "$edit" >canvas.lvr
+run canvas 1 "the recording was made on a 999 x 999 x 999 canvas; this volume is" -- "$exe" play canvas.lvr --in base.lvdv --out base.lvdv
+printf 'LVDIF-RECORDING 1\nundo time=0\n' >undo.lvr
+run undo 1 "record 1 of 1 ('undo') has nothing to undo" -- "$exe" play undo.lvr --in base.lvdv --out base.lvdv
+printf 'LVDIF-RECORDING 1\n%s\nd 10 10 10 4\n' "${edit/1,2,3,255/1.5,2,3,255}" >color.lvr
+run color 1 "color.lvr:2:86: color must be r,g,b,a" -- "$exe" play color.lvr --in base.lvdv --out base.lvdv
 same base.lvdv base.copy "recordings"
 # random garbage recordings and scripts: exit 0 or 1, never a signal
 for i in $(seq 1 15); do

@@ -1,5 +1,15 @@
 # Runs lvdif-editor with ARGS that it must refuse: a non-zero exit (not a
 # crash: a signal gives a text status) and EXPECT in its output.
+# KEEP_FROM / KEEP: KEEP is made a copy of KEEP_FROM first and must be
+# unchanged afterwards (a refused run writes nothing over it).
+if (DEFINED KEEP)
+  file(REMOVE "${KEEP}")
+  configure_file("${KEEP_FROM}" "${KEEP}" COPYONLY)
+  file(SHA256 "${KEEP}" keep_before)
+endif ()
+foreach (f IN LISTS ABSENT)
+  file(REMOVE "${f}")
+endforeach ()
 execute_process(COMMAND "${EDITOR}" ${ARGS} RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
 message("${out}${err}")
 if (rc EQUAL 0 OR NOT rc MATCHES "^[0-9]+$")
@@ -8,3 +18,15 @@ endif ()
 if (NOT "${out}${err}" MATCHES "${EXPECT}")
   message(FATAL_ERROR "the message '${EXPECT}' is missing")
 endif ()
+if (DEFINED KEEP)
+  file(SHA256 "${KEEP}" keep_after)
+  if (NOT keep_after STREQUAL keep_before)
+    message(FATAL_ERROR "${KEEP} was overwritten")
+  endif ()
+endif ()
+# ABSENT: files the refused run must not have written
+foreach (f IN LISTS ABSENT)
+  if (EXISTS "${f}")
+    message(FATAL_ERROR "${f} was written")
+  endif ()
+endforeach ()

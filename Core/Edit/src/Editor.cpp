@@ -432,6 +432,7 @@ std::vector<std::int64_t> Editor::takeTouchedStorageChunks()
 void Editor::startRecording()
 {
   this->Rec = std::make_unique<Recording>();
+  this->Rec->canvas = this->Volume.dims(); // so a player can refuse another canvas
 }
 
 Recording Editor::stopRecording()
@@ -444,6 +445,14 @@ Recording Editor::stopRecording()
 
 void Editor::play(const Recording& r, Interrupter& interrupter)
 {
+  // positions are voxels of the recorded canvas: on another one the dabs land
+  // elsewhere (or outside) and the model silently differs, so refuse up front
+  const Index3& d = this->Volume.dims();
+  if (r.canvas[0] > 0 && r.canvas != d)
+    throw Error(ErrorCode::InvalidArgument,
+      "the recording was made on a " + std::to_string(r.canvas[0]) + " x " + std::to_string(r.canvas[1]) + " x " +
+        std::to_string(r.canvas[2]) + " canvas; this volume is " + std::to_string(d[0]) + " x " +
+        std::to_string(d[1]) + " x " + std::to_string(d[2]) + " (nothing was played)");
   interrupter.start("play recording");
   const BrushSettings saved = this->brush;
   // long edits inside the recording check the same interrupter between batches
@@ -463,10 +472,18 @@ void Editor::play(const Recording& r, Interrupter& interrupter)
   for (const EditRecord& e : r.records)
   {
     interrupter.checkInterrupt();
-    if (e.type == EditRecord::Type::Undo)
-      this->undo();
-    else if (e.type == EditRecord::Type::Redo)
-      this->redo();
+    if (e.type == EditRecord::Type::Undo || e.type == EditRecord::Type::Redo)
+    {
+      // The recorder writes only undos and redos that happened: one with nothing
+      // to act on means another start (an undo of an edit made before the recording
+      // began, another volume or history): going on would silently give another model.
+      const bool undo = e.type == EditRecord::Type::Undo;
+      if (!(undo ? this->undo() : this->redo()))
+        throw Error(ErrorCode::InvalidArgument,
+          "record " + std::to_string(i + 1) + " of " + std::to_string(r.records.size()) + " ('" +
+            (undo ? "undo" : "redo") + "') has nothing to " + (undo ? "undo" : "redo") +
+            ": the recording does not start from this volume and history, so it cannot be played back exactly");
+    }
     else
     {
       this->brush = e.brush;

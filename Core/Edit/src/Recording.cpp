@@ -12,6 +12,7 @@
 #include <fstream>
 #include <functional>
 #include <map>
+#include <set>
 #include <sstream>
 
 namespace lvdif
@@ -114,6 +115,9 @@ const std::map<std::string, Falloff> Falloffs{ { "constant", Falloff::Constant }
   { "smooth", Falloff::Smooth }, { "sharp", Falloff::Sharp } };
 const std::map<std::string, BrushShape> Shapes{ { "sphere", BrushShape::Sphere }, { "cube", BrushShape::Cube },
   { "capsule", BrushShape::Capsule } };
+// the keys of an edit record (docs/RECORDING.md)
+const std::set<std::string> EditKeys{ "time", "op", "shape", "kind", "spacing", "blend", "coloroffset", "rounding",
+  "color", "dabs", "strength", "falloff", "invert", "mirrorx", "mirrory", "mirrorz" };
 const std::map<std::string, BrushKind> Kinds{ { "single", BrushKind::Single }, { "basic", BrushKind::Basic },
   { "dynamic", BrushKind::Dynamic }, { "drill", BrushKind::Drill } };
 } // namespace
@@ -121,6 +125,8 @@ const std::map<std::string, BrushKind> Kinds{ { "single", BrushKind::Single }, {
 void writeRecording(std::ostream& out, const Recording& r)
 {
   out << "LVDIF-RECORDING " << Recording::Version << "\n";
+  if (r.canvas[0] > 0)
+    out << "canvas " << r.canvas[0] << " " << r.canvas[1] << " " << r.canvas[2] << "\n";
   for (const EditRecord& e : r.records)
   {
     if (e.type == EditRecord::Type::Undo || e.type == EditRecord::Type::Redo)
@@ -232,13 +238,43 @@ Recording readRecording(std::istream& in, const std::string& name)
       --expectDabs;
       continue;
     }
+    if (head.text == "canvas")
+    {
+      // the recorded volume's dimensions: once, before the first record
+      if (!r.records.empty() || r.canvas[0] > 0)
+        at.bad(head.column, "the canvas line must come once, right after the version line");
+      if (words.size() != 4)
+        at.bad(head.column, "expected 'canvas NX NY NZ'");
+      for (int a = 0; a < 3; ++a)
+      {
+        const Word& w = words[static_cast<std::size_t>(1 + a)];
+        char* end = nullptr;
+        const long long n = std::strtoll(w.text.c_str(), &end, 10);
+        if (w.text.empty() || *end != '\0' || n < 1 || n > DictionaryVolume::MaxDimension)
+          at.bad(w.column, "canvas dimensions must be whole numbers 1.." + std::to_string(DictionaryVolume::MaxDimension) +
+              ", got '" + w.text + "'");
+        r.canvas[static_cast<std::size_t>(a)] = n;
+      }
+      continue;
+    }
+    // the record word first: a stray dab line is named as one, not as a bad key=value
+    const bool undoRedo = head.text == "undo" || head.text == "redo";
+    if (head.text == "d" || head.text.rfind("d:", 0) == 0)
+      at.bad(head.column, "dab line outside an edit (the edit's dabs= count is already read)");
+    if (!undoRedo && head.text != "edit")
+      at.bad(head.column, "unknown record '" + head.text + "'");
+    // every key once and known: a misspelt optional key (strenght=) would otherwise be ignored
     std::map<std::string, std::pair<std::string, std::size_t>> kv;
     for (std::size_t w = 1; w < words.size(); ++w)
     {
       const auto eq = words[w].text.find('=');
       if (eq == std::string::npos)
         at.bad(words[w].column, "expected key=value, got '" + words[w].text + "'");
-      kv[words[w].text.substr(0, eq)] = { words[w].text.substr(eq + 1), words[w].column + eq + 1 };
+      const std::string key = words[w].text.substr(0, eq);
+      if (!(undoRedo ? key == "time" : EditKeys.count(key) > 0))
+        at.bad(words[w].column, "unknown key '" + key + "' in a '" + head.text + "' record");
+      if (!kv.emplace(key, std::make_pair(words[w].text.substr(eq + 1), words[w].column + eq + 1)).second)
+        at.bad(words[w].column, "key '" + key + "' given twice");
     }
     auto get = [&](const char* key) -> const std::pair<std::string, std::size_t>& {
       auto it = kv.find(key);
@@ -252,14 +288,12 @@ Recording readRecording(std::istream& in, const std::string& name)
     };
     EditRecord e;
     e.time = number("time");
-    if (head.text == "undo" || head.text == "redo")
+    if (undoRedo)
     {
       e.type = head.text == "undo" ? EditRecord::Type::Undo : EditRecord::Type::Redo;
       r.records.push_back(e);
       continue;
     }
-    if (head.text != "edit")
-      at.bad(head.column, "unknown record '" + head.text + "'");
     e.brush.op = lookup(get("op").first, Ops, at, get("op").second, "op");
     editShape = lookup(get("shape").first, Shapes, at, get("shape").second, "shape");
     e.kind = lookup(get("kind").first, Kinds, at, get("kind").second, "kind");
@@ -273,7 +307,12 @@ Recording readRecording(std::istream& in, const std::string& name)
     if (kv.count("falloff"))
       e.brush.falloff = lookup(get("falloff").first, Falloffs, at, get("falloff").second, "falloff");
     if (kv.count("invert"))
-      e.brush.invert = number("invert") != 0;
+    {
+      const double inv = number("invert");
+      if (inv != 0 && inv != 1)
+        at.bad(get("invert").second, "invert must be 0 or 1 (got " + get("invert").first + ")");
+      e.brush.invert = inv != 0;
+    }
     for (int a = 0; a < 3; ++a)
     {
       const std::string key = std::string("mirror") + "xyz"[a];
@@ -286,14 +325,26 @@ Recording readRecording(std::istream& in, const std::string& name)
     rule([&] { validate(e.brush); }, head.column);
     rule([&] { checkedNumber(e.spacing, EditLimits::MinSpacing, EditLimits::MaxSize, "spacing"); }, get("spacing").second);
     {
-      std::istringstream c(get("color").first);
-      int rgba[4];
-      char sep;
-      if (!(c >> rgba[0] >> sep >> rgba[1] >> sep >> rgba[2] >> sep >> rgba[3]))
-        at.bad(get("color").second, "color must be r,g,b,a");
+      // exactly four whole numbers 0..255 and three commas ("1.5,2,3,4" read as 1,5,2,3 before)
+      const std::string& text = get("color").first;
+      int rgba[4] = { 0, 0, 0, 0 };
+      int n = 0;
+      std::size_t i = 0;
+      bool ok = true;
+      for (; ok && n < 4; ++n)
+      {
+        const std::size_t from = i;
+        int v = 0;
+        while (i < text.size() && text[i] >= '0' && text[i] <= '9' && i - from < 3)
+          v = 10 * v + (text[i++] - '0');
+        ok = i > from && (n == 3 ? i == text.size() : i < text.size() && text[i++] == ',');
+        rgba[n] = v;
+      }
+      if (!ok)
+        at.bad(get("color").second, "color must be r,g,b,a (four whole numbers 0..255), got '" + text + "'");
       for (int v : rgba)
-        if (v < 0 || v > 255)
-          at.bad(get("color").second, "color components must be 0..255");
+        if (v > 255)
+          at.bad(get("color").second, "color components must be 0..255, got '" + text + "'");
       e.brush.color = Rgba{ std::uint8_t(rgba[0]), std::uint8_t(rgba[1]), std::uint8_t(rgba[2]), std::uint8_t(rgba[3]) };
     }
     const double n = number("dabs");

@@ -67,6 +67,113 @@ TEST(Recording, RecordWriteReadPlayIsBitExact)
   EXPECT_EQ(edittest::countDifferences(*start, v), 0);
 }
 
+TEST(Recording, AnUndoWithNothingToUndoStopsPlayback)
+{
+  // The recording starts after an edit and undoes it: played on the volume it
+  // started from, the undo has nothing to act on. It was skipped, and the
+  // playback gave a model with the edit the session had undone.
+  DictionaryVolume v(edittest::options(48, 16));
+  fillFromFunction(v, sphereSdf(24, 24, 24, 12));
+  Editor e(v);
+  e.dab(Dab{ BrushShape::Sphere, { 24, 24, 38 }, 5, {} }); // before the recording
+  auto start = v.clone();
+  e.startRecording();
+  e.undo();
+  e.dab(Dab{ BrushShape::Sphere, { 24, 10, 24 }, 4, {} });
+  const Recording rec = e.stopRecording();
+  ASSERT_EQ(rec.records.size(), 2u);
+
+  auto played = start->clone();
+  Editor p(*played);
+  try
+  {
+    p.play(rec);
+    ADD_FAILURE() << "played an undo with nothing to undo";
+  }
+  catch (const Error& err)
+  {
+    EXPECT_EQ(err.code(), ErrorCode::InvalidArgument);
+    EXPECT_NE(std::string(err.what()).find("record 1 of 2 ('undo') has nothing to undo"), std::string::npos) << err.what();
+  }
+  EXPECT_EQ(edittest::countDifferences(*played, *start), 0); // nothing was applied before it
+
+  // a redo with nothing to redo, after an edit that stays applied
+  std::istringstream text("LVDIF-RECORDING 1\n"
+                          "edit time=0 op=add shape=sphere kind=single spacing=1.6 blend=0 coloroffset=1.5 "
+                          "color=1,2,3,255 dabs=1\nd 24 24 10 4\nredo time=1\n");
+  Editor q(*played);
+  EXPECT_THROW(q.play(readRecording(text)), Error);
+  EXPECT_EQ(q.undoCount(), 1u);
+  EXPECT_TRUE(q.undo());
+  EXPECT_EQ(edittest::countDifferences(*played, *start), 0);
+}
+
+TEST(Recording, AnotherCanvasIsRefusedBeforePlaying)
+{
+  // A recording carries its canvas: played on a volume of other dimensions it
+  // used to run (rc 0) with its dabs elsewhere or outside, a different model.
+  DictionaryVolume v(edittest::options(48, 16));
+  Editor e(v);
+  e.startRecording();
+  e.dab(Dab{ BrushShape::Sphere, { 40, 24, 24 }, 5, {} });
+  const Recording rec = e.stopRecording();
+  std::stringstream text;
+  writeRecording(text, rec);
+  EXPECT_EQ(text.str().rfind("LVDIF-RECORDING 1\ncanvas 48 48 48\nedit ", 0), 0u) << text.str();
+  const Recording back = readRecording(text);
+  EXPECT_EQ(back.canvas, (Index3{ 48, 48, 48 }));
+
+  VolumeOptions o = edittest::options(48, 16);
+  o.dims = { 48, 48, 32 };
+  DictionaryVolume other(o);
+  auto untouched = other.clone();
+  Editor p(other);
+  try
+  {
+    p.play(back);
+    ADD_FAILURE() << "played a 48^3 recording on a 48 x 48 x 32 volume";
+  }
+  catch (const Error& err)
+  {
+    EXPECT_EQ(err.code(), ErrorCode::InvalidArgument);
+    EXPECT_STREQ(err.what(), "the recording was made on a 48 x 48 x 48 canvas; this volume is 48 x 48 x 32 (nothing was played)");
+  }
+  EXPECT_EQ(edittest::countDifferences(other, *untouched), 0);
+  EXPECT_FALSE(p.canUndo());
+
+  // the same canvas plays; a recording without the line (older files, CSV imports) plays anywhere
+  DictionaryVolume same(edittest::options(48, 16));
+  Editor q(same);
+  q.play(back);
+  EXPECT_EQ(edittest::countDifferences(same, v), 0);
+  Recording old = back;
+  old.canvas = { 0, 0, 0 };
+  p.play(old);
+  EXPECT_TRUE(p.canUndo());
+
+  auto errorOf = [](const std::string& s) {
+    std::istringstream in(s);
+    try
+    {
+      readRecording(in);
+    }
+    catch (const Error& e)
+    {
+      return std::string(e.what());
+    }
+    return std::string("no error");
+  };
+  EXPECT_EQ(errorOf("LVDIF-RECORDING 1\ncanvas 48 48\n"), "recording:2:1: expected 'canvas NX NY NZ'");
+  EXPECT_EQ(errorOf("LVDIF-RECORDING 1\ncanvas 48 0 48\n"),
+    "recording:2:11: canvas dimensions must be whole numbers 1..1048576, got '0'");
+  EXPECT_EQ(errorOf("LVDIF-RECORDING 1\ncanvas 48 4.5 48\n"),
+    "recording:2:11: canvas dimensions must be whole numbers 1..1048576, got '4.5'");
+  EXPECT_EQ(errorOf("LVDIF-RECORDING 1\ncanvas 8 8 8\ncanvas 8 8 8\n"),
+    "recording:3:1: the canvas line must come once, right after the version line");
+  EXPECT_EQ(errorOf("LVDIF-RECORDING 1\nundo time=0\ncanvas 8 8 8\n"),
+    "recording:3:1: the canvas line must come once, right after the version line");
+}
+
 TEST(Recording, ParseErrorsNameTheLine)
 {
   auto errorOf = [](const std::string& s) {
@@ -94,6 +201,52 @@ TEST(Recording, ParseErrorsNameTheLine)
   // an empty file: line 1, as every position is 1-based (it said "recording:0:1")
   EXPECT_EQ(errorOf(""), "recording:1:1: empty recording (no version line)");
   EXPECT_EQ(errorOf("# only a comment\n"), "recording:1:1: empty recording (no version line)");
+}
+
+TEST(Recording, MalformedFieldsAreRefusedNotGuessed)
+{
+  // Each of these was read as something else before: "1.5,..." as the colour
+  // 1,5,190,255, a fifth component or other separators ignored, a misspelt
+  // optional key ignored (the edit played with strength 1), the last of two
+  // op= keys used, invert=0.5 as 1, and stray dab lines named "expected key=value".
+  auto errorOf = [](const std::string& s) {
+    std::istringstream in(s);
+    try
+    {
+      readRecording(in);
+    }
+    catch (const Error& e)
+    {
+      EXPECT_EQ(e.code(), ErrorCode::ParseError);
+      return std::string(e.what());
+    }
+    return std::string("no error");
+  };
+  const std::string head = "LVDIF-RECORDING 1\n";
+  auto edit = [](const std::string& color, const std::string& more) {
+    return "edit time=0 op=add shape=sphere kind=basic spacing=1.6 blend=0 coloroffset=1.5 color=" + color + more +
+      " dabs=1\nd 1 2 3 4\n";
+  };
+  const std::string bad = "color must be r,g,b,a (four whole numbers 0..255), got '";
+  EXPECT_EQ(errorOf(head + edit("1.5,190,255,255", "")), "recording:2:86: " + bad + "1.5,190,255,255'");
+  EXPECT_EQ(errorOf(head + edit("1,2,3,4,5", "")), "recording:2:86: " + bad + "1,2,3,4,5'");
+  EXPECT_EQ(errorOf(head + edit("1;2;3;4", "")), "recording:2:86: " + bad + "1;2;3;4'");
+  EXPECT_EQ(errorOf(head + edit("1,2,3", "")), "recording:2:86: " + bad + "1,2,3'");
+  EXPECT_EQ(errorOf(head + edit("-1,2,3,4", "")), "recording:2:86: " + bad + "-1,2,3,4'");
+  EXPECT_EQ(errorOf(head + edit("1,2,3,256", "")), "recording:2:86: color components must be 0..255, got '1,2,3,256'");
+  EXPECT_EQ(errorOf(head + edit("1,2,3,4", " strenght=0.5")), "recording:2:94: unknown key 'strenght' in a 'edit' record");
+  EXPECT_EQ(errorOf(head + edit("1,2,3,4", " op=subtract")), "recording:2:94: key 'op' given twice");
+  EXPECT_EQ(errorOf(head + edit("1,2,3,4", " invert=0.5")), "recording:2:101: invert must be 0 or 1 (got 0.5)");
+  EXPECT_EQ(errorOf(head + "undo time=1 dabs=2\n"), "recording:2:13: unknown key 'dabs' in a 'undo' record");
+  EXPECT_EQ(errorOf(head + edit("1,2,3,4", "") + "d 5 6 7 8\n"),
+    "recording:4:1: dab line outside an edit (the edit's dabs= count is already read)");
+  EXPECT_EQ(errorOf(head + "d 5 6 7 8\n"), "recording:2:1: dab line outside an edit (the edit's dabs= count is already read)");
+  // the writer's own output still reads, every optional key included
+  std::istringstream ok(head + edit("0,0,0,0", " rounding=2 strength=0.5 falloff=smooth invert=1 mirrorx=3 mirrory=4 mirrorz=5"));
+  const Recording r = readRecording(ok);
+  ASSERT_EQ(r.records.size(), 1u);
+  EXPECT_EQ(r.records[0].brush.strength, 0.5);
+  EXPECT_TRUE(r.records[0].brush.invert);
 }
 
 TEST(Recording, ImportsTheOriginalCsvWithAxisSwapAndScaling)

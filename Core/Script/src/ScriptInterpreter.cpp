@@ -5,6 +5,9 @@
 
 #include "lvdif/Script.h"
 
+#include "lvdif/ByteStream.h"
+#include "lvdif/Memory.h"
+
 #include <algorithm>
 #include <cmath>
 #include <iostream>
@@ -27,6 +30,16 @@ void checkScript(const std::string& source)
   detail::script::parse(detail::script::lex(source));
 }
 
+std::string readScriptFile(const std::string& path)
+{
+  FileSource src(path); // refuses FIFOs, directories and devices without blocking
+  requireMemory(src.size(), "reading the script " + path);
+  std::string text(static_cast<std::size_t>(src.size()), '\0');
+  if (!text.empty())
+    src.read(0, &text[0], text.size());
+  return text;
+}
+
 using detail::script::Expr;
 using detail::script::Stmt;
 
@@ -42,6 +55,7 @@ struct ScriptRunner::Impl
   BrushShape Shape = BrushShape::Sphere;
   double Radius = 3;
   int StrokeLine = 0, StrokeColumn = 0;
+  bool StrokeOpen = false; // a stroke this script began is open (the editor may be the caller's)
   std::size_t TopDone = 0, TopTotal = 1;
 
   [[noreturn]] static void fail(int line, int col, const std::string& what)
@@ -395,6 +409,7 @@ struct ScriptRunner::Impl
     else if (c == "begin")
     {
       ed.beginStroke();
+      this->StrokeOpen = true;
       this->StrokeLine = s.line;
       this->StrokeColumn = s.column;
     }
@@ -412,6 +427,7 @@ struct ScriptRunner::Impl
     {
       if (!ed.strokeOpen())
         fail(s.line, s.column, "'end' without 'begin'");
+      this->StrokeOpen = false; // endStroke closes it even when it fails
       ed.endStroke();
       ++this->Owner->Edits;
     }
@@ -419,6 +435,30 @@ struct ScriptRunner::Impl
       ed.undo();
     else if (c == "redo")
       ed.redo();
+  }
+
+  /// Ends a stroke this script began and left open; true if there was one.
+  /// Under the script's interrupter: after a cancel the stroke's pending dabs
+  /// (all of a Basic stroke's) are not applied, and a long rest stays cancellable.
+  /// Its own failure (that cancel, a budget) is dropped: the script's error is the one reported.
+  bool endScriptStroke()
+  {
+    if (!this->StrokeOpen || !this->Ed || !this->Ed->strokeOpen())
+      return false;
+    this->StrokeOpen = false;
+    Interrupter* saved = this->Ed->interrupter;
+    if (this->Options.interrupter)
+      this->Ed->interrupter = this->Options.interrupter;
+    try
+    {
+      this->Ed->endStroke();
+    }
+    catch (const Error&)
+    {
+      // endStroke closes the stroke and its undo step even when it throws
+    }
+    this->Ed->interrupter = saved;
+    return true;
   }
 
   void canvas(const Stmt& s, const std::vector<double>& a)
@@ -439,8 +479,9 @@ struct ScriptRunner::Impl
       const double d = a.size() == 1 ? a[0] : a[static_cast<size_t>(i)];
       if (d != std::floor(d)) // also NaN and infinities
         fail(s.line, s.column, "canvas dimensions must be whole numbers");
-      // clamped only to convert; the range is the editors' one rule below
-      dims[i] = static_cast<std::int64_t>(std::max(-1.0, std::min(d, double(DictionaryVolume::MaxDimension) + 1)));
+      // clamped only to convert (to +-1e18, exact in 64 bits, so the message of the
+      // editors' one rule below shows the number asked for: 'canvas -5' said -1)
+      dims[i] = static_cast<std::int64_t>(std::max(-1e18, std::min(d, 1e18)));
     }
     const std::string tooThin = DictionaryVolume::checkCanvasDimensions(dims);
     if (!tooThin.empty())
@@ -454,6 +495,7 @@ struct ScriptRunner::Impl
     o.dims = dims;
     this->Ed = nullptr;
     this->OwnedEd.reset();
+    this->StrokeOpen = false;
     this->Owned = std::make_unique<DictionaryVolume>(o);
     this->setVolume(this->Owned.get());
   }
@@ -497,13 +539,22 @@ void ScriptRunner::run(const std::string& source)
     in->start("script");
   this->P->TopDone = 0;
   this->P->TopTotal = std::max<std::size_t>(1, prog.statements.size());
-  this->P->run(prog.statements, true);
-  if (this->P->Ed && this->P->Ed->strokeOpen())
+  this->P->StrokeOpen = false;
+  try
   {
-    this->P->Ed->endStroke(); // keep the work, but report the mistake
+    this->P->run(prog.statements, true);
+  }
+  catch (...)
+  {
+    // A stroke the script began is ended as the end of the script ends it
+    // (its points so far kept, one undo step): left open, it would lock the
+    // caller's editor (no undo, no new stroke) after the error.
+    this->P->endScriptStroke();
+    throw;
+  }
+  if (this->P->endScriptStroke())
     throw ScriptError(ErrorCode::InvalidArgument, this->P->StrokeLine, this->P->StrokeColumn,
       "'begin' without 'end' (the stroke was ended at the end of the script)");
-  }
   if (in)
     in->end();
 }

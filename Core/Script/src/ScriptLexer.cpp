@@ -30,7 +30,8 @@ std::vector<Token> lex(const std::string& src)
   {
     const char ch = src[i];
     const int l = line, c = col;
-    if (ch == '\n')
+    // a line ends at LF, CRLF or a lone CR (classic Mac files: one long line before)
+    if (ch == '\n' || (ch == '\r' && !(i + 1 < src.size() && src[i + 1] == '\n')))
     {
       push(Tok::Newline, "\\n", l, c);
       ++i;
@@ -46,7 +47,7 @@ std::vector<Token> lex(const std::string& src)
     }
     if (ch == '#')
     {
-      while (i < src.size() && src[i] != '\n')
+      while (i < src.size() && src[i] != '\n' && src[i] != '\r')
         ++i;
       continue;
     }

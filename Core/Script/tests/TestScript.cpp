@@ -7,6 +7,9 @@
 
 #include <gtest/gtest.h>
 
+#include <cstdio>
+#include <sys/stat.h>
+
 #include <chrono>
 #include <cmath>
 #include <fstream>
@@ -136,6 +139,11 @@ TEST(Script, RunTimeErrorsGiveLineAndColumn)
   EXPECT_NE(w.detail.find("each axis needs 2.."), std::string::npos) << w.detail;
   w = errorOf("canvas 8 0 8");
   EXPECT_EQ(w.detail, DictionaryVolume::checkCanvasDimensions({ 8, 0, 8 }));
+  // the numbers asked for, not clamped ones (it said "-1 x -1 x -1" and "1048577")
+  EXPECT_NE(errorOf("canvas -5").detail.find("a canvas of -5 x -5 x -5 voxels"), std::string::npos)
+    << errorOf("canvas -5").detail;
+  EXPECT_NE(errorOf("canvas 64, 3000000, -3").detail.find("a canvas of 64 x 3000000 x -3 voxels"), std::string::npos)
+    << errorOf("canvas 64, 3000000, -3").detail;
   w = errorOf("canvas 2.5");
   EXPECT_EQ(w.detail, "canvas dimensions must be whole numbers");
   EXPECT_EQ(errorOf("canvas 2 2 2").detail, "no error");
@@ -404,4 +412,49 @@ TEST(Script, DabsCountAsStepsAndRunawayLinesAreRefusedFirst)
     EXPECT_EQ(w.column, 1) << cmd;
     EXPECT_NE(w.detail.find("must be a finite number in"), std::string::npos) << w.detail;
   }
+}
+
+TEST(Script, ReadScriptFileRefusesFoldersAndFifosWithoutBlocking)
+{
+  const std::string dir = ::testing::TempDir();
+  auto errorOf = [](const std::string& path) {
+    try
+    {
+      lvdif::readScriptFile(path);
+    }
+    catch (const lvdif::Error& e)
+    {
+      return std::string(e.what());
+    }
+    return std::string("no error");
+  };
+  EXPECT_NE(errorOf(dir).find("not a regular file"), std::string::npos) << errorOf(dir);
+  const std::string fifo = dir + "/lvdif_script_fifo.lvs";
+  std::remove(fifo.c_str());
+  ASSERT_EQ(::mkfifo(fifo.c_str(), 0600), 0);
+  EXPECT_NE(errorOf(fifo).find("not a regular file"), std::string::npos) << errorOf(fifo); // no writer: open would block
+  std::remove(fifo.c_str());
+  const std::string path = dir + "/lvdif_script_text.lvs";
+  FILE* f = std::fopen(path.c_str(), "wb");
+  ASSERT_NE(f, nullptr);
+  std::fputs("x = 1\r\ny = 2\n", f);
+  std::fclose(f);
+  EXPECT_EQ(lvdif::readScriptFile(path), "x = 1\r\ny = 2\n"); // bytes as they are (the lexer takes CRLF)
+  f = std::fopen(path.c_str(), "wb");
+  std::fclose(f);
+  EXPECT_EQ(lvdif::readScriptFile(path), "");
+  // lone CRs end lines too: the error is on line 3 (it was line 1, the file read as one line)
+  try
+  {
+    lvdif::checkScript("canvas 32\r# note\rsphere 16, 16, 16, 8\rfrobnicate 1\r");
+    ADD_FAILURE() << "no error";
+  }
+  catch (const lvdif::ScriptError& e)
+  {
+    EXPECT_EQ(e.line(), 4);
+    EXPECT_EQ(e.column(), 1);
+    EXPECT_EQ(e.detail(), "unknown command 'frobnicate'");
+  }
+  lvdif::checkScript("canvas 32\r\nsphere 16, 16, 16, 8\r\n"); // CRLF as before
+  std::remove(path.c_str());
 }

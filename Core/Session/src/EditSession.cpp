@@ -226,7 +226,11 @@ EditResult EditSession::dab(const Dab& d)
 
 EditResult EditSession::strokeThrough(const std::vector<BrushSample>& samples)
 {
-  return this->applyDabs(strokeDabs(samples, this->Ed->stroke), this->Ed->stroke.kind);
+  // the editor's stroke (its dab budget, a pinch's stroke directions), not a second copy of it
+  auto lock = this->lockSource();
+  const EditResult r = this->Ed->strokeThrough(samples);
+  this->afterEdit(this->Ed->lastWrite(), r.changedVoxels > 0);
+  return r;
 }
 
 void EditSession::beginStroke()

@@ -234,6 +234,88 @@ TEST(EditSession, ScriptErrorKeepsEarlierEditsAndSyntaxErrorChangesNothing)
   EXPECT_EQ(differences(s.volume(), *before), 0);
 }
 
+TEST(EditSession, ScriptErrorInsideAStrokeEndsTheStroke)
+{
+  // A run-time error between 'begin' and 'end' used to leave the session's
+  // stroke open: no undo ("finish the open stroke first"), no new stroke.
+  auto v = sphereVolume(48, 16);
+  lvdif::EditSession s(v, cpuOptions());
+  const auto before = s.volume().clone();
+  EXPECT_THROW(s.runScript("radius 4\nbegin\npoint 10 24 34\npoint 38 24 34\nprint zz\nend"), lvdif::ScriptError);
+  EXPECT_FALSE(s.strokeOpen());
+  ASSERT_EQ(s.undoCount(), 1u); // the stroke's points so far, as at the end of a script
+  // the oracle: the same two samples as one stroke, dab by dab on a copy
+  auto oracle = before->clone();
+  lvdif::StrokeSettings st;
+  st.radius = 4;
+  lvdif::BrushSample a, b;
+  a.position = { 10, 24, 34 };
+  b.position = { 38, 24, 34 };
+  lvdif::applyDabs(*oracle, lvdif::strokeDabs({ a, b }, st), lvdif::BrushSettings());
+  EXPECT_EQ(decodedDifferences(s.volume(), *oracle), 0);
+  EXPECT_TRUE(s.undo());
+  EXPECT_EQ(differences(s.volume(), *before), 0);
+  s.beginStroke(); // the session takes new strokes again
+  s.addSample(a);
+  s.endStroke();
+  EXPECT_EQ(s.undoCount(), 1u);
+
+  // cancelled while a Basic stroke collects its points: the stroke is closed
+  // and none of its dabs is applied after the cancel (all of them wait for 'end')
+  struct CancelLater : lvdif::Interrupter
+  {
+    mutable int checks = 0;
+    bool wasInterrupted() const override { return ++checks > 3; }
+  } cancel;
+  lvdif::ScriptOptions o;
+  o.interrupter = &cancel;
+  const auto beforeCancel = s.volume().clone();
+  const std::size_t steps = s.undoCount();
+  try
+  {
+    s.runScript("kind basic\nbegin\nfor i in 0..100000 { point 10 + i % 28, 24, 34 }\nend", o);
+    ADD_FAILURE() << "not cancelled";
+  }
+  catch (const lvdif::Error& e)
+  {
+    EXPECT_EQ(e.code(), lvdif::ErrorCode::Cancelled) << e.what();
+  }
+  EXPECT_FALSE(s.strokeOpen());
+  EXPECT_EQ(s.undoCount(), steps);
+  EXPECT_EQ(differences(s.volume(), *beforeCancel), 0);
+}
+
+TEST(EditSession, StrokeThroughIsTheEditorsStroke)
+{
+  // The session made its own dabs for strokeThrough: a pinch stroke lost its
+  // stroke direction (each dab pinched radially) and the editor's dab budget was not applied.
+  auto v = sphereVolume(48, 16);
+  lvdif::BrushSample a, b;
+  a.position = { 14, 24, 34 };
+  b.position = { 34, 24, 34 };
+  lvdif::EditSession s(v->clone(), cpuOptions());
+  s.brush().op = lvdif::BrushOp::Pinch;
+  s.stroke().radius = 6;
+  s.strokeThrough({ a, b });
+  // the oracle: the same stroke's dabs, each directed along the stroke (the pinch rule, Brush.h)
+  auto oracle = v->clone();
+  std::vector<lvdif::Dab> dabs = lvdif::strokeDabs({ a, b }, s.stroke());
+  ASSERT_GT(dabs.size(), 2u);
+  for (std::size_t i = 0; i < dabs.size(); ++i)
+  {
+    const lvdif::Dab& from = dabs[i == 0 ? 0 : i - 1];
+    const lvdif::Dab& to = dabs[i == 0 ? 1 : i];
+    for (int k = 0; k < 3; ++k)
+      dabs[i].vec[k] = to.center[k] - from.center[k];
+  }
+  lvdif::applyDabs(*oracle, dabs, s.brush());
+  EXPECT_EQ(differences(s.volume(), *oracle), 0);
+
+  s.editor().limits.maxDabsPerEdit = 3;
+  EXPECT_THROW(s.strokeThrough({ a, b }), lvdif::Error); // the editor's budget: 14 dabs > 3
+  EXPECT_EQ(s.undoCount(), 1u);
+}
+
 TEST(EditSession, ScriptCanvasReplacesTheVolumeAndKeepsTheScriptsBrush)
 {
   lvdif::EditSession s(sphereVolume(32, 16), cpuOptions());

@@ -95,7 +95,9 @@ public:
   bool recording() const { return this->Rec != nullptr; }
   void setTime(double t) { this->Time = t; }
 
-  /// Plays a recording back (edits, undo and redo in order).
+  /// Plays a recording back (edits, undo and redo in order). An undo or redo
+  /// with nothing to act on is Error(InvalidArgument) (the recording started
+  /// from another volume or history); the records before it stay applied.
   void play(const Recording& r, Interrupter& interrupter = nullInterrupter());
 
   /// The chunks changed by edits, undo and redo since the last call (increasing ids),

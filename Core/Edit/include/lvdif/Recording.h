@@ -4,6 +4,7 @@
 // Text format (docs/RECORDING.md):
 //
 //   LVDIF-RECORDING 1
+//   canvas 64 64 64
 //   edit time=0.25 op=add shape=sphere kind=basic spacing=1.6 blend=0 coloroffset=1.5 color=255,0,0,255 dabs=2
 //   d 10 20 30 3
 //   d 11.6 20 30 3
@@ -48,6 +49,10 @@ struct EditRecord
 struct Recording
 {
   static constexpr int Version = 1;
+  /// Dimensions of the volume it was recorded on (the `canvas` line; {0, 0, 0}:
+  /// not known, as in recordings written before it and imported CSVs).
+  /// Editor::play refuses a volume of other dimensions before applying anything.
+  Index3 canvas{ 0, 0, 0 };
   std::vector<EditRecord> records;
 };
 

@@ -62,6 +62,12 @@ struct ScriptOptions
 /// Parses only (syntax and command names/arity); throws ScriptError (ParseError).
 void checkScript(const std::string& source);
 
+/// The text of a script file, the one reader of every front end (lvdif script,
+/// vtkLVDIFEditor::RunScriptFile, the Qt editor): FIFOs, directories and devices
+/// are refused without blocking (Error naming the path), the size is checked
+/// against the memory limit before reading.
+std::string readScriptFile(const std::string& path);
+
 class ScriptRunner
 {
 public:

@@ -254,6 +254,28 @@ TEST(LVDIFEditor, ScriptErrorsCarryLineAndColumn)
   EXPECT_NEAR(c.sdf[static_cast<std::size_t>(10 + 20 * (12 + 24 * 14))], -4.0, 6e-4);
 }
 
+TEST(LVDIFEditor, RunScriptFileRefusesWhatIsNoFile)
+{
+  // A folder was opened by std::ifstream, read as an empty script, and the call
+  // succeeded; a FIFO blocked. The one script reader refuses both, naming the path.
+  vtkNew<vtkLVDIFEditor> ed;
+  ed->GlobalWarningDisplayOff();
+  ASSERT_EQ(ed->NewVolume(16, 16, 16, false), 1);
+  const std::string dir = ::testing::TempDir();
+  EXPECT_EQ(ed->RunScriptFile(dir.c_str()), 0);
+  EXPECT_NE(std::string(ed->GetLastError()).find("not a regular file"), std::string::npos) << ed->GetLastError();
+  EXPECT_EQ(ed->RunScriptFile("/nonexistent/s.lvs"), 0);
+  EXPECT_NE(std::string(ed->GetLastError()).find("/nonexistent/s.lvs"), std::string::npos) << ed->GetLastError();
+  const std::string path = dir + "/lvdif_editor_script.lvs";
+  FILE* f = std::fopen(path.c_str(), "w");
+  ASSERT_NE(f, nullptr);
+  std::fputs("sphere 8, 8, 8, 3\r\n", f);
+  std::fclose(f);
+  EXPECT_EQ(ed->RunScriptFile(path.c_str()), 1) << ed->GetLastError();
+  EXPECT_EQ(ed->GetUndoCount(), 1);
+  std::remove(path.c_str());
+}
+
 TEST(LVDIFEditor, RecordThenPlayIsBitExact)
 {
   const std::string path = std::string(::testing::TempDir()) + "/lvdif_editor_record.lvrec";
