@@ -145,22 +145,31 @@ std::shared_ptr<lvdif::DictionaryVolume> vtkLVDIFEditor::GetVolume()
 
 void vtkLVDIFEditor::SetVolume(std::shared_ptr<lvdif::DictionaryVolume> volume)
 {
-  if (this->Session)
+  lvdif::EditSessionOptions o;
+  o.device = this->Device == 1 ? lvdif::Device::Cpu : (this->Device == 2 ? lvdif::Device::Cuda : lvdif::Device::Auto);
+  o.meshing = false; // this object hands out no meshes, only which mesh chunks changed
+  // A volume the session refuses (EditSession's canvas rule) throws before the
+  // current session changes: the editor keeps its volume.
+  if (volume && this->Session && this->Session->options().device == o.device)
+    this->Session->setVolume(volume); // brush kept; the old volume leaves the GPU before the new one comes
+  else
   {
-    this->Brush->brush = this->Session->brush();
-    this->Brush->stroke = this->Session->stroke();
+    std::unique_ptr<lvdif::EditSession> next;
+    if (volume)
+      next = std::make_unique<lvdif::EditSession>(volume, o);
+    if (this->Session)
+    {
+      this->Brush->brush = this->Session->brush();
+      this->Brush->stroke = this->Session->stroke();
+    }
+    this->Session = std::move(next);
+    if (this->Session)
+    {
+      this->Session->brush() = this->Brush->brush;
+      this->Session->stroke() = this->Brush->stroke;
+    }
   }
-  this->Session.reset();
-  if (volume)
-  {
-    lvdif::EditSessionOptions o;
-    o.device = this->Device == 1 ? lvdif::Device::Cpu : (this->Device == 2 ? lvdif::Device::Cuda : lvdif::Device::Auto);
-    o.meshing = false; // this object hands out no meshes, only which mesh chunks changed
-    this->Session = std::make_unique<lvdif::EditSession>(volume, o);
-    this->Session->brush() = this->Brush->brush;
-    this->Session->stroke() = this->Brush->stroke;
-    this->Brush->notice = this->Session->notice();
-  }
+  this->Brush->notice = this->Session ? this->Session->notice() : std::string();
   this->ImageSource->SetVolume(volume);
   this->ImageGeneration = this->Session ? this->Session->generation() : 0;
   this->ReportChanges(); // a new session reports every mesh chunk
@@ -171,12 +180,9 @@ int vtkLVDIFEditor::NewVolume(int nx, int ny, int nz, bool filled)
   return this->Guard("NewVolume", [&] {
     lvdif::VolumeOptions o;
     o.dims = { nx, ny, nz };
-    // the editors' one rule, before the volume's own (wider) one
-    const std::string tooThin = lvdif::DictionaryVolume::checkCanvasDimensions(o.dims);
-    lvdif::require(tooThin.empty(), tooThin);
     o.chunkEdge = this->ChunkEdge;
     o.bandWidth = static_cast<float>(this->BandWidth);
-    auto v = std::make_shared<lvdif::DictionaryVolume>(o);
+    std::shared_ptr<lvdif::DictionaryVolume> v = lvdif::DictionaryVolume::newCanvas(o); // the editors' one canvas rule
     if (filled)
     {
       const lvdif::Rgba c = brushOf(this->Session.get(), this->Brush->brush).color;

@@ -14,6 +14,8 @@
 #include "vtkUnsignedCharArray.h"
 
 #include "lvdif/DictionaryVolume.h"
+#include "lvdif/Error.h"
+#include "lvdif/VolumeFile.h"
 
 #include <gtest/gtest.h>
 
@@ -324,7 +326,8 @@ TEST(LVDIFEditor, NewVolumeRefusesAThinCanvasWithTheOneRule)
   vtkNew<vtkLVDIFEditor> ed;
   ed->GlobalWarningDisplayOff();
   ASSERT_EQ(ed->NewVolume(20, 20, 20, false), 1) << ed->GetLastError();
-  for (const lvdif::Index3& d : { lvdif::Index3{ 1, 1, 1 }, lvdif::Index3{ 20, 1, 20 }, lvdif::Index3{ 0, 5, 5 } })
+  for (const lvdif::Index3& d : { lvdif::Index3{ 1, 1, 1 }, lvdif::Index3{ 20, 1, 20 }, lvdif::Index3{ 0, 5, 5 },
+         lvdif::Index3{ lvdif::DictionaryVolume::MaxDimension + 1, 2, 2 }, lvdif::Index3{ 1, 1048576, 1048576 } })
   {
     EXPECT_EQ(ed->NewVolume(int(d[0]), int(d[1]), int(d[2]), false), 0);
     EXPECT_EQ(std::string(ed->GetLastError()), "NewVolume: " + lvdif::DictionaryVolume::checkCanvasDimensions(d));
@@ -333,6 +336,28 @@ TEST(LVDIFEditor, NewVolumeRefusesAThinCanvasWithTheOneRule)
     EXPECT_EQ(dims[1], 20); // the previous canvas stays
   }
   EXPECT_EQ(ed->NewVolume(2, 2, 2, false), 1) << ed->GetLastError();
+}
+
+// A file may hold a volume thinner than a canvas (files mesh to nothing); the
+// editor's session refuses it with the same words, and keeps its own volume
+// (before, the old session was dropped first: the editor was left without one).
+TEST(LVDIFEditor, LoadingAThinVolumeKeepsTheCurrentOne)
+{
+  const std::string path = std::string(::testing::TempDir()) + "/lvdif_editor_thin.lvdv";
+  lvdif::VolumeOptions o;
+  o.dims = { 8, 1, 8 };
+  o.chunkEdge = 8;
+  lvdif::saveVolume(lvdif::DictionaryVolume(o), path); // Core's writer: not the editor's
+  vtkNew<vtkLVDIFEditor> ed;
+  ed->GlobalWarningDisplayOff();
+  ASSERT_EQ(ed->NewVolume(20, 20, 20, true), 1) << ed->GetLastError();
+  const Snapshot before = snap(ed);
+  EXPECT_EQ(ed->LoadVolume(path.c_str()), 0);
+  EXPECT_EQ(std::string(ed->GetLastError()), "LoadVolume: " + lvdif::DictionaryVolume::checkCanvasDimensions(o.dims));
+  ASSERT_TRUE(ed->HasVolume());
+  EXPECT_TRUE(snap(ed) == before);
+  EXPECT_EQ(ed->Dab(10, 10, 10), 1) << ed->GetLastError(); // and still edits it
+  std::remove(path.c_str());
 }
 
 // SaveVolume into a missing folder names the folder (lvdif::requireWritable,
