@@ -1,5 +1,6 @@
 #include "vtkLVDIFEditor.h"
 
+#include "LVDIFFiles.h"
 #include "vtkDictionaryVolumeToImage.h"
 #include "vtkIdTypeArray.h"
 #include "vtkObjectFactory.h"
@@ -9,7 +10,6 @@
 #include "lvdif/Error.h"
 #include "lvdif/Recording.h"
 #include "lvdif/Script.h"
-#include "lvdif/VolumeFile.h"
 
 #include <cmath>
 #include <fstream>
@@ -199,8 +199,8 @@ int vtkLVDIFEditor::LoadVolume(const char* path)
 {
   return this->Guard("LoadVolume", [&] {
     lvdif::require(path && *path, "no file name");
-    std::shared_ptr<lvdif::DictionaryVolume> v = lvdif::loadVolume(path);
-    this->SetVolume(std::move(v));
+    // every volume format, by extension, through the one file registry (as the CLI and the Qt editor)
+    this->SetVolume(LVDIFFiles::LoadVolume(path));
   });
 }
 
@@ -210,7 +210,7 @@ int vtkLVDIFEditor::SaveVolume(const char* path)
     return 0;
   return this->Guard("SaveVolume", [&] {
     lvdif::require(path && *path, "no file name");
-    lvdif::saveVolume(this->Session->volume(), path);
+    LVDIFFiles::SaveVolume(this->Session->sharedVolume(), path); // sharedVolume() syncs a GPU volume first
   });
 }
 

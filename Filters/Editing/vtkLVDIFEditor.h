@@ -88,9 +88,11 @@ public:
   /// A new empty (filled = false: all outside) or solid (filled = true) volume
   /// of nx x ny x nz voxels with ChunkEdge and BandWidth; clears undo/redo.
   int NewVolume(int nx, int ny, int nz, bool filled);
-  /// Reads a .lvdif volume file (lvdif/VolumeFile.h); clears undo/redo.
+  /// Reads a volume file of any format of the file registry (LVDIFFiles.h,
+  /// by extension: .lvdv, .lvdvp, .bv, .vti, .vdb with OpenVDB); clears undo/redo.
   int LoadVolume(const char* path);
-  /// Writes the volume crash-safely.
+  /// Writes the volume by extension through the same registry, crash-safely
+  /// (an unknown extension or an unwritable place is refused before any work).
   int SaveVolume(const char* path);
   bool HasVolume() const { return this->Session != nullptr; }
   /// Dimensions of the volume (0 0 0 without one).
