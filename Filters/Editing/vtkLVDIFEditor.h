@@ -214,7 +214,8 @@ public:
 #ifndef __VTK_WRAP__
   /// The volume's host copy (synced from the GPU first when it lives there).
   std::shared_ptr<lvdif::DictionaryVolume> GetVolume();
-  /// Adopts a volume (clears undo/redo).
+  /// Adopts a volume (clears undo/redo). Throws lvdif::Error for a volume an
+  /// edit session refuses (thinner than a canvas), keeping the current one.
   void SetVolume(std::shared_ptr<lvdif::DictionaryVolume> volume);
   /// The session (nullptr without a volume), e.g. for collectMeshes() or pump().
   lvdif::EditSession* GetSession() { return this->Session.get(); }
