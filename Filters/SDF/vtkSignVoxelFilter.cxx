@@ -54,7 +54,10 @@ bool vtkSignVoxelFilter::Distributed() const
 // never reaches RequestInformation/RequestData (the executive stops before the
 // algorithm), so the others would wait in the first collective forever. This
 // executive notes a failed pass of that rank and joins the pass's agreement
-// for it, as failed: every rank then fails the pass and reports why.
+// for it, as failed: every rank then fails the pass and reports why. (In
+// ParaView it stands in for vtkPVCompositeDataPipeline, whose one addition
+// passes array-component requests on to a post filter: this filter reads one
+// 1-component array.)
 class vtkSignVoxelFilterExecutive : public vtkCompositeDataPipeline
 {
 public:
