@@ -50,11 +50,8 @@ void VolumeDocument::newCanvas(int nx, int ny, int nz, Fill fill)
 {
   lvdif::VolumeOptions o;
   o.dims = { nx, ny, nz };
-  // the editors' one rule, before the volume's own (wider) one
-  const std::string tooThin = lvdif::DictionaryVolume::checkCanvasDimensions(o.dims);
-  lvdif::require(tooThin.empty(), tooThin);
   o.chunkEdge = 32;
-  auto v = std::make_shared<lvdif::DictionaryVolume>(o);
+  std::shared_ptr<lvdif::DictionaryVolume> v = lvdif::DictionaryVolume::newCanvas(o); // the editors' one canvas rule
   if (fill == Fill::Full)
   {
     v = std::make_shared<lvdif::DictionaryVolume>(o, v->insideVoxel());

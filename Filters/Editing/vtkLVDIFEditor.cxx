@@ -1,5 +1,6 @@
 #include "vtkLVDIFEditor.h"
 
+#include "LVDIFFiles.h"
 #include "vtkDictionaryVolumeToImage.h"
 #include "vtkIdTypeArray.h"
 #include "vtkObjectFactory.h"
@@ -9,7 +10,6 @@
 #include "lvdif/Error.h"
 #include "lvdif/Recording.h"
 #include "lvdif/Script.h"
-#include "lvdif/VolumeFile.h"
 
 #include <cmath>
 #include <fstream>
@@ -145,22 +145,31 @@ std::shared_ptr<lvdif::DictionaryVolume> vtkLVDIFEditor::GetVolume()
 
 void vtkLVDIFEditor::SetVolume(std::shared_ptr<lvdif::DictionaryVolume> volume)
 {
-  if (this->Session)
+  lvdif::EditSessionOptions o;
+  o.device = this->Device == 1 ? lvdif::Device::Cpu : (this->Device == 2 ? lvdif::Device::Cuda : lvdif::Device::Auto);
+  o.meshing = false; // this object hands out no meshes, only which mesh chunks changed
+  // A volume the session refuses (EditSession's canvas rule) throws before the
+  // current session changes: the editor keeps its volume.
+  if (volume && this->Session && this->Session->options().device == o.device)
+    this->Session->setVolume(volume); // brush kept; the old volume leaves the GPU before the new one comes
+  else
   {
-    this->Brush->brush = this->Session->brush();
-    this->Brush->stroke = this->Session->stroke();
+    std::unique_ptr<lvdif::EditSession> next;
+    if (volume)
+      next = std::make_unique<lvdif::EditSession>(volume, o);
+    if (this->Session)
+    {
+      this->Brush->brush = this->Session->brush();
+      this->Brush->stroke = this->Session->stroke();
+    }
+    this->Session = std::move(next);
+    if (this->Session)
+    {
+      this->Session->brush() = this->Brush->brush;
+      this->Session->stroke() = this->Brush->stroke;
+    }
   }
-  this->Session.reset();
-  if (volume)
-  {
-    lvdif::EditSessionOptions o;
-    o.device = this->Device == 1 ? lvdif::Device::Cpu : (this->Device == 2 ? lvdif::Device::Cuda : lvdif::Device::Auto);
-    o.meshing = false; // this object hands out no meshes, only which mesh chunks changed
-    this->Session = std::make_unique<lvdif::EditSession>(volume, o);
-    this->Session->brush() = this->Brush->brush;
-    this->Session->stroke() = this->Brush->stroke;
-    this->Brush->notice = this->Session->notice();
-  }
+  this->Brush->notice = this->Session ? this->Session->notice() : std::string();
   this->ImageSource->SetVolume(volume);
   this->ImageGeneration = this->Session ? this->Session->generation() : 0;
   this->ReportChanges(); // a new session reports every mesh chunk
@@ -171,12 +180,9 @@ int vtkLVDIFEditor::NewVolume(int nx, int ny, int nz, bool filled)
   return this->Guard("NewVolume", [&] {
     lvdif::VolumeOptions o;
     o.dims = { nx, ny, nz };
-    // the editors' one rule, before the volume's own (wider) one
-    const std::string tooThin = lvdif::DictionaryVolume::checkCanvasDimensions(o.dims);
-    lvdif::require(tooThin.empty(), tooThin);
     o.chunkEdge = this->ChunkEdge;
     o.bandWidth = static_cast<float>(this->BandWidth);
-    auto v = std::make_shared<lvdif::DictionaryVolume>(o);
+    std::shared_ptr<lvdif::DictionaryVolume> v = lvdif::DictionaryVolume::newCanvas(o); // the editors' one canvas rule
     if (filled)
     {
       const lvdif::Rgba c = brushOf(this->Session.get(), this->Brush->brush).color;
@@ -193,8 +199,8 @@ int vtkLVDIFEditor::LoadVolume(const char* path)
 {
   return this->Guard("LoadVolume", [&] {
     lvdif::require(path && *path, "no file name");
-    std::shared_ptr<lvdif::DictionaryVolume> v = lvdif::loadVolume(path);
-    this->SetVolume(std::move(v));
+    // every volume format, by extension, through the one file registry (as the CLI and the Qt editor)
+    this->SetVolume(LVDIFFiles::LoadVolume(path));
   });
 }
 
@@ -204,7 +210,7 @@ int vtkLVDIFEditor::SaveVolume(const char* path)
     return 0;
   return this->Guard("SaveVolume", [&] {
     lvdif::require(path && *path, "no file name");
-    lvdif::saveVolume(this->Session->volume(), path);
+    LVDIFFiles::SaveVolume(this->Session->sharedVolume(), path); // sharedVolume() syncs a GPU volume first
   });
 }
 

@@ -88,9 +88,11 @@ public:
   /// A new empty (filled = false: all outside) or solid (filled = true) volume
   /// of nx x ny x nz voxels with ChunkEdge and BandWidth; clears undo/redo.
   int NewVolume(int nx, int ny, int nz, bool filled);
-  /// Reads a .lvdif volume file (lvdif/VolumeFile.h); clears undo/redo.
+  /// Reads a volume file of any format of the file registry (LVDIFFiles.h,
+  /// by extension: .lvdv, .lvdvp, .bv, .vti, .vdb with OpenVDB); clears undo/redo.
   int LoadVolume(const char* path);
-  /// Writes the volume crash-safely.
+  /// Writes the volume by extension through the same registry, crash-safely
+  /// (an unknown extension or an unwritable place is refused before any work).
   int SaveVolume(const char* path);
   bool HasVolume() const { return this->Session != nullptr; }
   /// Dimensions of the volume (0 0 0 without one).
@@ -212,7 +214,8 @@ public:
 #ifndef __VTK_WRAP__
   /// The volume's host copy (synced from the GPU first when it lives there).
   std::shared_ptr<lvdif::DictionaryVolume> GetVolume();
-  /// Adopts a volume (clears undo/redo).
+  /// Adopts a volume (clears undo/redo). Throws lvdif::Error for a volume an
+  /// edit session refuses (thinner than a canvas), keeping the current one.
   void SetVolume(std::shared_ptr<lvdif::DictionaryVolume> volume);
   /// The session (nullptr without a volume), e.g. for collectMeshes() or pump().
   lvdif::EditSession* GetSession() { return this->Session.get(); }

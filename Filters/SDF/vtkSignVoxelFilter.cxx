@@ -9,6 +9,7 @@
 #include "lvdif/Error.h"
 #include "lvdif/SignVoxelFilter.h"
 
+#include "vtkCompositeDataPipeline.h"
 #include "vtkDataObject.h"
 #include "vtkExtentTranslator.h"
 #include "vtkFieldData.h"
@@ -46,6 +47,57 @@ vtkSignVoxelFilter::~vtkSignVoxelFilter()
 bool vtkSignVoxelFilter::Distributed() const
 {
   return this->Controller && this->Controller->GetNumberOfProcesses() > 1;
+}
+
+// The ranks of a distributed sparse run meet in collectives (an all-reduce of
+// success, all-gathers, pair exchanges). A rank whose input fails upstream
+// never reaches RequestInformation/RequestData (the executive stops before the
+// algorithm), so the others would wait in the first collective forever. This
+// executive notes a failed pass of that rank and joins the pass's agreement
+// for it, as failed: every rank then fails the pass and reports why. (In
+// ParaView it stands in for vtkPVCompositeDataPipeline, whose one addition
+// passes array-component requests on to a post filter: this filter reads one
+// 1-component array.)
+class vtkSignVoxelFilterExecutive : public vtkCompositeDataPipeline
+{
+public:
+  static vtkSignVoxelFilterExecutive* New();
+  vtkTypeMacro(vtkSignVoxelFilterExecutive, vtkCompositeDataPipeline);
+
+  vtkTypeBool ProcessRequest(
+    vtkInformation* request, vtkInformationVector** inInfoVec, vtkInformationVector* outInfoVec) override
+  {
+    auto* filter = vtkSignVoxelFilter::SafeDownCast(this->GetAlgorithm());
+    // the passes whose agreement the other ranks enter: information (its own),
+    // update extent and data (the data pass's: the next collective they enter)
+    const bool meets = filter &&
+      (request->Has(REQUEST_INFORMATION()) || request->Has(REQUEST_UPDATE_EXTENT()) || request->Has(REQUEST_DATA()));
+    if (meets)
+      filter->Joined = false;
+    const vtkTypeBool ok = this->Superclass::ProcessRequest(request, inInfoVec, outInfoVec);
+    if (meets && !ok && !filter->Joined && filter->MeetsRanks(inInfoVec))
+      filter->JoinRanks(false);
+    return ok;
+  }
+
+protected:
+  vtkSignVoxelFilterExecutive() = default;
+  ~vtkSignVoxelFilterExecutive() override = default;
+};
+vtkStandardNewMacro(vtkSignVoxelFilterExecutive);
+
+vtkExecutive* vtkSignVoxelFilter::CreateDefaultExecutive()
+{
+  return vtkSignVoxelFilterExecutive::New();
+}
+
+bool vtkSignVoxelFilter::MeetsRanks(vtkInformationVector** inputVector) const
+{
+  // the input's data object exists from the data-object pass on, also when its
+  // information or data then failed
+  vtkInformation* inInfo = inputVector && inputVector[0] ? inputVector[0]->GetInformationObject(0) : nullptr;
+  return this->Distributed() && inInfo &&
+    vtkSparseDictionaryVolume::SafeDownCast(inInfo->Get(vtkDataObject::DATA_OBJECT())) != nullptr;
 }
 
 namespace
@@ -179,6 +231,12 @@ void AddStats(vtkDataObject* output, const lvdif::SignVoxelFilterStats& st)
 }
 } // namespace
 
+bool vtkSignVoxelFilter::JoinRanks(bool ok)
+{
+  this->Joined = true;
+  return AllOk(this->Controller, ok);
+}
+
 int vtkSignVoxelFilter::FillInputPortInformation(int, vtkInformation* info)
 {
   info->Remove(vtkAlgorithm::INPUT_REQUIRED_DATA_TYPE());
@@ -213,6 +271,11 @@ int vtkSignVoxelFilter::RequestInformation(
   vtkInformation*, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
 {
   vtkInformation* inInfo = inputVector[0]->GetInformationObject(0);
+  if (this->MeetsRanks(inputVector) && !this->JoinRanks(true))
+  {
+    vtkErrorMacro("another rank's input failed: the ranks filter nothing");
+    return 0;
+  }
   if (inInfo->Has(LVDIFVolumeBridge::CHUNK_EDGE()))
   {
     outputVector->GetInformationObject(0)->Set(LVDIFVolumeBridge::CHUNK_EDGE(), inInfo->Get(LVDIFVolumeBridge::CHUNK_EDGE()));
@@ -367,9 +430,21 @@ lvdif::SignVoxelFilterParams vtkSignVoxelFilter::CoreParams() const
 int vtkSignVoxelFilter::FilterSparse(
   vtkSparseDictionaryVolume* input, vtkSparseDictionaryVolume* output, vtkInformation* outInfo)
 {
-  if (!input->HasVolume())
-  {
+  const bool hasVolume = input->HasVolume();
+  if (!hasVolume)
     vtkErrorMacro("the input sparse volume holds no dictionary volume");
+  // a distributed run agrees before any work, so that a rank without a volume
+  // does not leave the others waiting in the first collective
+  bool go = hasVolume;
+  if (this->Distributed())
+  {
+    go = this->JoinRanks(hasVolume);
+    if (!go && hasVolume)
+      vtkErrorMacro("another rank's input failed: the ranks filter nothing");
+  }
+  if (!go)
+  {
+    output->Initialize();
     return 0;
   }
   lvdif::SignVoxelFilterStats st;

@@ -166,6 +166,18 @@ protected:
   bool FilterSparsePiece(const lvdif::DictionaryVolume& input, vtkInformation* outInfo, int ownedChunks[6],
     std::shared_ptr<lvdif::DictionaryVolume>& volume, lvdif::SignVoxelFilterStats& stats);
 
+  /// A distributed sparse pass's first collective (RequestInformation, then
+  /// RequestData): every rank says whether it can go on; false on every rank
+  /// when one cannot. A rank whose input failed upstream never runs those
+  /// methods: the filter's executive joins for it (see the .cxx), so the
+  /// other ranks do not wait for it forever.
+  bool JoinRanks(bool ok);
+  /// Whether this pass meets the other ranks: distributed and a sparse input.
+  bool MeetsRanks(vtkInformationVector** inputVector) const;
+  bool Joined = false; // this pass reached JoinRanks
+  vtkExecutive* CreateDefaultExecutive() override;
+  friend class vtkSignVoxelFilterExecutive;
+
   vtkMultiProcessController* Controller = nullptr;
 
   double Threshold = 2.0;

@@ -17,6 +17,7 @@
 #include "vtkOpenVDBLevelSetWriter.h"
 #endif
 
+#include "lvdif/ByteStream.h"
 #include "lvdif/Error.h"
 
 #include "vtkCallbackCommand.h"
@@ -217,11 +218,13 @@ void SaveVolume(const std::shared_ptr<lvdif::DictionaryVolume>& volume, const st
 {
   const Format* f = Find(path, Kind::Volume);
   if (!f || f->writerClass.empty()) unknown(path, Kind::Volume, true);
+  lvdif::requireWritable(path); // before any work (a .vti's dense conversion), in the CLI's words
   vtkNew<vtkSparseDictionaryVolume> sparse;
   sparse->SetVolume(volume);
   vtkNew<vtkTrivialProducer> source;
   source->SetOutput(sparse);
   vtkSmartPointer<vtkAlgorithm> writer, dense;
+  vtkSmartPointer<vtkXMLImageDataWriter> byName; // a VTK writer that writes in place: given a temporary name
   if (f->extension == "lvdv")
   {
     auto w = vtkSmartPointer<vtkDictionaryVolumeWriter>::New();
@@ -251,9 +254,8 @@ void SaveVolume(const std::shared_ptr<lvdif::DictionaryVolume>& volume, const st
 #endif
   else
   {
-    auto w = vtkSmartPointer<vtkXMLImageDataWriter>::New();
-    w->SetFileName(path.c_str());
-    writer = w;
+    byName = vtkSmartPointer<vtkXMLImageDataWriter>::New();
+    writer = byName;
     dense = vtkSmartPointer<vtkSparseVolumeToImage>::New(); // states the memory, refuses above the limit
     dense->SetInputConnection(source->GetOutputPort());
   }
@@ -262,8 +264,21 @@ void SaveVolume(const std::shared_ptr<lvdif::DictionaryVolume>& volume, const st
   if (dense) watched.push_back(dense);
   Watch watch(interrupter, watched);
   interrupter.start("save volume");
-  const bool ok = writer->GetExecutive()->Update() != 0;
-  watch.check(ok, "cannot write '" + path + "'");
+  auto write = [&] {
+    const bool ok = writer->GetExecutive()->Update() != 0;
+    watch.check(ok, "cannot write '" + path + "'");
+  };
+  if (byName)
+  {
+    // the LVDIF writers save atomically themselves; VTK's XML writer would
+    // truncate the old file first, so it writes a temporary file renamed over it
+    lvdif::saveAtomicallyByName(path, [&](const std::string& tmp) {
+      byName->SetFileName(tmp.c_str());
+      write();
+    });
+  }
+  else
+    write();
   interrupter.end();
 }
 

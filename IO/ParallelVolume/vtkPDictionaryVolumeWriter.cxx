@@ -80,7 +80,7 @@ int vtkPDictionaryVolumeWriter::Write()
     // refused before the agreement: join it as a failed piece, and the
     // barrier after it, or the other ranks wait for this one forever
     this->AgreeOnPieces(0);
-    this->Controller->Barrier();
+    this->AgreeOnIndex(0);
     written = 0;
   }
   return written;
@@ -95,6 +95,11 @@ bool vtkPDictionaryVolumeWriter::IsCollective() const
 int vtkPDictionaryVolumeWriter::AgreeOnPieces(int ok)
 {
   this->Agreed = true;
+  return this->AgreeOnIndex(ok);
+}
+
+int vtkPDictionaryVolumeWriter::AgreeOnIndex(int ok)
+{
   int all = ok;
   if (this->IsCollective())
     this->Controller->AllReduce(&ok, &all, 1, vtkCommunicator::MIN_OP);
@@ -260,7 +265,12 @@ void vtkPDictionaryVolumeWriter::WriteData()
   }
   if (this->IsCollective())
   {
-    this->Controller->Barrier(); // the index and every piece exist when Write() returns on any rank
+    // also the barrier: the index and every piece exist when Write() returns
+    // on any rank; a failed index (piece 0's) fails every rank's Write()
+    const int indexOk = this->AgreeOnIndex(ok);
+    if (!indexOk && ok)
+      vtkErrorMacro("piece 0 could not write the index '" << this->FileName << "'");
+    ok = indexOk;
   }
   if (!ok)
   {

@@ -21,7 +21,8 @@
  * calling Write for each piece in turn), pieces are written independently.
  * A rank whose input fails upstream (WriteData never runs there) or that
  * refuses its settings still joins the agreement, as a failed piece: every
- * rank's Write() then returns 0, none waits for it.
+ * rank's Write() then returns 0, none waits for it. When piece 0 cannot
+ * write the index, every rank's Write() returns 0 too.
  *
  * vtkPDictionaryVolumeReader reads the index (only the pieces overlapping its
  * update extent).
@@ -106,9 +107,12 @@ private:
   /// Whether the ranks of the Controller write one piece each (collectively).
   bool IsCollective() const;
   /// The all-reduce of every rank's success (the minimum); the first of the
-  /// two collective calls of a write, the barrier the second.
+  /// two collective calls of a write.
   int AgreeOnPieces(int ok);
   bool Agreed = false; // this Write() reached AgreeOnPieces
+  /// The second: the same all-reduce after piece 0 wrote the index (also the
+  /// barrier), so that every rank knows whether the index was written.
+  int AgreeOnIndex(int ok);
   bool WritePiece(vtkImageData* image, const int extent[6]);
   bool WritePiece(vtkSparseDictionaryVolume* sparse, const int extent[6]);
   vtkPDictionaryVolumeWriter(const vtkPDictionaryVolumeWriter&) = delete;

@@ -32,6 +32,14 @@ code, err = run("demo", "--size", "100000", "--out", out + "-size1e5")
 assert code == 1 and err.startswith("lvdif demo: --size 100000: ") and "line" not in err, (code, err)
 # a failure after the output folder was made (here the canvas limit) removes the folder it made
 assert not __import__("os").path.exists(out + "-size1e5"), "demo --size 100000 left its output folder"
+# an axis of 1 and one over 1048576: the canvas rule's one message (DictionaryVolume::checkCanvasDimensions)
+code, err = run("demo", "--size", "1", "--out", out + "-size1")
+assert code == 1 and err == ("lvdif demo: --size 1: a canvas of 1 x 1 x 1 voxels cannot be edited: each axis needs "
+                             "2..1048576 voxels (marching cubes needs one cell per axis)"), (code, err)
+code, err = run("demo", "--size", "1048577", "--out", out + "-size2e20")
+assert code == 1 and err.startswith("lvdif demo: --size 1048577: a canvas of 1048577 x 1048577 x 1048577 voxels "
+                                    "cannot be edited: each axis needs 2..1048576"), (code, err)
+assert not __import__("os").path.exists(out + "-size1") and not __import__("os").path.exists(out + "-size2e20")
 
 import os  # noqa: E402
 
@@ -123,6 +131,13 @@ if os.path.exists(one_vol):
 code, err = run("script", one_script, "--out", one_vol)
 assert code == 1 and err.startswith(f"lvdif script: {one_script}:1:") and err.endswith(
     ": a canvas of 1 x 1 x 1 voxels cannot be edited: each axis needs 2..1048576 voxels (marching cubes needs one cell per axis)"
+) and not os.path.exists(one_vol), (code, err)
+wide_script = os.path.join(out, "wide.lvs")
+with open(wide_script, "w") as f:
+    f.write("canvas 1048577 2 2\n")
+code, err = run("script", wide_script, "--out", one_vol)
+assert code == 1 and err.startswith(f"lvdif script: {wide_script}:1:") and err.endswith(
+    ": a canvas of 1048577 x 2 x 2 voxels cannot be edited: each axis needs 2..1048576 voxels (marching cubes needs one cell per axis)"
 ) and not os.path.exists(one_vol), (code, err)
 with open(one_vti, "w") as f:
     f.write('<?xml version="1.0"?>\n<VTKFile type="ImageData" version="0.1" byte_order="LittleEndian">\n'

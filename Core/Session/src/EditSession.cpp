@@ -77,8 +77,7 @@ void EditSession::teardown()
 void EditSession::build(std::shared_ptr<DictionaryVolume> volume, const BrushSettings* brush, const StrokeSettings* stroke)
 {
   // before the teardown: a refused volume leaves the session as it was
-  const std::string tooThin = DictionaryVolume::checkCanvasDimensions(volume->dims());
-  require(tooThin.empty(), tooThin);
+  DictionaryVolume::requireCanvasDimensions(volume->dims());
   this->teardown();
   this->Vol = std::move(volume);
   ++this->Generation;

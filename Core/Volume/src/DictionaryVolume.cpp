@@ -169,6 +169,18 @@ std::string DictionaryVolume::checkCanvasDimensions(const Index3& dims)
   return "";
 }
 
+void DictionaryVolume::requireCanvasDimensions(const Index3& dims)
+{
+  const std::string problem = checkCanvasDimensions(dims);
+  require(problem.empty(), problem);
+}
+
+std::shared_ptr<DictionaryVolume> DictionaryVolume::newCanvas(const VolumeOptions& options)
+{
+  requireCanvasDimensions(options.dims);
+  return std::make_shared<DictionaryVolume>(options);
+}
+
 std::string DictionaryVolume::checkGeometry(const VolumeOptions& o)
 {
   for (int a = 0; a < 3; ++a)

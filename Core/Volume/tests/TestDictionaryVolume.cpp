@@ -326,3 +326,47 @@ TEST(DictionaryVolume, BoundsCheckedAccess)
   EXPECT_THROW(v.at(-1, 0, 0), Error);
   EXPECT_NO_THROW(v.at(9, 9, 9));
 }
+
+// The editors' one canvas rule (2..MaxDimension voxels per axis), thrown with
+// checkCanvasDimensions' words; newCanvas applies it before the volume's own
+// (wider) range check and before allocating: a 1 x 2^20 x 2^20 canvas is
+// refused as too thin, not as a chunk table over the memory limit.
+TEST(DictionaryVolume, NewCanvasRefusesWithTheCanvasRuleBeforeAllocating)
+{
+  using lvdif::DictionaryVolume;
+  const std::int64_t M = DictionaryVolume::MaxDimension;
+  for (const lvdif::Index3& d : { lvdif::Index3{ 1, 8, 8 }, lvdif::Index3{ 8, 0, 8 }, lvdif::Index3{ M + 1, 2, 2 },
+         lvdif::Index3{ 1, M, M } })
+  {
+    const std::string rule = DictionaryVolume::checkCanvasDimensions(d);
+    EXPECT_NE(rule.find("cannot be edited: each axis needs 2..1048576 voxels"), std::string::npos) << rule;
+    try
+    {
+      DictionaryVolume::requireCanvasDimensions(d);
+      ADD_FAILURE() << "requireCanvasDimensions passed " << d[0] << " x " << d[1] << " x " << d[2];
+    }
+    catch (const lvdif::Error& e)
+    {
+      EXPECT_EQ(std::string(e.what()), rule);
+      EXPECT_EQ(e.code(), lvdif::ErrorCode::InvalidArgument);
+    }
+    lvdif::VolumeOptions o;
+    o.dims = d;
+    try
+    {
+      DictionaryVolume::newCanvas(o);
+      ADD_FAILURE() << "newCanvas made " << d[0] << " x " << d[1] << " x " << d[2];
+    }
+    catch (const lvdif::Error& e)
+    {
+      EXPECT_EQ(std::string(e.what()), rule);
+    }
+  }
+  lvdif::VolumeOptions o;
+  o.dims = { 2, 3, 2 };
+  o.chunkEdge = 4;
+  EXPECT_NO_THROW(DictionaryVolume::requireCanvasDimensions(o.dims));
+  const std::shared_ptr<DictionaryVolume> v = DictionaryVolume::newCanvas(o);
+  EXPECT_EQ(v->dims(), o.dims);
+  EXPECT_EQ(v->get(1, 2, 1), v->outsideVoxel());
+}

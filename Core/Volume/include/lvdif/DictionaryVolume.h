@@ -125,8 +125,15 @@ public:
   /// nothing); only editing refuses them.
   static constexpr std::int64_t MinCanvasDimension = 2;
   /// "" if every axis is in [MinCanvasDimension, MaxDimension], else the one
-  /// message each front end reports.
+  /// message each front end reports (option parsers that prefix or place it).
   static std::string checkCanvasDimensions(const Index3& dims);
+  /// The same rule, throwing Error(InvalidArgument) with that message: what
+  /// EditSession enforces on every volume it is given.
+  static void requireCanvasDimensions(const Index3& dims);
+  /// A new all-outside canvas for an editor: requireCanvasDimensions first,
+  /// so an unusable canvas is refused with the canvas words before the
+  /// volume's own (wider) range check or any allocation.
+  static std::shared_ptr<DictionaryVolume> newCanvas(const VolumeOptions& options);
 
   /// Creates an all-outside volume (every voxel +band, colour 0), or filled with
   /// `fill` when given. Validates the options and refuses absurd sizes before

@@ -4,6 +4,7 @@
 // column, record -> play bit-exact through the VTK API.
 #include "vtkLVDIFEditor.h"
 
+#include "LVDIFFiles.h"
 #include "vtkCallbackCommand.h"
 #include "vtkDictionaryVolumeToImage.h"
 #include "vtkFloatArray.h"
@@ -14,13 +15,18 @@
 #include "vtkUnsignedCharArray.h"
 
 #include "lvdif/DictionaryVolume.h"
+#include "lvdif/Error.h"
+#include "lvdif/VolumeFile.h"
 
 #include <gtest/gtest.h>
 
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <cstring>
+#include <fstream>
+#include <sstream>
 #include <set>
 #include <string>
 #include <vector>
@@ -325,7 +331,7 @@ TEST(LVDIFEditor, RecordThenPlayIsBitExact)
 
 TEST(LVDIFEditor, SaveAndLoadRoundTrip)
 {
-  const std::string path = std::string(::testing::TempDir()) + "/lvdif_editor_volume.lvdif";
+  const std::string path = std::string(::testing::TempDir()) + "/lvdif_editor_volume.lvdv";
   vtkNew<vtkLVDIFEditor> a;
   ASSERT_EQ(a->NewVolume(33, 20, 17, false), 1);
   a->SetColor(1, 2, 3, 255);
@@ -346,7 +352,8 @@ TEST(LVDIFEditor, NewVolumeRefusesAThinCanvasWithTheOneRule)
   vtkNew<vtkLVDIFEditor> ed;
   ed->GlobalWarningDisplayOff();
   ASSERT_EQ(ed->NewVolume(20, 20, 20, false), 1) << ed->GetLastError();
-  for (const lvdif::Index3& d : { lvdif::Index3{ 1, 1, 1 }, lvdif::Index3{ 20, 1, 20 }, lvdif::Index3{ 0, 5, 5 } })
+  for (const lvdif::Index3& d : { lvdif::Index3{ 1, 1, 1 }, lvdif::Index3{ 20, 1, 20 }, lvdif::Index3{ 0, 5, 5 },
+         lvdif::Index3{ lvdif::DictionaryVolume::MaxDimension + 1, 2, 2 }, lvdif::Index3{ 1, 1048576, 1048576 } })
   {
     EXPECT_EQ(ed->NewVolume(int(d[0]), int(d[1]), int(d[2]), false), 0);
     EXPECT_EQ(std::string(ed->GetLastError()), "NewVolume: " + lvdif::DictionaryVolume::checkCanvasDimensions(d));
@@ -355,6 +362,135 @@ TEST(LVDIFEditor, NewVolumeRefusesAThinCanvasWithTheOneRule)
     EXPECT_EQ(dims[1], 20); // the previous canvas stays
   }
   EXPECT_EQ(ed->NewVolume(2, 2, 2, false), 1) << ed->GetLastError();
+}
+
+// A file may hold a volume thinner than a canvas (files mesh to nothing); the
+// editor's session refuses it with the same words, and keeps its own volume
+// (before, the old session was dropped first: the editor was left without one).
+TEST(LVDIFEditor, LoadingAThinVolumeKeepsTheCurrentOne)
+{
+  const std::string path = std::string(::testing::TempDir()) + "/lvdif_editor_thin.lvdv";
+  lvdif::VolumeOptions o;
+  o.dims = { 8, 1, 8 };
+  o.chunkEdge = 8;
+  lvdif::saveVolume(lvdif::DictionaryVolume(o), path); // Core's writer: not the editor's
+  vtkNew<vtkLVDIFEditor> ed;
+  ed->GlobalWarningDisplayOff();
+  ASSERT_EQ(ed->NewVolume(20, 20, 20, true), 1) << ed->GetLastError();
+  const Snapshot before = snap(ed);
+  EXPECT_EQ(ed->LoadVolume(path.c_str()), 0);
+  EXPECT_EQ(std::string(ed->GetLastError()), "LoadVolume: " + lvdif::DictionaryVolume::checkCanvasDimensions(o.dims));
+  ASSERT_TRUE(ed->HasVolume());
+  EXPECT_TRUE(snap(ed) == before);
+  EXPECT_EQ(ed->Dab(10, 10, 10), 1) << ed->GetLastError(); // and still edits it
+  std::remove(path.c_str());
+}
+
+namespace
+{
+std::string slurp(const std::string& path)
+{
+  std::ifstream in(path, std::ios::binary);
+  std::ostringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+bool fileExists(const std::string& path)
+{
+  return std::ifstream(path).good();
+}
+}
+
+// SaveVolume/LoadVolume go through the one file registry (before, every name
+// got .lvdv content and LoadVolume read only .lvdv): a save to each registered
+// volume extension, read back by the registry's reader for that extension (not
+// the editor), holds the editor's voxels within the format's quantization
+// (.lvdv: the very keys, read by Core's own reader); the editor loads it too.
+TEST(LVDIFEditor, SavesAndLoadsEveryRegisteredVolumeFormat)
+{
+  vtkNew<vtkLVDIFEditor> ed;
+  ASSERT_EQ(ed->NewVolume(40, 40, 40, false), 1); // cubic: .bv has no header
+  ed->SetRadius(11);
+  ed->SetColor(200, 40, 10, 255);
+  ASSERT_EQ(ed->Dab(19, 21, 18), 1) << ed->GetLastError();
+  const std::shared_ptr<lvdif::DictionaryVolume> mine = ed->GetVolume();
+  int formats = 0;
+  for (const LVDIFFiles::Format& f : LVDIFFiles::Formats())
+  {
+    if (f.kind != LVDIFFiles::Kind::Volume || f.writerClass.empty() || f.readerClass.empty())
+      continue;
+    ++formats;
+    const std::string path = std::string(::testing::TempDir()) + "/lvdif_editor_all." + f.extension;
+    ASSERT_EQ(ed->SaveVolume(path.c_str()), 1) << f.extension << ": " << ed->GetLastError();
+    std::shared_ptr<lvdif::DictionaryVolume> back = LVDIFFiles::LoadVolume(path);
+    ASSERT_TRUE(back) << f.extension;
+    std::int64_t off[3]; // a format may crop to its active box (OpenVDB): compare by world position
+    for (int a = 0; a < 3; ++a)
+      off[a] = std::llround((back->options().origin[a] - mine->options().origin[a]) / mine->options().spacing[a]);
+    int compared = 0, bad = 0;
+    for (std::int64_t z = 0; z < 40; ++z)
+      for (std::int64_t y = 0; y < 40; ++y)
+        for (std::int64_t x = 0; x < 40; ++x)
+        {
+          const float d = mine->sdf(x, y, z);
+          if (std::fabs(d) > 3.0f || !back->inside(x - off[0], y - off[1], z - off[2]))
+            continue; // the band every format keeps
+          ++compared;
+          bad += std::fabs(back->sdf(x - off[0], y - off[1], z - off[2]) - d) > 0.0011f;
+        }
+    EXPECT_GT(compared, 1000) << f.extension;
+    EXPECT_EQ(bad, 0) << f.extension;
+    if (f.extension == "lvdv")
+    {
+      std::unique_ptr<lvdif::DictionaryVolume> core = lvdif::loadVolume(path);
+      for (std::int64_t z = 0; z < 40; ++z)
+        for (std::int64_t y = 0; y < 40; ++y)
+          for (std::int64_t x = 0; x < 40; ++x)
+            ASSERT_EQ(core->get(x, y, z).sdf, mine->get(x, y, z).sdf) << x << " " << y << " " << z;
+    }
+    vtkNew<vtkLVDIFEditor> other;
+    EXPECT_EQ(other->LoadVolume(path.c_str()), 1) << f.extension << ": " << other->GetLastError();
+    int dims[3];
+    other->GetDimensions(dims);
+    EXPECT_EQ(dims[0], back->dims()[0]) << f.extension; // mesh points = voxels
+    std::remove(path.c_str());
+  }
+  EXPECT_GE(formats, 4); // lvdv, lvdvp, bv, vti (+ vdb with OpenVDB)
+}
+
+// An extension the registry does not write is refused with its list of
+// formats, before anything is written; an existing file under that name, or
+// under a registered one whose save then fails, is left as it was.
+TEST(LVDIFEditor, SaveVolumeRefusesUnknownExtensionsAndKeepsTheOldFile)
+{
+  const std::string dir = ::testing::TempDir();
+  vtkNew<vtkLVDIFEditor> ed;
+  ed->GlobalWarningDisplayOff();
+  ASSERT_EQ(ed->NewVolume(24, 24, 24, true), 1);
+  const std::string fresh = dir + "/lvdif_editor_model.lvdif";
+  std::remove(fresh.c_str());
+  EXPECT_EQ(ed->SaveVolume(fresh.c_str()), 0);
+  EXPECT_EQ(std::string(ed->GetLastError()),
+    "SaveVolume: cannot write '" + fresh + "': volumes are .lvdv, .lvdvp, .bv, " +
+#ifdef LVDIF_WITH_OPENVDB_MODULE
+      ".vdb, " +
+#endif
+      ".vti files");
+  EXPECT_FALSE(fileExists(fresh));
+  const std::string old = dir + "/lvdif_editor_old.lvdif";
+  std::ofstream(old) << "an old file";
+  EXPECT_EQ(ed->SaveVolume(old.c_str()), 0);
+  EXPECT_EQ(slurp(old), "an old file");
+  // a registered extension whose save fails (the dense .vti over the memory limit)
+  const std::string vti = dir + "/lvdif_editor_old.vti";
+  std::ofstream(vti) << "an old image";
+  ::setenv("LVDIF_MEMORY_LIMIT", "4K", 1);
+  EXPECT_EQ(ed->SaveVolume(vti.c_str()), 0);
+  ::unsetenv("LVDIF_MEMORY_LIMIT");
+  EXPECT_NE(std::string(ed->GetLastError()).find("SaveVolume: "), std::string::npos);
+  EXPECT_EQ(slurp(vti), "an old image");
+  std::remove(old.c_str());
+  std::remove(vti.c_str());
 }
 
 // SaveVolume into a missing folder names the folder (lvdif::requireWritable,

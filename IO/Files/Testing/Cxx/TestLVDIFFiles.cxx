@@ -76,6 +76,69 @@ TEST(LVDIFFiles, EveryVolumeFormatRoundTrips)
   EXPECT_GE(formats, 4); // lvdv, lvdvp, bv, vti (+ vdb with OpenVDB)
 }
 
+namespace
+{
+std::string slurp(const std::string& path)
+{
+  std::ifstream in(path, std::ios::binary);
+  std::ostringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+/// Cancels as soon as a save has begun writing: the target's content changed,
+/// or a temporary file beside it ("<name>.tmp-...") appeared.
+struct CancelOnceWriting : lvdif::Interrupter
+{
+  std::string path, old;
+  bool cancelled = false, sawTemporary = false;
+  void progress(double) override
+  {
+    if (this->cancelled)
+      return;
+    const std::string dir = this->path.substr(0, this->path.find_last_of('/'));
+    const std::string prefix = this->path.substr(this->path.find_last_of('/') + 1) + ".tmp-";
+    if (DIR* d = ::opendir(dir.c_str()))
+    {
+      while (const dirent* e = ::readdir(d))
+        this->sawTemporary = this->sawTemporary || std::string(e->d_name).rfind(prefix, 0) == 0;
+      ::closedir(d);
+    }
+    this->cancelled = this->sawTemporary || slurp(this->path) != this->old;
+  }
+  bool wasInterrupted() const override { return this->cancelled; }
+};
+}
+
+// A save that fails while VTK's XML image writer writes (here: cancelled once
+// writing has begun) leaves the old .vti as it was: the registry gives that
+// writer a temporary file and renames it over the old one only when complete
+// (before, the writer truncated the old file first). A save to a missing
+// folder is refused before any work, in the CLI's words.
+TEST(LVDIFFiles, AFailedVtiSaveKeepsTheOldFile)
+{
+  const auto v = sphere();
+  const std::string path = temp("old_image.vti");
+  std::ofstream(path) << "an old image";
+  CancelOnceWriting cancel;
+  cancel.path = path;
+  cancel.old = "an old image";
+  EXPECT_THROW(LVDIFFiles::SaveVolume(v, path, {}, cancel), lvdif::Error);
+  EXPECT_TRUE(cancel.cancelled); // the writer had begun
+  EXPECT_TRUE(slurp(path) == "an old image"); // not the (long) new content in the failure message
+  std::remove(path.c_str());
+  try
+  {
+    LVDIFFiles::SaveVolume(v, "/nonexistent_lvdif_folder/v.vti");
+    ADD_FAILURE() << "saved into a missing folder";
+  }
+  catch (const lvdif::Error& e)
+  {
+    EXPECT_EQ(std::string(e.what()),
+      "cannot write '/nonexistent_lvdif_folder/v.vti': the folder '/nonexistent_lvdif_folder' does not exist");
+  }
+}
+
 TEST(LVDIFFiles, UnknownExtensionsAreOneClearError)
 {
   try

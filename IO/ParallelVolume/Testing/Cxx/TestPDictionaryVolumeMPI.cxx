@@ -1,7 +1,8 @@
 // Under `mpirun -np 2`: the ranks of a .lvdvp write agree on success even when
 // one rank's input fails upstream (its WriteData never runs). Before, the
 // other rank waited in the all-reduce for it forever (the test timed out).
-// Also the good case: both pieces and the index are written.
+// Also the good case: both pieces and the index are written, and a failed
+// index (piece 0's) fails every rank's Write().
 #include "vtkDictionaryVolumeReader.h"
 #include "vtkMPIController.h"
 #include "vtkNew.h"
@@ -80,6 +81,14 @@ int main(int argc, char* argv[])
   vtkObject::GlobalWarningDisplayOff(); // the expected reader error, once per run is enough
   check(writePieces(c, rank == 1 ? missing : good, failedIndex) == 0, "one input failed: Write() answers 0");
   check(!exists(failedIndex), "one input failed: no index");
+
+  // piece 0 cannot write the index (a folder has its name): every rank's
+  // Write() answers 0 (before, only rank 0's did; the others answered 1)
+  const std::string folderIndex = dir + "/mpi_folder.lvdvp";
+  if (rank == 0)
+    ::mkdir(folderIndex.c_str(), 0755);
+  c->Barrier();
+  check(writePieces(c, good, folderIndex) == 0, "the index cannot be written: Write() answers 0 on every rank");
 
   int all = 0;
   c->AllReduce(&failures, &all, 1, vtkCommunicator::SUM_OP);

@@ -1,0 +1,140 @@
+// Under `mpirun -np 2`: the ranks of a distributed sparse vtkSignVoxelFilter
+// meet in collectives; when one rank's input fails (its information, its data,
+// or it holds no volume) that rank still joins them as failed, so every rank's
+// Update fails and none waits forever. Before, the healthy rank waited in the
+// first all-reduce for the failed one (the test timed out). Also the good
+// case: both ranks filter and agree on the whole volume's statistics.
+#include "LVDIFVolumeBridge.h"
+#include "vtkDataObjectAlgorithm.h"
+#include "vtkExecutive.h"
+#include "vtkFieldData.h"
+#include "vtkIdTypeArray.h"
+#include "vtkInformation.h"
+#include "vtkInformationVector.h"
+#include "vtkMPIController.h"
+#include "vtkNew.h"
+#include "vtkObjectFactory.h"
+#include "vtkSignVoxelFilter.h"
+#include "vtkSparseDictionaryVolume.h"
+
+#include "lvdif/AnalyticFill.h"
+#include "lvdif/DictionaryVolume.h"
+
+#include <cstdio>
+#include <memory>
+
+namespace
+{
+lvdif::VolumeOptions sourceOptions()
+{
+  lvdif::VolumeOptions o;
+  o.dims = { 32, 24, 20 };
+  o.chunkEdge = 8;
+  return o;
+}
+}
+
+/// A sparse volume source (a sphere) that can fail on purpose.
+class FailingSparseSource : public vtkDataObjectAlgorithm
+{
+public:
+  static FailingSparseSource* New();
+  vtkTypeMacro(FailingSparseSource, vtkDataObjectAlgorithm);
+  enum
+  {
+    Good,
+    FailInformation,
+    FailData,
+    NoVolume
+  };
+  int Mode = Good;
+
+protected:
+  FailingSparseSource() { this->SetNumberOfInputPorts(0); }
+  int RequestDataObject(vtkInformation*, vtkInformationVector**, vtkInformationVector* out) override
+  {
+    LVDIFVolumeBridge::EnsureSparseOutput(out);
+    return 1;
+  }
+  int RequestInformation(vtkInformation*, vtkInformationVector**, vtkInformationVector* out) override
+  {
+    if (this->Mode == FailInformation)
+    {
+      vtkErrorMacro("test: this rank's information fails");
+      return 0;
+    }
+    LVDIFVolumeBridge::SetSparseInformation(out->GetInformationObject(0), sourceOptions());
+    return 1;
+  }
+  int RequestData(vtkInformation*, vtkInformationVector**, vtkInformationVector* out) override
+  {
+    if (this->Mode == FailData)
+    {
+      vtkErrorMacro("test: this rank's data fails");
+      return 0;
+    }
+    if (this->Mode == NoVolume)
+      return 1; // a sparse data object without a volume
+    auto v = std::make_shared<lvdif::DictionaryVolume>(sourceOptions());
+    lvdif::fillFromFunction(*v, lvdif::sphereSdf(15.5, 11.5, 9.5, 8.0));
+    vtkSparseDictionaryVolume::GetData(out)->SetVolume(v);
+    return 1;
+  }
+};
+vtkStandardNewMacro(FailingSparseSource);
+
+int main(int argc, char* argv[])
+{
+  vtkNew<vtkMPIController> c;
+  c->Initialize(&argc, &argv);
+  vtkMultiProcessController::SetGlobalController(c);
+  const int rank = c->GetLocalProcessId();
+  if (c->GetNumberOfProcesses() != 2)
+  {
+    std::fprintf(stderr, "usage: mpirun -np 2 %s\n", argv[0]);
+    c->Finalize();
+    return 1;
+  }
+  int failures = 0;
+  auto check = [&](bool ok, const char* what) {
+    if (!ok)
+    {
+      std::fprintf(stderr, "rank %d: FAIL %s\n", rank, what);
+      ++failures;
+    }
+  };
+  // one Update of source -> sign filter on every rank; rank 1's source in `mode`
+  auto run = [&](int mode, vtkIdType* ranksOut) {
+    vtkNew<FailingSparseSource> source;
+    source->Mode = rank == 1 ? mode : int(FailingSparseSource::Good);
+    vtkNew<vtkSignVoxelFilter> svf;
+    svf->SetController(c);
+    svf->SetDevice(vtkSignVoxelFilter::DEVICE_CPU);
+    svf->SetInputConnection(source->GetOutputPort());
+    const int ok = svf->GetExecutive()->Update();
+    auto* out = vtkSparseDictionaryVolume::SafeDownCast(svf->GetOutputDataObject(0));
+    auto* st = out ? vtkIdTypeArray::SafeDownCast(out->GetFieldData()->GetArray("svf_piece")) : nullptr;
+    if (ranksOut)
+      *ranksOut = st ? st->GetValue(1) : -1; // the number of ranks the filter ran on
+    return ok;
+  };
+
+  vtkIdType ranks = 0;
+  check(run(FailingSparseSource::Good, &ranks) == 1, "both inputs good: Update succeeds");
+  check(ranks == 2, "both inputs good: the filter ran on two ranks");
+
+  vtkObject::GlobalWarningDisplayOff(); // the expected errors
+  check(run(FailingSparseSource::FailData, nullptr) == 0, "rank 1's data fails: Update fails on every rank");
+  check(run(FailingSparseSource::NoVolume, nullptr) == 0, "rank 1 holds no volume: Update fails on every rank");
+  check(run(FailingSparseSource::FailInformation, nullptr) == 0,
+    "rank 1's information fails: Update fails on every rank");
+  // the ranks still meet after the failures
+  check(run(FailingSparseSource::Good, &ranks) == 1, "good again: Update succeeds");
+
+  int all = 0;
+  c->AllReduce(&failures, &all, 1, vtkCommunicator::SUM_OP);
+  if (rank == 0 && all == 0)
+    std::printf("SignVoxelFilter MPI OK\n");
+  c->Finalize();
+  return all == 0 ? 0 : 1;
+}
