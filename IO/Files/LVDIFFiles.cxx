@@ -18,15 +18,18 @@
 #endif
 
 #include "lvdif/Error.h"
+#include "lvdif/Memory.h"
 
 #include "vtkCallbackCommand.h"
 #include "vtkCommand.h"
 #include "vtkExecutive.h"
+#include "vtkInformation.h"
 #include "vtkNew.h"
 #include "vtkOBJWriter.h"
 #include "vtkPLYWriter.h"
 #include "vtkPolyData.h"
 #include "vtkSTLWriter.h"
+#include "vtkStreamingDemandDrivenPipeline.h"
 #include "vtkTrivialProducer.h"
 #include "vtkXMLImageDataReader.h"
 #include "vtkXMLImageDataWriter.h"
@@ -198,6 +201,21 @@ std::shared_ptr<lvdif::DictionaryVolume> LoadVolume(const std::string& path, lvd
     auto r = vtkSmartPointer<vtkXMLImageDataReader>::New();
     r->SetFileName(path.c_str());
     reader = r;
+    // VTK's reader allocates the dense arrays of the header's whole extent
+    // before it reads them: a forged extent ended in "std::bad_alloc". Its
+    // size is known from the header (UpdateInformation reads no data): at
+    // least 4 bytes a point for the sdf, up to 4 more for the sparse volume.
+    if (r->GetExecutive()->UpdateInformation())
+    {
+      int e[6];
+      r->GetOutputInformation(0)->Get(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT(), e);
+      const std::string image = what + ": the image of " + std::to_string(std::int64_t(e[1]) - e[0] + 1) + " x " +
+        std::to_string(std::int64_t(e[3]) - e[2] + 1) + " x " + std::to_string(std::int64_t(e[5]) - e[4] + 1) + " points";
+      std::uint64_t bytes = 8;
+      for (int a = 0; a < 3; ++a)
+        bytes = lvdif::checkedMultiply(bytes, e[2 * a + 1] >= e[2 * a] ? std::uint64_t(e[2 * a + 1]) - e[2 * a] + 1 : 0, image);
+      lvdif::requireMemory(bytes, image);
+    }
     auto toSparse = vtkSmartPointer<vtkImageToSparseVolume>::New();
     toSparse->SetInputConnection(reader->GetOutputPort());
     last = toSparse;
