@@ -45,8 +45,15 @@ constexpr const char* ColorArrayName = "rgba";
 /// The filters' Device property (0 auto, 1 CPU, 2 CUDA) as lvdif's Device.
 LVDIFFILTERSVOLUME_EXPORT lvdif::Device ToDevice(int device);
 
+/// "cannot VERB 'PATH': WHAT", the file named once: Core's file errors already
+/// name it ("cannot open 'PATH': No such file ..."), and were reported as
+/// "cannot read 'PATH': cannot open 'PATH': ...". Every reader and writer's
+/// file error goes through here.
+LVDIFFILTERSVOLUME_EXPORT std::string FileError(const std::string& verb, const std::string& path, const std::string& what);
+
 /// Calls Core: returns true on success; on lvdif::Error reports it with
-/// vtkErrorMacro's text on `algorithm` (prefixed by `context` when given) and
+/// vtkErrorMacro's text on `algorithm` (prefixed by `context` when given, unless
+/// the message already holds the context's quoted file name: FileError's rule) and
 /// returns false. A cancel (AbortExecute through LVDIFInterrupter) returns
 /// false without an error, and sets `cancelled` when given.
 LVDIFFILTERSVOLUME_EXPORT bool CallCore(vtkAlgorithm* algorithm, const std::function<void()>& work,
