@@ -54,21 +54,17 @@ lvdif::Device ToDevice(int device)
   return device == 1 ? lvdif::Device::Cpu : (device == 2 ? lvdif::Device::Cuda : lvdif::Device::Auto);
 }
 
-namespace
-{
-/// `context` + `what`, unless `what` already holds the first 'quoted' name of `context`.
-std::string withContext(const std::string& context, const std::string& what)
+std::string WithContext(const std::string& context, const std::string& what)
 {
   const auto open = context.find('\'');
   const auto close = open == std::string::npos ? std::string::npos : context.find('\'', open + 1);
   if (close != std::string::npos && what.find(context.substr(open, close - open + 1)) != std::string::npos) return what;
   return context + what;
 }
-} // namespace
 
 std::string FileError(const std::string& verb, const std::string& path, const std::string& what)
 {
-  return withContext("cannot " + verb + " '" + path + "': ", what);
+  return WithContext("cannot " + verb + " '" + path + "': ", what);
 }
 
 bool CallCore(vtkAlgorithm* algorithm, const std::function<void()>& work, const std::string& context, bool* cancelled)
@@ -86,7 +82,7 @@ bool CallCore(vtkAlgorithm* algorithm, const std::function<void()>& work, const 
       if (cancelled) *cancelled = true;
       return false;
     }
-    vtkErrorWithObjectMacro(algorithm, << withContext(context, e.what()));
+    vtkErrorWithObjectMacro(algorithm, << WithContext(context, e.what()));
     return false;
   }
 }

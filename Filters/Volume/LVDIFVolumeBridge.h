@@ -50,6 +50,9 @@ LVDIFFILTERSVOLUME_EXPORT lvdif::Device ToDevice(int device);
 /// "cannot read 'PATH': cannot open 'PATH': ...". Every reader and writer's
 /// file error goes through here.
 LVDIFFILTERSVOLUME_EXPORT std::string FileError(const std::string& verb, const std::string& path, const std::string& what);
+/// FileError's rule: `context` + `what`, unless `what` already holds the first
+/// 'quoted' name of `context` (then `what` alone).
+LVDIFFILTERSVOLUME_EXPORT std::string WithContext(const std::string& context, const std::string& what);
 
 /// Calls Core: returns true on success; on lvdif::Error reports it with
 /// vtkErrorMacro's text on `algorithm` (prefixed by `context` when given, unless

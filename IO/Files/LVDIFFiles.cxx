@@ -76,7 +76,6 @@ struct Watch
     }
   }
 
-  /// Throws when the run failed or was cancelled.
   /// Throws when the run failed or was cancelled; `what` names the file
   /// ("cannot read 'x'") unless the reader's own message already does.
   void check(bool ok, const std::string& what)
@@ -84,9 +83,8 @@ struct Watch
     this->interrupter.checkInterrupt();
     if (!ok || !this->errors.empty())
     {
-      const std::string text = this->errors.empty() ? what + ": failed"
-        : this->errors.rfind("cannot ", 0) == 0   ? this->errors
-                                                  : what + ": " + this->errors;
+      const std::string text =
+        this->errors.empty() ? what + ": failed" : LVDIFVolumeBridge::WithContext(what + ": ", this->errors);
       throw lvdif::Error(lvdif::ErrorCode::IoFailure, text);
     }
   }
