@@ -86,7 +86,9 @@ lvdif::GridGeometry gridFor(vtkPolyData* pd, bool explicitGrid, const int dims[3
     lvdif::require(longest > 0, "the mesh bounds have zero size");
     for (int a = 0; a < 3; ++a)
     {
-      const double n = std::ceil((b[2 * a + 1] - b[2 * a]) / sampleSpacing + 2 * padding - 1e-9) + 1;
+      // at least one cell per axis, as fitGridToMesh
+      const double n = std::max(std::ceil((b[2 * a + 1] - b[2 * a]) / sampleSpacing + 2 * padding - 1e-9) + 1,
+        static_cast<double>(lvdif::DictionaryVolume::MinCanvasDimension));
       lvdif::require(n <= static_cast<double>(1 << 20),
         "SampleSpacing gives more than 2^20 points along an axis");
       g.dims[a] = static_cast<std::int64_t>(n);

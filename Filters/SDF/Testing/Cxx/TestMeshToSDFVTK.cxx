@@ -157,6 +157,29 @@ TEST(vtkMeshToSDF, ExplicitGridAndSpacing)
   img->GetDimensions(dims);
   EXPECT_DOUBLE_EQ(img->GetSpacing()[0], 0.1);
   EXPECT_GE(dims[0], 12); // diameter 1 / 0.1 + 2 padding + 1
+
+  // a flat mesh without padding: 2 points (one cell) on its flat axis, by
+  // MaxDimension and by SampleSpacing alike (it got 1: nothing to mesh)
+  vtkNew<vtkPolyData> sheet;
+  vtkNew<vtkPoints> pts;
+  pts->InsertNextPoint(0, 0, 0.5);
+  pts->InsertNextPoint(1, 0, 0.5);
+  pts->InsertNextPoint(0, 1, 0.5);
+  vtkNew<vtkCellArray> tri;
+  const vtkIdType ids[3] = { 0, 1, 2 };
+  tri->InsertNextCell(3, ids);
+  sheet->SetPoints(pts);
+  sheet->SetPolys(tri);
+  f->SetInputData(sheet);
+  f->SetPadding(0);
+  for (double spacing : { 0.0, 0.1 })
+  {
+    f->SetSampleSpacing(spacing);
+    img = dense(f);
+    img->GetDimensions(dims);
+    EXPECT_EQ(dims[2], 2) << "SampleSpacing " << spacing;
+    EXPECT_NEAR(img->GetOrigin()[2] + 0.5 * img->GetSpacing()[2], 0.5, 1e-9) << "SampleSpacing " << spacing;
+  }
 }
 
 TEST(vtkMeshToSDF, ClearErrors)
