@@ -19,7 +19,7 @@
 
 namespace
 {
-const char* const Usage = "usage: lvdif mesh-to-sdf MESH OUT.(lvdv|bv) [--dims N] [--padding P] "
+const char* const Usage = "usage: lvdif mesh-to-sdf MESH OUT.(lvdv|bv|vti|vdb) [--dims N] [--padding P] "
                           "[--sign normal|pseudo|winding] [--reorient] [--svf] [--band B] [--device cpu|cuda|auto]";
 
 // The --sign names, both ways: the volume's "creation parameters" must be a

@@ -76,7 +76,7 @@ int CommandConvert(int argc, char** argv)
   Arguments args(argc, argv, 2);
   args.allowOnly({});
   if (args.positional().size() != 2)
-    throw lvdif::Error(lvdif::ErrorCode::InvalidArgument, "usage: lvdif convert IN.(lvdv|bv) OUT.(lvdv|bv)");
+    throw lvdif::Error(lvdif::ErrorCode::InvalidArgument, "usage: lvdif convert IN OUT   (.lvdv, .lvdvp, .bv, .vti, .vdb)");
   CheckVolumeOutput(args.positional()[1]);
   ProgressBar progress;
   auto volume = LoadAnyVolume(args.positional()[0], progress);
