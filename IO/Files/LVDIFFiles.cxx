@@ -199,26 +199,27 @@ std::shared_ptr<lvdif::DictionaryVolume> LoadVolume(const std::string& path, lvd
     auto r = vtkSmartPointer<vtkXMLImageDataReader>::New();
     r->SetFileName(path.c_str());
     reader = r;
-    // VTK's reader allocates the dense arrays of the header's whole extent
-    // before it reads them: a forged extent ended in "std::bad_alloc". Its
-    // size is known from the header (UpdateInformation reads no data): at
-    // least 4 bytes a point for the sdf, up to 4 more for the sparse volume.
-    if (r->GetExecutive()->UpdateInformation())
-    {
-      int e[6];
-      r->GetOutputInformation(0)->Get(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT(), e);
-      const std::string image = what + ": the image of " + std::to_string(std::int64_t(e[1]) - e[0] + 1) + " x " +
-        std::to_string(std::int64_t(e[3]) - e[2] + 1) + " x " + std::to_string(std::int64_t(e[5]) - e[4] + 1) + " points";
-      std::uint64_t bytes = 8;
-      for (int a = 0; a < 3; ++a)
-        bytes = lvdif::checkedMultiply(bytes, e[2 * a + 1] >= e[2 * a] ? std::uint64_t(e[2 * a + 1]) - e[2 * a] + 1 : 0, image);
-      lvdif::requireMemory(bytes, image);
-    }
     auto toSparse = vtkSmartPointer<vtkImageToSparseVolume>::New();
     toSparse->SetInputConnection(reader->GetOutputPort());
     last = toSparse;
   }
   Watch watch(interrupter, { reader, last });
+  if (f->extension == "vti")
+  {
+    // VTK's reader allocates the dense arrays of the header's whole extent
+    // before it reads them: a forged extent ended in "std::bad_alloc". Its
+    // size is known from the header (UpdateInformation reads no data): at
+    // least 4 bytes a point for the sdf, up to 4 more for the sparse volume.
+    if (!reader->GetExecutive()->UpdateInformation()) watch.check(false, what);
+    int e[6];
+    reader->GetOutputInformation(0)->Get(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT(), e);
+    const std::string image = what + ": the image of " + std::to_string(std::int64_t(e[1]) - e[0] + 1) + " x " +
+      std::to_string(std::int64_t(e[3]) - e[2] + 1) + " x " + std::to_string(std::int64_t(e[5]) - e[4] + 1) + " points";
+    std::uint64_t bytes = 8;
+    for (int a = 0; a < 3; ++a)
+      bytes = lvdif::checkedMultiply(bytes, e[2 * a + 1] >= e[2 * a] ? std::uint64_t(e[2 * a + 1]) - e[2 * a] + 1 : 0, image);
+    lvdif::requireMemory(bytes, image);
+  }
   interrupter.start("read volume");
   const bool ok = last->GetExecutive()->Update() != 0;
   watch.check(ok, what);
