@@ -181,8 +181,7 @@ int vtkMeshToSDF::RequestData(vtkInformation*, vtkInformationVector** inputVecto
       this->Spacing, this->MaxDimension, this->SampleSpacing, this->Padding);
     lvdif::VolumeOptions vo = lvdif::volumeOptionsOn(g);
     vo.chunkEdge = this->ChunkEdge;
-    vo.bandWidth =
-      this->BandWidth > 0 ? static_cast<float>(this->BandWidth) : std::numeric_limits<float>::infinity();
+    vo.bandWidth = LVDIFVolumeBridge::BandOption(this->BandWidth);
     auto volume = std::make_shared<lvdif::DictionaryVolume>(vo); // validates and checks the memory limit
     const lvdif::TriangleMesh mesh = LVDIFVolumeBridge::ToTriangleMesh(input, this->UseVertexNormals);
     lvdif::MeshToSdfOptions o;

@@ -62,6 +62,13 @@ std::string WithContext(const std::string& context, const std::string& what)
   return context + what;
 }
 
+float BandOption(double bandWidth)
+{
+  if (std::isnan(bandWidth))
+    throw lvdif::Error(lvdif::ErrorCode::InvalidArgument, "BandWidth is NaN (0 means no band)");
+  return bandWidth > 0 ? static_cast<float>(bandWidth) : std::numeric_limits<float>::infinity();
+}
+
 std::string FileError(const std::string& verb, const std::string& path, const std::string& what)
 {
   return WithContext("cannot " + verb + " '" + path + "': ", what);

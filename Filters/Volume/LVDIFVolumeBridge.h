@@ -50,6 +50,10 @@ LVDIFFILTERSVOLUME_EXPORT lvdif::Device ToDevice(int device);
 /// "cannot read 'PATH': cannot open 'PATH': ...". Every reader and writer's
 /// file error goes through here.
 LVDIFFILTERSVOLUME_EXPORT std::string FileError(const std::string& verb, const std::string& path, const std::string& what);
+/// A filter's BandWidth property as a volume's band: 0 or less means no band
+/// (infinity); NaN is refused with an lvdif::Error (it meant no band, silently).
+LVDIFFILTERSVOLUME_EXPORT float BandOption(double bandWidth);
+
 /// FileError's rule: `context` + `what`, unless `what` already holds the first
 /// 'quoted' name of `context` (then `what` alone).
 LVDIFFILTERSVOLUME_EXPORT std::string WithContext(const std::string& context, const std::string& what);

@@ -26,6 +26,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <string>
 
 namespace
@@ -214,6 +215,18 @@ TEST(vtkMeshToSDF, ClearErrors)
   errors.last.clear();
   f->Update();
   EXPECT_NE(errors.last.find("limit"), std::string::npos) << errors.last;
+
+  // a NaN band width (a computed value gone wrong) is an error: it silently
+  // meant "no band", every chunk kept expanded
+  f->SetDimensions(16, 16, 16);
+  f->SetBandWidth(std::numeric_limits<double>::quiet_NaN());
+  errors.last.clear();
+  f->Update();
+  EXPECT_NE(errors.last.find("BandWidth"), std::string::npos) << errors.last;
+  f->SetBandWidth(0); // documented: no band
+  errors.last.clear();
+  f->Update();
+  EXPECT_TRUE(errors.last.empty()) << errors.last;
 
   // the fitted grid of an empty mesh: the message names the class once
   // (vtkErrorMacro's prefix; it read "vtkMeshToSDF (0x..): vtkMeshToSDF: ...")
