@@ -18,6 +18,13 @@ assert r.returncode == 0 and r.stdout.startswith("usage: lvdif demo") and not __
 
 code, err = run("no-such-command")
 assert code == 2 and "unknown command" in err, (code, err)
+# an option given twice is a mistake, not "the last one wins" (it silently did)
+code, err = run("mesh-to-sdf", "in.obj", "out.lvdv", "--dims", "16", "--dims", "24")
+assert code == 1 and err == "lvdif mesh-to-sdf: option --dims given twice", (code, err)
+code, err = run("info", "x.lvdv", "--header-only", "--header-only")
+assert code == 1 and err == "lvdif info: option --header-only given twice", (code, err)
+code, err = run("no-such-command")
+assert code == 2 and "unknown command" in err, (code, err)
 code, err = run("demo", "--bogus", "1")
 assert code == 1 and err == "lvdif demo: unknown option --bogus", (code, err)
 code, err = run("demo", "--size", "ten")
