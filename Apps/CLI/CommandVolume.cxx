@@ -22,6 +22,11 @@ int CommandInfo(int argc, char** argv)
     throw lvdif::Error(lvdif::ErrorCode::InvalidArgument, "usage: lvdif info VOLUME.lvdv [--header-only]");
   const std::string& path = args.positional()[0];
   const bool headerOnly = args.has("header-only");
+  // another volume format is not "a damaged .lvdv" (it said "header: bad magic")
+  const std::string ext = Extension(path);
+  if (ext == "bv" || ext == "vti" || ext == "vdb" || ext == "lvdvp")
+    throw lvdif::Error(lvdif::ErrorCode::InvalidArgument, "info describes .lvdv files, '" + path + "' is a ." + ext +
+        " file: convert it first (lvdif convert " + path + " OUT.lvdv)");
   lvdif::VolumeFileInfo info;
   try
   {
