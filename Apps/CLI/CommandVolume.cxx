@@ -5,6 +5,8 @@
 #include "ProgressBar.h"
 #include "VolumeFiles.h"
 
+#include "LVDIFFiles.h"
+
 #include "lvdif/Error.h"
 #include "lvdif/Memory.h"
 #include "lvdif/VolumeFile.h"
@@ -23,10 +25,10 @@ int CommandInfo(int argc, char** argv)
   const std::string& path = args.positional()[0];
   const bool headerOnly = args.has("header-only");
   // another volume format is not "a damaged .lvdv" (it said "header: bad magic")
-  const std::string ext = Extension(path);
-  if (ext == "bv" || ext == "vti" || ext == "vdb" || ext == "lvdvp")
-    throw lvdif::Error(lvdif::ErrorCode::InvalidArgument, "info describes .lvdv files, '" + path + "' is a ." + ext +
-        " file: convert it first (lvdif convert " + path + " OUT.lvdv)");
+  const LVDIFFiles::Format* format = LVDIFFiles::Find(path, LVDIFFiles::Kind::Volume);
+  if (format && format->extension != "lvdv")
+    throw lvdif::Error(lvdif::ErrorCode::InvalidArgument, "info describes .lvdv files, '" + path + "' is a ." +
+        format->extension + " file: convert it first (lvdif convert " + path + " OUT.lvdv)");
   lvdif::VolumeFileInfo info;
   try
   {
