@@ -13,6 +13,9 @@ Arguments::Arguments(int argc, char** argv, int first, const std::vector<std::st
     if (a.rfind("--", 0) == 0 && a.size() > 2)
     {
       const std::string key = a.substr(2);
+      // "--dims 16 ... --dims 24" is a mistake in the command line, not "the last wins"
+      if (this->Options.count(key))
+        throw lvdif::Error(lvdif::ErrorCode::InvalidArgument, "option --" + key + " given twice");
       if (std::find(flags.begin(), flags.end(), key) != flags.end())
       {
         this->Options[key] = "1";

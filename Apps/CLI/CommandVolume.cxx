@@ -5,6 +5,8 @@
 #include "ProgressBar.h"
 #include "VolumeFiles.h"
 
+#include "LVDIFFiles.h"
+
 #include "lvdif/Error.h"
 #include "lvdif/Memory.h"
 #include "lvdif/VolumeFile.h"
@@ -22,6 +24,11 @@ int CommandInfo(int argc, char** argv)
     throw lvdif::Error(lvdif::ErrorCode::InvalidArgument, "usage: lvdif info VOLUME.lvdv [--header-only]");
   const std::string& path = args.positional()[0];
   const bool headerOnly = args.has("header-only");
+  // another volume format is not "a damaged .lvdv" (it said "header: bad magic")
+  const LVDIFFiles::Format* format = LVDIFFiles::Find(path, LVDIFFiles::Kind::Volume);
+  if (format && format->extension != "lvdv")
+    throw lvdif::Error(lvdif::ErrorCode::InvalidArgument, "info describes .lvdv files, '" + path + "' is a ." +
+        format->extension + " file: convert it first (lvdif convert " + path + " OUT.lvdv)");
   lvdif::VolumeFileInfo info;
   try
   {
@@ -76,7 +83,7 @@ int CommandConvert(int argc, char** argv)
   Arguments args(argc, argv, 2);
   args.allowOnly({});
   if (args.positional().size() != 2)
-    throw lvdif::Error(lvdif::ErrorCode::InvalidArgument, "usage: lvdif convert IN.(lvdv|bv) OUT.(lvdv|bv)");
+    throw lvdif::Error(lvdif::ErrorCode::InvalidArgument, "usage: lvdif convert IN OUT   (.lvdv, .lvdvp, .bv, .vti, .vdb)");
   CheckVolumeOutput(args.positional()[1]);
   ProgressBar progress;
   auto volume = LoadAnyVolume(args.positional()[0], progress);

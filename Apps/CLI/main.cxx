@@ -67,9 +67,9 @@ const Command commands[] = {
     "info VOLUME.lvdv [--header-only]   describe a volume file (header, chunks, colours, metadata) after checking "
     "every chunk; --header-only skips the chunks" },
   { "mesh", CommandMesh, "mesh VOLUME OUT.(ply|obj|stl|vtp) [--png OUT.png]   extract the surface of a volume" },
-  { "convert", CommandConvert, "convert IN OUT   between .lvdv and the original's .bv" },
+  { "convert", CommandConvert, "convert IN OUT   between volume formats: .lvdv, .lvdvp, .bv (the original's), .vti, .vdb" },
   { "mesh-to-sdf", CommandMeshToSdf,
-    "mesh-to-sdf MESH OUT.(lvdv|bv) [--dims N] [--padding P] [--sign normal|pseudo|winding] [--reorient] [--svf] [--band B] "
+    "mesh-to-sdf MESH OUT.(lvdv|bv|vti|vdb) [--dims N] [--padding P] [--sign normal|pseudo|winding] [--reorient] [--svf] [--band B] "
     "[--device cpu|cuda|auto]   voxelize a mesh (OBJ, OFF, STL, PLY)" },
   { "script", CommandScript,
     "script FILE.lvs [--in VOLUME] [--out VOLUME] [--mesh OUT] [--png OUT.png] [--size N]   run a script" },

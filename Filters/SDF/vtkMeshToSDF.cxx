@@ -86,7 +86,9 @@ lvdif::GridGeometry gridFor(vtkPolyData* pd, bool explicitGrid, const int dims[3
     lvdif::require(longest > 0, "the mesh bounds have zero size");
     for (int a = 0; a < 3; ++a)
     {
-      const double n = std::ceil((b[2 * a + 1] - b[2 * a]) / sampleSpacing + 2 * padding - 1e-9) + 1;
+      // at least one cell per axis, as fitGridToMesh
+      const double n = std::max(std::ceil((b[2 * a + 1] - b[2 * a]) / sampleSpacing + 2 * padding - 1e-9) + 1,
+        static_cast<double>(lvdif::DictionaryVolume::MinCanvasDimension));
       lvdif::require(n <= static_cast<double>(1 << 20),
         "SampleSpacing gives more than 2^20 points along an axis");
       g.dims[a] = static_cast<std::int64_t>(n);
@@ -179,8 +181,7 @@ int vtkMeshToSDF::RequestData(vtkInformation*, vtkInformationVector** inputVecto
       this->Spacing, this->MaxDimension, this->SampleSpacing, this->Padding);
     lvdif::VolumeOptions vo = lvdif::volumeOptionsOn(g);
     vo.chunkEdge = this->ChunkEdge;
-    vo.bandWidth =
-      this->BandWidth > 0 ? static_cast<float>(this->BandWidth) : std::numeric_limits<float>::infinity();
+    vo.bandWidth = LVDIFVolumeBridge::BandOption(this->BandWidth);
     auto volume = std::make_shared<lvdif::DictionaryVolume>(vo); // validates and checks the memory limit
     const lvdif::TriangleMesh mesh = LVDIFVolumeBridge::ToTriangleMesh(input, this->UseVertexNormals);
     lvdif::MeshToSdfOptions o;

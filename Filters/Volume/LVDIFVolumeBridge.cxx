@@ -54,6 +54,26 @@ lvdif::Device ToDevice(int device)
   return device == 1 ? lvdif::Device::Cpu : (device == 2 ? lvdif::Device::Cuda : lvdif::Device::Auto);
 }
 
+std::string WithContext(const std::string& context, const std::string& what)
+{
+  const auto open = context.find('\'');
+  const auto close = open == std::string::npos ? std::string::npos : context.find('\'', open + 1);
+  if (close != std::string::npos && what.find(context.substr(open, close - open + 1)) != std::string::npos) return what;
+  return context + what;
+}
+
+float BandOption(double bandWidth)
+{
+  if (std::isnan(bandWidth))
+    throw lvdif::Error(lvdif::ErrorCode::InvalidArgument, "BandWidth is NaN (0 means no band)");
+  return bandWidth > 0 ? static_cast<float>(bandWidth) : std::numeric_limits<float>::infinity();
+}
+
+std::string FileError(const std::string& verb, const std::string& path, const std::string& what)
+{
+  return WithContext("cannot " + verb + " '" + path + "': ", what);
+}
+
 bool CallCore(vtkAlgorithm* algorithm, const std::function<void()>& work, const std::string& context, bool* cancelled)
 {
   if (cancelled) *cancelled = false;
@@ -69,7 +89,7 @@ bool CallCore(vtkAlgorithm* algorithm, const std::function<void()>& work, const 
       if (cancelled) *cancelled = true;
       return false;
     }
-    vtkErrorWithObjectMacro(algorithm, << context << e.what());
+    vtkErrorWithObjectMacro(algorithm, << WithContext(context, e.what()));
     return false;
   }
 }

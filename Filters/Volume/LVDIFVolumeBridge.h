@@ -45,8 +45,22 @@ constexpr const char* ColorArrayName = "rgba";
 /// The filters' Device property (0 auto, 1 CPU, 2 CUDA) as lvdif's Device.
 LVDIFFILTERSVOLUME_EXPORT lvdif::Device ToDevice(int device);
 
+/// "cannot VERB 'PATH': WHAT", the file named once: Core's file errors already
+/// name it ("cannot open 'PATH': No such file ..."), and were reported as
+/// "cannot read 'PATH': cannot open 'PATH': ...". Every reader and writer's
+/// file error goes through here.
+LVDIFFILTERSVOLUME_EXPORT std::string FileError(const std::string& verb, const std::string& path, const std::string& what);
+/// A filter's BandWidth property as a volume's band: 0 or less means no band
+/// (infinity); NaN is refused with an lvdif::Error (it meant no band, silently).
+LVDIFFILTERSVOLUME_EXPORT float BandOption(double bandWidth);
+
+/// FileError's rule: `context` + `what`, unless `what` already holds the first
+/// 'quoted' name of `context` (then `what` alone).
+LVDIFFILTERSVOLUME_EXPORT std::string WithContext(const std::string& context, const std::string& what);
+
 /// Calls Core: returns true on success; on lvdif::Error reports it with
-/// vtkErrorMacro's text on `algorithm` (prefixed by `context` when given) and
+/// vtkErrorMacro's text on `algorithm` (prefixed by `context` when given, unless
+/// the message already holds the context's quoted file name: FileError's rule) and
 /// returns false. A cancel (AbortExecute through LVDIFInterrupter) returns
 /// false without an error, and sets `cancelled` when given.
 LVDIFFILTERSVOLUME_EXPORT bool CallCore(vtkAlgorithm* algorithm, const std::function<void()>& work,

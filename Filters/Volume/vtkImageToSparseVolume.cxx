@@ -105,9 +105,8 @@ int vtkImageToSparseVolume::RequestData(
     : nullptr;
   lvdif::VolumeOptions options;
   options.chunkEdge = this->ChunkEdge;
-  options.bandWidth =
-    this->BandWidth > 0 ? static_cast<float>(this->BandWidth) : std::numeric_limits<float>::infinity();
   return LVDIFVolumeBridge::CallCore(this, [&] {
+    options.bandWidth = LVDIFVolumeBridge::BandOption(this->BandWidth);
     output->SetVolume(LVDIFVolumeBridge::VolumeFromImage(image, sdf, rgba, options));
   }) ? 1 : 0;
 }

@@ -19,15 +19,18 @@
 
 #include "lvdif/ByteStream.h"
 #include "lvdif/Error.h"
+#include "lvdif/Memory.h"
 
 #include "vtkCallbackCommand.h"
 #include "vtkCommand.h"
 #include "vtkExecutive.h"
+#include "vtkInformation.h"
 #include "vtkNew.h"
 #include "vtkOBJWriter.h"
 #include "vtkPLYWriter.h"
 #include "vtkPolyData.h"
 #include "vtkSTLWriter.h"
+#include "vtkStreamingDemandDrivenPipeline.h"
 #include "vtkTrivialProducer.h"
 #include "vtkXMLImageDataReader.h"
 #include "vtkXMLImageDataWriter.h"
@@ -74,7 +77,6 @@ struct Watch
     }
   }
 
-  /// Throws when the run failed or was cancelled.
   /// Throws when the run failed or was cancelled; `what` names the file
   /// ("cannot read 'x'") unless the reader's own message already does.
   void check(bool ok, const std::string& what)
@@ -82,9 +84,8 @@ struct Watch
     this->interrupter.checkInterrupt();
     if (!ok || !this->errors.empty())
     {
-      const std::string text = this->errors.empty() ? what + ": failed"
-        : this->errors.rfind("cannot ", 0) == 0   ? this->errors
-                                                  : what + ": " + this->errors;
+      const std::string text =
+        this->errors.empty() ? what + ": failed" : LVDIFVolumeBridge::WithContext(what + ": ", this->errors);
       throw lvdif::Error(lvdif::ErrorCode::IoFailure, text);
     }
   }
@@ -204,6 +205,22 @@ std::shared_ptr<lvdif::DictionaryVolume> LoadVolume(const std::string& path, lvd
     last = toSparse;
   }
   Watch watch(interrupter, { reader, last });
+  if (f->extension == "vti")
+  {
+    // VTK's reader allocates the dense arrays of the header's whole extent
+    // before it reads them: a forged extent ended in "std::bad_alloc". Its
+    // size is known from the header (UpdateInformation reads no data): at
+    // least 4 bytes a point for the sdf, up to 4 more for the sparse volume.
+    if (!reader->GetExecutive()->UpdateInformation()) watch.check(false, what);
+    int e[6];
+    reader->GetOutputInformation(0)->Get(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT(), e);
+    const std::string image = what + ": the image of " + std::to_string(std::int64_t(e[1]) - e[0] + 1) + " x " +
+      std::to_string(std::int64_t(e[3]) - e[2] + 1) + " x " + std::to_string(std::int64_t(e[5]) - e[4] + 1) + " points";
+    std::uint64_t bytes = 8;
+    for (int a = 0; a < 3; ++a)
+      bytes = lvdif::checkedMultiply(bytes, e[2 * a + 1] >= e[2 * a] ? std::uint64_t(e[2 * a + 1]) - e[2 * a] + 1 : 0, image);
+    lvdif::requireMemory(bytes, image);
+  }
   interrupter.start("read volume");
   const bool ok = last->GetExecutive()->Update() != 0;
   watch.check(ok, what);

@@ -56,7 +56,7 @@ int vtkLVDIFMeshReader::RequestData(vtkInformation*, vtkInformationVector**, vtk
   catch (const lvdif::Error& e)
   {
     output->Initialize();
-    vtkErrorMacro(<< "cannot read '" << this->FileName << "': " << e.what());
+    vtkErrorMacro(<< LVDIFVolumeBridge::FileError("read", this->FileName, e.what()));
     return 0;
   }
   this->UpdateProgress(0.7);

@@ -1,5 +1,6 @@
 #include "LVDIFOpenVDB.h"
 
+#include "lvdif/ByteStream.h"
 #include "lvdif/Error.h"
 #include "lvdif/Memory.h"
 
@@ -47,6 +48,10 @@ std::vector<GridSummary> summarize(const openvdb::GridPtrVec& grids)
 /// Opens a file, turning OpenVDB's exceptions into lvdif::Error.
 void openFile(openvdb::io::File& file, const std::string& path)
 {
+  // the project's own open first: a missing file, a folder or a FIFO gets the
+  // message every reader gives ("cannot open 'F': No such file or directory";
+  // OpenVDB said "IoError: could not open file F")
+  FileSource{ path };
   try
   {
     file.open(/*delayLoad=*/false);

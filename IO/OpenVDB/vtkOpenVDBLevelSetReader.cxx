@@ -101,7 +101,7 @@ int vtkOpenVDBLevelSetReader::RequestInformation(
     {
       if (e.code() != lvdif::ErrorCode::Cancelled)
       {
-        vtkErrorMacro(<< "cannot read '" << this->FileName << "': " << e.what());
+        vtkErrorMacro(<< LVDIFVolumeBridge::FileError("read", this->FileName, e.what()));
       }
       return 0;
     }

@@ -77,7 +77,7 @@ int vtkDictionaryVolumeReader::RequestInformation(
   catch (const lvdif::Error& e)
   {
     this->Internal->Info = lvdif::VolumeFileInfo();
-    vtkErrorMacro(<< "cannot read '" << this->FileName << "': " << e.what());
+    vtkErrorMacro(<< LVDIFVolumeBridge::FileError("read", this->FileName, e.what()));
     return 0;
   }
   const lvdif::VolumeOptions& o = this->Internal->Info.options;

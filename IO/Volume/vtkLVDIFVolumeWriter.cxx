@@ -92,7 +92,7 @@ void vtkLVDIFVolumeWriter::WriteData()
   {
     if (e.code() == lvdif::ErrorCode::Cancelled)
       return; // AbortExecute: not an error
-    fail("cannot write '" + this->FileName + "': " + e.what(),
+    fail(LVDIFVolumeBridge::FileError("write", this->FileName, e.what()),
       e.code() == lvdif::ErrorCode::IoFailure ? vtkErrorCode::CannotOpenFileError : vtkErrorCode::UnknownError);
   }
 }

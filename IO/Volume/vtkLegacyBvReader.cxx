@@ -127,7 +127,7 @@ int vtkLegacyBvReader::RequestData(vtkInformation*, vtkInformationVector**, vtkI
     output->Initialize();
     if (e.code() != lvdif::ErrorCode::Cancelled)
     {
-      vtkErrorMacro(<< "cannot read '" << this->FileName << "': " << e.what());
+      vtkErrorMacro(<< LVDIFVolumeBridge::FileError("read", this->FileName, e.what()));
     }
     return 0;
   }

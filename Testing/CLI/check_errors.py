@@ -16,6 +16,15 @@ assert r.returncode == 0 and r.stdout.startswith("usage: lvdif mesh-to-sdf MESH"
 r = subprocess.run([exe, "demo", "--out", out + "-help", "-h"], capture_output=True, text=True, timeout=60)
 assert r.returncode == 0 and r.stdout.startswith("usage: lvdif demo") and not __import__("os").path.exists(out + "-help"), r
 
+# info on another volume format names it (it said "header: bad magic")
+code, err = run("info", "volume.vti")
+assert code == 1 and err == ("lvdif info: info describes .lvdv files, 'volume.vti' is a .vti file: convert it first "
+                             "(lvdif convert volume.vti OUT.lvdv)"), (code, err)
+# an option given twice is a mistake, not "the last one wins" (it silently did)
+code, err = run("mesh-to-sdf", "in.obj", "out.lvdv", "--dims", "16", "--dims", "24")
+assert code == 1 and err == "lvdif mesh-to-sdf: option --dims given twice", (code, err)
+code, err = run("info", "x.lvdv", "--header-only", "--header-only")
+assert code == 1 and err == "lvdif info: option --header-only given twice", (code, err)
 code, err = run("no-such-command")
 assert code == 2 and "unknown command" in err, (code, err)
 code, err = run("demo", "--bogus", "1")
@@ -102,6 +111,28 @@ with open(os.path.join(out, "junk.vti"), "w") as f:
 code, err = run("mesh", os.path.join(out, "junk.vti"), os.path.join(out, "junk.ply"))
 lines = [line for line in err.splitlines() if not line.endswith(": done")]
 assert code == 1 and len(lines) == 1 and lines[0].startswith("lvdif mesh: cannot read") and "ERR|" not in err, (code, err)
+# a .vti whose header claims 10^6 (10^8) points a side (three values follow): refused
+# before VTK's reader allocates them, with the size and the limit (it ended in
+# "lvdif mesh: std::bad_alloc"); the old output file is untouched
+with open(os.path.join(out, "forged.vti"), "w") as f:
+    f.write('<VTKFile type="ImageData"><ImageData WholeExtent="0 999999 0 999999 0 999999" Origin="0 0 0" '
+            'Spacing="1 1 1"><Piece Extent="0 999999 0 999999 0 999999"><PointData Scalars="sdf">'
+            '<DataArray type="Float32" Name="sdf" format="ascii">1 2 3</DataArray></PointData></Piece></ImageData>'
+            '</VTKFile>\n')
+with open(os.path.join(out, "forged.lvdv"), "wb") as f:
+    f.write(b"old")
+for cmd in (["mesh", os.path.join(out, "forged.vti"), os.path.join(out, "forged.ply")],
+            ["convert", os.path.join(out, "forged.vti"), os.path.join(out, "forged.lvdv")]):
+    code, err = run(*cmd)
+    assert code == 1 and err.count("\n") == 0 and "1000000 x 1000000 x 1000000 points needs" in err \
+        and "LVDIF_MEMORY_LIMIT" in err, (code, err)
+with open(os.path.join(out, "forged.vti")) as f:
+    text = f.read().replace("999999", "99999999")
+with open(os.path.join(out, "forged8.vti"), "w") as f:
+    f.write(text)
+code, err = run("mesh", os.path.join(out, "forged8.vti"), os.path.join(out, "forged.ply"))
+assert code == 1 and err.count("\n") == 0 and "100000000 x 100000000 x 100000000 points size overflows" in err, (code, err)
+assert open(os.path.join(out, "forged.lvdv"), "rb").read() == b"old"
 # a volume that cannot be read is never "read volume: done" before the error
 code, err = run("mesh", os.path.join(out, "junk.lvdv"), os.path.join(out, "junk.ply"))
 assert code == 1 and err.count("\n") == 0 and "junk.lvdv" in err, (code, err)

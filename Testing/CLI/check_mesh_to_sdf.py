@@ -162,3 +162,43 @@ for sign, reorient, expect in (("winding", [], f"{reversed_faces} of "), ("pseud
     else:
         assert len(warnings) == 1 and expect in warnings[0] and "--reorient" in warnings[0], (sign, run.stderr)
 print("mesh-to-sdf OK")
+
+# the "creation parameters" a volume records (lvdif info) is a command line that
+# runs and gives the same volume: it said --sign pseudonormal (which --sign
+# refuses) and --padding 1.234568 for 1.2345678
+import shlex  # noqa: E402
+first = f"{out}/params.lvdv"
+run = subprocess.run([exe, "mesh-to-sdf", mesh, first, "--dims", "20", "--padding", "1.2345678", "--sign", "pseudo",
+                      "--band", "3.3", "--device", "cpu"], capture_output=True, text=True, timeout=120)
+assert run.returncode == 0, run.stderr
+
+
+def creation_parameters(path):
+    info = subprocess.run([exe, "info", path], capture_output=True, text=True, timeout=60)
+    assert info.returncode == 0, info.stderr
+    lines = [ln.split(" = ", 1)[1] for ln in info.stdout.splitlines() if ln.startswith("meta        creation parameters = ")]
+    assert len(lines) == 1, info.stdout
+    return lines[0]
+
+
+recorded = creation_parameters(first)
+words = shlex.split(recorded)
+assert words[:2] == ["lvdif", "mesh-to-sdf"], recorded
+again = f"{out}/params_again.lvdv"
+run = subprocess.run([exe, "mesh-to-sdf", mesh, again] + words[2:] + ["--device", "cpu"], capture_output=True, text=True,
+                     timeout=120)
+assert run.returncode == 0, (recorded, run.stderr)
+assert creation_parameters(again) == recorded, (recorded, creation_parameters(again))
+assert "--padding 1.2345678 " in recorded and "--sign pseudo " in recorded and "--band 3.3" in recorded, recorded
+
+
+def sdf_of(path):
+    r = vtkDictionaryVolumeReader()
+    r.SetFileName(path)
+    d = vtkSparseVolumeToImage()
+    d.SetInputConnection(r.GetOutputPort())
+    d.Update()
+    return vtk_to_numpy(d.GetOutput().GetPointData().GetArray("sdf"))
+
+
+assert np.array_equal(sdf_of(first), sdf_of(again)), "the recorded parameters give another volume"

@@ -117,6 +117,11 @@ run script-fifo 1 "not a regular file" -- "$exe" script fifo.lvs
 run play-fifo 1 "not a regular file" -- "$exe" play fifo.lvr --in base.lvdv
 run m2s-fifo 1 "not a regular file" -- "$exe" mesh-to-sdf fifo.ply x.lvdv
 run info-dir 1 "not a regular file" -- "$exe" info adir
+# .vdb through OpenVDB: a FIFO blocked it (opened for reading, waiting for a
+# writer), a missing file said "IoError: could not open file"
+mkfifo fifo.vdb
+run vdb-fifo 1 "not a regular file" -- "$exe" mesh fifo.vdb x.ply
+run vdb-missing 1 "cannot open 'missing.vdb': No such file" -- "$exe" convert missing.vdb x.lvdv
 # a garbage 3 GiB (sparse) mesh is refused after its head
 printf 'garbage' >big.ply && truncate -s 3G big.ply
 run bigply 1 "magic" -- "$exe" mesh-to-sdf big.ply x.lvdv

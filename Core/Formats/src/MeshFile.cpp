@@ -28,7 +28,8 @@ void checkMeshHead(ByteSource& source, MeshFormat format)
   const std::uint64_t size = source.size();
   std::vector<char> head(static_cast<std::size_t>(std::min<std::uint64_t>(size, 4096)));
   source.read(0, head.data(), head.size());
-  const std::string h(head.begin(), head.end());
+  std::string h(head.begin(), head.end());
+  h.erase(0, byteOrderMark(h.data(), h.size())); // text after a byte order mark (binary STL: head, below)
   const auto text = [&]() {
     for (char c : h)
       if (c == '\0')
@@ -79,6 +80,7 @@ bool parallelObj(const char* p, std::size_t size, TriangleMesh& mesh)
 {
   if (size < (std::size_t(1) << 22)) return false; // small files (< 4 MiB): not worth it
   const char* end = p + size;
+  p += byteOrderMark(p, size);
   struct Face
   {
     const char* b;

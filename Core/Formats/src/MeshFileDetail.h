@@ -22,12 +22,21 @@ namespace detail::volumefile::meshfile
   throw Error(code, where + ": " + what);
 }
 
-/// Splits text into lines and lines into whitespace-separated tokens.
+/// Bytes of a UTF-8 byte order mark at p (3 or 0). Windows editors start text
+/// with one; none of the formats has it, and read as text it became part of the
+/// first token (an OBJ's first vertex "\xEF\xBB\xBFv" was silently skipped).
+inline std::size_t byteOrderMark(const char* p, std::size_t size)
+{
+  return size >= 3 && std::memcmp(p, "\xEF\xBB\xBF", 3) == 0 ? 3 : 0;
+}
+
+/// Splits text into lines and lines into whitespace-separated tokens; a
+/// byte order mark before the text is skipped.
 class TextScanner
 {
 public:
   TextScanner(const char* data, std::size_t size, std::string format)
-    : P(data)
+    : P(data + byteOrderMark(data, size))
     , End(data + size)
     , Format(std::move(format))
   {

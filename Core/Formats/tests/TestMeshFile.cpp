@@ -91,6 +91,28 @@ TEST(MeshFile, EveryFormatReadsTheSquare)
   expectSquare(readText(binaryPly(true), MeshFormat::Ply));
 }
 
+TEST(MeshFile, ByteOrderMarkBeforeTheTextIsSkipped)
+{
+  // Windows editors start UTF-8 text with EF BB BF: it was read as part of the
+  // first token, so an OBJ lost its first vertex ("v" unknown, skipped) and the
+  // faces pointed one vertex off; PLY and ASCII STL were refused.
+  const std::string bom = "\xEF\xBB\xBF";
+  expectSquare(readText(bom + "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0.5\nf 1 2 3 4\n", MeshFormat::Obj));
+  expectSquare(readText(bom + "OFF\n4 1 0\n0 0 0\n1 0 0\n1 1 0\n0 1 0.5\n4 0 1 2 3\n", MeshFormat::Off));
+  expectSquare(readText(bom + "ply\nformat ascii 1.0\nelement vertex 4\nproperty float x\nproperty float y\n"
+                              "property float z\nelement face 1\nproperty list uchar int vertex_indices\nend_header\n"
+                              "0 0 0\n1 0 0\n1 1 0\n0 1 0.5\n4 0 1 2 3\n",
+    MeshFormat::Ply));
+  expectSquare(readText(bom + binaryPly(false), MeshFormat::Ply));
+  const TriangleMesh stl = readText(bom + "solid s\nfacet normal 0 0 1\nouter loop\nvertex 0 0 0\nvertex 1 0 0\n"
+                                          "vertex 1 1 0\nendloop\nendfacet\nendsolid s\n",
+    MeshFormat::Stl);
+  EXPECT_EQ(stl.points.size(), 3u);
+  EXPECT_EQ(stl.triangles.size(), 1u);
+  // only at the start: elsewhere it is still not a number
+  expectError("v 0 0 0\n" + bom + "v 1 0 0\nv 1 1 0\nf 1 2 3\n", MeshFormat::Obj, "OBJ line 4: vertex index 3 out of range");
+}
+
 TEST(MeshFile, StlAsciiAndBinaryShareCorners)
 {
   const std::string ascii = "solid sq\nfacet normal 0 0 1\n outer loop\n  vertex 0 0 0\n  vertex 1 0 0\n  vertex 1 1 0\n"
@@ -379,6 +401,7 @@ TEST(MeshFile, LargeObjOnThreadsMatchesTheSerialReader)
   const TriangleMesh fast = readText(body, MeshFormat::Obj);
   const TriangleMesh serial = readText(body + "f 1 2 -1\n", MeshFormat::Obj);
   ASSERT_EQ(fast.points.size(), std::size_t(k * k));
+  EXPECT_EQ(readText("\xEF\xBB\xBF" + body, MeshFormat::Obj).points, fast.points); // a byte order mark: no vertex lost
   EXPECT_EQ(fast.points, serial.points);
   ASSERT_EQ(serial.triangles.size(), fast.triangles.size() + 1);
   EXPECT_TRUE(std::equal(fast.triangles.begin(), fast.triangles.end(), serial.triangles.begin()));

@@ -38,8 +38,11 @@ GridGeometry fitGridToMesh(const TriangleMesh& mesh, std::int64_t maxDim, double
   GridGeometry g;
   for (int a = 0; a < 3; ++a)
   {
-    g.dims[a] = a == axis ? maxDim : std::min<std::int64_t>(maxDim,
-      static_cast<std::int64_t>(std::ceil(ext[a] / h + 2 * paddingVoxels - 1e-9)) + 1);
+    // at least one cell on every axis (a flat mesh without padding got 1
+    // point: a volume nothing meshes, not even the unsigned shell of a sheet)
+    g.dims[a] = a == axis ? maxDim : std::clamp<std::int64_t>(
+      static_cast<std::int64_t>(std::ceil(ext[a] / h + 2 * paddingVoxels - 1e-9)) + 1,
+      DictionaryVolume::MinCanvasDimension, maxDim);
     g.spacing[a] = h;
     const double centre = 0.5 * (static_cast<double>(b[0][a]) + b[1][a]);
     g.origin[a] = centre - 0.5 * static_cast<double>(g.dims[a] - 1) * h;

@@ -213,6 +213,21 @@ TEST(MeshToSdf, FitGridToMesh)
   EXPECT_NEAR(g.origin[0] + 2.5 * g.spacing[0], 0, 1e-9);
 }
 
+TEST(MeshToSdf, FitGridGivesAFlatMeshOneCellAtZeroPadding)
+{
+  // a flat sheet (z = 0.5) without padding: its axis got 1 point, a volume
+  // nothing can mesh (not even the unsigned shell around the sheet) and no
+  // editor can open; now 2 points (MinCanvasDimension), the sheet midway
+  TriangleMesh sheet;
+  sheet.points = { { 0, 0, 0.5f }, { 3, 0, 0.5f }, { 0, 2, 0.5f } };
+  sheet.triangles = { { 0, 1, 2 } };
+  const GridGeometry g = fitGridToMesh(sheet, 16, 0);
+  EXPECT_EQ(g.dims[0], 16);
+  EXPECT_EQ(g.dims[2], DictionaryVolume::MinCanvasDimension);
+  EXPECT_NEAR(g.origin[2] + 0.5 * g.spacing[2], 0.5, 1e-9);
+  EXPECT_EQ(fitGridToMesh(sheet, 16, 1).dims[2], 3); // padding alone already gives the cell
+}
+
 TEST(MeshToSdf, DegenerateTrianglesAreSkippedAndCounted)
 {
   TriangleMesh m = makeSphereMesh(0, 0, 0, 1.0f, 8, 16);

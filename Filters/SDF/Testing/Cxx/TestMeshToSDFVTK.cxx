@@ -26,6 +26,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <string>
 
 namespace
@@ -157,6 +158,29 @@ TEST(vtkMeshToSDF, ExplicitGridAndSpacing)
   img->GetDimensions(dims);
   EXPECT_DOUBLE_EQ(img->GetSpacing()[0], 0.1);
   EXPECT_GE(dims[0], 12); // diameter 1 / 0.1 + 2 padding + 1
+
+  // a flat mesh without padding: 2 points (one cell) on its flat axis, by
+  // MaxDimension and by SampleSpacing alike (it got 1: nothing to mesh)
+  vtkNew<vtkPolyData> sheet;
+  vtkNew<vtkPoints> pts;
+  pts->InsertNextPoint(0, 0, 0.5);
+  pts->InsertNextPoint(1, 0, 0.5);
+  pts->InsertNextPoint(0, 1, 0.5);
+  vtkNew<vtkCellArray> tri;
+  const vtkIdType ids[3] = { 0, 1, 2 };
+  tri->InsertNextCell(3, ids);
+  sheet->SetPoints(pts);
+  sheet->SetPolys(tri);
+  f->SetInputData(sheet);
+  f->SetPadding(0);
+  for (double spacing : { 0.0, 0.1 })
+  {
+    f->SetSampleSpacing(spacing);
+    img = dense(f);
+    img->GetDimensions(dims);
+    EXPECT_EQ(dims[2], 2) << "SampleSpacing " << spacing;
+    EXPECT_NEAR(img->GetOrigin()[2] + 0.5 * img->GetSpacing()[2], 0.5, 1e-9) << "SampleSpacing " << spacing;
+  }
 }
 
 TEST(vtkMeshToSDF, ClearErrors)
@@ -191,6 +215,18 @@ TEST(vtkMeshToSDF, ClearErrors)
   errors.last.clear();
   f->Update();
   EXPECT_NE(errors.last.find("limit"), std::string::npos) << errors.last;
+
+  // a NaN band width (a computed value gone wrong) is an error: it silently
+  // meant "no band", every chunk kept expanded
+  f->SetDimensions(16, 16, 16);
+  f->SetBandWidth(std::numeric_limits<double>::quiet_NaN());
+  errors.last.clear();
+  f->Update();
+  EXPECT_NE(errors.last.find("BandWidth"), std::string::npos) << errors.last;
+  f->SetBandWidth(0); // documented: no band
+  errors.last.clear();
+  f->Update();
+  EXPECT_TRUE(errors.last.empty()) << errors.last;
 
   // the fitted grid of an empty mesh: the message names the class once
   // (vtkErrorMacro's prefix; it read "vtkMeshToSDF (0x..): vtkMeshToSDF: ...")

@@ -178,6 +178,18 @@ TEST(DictionaryVolumeIO, ErrorsAreReportedNotCrashed)
   reader->SetFileName(tempFile("missing.lvdv").c_str());
   reader->Update();
   EXPECT_GE(catcher->Count, 1);
+  {
+    // the file named once (it said "cannot read 'F': cannot open 'F': No such file ...")
+    vtkNew<ErrorCatcher> own;
+    vtkNew<vtkDictionaryVolumeReader> r;
+    r->AddObserver(vtkCommand::ErrorEvent, own);
+    const std::string missing = tempFile("missing.lvdv");
+    r->SetFileName(missing.c_str());
+    r->Update();
+    EXPECT_EQ(own->Count, 1) << own->Last;
+    EXPECT_NE(own->Last.find(missing), std::string::npos) << own->Last;
+    EXPECT_EQ(own->Last.find(missing), own->Last.rfind(missing)) << own->Last;
+  }
 
   // a truncated file names the problem
   auto img = makeImage();
@@ -207,6 +219,21 @@ TEST(DictionaryVolumeIO, ErrorsAreReportedNotCrashed)
   w2->Write();
   EXPECT_GE(catcher->Count, 1);
   EXPECT_NE(catcher->Last.find("sdf"), std::string::npos);
+
+  // an output folder that does not exist: one error naming the file once (it
+  // said "cannot write 'F': cannot write 'F': the folder ... does not exist")
+  vtkNew<vtkDictionaryVolumeWriter> w3;
+  w3->AddObserver(vtkCommand::ErrorEvent, catcher);
+  w3->SetInputData(img);
+  const std::string missing = tempFile("no_such_folder") + "/x.lvdv";
+  w3->SetFileName(missing.c_str());
+  catcher->Count = 0;
+  catcher->Last.clear();
+  EXPECT_EQ(w3->Write(), 0);
+  EXPECT_EQ(catcher->Count, 1) << catcher->Last;
+  const std::string& m = catcher->Last;
+  EXPECT_NE(m.find("does not exist"), std::string::npos) << m;
+  EXPECT_EQ(m.find(missing), m.rfind(missing)) << m;
 }
 
 // docs/FORMAT.md, ".vti export": the reader's output through VTK's own XML
