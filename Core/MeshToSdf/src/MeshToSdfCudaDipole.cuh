@@ -99,7 +99,11 @@ __device__ void dipoleBlockFrom(const DipoleDev& D, const Params& P, int edge, l
 /// (the ball meets a triangle) and when the stack is full. Why: with a lane
 /// per ball the 32 lanes walked 32 different trees one branch after the
 /// other (docs/BENCHMARKS.md, "Session 17").
-constexpr int BoundWarpStack = 512;
+// A round pops up to 32 entries and pushes at most 2 per popped node, so the
+// stack grows by at most 32 a round, about 32 entries per level of depth: the
+// dipole tree of a 10M-triangle mesh has ~22 levels (~700 entries); 2,048
+// leaves room for far deeper ones (8 KB per warp, 32 KB per CUDA block).
+constexpr int BoundWarpStack = 2048;
 constexpr int BoundWarpsPerBlock = 4; // the CUDA blocks of 128 threads the callers run in
 __device__ bool boundDipoleWarp(const DipoleView& D, V3 q, double rho, double tolPerMass, double& sLo, double& sHi,
   bool& approx, int* stack, int lane)
@@ -270,7 +274,8 @@ struct DipoleLocalLists
 /// bounds the rounding of any order), so the signs are the same. A stack
 /// overflow leaves the block without intervals (its voxels are refined one
 /// by one). Voxels at the positions signDipoleKernel computes.
-constexpr int LocalWarpStack = 1024;
+// As BoundWarpStack, plus up to 4 triangles per opened leaf (LeafSize) a lane.
+constexpr int LocalWarpStack = 2048;
 constexpr int LocalWarpsPerBlock = 4; // the CUDA block of 128 threads (MeshToSdfCuda.cu's LocalThreads)
 // (3 CUDA blocks per SM: 168 registers, 20 bytes spilled, against 2 at its own 172)
 __global__ void __launch_bounds__(32 * LocalWarpsPerBlock, 3) dipoleLocalKernel(DipoleDev D, Params P, const long long* failed, const unsigned long long* failedCount,
