@@ -72,6 +72,8 @@ with open(sized, "w") as f:
     f.write("radius 1\ndab 0 0 0\n")
 for n in ("1", "0", "1048577"):
     sized_vol = os.path.join(out, "sized-" + n + ".lvdv")
+    if os.path.exists(sized_vol):
+        os.remove(sized_vol)  # from an earlier run
     code, err = run("script", sized, "--size", n, "--out", sized_vol)
     assert code == 1 and err == (f"lvdif script: --size {n}: a canvas of {n} x {n} x {n} voxels cannot be edited: "
                                  "each axis needs 2..1048576 voxels (marching cubes needs one cell per axis)"), (code, err)
