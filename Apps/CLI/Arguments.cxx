@@ -1,5 +1,6 @@
 #include "Arguments.h"
 
+#include "lvdif/DictionaryVolume.h"
 #include "lvdif/Error.h"
 
 #include <algorithm>
@@ -51,6 +52,16 @@ long Arguments::getInt(const std::string& key, long fallback) const
   if (end == v.c_str() || *end != '\0')
     throw lvdif::Error(lvdif::ErrorCode::InvalidArgument, "option --" + key + " expects an integer, got '" + v + "'");
   return x;
+}
+
+long Arguments::getCanvasSize(const std::string& key, long fallback) const
+{
+  const long n = this->getInt(key, fallback);
+  // DictionaryVolume::checkCanvasDimensions is the one canvas rule of every editor
+  const std::string problem = lvdif::DictionaryVolume::checkCanvasDimensions({ n, n, n });
+  if (!problem.empty())
+    throw lvdif::Error(lvdif::ErrorCode::InvalidArgument, "--" + key + " " + std::to_string(n) + ": " + problem);
+  return n;
 }
 
 double Arguments::getDouble(const std::string& key, double fallback) const

@@ -16,6 +16,9 @@ public:
   std::string get(const std::string& key, const std::string& fallback) const;
   long getInt(const std::string& key, long fallback) const;
   double getDouble(const std::string& key, double fallback) const;
+  /// An integer edge length N for a new N x N x N canvas, refused (naming the
+  /// option) unless the editors' one canvas rule accepts it.
+  long getCanvasSize(const std::string& key, long fallback) const;
   /// Throws lvdif::Error(InvalidArgument) naming any option not in `known`.
   void allowOnly(const std::vector<std::string>& known) const;
 

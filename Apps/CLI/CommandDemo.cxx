@@ -23,11 +23,8 @@ int CommandDemo(int argc, char** argv)
   Arguments args(argc, argv, 2);
   args.allowOnly({ "out", "size" });
   const std::string out = args.get("out", "out");
-  const long size = args.getInt("size", 128);
-  // before the output folder is made: the editors' one smallest canvas
-  const std::string tooThin = lvdif::DictionaryVolume::checkCanvasDimensions({ size, size, size });
-  if (!tooThin.empty())
-    throw lvdif::Error(lvdif::ErrorCode::InvalidArgument, "--size " + std::to_string(size) + ": " + tooThin);
+  // before the output folder is made
+  const long size = args.getCanvasSize("size", 128);
   // a folder this command makes is removed again if the command then fails
   // (e.g. a --size over the memory limit, found only by the build)
   const bool made = ::mkdir(out.c_str(), 0755) == 0;

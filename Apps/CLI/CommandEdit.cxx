@@ -22,6 +22,8 @@ int CommandScript(int argc, char** argv)
     throw lvdif::Error(lvdif::ErrorCode::InvalidArgument,
       "usage: lvdif script FILE.lvs [--in VOLUME] [--out VOLUME] [--mesh OUT.ply] [--png OUT.png] [--size N]");
   const std::string path = args.positional()[0];
+  // the start canvas's size is refused before any output is checked or volume built
+  const long n = args.has("in") ? 0 : args.getCanvasSize("size", 128);
   CheckEditOutputs(args);
   ProgressBar progress;
   lvdif::ScriptOptions options;
@@ -36,7 +38,6 @@ int CommandScript(int argc, char** argv)
   {
     // scripts without `canvas` edit an empty canvas of --size (default 128)
     lvdif::VolumeOptions o;
-    const long n = args.getInt("size", 128);
     o.dims = { n, n, n };
     start = std::make_unique<lvdif::DictionaryVolume>(o);
   }
@@ -67,8 +68,9 @@ int CommandPlay(int argc, char** argv)
       "usage: lvdif play RECORDING.lvr --in VOLUME [--out VOLUME] [--mesh OUT.ply] [--png OUT.png]");
   CheckEditOutputs(args);
   ProgressBar progress;
-  auto volume = LoadAnyVolume(args.get("in", ""), progress);
+  // the (small) recording is read and checked before the (possibly large) volume is loaded
   const lvdif::Recording recording = lvdif::loadRecording(args.positional()[0]);
+  auto volume = LoadAnyVolume(args.get("in", ""), progress);
   lvdif::Editor editor(*volume);
   editor.play(recording, progress);
   WriteEditOutputs(*volume, args, { { "recording", args.positional()[0] } }, progress);

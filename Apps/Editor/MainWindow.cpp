@@ -733,6 +733,7 @@ bool MainWindow::playRecording(const QString& path)
   }
   catch (const std::exception& e)
   {
+    this->updateTitle(); // the records played before the error are kept: '*'
     this->showError("Cannot play " + path, e);
     return false;
   }

@@ -143,7 +143,16 @@ lvdif::Recording VolumeDocument::stopRecording()
 
 void VolumeDocument::play(const lvdif::Recording& r)
 {
-  this->Session->play(r);
+  // as runScript: the edits played before an error stay, so they count as changes
+  try
+  {
+    this->Session->play(r);
+  }
+  catch (...)
+  {
+    this->noteChanges();
+    throw;
+  }
   this->noteChanges();
 }
 

@@ -72,6 +72,9 @@ lvdif::GridGeometry gridFor(vtkPolyData* pd, bool explicitGrid, const int dims[3
     }
     return g;
   }
+  // the one check of the Padding property (its clamp macro lets NaN through), before
+  // either fitted grid: NaN read as "SampleSpacing gives more than 2^20 points"
+  lvdif::require(!std::isnan(padding), "Padding is NaN (it must be a number of voxels >= 0)");
   lvdif::require(pd && pd->GetNumberOfPoints() > 0, "the input mesh has no points");
   double b[6];
   pd->GetBounds(b);

@@ -54,6 +54,10 @@ import os  # noqa: E402
 
 code, err = run("mesh-to-sdf", "in.obj", os.path.join(out, "x.lvdv"), "--sign", "pseudo", "--reorient")
 assert code == 1 and err.endswith("--reorient needs --sign winding"), (code, err)
+# a non-finite or negative --padding is named before the mesh is read (in.obj does not exist)
+for p in ("nan", "inf", "-1"):
+    code, err = run("mesh-to-sdf", "in.obj", os.path.join(out, "x.lvdv"), "--padding", p)
+    assert code == 1 and err == f"lvdif mesh-to-sdf: --padding must be a finite number >= 0, not '{p}'", (code, err)
 
 os.makedirs(out, exist_ok=True)
 bad = os.path.join(out, "bad.lvs")
@@ -61,6 +65,21 @@ with open(bad, "w") as f:
     f.write("radius 3\nsphere 1, 2,\n")
 code, err = run("script", bad)
 assert code == 1 and f"{bad}:2:" in err, (code, err)
+# `script --size` (the start canvas of a script without `canvas`) follows demo's
+# canvas rule, refused up front: before the script is read or any output written
+sized = os.path.join(out, "sized.lvs")
+with open(sized, "w") as f:
+    f.write("radius 1\ndab 0 0 0\n")
+for n in ("1", "0", "1048577"):
+    sized_vol = os.path.join(out, "sized-" + n + ".lvdv")
+    if os.path.exists(sized_vol):
+        os.remove(sized_vol)  # from an earlier run
+    code, err = run("script", sized, "--size", n, "--out", sized_vol)
+    assert code == 1 and err == (f"lvdif script: --size {n}: a canvas of {n} x {n} x {n} voxels cannot be edited: "
+                                 "each axis needs 2..1048576 voxels (marching cubes needs one cell per axis)"), (code, err)
+    assert not os.path.exists(sized_vol), n
+code, err = run("script", os.path.join(out, "no-such.lvs"), "--size", "1")
+assert code == 1 and err.startswith("lvdif script: --size 1: a canvas of 1 x 1 x 1"), (code, err)
 code, err = run("info", os.path.join(out, "missing.lvdv"))
 assert code == 1 and "missing.lvdv" in err, (code, err)
 with open(os.path.join(out, "junk.lvdv"), "wb") as f:

@@ -85,6 +85,8 @@ printf 'LVDIF-RECORDING 1\nundo time=0\n' >undo.lvr
 run undo 1 "record 1 of 1 ('undo') has nothing to undo" -- "$exe" play undo.lvr --in base.lvdv --out base.lvdv
 printf 'LVDIF-RECORDING 1\n%s\nd 10 10 10 4\n' "${edit/1,2,3,255/1.5,2,3,255}" >color.lvr
 run color 1 "color.lvr:2:86: color must be r,g,b,a" -- "$exe" play color.lvr --in base.lvdv --out base.lvdv
+# the recording is read before the volume: its error comes first, even when --in does not exist
+run recfirst 1 "neg.lvr:3:12: dab radius must be >= 0" -- "$exe" play neg.lvr --in no-such.lvdv --out base.lvdv
 same base.lvdv base.copy "recordings"
 # random garbage recordings and scripts: exit 0 or 1, never a signal
 for i in $(seq 1 15); do

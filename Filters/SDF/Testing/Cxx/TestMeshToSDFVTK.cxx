@@ -228,6 +228,23 @@ TEST(vtkMeshToSDF, ClearErrors)
   f->Update();
   EXPECT_TRUE(errors.last.empty()) << errors.last;
 
+  // a NaN Padding (the clamp macro passes NaN) is named, on both fitted grids: with
+  // SampleSpacing it read "SampleSpacing gives more than 2^20 points along an axis"
+  f->UseExplicitGridOff();
+  f->SetPadding(std::numeric_limits<double>::quiet_NaN());
+  for (double sampleSpacing : { 0.1, 0.0 })
+  {
+    f->SetSampleSpacing(sampleSpacing);
+    errors.last.clear();
+    f->Update();
+    EXPECT_NE(errors.last.find("Padding is NaN"), std::string::npos) << sampleSpacing << ": " << errors.last;
+  }
+  f->SetPadding(2);
+  f->SetSampleSpacing(0.1);
+  errors.last.clear();
+  f->Update();
+  EXPECT_TRUE(errors.last.empty()) << errors.last;
+
   // the fitted grid of an empty mesh: the message names the class once
   // (vtkErrorMacro's prefix; it read "vtkMeshToSDF (0x..): vtkMeshToSDF: ...")
   vtkNew<vtkMeshToSDF> fitted;
