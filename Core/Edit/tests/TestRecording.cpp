@@ -13,6 +13,25 @@
 
 using namespace lvdif;
 
+namespace
+{
+/// readRecording's message for the text s (a parse error), or "no error".
+std::string recordingErrorOf(const std::string& s)
+{
+  std::istringstream in(s);
+  try
+  {
+    readRecording(in);
+  }
+  catch (const Error& e)
+  {
+    EXPECT_EQ(e.code(), ErrorCode::ParseError);
+    return std::string(e.what());
+  }
+  return std::string("no error");
+}
+} // namespace
+
 TEST(Recording, RecordWriteReadPlayIsBitExact)
 {
   DictionaryVolume v(edittest::options(64, 16));
@@ -151,18 +170,7 @@ TEST(Recording, AnotherCanvasIsRefusedBeforePlaying)
   p.play(old);
   EXPECT_TRUE(p.canUndo());
 
-  auto errorOf = [](const std::string& s) {
-    std::istringstream in(s);
-    try
-    {
-      readRecording(in);
-    }
-    catch (const Error& e)
-    {
-      return std::string(e.what());
-    }
-    return std::string("no error");
-  };
+  const auto errorOf = recordingErrorOf;
   EXPECT_EQ(errorOf("LVDIF-RECORDING 1\ncanvas 48 48\n"), "recording:2:1: expected 'canvas NX NY NZ'");
   EXPECT_EQ(errorOf("LVDIF-RECORDING 1\ncanvas 48 0 48\n"),
     "recording:2:11: canvas dimensions must be whole numbers 1..1048576, got '0'");
@@ -176,19 +184,7 @@ TEST(Recording, AnotherCanvasIsRefusedBeforePlaying)
 
 TEST(Recording, ParseErrorsNameTheLine)
 {
-  auto errorOf = [](const std::string& s) {
-    std::istringstream in(s);
-    try
-    {
-      readRecording(in);
-    }
-    catch (const Error& e)
-    {
-      EXPECT_EQ(e.code(), ErrorCode::ParseError);
-      return std::string(e.what());
-    }
-    return std::string("no error");
-  };
+  const auto errorOf = recordingErrorOf;
   EXPECT_EQ(errorOf("hello\n"), "recording:1:1: expected the version line 'LVDIF-RECORDING 1'");
   EXPECT_EQ(errorOf("LVDIF-RECORDING 2\n"), "recording:1:17: unsupported recording version '2'");
   const std::string head = "LVDIF-RECORDING 1\n";
@@ -209,19 +205,7 @@ TEST(Recording, MalformedFieldsAreRefusedNotGuessed)
   // 1,5,190,255, a fifth component or other separators ignored, a misspelt
   // optional key ignored (the edit played with strength 1), the last of two
   // op= keys used, invert=0.5 as 1, and stray dab lines named "expected key=value".
-  auto errorOf = [](const std::string& s) {
-    std::istringstream in(s);
-    try
-    {
-      readRecording(in);
-    }
-    catch (const Error& e)
-    {
-      EXPECT_EQ(e.code(), ErrorCode::ParseError);
-      return std::string(e.what());
-    }
-    return std::string("no error");
-  };
+  const auto errorOf = recordingErrorOf;
   const std::string head = "LVDIF-RECORDING 1\n";
   auto edit = [](const std::string& color, const std::string& more) {
     return "edit time=0 op=add shape=sphere kind=basic spacing=1.6 blend=0 coloroffset=1.5 color=" + color + more +
