@@ -5,8 +5,9 @@
 # left alone) and prints, per case, each kernel's summed time and launches
 # over the calls the bench makes. Raw CSV in $OUT.
 # usage: OUT=dir scripts/gpu-kernel-split.sh MESH RES "CALLS" CASE...
-#   CASE: DAMAGE (e.g. patch30, or "clean") for the winding sign;
-#   e.g. scripts/gpu-kernel-split.sh .gpu/meshes/armadillo.off 512 warm,warm clean patch30
+#   CASE: DAMAGE (e.g. patch30, or "clean") for the winding sign, or
+#   DAMAGE@SIGN for another sign mode (e.g. clean@pseudonormal);
+#   e.g. scripts/gpu-kernel-split.sh .gpu/meshes/armadillo.off 512 warm,warm clean patch30 clean@pseudonormal
 set -u
 MESH=$1 RES=$2 CALLS=$3
 shift 3
@@ -18,11 +19,13 @@ gpu_begin
 gpu_build b bench_mesh_to_sdf
 BENCH=b/Testing/Benchmarks/Core/bench_mesh_to_sdf
 for c in "$@"; do
+  d=${c%@*} sign=winding
+  [ "$c" != "$d" ] && sign=${c#*@}
   m=$MESH
-  [ "$c" != clean ] && m="$c:$MESH"
-  RUN_LABEL="plain $c" run 120 $BENCH "$m" "$RES" winding auto bvh volume 8 2 "$CALLS" --trace
+  [ "$d" != clean ] && m="$d:$MESH"
+  RUN_LABEL="plain $c" run 120 $BENCH "$m" "$RES" $sign auto bvh volume 8 2 "$CALLS" --trace
   ncu --clock-control none --cache-control none --metrics gpu__time_duration.sum --csv \
-    $BENCH "$m" "$RES" winding auto bvh volume 8 2 "$CALLS" > "$OUT/ncu-$c.csv" 2> "$OUT/ncu-$c.err"
+    $BENCH "$m" "$RES" $sign auto bvh volume 8 2 "$CALLS" > "$OUT/ncu-$c.csv" 2> "$OUT/ncu-$c.err"
   echo "== $c: ms per kernel over the calls $CALLS (ncu, gpu__time_duration.sum)"
   python3 - "$OUT/ncu-$c.csv" <<'PY'
 import csv, sys, collections
