@@ -19,7 +19,11 @@
 #     duprev20, patch30; the clean mesh in the same round) at 512^3 and
 #     1024^3 (GRIDS, e.g. GRIDS=512), two rounds of opposite order, --trace;
 #     first CUDA = CPU at 128^3 for each damage (the working tree).
-# AFTER_VARIANTS (optional, both focuses): space-separated environment
+#   far: the Normal/PseudoNormal far blocks: two rounds of opposite order of
+#     the armadillo and the paper's bunny at 1024^3 (winding, pseudo-normal,
+#     normal, warm one-call; --trace splits the far kernels), then CUDA = CPU
+#     at 128^3 (pseudo-normal and normal).
+# AFTER_VARIANTS (optional, every focus): space-separated environment
 # settings, each run as one more variant of the new build ("after:NAME=VALUE")
 # in the CUDA tests and the benchmarks, for the A/B of a switch.
 # No new step starts after BUDGET seconds (default 420). Logs in $OUT.
@@ -37,7 +41,7 @@ L="$OUT/bench.log"
 . "$(dirname "$0")/gpu-common.sh"
 [ -f "$A" ] && [ -f "$BUNNY" ] || { echo "no meshes in $D"; exit 1; }
 [ -f "$BEFORE" ] || { echo "no tarball of the old code at $BEFORE"; exit 1; }
-case "$FOCUS" in distance | build | damaged) ;; *) echo "FOCUS is distance, build or damaged, not $FOCUS"; exit 1 ;; esac
+case "$FOCUS" in distance | build | damaged | far) ;; *) echo "FOCUS is distance, build, damaged or far, not $FOCUS"; exit 1 ;; esac
 gpu_begin
 mkdir -p /tmp/before && tar -xf "$BEFORE" -C /tmp/before
 BEFORE_TARGETS=bench_mesh_to_sdf
@@ -88,6 +92,19 @@ if [ "$FOCUS" = distance ]; then
   for e in ${AFTER_VARIANTS:-}; do bench "after:$e" 60 "$A" 128 pseudonormal auto bvh float 8 2 warm --check-cpu; done
   bench after 90 "sub4:$A" 1024 winding auto bvh volume 8 2 warm --trace
   grep -E "^## |^\| (cold|warm|prepared)|check|differ|^rc=[1-9]" "$L" | cut -c1-160 >> "$OUT/summary.txt"
+elif [ "$FOCUS" = far ]; then
+  SIGNS=cold,warm@winding,warm@pseudonormal,warm@normal,warm@pseudonormal,warm@normal
+  for ROUND in 1 2; do
+    order=$VARIANTS
+    [ $ROUND = 2 ] && order=$(reversed $VARIANTS)
+    for v in $order; do
+      bench "$v" 60 "$A" 1024 winding auto bvh volume 8 2 "$SIGNS" --trace
+      bench "$v" 60 "$BUNNY" 1024 winding auto bvh volume 8 2 "$SIGNS" --trace
+    done
+  done
+  ROUND=
+  for s in pseudonormal normal; do bench after 60 "$A" 128 $s auto bvh float 8 2 warm --check-cpu; done
+  grep -E "^## |^\| (cold|warm)|^cpu check|far blocks \(|far halves|per-voxel kernel|^rc=[1-9]" "$L" | cut -c1-200 >> "$OUT/summary.txt"
 elif [ "$FOCUS" = damaged ]; then
   DAMAGES="patch10 flip10 duprev20 patch30"
   # CUDA = CPU first (the working tree), then the rounds: each at both grids, the second in the other order
