@@ -6,6 +6,7 @@
 #include "LVDIFVolumeBridge.h"
 #include "vtkSparseDictionaryVolume.h"
 
+#include "lvdif/ByteStream.h"
 #include "lvdif/Error.h"
 #include "lvdif/VolumeFile.h"
 
@@ -200,6 +201,16 @@ void vtkPDictionaryVolumeWriter::WriteData()
   if (this->Piece >= this->NumberOfPieces)
   {
     vtkErrorMacro("piece " << this->Piece << " of " << this->NumberOfPieces << " does not exist");
+    this->SetErrorCode(vtkErrorCode::UnknownError);
+    return;
+  }
+  // the folder and the settings, before any file: one error on this writer naming the file asked for
+  // (each piece's writer would report them on itself, naming its piece file)
+  if (!LVDIFVolumeBridge::CallCore(this, [&] {
+        lvdif::requireWritable(this->FileName);
+        if (!sparse) LVDIFVolumeBridge::CheckVolumeSettings(this->ChunkEdge, this->BandWidth);
+      }))
+  {
     this->SetErrorCode(vtkErrorCode::UnknownError);
     return;
   }
