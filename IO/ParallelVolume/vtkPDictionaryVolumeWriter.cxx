@@ -62,6 +62,32 @@ void vtkPDictionaryVolumeWriter::PieceExtent(const int whole[6], int piece, int 
   }
 }
 
+namespace
+{
+/// Piece p of n of a sparse volume: the block of storage chunks a sparse
+/// producer computes for that piece (the readers' ownership rule,
+/// LVDIFVolumeBridge::PieceChunks) plus the layer of points it shares with the
+/// next chunks. A split of the points instead (PieceExtent) took voxels the
+/// producer had not computed for this piece whenever the two splits differ
+/// (90 points in chunks of 8: points 0..44 | 44..89, chunks 0..47 | 48..89).
+void SparsePieceExtent(const lvdif::VolumeOptions& o, int piece, int numberOfPieces, int extent[6])
+{
+  int owned[6];
+  lvdif::VoxelBox region;
+  if (!LVDIFVolumeBridge::PieceChunks(piece, numberOfPieces, o, owned, region))
+  {
+    extent[0] = extent[2] = extent[4] = 0; // no chunks for this piece
+    extent[1] = extent[3] = extent[5] = -1;
+    return;
+  }
+  for (int a = 0; a < 3; ++a)
+  {
+    extent[2 * a] = static_cast<int>(region.lo[a]);
+    extent[2 * a + 1] = static_cast<int>(region.hi[a]);
+  }
+}
+} // namespace
+
 int vtkPDictionaryVolumeWriter::Write()
 {
   this->Agreed = false;
@@ -227,7 +253,10 @@ void vtkPDictionaryVolumeWriter::WriteData()
   {
     inInfo->Get(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT(), whole);
   }
-  PieceExtent(whole, this->Piece, this->NumberOfPieces, ext);
+  if (sparse)
+    SparsePieceExtent(sparse->GetVolume()->options(), this->Piece, this->NumberOfPieces, ext);
+  else
+    PieceExtent(whole, this->Piece, this->NumberOfPieces, ext);
   int ok = !lvdifvtk::extentIsValid(ext) ? 1
     : sparse                            ? (this->WritePiece(sparse, ext) ? 1 : 0)
                                         : (this->WritePiece(image, ext) ? 1 : 0);
@@ -258,7 +287,10 @@ void vtkPDictionaryVolumeWriter::WriteData()
     for (int p = 0; p < this->NumberOfPieces; ++p)
     {
       lvdifvtk::VolumeIndexPiece piece;
-      PieceExtent(whole, p, this->NumberOfPieces, piece.extent);
+      if (sparse)
+        SparsePieceExtent(sparse->GetVolume()->options(), p, this->NumberOfPieces, piece.extent);
+      else
+        PieceExtent(whole, p, this->NumberOfPieces, piece.extent);
       if (!lvdifvtk::extentIsValid(piece.extent))
         continue;
       piece.file = lvdifvtk::pieceFileName(this->FileName, p);
