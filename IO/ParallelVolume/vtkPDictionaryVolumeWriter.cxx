@@ -86,6 +86,24 @@ void SparsePieceExtent(const lvdif::VolumeOptions& o, int piece, int numberOfPie
     extent[2 * a + 1] = static_cast<int>(region.hi[a]);
   }
 }
+
+/// Whether piece p of n of the sparse volume announced in `inInfo` has no chunks
+/// (more pieces than chunk blocks): its producer then gives it no volume, and
+/// the piece has nothing to write (it failed with "no input image or sparse
+/// volume", and no index was written: any volume of one chunk under 2 ranks).
+bool EmptySparsePiece(vtkInformation* inInfo, int piece, int numberOfPieces)
+{
+  using SDDP = vtkStreamingDemandDrivenPipeline;
+  if (!inInfo || !inInfo->Has(SDDP::WHOLE_EXTENT()) || !inInfo->Has(LVDIFVolumeBridge::CHUNK_EDGE()))
+    return false;
+  int whole[6], ext[6];
+  inInfo->Get(SDDP::WHOLE_EXTENT(), whole);
+  lvdif::VolumeOptions o;
+  for (int a = 0; a < 3; ++a) o.dims[a] = whole[2 * a + 1] - whole[2 * a] + 1;
+  o.chunkEdge = inInfo->Get(LVDIFVolumeBridge::CHUNK_EDGE());
+  SparsePieceExtent(o, piece, numberOfPieces, ext);
+  return !lvdifvtk::extentIsValid(ext);
+}
 } // namespace
 
 int vtkPDictionaryVolumeWriter::Write()
@@ -209,16 +227,18 @@ bool vtkPDictionaryVolumeWriter::WritePiece(vtkImageData* image, const int ext[6
 void vtkPDictionaryVolumeWriter::WriteData()
 {
   vtkImageData* image = this->GetInput();
-  auto* sparse = vtkSparseDictionaryVolume::SafeDownCast(this->Superclass::GetInput());
-  if (sparse && !sparse->HasVolume()) sparse = nullptr;
+  auto* sparseInput = vtkSparseDictionaryVolume::SafeDownCast(this->Superclass::GetInput());
+  auto* sparse = sparseInput && sparseInput->HasVolume() ? sparseInput : nullptr;
   vtkInformation* inInfo = this->GetInputInformation(0, 0);
+  const bool emptyPiece = sparseInput && !sparse && EmptySparsePiece(inInfo, this->Piece, this->NumberOfPieces);
   if (this->FileName.empty())
   {
     vtkErrorMacro("no file name: call SetFileName() first");
     this->SetErrorCode(vtkErrorCode::NoFileNameError);
     return;
   }
-  if ((!image && !sparse) || !inInfo || (!sparse && !inInfo->Has(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT())))
+  if (!emptyPiece &&
+    ((!image && !sparse) || !inInfo || (!sparse && !inInfo->Has(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT()))))
   {
     vtkErrorMacro("no input image or sparse volume");
     this->SetErrorCode(vtkErrorCode::UnknownError);
@@ -240,7 +260,7 @@ void vtkPDictionaryVolumeWriter::WriteData()
     this->SetErrorCode(vtkErrorCode::UnknownError);
     return;
   }
-  int whole[6], ext[6];
+  int whole[6] = { 0, -1, 0, -1, 0, -1 }, ext[6] = { 0, -1, 0, -1, 0, -1 }; // an empty piece: nothing
   if (sparse)
   {
     for (int a = 0; a < 3; ++a) // the volume's own (0-based) indices
@@ -248,15 +268,13 @@ void vtkPDictionaryVolumeWriter::WriteData()
       whole[2 * a] = 0;
       whole[2 * a + 1] = static_cast<int>(sparse->GetVolume()->dims()[a] - 1);
     }
+    SparsePieceExtent(sparse->GetVolume()->options(), this->Piece, this->NumberOfPieces, ext);
   }
-  else
+  else if (!emptyPiece)
   {
     inInfo->Get(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT(), whole);
-  }
-  if (sparse)
-    SparsePieceExtent(sparse->GetVolume()->options(), this->Piece, this->NumberOfPieces, ext);
-  else
     PieceExtent(whole, this->Piece, this->NumberOfPieces, ext);
+  }
   int ok = !lvdifvtk::extentIsValid(ext) ? 1
     : sparse                            ? (this->WritePiece(sparse, ext) ? 1 : 0)
                                         : (this->WritePiece(image, ext) ? 1 : 0);

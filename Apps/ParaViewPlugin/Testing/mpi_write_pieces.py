@@ -8,6 +8,8 @@
 #
 #   mpirun -np 1|2|4 pvbatch mpi_write_pieces.py PLUGIN TMPDIR
 #
+# Also a volume of one chunk: the ranks without a chunk write nothing (they
+# failed, and no index was written).
 # Oracle: Chunked Marching Cubes of the same Mesh To SDF (distributed: it asks
 # each rank's extent, and gives the serial triangles), against the .lvdvp read
 # back, straight and through Sign Voxel Filter; also the dense route (Sparse
@@ -58,6 +60,20 @@ for name, make, ref in (
     check(got[0] == ref[0] and abs(got[1] - ref[1]) <= 1e-9 * ref[1],
           "%d ranks, %s volume written and read back: %d triangles, area %.9f (direct %d, %.9f)"
           % (nranks, name, got[0], got[1], ref[0], ref[1]))
+# a volume of one chunk (32 points, chunk edge 32): the ranks but the first have no
+# chunk, and wrote nothing but an error ("no input image or sparse volume"), and no index
+small = pvs.MeshToSDF(Input=ellipsoid, MaxDimension=32)
+want_small = surface(small)
+path = os.path.join(tmpdir, "mpi_write_pieces_np%d_one_chunk.lvdvp" % nranks)
+if os.path.exists(path):
+    os.remove(path)
+pvs.SaveData(path, proxy=small)
+check(os.path.exists(path), "%d ranks wrote the index of a one-chunk volume" % nranks)
+if os.path.exists(path):
+    got = surface(pvs.LVDIFParallelDictionaryVolumeReader(FileName=path))
+    check(got[0] == want_small[0] and abs(got[1] - want_small[1]) <= 1e-9 * want_small[1],
+          "%d ranks, one-chunk volume written and read back: %d triangles (direct %d)" % (nranks, got[0], want_small[0]))
+
 print("FAILURES: %d" % check.failures if check.failures else "ALL PASSED")
 if check.failures:
     sys.exit(1)
