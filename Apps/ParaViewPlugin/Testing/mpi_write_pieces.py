@@ -74,6 +74,15 @@ if os.path.exists(path):
     check(got[0] == want_small[0] and abs(got[1] - want_small[1]) <= 1e-9 * want_small[1],
           "%d ranks, one-chunk volume written and read back: %d triangles (direct %d)" % (nranks, got[0], want_small[0]))
 
+# shown (first display: Outline): every rank takes the sparse outline's path, also a
+# rank without chunks (it ran ParaView's geometry filter, whose communication the
+# others never entered: pvbatch aborted with MPI_ERR_TRUNCATE on 2 ranks)
+view = pvs.CreateRenderView()
+rep = pvs.Show(small, view)
+pvs.Render(view)
+n = rep.GetRepresentedDataInformation().GetNumberOfPoints()
+check(n == 8, "%d ranks show the one-chunk volume's outline: one box (%d points)" % (nranks, n))
+
 print("FAILURES: %d" % check.failures if check.failures else "ALL PASSED")
 if check.failures:
     sys.exit(1)
