@@ -217,6 +217,16 @@ for edge in (15, 257, 0):
     check(mc.GetChunkEdge() == edge and not ok and len(errs) == 1 and "16" in errs[0] and "256" in errs[0],
           "vtkChunkedMarchingCubes ChunkEdge %d: read back %d, %s" % (edge, mc.GetChunkEdge(), errs))
 
+# a sparse input keeps its own band and chunk edge: the editing filter's settings
+# (even out of range) do not apply to it, as the writers' do not
+sparse_in = volume_of("vtkImageToSparseVolume", img, band=2.5, edge=16)[2]
+for band, edge in ((-1, 48), (0, 4)):
+    ok, errs, f = run("vtkVolumeEditFilter", inp=sparse_in, band=band, edge=edge)
+    vol = f.GetOutput() if ok else None
+    check(ok and vol.GetBandWidth() == 2.5 and vol.GetChunkEdge() == 16,
+          "vtkVolumeEditFilter on a sparse volume, BandWidth %g ChunkEdge %d: %s %s" % (
+              band, edge, errs, (vol.GetBandWidth(), vol.GetChunkEdge()) if vol else None))
+
 # a writer checks its folder before the work: with an image input and a bad chunk edge
 # the folder's error comes alone (the conversion used to run first and report the chunk edge)
 for cls, ext in (("vtkDictionaryVolumeWriter", "lvdv"), ("vtkPDictionaryVolumeWriter", "lvdvp")):
