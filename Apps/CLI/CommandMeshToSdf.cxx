@@ -6,6 +6,8 @@
 #include "ProgressBar.h"
 #include "VolumeFiles.h"
 
+#include "LVDIFVolumeBridge.h"
+
 #include "lvdif/Cuda.h"
 #include "lvdif/Error.h"
 #include "lvdif/MeshFile.h"
@@ -84,8 +86,8 @@ int CommandMeshToSdf(int argc, char** argv)
   if (static_cast<double>(dims) - 1.0 - 2.0 * padding < 1.0)
     throw lvdif::Error(lvdif::ErrorCode::InvalidArgument, "--dims " + std::to_string(dims) + " leaves no voxel for the mesh inside --padding " +
         args.get("padding", "2") + " on every side: use --dims of at least 2 x padding + 2, or less padding");
-  if (!(band > 0) || !std::isfinite(band))
-    throw lvdif::Error(lvdif::ErrorCode::InvalidArgument, "--band must be a finite number > 0");
+  // the filters' and writers' rule (0 = no band, negative or NaN refused), before the mesh is read
+  const float bandWidth = LVDIFVolumeBridge::CheckVolumeSettings(lvdif::VolumeOptions().chunkEdge, band, "--band");
   lvdif::MeshToSdfOptions options;
   options.sign = signFromName(args.get("sign", "winding"));
   options.device = deviceFromName(args.get("device", "auto"));
@@ -112,7 +114,7 @@ int CommandMeshToSdf(int argc, char** argv)
   }();
   const lvdif::GridGeometry grid = lvdif::fitGridToMesh(mesh, dims, padding);
   lvdif::VolumeOptions vo = lvdif::volumeOptionsOn(grid);
-  vo.bandWidth = static_cast<float>(band);
+  vo.bandWidth = bandWidth;
   lvdif::DictionaryVolume volume(vo);
   const lvdif::MeshToSdfStats stats = lvdif::meshToSdf(mesh, volume, options, progress);
   SaveAnyVolume(volume, out,

@@ -1,6 +1,7 @@
 #include "vtkLVDIFEditor.h"
 
 #include "LVDIFFiles.h"
+#include "LVDIFVolumeBridge.h"
 #include "vtkDictionaryVolumeToImage.h"
 #include "vtkIdTypeArray.h"
 #include "vtkObjectFactory.h"
@@ -181,7 +182,7 @@ int vtkLVDIFEditor::NewVolume(int nx, int ny, int nz, bool filled)
     lvdif::VolumeOptions o;
     o.dims = { nx, ny, nz };
     o.chunkEdge = this->ChunkEdge;
-    o.bandWidth = static_cast<float>(this->BandWidth);
+    o.bandWidth = LVDIFVolumeBridge::BandOption(this->BandWidth);
     std::shared_ptr<lvdif::DictionaryVolume> v = lvdif::DictionaryVolume::newCanvas(o); // the editors' one canvas rule
     if (filled)
     {
@@ -540,7 +541,7 @@ int vtkLVDIFEditor::RunScript(const char* text)
   return this->Guard("RunScript", [&] {
     lvdif::ScriptOptions o;
     o.canvas.chunkEdge = this->ChunkEdge;
-    o.canvas.bandWidth = static_cast<float>(this->BandWidth);
+    o.canvas.bandWidth = LVDIFVolumeBridge::BandOption(this->BandWidth);
     if (this->Session)
     {
       this->Session->runScript(source, o); // the session adopts a `canvas N` volume itself

@@ -117,9 +117,9 @@ public:
 
   ///@{
   /// Options of volumes made by NewVolume (chunk edge a power of two 4..256, band in voxels).
-  vtkSetClampMacro(ChunkEdge, int, 4, 256);
+  vtkSetMacro(ChunkEdge, int); // the one rule (docs/USER_GUIDE.md): refused when used, no clamp
   vtkGetMacro(ChunkEdge, int);
-  vtkSetMacro(BandWidth, double);
+  vtkSetMacro(BandWidth, double); // 0: no band; negative or NaN refused (LVDIFVolumeBridge::BandOption)
   vtkGetMacro(BandWidth, double);
   ///@}
 

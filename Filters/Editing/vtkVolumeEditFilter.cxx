@@ -98,7 +98,8 @@ int vtkVolumeEditFilter::RequestData(
     LVDIFInterrupter interrupter(this, 0.0, 0.1);
     lvdif::VolumeOptions o;
     o.chunkEdge = this->ChunkEdge;
-    o.bandWidth = static_cast<float>(this->BandWidth);
+    if (!sparseIn) // a sparse input keeps its own band and chunk edge (as the writers')
+      o.bandWidth = LVDIFVolumeBridge::BandOption(this->BandWidth);
     // a sparse input is edited in a copy (as sparse as the input); an image is encoded first
     std::shared_ptr<lvdif::DictionaryVolume> volume = sparseIn
       ? std::shared_ptr<lvdif::DictionaryVolume>(sparseIn->GetVolume()->clone())

@@ -50,14 +50,15 @@ public:
 
   ///@{
   /// Distances saturate to +-BandWidth voxels (default 8; large values keep
-  /// more of the input field, brushes only need the band near the surface).
-  vtkSetClampMacro(BandWidth, double, 1.0, 1.0e6);
+  /// more of the input field, brushes only need the band near the surface; 0:
+  /// no band; negative or NaN is an error: LVDIFVolumeBridge::BandOption).
+  vtkSetMacro(BandWidth, double);
   vtkGetMacro(BandWidth, double);
   ///@}
 
   ///@{
   /// Chunk edge of the working volume (power of two, 4..256; default 32).
-  vtkSetClampMacro(ChunkEdge, int, 4, 256);
+  vtkSetMacro(ChunkEdge, int); // out of range: an error at update (no clamp)
   vtkGetMacro(ChunkEdge, int);
   ///@}
 

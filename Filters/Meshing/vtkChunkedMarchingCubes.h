@@ -118,8 +118,9 @@ public:
   ///@}
 
   ///@{
-  /// Cells per chunk edge, 16..256 (default 64).
-  vtkSetClampMacro(ChunkEdge, int, 16, 256);
+  /// Cells per chunk edge, 16..256 (default 64); out of range: an error at
+  /// update (no clamp).
+  vtkSetMacro(ChunkEdge, int);
   vtkGetMacro(ChunkEdge, int);
   ///@}
 

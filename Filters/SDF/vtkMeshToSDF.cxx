@@ -114,6 +114,10 @@ lvdif::GridGeometry gridFor(vtkPolyData* pd, bool explicitGrid, const int dims[3
 int vtkMeshToSDF::RequestInformation(
   vtkInformation*, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
 {
+  LVDIFVolumeBridge::BeginInformation(outputVector->GetInformationObject(0));
+  // the settings first: their error before any work upstream
+  if (!LVDIFVolumeBridge::CallCore(this, [&] { LVDIFVolumeBridge::CheckVolumeSettings(this->ChunkEdge, this->BandWidth); }))
+    return LVDIFVolumeBridge::FailInformation(outputVector->GetInformationObject(0));
   vtkPolyData* input = vtkPolyData::GetData(inputVector[0]);
   if (!this->UseExplicitGrid && (!input || input->GetNumberOfPoints() == 0))
   {
@@ -139,7 +143,7 @@ int vtkMeshToSDF::RequestInformation(
   catch (const lvdif::Error& e)
   {
     vtkErrorMacro(<< e.what());
-    return 0;
+    return LVDIFVolumeBridge::FailInformation(outputVector->GetInformationObject(0));
   }
   lvdif::VolumeOptions vo = lvdif::volumeOptionsOn(g);
   vo.chunkEdge = this->ChunkEdge;
@@ -159,6 +163,8 @@ int vtkMeshToSDF::RequestUpdateExtent(vtkInformation*, vtkInformationVector** in
 
 int vtkMeshToSDF::RequestData(vtkInformation*, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
 {
+  if (LVDIFVolumeBridge::InformationFailed(outputVector->GetInformationObject(0)))
+    return 0; // RequestInformation reported why (ParaView runs RequestData anyway)
   vtkPolyData* input = vtkPolyData::GetData(inputVector[0]);
   vtkSparseDictionaryVolume* output = vtkSparseDictionaryVolume::GetData(outputVector);
   if (!input || !output)

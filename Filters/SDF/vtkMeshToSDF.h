@@ -105,14 +105,15 @@ public:
   ///@{
   /// |sdf| saturates at BandWidth voxels (default 8, as `lvdif mesh-to-sdf`);
   /// 0 = no band (every distance the dictionary can represent; far chunks
-  /// then do not collapse).
-  vtkSetClampMacro(BandWidth, double, 0.0, VTK_FLOAT_MAX);
+  /// then do not collapse); negative or NaN is an error at update
+  /// (LVDIFVolumeBridge::BandOption).
+  vtkSetMacro(BandWidth, double);
   vtkGetMacro(BandWidth, double);
   ///@}
 
   ///@{
   /// Voxels per storage chunk edge, a power of two in 4..256 (default 32).
-  vtkSetClampMacro(ChunkEdge, int, 4, 256);
+  vtkSetMacro(ChunkEdge, int); // out of range: an error at update (no clamp)
   vtkGetMacro(ChunkEdge, int);
   ///@}
 

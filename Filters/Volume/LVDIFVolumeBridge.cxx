@@ -62,11 +62,27 @@ std::string WithContext(const std::string& context, const std::string& what)
   return context + what;
 }
 
-float BandOption(double bandWidth)
+float BandOption(double bandWidth, const std::string& name)
 {
-  if (std::isnan(bandWidth))
-    throw lvdif::Error(lvdif::ErrorCode::InvalidArgument, "BandWidth is NaN (0 means no band)");
-  return bandWidth > 0 ? static_cast<float>(bandWidth) : std::numeric_limits<float>::infinity();
+  // one rule for every band setting (docs/USER_GUIDE.md, "Band width and chunk edge")
+  if (std::isnan(bandWidth) || bandWidth < 0)
+  {
+    std::ostringstream msg;
+    msg << name << " must be a number of voxels >= 0 (0: no band), not " << bandWidth;
+    throw lvdif::Error(lvdif::ErrorCode::InvalidArgument, msg.str());
+  }
+  // 0 and every value beyond float's range (the writers' VTK_FLOAT_MAX) mean no band
+  return bandWidth == 0 || bandWidth >= std::numeric_limits<float>::max() ? std::numeric_limits<float>::infinity()
+                                                                          : static_cast<float>(bandWidth);
+}
+
+float CheckVolumeSettings(int chunkEdge, double bandWidth, const std::string& bandName)
+{
+  lvdif::VolumeOptions o;
+  o.chunkEdge = chunkEdge;
+  o.bandWidth = BandOption(bandWidth, bandName);
+  lvdif::DictionaryVolume::tableBytes(o); // Core's own check of the options; allocates nothing
+  return o.bandWidth;
 }
 
 std::string FileError(const std::string& verb, const std::string& path, const std::string& what)
@@ -273,6 +289,35 @@ vtkInformationIntegerKey* CHUNK_EDGE()
   // plugin's library (and so this class's code) may have been unloaded
   static vtkInformationIntegerKey* key = new ChunkEdgeKey;
   return key;
+}
+
+namespace
+{
+vtkInformationIntegerKey* INFORMATION_FAILED()
+{
+  // never deleted, as CHUNK_EDGE; a plain key: it stays on the algorithm's own output information
+  static vtkInformationIntegerKey* key = new vtkInformationIntegerKey("LVDIF_INFORMATION_FAILED", "LVDIFVolumeBridge");
+  return key;
+}
+} // namespace
+
+void BeginInformation(vtkInformation* outInfo)
+{
+  if (outInfo) outInfo->Remove(INFORMATION_FAILED());
+}
+
+int FailInformation(vtkInformation* outInfo)
+{
+  if (outInfo) outInfo->Set(INFORMATION_FAILED(), 1);
+  return 0;
+}
+
+bool InformationFailed(vtkInformation* outInfo)
+{
+  if (!outInfo || !outInfo->Has(INFORMATION_FAILED())) return false;
+  // no stale data from an earlier run (a reader pointed at a missing file)
+  if (vtkDataObject* output = outInfo->Get(vtkDataObject::DATA_OBJECT())) output->Initialize();
+  return true;
 }
 
 void FillImage(const lvdif::DictionaryVolume& volume, const int extentIn[6], vtkImageData* image, bool withColor)

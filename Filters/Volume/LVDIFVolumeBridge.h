@@ -50,9 +50,18 @@ LVDIFFILTERSVOLUME_EXPORT lvdif::Device ToDevice(int device);
 /// "cannot read 'PATH': cannot open 'PATH': ...". Every reader and writer's
 /// file error goes through here.
 LVDIFFILTERSVOLUME_EXPORT std::string FileError(const std::string& verb, const std::string& path, const std::string& what);
-/// A filter's BandWidth property as a volume's band: 0 or less means no band
-/// (infinity); NaN is refused with an lvdif::Error (it meant no band, silently).
-LVDIFFILTERSVOLUME_EXPORT float BandOption(double bandWidth);
+/// The one rule for a band setting (every filter's and writer's BandWidth, the
+/// CLI's --band): a number of voxels > 0, 0 (or VTK_FLOAT_MAX and more) for no
+/// band (infinity); negative or NaN is refused with an lvdif::Error naming
+/// `name` (both meant no band, silently). Widths below the dictionary's step are
+/// refused by the volume itself.
+LVDIFFILTERSVOLUME_EXPORT float BandOption(double bandWidth, const std::string& name = "BandWidth");
+
+/// A filter's ChunkEdge and BandWidth settings checked by the one rule before
+/// any work (Core's chunk edge rule: a power of two in [4, 256], no clamp; and
+/// BandOption); throws lvdif::Error. Returns the band (BandOption's).
+LVDIFFILTERSVOLUME_EXPORT float CheckVolumeSettings(
+  int chunkEdge, double bandWidth, const std::string& bandName = "BandWidth");
 
 /// FileError's rule: `context` + `what`, unless `what` already holds the first
 /// 'quoted' name of `context` (then `what` alone).
@@ -103,6 +112,16 @@ LVDIFFILTERSVOLUME_EXPORT bool PieceChunks(
 /// whole: those voxels (returns 2); else the whole volume (returns 0).
 LVDIFFILTERSVOLUME_EXPORT int RequestedVoxels(
   vtkInformation* outInfo, const lvdif::VolumeOptions& options, int owned[6], lvdif::VoxelBox& region);
+/// ParaView (pvpython's UpdatePipeline, the GUI's Apply) runs RequestData even
+/// when RequestInformation failed, and the error came twice (the second one
+/// often less clear: "cannot open ''"). RequestInformation calls
+/// BeginInformation first and returns FailInformation (0) after reporting an
+/// error; RequestData returns 0 without a second error when InformationFailed
+/// (which empties the output).
+LVDIFFILTERSVOLUME_EXPORT void BeginInformation(vtkInformation* outInfo);
+LVDIFFILTERSVOLUME_EXPORT int FailInformation(vtkInformation* outInfo);
+LVDIFFILTERSVOLUME_EXPORT bool InformationFailed(vtkInformation* outInfo);
+
 /// The chunk edge of a sparse producer's volume, announced before the data
 /// exists, so that a consumer can ask for whole chunks (vtkSignVoxelFilter's pieces).
 LVDIFFILTERSVOLUME_EXPORT vtkInformationIntegerKey* CHUNK_EDGE();

@@ -50,9 +50,12 @@ int vtkImageToSparseVolume::RequestDataObject(vtkInformation*, vtkInformationVec
 int vtkImageToSparseVolume::RequestInformation(
   vtkInformation*, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
 {
+  LVDIFVolumeBridge::BeginInformation(outputVector->GetInformationObject(0));
   using SDDP = vtkStreamingDemandDrivenPipeline;
   vtkInformation* inInfo = inputVector[0]->GetInformationObject(0);
   vtkInformation* outInfo = outputVector->GetInformationObject(0);
+  if (!LVDIFVolumeBridge::CallCore(this, [&] { LVDIFVolumeBridge::CheckVolumeSettings(this->ChunkEdge, this->BandWidth); }))
+    return LVDIFVolumeBridge::FailInformation(outputVector->GetInformationObject(0));
   if (!inInfo->Has(SDDP::WHOLE_EXTENT())) return 1;
   // the volume's indices start at 0: its origin is the whole extent's first point
   int whole[6];
@@ -89,6 +92,8 @@ int vtkImageToSparseVolume::RequestUpdateExtent(
 int vtkImageToSparseVolume::RequestData(
   vtkInformation*, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
 {
+  if (LVDIFVolumeBridge::InformationFailed(outputVector->GetInformationObject(0)))
+    return 0; // RequestInformation reported why (ParaView runs RequestData anyway)
   vtkImageData* image = vtkImageData::GetData(inputVector[0]);
   vtkSparseDictionaryVolume* output = vtkSparseDictionaryVolume::GetData(outputVector);
   // an empty selection (a filter made on an input never updated) means the documented default

@@ -24,13 +24,14 @@ public:
 
   ///@{
   /// Voxels per chunk edge, a power of two in 4..256 (default 32).
-  vtkSetClampMacro(ChunkEdge, int, 4, 256);
+  vtkSetMacro(ChunkEdge, int); // out of range: an error at update (no clamp)
   vtkGetMacro(ChunkEdge, int);
   ///@}
 
   ///@{
-  /// Distances saturate at +-BandWidth voxels (default 8, as lvdif's volumes); 0 = no band.
-  vtkSetClampMacro(BandWidth, double, 0.0, VTK_FLOAT_MAX);
+  /// Distances saturate at +-BandWidth voxels (default 8, as lvdif's volumes); 0 = no band;
+  /// negative or NaN is an error at update (LVDIFVolumeBridge::BandOption).
+  vtkSetMacro(BandWidth, double);
   vtkGetMacro(BandWidth, double);
   ///@}
 

@@ -29,6 +29,7 @@ int vtkSparseVolumeToImage::FillInputPortInformation(int, vtkInformation* info)
 int vtkSparseVolumeToImage::RequestInformation(
   vtkInformation*, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
 {
+  LVDIFVolumeBridge::BeginInformation(outputVector->GetInformationObject(0));
   using SDDP = vtkStreamingDemandDrivenPipeline;
   vtkInformation* inInfo = inputVector[0]->GetInformationObject(0);
   vtkInformation* outInfo = outputVector->GetInformationObject(0);
@@ -44,7 +45,7 @@ int vtkSparseVolumeToImage::RequestInformation(
     if (!given->HasVolume())
     {
       vtkErrorMacro("the input holds no dictionary volume");
-      return 0;
+      return LVDIFVolumeBridge::FailInformation(outputVector->GetInformationObject(0));
     }
     // a volume given as data (vtkTrivialProducer) announces nothing: read it off the volume
     const lvdif::VolumeOptions& o = given->GetVolume()->options();
@@ -59,7 +60,7 @@ int vtkSparseVolumeToImage::RequestInformation(
   else
   {
     vtkErrorMacro("the input does not announce the volume's extent (not a sparse volume producer?)");
-    return 0;
+    return LVDIFVolumeBridge::FailInformation(outputVector->GetInformationObject(0));
   }
   outInfo->Set(SDDP::WHOLE_EXTENT(), whole, 6);
   outInfo->Set(vtkAlgorithm::CAN_PRODUCE_SUB_EXTENT(), 1);
@@ -92,6 +93,8 @@ int vtkSparseVolumeToImage::RequestUpdateExtent(
 int vtkSparseVolumeToImage::RequestData(
   vtkInformation*, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
 {
+  if (LVDIFVolumeBridge::InformationFailed(outputVector->GetInformationObject(0)))
+    return 0; // RequestInformation reported why (ParaView runs RequestData anyway)
   vtkSparseDictionaryVolume* input = vtkSparseDictionaryVolume::GetData(inputVector[0]);
   vtkInformation* outInfo = outputVector->GetInformationObject(0);
   vtkImageData* output = vtkImageData::GetData(outInfo);

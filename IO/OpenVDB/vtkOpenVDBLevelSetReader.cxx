@@ -78,10 +78,11 @@ std::string vtkOpenVDBLevelSetReader::GetGridList()
 int vtkOpenVDBLevelSetReader::RequestInformation(
   vtkInformation*, vtkInformationVector**, vtkInformationVector* outputVector)
 {
+  LVDIFVolumeBridge::BeginInformation(outputVector->GetInformationObject(0));
   if (this->FileName.empty())
   {
     vtkErrorMacro("no file name: call SetFileName() first");
-    return 0;
+    return LVDIFVolumeBridge::FailInformation(outputVector->GetInformationObject(0));
   }
   Internals& in = *this->Internal;
   const long long stamp = fileStamp(this->FileName);
@@ -103,7 +104,7 @@ int vtkOpenVDBLevelSetReader::RequestInformation(
       {
         vtkErrorMacro(<< LVDIFVolumeBridge::FileError("read", this->FileName, e.what()));
       }
-      return 0;
+      return LVDIFVolumeBridge::FailInformation(outputVector->GetInformationObject(0));
     }
     in.ReadTime = this->GetMTime();
     in.ReadFile = this->FileName;
@@ -129,6 +130,8 @@ int vtkOpenVDBLevelSetReader::RequestDataObject(vtkInformation*, vtkInformationV
 int vtkOpenVDBLevelSetReader::RequestData(
   vtkInformation*, vtkInformationVector**, vtkInformationVector* outputVector)
 {
+  if (LVDIFVolumeBridge::InformationFailed(outputVector->GetInformationObject(0)))
+    return 0; // RequestInformation reported why (ParaView runs RequestData anyway)
   vtkSparseDictionaryVolume* output = vtkSparseDictionaryVolume::GetData(outputVector);
   if (!this->Internal->Volume)
   {

@@ -110,10 +110,11 @@ bool covers(const lvdif::VoxelBox& want, const std::vector<lvdif::VoxelBox>& par
 int vtkPDictionaryVolumeReader::RequestInformation(
   vtkInformation*, vtkInformationVector**, vtkInformationVector* outputVector)
 {
+  LVDIFVolumeBridge::BeginInformation(outputVector->GetInformationObject(0));
   if (this->FileName.empty())
   {
     vtkErrorMacro("no file name: call SetFileName() first");
-    return 0;
+    return LVDIFVolumeBridge::FailInformation(outputVector->GetInformationObject(0));
   }
   try
   {
@@ -123,8 +124,8 @@ int vtkPDictionaryVolumeReader::RequestInformation(
   }
   catch (const lvdif::Error& e)
   {
-    vtkErrorMacro(<< "cannot read '" << this->FileName << "': " << e.what());
-    return 0;
+    vtkErrorMacro(<< LVDIFVolumeBridge::FileError("read", this->FileName, e.what()));
+    return LVDIFVolumeBridge::FailInformation(outputVector->GetInformationObject(0));
   }
   return 1;
 }
@@ -132,6 +133,8 @@ int vtkPDictionaryVolumeReader::RequestInformation(
 int vtkPDictionaryVolumeReader::RequestData(
   vtkInformation*, vtkInformationVector**, vtkInformationVector* outputVector)
 {
+  if (LVDIFVolumeBridge::InformationFailed(outputVector->GetInformationObject(0)))
+    return 0; // RequestInformation reported why (ParaView runs RequestData anyway)
   vtkInformation* outInfo = outputVector->GetInformationObject(0);
   vtkSparseDictionaryVolume* output = vtkSparseDictionaryVolume::GetData(outInfo);
   this->PiecesRead = 0;

@@ -6,6 +6,7 @@
 #include "LVDIFVolumeBridge.h"
 #include "vtkSparseDictionaryVolume.h"
 
+#include "lvdif/ByteStream.h"
 #include "lvdif/Error.h"
 #include "lvdif/VolumeFile.h"
 
@@ -60,6 +61,50 @@ void vtkPDictionaryVolumeWriter::PieceExtent(const int whole[6], int piece, int 
     extent[1] = extent[3] = extent[5] = -1;
   }
 }
+
+namespace
+{
+/// Piece p of n of a sparse volume: the block of storage chunks a sparse
+/// producer computes for that piece (the readers' ownership rule,
+/// LVDIFVolumeBridge::PieceChunks) plus the layer of points it shares with the
+/// next chunks. A split of the points instead (PieceExtent) took voxels the
+/// producer had not computed for this piece whenever the two splits differ
+/// (90 points in chunks of 8: points 0..44 | 44..89, chunks 0..47 | 48..89).
+void SparsePieceExtent(const lvdif::VolumeOptions& o, int piece, int numberOfPieces, int extent[6])
+{
+  int owned[6];
+  lvdif::VoxelBox region;
+  if (!LVDIFVolumeBridge::PieceChunks(piece, numberOfPieces, o, owned, region))
+  {
+    extent[0] = extent[2] = extent[4] = 0; // no chunks for this piece
+    extent[1] = extent[3] = extent[5] = -1;
+    return;
+  }
+  for (int a = 0; a < 3; ++a)
+  {
+    extent[2 * a] = static_cast<int>(region.lo[a]);
+    extent[2 * a + 1] = static_cast<int>(region.hi[a]);
+  }
+}
+
+/// Whether piece p of n of the sparse volume announced in `inInfo` has no chunks
+/// (more pieces than chunk blocks): its producer then gives it no volume, and
+/// the piece has nothing to write (it failed with "no input image or sparse
+/// volume", and no index was written: any volume of one chunk under 2 ranks).
+bool EmptySparsePiece(vtkInformation* inInfo, int piece, int numberOfPieces)
+{
+  using SDDP = vtkStreamingDemandDrivenPipeline;
+  if (!inInfo || !inInfo->Has(SDDP::WHOLE_EXTENT()) || !inInfo->Has(LVDIFVolumeBridge::CHUNK_EDGE()))
+    return false;
+  int whole[6], ext[6];
+  inInfo->Get(SDDP::WHOLE_EXTENT(), whole);
+  lvdif::VolumeOptions o;
+  for (int a = 0; a < 3; ++a) o.dims[a] = whole[2 * a + 1] - whole[2 * a] + 1;
+  o.chunkEdge = inInfo->Get(LVDIFVolumeBridge::CHUNK_EDGE());
+  SparsePieceExtent(o, piece, numberOfPieces, ext);
+  return !lvdifvtk::extentIsValid(ext);
+}
+} // namespace
 
 int vtkPDictionaryVolumeWriter::Write()
 {
@@ -182,16 +227,18 @@ bool vtkPDictionaryVolumeWriter::WritePiece(vtkImageData* image, const int ext[6
 void vtkPDictionaryVolumeWriter::WriteData()
 {
   vtkImageData* image = this->GetInput();
-  auto* sparse = vtkSparseDictionaryVolume::SafeDownCast(this->Superclass::GetInput());
-  if (sparse && !sparse->HasVolume()) sparse = nullptr;
+  auto* sparseInput = vtkSparseDictionaryVolume::SafeDownCast(this->Superclass::GetInput());
+  auto* sparse = sparseInput && sparseInput->HasVolume() ? sparseInput : nullptr;
   vtkInformation* inInfo = this->GetInputInformation(0, 0);
+  const bool emptyPiece = sparseInput && !sparse && EmptySparsePiece(inInfo, this->Piece, this->NumberOfPieces);
   if (this->FileName.empty())
   {
     vtkErrorMacro("no file name: call SetFileName() first");
     this->SetErrorCode(vtkErrorCode::NoFileNameError);
     return;
   }
-  if ((!image && !sparse) || !inInfo || (!sparse && !inInfo->Has(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT())))
+  if (!emptyPiece &&
+    ((!image && !sparse) || !inInfo || (!sparse && !inInfo->Has(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT()))))
   {
     vtkErrorMacro("no input image or sparse volume");
     this->SetErrorCode(vtkErrorCode::UnknownError);
@@ -203,7 +250,17 @@ void vtkPDictionaryVolumeWriter::WriteData()
     this->SetErrorCode(vtkErrorCode::UnknownError);
     return;
   }
-  int whole[6], ext[6];
+  // the folder and the settings, before any file: one error on this writer naming the file asked for
+  // (each piece's writer would report them on itself, naming its piece file)
+  if (!LVDIFVolumeBridge::CallCore(this, [&] {
+        lvdif::requireWritable(this->FileName);
+        if (!sparse) LVDIFVolumeBridge::CheckVolumeSettings(this->ChunkEdge, this->BandWidth);
+      }))
+  {
+    this->SetErrorCode(vtkErrorCode::UnknownError);
+    return;
+  }
+  int whole[6] = { 0, -1, 0, -1, 0, -1 }, ext[6] = { 0, -1, 0, -1, 0, -1 }; // an empty piece: nothing
   if (sparse)
   {
     for (int a = 0; a < 3; ++a) // the volume's own (0-based) indices
@@ -211,12 +268,13 @@ void vtkPDictionaryVolumeWriter::WriteData()
       whole[2 * a] = 0;
       whole[2 * a + 1] = static_cast<int>(sparse->GetVolume()->dims()[a] - 1);
     }
+    SparsePieceExtent(sparse->GetVolume()->options(), this->Piece, this->NumberOfPieces, ext);
   }
-  else
+  else if (!emptyPiece)
   {
     inInfo->Get(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT(), whole);
+    PieceExtent(whole, this->Piece, this->NumberOfPieces, ext);
   }
-  PieceExtent(whole, this->Piece, this->NumberOfPieces, ext);
   int ok = !lvdifvtk::extentIsValid(ext) ? 1
     : sparse                            ? (this->WritePiece(sparse, ext) ? 1 : 0)
                                         : (this->WritePiece(image, ext) ? 1 : 0);
@@ -247,7 +305,10 @@ void vtkPDictionaryVolumeWriter::WriteData()
     for (int p = 0; p < this->NumberOfPieces; ++p)
     {
       lvdifvtk::VolumeIndexPiece piece;
-      PieceExtent(whole, p, this->NumberOfPieces, piece.extent);
+      if (sparse)
+        SparsePieceExtent(sparse->GetVolume()->options(), p, this->NumberOfPieces, piece.extent);
+      else
+        PieceExtent(whole, p, this->NumberOfPieces, piece.extent);
       if (!lvdifvtk::extentIsValid(piece.extent))
         continue;
       piece.file = lvdifvtk::pieceFileName(this->FileName, p);

@@ -15,6 +15,10 @@
  * The writer asks its input for exactly the extent vtkExtentTranslator gives
  * the piece (block mode, no ghosts), so piece 0 knows every piece's extent
  * without communication; pieces share one point plane per cut, as ParaView's.
+ * A sparse volume's piece is instead the block of storage chunks its producer
+ * computes for that piece (LVDIFVolumeBridge::PieceChunks, the readers' rule)
+ * plus the point layer shared with the next chunks: the points' split differs
+ * from the chunks' in general, and took voxels never computed for the piece.
  * With a Controller of NumberOfPieces processes the ranks agree on success
  * (the index is written only if every piece was) and wait for each other, so
  * the index is complete when Write() returns. Without one (serial, or a test

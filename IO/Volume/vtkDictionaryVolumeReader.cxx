@@ -65,10 +65,11 @@ int vtkDictionaryVolumeReader::RequestDataObject(vtkInformation*, vtkInformation
 int vtkDictionaryVolumeReader::RequestInformation(
   vtkInformation*, vtkInformationVector**, vtkInformationVector* outputVector)
 {
+  LVDIFVolumeBridge::BeginInformation(outputVector->GetInformationObject(0));
   if (this->FileName.empty())
   {
     vtkErrorMacro("no file name: call SetFileName() first");
-    return 0;
+    return LVDIFVolumeBridge::FailInformation(outputVector->GetInformationObject(0));
   }
   try
   {
@@ -78,7 +79,7 @@ int vtkDictionaryVolumeReader::RequestInformation(
   {
     this->Internal->Info = lvdif::VolumeFileInfo();
     vtkErrorMacro(<< LVDIFVolumeBridge::FileError("read", this->FileName, e.what()));
-    return 0;
+    return LVDIFVolumeBridge::FailInformation(outputVector->GetInformationObject(0));
   }
   const lvdif::VolumeOptions& o = this->Internal->Info.options;
   for (int a = 0; a < 3; ++a)
@@ -86,7 +87,7 @@ int vtkDictionaryVolumeReader::RequestInformation(
     if (o.dims[a] > VTK_INT_MAX)
     {
       vtkErrorMacro("volume dimension " << o.dims[a] << " exceeds VTK's extent range");
-      return 0;
+      return LVDIFVolumeBridge::FailInformation(outputVector->GetInformationObject(0));
     }
   }
   vtkInformation* outInfo = outputVector->GetInformationObject(0);
@@ -97,6 +98,8 @@ int vtkDictionaryVolumeReader::RequestInformation(
 int vtkDictionaryVolumeReader::RequestData(
   vtkInformation*, vtkInformationVector**, vtkInformationVector* outputVector)
 {
+  if (LVDIFVolumeBridge::InformationFailed(outputVector->GetInformationObject(0)))
+    return 0; // RequestInformation reported why (ParaView runs RequestData anyway)
   vtkInformation* outInfo = outputVector->GetInformationObject(0);
   vtkSparseDictionaryVolume* output = vtkSparseDictionaryVolume::GetData(outInfo);
   lvdif::VolumeFileReadOptions options;

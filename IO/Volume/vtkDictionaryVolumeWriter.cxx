@@ -1,5 +1,7 @@
 #include "vtkDictionaryVolumeWriter.h"
 
+#include "LVDIFVolumeBridge.h"
+
 #include "lvdif/DictionaryVolume.h"
 #include "lvdif/VolumeFile.h"
 
@@ -20,9 +22,7 @@ lvdif::VolumeOptions vtkDictionaryVolumeWriter::ImageVolumeOptions()
 {
   lvdif::VolumeOptions options;
   options.chunkEdge = this->ChunkEdge;
-  options.bandWidth = this->BandWidth >= std::numeric_limits<float>::max()
-    ? std::numeric_limits<float>::infinity()
-    : static_cast<float>(this->BandWidth);
+  options.bandWidth = LVDIFVolumeBridge::BandOption(this->BandWidth);
   return options;
 }
 

@@ -29,8 +29,8 @@ public:
   void PrintSelf(ostream& os, vtkIndent indent) override;
 
   ///@{
-  /// Distances saturate to +-BandWidth voxels (default 8; VTK_FLOAT_MAX or
-  /// larger keeps every representable distance).
+  /// Distances saturate to +-BandWidth voxels (default 8; 0, or VTK_FLOAT_MAX
+  /// and more: no band; negative or NaN is an error: LVDIFVolumeBridge::BandOption).
   vtkSetMacro(BandWidth, double);
   vtkGetMacro(BandWidth, double);
   ///@}

@@ -4,6 +4,7 @@
 #include "LVDIFVolumeBridge.h"
 #include "vtkSparseDictionaryVolume.h"
 
+#include "lvdif/ByteStream.h"
 #include "lvdif/DictionaryVolume.h"
 #include "lvdif/Error.h"
 
@@ -74,6 +75,7 @@ void vtkLVDIFVolumeWriter::WriteData()
   LVDIFInterrupter interrupter(this, 0.0, 1.0);
   try
   {
+    lvdif::requireWritable(this->FileName); // before the work (an image's conversion), as the CLI
     if (sparse)
     {
       this->Save(*sparse->GetVolume(), SaveSource(), interrupter);

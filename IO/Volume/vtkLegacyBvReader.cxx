@@ -88,18 +88,19 @@ int vtkLegacyBvReader::RequestDataObject(vtkInformation*, vtkInformationVector**
 int vtkLegacyBvReader::RequestInformation(
   vtkInformation*, vtkInformationVector**, vtkInformationVector* outputVector)
 {
+  LVDIFVolumeBridge::BeginInformation(outputVector->GetInformationObject(0));
   this->Edge = 0;
   if (this->FileName.empty())
   {
     vtkErrorMacro("no file name: call SetFileName() first");
-    return 0;
+    return LVDIFVolumeBridge::FailInformation(outputVector->GetInformationObject(0));
   }
   std::string why;
   const std::int64_t n = edgeOf(this->FileName, why);
   if (n <= 0)
   {
     vtkErrorMacro(<< "cannot read '" << this->FileName << "': .bv: " << why);
-    return 0;
+    return LVDIFVolumeBridge::FailInformation(outputVector->GetInformationObject(0));
   }
   this->Edge = static_cast<int>(n);
   lvdif::VolumeOptions o; // origin 0, spacing 1
@@ -110,15 +111,17 @@ int vtkLegacyBvReader::RequestInformation(
 
 int vtkLegacyBvReader::RequestData(vtkInformation*, vtkInformationVector**, vtkInformationVector* outputVector)
 {
+  if (LVDIFVolumeBridge::InformationFailed(outputVector->GetInformationObject(0)))
+    return 0; // RequestInformation reported why (ParaView runs RequestData anyway)
   vtkInformation* outInfo = outputVector->GetInformationObject(0);
   vtkSparseDictionaryVolume* output = vtkSparseDictionaryVolume::GetData(outInfo);
   lvdif::LegacyBvOptions options;
   options.swapXZ = this->SwapXZ;
   options.distanceScale = this->DistanceScale;
-  options.bandWidth = static_cast<float>(this->BandWidth);
   LVDIFInterrupter interrupter(this);
   try
   {
+    options.bandWidth = LVDIFVolumeBridge::BandOption(this->BandWidth);
     // The file has no index: it is read whole (no sub-extents).
     output->SetVolume(lvdif::loadLegacyBv(this->FileName, options, interrupter));
   }

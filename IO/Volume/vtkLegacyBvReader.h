@@ -49,7 +49,8 @@ public:
   ///@}
 
   ///@{
-  /// Distances saturate to +-BandWidth voxels on import (default 8).
+  /// Distances saturate to +-BandWidth voxels on import (default 8; 0: no band;
+  /// negative or NaN is an error: LVDIFVolumeBridge::BandOption).
   vtkSetMacro(BandWidth, double);
   vtkGetMacro(BandWidth, double);
   ///@}

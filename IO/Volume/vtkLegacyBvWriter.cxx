@@ -77,7 +77,7 @@ vtkLegacyBvWriter::~vtkLegacyBvWriter() = default;
 lvdif::VolumeOptions vtkLegacyBvWriter::ImageVolumeOptions()
 {
   lvdif::VolumeOptions options;
-  options.bandWidth = static_cast<float>(this->BandWidth);
+  options.bandWidth = LVDIFVolumeBridge::BandOption(this->BandWidth);
   return options;
 }
 

@@ -42,7 +42,8 @@ public:
   ///@}
 
   ///@{
-  /// Distances saturate to +-BandWidth voxels before encoding (default 8).
+  /// Distances saturate to +-BandWidth voxels before encoding (default 8; 0: no
+  /// band; negative or NaN is an error: LVDIFVolumeBridge::BandOption).
   vtkSetMacro(BandWidth, double);
   vtkGetMacro(BandWidth, double);
   ///@}

@@ -94,12 +94,21 @@ assert os.path.getsize(bv) == 4 * N ** 3
 
 # errors: one line on stderr, exit code 1, nothing written
 for bad, needle in ((["--sign", "inside"], "--sign must be"), (["--dims", "1"], "--dims must be"),
-                    (["--band", "0"], "--band must be"), (["--device", "tpu"], "--device must be"),
+                    (["--band", "-1"], "--band must be a number of voxels >= 0 (0: no band), not -1"),
+                    (["--band", "nan"], "--band must be a number of voxels >= 0 (0: no band), not nan"),
+                    (["--device", "tpu"], "--device must be"),
                     (["--colour", "red"], "colour")):
     target = f"{out}/bad.lvdv"
     run = subprocess.run([exe, "mesh-to-sdf", mesh, target] + bad, capture_output=True, text=True, timeout=60)
     assert run.returncode == 1 and needle in run.stderr, (bad, run.returncode, run.stderr)
     assert not os.path.exists(target), bad
+# --band 0: no band, as the filters' and writers' BandWidth 0 (docs/USER_GUIDE.md); it was refused
+target = f"{out}/noband.lvdv"
+run = subprocess.run([exe, "mesh-to-sdf", mesh, target, "--dims", "24", "--band", "0", "--device", "cpu"],
+                     capture_output=True, text=True, timeout=120)
+assert run.returncode == 0, run.stderr
+info = subprocess.run([exe, "info", target], capture_output=True, text=True, timeout=60)
+assert info.returncode == 0 and ", band inf" in info.stdout, info.stdout + info.stderr
 run = subprocess.run([exe, "mesh-to-sdf", f"{out}/missing.obj", f"{out}/bad.lvdv"], capture_output=True, text=True)
 assert run.returncode == 1 and "missing.obj" in run.stderr, run.stderr
 

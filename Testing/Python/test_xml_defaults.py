@@ -49,7 +49,36 @@ for path in sorted(glob.glob(os.path.join(sys.argv[1], "*.xml"))):
             checked += 1
             if not same and (cls, prop.get("name")) not in ALLOWED:
                 problems.append("%s.%s: XML default %s, the class's %s" % (cls, prop.get("name"), want, got))
-print("checked %d defaults" % checked)
+# One rule per property (docs/USER_GUIDE.md, "Band width and chunk edge"), the
+# same in every proxy: BandWidth >= 0 (0: no band, no upper limit); a volume's
+# ChunkEdge one of the powers of two 4..256; the marching cubes' (cells) 16..256.
+# test_volume_settings.py checks that the classes accept those limits and refuse
+# beyond them.
+STORAGE_EDGES = ["4", "8", "16", "32", "64", "128", "256"]
+ranges = 0
+for path in sorted(glob.glob(os.path.join(sys.argv[1], "*.xml"))):
+    for proxy in ET.parse(path).getroot().iter():
+        cls = proxy.get("class")
+        if proxy.tag not in ("SourceProxy", "WriterProxy"):
+            continue
+        for prop in proxy:
+            name = prop.get("name")
+            if name == "BandWidth":
+                dom = [(d.tag, d.get("min"), d.get("max")) for d in prop if d.tag.endswith("Domain")]
+                want = [("DoubleRangeDomain", "0", None)]
+            elif name == "ChunkEdge" and cls == "vtkChunkedMarchingCubes":
+                dom = [(d.tag, d.get("min"), d.get("max")) for d in prop if d.tag.endswith("Domain")]
+                want = [("IntRangeDomain", "16", "256")]
+            elif name == "ChunkEdge":
+                dom = [(d.tag, [e.get("value") for e in d]) for d in prop if d.tag.endswith("Domain")]
+                want = [("EnumerationDomain", STORAGE_EDGES)]
+            else:
+                continue
+            ranges += 1
+            if dom != want:
+                problems.append("%s.%s: domain %s, the rule's %s" % (cls, name, dom, want))
+print("checked %d defaults, %d band and chunk edge domains" % (checked, ranges))
+assert ranges >= 11, ranges
 for p in problems:
     print("FAIL " + p)
 assert checked > 30, checked

@@ -20,7 +20,11 @@ int vtkSparseVolumeOutlineRepresentation::RequestData(
   vtkSparseDictionaryVolume* sparse = inputVector[0]->GetNumberOfInformationObjects() == 1
     ? vtkSparseDictionaryVolume::GetData(inputVector[0], 0)
     : nullptr;
-  if (!sparse || !sparse->HasVolume())
+  // Every rank of a sparse volume takes this path, also one whose piece has no
+  // chunks (no volume: more ranks than chunk blocks): the superclass's geometry
+  // filter communicates between ranks, and one rank in it while the others are
+  // not aborted pvbatch (MPI_ERR_TRUNCATE: a one-chunk volume shown on 2 ranks).
+  if (!sparse)
   {
     // the superclass's pipeline: its geometry filter feeds the mapper's input
     this->MultiBlockMaker->SetInputConnection(this->GeometryFilter->GetOutputPort());
@@ -32,7 +36,7 @@ int vtkSparseVolumeOutlineRepresentation::RequestData(
   const int piece = inInfo->Has(vtkStreamingDemandDrivenPipeline::UPDATE_PIECE_NUMBER())
     ? inInfo->Get(vtkStreamingDemandDrivenPipeline::UPDATE_PIECE_NUMBER())
     : 0;
-  if (piece == 0)
+  if (piece == 0 && sparse->HasVolume())
   {
     const lvdif::DictionaryVolume& volume = *sparse->GetVolume();
     const auto& o = volume.options();

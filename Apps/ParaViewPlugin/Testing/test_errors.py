@@ -1,0 +1,130 @@
+"""pvpython: every failing LVDIF reader or filter reports ONE clear error.
+
+ParaView runs RequestData even when RequestInformation failed (pvpython's
+UpdatePipeline, the GUI's Apply): a missing .lvdv gave its error twice, a
+reader without a file name first "no file name" then "cannot open ''", a bad
+Band Width or Chunk Edge of Mesh To SDF twice. Counts the error events of each
+algorithm (its client-side object); also: a reader that failed shows no stale
+data from its last good file, and the band / chunk edge rule of
+docs/USER_GUIDE.md through the proxies (Band Width 0 = no band).
+Usage: test_errors.py PLUGIN TMPDIR"""
+import lvdif_pvtest  # noqa: F401  (first: ParaView's Python on sys.path)
+
+import math
+import os
+import sys
+
+import paraview.simple as pvs
+from vtkmodules.vtkCommonCore import vtkOutputWindow, vtkStringOutputWindow
+
+plugin, tmp = sys.argv[1], sys.argv[2]
+pvs.LoadPlugin(plugin, remote=False)  # adds the proxies to paraview.simple
+out = os.path.join(tmp, "errors")
+os.makedirs(out, exist_ok=True)
+problems = []
+
+
+def check(ok, what):
+    print(("ok   " if ok else "FAIL ") + what)
+    if not ok:
+        problems.append(what)
+
+
+# Every error reaches the output window, also those of the information pass that
+# runs when a proxy is created (before an observer could be added to it).
+window = vtkStringOutputWindow()
+vtkOutputWindow.SetInstance(window)
+# pvpython sends Python's own output to the output window too: keep it on the terminal
+sys.stdout, sys.stderr = sys.__stdout__, sys.__stderr__
+
+
+def errors_during(work):
+    """The error messages (not VTK's executive's "returned failure" dumps) while `work` runs."""
+    start = len(window.GetOutput())
+    result = work()
+    text = window.GetOutput()[start:]
+    messages = [" ".join(m.split()) for m in text.split("ERROR: In ")[1:]]
+    return result, [m for m in messages if "returned failure for request" not in m]
+
+
+def one_error(label, make, needle):
+    """Creates and updates the proxy `make()` gives: exactly one error containing `needle`."""
+    proxy, got = errors_during(lambda: updated(make()))
+    check(len(got) == 1 and needle in got[0], "%s: one error with '%s', got %d: %s" % (label, needle, len(got), got))
+    return proxy
+
+
+def updated(proxy):
+    proxy.UpdatePipeline()
+    return proxy
+
+
+def points(proxy):
+    proxy.UpdatePipeline()
+    return proxy.GetDataInformation().GetNumberOfPoints()
+
+
+sphere = pvs.Sphere(ThetaResolution=24, PhiResolution=12)
+good = os.path.join(out, "good.lvdv")
+pvs.SaveData(good, proxy=pvs.MeshToSDF(Input=sphere, MaxDimension=24))
+check(os.path.exists(good), "the reference .lvdv is written")
+
+missing = os.path.join(out, "missing.lvdv")
+one_error("lvdv reader, missing file", lambda: pvs.LVDIFDictionaryVolumeReader(FileName=missing),
+          "cannot open '%s'" % missing)
+one_error("lvdv reader, no file name", lambda: pvs.LVDIFDictionaryVolumeReader(), "no file name")
+missingp = os.path.join(out, "missing.lvdvp")
+one_error("lvdvp reader, missing file", lambda: pvs.LVDIFParallelDictionaryVolumeReader(FileName=missingp),
+              "'%s'" % missingp)
+one_error("lvdvp reader, no file name", lambda: pvs.LVDIFParallelDictionaryVolumeReader(), "no file name")
+
+# a reader pointed from a good file to a missing one shows nothing of the good one
+reader = pvs.LVDIFDictionaryVolumeReader(FileName=good)
+n_good = points(reader)
+check(n_good > 0, "the good file reads (%d points)" % n_good)
+
+
+def point_at_missing():
+    reader.FileName = missing
+    return reader
+
+
+one_error("lvdv reader, good then missing file", point_at_missing, "cannot open")
+check(points(reader) == 0, "no stale data after the failure (%d points)" % points(reader))
+
+# the band and chunk edge rule, through the proxies
+for label, props, needle in (
+        ("Mesh To SDF, Band Width -1", {"BandWidth": -1}, "BandWidth must be a number of voxels >= 0 (0: no band), not -1"),
+        ("Mesh To SDF, Band Width NaN", {"BandWidth": float("nan")}, "not nan"),
+        ("Mesh To SDF, Chunk Edge 48", {"ChunkEdge": 48}, "chunk edge 48 must be a power of two in [4, 256]"),
+        ("Mesh To SDF, Chunk Edge 512", {"ChunkEdge": 512}, "chunk edge 512 must be a power of two in [4, 256]")):
+    one_error(label, lambda: pvs.MeshToSDF(Input=sphere, MaxDimension=24, **props), needle)
+image = pvs.SparseVolumeToImage(Input=pvs.MeshToSDF(Input=sphere, MaxDimension=24))
+one_error("Image To Sparse Volume, Band Width -2", lambda: pvs.ImageToSparseVolume(Input=image, BandWidth=-2),
+          "BandWidth must be a number of voxels >= 0 (0: no band), not -2")
+for cls, kw in (("MeshToSDF", {"Input": sphere, "MaxDimension": 24}), ("ImageToSparseVolume", {"Input": image}),
+                ("VolumeEditFilter", {"Input": image})):
+    for edge in (4, 256):
+        f, errs = errors_during(lambda: updated(getattr(pvs, cls)(ChunkEdge=edge, BandWidth=0, **kw)))
+        check(not errs and f.GetDataInformation().GetNumberOfPoints() > 0,
+              "%s: Chunk Edge %d and Band Width 0 run: %s" % (cls, edge, errs))
+# Band Width 0 = no band: the distances are not cut (the sphere's centre lies about 9 voxels deep)
+deep = pvs.SparseVolumeToImage(Input=pvs.MeshToSDF(Input=sphere, MaxDimension=24, BandWidth=0))
+deep.UpdatePipeline()
+lo, hi = deep.PointData["sdf"].GetRange()
+cut = pvs.SparseVolumeToImage(Input=pvs.MeshToSDF(Input=sphere, MaxDimension=24, BandWidth=1))
+cut.UpdatePipeline()
+clo, chi = cut.PointData["sdf"].GetRange()
+check(lo < -5 and abs(clo + 1) < 0.01 and abs(chi - 1) < 0.01,
+      "Band Width 0 keeps every distance (%g..%g), Band Width 1 cuts at 1 (%g..%g)" % (lo, hi, clo, chi))
+
+# a writer into a folder that does not exist: one error naming it, nothing written
+src = pvs.MeshToSDF(Input=sphere, MaxDimension=24)
+for ext in ("lvdv", "lvdvp"):
+    target = "/nonexistent-lvdif/dir/x." + ext
+    _, errs = errors_during(lambda: updated(pvs.CreateWriter(target, src)))
+    check(len(errs) == 1 and "cannot write '%s': the folder '/nonexistent-lvdif/dir' does not exist" % target in errs[0],
+          "%s writer into a missing folder: %s" % (ext, errs))
+
+print("%d problems" % len(problems))
+sys.exit(1 if problems else 0)

@@ -1,0 +1,247 @@
+"""One rule for BandWidth and ChunkEdge in every class that has them
+(docs/USER_GUIDE.md, "Band width and chunk edge"):
+- BandWidth: a number of voxels > 0; 0 means no band (every distance kept);
+  negative or NaN is refused with one error naming BandWidth (before: the
+  filters read a negative band as no band, the writers refused 0, the editing
+  filter clamped to [1, 1e6]).
+- ChunkEdge of a volume: a power of two in [4, 256]; anything else is refused
+  when used, and never clamped (before: the filters clamped 2 to 4 and 512 to
+  256, the writers refused them). The marching cubes' ChunkEdge (cells) is
+  16..256, refused outside (it clamped).
+Oracles: the band and chunk edge the volume itself reports (written and read
+back for the writers), the errors the class reports. Runs without ParaView,
+on a non-cubic grid with anisotropic spacing.
+Usage: test_volume_settings.py OUTDIR"""
+import math
+import os
+import sys
+
+import numpy as np
+import vtk
+from vtkmodules.util import numpy_support as ns
+
+import lvdif
+
+out = sys.argv[1]
+os.makedirs(out, exist_ok=True)
+problems = []
+RULE = "BandWidth must be a number of voxels >= 0 (0: no band), not "
+
+
+def check(ok, what):
+    if not ok:
+        problems.append(what)
+        print("FAIL " + what)
+
+
+def image(dims=(37, 90, 12), spacing=(1.0, 0.5, 2.0)):
+    """A ball's signed distance (voxel units of x) on an image with a colour array."""
+    img = vtk.vtkImageData()
+    img.SetDimensions(*dims)
+    img.SetSpacing(*spacing)
+    z, y, x = np.meshgrid(*[np.arange(d) * s for d, s in zip(dims[::-1], spacing[::-1])], indexing="ij")
+    c = [(d - 1) * s / 2 for d, s in zip(dims, spacing)]
+    sdf = (np.sqrt((x - c[0]) ** 2 + (y - c[1]) ** 2 + (z - c[2]) ** 2) - 5.0).astype(np.float32).ravel()
+    a = ns.numpy_to_vtk(sdf, deep=1)
+    a.SetName("sdf")
+    img.GetPointData().AddArray(a)
+    img.GetPointData().SetActiveScalars("sdf")
+    return img
+
+
+class Errors:
+    """The error events of one algorithm (its own vtkErrorMacro)."""
+
+    def __init__(self, obj):
+        self.messages = []
+
+        @vtk.calldata_type(vtk.VTK_STRING)
+        def on_error(_o, _e, text):
+            self.messages.append(" ".join(text.split()))
+
+        self.callback = on_error
+        obj.AddObserver("ErrorEvent", on_error)
+
+
+def run(cls, band=None, edge=None, inp=None, path=None):
+    """Runs one class with the settings given: (succeeded, errors, object)."""
+    obj = getattr(lvdif, cls)()
+    errors = Errors(obj)
+    if inp is not None:
+        obj.SetInputData(inp)
+    if band is not None:
+        obj.SetBandWidth(band)
+    if edge is not None:
+        obj.SetChunkEdge(edge)
+    if path is not None:
+        obj.SetFileName(path)
+    if hasattr(obj, "Write"):
+        ok = obj.Write() == 1
+    else:
+        obj.Update()
+        ok = not errors.messages
+    return ok, errors.messages, obj
+
+
+def sphere():
+    s = vtk.vtkSphereSource()
+    s.SetRadius(3.0)
+    s.SetThetaResolution(24)
+    s.SetPhiResolution(12)
+    s.Update()
+    return s.GetOutput()
+
+
+def mesh_to_sdf(**kw):
+    ok, errs, f = run("vtkMeshToSDF", inp=sphere(), **kw)
+    return ok, errs, f.GetOutput() if ok else None
+
+
+def volume_of(cls, inp, **kw):
+    ok, errs, f = run(cls, inp=inp, **kw)
+    return ok, errs, f.GetOutput() if ok else None
+
+
+def written(cls, ext, inp, **kw):
+    path = os.path.join(out, "settings_%s.%s" % (cls, ext))
+    if os.path.exists(path):
+        os.remove(path)
+    ok, errs, _ = run(cls, inp=inp, path=path, **kw)
+    if not ok:
+        return ok, errs, None
+    reader = lvdif.vtkPDictionaryVolumeReader() if ext == "lvdvp" else lvdif.vtkDictionaryVolumeReader()
+    reader.SetFileName(path)
+    reader.Update()
+    return ok, errs, reader.GetOutput()
+
+
+img = image()
+IMG_MIN = img.GetPointData().GetArray("sdf").GetRange()[0]
+
+
+def band_of(vol):
+    """The band a volume reports, or for an image (vtkVolumeEditFilter's output on
+    an image) the one its distances show: the input's deepest distance cut at -band."""
+    if hasattr(vol, "GetBandWidth"):
+        return vol.GetBandWidth()
+    lo = vol.GetPointData().GetArray("sdf").GetRange()[0]
+    return math.inf if lo < IMG_MIN + 0.01 else -lo
+
+
+cubic = image((32, 32, 32), (1.0, 1.0, 1.0))
+bv = os.path.join(out, "settings_ball.bv")
+ok, errs, _ = run("vtkLegacyBvWriter", inp=cubic, path=bv)
+assert ok, errs
+
+
+def bv_read(**kw):
+    ok, errs, r = run("vtkLegacyBvReader", path=bv, **kw)
+    return ok, errs, r.GetOutput() if ok else None
+
+
+# every class with a BandWidth, and how it makes a volume that reports its band
+BANDED = {
+    "vtkMeshToSDF": lambda **kw: mesh_to_sdf(**kw),
+    "vtkImageToSparseVolume": lambda **kw: volume_of("vtkImageToSparseVolume", img, **kw),
+    "vtkVolumeEditFilter": lambda **kw: volume_of("vtkVolumeEditFilter", img, **kw),
+    "vtkDictionaryVolumeWriter": lambda **kw: written("vtkDictionaryVolumeWriter", "lvdv", img, **kw),
+    "vtkPDictionaryVolumeWriter": lambda **kw: written("vtkPDictionaryVolumeWriter", "lvdvp", img, **kw),
+    "vtkLegacyBvWriter": lambda **kw: written_bv(**kw),
+    "vtkLegacyBvReader": lambda **kw: bv_read(**kw),
+}
+
+
+def written_bv(**kw):
+    path = os.path.join(out, "settings_out.bv")
+    ok, errs, _ = run("vtkLegacyBvWriter", inp=cubic, path=path, **kw)
+    if not ok:
+        return ok, errs, None
+    r = lvdif.vtkLegacyBvReader()
+    r.SetFileName(path)
+    r.SetBandWidth(0)  # the file's own distances, not clipped again on import
+    r.Update()
+    return ok, errs, r.GetOutput()
+
+
+for cls, make in BANDED.items():
+    for band, want in ((8, 8.0), (2.5, 2.5), (0, math.inf), (1e300, math.inf)):
+        ok, errs, vol = make(band=band)
+        check(ok and not errs, "%s BandWidth %g: failed %s" % (cls, band, errs))
+        # .bv stores no band; an image shows no band deeper than its ball (5)
+        if ok and cls != "vtkLegacyBvWriter" and (band != 8 or hasattr(vol, "GetBandWidth")):
+            got = band_of(vol)
+            check(abs(got - want) < 0.01 if want < math.inf else got == want,
+                  "%s BandWidth %g: the volume's band is %g, not %g" % (cls, band, got, want))
+    if cls == "vtkLegacyBvWriter":
+        # the file keeps the band's clipping: |sdf| <= 2.5 with band 2.5, the ball's full range with 0
+        # (the ball's centre lies 0.87 voxel from the nearest point: its deepest distance is -4.13)
+        for band, lo, hi in ((2.5, -2.51, -2.49), (0, -4.2, -4.0)):
+            ok, errs, vol = make(band=band)
+            if not ok:
+                continue  # reported above
+            conv = lvdif.vtkSparseVolumeToImage()
+            conv.SetInputData(vol)
+            conv.Update()
+            arr = conv.GetOutput().GetPointData().GetArray("sdf")
+            rng = arr.GetRange() if arr else None
+            check(rng is not None and lo <= rng[0] <= hi, "vtkLegacyBvWriter BandWidth %g: sdf range %s" % (band, rng))
+    for band in (-1, -1e-9, float("nan")):
+        ok, errs, _ = make(band=band)
+        check(not ok and len(errs) == 1 and (RULE + ("%g" % band if band == band else "nan")) in errs[0],
+              "%s BandWidth %g: %s %s" % (cls, band, "succeeded" if ok else "failed", errs))
+
+# the storage chunk edge: the same enumeration everywhere, no clamp
+CHUNKED = {k: BANDED[k] for k in ("vtkMeshToSDF", "vtkImageToSparseVolume", "vtkVolumeEditFilter",
+                                  "vtkDictionaryVolumeWriter", "vtkPDictionaryVolumeWriter")}
+for cls, make in CHUNKED.items():
+    for edge in (4, 256):
+        ok, errs, vol = make(edge=edge)
+        # (an image output has no chunks to show)
+        got = vol.GetChunkEdge() if ok and hasattr(vol, "GetChunkEdge") else edge if ok else None
+        check(got == edge, "%s ChunkEdge %d: %s %s" % (cls, edge, errs, got))
+    for edge in (2, 3, 48, 512, 0, -32):
+        obj = getattr(lvdif, cls)()
+        obj.SetChunkEdge(edge)
+        check(obj.GetChunkEdge() == edge, "%s ChunkEdge %d reads back %d (clamped)" % (cls, edge, obj.GetChunkEdge()))
+        ok, errs, _ = make(edge=edge)
+        check(not ok and len(errs) == 1 and ("chunk edge %d must be a power of two in [4, 256]" % edge) in errs[0],
+              "%s ChunkEdge %d: %s %s" % (cls, edge, "succeeded" if ok else "failed", errs))
+
+# the marching cubes' chunk edge (cells): 16..256, refused outside, no clamp
+sparse = volume_of("vtkImageToSparseVolume", img)[2]
+for edge in (16, 256):
+    ok, errs, mc = run("vtkChunkedMarchingCubes", inp=sparse, edge=edge)
+    check(ok and mc.GetOutput().GetNumberOfCells() > 0, "vtkChunkedMarchingCubes ChunkEdge %d: %s" % (edge, errs))
+for edge in (15, 257, 0):
+    ok, errs, mc = run("vtkChunkedMarchingCubes", inp=sparse, edge=edge)
+    check(mc.GetChunkEdge() == edge and not ok and len(errs) == 1 and "16" in errs[0] and "256" in errs[0],
+          "vtkChunkedMarchingCubes ChunkEdge %d: read back %d, %s" % (edge, mc.GetChunkEdge(), errs))
+
+# a sparse input keeps its own band and chunk edge: the editing filter's settings
+# (even out of range) do not apply to it, as the writers' do not
+sparse_in = volume_of("vtkImageToSparseVolume", img, band=2.5, edge=16)[2]
+for band, edge in ((-1, 48), (0, 4)):
+    ok, errs, f = run("vtkVolumeEditFilter", inp=sparse_in, band=band, edge=edge)
+    vol = f.GetOutput() if ok else None
+    check(ok and vol.GetBandWidth() == 2.5 and vol.GetChunkEdge() == 16,
+          "vtkVolumeEditFilter on a sparse volume, BandWidth %g ChunkEdge %d: %s %s" % (
+              band, edge, errs, (vol.GetBandWidth(), vol.GetChunkEdge()) if vol else None))
+
+# a writer checks its folder before the work: with an image input and a bad chunk edge
+# the folder's error comes alone (the conversion used to run first and report the chunk edge)
+for cls, ext in (("vtkDictionaryVolumeWriter", "lvdv"), ("vtkPDictionaryVolumeWriter", "lvdvp")):
+    ok, errs, _ = run(cls, inp=img, edge=48, path="/nonexistent-lvdif/x." + ext)
+    check(not ok and len(errs) == 1 and "the folder '/nonexistent-lvdif' does not exist" in errs[0]
+          and "x." + ext in errs[0], "%s into a missing folder: %s" % (cls, errs))
+
+# the editor object (the Qt editor's volumes): the same rule for new volumes
+ed = lvdif.vtkLVDIFEditor()
+for band, good in ((0, True), (8, True), (-1, False), (float("nan"), False)):
+    errors = Errors(ed)
+    ed.SetBandWidth(band)
+    r = ed.NewVolume(24, 40, 16, False)
+    check(bool(r) == good and (good or (len(errors.messages) == 1 and RULE in errors.messages[0])),
+          "vtkLVDIFEditor BandWidth %g: NewVolume %d %s" % (band, r, errors.messages))
+
+print("%d problems" % len(problems))
+sys.exit(1 if problems else 0)
