@@ -5,6 +5,8 @@
 // for each class (the registry is the one source of the formats).
 #include "LVDIFFiles.h"
 
+#include "FileTestUtil.h"
+
 #include "lvdif/AnalyticFill.h"
 #include "lvdif/Error.h"
 
@@ -78,13 +80,7 @@ TEST(LVDIFFiles, EveryVolumeFormatRoundTrips)
 
 namespace
 {
-std::string slurp(const std::string& path)
-{
-  std::ifstream in(path, std::ios::binary);
-  std::ostringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
+using filetest::slurp;
 
 /// Cancels as soon as a save has begun writing: the target's content changed,
 /// or a temporary file beside it ("<name>.tmp-...") appeared.
