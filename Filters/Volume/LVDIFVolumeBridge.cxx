@@ -32,6 +32,7 @@
 #include <array>
 #include <cmath>
 #include <limits>
+#include <new>
 #include <cstring>
 #include <sstream>
 #include <type_traits>
@@ -90,6 +91,13 @@ bool CallCore(vtkAlgorithm* algorithm, const std::function<void()>& work, const 
       return false;
     }
     vtkErrorWithObjectMacro(algorithm, << WithContext(context, e.what()));
+    return false;
+  }
+  catch (const std::bad_alloc&)
+  {
+    // an allocation no estimate refused first: still one error, not an
+    // exception through the pipeline (which would leave MPI peers waiting)
+    vtkErrorWithObjectMacro(algorithm, << WithContext(context, "out of memory"));
     return false;
   }
 }

@@ -61,7 +61,7 @@ LVDIFFILTERSVOLUME_EXPORT std::string WithContext(const std::string& context, co
 /// Calls Core: returns true on success; on lvdif::Error reports it with
 /// vtkErrorMacro's text on `algorithm` (prefixed by `context` when given, unless
 /// the message already holds the context's quoted file name: FileError's rule) and
-/// returns false. A cancel (AbortExecute through LVDIFInterrupter) returns
+/// returns false; likewise on std::bad_alloc ("out of memory"). A cancel (AbortExecute through LVDIFInterrupter) returns
 /// false without an error, and sets `cancelled` when given.
 LVDIFFILTERSVOLUME_EXPORT bool CallCore(vtkAlgorithm* algorithm, const std::function<void()>& work,
   const std::string& context = std::string(), bool* cancelled = nullptr);
