@@ -350,6 +350,49 @@ TEST(EditSession, RecordingPlaysBackBitExactInAnotherSession)
   EXPECT_GT(b.undoCount(), 0u);
 }
 
+// A playback that applies nothing is no change (the editor's document stays
+// unmodified); one that fails after applying records is (they stay applied).
+// Before, every failed playback counted as a change, a refused one too.
+TEST(EditSession, RefusedPlaybackIsNoChange)
+{
+  lvdif::EditSession a(sphereVolume(48, 16), cpuOptions());
+  a.startRecording();
+  lvdif::Dab d;
+  d.center = { 24, 24, 40 };
+  d.radius = 4;
+  a.dab(d);
+  lvdif::Recording r = a.stopRecording();
+  ASSERT_EQ(r.records.size(), 1u);
+
+  // another canvas: refused up front
+  lvdif::EditSession other(sphereVolume(32, 16), cpuOptions());
+  const std::uint64_t changes = other.changeCount();
+  EXPECT_THROW(other.play(r), lvdif::Error);
+  EXPECT_EQ(other.changeCount(), changes);
+  EXPECT_EQ(other.undoCount(), 0u);
+
+  // the same canvas, a first record with nothing to undo: nothing applied
+  lvdif::Recording undoFirst = r;
+  lvdif::EditRecord undo;
+  undo.type = lvdif::EditRecord::Type::Undo;
+  undoFirst.records.insert(undoFirst.records.begin(), undo);
+  lvdif::EditSession b(sphereVolume(48, 16), cpuOptions());
+  const std::uint64_t bChanges = b.changeCount();
+  EXPECT_THROW(b.play(undoFirst), lvdif::Error);
+  EXPECT_EQ(b.changeCount(), bChanges);
+  EXPECT_EQ(b.undoCount(), 0u);
+
+  // the dab applied, then a redo with nothing to redo: the dab stays, a change
+  lvdif::Recording redoAfter = r;
+  lvdif::EditRecord redo;
+  redo.type = lvdif::EditRecord::Type::Redo;
+  redoAfter.records.push_back(redo);
+  EXPECT_THROW(b.play(redoAfter), lvdif::Error);
+  EXPECT_EQ(b.changeCount(), bChanges + 1);
+  EXPECT_EQ(b.undoCount(), 1u);
+  EXPECT_EQ(differences(a.volume(), b.volume()), 0);
+}
+
 TEST(EditSession, SetVolumeKeepsTheBrushAndClearsHistory)
 {
   lvdif::EditSession s(sphereVolume(32, 16), cpuOptions());
