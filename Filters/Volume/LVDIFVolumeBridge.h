@@ -115,7 +115,8 @@ LVDIFFILTERSVOLUME_EXPORT void FillImage(
 /// Builds a dictionary volume from an image's float SDF array (any real type
 /// is converted) and optional RGBA array (1 to 4 unsigned char components).
 /// `options` supplies chunk edge, band width and dictionary; dims, origin and
-/// spacing come from the image. Throws lvdif::Error on bad input.
+/// spacing come from the image. Throws lvdif::Error on bad input, and on an
+/// image whose direction matrix is not the identity (the volume is axis-aligned).
 LVDIFFILTERSVOLUME_EXPORT std::unique_ptr<lvdif::DictionaryVolume> VolumeFromImage(
   vtkImageData* image, vtkDataArray* sdf, vtkDataArray* rgba, lvdif::VolumeOptions options);
 
