@@ -361,7 +361,7 @@ TEST(EditSession, RefusedPlaybackIsNoChange)
   d.center = { 24, 24, 40 };
   d.radius = 4;
   a.dab(d);
-  lvdif::Recording r = a.stopRecording();
+  const lvdif::Recording r = a.stopRecording();
   ASSERT_EQ(r.records.size(), 1u);
 
   // another canvas: refused up front
@@ -371,23 +371,22 @@ TEST(EditSession, RefusedPlaybackIsNoChange)
   EXPECT_EQ(other.changeCount(), changes);
   EXPECT_EQ(other.undoCount(), 0u);
 
-  // the same canvas, a first record with nothing to undo: nothing applied
-  lvdif::Recording undoFirst = r;
-  lvdif::EditRecord undo;
-  undo.type = lvdif::EditRecord::Type::Undo;
-  undoFirst.records.insert(undoFirst.records.begin(), undo);
+  // the same canvas, with an undo or a redo that has nothing to act on
+  auto with = [&](lvdif::EditRecord::Type type, bool first) {
+    lvdif::Recording out = r;
+    lvdif::EditRecord e;
+    e.type = type;
+    out.records.insert(first ? out.records.begin() : out.records.end(), e);
+    return out;
+  };
   lvdif::EditSession b(sphereVolume(48, 16), cpuOptions());
   const std::uint64_t bChanges = b.changeCount();
-  EXPECT_THROW(b.play(undoFirst), lvdif::Error);
+  // first: nothing applied
+  EXPECT_THROW(b.play(with(lvdif::EditRecord::Type::Undo, true)), lvdif::Error);
   EXPECT_EQ(b.changeCount(), bChanges);
   EXPECT_EQ(b.undoCount(), 0u);
-
-  // the dab applied, then a redo with nothing to redo: the dab stays, a change
-  lvdif::Recording redoAfter = r;
-  lvdif::EditRecord redo;
-  redo.type = lvdif::EditRecord::Type::Redo;
-  redoAfter.records.push_back(redo);
-  EXPECT_THROW(b.play(redoAfter), lvdif::Error);
+  // after the dab: the dab stays, a change
+  EXPECT_THROW(b.play(with(lvdif::EditRecord::Type::Redo, false)), lvdif::Error);
   EXPECT_EQ(b.changeCount(), bChanges + 1);
   EXPECT_EQ(b.undoCount(), 1u);
   EXPECT_EQ(differences(a.volume(), b.volume()), 0);
