@@ -22,6 +22,11 @@ int CommandScript(int argc, char** argv)
     throw lvdif::Error(lvdif::ErrorCode::InvalidArgument,
       "usage: lvdif script FILE.lvs [--in VOLUME] [--out VOLUME] [--mesh OUT.ply] [--png OUT.png] [--size N]");
   const std::string path = args.positional()[0];
+  // --size is the empty start canvas's: with --in the volume is the start (it
+  // was ignored without a word)
+  if (args.has("in") && args.has("size"))
+    throw lvdif::Error(lvdif::ErrorCode::InvalidArgument,
+      "--size (the size of an empty start canvas) cannot be used with --in (the script starts from that volume)");
   // the start canvas's size is refused before any output is checked or volume built
   const long n = args.has("in") ? 0 : args.getCanvasSize("size", 128);
   CheckEditOutputs(args);

@@ -17,33 +17,11 @@
 #include <cmath>
 #include <cstdio>
 #include <string>
-#include <utility>
 
 namespace
 {
 const char* const Usage = "usage: lvdif mesh-to-sdf MESH OUT.(lvdv|bv|vti|vdb) [--dims N] [--padding P] "
                           "[--sign normal|pseudo|winding] [--reorient] [--svf] [--band B] [--device cpu|cuda|auto]";
-
-// The --sign names, both ways: the volume's "creation parameters" must be a
-// command line that runs (lvdif::toString says "pseudonormal", which --sign refused)
-const std::pair<const char*, lvdif::SignMode> SignNames[] = { { "normal", lvdif::SignMode::Normal },
-  { "pseudo", lvdif::SignMode::PseudoNormal }, { "winding", lvdif::SignMode::WindingNumber } };
-
-lvdif::SignMode signFromName(const std::string& s)
-{
-  for (const auto& n : SignNames)
-    if (s == n.first)
-      return n.second;
-  throw lvdif::Error(lvdif::ErrorCode::InvalidArgument, "--sign must be normal, pseudo or winding, not '" + s + "'");
-}
-
-std::string signName(lvdif::SignMode mode)
-{
-  for (const auto& n : SignNames)
-    if (mode == n.second)
-      return n.first;
-  return lvdif::toString(mode);
-}
 
 /// A number as the shortest text that reads back as the same double (std::to_string
 /// rounds to 6 decimals: --padding 0.1234567 was recorded as 0.123457).
@@ -89,7 +67,7 @@ int CommandMeshToSdf(int argc, char** argv)
   // the filters' and writers' rule (0 = no band, negative or NaN refused), before the mesh is read
   const float bandWidth = LVDIFVolumeBridge::CheckVolumeSettings(lvdif::VolumeOptions().chunkEdge, band, "--band");
   lvdif::MeshToSdfOptions options;
-  options.sign = signFromName(args.get("sign", "winding"));
+  options.sign = lvdif::signModeFromName(args.get("sign", "winding"), "--sign");
   options.device = deviceFromName(args.get("device", "auto"));
   // winding sign of the consistently re-oriented mesh (unreliable face orientation)
   options.reorientFaces = args.has("reorient");
@@ -120,13 +98,13 @@ int CommandMeshToSdf(int argc, char** argv)
   SaveAnyVolume(volume, out,
     { { "source mesh", in },
       { "creation parameters", "lvdif mesh-to-sdf --dims " + std::to_string(dims) + " --padding " +
-          exactNumber(padding) + " --sign " + signName(options.sign) + (args.has("svf") ? " --svf" : "") +
+          exactNumber(padding) + " --sign " + lvdif::signModeName(options.sign) + (args.has("svf") ? " --svf" : "") +
           (options.reorientFaces ? " --reorient" : "") + " --band " + exactNumber(band) } },
     progress);
   std::printf("%zu triangles (%zu degenerate skipped, %zu boundary edges) -> %lld x %lld x %lld voxels, sign %s, "
               "device %s, %lld sign flips by the filters -> %s\n",
     stats.triangles, stats.degenerateSkipped, stats.boundaryEdges, (long long)grid.dims[0], (long long)grid.dims[1],
-    (long long)grid.dims[2], signName(options.sign).c_str(), lvdif::toString(stats.device), (long long)stats.svfFlips,
+    (long long)grid.dims[2], lvdif::signModeName(options.sign), lvdif::toString(stats.device), (long long)stats.svfFlips,
     out.c_str());
   for (const std::string& w : stats.warnings) std::fprintf(stderr, "warning: %s\n", w.c_str());
   return 0;

@@ -1,6 +1,7 @@
 #include "EditorOptions.h"
 
 #include "LVDIFFiles.h"
+#include "MeshImport.h"
 #include "lvdif/ByteStream.h"
 #include "lvdif/DictionaryVolume.h"
 #include "lvdif/Error.h"
@@ -120,8 +121,14 @@ EditorOptions parseEditorOptions(const QStringList& arguments)
   if (o.meshResolution < 8 || o.meshResolution > 4096)
     fail("--mesh-resolution expects 8..4096, got '" + p.value(meshRes) + "'");
   o.meshSign = p.value(meshSign);
-  if (o.meshSign != "winding" && o.meshSign != "pseudo" && o.meshSign != "normal")
-    fail("--mesh-sign expects winding, pseudo or normal, got '" + o.meshSign + "'");
+  try
+  {
+    meshSignModeFromName(o.meshSign);
+  }
+  catch (const lvdif::Error& e)
+  {
+    fail(e.what());
+  }
   o.meshReorient = p.isSet(meshReorient);
   if (o.meshReorient && o.meshSign != "winding")
     fail("--mesh-reorient needs --mesh-sign winding");

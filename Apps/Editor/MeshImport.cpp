@@ -12,6 +12,8 @@
 #include "vtkNew.h"
 #include "vtkPointData.h"
 
+#include "lvdif/MeshToSdf.h"
+
 #include <QCheckBox>
 #include <QComboBox>
 #include <QDialog>
@@ -67,13 +69,15 @@ struct ProgressWatcher : vtkCommand
 
 int meshSignModeFromName(const QString& name)
 {
-  if (name == "winding")
-    return vtkMeshToSDF::WINDING_NUMBER;
-  if (name == "pseudo")
-    return vtkMeshToSDF::PSEUDO_NORMAL;
-  if (name == "normal")
-    return vtkMeshToSDF::NORMAL;
-  return -1;
+  // the CLI's parser: the same names, the same error
+  switch (lvdif::signModeFromName(name.toStdString(), "--mesh-sign"))
+  {
+    case lvdif::SignMode::Normal: return vtkMeshToSDF::NORMAL;
+    case lvdif::SignMode::PseudoNormal: return vtkMeshToSDF::PSEUDO_NORMAL;
+    case lvdif::SignMode::Unsigned: return vtkMeshToSDF::UNSIGNED;
+    case lvdif::SignMode::WindingNumber: break;
+  }
+  return vtkMeshToSDF::WINDING_NUMBER;
 }
 
 bool askMeshImportSettings(QWidget* parent, MeshImportSettings& settings)

@@ -25,7 +25,8 @@ struct MeshImportSettings
 /// re-orient the faces; false if cancelled.
 bool askMeshImportSettings(QWidget* parent, MeshImportSettings& settings);
 
-/// "winding", "pseudo" or "normal" to a sign mode; -1 if none of them.
+/// "winding", "pseudo" or "normal" to a vtkMeshToSDF sign mode, through the
+/// CLI's parser (lvdif::signModeFromName): lvdif::Error naming --mesh-sign otherwise.
 int meshSignModeFromName(const QString& name);
 
 /// Converts the mesh, showing progress under `parent`. Returns the volume, or

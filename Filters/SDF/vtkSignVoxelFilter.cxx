@@ -27,6 +27,7 @@
 #include "vtkStreamingDemandDrivenPipeline.h"
 
 #include <algorithm>
+#include <cstdlib>
 #include <cstring>
 #include <vector>
 
@@ -158,6 +159,10 @@ void PackChunk(const lvdif::DictionaryVolume& v, std::int64_t id, std::vector<ch
 
 void UnpackChunks(lvdif::DictionaryVolume& v, const std::vector<char>& in)
 {
+  // a test hook (TestSignVoxelFilterMPI): the rank whose environment has it
+  // fails here, as a malformed message or a failed allocation would
+  lvdif::require(!std::getenv("LVDIF_TEST_SVF_UNPACK_FAILS"),
+    "vtkSignVoxelFilter: unpacking the received chunks failed (LVDIF_TEST_SVF_UNPACK_FAILS is set)");
   const std::size_t full = static_cast<std::size_t>(v.chunkEdge()) * v.chunkEdge() * v.chunkEdge();
   for (std::size_t at = 0; at < in.size();)
   {
@@ -591,42 +596,59 @@ bool vtkSignVoxelFilter::FilterSparsePiece(const lvdif::DictionaryVolume& in, vt
   lvdif::VoxelBox mine = in.bounds();
   mine.lo[a] = first;
   mine.hi[a] = last;
-  ok = LVDIFVolumeBridge::CallCore(this, [&] {
-    for (int i = 0; i < size; ++i)
-      for (int j = i + 1; j < size; ++j)
-      {
-        if (rank != i && rank != j) continue;
-        const int partner = rank == i ? j : i;
-        std::vector<char> out;
-        const lvdif::VoxelBox wanted = boxOf(partner).intersect(mine);
-        if (!wanted.empty())
-        {
-          volume->forEachChunkInBox(wanted, [&](std::int64_t id) { PackChunk(*volume, id, out); });
-        }
-        std::vector<char> got;
-        if (rank == i)
-        {
-          SendBytes(c, out, partner);
-          got = ReceiveBytes(c, partner);
-        }
-        else
-        {
-          got = ReceiveBytes(c, partner);
-          SendBytes(c, out, partner);
-        }
-        UnpackChunks(*volume, got);
-      }
-    // chunks outside this rank's request are not its consumer's: drop them
-    const lvdif::VoxelBox keep = boxOf(rank);
-    const lvdif::Voxel outside = volume->outsideVoxel();
-    for (std::int64_t id = 0; id < volume->chunkCount(); ++id)
+  // Every rank takes part in every exchange of its pairs, also after its own
+  // packing or unpacking failed (it then sends nothing and keeps nothing):
+  // a rank that left the loop early left its next partner waiting in a
+  // receive forever (three ranks or more). The ranks agree after the loop.
+  ok = true;
+  for (int i = 0; i < size; ++i)
+    for (int j = i + 1; j < size; ++j)
     {
-      if (volume->chunkBox(id).intersect(keep).empty() && !(volume->isUniform(id) && volume->uniformValue(id) == outside))
+      if (rank != i && rank != j) continue;
+      const int partner = rank == i ? j : i;
+      std::vector<char> out;
+      const lvdif::VoxelBox wanted = boxOf(partner).intersect(mine);
+      if (ok && !wanted.empty())
       {
-        volume->fillChunk(id, outside);
+        ok = LVDIFVolumeBridge::CallCore(
+          this, [&] { volume->forEachChunkInBox(wanted, [&](std::int64_t id) { PackChunk(*volume, id, out); }); });
+      }
+      if (!ok)
+      {
+        out.clear();
+      }
+      std::vector<char> got;
+      if (rank == i)
+      {
+        SendBytes(c, out, partner);
+        got = ReceiveBytes(c, partner);
+      }
+      else
+      {
+        got = ReceiveBytes(c, partner);
+        SendBytes(c, out, partner);
+      }
+      if (ok)
+      {
+        ok = LVDIFVolumeBridge::CallCore(this, [&] { UnpackChunks(*volume, got); });
       }
     }
-  });
+  if (ok)
+  {
+    // chunks outside this rank's request are not its consumer's: drop them
+    ok = LVDIFVolumeBridge::CallCore(this, [&] {
+      const lvdif::VoxelBox keep = boxOf(rank);
+      const lvdif::Voxel outside = volume->outsideVoxel();
+      for (std::int64_t id = 0; id < volume->chunkCount(); ++id)
+      {
+        if (volume->chunkBox(id).intersect(keep).empty() &&
+          !(volume->isUniform(id) && volume->uniformValue(id) == outside))
+        {
+          volume->fillChunk(id, outside);
+        }
+      }
+    });
+  }
   if (!AllOk(c, ok))
   {
     return false;

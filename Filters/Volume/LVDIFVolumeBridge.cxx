@@ -14,6 +14,7 @@
 #include "vtkExtentTranslator.h"
 #include "vtkFloatArray.h"
 #include "vtkImageData.h"
+#include "vtkMatrix3x3.h"
 #include "vtkInformation.h"
 #include "vtkInformationDoubleVectorKey.h"
 #include "vtkInformationInformationVectorKey.h"
@@ -32,6 +33,7 @@
 #include <array>
 #include <cmath>
 #include <limits>
+#include <new>
 #include <cstring>
 #include <sstream>
 #include <type_traits>
@@ -106,6 +108,13 @@ bool CallCore(vtkAlgorithm* algorithm, const std::function<void()>& work, const 
       return false;
     }
     vtkErrorWithObjectMacro(algorithm, << WithContext(context, e.what()));
+    return false;
+  }
+  catch (const std::bad_alloc&)
+  {
+    // an allocation no estimate refused first: still one error, not an
+    // exception through the pipeline (which would leave MPI peers waiting)
+    vtkErrorWithObjectMacro(algorithm, << WithContext(context, "out of memory"));
     return false;
   }
 }
@@ -678,6 +687,20 @@ std::unique_ptr<lvdif::DictionaryVolume> VolumeFromImage(
   if (!image || !sdf)
   {
     throw lvdif::Error(lvdif::ErrorCode::InvalidArgument, "no image or no SDF array");
+  }
+  // a dictionary volume is axis-aligned: a rotated or flipped image (VTK's
+  // direction matrix, e.g. a .vti's Direction) would silently lose its orientation
+  if (vtkMatrix3x3* d = image->GetDirectionMatrix())
+  {
+    if (!d->IsIdentity())
+    {
+      std::ostringstream msg;
+      msg << "the image's direction matrix is not the identity (";
+      for (int i = 0; i < 9; ++i)
+        msg << (i ? " " : "") << d->GetElement(i / 3, i % 3);
+      msg << "): a dictionary volume is axis-aligned, resample the image onto an axis-aligned grid first";
+      throw lvdif::Error(lvdif::ErrorCode::InvalidArgument, msg.str());
+    }
   }
   const lvdif::GridGeometry g = Geometry(image);
   if (sdf->GetNumberOfTuples() != g.count() || sdf->GetNumberOfComponents() != 1)

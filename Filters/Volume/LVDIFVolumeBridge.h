@@ -70,7 +70,7 @@ LVDIFFILTERSVOLUME_EXPORT std::string WithContext(const std::string& context, co
 /// Calls Core: returns true on success; on lvdif::Error reports it with
 /// vtkErrorMacro's text on `algorithm` (prefixed by `context` when given, unless
 /// the message already holds the context's quoted file name: FileError's rule) and
-/// returns false. A cancel (AbortExecute through LVDIFInterrupter) returns
+/// returns false; likewise on std::bad_alloc ("out of memory"). A cancel (AbortExecute through LVDIFInterrupter) returns
 /// false without an error, and sets `cancelled` when given.
 LVDIFFILTERSVOLUME_EXPORT bool CallCore(vtkAlgorithm* algorithm, const std::function<void()>& work,
   const std::string& context = std::string(), bool* cancelled = nullptr);
@@ -134,7 +134,8 @@ LVDIFFILTERSVOLUME_EXPORT void FillImage(
 /// Builds a dictionary volume from an image's float SDF array (any real type
 /// is converted) and optional RGBA array (1 to 4 unsigned char components).
 /// `options` supplies chunk edge, band width and dictionary; dims, origin and
-/// spacing come from the image. Throws lvdif::Error on bad input.
+/// spacing come from the image. Throws lvdif::Error on bad input, and on an
+/// image whose direction matrix is not the identity (the volume is axis-aligned).
 LVDIFFILTERSVOLUME_EXPORT std::unique_ptr<lvdif::DictionaryVolume> VolumeFromImage(
   vtkImageData* image, vtkDataArray* sdf, vtkDataArray* rgba, lvdif::VolumeOptions options);
 

@@ -80,6 +80,14 @@ for n in ("1", "0", "1048577"):
     assert not os.path.exists(sized_vol), n
 code, err = run("script", os.path.join(out, "no-such.lvs"), "--size", "1")
 assert code == 1 and err.startswith("lvdif script: --size 1: a canvas of 1 x 1 x 1"), (code, err)
+# --size with --in: refused (it was ignored: the script ran on the volume's grid),
+# before the volume or the script is read and before any output is written
+in_size_vol = os.path.join(out, "in-size.lvdv")
+code, err = run("script", os.path.join(out, "no-such.lvs"), "--in", os.path.join(out, "no-such.lvdv"), "--size", "64",
+                "--out", in_size_vol)
+assert code == 1 and err == ("lvdif script: --size (the size of an empty start canvas) cannot be used with --in "
+                             "(the script starts from that volume)"), (code, err)
+assert not os.path.exists(in_size_vol)
 code, err = run("info", os.path.join(out, "missing.lvdv"))
 assert code == 1 and "missing.lvdv" in err, (code, err)
 with open(os.path.join(out, "junk.lvdv"), "wb") as f:

@@ -443,8 +443,10 @@ Recording Editor::stopRecording()
   return r;
 }
 
-void Editor::play(const Recording& r, Interrupter& interrupter)
+void Editor::play(const Recording& r, Interrupter& interrupter, std::size_t* played)
 {
+  if (played)
+    *played = 0;
   // positions are voxels of the recorded canvas: on another one the dabs land
   // elsewhere (or outside) and the model silently differs, so refuse up front
   const Index3& d = this->Volume.dims();
@@ -489,6 +491,8 @@ void Editor::play(const Recording& r, Interrupter& interrupter)
       this->brush = e.brush;
       this->applyDabs(e.dabs, e.kind);
     }
+    if (played)
+      ++*played;
     interrupter.progress(static_cast<double>(++i) / static_cast<double>(std::max<std::size_t>(1, r.records.size())));
   }
   this->brush = saved;

@@ -9,6 +9,8 @@
 #include "lvdif/Memory.h"
 #include "lvdif/VolumeFile.h"
 
+#include "FileTestUtil.h"
+
 #include <gtest/gtest.h>
 
 #include <chrono>
@@ -38,13 +40,7 @@ struct TempDir
   ~TempDir() { (void)std::system(("rm -rf '" + path + "'").c_str()); }
 };
 
-std::string slurp(const std::string& p)
-{
-  std::ifstream in(p, std::ios::binary);
-  std::stringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
+using filetest::slurp;
 
 std::unique_ptr<DictionaryVolume> smallVolume(double r)
 {

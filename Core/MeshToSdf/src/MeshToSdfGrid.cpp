@@ -8,6 +8,7 @@
 #include <algorithm>
 #include <cmath>
 #include <string>
+#include <utility>
 
 namespace lvdif
 {
@@ -60,6 +61,30 @@ const char* toString(SignMode mode)
     case SignMode::Unsigned: return "unsigned";
   }
   return "?";
+}
+
+namespace
+{
+// both ways, so that a command line written from a mode (the CLI's "creation
+// parameters") runs again
+const std::pair<const char*, SignMode> SignNames[] = { { "normal", SignMode::Normal },
+  { "pseudo", SignMode::PseudoNormal }, { "winding", SignMode::WindingNumber } };
+}
+
+SignMode signModeFromName(const std::string& name, const std::string& option)
+{
+  for (const auto& n : SignNames)
+    if (name == n.first)
+      return n.second;
+  throw Error(ErrorCode::InvalidArgument, option + " must be normal, pseudo or winding, not '" + name + "'");
+}
+
+const char* signModeName(SignMode mode)
+{
+  for (const auto& n : SignNames)
+    if (mode == n.second)
+      return n.first;
+  return toString(mode);
 }
 
 const char* toString(MeshToSdfAccel accel)

@@ -4,6 +4,7 @@
 // mode; WindingNumber must be right on every voxel farther than 1 voxel.
 #include "../src/MeshToSdfGeometry.h"
 #include "MeshToSdfOracle.h"
+#include "lvdif/Error.h"
 #include "lvdif/MeshToSdf.h"
 
 #include <gtest/gtest.h>
@@ -266,4 +267,29 @@ TEST(MeshToSdfSign, VertexNormalsAreInterpolatedAtTheClosestPoint)
   EXPECT_EQ(wrongOut, 0u);
   EXPECT_EQ(notFlipped, 0u);
   EXPECT_EQ(faceWrong, 0u); // the control: without them the inward normals change nothing
+}
+
+// The one parser of the sign modes' command-line names (the CLI's --sign, the
+// editor's --mesh-sign): every name reads back, anything else is one error in
+// the same words (the editor had its own list and words).
+TEST(SignModeNames, EveryNameReadsBackAndOthersAreOneError)
+{
+  EXPECT_EQ(signModeFromName("normal", "--sign"), SignMode::Normal);
+  EXPECT_EQ(signModeFromName("pseudo", "--sign"), SignMode::PseudoNormal);
+  EXPECT_EQ(signModeFromName("winding", "--sign"), SignMode::WindingNumber);
+  for (const SignMode m : { SignMode::Normal, SignMode::PseudoNormal, SignMode::WindingNumber })
+    EXPECT_EQ(signModeFromName(signModeName(m), "--sign"), m) << signModeName(m);
+  for (const std::string bad : { "pseudonormal", "Winding", "", "unsigned", "winding " })
+  {
+    try
+    {
+      signModeFromName(bad, "--mesh-sign");
+      ADD_FAILURE() << "accepted '" << bad << "'";
+    }
+    catch (const Error& e)
+    {
+      EXPECT_EQ(e.code(), ErrorCode::InvalidArgument);
+      EXPECT_EQ(std::string(e.what()), "--mesh-sign must be normal, pseudo or winding, not '" + bad + "'");
+    }
+  }
 }

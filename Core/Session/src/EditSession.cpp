@@ -284,16 +284,19 @@ bool EditSession::redo()
 void EditSession::play(const Recording& r, Interrupter& interrupter)
 {
   auto lock = this->lockSource();
+  // a change only when a record was applied: a refused recording (another
+  // canvas) or one cancelled before its first record leaves the document as it was
+  std::size_t played = 0;
   try
   {
-    this->Ed->play(r, interrupter);
+    this->Ed->play(r, interrupter, &played);
   }
   catch (...)
   {
-    this->afterEdit(EditResult(), true);
+    this->afterEdit(EditResult(), played > 0);
     throw;
   }
-  this->afterEdit(EditResult(), !r.records.empty());
+  this->afterEdit(EditResult(), played > 0);
 }
 
 void EditSession::runScript(const std::string& source, const ScriptOptions& options)

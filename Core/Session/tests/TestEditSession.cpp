@@ -350,6 +350,48 @@ TEST(EditSession, RecordingPlaysBackBitExactInAnotherSession)
   EXPECT_GT(b.undoCount(), 0u);
 }
 
+// A playback that applies nothing is no change (the editor's document stays
+// unmodified); one that fails after applying records is (they stay applied).
+// Before, every failed playback counted as a change, a refused one too.
+TEST(EditSession, RefusedPlaybackIsNoChange)
+{
+  lvdif::EditSession a(sphereVolume(48, 16), cpuOptions());
+  a.startRecording();
+  lvdif::Dab d;
+  d.center = { 24, 24, 40 };
+  d.radius = 4;
+  a.dab(d);
+  const lvdif::Recording r = a.stopRecording();
+  ASSERT_EQ(r.records.size(), 1u);
+
+  // another canvas: refused up front
+  lvdif::EditSession other(sphereVolume(32, 16), cpuOptions());
+  const std::uint64_t changes = other.changeCount();
+  EXPECT_THROW(other.play(r), lvdif::Error);
+  EXPECT_EQ(other.changeCount(), changes);
+  EXPECT_EQ(other.undoCount(), 0u);
+
+  // the same canvas, with an undo or a redo that has nothing to act on
+  auto with = [&](lvdif::EditRecord::Type type, bool first) {
+    lvdif::Recording out = r;
+    lvdif::EditRecord e;
+    e.type = type;
+    out.records.insert(first ? out.records.begin() : out.records.end(), e);
+    return out;
+  };
+  lvdif::EditSession b(sphereVolume(48, 16), cpuOptions());
+  const std::uint64_t bChanges = b.changeCount();
+  // first: nothing applied
+  EXPECT_THROW(b.play(with(lvdif::EditRecord::Type::Undo, true)), lvdif::Error);
+  EXPECT_EQ(b.changeCount(), bChanges);
+  EXPECT_EQ(b.undoCount(), 0u);
+  // after the dab: the dab stays, a change
+  EXPECT_THROW(b.play(with(lvdif::EditRecord::Type::Redo, false)), lvdif::Error);
+  EXPECT_EQ(b.changeCount(), bChanges + 1);
+  EXPECT_EQ(b.undoCount(), 1u);
+  EXPECT_EQ(differences(a.volume(), b.volume()), 0);
+}
+
 TEST(EditSession, SetVolumeKeepsTheBrushAndClearsHistory)
 {
   lvdif::EditSession s(sphereVolume(32, 16), cpuOptions());

@@ -98,7 +98,9 @@ public:
   /// Plays a recording back (edits, undo and redo in order). An undo or redo
   /// with nothing to act on is Error(InvalidArgument) (the recording started
   /// from another volume or history); the records before it stay applied.
-  void play(const Recording& r, Interrupter& interrupter = nullInterrupter());
+  /// `played`, when given, counts the records applied, also when it throws
+  /// (0: nothing changed, e.g. a recording of another canvas is refused).
+  void play(const Recording& r, Interrupter& interrupter = nullInterrupter(), std::size_t* played = nullptr);
 
   /// The chunks changed by edits, undo and redo since the last call (increasing ids),
   /// independent of the volume's dirty flags (front ends report them in events).

@@ -41,6 +41,7 @@
 #include <cstdint>
 #include <limits>
 #include <memory>
+#include <string>
 
 namespace lvdif
 {
@@ -222,5 +223,14 @@ MeshToSdfStats meshToSdf(const MeshToSdfPrepared& mesh, DictionaryVolume& volume
 
 const char* toString(SignMode mode);
 const char* toString(MeshToSdfAccel accel);
+
+/// The one parser of the sign modes' command-line names (`lvdif mesh-to-sdf
+/// --sign`, `lvdif-editor --mesh-sign`): normal, pseudo, winding. Any other
+/// name is Error(InvalidArgument) "<option> must be normal, pseudo or winding,
+/// not '<name>'".
+SignMode signModeFromName(const std::string& name, const std::string& option);
+/// The command-line name of a mode (what signModeFromName reads back);
+/// toString's for Unsigned, which has none.
+const char* signModeName(SignMode mode);
 
 } // namespace lvdif

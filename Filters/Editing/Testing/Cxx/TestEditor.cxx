@@ -14,6 +14,8 @@
 #include "vtkPointData.h"
 #include "vtkUnsignedCharArray.h"
 
+#include "FileTestUtil.h"
+
 #include "lvdif/DictionaryVolume.h"
 #include "lvdif/Error.h"
 #include "lvdif/VolumeFile.h"
@@ -386,20 +388,8 @@ TEST(LVDIFEditor, LoadingAThinVolumeKeepsTheCurrentOne)
   std::remove(path.c_str());
 }
 
-namespace
-{
-std::string slurp(const std::string& path)
-{
-  std::ifstream in(path, std::ios::binary);
-  std::ostringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
-bool fileExists(const std::string& path)
-{
-  return std::ifstream(path).good();
-}
-}
+using filetest::fileExists;
+using filetest::slurp;
 
 // SaveVolume/LoadVolume go through the one file registry (before, every name
 // got .lvdv content and LoadVolume read only .lvdv): a save to each registered

@@ -1,17 +1,18 @@
-// Under `mpirun -np 2`: the ranks of a distributed sparse vtkSignVoxelFilter
-// meet in collectives; when one rank's input fails (its information, its data,
-// or it holds no volume) that rank still joins them as failed, so every rank's
-// Update fails and none waits forever. Before, the healthy rank waited in the
+// Under `mpirun -np 2` (and 3): the ranks of a distributed sparse vtkSignVoxelFilter
+// meet in collectives and pair exchanges; when one rank's input fails (its
+// information, its data, or it holds no volume) or its chunk exchange throws,
+// that rank still joins them as failed, so every rank's Update fails and none
+// waits forever. Before, the healthy rank waited in the
 // first all-reduce for the failed one (the test timed out). Also the good
 // case: both ranks filter and agree on the whole volume's statistics.
 #include "LVDIFVolumeBridge.h"
+#include "MPITestUtil.h"
 #include "vtkDataObjectAlgorithm.h"
 #include "vtkExecutive.h"
 #include "vtkFieldData.h"
 #include "vtkIdTypeArray.h"
 #include "vtkInformation.h"
 #include "vtkInformationVector.h"
-#include "vtkMPIController.h"
 #include "vtkNew.h"
 #include "vtkObjectFactory.h"
 #include "vtkSignVoxelFilter.h"
@@ -21,6 +22,7 @@
 #include "lvdif/DictionaryVolume.h"
 
 #include <cstdio>
+#include <cstdlib>
 #include <memory>
 
 namespace
@@ -85,24 +87,11 @@ vtkStandardNewMacro(FailingSparseSource);
 
 int main(int argc, char* argv[])
 {
-  vtkNew<vtkMPIController> c;
-  c->Initialize(&argc, &argv);
-  vtkMultiProcessController::SetGlobalController(c);
-  const int rank = c->GetLocalProcessId();
-  if (c->GetNumberOfProcesses() != 2)
-  {
-    std::fprintf(stderr, "usage: mpirun -np 2 %s\n", argv[0]);
-    c->Finalize();
-    return 1;
-  }
-  int failures = 0;
-  auto check = [&](bool ok, const char* what) {
-    if (!ok)
-    {
-      std::fprintf(stderr, "rank %d: FAIL %s\n", rank, what);
-      ++failures;
-    }
-  };
+  MPITestRun test(&argc, &argv);
+  vtkMPIController* c = test.controller();
+  const int rank = test.rank();
+  if (test.ranks() < 2)
+    return test.usage("mpirun -np 2 (or more) TestSignVoxelFilterMPI");
   // one Update of source -> sign filter on every rank; rank 1's source in `mode`
   auto run = [&](int mode, vtkIdType* ranksOut) {
     vtkNew<FailingSparseSource> source;
@@ -120,21 +109,24 @@ int main(int argc, char* argv[])
   };
 
   vtkIdType ranks = 0;
-  check(run(FailingSparseSource::Good, &ranks) == 1, "both inputs good: Update succeeds");
-  check(ranks == 2, "both inputs good: the filter ran on two ranks");
+  test.check(run(FailingSparseSource::Good, &ranks) == 1, "both inputs good: Update succeeds");
+  test.check(ranks == test.ranks(), "both inputs good: the filter ran on every rank");
 
   vtkObject::GlobalWarningDisplayOff(); // the expected errors
-  check(run(FailingSparseSource::FailData, nullptr) == 0, "rank 1's data fails: Update fails on every rank");
-  check(run(FailingSparseSource::NoVolume, nullptr) == 0, "rank 1 holds no volume: Update fails on every rank");
-  check(run(FailingSparseSource::FailInformation, nullptr) == 0,
+  test.check(run(FailingSparseSource::FailData, nullptr) == 0, "rank 1's data fails: Update fails on every rank");
+  test.check(run(FailingSparseSource::NoVolume, nullptr) == 0, "rank 1 holds no volume: Update fails on every rank");
+  test.check(run(FailingSparseSource::FailInformation, nullptr) == 0,
     "rank 1's information fails: Update fails on every rank");
+  // rank 1's unpacking of the first chunks it receives throws: it still takes
+  // part in its later exchanges (with three ranks, rank 2 waits for rank 1's
+  // chunks after rank 0's; before, it waited forever) and every rank fails
+  if (rank == 1)
+    setenv("LVDIF_TEST_SVF_UNPACK_FAILS", "1", 1);
+  test.check(run(FailingSparseSource::Good, nullptr) == 0, "rank 1's chunk exchange fails: Update fails on every rank");
+  if (rank == 1)
+    unsetenv("LVDIF_TEST_SVF_UNPACK_FAILS");
   // the ranks still meet after the failures
-  check(run(FailingSparseSource::Good, &ranks) == 1, "good again: Update succeeds");
+  test.check(run(FailingSparseSource::Good, &ranks) == 1, "good again: Update succeeds");
 
-  int all = 0;
-  c->AllReduce(&failures, &all, 1, vtkCommunicator::SUM_OP);
-  if (rank == 0 && all == 0)
-    std::printf("SignVoxelFilter MPI OK\n");
-  c->Finalize();
-  return all == 0 ? 0 : 1;
+  return test.finish("SignVoxelFilter MPI OK");
 }

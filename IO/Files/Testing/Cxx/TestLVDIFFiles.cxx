@@ -5,12 +5,19 @@
 // for each class (the registry is the one source of the formats).
 #include "LVDIFFiles.h"
 
+#include "FileTestUtil.h"
+
 #include "lvdif/AnalyticFill.h"
 #include "lvdif/Error.h"
 
+#include "vtkFloatArray.h"
+#include "vtkImageData.h"
+#include "vtkNew.h"
+#include "vtkPointData.h"
 #include "vtkPolyData.h"
 #include "vtkSphereSource.h"
 #include "vtkTriangleFilter.h"
+#include "vtkXMLImageDataWriter.h"
 
 #include <gtest/gtest.h>
 
@@ -78,13 +85,7 @@ TEST(LVDIFFiles, EveryVolumeFormatRoundTrips)
 
 namespace
 {
-std::string slurp(const std::string& path)
-{
-  std::ifstream in(path, std::ios::binary);
-  std::ostringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
+using filetest::slurp;
 
 /// Cancels as soon as a save has begun writing: the target's content changed,
 /// or a temporary file beside it ("<name>.tmp-...") appeared.
@@ -155,6 +156,43 @@ TEST(LVDIFFiles, UnknownExtensionsAreOneClearError)
   EXPECT_EQ(LVDIFFiles::Extension("/a.b/c.LVDV"), "lvdv");
   EXPECT_EQ(LVDIFFiles::Extension("/a.b/c"), "");
   EXPECT_NE(LVDIFFiles::DialogFilter(LVDIFFiles::Kind::Volume, true).find("(*.lvdv)"), std::string::npos);
+}
+
+// A .vti whose image is rotated (VTK writes its direction matrix as the
+// Direction attribute) is refused naming the matrix: a dictionary volume is
+// axis-aligned, and before the volume came back unrotated without a word.
+TEST(LVDIFFiles, ARotatedVtiIsRefused)
+{
+  vtkNew<vtkImageData> image;
+  image->SetDimensions(8, 8, 8);
+  image->SetDirectionMatrix(0, -1, 0, 1, 0, 0, 0, 0, 1); // 90 degrees about z
+  vtkNew<vtkFloatArray> sdf;
+  sdf->SetName("sdf");
+  sdf->SetNumberOfTuples(8 * 8 * 8);
+  sdf->Fill(1.0);
+  image->GetPointData()->SetScalars(sdf);
+  const std::string path = temp("rotated.vti");
+  vtkNew<vtkXMLImageDataWriter> writer;
+  writer->SetFileName(path.c_str());
+  writer->SetInputData(image);
+  ASSERT_EQ(writer->Write(), 1);
+  try
+  {
+    LVDIFFiles::LoadVolume(path);
+    FAIL() << "a rotated image was read as an axis-aligned volume";
+  }
+  catch (const lvdif::Error& e)
+  {
+    const std::string what = e.what();
+    EXPECT_EQ(what.find('\n'), std::string::npos) << what;
+    EXPECT_NE(what.find("'" + path + "'"), std::string::npos) << what;
+    EXPECT_NE(what.find("direction matrix is not the identity (0 -1 0 1 0 0 0 0 1)"), std::string::npos) << what;
+  }
+  // the identity reads as before
+  image->SetDirectionMatrix(1, 0, 0, 0, 1, 0, 0, 0, 1);
+  ASSERT_EQ(writer->Write(), 1);
+  EXPECT_EQ(LVDIFFiles::LoadVolume(path)->dims()[0], 8);
+  std::remove(path.c_str());
 }
 
 TEST(LVDIFFiles, EveryMeshFormatRoundTrips)

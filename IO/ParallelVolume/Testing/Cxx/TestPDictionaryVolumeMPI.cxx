@@ -3,8 +3,8 @@
 // other rank waited in the all-reduce for it forever (the test timed out).
 // Also the good case: both pieces and the index are written, and a failed
 // index (piece 0's) fails every rank's Write().
+#include "MPITestUtil.h"
 #include "vtkDictionaryVolumeReader.h"
-#include "vtkMPIController.h"
 #include "vtkNew.h"
 #include "vtkPDictionaryVolumeWriter.h"
 
@@ -40,24 +40,11 @@ int writePieces(vtkMultiProcessController* c, const std::string& input, const st
 
 int main(int argc, char* argv[])
 {
-  vtkNew<vtkMPIController> c;
-  c->Initialize(&argc, &argv);
-  vtkMultiProcessController::SetGlobalController(c);
-  const int rank = c->GetLocalProcessId();
-  int failures = 0;
-  auto check = [&](bool ok, const char* what) {
-    if (!ok)
-    {
-      std::fprintf(stderr, "rank %d: FAIL %s\n", rank, what);
-      ++failures;
-    }
-  };
-  if (argc < 2 || c->GetNumberOfProcesses() != 2)
-  {
-    std::fprintf(stderr, "usage: mpirun -np 2 %s DIR\n", argv[0]);
-    c->Finalize();
-    return 1;
-  }
+  MPITestRun run(&argc, &argv);
+  vtkMPIController* c = run.controller();
+  const int rank = run.rank();
+  if (argc < 2 || run.ranks() != 2)
+    return run.usage("mpirun -np 2 TestPDictionaryVolumeMPI DIR");
   const std::string dir = argv[1];
   const std::string good = dir + "/mpi_input.lvdv", missing = dir + "/mpi_missing.lvdv";
   const std::string okIndex = dir + "/mpi_ok.lvdvp", failedIndex = dir + "/mpi_failed.lvdvp";
@@ -74,13 +61,13 @@ int main(int argc, char* argv[])
   }
   c->Barrier();
 
-  check(writePieces(c, good, okIndex) == 1, "both inputs good: Write() answers 1");
-  check(exists(okIndex), "both inputs good: the index exists");
+  run.check(writePieces(c, good, okIndex) == 1, "both inputs good: Write() answers 1");
+  run.check(exists(okIndex), "both inputs good: the index exists");
 
   // rank 1's reader fails (no such file): both ranks return, with 0, and no index
   vtkObject::GlobalWarningDisplayOff(); // the expected reader error, once per run is enough
-  check(writePieces(c, rank == 1 ? missing : good, failedIndex) == 0, "one input failed: Write() answers 0");
-  check(!exists(failedIndex), "one input failed: no index");
+  run.check(writePieces(c, rank == 1 ? missing : good, failedIndex) == 0, "one input failed: Write() answers 0");
+  run.check(!exists(failedIndex), "one input failed: no index");
 
   // piece 0 cannot write the index (a folder has its name): every rank's
   // Write() answers 0 (before, only rank 0's did; the others answered 1)
@@ -88,12 +75,7 @@ int main(int argc, char* argv[])
   if (rank == 0)
     ::mkdir(folderIndex.c_str(), 0755);
   c->Barrier();
-  check(writePieces(c, good, folderIndex) == 0, "the index cannot be written: Write() answers 0 on every rank");
+  run.check(writePieces(c, good, folderIndex) == 0, "the index cannot be written: Write() answers 0 on every rank");
 
-  int all = 0;
-  c->AllReduce(&failures, &all, 1, vtkCommunicator::SUM_OP);
-  if (rank == 0 && all == 0)
-    std::printf("PDictionaryVolume MPI OK\n");
-  c->Finalize();
-  return all == 0 ? 0 : 1;
+  return run.finish("PDictionaryVolume MPI OK");
 }
