@@ -59,6 +59,13 @@ run chain 0 "" -- "$exe" script chain.lvs
 run elif 0 "" -- "$exe" script elif.lvs
 grep -q '^29999$' elif.out || note "elif: wrong clause: $(head -c 100 elif.out)"
 for s in parens minus blocks; do run "$s" 1 "$s.lvs:1:" -- "$exe" script "$s.lvs"; grep -q "nested too deeply" "$s.err" || note "$s: $(cat "$s.err")"; done
+# a script too large to lex and parse in the memory limit is refused before either
+# starts, output untouched (this 4 MiB chain took about 600 MiB; a few hundred MiB
+# of script ended in the out-of-memory killer)
+python3 -c 'open("huge.lvs", "w").write("x = " + "1+" * (2 << 20) + "1\n")'
+cp base.lvdv huge.lvdv
+LVDIF_MEMORY_LIMIT=256M run hugescript 1 "lexing and parsing a script of 4.00 MiB needs" -- "$exe" script huge.lvs --out huge.lvdv
+same huge.lvdv base.copy "hugescript"
 
 # --- runaway edits and hostile numbers, refused before the work, old output untouched
 for sp in 0.001 0.0037 0.01; do
