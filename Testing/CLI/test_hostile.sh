@@ -131,6 +131,22 @@ run info-dir 1 "not a regular file" -- "$exe" info adir
 mkfifo fifo.vdb
 run vdb-fifo 1 "not a regular file" -- "$exe" mesh fifo.vdb x.ply
 run vdb-missing 1 "cannot open 'missing.vdb': No such file" -- "$exe" convert missing.vdb x.lvdv
+# a distributed volume's index (.lvdvp) is read as every file is: a FIFO blocked
+# it, a folder was "empty file"; its lines are strict (comments before the magic
+# line skipped the check, a stray value or a repeated key was ignored) and CRLF
+# lines are read as LF ones (the piece's name ended in '\r': "cannot open")
+mkdir -p pv && "$exe" convert base.lvdv pv/v.lvdvp >/dev/null 2>&1 || note "cannot write pv/v.lvdvp"
+mkfifo pv/fifo.lvdvp && mkdir -p pv/dir.lvdvp
+run lvdvp-fifo 1 "not a regular file" -- "$exe" convert pv/fifo.lvdvp x.lvdv
+run lvdvp-dir 1 "not a regular file" -- "$exe" convert pv/dir.lvdvp x.lvdv
+sed 's/$/\r/' pv/v.lvdvp >pv/crlf.lvdvp
+run lvdvp-crlf 0 "" -- "$exe" convert pv/crlf.lvdvp x.lvdv
+{ echo "# no magic line"; sed 1d pv/v.lvdvp; } >pv/nomagic.lvdvp
+run lvdvp-nomagic 1 "line 3: not an LVDIF volume index" -- "$exe" convert pv/nomagic.lvdvp x.lvdv
+sed 's/^origin .*/& 7/' pv/v.lvdvp >pv/extra.lvdvp
+run lvdvp-extra 1 "origin has a value too many: '7'" -- "$exe" convert pv/extra.lvdvp x.lvdv
+{ cat pv/v.lvdvp; echo "spacing 2 2 2"; } >pv/twice.lvdvp
+run lvdvp-twice 1 "spacing given twice" -- "$exe" convert pv/twice.lvdvp x.lvdv
 # a garbage 3 GiB (sparse) mesh is refused after its head
 printf 'garbage' >big.ply && truncate -s 3G big.ply
 run bigply 1 "magic" -- "$exe" mesh-to-sdf big.ply x.lvdv
