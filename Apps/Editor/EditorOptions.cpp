@@ -1,7 +1,6 @@
 #include "EditorOptions.h"
 
 #include "LVDIFFiles.h"
-#include "lvdif/ByteStream.h"
 #include "lvdif/DictionaryVolume.h"
 #include "lvdif/Error.h"
 
@@ -36,7 +35,7 @@ void checkOutput(const char* option, const QString& path, const LVDIFFiles::Kind
              kind ? QString::fromStdString(LVDIFFiles::DialogFilter(*kind, true)) : QString("a .png picture")));
   try
   {
-    lvdif::requireWritable(p);
+    LVDIFFiles::RequireWritable(p);
   }
   catch (const lvdif::Error& e)
   {
