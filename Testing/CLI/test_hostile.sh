@@ -67,6 +67,11 @@ cp base.lvdv huge.lvdv
 LVDIF_MEMORY_LIMIT=256M run hugescript 1 "lexing and parsing a script of 4.00 MiB needs" -- "$exe" script huge.lvs --out huge.lvdv
 same huge.lvdv base.copy "hugescript"
 
+# a script that fails after its last statement (an open stroke) never says "script: done"
+printf 'canvas 16\nbegin\npoint 1 1 1\n' >openstroke.lvs
+run openstroke 1 "openstroke.lvs:2:1: 'begin' without 'end'" -- "$exe" script openstroke.lvs
+grep -q "script: done" openstroke.err && note "openstroke: 'done' before the error: $(head -c 200 openstroke.err)"
+
 # --- runaway edits and hostile numbers, refused before the work, old output untouched
 for sp in 0.001 0.0037 0.01; do
   printf 'canvas 64\nspacing %s\nline 1 1 1 %s 1 1\n' "$sp" "$((RANDOM * 1000 + 100000))" >line.lvs
