@@ -31,6 +31,9 @@ ProgressBar::~ProgressBar()
 
 void ProgressBar::start(const char* name)
 {
+  // a stage that the next one follows ran through (mesh to SDF, then the sign
+  // voxel filters, in one call): it is done
+  if (this->LastPercent >= 0 && this->LastPercent < 100) this->show(100);
   this->Stage = name ? name : "";
   this->LastPercent = -1;
   this->show(0);
