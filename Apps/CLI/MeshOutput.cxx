@@ -50,7 +50,7 @@ vtkSmartPointer<vtkPolyData> MeshVolume(const lvdif::DictionaryVolume& volume, l
   forward->SetClientData(&interrupter);
   forward->SetCallback([](vtkObject* caller, unsigned long, void* client, void* call) {
     auto* in = static_cast<lvdif::Interrupter*>(client);
-    in->progress(std::min(*static_cast<double*>(call), 0.99)); // "done" only by end(), below
+    in->progress(*static_cast<double*>(call)); // "done" only by end(), below
     if (in->wasInterrupted()) static_cast<vtkAlgorithm*>(caller)->SetAbortExecute(1);
   });
   mc->AddObserver(vtkCommand::ProgressEvent, forward);

@@ -1,5 +1,6 @@
 #include "ProgressBar.h"
 
+#include <algorithm>
 #include <atomic>
 #include <csignal>
 #include <cstdio>
@@ -30,14 +31,23 @@ ProgressBar::~ProgressBar()
 
 void ProgressBar::start(const char* name)
 {
+  // a stage that the next one follows ran through (mesh to SDF, then the sign
+  // voxel filters, in one call): it is done
+  if (this->LastPercent >= 0 && this->LastPercent < 100) this->show(100);
   this->Stage = name ? name : "";
   this->LastPercent = -1;
-  this->progress(0.0);
+  this->show(0);
 }
 
 void ProgressBar::progress(double fraction)
 {
-  const int percent = static_cast<int>(fraction * 100.0 + 0.5);
+  // 100 % ("done") only through end(): a stage whose work all ran can still
+  // fail (a script's open stroke said "script: done", then its error)
+  this->show(std::min(static_cast<int>(fraction * 100.0 + 0.5), 99));
+}
+
+void ProgressBar::show(int percent)
+{
   if (percent == this->LastPercent || (!this->Tty && percent != 100 && percent != 0))
   {
     return;
@@ -64,5 +74,5 @@ bool ProgressBar::wasInterrupted() const
 
 void ProgressBar::end()
 {
-  if (this->LastPercent < 100) this->progress(1.0);
+  if (this->LastPercent < 100) this->show(100);
 }

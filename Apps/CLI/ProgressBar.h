@@ -18,6 +18,7 @@ public:
   void end() override;
 
 private:
+  void show(int percent);
   std::string Stage;
   int LastPercent = -1;
   bool Tty = false;

@@ -2,7 +2,6 @@
 
 #include "LVDIFFiles.h"
 
-#include "lvdif/ByteStream.h"
 #include "lvdif/Error.h"
 
 std::string Extension(const std::string& path)
@@ -21,7 +20,7 @@ void CheckVolumeOutput(const std::string& path)
   if (!f || f->writerClass.empty())
     throw lvdif::Error(lvdif::ErrorCode::InvalidArgument,
       "cannot write '" + path + "': not a volume format (" + LVDIFFiles::DialogFilter(LVDIFFiles::Kind::Volume, true) + ")");
-  lvdif::requireWritable(path);
+  LVDIFFiles::RequireWritable(path);
 }
 
 void SaveAnyVolume(const lvdif::DictionaryVolume& volume, const std::string& path,

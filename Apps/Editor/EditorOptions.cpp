@@ -2,7 +2,6 @@
 
 #include "LVDIFFiles.h"
 #include "MeshImport.h"
-#include "lvdif/ByteStream.h"
 #include "lvdif/DictionaryVolume.h"
 #include "lvdif/Error.h"
 
@@ -37,7 +36,7 @@ void checkOutput(const char* option, const QString& path, const LVDIFFiles::Kind
              kind ? QString::fromStdString(LVDIFFiles::DialogFilter(*kind, true)) : QString("a .png picture")));
   try
   {
-    lvdif::requireWritable(p);
+    LVDIFFiles::RequireWritable(p);
   }
   catch (const lvdif::Error& e)
   {

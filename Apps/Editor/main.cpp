@@ -9,6 +9,7 @@
 #include <QTimer>
 #include <QVTKOpenGLNativeWidget.h>
 
+#include <clocale>
 #include <cstdio>
 
 int main(int argc, char* argv[])
@@ -16,6 +17,11 @@ int main(int argc, char* argv[])
   // Before the QApplication (build-notes 2d).
   QSurfaceFormat::setDefaultFormat(QVTKOpenGLNativeWidget::defaultFormat());
   QApplication app(argc, argv);
+  // QApplication takes the C library's locale from the environment; under a
+  // comma-decimal one (de_DE) strtod read a mesh's or script's "0.5" as 0 or
+  // refused it, and printf wrote recordings with "0,5". Numbers in files are C
+  // text; Qt's own number display follows QLocale, which this leaves alone.
+  std::setlocale(LC_NUMERIC, "C");
   QApplication::setApplicationName("lvdif-editor");
   QApplication::setOrganizationName("LVDIF");
   const EditorOptions options = parseEditorOptions(app.arguments());

@@ -162,6 +162,13 @@ std::string DialogFilter(Kind kind, bool forSaving)
   return std::string(kind == Kind::Volume ? "Volumes" : "Meshes") + " (" + all + ")" + each;
 }
 
+void RequireWritable(const std::string& path)
+{
+  lvdif::requireWritable(path);
+  // a single process writes piece 0 (ranks their own, each checked by its writer)
+  if (Extension(path) == "lvdvp") lvdif::requireWritable(vtkPDictionaryVolumeWriter::PieceFilePath(path, 0));
+}
+
 std::shared_ptr<lvdif::DictionaryVolume> LoadVolume(const std::string& path, lvdif::Interrupter& interrupter)
 {
   const Format* f = Find(path, Kind::Volume);
@@ -235,7 +242,7 @@ void SaveVolume(const std::shared_ptr<lvdif::DictionaryVolume>& volume, const st
 {
   const Format* f = Find(path, Kind::Volume);
   if (!f || f->writerClass.empty()) unknown(path, Kind::Volume, true);
-  lvdif::requireWritable(path); // before any work (a .vti's dense conversion), in the CLI's words
+  RequireWritable(path); // before any work (a .vti's dense conversion), in the CLI's words
   vtkNew<vtkSparseDictionaryVolume> sparse;
   sparse->SetVolume(volume);
   vtkNew<vtkTrivialProducer> source;

@@ -56,6 +56,12 @@ LVDIFIOFILES_EXPORT const Format* Find(const std::string& path, Kind kind);
 /// that can be read (forSaving false) or written (true), an "all" entry first.
 LVDIFIOFILES_EXPORT std::string DialogFilter(Kind kind, bool forSaving);
 
+/// Throws lvdif::Error (lvdif::requireWritable's words) unless every file a
+/// save to `path` writes can be written: the path, and for a distributed volume
+/// (.lvdvp) also its piece beside it (a piece that is a folder was found after
+/// the work). Front ends call it before any work.
+LVDIFIOFILES_EXPORT void RequireWritable(const std::string& path);
+
 /// Reads a volume by extension. Throws lvdif::Error naming the file and the
 /// problem (unknown extension, the reader's own error), Cancelled when the
 /// interrupter says so.

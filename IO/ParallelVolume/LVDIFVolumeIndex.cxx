@@ -1,10 +1,13 @@
 #include "LVDIFVolumeIndex.h"
 
+#include "lvdif/ByteStream.h"
 #include "lvdif/Error.h"
+#include "lvdif/Memory.h"
 
 #include <cstdio>
 #include <fstream>
 #include <iomanip>
+#include <set>
 #include <sstream>
 
 namespace lvdifvtk
@@ -45,34 +48,53 @@ std::string pieceFileName(const std::string& indexPath, int piece)
 
 VolumeIndex readVolumeIndex(const std::string& path)
 {
-  std::ifstream in(path);
-  if (!in)
-    throw lvdif::Error(lvdif::ErrorCode::IoFailure, "cannot open index '" + path + "'");
+  // the project's file check: a FIFO blocked std::ifstream, a folder read as an empty file
+  lvdif::FileSource source(path);
+  lvdif::requireMemory(source.size(), "reading the index " + path);
+  std::string text(static_cast<std::size_t>(source.size()), '\0');
+  if (!text.empty())
+    source.read(0, &text[0], text.size());
+  std::istringstream in(text);
   VolumeIndex index;
   std::string line;
   int lineNo = 0, declaredPieces = -1;
-  bool haveWhole = false, haveOrigin = false, haveSpacing = false;
+  bool haveMagic = false, haveWhole = false, haveOrigin = false, haveSpacing = false;
+  std::set<std::string> seen;
   while (std::getline(in, line))
   {
     ++lineNo;
+    if (!line.empty() && line.back() == '\r')
+      line.pop_back(); // CRLF (an index edited on Windows): the piece's file name ended in '\r'
     if (line.empty() || line[0] == '#')
       continue;
     std::istringstream ls(line);
     std::string key;
     ls >> key;
-    if (lineNo == 1)
+    // every line but a piece holds its values only (a stray one was ignored)
+    auto complete = [&] {
+      std::string extra;
+      if (ls >> extra)
+        fail(path, lineNo, key + " has a value too many: '" + extra.substr(0, 40) + "'");
+    };
+    if (!haveMagic)
     {
+      // the first line that is not a comment (comments before it skipped the check)
       if (key != MAGIC || !(ls >> index.version))
         fail(path, lineNo, std::string("not an LVDIF volume index (expected '") + MAGIC + " <version>')");
       if (index.version != 1)
         fail(path, lineNo, "unsupported index version " + std::to_string(index.version) + " (this reader knows 1)");
+      complete();
+      haveMagic = true;
       continue;
     }
+    if (key != "piece" && !seen.insert(key).second)
+      fail(path, lineNo, key + " given twice"); // the last one silently won
     if (key == "whole_extent")
     {
       for (int& v : index.wholeExtent)
         if (!(ls >> v))
           fail(path, lineNo, "whole_extent needs 6 integers");
+      complete();
       if (!extentIsValid(index.wholeExtent))
         fail(path, lineNo, "empty whole_extent");
       haveWhole = true;
@@ -83,12 +105,14 @@ VolumeIndex readVolumeIndex(const std::string& path)
       for (int a = 0; a < 3; ++a)
         if (!(ls >> v[a]))
           fail(path, lineNo, key + " needs 3 numbers");
+      complete();
       (key == "origin" ? haveOrigin : haveSpacing) = true;
     }
     else if (key == "pieces")
     {
       if (!(ls >> declaredPieces) || declaredPieces < 1 || declaredPieces > (1 << 20))
         fail(path, lineNo, "pieces needs a count in 1..1048576");
+      complete();
     }
     else if (key == "piece")
     {
@@ -105,11 +129,11 @@ VolumeIndex readVolumeIndex(const std::string& path)
     }
     else
     {
-      fail(path, lineNo, "unknown key '" + key + "'");
+      fail(path, lineNo, "unknown key '" + key.substr(0, 40) + "'");
     }
   }
-  if (lineNo == 0)
-    fail(path, 0, "empty file");
+  if (!haveMagic)
+    fail(path, 0, lineNo == 0 ? "empty file" : std::string("no '") + MAGIC + " <version>' line");
   if (!haveWhole || !haveOrigin || !haveSpacing)
     fail(path, 0, "whole_extent, origin and spacing are required");
   if (declaredPieces != static_cast<int>(index.pieces.size()))

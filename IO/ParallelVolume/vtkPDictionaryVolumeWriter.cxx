@@ -180,11 +180,15 @@ vtkTypeBool vtkPDictionaryVolumeWriter::ProcessRequest(
   return this->Superclass::ProcessRequest(request, inputVector, outputVector);
 }
 
+std::string vtkPDictionaryVolumeWriter::PieceFilePath(const std::string& indexPath, int piece)
+{
+  return lvdifvtk::directoryOf(indexPath) + lvdifvtk::pieceFileName(indexPath, piece);
+}
+
 bool vtkPDictionaryVolumeWriter::WritePiece(vtkSparseDictionaryVolume* sparse, const int ext[6])
 {
   // the piece's voxels as they are stored (keys copied, nothing re-encoded)
-  const std::string path =
-    lvdifvtk::directoryOf(this->FileName) + lvdifvtk::pieceFileName(this->FileName, this->Piece);
+  const std::string path = PieceFilePath(this->FileName, this->Piece);
   lvdif::VolumeFileWriteOptions options;
   options.compressionLevel = this->CompressionLevel;
   if (!this->VolumeName.empty()) options.metadata["name"] = this->VolumeName;
@@ -215,7 +219,7 @@ bool vtkPDictionaryVolumeWriter::WritePiece(vtkImageData* image, const int ext[6
   }
   vtkNew<vtkDictionaryVolumeWriter> w;
   w->SetInputData(piece);
-  w->SetFileName((lvdifvtk::directoryOf(this->FileName) + lvdifvtk::pieceFileName(this->FileName, this->Piece)).c_str());
+  w->SetFileName(PieceFilePath(this->FileName, this->Piece).c_str());
   w->SetBandWidth(this->BandWidth);
   w->SetChunkEdge(this->ChunkEdge);
   w->SetCompressionLevel(this->CompressionLevel);

@@ -90,6 +90,10 @@ public:
   /// The extent of `piece` of `numberOfPieces` of `wholeExtent` (the translator's block split, no ghosts).
   static void PieceExtent(const int wholeExtent[6], int piece, int numberOfPieces, int extent[6]);
 
+  /// The file piece `piece` is written to, beside the index `indexPath`
+  /// (name_<piece>.lvdv): what a save checks before the work.
+  static std::string PieceFilePath(const std::string& indexPath, int piece);
+
 protected:
   vtkPDictionaryVolumeWriter();
   ~vtkPDictionaryVolumeWriter() override;

@@ -59,6 +59,18 @@ run chain 0 "" -- "$exe" script chain.lvs
 run elif 0 "" -- "$exe" script elif.lvs
 grep -q '^29999$' elif.out || note "elif: wrong clause: $(head -c 100 elif.out)"
 for s in parens minus blocks; do run "$s" 1 "$s.lvs:1:" -- "$exe" script "$s.lvs"; grep -q "nested too deeply" "$s.err" || note "$s: $(cat "$s.err")"; done
+# a script too large to lex and parse in the memory limit is refused before either
+# starts, output untouched (this 4 MiB chain took about 600 MiB; a few hundred MiB
+# of script ended in the out-of-memory killer)
+python3 -c 'open("huge.lvs", "w").write("x = " + "1+" * (2 << 20) + "1\n")'
+cp base.lvdv huge.lvdv
+LVDIF_MEMORY_LIMIT=256M run hugescript 1 "lexing and parsing a script of 4.00 MiB needs" -- "$exe" script huge.lvs --out huge.lvdv
+same huge.lvdv base.copy "hugescript"
+
+# a script that fails after its last statement (an open stroke) never says "script: done"
+printf 'canvas 16\nbegin\npoint 1 1 1\n' >openstroke.lvs
+run openstroke 1 "openstroke.lvs:2:1: 'begin' without 'end'" -- "$exe" script openstroke.lvs
+grep -q "script: done" openstroke.err && note "openstroke: 'done' before the error: $(head -c 200 openstroke.err)"
 
 # --- runaway edits and hostile numbers, refused before the work, old output untouched
 for sp in 0.001 0.0037 0.01; do
@@ -124,6 +136,28 @@ run info-dir 1 "not a regular file" -- "$exe" info adir
 mkfifo fifo.vdb
 run vdb-fifo 1 "not a regular file" -- "$exe" mesh fifo.vdb x.ply
 run vdb-missing 1 "cannot open 'missing.vdb': No such file" -- "$exe" convert missing.vdb x.lvdv
+# a distributed volume's index (.lvdvp) is read as every file is: a FIFO blocked
+# it, a folder was "empty file"; its lines are strict (comments before the magic
+# line skipped the check, a stray value or a repeated key was ignored) and CRLF
+# lines are read as LF ones (the piece's name ended in '\r': "cannot open")
+mkdir -p pv && "$exe" convert base.lvdv pv/v.lvdvp >/dev/null 2>&1 || note "cannot write pv/v.lvdvp"
+mkfifo pv/fifo.lvdvp && mkdir -p pv/dir.lvdvp
+run lvdvp-fifo 1 "not a regular file" -- "$exe" convert pv/fifo.lvdvp x.lvdv
+run lvdvp-dir 1 "not a regular file" -- "$exe" convert pv/dir.lvdvp x.lvdv
+sed 's/$/\r/' pv/v.lvdvp >pv/crlf.lvdvp
+run lvdvp-crlf 0 "" -- "$exe" convert pv/crlf.lvdvp x.lvdv
+{ echo "# no magic line"; sed 1d pv/v.lvdvp; } >pv/nomagic.lvdvp
+run lvdvp-nomagic 1 "line 3: not an LVDIF volume index" -- "$exe" convert pv/nomagic.lvdvp x.lvdv
+sed 's/^origin .*/& 7/' pv/v.lvdvp >pv/extra.lvdvp
+run lvdvp-extra 1 "origin has a value too many: '7'" -- "$exe" convert pv/extra.lvdvp x.lvdv
+{ cat pv/v.lvdvp; echo "spacing 2 2 2"; } >pv/twice.lvdvp
+run lvdvp-twice 1 "spacing given twice" -- "$exe" convert pv/twice.lvdvp x.lvdv
+# a distributed volume's piece that cannot be written is refused before the work
+# (it was found after the conversion: "piece 0: cannot write ...")
+mkdir -p pv/busy_0.lvdv
+printf 'OFF\n4 4 0\n0 0 0\n1 0 0\n0 1 0\n0 0 1\n3 0 2 1\n3 0 1 3\n3 0 3 2\n3 1 2 3\n' >tet.off
+run lvdvp-piece 1 "cannot write 'pv/busy_0.lvdv': not a regular file" -- "$exe" mesh-to-sdf tet.off pv/busy.lvdvp --dims 64
+grep -q "mesh to SDF" lvdvp-piece.err && note "lvdvp-piece: converted before refusing: $(head -c 300 lvdvp-piece.err)"
 # a garbage 3 GiB (sparse) mesh is refused after its head
 printf 'garbage' >big.ply && truncate -s 3G big.ply
 run bigply 1 "magic" -- "$exe" mesh-to-sdf big.ply x.lvdv

@@ -26,6 +26,7 @@
 #include <functional>
 #include <future>
 #include <memory>
+#include <numeric>
 #include <sstream>
 #include <utility>
 
@@ -343,12 +344,87 @@ float deepInsideLimit(float oneVoxel, float band)
   return -std::min(oneVoxel, 0.5f * band);
 }
 
+/// stats.warnings when some parts of the mesh vanish while others do not: a
+/// connected part (faces joined by welded vertices) smaller than a voxel on
+/// every axis whose open bounds hold no grid point on some axis has no voxel
+/// centre inside it, so it leaves no surface (a small detached part was lost without
+/// a word). A part larger than a voxel that still holds no voxel centre (a
+/// thin wire or plate) is not detected.
+void warnIfPartsVanish(const MeshToSdfPrepared& mesh, const GridGeometry& grid, MeshToSdfStats& stats)
+{
+  const detail::meshtosdf::PreparedMesh& m = mesh.impl().mesh;
+  const std::size_t nv = m.vertices, nt = m.welded.size();
+  if (nt == 0) return;
+  std::vector<std::uint32_t> root(nv);
+  std::iota(root.begin(), root.end(), 0u);
+  auto find = [&](std::uint32_t a) {
+    while (root[a] != a) a = root[a] = root[root[a]]; // path halving
+    return a;
+  };
+  for (std::size_t t = 0; t < nt; ++t)
+    for (int k = 1; k < 3; ++k)
+    {
+      const std::uint32_t a = find(m.welded[t][0]), b = find(m.welded[t][k]);
+      if (a != b) root[std::max(a, b)] = std::min(a, b);
+    }
+  // each part's bounds, indexed by a compact part number
+  constexpr std::uint32_t none = 0xffffffffu;
+  std::vector<std::uint32_t> part(nv, none);
+  std::vector<std::array<float, 6>> box;
+  for (std::size_t t = 0; t < nt; ++t)
+    for (int k = 0; k < 3; ++k)
+    {
+      const std::uint32_t v = m.welded[t][k], r = find(v);
+      if (part[r] == none)
+      {
+        part[r] = static_cast<std::uint32_t>(box.size());
+        const Vec3f& p = m.points[v];
+        box.push_back({ p[0], p[1], p[2], p[0], p[1], p[2] });
+      }
+      std::array<float, 6>& b = box[part[r]];
+      const Vec3f& p = m.points[v];
+      for (int a = 0; a < 3; ++a)
+      {
+        b[a] = std::min(b[a], p[a]);
+        b[3 + a] = std::max(b[3 + a], p[a]);
+      }
+    }
+  std::size_t vanish = 0;
+  for (const auto& b : box)
+  {
+    bool small = true, between = false;
+    for (int a = 0; a < 3; ++a)
+    {
+      const double h = grid.spacing[a], lo = (b[a] - grid.origin[a]) / h, hi = (b[3 + a] - grid.origin[a]) / h;
+      small = small && b[3 + a] - b[a] < h;
+      // no grid point k with lo < k < hi: one on the bounds is on the part's
+      // surface at most, never inside it (a fitted grid puts one on the mesh's
+      // bounds, and a centred axis one on its middle)
+      between = between || std::floor(lo) + 1 >= hi;
+    }
+    vanish += small && between;
+  }
+  if (vanish == 0) return;
+  std::ostringstream w;
+  w << "mesh to SDF: " << vanish << " of " << box.size()
+    << " parts of the mesh (faces joined by shared vertices) are smaller than a voxel (spacing "
+    << std::min({ grid.spacing[0], grid.spacing[1], grid.spacing[2] })
+    << ") and hold no voxel centre, so they leave no surface; use more voxels (a higher resolution / --dims)";
+  stats.warnings.push_back(w.str());
+}
+
 /// stats.warnings when a signed field over the whole grid has no voxel
-/// inside (`inside`: voxels deeper than deepInsideLimit inside the surface).
+/// inside (`inside`: voxels deeper than deepInsideLimit inside the surface);
+/// when some voxel is inside, the parts that vanish (warnIfPartsVanish).
 void warnIfNothingInside(const MeshToSdfPrepared& mesh, const GridGeometry& grid, const MeshToSdfOptions& options,
   std::int64_t inside, MeshToSdfStats& stats)
 {
-  if (options.sign == SignMode::Unsigned || inside > 0) return;
+  if (options.sign == SignMode::Unsigned) return;
+  if (inside > 0)
+  {
+    warnIfPartsVanish(mesh, grid, stats);
+    return;
+  }
   const double h = std::min({ grid.spacing[0], grid.spacing[1], grid.spacing[2] });
   std::ostringstream w;
   if (mesh.boundaryEdges() > 0)

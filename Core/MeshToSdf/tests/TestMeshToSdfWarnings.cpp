@@ -124,6 +124,56 @@ TEST(MeshToSdfWarnings, VoxelsLargerThanTheParts)
   EXPECT_TRUE(fine.stats.warnings.empty());
 }
 
+// A part smaller than a voxel beside a large one: the large one has voxels
+// inside, the small one none (so no surface), and it vanished without a word
+// (the warning came only when nothing at all was inside). The premise is read
+// from the output: no voxel within a voxel of the small box is negative.
+TEST(MeshToSdfWarnings, PartsSmallerThanAVoxelVanish)
+{
+  TriangleMesh m = makeBoxMesh({ 0.0f, 0.0f, 0.0f }, { 6.0f, 6.0f, 6.0f });
+  const TriangleMesh small = makeBoxMesh({ 10.0f, 3.0f, 3.0f }, { 10.1f, 3.1f, 3.1f });
+  const auto n = static_cast<std::uint32_t>(m.points.size());
+  m.points.insert(m.points.end(), small.points.begin(), small.points.end());
+  for (auto t : small.triangles) m.triangles.push_back({ t[0] + n, t[1] + n, t[2] + n });
+  // negative voxels within one voxel of the small box, and deep inside voxels anywhere
+  auto run = [&](std::int64_t res, std::int64_t& nearSmall) {
+    const GridGeometry g = fitGridToMesh(m, res, 2.0);
+    std::vector<float> out(static_cast<std::size_t>(g.count()));
+    MeshToSdfOptions o;
+    o.device = Device::Cpu;
+    const MeshToSdfStats st = meshToSdf(m, FloatGridView{ out.data(), g }, o);
+    nearSmall = 0;
+    for (std::int64_t k = 0; k < g.dims[2]; ++k)
+      for (std::int64_t j = 0; j < g.dims[1]; ++j)
+        for (std::int64_t i = 0; i < g.dims[0]; ++i)
+        {
+          const double p[3] = { g.origin[0] + i * g.spacing[0], g.origin[1] + j * g.spacing[1],
+            g.origin[2] + k * g.spacing[2] };
+          const double lo[3] = { 10.0, 3.0, 3.0 }, hi[3] = { 10.1, 3.1, 3.1 };
+          bool near = true;
+          for (int a = 0; a < 3; ++a) near = near && p[a] > lo[a] - g.spacing[a] && p[a] < hi[a] + g.spacing[a];
+          nearSmall += near && out[static_cast<std::size_t>(g.index(i, j, k))] < 0.0f;
+        }
+    EXPECT_GT(deepInside(out), 0) << res; // the large box is there
+    return st;
+  };
+  std::int64_t nearSmall = -1;
+  const MeshToSdfStats coarse = run(24, nearSmall);
+  ASSERT_EQ(nearSmall, 0); // the premise: the small box left no inside voxel
+  EXPECT_TRUE(mentions(coarse, "1 of 2 parts of the mesh")) << (coarse.warnings.empty() ? "" : coarse.warnings[0]);
+  EXPECT_TRUE(mentions(coarse, "more voxels"));
+  // the option it names helps: at 0.05-voxel spacing the small box has voxels inside
+  const MeshToSdfStats fine = run(256, nearSmall);
+  EXPECT_GT(nearSmall, 0);
+  EXPECT_TRUE(fine.warnings.empty()) << fine.warnings[0];
+  // into a dictionary volume too
+  const GridGeometry g = fitGridToMesh(m, 24, 2.0);
+  DictionaryVolume vol(volumeOptionsOn(g));
+  MeshToSdfOptions o;
+  o.device = Device::Cpu;
+  EXPECT_TRUE(mentions(meshToSdf(m, vol, o), "1 of 2 parts of the mesh"));
+}
+
 TEST(MeshToSdfWarnings, NoneForAClosedMeshOrAPiece)
 {
   const TriangleMesh sphere = makeSphereMesh(0, 0, 0, 1, 10, 20);

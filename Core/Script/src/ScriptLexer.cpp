@@ -2,6 +2,7 @@
 // (statement ends); '#' starts a comment to the end of the line.
 #include "ScriptAst.h"
 
+#include "lvdif/Memory.h"
 #include "lvdif/Script.h"
 
 #include <cctype>
@@ -15,6 +16,14 @@ namespace detail::script
 
 std::vector<Token> lex(const std::string& src)
 {
+  // Every token takes at least one byte of the source and becomes at most one
+  // syntax node and one chain operator, so the source's size bounds what
+  // lexing and parsing hold (tokens with the vector's growth, then the tree):
+  // checked before either starts. A 10 MiB chain of "1+" took 1.5 GiB, and a
+  // script of a few hundred MiB ended in the out-of-memory killer.
+  constexpr std::uint64_t perByte = 2 * sizeof(Token) + sizeof(Expr) + sizeof(Expr::Op);
+  requireMemory(checkedMultiply(src.size() + 1, perByte, "script"),
+    "lexing and parsing a script of " + formatBytes(src.size()));
   std::vector<Token> out;
   int line = 1, col = 1;
   std::size_t i = 0;
