@@ -352,43 +352,7 @@ float deepInsideLimit(float oneVoxel, float band)
 /// thin wire or plate) is not detected.
 void warnIfPartsVanish(const MeshToSdfPrepared& mesh, const GridGeometry& grid, MeshToSdfStats& stats)
 {
-  const detail::meshtosdf::PreparedMesh& m = mesh.impl().mesh;
-  const std::size_t nv = m.vertices, nt = m.welded.size();
-  if (nt == 0) return;
-  std::vector<std::uint32_t> root(nv);
-  std::iota(root.begin(), root.end(), 0u);
-  auto find = [&](std::uint32_t a) {
-    while (root[a] != a) a = root[a] = root[root[a]]; // path halving
-    return a;
-  };
-  for (std::size_t t = 0; t < nt; ++t)
-    for (int k = 1; k < 3; ++k)
-    {
-      const std::uint32_t a = find(m.welded[t][0]), b = find(m.welded[t][k]);
-      if (a != b) root[std::max(a, b)] = std::min(a, b);
-    }
-  // each part's bounds, indexed by a compact part number
-  constexpr std::uint32_t none = 0xffffffffu;
-  std::vector<std::uint32_t> part(nv, none);
-  std::vector<std::array<float, 6>> box;
-  for (std::size_t t = 0; t < nt; ++t)
-    for (int k = 0; k < 3; ++k)
-    {
-      const std::uint32_t v = m.welded[t][k], r = find(v);
-      if (part[r] == none)
-      {
-        part[r] = static_cast<std::uint32_t>(box.size());
-        const Vec3f& p = m.points[v];
-        box.push_back({ p[0], p[1], p[2], p[0], p[1], p[2] });
-      }
-      std::array<float, 6>& b = box[part[r]];
-      const Vec3f& p = m.points[v];
-      for (int a = 0; a < 3; ++a)
-      {
-        b[a] = std::min(b[a], p[a]);
-        b[3 + a] = std::max(b[3 + a], p[a]);
-      }
-    }
+  const std::vector<std::array<float, 6>>& box = mesh.impl().partBounds();
   std::size_t vanish = 0;
   for (const auto& b : box)
   {

@@ -8,6 +8,7 @@
 #include "lvdif/MeshToSdf.h"
 #include "lvdif/TriangleMesh.h"
 
+#include <array>
 #include <cstdint>
 #include <functional>
 #include <memory>
@@ -370,6 +371,10 @@ struct MeshToSdfPrepared::Impl
   void pseudoNormals(double& seconds);
   /// Whether the winding-number structures are built already.
   bool hasWindingSigner();
+  /// The bounds (min x, y, z, max x, y, z) of each connected part of the
+  /// mesh (faces joined by welded vertices), found on first use (under Lock):
+  /// a property of the mesh, not of a call's grid (warnIfPartsVanish).
+  const std::vector<std::array<float, 6>>& partBounds();
   /// The mesh (and, when asked, the winding structures) on the GPU, uploaded
   /// on first use and kept until the prepared mesh is destroyed. The winding
   /// part may be added later (once) to a copy uploaded without it: sessions
@@ -385,6 +390,7 @@ private:
   std::unique_ptr<detail::meshtosdf::WindingSigner> Winding;
   std::unique_ptr<std::vector<detail::meshtosdf::FarCone>> FarConesOfBvh;
   std::unique_ptr<detail::meshtosdf_cuda::DeviceMesh> Device;
+  std::unique_ptr<std::vector<std::array<float, 6>>> Parts;
 };
 
 } // namespace lvdif

@@ -7,10 +7,12 @@
 #include "MeshToSdfInternal.h"
 #include "MeshToSdfNearest.h"
 
+#include <algorithm>
 #include <chrono>
 #include <cstdio>
 #include <cstdlib>
 #include <mutex>
+#include <numeric>
 
 namespace lvdif
 {
@@ -113,6 +115,53 @@ bool MeshToSdfPrepared::Impl::hasWindingSigner()
 {
   std::lock_guard<std::mutex> lock(this->Lock);
   return this->Winding != nullptr;
+}
+
+const std::vector<std::array<float, 6>>& MeshToSdfPrepared::Impl::partBounds()
+{
+  std::lock_guard<std::mutex> lock(this->Lock);
+  if (this->Parts) return *this->Parts;
+  const double t0 = now();
+  const PreparedMesh& m = this->mesh;
+  const std::size_t nv = m.vertices, nt = m.welded.size();
+  auto parts = std::make_unique<std::vector<std::array<float, 6>>>();
+  std::vector<std::array<float, 6>>& box = *parts;
+  // union-find over the welded vertices (path halving, the smaller root kept)
+  std::vector<std::uint32_t> root(nv);
+  std::iota(root.begin(), root.end(), 0u);
+  auto find = [&](std::uint32_t a) {
+    while (root[a] != a) a = root[a] = root[root[a]];
+    return a;
+  };
+  for (std::size_t t = 0; t < nt; ++t)
+    for (int k = 1; k < 3; ++k)
+    {
+      const std::uint32_t a = find(m.welded[t][0]), b = find(m.welded[t][k]);
+      if (a != b) root[std::max(a, b)] = std::min(a, b);
+    }
+  // each part's bounds, indexed by a compact part number
+  constexpr std::uint32_t none = 0xffffffffu;
+  std::vector<std::uint32_t> part(nv, none);
+  for (std::size_t t = 0; t < nt; ++t)
+    for (int k = 0; k < 3; ++k)
+    {
+      const std::uint32_t v = m.welded[t][k], r = find(v);
+      const Vec3f& p = m.points[v];
+      if (part[r] == none)
+      {
+        part[r] = static_cast<std::uint32_t>(box.size());
+        box.push_back({ p[0], p[1], p[2], p[0], p[1], p[2] });
+      }
+      std::array<float, 6>& b = box[part[r]];
+      for (int a = 0; a < 3; ++a)
+      {
+        b[a] = std::min(b[a], p[a]);
+        b[3 + a] = std::max(b[3 + a], p[a]);
+      }
+    }
+  trace("the mesh's connected parts (first call with something inside)", now() - t0);
+  this->Parts = std::move(parts);
+  return *this->Parts;
 }
 
 const detail::meshtosdf_cuda::DeviceMesh& MeshToSdfPrepared::Impl::deviceMesh(
