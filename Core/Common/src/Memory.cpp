@@ -1,4 +1,5 @@
 #include "lvdif/Memory.h"
+#include "lvdif/CNumbers.h"
 
 #include "lvdif/Error.h"
 
@@ -26,7 +27,7 @@ namespace lvdif
 static std::uint64_t parseSize(const char* text)
 {
   char* end = nullptr;
-  const double v = std::strtod(text, &end);
+  const double v = strtodC(text, &end);
   if (end == text || !std::isfinite(v) || v <= 0)
   {
     return 0;

@@ -5,6 +5,7 @@
 // original volume. We also accept a minus sign where a number starts (the
 // original's '-' separator cannot write negative numbers, so none occur).
 #include "lvdif/Recording.h"
+#include "lvdif/CNumbers.h"
 
 #include "lvdif/EditLimits.h"
 #include "lvdif/Error.h"
@@ -56,7 +57,7 @@ bool parsePoint(const std::string& s, double v[4])
     }
     const char* start = s.c_str() + i;
     char* end = nullptr;
-    v[k] = std::strtod(start, &end);
+    v[k] = strtodC(start, &end);
     if (end == start || !std::isfinite(v[k]))
       return false;
     i += static_cast<std::size_t>(end - start);

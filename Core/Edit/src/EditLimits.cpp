@@ -1,4 +1,5 @@
 #include "lvdif/EditLimits.h"
+#include "lvdif/CNumbers.h"
 
 #include "lvdif/Error.h"
 
@@ -13,7 +14,7 @@ namespace
 std::string str(double v)
 {
   char b[40];
-  std::snprintf(b, sizeof(b), "%.6g", v);
+  formatDoubleC(b, sizeof(b), "%.6g", v);
   return b;
 }
 } // namespace

@@ -1,4 +1,5 @@
 #include "FlatJson.h"
+#include "lvdif/CNumbers.h"
 
 #include <cmath>
 #include <cstdlib>
@@ -97,7 +98,7 @@ struct Cursor
       if (i == e)
         return fail("expected an exponent");
     }
-    out = std::strtod(s.substr(start, i - start).c_str(), nullptr);
+    out = strtodC(s.substr(start, i - start).c_str(), nullptr);
     if (!std::isfinite(out))
       return fail("number out of range");
     return true;

@@ -1,4 +1,5 @@
 #include "lvdif/Recording.h"
+#include "lvdif/CNumbers.h"
 
 #include "lvdif/ByteStream.h"
 #include "lvdif/EditLimits.h"
@@ -23,7 +24,7 @@ namespace
 std::string num(double v)
 {
   char buf[40];
-  std::snprintf(buf, sizeof(buf), "%.17g", v);
+  formatDoubleC(buf, sizeof(buf), "%.17g", v);
   return buf;
 }
 
@@ -92,7 +93,7 @@ std::vector<Word> splitWords(const std::string& line)
 double toNumber(const std::string& s, const Where& at, std::size_t column, const std::string& what)
 {
   char* end = nullptr;
-  const double v = std::strtod(s.c_str(), &end);
+  const double v = strtodC(s.c_str(), &end);
   if (s.empty() || *end != '\0' || !std::isfinite(v))
     at.bad(column, what + " is not a finite number: '" + s + "'");
   return v;

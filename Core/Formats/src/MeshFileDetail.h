@@ -3,6 +3,7 @@
 #pragma once
 
 #include "lvdif/Error.h"
+#include "lvdif/CNumbers.h"
 #include "lvdif/TriangleMesh.h"
 
 #include <cmath>
@@ -136,7 +137,7 @@ inline bool nextToken(const char*& b, const char* end, const char*& t)
 inline double parseReal(const std::string& t, const std::string& where)
 {
   char* end = nullptr;
-  const double v = std::strtod(t.c_str(), &end);
+  const double v = strtodC(t.c_str(), &end);
   if (t.empty() || end != t.c_str() + t.size())
     fail(ErrorCode::ParseError, where, "'" + t.substr(0, 40) + "' is not a number");
   if (!std::isfinite(v))

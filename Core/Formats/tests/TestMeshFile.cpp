@@ -4,6 +4,8 @@
 #include "lvdif/Error.h"
 #include "lvdif/MeshFile.h"
 
+#include "CommaLocale.h"
+
 #include <gtest/gtest.h>
 
 #include <limits>
@@ -411,4 +413,17 @@ TEST(MeshFile, LargeObjOnThreadsMatchesTheSerialReader)
   EXPECT_EQ(readText(plus, MeshFormat::Obj).points, fast.points);
   std::string early = "f 1 2 3\n" + body;
   expectError(early, MeshFormat::Obj, "OBJ line 1: vertex index 1 out of range: 0 vertices defined so far");
+}
+
+TEST(MeshFile, TextNumbersAreCTextUnderACommaLocale)
+{
+  // a host (the Qt editor, ParaView, Python) may set LC_NUMERIC to a comma
+  // locale: "0.5" was then refused ("'0.5' is not a number") by strtod
+  lvdif::test::CommaLocale comma;
+  if (!comma.made) GTEST_SKIP() << "no comma-decimal locale could be made (localedef)";
+  expectSquare(readText("v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0.5\nf 1 2 3 4\n", MeshFormat::Obj));
+  expectSquare(readText("OFF\n4 1 0\n0 0 0\n1 0 0\n1 1 0\n0 1 0.5\n4 0 1 2 3\n", MeshFormat::Off));
+  expectSquare(readText("ply\nformat ascii 1.0\nelement vertex 4\nproperty float x\nproperty float y\nproperty float z\n"
+                        "element face 1\nproperty list uchar int vertex_indices\nend_header\n0 0 0\n1 0 0\n1 1 0\n0 1 0.5\n4 0 1 2 3\n",
+    MeshFormat::Ply));
 }

@@ -1,6 +1,7 @@
 // Lexer of the scripting language: numbers, identifiers, operators, newlines
 // (statement ends); '#' starts a comment to the end of the line.
 #include "ScriptAst.h"
+#include "lvdif/CNumbers.h"
 
 #include "lvdif/Memory.h"
 #include "lvdif/Script.h"
@@ -89,7 +90,7 @@ std::vector<Token> lex(const std::string& src)
       Token t;
       t.kind = Tok::Number;
       t.text = text;
-      t.number = std::strtod(text.c_str(), nullptr);
+      t.number = strtodC(text.c_str(), nullptr);
       t.line = l;
       t.column = c;
       if (!std::isfinite(t.number))
