@@ -8,6 +8,8 @@
 #include "MeshToSdfNearest.h"
 
 #include <algorithm>
+#include <atomic>
+#include <limits>
 #include <chrono>
 #include <cstdio>
 #include <cstdlib>
@@ -117,50 +119,153 @@ bool MeshToSdfPrepared::Impl::hasWindingSigner()
   return this->Winding != nullptr;
 }
 
+namespace
+{
+/// Union-find over the vertices for all threads at once: a root is linked
+/// only to a smaller index (so no cycle can form, whatever the order of the
+/// links), by a compare-and-swap that fails when another thread linked it
+/// first; paths are halved on the way up, which only ever moves a vertex's
+/// parent to one of its ancestors. (The usual lock-free union-find, e.g.
+/// Anderson and Woll, "Wait-free parallel algorithms for the union-find
+/// problem", STOC 1991.)
+class ConcurrentUnionFind
+{
+public:
+  explicit ConcurrentUnionFind(std::size_t n)
+    : parent(n)
+  {
+    const auto count = static_cast<std::int64_t>(n);
+#pragma omp parallel for schedule(static)
+    for (std::int64_t v = 0; v < count; ++v)
+      parent[static_cast<std::size_t>(v)].store(static_cast<std::uint32_t>(v), std::memory_order_relaxed);
+  }
+
+  std::uint32_t find(std::uint32_t a)
+  {
+    for (;;)
+    {
+      std::uint32_t p = parent[a].load(std::memory_order_relaxed);
+      if (p == a) return a;
+      const std::uint32_t g = parent[p].load(std::memory_order_relaxed);
+      if (g != p) parent[a].compare_exchange_weak(p, g, std::memory_order_relaxed);
+      a = g;
+    }
+  }
+
+  void unite(std::uint32_t a, std::uint32_t b)
+  {
+    for (;;)
+    {
+      a = this->find(a);
+      b = this->find(b);
+      if (a == b) return;
+      if (a < b) std::swap(a, b);
+      std::uint32_t expected = a; // a is still a root: link it below b
+      if (parent[a].compare_exchange_strong(expected, b, std::memory_order_relaxed)) return;
+    }
+  }
+
+private:
+  std::vector<std::atomic<std::uint32_t>> parent;
+};
+
+void atomicMin(std::atomic<float>& x, float v)
+{
+  float old = x.load(std::memory_order_relaxed);
+  while (v < old && !x.compare_exchange_weak(old, v, std::memory_order_relaxed)) {}
+}
+
+void atomicMax(std::atomic<float>& x, float v)
+{
+  float old = x.load(std::memory_order_relaxed);
+  while (v > old && !x.compare_exchange_weak(old, v, std::memory_order_relaxed)) {}
+}
+} // namespace
+
 const std::vector<std::array<float, 6>>& MeshToSdfPrepared::Impl::partBounds()
 {
   std::lock_guard<std::mutex> lock(this->Lock);
   if (this->Parts) return *this->Parts;
   const double t0 = now();
   const PreparedMesh& m = this->mesh;
-  const std::size_t nv = m.vertices, nt = m.welded.size();
-  auto parts = std::make_unique<std::vector<std::array<float, 6>>>();
-  std::vector<std::array<float, 6>>& box = *parts;
-  // union-find over the welded vertices (path halving, the smaller root kept)
-  std::vector<std::uint32_t> root(nv);
-  std::iota(root.begin(), root.end(), 0u);
-  auto find = [&](std::uint32_t a) {
-    while (root[a] != a) a = root[a] = root[root[a]];
-    return a;
-  };
-  for (std::size_t t = 0; t < nt; ++t)
-    for (int k = 1; k < 3; ++k)
-    {
-      const std::uint32_t a = find(m.welded[t][0]), b = find(m.welded[t][k]);
-      if (a != b) root[std::max(a, b)] = std::min(a, b);
-    }
-  // each part's bounds, indexed by a compact part number
-  constexpr std::uint32_t none = 0xffffffffu;
-  std::vector<std::uint32_t> part(nv, none);
-  for (std::size_t t = 0; t < nt; ++t)
-    for (int k = 0; k < 3; ++k)
-    {
-      const std::uint32_t v = m.welded[t][k], r = find(v);
-      const Vec3f& p = m.points[v];
-      if (part[r] == none)
-      {
-        part[r] = static_cast<std::uint32_t>(box.size());
-        box.push_back({ p[0], p[1], p[2], p[0], p[1], p[2] });
-      }
-      std::array<float, 6>& b = box[part[r]];
+  const std::size_t nv = m.vertices;
+  const auto nt = static_cast<std::int64_t>(m.welded.size());
+  // every step runs on all threads: a one-call run of a 10M-triangle mesh
+  // pays for this once, before its first result
+  ConcurrentUnionFind sets(nv);
+#pragma omp parallel for schedule(static)
+  for (std::int64_t t = 0; t < nt; ++t)
+  {
+    const auto& f = m.welded[static_cast<std::size_t>(t)];
+    sets.unite(f[0], f[1]);
+    sets.unite(f[0], f[2]);
+  }
+  // each used vertex's root; the roots of used vertices numbered in index order
+  constexpr std::uint8_t usedVertex = 1, usedRoot = 2;
+  constexpr std::uint32_t unused = 0xffffffffu;
+  std::vector<std::atomic<std::uint8_t>> flags(nv);
+  const auto count = static_cast<std::int64_t>(nv);
+#pragma omp parallel for schedule(static)
+  for (std::int64_t v = 0; v < count; ++v) flags[static_cast<std::size_t>(v)].store(0, std::memory_order_relaxed);
+#pragma omp parallel for schedule(static)
+  for (std::int64_t t = 0; t < nt; ++t)
+    for (int k = 0; k < 3; ++k) flags[m.welded[static_cast<std::size_t>(t)][k]].fetch_or(usedVertex, std::memory_order_relaxed);
+  std::vector<std::uint32_t> label(nv, unused);
+#pragma omp parallel for schedule(static)
+  for (std::int64_t v = 0; v < count; ++v)
+  {
+    const auto i = static_cast<std::size_t>(v);
+    if (!(flags[i].load(std::memory_order_relaxed) & usedVertex)) continue;
+    label[i] = sets.find(static_cast<std::uint32_t>(v));
+    flags[label[i]].fetch_or(usedRoot, std::memory_order_relaxed);
+  }
+  std::vector<std::uint32_t> partOfRoot(nv, unused);
+  std::uint32_t parts = 0;
+  for (std::size_t v = 0; v < nv; ++v)
+    if (flags[v].load(std::memory_order_relaxed) & usedRoot) partOfRoot[v] = parts++;
+  // each part's bounds: a thread keeps a run of vertices of one part to itself
+  // and merges it when the part changes (one merge per run, few for meshes of few parts)
+  const float inf = std::numeric_limits<float>::infinity();
+  std::vector<std::atomic<float>> bound(6 * static_cast<std::size_t>(parts));
+  for (std::size_t i = 0; i < bound.size(); ++i) bound[i].store(i % 6 < 3 ? inf : -inf, std::memory_order_relaxed);
+#pragma omp parallel
+  {
+    std::uint32_t runPart = unused;
+    std::array<float, 6> run{};
+    auto flush = [&]() {
+      if (runPart == unused) return;
       for (int a = 0; a < 3; ++a)
       {
-        b[a] = std::min(b[a], p[a]);
-        b[3 + a] = std::max(b[3 + a], p[a]);
+        atomicMin(bound[6 * std::size_t{ runPart } + a], run[a]);
+        atomicMax(bound[6 * std::size_t{ runPart } + 3 + a], run[3 + a]);
+      }
+    };
+#pragma omp for schedule(static)
+    for (std::int64_t v = 0; v < count; ++v)
+    {
+      const std::uint32_t r = label[static_cast<std::size_t>(v)];
+      if (r == unused) continue;
+      const std::uint32_t part = partOfRoot[r];
+      const Vec3f& p = m.points[static_cast<std::size_t>(v)];
+      if (part != runPart)
+      {
+        flush();
+        runPart = part;
+        run = { p[0], p[1], p[2], p[0], p[1], p[2] };
+      }
+      for (int a = 0; a < 3; ++a)
+      {
+        run[a] = std::min(run[a], p[a]);
+        run[3 + a] = std::max(run[3 + a], p[a]);
       }
     }
+    flush();
+  }
+  auto box = std::make_unique<std::vector<std::array<float, 6>>>(parts);
+  for (std::size_t i = 0; i < parts; ++i)
+    for (int k = 0; k < 6; ++k) (*box)[i][k] = bound[6 * i + k].load(std::memory_order_relaxed);
   trace("the mesh's connected parts (first call with something inside)", now() - t0);
-  this->Parts = std::move(parts);
+  this->Parts = std::move(box);
   return *this->Parts;
 }
 

@@ -10,11 +10,14 @@
 #include "lvdif/MeshToSdf.h"
 
 #include <gtest/gtest.h>
+#include <omp.h>
 
 #include <algorithm>
 #include <array>
 #include <cmath>
 #include <map>
+#include <numeric>
+#include <random>
 #include <string>
 #include <utility>
 #include <vector>
@@ -172,6 +175,54 @@ TEST(MeshToSdfWarnings, PartsSmallerThanAVoxelVanish)
   MeshToSdfOptions o;
   o.device = Device::Cpu;
   EXPECT_TRUE(mentions(meshToSdf(m, vol, o), "1 of 2 parts of the mesh"));
+}
+
+// The parts are found by a union-find on all threads: many small parts and a
+// long strip, their vertices shuffled through the vertex array so that the
+// threads link the same sets concurrently, with unused vertices between them.
+// The count the warning gives is that of the construction: every small part
+// and the strip vanish, the large box does not.
+TEST(MeshToSdfWarnings, PartsAreCountedOnAllThreads)
+{
+  TriangleMesh parts = makeBoxMesh({ 0.0f, 0.0f, 0.0f }, { 6.0f, 6.0f, 6.0f });
+  constexpr int smallBoxes = 1500, strip = 1000;
+  for (int b = 0; b < smallBoxes; ++b)
+  {
+    const float x = 8.0f + 0.2f * static_cast<float>(b % 30), y = 0.2f * static_cast<float>(b / 30 % 25),
+                z = 1.0f + 0.1f * static_cast<float>(b / 750);
+    const TriangleMesh box = makeBoxMesh({ x, y, z }, { x + 0.01f, y + 0.01f, z + 0.01f });
+    const auto n = static_cast<std::uint32_t>(parts.points.size());
+    parts.points.insert(parts.points.end(), box.points.begin(), box.points.end());
+    for (auto t : box.triangles) parts.triangles.push_back({ t[0] + n, t[1] + n, t[2] + n });
+  }
+  // a strip of triangles (i, i+1, i+2) along a small helix: one part
+  const auto first = static_cast<std::uint32_t>(parts.points.size());
+  for (int i = 0; i < strip + 2; ++i)
+  {
+    const float a = 0.05f * static_cast<float>(i);
+    parts.points.push_back({ 3.0f + 0.02f * std::cos(a), 8.0f + 0.02f * std::sin(a), 3.0f + 0.00004f * i });
+  }
+  for (std::uint32_t i = 0; i < static_cast<std::uint32_t>(strip); ++i) // consistently oriented
+    parts.triangles.push_back(i % 2 ? std::array<std::uint32_t, 3>{ first + i + 1, first + i, first + i + 2 }
+                                    : std::array<std::uint32_t, 3>{ first + i, first + i + 1, first + i + 2 });
+  // shuffle the vertex ids (a fixed permutation) and leave unused vertices between them
+  const std::size_t nv = parts.points.size();
+  std::vector<std::uint32_t> newId(nv);
+  std::iota(newId.begin(), newId.end(), 0u);
+  std::mt19937 rng(7);
+  std::shuffle(newId.begin(), newId.end(), rng);
+  TriangleMesh m;
+  m.points.assign(2 * nv, { 3.0f, 3.0f, 3.0f }); // unused, inside the large box
+  for (std::size_t v = 0; v < nv; ++v) m.points[2 * std::size_t{ newId[v] }] = parts.points[v];
+  for (auto t : parts.triangles) m.triangles.push_back({ 2 * newId[t[0]], 2 * newId[t[1]], 2 * newId[t[2]] });
+  const int before = omp_get_max_threads();
+  omp_set_num_threads(8);
+  const Result r = runFloat(m, 24, SignMode::WindingNumber);
+  omp_set_num_threads(before);
+  EXPECT_GT(r.inside, 0);
+  EXPECT_TRUE(mentions(r.stats, std::to_string(smallBoxes + 1) + " of " + std::to_string(smallBoxes + 2) +
+                                  " parts of the mesh"))
+    << ::testing::PrintToString(r.stats.warnings);
 }
 
 TEST(MeshToSdfWarnings, NoneForAClosedMeshOrAPiece)
