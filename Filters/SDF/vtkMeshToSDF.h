@@ -85,7 +85,8 @@ public:
 
   ///@{
   /// Fitted grid: margin around the mesh bounds, in voxels (default 2).
-  vtkSetClampMacro(Padding, double, 0.0, 1e6);
+  /// Negative, NaN or infinite is an error at update (LVDIFVolumeBridge::PaddingOption; no clamp).
+  vtkSetMacro(Padding, double);
   vtkGetMacro(Padding, double);
   ///@}
 
