@@ -28,6 +28,7 @@
 #include <cmath>
 #include <limits>
 #include <sstream>
+#include <string>
 
 vtkStandardNewMacro(vtkMeshToSDF);
 
@@ -124,6 +125,24 @@ lvdif::GridGeometry gridFor(vtkPolyData* pd, bool explicitGrid, const int dims[3
 }
 } // namespace
 
+void vtkMeshToSDF::CheckFittedGridSettings() const
+{
+  LVDIFVolumeBridge::PaddingOption(this->Padding);
+  if (!std::isfinite(this->SampleSpacing) || this->SampleSpacing < 0)
+  {
+    std::ostringstream msg;
+    msg << "Sample Spacing must be a finite length >= 0 (0: use Max Dimension), not " << this->SampleSpacing;
+    throw lvdif::Error(lvdif::ErrorCode::InvalidArgument, msg.str());
+  }
+  if (this->SampleSpacing == 0 &&
+    (this->MaxDimension < 2 || this->MaxDimension > lvdif::DictionaryVolume::MaxDimension))
+  {
+    throw lvdif::Error(lvdif::ErrorCode::InvalidArgument,
+      "Max Dimension must be in [2, " + std::to_string(lvdif::DictionaryVolume::MaxDimension) +
+        "] (points on the longest axis), not " + std::to_string(this->MaxDimension));
+  }
+}
+
 int vtkMeshToSDF::RequestInformation(
   vtkInformation*, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
 {
@@ -131,8 +150,8 @@ int vtkMeshToSDF::RequestInformation(
   // the settings first: their error before any work upstream
   if (!LVDIFVolumeBridge::CallCore(this, [&] {
         LVDIFVolumeBridge::CheckVolumeSettings(this->ChunkEdge, this->BandWidth);
-        if (!this->UseExplicitGrid) // Padding belongs to the fitted grid only
-          LVDIFVolumeBridge::PaddingOption(this->Padding);
+        if (!this->UseExplicitGrid) // the fitted grid's settings, by the names the user sees
+          this->CheckFittedGridSettings();
       }))
     return LVDIFVolumeBridge::FailInformation(outputVector->GetInformationObject(0));
   vtkPolyData* input = vtkPolyData::GetData(inputVector[0]);

@@ -260,6 +260,15 @@ for padding, text in ((-1.0, "-1"), (-1e-9, "-1e-09"), (float("nan"), "nan"), (f
         check((back == padding or (back != back and padding != padding)) and not ok and len(errs) == 1
               and PADDING_RULE + text in errs[0],
               "vtkMeshToSDF Padding %g (Sample Spacing %g): read back %g, %s" % (padding, spacing, back, errs))
+# Max Dimension and Sample Spacing likewise: refused by name with the value given
+for props, text in (({"MaxDimension": 1}, "Max Dimension must be in [2, 1048576] (points on the longest axis), not 1"),
+                    ({"MaxDimension": 0}, "Max Dimension must be in [2, 1048576] (points on the longest axis), not 0"),
+                    ({"SampleSpacing": -1.0}, "Sample Spacing must be a finite length >= 0 (0: use Max Dimension), not -1"),
+                    ({"SampleSpacing": float("nan")}, "Sample Spacing must be a finite length >= 0 (0: use Max Dimension), not nan")):
+    ok, errs, f = run("vtkMeshToSDF", inp=sphere(), **props)
+    back = [getattr(f, "Get" + k)() for k in props]
+    check(not ok and len(errs) == 1 and text in errs[0] and str(back) == str(list(props.values())),
+          "vtkMeshToSDF %s: read back %s, %s" % (props, back, errs))
 # an explicit grid does not use Padding: not checked there
 ok, errs, f = run("vtkMeshToSDF", inp=sphere(), Padding=-1.0, UseExplicitGrid=True, Dimensions=(16, 12, 10))
 check(ok and not errs, "vtkMeshToSDF Padding -1 with an explicit grid: %s" % errs)

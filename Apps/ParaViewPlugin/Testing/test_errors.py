@@ -120,6 +120,8 @@ for label, props, needle in (
         ("Mesh To SDF, Padding -1", {"Padding": -1}, "Padding must be a finite number of voxels >= 0, not -1"),
         ("Mesh To SDF, Padding NaN", {"Padding": float("nan")}, "Padding must be a finite number of voxels >= 0, not nan"),
         # the fitted grid's error names the properties the user sees (it named Core's maxDim and padding)
+        ("Mesh To SDF, Max Dimension 1", {"MaxDimension": 1}, "Max Dimension must be in [2, 1048576]"),
+        ("Mesh To SDF, Sample Spacing -1", {"SampleSpacing": -1}, "Sample Spacing must be a finite length >= 0"),
         ("Mesh To SDF, Max Dimension 5, Padding 2", {"MaxDimension": 5, "Padding": 2},
          "Max Dimension 5 leaves no voxel for the mesh inside 2 voxels of Padding")):
     proxy = one_error(label, lambda: pvs.MeshToSDF(Input=sphere, **props), needle)
@@ -127,10 +129,12 @@ for label, props, needle in (
     check(not any("maxDim" in e for e in errs), "%s: no internal name (%s)" % (label, errs))
 for ext in ("lvdv", "lvdvp"):
     target = os.path.join(out, "level." + ext)
+    with open(target, "wb") as f:
+        f.write(b"an older file")  # kept: the refusal comes before any file is written
     for level in (0, 20):
         _, errs = errors_during(lambda: updated(pvs.CreateWriter(target, src_level, CompressionLevel=level)))
         check(len(errs) == 1 and "CompressionLevel must be a zstd level in [1, 19], not %d" % level in errs[0]
-              and not os.path.exists(target), "%s writer, Compression Level %d: %s" % (ext, level, errs))
+              and open(target, "rb").read() == b"an older file", "%s writer, Compression Level %d: %s" % (ext, level, errs))
 
 # A reader that failed (a missing or malformed file) feeding two of our filters: its one
 # error, nothing from the filters below. ParaView runs every proxy below a failed reader
