@@ -17,7 +17,7 @@ SHIM="${LVDIF_PVSHIM:-/opt/lvdif-pvshim}"
 [ -f "$MESH" ] || { echo "bench: no mesh $MESH (scripts/extract-meshes.sh)" >&2; exit 1; }
 plugin=$("$here/scripts/build-paraview-plugin.sh" "${PV_BUILD_DIR:-$here/build-pv}" "$SHIM" | tail -n1)
 export LVDIF_PV_PYTHONPATH="$SHIM/pvpy/usr/lib/python3/dist-packages"
-export PYTHONPATH="$here/Apps/ParaViewPlugin/Testing:$LVDIF_PV_PYTHONPATH"
+export PYTHONPATH="$here/Apps/ParaViewPlugin/Testing:$here/Testing/Support:$LVDIF_PV_PYTHONPATH"
 export VTK_SMP_BACKEND_IN_USE="${VTK_SMP_BACKEND_IN_USE:-STDThread}"
 tmp=$(mktemp -d); trap 'rm -rf "$tmp"' EXIT
 

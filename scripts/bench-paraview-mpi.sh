@@ -10,7 +10,7 @@ B="${2:-$here/build-pv}"
 SHIM="${LVDIF_PVSHIM:-/opt/lvdif-pvshim}"
 plugin=$("$here/scripts/build-paraview-plugin.sh" "$B" "$SHIM" | tail -n1)
 export LVDIF_PV_PYTHONPATH="$SHIM/pvpy/usr/lib/python3/dist-packages"
-export PYTHONPATH="$here/Apps/ParaViewPlugin/Testing:$LVDIF_PV_PYTHONPATH"
+export PYTHONPATH="$here/Apps/ParaViewPlugin/Testing:$here/Testing/Support:$LVDIF_PV_PYTHONPATH"
 export VTK_SMP_BACKEND_IN_USE="${VTK_SMP_BACKEND_IN_USE:-STDThread}" OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1
 tmp=$(mktemp -d)
 script="$here/Apps/ParaViewPlugin/Testing/mpi_pipeline.py"

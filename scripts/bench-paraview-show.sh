@@ -15,7 +15,7 @@ mkdir -p "$tmp"
 sed "s/^n = 128/n = $N/" "$here/Data/scripts/dice.lvs" > "$tmp/dice.lvs"
 [ -f "$tmp/dice.lvdv" ] || "$CLI" script "$tmp/dice.lvs" --out "$tmp/dice.lvdv" > /dev/null
 PV=/opt/lvdif-pvshim/pvpy/usr/lib/python3/dist-packages
-export LVDIF_PV_PYTHONPATH=$PV PYTHONPATH="$here/Apps/ParaViewPlugin/Testing:$PV" VTK_SMP_BACKEND_IN_USE=STDThread
+export LVDIF_PV_PYTHONPATH=$PV PYTHONPATH="$here/Apps/ParaViewPlugin/Testing:$here/Testing/Support:$PV" VTK_SMP_BACKEND_IN_USE=STDThread
 /usr/bin/time -v /opt/lvdif-pvshim/pvpy/usr/bin/pvpython3.11 --force-offscreen-rendering \
   "$here/Apps/ParaViewPlugin/Testing/bench_show_volume.py" "$(cat "$B/lvdif-plugin-path.txt")" "$tmp/dice.lvdv" \
   > "$tmp/show.out" 2> "$tmp/show.time"

@@ -15,7 +15,7 @@ SHIM="${LVDIF_PVSHIM:-/opt/lvdif-pvshim}"
 plugin=$(cat "${PV_BUILD_DIR:-$here/build-pv}/lvdif-plugin-path.txt")
 [ -f "$plugin" ] || { echo "bench: no plugin $plugin (scripts/build-paraview-plugin.sh)" >&2; exit 1; }
 export LVDIF_PV_PYTHONPATH="$SHIM/pvpy/usr/lib/python3/dist-packages"
-export PYTHONPATH="$here/Apps/ParaViewPlugin/Testing:$LVDIF_PV_PYTHONPATH"
+export PYTHONPATH="$here/Apps/ParaViewPlugin/Testing:$here/Testing/Support:$LVDIF_PV_PYTHONPATH"
 export VTK_SMP_BACKEND_IN_USE="${VTK_SMP_BACKEND_IN_USE:-STDThread}"
 tmp=$(mktemp -d); trap 'rm -rf "$tmp"' EXIT
 

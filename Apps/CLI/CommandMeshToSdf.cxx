@@ -57,10 +57,9 @@ int CommandMeshToSdf(int argc, char** argv)
   if (dims < 2 || dims > lvdif::DictionaryVolume::MaxDimension)
     throw lvdif::Error(lvdif::ErrorCode::InvalidArgument, "--dims must be in [2, " +
         std::to_string(lvdif::DictionaryVolume::MaxDimension) + "], not " + std::to_string(dims));
-  // fitGridToMesh's own words name no option, and come only after the mesh is read
-  if (!(padding >= 0) || !std::isfinite(padding))
-    throw lvdif::Error(lvdif::ErrorCode::InvalidArgument, "--padding must be a finite number >= 0, not '" +
-        args.get("padding", "2") + "'");
+  // fitGridToMesh's own words name no option, and come only after the mesh is read;
+  // the filter's Padding rule (LVDIFVolumeBridge::PaddingOption)
+  LVDIFVolumeBridge::PaddingOption(padding, "--padding");
   if (static_cast<double>(dims) - 1.0 - 2.0 * padding < 1.0)
     throw lvdif::Error(lvdif::ErrorCode::InvalidArgument, "--dims " + std::to_string(dims) + " leaves no voxel for the mesh inside --padding " +
         args.get("padding", "2") + " on every side: use --dims of at least 2 x padding + 2, or less padding");

@@ -27,6 +27,8 @@
 
 #include <cmath>
 #include <limits>
+#include <sstream>
+#include <string>
 
 vtkStandardNewMacro(vtkMeshToSDF);
 
@@ -72,9 +74,7 @@ lvdif::GridGeometry gridFor(vtkPolyData* pd, bool explicitGrid, const int dims[3
     }
     return g;
   }
-  // the one check of the Padding property (its clamp macro lets NaN through), before
-  // either fitted grid: NaN read as "SampleSpacing gives more than 2^20 points"
-  lvdif::require(!std::isnan(padding), "Padding is NaN (it must be a number of voxels >= 0)");
+  // (Padding was checked with the other settings: LVDIFVolumeBridge::PaddingOption)
   lvdif::require(pd && pd->GetNumberOfPoints() > 0, "the input mesh has no points");
   double b[6];
   pd->GetBounds(b);
@@ -92,8 +92,12 @@ lvdif::GridGeometry gridFor(vtkPolyData* pd, bool explicitGrid, const int dims[3
       // at least one cell per axis, as fitGridToMesh
       const double n = std::max(std::ceil((b[2 * a + 1] - b[2 * a]) / sampleSpacing + 2 * padding - 1e-9) + 1,
         static_cast<double>(lvdif::DictionaryVolume::MinCanvasDimension));
-      lvdif::require(n <= static_cast<double>(1 << 20),
-        "SampleSpacing gives more than 2^20 points along an axis");
+      if (n > static_cast<double>(1 << 20))
+      {
+        std::ostringstream msg;
+        msg << "Sample Spacing " << sampleSpacing << " gives more than 2^20 points along an axis";
+        throw lvdif::Error(lvdif::ErrorCode::InvalidArgument, msg.str());
+      }
       g.dims[a] = static_cast<std::int64_t>(n);
       g.spacing[a] = sampleSpacing;
       g.origin[a] = 0.5 * (b[2 * a] + b[2 * a + 1]) - 0.5 * static_cast<double>(g.dims[a] - 1) * sampleSpacing;
@@ -107,16 +111,48 @@ lvdif::GridGeometry gridFor(vtkPolyData* pd, bool explicitGrid, const int dims[3
       static_cast<float>(b[(c & 4) ? 5 : 4]) });
   }
   box.triangles.push_back({ 0, 1, 2 });
+  // fitGridToMesh's own check would name its parameters (maxDim, padding):
+  // the properties the user sees are named here
+  if (static_cast<double>(maxDim) - 1 - 2 * padding < 1)
+  {
+    std::ostringstream msg;
+    msg << "Max Dimension " << maxDim << " leaves no voxel for the mesh inside " << padding
+        << " voxels of Padding on each side: use a Max Dimension of at least 2 x Padding + 2 ("
+        << static_cast<long long>(std::ceil(2 * padding + 2)) << "), or less Padding";
+    throw lvdif::Error(lvdif::ErrorCode::InvalidArgument, msg.str());
+  }
   return lvdif::fitGridToMesh(box, maxDim, padding);
 }
 } // namespace
+
+void vtkMeshToSDF::CheckFittedGridSettings() const
+{
+  LVDIFVolumeBridge::PaddingOption(this->Padding);
+  if (!std::isfinite(this->SampleSpacing) || this->SampleSpacing < 0)
+  {
+    std::ostringstream msg;
+    msg << "Sample Spacing must be a finite length >= 0 (0: use Max Dimension), not " << this->SampleSpacing;
+    throw lvdif::Error(lvdif::ErrorCode::InvalidArgument, msg.str());
+  }
+  if (this->SampleSpacing == 0 &&
+    (this->MaxDimension < 2 || this->MaxDimension > lvdif::DictionaryVolume::MaxDimension))
+  {
+    throw lvdif::Error(lvdif::ErrorCode::InvalidArgument,
+      "Max Dimension must be in [2, " + std::to_string(lvdif::DictionaryVolume::MaxDimension) +
+        "] (points on the longest axis), not " + std::to_string(this->MaxDimension));
+  }
+}
 
 int vtkMeshToSDF::RequestInformation(
   vtkInformation*, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
 {
   LVDIFVolumeBridge::BeginInformation(outputVector->GetInformationObject(0));
   // the settings first: their error before any work upstream
-  if (!LVDIFVolumeBridge::CallCore(this, [&] { LVDIFVolumeBridge::CheckVolumeSettings(this->ChunkEdge, this->BandWidth); }))
+  if (!LVDIFVolumeBridge::CallCore(this, [&] {
+        LVDIFVolumeBridge::CheckVolumeSettings(this->ChunkEdge, this->BandWidth);
+        if (!this->UseExplicitGrid) // the fitted grid's settings, by the names the user sees
+          this->CheckFittedGridSettings();
+      }))
     return LVDIFVolumeBridge::FailInformation(outputVector->GetInformationObject(0));
   vtkPolyData* input = vtkPolyData::GetData(inputVector[0]);
   if (!this->UseExplicitGrid && (!input || input->GetNumberOfPoints() == 0))
@@ -128,6 +164,14 @@ int vtkMeshToSDF::RequestInformation(
       conn->GetProducer()->Update(conn->GetIndex());
       input = vtkPolyData::GetData(inputVector[0]);
     }
+  }
+  if (!this->UseExplicitGrid && LVDIFVolumeBridge::IsEmptyInput(input))
+  {
+    // no bounds to fit: an empty volume, as VTK's filters treat an empty input
+    // (a failed reader above said why; this filter added "no points")
+    const int empty[6] = { 0, -1, 0, -1, 0, -1 };
+    outputVector->GetInformationObject(0)->Set(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT(), empty, 6);
+    return 1;
   }
   lvdif::GridGeometry g;
   try
@@ -172,10 +216,10 @@ int vtkMeshToSDF::RequestData(vtkInformation*, vtkInformationVector** inputVecto
     vtkErrorMacro("input must be vtkPolyData");
     return 0;
   }
-  if (input->GetNumberOfPoints() == 0)
+  if (LVDIFVolumeBridge::IsEmptyInput(input))
   {
-    vtkErrorMacro("the input mesh is empty (no points)");
-    return 0;
+    output->Initialize(); // VTK's rule for an empty input: empty output, no error
+    return 1;
   }
   if (input->GetNumberOfPolys() + input->GetNumberOfStrips() == 0)
   {

@@ -72,20 +72,24 @@ public:
   ///@}
 
   ///@{
-  /// Fitted grid: points along the longest axis (default 128).
-  vtkSetClampMacro(MaxDimension, int, 2, 1 << 20);
+  /// Fitted grid: points along the longest axis (default 128), 2 to 2^20; anything
+  /// else is an error at update (no clamp: 0 became 2, and the error then named 2).
+  vtkSetMacro(MaxDimension, int);
   vtkGetMacro(MaxDimension, int);
   ///@}
 
   ///@{
   /// Fitted grid: voxel spacing; when > 0 it is used instead of MaxDimension (default 0).
-  vtkSetClampMacro(SampleSpacing, double, 0.0, VTK_DOUBLE_MAX);
+  /// Negative, NaN or infinite is an error at update (no clamp: a negative one
+  /// silently meant "use MaxDimension").
+  vtkSetMacro(SampleSpacing, double);
   vtkGetMacro(SampleSpacing, double);
   ///@}
 
   ///@{
   /// Fitted grid: margin around the mesh bounds, in voxels (default 2).
-  vtkSetClampMacro(Padding, double, 0.0, 1e6);
+  /// Negative, NaN or infinite is an error at update (LVDIFVolumeBridge::PaddingOption; no clamp).
+  vtkSetMacro(Padding, double);
   vtkGetMacro(Padding, double);
   ///@}
 
@@ -158,6 +162,9 @@ protected:
   int RequestInformation(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
   int RequestUpdateExtent(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
   int RequestData(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
+  /// Padding, Sample Spacing and Max Dimension of the fitted grid, each refused by
+  /// name (never clamped); throws lvdif::Error.
+  void CheckFittedGridSettings() const;
 
   int SignMode = WINDING_NUMBER;
   int Accelerator = BVH;

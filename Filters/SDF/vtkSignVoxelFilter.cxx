@@ -29,6 +29,8 @@
 #include <algorithm>
 #include <cstdlib>
 #include <cstring>
+#include <new>
+#include <string>
 #include <vector>
 
 vtkStandardNewMacro(vtkSignVoxelFilter);
@@ -186,29 +188,80 @@ void UnpackChunks(lvdif::DictionaryVolume& v, const std::vector<char>& in)
   }
 }
 
-constexpr int SizeTag = 84721, DataTag = 84722;
+constexpr int SizeTag = 84721, DataTag = 84722, ReadyTag = 84723;
 constexpr vtkIdType Piece = vtkIdType(1) << 28; // bytes per message: far below MPI's int count
 
-void SendBytes(vtkMultiProcessController* c, const std::vector<char>& b, int to)
+/// The buffer for `n` received bytes. A test hook (TestSignVoxelFilterMPI): the
+/// rank whose environment has LVDIF_TEST_SVF_RECEIVE_ALLOC_FAILS fails to
+/// allocate it, as a rank short of memory would.
+std::vector<char> ReceiveBuffer(vtkIdType n)
 {
-  const vtkIdType n = static_cast<vtkIdType>(b.size());
-  c->Send(&n, 1, to, SizeTag);
-  for (vtkIdType at = 0; at < n; at += Piece)
-  {
-    c->Send(b.data() + at, std::min(Piece, n - at), to, DataTag);
-  }
+  lvdif::require(n >= 0, "vtkSignVoxelFilter: a rank announced a negative message size");
+  if (n > 0 && std::getenv("LVDIF_TEST_SVF_RECEIVE_ALLOC_FAILS"))
+    throw std::bad_alloc();
+  return std::vector<char>(static_cast<std::size_t>(n));
 }
 
-std::vector<char> ReceiveBytes(vtkMultiProcessController* c, int from)
+/// One exchange of packed chunks between this rank and `partner` (`leads`: this
+/// rank sends first, its partner calls with the opposite). The sizes travel
+/// first; each side then allocates its receive buffer and the two tell each
+/// other whether that worked (a rank that failed earlier, `ok` false, says no);
+/// the payloads travel only when both sides can take them. Before, a receive
+/// buffer that could not be allocated threw out of the filter while the
+/// partner was still sending to it, or blocked later in its next exchange. A
+/// failure here is reported once on this rank (CallCore) and returns false;
+/// `got` is then empty. The partner's failure is not this rank's: it leaves
+/// `got` empty, and the ranks' agreement after all exchanges fails them all.
+bool ExchangeChunks(vtkAlgorithm* self, vtkMultiProcessController* c, int partner, bool leads,
+  const std::vector<char>& out, std::vector<char>& got, bool ok)
 {
-  vtkIdType n = 0;
-  c->Receive(&n, 1, from, SizeTag);
-  std::vector<char> b(static_cast<std::size_t>(n));
-  for (vtkIdType at = 0; at < n; at += Piece)
+  // the same order on both sides: the leading rank sends, then receives
+  auto swap = [&](vtkIdType mine, int tag) {
+    vtkIdType theirs = 0;
+    if (leads)
+    {
+      c->Send(&mine, 1, partner, tag);
+      c->Receive(&theirs, 1, partner, tag);
+    }
+    else
+    {
+      c->Receive(&theirs, 1, partner, tag);
+      c->Send(&mine, 1, partner, tag);
+    }
+    return theirs;
+  };
+  got.clear();
+  const vtkIdType n = swap(ok ? static_cast<vtkIdType>(out.size()) : 0, SizeTag);
+  if (ok)
   {
-    c->Receive(b.data() + at, std::min(Piece, n - at), from, DataTag);
+    ok = LVDIFVolumeBridge::CallCore(self, [&] { got = ReceiveBuffer(n); },
+      "receiving " + std::to_string(n) + " bytes of chunks from rank " + std::to_string(partner) + ": ");
   }
-  return b;
+  const bool partnerReady = swap(ok ? 1 : 0, ReadyTag) != 0;
+  if (!ok || !partnerReady)
+  {
+    got.clear();
+    return ok;
+  }
+  auto sendAll = [&] {
+    for (vtkIdType at = 0; at < static_cast<vtkIdType>(out.size()); at += Piece)
+      c->Send(out.data() + at, std::min(Piece, static_cast<vtkIdType>(out.size()) - at), partner, DataTag);
+  };
+  auto receiveAll = [&] {
+    for (vtkIdType at = 0; at < n; at += Piece)
+      c->Receive(got.data() + at, std::min(Piece, n - at), partner, DataTag);
+  };
+  if (leads)
+  {
+    sendAll();
+    receiveAll();
+  }
+  else
+  {
+    receiveAll();
+    sendAll();
+  }
+  return true;
 }
 
 /// True on every rank when `ok` is true on every rank (so that a failure on
@@ -236,10 +289,21 @@ void AddStats(vtkDataObject* output, const lvdif::SignVoxelFilterStats& st)
 }
 } // namespace
 
+void vtkSignVoxelFilter::JoinRanks(int state, int& lowest, int& highest)
+{
+  // one all-reduce for both (the executive's join for a failed rank is matched with it)
+  this->Joined = true;
+  int mine[2] = { state, -state }, all[2] = { JOIN_FAILED, JOIN_FAILED };
+  this->Controller->AllReduce(mine, all, 2, vtkCommunicator::MIN_OP);
+  lowest = all[0];
+  highest = -all[1];
+}
+
 bool vtkSignVoxelFilter::JoinRanks(bool ok)
 {
-  this->Joined = true;
-  return AllOk(this->Controller, ok);
+  int lowest = JOIN_FAILED, highest = JOIN_FAILED;
+  this->JoinRanks(ok ? JOIN_READY : JOIN_FAILED, lowest, highest);
+  return lowest == JOIN_READY;
 }
 
 int vtkSignVoxelFilter::FillInputPortInformation(int, vtkInformation* info)
@@ -333,6 +397,11 @@ int vtkSignVoxelFilter::RequestData(
   {
     vtkErrorMacro("input and output must be vtkImageData");
     return 0;
+  }
+  if (LVDIFVolumeBridge::IsEmptyInput(input))
+  {
+    output->Initialize(); // VTK's rule for an empty input: empty output, no error
+    return 1;
   }
   vtkDataArray* in = LVDIFVolumeBridge::SdfArray(
     this->GetInputArrayInformation(0), input, this->GetInputArrayToProcess(0, inputVector));
@@ -435,20 +504,31 @@ lvdif::SignVoxelFilterParams vtkSignVoxelFilter::CoreParams() const
 int vtkSignVoxelFilter::FilterSparse(
   vtkSparseDictionaryVolume* input, vtkSparseDictionaryVolume* output, vtkInformation* outInfo)
 {
+  // An input without a volume (an upstream that failed and said why, or that
+  // made nothing) gives an empty output without an error, as VTK's own filters
+  // treat an empty input (vtkContourFilter, vtkCutter): each filter below a
+  // failed reader added its own "no dictionary volume" error before.
   const bool hasVolume = input->HasVolume();
-  if (!hasVolume)
-    vtkErrorMacro("the input sparse volume holds no dictionary volume");
   // a distributed run agrees before any work, so that a rank without a volume
   // does not leave the others waiting in the first collective
-  bool go = hasVolume;
+  int lowest = hasVolume ? JOIN_READY : JOIN_EMPTY, highest = lowest;
   if (this->Distributed())
   {
-    go = this->JoinRanks(hasVolume);
-    if (!go && hasVolume)
-      vtkErrorMacro("another rank's input failed: the ranks filter nothing");
+    this->JoinRanks(lowest, lowest, highest);
   }
-  if (!go)
+  if (highest == JOIN_EMPTY && lowest == JOIN_EMPTY)
   {
+    vtkDebugMacro("empty input: empty output");
+    output->Initialize();
+    return 1;
+  }
+  if (lowest != JOIN_READY)
+  {
+    // some ranks hold a volume and others none, or another rank failed
+    if (hasVolume)
+      vtkErrorMacro("another rank's input failed: the ranks filter nothing");
+    else
+      vtkErrorMacro("this rank's input holds no volume while another rank's does: the ranks filter nothing");
     output->Initialize();
     return 0;
   }
@@ -518,22 +598,25 @@ bool vtkSignVoxelFilter::FilterSparsePiece(const lvdif::DictionaryVolume& in, vt
   LVDIFInterrupter interrupter(this);
 
   // 1. the sign each row leaves every rank's layers with after SVF1 (identity for an empty piece)
-  std::vector<std::int8_t> exits(static_cast<std::size_t>(3 * rows));
-  for (int k = 0; k < 3; ++k)
-  {
-    std::fill(exits.begin() + k * rows, exits.begin() + (k + 1) * rows, static_cast<std::int8_t>(k - 1));
-  }
+  // (every buffer allocated before the ranks agree: a failed allocation is one
+  // error on its rank, not an exception that leaves the others in the all-gather)
+  std::vector<std::int8_t> exits, all;
   bool ok = LVDIFVolumeBridge::CallCore(this, [&] {
+    exits.resize(static_cast<std::size_t>(3 * rows));
+    for (int k = 0; k < 3; ++k)
+    {
+      std::fill(exits.begin() + k * rows, exits.begin() + (k + 1) * rows, static_cast<std::int8_t>(k - 1));
+    }
     if (last >= first && (p.filters & lvdif::Svf1))
     {
       exits = lvdif::svf1ExitSigns(in, p, first, last, interrupter);
     }
+    all.resize(exits.size() * static_cast<std::size_t>(size));
   });
   if (!AllOk(c, ok))
   {
     return false;
   }
-  std::vector<std::int8_t> all(exits.size() * static_cast<std::size_t>(size));
   c->AllGather(reinterpret_cast<const signed char*>(exits.data()), reinterpret_cast<signed char*>(all.data()),
     static_cast<vtkIdType>(exits.size()));
 
@@ -597,8 +680,8 @@ bool vtkSignVoxelFilter::FilterSparsePiece(const lvdif::DictionaryVolume& in, vt
   mine.lo[a] = first;
   mine.hi[a] = last;
   // Every rank takes part in every exchange of its pairs, also after its own
-  // packing or unpacking failed (it then sends nothing and keeps nothing):
-  // a rank that left the loop early left its next partner waiting in a
+  // packing, allocating or unpacking failed (it then sends nothing and keeps
+  // nothing): a rank that left the loop early left its next partner waiting in a
   // receive forever (three ranks or more). The ranks agree after the loop.
   ok = true;
   for (int i = 0; i < size; ++i)
@@ -618,16 +701,7 @@ bool vtkSignVoxelFilter::FilterSparsePiece(const lvdif::DictionaryVolume& in, vt
         out.clear();
       }
       std::vector<char> got;
-      if (rank == i)
-      {
-        SendBytes(c, out, partner);
-        got = ReceiveBytes(c, partner);
-      }
-      else
-      {
-        got = ReceiveBytes(c, partner);
-        SendBytes(c, out, partner);
-      }
+      ok = ExchangeChunks(this, c, partner, rank == i, out, got, ok);
       if (ok)
       {
         ok = LVDIFVolumeBridge::CallCore(this, [&] { UnpackChunks(*volume, got); });

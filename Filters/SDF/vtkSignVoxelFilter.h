@@ -172,6 +172,15 @@ protected:
   /// methods: the filter's executive joins for it (see the .cxx), so the
   /// other ranks do not wait for it forever.
   bool JoinRanks(bool ok);
+  /// The same collective with a state (JOIN_FAILED, JOIN_EMPTY: the input holds
+  /// no volume, JOIN_READY): the lowest and highest state over the ranks.
+  enum JoinState
+  {
+    JOIN_FAILED = 0,
+    JOIN_EMPTY = 1,
+    JOIN_READY = 2
+  };
+  void JoinRanks(int state, int& lowest, int& highest);
   /// Whether this pass meets the other ranks: distributed and a sparse input.
   bool MeetsRanks(vtkInformationVector** inputVector) const;
   bool Joined = false; // this pass reached JoinRanks

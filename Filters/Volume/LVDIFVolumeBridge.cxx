@@ -66,7 +66,7 @@ std::string WithContext(const std::string& context, const std::string& what)
 
 float BandOption(double bandWidth, const std::string& name)
 {
-  // one rule for every band setting (docs/USER_GUIDE.md, "Band width and chunk edge")
+  // one rule for every band setting (docs/USER_GUIDE.md, "Band width, chunk edge, padding, compression level")
   if (std::isnan(bandWidth) || bandWidth < 0)
   {
     std::ostringstream msg;
@@ -76,6 +76,17 @@ float BandOption(double bandWidth, const std::string& name)
   // 0 and every value beyond float's range (the writers' VTK_FLOAT_MAX) mean no band
   return bandWidth == 0 || bandWidth >= std::numeric_limits<float>::max() ? std::numeric_limits<float>::infinity()
                                                                           : static_cast<float>(bandWidth);
+}
+
+double PaddingOption(double padding, const std::string& name)
+{
+  if (!std::isfinite(padding) || padding < 0)
+  {
+    std::ostringstream msg;
+    msg << name << " must be a finite number of voxels >= 0, not " << padding;
+    throw lvdif::Error(lvdif::ErrorCode::InvalidArgument, msg.str());
+  }
+  return padding;
 }
 
 float CheckVolumeSettings(int chunkEdge, double bandWidth, const std::string& bandName)
@@ -309,6 +320,13 @@ vtkInformationIntegerKey* INFORMATION_FAILED()
   return key;
 }
 } // namespace
+
+bool IsEmptyInput(vtkDataObject* input)
+{
+  if (auto* sparse = vtkSparseDictionaryVolume::SafeDownCast(input)) return !sparse->HasVolume();
+  if (auto* dataSet = vtkDataSet::SafeDownCast(input)) return dataSet->GetNumberOfPoints() == 0;
+  return false;
+}
 
 void BeginInformation(vtkInformation* outInfo)
 {

@@ -25,6 +25,7 @@
 
 class vtkAlgorithm;
 class vtkDataArray;
+class vtkDataObject;
 class vtkDataSet;
 class vtkFloatArray;
 class vtkImageData;
@@ -57,6 +58,12 @@ LVDIFFILTERSVOLUME_EXPORT std::string FileError(const std::string& verb, const s
 /// refused by the volume itself.
 LVDIFFILTERSVOLUME_EXPORT float BandOption(double bandWidth, const std::string& name = "BandWidth");
 
+/// The one rule for a fitted grid's padding (vtkMeshToSDF's Padding, the CLI's
+/// --padding), as BandOption's: a finite number of voxels >= 0; negative, NaN or
+/// infinite is refused with an lvdif::Error naming `name` (the filter clamped a
+/// negative padding to 0 silently). Returns the padding.
+LVDIFFILTERSVOLUME_EXPORT double PaddingOption(double padding, const std::string& name = "Padding");
+
 /// A filter's ChunkEdge and BandWidth settings checked by the one rule before
 /// any work (Core's chunk edge rule: a power of two in [4, 256], no clamp; and
 /// BandOption); throws lvdif::Error. Returns the band (BandOption's).
@@ -87,6 +94,14 @@ LVDIFFILTERSVOLUME_EXPORT lvdif::TriangleMesh ToTriangleMesh(vtkPolyData* polyDa
 
 /// An lvdif mesh as vtkPolyData: float points, triangles, `Normals` when it has them.
 LVDIFFILTERSVOLUME_EXPORT vtkSmartPointer<vtkPolyData> ToPolyData(const lvdif::TriangleMesh& mesh);
+
+/// VTK's rule for an empty input (vtkContourFilter, vtkCutter: an empty output
+/// and success, no error), which every LVDIF filter follows: true for a sparse
+/// volume that holds no volume and for a data set without points. A filter
+/// below a failed reader or filter gets such an input (ParaView runs it anyway):
+/// the failure said why once; each filter below it added an error of its own.
+/// False for no input (the executive reports a missing connection).
+LVDIFFILTERSVOLUME_EXPORT bool IsEmptyInput(vtkDataObject* input);
 
 /// RequestDataObject of a filter whose output port 0 is a vtkSparseDictionaryVolume.
 LVDIFFILTERSVOLUME_EXPORT void EnsureSparseOutput(vtkInformationVector* outputVector);

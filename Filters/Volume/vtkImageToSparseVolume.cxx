@@ -96,6 +96,11 @@ int vtkImageToSparseVolume::RequestData(
     return 0; // RequestInformation reported why (ParaView runs RequestData anyway)
   vtkImageData* image = vtkImageData::GetData(inputVector[0]);
   vtkSparseDictionaryVolume* output = vtkSparseDictionaryVolume::GetData(outputVector);
+  if (LVDIFVolumeBridge::IsEmptyInput(image))
+  {
+    output->Initialize(); // VTK's rule for an empty input (a failed upstream said why): no error
+    return 1;
+  }
   // an empty selection (a filter made on an input never updated) means the documented default
   vtkDataArray* sdf = image ? LVDIFVolumeBridge::SdfArray(this->GetInputArrayInformation(0), image,
                                 this->GetInputArrayToProcess(0, inputVector))

@@ -42,10 +42,13 @@ int vtkSparseVolumeToImage::RequestInformation(
   }
   else if (vtkSparseDictionaryVolume* given = vtkSparseDictionaryVolume::GetData(inInfo))
   {
-    if (!given->HasVolume())
+    if (LVDIFVolumeBridge::IsEmptyInput(given))
     {
-      vtkErrorMacro("the input holds no dictionary volume");
-      return LVDIFVolumeBridge::FailInformation(outputVector->GetInformationObject(0));
+      // an empty input (a failed upstream said why): an empty image, no error
+      const int empty[6] = { 0, -1, 0, -1, 0, -1 };
+      outInfo->Set(SDDP::WHOLE_EXTENT(), empty, 6);
+      this->RequiredBytes = 0;
+      return 1;
     }
     // a volume given as data (vtkTrivialProducer) announces nothing: read it off the volume
     const lvdif::VolumeOptions& o = given->GetVolume()->options();
@@ -98,10 +101,15 @@ int vtkSparseVolumeToImage::RequestData(
   vtkSparseDictionaryVolume* input = vtkSparseDictionaryVolume::GetData(inputVector[0]);
   vtkInformation* outInfo = outputVector->GetInformationObject(0);
   vtkImageData* output = vtkImageData::GetData(outInfo);
-  if (!input || !input->HasVolume())
+  if (!input)
   {
-    vtkErrorMacro("the input holds no dictionary volume");
+    vtkErrorMacro("the input is not a sparse dictionary volume");
     return 0;
+  }
+  if (LVDIFVolumeBridge::IsEmptyInput(input))
+  {
+    output->Initialize(); // VTK's rule for an empty input: empty output, no error
+    return 1;
   }
   int ext[6];
   outInfo->Get(vtkStreamingDemandDrivenPipeline::UPDATE_EXTENT(), ext);

@@ -258,6 +258,7 @@ void vtkPDictionaryVolumeWriter::WriteData()
   // (each piece's writer would report them on itself, naming its piece file)
   if (!LVDIFVolumeBridge::CallCore(this, [&] {
         lvdif::requireWritable(this->FileName);
+        lvdif::checkCompressionLevel(this->CompressionLevel, "CompressionLevel");
         if (!sparse) LVDIFVolumeBridge::CheckVolumeSettings(this->ChunkEdge, this->BandWidth);
       }))
   {

@@ -72,7 +72,7 @@ public:
   vtkGetMacro(BandWidth, double);
   vtkSetMacro(ChunkEdge, int);
   vtkGetMacro(ChunkEdge, int);
-  vtkSetClampMacro(CompressionLevel, int, 1, 19);
+  vtkSetMacro(CompressionLevel, int); // 1..19, else an error at write (no clamp)
   vtkGetMacro(CompressionLevel, int);
   vtkSetStdStringFromCharMacro(VolumeName);
   vtkGetCharFromStdStringMacro(VolumeName);

@@ -26,6 +26,11 @@ lvdif::VolumeOptions vtkDictionaryVolumeWriter::ImageVolumeOptions()
   return options;
 }
 
+void vtkDictionaryVolumeWriter::CheckSettings()
+{
+  lvdif::checkCompressionLevel(this->CompressionLevel, "CompressionLevel");
+}
+
 void vtkDictionaryVolumeWriter::Save(
   const lvdif::DictionaryVolume& volume, const SaveSource& source, lvdif::Interrupter& interrupter)
 {

@@ -42,8 +42,9 @@ public:
   ///@}
 
   ///@{
-  /// zstd level 1..19 (default: the format's default, see docs/FORMAT.md).
-  vtkSetClampMacro(CompressionLevel, int, 1, 19);
+  /// zstd level 1..19 (default: the format's default, see docs/FORMAT.md);
+  /// anything else is an error at write (lvdif::checkCompressionLevel; no clamp).
+  vtkSetMacro(CompressionLevel, int);
   vtkGetMacro(CompressionLevel, int);
   ///@}
 
@@ -63,6 +64,7 @@ protected:
 
   void Save(const lvdif::DictionaryVolume& volume, const SaveSource& source, lvdif::Interrupter& interrupter) override;
   lvdif::VolumeOptions ImageVolumeOptions() override;
+  void CheckSettings() override;
 
   std::string VolumeName;
   std::map<std::string, std::string> Metadata;

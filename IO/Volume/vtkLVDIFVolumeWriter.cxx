@@ -76,6 +76,7 @@ void vtkLVDIFVolumeWriter::WriteData()
   try
   {
     lvdif::requireWritable(this->FileName); // before the work (an image's conversion), as the CLI
+    this->CheckSettings();
     if (sparse)
     {
       this->Save(*sparse->GetVolume(), SaveSource(), interrupter);

@@ -68,6 +68,9 @@ protected:
   };
   /// Writes `volume` to FileName; throws lvdif::Error on failure.
   virtual void Save(const lvdif::DictionaryVolume& volume, const SaveSource& source, lvdif::Interrupter& interrupter) = 0;
+  /// The writer's own settings that apply to every input (a sparse one too),
+  /// checked after the folder and before any work; throws lvdif::Error (default: none).
+  virtual void CheckSettings() {}
   /// Whether an image input's `rgba` array is read (default true).
   virtual bool ReadsImageColors() { return true; }
   /// The volume of an image input (default: its `sdf` and `rgba` encoded with

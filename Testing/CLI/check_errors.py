@@ -57,7 +57,7 @@ assert code == 1 and err.endswith("--reorient needs --sign winding"), (code, err
 # a non-finite or negative --padding is named before the mesh is read (in.obj does not exist)
 for p in ("nan", "inf", "-1"):
     code, err = run("mesh-to-sdf", "in.obj", os.path.join(out, "x.lvdv"), "--padding", p)
-    assert code == 1 and err == f"lvdif mesh-to-sdf: --padding must be a finite number >= 0, not '{p}'", (code, err)
+    assert code == 1 and err == f"lvdif mesh-to-sdf: --padding must be a finite number of voxels >= 0, not {p}", (code, err)
 
 os.makedirs(out, exist_ok=True)
 bad = os.path.join(out, "bad.lvs")

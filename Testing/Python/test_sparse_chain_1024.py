@@ -27,18 +27,12 @@ LIMIT = 1 << 30
 os.environ["LVDIF_MEMORY_LIMIT"] = str(LIMIT)  # read by Core at every check
 
 import lvdif  # noqa: E402
+from lvdif_check import check, finish  # noqa: E402
 from vtkmodules.vtkCommonCore import vtkCommand  # noqa: E402
 from vtkmodules.vtkFiltersCore import vtkMassProperties  # noqa: E402
 from vtkmodules.vtkFiltersSources import vtkSphereSource  # noqa: E402
 from vtkmodules.vtkIOPLY import vtkPLYWriter  # noqa: E402
 
-failures = []
-
-
-def check(ok, what):
-    print(("ok   " if ok else "FAIL ") + what, flush=True)
-    if not ok:
-        failures.append(what)
 
 
 def rss_mib():
@@ -123,5 +117,4 @@ to_dense.Update()
 check(to_dense.GetOutput().GetNumberOfPoints() == 0 and errors and "%d x %d x %d" % (n, n, n) in errors[0],
       "the dense conversion is refused: %s" % (errors[0].strip().splitlines()[-1] if errors else "no error"))
 print("total %.1f s" % (time.time() - t0))
-print("PASS" if not failures else "FAILED: " + "; ".join(failures))
-sys.exit(1 if failures else 0)
+finish()

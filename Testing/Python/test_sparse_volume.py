@@ -21,6 +21,7 @@ import subprocess
 import sys
 
 import lvdif
+from lvdif_check import check, finish
 from vtkmodules.vtkCommonCore import vtkCommand, vtkPoints
 from vtkmodules.vtkCommonDataModel import vtkPartitionedDataSet, vtkPlane, vtkPolyData
 from vtkmodules.vtkCommonExecutionModel import vtkTrivialProducer
@@ -33,13 +34,6 @@ from vtkmodules.vtkIOPLY import vtkPLYWriter
 
 cli, dice_script, work = sys.argv[1:4]
 os.makedirs(work, exist_ok=True)
-failures = []
-
-
-def check(ok, what):
-    print(("ok   " if ok else "FAIL ") + what)
-    if not ok:
-        failures.append(what)
 
 
 def make_dice(n):
@@ -299,5 +293,4 @@ check("needs" in message and "limit" in message and "%d x %d x %d" % (n, n, n) i
 check(to_dense.GetRequiredBytes() == dense_bytes, "it states the memory it needs (%d bytes)" % to_dense.GetRequiredBytes())
 del os.environ["LVDIF_MEMORY_LIMIT"]
 
-print("PASS" if not failures else "FAILED: " + "; ".join(failures))
-sys.exit(1 if failures else 0)
+finish()

@@ -1,9 +1,14 @@
 """One rule for BandWidth and ChunkEdge in every class that has them
-(docs/USER_GUIDE.md, "Band width and chunk edge"):
+(docs/USER_GUIDE.md, "Band width, chunk edge, padding, compression level"):
 - BandWidth: a number of voxels > 0; 0 means no band (every distance kept);
   negative or NaN is refused with one error naming BandWidth (before: the
   filters read a negative band as no band, the writers refused 0, the editing
   filter clamped to [1, 1e6]).
+- Padding of vtkMeshToSDF's fitted grid: a finite number of voxels >= 0; a
+  negative one (clamped to 0 before), NaN or infinity is refused by name; a
+  Max Dimension too small for it names both properties (not Core's maxDim).
+- CompressionLevel of the .lvdv writers: 1..19, refused outside (clamped before),
+  for an image and a sparse input, nothing written, an older file kept.
 - ChunkEdge of a volume: a power of two in [4, 256]; anything else is refused
   when used, and never clamped (before: the filters clamped 2 to 4 and 512 to
   256, the writers refused them). The marching cubes' ChunkEdge (cells) is
@@ -21,17 +26,11 @@ import vtk
 from vtkmodules.util import numpy_support as ns
 
 import lvdif
+from lvdif_check import check, finish
 
 out = sys.argv[1]
 os.makedirs(out, exist_ok=True)
-problems = []
 RULE = "BandWidth must be a number of voxels >= 0 (0: no band), not "
-
-
-def check(ok, what):
-    if not ok:
-        problems.append(what)
-        print("FAIL " + what)
 
 
 def image(dims=(37, 90, 12), spacing=(1.0, 0.5, 2.0)):
@@ -57,16 +56,21 @@ class Errors:
 
         @vtk.calldata_type(vtk.VTK_STRING)
         def on_error(_o, _e, text):
-            self.messages.append(" ".join(text.split()))
+            # the message without VTK's "ERROR: In FILE, line N CLASS (0x..): " (the
+            # passing checks print it, and ctest fails a test whose output has "ERROR:")
+            self.messages.append(" ".join(text.split()).split("): ", 1)[-1])
 
         self.callback = on_error
         obj.AddObserver("ErrorEvent", on_error)
 
 
-def run(cls, band=None, edge=None, inp=None, path=None):
-    """Runs one class with the settings given: (succeeded, errors, object)."""
+def run(cls, band=None, edge=None, inp=None, path=None, **props):
+    """Runs one class with the settings given (props: other properties by name):
+    (succeeded, errors, object)."""
     obj = getattr(lvdif, cls)()
     errors = Errors(obj)
+    for name, value in props.items():
+        getattr(obj, "Set" + name)(value)
     if inp is not None:
         obj.SetInputData(inp)
     if band is not None:
@@ -234,6 +238,63 @@ for cls, ext in (("vtkDictionaryVolumeWriter", "lvdv"), ("vtkPDictionaryVolumeWr
     check(not ok and len(errs) == 1 and "the folder '/nonexistent-lvdif' does not exist" in errs[0]
           and "x." + ext in errs[0], "%s into a missing folder: %s" % (cls, errs))
 
+# vtkMeshToSDF's Padding: no clamp, one error naming it, on both fitted grids; the
+# oracle for the accepted ones: the fitted grid's points on the longest axis stay
+# MaxDimension, and the sphere (diameter 6) spans MaxDimension - 1 - 2 x Padding cells
+PADDING_RULE = "Padding must be a finite number of voxels >= 0, not "
+for padding in (0.0, 2.5):
+    ok, errs, vol = mesh_to_sdf(MaxDimension=40, Padding=padding)
+    grid = None
+    if ok:
+        conv = lvdif.vtkSparseVolumeToImage()
+        conv.SetInputData(vol)
+        conv.Update()
+        grid = (conv.GetOutput().GetDimensions(), conv.GetOutput().GetSpacing())
+    h = 6.0 / (40 - 1 - 2 * padding)  # the sphere source's polygon spans a little less than 6 on x
+    check(ok and grid[0][0] == 40 and abs(grid[1][0] - h) < 0.01 * h,
+          "vtkMeshToSDF Padding %g: %s %s (spacing %g wanted)" % (padding, errs, grid, h))
+for padding, text in ((-1.0, "-1"), (-1e-9, "-1e-09"), (float("nan"), "nan"), (float("inf"), "inf")):
+    for spacing in (0.0, 0.25):
+        ok, errs, f = run("vtkMeshToSDF", inp=sphere(), Padding=padding, SampleSpacing=spacing)
+        back = f.GetPadding()
+        check((back == padding or (back != back and padding != padding)) and not ok and len(errs) == 1
+              and PADDING_RULE + text in errs[0],
+              "vtkMeshToSDF Padding %g (Sample Spacing %g): read back %g, %s" % (padding, spacing, back, errs))
+# Max Dimension and Sample Spacing likewise: refused by name with the value given
+for props, text in (({"MaxDimension": 1}, "Max Dimension must be in [2, 1048576] (points on the longest axis), not 1"),
+                    ({"MaxDimension": 0}, "Max Dimension must be in [2, 1048576] (points on the longest axis), not 0"),
+                    ({"SampleSpacing": -1.0}, "Sample Spacing must be a finite length >= 0 (0: use Max Dimension), not -1"),
+                    ({"SampleSpacing": float("nan")}, "Sample Spacing must be a finite length >= 0 (0: use Max Dimension), not nan")):
+    ok, errs, f = run("vtkMeshToSDF", inp=sphere(), **props)
+    back = [getattr(f, "Get" + k)() for k in props]
+    check(not ok and len(errs) == 1 and text in errs[0] and str(back) == str(list(props.values())),
+          "vtkMeshToSDF %s: read back %s, %s" % (props, back, errs))
+# an explicit grid does not use Padding: not checked there
+ok, errs, f = run("vtkMeshToSDF", inp=sphere(), Padding=-1.0, UseExplicitGrid=True, Dimensions=(16, 12, 10))
+check(ok and not errs, "vtkMeshToSDF Padding -1 with an explicit grid: %s" % errs)
+for dim, good in ((5, False), (6, True)):
+    ok, errs, f = run("vtkMeshToSDF", inp=sphere(), MaxDimension=dim, Padding=2.0)
+    check(ok == good and (good or (len(errs) == 1 and "Max Dimension 5 leaves no voxel for the mesh inside 2 voxels"
+                                   " of Padding" in errs[0] and "maxDim" not in errs[0])),
+          "vtkMeshToSDF Max Dimension %d, Padding 2: %s" % (dim, errs))
+
+# the writers' CompressionLevel: no clamp, one error, nothing written, an older file kept
+LEVEL_RULE = "CompressionLevel must be a zstd level in [1, 19], not "
+sparse_src = volume_of("vtkImageToSparseVolume", img)[2]
+for cls, ext in (("vtkDictionaryVolumeWriter", "lvdv"), ("vtkPDictionaryVolumeWriter", "lvdvp")):
+    for inp, kind in ((img, "image"), (sparse_src, "sparse volume")):
+        for level in (1, 19):
+            ok, errs, vol = written(cls, ext, inp, CompressionLevel=level)
+            check(ok and not errs and vol is not None and vol.HasVolume() and vol.GetNumberOfChunks() > 0,
+                  "%s CompressionLevel %d, %s: %s" % (cls, level, kind, errs))
+        path = os.path.join(out, "settings_%s.%s" % (cls, ext))
+        before = open(path, "rb").read()
+        for level in (0, 20, -3):
+            ok, errs, w = run(cls, inp=inp, path=path, CompressionLevel=level)
+            check(w.GetCompressionLevel() == level and not ok and len(errs) == 1 and LEVEL_RULE + str(level) in errs[0]
+                  and open(path, "rb").read() == before,
+                  "%s CompressionLevel %d, %s: read back %d, %s" % (cls, level, kind, w.GetCompressionLevel(), errs))
+
 # the editor object (the Qt editor's volumes): the same rule for new volumes
 ed = lvdif.vtkLVDIFEditor()
 for band, good in ((0, True), (8, True), (-1, False), (float("nan"), False)):
@@ -243,5 +304,4 @@ for band, good in ((0, True), (8, True), (-1, False), (float("nan"), False)):
     check(bool(r) == good and (good or (len(errors.messages) == 1 and RULE in errors.messages[0])),
           "vtkLVDIFEditor BandWidth %g: NewVolume %d %s" % (band, r, errors.messages))
 
-print("%d problems" % len(problems))
-sys.exit(1 if problems else 0)
+finish()

@@ -49,9 +49,10 @@ for path in sorted(glob.glob(os.path.join(sys.argv[1], "*.xml"))):
             checked += 1
             if not same and (cls, prop.get("name")) not in ALLOWED:
                 problems.append("%s.%s: XML default %s, the class's %s" % (cls, prop.get("name"), want, got))
-# One rule per property (docs/USER_GUIDE.md, "Band width and chunk edge"), the
+# One rule per property (docs/USER_GUIDE.md, "Band width, chunk edge, padding, compression level"), the
 # same in every proxy: BandWidth >= 0 (0: no band, no upper limit); a volume's
-# ChunkEdge one of the powers of two 4..256; the marching cubes' (cells) 16..256.
+# ChunkEdge one of the powers of two 4..256; the marching cubes' (cells) 16..256;
+# Padding >= 0; a writer's CompressionLevel 1..19.
 # test_volume_settings.py checks that the classes accept those limits and refuse
 # beyond them.
 STORAGE_EDGES = ["4", "8", "16", "32", "64", "128", "256"]
@@ -66,6 +67,12 @@ for path in sorted(glob.glob(os.path.join(sys.argv[1], "*.xml"))):
             if name == "BandWidth":
                 dom = [(d.tag, d.get("min"), d.get("max")) for d in prop if d.tag.endswith("Domain")]
                 want = [("DoubleRangeDomain", "0", None)]
+            elif name == "Padding":
+                dom = [(d.tag, d.get("min"), d.get("max")) for d in prop if d.tag.endswith("Domain")]
+                want = [("DoubleRangeDomain", "0", None)]
+            elif name == "CompressionLevel":
+                dom = [(d.tag, d.get("min"), d.get("max")) for d in prop if d.tag.endswith("Domain")]
+                want = [("IntRangeDomain", "1", "19")]
             elif name == "ChunkEdge" and cls == "vtkChunkedMarchingCubes":
                 dom = [(d.tag, d.get("min"), d.get("max")) for d in prop if d.tag.endswith("Domain")]
                 want = [("IntRangeDomain", "16", "256")]
@@ -77,8 +84,8 @@ for path in sorted(glob.glob(os.path.join(sys.argv[1], "*.xml"))):
             ranges += 1
             if dom != want:
                 problems.append("%s.%s: domain %s, the rule's %s" % (cls, name, dom, want))
-print("checked %d defaults, %d band and chunk edge domains" % (checked, ranges))
-assert ranges >= 11, ranges
+print("checked %d defaults, %d band, chunk edge, padding and compression domains" % (checked, ranges))
+assert ranges >= 14, ranges
 for p in problems:
     print("FAIL " + p)
 assert checked > 30, checked

@@ -26,6 +26,7 @@ import math  # noqa: E402
 
 import paraview.simple as pvs  # noqa: E402
 from paraview import servermanager  # noqa: E402
+from lvdif_check import check  # noqa: E402,F401  (the tests call T.check)
 
 # VTK class -> (proxy group, proxy name); in Python a filter or reader is
 # paraview.simple.<name> (the XML label without spaces). Add a line here when a
@@ -249,15 +250,6 @@ def triangle_key_list(polydata, digits=5):
         tris.append(tuple(v[k:] + v[:k]))
     tris.sort()
     return tris
-
-
-def check(cond, msg):
-    print(("PASS " if cond else "FAIL ") + msg)
-    if not cond:
-        check.failures += 1
-
-
-check.failures = 0
 
 
 def write_read_stage(field, path, check):

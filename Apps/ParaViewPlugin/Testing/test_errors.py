@@ -5,8 +5,10 @@ UpdatePipeline, the GUI's Apply): a missing .lvdv gave its error twice, a
 reader without a file name first "no file name" then "cannot open ''", a bad
 Band Width or Chunk Edge of Mesh To SDF twice. Counts the error events of each
 algorithm (its client-side object); also: a reader that failed shows no stale
-data from its last good file, and the band / chunk edge rule of
-docs/USER_GUIDE.md through the proxies (Band Width 0 = no band).
+data from its last good file, and the band / chunk edge / padding / compression
+level rule of docs/USER_GUIDE.md through the proxies (Band Width 0 = no band),
+a fitted grid's error in the properties' names, and a failed reader feeding two
+of our filters gives its one error (the filters below added one each).
 Usage: test_errors.py PLUGIN TMPDIR"""
 import lvdif_pvtest  # noqa: F401  (first: ParaView's Python on sys.path)
 
@@ -16,18 +18,12 @@ import sys
 
 import paraview.simple as pvs
 from vtkmodules.vtkCommonCore import vtkOutputWindow, vtkStringOutputWindow
+from lvdif_check import check, finish
 
 plugin, tmp = sys.argv[1], sys.argv[2]
 pvs.LoadPlugin(plugin, remote=False)  # adds the proxies to paraview.simple
 out = os.path.join(tmp, "errors")
 os.makedirs(out, exist_ok=True)
-problems = []
-
-
-def check(ok, what):
-    print(("ok   " if ok else "FAIL ") + what)
-    if not ok:
-        problems.append(what)
 
 
 # Every error reaches the output window, also those of the information pass that
@@ -65,6 +61,7 @@ def points(proxy):
 
 
 sphere = pvs.Sphere(ThetaResolution=24, PhiResolution=12)
+src_level = pvs.MeshToSDF(Input=sphere, MaxDimension=24)
 good = os.path.join(out, "good.lvdv")
 pvs.SaveData(good, proxy=pvs.MeshToSDF(Input=sphere, MaxDimension=24))
 check(os.path.exists(good), "the reference .lvdv is written")
@@ -118,6 +115,63 @@ clo, chi = cut.PointData["sdf"].GetRange()
 check(lo < -5 and abs(clo + 1) < 0.01 and abs(chi - 1) < 0.01,
       "Band Width 0 keeps every distance (%g..%g), Band Width 1 cuts at 1 (%g..%g)" % (lo, hi, clo, chi))
 
+# Padding and the writers' Compression Level have the same rule (refused by name, never clamped)
+for label, props, needle in (
+        ("Mesh To SDF, Padding -1", {"Padding": -1}, "Padding must be a finite number of voxels >= 0, not -1"),
+        ("Mesh To SDF, Padding NaN", {"Padding": float("nan")}, "Padding must be a finite number of voxels >= 0, not nan"),
+        # the fitted grid's error names the properties the user sees (it named Core's maxDim and padding)
+        ("Mesh To SDF, Max Dimension 1", {"MaxDimension": 1}, "Max Dimension must be in [2, 1048576]"),
+        ("Mesh To SDF, Sample Spacing -1", {"SampleSpacing": -1}, "Sample Spacing must be a finite length >= 0"),
+        ("Mesh To SDF, Max Dimension 5, Padding 2", {"MaxDimension": 5, "Padding": 2},
+         "Max Dimension 5 leaves no voxel for the mesh inside 2 voxels of Padding")):
+    proxy = one_error(label, lambda: pvs.MeshToSDF(Input=sphere, **props), needle)
+    _, errs = errors_during(lambda: updated(proxy))
+    check(not any("maxDim" in e for e in errs), "%s: no internal name (%s)" % (label, errs))
+for ext in ("lvdv", "lvdvp"):
+    target = os.path.join(out, "level." + ext)
+    with open(target, "wb") as f:
+        f.write(b"an older file")  # kept: the refusal comes before any file is written
+    for level in (0, 20):
+        _, errs = errors_during(lambda: updated(pvs.CreateWriter(target, src_level, CompressionLevel=level)))
+        check(len(errs) == 1 and "CompressionLevel must be a zstd level in [1, 19], not %d" % level in errs[0]
+              and open(target, "rb").read() == b"an older file", "%s writer, Compression Level %d: %s" % (ext, level, errs))
+
+# A reader that failed (a missing or malformed file) feeding two of our filters: its one
+# error, nothing from the filters below. ParaView runs every proxy below a failed reader
+# on its empty output, and each of our filters added an error of its own ("the input
+# sparse volume holds no dictionary volume", "the input mesh has no points", ...); VTK's
+# own filters give an empty output for an empty input without an error, and so do ours now.
+malformed = os.path.join(out, "malformed.lvdv")
+with open(malformed, "wb") as f:
+    f.write(open(good, "rb").read()[:300])  # a truncated file: its header, no table
+for label, make_reader, filters, needle in (
+        ("missing .lvdv", lambda: pvs.LVDIFDictionaryVolumeReader(FileName=missing),
+         ("SignVoxelFilter", "ChunkedMarchingCubes"), "cannot open '%s'" % missing),
+        ("malformed .lvdv", lambda: pvs.LVDIFDictionaryVolumeReader(FileName=malformed),
+         ("SignVoxelFilter", "SparseVolumeToImage"), "'%s'" % malformed),
+        ("missing .lvdvp", lambda: pvs.LVDIFParallelDictionaryVolumeReader(FileName=missingp),
+         ("VolumeEditFilter", "ChunkedMarchingCubes"), "'%s'" % missingp),
+        ("missing mesh", lambda: pvs.LVDIFMeshReader(FileName=os.path.join(out, "missing.obj")),
+         ("MeshToSDF", "SignVoxelFilter"), "missing.obj")):
+    def build_and_apply():
+        proxies = [make_reader()]
+        for name in filters:
+            proxies.append(getattr(pvs, name)(Input=proxies[-1]))
+        for p in proxies:  # as the GUI's Apply: every proxy of the pipeline updated
+            p.UpdatePipeline()
+        return proxies
+    proxies, got = errors_during(build_and_apply)
+    check(len(got) == 1 and needle in got[0], "%s -> %s: one error with %s, got %d: %s" % (
+        label, " -> ".join(filters), needle, len(got), got))
+    check(all(p.GetDataInformation().GetNumberOfPoints() == 0 for p in proxies[1:]),
+          "%s: the filters below give empty outputs" % label)
+    # shown in a view (the representations update the last filter again): still nothing more
+    view = pvs.CreateRenderView()
+    _, got = errors_during(lambda: (pvs.Show(proxies[-1], view), pvs.Render(view)))
+    check(not got, "%s: showing the last filter adds no error: %s" % (label, got))
+    pvs.Delete(view)  # a live view at exit gives an X GLXBadContext error
+    del view
+
 # a writer into a folder that does not exist: one error naming it, nothing written
 src = pvs.MeshToSDF(Input=sphere, MaxDimension=24)
 for ext in ("lvdv", "lvdvp"):
@@ -126,5 +180,4 @@ for ext in ("lvdv", "lvdvp"):
     check(len(errs) == 1 and "cannot write '%s': the folder '/nonexistent-lvdif/dir' does not exist" % target in errs[0],
           "%s writer into a missing folder: %s" % (ext, errs))
 
-print("%d problems" % len(problems))
-sys.exit(1 if problems else 0)
+finish()

@@ -61,11 +61,15 @@ struct ZstdContext
 };
 } // namespace
 
+void checkCompressionLevel(int level, const std::string& name)
+{
+  require(level >= 1 && level <= 19, name + " must be a zstd level in [1, 19], not " + std::to_string(level));
+}
+
 void writeVolume(const DictionaryVolume& volume, ByteSink& sink, const VolumeFileWriteOptions& options,
   Interrupter& interrupter)
 {
-  require(options.compressionLevel >= 1 && options.compressionLevel <= 19,
-    "compression level must be in 1..19, got " + std::to_string(options.compressionLevel));
+  checkCompressionLevel(options.compressionLevel);
   require(options.metadata.size() <= volume_file::MaxMetadataEntries &&
       metadataBytes(options.metadata) <= volume_file::MaxMetadataBytes,
     "metadata too large (at most 65536 entries and 16 MiB)");

@@ -641,3 +641,38 @@ TEST(VolumeFileMalformed, GeometryIsRefusedOrFiniteInFloat)
     EXPECT_THROW(DictionaryVolume v(o), Error);
   }
 }
+
+TEST(VolumeFile, CompressionLevelOutsideZstdsRangeIsRefusedBeforeAnyByte)
+{
+  // the one rule of every writer's level (the VTK writers check it before any work)
+  EXPECT_NO_THROW(checkCompressionLevel(1));
+  EXPECT_NO_THROW(checkCompressionLevel(19));
+  RandomVolume a({ 20, 12, 9 }, 4, 3);
+  const std::string path = tempPath("level.lvdv");
+  saveVolume(*a.volume, path);
+  const Bytes before = readFile(path);
+  for (int level : { 0, 20, -3 })
+  {
+    VolumeFileWriteOptions o;
+    o.compressionLevel = level;
+    try
+    {
+      saveVolume(*a.volume, path, o);
+      ADD_FAILURE() << "level " << level << " was accepted";
+    }
+    catch (const Error& e)
+    {
+      EXPECT_EQ(std::string(e.what()), "compression level must be a zstd level in [1, 19], not " + std::to_string(level));
+    }
+    EXPECT_TRUE(readFile(path) == before) << level;
+    try
+    {
+      checkCompressionLevel(level, "CompressionLevel");
+      ADD_FAILURE() << "level " << level << " was accepted";
+    }
+    catch (const Error& e)
+    {
+      EXPECT_EQ(std::string(e.what()), "CompressionLevel must be a zstd level in [1, 19], not " + std::to_string(level));
+    }
+  }
+}

@@ -36,6 +36,11 @@ struct VolumeFileWriteOptions
   VolumeMetadata metadata;
 };
 
+/// The one rule of a compression level (every writer's, checked before any
+/// work): a zstd level in [1, 19]; anything else throws lvdif::Error
+/// (InvalidArgument) naming `name` ("NAME must be a zstd level in [1, 19], not 25").
+void checkCompressionLevel(int level, const std::string& name = "compression level");
+
 struct VolumeFileReadOptions
 {
   /// With wholeVolume false, only chunks overlapping `region` are read.

@@ -9,6 +9,7 @@
 
 #include "vtkCallbackCommand.h"
 #include "vtkCellArray.h"
+#include "vtkExecutive.h"
 #include "vtkCommand.h"
 #include "vtkFieldData.h"
 #include "vtkFloatArray.h"
@@ -35,11 +36,13 @@ struct ErrorCatcher
 {
   vtkNew<vtkCallbackCommand> cb;
   std::string last;
+  int count = 0; // errors since the test last reset it
   explicit ErrorCatcher(vtkObject* o)
   {
     this->cb->SetClientData(this);
     this->cb->SetCallback([](vtkObject*, unsigned long, void* client, void* call) {
       static_cast<ErrorCatcher*>(client)->last = static_cast<const char*>(call);
+      ++static_cast<ErrorCatcher*>(client)->count;
     });
     o->AddObserver(vtkCommand::ErrorEvent, this->cb);
   }
@@ -188,11 +191,16 @@ TEST(vtkMeshToSDF, ClearErrors)
   vtkObject::GlobalWarningDisplayOn(); // ErrorEvent fires only with it on (another test turns it off)
   vtkNew<vtkMeshToSDF> f;
   ErrorCatcher errors(f);
+  // an empty mesh (what a failed reader leaves) gives an empty volume without an
+  // error, as VTK's filters treat an empty input: ParaView runs the filters below a
+  // failed reader, and each added an error of its own ("the input mesh is empty")
   vtkNew<vtkPolyData> empty;
   f->SetInputData(empty);
   f->UseExplicitGridOn();
-  f->Update();
-  EXPECT_NE(errors.last.find("empty"), std::string::npos) << errors.last;
+  EXPECT_EQ(f->GetExecutive()->Update(), 1);
+  EXPECT_TRUE(errors.last.empty()) << errors.last;
+  auto* emptyOut = vtkSparseDictionaryVolume::SafeDownCast(f->GetOutputDataObject(0));
+  EXPECT_TRUE(emptyOut && !emptyOut->HasVolume());
 
   vtkNew<vtkPolyData> lines;
   vtkNew<vtkPoints> pts;
@@ -228,30 +236,64 @@ TEST(vtkMeshToSDF, ClearErrors)
   f->Update();
   EXPECT_TRUE(errors.last.empty()) << errors.last;
 
-  // a NaN Padding (the clamp macro passes NaN) is named, on both fitted grids: with
-  // SampleSpacing it read "SampleSpacing gives more than 2^20 points along an axis"
+  // a bad Padding is refused by name on both fitted grids, as a bad BandWidth
+  // (docs/USER_GUIDE.md): a negative one was clamped to 0 silently, NaN read
+  // "SampleSpacing gives more than 2^20 points along an axis"
   f->UseExplicitGridOff();
-  f->SetPadding(std::numeric_limits<double>::quiet_NaN());
-  for (double sampleSpacing : { 0.1, 0.0 })
+  for (double padding : { std::numeric_limits<double>::quiet_NaN(), -1.0, std::numeric_limits<double>::infinity() })
   {
-    f->SetSampleSpacing(sampleSpacing);
-    errors.last.clear();
-    f->Update();
-    EXPECT_NE(errors.last.find("Padding is NaN"), std::string::npos) << sampleSpacing << ": " << errors.last;
+    f->SetPadding(padding);
+    EXPECT_TRUE(std::isnan(padding) ? std::isnan(f->GetPadding()) : f->GetPadding() == padding) << "clamped";
+    for (double sampleSpacing : { 0.1, 0.0 })
+    {
+      f->SetSampleSpacing(sampleSpacing);
+      errors.last.clear();
+      errors.count = 0;
+      f->Update();
+      EXPECT_EQ(errors.count, 1) << padding << " " << sampleSpacing;
+      EXPECT_NE(errors.last.find("Padding must be a finite number of voxels >= 0, not "), std::string::npos)
+        << padding << " " << sampleSpacing << ": " << errors.last;
+    }
   }
+  // a Max Dimension too small for the Padding names both properties (it read
+  // "fit grid: padding leaves no voxel for the mesh (maxDim - 1 - 2 * padding < 1)")
+  f->SetPadding(2);
+  f->SetSampleSpacing(0);
+  f->SetMaxDimension(5);
+  errors.last.clear();
+  f->Update();
+  EXPECT_NE(errors.last.find("Max Dimension 5 leaves no voxel for the mesh inside 2 voxels of Padding"),
+    std::string::npos) << errors.last;
+  EXPECT_EQ(errors.last.find("maxDim"), std::string::npos) << errors.last;
+  f->SetMaxDimension(6); // 2 x Padding + 2: one cell for the mesh
+  errors.last.clear();
+  f->Update();
+  EXPECT_TRUE(errors.last.empty()) << errors.last;
   f->SetPadding(2);
   f->SetSampleSpacing(0.1);
   errors.last.clear();
   f->Update();
   EXPECT_TRUE(errors.last.empty()) << errors.last;
 
-  // the fitted grid of an empty mesh: the message names the class once
-  // (vtkErrorMacro's prefix; it read "vtkMeshToSDF (0x..): vtkMeshToSDF: ...")
+  // the fitted grid of an empty mesh: an empty volume, no error (it was "no points")
   vtkNew<vtkMeshToSDF> fitted;
   ErrorCatcher fittedErrors(fitted);
   fitted->SetInputData(empty);
+  EXPECT_EQ(fitted->GetExecutive()->Update(), 1);
+  EXPECT_TRUE(fittedErrors.last.empty()) << fittedErrors.last;
+  // a mesh of one point (zero-size bounds): the message names the class once
+  // (vtkErrorMacro's prefix; it read "vtkMeshToSDF (0x..): vtkMeshToSDF: ...")
+  vtkNew<vtkPolyData> point;
+  vtkNew<vtkPoints> onePoint;
+  for (int i = 0; i < 3; ++i) onePoint->InsertNextPoint(0.5, 0.5, 0.5);
+  point->SetPoints(onePoint);
+  vtkNew<vtkCellArray> tri;
+  const vtkIdType triIds[3] = { 0, 1, 2 };
+  tri->InsertNextCell(3, triIds);
+  point->SetPolys(tri);
+  fitted->SetInputData(point);
   fitted->Update();
-  EXPECT_NE(fittedErrors.last.find("no points"), std::string::npos) << fittedErrors.last;
+  EXPECT_NE(fittedErrors.last.find("zero size"), std::string::npos) << fittedErrors.last;
   EXPECT_EQ(fittedErrors.last.find("vtkMeshToSDF: "), std::string::npos) << fittedErrors.last;
 }
 

@@ -1,7 +1,8 @@
 // Under `mpirun -np 2` (and 3): the ranks of a distributed sparse vtkSignVoxelFilter
 // meet in collectives and pair exchanges; when one rank's input fails (its
-// information, its data, or it holds no volume) or its chunk exchange throws,
-// that rank still joins them as failed, so every rank's Update fails and none
+// information, its data, or it holds no volume), its chunk exchange throws or it
+// cannot allocate the buffer of the chunks it receives, that rank still joins
+// them as failed, so every rank's Update fails and none
 // waits forever. Before, the healthy rank waited in the
 // first all-reduce for the failed one (the test timed out). Also the good
 // case: both ranks filter and agree on the whole volume's statistics.
@@ -111,6 +112,18 @@ int main(int argc, char* argv[])
   vtkIdType ranks = 0;
   test.check(run(FailingSparseSource::Good, &ranks) == 1, "both inputs good: Update succeeds");
   test.check(ranks == test.ranks(), "both inputs good: the filter ran on every rank");
+  // no rank's input holds a volume (a reader that failed everywhere): an empty
+  // output and success on every rank, as VTK's filters treat an empty input
+  {
+    vtkNew<FailingSparseSource> source;
+    source->Mode = FailingSparseSource::NoVolume;
+    vtkNew<vtkSignVoxelFilter> svf;
+    svf->SetController(c);
+    svf->SetInputConnection(source->GetOutputPort());
+    const int ok = svf->GetExecutive()->Update();
+    auto* out = vtkSparseDictionaryVolume::SafeDownCast(svf->GetOutputDataObject(0));
+    test.check(ok == 1 && out && !out->HasVolume(), "no rank holds a volume: an empty output, no failure");
+  }
 
   vtkObject::GlobalWarningDisplayOff(); // the expected errors
   test.check(run(FailingSparseSource::FailData, nullptr) == 0, "rank 1's data fails: Update fails on every rank");
@@ -125,6 +138,16 @@ int main(int argc, char* argv[])
   test.check(run(FailingSparseSource::Good, nullptr) == 0, "rank 1's chunk exchange fails: Update fails on every rank");
   if (rank == 1)
     unsetenv("LVDIF_TEST_SVF_UNPACK_FAILS");
+  // rank 1 cannot allocate the buffer for the chunks it receives: one error on
+  // rank 1, no payload sent to it, every rank fails and none waits. Before, the
+  // std::bad_alloc escaped the filter (the run aborted) while rank 1's partners
+  // were still sending to it.
+  if (rank == 1)
+    setenv("LVDIF_TEST_SVF_RECEIVE_ALLOC_FAILS", "1", 1);
+  test.check(run(FailingSparseSource::Good, nullptr) == 0,
+    "rank 1 cannot allocate its receive buffer: Update fails on every rank");
+  if (rank == 1)
+    unsetenv("LVDIF_TEST_SVF_RECEIVE_ALLOC_FAILS");
   // the ranks still meet after the failures
   test.check(run(FailingSparseSource::Good, &ranks) == 1, "good again: Update succeeds");
 
