@@ -33,6 +33,8 @@ int CommandScript(int argc, char** argv)
   ProgressBar progress;
   lvdif::ScriptOptions options;
   options.interrupter = &progress;
+  // --size and a script's `canvas N` both size the canvas: refused, not "the script wins" (--size was ignored)
+  if (args.has("size")) options.canvasSizeGivenBy = "--size " + std::to_string(n);
   lvdif::ScriptRunner runner(options);
   std::shared_ptr<lvdif::DictionaryVolume> start;
   if (args.has("in"))

@@ -72,7 +72,7 @@ void checkMeshHead(ByteSource& source, MeshFormat format)
 /// normals before each face); then the "v" lines (3 coordinates read whole,
 /// the rest ignored as by the serial reader) and the "f" lines (corners v,
 /// v/vt, v//vn or v/vt/vn with positive indices defined before the face;
-/// polygons as fans) are read in parallel. False (mesh untouched) for
+/// polygons by triangulatePolygon) are read in parallel. False (mesh untouched) for
 /// anything the serial reader may answer differently or with a message (a
 /// negative index, a '+' sign, a hex float, a value out of range, a bad
 /// corner): the serial reader then reads the file.
@@ -138,7 +138,7 @@ bool parallelObj(const char* p, std::size_t size, TriangleMesh& mesh)
     }
     return count >= 3;
   };
-  // pass 1: triangles per face (a fan of n - 2), checked; then their offsets
+  // pass 1: triangles per face (n - 2), checked; then their offsets
   std::vector<std::int64_t> first(static_cast<std::size_t>(nf) + 1, 0);
   bool ok = true;
 #pragma omp parallel for schedule(static) reduction(&& : ok)
@@ -188,9 +188,8 @@ bool parallelObj(const char* p, std::size_t size, TriangleMesh& mesh)
       }
       int count = 0;
       good = corners(faces[f], ids, count) && count == n;
-      for (std::int64_t k = 1; good && k + 1 < n; ++k)
-        mesh.triangles[static_cast<std::size_t>(first[f] + k - 1)] = { static_cast<std::uint32_t>(ids[0]),
-          static_cast<std::uint32_t>(ids[k]), static_cast<std::uint32_t>(ids[k + 1]) };
+      if (good)
+        triangulatePolygon(ids, static_cast<std::size_t>(n), mesh.triangles.data() + first[f]);
     }
     ok = ok && good;
   }

@@ -531,9 +531,33 @@ void ScriptRunner::attach(Editor& editor)
   this->P->Vars["nz"] = static_cast<double>(editor.volume().dims()[2]);
 }
 
+namespace
+{
+/// The first `canvas N` (a new canvas, not `canvas fill|clear`) in b and its
+/// blocks, or nullptr. Recurses once per block level (ScriptMaxNesting at most).
+const detail::script::Stmt* firstNewCanvas(const detail::script::Block& b)
+{
+  for (const auto& s : b)
+  {
+    if (s->kind == detail::script::Stmt::Kind::Command && s->name == "canvas" && s->word.empty())
+      return s.get();
+    const detail::script::Stmt* inner = firstNewCanvas(s->body);
+    for (std::size_t c = 0; !inner && c < s->elifs.size(); ++c) inner = firstNewCanvas(s->elifs[c].body);
+    if (!inner) inner = firstNewCanvas(s->orelse);
+    if (inner) return inner;
+  }
+  return nullptr;
+}
+}
+
 void ScriptRunner::run(const std::string& source)
 {
   const detail::script::Program prog = detail::script::parse(detail::script::lex(source));
+  if (!this->P->Options.canvasSizeGivenBy.empty())
+    if (const detail::script::Stmt* c = firstNewCanvas(prog.statements))
+      throw ScriptError(ErrorCode::InvalidArgument, c->line, c->column,
+        "'canvas' makes its own canvas, but the start canvas's size was given (" + this->P->Options.canvasSizeGivenBy +
+          "): remove one of them");
   Interrupter* in = this->P->Options.interrupter;
   if (in)
     in->start("script");
