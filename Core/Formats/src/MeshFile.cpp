@@ -53,8 +53,19 @@ void checkMeshHead(ByteSource& source, MeshFormat format)
       }
       const std::size_t b = h.find_first_not_of(" \t\r\n");
       if (b == std::string::npos || h.compare(b, 5, "solid") != 0 || !text())
-        fail(ErrorCode::CorruptData, "STL",
-          "neither a binary STL (size is not 84 + 50 x triangle count) nor an ASCII one (no 'solid')");
+      {
+        // a binary STL whose count disagrees with its size (a truncated copy, an
+        // exporter writing 0): both numbers, so the user sees which
+        std::string binary = "size is not 84 + 50 x triangle count";
+        if (size >= 84)
+        {
+          std::uint32_t n = 0;
+          std::memcpy(&n, head.data() + 80, 4);
+          binary = "its header announces " + std::to_string(n) + " triangles, 84 + 50 x " + std::to_string(n) + " = " +
+            std::to_string(84 + 50 * std::uint64_t(n)) + " bytes, but the file has " + std::to_string(size) + " bytes";
+        }
+        fail(ErrorCode::CorruptData, "STL", "neither a binary STL (" + binary + ") nor an ASCII one (no 'solid')");
+      }
       return;
     }
     case MeshFormat::Obj:

@@ -177,7 +177,10 @@ TEST(MeshFile, MalformedInputsAreClearErrors)
     { "PLY no end_header", "ply\nformat ascii 1.0\nelement vertex 0\n", MeshFormat::Ply, "no end_header" },
     { "PLY missing z", "ply\nformat ascii 1.0\nelement vertex 1\nproperty float x\nproperty float y\nend_header\n0 0\n", MeshFormat::Ply, "without x, y and z" },
     { "PLY not ply", "plx\n", MeshFormat::Ply, "magic" },
-    { "STL neither", "hello", MeshFormat::Stl, "neither" },
+    { "STL neither", "hello", MeshFormat::Stl, "neither a binary STL (size is not 84 + 50 x triangle count) nor an ASCII one" },
+    // a binary STL whose count disagrees with its size names both (it said only "size is not 84 + 50 x triangle count")
+    { "STL wrong count", std::string(80, ' ') + std::string("\x05\0\0\0", 4) + std::string(150, '\0'), MeshFormat::Stl,
+      "STL: neither a binary STL (its header announces 5 triangles, 84 + 50 x 5 = 334 bytes, but the file has 234 bytes) nor an ASCII one (no 'solid')" },
     { "STL 4-vertex facet", "solid a\nfacet normal 0 0 1\nouter loop\nvertex 0 0 0\nvertex 1 0 0\nvertex 1 1 0\nvertex 0 1 0\nendloop\nendfacet\nendsolid\n", MeshFormat::Stl, "facet with 4" },
   };
   for (const Case& c : cases)
