@@ -283,11 +283,17 @@ struct ScriptRunner::Impl
     return *this->Ed;
   }
 
+  // one rule and one message for sizes ('radius -1' said "must be > 0", 'radius 2e7' "in [0, 1e+07]")
   double positive(const Stmt& s, double v, const char* what)
   {
-    if (!(v > 0))
-      fail(s.line, s.column, std::string(what) + " must be > 0");
-    return v;
+    try
+    {
+      return checkedPositive(v, EditLimits::MaxSize, what);
+    }
+    catch (const Error& e)
+    {
+      fail(s.line, s.column, e.what());
+    }
   }
 
   // Dabs count as steps: an edit may make at most the steps left (checked
@@ -348,7 +354,7 @@ struct ScriptRunner::Impl
       return this->canvas(s, a);
     if (c == "radius")
     {
-      this->Radius = checkedNumber(this->positive(s, a[0], "radius"), 0, EditLimits::MaxSize, "radius");
+      this->Radius = this->positive(s, a[0], "radius");
       if (this->Ed)
         this->Ed->stroke.radius = this->Radius;
       return;

@@ -149,7 +149,15 @@ TEST(Script, RunTimeErrorsGiveLineAndColumn)
   EXPECT_EQ(errorOf("canvas 2 2 2").detail, "no error");
   w = errorOf("canvas 16\nradius -2");
   EXPECT_EQ(w.line, 2);
-  EXPECT_EQ(w.detail, "radius must be > 0");
+  EXPECT_EQ(w.detail, "radius must be a finite number in (0, 1e+07] (got -2)");
+  // one rule with one message at both ends and for every size argument (0 and
+  // -2 said "must be > 0", 2e7 "must be a finite number in [0, 1e+07]")
+  for (const char* bad : { "radius 0", "radius 2e7", "sphere 1 2 3 0", "sphere 1 2 3 2e7", "cube 1, 2, 3, -1" })
+  {
+    w = errorOf(std::string("canvas 16\n") + bad);
+    EXPECT_EQ(w.line, 2) << bad;
+    EXPECT_NE(w.detail.find("must be a finite number in (0, 1e+07] (got "), std::string::npos) << bad << ": " << w.detail;
+  }
   w = errorOf("canvas 16\nbegin\npoint 1 2 3");
   EXPECT_EQ(w.line, 2);
   EXPECT_EQ(w.column, 1);
