@@ -100,6 +100,31 @@ code, err = run("script", os.path.join(out, "no-such.lvs"), "--in", os.path.join
 assert code == 1 and err == ("lvdif script: --size (the size of an empty start canvas) cannot be used with --in "
                              "(the script starts from that volume)"), (code, err)
 assert not os.path.exists(in_size_vol)
+# demo --out: a folder that cannot be made, or a file, is named as such (a failed mkdir was swallowed:
+# "the folder '/proc/lvdif-demo' does not exist", and a file FILE gave "FILE/demo.ply")
+code, err = run("demo", "--out", "/proc/lvdif-demo")
+assert code == 1 and err.startswith("lvdif demo: cannot create the output folder '/proc/lvdif-demo': "), (code, err)
+not_dir = os.path.join(out, "not-a-folder")
+with open(not_dir, "w") as f:
+    f.write("keep")
+code, err = run("demo", "--out", not_dir)
+assert code == 1 and err == f"lvdif demo: --out '{not_dir}' exists and is not a folder", (code, err)
+assert open(not_dir).read() == "keep"
+# play says what it replayed, and warns when nothing is written (it was silent, exit 0)
+rec = os.path.join(out, "one.lvr")
+with open(rec, "w") as f:
+    f.write("LVDIF-RECORDING 1\nedit time=0 op=add shape=sphere kind=single spacing=1.6 blend=0 coloroffset=1.5 "
+            "rounding=0 color=200,40,40,255 dabs=1\nd 12 12 12 5\n")
+play_in = os.path.join(out, "play-in.lvdv")
+with open(os.path.join(out, "play-in.lvs"), "w") as f:
+    f.write("canvas 24\n")
+assert run("script", os.path.join(out, "play-in.lvs"), "--out", play_in)[0] == 0
+r = subprocess.run([exe, "play", rec, "--in", play_in], capture_output=True, text=True, timeout=60)
+warnings = [line for line in r.stderr.splitlines() if line.startswith("warning:")]
+assert r.returncode == 0 and f"{rec}: 1 records replayed on {play_in}" in r.stdout and len(warnings) == 1 \
+    and "nothing written" in warnings[0], r
+r = subprocess.run([exe, "play", rec, "--in", play_in, "--out", play_in], capture_output=True, text=True, timeout=60)
+assert r.returncode == 0 and "warning" not in r.stderr, r
 # --size with a script that makes its own canvas: refused at that line before anything runs or is
 # written (the script's canvas silently won); without --size the script's canvas is the canvas
 own_canvas = os.path.join(out, "own-canvas.lvs")
