@@ -13,6 +13,8 @@ def run(*args):
 # COMMAND --help: that command's usage on stdout, exit 0, nothing run (no file written)
 r = subprocess.run([exe, "mesh-to-sdf", "--help"], capture_output=True, text=True, timeout=60)
 assert r.returncode == 0 and r.stdout.startswith("usage: lvdif mesh-to-sdf MESH") and "--reorient" in r.stdout, r
+# ... with the defaults an option takes when it is left out (the usage named none)
+assert "--dims 128" in r.stdout and "--padding 2" in r.stdout and "--band 8" in r.stdout, r.stdout
 r = subprocess.run([exe, "demo", "--out", out + "-help", "-h"], capture_output=True, text=True, timeout=60)
 assert r.returncode == 0 and r.stdout.startswith("usage: lvdif demo") and not __import__("os").path.exists(out + "-help"), r
 
