@@ -11,6 +11,7 @@
 #include "lvdif/CNumbers.h"
 #include "lvdif/Cuda.h"
 #include "lvdif/Error.h"
+#include "lvdif/LegacyBv.h"
 #include "lvdif/MeshFile.h"
 #include "lvdif/MeshToSdf.h"
 
@@ -102,6 +103,15 @@ int CommandMeshToSdf(int argc, char** argv)
     throw lvdif::Error(lvdif::ErrorCode::InvalidArgument, std::string("the mesh reaches ") + r + " and --padding " +
         args.get("padding", "2") + " around it takes the grid beyond +-" + limit +
         " (the volumes' world range): scale the mesh down or use less padding");
+  }
+  // a format's own limit, known from the fitted grid: before the work, not after it (.bv found a
+  // non-cubic grid only when saving, after minutes of mesh to SDF)
+  if (Extension(out) == "bv")
+  {
+    const std::string notCubic = lvdif::checkLegacyBvDims(grid.dims, out);
+    if (!notCubic.empty())
+      throw lvdif::Error(lvdif::ErrorCode::InvalidArgument, "cannot write '" + out + "': " + notCubic +
+          " (the grid fitted to the mesh)");
   }
   lvdif::DictionaryVolume volume(vo);
   const lvdif::MeshToSdfStats stats = lvdif::meshToSdf(mesh, volume, options, progress);

@@ -112,6 +112,24 @@ with open(not_dir, "w") as f:
 code, err = run("demo", "--out", not_dir)
 assert code == 1 and err == f"lvdif demo: --out '{not_dir}' exists and is not a folder", (code, err)
 assert open(not_dir).read() == "keep"
+# .bv holds cubic volumes only: a mesh whose fitted grid is not cubic is refused before mesh to SDF
+# runs (it was found when saving, after the work: "mesh to SDF: done" came first)
+flat = os.path.join(out, "flat.obj")
+with open(flat, "w") as f:
+    f.write("v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n")
+code, err = run("mesh-to-sdf", flat, os.path.join(out, "flat.bv"), "--dims", "16")
+assert code == 1 and "mesh to SDF" not in err and err == (f"lvdif mesh-to-sdf: cannot write '{os.path.join(out, 'flat.bv')}': "
+                                                          ".bv holds only cubic volumes; this one is 16 x 16 x 5 (the grid "
+                                                          "fitted to the mesh)"), (code, err)
+assert not os.path.exists(os.path.join(out, "flat.bv"))
+tet = os.path.join(out, "tet.obj")
+with open(tet, "w") as f:
+    f.write("v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nf 1 3 2\nf 1 2 4\nf 2 3 4\nf 3 1 4\n")
+named = os.path.join(out, "SDF_32_tet.bv")
+code, err = run("mesh-to-sdf", tet, named, "--dims", "16")
+assert code == 1 and "mesh to SDF" not in err and err == (f"lvdif mesh-to-sdf: cannot write '{named}': file name says N = 32 "
+                                                          "but the volume's edge is 16 (the grid fitted to the mesh)"), (code, err)
+assert run("mesh-to-sdf", tet, named, "--dims", "32")[0] == 0
 # play says what it replayed, and warns when nothing is written (it was silent, exit 0)
 rec = os.path.join(out, "one.lvr")
 with open(rec, "w") as f:
