@@ -1,10 +1,13 @@
 #include "Arguments.h"
 
 #include "lvdif/DictionaryVolume.h"
+#include "lvdif/CNumbers.h"
 #include "lvdif/Error.h"
 
 #include <algorithm>
+#include <cerrno>
 #include <cstdlib>
+#include <cstdio>
 
 Arguments::Arguments(int argc, char** argv, int first, const std::vector<std::string>& flags)
 {
@@ -43,20 +46,45 @@ std::string Arguments::get(const std::string& key, const std::string& fallback) 
   return it == this->Options.end() ? fallback : it->second;
 }
 
-long Arguments::getInt(const std::string& key, long fallback) const
+namespace
+{
+/// The text as a long: false unless all of it is one, within long's range
+/// (strtol saturates at LONG_MAX with ERANGE: --dims 99999999999999999999
+/// was reported as "not 9223372036854775807").
+bool parseLong(const std::string& v, long& x)
+{
+  char* end = nullptr;
+  errno = 0;
+  x = std::strtol(v.c_str(), &end, 10);
+  return end != v.c_str() && *end == '\0' && errno != ERANGE;
+}
+
+[[noreturn]] void refuse(const std::string& key, const std::string& what, const std::string& v)
+{
+  throw lvdif::Error(lvdif::ErrorCode::InvalidArgument, "option --" + key + " expects " + what + ", got '" + v + "'");
+}
+
+std::string rangeText(long lo, long hi)
+{
+  return "an integer in [" + std::to_string(lo) + ", " + std::to_string(hi) + "]";
+}
+}
+
+long Arguments::getInt(const std::string& key, long fallback, long lo, long hi) const
 {
   if (!this->has(key)) return fallback;
   const std::string v = this->get(key, "");
-  char* end = nullptr;
-  const long x = std::strtol(v.c_str(), &end, 10);
-  if (end == v.c_str() || *end != '\0')
-    throw lvdif::Error(lvdif::ErrorCode::InvalidArgument, "option --" + key + " expects an integer, got '" + v + "'");
+  long x = 0;
+  if (!parseLong(v, x) || x < lo || x > hi) refuse(key, rangeText(lo, hi), v);
   return x;
 }
 
 long Arguments::getCanvasSize(const std::string& key, long fallback) const
 {
-  const long n = this->getInt(key, fallback);
+  if (!this->has(key)) return fallback;
+  const std::string v = this->get(key, "");
+  long n = 0;
+  if (!parseLong(v, n)) refuse(key, rangeText(lvdif::DictionaryVolume::MinCanvasDimension, lvdif::DictionaryVolume::MaxDimension), v);
   // DictionaryVolume::checkCanvasDimensions is the one canvas rule of every editor
   const std::string problem = lvdif::DictionaryVolume::checkCanvasDimensions({ n, n, n });
   if (!problem.empty())
@@ -64,14 +92,25 @@ long Arguments::getCanvasSize(const std::string& key, long fallback) const
   return n;
 }
 
-double Arguments::getDouble(const std::string& key, double fallback) const
+double Arguments::getDouble(const std::string& key, double fallback, double lo, double hi) const
 {
   if (!this->has(key)) return fallback;
   const std::string v = this->get(key, "");
+  // the C locale's decimal point, whatever LC_NUMERIC says (one conversion in Core)
   char* end = nullptr;
-  const double x = std::strtod(v.c_str(), &end);
-  if (end == v.c_str() || *end != '\0')
-    throw lvdif::Error(lvdif::ErrorCode::InvalidArgument, "option --" + key + " expects a number, got '" + v + "'");
+  const double x = lvdif::strtodC(v.c_str(), &end);
+  if (end == v.c_str() || *end != '\0' || !(x >= lo && x <= hi)) // NaN fails every comparison
+  {
+    char range[96] = "";
+    if (lo > -HUGE_VAL || hi < HUGE_VAL)
+    {
+      char a[40], b[40];
+      lvdif::formatDoubleC(a, sizeof a, "%.17g", lo);
+      lvdif::formatDoubleC(b, sizeof b, "%.17g", hi);
+      std::snprintf(range, sizeof range, " in [%s, %s]", a, b);
+    }
+    refuse(key, std::string("a number") + range, v);
+  }
   return x;
 }
 

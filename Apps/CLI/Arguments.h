@@ -2,6 +2,7 @@
 // `--flag` options, with errors that name the bad option.
 #pragma once
 
+#include <cmath>
 #include <map>
 #include <string>
 #include <vector>
@@ -14,8 +15,12 @@ public:
   const std::vector<std::string>& positional() const { return this->Positional; }
   bool has(const std::string& key) const { return this->Options.count(key) != 0; }
   std::string get(const std::string& key, const std::string& fallback) const;
-  long getInt(const std::string& key, long fallback) const;
-  double getDouble(const std::string& key, double fallback) const;
+  /// The one number guard of every option: the whole text must be a number
+  /// inside [lo, hi] (NaN never is; an integer beyond long's range is not
+  /// clamped), else Error(InvalidArgument) quoting the text and the range.
+  long getInt(const std::string& key, long fallback, long lo, long hi) const;
+  /// Any number but NaN unless a range is given; infinity only where hi (lo) is.
+  double getDouble(const std::string& key, double fallback, double lo = -HUGE_VAL, double hi = HUGE_VAL) const;
   /// An integer edge length N for a new N x N x N canvas, refused (naming the
   /// option) unless the editors' one canvas rule accepts it.
   long getCanvasSize(const std::string& key, long fallback) const;

@@ -13,7 +13,9 @@
 
 #include "vtkPolyData.h"
 
+#include <cerrno>
 #include <chrono>
+#include <cstring>
 #include <cstdio>
 #include <sys/stat.h>
 #include <unistd.h>
@@ -28,6 +30,13 @@ int CommandDemo(int argc, char** argv)
   // a folder this command makes is removed again if the command then fails
   // (e.g. a --size over the memory limit, found only by the build)
   const bool made = ::mkdir(out.c_str(), 0755) == 0;
+  // why the folder is unusable, in its own words (a failed mkdir was swallowed:
+  // --out /proc/x said "the folder '/proc/x' does not exist", --out FILE named FILE/demo.ply)
+  struct stat st;
+  if (!made && errno != EEXIST)
+    throw lvdif::Error(lvdif::ErrorCode::IoFailure, "cannot create the output folder '" + out + "': " + std::strerror(errno));
+  if (!made && (::stat(out.c_str(), &st) != 0 || !S_ISDIR(st.st_mode)))
+    throw lvdif::Error(lvdif::ErrorCode::InvalidArgument, "--out '" + out + "' exists and is not a folder");
   const std::string plyPath = out + "/demo.ply", pngPath = out + "/demo.png", volumePath = out + "/demo.lvdv";
   DemoResult demo;
   vtkSmartPointer<vtkPolyData> mesh;

@@ -33,6 +33,8 @@ int CommandScript(int argc, char** argv)
   ProgressBar progress;
   lvdif::ScriptOptions options;
   options.interrupter = &progress;
+  // --size and a script's `canvas N` both size the canvas: refused, not "the script wins" (--size was ignored)
+  if (args.has("size")) options.canvasSizeGivenBy = "--size " + std::to_string(n);
   lvdif::ScriptRunner runner(options);
   std::shared_ptr<lvdif::DictionaryVolume> start;
   if (args.has("in"))
@@ -78,6 +80,11 @@ int CommandPlay(int argc, char** argv)
   auto volume = LoadAnyVolume(args.get("in", ""), progress);
   lvdif::Editor editor(*volume);
   editor.play(recording, progress);
+  // a replay said nothing at all, and without an output it keeps nothing: both said
+  std::printf("%s: %zu records replayed on %s\n", args.positional()[0].c_str(), recording.records.size(),
+    args.get("in", "").c_str());
+  if (!args.has("out") && !args.has("mesh") && !args.has("png"))
+    std::fprintf(stderr, "warning: nothing written (no --out, --mesh or --png): the replay only checked the recording\n");
   WriteEditOutputs(*volume, args, { { "recording", args.positional()[0] } }, progress);
   return 0;
 }

@@ -8,11 +8,14 @@
 
 #include "LVDIFVolumeBridge.h"
 
+#include "lvdif/CNumbers.h"
 #include "lvdif/Cuda.h"
 #include "lvdif/Error.h"
+#include "lvdif/LegacyBv.h"
 #include "lvdif/MeshFile.h"
 #include "lvdif/MeshToSdf.h"
 
+#include <algorithm>
 #include <charconv>
 #include <cmath>
 #include <cstdio>
@@ -51,15 +54,10 @@ int CommandMeshToSdf(int argc, char** argv)
   if (args.positional().size() != 2)
     throw lvdif::Error(lvdif::ErrorCode::InvalidArgument, Usage);
   const std::string in = args.positional()[0], out = args.positional()[1];
-  const long dims = args.getInt("dims", 128);
-  const double padding = args.getDouble("padding", 2.0);
-  const double band = args.getDouble("band", 8.0);
-  if (dims < 2 || dims > lvdif::DictionaryVolume::MaxDimension)
-    throw lvdif::Error(lvdif::ErrorCode::InvalidArgument, "--dims must be in [2, " +
-        std::to_string(lvdif::DictionaryVolume::MaxDimension) + "], not " + std::to_string(dims));
-  // fitGridToMesh's own words name no option, and come only after the mesh is read;
-  // the filter's Padding rule (LVDIFVolumeBridge::PaddingOption)
-  LVDIFVolumeBridge::PaddingOption(padding, "--padding");
+  const long dims = args.getInt("dims", 128, 2, lvdif::DictionaryVolume::MaxDimension);
+  // (more padding than voxels is refused below, naming both options)
+  const double padding = args.getDouble("padding", 2.0, 0, double(lvdif::DictionaryVolume::MaxDimension));
+  const double band = args.getDouble("band", 8.0); // its range: the filters' rule below
   if (static_cast<double>(dims) - 1.0 - 2.0 * padding < 1.0)
     throw lvdif::Error(lvdif::ErrorCode::InvalidArgument, "--dims " + std::to_string(dims) + " leaves no voxel for the mesh inside --padding " +
         args.get("padding", "2") + " on every side: use --dims of at least 2 x padding + 2, or less padding");
@@ -68,6 +66,10 @@ int CommandMeshToSdf(int argc, char** argv)
   lvdif::MeshToSdfOptions options;
   options.sign = lvdif::signModeFromName(args.get("sign", "winding"), "--sign");
   options.device = deviceFromName(args.get("device", "auto"));
+  // asked for by name, the GPU is not quietly replaced by the CPU (auto is): as the benchmarks refuse it
+  if (options.device == lvdif::Device::Cuda && !lvdif::cuda::available())
+    throw lvdif::Error(lvdif::ErrorCode::Unsupported, std::string("--device cuda: ") +
+        (lvdif::cuda::compiled() ? "no usable CUDA device" : "this build has no CUDA") + " (--device auto uses the CPU then)");
   // winding sign of the consistently re-oriented mesh (unreliable face orientation)
   options.reorientFaces = args.has("reorient");
   if (options.reorientFaces && options.sign != lvdif::SignMode::WindingNumber)
@@ -92,6 +94,29 @@ int CommandMeshToSdf(int argc, char** argv)
   const lvdif::GridGeometry grid = lvdif::fitGridToMesh(mesh, dims, padding);
   lvdif::VolumeOptions vo = lvdif::volumeOptionsOn(grid);
   vo.bandWidth = bandWidth;
+  // a mesh inside the world range whose padded grid is not: named with the
+  // options (the volume's own words are about an origin the user never gave)
+  if (!lvdif::DictionaryVolume::checkGeometry(vo).empty())
+  {
+    const auto b = mesh.bounds();
+    double reach = 0;
+    for (int a = 0; a < 3; ++a) reach = std::max({ reach, std::fabs(double(b[0][a])), std::fabs(double(b[1][a])) });
+    char r[40], limit[40];
+    lvdif::formatDoubleC(r, sizeof r, "%g", reach);
+    lvdif::formatDoubleC(limit, sizeof limit, "%g", lvdif::MaxWorldCoordinate);
+    throw lvdif::Error(lvdif::ErrorCode::InvalidArgument, std::string("the mesh reaches ") + r + " and --padding " +
+        args.get("padding", "2") + " around it takes the grid beyond +-" + limit +
+        " (the volumes' world range): scale the mesh down or use less padding");
+  }
+  // a format's own limit, known from the fitted grid: before the work, not after it (.bv found a
+  // non-cubic grid only when saving, after minutes of mesh to SDF)
+  if (Extension(out) == "bv")
+  {
+    const std::string notCubic = lvdif::checkLegacyBvDims(grid.dims, out);
+    if (!notCubic.empty())
+      throw lvdif::Error(lvdif::ErrorCode::InvalidArgument, "cannot write '" + out + "': " + notCubic +
+          " (the grid fitted to the mesh)");
+  }
   lvdif::DictionaryVolume volume(vo);
   const lvdif::MeshToSdfStats stats = lvdif::meshToSdf(mesh, volume, options, progress);
   SaveAnyVolume(volume, out,

@@ -77,10 +77,8 @@ vtkSmartPointer<vtkPolyData> MeshVolume(const lvdif::DictionaryVolume& volume, l
 
 void CheckMeshOutput(const std::string& path)
 {
-  const LVDIFFiles::Format* f = LVDIFFiles::Find(path, LVDIFFiles::Kind::Mesh);
-  if (!f || f->writerClass.empty())
-    throw lvdif::Error(lvdif::ErrorCode::InvalidArgument, "unknown mesh extension of " + path + " (" +
-        LVDIFFiles::DialogFilter(LVDIFFiles::Kind::Mesh, true) + ")");
+  // the registry's words (a Qt dialog filter, "Meshes (*.ply ...);;PLY mesh (*.ply);;...", was the list)
+  LVDIFFiles::RequireFormat(path, LVDIFFiles::Kind::Mesh, true);
   lvdif::requireWritable(path);
 }
 

@@ -16,10 +16,8 @@ std::shared_ptr<lvdif::DictionaryVolume> LoadAnyVolume(const std::string& path, 
 
 void CheckVolumeOutput(const std::string& path)
 {
-  const LVDIFFiles::Format* f = LVDIFFiles::Find(path, LVDIFFiles::Kind::Volume);
-  if (!f || f->writerClass.empty())
-    throw lvdif::Error(lvdif::ErrorCode::InvalidArgument,
-      "cannot write '" + path + "': not a volume format (" + LVDIFFiles::DialogFilter(LVDIFFiles::Kind::Volume, true) + ")");
+  // the registry's words (a Qt dialog filter, "Volumes (*.lvdv ...);;LVDIF ...", was the list)
+  LVDIFFiles::RequireFormat(path, LVDIFFiles::Kind::Volume, true);
   LVDIFFiles::RequireWritable(path);
 }
 

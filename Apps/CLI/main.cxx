@@ -62,7 +62,7 @@ struct Command
 };
 
 const Command commands[] = {
-  { "demo", CommandDemo, "demo [--out DIR] [--size N]   build, save, mesh and render the bundled example" },
+  { "demo", CommandDemo, "demo [--out DIR (default out)] [--size N (default 128)]   build, save, mesh and render the bundled example" },
   { "info", CommandInfo,
     "info VOLUME.lvdv [--header-only]   describe a volume file (header, chunks, colours, metadata) after checking "
     "every chunk; --header-only skips the chunks" },
@@ -70,9 +70,11 @@ const Command commands[] = {
   { "convert", CommandConvert, "convert IN OUT   between volume formats: .lvdv, .lvdvp, .bv (the original's), .vti, .vdb" },
   { "mesh-to-sdf", CommandMeshToSdf,
     "mesh-to-sdf MESH OUT.(lvdv|bv|vti|vdb) [--dims N] [--padding P] [--sign normal|pseudo|winding] [--reorient] [--svf] [--band B] "
-    "[--device cpu|cuda|auto]   voxelize a mesh (OBJ, OFF, STL, PLY)" },
+    "[--device cpu|cuda|auto]   voxelize a mesh (OBJ, OFF, STL, PLY); defaults: --dims 128 voxels on the longest axis, "
+    "--padding 2 voxels, --sign winding, --band 8 voxels (0: no band), --device auto" },
   { "script", CommandScript,
-    "script FILE.lvs [--in VOLUME] [--out VOLUME] [--mesh OUT] [--png OUT.png] [--size N]   run a script" },
+    "script FILE.lvs [--in VOLUME] [--out VOLUME] [--mesh OUT] [--png OUT.png] [--size N]   run a script; --size: "
+    "the empty start canvas (default 128) of a script without --in and without its own 'canvas'" },
   { "play", CommandPlay, "play RECORDING.lvr --in VOLUME [--out VOLUME] [--mesh OUT] [--png OUT.png]   replay edits" },
 };
 

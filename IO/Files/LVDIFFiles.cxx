@@ -150,6 +150,13 @@ const Format* Find(const std::string& path, Kind kind)
   return nullptr;
 }
 
+const Format& RequireFormat(const std::string& path, Kind kind, bool forSaving)
+{
+  const Format* f = Find(path, kind);
+  if (!f || (forSaving ? f->writerClass : f->readerClass).empty()) unknown(path, kind, forSaving);
+  return *f;
+}
+
 std::string DialogFilter(Kind kind, bool forSaving)
 {
   std::string all, each;
@@ -171,8 +178,7 @@ void RequireWritable(const std::string& path)
 
 std::shared_ptr<lvdif::DictionaryVolume> LoadVolume(const std::string& path, lvdif::Interrupter& interrupter)
 {
-  const Format* f = Find(path, Kind::Volume);
-  if (!f || f->readerClass.empty()) unknown(path, Kind::Volume, false);
+  const Format* f = &RequireFormat(path, Kind::Volume, false);
   const std::string what = "cannot read '" + path + "'";
   vtkSmartPointer<vtkAlgorithm> reader, last;
   if (f->extension == "lvdv")
@@ -240,8 +246,7 @@ std::shared_ptr<lvdif::DictionaryVolume> LoadVolume(const std::string& path, lvd
 void SaveVolume(const std::shared_ptr<lvdif::DictionaryVolume>& volume, const std::string& path,
   const std::map<std::string, std::string>& metadata, lvdif::Interrupter& interrupter)
 {
-  const Format* f = Find(path, Kind::Volume);
-  if (!f || f->writerClass.empty()) unknown(path, Kind::Volume, true);
+  const Format* f = &RequireFormat(path, Kind::Volume, true);
   RequireWritable(path); // before any work (a .vti's dense conversion), in the CLI's words
   vtkNew<vtkSparseDictionaryVolume> sparse;
   sparse->SetVolume(volume);
@@ -308,8 +313,7 @@ void SaveVolume(const std::shared_ptr<lvdif::DictionaryVolume>& volume, const st
 
 vtkSmartPointer<vtkPolyData> LoadMesh(const std::string& path)
 {
-  const Format* f = Find(path, Kind::Mesh);
-  if (!f || f->readerClass.empty()) unknown(path, Kind::Mesh, false);
+  const Format* f = &RequireFormat(path, Kind::Mesh, false);
   vtkNew<vtkLVDIFMeshReader> reader;
   reader->SetFileName(path.c_str());
   Watch watch(lvdif::nullInterrupter(), { reader });
@@ -322,8 +326,7 @@ vtkSmartPointer<vtkPolyData> LoadMesh(const std::string& path)
 
 void SaveMesh(vtkPolyData* mesh, const std::string& path)
 {
-  const Format* f = Find(path, Kind::Mesh);
-  if (!f || f->writerClass.empty()) unknown(path, Kind::Mesh, true);
+  const Format* f = &RequireFormat(path, Kind::Mesh, true);
   vtkSmartPointer<vtkAlgorithm> writer;
   std::function<int()> write;
   if (f->extension == "ply")

@@ -52,6 +52,11 @@ LVDIFIOFILES_EXPORT std::string Extension(const std::string& path);
 /// The format of this kind for the path's extension, or nullptr.
 LVDIFIOFILES_EXPORT const Format* Find(const std::string& path, Kind kind);
 
+/// The format that reads (forSaving false) or writes (true) the path, or
+/// lvdif::Error(InvalidArgument) naming the path and the extensions that do
+/// (the words LoadVolume and SaveVolume use: one message for every front end).
+LVDIFIOFILES_EXPORT const Format& RequireFormat(const std::string& path, Kind kind, bool forSaving);
+
 /// "LVDIF volume (*.lvdv);;..." for Qt file dialogs: the formats of a kind
 /// that can be read (forSaving false) or written (true), an "all" entry first.
 LVDIFIOFILES_EXPORT std::string DialogFilter(Kind kind, bool forSaving);

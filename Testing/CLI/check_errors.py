@@ -13,6 +13,8 @@ def run(*args):
 # COMMAND --help: that command's usage on stdout, exit 0, nothing run (no file written)
 r = subprocess.run([exe, "mesh-to-sdf", "--help"], capture_output=True, text=True, timeout=60)
 assert r.returncode == 0 and r.stdout.startswith("usage: lvdif mesh-to-sdf MESH") and "--reorient" in r.stdout, r
+# ... with the defaults an option takes when it is left out (the usage named none)
+assert "--dims 128" in r.stdout and "--padding 2" in r.stdout and "--band 8" in r.stdout, r.stdout
 r = subprocess.run([exe, "demo", "--out", out + "-help", "-h"], capture_output=True, text=True, timeout=60)
 assert r.returncode == 0 and r.stdout.startswith("usage: lvdif demo") and not __import__("os").path.exists(out + "-help"), r
 
@@ -55,9 +57,21 @@ import os  # noqa: E402
 code, err = run("mesh-to-sdf", "in.obj", os.path.join(out, "x.lvdv"), "--sign", "pseudo", "--reorient")
 assert code == 1 and err.endswith("--reorient needs --sign winding"), (code, err)
 # a non-finite or negative --padding is named before the mesh is read (in.obj does not exist)
-for p in ("nan", "inf", "-1"):
+for p in ("nan", "inf", "-1", "1e999"):
     code, err = run("mesh-to-sdf", "in.obj", os.path.join(out, "x.lvdv"), "--padding", p)
-    assert code == 1 and err == f"lvdif mesh-to-sdf: --padding must be a finite number of voxels >= 0, not {p}", (code, err)
+    assert code == 1 and err == f"lvdif mesh-to-sdf: option --padding expects a number in [0, 1048576], got '{p}'", (code, err)
+# every number option goes through one guard that quotes the text as written and the range:
+# an integer beyond long's range was "not 9223372036854775807" (strtol's ERANGE ignored)
+for value in ("99999999999999999999", "-99999999999999999999", "1048577", "1", "12x", "", "0x10"):
+    code, err = run("mesh-to-sdf", "in.obj", os.path.join(out, "x.lvdv"), "--dims", value)
+    assert code == 1 and err == f"lvdif mesh-to-sdf: option --dims expects an integer in [2, 1048576], got '{value}'", (code, err)
+for cmd in (["demo", "--out", out + "-huge"], ["script", "x.lvs"]):
+    code, err = run(*cmd, "--size", "99999999999999999999")
+    assert code == 1 and err == (f"lvdif {cmd[0]}: option --size expects an integer in [2, 1048576], "
+                                 "got '99999999999999999999'"), (code, err)
+assert not os.path.exists(out + "-huge")
+code, err = run("mesh-to-sdf", "in.obj", os.path.join(out, "x.lvdv"), "--band", "nan")
+assert code == 1 and err == "lvdif mesh-to-sdf: option --band expects a number, got 'nan'", (code, err)
 
 os.makedirs(out, exist_ok=True)
 bad = os.path.join(out, "bad.lvs")
@@ -88,6 +102,75 @@ code, err = run("script", os.path.join(out, "no-such.lvs"), "--in", os.path.join
 assert code == 1 and err == ("lvdif script: --size (the size of an empty start canvas) cannot be used with --in "
                              "(the script starts from that volume)"), (code, err)
 assert not os.path.exists(in_size_vol)
+# demo --out: a folder that cannot be made, or a file, is named as such (a failed mkdir was swallowed:
+# "the folder '/proc/lvdif-demo' does not exist", and a file FILE gave "FILE/demo.ply")
+code, err = run("demo", "--out", "/proc/lvdif-demo")
+assert code == 1 and err.startswith("lvdif demo: cannot create the output folder '/proc/lvdif-demo': "), (code, err)
+not_dir = os.path.join(out, "not-a-folder")
+with open(not_dir, "w") as f:
+    f.write("keep")
+code, err = run("demo", "--out", not_dir)
+assert code == 1 and err == f"lvdif demo: --out '{not_dir}' exists and is not a folder", (code, err)
+assert open(not_dir).read() == "keep"
+# .bv holds cubic volumes only: a mesh whose fitted grid is not cubic is refused before mesh to SDF
+# runs (it was found when saving, after the work: "mesh to SDF: done" came first)
+flat = os.path.join(out, "flat.obj")
+with open(flat, "w") as f:
+    f.write("v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n")
+code, err = run("mesh-to-sdf", flat, os.path.join(out, "flat.bv"), "--dims", "16")
+assert code == 1 and "mesh to SDF" not in err and err == (f"lvdif mesh-to-sdf: cannot write '{os.path.join(out, 'flat.bv')}': "
+                                                          ".bv holds only cubic volumes; this one is 16 x 16 x 5 (the grid "
+                                                          "fitted to the mesh)"), (code, err)
+assert not os.path.exists(os.path.join(out, "flat.bv"))
+tet = os.path.join(out, "tet.obj")
+with open(tet, "w") as f:
+    f.write("v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nf 1 3 2\nf 1 2 4\nf 2 3 4\nf 3 1 4\n")
+named = os.path.join(out, "SDF_32_tet.bv")
+code, err = run("mesh-to-sdf", tet, named, "--dims", "16")
+assert code == 1 and "mesh to SDF" not in err and err == (f"lvdif mesh-to-sdf: cannot write '{named}': file name says N = 32 "
+                                                          "but the volume's edge is 16 (the grid fitted to the mesh)"), (code, err)
+assert run("mesh-to-sdf", tet, named, "--dims", "32")[0] == 0
+# --device cuda where the GPU cannot be used (--device auto says which device it used) is refused before
+# the work: it ran on the CPU with a notice and exit 0
+r = subprocess.run([exe, "mesh-to-sdf", tet, os.path.join(out, "auto.lvdv"), "--dims", "8"], capture_output=True,
+                   text=True, timeout=60)
+assert r.returncode == 0 and ("device cpu" in r.stdout or "device cuda" in r.stdout), r
+if "device cpu" in r.stdout:
+    code, err = run("mesh-to-sdf", tet, os.path.join(out, "cuda.lvdv"), "--dims", "8", "--device", "cuda")
+    assert code == 1 and err.startswith("lvdif mesh-to-sdf: --device cuda: ") and err.endswith(
+        " (--device auto uses the CPU then)") and not os.path.exists(os.path.join(out, "cuda.lvdv")), (code, err)
+# play says what it replayed, and warns when nothing is written (it was silent, exit 0)
+rec = os.path.join(out, "one.lvr")
+with open(rec, "w") as f:
+    f.write("LVDIF-RECORDING 1\nedit time=0 op=add shape=sphere kind=single spacing=1.6 blend=0 coloroffset=1.5 "
+            "rounding=0 color=200,40,40,255 dabs=1\nd 12 12 12 5\n")
+play_in = os.path.join(out, "play-in.lvdv")
+with open(os.path.join(out, "play-in.lvs"), "w") as f:
+    f.write("canvas 24\n")
+assert run("script", os.path.join(out, "play-in.lvs"), "--out", play_in)[0] == 0
+r = subprocess.run([exe, "play", rec, "--in", play_in], capture_output=True, text=True, timeout=60)
+warnings = [line for line in r.stderr.splitlines() if line.startswith("warning:")]
+assert r.returncode == 0 and f"{rec}: 1 records replayed on {play_in}" in r.stdout and len(warnings) == 1 \
+    and "nothing written" in warnings[0], r
+r = subprocess.run([exe, "play", rec, "--in", play_in, "--out", play_in], capture_output=True, text=True, timeout=60)
+assert r.returncode == 0 and "warning" not in r.stderr, r
+# --size with a script that makes its own canvas: refused at that line before anything runs or is
+# written (the script's canvas silently won); without --size the script's canvas is the canvas
+own_canvas = os.path.join(out, "own-canvas.lvs")
+with open(own_canvas, "w") as f:
+    f.write("radius 3\ncanvas 24 16 8\ndab 4 4 4\n")
+own_vol = os.path.join(out, "own-canvas.lvdv")
+with open(own_vol, "wb") as f:
+    f.write(b"old")
+code, err = run("script", own_canvas, "--size", "64", "--out", own_vol)
+assert code == 1 and err == (f"lvdif script: {own_canvas}:2:1: 'canvas' makes its own canvas, but the start canvas's "
+                             "size was given (--size 64): remove one of them"), (code, err)
+assert open(own_vol, "rb").read() == b"old"
+os.remove(own_vol)
+code, err = run("script", own_canvas, "--out", own_vol)
+assert code == 0, (code, err)
+r = subprocess.run([exe, "info", own_vol, "--header-only"], capture_output=True, text=True, timeout=60)
+assert r.returncode == 0 and "dimensions  24 x 16 x 8" in r.stdout, r
 code, err = run("info", os.path.join(out, "missing.lvdv"))
 assert code == 1 and "missing.lvdv" in err, (code, err)
 with open(os.path.join(out, "junk.lvdv"), "wb") as f:
@@ -128,6 +211,25 @@ for name, data in (("empty.obj", b""), ("junk.ply", b"ply\nformat ascii 1.0\nele
         f.write(data)
     code, err = run("mesh-to-sdf", mesh_path, os.path.join(out, "m.lvdv"), "--dims", "8")
     assert code == 1 and err.count("\n") == 0 and err.count(mesh_path) == 1, (name, code, err)
+# coordinates near float's limit: the mesh's bounds, named when it is read (it was "volume origin
+# -4.87805e+36 and spacing 2.43902e+36 on axis x must be finite ..."); a mesh inside the range whose
+# padded grid is not names --padding; a face of one vertex in plain words ("face with 1 vertices")
+for name, text, want in (
+        ("far.obj", "v 3e38 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n",
+         "OBJ: mesh coordinates span x [0, 3e+38], y [0, 1], z [0, 0]: every coordinate must lie within +-1e+30"),
+        ("one.obj", "v 0 0 0\nf 1\n", "OBJ line 2: a face needs at least 3 vertices, this one has 1")):
+    mesh_path = os.path.join(out, name)
+    with open(mesh_path, "w") as f:
+        f.write(text)
+    code, err = run("mesh-to-sdf", mesh_path, os.path.join(out, "m.lvdv"), "--dims", "8")
+    assert code == 1 and err.startswith(f"lvdif mesh-to-sdf: cannot read '{mesh_path}': {want}") and "origin" not in err, (code, err)
+near = os.path.join(out, "near.obj")
+with open(near, "w") as f:
+    f.write("v -9e29 0 0\nv 9e29 0 0\nv 0 9e29 0\nf 1 2 3\n")
+code, err = run("mesh-to-sdf", near, os.path.join(out, "m.lvdv"), "--dims", "8", "--padding", "3")
+assert code == 1 and err == ("lvdif mesh-to-sdf: the mesh reaches 9e+29 and --padding 3 around it takes the grid beyond "
+                             "+-1e+30 (the volumes' world range): scale the mesh down or use less padding"), (code, err)
+assert not os.path.exists(os.path.join(out, "m.lvdv"))
 # --dims too small for the padding names both options (not fitGridToMesh's "maxDim")
 code, err = run("mesh-to-sdf", os.path.join(out, "empty.obj"), os.path.join(out, "m.lvdv"), "--dims", "3")
 assert code == 1 and "--dims 3" in err and "--padding 2" in err and "maxDim" not in err, (code, err)

@@ -93,9 +93,9 @@ assert run.returncode == 0, run.stderr
 assert os.path.getsize(bv) == 4 * N ** 3
 
 # errors: one line on stderr, exit code 1, nothing written
-for bad, needle in ((["--sign", "inside"], "--sign must be"), (["--dims", "1"], "--dims must be"),
+for bad, needle in ((["--sign", "inside"], "--sign must be"), (["--dims", "1"], "option --dims expects an integer in [2, 1048576], got '1'"),
                     (["--band", "-1"], "--band must be a number of voxels >= 0 (0: no band), not -1"),
-                    (["--band", "nan"], "--band must be a number of voxels >= 0 (0: no band), not nan"),
+                    (["--band", "nan"], "option --band expects a number, got 'nan'"),
                     (["--device", "tpu"], "--device must be"),
                     (["--colour", "red"], "colour")):
     target = f"{out}/bad.lvdv"

@@ -117,7 +117,9 @@ for ext in ply vtp obj stl; do
 done
 run script-mesh 1 "/nonexistent_dir" -- "$exe" script base.lvs --mesh /nonexistent_dir/x.ply
 run script-out 1 "/nonexistent_dir" -- "$exe" script base.lvs --out /nonexistent_dir/x.lvdv
-run badext 1 "unknown mesh extension" -- "$exe" mesh base.lvdv x.xyz
+run badext 1 "lvdif mesh: cannot write 'x.xyz': meshes are .ply, .obj, .stl, .vtp files" -- "$exe" mesh base.lvdv x.xyz
+grep -qF ';;' badext.err && note "badext: a Qt dialog filter in the message: $(cat badext.err)"
+run badvolext 1 "lvdif convert: cannot write 'x.ply': volumes are .lvdv, .lvdvp, .bv, .vdb, .vti files" -- "$exe" convert base.lvdv x.ply
 mkdir -p adir adir.ply
 run ontodir 1 "not a regular file" -- "$exe" mesh base.lvdv adir.ply
 (unset DISPLAY; run png-nodisplay 1 "no X display" -- "$exe" mesh base.lvdv old.ply --png x.png)

@@ -3,6 +3,7 @@
 #include "lvdif/Error.h"
 
 #include <cmath>
+#include <locale>
 #include <sstream>
 
 namespace lvdif
@@ -14,6 +15,7 @@ void TriangleMesh::validate() const
   {
     throw Error(ErrorCode::InvalidArgument, "mesh has no triangles");
   }
+  bool tooFar = false;
   for (std::size_t i = 0; i < this->points.size(); ++i)
   {
     for (float c : this->points[i])
@@ -24,7 +26,20 @@ void TriangleMesh::validate() const
         msg << "mesh point " << i << " has a NaN or infinite coordinate";
         throw Error(ErrorCode::InvalidArgument, msg.str());
       }
+      tooFar = tooFar || !isWorldCoordinate(c);
     }
+  }
+  if (tooFar)
+  {
+    // the bounds, not one point: the user sees the mesh's scale (and which axis)
+    const auto b = this->bounds();
+    std::ostringstream msg;
+    msg.imbue(std::locale::classic()); // "1e+30", whatever a host set
+    msg << "mesh coordinates span";
+    for (int a = 0; a < 3; ++a) msg << (a ? ", " : " ") << "xyz"[a] << " [" << b[0][a] << ", " << b[1][a] << "]";
+    msg << ": every coordinate must lie within +-" << MaxWorldCoordinate
+        << " (volume positions are floats; scale the mesh down)";
+    throw Error(ErrorCode::InvalidArgument, msg.str());
   }
   for (std::size_t t = 0; t < this->triangles.size(); ++t)
   {

@@ -65,3 +65,33 @@ TEST(TriangleMesh, ValidateNamesTheProblem)
   m.triangles.push_back({ 0, 0, 1 });
   EXPECT_EQ(m.degenerateCount(), 1u);
 }
+
+// Coordinates near float's limit (3e38 reads as a float) are refused by the
+// mesh's own check with its bounds, before any grid is fitted (they failed
+// later as "volume origin ... on axis x"); the limit itself still passes.
+TEST(TriangleMesh, ValidateRefusesCoordinatesBeyondTheWorldRange)
+{
+  for (float far : { 3e38f, -3e38f, 2e30f, std::numeric_limits<float>::max() })
+  {
+    TriangleMesh m = makeBoxMesh({ 0, 0, 0 }, { 1, 1, 1 });
+    m.points[5][2] = far;
+    try
+    {
+      m.validate();
+      ADD_FAILURE() << far << " accepted";
+    }
+    catch (const Error& e)
+    {
+      const std::string what = e.what();
+      EXPECT_EQ(e.code(), ErrorCode::InvalidArgument);
+      EXPECT_NE(what.find("mesh coordinates span x [0, 1], y [0, 1], z ["), std::string::npos) << what;
+      EXPECT_NE(what.find("within +-1e+30"), std::string::npos) << what;
+      EXPECT_EQ(what.find("origin"), std::string::npos) << what;
+    }
+  }
+  TriangleMesh m = makeBoxMesh({ -1e30f, 0, 0 }, { 1e29f, 1, 1 });
+  EXPECT_NO_THROW(m.validate()); // the limit as a float (1.00000002e30) passes
+  EXPECT_TRUE(isWorldCoordinate(-1e30f));
+  EXPECT_FALSE(isWorldCoordinate(std::numeric_limits<float>::infinity()));
+  EXPECT_FALSE(isWorldCoordinate(std::numeric_limits<float>::quiet_NaN()));
+}

@@ -27,6 +27,13 @@ double checkedNumber(double v, double lo, double hi, const std::string& what)
   return v;
 }
 
+double checkedPositive(double v, double hi, const std::string& what)
+{
+  if (!(std::isfinite(v) && v > 0 && v <= hi))
+    throw Error(ErrorCode::InvalidArgument, what + " must be a finite number in (0, " + str(hi) + "] (got " + str(v) + ")");
+  return v;
+}
+
 void validate(const BrushSettings& s)
 {
   checkedNumber(s.blend, 0, EditLimits::MaxSize, "brush blend radius");

@@ -252,12 +252,23 @@ std::unique_ptr<DictionaryVolume> loadLegacyBv(
   return readLegacyBv(src, path, options, interrupter);
 }
 
+std::string checkLegacyBvDims(const Index3& d, const std::string& path)
+{
+  if (d[0] != d[1] || d[1] != d[2])
+    return ".bv holds only cubic volumes; this one is " + std::to_string(d[0]) + " x " + std::to_string(d[1]) + " x " +
+      std::to_string(d[2]);
+  const std::int64_t token = path.empty() ? -1 : legacy_bv::edgeFromName(path);
+  if (token >= 0 && token != d[0])
+    return "file name says N = " + std::to_string(token) + " but the volume's edge is " + std::to_string(d[0]);
+  return std::string();
+}
+
 void writeLegacyBv(const DictionaryVolume& volume, ByteSink& sink, const LegacyBvOptions& options,
   Interrupter& interrupter)
 {
   const Index3& d = volume.dims();
-  require(d[0] == d[1] && d[1] == d[2], ".bv holds only cubic volumes; this one is " + std::to_string(d[0]) + " x " +
-      std::to_string(d[1]) + " x " + std::to_string(d[2]));
+  const std::string notCubic = checkLegacyBvDims(d);
+  require(notCubic.empty(), notCubic);
   require(options.distanceScale > 0 && std::isfinite(options.distanceScale), "distance scale must be finite and > 0");
   const std::int64_t n = d[0];
   std::vector<std::uint16_t> lut(65536);
@@ -295,9 +306,8 @@ void writeLegacyBv(const DictionaryVolume& volume, ByteSink& sink, const LegacyB
 void saveLegacyBv(
   const DictionaryVolume& volume, const std::string& path, const LegacyBvOptions& options, Interrupter& interrupter)
 {
-  const std::int64_t token = legacy_bv::edgeFromName(path);
-  require(token < 0 || token == volume.dims()[0],
-    "file name says N = " + std::to_string(token) + " but the volume's edge is " + std::to_string(volume.dims()[0]));
+  const std::string problem = checkLegacyBvDims(volume.dims(), path);
+  require(problem.empty(), problem);
   saveAtomically(
     path, [&](ByteSink& sink) { writeLegacyBv(volume, sink, options, interrupter); });
 }

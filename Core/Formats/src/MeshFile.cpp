@@ -53,8 +53,19 @@ void checkMeshHead(ByteSource& source, MeshFormat format)
       }
       const std::size_t b = h.find_first_not_of(" \t\r\n");
       if (b == std::string::npos || h.compare(b, 5, "solid") != 0 || !text())
-        fail(ErrorCode::CorruptData, "STL",
-          "neither a binary STL (size is not 84 + 50 x triangle count) nor an ASCII one (no 'solid')");
+      {
+        // a binary STL whose count disagrees with its size (a truncated copy, an
+        // exporter writing 0): both numbers, so the user sees which
+        std::string binary = "size is not 84 + 50 x triangle count";
+        if (size >= 84)
+        {
+          std::uint32_t n = 0;
+          std::memcpy(&n, head.data() + 80, 4);
+          binary = "its header announces " + std::to_string(n) + " triangles, 84 + 50 x " + std::to_string(n) + " = " +
+            std::to_string(84 + 50 * std::uint64_t(n)) + " bytes, but the file has " + std::to_string(size) + " bytes";
+        }
+        fail(ErrorCode::CorruptData, "STL", "neither a binary STL (" + binary + ") nor an ASCII one (no 'solid')");
+      }
       return;
     }
     case MeshFormat::Obj:
@@ -72,7 +83,7 @@ void checkMeshHead(ByteSource& source, MeshFormat format)
 /// normals before each face); then the "v" lines (3 coordinates read whole,
 /// the rest ignored as by the serial reader) and the "f" lines (corners v,
 /// v/vt, v//vn or v/vt/vn with positive indices defined before the face;
-/// polygons as fans) are read in parallel. False (mesh untouched) for
+/// polygons by triangulatePolygon) are read in parallel. False (mesh untouched) for
 /// anything the serial reader may answer differently or with a message (a
 /// negative index, a '+' sign, a hex float, a value out of range, a bad
 /// corner): the serial reader then reads the file.
@@ -138,7 +149,7 @@ bool parallelObj(const char* p, std::size_t size, TriangleMesh& mesh)
     }
     return count >= 3;
   };
-  // pass 1: triangles per face (a fan of n - 2), checked; then their offsets
+  // pass 1: triangles per face (n - 2), checked; then their offsets
   std::vector<std::int64_t> first(static_cast<std::size_t>(nf) + 1, 0);
   bool ok = true;
 #pragma omp parallel for schedule(static) reduction(&& : ok)
@@ -188,9 +199,8 @@ bool parallelObj(const char* p, std::size_t size, TriangleMesh& mesh)
       }
       int count = 0;
       good = corners(faces[f], ids, count) && count == n;
-      for (std::int64_t k = 1; good && k + 1 < n; ++k)
-        mesh.triangles[static_cast<std::size_t>(first[f] + k - 1)] = { static_cast<std::uint32_t>(ids[0]),
-          static_cast<std::uint32_t>(ids[k]), static_cast<std::uint32_t>(ids[k + 1]) };
+      if (good)
+        triangulatePolygon(ids, static_cast<std::size_t>(n), mesh.triangles.data() + first[f]);
     }
     ok = ok && good;
   }

@@ -9,6 +9,7 @@
 #include <gtest/gtest.h>
 
 #include <limits>
+#include <map>
 
 #include <algorithm>
 #include <cmath>
@@ -147,8 +148,15 @@ TEST(MeshFile, MalformedInputsAreClearErrors)
     { "OBJ index 0", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 0 1 2\n", MeshFormat::Obj, "index 0" },
     { "OBJ NaN", "v nan 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n", MeshFormat::Obj, "NaN" },
     { "OBJ inf", "v 0 1e999 0\n", MeshFormat::Obj, "NaN or infinite" },
-    { "OBJ two-vertex face", "v 0 0 0\nv 1 0 0\nf 1 2\n", MeshFormat::Obj, "face with 2 vertices" },
-    { "OBJ empty face", "v 0 0 0\nf\n", MeshFormat::Obj, "face with 0 vertices" },
+    { "OBJ two-vertex face", "v 0 0 0\nv 1 0 0\nf 1 2\n", MeshFormat::Obj, "OBJ line 3: a face needs at least 3 vertices, this one has 2" },
+    { "OBJ one-vertex face", "v 0 0 0\nf 1\n", MeshFormat::Obj, "OBJ line 2: a face needs at least 3 vertices, this one has 1" },
+    { "OBJ empty face", "v 0 0 0\nf\n", MeshFormat::Obj, "this one has 0" },
+    // near float's limit: the mesh's bounds, at reading (it was a message about the volume's origin)
+    { "OBJ at 3e38", "v 3e38 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n", MeshFormat::Obj,
+      "OBJ: mesh coordinates span x [0, 3e+38], y [0, 1], z [0, 0]: every coordinate must lie within +-1e+30" },
+    { "OFF at -2e30", "OFF\n3 1 0\n0 0 -2e30\n1 0 0\n0 1 0\n3 0 1 2\n", MeshFormat::Off, "OFF: mesh coordinates span" },
+    { "PLY at 1e35", plyHead + "0 1e35 0\n1 0 0\n0 1 0\n3 0 1 2\n", MeshFormat::Ply, "PLY: mesh coordinates span x [0, 1], y [0, 1e+35]" },
+    { "STL at 3e38", "solid a\nfacet normal 0 0 1\nouter loop\nvertex 0 0 0\nvertex 3e38 0 0\nvertex 0 1 0\nendloop\nendfacet\nendsolid\n", MeshFormat::Stl, "STL: mesh coordinates span" },
     { "OBJ garbage index", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 x\n", MeshFormat::Obj, "not an integer" },
     { "OBJ short vertex", "v 0 0\n", MeshFormat::Obj, "fewer than 3" },
     { "OBJ no faces", "v 0 0 0\n", MeshFormat::Obj, "no triangles" },
@@ -160,7 +168,7 @@ TEST(MeshFile, MalformedInputsAreClearErrors)
     { "OFF no header", "3 1 0\n" + tri, MeshFormat::Off, "header" },
     { "PLY index out of range", plyHead + tri + "3 0 1 3\n", MeshFormat::Ply, "out of range" },
     { "PLY negative index", plyHead + tri + "3 0 -1 2\n", MeshFormat::Ply, "out of range" },
-    { "PLY empty face", plyHead + tri + "0\n", MeshFormat::Ply, "face with 0" },
+    { "PLY empty face", plyHead + tri + "0\n", MeshFormat::Ply, "PLY face 0: a face needs at least 3 vertices, this one has 0" },
     { "PLY NaN", plyHead + "nan 0 0\n1 0 0\n0 1 0\n3 0 1 2\n", MeshFormat::Ply, "NaN" },
     { "PLY too few values", plyHead + "0 0\n1 0 0\n0 1 0\n3 0 1 2\n", MeshFormat::Ply, "too few" },
     { "PLY huge count", "ply\nformat binary_little_endian 1.0\nelement vertex 4000000000\nproperty float x\nproperty float y\nproperty float z\nend_header\n" + std::string(12, '\0'), MeshFormat::Ply, "cannot fit" },
@@ -169,13 +177,77 @@ TEST(MeshFile, MalformedInputsAreClearErrors)
     { "PLY no end_header", "ply\nformat ascii 1.0\nelement vertex 0\n", MeshFormat::Ply, "no end_header" },
     { "PLY missing z", "ply\nformat ascii 1.0\nelement vertex 1\nproperty float x\nproperty float y\nend_header\n0 0\n", MeshFormat::Ply, "without x, y and z" },
     { "PLY not ply", "plx\n", MeshFormat::Ply, "magic" },
-    { "STL neither", "hello", MeshFormat::Stl, "neither" },
+    { "STL neither", "hello", MeshFormat::Stl, "neither a binary STL (size is not 84 + 50 x triangle count) nor an ASCII one" },
+    // a binary STL whose count disagrees with its size names both (it said only "size is not 84 + 50 x triangle count")
+    { "STL wrong count", std::string(80, ' ') + std::string("\x05\0\0\0", 4) + std::string(150, '\0'), MeshFormat::Stl,
+      "STL: neither a binary STL (its header announces 5 triangles, 84 + 50 x 5 = 334 bytes, but the file has 234 bytes) nor an ASCII one (no 'solid')" },
     { "STL 4-vertex facet", "solid a\nfacet normal 0 0 1\nouter loop\nvertex 0 0 0\nvertex 1 0 0\nvertex 1 1 0\nvertex 0 1 0\nendloop\nendfacet\nendsolid\n", MeshFormat::Stl, "facet with 4" },
   };
   for (const Case& c : cases)
   {
     SCOPED_TRACE(c.label);
     expectError(c.text, c.f, c.needle);
+  }
+}
+
+// A polygon of n corners becomes n - 2 triangles that tile it (each of its
+// edges once, each inner edge twice in opposite directions, the polygon's
+// area, its winding), and no corner collects more than a few of them: a fan
+// from corner 0 put all n - 2 slivers on one corner and mesh to SDF of a
+// 100,000-corner OBJ face took minutes. Every format and the parallel OBJ
+// reader (a file of 4 MiB or more) give the same triangles.
+TEST(MeshFile, PolygonsBecomeLocalTriangles)
+{
+  const double pi = 3.14159265358979323846;
+  for (int n : { 3, 4, 5, 6, 7, 8, 9, 17, 100, 1000, 65537, 300000 })
+  {
+    SCOPED_TRACE(n);
+    std::string obj, off = "OFF\n" + std::to_string(n) + " 1 0\n", face = "f", offFace = std::to_string(n);
+    for (int i = 0; i < n; ++i)
+    {
+      char v[96];
+      std::snprintf(v, sizeof v, "%.9f %.9f 0", std::cos(2 * pi * i / n), std::sin(2 * pi * i / n));
+      obj += std::string("v ") + v + "\n";
+      off += std::string(v) + "\n";
+      face += " " + std::to_string(i + 1);
+      offFace += " " + std::to_string(i);
+    }
+    obj += face + "\n";
+    off += offFace + "\n";
+    const TriangleMesh m = readText(obj, MeshFormat::Obj);
+    ASSERT_EQ(m.triangles.size(), std::size_t(n - 2));
+    EXPECT_EQ(readText(off, MeshFormat::Off).triangles, m.triangles);
+    if (obj.size() < (std::size_t(4) << 20)) // the parallel reader too: the same face in a file past 4 MiB
+    {
+      std::string big = obj + "# " + std::string((std::size_t(4) << 20) - obj.size(), 'x') + "\n";
+      EXPECT_EQ(readText(big, MeshFormat::Obj).triangles, m.triangles);
+    }
+    std::map<std::pair<std::uint32_t, std::uint32_t>, int> edges;
+    std::vector<int> perCorner(static_cast<std::size_t>(n), 0);
+    double area = 0;
+    for (const auto& t : m.triangles)
+    {
+      for (int k = 0; k < 3; ++k)
+      {
+        ++edges[{ t[k], t[(k + 1) % 3] }];
+        ++perCorner[t[k]];
+      }
+      const Vec3f &a = m.points[t[0]], &b = m.points[t[1]], &c = m.points[t[2]];
+      const double twice = (double(b[0]) - a[0]) * (double(c[1]) - a[1]) - (double(b[1]) - a[1]) * (double(c[0]) - a[0]);
+      if (n <= 1000) // (beyond, neighbours on the circle are collinear in float)
+        EXPECT_GT(twice, 0) << "winding"; // counter-clockwise as the polygon
+      area += twice / 2;
+    }
+    for (const auto& e : edges)
+    {
+      ASSERT_EQ(e.second, 1);
+      const bool boundary = (e.first.second == (e.first.first + 1) % std::uint32_t(n));
+      EXPECT_EQ(edges.count({ e.first.second, e.first.first }), boundary ? 0u : 1u);
+    }
+    // the regular n-gon's area, n/2 sin(2 pi / n), computed independently
+    EXPECT_NEAR(area, n / 2.0 * std::sin(2 * pi / n), 1e-6 * n / 2.0 * std::sin(2 * pi / n) + 1e-9);
+    const int most = *std::max_element(perCorner.begin(), perCorner.end());
+    EXPECT_LE(most, 2 * int(std::ceil(std::log2(n))) + 1);
   }
 }
 

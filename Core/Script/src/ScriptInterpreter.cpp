@@ -283,11 +283,17 @@ struct ScriptRunner::Impl
     return *this->Ed;
   }
 
+  // one rule and one message for sizes ('radius -1' said "must be > 0", 'radius 2e7' "in [0, 1e+07]")
   double positive(const Stmt& s, double v, const char* what)
   {
-    if (!(v > 0))
-      fail(s.line, s.column, std::string(what) + " must be > 0");
-    return v;
+    try
+    {
+      return checkedPositive(v, EditLimits::MaxSize, what);
+    }
+    catch (const Error& e)
+    {
+      fail(s.line, s.column, e.what());
+    }
   }
 
   // Dabs count as steps: an edit may make at most the steps left (checked
@@ -348,7 +354,7 @@ struct ScriptRunner::Impl
       return this->canvas(s, a);
     if (c == "radius")
     {
-      this->Radius = checkedNumber(this->positive(s, a[0], "radius"), 0, EditLimits::MaxSize, "radius");
+      this->Radius = this->positive(s, a[0], "radius");
       if (this->Ed)
         this->Ed->stroke.radius = this->Radius;
       return;
@@ -531,9 +537,33 @@ void ScriptRunner::attach(Editor& editor)
   this->P->Vars["nz"] = static_cast<double>(editor.volume().dims()[2]);
 }
 
+namespace
+{
+/// The first `canvas N` (a new canvas, not `canvas fill|clear`) in b and its
+/// blocks, or nullptr. Recurses once per block level (ScriptMaxNesting at most).
+const detail::script::Stmt* firstNewCanvas(const detail::script::Block& b)
+{
+  for (const auto& s : b)
+  {
+    if (s->kind == detail::script::Stmt::Kind::Command && s->name == "canvas" && s->word.empty())
+      return s.get();
+    const detail::script::Stmt* inner = firstNewCanvas(s->body);
+    for (std::size_t c = 0; !inner && c < s->elifs.size(); ++c) inner = firstNewCanvas(s->elifs[c].body);
+    if (!inner) inner = firstNewCanvas(s->orelse);
+    if (inner) return inner;
+  }
+  return nullptr;
+}
+}
+
 void ScriptRunner::run(const std::string& source)
 {
   const detail::script::Program prog = detail::script::parse(detail::script::lex(source));
+  if (!this->P->Options.canvasSizeGivenBy.empty())
+    if (const detail::script::Stmt* c = firstNewCanvas(prog.statements))
+      throw ScriptError(ErrorCode::InvalidArgument, c->line, c->column,
+        "'canvas' makes its own canvas, but the start canvas's size was given (" + this->P->Options.canvasSizeGivenBy +
+          "): remove one of them");
   Interrupter* in = this->P->Options.interrupter;
   if (in)
     in->start("script");

@@ -72,7 +72,8 @@ public:
 private:
   const std::vector<Token>& T;
   std::size_t I = 0;
-  int Depth = 0;
+  int Depth = 0;  // expression levels (ScriptMaxNesting)
+  int Blocks = 0; // nested blocks (ScriptMaxNesting of their own)
 
   const Token& peek() const { return this->T[this->I]; }
   const Token& next() { return this->T[this->I < this->T.size() - 1 ? this->I++ : this->I]; }
@@ -104,17 +105,22 @@ private:
       this->next();
   }
 
-  // statements until '}' (open != nullptr) or the end
+  // one level of an expression (parentheses, unary operators, calls)
   void enter(const Token& at, const char* what)
   {
     if (++this->Depth > ScriptMaxNesting)
       this->fail(at, std::string(what) + " nested too deeply (more than " + std::to_string(ScriptMaxNesting) +
-          " levels of blocks, parentheses, unary operators and calls)");
+          " levels of parentheses, unary operators and calls)");
   }
 
+  // statements until '}' (open != nullptr) or the end
   Block block(const Token* open)
   {
-    this->enter(this->peek(), "blocks");
+    // blocks count on their own: an if's condition is no block level (201
+    // nested ifs were "expressions nested too deeply", at 200)
+    if (open && ++this->Blocks > ScriptMaxNesting)
+      this->fail(*open, "blocks nested too deeply: this '{' opens level " + std::to_string(this->Blocks) +
+          ", more than the limit of " + std::to_string(ScriptMaxNesting) + " nested if, else, for and while blocks");
     Block b;
     for (;;)
     {
@@ -135,7 +141,8 @@ private:
       if (!(this->at(Tok::Newline) || this->at(Tok::Semicolon) || this->at(Tok::RBrace) || this->at(Tok::End)))
         this->fail(this->peek(), "expected the end of the statement, found " + describe(this->peek()));
     }
-    --this->Depth;
+    if (open)
+      --this->Blocks;
     return b;
   }
 

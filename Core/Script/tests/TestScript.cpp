@@ -149,7 +149,15 @@ TEST(Script, RunTimeErrorsGiveLineAndColumn)
   EXPECT_EQ(errorOf("canvas 2 2 2").detail, "no error");
   w = errorOf("canvas 16\nradius -2");
   EXPECT_EQ(w.line, 2);
-  EXPECT_EQ(w.detail, "radius must be > 0");
+  EXPECT_EQ(w.detail, "radius must be a finite number in (0, 1e+07] (got -2)");
+  // one rule with one message at both ends and for every size argument (0 and
+  // -2 said "must be > 0", 2e7 "must be a finite number in [0, 1e+07]")
+  for (const char* bad : { "radius 0", "radius 2e7", "sphere 1 2 3 0", "sphere 1 2 3 2e7", "cube 1, 2, 3, -1" })
+  {
+    w = errorOf(std::string("canvas 16\n") + bad);
+    EXPECT_EQ(w.line, 2) << bad;
+    EXPECT_NE(w.detail.find("must be a finite number in (0, 1e+07] (got "), std::string::npos) << bad << ": " << w.detail;
+  }
   w = errorOf("canvas 16\nbegin\npoint 1 2 3");
   EXPECT_EQ(w.line, 2);
   EXPECT_EQ(w.column, 1);
@@ -342,33 +350,51 @@ TEST(Script, NestingBeyondTheLimitIsOneParseError)
   for (int n : { ScriptMaxNesting + 1, 100000 })
   {
     const std::string open(static_cast<std::size_t>(n), '(');
-    // 'x = ' is 4 characters; the parenthesis that crosses the limit is the ScriptMaxNesting-th
-    // (the statement's own expression is the first level)
-    check("x = " + open + "1" + std::string(static_cast<std::size_t>(n), ')'), 4 + ScriptMaxNesting, "parentheses");
+    // 'x = ' is 4 characters; the parenthesis that crosses the limit is the (ScriptMaxNesting + 1)-th
+    // character after it (the statement's own expression is the first level)
+    check("x = " + open + "1" + std::string(static_cast<std::size_t>(n), ')'), 5 + ScriptMaxNesting, "parentheses");
     std::string neg;
     for (int i = 0; i < n; ++i)
       neg += "-";
-    check("x = " + neg + "1", 3 + ScriptMaxNesting, "unary minus");
+    check("x = " + neg + "1", 4 + ScriptMaxNesting, "unary minus");
     std::string nots;
     for (int i = 0; i < n; ++i)
       nots += "not ";
-    check("x = " + nots + "1", 5 + 4 * (ScriptMaxNesting - 2), "not");
+    check("x = " + nots + "1", 5 + 4 * (ScriptMaxNesting - 1), "not");
     std::string calls;
     for (int i = 0; i < n; ++i)
       calls += "abs(";
-    check("x = " + calls + "1" + std::string(static_cast<std::size_t>(n), ')'), 5 + 4 * (ScriptMaxNesting - 1),
-      "calls");
-    std::string blocks;
-    for (int i = 0; i < n; ++i)
-      blocks += "if 1 {";
-    // the top level is a block too; blocks alternate with their condition's expression level
-    const Where w = errorOf(blocks);
-    EXPECT_EQ(w.code, ErrorCode::ParseError);
-    EXPECT_NE(w.detail.find("nested too deeply"), std::string::npos) << w.detail;
+    check("x = " + calls + "1" + std::string(static_cast<std::size_t>(n), ')'), 5 + 4 * ScriptMaxNesting, "calls");
+    // each head and the column of the '{' that opens level ScriptMaxNesting + 1
+    const std::pair<std::string, int> heads[] = { { "if 1 {", 6 * (ScriptMaxNesting + 1) },
+      { "for i in 0 .. 1 {", 17 * (ScriptMaxNesting + 1) }, { "while 0 {", 9 * (ScriptMaxNesting + 1) },
+      { "if 0 {} else {", 14 * ScriptMaxNesting + 6 } }; // (the if's '{' of the next level comes first)
+    for (const auto& [head, column] : heads)
+    {
+      // blocks count on their own (an if's condition is no block level): the
+      // (ScriptMaxNesting + 1)-th '{' is refused naming blocks and the limit; it
+      // said "expressions nested too deeply" at the 200th if
+      std::string blocks;
+      for (int i = 0; i < n; ++i)
+        blocks += head;
+      const Where w = errorOf(blocks);
+      EXPECT_EQ(w.code, ErrorCode::ParseError) << head;
+      EXPECT_EQ(w.line, 1) << head;
+      EXPECT_EQ(w.column, column) << head;
+      EXPECT_EQ(w.detail, "blocks nested too deeply: this '{' opens level " + std::to_string(ScriptMaxNesting + 1) +
+          ", more than the limit of " + std::to_string(ScriptMaxNesting) + " nested if, else, for and while blocks")
+        << head;
+    }
   }
-  // just inside the limit still runs
-  const int ok = ScriptMaxNesting - 2;
+  // just inside the limits still runs: expressions, blocks, and both at once
+  // (the deepest recursion a script can reach)
+  const int ok = ScriptMaxNesting - 1;
   EXPECT_EQ(valueOf("x = " + std::string(ok, '(') + "5" + std::string(ok, ')')), 5.0);
+  std::string deepest;
+  for (int i = 0; i < ScriptMaxNesting; ++i)
+    deepest += "if 1 {\n";
+  deepest += "x = " + std::string(ok, '(') + "7" + std::string(ok, ')') + "\n" + std::string(ScriptMaxNesting, '}');
+  EXPECT_EQ(valueOf(deepest), 7.0);
 }
 
 // Dabs count as steps and a runaway line is refused before its dabs exist:
@@ -457,4 +483,40 @@ TEST(Script, ReadScriptFileRefusesFoldersAndFifosWithoutBlocking)
   }
   lvdif::checkScript("canvas 32\r\nsphere 16, 16, 16, 8\r\n"); // CRLF as before
   std::remove(path.c_str());
+}
+
+// A caller that fixed the start canvas's size (lvdif script --size) gets the
+// script's `canvas N` refused before anything runs, wherever it stands (it
+// silently replaced that canvas); `canvas fill|clear` keeps the canvas and runs.
+TEST(Script, CanvasSizeGivenByTheCallerRefusesTheScriptsCanvas)
+{
+  ScriptOptions o;
+  o.canvasSizeGivenBy = "--size 64";
+  const std::string head = "x = 1\nif x > 5 {\n  radius 2\n} else {\n  ";
+  for (const std::string& canvas : { std::string("canvas 32"), std::string("canvas 8 16 24") })
+  {
+    const Where w = errorOf(head + canvas + "\n}\nx = 2\n", o);
+    EXPECT_EQ(w.code, ErrorCode::InvalidArgument);
+    EXPECT_EQ(w.line, 5);
+    EXPECT_EQ(w.column, 3);
+    EXPECT_EQ(w.detail, "'canvas' makes its own canvas, but the start canvas's size was given (--size 64): remove one of them");
+  }
+  // nothing ran: the assignment before it did not happen either
+  {
+    ScriptRunner r(o);
+    DictionaryVolume v(VolumeOptions{});
+    r.attach(v);
+    EXPECT_THROW(r.run("y = 7\ncanvas 16\n"), ScriptError);
+    EXPECT_THROW(r.variable("y"), Error);
+  }
+  // without the option the same script runs and makes its canvas; fill and clear are no new canvas
+  ScriptRunner plain;
+  plain.run("canvas 16\ncanvas fill\n");
+  ASSERT_NE(plain.volume(), nullptr);
+  EXPECT_EQ(plain.volume()->dims()[0], 16);
+  ScriptRunner fixed(o);
+  DictionaryVolume v(VolumeOptions{});
+  fixed.attach(v);
+  EXPECT_NO_THROW(fixed.run("canvas clear\nx = 3\n"));
+  EXPECT_EQ(fixed.variable("x"), 3.0);
 }

@@ -37,6 +37,8 @@ struct EditLimits
 
 /// Finite and in [lo, hi], or Error(InvalidArgument) "<what> must be ... (got v)".
 double checkedNumber(double v, double lo, double hi, const std::string& what);
+/// Finite and in (0, hi], or Error(InvalidArgument) "<what> must be a finite number in (0, hi] (got v)".
+double checkedPositive(double v, double hi, const std::string& what);
 
 void validate(const BrushSettings& s);
 /// `index` names the dab in the message (e.g. its position in a list).

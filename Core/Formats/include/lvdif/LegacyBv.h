@@ -77,6 +77,11 @@ std::unique_ptr<DictionaryVolume> readLegacyBv(ByteSource& source, const std::st
 std::unique_ptr<DictionaryVolume> loadLegacyBv(const std::string& path,
   const LegacyBvOptions& options = LegacyBvOptions(), Interrupter& interrupter = nullInterrupter());
 
+/// "" if a volume of these dimensions can be saved to `path` as .bv (cubic,
+/// and the edge a SDF_<N>_ name states), else the reason: the writers' rule,
+/// for callers that know the dimensions before the volume exists (lvdif
+/// mesh-to-sdf checks it before the work). An empty path checks the shape only.
+std::string checkLegacyBvDims(const Index3& dims, const std::string& path = std::string());
 /// Exports a cubic volume (Error(InvalidArgument) otherwise).
 void writeLegacyBv(const DictionaryVolume& volume, ByteSink& sink, const LegacyBvOptions& options = LegacyBvOptions(),
   Interrupter& interrupter = nullInterrupter());

@@ -5,7 +5,7 @@
 // or infinite coordinate, a count larger than the file could hold, or a file
 // without triangles is one clear Error (ParseError for text, CorruptData for
 // binary layouts) naming the format, the line or element, and the problem.
-// Polygons are split into triangle fans; STL's separate corners are merged
+// Polygons are split into triangles (triangulatePolygon: linear, local); STL's separate corners are merged
 // into shared points when bit-identical. Written for this project (no
 // OpenMesh: the readers stay in the dependency-free core, can be fuzzed, and
 // check what OpenMesh's readers skip with a warning).

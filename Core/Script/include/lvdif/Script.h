@@ -27,10 +27,11 @@
 namespace lvdif
 {
 
-/// Nesting limit of blocks, parentheses, unary operators and call arguments
-/// together: parsing and evaluation recurse once per level, so the bound keeps
-/// any script from exhausting the stack. Chains (1+1+1..., else if ...) do
-/// not nest and have no limit of their own.
+/// Nesting limit of blocks (if, else, for, while), and separately of an
+/// expression's parentheses, unary operators and call arguments: parsing and
+/// evaluation recurse once per level, so the bounds (at most 2 x 200 levels
+/// in all) keep any script from exhausting the stack. Chains (1+1+1...,
+/// else if ...) do not nest and have no limit of their own.
 constexpr int ScriptMaxNesting = 200;
 
 class ScriptError : public Error
@@ -57,6 +58,11 @@ struct ScriptOptions
   Interrupter* interrupter = nullptr;
   /// Largest voxel count `canvas` may ask for (absurd sizes are refused).
   std::int64_t maxCanvasVoxels = std::int64_t(1) << 32;
+  /// Where the caller fixed the start canvas's size (e.g. "--size 64"), or
+  /// empty: a script with a `canvas N` statement anywhere (taken or not) is
+  /// then refused before anything runs, at that statement, naming this (the
+  /// script's canvas silently replaced the one of `lvdif script --size`).
+  std::string canvasSizeGivenBy;
 };
 
 /// Parses only (syntax and command names/arity); throws ScriptError (ParseError).

@@ -28,6 +28,7 @@
 #include "lvdif/ColorDictionary.h"
 #include "lvdif/DenseGrid.h"
 #include "lvdif/SdfDictionary.h"
+#include "lvdif/TriangleMesh.h"
 
 #include <array>
 #include <atomic>
@@ -114,7 +115,7 @@ public:
   /// Largest |world coordinate| of any voxel (origin + index x spacing), and the
   /// smallest spacing: meshes have float vertices, so every world position must
   /// stay far inside float range (no Inf or NaN vertex, no collapsed axis).
-  static constexpr double MaxWorldCoordinate = 1e30;
+  static constexpr double MaxWorldCoordinate = lvdif::MaxWorldCoordinate; // TriangleMesh.h
   static constexpr double MinSpacing = 1e-30;
   /// The rule above for these options; "" if they pass, else the reason.
   static std::string checkGeometry(const VolumeOptions& o);

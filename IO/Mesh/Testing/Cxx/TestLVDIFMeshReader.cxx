@@ -1,5 +1,5 @@
 // vtkLVDIFMeshReader against VTK's own vtkOBJReader and vtkPLYReader (same
-// points, same triangles), polygons as fans, and bad files as one error with
+// points, same triangles), polygons as triangles, and bad files as one error with
 // the core's message and an empty output.
 #include "vtkLVDIFMeshReader.h"
 
@@ -104,7 +104,7 @@ TEST(LVDIFMeshReader, PlyMatchesVtkPLYReader)
   std::remove(path.c_str());
 }
 
-TEST(LVDIFMeshReader, PolygonsBecomeFans)
+TEST(LVDIFMeshReader, PolygonsBecomeTriangles)
 {
   const std::string path = write("quad.off", "OFF\n5 1 0\n0 0 0\n1 0 0\n1 1 0\n0.5 1.5 0\n0 1 0\n5 0 1 2 3 4\n");
   vtkNew<vtkLVDIFMeshReader> r;
@@ -127,7 +127,7 @@ TEST(LVDIFMeshReader, BadFilesGiveTheCoreMessageAndNoMesh)
     { "range.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 4\n", "out of range" },
     { "zero.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 0 1 2\n", "index 0" },
     { "nan.obj", "v 0 nan 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n", "NaN" },
-    { "two.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2\n", "face with 2 vertices" },
+    { "two.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2\n", "a face needs at least 3 vertices, this one has 2" },
     { "neg.off", "OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 -1 2\n", "out of range" },
     { "huge.off", "OFF\n2000000000 1 0\n0 0 0\n", "cannot fit" },
     { "empty.ply",
