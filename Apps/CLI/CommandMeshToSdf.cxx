@@ -66,10 +66,6 @@ int CommandMeshToSdf(int argc, char** argv)
   lvdif::MeshToSdfOptions options;
   options.sign = lvdif::signModeFromName(args.get("sign", "winding"), "--sign");
   options.device = deviceFromName(args.get("device", "auto"));
-  // asked for by name, the GPU is not quietly replaced by the CPU (auto is): as the benchmarks refuse it
-  if (options.device == lvdif::Device::Cuda && !lvdif::cuda::available())
-    throw lvdif::Error(lvdif::ErrorCode::Unsupported, std::string("--device cuda: ") +
-        (lvdif::cuda::compiled() ? "no usable CUDA device" : "this build has no CUDA") + " (--device auto uses the CPU then)");
   // winding sign of the consistently re-oriented mesh (unreliable face orientation)
   options.reorientFaces = args.has("reorient");
   if (options.reorientFaces && options.sign != lvdif::SignMode::WindingNumber)

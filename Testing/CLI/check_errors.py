@@ -130,15 +130,6 @@ code, err = run("mesh-to-sdf", tet, named, "--dims", "16")
 assert code == 1 and "mesh to SDF" not in err and err == (f"lvdif mesh-to-sdf: cannot write '{named}': file name says N = 32 "
                                                           "but the volume's edge is 16 (the grid fitted to the mesh)"), (code, err)
 assert run("mesh-to-sdf", tet, named, "--dims", "32")[0] == 0
-# --device cuda where the GPU cannot be used (--device auto says which device it used) is refused before
-# the work: it ran on the CPU with a notice and exit 0
-r = subprocess.run([exe, "mesh-to-sdf", tet, os.path.join(out, "auto.lvdv"), "--dims", "8"], capture_output=True,
-                   text=True, timeout=60)
-assert r.returncode == 0 and ("device cpu" in r.stdout or "device cuda" in r.stdout), r
-if "device cpu" in r.stdout:
-    code, err = run("mesh-to-sdf", tet, os.path.join(out, "cuda.lvdv"), "--dims", "8", "--device", "cuda")
-    assert code == 1 and err.startswith("lvdif mesh-to-sdf: --device cuda: ") and err.endswith(
-        " (--device auto uses the CPU then)") and not os.path.exists(os.path.join(out, "cuda.lvdv")), (code, err)
 # play says what it replayed, and warns when nothing is written (it was silent, exit 0)
 rec = os.path.join(out, "one.lvr")
 with open(rec, "w") as f:
