@@ -351,8 +351,10 @@ void finishPseudoNormals(PreparedMesh& out, const std::vector<V3>& vertexNormal)
   out.pseudoNormals = true;
 }
 /// TriangleMesh::validate()'s checks of every point and index on the
-/// threads; where one fails (or the cheap checks do), validate() itself
-/// runs and throws its message (the first bad point or index).
+/// threads (a coordinate finite and within +-MaxWorldCoordinate:
+/// isWorldCoordinate); where one fails (or the cheap checks do), validate()
+/// itself runs and throws its message (the mesh's bounds, or the first bad
+/// point or index).
 void validateOnThreads(const TriangleMesh& mesh)
 {
   const std::int64_t np = static_cast<std::int64_t>(mesh.points.size());
@@ -361,7 +363,7 @@ void validateOnThreads(const TriangleMesh& mesh)
   int bad = 0;
 #pragma omp parallel for schedule(static) reduction(| : bad)
   for (std::int64_t i = 0; i < np; ++i)
-    for (float c : mesh.points[static_cast<std::size_t>(i)]) bad |= std::isfinite(c) ? 0 : 1;
+    for (float c : mesh.points[static_cast<std::size_t>(i)]) bad |= isWorldCoordinate(c) ? 0 : 1;
 #pragma omp parallel for schedule(static) reduction(| : bad)
   for (std::int64_t t = 0; t < nt; ++t)
     for (std::uint32_t v : mesh.triangles[static_cast<std::size_t>(t)]) bad |= v < points ? 0 : 1;

@@ -267,6 +267,19 @@ TEST(MeshToSdf, BadInputIsRefused)
   TriangleMesh nan = sphere;
   nan.points[1][2] = std::numeric_limits<float>::quiet_NaN();
   EXPECT_EQ(code(nan, g), ErrorCode::InvalidArgument);
+  // a coordinate beyond +-1e30 (a float still) is the mesh's error with its bounds, also on an
+  // explicit grid (it was checked only for NaN and infinity here, and the distances overflowed)
+  TriangleMesh far = sphere;
+  far.points[1][2] = 3e38f;
+  EXPECT_EQ(code(far, g), ErrorCode::InvalidArgument);
+  try
+  {
+    meshToSdf(far, g, VoxelBox{ { 0, 0, 0 }, { 0, 0, 0 } }, out.data(), o);
+  }
+  catch (const Error& e)
+  {
+    EXPECT_NE(std::string(e.what()).find("mesh coordinates span"), std::string::npos) << e.what();
+  }
   TriangleMesh badIndex = sphere;
   badIndex.triangles[0][1] = 999;
   EXPECT_EQ(code(badIndex, g), ErrorCode::InvalidArgument);
