@@ -11,6 +11,7 @@
 
 #include <cstdio>
 #include <cstdlib>
+#include <limits>
 
 namespace
 {
@@ -18,6 +19,18 @@ namespace
 {
   std::fprintf(stderr, "lvdif-editor: %s\n", message.toLocal8Bit().constData());
   std::exit(2);
+}
+
+/// The one guard of the editor's whole-number options: the text must be an
+/// integer in [lo, hi] (QString::toInt gave 0 for "99999999999999999999" or
+/// "12x", so "--new 99999999999999999999" became a 0 x 0 x 0 canvas).
+int integerOption(const QString& text, const QString& name, qint64 lo, qint64 hi)
+{
+  bool ok = false;
+  const qint64 v = text.trimmed().toLongLong(&ok);
+  if (!ok || v < lo || v > hi)
+    fail(name + " expects an integer in [" + QString::number(lo) + ", " + QString::number(hi) + "], got '" + text + "'");
+  return static_cast<int>(v);
 }
 
 /// A batch output checked before any work, as the CLI does: a format the
@@ -116,9 +129,7 @@ EditorOptions parseEditorOptions(const QStringList& arguments)
   EditorOptions o;
   o.open = p.value(open);
   o.openMesh = p.value(openMesh);
-  o.meshResolution = p.value(meshRes).toInt();
-  if (o.meshResolution < 8 || o.meshResolution > 4096)
-    fail("--mesh-resolution expects 8..4096, got '" + p.value(meshRes) + "'");
+  o.meshResolution = integerOption(p.value(meshRes), "--mesh-resolution", 8, 4096);
   o.meshSign = p.value(meshSign);
   try
   {
@@ -134,13 +145,20 @@ EditorOptions parseEditorOptions(const QStringList& arguments)
   if (p.isSet(create))
   {
     const QStringList parts = p.value(create).split('x');
-    if (parts.size() == 1)
-      o.newDims = { parts[0].toInt(), parts[0].toInt(), parts[0].toInt() };
-    else if (parts.size() == 3)
-      o.newDims = { parts[0].toInt(), parts[1].toInt(), parts[2].toInt() };
     if (parts.size() != 1 && parts.size() != 3)
       fail("--new expects N or NXxNYxNZ, got '" + p.value(create) + "'");
-    // the editors' one smallest canvas (a part that is not a number reads as 0)
+    // whole numbers first (any int: the canvas rule below names the range)
+    int n[3];
+    for (int a = 0; a < 3; ++a)
+    {
+      bool ok = false;
+      const qint64 v = parts[parts.size() == 1 ? 0 : a].trimmed().toLongLong(&ok);
+      if (!ok || v < std::numeric_limits<int>::min() || v > std::numeric_limits<int>::max())
+        fail("--new expects N or NXxNYxNZ in whole numbers of voxels, got '" + p.value(create) + "'");
+      n[a] = static_cast<int>(v);
+    }
+    o.newDims = { n[0], n[1], n[2] };
+    // the editors' one smallest and largest canvas
     const std::string tooThin = lvdif::DictionaryVolume::checkCanvasDimensions({ o.newDims[0], o.newDims[1], o.newDims[2] });
     if (!tooThin.empty())
       fail("--new " + p.value(create) + ": " + QString::fromStdString(tooThin));
@@ -161,7 +179,7 @@ EditorOptions parseEditorOptions(const QStringList& arguments)
         fail("--replay-drag expects 'x,y;x,y;...', got '" + pt + "'");
     }
   }
-  o.undo = p.value(undo).toInt();
+  o.undo = integerOption(p.value(undo), "--undo", 0, std::numeric_limits<int>::max());
   o.screenshot = p.value(shot);
   o.windowShot = p.value(windowShot);
   o.dragShot = p.value(dragShot);
@@ -205,15 +223,15 @@ EditorOptions parseEditorOptions(const QStringList& arguments)
     fail("--radius must be positive");
   o.color = p.value(color);
   const QStringList wh = p.value(size).split('x');
-  if (wh.size() == 2)
+  if (wh.size() != 2) fail("--size expects WxH, got '" + p.value(size) + "'");
   {
-    o.width = wh[0].toInt();
-    o.height = wh[1].toInt();
+    o.width = integerOption(wh[0], "--size", 1, 16384);
+    o.height = integerOption(wh[1], "--size", 1, 16384);
   }
   o.quit = p.isSet(quit);
   o.noRecovery = p.isSet(noRecovery);
   o.recoveryDir = p.value(recoveryDir);
-  o.autosaveSeconds = p.value(autosave).toInt();
+  o.autosaveSeconds = integerOption(p.value(autosave), "--autosave", 0, std::numeric_limits<int>::max() / 1000); // a QTimer takes ms
   o.perVertexColor = p.isSet(perVertex);
   o.matcap = p.value(matcap);
   o.benchmarkStroke = p.value(benchmark);
