@@ -87,7 +87,20 @@ int CommandMeshToSdf(int argc, char** argv)
       throw lvdif::Error(e.code(), what.rfind("cannot ", 0) == 0 ? what : "cannot read '" + in + "': " + what);
     }
   }();
-  const lvdif::GridGeometry grid = lvdif::fitGridToMesh(mesh, dims, padding);
+  // errors about the mesh itself (zero-size bounds, no triangle of non-zero
+  // area) say which file, as the reader's do
+  auto namingTheMesh = [&](auto&& work) {
+    try
+    {
+      return work();
+    }
+    catch (const lvdif::Error& e)
+    {
+      if (e.code() != lvdif::ErrorCode::InvalidArgument) throw;
+      throw lvdif::Error(e.code(), "mesh '" + in + "': " + e.what());
+    }
+  };
+  const lvdif::GridGeometry grid = namingTheMesh([&] { return lvdif::fitGridToMesh(mesh, dims, padding); });
   lvdif::VolumeOptions vo = lvdif::volumeOptionsOn(grid);
   vo.bandWidth = bandWidth;
   // a mesh inside the world range whose padded grid is not: named with the
@@ -114,7 +127,7 @@ int CommandMeshToSdf(int argc, char** argv)
           " (the grid fitted to the mesh)");
   }
   lvdif::DictionaryVolume volume(vo);
-  const lvdif::MeshToSdfStats stats = lvdif::meshToSdf(mesh, volume, options, progress);
+  const lvdif::MeshToSdfStats stats = namingTheMesh([&] { return lvdif::meshToSdf(mesh, volume, options, progress); });
   SaveAnyVolume(volume, out,
     { { "source mesh", in },
       { "creation parameters", "lvdif mesh-to-sdf --dims " + std::to_string(dims) + " --padding " +
