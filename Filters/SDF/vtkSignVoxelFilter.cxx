@@ -27,6 +27,8 @@
 #include "vtkStreamingDemandDrivenPipeline.h"
 
 #include <algorithm>
+#include <cmath>
+#include <limits>
 #include <cstdlib>
 #include <cstring>
 #include <new>
@@ -339,6 +341,13 @@ int vtkSignVoxelFilter::RequestDataObject(
 int vtkSignVoxelFilter::RequestInformation(
   vtkInformation*, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
 {
+  LVDIFVolumeBridge::BeginInformation(outputVector->GetInformationObject(0));
+  // the settings first, by Core's one rule: one error, nothing computed
+  // (under MPI the executive then joins the ranks' agreement for this rank)
+  if (!LVDIFVolumeBridge::CallCore(this, [&] { lvdif::checkSignVoxelFilterParams(this->CoreParams()); }))
+  {
+    return LVDIFVolumeBridge::FailInformation(outputVector->GetInformationObject(0));
+  }
   vtkInformation* inInfo = inputVector[0]->GetInformationObject(0);
   if (this->MeetsRanks(inputVector) && !this->JoinRanks(true))
   {
@@ -355,9 +364,11 @@ int vtkSignVoxelFilter::RequestInformation(
 // The scans need whole rows and planes: an image is filtered whole, a sparse
 // volume under MPI by chunk layers along the axis (see the header).
 int vtkSignVoxelFilter::RequestUpdateExtent(
-  vtkInformation*, vtkInformationVector** inputVector, vtkInformationVector*)
+  vtkInformation*, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
 {
   using SDDP = vtkStreamingDemandDrivenPipeline;
+  if (LVDIFVolumeBridge::InformationFailed(outputVector->GetInformationObject(0)))
+    return 1; // RequestInformation reported why; the Axis may be outside 0..2
   vtkInformation* inInfo = inputVector[0]->GetInformationObject(0);
   if (inInfo->Has(SDDP::WHOLE_EXTENT()))
   {
@@ -387,6 +398,8 @@ int vtkSignVoxelFilter::RequestUpdateExtent(
 int vtkSignVoxelFilter::RequestData(
   vtkInformation*, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
 {
+  if (LVDIFVolumeBridge::InformationFailed(outputVector->GetInformationObject(0)))
+    return 0; // RequestInformation reported why (ParaView runs RequestData anyway)
   if (auto* sparse = vtkSparseDictionaryVolume::GetData(inputVector[0]))
   {
     return this->FilterSparse(sparse, vtkSparseDictionaryVolume::GetData(outputVector), outputVector->GetInformationObject(0));
@@ -492,7 +505,10 @@ int vtkSignVoxelFilter::RequestData(
 lvdif::SignVoxelFilterParams vtkSignVoxelFilter::CoreParams() const
 {
   lvdif::SignVoxelFilterParams p;
-  p.threshold = static_cast<float>(this->Threshold);
+  // beyond float's range: infinite, which Core's rule refuses (no clamp)
+  p.threshold = std::abs(this->Threshold) > std::numeric_limits<float>::max()
+    ? static_cast<float>(std::copysign(HUGE_VAL, this->Threshold))
+    : static_cast<float>(this->Threshold);
   p.axis = this->Axis;
   p.filters = static_cast<unsigned>(this->Filters);
   p.maxIterations = this->MaxIterations;

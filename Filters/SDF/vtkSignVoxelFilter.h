@@ -93,19 +93,22 @@ public:
 
   ///@{
   /// SVF1..SVF3 never flip voxels with |value| <= Threshold (default 2, voxel units).
-  vtkSetClampMacro(Threshold, double, 0.0, VTK_FLOAT_MAX);
+  /// Negative, NaN, infinite or beyond float is an error at update, never clamped
+  /// (Core's rule: lvdif::checkSignVoxelFilterParams); GetThreshold returns what was set.
+  vtkSetMacro(Threshold, double);
   vtkGetMacro(Threshold, double);
   ///@}
 
   ///@{
-  /// Filter axis 0 = x (default), 1 = y, 2 = z.
-  vtkSetClampMacro(Axis, int, 0, 2);
+  /// Filter axis 0 = x (default), 1 = y, 2 = z; anything else is an error at update.
+  vtkSetMacro(Axis, int);
   vtkGetMacro(Axis, int);
   ///@}
 
   ///@{
-  /// Bit mask of the filters to run (SVF1 | SVF2 | SVF3 | SVF4; default ALL).
-  vtkSetClampMacro(Filters, int, 0, 15);
+  /// Bit mask of the filters to run (SVF1 | SVF2 | SVF3 | SVF4; default ALL);
+  /// other bits are an error at update.
+  vtkSetMacro(Filters, int);
   vtkGetMacro(Filters, int);
   ///@}
 
@@ -122,8 +125,9 @@ public:
   ///@}
 
   ///@{
-  /// SVF2/SVF3 iterations per plane at most; 0 = automatic (default).
-  vtkSetClampMacro(MaxIterations, int, 0, VTK_INT_MAX);
+  /// SVF2/SVF3 iterations per plane at most; 0 = automatic (default); negative
+  /// is an error at update.
+  vtkSetMacro(MaxIterations, int);
   vtkGetMacro(MaxIterations, int);
   ///@}
 

@@ -295,6 +295,34 @@ for cls, ext in (("vtkDictionaryVolumeWriter", "lvdv"), ("vtkPDictionaryVolumeWr
                   and open(path, "rb").read() == before,
                   "%s CompressionLevel %d, %s: read back %d, %s" % (cls, level, kind, w.GetCompressionLevel(), errs))
 
+# vtkSignVoxelFilter: Threshold, Axis, MaxIterations and the Filters mask by Core's
+# one rule (lvdif::checkSignVoxelFilterParams), refused at update with one error
+# naming the parameter and the value given, nothing computed, never clamped (before:
+# Threshold -1 ran as 0, Axis 3 as z, MaxIterations -1 as automatic, Filters 16 as 15)
+SVF_BAD = (({"Threshold": -1.0}, "the threshold must be finite and >= 0, not -1"),
+           ({"Threshold": float("nan")}, "the threshold must be finite and >= 0, not nan"),
+           ({"Threshold": 1e39}, "the threshold must be finite and >= 0, not inf"),  # beyond float
+           ({"Axis": 3}, "the axis must be 0 (x), 1 (y) or 2 (z), not 3"),
+           ({"Axis": -1}, "the axis must be 0 (x), 1 (y) or 2 (z), not -1"),
+           ({"MaxIterations": -1}, "maxIterations must be >= 0 (0 = automatic), not -1"),
+           ({"Filters": 16}, "the filter mask may only contain Svf1..Svf4 bits (0..15), not 16"),
+           ({"Filters": -1}, "the filter mask may only contain Svf1..Svf4 bits (0..15), not -1"))
+SVF_GOOD = ({"Threshold": 0.0}, {"Threshold": 0.3}, {"Threshold": 1e30}, {"Axis": 2}, {"Axis": 1},
+            {"MaxIterations": 7}, {"MaxIterations": 0}, {"Filters": 0}, {"Filters": 5})
+for inp, kind in ((img, "image"), (sparse_src, "sparse volume")):
+    for props, text in SVF_BAD:
+        ok, errs, f = run("vtkSignVoxelFilter", inp=inp, **props)
+        back = [getattr(f, "Get" + k)() for k in props]
+        o = f.GetOutput()
+        empty = not o.HasVolume() if kind == "sparse volume" else o.GetNumberOfPoints() == 0
+        check(not ok and len(errs) == 1 and text in errs[0] and str(back) == str(list(props.values())) and empty,
+              "vtkSignVoxelFilter %s, %s: read back %s, empty output %s, %s" % (props, kind, back, empty, errs))
+    for props in SVF_GOOD:
+        ok, errs, f = run("vtkSignVoxelFilter", inp=inp, **props)
+        back = [getattr(f, "Get" + k)() for k in props]
+        check(ok and not errs and back == list(props.values()),
+              "vtkSignVoxelFilter %s, %s: read back %s, %s" % (props, kind, back, errs))
+
 # the editor object (the Qt editor's volumes): the same rule for new volumes
 ed = lvdif.vtkLVDIFEditor()
 for band, good in ((0, True), (8, True), (-1, False), (float("nan"), False)):

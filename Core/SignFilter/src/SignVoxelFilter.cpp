@@ -10,6 +10,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <sstream>
 #include <string>
 
 namespace lvdif
@@ -21,18 +22,24 @@ unsigned svfCumulative(int n)
   return (1u << n) - 1u;
 }
 
-namespace detail::svf
+void checkSignVoxelFilterParams(const SignVoxelFilterParams& params)
 {
-void requireValidParams(const SignVoxelFilterParams& params)
-{
+  // the value as given: a clamp would hide the mistake (docs/USER_GUIDE.md)
+  std::ostringstream threshold;
+  threshold << params.threshold;
   require(std::isfinite(params.threshold) && params.threshold >= 0.0f,
-    "signVoxelFilter: the threshold must be finite and >= 0");
-  require(params.axis >= 0 && params.axis <= 2, "signVoxelFilter: the axis must be 0 (x), 1 (y) or 2 (z)");
+    "signVoxelFilter: the threshold must be finite and >= 0, not " + threshold.str());
+  require(params.axis >= 0 && params.axis <= 2,
+    "signVoxelFilter: the axis must be 0 (x), 1 (y) or 2 (z), not " + std::to_string(params.axis));
   require((params.filters & ~static_cast<unsigned>(SvfAll)) == 0,
-    "signVoxelFilter: the filter mask may only contain Svf1..Svf4 bits");
-  require(params.maxIterations >= 0, "signVoxelFilter: maxIterations must be >= 0 (0 = automatic)");
+    "signVoxelFilter: the filter mask may only contain Svf1..Svf4 bits (0..15), not " +
+      std::to_string(static_cast<int>(params.filters)));
+  require(params.maxIterations >= 0,
+    "signVoxelFilter: maxIterations must be >= 0 (0 = automatic), not " + std::to_string(params.maxIterations));
 }
 
+namespace detail::svf
+{
 double svfProgress(unsigned filters, int f, double within)
 {
   int total = 0, before = 0;
@@ -55,7 +62,7 @@ SignVoxelFilterStats signVoxelFilter(
   require(grid.data != nullptr, "signVoxelFilter: the grid has no data");
   require(g.dims[0] > 0 && g.dims[1] > 0 && g.dims[2] > 0,
     "signVoxelFilter: every grid dimension must be positive");
-  detail::svf::requireValidParams(params);
+  checkSignVoxelFilterParams(params);
 
   detail::svf::SvfSetup s;
   s.threshold = params.threshold;

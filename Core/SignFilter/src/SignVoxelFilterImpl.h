@@ -19,10 +19,6 @@ struct SvfSetup
   int boundarySign = 1; // +1 (Outside) or 0 (Free)
 };
 
-/// Throws Error(InvalidArgument) for parameters no filter accepts (the grid
-/// and the volume entry points share these rules).
-void requireValidParams(const SignVoxelFilterParams& params);
-
 SignVoxelFilterStats signVoxelFilterCpu(const FloatGridView& grid, const SvfSetup& setup, Interrupter& interrupter);
 
 /// Device bytes the CUDA path needs for this grid.

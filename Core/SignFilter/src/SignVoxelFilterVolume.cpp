@@ -257,7 +257,7 @@ SignVoxelFilterStats planarRuns(float* planes, const Frame& f, std::int64_t n, c
 void validate(const SignVoxelFilterParams& params)
 {
   // the dense filter's rules (it sees only the SVF2/SVF3 slabs)
-  detail::svf::requireValidParams(params);
+  checkSignVoxelFilterParams(params);
 }
 
 } // namespace

@@ -425,6 +425,43 @@ TEST(SignVoxelFilter, CumulativeSettingAndBadParameters)
   EXPECT_THROW(signVoxelFilter(empty, params(SvfAll)), Error);
 }
 
+TEST(SignVoxelFilter, ParamsRuleNamesTheParameterAndTheValueGiven)
+{
+  // the one rule the VTK filter's settings check uses (no clamp anywhere)
+  auto message = [](SignVoxelFilterParams p) {
+    try
+    {
+      checkSignVoxelFilterParams(p);
+    }
+    catch (const Error& e)
+    {
+      EXPECT_EQ(e.code(), ErrorCode::InvalidArgument);
+      return std::string(e.what());
+    }
+    return std::string("accepted");
+  };
+  SignVoxelFilterParams p;
+  EXPECT_EQ(message(p), "accepted");
+  p.threshold = -0.5f;
+  EXPECT_EQ(message(p), "signVoxelFilter: the threshold must be finite and >= 0, not -0.5");
+  p = {};
+  p.axis = 3;
+  EXPECT_EQ(message(p), "signVoxelFilter: the axis must be 0 (x), 1 (y) or 2 (z), not 3");
+  p = {};
+  p.filters = 16u;
+  EXPECT_EQ(message(p), "signVoxelFilter: the filter mask may only contain Svf1..Svf4 bits (0..15), not 16");
+  p = {};
+  p.maxIterations = -2;
+  EXPECT_EQ(message(p), "signVoxelFilter: maxIterations must be >= 0 (0 = automatic), not -2");
+  // the edges of each range are accepted
+  p = {};
+  p.threshold = 0.0f;
+  p.axis = 2;
+  p.filters = 0u;
+  p.maxIterations = 0;
+  EXPECT_EQ(message(p), "accepted");
+}
+
 TEST(SignVoxelFilter, CancelStops)
 {
   Vol g = randomVol(20, 20, 20, 3);

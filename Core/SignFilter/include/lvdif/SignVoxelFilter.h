@@ -95,6 +95,12 @@ struct SignVoxelFilterStats
   std::int64_t totalFlips() const { return flips[0] + flips[1] + flips[2] + flips[3]; }
 };
 
+/// The one rule of the parameters (every entry point and the VTK filter's
+/// settings check): throws Error(InvalidArgument) naming the first parameter
+/// outside its range (threshold finite and >= 0, axis 0..2, filters only
+/// Svf1..Svf4 bits, maxIterations >= 0) and its value.
+void checkSignVoxelFilterParams(const SignVoxelFilterParams& params);
+
 /// Runs the selected filters in place on a dense float grid (negative inside,
 /// voxel units). Throws Error(InvalidArgument) for a bad parameter or an empty
 /// grid, Error(Cancelled) when the interrupter asks (the grid then holds a
