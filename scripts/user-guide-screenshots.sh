@@ -20,10 +20,10 @@ run "${common[@]}" --new 128 --fill sphere --radius 6 --color "#d03020" --keys A
 run --size 1200x780 --no-recovery --autosave 0 --new 128 --radius 6 --color "#d03020" --replay-drag "$stroke" \
   --screenshot-window "$OUT/editor-window.png"
 # one picture per tool: its key, then the same stroke (radius and strength as given)
-tool() { # name key extra-args... (a later --replay-drag replaces the stroke)
+tool() { # name key extra-args... (DRAG=points replaces the stroke: an option is given once)
   local name=$1 key=$2
   shift 2
-  run --size 1000x700 --no-recovery --autosave 0 --new 128 --color "#d03020" --keys "$key" --replay-drag "$stroke" "$@" \
+  run --size 1000x700 --no-recovery --autosave 0 --new 128 --color "#d03020" --keys "$key" --replay-drag "${DRAG:-$stroke}" "$@" \
     --screenshot "$OUT/editor-tool-$name.png"
 }
 # smooth: back and forth over the same band, four passes
@@ -32,7 +32,7 @@ tool add A --radius 6
 tool subtract S --radius 6
 tool ctrl-add A --radius 6 --drag-modifiers ctrl
 tool paint P --radius 9 --falloff smooth
-tool smooth M --radius 12 --strength 1 --script docs/images/editor-bumps.lvs --replay-drag "$zigzag"
+DRAG="$zigzag" tool smooth M --radius 12 --strength 1 --script docs/images/editor-bumps.lvs
 tool inflate I --radius 9 --strength 0.6
 tool grab G --radius 14
 tool flatten T --radius 10 --strength 1

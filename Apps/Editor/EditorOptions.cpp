@@ -3,12 +3,15 @@
 #include "LVDIFFiles.h"
 #include "MeshImport.h"
 #include "lvdif/DictionaryVolume.h"
+#include "lvdif/EditLimits.h"
 #include "lvdif/Error.h"
 
+#include <QColor>
 #include <QCommandLineParser>
 #include <QPointF>
 #include <QRegularExpression>
 
+#include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <limits>
@@ -31,6 +34,18 @@ int integerOption(const QString& text, const QString& name, qint64 lo, qint64 hi
   if (!ok || v < lo || v > hi)
     fail(name + " expects an integer in [" + QString::number(lo) + ", " + QString::number(hi) + "], got '" + text + "'");
   return static_cast<int>(v);
+}
+
+/// A real number option: the whole text a finite number (QString::toDouble
+/// gave 0 for "abc", so "--radius abc" said "must be positive"); the range is
+/// the caller's rule.
+double numberOption(const QString& text, const QString& name)
+{
+  bool ok = false;
+  const double v = text.trimmed().toDouble(&ok);
+  if (!ok || !std::isfinite(v))
+    fail(name + " expects a number, got '" + text + "'");
+  return v;
 }
 
 /// A batch output checked before any work, as the CLI does: a format the
@@ -65,15 +80,15 @@ EditorOptions parseEditorOptions(const QStringList& arguments)
   p.addHelpOption();
   const QCommandLineOption open("open", "Open a volume (.lvdv or .vti).", "file");
   const QCommandLineOption openMesh("open-mesh", "Convert a mesh (.obj .off .stl .ply) to a volume and open it.", "file");
-  const QCommandLineOption meshRes("mesh-resolution", "Voxels along the mesh's longest axis (--open-mesh).", "n", "128");
-  const QCommandLineOption meshSign("mesh-sign", "Sign of --open-mesh: winding, pseudo or normal.", "mode", "winding");
+  const QCommandLineOption meshRes("mesh-resolution", "Voxels along the mesh's longest axis (--open-mesh; default 128).", "n", "128");
+  const QCommandLineOption meshSign("mesh-sign", "Sign of --open-mesh: winding, pseudo or normal (default winding).", "mode", "winding");
   const QCommandLineOption meshReorient("mesh-reorient",
     "--open-mesh with the winding sign: re-orient the faces consistently (the CLI's --reorient).");
-  const QCommandLineOption create("new", "New canvas of N^3 or NXxNYxNZ voxels.", "size");
-  const QCommandLineOption fill("fill", "Fill of a new canvas: empty, full or sphere.", "fill", "sphere");
+  const QCommandLineOption create("new", "New canvas of N^3 or NXxNYxNZ voxels (without --open or --open-mesh: 128^3).", "size");
+  const QCommandLineOption fill("fill", "Fill of a new canvas: empty, full or sphere (default sphere).", "fill", "sphere");
   const QCommandLineOption script("script", "Run a script (.lvs) or play a recording (.lvr) after loading.", "file");
   const QCommandLineOption drag("replay-drag", "Synthetic left-drag through display points 'x,y;x,y;...' (or / between points).", "points");
-  const QCommandLineOption undo("undo", "Undo N steps after the drag.", "n", "0");
+  const QCommandLineOption undo("undo", "Undo N steps after the drag (default 0).", "n", "0");
   const QCommandLineOption shot("screenshot", "Save a screenshot (PNG) and quit.", "file");
   const QCommandLineOption dragShot("screenshot-during-drag",
     "Save a screenshot of the view during --replay-drag, before the button is released.", "file");
@@ -81,7 +96,7 @@ EditorOptions parseEditorOptions(const QStringList& arguments)
   const QCommandLineOption save("save", "Save the volume (.lvdv or .vti) and quit.", "file");
   const QCommandLineOption exp("export", "Export the mesh (.ply, .obj, .stl) and quit.", "file");
   const QCommandLineOption op("op",
-    "Tool: add, subtract, paint, smooth, inflate, grab, flatten, crease, pinch.", "op", "add");
+    "Tool: add, subtract, paint, smooth, inflate, grab, flatten, crease, pinch (default add).", "op", "add");
   const QCommandLineOption strength("strength", "Brush strength in (0, 1] (default: the tool's).", "s");
   const QCommandLineOption falloff("falloff", "Brush falloff: constant, linear, smooth, sharp (default: the tool's).", "curve");
   const QCommandLineOption mirror("mirror", "Symmetry: the mirrored axes, e.g. x or xz.", "axes");
@@ -89,15 +104,15 @@ EditorOptions parseEditorOptions(const QStringList& arguments)
   const QCommandLineOption keysAfter("keys-after", "Key presses after the drag (tests).", "keys");
   const QCommandLineOption dragMods("drag-modifiers", "Keys held during --replay-drag: ctrl, shift or ctrl,shift.", "keys");
   const QCommandLineOption saveAsAnswer("save-as-answer", "The file the Save As dialog answers (tests).", "file");
-  const QCommandLineOption shape("shape", "Brush shape: sphere, cube.", "shape", "sphere");
-  const QCommandLineOption kind("brush", "Brush kind: basic, dynamic, drill.", "kind", "basic");
-  const QCommandLineOption radius("radius", "Brush radius in voxels.", "r", "4");
-  const QCommandLineOption color("color", "Brush colour #rrggbb.", "color");
-  const QCommandLineOption size("size", "Window size WxH.", "size", "900x700");
+  const QCommandLineOption shape("shape", "Brush shape: sphere or cube (default sphere).", "shape", "sphere");
+  const QCommandLineOption kind("brush", "Brush kind: basic, dynamic or drill (default basic).", "kind", "basic");
+  const QCommandLineOption radius("radius", "Brush radius in voxels, in (0, 1e7] (default 4).", "r", "4");
+  const QCommandLineOption color("color", "Brush colour, #rrggbb or an SVG colour name (default: the panel's).", "color");
+  const QCommandLineOption size("size", "Window size WxH in pixels (default 900x700).", "size", "900x700");
   const QCommandLineOption quit("quit", "Quit when the command-line work is done.");
   const QCommandLineOption noRecovery("no-recovery", "Do not offer to recover an autosaved volume.");
-  const QCommandLineOption recoveryDir("recovery-dir", "Folder of the autosave file.", "dir");
-  const QCommandLineOption autosave("autosave", "Autosave interval in seconds (0: off).", "s", "60");
+  const QCommandLineOption recoveryDir("recovery-dir", "Folder of the autosave file (default: the application's data folder).", "dir");
+  const QCommandLineOption autosave("autosave", "Autosave interval in seconds (0: off; default 60).", "s", "60");
   const QCommandLineOption matcap("matcap", "Matcap shading with this image (PNG, JPG).", "file");
   const QCommandLineOption perVertex("per-vertex-color", "Per-vertex colours instead of tetrahedral interpolation.");
   const QCommandLineOption benchmark("benchmark-stroke",
@@ -121,10 +136,17 @@ EditorOptions parseEditorOptions(const QStringList& arguments)
   const QCommandLineOption multisampledDrag("multisampled-drag",
     "Draw a stroke's frames with the view's multisampling (by default they have one sample per pixel and the view is "
     "drawn whole, multisampled, once the stroke is still). For comparisons.");
-  p.addOptions({ multisampledDrag, stockBackground, drawRanges, samples, open, openMesh, meshRes, meshSign, meshReorient, create, fill, script, drag, undo, shot, save, exp, op, shape, kind, radius, color, size, quit,
-    noRecovery, recoveryDir, autosave, perVertex, matcap, benchmark, strength, falloff, mirror, keys, keysAfter, dragMods,
-    saveAsAnswer, windowShot, dragShot, timing, fullRedraw, widgetView });
+  // What a user reaches for first; the options for tests and comparisons last.
+  p.addOptions({ open, openMesh, meshRes, meshSign, meshReorient, create, fill, script, save, exp, shot, windowShot,
+    op, shape, kind, radius, color, strength, falloff, mirror, size, samples, perVertex, matcap, autosave, noRecovery,
+    recoveryDir, quit, drag, dragShot, undo, dragMods, keys, keysAfter, saveAsAnswer, benchmark, timing, fullRedraw,
+    drawRanges, multisampledDrag, stockBackground, widgetView });
   p.process(arguments);
+  // as the CLI: an option given twice is refused (Qt's parser silently took the last)
+  const QStringList given = p.optionNames();
+  for (const QString& name : given)
+    if (given.count(name) > 1)
+      fail("--" + name + " is given twice");
 
   EditorOptions o;
   o.open = p.value(open);
@@ -190,8 +212,9 @@ EditorOptions parseEditorOptions(const QStringList& arguments)
     fail("--op expects add, subtract, paint, smooth, inflate, grab, flatten, crease or pinch, got '" + o.op + "'");
   if (p.isSet(strength))
   {
-    o.strength = p.value(strength).toDouble();
-    if (!(o.strength > 0 && o.strength <= 1))
+    bool ok = false;
+    o.strength = p.value(strength).trimmed().toDouble(&ok);
+    if (!ok || !(o.strength > 0 && o.strength <= 1))
       fail("--strength expects a number in (0, 1], got '" + p.value(strength) + "'");
   }
   const QStringList curves{ "constant", "linear", "smooth", "sharp" };
@@ -216,12 +239,25 @@ EditorOptions parseEditorOptions(const QStringList& arguments)
       fail("--drag-modifiers expects ctrl and/or shift, got '" + m + "'");
   }
   o.saveAsAnswer = p.value(saveAsAnswer);
-  o.shape = p.value(shape);
-  o.kind = p.value(kind);
-  o.radius = p.value(radius).toDouble();
-  if (!(o.radius > 0))
-    fail("--radius must be positive");
+  o.shape = p.value(shape).toLower();
+  if (o.shape != "sphere" && o.shape != "cube")
+    fail("--shape expects sphere or cube, got '" + p.value(shape) + "'");
+  o.kind = p.value(kind).toLower();
+  if (o.kind != "basic" && o.kind != "dynamic" && o.kind != "drill")
+    fail("--brush expects basic, dynamic or drill, got '" + p.value(kind) + "'");
+  o.radius = numberOption(p.value(radius), "--radius");
+  try
+  {
+    // the one radius rule of every edit input (scripts, recordings, the API)
+    lvdif::checkedPositive(o.radius, lvdif::EditLimits::MaxSize, "--radius");
+  }
+  catch (const lvdif::Error& e)
+  {
+    fail(e.what());
+  }
   o.color = p.value(color);
+  if (p.isSet(color) && !QColor(o.color).isValid())
+    fail("--color expects #rrggbb or a colour name, got '" + o.color + "'");
   const QStringList wh = p.value(size).split('x');
   if (wh.size() != 2) fail("--size expects WxH, got '" + p.value(size) + "'");
   {
@@ -241,19 +277,9 @@ EditorOptions parseEditorOptions(const QStringList& arguments)
   o.nativeView = !p.isSet(widgetView);
   o.multisampledDrag = p.isSet(multisampledDrag);
   if (p.isSet(drawRanges))
-  {
-    bool ok = false;
-    o.drawRangeTriangles = p.value(drawRanges).toInt(&ok);
-    if (!ok || o.drawRangeTriangles < 0)
-      fail("--draw-ranges must be a non-negative integer");
-  }
+    o.drawRangeTriangles = integerOption(p.value(drawRanges), "--draw-ranges", 0, std::numeric_limits<int>::max());
   if (p.isSet(samples))
-  {
-    bool ok = false;
-    o.samples = p.value(samples).toInt(&ok);
-    if (!ok || o.samples < 0 || o.samples > 16)
-      fail("--samples must be an integer from 0 to 16");
-  }
+    o.samples = integerOption(p.value(samples), "--samples", 0, 16);
   const LVDIFFiles::Kind volume = LVDIFFiles::Kind::Volume, mesh = LVDIFFiles::Kind::Mesh;
   checkOutput("save", o.save, &volume);
   checkOutput("export", o.exportMesh, &mesh);

@@ -11,12 +11,59 @@
 
 #include <clocale>
 #include <cstdio>
+#include <cstdlib>
+#include <cstring>
+#include <string>
+
+namespace
+{
+/// --help needs no window: it is answered before the QApplication, which
+/// cannot start without a display.
+bool asksForHelp(int argc, char* argv[])
+{
+  for (int i = 1; i < argc; ++i)
+  {
+    const std::string a = argv[i];
+    if (a == "-h" || a == "--help" || a == "-?" || a == "--help-all")
+      return true;
+  }
+  return false;
+}
+
+/// Installed while the QApplication starts: without a usable display Qt's
+/// platform plugin printed three lines of its own and aborted (status 134);
+/// the editor says it once and exits with 1.
+void refuseWithoutDisplay(QtMsgType type, const QMessageLogContext& context, const QString& message)
+{
+  if (type == QtFatalMsg)
+  {
+    const char* display = std::getenv("DISPLAY");
+    std::fprintf(stderr,
+      "lvdif-editor: cannot open a window: no usable X display (DISPLAY=%s); run it on a desktop, or headless "
+      "as xvfb-run -a lvdif-editor ...\n",
+      display && *display ? display : "not set");
+    std::_Exit(1);
+  }
+  // the platform plugin's own lines before that fatal one: the line above says it
+  if (context.category && std::strncmp(context.category, "qt.qpa", 6) == 0)
+    return;
+  std::fprintf(stderr, "%s\n", message.toLocal8Bit().constData());
+}
+} // namespace
 
 int main(int argc, char* argv[])
 {
+  if (asksForHelp(argc, argv))
+  {
+    QCoreApplication help(argc, argv);
+    QCoreApplication::setApplicationName("lvdif-editor");
+    parseEditorOptions(help.arguments()); // prints the help and exits
+  }
   // Before the QApplication (build-notes 2d).
   QSurfaceFormat::setDefaultFormat(QVTKOpenGLNativeWidget::defaultFormat());
+  const QtMessageHandler qtMessages = qInstallMessageHandler(refuseWithoutDisplay);
   QApplication app(argc, argv);
+  qInstallMessageHandler(qtMessages);
   // QApplication takes the C library's locale from the environment; under a
   // comma-decimal one (de_DE) strtod read a mesh's or script's "0.5" as 0 or
   // refused it, and printf wrote recordings with "0,5". Numbers in files are C

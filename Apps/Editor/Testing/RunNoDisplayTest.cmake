@@ -1,0 +1,32 @@
+# lvdif-editor without an X display (DISPLAY removed, as over a plain ssh
+# login): --help prints the options with their defaults and exits 0; a run that
+# needs a window exits 1 with one line that says why and how to run headless.
+unset(ENV{DISPLAY})
+unset(ENV{WAYLAND_DISPLAY})
+unset(ENV{QT_QPA_PLATFORM})
+execute_process(COMMAND "${EDITOR}" --help RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
+message("--help: status ${rc}\n${out}${err}")
+if (NOT rc EQUAL 0)
+  message(FATAL_ERROR "--help without a display should exit 0, got '${rc}'")
+endif ()
+foreach (expect "--open-mesh <file>" "default[ \n]+128" "default[ \n]+sphere" "--radius <r>" "default[ \n]+4[)]")
+  if (NOT "${out}" MATCHES "${expect}")
+    message(FATAL_ERROR "--help does not say '${expect}'")
+  endif ()
+endforeach ()
+execute_process(COMMAND "${EDITOR}" --new 16 --no-recovery --autosave 0 --quit
+  RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
+message("--new 16 --quit: status ${rc}\n${out}${err}")
+if (NOT rc EQUAL 1)
+  message(FATAL_ERROR "without a display the editor should exit 1, got '${rc}'")
+endif ()
+if (NOT "${err}" MATCHES "lvdif-editor: cannot open a window: no usable X display [(]DISPLAY=not set[)]; run it on a desktop, or headless as xvfb-run -a")
+  message(FATAL_ERROR "the no-display message is missing")
+endif ()
+# one line of its own: Qt's platform plugin lines are not repeated
+string(REGEX MATCHALL "\n" lines "${err}")
+list(LENGTH lines n)
+string(FIND "${err}" "qt.qpa" qpa)
+if (NOT qpa EQUAL -1 OR n GREATER 2)
+  message(FATAL_ERROR "more than the one message (and the CUDA notice) on stderr: '${err}'")
+endif ()
