@@ -280,6 +280,15 @@ EditorOptions parseEditorOptions(const QStringList& arguments)
     o.drawRangeTriangles = integerOption(p.value(drawRanges), "--draw-ranges", 0, std::numeric_limits<int>::max());
   if (p.isSet(samples))
     o.samples = integerOption(p.value(samples), "--samples", 0, 16);
+  // One source of the volume: the editor opened the first of --open-mesh,
+  // --open and --new and silently ignored the others, and the options of a
+  // source not given (--fill with --open, --mesh-sign without --open-mesh).
+  if (p.isSet(open) + p.isSet(openMesh) + p.isSet(create) > 1)
+    fail("--open, --open-mesh and --new each give the volume: use one of them");
+  if (p.isSet(fill) && (p.isSet(open) || p.isSet(openMesh)))
+    fail("--fill fills a new canvas (--new): not with --open or --open-mesh");
+  if ((p.isSet(meshRes) || p.isSet(meshSign) || p.isSet(meshReorient)) && !p.isSet(openMesh))
+    fail("--mesh-resolution, --mesh-sign and --mesh-reorient are options of --open-mesh, which is not given");
   const LVDIFFiles::Kind volume = LVDIFFiles::Kind::Volume, mesh = LVDIFFiles::Kind::Mesh;
   checkOutput("save", o.save, &volume);
   checkOutput("export", o.exportMesh, &mesh);
