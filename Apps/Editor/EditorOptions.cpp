@@ -48,6 +48,17 @@ double numberOption(const QString& text, const QString& name)
   return v;
 }
 
+/// ".lvdv, .vti, ..." : the extensions of a kind the editor reads or writes,
+/// from the one file registry (the help listed two volume formats of five).
+QString extensions(LVDIFFiles::Kind kind, bool forSaving)
+{
+  QStringList list;
+  for (const LVDIFFiles::Format& f : LVDIFFiles::Formats())
+    if (f.kind == kind && !(forSaving ? f.writerClass : f.readerClass).empty())
+      list << "." + QString::fromStdString(f.extension);
+  return list.join(", ");
+}
+
 /// A batch output checked before any work, as the CLI does: a format the
 /// editor writes there and a folder it can write to (it converted a mesh or
 /// ran a script first and then failed on a missing folder or an unknown
@@ -78,8 +89,9 @@ EditorOptions parseEditorOptions(const QStringList& arguments)
   QCommandLineParser p;
   p.setApplicationDescription("LVDIF volume editor");
   p.addHelpOption();
-  const QCommandLineOption open("open", "Open a volume (.lvdv or .vti).", "file");
-  const QCommandLineOption openMesh("open-mesh", "Convert a mesh (.obj .off .stl .ply) to a volume and open it.", "file");
+  const LVDIFFiles::Kind volumeKind = LVDIFFiles::Kind::Volume, meshKind = LVDIFFiles::Kind::Mesh;
+  const QCommandLineOption open("open", "Open a volume (" + extensions(volumeKind, false) + ").", "file");
+  const QCommandLineOption openMesh("open-mesh", "Convert a mesh (" + extensions(meshKind, false) + ") to a volume and open it.", "file");
   const QCommandLineOption meshRes("mesh-resolution", "Voxels along the mesh's longest axis (--open-mesh; default 128).", "n", "128");
   const QCommandLineOption meshSign("mesh-sign", "Sign of --open-mesh: winding, pseudo or normal (default winding).", "mode", "winding");
   const QCommandLineOption meshReorient("mesh-reorient",
@@ -93,8 +105,8 @@ EditorOptions parseEditorOptions(const QStringList& arguments)
   const QCommandLineOption dragShot("screenshot-during-drag",
     "Save a screenshot of the view during --replay-drag, before the button is released.", "file");
   const QCommandLineOption windowShot("screenshot-window", "Save a picture of the whole window (PNG) and quit.", "file");
-  const QCommandLineOption save("save", "Save the volume (.lvdv or .vti) and quit.", "file");
-  const QCommandLineOption exp("export", "Export the mesh (.ply, .obj, .stl) and quit.", "file");
+  const QCommandLineOption save("save", "Save the volume (" + extensions(volumeKind, true) + ") and quit.", "file");
+  const QCommandLineOption exp("export", "Export the mesh (" + extensions(meshKind, true) + ") and quit.", "file");
   const QCommandLineOption op("op",
     "Tool: add, subtract, paint, smooth, inflate, grab, flatten, crease, pinch (default add).", "op", "add");
   const QCommandLineOption strength("strength", "Brush strength in (0, 1] (default: the tool's).", "s");
@@ -289,9 +301,8 @@ EditorOptions parseEditorOptions(const QStringList& arguments)
     fail("--fill fills a new canvas (--new): not with --open or --open-mesh");
   if ((p.isSet(meshRes) || p.isSet(meshSign) || p.isSet(meshReorient)) && !p.isSet(openMesh))
     fail("--mesh-resolution, --mesh-sign and --mesh-reorient are options of --open-mesh, which is not given");
-  const LVDIFFiles::Kind volume = LVDIFFiles::Kind::Volume, mesh = LVDIFFiles::Kind::Mesh;
-  checkOutput("save", o.save, &volume);
-  checkOutput("export", o.exportMesh, &mesh);
+  checkOutput("save", o.save, &volumeKind);
+  checkOutput("export", o.exportMesh, &meshKind);
   checkOutput("screenshot", o.screenshot, nullptr);
   checkOutput("screenshot-window", o.windowShot, nullptr);
   checkOutput("screenshot-during-drag", o.dragShot, nullptr);
