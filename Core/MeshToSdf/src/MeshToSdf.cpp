@@ -462,6 +462,18 @@ void warnIfFacesReversed(const MeshToSdfPrepared& mesh, const MeshToSdfOptions& 
   stats.warnings.push_back(m.str());
 }
 
+/// On CUDA the host mostly waits while the GPU computes the distances, so the
+/// connected parts that warnIfPartsVanish reads (about 0.3 s for 13M
+/// triangles on 16 threads, once per prepared mesh) are found then, on a
+/// thread of their own, instead of after the result. `needed`: the call
+/// will check for vanishing parts (a signed field over the whole grid). The
+/// caller get()s the future before the check (an error there is the call's).
+std::future<void> partsBesideGpu(const MeshToSdfPrepared& mesh, bool needed)
+{
+  if (!needed) return {};
+  return std::async(std::launch::async, [&mesh] { mesh.impl().partBounds(); });
+}
+
 bool wholeGrid(const GridGeometry& grid, const VoxelBox& extent)
 {
   for (int a = 0; a < 3; ++a)
@@ -488,7 +500,9 @@ MeshToSdfStats meshToSdf(const MeshToSdfPrepared& mesh, const GridGeometry& grid
   auto engine = makeEngine(mesh, grid, options, options.bandWidth, stats.device, stats);
   if (stats.device == Device::Cuda)
   {
+    std::future<void> parts = partsBesideGpu(mesh, wholeGrid(grid, extent) && options.sign != SignMode::Unsigned);
     openCuda(mesh, *engine, options, stats)->compute(extent, out, stats, interrupter);
+    if (parts.valid()) parts.get();
   }
   else
   {
@@ -562,7 +576,9 @@ MeshToSdfStats meshToSdf(const MeshToSdfPrepared& mesh, DictionaryVolume& volume
   }
   else if (stats.device == Device::Cuda)
   {
+    std::future<void> parts = partsBesideGpu(mesh, options.sign != SignMode::Unsigned);
     volumeOnCuda(*openCuda(mesh, *engine, opts, stats), volume, opts, stats, interrupter);
+    if (parts.valid()) parts.get();
   }
   else
   {

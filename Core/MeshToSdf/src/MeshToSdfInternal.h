@@ -372,8 +372,11 @@ struct MeshToSdfPrepared::Impl
   /// Whether the winding-number structures are built already.
   bool hasWindingSigner();
   /// The bounds (min x, y, z, max x, y, z) of each connected part of the
-  /// mesh (faces joined by welded vertices), found on first use (under Lock):
-  /// a property of the mesh, not of a call's grid (warnIfPartsVanish).
+  /// mesh (faces joined by welded vertices), found on first use (under
+  /// PartsLock, not Lock: on CUDA it runs beside the call's GPU session, which
+  /// takes Lock; it reads only the welded faces and points, which nothing
+  /// changes after preparation): a property of the mesh, not of a call's grid
+  /// (warnIfPartsVanish).
   const std::vector<std::array<float, 6>>& partBounds();
   /// The mesh (and, when asked, the winding structures) on the GPU, uploaded
   /// on first use and kept until the prepared mesh is destroyed. The winding
@@ -390,6 +393,7 @@ private:
   std::unique_ptr<detail::meshtosdf::WindingSigner> Winding;
   std::unique_ptr<std::vector<detail::meshtosdf::FarCone>> FarConesOfBvh;
   std::unique_ptr<detail::meshtosdf_cuda::DeviceMesh> Device;
+  std::mutex PartsLock;
   std::unique_ptr<std::vector<std::array<float, 6>>> Parts;
 };
 

@@ -184,7 +184,7 @@ void atomicMax(std::atomic<float>& x, float v)
 
 const std::vector<std::array<float, 6>>& MeshToSdfPrepared::Impl::partBounds()
 {
-  std::lock_guard<std::mutex> lock(this->Lock);
+  std::lock_guard<std::mutex> lock(this->PartsLock);
   if (this->Parts) return *this->Parts;
   const double t0 = now();
   const PreparedMesh& m = this->mesh;

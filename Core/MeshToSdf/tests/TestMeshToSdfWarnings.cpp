@@ -6,6 +6,7 @@
 // warning when the winding sign met faces reversed against their neighbours
 // or duplicates that cancel, with counts checked against the damage done.
 #include "MeshToSdfDamagedMeshes.h"
+#include "lvdif/Cuda.h"
 #include "lvdif/DictionaryVolume.h"
 #include "lvdif/MeshToSdf.h"
 
@@ -175,6 +176,41 @@ TEST(MeshToSdfWarnings, PartsSmallerThanAVoxelVanish)
   MeshToSdfOptions o;
   o.device = Device::Cpu;
   EXPECT_TRUE(mentions(meshToSdf(m, vol, o), "1 of 2 parts of the mesh"));
+}
+
+// On CUDA the parts are found on a thread of their own while the GPU computes
+// the distances (partsBesideGpu): the same warning, into a float grid and a
+// dictionary volume, on a fresh prepared mesh each time and on one reused
+// (whose parts are found already).
+TEST(MeshToSdfWarnings, PartsSmallerThanAVoxelVanishOnCuda)
+{
+  if (!cuda::available()) GTEST_SKIP() << "no CUDA device";
+  TriangleMesh m = makeBoxMesh({ 0.0f, 0.0f, 0.0f }, { 6.0f, 6.0f, 6.0f });
+  const TriangleMesh small = makeBoxMesh({ 10.0f, 3.0f, 3.0f }, { 10.1f, 3.1f, 3.1f });
+  const auto n = static_cast<std::uint32_t>(m.points.size());
+  m.points.insert(m.points.end(), small.points.begin(), small.points.end());
+  for (auto t : small.triangles) m.triangles.push_back({ t[0] + n, t[1] + n, t[2] + n });
+  const GridGeometry g = fitGridToMesh(m, 24, 2.0);
+  MeshToSdfOptions o;
+  o.device = Device::Cuda;
+  for (SignMode sign : { SignMode::WindingNumber, SignMode::PseudoNormal })
+  {
+    o.sign = sign;
+    const MeshToSdfPrepared reused = prepareMeshToSdf(m, o.sign);
+    for (int call = 0; call < 2; ++call)
+    {
+      std::vector<float> out(static_cast<std::size_t>(g.count()));
+      const MeshToSdfStats grid = meshToSdf(prepareMeshToSdf(m, o.sign), FloatGridView{ out.data(), g }, o);
+      EXPECT_EQ(grid.device, Device::Cuda);
+      EXPECT_GT(deepInside(out), 0);
+      EXPECT_TRUE(mentions(grid, "1 of 2 parts of the mesh")) << call;
+      EXPECT_TRUE(mentions(meshToSdf(reused, FloatGridView{ out.data(), g }, o), "1 of 2 parts of the mesh")) << call;
+      DictionaryVolume vol(volumeOptionsOn(g));
+      const MeshToSdfStats volume = meshToSdf(reused, vol, o);
+      EXPECT_EQ(volume.device, Device::Cuda);
+      EXPECT_TRUE(mentions(volume, "1 of 2 parts of the mesh")) << call;
+    }
+  }
 }
 
 // The parts are found by a union-find on all threads: many small parts and a
