@@ -2,6 +2,7 @@
 // step limit and cancellation, and the two shipped example scripts checked
 // against analytic geometry.
 #include "EditTestUtil.h"
+#include "ErrorTestUtil.h"
 #include "lvdif/Brush.h"
 #include "lvdif/Script.h"
 
@@ -182,15 +183,7 @@ TEST(Script, CancelStopsTheScript)
   ScriptOptions o;
   o.interrupter = &cancel;
   ScriptRunner r(o);
-  try
-  {
-    r.run("x = 0\nwhile 1 { x = x + 1 }");
-    FAIL() << "not cancelled";
-  }
-  catch (const Error& e)
-  {
-    EXPECT_EQ(e.code(), ErrorCode::Cancelled);
-  }
+  errortest::errorMessageOf([&] { r.run("x = 0\nwhile 1 { x = x + 1 }"); }, ErrorCode::Cancelled);
   EXPECT_LT(r.steps(), 5000u);
 }
 
@@ -444,15 +437,7 @@ TEST(Script, ReadScriptFileRefusesFoldersAndFifosWithoutBlocking)
 {
   const std::string dir = ::testing::TempDir();
   auto errorOf = [](const std::string& path) {
-    try
-    {
-      lvdif::readScriptFile(path);
-    }
-    catch (const lvdif::Error& e)
-    {
-      return std::string(e.what());
-    }
-    return std::string("no error");
+    return errortest::errorMessageOf([&] { lvdif::readScriptFile(path); }, ErrorCode::IoFailure);
   };
   EXPECT_NE(errorOf(dir).find("not a regular file"), std::string::npos) << errorOf(dir);
   const std::string fifo = dir + "/lvdif_script_fifo.lvs";
