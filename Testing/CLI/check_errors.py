@@ -303,6 +303,15 @@ for ext in ("ply", "obj", "stl", "vtp"):
 # a save that fails is not "save volume: done" either (.bv holds cubic volumes only)
 code, err = run("convert", empty_vol, os.path.join(out, "empty.bv"))
 assert code == 1 and "save volume: done" not in err and "cubic" in err and not os.path.exists(os.path.join(out, "empty.bv")), (code, err)
+# a face of more corners than lvdif::MaxPolygonCorners (65,536): one error naming the file, the line and the count
+big_face = os.path.join(out, "bigface.obj")
+with open(big_face, "w") as f:
+    f.write("".join(f"v {i} {i % 7} 0\n" for i in range(65537)))
+    f.write("f " + " ".join(str(i + 1) for i in range(65537)) + "\n")
+code, err = run("mesh-to-sdf", big_face, os.path.join(out, "bigface.lvdv"), "--dims", "16")
+assert code == 1 and err.splitlines()[-1] == (
+    f"lvdif mesh-to-sdf: cannot read '{big_face}': OBJ line 65538: a face of 65537 corners: at most 65536 corners a face "
+    "(lvdif::MaxPolygonCorners; split or triangulate it first)"), (code, err)
 print("error handling OK")
 # errors about the mesh found after reading it say which file (they named none: "fit grid: the mesh
 # bounds have zero size", "mesh has no triangle of non-zero area")
