@@ -303,6 +303,31 @@ for ext in ("ply", "obj", "stl", "vtp"):
 # a save that fails is not "save volume: done" either (.bv holds cubic volumes only)
 code, err = run("convert", empty_vol, os.path.join(out, "empty.bv"))
 assert code == 1 and "save volume: done" not in err and "cubic" in err and not os.path.exists(os.path.join(out, "empty.bv")), (code, err)
+# lvdif script --out x.bv: the output's rule on the result's dimensions before the script's edits
+# (a non-cubic canvas failed only when saving, after the whole script: "script: done" came first)
+ns_script = os.path.join(out, "noncubic.lvs")
+with open(ns_script, "w") as f:
+    f.write("canvas 32 32 16\nsphere 16 16 8 5\n")
+ns_bv = os.path.join(out, "noncubic.bv")
+r = subprocess.run([exe, "script", ns_script, "--out", ns_bv], capture_output=True, text=True, timeout=60)
+assert r.returncode == 1 and "edits" not in r.stdout and r.stderr.strip() == (
+    f"lvdif script: {ns_script}:1:1: cannot write '{ns_bv}': .bv holds only cubic volumes; this one is 32 x 32 x 16"
+), r
+assert not os.path.exists(ns_bv)
+ns_vol = os.path.join(out, "noncubic.lvdv")
+assert run("script", ns_script, "--out", ns_vol)[0] == 0
+keep_script = os.path.join(out, "keep.lvs")
+with open(keep_script, "w") as f:
+    f.write("sphere 16 16 8 5\n")
+r = subprocess.run([exe, "script", keep_script, "--in", ns_vol, "--out", ns_bv], capture_output=True, text=True, timeout=60)
+assert r.returncode == 1 and "edits" not in r.stdout and r.stderr.strip().splitlines()[-1] == (
+    f"lvdif script: cannot write '{ns_bv}': .bv holds only cubic volumes; this one is 32 x 32 x 16"), r
+r = subprocess.run([exe, "play", rec, "--in", ns_vol, "--out", ns_bv], capture_output=True, text=True, timeout=60)
+assert r.returncode == 1 and "replayed" not in r.stdout and r.stderr.strip().splitlines()[-1] == (
+    f"lvdif play: cannot write '{ns_bv}': .bv holds only cubic volumes; this one is 32 x 32 x 16 (the volume of --in)"), r
+assert not os.path.exists(ns_bv)
+code, err = run("script", keep_script, "--size", "32", "--out", os.path.join(out, "SDF_64_keep.bv"))
+assert code == 1 and err.endswith("file name says N = 64 but the volume's edge is 32"), (code, err)
 # a face of more corners than lvdif::MaxPolygonCorners (65,536): one error naming the file, the line and the count
 big_face = os.path.join(out, "bigface.obj")
 with open(big_face, "w") as f:

@@ -505,3 +505,58 @@ TEST(Script, CanvasSizeGivenByTheCallerRefusesTheScriptsCanvas)
   EXPECT_NO_THROW(fixed.run("canvas clear\nx = 3\n"));
   EXPECT_EQ(fixed.variable("x"), 3.0);
 }
+
+// A caller's rule on the volume the script leaves (lvdif script --out x.bv: a
+// cube) stops the script before its edits: at a `canvas N` that breaks it
+// (before the canvas is made), or before anything runs for an attached volume
+// the script keeps. It failed only when saving, after the whole script.
+TEST(Script, ResultRuleIsCheckedBeforeTheEdits)
+{
+  ScriptOptions o;
+  std::vector<Index3> asked;
+  o.resultRule = [&asked](const Index3& d) {
+    asked.push_back(d);
+    return d[0] == d[1] && d[1] == d[2] ? std::string() : std::string("not a cube");
+  };
+  {
+    ScriptRunner r(o);
+    try
+    {
+      r.run("x = 1\ncanvas 8 16 24\nsphere 4 4 4 3\ny = 2\n");
+      ADD_FAILURE() << "a non-cubic canvas ran";
+    }
+    catch (const ScriptError& e)
+    {
+      EXPECT_EQ(e.line(), 2);
+      EXPECT_EQ(e.detail(), "not a cube");
+    }
+    EXPECT_EQ(r.volume(), nullptr); // no canvas was made
+    EXPECT_EQ(r.edits(), 0u);
+    EXPECT_THROW(r.variable("y"), Error);
+  }
+  ASSERT_EQ(asked.size(), 1u);
+  EXPECT_EQ(asked[0], (Index3{ 8, 16, 24 }));
+  // an attached non-cubic volume that the script keeps: refused before anything runs
+  VolumeOptions thin;
+  thin.dims = { 32, 32, 16 };
+  DictionaryVolume v(thin);
+  {
+    ScriptRunner r(o);
+    r.attach(v);
+    // no statement is blamed (a ScriptError's message starts with its line)
+    EXPECT_EQ(errortest::errorMessageOf([&] { r.run("x = 1\nsphere 4 4 4 3\n"); }, ErrorCode::InvalidArgument),
+      "not a cube");
+    EXPECT_THROW(r.variable("x"), Error);
+    EXPECT_EQ(r.edits(), 0u);
+  }
+  // ... but a script that makes its own cubic canvas runs; so does a cubic one
+  {
+    ScriptRunner r(o);
+    r.attach(v);
+    EXPECT_NO_THROW(r.run("canvas 16\nsphere 8 8 8 3\n"));
+    EXPECT_EQ(r.edits(), 1u);
+  }
+  ScriptRunner cube(o);
+  EXPECT_NO_THROW(cube.run("canvas 16\nsphere 8 8 8 3\n"));
+  EXPECT_EQ(cube.edits(), 1u);
+}
