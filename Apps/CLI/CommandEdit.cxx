@@ -35,6 +35,10 @@ int CommandScript(int argc, char** argv)
   options.interrupter = &progress;
   // --size and a script's `canvas N` both size the canvas: refused, not "the script wins" (--size was ignored)
   if (args.has("size")) options.canvasSizeGivenBy = "--size " + std::to_string(n);
+  // the output's rule on the result's dimensions, before the script runs (a .bv of a
+  // non-cubic canvas failed only when saving, after the whole script)
+  if (args.has("out"))
+    options.resultRule = [out = args.get("out", "")](const lvdif::Index3& dims) { return VolumeOutputDimsProblem(out, dims); };
   lvdif::ScriptRunner runner(options);
   std::shared_ptr<lvdif::DictionaryVolume> start;
   if (args.has("in"))
@@ -78,6 +82,10 @@ int CommandPlay(int argc, char** argv)
   // the (small) recording is read and checked before the (possibly large) volume is loaded
   const lvdif::Recording recording = lvdif::loadRecording(args.positional()[0]);
   auto volume = LoadAnyVolume(args.get("in", ""), progress);
+  // a replay keeps the dimensions: the output's rule on them before replaying
+  const std::string refused = args.has("out") ? VolumeOutputDimsProblem(args.get("out", ""), volume->dims()) : std::string();
+  if (!refused.empty())
+    throw lvdif::Error(lvdif::ErrorCode::InvalidArgument, refused + " (the volume of --in)");
   lvdif::Editor editor(*volume);
   editor.play(recording, progress);
   // a replay said nothing at all, and without an output it keeps nothing: both said

@@ -11,7 +11,6 @@
 #include "lvdif/CNumbers.h"
 #include "lvdif/Cuda.h"
 #include "lvdif/Error.h"
-#include "lvdif/LegacyBv.h"
 #include "lvdif/MeshFile.h"
 #include "lvdif/MeshToSdf.h"
 
@@ -119,13 +118,9 @@ int CommandMeshToSdf(int argc, char** argv)
   }
   // a format's own limit, known from the fitted grid: before the work, not after it (.bv found a
   // non-cubic grid only when saving, after minutes of mesh to SDF)
-  if (Extension(out) == "bv")
-  {
-    const std::string notCubic = lvdif::checkLegacyBvDims(grid.dims, out);
-    if (!notCubic.empty())
-      throw lvdif::Error(lvdif::ErrorCode::InvalidArgument, "cannot write '" + out + "': " + notCubic +
-          " (the grid fitted to the mesh)");
-  }
+  const std::string refused = VolumeOutputDimsProblem(out, grid.dims);
+  if (!refused.empty())
+    throw lvdif::Error(lvdif::ErrorCode::InvalidArgument, refused + " (the grid fitted to the mesh)");
   lvdif::DictionaryVolume volume(vo);
   const lvdif::MeshToSdfStats stats = namingTheMesh([&] { return lvdif::meshToSdf(mesh, volume, options, progress); });
   SaveAnyVolume(volume, out,

@@ -3,6 +3,7 @@
 #include "LVDIFFiles.h"
 
 #include "lvdif/Error.h"
+#include "lvdif/LegacyBv.h"
 
 std::string Extension(const std::string& path)
 {
@@ -19,6 +20,13 @@ void CheckVolumeOutput(const std::string& path)
   // the registry's words (a Qt dialog filter, "Volumes (*.lvdv ...);;LVDIF ...", was the list)
   LVDIFFiles::RequireFormat(path, LVDIFFiles::Kind::Volume, true);
   LVDIFFiles::RequireWritable(path);
+}
+
+std::string VolumeOutputDimsProblem(const std::string& path, const lvdif::Index3& dims)
+{
+  // the writer's own rule (the only format with a rule on the dimensions)
+  const std::string problem = Extension(path) == "bv" ? lvdif::checkLegacyBvDims(dims, path) : std::string();
+  return problem.empty() ? problem : "cannot write '" + path + "': " + problem;
 }
 
 void SaveAnyVolume(const lvdif::DictionaryVolume& volume, const std::string& path,

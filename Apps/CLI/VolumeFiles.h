@@ -13,6 +13,10 @@
 std::shared_ptr<lvdif::DictionaryVolume> LoadAnyVolume(const std::string& path, lvdif::Interrupter& progress);
 /// A volume extension the file registry can write, and a writable place, checked before the work.
 void CheckVolumeOutput(const std::string& path);
+/// "" when a volume of these dimensions can be saved to `path`, else "cannot write 'PATH': " and its
+/// format's rule (.bv: cubic, the edge its SDF_<N>_ name says), for the commands that know the
+/// dimensions before their work: checked before it, not when saving after it.
+std::string VolumeOutputDimsProblem(const std::string& path, const lvdif::Index3& dims);
 void SaveAnyVolume(const lvdif::DictionaryVolume& volume, const std::string& path,
   const std::map<std::string, std::string>& metadata, lvdif::Interrupter& progress);
 std::string Extension(const std::string& path);

@@ -106,6 +106,14 @@ std::vector<GridSummary> listGrids(const std::string& path)
   return summarize(*grids);
 }
 
+double exportHalfWidth(const DictionaryVolume& volume, double asked)
+{
+  const double band = volume.bandWidth();
+  const double hw = asked > 0 ? asked : (std::isfinite(band) ? band : 3.0);
+  // Saturated distances (|d| = band) are not distances: never make them active.
+  return std::min(hw, band);
+}
+
 void exportLevelSet(
   const DictionaryVolume& volume, const std::string& path, const ExportOptions& options, Interrupter& interrupter)
 {
@@ -119,10 +127,7 @@ void exportLevelSet(
   }
   require(options.halfWidth >= 0 && std::isfinite(options.halfWidth), "OpenVDB export: invalid half width");
   require(!options.sdfName.empty(), "OpenVDB export: empty grid name");
-  const double band = volume.bandWidth();
-  double hw = options.halfWidth > 0 ? options.halfWidth : (std::isfinite(band) ? band : 3.0);
-  // Saturated distances (|d| = band) are not distances: never make them active.
-  hw = std::min(hw, static_cast<double>(band));
+  const double hw = exportHalfWidth(volume, options.halfWidth);
 
   const std::uint64_t voxels = checkedMultiply(static_cast<std::uint64_t>(volume.expandedChunkCount()) + 1,
     static_cast<std::uint64_t>(volume.chunkEdge()) * volume.chunkEdge() * volume.chunkEdge(), "OpenVDB export");

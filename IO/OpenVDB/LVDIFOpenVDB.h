@@ -35,7 +35,8 @@ namespace vdb
 struct ExportOptions
 {
   /// Half width of the narrow band in voxels; 0 = the volume's band width
-  /// (3, OpenVDB's default, when the volume's band is infinite).
+  /// (3, OpenVDB's default, when the volume's band is infinite). Never wider
+  /// than the volume's band (exportHalfWidth).
   double halfWidth = 0.0;
   bool withColor = true;
   std::string sdfName = "sdf";
@@ -59,6 +60,12 @@ struct GridSummary
 {
   std::string name, type, gridClass;
 };
+
+/// The narrow band's half width (voxels) that exportLevelSet writes for a half
+/// width asked (0: the volume's band): never wider than the volume's band
+/// (saturated distances are not distances), and 3, OpenVDB's default, for an
+/// unlimited band with 0 (a level set's background is finite).
+LVDIFIOOPENVDB_EXPORT double exportHalfWidth(const DictionaryVolume& volume, double asked);
 
 /// Writes the .vdb (Error(InvalidArgument) for anisotropic spacing,
 /// Error(IoFailure) when OpenVDB cannot write, Error(Cancelled)).

@@ -2,9 +2,12 @@
 
 #include "LVDIFOpenVDB.h"
 
+#include "lvdif/CNumbers.h"
 #include "lvdif/DictionaryVolume.h"
 
 #include "vtkObjectFactory.h"
+
+#include <string>
 
 vtkStandardNewMacro(vtkOpenVDBLevelSetWriter);
 
@@ -14,7 +17,7 @@ vtkOpenVDBLevelSetWriter::~vtkOpenVDBLevelSetWriter() = default;
 lvdif::VolumeOptions vtkOpenVDBLevelSetWriter::ImageVolumeOptions()
 {
   lvdif::VolumeOptions options;
-  options.bandWidth = static_cast<float>(this->HalfWidth);
+  options.bandWidth = static_cast<float>(this->HalfWidth > 0 ? this->HalfWidth : 3.0); // OpenVDB's default
   return options;
 }
 
@@ -26,6 +29,24 @@ void vtkOpenVDBLevelSetWriter::Save(
   // an image without an `rgba` array has no colours to write
   exportOptions.withColor = source.fromImage ? source.imageColors != nullptr : this->WithColor;
   exportOptions.sdfName = this->GridName;
+  // a band narrower than asked (0 asks for the volume's own), said once
+  const double asked = this->HalfWidth > 0 ? this->HalfWidth : volume.bandWidth();
+  const double written = lvdif::vdb::exportHalfWidth(volume, this->HalfWidth);
+  if (written != asked)
+  {
+    const auto number = [](double v) {
+      char text[40];
+      lvdif::formatDoubleC(text, sizeof text, "%g", v);
+      return std::string(text);
+    };
+    const std::string what =
+      this->HalfWidth > 0 ? "HalfWidth " + number(asked) + " voxels" : std::string("the volume's band (unlimited)");
+    vtkWarningMacro(<< "'" << this->FileName << "': " << what << " is written as a narrow band of "
+                    << number(written) << " voxels ("
+                    << (this->HalfWidth > 0 ? "the volume's band: distances beyond it are not stored"
+                                            : "OpenVDB's default: a level set's background is finite; set HalfWidth for another")
+                    << ")");
+  }
   lvdif::vdb::exportLevelSet(volume, this->FileName, exportOptions, interrupter);
 }
 

@@ -2,8 +2,10 @@
  * @class   vtkOpenVDBLevelSetWriter
  * @brief   writes a vtkSparseDictionaryVolume, or vtkImageData's `sdf` (and `rgba`), as an OpenVDB level set (.vdb)
  *
- * A sparse volume is exported as it is (its band; HalfWidth caps the exported
- * narrow band). An image input needs a point array `sdf` (negative inside, voxel units) and
+ * A sparse volume is exported as it is: its band, unless HalfWidth asks for a
+ * narrower one (a warning names the band asked and the band written when they
+ * differ otherwise: an unlimited band is written 3 voxels wide, a HalfWidth
+ * wider than the band is written as the band). An image input needs a point array `sdf` (negative inside, voxel units) and
  * isotropic spacing; an unsigned char `rgba` array (1 to 4 components) is
  * written too when WithColor is on. The file holds a FloatGrid `sdf` of class
  * level set whose values are WORLD-unit distances (voxel distance x spacing),
@@ -30,8 +32,10 @@ public:
   void PrintSelf(ostream& os, vtkIndent indent) override;
 
   ///@{
-  /// Narrow-band half width in voxels (default 3, OpenVDB's default).
-  vtkSetClampMacro(HalfWidth, double, 1.0, 1.0e4);
+  /// Narrow-band half width in voxels; 0 (default) = the sparse volume's band
+  /// (3, OpenVDB's default, for an image or an unlimited band). It was 3 by
+  /// default, so `lvdif convert` narrowed a band of 8 to 3 without a word.
+  vtkSetClampMacro(HalfWidth, double, 0.0, 1.0e4);
   vtkGetMacro(HalfWidth, double);
   ///@}
 
@@ -57,7 +61,7 @@ protected:
   lvdif::VolumeOptions ImageVolumeOptions() override;
 
   std::string GridName = "sdf";
-  double HalfWidth = 3.0;
+  double HalfWidth = 0.0;
   bool WithColor = true;
 
 private:

@@ -303,6 +303,52 @@ for ext in ("ply", "obj", "stl", "vtp"):
 # a save that fails is not "save volume: done" either (.bv holds cubic volumes only)
 code, err = run("convert", empty_vol, os.path.join(out, "empty.bv"))
 assert code == 1 and "save volume: done" not in err and "cubic" in err and not os.path.exists(os.path.join(out, "empty.bv")), (code, err)
+# lvdif script --out x.bv: the output's rule on the result's dimensions before the script's edits
+# (a non-cubic canvas failed only when saving, after the whole script: "script: done" came first)
+ns_script = os.path.join(out, "noncubic.lvs")
+with open(ns_script, "w") as f:
+    f.write("canvas 32 32 16\nsphere 16 16 8 5\n")
+ns_bv = os.path.join(out, "noncubic.bv")
+r = subprocess.run([exe, "script", ns_script, "--out", ns_bv], capture_output=True, text=True, timeout=60)
+assert r.returncode == 1 and "edits" not in r.stdout and r.stderr.strip() == (
+    f"lvdif script: {ns_script}:1:1: cannot write '{ns_bv}': .bv holds only cubic volumes; this one is 32 x 32 x 16"
+), r
+assert not os.path.exists(ns_bv)
+ns_vol = os.path.join(out, "noncubic.lvdv")
+assert run("script", ns_script, "--out", ns_vol)[0] == 0
+keep_script = os.path.join(out, "keep.lvs")
+with open(keep_script, "w") as f:
+    f.write("sphere 16 16 8 5\n")
+r = subprocess.run([exe, "script", keep_script, "--in", ns_vol, "--out", ns_bv], capture_output=True, text=True, timeout=60)
+assert r.returncode == 1 and "edits" not in r.stdout and r.stderr.strip().splitlines()[-1] == (
+    f"lvdif script: cannot write '{ns_bv}': .bv holds only cubic volumes; this one is 32 x 32 x 16"), r
+r = subprocess.run([exe, "play", rec, "--in", ns_vol, "--out", ns_bv], capture_output=True, text=True, timeout=60)
+assert r.returncode == 1 and "replayed" not in r.stdout and r.stderr.strip().splitlines()[-1] == (
+    f"lvdif play: cannot write '{ns_bv}': .bv holds only cubic volumes; this one is 32 x 32 x 16 (the volume of --in)"), r
+assert not os.path.exists(ns_bv)
+code, err = run("script", keep_script, "--size", "32", "--out", os.path.join(out, "SDF_64_keep.bv"))
+assert code == 1 and err.endswith("file name says N = 64 but the volume's edge is 32"), (code, err)
+# a face of more corners than lvdif::MaxPolygonCorners (65,536): one error naming the file, the line and the count
+big_face = os.path.join(out, "bigface.obj")
+with open(big_face, "w") as f:
+    f.write("".join(f"v {i} {i % 7} 0\n" for i in range(65537)))
+    f.write("f " + " ".join(str(i + 1) for i in range(65537)) + "\n")
+code, err = run("mesh-to-sdf", big_face, os.path.join(out, "bigface.lvdv"), "--dims", "16")
+assert code == 1 and err.splitlines()[-1] == (
+    f"lvdif mesh-to-sdf: cannot read '{big_face}': OBJ line 65538: a face of 65537 corners: at most 65536 corners a face "
+    "(lvdif::MaxPolygonCorners; split or triangulate it first)"), (code, err)
+# .vdb keeps the volume's band (the writer's default of 3 narrowed a band of 8 to 3 without a word)
+cube_vol = os.path.join(out, "cube8.lvdv")
+assert run("script", keep_script, "--size", "32", "--out", cube_vol)[0] == 0
+code, err = run("convert", cube_vol, os.path.join(out, "cube8.vdb"))
+if "vdb" in err and "format" in err and code != 0:
+    print("no OpenVDB in this build: .vdb band not checked")
+else:
+    assert code == 0 and "warning" not in err, (code, err)
+    back = os.path.join(out, "cube8-back.lvdv")
+    assert run("convert", os.path.join(out, "cube8.vdb"), back)[0] == 0
+    r = subprocess.run([exe, "info", back], capture_output=True, text=True, timeout=60)
+    assert r.returncode == 0 and ", band 8\n" in r.stdout, r.stdout
 print("error handling OK")
 # errors about the mesh found after reading it say which file (they named none: "fit grid: the mesh
 # bounds have zero size", "mesh has no triangle of non-zero area")

@@ -3,6 +3,7 @@
 // the undo stack sees synced writes, refresh() follows host edits, and the
 // device memory bound is enforced. Skipped without a GPU (the stub refuses).
 #include "EditTestUtil.h"
+#include "ErrorTestUtil.h"
 #include "lvdif/AnalyticFill.h"
 #include "lvdif/Cuda.h"
 #include "lvdif/DeviceVolume.h"
@@ -64,15 +65,7 @@ TEST(DeviceVolumeCuda, RefusedWithoutCuda)
   if (cuda::available())
     GTEST_SKIP() << "a CUDA device is present";
   DictionaryVolume v(edittest::options(32));
-  try
-  {
-    cuda::DeviceVolume d(v);
-    FAIL() << "constructed without CUDA";
-  }
-  catch (const Error& e)
-  {
-    EXPECT_EQ(e.code(), ErrorCode::Unsupported);
-  }
+  errortest::errorMessageOf([&] { cuda::DeviceVolume d(v); }, ErrorCode::Unsupported);
 }
 
 TEST(DeviceVolumeCuda, EveryDabSyncedEqualsTheCpuBitForBit)
@@ -154,15 +147,7 @@ TEST(DeviceVolumeCuda, RefreshRefusesPendingChunksAndTheBoundIsEnforced)
   ASSERT_GT(expanded, 10);
   cuda::DeviceVolume::Options tiny;
   tiny.maxDeviceBytes = 16 * 16 * 16 * 4 * 3; // 3 chunks: far too small
-  try
-  {
-    cuda::DeviceVolume d(v, tiny);
-    FAIL() << "the bound was not enforced";
-  }
-  catch (const Error& e)
-  {
-    EXPECT_EQ(e.code(), ErrorCode::OutOfMemory);
-  }
+  errortest::errorMessageOf([&] { cuda::DeviceVolume d(v, tiny); }, ErrorCode::OutOfMemory); // the bound is enforced
   // a pool with exactly no headroom: an edit that must expand uniform chunks is refused, nothing changes
   cuda::DeviceVolume::Options exact;
   exact.headroomSlots = 0;
@@ -170,15 +155,8 @@ TEST(DeviceVolumeCuda, RefreshRefusesPendingChunksAndTheBoundIsEnforced)
   cuda::DeviceVolume d(v, exact);
   EXPECT_EQ(d.slotCapacity(), static_cast<std::size_t>(expanded));
   auto before = v.clone();
-  try
-  {
-    d.applyDabs({ Dab{ BrushShape::Sphere, { 48, 48, 48 }, 45, {} } }, BrushSettings());
-    FAIL() << "the pool overflowed";
-  }
-  catch (const Error& e)
-  {
-    EXPECT_EQ(e.code(), ErrorCode::OutOfMemory);
-  }
+  errortest::errorMessageOf( // the pool does not overflow
+    [&] { d.applyDabs({ Dab{ BrushShape::Sphere, { 48, 48, 48 }, 45, {} } }, BrushSettings()); }, ErrorCode::OutOfMemory);
   EXPECT_EQ(d.pendingChunks(), 0u);
   d.sync();
   EXPECT_EQ(edittest::countDifferences(v, *before), 0);

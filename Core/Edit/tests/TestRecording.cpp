@@ -1,6 +1,7 @@
 // Recorder and player: record -> text -> read -> play is bit-exact; parse
 // errors name the source, line and column; the original CSV imports with axis swap and scaling.
 #include "EditTestUtil.h"
+#include "ErrorTestUtil.h"
 #include "lvdif/AnalyticFill.h"
 #include "lvdif/Editor.h"
 #include "lvdif/Error.h"
@@ -15,20 +16,11 @@ using namespace lvdif;
 
 namespace
 {
-/// readRecording's message for the text s (a parse error), or "no error".
+/// readRecording's message for the text s (a ParseError; the test fails without one).
 std::string recordingErrorOf(const std::string& s)
 {
   std::istringstream in(s);
-  try
-  {
-    readRecording(in);
-  }
-  catch (const Error& e)
-  {
-    EXPECT_EQ(e.code(), ErrorCode::ParseError);
-    return std::string(e.what());
-  }
-  return std::string("no error");
+  return errortest::errorMessageOf([&] { readRecording(in); }, ErrorCode::ParseError);
 }
 } // namespace
 
@@ -104,16 +96,8 @@ TEST(Recording, AnUndoWithNothingToUndoStopsPlayback)
 
   auto played = start->clone();
   Editor p(*played);
-  try
-  {
-    p.play(rec);
-    ADD_FAILURE() << "played an undo with nothing to undo";
-  }
-  catch (const Error& err)
-  {
-    EXPECT_EQ(err.code(), ErrorCode::InvalidArgument);
-    EXPECT_NE(std::string(err.what()).find("record 1 of 2 ('undo') has nothing to undo"), std::string::npos) << err.what();
-  }
+  const std::string undoRefused = errortest::errorMessageOf([&] { p.play(rec); }, ErrorCode::InvalidArgument);
+  EXPECT_NE(undoRefused.find("record 1 of 2 ('undo') has nothing to undo"), std::string::npos) << undoRefused;
   EXPECT_EQ(edittest::countDifferences(*played, *start), 0); // nothing was applied before it
 
   // a redo with nothing to redo, after an edit that stays applied
@@ -147,16 +131,8 @@ TEST(Recording, AnotherCanvasIsRefusedBeforePlaying)
   DictionaryVolume other(o);
   auto untouched = other.clone();
   Editor p(other);
-  try
-  {
-    p.play(back);
-    ADD_FAILURE() << "played a 48^3 recording on a 48 x 48 x 32 volume";
-  }
-  catch (const Error& err)
-  {
-    EXPECT_EQ(err.code(), ErrorCode::InvalidArgument);
-    EXPECT_STREQ(err.what(), "the recording was made on a 48 x 48 x 48 canvas; this volume is 48 x 48 x 32 (nothing was played)");
-  }
+  EXPECT_EQ(errortest::errorMessageOf([&] { p.play(back); }, ErrorCode::InvalidArgument),
+    "the recording was made on a 48 x 48 x 48 canvas; this volume is 48 x 48 x 32 (nothing was played)");
   EXPECT_EQ(edittest::countDifferences(other, *untouched), 0);
   EXPECT_FALSE(p.canUndo());
 

@@ -156,7 +156,8 @@ bool parallelObj(const char* p, std::size_t size, TriangleMesh& mesh)
   for (std::int64_t f = 0; f < nf; ++f)
   {
     int n = 0;
-    const bool good = corners(faces[static_cast<std::size_t>(f)], nullptr, n);
+    // a face past MaxPolygonCorners: the serial reader's message
+    const bool good = corners(faces[static_cast<std::size_t>(f)], nullptr, n) && n <= MaxPolygonCorners;
     first[static_cast<std::size_t>(f) + 1] = good ? n - 2 : 0;
     ok = ok && good;
   }
@@ -257,6 +258,8 @@ TriangleMesh readObj(const std::vector<char>& data)
     else if (t[0] == "f")
     {
       ids.clear();
+      if (std::int64_t(t.size()) - 1 > MaxPolygonCorners)
+        checkFaceCorners(std::int64_t(t.size()) - 1, s.where(), ErrorCode::ParseError); // before resolving them
       const std::int64_t n = static_cast<std::int64_t>(mesh.points.size());
       for (std::size_t i = 1; i < t.size(); ++i)
       {
@@ -407,6 +410,8 @@ TriangleMesh readOff(const std::vector<char>& data)
     const std::int64_t k = parseInt(t[0], s.where());
     if (k < 0 || k > std::int64_t(t.size()) - 1)
       fail(ErrorCode::ParseError, s.where(), "face announces " + std::to_string(k) + " vertices but lists " + std::to_string(t.size() - 1));
+    if (k > MaxPolygonCorners)
+      checkFaceCorners(k, s.where(), ErrorCode::ParseError); // before reading its corners
     ids.clear();
     for (std::int64_t i = 1; i <= k; ++i)
       ids.push_back(parseInt(t[static_cast<size_t>(i)], s.where()));

@@ -4,6 +4,7 @@
 
 #include "lvdif/Error.h"
 #include "lvdif/CNumbers.h"
+#include "lvdif/MeshFile.h"
 #include "lvdif/TriangleMesh.h"
 
 #include <algorithm>
@@ -188,12 +189,23 @@ void triangulatePolygon(const Id* ids, std::size_t n, std::array<std::uint32_t, 
   }
 }
 
+/// The readers' one rule on a face's corner count (at least 3, at most
+/// MaxPolygonCorners): checked where the count is known, before the corners are read.
+inline void checkFaceCorners(std::int64_t corners, const std::string& where, ErrorCode code)
+{
+  if (corners < 3)
+    fail(code, where, "a face needs at least 3 vertices, this one has " + std::to_string(corners));
+  if (corners > MaxPolygonCorners)
+    fail(code, where,
+      "a face of " + std::to_string(corners) + " corners: at most " + std::to_string(MaxPolygonCorners) +
+        " corners a face (lvdif::MaxPolygonCorners; split or triangulate it first)");
+}
+
 /// Appends a polygon's triangles (triangulatePolygon) after checking its indices.
 inline void addPolygon(TriangleMesh& mesh, const std::vector<std::int64_t>& ids, std::int64_t pointCount,
   const std::string& where, ErrorCode code)
 {
-  if (ids.size() < 3)
-    fail(code, where, "a face needs at least 3 vertices, this one has " + std::to_string(ids.size()));
+  checkFaceCorners(static_cast<std::int64_t>(ids.size()), where, code);
   for (std::int64_t id : ids)
     if (id < 0 || id >= pointCount)
       fail(code, where, "vertex index " + std::to_string(id) + " out of range [0, " + std::to_string(pointCount) + ")");

@@ -409,6 +409,8 @@ TriangleMesh readPly(const std::vector<char>& data)
         const double count = next(p.countType, p.countKind);
         if (count < 0 || count > double(left))
           fail(ErrorCode::CorruptData, where(), "list of " + std::to_string(static_cast<long long>(count)) + " items");
+        if (isFace && int(i) == ilist && count > double(MaxPolygonCorners))
+          checkFaceCorners(static_cast<std::int64_t>(count), where(), faceCode); // before reading its corners
         for (std::int64_t k = 0; k < static_cast<std::int64_t>(count); ++k)
         {
           const double v = next(p.type, p.kind);

@@ -3,6 +3,7 @@
 // and a table of malformed inputs. Malformed files are crafted with an
 // independent little-endian patcher following docs/FORMAT.md, so the tests
 // also pin the documented layout.
+#include "ErrorTestUtil.h"
 #include "lvdif/AnalyticFill.h"
 #include "lvdif/VolumeFile.h"
 
@@ -67,17 +68,9 @@ std::unique_ptr<DictionaryVolume> fromBytes(const Bytes& b, const VolumeFileRead
 /// Expects Error(CorruptData) whose message contains `needle`.
 void expectCorrupt(const Bytes& b, const std::string& needle, const std::string& label)
 {
-  try
-  {
-    fromBytes(b);
-    ADD_FAILURE() << label << ": accepted";
-  }
-  catch (const Error& e)
-  {
-    EXPECT_EQ(e.code(), ErrorCode::CorruptData) << label << ": " << e.what();
-    EXPECT_NE(std::string(e.what()).find(needle), std::string::npos)
-      << label << ": message '" << e.what() << "' does not mention '" << needle << "'";
-  }
+  const std::string message = errortest::errorMessageOf([&] { fromBytes(b); }, ErrorCode::CorruptData);
+  EXPECT_NE(message.find(needle), std::string::npos)
+    << label << ": message '" << message << "' does not mention '" << needle << "'";
 }
 
 /// A volume with random voxels in some chunks, random uniform chunks and a
@@ -324,18 +317,15 @@ TEST(VolumeFile, FailedSaveLeavesThePreviousFileByteIdentical)
   };
   for (std::uint64_t failAt : { std::uint64_t(0), std::uint64_t(100), total / 2, total - 1 })
   {
-    try
-    {
-      saveAtomically(path, [&](ByteSink& sink) {
-        FailingSink failing(sink, failAt);
-        writeVolume(*bvol.volume, failing, VolumeFileWriteOptions());
-      });
-      ADD_FAILURE() << "save did not fail at " << failAt;
-    }
-    catch (const Error& e)
-    {
-      EXPECT_EQ(e.code(), ErrorCode::IoFailure);
-    }
+    SCOPED_TRACE(failAt);
+    errortest::errorMessageOf(
+      [&] {
+        saveAtomically(path, [&](ByteSink& sink) {
+          FailingSink failing(sink, failAt);
+          writeVolume(*bvol.volume, failing, VolumeFileWriteOptions());
+        });
+      },
+      ErrorCode::IoFailure);
     EXPECT_EQ(readFile(path), before) << "previous file changed after a failure at byte " << failAt;
     EXPECT_EQ(listDir(path.substr(0, path.rfind('/'))).size(), 1u) << "temporary file left behind";
   }
@@ -371,26 +361,10 @@ TEST(VolumeFile, LoadReportsProgressHonoursCancelAndTheMemoryLimit)
   EXPECT_EQ(rec.last, 1.0);
   rec.stop = true;
   MemorySource s2(b.data(), b.size());
-  try
-  {
-    readVolume(s2, VolumeFileReadOptions(), rec);
-    ADD_FAILURE() << "not cancelled";
-  }
-  catch (const Error& e)
-  {
-    EXPECT_EQ(e.code(), ErrorCode::Cancelled);
-  }
+  errortest::errorMessageOf([&] { readVolume(s2, VolumeFileReadOptions(), rec); }, ErrorCode::Cancelled);
   VolumeFileReadOptions small;
   small.memoryLimit = 200000; // the table fits, the expanded chunks do not
-  try
-  {
-    fromBytes(b, small);
-    ADD_FAILURE() << "memory limit ignored";
-  }
-  catch (const Error& e)
-  {
-    EXPECT_EQ(e.code(), ErrorCode::OutOfMemory) << e.what();
-  }
+  errortest::errorMessageOf([&] { fromBytes(b, small); }, ErrorCode::OutOfMemory);
 }
 
 TEST(VolumeFile, WriterRefusesColourKeysMissingFromTheDictionary)
@@ -466,29 +440,12 @@ TEST(VolumeFileMalformed, VerifyFindsPayloadDamageLikeTheReader)
   {
     Bytes f = b;
     f[i] ^= 0x01;
-    std::string readError;
-    try
-    {
-      fromBytes(f);
-    }
-    catch (const Error& e)
-    {
-      readError = e.what();
-    }
-    ASSERT_FALSE(readError.empty()) << "byte " << i;
+    SCOPED_TRACE("byte " + std::to_string(i));
+    const std::string readError = errortest::errorMessageOf([&] { fromBytes(f); }, ErrorCode::CorruptData);
     MemorySource src(f.data(), f.size());
     EXPECT_NO_THROW(readVolumeInfo(src)) << "byte " << i;
-    try
-    {
-      MemorySource again(f.data(), f.size());
-      verifyVolume(again);
-      ADD_FAILURE() << "byte " << i << " flipped: verifyVolume accepted it";
-    }
-    catch (const Error& e)
-    {
-      EXPECT_EQ(e.code(), ErrorCode::CorruptData);
-      EXPECT_EQ(std::string(e.what()), readError) << "byte " << i;
-    }
+    MemorySource again(f.data(), f.size());
+    EXPECT_EQ(errortest::errorMessageOf([&] { verifyVolume(again); }, ErrorCode::CorruptData), readError);
     ++damaged;
   }
   EXPECT_GT(damaged, 10);
@@ -655,24 +612,11 @@ TEST(VolumeFile, CompressionLevelOutsideZstdsRangeIsRefusedBeforeAnyByte)
   {
     VolumeFileWriteOptions o;
     o.compressionLevel = level;
-    try
-    {
-      saveVolume(*a.volume, path, o);
-      ADD_FAILURE() << "level " << level << " was accepted";
-    }
-    catch (const Error& e)
-    {
-      EXPECT_EQ(std::string(e.what()), "compression level must be a zstd level in [1, 19], not " + std::to_string(level));
-    }
+    SCOPED_TRACE(level);
+    EXPECT_EQ(errortest::errorMessageOf([&] { saveVolume(*a.volume, path, o); }, ErrorCode::InvalidArgument),
+      "compression level must be a zstd level in [1, 19], not " + std::to_string(level));
     EXPECT_TRUE(readFile(path) == before) << level;
-    try
-    {
-      checkCompressionLevel(level, "CompressionLevel");
-      ADD_FAILURE() << "level " << level << " was accepted";
-    }
-    catch (const Error& e)
-    {
-      EXPECT_EQ(std::string(e.what()), "CompressionLevel must be a zstd level in [1, 19], not " + std::to_string(level));
-    }
+    EXPECT_EQ(errortest::errorMessageOf([&] { checkCompressionLevel(level, "CompressionLevel"); }, ErrorCode::InvalidArgument),
+      "CompressionLevel must be a zstd level in [1, 19], not " + std::to_string(level));
   }
 }

@@ -11,6 +11,7 @@
 #include <algorithm>
 #include <atomic>
 #include <cmath>
+#include <cstdint>
 #include <cstring>
 #include <functional>
 #include <limits>
@@ -181,12 +182,20 @@ std::vector<V3> vertexNormalSums(const PreparedMesh& out, std::size_t nv,
 /// cache. The groups, their order and every sum are those of the one-level
 /// counting sort this replaced (each thread scanned all 3n corners for its
 /// own vertices: 16 threads read every corner 32 times).
+/// `degenerate`: the welded ids of the skipped zero-area triangles, whose
+/// edges count in the boundary (not in the normals): an ear of three collinear
+/// polygon corners (a, b, c) closes a-b and b-c against the neighbouring faces
+/// and a-c against the next ear; skipped from the edges, such ears left
+/// boundary edges on a closed mesh (a polygon of float corners far from the
+/// origin or on a fine circle). Its edges still cancel geometrically (a-b + b-c
+/// = a-c on the line), so the chain and the winding numbers lose nothing.
 void edgePass(PreparedMesh& out, std::size_t nv, const LargeVector<V3>* weldPos, bool normals,
-  const std::function<void(const char*)>& lap)
+  const std::function<void(const char*)>& lap, const std::vector<std::array<std::uint32_t, 3>>* degenerate = nullptr)
 {
   const std::size_t n = out.tris.size();
   const auto& welded = out.welded;
-  const std::size_t nc = 3 * n;
+  const std::size_t nk = 3 * n; // corners of kept triangles (normals)
+  const std::size_t nc = nk + (degenerate ? 3 * degenerate->size() : 0);
   int shift = 0;
   while ((nv >> shift) > 4096) ++shift;
   const std::size_t nb = ((nv - 1) >> shift) + 1; // buckets of 2^shift vertices
@@ -197,9 +206,10 @@ void edgePass(PreparedMesh& out, std::size_t nv, const LargeVector<V3>* weldPos,
     std::int32_t dir;  // +1: the corner's edge runs lo -> hi
   };
   auto edgeOf = [&](std::size_t c) {
-    const auto& w = welded[c / 3];
+    const auto& w = c < nk ? welded[c / 3] : (*degenerate)[(c - nk) / 3];
     const std::uint32_t a = w[c % 3], b = w[(c % 3 + 1) % 3];
-    return Entry{ static_cast<std::uint64_t>(std::max(a, b)) << 32 | c, std::min(a, b), a < b ? 1 : -1 };
+    // a == b (two corners of a degenerate triangle at one point): no edge
+    return Entry{ static_cast<std::uint64_t>(std::max(a, b)) << 32 | c, std::min(a, b), a < b ? 1 : (a > b ? -1 : 0) };
   };
   const int parts = omp_get_max_threads();
   auto partLo = [&](int p) { return nc * static_cast<std::size_t>(p) / static_cast<std::size_t>(parts); };
@@ -280,7 +290,7 @@ void edgePass(PreparedMesh& out, std::size_t nv, const LargeVector<V3>* weldPos,
           for (; e1g < g1 && static_cast<std::uint32_t>(group[e1g].key >> 32) == hiE; ++e1g)
           {
             const std::uint32_t cf = static_cast<std::uint32_t>(group[e1g].key);
-            if (normals) en = en + out.tris[cf / 3].n;
+            if (normals && cf < nk) en = en + out.tris[cf / 3].n;
             mult += group[e1g].dir; // a -> b with a < b counts +1
           }
           if (normals)
@@ -289,7 +299,7 @@ void edgePass(PreparedMesh& out, std::size_t nv, const LargeVector<V3>* weldPos,
             for (std::size_t f = e; f < e1g; ++f)
             {
               const std::uint32_t cf = static_cast<std::uint32_t>(group[f].key);
-              out.normals[cf / 3].en[cf % 3] = enu; // each corner is in exactly one group
+              if (cf < nk) out.normals[cf / 3].en[cf % 3] = enu; // each corner is in exactly one group
             }
           }
           const std::size_t uses = e1g - e;
@@ -493,7 +503,20 @@ void prepareMesh(const TriangleMesh& mesh, PreparedMesh& out, bool pseudoNormals
     vertexNormal = vertexNormalSums(out, nv, keptAngles);
     lap("prepare: vertex normals");
   }
-  edgePass(out, nv, &weldPos, pseudoNormals, lap);
+  // the skipped triangles' welded ids, for the boundary (while the corner
+  // numbers fit the edge keys' 32 bits, as the kept ones must)
+  std::vector<std::array<std::uint32_t, 3>> degenerate;
+  if (out.degenerate > 0 && 3 * nt <= std::size_t(UINT32_MAX))
+  {
+    degenerate.reserve(out.degenerate);
+    for (std::size_t t = 0; t < nt; ++t)
+    {
+      if (slot[t + 1] != slot[t]) continue;
+      const auto& ix = mesh.triangles[t];
+      degenerate.push_back({ weld[ix[0]], weld[ix[1]], weld[ix[2]] });
+    }
+  }
+  edgePass(out, nv, &weldPos, pseudoNormals, lap, &degenerate);
   if (pseudoNormals)
   {
     finishPseudoNormals(out, vertexNormal);

@@ -1,14 +1,17 @@
 // Mesh to SDF distances against a brute-force double/long-double oracle,
 // exact equality of the faithful (paper) mode, grids, outputs, bad input.
+#include "ErrorTestUtil.h"
 #include "MeshToSdfOracle.h"
 #include "lvdif/DictionaryVolume.h"
 #include "lvdif/Error.h"
+#include "lvdif/MeshFile.h"
 #include "lvdif/MeshToSdf.h"
 
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <limits>
+#include <map>
 #include <string>
 #include <utility>
 #include <vector>
@@ -246,53 +249,88 @@ TEST(MeshToSdf, DegenerateTrianglesAreSkippedAndCounted)
   EXPECT_EQ(a, b);
 }
 
+// A closed box whose top and front faces are polygons with 7 more corners on
+// their shared edge: the reader's ears of collinear corners have zero area
+// and are skipped, but they still close their edges, so the box has no
+// boundary (the skipped ears left it with 4 boundary edges). Exactly
+// collinear at size 1, and collinear only after rounding to float at 1e20
+// (corners 1e6 off the edge in the file, well under the float spacing there).
+TEST(MeshToSdf, ZeroAreaEarsOfPolygonsLeaveAClosedMeshClosed)
+{
+  for (const double size : { 1.0, 1e20 })
+  {
+    SCOPED_TRACE(size);
+    const double o = size; // the box spans [o, o + size] on every axis
+    const double bulge = size > 1 ? 1e6 : 0.0;
+    std::vector<std::array<double, 3>> v;
+    for (int z = 0; z < 2; ++z)
+      for (int y = 0; y < 2; ++y)
+        for (int x = 0; x < 2; ++x) v.push_back({ o + x * size, o + y * size, o + z * size }); // 1 + x + 2y + 4z
+    for (int k = 1; k < 8; ++k) v.push_back({ o + k * size / 8, o - bulge, o + size }); // 9 .. 15 (OBJ ids)
+    // outward faces; the top's corners run along the shared edge one way, the front's the other
+    const std::vector<std::vector<int>> faces = { { 5, 9, 10, 11, 12, 13, 14, 15, 6, 8, 7 },
+      { 1, 2, 6, 15, 14, 13, 12, 11, 10, 9, 5 }, { 1, 3, 4, 2 }, { 3, 7, 8, 4 }, { 1, 5, 7, 3 }, { 2, 4, 8, 6 } };
+    std::string obj;
+    char line[128];
+    for (const auto& p : v)
+    {
+      std::snprintf(line, sizeof line, "v %.17g %.17g %.17g\n", p[0], p[1], p[2]);
+      obj += line;
+    }
+    std::map<std::pair<int, int>, int> directed; // the oracle: the file's polygon edges pair up
+    for (const auto& f : faces)
+    {
+      obj += "f";
+      for (std::size_t i = 0; i < f.size(); ++i)
+      {
+        obj += " " + std::to_string(f[i]);
+        ++directed[{ f[i], f[(i + 1) % f.size()] }];
+      }
+      obj += "\n";
+    }
+    for (const auto& e : directed) ASSERT_EQ(directed.count({ e.first.second, e.first.first }), 1u);
+    MemorySource src(obj.data(), obj.size());
+    const TriangleMesh m = readMesh(src, MeshFormat::Obj, "box.obj");
+    const MeshToSdfPrepared prepared = prepareMeshToSdf(m, SignMode::WindingNumber);
+    EXPECT_GT(prepared.degenerateSkipped(), 0u); // the guard: there are zero-area ears
+    EXPECT_EQ(prepared.boundaryEdges(), 0u);
+  }
+}
+
 TEST(MeshToSdf, BadInputIsRefused)
 {
   const GridGeometry g = oddGrid();
   std::vector<float> out(static_cast<std::size_t>(g.count()));
   MeshToSdfOptions o;
-  auto code = [&](const TriangleMesh& m, const GridGeometry& gg) {
-    try
-    {
-      meshToSdf(m, gg, VoxelBox{ { 0, 0, 0 }, { 0, 0, 0 } }, out.data(), o);
-    }
-    catch (const Error& e)
-    {
-      return e.code();
-    }
-    return ErrorCode::Unsupported;
+  // each refused with InvalidArgument (errorMessageOf fails the test otherwise)
+  auto refusal = [&](const TriangleMesh& m, const GridGeometry& gg) {
+    return errortest::errorMessageOf(
+      [&] { meshToSdf(m, gg, VoxelBox{ { 0, 0, 0 }, { 0, 0, 0 } }, out.data(), o); }, ErrorCode::InvalidArgument);
   };
   const TriangleMesh sphere = makeSphereMesh(0, 0, 0, 1.0f, 4, 6);
-  EXPECT_EQ(code(TriangleMesh{}, g), ErrorCode::InvalidArgument);
+  refusal(TriangleMesh{}, g);
   TriangleMesh nan = sphere;
   nan.points[1][2] = std::numeric_limits<float>::quiet_NaN();
-  EXPECT_EQ(code(nan, g), ErrorCode::InvalidArgument);
+  refusal(nan, g);
   // a coordinate beyond +-1e30 (a float still) is the mesh's error with its bounds, also on an
   // explicit grid (it was checked only for NaN and infinity here, and the distances overflowed)
   TriangleMesh far = sphere;
   far.points[1][2] = 3e38f;
-  EXPECT_EQ(code(far, g), ErrorCode::InvalidArgument);
-  try
-  {
-    meshToSdf(far, g, VoxelBox{ { 0, 0, 0 }, { 0, 0, 0 } }, out.data(), o);
-  }
-  catch (const Error& e)
-  {
-    EXPECT_NE(std::string(e.what()).find("mesh coordinates span"), std::string::npos) << e.what();
-  }
+  const std::string farRefused = refusal(far, g);
+  EXPECT_NE(farRefused.find("mesh coordinates span"), std::string::npos) << farRefused;
   TriangleMesh badIndex = sphere;
   badIndex.triangles[0][1] = 999;
-  EXPECT_EQ(code(badIndex, g), ErrorCode::InvalidArgument);
+  refusal(badIndex, g);
   TriangleMesh allDegenerate;
   allDegenerate.points = { { 0, 0, 0 }, { 1, 1, 1 }, { 2, 2, 2 } };
   allDegenerate.triangles = { { 0, 1, 2 } };
-  EXPECT_EQ(code(allDegenerate, g), ErrorCode::InvalidArgument);
+  refusal(allDegenerate, g);
   GridGeometry huge = g;
   huge.dims = { 1 << 22, 4, 4 };
-  EXPECT_EQ(code(sphere, huge), ErrorCode::InvalidArgument);
+  refusal(sphere, huge);
   GridGeometry zeroSpacing = g;
   zeroSpacing.spacing[1] = 0;
-  EXPECT_EQ(code(sphere, zeroSpacing), ErrorCode::InvalidArgument);
+  refusal(sphere, zeroSpacing);
   // extent outside the grid
   EXPECT_THROW(meshToSdf(sphere, g, VoxelBox{ { 0, 0, 0 }, { 23, 0, 0 } }, out.data(), o), Error);
   // fitted grids: zero-size bounds, absurd dims
@@ -317,15 +355,7 @@ TEST(MeshToSdf, CancelStopsWithCancelled)
   intr.cancel();
   MeshToSdfOptions o;
   o.device = Device::Cpu;
-  try
-  {
-    meshToSdf(m, FloatGridView{ out.data(), g }, o, intr);
-    FAIL() << "no exception";
-  }
-  catch (const Error& e)
-  {
-    EXPECT_EQ(e.code(), ErrorCode::Cancelled);
-  }
+  errortest::errorMessageOf([&] { meshToSdf(m, FloatGridView{ out.data(), g }, o, intr); }, ErrorCode::Cancelled);
 }
 
 namespace

@@ -3,6 +3,7 @@
 // duplicated and intersecting meshes. Prints the wrong-sign fraction of each
 // mode; WindingNumber must be right on every voxel farther than 1 voxel.
 #include "../src/MeshToSdfGeometry.h"
+#include "ErrorTestUtil.h"
 #include "MeshToSdfOracle.h"
 #include "lvdif/Error.h"
 #include "lvdif/MeshToSdf.h"
@@ -281,15 +282,7 @@ TEST(SignModeNames, EveryNameReadsBackAndOthersAreOneError)
     EXPECT_EQ(signModeFromName(signModeName(m), "--sign"), m) << signModeName(m);
   for (const std::string bad : { "pseudonormal", "Winding", "", "unsigned", "winding " })
   {
-    try
-    {
-      signModeFromName(bad, "--mesh-sign");
-      ADD_FAILURE() << "accepted '" << bad << "'";
-    }
-    catch (const Error& e)
-    {
-      EXPECT_EQ(e.code(), ErrorCode::InvalidArgument);
-      EXPECT_EQ(std::string(e.what()), "--mesh-sign must be normal, pseudo or winding, not '" + bad + "'");
-    }
+    EXPECT_EQ(errortest::errorMessageOf([&] { signModeFromName(bad, "--mesh-sign"); }, ErrorCode::InvalidArgument),
+      "--mesh-sign must be normal, pseudo or winding, not '" + bad + "'");
   }
 }

@@ -495,6 +495,12 @@ struct ScriptRunner::Impl
     if (double(dims[0]) * double(dims[1]) * double(dims[2]) > double(this->Options.maxCanvasVoxels))
       fail(s.line, s.column, "canvas of " + std::to_string(dims[0]) + " x " + std::to_string(dims[1]) + " x " +
           std::to_string(dims[2]) + " voxels exceeds the limit of " + std::to_string(this->Options.maxCanvasVoxels));
+    if (this->Options.resultRule)
+    {
+      const std::string refused = this->Options.resultRule(dims);
+      if (!refused.empty())
+        fail(s.line, s.column, refused);
+    }
     if (this->Ed && this->Ed->strokeOpen())
       fail(s.line, s.column, "finish the stroke before 'canvas'");
     VolumeOptions o = this->Options.canvas;
@@ -564,6 +570,13 @@ void ScriptRunner::run(const std::string& source)
       throw ScriptError(ErrorCode::InvalidArgument, c->line, c->column,
         "'canvas' makes its own canvas, but the start canvas's size was given (" + this->P->Options.canvasSizeGivenBy +
           "): remove one of them");
+  // the attached volume is the result unless a `canvas N` replaces it (checked there)
+  if (this->P->Options.resultRule && this->P->Volume && !firstNewCanvas(prog.statements))
+  {
+    const std::string refused = this->P->Options.resultRule(this->P->Volume->dims());
+    if (!refused.empty())
+      throw Error(ErrorCode::InvalidArgument, refused);
+  }
   Interrupter* in = this->P->Options.interrupter;
   if (in)
     in->start("script");

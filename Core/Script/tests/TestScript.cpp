@@ -2,6 +2,7 @@
 // step limit and cancellation, and the two shipped example scripts checked
 // against analytic geometry.
 #include "EditTestUtil.h"
+#include "ErrorTestUtil.h"
 #include "lvdif/Brush.h"
 #include "lvdif/Script.h"
 
@@ -182,15 +183,7 @@ TEST(Script, CancelStopsTheScript)
   ScriptOptions o;
   o.interrupter = &cancel;
   ScriptRunner r(o);
-  try
-  {
-    r.run("x = 0\nwhile 1 { x = x + 1 }");
-    FAIL() << "not cancelled";
-  }
-  catch (const Error& e)
-  {
-    EXPECT_EQ(e.code(), ErrorCode::Cancelled);
-  }
+  errortest::errorMessageOf([&] { r.run("x = 0\nwhile 1 { x = x + 1 }"); }, ErrorCode::Cancelled);
   EXPECT_LT(r.steps(), 5000u);
 }
 
@@ -444,15 +437,7 @@ TEST(Script, ReadScriptFileRefusesFoldersAndFifosWithoutBlocking)
 {
   const std::string dir = ::testing::TempDir();
   auto errorOf = [](const std::string& path) {
-    try
-    {
-      lvdif::readScriptFile(path);
-    }
-    catch (const lvdif::Error& e)
-    {
-      return std::string(e.what());
-    }
-    return std::string("no error");
+    return errortest::errorMessageOf([&] { lvdif::readScriptFile(path); }, ErrorCode::IoFailure);
   };
   EXPECT_NE(errorOf(dir).find("not a regular file"), std::string::npos) << errorOf(dir);
   const std::string fifo = dir + "/lvdif_script_fifo.lvs";
@@ -519,4 +504,59 @@ TEST(Script, CanvasSizeGivenByTheCallerRefusesTheScriptsCanvas)
   fixed.attach(v);
   EXPECT_NO_THROW(fixed.run("canvas clear\nx = 3\n"));
   EXPECT_EQ(fixed.variable("x"), 3.0);
+}
+
+// A caller's rule on the volume the script leaves (lvdif script --out x.bv: a
+// cube) stops the script before its edits: at a `canvas N` that breaks it
+// (before the canvas is made), or before anything runs for an attached volume
+// the script keeps. It failed only when saving, after the whole script.
+TEST(Script, ResultRuleIsCheckedBeforeTheEdits)
+{
+  ScriptOptions o;
+  std::vector<Index3> asked;
+  o.resultRule = [&asked](const Index3& d) {
+    asked.push_back(d);
+    return d[0] == d[1] && d[1] == d[2] ? std::string() : std::string("not a cube");
+  };
+  {
+    ScriptRunner r(o);
+    try
+    {
+      r.run("x = 1\ncanvas 8 16 24\nsphere 4 4 4 3\ny = 2\n");
+      ADD_FAILURE() << "a non-cubic canvas ran";
+    }
+    catch (const ScriptError& e)
+    {
+      EXPECT_EQ(e.line(), 2);
+      EXPECT_EQ(e.detail(), "not a cube");
+    }
+    EXPECT_EQ(r.volume(), nullptr); // no canvas was made
+    EXPECT_EQ(r.edits(), 0u);
+    EXPECT_THROW(r.variable("y"), Error);
+  }
+  ASSERT_EQ(asked.size(), 1u);
+  EXPECT_EQ(asked[0], (Index3{ 8, 16, 24 }));
+  // an attached non-cubic volume that the script keeps: refused before anything runs
+  VolumeOptions thin;
+  thin.dims = { 32, 32, 16 };
+  DictionaryVolume v(thin);
+  {
+    ScriptRunner r(o);
+    r.attach(v);
+    // no statement is blamed (a ScriptError's message starts with its line)
+    EXPECT_EQ(errortest::errorMessageOf([&] { r.run("x = 1\nsphere 4 4 4 3\n"); }, ErrorCode::InvalidArgument),
+      "not a cube");
+    EXPECT_THROW(r.variable("x"), Error);
+    EXPECT_EQ(r.edits(), 0u);
+  }
+  // ... but a script that makes its own cubic canvas runs; so does a cubic one
+  {
+    ScriptRunner r(o);
+    r.attach(v);
+    EXPECT_NO_THROW(r.run("canvas 16\nsphere 8 8 8 3\n"));
+    EXPECT_EQ(r.edits(), 1u);
+  }
+  ScriptRunner cube(o);
+  EXPECT_NO_THROW(cube.run("canvas 16\nsphere 8 8 8 3\n"));
+  EXPECT_EQ(cube.edits(), 1u);
 }

@@ -1,6 +1,7 @@
 // The CPU edit session: undo/redo against a replay oracle, meshes against a
 // full re-mesh, scripts (undoable, canvas), recordings, change reports, and the
 // remesh rule against brute force.
+#include "ErrorTestUtil.h"
 #include "SessionTestUtil.h"
 
 #include "lvdif/Cuda.h"
@@ -271,15 +272,9 @@ TEST(EditSession, ScriptErrorInsideAStrokeEndsTheStroke)
   o.interrupter = &cancel;
   const auto beforeCancel = s.volume().clone();
   const std::size_t steps = s.undoCount();
-  try
-  {
-    s.runScript("kind basic\nbegin\nfor i in 0..100000 { point 10 + i % 28, 24, 34 }\nend", o);
-    ADD_FAILURE() << "not cancelled";
-  }
-  catch (const lvdif::Error& e)
-  {
-    EXPECT_EQ(e.code(), lvdif::ErrorCode::Cancelled) << e.what();
-  }
+  errortest::errorMessageOf(
+    [&] { s.runScript("kind basic\nbegin\nfor i in 0..100000 { point 10 + i % 28, 24, 34 }\nend", o); },
+    lvdif::ErrorCode::Cancelled);
   EXPECT_FALSE(s.strokeOpen());
   EXPECT_EQ(s.undoCount(), steps);
   EXPECT_EQ(differences(s.volume(), *beforeCancel), 0);
@@ -420,15 +415,9 @@ TEST(EditSession, RefusesAVolumeThinnerThanTwoVoxelsAndKeepsItsOwn)
   auto thin = std::make_shared<lvdif::DictionaryVolume>(o);
   const std::string rule = lvdif::DictionaryVolume::checkCanvasDimensions(o.dims);
   ASSERT_NE(rule, "");
-  try
-  {
-    lvdif::EditSession refused(thin, cpuOptions());
-    ADD_FAILURE() << "a session on an 8 x 1 x 8 volume";
-  }
-  catch (const lvdif::Error& e)
-  {
-    EXPECT_EQ(std::string(e.what()), rule);
-  }
+  EXPECT_EQ(errortest::errorMessageOf([&] { lvdif::EditSession refused(thin, cpuOptions()); },
+              lvdif::ErrorCode::InvalidArgument),
+    rule);
   lvdif::EditSession s(sphereVolume(32, 16), cpuOptions());
   EXPECT_THROW(s.setVolume(thin), lvdif::Error);
   EXPECT_EQ(s.volume().dims()[1], 32);

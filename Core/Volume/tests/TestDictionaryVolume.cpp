@@ -1,3 +1,4 @@
+#include "ErrorTestUtil.h"
 #include "lvdif/AnalyticFill.h"
 #include "lvdif/DictionaryVolume.h"
 #include "lvdif/Error.h"
@@ -140,16 +141,8 @@ TEST(DictionaryVolume, BandBelowTheDictionaryStepIsRefused)
   {
     VolumeOptions o = opts(8, 8, 8, 8);
     o.bandWidth = band;
-    try
-    {
-      DictionaryVolume v(o);
-      ADD_FAILURE() << "band " << band << " accepted";
-    }
-    catch (const Error& e)
-    {
-      EXPECT_EQ(e.code(), ErrorCode::InvalidArgument);
-      EXPECT_NE(std::string(e.what()).find("band width"), std::string::npos) << e.what();
-    }
+    const std::string narrow = errortest::errorMessageOf([&] { DictionaryVolume v(o); }, ErrorCode::InvalidArgument);
+    EXPECT_NE(narrow.find("band width"), std::string::npos) << band << ": " << narrow;
   }
   VolumeOptions o = opts(8, 8, 8, 8);
   o.bandWidth = static_cast<float>(o.dictionary.stepA);
@@ -163,17 +156,9 @@ TEST(DictionaryVolume, BandBelowTheDictionaryStepIsRefused)
 TEST(DictionaryVolume, RefusesAbsurdSizesBeforeAllocating)
 {
   const std::uint64_t rssBefore = residentMemoryBytes();
-  try
-  {
-    VolumeOptions o = opts(1 << 20, 1 << 20, 1 << 20, 4);
-    DictionaryVolume v(o);
-    FAIL() << "a 2^60-voxel volume must be refused";
-  }
-  catch (const Error& e)
-  {
-    EXPECT_EQ(e.code(), ErrorCode::OutOfMemory);
-    EXPECT_NE(std::string(e.what()).find("limit"), std::string::npos) << e.what();
-  }
+  const std::string huge =
+    errortest::errorMessageOf([] { DictionaryVolume v(opts(1 << 20, 1 << 20, 1 << 20, 4)); }, ErrorCode::OutOfMemory);
+  EXPECT_NE(huge.find("limit"), std::string::npos) << huge;
   EXPECT_THROW(DictionaryVolume(opts(0, 5, 5)), Error);
   EXPECT_THROW(DictionaryVolume(opts(-4, 5, 5)), Error);
   EXPECT_THROW(DictionaryVolume(opts((1 << 20) + 1, 5, 5)), Error);
@@ -340,27 +325,12 @@ TEST(DictionaryVolume, NewCanvasRefusesWithTheCanvasRuleBeforeAllocating)
   {
     const std::string rule = DictionaryVolume::checkCanvasDimensions(d);
     EXPECT_NE(rule.find("cannot be edited: each axis needs 2..1048576 voxels"), std::string::npos) << rule;
-    try
-    {
-      DictionaryVolume::requireCanvasDimensions(d);
-      ADD_FAILURE() << "requireCanvasDimensions passed " << d[0] << " x " << d[1] << " x " << d[2];
-    }
-    catch (const lvdif::Error& e)
-    {
-      EXPECT_EQ(std::string(e.what()), rule);
-      EXPECT_EQ(e.code(), lvdif::ErrorCode::InvalidArgument);
-    }
+    EXPECT_EQ(errortest::errorMessageOf([&] { DictionaryVolume::requireCanvasDimensions(d); },
+                lvdif::ErrorCode::InvalidArgument),
+      rule);
     lvdif::VolumeOptions o;
     o.dims = d;
-    try
-    {
-      DictionaryVolume::newCanvas(o);
-      ADD_FAILURE() << "newCanvas made " << d[0] << " x " << d[1] << " x " << d[2];
-    }
-    catch (const lvdif::Error& e)
-    {
-      EXPECT_EQ(std::string(e.what()), rule);
-    }
+    EXPECT_EQ(errortest::errorMessageOf([&] { DictionaryVolume::newCanvas(o); }, lvdif::ErrorCode::InvalidArgument), rule);
   }
   lvdif::VolumeOptions o;
   o.dims = { 2, 3, 2 };

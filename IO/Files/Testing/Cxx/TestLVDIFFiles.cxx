@@ -13,6 +13,8 @@
 #include "vtkFloatArray.h"
 #include "vtkImageData.h"
 #include "vtkNew.h"
+#include "vtkObjectFactory.h"
+#include "vtkOutputWindow.h"
 #include "vtkPointData.h"
 #include "vtkPolyData.h"
 #include "vtkSphereSource.h"
@@ -23,8 +25,10 @@
 
 #include <cmath>
 #include <cstdio>
+#include <limits>
 #include <dirent.h>
 #include <fstream>
+#include <functional>
 #include <regex>
 #include <set>
 #include <sstream>
@@ -45,6 +49,20 @@ std::shared_ptr<lvdif::DictionaryVolume> sphere()
   lvdif::fillFromFunction(*v, lvdif::sphereSdf(19.3, 20.1, 18.7, 12.0));
   return v;
 }
+
+/// f(x, y, z, the distance read back) for each voxel of the 40^3 volume `v` that `back` (v saved and
+/// read again) covers: a format may crop or pad (OpenVDB: the active box), so by world position.
+void forEachVoxelReadBack(const lvdif::DictionaryVolume& v, const lvdif::DictionaryVolume& back,
+  const std::function<void(std::int64_t, std::int64_t, std::int64_t, float)>& f)
+{
+  std::int64_t off[3];
+  for (int a = 0; a < 3; ++a)
+    off[a] = std::llround((back.options().origin[a] - v.options().origin[a]) / v.options().spacing[a]);
+  for (std::int64_t z = 0; z < 40; ++z)
+    for (std::int64_t y = 0; y < 40; ++y)
+      for (std::int64_t x = 0; x < 40; ++x)
+        if (back.inside(x - off[0], y - off[1], z - off[2])) f(x, y, z, back.sdf(x - off[0], y - off[1], z - off[2]));
+}
 }
 
 TEST(LVDIFFiles, EveryVolumeFormatRoundTrips)
@@ -60,28 +78,80 @@ TEST(LVDIFFiles, EveryVolumeFormatRoundTrips)
     LVDIFFiles::SaveVolume(v, path, { { "source mesh", "analytic" } });
     std::shared_ptr<lvdif::DictionaryVolume> back = LVDIFFiles::LoadVolume(path);
     ASSERT_TRUE(back) << f.extension;
-    // a format may crop or pad (OpenVDB: the active box): compare by world position
-    std::int64_t off[3];
-    for (int a = 0; a < 3; ++a)
-      off[a] = std::llround((back->options().origin[a] - v->options().origin[a]) / v->options().spacing[a]);
     int bad = 0, compared = 0;
-    for (std::int64_t z = 0; z < 40; ++z)
-      for (std::int64_t y = 0; y < 40; ++y)
-        for (std::int64_t x = 0; x < 40; ++x)
-        {
-          const double d = analytic(static_cast<double>(x), static_cast<double>(y), static_cast<double>(z));
-          if (std::fabs(d) > 3.0) continue; // the band every format keeps
-          if (!back->inside(x - off[0], y - off[1], z - off[2])) continue;
-          ++compared;
-          // two dictionaries at most (ours, then the original's for .bv): two half steps
-          bad += std::fabs(back->sdf(x - off[0], y - off[1], z - off[2]) - d) > 0.0011;
-        }
+    forEachVoxelReadBack(*v, *back, [&](std::int64_t x, std::int64_t y, std::int64_t z, float read) {
+      const double d = analytic(static_cast<double>(x), static_cast<double>(y), static_cast<double>(z));
+      if (std::fabs(d) > 3.0) return; // the band every format keeps
+      ++compared;
+      // two dictionaries at most (ours, then the original's for .bv): two half steps
+      bad += std::fabs(read - d) > 0.0011;
+    });
     EXPECT_GT(compared, 1000) << f.extension;
     EXPECT_EQ(bad, 0) << f.extension;
     std::remove(path.c_str());
   }
   EXPECT_GE(formats, 4); // lvdv, lvdvp, bv, vti (+ vdb with OpenVDB)
 }
+
+#ifdef LVDIF_WITH_OPENVDB_MODULE
+namespace
+{
+/// The warnings VTK displays while it is the output window.
+class WarningLog : public vtkOutputWindow
+{
+public:
+  static WarningLog* New();
+  vtkTypeMacro(WarningLog, vtkOutputWindow);
+  void DisplayWarningText(const char* text) override { this->Warnings.push_back(text); }
+  std::vector<std::string> Warnings;
+};
+vtkStandardNewMacro(WarningLog);
+}
+
+// A .vdb keeps the volume's band: `lvdif convert` and the editor save through
+// the registry, whose OpenVDB writer wrote 3 voxels (its HalfWidth default)
+// of a band of 8 without a word. An unlimited band must become a finite one
+// (a level set's background): 3 voxels, said once with both widths.
+TEST(LVDIFFiles, VdbKeepsTheVolumesBandAndSaysWhenItCannot)
+{
+  vtkNew<WarningLog> log;
+  vtkOutputWindow* previous = vtkOutputWindow::GetInstance();
+  previous->Register(nullptr);
+  vtkOutputWindow::SetInstance(log);
+  vtkObject::GlobalWarningDisplayOn();
+  const auto analytic = lvdif::sphereSdf(19.3, 20.1, 18.7, 12.0);
+  const auto v = sphere(); // band 8, the default
+  ASSERT_EQ(v->bandWidth(), 8.0f);
+  const std::string path = temp("band.vdb");
+  LVDIFFiles::SaveVolume(v, path, {});
+  EXPECT_TRUE(log->Warnings.empty()) << log->Warnings.front();
+  auto back = LVDIFFiles::LoadVolume(path);
+  EXPECT_EQ(back->bandWidth(), 8.0f);
+  // voxels 3.5 to 7 voxels from the surface (beyond a band of 3): the distances the volume holds
+  int between = 0, bad = 0;
+  forEachVoxelReadBack(*v, *back, [&](std::int64_t x, std::int64_t y, std::int64_t z, float read) {
+    const double d = analytic(double(x), double(y), double(z));
+    if (std::fabs(d) < 3.5 || std::fabs(d) > 7.0) return;
+    ++between;
+    bad += std::fabs(read - v->sdf(x, y, z)) > 1e-4 * std::fabs(d);
+  });
+  EXPECT_GT(between, 1000);
+  EXPECT_EQ(bad, 0);
+
+  lvdif::VolumeOptions o = v->options();
+  o.bandWidth = std::numeric_limits<float>::infinity();
+  auto unlimited = std::make_shared<lvdif::DictionaryVolume>(o);
+  lvdif::fillFromFunction(*unlimited, analytic);
+  LVDIFFiles::SaveVolume(unlimited, path, {});
+  ASSERT_EQ(log->Warnings.size(), 1u);
+  EXPECT_NE(log->Warnings[0].find("the volume's band (unlimited) is written as a narrow band of 3 voxels"),
+    std::string::npos) << log->Warnings[0];
+  EXPECT_EQ(LVDIFFiles::LoadVolume(path)->bandWidth(), 3.0f);
+  vtkOutputWindow::SetInstance(previous);
+  previous->Delete();
+  std::remove(path.c_str());
+}
+#endif
 
 namespace
 {
