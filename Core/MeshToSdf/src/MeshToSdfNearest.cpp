@@ -255,7 +255,7 @@ NearestIndex::NearestIndex(const TriList& tris)
   // peak: the index (~350 bytes a triangle: packed records, float planes,
   // nodes, positions) plus the build data (~220 bytes a triangle, ~400 while
   // the parallel subtrees are appended; 40 for the slabs)
-  requireMemory(static_cast<std::uint64_t>(n) * 800, "mesh to SDF: nearest-triangle index");
+  requireMemory(static_cast<std::uint64_t>(n) * NearestIndexBytesPerTriangle, "mesh to SDF: nearest-triangle index");
   std::vector<Ref> refs(n);
   double scale = 0;
 #pragma omp parallel for schedule(static) reduction(max : scale)
