@@ -635,9 +635,15 @@ MeshToSdfStats meshToSdf(const MeshToSdfPrepared& mesh, DictionaryVolume& volume
 /// afterwards. Below TreeBesideEdgePassTriangles the new thread's OpenMP
 /// team costs more than the overlap saves (H200 host: the 30k bunny's build
 /// 18 -> 27 ms with it; the 832k armadillo's 190 -> 110 ms).
+/// nearestIndex (a one-call run on the CPU with the Bvh accelerator): the
+/// CPU's index will follow, so the memory check counts it too.
 constexpr std::size_t TreeBesideEdgePassTriangles = std::size_t(1) << 18;
-static MeshToSdfPrepared prepareInternal(const TriangleMesh& mesh, SignMode sign, bool meshTreeNow = false)
+static MeshToSdfPrepared prepareInternal(const TriangleMesh& mesh, SignMode sign, bool meshTreeNow = false,
+  bool nearestIndex = false)
 {
+  // before anything is allocated: the whole preparation against the limit
+  requirePreparedMemory(mesh, sign == SignMode::Normal || sign == SignMode::PseudoNormal, sign == SignMode::WindingNumber,
+    nearestIndex);
   meshTreeNow = meshTreeNow && mesh.triangles.size() >= TreeBesideEdgePassTriangles;
   const bool winding = sign == SignMode::WindingNumber;
   const double t0 = now();
@@ -675,13 +681,21 @@ static MeshToSdfPrepared prepareInternal(const TriangleMesh& mesh, SignMode sign
   return MeshToSdfPrepared(std::move(impl));
 }
 
+/// The one-call API's preparation: the mesh BVH at once for CUDA, the
+/// nearest index counted in the memory check for the CPU.
+static MeshToSdfPrepared prepareOneCall(const TriangleMesh& mesh, const MeshToSdfOptions& options)
+{
+  const bool cuda = resolveDevice(options.device) == Device::Cuda;
+  return prepareInternal(mesh, options.sign, cuda, !cuda && options.accel == MeshToSdfAccel::Bvh);
+}
+
 /// The one-call API: prepare, then the prepared call (preparation counts as build time).
 template <typename Out>
 MeshToSdfStats prepareAndRun(const TriangleMesh& mesh, Out&& out, const MeshToSdfOptions& options,
   Interrupter& interrupter)
 {
   const PhaseTraceScope tracing(options.tracePhases);
-  const MeshToSdfPrepared prepared = prepareInternal(mesh, options.sign, resolveDevice(options.device) == Device::Cuda);
+  const MeshToSdfPrepared prepared = prepareOneCall(mesh, options);
   MeshToSdfStats stats = meshToSdf(prepared, std::forward<Out>(out), options, interrupter);
   stats.buildSeconds += prepared.prepareSeconds();
   return stats;
@@ -691,7 +705,7 @@ MeshToSdfStats meshToSdf(const TriangleMesh& mesh, const GridGeometry& grid, con
   const MeshToSdfOptions& options, Interrupter& interrupter)
 {
   const PhaseTraceScope tracing(options.tracePhases);
-  const MeshToSdfPrepared prepared = prepareInternal(mesh, options.sign, resolveDevice(options.device) == Device::Cuda);
+  const MeshToSdfPrepared prepared = prepareOneCall(mesh, options);
   MeshToSdfStats stats = meshToSdf(prepared, grid, extent, out, options, interrupter);
   stats.buildSeconds += prepared.prepareSeconds();
   return stats;

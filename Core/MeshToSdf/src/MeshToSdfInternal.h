@@ -81,6 +81,22 @@ PreparedMesh prepareMesh(const TriangleMesh& mesh, bool pseudoNormals = true);
 /// rest of prepareMesh writes no field such a reader reads.
 void prepareMesh(const TriangleMesh& mesh, PreparedMesh& out, bool pseudoNormals,
   const std::function<void()>& recordsReady);
+/// What a preparation may hold, in bytes per triangle, each part at its own
+/// peak (one rule: requirePreparedMemory adds up the parts a call will build
+/// before any is allocated, and the index and the orientation check their
+/// own share when they are built). Peaks measured on the 832k-triangle
+/// armadillo (sub2, and damaged for the winding part), rounded up; their sum
+/// bounds the call's peak from above (docs/MESH_TO_SDF.md, "Memory").
+constexpr std::uint64_t PreparedBytesPerTriangle = 200;      // records, welding, edge grouping, boundary (188)
+constexpr std::uint64_t PseudoNormalBytesPerTriangle = 300;  // Normal/PseudoNormal: pseudo-normals (180), far-block tree (72)
+constexpr std::uint64_t WindingBytesPerTriangle = 200;       // winding: orientation (checked alone too), closure, BVH, dipole tree (72-187)
+constexpr std::uint64_t NearestIndexBytesPerTriangle = 800;  // the CPU's NearestIndex while it is built (648)
+/// The sum of those parts for `triangles` triangles.
+std::uint64_t preparedBytes(std::uint64_t triangles, bool pseudoNormals, bool winding, bool nearestIndex);
+/// requireMemory(preparedBytes(...)) for the mesh: called before prepareMesh
+/// allocates anything, so a mesh too large for LVDIF_MEMORY_LIMIT is refused
+/// at once with what it would need.
+void requirePreparedMemory(const TriangleMesh& mesh, bool pseudoNormals, bool winding, bool nearestIndex);
 /// Fills the pseudo-normals of a mesh prepared without them, bit for bit as
 /// prepareMesh(mesh, true) does; nothing if they are there. Writes only
 /// `normals` and `pseudoNormals` (readers of other fields may run meanwhile).

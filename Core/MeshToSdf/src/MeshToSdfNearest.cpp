@@ -255,7 +255,7 @@ NearestIndex::NearestIndex(const TriList& tris)
   // peak: the index (~350 bytes a triangle: packed records, float planes,
   // nodes, positions) plus the build data (~220 bytes a triangle, ~400 while
   // the parallel subtrees are appended; 40 for the slabs)
-  requireMemory(static_cast<std::uint64_t>(n) * 800, "mesh to SDF: nearest-triangle index");
+  requireMemory(static_cast<std::uint64_t>(n) * NearestIndexBytesPerTriangle, "mesh to SDF: nearest-triangle index");
   std::vector<Ref> refs(n);
   double scale = 0;
 #pragma omp parallel for schedule(static) reduction(max : scale)
@@ -424,7 +424,7 @@ NearestIndex::NearestIndex(const TriList& tris)
   require(this->Depth <= 80, "mesh to SDF: nearest-triangle tree too deep");
 }
 
-NearestResult NearestIndex::nearest(V3 p, std::int32_t hint, double maxDist2) const
+NearestResult NearestIndex::nearest(V3 p, std::int32_t hint, double maxDist2, std::uint64_t* exactCount) const
 {
   NearestResult best;
   best.dist2 = maxDist2;
@@ -446,6 +446,7 @@ NearestResult NearestIndex::nearest(V3 p, std::int32_t hint, double maxDist2) co
     const double pd = eval(0);
     const double ed = std::max(0.0, std::max(eval(1), std::max(eval(2), eval(3))));
     if (pd * pd + ed * ed > thr2) return;
+    if (exactCount) ++*exactCount;
     const Closest c = closestPointOnTriangle(p, t.v[0], t.v[1], t.v[2]);
     const V3 d = c.point - p;
     const double d2 = dot(d, d);
@@ -460,6 +461,7 @@ NearestResult NearestIndex::nearest(V3 p, std::int32_t hint, double maxDist2) co
   };
   if (hint >= 0)
   {
+    if (exactCount) ++*exactCount;
     const Packed& t = this->Tris[static_cast<std::size_t>(this->PosOf[static_cast<std::size_t>(hint)])];
     const Closest c = closestPointOnTriangle(p, t.v[0], t.v[1], t.v[2]);
     const V3 d = c.point - p;

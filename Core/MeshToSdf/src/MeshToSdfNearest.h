@@ -63,7 +63,8 @@ public:
   /// (a triangle index, -1 for none) only seeds the bound. Pruning uses lower
   /// bounds with a margin (see Tau in the .cpp), so it never drops a triangle
   /// whose computed distance could win or tie.
-  NearestResult nearest(V3 p, std::int32_t hint, double maxDist2) const;
+  /// exactCount (may be null): incremented per exact closest point computed.
+  NearestResult nearest(V3 p, std::int32_t hint, double maxDist2, std::uint64_t* exactCount = nullptr) const;
 
   /// nearest(p[i], ., 1e300) for n <= RowPoints points of one grid row
   /// (equal y and z), in one traversal: each node's boxes are tested for the
@@ -75,8 +76,10 @@ public:
 
   /// nearest(p[i], ., maxDist2) for the n points of one small box (a brick
   /// of voxels within a band: maxDist2 finite), from one list of candidate
-  /// triangles for the whole box (MeshToSdfNearestBrick.cpp). The hint seeds
-  /// the query of the box's centre.
+  /// triangles for the whole box (MeshToSdfNearestBrick.cpp), or, where that
+  /// list would exceed BrickListMax triangles, by nearest() point by point.
+  /// The hint seeds the query of the box's centre.
+  static constexpr std::size_t BrickListMax = 256;
   struct BrickScratch
   {
     std::vector<std::pair<double, std::int32_t>> near; // squared box gap, position (without SSE)
@@ -84,6 +87,10 @@ public:
     std::vector<double> gaps;                           // the gaps in the list's order
     std::vector<std::int32_t> cand;
     std::vector<float> planes;
+    // work, summed over the calls that used this scratch (tests): bricks and
+    // points within reach of a triangle, bricks answered point by point,
+    // candidates listed, exact closest points (seeds and centres included)
+    std::uint64_t bricks = 0, points = 0, pointByPoint = 0, listed = 0, exact = 0;
   };
   void nearestBrick(const V3* p, int n, double maxDist2, std::int32_t hint, NearestResult* out,
     BrickScratch& scratch) const;

@@ -7,7 +7,8 @@
 // d(p) <= reach want an answer, so the triangle that is nearest to p (and
 // every triangle that ties with it) lies within U of p, hence of the box
 // (the distance is 1-Lipschitz, the argument of the far blocks). A point then
-// scans the list (a few dozen triangles near the surface) with the
+// scans the list (a few dozen triangles near the surface; past BrickListMax,
+// small triangles in a large brick, each point is one nearest() query) with the
 // float plane bounds of nearestRow (the same margins) and runs the same
 // closest-point routine with the same tie rule on the survivors: the answer
 // is nearest(p, ., maxDist2), bit for bit.
@@ -42,6 +43,7 @@ struct BrickScan
   int count = 0;
   const NearestIndex::Packed* tris = nullptr;
   float eps = 0;
+  std::uint64_t* exact = nullptr; // exact closest points, counted
 };
 void scanBrick4(const BrickScan& b, NearestRowState& s);
 #if defined(__GNUC__) && defined(__x86_64__)
@@ -74,10 +76,29 @@ void NearestIndex::nearestBrick(const V3* p, int n, double maxDist2, std::int32_
   const double reach = std::sqrt(maxDist2);
   // the centre's nearest within reach + r: none means every point is farther than reach
   const double cap = reach + r + m;
-  const NearestResult centre = this->nearest(c, hint, cap * cap);
+  const NearestResult centre = this->nearest(c, hint, cap * cap, &scratch.exact);
   if (centre.tri < 0) return;
   const double u = std::min(std::sqrt(centre.dist2) + r, reach) * (1 + 1e-12) + m;
   const double u2 = u * u;
+  ++scratch.bricks;
+  scratch.points += static_cast<std::uint64_t>(n);
+  // A list longer than BrickListMax: the triangles are small against the
+  // brick (a coarse grid on a dense mesh). The scan below visits every
+  // candidate within d(p) of the box in the order of its gap to the box, not
+  // to p, so the exact tests of a point grow with the list (about 0.035 K
+  // per point: 5,400 per voxel on the 832k-triangle armadillo at 32^3, 230 at
+  // 128^3), where the tree's nearest-first walk needs 16-85 (the walk stops at
+  // the first list entry past the limit). Then each point is its own nearest(p, ., maxDist2): the
+  // function the scan computes, so the same bits.
+  auto pointByPoint = [&] {
+    ++scratch.pointByPoint;
+    std::int32_t prev = centre.tri;
+    for (int i = 0; i < n; ++i)
+    {
+      out[i] = this->nearest(p[i], prev, maxDist2, &scratch.exact);
+      if (out[i].tri >= 0) prev = out[i].tri;
+    }
+  };
 
   // the candidates: every triangle whose (float, outward) box is within u of [lo, hi]
   std::vector<std::int32_t>& cand = scratch.cand;
@@ -103,6 +124,7 @@ void NearestIndex::nearestBrick(const V3* p, int n, double maxDist2, std::int32_
   }
   while (top > 0)
   {
+    if (scratch.keys.size() > BrickListMax) return pointByPoint();
     const Node& nd = this->Nodes[static_cast<std::size_t>(stack[--top])];
     __m128 sum = zero;
     for (int a = 0; a < 3; ++a)
@@ -132,6 +154,7 @@ void NearestIndex::nearestBrick(const V3* p, int n, double maxDist2, std::int32_
         stack[top++] = nd.child[k];
     }
   }
+  if (scratch.keys.size() > BrickListMax) return pointByPoint();
   std::sort(scratch.keys.begin(), scratch.keys.end());
   for (const std::uint64_t key : scratch.keys)
   {
@@ -144,6 +167,7 @@ void NearestIndex::nearestBrick(const V3* p, int n, double maxDist2, std::int32_
 #else
   while (top > 0)
   {
+    if (scratch.near.size() > BrickListMax) return pointByPoint();
     const Node& nd = this->Nodes[static_cast<std::size_t>(stack[--top])];
     for (int k = 0; k < nd.count; ++k)
     {
@@ -160,6 +184,7 @@ void NearestIndex::nearestBrick(const V3* p, int n, double maxDist2, std::int32_
         stack[top++] = nd.child[k];
     }
   }
+  if (scratch.near.size() > BrickListMax) return pointByPoint();
   std::sort(scratch.near.begin(), scratch.near.end());
   for (const auto& c2 : scratch.near)
   {
@@ -199,6 +224,8 @@ void NearestIndex::nearestBrick(const V3* p, int n, double maxDist2, std::int32_
   scan.count = K;
   scan.tris = this->Tris.data();
   scan.eps = static_cast<float>(4e-6 * big); // nearestRow's plane margin
+  scan.exact = &scratch.exact;
+  scratch.listed += static_cast<std::uint64_t>(K);
   const double tau = 1e-10 * big; // as nearest() with this (larger or equal) big
   // every point starts from out[i].dist2 = maxDist2: its threshold
   // (setThreshold's sqrt and rounding) computed once for the brick
@@ -218,7 +245,11 @@ void NearestIndex::nearestBrick(const V3* p, int n, double maxDist2, std::int32_
     s.thrF[0] = start.thrF[0];
     // seed: the previous point's triangle (the centre's for the first), taken
     // as nearest() takes its hint; seeding with both measured no fewer exact tests
-    if (prev >= 0) s.exact(0, this->Tris[static_cast<std::size_t>(this->PosOf[static_cast<std::size_t>(prev)])]);
+    if (prev >= 0)
+    {
+      ++scratch.exact;
+      s.exact(0, this->Tris[static_cast<std::size_t>(this->PosOf[static_cast<std::size_t>(prev)])]);
+    }
 #if defined(__GNUC__) && defined(__x86_64__)
     if (avx2)
       scanBrickAvx2(scan, s);
@@ -273,7 +304,11 @@ void scanBrick4(const BrickScan& b, NearestRowState& s)
       const int k = 4 * g + l;
       // the same test again against the threshold as the exact tests of this
       // group left it (see scanBrickAvx2)
-      if (k < b.count && lts[l] <= s.thrF[0]) s.exact(0, b.tris[static_cast<std::size_t>(b.cand[k])]);
+      if (k < b.count && lts[l] <= s.thrF[0])
+      {
+        ++*b.exact;
+        s.exact(0, b.tris[static_cast<std::size_t>(b.cand[k])]);
+      }
     }
   }
 }
@@ -315,7 +350,11 @@ __attribute__((target("avx2"))) void scanBrickAvx2(const BrickScan& b, NearestRo
       // beat or tie the best, which is what the next group's test would say
       // too, so the answer is the same; it spares the exact closest point of
       // the lanes after the one that tightened it
-      if (k < b.count && lts[l] <= s.thrF[0]) s.exact(0, b.tris[static_cast<std::size_t>(b.cand[k])]);
+      if (k < b.count && lts[l] <= s.thrF[0])
+      {
+        ++*b.exact;
+        s.exact(0, b.tris[static_cast<std::size_t>(b.cand[k])]);
+      }
     }
   }
 }

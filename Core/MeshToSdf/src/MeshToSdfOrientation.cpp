@@ -34,7 +34,7 @@ OrientedMesh orientMesh(const TriList& tris, const LargeVector<std::array<std::u
   const std::size_t n = tris.size();
   require(welded.size() == n, "mesh to SDF: orientation needs the welded corners of every triangle");
   // duplicate keys, edge uses (and a merge buffer for each), adjacency, BFS
-  requireMemory(static_cast<std::uint64_t>(n) * 200, "mesh to SDF: face orientation for the winding number");
+  requireMemory(static_cast<std::uint64_t>(n) * WindingBytesPerTriangle, "mesh to SDF: face orientation for the winding number");
   out.state.assign(n, OrientedMesh::Keep);
   if (n == 0) return out;
 

@@ -381,6 +381,24 @@ void validateOnThreads(const TriangleMesh& mesh)
 }
 } // namespace
 
+std::uint64_t preparedBytes(std::uint64_t triangles, bool pseudoNormals, bool winding, bool nearestIndex)
+{
+  const std::uint64_t perTriangle = PreparedBytesPerTriangle + (pseudoNormals ? PseudoNormalBytesPerTriangle : 0) +
+    (winding ? WindingBytesPerTriangle : 0) + (nearestIndex ? NearestIndexBytesPerTriangle : 0);
+  return checkedMultiply(triangles, perTriangle, "mesh to SDF: the prepared mesh");
+}
+
+void requirePreparedMemory(const TriangleMesh& mesh, bool pseudoNormals, bool winding, bool nearestIndex)
+{
+  const std::uint64_t n = mesh.triangles.size();
+  std::string parts = "triangle records";
+  if (pseudoNormals) parts += ", pseudo-normals";
+  if (winding) parts += ", winding-number structures";
+  if (nearestIndex) parts += ", nearest-triangle index";
+  requireMemory(preparedBytes(n, pseudoNormals, winding, nearestIndex),
+    "mesh to SDF: preparing " + std::to_string(n) + " triangles (" + parts + ")");
+}
+
 PreparedMesh prepareMesh(const TriangleMesh& mesh, bool pseudoNormals)
 {
   PreparedMesh out;

@@ -6,6 +6,7 @@
 #include "MeshToSdfOracle.h"
 #include "lvdif/TriangleMesh.h"
 
+#include <cmath>
 #include <random>
 #include <string>
 #include <vector>
@@ -81,6 +82,20 @@ inline std::vector<Case> meshes()
     cs.push_back({ "sphere + slivers", m });
   }
   return cs;
+}
+
+/// A dense mesh for coarse grids (19,600 triangles): a bumpy ellipsoid, so
+/// that no point is equidistant from a whole ring of triangles (as a sphere's
+/// centre is) and a query deep inside has one nearest region.
+inline lvdif::TriangleMesh denseMesh()
+{
+  lvdif::TriangleMesh m = lvdif::makeSphereMesh(0, 0, 0, 1.0f, 70, 140);
+  for (lvdif::Vec3f& v : m.points)
+  {
+    const float bump = 1.0f + 0.06f * std::sin(7.0f * v[0]) * std::cos(5.0f * v[1] + 1.0f);
+    v = { 1.1f * bump * v[0] + 0.03f, 0.75f * bump * v[1] - 0.02f, 0.5f * bump * v[2] + 0.01f };
+  }
+  return m;
 }
 
 } // namespace farcases

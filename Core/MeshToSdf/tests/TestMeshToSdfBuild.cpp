@@ -8,6 +8,8 @@
 #include "../src/MeshToSdfInternal.h"
 #include "../src/MeshToSdfNearest.h"
 #include "MeshToSdfOracle.h"
+#include "lvdif/Error.h"
+#include "lvdif/Memory.h"
 
 #include <gtest/gtest.h>
 #include <omp.h>
@@ -15,11 +17,13 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstdlib>
 #include <cstring>
 #include <future>
 #include <map>
 #include <memory>
 #include <random>
+#include <string>
 #include <vector>
 
 using namespace lvdif;
@@ -449,4 +453,68 @@ TEST(MeshToSdfBuild, ClosedMeshClosureIsTheMeshWithItsTree)
     ++checked;
   }
   EXPECT_GT(checked, 250);
+}
+
+// LVDIF_MEMORY_LIMIT below what a preparation would hold (preparedBytes, by
+// sign and by whether the CPU's nearest index follows): refused before
+// prepareMesh allocates anything (its first traced phase never starts), with
+// one message naming the triangles, what they need, the limit and the
+// variable; at the estimate itself the call runs (each structure's own check
+// is one part of the sum). Before, the one-call run got through at this
+// limit: only the nearest index (800 bytes a triangle) was checked, after
+// the prepared mesh and the winding structures existed.
+TEST(MeshToSdfBuild, MemoryLimitRefusesThePreparationBeforeItStarts)
+{
+  const TriangleMesh mesh = makeSphereMesh(0, 0, 0, 1, 60, 120);
+  const std::uint64_t n = mesh.triangles.size();
+  const GridGeometry g = fitGridToMesh(mesh, 12, 2);
+  VoxelBox box;
+  box.hi = { g.dims[0] - 1, g.dims[1] - 1, g.dims[2] - 1 };
+  std::vector<float> out(static_cast<std::size_t>(g.count()));
+  const char* env = std::getenv("LVDIF_MEMORY_LIMIT");
+  const std::string saved = env ? env : "";
+  for (SignMode sign : { SignMode::WindingNumber, SignMode::PseudoNormal, SignMode::Unsigned })
+  {
+    for (bool oneCall : { true, false })
+    {
+      const bool pseudo = sign == SignMode::PseudoNormal, winding = sign == SignMode::WindingNumber;
+      const std::uint64_t need = preparedBytes(n, pseudo, winding, oneCall);
+      MeshToSdfOptions o;
+      o.sign = sign;
+      o.device = Device::Cpu;
+      o.tracePhases = true;
+      auto call = [&] {
+        if (oneCall)
+          meshToSdf(mesh, g, box, out.data(), o);
+        else
+          prepareMeshToSdf(mesh, sign);
+      };
+      const std::string what = std::string(toString(sign)) + (oneCall ? ", one call" : ", prepared");
+      ::setenv("LVDIF_MEMORY_LIMIT", std::to_string(need - 1).c_str(), 1);
+      testing::internal::CaptureStderr();
+      std::string message;
+      try
+      {
+        call();
+      }
+      catch (const Error& e)
+      {
+        EXPECT_EQ(e.code(), ErrorCode::OutOfMemory) << what;
+        message = e.what();
+      }
+      const std::string traced = testing::internal::GetCapturedStderr();
+      EXPECT_FALSE(message.empty()) << what << ": not refused";
+      for (const std::string& part : { std::to_string(n) + " triangles", "needs " + formatBytes(need),
+             "limit of " + formatBytes(need - 1), std::string("LVDIF_MEMORY_LIMIT") })
+        EXPECT_NE(message.find(part), std::string::npos) << what << ": '" << part << "' not in: " << message;
+      EXPECT_EQ(traced.find("prepare:"), std::string::npos) << what << ": the preparation started:\n" << traced;
+      ::setenv("LVDIF_MEMORY_LIMIT", std::to_string(need).c_str(), 1);
+      o.tracePhases = false;
+      EXPECT_NO_THROW(call()) << what;
+    }
+  }
+  if (env)
+    ::setenv("LVDIF_MEMORY_LIMIT", saved.c_str(), 1);
+  else
+    ::unsetenv("LVDIF_MEMORY_LIMIT");
 }

@@ -282,3 +282,33 @@ TEST(MeshToSdfFarBlocks, BandBricksEqualBruteForce)
     }
   }
 }
+
+TEST(MeshToSdfFarBlocks, BandBricksOnACoarseGridOfADenseMeshEqualBruteForce)
+{
+  // a coarse grid (12 voxels across) on a dense mesh, band 8 voxels: the band
+  // holds nearly every voxel and the bricks' candidate lists would hold
+  // thousands of triangles, so the bricks go point by point
+  // (NearestIndex::BrickListMax): bit for bit the brute-force accelerator, in
+  // both modes, with the AVX2 and the four-lane scans
+  const TriangleMesh mesh = farcases::denseMesh();
+  const MeshToSdfPrepared prepared = prepareMeshToSdf(mesh, SignMode::WindingNumber);
+  const GridGeometry g = fitGridToMesh(mesh, 12, 2);
+  for (SignMode s : { SignMode::WindingNumber, SignMode::Unsigned })
+  {
+    MeshToSdfOptions o;
+    o.sign = s;
+    o.bandWidth = 8;
+    const bool avx2 = detail::meshtosdf::nearestRowUseAvx2;
+    detail::meshtosdf::nearestRowUseAvx2 = false;
+    const FarRun bricks4 = run(prepared, g, whole(g), o, true);
+    detail::meshtosdf::nearestRowUseAvx2 = avx2;
+    const FarRun bricks = run(prepared, g, whole(g), o, true);
+    o.accel = MeshToSdfAccel::BruteForce;
+    const FarRun brute = run(prepared, g, whole(g), o, true);
+    EXPECT_EQ(bitDifferences(bricks.out, brute.out), 0) << toString(s);
+    EXPECT_EQ(bitDifferences(bricks4.out, brute.out), 0) << toString(s) << ", four lanes";
+    std::int64_t within = 0;
+    for (float v : brute.out) within += std::fabs(v) < o.bandWidth;
+    EXPECT_GT(within, g.count() / 2) << toString(s);
+  }
+}
