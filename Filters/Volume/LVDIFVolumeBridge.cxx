@@ -56,6 +56,30 @@ lvdif::Device ToDevice(int device)
   return device == 1 ? lvdif::Device::Cpu : (device == 2 ? lvdif::Device::Cuda : lvdif::Device::Auto);
 }
 
+int EnumOption(int value, const std::string& name, std::initializer_list<const char*> names)
+{
+  const int n = static_cast<int>(names.size());
+  if (value < 0 || value >= n)
+  {
+    std::ostringstream msg;
+    msg << name << " must be ";
+    int i = 0;
+    for (const char* what : names)
+    {
+      msg << (i == 0 ? "" : i == n - 1 ? " or " : ", ") << i << " (" << what << ")";
+      ++i;
+    }
+    msg << ", not " << value;
+    throw lvdif::Error(lvdif::ErrorCode::InvalidArgument, msg.str());
+  }
+  return value;
+}
+
+int DeviceOption(int device)
+{
+  return EnumOption(device, "Device", { "auto", "CPU", "CUDA" });
+}
+
 std::string WithContext(const std::string& context, const std::string& what)
 {
   const auto open = context.find('\'');
@@ -319,6 +343,7 @@ vtkInformationIntegerKey* INFORMATION_FAILED()
   static vtkInformationIntegerKey* key = new vtkInformationIntegerKey("LVDIF_INFORMATION_FAILED", "LVDIFVolumeBridge");
   return key;
 }
+
 } // namespace
 
 bool IsEmptyInput(vtkDataObject* input)

@@ -49,6 +49,13 @@ int vtkLVDIFMeshReader::RequestData(vtkInformation*, vtkInformationVector**, vtk
   static const lvdif::MeshFormat formats[] = { lvdif::MeshFormat::Auto, lvdif::MeshFormat::Obj,
     lvdif::MeshFormat::Off, lvdif::MeshFormat::Stl, lvdif::MeshFormat::Ply };
   lvdif::TriangleMesh mesh;
+  if (!LVDIFVolumeBridge::CallCore(this, [&] {
+        LVDIFVolumeBridge::EnumOption(this->Format, "Format", { "auto", "OBJ", "OFF", "STL", "PLY" });
+      }))
+  {
+    output->Initialize();
+    return 0;
+  }
   try
   {
     mesh = lvdif::loadMesh(this->FileName, formats[this->Format]);

@@ -13,6 +13,8 @@
 #include "vtkPolyData.h"
 #include "vtkStringArray.h"
 
+#include <cmath>
+
 vtkStandardNewMacro(vtkLVDIFMeshReport);
 
 vtkLVDIFMeshReport::vtkLVDIFMeshReport() = default;
@@ -35,6 +37,11 @@ int vtkLVDIFMeshReport::RequestData(
   vtkPolyData* input = vtkPolyData::GetData(inputVector[0], 0);
   vtkPolyData* output = vtkPolyData::GetData(outputVector, 0);
   this->Summary.clear();
+  if (this->Weld && !(std::isfinite(this->WeldTolerance) && this->WeldTolerance >= 0))
+  {
+    vtkErrorMacro("WeldTolerance must be a finite length >= 0 (world units), not " << this->WeldTolerance);
+    return 0;
+  }
   lvdif::TriangleMesh mesh;
   const vtkIdType np = input->GetNumberOfPoints();
   mesh.points.resize(static_cast<std::size_t>(np));

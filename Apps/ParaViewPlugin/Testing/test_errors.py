@@ -136,6 +136,27 @@ for ext in ("lvdv", "lvdvp"):
         check(len(errs) == 1 and "CompressionLevel must be a zstd level in [1, 19], not %d" % level in errs[0]
               and open(target, "rb").read() == b"an older file", "%s writer, Compression Level %d: %s" % (ext, level, errs))
 
+# an enumeration set outside its menu (the server-manager property takes any integer):
+# one error naming the property and its values, nothing clamped (Device 5 ran on CUDA)
+def enum_out_of_range(make, name, value):
+    def build():
+        p = make()
+        p.SMProxy.GetProperty(name).SetElement(0, value)
+        p.SMProxy.UpdateVTKObjects()
+        return p
+    return build
+
+
+for label, make, name, value, needle in (
+        ("Sign Voxel Filter, Device 5", lambda: pvs.SignVoxelFilter(Input=src_level), "Device", 5,
+         "Device must be 0 (auto), 1 (CPU) or 2 (CUDA), not 5"),
+        ("Sign Voxel Filter, Boundary 2", lambda: pvs.SignVoxelFilter(Input=src_level), "Boundary", 2,
+         "Boundary must be 0 (outside) or 1 (free), not 2"),
+        ("Mesh To SDF, Sign Mode 9", lambda: pvs.MeshToSDF(Input=sphere, MaxDimension=24), "SignMode", 9,
+         "SignMode must be 0 (normal), 1 (pseudo-normal), 2 (winding number) or 3 (unsigned), not 9")):
+    proxy = one_error(label, enum_out_of_range(make, name, value), needle)
+    check(proxy.GetDataInformation().GetNumberOfPoints() == 0, "%s: no output" % label)
+
 # A reader that failed (a missing or malformed file) feeding two of our filters: its one
 # error, nothing from the filters below. ParaView runs every proxy below a failed reader
 # on its empty output, and each of our filters added an error of its own ("the input
