@@ -145,9 +145,14 @@ LVDIFFILTERSVOLUME_EXPORT int RequestedVoxels(
 /// BeginInformation first and returns FailInformation (0) after reporting an
 /// error; RequestData returns 0 without a second error when InformationFailed
 /// (which empties the output).
+/// Both failures also drop the executive's own "Algorithm X returned failure for
+/// request: <the request dumped>" that would follow the algorithm's error (one
+/// error per failure, in pvpython too; FailReported marks a RequestData that
+/// failed after reporting its error and returns 0).
 LVDIFFILTERSVOLUME_EXPORT void BeginInformation(vtkInformation* outInfo);
 LVDIFFILTERSVOLUME_EXPORT int FailInformation(vtkInformation* outInfo);
 LVDIFFILTERSVOLUME_EXPORT bool InformationFailed(vtkInformation* outInfo);
+LVDIFFILTERSVOLUME_EXPORT int FailReported(vtkInformation* outInfo);
 
 /// The chunk edge of a sparse producer's volume, announced before the data
 /// exists, so that a consumer can ask for whole chunks (vtkSignVoxelFilter's pieces).

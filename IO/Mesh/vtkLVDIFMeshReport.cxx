@@ -1,6 +1,7 @@
 #include "vtkLVDIFMeshReport.h"
 
 #include "LVDIFMeshCheck.h"
+#include "LVDIFVolumeBridge.h"
 
 #include "vtkCellArray.h"
 #include "vtkFieldData.h"
@@ -37,10 +38,12 @@ int vtkLVDIFMeshReport::RequestData(
   vtkPolyData* input = vtkPolyData::GetData(inputVector[0], 0);
   vtkPolyData* output = vtkPolyData::GetData(outputVector, 0);
   this->Summary.clear();
+  vtkInformation* outInfo = outputVector->GetInformationObject(0);
+  LVDIFVolumeBridge::BeginInformation(outInfo);
   if (this->Weld && !(std::isfinite(this->WeldTolerance) && this->WeldTolerance >= 0))
   {
     vtkErrorMacro("WeldTolerance must be a finite length >= 0 (world units), not " << this->WeldTolerance);
-    return 0;
+    return LVDIFVolumeBridge::FailReported(outInfo);
   }
   lvdif::TriangleMesh mesh;
   const vtkIdType np = input->GetNumberOfPoints();
