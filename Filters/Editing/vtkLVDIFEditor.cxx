@@ -112,9 +112,15 @@ void vtkLVDIFEditor::ReportChanges()
 
 void vtkLVDIFEditor::SetDevice(int device)
 {
-  if (device < 0 || device > 2)
+  // the filters' one rule and words (LVDIFVolumeBridge::DeviceOption); refused
+  // here, at the call: the editor has no update to refuse it at
+  try
   {
-    vtkErrorMacro(<< "device " << device << " is not 0 (auto), 1 (CPU) or 2 (CUDA)");
+    LVDIFVolumeBridge::DeviceOption(device);
+  }
+  catch (const lvdif::Error& e)
+  {
+    vtkErrorMacro(<< e.what());
     return;
   }
   if (this->Device != device)

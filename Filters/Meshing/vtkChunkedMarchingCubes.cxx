@@ -112,8 +112,16 @@ int vtkChunkedMarchingCubes::RequestDataObject(
 int vtkChunkedMarchingCubes::RequestInformation(
   vtkInformation*, vtkInformationVector**, vtkInformationVector* outputVector)
 {
+  vtkInformation* outInfo = outputVector->GetInformationObject(0);
+  LVDIFVolumeBridge::BeginInformation(outInfo);
+  // the enumerations first, by the one rule (refused by name, never clamped)
+  if (!LVDIFVolumeBridge::CallCore(this, [&] {
+        LVDIFVolumeBridge::EnumOption(this->OutputMode, "OutputMode", { "partitioned", "merged" });
+        LVDIFVolumeBridge::DeviceOption(this->Device);
+      }))
+    return LVDIFVolumeBridge::FailInformation(outInfo);
   // the output is split by pieces (not extents): every piece request is served
-  outputVector->GetInformationObject(0)->Set(vtkAlgorithm::CAN_HANDLE_PIECE_REQUEST(), 1);
+  outInfo->Set(vtkAlgorithm::CAN_HANDLE_PIECE_REQUEST(), 1);
   return 1;
 }
 
@@ -123,7 +131,8 @@ int vtkChunkedMarchingCubes::RequestUpdateExtent(
   using SDDP = vtkStreamingDemandDrivenPipeline;
   vtkInformation* outInfo = outputVector->GetInformationObject(0);
   vtkInformation* inInfo = inputVector[0]->GetInformationObject(0);
-  if (!inInfo) return 1; // no input: a dictionary volume (SetVolume) is meshed
+  if (!inInfo || LVDIFVolumeBridge::InformationFailed(outInfo))
+    return 1; // no input: a dictionary volume (SetVolume) is meshed; or RequestInformation failed
   int piece, pieces;
   pieceRequest(outInfo, piece, pieces);
   int whole[6];
@@ -169,6 +178,8 @@ int vtkChunkedMarchingCubes::RequestData(
   using SDDP = vtkStreamingDemandDrivenPipeline;
   vtkInformation* outInfo = outputVector->GetInformationObject(0);
   vtkInformation* inInfo = inputVector[0]->GetInformationObject(0);
+  if (LVDIFVolumeBridge::InformationFailed(outInfo))
+    return 0; // RequestInformation reported why (ParaView runs RequestData anyway)
   vtkDataObject* output = outInfo->Get(vtkDataObject::DATA_OBJECT());
   if (!vtkPolyData::SafeDownCast(output) && !vtkPartitionedDataSet::SafeDownCast(output))
   {

@@ -104,8 +104,9 @@ public:
   };
 
   ///@{
-  /// PARTITIONED (default): one vtkPolyData per chunk; MERGED: one vtkPolyData.
-  vtkSetClampMacro(OutputMode, int, PARTITIONED, MERGED);
+  /// PARTITIONED (default): one vtkPolyData per chunk; MERGED: one vtkPolyData;
+  /// anything else is an error at update (no clamp).
+  vtkSetMacro(OutputMode, int);
   vtkGetMacro(OutputMode, int);
   void SetOutputModeToPartitioned() { this->SetOutputMode(PARTITIONED); }
   void SetOutputModeToMerged() { this->SetOutputMode(MERGED); }
@@ -155,8 +156,9 @@ public:
   /// DEVICE_AUTO (default), DEVICE_CPU or DEVICE_CUDA (falls back to the CPU
   /// without a GPU). On the GPU the image is uploaded at every execution, then
   /// meshed in batches of chunks; the result equals the CPU's (same vertices
-  /// bit for bit, same triangles; points numbered in another order).
-  vtkSetClampMacro(Device, int, DEVICE_AUTO, DEVICE_CUDA);
+  /// bit for bit, same triangles; points numbered in another order). Anything
+  /// else is an error at update (LVDIFVolumeBridge::DeviceOption; no clamp).
+  vtkSetMacro(Device, int);
   vtkGetMacro(Device, int);
   ///@}
 

@@ -9,6 +9,7 @@
 #include "lvdif/Error.h"
 #include "lvdif/Memory.h"
 #include "lvdif/MeshToSdf.h"
+#include "lvdif/SignVoxelFilter.h"
 
 #include "vtkAlgorithmOutput.h"
 #include "vtkCellArray.h"
@@ -143,6 +144,17 @@ void vtkMeshToSDF::CheckFittedGridSettings() const
   }
 }
 
+void vtkMeshToSDF::CheckEnumerations() const
+{
+  LVDIFVolumeBridge::EnumOption(
+    this->SignMode, "SignMode", { "normal", "pseudo-normal", "winding number", "unsigned" });
+  LVDIFVolumeBridge::EnumOption(this->Accelerator, "Accelerator", { "BVH", "faithful", "brute force" });
+  lvdif::SignVoxelFilterParams svf; // the mask by Core's rule, the sign filters' own
+  svf.filters = static_cast<unsigned>(this->SignVoxelFilters);
+  lvdif::checkSignVoxelFilterParams(svf);
+  LVDIFVolumeBridge::DeviceOption(this->Device);
+}
+
 int vtkMeshToSDF::RequestInformation(
   vtkInformation*, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
 {
@@ -150,6 +162,7 @@ int vtkMeshToSDF::RequestInformation(
   // the settings first: their error before any work upstream
   if (!LVDIFVolumeBridge::CallCore(this, [&] {
         LVDIFVolumeBridge::CheckVolumeSettings(this->ChunkEdge, this->BandWidth);
+        this->CheckEnumerations();
         if (!this->UseExplicitGrid) // the fitted grid's settings, by the names the user sees
           this->CheckFittedGridSettings();
       }))
@@ -178,10 +191,20 @@ int vtkMeshToSDF::RequestInformation(
   {
     g = gridFor(input, this->UseExplicitGrid, this->Dimensions, this->Origin, this->Spacing, this->MaxDimension,
       this->SampleSpacing, this->Padding);
-    for (int a = 0; a < 3; ++a)
+    // an explicit grid by the names the user sees (a fitted one has >= 2 points an
+    // axis); an axis of 1 point is kept: a 2-D slice of the field (VTK's Contour
+    // gives the mesh's cross-section on it; marching cubes needs 2 points an axis)
+    const bool dimsOk = g.dims[0] >= 1 && g.dims[1] >= 1 && g.dims[2] >= 1 && g.dims[0] <= VTK_INT_MAX &&
+      g.dims[1] <= VTK_INT_MAX && g.dims[2] <= VTK_INT_MAX;
+    if (!dimsOk || !(g.spacing[0] > 0 && g.spacing[1] > 0 && g.spacing[2] > 0))
     {
-      lvdif::require(g.dims[a] >= 1 && g.dims[a] <= VTK_INT_MAX && g.spacing[a] > 0,
-        "grid dimensions must be >= 1 and spacings > 0");
+      std::ostringstream msg;
+      if (!dimsOk)
+        msg << "Dimensions must be at least 1 point on each axis, not " << g.dims[0] << " x " << g.dims[1] << " x "
+            << g.dims[2];
+      else
+        msg << "Spacing must be > 0 on each axis, not " << g.spacing[0] << ", " << g.spacing[1] << ", " << g.spacing[2];
+      throw lvdif::Error(lvdif::ErrorCode::InvalidArgument, msg.str());
     }
   }
   catch (const lvdif::Error& e)

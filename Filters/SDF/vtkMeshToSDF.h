@@ -60,14 +60,15 @@ public:
   };
 
   ///@{
-  /// Sign mode (default WINDING_NUMBER).
-  vtkSetClampMacro(SignMode, int, NORMAL, UNSIGNED);
+  /// Sign mode (default WINDING_NUMBER); anything but NORMAL..UNSIGNED is an
+  /// error at update (no clamp; likewise Accelerator, SignVoxelFilters, Device).
+  vtkSetMacro(SignMode, int);
   vtkGetMacro(SignMode, int);
   ///@}
 
   ///@{
   /// Acceleration: BVH (default), FAITHFUL (the paper's overlapping boxes, exact), BRUTE_FORCE.
-  vtkSetClampMacro(Accelerator, int, BVH, BRUTE_FORCE);
+  vtkSetMacro(Accelerator, int);
   vtkGetMacro(Accelerator, int);
   ///@}
 
@@ -141,14 +142,16 @@ public:
   ///@}
 
   ///@{
-  /// Sign voxel filters run afterwards (bits 1,2,4,8 = SVF1..SVF4; default 0 = none).
-  vtkSetClampMacro(SignVoxelFilters, int, 0, 15);
+  /// Sign voxel filters run afterwards (bits 1,2,4,8 = SVF1..SVF4; default 0 = none);
+  /// other bits are an error at update (Core's rule: lvdif::checkSignVoxelFilterParams).
+  vtkSetMacro(SignVoxelFilters, int);
   vtkGetMacro(SignVoxelFilters, int);
   ///@}
 
   ///@{
-  /// DEVICE_AUTO (default: CUDA when available), DEVICE_CPU or DEVICE_CUDA.
-  vtkSetClampMacro(Device, int, DEVICE_AUTO, DEVICE_CUDA);
+  /// DEVICE_AUTO (default: CUDA when available), DEVICE_CPU or DEVICE_CUDA;
+  /// anything else is an error at update (LVDIFVolumeBridge::DeviceOption).
+  vtkSetMacro(Device, int);
   vtkGetMacro(Device, int);
   ///@}
 
@@ -165,6 +168,9 @@ protected:
   /// Padding, Sample Spacing and Max Dimension of the fitted grid, each refused by
   /// name (never clamped); throws lvdif::Error.
   void CheckFittedGridSettings() const;
+  /// SignMode, Accelerator, SignVoxelFilters and Device, each refused by name
+  /// outside its values (never clamped); throws lvdif::Error.
+  void CheckEnumerations() const;
 
   int SignMode = WINDING_NUMBER;
   int Accelerator = BVH;

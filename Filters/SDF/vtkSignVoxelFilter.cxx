@@ -344,7 +344,11 @@ int vtkSignVoxelFilter::RequestInformation(
   LVDIFVolumeBridge::BeginInformation(outputVector->GetInformationObject(0));
   // the settings first, by Core's one rule: one error, nothing computed
   // (under MPI the executive then joins the ranks' agreement for this rank)
-  if (!LVDIFVolumeBridge::CallCore(this, [&] { lvdif::checkSignVoxelFilterParams(this->CoreParams()); }))
+  if (!LVDIFVolumeBridge::CallCore(this, [&] {
+        LVDIFVolumeBridge::EnumOption(this->Boundary, "Boundary", { "outside", "free" });
+        LVDIFVolumeBridge::DeviceOption(this->Device);
+        lvdif::checkSignVoxelFilterParams(this->CoreParams());
+      }))
   {
     return LVDIFVolumeBridge::FailInformation(outputVector->GetInformationObject(0));
   }

@@ -133,8 +133,8 @@ public:
 
   ///@{
   /// What the neighbours outside the image read as: BOUNDARY_OUTSIDE (default)
-  /// or BOUNDARY_FREE (no sign).
-  vtkSetClampMacro(Boundary, int, BOUNDARY_OUTSIDE, BOUNDARY_FREE);
+  /// or BOUNDARY_FREE (no sign); anything else is an error at update (no clamp).
+  vtkSetMacro(Boundary, int);
   vtkGetMacro(Boundary, int);
   ///@}
 
@@ -146,8 +146,9 @@ public:
   ///@}
 
   ///@{
-  /// DEVICE_AUTO (default: CUDA when available), DEVICE_CPU or DEVICE_CUDA.
-  vtkSetClampMacro(Device, int, DEVICE_AUTO, DEVICE_CUDA);
+  /// DEVICE_AUTO (default: CUDA when available), DEVICE_CPU or DEVICE_CUDA;
+  /// anything else is an error at update (LVDIFVolumeBridge::DeviceOption; no clamp).
+  vtkSetMacro(Device, int);
   vtkGetMacro(Device, int);
   ///@}
 

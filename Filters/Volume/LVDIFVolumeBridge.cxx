@@ -4,6 +4,10 @@
 #include "lvdif/Memory.h"
 
 #include "vtkAlgorithm.h"
+#include "vtkCommand.h"
+#include "vtkExecutive.h"
+#include "vtkInformationExecutivePortKey.h"
+#include "vtkOutputWindow.h"
 #include "vtkCellArray.h"
 #include "vtkIdTypeArray.h"
 #include "vtkIntArray.h"
@@ -54,6 +58,30 @@ std::string MessageText(const char* vtkMessage)
 lvdif::Device ToDevice(int device)
 {
   return device == 1 ? lvdif::Device::Cpu : (device == 2 ? lvdif::Device::Cuda : lvdif::Device::Auto);
+}
+
+int EnumOption(int value, const std::string& name, std::initializer_list<const char*> names)
+{
+  const int n = static_cast<int>(names.size());
+  if (value < 0 || value >= n)
+  {
+    std::ostringstream msg;
+    msg << name << " must be ";
+    int i = 0;
+    for (const char* what : names)
+    {
+      msg << (i == 0 ? "" : i == n - 1 ? " or " : ", ") << i << " (" << what << ")";
+      ++i;
+    }
+    msg << ", not " << value;
+    throw lvdif::Error(lvdif::ErrorCode::InvalidArgument, msg.str());
+  }
+  return value;
+}
+
+int DeviceOption(int device)
+{
+  return EnumOption(device, "Device", { "auto", "CPU", "CUDA" });
 }
 
 std::string WithContext(const std::string& context, const std::string& what)
@@ -319,6 +347,57 @@ vtkInformationIntegerKey* INFORMATION_FAILED()
   static vtkInformationIntegerKey* key = new vtkInformationIntegerKey("LVDIF_INFORMATION_FAILED", "LVDIFVolumeBridge");
   return key;
 }
+
+vtkInformationIntegerKey* QUIET_EXECUTIVE()
+{
+  static vtkInformationIntegerKey* key = new vtkInformationIntegerKey("LVDIF_QUIET_EXECUTIVE", "LVDIFVolumeBridge");
+  return key;
+}
+
+vtkInformationIntegerKey* FAILURE_REPORTED()
+{
+  static vtkInformationIntegerKey* key = new vtkInformationIntegerKey("LVDIF_FAILURE_REPORTED", "LVDIFVolumeBridge");
+  return key;
+}
+
+/// On the executive of an algorithm whose request failed with its own error
+/// (FAILURE_REPORTED): drops the executive's errors that only repeat it while the
+/// failure stands: "Algorithm X returned failure for request: <the request
+/// dumped>" (the information pass and each later update added one) and "No ...
+/// has been set in the information for output port 0" (a later update of the
+/// failed pass); every other error of the executive goes to the output window,
+/// where it went without an observer.
+class ReportedFailureFilter : public vtkCommand
+{
+public:
+  static ReportedFailureFilter* New() { return new ReportedFailureFilter; }
+  vtkExecutive* Executive = nullptr; // owns this command: no reference
+  void Execute(vtkObject*, unsigned long, void* callData) override
+  {
+    const char* text = static_cast<const char*>(callData);
+    // the dump of the failed request, and what a later update asks of the
+    // information the failed pass never set ("No update piece number has been
+    // set in the information for output port 0 on algorithm X")
+    if (text && (std::strstr(text, "returned failure for request") || std::strstr(text, "has been set in the information")) &&
+      this->Failed())
+    {
+      this->AbortFlagOn(); // nor to other observers: the algorithm's error said it
+      return;
+    }
+    if (text) vtkOutputWindow::GetInstance()->DisplayErrorText(text);
+  }
+
+private:
+  bool Failed() const
+  {
+    for (int port = 0; port < this->Executive->GetNumberOfOutputPorts(); ++port)
+    {
+      vtkInformation* info = this->Executive->GetOutputInformation(port);
+      if (info && info->Has(FAILURE_REPORTED())) return true;
+    }
+    return false;
+  }
+};
 } // namespace
 
 bool IsEmptyInput(vtkDataObject* input)
@@ -330,12 +409,29 @@ bool IsEmptyInput(vtkDataObject* input)
 
 void BeginInformation(vtkInformation* outInfo)
 {
-  if (outInfo) outInfo->Remove(INFORMATION_FAILED());
+  if (!outInfo) return;
+  outInfo->Remove(INFORMATION_FAILED());
+  outInfo->Remove(FAILURE_REPORTED());
 }
 
 int FailInformation(vtkInformation* outInfo)
 {
   if (outInfo) outInfo->Set(INFORMATION_FAILED(), 1);
+  return FailReported(outInfo);
+}
+
+int FailReported(vtkInformation* outInfo)
+{
+  if (!outInfo) return 0;
+  outInfo->Set(FAILURE_REPORTED(), 1);
+  vtkExecutive* executive = vtkExecutive::PRODUCER()->GetExecutive(outInfo);
+  if (executive && !outInfo->Has(QUIET_EXECUTIVE()))
+  {
+    vtkNew<ReportedFailureFilter> filter;
+    filter->Executive = executive;
+    executive->AddObserver(vtkCommand::ErrorEvent, filter, 1.0f); // before a caller's own observers
+    outInfo->Set(QUIET_EXECUTIVE(), 1);
+  }
   return 0;
 }
 

@@ -20,6 +20,7 @@
 #include "vtkSmartPointer.h"
 
 #include <functional>
+#include <initializer_list>
 #include <memory>
 #include <string>
 
@@ -43,8 +44,19 @@ namespace LVDIFVolumeBridge
 constexpr const char* SdfArrayName = "sdf";
 constexpr const char* ColorArrayName = "rgba";
 
-/// The filters' Device property (0 auto, 1 CPU, 2 CUDA) as lvdif's Device.
+/// The filters' Device property (0 auto, 1 CPU, 2 CUDA) as lvdif's Device
+/// (DeviceOption checked it first).
 LVDIFFILTERSVOLUME_EXPORT lvdif::Device ToDevice(int device);
+
+/// The one rule for an enumeration property (Device, Boundary, Sign Mode, ...):
+/// `value` must be one of 0 .. names.size() - 1; anything else is refused with
+/// an lvdif::Error naming the property, the allowed values and the value given
+/// ("Device must be 0 (auto), 1 (CPU) or 2 (CUDA), not 3"), never clamped
+/// (vtkSetClampMacro turned Device 7 into CUDA silently). Returns `value`.
+/// The filters check their enumerations with their other settings, at update.
+LVDIFFILTERSVOLUME_EXPORT int EnumOption(int value, const std::string& name, std::initializer_list<const char*> names);
+/// EnumOption for every filter's Device property (0 auto, 1 CPU, 2 CUDA).
+LVDIFFILTERSVOLUME_EXPORT int DeviceOption(int device);
 
 /// "cannot VERB 'PATH': WHAT", the file named once: Core's file errors already
 /// name it ("cannot open 'PATH': No such file ..."), and were reported as
@@ -133,9 +145,14 @@ LVDIFFILTERSVOLUME_EXPORT int RequestedVoxels(
 /// BeginInformation first and returns FailInformation (0) after reporting an
 /// error; RequestData returns 0 without a second error when InformationFailed
 /// (which empties the output).
+/// Both failures also drop the executive's own "Algorithm X returned failure for
+/// request: <the request dumped>" that would follow the algorithm's error (one
+/// error per failure, in pvpython too; FailReported marks a RequestData that
+/// failed after reporting its error and returns 0).
 LVDIFFILTERSVOLUME_EXPORT void BeginInformation(vtkInformation* outInfo);
 LVDIFFILTERSVOLUME_EXPORT int FailInformation(vtkInformation* outInfo);
 LVDIFFILTERSVOLUME_EXPORT bool InformationFailed(vtkInformation* outInfo);
+LVDIFFILTERSVOLUME_EXPORT int FailReported(vtkInformation* outInfo);
 
 /// The chunk edge of a sparse producer's volume, announced before the data
 /// exists, so that a consumer can ask for whole chunks (vtkSignVoxelFilter's pieces).

@@ -41,14 +41,25 @@ bool vtkLVDIFMeshReader::CanReadFile(const char* fileName)
 int vtkLVDIFMeshReader::RequestData(vtkInformation*, vtkInformationVector**, vtkInformationVector* outputVector)
 {
   vtkPolyData* output = vtkPolyData::GetData(outputVector);
+  // the reader reads in RequestData: its failure is reported once here, and the
+  // executive's "returned failure" dump of it dropped (FailReported)
+  vtkInformation* outInfo = outputVector->GetInformationObject(0);
+  LVDIFVolumeBridge::BeginInformation(outInfo);
   if (this->FileName.empty())
   {
     vtkErrorMacro("no file name: call SetFileName() first");
-    return 0;
+    return LVDIFVolumeBridge::FailReported(outInfo);
   }
   static const lvdif::MeshFormat formats[] = { lvdif::MeshFormat::Auto, lvdif::MeshFormat::Obj,
     lvdif::MeshFormat::Off, lvdif::MeshFormat::Stl, lvdif::MeshFormat::Ply };
   lvdif::TriangleMesh mesh;
+  if (!LVDIFVolumeBridge::CallCore(this, [&] {
+        LVDIFVolumeBridge::EnumOption(this->Format, "Format", { "auto", "OBJ", "OFF", "STL", "PLY" });
+      }))
+  {
+    output->Initialize();
+    return LVDIFVolumeBridge::FailReported(outInfo);
+  }
   try
   {
     mesh = lvdif::loadMesh(this->FileName, formats[this->Format]);
@@ -57,7 +68,7 @@ int vtkLVDIFMeshReader::RequestData(vtkInformation*, vtkInformationVector**, vtk
   {
     output->Initialize();
     vtkErrorMacro(<< LVDIFVolumeBridge::FileError("read", this->FileName, e.what()));
-    return 0;
+    return LVDIFVolumeBridge::FailReported(outInfo);
   }
   this->UpdateProgress(0.7);
 

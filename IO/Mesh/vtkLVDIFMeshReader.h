@@ -38,8 +38,9 @@ public:
     PLY
   };
   ///@{
-  /// The file format (default AUTO: from the file name's extension).
-  vtkSetClampMacro(Format, int, AUTO, PLY);
+  /// The file format (default AUTO: from the file name's extension); anything
+  /// but AUTO..PLY is an error at update (no clamp).
+  vtkSetMacro(Format, int);
   vtkGetMacro(Format, int);
   ///@}
 

@@ -1,6 +1,7 @@
 #include "vtkLVDIFMeshReport.h"
 
 #include "LVDIFMeshCheck.h"
+#include "LVDIFVolumeBridge.h"
 
 #include "vtkCellArray.h"
 #include "vtkFieldData.h"
@@ -12,6 +13,8 @@
 #include "vtkPoints.h"
 #include "vtkPolyData.h"
 #include "vtkStringArray.h"
+
+#include <cmath>
 
 vtkStandardNewMacro(vtkLVDIFMeshReport);
 
@@ -35,6 +38,13 @@ int vtkLVDIFMeshReport::RequestData(
   vtkPolyData* input = vtkPolyData::GetData(inputVector[0], 0);
   vtkPolyData* output = vtkPolyData::GetData(outputVector, 0);
   this->Summary.clear();
+  vtkInformation* outInfo = outputVector->GetInformationObject(0);
+  LVDIFVolumeBridge::BeginInformation(outInfo);
+  if (this->Weld && !(std::isfinite(this->WeldTolerance) && this->WeldTolerance >= 0))
+  {
+    vtkErrorMacro("WeldTolerance must be a finite length >= 0 (world units), not " << this->WeldTolerance);
+    return LVDIFVolumeBridge::FailReported(outInfo);
+  }
   lvdif::TriangleMesh mesh;
   const vtkIdType np = input->GetNumberOfPoints();
   mesh.points.resize(static_cast<std::size_t>(np));

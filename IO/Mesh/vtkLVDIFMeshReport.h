@@ -31,10 +31,11 @@ public:
 
   ///@{
   /// Merge vertices within WeldTolerance (world units) first (default off, 1e-6).
+  /// With Weld on, a negative, NaN or infinite tolerance is an error at update (no clamp).
   vtkSetMacro(Weld, bool);
   vtkGetMacro(Weld, bool);
   vtkBooleanMacro(Weld, bool);
-  vtkSetClampMacro(WeldTolerance, double, 0.0, VTK_DOUBLE_MAX);
+  vtkSetMacro(WeldTolerance, double);
   vtkGetMacro(WeldTolerance, double);
   ///@}
 

@@ -114,6 +114,22 @@ double exportHalfWidth(const DictionaryVolume& volume, double asked)
   return std::min(hw, band);
 }
 
+void checkHalfWidth(double halfWidth, const std::string& name)
+{
+  if (halfWidth != 0 && !(halfWidth >= MinHalfWidth && halfWidth <= MaxHalfWidth)) // NaN too
+  {
+    std::ostringstream msg;
+    msg << name << " must be 0 (the volume's band) or a number of voxels in [1, 10000], not " << halfWidth;
+    throw Error(ErrorCode::InvalidArgument, msg.str());
+  }
+}
+
+void checkImportPadding(int padding, const std::string& name)
+{
+  require(padding >= 0 && padding <= MaxImportPadding,
+    name + " must be a number of voxels in [0, " + std::to_string(MaxImportPadding) + "], not " + std::to_string(padding));
+}
+
 void exportLevelSet(
   const DictionaryVolume& volume, const std::string& path, const ExportOptions& options, Interrupter& interrupter)
 {
@@ -125,7 +141,7 @@ void exportLevelSet(
       "OpenVDB export needs isotropic spacing (a level set has one distance unit); the volume has spacing " +
         std::to_string(o.spacing[0]) + ", " + std::to_string(o.spacing[1]) + ", " + std::to_string(o.spacing[2]));
   }
-  require(options.halfWidth >= 0 && std::isfinite(options.halfWidth), "OpenVDB export: invalid half width");
+  checkHalfWidth(options.halfWidth, "OpenVDB export: the half width");
   require(!options.sdfName.empty(), "OpenVDB export: empty grid name");
   const double hw = exportHalfWidth(volume, options.halfWidth);
 
@@ -214,7 +230,7 @@ void exportLevelSet(
 std::unique_ptr<DictionaryVolume> importLevelSet(
   const std::string& path, const ImportOptions& options, Interrupter& interrupter)
 {
-  require(options.padding >= 0 && options.padding <= 1 << 16, "OpenVDB import: padding out of range");
+  checkImportPadding(options.padding, "OpenVDB import: the padding");
   openvdb::initialize();
   openvdb::io::File file(path);
   openFile(file, path);

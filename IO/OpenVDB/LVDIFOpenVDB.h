@@ -34,9 +34,9 @@ namespace vdb
 
 struct ExportOptions
 {
-  /// Half width of the narrow band in voxels; 0 = the volume's band width
-  /// (3, OpenVDB's default, when the volume's band is infinite). Never wider
-  /// than the volume's band (exportHalfWidth).
+  /// Half width of the narrow band in voxels: 0 = the volume's band width
+  /// (3, OpenVDB's default, when the volume's band is infinite), else 1 to 10000
+  /// (checkHalfWidth). Never wider than the volume's band (exportHalfWidth).
   double halfWidth = 0.0;
   bool withColor = true;
   std::string sdfName = "sdf";
@@ -66,6 +66,18 @@ struct GridSummary
 /// (saturated distances are not distances), and 3, OpenVDB's default, for an
 /// unlimited band with 0 (a level set's background is finite).
 LVDIFIOOPENVDB_EXPORT double exportHalfWidth(const DictionaryVolume& volume, double asked);
+
+/// The half widths an export takes: 0 (the volume's band) or 1 to 10000 voxels
+/// (a level set needs at least one active voxel on each side of its surface).
+/// Else Error(InvalidArgument) naming `name` and the value; the writer's
+/// HalfWidth is refused by this rule (it was clamped).
+constexpr double MinHalfWidth = 1.0, MaxHalfWidth = 1.0e4;
+LVDIFIOOPENVDB_EXPORT void checkHalfWidth(double halfWidth, const std::string& name = "half width");
+
+/// The most voxels an import adds around the active box (index coordinates stay
+/// within int); more is Error(InvalidArgument) naming `name` and the value.
+constexpr int MaxImportPadding = 1 << 16;
+LVDIFIOOPENVDB_EXPORT void checkImportPadding(int padding, const std::string& name = "padding");
 
 /// Writes the .vdb (Error(InvalidArgument) for anisotropic spacing,
 /// Error(IoFailure) when OpenVDB cannot write, Error(Cancelled)).

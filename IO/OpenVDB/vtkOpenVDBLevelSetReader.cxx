@@ -84,6 +84,12 @@ int vtkOpenVDBLevelSetReader::RequestInformation(
     vtkErrorMacro("no file name: call SetFileName() first");
     return LVDIFVolumeBridge::FailInformation(outputVector->GetInformationObject(0));
   }
+  // the settings before the file: one error naming the property, no clamp
+  if (!LVDIFVolumeBridge::CallCore(this, [&] {
+        LVDIFVolumeBridge::PaddingOption(this->Padding); // the project's padding rule (>= 0)
+        lvdif::vdb::checkImportPadding(this->Padding, "Padding");
+      }))
+    return LVDIFVolumeBridge::FailInformation(outputVector->GetInformationObject(0));
   Internals& in = *this->Internal;
   const long long stamp = fileStamp(this->FileName);
   if (!in.Volume || in.ReadTime != this->GetMTime() || in.ReadFile != this->FileName || in.FileStamp != stamp)

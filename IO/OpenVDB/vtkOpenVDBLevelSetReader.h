@@ -56,8 +56,9 @@ public:
 
   ///@{
   /// Voxels added around the active bounding box (default 1, so marching
-  /// cubes closes surfaces that touch the band's edge).
-  vtkSetClampMacro(Padding, int, 0, 65536);
+  /// cubes closes surfaces that touch the band's edge), 0 to 65536; anything
+  /// else is an error at update, no output (never clamped).
+  vtkSetMacro(Padding, int);
   vtkGetMacro(Padding, int);
   ///@}
 

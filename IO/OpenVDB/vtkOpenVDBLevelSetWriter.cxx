@@ -14,6 +14,11 @@ vtkStandardNewMacro(vtkOpenVDBLevelSetWriter);
 vtkOpenVDBLevelSetWriter::vtkOpenVDBLevelSetWriter() = default;
 vtkOpenVDBLevelSetWriter::~vtkOpenVDBLevelSetWriter() = default;
 
+void vtkOpenVDBLevelSetWriter::CheckSettings()
+{
+  lvdif::vdb::checkHalfWidth(this->HalfWidth, "HalfWidth");
+}
+
 lvdif::VolumeOptions vtkOpenVDBLevelSetWriter::ImageVolumeOptions()
 {
   lvdif::VolumeOptions options;

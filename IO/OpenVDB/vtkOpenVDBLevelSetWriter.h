@@ -35,7 +35,9 @@ public:
   /// Narrow-band half width in voxels; 0 (default) = the sparse volume's band
   /// (3, OpenVDB's default, for an image or an unlimited band). It was 3 by
   /// default, so `lvdif convert` narrowed a band of 8 to 3 without a word.
-  vtkSetClampMacro(HalfWidth, double, 0.0, 1.0e4);
+  /// Else 1 to 10000; anything else (NaN too) is an error at write, nothing
+  /// written and an older file kept (lvdif::vdb::checkHalfWidth; never clamped).
+  vtkSetMacro(HalfWidth, double);
   vtkGetMacro(HalfWidth, double);
   ///@}
 
@@ -57,6 +59,7 @@ protected:
   ~vtkOpenVDBLevelSetWriter() override;
 
   void Save(const lvdif::DictionaryVolume& volume, const SaveSource& source, lvdif::Interrupter& interrupter) override;
+  void CheckSettings() override;
   bool ReadsImageColors() override { return this->WithColor; }
   lvdif::VolumeOptions ImageVolumeOptions() override;
 

@@ -131,6 +131,11 @@ int vtkPDictionaryVolumeWriter::Write()
   return written;
 }
 
+bool vtkPDictionaryVolumeWriter::PieceExists() const
+{
+  return this->NumberOfPieces >= 1 && this->Piece >= 0 && this->Piece < this->NumberOfPieces;
+}
+
 bool vtkPDictionaryVolumeWriter::IsCollective() const
 {
   return this->Controller && this->Controller->GetNumberOfProcesses() == this->NumberOfPieces &&
@@ -158,7 +163,8 @@ vtkTypeBool vtkPDictionaryVolumeWriter::ProcessRequest(
   if (request->Has(vtkStreamingDemandDrivenPipeline::REQUEST_UPDATE_EXTENT()))
   {
     vtkInformation* inInfo = inputVector[0]->GetInformationObject(0);
-    if (inInfo && inInfo->Has(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT()))
+    // (a piece that does not exist asks for nothing: WriteData refuses it)
+    if (inInfo && inInfo->Has(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT()) && this->PieceExists())
     {
       int whole[6], ext[6];
       inInfo->Get(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT(), whole);
@@ -234,6 +240,13 @@ void vtkPDictionaryVolumeWriter::WriteData()
   auto* sparseInput = vtkSparseDictionaryVolume::SafeDownCast(this->Superclass::GetInput());
   auto* sparse = sparseInput && sparseInput->HasVolume() ? sparseInput : nullptr;
   vtkInformation* inInfo = this->GetInputInformation(0, 0);
+  if (!this->PieceExists())
+  {
+    vtkErrorMacro("piece " << this->Piece << " of " << this->NumberOfPieces << " does not exist: Piece must be in [0, "
+                           << "NumberOfPieces - 1] and NumberOfPieces >= 1");
+    this->SetErrorCode(vtkErrorCode::UnknownError);
+    return;
+  }
   const bool emptyPiece = sparseInput && !sparse && EmptySparsePiece(inInfo, this->Piece, this->NumberOfPieces);
   if (this->FileName.empty())
   {
@@ -245,12 +258,6 @@ void vtkPDictionaryVolumeWriter::WriteData()
     ((!image && !sparse) || !inInfo || (!sparse && !inInfo->Has(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT()))))
   {
     vtkErrorMacro("no input image or sparse volume");
-    this->SetErrorCode(vtkErrorCode::UnknownError);
-    return;
-  }
-  if (this->Piece >= this->NumberOfPieces)
-  {
-    vtkErrorMacro("piece " << this->Piece << " of " << this->NumberOfPieces << " does not exist");
     this->SetErrorCode(vtkErrorCode::UnknownError);
     return;
   }

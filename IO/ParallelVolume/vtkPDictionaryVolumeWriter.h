@@ -59,10 +59,11 @@ public:
   vtkGetCharFromStdStringMacro(FileName);
 
   ///@{
-  /// This process's piece and the number of pieces (default 0 of 1).
-  vtkSetClampMacro(Piece, int, 0, VTK_INT_MAX);
+  /// This process's piece and the number of pieces (default 0 of 1); a piece
+  /// outside [0, NumberOfPieces - 1] is an error at write, nothing written (no clamp).
+  vtkSetMacro(Piece, int);
   vtkGetMacro(Piece, int);
-  vtkSetClampMacro(NumberOfPieces, int, 1, VTK_INT_MAX);
+  vtkSetMacro(NumberOfPieces, int);
   vtkGetMacro(NumberOfPieces, int);
   ///@}
 
@@ -114,6 +115,8 @@ protected:
 private:
   /// Whether the ranks of the Controller write one piece each (collectively).
   bool IsCollective() const;
+  /// Piece in [0, NumberOfPieces - 1], NumberOfPieces >= 1.
+  bool PieceExists() const;
   /// The all-reduce of every rank's success (the minimum); the first of the
   /// two collective calls of a write.
   int AgreeOnPieces(int ok);

@@ -127,7 +127,7 @@ int vtkDictionaryVolumeReader::RequestData(
   if (!ok)
   {
     output->Initialize();
-    return 0;
+    return LVDIFVolumeBridge::FailReported(outInfo); // (a cancel: no error, no dump)
   }
   this->UpdateProgress(1.0);
   return 1;

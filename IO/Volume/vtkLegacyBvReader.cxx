@@ -132,7 +132,7 @@ int vtkLegacyBvReader::RequestData(vtkInformation*, vtkInformationVector**, vtkI
     {
       vtkErrorMacro(<< LVDIFVolumeBridge::FileError("read", this->FileName, e.what()));
     }
-    return 0;
+    return LVDIFVolumeBridge::FailReported(outInfo);
   }
   this->UpdateProgress(1.0);
   return 1;

@@ -272,6 +272,27 @@ for props, text in (({"MaxDimension": 1}, "Max Dimension must be in [2, 1048576]
 # an explicit grid does not use Padding: not checked there
 ok, errs, f = run("vtkMeshToSDF", inp=sphere(), Padding=-1.0, UseExplicitGrid=True, Dimensions=(16, 12, 10))
 check(ok and not errs, "vtkMeshToSDF Padding -1 with an explicit grid: %s" % errs)
+# an explicit grid: 1 point on an axis is a 2-D slice of the field, kept (VTK's
+# Contour gives the sphere's cross-section on it: lines); 0 points or a spacing
+# <= 0 are refused by the property's name with the values given
+ok, errs, f = run("vtkMeshToSDF", inp=sphere(), UseExplicitGrid=True, Dimensions=(16, 12, 1),
+                  Origin=(-4.0, -4.0, 0.0), Spacing=(0.5, 0.5, 0.5))
+lines = -1
+if ok:
+    conv = lvdif.vtkSparseVolumeToImage()
+    conv.SetInputData(f.GetOutput())
+    conv.Update()
+    contour = vtk.vtkContourFilter()
+    contour.SetInputData(conv.GetOutput())
+    contour.SetValue(0, 0.0)
+    contour.Update()
+    lines = contour.GetOutput().GetNumberOfLines()
+check(ok and not errs and lines > 0, "vtkMeshToSDF explicit grid 16 x 12 x 1: %s, %d contour lines" % (errs, lines))
+for props, text in (({"Dimensions": (16, 12, 0)}, "Dimensions must be at least 1 point on each axis, not 16 x 12 x 0"),
+                    ({"Spacing": (0.5, 0.0, 0.5)}, "Spacing must be > 0 on each axis, not 0.5, 0, 0.5")):
+    ok, errs, f = run("vtkMeshToSDF", inp=sphere(), UseExplicitGrid=True, **props)
+    check(not ok and len(errs) == 1 and text in errs[0] and not f.GetOutput().HasVolume(),
+          "vtkMeshToSDF explicit grid %s: %s" % (props, errs))
 for dim, good in ((5, False), (6, True)):
     ok, errs, f = run("vtkMeshToSDF", inp=sphere(), MaxDimension=dim, Padding=2.0)
     check(ok == good and (good or (len(errs) == 1 and "Max Dimension 5 leaves no voxel for the mesh inside 2 voxels"
@@ -323,6 +344,123 @@ for inp, kind in ((img, "image"), (sparse_src, "sparse volume")):
         check(ok and not errs and back == list(props.values()),
               "vtkSignVoxelFilter %s, %s: read back %s, %s" % (props, kind, back, errs))
 
+# Enumerations (Boundary, Device, SignMode, Accelerator, OutputMode) and the
+# sign filter mask of vtkMeshToSDF: refused at update with one error naming the
+# property, its values and the value given; the getter returns what was set; no
+# output (before: vtkSetClampMacro, so Device 7 ran on CUDA, Boundary 5 as free,
+# OutputMode 2 as merged, SignMode -1 as normal, SignVoxelFilters 16 as all four)
+DEVICE = "Device must be 0 (auto), 1 (CPU) or 2 (CUDA), not "
+
+
+def output_empty(f):
+    o = f.GetOutputDataObject(0)
+    return not o.HasVolume() if hasattr(o, "HasVolume") else o.GetNumberOfPoints() == 0
+
+
+ENUM_BAD = (
+    ("vtkSignVoxelFilter", lambda: sparse_src, {"Boundary": 2}, "Boundary must be 0 (outside) or 1 (free), not 2"),
+    ("vtkSignVoxelFilter", lambda: img, {"Boundary": -1}, "Boundary must be 0 (outside) or 1 (free), not -1"),
+    ("vtkSignVoxelFilter", lambda: sparse_src, {"Device": 3}, DEVICE + "3"),
+    ("vtkSignVoxelFilter", lambda: img, {"Device": -1}, DEVICE + "-1"),
+    ("vtkMeshToSDF", sphere, {"SignMode": 4},
+     "SignMode must be 0 (normal), 1 (pseudo-normal), 2 (winding number) or 3 (unsigned), not 4"),
+    ("vtkMeshToSDF", sphere, {"SignMode": -1}, "not -1"),
+    ("vtkMeshToSDF", sphere, {"Accelerator": 3}, "Accelerator must be 0 (BVH), 1 (faithful) or 2 (brute force), not 3"),
+    ("vtkMeshToSDF", sphere, {"SignVoxelFilters": 16}, "the filter mask may only contain Svf1..Svf4 bits (0..15), not 16"),
+    ("vtkMeshToSDF", sphere, {"SignVoxelFilters": -1}, "the filter mask may only contain Svf1..Svf4 bits (0..15), not -1"),
+    ("vtkMeshToSDF", sphere, {"Device": 7}, DEVICE + "7"),
+    ("vtkChunkedMarchingCubes", lambda: sparse_src, {"OutputMode": 2}, "OutputMode must be 0 (partitioned) or 1 (merged), not 2"),
+    ("vtkChunkedMarchingCubes", lambda: img, {"OutputMode": -1}, "OutputMode must be 0 (partitioned) or 1 (merged), not -1"),
+    ("vtkChunkedMarchingCubes", lambda: sparse_src, {"Device": 3}, DEVICE + "3"))
+for cls, inp, props, text in ENUM_BAD:
+    ok, errs, f = run(cls, inp=inp(), MaxDimension=24, **props) if cls == "vtkMeshToSDF" else run(cls, inp=inp(), **props)
+    back = [getattr(f, "Get" + k)() for k in props]
+    check(not ok and len(errs) == 1 and text in errs[0] and back == list(props.values()) and output_empty(f),
+          "%s %s: read back %s, empty output %s, %s" % (cls, props, back, output_empty(f), errs))
+ENUM_GOOD = (("vtkSignVoxelFilter", lambda: sparse_src, {"Boundary": 1, "Device": 1}),
+             ("vtkMeshToSDF", sphere, {"SignMode": 3, "Accelerator": 2, "SignVoxelFilters": 15, "Device": 1}),
+             ("vtkMeshToSDF", sphere, {"SignMode": 0, "Accelerator": 1}),
+             ("vtkChunkedMarchingCubes", lambda: sparse_src, {"OutputMode": 1, "Device": 1}),
+             ("vtkChunkedMarchingCubes", lambda: img, {"OutputMode": 0}))
+for cls, inp, props in ENUM_GOOD:
+    ok, errs, f = run(cls, inp=inp(), MaxDimension=24, **props) if cls == "vtkMeshToSDF" else run(cls, inp=inp(), **props)
+    back = [getattr(f, "Get" + k)() for k in props]
+    check(ok and not errs and back == list(props.values()) and not output_empty(f),
+          "%s %s: read back %s, %s" % (cls, props, back, errs))
+
+# the mesh reader's Format (an enumeration), the mesh report's WeldTolerance (with Weld
+# on) and the .lvdvp writer's Piece / NumberOfPieces: refused by name, never clamped
+# (before: Format 5 read the file as PLY, -1 as auto; WeldTolerance -1 welded with 0;
+# Piece -1 wrote piece 0, NumberOfPieces 0 wrote one piece)
+tet = os.path.join(out, "settings_tet.off")
+with open(tet, "w") as f:
+    f.write("OFF\n4 4 0\n0 0 0\n1 0 0\n0 1 0\n0 0 1\n3 0 2 1\n3 0 1 3\n3 0 3 2\n3 1 2 3\n")
+for fmt in (0, 2):
+    ok, errs, r = run("vtkLVDIFMeshReader", path=tet, Format=fmt)
+    check(ok and r.GetOutput().GetNumberOfPoints() == 4 and r.GetFormat() == fmt,
+          "vtkLVDIFMeshReader Format %d: %s" % (fmt, errs))
+for fmt in (5, -1):
+    ok, errs, r = run("vtkLVDIFMeshReader", path=tet, Format=fmt)
+    check(not ok and r.GetFormat() == fmt and len(errs) == 1 and r.GetOutput().GetNumberOfPoints() == 0
+          and "Format must be 0 (auto), 1 (OBJ), 2 (OFF), 3 (STL) or 4 (PLY), not %d" % fmt in errs[0],
+          "vtkLVDIFMeshReader Format %d: read back %d, %s" % (fmt, r.GetFormat(), errs))
+for weld, tol, good in ((True, 0.0, True), (True, 1e-3, True), (False, -1.0, True), (True, -1.0, False),
+                        (True, float("nan"), False), (True, float("inf"), False)):
+    ok, errs, rep = run("vtkLVDIFMeshReport", inp=sphere(), Weld=weld, WeldTolerance=tol)
+    back = rep.GetWeldTolerance()
+    check((back == tol or (back != back and tol != tol)) and ok == good and
+          (good or (len(errs) == 1 and "WeldTolerance must be a finite length >= 0 (world units), not %g" % tol in errs[0])),
+          "vtkLVDIFMeshReport Weld %s WeldTolerance %g: read back %g, %s" % (weld, tol, back, errs))
+pieces = os.path.join(out, "settings_pieces.lvdvp")
+ok, errs, _ = run("vtkPDictionaryVolumeWriter", inp=img, path=pieces)
+assert ok, errs
+before = open(pieces, "rb").read()
+for piece, count in ((-1, 1), (0, 0), (0, -2), (2, 2)):
+    ok, errs, w = run("vtkPDictionaryVolumeWriter", inp=img, path=pieces, Piece=piece, NumberOfPieces=count)
+    check((w.GetPiece(), w.GetNumberOfPieces()) == (piece, count) and not ok and len(errs) == 1
+          and "piece %d of %d does not exist" % (piece, count) in errs[0] and open(pieces, "rb").read() == before,
+          "vtkPDictionaryVolumeWriter piece %d of %d: read back %d of %d, %s" % (
+              piece, count, w.GetPiece(), w.GetNumberOfPieces(), errs))
+
+# OpenVDB: the writer's HalfWidth (0: the volume's band, or 1..10000 voxels) and the
+# reader's Padding (0..65536): refused by name with the value given, never clamped
+# (before: HalfWidth -1 ran as 0, 20000 as 10000, 0.5 was taken; Padding -1 as 0); a refused save keeps the older file. Oracles: the band
+# of the file read back (background / voxel size = the half width) and the padded box.
+if hasattr(lvdif, "vtkOpenVDBLevelSetWriter"):
+    HALF_RULE = "HalfWidth must be 0 (the volume's band) or a number of voxels in [1, 10000], not "
+    vdb = os.path.join(out, "settings.vdb")
+    # (0: an image's volume gets OpenVDB's default band, 3)
+    for hw, want in ((0.0, 3.0), (1.0, 1.0), (2.5, 2.5), (10000.0, 10000.0)):
+        ok, errs, w = run("vtkOpenVDBLevelSetWriter", inp=cubic, path=vdb, HalfWidth=hw)
+        r = lvdif.vtkOpenVDBLevelSetReader()
+        r.SetFileName(vdb)
+        r.Update()
+        band = r.GetOutput().GetBandWidth() if ok else None
+        check(ok and not errs and band == want, "vtkOpenVDBLevelSetWriter HalfWidth %g: band read back %s, %s" % (hw, band, errs))
+    before = open(vdb, "rb").read()
+    for hw, text in ((0.5, "0.5"), (1e-9, "1e-09"), (10000.5, "10000.5"), (-1.0, "-1"), (float("nan"), "nan"), (float("inf"), "inf")):
+        for inp, kind in ((cubic, "image"), (volume_of("vtkImageToSparseVolume", cubic)[2], "sparse volume")):
+            ok, errs, w = run("vtkOpenVDBLevelSetWriter", inp=inp, path=vdb, HalfWidth=hw)
+            back = w.GetHalfWidth()
+            check((back == hw or (back != back and hw != hw)) and not ok and len(errs) == 1 and HALF_RULE + text in errs[0]
+                  and open(vdb, "rb").read() == before,
+                  "vtkOpenVDBLevelSetWriter HalfWidth %g, %s: read back %g, %s" % (hw, kind, back, errs))
+    dims = {}
+    for padding in (0, 3):
+        ok, errs, r = run("vtkOpenVDBLevelSetReader", path=vdb, Padding=padding)
+        d = [0, 0, 0]
+        if ok:
+            r.GetOutput().GetDimensions(d)
+        dims[padding] = d if ok else None
+        check(ok and not errs, "vtkOpenVDBLevelSetReader Padding %d: %s" % (padding, errs))
+    check(None not in dims.values() and [b - a for a, b in zip(dims[0], dims[3])] == [6, 6, 6],
+          "vtkOpenVDBLevelSetReader Padding 3 grows the box by 3 voxels a side: %s" % dims)
+    for padding, text in ((-1, "Padding must be a finite number of voxels >= 0, not -1"),
+                          (65537, "Padding must be a number of voxels in [0, 65536], not 65537")):
+        ok, errs, r = run("vtkOpenVDBLevelSetReader", path=vdb, Padding=padding)
+        check(r.GetPadding() == padding and not ok and len(errs) == 1 and text in errs[0] and output_empty(r),
+              "vtkOpenVDBLevelSetReader Padding %d: read back %d, %s" % (padding, r.GetPadding(), errs))
+
 # the editor object (the Qt editor's volumes): the same rule for new volumes
 ed = lvdif.vtkLVDIFEditor()
 for band, good in ((0, True), (8, True), (-1, False), (float("nan"), False)):
@@ -331,5 +469,12 @@ for band, good in ((0, True), (8, True), (-1, False), (float("nan"), False)):
     r = ed.NewVolume(24, 40, 16, False)
     check(bool(r) == good and (good or (len(errors.messages) == 1 and RULE in errors.messages[0])),
           "vtkLVDIFEditor BandWidth %g: NewVolume %d %s" % (band, r, errors.messages))
+
+# the editor's Device: refused at the call (it has no update), with the filters' words
+errors = Errors(ed)
+ed.SetDevice(1)
+ed.SetDevice(3)
+check(ed.GetDevice() == 1 and len(errors.messages) == 1 and DEVICE + "3" in errors.messages[0],
+      "vtkLVDIFEditor Device 3: read back %d, %s" % (ed.GetDevice(), errors.messages))
 
 finish()

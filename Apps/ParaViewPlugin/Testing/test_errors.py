@@ -3,8 +3,8 @@
 ParaView runs RequestData even when RequestInformation failed (pvpython's
 UpdatePipeline, the GUI's Apply): a missing .lvdv gave its error twice, a
 reader without a file name first "no file name" then "cannot open ''", a bad
-Band Width or Chunk Edge of Mesh To SDF twice. Counts the error events of each
-algorithm (its client-side object); also: a reader that failed shows no stale
+Band Width or Chunk Edge of Mesh To SDF twice. Counts every error message in the
+output window (VTK's executive's "returned failure" dumps too); also: a reader that failed shows no stale
 data from its last good file, and the band / chunk edge / padding / compression
 level rule of docs/USER_GUIDE.md through the proxies (Band Width 0 = no band),
 a fitted grid's error in the properties' names, and a failed reader feeding two
@@ -35,12 +35,15 @@ sys.stdout, sys.stderr = sys.__stdout__, sys.__stderr__
 
 
 def errors_during(work):
-    """The error messages (not VTK's executive's "returned failure" dumps) while `work` runs."""
+    """Every error message while `work` runs, VTK's executive's too: its "Algorithm X
+    returned failure for request: <the request dumped>" after a reader's or filter's
+    own error (one for the information pass, one for the RequestData ParaView runs
+    anyway: three messages for one missing file) is dropped now
+    (LVDIFVolumeBridge::FailReported), so one failure is one message here."""
     start = len(window.GetOutput())
     result = work()
     text = window.GetOutput()[start:]
-    messages = [" ".join(m.split()) for m in text.split("ERROR: In ")[1:]]
-    return result, [m for m in messages if "returned failure for request" not in m]
+    return result, [" ".join(m.split()) for m in text.split("ERROR: In ")[1:]]
 
 
 def one_error(label, make, needle):
@@ -135,6 +138,27 @@ for ext in ("lvdv", "lvdvp"):
         _, errs = errors_during(lambda: updated(pvs.CreateWriter(target, src_level, CompressionLevel=level)))
         check(len(errs) == 1 and "CompressionLevel must be a zstd level in [1, 19], not %d" % level in errs[0]
               and open(target, "rb").read() == b"an older file", "%s writer, Compression Level %d: %s" % (ext, level, errs))
+
+# an enumeration set outside its menu (the server-manager property takes any integer):
+# one error naming the property and its values, nothing clamped (Device 5 ran on CUDA)
+def enum_out_of_range(make, name, value):
+    def build():
+        p = make()
+        p.SMProxy.GetProperty(name).SetElement(0, value)
+        p.SMProxy.UpdateVTKObjects()
+        return p
+    return build
+
+
+for label, make, name, value, needle in (
+        ("Sign Voxel Filter, Device 5", lambda: pvs.SignVoxelFilter(Input=src_level), "Device", 5,
+         "Device must be 0 (auto), 1 (CPU) or 2 (CUDA), not 5"),
+        ("Sign Voxel Filter, Boundary 2", lambda: pvs.SignVoxelFilter(Input=src_level), "Boundary", 2,
+         "Boundary must be 0 (outside) or 1 (free), not 2"),
+        ("Mesh To SDF, Sign Mode 9", lambda: pvs.MeshToSDF(Input=sphere, MaxDimension=24), "SignMode", 9,
+         "SignMode must be 0 (normal), 1 (pseudo-normal), 2 (winding number) or 3 (unsigned), not 9")):
+    proxy = one_error(label, enum_out_of_range(make, name, value), needle)
+    check(proxy.GetDataInformation().GetNumberOfPoints() == 0, "%s: no output" % label)
 
 # A reader that failed (a missing or malformed file) feeding two of our filters: its one
 # error, nothing from the filters below. ParaView runs every proxy below a failed reader
