@@ -153,7 +153,11 @@ EditorOptions parseEditorOptions(const QStringList& arguments)
     op, shape, kind, radius, color, strength, falloff, mirror, size, samples, perVertex, matcap, autosave, noRecovery,
     recoveryDir, quit, drag, dragShot, undo, dragMods, keys, keysAfter, saveAsAnswer, benchmark, timing, fullRedraw,
     drawRanges, multisampledDrag, stockBackground, widgetView });
-  p.process(arguments);
+  // an unknown option or a missing value: one line and status 2, as every
+  // other refused option (Qt's process() exits with 1)
+  if (!p.parse(arguments))
+    fail(p.errorText());
+  p.process(arguments); // --help, --help-all
   // as the CLI: an option given twice is refused (Qt's parser silently took the last)
   const QStringList given = p.optionNames();
   for (const QString& name : given)

@@ -1,5 +1,5 @@
 # Runs lvdif-editor with ARGS that it must refuse: a non-zero exit (not a
-# crash: a signal gives a text status) and EXPECT in its output.
+# crash: a signal gives a text status), RC if given, and EXPECT in its output.
 # KEEP_FROM / KEEP: KEEP is made a copy of KEEP_FROM first and must be
 # unchanged afterwards (a refused run writes nothing over it).
 if (DEFINED KEEP)
@@ -14,6 +14,9 @@ execute_process(COMMAND "${EDITOR}" ${ARGS} RESULT_VARIABLE rc OUTPUT_VARIABLE o
 message("${out}${err}")
 if (rc EQUAL 0 OR NOT rc MATCHES "^[0-9]+$")
   message(FATAL_ERROR "lvdif-editor should have exited with an error status, got '${rc}'")
+endif ()
+if (DEFINED RC AND NOT rc EQUAL RC)
+  message(FATAL_ERROR "lvdif-editor should have exited with status ${RC}, got '${rc}'")
 endif ()
 if (NOT "${out}${err}" MATCHES "${EXPECT}")
   message(FATAL_ERROR "the message '${EXPECT}' is missing")
