@@ -9,18 +9,26 @@
 #include <cstdlib>
 #include <cstdio>
 
-Arguments::Arguments(int argc, char** argv, int first, const std::vector<std::string>& flags)
+Arguments::Arguments(
+  int argc, char** argv, int first, const std::vector<std::string>& valued, const std::vector<std::string>& flags)
 {
+  auto listed = [](const std::vector<std::string>& list, const std::string& key) {
+    return std::find(list.begin(), list.end(), key) != list.end();
+  };
   for (int i = first; i < argc; ++i)
   {
     const std::string a = argv[i];
     if (a.rfind("--", 0) == 0 && a.size() > 2)
     {
       const std::string key = a.substr(2);
+      // known before its value is taken: an unknown last option said "needs a
+      // value", and an unknown one before a positional swallowed it
+      if (!listed(valued, key) && !listed(flags, key))
+        throw lvdif::Error(lvdif::ErrorCode::InvalidArgument, "unknown option --" + key);
       // "--dims 16 ... --dims 24" is a mistake in the command line, not "the last wins"
       if (this->Options.count(key))
         throw lvdif::Error(lvdif::ErrorCode::InvalidArgument, "option --" + key + " given twice");
-      if (std::find(flags.begin(), flags.end(), key) != flags.end())
+      if (listed(flags, key))
       {
         this->Options[key] = "1";
       }
@@ -112,13 +120,4 @@ double Arguments::getDouble(const std::string& key, double fallback, double lo, 
     refuse(key, std::string("a number") + range, v);
   }
   return x;
-}
-
-void Arguments::allowOnly(const std::vector<std::string>& known) const
-{
-  for (const auto& kv : this->Options)
-  {
-    if (std::find(known.begin(), known.end(), kv.first) == known.end())
-      throw lvdif::Error(lvdif::ErrorCode::InvalidArgument, "unknown option --" + kv.first);
-  }
 }

@@ -10,8 +10,11 @@
 class Arguments
 {
 public:
-  /// argv[first..argc) are parsed; `flags` lists options that take no value.
-  Arguments(int argc, char** argv, int first, const std::vector<std::string>& flags = {});
+  /// argv[first..argc) are parsed: `valued` lists the options that take a
+  /// value, `flags` those that take none; any other option is refused with
+  /// Error(InvalidArgument) "unknown option --x" where it stands.
+  Arguments(int argc, char** argv, int first, const std::vector<std::string>& valued,
+    const std::vector<std::string>& flags = {});
   const std::vector<std::string>& positional() const { return this->Positional; }
   bool has(const std::string& key) const { return this->Options.count(key) != 0; }
   std::string get(const std::string& key, const std::string& fallback) const;
@@ -24,8 +27,6 @@ public:
   /// An integer edge length N for a new N x N x N canvas, refused (naming the
   /// option) unless the editors' one canvas rule accepts it.
   long getCanvasSize(const std::string& key, long fallback) const;
-  /// Throws lvdif::Error(InvalidArgument) naming any option not in `known`.
-  void allowOnly(const std::vector<std::string>& known) const;
 
 private:
   std::vector<std::string> Positional;

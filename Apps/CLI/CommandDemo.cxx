@@ -22,8 +22,7 @@
 
 int CommandDemo(int argc, char** argv)
 {
-  Arguments args(argc, argv, 2);
-  args.allowOnly({ "out", "size" });
+  Arguments args(argc, argv, 2, { "out", "size" });
   const std::string out = args.get("out", "out");
   // before the output folder is made
   const long size = args.getCanvasSize("size", 128);

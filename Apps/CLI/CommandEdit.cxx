@@ -16,8 +16,7 @@
 
 int CommandScript(int argc, char** argv)
 {
-  Arguments args(argc, argv, 2);
-  args.allowOnly({ "in", "out", "mesh", "png", "size" });
+  Arguments args(argc, argv, 2, { "in", "out", "mesh", "png", "size" });
   if (args.positional().size() != 1)
     throw lvdif::Error(lvdif::ErrorCode::InvalidArgument,
       "usage: lvdif script FILE.lvs [--in VOLUME] [--out VOLUME] [--mesh OUT.ply] [--png OUT.png] [--size N]");
@@ -72,8 +71,7 @@ int CommandScript(int argc, char** argv)
 
 int CommandPlay(int argc, char** argv)
 {
-  Arguments args(argc, argv, 2);
-  args.allowOnly({ "in", "out", "mesh", "png" });
+  Arguments args(argc, argv, 2, { "in", "out", "mesh", "png" });
   if (args.positional().size() != 1 || !args.has("in"))
     throw lvdif::Error(lvdif::ErrorCode::InvalidArgument,
       "usage: lvdif play RECORDING.lvr --in VOLUME [--out VOLUME] [--mesh OUT.ply] [--png OUT.png]");

@@ -48,8 +48,7 @@ lvdif::Device deviceFromName(const std::string& s)
 
 int CommandMeshToSdf(int argc, char** argv)
 {
-  Arguments args(argc, argv, 2, { "svf", "reorient" });
-  args.allowOnly({ "dims", "padding", "sign", "svf", "reorient", "band", "device" });
+  Arguments args(argc, argv, 2, { "dims", "padding", "sign", "band", "device" }, { "svf", "reorient" });
   if (args.positional().size() != 2)
     throw lvdif::Error(lvdif::ErrorCode::InvalidArgument, Usage);
   const std::string in = args.positional()[0], out = args.positional()[1];

@@ -18,8 +18,7 @@
 
 int CommandInfo(int argc, char** argv)
 {
-  Arguments args(argc, argv, 2, { "header-only" });
-  args.allowOnly({ "header-only" });
+  Arguments args(argc, argv, 2, {}, { "header-only" });
   if (args.positional().size() != 1)
     throw lvdif::Error(lvdif::ErrorCode::InvalidArgument, "usage: lvdif info VOLUME.lvdv [--header-only]");
   const std::string& path = args.positional()[0];
@@ -63,8 +62,7 @@ int CommandInfo(int argc, char** argv)
 
 int CommandMesh(int argc, char** argv)
 {
-  Arguments args(argc, argv, 2);
-  args.allowOnly({ "png" });
+  Arguments args(argc, argv, 2, { "png" });
   if (args.positional().size() != 2)
     throw lvdif::Error(lvdif::ErrorCode::InvalidArgument, "usage: lvdif mesh VOLUME OUT.(ply|obj|stl|vtp) [--png OUT.png]");
   CheckMeshOutput(args.positional()[1]);
@@ -80,8 +78,7 @@ int CommandMesh(int argc, char** argv)
 
 int CommandConvert(int argc, char** argv)
 {
-  Arguments args(argc, argv, 2);
-  args.allowOnly({});
+  Arguments args(argc, argv, 2, {});
   if (args.positional().size() != 2)
     throw lvdif::Error(lvdif::ErrorCode::InvalidArgument, "usage: lvdif convert IN OUT   (.lvdv, .lvdvp, .bv, .vti, .vdb)");
   CheckVolumeOutput(args.positional()[1]);

@@ -31,6 +31,12 @@ code, err = run("no-such-command")
 assert code == 2 and "unknown command" in err, (code, err)
 code, err = run("demo", "--bogus", "1")
 assert code == 1 and err == "lvdif demo: unknown option --bogus", (code, err)
+# an unknown option is named where it stands: last on the line it said "needs a value",
+# and before the positionals it took the mesh as its value
+code, err = run("mesh-to-sdf", "in.obj", "out.lvdv", "--bogus")
+assert code == 1 and err == "lvdif mesh-to-sdf: unknown option --bogus", (code, err)
+code, err = run("mesh-to-sdf", "--svf", "--bogus", "in.obj", "out.lvdv")
+assert code == 1 and err == "lvdif mesh-to-sdf: unknown option --bogus", (code, err)
 code, err = run("demo", "--size", "ten")
 assert code == 1 and "expects an integer" in err, (code, err)
 code, err = run("demo", "--size", "100000000", "--out", out)
