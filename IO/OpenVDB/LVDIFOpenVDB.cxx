@@ -109,7 +109,7 @@ std::vector<GridSummary> listGrids(const std::string& path)
 double exportHalfWidth(const DictionaryVolume& volume, double asked)
 {
   const double band = volume.bandWidth();
-  const double hw = asked > 0 ? asked : (std::isfinite(band) ? band : 3.0);
+  const double hw = asked > 0 ? asked : (std::isfinite(band) ? band : DefaultHalfWidth);
   // Saturated distances (|d| = band) are not distances: never make them active.
   return std::min(hw, band);
 }

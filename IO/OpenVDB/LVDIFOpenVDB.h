@@ -61,6 +61,10 @@ struct GridSummary
   std::string name, type, gridClass;
 };
 
+/// OpenVDB's own default narrow-band half width (voxels): what an unlimited
+/// band, or an image without a band, is written with when none is asked.
+constexpr double DefaultHalfWidth = 3.0;
+
 /// The narrow band's half width (voxels) that exportLevelSet writes for a half
 /// width asked (0: the volume's band): never wider than the volume's band
 /// (saturated distances are not distances), and 3, OpenVDB's default, for an

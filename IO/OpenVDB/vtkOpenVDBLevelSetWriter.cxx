@@ -22,7 +22,7 @@ void vtkOpenVDBLevelSetWriter::CheckSettings()
 lvdif::VolumeOptions vtkOpenVDBLevelSetWriter::ImageVolumeOptions()
 {
   lvdif::VolumeOptions options;
-  options.bandWidth = static_cast<float>(this->HalfWidth > 0 ? this->HalfWidth : 3.0); // OpenVDB's default
+  options.bandWidth = static_cast<float>(this->HalfWidth > 0 ? this->HalfWidth : lvdif::vdb::DefaultHalfWidth);
   return options;
 }
 
