@@ -7,6 +7,7 @@
 #include "MeshToSdfCuda.h"
 #include "MeshToSdfEngine.h"
 #include "MeshToSdfInternal.h"
+#include "MeshToSdfSolid.h"
 #include "MeshToSdfNearest.h" // the prepared mesh owns one (destroyed here)
 #include "lvdif/Memory.h"
 
@@ -474,6 +475,29 @@ std::future<void> partsBesideGpu(const MeshToSdfPrepared& mesh, bool needed)
   return std::async(std::launch::async, [&mesh] { mesh.impl().partBounds(); });
 }
 
+/// PseudoNormal on a mesh that bounds a solid: the winding sign, the same
+/// function there (MeshToSdfSolid.h) and faster, since it needs exact
+/// distances only in the band, where the pseudo-normal far field needs the
+/// planes of every nearby triangle (docs/MESH_TO_SDF.md, "Pseudo-normal signs
+/// of solids"). The check runs once per prepared mesh (its time is build time).
+MeshToSdfOptions signOfSolids(const MeshToSdfPrepared& mesh, const MeshToSdfOptions& options, MeshToSdfStats& stats)
+{
+  if (options.sign != SignMode::PseudoNormal || !options.solidsByWinding) return options;
+  const double t0 = now();
+  const SolidBoundary& solid = mesh.impl().solidBoundary();
+  stats.buildSeconds += now() - t0;
+  if (!solid.solid)
+  {
+    trace(("pseudo-normal sign on its own path: " + solid.why).c_str(), 0);
+    return options;
+  }
+  MeshToSdfOptions o = options;
+  o.sign = SignMode::WindingNumber;
+  o.reorientFaces = false;
+  stats.signByWinding = true;
+  return o;
+}
+
 bool wholeGrid(const GridGeometry& grid, const VoxelBox& extent)
 {
   for (int a = 0; a < 3; ++a)
@@ -484,9 +508,9 @@ bool wholeGrid(const GridGeometry& grid, const VoxelBox& extent)
 } // namespace
 
 MeshToSdfStats meshToSdf(const MeshToSdfPrepared& mesh, const GridGeometry& grid, const VoxelBox& extent,
-  float* out, const MeshToSdfOptions& options, Interrupter& interrupter)
+  float* out, const MeshToSdfOptions& given, Interrupter& interrupter)
 {
-  const PhaseTraceScope tracing(options.tracePhases);
+  const PhaseTraceScope tracing(given.tracePhases);
   validateGrid(grid);
   require(out != nullptr, "mesh to SDF: output pointer is null");
   require(!extent.empty(), "mesh to SDF: the requested extent is empty");
@@ -495,6 +519,7 @@ MeshToSdfStats meshToSdf(const MeshToSdfPrepared& mesh, const GridGeometry& grid
     require(extent.lo[a] >= 0 && extent.hi[a] < grid.dims[a], "mesh to SDF: the extent lies outside the grid");
   }
   MeshToSdfStats stats;
+  const MeshToSdfOptions options = signOfSolids(mesh, given, stats);
   interrupter.start("mesh to SDF");
   stats.device = chooseDevice(mesh, options, stats);
   auto engine = makeEngine(mesh, grid, options, options.bandWidth, stats.device, stats);
@@ -548,14 +573,15 @@ MeshToSdfStats meshToSdf(const MeshToSdfPrepared& mesh, const FloatGridView& out
   return meshToSdf(mesh, out.geometry, all, out.data, options, interrupter);
 }
 
-MeshToSdfStats meshToSdf(const MeshToSdfPrepared& mesh, DictionaryVolume& volume, const MeshToSdfOptions& options,
+MeshToSdfStats meshToSdf(const MeshToSdfPrepared& mesh, DictionaryVolume& volume, const MeshToSdfOptions& given,
   Interrupter& interrupter)
 {
-  const PhaseTraceScope tracing(options.tracePhases);
+  const PhaseTraceScope tracing(given.tracePhases);
   const GridGeometry grid = gridOf(volume.options());
+  MeshToSdfStats stats;
+  const MeshToSdfOptions options = signOfSolids(mesh, given, stats);
   MeshToSdfOptions opts = options;
   opts.unit = DistanceUnit::Voxel;
-  MeshToSdfStats stats;
   interrupter.start("mesh to SDF");
   stats.device = chooseDevice(mesh, options, stats);
   auto engine = makeEngine(mesh, grid, opts, volume.bandWidth(), stats.device, stats);
@@ -638,8 +664,11 @@ MeshToSdfStats meshToSdf(const MeshToSdfPrepared& mesh, DictionaryVolume& volume
 /// nearestIndex (a one-call run on the CPU with the Bvh accelerator): the
 /// CPU's index will follow, so the memory check counts it too.
 constexpr std::size_t TreeBesideEdgePassTriangles = std::size_t(1) << 18;
+/// normalsLater (a PseudoNormal call that checks for a solid first): the
+/// pseudo-normals are counted in the memory check but built only if the mesh
+/// is not a solid's boundary (a solid's call never reads them).
 static MeshToSdfPrepared prepareInternal(const TriangleMesh& mesh, SignMode sign, bool meshTreeNow = false,
-  bool nearestIndex = false)
+  bool nearestIndex = false, bool normalsLater = false)
 {
   // before anything is allocated: the whole preparation against the limit
   requirePreparedMemory(mesh, sign == SignMode::Normal || sign == SignMode::PseudoNormal, sign == SignMode::WindingNumber,
@@ -668,7 +697,7 @@ static MeshToSdfPrepared prepareInternal(const TriangleMesh& mesh, SignMode sign
       });
     };
   }
-  prepareMesh(mesh, impl->mesh, sign == SignMode::Normal || sign == SignMode::PseudoNormal, startTree);
+  prepareMesh(mesh, impl->mesh, (sign == SignMode::Normal || sign == SignMode::PseudoNormal) && !normalsLater, startTree);
   if (tree.valid()) impl->bvh = tree.get();
   const double t2 = now();
   // the search structures are built on first use: the CPU's NearestIndex by
@@ -686,7 +715,8 @@ static MeshToSdfPrepared prepareInternal(const TriangleMesh& mesh, SignMode sign
 static MeshToSdfPrepared prepareOneCall(const TriangleMesh& mesh, const MeshToSdfOptions& options)
 {
   const bool cuda = resolveDevice(options.device) == Device::Cuda;
-  return prepareInternal(mesh, options.sign, cuda, !cuda && options.accel == MeshToSdfAccel::Bvh);
+  return prepareInternal(mesh, options.sign, cuda, !cuda && options.accel == MeshToSdfAccel::Bvh,
+    options.sign == SignMode::PseudoNormal && options.solidsByWinding);
 }
 
 /// The one-call API: prepare, then the prepared call (preparation counts as build time).

@@ -353,6 +353,8 @@ private:
 bool triangleBoxOverlap(const V3 tri[3], const double centre[3], const double half[3]);
 
 class NearestIndex; // MeshToSdfNearest.h: the CPU nearest-triangle queries
+struct MeshParts;     // MeshToSdfSolid.h: the connected parts
+struct SolidBoundary; // MeshToSdfSolid.h: whether the mesh bounds a solid
 struct FarCone;     // MeshToSdfFarBlocks.h: normal cones of the BVH's nodes
 
 } // namespace detail::meshtosdf
@@ -394,6 +396,12 @@ struct MeshToSdfPrepared::Impl
   /// changes after preparation): a property of the mesh, not of a call's grid
   /// (warnIfPartsVanish).
   const std::vector<std::array<float, 6>>& partBounds();
+  /// Each welded vertex's connected part, found on first use (under PartsLock).
+  const detail::meshtosdf::MeshParts& parts();
+  /// Whether the mesh bounds a solid (checkSolidBoundary: closed, manifold,
+  /// not self-intersecting, winding number 0 or 1), checked on first use:
+  /// then the PseudoNormal sign is the winding sign (MeshToSdf.cpp).
+  const detail::meshtosdf::SolidBoundary& solidBoundary();
   /// The mesh (and, when asked, the winding structures) on the GPU, uploaded
   /// on first use and kept until the prepared mesh is destroyed. The winding
   /// part may be added later (once) to a copy uploaded without it: sessions
@@ -411,6 +419,10 @@ private:
   std::unique_ptr<detail::meshtosdf_cuda::DeviceMesh> Device;
   std::mutex PartsLock;
   std::unique_ptr<std::vector<std::array<float, 6>>> Parts;
+  std::unique_ptr<detail::meshtosdf::MeshParts> PartsOfVertices;
+  const detail::meshtosdf::MeshParts& partsLocked(); // under PartsLock
+  std::once_flag SolidOnce;
+  std::unique_ptr<detail::meshtosdf::SolidBoundary> Solid;
 };
 
 } // namespace lvdif

@@ -6,6 +6,7 @@
 #include "MeshToSdfFarBlocks.h"
 #include "MeshToSdfInternal.h"
 #include "MeshToSdfNearest.h"
+#include "MeshToSdfSolid.h"
 
 #include <algorithm>
 #include <atomic>
@@ -182,10 +183,9 @@ void atomicMax(std::atomic<float>& x, float v)
 }
 } // namespace
 
-const std::vector<std::array<float, 6>>& MeshToSdfPrepared::Impl::partBounds()
+const MeshParts& MeshToSdfPrepared::Impl::partsLocked()
 {
-  std::lock_guard<std::mutex> lock(this->PartsLock);
-  if (this->Parts) return *this->Parts;
+  if (this->PartsOfVertices) return *this->PartsOfVertices;
   const double t0 = now();
   const PreparedMesh& m = this->mesh;
   const std::size_t nv = m.vertices;
@@ -202,7 +202,7 @@ const std::vector<std::array<float, 6>>& MeshToSdfPrepared::Impl::partBounds()
   }
   // each used vertex's root; the roots of used vertices numbered in index order
   constexpr std::uint8_t usedVertex = 1, usedRoot = 2;
-  constexpr std::uint32_t unused = 0xffffffffu;
+  constexpr std::uint32_t unused = MeshParts::NoPart;
   std::vector<std::atomic<std::uint8_t>> flags(nv);
   const auto count = static_cast<std::int64_t>(nv);
 #pragma omp parallel for schedule(static)
@@ -210,7 +210,9 @@ const std::vector<std::array<float, 6>>& MeshToSdfPrepared::Impl::partBounds()
 #pragma omp parallel for schedule(static)
   for (std::int64_t t = 0; t < nt; ++t)
     for (int k = 0; k < 3; ++k) flags[m.welded[static_cast<std::size_t>(t)][k]].fetch_or(usedVertex, std::memory_order_relaxed);
-  std::vector<std::uint32_t> label(nv, unused);
+  auto parts = std::make_unique<MeshParts>();
+  std::vector<std::uint32_t>& label = parts->partOfVertex;
+  label.assign(nv, unused);
 #pragma omp parallel for schedule(static)
   for (std::int64_t v = 0; v < count; ++v)
   {
@@ -220,9 +222,36 @@ const std::vector<std::array<float, 6>>& MeshToSdfPrepared::Impl::partBounds()
     flags[label[i]].fetch_or(usedRoot, std::memory_order_relaxed);
   }
   std::vector<std::uint32_t> partOfRoot(nv, unused);
-  std::uint32_t parts = 0;
   for (std::size_t v = 0; v < nv; ++v)
-    if (flags[v].load(std::memory_order_relaxed) & usedRoot) partOfRoot[v] = parts++;
+    if (flags[v].load(std::memory_order_relaxed) & usedRoot) partOfRoot[v] = parts->count++;
+#pragma omp parallel for schedule(static)
+  for (std::int64_t v = 0; v < count; ++v)
+  {
+    const auto i = static_cast<std::size_t>(v);
+    if (label[i] != unused) label[i] = partOfRoot[label[i]];
+  }
+  trace("the mesh's connected parts (first use)", now() - t0);
+  this->PartsOfVertices = std::move(parts);
+  return *this->PartsOfVertices;
+}
+
+const MeshParts& MeshToSdfPrepared::Impl::parts()
+{
+  std::lock_guard<std::mutex> lock(this->PartsLock);
+  return this->partsLocked();
+}
+
+const std::vector<std::array<float, 6>>& MeshToSdfPrepared::Impl::partBounds()
+{
+  std::lock_guard<std::mutex> lock(this->PartsLock);
+  if (this->Parts) return *this->Parts;
+  const MeshParts& labels = this->partsLocked();
+  const double t0 = now();
+  const PreparedMesh& m = this->mesh;
+  const std::vector<std::uint32_t>& label = labels.partOfVertex;
+  const std::uint32_t parts = labels.count;
+  constexpr std::uint32_t unused = MeshParts::NoPart;
+  const auto count = static_cast<std::int64_t>(m.vertices);
   // each part's bounds: a thread keeps a run of vertices of one part to itself
   // and merges it when the part changes (one merge per run, few for meshes of few parts)
   const float inf = std::numeric_limits<float>::infinity();
@@ -243,9 +272,8 @@ const std::vector<std::array<float, 6>>& MeshToSdfPrepared::Impl::partBounds()
 #pragma omp for schedule(static)
     for (std::int64_t v = 0; v < count; ++v)
     {
-      const std::uint32_t r = label[static_cast<std::size_t>(v)];
-      if (r == unused) continue;
-      const std::uint32_t part = partOfRoot[r];
+      const std::uint32_t part = label[static_cast<std::size_t>(v)];
+      if (part == unused) continue;
       const Vec3f& p = m.points[static_cast<std::size_t>(v)];
       if (part != runPart)
       {
@@ -264,9 +292,26 @@ const std::vector<std::array<float, 6>>& MeshToSdfPrepared::Impl::partBounds()
   auto box = std::make_unique<std::vector<std::array<float, 6>>>(parts);
   for (std::size_t i = 0; i < parts; ++i)
     for (int k = 0; k < 6; ++k) (*box)[i][k] = bound[6 * i + k].load(std::memory_order_relaxed);
-  trace("the mesh's connected parts (first call with something inside)", now() - t0);
+  trace("the bounds of the mesh's connected parts (first call with something inside)", now() - t0);
   this->Parts = std::move(box);
   return *this->Parts;
+}
+
+const SolidBoundary& MeshToSdfPrepared::Impl::solidBoundary()
+{
+  std::call_once(this->SolidOnce, [this]() {
+    const MeshParts& p = this->parts();
+    std::shared_ptr<const Bvh> tree;
+    {
+      std::lock_guard<std::mutex> lock(this->Lock);
+      this->meshBvhLocked();
+      tree = this->bvh;
+    }
+    const double t0 = now();
+    this->Solid = std::make_unique<SolidBoundary>(checkSolidBoundary(this->mesh, *tree, p));
+    trace(this->Solid->solid ? "solid check: the mesh bounds a solid" : "solid check: not a solid's boundary", now() - t0);
+  });
+  return *this->Solid;
 }
 
 const detail::meshtosdf_cuda::DeviceMesh& MeshToSdfPrepared::Impl::deviceMesh(

@@ -19,7 +19,8 @@
 //                   normals in the mesh, the vertex normals interpolated at c);
 //   PseudoNormal  - the angle-weighted pseudo-normal of the closest feature
 //                   (Baerentzen & Aanaes 2005): right on closed, consistently
-//                   oriented meshes;
+//                   oriented meshes; on a mesh proven to bound a solid it is
+//                   the winding sign, and is computed so (solidsByWinding);
 //   WindingNumber - inside iff |w| >= 0.5 for the generalized winding number
 //                   w (Jacobson, Kavan, Sorkine-Hornung 2013), computed
 //                   exactly (up to double rounding) by signed ray crossings
@@ -127,6 +128,14 @@ struct MeshToSdfOptions
   /// sign pass comes after. false: every voxel queried (tests and benchmarks
   /// compare the two).
   bool farBlocks = true;
+  /// PseudoNormal only: a mesh that bounds a solid (closed, a 2-manifold
+  /// consistently oriented, not self-intersecting, winding number 0 or 1
+  /// everywhere; checked once per prepared mesh, conservatively) takes the
+  /// winding-number path, whose sign is the pseudo-normal sign there
+  /// (Baerentzen & Aanaes 2005) and which needs exact distances only in the
+  /// band (MeshToSdfStats::signByWinding; docs/MESH_TO_SDF.md, "Pseudo-normal
+  /// signs of solids"). false: the pseudo-normal path always (tests compare).
+  bool solidsByWinding = true;
   /// Print the host phases' times (preparation, search structures, upload) to
   /// stderr as they finish: for benchmarks (bench_mesh_to_sdf --trace).
   bool tracePhases = false;
@@ -146,6 +155,7 @@ struct MeshToSdfStats
   std::int64_t keysVerified = 0;       // cudaVerifyKeys: voxels whose GPU key was checked
   std::int64_t keyMismatches = 0;      // cudaVerifyKeys: GPU keys != host encode (must be 0)
   std::int64_t farVoxels = 0;          // voxels filled by far blocks (MeshToSdfOptions::farBlocks)
+  bool signByWinding = false;          // PseudoNormal on a solid's boundary: signs by the winding path (solidsByWinding)
   std::int64_t svfFlips = 0;           // signs changed by the sign voxel filters
   double svfSeconds = 0;
   /// When the result cannot be what the user expects, one sentence each

@@ -1,0 +1,248 @@
+// The solid check (MeshToSdfSolid.h) and the PseudoNormal sign of solids by
+// the winding path: which meshes are proven to bound a solid, which are not
+// (each condition broken on its own), and that the field of a solid is the
+// pseudo-normal path's, voxel for voxel, on the CPU and on CUDA.
+#include "MeshToSdfFarCases.h"
+#include "MeshToSdfOracle.h"
+#include "../src/MeshToSdfInternal.h"
+#include "../src/MeshToSdfSolid.h"
+#include "lvdif/Cuda.h"
+#include "lvdif/MeshToSdf.h"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+#include <string>
+#include <utility>
+#include <vector>
+
+using namespace lvdif;
+
+namespace
+{
+/// A cube of n x n quads per side (flat sides: many coplanar neighbours and
+/// coplanar triangles two or more apart), outward.
+TriangleMesh gridCube(int n, float lo, float hi)
+{
+  TriangleMesh m;
+  const float s = (hi - lo) / static_cast<float>(n);
+  // the six sides as (axis of the normal, direction), points welded by position
+  for (int axis = 0; axis < 3; ++axis)
+    for (int dir = 0; dir < 2; ++dir)
+    {
+      const int u = (axis + 1) % 3, v = (axis + 2) % 3;
+      const auto base = static_cast<std::uint32_t>(m.points.size());
+      for (int j = 0; j <= n; ++j)
+        for (int i = 0; i <= n; ++i)
+        {
+          Vec3f p{};
+          p[axis] = dir ? hi : lo;
+          p[u] = lo + s * static_cast<float>(i);
+          p[v] = lo + s * static_cast<float>(j);
+          if (i == n) p[u] = hi;
+          if (j == n) p[v] = hi;
+          m.points.push_back(p);
+        }
+      auto id = [&](int i, int j) { return base + static_cast<std::uint32_t>(j * (n + 1) + i); };
+      for (int j = 0; j < n; ++j)
+        for (int i = 0; i < n; ++i)
+        {
+          // (u, v, axis) is right-handed: u x v = +axis, so counter-clockwise
+          // in (u, v) faces +axis; the low side turns around
+          std::array<std::uint32_t, 3> a{ id(i, j), id(i + 1, j), id(i + 1, j + 1) };
+          std::array<std::uint32_t, 3> b{ id(i, j), id(i + 1, j + 1), id(i, j + 1) };
+          if (!dir)
+          {
+            std::swap(a[1], a[2]);
+            std::swap(b[1], b[2]);
+          }
+          m.triangles.push_back(a);
+          m.triangles.push_back(b);
+        }
+    }
+  return m;
+}
+
+TriangleMesh reversed(TriangleMesh m)
+{
+  for (auto& t : m.triangles) std::swap(t[1], t[2]);
+  return m;
+}
+
+TriangleMesh tetrahedron(Vec3f a, Vec3f b, Vec3f c, Vec3f d)
+{
+  // outward whatever the order of the corners: orient each face away from the fourth point
+  TriangleMesh m;
+  m.points = { a, b, c, d };
+  const std::array<std::array<std::uint32_t, 4>, 4> faces{ { { 0, 1, 2, 3 }, { 0, 1, 3, 2 }, { 0, 2, 3, 1 }, { 1, 2, 3, 0 } } };
+  for (const auto& f : faces)
+  {
+    const oracle::P p0 = oracle::pt(m.points[f[0]]), p1 = oracle::pt(m.points[f[1]]), p2 = oracle::pt(m.points[f[2]]);
+    const oracle::P o = oracle::pt(m.points[f[3]]);
+    const double side = oracle::dot(oracle::cross(oracle::sub(p1, p0), oracle::sub(p2, p0)), oracle::sub(o, p0));
+    m.triangles.push_back(side < 0 ? std::array<std::uint32_t, 3>{ f[0], f[1], f[2] }
+                                   : std::array<std::uint32_t, 3>{ f[0], f[2], f[1] });
+  }
+  return m;
+}
+
+detail::meshtosdf::SolidBoundary solidOf(const TriangleMesh& m)
+{
+  const MeshToSdfPrepared p = prepareMeshToSdf(m, SignMode::PseudoNormal);
+  return p.impl().solidBoundary();
+}
+
+std::vector<std::pair<std::string, TriangleMesh>> solids()
+{
+  std::vector<std::pair<std::string, TriangleMesh>> s;
+  s.emplace_back("sphere", makeSphereMesh(0.05f, -0.03f, 0.02f, 1.0f, 12, 24));
+  s.emplace_back("box", makeBoxMesh({ -0.9f, -0.7f, -0.8f }, { 0.8f, 0.9f, 0.6f }));
+  s.emplace_back("cube of 8x8 quads a side", gridCube(8, -0.7f, 0.8f));
+  s.emplace_back("tetrahedron", tetrahedron({ -0.8f, -0.6f, -0.7f }, { 0.9f, -0.5f, -0.6f }, { 0.1f, 0.8f, -0.5f }, { 0.0f, 0.1f, 0.9f }));
+  s.emplace_back("two spheres apart", oracle::merge(makeSphereMesh(-0.5f, 0, 0, 0.4f, 10, 20), makeSphereMesh(0.5f, 0.05f, 0, 0.4f, 10, 20)));
+  // a hollow ball: the cavity's faces point into it
+  s.emplace_back("sphere with a cavity", oracle::merge(makeSphereMesh(0, 0, 0, 0.9f, 14, 28), reversed(makeSphereMesh(0.05f, 0, 0, 0.5f, 10, 20))));
+  // a ball inside the cavity of a hollow ball
+  s.emplace_back("ball in a cavity", oracle::merge(oracle::merge(makeSphereMesh(0, 0, 0, 0.9f, 14, 28),
+    reversed(makeSphereMesh(0, 0, 0, 0.6f, 12, 24))), makeSphereMesh(0.02f, 0, 0, 0.3f, 8, 16)));
+  return s;
+}
+} // namespace
+
+TEST(MeshToSdfSolid, SolidsAreRecognised)
+{
+  for (const auto& [name, mesh] : solids())
+  {
+    const detail::meshtosdf::SolidBoundary s = solidOf(mesh);
+    EXPECT_TRUE(s.solid) << name << ": " << s.why;
+  }
+}
+
+TEST(MeshToSdfSolid, EachBrokenConditionIsFound)
+{
+  const TriangleMesh sphere = makeSphereMesh(0.05f, -0.03f, 0.02f, 1.0f, 12, 24);
+  struct Case
+  {
+    std::string name;
+    TriangleMesh mesh;
+    std::string why; // a word of the reason
+  };
+  std::vector<Case> cases;
+  cases.push_back({ "facing inwards", reversed(sphere), "winding number in front" });
+  cases.push_back({ "nested, both facing out", oracle::merge(makeSphereMesh(0, 0, 0, 0.9f, 14, 28), makeSphereMesh(0.05f, 0, 0, 0.5f, 10, 20)),
+    "winding number in front" });
+  cases.push_back({ "two spheres overlapping", oracle::merge(makeSphereMesh(-0.3f, 0, 0, 0.5f, 10, 20), makeSphereMesh(0.3f, 0.05f, 0, 0.5f, 10, 20)),
+    "meet" });
+  {
+    // the north pole pushed through the south: its fan crosses the southern faces
+    TriangleMesh poked = sphere;
+    float top = -1e9f;
+    for (const auto& p : poked.points) top = std::max(top, p[2]);
+    for (auto& p : poked.points)
+      if (p[2] == top) p[2] = -1.5f;
+    cases.push_back({ "a pole pushed through", poked, "meet" });
+  }
+  // a second tetrahedron whose corner lies exactly on the first one's face (touching, no shared vertex)
+  cases.push_back({ "a corner touching a face",
+    oracle::merge(tetrahedron({ 0, 0, 0 }, { 1, 0, 0 }, { 0, 1, 0 }, { 0, 0, 1 }),
+      tetrahedron({ 0.25f, 0.25f, 0.0f }, { 0.2f, 0.3f, -1 }, { 0.8f, 0.1f, -1 }, { 0.1f, 0.7f, -1 })),
+    "meet" });
+  // two tetrahedra sharing one corner and nothing else: closed, but not a manifold there
+  cases.push_back({ "pinched at a vertex",
+    oracle::merge(tetrahedron({ 0, 0, 0 }, { 1, 0, 0 }, { 0, 1, 0 }, { 0, 0, 1 }),
+      tetrahedron({ 0, 0, 0 }, { -1, 0, 0 }, { 0, -1, 0 }, { 0, 0, -1 })),
+    "fans" });
+  // the same two tetrahedra turned so that the second pokes into the first through the shared corner
+  cases.push_back({ "sharing a corner, crossing",
+    oracle::merge(tetrahedron({ 0, 0, 0 }, { 1, 0, 0 }, { 0, 1, 0 }, { 0, 0, 1 }),
+      tetrahedron({ 0, 0, 0 }, { 1, 1, 0.2f }, { 1, 0.2f, 1 }, { -1, -1, -1 })),
+    "" });
+  for (const farcases::Case& c : farcases::meshes())
+    if (c.name != "closed sphere" && c.name != "closed box") cases.push_back({ c.name, c.mesh, "" });
+  for (const Case& c : cases)
+  {
+    const detail::meshtosdf::SolidBoundary s = solidOf(c.mesh);
+    EXPECT_FALSE(s.solid) << c.name;
+    if (!s.solid && !c.why.empty()) EXPECT_NE(s.why.find(c.why), std::string::npos) << c.name << ": " << s.why;
+  }
+}
+
+TEST(MeshToSdfSolid, FoldedNeighboursAndCoplanarOverlapsMeet)
+{
+  // a box whose top is pushed below its bottom: turned inside out
+  TriangleMesh dent = makeBoxMesh({ -0.5f, -0.5f, -0.5f }, { 0.5f, 0.5f, 0.5f });
+  for (auto& p : dent.points)
+    if (p[2] > 0) p[2] = -0.7f;
+  EXPECT_FALSE(solidOf(dent).solid);
+  // a thin box flattened to zero thickness: top and bottom coincide
+  TriangleMesh flat = makeBoxMesh({ -0.5f, -0.5f, -0.5f }, { 0.5f, 0.5f, 0.5f });
+  for (auto& p : flat.points) p[2] = 0.0f;
+  EXPECT_FALSE(solidOf(flat).solid); // the sides vanish, top and bottom lie on each other
+  TriangleMesh sliver = makeBoxMesh({ -0.5f, -0.5f, -0.5f }, { 0.5f, 0.5f, 0.5f });
+  for (auto& p : sliver.points) p[2] = p[2] > 0 ? 1e-13f : 0.0f; // within the allowance: counts as meeting
+  EXPECT_FALSE(solidOf(sliver).solid);
+}
+
+/// The field of a solid by the winding path equals the pseudo-normal path's:
+/// the same distances, and the same signs except on the surface itself
+/// (distance 0 up to rounding), banded and not.
+TEST(MeshToSdfSolid, SolidFieldEqualsThePseudoNormalPath)
+{
+  std::vector<Device> devices{ Device::Cpu };
+  if (cuda::available()) devices.push_back(Device::Cuda);
+  for (const auto& [name, mesh] : solids())
+    for (Device device : devices)
+      for (float band : { 3.0f, std::numeric_limits<float>::infinity() })
+      {
+        const GridGeometry g = fitGridToMesh(mesh, 37, 3);
+        std::vector<float> byWinding(static_cast<std::size_t>(g.count())), byNormals(byWinding.size());
+        MeshToSdfOptions o;
+        o.sign = SignMode::PseudoNormal;
+        o.bandWidth = band;
+        o.device = device;
+        const MeshToSdfStats a = meshToSdf(mesh, FloatGridView{ byWinding.data(), g }, o);
+        o.solidsByWinding = false;
+        const MeshToSdfStats b = meshToSdf(mesh, FloatGridView{ byNormals.data(), g }, o);
+        EXPECT_TRUE(a.signByWinding) << name;
+        EXPECT_FALSE(b.signByWinding) << name;
+        std::int64_t differ = 0, onSurface = 0, inside = 0;
+        for (std::size_t i = 0; i < byWinding.size(); ++i)
+        {
+          inside += byWinding[i] < 0;
+          if (std::memcmp(&byWinding[i], &byNormals[i], sizeof(float)) == 0) continue;
+          // a voxel on the surface (a face's plane through it, as the grid
+          // meets the boxes' sides): distance 0 up to rounding, whose sign
+          // neither path can know; the winding path takes the exact crossings'
+          if (byWinding[i] == -byNormals[i] && std::fabs(byWinding[i]) < 1e-6f)
+            ++onSurface;
+          else
+            ++differ;
+        }
+        EXPECT_EQ(differ, 0) << name << (device == Device::Cuda ? " on CUDA" : " on the CPU") << ", band " << band
+                             << " (" << onSurface << " voxels on the surface)";
+        EXPECT_GT(inside, 0) << name;
+      }
+}
+
+/// A mesh that is not a solid's boundary keeps the pseudo-normal path, and
+/// its field is unchanged by the option.
+TEST(MeshToSdfSolid, OthersKeepThePseudoNormalPath)
+{
+  for (const farcases::Case& c : farcases::meshes())
+  {
+    if (c.name == "closed sphere" || c.name == "closed box") continue;
+    const GridGeometry g = fitGridToMesh(c.mesh, 24, 3);
+    std::vector<float> on(static_cast<std::size_t>(g.count())), off(on.size());
+    MeshToSdfOptions o;
+    o.sign = SignMode::PseudoNormal;
+    o.bandWidth = 3;
+    o.device = Device::Cpu;
+    const MeshToSdfStats a = meshToSdf(c.mesh, FloatGridView{ on.data(), g }, o);
+    o.solidsByWinding = false;
+    meshToSdf(c.mesh, FloatGridView{ off.data(), g }, o);
+    EXPECT_FALSE(a.signByWinding) << c.name;
+    EXPECT_EQ(std::memcmp(on.data(), off.data(), on.size() * sizeof(float)), 0) << c.name;
+  }
+}
