@@ -568,6 +568,7 @@ TEST(MeshToSdfCuda, FarBlocksMatchCpuAndThePerVoxelPath)
         const std::string what = c.name + ", " + toString(s) + ", band " + std::to_string(band);
         MeshToSdfOptions o;
         o.sign = s;
+        o.solidsByWinding = false; // the far blocks' own path, on solids too
         o.bandWidth = band;
         o.cudaSlabBytes = static_cast<std::uint64_t>(g.dims[0] * g.dims[1]) * 4 * 13; // slabs of 13 layers
         std::vector<float> cpu(static_cast<std::size_t>(g.count())), gpu(cpu.size()), perVoxel(cpu.size());

@@ -96,6 +96,7 @@ TEST(MeshToSdfFarBlocks, SameFloatsAsPerVoxelOnEveryMeshGridAndBand)
             if (unit == DistanceUnit::World && std::string(gr.name) != "cubic") continue;
             MeshToSdfOptions o;
             o.sign = s;
+            o.solidsByWinding = false; // the far blocks' own path, on solids too
             o.bandWidth = unit == DistanceUnit::World ? band * 0.1f : band;
             o.unit = unit;
             const FarRun fast = run(prepared, gr.g, gr.box, o, true), slow = run(prepared, gr.g, gr.box, o, false);
@@ -146,6 +147,7 @@ TEST(MeshToSdfFarBlocks, PerVoxelPathEqualsBruteForce)
     {
       MeshToSdfOptions o;
       o.sign = s;
+      o.solidsByWinding = false; // the far blocks' own path, on solids too
       o.bandWidth = 1.5f;
       const FarRun fast = run(prepared, g, whole(g), o, true);
       o.accel = MeshToSdfAccel::BruteForce;
@@ -170,6 +172,7 @@ TEST(MeshToSdfFarBlocks, DictionaryVolumeSameKeys)
       DictionaryVolume a(vo), b(vo);
       MeshToSdfOptions o;
       o.sign = s;
+      o.solidsByWinding = false; // the far blocks' own path, on solids too
       o.device = Device::Cpu;
       const MeshToSdfStats st = meshToSdf(prepared, a, o);
       o.farBlocks = false;
@@ -204,6 +207,7 @@ TEST(MeshToSdfFarBlocks, WindingAndUnsignedBlocksPastTheBandSameFloats)
           {
             MeshToSdfOptions o;
             o.sign = s;
+            o.solidsByWinding = false; // the far blocks' own path, on solids too
             o.bandWidth = unit == DistanceUnit::World ? band * 0.1f : band;
             o.unit = unit;
             const FarRun fast = run(prepared, gr.g, gr.box, o, true), slow = run(prepared, gr.g, gr.box, o, false);
@@ -261,6 +265,7 @@ TEST(MeshToSdfFarBlocks, BandBricksEqualBruteForce)
         const DistanceUnit unit = band == 2.7f ? DistanceUnit::World : DistanceUnit::Voxel;
         MeshToSdfOptions o;
         o.sign = s;
+        o.solidsByWinding = false; // the far blocks' own path, on solids too
         o.unit = unit;
         o.bandWidth = unit == DistanceUnit::World ? band * 0.1f : band;
         // the candidate scan four lanes at a time, and eight where the CPU has AVX2
@@ -297,6 +302,7 @@ TEST(MeshToSdfFarBlocks, BandBricksOnACoarseGridOfADenseMeshEqualBruteForce)
   {
     MeshToSdfOptions o;
     o.sign = s;
+    o.solidsByWinding = false; // the far blocks' own path, on solids too
     o.bandWidth = 8;
     const bool avx2 = detail::meshtosdf::nearestRowUseAvx2;
     detail::meshtosdf::nearestRowUseAvx2 = false;
