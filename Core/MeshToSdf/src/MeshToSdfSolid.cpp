@@ -269,58 +269,139 @@ bool trianglesMeet(const Tri& a, const Face& fa, const Tri& b, const Face& fb, d
   return convexWithin(ta, 3, part, n, tol);
 }
 
-/// 2. No two triangles meet but as neighbours: each triangle against the
-/// tree's triangles whose boxes come within tol of its own.
-void checkEmbedded(const PreparedMesh& m, const Bvh& bvh, double tol, FirstFailure& result)
+/// 2. No two triangles meet but as neighbours: every pair of the tree's
+/// nodes whose boxes come within tol of each other, once (a node with
+/// itself, and the two children of a node), down to the leaves' triangles
+/// whose own boxes do; the top of the recursion runs as tasks.
+class EmbeddedCheck
 {
-  constexpr double AngleTol = 1e-9;
-  const auto& nodes = bvh.nodes();
-  const auto& order = bvh.order();
-  const auto nt = static_cast<std::int64_t>(m.tris.size());
-#pragma omp parallel for schedule(dynamic, 1024)
-  for (std::int64_t i = 0; i < nt; ++i)
+public:
+  EmbeddedCheck(const PreparedMesh& m, const Bvh& bvh, double tol, FirstFailure& result)
+    : M(m)
+    , Nodes(bvh.nodes())
+    , Order(bvh.order())
+    , Tol(tol)
+    , Result(result)
   {
-    if (result.failed()) continue;
-    const Tri& a = m.tris[static_cast<std::size_t>(i)];
-    double lo[3], hi[3];
+  }
+
+  void run()
+  {
+#pragma omp parallel
+#pragma omp single
+    this->self(0, 0);
+  }
+
+private:
+  static constexpr double AngleTol = 1e-9;
+  static constexpr int TaskDepth = 12; // below, a task runs its pairs itself
+
+  bool near(const double alo[3], const double ahi[3], const double blo[3], const double bhi[3]) const
+  {
+    for (int k = 0; k < 3; ++k)
+      if (alo[k] > bhi[k] + this->Tol || blo[k] > ahi[k] + this->Tol) return false;
+    return true;
+  }
+
+  void triBox(std::int32_t t, double lo[3], double hi[3]) const
+  {
+    const Tri& a = this->M.tris[static_cast<std::size_t>(t)];
     for (int k = 0; k < 3; ++k)
     {
-      lo[k] = std::min({ a.v[0][k], a.v[1][k], a.v[2][k] }) - tol;
-      hi[k] = std::max({ a.v[0][k], a.v[1][k], a.v[2][k] }) + tol;
-    }
-    std::int32_t stack[128];
-    int top = 0;
-    stack[top++] = 0;
-    while (top > 0)
-    {
-      const Bvh::Node& node = nodes[static_cast<std::size_t>(stack[--top])];
-      if (node.lo[0] > hi[0] || node.hi[0] < lo[0] || node.lo[1] > hi[1] || node.hi[1] < lo[1] ||
-        node.lo[2] > hi[2] || node.hi[2] < lo[2])
-        continue;
-      if (node.left >= 0)
-      {
-        stack[top++] = node.left;
-        stack[top++] = node.right;
-        continue;
-      }
-      for (std::int32_t k = node.first; k < node.first + node.count; ++k)
-      {
-        const std::int32_t j = order[static_cast<std::size_t>(k)];
-        if (j <= i) continue; // each pair once
-        if (trianglesMeet(a, m.welded[static_cast<std::size_t>(i)], m.tris[static_cast<std::size_t>(j)],
-              m.welded[static_cast<std::size_t>(j)], tol, AngleTol))
-        {
-          std::ostringstream why;
-          why << "triangles " << a.source << " and " << m.tris[static_cast<std::size_t>(j)].source
-              << " meet (or come within the rounding allowance) away from a shared edge or vertex";
-          result.fail(why.str());
-          top = 0;
-          break;
-        }
-      }
+      lo[k] = std::min({ a.v[0][k], a.v[1][k], a.v[2][k] });
+      hi[k] = std::max({ a.v[0][k], a.v[1][k], a.v[2][k] });
     }
   }
-}
+
+  void testPair(std::int32_t i, std::int32_t j, const double ilo[3], const double ihi[3])
+  {
+    double jlo[3], jhi[3];
+    this->triBox(j, jlo, jhi);
+    if (!this->near(ilo, ihi, jlo, jhi)) return;
+    const Tri& a = this->M.tris[static_cast<std::size_t>(i)];
+    const Tri& b = this->M.tris[static_cast<std::size_t>(j)];
+    if (!trianglesMeet(a, this->M.welded[static_cast<std::size_t>(i)], b, this->M.welded[static_cast<std::size_t>(j)],
+          this->Tol, AngleTol))
+      return;
+    std::ostringstream why;
+    why << "triangles " << std::min(a.source, b.source) << " and " << std::max(a.source, b.source)
+        << " meet (or come within the rounding allowance) away from a shared edge or vertex";
+    this->Result.fail(why.str());
+  }
+
+  void leaves(const Bvh::Node& a, const Bvh::Node& b, bool same)
+  {
+    for (std::int32_t x = a.first; x < a.first + a.count; ++x)
+    {
+      const std::int32_t i = this->Order[static_cast<std::size_t>(x)];
+      double ilo[3], ihi[3];
+      this->triBox(i, ilo, ihi);
+      for (std::int32_t y = same ? x + 1 : b.first; y < b.first + b.count; ++y)
+        this->testPair(i, this->Order[static_cast<std::size_t>(y)], ilo, ihi);
+    }
+  }
+
+  /// The pairs within node a.
+  void self(std::int32_t a, int depth)
+  {
+    if (this->Result.failed()) return;
+    const Bvh::Node& n = this->Nodes[static_cast<std::size_t>(a)];
+    if (n.left < 0)
+    {
+      this->leaves(n, n, true);
+      return;
+    }
+    if (depth < TaskDepth)
+    {
+#pragma omp task
+      this->self(n.left, depth + 1);
+#pragma omp task
+      this->self(n.right, depth + 1);
+#pragma omp task
+      this->pair(n.left, n.right, depth + 1);
+#pragma omp taskwait
+      return;
+    }
+    this->self(n.left, depth + 1);
+    this->self(n.right, depth + 1);
+    this->pair(n.left, n.right, depth + 1);
+  }
+
+  /// The pairs between nodes a and b (disjoint sets of triangles).
+  void pair(std::int32_t a, std::int32_t b, int depth)
+  {
+    if (this->Result.failed()) return;
+    const Bvh::Node& na = this->Nodes[static_cast<std::size_t>(a)];
+    const Bvh::Node& nb = this->Nodes[static_cast<std::size_t>(b)];
+    if (!this->near(na.lo, na.hi, nb.lo, nb.hi)) return;
+    if (na.left < 0 && nb.left < 0)
+    {
+      this->leaves(na, nb, false);
+      return;
+    }
+    // split the node with more triangles (a leaf is never split)
+    const bool splitA = nb.left < 0 || (na.left >= 0 && na.count >= nb.count);
+    const Bvh::Node& s = splitA ? na : nb;
+    const std::int32_t other = splitA ? b : a;
+    if (depth < TaskDepth)
+    {
+#pragma omp task
+      this->pair(s.left, other, depth + 1);
+#pragma omp task
+      this->pair(s.right, other, depth + 1);
+#pragma omp taskwait
+      return;
+    }
+    this->pair(s.left, other, depth + 1);
+    this->pair(s.right, other, depth + 1);
+  }
+
+  const PreparedMesh& M;
+  const LargeVector<Bvh::Node>& Nodes;
+  const LargeVector<std::int32_t>& Order;
+  double Tol;
+  FirstFailure& Result;
+};
 
 /// 3. The winding number just in front of each part (and just behind it)
 /// by the signed crossings of a ray: 0 in front, 1 behind. The point is
@@ -394,16 +475,25 @@ SolidBoundary checkSolidBoundary(const PreparedMesh& mesh, const Bvh& bvh, const
     return r;
   }
   FirstFailure result;
+  double t0 = now();
   checkFans(mesh, result);
+  trace("solid check: edges and fans", now() - t0);
   if (!result.failed())
   {
+    t0 = now();
     // lengths within this of meeting count as meeting: far above the rounding
     // of the planes' distances, far below any triangle a mesh resolves
     double extent = 0;
     for (int a = 0; a < 3; ++a) extent = std::max(extent, mesh.hi[a] - mesh.lo[a]);
-    checkEmbedded(mesh, bvh, 1e-9 * extent, result);
+    EmbeddedCheck(mesh, bvh, 1e-9 * extent, result).run();
+    trace("solid check: no triangles meet", now() - t0);
   }
-  if (!result.failed()) checkFronts(mesh, bvh, parts, result);
+  if (!result.failed())
+  {
+    t0 = now();
+    checkFronts(mesh, bvh, parts, result);
+    trace("solid check: winding numbers in front of the parts", now() - t0);
+  }
   r.solid = !result.failed();
   r.why = result.why();
   return r;

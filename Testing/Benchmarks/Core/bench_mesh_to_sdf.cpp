@@ -6,7 +6,8 @@
 // A run may carry @SIGN (normal, pseudonormal, winding, unsigned: that run's
 // sign mode instead of SIGN), @pervoxel (MeshToSdfOptions::farBlocks off) and
 // @pageable (CUDA into a volume: the chunk keys come back through pageable
-// memory, as when pinned memory is refused), e.g.
+// memory, as when pinned memory is refused), @normalspath (PseudoNormal on a
+// solid by its own path: MeshToSdfOptions::solidsByWinding off), e.g.
 // prepared@winding,prepared@pseudonormal,prepared@pseudonormal@pervoxel:
 // sign modes and paths compared in one process.
 // DAMAGE: a seeded variant of the mesh made in memory before timing (any of
@@ -130,7 +131,7 @@ static int benchMain(int argc, char** argv)
   const MeshToSdfOptions base = o;
   for (const std::string& spec : runs)
   {
-    // RUN[@SIGN][@pervoxel]
+    // RUN[@SIGN][@pervoxel][@pageable][@normalspath]
     const std::string run = spec.substr(0, spec.find('@'));
     o = base;
     bool pageable = false;
@@ -140,6 +141,8 @@ static int benchMain(int argc, char** argv)
       const std::string tag = spec.substr(at + 1, next == std::string::npos ? std::string::npos : next - at - 1);
       if (tag == "pervoxel")
         o.farBlocks = false;
+      else if (tag == "normalspath")
+        o.solidsByWinding = false;
       else if (tag == "pageable")
         pageable = true;
       else
