@@ -272,7 +272,7 @@ bool trianglesMeet(const Tri& a, const Face& fa, const Tri& b, const Face& fb, d
 /// 2. No two triangles meet but as neighbours: every pair of the tree's
 /// nodes whose boxes come within tol of each other, once (a node with
 /// itself, and the two children of a node), down to the leaves' triangles
-/// whose own boxes do; the top of the recursion runs as tasks.
+/// whose own boxes do.
 class EmbeddedCheck
 {
 public:
@@ -287,14 +287,55 @@ public:
 
   void run()
   {
-#pragma omp parallel
-#pragma omp single
-    this->self(0, 0);
+    // the recursion's top levels on one thread, listing the node pairs it
+    // reaches at SplitDepth; those (a few per thread and more) on all threads
+    std::vector<Work> work;
+    this->expand({ 0, 0, true }, 0, work);
+    const auto n = static_cast<std::int64_t>(work.size());
+#pragma omp parallel for schedule(dynamic, 1)
+    for (std::int64_t w = 0; w < n; ++w)
+    {
+      const Work& x = work[static_cast<std::size_t>(w)];
+      if (x.same)
+        this->self(x.a);
+      else
+        this->pair(x.a, x.b);
+    }
   }
 
 private:
   static constexpr double AngleTol = 1e-9;
-  static constexpr int TaskDepth = 12; // below, a task runs its pairs itself
+  static constexpr int SplitDepth = 9; // about 2^9 node pairs and their neighbours to share out
+
+  struct Work
+  {
+    std::int32_t a, b;
+    bool same; // the pairs within node a (b == a)
+  };
+
+  void expand(Work w, int depth, std::vector<Work>& out) const
+  {
+    const Bvh::Node& na = this->Nodes[static_cast<std::size_t>(w.a)];
+    const Bvh::Node& nb = this->Nodes[static_cast<std::size_t>(w.b)];
+    if (!w.same && !this->near(na.lo, na.hi, nb.lo, nb.hi)) return;
+    if (depth >= SplitDepth || (na.left < 0 && nb.left < 0))
+    {
+      out.push_back(w);
+      return;
+    }
+    if (w.same)
+    {
+      this->expand({ na.left, na.left, true }, depth + 1, out);
+      this->expand({ na.right, na.right, true }, depth + 1, out);
+      this->expand({ na.left, na.right, false }, depth + 1, out);
+      return;
+    }
+    const bool splitA = nb.left < 0 || (na.left >= 0 && na.count >= nb.count);
+    const Bvh::Node& split = splitA ? na : nb;
+    const std::int32_t other = splitA ? w.b : w.a;
+    this->expand({ split.left, other, false }, depth + 1, out);
+    this->expand({ split.right, other, false }, depth + 1, out);
+  }
 
   bool near(const double alo[3], const double ahi[3], const double blo[3], const double bhi[3]) const
   {
@@ -342,7 +383,7 @@ private:
   }
 
   /// The pairs within node a.
-  void self(std::int32_t a, int depth)
+  void self(std::int32_t a)
   {
     if (this->Result.failed()) return;
     const Bvh::Node& n = this->Nodes[static_cast<std::size_t>(a)];
@@ -351,24 +392,13 @@ private:
       this->leaves(n, n, true);
       return;
     }
-    if (depth < TaskDepth)
-    {
-#pragma omp task
-      this->self(n.left, depth + 1);
-#pragma omp task
-      this->self(n.right, depth + 1);
-#pragma omp task
-      this->pair(n.left, n.right, depth + 1);
-#pragma omp taskwait
-      return;
-    }
-    this->self(n.left, depth + 1);
-    this->self(n.right, depth + 1);
-    this->pair(n.left, n.right, depth + 1);
+    this->self(n.left);
+    this->self(n.right);
+    this->pair(n.left, n.right);
   }
 
   /// The pairs between nodes a and b (disjoint sets of triangles).
-  void pair(std::int32_t a, std::int32_t b, int depth)
+  void pair(std::int32_t a, std::int32_t b)
   {
     if (this->Result.failed()) return;
     const Bvh::Node& na = this->Nodes[static_cast<std::size_t>(a)];
@@ -381,19 +411,10 @@ private:
     }
     // split the node with more triangles (a leaf is never split)
     const bool splitA = nb.left < 0 || (na.left >= 0 && na.count >= nb.count);
-    const Bvh::Node& s = splitA ? na : nb;
+    const Bvh::Node& split = splitA ? na : nb;
     const std::int32_t other = splitA ? b : a;
-    if (depth < TaskDepth)
-    {
-#pragma omp task
-      this->pair(s.left, other, depth + 1);
-#pragma omp task
-      this->pair(s.right, other, depth + 1);
-#pragma omp taskwait
-      return;
-    }
-    this->pair(s.left, other, depth + 1);
-    this->pair(s.right, other, depth + 1);
+    this->pair(split.left, other);
+    this->pair(split.right, other);
   }
 
   const PreparedMesh& M;
