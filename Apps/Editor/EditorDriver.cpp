@@ -55,6 +55,9 @@ int EditorDriver::runBatch()
     ok = this->typeKeys(o.keysAfter) && ok;
   for (int i = 0; i < o.undo; ++i)
     this->Window.undo();
+  // an error reported by what a key or the drag did (Ctrl+S onto a file that
+  // cannot be written, a brush that failed) fails the run too: it exited 0
+  ok = ok && this->Window.errorCount() == 0;
   if (!ok)
   {
     // as in the command line: after a failure nothing is written, so a script
@@ -71,7 +74,7 @@ int EditorDriver::runBatch()
     ok = this->Window.saveVolume(o.save) && ok;
   if (!o.exportMesh.isEmpty())
     ok = this->Window.exportMesh(o.exportMesh) && ok;
-  return ok ? 0 : 1;
+  return ok && this->Window.errorCount() == 0 ? 0 : 1;
 }
 
 void EditorDriver::showAllMeshes()

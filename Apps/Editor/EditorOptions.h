@@ -31,6 +31,7 @@ struct EditorOptions
   QString keys, keysAfter;    // --keys / --keys-after: key presses before / after the drag ("G ] Ctrl+Z")
   bool dragCtrl = false, dragShift = false; // --drag-modifiers ctrl,shift
   QString saveAsAnswer;       // --save-as-answer FILE: what the Save As dialog answers (tests)
+  QString recoveryAnswer;     // --recovery-answer yes|no|discard: what the recovery question answers (tests)
   double radius = 4.0;        // --radius voxels
   QString color;              // --color #rrggbb
   int width = 900, height = 700; // --size WxH of the window
@@ -51,5 +52,12 @@ struct EditorOptions
   bool batch() const { return this->quit || !this->screenshot.isEmpty() || !this->windowShot.isEmpty() || !this->save.isEmpty() || !this->exportMesh.isEmpty(); }
 };
 
-/// Parses the arguments (exits with a message on bad ones).
+/// The command line without Qt's own options (-platform, -display, -style,
+/// -geometry, ...), which the QApplication takes: the editor's options are
+/// checked before it starts, so a bad one is refused with status 2 even
+/// without a display.
+QStringList editorArguments(int argc, char* argv[]);
+
+/// Parses the arguments in one pass: --help prints the options and exits 0, a
+/// bad option is one line on stderr and exit status 2. Needs no QApplication.
 EditorOptions parseEditorOptions(const QStringList& arguments);

@@ -615,12 +615,12 @@ bool MainWindow::newCanvas(int nx, int ny, int nz, VolumeDocument::Fill fill)
   return true;
 }
 
-bool MainWindow::openVolume(const QString& path)
+bool MainWindow::openVolume(const QString& path, bool untitled)
 {
   try
   {
     this->Chunks->RemoveAllChunks();
-    this->Doc.open(path);
+    this->Doc.open(path, untitled);
   }
   catch (const std::exception& e)
   {
@@ -628,7 +628,8 @@ bool MainWindow::openVolume(const QString& path)
     return false;
   }
   this->volumeReplaced();
-  this->addRecentFile(path);
+  if (!untitled)
+    this->addRecentFile(path);
   return true;
 }
 
@@ -755,6 +756,24 @@ bool MainWindow::runScript(const QString& path)
     this->showError("Cannot read " + path, e);
     return false;
   }
+  // A recording by its first line, whatever its name: one saved without the
+  // extension (the Save recording dialog adds none) was run as a script and
+  // failed with "unknown command 'LVDIF'".
+  {
+    std::size_t at = 0;
+    while (at < source.size())
+    {
+      const std::size_t end = std::min(source.find('\n', at), source.size());
+      const std::size_t first = source.find_first_not_of(" \t\r", at);
+      if (first < end && source[first] != '#')
+      {
+        if (source.compare(first, 15, "LVDIF-RECORDING") == 0)
+          return this->playRecording(path);
+        break;
+      }
+      at = end + 1;
+    }
+  }
   const int before = this->Doc.hasVolume() ? this->Doc.generation() : -1;
   try
   {
@@ -822,6 +841,7 @@ void MainWindow::updateTitle()
 
 void MainWindow::showError(const QString& what, const std::exception& e)
 {
+  ++this->Errors;
   const QString text = what + ": " + QString::fromLocal8Bit(e.what());
   if (this->Options.batch())
     std::fprintf(stderr, "lvdif-editor: %s\n", text.toLocal8Bit().constData());

@@ -13,23 +13,9 @@
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
-#include <string>
 
 namespace
 {
-/// --help needs no window: it is answered before the QApplication, which
-/// cannot start without a display.
-bool asksForHelp(int argc, char* argv[])
-{
-  for (int i = 1; i < argc; ++i)
-  {
-    const std::string a = argv[i];
-    if (a == "-h" || a == "--help" || a == "-?" || a == "--help-all")
-      return true;
-  }
-  return false;
-}
-
 /// Installed while the QApplication starts: without a usable display Qt's
 /// platform plugin printed three lines of its own and aborted (status 134);
 /// the editor says it once and exits with 1.
@@ -53,12 +39,13 @@ void refuseWithoutDisplay(QtMsgType type, const QMessageLogContext& context, con
 
 int main(int argc, char* argv[])
 {
-  if (asksForHelp(argc, argv))
-  {
-    QCoreApplication help(argc, argv);
-    QCoreApplication::setApplicationName("lvdif-editor");
-    parseEditorOptions(help.arguments()); // prints the help and exits
-  }
+  // Every option is checked before the QApplication, which cannot start
+  // without a display: --help is answered and a bad option refused (status 2)
+  // without one; Qt's own options (-platform, -display, ...) are left to it.
+  // The environment's locale first, as the QApplication sets it: the
+  // arguments' file names are decoded in its encoding.
+  std::setlocale(LC_ALL, "");
+  const EditorOptions options = parseEditorOptions(editorArguments(argc, argv));
   // Before the QApplication (build-notes 2d).
   QSurfaceFormat::setDefaultFormat(QVTKOpenGLNativeWidget::defaultFormat());
   const QtMessageHandler qtMessages = qInstallMessageHandler(refuseWithoutDisplay);
@@ -71,7 +58,6 @@ int main(int argc, char* argv[])
   std::setlocale(LC_NUMERIC, "C");
   QApplication::setApplicationName("lvdif-editor");
   QApplication::setOrganizationName("LVDIF");
-  const EditorOptions options = parseEditorOptions(app.arguments());
 
   QElapsedTimer sinceWindow;
   sinceWindow.start();
@@ -81,7 +67,7 @@ int main(int argc, char* argv[])
   window.show();
   bool loaded = false;
   const bool benchmark = !options.benchmarkStroke.isEmpty();
-  if (!options.batch() && !benchmark)
+  if ((!options.batch() || !options.recoveryAnswer.isEmpty()) && !benchmark)
     loaded = window.offerRecovery();
   if (!loaded)
   {
