@@ -137,7 +137,9 @@ EditorOptions parseEditorOptions(const QStringList& arguments)
   const QCommandLineOption meshReorient("mesh-reorient",
     "--open-mesh with the winding sign: re-orient the faces consistently (the CLI's --reorient).");
   const QCommandLineOption create("new", "New canvas of N^3 or NXxNYxNZ voxels (without --open or --open-mesh: 128^3).", "size");
-  const QCommandLineOption fill("fill", "Fill of a new canvas: empty, full or sphere (default sphere).", "fill", "sphere");
+  const QCommandLineOption fill("fill",
+    "Fill of a new canvas: empty, full or sphere (default sphere; with a --script, empty, as the start canvas of "
+    "`lvdif script`; a recording keeps sphere).", "fill", "sphere");
   const QCommandLineOption script("script", "Run a script (.lvs) or play a recording (.lvr) after loading.", "file");
   const QCommandLineOption drag("replay-drag", "Synthetic left-drag through display points 'x,y;x,y;...' (or / between points).", "points");
   const QCommandLineOption undo("undo", "Undo N steps after the drag (default 0).", "n", "0");
@@ -259,6 +261,7 @@ EditorOptions parseEditorOptions(const QStringList& arguments)
       fail("--new " + p.value(create) + ": " + QString::fromStdString(tooThin));
   }
   o.fill = p.value(fill);
+  o.fillGiven = p.isSet(fill);
   if (o.fill != "empty" && o.fill != "full" && o.fill != "sphere")
     fail("--fill must be empty, full or sphere");
   o.script = p.value(script);

@@ -16,6 +16,7 @@ struct EditorOptions
   bool meshReorient = false;  // --mesh-reorient (winding sign: the faces re-oriented consistently)
   std::array<int, 3> newDims{ 0, 0, 0 }; // --new N or NXxNYxNZ
   QString fill = "sphere";    // --fill empty|full|sphere
+  bool fillGiven = false;     // --fill given (without it a --script, not a recording, starts from an empty canvas)
   QString script;             // --script FILE (a recording to play)
   QVector<QPointF> drag;      // --replay-drag "x,y;x,y;..." (display pixels, origin bottom-left; or fractions of the view if all in [0,1])
   int undo = 0;               // --undo N after the drag

@@ -742,9 +742,46 @@ bool MainWindow::playRecording(const QString& path)
   return true;
 }
 
+namespace
+{
+bool hasRecordingExtension(const QString& path)
+{
+  const QString suffix = QFileInfo(path).suffix().toLower();
+  return suffix == "lvr" || suffix == "lvrec";
+}
+} // namespace
+
+bool isRecordingText(const std::string& source)
+{
+  std::size_t at = 0;
+  while (at < source.size())
+  {
+    const std::size_t end = std::min(source.find('\n', at), source.size());
+    const std::size_t first = source.find_first_not_of(" \t\r", at);
+    if (first < end && source[first] != '#')
+      return source.compare(first, 15, "LVDIF-RECORDING") == 0;
+    at = end + 1;
+  }
+  return false;
+}
+
+bool isScriptFile(const QString& path)
+{
+  if (hasRecordingExtension(path))
+    return false;
+  try
+  {
+    return !isRecordingText(lvdif::readScriptFile(path.toLocal8Bit().toStdString()));
+  }
+  catch (const std::exception&)
+  {
+    return true; // runScript reports why it cannot be read
+  }
+}
+
 bool MainWindow::runScript(const QString& path)
 {
-  if (QFileInfo(path).suffix().toLower() == "lvr" || QFileInfo(path).suffix().toLower() == "lvrec")
+  if (hasRecordingExtension(path))
     return this->playRecording(path);
   std::string source;
   try
@@ -759,21 +796,8 @@ bool MainWindow::runScript(const QString& path)
   // A recording by its first line, whatever its name: one saved without the
   // extension (the Save recording dialog adds none) was run as a script and
   // failed with "unknown command 'LVDIF'".
-  {
-    std::size_t at = 0;
-    while (at < source.size())
-    {
-      const std::size_t end = std::min(source.find('\n', at), source.size());
-      const std::size_t first = source.find_first_not_of(" \t\r", at);
-      if (first < end && source[first] != '#')
-      {
-        if (source.compare(first, 15, "LVDIF-RECORDING") == 0)
-          return this->playRecording(path);
-        break;
-      }
-      at = end + 1;
-    }
-  }
+  if (isRecordingText(source))
+    return this->playRecording(path);
   const int before = this->Doc.hasVolume() ? this->Doc.generation() : -1;
   try
   {

@@ -69,6 +69,12 @@ struct StrokeProfile
   int settleTimeouts = 0; // frames whose settle wait ended before the worker was idle
 };
 
+/// Whether a text is a recording (its first line that is no comment is
+/// LVDIF-RECORDING), and whether a file --script / Run script gets is a script
+/// to run (false: a recording to play, by extension or first line).
+bool isRecordingText(const std::string& source);
+bool isScriptFile(const QString& path);
+
 class MainWindow : public QMainWindow
 {
   Q_OBJECT

@@ -85,9 +85,15 @@ int main(int argc, char* argv[])
     {
       const auto& d = options.newDims;
       const int nx = d[0] > 0 ? d[0] : 128, ny = d[1] > 0 ? d[1] : 128, nz = d[2] > 0 ? d[2] : 128;
-      const VolumeDocument::Fill fill = options.fill == "empty"
+      // A script starts from an empty canvas unless --fill says otherwise, as
+      // `lvdif script` does (and Run script with no volume): the same script
+      // gave another model in the editor, the starter sphere in it. A
+      // recording keeps the editor's start canvas, on which it was recorded.
+      const QString fillName =
+        options.fillGiven || options.script.isEmpty() || !isScriptFile(options.script) ? options.fill : "empty";
+      const VolumeDocument::Fill fill = fillName == "empty"
         ? VolumeDocument::Fill::Empty
-        : (options.fill == "full" ? VolumeDocument::Fill::Full : VolumeDocument::Fill::Sphere);
+        : (fillName == "full" ? VolumeDocument::Fill::Full : VolumeDocument::Fill::Sphere);
       loaded = window.newCanvas(nx, ny, nz, fill);
     }
   }

@@ -21,6 +21,8 @@
 //   --volume V.vti      V is a readable 64^3 volume with sdf and rgba (e.g. what
 //                       Ctrl+Shift+S saved).
 //   --script-shape V.vti  V is sphere.lvs's result: the analytic sphere minus the cube.
+//   --script-on-empty V.vti  V is sphere-on-empty.lvs run on the 64^3 start
+//                       canvas: its one sphere and nothing else (no starter sphere).
 //   --mesh M.ply        the exported mesh has triangles inside the volume.
 //   --write-cone-obj F.obj  writes a cone with its apex up (+y) for the upright test.
 //   --write-matcap-png F.png  writes a 64 x 64 matcap ramp (red = u, green = v,
@@ -364,6 +366,15 @@ int main(int argc, char* argv[])
       CutZ = 40;
       CutH = 6;
       checkSphere(argv[++i], false, 48, false);
+    }
+    else if (!std::strcmp(argv[i], "--script-on-empty") && i + 1 < argc)
+    {
+      // sphere-on-empty.lvs: sphere (20,40,24) r 10 on the empty 64^3 canvas
+      Cx = 20;
+      Cy = 40;
+      Cz = 24;
+      R = 10;
+      checkSphere(argv[++i], false, 64, false);
     }
     else if (!std::strcmp(argv[i], "--added") && i + 1 < argc)
       checkSphere(argv[++i], true);
