@@ -61,8 +61,9 @@ int EditorDriver::runBatch()
   if (!ok)
   {
     // as in the command line: after a failure nothing is written, so a script
-    // that fails midway never replaces the --save file with its half-done model
-    std::fprintf(stderr, "lvdif-editor: an earlier step failed: no output written\n");
+    // that fails midway never replaces the --save file with its half-done model;
+    // the failed step said why, once (a second line, "an earlier step failed:
+    // no output written", followed every such message)
     return 1;
   }
   this->waitForSurface();
