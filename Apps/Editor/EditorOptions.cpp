@@ -158,6 +158,7 @@ EditorOptions parseEditorOptions(const QStringList& arguments)
   const QCommandLineOption keysAfter("keys-after", "Key presses after the drag (tests).", "keys");
   const QCommandLineOption dragMods("drag-modifiers", "Keys held during --replay-drag: ctrl, shift or ctrl,shift.", "keys");
   const QCommandLineOption saveAsAnswer("save-as-answer", "The file the Save As dialog answers (tests).", "file");
+  const QCommandLineOption openAnswer("open-answer", "The file an Open dialog answers (tests).", "file");
   const QCommandLineOption recoveryAnswer("recovery-answer",
     "What the question to recover an autosaved volume answers: yes, no or discard; asked in a batch run too (tests).",
     "answer");
@@ -196,7 +197,7 @@ EditorOptions parseEditorOptions(const QStringList& arguments)
   // What a user reaches for first; the options for tests and comparisons last.
   p.addOptions({ open, openMesh, meshRes, meshSign, meshReorient, create, fill, script, save, exp, shot, windowShot,
     op, shape, kind, radius, color, strength, falloff, mirror, size, samples, perVertex, matcap, autosave, noRecovery,
-    recoveryDir, quit, drag, dragShot, undo, dragMods, keys, keysAfter, saveAsAnswer, recoveryAnswer, benchmark, timing, fullRedraw,
+    recoveryDir, quit, drag, dragShot, undo, dragMods, keys, keysAfter, saveAsAnswer, openAnswer, recoveryAnswer, benchmark, timing, fullRedraw,
     drawRanges, multisampledDrag, stockBackground, widgetView });
   // an unknown option or a missing value: one line and status 2, as every
   // other refused option (Qt's process() exits with 1)
@@ -310,6 +311,7 @@ EditorOptions parseEditorOptions(const QStringList& arguments)
       fail("--drag-modifiers expects ctrl and/or shift, got '" + m + "'");
   }
   o.saveAsAnswer = p.value(saveAsAnswer);
+  o.openAnswer = p.value(openAnswer);
   o.recoveryAnswer = p.value(recoveryAnswer).toLower();
   if (p.isSet(recoveryAnswer) && !QStringList{ "yes", "no", "discard" }.contains(o.recoveryAnswer))
     fail("--recovery-answer expects yes, no or discard, got '" + p.value(recoveryAnswer) + "'");

@@ -32,6 +32,7 @@ struct EditorOptions
   QString keys, keysAfter;    // --keys / --keys-after: key presses before / after the drag ("G ] Ctrl+Z")
   bool dragCtrl = false, dragShift = false; // --drag-modifiers ctrl,shift
   QString saveAsAnswer;       // --save-as-answer FILE: what the Save As dialog answers (tests)
+  QString openAnswer;         // --open-answer FILE: what an Open file dialog answers (tests)
   QString recoveryAnswer;     // --recovery-answer yes|no|discard: what the recovery question answers (tests)
   double radius = 4.0;        // --radius voxels
   QString color;              // --color #rrggbb

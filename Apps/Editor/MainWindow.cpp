@@ -317,6 +317,9 @@ void MainWindow::buildMenus()
   edit->addAction("&Undo", this, &MainWindow::undo, QKeySequence(Qt::CTRL | Qt::Key_Z));
   edit->addAction("&Redo", this, &MainWindow::redo, QKeySequence(Qt::CTRL | Qt::SHIFT | Qt::Key_Z));
   edit->addAction("Redo (alternative)", this, &MainWindow::redo, QKeySequence(Qt::CTRL | Qt::Key_Y));
+  edit->addSeparator();
+  edit->addAction("Record / stop recording", this, [this] { this->Tools->toggleRecording(); },
+    QKeySequence(Qt::CTRL | Qt::Key_R));
 
   QMenu* view = this->menuBar()->addMenu("&View");
   QAction* tetra = view->addAction("&Tetrahedral colour interpolation");
@@ -599,6 +602,7 @@ void MainWindow::resetView()
 
 bool MainWindow::newCanvas(int nx, int ny, int nz, VolumeDocument::Fill fill)
 {
+  this->finishRecording();
   try
   {
     this->Chunks->RemoveAllChunks();
@@ -617,6 +621,7 @@ bool MainWindow::newCanvas(int nx, int ny, int nz, VolumeDocument::Fill fill)
 
 bool MainWindow::openVolume(const QString& path, bool untitled)
 {
+  this->finishRecording();
   try
   {
     this->Chunks->RemoveAllChunks();
@@ -651,6 +656,7 @@ bool MainWindow::openMesh(const QString& path, const MeshImportSettings& setting
     else
       QMessageBox::warning(this, "Open mesh", warning);
   }
+  this->finishRecording();
   try
   {
     this->Chunks->RemoveAllChunks();
@@ -710,10 +716,17 @@ void MainWindow::toggleRecording(bool on)
     return;
   }
   this->Tools->setRecording(false);
+  // a volume that replaced the recorded one (a script's `canvas N`) ended the
+  // recording: Stop threw "not recording" out of the button's slot and the
+  // editor aborted, with the unsaved volume
+  if (!this->Doc.session().recording())
+    return;
   const lvdif::Recording r = this->Doc.stopRecording();
-  const QString path = QFileDialog::getSaveFileName(this, "Save recording", QString(), "Recordings (*.lvr)");
+  QString path = QFileDialog::getSaveFileName(this, "Save recording", QString(), "Recordings (*.lvr)");
   if (path.isEmpty())
     return;
+  if (QFileInfo(path).suffix().isEmpty())
+    path += ".lvr"; // as Save as adds .lvdv
   try
   {
     lvdif::saveRecording(path.toStdString(), r);
@@ -820,8 +833,18 @@ bool MainWindow::runScript(const QString& path)
   return true;
 }
 
+void MainWindow::finishRecording()
+{
+  // A new volume is a new edit session: the recording of the old one ended
+  // with it, unsaved, and the Stop button then aborted the editor. Stopped
+  // first, it is saved as Stop saves it.
+  if (this->Doc.hasVolume() && this->Doc.session().recording())
+    this->toggleRecording(false);
+}
+
 void MainWindow::volumeReplaced()
 {
+  this->Tools->setRecording(this->Doc.session().recording()); // a script's `canvas N` ended it
   this->Chunks->RemoveAllChunks();
   const auto& o = this->Doc.volume().options();
   this->Chunks->SetOrigin(o.origin[0], o.origin[1], o.origin[2]);

@@ -209,6 +209,9 @@ private:
   void screenshotDialog();
   void scriptDialog();
   void toggleRecording(bool on);
+  /// Before another volume replaces this one: a recording in progress is
+  /// stopped and saved as Stop does (the new session would end it unsaved).
+  void finishRecording();
   void showError(const QString& what, const std::exception& e);
 
   EditorOptions Options;

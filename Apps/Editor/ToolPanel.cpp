@@ -236,6 +236,11 @@ void ToolPanel::setRecording(bool on)
   this->RecordButton->setText(on ? "Stop" : "Record");
 }
 
+void ToolPanel::toggleRecording()
+{
+  this->RecordButton->toggle(); // toggled: recordToggled
+}
+
 void ToolPanel::pickColor()
 {
   const QColor c = QColorDialog::getColor(this->State.color, this, "Brush colour", QColorDialog::ShowAlphaChannel);

@@ -45,6 +45,8 @@ public:
   void setRadius(double voxels); // from the wheel: updates the slider quietly
   void setState(const BrushState& s);
   void setRecording(bool on);
+  /// Presses the Record / Stop button (Edit > Record, Ctrl+R).
+  void toggleRecording();
   /// Selects a tool (lvdif::BrushOp) and says so.
   void setOp(int op);
 
