@@ -5,6 +5,7 @@
 
 #include <QApplication>
 #include <QElapsedTimer>
+#include <QOpenGLContext>
 #include <QSurfaceFormat>
 #include <QTimer>
 #include <QVTKOpenGLNativeWidget.h>
@@ -51,6 +52,23 @@ int main(int argc, char* argv[])
   const QtMessageHandler qtMessages = qInstallMessageHandler(refuseWithoutDisplay);
   QApplication app(argc, argv);
   qInstallMessageHandler(qtMessages);
+  {
+    // A platform without OpenGL (-platform offscreen, QT_QPA_PLATFORM=minimal):
+    // the view's first frame crashed the editor (segmentation fault).
+    QOpenGLContext gl;
+    // the plugin's own complaint ("does not support createPlatformOpenGLContext!"): the line below says it
+    const QtMessageHandler before = qInstallMessageHandler([](QtMsgType, const QMessageLogContext&, const QString&) {});
+    const bool haveGl = gl.create();
+    qInstallMessageHandler(before);
+    if (!haveGl)
+    {
+      std::fprintf(stderr,
+        "lvdif-editor: cannot draw the view: Qt's platform '%s' gives no OpenGL context; run it on a desktop, or "
+        "headless as xvfb-run -a lvdif-editor ...\n",
+        QGuiApplication::platformName().toLocal8Bit().constData());
+      return 1;
+    }
+  }
   // QApplication takes the C library's locale from the environment; under a
   // comma-decimal one (de_DE) strtod read a mesh's or script's "0.5" as 0 or
   // refused it, and printf wrote recordings with "0,5". Numbers in files are C

@@ -47,3 +47,11 @@ foreach (case "--radius;abc|--radius expects a number, got 'abc'"
     message(FATAL_ERROR "without a display '${case}' should be refused with status 2 and '${expect}' alone")
   endif ()
 endforeach ()
+# Qt's offscreen platform has no OpenGL for the view: one line and status 1 (the
+# first frame crashed the editor, status 139).
+execute_process(COMMAND "${EDITOR}" -platform offscreen --new 16 --no-recovery --autosave 0 --quit
+  RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
+message("-platform offscreen: status ${rc}\n${out}${err}")
+if (NOT rc EQUAL 1 OR NOT "${err}" MATCHES "lvdif-editor: cannot (draw the view|open a window)")
+  message(FATAL_ERROR "-platform offscreen should be refused with status 1 and one line")
+endif ()
