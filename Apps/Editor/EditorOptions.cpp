@@ -359,6 +359,18 @@ EditorOptions parseEditorOptions(const QStringList& arguments)
     fail("--fill fills a new canvas (--new): not with --open or --open-mesh");
   if ((p.isSet(meshRes) || p.isSet(meshSign) || p.isSet(meshReorient)) && !p.isSet(openMesh))
     fail("--mesh-resolution, --mesh-sign and --mesh-reorient are options of --open-mesh, which is not given");
+  // without a drag they did nothing: --screenshot-during-drag wrote no picture
+  // (and, being no batch output, left the window open for good)
+  if ((p.isSet(dragShot) || p.isSet(dragMods)) && !p.isSet(drag))
+    fail("--screenshot-during-drag and --drag-modifiers are options of --replay-drag, which is not given");
+  // the benchmark replays its stroke and quits: the command line's other work
+  // was silently skipped (--benchmark-stroke S --save out.lvdv saved nothing)
+  if (p.isSet(benchmark))
+    for (const QCommandLineOption* work : { &script, &matcap, &keys, &drag, &keysAfter, &undo, &shot, &windowShot,
+           &save, &exp, &quit })
+      if (p.isSet(*work))
+        fail("--benchmark-stroke replays its stroke, prints the latency and quits: not with --" + work->names().first() +
+          " (it was skipped)");
   checkOutput("save", o.save, &volumeKind);
   checkOutput("export", o.exportMesh, &meshKind);
   checkOutput("screenshot", o.screenshot, nullptr);
