@@ -151,8 +151,10 @@ EditorOptions parseEditorOptions(const QStringList& arguments)
   const QCommandLineOption exp("export", "Export the mesh (" + extensions(meshKind, true) + ") and quit.", "file");
   const QCommandLineOption op("op",
     "Tool: add, subtract, paint, smooth, inflate, grab, flatten, crease, pinch (default add).", "op", "add");
-  const QCommandLineOption strength("strength", "Brush strength in (0, 1] (default: the tool's).", "s");
-  const QCommandLineOption falloff("falloff", "Brush falloff: constant, linear, smooth, sharp (default: the tool's).", "curve");
+  const QCommandLineOption strength("strength",
+    "Brush strength in (0, 1], of every tool (default: each tool's own).", "s");
+  const QCommandLineOption falloff("falloff",
+    "Brush falloff: constant, linear, smooth, sharp, of every tool (default: each tool's own).", "curve");
   const QCommandLineOption mirror("mirror", "Symmetry: the mirrored axes, e.g. x or xz.", "axes");
   const QCommandLineOption keys("keys", "Key presses before the drag, e.g. \"G ] Ctrl+Z\" (RightBracket/LeftBracket name ] and [) (tests).", "keys");
   const QCommandLineOption keysAfter("keys-after", "Key presses after the drag (tests).", "keys");

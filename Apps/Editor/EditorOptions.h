@@ -26,8 +26,8 @@ struct EditorOptions
   QString save;               // --save FILE.vti
   QString exportMesh;         // --export FILE.ply|obj|stl
   QString op = "add", shape = "sphere", kind = "basic"; // --op (a tool name) --shape --brush
-  double strength = -1;       // --strength (0, 1]; < 0: the tool's default
-  int falloff = -1;           // --falloff constant|linear|smooth|sharp; < 0: the tool's default
+  double strength = -1;       // --strength (0, 1] of every tool; < 0: each tool's own
+  int falloff = -1;           // --falloff constant|linear|smooth|sharp of every tool; < 0: each tool's own
   QString mirror;             // --mirror: letters of the mirrored axes, e.g. "x" or "xz"
   QString keys, keysAfter;    // --keys / --keys-after: key presses before / after the drag ("G ] Ctrl+Z")
   bool dragCtrl = false, dragShift = false; // --drag-modifiers ctrl,shift

@@ -161,13 +161,12 @@ MainWindow::MainWindow(const EditorOptions& options)
   s.radius = options.radius;
   if (!options.color.isEmpty())
     s.color = QColor(options.color);
-  if (options.strength > 0)
-    s.strength = options.strength;
-  if (options.falloff >= 0)
-    s.falloff = options.falloff;
   for (int a = 0; a < 3; ++a)
     s.mirror[a] = options.mirror.contains(QChar("xyz"[a]));
   this->Tools->setState(s);
+  // --strength and --falloff are the brush's, whatever tool is picked: they set
+  // only the --op tool's, so `--keys M --strength 1` smoothed at Smooth's own 0.5
+  this->Tools->setEveryTool(options.strength, options.falloff);
   auto* dock = new QDockWidget("Brush", this);
   dock->setObjectName("BrushDock");
   dock->setWidget(this->Tools);

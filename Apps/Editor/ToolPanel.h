@@ -49,6 +49,9 @@ public:
   void toggleRecording();
   /// Selects a tool (lvdif::BrushOp) and says so.
   void setOp(int op);
+  /// Every tool's strength (if > 0) and falloff (if >= 0), as the command
+  /// line gives them: the tool shown now and those picked later.
+  void setEveryTool(double strength, int falloff);
 
 Q_SIGNALS:
   void changed();
