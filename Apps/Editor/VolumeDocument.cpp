@@ -11,6 +11,9 @@
 #include "vtkOutputWindow.h"
 #include "vtkSmartPointer.h"
 
+#include <cmath>
+#include <iostream>
+
 namespace
 {
 /// VTK's error text goes nowhere while it lives (its warnings still reach
@@ -41,9 +44,6 @@ struct QuietVtkErrors
   }
 };
 } // namespace
-
-#include <cmath>
-#include <iostream>
 
 VolumeDocument::VolumeDocument() = default;
 
