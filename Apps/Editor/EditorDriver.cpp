@@ -37,8 +37,8 @@ int EditorDriver::runBatch()
   const EditorOptions& o = this->Options;
   bool ok = true;
   this->waitForLayout(); // a native view draws (and so gives screenshots) only once its window is exposed
-  if (!o.saveAsAnswer.isEmpty())
-    this->answerSaveDialogs(o.saveAsAnswer);
+  if (!o.saveAsAnswer.isEmpty() || !o.openAnswer.isEmpty())
+    this->answerSaveDialogs(o.saveAsAnswer, o.openAnswer);
   // a script first: it sets the scene the keys and the drag then work on
   if (!o.script.isEmpty())
     ok = this->Window.runScript(o.script) && ok;
@@ -55,11 +55,15 @@ int EditorDriver::runBatch()
     ok = this->typeKeys(o.keysAfter) && ok;
   for (int i = 0; i < o.undo; ++i)
     this->Window.undo();
+  // an error reported by what a key or the drag did (Ctrl+S onto a file that
+  // cannot be written, a brush that failed) fails the run too: it exited 0
+  ok = ok && this->Window.errorCount() == 0;
   if (!ok)
   {
     // as in the command line: after a failure nothing is written, so a script
-    // that fails midway never replaces the --save file with its half-done model
-    std::fprintf(stderr, "lvdif-editor: an earlier step failed: no output written\n");
+    // that fails midway never replaces the --save file with its half-done model;
+    // the failed step said why, once (a second line, "an earlier step failed:
+    // no output written", followed every such message)
     return 1;
   }
   this->waitForSurface();
@@ -71,7 +75,7 @@ int EditorDriver::runBatch()
     ok = this->Window.saveVolume(o.save) && ok;
   if (!o.exportMesh.isEmpty())
     ok = this->Window.exportMesh(o.exportMesh) && ok;
-  return ok ? 0 : 1;
+  return ok && this->Window.errorCount() == 0 ? 0 : 1;
 }
 
 void EditorDriver::showAllMeshes()
@@ -227,9 +231,9 @@ bool EditorDriver::typeKeys(const QString& keys)
 #endif
 }
 
-void EditorDriver::answerSaveDialogs(const QString& path)
+void EditorDriver::answerSaveDialogs(const QString& path, const QString& openPath)
 {
-  if (this->SaveAnswer.isEmpty())
+  if (this->SaveAnswer.isEmpty() && this->OpenAnswer.isEmpty())
   {
     // A file dialog runs its own event loop (exec): a timer of ours still fires in it.
     auto* timer = new QTimer(this);
@@ -237,6 +241,7 @@ void EditorDriver::answerSaveDialogs(const QString& path)
     timer->start(10);
   }
   this->SaveAnswer = path;
+  this->OpenAnswer = openPath;
 }
 
 void EditorDriver::answerShownSaveDialog()
@@ -244,7 +249,18 @@ void EditorDriver::answerShownSaveDialog()
   for (QWidget* w : QApplication::topLevelWidgets())
   {
     auto* dialog = qobject_cast<QFileDialog*>(w);
-    if (!dialog || !dialog->isVisible() || dialog->acceptMode() != QFileDialog::AcceptSave)
+    if (!dialog || !dialog->isVisible())
+      continue;
+    if (dialog->acceptMode() == QFileDialog::AcceptOpen)
+    {
+      if (!this->OpenAnswer.isEmpty())
+      {
+        dialog->selectFile(QFileInfo(this->OpenAnswer).absoluteFilePath());
+        static_cast<QDialog*>(dialog)->accept();
+      }
+      continue;
+    }
+    if (this->SaveAnswer.isEmpty())
       continue;
     // a test's file may be there from an earlier run: no overwrite question
     dialog->setOption(QFileDialog::DontConfirmOverwrite);

@@ -54,8 +54,9 @@ public:
   /// was missing at build time.
   bool typeKeys(const QString& keys);
 
-  /// From now on, a Save file dialog that opens is answered with `path`.
-  void answerSaveDialogs(const QString& path);
+  /// From now on, a Save file dialog that opens is answered with `path`, an
+  /// Open file dialog with `openPath` (if not empty).
+  void answerSaveDialogs(const QString& path, const QString& openPath = QString());
 
   /// --benchmark-stroke: once the surface is shown, replays the samples of
   /// `path` through the brush input (StrokeBenchmark.h), prints the latency and
@@ -68,5 +69,5 @@ private:
   MainWindow& Window;
   const EditorOptions& Options;
   QElapsedTimer SinceWindow;
-  QString SaveAnswer;
+  QString SaveAnswer, OpenAnswer;
 };

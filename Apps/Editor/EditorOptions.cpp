@@ -7,6 +7,7 @@
 #include "lvdif/Error.h"
 
 #include <QColor>
+#include <QCoreApplication>
 #include <QCommandLineParser>
 #include <QPointF>
 #include <QRegularExpression>
@@ -36,15 +37,24 @@ int integerOption(const QString& text, const QString& name, qint64 lo, qint64 hi
   return static_cast<int>(v);
 }
 
-/// A real number option: the whole text a finite number (QString::toDouble
-/// gave 0 for "abc", so "--radius abc" said "must be positive"); the range is
-/// the caller's rule.
-double numberOption(const QString& text, const QString& name)
+/// The one guard of the editor's real number options: the whole text a finite
+/// number (QString::toDouble gave 0 for "abc", so "--radius abc" said "must be
+/// positive"), then in (0, hi] by the one rule of every edit input
+/// (lvdif::checkedPositive; --strength had a check of its own in other words).
+double positiveOption(const QString& text, const QString& name, double hi)
 {
   bool ok = false;
   const double v = text.trimmed().toDouble(&ok);
   if (!ok || !std::isfinite(v))
     fail(name + " expects a number, got '" + text + "'");
+  try
+  {
+    lvdif::checkedPositive(v, hi, name.toStdString());
+  }
+  catch (const lvdif::Error& e)
+  {
+    fail(e.what());
+  }
   return v;
 }
 
@@ -68,13 +78,14 @@ void checkOutput(const char* option, const QString& path, const LVDIFFiles::Kind
   if (path.isEmpty())
     return;
   const std::string p = path.toStdString();
-  const LVDIFFiles::Format* f = kind ? LVDIFFiles::Find(p, *kind) : nullptr;
-  if (kind ? !f || f->writerClass.empty() : LVDIFFiles::Extension(p) != "png")
-    fail(QString("--%1 %2: not a format it writes (%3)")
-           .arg(option, path,
-             kind ? QString::fromStdString(LVDIFFiles::DialogFilter(*kind, true)) : QString("a .png picture")));
   try
   {
+    // the registry's words, as the CLI's (a Qt dialog filter, "Volumes (*.lvdv
+    // ...);;LVDIF ...", was the list)
+    if (kind)
+      LVDIFFiles::RequireFormat(p, *kind, true);
+    else if (LVDIFFiles::Extension(p) != "png")
+      throw lvdif::Error(lvdif::ErrorCode::InvalidArgument, "a picture must be a .png file, not " + p);
     LVDIFFiles::RequireWritable(p);
   }
   catch (const lvdif::Error& e)
@@ -83,6 +94,35 @@ void checkOutput(const char* option, const QString& path, const LVDIFFiles::Kind
   }
 }
 } // namespace
+
+QStringList editorArguments(int argc, char* argv[])
+{
+  // Qt's own options (QGuiApplication, the xcb platform, QApplication), which
+  // the QApplication takes out of argv: with a value, or a flag. Qt reads
+  // them with one dash or two.
+  static const QStringList valued{ "platform", "platformpluginpath", "platformtheme", "plugin", "qwindowgeometry",
+    "geometry", "qwindowtitle", "title", "qwindowicon", "icon", "session", "display", "name", "visual", "style",
+    "stylesheet", "qmljsdebugger" };
+  static const QStringList flags{ "reverse", "testability", "sync", "nograb", "dograb", "widgetcount" };
+  QStringList arguments;
+  for (int i = 0; i < argc; ++i)
+  {
+    const QString a = QString::fromLocal8Bit(argv[i]);
+    if (i == 0 || !a.startsWith('-') || a == "-" || a == "--")
+    {
+      arguments << a;
+      continue;
+    }
+    QString name = a.mid(a.startsWith("--") ? 2 : 1);
+    if (name.contains('='))
+      name = name.left(name.indexOf('=')); // -style=fusion
+    if (valued.contains(name) && !a.contains('='))
+      ++i; // its value too
+    else if (!valued.contains(name) && !flags.contains(name))
+      arguments << a;
+  }
+  return arguments;
+}
 
 EditorOptions parseEditorOptions(const QStringList& arguments)
 {
@@ -97,7 +137,9 @@ EditorOptions parseEditorOptions(const QStringList& arguments)
   const QCommandLineOption meshReorient("mesh-reorient",
     "--open-mesh with the winding sign: re-orient the faces consistently (the CLI's --reorient).");
   const QCommandLineOption create("new", "New canvas of N^3 or NXxNYxNZ voxels (without --open or --open-mesh: 128^3).", "size");
-  const QCommandLineOption fill("fill", "Fill of a new canvas: empty, full or sphere (default sphere).", "fill", "sphere");
+  const QCommandLineOption fill("fill",
+    "Fill of a new canvas: empty, full or sphere (default sphere; with a --script, empty, as the start canvas of "
+    "`lvdif script`; a recording keeps sphere).", "fill", "sphere");
   const QCommandLineOption script("script", "Run a script (.lvs) or play a recording (.lvr) after loading.", "file");
   const QCommandLineOption drag("replay-drag", "Synthetic left-drag through display points 'x,y;x,y;...' (or / between points).", "points");
   const QCommandLineOption undo("undo", "Undo N steps after the drag (default 0).", "n", "0");
@@ -109,13 +151,19 @@ EditorOptions parseEditorOptions(const QStringList& arguments)
   const QCommandLineOption exp("export", "Export the mesh (" + extensions(meshKind, true) + ") and quit.", "file");
   const QCommandLineOption op("op",
     "Tool: add, subtract, paint, smooth, inflate, grab, flatten, crease, pinch (default add).", "op", "add");
-  const QCommandLineOption strength("strength", "Brush strength in (0, 1] (default: the tool's).", "s");
-  const QCommandLineOption falloff("falloff", "Brush falloff: constant, linear, smooth, sharp (default: the tool's).", "curve");
+  const QCommandLineOption strength("strength",
+    "Brush strength in (0, 1], of every tool (default: each tool's own).", "s");
+  const QCommandLineOption falloff("falloff",
+    "Brush falloff: constant, linear, smooth, sharp, of every tool (default: each tool's own).", "curve");
   const QCommandLineOption mirror("mirror", "Symmetry: the mirrored axes, e.g. x or xz.", "axes");
   const QCommandLineOption keys("keys", "Key presses before the drag, e.g. \"G ] Ctrl+Z\" (RightBracket/LeftBracket name ] and [) (tests).", "keys");
   const QCommandLineOption keysAfter("keys-after", "Key presses after the drag (tests).", "keys");
   const QCommandLineOption dragMods("drag-modifiers", "Keys held during --replay-drag: ctrl, shift or ctrl,shift.", "keys");
   const QCommandLineOption saveAsAnswer("save-as-answer", "The file the Save As dialog answers (tests).", "file");
+  const QCommandLineOption openAnswer("open-answer", "The file an Open dialog answers (tests).", "file");
+  const QCommandLineOption recoveryAnswer("recovery-answer",
+    "What the question to recover an autosaved volume answers: yes, no or discard; asked in a batch run too (tests).",
+    "answer");
   const QCommandLineOption shape("shape", "Brush shape: sphere or cube (default sphere).", "shape", "sphere");
   const QCommandLineOption kind("brush", "Brush kind: basic, dynamic or drill (default basic).", "kind", "basic");
   const QCommandLineOption radius("radius", "Brush radius in voxels, in (0, 1e7] (default 4).", "r", "4");
@@ -151,13 +199,27 @@ EditorOptions parseEditorOptions(const QStringList& arguments)
   // What a user reaches for first; the options for tests and comparisons last.
   p.addOptions({ open, openMesh, meshRes, meshSign, meshReorient, create, fill, script, save, exp, shot, windowShot,
     op, shape, kind, radius, color, strength, falloff, mirror, size, samples, perVertex, matcap, autosave, noRecovery,
-    recoveryDir, quit, drag, dragShot, undo, dragMods, keys, keysAfter, saveAsAnswer, benchmark, timing, fullRedraw,
+    recoveryDir, quit, drag, dragShot, undo, dragMods, keys, keysAfter, saveAsAnswer, openAnswer, recoveryAnswer, benchmark, timing, fullRedraw,
     drawRanges, multisampledDrag, stockBackground, widgetView });
   // an unknown option or a missing value: one line and status 2, as every
   // other refused option (Qt's process() exits with 1)
   if (!p.parse(arguments))
     fail(p.errorText());
-  p.process(arguments); // --help, --help-all
+  if (p.isSet("help") || p.isSet("help-all"))
+  {
+    // the help's usage line names the program through the application
+    // object: a QCoreApplication, which needs no display
+    int argc = 1;
+    QByteArray program = arguments.value(0, "lvdif-editor").toLocal8Bit();
+    char* argv[] = { program.data(), nullptr };
+    QCoreApplication app(argc, argv);
+    QCoreApplication::setApplicationName("lvdif-editor");
+    p.process(arguments); // prints the help and exits 0
+  }
+  // `lvdif-editor model.lvdv` opened a 128^3 sphere canvas and ignored the file
+  if (!p.positionalArguments().isEmpty())
+    fail("unexpected argument '" + p.positionalArguments().first() +
+      "': the editor takes options only (a volume: --open FILE, a mesh: --open-mesh FILE, a script: --script FILE)");
   // as the CLI: an option given twice is refused (Qt's parser silently took the last)
   const QStringList given = p.optionNames();
   for (const QString& name : given)
@@ -202,6 +264,7 @@ EditorOptions parseEditorOptions(const QStringList& arguments)
       fail("--new " + p.value(create) + ": " + QString::fromStdString(tooThin));
   }
   o.fill = p.value(fill);
+  o.fillGiven = p.isSet(fill);
   if (o.fill != "empty" && o.fill != "full" && o.fill != "sphere")
     fail("--fill must be empty, full or sphere");
   o.script = p.value(script);
@@ -227,12 +290,7 @@ EditorOptions parseEditorOptions(const QStringList& arguments)
   if (!QStringList{ "add", "subtract", "paint", "smooth", "inflate", "grab", "flatten", "crease", "pinch" }.contains(o.op))
     fail("--op expects add, subtract, paint, smooth, inflate, grab, flatten, crease or pinch, got '" + o.op + "'");
   if (p.isSet(strength))
-  {
-    bool ok = false;
-    o.strength = p.value(strength).trimmed().toDouble(&ok);
-    if (!ok || !(o.strength > 0 && o.strength <= 1))
-      fail("--strength expects a number in (0, 1], got '" + p.value(strength) + "'");
-  }
+    o.strength = positiveOption(p.value(strength), "--strength", 1);
   const QStringList curves{ "constant", "linear", "smooth", "sharp" };
   if (p.isSet(falloff))
   {
@@ -255,22 +313,20 @@ EditorOptions parseEditorOptions(const QStringList& arguments)
       fail("--drag-modifiers expects ctrl and/or shift, got '" + m + "'");
   }
   o.saveAsAnswer = p.value(saveAsAnswer);
+  o.openAnswer = p.value(openAnswer);
+  o.recoveryAnswer = p.value(recoveryAnswer).toLower();
+  if (p.isSet(recoveryAnswer) && !QStringList{ "yes", "no", "discard" }.contains(o.recoveryAnswer))
+    fail("--recovery-answer expects yes, no or discard, got '" + p.value(recoveryAnswer) + "'");
+  if (p.isSet(recoveryAnswer) && p.isSet(noRecovery))
+    fail("--recovery-answer answers the offer to recover, which --no-recovery turns off: use one of them");
   o.shape = p.value(shape).toLower();
   if (o.shape != "sphere" && o.shape != "cube")
     fail("--shape expects sphere or cube, got '" + p.value(shape) + "'");
   o.kind = p.value(kind).toLower();
   if (o.kind != "basic" && o.kind != "dynamic" && o.kind != "drill")
     fail("--brush expects basic, dynamic or drill, got '" + p.value(kind) + "'");
-  o.radius = numberOption(p.value(radius), "--radius");
-  try
-  {
-    // the one radius rule of every edit input (scripts, recordings, the API)
-    lvdif::checkedPositive(o.radius, lvdif::EditLimits::MaxSize, "--radius");
-  }
-  catch (const lvdif::Error& e)
-  {
-    fail(e.what());
-  }
+  // the one radius rule of every edit input (scripts, recordings, the API)
+  o.radius = positiveOption(p.value(radius), "--radius", lvdif::EditLimits::MaxSize);
   o.color = p.value(color);
   if (p.isSet(color) && !QColor(o.color).isValid())
     fail("--color expects #rrggbb or a colour name, got '" + o.color + "'");
@@ -305,6 +361,18 @@ EditorOptions parseEditorOptions(const QStringList& arguments)
     fail("--fill fills a new canvas (--new): not with --open or --open-mesh");
   if ((p.isSet(meshRes) || p.isSet(meshSign) || p.isSet(meshReorient)) && !p.isSet(openMesh))
     fail("--mesh-resolution, --mesh-sign and --mesh-reorient are options of --open-mesh, which is not given");
+  // without a drag they did nothing: --screenshot-during-drag wrote no picture
+  // (and, being no batch output, left the window open for good)
+  if ((p.isSet(dragShot) || p.isSet(dragMods)) && !p.isSet(drag))
+    fail("--screenshot-during-drag and --drag-modifiers are options of --replay-drag, which is not given");
+  // the benchmark replays its stroke and quits: the command line's other work
+  // was silently skipped (--benchmark-stroke S --save out.lvdv saved nothing)
+  if (p.isSet(benchmark))
+    for (const QCommandLineOption* work : { &script, &matcap, &keys, &drag, &keysAfter, &undo, &shot, &windowShot,
+           &save, &exp, &quit })
+      if (p.isSet(*work))
+        fail("--benchmark-stroke replays its stroke, prints the latency and quits: not with --" + work->names().first() +
+          " (it was skipped)");
   checkOutput("save", o.save, &volumeKind);
   checkOutput("export", o.exportMesh, &meshKind);
   checkOutput("screenshot", o.screenshot, nullptr);

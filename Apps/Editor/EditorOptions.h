@@ -16,6 +16,7 @@ struct EditorOptions
   bool meshReorient = false;  // --mesh-reorient (winding sign: the faces re-oriented consistently)
   std::array<int, 3> newDims{ 0, 0, 0 }; // --new N or NXxNYxNZ
   QString fill = "sphere";    // --fill empty|full|sphere
+  bool fillGiven = false;     // --fill given (without it a --script, not a recording, starts from an empty canvas)
   QString script;             // --script FILE (a recording to play)
   QVector<QPointF> drag;      // --replay-drag "x,y;x,y;..." (display pixels, origin bottom-left; or fractions of the view if all in [0,1])
   int undo = 0;               // --undo N after the drag
@@ -25,12 +26,14 @@ struct EditorOptions
   QString save;               // --save FILE.vti
   QString exportMesh;         // --export FILE.ply|obj|stl
   QString op = "add", shape = "sphere", kind = "basic"; // --op (a tool name) --shape --brush
-  double strength = -1;       // --strength (0, 1]; < 0: the tool's default
-  int falloff = -1;           // --falloff constant|linear|smooth|sharp; < 0: the tool's default
+  double strength = -1;       // --strength (0, 1] of every tool; < 0: each tool's own
+  int falloff = -1;           // --falloff constant|linear|smooth|sharp of every tool; < 0: each tool's own
   QString mirror;             // --mirror: letters of the mirrored axes, e.g. "x" or "xz"
   QString keys, keysAfter;    // --keys / --keys-after: key presses before / after the drag ("G ] Ctrl+Z")
   bool dragCtrl = false, dragShift = false; // --drag-modifiers ctrl,shift
   QString saveAsAnswer;       // --save-as-answer FILE: what the Save As dialog answers (tests)
+  QString openAnswer;         // --open-answer FILE: what an Open file dialog answers (tests)
+  QString recoveryAnswer;     // --recovery-answer yes|no|discard: what the recovery question answers (tests)
   double radius = 4.0;        // --radius voxels
   QString color;              // --color #rrggbb
   int width = 900, height = 700; // --size WxH of the window
@@ -51,5 +54,12 @@ struct EditorOptions
   bool batch() const { return this->quit || !this->screenshot.isEmpty() || !this->windowShot.isEmpty() || !this->save.isEmpty() || !this->exportMesh.isEmpty(); }
 };
 
-/// Parses the arguments (exits with a message on bad ones).
+/// The command line without Qt's own options (-platform, -display, -style,
+/// -geometry, ...), which the QApplication takes: the editor's options are
+/// checked before it starts, so a bad one is refused with status 2 even
+/// without a display.
+QStringList editorArguments(int argc, char* argv[]);
+
+/// Parses the arguments in one pass: --help prints the options and exits 0, a
+/// bad option is one line on stderr and exit status 2. Needs no QApplication.
 EditorOptions parseEditorOptions(const QStringList& arguments);

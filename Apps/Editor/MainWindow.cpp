@@ -161,13 +161,12 @@ MainWindow::MainWindow(const EditorOptions& options)
   s.radius = options.radius;
   if (!options.color.isEmpty())
     s.color = QColor(options.color);
-  if (options.strength > 0)
-    s.strength = options.strength;
-  if (options.falloff >= 0)
-    s.falloff = options.falloff;
   for (int a = 0; a < 3; ++a)
     s.mirror[a] = options.mirror.contains(QChar("xyz"[a]));
   this->Tools->setState(s);
+  // --strength and --falloff are the brush's, whatever tool is picked: they set
+  // only the --op tool's, so `--keys M --strength 1` smoothed at Smooth's own 0.5
+  this->Tools->setEveryTool(options.strength, options.falloff);
   auto* dock = new QDockWidget("Brush", this);
   dock->setObjectName("BrushDock");
   dock->setWidget(this->Tools);
@@ -317,6 +316,9 @@ void MainWindow::buildMenus()
   edit->addAction("&Undo", this, &MainWindow::undo, QKeySequence(Qt::CTRL | Qt::Key_Z));
   edit->addAction("&Redo", this, &MainWindow::redo, QKeySequence(Qt::CTRL | Qt::SHIFT | Qt::Key_Z));
   edit->addAction("Redo (alternative)", this, &MainWindow::redo, QKeySequence(Qt::CTRL | Qt::Key_Y));
+  edit->addSeparator();
+  edit->addAction("Record / stop recording", this, [this] { this->Tools->toggleRecording(); },
+    QKeySequence(Qt::CTRL | Qt::Key_R));
 
   QMenu* view = this->menuBar()->addMenu("&View");
   QAction* tetra = view->addAction("&Tetrahedral colour interpolation");
@@ -599,6 +601,7 @@ void MainWindow::resetView()
 
 bool MainWindow::newCanvas(int nx, int ny, int nz, VolumeDocument::Fill fill)
 {
+  this->finishRecording();
   try
   {
     this->Chunks->RemoveAllChunks();
@@ -615,12 +618,13 @@ bool MainWindow::newCanvas(int nx, int ny, int nz, VolumeDocument::Fill fill)
   return true;
 }
 
-bool MainWindow::openVolume(const QString& path)
+bool MainWindow::openVolume(const QString& path, bool untitled)
 {
+  this->finishRecording();
   try
   {
     this->Chunks->RemoveAllChunks();
-    this->Doc.open(path);
+    this->Doc.open(path, untitled);
   }
   catch (const std::exception& e)
   {
@@ -628,7 +632,8 @@ bool MainWindow::openVolume(const QString& path)
     return false;
   }
   this->volumeReplaced();
-  this->addRecentFile(path);
+  if (!untitled)
+    this->addRecentFile(path);
   return true;
 }
 
@@ -650,6 +655,7 @@ bool MainWindow::openMesh(const QString& path, const MeshImportSettings& setting
     else
       QMessageBox::warning(this, "Open mesh", warning);
   }
+  this->finishRecording();
   try
   {
     this->Chunks->RemoveAllChunks();
@@ -709,10 +715,17 @@ void MainWindow::toggleRecording(bool on)
     return;
   }
   this->Tools->setRecording(false);
+  // a volume that replaced the recorded one (a script's `canvas N`) ended the
+  // recording: Stop threw "not recording" out of the button's slot and the
+  // editor aborted, with the unsaved volume
+  if (!this->Doc.session().recording())
+    return;
   const lvdif::Recording r = this->Doc.stopRecording();
-  const QString path = QFileDialog::getSaveFileName(this, "Save recording", QString(), "Recordings (*.lvr)");
+  QString path = QFileDialog::getSaveFileName(this, "Save recording", QString(), "Recordings (*.lvr)");
   if (path.isEmpty())
     return;
+  if (QFileInfo(path).suffix().isEmpty())
+    path += ".lvr"; // as Save as adds .lvdv
   try
   {
     lvdif::saveRecording(path.toStdString(), r);
@@ -741,9 +754,46 @@ bool MainWindow::playRecording(const QString& path)
   return true;
 }
 
+namespace
+{
+bool hasRecordingExtension(const QString& path)
+{
+  const QString suffix = QFileInfo(path).suffix().toLower();
+  return suffix == "lvr" || suffix == "lvrec";
+}
+} // namespace
+
+bool isRecordingText(const std::string& source)
+{
+  std::size_t at = 0;
+  while (at < source.size())
+  {
+    const std::size_t end = std::min(source.find('\n', at), source.size());
+    const std::size_t first = source.find_first_not_of(" \t\r", at);
+    if (first < end && source[first] != '#')
+      return source.compare(first, 15, "LVDIF-RECORDING") == 0;
+    at = end + 1;
+  }
+  return false;
+}
+
+bool isScriptFile(const QString& path)
+{
+  if (hasRecordingExtension(path))
+    return false;
+  try
+  {
+    return !isRecordingText(lvdif::readScriptFile(path.toLocal8Bit().toStdString()));
+  }
+  catch (const std::exception&)
+  {
+    return true; // runScript reports why it cannot be read
+  }
+}
+
 bool MainWindow::runScript(const QString& path)
 {
-  if (QFileInfo(path).suffix().toLower() == "lvr" || QFileInfo(path).suffix().toLower() == "lvrec")
+  if (hasRecordingExtension(path))
     return this->playRecording(path);
   std::string source;
   try
@@ -755,6 +805,11 @@ bool MainWindow::runScript(const QString& path)
     this->showError("Cannot read " + path, e);
     return false;
   }
+  // A recording by its first line, whatever its name: one saved without the
+  // extension (the Save recording dialog adds none) was run as a script and
+  // failed with "unknown command 'LVDIF'".
+  if (isRecordingText(source))
+    return this->playRecording(path);
   const int before = this->Doc.hasVolume() ? this->Doc.generation() : -1;
   try
   {
@@ -777,8 +832,18 @@ bool MainWindow::runScript(const QString& path)
   return true;
 }
 
+void MainWindow::finishRecording()
+{
+  // A new volume is a new edit session: the recording of the old one ended
+  // with it, unsaved, and the Stop button then aborted the editor. Stopped
+  // first, it is saved as Stop saves it.
+  if (this->Doc.hasVolume() && this->Doc.session().recording())
+    this->toggleRecording(false);
+}
+
 void MainWindow::volumeReplaced()
 {
+  this->Tools->setRecording(this->Doc.session().recording()); // a script's `canvas N` ended it
   this->Chunks->RemoveAllChunks();
   const auto& o = this->Doc.volume().options();
   this->Chunks->SetOrigin(o.origin[0], o.origin[1], o.origin[2]);
@@ -822,6 +887,7 @@ void MainWindow::updateTitle()
 
 void MainWindow::showError(const QString& what, const std::exception& e)
 {
+  ++this->Errors;
   const QString text = what + ": " + QString::fromLocal8Bit(e.what());
   if (this->Options.batch())
     std::fprintf(stderr, "lvdif-editor: %s\n", text.toLocal8Bit().constData());

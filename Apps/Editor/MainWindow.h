@@ -69,6 +69,12 @@ struct StrokeProfile
   int settleTimeouts = 0; // frames whose settle wait ended before the worker was idle
 };
 
+/// Whether a text is a recording (its first line that is no comment is
+/// LVDIF-RECORDING), and whether a file --script / Run script gets is a script
+/// to run (false: a recording to play, by extension or first line).
+bool isRecordingText(const std::string& source);
+bool isScriptFile(const QString& path);
+
 class MainWindow : public QMainWindow
 {
   Q_OBJECT
@@ -90,7 +96,8 @@ public:
 
   // ---- file and edit operations: the menus call these, so does the command line
   bool newCanvas(int nx, int ny, int nz, VolumeDocument::Fill fill);
-  bool openVolume(const QString& path);
+  /// `untitled`: a recovered autosave, opened as a volume with no file yet.
+  bool openVolume(const QString& path, bool untitled = false);
   /// Converts a mesh file to a volume (vtkMeshToSDF on a worker thread, with a
   /// progress dialog and Cancel); false on error or cancel.
   bool openMesh(const QString& path, const MeshImportSettings& settings);
@@ -102,7 +109,8 @@ public:
   /// The whole window as a PNG (the user guide's pictures).
   bool saveWindowShot(const QString& path);
   bool playRecording(const QString& path);
-  /// Runs a script (.lvs) or plays a recording (.lvr; .lvrec is accepted too), by extension.
+  /// Runs a script (.lvs) or plays a recording (.lvr, .lvrec, or any file whose
+  /// first line is LVDIF-RECORDING).
   bool runScript(const QString& path);
   /// Reads a matcap image (PNG, JPG, ...) and shows the surface with it
   /// (Matcap shading); an unreadable file is reported and changes nothing.
@@ -115,6 +123,10 @@ public:
   QString recoveryPath() const;
   /// Offers to recover an autosaved volume if one exists; true if recovered.
   bool offerRecovery();
+  /// How many errors were reported so far (message boxes, or lines of a batch
+  /// run): a batch run that reported one exits non-zero, whatever step (a
+  /// key's save, a drag's brush) it came from.
+  int errorCount() const { return this->Errors; }
 
 public slots:
   // ---- brush input --------------------------------------------------------
@@ -197,6 +209,9 @@ private:
   void screenshotDialog();
   void scriptDialog();
   void toggleRecording(bool on);
+  /// Before another volume replaces this one: a recording in progress is
+  /// stopped and saved as Stop does (the new session would end it unsaved).
+  void finishRecording();
   void showError(const QString& what, const std::exception& e);
 
   EditorOptions Options;
@@ -244,6 +259,7 @@ private:
   QActionGroup* ShadingActions = nullptr;
   vtkSmartPointer<vtkTexture> Matcap; // the matcap image: clay (made at start) or the user's
   int CursorOp = -1;
+  int Errors = 0;           // showError calls
   bool Grabbing = false;    // a Grab stroke: samples on the view plane through its start
   double GrabDepth = 0;     // display depth of the grab's start point
 };

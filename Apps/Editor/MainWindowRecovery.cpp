@@ -41,14 +41,20 @@ bool MainWindow::offerRecovery()
   const QString path = this->recoveryPath();
   if (this->Options.noRecovery || !QFile::exists(path))
     return false;
-  const auto answer = QMessageBox::question(this, "Recover",
-    "An autosaved volume from a session that did not end normally exists:\n" + path + "\n\nRecover it?",
-    QMessageBox::Yes | QMessageBox::No | QMessageBox::Discard);
+  const QString& given = this->Options.recoveryAnswer; // tests
+  const auto answer = !given.isEmpty()
+    ? (given == "yes" ? QMessageBox::Yes : (given == "discard" ? QMessageBox::Discard : QMessageBox::No))
+    : QMessageBox::question(this, "Recover",
+        "An autosaved volume from a session that did not end normally exists:\n" + path + "\n\nRecover it?",
+        QMessageBox::Yes | QMessageBox::No | QMessageBox::Discard);
   if (answer == QMessageBox::Discard)
     QFile::remove(path);
   if (answer != QMessageBox::Yes)
     return false;
-  return this->openVolume(path);
+  // untitled and modified: Save asks where to put it. Opened as the recovery
+  // file's document, Save wrote into recovery.lvdv and the next normal exit
+  // deleted that file with the work saved in it.
+  return this->openVolume(path, true);
 }
 
 bool MainWindow::maybeSave()

@@ -188,7 +188,11 @@ void MainWindow::syncToolActions()
 
 void MainWindow::scaleRadius(double factor)
 {
-  const double r = std::min(100.0, std::max(0.5, this->Tools->state().radius * factor));
+  // [ and ] step within the panel's range, 0.5..100 voxels, but never the wrong
+  // way: ] on a radius above it (--radius 150, the wheel) made it 100, [ on one
+  // below it 0.5
+  const double r0 = this->Tools->state().radius;
+  const double r = std::min(std::max(100.0, r0), std::max(std::min(0.5, r0), r0 * factor));
   this->Tools->setRadius(r);
   this->applyBrushState();
   this->RenderWindow->Render();

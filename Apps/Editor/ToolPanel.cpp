@@ -229,11 +229,31 @@ void ToolPanel::setOp(int op)
   Q_EMIT changed();
 }
 
+void ToolPanel::setEveryTool(double strength, int falloff)
+{
+  BrushState s = this->State;
+  for (int i = 0; i < ToolCount; ++i)
+  {
+    if (strength > 0)
+      this->ToolStrength[i] = strength;
+    if (falloff >= 0)
+      this->ToolFalloff[i] = falloff;
+  }
+  s.strength = this->ToolStrength[s.op];
+  s.falloff = this->ToolFalloff[s.op];
+  this->setState(s);
+}
+
 void ToolPanel::setRecording(bool on)
 {
   const QSignalBlocker block(this->RecordButton);
   this->RecordButton->setChecked(on);
   this->RecordButton->setText(on ? "Stop" : "Record");
+}
+
+void ToolPanel::toggleRecording()
+{
+  this->RecordButton->toggle(); // toggled: recordToggled
 }
 
 void ToolPanel::pickColor()

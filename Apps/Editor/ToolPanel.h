@@ -45,8 +45,13 @@ public:
   void setRadius(double voxels); // from the wheel: updates the slider quietly
   void setState(const BrushState& s);
   void setRecording(bool on);
+  /// Presses the Record / Stop button (Edit > Record, Ctrl+R).
+  void toggleRecording();
   /// Selects a tool (lvdif::BrushOp) and says so.
   void setOp(int op);
+  /// Every tool's strength (if > 0) and falloff (if >= 0), as the command
+  /// line gives them: the tool shown now and those picked later.
+  void setEveryTool(double strength, int falloff);
 
 Q_SIGNALS:
   void changed();

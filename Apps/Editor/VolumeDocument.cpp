@@ -6,8 +6,44 @@
 #include "lvdif/Cuda.h"
 #include "lvdif/Error.h"
 
+#include "vtkLogger.h"
+#include "vtkObjectFactory.h"
+#include "vtkOutputWindow.h"
+#include "vtkSmartPointer.h"
+
 #include <cmath>
 #include <iostream>
+
+namespace
+{
+/// VTK's error text goes nowhere while it lives (its warnings still reach
+/// stderr); an algorithm with an ErrorEvent observer still gets its errors.
+class DroppedErrors : public vtkOutputWindow
+{
+public:
+  static DroppedErrors* New();
+  vtkTypeMacro(DroppedErrors, vtkOutputWindow);
+  DroppedErrors() { this->SetDisplayModeToAlwaysStdErr(); } // not through vtkLogger, turned off meanwhile
+  void DisplayErrorText(const char*) override {}
+};
+vtkStandardNewMacro(DroppedErrors);
+
+struct QuietVtkErrors
+{
+  vtkSmartPointer<vtkOutputWindow> was = vtkOutputWindow::GetInstance();
+  const vtkLogger::Verbosity logged = vtkLogger::GetCurrentVerbosityCutoff();
+  QuietVtkErrors()
+  {
+    vtkOutputWindow::SetInstance(vtkSmartPointer<DroppedErrors>::New());
+    vtkLogger::SetStderrVerbosity(vtkLogger::VERBOSITY_OFF); // it logs each error there too
+  }
+  ~QuietVtkErrors()
+  {
+    vtkOutputWindow::SetInstance(this->was);
+    vtkLogger::SetStderrVerbosity(this->logged);
+  }
+};
+} // namespace
 
 VolumeDocument::VolumeDocument() = default;
 
@@ -74,10 +110,23 @@ void VolumeDocument::adopt(std::shared_ptr<lvdif::DictionaryVolume> volume)
   this->Modified = true;
 }
 
-void VolumeDocument::open(const QString& path)
+void VolumeDocument::open(const QString& path, bool untitled)
 {
-  // every volume format, by extension, through the one file registry
-  std::shared_ptr<lvdif::DictionaryVolume> v = LVDIFFiles::LoadVolume(path.toStdString());
+  std::shared_ptr<lvdif::DictionaryVolume> v;
+  {
+    // A file that cannot be read is one message, the lvdif::Error the file
+    // registry makes of its reader's error: VTK's own text from objects it
+    // does not watch (the XML parser under a .vti reader) was a second line
+    // on stderr, in VTK's log format. Watched readers still report theirs.
+    QuietVtkErrors quiet;
+    // every volume format, by extension, through the one file registry
+    v = LVDIFFiles::LoadVolume(path.toStdString());
+  }
+  if (untitled)
+  {
+    this->adopt(std::move(v));
+    return;
+  }
   this->Path = path;
   this->hold(std::move(v));
 }

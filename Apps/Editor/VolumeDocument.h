@@ -32,8 +32,9 @@ public:
   /// A new canvas of n^3 voxels (chunk edge 32). Throws lvdif::Error.
   void newCanvas(int nx, int ny, int nz, Fill fill);
   /// Opens a volume file of any format the file registry reads (LVDIFFiles).
-  /// Throws lvdif::Error.
-  void open(const QString& path);
+  /// Throws lvdif::Error. `untitled` (a recovered autosave): the volume is
+  /// not that file's document: no file name, modified, Save asks for a name.
+  void open(const QString& path, bool untitled = false);
   /// Saves by extension through the file registry (.lvdv exact); throws
   /// lvdif::Error. Clears the modified flag unless `asCopy` (autosave).
   void save(const QString& path, bool asCopy = false);

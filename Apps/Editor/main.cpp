@@ -5,6 +5,7 @@
 
 #include <QApplication>
 #include <QElapsedTimer>
+#include <QOpenGLContext>
 #include <QSurfaceFormat>
 #include <QTimer>
 #include <QVTKOpenGLNativeWidget.h>
@@ -13,23 +14,9 @@
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
-#include <string>
 
 namespace
 {
-/// --help needs no window: it is answered before the QApplication, which
-/// cannot start without a display.
-bool asksForHelp(int argc, char* argv[])
-{
-  for (int i = 1; i < argc; ++i)
-  {
-    const std::string a = argv[i];
-    if (a == "-h" || a == "--help" || a == "-?" || a == "--help-all")
-      return true;
-  }
-  return false;
-}
-
 /// Installed while the QApplication starts: without a usable display Qt's
 /// platform plugin printed three lines of its own and aborted (status 134);
 /// the editor says it once and exits with 1.
@@ -53,17 +40,35 @@ void refuseWithoutDisplay(QtMsgType type, const QMessageLogContext& context, con
 
 int main(int argc, char* argv[])
 {
-  if (asksForHelp(argc, argv))
-  {
-    QCoreApplication help(argc, argv);
-    QCoreApplication::setApplicationName("lvdif-editor");
-    parseEditorOptions(help.arguments()); // prints the help and exits
-  }
+  // Every option is checked before the QApplication, which cannot start
+  // without a display: --help is answered and a bad option refused (status 2)
+  // without one; Qt's own options (-platform, -display, ...) are left to it.
+  // The environment's locale first, as the QApplication sets it: the
+  // arguments' file names are decoded in its encoding.
+  std::setlocale(LC_ALL, "");
+  const EditorOptions options = parseEditorOptions(editorArguments(argc, argv));
   // Before the QApplication (build-notes 2d).
   QSurfaceFormat::setDefaultFormat(QVTKOpenGLNativeWidget::defaultFormat());
   const QtMessageHandler qtMessages = qInstallMessageHandler(refuseWithoutDisplay);
   QApplication app(argc, argv);
   qInstallMessageHandler(qtMessages);
+  {
+    // A platform without OpenGL (-platform offscreen, QT_QPA_PLATFORM=minimal):
+    // the view's first frame crashed the editor (segmentation fault).
+    QOpenGLContext gl;
+    // the plugin's own complaint ("does not support createPlatformOpenGLContext!"): the line below says it
+    const QtMessageHandler before = qInstallMessageHandler([](QtMsgType, const QMessageLogContext&, const QString&) {});
+    const bool haveGl = gl.create();
+    qInstallMessageHandler(before);
+    if (!haveGl)
+    {
+      std::fprintf(stderr,
+        "lvdif-editor: cannot draw the view: Qt's platform '%s' gives no OpenGL context; run it on a desktop, or "
+        "headless as xvfb-run -a lvdif-editor ...\n",
+        QGuiApplication::platformName().toLocal8Bit().constData());
+      return 1;
+    }
+  }
   // QApplication takes the C library's locale from the environment; under a
   // comma-decimal one (de_DE) strtod read a mesh's or script's "0.5" as 0 or
   // refused it, and printf wrote recordings with "0,5". Numbers in files are C
@@ -71,7 +76,6 @@ int main(int argc, char* argv[])
   std::setlocale(LC_NUMERIC, "C");
   QApplication::setApplicationName("lvdif-editor");
   QApplication::setOrganizationName("LVDIF");
-  const EditorOptions options = parseEditorOptions(app.arguments());
 
   QElapsedTimer sinceWindow;
   sinceWindow.start();
@@ -81,7 +85,7 @@ int main(int argc, char* argv[])
   window.show();
   bool loaded = false;
   const bool benchmark = !options.benchmarkStroke.isEmpty();
-  if (!options.batch() && !benchmark)
+  if ((!options.batch() || !options.recoveryAnswer.isEmpty()) && !benchmark)
     loaded = window.offerRecovery();
   if (!loaded)
   {
@@ -99,9 +103,15 @@ int main(int argc, char* argv[])
     {
       const auto& d = options.newDims;
       const int nx = d[0] > 0 ? d[0] : 128, ny = d[1] > 0 ? d[1] : 128, nz = d[2] > 0 ? d[2] : 128;
-      const VolumeDocument::Fill fill = options.fill == "empty"
+      // A script starts from an empty canvas unless --fill says otherwise, as
+      // `lvdif script` does (and Run script with no volume): the same script
+      // gave another model in the editor, the starter sphere in it. A
+      // recording keeps the editor's start canvas, on which it was recorded.
+      const QString fillName =
+        options.fillGiven || options.script.isEmpty() || !isScriptFile(options.script) ? options.fill : "empty";
+      const VolumeDocument::Fill fill = fillName == "empty"
         ? VolumeDocument::Fill::Empty
-        : (options.fill == "full" ? VolumeDocument::Fill::Full : VolumeDocument::Fill::Sphere);
+        : (fillName == "full" ? VolumeDocument::Fill::Full : VolumeDocument::Fill::Sphere);
       loaded = window.newCanvas(nx, ny, nz, fill);
     }
   }

@@ -21,6 +21,10 @@
 //   --volume V.vti      V is a readable 64^3 volume with sdf and rgba (e.g. what
 //                       Ctrl+Shift+S saved).
 //   --script-shape V.vti  V is sphere.lvs's result: the analytic sphere minus the cube.
+//   --script-on-empty V.vti  V is sphere-on-empty.lvs run on the 64^3 start
+//                       canvas: its one sphere and nothing else (no starter sphere).
+//   --same A.vti B.vti  A and B are the same volume: dimensions, every distance
+//                       and every colour equal.
 //   --mesh M.ply        the exported mesh has triangles inside the volume.
 //   --write-cone-obj F.obj  writes a cone with its apex up (+y) for the upright test.
 //   --write-matcap-png F.png  writes a 64 x 64 matcap ramp (red = u, green = v,
@@ -365,6 +369,15 @@ int main(int argc, char* argv[])
       CutH = 6;
       checkSphere(argv[++i], false, 48, false);
     }
+    else if (!std::strcmp(argv[i], "--script-on-empty") && i + 1 < argc)
+    {
+      // sphere-on-empty.lvs: sphere (20,40,24) r 10 on the empty 64^3 canvas
+      Cx = 20;
+      Cy = 40;
+      Cz = 24;
+      R = 10;
+      checkSphere(argv[++i], false, 64, false);
+    }
     else if (!std::strcmp(argv[i], "--added") && i + 1 < argc)
       checkSphere(argv[++i], true);
     else if (!std::strcmp(argv[i], "--image") && i + 2 < argc)
@@ -410,6 +423,29 @@ int main(int argc, char* argv[])
     }
     else if (!std::strcmp(argv[i], "--mirror-x") && i + 1 < argc)
       checkMirrorX(argv[++i]);
+    else if (!std::strcmp(argv[i], "--same") && i + 2 < argc)
+    {
+      auto a = readVolume(argv[i + 1]), b = readVolume(argv[i + 2]);
+      i += 2;
+      int da[3], db[3];
+      a->GetDimensions(da);
+      b->GetDimensions(db);
+      auto* sa = vtkFloatArray::SafeDownCast(a->GetPointData()->GetArray("sdf"));
+      auto* sb = vtkFloatArray::SafeDownCast(b->GetPointData()->GetArray("sdf"));
+      auto* ca = vtkUnsignedCharArray::SafeDownCast(a->GetPointData()->GetArray("rgba"));
+      auto* cb = vtkUnsignedCharArray::SafeDownCast(b->GetPointData()->GetArray("rgba"));
+      const bool shaped = da[0] == db[0] && da[1] == db[1] && da[2] == db[2] && sa && sb && ca && cb &&
+        sa->GetNumberOfValues() == sb->GetNumberOfValues() && ca->GetNumberOfValues() == cb->GetNumberOfValues();
+      check(shaped, "both volumes have the same dimensions, sdf and rgba");
+      if (shaped)
+      {
+        vtkIdType differ = 0;
+        for (vtkIdType v = 0; v < sa->GetNumberOfValues(); ++v)
+          differ += sa->GetValue(v) != sb->GetValue(v) || std::memcmp(ca->GetPointer(4 * v), cb->GetPointer(4 * v), 4) != 0;
+        std::printf("voxels that differ: %lld\n", static_cast<long long>(differ));
+        check(differ == 0, "every distance and colour equal");
+      }
+    }
     else if (!std::strcmp(argv[i], "--volume") && i + 1 < argc)
     {
       auto img = readVolume(argv[++i]);

@@ -30,3 +30,28 @@ string(FIND "${err}" "qt.qpa" qpa)
 if (NOT qpa EQUAL -1 OR n GREATER 2)
   message(FATAL_ERROR "more than the one message (and the CUDA notice) on stderr: '${err}'")
 endif ()
+# Every option is checked before the QApplication starts: without a display a
+# bad option is still its own one line with status 2 (it said "cannot open a
+# window" with status 1); Qt's own options (-display NAME, -style NAME) are
+# Qt's, taken with their values, and not refused as unknown.
+foreach (case "--radius;abc|--radius expects a number, got 'abc'"
+    "-display;:12345;-style;fusion;--strength;1.5|--strength must be a finite number in [(]0, 1[]] [(]got 1.5[)]"
+    "--bogus|lvdif-editor: Unknown option 'bogus'")
+  string(REPLACE "|" ";" case "${case}")
+  list(GET case -1 expect)
+  list(REMOVE_AT case -1)
+  execute_process(COMMAND "${EDITOR}" --new 16 --no-recovery --autosave 0 ${case} --quit
+    RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
+  message("${case}: status ${rc}\n${out}${err}")
+  if (NOT rc EQUAL 2 OR NOT "${err}" MATCHES "${expect}" OR "${err}" MATCHES "cannot open a window")
+    message(FATAL_ERROR "without a display '${case}' should be refused with status 2 and '${expect}' alone")
+  endif ()
+endforeach ()
+# Qt's offscreen platform has no OpenGL for the view: one line and status 1 (the
+# first frame crashed the editor, status 139).
+execute_process(COMMAND "${EDITOR}" -platform offscreen --new 16 --no-recovery --autosave 0 --quit
+  RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
+message("-platform offscreen: status ${rc}\n${out}${err}")
+if (NOT rc EQUAL 1 OR NOT "${err}" MATCHES "lvdif-editor: cannot (draw the view|open a window)")
+  message(FATAL_ERROR "-platform offscreen should be refused with status 1 and one line")
+endif ()
