@@ -39,6 +39,7 @@
 #include <QImage>
 #include <QInputDialog>
 #include <QLabel>
+#include <QLockFile>
 #include <QMenuBar>
 #include <QMessageBox>
 #include <QStatusBar>

@@ -16,7 +16,10 @@
 #include <array>
 #include <chrono>
 #include <cstdint>
+#include <memory>
 #include <vector>
+
+class QLockFile;
 
 #include "vtkNew.h"
 #include "vtkSmartPointer.h"
@@ -119,8 +122,9 @@ public:
   QString shortcutHelp() const;
   void undo();
   void redo();
-  /// The recovery file (autosave target).
-  QString recoveryPath() const;
+  /// This editor's recovery file (autosave target): its slot in the recovery
+  /// folder, claimed on first use (claimRecoverySlot).
+  QString recoveryPath();
   /// Offers to recover an autosaved volume if one exists; true if recovered.
   bool offerRecovery();
   /// How many errors were reported so far (message boxes, or lines of a batch
@@ -162,6 +166,17 @@ protected:
   bool eventFilter(QObject* watched, QEvent* event) override;
 
 private:
+  /// Recovery slots: recovery.lvdv, recovery-2.lvdv, ... each guarded by a
+  /// lock file that the editor using it holds while it runs, so that two
+  /// editors never autosave into, offer or delete each other's file.
+  /// skip: a slot not to take (an autosave the user chose to keep).
+  void claimRecoverySlot(const QString& skip = QString());
+  QString RecoveryFile;
+  std::unique_ptr<QLockFile> RecoveryLock;
+  /// The recovery file is this session's (it autosaved, or recovered the
+  /// file): a normal end deletes it, and only then.
+  bool RecoveryOwned = false;
+
   void buildMenus();
   // MainWindowUi.cpp: toolbar, shortcuts, help, view, recent files, status, cursor, preview
   void buildTools();

@@ -3,21 +3,67 @@
 #include "MainWindow.h"
 
 #include <QCloseEvent>
+#include <QCoreApplication>
 #include <QDir>
 #include <QFile>
+#include <QLockFile>
 #include <QMessageBox>
 #include <QStandardPaths>
 #include <QStatusBar>
 
 #include <exception>
+#include <memory>
 
-QString MainWindow::recoveryPath() const
+void MainWindow::claimRecoverySlot(const QString& skip)
 {
   QString dir = this->Options.recoveryDir;
   if (dir.isEmpty())
     dir = QStandardPaths::writableLocation(QStandardPaths::AppDataLocation);
   QDir().mkpath(dir);
-  return QDir(dir).filePath("recovery.lvdv");
+  // The first slot holding an autosave that no running editor owns (a
+  // session that did not end normally: offered), else the first free slot.
+  // A lock whose process is gone is stale and taken over (QLockFile); age
+  // alone never makes one stale (staleLockTime 0): editors run for days.
+  constexpr int Slots = 16;
+  std::unique_ptr<QLockFile> free;
+  QString freeFile;
+  for (int i = 0; i < Slots; ++i)
+  {
+    const QString file = QDir(dir).filePath(i == 0 ? QString("recovery.lvdv") : QString("recovery-%1.lvdv").arg(i + 1));
+    if (file == skip)
+      continue;
+    auto lock = std::make_unique<QLockFile>(file + ".lock");
+    lock->setStaleLockTime(0);
+    if (!lock->tryLock(0))
+      continue; // a running editor's
+    if (QFile::exists(file))
+    {
+      this->RecoveryFile = file;
+      this->RecoveryLock = std::move(lock);
+      return; // `free` unlocks as it goes
+    }
+    if (!free)
+    {
+      free = std::move(lock);
+      freeFile = file;
+    }
+  }
+  if (free)
+  {
+    this->RecoveryFile = freeFile;
+    this->RecoveryLock = std::move(free);
+    return;
+  }
+  // every slot in use: a file of this process's own, unguarded
+  this->RecoveryFile =
+    QDir(dir).filePath(QString("recovery-pid%1.lvdv").arg(QCoreApplication::applicationPid()));
+}
+
+QString MainWindow::recoveryPath()
+{
+  if (this->RecoveryFile.isEmpty())
+    this->claimRecoverySlot();
+  return this->RecoveryFile;
 }
 
 void MainWindow::autosave()
@@ -27,6 +73,7 @@ void MainWindow::autosave()
   try
   {
     this->Doc.save(this->recoveryPath(), true);
+    this->RecoveryOwned = true;
     this->Doc.autosaved();
     this->statusBar()->showMessage("Autosaved to " + this->recoveryPath(), 3000);
   }
@@ -38,7 +85,7 @@ void MainWindow::autosave()
 
 bool MainWindow::offerRecovery()
 {
-  const QString path = this->recoveryPath();
+  const QString path = this->recoveryPath(); // claims this editor's slot, also with --no-recovery
   if (this->Options.noRecovery || !QFile::exists(path))
     return false;
   const QString& given = this->Options.recoveryAnswer; // tests
@@ -49,8 +96,16 @@ bool MainWindow::offerRecovery()
         QMessageBox::Yes | QMessageBox::No | QMessageBox::Discard);
   if (answer == QMessageBox::Discard)
     QFile::remove(path);
+  if (answer == QMessageBox::No)
+  {
+    // kept for a later session: this one autosaves elsewhere
+    this->RecoveryLock.reset();
+    this->RecoveryFile.clear();
+    this->claimRecoverySlot(path);
+  }
   if (answer != QMessageBox::Yes)
     return false;
+  this->RecoveryOwned = true;
   // untitled and modified: Save asks where to put it. Opened as the recovery
   // file's document, Save wrote into recovery.lvdv and the next normal exit
   // deleted that file with the work saved in it.
@@ -77,6 +132,7 @@ void MainWindow::closeEvent(QCloseEvent* event)
     event->ignore();
     return;
   }
-  QFile::remove(this->recoveryPath()); // a normal end: nothing to recover
+  if (this->RecoveryOwned)
+    QFile::remove(this->RecoveryFile); // a normal end: nothing to recover
   event->accept();
 }
