@@ -21,7 +21,8 @@ void MainWindow::claimRecoverySlot(const QString& skip)
     dir = QStandardPaths::writableLocation(QStandardPaths::AppDataLocation);
   QDir().mkpath(dir);
   // The first slot holding an autosave that no running editor owns (a
-  // session that did not end normally: offered), else the first free slot.
+  // session that did not end normally: offered), else the first free slot
+  // (only free slots with --no-recovery, which offers nothing).
   // A lock whose process is gone is stale and taken over (QLockFile); age
   // alone never makes one stale (staleLockTime 0): editors run for days.
   constexpr int Slots = 16;
@@ -38,6 +39,8 @@ void MainWindow::claimRecoverySlot(const QString& skip)
       continue; // a running editor's
     if (QFile::exists(file))
     {
+      if (this->Options.noRecovery)
+        continue; // not offered: not overwritten either
       this->RecoveryFile = file;
       this->RecoveryLock = std::move(lock);
       return; // `free` unlocks as it goes
