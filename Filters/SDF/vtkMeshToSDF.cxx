@@ -228,7 +228,14 @@ int vtkMeshToSDF::RequestUpdateExtent(vtkInformation*, vtkInformationVector** in
   return 1;
 }
 
-int vtkMeshToSDF::RequestData(vtkInformation*, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
+int vtkMeshToSDF::RequestData(
+  vtkInformation*, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
+{
+  return this->Produce(inputVector, outputVector) ? 1
+                                                  : LVDIFVolumeBridge::FailReported(outputVector->GetInformationObject(0));
+}
+
+int vtkMeshToSDF::Produce(vtkInformationVector** inputVector, vtkInformationVector* outputVector)
 {
   if (LVDIFVolumeBridge::InformationFailed(outputVector->GetInformationObject(0)))
     return 0; // RequestInformation reported why (ParaView runs RequestData anyway)

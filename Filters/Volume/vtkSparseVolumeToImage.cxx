@@ -96,6 +96,12 @@ int vtkSparseVolumeToImage::RequestUpdateExtent(
 int vtkSparseVolumeToImage::RequestData(
   vtkInformation*, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
 {
+  return this->Produce(inputVector, outputVector) ? 1
+                                                  : LVDIFVolumeBridge::FailReported(outputVector->GetInformationObject(0));
+}
+
+int vtkSparseVolumeToImage::Produce(vtkInformationVector** inputVector, vtkInformationVector* outputVector)
+{
   if (LVDIFVolumeBridge::InformationFailed(outputVector->GetInformationObject(0)))
     return 0; // RequestInformation reported why (ParaView runs RequestData anyway)
   vtkSparseDictionaryVolume* input = vtkSparseDictionaryVolume::GetData(inputVector[0]);
