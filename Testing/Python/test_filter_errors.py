@@ -18,6 +18,8 @@ ONE error, every result that cannot be is said.
    vtkChunkedMarchingCubes and vtkImageToSparseVolume (no SDF array),
    vtkSparseVolumeToImage (over the memory limit) were each followed by VTK's
    executive's "Algorithm X returned failure for request: <10-line dump>".
+   A NaN or infinite mesh point is one message whatever the grid (an
+   infinite one on a fitted grid had other words than a NaN one).
    vtkOpenVDBLevelSetWriter warned about the band of an anisotropic volume
    before refusing it.
 3. A caller's own ErrorEvent observer on the executive of a reader that failed
@@ -194,6 +196,25 @@ for what, algorithm, needle in CASES:
     check(len(got) == 1 and needle in got[0] and "returned failure" not in got[0],
           "%s: one error with '%s', got %d: %s" % (what, needle, len(got), [g[:160] for g in got]))
 del os.environ["LVDIF_MEMORY_LIMIT"]
+
+# a NaN or infinite point is one cause, one message, fitted grid or explicit: an
+# infinite point on a fitted grid read "the input has NaN or infinite points", a
+# NaN one "mesh point 3 has a NaN or infinite coordinate" (VTK's bounds skip NaN)
+for bad in (float("nan"), float("inf"), float("-inf")):
+    damaged = vtk.vtkPolyData()
+    damaged.DeepCopy(sphere.GetOutput())
+    damaged.GetPoints().SetPoint(3, 0.0, bad, 0.0)
+    for explicit in (False, True):
+        f = meshToSdf(damaged)
+        if explicit:
+            f.SetUseExplicitGrid(True)
+            f.SetDimensions(9, 10, 11)
+            f.SetSpacing(0.3, 0.3, 0.3)
+            f.SetOrigin(-1.5, -1.5, -1.5)
+        got = messages_during(f.Update)
+        check(len(got) == 1 and "mesh point 3 has a NaN or infinite coordinate" in got[0],
+              "point 3 = %s, %s grid: Core's words (%s)" % (bad, "explicit" if explicit else "fitted",
+                                                           [g[:160] for g in got]))
 
 # a .vdb of an anisotropic volume is refused with one error (it warned first that
 # the unlimited band is written as 3 voxels, then refused the volume)
