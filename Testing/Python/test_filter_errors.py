@@ -16,7 +16,8 @@ ONE error, every result that cannot be is said.
    LVDIF_MEMORY_LIMIT aborted the process: Core threw inside an OpenMP loop),
    vtkSignVoxelFilter,
    vtkChunkedMarchingCubes and vtkImageToSparseVolume (no SDF array),
-   vtkSparseVolumeToImage (over the memory limit) were each followed by VTK's
+   vtkSparseVolumeToImage (over the memory limit), vtkVolumeEditFilter (a
+   script error) were each followed by VTK's
    executive's "Algorithm X returned failure for request: <10-line dump>".
    A NaN or infinite mesh point is one message whatever the grid (an
    infinite one on a fitted grid had other words than a NaN one).
@@ -191,6 +192,10 @@ CASES = [("vtkMeshToSDF, a NaN point", meshToSdf(nanMesh), "NaN"),
          ("vtkChunkedMarchingCubes, no SDF array", mcNoSdf, "no SDF point array"),
          ("vtkImageToSparseVolume, no SDF array", toSparseNoSdf, "SDF point array"),
          ("vtkSparseVolumeToImage, over the memory limit", dense, "limit")]
+edit = lvdif.vtkVolumeEditFilter()
+edit.SetInputConnection(big.GetOutputPort())
+edit.SetScriptText("sphere 10 10 10 radius\n")
+CASES.append(("vtkVolumeEditFilter, a script error", edit, "line 1"))
 for what, algorithm, needle in CASES:
     got = messages_during(algorithm.Update)
     check(len(got) == 1 and needle in got[0] and "returned failure" not in got[0],
