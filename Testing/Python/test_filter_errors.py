@@ -22,7 +22,8 @@ ONE error, every result that cannot be is said.
    A NaN or infinite mesh point is one message whatever the grid (an
    infinite one on a fitted grid had other words than a NaN one).
    vtkOpenVDBLevelSetWriter warned about the band of an anisotropic volume
-   before refusing it.
+   before refusing it. vtkLegacyBvReader's DistanceScale and BandWidth are
+   refused by name before the file is read (they read as the file's fault).
 3. A caller's own ErrorEvent observer on the executive of a reader that failed
    gets the executive's later errors, and the output window no longer shows
    them too (LVDIFVolumeBridge's filter of the dumps printed every other error
@@ -235,6 +236,28 @@ if hasattr(lvdif, "vtkOpenVDBLevelSetWriter"):
     got = messages_during(lambda: written.append(vdb.Write()))
     check(written == [0] and len(got) == 1 and "isotropic" in got[0] and not os.path.exists(vdbFile),
           ".vdb of spacing 0.3, 0.5, 0.7: one error, nothing written (%s)" % [g[:160] for g in got])
+
+# vtkLegacyBvReader's settings are refused by name before the file, not as the
+# file's fault after reading it ("cannot read 'x.bv': distance scale must be ...")
+bvFile = os.path.join(out, "SDF_16_ball.bv")
+ball = meshToSdf(sphere.GetOutput())
+bvWriter = lvdif.vtkLegacyBvWriter()
+bvWriter.SetInputConnection(ball.GetOutputPort())
+bvWriter.SetFileName(bvFile)
+check(bvWriter.Write() == 1, "a 16^3 .bv written")
+for setting, value, words in [("DistanceScale", 0.0, "DistanceScale must be a finite number > 0"),
+                              ("DistanceScale", float("nan"), "DistanceScale must be a finite number > 0"),
+                              ("BandWidth", -1.0, "BandWidth must be")]:
+    bv = lvdif.vtkLegacyBvReader()
+    bv.SetFileName(bvFile)
+    getattr(bv, "Set" + setting)(value)
+    got = messages_during(lambda: (bv.Update(), bv.Update()))
+    check(len(got) == 1 and words in got[0] and "cannot read" not in got[0] and not bv.GetOutput().HasVolume(),
+          ".bv reader, %s %s: one error by name (%s)" % (setting, value, [g[:160] for g in got]))
+bv = lvdif.vtkLegacyBvReader()
+bv.SetFileName(bvFile)
+got = messages_during(bv.Update)
+check(not got and bv.GetOutput().HasVolume() and bv.GetEdge() == 16, "the .bv read with the defaults (%s)" % got)
 
 # 3. a caller's observer on the executive of a failed reader
 reader = lvdif.vtkDictionaryVolumeReader()
