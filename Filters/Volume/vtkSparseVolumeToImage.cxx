@@ -123,7 +123,7 @@ int vtkSparseVolumeToImage::Produce(vtkInformationVector** inputVector, vtkInfor
   return LVDIFVolumeBridge::CallCore(this, [&] {
     std::uint64_t points = 1;
     std::ostringstream what;
-    what << "vtkSparseVolumeToImage: a dense image of ";
+    what << "a dense image of "; // (the error names the class already)
     for (int a = 0; a < 3; ++a)
     {
       const std::int64_t n = std::max(0, ext[2 * a + 1] - ext[2 * a] + 1);

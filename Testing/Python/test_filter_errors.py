@@ -24,6 +24,7 @@ ONE error, every result that cannot be is said.
    vtkOpenVDBLevelSetWriter warned about the band of an anisotropic volume
    before refusing it. vtkLegacyBvReader's DistanceScale and BandWidth are
    refused by name before the file is read (they read as the file's fault).
+   vtkSparseVolumeToImage's refusal named the class twice.
 3. A caller's own ErrorEvent observer on the executive of a reader that failed
    gets the executive's later errors, and the output window no longer shows
    them too (LVDIFVolumeBridge's filter of the dumps printed every other error
@@ -201,6 +202,13 @@ for what, algorithm, needle in CASES:
     got = messages_during(algorithm.Update)
     check(len(got) == 1 and needle in got[0] and "returned failure" not in got[0],
           "%s: one error with '%s', got %d: %s" % (what, needle, len(got), [g[:160] for g in got]))
+    if algorithm is dense and got:
+        # the class named once ("vtkSparseVolumeToImage (0x...): vtkSparseVolumeToImage: a dense image ...")
+        bigDims = [0, 0, 0]
+        big.GetOutput().GetDimensions(bigDims)
+        check(got[0].count("vtkSparseVolumeToImage") == 1 and
+              "a dense image of %d x %d x %d points" % tuple(bigDims) in got[0],
+              "the dense image's refusal names the class once and the size (%s)" % got[0][:200])
 del os.environ["LVDIF_MEMORY_LIMIT"]
 
 # a NaN or infinite point is one cause, one message, fitted grid or explicit: an
