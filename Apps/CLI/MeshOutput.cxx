@@ -5,6 +5,7 @@
 
 #include "vtkActor.h"
 #include "LVDIFFiles.h"
+#include "LVDIFVolumeBridge.h"
 #include "vtkCallbackCommand.h"
 #include "vtkChunkedMarchingCubes.h"
 #include "vtkCommand.h"
@@ -31,6 +32,7 @@
 #include "lvdif/ByteStream.h"
 
 #include <algorithm>
+#include <string>
 #include <cctype>
 #include <cstdio>
 #include <cstdlib>
@@ -41,6 +43,21 @@ vtkSmartPointer<vtkPolyData> MeshVolume(const lvdif::DictionaryVolume& volume, l
   // The one chunk mesh -> vtkPolyData route: vtkChunkedMarchingCubes on the
   // volume (merged, seam vertices shared), its progress and cancel bridged to
   // the CLI's interrupter. The filter only reads the volume: it is lent, not owned.
+  // A volume one point thick (a slice) has no cells: the filter refuses it
+  // (VTK's rule); here, as any volume without a surface, the empty mesh is
+  // written and named in one warning (it blamed the distances: "never change
+  // sign at 0")
+  const lvdif::Index3& dims = volume.dims();
+  if (dims[0] < 2 || dims[1] < 2 || dims[2] < 2)
+  {
+    std::fprintf(stderr,
+      "warning: the volume is %lld x %lld x %lld points and marching cubes needs at least 2 points along every axis "
+      "(a volume one point thick has no cells), so the mesh has no triangles\n",
+      static_cast<long long>(dims[0]), static_cast<long long>(dims[1]), static_cast<long long>(dims[2]));
+    auto empty = vtkSmartPointer<vtkPolyData>::New();
+    empty->SetPoints(vtkSmartPointer<vtkPoints>::New());
+    return empty;
+  }
   std::shared_ptr<lvdif::DictionaryVolume> lent(const_cast<lvdif::DictionaryVolume*>(&volume), [](auto*) {});
   vtkNew<vtkChunkedMarchingCubes> mc;
   mc->SetVolume(lent);
@@ -54,12 +71,20 @@ vtkSmartPointer<vtkPolyData> MeshVolume(const lvdif::DictionaryVolume& volume, l
     if (in->wasInterrupted()) static_cast<vtkAlgorithm*>(caller)->SetAbortExecute(1);
   });
   mc->AddObserver(vtkCommand::ProgressEvent, forward);
+  // the filter's own error is the command's one line (it said only "marching cubes failed")
+  std::string failure;
+  vtkNew<vtkCallbackCommand> onError;
+  onError->SetClientData(&failure);
+  onError->SetCallback([](vtkObject*, unsigned long, void* client, void* call) {
+    *static_cast<std::string*>(client) = LVDIFVolumeBridge::MessageText(static_cast<const char*>(call));
+  });
+  mc->AddObserver(vtkCommand::ErrorEvent, onError);
   interrupter.start("marching cubes");
   mc->Update();
   interrupter.checkInterrupt();
-  if (mc->GetErrorCode() != 0 || !mc->GetOutput())
+  if (mc->GetErrorCode() != 0 || !failure.empty() || !mc->GetOutput())
   {
-    throw lvdif::Error(lvdif::ErrorCode::InvalidArgument, "marching cubes failed");
+    throw lvdif::Error(lvdif::ErrorCode::InvalidArgument, failure.empty() ? "marching cubes failed" : failure);
   }
   interrupter.end(); // only a stage that succeeded is "done"
   auto mesh = vtkSmartPointer<vtkPolyData>::New();

@@ -75,6 +75,9 @@ int vtkVolumeEditFilter::RequestData(
   vtkImageData* output = vtkImageData::GetData(outputVector);
   this->LastError.clear();
   this->LastErrorLine = this->LastErrorColumn = 0;
+  // a failure below is reported once: no executive "returned failure" dump after it
+  vtkInformation* outInfo = outputVector->GetInformationObject(0);
+  LVDIFVolumeBridge::BeginInformation(outInfo);
   if (LVDIFVolumeBridge::IsEmptyInput(vtkDataObject::GetData(inputVector[0])))
   {
     // VTK's rule for an empty input (a failed upstream said why): empty output, no error
@@ -94,7 +97,7 @@ int vtkVolumeEditFilter::RequestData(
   if (!this->LastError.empty())
   {
     vtkErrorMacro(<< this->LastError);
-    return 0;
+    return LVDIFVolumeBridge::FailReported(outInfo);
   }
   try
   {
@@ -169,7 +172,7 @@ int vtkVolumeEditFilter::RequestData(
   {
     vtkDataObject::GetData(outputVector)->Initialize();
     vtkErrorMacro(<< this->LastError);
-    return 0;
+    return LVDIFVolumeBridge::FailReported(outInfo);
   }
   return 1;
 }

@@ -50,6 +50,23 @@ void pieceExtent(int piece, int pieces, const int whole[6], int ext[6])
   }
 }
 
+/// A volume one point thick on some axis (16 x 12 x 1: a 2-D slice, which
+/// vtkMeshToSDF's explicit grid and vtkImageToSparseVolume make on purpose)
+/// has no cells, so marching cubes has nothing to mesh: the filter said
+/// nothing and gave no triangles (VTK's vtkMarchingCubes: "Cannot contour data
+/// of dimension != 3"). One error naming the dimensions and what gives the
+/// slice's iso-lines; false, output emptied. An empty volume (an axis of 0
+/// points) is not flat: empty output, no error (VTK's rule for empty input).
+bool flatVolumeCheck(vtkChunkedMarchingCubes* self, const std::int64_t dims[3], vtkDataObject* output)
+{
+  if (dims[0] < 1 || dims[1] < 1 || dims[2] < 1 || (dims[0] >= 2 && dims[1] >= 2 && dims[2] >= 2)) return true;
+  output->Initialize();
+  vtkErrorWithObjectMacro(self, "cannot mesh a volume of " << dims[0] << " x " << dims[1] << " x " << dims[2]
+    << " points: marching cubes needs at least 2 points along every axis (a volume one point thick has no "
+       "cells); VTK's Contour filter gives the iso-lines of such a slice");
+  return false;
+}
+
 void pieceRequest(vtkInformation* info, int& piece, int& pieces)
 {
   using SDDP = vtkStreamingDemandDrivenPipeline;
@@ -175,6 +192,14 @@ lvdif::MarchingCubesOptions vtkChunkedMarchingCubes::CoreOptions() const
 int vtkChunkedMarchingCubes::RequestData(
   vtkInformation*, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
 {
+  // every failure below reported its error (a cancel returns 1): no executive
+  // "returned failure for request" dump after it
+  return this->Extract(inputVector, outputVector) ? 1
+                                                  : LVDIFVolumeBridge::FailReported(outputVector->GetInformationObject(0));
+}
+
+int vtkChunkedMarchingCubes::Extract(vtkInformationVector** inputVector, vtkInformationVector* outputVector)
+{
   using SDDP = vtkStreamingDemandDrivenPipeline;
   vtkInformation* outInfo = outputVector->GetInformationObject(0);
   vtkInformation* inInfo = inputVector[0]->GetInformationObject(0);
@@ -195,11 +220,13 @@ int vtkChunkedMarchingCubes::RequestData(
       vtkErrorMacro("both an input image and a dictionary volume (SetVolume): disconnect the input or SetVolume(nullptr)");
       return 0;
     }
+    if (!flatVolumeCheck(this, this->Volume->dims().data(), output)) return 0;
     return this->MeshVolume(*this->Volume, piece, pieces, output);
   }
   if (auto* sparse = vtkSparseDictionaryVolume::GetData(inInfo))
   {
     if (!sparse->HasVolume()) return 1; // an empty or failed upstream: empty output
+    if (!flatVolumeCheck(this, sparse->GetVolume()->dims().data(), output)) return 0;
     auto* partitioned = vtkPartitionedDataSet::SafeDownCast(output);
     if (partitioned && pieces == 1)
     {
@@ -222,6 +249,11 @@ int vtkChunkedMarchingCubes::RequestData(
     inInfo->Get(SDDP::WHOLE_EXTENT(), whole);
   else
     std::copy(inExt, inExt + 6, whole);
+  if (input->GetNumberOfPoints() > 0)
+  {
+    const std::int64_t wholeDims[3] = { whole[1] - whole[0] + 1, whole[3] - whole[2] + 1, whole[5] - whole[4] + 1 };
+    if (!flatVolumeCheck(this, wholeDims, output)) return 0;
+  }
   int own[6];
   pieceExtent(piece, pieces, whole, own);
 

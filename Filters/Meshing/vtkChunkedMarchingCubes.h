@@ -22,6 +22,9 @@
  *   volume is shared, not copied: call Modified() after editing it. The result
  *   equals meshing its dense image (vtkDictionaryVolumeToImage) with the
  *   same settings. Connecting an input while a volume is set is an error.
+ * A volume of fewer than 2 points along some axis (16 x 12 x 1: a slice) has
+ * no cells and is refused with one error naming its dimensions, as
+ * vtkMarchingCubes refuses it; an empty one (0 points) gives an empty output.
  *
  * Case table (UseVTKCaseTable, default on): VTK's own table
  * (vtkMarchingCubesTriangleCases, read at run time and converted to lvdif's
@@ -194,7 +197,10 @@ protected:
   int RequestDataObject(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
   int RequestInformation(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
   int RequestUpdateExtent(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
+  /// RequestData: Extract, and a failure (always after its one error) marked
+  /// reported (LVDIFVolumeBridge::FailReported: no executive dump after it).
   int RequestData(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
+  int Extract(vtkInformationVector** inputVector, vtkInformationVector* outputVector);
   /// The options common to both sources (no region, offset or colours yet).
   lvdif::MarchingCubesOptions CoreOptions() const;
   /// Meshes the cells piece `piece` of `pieces` owns of `volume` into output.

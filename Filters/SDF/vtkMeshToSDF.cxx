@@ -10,6 +10,7 @@
 #include "lvdif/Memory.h"
 #include "lvdif/MeshToSdf.h"
 #include "lvdif/SignVoxelFilter.h"
+#include "lvdif/TriangleMesh.h"
 
 #include "vtkAlgorithmOutput.h"
 #include "vtkCellArray.h"
@@ -81,7 +82,23 @@ lvdif::GridGeometry gridFor(vtkPolyData* pd, bool explicitGrid, const int dims[3
   pd->GetBounds(b);
   for (double v : b)
   {
-    lvdif::require(std::isfinite(v), "the input has NaN or infinite points");
+    if (std::isfinite(v) && lvdif::isWorldCoordinate(static_cast<float>(v))) continue;
+    // Core's words for the mesh's points (the first NaN or infinite point, or the
+    // mesh's span), as the data pass and an explicit grid report them: an infinite
+    // point read "the input has NaN or infinite points" here and a NaN one "mesh
+    // point 3 has a NaN or infinite coordinate" (VTK's bounds skip NaN)
+    lvdif::TriangleMesh points;
+    points.points.resize(static_cast<std::size_t>(pd->GetNumberOfPoints()));
+    for (vtkIdType i = 0; i < pd->GetNumberOfPoints(); ++i)
+    {
+      double x[3];
+      pd->GetPoint(i, x);
+      points.points[static_cast<std::size_t>(i)] = { static_cast<float>(x[0]), static_cast<float>(x[1]),
+        static_cast<float>(x[2]) };
+    }
+    points.triangles.push_back({ 0, 0, 0 });
+    points.validate();
+    lvdif::require(false, "the input has NaN or infinite points"); // (validate found it in float)
   }
   if (sampleSpacing > 0)
   {
@@ -228,7 +245,14 @@ int vtkMeshToSDF::RequestUpdateExtent(vtkInformation*, vtkInformationVector** in
   return 1;
 }
 
-int vtkMeshToSDF::RequestData(vtkInformation*, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
+int vtkMeshToSDF::RequestData(
+  vtkInformation*, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
+{
+  return this->Produce(inputVector, outputVector) ? 1
+                                                  : LVDIFVolumeBridge::FailReported(outputVector->GetInformationObject(0));
+}
+
+int vtkMeshToSDF::Produce(vtkInformationVector** inputVector, vtkInformationVector* outputVector)
 {
   if (LVDIFVolumeBridge::InformationFailed(outputVector->GetInformationObject(0)))
     return 0; // RequestInformation reported why (ParaView runs RequestData anyway)

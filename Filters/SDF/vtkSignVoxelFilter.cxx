@@ -402,6 +402,12 @@ int vtkSignVoxelFilter::RequestUpdateExtent(
 int vtkSignVoxelFilter::RequestData(
   vtkInformation*, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
 {
+  return this->Produce(inputVector, outputVector) ? 1
+                                                  : LVDIFVolumeBridge::FailReported(outputVector->GetInformationObject(0));
+}
+
+int vtkSignVoxelFilter::Produce(vtkInformationVector** inputVector, vtkInformationVector* outputVector)
+{
   if (LVDIFVolumeBridge::InformationFailed(outputVector->GetInformationObject(0)))
     return 0; // RequestInformation reported why (ParaView runs RequestData anyway)
   if (auto* sparse = vtkSparseDictionaryVolume::GetData(inputVector[0]))

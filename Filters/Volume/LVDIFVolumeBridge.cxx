@@ -365,8 +365,12 @@ vtkInformationIntegerKey* FAILURE_REPORTED()
 /// failure stands: "Algorithm X returned failure for request: <the request
 /// dumped>" (the information pass and each later update added one) and "No ...
 /// has been set in the information for output port 0" (a later update of the
-/// failed pass); every other error of the executive goes to the output window,
-/// where it went without an observer.
+/// failed pass); every other error of the executive goes where it went without
+/// this filter: to the caller's own ErrorEvent observers of the executive when
+/// there are any (VTK's rule: an observed object's errors go to its observers
+/// only), else to the output window. (It went to the output window always, so
+/// a caller whose observer handled or silenced the executive's errors saw them
+/// printed too, once a failure had installed this filter.)
 class ReportedFailureFilter : public vtkCommand
 {
 public:
@@ -384,10 +388,26 @@ public:
       this->AbortFlagOn(); // nor to other observers: the algorithm's error said it
       return;
     }
-    if (text) vtkOutputWindow::GetInstance()->DisplayErrorText(text);
+    if (text && !this->OthersObserve()) vtkOutputWindow::GetInstance()->DisplayErrorText(text);
   }
 
 private:
+  /// Whether an ErrorEvent observer of the executive other than this one exists.
+  /// vtkObject cannot list its observers: this one is taken off, the question
+  /// asked, and it is put back. Safe inside the executive's InvokeEvent: the
+  /// changed list restarts its walk, this command's old tag counts as visited
+  /// and its new tag is newer than the event (so it is not called again); the
+  /// observers not yet called are then called.
+  bool OthersObserve()
+  {
+    this->Register(this); // alive while off the list
+    this->Executive->RemoveObservers(vtkCommand::ErrorEvent, this);
+    const bool others = this->Executive->HasObserver(vtkCommand::ErrorEvent) != 0;
+    this->Executive->AddObserver(vtkCommand::ErrorEvent, this, 1.0f);
+    this->UnRegister(this);
+    return others;
+  }
+
   bool Failed() const
   {
     for (int port = 0; port < this->Executive->GetNumberOfOutputPorts(); ++port)

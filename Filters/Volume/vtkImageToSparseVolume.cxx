@@ -92,6 +92,12 @@ int vtkImageToSparseVolume::RequestUpdateExtent(
 int vtkImageToSparseVolume::RequestData(
   vtkInformation*, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
 {
+  return this->Produce(inputVector, outputVector) ? 1
+                                                  : LVDIFVolumeBridge::FailReported(outputVector->GetInformationObject(0));
+}
+
+int vtkImageToSparseVolume::Produce(vtkInformationVector** inputVector, vtkInformationVector* outputVector)
+{
   if (LVDIFVolumeBridge::InformationFailed(outputVector->GetInformationObject(0)))
     return 0; // RequestInformation reported why (ParaView runs RequestData anyway)
   vtkImageData* image = vtkImageData::GetData(inputVector[0]);

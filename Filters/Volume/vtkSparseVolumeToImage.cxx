@@ -96,6 +96,12 @@ int vtkSparseVolumeToImage::RequestUpdateExtent(
 int vtkSparseVolumeToImage::RequestData(
   vtkInformation*, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
 {
+  return this->Produce(inputVector, outputVector) ? 1
+                                                  : LVDIFVolumeBridge::FailReported(outputVector->GetInformationObject(0));
+}
+
+int vtkSparseVolumeToImage::Produce(vtkInformationVector** inputVector, vtkInformationVector* outputVector)
+{
   if (LVDIFVolumeBridge::InformationFailed(outputVector->GetInformationObject(0)))
     return 0; // RequestInformation reported why (ParaView runs RequestData anyway)
   vtkSparseDictionaryVolume* input = vtkSparseDictionaryVolume::GetData(inputVector[0]);
@@ -117,7 +123,7 @@ int vtkSparseVolumeToImage::RequestData(
   return LVDIFVolumeBridge::CallCore(this, [&] {
     std::uint64_t points = 1;
     std::ostringstream what;
-    what << "vtkSparseVolumeToImage: a dense image of ";
+    what << "a dense image of "; // (the error names the class already)
     for (int a = 0; a < 3; ++a)
     {
       const std::int64_t n = std::max(0, ext[2 * a + 1] - ext[2 * a] + 1);

@@ -41,7 +41,11 @@ protected:
   int FillInputPortInformation(int port, vtkInformation* info) override;
   int RequestInformation(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
   int RequestUpdateExtent(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
+  /// RequestData: Produce, and a failure (always after its one error, or a
+  /// cancel) marked reported (LVDIFVolumeBridge::FailReported: no executive
+  /// "returned failure for request" dump after it).
   int RequestData(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
+  int Produce(vtkInformationVector** inputVector, vtkInformationVector* outputVector);
 
   bool WithColor = true;
   double RequiredBytes = 0;

@@ -130,8 +130,7 @@ void checkImportPadding(int padding, const std::string& name)
     name + " must be a number of voxels in [0, " + std::to_string(MaxImportPadding) + "], not " + std::to_string(padding));
 }
 
-void exportLevelSet(
-  const DictionaryVolume& volume, const std::string& path, const ExportOptions& options, Interrupter& interrupter)
+void checkExport(const DictionaryVolume& volume, const ExportOptions& options)
 {
   const VolumeOptions& o = volume.options();
   const double vs = o.spacing[0];
@@ -143,6 +142,14 @@ void exportLevelSet(
   }
   checkHalfWidth(options.halfWidth, "OpenVDB export: the half width");
   require(!options.sdfName.empty(), "OpenVDB export: empty grid name");
+}
+
+void exportLevelSet(
+  const DictionaryVolume& volume, const std::string& path, const ExportOptions& options, Interrupter& interrupter)
+{
+  checkExport(volume, options);
+  const VolumeOptions& o = volume.options();
+  const double vs = o.spacing[0];
   const double hw = exportHalfWidth(volume, options.halfWidth);
 
   const std::uint64_t voxels = checkedMultiply(static_cast<std::uint64_t>(volume.expandedChunkCount()) + 1,

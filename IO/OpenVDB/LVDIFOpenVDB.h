@@ -83,6 +83,12 @@ LVDIFIOOPENVDB_EXPORT void checkHalfWidth(double halfWidth, const std::string& n
 constexpr int MaxImportPadding = 1 << 16;
 LVDIFIOOPENVDB_EXPORT void checkImportPadding(int padding, const std::string& name = "padding");
 
+/// What exportLevelSet refuses before any work, with its words: anisotropic
+/// spacing, a half width out of range, an empty grid name (Error(InvalidArgument)).
+/// The writer checks it before it says anything about the band (it warned of a
+/// narrower band and then refused the volume).
+LVDIFIOOPENVDB_EXPORT void checkExport(const DictionaryVolume& volume, const ExportOptions& options);
+
 /// Writes the .vdb (Error(InvalidArgument) for anisotropic spacing,
 /// Error(IoFailure) when OpenVDB cannot write, Error(Cancelled)).
 LVDIFIOOPENVDB_EXPORT void exportLevelSet(const DictionaryVolume& volume, const std::string& path,

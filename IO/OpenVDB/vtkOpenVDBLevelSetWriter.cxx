@@ -34,6 +34,7 @@ void vtkOpenVDBLevelSetWriter::Save(
   // an image without an `rgba` array has no colours to write
   exportOptions.withColor = source.fromImage ? source.imageColors != nullptr : this->WithColor;
   exportOptions.sdfName = this->GridName;
+  lvdif::vdb::checkExport(volume, exportOptions); // a refused volume gets no warning first
   // a band narrower than asked (0 asks for the volume's own), said once
   const double asked = this->HalfWidth > 0 ? this->HalfWidth : volume.bandWidth();
   const double written = lvdif::vdb::exportHalfWidth(volume, this->HalfWidth);

@@ -4,6 +4,8 @@
 #include "LVDIFVolumeBridge.h"
 #include "vtkSparseDictionaryVolume.h"
 
+#include "lvdif/CNumbers.h"
+#include "lvdif/Error.h"
 #include "lvdif/LegacyBv.h"
 
 #include "vtkDataObject.h"
@@ -95,6 +97,19 @@ int vtkLegacyBvReader::RequestInformation(
     vtkErrorMacro("no file name: call SetFileName() first");
     return LVDIFVolumeBridge::FailInformation(outputVector->GetInformationObject(0));
   }
+  // the settings by name before the file: their errors read as the file's
+  // ("cannot read 'x.bv': distance scale must be finite and > 0", after reading it)
+  if (!LVDIFVolumeBridge::CallCore(this, [&] {
+        LVDIFVolumeBridge::BandOption(this->BandWidth);
+        if (!(std::isfinite(this->DistanceScale) && this->DistanceScale > 0))
+        {
+          char text[40];
+          lvdif::formatDoubleC(text, sizeof text, "%g", this->DistanceScale);
+          throw lvdif::Error(lvdif::ErrorCode::InvalidArgument,
+            std::string("DistanceScale must be a finite number > 0 (our voxel units per the file's unit), not ") + text);
+        }
+      }))
+    return LVDIFVolumeBridge::FailInformation(outputVector->GetInformationObject(0));
   std::string why;
   const std::int64_t n = edgeOf(this->FileName, why);
   if (n <= 0)

@@ -106,6 +106,41 @@ Device chooseDevice(const MeshToSdfPrepared& mesh, const MeshToSdfOptions& optio
   return capped ? d : Device::Cpu;
 }
 
+/// The first exception of an OpenMP loop's bodies, thrown again after the
+/// loop: an exception that leaves an OpenMP region terminates the process (a
+/// chunk expanded past LVDIF_MEMORY_LIMIT aborted pvpython, ParaView's server
+/// and the CLI with "terminate called after throwing an instance of
+/// 'lvdif::Error'"). Bodies after a failure are skipped.
+class LoopFailure
+{
+public:
+  template <typename Body>
+  void run(Body&& body)
+  {
+    if (this->Failed.load(std::memory_order_relaxed)) return;
+    try
+    {
+      body();
+    }
+    catch (...)
+    {
+#pragma omp critical(lvdif_mesh_to_sdf_loop_failure)
+      {
+        if (!this->First) this->First = std::current_exception();
+      }
+      this->Failed = true;
+    }
+  }
+  void rethrow()
+  {
+    if (this->First) std::rethrow_exception(this->First);
+  }
+
+private:
+  std::atomic<bool> Failed{ false };
+  std::exception_ptr First;
+};
+
 /// Stores one chunk's keys (the CPU and GPU paths): a uniform chunk over a
 /// uniform one is filled, anything else expanded and written (colours kept).
 /// `uniform` is whether the keys of the chunk's voxels inside the volume are
@@ -177,6 +212,7 @@ void volumeRegion(DictionaryVolume& volume, const VoxelBox& region, std::uint64_
     const double t0 = now();
     const std::int64_t nx = box.hi[0] - box.lo[0] + 1, ny = box.hi[1] - box.lo[1] + 1;
     const std::int64_t ncx = rc.hi[0] - rc.lo[0] + 1, chunksInBand = ncx * (cy1 - cy0);
+    LoopFailure failure;
 #pragma omp parallel for schedule(dynamic, 1)
     for (std::int64_t c = 0; c < chunksInBand; ++c)
     {
@@ -226,8 +262,9 @@ void volumeRegion(DictionaryVolume& volume, const VoxelBox& region, std::uint64_
       for (std::int64_t z = cb.lo[2]; z <= cb.hi[2] && !sameFloat && uniform; ++z)
         for (std::int64_t y = cb.lo[1]; y <= cb.hi[1] && uniform; ++y)
           for (std::int64_t x = cb.lo[0]; x <= cb.hi[0] && uniform; ++x) uniform = keyAt(x, y, z, 0) == first;
-      storeChunk(volume, id, uniform, first, keyAt);
+      failure.run([&] { storeChunk(volume, id, uniform, first, keyAt); });
     }
+    failure.rethrow();
     stats.writeSeconds += now() - t0;
     intr.checkInterrupt();
   }
@@ -293,6 +330,7 @@ void volumeOnCuda(detail::meshtosdf_cuda::Session& session, DictionaryVolume& vo
     };
     // the uniform chunks, while the first pieces of keys are copied
     const std::int64_t chunks = static_cast<std::int64_t>(keys.uniform.size());
+    LoopFailure failure;
 #pragma omp parallel for schedule(dynamic, 16)
     for (std::int64_t c = 0; c < chunks; ++c)
     {
@@ -300,10 +338,12 @@ void volumeOnCuda(detail::meshtosdf_cuda::Session& session, DictionaryVolume& vo
       if (u == detail::meshtosdf_cuda::ChunkKeys::NotUniform) continue;
       const std::int64_t id = idOf(c);
       verify(id, [&](std::int64_t) { return static_cast<SdfKey>(u); });
-      storeChunk(volume, id, true, static_cast<SdfKey>(u), [](std::int64_t, std::int64_t, std::int64_t, std::int64_t) {
-        return SdfKey(0);
+      failure.run([&] {
+        storeChunk(volume, id, true, static_cast<SdfKey>(u),
+          [](std::int64_t, std::int64_t, std::int64_t, std::int64_t) { return SdfKey(0); });
       });
     }
+    failure.rethrow();
     const double store0 = now() - t0;
     // then the others, one piece of keys at a time
     double storePieces = 0;
@@ -316,11 +356,14 @@ void volumeOnCuda(detail::meshtosdf_cuda::Session& session, DictionaryVolume& vo
         const std::uint16_t* k = pieceKeys + i * e3;
         const std::int64_t id = idOf(keys.listed[first + static_cast<std::size_t>(i)]);
         verify(id, [&](std::int64_t l) { return static_cast<SdfKey>(k[l]); });
-        storeChunk(volume, id, false, SdfKey(0),
-          [&](std::int64_t, std::int64_t, std::int64_t, std::int64_t l) { return static_cast<SdfKey>(k[l]); });
+        failure.run([&] {
+          storeChunk(volume, id, false, SdfKey(0),
+            [&](std::int64_t, std::int64_t, std::int64_t, std::int64_t l) { return static_cast<SdfKey>(k[l]); });
+        });
       }
       storePieces += now() - s0;
     });
+    failure.rethrow();
     stats.keyMismatches += mismatches.load();
     stats.keysVerified += verified.load();
     stats.writeSeconds += now() - t0;
