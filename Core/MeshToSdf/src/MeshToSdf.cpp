@@ -523,12 +523,25 @@ std::future<void> partsBesideGpu(const MeshToSdfPrepared& mesh, bool needed)
 /// distances only in the band, where the pseudo-normal far field needs the
 /// planes of every nearby triangle (docs/MESH_TO_SDF.md, "Pseudo-normal signs
 /// of solids"). The check runs once per prepared mesh (its time is build time).
+/// The Normal sign runs the check too, for its warning alone: a closed part
+/// whose faces point inwards makes either sign inside out there, silently.
 MeshToSdfOptions signOfSolids(const MeshToSdfPrepared& mesh, const MeshToSdfOptions& options, MeshToSdfStats& stats)
 {
-  if (options.sign != SignMode::PseudoNormal || !options.solidsByWinding) return options;
+  const bool normals = options.sign == SignMode::Normal || options.sign == SignMode::PseudoNormal;
+  if (!normals) return options;
   const double t0 = now();
   const SolidBoundary& solid = mesh.impl().solidBoundary();
   stats.buildSeconds += now() - t0;
+  if (solid.inwardParts > 0)
+  {
+    std::ostringstream m;
+    m << "mesh to SDF: " << solid.inwardParts << " of the mesh's " << solid.parts
+      << " connected parts face inwards (closed, but their faces point into the solid), so the "
+      << (options.sign == SignMode::Normal ? "normal" : "pseudo-normal")
+      << " sign is inside out there; reverse their faces, or use the winding-number sign, which is right either way";
+    stats.warnings.push_back(m.str());
+  }
+  if (options.sign == SignMode::Normal || !options.solidsByWinding) return options;
   if (!solid.solid)
   {
     trace(("pseudo-normal sign on its own path: " + solid.why).c_str(), 0);

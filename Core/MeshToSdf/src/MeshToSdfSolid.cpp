@@ -429,8 +429,9 @@ private:
 /// off the part's largest triangle by a tenth of its smallest height along
 /// its normal; that triangle must be the point's nearest, so no other face
 /// lies between the point and the part.
-void checkFronts(const PreparedMesh& m, const Bvh& bvh, const MeshParts& parts, FirstFailure& result)
+std::size_t checkFronts(const PreparedMesh& m, const Bvh& bvh, const MeshParts& parts, FirstFailure& result)
 {
+  std::atomic<std::size_t> inward{ 0 };
   std::vector<std::int64_t> largest(parts.count, -1);
   for (std::size_t t = 0; t < m.tris.size(); ++t)
   {
@@ -448,42 +449,44 @@ void checkFronts(const PreparedMesh& m, const Bvh& bvh, const MeshParts& parts, 
 #pragma omp for schedule(dynamic, 1)
     for (std::int64_t p = 0; p < count; ++p)
     {
-      if (result.failed()) continue;
+      // every part, also after a failure: the parts that face inwards are counted
       const std::int64_t t = largest[static_cast<std::size_t>(p)];
       const Tri& tri = m.tris[static_cast<std::size_t>(t)];
       double longest = 0;
       for (int k = 0; k < 3; ++k) longest = std::max(longest, norm(tri.v[(k + 1) % 3] - tri.v[k]));
       const double delta = 0.1 * (2 * tri.area / longest);
       const V3 centre = (1.0 / 3.0) * (tri.v[0] + tri.v[1] + tri.v[2]);
-      for (int side = 0; side < 2 && !result.failed(); ++side)
+      int w[2] = { 0, 0 }; // in front, behind
+      bool decided = true;
+      for (int side = 0; side < 2 && decided; ++side)
       {
         const V3 at = centre + (side == 0 ? delta : -delta) * tri.n;
         if (bvh.nearest(at, static_cast<std::int32_t>(t), 1e300).tri != t)
         {
           result.fail("a face lies too close in front of or behind a part's largest face to test its winding number");
+          decided = false;
           break;
         }
-        bool decided = false;
+        decided = false;
         for (const V3& dir : directions)
         {
           hits.clear();
           if (!bvh.rayHits(at, dir, 0, hits)) continue;
-          int w = 0;
-          for (const Bvh::RayHit& h : hits) w += h.sign;
+          for (const Bvh::RayHit& h : hits) w[side] += h.sign;
           decided = true;
-          if (w != (side == 0 ? 0 : 1))
-          {
-            std::ostringstream why;
-            why << "the winding number " << (side == 0 ? "in front of" : "behind") << " part " << p << " is " << w
-                << " (not " << (side == 0 ? 0 : 1) << "): a part faces inwards, or parts are nested";
-            result.fail(why.str());
-          }
           break;
         }
         if (!decided) result.fail("every test ray of a part's winding number was ambiguous");
       }
+      if (!decided || (w[0] == 0 && w[1] == 1)) continue;
+      if (w[0] == -1 && w[1] == 0) inward.fetch_add(1, std::memory_order_relaxed);
+      std::ostringstream why;
+      why << "the winding number in front of part " << p << " is " << w[0] << " and behind it " << w[1]
+          << " (not 0 and 1): " << (w[0] == -1 && w[1] == 0 ? "the part faces inwards" : "parts are nested");
+      result.fail(why.str());
     }
   }
+  return inward.load();
 }
 } // namespace
 
@@ -512,11 +515,12 @@ SolidBoundary checkSolidBoundary(const PreparedMesh& mesh, const Bvh& bvh, const
   if (!result.failed())
   {
     t0 = now();
-    checkFronts(mesh, bvh, parts, result);
+    r.inwardParts = checkFronts(mesh, bvh, parts, result);
     trace("solid check: winding numbers in front of the parts", now() - t0);
   }
   r.solid = !result.failed();
   r.why = result.why();
+  r.parts = parts.count;
   return r;
 }
 

@@ -37,6 +37,11 @@ struct SolidBoundary
 {
   bool solid = false;
   std::string why; // what failed (for --trace), empty when solid
+  /// Closed, manifold, embedded parts whose faces point into the solid
+  /// (winding number -1 behind them, 0 in front): for the normal and
+  /// pseudo-normal signs' warning. Counted only when steps 1 and 2 pass.
+  std::size_t inwardParts = 0;
+  std::size_t parts = 0;
 };
 
 /// The mesh is a solid's boundary when, over its non-degenerate triangles:

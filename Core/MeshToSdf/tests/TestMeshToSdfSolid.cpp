@@ -130,9 +130,9 @@ TEST(MeshToSdfSolid, EachBrokenConditionIsFound)
     std::string why; // a word of the reason
   };
   std::vector<Case> cases;
-  cases.push_back({ "facing inwards", reversed(sphere), "winding number in front" });
+  cases.push_back({ "facing inwards", reversed(sphere), "faces inwards" });
   cases.push_back({ "nested, both facing out", oracle::merge(makeSphereMesh(0, 0, 0, 0.9f, 14, 28), makeSphereMesh(0.05f, 0, 0, 0.5f, 10, 20)),
-    "winding number in front" });
+    "nested" });
   cases.push_back({ "two spheres overlapping", oracle::merge(makeSphereMesh(-0.3f, 0, 0, 0.5f, 10, 20), makeSphereMesh(0.3f, 0.05f, 0, 0.5f, 10, 20)),
     "meet" });
   {
@@ -245,4 +245,42 @@ TEST(MeshToSdfSolid, OthersKeepThePseudoNormalPath)
     EXPECT_FALSE(a.signByWinding) << c.name;
     EXPECT_EQ(std::memcmp(on.data(), off.data(), on.size() * sizeof(float)), 0) << c.name;
   }
+}
+
+/// A closed mesh whose faces point inwards makes the normal and pseudo-normal
+/// signs inside out, silently before: a warning names the parts and the way
+/// out; a mesh facing out, or with a cavity facing in, gets none.
+TEST(MeshToSdfSolid, PartsFacingInwardsAreWarnedAbout)
+{
+  const TriangleMesh sphere = makeSphereMesh(0.05f, -0.03f, 0.02f, 1.0f, 12, 24);
+  const TriangleMesh twoInward = oracle::merge(reversed(makeSphereMesh(-0.5f, 0, 0, 0.4f, 10, 20)),
+    reversed(makeSphereMesh(0.5f, 0.05f, 0, 0.4f, 10, 20)));
+  const TriangleMesh oneInward = oracle::merge(makeSphereMesh(-0.5f, 0, 0, 0.4f, 10, 20),
+    reversed(makeSphereMesh(0.5f, 0.05f, 0, 0.4f, 10, 20)));
+  auto warningsOf = [](const TriangleMesh& m, SignMode sign) {
+    const GridGeometry g = fitGridToMesh(m, 24, 3);
+    std::vector<float> out(static_cast<std::size_t>(g.count()));
+    MeshToSdfOptions o;
+    o.sign = sign;
+    o.bandWidth = 3;
+    o.device = Device::Cpu;
+    const MeshToSdfStats st = meshToSdf(m, FloatGridView{ out.data(), g }, o);
+    std::string all;
+    for (const std::string& w : st.warnings) all += w + "\n";
+    return all;
+  };
+  for (SignMode sign : { SignMode::PseudoNormal, SignMode::Normal })
+  {
+    const std::string name = sign == SignMode::Normal ? "normal" : "pseudo-normal";
+    const std::string reversedSphere = warningsOf(reversed(sphere), sign);
+    EXPECT_NE(reversedSphere.find("1 of the mesh's 1 connected parts face inwards"), std::string::npos) << reversedSphere;
+    EXPECT_NE(reversedSphere.find("the " + name + " sign is inside out"), std::string::npos) << reversedSphere;
+    EXPECT_NE(warningsOf(twoInward, sign).find("2 of the mesh's 2 connected parts face inwards"), std::string::npos);
+    EXPECT_NE(warningsOf(oneInward, sign).find("1 of the mesh's 2 connected parts face inwards"), std::string::npos);
+    EXPECT_EQ(warningsOf(sphere, sign).find("face inwards"), std::string::npos);
+    for (const auto& [solidName, mesh] : solids())
+      EXPECT_EQ(warningsOf(mesh, sign).find("face inwards"), std::string::npos) << solidName;
+  }
+  // the winding sign is right either way: no such warning
+  EXPECT_EQ(warningsOf(reversed(sphere), SignMode::WindingNumber).find("face inwards"), std::string::npos);
 }

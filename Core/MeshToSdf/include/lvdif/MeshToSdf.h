@@ -165,7 +165,9 @@ struct MeshToSdfStats
   /// volume, or voxels larger than the mesh's parts; meshing such a field
   /// gives no surface, or slivers), and a winding sign over faces reversed
   /// against their neighbours or cancelled by opposite duplicates without
-  /// reorientFaces (extra surfaces inside the solid, a slower field).
+  /// reorientFaces (extra surfaces inside the solid, a slower field), and
+  /// the normal and pseudo-normal signs on closed parts whose faces point
+  /// inwards (inside out there).
   std::vector<std::string> warnings;
 };
 
