@@ -29,6 +29,7 @@ int CommandScript(int argc, char** argv)
   // the start canvas's size is refused before any output is checked or volume built
   const long n = args.has("in") ? 0 : args.getCanvasSize("size", 128);
   CheckEditOutputs(args);
+  AcceptEditCommandLine(args);
   ProgressBar progress;
   lvdif::ScriptOptions options;
   options.interrupter = &progress;
@@ -76,6 +77,7 @@ int CommandPlay(int argc, char** argv)
     throw lvdif::Error(lvdif::ErrorCode::InvalidArgument,
       "usage: lvdif play RECORDING.lvr --in VOLUME [--out VOLUME] [--mesh OUT.ply] [--png OUT.png]");
   CheckEditOutputs(args);
+  AcceptEditCommandLine(args);
   ProgressBar progress;
   // the (small) recording is read and checked before the (possibly large) volume is loaded
   const lvdif::Recording recording = lvdif::loadRecording(args.positional()[0]);

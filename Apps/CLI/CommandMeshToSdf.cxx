@@ -71,8 +71,9 @@ int CommandMeshToSdf(int argc, char** argv)
   if (args.has("svf"))
     options.svfFilters = lvdif::SvfAll; // SVF1..SVF4, the paper's cleanup (meant for --sign normal)
 
-  ProgressBar progress;
   CheckVolumeOutput(out);
+  CommandLineAccepted();
+  ProgressBar progress;
   const lvdif::TriangleMesh mesh = [&] {
     try
     {
