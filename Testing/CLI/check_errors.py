@@ -243,6 +243,15 @@ code, err = run("mesh-to-sdf", near, os.path.join(out, "m.lvdv"), "--dims", "8",
 assert code == 1 and err == ("lvdif mesh-to-sdf: the mesh reaches 9e+29 and --padding 3 around it takes the grid beyond "
                              "+-1e+30 (the volumes' world range): scale the mesh down or use less padding"), (code, err)
 assert not os.path.exists(os.path.join(out, "m.lvdv"))
+# a mesh so small that its voxels fall below the volumes' smallest spacing (1e-30) says so (it was "the
+# mesh reaches 1e-30 and --padding 2 around it takes the grid beyond +-1e+30")
+tiny = os.path.join(out, "tiny.obj")
+with open(tiny, "w") as f:
+    f.write("v 0 0 0\nv 1e-30 0 0\nv 0 1e-30 0\nv 0 0 1e-30\nf 1 3 2\nf 1 2 4\nf 2 3 4\nf 3 1 4\n")
+code, err = run("mesh-to-sdf", tiny, os.path.join(out, "m.lvdv"), "--dims", "24")
+assert code == 1 and err == ("lvdif mesh-to-sdf: the mesh is 1e-30 across, so --dims 24 gives voxels of 5.26316e-32, below "
+                             "the volumes' smallest spacing of 1e-30: scale the mesh up or use fewer --dims"), (code, err)
+assert not os.path.exists(os.path.join(out, "m.lvdv"))
 # --dims too small for the padding names both options (not fitGridToMesh's "maxDim")
 code, err = run("mesh-to-sdf", os.path.join(out, "empty.obj"), os.path.join(out, "m.lvdv"), "--dims", "3")
 assert code == 2 and "--dims 3" in err and "--padding 2" in err and "maxDim" not in err, (code, err)
