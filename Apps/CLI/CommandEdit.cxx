@@ -66,6 +66,9 @@ int CommandScript(int argc, char** argv)
   const lvdif::DictionaryVolume& result = made ? *made : *start;
   std::printf("%s: %llu edits, %llu steps\n", path.c_str(), (unsigned long long)runner.edits(),
     (unsigned long long)runner.steps());
+  // as play's: a run without an output keeps nothing, said once (it was silent)
+  if (!args.has("out") && !args.has("mesh") && !args.has("png"))
+    std::fprintf(stderr, "warning: nothing written (no --out, --mesh or --png): the script's edits are not kept\n");
   WriteEditOutputs(result, args, { { "script", path } }, progress);
   return 0;
 }

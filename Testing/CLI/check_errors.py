@@ -167,6 +167,11 @@ assert r.returncode == 0 and f"{rec}: 1 records replayed on {play_in}" in r.stdo
     and "nothing written" in warnings[0], r
 r = subprocess.run([exe, "play", rec, "--in", play_in, "--out", play_in], capture_output=True, text=True, timeout=60)
 assert r.returncode == 0 and "warning" not in r.stderr, r
+# ... and so does script (it ran the whole script and kept nothing without a word)
+r = subprocess.run([exe, "script", os.path.join(out, "play-in.lvs")], capture_output=True, text=True, timeout=60)
+warnings = [line for line in r.stderr.splitlines() if line.startswith("warning:")]
+assert r.returncode == 0 and warnings == ["warning: nothing written (no --out, --mesh or --png): the script's edits "
+                                          "are not kept"], r
 # --size with a script that makes its own canvas: refused at that line before anything runs or is
 # written (the script's canvas silently won); without --size the script's canvas is the canvas
 own_canvas = os.path.join(out, "own-canvas.lvs")
