@@ -36,6 +36,7 @@ int CommandDemo(int argc, char** argv)
     throw lvdif::Error(lvdif::ErrorCode::IoFailure, "cannot create the output folder '" + out + "': " + std::strerror(errno));
   if (!made && (::stat(out.c_str(), &st) != 0 || !S_ISDIR(st.st_mode)))
     throw lvdif::Error(lvdif::ErrorCode::InvalidArgument, "--out '" + out + "' exists and is not a folder");
+  CommandLineAccepted();
   const std::string plyPath = out + "/demo.ply", pngPath = out + "/demo.png", volumePath = out + "/demo.lvdv";
   DemoResult demo;
   vtkSmartPointer<vtkPolyData> mesh;
@@ -49,6 +50,7 @@ int CommandDemo(int argc, char** argv)
   {
     CheckMeshOutput(plyPath);
     CheckPngOutput(pngPath);
+    RequireDisplay(pngPath);
     demo = BuildDemoVolume(size, out, progress);
     tBuild = seconds();
     mesh = MeshVolume(*demo.volume, progress);

@@ -29,6 +29,7 @@ int CommandScript(int argc, char** argv)
   // the start canvas's size is refused before any output is checked or volume built
   const long n = args.has("in") ? 0 : args.getCanvasSize("size", 128);
   CheckEditOutputs(args);
+  AcceptEditCommandLine(args);
   ProgressBar progress;
   lvdif::ScriptOptions options;
   options.interrupter = &progress;
@@ -65,6 +66,9 @@ int CommandScript(int argc, char** argv)
   const lvdif::DictionaryVolume& result = made ? *made : *start;
   std::printf("%s: %llu edits, %llu steps\n", path.c_str(), (unsigned long long)runner.edits(),
     (unsigned long long)runner.steps());
+  // as play's: a run without an output keeps nothing, said once (it was silent)
+  if (!args.has("out") && !args.has("mesh") && !args.has("png"))
+    std::fprintf(stderr, "warning: nothing written (no --out, --mesh or --png): the script's edits are not kept\n");
   WriteEditOutputs(result, args, { { "script", path } }, progress);
   return 0;
 }
@@ -76,6 +80,7 @@ int CommandPlay(int argc, char** argv)
     throw lvdif::Error(lvdif::ErrorCode::InvalidArgument,
       "usage: lvdif play RECORDING.lvr --in VOLUME [--out VOLUME] [--mesh OUT.ply] [--png OUT.png]");
   CheckEditOutputs(args);
+  AcceptEditCommandLine(args);
   ProgressBar progress;
   // the (small) recording is read and checked before the (possibly large) volume is loaded
   const lvdif::Recording recording = lvdif::loadRecording(args.positional()[0]);

@@ -71,8 +71,9 @@ int CommandMeshToSdf(int argc, char** argv)
   if (args.has("svf"))
     options.svfFilters = lvdif::SvfAll; // SVF1..SVF4, the paper's cleanup (meant for --sign normal)
 
-  ProgressBar progress;
   CheckVolumeOutput(out);
+  CommandLineAccepted();
+  ProgressBar progress;
   const lvdif::TriangleMesh mesh = [&] {
     try
     {
@@ -101,8 +102,24 @@ int CommandMeshToSdf(int argc, char** argv)
   const lvdif::GridGeometry grid = namingTheMesh([&] { return lvdif::fitGridToMesh(mesh, dims, padding); });
   lvdif::VolumeOptions vo = lvdif::volumeOptionsOn(grid);
   vo.bandWidth = bandWidth;
-  // a mesh inside the world range whose padded grid is not: named with the
-  // options (the volume's own words are about an origin the user never gave)
+  // a mesh inside the world range whose padded grid is not, or so small that its
+  // voxels are below the smallest spacing: named with the options (the volume's
+  // own words are about an origin the user never gave; a mesh 1e-30 across was
+  // said to take the grid beyond +-1e+30)
+  const double finest = std::min({ grid.spacing[0], grid.spacing[1], grid.spacing[2] });
+  if (!(finest >= lvdif::DictionaryVolume::MinSpacing))
+  {
+    const auto b = mesh.bounds();
+    double extent = 0;
+    for (int a = 0; a < 3; ++a) extent = std::max(extent, double(b[1][a]) - double(b[0][a]));
+    char e[40], sp[40], limit[40];
+    lvdif::formatDoubleC(e, sizeof e, "%g", extent);
+    lvdif::formatDoubleC(sp, sizeof sp, "%g", finest);
+    lvdif::formatDoubleC(limit, sizeof limit, "%g", lvdif::DictionaryVolume::MinSpacing);
+    throw lvdif::Error(lvdif::ErrorCode::InvalidArgument, std::string("the mesh is ") + e + " across, so --dims " +
+        std::to_string(dims) + " gives voxels of " + sp + ", below the volumes' smallest spacing of " + limit +
+        ": scale the mesh up or use fewer --dims");
+  }
   if (!lvdif::DictionaryVolume::checkGeometry(vo).empty())
   {
     const auto b = mesh.bounds();

@@ -28,6 +28,7 @@ int CommandInfo(int argc, char** argv)
   if (format && format->extension != "lvdv")
     throw lvdif::Error(lvdif::ErrorCode::InvalidArgument, "info describes .lvdv files, '" + path + "' is a ." +
         format->extension + " file: convert it first (lvdif convert " + path + " OUT.lvdv)");
+  CommandLineAccepted();
   lvdif::VolumeFileInfo info;
   try
   {
@@ -67,6 +68,8 @@ int CommandMesh(int argc, char** argv)
     throw lvdif::Error(lvdif::ErrorCode::InvalidArgument, "usage: lvdif mesh VOLUME OUT.(ply|obj|stl|vtp) [--png OUT.png]");
   CheckMeshOutput(args.positional()[1]);
   if (args.has("png")) CheckPngOutput(args.get("png", ""));
+  CommandLineAccepted();
+  if (args.has("png")) RequireDisplay(args.get("png", ""));
   ProgressBar progress;
   auto volume = LoadAnyVolume(args.positional()[0], progress);
   vtkSmartPointer<vtkPolyData> mesh = MeshVolume(*volume, progress);
@@ -82,6 +85,7 @@ int CommandConvert(int argc, char** argv)
   if (args.positional().size() != 2)
     throw lvdif::Error(lvdif::ErrorCode::InvalidArgument, "usage: lvdif convert IN OUT   (.lvdv, .lvdvp, .bv, .vti, .vdb)");
   CheckVolumeOutput(args.positional()[1]);
+  CommandLineAccepted();
   ProgressBar progress;
   auto volume = LoadAnyVolume(args.positional()[0], progress);
   SaveAnyVolume(*volume, args.positional()[1], { { "converted_from", args.positional()[0] } }, progress);

@@ -1,5 +1,7 @@
 #include "EditOutputs.h"
 
+#include "Commands.h"
+
 #include "MeshOutput.h"
 #include "VolumeFiles.h"
 
@@ -15,6 +17,13 @@ void CheckEditOutputs(const Arguments& args)
     CheckMeshOutput(args.get("mesh", ""));
   if (args.has("png"))
     CheckPngOutput(args.get("png", ""));
+}
+
+void AcceptEditCommandLine(const Arguments& args)
+{
+  CommandLineAccepted();
+  if (args.has("png"))
+    RequireDisplay(args.get("png", ""));
 }
 
 void WriteEditOutputs(const lvdif::DictionaryVolume& volume, const Arguments& args,

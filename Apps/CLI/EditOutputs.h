@@ -9,7 +9,10 @@
 #include <map>
 #include <string>
 
-/// --out, --mesh and --png checked before the work (extension, writable place, display).
+/// --out, --mesh and --png checked before the work (extension, writable place).
 void CheckEditOutputs(const Arguments& args);
+/// The end of an editing command's check (CommandLineAccepted), then the X
+/// display that --png needs, opened before the work.
+void AcceptEditCommandLine(const Arguments& args);
 void WriteEditOutputs(const lvdif::DictionaryVolume& volume, const Arguments& args,
   const std::map<std::string, std::string>& metadata, lvdif::Interrupter& progress);

@@ -112,6 +112,10 @@ void CheckPngOutput(const std::string& path)
   if (Extension(path) != "png")
     throw lvdif::Error(lvdif::ErrorCode::InvalidArgument, "a picture must be a .png file, not " + path);
   lvdif::requireWritable(path);
+}
+
+void RequireDisplay(const std::string& path)
+{
   // Debian's VTK renders through X only and aborts the process when the display
   // cannot be opened: try opening it first (libX11 is loaded by VTK anyway)
   vtkNew<vtkRenderWindow> window;
@@ -150,6 +154,7 @@ void WriteMesh(vtkPolyData* mesh, const std::string& path)
 void RenderPng(vtkPolyData* mesh, const std::string& path, int width, int height)
 {
   CheckPngOutput(path);
+  RequireDisplay(path);
   vtkNew<vtkPolyDataMapper> mapper;
   mapper->SetInputData(mesh);
   mapper->SetScalarModeToUsePointFieldData();

@@ -16,9 +16,13 @@ vtkSmartPointer<vtkPolyData> MeshVolume(const lvdif::DictionaryVolume& volume, l
 /// Checks a mesh output before any expensive work: a known extension and a
 /// writable place (lvdif::requireWritable); throws lvdif::Error.
 void CheckMeshOutput(const std::string& path);
-/// Checks a picture output before any expensive work: .png, writable, and an
-/// X display that opens (Debian's VTK aborts without one); throws lvdif::Error.
+/// Checks a picture output before any expensive work: .png and writable;
+/// throws lvdif::Error.
 void CheckPngOutput(const std::string& path);
+/// Opens the X display that rendering the picture `path` needs (Debian's VTK
+/// aborts without one), held until the process exits; throws lvdif::Error.
+/// Not part of the command line's check: no display is a failure (status 1).
+void RequireDisplay(const std::string& path);
 /// Chooses the writer from the extension (.ply .obj .stl .vtp); throws lvdif::Error on failure.
 void WriteMesh(vtkPolyData* mesh, const std::string& path);
 /// Both write through lvdif::saveAtomicallyByName (a failed write is an error,

@@ -54,6 +54,8 @@ extern "C" void onAbort(int sig)
   std::raise(sig);
 }
 
+bool accepted = false; // CommandLineAccepted() was called
+
 struct Command
 {
   const char* name;
@@ -78,12 +80,21 @@ const Command commands[] = {
   { "play", CommandPlay, "play RECORDING.lvr --in VOLUME [--out VOLUME] [--mesh OUT] [--png OUT.png]   replay edits" },
 };
 
+const char* const ExitStatusHelp = "exit status: 0 done, 1 failed while running, 2 command line refused (nothing "
+                                   "read or written), 130 cancelled (Ctrl-C)";
+
 int usage(FILE* f)
 {
   std::fprintf(f, "usage: lvdif COMMAND [ARGS]\n\ncommands:\n");
   for (const auto& c : commands) std::fprintf(f, "  %s\n", c.help);
+  std::fprintf(f, "\n%s\n", ExitStatusHelp);
   return f == stdout ? 0 : 2;
 }
+}
+
+void CommandLineAccepted()
+{
+  accepted = true;
 }
 
 int main(int argc, char** argv)
@@ -103,7 +114,7 @@ int main(int argc, char** argv)
       {
         if (!std::strcmp(argv[i], "--help") || !std::strcmp(argv[i], "-h"))
         {
-          std::printf("usage: lvdif %s\n", c.help);
+          std::printf("usage: lvdif %s\n\n%s\n", c.help, ExitStatusHelp);
           return 0;
         }
       }
@@ -114,12 +125,13 @@ int main(int argc, char** argv)
       catch (const lvdif::Error& e)
       {
         std::fprintf(stderr, "lvdif %s: %s\n", c.name, e.what());
-        return e.code() == lvdif::ErrorCode::Cancelled ? 130 : 1;
+        // 2 for a command line refused before the work, as the editor's (every refusal exited 1)
+        return e.code() == lvdif::ErrorCode::Cancelled ? 130 : accepted ? 1 : 2;
       }
       catch (const std::exception& e)
       {
         std::fprintf(stderr, "lvdif %s: %s\n", c.name, e.what());
-        return 1;
+        return 1; // (std::bad_alloc and the like: never a refused command line)
       }
     }
   }

@@ -1,4 +1,5 @@
-"""Bad command lines get one clear line on stderr and a non-zero exit code."""
+"""Bad command lines get one clear line on stderr and a non-zero exit code: 2 for a command line refused
+before the work (an option, an argument, an output's place or format), 1 for a failure while running."""
 import subprocess
 import sys
 
@@ -18,32 +19,47 @@ assert "--dims 128" in r.stdout and "--padding 2" in r.stdout and "--band 8" in 
 r = subprocess.run([exe, "demo", "--out", out + "-help", "-h"], capture_output=True, text=True, timeout=60)
 assert r.returncode == 0 and r.stdout.startswith("usage: lvdif demo") and not __import__("os").path.exists(out + "-help"), r
 
+# the exit statuses are one rule, said in every help (a refused command line exited 1, the editor's 2)
+status_line = ("exit status: 0 done, 1 failed while running, 2 command line refused (nothing read or written), "
+               "130 cancelled (Ctrl-C)")
+for cmd in (["help"], ["mesh", "--help"]):
+    r = subprocess.run([exe, *cmd], capture_output=True, text=True, timeout=60)
+    assert r.returncode == 0 and status_line in r.stdout, r
+# a wrong number of arguments and an output in a missing folder are refused command lines (2); an
+# input that cannot be read is a failure while running (1)
+code, err = run("mesh", "only-one.lvdv")
+assert code == 2 and err.startswith("lvdif mesh: usage: lvdif mesh VOLUME"), (code, err)
+code, err = run("mesh", "missing.lvdv", "/nonexistent_dir/x.ply")
+assert code == 2 and "/nonexistent_dir" in err, (code, err)
+code, err = run("mesh", "missing.lvdv", "x.ply")
+assert code == 1 and "missing.lvdv" in err, (code, err)
+
 # info on another volume format names it (it said "header: bad magic")
 code, err = run("info", "volume.vti")
-assert code == 1 and err == ("lvdif info: info describes .lvdv files, 'volume.vti' is a .vti file: convert it first "
+assert code == 2 and err == ("lvdif info: info describes .lvdv files, 'volume.vti' is a .vti file: convert it first "
                              "(lvdif convert volume.vti OUT.lvdv)"), (code, err)
 # an option given twice is a mistake, not "the last one wins" (it silently did)
 code, err = run("mesh-to-sdf", "in.obj", "out.lvdv", "--dims", "16", "--dims", "24")
-assert code == 1 and err == "lvdif mesh-to-sdf: option --dims given twice", (code, err)
+assert code == 2 and err == "lvdif mesh-to-sdf: option --dims given twice", (code, err)
 code, err = run("info", "x.lvdv", "--header-only", "--header-only")
-assert code == 1 and err == "lvdif info: option --header-only given twice", (code, err)
+assert code == 2 and err == "lvdif info: option --header-only given twice", (code, err)
 code, err = run("no-such-command")
 assert code == 2 and "unknown command" in err, (code, err)
 code, err = run("demo", "--bogus", "1")
-assert code == 1 and err == "lvdif demo: unknown option --bogus", (code, err)
+assert code == 2 and err == "lvdif demo: unknown option --bogus", (code, err)
 # an unknown option is named where it stands: last on the line it said "needs a value",
 # and before the positionals it took the mesh as its value
 code, err = run("mesh-to-sdf", "in.obj", "out.lvdv", "--bogus")
-assert code == 1 and err == "lvdif mesh-to-sdf: unknown option --bogus", (code, err)
+assert code == 2 and err == "lvdif mesh-to-sdf: unknown option --bogus", (code, err)
 code, err = run("mesh-to-sdf", "--svf", "--bogus", "in.obj", "out.lvdv")
-assert code == 1 and err == "lvdif mesh-to-sdf: unknown option --bogus", (code, err)
+assert code == 2 and err == "lvdif mesh-to-sdf: unknown option --bogus", (code, err)
 code, err = run("demo", "--size", "ten")
-assert code == 1 and "expects an integer" in err, (code, err)
+assert code == 2 and "expects an integer" in err, (code, err)
 code, err = run("demo", "--size", "100000000", "--out", out)
-assert code == 1 and "each axis needs 2..1048576 voxels" in err, (code, err)
+assert code == 2 and "each axis needs 2..1048576 voxels" in err, (code, err)
 # a refused --size names the option, not the embedded script's line, and makes no folder
 code, err = run("demo", "--size", "0", "--out", out + "-size0")
-assert code == 1 and err.startswith("lvdif demo: --size") and "line" not in err, (code, err)
+assert code == 2 and err.startswith("lvdif demo: --size") and "line" not in err, (code, err)
 assert not __import__("os").path.exists(out + "-size0"), "demo --size 0 left its output folder"
 code, err = run("demo", "--size", "100000", "--out", out + "-size1e5")
 assert code == 1 and err.startswith("lvdif demo: --size 100000: ") and "line" not in err, (code, err)
@@ -51,33 +67,33 @@ assert code == 1 and err.startswith("lvdif demo: --size 100000: ") and "line" no
 assert not __import__("os").path.exists(out + "-size1e5"), "demo --size 100000 left its output folder"
 # an axis of 1 and one over 1048576: the canvas rule's one message (DictionaryVolume::checkCanvasDimensions)
 code, err = run("demo", "--size", "1", "--out", out + "-size1")
-assert code == 1 and err == ("lvdif demo: --size 1: a canvas of 1 x 1 x 1 voxels cannot be edited: each axis needs "
+assert code == 2 and err == ("lvdif demo: --size 1: a canvas of 1 x 1 x 1 voxels cannot be edited: each axis needs "
                              "2..1048576 voxels (marching cubes needs one cell per axis)"), (code, err)
 code, err = run("demo", "--size", "1048577", "--out", out + "-size2e20")
-assert code == 1 and err.startswith("lvdif demo: --size 1048577: a canvas of 1048577 x 1048577 x 1048577 voxels "
+assert code == 2 and err.startswith("lvdif demo: --size 1048577: a canvas of 1048577 x 1048577 x 1048577 voxels "
                                     "cannot be edited: each axis needs 2..1048576"), (code, err)
 assert not __import__("os").path.exists(out + "-size1") and not __import__("os").path.exists(out + "-size2e20")
 
 import os  # noqa: E402
 
 code, err = run("mesh-to-sdf", "in.obj", os.path.join(out, "x.lvdv"), "--sign", "pseudo", "--reorient")
-assert code == 1 and err.endswith("--reorient needs --sign winding"), (code, err)
+assert code == 2 and err.endswith("--reorient needs --sign winding"), (code, err)
 # a non-finite or negative --padding is named before the mesh is read (in.obj does not exist)
 for p in ("nan", "inf", "-1", "1e999"):
     code, err = run("mesh-to-sdf", "in.obj", os.path.join(out, "x.lvdv"), "--padding", p)
-    assert code == 1 and err == f"lvdif mesh-to-sdf: option --padding expects a number in [0, 1048576], got '{p}'", (code, err)
+    assert code == 2 and err == f"lvdif mesh-to-sdf: option --padding expects a number in [0, 1048576], got '{p}'", (code, err)
 # every number option goes through one guard that quotes the text as written and the range:
 # an integer beyond long's range was "not 9223372036854775807" (strtol's ERANGE ignored)
 for value in ("99999999999999999999", "-99999999999999999999", "1048577", "1", "12x", "", "0x10"):
     code, err = run("mesh-to-sdf", "in.obj", os.path.join(out, "x.lvdv"), "--dims", value)
-    assert code == 1 and err == f"lvdif mesh-to-sdf: option --dims expects an integer in [2, 1048576], got '{value}'", (code, err)
+    assert code == 2 and err == f"lvdif mesh-to-sdf: option --dims expects an integer in [2, 1048576], got '{value}'", (code, err)
 for cmd in (["demo", "--out", out + "-huge"], ["script", "x.lvs"]):
     code, err = run(*cmd, "--size", "99999999999999999999")
-    assert code == 1 and err == (f"lvdif {cmd[0]}: option --size expects an integer in [2, 1048576], "
+    assert code == 2 and err == (f"lvdif {cmd[0]}: option --size expects an integer in [2, 1048576], "
                                  "got '99999999999999999999'"), (code, err)
 assert not os.path.exists(out + "-huge")
 code, err = run("mesh-to-sdf", "in.obj", os.path.join(out, "x.lvdv"), "--band", "nan")
-assert code == 1 and err == "lvdif mesh-to-sdf: option --band expects a number, got 'nan'", (code, err)
+assert code == 2 and err == "lvdif mesh-to-sdf: option --band expects a number, got 'nan'", (code, err)
 
 os.makedirs(out, exist_ok=True)
 bad = os.path.join(out, "bad.lvs")
@@ -95,28 +111,28 @@ for n in ("1", "0", "1048577"):
     if os.path.exists(sized_vol):
         os.remove(sized_vol)  # from an earlier run
     code, err = run("script", sized, "--size", n, "--out", sized_vol)
-    assert code == 1 and err == (f"lvdif script: --size {n}: a canvas of {n} x {n} x {n} voxels cannot be edited: "
+    assert code == 2 and err == (f"lvdif script: --size {n}: a canvas of {n} x {n} x {n} voxels cannot be edited: "
                                  "each axis needs 2..1048576 voxels (marching cubes needs one cell per axis)"), (code, err)
     assert not os.path.exists(sized_vol), n
 code, err = run("script", os.path.join(out, "no-such.lvs"), "--size", "1")
-assert code == 1 and err.startswith("lvdif script: --size 1: a canvas of 1 x 1 x 1"), (code, err)
+assert code == 2 and err.startswith("lvdif script: --size 1: a canvas of 1 x 1 x 1"), (code, err)
 # --size with --in: refused (it was ignored: the script ran on the volume's grid),
 # before the volume or the script is read and before any output is written
 in_size_vol = os.path.join(out, "in-size.lvdv")
 code, err = run("script", os.path.join(out, "no-such.lvs"), "--in", os.path.join(out, "no-such.lvdv"), "--size", "64",
                 "--out", in_size_vol)
-assert code == 1 and err == ("lvdif script: --size (the size of an empty start canvas) cannot be used with --in "
+assert code == 2 and err == ("lvdif script: --size (the size of an empty start canvas) cannot be used with --in "
                              "(the script starts from that volume)"), (code, err)
 assert not os.path.exists(in_size_vol)
 # demo --out: a folder that cannot be made, or a file, is named as such (a failed mkdir was swallowed:
 # "the folder '/proc/lvdif-demo' does not exist", and a file FILE gave "FILE/demo.ply")
 code, err = run("demo", "--out", "/proc/lvdif-demo")
-assert code == 1 and err.startswith("lvdif demo: cannot create the output folder '/proc/lvdif-demo': "), (code, err)
+assert code == 2 and err.startswith("lvdif demo: cannot create the output folder '/proc/lvdif-demo': "), (code, err)
 not_dir = os.path.join(out, "not-a-folder")
 with open(not_dir, "w") as f:
     f.write("keep")
 code, err = run("demo", "--out", not_dir)
-assert code == 1 and err == f"lvdif demo: --out '{not_dir}' exists and is not a folder", (code, err)
+assert code == 2 and err == f"lvdif demo: --out '{not_dir}' exists and is not a folder", (code, err)
 assert open(not_dir).read() == "keep"
 # .bv holds cubic volumes only: a mesh whose fitted grid is not cubic is refused before mesh to SDF
 # runs (it was found when saving, after the work: "mesh to SDF: done" came first)
@@ -151,6 +167,11 @@ assert r.returncode == 0 and f"{rec}: 1 records replayed on {play_in}" in r.stdo
     and "nothing written" in warnings[0], r
 r = subprocess.run([exe, "play", rec, "--in", play_in, "--out", play_in], capture_output=True, text=True, timeout=60)
 assert r.returncode == 0 and "warning" not in r.stderr, r
+# ... and so does script (it ran the whole script and kept nothing without a word)
+r = subprocess.run([exe, "script", os.path.join(out, "play-in.lvs")], capture_output=True, text=True, timeout=60)
+warnings = [line for line in r.stderr.splitlines() if line.startswith("warning:")]
+assert r.returncode == 0 and warnings == ["warning: nothing written (no --out, --mesh or --png): the script's edits "
+                                          "are not kept"], r
 # --size with a script that makes its own canvas: refused at that line before anything runs or is
 # written (the script's canvas silently won); without --size the script's canvas is the canvas
 own_canvas = os.path.join(out, "own-canvas.lvs")
@@ -227,9 +248,18 @@ code, err = run("mesh-to-sdf", near, os.path.join(out, "m.lvdv"), "--dims", "8",
 assert code == 1 and err == ("lvdif mesh-to-sdf: the mesh reaches 9e+29 and --padding 3 around it takes the grid beyond "
                              "+-1e+30 (the volumes' world range): scale the mesh down or use less padding"), (code, err)
 assert not os.path.exists(os.path.join(out, "m.lvdv"))
+# a mesh so small that its voxels fall below the volumes' smallest spacing (1e-30) says so (it was "the
+# mesh reaches 1e-30 and --padding 2 around it takes the grid beyond +-1e+30")
+tiny = os.path.join(out, "tiny.obj")
+with open(tiny, "w") as f:
+    f.write("v 0 0 0\nv 1e-30 0 0\nv 0 1e-30 0\nv 0 0 1e-30\nf 1 3 2\nf 1 2 4\nf 2 3 4\nf 3 1 4\n")
+code, err = run("mesh-to-sdf", tiny, os.path.join(out, "m.lvdv"), "--dims", "24")
+assert code == 1 and err == ("lvdif mesh-to-sdf: the mesh is 1e-30 across, so --dims 24 gives voxels of 5.26316e-32, below "
+                             "the volumes' smallest spacing of 1e-30: scale the mesh up or use fewer --dims"), (code, err)
+assert not os.path.exists(os.path.join(out, "m.lvdv"))
 # --dims too small for the padding names both options (not fitGridToMesh's "maxDim")
 code, err = run("mesh-to-sdf", os.path.join(out, "empty.obj"), os.path.join(out, "m.lvdv"), "--dims", "3")
-assert code == 1 and "--dims 3" in err and "--padding 2" in err and "maxDim" not in err, (code, err)
+assert code == 2 and "--dims 3" in err and "--padding 2" in err and "maxDim" not in err, (code, err)
 # a .vti that is not XML: one line (VTK's XML parser printed its own error in
 # VTK's log format before it)
 with open(os.path.join(out, "junk.vti"), "w") as f:

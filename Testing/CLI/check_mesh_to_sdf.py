@@ -92,7 +92,7 @@ run = subprocess.run([exe, "mesh-to-sdf", mesh, bv, "--dims", str(N), "--padding
 assert run.returncode == 0, run.stderr
 assert os.path.getsize(bv) == 4 * N ** 3
 
-# errors: one line on stderr, exit code 1, nothing written
+# refused options: one line on stderr, exit code 2 (a refused command line), nothing written
 for bad, needle in ((["--sign", "inside"], "--sign must be"), (["--dims", "1"], "option --dims expects an integer in [2, 1048576], got '1'"),
                     (["--band", "-1"], "--band must be a number of voxels >= 0 (0: no band), not -1"),
                     (["--band", "nan"], "option --band expects a number, got 'nan'"),
@@ -100,7 +100,7 @@ for bad, needle in ((["--sign", "inside"], "--sign must be"), (["--dims", "1"], 
                     (["--colour", "red"], "colour")):
     target = f"{out}/bad.lvdv"
     run = subprocess.run([exe, "mesh-to-sdf", mesh, target] + bad, capture_output=True, text=True, timeout=60)
-    assert run.returncode == 1 and needle in run.stderr, (bad, run.returncode, run.stderr)
+    assert run.returncode == 2 and needle in run.stderr, (bad, run.returncode, run.stderr)
     assert not os.path.exists(target), bad
 # --band 0: no band, as the filters' and writers' BandWidth 0 (docs/USER_GUIDE.md); it was refused
 target = f"{out}/noband.lvdv"

@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # Hostile command lines, scripts, recordings, files and paths: each must end
-# with one clear line on stderr and exit status 1 (never a signal), within
+# with one clear line on stderr and exit status 2 (a command line refused
+# before the work) or 1 (a failure while running), never a signal, within
 # 30 s and 2 GiB, with the previous output file byte-identical; accepted
 # hostile shapes (long chains) must succeed. Inputs are generated here.
 # Progress lines ("stage: done") may precede the error line on stderr.
@@ -12,7 +13,7 @@ rm -rf "$work" && mkdir -p "$work" && cd "$work" || exit 1
 fails=0
 note() { echo "FAIL: $*" >&2; fails=$((fails + 1)); }
 
-# run NAME EXPECT(0|1) NEEDLE -- command...: status, one stderr line holding NEEDLE,
+# run NAME EXPECT(0|1|2) NEEDLE -- command...: status, one stderr line holding NEEDLE,
 # time and peak memory
 run() {
   local name="$1" want="$2" needle="$3"
@@ -113,15 +114,15 @@ done
 
 # --- outputs checked before the work; failed writes are errors
 for ext in ply vtp obj stl; do
-  run "nodir-$ext" 1 "/nonexistent_dir" -- "$exe" mesh base.lvdv "/nonexistent_dir/x.$ext"
+  run "nodir-$ext" 2 "/nonexistent_dir" -- "$exe" mesh base.lvdv "/nonexistent_dir/x.$ext"
 done
-run script-mesh 1 "/nonexistent_dir" -- "$exe" script base.lvs --mesh /nonexistent_dir/x.ply
-run script-out 1 "/nonexistent_dir" -- "$exe" script base.lvs --out /nonexistent_dir/x.lvdv
-run badext 1 "lvdif mesh: cannot write 'x.xyz': meshes are .ply, .obj, .stl, .vtp files" -- "$exe" mesh base.lvdv x.xyz
+run script-mesh 2 "/nonexistent_dir" -- "$exe" script base.lvs --mesh /nonexistent_dir/x.ply
+run script-out 2 "/nonexistent_dir" -- "$exe" script base.lvs --out /nonexistent_dir/x.lvdv
+run badext 2 "lvdif mesh: cannot write 'x.xyz': meshes are .ply, .obj, .stl, .vtp files" -- "$exe" mesh base.lvdv x.xyz
 grep -qF ';;' badext.err && note "badext: a Qt dialog filter in the message: $(cat badext.err)"
-run badvolext 1 "lvdif convert: cannot write 'x.ply': volumes are .lvdv, .lvdvp, .bv, .vdb, .vti files" -- "$exe" convert base.lvdv x.ply
+run badvolext 2 "lvdif convert: cannot write 'x.ply': volumes are .lvdv, .lvdvp, .bv, .vdb, .vti files" -- "$exe" convert base.lvdv x.ply
 mkdir -p adir adir.ply
-run ontodir 1 "not a regular file" -- "$exe" mesh base.lvdv adir.ply
+run ontodir 2 "not a regular file" -- "$exe" mesh base.lvdv adir.ply
 (unset DISPLAY; run png-nodisplay 1 "no X display" -- "$exe" mesh base.lvdv old.ply --png x.png)
 DISPLAY=:9876 run png-baddisplay 1 "cannot open the X display" -- "$exe" mesh base.lvdv old.ply --png x.png
 same old.ply old.copy "png"
@@ -158,7 +159,7 @@ run lvdvp-twice 1 "spacing given twice" -- "$exe" convert pv/twice.lvdvp x.lvdv
 # (it was found after the conversion: "piece 0: cannot write ...")
 mkdir -p pv/busy_0.lvdv
 printf 'OFF\n4 4 0\n0 0 0\n1 0 0\n0 1 0\n0 0 1\n3 0 2 1\n3 0 1 3\n3 0 3 2\n3 1 2 3\n' >tet.off
-run lvdvp-piece 1 "cannot write 'pv/busy_0.lvdv': not a regular file" -- "$exe" mesh-to-sdf tet.off pv/busy.lvdvp --dims 64
+run lvdvp-piece 2 "cannot write 'pv/busy_0.lvdv': not a regular file" -- "$exe" mesh-to-sdf tet.off pv/busy.lvdvp --dims 64
 grep -q "mesh to SDF" lvdvp-piece.err && note "lvdvp-piece: converted before refusing: $(head -c 300 lvdvp-piece.err)"
 # a garbage 3 GiB (sparse) mesh is refused after its head
 printf 'garbage' >big.ply && truncate -s 3G big.ply

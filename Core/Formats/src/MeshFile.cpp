@@ -277,11 +277,11 @@ TriangleMesh readObj(const std::vector<char>& data)
         {
           const std::string nor = f.substr(b + 1);
           if (nor.empty() || nor.find('/') != std::string::npos)
-            fail(ErrorCode::ParseError, s.where(), "bad face corner '" + f + "' (expected v, v/vt, v//vn or v/vt/vn)");
+            fail(ErrorCode::ParseError, s.where(), "bad face corner " + quoted(f) + " (expected v, v/vt, v//vn or v/vt/vn)" + binaryHint(f));
           resolve(nor, normals, "normal", "normals");
         }
         else if (tex.empty())
-          fail(ErrorCode::ParseError, s.where(), "bad face corner '" + f + "' (expected v, v/vt, v//vn or v/vt/vn)");
+          fail(ErrorCode::ParseError, s.where(), "bad face corner " + quoted(f) + " (expected v, v/vt, v//vn or v/vt/vn)" + binaryHint(f));
       }
       addPolygon(mesh, ids, n, s.where(), ErrorCode::ParseError);
     }
@@ -526,7 +526,7 @@ TriangleMesh readStl(const std::vector<char>& data)
       corners.clear();
     }
     else if (t[0] != "facet" && t[0] != "outer" && t[0] != "endfacet" && t[0] != "endsolid" && t[0] != "solid")
-      fail(ErrorCode::ParseError, s.where(), "unexpected '" + t[0].substr(0, 40) + "'");
+      fail(ErrorCode::ParseError, s.where(), "unexpected " + quoted(t[0]) + binaryHint(t[0]));
   }
   if (!corners.empty())
     fail(ErrorCode::ParseError, s.where(), "file ends inside a facet");

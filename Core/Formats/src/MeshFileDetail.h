@@ -137,14 +137,49 @@ inline bool nextToken(const char*& b, const char* end, const char*& t)
   return true;
 }
 
+/// Text from a file as a message quotes it: in single quotes, at most 40
+/// bytes (then "..."), every byte that is not printable ASCII as \xHH. The
+/// bytes went in raw: a binary body under an ASCII PLY header ended the
+/// message at its first NUL ("PLY vertex 0: '"), and an OBJ face corner of
+/// 100,000 characters was quoted whole.
+inline std::string quoted(const std::string& t)
+{
+  std::string q = "'";
+  const std::size_t n = std::min<std::size_t>(t.size(), 40);
+  for (std::size_t i = 0; i < n; ++i)
+  {
+    const unsigned char c = static_cast<unsigned char>(t[i]);
+    if (c >= 0x20 && c < 0x7f)
+    {
+      q += static_cast<char>(c);
+      continue;
+    }
+    static const char hex[] = "0123456789abcdef";
+    q += "\\x";
+    q += hex[c >> 4];
+    q += hex[c & 15];
+  }
+  return q + (t.size() > n ? "...'" : "'");
+}
+
+/// What bytes that no text holds (a NUL, other control bytes but tab and
+/// CR) in a quoted token suggest, for the end of its message; "" for text.
+inline std::string binaryHint(const std::string& t)
+{
+  for (char c : t)
+    if ((static_cast<unsigned char>(c) < 0x20 && c != '\t' && c != '\r') || c == 0x7f)
+      return " (binary data where text was expected: is the file's format right?)";
+  return "";
+}
+
 inline double parseReal(const std::string& t, const std::string& where)
 {
   char* end = nullptr;
   const double v = strtodC(t.c_str(), &end);
   if (t.empty() || end != t.c_str() + t.size())
-    fail(ErrorCode::ParseError, where, "'" + t.substr(0, 40) + "' is not a number");
+    fail(ErrorCode::ParseError, where, quoted(t) + " is not a number" + binaryHint(t));
   if (!std::isfinite(v))
-    fail(ErrorCode::ParseError, where, "coordinate '" + t.substr(0, 40) + "' is NaN or infinite");
+    fail(ErrorCode::ParseError, where, "coordinate " + quoted(t) + " is NaN or infinite" + binaryHint(t));
   return v;
 }
 
@@ -154,7 +189,7 @@ inline std::int64_t parseInt(const std::string& t, const std::string& where)
   errno = 0;
   const long long v = std::strtoll(t.c_str(), &end, 10);
   if (t.empty() || end != t.c_str() + t.size() || errno == ERANGE)
-    fail(ErrorCode::ParseError, where, "'" + t.substr(0, 40) + "' is not an integer");
+    fail(ErrorCode::ParseError, where, quoted(t) + " is not an integer" + binaryHint(t));
   return v;
 }
 

@@ -236,7 +236,7 @@ TriangleMesh readPly(const std::vector<char>& data)
       if (t[1] == "ascii") enc = Encoding::Ascii;
       else if (t[1] == "binary_little_endian") enc = Encoding::LittleEndian;
       else if (t[1] == "binary_big_endian") enc = Encoding::BigEndian;
-      else fail(ErrorCode::ParseError, s.where(), "unknown encoding '" + t[1].substr(0, 40) + "'");
+      else fail(ErrorCode::ParseError, s.where(), "unknown encoding " + quoted(t[1]));
       haveFormat = true;
     }
     else if (t[0] == "element")
@@ -274,7 +274,7 @@ TriangleMesh readPly(const std::vector<char>& data)
       break;
     }
     else
-      fail(ErrorCode::ParseError, s.where(), "unknown header line '" + t[0].substr(0, 40) + "'");
+      fail(ErrorCode::ParseError, s.where(), "unknown header line " + quoted(t[0]) + binaryHint(t[0]));
   }
   if (!haveFormat || !ended)
     fail(ErrorCode::ParseError, "PLY header", !haveFormat ? "no format line" : "no end_header");
@@ -286,7 +286,7 @@ TriangleMesh readPly(const std::vector<char>& data)
   {
     const std::int64_t minBytes = std::max<std::int64_t>(1, static_cast<std::int64_t>(e.properties.size()));
     if (e.count > std::int64_t(left) / minBytes)
-      fail(ErrorCode::CorruptData, "PLY element '" + e.name.substr(0, 40) + "'",
+      fail(ErrorCode::CorruptData, "PLY element " + quoted(e.name),
         std::to_string(e.count) + " records cannot fit in the " + std::to_string(left) + " bytes after the header");
     if (e.name == "vertex")
       vertexCount = e.count;

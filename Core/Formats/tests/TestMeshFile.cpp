@@ -190,6 +190,40 @@ TEST(MeshFile, MalformedInputsAreClearErrors)
   }
 }
 
+// Text from the file is quoted printable and short: a binary body under an ASCII
+// PLY header ended the message at its first NUL byte ("PLY vertex 0: '"), and an
+// OBJ face corner of 100,000 characters was quoted whole.
+TEST(MeshFile, MessagesQuoteFileTextPrintableAndShort)
+{
+  auto messageOf = [](const std::string& text, MeshFormat f) {
+    try
+    {
+      readText(text, f);
+    }
+    catch (const Error& e)
+    {
+      return std::string(e.what());
+    }
+    return std::string("accepted");
+  };
+  // the binary square under a header that says ascii: its first double, 0, is eight NUL bytes
+  std::string mixed = binaryPly(false);
+  mixed.replace(mixed.find("binary_little_endian"), 20, "ascii");
+  const std::string m = messageOf(mixed, MeshFormat::Ply);
+  EXPECT_EQ(m.find('\0'), std::string::npos);
+  EXPECT_EQ(m.rfind("PLY vertex 0: '\\x00\\x00\\x00\\x00\\x00\\x00\\x00\\x00", 0), 0u) << m;
+  EXPECT_NE(m.find("...' is not a number (binary data where text was expected: is the file's format right?)"),
+    std::string::npos) << m;
+  // a NUL after the first 4 KiB of an OBJ (the head check reads 4 KiB)
+  const std::string nul = messageOf("v 0 0 0\n# " + std::string(5000, 'c') + "\nv 1 " + std::string(1, '\0') + " 2\n", MeshFormat::Obj);
+  EXPECT_EQ(nul, "OBJ line 3: '\\x00' is not a number (binary data where text was expected: is the file's format right?)");
+  // long tokens: 40 bytes, then "..."
+  const std::string corner = messageOf("v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3//" + std::string(100000, '1') + "/\n", MeshFormat::Obj);
+  EXPECT_EQ(corner, "OBJ line 4: bad face corner '3//" + std::string(37, '1') + "...' (expected v, v/vt, v//vn or v/vt/vn)");
+  const std::string stl = messageOf("solid a\n" + std::string(1000, 'z') + "\n", MeshFormat::Stl);
+  EXPECT_EQ(stl, "STL line 2: unexpected '" + std::string(40, 'z') + "...'");
+}
+
 // A polygon of n corners becomes n - 2 triangles that tile it (each of its
 // edges once, each inner edge twice in opposite directions, the polygon's
 // area, its winding), and no corner collects more than a few of them: a fan

@@ -494,7 +494,8 @@ struct ScriptRunner::Impl
       fail(s.line, s.column, tooThin);
     if (double(dims[0]) * double(dims[1]) * double(dims[2]) > double(this->Options.maxCanvasVoxels))
       fail(s.line, s.column, "canvas of " + std::to_string(dims[0]) + " x " + std::to_string(dims[1]) + " x " +
-          std::to_string(dims[2]) + " voxels exceeds the limit of " + std::to_string(this->Options.maxCanvasVoxels));
+          std::to_string(dims[2]) + " voxels exceeds the limit of " + std::to_string(this->Options.maxCanvasVoxels) +
+          " voxels (ScriptOptions::maxCanvasVoxels)");
     if (this->Options.resultRule)
     {
       const std::string refused = this->Options.resultRule(dims);

@@ -132,8 +132,26 @@ TEST(Script, RunTimeErrorsGiveLineAndColumn)
   EXPECT_EQ(w.column, 5);
   w = errorOf("dab 1 2 3");
   EXPECT_EQ(w.detail, "no canvas: start with 'canvas N' (or attach a volume)");
+  // an absurd canvas is refused by every volume's rule, the chunk table's memory before
+  // allocating, at the statement; a caller's own bound (maxCanvasVoxels) in its words
   w = errorOf("canvas 100000 100000 100000");
-  EXPECT_NE(w.detail.find("exceeds the limit"), std::string::npos);
+  EXPECT_EQ(w.line, 1);
+  EXPECT_EQ(w.detail.rfind("chunk table of a 100000 x 100000 x 100000 volume needs ", 0), 0u) << w.detail;
+  ScriptOptions bounded;
+  bounded.maxCanvasVoxels = 64 * 64 * 64;
+  EXPECT_EQ(errorOf("canvas 65 64 64", bounded).detail,
+    "canvas of 65 x 64 x 64 voxels exceeds the limit of 262144 voxels (ScriptOptions::maxCanvasVoxels)");
+  // the canvas every editor makes (--new 2048, lvdif script --size 2048): a script made no
+  // canvas of more than 2^32 voxels ("canvas of 2048 x 2048 x 2048 voxels exceeds the limit of 4294967296")
+  {
+    ScriptRunner big;
+    big.run("canvas 2048\nradius 4\ndab 1000, 1000, 1000");
+    const std::unique_ptr<DictionaryVolume> v = big.takeVolume();
+    ASSERT_TRUE(v);
+    EXPECT_EQ(v->dims(), (Index3{ 2048, 2048, 2048 }));
+    EXPECT_LT(v->sdf(1000, 1000, 1000), 0.f);
+    EXPECT_GT(v->sdf(1010, 1000, 1000), 0.f);
+  }
   // the editors' one smallest canvas (DictionaryVolume::checkCanvasDimensions), same words
   w = errorOf("canvas 1 1 1");
   EXPECT_EQ(w.detail, DictionaryVolume::checkCanvasDimensions({ 1, 1, 1 }));

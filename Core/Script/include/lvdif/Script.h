@@ -21,6 +21,7 @@
 #include "lvdif/Interrupter.h"
 
 #include <functional>
+#include <limits>
 #include <memory>
 #include <string>
 
@@ -56,8 +57,12 @@ struct ScriptOptions
   /// Output of `print` (default: standard output).
   std::function<void(const std::string&)> print;
   Interrupter* interrupter = nullptr;
-  /// Largest voxel count `canvas` may ask for (absurd sizes are refused).
-  std::int64_t maxCanvasVoxels = std::int64_t(1) << 32;
+  /// Largest voxel count `canvas` may ask for, for callers that want a
+  /// bound of their own (a fuzzer); by default none but every volume's:
+  /// 2..1048576 voxels per axis and a chunk table within the memory limit,
+  /// checked before allocating. (It was 2^32, so `canvas 2048` was refused
+  /// while the editors and `lvdif script --size 2048` made that canvas.)
+  std::int64_t maxCanvasVoxels = std::numeric_limits<std::int64_t>::max();
   /// Where the caller fixed the start canvas's size (e.g. "--size 64"), or
   /// empty: a script with a `canvas N` statement anywhere (taken or not) is
   /// then refused before anything runs, at that statement, naming this (the
