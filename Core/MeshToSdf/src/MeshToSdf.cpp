@@ -447,9 +447,35 @@ void warnIfNothingInside(const MeshToSdfPrepared& mesh, const GridGeometry& grid
   }
   else
   {
-    w << "mesh to SDF: no voxel centre lies inside the mesh (deeper than 1 voxel): the voxels (spacing " << h
-      << ") are larger than the mesh's parts, so the field has no zero crossing and meshing it gives no surface; "
-         "use more voxels (a higher resolution / --dims) or less padding";
+    // an explicit grid may lie beside the mesh, or over a part of its bounds
+    // that is outside it: not a matter of the voxels' size
+    const PreparedMesh& m = mesh.impl().mesh;
+    bool reaches = true, covers = true;
+    std::ostringstream spans;
+    spans.precision(6);
+    spans << "the voxel centres span ";
+    for (int a = 0; a < 3; ++a)
+    {
+      const double g0 = grid.origin[a], g1 = grid.origin[a] + grid.spacing[a] * static_cast<double>(grid.dims[a] - 1);
+      reaches = reaches && g0 <= m.hi[a] && g1 >= m.lo[a];
+      covers = covers && g0 <= m.lo[a] && g1 >= m.hi[a];
+      spans << (a ? " x " : "") << "[" << g0 << ", " << g1 << "]";
+    }
+    spans << ", the mesh ";
+    for (int a = 0; a < 3; ++a) spans << (a ? " x " : "") << "[" << m.lo[a] << ", " << m.hi[a] << "]";
+    w << "mesh to SDF: no voxel centre lies inside the mesh (deeper than 1 voxel): ";
+    if (!reaches)
+      w << "the grid does not reach the mesh (" << spans.str()
+        << "), so the field has no zero crossing and meshing it gives no surface; place the grid over the mesh, or "
+           "let it be fitted to the mesh";
+    else if (!covers)
+      w << "the grid covers only a part of the mesh's bounds, and no voxel centre there is inside (" << spans.str()
+        << "), so the field has no zero crossing and meshing it gives no surface; place the grid over the whole "
+           "mesh, or let it be fitted to the mesh";
+    else
+      w << "the voxels (spacing " << h
+        << ") are larger than the mesh's parts, so the field has no zero crossing and meshing it gives no surface; "
+           "use more voxels (a higher resolution / --dims) or less padding";
   }
   stats.warnings.push_back(w.str());
 }

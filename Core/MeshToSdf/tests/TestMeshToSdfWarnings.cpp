@@ -128,6 +128,33 @@ TEST(MeshToSdfWarnings, VoxelsLargerThanTheParts)
   EXPECT_TRUE(fine.stats.warnings.empty());
 }
 
+// An explicit grid beside the mesh, or over a corner of its bounds that is
+// outside it (a tiny spacing), has nothing inside for another reason than the
+// voxels' size, which the warning named.
+TEST(MeshToSdfWarnings, GridBesideTheMeshOrOverAPartOfItsBounds)
+{
+  const TriangleMesh sphere = makeSphereMesh(0, 0, 0, 1, 10, 20);
+  auto warningOn = [&](std::array<double, 3> origin, double spacing) {
+    GridGeometry g;
+    g.dims = { 8, 8, 8 };
+    g.origin = origin;
+    g.spacing = { spacing, spacing, spacing };
+    std::vector<float> out(static_cast<std::size_t>(g.count()));
+    MeshToSdfOptions o;
+    o.device = Device::Cpu;
+    const MeshToSdfStats st = meshToSdf(sphere, FloatGridView{ out.data(), g }, o);
+    EXPECT_EQ(deepInside(out), 0);
+    return st.warnings.empty() ? std::string() : st.warnings[0];
+  };
+  const std::string beside = warningOn({ 5, 5, 5 }, 0.1);
+  EXPECT_NE(beside.find("the grid does not reach the mesh"), std::string::npos) << beside;
+  EXPECT_NE(beside.find("[5, 5.7]"), std::string::npos) << beside;
+  EXPECT_EQ(beside.find("larger than the mesh's parts"), std::string::npos) << beside;
+  const std::string corner = warningOn({ 0.9, 0.9, 0.9 }, 1e-6);
+  EXPECT_NE(corner.find("covers only a part of the mesh's bounds"), std::string::npos) << corner;
+  EXPECT_EQ(corner.find("larger than the mesh's parts"), std::string::npos) << corner;
+}
+
 // A part smaller than a voxel beside a large one: the large one has voxels
 // inside, the small one none (so no surface), and it vanished without a word
 // (the warning came only when nothing at all was inside). The premise is read
