@@ -10,6 +10,7 @@
 #include "MeshToSdfSolid.h"
 #include "MeshToSdfNearest.h" // the prepared mesh owns one (destroyed here)
 #include "lvdif/Memory.h"
+#include "lvdif/ParallelFailure.h"
 
 #include <omp.h>
 
@@ -106,41 +107,6 @@ Device chooseDevice(const MeshToSdfPrepared& mesh, const MeshToSdfOptions& optio
   return capped ? d : Device::Cpu;
 }
 
-/// The first exception of an OpenMP loop's bodies, thrown again after the
-/// loop: an exception that leaves an OpenMP region terminates the process (a
-/// chunk expanded past LVDIF_MEMORY_LIMIT aborted pvpython, ParaView's server
-/// and the CLI with "terminate called after throwing an instance of
-/// 'lvdif::Error'"). Bodies after a failure are skipped.
-class LoopFailure
-{
-public:
-  template <typename Body>
-  void run(Body&& body)
-  {
-    if (this->Failed.load(std::memory_order_relaxed)) return;
-    try
-    {
-      body();
-    }
-    catch (...)
-    {
-#pragma omp critical(lvdif_mesh_to_sdf_loop_failure)
-      {
-        if (!this->First) this->First = std::current_exception();
-      }
-      this->Failed = true;
-    }
-  }
-  void rethrow()
-  {
-    if (this->First) std::rethrow_exception(this->First);
-  }
-
-private:
-  std::atomic<bool> Failed{ false };
-  std::exception_ptr First;
-};
-
 /// Stores one chunk's keys (the CPU and GPU paths): a uniform chunk over a
 /// uniform one is filled, anything else expanded and written (colours kept).
 /// `uniform` is whether the keys of the chunk's voxels inside the volume are
@@ -212,7 +178,7 @@ void volumeRegion(DictionaryVolume& volume, const VoxelBox& region, std::uint64_
     const double t0 = now();
     const std::int64_t nx = box.hi[0] - box.lo[0] + 1, ny = box.hi[1] - box.lo[1] + 1;
     const std::int64_t ncx = rc.hi[0] - rc.lo[0] + 1, chunksInBand = ncx * (cy1 - cy0);
-    LoopFailure failure;
+    ParallelFailure failure;
 #pragma omp parallel for schedule(dynamic, 1)
     for (std::int64_t c = 0; c < chunksInBand; ++c)
     {
@@ -330,7 +296,7 @@ void volumeOnCuda(detail::meshtosdf_cuda::Session& session, DictionaryVolume& vo
     };
     // the uniform chunks, while the first pieces of keys are copied
     const std::int64_t chunks = static_cast<std::int64_t>(keys.uniform.size());
-    LoopFailure failure;
+    ParallelFailure failure;
 #pragma omp parallel for schedule(dynamic, 16)
     for (std::int64_t c = 0; c < chunks; ++c)
     {

@@ -16,6 +16,7 @@
 #include "lvdif/DictionaryVolume.h"
 #include "lvdif/Error.h"
 #include "lvdif/Memory.h"
+#include "lvdif/ParallelFailure.h"
 #include "lvdif/SignVoxelFilter.h"
 
 #include <algorithm>
@@ -432,16 +433,15 @@ SignVoxelFilterStats signVoxelFilter(
       const std::vector<std::int64_t> ids = volume.chunksInBox(box);
       const float* slot0 = buf.data();
       std::int64_t flips4 = 0;
-      std::exception_ptr failure;
+      ParallelFailure failure;
 #pragma omp parallel for schedule(dynamic, 1) reduction(+ : flips4)
       for (std::int64_t i = 0; i < static_cast<std::int64_t>(ids.size()); ++i)
       {
         const std::int64_t id = ids[static_cast<std::size_t>(i)];
-        try
-        {
+        failure.run([&] {
           if (quietChunk(volume, f, id, box, slot0 + (w0 - base) * f.nUV, zero, bsign))
           {
-            continue;
+            return;
           }
           bool wrote = false;
           const std::int64_t shift = (w0 - base) * f.nUV; // offset of plane w0 in the buffer
@@ -472,20 +472,9 @@ SignVoxelFilterStats signVoxelFilter(
           {
             written[static_cast<std::size_t>(id)] = 1;
           }
-        }
-        catch (...)
-        {
-#pragma omp critical(lvdif_svf_volume_failure)
-          if (!failure)
-          {
-            failure = std::current_exception();
-          }
-        }
+        });
       }
-      if (failure)
-      {
-        std::rethrow_exception(failure); // the volume then holds part of the flips
-      }
+      failure.rethrow(); // the volume then holds part of the flips
       st.flips[3] += flips4;
       st.iterations[3] = svf4 ? 1 : 0;
       due4 = w1 + 1;
