@@ -112,7 +112,7 @@ struct P2
 };
 P2 operator-(P2 a, P2 b) { return { a.x - b.x, a.y - b.y }; }
 double cross2(P2 a, P2 b) { return a.x * b.y - a.y * b.x; }
-double norm2(P2 a) { return std::hypot(a.x, a.y); }
+double length2d(P2 a) { return std::sqrt(a.x * a.x + a.y * a.y); }
 
 /// The axis a plane of normal n is projected along (its largest component).
 int dropAxis(V3 n)
@@ -134,7 +134,7 @@ bool convexWithin(const P2* a, int na, const P2* b, int nb, double tol)
   auto separates = [&](P2 p, P2 q) {
     const P2 d = q - p;
     const P2 axis{ -d.y, d.x };
-    const double len = norm2(axis);
+    const double len = length2d(axis);
     if (!(len > 0)) return false;
     double loA = 1e300, hiA = -1e300, loB = 1e300, hiB = -1e300;
     for (int i = 0; i < na; ++i)
@@ -163,8 +163,8 @@ bool convexWithin(const P2* a, int na, const P2* b, int nb, double tol)
 bool inWedge(P2 u, P2 e1, P2 e2, double tol)
 {
   if (cross2(e1, e2) < 0) std::swap(e1, e2);
-  const double nu = norm2(u);
-  return cross2(e1, u) >= -tol * norm2(e1) * nu && cross2(u, e2) >= -tol * nu * norm2(e2);
+  const double nu = length2d(u);
+  return cross2(e1, u) >= -tol * length2d(e1) * nu && cross2(u, e2) >= -tol * nu * length2d(e2);
 }
 
 /// Whether two corners (wedges e1-e2 and f1-f2 at one apex) overlap beyond
@@ -176,9 +176,9 @@ bool wedgesOverlap(P2 e1, P2 e2, P2 f1, P2 f2, double tol)
   // strictly on the far side, or on the line's opposite ray (outside the wedge)
   auto separates = [tol](P2 edge, P2 own, P2 o1, P2 o2) {
     const double side = cross2(edge, own) >= 0 ? 1.0 : -1.0;
-    const double ne = norm2(edge);
+    const double ne = length2d(edge);
     auto clear = [&](P2 o) {
-      const double c = side * cross2(edge, o), allowance = tol * ne * norm2(o);
+      const double c = side * cross2(edge, o), allowance = tol * ne * length2d(o);
       return c < -allowance ||
         (c <= allowance && edge.x * o.x + edge.y * o.y < 0 && !inWedge(o, edge, own, tol));
     };
@@ -216,7 +216,7 @@ bool trianglesMeet(const Tri& a, const Face& fa, const Tri& b, const Face& fb, d
     const P2 p = project(a.v[(aFree + 1) % 3], drop), q = project(a.v[(aFree + 2) % 3], drop);
     const P2 e = q - p, ta = project(a.v[aFree], drop) - p, tb = project(b.v[bFree], drop) - p;
     const double sa = cross2(e, ta), sb = cross2(e, tb);
-    return sa * sb > 0 || std::fabs(sb) <= atol * norm2(e) * norm2(tb);
+    return sa * sb > 0 || std::fabs(sb) <= atol * length2d(e) * length2d(tb);
   }
   auto oneSide = [tol](const double d[3], int skip) {
     bool pos = true, neg = true;
