@@ -100,7 +100,7 @@ void writeVolume(const DictionaryVolume& volume, ByteSink& sink, const VolumeFil
   const int threads = std::max(1, omp_get_max_threads());
   const std::int64_t batch = 64 * threads;
   requireMemory(checkedMultiply(static_cast<std::uint64_t>(batch), bound + raw, "save buffers"),
-    "compression buffers of the save");
+    "the save's compression"); // "the save's compression needs N bytes, more than the limit"
   std::vector<std::vector<std::uint8_t>> out(static_cast<size_t>(batch));
   std::vector<ZstdContext> contexts(static_cast<size_t>(threads));
   std::uint64_t offset = sink.bytesWritten();
