@@ -7,6 +7,7 @@
 #include "MeshToSdfCuda.h"
 #include "MeshToSdfEngine.h"
 #include "MeshToSdfInternal.h"
+#include "MeshToSdfSharpFeatures.h"
 #include "MeshToSdfSolid.h"
 #include "MeshToSdfNearest.h" // the prepared mesh owns one (destroyed here)
 #include "lvdif/Memory.h"
@@ -514,10 +515,14 @@ std::future<void> partsBesideGpu(const MeshToSdfPrepared& mesh, bool needed)
 /// function there (MeshToSdfSolid.h) and faster, since it needs exact
 /// distances only in the band, where the pseudo-normal far field needs the
 /// planes of every nearby triangle (docs/MESH_TO_SDF.md, "Pseudo-normal signs
-/// of solids"). The check runs once per prepared mesh (its time is build time).
-/// The Normal sign runs the check too, for its warning alone: a closed part
-/// whose faces point inwards makes either sign inside out there, silently.
-MeshToSdfOptions signOfSolids(const MeshToSdfPrepared& mesh, const MeshToSdfOptions& options, MeshToSdfStats& stats)
+/// of solids"). Normal on such a mesh: the winding sign too, then the voxels
+/// of the sharp features' regions recomputed (normalAtSharpFeatures;
+/// "Normal signs of solids"), when the sharp features lie inside `extent` of
+/// `grid` (their regions are walked through its voxels). The checks run once
+/// per prepared mesh (their time is build time). A closed part whose faces
+/// point inwards makes either sign inside out there, silently: a warning.
+MeshToSdfOptions signOfSolids(const MeshToSdfPrepared& mesh, const MeshToSdfOptions& options, MeshToSdfStats& stats,
+  const GridGeometry& grid, const VoxelBox& extent)
 {
   const bool normals = options.sign == SignMode::Normal || options.sign == SignMode::PseudoNormal;
   if (!normals) return options;
@@ -533,17 +538,56 @@ MeshToSdfOptions signOfSolids(const MeshToSdfPrepared& mesh, const MeshToSdfOpti
       << " sign is inside out there; reverse their faces, or use the winding-number sign, which is right either way";
     stats.warnings.push_back(m.str());
   }
-  if (options.sign == SignMode::Normal || !options.solidsByWinding) return options;
+  if (!options.solidsByWinding) return options;
+  const bool normal = options.sign == SignMode::Normal;
   if (!solid.solid)
   {
-    trace(("pseudo-normal sign on its own path: " + solid.why).c_str(), 0);
+    trace(((normal ? "normal" : "pseudo-normal") + std::string(" sign on its own path: ") + solid.why).c_str(), 0);
     return options;
+  }
+  if (normal)
+  {
+    // the sharp features' voxels take the CPU's queries of the BVH path. On
+    // CUDA the Normal path's far blocks are faster than those queries on the
+    // host (the regions grow with the grid's volume: 15k voxels at 256^3 on
+    // the armadillo, about a million at 1024^3)
+    if (options.useVertexNormals || options.accel != MeshToSdfAccel::Bvh) return options;
+    if (resolveDevice(options.device) == Device::Cuda)
+    {
+      trace("normal sign on its own path: on CUDA", 0);
+      return options;
+    }
+    const double t1 = now();
+    const SharpFeatures& sharp = mesh.impl().sharpFeatures();
+    stats.buildSeconds += now() - t1;
+    if (!sharpFeaturesInside(sharp, grid, extent))
+    {
+      trace("normal sign on its own path: a sharp feature lies outside the grid", 0);
+      return options;
+    }
   }
   MeshToSdfOptions o = options;
   o.sign = SignMode::WindingNumber;
   o.reorientFaces = false;
   stats.signByWinding = true;
   return o;
+}
+
+/// Normal by the winding path (signOfSolids): the voxels of the sharp
+/// features' regions, with the Normal path's values, handed to `store`
+/// (one thread). Their queries are the CPU's (the mesh's tree, exact, ties to
+/// the lowest index like every accelerator), whatever device the call used.
+template <typename Store>
+void normalAtSharpFeatures(const MeshToSdfPrepared& mesh, const GridGeometry& grid, const VoxelBox& extent,
+  double toOut, double band, MeshToSdfStats& stats, Interrupter& interrupter, Store&& store)
+{
+  const double t0 = now();
+  const std::shared_ptr<const Bvh> bvh = mesh.impl().meshBvh(); // built by the solid check
+  const std::vector<SharpVoxel> voxels = normalSignAtSharpFeatures(
+    mesh.impl().mesh, mesh.impl().sharpFeatures(), *bvh, grid, extent, toOut, band, interrupter);
+  for (const SharpVoxel& v : voxels) store(v);
+  stats.sharpVoxels = static_cast<std::int64_t>(voxels.size());
+  trace(("sharp features' regions: " + std::to_string(voxels.size()) + " voxels").c_str(), now() - t0);
 }
 
 bool wholeGrid(const GridGeometry& grid, const VoxelBox& extent)
@@ -567,7 +611,7 @@ MeshToSdfStats meshToSdf(const MeshToSdfPrepared& mesh, const GridGeometry& grid
     require(extent.lo[a] >= 0 && extent.hi[a] < grid.dims[a], "mesh to SDF: the extent lies outside the grid");
   }
   MeshToSdfStats stats;
-  const MeshToSdfOptions options = signOfSolids(mesh, given, stats);
+  const MeshToSdfOptions options = signOfSolids(mesh, given, stats, grid, extent);
   interrupter.start("mesh to SDF");
   stats.device = chooseDevice(mesh, options, stats);
   auto engine = makeEngine(mesh, grid, options, options.bandWidth, stats.device, stats);
@@ -580,6 +624,14 @@ MeshToSdfStats meshToSdf(const MeshToSdfPrepared& mesh, const GridGeometry& grid
   else
   {
     computeBox(*engine, extent, out, stats, interrupter, 0.0, 1.0);
+  }
+  if (given.sign == SignMode::Normal && stats.signByWinding)
+  {
+    const std::int64_t nx = extent.hi[0] - extent.lo[0] + 1, ny = extent.hi[1] - extent.lo[1] + 1;
+    normalAtSharpFeatures(mesh, grid, extent, outputScale(grid, options), options.bandWidth, stats, interrupter,
+      [&](const SharpVoxel& v) {
+        out[(v.i - extent.lo[0]) + nx * ((v.j - extent.lo[1]) + ny * (v.k - extent.lo[2]))] = v.value;
+      });
   }
   if (options.svfFilters != 0)
   {
@@ -627,7 +679,12 @@ MeshToSdfStats meshToSdf(const MeshToSdfPrepared& mesh, DictionaryVolume& volume
   const PhaseTraceScope tracing(given.tracePhases);
   const GridGeometry grid = gridOf(volume.options());
   MeshToSdfStats stats;
-  const MeshToSdfOptions options = signOfSolids(mesh, given, stats);
+  VoxelBox whole;
+  whole.hi = { grid.dims[0] - 1, grid.dims[1] - 1, grid.dims[2] - 1 };
+  // a chunk region keeps the Normal path: its sharp regions may leave it
+  MeshToSdfOptions forSolids = given;
+  if (!given.chunkRegion.empty() && given.sign == SignMode::Normal) forSolids.solidsByWinding = false;
+  const MeshToSdfOptions options = signOfSolids(mesh, forSolids, stats, grid, whole);
   MeshToSdfOptions opts = options;
   opts.unit = DistanceUnit::Voxel;
   interrupter.start("mesh to SDF");
@@ -662,6 +719,26 @@ MeshToSdfStats meshToSdf(const MeshToSdfPrepared& mesh, DictionaryVolume& volume
       [&](const VoxelBox& box, float* out, double p0, double dp) {
         computeBox(*engine, box, out, stats, interrupter, p0, dp);
       });
+  }
+  if (given.sign == SignMode::Normal && stats.signByWinding)
+  {
+    std::vector<std::int64_t> touched;
+    normalAtSharpFeatures(mesh, grid, whole, outputScale(grid, opts), volume.bandWidth(), stats, interrupter,
+      [&](const SharpVoxel& v) {
+        Voxel voxel = volume.get(v.i, v.j, v.k);
+        const SdfKey key = volume.encode(v.value);
+        if (voxel.sdf == key) return;
+        voxel.sdf = key;
+        volume.set(v.i, v.j, v.k, voxel);
+        touched.push_back(volume.chunkOf(v.i, v.j, v.k));
+      });
+    std::sort(touched.begin(), touched.end());
+    touched.erase(std::unique(touched.begin(), touched.end()), touched.end());
+    for (const std::int64_t id : touched)
+    {
+      volume.markDirty(id);
+      volume.tryCollapseChunk(id);
+    }
   }
   if (options.svfFilters != 0)
   {
@@ -712,7 +789,7 @@ MeshToSdfStats meshToSdf(const MeshToSdfPrepared& mesh, DictionaryVolume& volume
 /// nearestIndex (a one-call run on the CPU with the Bvh accelerator): the
 /// CPU's index will follow, so the memory check counts it too.
 constexpr std::size_t TreeBesideEdgePassTriangles = std::size_t(1) << 18;
-/// normalsLater (a PseudoNormal call that checks for a solid first): the
+/// normalsLater (a PseudoNormal or Normal call that checks for a solid first): the
 /// pseudo-normals are counted in the memory check but built only if the mesh
 /// is not a solid's boundary (a solid's call never reads them).
 static MeshToSdfPrepared prepareInternal(const TriangleMesh& mesh, SignMode sign, bool meshTreeNow = false,
@@ -763,8 +840,11 @@ static MeshToSdfPrepared prepareInternal(const TriangleMesh& mesh, SignMode sign
 static MeshToSdfPrepared prepareOneCall(const TriangleMesh& mesh, const MeshToSdfOptions& options)
 {
   const bool cuda = resolveDevice(options.device) == Device::Cuda;
-  return prepareInternal(mesh, options.sign, cuda, !cuda && options.accel == MeshToSdfAccel::Bvh,
-    options.sign == SignMode::PseudoNormal && options.solidsByWinding);
+  // the signs that may take the winding path (signOfSolids)
+  const bool mayWind = options.solidsByWinding &&
+    (options.sign == SignMode::PseudoNormal ||
+      (options.sign == SignMode::Normal && !cuda && !options.useVertexNormals && options.accel == MeshToSdfAccel::Bvh));
+  return prepareInternal(mesh, options.sign, cuda, !cuda && options.accel == MeshToSdfAccel::Bvh, mayWind);
 }
 
 /// The one-call API: prepare, then the prepared call (preparation counts as build time).

@@ -399,10 +399,12 @@ LargeVector<LeafTri> leafCopies(const Bvh& b)
   return out;
 }
 
-NearestResult Bvh::nearest(V3 p, std::int32_t hint, double maxDist2) const
+NearestResult Bvh::nearest(V3 p, std::int32_t hint, double maxDist2, const std::int32_t* skip, int skipCount) const
 {
   NearestResult best;
   best.dist2 = maxDist2;
+  auto skipped = [&](std::int32_t t) { return std::find(skip, skip + skipCount, t) != skip + skipCount; };
+  if (hint >= 0 && skipped(hint)) hint = -1;
   if (hint >= 0)
   {
     const Tri& t = this->Tris[hint];
@@ -437,7 +439,7 @@ NearestResult Bvh::nearest(V3 p, std::int32_t hint, double maxDist2) const
       for (std::int32_t i = n.first; i < n.first + n.count; ++i)
       {
         const std::int32_t ti = this->Order[i];
-        if (ti == best.tri) continue;
+        if (ti == best.tri || (skipCount > 0 && skipped(ti))) continue;
         const Tri& t = this->Tris[ti];
         const Closest c = closestPointOnTriangle(p, t.v[0], t.v[1], t.v[2]);
         const V3 d = c.point - p;

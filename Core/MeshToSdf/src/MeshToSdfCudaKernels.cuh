@@ -267,7 +267,7 @@ __device__ void queryRun(const DevBvh& bvh, const Params& P, const DistanceRunAt
         const V3 n = P.sign == 1 ? featureNormal(tr, bvh.normals[nr.tri], nr.closest.feature)
                                  : interpolatedNormal(tr, P.useVertexNormals && bvh.corners ? &bvh.corners[nr.tri] : nullptr,
                                      nr.closest.b1, nr.closest.b2);
-        s = dot(p - nr.closest.point, n) < 0 ? -1.0f : 1.0f;
+        s = normalSign(p, nr.closest.point, n);
       }
     }
     rowOut[i] = s * static_cast<float>(d);

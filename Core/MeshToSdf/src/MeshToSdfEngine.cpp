@@ -35,6 +35,12 @@ void validateGrid(const GridGeometry& g)
   }
 }
 
+double outputScale(const GridGeometry& grid, const MeshToSdfOptions& options)
+{
+  const double unit = std::min(grid.spacing[0], std::min(grid.spacing[1], grid.spacing[2]));
+  return options.unit == DistanceUnit::Voxel ? 1.0 / unit : 1.0;
+}
+
 NearestResult Engine::nearest(V3 p, std::int32_t hint) const
 {
   switch (this->opts.accel)
@@ -74,7 +80,7 @@ float Engine::localSign(V3 p, const NearestResult& r) const
     ? featureNormal(t, this->mesh->normals[r.tri], r.closest.feature)
     : interpolatedNormal(t, this->opts.useVertexNormals ? this->mesh->cornersOf(r.tri) : nullptr, r.closest.b1,
         r.closest.b2);
-  return dot(p - r.closest.point, n) < 0 ? -1.0f : 1.0f;
+  return normalSign(p, r.closest.point, n);
 }
 
 void Engine::distanceRow(std::int64_t j, std::int64_t k, std::int64_t i0, std::int64_t i1, float* out,
@@ -137,9 +143,7 @@ void Engine::distanceRow(std::int64_t j, std::int64_t k, std::int64_t i0, std::i
     {
       const NearestResult& r = res[q];
       rowTris[i - i0] = r.tri;
-      double d = r.tri < 0 ? this->band : std::sqrt(r.dist2) * this->toOut;
       lower = r.tri < 0 ? reach : std::sqrt(r.dist2);
-      d = std::min(d, this->band);
       float s = 1.0f;
       if (r.tri >= 0)
       {
@@ -149,7 +153,7 @@ void Engine::distanceRow(std::int64_t j, std::int64_t k, std::int64_t i0, std::i
           s = this->localSign(ps[q], r);
         }
       }
-      out[i - i0] = s * static_cast<float>(d);
+      out[i - i0] = r.tri < 0 ? static_cast<float>(this->band) : storedValue(s, r.dist2, this->toOut, this->band);
     }
     withinBand = lower < bandWorld;
   }
@@ -169,8 +173,7 @@ std::unique_ptr<Engine> makeEngine(const MeshToSdfPrepared& prepared, const Grid
   e->mesh = &impl.mesh;
   e->geom = geom;
   e->opts = opts;
-  const double unit = std::min(geom.spacing[0], std::min(geom.spacing[1], geom.spacing[2]));
-  e->toOut = opts.unit == DistanceUnit::Voxel ? 1.0 / unit : 1.0;
+  e->toOut = outputScale(geom, opts);
   e->band = band;
   const double bw = static_cast<double>(band) / e->toOut;
   e->bandWorld2 = std::isfinite(bw) ? bw * bw * (1 + 1e-9) : 1e300;

@@ -23,6 +23,9 @@ namespace detail::meshtosdf
 /// Throws unless the grid's dimensions, origin and spacing are usable.
 void validateGrid(const GridGeometry& g);
 
+/// World distance -> output units: 1 / the smallest spacing for voxel units.
+double outputScale(const GridGeometry& grid, const MeshToSdfOptions& options);
+
 /// What one call computes with: the grid, the options and the structures it
 /// reads (built on first use by makeEngine), in output units.
 struct Engine

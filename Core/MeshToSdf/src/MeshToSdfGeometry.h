@@ -231,6 +231,10 @@ LVDIF_HD V3 featureNormal(const Tri& t, const TriNormals& pn, Feature f)
 /// The normal the Normal sign takes at a closest point (b1, b2: barycentric
 /// weights of B and C): the mesh's vertex normals interpolated where given
 /// (corners non-null and non-zero), else the face normal.
+/// The sign of a normal-based sign mode at p from its closest point c and the
+/// normal n there: -1 inside (behind n), +1 otherwise.
+LVDIF_HD float normalSign(V3 p, V3 c, V3 n) { return dot(p - c, n) < 0 ? -1.0f : 1.0f; }
+
 LVDIF_HD V3 interpolatedNormal(const Tri& t, const CornerNormals* corners, double b1, double b2)
 {
   if (corners && dot(corners->n[0], corners->n[0]) > 0)

@@ -8,7 +8,9 @@
 #include "lvdif/MeshToSdf.h"
 #include "lvdif/TriangleMesh.h"
 
+#include <algorithm>
 #include <array>
+#include <cmath>
 #include <cstdint>
 #include <functional>
 #include <memory>
@@ -109,6 +111,15 @@ struct NearestResult
   Closest closest;
 };
 
+/// A voxel's value from its nearest triangle: the sign s times the distance in
+/// output units (toOut per world unit), saturated at the band. One expression
+/// for the CPU's distance rows and the sharp features' voxels
+/// (MeshToSdfSharpFeatures.h), which must store the same floats.
+inline float storedValue(float s, double dist2, double toOut, double band)
+{
+  return s * static_cast<float>(std::min(std::sqrt(dist2) * toOut, band));
+}
+
 class BvhSubtreeNodes; // MeshToSdfBvh.cpp
 struct LocalBoundsCounts; // MeshToSdfDipoleLocal.h
 
@@ -133,8 +144,10 @@ public:
   explicit Bvh(const TriList& tris, std::int32_t parallelSplitMin = DefaultParallelSplitMin);
 
   /// Nearest triangle to p among those closer than sqrt(bestDist2): starts
-  /// from the given hint (tri index, -1 for none), exact.
-  NearestResult nearest(V3 p, std::int32_t hint, double maxDist2) const;
+  /// from the given hint (tri index, -1 for none), exact. Ties go to the
+  /// lowest index. skip (skipCount entries): triangles left out.
+  NearestResult nearest(V3 p, std::int32_t hint, double maxDist2, const std::int32_t* skip = nullptr,
+    int skipCount = 0) const;
 
   /// Exact winding number: the sum of all solid angles / 4 pi.
   double windingExact(V3 p) const;
@@ -355,6 +368,7 @@ bool triangleBoxOverlap(const V3 tri[3], const double centre[3], const double ha
 class NearestIndex; // MeshToSdfNearest.h: the CPU nearest-triangle queries
 struct MeshParts;     // MeshToSdfSolid.h: the connected parts
 struct SolidBoundary; // MeshToSdfSolid.h: whether the mesh bounds a solid
+struct SharpFeatures; // MeshToSdfSharpFeatures.h: the Normal sign of a solid by the winding path
 struct FarCone;     // MeshToSdfFarBlocks.h: normal cones of the BVH's nodes
 
 } // namespace detail::meshtosdf
@@ -375,6 +389,8 @@ struct MeshToSdfPrepared::Impl
   std::unique_ptr<detail::meshtosdf::NearestIndex> nearest; // the CPU's distance queries, built on first CPU use
   /// this->bvh, built (or taken from the winding closure) if missing; under Lock.
   const detail::meshtosdf::Bvh& meshBvhLocked();
+  /// The same, taking Lock: the tree stays alive while the pointer is held.
+  std::shared_ptr<const detail::meshtosdf::Bvh> meshBvh();
   /// The CPU's NearestIndex, built on first use (seconds added; under Lock).
   const detail::meshtosdf::NearestIndex& nearestIndex(double& seconds);
   double prepareSeconds = 0;
@@ -402,6 +418,9 @@ struct MeshToSdfPrepared::Impl
   /// not self-intersecting, winding number 0 or 1), checked on first use:
   /// then the PseudoNormal sign is the winding sign (MeshToSdf.cpp).
   const detail::meshtosdf::SolidBoundary& solidBoundary();
+  /// The sharp features (MeshToSdfSharpFeatures.h) of a mesh whose
+  /// solidBoundary() holds, found on first use: for the Normal sign.
+  const detail::meshtosdf::SharpFeatures& sharpFeatures();
   /// The mesh (and, when asked, the winding structures) on the GPU, uploaded
   /// on first use and kept until the prepared mesh is destroyed. The winding
   /// part may be added later (once) to a copy uploaded without it: sessions
@@ -423,6 +442,8 @@ private:
   const detail::meshtosdf::MeshParts& partsLocked(); // under PartsLock
   std::once_flag SolidOnce;
   std::unique_ptr<detail::meshtosdf::SolidBoundary> Solid;
+  std::once_flag SharpOnce;
+  std::unique_ptr<detail::meshtosdf::SharpFeatures> Sharp;
 };
 
 } // namespace lvdif

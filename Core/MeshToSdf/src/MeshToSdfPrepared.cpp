@@ -6,6 +6,7 @@
 #include "MeshToSdfFarBlocks.h"
 #include "MeshToSdfInternal.h"
 #include "MeshToSdfNearest.h"
+#include "MeshToSdfSharpFeatures.h"
 #include "MeshToSdfSolid.h"
 
 #include <algorithm>
@@ -90,6 +91,13 @@ const Bvh& MeshToSdfPrepared::Impl::meshBvhLocked()
     trace("mesh BVH", now() - tb);
   }
   return *this->bvh;
+}
+
+std::shared_ptr<const Bvh> MeshToSdfPrepared::Impl::meshBvh()
+{
+  std::lock_guard<std::mutex> lock(this->Lock);
+  this->meshBvhLocked();
+  return this->bvh;
 }
 
 const WindingSigner& MeshToSdfPrepared::Impl::windingSigner(double& seconds)
@@ -301,17 +309,24 @@ const SolidBoundary& MeshToSdfPrepared::Impl::solidBoundary()
 {
   std::call_once(this->SolidOnce, [this]() {
     const MeshParts& p = this->parts();
-    std::shared_ptr<const Bvh> tree;
-    {
-      std::lock_guard<std::mutex> lock(this->Lock);
-      this->meshBvhLocked();
-      tree = this->bvh;
-    }
+    const std::shared_ptr<const Bvh> tree = this->meshBvh();
     const double t0 = now();
     this->Solid = std::make_unique<SolidBoundary>(checkSolidBoundary(this->mesh, *tree, p));
     trace(this->Solid->solid ? "solid check: the mesh bounds a solid" : "solid check: not a solid's boundary", now() - t0);
   });
   return *this->Solid;
+}
+
+const SharpFeatures& MeshToSdfPrepared::Impl::sharpFeatures()
+{
+  std::call_once(this->SharpOnce, [this]() {
+    const double t0 = now();
+    this->Sharp = std::make_unique<SharpFeatures>(findSharpFeatures(this->mesh));
+    trace(("sharp features: " + std::to_string(this->Sharp->sharpEdges) + " edges, " +
+            std::to_string(this->Sharp->sharpVertices) + " vertices").c_str(),
+      now() - t0);
+  });
+  return *this->Sharp;
 }
 
 const detail::meshtosdf_cuda::DeviceMesh& MeshToSdfPrepared::Impl::deviceMesh(

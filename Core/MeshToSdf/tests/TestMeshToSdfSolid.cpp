@@ -226,6 +226,103 @@ TEST(MeshToSdfSolid, SolidFieldEqualsThePseudoNormalPath)
       }
 }
 
+/// A ball whose every fourth vertex of alternate rings is pushed out: sharp
+/// spikes (vertices and edges whose faces' normals are more than 90 degrees
+/// apart) among smooth ones.
+TriangleMesh spikyBall()
+{
+  TriangleMesh m = makeSphereMesh(0.02f, -0.01f, 0.03f, 0.6f, 10, 20);
+  for (std::size_t i = 0; i < m.points.size(); i += 7)
+    for (int a = 0; a < 3; ++a) m.points[i][a] = 0.02f + 1.6f * (m.points[i][a] - 0.02f);
+  return m;
+}
+
+/// The Normal sign of a solid by the winding path and the sharp features'
+/// regions (MeshToSdfSharpFeatures.h) stores the Normal path's floats, on the
+/// CPU and CUDA, banded and not, on grids of unequal spacings, into float
+/// grids and dictionary volumes. The Normal field differs from the winding
+/// field on sharp meshes (else this test could not fail): that difference is
+/// what the regions must recompute.
+TEST(MeshToSdfSolid, NormalFieldOfSolidsEqualsTheNormalPath)
+{
+  std::vector<Device> devices{ Device::Cpu };
+  if (cuda::available()) devices.push_back(Device::Cuda);
+  auto meshes = solids();
+  meshes.emplace_back("spiky ball", spikyBall());
+  meshes.emplace_back("needle", tetrahedron({ -0.2f, -0.15f, -0.9f }, { 0.25f, -0.1f, -0.85f }, { 0.0f, 0.2f, -0.8f }, { 0.05f, 0.02f, 0.9f }));
+  std::int64_t sharpSeen = 0, normalDiffersFromWinding = 0;
+  for (const auto& [name, mesh] : meshes)
+    for (Device device : devices)
+      for (float band : { 3.0f, std::numeric_limits<float>::infinity() })
+        for (bool anisotropic : { false, true })
+        {
+          GridGeometry g = fitGridToMesh(mesh, 31, 3);
+          if (anisotropic)
+          {
+            const double s = g.spacing[0];
+            g.spacing = { s, 1.37 * s, 0.71 * s };
+            g.dims = { g.dims[0], static_cast<std::int64_t>(g.dims[1] / 1.37) + 1, static_cast<std::int64_t>(g.dims[2] / 0.71) + 1 };
+          }
+          std::vector<float> byWinding(static_cast<std::size_t>(g.count())), byNormal(byWinding.size()),
+            winding(byWinding.size());
+          MeshToSdfOptions o;
+          o.sign = SignMode::Normal;
+          o.bandWidth = band;
+          o.device = device;
+          const MeshToSdfStats a = meshToSdf(mesh, FloatGridView{ byWinding.data(), g }, o);
+          o.solidsByWinding = false;
+          const MeshToSdfStats b = meshToSdf(mesh, FloatGridView{ byNormal.data(), g }, o);
+          o.sign = SignMode::WindingNumber;
+          meshToSdf(mesh, FloatGridView{ winding.data(), g }, o);
+          const std::string where = name + (device == Device::Cuda ? " on CUDA" : " on the CPU") + ", band " +
+            std::to_string(band) + (anisotropic ? ", unequal spacings" : "");
+          // on CUDA the Normal path's far blocks stay (MeshToSdf.cpp, signOfSolids)
+          EXPECT_EQ(a.signByWinding, device == Device::Cpu) << where << ": " << solidOf(mesh).why;
+          EXPECT_FALSE(b.signByWinding) << where;
+          sharpSeen += a.sharpVoxels;
+          std::int64_t differ = 0, onSurface = 0;
+          for (std::size_t i = 0; i < byWinding.size(); ++i)
+          {
+            normalDiffersFromWinding += (byNormal[i] < 0) != (winding[i] < 0) && std::fabs(byNormal[i]) > 1e-3f;
+            if (std::memcmp(&byWinding[i], &byNormal[i], sizeof(float)) == 0) continue;
+            // on the surface: distance 0 up to rounding, a sign neither path knows
+            if (byWinding[i] == -byNormal[i] && std::fabs(byWinding[i]) < 1e-6f)
+              ++onSurface;
+            else
+              ++differ;
+          }
+          EXPECT_EQ(differ, 0) << where << " (" << onSurface << " voxels on the surface, " << a.sharpVoxels
+                               << " recomputed)";
+          if (band == 3.0f && !anisotropic)
+          {
+            // the dictionary volume: the same keys as the Normal path's
+            VolumeOptions vo;
+            vo.dims = g.dims;
+            vo.origin = g.origin;
+            vo.spacing = g.spacing;
+            vo.bandWidth = band;
+            DictionaryVolume viaWinding(vo), viaNormal(vo);
+            o.sign = SignMode::Normal;
+            o.solidsByWinding = true;
+            const MeshToSdfStats c = meshToSdf(mesh, viaWinding, o);
+            o.solidsByWinding = false;
+            meshToSdf(mesh, viaNormal, o);
+            EXPECT_EQ(c.signByWinding, device == Device::Cpu) << where;
+            std::int64_t keysDiffer = 0;
+            for (std::int64_t z = 0; z < g.dims[2]; ++z)
+              for (std::int64_t y = 0; y < g.dims[1]; ++y)
+                for (std::int64_t x = 0; x < g.dims[0]; ++x)
+                {
+                  const float p = viaWinding.sdf(x, y, z), q = viaNormal.sdf(x, y, z);
+                  keysDiffer += viaWinding.get(x, y, z) != viaNormal.get(x, y, z) && !(p == -q && std::fabs(p) < 1e-2f);
+                }
+            EXPECT_EQ(keysDiffer, 0) << where << ", dictionary volume";
+          }
+        }
+  EXPECT_GT(sharpSeen, 0);
+  EXPECT_GT(normalDiffersFromWinding, 0);
+}
+
 /// A mesh that is not a solid's boundary keeps the pseudo-normal path, and
 /// its field is unchanged by the option.
 TEST(MeshToSdfSolid, OthersKeepThePseudoNormalPath)

@@ -6,8 +6,8 @@
 // A run may carry @SIGN (normal, pseudonormal, winding, unsigned: that run's
 // sign mode instead of SIGN), @pervoxel (MeshToSdfOptions::farBlocks off) and
 // @pageable (CUDA into a volume: the chunk keys come back through pageable
-// memory, as when pinned memory is refused), @normalspath (PseudoNormal on a
-// solid by its own path: MeshToSdfOptions::solidsByWinding off), e.g.
+// memory, as when pinned memory is refused), @normalspath (PseudoNormal or
+// Normal on a solid by its own path: MeshToSdfOptions::solidsByWinding off), e.g.
 // prepared@winding,prepared@pseudonormal,prepared@pseudonormal@pervoxel:
 // sign modes and paths compared in one process.
 // DAMAGE: a seeded variant of the mesh made in memory before timing (any of

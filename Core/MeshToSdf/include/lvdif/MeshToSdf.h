@@ -128,13 +128,17 @@ struct MeshToSdfOptions
   /// sign pass comes after. false: every voxel queried (tests and benchmarks
   /// compare the two).
   bool farBlocks = true;
-  /// PseudoNormal only: a mesh that bounds a solid (closed, a 2-manifold
-  /// consistently oriented, not self-intersecting, winding number 0 or 1
-  /// everywhere; checked once per prepared mesh, conservatively) takes the
-  /// winding-number path, whose sign is the pseudo-normal sign there
-  /// (Baerentzen & Aanaes 2005) and which needs exact distances only in the
-  /// band (MeshToSdfStats::signByWinding; docs/MESH_TO_SDF.md, "Pseudo-normal
-  /// signs of solids"). false: the pseudo-normal path always (tests compare).
+  /// PseudoNormal and Normal: a mesh that bounds a solid (closed, a
+  /// 2-manifold consistently oriented, not self-intersecting, winding number
+  /// 0 or 1 everywhere; checked once per prepared mesh, conservatively) takes
+  /// the winding-number path, which needs exact distances only in the band.
+  /// Its sign is the pseudo-normal sign there (Baerentzen & Aanaes 2005); the
+  /// normal sign differs from it only in the regions of sharp edges and
+  /// vertices, whose voxels are then recomputed exactly (Normal without
+  /// vertex normals, the BVH accelerator, the sharp features inside the
+  /// grid). The same floats either way (MeshToSdfStats::signByWinding;
+  /// docs/MESH_TO_SDF.md, "Pseudo-normal signs of solids", "Normal signs of
+  /// solids"). false: their own paths always (tests compare).
   bool solidsByWinding = true;
   /// Print the host phases' times (preparation, search structures, upload) to
   /// stderr as they finish: for benchmarks (bench_mesh_to_sdf --trace).
@@ -155,7 +159,8 @@ struct MeshToSdfStats
   std::int64_t keysVerified = 0;       // cudaVerifyKeys: voxels whose GPU key was checked
   std::int64_t keyMismatches = 0;      // cudaVerifyKeys: GPU keys != host encode (must be 0)
   std::int64_t farVoxels = 0;          // voxels filled by far blocks (MeshToSdfOptions::farBlocks)
-  bool signByWinding = false;          // PseudoNormal on a solid's boundary: signs by the winding path (solidsByWinding)
+  bool signByWinding = false;          // PseudoNormal/Normal on a solid's boundary: signs by the winding path (solidsByWinding)
+  std::int64_t sharpVoxels = 0;        // Normal by the winding path: voxels recomputed in the sharp features' regions
   std::int64_t svfFlips = 0;           // signs changed by the sign voxel filters
   double svfSeconds = 0;
   /// When the result cannot be what the user expects, one sentence each
