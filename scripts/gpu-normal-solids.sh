@@ -3,12 +3,11 @@
 # features' regions (MeshToSdfOptions::solidsByWinding, docs/MESH_TO_SDF.md
 # "Normal signs of solids"): builds Core alone with CUDA (sm_90), runs every
 # Core test executable one after the other (CUDA tests included), then
-# bench_mesh_to_sdf one-call runs into the dictionary volume (band 8, --trace)
-# on the host's CPU threads, where the route is taken: the armadillo at 512^3
-# with winding, normal (the route) and normal by its own path (@normalspath),
-# alternating, and at 1024^3 one of each; then sub2 (832k triangles) at 512^3;
-# then the CUDA device's own normal and winding runs at 1024^3 (the route is
-# not taken on CUDA), for comparison. No new step after BUDGET seconds.
+# bench_mesh_to_sdf one-call runs into the dictionary volume (band 8, --trace):
+# on CUDA at 1024^3 (the regions on the host beside the GPU's winding pass)
+# the armadillo with winding, normal (the route) and normal by its own path
+# (@normalspath), alternating, then sub2 (832k triangles); then on the host's
+# CPU threads the armadillo at 512^3 and 1024^3. No new step after BUDGET s.
 # usage: OUT=dir scripts/gpu-normal-solids.sh [ARMADILLO.off] [BUDGET]
 set -u
 A=${1:-.gpu/meshes/armadillo.off}
@@ -29,9 +28,9 @@ grep -h "^\[  FAILED  \]" "$OUT"/test-*.log | sort -u | head -20 | tee -a "$OUT/
 M=b/Testing/Benchmarks/Core/bench_mesh_to_sdf
 R=cold,warm@winding,warm@normal,warm@normal@normalspath,warm@normal@normalspath,warm@normal,warm@winding
 R=$R,warm@winding,warm@normal,warm@normal@normalspath
-run 120 $M "$A" 512 normal cpu bvh volume 8 2 "$R" --trace
-run 120 $M "$A" 1024 normal cpu bvh volume 8 2 cold,warm@winding,warm@normal,warm@normal@normalspath --trace
-run 90 $M "sub2:$A" 512 normal cpu bvh volume 8 2 cold,warm@winding,warm@normal,warm@winding,warm@normal --trace
-run 60 $M "$A" 1024 normal auto bvh volume 8 2 cold,warm@winding,warm@normal,warm@winding,warm@normal --trace
+run 90 $M "$A" 1024 normal auto bvh volume 8 2 "$R" --trace
+run 60 $M "sub2:$A" 1024 normal auto bvh volume 8 2 cold,warm@winding,warm@normal,warm@normal@normalspath,warm@normal,warm@winding --trace
+run 100 $M "$A" 512 normal cpu bvh volume 8 2 cold,warm@winding,warm@normal,warm@normal@normalspath,warm@winding,warm@normal --trace
+run 90 $M "$A" 1024 normal cpu bvh volume 8 2 cold,warm@winding,warm@normal --trace
 grep -E "^## |^mesh:|^machine:|^\| (cold|warm|prepared)|sharp features|rc=[1-9]" "$L" | cut -c1-170 | tee -a "$OUT/summary.txt"
 echo "total $(( $(date +%s) - T0 )) s" | tee -a "$OUT/summary.txt"

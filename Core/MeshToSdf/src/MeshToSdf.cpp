@@ -516,7 +516,7 @@ std::future<void> partsBesideGpu(const MeshToSdfPrepared& mesh, bool needed)
 /// distances only in the band, where the pseudo-normal far field needs the
 /// planes of every nearby triangle (docs/MESH_TO_SDF.md, "Pseudo-normal signs
 /// of solids"). Normal on such a mesh: the winding sign too, then the voxels
-/// of the sharp features' regions recomputed (normalAtSharpFeatures;
+/// of the sharp features' regions recomputed (sharpRegions;
 /// "Normal signs of solids"), when the sharp features lie inside `extent` of
 /// `grid` (their regions are walked through its voxels). The checks run once
 /// per prepared mesh (their time is build time). A closed part whose faces
@@ -547,16 +547,8 @@ MeshToSdfOptions signOfSolids(const MeshToSdfPrepared& mesh, const MeshToSdfOpti
   }
   if (normal)
   {
-    // the sharp features' voxels take the CPU's queries of the BVH path. On
-    // CUDA the Normal path's far blocks are faster than those queries on the
-    // host (the regions grow with the grid's volume: 15k voxels at 256^3 on
-    // the armadillo, about a million at 1024^3)
+    // the sharp features' voxels take the CPU's queries of the BVH path
     if (options.useVertexNormals || options.accel != MeshToSdfAccel::Bvh) return options;
-    if (resolveDevice(options.device) == Device::Cuda)
-    {
-      trace("normal sign on its own path: on CUDA", 0);
-      return options;
-    }
     const double t1 = now();
     const SharpFeatures& sharp = mesh.impl().sharpFeatures();
     stats.buildSeconds += now() - t1;
@@ -574,20 +566,24 @@ MeshToSdfOptions signOfSolids(const MeshToSdfPrepared& mesh, const MeshToSdfOpti
 }
 
 /// Normal by the winding path (signOfSolids): the voxels of the sharp
-/// features' regions, with the Normal path's values, handed to `store`
-/// (one thread). Their queries are the CPU's (the mesh's tree, exact, ties to
-/// the lowest index like every accelerator), whatever device the call used.
-template <typename Store>
-void normalAtSharpFeatures(const MeshToSdfPrepared& mesh, const GridGeometry& grid, const VoxelBox& extent,
-  double toOut, double band, MeshToSdfStats& stats, Interrupter& interrupter, Store&& store)
+/// features' regions with the Normal path's values. Their queries are the
+/// CPU's (the mesh's tree, exact, ties to the lowest index like every
+/// accelerator) whatever device the call uses: beside a CUDA session, on a
+/// thread of their own (the host mostly waits there), else when get() is
+/// called, after the CPU's pass (both use every thread).
+std::future<std::vector<SharpVoxel>> sharpRegions(const MeshToSdfPrepared& mesh, const GridGeometry& grid,
+  const VoxelBox& extent, double toOut, double band, Interrupter& interrupter, bool besideGpu, bool tracePhases)
 {
-  const double t0 = now();
-  const std::shared_ptr<const Bvh> bvh = mesh.impl().meshBvh(); // built by the solid check
-  const std::vector<SharpVoxel> voxels = normalSignAtSharpFeatures(
-    mesh.impl().mesh, mesh.impl().sharpFeatures(), *bvh, grid, extent, toOut, band, interrupter);
-  for (const SharpVoxel& v : voxels) store(v);
-  stats.sharpVoxels = static_cast<std::int64_t>(voxels.size());
-  trace(("sharp features' regions: " + std::to_string(voxels.size()) + " voxels").c_str(), now() - t0);
+  return std::async(besideGpu ? std::launch::async : std::launch::deferred,
+    [&mesh, grid, extent, toOut, band, &interrupter, tracePhases] {
+      const PhaseTraceScope tracing(tracePhases); // this thread's own
+      const double t0 = now();
+      const std::shared_ptr<const Bvh> bvh = mesh.impl().meshBvh(); // built by the solid check
+      std::vector<SharpVoxel> voxels = normalSignAtSharpFeatures(
+        mesh.impl().mesh, mesh.impl().sharpFeatures(), *bvh, grid, extent, toOut, band, interrupter);
+      trace(("sharp features' regions: " + std::to_string(voxels.size()) + " voxels").c_str(), now() - t0);
+      return voxels;
+    });
 }
 
 bool wholeGrid(const GridGeometry& grid, const VoxelBox& extent)
@@ -615,6 +611,11 @@ MeshToSdfStats meshToSdf(const MeshToSdfPrepared& mesh, const GridGeometry& grid
   interrupter.start("mesh to SDF");
   stats.device = chooseDevice(mesh, options, stats);
   auto engine = makeEngine(mesh, grid, options, options.bandWidth, stats.device, stats);
+  const bool sharp = given.sign == SignMode::Normal && stats.signByWinding;
+  std::future<std::vector<SharpVoxel>> regions;
+  if (sharp)
+    regions = sharpRegions(mesh, grid, extent, outputScale(grid, options), options.bandWidth, interrupter,
+      stats.device == Device::Cuda, given.tracePhases);
   if (stats.device == Device::Cuda)
   {
     std::future<void> parts = partsBesideGpu(mesh, wholeGrid(grid, extent) && options.sign != SignMode::Unsigned);
@@ -625,13 +626,13 @@ MeshToSdfStats meshToSdf(const MeshToSdfPrepared& mesh, const GridGeometry& grid
   {
     computeBox(*engine, extent, out, stats, interrupter, 0.0, 1.0);
   }
-  if (given.sign == SignMode::Normal && stats.signByWinding)
+  if (sharp)
   {
+    const std::vector<SharpVoxel> voxels = regions.get();
     const std::int64_t nx = extent.hi[0] - extent.lo[0] + 1, ny = extent.hi[1] - extent.lo[1] + 1;
-    normalAtSharpFeatures(mesh, grid, extent, outputScale(grid, options), options.bandWidth, stats, interrupter,
-      [&](const SharpVoxel& v) {
-        out[(v.i - extent.lo[0]) + nx * ((v.j - extent.lo[1]) + ny * (v.k - extent.lo[2]))] = v.value;
-      });
+    for (const SharpVoxel& v : voxels)
+      out[(v.i - extent.lo[0]) + nx * ((v.j - extent.lo[1]) + ny * (v.k - extent.lo[2]))] = v.value;
+    stats.sharpVoxels = static_cast<std::int64_t>(voxels.size());
   }
   if (options.svfFilters != 0)
   {
@@ -690,6 +691,11 @@ MeshToSdfStats meshToSdf(const MeshToSdfPrepared& mesh, DictionaryVolume& volume
   interrupter.start("mesh to SDF");
   stats.device = chooseDevice(mesh, options, stats);
   auto engine = makeEngine(mesh, grid, opts, volume.bandWidth(), stats.device, stats);
+  const bool sharp = given.sign == SignMode::Normal && stats.signByWinding;
+  std::future<std::vector<SharpVoxel>> regions;
+  if (sharp)
+    regions = sharpRegions(mesh, grid, whole, outputScale(grid, opts), volume.bandWidth(), interrupter,
+      stats.device == Device::Cuda, given.tracePhases);
   const bool region = !options.chunkRegion.empty();
   require(!region || options.svfFilters == 0,
     "mesh to SDF: a chunk region cannot be combined with the sign voxel filters (they need the whole volume)");
@@ -720,18 +726,20 @@ MeshToSdfStats meshToSdf(const MeshToSdfPrepared& mesh, DictionaryVolume& volume
         computeBox(*engine, box, out, stats, interrupter, p0, dp);
       });
   }
-  if (given.sign == SignMode::Normal && stats.signByWinding)
+  if (sharp)
   {
+    const std::vector<SharpVoxel> voxels = regions.get();
     std::vector<std::int64_t> touched;
-    normalAtSharpFeatures(mesh, grid, whole, outputScale(grid, opts), volume.bandWidth(), stats, interrupter,
-      [&](const SharpVoxel& v) {
-        Voxel voxel = volume.get(v.i, v.j, v.k);
-        const SdfKey key = volume.encode(v.value);
-        if (voxel.sdf == key) return;
-        voxel.sdf = key;
-        volume.set(v.i, v.j, v.k, voxel);
-        touched.push_back(volume.chunkOf(v.i, v.j, v.k));
-      });
+    for (const SharpVoxel& v : voxels)
+    {
+      Voxel voxel = volume.get(v.i, v.j, v.k);
+      const SdfKey key = volume.encode(v.value);
+      if (voxel.sdf == key) continue;
+      voxel.sdf = key;
+      volume.set(v.i, v.j, v.k, voxel);
+      touched.push_back(volume.chunkOf(v.i, v.j, v.k));
+    }
+    stats.sharpVoxels = static_cast<std::int64_t>(voxels.size());
     std::sort(touched.begin(), touched.end());
     touched.erase(std::unique(touched.begin(), touched.end()), touched.end());
     for (const std::int64_t id : touched)
@@ -843,7 +851,7 @@ static MeshToSdfPrepared prepareOneCall(const TriangleMesh& mesh, const MeshToSd
   // the signs that may take the winding path (signOfSolids)
   const bool mayWind = options.solidsByWinding &&
     (options.sign == SignMode::PseudoNormal ||
-      (options.sign == SignMode::Normal && !cuda && !options.useVertexNormals && options.accel == MeshToSdfAccel::Bvh));
+      (options.sign == SignMode::Normal && !options.useVertexNormals && options.accel == MeshToSdfAccel::Bvh));
   return prepareInternal(mesh, options.sign, cuda, !cuda && options.accel == MeshToSdfAccel::Bvh, mayWind);
 }
 

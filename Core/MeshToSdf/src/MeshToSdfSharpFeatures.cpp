@@ -250,6 +250,7 @@ std::vector<SharpVoxel> normalSignAtSharpFeatures(const PreparedMesh& mesh, cons
   struct Brick
   {
     std::int32_t feature;
+    std::int32_t nearest; // the closest triangle to the brick's centre
     std::int64_t bi, bj, bk;
   };
   std::vector<Brick> work;
@@ -300,7 +301,7 @@ std::vector<SharpVoxel> normalSignAtSharpFeatures(const PreparedMesh& mesh, cons
           const NearestResult r = bvh.nearest(centre, hint, 1e300);
           hint = r.tri;
           if (norm(d) - std::sqrt(r.dist2) > 2 * slack) continue;
-          mine.push_back({ static_cast<std::int32_t>(fi), at[0], at[1], at[2] });
+          mine.push_back({ static_cast<std::int32_t>(fi), r.tri, at[0], at[1], at[2] });
           for (int dk = -1; dk <= 1; ++dk)
             for (int dj = -1; dj <= 1; ++dj)
               for (int di = -1; di <= 1; ++di)
@@ -352,6 +353,12 @@ std::vector<SharpVoxel> normalSignAtSharpFeatures(const PreparedMesh& mesh, cons
               const V3 p = position(static_cast<double>(i), static_cast<double>(j), static_cast<double>(k));
               V3 d;
               if (!offset(f, p, margin, d) || !mayDiffer(f, d, margin)) continue;
+              // the centre's closest triangle bounds the distance to the mesh
+              // from above: farther from the feature than from it beyond the
+              // margins, p is not in the region (no query needed)
+              const Tri& near = mesh.tris[static_cast<std::size_t>(b.nearest)];
+              const V3 dn = closestPointOnTriangle(p, near.v[0], near.v[1], near.v[2]).point - p;
+              if (norm(d) - norm(dn) > 2 * margin) continue;
               NearestResult r;
               if (local)
               {
