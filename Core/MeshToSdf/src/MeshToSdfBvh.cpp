@@ -472,6 +472,37 @@ NearestResult Bvh::nearest(V3 p, std::int32_t hint, double maxDist2, const std::
   return best;
 }
 
+double Bvh::maxAlongAbove(V3 o, V3 dir, double limit) const
+{
+  const double d[3] = { dir.x, dir.y, dir.z }, at[3] = { o.x, o.y, o.z };
+  auto boxBound = [&](const Node& n) {
+    double s = 0;
+    for (int a = 0; a < 3; ++a) s += std::max(d[a] * (n.lo[a] - at[a]), d[a] * (n.hi[a] - at[a]));
+    return s;
+  };
+  std::int32_t stack[128];
+  int top = 0;
+  if (!this->Nodes.empty()) stack[top++] = 0;
+  while (top > 0)
+  {
+    const Node& n = this->Nodes[stack[--top]];
+    if (boxBound(n) <= limit) continue;
+    if (n.left < 0)
+    {
+      for (std::int32_t i = n.first; i < n.first + n.count; ++i)
+        for (const V3& x : this->Tris[this->Order[i]].v)
+        {
+          const double s = ((d[0] * (x.x - at[0]) + 0.0) + d[1] * (x.y - at[1])) + d[2] * (x.z - at[2]);
+          if (s > limit) return s;
+        }
+      continue;
+    }
+    stack[top++] = n.left;
+    stack[top++] = n.right;
+  }
+  return limit;
+}
+
 double Bvh::windingExact(V3 p) const
 {
   double omega = 0;

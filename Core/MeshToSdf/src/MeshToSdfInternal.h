@@ -149,6 +149,12 @@ public:
   NearestResult nearest(V3 p, std::int32_t hint, double maxDist2, const std::int32_t* skip = nullptr,
     int skipCount = 0) const;
 
+  /// Whether every triangle vertex x has (x - o) . dir <= `limit`: the
+  /// largest value found above it, or `limit` when there is none (nodes
+  /// whose box cannot exceed it are skipped; the box bound is summed in the
+  /// vertices' order, so it is never below a vertex's computed value).
+  double maxAlongAbove(V3 o, V3 dir, double limit) const;
+
   /// Exact winding number: the sum of all solid angles / 4 pi.
   double windingExact(V3 p) const;
 

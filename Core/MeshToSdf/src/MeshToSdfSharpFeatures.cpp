@@ -242,6 +242,33 @@ std::vector<SharpVoxel> normalSignAtSharpFeatures(const PreparedMesh& mesh, cons
     return lo < slack && hi > -slack;
   };
 
+  // Whether, for every voxel p of the box, no point x of the mesh has
+  // (x - c) . (p - c) > 0, c the feature's closest point to p (the feature
+  // is where the mesh reaches farthest towards p; on its convex hull). Then
+  // |p - x|^2 = |p - c|^2 - 2 (x - c) . (p - c) + |x - c|^2 > |p - c|^2 for
+  // every x off the feature: every triangle without it is farther than the
+  // feature's faces. (x - c) . (p - c) is linear in p (an edge's c: p's
+  // projection, strictly inside it, so that no other triangle through an end
+  // ties), so the box's corners bound it, and the mesh's vertices bound x.
+  auto beyondTheMesh = [&](const SharpFeature& f, const VoxelBox& box) {
+    const V3 e = f.b - f.a;
+    const double len2 = dot(e, e);
+    for (int corner = 0; corner < 8; ++corner)
+    {
+      const V3 p = position(static_cast<double>(corner & 1 ? box.hi[0] : box.lo[0]),
+        static_cast<double>(corner & 2 ? box.hi[1] : box.lo[1]), static_cast<double>(corner & 4 ? box.hi[2] : box.lo[2]));
+      V3 towards = p - f.a;
+      if (f.edge)
+      {
+        const double t = dot(towards, e) / len2;
+        if (!(t > 1e-6 && t < 1 - 1e-6)) return false;
+        towards = towards - t * e;
+      }
+      if (bvh.maxAlongAbove(f.a, towards, 0.0) > 0) return false;
+    }
+    return true;
+  };
+
   // 1. Per feature, its bricks: walked from those around the feature to
   // neighbours while they can still hold a voxel of the region (one nearest
   // query at the centre). A region is star-shaped from its feature (the
@@ -344,7 +371,8 @@ std::vector<SharpVoxel> normalSignAtSharpFeatures(const PreparedMesh& mesh, cons
         offset(f, centre, 1e300, dc);
         // every voxel p of the brick: others(p) >= others(c) - R, the
         // feature's faces(p) <= |p - feature| <= |c - feature| + R
-        const bool local = std::sqrt(others.dist2) - brickRadius > (norm(dc) + brickRadius) * (1 + 1e-9);
+        const bool local = std::sqrt(others.dist2) - brickRadius > (norm(dc) + brickRadius) * (1 + 1e-9) ||
+          beyondTheMesh(f, box);
         std::int32_t hint = -1;
         for (std::int64_t k = box.lo[2]; k <= box.hi[2]; ++k)
           for (std::int64_t j = box.lo[1]; j <= box.hi[1]; ++j)
