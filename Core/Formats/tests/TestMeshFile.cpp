@@ -177,6 +177,15 @@ TEST(MeshFile, MalformedInputsAreClearErrors)
     { "PLY no end_header", "ply\nformat ascii 1.0\nelement vertex 0\n", MeshFormat::Ply, "no end_header" },
     { "PLY missing z", "ply\nformat ascii 1.0\nelement vertex 1\nproperty float x\nproperty float y\nend_header\n0 0\n", MeshFormat::Ply, "without x, y and z" },
     { "PLY not ply", "plx\n", MeshFormat::Ply, "magic" },
+    // a name given twice is a broken header: the last one was taken (a second x made
+    // every vertex's x 5, and the error blamed the triangles' area)
+    { "PLY property twice", "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\n"
+      "property float z\nproperty float x\nelement face 1\nproperty list uchar int vertex_indices\nend_header\n"
+      "0 0 0 5\n1 0 0 5\n0 1 0 5\n3 0 1 2\n", MeshFormat::Ply,
+      "PLY header line 7: property 'x' of element 'vertex' given twice" },
+    { "PLY element twice", plyHead.substr(0, plyHead.size() - 11) + "element vertex 3\nproperty float x\nproperty float y\n"
+      "property float z\nend_header\n" + tri + "3 0 1 2\n" + tri, MeshFormat::Ply,
+      "PLY header line 9: element 'vertex' given twice" },
     { "STL neither", "hello", MeshFormat::Stl, "neither a binary STL (size is not 84 + 50 x triangle count) nor an ASCII one" },
     // a binary STL whose count disagrees with its size names both (it said only "size is not 84 + 50 x triangle count")
     { "STL wrong count", std::string(80, ' ') + std::string("\x05\0\0\0", 4) + std::string(150, '\0'), MeshFormat::Stl,
