@@ -305,6 +305,7 @@ TriangleMesh readPly(const std::vector<char>& data)
 
   TriangleMesh mesh;
   TextScanner body(s.position(), left, "PLY");
+  body.skipLines(s.line()); // its lines are the file's
   BinaryReader bin{ reinterpret_cast<const unsigned char*>(s.position()),
     reinterpret_cast<const unsigned char*>(s.position()) + left, enc == Encoding::BigEndian, "" };
   std::vector<std::string> tok;
@@ -454,6 +455,9 @@ TriangleMesh readPly(const std::vector<char>& data)
       }
     }
   }
+  // text past the last element's records: wrong counts or a damaged file (dropped without a word)
+  if (enc == Encoding::Ascii && body.nextNonEmpty(tok))
+    fail(ErrorCode::ParseError, body.where(), "more records than the header's element counts (wrong counts, or a damaged file)");
   finish(mesh, "PLY");
   return mesh;
 }
