@@ -7,18 +7,13 @@
 set -u
 M=${1:?mesh directory}
 OUT=${OUT:-out-gpu}
+. "$(dirname "$0")/gpu-common.sh"
 mkdir -p "$OUT"
 { date -u; nvidia-smi -L; nvcc --version | tail -2; nproc; lscpu | grep "Model name"; } > "$OUT/machine.txt" 2>&1
 cmake -S . -B b -DLVDIF_CORE_ONLY=ON -DLVDIF_CUDA=ON -DCMAKE_CUDA_ARCHITECTURES=90 -DCMAKE_BUILD_TYPE=Release \
   > "$OUT/build.log" 2>&1 || { tail -40 "$OUT/build.log"; exit 1; }
 cmake --build b -j16 >> "$OUT/build.log" 2>&1 || { grep -B2 -A10 -i "error" "$OUT/build.log" | head -80; exit 1; }
-: > "$OUT/tests.log"
-for t in b/Core/*/LVDIF*Tests; do
-  timeout 240 "$t" >> "$OUT/tests.log" 2>&1
-  echo "tests $(basename "$t") rc=$?" >> "$OUT/tests.log"
-done
-grep -E "^\[  (PASSED|FAILED|SKIPPED) " "$OUT/tests.log" | sort | uniq -c | sort -rn | head -5
-grep "FAILED" "$OUT/tests.log" | head
+gpu_core_tests b 240
 B=b/Testing/Benchmarks/Core
 L="$OUT/bench.log"
 run() { echo "## $*" >> "$L"; timeout 120 "$@" >> "$L" 2>&1; echo "rc=$?" >> "$L"; }

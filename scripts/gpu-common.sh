@@ -1,7 +1,6 @@
-# Sourced by the budgeted GPU-host scripts (scripts/gpu-{signs,damaged,meshtosdf-ab,
-# pseudonormal,meshbuild}.sh), from the repository root. The caller sets OUT
-# (log folder), BUDGET (seconds after which no new step starts) and L (the log
-# `run` appends to).
+# Sourced by the GPU-host scripts (scripts/gpu-*.sh), from the repository root.
+# The caller sets OUT (log folder); the budgeted ones also BUDGET (seconds after
+# which no new step starts) and L (the log `run` appends to).
 
 # Makes $OUT, starts the clock (T0) and records the machine in $OUT/machine.txt.
 gpu_begin() {
@@ -56,4 +55,63 @@ run() {
   echo "## $head (limit ${lim}s)" >> "$L"
   timeout "$lim" "$@" >> "$L" 2>&1
   echo "rc=$?" >> "$L"
+}
+
+# The Core subsystems that have a test executable (Core/SUB/tests builds
+# LVDIF<SUB>Tests), read from the source tree so that a new one is not missed;
+# none (and a message on stderr) outside the repository root.
+gpu_core_subs() {
+  local d
+  for d in Core/*/tests; do
+    [ -d "$d" ] || { echo "no Core/*/tests here: run from the repository root" >&2; return 1; }
+    d=${d%/tests}
+    printf "%s " "${d#Core/}"
+  done
+}
+
+# gpu_core_test_targets [SUB...]: the build targets of those test executables
+# (default: every subsystem's).
+gpu_core_test_targets() {
+  local s
+  for s in ${*:-$(gpu_core_subs)}; do printf "LVDIF%sTests " "$s"; done
+}
+
+# gpu_core_tests DIR LIMIT [SUB...]: runs the Core test executables
+# DIR/Core/SUB/LVDIF<SUB>Tests (default: every subsystem's), each limited to
+# LIMIT seconds, its output in $OUT/LVDIF<SUB>Tests.log. One after the other:
+# run at once, their OpenMP teams (16 threads each) oversubscribe the cores and
+# the tests made of many tiny parallel regions crawl (MarchingCubes' table test
+# ran past 150 s that way; alone it takes 2.5 s). GPU_TESTS_AT_ONCE=1 starts
+# them together (the sanitizer build, slow and on a host with cores to spare).
+# Prints, and appends to $OUT/summary.txt, one line per executable
+# (`LVDIFEditTests rc=0 [  PASSED  ] 75 tests.`), then the failed tests' names.
+# Returns 1 when an executable failed (or did not run), else 0.
+gpu_core_tests() {
+  local dir=$1 lim=$2 subs s n rc status=0
+  local -a pids=()
+  shift 2
+  subs=${*:-$(gpu_core_subs)}
+  [ -n "$subs" ] || return 1
+  mkdir -p "$OUT"
+  for s in $subs; do
+    n=LVDIF${s}Tests
+    rm -f "$OUT/$n.rc"
+    if [ "${GPU_TESTS_AT_ONCE:-0}" = 1 ]; then
+      ( timeout "$lim" "$dir/Core/$s/$n" > "$OUT/$n.log" 2>&1; echo $? > "$OUT/$n.rc" ) &
+      pids+=($!)
+    else
+      timeout "$lim" "$dir/Core/$s/$n" > "$OUT/$n.log" 2>&1
+      echo $? > "$OUT/$n.rc"
+    fi
+  done
+  [ ${#pids[@]} = 0 ] || wait "${pids[@]}"
+  for s in $subs; do
+    n=LVDIF${s}Tests
+    rc=$(cat "$OUT/$n.rc" 2>/dev/null || echo "none")
+    [ "$rc" = 0 ] || status=1
+    printf "%-26s rc=%s %s\n" "$n" "$rc" "$(grep -E '^\[  (PASSED|FAILED|SKIPPED) ' "$OUT/$n.log" | tr '\n' ' ')" |
+      tee -a "$OUT/summary.txt"
+  done
+  for s in $subs; do grep -h "^\[  FAILED  \]" "$OUT/LVDIF${s}Tests.log"; done | sort -u | head -20 | tee -a "$OUT/summary.txt"
+  return $status
 }

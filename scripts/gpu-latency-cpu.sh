@@ -9,6 +9,7 @@
 # usage: scripts/gpu-latency-cpu.sh   (from the repository root)
 set -u
 OUT=${OUT:-out-gpu}
+. "$(dirname "$0")/gpu-common.sh"
 mkdir -p "$OUT"
 T0=$(date +%s)
 { date -u; nvidia-smi -L; nproc; lscpu | grep "Model name"; uptime; } > "$OUT/machine.txt" 2>&1
@@ -16,15 +17,9 @@ head -2 "$OUT/machine.txt"; grep "Model name" "$OUT/machine.txt"
 J=$(nproc)
 cmake -S . -B b -DLVDIF_CORE_ONLY=ON -DLVDIF_CUDA=ON -DCMAKE_CUDA_ARCHITECTURES=90 -DCMAKE_BUILD_TYPE=Release -DLVDIF_BUILD_BENCHMARKS=ON \
   > "$OUT/build.log" 2>&1 || { tail -40 "$OUT/build.log"; exit 1; }
-cmake --build b -j"$J" --target LVDIFSessionTests LVDIFEditTests LVDIFMarchingCubesTests bench_stroke_latency_core \
+cmake --build b -j"$J" --target $(gpu_core_test_targets Session Edit MarchingCubes) bench_stroke_latency_core \
   >> "$OUT/build.log" 2>&1 || { grep -B2 -A10 -iE "error|Stop" "$OUT/build.log" | head -80; tail -5 "$OUT/build.log"; exit 1; }
-: > "$OUT/tests.log"
-for t in b/Core/Session/LVDIFSessionTests b/Core/Edit/LVDIFEditTests b/Core/MarchingCubes/LVDIFMarchingCubesTests; do
-  timeout 150 "$t" >> "$OUT/tests.log" 2>&1
-  echo "tests $(basename "$t") rc=$?" >> "$OUT/tests.log"
-done
-grep -E "^tests |^\[  (PASSED|FAILED) " "$OUT/tests.log"
-grep -E "^\[  FAILED  \]" "$OUT/tests.log" | head -20
+gpu_core_tests b 150 Session Edit MarchingCubes
 B=b/Testing/Benchmarks/Core/bench_stroke_latency_core
 L="$OUT/bench.log"
 : > "$L"

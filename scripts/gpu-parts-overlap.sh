@@ -19,13 +19,8 @@ L="$OUT/bench.log"
 [ -f "$A" ] && [ -f "$BEFORE" ] || { echo "need $A and $BEFORE"; exit 1; }
 gpu_begin
 mkdir -p /tmp/before && tar -xf "$BEFORE" -C /tmp/before
-subs="Common Volume Formats SignFilter MeshToSdf MarchingCubes Edit Script Session"
-gpu_build_ab bench_mesh_to_sdf "bench_mesh_to_sdf $(for s in $subs; do printf "LVDIF%sTests " "$s"; done)"
-for s in $subs; do
-  timeout 200 "b-after/Core/$s/LVDIF${s}Tests" > "$OUT/test-$s.log" 2>&1
-  echo "$s rc=$? $(grep -E '^\[  (PASSED|FAILED|SKIPPED) ' "$OUT/test-$s.log" | tr '\n' ' ')" | tee -a "$OUT/summary.txt"
-done
-grep -h "^\[  FAILED  \]" "$OUT"/test-*.log | sort -u | head -20 | tee -a "$OUT/summary.txt"
+gpu_build_ab bench_mesh_to_sdf "bench_mesh_to_sdf $(gpu_core_test_targets)"
+gpu_core_tests b-after 200
 : > "$L"
 for order in "before after" "after before"; do
   for b in $order; do

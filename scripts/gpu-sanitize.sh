@@ -5,6 +5,7 @@
 # usage: scripts/gpu-sanitize.sh   (from the repository root)
 set -u
 OUT=${OUT:-out-sanitize}
+. "$(dirname "$0")/gpu-common.sh"
 mkdir -p "$OUT"
 J=$(nproc)
 { date -u; nproc; lscpu | grep "Model name"; g++ --version | head -1; } > "$OUT/machine.txt" 2>&1
@@ -12,18 +13,8 @@ cmake -S . -B bsan -DLVDIF_CORE_ONLY=ON -DLVDIF_CUDA=OFF -DLVDIF_SANITIZE=ON -DC
   > "$OUT/build.log" 2>&1 || { tail -40 "$OUT/build.log"; exit 1; }
 cmake --build bsan -j"$J" >> "$OUT/build.log" 2>&1 || { grep -B2 -A10 -i "error" "$OUT/build.log" | head -80; exit 1; }
 export ASAN_OPTIONS=detect_leaks=1:abort_on_error=1 UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1
-status=0
-: > "$OUT/tests.log"
 # the executables at once (each is multi-threaded; the host has the cores)
-for t in bsan/Core/*/LVDIF*Tests; do
-  ( timeout 500 "$t" > "$OUT/$(basename "$t").log" 2>&1; echo $? > "$OUT/$(basename "$t").rc" ) &
-done
-wait
-for t in bsan/Core/*/LVDIF*Tests; do
-  n=$(basename "$t")
-  rc=$(cat "$OUT/$n.rc")
-  [ "$rc" != 0 ] && status=1
-  printf "%-26s rc=%s %s\n" "$n" "$rc" "$(grep -E '^\[  (PASSED|FAILED) ' "$OUT/$n.log" | tr '\n' ' ')" | tee -a "$OUT/tests.log"
-done
+GPU_TESTS_AT_ONCE=1 gpu_core_tests bsan 500
+status=$?
 grep -l "ERROR: AddressSanitizer\|runtime error:\|LeakSanitizer" "$OUT"/*.log | tee "$OUT/sanitizer-reports.txt"
 exit $status

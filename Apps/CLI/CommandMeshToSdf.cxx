@@ -99,7 +99,18 @@ int CommandMeshToSdf(int argc, char** argv)
       throw lvdif::Error(e.code(), "mesh '" + in + "': " + e.what());
     }
   };
-  const lvdif::GridGeometry grid = namingTheMesh([&] { return lvdif::fitGridToMesh(mesh, dims, padding); });
+  lvdif::GridGeometry grid = namingTheMesh([&] { return lvdif::fitGridToMesh(mesh, dims, padding); });
+  // a format of cubic volumes only (.bv, the original's N^3): the fitted grid made cubic, --dims on
+  // every axis around the same centre and voxels (every mesh but a cube's was refused, with no
+  // option that could make its grid cubic)
+  if (VolumeOutputIsCubicOnly(out))
+  {
+    for (int a = 0; a < 3; ++a)
+    {
+      grid.origin[a] -= 0.5 * static_cast<double>(dims - grid.dims[a]) * grid.spacing[a];
+      grid.dims[a] = dims;
+    }
+  }
   lvdif::VolumeOptions vo = lvdif::volumeOptionsOn(grid);
   vo.bandWidth = bandWidth;
   // a mesh inside the world range whose padded grid is not, or so small that its

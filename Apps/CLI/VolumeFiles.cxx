@@ -25,8 +25,13 @@ void CheckVolumeOutput(const std::string& path)
 std::string VolumeOutputDimsProblem(const std::string& path, const lvdif::Index3& dims)
 {
   // the writer's own rule (the only format with a rule on the dimensions)
-  const std::string problem = Extension(path) == "bv" ? lvdif::checkLegacyBvDims(dims, path) : std::string();
+  const std::string problem = VolumeOutputIsCubicOnly(path) ? lvdif::checkLegacyBvDims(dims, path) : std::string();
   return problem.empty() ? problem : "cannot write '" + path + "': " + problem;
+}
+
+bool VolumeOutputIsCubicOnly(const std::string& path)
+{
+  return Extension(path) == "bv";
 }
 
 void SaveAnyVolume(const lvdif::DictionaryVolume& volume, const std::string& path,

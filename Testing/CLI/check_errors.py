@@ -134,16 +134,45 @@ with open(not_dir, "w") as f:
 code, err = run("demo", "--out", not_dir)
 assert code == 2 and err == f"lvdif demo: --out '{not_dir}' exists and is not a folder", (code, err)
 assert open(not_dir).read() == "keep"
-# .bv holds cubic volumes only: a mesh whose fitted grid is not cubic is refused before mesh to SDF
-# runs (it was found when saving, after the work: "mesh to SDF: done" came first)
-flat = os.path.join(out, "flat.obj")
-with open(flat, "w") as f:
-    f.write("v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n")
-code, err = run("mesh-to-sdf", flat, os.path.join(out, "flat.bv"), "--dims", "16")
-assert code == 1 and "mesh to SDF" not in err and err == (f"lvdif mesh-to-sdf: cannot write '{os.path.join(out, 'flat.bv')}': "
-                                                          ".bv holds only cubic volumes; this one is 16 x 16 x 5 (the grid "
-                                                          "fitted to the mesh)"), (code, err)
-assert not os.path.exists(os.path.join(out, "flat.bv"))
+# .bv holds cubic volumes only (the original's N^3): mesh-to-sdf makes the fitted grid cubic, --dims
+# voxels on every axis around the same centre with the same voxels. Every mesh but a cube's was
+# refused ("this one is 25 x 15 x 15"), with no option that could make its grid cubic. The oracle:
+# the .lvdv of the fitted grid, whose voxels are the cubic grid's with 5 more on each side of y and z.
+box = os.path.join(out, "box.obj")
+with open(box, "w") as f:
+    f.write("v 0 0 0\nv 2 0 0\nv 2 1 0\nv 0 1 0\nv 0 0 1\nv 2 0 1\nv 2 1 1\nv 0 1 1\n"
+            "f 1 3 2\nf 1 4 3\nf 5 6 7\nf 5 7 8\nf 1 2 6\nf 1 6 5\nf 2 3 7\nf 2 7 6\nf 3 4 8\nf 3 8 7\nf 4 1 5\nf 4 5 8\n")
+box_bv, box_lvdv = os.path.join(out, "box.bv"), os.path.join(out, "box.lvdv")
+for target in (box_bv, box_lvdv):
+    r = subprocess.run([exe, "mesh-to-sdf", box, target, "--dims", "25", "--device", "cpu"], capture_output=True, text=True,
+                       timeout=120)
+    assert r.returncode == 0, r
+assert os.path.getsize(box_bv) == 4 * 25 ** 3
+import numpy as np
+import vtk
+from vtk.util.numpy_support import vtk_to_numpy
+
+
+def sdf_of(volume):
+    vti = volume + ".vti"
+    assert subprocess.run([exe, "convert", volume, vti], capture_output=True, timeout=60).returncode == 0
+    reader = vtk.vtkXMLImageDataReader()
+    reader.SetFileName(vti)
+    reader.Update()
+    image = reader.GetOutput()
+    nx, ny, nz = image.GetDimensions()
+    return vtk_to_numpy(image.GetPointData().GetArray("sdf")).reshape(nz, ny, nx), image
+
+
+cubic, cubic_image = sdf_of(box_bv)
+fitted, fitted_image = sdf_of(box_lvdv)
+assert cubic.shape == (25, 25, 25) and fitted.shape == (15, 15, 25), (cubic.shape, fitted.shape)
+# distances in voxels in both (the .bv keeps no spacing); within the .bv dictionary's step of 0.001
+assert abs(fitted_image.GetSpacing()[0] - 0.1) < 1e-12, fitted_image.GetSpacing()
+inner = cubic[5:20, 5:20, :]
+assert np.count_nonzero(fitted < 0) > 100 and np.allclose(inner, fitted, atol=2e-3), np.abs(inner - fitted).max()
+# the voxels the cubic grid adds are outside, farther than the fitted grid's border
+assert cubic[:5].min() > 0 and cubic[20:].min() > 0 and cubic[:, :5].min() > 0 and cubic[:, 20:].min() > 0
 tet = os.path.join(out, "tet.obj")
 with open(tet, "w") as f:
     f.write("v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nf 1 3 2\nf 1 2 4\nf 2 3 4\nf 3 1 4\n")

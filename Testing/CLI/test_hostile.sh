@@ -73,6 +73,11 @@ printf 'canvas 16\nbegin\npoint 1 1 1\n' >openstroke.lvs
 run openstroke 1 "openstroke.lvs:2:1: 'begin' without 'end'" -- "$exe" script openstroke.lvs
 grep -q "script: done" openstroke.err && note "openstroke: 'done' before the error: $(head -c 200 openstroke.err)"
 
+# an undo with nothing to undo is the script's error (it did nothing, and the edits were saved)
+printf 'canvas 16\nsphere 8 8 8 3\ncanvas fill\nundo\n' >undo.lvs
+run undoscript 1 "undo.lvs:4:1: 'undo' has nothing to undo" -- "$exe" script undo.lvs --out base.lvdv
+same base.lvdv base.copy "undoscript"
+
 # --- runaway edits and hostile numbers, refused before the work, old output untouched
 for sp in 0.001 0.0037 0.01; do
   printf 'canvas 64\nspacing %s\nline 1 1 1 %s 1 1\n' "$sp" "$((RANDOM * 1000 + 100000))" >line.lvs

@@ -299,7 +299,7 @@ bool offSpace(char c) { return c == ' ' || c == '\t' || c == '\r' || c == '\f' |
 /// reader. False (mesh untouched) for anything else, a quad, a '+' sign, a
 /// hex float, a bad index, too few lines, even '#' comments: the serial reader
 /// then reads the body again with its checks and messages.
-bool parallelOff(const char* p, std::size_t size, std::int64_t nv, std::int64_t nf, TriangleMesh& mesh)
+bool parallelOff(const char* p, std::size_t size, std::int64_t nv, std::int64_t nf, TriangleMesh& mesh, const char*& after)
 {
   if (nv + nf < 100000) return false; // small files: not worth it
   const char* end = p + size;
@@ -317,6 +317,8 @@ bool parallelOff(const char* p, std::size_t size, std::int64_t nv, std::int64_t 
     q = e < end ? e + 1 : e;
   }
   if (std::int64_t(line.size()) < nv + nf) return false;
+  after = line.empty() ? p : static_cast<const char*>(std::memchr(line.back(), '\n', static_cast<std::size_t>(end - line.back())));
+  after = after ? after + 1 : end;
   // the numbers of one line: at most `want` tokens, false if one is not read whole
   auto tokens = [end](const char* b, auto* out, int want, int& got) {
     got = 0;
@@ -388,8 +390,20 @@ TriangleMesh readOff(const std::vector<char>& data)
     fail(ErrorCode::ParseError, s.where(),
       std::to_string(nv) + " vertices and " + std::to_string(nf) + " faces cannot fit in the rest of the file");
   TriangleMesh mesh;
-  if (parallelOff(s.position(), s.remaining(), nv, nf, mesh))
+  // records past the counts are a damaged file or wrong counts: they were dropped without a word
+  // (faces 1 of 4 made a mesh of one triangle)
+  auto noMore = [&](TextScanner& rest) {
+    if (rest.nextNonEmpty(t))
+      fail(ErrorCode::ParseError, rest.where(),
+        "more records than the header's " + std::to_string(nv) + " vertices and " + std::to_string(nf) +
+          " faces (wrong counts, or a damaged file)");
+  };
+  const char* after = nullptr;
+  if (parallelOff(s.position(), s.remaining(), nv, nf, mesh, after))
   {
+    TextScanner rest(after, static_cast<std::size_t>(s.end() - after), "OFF");
+    rest.skipLines(s.line() + std::count(s.position(), after, '\n'));
+    noMore(rest);
     finish(mesh, "OFF");
     return mesh;
   }
@@ -417,6 +431,7 @@ TriangleMesh readOff(const std::vector<char>& data)
       ids.push_back(parseInt(t[static_cast<size_t>(i)], s.where()));
     addPolygon(mesh, ids, nv, s.where(), ErrorCode::ParseError);
   }
+  noMore(s);
   finish(mesh, "OFF");
   return mesh;
 }

@@ -112,6 +112,10 @@ public:
   static bool blank(char c) { return c == ' ' || c == '\t' || c == '\r' || c == '\f' || c == '\v'; }
   const char* end() const { return this->End; }
   std::string where() const { return this->Format + " line " + std::to_string(this->Line); }
+  /// The number of the line read last (0 before the first).
+  std::int64_t line() const { return this->Line; }
+  /// Counts `n` lines as read before this scanner's text (a scanner over the rest of a file).
+  void skipLines(std::int64_t n) { this->Line += n; }
   const char* position() const { return this->P; }
   std::size_t remaining() const { return static_cast<std::size_t>(this->End - this->P); }
 

@@ -248,6 +248,11 @@ TriangleMesh readPly(const std::vector<char>& data)
       e.count = parseInt(t[2], s.where());
       if (e.count < 0)
         fail(ErrorCode::ParseError, s.where(), "negative element count");
+      // a name given twice is a broken header: the reader took the last one
+      // (a second 'x' replaced the first; two vertex elements mixed their counts)
+      for (const Element& o : elements)
+        if (o.name == e.name)
+          fail(ErrorCode::ParseError, s.where(), "element " + quoted(e.name) + " given twice");
       elements.push_back(e);
     }
     else if (t[0] == "property")
@@ -266,6 +271,10 @@ TriangleMesh readPly(const std::vector<char>& data)
         p.name = t[2];
       else
         fail(ErrorCode::ParseError, s.where(), "expected 'property <type> <name>' or 'property list <type> <type> <name>'");
+      for (const Property& o : elements.back().properties)
+        if (o.name == p.name)
+          fail(ErrorCode::ParseError, s.where(),
+            "property " + quoted(p.name) + " of element " + quoted(elements.back().name) + " given twice");
       elements.back().properties.push_back(p);
     }
     else if (t[0] == "end_header")
@@ -296,6 +305,7 @@ TriangleMesh readPly(const std::vector<char>& data)
 
   TriangleMesh mesh;
   TextScanner body(s.position(), left, "PLY");
+  body.skipLines(s.line()); // its lines are the file's
   BinaryReader bin{ reinterpret_cast<const unsigned char*>(s.position()),
     reinterpret_cast<const unsigned char*>(s.position()) + left, enc == Encoding::BigEndian, "" };
   std::vector<std::string> tok;
@@ -445,6 +455,9 @@ TriangleMesh readPly(const std::vector<char>& data)
       }
     }
   }
+  // text past the last element's records: wrong counts or a damaged file (dropped without a word)
+  if (enc == Encoding::Ascii && body.nextNonEmpty(tok))
+    fail(ErrorCode::ParseError, body.where(), "more records than the header's element counts (wrong counts, or a damaged file)");
   finish(mesh, "PLY");
   return mesh;
 }

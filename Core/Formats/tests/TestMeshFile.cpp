@@ -177,6 +177,20 @@ TEST(MeshFile, MalformedInputsAreClearErrors)
     { "PLY no end_header", "ply\nformat ascii 1.0\nelement vertex 0\n", MeshFormat::Ply, "no end_header" },
     { "PLY missing z", "ply\nformat ascii 1.0\nelement vertex 1\nproperty float x\nproperty float y\nend_header\n0 0\n", MeshFormat::Ply, "without x, y and z" },
     { "PLY not ply", "plx\n", MeshFormat::Ply, "magic" },
+    // records past the header's counts: dropped without a word (a mesh with holes), now refused
+    { "PLY more faces than counted", plyHead + tri + "3 0 1 2\n3 0 2 1\n", MeshFormat::Ply,
+      "PLY line 14: more records than the header's element counts" },
+    { "OFF more faces than counted", "OFF\n3 1 0\n" + tri + "3 0 1 2\n\n# a comment\n3 0 2 1\n", MeshFormat::Off,
+      "OFF line 9: more records than the header's 3 vertices and 1 faces" },
+    // a name given twice is a broken header: the last one was taken (a second x made
+    // every vertex's x 5, and the error blamed the triangles' area)
+    { "PLY property twice", "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\n"
+      "property float z\nproperty float x\nelement face 1\nproperty list uchar int vertex_indices\nend_header\n"
+      "0 0 0 5\n1 0 0 5\n0 1 0 5\n3 0 1 2\n", MeshFormat::Ply,
+      "PLY header line 7: property 'x' of element 'vertex' given twice" },
+    { "PLY element twice", plyHead.substr(0, plyHead.size() - 11) + "element vertex 3\nproperty float x\nproperty float y\n"
+      "property float z\nend_header\n" + tri + "3 0 1 2\n" + tri, MeshFormat::Ply,
+      "PLY header line 9: element 'vertex' given twice" },
     { "STL neither", "hello", MeshFormat::Stl, "neither a binary STL (size is not 84 + 50 x triangle count) nor an ASCII one" },
     // a binary STL whose count disagrees with its size names both (it said only "size is not 84 + 50 x triangle count")
     { "STL wrong count", std::string(80, ' ') + std::string("\x05\0\0\0", 4) + std::string(150, '\0'), MeshFormat::Stl,
@@ -463,6 +477,12 @@ TEST(MeshFile, LargeOffOnThreadsMatchesTheSerialReader)
   EXPECT_EQ(q.triangles.size(), faces.size() + 1);
   const std::string plus = "+" + body; // "+0 ...": strtod reads it, from_chars does not
   EXPECT_EQ(readText(file(plus, faces), MeshFormat::Off).points, fast.points);
+  // a face past the count is refused on the threaded path too, at its line (it was dropped)
+  std::string more = file(body, faces) + "\n3 0 1 2\n";
+  expectError(more, MeshFormat::Off,
+    "OFF line " + std::to_string(2 + k * k + faces.size() + 2) + ": more records than the header's");
+  expectError(file(body.substr(0, verticesEnd) + "# serial\n", faces) + "3 0 1 2\n", MeshFormat::Off,
+    "OFF line " + std::to_string(2 + k * k + 1 + faces.size() + 1) + ": more records than the header's");
 }
 
 TEST(MeshFile, LargeAsciiPlyOnThreadsMatchesTheSerialReader)
@@ -511,6 +531,9 @@ TEST(MeshFile, LargeAsciiPlyOnThreadsMatchesTheSerialReader)
   auto bad = faces;
   bad[70000] = "3 0 1 62500\n";
   expectError(file(verts, bad, ""), MeshFormat::Ply, "PLY face 70000: vertex index 62500 out of range");
+  // a face past the count is refused after the threaded path too (it was dropped)
+  expectError(file(verts, faces, "") + "3 0 1 2\n", MeshFormat::Ply,
+    "PLY line " + std::to_string(10 + k * k + faces.size() + 2) + ": more records than the header's element counts");
   auto extra = verts;
   extra[3] = "1 2 3 4 5\n";
   expectError(file(extra, faces, ""), MeshFormat::Ply, "PLY vertex 3: record has 1 values too many");

@@ -437,10 +437,19 @@ struct ScriptRunner::Impl
       ed.endStroke();
       ++this->Owner->Edits;
     }
+    // nothing to undo or redo is the script's mistake, named as the player names it
+    // (both did nothing without a word: an `undo` after `canvas fill`, which clears
+    // the history, or one `undo` too many ran on and saved the edits it meant to drop)
     else if (c == "undo")
-      ed.undo();
+    {
+      if (!ed.undo())
+        fail(s.line, s.column, "'undo' has nothing to undo: no edit since the start or the last 'canvas'");
+    }
     else if (c == "redo")
-      ed.redo();
+    {
+      if (!ed.redo())
+        fail(s.line, s.column, "'redo' has nothing to redo: no edit was undone since the last edit");
+    }
   }
 
   /// Ends a stroke this script began and left open; true if there was one.

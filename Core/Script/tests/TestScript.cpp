@@ -205,6 +205,31 @@ TEST(Script, CancelStopsTheScript)
   EXPECT_LT(r.steps(), 5000u);
 }
 
+// `undo` and `redo` with nothing to act on are errors at the statement, as in a
+// recording (they did nothing without a word, so one `undo` too many, or one
+// after `canvas fill`, ran on and kept the edits it was meant to drop)
+TEST(Script, UndoAndRedoWithNothingToActOnAreErrors)
+{
+  Where w = errorOf("canvas 16\nsphere 8 8 8 3\nundo\nundo");
+  EXPECT_EQ(w.line, 4);
+  EXPECT_EQ(w.column, 1);
+  EXPECT_EQ(w.detail, "'undo' has nothing to undo: no edit since the start or the last 'canvas'");
+  w = errorOf("canvas 16\nsphere 8 8 8 3\ncanvas fill\nundo");
+  EXPECT_EQ(w.line, 4);
+  EXPECT_EQ(w.detail, "'undo' has nothing to undo: no edit since the start or the last 'canvas'");
+  w = errorOf("canvas 16\nsphere 8 8 8 3\nredo");
+  EXPECT_EQ(w.line, 3);
+  EXPECT_EQ(w.detail, "'redo' has nothing to redo: no edit was undone since the last edit");
+  // what can be undone and redone still runs: the volume is the one edit's (the oracle: an editor's)
+  ScriptRunner r;
+  r.run("canvas 16\ncolor 255 0 0\nsphere 8 8 8 3\nundo\nredo\nundo\nredo");
+  DictionaryVolume v(edittest::options(16, 32));
+  Editor e(v);
+  e.brush.color = Rgba{ 255, 0, 0, 255 };
+  e.dab(Dab{ BrushShape::Sphere, { 8, 8, 8 }, 3, {} });
+  EXPECT_EQ(edittest::countDifferences(*r.volume(), v), 0);
+}
+
 TEST(Script, CommandsDriveTheSameEditsAsTheEditor)
 {
   ScriptRunner r;
