@@ -33,6 +33,7 @@
 #include "vtkStreamingDemandDrivenPipeline.h"
 #include "vtkTrivialProducer.h"
 #include "vtkXMLImageDataReader.h"
+#include "vtkXMLReader.h"
 #include "vtkXMLImageDataWriter.h"
 #include "vtkXMLPolyDataWriter.h"
 
@@ -74,6 +75,14 @@ struct Watch
       a->AddObserver(vtkCommand::ProgressEvent, this->onProgress);
       a->AddObserver(vtkCommand::ErrorEvent, this->onError);
       a->GetExecutive()->AddObserver(vtkCommand::ErrorEvent, this->onError);
+      if (auto* xml = vtkXMLReader::SafeDownCast(a))
+      {
+        // the reader's own XML parser (made at each read) is no observed
+        // object: its error printed one more line in VTK's log format (the
+        // first error, so it names the cause: "Error parsing XML in stream ...")
+        xml->SetParserErrorObserver(this->onError);
+        xml->SetReaderErrorObserver(this->onError);
+      }
     }
   }
 
