@@ -1,6 +1,7 @@
 // The dictionary volume <-> vtkImageData bridge: decoded values, colours,
 // sub-extents, and the error paths.
 #include "vtkDictionaryVolumeToImage.h"
+#include "AlgorithmErrorsTestUtil.h"
 #include "LVDIFVolumeBridge.h"
 #include "vtkSparseDictionaryVolume.h"
 
@@ -25,6 +26,7 @@
 
 #include <array>
 #include <cmath>
+#include <cstdlib>
 #include <limits>
 
 static std::shared_ptr<lvdif::DictionaryVolume> sphereVolume()
@@ -379,4 +381,42 @@ TEST(VolumeBridge, OutlineIsTheGridsBox)
   const std::array<double, 6> got = outlineBounds(piece, vtkOutlineFilter::ROOT_LEVEL);
   for (int q = 0; q < 6; ++q)
     EXPECT_EQ(got[q], oracle[q]) << "piece bound " << q;
+}
+
+// vtkDictionaryVolumeToImage without a volume, and with an extent too large for
+// the memory limit: one error each, the filter's. Its executive added VTK's
+// "Algorithm vtkDictionaryVolumeToImage returned failure for request:
+// <the request dumped>" (the project's one failure path, FailInformation /
+// FailReported, drops it, as every other LVDIF algorithm does).
+TEST(VolumeBridge, ImageSourceFailsWithOneError)
+{
+  vtkNew<vtkDictionaryVolumeToImage> src;
+  {
+    AlgorithmErrors errors(src);
+    src->Update();
+    ASSERT_EQ(errors.messages().size(), 1u) << errors.summary();
+    EXPECT_NE(errors.messages()[0].find("no volume"), std::string::npos) << errors.summary();
+  }
+  lvdif::VolumeOptions o;
+  o.dims = { 400, 400, 400 };
+  src->SetVolume(std::make_shared<lvdif::DictionaryVolume>(o));
+  const char* old = std::getenv("LVDIF_MEMORY_LIMIT");
+  const std::string kept = old ? old : "";
+  ::setenv("LVDIF_MEMORY_LIMIT", "64M", 1); // the dense image needs 400^3 x 8 bytes
+  {
+    AlgorithmErrors errors(src);
+    src->Update();
+    EXPECT_EQ(errors.messages().size(), 1u) << errors.summary();
+  }
+  if (old)
+    ::setenv("LVDIF_MEMORY_LIMIT", kept.c_str(), 1);
+  else
+    ::unsetenv("LVDIF_MEMORY_LIMIT");
+  // a volume again: no error, the image
+  o.dims = { 8, 9, 10 };
+  src->SetVolume(std::make_shared<lvdif::DictionaryVolume>(o));
+  AlgorithmErrors errors(src);
+  src->Update();
+  EXPECT_TRUE(errors.messages().empty()) << errors.summary();
+  EXPECT_EQ(src->GetOutput()->GetNumberOfPoints(), 8 * 9 * 10);
 }
