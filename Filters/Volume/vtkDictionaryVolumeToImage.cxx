@@ -30,12 +30,14 @@ void vtkDictionaryVolumeToImage::SetVolume(std::shared_ptr<lvdif::DictionaryVolu
 int vtkDictionaryVolumeToImage::RequestInformation(
   vtkInformation*, vtkInformationVector**, vtkInformationVector* outputVector)
 {
+  vtkInformation* outInfo = outputVector->GetInformationObject(0);
+  // the project's one failure path: one error, not the executive's request dump after it
+  LVDIFVolumeBridge::BeginInformation(outInfo);
   if (!this->Volume)
   {
     vtkErrorMacro("no volume: call SetVolume() first");
-    return 0;
+    return LVDIFVolumeBridge::FailInformation(outInfo);
   }
-  vtkInformation* outInfo = outputVector->GetInformationObject(0);
   LVDIFVolumeBridge::SetImageInformation(outInfo, this->Volume->options());
   return 1;
 }
@@ -44,6 +46,8 @@ int vtkDictionaryVolumeToImage::RequestData(
   vtkInformation*, vtkInformationVector**, vtkInformationVector* outputVector)
 {
   vtkInformation* outInfo = outputVector->GetInformationObject(0);
+  if (LVDIFVolumeBridge::InformationFailed(outInfo))
+    return 0; // RequestInformation reported why
   vtkImageData* output = vtkImageData::GetData(outInfo);
   int ext[6];
   outInfo->Get(vtkStreamingDemandDrivenPipeline::UPDATE_EXTENT(), ext);
@@ -54,7 +58,7 @@ int vtkDictionaryVolumeToImage::RequestData(
   catch (const lvdif::Error& e)
   {
     vtkErrorMacro(<< e.what());
-    return 0;
+    return LVDIFVolumeBridge::FailReported(outInfo);
   }
   return 1;
 }

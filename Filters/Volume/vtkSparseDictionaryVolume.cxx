@@ -65,10 +65,69 @@ bool partitionNeeded(const lvdif::DictionaryVolume& v, std::int64_t id)
   return false;
 }
 
-/// owned: null for every chunk, else an inclusive box of chunk coordinates.
+/// A partition's source: a storage chunk (>= 0), or, for the one-point
+/// partitions that give the object the box of its grid (corner points),
+/// -2 - the linear index of that grid point.
+bool isCorner(std::int64_t source)
+{
+  return source <= -2;
+}
+
+lvdif::Index3 cornerPoint(const lvdif::DictionaryVolume& v, std::int64_t source)
+{
+  const std::int64_t i = -2 - source;
+  const lvdif::Index3& d = v.dims();
+  return { i % d[0], (i / d[0]) % d[1], i / (d[0] * d[1]) };
+}
+
+std::int64_t cornerSource(const lvdif::DictionaryVolume& v, const lvdif::Index3& p)
+{
+  const lvdif::Index3& d = v.dims();
+  return -2 - (p[0] + d[0] * (p[1] + d[1] * p[2]));
+}
+
+/// The point box of a partition's source.
+lvdif::VoxelBox sourceBox(const lvdif::DictionaryVolume& v, std::int64_t source)
+{
+  if (!isCorner(source)) return partitionBox(v, source);
+  const lvdif::Index3 p = cornerPoint(v, source);
+  lvdif::VoxelBox b;
+  b.lo = p;
+  b.hi = p;
+  return b;
+}
+
+/// The storage chunk a partition's points come from (a corner point's own chunk).
+std::int64_t sourceChunk(const lvdif::DictionaryVolume& v, std::int64_t source)
+{
+  if (!isCorner(source)) return source;
+  const lvdif::Index3 p = cornerPoint(v, source);
+  return v.chunkOf(p[0], p[1], p[2]);
+}
+
+/// The partitions' sources: the needed chunks, in chunk order; owned: null for
+/// every chunk, else an inclusive box of chunk coordinates. When the chunks'
+/// partitions do not reach a corner of the grid (of the owned chunks' points),
+/// a partition of that one grid point comes first (lower corner) or last
+/// (upper corner), so that the bounds of the object, which VTK's composite
+/// consumers (vtkOutlineFilter, vtkCompositeDataSet::GetBounds, ParaView's
+/// data information) take from its leaves, are the grid's box, as an image's
+/// are, not the narrow band's. A corner point's chunk is never a partition.
 std::vector<std::int64_t> neededPartitions(const lvdif::DictionaryVolume& v, const int* owned)
 {
   std::vector<std::int64_t> ids;
+  const lvdif::Index3& n = v.chunkCounts();
+  lvdif::Index3 c0{ 0, 0, 0 }, c1{ n[0] - 1, n[1] - 1, n[2] - 1 };
+  if (owned)
+  {
+    for (int a = 0; a < 3; ++a)
+    {
+      c0[a] = std::max<std::int64_t>(owned[2 * a], 0);
+      c1[a] = std::min<std::int64_t>(owned[2 * a + 1], n[a] - 1);
+    }
+  }
+  if (c1[0] < c0[0] || c1[1] < c0[1] || c1[2] < c0[2]) return ids;
+  lvdif::VoxelBox reached;
   for (std::int64_t id = 0; id < v.chunkCount(); ++id)
   {
     if (owned)
@@ -78,15 +137,23 @@ std::vector<std::int64_t> neededPartitions(const lvdif::DictionaryVolume& v, con
         c[2] > owned[5])
         continue;
     }
-    if (partitionNeeded(v, id)) ids.push_back(id);
+    if (partitionNeeded(v, id))
+    {
+      ids.push_back(id);
+      reached = reached.unite(partitionBox(v, id));
+    }
   }
+  const lvdif::Index3 lo = v.chunkBox(v.chunkId(c0[0], c0[1], c0[2])).lo;
+  const lvdif::Index3 hi = partitionBox(v, v.chunkId(c1[0], c1[1], c1[2])).hi;
+  if (reached.empty() || reached.lo != lo) ids.insert(ids.begin(), cornerSource(v, lo));
+  if ((reached.empty() || reached.hi != hi) && hi != lo) ids.push_back(cornerSource(v, hi));
   return ids;
 }
 
 std::uint64_t partitionBytes(const lvdif::DictionaryVolume& v, const std::vector<std::int64_t>& ids, bool colors)
 {
   std::uint64_t points = 0;
-  for (std::int64_t id : ids) points += static_cast<std::uint64_t>(partitionBox(v, id).voxelCount());
+  for (std::int64_t id : ids) points += static_cast<std::uint64_t>(sourceBox(v, id).voxelCount());
   return points * (colors ? 8u : 4u);
 }
 }
@@ -208,14 +275,14 @@ void addChunkFields(const lvdif::DictionaryVolume& v, std::int64_t id, vtkImageD
 
 /// Chunk `id`'s partition with its decoded point arrays and field data, made
 /// by the bridge's one FillImage (which checks the memory guard).
-vtkSmartPointer<vtkImageData> fillPartition(const lvdif::DictionaryVolume& v, std::int64_t id, bool colors)
+vtkSmartPointer<vtkImageData> fillPartition(const lvdif::DictionaryVolume& v, std::int64_t source, bool colors)
 {
-  const lvdif::VoxelBox b = partitionBox(v, id);
+  const lvdif::VoxelBox b = sourceBox(v, source);
   const int ext[6] = { static_cast<int>(b.lo[0]), static_cast<int>(b.hi[0]), static_cast<int>(b.lo[1]),
     static_cast<int>(b.hi[1]), static_cast<int>(b.lo[2]), static_cast<int>(b.hi[2]) };
   auto image = vtkSmartPointer<vtkImageData>::New();
   LVDIFVolumeBridge::FillImage(v, ext, image, colors);
-  addChunkFields(v, id, image);
+  addChunkFields(v, sourceChunk(v, source), image);
   // their ranges too, as FillImage's: else ParaView's data information runs
   // VTK's range passes on them for every partition
   vtkFieldData* fields = image->GetFieldData();
@@ -263,7 +330,7 @@ public:
   {
     if (leaf || !owner || !owner->HasVolume() || flatIndex < 1) return leaf;
     const std::int64_t id = owner->GetPartitionChunk(flatIndex - 1);
-    if (id < 0) return leaf;
+    if (id == -1) return leaf;
     if (this->Index != flatIndex)
     {
       this->Index = flatIndex;
@@ -330,7 +397,7 @@ vtkDataSet* vtkSparseDictionaryVolume::GetPartition(unsigned int idx)
   this->UpdatePartitions();
   vtkDataSet* leaf = this->Superclass::GetPartition(idx);
   const std::int64_t id = this->GetPartitionChunk(idx);
-  if (leaf || id < 0) return leaf;
+  if (leaf || id == -1) return leaf;
   // asked by index: decoded for good (the caller gets a pointer it does not own)
   try
   {
@@ -386,7 +453,7 @@ vtkIdType vtkSparseDictionaryVolume::GetNumberOfPoints()
   // from the partitions' extents: nothing decoded
   vtkIdType n = 0;
   for (std::int64_t id : neededPartitions(*this->Volume, this->OwnsAll ? nullptr : this->Owned))
-    n += static_cast<vtkIdType>(partitionBox(*this->Volume, id).voxelCount());
+    n += static_cast<vtkIdType>(sourceBox(*this->Volume, id).voxelCount());
   return n;
 }
 
@@ -396,7 +463,13 @@ vtkIdType vtkSparseDictionaryVolume::GetNumberOfCells()
   vtkIdType n = 0;
   for (std::int64_t id : neededPartitions(*this->Volume, this->OwnsAll ? nullptr : this->Owned))
   {
-    const lvdif::VoxelBox b = partitionBox(*this->Volume, id);
+    // a corner point is one vertex cell (VTK's rule for a one-point image)
+    const lvdif::VoxelBox b = sourceBox(*this->Volume, id);
+    if (isCorner(id))
+    {
+      ++n;
+      continue;
+    }
     n += static_cast<vtkIdType>((b.hi[0] - b.lo[0]) * (b.hi[1] - b.lo[1]) * (b.hi[2] - b.lo[2]));
   }
   return n;
@@ -456,11 +529,9 @@ void vtkSparseDictionaryVolume::SetDataSet(vtkCompositeDataIterator* iter, vtkDa
       auto* id = vtkIdTypeArray::SafeDownCast(image->GetFieldData()->GetArray("chunk_id"));
       int ext[6];
       image->GetExtent(ext);
-      const lvdif::VoxelBox b = id && id->GetNumberOfTuples() == 1 && id->GetValue(0) >= 0 &&
-          id->GetValue(0) < this->Volume->chunkCount()
-        ? partitionBox(*this->Volume, id->GetValue(0))
-        : lvdif::VoxelBox{};
-      if (!b.empty() && id->GetValue(0) == this->GetPartitionChunk(iter->GetCurrentFlatIndex() - 1) &&
+      const std::int64_t source = this->GetPartitionChunk(iter->GetCurrentFlatIndex() - 1);
+      const lvdif::VoxelBox b = source != -1 ? sourceBox(*this->Volume, source) : lvdif::VoxelBox{};
+      if (!b.empty() && id && id->GetNumberOfTuples() == 1 && id->GetValue(0) == sourceChunk(*this->Volume, source) &&
         b.lo[0] == ext[0] && b.hi[0] == ext[1] && b.lo[1] == ext[2] && b.hi[1] == ext[3] &&
         b.lo[2] == ext[4] && b.hi[2] == ext[5])
       {

@@ -20,6 +20,18 @@
  * field data `chunk_id` and `chunk_ijk` as vtkChunkedMarchingCubes writes
  * them. Uniform regions have no partition (their value is +-band, no surface).
  *
+ * Bounds: the grid's box, as a vtkImageData's (and a vtkOverlappingAMR's,
+ * whose bounds are its grid's, not its blocks'). VTK's composite consumers
+ * (vtkCompositeDataSet::GetBounds, vtkOutlineFilter, ParaView's Outline
+ * filter and data information) take the bounds from the leaves, so when the
+ * band's partitions do not reach a corner of the grid, a partition of that
+ * one grid point (its decoded `sdf`/`rgba`, the field data of its chunk; one
+ * vertex cell, VTK's for a one-point image) comes first (the lower corner) or
+ * last (the upper corner). Contour and Slice find nothing there (Threshold
+ * keeps the vertex when its value passes: it is a point of the grid); they were the narrow band's bounds
+ * until session 22. With SetOwnedChunks the corners are those of the owned
+ * chunks' points, so the pieces' boxes make the grid's.
+ *
  * The partitions are built lazily, on the first request through the
  * composite API (NewIterator, NewTreeIterator, GetNumberOfPartitions,
  * GetPartition, CopyStructure, ShallowCopy of this object), so a pipeline of
@@ -114,7 +126,8 @@ public:
   /// Call after editing the Core volume in place: drops the partitions and Modified().
   void VolumeModified();
 #ifndef __VTK_WRAP__
-  /// The storage chunk of partition `idx`, or -1 (no volume, not built, out of range).
+  /// The storage chunk of partition `idx`, or -1 (no volume, not built, out of
+  /// range); for a corner point's partition -2 - the point's linear index.
   std::int64_t GetPartitionChunk(unsigned int idx) const;
 #endif
 

@@ -33,6 +33,7 @@
 #include "vtkStreamingDemandDrivenPipeline.h"
 #include "vtkTrivialProducer.h"
 #include "vtkXMLImageDataReader.h"
+#include "vtkXMLReader.h"
 #include "vtkXMLImageDataWriter.h"
 #include "vtkXMLPolyDataWriter.h"
 
@@ -50,7 +51,8 @@ struct Watch
 {
   lvdif::Interrupter& interrupter;
   std::string errors;
-  vtkNew<vtkCallbackCommand> onProgress, onError;
+  std::string innerErrors; // of the objects inside a reader (VTK's XML parser)
+  vtkNew<vtkCallbackCommand> onProgress, onError, onInnerError;
 
   Watch(lvdif::Interrupter& in, const std::vector<vtkAlgorithm*>& algorithms)
     : interrupter(in)
@@ -69,11 +71,24 @@ struct Watch
       const std::string text = LVDIFVolumeBridge::MessageText(static_cast<const char*>(call));
       if (w->errors.empty()) w->errors = text; // the first error names the cause
     });
+    this->onInnerError->SetClientData(this);
+    this->onInnerError->SetCallback([](vtkObject*, unsigned long, void* client, void* call) {
+      auto* w = static_cast<Watch*>(client);
+      if (w->innerErrors.empty()) w->innerErrors = LVDIFVolumeBridge::MessageText(static_cast<const char*>(call));
+    });
     for (vtkAlgorithm* a : algorithms)
     {
       a->AddObserver(vtkCommand::ProgressEvent, this->onProgress);
       a->AddObserver(vtkCommand::ErrorEvent, this->onError);
       a->GetExecutive()->AddObserver(vtkCommand::ErrorEvent, this->onError);
+      if (auto* xml = vtkXMLReader::SafeDownCast(a))
+      {
+        // the reader's own XML parser (made at each read) is no observed
+        // object: its error printed one more line in VTK's log format. Its
+        // text is kept only for a failure the reader itself does not name.
+        xml->SetParserErrorObserver(this->onInnerError);
+        xml->SetReaderErrorObserver(this->onInnerError);
+      }
     }
   }
 
@@ -82,6 +97,7 @@ struct Watch
   void check(bool ok, const std::string& what)
   {
     this->interrupter.checkInterrupt();
+    if (this->errors.empty() && !ok) this->errors = this->innerErrors;
     if (!ok || !this->errors.empty())
     {
       const std::string text =

@@ -136,6 +136,11 @@ bool vtkPDictionaryVolumeWriter::PieceExists() const
   return this->NumberOfPieces >= 1 && this->Piece >= 0 && this->Piece < this->NumberOfPieces;
 }
 
+bool vtkPDictionaryVolumeWriter::IsSerial() const
+{
+  return !this->Controller || this->Controller->GetNumberOfProcesses() <= 1;
+}
+
 bool vtkPDictionaryVolumeWriter::IsCollective() const
 {
   return this->Controller && this->Controller->GetNumberOfProcesses() == this->NumberOfPieces &&
@@ -168,15 +173,20 @@ vtkTypeBool vtkPDictionaryVolumeWriter::ProcessRequest(
     {
       int whole[6], ext[6];
       inInfo->Get(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT(), whole);
-      PieceExtent(whole, this->Piece, this->NumberOfPieces, ext);
+      // a serial run writes every piece: it asks for the whole input
+      const bool serial = this->IsSerial();
+      if (serial)
+        std::copy(whole, whole + 6, ext);
+      else
+        PieceExtent(whole, this->Piece, this->NumberOfPieces, ext);
       if (!lvdifvtk::extentIsValid(ext))
       {
         // an empty piece still needs a (small) valid request; nothing is written for it
         for (int a = 0; a < 3; ++a)
           ext[2 * a + 1] = ext[2 * a] = whole[2 * a];
       }
-      inInfo->Set(vtkStreamingDemandDrivenPipeline::UPDATE_PIECE_NUMBER(), this->Piece);
-      inInfo->Set(vtkStreamingDemandDrivenPipeline::UPDATE_NUMBER_OF_PIECES(), this->NumberOfPieces);
+      inInfo->Set(vtkStreamingDemandDrivenPipeline::UPDATE_PIECE_NUMBER(), serial ? 0 : this->Piece);
+      inInfo->Set(vtkStreamingDemandDrivenPipeline::UPDATE_NUMBER_OF_PIECES(), serial ? 1 : this->NumberOfPieces);
       inInfo->Set(vtkStreamingDemandDrivenPipeline::UPDATE_NUMBER_OF_GHOST_LEVELS(), 0);
       inInfo->Set(vtkStreamingDemandDrivenPipeline::UPDATE_EXTENT(), ext, 6);
       inInfo->Set(vtkStreamingDemandDrivenPipeline::EXACT_EXTENT(), 1);
@@ -191,10 +201,10 @@ std::string vtkPDictionaryVolumeWriter::PieceFilePath(const std::string& indexPa
   return lvdifvtk::directoryOf(indexPath) + lvdifvtk::pieceFileName(indexPath, piece);
 }
 
-bool vtkPDictionaryVolumeWriter::WritePiece(vtkSparseDictionaryVolume* sparse, const int ext[6])
+bool vtkPDictionaryVolumeWriter::WritePiece(vtkSparseDictionaryVolume* sparse, int pieceNumber, const int ext[6])
 {
   // the piece's voxels as they are stored (keys copied, nothing re-encoded)
-  const std::string path = PieceFilePath(this->FileName, this->Piece);
+  const std::string path = PieceFilePath(this->FileName, pieceNumber);
   lvdif::VolumeFileWriteOptions options;
   options.compressionLevel = this->CompressionLevel;
   if (!this->VolumeName.empty()) options.metadata["name"] = this->VolumeName;
@@ -204,10 +214,10 @@ bool vtkPDictionaryVolumeWriter::WritePiece(vtkSparseDictionaryVolume* sparse, c
     [&] {
       lvdif::saveVolume(*LVDIFVolumeBridge::CropVolume(*sparse->GetVolume(), ext), path, options, interrupter);
     },
-    "piece " + std::to_string(this->Piece) + ": ");
+    "piece " + std::to_string(pieceNumber) + ": ");
 }
 
-bool vtkPDictionaryVolumeWriter::WritePiece(vtkImageData* image, const int ext[6])
+bool vtkPDictionaryVolumeWriter::WritePiece(vtkImageData* image, int pieceNumber, const int ext[6])
 {
   // crop: a producer may give more than the requested extent
   vtkNew<vtkImageData> piece;
@@ -219,13 +229,13 @@ bool vtkPDictionaryVolumeWriter::WritePiece(vtkImageData* image, const int ext[6
   {
     if (got[q] != ext[q])
     {
-      vtkErrorMacro("piece " << this->Piece << ": the input does not cover the piece's extent");
+      vtkErrorMacro("piece " << pieceNumber << ": the input does not cover the piece's extent");
       return false;
     }
   }
   vtkNew<vtkDictionaryVolumeWriter> w;
   w->SetInputData(piece);
-  w->SetFileName(PieceFilePath(this->FileName, this->Piece).c_str());
+  w->SetFileName(PieceFilePath(this->FileName, pieceNumber).c_str());
   w->SetBandWidth(this->BandWidth);
   w->SetChunkEdge(this->ChunkEdge);
   w->SetCompressionLevel(this->CompressionLevel);
@@ -247,7 +257,18 @@ void vtkPDictionaryVolumeWriter::WriteData()
     this->SetErrorCode(vtkErrorCode::UnknownError);
     return;
   }
-  const bool emptyPiece = sparseInput && !sparse && EmptySparsePiece(inInfo, this->Piece, this->NumberOfPieces);
+  const bool serial = this->IsSerial();
+  if (!serial && !this->IsCollective() && this->NumberOfPieces > 1)
+  {
+    // every rank would write every piece
+    vtkErrorMacro("NumberOfPieces " << this->NumberOfPieces << " needs a Controller of " << this->NumberOfPieces
+                                    << " processes (one piece each) or none (one process writes every piece); "
+                                    << "the Controller has " << this->Controller->GetNumberOfProcesses());
+    this->SetErrorCode(vtkErrorCode::UnknownError);
+    return;
+  }
+  const bool emptyPiece =
+    !serial && sparseInput && !sparse && EmptySparsePiece(inInfo, this->Piece, this->NumberOfPieces);
   if (this->FileName.empty())
   {
     vtkErrorMacro("no file name: call SetFileName() first");
@@ -265,6 +286,9 @@ void vtkPDictionaryVolumeWriter::WriteData()
   // (each piece's writer would report them on itself, naming its piece file)
   if (!LVDIFVolumeBridge::CallCore(this, [&] {
         lvdif::requireWritable(this->FileName);
+        // a serial run writes every piece: each file is checked before the first is written
+        for (int p = 0; serial && p < this->NumberOfPieces; ++p)
+          lvdif::requireWritable(PieceFilePath(this->FileName, p));
         lvdif::checkCompressionLevel(this->CompressionLevel, "CompressionLevel");
         if (!sparse) LVDIFVolumeBridge::CheckVolumeSettings(this->ChunkEdge, this->BandWidth);
       }))
@@ -272,7 +296,7 @@ void vtkPDictionaryVolumeWriter::WriteData()
     this->SetErrorCode(vtkErrorCode::UnknownError);
     return;
   }
-  int whole[6] = { 0, -1, 0, -1, 0, -1 }, ext[6] = { 0, -1, 0, -1, 0, -1 }; // an empty piece: nothing
+  int whole[6] = { 0, -1, 0, -1, 0, -1 };
   if (sparse)
   {
     for (int a = 0; a < 3; ++a) // the volume's own (0-based) indices
@@ -280,16 +304,23 @@ void vtkPDictionaryVolumeWriter::WriteData()
       whole[2 * a] = 0;
       whole[2 * a + 1] = static_cast<int>(sparse->GetVolume()->dims()[a] - 1);
     }
-    SparsePieceExtent(sparse->GetVolume()->options(), this->Piece, this->NumberOfPieces, ext);
   }
   else if (!emptyPiece)
   {
     inInfo->Get(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT(), whole);
-    PieceExtent(whole, this->Piece, this->NumberOfPieces, ext);
   }
-  int ok = !lvdifvtk::extentIsValid(ext) ? 1
-    : sparse                            ? (this->WritePiece(sparse, ext) ? 1 : 0)
-                                        : (this->WritePiece(image, ext) ? 1 : 0);
+  // this process's pieces: all of them in a serial run, else its own
+  int ok = 1;
+  for (int p = serial ? 0 : this->Piece; ok && p < (serial ? this->NumberOfPieces : this->Piece + 1); ++p)
+  {
+    int ext[6] = { 0, -1, 0, -1, 0, -1 }; // an empty piece: nothing
+    if (sparse)
+      SparsePieceExtent(sparse->GetVolume()->options(), p, this->NumberOfPieces, ext);
+    else if (!emptyPiece)
+      PieceExtent(whole, p, this->NumberOfPieces, ext);
+    if (lvdifvtk::extentIsValid(ext))
+      ok = sparse ? (this->WritePiece(sparse, p, ext) ? 1 : 0) : (this->WritePiece(image, p, ext) ? 1 : 0);
+  }
 
   const int all = this->AgreeOnPieces(ok);
   if (!all && ok)
@@ -297,7 +328,7 @@ void vtkPDictionaryVolumeWriter::WriteData()
     vtkErrorMacro("another piece failed; the index is not written");
   }
   ok = all;
-  if (ok && this->Piece == 0)
+  if (ok && (serial || this->Piece == 0))
   {
     lvdifvtk::VolumeIndex index;
     std::copy(whole, whole + 6, index.wholeExtent);

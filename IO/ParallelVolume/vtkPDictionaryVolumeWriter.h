@@ -21,8 +21,14 @@
  * from the chunks' in general, and took voxels never computed for the piece.
  * With a Controller of NumberOfPieces processes the ranks agree on success
  * (the index is written only if every piece was) and wait for each other, so
- * the index is complete when Write() returns. Without one (serial, or a test
- * calling Write for each piece in turn), pieces are written independently.
+ * the index is complete when Write() returns. In a serial run (no Controller,
+ * or one of one process) Write() writes every piece and then the index from
+ * the whole input (Piece is not used), as VTK's XML parallel writers do in
+ * one process: it wrote only piece 0 and an index that listed all pieces.
+ * Every file is checked writable before the first is written, and the index
+ * (and with it the volume a reader sees) is replaced only when every piece
+ * was written. A Controller of several processes but not NumberOfPieces is
+ * refused before anything is written (each rank would write every piece).
  * A rank whose input fails upstream (WriteData never runs there) or that
  * refuses its settings still joins the agreement, as a failed piece: every
  * rank's Write() then returns 0, none waits for it. When piece 0 cannot
@@ -61,6 +67,7 @@ public:
   ///@{
   /// This process's piece and the number of pieces (default 0 of 1); a piece
   /// outside [0, NumberOfPieces - 1] is an error at write, nothing written (no clamp).
+  /// A serial run writes all NumberOfPieces pieces (see the class comment).
   vtkSetMacro(Piece, int);
   vtkGetMacro(Piece, int);
   vtkSetMacro(NumberOfPieces, int);
@@ -124,8 +131,10 @@ private:
   /// The second: the same all-reduce after piece 0 wrote the index (also the
   /// barrier), so that every rank knows whether the index was written.
   int AgreeOnIndex(int ok);
-  bool WritePiece(vtkImageData* image, const int extent[6]);
-  bool WritePiece(vtkSparseDictionaryVolume* sparse, const int extent[6]);
+  /// No Controller, or one of one process: this process writes every piece.
+  bool IsSerial() const;
+  bool WritePiece(vtkImageData* image, int piece, const int extent[6]);
+  bool WritePiece(vtkSparseDictionaryVolume* sparse, int piece, const int extent[6]);
   vtkPDictionaryVolumeWriter(const vtkPDictionaryVolumeWriter&) = delete;
   void operator=(const vtkPDictionaryVolumeWriter&) = delete;
 };

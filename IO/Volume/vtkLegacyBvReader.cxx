@@ -17,48 +17,32 @@
 
 #include <cmath>
 #include <cstdint>
-#include <fstream>
 #include <string>
 
 vtkStandardNewMacro(vtkLegacyBvReader);
 
 namespace
 {
-/// N from the file's size and name, or a message saying why there is none.
-/// (Core checks the same again on load; checking here lets RequestInformation
-/// announce the extent without reading the file.)
+/// N from the file's size and name (Core's one rule and words, as the import
+/// and the CLI), or a message saying why there is none. Checking here lets
+/// RequestInformation announce the extent without reading the file.
 std::int64_t edgeOf(const std::string& path, std::string& why)
 {
-  std::ifstream f(path, std::ios::binary | std::ios::ate);
-  if (!f)
+  try
   {
-    why = "cannot open the file";
+    const std::int64_t n = lvdif::legacy_bv::edgeOfFile(path);
+    if (n > VTK_INT_MAX)
+    {
+      why = "edge " + std::to_string(n) + " exceeds VTK's extent range";
+      return -1;
+    }
+    return n;
+  }
+  catch (const lvdif::Error& e)
+  {
+    why = e.what();
     return -1;
   }
-  const std::uint64_t bytes = static_cast<std::uint64_t>(f.tellg());
-  const std::uint64_t records = bytes / 4;
-  std::int64_t n = static_cast<std::int64_t>(std::llround(std::cbrt(static_cast<double>(records))));
-  while (n > 0 && std::uint64_t(n) * n * n > records)
-    --n;
-  while (std::uint64_t(n + 1) * (n + 1) * (n + 1) <= records)
-    ++n;
-  if (bytes == 0 || bytes % 4 != 0 || std::uint64_t(n) * n * n != records)
-  {
-    why = "size of " + std::to_string(bytes) + " bytes is not 4*N^3 (N^3 records of 4 bytes)";
-    return -1;
-  }
-  const std::int64_t token = lvdif::legacy_bv::edgeFromName(path);
-  if (token >= 0 && token != n)
-  {
-    why = "file name says N = " + std::to_string(token) + " but its size gives N = " + std::to_string(n);
-    return -1;
-  }
-  if (n > VTK_INT_MAX)
-  {
-    why = "edge " + std::to_string(n) + " exceeds VTK's extent range";
-    return -1;
-  }
-  return n;
 }
 } // namespace
 
@@ -114,7 +98,7 @@ int vtkLegacyBvReader::RequestInformation(
   const std::int64_t n = edgeOf(this->FileName, why);
   if (n <= 0)
   {
-    vtkErrorMacro(<< "cannot read '" << this->FileName << "': .bv: " << why);
+    vtkErrorMacro(<< LVDIFVolumeBridge::FileError("read", this->FileName, why));
     return LVDIFVolumeBridge::FailInformation(outputVector->GetInformationObject(0));
   }
   this->Edge = static_cast<int>(n);

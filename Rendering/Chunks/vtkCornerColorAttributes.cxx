@@ -1,5 +1,7 @@
 #include "vtkCornerColorAttributes.h"
 
+#include "LVDIFVolumeBridge.h"
+
 #include "vtkCellArray.h"
 #include "vtkCellArrayIterator.h"
 #include "vtkCellData.h"
@@ -89,17 +91,20 @@ int vtkCornerColorAttributes::RequestData(
   {
     return 0;
   }
+  // a refusal is this filter's one error (FailReported drops the executive's
+  // "returned failure for request" dump that followed it)
+  vtkInformation* outInfo = outputVector->GetInformationObject(0);
   if (this->Spacing[0] <= 0 || this->Spacing[1] <= 0 || this->Spacing[2] <= 0)
   {
     vtkErrorMacro("Spacing must be positive, got " << this->Spacing[0] << " " << this->Spacing[1] << " "
                                                    << this->Spacing[2]);
-    return 0;
+    return LVDIFVolumeBridge::FailReported(outInfo);
   }
   if (!HasCornerColors(input))
   {
     vtkErrorMacro("Input lacks the cell arrays corner_rgba (unsigned char, 32 components) and "
                   "cell_ijk (3 components)");
-    return 0;
+    return LVDIFVolumeBridge::FailReported(outInfo);
   }
   auto* corners = vtkUnsignedCharArray::SafeDownCast(input->GetCellData()->GetArray("corner_rgba"));
   vtkDataArray* ijk = input->GetCellData()->GetArray("cell_ijk");

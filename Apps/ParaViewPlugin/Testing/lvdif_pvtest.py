@@ -38,6 +38,7 @@ PROXIES = {
     "vtkDictionaryVolumeReader": ("sources", "LVDIFDictionaryVolumeReader"),
     "vtkDictionaryVolumeWriter": ("writers", "LVDIFDictionaryVolumeWriter"),
     "vtkPDictionaryVolumeReader": ("sources", "LVDIFParallelDictionaryVolumeReader"),
+    "vtkLegacyBvReader": ("sources", "LVDIFLegacyBvReader"),
     "vtkPDictionaryVolumeWriter": ("writers", "LVDIFParallelDictionaryVolumeWriter"),
     "vtkVolumeEditFilter": ("filters", "VolumeEditFilter"),
     "vtkLVDIFMeshReader": ("sources", "LVDIFMeshReader"),

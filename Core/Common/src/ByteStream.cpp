@@ -376,10 +376,29 @@ void requireWritable(const std::string& givenPath)
   {
     throw Error(ErrorCode::IoFailure, "cannot write '" + givenPath + "': the folder '" + dir + "' does not exist");
   }
+  const std::string notWritable = "cannot write '" + givenPath + "': the folder '" + dir + "' is not writable";
   if (::access(dir.c_str(), W_OK | X_OK) != 0)
   {
-    throw Error(ErrorCode::IoFailure, "cannot write '" + givenPath + "': the folder '" + dir + "' is not writable");
+    throw Error(ErrorCode::IoFailure, notWritable);
   }
+  // access() reads the mode bits only (root passes them everywhere): a folder
+  // that takes no new files (/proc, a read-only mount) is found by creating the
+  // temporary file a save creates there, and removing it at once (the save
+  // itself said "cannot create a temporary file beside ...: No such file or directory")
+  std::string probe = tempPrefix(path) + std::to_string(::getpid()) + "-XXXXXX";
+  std::vector<char> name(probe.begin(), probe.end());
+  name.push_back('\0');
+  const int fd = ::mkostemp(name.data(), O_CLOEXEC);
+  if (fd < 0)
+  {
+    if (errno == ENOSPC || errno == EDQUOT || errno == EMFILE || errno == ENFILE || errno == ENAMETOOLONG)
+    {
+      throw Error(ErrorCode::IoFailure, systemError("cannot write", givenPath));
+    }
+    throw Error(ErrorCode::IoFailure, notWritable);
+  }
+  ::close(fd);
+  ::unlink(name.data());
 }
 
 } // namespace lvdif

@@ -132,11 +132,8 @@ std::vector<Rgba> paletteFor(std::vector<Rgba> palette, std::size_t count)
 }
 } // namespace
 
-std::unique_ptr<DictionaryVolume> readLegacyBv(
-  ByteSource& source, const std::string& name, const LegacyBvOptions& options, Interrupter& interrupter)
+std::int64_t legacy_bv::edgeFromSize(std::uint64_t bytes, const std::string& name)
 {
-  require(options.distanceScale > 0 && std::isfinite(options.distanceScale), "distance scale must be finite and > 0");
-  const std::uint64_t bytes = source.size();
   const std::uint64_t records = bytes / 4;
   std::int64_t n = static_cast<std::int64_t>(std::llround(std::cbrt(static_cast<double>(records))));
   while (n > 0 && std::uint64_t(n) * n * n > records) --n;
@@ -150,6 +147,22 @@ std::unique_ptr<DictionaryVolume> readLegacyBv(
   {
     corrupt("file name says N = " + std::to_string(token) + " but its size gives N = " + std::to_string(n));
   }
+  return n;
+}
+
+std::int64_t legacy_bv::edgeOfFile(const std::string& path)
+{
+  FileSource src(path);
+  return legacy_bv::edgeFromSize(src.size(), path);
+}
+
+std::unique_ptr<DictionaryVolume> readLegacyBv(
+  ByteSource& source, const std::string& name, const LegacyBvOptions& options, Interrupter& interrupter)
+{
+  require(options.distanceScale > 0 && std::isfinite(options.distanceScale), "distance scale must be finite and > 0");
+  const std::uint64_t bytes = source.size();
+  const std::int64_t n = legacy_bv::edgeFromSize(bytes, name);
+  const std::uint64_t records = bytes / 4;
   VolumeOptions vo;
   vo.dims = { n, n, n };
   vo.chunkEdge = options.chunkEdge;

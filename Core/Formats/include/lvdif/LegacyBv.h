@@ -63,6 +63,13 @@ float decodeKey(std::uint16_t key);
 std::uint16_t encodeValue(double value);
 /// N from a `SDF_<N>_...` file name (directories ignored), or -1 if absent.
 std::int64_t edgeFromName(const std::string& path);
+/// N of a file of `bytes` bytes named `name` (may be empty): the one size rule
+/// (4 N^3 bytes, and the N of a SDF_<N>_ name), used by the import and by
+/// vtkLegacyBvReader before it reads. Throws Error(CorruptData) saying why not.
+std::int64_t edgeFromSize(std::uint64_t bytes, const std::string& name);
+/// The same for a file on disk (opened as the import opens it: Error(IoFailure)
+/// naming the path when it cannot be).
+std::int64_t edgeOfFile(const std::string& path);
 /// The original's naming: SDF_<N>_<name>.bv
 std::string fileName(std::int64_t edge, const std::string& name);
 /// The Mouse scene's default palette (spec 3.5), as 8-bit RGBA.

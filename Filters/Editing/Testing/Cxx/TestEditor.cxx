@@ -11,6 +11,8 @@
 #include "vtkIdTypeArray.h"
 #include "vtkImageData.h"
 #include "vtkNew.h"
+#include "vtkObjectFactory.h"
+#include "vtkOutputWindow.h"
 #include "vtkPointData.h"
 #include "vtkUnsignedCharArray.h"
 
@@ -32,6 +34,8 @@
 #include <set>
 #include <string>
 #include <vector>
+
+#include <unistd.h>
 
 namespace
 {
@@ -494,4 +498,48 @@ TEST(LVDIFEditor, SaveVolumeIntoAMissingFolderNamesTheFolder)
   EXPECT_EQ(ed->SaveVolume((dir + "/v.lvdv").c_str()), 0);
   EXPECT_EQ(std::string(ed->GetLastError()),
     "SaveVolume: cannot write '" + dir + "/v.lvdv': the folder '" + dir + "' does not exist");
+}
+
+namespace
+{
+/// Every error text that reaches VTK's output window (an object nobody observes).
+class ErrorLog : public vtkOutputWindow
+{
+public:
+  static ErrorLog* New();
+  vtkTypeMacro(ErrorLog, vtkOutputWindow);
+  void DisplayErrorText(const char* text) override { this->Errors.emplace_back(text ? text : ""); }
+  void DisplayText(const char*) override {}
+  std::vector<std::string> Errors;
+};
+vtkStandardNewMacro(ErrorLog);
+}
+
+// LoadVolume of a .vti that is not XML: one error, the editor's (its
+// GetLastError names the file and the cause). VTK's XML parser, inside the
+// reader, printed its own error line before it ("Error parsing XML in stream").
+// Oracle: the texts VTK's output window receives.
+TEST(LVDIFEditor, LoadVolumeOfAFileThatIsNotXmlIsOneError)
+{
+  const std::string path = std::string(::testing::TempDir()) + "/lvdif_editor_junk_" + std::to_string(::getpid()) + ".vti";
+  {
+    std::ofstream f(path);
+    f << "not xml\n";
+  }
+  vtkNew<ErrorLog> log;
+  vtkSmartPointer<vtkOutputWindow> previous = vtkOutputWindow::GetInstance();
+  vtkOutputWindow::SetInstance(log);
+  const bool display = vtkObject::GetGlobalWarningDisplay();
+  vtkObject::GlobalWarningDisplayOn();
+  vtkNew<vtkLVDIFEditor> ed;
+  const int loaded = ed->LoadVolume(path.c_str());
+  vtkObject::SetGlobalWarningDisplay(display);
+  vtkOutputWindow::SetInstance(previous);
+  std::remove(path.c_str());
+  EXPECT_EQ(loaded, 0);
+  const std::string last = ed->GetLastError();
+  EXPECT_NE(last.find("cannot read '" + path + "'"), std::string::npos) << last;
+  ASSERT_EQ(log->Errors.size(), 1u) << "first: " << log->Errors.front() << "\nlast: " << log->Errors.back();
+  EXPECT_NE(log->Errors[0].find("vtkLVDIFEditor"), std::string::npos) << log->Errors[0];
+  EXPECT_NE(log->Errors[0].find(last), std::string::npos) << log->Errors[0];
 }

@@ -1,6 +1,7 @@
 // The dictionary volume <-> vtkImageData bridge: decoded values, colours,
 // sub-extents, and the error paths.
 #include "vtkDictionaryVolumeToImage.h"
+#include "AlgorithmErrorsTestUtil.h"
 #include "LVDIFVolumeBridge.h"
 #include "vtkSparseDictionaryVolume.h"
 
@@ -14,6 +15,8 @@
 #include "vtkImageData.h"
 #include "vtkInformation.h"
 #include "vtkNew.h"
+#include "vtkOutlineFilter.h"
+#include "vtkPolyData.h"
 #include "vtkSmartPointer.h"
 #include "vtkPointData.h"
 #include "vtkRTAnalyticSource.h"
@@ -21,7 +24,9 @@
 
 #include <gtest/gtest.h>
 
+#include <array>
 #include <cmath>
+#include <cstdlib>
 #include <limits>
 
 static std::shared_ptr<lvdif::DictionaryVolume> sphereVolume()
@@ -288,4 +293,130 @@ TEST(VolumeBridge, SdfArrayFallsBackOnlyForAnEmptySelection)
   img->GetPointData()->RemoveArray("sdf");
   sel->Set(vtkDataObject::FIELD_NAME(), "");
   EXPECT_EQ(LVDIFVolumeBridge::SdfArray(sel, img, nullptr), other.Get()); // the active scalars
+}
+
+namespace
+{
+/// The bounds vtkOutlineFilter gives `data` (its default style: the root's box and each leaf's).
+std::array<double, 6> outlineBounds(vtkDataObject* data, int style)
+{
+  vtkNew<vtkOutlineFilter> outline;
+  outline->SetCompositeStyle(style);
+  outline->SetInputData(data);
+  outline->Update();
+  std::array<double, 6> b;
+  outline->GetOutput()->GetBounds(b.data());
+  return b;
+}
+
+/// The oracle: VTK's outline of an image of these points (no arrays), the grid's box.
+std::array<double, 6> gridBounds(const lvdif::DictionaryVolume& v, const int extent[6])
+{
+  vtkNew<vtkImageData> grid;
+  grid->SetExtent(const_cast<int*>(extent));
+  grid->SetOrigin(v.options().origin.data());
+  grid->SetSpacing(v.options().spacing.data());
+  return outlineBounds(grid, vtkOutlineFilter::ROOT_LEVEL);
+}
+}
+
+// The Outline of the sparse volume is the box of its grid, as an image's is
+// (and as vtkOverlappingAMR's, whose bounds are its grid's, not its blocks'):
+// it was the narrow band's box, because VTK's composite consumers take the
+// bounds from the leaves and only the band's chunks were partitions. Oracle:
+// vtkOutlineFilter on a vtkImageData of the grid's points, origin and spacing.
+// Volumes: a small sphere in a non-cubic grid (uniform chunks all round),
+// the same grid with no surface (no band at all), a piece of chunks (its own
+// points' box, so the pieces' boxes make the grid's). The partitions still
+// hold the band: the corner points add one point and one vertex cell each.
+TEST(VolumeBridge, OutlineIsTheGridsBox)
+{
+  lvdif::VolumeOptions o;
+  o.dims = { 70, 41, 90 };
+  o.chunkEdge = 8;
+  o.origin = { -3.0, 1.5, 2.0 };
+  o.spacing = { 0.25, 0.5, 0.75 };
+  auto sphere = std::make_shared<lvdif::DictionaryVolume>(o);
+  lvdif::fillFromFunction(*sphere, lvdif::sphereSdf(30, 20, 44, 6));
+  auto none = std::make_shared<lvdif::DictionaryVolume>(o);
+  const int whole[6] = { 0, 69, 0, 40, 0, 89 };
+  for (const auto& volume : { sphere, none })
+  {
+    vtkNew<vtkSparseDictionaryVolume> sparse;
+    sparse->SetVolume(volume);
+    const std::array<double, 6> oracle = gridBounds(*volume, whole);
+    for (int style : { vtkOutlineFilter::ROOT_LEVEL, vtkOutlineFilter::ROOT_AND_LEAFS })
+    {
+      const std::array<double, 6> got = outlineBounds(sparse, style);
+      for (int q = 0; q < 6; ++q)
+        EXPECT_EQ(got[q], oracle[q]) << (volume == sphere ? "sphere" : "no surface") << " style " << style << " bound " << q;
+    }
+    double b[6];
+    sparse->GetBounds(b); // vtkCompositeDataSet's, from the leaves
+    for (int q = 0; q < 6; ++q)
+      EXPECT_DOUBLE_EQ(b[q], oracle[q]) << q;
+    // the band's partitions plus at most two one-point, no-cell corners
+    vtkIdType cells = 0, points = 0;
+    int corners = 0;
+    for (unsigned int i = 0; i < sparse->GetNumberOfPartitions(); ++i)
+    {
+      vtkDataSet* leaf = sparse->GetPartition(i);
+      ASSERT_NE(leaf, nullptr);
+      cells += leaf->GetNumberOfCells();
+      points += leaf->GetNumberOfPoints();
+      corners += leaf->GetNumberOfPoints() == 1 ? 1 : 0;
+    }
+    EXPECT_EQ(corners, 2);
+    EXPECT_EQ(points, sparse->GetNumberOfPoints());
+    EXPECT_EQ(cells, sparse->GetNumberOfCells());
+    if (volume == none) EXPECT_EQ(cells, 2); // the corners' vertices, no other cell
+  }
+  // a piece: chunks (2..5, 0..2, 4..8) own the points [16, 48] x [0, 24] x [32, 72]
+  vtkNew<vtkSparseDictionaryVolume> piece;
+  piece->SetVolume(sphere);
+  const int owned[6] = { 2, 5, 0, 2, 4, 8 };
+  piece->SetOwnedChunks(owned);
+  const int points[6] = { 16, 48, 0, 24, 32, 72 };
+  const std::array<double, 6> oracle = gridBounds(*sphere, points);
+  const std::array<double, 6> got = outlineBounds(piece, vtkOutlineFilter::ROOT_LEVEL);
+  for (int q = 0; q < 6; ++q)
+    EXPECT_EQ(got[q], oracle[q]) << "piece bound " << q;
+}
+
+// vtkDictionaryVolumeToImage without a volume, and with an extent too large for
+// the memory limit: one error each, the filter's. Its executive added VTK's
+// "Algorithm vtkDictionaryVolumeToImage returned failure for request:
+// <the request dumped>" (the project's one failure path, FailInformation /
+// FailReported, drops it, as every other LVDIF algorithm does).
+TEST(VolumeBridge, ImageSourceFailsWithOneError)
+{
+  vtkNew<vtkDictionaryVolumeToImage> src;
+  {
+    AlgorithmErrors errors(src);
+    src->Update();
+    ASSERT_EQ(errors.messages().size(), 1u) << errors.summary();
+    EXPECT_NE(errors.messages()[0].find("no volume"), std::string::npos) << errors.summary();
+  }
+  lvdif::VolumeOptions o;
+  o.dims = { 400, 400, 400 };
+  src->SetVolume(std::make_shared<lvdif::DictionaryVolume>(o));
+  const char* old = std::getenv("LVDIF_MEMORY_LIMIT");
+  const std::string kept = old ? old : "";
+  ::setenv("LVDIF_MEMORY_LIMIT", "64M", 1); // the dense image needs 400^3 x 8 bytes
+  {
+    AlgorithmErrors errors(src);
+    src->Update();
+    EXPECT_EQ(errors.messages().size(), 1u) << errors.summary();
+  }
+  if (old)
+    ::setenv("LVDIF_MEMORY_LIMIT", kept.c_str(), 1);
+  else
+    ::unsetenv("LVDIF_MEMORY_LIMIT");
+  // a volume again: no error, the image
+  o.dims = { 8, 9, 10 };
+  src->SetVolume(std::make_shared<lvdif::DictionaryVolume>(o));
+  AlgorithmErrors errors(src);
+  src->Update();
+  EXPECT_TRUE(errors.messages().empty()) << errors.summary();
+  EXPECT_EQ(src->GetOutput()->GetNumberOfPoints(), 8 * 9 * 10);
 }

@@ -1,6 +1,6 @@
-// vtkPDictionaryVolumeWriter / vtkPDictionaryVolumeReader without MPI: the
-// pieces are written one after the other (Piece p of n, no controller), from
-// an upstream that gives the whole image (the writer crops its piece). Oracles: the serial
+// vtkPDictionaryVolumeWriter / vtkPDictionaryVolumeReader without MPI: one
+// Write() of a serial run (no controller) writes the n pieces and the index,
+// from an upstream that gives the whole image (the writer crops its pieces). Oracles: the serial
 // vtkDictionaryVolumeWriter -> vtkDictionaryVolumeReader round trip of the
 // same image (the distributed read must equal it exactly, every array), the
 // analytic SDF (within the dictionary's quantisation), the piece files' sizes
@@ -20,6 +20,9 @@
 
 #include "lvdif/DictionaryVolume.h"
 
+#include "vtkCallbackCommand.h"
+#include "vtkCommand.h"
+#include "vtkExecutive.h"
 #include "vtkFloatArray.h"
 #include "vtkImageClip.h"
 #include "vtkImageData.h"
@@ -37,6 +40,7 @@
 #include <fstream>
 #include <iterator>
 #include <string>
+#include <sys/stat.h>
 #include <unistd.h>
 
 namespace
@@ -111,19 +115,16 @@ vtkSmartPointer<vtkImageData> serialRoundTrip(vtkImageData* img)
 
 void writePieces(vtkImageData* img, const std::string& index, int n)
 {
-  for (int p = 0; p < n; ++p)
-  {
-    vtkNew<vtkImageClip> clip; // passes the whole image: the writer must crop to its piece
-    clip->SetInputData(img);
-    clip->ClipDataOn();
-    vtkNew<vtkPDictionaryVolumeWriter> w;
-    w->SetController(nullptr);
-    w->SetInputConnection(clip->GetOutputPort());
-    w->SetFileName(index.c_str());
-    w->SetPiece(p);
-    w->SetNumberOfPieces(n);
-    ASSERT_TRUE(w->Write()) << "piece " << p;
-  }
+  // one Write() of a serial run writes every piece and the index
+  vtkNew<vtkImageClip> clip; // passes the whole image: the writer must crop its pieces
+  clip->SetInputData(img);
+  clip->ClipDataOn();
+  vtkNew<vtkPDictionaryVolumeWriter> w;
+  w->SetController(nullptr);
+  w->SetInputConnection(clip->GetOutputPort());
+  w->SetFileName(index.c_str());
+  w->SetNumberOfPieces(n);
+  ASSERT_TRUE(w->Write());
 }
 } // namespace
 
@@ -240,15 +241,13 @@ TEST_P(PVolumeIO, SparseInputWritesThePiecesItsKeys)
   vtkNew<vtkImageToSparseVolume> sparse; // the writer's default encoding
   sparse->SetInputData(img);
   const std::string index = tmpName("sparse" + std::to_string(n) + ".lvdvp");
-  for (int p = 0; p < n; ++p)
   {
-    vtkNew<vtkPDictionaryVolumeWriter> w;
+    vtkNew<vtkPDictionaryVolumeWriter> w; // serial: one Write() writes every piece
     w->SetController(nullptr);
     w->SetInputConnection(sparse->GetOutputPort());
     w->SetFileName(index.c_str());
-    w->SetPiece(p);
     w->SetNumberOfPieces(n);
-    ASSERT_TRUE(w->Write()) << "piece " << p;
+    ASSERT_TRUE(w->Write());
   }
   vtkNew<vtkPDictionaryVolumeReader> r;
   r->SetFileName(index.c_str());
@@ -431,4 +430,92 @@ TEST(PVolumeIO, WriteFailsWhenTheInputFailsUpstream)
   std::remove(damaged.c_str());
   std::remove(index.c_str());
   std::remove(tmpName("upstream_0.lvdv").c_str());
+}
+
+// A serial run with NumberOfPieces 2 (no controller, Piece left at 0): it wrote
+// an index of 2 pieces and only piece 0, without a word (the reader then failed
+// on the missing piece). Now every piece is written; oracle: the serial
+// round trip of the same image (image input) and of the same sparse volume.
+// A piece file that cannot be written is refused before anything is written:
+// the old index stays byte for byte, no piece is made.
+TEST(PVolumeIO, SerialRunWritesEveryPiece)
+{
+  vtkSmartPointer<vtkImageData> img = makeImage();
+  vtkSmartPointer<vtkImageData> oracle = serialRoundTrip(img);
+  vtkNew<vtkImageToSparseVolume> sparse;
+  sparse->SetInputData(img);
+  for (const bool sparseInput : { false, true })
+  {
+    const std::string index = tmpName(std::string("serial2") + (sparseInput ? "s" : "i") + ".lvdvp");
+    vtkNew<vtkPDictionaryVolumeWriter> w;
+    w->SetController(nullptr);
+    if (sparseInput)
+      w->SetInputConnection(sparse->GetOutputPort());
+    else
+      w->SetInputData(img);
+    w->SetFileName(index.c_str());
+    w->SetNumberOfPieces(2);
+    ASSERT_TRUE(w->Write()) << (sparseInput ? "sparse" : "image");
+    for (int p = 0; p < 2; ++p)
+      EXPECT_TRUE(std::ifstream(vtkPDictionaryVolumeWriter::PieceFilePath(index, p)).good()) << "piece " << p;
+    vtkNew<vtkPDictionaryVolumeReader> r;
+    r->SetFileName(index.c_str());
+    vtkSmartPointer<vtkImageData> out = decoded(r);
+    EXPECT_EQ(r->GetPiecesRead(), 2);
+    ASSERT_EQ(out->GetNumberOfPoints(), oracle->GetNumberOfPoints());
+    for (const char* name : { "sdf", "rgba" })
+    {
+      vtkDataArray* a = out->GetPointData()->GetArray(name);
+      vtkDataArray* b = oracle->GetPointData()->GetArray(name);
+      ASSERT_TRUE(a && b) << name;
+      long diff = 0;
+      for (vtkIdType id = 0; id < a->GetNumberOfTuples(); ++id)
+        for (int c = 0; c < a->GetNumberOfComponents(); ++c)
+          diff += a->GetComponent(id, c) != b->GetComponent(id, c) ? 1 : 0;
+      EXPECT_EQ(diff, 0) << name;
+    }
+    for (int p = 0; p < 2; ++p)
+      std::remove(vtkPDictionaryVolumeWriter::PieceFilePath(index, p).c_str());
+    std::remove(index.c_str());
+  }
+
+  // piece 1's file is a folder: refused before writing, the old index intact
+  const std::string index = tmpName("serial2old.lvdvp");
+  {
+    std::ofstream old(index);
+    old << "old index\n";
+  }
+  const std::string piece0 = vtkPDictionaryVolumeWriter::PieceFilePath(index, 0);
+  const std::string piece1 = vtkPDictionaryVolumeWriter::PieceFilePath(index, 1);
+  std::remove(piece0.c_str());
+  ASSERT_EQ(::mkdir(piece1.c_str(), 0755), 0);
+  vtkNew<vtkPDictionaryVolumeWriter> w;
+  w->SetController(nullptr);
+  w->SetInputData(img);
+  w->SetFileName(index.c_str());
+  w->SetNumberOfPieces(2);
+  struct Errors
+  {
+    int count = 0;
+    std::string text;
+  } errors;
+  vtkNew<vtkCallbackCommand> onError;
+  onError->SetClientData(&errors);
+  onError->SetCallback([](vtkObject*, unsigned long, void* client, void* call) {
+    auto* e = static_cast<Errors*>(client);
+    ++e->count;
+    e->text += static_cast<const char*>(call);
+  });
+  w->AddObserver(vtkCommand::ErrorEvent, onError);
+  w->GetExecutive()->AddObserver(vtkCommand::ErrorEvent, onError);
+  vtkObject::GlobalWarningDisplayOn(); // ErrorEvent fires only with it on (other tests turn it off)
+  EXPECT_EQ(w->Write(), 0);
+  EXPECT_EQ(errors.count, 1) << errors.text;
+  EXPECT_NE(errors.text.find(piece1), std::string::npos) << errors.text;
+  std::ifstream in(index);
+  const std::string kept((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  EXPECT_EQ(kept, "old index\n");
+  EXPECT_FALSE(std::ifstream(piece0).good()) << "piece 0 written before the refusal";
+  ::rmdir(piece1.c_str());
+  std::remove(index.c_str());
 }

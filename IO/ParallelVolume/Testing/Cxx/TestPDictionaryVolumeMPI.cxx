@@ -2,7 +2,8 @@
 // one rank's input fails upstream (its WriteData never runs). Before, the
 // other rank waited in the all-reduce for it forever (the test timed out).
 // Also the good case: both pieces and the index are written, and a failed
-// index (piece 0's) fails every rank's Write().
+// index (piece 0's) fails every rank's Write(); NumberOfPieces unlike the
+// Controller's processes is refused before anything is written.
 #include "MPITestUtil.h"
 #include "vtkDictionaryVolumeReader.h"
 #include "vtkNew.h"
@@ -76,6 +77,33 @@ int main(int argc, char* argv[])
     ::mkdir(folderIndex.c_str(), 0755);
   c->Barrier();
   run.check(writePieces(c, good, folderIndex) == 0, "the index cannot be written: Write() answers 0 on every rank");
+
+  // NumberOfPieces 3 on a Controller of 2 processes: each rank would write
+  // every piece; refused on every rank before anything is written
+  const std::string mismatch = dir + "/mpi_mismatch.lvdvp";
+  if (rank == 0) // what an earlier run left
+  {
+    std::remove(mismatch.c_str());
+    for (int p = 0; p < 3; ++p)
+      std::remove(vtkPDictionaryVolumeWriter::PieceFilePath(mismatch, p).c_str());
+  }
+  c->Barrier();
+  {
+    vtkNew<vtkDictionaryVolumeReader> reader;
+    reader->SetFileName(good.c_str());
+    vtkNew<vtkPDictionaryVolumeWriter> writer;
+    writer->SetInputConnection(reader->GetOutputPort());
+    writer->SetFileName(mismatch.c_str());
+    writer->SetController(c);
+    writer->SetNumberOfPieces(3);
+    writer->SetPiece(rank);
+    run.check(writer->Write() == 0, "NumberOfPieces 3 on 2 processes: Write() answers 0");
+  }
+  c->Barrier();
+  bool none = !exists(mismatch);
+  for (int p = 0; p < 3; ++p)
+    none = none && !exists(vtkPDictionaryVolumeWriter::PieceFilePath(mismatch, p));
+  run.check(none, "NumberOfPieces 3 on 2 processes: nothing written");
 
   return run.finish("PDictionaryVolume MPI OK");
 }

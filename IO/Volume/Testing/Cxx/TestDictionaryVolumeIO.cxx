@@ -314,3 +314,30 @@ TEST(DictionaryVolumeIO, WriteFailsWhenTheInputFailsUpstream)
   std::remove(damaged.c_str());
   std::remove(kept.c_str());
 }
+
+// A folder whose mode lets us in but that takes no new files (/proc: as root,
+// access() passes): the save said "cannot create a temporary file beside
+// '/proc/x.lvdv': No such file or directory"; now one error saying the folder
+// cannot be written (the one output guard, lvdif::requireWritable), and the
+// writer refuses before encoding. Oracle: a file cannot be created there.
+TEST(DictionaryVolumeIO, AFolderThatTakesNoFilesIsNamedNotWritable)
+{
+  const std::string path = "/proc/lvdif_x.lvdv";
+  {
+    std::ofstream probe(path);
+    if (probe.good())
+      GTEST_SKIP() << "/proc takes files here";
+  }
+  auto img = makeImage();
+  vtkNew<ErrorCatcher> catcher;
+  vtkNew<vtkDictionaryVolumeWriter> w;
+  w->AddObserver(vtkCommand::ErrorEvent, catcher);
+  w->GetExecutive()->AddObserver(vtkCommand::ErrorEvent, catcher);
+  w->SetInputData(img);
+  w->SetFileName(path.c_str());
+  EXPECT_EQ(w->Write(), 0);
+  EXPECT_EQ(catcher->Count, 1) << catcher->Last;
+  EXPECT_NE(catcher->Last.find("cannot write '" + path + "': the folder '/proc' is not writable"), std::string::npos)
+    << catcher->Last;
+  EXPECT_EQ(catcher->Last.find("No such file"), std::string::npos) << catcher->Last;
+}

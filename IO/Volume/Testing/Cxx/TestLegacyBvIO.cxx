@@ -9,6 +9,7 @@
 #include "vtkSparseVolumeToImage.h"
 #include "vtkLegacyBvWriter.h"
 
+#include "lvdif/Error.h"
 #include "lvdif/LegacyBv.h"
 
 #include "vtkCommand.h"
@@ -26,6 +27,7 @@
 #include <fstream>
 #include <iterator>
 #include <optional>
+#include <sys/stat.h>
 #include <unistd.h>
 #include <vector>
 
@@ -336,4 +338,57 @@ TEST(LegacyBvIO, BadSizeAndNameAreErrors)
   EXPECT_FALSE(std::ifstream(wrong).good()) << "nothing written under a wrong name";
   std::remove(odd.c_str());
   std::remove(named.c_str());
+}
+
+// The reader and the import (the CLI's `lvdif convert`) say the same thing about
+// a file that is not a .bv, because they use Core's one rule: oracle, the text of
+// lvdif::loadLegacyBv's error for the same file. The reader had its own copy of
+// the size rule and its own words ("cannot open the file" for a missing file,
+// where the import names the path and the system's reason).
+TEST(LegacyBvIO, ReaderSaysWhatTheImportSays)
+{
+  const std::string dir = ::testing::TempDir() + "lvdif_bvrule_" + std::to_string(::getpid());
+  ASSERT_EQ(::mkdir(dir.c_str(), 0755), 0);
+  struct Case
+  {
+    std::string name;
+    int bytes; // -1: not made
+  };
+  const std::vector<Case> cases = { { "missing.bv", -1 }, { "empty.bv", 0 }, { "odd.bv", 4 * 27 + 1 },
+    { "SDF_4_three.bv", 4 * 27 }, { "short.bv", 4 * 26 } };
+  for (const Case& c : cases)
+  {
+    const std::string path = dir + "/" + c.name;
+    if (c.bytes >= 0)
+    {
+      std::ofstream f(path, std::ios::binary);
+      const std::vector<char> zeros(static_cast<std::size_t>(c.bytes), 0);
+      f.write(zeros.data(), static_cast<std::streamsize>(zeros.size()));
+    }
+    std::string oracle;
+    try
+    {
+      lvdif::loadLegacyBv(path);
+    }
+    catch (const lvdif::Error& e)
+    {
+      oracle = e.what();
+    }
+    ASSERT_FALSE(oracle.empty()) << c.name << ": the import took it";
+    vtkNew<ErrorCatcher> catcher;
+    vtkNew<vtkLegacyBvReader> reader;
+    reader->AddObserver(vtkCommand::ErrorEvent, catcher);
+    reader->GetExecutive()->AddObserver(vtkCommand::ErrorEvent, catcher);
+    reader->SetFileName(path.c_str());
+    reader->Update();
+    EXPECT_EQ(catcher->Count, 1) << c.name << ": " << catcher->Text;
+    // the reader's line: "cannot read '<path>': " unless Core's words already name the path
+    const std::string expected =
+      oracle.find("'" + path + "'") != std::string::npos ? oracle : "cannot read '" + path + "': " + oracle;
+    EXPECT_NE(catcher->Text.find(expected), std::string::npos) << c.name << ": reader said\n  " << catcher->Text
+                                                                << "\nthe import says\n  " << oracle;
+    EXPECT_FALSE(vtkLegacyBvReader::CanReadFile(path.c_str())) << c.name;
+    std::remove(path.c_str());
+  }
+  ::rmdir(dir.c_str());
 }
