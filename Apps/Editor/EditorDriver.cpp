@@ -15,6 +15,7 @@
 #include <QKeySequence>
 #include <QMouseEvent>
 #include <QTimer>
+#include <QWheelEvent>
 #include <QWindow>
 #ifdef LVDIF_EDITOR_HAVE_QTTEST
 #include <QTest>
@@ -22,6 +23,7 @@
 
 #include <cctype>
 #include <cmath>
+#include <cstdlib>
 #include <cstdio>
 
 EditorDriver::EditorDriver(MainWindow& window, const EditorOptions& options, QElapsedTimer sinceWindow)
@@ -37,8 +39,8 @@ int EditorDriver::runBatch()
   const EditorOptions& o = this->Options;
   bool ok = true;
   this->waitForLayout(); // a native view draws (and so gives screenshots) only once its window is exposed
-  if (!o.saveAsAnswer.isEmpty() || !o.openAnswer.isEmpty())
-    this->answerSaveDialogs(o.saveAsAnswer, o.openAnswer);
+  if (!o.saveAsAnswer.isEmpty() || !o.openAnswer.isEmpty() || o.cancelDialogs > 0)
+    this->answerSaveDialogs(o.saveAsAnswer, o.openAnswer, o.cancelDialogs);
   // a script first: it sets the scene the keys and the drag then work on
   if (!o.script.isEmpty())
     ok = this->Window.runScript(o.script) && ok;
@@ -49,7 +51,7 @@ int EditorDriver::runBatch()
   if (!o.drag.isEmpty())
   {
     this->waitForSurface(); // the surface must be there to be picked
-    this->drag(o.drag, o.dragCtrl, o.dragShift, o.dragShot);
+    this->drag(o.drag, o.dragCtrl, o.dragShift, o.dragShot, o.wheel);
   }
   if (!o.keysAfter.isEmpty())
     ok = this->typeKeys(o.keysAfter) && ok;
@@ -117,7 +119,8 @@ void EditorDriver::waitForLayout()
   std::fprintf(stderr, "lvdif-editor: the window was not laid out after 10 s; going on\n");
 }
 
-void EditorDriver::drag(const QVector<QPointF>& points, bool ctrl, bool shift, const QString& shotBeforeRelease)
+void EditorDriver::drag(
+  const QVector<QPointF>& points, bool ctrl, bool shift, const QString& shotBeforeRelease, int wheelSteps)
 {
   if (points.isEmpty())
     return;
@@ -163,6 +166,14 @@ void EditorDriver::drag(const QVector<QPointF>& points, bool ctrl, bool shift, c
   };
   modifierKeys(QEvent::KeyPress);
   mouse(QEvent::MouseMove, points.front(), Qt::NoButton, Qt::NoButton);
+  for (int i = 0; i < std::abs(wheelSteps); ++i)
+  {
+    const QPointF local = widgetPoint(points.front());
+    QWheelEvent event(local, local + v->mapToGlobal(QPoint(0, 0)), QPoint(), QPoint(0, wheelSteps > 0 ? 120 : -120),
+      Qt::NoButton, mods, Qt::NoScrollPhase, false);
+    QApplication::sendEvent(target, &event);
+    QApplication::processEvents();
+  }
   mouse(QEvent::MouseButtonPress, points.front(), Qt::LeftButton, Qt::LeftButton);
   QApplication::processEvents();
   this->showAllMeshes(); // the press's sample too: the first move picks on its result
@@ -231,17 +242,19 @@ bool EditorDriver::typeKeys(const QString& keys)
 #endif
 }
 
-void EditorDriver::answerSaveDialogs(const QString& path, const QString& openPath)
+void EditorDriver::answerSaveDialogs(const QString& path, const QString& openPath, int cancels)
 {
-  if (this->SaveAnswer.isEmpty() && this->OpenAnswer.isEmpty())
+  if (!this->Answering)
   {
     // A file dialog runs its own event loop (exec): a timer of ours still fires in it.
     auto* timer = new QTimer(this);
     connect(timer, &QTimer::timeout, this, &EditorDriver::answerShownSaveDialog);
     timer->start(10);
+    this->Answering = true;
   }
   this->SaveAnswer = path;
   this->OpenAnswer = openPath;
+  this->CancelsLeft = cancels;
 }
 
 void EditorDriver::answerShownSaveDialog()
@@ -251,6 +264,12 @@ void EditorDriver::answerShownSaveDialog()
     auto* dialog = qobject_cast<QFileDialog*>(w);
     if (!dialog || !dialog->isVisible())
       continue;
+    if (this->CancelsLeft > 0)
+    {
+      --this->CancelsLeft;
+      dialog->reject(); // as its Cancel button
+      continue;
+    }
     if (dialog->acceptMode() == QFileDialog::AcceptOpen)
     {
       if (!this->OpenAnswer.isEmpty())

@@ -5,6 +5,10 @@
 # left by the stroke's partial redraws compared with the scene drawn whole (the
 # editor exits 1 if it differs by more than multisampled edges allow; with
 # EXPECT_EXACT, no pixel may differ).
+# PARAMS: the test's keywords (set() commands written by lvdif_editor_test)
+if (DEFINED PARAMS)
+  include("${PARAMS}")
+endif ()
 string(TIMESTAMP t0 "%s" UTC)
 execute_process(COMMAND "${EDITOR}" ${ARGS} RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
 string(TIMESTAMP t1 "%s" UTC)

@@ -2,6 +2,10 @@
 # crash: a signal gives a text status), RC if given, and EXPECT in its output.
 # KEEP_FROM / KEEP: KEEP is made a copy of KEEP_FROM first and must be
 # unchanged afterwards (a refused run writes nothing over it).
+# PARAMS: the test's keywords (set() commands written by lvdif_editor_test)
+if (DEFINED PARAMS)
+  include("${PARAMS}")
+endif ()
 if (DEFINED KEEP)
   file(REMOVE "${KEEP}")
   configure_file("${KEEP_FROM}" "${KEEP}" COPYONLY)
