@@ -14,6 +14,7 @@
 #include <QKeyEvent>
 #include <QKeySequence>
 #include <QMouseEvent>
+#include <QProgressDialog>
 #include <QTimer>
 #include <QWheelEvent>
 #include <QWindow>
@@ -39,7 +40,10 @@ int EditorDriver::runBatch()
   const EditorOptions& o = this->Options;
   bool ok = true;
   this->waitForLayout(); // a native view draws (and so gives screenshots) only once its window is exposed
-  if (!o.saveAsAnswer.isEmpty() || !o.openAnswer.isEmpty() || o.cancelDialogs > 0)
+  // A batch run answers every dialog: with the answers given, else it is
+  // cancelled and the run fails naming the option to give (a key's Save As, a
+  // recording's Stop or a question waited forever for nobody).
+  if (o.batch() || !o.saveAsAnswer.isEmpty() || !o.openAnswer.isEmpty() || o.cancelDialogs > 0)
     this->answerSaveDialogs(o.saveAsAnswer, o.openAnswer, o.cancelDialogs);
   // a script first: it sets the scene the keys and the drag then work on
   if (!o.script.isEmpty())
@@ -59,7 +63,7 @@ int EditorDriver::runBatch()
     this->Window.undo();
   // an error reported by what a key or the drag did (Ctrl+S onto a file that
   // cannot be written, a brush that failed) fails the run too: it exited 0
-  ok = ok && this->Window.errorCount() == 0;
+  ok = ok && this->Window.errorCount() == 0 && this->Unanswered == 0;
   if (!ok)
   {
     // as in the command line: after a failure nothing is written, so a script
@@ -77,7 +81,7 @@ int EditorDriver::runBatch()
     ok = this->Window.saveVolume(o.save) && ok;
   if (!o.exportMesh.isEmpty())
     ok = this->Window.exportMesh(o.exportMesh) && ok;
-  return ok && this->Window.errorCount() == 0 ? 0 : 1;
+  return ok && this->Window.errorCount() == 0 && this->Unanswered == 0 ? 0 : 1;
 }
 
 void EditorDriver::showAllMeshes()
@@ -261,8 +265,9 @@ void EditorDriver::answerShownSaveDialog()
 {
   for (QWidget* w : QApplication::topLevelWidgets())
   {
-    auto* dialog = qobject_cast<QFileDialog*>(w);
-    if (!dialog || !dialog->isVisible())
+    auto* dialog = qobject_cast<QDialog*>(w);
+    // a progress dialog needs no answer (it closes when the work is done)
+    if (!dialog || !dialog->isVisible() || qobject_cast<QProgressDialog*>(dialog))
       continue;
     if (this->CancelsLeft > 0)
     {
@@ -270,21 +275,25 @@ void EditorDriver::answerShownSaveDialog()
       dialog->reject(); // as its Cancel button
       continue;
     }
-    if (dialog->acceptMode() == QFileDialog::AcceptOpen)
+    auto* files = qobject_cast<QFileDialog*>(dialog);
+    const bool opening = files && files->acceptMode() == QFileDialog::AcceptOpen;
+    const QString& answer = opening ? this->OpenAnswer : this->SaveAnswer;
+    if (!files || answer.isEmpty())
     {
-      if (!this->OpenAnswer.isEmpty())
-      {
-        dialog->selectFile(QFileInfo(this->OpenAnswer).absoluteFilePath());
-        static_cast<QDialog*>(dialog)->accept();
-      }
+      if (!this->Options.batch())
+        continue; // a user is there to answer it
+      // nobody is: the run waited for good
+      ++this->Unanswered;
+      std::fprintf(stderr, "lvdif-editor: the dialog '%s' opened in a batch run and was cancelled%s\n",
+        dialog->windowTitle().toLocal8Bit().constData(),
+        files ? (opening ? ": answer it with --open-answer FILE" : ": answer it with --save-as-answer FILE") : "");
+      dialog->reject();
       continue;
     }
-    if (this->SaveAnswer.isEmpty())
-      continue;
-    // a test's file may be there from an earlier run: no overwrite question
-    dialog->setOption(QFileDialog::DontConfirmOverwrite);
-    dialog->selectFile(QFileInfo(this->SaveAnswer).absoluteFilePath());
-    static_cast<QDialog*>(dialog)->accept(); // QFileDialog's accept, as its Save button calls it
+    if (!opening)
+      files->setOption(QFileDialog::DontConfirmOverwrite); // a test's file may be there from an earlier run
+    files->selectFile(QFileInfo(answer).absoluteFilePath());
+    static_cast<QDialog*>(files)->accept(); // QFileDialog's accept, as its Open or Save button calls it
   }
 }
 

@@ -58,7 +58,8 @@ public:
   bool typeKeys(const QString& keys);
 
   /// From now on, a Save file dialog that opens is answered with `path`, an
-  /// Open file dialog with `openPath` (if not empty).
+  /// Open file dialog with `openPath` (if not empty); in a batch run any other
+  /// dialog (or a file dialog without its answer) is cancelled, and the run fails.
   /// The first `cancels` file dialogs are cancelled, as a user's Cancel.
   void answerSaveDialogs(const QString& path, const QString& openPath = QString(), int cancels = 0);
 
@@ -75,5 +76,6 @@ private:
   QElapsedTimer SinceWindow;
   QString SaveAnswer, OpenAnswer;
   int CancelsLeft = 0;
+  int Unanswered = 0; // dialogs a batch run cancelled for want of an answer
   bool Answering = false;
 };
