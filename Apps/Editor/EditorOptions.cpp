@@ -162,7 +162,7 @@ EditorOptions parseEditorOptions(const QStringList& arguments)
   const QCommandLineOption saveAsAnswer("save-as-answer", "The file the Save As dialog answers (tests).", "file");
   const QCommandLineOption openAnswer("open-answer", "The file an Open dialog answers (tests).", "file");
   const QCommandLineOption cancelDialogs("cancel-dialogs",
-    "Cancel the first N file dialogs that open; later ones get the answers above (tests).", "n");
+    "Cancel the first N dialogs that open; later ones get the answers above (tests).", "n");
   const QCommandLineOption wheel("wheel",
     "Turn the mouse wheel N steps over the first --replay-drag point before the press (negative: backward) (tests).",
     "n");
@@ -285,10 +285,16 @@ EditorOptions parseEditorOptions(const QStringList& arguments)
     {
       const QStringList xy = pt.split(',');
       bool ok1 = false, ok2 = false;
+      double x = 0, y = 0;
       if (xy.size() == 2)
-        o.drag.push_back(QPointF(xy[0].toDouble(&ok1), xy[1].toDouble(&ok2)));
-      if (!ok1 || !ok2)
-        fail("--replay-drag expects 'x,y;x,y;...', got '" + pt + "'");
+      {
+        x = xy[0].toDouble(&ok1);
+        y = xy[1].toDouble(&ok2);
+      }
+      // finite numbers: "nan,0.5" or "inf,1" were taken, and the drag went nowhere without a word
+      if (!ok1 || !ok2 || !std::isfinite(x) || !std::isfinite(y) || std::fabs(x) > 1e9 || std::fabs(y) > 1e9)
+        fail("--replay-drag expects 'x,y;x,y;...' (pixels, or fractions of the view), got '" + pt + "'");
+      o.drag.push_back(QPointF(x, y));
     }
   }
   o.undo = integerOption(p.value(undo), "--undo", 0, std::numeric_limits<int>::max());
