@@ -13,6 +13,7 @@
 #include <QFileInfo>
 #include <QKeyEvent>
 #include <QKeySequence>
+#include <QLabel>
 #include <QMouseEvent>
 #include <QProgressDialog>
 #include <QTimer>
@@ -73,6 +74,12 @@ int EditorDriver::runBatch()
     return 1;
   }
   this->waitForSurface();
+  if (o.printStatus)
+  {
+    // the status bar's volume text, as a user reads it
+    if (auto* status = this->Window.findChild<QLabel*>("volumeStatus"))
+      std::printf("lvdif-editor: status: %s\n", status->text().toLocal8Bit().constData());
+  }
   if (!o.screenshot.isEmpty())
     ok = this->Window.saveScreenshot(o.screenshot) && ok;
   if (!o.windowShot.isEmpty())

@@ -163,6 +163,7 @@ EditorOptions parseEditorOptions(const QStringList& arguments)
   const QCommandLineOption openAnswer("open-answer", "The file an Open dialog answers (tests).", "file");
   const QCommandLineOption cancelDialogs("cancel-dialogs",
     "Cancel the first N dialogs that open; later ones get the answers above (tests).", "n");
+  const QCommandLineOption printStatus("print-status", "Print the status bar's text when the work is done (tests).");
   const QCommandLineOption wheel("wheel",
     "Turn the mouse wheel N steps over the first --replay-drag point before the press (negative: backward) (tests).",
     "n");
@@ -210,7 +211,7 @@ EditorOptions parseEditorOptions(const QStringList& arguments)
   // What a user reaches for first; the options for tests and comparisons last.
   p.addOptions({ open, openMesh, meshRes, meshSign, meshReorient, create, fill, script, save, exp, shot, windowShot,
     op, shape, kind, radius, color, strength, falloff, mirror, size, samples, perVertex, matcap, autosave, noRecovery,
-    recoveryDir, quit, drag, dragShot, undo, dragMods, keys, keysAfter, saveAsAnswer, openAnswer, cancelDialogs, wheel, recoveryAnswer, benchmark, timing, fullRedraw,
+    recoveryDir, quit, drag, dragShot, undo, dragMods, keys, keysAfter, saveAsAnswer, openAnswer, cancelDialogs, wheel, printStatus, recoveryAnswer, benchmark, timing, fullRedraw,
     drawRanges, multisampledDrag, stockBackground, widgetView });
   // an unknown option or a missing value: one line and status 2, as every
   // other refused option (Qt's process() exits with 1)
@@ -333,6 +334,7 @@ EditorOptions parseEditorOptions(const QStringList& arguments)
   o.openAnswer = p.value(openAnswer);
   if (p.isSet(cancelDialogs))
     o.cancelDialogs = integerOption(p.value(cancelDialogs), "--cancel-dialogs", 0, 1000);
+  o.printStatus = p.isSet(printStatus);
   if (p.isSet(wheel))
     o.wheel = integerOption(p.value(wheel), "--wheel", -1000, 1000);
   o.recoveryAnswer = p.value(recoveryAnswer).toLower();

@@ -34,6 +34,7 @@ struct EditorOptions
   QString keys, keysAfter;    // --keys / --keys-after: key presses before / after the drag ("G ] Ctrl+Z")
   bool dragCtrl = false, dragShift = false; // --drag-modifiers ctrl,shift
   int cancelDialogs = 0;      // --cancel-dialogs N: the first N file dialogs are cancelled (tests)
+  bool printStatus = false;   // --print-status: print the status bar's text when the work is done (tests)
   int wheel = 0;              // --wheel N: wheel steps over the first --replay-drag point before the press (< 0: backward) (tests)
   QString saveAsAnswer;       // --save-as-answer FILE: what the Save As dialog answers (tests)
   QString openAnswer;         // --open-answer FILE: what an Open file dialog answers (tests)

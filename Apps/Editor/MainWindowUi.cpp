@@ -369,11 +369,16 @@ void MainWindow::updateStatus()
   const auto& d = v.dims();
   const auto& s = v.options().spacing;
   const double mib = double(v.memoryBytes()) / (1024.0 * 1024.0);
+  // the voxel's size on every axis where they differ (a grid of spacing 1, 2, 1
+  // said "voxel 1")
+  QString voxel = QString::number(s[0], 'g', 4);
+  if (s[1] != s[0] || s[2] != s[0])
+    voxel += QString(" x %1 x %2").arg(s[1], 0, 'g', 4).arg(s[2], 0, 'g', 4);
   QString text = QString("%1 x %2 x %3 voxels | voxel %4 | %5 MiB | %6")
                    .arg(d[0])
                    .arg(d[1])
                    .arg(d[2])
-                   .arg(s[0], 0, 'g', 4)
+                   .arg(voxel)
                    .arg(mib, 0, 'f', 1)
                    .arg(this->Doc.modified() ? "modified" : (this->Doc.path().isEmpty() ? "not saved" : "saved"));
   if (this->LastEdit.isValid())
