@@ -127,7 +127,10 @@ QStringList editorArguments(int argc, char* argv[])
 EditorOptions parseEditorOptions(const QStringList& arguments)
 {
   QCommandLineParser p;
-  p.setApplicationDescription("LVDIF volume editor");
+  // the exit status rule, as every `lvdif` command's --help gives it (the editor's gave none)
+  p.setApplicationDescription("LVDIF volume editor\n\nexit status: 0 done, 1 failed while running (an input that "
+                              "cannot be read, a failed step of a batch run; nothing is written after it), 2 "
+                              "command line refused (nothing read or written)");
   p.addHelpOption();
   const LVDIFFiles::Kind volumeKind = LVDIFFiles::Kind::Volume, meshKind = LVDIFFiles::Kind::Mesh;
   const QCommandLineOption open("open", "Open a volume (" + extensions(volumeKind, false) + ").", "file");
