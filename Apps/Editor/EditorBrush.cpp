@@ -5,6 +5,7 @@
 #include "vtkObjectFactory.h"
 #include "vtkRenderer.h"
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <utility>
