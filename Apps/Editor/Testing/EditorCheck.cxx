@@ -44,6 +44,10 @@
 //   --cursor-aspect T.png RATIO   the pure green pixels (the cursor in a
 //                       --color #00ff00 run, drawn unlit) span a box of
 //                       height / width = RATIO within 15 %.
+//   --tube-thickness T.png RATIO   a --color #00ff00 Dynamic stroke's preview
+//                       (translucent green) is at its thickest RATIO times as
+//                       tall as the cursor (pure green, the full radius at
+//                       the stroke's end) within 20 %.
 //   --mesh-sphere V.vti V is that sphere converted by --open-mesh: every voxel's
 //                       distance equals the analytic sphere's in voxel units
 //                       (world distance / spacing, saturated at the 8-voxel
@@ -70,6 +74,7 @@
 #include <cstring>
 #include <fstream>
 #include <string>
+#include <vector>
 
 namespace
 {
@@ -432,6 +437,51 @@ void checkCursorAspect(const char* path, double ratio)
   check(std::fabs(h / w - ratio) <= 0.15 * ratio, "the cursor's height / width is the spacing's");
 }
 
+void checkTubeThickness(const char* path, double ratio)
+{
+  vtkNew<vtkPNGReader> r;
+  r->SetFileName(path);
+  r->Update();
+  vtkImageData* img = r->GetOutput();
+  int dims[3];
+  img->GetDimensions(dims);
+  if (img->GetNumberOfScalarComponents() < 3)
+  {
+    check(false, std::string(path) + " is an RGB picture");
+    return;
+  }
+  // the cursor: unlit pure green; the tube: green blended at 0.45 over the scene
+  int cursorLo = dims[1], cursorHi = -1, cursorLeft = dims[0];
+  std::vector<int> tubeLo(dims[0], dims[1]), tubeHi(dims[0], -1);
+  for (int j = 0; j < dims[1]; ++j)
+    for (int i = 0; i < dims[0]; ++i)
+    {
+      const auto* p = static_cast<unsigned char*>(img->GetScalarPointer(i, j, 0));
+      if (p[1] > 230 && p[0] < 40 && p[2] < 40)
+      {
+        cursorLo = std::min(cursorLo, j);
+        cursorHi = std::max(cursorHi, j);
+        cursorLeft = std::min(cursorLeft, i);
+      }
+      else if (p[1] <= 230 && p[1] > p[0] + 60 && p[1] > p[2] + 60)
+      {
+        tubeLo[i] = std::min(tubeLo[i], j);
+        tubeHi[i] = std::max(tubeHi[i], j);
+      }
+    }
+  int thickest = 0;
+  for (int i = 0; i < cursorLeft; ++i) // left of the cursor: the tube alone
+    thickest = std::max(thickest, tubeHi[i] - tubeLo[i] + 1);
+  const int cursor = cursorHi - cursorLo + 1;
+  check(cursor > 4 && thickest > 4, "the cursor and the preview are in the picture (" + std::to_string(cursor) +
+      " and " + std::to_string(thickest) + " pixels tall)");
+  if (cursor <= 4 || thickest <= 4)
+    return;
+  std::printf("preview %d pixels tall at its thickest, cursor %d: ratio %g (expected %g)\n", thickest, cursor,
+    double(thickest) / cursor, ratio);
+  check(std::fabs(double(thickest) / cursor - ratio) <= 0.2 * ratio, "the preview's section is the dabs'");
+}
+
 void writeMatcapPng(const char* path)
 {
   vtkNew<vtkImageData> img;
@@ -571,6 +621,11 @@ int main(int argc, char* argv[])
     else if (!std::strcmp(argv[i], "--cursor-aspect") && i + 2 < argc)
     {
       checkCursorAspect(argv[i + 1], std::atof(argv[i + 2]));
+      i += 2;
+    }
+    else if (!std::strcmp(argv[i], "--tube-thickness") && i + 2 < argc)
+    {
+      checkTubeThickness(argv[i + 1], std::atof(argv[i + 2]));
       i += 2;
     }
     else if (!std::strcmp(argv[i], "--mesh-sphere") && i + 1 < argc)
