@@ -405,22 +405,33 @@ void writeStretchedVti(const char* path)
   check(w->Write() == 1, std::string("wrote the stretched volume ") + path);
 }
 
-void checkCursorAspect(const char* path, double ratio)
+/// A screenshot's pixels (RGB), or nullptr (a failed check) if it is none.
+vtkSmartPointer<vtkImageData> readPicture(const char* path, int dims[3])
 {
   vtkNew<vtkPNGReader> r;
   r->SetFileName(path);
   r->Update();
-  vtkImageData* img = r->GetOutput();
-  int dims[3];
+  auto img = vtkSmartPointer<vtkImageData>::New();
+  img->ShallowCopy(r->GetOutput());
   img->GetDimensions(dims);
-  const int comps = img->GetNumberOfScalarComponents();
+  const bool rgb = img->GetNumberOfScalarComponents() >= 3;
+  check(rgb, std::string(path) + " is an RGB picture");
+  return rgb ? img : nullptr;
+}
+
+void checkCursorAspect(const char* path, double ratio)
+{
+  int dims[3];
+  const auto img = readPicture(path, dims);
+  if (!img)
+    return;
   int lo[2] = { dims[0], dims[1] }, hi[2] = { -1, -1 };
   long count = 0;
   for (int j = 0; j < dims[1]; ++j)
     for (int i = 0; i < dims[0]; ++i)
     {
       const auto* p = static_cast<unsigned char*>(img->GetScalarPointer(i, j, 0));
-      if (comps >= 3 && p[1] > 150 && p[0] < 90 && p[2] < 90)
+      if (p[1] > 150 && p[0] < 90 && p[2] < 90)
       {
         ++count;
         lo[0] = std::min(lo[0], i);
@@ -439,17 +450,10 @@ void checkCursorAspect(const char* path, double ratio)
 
 void checkTubeThickness(const char* path, double ratio)
 {
-  vtkNew<vtkPNGReader> r;
-  r->SetFileName(path);
-  r->Update();
-  vtkImageData* img = r->GetOutput();
   int dims[3];
-  img->GetDimensions(dims);
-  if (img->GetNumberOfScalarComponents() < 3)
-  {
-    check(false, std::string(path) + " is an RGB picture");
+  const auto img = readPicture(path, dims);
+  if (!img)
     return;
-  }
   // the cursor: unlit pure green; the tube: green blended at 0.45 over the scene
   int cursorLo = dims[1], cursorHi = -1, cursorLeft = dims[0];
   std::vector<int> tubeLo(dims[0], dims[1]), tubeHi(dims[0], -1);
