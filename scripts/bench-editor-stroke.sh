@@ -31,7 +31,7 @@ for r in 15 40; do
     echo "## radius $r run $i, load before: $(cut -d' ' -f1-3 /proc/loadavg)"
     OMP_NUM_THREADS=2 taskset -c 0,1 timeout 900 xvfb-run -a -s "-screen 0 1280x1024x24 -noreset" \
       "$EDITOR" --open "$OUT/sphere$N.lvdv" --op add --brush drill --radius "$r" --color "#e65032" \
-      --size 640x480 --no-recovery --autosave 0 --benchmark-stroke "$OUT/stroke$N.jsonl" ${EDITOR_ARGS:-} > "$L" 2>&1
+      --size 640x669 --no-recovery --autosave 0 --benchmark-stroke "$OUT/stroke$N.jsonl" ${EDITOR_ARGS:-} > "$L" 2>&1
     echo "rc=$?, load after: $(cut -d' ' -f1-3 /proc/loadavg)" | tee -a "$L"
     grep "^benchmark-stroke:" "$L" | grep -v "frames are drawn by"
   done

@@ -13,8 +13,11 @@
 #include <QFileInfo>
 #include <QKeyEvent>
 #include <QKeySequence>
+#include <QLabel>
 #include <QMouseEvent>
+#include <QProgressDialog>
 #include <QTimer>
+#include <QWheelEvent>
 #include <QWindow>
 #ifdef LVDIF_EDITOR_HAVE_QTTEST
 #include <QTest>
@@ -22,6 +25,7 @@
 
 #include <cctype>
 #include <cmath>
+#include <cstdlib>
 #include <cstdio>
 
 EditorDriver::EditorDriver(MainWindow& window, const EditorOptions& options, QElapsedTimer sinceWindow)
@@ -37,8 +41,11 @@ int EditorDriver::runBatch()
   const EditorOptions& o = this->Options;
   bool ok = true;
   this->waitForLayout(); // a native view draws (and so gives screenshots) only once its window is exposed
-  if (!o.saveAsAnswer.isEmpty() || !o.openAnswer.isEmpty())
-    this->answerSaveDialogs(o.saveAsAnswer, o.openAnswer);
+  // A batch run answers every dialog: with the answers given, else it is
+  // cancelled and the run fails naming the option to give (a key's Save As, a
+  // recording's Stop or a question waited forever for nobody).
+  if (o.batch() || !o.saveAsAnswer.isEmpty() || !o.openAnswer.isEmpty() || o.cancelDialogs > 0)
+    this->answerSaveDialogs(o.saveAsAnswer, o.openAnswer, o.cancelDialogs);
   // a script first: it sets the scene the keys and the drag then work on
   if (!o.script.isEmpty())
     ok = this->Window.runScript(o.script) && ok;
@@ -49,7 +56,7 @@ int EditorDriver::runBatch()
   if (!o.drag.isEmpty())
   {
     this->waitForSurface(); // the surface must be there to be picked
-    this->drag(o.drag, o.dragCtrl, o.dragShift, o.dragShot);
+    this->drag(o.drag, o.dragCtrl, o.dragShift, o.dragShot, o.wheel);
   }
   if (!o.keysAfter.isEmpty())
     ok = this->typeKeys(o.keysAfter) && ok;
@@ -57,7 +64,7 @@ int EditorDriver::runBatch()
     this->Window.undo();
   // an error reported by what a key or the drag did (Ctrl+S onto a file that
   // cannot be written, a brush that failed) fails the run too: it exited 0
-  ok = ok && this->Window.errorCount() == 0;
+  ok = ok && this->Window.errorCount() == 0 && this->Unanswered == 0;
   if (!ok)
   {
     // as in the command line: after a failure nothing is written, so a script
@@ -67,6 +74,12 @@ int EditorDriver::runBatch()
     return 1;
   }
   this->waitForSurface();
+  if (o.printStatus)
+  {
+    // the status bar's volume text, as a user reads it
+    if (auto* status = this->Window.findChild<QLabel*>("volumeStatus"))
+      std::printf("lvdif-editor: status: %s\n", status->text().toLocal8Bit().constData());
+  }
   if (!o.screenshot.isEmpty())
     ok = this->Window.saveScreenshot(o.screenshot) && ok;
   if (!o.windowShot.isEmpty())
@@ -75,7 +88,7 @@ int EditorDriver::runBatch()
     ok = this->Window.saveVolume(o.save) && ok;
   if (!o.exportMesh.isEmpty())
     ok = this->Window.exportMesh(o.exportMesh) && ok;
-  return ok && this->Window.errorCount() == 0 ? 0 : 1;
+  return ok && this->Window.errorCount() == 0 && this->Unanswered == 0 ? 0 : 1;
 }
 
 void EditorDriver::showAllMeshes()
@@ -117,7 +130,8 @@ void EditorDriver::waitForLayout()
   std::fprintf(stderr, "lvdif-editor: the window was not laid out after 10 s; going on\n");
 }
 
-void EditorDriver::drag(const QVector<QPointF>& points, bool ctrl, bool shift, const QString& shotBeforeRelease)
+void EditorDriver::drag(
+  const QVector<QPointF>& points, bool ctrl, bool shift, const QString& shotBeforeRelease, int wheelSteps)
 {
   if (points.isEmpty())
     return;
@@ -163,6 +177,14 @@ void EditorDriver::drag(const QVector<QPointF>& points, bool ctrl, bool shift, c
   };
   modifierKeys(QEvent::KeyPress);
   mouse(QEvent::MouseMove, points.front(), Qt::NoButton, Qt::NoButton);
+  for (int i = 0; i < std::abs(wheelSteps); ++i)
+  {
+    const QPointF local = widgetPoint(points.front());
+    QWheelEvent event(local, local + v->mapToGlobal(QPoint(0, 0)), QPoint(), QPoint(0, wheelSteps > 0 ? 120 : -120),
+      Qt::NoButton, mods, Qt::NoScrollPhase, false);
+    QApplication::sendEvent(target, &event);
+    QApplication::processEvents();
+  }
   mouse(QEvent::MouseButtonPress, points.front(), Qt::LeftButton, Qt::LeftButton);
   QApplication::processEvents();
   this->showAllMeshes(); // the press's sample too: the first move picks on its result
@@ -231,41 +253,54 @@ bool EditorDriver::typeKeys(const QString& keys)
 #endif
 }
 
-void EditorDriver::answerSaveDialogs(const QString& path, const QString& openPath)
+void EditorDriver::answerSaveDialogs(const QString& path, const QString& openPath, int cancels)
 {
-  if (this->SaveAnswer.isEmpty() && this->OpenAnswer.isEmpty())
+  if (!this->Answering)
   {
     // A file dialog runs its own event loop (exec): a timer of ours still fires in it.
     auto* timer = new QTimer(this);
     connect(timer, &QTimer::timeout, this, &EditorDriver::answerShownSaveDialog);
     timer->start(10);
+    this->Answering = true;
   }
   this->SaveAnswer = path;
   this->OpenAnswer = openPath;
+  this->CancelsLeft = cancels;
 }
 
 void EditorDriver::answerShownSaveDialog()
 {
   for (QWidget* w : QApplication::topLevelWidgets())
   {
-    auto* dialog = qobject_cast<QFileDialog*>(w);
-    if (!dialog || !dialog->isVisible())
+    auto* dialog = qobject_cast<QDialog*>(w);
+    // a progress dialog needs no answer (it closes when the work is done)
+    if (!dialog || !dialog->isVisible() || qobject_cast<QProgressDialog*>(dialog))
       continue;
-    if (dialog->acceptMode() == QFileDialog::AcceptOpen)
+    if (this->CancelsLeft > 0)
     {
-      if (!this->OpenAnswer.isEmpty())
-      {
-        dialog->selectFile(QFileInfo(this->OpenAnswer).absoluteFilePath());
-        static_cast<QDialog*>(dialog)->accept();
-      }
+      --this->CancelsLeft;
+      dialog->reject(); // as its Cancel button
       continue;
     }
-    if (this->SaveAnswer.isEmpty())
+    auto* files = qobject_cast<QFileDialog*>(dialog);
+    const bool opening = files && files->acceptMode() == QFileDialog::AcceptOpen;
+    const QString& answer = opening ? this->OpenAnswer : this->SaveAnswer;
+    if (!files || answer.isEmpty())
+    {
+      if (!this->Options.batch())
+        continue; // a user is there to answer it
+      // nobody is: the run waited for good
+      ++this->Unanswered;
+      std::fprintf(stderr, "lvdif-editor: the dialog '%s' opened in a batch run and was cancelled%s\n",
+        dialog->windowTitle().toLocal8Bit().constData(),
+        files ? (opening ? ": answer it with --open-answer FILE" : ": answer it with --save-as-answer FILE") : "");
+      dialog->reject();
       continue;
-    // a test's file may be there from an earlier run: no overwrite question
-    dialog->setOption(QFileDialog::DontConfirmOverwrite);
-    dialog->selectFile(QFileInfo(this->SaveAnswer).absoluteFilePath());
-    static_cast<QDialog*>(dialog)->accept(); // QFileDialog's accept, as its Save button calls it
+    }
+    if (!opening)
+      files->setOption(QFileDialog::DontConfirmOverwrite); // a test's file may be there from an earlier run
+    files->selectFile(QFileInfo(answer).absoluteFilePath());
+    static_cast<QDialog*>(files)->accept(); // QFileDialog's accept, as its Open or Save button calls it
   }
 }
 

@@ -46,7 +46,10 @@ public:
   /// bottom-left; fractions of the view if every coordinate is in [0, 1]) as Qt
   /// mouse events on the view, with Ctrl and/or Shift held as a user would.
   /// With `shotBeforeRelease`, a screenshot of the view before the release.
-  void drag(const QVector<QPointF>& points, bool ctrl, bool shift, const QString& shotBeforeRelease = QString());
+  /// With `wheelSteps`, the wheel turns that many steps (negative: backward)
+  /// over the first point before the press, as a user sizes the brush.
+  void drag(const QVector<QPointF>& points, bool ctrl, bool shift, const QString& shotBeforeRelease = QString(),
+    int wheelSteps = 0);
 
   /// Types key combinations ("G ] Ctrl+Z", QKeySequence's portable text, one per
   /// word; LeftBracket/RightBracket for [ and ]) into the window through Qt's
@@ -55,8 +58,10 @@ public:
   bool typeKeys(const QString& keys);
 
   /// From now on, a Save file dialog that opens is answered with `path`, an
-  /// Open file dialog with `openPath` (if not empty).
-  void answerSaveDialogs(const QString& path, const QString& openPath = QString());
+  /// Open file dialog with `openPath` (if not empty); in a batch run any other
+  /// dialog (or a file dialog without its answer) is cancelled, and the run fails.
+  /// The first `cancels` file dialogs are cancelled, as a user's Cancel.
+  void answerSaveDialogs(const QString& path, const QString& openPath = QString(), int cancels = 0);
 
   /// --benchmark-stroke: once the surface is shown, replays the samples of
   /// `path` through the brush input (StrokeBenchmark.h), prints the latency and
@@ -70,4 +75,7 @@ private:
   const EditorOptions& Options;
   QElapsedTimer SinceWindow;
   QString SaveAnswer, OpenAnswer;
+  int CancelsLeft = 0;
+  int Unanswered = 0; // dialogs a batch run cancelled for want of an answer
+  bool Answering = false;
 };

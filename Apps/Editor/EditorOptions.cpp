@@ -127,7 +127,10 @@ QStringList editorArguments(int argc, char* argv[])
 EditorOptions parseEditorOptions(const QStringList& arguments)
 {
   QCommandLineParser p;
-  p.setApplicationDescription("LVDIF volume editor");
+  // the exit status rule, as every `lvdif` command's --help gives it (the editor's gave none)
+  p.setApplicationDescription("LVDIF volume editor\n\nexit status: 0 done, 1 failed while running (an input that "
+                              "cannot be read, a failed step of a batch run; nothing is written after it), 2 "
+                              "command line refused (nothing read or written)");
   p.addHelpOption();
   const LVDIFFiles::Kind volumeKind = LVDIFFiles::Kind::Volume, meshKind = LVDIFFiles::Kind::Mesh;
   const QCommandLineOption open("open", "Open a volume (" + extensions(volumeKind, false) + ").", "file");
@@ -161,14 +164,26 @@ EditorOptions parseEditorOptions(const QStringList& arguments)
   const QCommandLineOption dragMods("drag-modifiers", "Keys held during --replay-drag: ctrl, shift or ctrl,shift.", "keys");
   const QCommandLineOption saveAsAnswer("save-as-answer", "The file the Save As dialog answers (tests).", "file");
   const QCommandLineOption openAnswer("open-answer", "The file an Open dialog answers (tests).", "file");
+  const QCommandLineOption cancelDialogs("cancel-dialogs",
+    "Cancel the first N dialogs that open; later ones get the answers above (tests).", "n");
+  const QCommandLineOption printStatus("print-status", "Print the status bar's text when the work is done (tests).");
+  const QCommandLineOption wheel("wheel",
+    "Turn the mouse wheel N steps over the first --replay-drag point before the press (negative: backward) (tests).",
+    "n");
   const QCommandLineOption recoveryAnswer("recovery-answer",
     "What the question to recover an autosaved volume answers: yes, no or discard; asked in a batch run too (tests).",
     "answer");
   const QCommandLineOption shape("shape", "Brush shape: sphere or cube (default sphere).", "shape", "sphere");
   const QCommandLineOption kind("brush", "Brush kind: basic, dynamic or drill (default basic).", "kind", "basic");
-  const QCommandLineOption radius("radius", "Brush radius in voxels, in (0, 1e7] (default 4).", "r", "4");
+  // the range and the default are Core's, one constant each (the editor said 4 where every other front end uses 3)
+  const QString maxRadius = QString::number(lvdif::EditLimits::MaxSize); // 1e+07
+  const QString defaultRadius = QString::number(EditorOptions().radius, 'g', 17);
+  const QCommandLineOption radius("radius",
+    "Brush radius in voxels, in (0, " + maxRadius + "] (default " + defaultRadius + ").", "r", defaultRadius);
   const QCommandLineOption color("color", "Brush colour, #rrggbb or an SVG colour name (default: the panel's).", "color");
-  const QCommandLineOption size("size", "Window size WxH in pixels (default 900x700).", "size", "900x700");
+  const QCommandLineOption size("size",
+    "Window size WxH in pixels (default 900x700); at least the window's least size (the Brush panel's height).",
+    "size", "900x700");
   const QCommandLineOption quit("quit", "Quit when the command-line work is done.");
   const QCommandLineOption noRecovery("no-recovery", "Do not offer to recover an autosaved volume.");
   const QCommandLineOption recoveryDir("recovery-dir", "Folder of the autosave file (default: the application's data folder).", "dir");
@@ -199,7 +214,7 @@ EditorOptions parseEditorOptions(const QStringList& arguments)
   // What a user reaches for first; the options for tests and comparisons last.
   p.addOptions({ open, openMesh, meshRes, meshSign, meshReorient, create, fill, script, save, exp, shot, windowShot,
     op, shape, kind, radius, color, strength, falloff, mirror, size, samples, perVertex, matcap, autosave, noRecovery,
-    recoveryDir, quit, drag, dragShot, undo, dragMods, keys, keysAfter, saveAsAnswer, openAnswer, recoveryAnswer, benchmark, timing, fullRedraw,
+    recoveryDir, quit, drag, dragShot, undo, dragMods, keys, keysAfter, saveAsAnswer, openAnswer, cancelDialogs, wheel, printStatus, recoveryAnswer, benchmark, timing, fullRedraw,
     drawRanges, multisampledDrag, stockBackground, widgetView });
   // an unknown option or a missing value: one line and status 2, as every
   // other refused option (Qt's process() exits with 1)
@@ -274,10 +289,16 @@ EditorOptions parseEditorOptions(const QStringList& arguments)
     {
       const QStringList xy = pt.split(',');
       bool ok1 = false, ok2 = false;
+      double x = 0, y = 0;
       if (xy.size() == 2)
-        o.drag.push_back(QPointF(xy[0].toDouble(&ok1), xy[1].toDouble(&ok2)));
-      if (!ok1 || !ok2)
-        fail("--replay-drag expects 'x,y;x,y;...', got '" + pt + "'");
+      {
+        x = xy[0].toDouble(&ok1);
+        y = xy[1].toDouble(&ok2);
+      }
+      // finite numbers: "nan,0.5" or "inf,1" were taken, and the drag went nowhere without a word
+      if (!ok1 || !ok2 || !std::isfinite(x) || !std::isfinite(y) || std::fabs(x) > 1e9 || std::fabs(y) > 1e9)
+        fail("--replay-drag expects 'x,y;x,y;...' (pixels, or fractions of the view), got '" + pt + "'");
+      o.drag.push_back(QPointF(x, y));
     }
   }
   o.undo = integerOption(p.value(undo), "--undo", 0, std::numeric_limits<int>::max());
@@ -314,6 +335,11 @@ EditorOptions parseEditorOptions(const QStringList& arguments)
   }
   o.saveAsAnswer = p.value(saveAsAnswer);
   o.openAnswer = p.value(openAnswer);
+  if (p.isSet(cancelDialogs))
+    o.cancelDialogs = integerOption(p.value(cancelDialogs), "--cancel-dialogs", 0, 1000);
+  o.printStatus = p.isSet(printStatus);
+  if (p.isSet(wheel))
+    o.wheel = integerOption(p.value(wheel), "--wheel", -1000, 1000);
   o.recoveryAnswer = p.value(recoveryAnswer).toLower();
   if (p.isSet(recoveryAnswer) && !QStringList{ "yes", "no", "discard" }.contains(o.recoveryAnswer))
     fail("--recovery-answer expects yes, no or discard, got '" + p.value(recoveryAnswer) + "'");
@@ -336,6 +362,7 @@ EditorOptions parseEditorOptions(const QStringList& arguments)
     o.width = integerOption(wh[0], "--size", 1, 16384);
     o.height = integerOption(wh[1], "--size", 1, 16384);
   }
+  o.sizeGiven = p.isSet(size);
   o.quit = p.isSet(quit);
   o.noRecovery = p.isSet(noRecovery);
   o.recoveryDir = p.value(recoveryDir);
@@ -365,6 +392,8 @@ EditorOptions parseEditorOptions(const QStringList& arguments)
   // (and, being no batch output, left the window open for good)
   if ((p.isSet(dragShot) || p.isSet(dragMods)) && !p.isSet(drag))
     fail("--screenshot-during-drag and --drag-modifiers are options of --replay-drag, which is not given");
+  if (p.isSet(wheel) && !p.isSet(drag))
+    fail("--wheel turns the wheel over the first point of --replay-drag, which is not given");
   // the benchmark replays its stroke and quits: the command line's other work
   // was silently skipped (--benchmark-stroke S --save out.lvdv saved nothing)
   if (p.isSet(benchmark))

@@ -5,6 +5,8 @@
 #include <QString>
 #include <QVector>
 
+#include "lvdif/Stroke.h"
+
 #include <array>
 
 struct EditorOptions
@@ -31,12 +33,16 @@ struct EditorOptions
   QString mirror;             // --mirror: letters of the mirrored axes, e.g. "x" or "xz"
   QString keys, keysAfter;    // --keys / --keys-after: key presses before / after the drag ("G ] Ctrl+Z")
   bool dragCtrl = false, dragShift = false; // --drag-modifiers ctrl,shift
+  int cancelDialogs = 0;      // --cancel-dialogs N: the first N file dialogs are cancelled (tests)
+  bool printStatus = false;   // --print-status: print the status bar's text when the work is done (tests)
+  int wheel = 0;              // --wheel N: wheel steps over the first --replay-drag point before the press (< 0: backward) (tests)
   QString saveAsAnswer;       // --save-as-answer FILE: what the Save As dialog answers (tests)
   QString openAnswer;         // --open-answer FILE: what an Open file dialog answers (tests)
   QString recoveryAnswer;     // --recovery-answer yes|no|discard: what the recovery question answers (tests)
-  double radius = 4.0;        // --radius voxels
+  double radius = lvdif::StrokeSettings{}.radius; // --radius voxels (Core's default, as the CLI, scripts and ParaView)
   QString color;              // --color #rrggbb
   int width = 900, height = 700; // --size WxH of the window
+  bool sizeGiven = false;     // --size given: below the window's least size it is refused (main.cpp)
   bool quit = false;          // --quit when done (implied by --screenshot/--save/--export)
   bool noRecovery = false;    // --no-recovery: never offer to recover
   QString recoveryDir;        // --recovery-dir DIR (default: the app data folder)

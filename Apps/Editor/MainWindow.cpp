@@ -4,10 +4,13 @@
 
 #include <QThread>
 
+#include "lvdif/EditLimits.h"
 #include "lvdif/Error.h"
 #include "lvdif/Recording.h"
 #include "lvdif/Script.h"
 
+#include "LVDIFFiles.h"
+#include "ProgressBar.h" // the CLI's (Apps/CLI)
 #include "vtkBrushRepresentation.h"
 #include "vtkBrushWidget.h"
 #include "vtkCallbackCommand.h"
@@ -361,7 +364,14 @@ void MainWindow::applyBrushState()
     // the surface change under the mouse; Dynamic needs the whole stroke
     // for its taper and is applied on release.
     e.stroke.kind = s.kind == 2 ? lvdif::BrushKind::Dynamic : lvdif::BrushKind::Drill;
-    this->BrushRep->SetRadius(s.radius * this->Doc.volume().options().spacing[0]);
+    // The cursor in world units of the x axis, scaled per axis to the dab's
+    // true extent (r * spacing[a]); the wheel's range is every edit input's,
+    // (0, EditLimits::MaxSize] voxels (the cursor capped it at 1e6 world units).
+    const auto& h = this->Doc.volume().options().spacing;
+    this->BrushRep->SetMaximumRadius(lvdif::EditLimits::MaxSize * h[0]);
+    this->BrushRep->SetMinimumRadius(1e-3 * h[0]);
+    this->BrushRep->SetAxisScale(1.0, h[1] / h[0], h[2] / h[0]);
+    this->BrushRep->SetRadius(s.radius * h[0]);
   }
   this->BrushRep->SetShape(s.shape == 1 ? vtkBrushRepresentation::Cube : vtkBrushRepresentation::Sphere);
   this->BrushRep->GetCursorProperty()->SetColor(s.color.redF(), s.color.greenF(), s.color.blueF());
@@ -602,7 +612,8 @@ void MainWindow::resetView()
 
 bool MainWindow::newCanvas(int nx, int ny, int nz, VolumeDocument::Fill fill)
 {
-  this->finishRecording();
+  if (!this->finishRecording())
+    return false; // the recording's Save was cancelled: the volume stays
   try
   {
     this->Chunks->RemoveAllChunks();
@@ -621,7 +632,8 @@ bool MainWindow::newCanvas(int nx, int ny, int nz, VolumeDocument::Fill fill)
 
 bool MainWindow::openVolume(const QString& path, bool untitled)
 {
-  this->finishRecording();
+  if (!this->finishRecording())
+    return false; // the recording's Save was cancelled: the volume stays
   try
   {
     this->Chunks->RemoveAllChunks();
@@ -641,11 +653,23 @@ bool MainWindow::openVolume(const QString& path, bool untitled)
 bool MainWindow::openMesh(const QString& path, const MeshImportSettings& settings)
 {
   QString error, warning;
-  auto volume = importMesh(this, path, settings, error, &warning);
+  std::shared_ptr<lvdif::DictionaryVolume> volume;
+  bool interrupted = false;
+  if (this->Options.batch())
+  {
+    // a batch run shows the conversion's progress as the CLI does (it was
+    // silent for minutes), and Ctrl-C cancels it
+    ProgressBar console;
+    volume = importMesh(this, path, settings, error, &warning, &console);
+    interrupted = console.wasInterrupted();
+  }
+  else
+    volume = importMesh(this, path, settings, error, &warning);
   if (!volume)
   {
-    if (!error.isEmpty())
-      this->showError("Cannot convert " + path, std::runtime_error(error.toStdString()));
+    if (!error.isEmpty() || interrupted)
+      this->showError("Cannot convert " + path,
+        std::runtime_error(interrupted ? std::string("cancelled (Ctrl-C)") : error.toStdString()));
     return false;
   }
   if (!warning.isEmpty())
@@ -656,7 +680,8 @@ bool MainWindow::openMesh(const QString& path, const MeshImportSettings& setting
     else
       QMessageBox::warning(this, "Open mesh", warning);
   }
-  this->finishRecording();
+  if (!this->finishRecording())
+    return false; // the recording's Save was cancelled: the volume stays
   try
   {
     this->Chunks->RemoveAllChunks();
@@ -715,18 +740,45 @@ void MainWindow::toggleRecording(bool on)
     this->Tools->setRecording(true);
     return;
   }
-  this->Tools->setRecording(false);
+  this->stopAndSaveRecording();
+}
+
+bool MainWindow::stopAndSaveRecording()
+{
   // a volume that replaced the recorded one (a script's `canvas N`) ended the
   // recording: Stop threw "not recording" out of the button's slot and the
   // editor aborted, with the unsaved volume
   if (!this->Doc.session().recording())
-    return;
-  const lvdif::Recording r = this->Doc.stopRecording();
+  {
+    this->Tools->setRecording(false);
+    return true;
+  }
+  // The file first, then the stop: Cancel in the dialog cancels the stop, and
+  // the recording goes on (Stop asks again). It stopped first and Cancel then
+  // threw the recorded work away.
   QString path = QFileDialog::getSaveFileName(this, "Save recording", QString(), "Recordings (*.lvr)");
   if (path.isEmpty())
-    return;
+  {
+    this->Tools->setRecording(true);
+    this->statusBar()->showMessage("The recording goes on: not saved (Stop asks again)", 5000);
+    return false;
+  }
   if (QFileInfo(path).suffix().isEmpty())
     path += ".lvr"; // as Save as adds .lvdv
+  try
+  {
+    // a folder that is not there or not writable: said while the recording
+    // can still go on (it cannot be resumed once stopped)
+    LVDIFFiles::RequireWritable(path.toStdString());
+  }
+  catch (const std::exception& e)
+  {
+    this->Tools->setRecording(true);
+    this->showError("Cannot save the recording (it goes on: Stop asks again)", e);
+    return false;
+  }
+  const lvdif::Recording r = this->Doc.stopRecording();
+  this->Tools->setRecording(false);
   try
   {
     lvdif::saveRecording(path.toStdString(), r);
@@ -735,6 +787,7 @@ void MainWindow::toggleRecording(bool on)
   {
     this->showError("Cannot save the recording", e);
   }
+  return true;
 }
 
 bool MainWindow::playRecording(const QString& path)
@@ -833,13 +886,15 @@ bool MainWindow::runScript(const QString& path)
   return true;
 }
 
-void MainWindow::finishRecording()
+bool MainWindow::finishRecording()
 {
   // A new volume is a new edit session: the recording of the old one ended
   // with it, unsaved, and the Stop button then aborted the editor. Stopped
-  // first, it is saved as Stop saves it.
+  // first, it is saved as Stop saves it; Cancel there keeps the recording and
+  // the volume, and the caller does not replace it.
   if (this->Doc.hasVolume() && this->Doc.session().recording())
-    this->toggleRecording(false);
+    return this->stopAndSaveRecording();
+  return true;
 }
 
 void MainWindow::volumeReplaced()
@@ -849,6 +904,11 @@ void MainWindow::volumeReplaced()
   const auto& o = this->Doc.volume().options();
   this->Chunks->SetOrigin(o.origin[0], o.origin[1], o.origin[2]);
   this->Chunks->SetSpacing(o.spacing[0], o.spacing[1], o.spacing[2]);
+  // where no surface is under the mouse, the brush may stand on the solid's box
+  double box[6];
+  this->volumeBounds(box);
+  this->BrushRep->SetVolume(box, [this](const double* world) { return this->Doc.insideAt(world); },
+    [this] { return this->Chunks->GetNumberOfChunks() > 0 || !this->Doc.meshingIdle(); });
   this->applyBrushState();
   this->ViewInitialized = false;
   this->Brush->On();

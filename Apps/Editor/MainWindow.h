@@ -2,6 +2,7 @@
 // panel, menus, the mesh polling timer, autosave and recovery.
 #pragma once
 
+#include "EditorBrush.h"
 #include "EditorOptions.h"
 #include "EditorRenderWindow.h"
 #include "vtkGradientBackgroundRenderer.h"
@@ -224,9 +225,13 @@ private:
   void screenshotDialog();
   void scriptDialog();
   void toggleRecording(bool on);
-  /// Before another volume replaces this one: a recording in progress is
-  /// stopped and saved as Stop does (the new session would end it unsaved).
-  void finishRecording();
+  /// Stop: asks for the recording's file, then stops and saves it; Cancel
+  /// (or a file that cannot be written) keeps it recording. True if stopped.
+  bool stopAndSaveRecording();
+  /// Before another volume replaces this one, or the window closes: a
+  /// recording in progress is stopped and saved as Stop does (the new session
+  /// would end it unsaved); false if that was cancelled (the caller stops).
+  bool finishRecording();
   void showError(const QString& what, const std::exception& e);
 
   EditorOptions Options;
@@ -257,7 +262,7 @@ private:
   vtkNew<vtkGradientBackgroundRenderer> Renderer; // its gradient background's quad kept between frames
   vtkNew<vtkChunkActorManager> Chunks;
   vtkNew<vtkPartialRedrawCuller> Redraw; // partial redraws while the camera stands still
-  vtkNew<vtkBrushRepresentation> BrushRep;
+  vtkNew<EditorBrushRepresentation> BrushRep; // on the surface, or on the solid's box (EditorBrush.h)
   vtkNew<vtkBrushWidget> Brush;
   bool ViewInitialized = false;
   bool Painting = false;

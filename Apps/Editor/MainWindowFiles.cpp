@@ -8,7 +8,9 @@
 #include "vtkCleanPolyData.h"
 #include "vtkGenericOpenGLRenderWindow.h"
 #include "vtkNew.h"
+#include "vtkPoints.h"
 #include "vtkPolyData.h"
+#include "vtkSmartPointer.h"
 
 #include <QComboBox>
 #include <QDialog>
@@ -22,6 +24,7 @@
 #include <QMessageBox>
 #include <QSpinBox>
 
+#include <cstdio>
 #include <stdexcept>
 
 void MainWindow::newDialog()
@@ -106,6 +109,7 @@ void MainWindow::exportDialog()
 
 bool MainWindow::exportMesh(const QString& path)
 {
+  bool empty = false;
   try
   {
     this->Doc.waitMeshingIdle(); // every chunk, not only those shown so far
@@ -117,14 +121,27 @@ bool MainWindow::exportMesh(const QString& path)
     clean->SetTolerance(0.0);
     clean->Update();
     vtkPolyData* mesh = clean->GetOutput();
-    if (mesh->GetNumberOfPolys() == 0)
-      throw std::runtime_error("the volume has no surface");
+    // A volume without a surface (an Empty or Full canvas) exports an empty
+    // mesh, a valid file, with a warning, as `lvdif mesh` does: it was an
+    // error (no file, exit status 1) where the CLI writes the file.
+    empty = mesh->GetNumberOfPolys() == 0;
+    if (!mesh->GetPoints())
+      mesh->SetPoints(vtkSmartPointer<vtkPoints>::New()); // VTK's writers refuse a mesh without points
     LVDIFFiles::SaveMesh(mesh, path.toLocal8Bit().constData()); // by extension, the one file registry
   }
   catch (const std::exception& e)
   {
     this->showError("Cannot export " + path, e);
     return false;
+  }
+  if (empty)
+  {
+    const QString warning =
+      "the volume has no surface (its distances never change sign at 0), so the mesh has no triangles";
+    if (this->Options.batch())
+      std::fprintf(stderr, "lvdif-editor: warning: %s\n", warning.toLocal8Bit().constData());
+    else
+      QMessageBox::warning(this, "Export mesh", "Exported " + path + ", but " + warning + ".");
   }
   return true;
 }

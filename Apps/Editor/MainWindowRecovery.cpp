@@ -11,6 +11,7 @@
 #include <QStandardPaths>
 #include <QStatusBar>
 
+#include <cstdio>
 #include <exception>
 #include <memory>
 
@@ -130,11 +131,16 @@ bool MainWindow::maybeSave()
 
 void MainWindow::closeEvent(QCloseEvent* event)
 {
-  if (!this->Options.batch() && !this->maybeSave())
+  // a recording in progress is saved as Stop saves it (the window closed and
+  // it was gone); Cancel keeps the window open
+  if (!this->Options.batch() && (!this->maybeSave() || !this->finishRecording()))
   {
     event->ignore();
     return;
   }
+  // a batch run has nobody to answer the recording's Save dialog: said, not silent
+  if (this->Options.batch() && this->Doc.hasVolume() && this->Doc.session().recording())
+    std::fprintf(stderr, "lvdif-editor: warning: the recording in progress was not saved (Ctrl+R stops and saves it)\n");
   if (this->RecoveryOwned)
     QFile::remove(this->RecoveryFile); // a normal end: nothing to recover
   event->accept();

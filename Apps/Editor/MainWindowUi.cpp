@@ -369,11 +369,16 @@ void MainWindow::updateStatus()
   const auto& d = v.dims();
   const auto& s = v.options().spacing;
   const double mib = double(v.memoryBytes()) / (1024.0 * 1024.0);
+  // the voxel's size on every axis where they differ (a grid of spacing 1, 2, 1
+  // said "voxel 1")
+  QString voxel = QString::number(s[0], 'g', 4);
+  if (s[1] != s[0] || s[2] != s[0])
+    voxel += QString(" x %1 x %2").arg(s[1], 0, 'g', 4).arg(s[2], 0, 'g', 4);
   QString text = QString("%1 x %2 x %3 voxels | voxel %4 | %5 MiB | %6")
                    .arg(d[0])
                    .arg(d[1])
                    .arg(d[2])
-                   .arg(s[0], 0, 'g', 4)
+                   .arg(voxel)
                    .arg(mib, 0, 'f', 1)
                    .arg(this->Doc.modified() ? "modified" : (this->Doc.path().isEmpty() ? "not saved" : "saved"));
   if (this->LastEdit.isValid())
@@ -455,18 +460,26 @@ void MainWindow::updatePreview(const double* world, bool reset)
   const std::size_t n = this->PreviewPoints.size();
   if (n < 2)
     return;
-  // the tapered tube the Dynamic stroke will make if released now: radius from
-  // the full one at the start to the minimum at the end, linear in arc length
+  // The tapered tube the Dynamic stroke will make if released now: radius from
+  // the full one at the start to the stroke's end radius (Core's minRadius),
+  // linear in arc length. Built in voxel coordinates, where the stroke is, and
+  // placed by the actor's scale and position: on a grid of spacing (1, 2, 1)
+  // its section is the dabs' (r * spacing per axis; it was a round tube of
+  // the x spacing).
+  const auto& o = this->Doc.volume().options();
+  std::vector<std::array<double, 3>> voxels(n);
+  for (std::size_t i = 0; i < n; ++i)
+    for (int a = 0; a < 3; ++a)
+      voxels[i][a] = (this->PreviewPoints[i][a] - o.origin[a]) / o.spacing[a];
   std::vector<double> arc(n, 0.0);
   for (std::size_t i = 1; i < n; ++i)
   {
     double l = 0;
     for (int a = 0; a < 3; ++a)
-      l += std::pow(this->PreviewPoints[i][a] - this->PreviewPoints[i - 1][a], 2);
+      l += std::pow(voxels[i][a] - voxels[i - 1][a], 2);
     arc[i] = arc[i - 1] + std::sqrt(l);
   }
-  const double h = this->Doc.volume().options().spacing[0];
-  const double r0 = this->Tools->state().radius * h, r1 = std::min(r0, 1.0 * h);
+  const double r0 = this->Tools->state().radius, r1 = std::min(r0, this->Doc.editor().stroke.minRadius);
   vtkNew<vtkPoints> pts;
   vtkNew<vtkDoubleArray> radii;
   radii->SetName("radius");
@@ -474,7 +487,7 @@ void MainWindow::updatePreview(const double* world, bool reset)
   line->InsertNextCell(static_cast<vtkIdType>(n));
   for (std::size_t i = 0; i < n; ++i)
   {
-    pts->InsertNextPoint(this->PreviewPoints[i].data());
+    pts->InsertNextPoint(voxels[i].data());
     radii->InsertNextValue(arc.back() > 0 ? r0 + (r1 - r0) * arc[i] / arc.back() : r0);
     line->InsertCellPoint(static_cast<vtkIdType>(i));
   }
@@ -500,6 +513,8 @@ void MainWindow::updatePreview(const double* world, bool reset)
   const QColor c = this->effectiveOp() == 1 ? QColor(230, 70, 60) : this->Tools->state().color;
   this->Preview->GetProperty()->SetColor(c.redF(), c.greenF(), c.blueF());
   this->Preview->SetMapper(mapper);
+  this->Preview->SetScale(o.spacing[0], o.spacing[1], o.spacing[2]); // voxels to world
+  this->Preview->SetPosition(o.origin[0], o.origin[1], o.origin[2]);
   this->RenderWindow->Render();
 }
 

@@ -120,7 +120,8 @@ bool askMeshImportSettings(QWidget* parent, MeshImportSettings& settings)
 }
 
 std::shared_ptr<lvdif::DictionaryVolume> importMesh(
-  QWidget* parent, const QString& path, const MeshImportSettings& settings, QString& error, QString* warning)
+  QWidget* parent, const QString& path, const MeshImportSettings& settings, QString& error, QString* warning,
+  lvdif::Interrupter* console)
 {
   error.clear();
   if (warning)
@@ -172,10 +173,14 @@ std::shared_ptr<lvdif::DictionaryVolume> importMesh(
   dlg.setMinimumDuration(300);
   QEventLoop loop;
   QTimer timer;
+  if (console)
+    console->start("mesh to SDF"); // the CLI's stage name
   QObject::connect(&timer, &QTimer::timeout, [&] {
-    if (dlg.wasCanceled())
+    if (dlg.wasCanceled() || (console && console->wasInterrupted()))
       progress->Cancel.store(true);
     dlg.setValue(static_cast<int>(1000 * progress->Fraction.load()) % 1000);
+    if (console)
+      console->progress(progress->Fraction.load());
     if (done.load())
       loop.quit();
   });
@@ -183,6 +188,8 @@ std::shared_ptr<lvdif::DictionaryVolume> importMesh(
   loop.exec();
   worker.join();
   dlg.reset();
+  if (console && volume && !progress->Cancel.load())
+    console->end(); // "mesh to SDF: done" only when it is (a failure prints its error alone)
 
   if (progress->Cancel.load())
     return nullptr; // cancelled: error stays empty

@@ -6,6 +6,7 @@
 #pragma once
 
 #include "lvdif/DictionaryVolume.h"
+#include "lvdif/Interrupter.h"
 
 #include <QString>
 
@@ -32,5 +33,8 @@ int meshSignModeFromName(const QString& name);
 /// Converts the mesh, showing progress under `parent`. Returns the volume, or
 /// nullptr with `error` set (empty when the user cancelled). `warning`
 /// (optional): what the conversion warned about (e.g. no voxel inside), or empty.
+/// `console` (a batch run, which has nobody to watch a dialog): the progress
+/// goes to it too, as the CLI's (the CLI's ProgressBar), and it may cancel (Ctrl-C).
 std::shared_ptr<lvdif::DictionaryVolume> importMesh(QWidget* parent, const QString& path,
-  const MeshImportSettings& settings, QString& error, QString* warning = nullptr);
+  const MeshImportSettings& settings, QString& error, QString* warning = nullptr,
+  lvdif::Interrupter* console = nullptr);

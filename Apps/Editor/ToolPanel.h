@@ -3,6 +3,8 @@
 // and says so; MainWindow applies it to the Core editor.
 #pragma once
 
+#include "lvdif/Stroke.h"
+
 #include <QColor>
 #include <QWidget>
 
@@ -18,7 +20,7 @@ struct BrushState
   int op = 0;    // lvdif::BrushOp: 0 add, 1 subtract, 2 paint, 3 smooth, 4 inflate, 5 grab, 6 flatten, 7 crease, 8 pinch
   int shape = 0; // 0 sphere, 1 cube (lvdif::BrushShape)
   int kind = 1;  // 1 basic, 2 dynamic, 3 drill (lvdif::BrushKind)
-  double radius = 4.0; // voxels
+  double radius = lvdif::StrokeSettings{}.radius; // voxels: Core's default, as every front end
   double blend = 0.0;  // voxels
   double strength = 1.0; // (0, 1]
   int falloff = 0;       // lvdif::Falloff: 0 constant, 1 linear, 2 smooth, 3 sharp

@@ -11,6 +11,7 @@
 #include "vtkOutputWindow.h"
 #include "vtkSmartPointer.h"
 
+#include <algorithm>
 #include <cmath>
 #include <iostream>
 
@@ -259,4 +260,17 @@ void VolumeDocument::waitMeshingIdle()
   {
     this->Session->waitMeshingIdle();
   }
+}
+
+bool VolumeDocument::insideAt(const double world[3])
+{
+  const lvdif::DictionaryVolume& v = this->Session->volume(); // synced: the brushes may run on the GPU
+  const auto& o = v.options();
+  std::int64_t i[3];
+  for (int a = 0; a < 3; ++a)
+  {
+    const double x = std::round((world[a] - o.origin[a]) / o.spacing[a]);
+    i[a] = static_cast<std::int64_t>(std::max(0.0, std::min(double(v.dims()[a] - 1), std::isfinite(x) ? x : 0.0)));
+  }
+  return v.sdf(i[0], i[1], i[2]) < 0;
 }

@@ -43,6 +43,9 @@ public:
   void adopt(std::shared_ptr<lvdif::DictionaryVolume> volume);
 
   bool hasVolume() const { return this->Session != nullptr; }
+  /// Whether the voxel nearest a world point (clamped into the volume) is
+  /// inside the solid (on the GPU the host copy is synced first).
+  bool insideAt(const double world[3]);
   /// The volume's geometry, options and dictionaries (on the GPU its voxels are
   /// synced only for saving: lvdif::EditSession::hostVolume).
   const lvdif::DictionaryVolume& volume() const { return this->Session->hostVolume(); }

@@ -10,6 +10,7 @@
 #include <QTimer>
 #include <QVTKOpenGLNativeWidget.h>
 
+#include <algorithm>
 #include <clocale>
 #include <cstdio>
 #include <cstdlib>
@@ -80,6 +81,18 @@ int main(int argc, char* argv[])
   QElapsedTimer sinceWindow;
   sinceWindow.start();
   MainWindow window(options);
+  // A --size below the least size of the window (the Brush panel's height, the
+  // menus' width) was silently enlarged, and the screenshots came out another
+  // size than asked: refused, naming the least size (the default grows to it).
+  const QSize least = window.minimumSizeHint().expandedTo(window.minimumSize());
+  if (options.sizeGiven && (options.width < least.width() || options.height < least.height()))
+  {
+    std::fprintf(stderr,
+      "lvdif-editor: --size %dx%d is smaller than this window can be, %dx%d (the Brush panel and the menus): give at "
+      "least that\n",
+      options.width, options.height, std::max(options.width, least.width()), std::max(options.height, least.height()));
+    return 2;
+  }
   // the command line's work (batch, keys, drag, benchmark) drives the window from outside
   EditorDriver driver(window, options, sinceWindow);
   window.show();

@@ -33,6 +33,21 @@
 //                       128 x 64 segments) for --open-mesh (runs before the editor).
 //   --write-sphere-obj-reversed-cap F.obj   the same sphere with its top quarter's
 //                       faces reversed (a damaged export; --mesh-reorient repairs it).
+//   --dab-on-uniform V.vti inside|outside X Y Z R   V was a canvas filled
+//                       uniformly (Full: inside, Empty: outside) and one dab
+//                       of radius R at voxel (X, Y, Z) changed it: some voxel
+//                       changed sides, and every one that did lies within
+//                       R + 1.5 voxels of (X, Y, Z).
+//   --write-stretched-vti F.vti   writes a 48 x 24 x 48 .vti of spacing
+//                       (1, 2, 1), a sphere of radius 15 world units in its
+//                       middle (sdf in x voxels, grey), for the cursor test.
+//   --cursor-aspect T.png RATIO   the pure green pixels (the cursor in a
+//                       --color #00ff00 run, drawn unlit) span a box of
+//                       height / width = RATIO within 15 %.
+//   --tube-thickness T.png RATIO   a --color #00ff00 Dynamic stroke's preview
+//                       (translucent green) is at its thickest RATIO times as
+//                       tall as the cursor (pure green, the full radius at
+//                       the stroke's end) within 20 %.
 //   --mesh-sphere V.vti V is that sphere converted by --open-mesh: every voxel's
 //                       distance equals the analytic sphere's in voxel units
 //                       (world distance / spacing, saturated at the 8-voxel
@@ -50,13 +65,16 @@
 #include "vtkPolyData.h"
 #include "vtkUnsignedCharArray.h"
 #include "vtkXMLImageDataReader.h"
+#include "vtkXMLImageDataWriter.h"
 
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <cstring>
 #include <fstream>
 #include <string>
+#include <vector>
 
 namespace
 {
@@ -334,6 +352,140 @@ void checkMesh(const char* path)
 }
 } // namespace
 
+void checkDabOnUniform(const char* path, bool inside, const double c[3], double r)
+{
+  auto img = readVolume(path);
+  int dims[3];
+  img->GetDimensions(dims);
+  auto* sdf = vtkFloatArray::SafeDownCast(img->GetPointData()->GetArray("sdf"));
+  check(sdf != nullptr, std::string(path) + " has an sdf array");
+  if (!sdf)
+    return;
+  long changed = 0, astray = 0;
+  double farthest = 0;
+  vtkIdType id = 0;
+  for (int k = 0; k < dims[2]; ++k)
+    for (int j = 0; j < dims[1]; ++j)
+      for (int i = 0; i < dims[0]; ++i, ++id)
+        if ((sdf->GetValue(id) < 0) != inside)
+        {
+          ++changed;
+          const double d = std::sqrt((i - c[0]) * (i - c[0]) + (j - c[1]) * (j - c[1]) + (k - c[2]) * (k - c[2]));
+          farthest = std::max(farthest, d);
+          astray += d > r + 1.5;
+        }
+  std::printf("voxels that changed sides: %ld, the farthest %g voxels from the dab's centre\n", changed, farthest);
+  check(changed > 0, "the brush changed the uniform canvas");
+  check(astray == 0, "every change lies within the dab at the expected point (" + std::to_string(astray) + " beyond it)");
+}
+
+void writeStretchedVti(const char* path)
+{
+  vtkNew<vtkImageData> img;
+  img->SetDimensions(48, 24, 48);
+  img->SetSpacing(1, 2, 1);
+  vtkNew<vtkFloatArray> sdf;
+  sdf->SetName("sdf");
+  vtkNew<vtkUnsignedCharArray> rgba;
+  rgba->SetName("rgba");
+  rgba->SetNumberOfComponents(4);
+  for (int k = 0; k < 48; ++k)
+    for (int j = 0; j < 24; ++j)
+      for (int i = 0; i < 48; ++i)
+      {
+        const double x = i - 23.5, y = 2 * j - 23, z = k - 23.5;
+        sdf->InsertNextValue(static_cast<float>(std::max(-8.0, std::min(8.0, std::sqrt(x * x + y * y + z * z) - 15))));
+        rgba->InsertNextTuple4(200, 200, 200, 255);
+      }
+  img->GetPointData()->AddArray(sdf);
+  img->GetPointData()->AddArray(rgba);
+  vtkNew<vtkXMLImageDataWriter> w;
+  w->SetFileName(path);
+  w->SetInputData(img);
+  check(w->Write() == 1, std::string("wrote the stretched volume ") + path);
+}
+
+/// A screenshot's pixels (RGB), or nullptr (a failed check) if it is none.
+vtkSmartPointer<vtkImageData> readPicture(const char* path, int dims[3])
+{
+  vtkNew<vtkPNGReader> r;
+  r->SetFileName(path);
+  r->Update();
+  auto img = vtkSmartPointer<vtkImageData>::New();
+  img->ShallowCopy(r->GetOutput());
+  img->GetDimensions(dims);
+  const bool rgb = img->GetNumberOfScalarComponents() >= 3;
+  check(rgb, std::string(path) + " is an RGB picture");
+  return rgb ? img : nullptr;
+}
+
+void checkCursorAspect(const char* path, double ratio)
+{
+  int dims[3];
+  const auto img = readPicture(path, dims);
+  if (!img)
+    return;
+  int lo[2] = { dims[0], dims[1] }, hi[2] = { -1, -1 };
+  long count = 0;
+  for (int j = 0; j < dims[1]; ++j)
+    for (int i = 0; i < dims[0]; ++i)
+    {
+      const auto* p = static_cast<unsigned char*>(img->GetScalarPointer(i, j, 0));
+      if (p[1] > 150 && p[0] < 90 && p[2] < 90)
+      {
+        ++count;
+        lo[0] = std::min(lo[0], i);
+        lo[1] = std::min(lo[1], j);
+        hi[0] = std::max(hi[0], i);
+        hi[1] = std::max(hi[1], j);
+      }
+    }
+  check(count > 20, "the cursor is in the picture (" + std::to_string(count) + " pixels)");
+  if (count <= 20)
+    return;
+  const double w = hi[0] - lo[0] + 1, h = hi[1] - lo[1] + 1;
+  std::printf("cursor: %g x %g pixels, height / width %g (expected %g)\n", w, h, h / w, ratio);
+  check(std::fabs(h / w - ratio) <= 0.15 * ratio, "the cursor's height / width is the spacing's");
+}
+
+void checkTubeThickness(const char* path, double ratio)
+{
+  int dims[3];
+  const auto img = readPicture(path, dims);
+  if (!img)
+    return;
+  // the cursor: unlit pure green; the tube: green blended at 0.45 over the scene
+  int cursorLo = dims[1], cursorHi = -1, cursorLeft = dims[0];
+  std::vector<int> tubeLo(dims[0], dims[1]), tubeHi(dims[0], -1);
+  for (int j = 0; j < dims[1]; ++j)
+    for (int i = 0; i < dims[0]; ++i)
+    {
+      const auto* p = static_cast<unsigned char*>(img->GetScalarPointer(i, j, 0));
+      if (p[1] > 230 && p[0] < 40 && p[2] < 40)
+      {
+        cursorLo = std::min(cursorLo, j);
+        cursorHi = std::max(cursorHi, j);
+        cursorLeft = std::min(cursorLeft, i);
+      }
+      else if (p[1] <= 230 && p[1] > p[0] + 60 && p[1] > p[2] + 60)
+      {
+        tubeLo[i] = std::min(tubeLo[i], j);
+        tubeHi[i] = std::max(tubeHi[i], j);
+      }
+    }
+  int thickest = 0;
+  for (int i = 0; i < cursorLeft; ++i) // left of the cursor: the tube alone
+    thickest = std::max(thickest, tubeHi[i] - tubeLo[i] + 1);
+  const int cursor = cursorHi - cursorLo + 1;
+  check(cursor > 4 && thickest > 4, "the cursor and the preview are in the picture (" + std::to_string(cursor) +
+      " and " + std::to_string(thickest) + " pixels tall)");
+  if (cursor <= 4 || thickest <= 4)
+    return;
+  std::printf("preview %d pixels tall at its thickest, cursor %d: ratio %g (expected %g)\n", thickest, cursor,
+    double(thickest) / cursor, ratio);
+  check(std::fabs(double(thickest) / cursor - ratio) <= 0.2 * ratio, "the preview's section is the dabs'");
+}
+
 void writeMatcapPng(const char* path)
 {
   vtkNew<vtkImageData> img;
@@ -462,6 +614,24 @@ int main(int argc, char* argv[])
       writeSphereObj(argv[++i]);
     else if (!std::strcmp(argv[i], "--write-sphere-obj-reversed-cap") && i + 1 < argc)
       writeSphereObj(argv[++i], true);
+    else if (!std::strcmp(argv[i], "--dab-on-uniform") && i + 6 < argc)
+    {
+      const double c[3] = { std::atof(argv[i + 3]), std::atof(argv[i + 4]), std::atof(argv[i + 5]) };
+      checkDabOnUniform(argv[i + 1], !std::strcmp(argv[i + 2], "inside"), c, std::atof(argv[i + 6]));
+      i += 6;
+    }
+    else if (!std::strcmp(argv[i], "--write-stretched-vti") && i + 1 < argc)
+      writeStretchedVti(argv[++i]);
+    else if (!std::strcmp(argv[i], "--cursor-aspect") && i + 2 < argc)
+    {
+      checkCursorAspect(argv[i + 1], std::atof(argv[i + 2]));
+      i += 2;
+    }
+    else if (!std::strcmp(argv[i], "--tube-thickness") && i + 2 < argc)
+    {
+      checkTubeThickness(argv[i + 1], std::atof(argv[i + 2]));
+      i += 2;
+    }
     else if (!std::strcmp(argv[i], "--mesh-sphere") && i + 1 < argc)
       checkMeshSphere(argv[++i]);
     else if (!std::strcmp(argv[i], "--mesh") && i + 1 < argc)

@@ -2,6 +2,10 @@
 # localedef into LOCALE_DIR (CI images carry no locale but C and POSIX), set
 # through LOCPATH and LC_ALL for the editor and the checker. Prints SKIP (the
 # test's SKIP_REGULAR_EXPRESSION) when the locale cannot be made.
+# PARAMS: the test's keywords (set() commands written by lvdif_editor_test)
+if (DEFINED PARAMS)
+  include("${PARAMS}")
+endif ()
 file(MAKE_DIRECTORY "${LOCALE_DIR}")
 execute_process(COMMAND localedef -i de_DE -f UTF-8 "${LOCALE_DIR}/de_DE.UTF-8"
   RESULT_VARIABLE rc OUTPUT_QUIET ERROR_QUIET)

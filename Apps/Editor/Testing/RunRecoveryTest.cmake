@@ -6,13 +6,13 @@ file(REMOVE_RECURSE "${DIR}")
 file(MAKE_DIRECTORY "${DIR}")
 file(REMOVE "${SAVED}")
 # the autosave a crashed session left: the 64^3 sphere canvas
-execute_process(COMMAND "${EDITOR}" --new 64 --fill sphere --size 640x480 --no-recovery --autosave 0
+execute_process(COMMAND "${EDITOR}" --new 64 --fill sphere --size ${SIZE} --no-recovery --autosave 0
   --save "${DIR}/recovery.lvdv" RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
 message("${out}${err}")
 if (NOT rc EQUAL 0)
   message(FATAL_ERROR "writing the recovery file failed (${rc})")
 endif ()
-execute_process(COMMAND "${EDITOR}" --recovery-dir "${DIR}" --recovery-answer yes --size 640x480 --autosave 0
+execute_process(COMMAND "${EDITOR}" --recovery-dir "${DIR}" --recovery-answer yes --size ${SIZE} --autosave 0
   --keys-after Ctrl+S --save-as-answer "${SAVED}" --quit RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
 message("${out}${err}")
 if (NOT rc EQUAL 0)

@@ -1,7 +1,11 @@
 # Runs lvdif-editor with ARGS that it must refuse: a non-zero exit (not a
-# crash: a signal gives a text status), RC if given, and EXPECT in its output.
+# crash: a signal gives a text status), RC if given, and EXPECT_OUTPUT in its output.
 # KEEP_FROM / KEEP: KEEP is made a copy of KEEP_FROM first and must be
 # unchanged afterwards (a refused run writes nothing over it).
+# PARAMS: the test's keywords (set() commands written by lvdif_editor_test)
+if (DEFINED PARAMS)
+  include("${PARAMS}")
+endif ()
 if (DEFINED KEEP)
   file(REMOVE "${KEEP}")
   configure_file("${KEEP_FROM}" "${KEEP}" COPYONLY)
@@ -19,13 +23,12 @@ endif ()
 if (DEFINED RC AND NOT rc EQUAL RC)
   message(FATAL_ERROR "lvdif-editor should have exited with status ${RC}, got '${rc}'")
 endif ()
-if (NOT "${out}${err}" MATCHES "${EXPECT}")
-  message(FATAL_ERROR "the message '${EXPECT}' is missing")
+# EXPECT_OUTPUT: the message (required); REFUSE_OUTPUT: what must not be there (a second message)
+if (NOT DEFINED EXPECT_OUTPUT)
+  message(FATAL_ERROR "a refused run's test names the message it expects (EXPECT_OUTPUT)")
 endif ()
-# REFUSE_OUTPUT: a regular expression the output must not match (a second message)
-if (DEFINED REFUSE_OUTPUT AND "${out}${err}" MATCHES "${REFUSE_OUTPUT}")
-  message(FATAL_ERROR "the output matches '${REFUSE_OUTPUT}'")
-endif ()
+include("${CMAKE_CURRENT_LIST_DIR}/CheckOutput.cmake")
+check_output("${out}${err}")
 if (DEFINED KEEP)
   file(SHA256 "${KEEP}" keep_after)
   if (NOT keep_after STREQUAL keep_before)
