@@ -17,13 +17,8 @@ L="$OUT/bench.log"
 . "$(dirname "$0")/gpu-common.sh"
 [ -f "$A" ] || { echo "need $A"; exit 1; }
 gpu_begin
-subs="Common Volume Formats SignFilter MeshToSdf MarchingCubes Edit Script Session"
-gpu_build b bench_mesh_to_sdf $(for s in $subs; do printf "LVDIF%sTests " "$s"; done)
-for s in $subs; do
-  timeout 200 "b/Core/$s/LVDIF${s}Tests" > "$OUT/test-$s.log" 2>&1
-  echo "$s rc=$? $(grep -E '^\[  (PASSED|FAILED|SKIPPED) ' "$OUT/test-$s.log" | tr '\n' ' ')" | tee -a "$OUT/summary.txt"
-done
-grep -h "^\[  FAILED  \]" "$OUT"/test-*.log | sort -u | head -20 | tee -a "$OUT/summary.txt"
+gpu_build b bench_mesh_to_sdf $(gpu_core_test_targets)
+gpu_core_tests b 200
 : > "$L"
 M=b/Testing/Benchmarks/Core/bench_mesh_to_sdf
 R=cold,warm@winding,warm@normal,warm@normal@normalspath,warm@normal@normalspath,warm@normal,warm@winding
