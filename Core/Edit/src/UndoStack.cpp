@@ -31,18 +31,7 @@ void UndoStack::beginStep(const std::string& label)
   require(!this->Open, "an undo step is already open");
   this->Open = std::make_unique<Step>();
   this->Open->Label = label;
-  this->Open->ColorsBefore = this->Volume.colors().size();
   this->OpenIds.clear();
-}
-
-std::vector<Rgba> UndoStack::dropColorsPast(std::size_t size)
-{
-  const std::vector<Rgba>& all = this->Volume.colors().colors();
-  if (all.size() <= size)
-    return {};
-  std::vector<Rgba> dropped(all.begin() + static_cast<std::ptrdiff_t>(size), all.end());
-  this->Volume.colors().assign(std::vector<Rgba>(all.begin(), all.begin() + static_cast<std::ptrdiff_t>(size)));
-  return dropped;
 }
 
 UndoStack::Snapshot UndoStack::capture(std::int64_t id) const
@@ -85,10 +74,7 @@ bool UndoStack::endStep()
   std::unique_ptr<Step> step = std::move(this->Open);
   this->OpenIds.clear();
   if (step->Chunks.empty())
-  {
-    this->dropColorsPast(step->ColorsBefore); // no voxel took them
     return false;
-  }
   for (auto& r : this->Redo)
     this->Bytes -= r->Bytes;
   this->Redo.clear();
@@ -150,8 +136,6 @@ bool UndoStack::undo()
   std::unique_ptr<Step> step = std::move(this->Undo.back());
   this->Undo.pop_back();
   this->swapIn(*step);
-  // the voxels are those from before the step: no key past its start is in use
-  step->Colors = this->dropColorsPast(step->ColorsBefore);
   this->Redo.push_back(std::move(step));
   return true;
 }
@@ -162,16 +146,6 @@ bool UndoStack::redo()
   if (this->Redo.empty())
     return false;
   std::unique_ptr<Step> step = std::move(this->Redo.back());
-  require(this->Volume.colors().size() == step->ColorsBefore || step->Colors.empty(),
-    "cannot redo: the colour dictionary changed since the undo");
-  if (!step->Colors.empty())
-  {
-    // the same keys as before the undo: the snapshot's voxels name them
-    std::vector<Rgba> all = this->Volume.colors().colors();
-    all.insert(all.end(), step->Colors.begin(), step->Colors.end());
-    this->Volume.colors().assign(all);
-    step->Colors.clear();
-  }
   this->Redo.pop_back();
   this->swapIn(*step);
   this->Undo.push_back(std::move(step));

@@ -3,9 +3,7 @@
 #include "EditTestUtil.h"
 #include "lvdif/AnalyticFill.h"
 #include "lvdif/Editor.h"
-#include "lvdif/LegacyBv.h"
 #include "lvdif/Memory.h"
-#include "lvdif/VolumeFile.h"
 
 #include <gtest/gtest.h>
 
@@ -74,76 +72,6 @@ TEST(UndoStack, UndoAndRedoRestoreBitIdenticalVolumes)
   EXPECT_EQ(e.undoStack().redoCount(), 0u);
   ASSERT_TRUE(e.undo());
   EXPECT_EQ(edittest::countDifferences(v, *states[static_cast<size_t>(steps) - 2]), 0);
-}
-
-namespace
-{
-std::vector<std::uint8_t> lvdvBytes(const DictionaryVolume& v)
-{
-  MemorySink sink;
-  writeVolume(v, sink);
-  return sink.buffer();
-}
-std::vector<std::uint8_t> bvBytes(const DictionaryVolume& v)
-{
-  MemorySink sink;
-  writeLegacyBv(v, sink);
-  return sink.buffer();
-}
-} // namespace
-
-// An edit and its undo leave the file a save writes as it was, byte for byte:
-// the .lvdv holds the colour dictionary, which kept the undone edits' colours
-// (12 colours instead of 11 after `lvdif script` painted in red and undid it),
-// so the file differed; the .bv (palette indices only) was already the same.
-// Redo puts the colours back under the same keys.
-TEST(UndoStack, UndoTakesOutTheStepsColoursSoTheSavedFileIsTheSame)
-{
-  DictionaryVolume v(edittest::options(48, 16));
-  fillFromFunction(v, sphereSdf(24, 24, 24, 12));
-  Editor e(v);
-  e.brush.color = Rgba{ 10, 20, 30, 255 };
-  e.dab(Dab{ BrushShape::Sphere, { 12, 24, 24 }, 4, {} }); // a step before: its colour stays
-  const std::size_t before = v.colors().size();
-  const std::vector<std::uint8_t> lvdv0 = lvdvBytes(v), bv0 = bvBytes(v);
-  // an add in a new colour, a soft paint that mixes colours (many new ones), a stroke
-  e.brush.color = Rgba{ 255, 0, 0, 255 };
-  e.dab(Dab{ BrushShape::Sphere, { 36, 24, 24 }, 5, {} });
-  e.brush.op = BrushOp::Paint;
-  e.brush.color = Rgba{ 0, 0, 255, 255 };
-  e.brush.strength = 0.5;
-  e.brush.falloff = Falloff::Smooth;
-  e.dab(Dab{ BrushShape::Sphere, { 24, 36, 24 }, 6, {} });
-  e.brush = BrushSettings();
-  e.brush.color = Rgba{ 0, 255, 0, 255 };
-  std::vector<BrushSample> line(2);
-  line[0].position = { 10, 10, 24 };
-  line[1].position = { 38, 12, 24 };
-  e.stroke.radius = 3;
-  e.strokeThrough(line);
-  ASSERT_EQ(e.undoStack().undoCount(), 4u);
-  ASSERT_GT(v.colors().size(), before + 3) << "the edits added no colours: nothing is tested";
-  const std::unique_ptr<DictionaryVolume> edited = v.clone();
-  const std::vector<std::uint8_t> lvdv3 = lvdvBytes(v);
-  for (int i = 0; i < 3; ++i)
-    ASSERT_TRUE(e.undo());
-  EXPECT_EQ(v.colors().size(), before);
-  EXPECT_TRUE(lvdvBytes(v) == lvdv0) << "the .lvdv after edit + undo differs from the one saved before";
-  EXPECT_TRUE(bvBytes(v) == bv0) << "the .bv after edit + undo differs from the one saved before";
-  for (int i = 0; i < 3; ++i)
-    ASSERT_TRUE(e.redo());
-  EXPECT_TRUE(v.colors().colors() == edited->colors().colors());
-  EXPECT_EQ(edittest::countDifferences(v, *edited), 0);
-  EXPECT_TRUE(lvdvBytes(v) == lvdv3);
-  // an edit that changes no voxel (outside the canvas) leaves no colour behind
-  ASSERT_TRUE(e.undo());
-  const std::size_t afterUndo = v.colors().size();
-  e.brush.color = Rgba{ 1, 2, 3, 255 };
-  e.dab(Dab{ BrushShape::Sphere, { -50, 0, 0 }, 3, {} });
-  EXPECT_EQ(v.colors().size(), afterUndo);
-  ASSERT_TRUE(e.redo()); // the no-op kept the redo step; its colours come back at their keys
-  EXPECT_EQ(edittest::countDifferences(v, *edited), 0);
-  EXPECT_TRUE(lvdvBytes(v) == lvdv3);
 }
 
 TEST(UndoStack, EmptyStepsAreNotKept)

@@ -5,11 +5,7 @@
 // uniform value, or a copy of its chunkEdge^3 voxels). Undo swaps the stored
 // chunks with the volume's (so the same step can be redone), marking them
 // dirty. Volumes restored this way are bit-identical to the volume before the
-// step: every voxel, and the colour dictionary, whose colours the step added
-// are taken out on undo (and put back, under the same keys, on redo); a step
-// that touched nothing leaves no colour behind either. So a volume saved after
-// an edit and its undo is the same file, byte for byte, as one saved before
-// (.lvdv: the dictionary is in the file; it kept the undone edit's colours).
+// step (every voxel; the colour dictionary only grows, keys stay valid).
 //
 // Memory: each step costs ~16 bytes per uniform chunk and chunkEdge^3 * 4
 // bytes per expanded chunk it touched (128 KiB at edge 32), independent of
@@ -83,14 +79,10 @@ private:
     std::string Label;
     std::vector<Snapshot> Chunks;
     std::uint64_t Bytes = 0;
-    std::size_t ColorsBefore = 0; // the dictionary's size when the step began
-    std::vector<Rgba> Colors;     // the colours it added, while it is undone
   };
 
   Snapshot capture(std::int64_t id) const;
   void swapIn(Step& step);
-  /// Takes the colours past `size` out of the dictionary; returns them.
-  std::vector<Rgba> dropColorsPast(std::size_t size);
   void enforceCap();
   std::uint64_t snapshotBytes(const Snapshot& s) const;
 
