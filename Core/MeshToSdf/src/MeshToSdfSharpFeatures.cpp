@@ -379,14 +379,19 @@ std::vector<SharpVoxel> normalSignAtSharpFeatures(const PreparedMesh& mesh, cons
             for (std::int64_t i = box.lo[0]; i <= box.hi[0]; ++i)
             {
               const V3 p = position(static_cast<double>(i), static_cast<double>(j), static_cast<double>(k));
+              // a voxel's own tests need no margin but rounding's: whether its
+              // closest point can lie on the feature, in a direction where the
+              // faces' normals disagree (the bricks' margins keep the walk
+              // from missing any)
+              const double tol = 1e-9 * (norm(p - f.a) + norm(f.b - f.a) + diagonal);
               V3 d;
-              if (!offset(f, p, margin, d) || !mayDiffer(f, d, margin)) continue;
+              if (!offset(f, p, tol, d) || !mayDiffer(f, d, tol)) continue;
               // the centre's closest triangle bounds the distance to the mesh
               // from above: farther from the feature than from it beyond the
               // margins, p is not in the region (no query needed)
               const Tri& near = mesh.tris[static_cast<std::size_t>(b.nearest)];
               const V3 dn = closestPointOnTriangle(p, near.v[0], near.v[1], near.v[2]).point - p;
-              if (norm(d) - norm(dn) > 2 * margin) continue;
+              if (norm(d) - norm(dn) > tol) continue;
               NearestResult r;
               if (local)
               {
@@ -412,7 +417,7 @@ std::vector<SharpVoxel> normalSignAtSharpFeatures(const PreparedMesh& mesh, cons
               }
               // farther from the feature than from the mesh beyond the
               // margins: not in the region
-              if (norm(d) - std::sqrt(r.dist2) > 2 * margin) continue;
+              if (norm(d) - std::sqrt(r.dist2) > tol) continue;
               const Tri& t = mesh.tris[static_cast<std::size_t>(r.tri)];
               mine.push_back({ i, j, k, storedValue(normalSign(p, r.closest.point, t.n), r.dist2, toOut, band) });
             }
