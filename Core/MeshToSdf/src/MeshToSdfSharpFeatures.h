@@ -67,13 +67,14 @@ struct SharpVoxel
 /// The regions are walked brick by brick (SharpBrickEdge^3 voxels).
 constexpr int SharpBrickEdge = 8;
 
-/// The voxels of `extent` that may lie in a sharp feature's region (in its
-/// cone, at a direction where its faces' normals disagree, not farther from
-/// the feature than from the mesh, each with a margin of half a voxel's
-/// diagonal), each with the value the Normal path stores there:
-/// s * min(|p - c| * toOut, band), s the sign of (p - c) . n_t, c and t the
-/// closest point and triangle (ties to the lowest index). Needs
-/// sharpFeaturesInside. Interruptible.
+/// The voxels of `extent` that may lie in a sharp feature's region (their
+/// closest point can lie on the feature, in a direction where its faces'
+/// normals disagree, up to rounding), each with the value the Normal path
+/// stores there: s * min(|p - c| * toOut, band), s the sign of
+/// (p - c) . n_t, c and t the closest point and triangle (ties to the lowest
+/// index). The regions are walked brick by brick from their features, with
+/// margins that keep the walk from missing a voxel (MeshToSdfSharpFeatures.cpp).
+/// Needs sharpFeaturesInside. Interruptible.
 std::vector<SharpVoxel> normalSignAtSharpFeatures(const PreparedMesh& mesh, const SharpFeatures& sharp,
   const Bvh& bvh, const GridGeometry& grid, const VoxelBox& extent, double toOut, double band,
   Interrupter& interrupter);
