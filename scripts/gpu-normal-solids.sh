@@ -28,4 +28,7 @@ run 60 $M "sub2:$A" 1024 normal auto bvh volume 8 2 cold,warm@winding,warm@norma
 run 100 $M "$A" 512 normal cpu bvh volume 8 2 cold,warm@winding,warm@normal,warm@normal@normalspath,warm@winding,warm@normal --trace
 run 90 $M "$A" 1024 normal cpu bvh volume 8 2 cold,warm@winding,warm@normal --trace
 grep -E "^## |^mesh:|^machine:|^\| (cold|warm|prepared)|sharp features|rc=[1-9]" "$L" | cut -c1-170 | tee -a "$OUT/summary.txt"
+# one warm normal call's whole trace on CUDA (where its time goes)
+run 30 $M "$A" 1024 normal auto bvh volume 8 2 cold,warm@normal --trace
+awk '/^## .*cold,warm@normal --trace/{on=1} on' "$L" | grep -E "^\[mesh to SDF\]|^\| warm" | tail -40 | tee -a "$OUT/summary.txt"
 echo "total $(( $(date +%s) - T0 )) s" | tee -a "$OUT/summary.txt"

@@ -586,6 +586,44 @@ std::future<std::vector<SharpVoxel>> sharpRegions(const MeshToSdfPrepared& mesh,
     });
 }
 
+/// The sharp regions' voxels into the volume, chunk by chunk on the threads
+/// (a far chunk that a region crosses is expanded: thousands at 1024^3), each
+/// chunk collapsed again if it became uniform; only changed keys are written.
+void storeSharpVoxels(DictionaryVolume& volume, std::vector<SharpVoxel>& voxels)
+{
+  auto chunkOf = [&](const SharpVoxel& v) { return volume.chunkOf(v.i, v.j, v.k); };
+  std::sort(voxels.begin(), voxels.end(),
+    [&](const SharpVoxel& x, const SharpVoxel& y) { return chunkOf(x) < chunkOf(y); });
+  std::vector<std::size_t> starts;
+  for (std::size_t i = 0; i < voxels.size(); ++i)
+    if (i == 0 || chunkOf(voxels[i]) != chunkOf(voxels[i - 1])) starts.push_back(i);
+  starts.push_back(voxels.size());
+  ParallelFailure failure;
+  const auto groups = static_cast<std::int64_t>(starts.size()) - 1;
+#pragma omp parallel for schedule(dynamic, 4)
+  for (std::int64_t g = 0; g < groups; ++g)
+  {
+    failure.run([&] {
+      bool changed = false;
+      for (std::size_t i = starts[static_cast<std::size_t>(g)]; i < starts[static_cast<std::size_t>(g) + 1]; ++i)
+      {
+        const SharpVoxel& v = voxels[i];
+        Voxel voxel = volume.get(v.i, v.j, v.k);
+        const SdfKey key = volume.encode(v.value);
+        if (voxel.sdf == key) continue;
+        voxel.sdf = key;
+        volume.set(v.i, v.j, v.k, voxel);
+        changed = true;
+      }
+      if (!changed) return;
+      const std::int64_t id = chunkOf(voxels[starts[static_cast<std::size_t>(g)]]);
+      volume.markDirty(id);
+      volume.tryCollapseChunk(id);
+    });
+  }
+  failure.rethrow();
+}
+
 bool wholeGrid(const GridGeometry& grid, const VoxelBox& extent)
 {
   for (int a = 0; a < 3; ++a)
@@ -728,25 +766,11 @@ MeshToSdfStats meshToSdf(const MeshToSdfPrepared& mesh, DictionaryVolume& volume
   }
   if (sharp)
   {
-    const std::vector<SharpVoxel> voxels = regions.get();
-    std::vector<std::int64_t> touched;
-    for (const SharpVoxel& v : voxels)
-    {
-      Voxel voxel = volume.get(v.i, v.j, v.k);
-      const SdfKey key = volume.encode(v.value);
-      if (voxel.sdf == key) continue;
-      voxel.sdf = key;
-      volume.set(v.i, v.j, v.k, voxel);
-      touched.push_back(volume.chunkOf(v.i, v.j, v.k));
-    }
+    std::vector<SharpVoxel> voxels = regions.get();
+    const double t0 = now();
+    storeSharpVoxels(volume, voxels);
     stats.sharpVoxels = static_cast<std::int64_t>(voxels.size());
-    std::sort(touched.begin(), touched.end());
-    touched.erase(std::unique(touched.begin(), touched.end()), touched.end());
-    for (const std::int64_t id : touched)
-    {
-      volume.markDirty(id);
-      volume.tryCollapseChunk(id);
-    }
+    trace("sharp features' regions stored", now() - t0);
   }
   if (options.svfFilters != 0)
   {
