@@ -115,3 +115,16 @@ gpu_core_tests() {
   for s in $subs; do grep -h "^\[  FAILED  \]" "$OUT/LVDIF${s}Tests.log"; done | sort -u | head -20 | tee -a "$OUT/summary.txt"
   return $status
 }
+
+# gpu_tests_then_bench MESH: the start of the mesh-to-SDF benchmark scripts
+# (gpu-solid-pn, gpu-normal-solids): checks that MESH exists, starts the clock,
+# builds Core with CUDA (bench_mesh_to_sdf and every test executable), runs the
+# tests, empties $L and sets M to the benchmark.
+gpu_tests_then_bench() {
+  [ -f "$1" ] || { echo "need $1"; exit 1; }
+  gpu_begin
+  gpu_build b bench_mesh_to_sdf $(gpu_core_test_targets)
+  gpu_core_tests b 200
+  : > "$L"
+  M=b/Testing/Benchmarks/Core/bench_mesh_to_sdf
+}

@@ -15,12 +15,7 @@ BUDGET=${2:-480}
 OUT=${OUT:-out-gpu-normal-solids}
 L="$OUT/bench.log"
 . "$(dirname "$0")/gpu-common.sh"
-[ -f "$A" ] || { echo "need $A"; exit 1; }
-gpu_begin
-gpu_build b bench_mesh_to_sdf $(gpu_core_test_targets)
-gpu_core_tests b 200
-: > "$L"
-M=b/Testing/Benchmarks/Core/bench_mesh_to_sdf
+gpu_tests_then_bench "$A"
 R=cold,warm@winding,warm@normal,warm@normal@normalspath,warm@normal@normalspath,warm@normal,warm@winding
 R=$R,warm@winding,warm@normal,warm@normal@normalspath
 run 90 $M "$A" 1024 normal auto bvh volume 8 2 "$R" --trace

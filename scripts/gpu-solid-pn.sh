@@ -17,12 +17,7 @@ BUDGET=${2:-420}
 OUT=${OUT:-out-gpu-solid-pn}
 L="$OUT/bench.log"
 . "$(dirname "$0")/gpu-common.sh"
-[ -f "$A" ] || { echo "need $A"; exit 1; }
-gpu_begin
-gpu_build b bench_mesh_to_sdf $(gpu_core_test_targets)
-gpu_core_tests b 200
-: > "$L"
-M=b/Testing/Benchmarks/Core/bench_mesh_to_sdf
+gpu_tests_then_bench "$A"
 R=cold,warm@winding,warm@pseudonormal,warm@pseudonormal@normalspath,warm@normal
 R=$R,warm@normal,warm@pseudonormal@normalspath,warm@pseudonormal,warm@winding
 R=$R,prepared@winding,prepared@pseudonormal,prepared@pseudonormal@normalspath,prepared@winding,prepared@pseudonormal
