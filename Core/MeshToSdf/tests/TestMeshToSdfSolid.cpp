@@ -94,6 +94,27 @@ detail::meshtosdf::SolidBoundary solidOf(const TriangleMesh& m)
   return p.impl().solidBoundary();
 }
 
+/// Voxels of two fields that differ: those on the surface (opposite signs at
+/// distance 0 up to rounding: a face's plane through the voxel, as where the
+/// grid meets a box's side, whose sign no path can know) apart.
+struct FieldDifference
+{
+  std::int64_t differ = 0, onSurface = 0;
+};
+FieldDifference differences(const std::vector<float>& x, const std::vector<float>& y)
+{
+  FieldDifference d;
+  for (std::size_t i = 0; i < x.size(); ++i)
+  {
+    if (std::memcmp(&x[i], &y[i], sizeof(float)) == 0) continue;
+    if (x[i] == -y[i] && std::fabs(x[i]) < 1e-6f)
+      ++d.onSurface;
+    else
+      ++d.differ;
+  }
+  return d;
+}
+
 std::vector<std::pair<std::string, TriangleMesh>> solids()
 {
   std::vector<std::pair<std::string, TriangleMesh>> s;
@@ -207,22 +228,11 @@ TEST(MeshToSdfSolid, SolidFieldEqualsThePseudoNormalPath)
         const MeshToSdfStats b = meshToSdf(mesh, FloatGridView{ byNormals.data(), g }, o);
         EXPECT_TRUE(a.signByWinding) << name;
         EXPECT_FALSE(b.signByWinding) << name;
-        std::int64_t differ = 0, onSurface = 0, inside = 0;
-        for (std::size_t i = 0; i < byWinding.size(); ++i)
-        {
-          inside += byWinding[i] < 0;
-          if (std::memcmp(&byWinding[i], &byNormals[i], sizeof(float)) == 0) continue;
-          // a voxel on the surface (a face's plane through it, as the grid
-          // meets the boxes' sides): distance 0 up to rounding, whose sign
-          // neither path can know; the winding path takes the exact crossings'
-          if (byWinding[i] == -byNormals[i] && std::fabs(byWinding[i]) < 1e-6f)
-            ++onSurface;
-          else
-            ++differ;
-        }
-        EXPECT_EQ(differ, 0) << name << (device == Device::Cuda ? " on CUDA" : " on the CPU") << ", band " << band
-                             << " (" << onSurface << " voxels on the surface)";
-        EXPECT_GT(inside, 0) << name;
+        // on the surface the winding path takes the exact crossings' sign
+        const FieldDifference d = differences(byWinding, byNormals);
+        EXPECT_EQ(d.differ, 0) << name << (device == Device::Cuda ? " on CUDA" : " on the CPU") << ", band " << band
+                               << " (" << d.onSurface << " voxels on the surface)";
+        EXPECT_GT(std::count_if(byWinding.begin(), byWinding.end(), [](float v) { return v < 0; }), 0) << name;
       }
 }
 
@@ -279,19 +289,11 @@ TEST(MeshToSdfSolid, NormalFieldOfSolidsEqualsTheNormalPath)
           EXPECT_TRUE(a.signByWinding) << where << ": " << solidOf(mesh).why;
           EXPECT_FALSE(b.signByWinding) << where;
           sharpSeen += a.sharpVoxels;
-          std::int64_t differ = 0, onSurface = 0;
           for (std::size_t i = 0; i < byWinding.size(); ++i)
-          {
             normalDiffersFromWinding += (byNormal[i] < 0) != (winding[i] < 0) && std::fabs(byNormal[i]) > 1e-3f;
-            if (std::memcmp(&byWinding[i], &byNormal[i], sizeof(float)) == 0) continue;
-            // on the surface: distance 0 up to rounding, a sign neither path knows
-            if (byWinding[i] == -byNormal[i] && std::fabs(byWinding[i]) < 1e-6f)
-              ++onSurface;
-            else
-              ++differ;
-          }
-          EXPECT_EQ(differ, 0) << where << " (" << onSurface << " voxels on the surface, " << a.sharpVoxels
-                               << " recomputed)";
+          const FieldDifference d = differences(byWinding, byNormal);
+          EXPECT_EQ(d.differ, 0) << where << " (" << d.onSurface << " voxels on the surface, " << a.sharpVoxels
+                                 << " recomputed)";
           if (band == 3.0f && !anisotropic)
           {
             // the dictionary volume: the same keys as the Normal path's

@@ -126,6 +126,22 @@ void writePieces(vtkImageData* img, const std::string& index, int n)
   w->SetNumberOfPieces(n);
   ASSERT_TRUE(w->Write());
 }
+/// The "sdf" and "rgba" arrays of out equal the oracle's, component for component.
+void expectSameArrays(vtkImageData* out, vtkImageData* oracle)
+{
+  for (const char* name : { "sdf", "rgba" })
+  {
+    vtkDataArray* a = out->GetPointData()->GetArray(name);
+    vtkDataArray* b = oracle->GetPointData()->GetArray(name);
+    ASSERT_TRUE(a && b) << name;
+    long diff = 0;
+    for (vtkIdType id = 0; id < a->GetNumberOfTuples(); ++id)
+      for (int c = 0; c < a->GetNumberOfComponents(); ++c)
+        diff += a->GetComponent(id, c) != b->GetComponent(id, c) ? 1 : 0;
+    EXPECT_EQ(diff, 0) << name;
+  }
+}
+
 } // namespace
 
 class PVolumeIO : public ::testing::TestWithParam<int>
@@ -258,17 +274,7 @@ TEST_P(PVolumeIO, SparseInputWritesThePiecesItsKeys)
   out->GetPoint(0, p0);
   img->GetPoint(0, q0);
   for (int a = 0; a < 3; ++a) EXPECT_DOUBLE_EQ(p0[a], q0[a]);
-  for (const char* name : { "sdf", "rgba" })
-  {
-    vtkDataArray* a = out->GetPointData()->GetArray(name);
-    vtkDataArray* b = oracle->GetPointData()->GetArray(name);
-    ASSERT_TRUE(a && b) << name;
-    long diff = 0;
-    for (vtkIdType id = 0; id < a->GetNumberOfTuples(); ++id)
-      for (int c = 0; c < a->GetNumberOfComponents(); ++c)
-        diff += a->GetComponent(id, c) != b->GetComponent(id, c) ? 1 : 0;
-    EXPECT_EQ(diff, 0) << name;
-  }
+  expectSameArrays(out, oracle);
 }
 
 // Read as pvbatch ranks do (piece p of m, m = 1..4, from files written by n
@@ -463,17 +469,7 @@ TEST(PVolumeIO, SerialRunWritesEveryPiece)
     vtkSmartPointer<vtkImageData> out = decoded(r);
     EXPECT_EQ(r->GetPiecesRead(), 2);
     ASSERT_EQ(out->GetNumberOfPoints(), oracle->GetNumberOfPoints());
-    for (const char* name : { "sdf", "rgba" })
-    {
-      vtkDataArray* a = out->GetPointData()->GetArray(name);
-      vtkDataArray* b = oracle->GetPointData()->GetArray(name);
-      ASSERT_TRUE(a && b) << name;
-      long diff = 0;
-      for (vtkIdType id = 0; id < a->GetNumberOfTuples(); ++id)
-        for (int c = 0; c < a->GetNumberOfComponents(); ++c)
-          diff += a->GetComponent(id, c) != b->GetComponent(id, c) ? 1 : 0;
-      EXPECT_EQ(diff, 0) << name;
-    }
+    expectSameArrays(out, oracle);
     for (int p = 0; p < 2; ++p)
       std::remove(vtkPDictionaryVolumeWriter::PieceFilePath(index, p).c_str());
     std::remove(index.c_str());
