@@ -1,0 +1,113 @@
+// The normal and pseudo-normal signs of solids by the winding path
+// (MeshToSdfSolidSigns.h).
+#include "MeshToSdfSolidSigns.h"
+
+#include "MeshToSdfSolid.h"
+#include "lvdif/ParallelFailure.h"
+
+#include <algorithm>
+#include <memory>
+#include <sstream>
+#include <string>
+
+namespace lvdif
+{
+namespace detail::meshtosdf
+{
+
+MeshToSdfOptions signOfSolids(const MeshToSdfPrepared& mesh, const MeshToSdfOptions& options, MeshToSdfStats& stats,
+  const GridGeometry& grid, const VoxelBox& extent)
+{
+  const bool normals = options.sign == SignMode::Normal || options.sign == SignMode::PseudoNormal;
+  if (!normals) return options;
+  const double t0 = now();
+  const SolidBoundary& solid = mesh.impl().solidBoundary();
+  stats.buildSeconds += now() - t0;
+  if (solid.inwardParts > 0)
+  {
+    std::ostringstream m;
+    m << "mesh to SDF: " << solid.inwardParts << " of the mesh's " << solid.parts
+      << " connected parts face inwards (closed, but their faces point into the solid), so the "
+      << (options.sign == SignMode::Normal ? "normal" : "pseudo-normal")
+      << " sign is inside out there; reverse their faces, or use the winding-number sign, which is right either way";
+    stats.warnings.push_back(m.str());
+  }
+  if (!options.solidsByWinding) return options;
+  const bool normal = options.sign == SignMode::Normal;
+  if (!solid.solid)
+  {
+    trace(((normal ? "normal" : "pseudo-normal") + std::string(" sign on its own path: ") + solid.why).c_str(), 0);
+    return options;
+  }
+  if (normal)
+  {
+    // the sharp features' voxels take the CPU's queries of the BVH path
+    if (options.useVertexNormals || options.accel != MeshToSdfAccel::Bvh) return options;
+    const double t1 = now();
+    const SharpFeatures& sharp = mesh.impl().sharpFeatures();
+    stats.buildSeconds += now() - t1;
+    if (!sharpFeaturesInside(sharp, grid, extent))
+    {
+      trace("normal sign on its own path: a sharp feature lies outside the grid", 0);
+      return options;
+    }
+  }
+  MeshToSdfOptions o = options;
+  o.sign = SignMode::WindingNumber;
+  o.reorientFaces = false;
+  stats.signByWinding = true;
+  return o;
+}
+
+std::future<std::vector<SharpVoxel>> sharpRegions(const MeshToSdfPrepared& mesh, const GridGeometry& grid,
+  const VoxelBox& extent, double toOut, double band, Interrupter& interrupter, bool besideGpu, bool tracePhases)
+{
+  return std::async(besideGpu ? std::launch::async : std::launch::deferred,
+    [&mesh, grid, extent, toOut, band, &interrupter, tracePhases] {
+      const PhaseTraceScope tracing(tracePhases); // this thread's own
+      const double t0 = now();
+      const std::shared_ptr<const Bvh> bvh = mesh.impl().meshBvh(); // built by the solid check
+      std::vector<SharpVoxel> voxels = normalSignAtSharpFeatures(
+        mesh.impl().mesh, mesh.impl().sharpFeatures(), *bvh, grid, extent, toOut, band, interrupter);
+      trace(("sharp features' regions: " + std::to_string(voxels.size()) + " voxels").c_str(), now() - t0);
+      return voxels;
+    });
+}
+
+void storeSharpVoxels(DictionaryVolume& volume, std::vector<SharpVoxel>& voxels)
+{
+  auto chunkOf = [&](const SharpVoxel& v) { return volume.chunkOf(v.i, v.j, v.k); };
+  std::sort(voxels.begin(), voxels.end(),
+    [&](const SharpVoxel& x, const SharpVoxel& y) { return chunkOf(x) < chunkOf(y); });
+  std::vector<std::size_t> starts;
+  for (std::size_t i = 0; i < voxels.size(); ++i)
+    if (i == 0 || chunkOf(voxels[i]) != chunkOf(voxels[i - 1])) starts.push_back(i);
+  starts.push_back(voxels.size());
+  ParallelFailure failure;
+  const auto groups = static_cast<std::int64_t>(starts.size()) - 1;
+#pragma omp parallel for schedule(dynamic, 4)
+  for (std::int64_t g = 0; g < groups; ++g)
+  {
+    failure.run([&] {
+      bool changed = false;
+      for (std::size_t i = starts[static_cast<std::size_t>(g)]; i < starts[static_cast<std::size_t>(g) + 1]; ++i)
+      {
+        const SharpVoxel& v = voxels[i];
+        Voxel voxel = volume.get(v.i, v.j, v.k);
+        const SdfKey key = volume.encode(v.value);
+        if (voxel.sdf == key) continue;
+        voxel.sdf = key;
+        volume.set(v.i, v.j, v.k, voxel);
+        changed = true;
+      }
+      if (!changed) return;
+      const std::int64_t id = chunkOf(voxels[starts[static_cast<std::size_t>(g)]]);
+      volume.markDirty(id);
+      volume.tryCollapseChunk(id);
+    });
+  }
+  failure.rethrow();
+}
+
+} // namespace detail::meshtosdf
+} // namespace lvdif
