@@ -4,7 +4,8 @@
 # "Normal signs of solids"): builds Core alone with CUDA (sm_90), runs every
 # Core test executable one after the other (CUDA tests included), then
 # bench_mesh_to_sdf one-call runs into the dictionary volume (band 8, --trace):
-# on CUDA at 1024^3 (the regions on the host beside the GPU's winding pass)
+# on CUDA at 1024^3 (the regions' bricks on the host, their voxels on the GPU,
+# both beside the GPU's winding pass)
 # the armadillo with winding, normal (the route) and normal by its own path
 # (@normalspath), alternating, then sub2 (832k triangles); then on the host's
 # CPU threads the armadillo at 512^3 and 1024^3. No new step after BUDGET s.

@@ -538,17 +538,22 @@ MeshToSdfStats meshToSdf(const MeshToSdfPrepared& mesh, const GridGeometry& grid
   auto engine = makeEngine(mesh, grid, options, options.bandWidth, stats.device, stats);
   const bool sharp = given.sign == SignMode::Normal && stats.signByWinding;
   std::future<std::vector<SharpVoxel>> regions;
-  if (sharp)
-    regions = sharpRegions(mesh, grid, extent, outputScale(grid, options), options.bandWidth, interrupter,
-      stats.device == Device::Cuda, given.tracePhases);
+  auto startRegions = [&](bool onGpu) {
+    if (sharp)
+      regions = sharpRegions(mesh, grid, extent, outputScale(grid, options), options.bandWidth, interrupter, onGpu,
+        given.tracePhases);
+  };
   if (stats.device == Device::Cuda)
   {
     std::future<void> parts = partsBesideGpu(mesh, wholeGrid(grid, extent) && options.sign != SignMode::Unsigned);
-    openCuda(mesh, *engine, options, stats)->compute(extent, out, stats, interrupter);
+    const auto session = openCuda(mesh, *engine, options, stats);
+    startRegions(true); // after the session: its step 2 reads the device copy of the mesh
+    session->compute(extent, out, stats, interrupter);
     if (parts.valid()) parts.get();
   }
   else
   {
+    startRegions(false);
     computeBox(*engine, extent, out, stats, interrupter, 0.0, 1.0);
   }
   if (sharp)
@@ -618,9 +623,11 @@ MeshToSdfStats meshToSdf(const MeshToSdfPrepared& mesh, DictionaryVolume& volume
   auto engine = makeEngine(mesh, grid, opts, volume.bandWidth(), stats.device, stats);
   const bool sharp = given.sign == SignMode::Normal && stats.signByWinding;
   std::future<std::vector<SharpVoxel>> regions;
-  if (sharp)
-    regions = sharpRegions(mesh, grid, whole, outputScale(grid, opts), volume.bandWidth(), interrupter,
-      stats.device == Device::Cuda, given.tracePhases);
+  auto startRegions = [&](bool onGpu) {
+    if (sharp)
+      regions = sharpRegions(mesh, grid, whole, outputScale(grid, opts), volume.bandWidth(), interrupter, onGpu,
+        given.tracePhases);
+  };
   const bool region = !options.chunkRegion.empty();
   require(!region || options.svfFilters == 0,
     "mesh to SDF: a chunk region cannot be combined with the sign voxel filters (they need the whole volume)");
@@ -628,6 +635,7 @@ MeshToSdfStats meshToSdf(const MeshToSdfPrepared& mesh, DictionaryVolume& volume
   {
     std::unique_ptr<detail::meshtosdf_cuda::Session> cuda;
     if (stats.device == Device::Cuda) cuda = openCuda(mesh, *engine, opts, stats);
+    startRegions(cuda != nullptr);
     volumeRegion(volume, options.chunkRegion, opts.cpuBandBytes, stats, interrupter,
       [&](const VoxelBox& box, float* out, double p0, double dp) {
         if (cuda)
@@ -639,11 +647,14 @@ MeshToSdfStats meshToSdf(const MeshToSdfPrepared& mesh, DictionaryVolume& volume
   else if (stats.device == Device::Cuda)
   {
     std::future<void> parts = partsBesideGpu(mesh, options.sign != SignMode::Unsigned);
-    volumeOnCuda(*openCuda(mesh, *engine, opts, stats), volume, opts, stats, interrupter);
+    const auto session = openCuda(mesh, *engine, opts, stats);
+    startRegions(true); // after the session: its step 2 reads the device copy of the mesh
+    volumeOnCuda(*session, volume, opts, stats, interrupter);
     if (parts.valid()) parts.get();
   }
   else
   {
+    startRegions(false);
     VoxelBox everyChunk;
     everyChunk.hi = { volume.chunkCounts()[0] - 1, volume.chunkCounts()[1] - 1, volume.chunkCounts()[2] - 1 };
     volumeRegion(volume, everyChunk, opts.cpuBandBytes, stats, interrupter,

@@ -3,6 +3,7 @@
 #pragma once
 
 #include "MeshToSdfInternal.h"
+#include "MeshToSdfSharpFeatures.h"
 #include "lvdif/MeshToSdf.h"
 #include "lvdif/SdfDictionary.h"
 
@@ -86,6 +87,14 @@ public:
 std::unique_ptr<Session> openSession(const DeviceMesh& mesh, const GridGeometry& grid,
   const MeshToSdfOptions& options, double toOut, double band, MeshToSdfStats& stats,
   std::function<void()> ensureWinding);
+
+/// Step 2 of the sharp features' regions (meshtosdf::sharpRegionVoxels' twin:
+/// the same voxels and floats, in the same order) on the GPU, on a stream of
+/// its own and stream-ordered memory, so that it runs beside a session's
+/// kernels without waiting for them (MeshToSdfCudaSharp.cu).
+std::vector<detail::meshtosdf::SharpVoxel> sharpRegionVoxelsOnDevice(const DeviceMesh& mesh,
+  const detail::meshtosdf::SharpFeatures& sharp, const std::vector<detail::meshtosdf::SharpBrick>& bricks,
+  const GridGeometry& grid, const VoxelBox& extent, double toOut, double band);
 
 /// Tests: the pieces the keys came back in since the process started, and
 /// how many of them through pageable memory (pinned memory was refused).

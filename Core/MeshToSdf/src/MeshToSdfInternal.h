@@ -115,7 +115,7 @@ struct NearestResult
 /// output units (toOut per world unit), saturated at the band. One expression
 /// for the CPU's distance rows and the sharp features' voxels
 /// (MeshToSdfSharpFeatures.h), which must store the same floats.
-inline float storedValue(float s, double dist2, double toOut, double band)
+LVDIF_HD float storedValue(float s, double dist2, double toOut, double band)
 {
   return s * static_cast<float>(std::min(std::sqrt(dist2) * toOut, band));
 }

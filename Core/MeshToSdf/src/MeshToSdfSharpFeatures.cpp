@@ -184,108 +184,95 @@ bool sharpFeaturesInside(const SharpFeatures& sharp, const GridGeometry& grid, c
   return true;
 }
 
-std::vector<SharpVoxel> normalSignAtSharpFeatures(const PreparedMesh& mesh, const SharpFeatures& sharp,
-  const Bvh& bvh, const GridGeometry& grid, const VoxelBox& extent, double toOut, double band,
-  Interrupter& interrupter)
+namespace
 {
-  const double sx = grid.spacing[0], sy = grid.spacing[1], sz = grid.spacing[2];
-  const double diagonal = std::sqrt(sx * sx + sy * sy + sz * sz);
-  // a point's nearest voxel centre is within half a voxel's diagonal; every
-  // test below moves by at most that much between a point and its voxel
-  // (the offset to the feature is 1-Lipschitz), so with this margin the
-  // voxels nearest to the points of a segment from the feature into its
-  // region all pass. A brick is tested at its centre with its own half
-  // diagonal added: it passes when any voxel of it could.
-  const double margin = 0.5 * diagonal * (1 + 1e-6);
-  const double brickRadius = 0.5 * SharpBrickEdge * diagonal * (1 + 1e-6);
-  std::int64_t bricks[3];
-  for (int a = 0; a < 3; ++a) bricks[a] = (extent.hi[a] - extent.lo[a]) / SharpBrickEdge + 1;
-  auto brickBox = [&](std::int64_t bi, std::int64_t bj, std::int64_t bk) {
-    VoxelBox box;
+/// The bricks of an extent (SharpBrickEdge^3 voxels; the last ones cut by the
+/// extent) and the margins of their tests.
+struct SharpBrickGrid
+{
+  SharpBrickGrid(const GridGeometry& g, const VoxelBox& e)
+    : grid(g)
+    , extent(e)
+  {
+    const double sx = grid.spacing[0], sy = grid.spacing[1], sz = grid.spacing[2];
+    diagonal = std::sqrt(sx * sx + sy * sy + sz * sz);
+    // a point's nearest voxel centre is within half a voxel's diagonal; every
+    // test moves by at most that much between a point and its voxel (the
+    // offset to the feature is 1-Lipschitz), so with this margin the voxels
+    // nearest to the points of a segment from the feature into its region all
+    // pass. A brick is tested at its centre with its own half diagonal added:
+    // it passes when any voxel of it could.
+    margin = 0.5 * diagonal * (1 + 1e-6);
+    brickRadius = 0.5 * SharpBrickEdge * diagonal * (1 + 1e-6);
+    for (int a = 0; a < 3; ++a) bricks[a] = (extent.hi[a] - extent.lo[a]) / SharpBrickEdge + 1;
+  }
+  VoxelBox box(std::int64_t bi, std::int64_t bj, std::int64_t bk) const
+  {
+    VoxelBox b;
     const std::int64_t at[3] = { bi, bj, bk };
     for (int a = 0; a < 3; ++a)
     {
-      box.lo[a] = extent.lo[a] + at[a] * SharpBrickEdge;
-      box.hi[a] = std::min(extent.hi[a], box.lo[a] + SharpBrickEdge - 1);
+      b.lo[a] = extent.lo[a] + at[a] * SharpBrickEdge;
+      b.hi[a] = std::min(extent.hi[a], b.lo[a] + SharpBrickEdge - 1);
     }
-    return box;
-  };
-  auto position = [&](double i, double j, double k) {
-    return V3{ grid.origin[0] + i * sx, grid.origin[1] + j * sy, grid.origin[2] + k * sz };
-  };
-  // the offset of p from the feature's closest point; false when p is past
-  // the edge's ends (the end vertices' business) by more than `slack`
-  auto offset = [](const SharpFeature& f, V3 p, double slack, V3& d) {
-    if (!f.edge)
-    {
-      d = p - f.a;
-      return true;
-    }
-    const V3 e = f.b - f.a;
-    const double len2 = dot(e, e), len = std::sqrt(len2);
-    const double s = dot(p - f.a, e);
-    if (s < -slack * len || s > len2 + slack * len) return false;
-    const double t = std::clamp(s / len2, 0.0, 1.0);
-    d = p - (f.a + t * e);
-    return true;
-  };
-  // d in the feature's cone, and its faces' normals of both signs there
-  auto mayDiffer = [](const SharpFeature& f, V3 d, double slack) {
-    for (const V3& u : f.limits)
-      if (dot(d, u) > slack) return false;
-    double lo = 1e300, hi = -1e300;
-    for (const V3& n : f.normals)
-    {
-      lo = std::min(lo, dot(d, n));
-      hi = std::max(hi, dot(d, n));
-    }
-    return lo < slack && hi > -slack;
-  };
+    return b;
+  }
+  V3 position(double i, double j, double k) const
+  {
+    return V3{ grid.origin[0] + i * grid.spacing[0], grid.origin[1] + j * grid.spacing[1],
+      grid.origin[2] + k * grid.spacing[2] };
+  }
+  V3 centre(const VoxelBox& b) const
+  {
+    return position(0.5 * static_cast<double>(b.lo[0] + b.hi[0]), 0.5 * static_cast<double>(b.lo[1] + b.hi[1]),
+      0.5 * static_cast<double>(b.lo[2] + b.hi[2]));
+  }
+  GridGeometry grid;
+  VoxelBox extent;
+  double diagonal = 0, margin = 0, brickRadius = 0;
+  std::int64_t bricks[3] = { 0, 0, 0 };
+};
+} // namespace
 
-  // Whether, for every voxel p of the box, no point x of the mesh has
-  // (x - c) . (p - c) > 0, c the feature's closest point to p (the feature
-  // is where the mesh reaches farthest towards p; on its convex hull). Then
-  // |p - x|^2 = |p - c|^2 - 2 (x - c) . (p - c) + |x - c|^2 > |p - c|^2 for
-  // every x off the feature: every triangle without it is farther than the
-  // feature's faces. (x - c) . (p - c) is linear in p (an edge's c: p's
-  // projection, strictly inside it, so that no other triangle through an end
-  // ties), so the box's corners bound it, and the mesh's vertices bound x.
-  auto beyondTheMesh = [&](const SharpFeature& f, const VoxelBox& box) {
-    const V3 e = f.b - f.a;
-    const double len2 = dot(e, e);
-    for (int corner = 0; corner < 8; ++corner)
-    {
-      const V3 p = position(static_cast<double>(corner & 1 ? box.hi[0] : box.lo[0]),
-        static_cast<double>(corner & 2 ? box.hi[1] : box.lo[1]), static_cast<double>(corner & 4 ? box.hi[2] : box.lo[2]));
-      V3 towards = p - f.a;
-      if (f.edge)
-      {
-        const double t = dot(towards, e) / len2;
-        if (!(t > 1e-6 && t < 1 - 1e-6)) return false;
-        towards = towards - t * e;
-      }
-      if (bvh.maxAlongAbove(f.a, towards, 0.0) > 0) return false;
-    }
-    return true;
-  };
+SharpFeatureView SharpFeature::view() const
+{
+  SharpFeatureView v;
+  v.a = a;
+  v.b = b;
+  v.edge = edge;
+  v.limits = limits.data();
+  v.limitCount = static_cast<int>(limits.size());
+  v.normals = normals.data();
+  v.normalCount = static_cast<int>(normals.size());
+  return v;
+}
 
-  // 1. Per feature, its bricks: walked from those around the feature to
+VoxelBox sharpBrickBox(const SharpBrick& b, const GridGeometry& grid, const VoxelBox& extent)
+{
+  return SharpBrickGrid(grid, extent).box(b.bi, b.bj, b.bk);
+}
+
+double sharpVoxelDiagonal(const GridGeometry& grid)
+{
+  return SharpBrickGrid(grid, VoxelBox{}).diagonal;
+}
+
+std::vector<SharpBrick> sharpRegionBricks(
+  const SharpFeatures& sharp, const Bvh& bvh, const GridGeometry& grid, const VoxelBox& extent, Interrupter& interrupter)
+{
+  const SharpBrickGrid bg(grid, extent);
+  const double margin = bg.margin;
+  // Per feature, its bricks: walked from those around the feature to
   // neighbours while they can still hold a voxel of the region (one nearest
   // query at the centre). A region is star-shaped from its feature (the
   // segment from a point to its closest point has that closest point
   // throughout), so no brick of it is missed.
-  struct Brick
-  {
-    std::int32_t feature;
-    std::int32_t nearest; // the closest triangle to the brick's centre
-    std::int64_t bi, bj, bk;
-  };
-  std::vector<Brick> work;
+  std::vector<SharpBrick> work;
   ParallelFailure failure;
   const auto features = static_cast<std::int64_t>(sharp.features.size());
 #pragma omp parallel
   {
-    std::vector<Brick> mine;
+    std::vector<SharpBrick> mine;
     std::unordered_set<std::int64_t> seen;
     std::vector<std::array<std::int64_t, 3>> todo;
 #pragma omp for schedule(dynamic, 1) nowait
@@ -294,11 +281,12 @@ std::vector<SharpVoxel> normalSignAtSharpFeatures(const PreparedMesh& mesh, cons
       failure.run([&] {
         interrupter.checkInterrupt();
         const SharpFeature& f = sharp.features[static_cast<std::size_t>(fi)];
+        const SharpFeatureView fv = f.view();
         seen.clear();
         todo.clear();
         auto push = [&](std::int64_t bi, std::int64_t bj, std::int64_t bk) {
-          if (bi < 0 || bj < 0 || bk < 0 || bi >= bricks[0] || bj >= bricks[1] || bk >= bricks[2]) return;
-          if (seen.insert(bi + bricks[0] * (bj + bricks[1] * bk)).second) todo.push_back({ bi, bj, bk });
+          if (bi < 0 || bj < 0 || bk < 0 || bi >= bg.bricks[0] || bj >= bg.bricks[1] || bk >= bg.bricks[2]) return;
+          if (seen.insert(bi + bg.bricks[0] * (bj + bg.bricks[1] * bk)).second) todo.push_back({ bi, bj, bk });
         };
         std::int64_t lo[3], hi[3];
         for (int a = 0; a < 3; ++a)
@@ -313,16 +301,14 @@ std::vector<SharpVoxel> normalSignAtSharpFeatures(const PreparedMesh& mesh, cons
           for (std::int64_t j = lo[1]; j <= hi[1]; ++j)
             for (std::int64_t i = lo[0]; i <= hi[0]; ++i) push(i, j, k);
         std::int32_t hint = -1;
-        const double slack = margin + brickRadius;
+        const double slack = margin + bg.brickRadius;
         while (!todo.empty())
         {
           const std::array<std::int64_t, 3> at = todo.back();
           todo.pop_back();
-          const VoxelBox box = brickBox(at[0], at[1], at[2]);
-          const V3 centre = position(0.5 * static_cast<double>(box.lo[0] + box.hi[0]),
-            0.5 * static_cast<double>(box.lo[1] + box.hi[1]), 0.5 * static_cast<double>(box.lo[2] + box.hi[2]));
+          const V3 centre = bg.centre(bg.box(at[0], at[1], at[2]));
           V3 d;
-          if (!offset(f, centre, slack, d) || !mayDiffer(f, d, slack)) continue;
+          if (!sharpOffset(fv, centre, slack, d) || !sharpMayDiffer(fv, d, slack)) continue;
           // no voxel of it nearer the feature than the mesh (within the
           // margins): none in the region, nor anything beyond it
           const NearestResult r = bvh.nearest(centre, hint, 1e300);
@@ -340,17 +326,54 @@ std::vector<SharpVoxel> normalSignAtSharpFeatures(const PreparedMesh& mesh, cons
     work.insert(work.end(), mine.begin(), mine.end());
   }
   failure.rethrow();
-  std::sort(work.begin(), work.end(), [](const Brick& x, const Brick& y) {
+  std::sort(work.begin(), work.end(), [](const SharpBrick& x, const SharpBrick& y) {
     return std::tie(x.feature, x.bk, x.bj, x.bi) < std::tie(y.feature, y.bk, y.bj, y.bi);
   });
+  return work;
+}
 
-  // 2. The voxels of those bricks that can be in the region, with the
-  // Normal path's value: the closest triangle among the feature's faces when
-  // every other triangle is provably farther from the whole brick (one query
+std::vector<SharpVoxel> sharpRegionVoxels(const PreparedMesh& mesh, const SharpFeatures& sharp, const Bvh& bvh,
+  const std::vector<SharpBrick>& work, const GridGeometry& grid, const VoxelBox& extent, double toOut, double band,
+  Interrupter& interrupter)
+{
+  const SharpBrickGrid bg(grid, extent);
+  const double brickRadius = bg.brickRadius;
+
+  // Whether, for every voxel p of the box, no point x of the mesh has
+  // (x - c) . (p - c) > 0, c the feature's closest point to p (the feature
+  // is where the mesh reaches farthest towards p; on its convex hull). Then
+  // |p - x|^2 = |p - c|^2 - 2 (x - c) . (p - c) + |x - c|^2 > |p - c|^2 for
+  // every x off the feature: every triangle without it is farther than the
+  // feature's faces. (x - c) . (p - c) is linear in p (an edge's c: p's
+  // projection, strictly inside it, so that no other triangle through an end
+  // ties), so the box's corners bound it, and the mesh's vertices bound x.
+  auto beyondTheMesh = [&](const SharpFeature& f, const VoxelBox& box) {
+    const V3 e = f.b - f.a;
+    const double len2 = dot(e, e);
+    for (int corner = 0; corner < 8; ++corner)
+    {
+      const V3 p = bg.position(static_cast<double>(corner & 1 ? box.hi[0] : box.lo[0]),
+        static_cast<double>(corner & 2 ? box.hi[1] : box.lo[1]), static_cast<double>(corner & 4 ? box.hi[2] : box.lo[2]));
+      V3 towards = p - f.a;
+      if (f.edge)
+      {
+        const double t = dot(towards, e) / len2;
+        if (!(t > 1e-6 && t < 1 - 1e-6)) return false;
+        towards = towards - t * e;
+      }
+      if (bvh.maxAlongAbove(f.a, towards, 0.0) > 0) return false;
+    }
+    return true;
+  };
+
+  // The voxels of the bricks that can be in the region, with the Normal
+  // path's value: the closest triangle among the feature's faces when every
+  // other triangle is provably farther from the whole brick (one query
   // without them at the centre), else an exact query of the whole mesh.
-  // Either is the minimum of (distance, index) over all triangles, the
-  // Normal path's answer.
+  // Either is the minimum of (distance, index) over all triangles, the Normal
+  // path's answer.
   std::vector<SharpVoxel> out;
+  ParallelFailure failure;
   const auto count = static_cast<std::int64_t>(work.size());
 #pragma omp parallel
   {
@@ -360,38 +383,29 @@ std::vector<SharpVoxel> normalSignAtSharpFeatures(const PreparedMesh& mesh, cons
     {
       failure.run([&] {
         if ((w & 63) == 0) interrupter.checkInterrupt();
-        const Brick& b = work[static_cast<std::size_t>(w)];
+        const SharpBrick& b = work[static_cast<std::size_t>(w)];
         const SharpFeature& f = sharp.features[static_cast<std::size_t>(b.feature)];
-        const VoxelBox box = brickBox(b.bi, b.bj, b.bk);
-        const V3 centre = position(0.5 * static_cast<double>(box.lo[0] + box.hi[0]),
-          0.5 * static_cast<double>(box.lo[1] + box.hi[1]), 0.5 * static_cast<double>(box.lo[2] + box.hi[2]));
+        const SharpFeatureView fv = f.view();
+        const VoxelBox box = bg.box(b.bi, b.bj, b.bk);
+        const V3 centre = bg.centre(box);
         const NearestResult others =
           bvh.nearest(centre, -1, 1e300, f.faces.data(), static_cast<int>(f.faces.size()));
         V3 dc;
-        offset(f, centre, 1e300, dc);
+        sharpOffset(fv, centre, 1e300, dc);
         // every voxel p of the brick: others(p) >= others(c) - R, the
         // feature's faces(p) <= |p - feature| <= |c - feature| + R
         const bool local = std::sqrt(others.dist2) - brickRadius > (norm(dc) + brickRadius) * (1 + 1e-9) ||
           beyondTheMesh(f, box);
+        const Tri& near = mesh.tris[static_cast<std::size_t>(b.nearest)];
         std::int32_t hint = -1;
         for (std::int64_t k = box.lo[2]; k <= box.hi[2]; ++k)
           for (std::int64_t j = box.lo[1]; j <= box.hi[1]; ++j)
             for (std::int64_t i = box.lo[0]; i <= box.hi[0]; ++i)
             {
-              const V3 p = position(static_cast<double>(i), static_cast<double>(j), static_cast<double>(k));
-              // a voxel's own tests need no margin but rounding's: whether its
-              // closest point can lie on the feature, in a direction where the
-              // faces' normals disagree (the bricks' margins keep the walk
-              // from missing any)
-              const double tol = 1e-9 * (norm(p - f.a) + norm(f.b - f.a) + diagonal);
+              const V3 p = bg.position(static_cast<double>(i), static_cast<double>(j), static_cast<double>(k));
               V3 d;
-              if (!offset(f, p, tol, d) || !mayDiffer(f, d, tol)) continue;
-              // the centre's closest triangle bounds the distance to the mesh
-              // from above: farther from the feature than from it beyond the
-              // margins, p is not in the region (no query needed)
-              const Tri& near = mesh.tris[static_cast<std::size_t>(b.nearest)];
-              const V3 dn = closestPointOnTriangle(p, near.v[0], near.v[1], near.v[2]).point - p;
-              if (norm(d) - norm(dn) > tol) continue;
+              double tol = 0;
+              if (!sharpVoxelMayBeInRegion(fv, p, near.v[0], near.v[1], near.v[2], bg.diagonal, d, tol)) continue;
               NearestResult r;
               if (local)
               {
@@ -415,9 +429,7 @@ std::vector<SharpVoxel> normalSignAtSharpFeatures(const PreparedMesh& mesh, cons
                 r = bvh.nearest(p, hint, 1e300);
                 hint = r.tri;
               }
-              // farther from the feature than from the mesh beyond the
-              // margins: not in the region
-              if (norm(d) - std::sqrt(r.dist2) > tol) continue;
+              if (!sharpVoxelInRegion(d, tol, r.dist2)) continue;
               const Tri& t = mesh.tris[static_cast<std::size_t>(r.tri)];
               mine.push_back({ i, j, k, storedValue(normalSign(p, r.closest.point, t.n), r.dist2, toOut, band) });
             }

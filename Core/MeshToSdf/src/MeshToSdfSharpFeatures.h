@@ -18,6 +18,7 @@
 #pragma once
 
 #include "MeshToSdfInternal.h"
+#include "MeshToSdfSharpTests.h"
 #include "lvdif/Interrupter.h"
 #include "lvdif/MeshToSdf.h"
 
@@ -40,6 +41,7 @@ struct SharpFeature
   std::vector<V3> limits;
   std::vector<V3> normals; // the face normals of the feature's faces (Tri::n)
   std::vector<std::int32_t> faces; // those faces (indices in the mesh's tris), ascending
+  SharpFeatureView view() const;   // valid while this feature lives
 };
 
 struct SharpFeatures
@@ -54,7 +56,7 @@ SharpFeatures findSharpFeatures(const PreparedMesh& mesh);
 
 /// Whether every sharp feature lies in the box of the voxel centres of
 /// `extent` (then every voxel of a feature's region is reachable from the
-/// feature through voxels of the extent: normalSignAtSharpFeatures).
+/// feature through voxels of the extent: sharpRegionBricks).
 bool sharpFeaturesInside(const SharpFeatures& sharp, const GridGeometry& grid, const VoxelBox& extent);
 
 /// One voxel of the regions with the Normal path's value (output units).
@@ -67,17 +69,37 @@ struct SharpVoxel
 /// The regions are walked brick by brick (SharpBrickEdge^3 voxels).
 constexpr int SharpBrickEdge = 8;
 
-/// The voxels of `extent` that may lie in a sharp feature's region (their
-/// closest point can lie on the feature, in a direction where its faces'
-/// normals disagree, up to rounding), each with the value the Normal path
-/// stores there: s * min(|p - c| * toOut, band), s the sign of
-/// (p - c) . n_t, c and t the closest point and triangle (ties to the lowest
-/// index). The regions are walked brick by brick from their features, with
-/// margins that keep the walk from missing a voxel (MeshToSdfSharpFeatures.cpp).
-/// Needs sharpFeaturesInside. Interruptible.
-std::vector<SharpVoxel> normalSignAtSharpFeatures(const PreparedMesh& mesh, const SharpFeatures& sharp,
-  const Bvh& bvh, const GridGeometry& grid, const VoxelBox& extent, double toOut, double band,
+/// A brick (bi, bj, bk) of the extent that may hold voxels of feature
+/// `feature`'s region, with the closest triangle to its centre.
+struct SharpBrick
+{
+  std::int32_t feature;
+  std::int32_t nearest;
+  std::int64_t bi, bj, bk;
+};
+
+/// Step 1 of the regions: the bricks of `extent` that may hold a voxel of a
+/// sharp feature's region, walked from each feature with margins that keep
+/// the walk from missing one (MeshToSdfSharpFeatures.cpp); sorted by feature
+/// and position. Needs sharpFeaturesInside. Interruptible.
+std::vector<SharpBrick> sharpRegionBricks(
+  const SharpFeatures& sharp, const Bvh& bvh, const GridGeometry& grid, const VoxelBox& extent, Interrupter& interrupter);
+
+/// Step 2 on the CPU: the voxels of those bricks that may lie in their
+/// feature's region (their closest point can lie on the feature, in a
+/// direction where its faces' normals disagree, up to rounding:
+/// MeshToSdfSharpTests.h), each with the value the Normal path stores there:
+/// s * min(|p - c| * toOut, band), s the sign of (p - c) . n_t, c and t the
+/// closest point and triangle (ties to the lowest index). Interruptible. The
+/// CUDA twin is meshtosdf_cuda::sharpRegionVoxelsOnDevice.
+std::vector<SharpVoxel> sharpRegionVoxels(const PreparedMesh& mesh, const SharpFeatures& sharp, const Bvh& bvh,
+  const std::vector<SharpBrick>& bricks, const GridGeometry& grid, const VoxelBox& extent, double toOut, double band,
   Interrupter& interrupter);
+
+/// The voxels of a brick of `extent`.
+VoxelBox sharpBrickBox(const SharpBrick& brick, const GridGeometry& grid, const VoxelBox& extent);
+/// A voxel's diagonal (the scale of the tests' rounding tolerance).
+double sharpVoxelDiagonal(const GridGeometry& grid);
 
 } // namespace detail::meshtosdf
 } // namespace lvdif

@@ -2,6 +2,7 @@
 // (MeshToSdfSolidSigns.h).
 #include "MeshToSdfSolidSigns.h"
 
+#include "MeshToSdfCuda.h"
 #include "MeshToSdfSolid.h"
 #include "lvdif/ParallelFailure.h"
 
@@ -60,16 +61,33 @@ MeshToSdfOptions signOfSolids(const MeshToSdfPrepared& mesh, const MeshToSdfOpti
 }
 
 std::future<std::vector<SharpVoxel>> sharpRegions(const MeshToSdfPrepared& mesh, const GridGeometry& grid,
-  const VoxelBox& extent, double toOut, double band, Interrupter& interrupter, bool besideGpu, bool tracePhases)
+  const VoxelBox& extent, double toOut, double band, Interrupter& interrupter, bool onGpu, bool tracePhases)
 {
-  return std::async(besideGpu ? std::launch::async : std::launch::deferred,
-    [&mesh, grid, extent, toOut, band, &interrupter, tracePhases] {
+  return std::async(onGpu ? std::launch::async : std::launch::deferred,
+    [&mesh, grid, extent, toOut, band, &interrupter, onGpu, tracePhases] {
       const PhaseTraceScope tracing(tracePhases); // this thread's own
       const double t0 = now();
-      const std::shared_ptr<const Bvh> bvh = mesh.impl().meshBvh(); // built by the solid check
-      std::vector<SharpVoxel> voxels = normalSignAtSharpFeatures(
-        mesh.impl().mesh, mesh.impl().sharpFeatures(), *bvh, grid, extent, toOut, band, interrupter);
-      trace(("sharp features' regions: " + std::to_string(voxels.size()) + " voxels").c_str(), now() - t0);
+      MeshToSdfPrepared::Impl& impl = mesh.impl();
+      const std::shared_ptr<const Bvh> bvh = impl.meshBvh(); // built by the solid check
+      const SharpFeatures& sharp = impl.sharpFeatures();
+      const std::vector<SharpBrick> bricks = sharpRegionBricks(sharp, *bvh, grid, extent, interrupter);
+      trace(("sharp features' regions: " + std::to_string(bricks.size()) + " bricks").c_str(), now() - t0);
+      const double t1 = now();
+      std::vector<SharpVoxel> voxels;
+      if (onGpu)
+      {
+        double unused = 0;
+        voxels = meshtosdf_cuda::sharpRegionVoxelsOnDevice(
+          impl.deviceMesh(false, false, unused), sharp, bricks, grid, extent, toOut, band);
+        interrupter.checkInterrupt();
+      }
+      else
+      {
+        voxels = sharpRegionVoxels(impl.mesh, sharp, *bvh, bricks, grid, extent, toOut, band, interrupter);
+      }
+      trace(("sharp features' regions: " + std::to_string(voxels.size()) + " voxels" + (onGpu ? " (GPU)" : ""))
+              .c_str(),
+        now() - t1);
       return voxels;
     });
 }

@@ -31,13 +31,14 @@ MeshToSdfOptions signOfSolids(const MeshToSdfPrepared& mesh, const MeshToSdfOpti
   const GridGeometry& grid, const VoxelBox& extent);
 
 /// Normal by the winding path (signOfSolids): the voxels of the sharp
-/// features' regions with the Normal path's values. Their queries are the
-/// CPU's (the mesh's tree, exact, ties to the lowest index like every
-/// accelerator) whatever device the call uses: beside a CUDA session, on a
-/// thread of their own (the host mostly waits there), else when get() is
-/// called, after the CPU's pass (both use every thread).
+/// features' regions with the Normal path's values. Step 1 (the bricks) runs
+/// on the CPU; step 2 (the voxels' queries, exact, ties to the lowest index
+/// like every accelerator) on the GPU for a call on CUDA (onGpu: a thread of
+/// its own beside the session's kernels; the device copy of the mesh must
+/// exist, so open the session first), else on the CPU when get() is called,
+/// after the CPU's pass (both use every thread).
 std::future<std::vector<SharpVoxel>> sharpRegions(const MeshToSdfPrepared& mesh, const GridGeometry& grid,
-  const VoxelBox& extent, double toOut, double band, Interrupter& interrupter, bool besideGpu, bool tracePhases);
+  const VoxelBox& extent, double toOut, double band, Interrupter& interrupter, bool onGpu, bool tracePhases);
 
 /// The sharp regions' voxels into the volume, chunk by chunk on the threads
 /// (a far chunk that a region crosses is expanded: thousands at 1024^3), each

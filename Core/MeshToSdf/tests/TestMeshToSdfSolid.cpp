@@ -4,7 +4,9 @@
 // pseudo-normal path's, voxel for voxel, on the CPU and on CUDA.
 #include "MeshToSdfFarCases.h"
 #include "MeshToSdfOracle.h"
+#include "../src/MeshToSdfCuda.h"
 #include "../src/MeshToSdfInternal.h"
+#include "../src/MeshToSdfSharpFeatures.h"
 #include "../src/MeshToSdfSolid.h"
 #include "lvdif/Cuda.h"
 #include "lvdif/MeshToSdf.h"
@@ -322,6 +324,50 @@ TEST(MeshToSdfSolid, NormalFieldOfSolidsEqualsTheNormalPath)
         }
   EXPECT_GT(sharpSeen, 0);
   EXPECT_GT(normalDiffersFromWinding, 0);
+}
+
+/// Step 2 of the sharp regions on the GPU gives the CPU's voxels and floats,
+/// in the same order, on the same bricks (grids of equal and unequal
+/// spacings, a band and none). Only with a GPU.
+TEST(MeshToSdfSolid, SharpRegionsOnTheGpuEqualTheCpu)
+{
+  if (!cuda::available()) GTEST_SKIP() << "no CUDA device";
+  auto meshes = solids();
+  meshes.emplace_back("spiky ball", spikyBall());
+  meshes.emplace_back("needle", tetrahedron({ -0.2f, -0.15f, -0.9f }, { 0.25f, -0.1f, -0.85f }, { 0.0f, 0.2f, -0.8f }, { 0.05f, 0.02f, 0.9f }));
+  std::int64_t compared = 0;
+  for (const auto& [name, mesh] : meshes)
+    for (double band : { 3.0, 1e30 })
+      for (bool anisotropic : { false, true })
+      {
+        GridGeometry g = fitGridToMesh(mesh, 40, 3);
+        if (anisotropic) g.spacing = { g.spacing[0], 1.37 * g.spacing[1], 0.71 * g.spacing[2] };
+        const MeshToSdfPrepared p = prepareMeshToSdf(mesh, SignMode::Normal);
+        MeshToSdfPrepared::Impl& impl = p.impl();
+        if (!impl.solidBoundary().solid) continue;
+        const detail::meshtosdf::SharpFeatures& sharp = impl.sharpFeatures();
+        VoxelBox whole;
+        whole.hi = { g.dims[0] - 1, g.dims[1] - 1, g.dims[2] - 1 };
+        if (!detail::meshtosdf::sharpFeaturesInside(sharp, g, whole)) continue;
+        Interrupter never;
+        const auto bvh = impl.meshBvh();
+        const auto bricks = detail::meshtosdf::sharpRegionBricks(sharp, *bvh, g, whole, never);
+        const double toOut = 1.0 / g.spacing[0];
+        const auto cpu =
+          detail::meshtosdf::sharpRegionVoxels(impl.mesh, sharp, *bvh, bricks, g, whole, toOut, band, never);
+        double unused = 0;
+        const auto gpu = detail::meshtosdf_cuda::sharpRegionVoxelsOnDevice(
+          impl.deviceMesh(false, false, unused), sharp, bricks, g, whole, toOut, band);
+        const std::string where = name + ", band " + std::to_string(band) + (anisotropic ? ", unequal spacings" : "");
+        ASSERT_EQ(cpu.size(), gpu.size()) << where;
+        std::int64_t differ = 0;
+        for (std::size_t n = 0; n < cpu.size(); ++n)
+          differ += cpu[n].i != gpu[n].i || cpu[n].j != gpu[n].j || cpu[n].k != gpu[n].k ||
+            std::memcmp(&cpu[n].value, &gpu[n].value, sizeof(float)) != 0;
+        EXPECT_EQ(differ, 0) << where << " (" << cpu.size() << " voxels)";
+        compared += static_cast<std::int64_t>(cpu.size());
+      }
+  EXPECT_GT(compared, 0);
 }
 
 /// A mesh that is not a solid's boundary keeps the pseudo-normal path, and

@@ -18,6 +18,13 @@ std::unique_ptr<Session> openSession(const DeviceMesh&, const GridGeometry&, con
   throw Error(ErrorCode::Unsupported, "mesh to SDF: this build has no CUDA");
 }
 
+std::vector<detail::meshtosdf::SharpVoxel> sharpRegionVoxelsOnDevice(const DeviceMesh&,
+  const detail::meshtosdf::SharpFeatures&, const std::vector<detail::meshtosdf::SharpBrick>&, const GridGeometry&,
+  const VoxelBox&, double, double)
+{
+  throw Error(ErrorCode::Unsupported, "mesh to SDF: this build has no CUDA");
+}
+
 KeyCopyCounts keyCopyCounts()
 {
   return {};
