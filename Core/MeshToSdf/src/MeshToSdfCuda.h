@@ -89,7 +89,7 @@ std::unique_ptr<Session> openSession(const DeviceMesh& mesh, const GridGeometry&
   std::function<void()> ensureWinding);
 
 /// Step 2 of the sharp features' regions (meshtosdf::sharpRegionVoxels' twin:
-/// the same voxels and floats, in the same order) on the GPU, on a stream of
+/// the same voxels and floats; ordered by brick, then voxel) on the GPU, on a stream of
 /// its own and stream-ordered memory, so that it runs beside a session's
 /// kernels without waiting for them (MeshToSdfCudaSharp.cu).
 std::vector<detail::meshtosdf::SharpVoxel> sharpRegionVoxelsOnDevice(const DeviceMesh& mesh,

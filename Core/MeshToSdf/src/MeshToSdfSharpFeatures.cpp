@@ -171,16 +171,21 @@ SharpFeatures findSharpFeatures(const PreparedMesh& m)
   return out;
 }
 
+bool insideExtent(V3 p, const GridGeometry& grid, const VoxelBox& extent)
+{
+  for (int a = 0; a < 3; ++a)
+  {
+    const double lo = grid.origin[a] + extent.lo[a] * grid.spacing[a];
+    const double hi = grid.origin[a] + extent.hi[a] * grid.spacing[a];
+    if (!(p[a] >= lo && p[a] <= hi)) return false;
+  }
+  return true;
+}
+
 bool sharpFeaturesInside(const SharpFeatures& sharp, const GridGeometry& grid, const VoxelBox& extent)
 {
   for (const SharpFeature& f : sharp.features)
-    for (const V3 p : { f.a, f.b })
-      for (int a = 0; a < 3; ++a)
-      {
-        const double lo = grid.origin[a] + extent.lo[a] * grid.spacing[a];
-        const double hi = grid.origin[a] + extent.hi[a] * grid.spacing[a];
-        if (!(p[a] >= lo && p[a] <= hi)) return false;
-      }
+    if (!insideExtent(f.a, grid, extent) || !insideExtent(f.b, grid, extent)) return false;
   return true;
 }
 

@@ -58,6 +58,9 @@ SharpFeatures findSharpFeatures(const PreparedMesh& mesh);
 /// `extent` (then every voxel of a feature's region is reachable from the
 /// feature through voxels of the extent: sharpRegionBricks).
 bool sharpFeaturesInside(const SharpFeatures& sharp, const GridGeometry& grid, const VoxelBox& extent);
+/// Whether p lies in the box of the voxel centres of `extent` (a mesh whose
+/// bounds do has every sharp feature inside, found or not).
+bool insideExtent(V3 p, const GridGeometry& grid, const VoxelBox& extent);
 
 /// One voxel of the regions with the Normal path's value (output units).
 struct SharpVoxel

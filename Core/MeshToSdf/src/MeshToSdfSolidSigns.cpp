@@ -44,13 +44,21 @@ MeshToSdfOptions signOfSolids(const MeshToSdfPrepared& mesh, const MeshToSdfOpti
   {
     // the sharp features' voxels take the CPU's queries of the BVH path
     if (options.useVertexNormals || options.accel != MeshToSdfAccel::Bvh) return options;
-    const double t1 = now();
-    const SharpFeatures& sharp = mesh.impl().sharpFeatures();
-    stats.buildSeconds += now() - t1;
-    if (!sharpFeaturesInside(sharp, grid, extent))
+    // every sharp feature must lie inside the grid. A mesh inside it needs
+    // no search here: the regions' thread finds them (beside the GPU's pass)
+    const PreparedMesh& m = mesh.impl().mesh;
+    const bool meshInside = insideExtent(V3{ m.lo[0], m.lo[1], m.lo[2] }, grid, extent) &&
+      insideExtent(V3{ m.hi[0], m.hi[1], m.hi[2] }, grid, extent);
+    if (!meshInside)
     {
-      trace("normal sign on its own path: a sharp feature lies outside the grid", 0);
-      return options;
+      const double t1 = now();
+      const SharpFeatures& sharp = mesh.impl().sharpFeatures();
+      stats.buildSeconds += now() - t1;
+      if (!sharpFeaturesInside(sharp, grid, extent))
+      {
+        trace("normal sign on its own path: a sharp feature lies outside the grid", 0);
+        return options;
+      }
     }
   }
   MeshToSdfOptions o = options;

@@ -17,6 +17,7 @@
 #include <cmath>
 #include <cstring>
 #include <string>
+#include <tuple>
 #include <utility>
 #include <vector>
 
@@ -326,8 +327,8 @@ TEST(MeshToSdfSolid, NormalFieldOfSolidsEqualsTheNormalPath)
   EXPECT_GT(normalDiffersFromWinding, 0);
 }
 
-/// Step 2 of the sharp regions on the GPU gives the CPU's voxels and floats,
-/// in the same order, on the same bricks (grids of equal and unequal
+/// Step 2 of the sharp regions on the GPU gives the CPU's voxels and floats
+/// on the same bricks (grids of equal and unequal
 /// spacings, a band and none). Only with a GPU.
 TEST(MeshToSdfSolid, SharpRegionsOnTheGpuEqualTheCpu)
 {
@@ -353,11 +354,18 @@ TEST(MeshToSdfSolid, SharpRegionsOnTheGpuEqualTheCpu)
         const auto bvh = impl.meshBvh();
         const auto bricks = detail::meshtosdf::sharpRegionBricks(sharp, *bvh, g, whole, never);
         const double toOut = 1.0 / g.spacing[0];
-        const auto cpu =
-          detail::meshtosdf::sharpRegionVoxels(impl.mesh, sharp, *bvh, bricks, g, whole, toOut, band, never);
+        auto cpu = detail::meshtosdf::sharpRegionVoxels(impl.mesh, sharp, *bvh, bricks, g, whole, toOut, band, never);
         double unused = 0;
-        const auto gpu = detail::meshtosdf_cuda::sharpRegionVoxelsOnDevice(
+        auto gpu = detail::meshtosdf_cuda::sharpRegionVoxelsOnDevice(
           impl.deviceMesh(false, false, unused), sharp, bricks, g, whole, toOut, band);
+        // the CPU's threads append in any order: compare as sorted lists
+        auto inOrder = [](std::vector<detail::meshtosdf::SharpVoxel>& v) {
+          std::sort(v.begin(), v.end(), [](const auto& x, const auto& y) {
+            return std::tie(x.k, x.j, x.i, x.value) < std::tie(y.k, y.j, y.i, y.value);
+          });
+        };
+        inOrder(cpu);
+        inOrder(gpu);
         const std::string where = name + ", band " + std::to_string(band) + (anisotropic ? ", unequal spacings" : "");
         ASSERT_EQ(cpu.size(), gpu.size()) << where;
         std::int64_t differ = 0;
