@@ -18,8 +18,10 @@
 #endif
 
 #include "lvdif/ByteStream.h"
+#include "lvdif/CNumbers.h"
 #include "lvdif/Error.h"
 #include "lvdif/Memory.h"
+#include "lvdif/PieceTiling.h"
 
 #include "vtkCallbackCommand.h"
 #include "vtkCommand.h"
@@ -32,6 +34,8 @@
 #include "vtkSTLWriter.h"
 #include "vtkStreamingDemandDrivenPipeline.h"
 #include "vtkTrivialProducer.h"
+#include "vtkXMLDataElement.h"
+#include "vtkXMLDataParser.h"
 #include "vtkXMLImageDataReader.h"
 #include "vtkXMLReader.h"
 #include "vtkXMLImageDataWriter.h"
@@ -118,6 +122,93 @@ struct Watch
   throw lvdif::Error(lvdif::ErrorCode::InvalidArgument,
     std::string("cannot ") + (saving ? "write" : "read") + " '" + path + "': " +
       (kind == Kind::Volume ? "volumes" : "meshes") + " are " + list + " files");
+}
+
+/// The numbers of an attribute of a .vti's header, as written: exactly `n`
+/// numbers (each one whole text) or an error. VTK's reader takes a value it
+/// cannot parse (Spacing="nan 1 1", "inf") for its default, 1 or 0.
+std::vector<double> attributeNumbers(
+  vtkXMLDataElement* e, const char* name, std::size_t n, const std::string& what)
+{
+  const char* text = e->GetAttribute(name);
+  if (!text)
+    return {};
+  std::vector<double> v;
+  const char* p = text;
+  for (;;)
+  {
+    while (*p == ' ' || *p == '\t' || *p == '\n' || *p == '\r')
+      ++p;
+    if (!*p)
+      break;
+    char* end = nullptr;
+    const double x = lvdif::strtodC(p, &end);
+    if (end == p || (*end && *end != ' ' && *end != '\t' && *end != '\n' && *end != '\r'))
+    {
+      v.clear();
+      break;
+    }
+    v.push_back(x);
+    p = end;
+  }
+  if (v.size() != n)
+    throw lvdif::Error(lvdif::ErrorCode::CorruptData,
+      what + ": " + name + "=\"" + std::string(text).substr(0, 80) + "\" is not " + std::to_string(n) + " numbers");
+  return v;
+}
+
+/// The header of a .vti as written (after UpdateInformation, which parsed it):
+/// its pieces must tile its WholeExtent (a point no piece holds was made up,
+/// the memory VTK allocates left as it was) and its Origin and Spacing pass the
+/// volumes' one geometry rule (DictionaryVolume::checkGeometry: finite, spacing
+/// >= 1e-30), before the data is read.
+void checkImageHeader(vtkXMLImageDataReader* reader, const int whole[6], const std::string& what)
+{
+  vtkXMLDataParser* parser = reader->GetXMLParser();
+  vtkXMLDataElement* root = parser ? parser->GetRootElement() : nullptr;
+  vtkXMLDataElement* image = root ? root->FindNestedElementWithName("ImageData") : nullptr;
+  if (!image)
+    return; // VTK's reader said what is missing
+  lvdif::VoxelBox wholeBox;
+  lvdif::VolumeOptions o;
+  for (int a = 0; a < 3; ++a)
+  {
+    wholeBox.lo[a] = whole[2 * a];
+    wholeBox.hi[a] = whole[2 * a + 1];
+    o.dims[a] = std::max<std::int64_t>(1, std::int64_t(whole[2 * a + 1]) - whole[2 * a] + 1);
+  }
+  const std::vector<double> origin = attributeNumbers(image, "Origin", 3, what);
+  const std::vector<double> spacing = attributeNumbers(image, "Spacing", 3, what);
+  attributeNumbers(image, "Direction", 9, what); // (its value is checked by the conversion)
+  for (int a = 0; a < 3; ++a)
+  {
+    o.spacing[a] = spacing.empty() ? 1.0 : spacing[a];
+    o.origin[a] = origin.empty() ? 0.0 : origin[a];
+    if (whole[2 * a] != 0) o.origin[a] += whole[2 * a] * o.spacing[a]; // (0 x nan would blame the origin)
+  }
+  const std::string geometry = lvdif::DictionaryVolume::checkGeometry(o);
+  if (!geometry.empty())
+    throw lvdif::Error(lvdif::ErrorCode::CorruptData, what + ": " + geometry);
+  std::vector<lvdif::VoxelBox> pieces;
+  for (int i = 0; i < image->GetNumberOfNestedElements(); ++i)
+  {
+    vtkXMLDataElement* piece = image->GetNestedElement(i);
+    if (std::string(piece->GetName() ? piece->GetName() : "") != "Piece")
+      continue;
+    int e[6];
+    if (piece->GetVectorAttribute("Extent", 6, e) != 6)
+      return; // VTK's reader says "Extent attribute is not 6 integers"
+    lvdif::VoxelBox b;
+    for (int a = 0; a < 3; ++a)
+    {
+      b.lo[a] = e[2 * a];
+      b.hi[a] = e[2 * a + 1];
+    }
+    pieces.push_back(b);
+  }
+  const std::string tiling = lvdif::pieceTilingProblem(wholeBox, pieces, "piece");
+  if (!tiling.empty())
+    throw lvdif::Error(lvdif::ErrorCode::CorruptData, what + ": " + tiling);
 }
 
 std::shared_ptr<lvdif::DictionaryVolume> volumeOf(vtkAlgorithm* a)
@@ -249,6 +340,7 @@ std::shared_ptr<lvdif::DictionaryVolume> LoadVolume(const std::string& path, lvd
     for (int a = 0; a < 3; ++a)
       bytes = lvdif::checkedMultiply(bytes, e[2 * a + 1] >= e[2 * a] ? std::uint64_t(e[2 * a + 1]) - e[2 * a] + 1 : 0, image);
     lvdif::requireMemory(bytes, image);
+    checkImageHeader(vtkXMLImageDataReader::SafeDownCast(reader), e, what);
   }
   interrupter.start("read volume");
   const bool ok = last->GetExecutive()->Update() != 0;

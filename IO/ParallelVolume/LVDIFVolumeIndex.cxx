@@ -3,9 +3,10 @@
 #include "lvdif/ByteStream.h"
 #include "lvdif/Error.h"
 #include "lvdif/Memory.h"
+#include "lvdif/PieceTiling.h"
 
 #include <cstdio>
-#include <fstream>
+#include <locale>
 #include <iomanip>
 #include <set>
 #include <sstream>
@@ -20,6 +21,17 @@ const char* MAGIC = "LVDIF-PVOLUME";
 {
   throw lvdif::Error(lvdif::ErrorCode::CorruptData,
     "index '" + path + "'" + (line > 0 ? ", line " + std::to_string(line) : std::string()) + ": " + what);
+}
+
+lvdif::VoxelBox extentBox(const int e[6])
+{
+  lvdif::VoxelBox b;
+  for (int a = 0; a < 3; ++a)
+  {
+    b.lo[a] = e[2 * a];
+    b.hi[a] = e[2 * a + 1];
+  }
+  return b;
 }
 
 bool contains(const int outer[6], const int inner[6])
@@ -138,38 +150,39 @@ VolumeIndex readVolumeIndex(const std::string& path)
     fail(path, 0, "whole_extent, origin and spacing are required");
   if (declaredPieces != static_cast<int>(index.pieces.size()))
     fail(path, 0, "declares " + std::to_string(declaredPieces) + " pieces, lists " + std::to_string(index.pieces.size()));
+  // the pieces tile the whole extent: a duplicate or overlapping piece (two
+  // claims on the same points) and a hole were accepted
+  std::vector<lvdif::VoxelBox> boxes;
+  for (const auto& p : index.pieces)
+    boxes.push_back(extentBox(p.extent));
+  const std::string problem = lvdif::pieceTilingProblem(extentBox(index.wholeExtent), boxes, "piece");
+  if (!problem.empty())
+    fail(path, 0, problem + " (pieces counted in the order listed)");
   return index;
 }
 
 void writeVolumeIndex(const VolumeIndex& index, const std::string& path)
 {
-  const std::string tmp = path + ".tmp";
+  std::ostringstream out;
+  out.imbue(std::locale::classic());
+  out << MAGIC << " " << index.version << "\n";
+  out << "# distributed LVDIF dictionary volume: the pieces are .lvdv files beside this index (docs/FORMAT.md)\n";
+  out << "whole_extent";
+  for (int v : index.wholeExtent)
+    out << " " << v;
+  out << "\n" << std::setprecision(17);
+  out << "origin " << index.origin[0] << " " << index.origin[1] << " " << index.origin[2] << "\n";
+  out << "spacing " << index.spacing[0] << " " << index.spacing[1] << " " << index.spacing[2] << "\n";
+  out << "pieces " << index.pieces.size() << "\n";
+  for (const auto& p : index.pieces)
   {
-    std::ofstream out(tmp, std::ios::trunc);
-    out << MAGIC << " " << index.version << "\n";
-    out << "# distributed LVDIF dictionary volume: the pieces are .lvdv files beside this index (docs/FORMAT.md)\n";
-    out << "whole_extent";
-    for (int v : index.wholeExtent)
+    out << "piece";
+    for (int v : p.extent)
       out << " " << v;
-    out << "\n" << std::setprecision(17);
-    out << "origin " << index.origin[0] << " " << index.origin[1] << " " << index.origin[2] << "\n";
-    out << "spacing " << index.spacing[0] << " " << index.spacing[1] << " " << index.spacing[2] << "\n";
-    out << "pieces " << index.pieces.size() << "\n";
-    for (const auto& p : index.pieces)
-    {
-      out << "piece";
-      for (int v : p.extent)
-        out << " " << v;
-      out << " " << p.file << "\n";
-    }
-    out.flush();
-    if (!out)
-      throw lvdif::Error(lvdif::ErrorCode::IoFailure, "cannot write index '" + tmp + "'");
+    out << " " << p.file << "\n";
   }
-  if (std::rename(tmp.c_str(), path.c_str()) != 0)
-  {
-    std::remove(tmp.c_str());
-    throw lvdif::Error(lvdif::ErrorCode::IoFailure, "cannot rename '" + tmp + "' to '" + path + "'");
-  }
+  const std::string text = out.str();
+  // the project's one crash-safe save (it wrote "<index>.tmp" with an ofstream)
+  lvdif::saveAtomically(path, [&](lvdif::ByteSink& sink) { sink.write(text.data(), text.size()); });
 }
 }

@@ -74,37 +74,6 @@ lvdif::VolumeOptions indexOptions(const lvdifvtk::VolumeIndex& index, const std:
   return o;
 }
 
-/// True when the boxes together hold every voxel of `want` (on the grid of their
-/// boundaries: a few cells per piece, whatever the volume's size).
-bool covers(const lvdif::VoxelBox& want, const std::vector<lvdif::VoxelBox>& parts)
-{
-  std::vector<std::int64_t> cuts[3];
-  for (int a = 0; a < 3; ++a)
-  {
-    cuts[a] = { want.lo[a], want.hi[a] + 1 };
-    for (const auto& b : parts)
-    {
-      cuts[a].push_back(b.lo[a]);
-      cuts[a].push_back(b.hi[a] + 1);
-    }
-    std::sort(cuts[a].begin(), cuts[a].end());
-    cuts[a].erase(std::unique(cuts[a].begin(), cuts[a].end()), cuts[a].end());
-  }
-  for (std::size_t i = 0; i + 1 < cuts[0].size(); ++i)
-    for (std::size_t j = 0; j + 1 < cuts[1].size(); ++j)
-      for (std::size_t k = 0; k + 1 < cuts[2].size(); ++k)
-      {
-        const std::int64_t x = cuts[0][i], y = cuts[1][j], z = cuts[2][k];
-        if (!want.contains(x, y, z))
-          continue;
-        bool in = false;
-        for (const auto& b : parts)
-          in = in || b.contains(x, y, z);
-        if (!in)
-          return false;
-      }
-  return true;
-}
 }
 
 int vtkPDictionaryVolumeReader::RequestInformation(
@@ -155,21 +124,7 @@ int vtkPDictionaryVolumeReader::RequestData(
         output->Initialize(); // a piece without chunks: empty
         return;
       }
-      std::vector<lvdif::VoxelBox> parts;
-      for (const auto& p : index.pieces)
-      {
-        lvdif::VoxelBox box;
-        for (int a = 0; a < 3; ++a)
-        {
-          box.lo[a] = static_cast<std::int64_t>(p.extent[2 * a]) - index.wholeExtent[2 * a];
-          box.hi[a] = static_cast<std::int64_t>(p.extent[2 * a + 1]) - index.wholeExtent[2 * a];
-        }
-        parts.push_back(box.intersect(want));
-      }
-      if (!covers(want, parts))
-      {
-        throw lvdif::Error(lvdif::ErrorCode::CorruptData, "its pieces do not cover the requested voxels");
-      }
+      // (readVolumeIndex checked that the pieces tile the whole extent, so they hold `want`)
       auto volume = std::make_shared<lvdif::DictionaryVolume>(options);
       lvdif::DictionaryVolume& out = *volume;
       const std::int64_t total = std::max<std::int64_t>(want.voxelCount(), 1);

@@ -40,6 +40,7 @@
 #include <fstream>
 #include <iterator>
 #include <string>
+#include <dirent.h>
 #include <sys/stat.h>
 #include <unistd.h>
 
@@ -514,4 +515,161 @@ TEST(PVolumeIO, SerialRunWritesEveryPiece)
   EXPECT_FALSE(std::ifstream(piece0).good()) << "piece 0 written before the refusal";
   ::rmdir(piece1.c_str());
   std::remove(index.c_str());
+}
+
+namespace
+{
+/// The reader's first error text for the index at `path` ("" when it read a volume).
+std::string readError(const std::string& path)
+{
+  std::string text;
+  vtkNew<vtkCallbackCommand> onError;
+  onError->SetClientData(&text);
+  onError->SetCallback([](vtkObject*, unsigned long, void* client, void* call) {
+    auto* t = static_cast<std::string*>(client);
+    if (t->empty()) *t = static_cast<const char*>(call);
+  });
+  vtkNew<vtkPDictionaryVolumeReader> r;
+  r->AddObserver(vtkCommand::ErrorEvent, onError);
+  r->GetExecutive()->AddObserver(vtkCommand::ErrorEvent, onError);
+  vtkObject::GlobalWarningDisplayOn(); // ErrorEvent fires only with it on
+  r->SetFileName(path.c_str());
+  r->Update();
+  vtkObject::GlobalWarningDisplayOff();
+  if (text.empty() && voxels(r) == 0) text = "(no volume and no error)";
+  return text;
+}
+
+std::string fileBytes(const std::string& p)
+{
+  std::ifstream f(p, std::ios::binary);
+  return std::string(std::istreambuf_iterator<char>(f), std::istreambuf_iterator<char>());
+}
+} // namespace
+
+// An index that lists a piece twice, or a piece overlapping the others, was
+// read (the first listed won on the shared points, without a word). Now the
+// index is refused naming the two pieces and their extents. Oracle: the same
+// piece files listed once each read (the writer's index), and the extents of
+// the translator's split.
+TEST(PVolumeIO, DuplicateOrOverlappingPiecesAreRefused)
+{
+  vtkSmartPointer<vtkImageData> img = makeImage();
+  const std::string index = tmpName("dup.lvdvp");
+  writePieces(img, index, 2);
+  const std::string whole = tmpName("dup_whole.lvdv");
+  {
+    vtkNew<vtkDictionaryVolumeWriter> w;
+    w->SetInputData(img);
+    w->SetFileName(whole.c_str());
+    ASSERT_EQ(w->Write(), 1);
+  }
+  EXPECT_EQ(readError(index), "");
+  int ext[6], e0[6], e1[6];
+  img->GetExtent(ext);
+  vtkPDictionaryVolumeWriter::PieceExtent(ext, 0, 2, e0);
+  vtkPDictionaryVolumeWriter::PieceExtent(ext, 1, 2, e1);
+  auto text = [](const int* e) {
+    std::string s;
+    for (int q = 0; q < 6; ++q) s += (q ? " " : "") + std::to_string(e[q]);
+    return s;
+  };
+  auto header = [&](int pieces) {
+    return "LVDIF-PVOLUME 1\nwhole_extent " + text(ext) + "\norigin -2 0.5 3\nspacing 0.25 0.5 0.75\npieces " +
+      std::to_string(pieces) + "\n";
+  };
+  const std::string f0 = "lvdif_p_" + std::to_string(getpid()) + "_dup_0.lvdv";
+  const std::string f1 = "lvdif_p_" + std::to_string(getpid()) + "_dup_1.lvdv";
+  const std::string fw = "lvdif_p_" + std::to_string(getpid()) + "_dup_whole.lvdv";
+  const std::string bad = tmpName("dup_bad.lvdvp");
+  // piece 0 listed twice
+  std::ofstream(bad) << header(3) << "piece " << text(e0) << " " << f0 << "\npiece " << text(e1) << " " << f1
+                     << "\npiece " << text(e0) << " " << f0 << "\n";
+  std::string error = readError(bad);
+  EXPECT_NE(error.find("piece 1 and piece 3 have the same extent " + text(e0)), std::string::npos) << error;
+  // the whole volume listed beside its two pieces
+  std::ofstream(bad) << header(3) << "piece " << text(e0) << " " << f0 << "\npiece " << text(e1) << " " << f1
+                     << "\npiece " << text(ext) << " " << fw << "\n";
+  error = readError(bad);
+  EXPECT_NE(error.find("piece 1 (extent " + text(e0) + ") and piece 3 (extent " + text(ext) + ") overlap"),
+    std::string::npos)
+    << error;
+  // a hole: piece 1 alone
+  std::ofstream(bad) << header(1) << "piece " << text(e1) << " " << f1 << "\n";
+  error = readError(bad);
+  EXPECT_NE(error.find("is larger than its piece's extent " + text(e1)), std::string::npos) << error;
+  for (const std::string& f : { bad, index, whole, tmpName("dup_0.lvdv"), tmpName("dup_1.lvdv") })
+    std::remove(f.c_str());
+}
+
+// A serial write of n pieces that failed part way (here: cancelled while
+// writing piece 1) had already replaced piece 0, and the old index listed the
+// new piece 0 with the old piece 1: the saved volume was destroyed. Now the
+// pieces are written to temporary files beside theirs and renamed only when
+// all of them are written (then the index is written): the old index and pieces stay byte for byte, and no
+// temporary file is left. Oracle: the files' bytes before the write.
+TEST(PVolumeIO, SerialWriteThatFailsPartWayKeepsTheOldFiles)
+{
+  vtkSmartPointer<vtkImageData> img = makeImage();
+  const std::string index = tmpName("keep.lvdvp");
+  writePieces(img, index, 3);
+  const std::string piece[3] = { vtkPDictionaryVolumeWriter::PieceFilePath(index, 0),
+    vtkPDictionaryVolumeWriter::PieceFilePath(index, 1), vtkPDictionaryVolumeWriter::PieceFilePath(index, 2) };
+  const std::string before[4] = { fileBytes(index), fileBytes(piece[0]), fileBytes(piece[1]), fileBytes(piece[2]) };
+  // another volume (other values) written over it, from a sparse input
+  vtkSmartPointer<vtkImageData> other = makeSdfImage({ 3, 3 + NX - 1, -2, -2 + NY - 1, 5, 5 + NZ - 1 },
+    { -2.0, 0.5, 3.0 }, { 0.25, 0.5, 0.75 }, [](int i, int j, int k) { return analytic(i, j, k) + 3.0; },
+    [](int, int, int) { return std::array<unsigned char, 4>{ 1, 2, 3, 255 }; });
+  vtkNew<vtkImageToSparseVolume> sparse;
+  sparse->SetInputData(other);
+  vtkNew<vtkPDictionaryVolumeWriter> w;
+  w->SetController(nullptr);
+  w->SetInputConnection(sparse->GetOutputPort());
+  w->SetFileName(index.c_str());
+  w->SetNumberOfPieces(3);
+  // each piece's save reports progress from 0: the first fall is piece 1 starting
+  struct Watch
+  {
+    vtkPDictionaryVolumeWriter* writer;
+    double last = 0;
+    bool cancelled = false;
+  } watch{ w };
+  vtkNew<vtkCallbackCommand> onProgress;
+  onProgress->SetClientData(&watch);
+  onProgress->SetCallback([](vtkObject*, unsigned long, void* client, void* call) {
+    auto* wt = static_cast<Watch*>(client);
+    const double now = *static_cast<double*>(call);
+    if (!wt->cancelled && now < wt->last)
+    {
+      wt->cancelled = true;
+      wt->writer->SetAbortExecute(1);
+    }
+    wt->last = now;
+  });
+  w->AddObserver(vtkCommand::ProgressEvent, onProgress);
+  w->GlobalWarningDisplayOff();
+  EXPECT_EQ(w->Write(), 0);
+  EXPECT_TRUE(watch.cancelled);
+  EXPECT_TRUE(fileBytes(index) == before[0]) << "index";
+  for (int p = 0; p < 3; ++p)
+    EXPECT_TRUE(fileBytes(piece[p]) == before[1 + p]) << "piece " << p;
+  // no temporary file left beside them
+  const std::string dir = std::string(::testing::TempDir());
+  const std::string stem = "lvdif_p_" + std::to_string(getpid()) + "_keep";
+  int left = 0;
+  if (DIR* d = ::opendir(dir.c_str()))
+  {
+    while (const dirent* e = ::readdir(d))
+    {
+      const std::string name = e->d_name;
+      left += name.compare(0, stem.size(), stem) == 0 && name.find(".tmp-") != std::string::npos ? 1 : 0;
+    }
+    ::closedir(d);
+  }
+  EXPECT_EQ(left, 0);
+  vtkNew<vtkPDictionaryVolumeReader> r;
+  r->SetFileName(index.c_str());
+  expectSameArrays(decoded(r), serialRoundTrip(img));
+  for (const std::string& f : { index, piece[0], piece[1], piece[2] })
+    std::remove(f.c_str());
 }
