@@ -206,7 +206,7 @@ void checkImageHeader(vtkXMLImageDataReader* reader, const int whole[6], const s
     }
     pieces.push_back(b);
   }
-  const std::string tiling = lvdif::pieceTilingProblem(wholeBox, pieces, "piece");
+  const std::string tiling = lvdif::pieceTilingProblem(wholeBox, pieces, "piece", true);
   if (!tiling.empty())
     throw lvdif::Error(lvdif::ErrorCode::CorruptData, what + ": " + tiling);
 }

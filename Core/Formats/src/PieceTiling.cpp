@@ -45,7 +45,8 @@ bool shareOnlyALayer(const VoxelBox& whole, const VoxelBox& p, const VoxelBox& q
 }
 } // namespace
 
-std::string pieceTilingProblem(const VoxelBox& whole, const std::vector<VoxelBox>& pieces, const std::string& what)
+std::string pieceTilingProblem(
+  const VoxelBox& whole, const std::vector<VoxelBox>& pieces, const std::string& what, bool overlapsAllowed)
 {
   auto name = [&](std::size_t i) { return what + " " + std::to_string(i + 1); };
   if (pieces.empty())
@@ -64,7 +65,7 @@ std::string pieceTilingProblem(const VoxelBox& whole, const std::vector<VoxelBox
   std::sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) {
     return key(a) != key(b) ? key(a) < key(b) : a < b;
   });
-  for (std::size_t u = 0; u + 1 < order.size(); ++u)
+  for (std::size_t u = 0; !overlapsAllowed && u + 1 < order.size(); ++u)
     if (key(order[u]) == key(order[u + 1]))
       return name(order[u]) + " and " + name(order[u + 1]) + " have the same extent " + extentText(pieces[order[u]]);
   // the grid of the pieces' boundaries: each of its cells is held by whole pieces or none
@@ -94,6 +95,7 @@ std::string pieceTilingProblem(const VoxelBox& whole, const std::vector<VoxelBox
   const std::uint64_t maxMarks = std::min<std::uint64_t>(16 * cells + 64, MaxCells * 2);
   std::vector<std::pair<std::uint32_t, std::uint32_t>> marks;
   bool tooMany = false;
+  std::vector<char> held(overlapsAllowed ? static_cast<std::size_t>(cells) : 0, 0);
   for (std::size_t i = 0; i < pieces.size() && !tooMany; ++i)
   {
     const VoxelBox& p = pieces[i];
@@ -103,6 +105,13 @@ std::string pieceTilingProblem(const VoxelBox& whole, const std::vector<VoxelBox
       for (std::size_t y = y0; y < y1 && !tooMany; ++y)
         for (std::size_t x = x0; x < x1 && !tooMany; ++x)
         {
+          const std::size_t cell = (z * ny + y) * nx + x;
+          if (overlapsAllowed)
+          {
+            if (!held[cell]) marks.emplace_back(static_cast<std::uint32_t>(cell), static_cast<std::uint32_t>(i));
+            held[cell] = 1;
+            continue;
+          }
           marks.emplace_back(static_cast<std::uint32_t>((z * ny + y) * nx + x), static_cast<std::uint32_t>(i));
           tooMany = marks.size() > maxMarks;
         }

@@ -61,6 +61,19 @@ TEST(PieceTiling, DuplicatesAndOverlapsAreNamed)
     std::string::npos);
 }
 
+// A .vti's pieces may repeat points (VTK's writer repeats the whole extent in
+// each piece of an input it cannot split): only holes and pieces outside count.
+TEST(PieceTiling, OverlapsAllowedForVti)
+{
+  const VoxelBox whole = box(0, 7, 0, 7, 0, 7);
+  EXPECT_EQ(pieceTilingProblem(whole, { whole, whole, whole }, "piece", true), "");
+  EXPECT_EQ(pieceTilingProblem(whole, { box(0, 5, 0, 7, 0, 7), box(2, 7, 0, 7, 0, 7) }, "piece", true), "");
+  EXPECT_EQ(pieceTilingProblem(whole, { box(0, 7, 0, 7, 0, 6), box(0, 7, 0, 7, 0, 6) }, "piece", true),
+    "no piece holds the point (0, 0, 7) of the whole extent 0 7 0 7 0 7");
+  EXPECT_EQ(pieceTilingProblem(whole, { whole, box(0, 8, 0, 7, 0, 7) }, "piece", true),
+    "piece 2's extent 0 8 0 7 0 7 lies outside the whole extent 0 7 0 7 0 7");
+}
+
 TEST(PieceTiling, OutsideEmptyAndHolesAreNamed)
 {
   const VoxelBox whole = box(0, 9, 0, 9, 0, 10);

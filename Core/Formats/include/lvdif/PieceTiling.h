@@ -23,10 +23,14 @@ std::string extentText(const VoxelBox& box);
 /// when it is the last of one piece and the first of the other on some axis of
 /// more than one point); points of the whole extent that no piece holds (for
 /// one piece: "the whole extent W is larger than its piece's extent E").
-/// `what` names a piece in the messages ("piece", "Piece element").
+/// `what` names a piece in the messages ("piece"). With `overlapsAllowed`
+/// only pieces outside and holes are problems (a .vti: VTK's writer repeats the
+/// whole extent in every piece when its input cannot be split, and its reader
+/// takes the last piece's values).
 /// Works on the grid of the pieces' distinct boundaries (refused above 2^23
 /// cells): each cell held by each piece once, every two pieces holding a cell
 /// compared, so the work is about the grid's size for pieces that tile.
-std::string pieceTilingProblem(const VoxelBox& whole, const std::vector<VoxelBox>& pieces, const std::string& what = "piece");
+std::string pieceTilingProblem(const VoxelBox& whole, const std::vector<VoxelBox>& pieces,
+  const std::string& what = "piece", bool overlapsAllowed = false);
 
 } // namespace lvdif
