@@ -54,6 +54,23 @@ int vtkPDictionaryVolumeReader::RequestDataObject(vtkInformation*, vtkInformatio
 
 namespace
 {
+/// f(), its errors naming the piece file: a piece that was no .lvdv (or was
+/// damaged) said "cannot read 'x.lvdvp': header: bad magic", naming the index only.
+template <typename F>
+auto inPiece(const std::string& file, F&& f) -> decltype(f())
+{
+  try
+  {
+    return f();
+  }
+  catch (const lvdif::Error& e)
+  {
+    if (e.code() == lvdif::ErrorCode::Cancelled || std::string(e.what()).find("'" + file + "'") != std::string::npos)
+      throw;
+    throw lvdif::Error(e.code(), "piece file '" + file + "': " + e.what());
+  }
+}
+
 /// The volume the index describes: its geometry, with the first piece's chunk
 /// edge, band and SDF dictionary (the writer gives every piece the same).
 lvdif::VolumeOptions indexOptions(const lvdifvtk::VolumeIndex& index, const std::string& dir)
@@ -62,7 +79,9 @@ lvdif::VolumeOptions indexOptions(const lvdifvtk::VolumeIndex& index, const std:
   {
     throw lvdif::Error(lvdif::ErrorCode::CorruptData, "the index lists no piece");
   }
-  lvdif::VolumeOptions o = lvdif::readVolumeInfo(dir + index.pieces.front().file).options;
+  lvdif::VolumeOptions o = inPiece(index.pieces.front().file, [&] {
+    return lvdif::readVolumeInfo(dir + index.pieces.front().file).options;
+  });
   for (int a = 0; a < 3; ++a)
   {
     o.dims[a] = static_cast<std::int64_t>(index.wholeExtent[2 * a + 1]) - index.wholeExtent[2 * a] + 1;
@@ -150,7 +169,8 @@ int vtkPDictionaryVolumeReader::RequestData(
           read.region.lo[a] = part.lo[a] - box.lo[a]; // the piece file's own indices start at 0
           read.region.hi[a] = part.hi[a] - box.lo[a];
         }
-        const std::unique_ptr<lvdif::DictionaryVolume> pv = lvdif::loadVolume(dir + it->file, read, interrupter);
+        const std::unique_ptr<lvdif::DictionaryVolume> pv =
+          inPiece(it->file, [&] { return lvdif::loadVolume(dir + it->file, read, interrupter); });
         for (int a = 0; a < 3; ++a)
         {
           if (pv->dims()[a] != box.hi[a] - box.lo[a] + 1)

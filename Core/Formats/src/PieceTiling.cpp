@@ -49,6 +49,8 @@ std::string pieceTilingProblem(
   const VoxelBox& whole, const std::vector<VoxelBox>& pieces, const std::string& what, bool overlapsAllowed)
 {
   auto name = [&](std::size_t i) { return what + " " + std::to_string(i + 1); };
+  if (whole.empty())
+    return "the whole extent " + extentText(whole) + " is empty";
   if (pieces.empty())
     return "no " + what + " for the whole extent " + extentText(whole);
   for (std::size_t i = 0; i < pieces.size(); ++i)

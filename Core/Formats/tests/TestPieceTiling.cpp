@@ -84,6 +84,8 @@ TEST(PieceTiling, OutsideEmptyAndHolesAreNamed)
     "piece 1's extent 0 9 0 9 0 11 lies outside the whole extent 0 9 0 9 0 10");
   EXPECT_EQ(pieceTilingProblem(whole, { box(0, 9, 0, 9, 5, 4) }), "piece 1's extent 0 9 0 9 5 4 is empty");
   EXPECT_EQ(pieceTilingProblem(whole, {}), "no piece for the whole extent 0 9 0 9 0 10");
+  // an empty whole extent is named as such (it was blamed on its piece of the same extent)
+  EXPECT_EQ(pieceTilingProblem(box(0, 3, 0, 3, 3, 0), { box(0, 3, 0, 3, 3, 0) }), "the whole extent 0 3 0 3 3 0 is empty");
   EXPECT_EQ(pieceTilingProblem(whole, { box(0, 9, 0, 9, 0, 4), box(0, 9, 0, 9, 6, 10) }, "Piece element"),
     "no Piece element holds the point (0, 0, 5) of the whole extent 0 9 0 9 0 10");
 }

@@ -671,3 +671,29 @@ TEST(PVolumeIO, SerialWriteThatFailsPartWayKeepsTheOldFiles)
   for (const std::string& f : { index, piece[0], piece[1], piece[2] })
     std::remove(f.c_str());
 }
+
+// A piece file that is no .lvdv (here: the index itself, a .vti) or a damaged
+// one was reported as "cannot read 'x.lvdvp': header: bad magic: ...", naming
+// the index only: the user could not tell which of its files was bad. Now the
+// error names the piece file.
+TEST(PVolumeIO, ABadPieceFileIsNamed)
+{
+  vtkSmartPointer<vtkImageData> img = makeImage();
+  const std::string index = tmpName("named.lvdvp");
+  writePieces(img, index, 2);
+  const std::string p1 = vtkPDictionaryVolumeWriter::PieceFilePath(index, 1);
+  const std::string stem = "lvdif_p_" + std::to_string(getpid()) + "_named_1.lvdv";
+  std::ofstream(p1) << "not a volume";
+  std::string error = readError(index);
+  EXPECT_NE(error.find("piece file '" + stem + "': "), std::string::npos) << error;
+  EXPECT_NE(error.find("too short for an LVDIF volume"), std::string::npos) << error;
+  // the first piece's (read for the volume's settings)
+  const std::string p0 = vtkPDictionaryVolumeWriter::PieceFilePath(index, 0);
+  std::ofstream(p0) << std::string(300, 'x');
+  error = readError(index);
+  EXPECT_NE(error.find("piece file 'lvdif_p_" + std::to_string(getpid()) + "_named_0.lvdv': header: bad magic"),
+    std::string::npos)
+    << error;
+  for (const std::string& f : { index, p0, p1 })
+    std::remove(f.c_str());
+}
