@@ -143,7 +143,9 @@ std::vector<double> attributeNumbers(
       break;
     char* end = nullptr;
     const double x = lvdif::strtodC(p, &end);
-    if (end == p || (*end && *end != ' ' && *end != '\t' && *end != '\n' && *end != '\r'))
+    // (decimal only: VTK's reader took "0x1p1" for 0, then its default)
+    const bool hex = std::string(p, static_cast<const char*>(end)).find_first_of("xX") != std::string::npos;
+    if (end == p || hex || (*end && *end != ' ' && *end != '\t' && *end != '\n' && *end != '\r'))
     {
       v.clear();
       break;

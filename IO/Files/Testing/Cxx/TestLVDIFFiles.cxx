@@ -420,6 +420,9 @@ TEST(LVDIFFiles, AVtiWithABadSpacingIsRefused)
   }
   std::ofstream(path) << replaced(vti, "Spacing=\"0.5 1 2\"", "Spacing=\"0.5 1\"");
   EXPECT_EQ(loadError(path), "cannot read '" + path + "': Spacing=\"0.5 1\" is not 3 numbers");
+  // a hexadecimal number: VTK's reader took "0x1p1" for 0 and then its default 1
+  std::ofstream(path) << replaced(vti, "Spacing=\"0.5 1 2\"", "Spacing=\"0x1p1 1 2\"");
+  EXPECT_EQ(loadError(path), "cannot read '" + path + "': Spacing=\"0x1p1 1 2\" is not 3 numbers");
   std::ofstream(path) << replaced(vti, "Origin=\"0 0 0\"", "Origin=\"0 nan 0\"");
   EXPECT_NE(loadError(path).find("volume origin nan"), std::string::npos) << loadError(path);
   std::remove(path.c_str());
