@@ -19,12 +19,14 @@
 #include "vtkPolyData.h"
 #include "vtkSphereSource.h"
 #include "vtkTriangleFilter.h"
+#include "vtkBase64Utilities.h"
 #include "vtkXMLImageDataWriter.h"
 
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <cstdio>
+#include <cstring>
 #include <limits>
 #include <dirent.h>
 #include <fstream>
@@ -425,5 +427,76 @@ TEST(LVDIFFiles, AVtiWithABadSpacingIsRefused)
   EXPECT_EQ(loadError(path), "cannot read '" + path + "': Spacing=\"0x1p1 1 2\" is not 3 numbers");
   std::ofstream(path) << replaced(vti, "Origin=\"0 0 0\"", "Origin=\"0 nan 0\"");
   EXPECT_NE(loadError(path).find("volume origin nan"), std::string::npos) << loadError(path);
+  std::remove(path.c_str());
+}
+
+namespace
+{
+/// The 8 x 8 x 8 image of writeSmallVti, compressed (zlib), in a data mode.
+std::string writeCompressedVti(const std::string& path, int mode, bool encoded, bool header64)
+{
+  vtkNew<vtkImageData> image;
+  image->SetDimensions(8, 8, 8);
+  vtkNew<vtkFloatArray> sdf;
+  sdf->SetName("sdf");
+  sdf->SetNumberOfTuples(8 * 8 * 8);
+  for (vtkIdType i = 0; i < 8 * 8 * 8; ++i) sdf->SetValue(i, float(i % 8) - 3.5f);
+  image->GetPointData()->SetScalars(sdf);
+  vtkNew<vtkXMLImageDataWriter> writer;
+  writer->SetFileName(path.c_str());
+  writer->SetInputData(image);
+  writer->SetCompressorTypeToZLib();
+  writer->SetDataMode(mode);
+  writer->SetEncodeAppendedData(encoded);
+  if (header64) writer->SetHeaderTypeToUInt64();
+  if (writer->Write() != 1) return "";
+  return slurp(path);
+}
+} // namespace
+
+// VTK's reader allocates by a compressed array's header (a word per block, a
+// buffer of a block): a .vti declaring 2^31 - 1 blocks ended in
+// "lvdif convert: std::bad_alloc" (or took gigabytes). Now the header's counts
+// are checked against the file and the array before: one error naming the
+// array. The writer's own compressed files in every data mode still read
+// (oracle: the values written).
+TEST(LVDIFFiles, AVtiWithForgedCompressionHeadersIsRefusedBeforeAllocating)
+{
+  const std::string path = temp("compressed.vti");
+  for (const int mode : { vtkXMLWriter::Appended, vtkXMLWriter::Binary })
+    for (const bool encoded : { true, false })
+      for (const bool header64 : { false, true })
+      {
+        ASSERT_FALSE(writeCompressedVti(path, mode, encoded, header64).empty());
+        const auto v = LVDIFFiles::LoadVolume(path);
+        EXPECT_LT(std::fabs(v->decode(v->get(7, 3, 2).sdf) - 3.5), 0.01) << mode << encoded << header64;
+      }
+  // appended, base64: the header of 'sdf' is the first 24 characters after '_' (4 words of 4 bytes)
+  const std::string vti = writeCompressedVti(path, vtkXMLWriter::Appended, true, false);
+  const std::size_t at = vti.find('_', vti.find("<AppendedData")) + 1;
+  ASSERT_NE(at, std::string::npos + 1);
+  unsigned char words[18] = {};
+  ASSERT_EQ(vtkBase64Utilities::DecodeSafely(
+              reinterpret_cast<const unsigned char*>(vti.data() + at), 24, words, sizeof(words)),
+    16u);
+  auto forged = [&](int word, std::uint32_t value) {
+    unsigned char w[16];
+    std::memcpy(w, words, 16);
+    for (int b = 0; b < 4; ++b) w[4 * word + b] = static_cast<unsigned char>(value >> (8 * b));
+    unsigned char text[32];
+    const unsigned long n = vtkBase64Utilities::Encode(w, 16, text);
+    std::string out = vti;
+    out.replace(at, 24, reinterpret_cast<const char*>(text), n);
+    return out;
+  };
+  std::ofstream(path) << forged(0, 0x7fffffffu);
+  EXPECT_EQ(loadError(path), "cannot read '" + path + "': the DataArray 'sdf' declares 2147483647 compressed blocks, " +
+      "more than the file's " + std::to_string(vti.size()) + " bytes can list");
+  std::ofstream(path) << forged(1, 0xfffffff0u);
+  EXPECT_EQ(loadError(path), "cannot read '" + path + "': the DataArray 'sdf' declares blocks of 4294967280 bytes, " +
+      "more than its 2048 bytes of values");
+  std::ofstream(path) << forged(3, 0xfffffff0u);
+  EXPECT_EQ(loadError(path), "cannot read '" + path + "': the DataArray 'sdf' declares a compressed block of " +
+      "4294967280 bytes, more than the file's " + std::to_string(vti.size()));
   std::remove(path.c_str());
 }
