@@ -5,6 +5,7 @@
 #include "lvdif/Memory.h"
 #include "lvdif/PieceTiling.h"
 
+#include <algorithm>
 #include <cstdio>
 #include <locale>
 #include <iomanip>
@@ -62,6 +63,30 @@ VolumeIndex readVolumeIndex(const std::string& path)
 {
   // the project's file check: a FIFO blocked std::ifstream, a folder read as an empty file
   lvdif::FileSource source(path);
+  {
+    // the magic line first: a garbage file of gigabytes was read whole (memory and
+    // time) before its first line was found not to be an index
+    std::string head(static_cast<std::size_t>(std::min<std::uint64_t>(source.size(), 65536)), '\0');
+    if (!head.empty())
+      source.read(0, &head[0], head.size());
+    std::istringstream h(head);
+    std::string line;
+    for (int n = 1; std::getline(h, line); ++n)
+    {
+      if (h.eof() && head.size() < source.size())
+        break; // a line cut by the head: judged below, with the whole file
+      if (!line.empty() && line.back() == '\r')
+        line.pop_back();
+      if (line.empty() || line[0] == '#')
+        continue;
+      std::istringstream ls(line);
+      std::string key;
+      ls >> key;
+      if (key != MAGIC)
+        fail(path, n, std::string("not an LVDIF volume index (expected '") + MAGIC + " <version>')");
+      break;
+    }
+  }
   lvdif::requireMemory(source.size(), "reading the index " + path);
   std::string text(static_cast<std::size_t>(source.size()), '\0');
   if (!text.empty())

@@ -35,7 +35,9 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
+#include <cstdlib>
 #include <cstdio>
 #include <fstream>
 #include <iterator>
@@ -696,4 +698,32 @@ TEST(PVolumeIO, ABadPieceFileIsNamed)
     << error;
   for (const std::string& f : { index, p0, p1 })
     std::remove(f.c_str());
+}
+
+// A garbage .lvdvp of gigabytes (here 3 GiB, sparse) was read whole before its
+// first line was found not to be an index: with the memory limit below it was
+// refused for memory ("reading the index needs 3.00 GiB"), without one it took
+// the gigabytes. Now the first line is read first: the usual error, at once.
+TEST(PVolumeIO, AGarbageIndexOfGigabytesIsRefusedAfterItsHead)
+{
+  const std::string bad = tmpName("garbage.lvdvp");
+  {
+    std::ofstream f(bad, std::ios::binary);
+    f << "# a comment\nGARBAGE " << std::string(200, 'x') << "\n";
+  }
+  ASSERT_EQ(::truncate(bad.c_str(), off_t(3) << 30), 0);
+  const char* old = std::getenv("LVDIF_MEMORY_LIMIT");
+  const std::string kept = old ? old : "";
+  ::setenv("LVDIF_MEMORY_LIMIT", "256M", 1);
+  const auto t0 = std::chrono::steady_clock::now();
+  const std::string error = readError(bad);
+  const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  if (old)
+    ::setenv("LVDIF_MEMORY_LIMIT", kept.c_str(), 1);
+  else
+    ::unsetenv("LVDIF_MEMORY_LIMIT");
+  EXPECT_NE(error.find("line 2: not an LVDIF volume index (expected 'LVDIF-PVOLUME <version>')"), std::string::npos)
+    << error;
+  EXPECT_LT(seconds, 2.0);
+  std::remove(bad.c_str());
 }
