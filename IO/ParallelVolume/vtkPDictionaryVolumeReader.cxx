@@ -5,6 +5,7 @@
 #include "LVDIFVolumeBridge.h"
 #include "vtkSparseDictionaryVolume.h"
 
+#include "lvdif/ByteStream.h"
 #include "lvdif/Error.h"
 #include "lvdif/VolumeFile.h"
 
@@ -20,7 +21,7 @@
 #include "vtkStreamingDemandDrivenPipeline.h"
 
 #include <algorithm>
-#include <fstream>
+#include <sstream>
 #include <utility>
 #include <vector>
 
@@ -35,9 +36,30 @@ vtkPDictionaryVolumeReader::~vtkPDictionaryVolumeReader() = default;
 
 bool vtkPDictionaryVolumeReader::CanReadFile(const char* fileName)
 {
-  std::ifstream f(fileName ? fileName : "");
-  std::string word;
-  return static_cast<bool>(f >> word) && word == "LVDIF-PVOLUME";
+  // the project's file check: a FIFO blocked std::ifstream (ParaView's file
+  // dialog asks every reader); the first line that is no comment, as the reader reads it
+  try
+  {
+    lvdif::FileSource f(fileName ? fileName : "");
+    std::string head(static_cast<std::size_t>(std::min<std::uint64_t>(f.size(), 4096)), '\0');
+    if (!head.empty())
+      f.read(0, &head[0], head.size());
+    std::istringstream in(head);
+    std::string line;
+    while (std::getline(in, line))
+    {
+      std::istringstream ls(line);
+      std::string word;
+      if (!(ls >> word) || word[0] == '#')
+        continue;
+      return word == "LVDIF-PVOLUME";
+    }
+    return false;
+  }
+  catch (const lvdif::Error&)
+  {
+    return false;
+  }
 }
 
 int vtkPDictionaryVolumeReader::FillOutputPortInformation(int, vtkInformation* info)

@@ -36,6 +36,8 @@
 
 #include <algorithm>
 #include <chrono>
+#include <fcntl.h>
+#include <future>
 #include <cmath>
 #include <cstdlib>
 #include <cstdio>
@@ -726,4 +728,43 @@ TEST(PVolumeIO, AGarbageIndexOfGigabytesIsRefusedAfterItsHead)
     << error;
   EXPECT_LT(seconds, 2.0);
   std::remove(bad.c_str());
+}
+
+// CanReadFile (ParaView's file dialog asks every reader about every file)
+// opened the path with std::ifstream: a FIFO blocked it until something wrote
+// to it. Now the project's file check refuses it at once; a real file is still
+// recognised (an index after a comment line too). If the call blocks, the test
+// opens the FIFO's other end to free it, and fails.
+TEST(PVolumeIO, CanReadFileDoesNotBlockOnAFifo)
+{
+  const std::string fifo = tmpName("fifo.lvdvp");
+  std::remove(fifo.c_str());
+  ASSERT_EQ(::mkfifo(fifo.c_str(), 0600), 0);
+  for (int which = 0; which < 2; ++which)
+  {
+    auto answer = std::async(std::launch::async, [&] {
+      return which == 0 ? vtkPDictionaryVolumeReader::CanReadFile(fifo.c_str())
+                        : vtkDictionaryVolumeReader::CanReadFile(fifo.c_str());
+    });
+    const bool blocked = answer.wait_for(std::chrono::seconds(3)) != std::future_status::ready;
+    EXPECT_FALSE(blocked) << (which == 0 ? "vtkPDictionaryVolumeReader" : "vtkDictionaryVolumeReader");
+    if (blocked)
+    {
+      const int w = ::open(fifo.c_str(), O_WRONLY | O_NONBLOCK); // the reader's open returns, then EOF
+      if (w >= 0) ::close(w);
+    }
+    EXPECT_FALSE(answer.get());
+  }
+  std::remove(fifo.c_str());
+  vtkSmartPointer<vtkImageData> img = makeImage();
+  const std::string index = tmpName("can.lvdvp");
+  writePieces(img, index, 1);
+  EXPECT_TRUE(vtkPDictionaryVolumeReader::CanReadFile(index.c_str()));
+  EXPECT_TRUE(vtkDictionaryVolumeReader::CanReadFile(vtkPDictionaryVolumeWriter::PieceFilePath(index, 0).c_str()));
+  EXPECT_FALSE(vtkDictionaryVolumeReader::CanReadFile(index.c_str()));
+  const std::string text = fileBytes(index);
+  std::ofstream(index) << "# a comment first\n" << text;
+  EXPECT_TRUE(vtkPDictionaryVolumeReader::CanReadFile(index.c_str()));
+  std::remove(index.c_str());
+  std::remove(vtkPDictionaryVolumeWriter::PieceFilePath(index, 0).c_str());
 }
