@@ -84,6 +84,8 @@ int CommandPlay(int argc, char** argv)
   ProgressBar progress;
   // the (small) recording is read and checked before the (possibly large) volume is loaded
   const lvdif::Recording recording = lvdif::loadRecording(args.positional()[0]);
+  if (!recording.warning.empty()) // a version 1 recording: no end record to tell a cut one
+    std::fprintf(stderr, "warning: %s\n", recording.warning.c_str());
   auto volume = LoadAnyVolume(args.get("in", ""), progress);
   // a replay keeps the dimensions: the output's rule on them before replaying
   const std::string refused = args.has("out") ? VolumeOutputDimsProblem(args.get("out", ""), volume->dims()) : std::string();

@@ -7,8 +7,11 @@
 
 #include "LVDIFFiles.h"
 
+#include <cstdio>
+
 #include <QFileDialog>
 #include <QFileInfo>
+#include <QMessageBox>
 #include <QStatusBar>
 
 void MainWindow::toggleRecording(bool on)
@@ -80,7 +83,16 @@ bool MainWindow::playRecording(const QString& path)
     return false;
   try
   {
-    this->Doc.play(lvdif::loadRecording(path.toStdString()));
+    const lvdif::Recording recording = lvdif::loadRecording(path.toStdString());
+    this->Doc.play(recording);
+    if (!recording.warning.empty())
+    {
+      // a version 1 recording (no end record): played, said once
+      if (this->Options.batch())
+        std::fprintf(stderr, "lvdif-editor: warning: %s\n", recording.warning.c_str());
+      else
+        QMessageBox::warning(this, "Play recording", QString::fromStdString(recording.warning));
+    }
   }
   catch (const std::exception& e)
   {

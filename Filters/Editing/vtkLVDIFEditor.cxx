@@ -506,6 +506,7 @@ int vtkLVDIFEditor::PlayRecording(const char* path)
   return this->Guard("PlayRecording", [&] {
     lvdif::require(path && *path, "no file name");
     const lvdif::Recording r = lvdif::loadRecording(path);
+    if (!r.warning.empty()) vtkWarningMacro(<< r.warning); // a version 1 file: no end record
     this->Session->play(r);
   });
 }

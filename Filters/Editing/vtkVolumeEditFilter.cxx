@@ -116,7 +116,9 @@ int vtkVolumeEditFilter::RequestData(
     if (!this->RecordingFileName.empty())
     {
       interrupter.setStage(0.1, 0.4);
-      editor->play(lvdif::loadRecording(this->RecordingFileName), interrupter);
+      const lvdif::Recording recording = lvdif::loadRecording(this->RecordingFileName);
+      if (!recording.warning.empty()) vtkWarningMacro(<< recording.warning); // a version 1 file
+      editor->play(recording, interrupter);
     }
     if (!this->ScriptText.empty())
     {

@@ -18,8 +18,10 @@
 #endif
 
 #include "lvdif/ByteStream.h"
+#include "lvdif/CNumbers.h"
 #include "lvdif/Error.h"
 #include "lvdif/Memory.h"
+#include "lvdif/PieceTiling.h"
 
 #include "vtkCallbackCommand.h"
 #include "vtkCommand.h"
@@ -32,6 +34,8 @@
 #include "vtkSTLWriter.h"
 #include "vtkStreamingDemandDrivenPipeline.h"
 #include "vtkTrivialProducer.h"
+#include "vtkXMLDataElement.h"
+#include "vtkXMLDataParser.h"
 #include "vtkXMLImageDataReader.h"
 #include "vtkXMLReader.h"
 #include "vtkXMLImageDataWriter.h"
@@ -118,6 +122,236 @@ struct Watch
   throw lvdif::Error(lvdif::ErrorCode::InvalidArgument,
     std::string("cannot ") + (saving ? "write" : "read") + " '" + path + "': " +
       (kind == Kind::Volume ? "volumes" : "meshes") + " are " + list + " files");
+}
+
+/// The numbers of an attribute of a .vti's header, as written: exactly `n`
+/// numbers (each one whole text) or an error. VTK's reader takes a value it
+/// cannot parse (Spacing="nan 1 1", "inf") for its default, 1 or 0.
+std::vector<double> attributeNumbers(
+  vtkXMLDataElement* e, const char* name, std::size_t n, const std::string& what)
+{
+  const char* text = e->GetAttribute(name);
+  if (!text)
+    return {};
+  std::vector<double> v;
+  const char* p = text;
+  for (;;)
+  {
+    while (*p == ' ' || *p == '\t' || *p == '\n' || *p == '\r')
+      ++p;
+    if (!*p)
+      break;
+    char* end = nullptr;
+    const double x = lvdif::strtodC(p, &end);
+    // (decimal only: VTK's reader took "0x1p1" for 0, then its default)
+    const bool hex = std::string(p, static_cast<const char*>(end)).find_first_of("xX") != std::string::npos;
+    if (end == p || hex || (*end && *end != ' ' && *end != '\t' && *end != '\n' && *end != '\r'))
+    {
+      v.clear();
+      break;
+    }
+    v.push_back(x);
+    p = end;
+  }
+  if (v.size() != n)
+    throw lvdif::Error(lvdif::ErrorCode::CorruptData,
+      what + ": " + name + "=\"" + std::string(text).substr(0, 80) + "\" is not " + std::to_string(n) + " numbers");
+  return v;
+}
+
+/// Bytes of a base64 text (whitespace skipped), up to `want` bytes.
+std::vector<std::uint8_t> fromBase64(const std::string& text, std::size_t want)
+{
+  auto value = [](char c) -> int {
+    if (c >= 'A' && c <= 'Z') return c - 'A';
+    if (c >= 'a' && c <= 'z') return c - 'a' + 26;
+    if (c >= '0' && c <= '9') return c - '0' + 52;
+    return c == '+' ? 62 : c == '/' ? 63 : -1;
+  };
+  std::vector<std::uint8_t> out;
+  std::uint32_t bits = 0;
+  int count = 0;
+  for (char c : text)
+  {
+    const int v = value(c);
+    if (v < 0)
+    {
+      if (c != '=') continue;
+      // the padded end of a chunk: its last 1 or 2 bytes ("xx==", "xxx=")
+      bits <<= 6 * (4 - count);
+      for (int k = 2; k > 3 - count && out.size() < want; --k) out.push_back(std::uint8_t(bits >> (8 * k)));
+      break;
+    }
+    bits = (bits << 6) | std::uint32_t(v);
+    if (++count == 4)
+    {
+      for (int k = 2; k >= 0 && out.size() < want; --k) out.push_back(std::uint8_t(bits >> (8 * k)));
+      bits = 0;
+      count = 0;
+      if (out.size() >= want) break;
+    }
+  }
+  return out;
+}
+
+/// The sizes a compressed array's header declares, checked before VTK's reader
+/// allocates by them: it allocated the block table (a word per block) and a
+/// buffer of the largest block, so a forged count of 2^31 blocks ended in
+/// "std::bad_alloc" (or took gigabytes). The table must fit in the file, a
+/// block in the array's values (or 16 MiB), a compressed block in the file.
+void checkCompressedArrays(
+  vtkXMLDataParser* parser, vtkXMLDataElement* root, vtkXMLDataElement* image, const std::string& path, const std::string& what)
+{
+  if (!root->GetAttribute("compressor"))
+    return;
+  const char* headerType = root->GetAttribute("header_type");
+  const std::uint64_t ws = headerType && std::string(headerType) == "UInt64" ? 8 : 4;
+  lvdif::FileSource file(path);
+  vtkXMLDataElement* appended = root->FindNestedElementWithName("AppendedData");
+  const bool appendedRaw = appended && appended->GetAttribute("encoding") &&
+    std::string(appended->GetAttribute("encoding")) == "raw";
+  const vtkTypeInt64 appendedAt = parser->GetAppendedDataPosition();
+  // the header's words of the array at `at` (raw bytes, or base64 text)
+  auto words = [&](std::uint64_t at, bool raw, std::uint64_t n) {
+    std::vector<std::uint8_t> bytes;
+    const std::uint64_t need = n * ws;
+    const std::uint64_t span = raw ? need : (need + 2) / 3 * 4 + 4096; // (whitespace before it)
+    if (at >= file.size()) return std::vector<std::uint64_t>();
+    std::string buffer(static_cast<std::size_t>(std::min<std::uint64_t>(span, file.size() - at)), '\0');
+    file.read(at, &buffer[0], buffer.size());
+    if (raw)
+      bytes.assign(buffer.begin(), buffer.end());
+    else
+    {
+      const auto first = buffer.find_first_not_of(" \t\r\n>");
+      bytes = fromBase64(first == std::string::npos ? std::string() : buffer.substr(first), static_cast<std::size_t>(need));
+    }
+    std::vector<std::uint64_t> w;
+    for (std::uint64_t i = 0; i + ws <= bytes.size() && w.size() < n; i += ws)
+    {
+      std::uint64_t v = 0;
+      for (std::uint64_t b = 0; b < ws; ++b) v |= std::uint64_t(bytes[i + b]) << (8 * b);
+      w.push_back(v);
+    }
+    return w;
+  };
+  const std::map<std::string, std::uint64_t> typeBytes{ { "Int8", 1 }, { "UInt8", 1 }, { "Int16", 2 }, { "UInt16", 2 },
+    { "Int32", 4 }, { "UInt32", 4 }, { "Float32", 4 }, { "Int64", 8 }, { "UInt64", 8 }, { "Float64", 8 } };
+  std::function<void(vtkXMLDataElement*, std::uint64_t)> visit = [&](vtkXMLDataElement* e, std::uint64_t points) {
+    const std::string name = e->GetName() ? e->GetName() : "";
+    if (name == "Piece")
+    {
+      int x[6];
+      if (e->GetVectorAttribute("Extent", 6, x) != 6) return;
+      points = 1;
+      for (int a = 0; a < 3; ++a) points *= x[2 * a + 1] >= x[2 * a] ? std::uint64_t(x[2 * a + 1]) - x[2 * a] + 1 : 0;
+    }
+    if (name == "DataArray")
+    {
+      const char* format = e->GetAttribute("format");
+      const char* type = e->GetAttribute("type");
+      const std::string f = format ? format : "";
+      std::uint64_t at = 0;
+      bool raw = false;
+      if (f == "appended" && appended && appendedAt > 0)
+      {
+        vtkTypeInt64 offset = 0;
+        if (!e->GetScalarAttribute("offset", offset) || offset < 0) return;
+        at = std::uint64_t(appendedAt) + std::uint64_t(offset);
+        raw = appendedRaw;
+      }
+      else if (f == "binary" && e->GetXMLByteIndex() > 0)
+      {
+        // the element's text after its start tag
+        std::string tag(static_cast<std::size_t>(std::min<std::uint64_t>(65536, file.size() - std::uint64_t(e->GetXMLByteIndex()))), '\0');
+        file.read(std::uint64_t(e->GetXMLByteIndex()), &tag[0], tag.size());
+        const auto close = tag.find('>');
+        if (close == std::string::npos) return;
+        at = std::uint64_t(e->GetXMLByteIndex()) + close + 1;
+      }
+      else
+        return;
+      const std::vector<std::uint64_t> head = words(at, raw, 3);
+      if (head.size() < 3) return; // VTK's reader says the data is short
+      const std::string array = "the DataArray '" + std::string(e->GetAttribute("Name") ? e->GetAttribute("Name") : "") + "'";
+      if (head[0] > file.size() / ws)
+        throw lvdif::Error(lvdif::ErrorCode::CorruptData, what + ": " + array + " declares " +
+            std::to_string(head[0]) + " compressed blocks, more than the file's " + std::to_string(file.size()) +
+            " bytes can list");
+      int components = 1;
+      e->GetScalarAttribute("NumberOfComponents", components);
+      const auto t = typeBytes.find(type ? type : "");
+      const std::uint64_t values = (t == typeBytes.end() ? 8 : t->second) * std::uint64_t(std::max(components, 1)) * points;
+      const std::uint64_t most = std::max<std::uint64_t>(values, std::uint64_t(1) << 24);
+      if (head[1] > most || head[2] > most)
+        throw lvdif::Error(lvdif::ErrorCode::CorruptData, what + ": " + array + " declares blocks of " +
+            std::to_string(std::max(head[1], head[2])) + " bytes, more than its " + std::to_string(values) +
+            " bytes of values");
+      const std::vector<std::uint64_t> all = words(at, raw, 3 + head[0]);
+      for (std::size_t b = 3; b < all.size(); ++b)
+        if (all[b] > file.size())
+          throw lvdif::Error(lvdif::ErrorCode::CorruptData, what + ": " + array + " declares a compressed block of " +
+              std::to_string(all[b]) + " bytes, more than the file's " + std::to_string(file.size()));
+      return;
+    }
+    for (int i = 0; i < e->GetNumberOfNestedElements(); ++i) visit(e->GetNestedElement(i), points);
+  };
+  visit(image, 0);
+}
+
+/// The header of a .vti as written (after UpdateInformation, which parsed it):
+/// its pieces must tile its WholeExtent (a point no piece holds was made up,
+/// the memory VTK allocates left as it was) and its Origin and Spacing pass the
+/// volumes' one geometry rule (DictionaryVolume::checkGeometry: finite, spacing
+/// >= 1e-30), before the data is read.
+void checkImageHeader(vtkXMLImageDataReader* reader, const int whole[6], const std::string& what)
+{
+  vtkXMLDataParser* parser = reader->GetXMLParser();
+  vtkXMLDataElement* root = parser ? parser->GetRootElement() : nullptr;
+  vtkXMLDataElement* image = root ? root->FindNestedElementWithName("ImageData") : nullptr;
+  if (!image)
+    return; // VTK's reader said what is missing
+  lvdif::VoxelBox wholeBox;
+  lvdif::VolumeOptions o;
+  for (int a = 0; a < 3; ++a)
+  {
+    wholeBox.lo[a] = whole[2 * a];
+    wholeBox.hi[a] = whole[2 * a + 1];
+    o.dims[a] = std::max<std::int64_t>(1, std::int64_t(whole[2 * a + 1]) - whole[2 * a] + 1);
+  }
+  const std::vector<double> origin = attributeNumbers(image, "Origin", 3, what);
+  const std::vector<double> spacing = attributeNumbers(image, "Spacing", 3, what);
+  attributeNumbers(image, "Direction", 9, what); // (its value is checked by the conversion)
+  for (int a = 0; a < 3; ++a)
+  {
+    o.spacing[a] = spacing.empty() ? 1.0 : spacing[a];
+    o.origin[a] = origin.empty() ? 0.0 : origin[a];
+    if (whole[2 * a] != 0) o.origin[a] += whole[2 * a] * o.spacing[a]; // (0 x nan would blame the origin)
+  }
+  const std::string geometry = lvdif::DictionaryVolume::checkGeometry(o);
+  if (!geometry.empty())
+    throw lvdif::Error(lvdif::ErrorCode::CorruptData, what + ": " + geometry);
+  std::vector<lvdif::VoxelBox> pieces;
+  for (int i = 0; i < image->GetNumberOfNestedElements(); ++i)
+  {
+    vtkXMLDataElement* piece = image->GetNestedElement(i);
+    if (std::string(piece->GetName() ? piece->GetName() : "") != "Piece")
+      continue;
+    int e[6];
+    if (piece->GetVectorAttribute("Extent", 6, e) != 6)
+      return; // VTK's reader says "Extent attribute is not 6 integers"
+    lvdif::VoxelBox b;
+    for (int a = 0; a < 3; ++a)
+    {
+      b.lo[a] = e[2 * a];
+      b.hi[a] = e[2 * a + 1];
+    }
+    pieces.push_back(b);
+  }
+  const std::string tiling = lvdif::pieceTilingProblem(wholeBox, pieces, "piece", true);
+  if (!tiling.empty())
+    throw lvdif::Error(lvdif::ErrorCode::CorruptData, what + ": " + tiling);
+  checkCompressedArrays(parser, root, image, reader->GetFileName() ? reader->GetFileName() : "", what);
 }
 
 std::shared_ptr<lvdif::DictionaryVolume> volumeOf(vtkAlgorithm* a)
@@ -249,6 +483,7 @@ std::shared_ptr<lvdif::DictionaryVolume> LoadVolume(const std::string& path, lvd
     for (int a = 0; a < 3; ++a)
       bytes = lvdif::checkedMultiply(bytes, e[2 * a + 1] >= e[2 * a] ? std::uint64_t(e[2 * a + 1]) - e[2 * a] + 1 : 0, image);
     lvdif::requireMemory(bytes, image);
+    checkImageHeader(vtkXMLImageDataReader::SafeDownCast(reader), e, what);
   }
   interrupter.start("read volume");
   const bool ok = last->GetExecutive()->Update() != 0;

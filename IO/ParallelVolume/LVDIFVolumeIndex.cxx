@@ -3,9 +3,11 @@
 #include "lvdif/ByteStream.h"
 #include "lvdif/Error.h"
 #include "lvdif/Memory.h"
+#include "lvdif/PieceTiling.h"
 
+#include <algorithm>
 #include <cstdio>
-#include <fstream>
+#include <locale>
 #include <iomanip>
 #include <set>
 #include <sstream>
@@ -20,6 +22,17 @@ const char* MAGIC = "LVDIF-PVOLUME";
 {
   throw lvdif::Error(lvdif::ErrorCode::CorruptData,
     "index '" + path + "'" + (line > 0 ? ", line " + std::to_string(line) : std::string()) + ": " + what);
+}
+
+lvdif::VoxelBox extentBox(const int e[6])
+{
+  lvdif::VoxelBox b;
+  for (int a = 0; a < 3; ++a)
+  {
+    b.lo[a] = e[2 * a];
+    b.hi[a] = e[2 * a + 1];
+  }
+  return b;
 }
 
 bool contains(const int outer[6], const int inner[6])
@@ -50,6 +63,30 @@ VolumeIndex readVolumeIndex(const std::string& path)
 {
   // the project's file check: a FIFO blocked std::ifstream, a folder read as an empty file
   lvdif::FileSource source(path);
+  {
+    // the magic line first: a garbage file of gigabytes was read whole (memory and
+    // time) before its first line was found not to be an index
+    std::string head(static_cast<std::size_t>(std::min<std::uint64_t>(source.size(), 65536)), '\0');
+    if (!head.empty())
+      source.read(0, &head[0], head.size());
+    std::istringstream h(head);
+    std::string line;
+    for (int n = 1; std::getline(h, line); ++n)
+    {
+      if (h.eof() && head.size() < source.size())
+        break; // a line cut by the head: judged below, with the whole file
+      if (!line.empty() && line.back() == '\r')
+        line.pop_back();
+      if (line.empty() || line[0] == '#')
+        continue;
+      std::istringstream ls(line);
+      std::string key;
+      ls >> key;
+      if (key != MAGIC)
+        fail(path, n, std::string("not an LVDIF volume index (expected '") + MAGIC + " <version>')");
+      break;
+    }
+  }
   lvdif::requireMemory(source.size(), "reading the index " + path);
   std::string text(static_cast<std::size_t>(source.size()), '\0');
   if (!text.empty())
@@ -138,38 +175,39 @@ VolumeIndex readVolumeIndex(const std::string& path)
     fail(path, 0, "whole_extent, origin and spacing are required");
   if (declaredPieces != static_cast<int>(index.pieces.size()))
     fail(path, 0, "declares " + std::to_string(declaredPieces) + " pieces, lists " + std::to_string(index.pieces.size()));
+  // the pieces tile the whole extent: a duplicate or overlapping piece (two
+  // claims on the same points) and a hole were accepted
+  std::vector<lvdif::VoxelBox> boxes;
+  for (const auto& p : index.pieces)
+    boxes.push_back(extentBox(p.extent));
+  const std::string problem = lvdif::pieceTilingProblem(extentBox(index.wholeExtent), boxes, "piece");
+  if (!problem.empty())
+    fail(path, 0, problem + " (pieces counted in the order listed)");
   return index;
 }
 
 void writeVolumeIndex(const VolumeIndex& index, const std::string& path)
 {
-  const std::string tmp = path + ".tmp";
+  std::ostringstream out;
+  out.imbue(std::locale::classic());
+  out << MAGIC << " " << index.version << "\n";
+  out << "# distributed LVDIF dictionary volume: the pieces are .lvdv files beside this index (docs/FORMAT.md)\n";
+  out << "whole_extent";
+  for (int v : index.wholeExtent)
+    out << " " << v;
+  out << "\n" << std::setprecision(17);
+  out << "origin " << index.origin[0] << " " << index.origin[1] << " " << index.origin[2] << "\n";
+  out << "spacing " << index.spacing[0] << " " << index.spacing[1] << " " << index.spacing[2] << "\n";
+  out << "pieces " << index.pieces.size() << "\n";
+  for (const auto& p : index.pieces)
   {
-    std::ofstream out(tmp, std::ios::trunc);
-    out << MAGIC << " " << index.version << "\n";
-    out << "# distributed LVDIF dictionary volume: the pieces are .lvdv files beside this index (docs/FORMAT.md)\n";
-    out << "whole_extent";
-    for (int v : index.wholeExtent)
+    out << "piece";
+    for (int v : p.extent)
       out << " " << v;
-    out << "\n" << std::setprecision(17);
-    out << "origin " << index.origin[0] << " " << index.origin[1] << " " << index.origin[2] << "\n";
-    out << "spacing " << index.spacing[0] << " " << index.spacing[1] << " " << index.spacing[2] << "\n";
-    out << "pieces " << index.pieces.size() << "\n";
-    for (const auto& p : index.pieces)
-    {
-      out << "piece";
-      for (int v : p.extent)
-        out << " " << v;
-      out << " " << p.file << "\n";
-    }
-    out.flush();
-    if (!out)
-      throw lvdif::Error(lvdif::ErrorCode::IoFailure, "cannot write index '" + tmp + "'");
+    out << " " << p.file << "\n";
   }
-  if (std::rename(tmp.c_str(), path.c_str()) != 0)
-  {
-    std::remove(tmp.c_str());
-    throw lvdif::Error(lvdif::ErrorCode::IoFailure, "cannot rename '" + tmp + "' to '" + path + "'");
-  }
+  const std::string text = out.str();
+  // the project's one crash-safe save (it wrote "<index>.tmp" with an ofstream)
+  lvdif::saveAtomically(path, [&](lvdif::ByteSink& sink) { sink.write(text.data(), text.size()); });
 }
 }

@@ -5,6 +5,7 @@
 #include "LVDIFVolumeBridge.h"
 #include "vtkSparseDictionaryVolume.h"
 
+#include "lvdif/ByteStream.h"
 #include "lvdif/Error.h"
 #include "lvdif/VolumeFile.h"
 
@@ -20,7 +21,7 @@
 #include "vtkStreamingDemandDrivenPipeline.h"
 
 #include <algorithm>
-#include <fstream>
+#include <sstream>
 #include <utility>
 #include <vector>
 
@@ -35,9 +36,30 @@ vtkPDictionaryVolumeReader::~vtkPDictionaryVolumeReader() = default;
 
 bool vtkPDictionaryVolumeReader::CanReadFile(const char* fileName)
 {
-  std::ifstream f(fileName ? fileName : "");
-  std::string word;
-  return static_cast<bool>(f >> word) && word == "LVDIF-PVOLUME";
+  // the project's file check: a FIFO blocked std::ifstream (ParaView's file
+  // dialog asks every reader); the first line that is no comment, as the reader reads it
+  try
+  {
+    lvdif::FileSource f(fileName ? fileName : "");
+    std::string head(static_cast<std::size_t>(std::min<std::uint64_t>(f.size(), 4096)), '\0');
+    if (!head.empty())
+      f.read(0, &head[0], head.size());
+    std::istringstream in(head);
+    std::string line;
+    while (std::getline(in, line))
+    {
+      std::istringstream ls(line);
+      std::string word;
+      if (!(ls >> word) || word[0] == '#')
+        continue;
+      return word == "LVDIF-PVOLUME";
+    }
+    return false;
+  }
+  catch (const lvdif::Error&)
+  {
+    return false;
+  }
 }
 
 int vtkPDictionaryVolumeReader::FillOutputPortInformation(int, vtkInformation* info)
@@ -54,6 +76,23 @@ int vtkPDictionaryVolumeReader::RequestDataObject(vtkInformation*, vtkInformatio
 
 namespace
 {
+/// f(), its errors naming the piece file: a piece that was no .lvdv (or was
+/// damaged) said "cannot read 'x.lvdvp': header: bad magic", naming the index only.
+template <typename F>
+auto inPiece(const std::string& file, F&& f) -> decltype(f())
+{
+  try
+  {
+    return f();
+  }
+  catch (const lvdif::Error& e)
+  {
+    if (e.code() == lvdif::ErrorCode::Cancelled || std::string(e.what()).find("'" + file + "'") != std::string::npos)
+      throw;
+    throw lvdif::Error(e.code(), "piece file '" + file + "': " + e.what());
+  }
+}
+
 /// The volume the index describes: its geometry, with the first piece's chunk
 /// edge, band and SDF dictionary (the writer gives every piece the same).
 lvdif::VolumeOptions indexOptions(const lvdifvtk::VolumeIndex& index, const std::string& dir)
@@ -62,7 +101,9 @@ lvdif::VolumeOptions indexOptions(const lvdifvtk::VolumeIndex& index, const std:
   {
     throw lvdif::Error(lvdif::ErrorCode::CorruptData, "the index lists no piece");
   }
-  lvdif::VolumeOptions o = lvdif::readVolumeInfo(dir + index.pieces.front().file).options;
+  lvdif::VolumeOptions o = inPiece(index.pieces.front().file, [&] {
+    return lvdif::readVolumeInfo(dir + index.pieces.front().file).options;
+  });
   for (int a = 0; a < 3; ++a)
   {
     o.dims[a] = static_cast<std::int64_t>(index.wholeExtent[2 * a + 1]) - index.wholeExtent[2 * a] + 1;
@@ -74,37 +115,6 @@ lvdif::VolumeOptions indexOptions(const lvdifvtk::VolumeIndex& index, const std:
   return o;
 }
 
-/// True when the boxes together hold every voxel of `want` (on the grid of their
-/// boundaries: a few cells per piece, whatever the volume's size).
-bool covers(const lvdif::VoxelBox& want, const std::vector<lvdif::VoxelBox>& parts)
-{
-  std::vector<std::int64_t> cuts[3];
-  for (int a = 0; a < 3; ++a)
-  {
-    cuts[a] = { want.lo[a], want.hi[a] + 1 };
-    for (const auto& b : parts)
-    {
-      cuts[a].push_back(b.lo[a]);
-      cuts[a].push_back(b.hi[a] + 1);
-    }
-    std::sort(cuts[a].begin(), cuts[a].end());
-    cuts[a].erase(std::unique(cuts[a].begin(), cuts[a].end()), cuts[a].end());
-  }
-  for (std::size_t i = 0; i + 1 < cuts[0].size(); ++i)
-    for (std::size_t j = 0; j + 1 < cuts[1].size(); ++j)
-      for (std::size_t k = 0; k + 1 < cuts[2].size(); ++k)
-      {
-        const std::int64_t x = cuts[0][i], y = cuts[1][j], z = cuts[2][k];
-        if (!want.contains(x, y, z))
-          continue;
-        bool in = false;
-        for (const auto& b : parts)
-          in = in || b.contains(x, y, z);
-        if (!in)
-          return false;
-      }
-  return true;
-}
 }
 
 int vtkPDictionaryVolumeReader::RequestInformation(
@@ -155,21 +165,7 @@ int vtkPDictionaryVolumeReader::RequestData(
         output->Initialize(); // a piece without chunks: empty
         return;
       }
-      std::vector<lvdif::VoxelBox> parts;
-      for (const auto& p : index.pieces)
-      {
-        lvdif::VoxelBox box;
-        for (int a = 0; a < 3; ++a)
-        {
-          box.lo[a] = static_cast<std::int64_t>(p.extent[2 * a]) - index.wholeExtent[2 * a];
-          box.hi[a] = static_cast<std::int64_t>(p.extent[2 * a + 1]) - index.wholeExtent[2 * a];
-        }
-        parts.push_back(box.intersect(want));
-      }
-      if (!covers(want, parts))
-      {
-        throw lvdif::Error(lvdif::ErrorCode::CorruptData, "its pieces do not cover the requested voxels");
-      }
+      // (readVolumeIndex checked that the pieces tile the whole extent, so they hold `want`)
       auto volume = std::make_shared<lvdif::DictionaryVolume>(options);
       lvdif::DictionaryVolume& out = *volume;
       const std::int64_t total = std::max<std::int64_t>(want.voxelCount(), 1);
@@ -195,7 +191,8 @@ int vtkPDictionaryVolumeReader::RequestData(
           read.region.lo[a] = part.lo[a] - box.lo[a]; // the piece file's own indices start at 0
           read.region.hi[a] = part.hi[a] - box.lo[a];
         }
-        const std::unique_ptr<lvdif::DictionaryVolume> pv = lvdif::loadVolume(dir + it->file, read, interrupter);
+        const std::unique_ptr<lvdif::DictionaryVolume> pv =
+          inPiece(it->file, [&] { return lvdif::loadVolume(dir + it->file, read, interrupter); });
         for (int a = 0; a < 3; ++a)
         {
           if (pv->dims()[a] != box.hi[a] - box.lo[a] + 1)

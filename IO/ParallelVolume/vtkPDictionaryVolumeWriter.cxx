@@ -23,6 +23,12 @@
 #include "vtkStreamingDemandDrivenPipeline.h"
 
 #include <algorithm>
+#include <cerrno>
+#include <cstdio>
+#include <cstring>
+#include <unistd.h>
+#include <utility>
+#include <vector>
 
 vtkStandardNewMacro(vtkPDictionaryVolumeWriter);
 vtkCxxSetObjectMacro(vtkPDictionaryVolumeWriter, Controller, vtkMultiProcessController);
@@ -201,10 +207,16 @@ std::string vtkPDictionaryVolumeWriter::PieceFilePath(const std::string& indexPa
   return lvdifvtk::directoryOf(indexPath) + lvdifvtk::pieceFileName(indexPath, piece);
 }
 
-bool vtkPDictionaryVolumeWriter::WritePiece(vtkSparseDictionaryVolume* sparse, int pieceNumber, const int ext[6])
+std::string vtkPDictionaryVolumeWriter::StagedPiecePath(const std::string& indexPath, int piece)
+{
+  // the project's name for a temporary file ("<file>.tmp-<pid>-XXXXXX.<ext>", ByteStream.h)
+  return PieceFilePath(indexPath, piece) + ".tmp-" + std::to_string(::getpid()) + "-staged.lvdv";
+}
+
+bool vtkPDictionaryVolumeWriter::WritePiece(
+  vtkSparseDictionaryVolume* sparse, int pieceNumber, const int ext[6], const std::string& path)
 {
   // the piece's voxels as they are stored (keys copied, nothing re-encoded)
-  const std::string path = PieceFilePath(this->FileName, pieceNumber);
   lvdif::VolumeFileWriteOptions options;
   options.compressionLevel = this->CompressionLevel;
   if (!this->VolumeName.empty()) options.metadata["name"] = this->VolumeName;
@@ -217,7 +229,8 @@ bool vtkPDictionaryVolumeWriter::WritePiece(vtkSparseDictionaryVolume* sparse, i
     "piece " + std::to_string(pieceNumber) + ": ");
 }
 
-bool vtkPDictionaryVolumeWriter::WritePiece(vtkImageData* image, int pieceNumber, const int ext[6])
+bool vtkPDictionaryVolumeWriter::WritePiece(
+  vtkImageData* image, int pieceNumber, const int ext[6], const std::string& path)
 {
   // crop: a producer may give more than the requested extent
   vtkNew<vtkImageData> piece;
@@ -235,7 +248,7 @@ bool vtkPDictionaryVolumeWriter::WritePiece(vtkImageData* image, int pieceNumber
   }
   vtkNew<vtkDictionaryVolumeWriter> w;
   w->SetInputData(piece);
-  w->SetFileName(PieceFilePath(this->FileName, pieceNumber).c_str());
+  w->SetFileName(path.c_str());
   w->SetBandWidth(this->BandWidth);
   w->SetChunkEdge(this->ChunkEdge);
   w->SetCompressionLevel(this->CompressionLevel);
@@ -309,8 +322,12 @@ void vtkPDictionaryVolumeWriter::WriteData()
   {
     inInfo->Get(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT(), whole);
   }
-  // this process's pieces: all of them in a serial run, else its own
+  // this process's pieces: all of them in a serial run, else its own. Each is
+  // written to a temporary file beside its own and renamed over it only when
+  // every piece is written: a write that failed part way had replaced the
+  // pieces before it, and the old index listed them beside old ones.
   int ok = 1;
+  std::vector<std::pair<std::string, std::string>> staged; // (temporary, piece file)
   for (int p = serial ? 0 : this->Piece; ok && p < (serial ? this->NumberOfPieces : this->Piece + 1); ++p)
   {
     int ext[6] = { 0, -1, 0, -1, 0, -1 }; // an empty piece: nothing
@@ -318,8 +335,11 @@ void vtkPDictionaryVolumeWriter::WriteData()
       SparsePieceExtent(sparse->GetVolume()->options(), p, this->NumberOfPieces, ext);
     else if (!emptyPiece)
       PieceExtent(whole, p, this->NumberOfPieces, ext);
-    if (lvdifvtk::extentIsValid(ext))
-      ok = sparse ? (this->WritePiece(sparse, p, ext) ? 1 : 0) : (this->WritePiece(image, p, ext) ? 1 : 0);
+    if (!lvdifvtk::extentIsValid(ext))
+      continue;
+    staged.emplace_back(StagedPiecePath(this->FileName, p), PieceFilePath(this->FileName, p));
+    ok = sparse ? (this->WritePiece(sparse, p, ext, staged.back().first) ? 1 : 0)
+                : (this->WritePiece(image, p, ext, staged.back().first) ? 1 : 0);
   }
 
   const int all = this->AgreeOnPieces(ok);
@@ -328,6 +348,16 @@ void vtkPDictionaryVolumeWriter::WriteData()
     vtkErrorMacro("another piece failed; the index is not written");
   }
   ok = all;
+  for (const auto& s : staged)
+  {
+    if (ok && std::rename(s.first.c_str(), s.second.c_str()) != 0)
+    {
+      vtkErrorMacro("cannot rename '" << s.first << "' over the piece '" << s.second << "': " << std::strerror(errno));
+      ok = 0;
+    }
+    if (!ok)
+      std::remove(s.first.c_str()); // a failed write leaves no temporary file
+  }
   if (ok && (serial || this->Piece == 0))
   {
     lvdifvtk::VolumeIndex index;

@@ -101,6 +101,10 @@ public:
   /// The file piece `piece` is written to, beside the index `indexPath`
   /// (name_<piece>.lvdv): what a save checks before the work.
   static std::string PieceFilePath(const std::string& indexPath, int piece);
+  /// The temporary file the piece is written to first (PieceFilePath +
+  /// ".tmp-<pid>-staged.lvdv"), renamed over PieceFilePath once every piece is
+  /// written, then the index: a write that fails keeps the old files.
+  static std::string StagedPiecePath(const std::string& indexPath, int piece);
 
 protected:
   vtkPDictionaryVolumeWriter();
@@ -133,8 +137,10 @@ private:
   int AgreeOnIndex(int ok);
   /// No Controller, or one of one process: this process writes every piece.
   bool IsSerial() const;
-  bool WritePiece(vtkImageData* image, int piece, const int extent[6]);
-  bool WritePiece(vtkSparseDictionaryVolume* sparse, int piece, const int extent[6]);
+  // each writes the piece to `path`: its temporary file (StagedPiecePath),
+  // renamed over the piece's file only when every piece is written
+  bool WritePiece(vtkImageData* image, int piece, const int extent[6], const std::string& path);
+  bool WritePiece(vtkSparseDictionaryVolume* sparse, int piece, const int extent[6], const std::string& path);
   vtkPDictionaryVolumeWriter(const vtkPDictionaryVolumeWriter&) = delete;
   void operator=(const vtkPDictionaryVolumeWriter&) = delete;
 };

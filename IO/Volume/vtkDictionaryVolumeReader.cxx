@@ -1,5 +1,8 @@
 #include "vtkDictionaryVolumeReader.h"
 
+#include "lvdif/ByteStream.h"
+#include "lvdif/Error.h"
+
 #include "LVDIFInterrupter.h"
 #include "LVDIFVolumeBridge.h"
 #include "vtkSparseDictionaryVolume.h"
@@ -39,9 +42,21 @@ vtkDictionaryVolumeReader::~vtkDictionaryVolumeReader()
 
 bool vtkDictionaryVolumeReader::CanReadFile(const char* fileName)
 {
-  std::ifstream f(fileName ? fileName : "", std::ios::binary);
-  char magic[8] = {};
-  return f.read(magic, 8) && std::memcmp(magic, "LVDIFVOL", 8) == 0;
+  // the project's file check: a FIFO blocked std::ifstream (ParaView's file
+  // dialog asks every reader), a folder opened
+  try
+  {
+    lvdif::FileSource f(fileName ? fileName : "");
+    char magic[8] = {};
+    if (f.size() < 8)
+      return false;
+    f.read(0, magic, 8);
+    return std::memcmp(magic, "LVDIFVOL", 8) == 0;
+  }
+  catch (const lvdif::Error&)
+  {
+    return false;
+  }
 }
 
 std::string vtkDictionaryVolumeReader::GetMetadata(const std::string& key) const

@@ -184,8 +184,8 @@ assert run("mesh-to-sdf", tet, named, "--dims", "32")[0] == 0
 # play says what it replayed, and warns when nothing is written (it was silent, exit 0)
 rec = os.path.join(out, "one.lvr")
 with open(rec, "w") as f:
-    f.write("LVDIF-RECORDING 1\nedit time=0 op=add shape=sphere kind=single spacing=1.6 blend=0 coloroffset=1.5 "
-            "rounding=0 color=200,40,40,255 dabs=1\nd 12 12 12 5\n")
+    f.write("LVDIF-RECORDING 2\nedit time=0 op=add shape=sphere kind=single spacing=1.6 blend=0 coloroffset=1.5 "
+            "rounding=0 color=200,40,40,255 dabs=1\nd 12 12 12 5\nend records=1\n")
 play_in = os.path.join(out, "play-in.lvdv")
 with open(os.path.join(out, "play-in.lvs"), "w") as f:
     f.write("canvas 24\n")
@@ -196,6 +196,19 @@ assert r.returncode == 0 and f"{rec}: 1 records replayed on {play_in}" in r.stdo
     and "nothing written" in warnings[0], r
 r = subprocess.run([exe, "play", rec, "--in", play_in, "--out", play_in], capture_output=True, text=True, timeout=60)
 assert r.returncode == 0 and "warning" not in r.stderr, r
+# a recording cut short (here: before its end record) is one error; a version 1 recording (no end
+# record) plays with one warning that says so (both played without a word before version 2)
+cut = os.path.join(out, "cut.lvr")
+with open(rec) as f, open(cut, "w") as g:
+    g.write(f.read().replace("end records=1\n", ""))
+code, err = run("play", cut, "--in", play_in, "--out", play_in)
+assert code == 1 and err == (f"lvdif play: {cut}:4:1: the recording is cut short: no 'end records=N' line "
+                             "(a version 2 recording ends with one)"), (code, err)
+with open(cut, "w") as g:
+    g.write(open(rec).read().replace("LVDIF-RECORDING 2", "LVDIF-RECORDING 1").replace("end records=1\n", ""))
+r = subprocess.run([exe, "play", cut, "--in", play_in, "--out", play_in], capture_output=True, text=True, timeout=60)
+assert r.returncode == 0 and r.stderr.count("warning:") == 1 and \
+    "a version 1 recording has no end record" in r.stderr, r
 # ... and so does script (it ran the whole script and kept nothing without a word)
 r = subprocess.run([exe, "script", os.path.join(out, "play-in.lvs")], capture_output=True, text=True, timeout=60)
 warnings = [line for line in r.stderr.splitlines() if line.startswith("warning:")]

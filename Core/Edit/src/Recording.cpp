@@ -164,6 +164,8 @@ void writeRecording(std::ostream& out, const Recording& r)
       out << "\n";
     }
   }
+  // the end: a file cut short (at a line, or inside a number) has none or another count
+  out << "end records=" << r.records.size() << "\n";
 }
 
 Recording readRecording(std::istream& in, const std::string& name)
@@ -171,7 +173,8 @@ Recording readRecording(std::istream& in, const std::string& name)
   Recording r;
   std::string line;
   Where at{ name };
-  bool header = false;
+  bool header = false, ended = false;
+  long version = 0;
   std::size_t expectDabs = 0;
   BrushShape editShape = BrushShape::Sphere;
   const EditLimits limits;
@@ -201,14 +204,16 @@ Recording readRecording(std::istream& in, const std::string& name)
     if (!header)
     {
       if (head.text != "LVDIF-RECORDING" || words.size() != 2)
-        at.bad(head.column, "expected the version line 'LVDIF-RECORDING 1'");
+        at.bad(head.column, "expected the version line 'LVDIF-RECORDING 2'");
       char* end = nullptr;
-      const long version = std::strtol(words[1].text.c_str(), &end, 10);
-      if (*end != '\0' || version != Recording::Version)
+      version = std::strtol(words[1].text.c_str(), &end, 10);
+      if (*end != '\0' || version < 1 || version > Recording::Version)
         at.bad(words[1].column, "unsupported recording version '" + words[1].text + "'");
       header = true;
       continue;
     }
+    if (ended)
+      at.bad(head.column, "'" + head.text.substr(0, 40) + "' after the end record (the end record is the last line)");
     if (expectDabs > 0)
     {
       Dab d;
@@ -256,6 +261,22 @@ Recording readRecording(std::istream& in, const std::string& name)
               ", got '" + w.text + "'");
         r.canvas[static_cast<std::size_t>(a)] = n;
       }
+      continue;
+    }
+    if (head.text == "end")
+    {
+      // `end records=N`: the last line of a version 2 recording
+      if (version < 2)
+        at.bad(head.column, "an end record needs version 2 ('LVDIF-RECORDING 2'), this file says version 1");
+      if (words.size() != 2 || words[1].text.rfind("records=", 0) != 0)
+        at.bad(head.column, "expected 'end records=N'");
+      const std::string count = words[1].text.substr(8);
+      char* end = nullptr;
+      const unsigned long long n = std::strtoull(count.c_str(), &end, 10);
+      if (count.empty() || *end != '\0' || count[0] < '0' || count[0] > '9' || n != r.records.size())
+        at.bad(words[1].column + 8, "the end record counts '" + count + "' records, the recording has " +
+            std::to_string(r.records.size()) + " (the file was cut or edited)");
+      ended = true;
       continue;
     }
     // the record word first: a stray dab line is named as one, not as a bad key=value
@@ -364,6 +385,14 @@ Recording readRecording(std::istream& in, const std::string& name)
   }
   if (expectDabs > 0)
     at.bad(1, "recording ends " + std::to_string(expectDabs) + " dab lines early");
+  if (!ended && version >= 2)
+  {
+    ++at.Line; // where the end record was due
+    at.bad(1, "the recording is cut short: no 'end records=N' line (a version 2 recording ends with one)");
+  }
+  if (version < 2)
+    r.warning = name + ": a version 1 recording has no end record, so a cut file cannot be told from a whole one; its " +
+      std::to_string(r.records.size()) + " records are played as they are";
   return r;
 }
 

@@ -67,7 +67,7 @@ TEST(Recording, RecordWriteReadPlayIsBitExact)
   std::stringstream text;
   writeRecording(text, rec);
   const std::string first = text.str();
-  EXPECT_EQ(first.rfind("LVDIF-RECORDING 1\n", 0), 0u);
+  EXPECT_EQ(first.rfind("LVDIF-RECORDING 2\n", 0), 0u);
   const Recording back = readRecording(text);
   std::stringstream again;
   writeRecording(again, back);
@@ -122,7 +122,7 @@ TEST(Recording, AnotherCanvasIsRefusedBeforePlaying)
   const Recording rec = e.stopRecording();
   std::stringstream text;
   writeRecording(text, rec);
-  EXPECT_EQ(text.str().rfind("LVDIF-RECORDING 1\ncanvas 48 48 48\nedit ", 0), 0u) << text.str();
+  EXPECT_EQ(text.str().rfind("LVDIF-RECORDING 2\ncanvas 48 48 48\nedit ", 0), 0u) << text.str();
   const Recording back = readRecording(text);
   EXPECT_EQ(back.canvas, (Index3{ 48, 48, 48 }));
 
@@ -161,8 +161,8 @@ TEST(Recording, AnotherCanvasIsRefusedBeforePlaying)
 TEST(Recording, ParseErrorsNameTheLine)
 {
   const auto errorOf = recordingErrorOf;
-  EXPECT_EQ(errorOf("hello\n"), "recording:1:1: expected the version line 'LVDIF-RECORDING 1'");
-  EXPECT_EQ(errorOf("LVDIF-RECORDING 2\n"), "recording:1:17: unsupported recording version '2'");
+  EXPECT_EQ(errorOf("hello\n"), "recording:1:1: expected the version line 'LVDIF-RECORDING 2'");
+  EXPECT_EQ(errorOf("LVDIF-RECORDING 3\n"), "recording:1:17: unsupported recording version '3'");
   const std::string head = "LVDIF-RECORDING 1\n";
   const std::string edit =
     "edit time=0 op=add shape=sphere kind=basic spacing=1.6 blend=0 coloroffset=1.5 color=1,2,3,255 dabs=2\n";
@@ -247,4 +247,88 @@ TEST(Recording, ImportsTheOriginalCsvWithAxisSwapAndScaling)
   e.play(r.recording);
   EXPECT_LT(v.sdf(25, 20, 15), 0.0f);
   EXPECT_EQ(v.colors()[v.get(25, 20, 15).color], defaultCsvPalette()[2]);
+}
+
+// A recording cut short (a copy stopped early, a full disk) at a line boundary,
+// or inside the last number, played without an error: the format had no end.
+// Version 2 recordings end with `end records=N`: every cut of one is refused
+// naming where the end was due, and the whole file reads and plays bit for bit
+// as the edits did (oracle: the volume the edits made). A version 1 file (no end
+// record) plays the same, with one warning.
+TEST(Recording, ACutRecordingIsRefused)
+{
+  DictionaryVolume v(edittest::options(48, 16));
+  fillFromFunction(v, sphereSdf(24, 24, 24, 10));
+  auto start = v.clone();
+  Editor e(v);
+  e.startRecording();
+  for (int i = 0; i < 11; ++i)
+    e.dab(Dab{ BrushShape::Sphere, { 10.25 + 2.5 * i, 24.5, 30.125 }, 3.5 + 0.125 * i, {} });
+  e.undo();
+  const Recording rec = e.stopRecording();
+  ASSERT_EQ(rec.records.size(), 12u);
+  std::stringstream out;
+  writeRecording(out, rec);
+  const std::string text = out.str();
+  const std::string endLine = "end records=12\n";
+  ASSERT_GE(text.size(), endLine.size());
+  EXPECT_EQ(text.substr(text.size() - endLine.size()), endLine);
+
+  std::istringstream whole(text);
+  const Recording back = readRecording(whole, "whole.lvr");
+  EXPECT_EQ(back.warning, "");
+  auto played = start->clone();
+  Editor p(*played);
+  p.play(back);
+  EXPECT_EQ(edittest::countDifferences(*played, v), 0);
+
+  // every cut: at each line boundary, and one character short of each line's end
+  // (inside the last number of a dab line, inside the end record's count)
+  int cuts = 0;
+  for (std::size_t at = text.find('\n') + 1; at < text.size(); ++at)
+  {
+    if (text[at] != '\n' && text[at - 1] != '\n')
+      continue;
+    const std::string cut = text.substr(0, text[at] == '\n' ? at - 1 : at);
+    if (cut.empty() || cut.back() == ' ')
+      continue;
+    std::istringstream in(cut);
+    const std::string error =
+      errortest::errorMessageOf([&] { readRecording(in, "cut.lvr"); }, ErrorCode::ParseError);
+    const bool named = error.find("the recording is cut short: no 'end records=N' line") != std::string::npos ||
+      error.find("the end record counts '1' records, the recording has 12") != std::string::npos ||
+      error.find("expected 'end records=N'") != std::string::npos ||
+      error.find("dab lines early") != std::string::npos;
+    // (a cut inside an edit line's last value is refused by that value's rule)
+    const std::string last = cut.substr(cut.find_last_of('\n', cut.size() - 2) + 1);
+    if (last.rfind("edit ", 0) != 0 && last.rfind("canvas ", 0) != 0)
+      EXPECT_TRUE(named) << "cut at " << cut.size() << ": " << error;
+    ++cuts;
+  }
+  EXPECT_GT(cuts, 40);
+  // the exact words for a cut at the line before the end record
+  EXPECT_EQ(recordingErrorOf(text.substr(0, text.size() - endLine.size())),
+    "recording:26:1: the recording is cut short: no 'end records=N' line (a version 2 recording ends with one)");
+
+  // the same records as version 1 (no end record): played as before, one warning
+  std::string old = text.substr(0, text.size() - endLine.size());
+  old.replace(0, std::string("LVDIF-RECORDING 2").size(), "LVDIF-RECORDING 1");
+  std::istringstream oldIn(old);
+  const Recording oldBack = readRecording(oldIn, "old.lvr");
+  EXPECT_EQ(oldBack.warning, "old.lvr: a version 1 recording has no end record, so a cut file cannot be told from "
+                             "a whole one; its 12 records are played as they are");
+  auto playedOld = start->clone();
+  Editor q(*playedOld);
+  q.play(oldBack);
+  EXPECT_EQ(edittest::countDifferences(*playedOld, v), 0);
+
+  // the end record's own rules
+  EXPECT_EQ(recordingErrorOf(old + "end records=12\n"),
+    "recording:26:1: an end record needs version 2 ('LVDIF-RECORDING 2'), this file says version 1");
+  EXPECT_EQ(recordingErrorOf(text + "undo time=9\n"),
+    "recording:27:1: 'undo' after the end record (the end record is the last line)");
+  std::istringstream commented(text + "# a comment\n\n");
+  EXPECT_NO_THROW(readRecording(commented));
+  EXPECT_EQ(recordingErrorOf("LVDIF-RECORDING 2\nend records=x\n"),
+    "recording:2:13: the end record counts 'x' records, the recording has 0 (the file was cut or edited)");
 }

@@ -3,12 +3,13 @@
 // edits, each with every parameter needed to redo it, plus undo/redo events.
 // Text format (docs/RECORDING.md):
 //
-//   LVDIF-RECORDING 1
+//   LVDIF-RECORDING 2
 //   canvas 64 64 64
 //   edit time=0.25 op=add shape=sphere kind=basic spacing=1.6 blend=0 coloroffset=1.5 color=255,0,0,255 dabs=2
 //   d 10 20 30 3
 //   d 11.6 20 30 3
 //   undo time=1.5
+//   end records=2
 //
 // Numbers are written with 17 significant digits, so reading a recording gives
 // the same doubles and playing it back (Editor::play) on the same start volume
@@ -48,12 +49,18 @@ struct EditRecord
 
 struct Recording
 {
-  static constexpr int Version = 1;
+  /// The version written. Version 2 ends with `end records=N`, so that a file
+  /// cut short (at a line or inside a number) is refused; version 1 files (no
+  /// end record) are still read, with `warning` set.
+  static constexpr int Version = 2;
   /// Dimensions of the volume it was recorded on (the `canvas` line; {0, 0, 0}:
   /// not known, as in recordings written before it and imported CSVs).
   /// Editor::play refuses a volume of other dimensions before applying anything.
   Index3 canvas{ 0, 0, 0 };
   std::vector<EditRecord> records;
+  /// Set by readRecording for a version 1 file: it has no end record, so a cut
+  /// one cannot be told from a whole one. Front ends print it as one warning.
+  std::string warning;
 };
 
 void writeRecording(std::ostream& out, const Recording& recording);

@@ -19,12 +19,14 @@
 #include "vtkPolyData.h"
 #include "vtkSphereSource.h"
 #include "vtkTriangleFilter.h"
+#include "vtkBase64Utilities.h"
 #include "vtkXMLImageDataWriter.h"
 
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <cstdio>
+#include <cstring>
 #include <limits>
 #include <dirent.h>
 #include <fstream>
@@ -329,4 +331,172 @@ TEST(LVDIFFiles, ParaViewHintsListTheRegistrysExtensions)
                                      << " hints differ from the registry";
     }
   }
+}
+
+namespace
+{
+/// An ASCII .vti of an 8 x 8 x 8 image (sdf = x - 3.5), written by VTK in `pieces` pieces.
+std::string writeSmallVti(const std::string& path, int pieces)
+{
+  vtkNew<vtkImageData> image;
+  image->SetDimensions(8, 8, 8);
+  image->SetSpacing(0.5, 1, 2);
+  vtkNew<vtkFloatArray> sdf;
+  sdf->SetName("sdf");
+  sdf->SetNumberOfTuples(8 * 8 * 8);
+  for (vtkIdType i = 0; i < 8 * 8 * 8; ++i) sdf->SetValue(i, float(i % 8) - 3.5f);
+  image->GetPointData()->SetScalars(sdf);
+  vtkNew<vtkXMLImageDataWriter> writer;
+  writer->SetFileName(path.c_str());
+  writer->SetInputData(image);
+  writer->SetDataModeToAscii();
+  writer->SetNumberOfPieces(pieces);
+  if (writer->Write() != 1) return "";
+  return slurp(path);
+}
+
+/// The text with `from` replaced by `to` (which must occur once).
+std::string replaced(std::string text, const std::string& from, const std::string& to)
+{
+  const auto at = text.find(from);
+  EXPECT_NE(at, std::string::npos) << from;
+  EXPECT_EQ(text.find(from, at + 1), std::string::npos) << from;
+  return at == std::string::npos ? text : text.replace(at, from.size(), to);
+}
+
+std::string loadError(const std::string& path)
+{
+  try
+  {
+    LVDIFFiles::LoadVolume(path);
+  }
+  catch (const lvdif::Error& e)
+  {
+    return e.what();
+  }
+  return "(read without an error)";
+}
+} // namespace
+
+// A .vti whose WholeExtent is larger than its one piece's Extent was read: the
+// points outside the piece were whatever the allocated memory held. Now one
+// error names both extents; VTK's own split into pieces still reads, and so
+// does a .vti as VTK writes it (oracle: the values written, sdf = x - 3.5).
+TEST(LVDIFFiles, AVtiWhosePiecesDoNotFillItsExtentIsRefused)
+{
+  const std::string path = temp("extent.vti");
+  for (const int pieces : { 1, 3 })
+  {
+    ASSERT_FALSE(writeSmallVti(path, pieces).empty());
+    const auto v = LVDIFFiles::LoadVolume(path);
+    ASSERT_EQ(v->dims(), (lvdif::Index3{ 8, 8, 8 })) << pieces;
+    double worst = 0;
+    for (int z = 0; z < 8; ++z)
+      for (int y = 0; y < 8; ++y)
+        for (int x = 0; x < 8; ++x)
+          worst = std::max(worst, std::fabs(v->decode(v->get(x, y, z).sdf) - (x - 3.5)));
+    EXPECT_LT(worst, 0.01) << pieces << " pieces";
+  }
+  const std::string vti = writeSmallVti(path, 1);
+  std::ofstream(path) << replaced(vti, "WholeExtent=\"0 7 0 7 0 7\"", "WholeExtent=\"0 7 0 7 0 8\"");
+  EXPECT_EQ(loadError(path), "cannot read '" + path + "': the whole extent 0 7 0 7 0 8 is larger than its piece's " +
+      "extent 0 7 0 7 0 7: the points outside it would be made up");
+  std::remove(path.c_str());
+}
+
+// Spacing="nan 1 1" (or inf) in a .vti was read as spacing 1 (VTK's reader takes
+// what it cannot parse for its default), 0 and negative spacings were read
+// (a zero spacing until the conversion refused it, after reading the data).
+// Now each is refused from the header by the volumes' one geometry rule.
+TEST(LVDIFFiles, AVtiWithABadSpacingIsRefused)
+{
+  const std::string path = temp("spacing.vti");
+  const std::string vti = writeSmallVti(path, 1);
+  ASSERT_FALSE(vti.empty());
+  for (const std::string& bad : { "nan 1 2", "inf 1 2", "0 1 2", "-0.5 1 2" })
+  {
+    std::ofstream(path) << replaced(vti, "Spacing=\"0.5 1 2\"", "Spacing=\"" + bad + "\"");
+    const std::string error = loadError(path);
+    EXPECT_NE(error.find("cannot read '" + path + "': volume origin 0 and spacing "), std::string::npos) << error;
+    EXPECT_NE(error.find(" on axis x must be finite, spacing >= 1e-30"), std::string::npos) << error;
+  }
+  std::ofstream(path) << replaced(vti, "Spacing=\"0.5 1 2\"", "Spacing=\"0.5 1\"");
+  EXPECT_EQ(loadError(path), "cannot read '" + path + "': Spacing=\"0.5 1\" is not 3 numbers");
+  // a hexadecimal number: VTK's reader took "0x1p1" for 0 and then its default 1
+  std::ofstream(path) << replaced(vti, "Spacing=\"0.5 1 2\"", "Spacing=\"0x1p1 1 2\"");
+  EXPECT_EQ(loadError(path), "cannot read '" + path + "': Spacing=\"0x1p1 1 2\" is not 3 numbers");
+  std::ofstream(path) << replaced(vti, "Origin=\"0 0 0\"", "Origin=\"0 nan 0\"");
+  EXPECT_NE(loadError(path).find("volume origin nan"), std::string::npos) << loadError(path);
+  std::remove(path.c_str());
+}
+
+namespace
+{
+/// The 8 x 8 x 8 image of writeSmallVti, compressed (zlib), in a data mode.
+std::string writeCompressedVti(const std::string& path, int mode, bool encoded, bool header64)
+{
+  vtkNew<vtkImageData> image;
+  image->SetDimensions(8, 8, 8);
+  vtkNew<vtkFloatArray> sdf;
+  sdf->SetName("sdf");
+  sdf->SetNumberOfTuples(8 * 8 * 8);
+  for (vtkIdType i = 0; i < 8 * 8 * 8; ++i) sdf->SetValue(i, float(i % 8) - 3.5f);
+  image->GetPointData()->SetScalars(sdf);
+  vtkNew<vtkXMLImageDataWriter> writer;
+  writer->SetFileName(path.c_str());
+  writer->SetInputData(image);
+  writer->SetCompressorTypeToZLib();
+  writer->SetDataMode(mode);
+  writer->SetEncodeAppendedData(encoded);
+  if (header64) writer->SetHeaderTypeToUInt64();
+  if (writer->Write() != 1) return "";
+  return slurp(path);
+}
+} // namespace
+
+// VTK's reader allocates by a compressed array's header (a word per block, a
+// buffer of a block): a .vti declaring 2^31 - 1 blocks ended in
+// "lvdif convert: std::bad_alloc" (or took gigabytes). Now the header's counts
+// are checked against the file and the array before: one error naming the
+// array. The writer's own compressed files in every data mode still read
+// (oracle: the values written).
+TEST(LVDIFFiles, AVtiWithForgedCompressionHeadersIsRefusedBeforeAllocating)
+{
+  const std::string path = temp("compressed.vti");
+  for (const int mode : { vtkXMLWriter::Appended, vtkXMLWriter::Binary })
+    for (const bool encoded : { true, false })
+      for (const bool header64 : { false, true })
+      {
+        ASSERT_FALSE(writeCompressedVti(path, mode, encoded, header64).empty());
+        const auto v = LVDIFFiles::LoadVolume(path);
+        EXPECT_LT(std::fabs(v->decode(v->get(7, 3, 2).sdf) - 3.5), 0.01) << mode << encoded << header64;
+      }
+  // appended, base64: the header of 'sdf' is the first 24 characters after '_' (4 words of 4 bytes)
+  const std::string vti = writeCompressedVti(path, vtkXMLWriter::Appended, true, false);
+  const std::size_t at = vti.find('_', vti.find("<AppendedData")) + 1;
+  ASSERT_NE(at, std::string::npos + 1);
+  unsigned char words[18] = {};
+  ASSERT_EQ(vtkBase64Utilities::DecodeSafely(
+              reinterpret_cast<const unsigned char*>(vti.data() + at), 24, words, sizeof(words)),
+    16u);
+  auto forged = [&](int word, std::uint32_t value) {
+    unsigned char w[16];
+    std::memcpy(w, words, 16);
+    for (int b = 0; b < 4; ++b) w[4 * word + b] = static_cast<unsigned char>(value >> (8 * b));
+    unsigned char text[32];
+    const unsigned long n = vtkBase64Utilities::Encode(w, 16, text);
+    std::string out = vti;
+    out.replace(at, 24, reinterpret_cast<const char*>(text), n);
+    return out;
+  };
+  std::ofstream(path) << forged(0, 0x7fffffffu);
+  EXPECT_EQ(loadError(path), "cannot read '" + path + "': the DataArray 'sdf' declares 2147483647 compressed blocks, " +
+      "more than the file's " + std::to_string(vti.size()) + " bytes can list");
+  std::ofstream(path) << forged(1, 0xfffffff0u);
+  EXPECT_EQ(loadError(path), "cannot read '" + path + "': the DataArray 'sdf' declares blocks of 4294967280 bytes, " +
+      "more than its 2048 bytes of values");
+  std::ofstream(path) << forged(3, 0xfffffff0u);
+  EXPECT_EQ(loadError(path), "cannot read '" + path + "': the DataArray 'sdf' declares a compressed block of " +
+      "4294967280 bytes, more than the file's " + std::to_string(vti.size()));
+  std::remove(path.c_str());
 }

@@ -35,11 +35,16 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <chrono>
+#include <fcntl.h>
+#include <future>
 #include <cmath>
+#include <cstdlib>
 #include <cstdio>
 #include <fstream>
 #include <iterator>
 #include <string>
+#include <dirent.h>
 #include <sys/stat.h>
 #include <unistd.h>
 
@@ -514,4 +519,252 @@ TEST(PVolumeIO, SerialRunWritesEveryPiece)
   EXPECT_FALSE(std::ifstream(piece0).good()) << "piece 0 written before the refusal";
   ::rmdir(piece1.c_str());
   std::remove(index.c_str());
+}
+
+namespace
+{
+/// The reader's first error text for the index at `path` ("" when it read a volume).
+std::string readError(const std::string& path)
+{
+  std::string text;
+  vtkNew<vtkCallbackCommand> onError;
+  onError->SetClientData(&text);
+  onError->SetCallback([](vtkObject*, unsigned long, void* client, void* call) {
+    auto* t = static_cast<std::string*>(client);
+    if (t->empty()) *t = static_cast<const char*>(call);
+  });
+  vtkNew<vtkPDictionaryVolumeReader> r;
+  r->AddObserver(vtkCommand::ErrorEvent, onError);
+  r->GetExecutive()->AddObserver(vtkCommand::ErrorEvent, onError);
+  vtkObject::GlobalWarningDisplayOn(); // ErrorEvent fires only with it on
+  r->SetFileName(path.c_str());
+  r->Update();
+  vtkObject::GlobalWarningDisplayOff();
+  if (text.empty() && voxels(r) == 0) text = "(no volume and no error)";
+  return text;
+}
+
+std::string fileBytes(const std::string& p)
+{
+  std::ifstream f(p, std::ios::binary);
+  return std::string(std::istreambuf_iterator<char>(f), std::istreambuf_iterator<char>());
+}
+} // namespace
+
+// An index that lists a piece twice, or a piece overlapping the others, was
+// read (the first listed won on the shared points, without a word). Now the
+// index is refused naming the two pieces and their extents. Oracle: the same
+// piece files listed once each read (the writer's index), and the extents of
+// the translator's split.
+TEST(PVolumeIO, DuplicateOrOverlappingPiecesAreRefused)
+{
+  vtkSmartPointer<vtkImageData> img = makeImage();
+  const std::string index = tmpName("dup.lvdvp");
+  writePieces(img, index, 2);
+  const std::string whole = tmpName("dup_whole.lvdv");
+  {
+    vtkNew<vtkDictionaryVolumeWriter> w;
+    w->SetInputData(img);
+    w->SetFileName(whole.c_str());
+    ASSERT_EQ(w->Write(), 1);
+  }
+  EXPECT_EQ(readError(index), "");
+  int ext[6], e0[6], e1[6];
+  img->GetExtent(ext);
+  vtkPDictionaryVolumeWriter::PieceExtent(ext, 0, 2, e0);
+  vtkPDictionaryVolumeWriter::PieceExtent(ext, 1, 2, e1);
+  auto text = [](const int* e) {
+    std::string s;
+    for (int q = 0; q < 6; ++q) s += (q ? " " : "") + std::to_string(e[q]);
+    return s;
+  };
+  auto header = [&](int pieces) {
+    return "LVDIF-PVOLUME 1\nwhole_extent " + text(ext) + "\norigin -2 0.5 3\nspacing 0.25 0.5 0.75\npieces " +
+      std::to_string(pieces) + "\n";
+  };
+  const std::string f0 = "lvdif_p_" + std::to_string(getpid()) + "_dup_0.lvdv";
+  const std::string f1 = "lvdif_p_" + std::to_string(getpid()) + "_dup_1.lvdv";
+  const std::string fw = "lvdif_p_" + std::to_string(getpid()) + "_dup_whole.lvdv";
+  const std::string bad = tmpName("dup_bad.lvdvp");
+  // piece 0 listed twice
+  std::ofstream(bad) << header(3) << "piece " << text(e0) << " " << f0 << "\npiece " << text(e1) << " " << f1
+                     << "\npiece " << text(e0) << " " << f0 << "\n";
+  std::string error = readError(bad);
+  EXPECT_NE(error.find("piece 1 and piece 3 have the same extent " + text(e0)), std::string::npos) << error;
+  // the whole volume listed beside its two pieces
+  std::ofstream(bad) << header(3) << "piece " << text(e0) << " " << f0 << "\npiece " << text(e1) << " " << f1
+                     << "\npiece " << text(ext) << " " << fw << "\n";
+  error = readError(bad);
+  EXPECT_NE(error.find("piece 1 (extent " + text(e0) + ") and piece 3 (extent " + text(ext) + ") overlap"),
+    std::string::npos)
+    << error;
+  // a hole: piece 1 alone
+  std::ofstream(bad) << header(1) << "piece " << text(e1) << " " << f1 << "\n";
+  error = readError(bad);
+  EXPECT_NE(error.find("is larger than its piece's extent " + text(e1)), std::string::npos) << error;
+  for (const std::string& f : { bad, index, whole, tmpName("dup_0.lvdv"), tmpName("dup_1.lvdv") })
+    std::remove(f.c_str());
+}
+
+// A serial write of n pieces that failed part way (here: cancelled while
+// writing piece 1) had already replaced piece 0, and the old index listed the
+// new piece 0 with the old piece 1: the saved volume was destroyed. Now the
+// pieces are written to temporary files beside theirs and renamed only when
+// all of them are written (then the index is written): the old index and pieces stay byte for byte, and no
+// temporary file is left. Oracle: the files' bytes before the write.
+TEST(PVolumeIO, SerialWriteThatFailsPartWayKeepsTheOldFiles)
+{
+  vtkSmartPointer<vtkImageData> img = makeImage();
+  const std::string index = tmpName("keep.lvdvp");
+  writePieces(img, index, 3);
+  const std::string piece[3] = { vtkPDictionaryVolumeWriter::PieceFilePath(index, 0),
+    vtkPDictionaryVolumeWriter::PieceFilePath(index, 1), vtkPDictionaryVolumeWriter::PieceFilePath(index, 2) };
+  const std::string before[4] = { fileBytes(index), fileBytes(piece[0]), fileBytes(piece[1]), fileBytes(piece[2]) };
+  // another volume (other values) written over it, from a sparse input
+  vtkSmartPointer<vtkImageData> other = makeSdfImage({ 3, 3 + NX - 1, -2, -2 + NY - 1, 5, 5 + NZ - 1 },
+    { -2.0, 0.5, 3.0 }, { 0.25, 0.5, 0.75 }, [](int i, int j, int k) { return analytic(i, j, k) + 3.0; },
+    [](int, int, int) { return std::array<unsigned char, 4>{ 1, 2, 3, 255 }; });
+  vtkNew<vtkImageToSparseVolume> sparse;
+  sparse->SetInputData(other);
+  vtkNew<vtkPDictionaryVolumeWriter> w;
+  w->SetController(nullptr);
+  w->SetInputConnection(sparse->GetOutputPort());
+  w->SetFileName(index.c_str());
+  w->SetNumberOfPieces(3);
+  // cancelled when piece 0's save reports it has written every chunk: piece 0
+  // is then saved, and the next piece stops at its first check
+  struct Watch
+  {
+    vtkPDictionaryVolumeWriter* writer;
+    bool cancelled = false;
+  } watch{ w };
+  vtkNew<vtkCallbackCommand> onProgress;
+  onProgress->SetClientData(&watch);
+  onProgress->SetCallback([](vtkObject*, unsigned long, void* client, void* call) {
+    auto* wt = static_cast<Watch*>(client);
+    if (!wt->cancelled && *static_cast<double*>(call) >= 0.999)
+    {
+      wt->cancelled = true;
+      wt->writer->SetAbortExecute(1);
+    }
+  });
+  w->AddObserver(vtkCommand::ProgressEvent, onProgress);
+  w->GlobalWarningDisplayOff();
+  EXPECT_EQ(w->Write(), 0);
+  EXPECT_TRUE(watch.cancelled);
+  EXPECT_TRUE(fileBytes(index) == before[0]) << "index";
+  for (int p = 0; p < 3; ++p)
+    EXPECT_TRUE(fileBytes(piece[p]) == before[1 + p]) << "piece " << p;
+  // no temporary file left beside them
+  const std::string dir = std::string(::testing::TempDir());
+  const std::string stem = "lvdif_p_" + std::to_string(getpid()) + "_keep";
+  int left = 0;
+  if (DIR* d = ::opendir(dir.c_str()))
+  {
+    while (const dirent* e = ::readdir(d))
+    {
+      const std::string name = e->d_name;
+      left += name.compare(0, stem.size(), stem) == 0 && name.find(".tmp-") != std::string::npos ? 1 : 0;
+    }
+    ::closedir(d);
+  }
+  EXPECT_EQ(left, 0);
+  vtkNew<vtkPDictionaryVolumeReader> r;
+  r->SetFileName(index.c_str());
+  expectSameArrays(decoded(r), serialRoundTrip(img));
+  for (const std::string& f : { index, piece[0], piece[1], piece[2] })
+    std::remove(f.c_str());
+}
+
+// A piece file that is no .lvdv (here: the index itself, a .vti) or a damaged
+// one was reported as "cannot read 'x.lvdvp': header: bad magic: ...", naming
+// the index only: the user could not tell which of its files was bad. Now the
+// error names the piece file.
+TEST(PVolumeIO, ABadPieceFileIsNamed)
+{
+  vtkSmartPointer<vtkImageData> img = makeImage();
+  const std::string index = tmpName("named.lvdvp");
+  writePieces(img, index, 2);
+  const std::string p1 = vtkPDictionaryVolumeWriter::PieceFilePath(index, 1);
+  const std::string stem = "lvdif_p_" + std::to_string(getpid()) + "_named_1.lvdv";
+  std::ofstream(p1) << "not a volume";
+  std::string error = readError(index);
+  EXPECT_NE(error.find("piece file '" + stem + "': "), std::string::npos) << error;
+  EXPECT_NE(error.find("too short for an LVDIF volume"), std::string::npos) << error;
+  // the first piece's (read for the volume's settings)
+  const std::string p0 = vtkPDictionaryVolumeWriter::PieceFilePath(index, 0);
+  std::ofstream(p0) << std::string(300, 'x');
+  error = readError(index);
+  EXPECT_NE(error.find("piece file 'lvdif_p_" + std::to_string(getpid()) + "_named_0.lvdv': header: bad magic"),
+    std::string::npos)
+    << error;
+  for (const std::string& f : { index, p0, p1 })
+    std::remove(f.c_str());
+}
+
+// A garbage .lvdvp of gigabytes (here 3 GiB, sparse) was read whole before its
+// first line was found not to be an index: with the memory limit below it was
+// refused for memory ("reading the index needs 3.00 GiB"), without one it took
+// the gigabytes. Now the first line is read first: the usual error, at once.
+TEST(PVolumeIO, AGarbageIndexOfGigabytesIsRefusedAfterItsHead)
+{
+  const std::string bad = tmpName("garbage.lvdvp");
+  {
+    std::ofstream f(bad, std::ios::binary);
+    f << "# a comment\nGARBAGE " << std::string(200, 'x') << "\n";
+  }
+  ASSERT_EQ(::truncate(bad.c_str(), off_t(3) << 30), 0);
+  const char* old = std::getenv("LVDIF_MEMORY_LIMIT");
+  const std::string kept = old ? old : "";
+  ::setenv("LVDIF_MEMORY_LIMIT", "256M", 1);
+  const auto t0 = std::chrono::steady_clock::now();
+  const std::string error = readError(bad);
+  const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  if (old)
+    ::setenv("LVDIF_MEMORY_LIMIT", kept.c_str(), 1);
+  else
+    ::unsetenv("LVDIF_MEMORY_LIMIT");
+  EXPECT_NE(error.find("line 2: not an LVDIF volume index (expected 'LVDIF-PVOLUME <version>')"), std::string::npos)
+    << error;
+  EXPECT_LT(seconds, 2.0);
+  std::remove(bad.c_str());
+}
+
+// CanReadFile (ParaView's file dialog asks every reader about every file)
+// opened the path with std::ifstream: a FIFO blocked it until something wrote
+// to it. Now the project's file check refuses it at once; a real file is still
+// recognised (an index after a comment line too). If the call blocks, the test
+// opens the FIFO's other end to free it, and fails.
+TEST(PVolumeIO, CanReadFileDoesNotBlockOnAFifo)
+{
+  const std::string fifo = tmpName("fifo.lvdvp");
+  std::remove(fifo.c_str());
+  ASSERT_EQ(::mkfifo(fifo.c_str(), 0600), 0);
+  for (int which = 0; which < 2; ++which)
+  {
+    auto answer = std::async(std::launch::async, [&] {
+      return which == 0 ? vtkPDictionaryVolumeReader::CanReadFile(fifo.c_str())
+                        : vtkDictionaryVolumeReader::CanReadFile(fifo.c_str());
+    });
+    const bool blocked = answer.wait_for(std::chrono::seconds(3)) != std::future_status::ready;
+    EXPECT_FALSE(blocked) << (which == 0 ? "vtkPDictionaryVolumeReader" : "vtkDictionaryVolumeReader");
+    if (blocked)
+    {
+      const int w = ::open(fifo.c_str(), O_WRONLY | O_NONBLOCK); // the reader's open returns, then EOF
+      if (w >= 0) ::close(w);
+    }
+    EXPECT_FALSE(answer.get());
+  }
+  std::remove(fifo.c_str());
+  vtkSmartPointer<vtkImageData> img = makeImage();
+  const std::string index = tmpName("can.lvdvp");
+  writePieces(img, index, 1);
+  EXPECT_TRUE(vtkPDictionaryVolumeReader::CanReadFile(index.c_str()));
+  EXPECT_TRUE(vtkDictionaryVolumeReader::CanReadFile(vtkPDictionaryVolumeWriter::PieceFilePath(index, 0).c_str()));
+  EXPECT_FALSE(vtkDictionaryVolumeReader::CanReadFile(index.c_str()));
+  const std::string text = fileBytes(index);
+  std::ofstream(index) << "# a comment first\n" << text;
+  EXPECT_TRUE(vtkPDictionaryVolumeReader::CanReadFile(index.c_str()));
+  std::remove(index.c_str());
+  std::remove(vtkPDictionaryVolumeWriter::PieceFilePath(index, 0).c_str());
 }
