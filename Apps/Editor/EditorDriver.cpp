@@ -77,8 +77,12 @@ int EditorDriver::runBatch()
   if (o.printStatus)
   {
     // the status bar's volume text, as a user reads it
-    if (auto* status = this->Window.findChild<QLabel*>("volumeStatus"))
-      std::printf("lvdif-editor: status: %s\n", status->text().toLocal8Bit().constData());
+    // and the shown surface's, "N chunks, M triangles" (the status bar's right end)
+    auto* status = this->Window.findChild<QLabel*>("volumeStatus");
+    auto* mesh = this->Window.findChild<QLabel*>("meshStatus");
+    if (status)
+      std::printf("lvdif-editor: status: %s | %s\n", status->text().toLocal8Bit().constData(),
+        mesh && !mesh->text().isEmpty() ? mesh->text().toLocal8Bit().constData() : "no surface shown");
   }
   if (!o.screenshot.isEmpty())
     ok = this->Window.saveScreenshot(o.screenshot) && ok;

@@ -1,7 +1,9 @@
 #include "EditorOptions.h"
 
 #include "LVDIFFiles.h"
+#include "MainWindow.h" // isScriptFile
 #include "MeshImport.h"
+#include "VolumeFiles.h" // the CLI's rule of an output on the volume's dimensions
 #include "lvdif/DictionaryVolume.h"
 #include "lvdif/EditLimits.h"
 #include "lvdif/Error.h"
@@ -130,7 +132,7 @@ EditorOptions parseEditorOptions(const QStringList& arguments)
   // the exit status rule, as every `lvdif` command's --help gives it (the editor's gave none)
   p.setApplicationDescription("LVDIF volume editor\n\nexit status: 0 done, 1 failed while running (an input that "
                               "cannot be read, a failed step of a batch run; nothing is written after it), 2 "
-                              "command line refused (nothing read or written)");
+                              "command line refused (nothing read or written), 130 cancelled (Ctrl-C)");
   p.addHelpOption();
   const LVDIFFiles::Kind volumeKind = LVDIFFiles::Kind::Volume, meshKind = LVDIFFiles::Kind::Mesh;
   const QCommandLineOption open("open", "Open a volume (" + extensions(volumeKind, false) + ").", "file");
@@ -407,5 +409,17 @@ EditorOptions parseEditorOptions(const QStringList& arguments)
   checkOutput("screenshot", o.screenshot, nullptr);
   checkOutput("screenshot-window", o.windowShot, nullptr);
   checkOutput("screenshot-during-drag", o.dragShot, nullptr);
+  // The new canvas's size against --save's rule on it (a .bv holds cubic
+  // volumes only), before any work, as the CLI's: --new 32x32x16 --save x.bv
+  // made the canvas and did the drag and the screenshots, then failed to save.
+  // A script may make its own canvas: its `canvas N` is checked where it
+  // stands (MainWindow::runScript); a recording plays on this canvas.
+  if (!o.save.isEmpty() && o.open.isEmpty() && o.openMesh.isEmpty() && (o.script.isEmpty() || !isScriptFile(o.script)))
+  {
+    const std::array<int, 3> d = o.canvasDims();
+    const std::string refused = VolumeOutputDimsProblem(o.save.toStdString(), { d[0], d[1], d[2] });
+    if (!refused.empty())
+      fail("--save " + o.save + ": " + QString::fromStdString(refused));
+  }
   return o;
 }

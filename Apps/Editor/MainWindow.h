@@ -132,6 +132,9 @@ public:
   /// run): a batch run that reported one exits non-zero, whatever step (a
   /// key's save, a drag's brush) it came from.
   int errorCount() const { return this->Errors; }
+  /// Whether one of them was a cancel (lvdif::ErrorCode::Cancelled: Ctrl-C in
+  /// a batch run's mesh conversion): the run then exits with 130, as the CLI's.
+  bool cancelled() const { return this->Cancelled; }
 
 public slots:
   // ---- brush input --------------------------------------------------------
@@ -280,6 +283,7 @@ private:
   vtkSmartPointer<vtkTexture> Matcap; // the matcap image: clay (made at start) or the user's
   int CursorOp = -1;
   int Errors = 0;           // showError calls
+  bool Cancelled = false;   // one of them was lvdif::ErrorCode::Cancelled
   bool Grabbing = false;    // a Grab stroke: samples on the view plane through its start
   double GrabDepth = 0;     // display depth of the grab's start point
 };
