@@ -11,6 +11,7 @@
 #include <QColor>
 #include <QCoreApplication>
 #include <QCommandLineParser>
+#include <QFileInfo>
 #include <QPointF>
 #include <QRegularExpression>
 
@@ -368,6 +369,19 @@ EditorOptions parseEditorOptions(const QStringList& arguments)
   o.quit = p.isSet(quit);
   o.noRecovery = p.isSet(noRecovery);
   o.recoveryDir = p.value(recoveryDir);
+  // A folder the autosave can write to, or one that can be made there: a file
+  // or an unwritable place was taken without a word, and every autosave then
+  // failed (a status bar line for 5 s), the work unguarded.
+  if (!o.recoveryDir.isEmpty())
+  {
+    QFileInfo at(o.recoveryDir);
+    while (!at.exists() && !at.isRoot() && at.absoluteFilePath() != at.absolutePath())
+      at = QFileInfo(at.absolutePath()); // the nearest part of the path that exists
+    if (at.exists() && !at.isDir())
+      fail("--recovery-dir " + o.recoveryDir + ": '" + at.filePath() + "' is a file, not a folder");
+    if (!at.exists() || !at.isWritable())
+      fail("--recovery-dir " + o.recoveryDir + ": the folder '" + at.filePath() + "' is not writable");
+  }
   o.autosaveSeconds = integerOption(p.value(autosave), "--autosave", 0, std::numeric_limits<int>::max() / 1000); // a QTimer takes ms
   o.perVertexColor = p.isSet(perVertex);
   o.matcap = p.value(matcap);

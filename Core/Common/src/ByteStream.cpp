@@ -366,7 +366,8 @@ void requireWritable(const std::string& givenPath)
   {
     if (!S_ISREG(st.st_mode))
     {
-      throw Error(ErrorCode::IoFailure, "cannot write '" + givenPath + "': not a regular file");
+      throw Error(ErrorCode::IoFailure,
+        "cannot write '" + givenPath + (S_ISDIR(st.st_mode) ? "': a folder, not a regular file" : "': not a regular file"));
     }
     if (::access(path.c_str(), W_OK) != 0)
     {
