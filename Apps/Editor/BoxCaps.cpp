@@ -3,6 +3,7 @@
 #include <array>
 #include <cstdint>
 #include <limits>
+#include <vector>
 
 namespace BoxCaps
 {
@@ -20,7 +21,7 @@ namespace
 {
 struct CapPoint
 {
-  lvdif::Index3 lower;  // the point, or the lower end of the face edge it lies on
+  lvdif::Index3 lower{ 0, 0, 0 }; // the point, or the lower end of the face edge it lies on
   int axis = -1;        // the edge's axis, -1 for a voxel itself
   float t = 0;          // along the edge from `lower`
 };
@@ -78,6 +79,32 @@ bool append(lvdif::ChunkMesh& m, const lvdif::DictionaryVolume& v, float iso)
     return static_cast<std::uint32_t>(m.points.size() - 1);
   };
 
+  // one polygon of a face: `count` points, fanned by `fans`, on the boundary cell `cell`
+  auto emit = [&](const CapPoint* poly, int count, const std::array<int, 3>* fans, int fanCount, int a, int outward,
+                const lvdif::Index3& cell) {
+    std::uint32_t ids[6];
+    for (int k = 0; k < count; ++k)
+      ids[k] = addPoint(poly[k], a, outward);
+    std::array<lvdif::ColorKey, 8> keys{};
+    if (withCells)
+      for (int c = 0; c < 8; ++c)
+        keys[c] = v.get(cell[0] + (c & 1), cell[1] + ((c >> 1) & 1), cell[2] + ((c >> 2) & 1)).color;
+    for (int fi = 0; fi < fanCount; ++fi)
+    {
+      const std::array<int, 3>& f = fans[fi];
+      // counter-clockwise seen from outside the box: as built seen from +a
+      if (outward > 0)
+        m.triangles.push_back({ ids[f[0]], ids[f[1]], ids[f[2]] });
+      else
+        m.triangles.push_back({ ids[f[0]], ids[f[2]], ids[f[1]] });
+      if (withCells)
+      {
+        m.cornerColors.push_back(keys);
+        m.triangleCells.push_back(cell[0] + n[0] * (cell[1] + n[1] * cell[2]));
+      }
+    }
+  };
+
   for (int a = 0; a < 3; ++a)
   {
     const int u = (a + 1) % 3, w = (a + 2) % 3; // u x w = a
@@ -88,7 +115,52 @@ bool append(lvdif::ChunkMesh& m, const lvdif::DictionaryVolume& v, float iso)
       const std::int64_t face = side == 0 ? 0 : n[a] - 1;   // the face's points along a
       const std::int64_t cellA = side == 0 ? 0 : n[a] - 2;  // the boundary cells along a
       const int outward = side == 0 ? -1 : 1;
+      auto point = [&](std::int64_t i, std::int64_t j) {
+        lvdif::Index3 p;
+        p[a] = face;
+        p[u] = i;
+        p[w] = j;
+        return p;
+      };
+      auto cellOf = [&](std::int64_t i, std::int64_t j) {
+        lvdif::Index3 c;
+        c[a] = cellA;
+        c[u] = i;
+        c[w] = j;
+        return c;
+      };
+      // Squares wholly inside and of one colour are joined into rectangles
+      // (a Full canvas's face is one quad per chunk, not two triangles per
+      // voxel: 3.1 million triangles and 3 GB on a 512^3 canvas): runs along
+      // u, and a run that repeats in the next row grows into it.
+      struct Rect
+      {
+        std::int64_t i0, i1, j0, j1;
+        lvdif::ColorKey key;
+      };
+      std::vector<Rect> open, next;
+      auto flush = [&](const Rect& r) {
+        const CapPoint quad[4] = { CapPoint{ point(r.i0, r.j0) }, CapPoint{ point(r.i1 + 1, r.j0) },
+          CapPoint{ point(r.i1 + 1, r.j1 + 1) }, CapPoint{ point(r.i0, r.j1 + 1) } };
+        const std::array<int, 3> fans[2] = { { 0, 1, 2 }, { 0, 2, 3 } };
+        emit(quad, 4, fans, 2, a, outward, cellOf(r.i0, r.j0));
+      };
       for (std::int64_t j = m.cells.lo[w]; j <= m.cells.hi[w]; ++j)
+      {
+        next.clear();
+        auto endRun = [&](const Rect& run) {
+          for (Rect& r : open)
+            if (r.i0 == run.i0 && r.i1 == run.i1 && r.key == run.key && r.j1 == j - 1)
+            {
+              r.j1 = j; // grows into this row
+              next.push_back(r);
+              r.i0 = -1; // taken
+              return;
+            }
+          next.push_back(run);
+        };
+        bool inRun = false;
+        Rect run{};
         for (std::int64_t i = m.cells.lo[u]; i <= m.cells.hi[u]; ++i)
         {
           // the square's corners counter-clockwise seen from +a: (i,j) (i+1,j) (i+1,j+1) (i,j+1)
@@ -96,15 +168,30 @@ bool append(lvdif::ChunkMesh& m, const lvdif::DictionaryVolume& v, float iso)
           lvdif::Index3 corner[4];
           float value[4];
           bool in[4];
+          lvdif::ColorKey key[4];
           int inside = 0;
           for (int k = 0; k < 4; ++k)
           {
-            corner[k][a] = face;
-            corner[k][u] = i + du[k];
-            corner[k][w] = j + dw[k];
-            value[k] = v.sdf(corner[k][0], corner[k][1], corner[k][2]);
+            corner[k] = point(i + du[k], j + dw[k]);
+            const lvdif::Voxel x = v.get(corner[k][0], corner[k][1], corner[k][2]);
+            value[k] = v.decode(x.sdf);
+            key[k] = x.color;
             in[k] = !(value[k] >= iso); // marching cubes: a point is outside when value >= iso
             inside += in[k] ? 1 : 0;
+          }
+          const bool whole = inside == 4 && key[1] == key[0] && key[2] == key[0] && key[3] == key[0];
+          if (whole && inRun && run.key == key[0])
+          {
+            run.i1 = i;
+            continue;
+          }
+          if (inRun)
+            endRun(run);
+          inRun = whole;
+          if (whole)
+          {
+            run = Rect{ i, i, j, j, key[0] };
+            continue;
           }
           if (inside == 0)
             continue;
@@ -153,33 +240,17 @@ bool append(lvdif::ChunkMesh& m, const lvdif::DictionaryVolume& v, float iso)
             for (int k = 1; k + 1 < count; ++k)
               fans[fanCount++] = { 0, k, k + 1 };
           }
-          std::uint32_t ids[6];
-          for (int k = 0; k < count; ++k)
-            ids[k] = addPoint(poly[k], a, outward);
-          // the 3D boundary cell this square bounds: its corner colour keys and index
-          lvdif::Index3 cell;
-          cell[a] = cellA;
-          cell[u] = i;
-          cell[w] = j;
-          std::array<lvdif::ColorKey, 8> keys{};
-          if (withCells)
-            for (int c = 0; c < 8; ++c)
-              keys[c] = v.get(cell[0] + (c & 1), cell[1] + ((c >> 1) & 1), cell[2] + ((c >> 2) & 1)).color;
-          for (int fi = 0; fi < fanCount; ++fi)
-          {
-            const std::array<int, 3>& f = fans[fi];
-            // counter-clockwise seen from outside the box: as built seen from +a
-            if (outward > 0)
-              m.triangles.push_back({ ids[f[0]], ids[f[1]], ids[f[2]] });
-            else
-              m.triangles.push_back({ ids[f[0]], ids[f[2]], ids[f[1]] });
-            if (withCells)
-            {
-              m.cornerColors.push_back(keys);
-              m.triangleCells.push_back(cell[0] + n[0] * (cell[1] + n[1] * cell[2]));
-            }
-          }
+          emit(poly.data(), count, fans.data(), fanCount, a, outward, cellOf(i, j));
         }
+        if (inRun)
+          endRun(run);
+        for (const Rect& r : open)
+          if (r.i0 >= 0)
+            flush(r); // did not go on into this row
+        open.swap(next);
+      }
+      for (const Rect& r : open)
+        flush(r);
     }
   }
   return m.triangles.size() > trianglesBefore;
