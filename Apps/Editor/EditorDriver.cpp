@@ -60,8 +60,17 @@ int EditorDriver::runBatch()
   }
   if (!o.keysAfter.isEmpty())
     ok = this->typeKeys(o.keysAfter) && ok;
+  // one --undo too many is an error, as a script's or a recording's `undo`
+  // with nothing to undo (it did nothing without a word: --undo 5 after one
+  // stroke undid one and the run succeeded)
   for (int i = 0; i < o.undo; ++i)
-    this->Window.undo();
+    if (!this->Window.undo())
+    {
+      std::fprintf(stderr, "lvdif-editor: --undo %d: there %s only %d step%s to undo\n", o.undo, i == 1 ? "was" : "were", i,
+        i == 1 ? "" : "s");
+      ok = false;
+      break;
+    }
   // an error reported by what a key or the drag did (Ctrl+S onto a file that
   // cannot be written, a brush that failed) fails the run too: it exited 0
   ok = ok && this->Window.errorCount() == 0 && this->Unanswered == 0;

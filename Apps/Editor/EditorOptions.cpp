@@ -148,7 +148,7 @@ EditorOptions parseEditorOptions(const QStringList& arguments)
     "`lvdif script`; a recording keeps sphere).", "fill", "sphere");
   const QCommandLineOption script("script", "Run a script (.lvs) or play a recording (.lvr) after loading.", "file");
   const QCommandLineOption drag("replay-drag", "Synthetic left-drag through display points 'x,y;x,y;...' (or / between points).", "points");
-  const QCommandLineOption undo("undo", "Undo N steps after the drag (default 0).", "n", "0");
+  const QCommandLineOption undo("undo", "Undo N steps after the drag (default 0); more steps than there are fail the run.", "n", "0");
   const QCommandLineOption shot("screenshot", "Save a screenshot (PNG) and quit.", "file");
   const QCommandLineOption dragShot("screenshot-during-drag",
     "Save a screenshot of the view during --replay-drag, before the button is released.", "file");

@@ -718,11 +718,11 @@ bool MainWindow::saveVolume(const QString& path)
   return true;
 }
 
-void MainWindow::undo()
+bool MainWindow::undo()
 {
-  if (this->Doc.hasVolume() && !this->Painting)
-    this->Doc.undo();
+  const bool done = this->Doc.hasVolume() && !this->Painting && this->Doc.undo();
   this->updateTitle();
+  return done;
 }
 
 void MainWindow::redo()

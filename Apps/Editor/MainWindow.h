@@ -121,7 +121,8 @@ public:
   bool loadMatcap(const QString& path);
   /// The shortcut table of Help > Keyboard shortcuts (HTML).
   QString shortcutHelp() const;
-  void undo();
+  /// Undoes the last step; false when there was none.
+  bool undo();
   void redo();
   /// This editor's recovery file (autosave target): its slot in the recovery
   /// folder, claimed on first use (claimRecoverySlot).
