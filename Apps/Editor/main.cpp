@@ -2,6 +2,7 @@
 #include "EditorDriver.h"
 #include "EditorOptions.h"
 #include "MainWindow.h"
+#include "VolumeFiles.h" // the CLI's: VolumeOutputIsCubicOnly
 
 #include <QApplication>
 #include <QElapsedTimer>
@@ -108,6 +109,8 @@ int main(int argc, char* argv[])
       settings.resolution = options.meshResolution;
       settings.signMode = meshSignModeFromName(options.meshSign);
       settings.reorientFaces = options.meshReorient;
+      // a .bv output holds cubic volumes only: the grid made cubic, as the CLI's
+      settings.cubic = options.batch() && VolumeOutputIsCubicOnly(options.save.toStdString());
       loaded = window.openMesh(options.openMesh, settings);
     }
     else if (!options.open.isEmpty())
