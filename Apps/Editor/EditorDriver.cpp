@@ -60,8 +60,17 @@ int EditorDriver::runBatch()
   }
   if (!o.keysAfter.isEmpty())
     ok = this->typeKeys(o.keysAfter) && ok;
+  // one --undo too many is an error, as a script's or a recording's `undo`
+  // with nothing to undo (it did nothing without a word: --undo 5 after one
+  // stroke undid one and the run succeeded)
   for (int i = 0; i < o.undo; ++i)
-    this->Window.undo();
+    if (!this->Window.undo())
+    {
+      std::fprintf(stderr, "lvdif-editor: --undo %d: there %s only %d step%s to undo\n", o.undo, i == 1 ? "was" : "were", i,
+        i == 1 ? "" : "s");
+      ok = false;
+      break;
+    }
   // an error reported by what a key or the drag did (Ctrl+S onto a file that
   // cannot be written, a brush that failed) fails the run too: it exited 0
   ok = ok && this->Window.errorCount() == 0 && this->Unanswered == 0;
@@ -77,8 +86,12 @@ int EditorDriver::runBatch()
   if (o.printStatus)
   {
     // the status bar's volume text, as a user reads it
-    if (auto* status = this->Window.findChild<QLabel*>("volumeStatus"))
-      std::printf("lvdif-editor: status: %s\n", status->text().toLocal8Bit().constData());
+    // and the shown surface's, "N chunks, M triangles" (the status bar's right end)
+    auto* status = this->Window.findChild<QLabel*>("volumeStatus");
+    auto* mesh = this->Window.findChild<QLabel*>("meshStatus");
+    if (status)
+      std::printf("lvdif-editor: status: %s | %s\n", status->text().toLocal8Bit().constData(),
+        mesh && !mesh->text().isEmpty() ? mesh->text().toLocal8Bit().constData() : "no surface shown");
   }
   if (!o.screenshot.isEmpty())
     ok = this->Window.saveScreenshot(o.screenshot) && ok;

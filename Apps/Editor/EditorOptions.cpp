@@ -1,7 +1,9 @@
 #include "EditorOptions.h"
 
 #include "LVDIFFiles.h"
+#include "MainWindow.h" // isScriptFile
 #include "MeshImport.h"
+#include "VolumeFiles.h" // the CLI's rule of an output on the volume's dimensions
 #include "lvdif/DictionaryVolume.h"
 #include "lvdif/EditLimits.h"
 #include "lvdif/Error.h"
@@ -9,6 +11,7 @@
 #include <QColor>
 #include <QCoreApplication>
 #include <QCommandLineParser>
+#include <QFileInfo>
 #include <QPointF>
 #include <QRegularExpression>
 
@@ -130,7 +133,7 @@ EditorOptions parseEditorOptions(const QStringList& arguments)
   // the exit status rule, as every `lvdif` command's --help gives it (the editor's gave none)
   p.setApplicationDescription("LVDIF volume editor\n\nexit status: 0 done, 1 failed while running (an input that "
                               "cannot be read, a failed step of a batch run; nothing is written after it), 2 "
-                              "command line refused (nothing read or written)");
+                              "command line refused (nothing read or written), 130 cancelled (Ctrl-C)");
   p.addHelpOption();
   const LVDIFFiles::Kind volumeKind = LVDIFFiles::Kind::Volume, meshKind = LVDIFFiles::Kind::Mesh;
   const QCommandLineOption open("open", "Open a volume (" + extensions(volumeKind, false) + ").", "file");
@@ -145,7 +148,7 @@ EditorOptions parseEditorOptions(const QStringList& arguments)
     "`lvdif script`; a recording keeps sphere).", "fill", "sphere");
   const QCommandLineOption script("script", "Run a script (.lvs) or play a recording (.lvr) after loading.", "file");
   const QCommandLineOption drag("replay-drag", "Synthetic left-drag through display points 'x,y;x,y;...' (or / between points).", "points");
-  const QCommandLineOption undo("undo", "Undo N steps after the drag (default 0).", "n", "0");
+  const QCommandLineOption undo("undo", "Undo N steps after the drag (default 0); more steps than there are fail the run.", "n", "0");
   const QCommandLineOption shot("screenshot", "Save a screenshot (PNG) and quit.", "file");
   const QCommandLineOption dragShot("screenshot-during-drag",
     "Save a screenshot of the view during --replay-drag, before the button is released.", "file");
@@ -366,6 +369,19 @@ EditorOptions parseEditorOptions(const QStringList& arguments)
   o.quit = p.isSet(quit);
   o.noRecovery = p.isSet(noRecovery);
   o.recoveryDir = p.value(recoveryDir);
+  // A folder the autosave can write to, or one that can be made there: a file
+  // or an unwritable place was taken without a word, and every autosave then
+  // failed (a status bar line for 5 s), the work unguarded.
+  if (!o.recoveryDir.isEmpty())
+  {
+    QFileInfo at(o.recoveryDir);
+    while (!at.exists() && !at.isRoot() && at.absoluteFilePath() != at.absolutePath())
+      at = QFileInfo(at.absolutePath()); // the nearest part of the path that exists
+    if (at.exists() && !at.isDir())
+      fail("--recovery-dir " + o.recoveryDir + ": '" + at.filePath() + "' is a file, not a folder");
+    if (!at.exists() || !at.isWritable())
+      fail("--recovery-dir " + o.recoveryDir + ": the folder '" + at.filePath() + "' is not writable");
+  }
   o.autosaveSeconds = integerOption(p.value(autosave), "--autosave", 0, std::numeric_limits<int>::max() / 1000); // a QTimer takes ms
   o.perVertexColor = p.isSet(perVertex);
   o.matcap = p.value(matcap);
@@ -407,5 +423,17 @@ EditorOptions parseEditorOptions(const QStringList& arguments)
   checkOutput("screenshot", o.screenshot, nullptr);
   checkOutput("screenshot-window", o.windowShot, nullptr);
   checkOutput("screenshot-during-drag", o.dragShot, nullptr);
+  // The new canvas's size against --save's rule on it (a .bv holds cubic
+  // volumes only), before any work, as the CLI's: --new 32x32x16 --save x.bv
+  // made the canvas and did the drag and the screenshots, then failed to save.
+  // A script may make its own canvas: its `canvas N` is checked where it
+  // stands (MainWindow::runScript); a recording plays on this canvas.
+  if (!o.save.isEmpty() && o.open.isEmpty() && o.openMesh.isEmpty() && (o.script.isEmpty() || !isScriptFile(o.script)))
+  {
+    const std::array<int, 3> d = o.canvasDims();
+    const std::string refused = VolumeOutputDimsProblem(o.save.toStdString(), { d[0], d[1], d[2] });
+    if (!refused.empty())
+      fail("--save " + o.save + ": " + QString::fromStdString(refused));
+  }
   return o;
 }

@@ -57,6 +57,11 @@ struct EditorOptions
   bool nativeView = true;     // the view in a native window of its own (QVTKOpenGLWindow), presented alone; --widget-view: false
   bool stockBackground = false; // --stock-background: VTK's gradient background, a new quad per frame (comparisons)
   int drawRangeTriangles = 32; // --draw-ranges N: triangles per draw range of a chunk (0: one draw per chunk)
+  /// The size of the canvas made when no file is opened: --new, or 128^3.
+  std::array<int, 3> canvasDims() const
+  {
+    return { newDims[0] > 0 ? newDims[0] : 128, newDims[1] > 0 ? newDims[1] : 128, newDims[2] > 0 ? newDims[2] : 128 };
+  }
   bool batch() const { return this->quit || !this->screenshot.isEmpty() || !this->windowShot.isEmpty() || !this->save.isEmpty() || !this->exportMesh.isEmpty(); }
 };
 

@@ -183,6 +183,7 @@ MainWindow::MainWindow(const EditorOptions& options)
   connect(this->Tools, &ToolPanel::playRequested, this, &MainWindow::scriptDialog);
 
   this->Status = new QLabel(this);
+  this->Status->setObjectName("meshStatus"); // "N chunks, M triangles"
   this->VolumeStatus = new QLabel(this);
   this->VolumeStatus->setObjectName("volumeStatus");
   this->statusBar()->addWidget(this->VolumeStatus, 1);
@@ -312,7 +313,7 @@ void MainWindow::buildMenus()
   file->addAction("&Export mesh...", this, &MainWindow::exportDialog);
   file->addAction("Screens&hot...", this, &MainWindow::screenshotDialog);
   file->addSeparator();
-  file->addAction("&Run script (recording)...", this, &MainWindow::scriptDialog);
+  file->addAction("&Run script (recording)...", this, &MainWindow::scriptDialog, QKeySequence(Qt::CTRL | Qt::SHIFT | Qt::Key_R));
   file->addSeparator();
   file->addAction("&Quit", this, &QWidget::close, QKeySequence::Quit);
 
@@ -668,8 +669,12 @@ bool MainWindow::openMesh(const QString& path, const MeshImportSettings& setting
   if (!volume)
   {
     if (!error.isEmpty() || interrupted)
-      this->showError("Cannot convert " + path,
-        std::runtime_error(interrupted ? std::string("cancelled (Ctrl-C)") : error.toStdString()));
+    {
+      if (interrupted)
+        this->showError("Cannot convert " + path, lvdif::Error(lvdif::ErrorCode::Cancelled, "cancelled (Ctrl-C)"));
+      else
+        this->showError("Cannot convert " + path, std::runtime_error(error.toStdString()));
+    }
     return false;
   }
   if (!warning.isEmpty())
@@ -713,11 +718,11 @@ bool MainWindow::saveVolume(const QString& path)
   return true;
 }
 
-void MainWindow::undo()
+bool MainWindow::undo()
 {
-  if (this->Doc.hasVolume() && !this->Painting)
-    this->Doc.undo();
+  const bool done = this->Doc.hasVolume() && !this->Painting && this->Doc.undo();
   this->updateTitle();
+  return done;
 }
 
 void MainWindow::redo()
@@ -779,6 +784,10 @@ void MainWindow::updateTitle()
 void MainWindow::showError(const QString& what, const std::exception& e)
 {
   ++this->Errors;
+  // the CLI's one rule of a cancel: the error's code (its main exits with 130)
+  const auto* error = dynamic_cast<const lvdif::Error*>(&e);
+  if (error && error->code() == lvdif::ErrorCode::Cancelled)
+    this->Cancelled = true;
   const QString text = what + ": " + QString::fromLocal8Bit(e.what());
   if (this->Options.batch())
     std::fprintf(stderr, "lvdif-editor: %s\n", text.toLocal8Bit().constData());

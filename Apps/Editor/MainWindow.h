@@ -121,7 +121,8 @@ public:
   bool loadMatcap(const QString& path);
   /// The shortcut table of Help > Keyboard shortcuts (HTML).
   QString shortcutHelp() const;
-  void undo();
+  /// Undoes the last step; false when there was none.
+  bool undo();
   void redo();
   /// This editor's recovery file (autosave target): its slot in the recovery
   /// folder, claimed on first use (claimRecoverySlot).
@@ -132,6 +133,9 @@ public:
   /// run): a batch run that reported one exits non-zero, whatever step (a
   /// key's save, a drag's brush) it came from.
   int errorCount() const { return this->Errors; }
+  /// Whether one of them was a cancel (lvdif::ErrorCode::Cancelled: Ctrl-C in
+  /// a batch run's mesh conversion): the run then exits with 130, as the CLI's.
+  bool cancelled() const { return this->Cancelled; }
 
 public slots:
   // ---- brush input --------------------------------------------------------
@@ -280,6 +284,7 @@ private:
   vtkSmartPointer<vtkTexture> Matcap; // the matcap image: clay (made at start) or the user's
   int CursorOp = -1;
   int Errors = 0;           // showError calls
+  bool Cancelled = false;   // one of them was lvdif::ErrorCode::Cancelled
   bool Grabbing = false;    // a Grab stroke: samples on the view plane through its start
   double GrabDepth = 0;     // display depth of the grab's start point
 };

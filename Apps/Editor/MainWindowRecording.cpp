@@ -6,6 +6,7 @@
 #include "lvdif/Script.h"
 
 #include "LVDIFFiles.h"
+#include "VolumeFiles.h" // the CLI's rule of an output on the volume's dimensions
 
 #include <cstdio>
 
@@ -13,6 +14,8 @@
 #include <QFileInfo>
 #include <QMessageBox>
 #include <QStatusBar>
+
+#include <cstdio>
 
 void MainWindow::toggleRecording(bool on)
 {
@@ -161,11 +164,48 @@ bool MainWindow::runScript(const QString& path)
   if (isRecordingText(source))
     return this->playRecording(path);
   const int before = this->Doc.hasVolume() ? this->Doc.generation() : -1;
+  lvdif::ScriptOptions options;
+  // A batch run's --save: its rule on the volume's dimensions (a .bv is cubic),
+  // checked before the script runs, and at a `canvas N` before it makes the
+  // canvas, as `lvdif script --out` does (the whole script ran, then the save failed).
+  if (this->Options.batch() && !this->Options.save.isEmpty())
+    options.resultRule = [save = this->Options.save.toStdString()](const lvdif::Index3& dims) {
+      return VolumeOutputDimsProblem(save, dims);
+    };
+  // While recording, a script that can make a new canvas (a `canvas N`, taken
+  // branch or not) stops the recording first and asks for its file, as New and
+  // Open do: the new volume ended the recording without a word, and the
+  // recorded strokes were lost. Core refuses such a script before any of it
+  // runs when the start canvas is fixed by its caller (canvasSizeGivenBy): the
+  // recording's canvas is. Cancel in the dialog: the script does not run, the
+  // recording goes on.
+  static const std::string byRecording = "by the recording in progress";
+  const bool recording = this->Doc.hasVolume() && this->Doc.session().recording();
+  if (recording)
+    options.canvasSizeGivenBy = byRecording;
   try
   {
     if (!this->Doc.hasVolume())
       this->Doc.newCanvas(128, 128, 128, VolumeDocument::Fill::Empty);
-    this->Doc.runScript(source);
+    try
+    {
+      this->Doc.runScript(source, options);
+    }
+    catch (const lvdif::ScriptError& e)
+    {
+      if (!recording || e.detail().find(byRecording) == std::string::npos)
+        throw;
+      // nothing ran
+      const QString why = "The script " + QFileInfo(path).fileName() +
+        " makes a new canvas: the recording of this volume stops first (Save recording)";
+      if (this->Options.batch())
+        std::fprintf(stderr, "lvdif-editor: warning: %s\n", why.toLocal8Bit().constData());
+      this->statusBar()->showMessage(why);
+      if (!this->finishRecording())
+        return false; // Cancel: the recording goes on, the script did not run
+      options.canvasSizeGivenBy.clear();
+      this->Doc.runScript(source, options);
+    }
   }
   catch (const std::exception& e)
   {

@@ -3,6 +3,8 @@
 // status bar, the tool cursor and the Dynamic brush's live preview.
 #include "MainWindow.h"
 
+#include "lvdif/ByteStream.h"
+
 #include "vtkActor.h"
 #include "vtkBrushRepresentation.h"
 #include "vtkCallbackCommand.h"
@@ -298,6 +300,17 @@ void MainWindow::setShading(int mode)
 
 bool MainWindow::loadMatcap(const QString& path)
 {
+  try
+  {
+    // a file, as every reader of the project requires (lvdif::FileSource): a
+    // FIFO hung the editor for good in Qt's reader, and a folder was "File not found"
+    lvdif::FileSource file(path.toLocal8Bit().toStdString());
+  }
+  catch (const std::exception& e)
+  {
+    this->showError("Cannot read the matcap image " + path, e);
+    return false;
+  }
   QImageReader reader(path);
   const QImage image = reader.read();
   if (image.isNull())

@@ -7,6 +7,7 @@
 
 #include "vtkCallbackCommand.h"
 #include "vtkCommand.h"
+#include "vtkDataSet.h"
 #include "vtkExecutive.h"
 #include "vtkImageData.h"
 #include "vtkNew.h"
@@ -152,6 +153,39 @@ std::shared_ptr<lvdif::DictionaryVolume> importMesh(
   std::thread worker([&] {
     try
     {
+      if (settings.cubic)
+      {
+        // As `lvdif mesh-to-sdf --out X.bv`: the grid fitted to the mesh made
+        // cubic, the resolution on every axis around the same centre and
+        // voxels (the conversion made a 22 x 32 x 22 grid, and the .bv save
+        // failed after it). The grid is fitted as vtkMeshToSDF fits it: to
+        // the mesh's bounds.
+        reader->Update();
+        vtkDataSet* mesh = vtkDataSet::SafeDownCast(reader->GetOutputDataObject(0));
+        if (mesh && mesh->GetNumberOfPoints() > 0) // else the filter reports the reader's error
+        {
+          double b[6];
+          mesh->GetBounds(b);
+          lvdif::TriangleMesh box;
+          for (int c = 0; c < 8; ++c)
+            box.points.push_back({ static_cast<float>(b[(c & 1) ? 1 : 0]), static_cast<float>(b[(c & 2) ? 3 : 2]),
+              static_cast<float>(b[(c & 4) ? 5 : 4]) });
+          box.triangles.push_back({ 0, 1, 2 });
+          lvdif::GridGeometry g = lvdif::fitGridToMesh(box, settings.resolution, settings.padding);
+          int dims[3];
+          double origin[3], spacing[3];
+          for (int a = 0; a < 3; ++a)
+          {
+            origin[a] = g.origin[a] - 0.5 * static_cast<double>(settings.resolution - g.dims[a]) * g.spacing[a];
+            dims[a] = settings.resolution;
+            spacing[a] = g.spacing[a];
+          }
+          toSdf->SetUseExplicitGrid(true);
+          toSdf->SetDimensions(dims);
+          toSdf->SetOrigin(origin);
+          toSdf->SetSpacing(spacing);
+        }
+      }
       toSdf->Update();
       auto* sparse = vtkSparseDictionaryVolume::SafeDownCast(toSdf->GetOutputDataObject(0));
       if (sparse && !progress->Cancel.load())

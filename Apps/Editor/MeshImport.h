@@ -20,6 +20,7 @@ struct MeshImportSettings
   int signMode = 2;     // vtkMeshToSDF::NORMAL / PSEUDO_NORMAL / WINDING_NUMBER (default)
   double padding = 2.0; // voxels of margin around the mesh
   bool reorientFaces = false; // winding sign: of the consistently re-oriented mesh (vtkMeshToSDF::ReorientFaces)
+  bool cubic = false; // the fitted grid made cubic, `resolution` points on every axis (a .bv output, as lvdif mesh-to-sdf)
 };
 
 /// Asks for the resolution, the sign mode and (winding sign) whether to

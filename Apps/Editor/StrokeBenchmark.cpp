@@ -18,6 +18,7 @@
 #include "lvdif/Error.h"
 #include "lvdif/InputDevice.h"
 #include "lvdif/Recording.h"
+#include "lvdif/Script.h" // readScriptFile: the one reader of text files
 
 #include <QApplication>
 #include <QFileInfo>
@@ -28,7 +29,7 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
-#include <fstream>
+#include <sstream>
 
 namespace
 {
@@ -66,9 +67,19 @@ std::vector<lvdif::BrushSample> StrokeBenchmark::loadSamples(const QString& path
   }
   else
   {
-    std::ifstream in(file);
-    if (!in)
-      throw lvdif::Error(lvdif::ErrorCode::IoFailure, "cannot read '" + file + "'");
+    // the one reader of text files (a FIFO, a folder or a device refused
+    // without blocking; its size within the memory limit): a FIFO hung the
+    // editor for good in std::ifstream
+    std::string text;
+    try
+    {
+      text = lvdif::readScriptFile(file);
+    }
+    catch (const lvdif::Error& e)
+    {
+      throw lvdif::Error(e.code(), "cannot read '" + file + "': " + e.what());
+    }
+    std::istringstream in(text);
     std::string line;
     int number = 0;
     bool timed = false;

@@ -1,10 +1,12 @@
 #include "VolumeDocument.h"
 
+#include "BoxCaps.h"
 #include "LVDIFFiles.h"
 
 #include "lvdif/AnalyticFill.h"
 #include "lvdif/Cuda.h"
 #include "lvdif/Error.h"
+#include "lvdif/Script.h"
 
 #include "vtkLogger.h"
 #include "vtkObjectFactory.h"
@@ -68,6 +70,7 @@ void VolumeDocument::hold(std::shared_ptr<lvdif::DictionaryVolume> volume)
     }
   }
   this->Session->requestAllMeshes();
+  this->CapsPending = true;
   this->SeenChanges = this->Session->changeCount();
   this->Modified = false;
   this->EditsSinceAutosave = 0;
@@ -206,7 +209,7 @@ void VolumeDocument::play(const lvdif::Recording& r)
   this->noteChanges();
 }
 
-void VolumeDocument::runScript(const std::string& source)
+void VolumeDocument::runScript(const std::string& source, const lvdif::ScriptOptions& options)
 {
   const int generation = this->Session->generation();
   // whether the script succeeded or failed later: edits made before an error
@@ -218,12 +221,22 @@ void VolumeDocument::runScript(const std::string& source)
       // a new volume: no file yet (Save must not write it over the file that was open)
       this->Path.clear();
       this->Session->requestAllMeshes();
+      this->CapsPending = true;
       this->Modified = true;
     }
   };
   try
   {
-    this->Session->runScript(source);
+    this->Session->runScript(source, options);
+  }
+  catch (const lvdif::ScriptError& e)
+  {
+    // refused before any statement ran (a `canvas N` where the caller fixed
+    // the canvas): the document is as it was, not modified
+    if (!options.canvasSizeGivenBy.empty() && e.detail().find(options.canvasSizeGivenBy) != std::string::npos)
+      this->SeenChanges = this->Session->changeCount();
+    after();
+    throw;
   }
   catch (...)
   {
@@ -235,7 +248,50 @@ void VolumeDocument::runScript(const std::string& source)
 
 std::vector<lvdif::ChunkMesh> VolumeDocument::collectMeshes(std::vector<std::chrono::steady_clock::time_point>* gatheredAt)
 {
-  return this->Session ? this->Session->collectMeshes(gatheredAt) : std::vector<lvdif::ChunkMesh>();
+  if (!this->Session)
+    return std::vector<lvdif::ChunkMesh>();
+  std::vector<lvdif::ChunkMesh> meshes = this->Session->collectMeshes(gatheredAt);
+  // The solid closed at the box's faces (BoxCaps.h): a Full canvas showed
+  // nothing until carved. The caps of a chunk come with each of its meshes.
+  const lvdif::ChunkedMarchingCubes& mesher = this->Session->mesher();
+  const float iso = mesher.options().isoValue;
+  const lvdif::DictionaryVolume* v = nullptr; // synced from the device only when a cap is needed
+  auto volume = [&]() -> const lvdif::DictionaryVolume& {
+    if (!v)
+      v = &this->Session->volume();
+    return *v;
+  };
+  const lvdif::Index3 dims = this->Session->hostVolume().dims();
+  for (lvdif::ChunkMesh& m : meshes)
+    if (BoxCaps::touchesBox(m.cells, dims))
+      BoxCaps::append(m, volume(), iso);
+  // On the device a new volume's meshing skips the chunks without a surface
+  // (EditSession::requestAllMeshes), which a cap may need: their caps come once.
+  if (this->CapsPending && this->Session->onDevice())
+  {
+    std::vector<bool> have(static_cast<std::size_t>(mesher.chunkCount()), false);
+    for (const lvdif::ChunkMesh& m : meshes)
+      if (m.chunkId >= 0 && m.chunkId < mesher.chunkCount())
+        have[static_cast<std::size_t>(m.chunkId)] = true;
+    const auto now = std::chrono::steady_clock::now();
+    for (std::int64_t id = 0; id < mesher.chunkCount(); ++id)
+    {
+      lvdif::ChunkMesh m;
+      m.cells = mesher.chunkCells(id);
+      if (have[static_cast<std::size_t>(id)] || !BoxCaps::touchesBox(m.cells, dims))
+        continue;
+      m.chunkId = id;
+      m.chunkCoord = mesher.chunkCoord(id);
+      if (BoxCaps::append(m, volume(), iso))
+      {
+        meshes.push_back(std::move(m));
+        if (gatheredAt)
+          gatheredAt->push_back(now);
+      }
+    }
+  }
+  this->CapsPending = false;
+  return meshes;
 }
 
 const std::vector<std::int64_t>& VolumeDocument::lastRequest() const

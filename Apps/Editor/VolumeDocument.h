@@ -69,8 +69,9 @@ public:
   lvdif::Recording stopRecording();
   void play(const lvdif::Recording& r);
   /// Runs an LVDIF script (docs/SCRIPTING.md) through the session: its edits
-  /// are undoable; a `canvas` command makes a new volume. Throws lvdif::ScriptError.
-  void runScript(const std::string& source);
+  /// are undoable; a `canvas` command makes a new volume (`options`: its rules,
+  /// lvdif::ScriptOptions). Throws lvdif::ScriptError.
+  void runScript(const std::string& source, const lvdif::ScriptOptions& options = lvdif::ScriptOptions());
 
   // ---- meshing ---------------------------------------------------------------
   /// Meshes ready now (never waits for the CPU worker); with `gatheredAt`, when
@@ -94,4 +95,5 @@ private:
   bool Modified = false;
   int EditsSinceAutosave = 0;
   std::uint64_t SeenChanges = 0;
+  bool CapsPending = false; // all meshes were requested: the box caps of chunks the device skips come with the next collect
 };

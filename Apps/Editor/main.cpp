@@ -2,6 +2,7 @@
 #include "EditorDriver.h"
 #include "EditorOptions.h"
 #include "MainWindow.h"
+#include "VolumeFiles.h" // the CLI's: VolumeOutputIsCubicOnly
 
 #include <QApplication>
 #include <QElapsedTimer>
@@ -108,14 +109,16 @@ int main(int argc, char* argv[])
       settings.resolution = options.meshResolution;
       settings.signMode = meshSignModeFromName(options.meshSign);
       settings.reorientFaces = options.meshReorient;
+      // a .bv output holds cubic volumes only: the grid made cubic, as the CLI's
+      settings.cubic = options.batch() && VolumeOutputIsCubicOnly(options.save.toStdString());
       loaded = window.openMesh(options.openMesh, settings);
     }
     else if (!options.open.isEmpty())
       loaded = window.openVolume(options.open);
     else
     {
-      const auto& d = options.newDims;
-      const int nx = d[0] > 0 ? d[0] : 128, ny = d[1] > 0 ? d[1] : 128, nz = d[2] > 0 ? d[2] : 128;
+      const std::array<int, 3> d = options.canvasDims();
+      const int nx = d[0], ny = d[1], nz = d[2];
       // A script starts from an empty canvas unless --fill says otherwise, as
       // `lvdif script` does (and Run script with no volume): the same script
       // gave another model in the editor, the starter sphere in it. A
@@ -152,5 +155,8 @@ int main(int argc, char* argv[])
       window.close();
   });
   const int rc = app.exec();
+  // Ctrl-C in a batch run's mesh conversion: 130, as the CLI (it was 1, a failure)
+  if (window.cancelled() && (status != 0 || rc != 0))
+    return 130;
   return status != 0 ? status : rc;
 }

@@ -429,6 +429,11 @@ void RequireWritable(const std::string& path)
 std::shared_ptr<lvdif::DictionaryVolume> LoadVolume(const std::string& path, lvdif::Interrupter& interrupter)
 {
   const Format* f = &RequireFormat(path, Kind::Volume, false);
+  // a file to read, as Core's readers require of theirs (lvdif::FileSource):
+  // a folder named x.vti was read by VTK's XML parser, "Error parsing input file"
+  {
+    lvdif::FileSource file(path);
+  }
   const std::string what = "cannot read '" + path + "'";
   vtkSmartPointer<vtkAlgorithm> reader, last;
   if (f->extension == "lvdv")

@@ -149,11 +149,13 @@ FileSource::FileSource(const std::string& path)
     throw Error(ErrorCode::IoFailure, systemError("cannot open", path));
   }
   struct stat st;
-  if (::fstat(this->Fd, &st) != 0 || !S_ISREG(st.st_mode))
+  const bool known = ::fstat(this->Fd, &st) == 0;
+  if (!known || !S_ISREG(st.st_mode))
   {
+    const bool folder = known && S_ISDIR(st.st_mode); // said: "not a regular file" left the user guessing
     ::close(this->Fd);
     this->Fd = -1;
-    throw Error(ErrorCode::IoFailure, "'" + path + "' is not a regular file");
+    throw Error(ErrorCode::IoFailure, "'" + path + (folder ? "' is a folder, not a regular file" : "' is not a regular file"));
   }
   ::fcntl(this->Fd, F_SETFL, ::fcntl(this->Fd, F_GETFL) & ~O_NONBLOCK);
   this->Size = static_cast<std::uint64_t>(st.st_size);
@@ -364,7 +366,8 @@ void requireWritable(const std::string& givenPath)
   {
     if (!S_ISREG(st.st_mode))
     {
-      throw Error(ErrorCode::IoFailure, "cannot write '" + givenPath + "': not a regular file");
+      throw Error(ErrorCode::IoFailure,
+        "cannot write '" + givenPath + (S_ISDIR(st.st_mode) ? "': a folder, not a regular file" : "': not a regular file"));
     }
     if (::access(path.c_str(), W_OK) != 0)
     {
