@@ -27,7 +27,9 @@ std::vector<Token> lex(const std::string& src)
     "lexing and parsing a script of " + formatBytes(src.size()));
   std::vector<Token> out;
   int line = 1, col = 1;
-  std::size_t i = 0;
+  // a UTF-8 byte order mark before the text (Windows editors write one) is not
+  // part of it: it was "line 1, column 1: unexpected character byte 239"
+  std::size_t i = src.compare(0, 3, "\xEF\xBB\xBF") == 0 ? 3 : 0;
   auto push = [&](Tok k, const std::string& text, int l, int c) {
     Token t;
     t.kind = k;

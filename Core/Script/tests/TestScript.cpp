@@ -14,6 +14,7 @@
 #include <chrono>
 #include <cmath>
 #include <fstream>
+#include <memory>
 #include <random>
 #include <set>
 #include <sstream>
@@ -228,6 +229,81 @@ TEST(Script, UndoAndRedoWithNothingToActOnAreErrors)
   e.brush.color = Rgba{ 255, 0, 0, 255 };
   e.dab(Dab{ BrushShape::Sphere, { 8, 8, 8 }, 3, {} });
   EXPECT_EQ(edittest::countDifferences(*r.volume(), v), 0);
+}
+
+// Every edit command is one undoable step (docs/SCRIPTING.md), also one that
+// changes no voxel: the editor keeps no step for it, so `undo` after it undid
+// the edit before it (`sphere` then a `sphere` beside the canvas then `undo` left
+// an empty canvas). The oracle is an editor that made only the edits meant to stay.
+TEST(Script, AnEditThatChangesNothingIsAStepOfItsOwn)
+{
+  DictionaryVolume sphereOnly(edittest::options(32, 32));
+  {
+    Editor e(sphereOnly);
+    e.dab(Dab{ BrushShape::Sphere, { 16, 16, 16 }, 6, {} });
+  }
+  const DictionaryVolume empty(edittest::options(32, 32));
+  const std::string sphere = "canvas 32\nsphere 16 16 16 6\n";
+  auto volumeAfter = [](const std::string& src) {
+    auto r = std::make_unique<ScriptRunner>();
+    r->run(src);
+    return r;
+  };
+  // a dab beside the canvas, a paint away from the surface, a line and a stroke beside the canvas: undone alone
+  for (const char* noop : { "sphere 1000 1000 1000 3", "op paint\nsphere 3 3 3 1", "line 900 900 900 950 900 900",
+         "begin\npoint 900 900 900\npoint 950 900 900\nend" })
+  {
+    const auto r = volumeAfter(sphere + noop + "\nundo");
+    EXPECT_EQ(edittest::countDifferences(*r->volume(), sphereOnly), 0) << noop;
+    // the next undo is the sphere's, and the one after has nothing left
+    EXPECT_EQ(edittest::countDifferences(*volumeAfter(sphere + noop + "\nundo\nundo")->volume(), empty), 0) << noop;
+    const Where w = errorOf(sphere + noop + "\nundo\nundo\nundo");
+    EXPECT_EQ(w.detail, "'undo' has nothing to undo: no edit since the start or the last 'canvas'") << noop;
+  }
+  // redo of the step that changed nothing, then undo: the sphere stays
+  EXPECT_EQ(edittest::countDifferences(
+              *volumeAfter(sphere + "sphere 1000 1000 1000 3\nundo\nredo\nundo")->volume(), sphereOnly), 0);
+  // undo of both, then redo of both in order
+  EXPECT_EQ(edittest::countDifferences(
+              *volumeAfter(sphere + "sphere 1000 1000 1000 3\nundo\nundo\nredo\nredo")->volume(), sphereOnly), 0);
+  // a new edit, even one that changes nothing, drops what was undone (the sphere came back by `redo`)
+  Where w = errorOf(sphere + "undo\nsphere 1000 1000 1000 3\nredo");
+  EXPECT_EQ(w.line, 5);
+  EXPECT_EQ(w.detail, "'redo' has nothing to redo: no edit was undone since the last edit");
+  // a script driving an editor: its `undo` past its own steps undoes the editor's edits before the run
+  DictionaryVolume v(edittest::options(32, 32));
+  Editor ed(v);
+  ed.dab(Dab{ BrushShape::Sphere, { 16, 16, 16 }, 6, {} });
+  ScriptRunner r;
+  r.attach(ed);
+  r.run("sphere 1000 1000 1000 3\nundo");
+  EXPECT_EQ(edittest::countDifferences(v, sphereOnly), 0);
+  r.run("sphere 1000 1000 1000 3\nundo\nundo");
+  EXPECT_EQ(edittest::countDifferences(v, empty), 0);
+}
+
+// A UTF-8 byte order mark before the text (Windows editors write one) is
+// skipped, as the mesh readers skip it: a script saved so failed at once with
+// "line 1, column 1: unexpected character byte 239".
+TEST(Script, AByteOrderMarkBeforeTheTextIsSkipped)
+{
+  ScriptRunner a, b;
+  a.run("\xEF\xBB\xBF" "canvas 16\nsphere 8 8 8 3\n");
+  b.run("canvas 16\nsphere 8 8 8 3\n");
+  EXPECT_EQ(a.edits(), 1u);
+  EXPECT_EQ(edittest::countDifferences(*a.volume(), *b.volume()), 0);
+  // positions on the first line are counted after it
+  Where w = errorOf("\xEF\xBB\xBF" "frob 1");
+  EXPECT_EQ(w.line, 1);
+  EXPECT_EQ(w.column, 1);
+  EXPECT_EQ(w.detail, "unknown command 'frob'");
+  w = errorOf("\xEF\xBB\xBF" "print 1 +");
+  EXPECT_EQ(w.column, 10);
+  // only before the text: elsewhere it is still a character no script has
+  w = errorOf("print 1\n\xEF\xBB\xBF" "print 2");
+  EXPECT_EQ(w.line, 2);
+  EXPECT_EQ(w.column, 1);
+  EXPECT_NE(w.detail.find("unexpected character"), std::string::npos) << w.detail;
 }
 
 TEST(Script, CommandsDriveTheSameEditsAsTheEditor)
