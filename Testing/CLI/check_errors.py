@@ -274,9 +274,26 @@ near = os.path.join(out, "near.obj")
 with open(near, "w") as f:
     f.write("v -9e29 0 0\nv 9e29 0 0\nv 0 9e29 0\nf 1 2 3\n")
 code, err = run("mesh-to-sdf", near, os.path.join(out, "m.lvdv"), "--dims", "8", "--padding", "3")
+# less padding is advised only where it helps (it was advised with --padding 0, and here, where
+# --padding 0 fails too)
 assert code == 1 and err == ("lvdif mesh-to-sdf: the mesh reaches 9e+29 and --padding 3 around it takes the grid beyond "
-                             "+-1e+30 (the volumes' world range): scale the mesh down or use less padding"), (code, err)
+                             "+-1e+30 (the volumes' world range): scale the mesh down (less padding cannot help: even "
+                             "--padding 0 takes the grid beyond it)"), (code, err)
+code, err = run("mesh-to-sdf", near, os.path.join(out, "m.lvdv"), "--dims", "8", "--padding", "0")
+assert code == 1 and err.endswith("scale the mesh down (less padding cannot help: even --padding 0 takes the grid "
+                                  "beyond it)"), (code, err)
 assert not os.path.exists(os.path.join(out, "m.lvdv"))
+corner = os.path.join(out, "corner.obj")
+with open(corner, "w") as f:
+    f.write("v 0 0 0\nv 9e29 0 0\nv 0 9e29 0\nv 0 0 9e29\nf 1 3 2\nf 1 2 4\nf 2 3 4\nf 3 1 4\n")
+code, err = run("mesh-to-sdf", corner, os.path.join(out, "m.lvdv"), "--padding", "10")
+assert code == 1 and err == ("lvdif mesh-to-sdf: the mesh reaches 9e+29 and --padding 10 around it takes the grid beyond "
+                             "+-1e+30 (the volumes' world range): use less padding (--padding 0 fits) or scale the "
+                             "mesh down"), (code, err)
+assert not os.path.exists(os.path.join(out, "m.lvdv"))
+code, err = run("mesh-to-sdf", corner, os.path.join(out, "m.lvdv"), "--padding", "0")  # the advice works
+assert code == 0 and os.path.exists(os.path.join(out, "m.lvdv")), (code, err)
+os.remove(os.path.join(out, "m.lvdv"))
 # a mesh so small that its voxels fall below the volumes' smallest spacing (1e-30) says so (it was "the
 # mesh reaches 1e-30 and --padding 2 around it takes the grid beyond +-1e+30")
 tiny = os.path.join(out, "tiny.obj")
