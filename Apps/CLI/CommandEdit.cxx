@@ -39,6 +39,22 @@ int CommandScript(int argc, char** argv)
   // non-cubic canvas failed only when saving, after the whole script)
   if (args.has("out"))
     options.resultRule = [out = args.get("out", "")](const lvdif::Index3& dims) { return VolumeOutputDimsProblem(out, dims); };
+  // file:line:column, the way compilers report, so editors can jump to it
+  auto atScriptLine = [&](auto&& work) {
+    try
+    {
+      work();
+    }
+    catch (const lvdif::ScriptError& e)
+    {
+      throw lvdif::Error(e.code(), path + ":" + std::to_string(e.line()) + ":" + std::to_string(e.column()) + ": " + e.detail());
+    }
+  };
+  // the (small) script is read and its syntax checked before the (possibly large) volume is
+  // loaded, as play reads its recording first (a missing script or a typo in it was found
+  // only after --in was read)
+  const std::string text = lvdif::readScriptFile(path);
+  atScriptLine([&] { lvdif::checkScript(text); });
   lvdif::ScriptRunner runner(options);
   std::shared_ptr<lvdif::DictionaryVolume> start;
   if (args.has("in"))
@@ -53,15 +69,7 @@ int CommandScript(int argc, char** argv)
     start = std::make_unique<lvdif::DictionaryVolume>(o);
   }
   runner.attach(*start);
-  try
-  {
-    runner.run(lvdif::readScriptFile(path));
-  }
-  catch (const lvdif::ScriptError& e)
-  {
-    // file:line:column, the way compilers report, so editors can jump to it
-    throw lvdif::Error(e.code(), path + ":" + std::to_string(e.line()) + ":" + std::to_string(e.column()) + ": " + e.detail());
-  }
+  atScriptLine([&] { runner.run(text); });
   std::unique_ptr<lvdif::DictionaryVolume> made = runner.takeVolume();
   const lvdif::DictionaryVolume& result = made ? *made : *start;
   std::printf("%s: %llu edits, %llu steps\n", path.c_str(), (unsigned long long)runner.edits(),

@@ -101,6 +101,14 @@ with open(bad, "w") as f:
     f.write("radius 3\nsphere 1, 2,\n")
 code, err = run("script", bad)
 assert code == 1 and f"{bad}:2:" in err, (code, err)
+# the (small) script is read and its syntax checked before the (possibly large) --in volume is
+# loaded, as play reads its recording first: a missing script or a syntax error was found only
+# after the volume was read (here the volume cannot be read: the script's error is the one said)
+missing_in = os.path.join(out, "no-such-in.lvdv")
+code, err = run("script", os.path.join(out, "no-such.lvs"), "--in", missing_in)
+assert code == 1 and "no-such.lvs" in err and missing_in not in err and "read volume" not in err, (code, err)
+code, err = run("script", bad, "--in", missing_in)
+assert code == 1 and f"{bad}:2:" in err and missing_in not in err and "read volume" not in err, (code, err)
 # `script --size` (the start canvas of a script without `canvas`) follows demo's
 # canvas rule, refused up front: before the script is read or any output written
 sized = os.path.join(out, "sized.lvs")
