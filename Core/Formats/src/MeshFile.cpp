@@ -106,6 +106,10 @@ bool parallelObj(const char* p, std::size_t size, TriangleMesh& mesh)
     if (!e) e = end;
     const char* b = q;
     const char* t = nullptr;
+    // a line continued on the next (a backslash at its end): the serial reader joins them
+    const char* last = e;
+    while (last > b && TextScanner::blank(last[-1])) --last;
+    if (last > b && last[-1] == '\\') return false;
     if (nextToken(b, e, t))
     {
       const std::size_t n = static_cast<std::size_t>(b - t);
@@ -240,8 +244,20 @@ TriangleMesh readObj(const std::vector<char>& data)
           (count == 1 ? what : plural) + " defined so far (OBJ counts from 1; negative counts back)");
     return v > 0 ? v - 1 : count + v;
   };
+  std::vector<std::string> more;
   while (s.next(t))
   {
+    // a line that ends in a backslash continues on the next (the OBJ specification's line
+    // continuation; "f 1 2 \" was "'\' is not an integer"); messages name the last line
+    while (!t.empty() && t.back().back() == '\\')
+    {
+      t.back().pop_back();
+      if (t.back().empty())
+        t.pop_back();
+      if (!s.next(more))
+        break;
+      t.insert(t.end(), more.begin(), more.end());
+    }
     if (t.empty())
       continue;
     if (t[0] == "vt")
