@@ -64,7 +64,10 @@ void checkMeshHead(ByteSource& source, MeshFormat format)
           binary = "its header announces " + std::to_string(n) + " triangles, 84 + 50 x " + std::to_string(n) + " = " +
             std::to_string(84 + 50 * std::uint64_t(n)) + " bytes, but the file has " + std::to_string(size) + " bytes";
         }
-        fail(ErrorCode::CorruptData, "STL", "neither a binary STL (" + binary + ") nor an ASCII one (no 'solid')");
+        // a binary STL's header often starts with "solid" too: then the reason is the binary bytes
+        const bool solid = b != std::string::npos && h.compare(b, 5, "solid") == 0;
+        fail(ErrorCode::CorruptData, "STL", "neither a binary STL (" + binary + ") nor an ASCII one (" +
+            (solid ? "it starts with 'solid' but holds binary data: a NUL byte in its first 4 KiB" : "no 'solid'") + ")");
       }
       return;
     }

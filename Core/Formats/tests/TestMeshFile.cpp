@@ -219,6 +219,12 @@ TEST(MeshFile, MalformedInputsAreClearErrors)
     // a binary STL whose count disagrees with its size names both (it said only "size is not 84 + 50 x triangle count")
     { "STL wrong count", std::string(80, ' ') + std::string("\x05\0\0\0", 4) + std::string(150, '\0'), MeshFormat::Stl,
       "STL: neither a binary STL (its header announces 5 triangles, 84 + 50 x 5 = 334 bytes, but the file has 234 bytes) nor an ASCII one (no 'solid')" },
+    // a binary STL whose header starts with "solid" (many exporters write one) and whose size is off: it was
+    // "nor an ASCII one (no 'solid')" about a file that starts with 'solid'
+    { "STL solid header, wrong count", "solid part" + std::string(70, ' ') + std::string("\x05\0\0\0", 4) +
+      std::string(151, '\0'), MeshFormat::Stl,
+      "STL: neither a binary STL (its header announces 5 triangles, 84 + 50 x 5 = 334 bytes, but the file has 235 bytes) "
+      "nor an ASCII one (it starts with 'solid' but holds binary data: a NUL byte in its first 4 KiB)" },
     { "STL 4-vertex facet", "solid a\nfacet normal 0 0 1\nouter loop\nvertex 0 0 0\nvertex 1 0 0\nvertex 1 1 0\nvertex 0 1 0\nendloop\nendfacet\nendsolid\n", MeshFormat::Stl, "facet with 4" },
   };
   for (const Case& c : cases)
