@@ -306,6 +306,31 @@ TEST(Script, AByteOrderMarkBeforeTheTextIsSkipped)
   EXPECT_NE(w.detail.find("unexpected character"), std::string::npos) << w.detail;
 }
 
+// A character outside ASCII (text copied from a web page or a word processor)
+// is named whole with its code point, and a look-alike of a space or a minus
+// with what to type: a no-break space between arguments was "unexpected
+// character byte 194", at the right place but with nothing to recognise it by.
+TEST(Script, CharactersOutsideAsciiAreNamed)
+{
+  Where w = errorOf("canvas 16\nsphere 8,\xC2\xA0" "8, 8, 3");
+  EXPECT_EQ(w.line, 2);
+  EXPECT_EQ(w.column, 10);
+  EXPECT_EQ(w.detail, "unexpected character U+00A0 (a no-break or other wide space: type a plain space)");
+  w = errorOf("print 3 \xE2\x88\x92 1");
+  EXPECT_EQ(w.column, 9);
+  EXPECT_EQ(w.detail, "unexpected character '\xE2\x88\x92' U+2212 (a dash or minus sign: type '-')");
+  w = errorOf("print 3 \xE2\x80\x93 1");
+  EXPECT_EQ(w.detail, "unexpected character '\xE2\x80\x93' U+2013 (a dash or minus sign: type '-')");
+  w = errorOf("r\xC3\xA9" "sultat = 1");
+  EXPECT_EQ(w.column, 2);
+  EXPECT_EQ(w.detail, "unexpected character '\xC3\xA9' U+00E9 (scripts are ASCII outside comments)");
+  // in a comment any text is fine; a byte that starts no UTF-8 character, or a cut one, is a byte
+  EXPECT_EQ(errorOf("# r\xC3\xA9sultat \xE2\x88\x92 \xC2\xA0\nprint 1").detail, "no error");
+  EXPECT_EQ(errorOf("print \xFF").detail, "unexpected character byte 255");
+  EXPECT_EQ(errorOf("print \xC3").detail, "unexpected character byte 195");
+  EXPECT_EQ(errorOf("print \xE2\x88 1").detail, "unexpected character byte 226");
+}
+
 TEST(Script, CommandsDriveTheSameEditsAsTheEditor)
 {
   ScriptRunner r;
