@@ -45,6 +45,16 @@ code, err = run("info", "x.lvdv", "--header-only", "--header-only")
 assert code == 2 and err == "lvdif info: option --header-only given twice", (code, err)
 code, err = run("no-such-command")
 assert code == 2 and "unknown command" in err, (code, err)
+# --key=value is --key value, as in the editor's command line (it was "unknown option --dims=16"); a flag
+# takes no value; an option written with one dash is named (it was taken for a file: the usage line came)
+code, err = run("mesh-to-sdf", "in.obj", "out.lvdv", "--dims=16", "--dims", "24")
+assert code == 2 and err == "lvdif mesh-to-sdf: option --dims given twice", (code, err)
+code, err = run("mesh-to-sdf", "in.obj", "out.lvdv", "--dims=sixteen")
+assert code == 2 and err == "lvdif mesh-to-sdf: option --dims expects an integer in [2, 1048576], got 'sixteen'", (code, err)
+code, err = run("mesh-to-sdf", "in.obj", "out.lvdv", "--svf=1")
+assert code == 2 and err == "lvdif mesh-to-sdf: option --svf takes no value", (code, err)
+code, err = run("mesh-to-sdf", "in.obj", "out.lvdv", "-dims", "16")
+assert code == 2 and err == "lvdif mesh-to-sdf: unknown option -dims (options start with two dashes: --dims)", (code, err)
 code, err = run("demo", "--bogus", "1")
 assert code == 2 and err == "lvdif demo: unknown option --bogus", (code, err)
 # an unknown option is named where it stands: last on the line it said "needs a value",
@@ -301,6 +311,10 @@ assert code == 1 and err == ("lvdif mesh-to-sdf: the mesh reaches 9e+29 and --pa
 assert not os.path.exists(os.path.join(out, "m.lvdv"))
 code, err = run("mesh-to-sdf", corner, os.path.join(out, "m.lvdv"), "--padding", "0")  # the advice works
 assert code == 0 and os.path.exists(os.path.join(out, "m.lvdv")), (code, err)
+os.remove(os.path.join(out, "m.lvdv"))
+code, err = run("mesh-to-sdf", corner, os.path.join(out, "m.lvdv"), "--padding=0", "--dims=16")  # --key=value
+info = subprocess.run([exe, "info", os.path.join(out, "m.lvdv")], capture_output=True, text=True, timeout=60).stdout
+assert code == 0 and "dimensions  16 x 16 x 16" in info and "--dims 16 --padding 0 " in info, (code, err, info)
 os.remove(os.path.join(out, "m.lvdv"))
 # a mesh so small that its voxels fall below the volumes' smallest spacing (1e-30) says so (it was "the
 # mesh reaches 1e-30 and --padding 2 around it takes the grid beyond +-1e+30")
