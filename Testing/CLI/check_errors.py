@@ -315,6 +315,13 @@ os.remove(os.path.join(out, "m.lvdv"))
 code, err = run("mesh-to-sdf", corner, os.path.join(out, "m.lvdv"), "--padding=0", "--dims=16")  # --key=value
 info = subprocess.run([exe, "info", os.path.join(out, "m.lvdv")], capture_output=True, text=True, timeout=60).stdout
 assert code == 0 and "dimensions  16 x 16 x 16" in info and "--dims 16 --padding 0 " in info, (code, err, info)
+# what a command prints on stdout (info's description, --help) is its output: when it cannot be
+# written the run failed (`lvdif info v.lvdv > /dev/full` exited 0 with nothing written)
+if os.path.exists("/dev/full"):
+    for args in (["info", os.path.join(out, "m.lvdv")], ["help"], ["mesh", "--help"]):
+        with open("/dev/full", "w") as full:
+            r = subprocess.run([exe, *args], stdout=full, stderr=subprocess.PIPE, text=True, timeout=60)
+        assert r.returncode == 1 and "cannot write the standard output: No space left on device" in r.stderr, (args, r)
 os.remove(os.path.join(out, "m.lvdv"))
 # a mesh so small that its voxels fall below the volumes' smallest spacing (1e-30) says so (it was "the
 # mesh reaches 1e-30 and --padding 2 around it takes the grid beyond +-1e+30")
