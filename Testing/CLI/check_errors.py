@@ -302,27 +302,30 @@ assert code == 1 and err.endswith("scale the mesh down (less padding cannot help
                                   "beyond it)"), (code, err)
 assert not os.path.exists(os.path.join(out, "m.lvdv"))
 corner = os.path.join(out, "corner.obj")
+corner_vol = os.path.join(out, "corner.lvdv")  # (not m.lvdv: that one must not exist above and below)
+if os.path.exists(corner_vol):
+    os.remove(corner_vol)  # from an earlier run
 with open(corner, "w") as f:
     f.write("v 0 0 0\nv 9e29 0 0\nv 0 9e29 0\nv 0 0 9e29\nf 1 3 2\nf 1 2 4\nf 2 3 4\nf 3 1 4\n")
-code, err = run("mesh-to-sdf", corner, os.path.join(out, "m.lvdv"), "--padding", "10")
+code, err = run("mesh-to-sdf", corner, corner_vol, "--padding", "10")
 assert code == 1 and err == ("lvdif mesh-to-sdf: the mesh reaches 9e+29 and --padding 10 around it takes the grid beyond "
                              "+-1e+30 (the volumes' world range): use less padding (--padding 0 fits) or scale the "
                              "mesh down"), (code, err)
-assert not os.path.exists(os.path.join(out, "m.lvdv"))
-code, err = run("mesh-to-sdf", corner, os.path.join(out, "m.lvdv"), "--padding", "0")  # the advice works
-assert code == 0 and os.path.exists(os.path.join(out, "m.lvdv")), (code, err)
-os.remove(os.path.join(out, "m.lvdv"))
-code, err = run("mesh-to-sdf", corner, os.path.join(out, "m.lvdv"), "--padding=0", "--dims=16")  # --key=value
-info = subprocess.run([exe, "info", os.path.join(out, "m.lvdv")], capture_output=True, text=True, timeout=60).stdout
+assert not os.path.exists(corner_vol)
+code, err = run("mesh-to-sdf", corner, corner_vol, "--padding", "0")  # the advice works
+assert code == 0 and os.path.exists(corner_vol), (code, err)
+os.remove(corner_vol)
+code, err = run("mesh-to-sdf", corner, corner_vol, "--padding=0", "--dims=16")  # --key=value
+info = subprocess.run([exe, "info", corner_vol], capture_output=True, text=True, timeout=60).stdout
 assert code == 0 and "dimensions  16 x 16 x 16" in info and "--dims 16 --padding 0 " in info, (code, err, info)
 # what a command prints on stdout (info's description, --help) is its output: when it cannot be
 # written the run failed (`lvdif info v.lvdv > /dev/full` exited 0 with nothing written)
 if os.path.exists("/dev/full"):
-    for args in (["info", os.path.join(out, "m.lvdv")], ["help"], ["mesh", "--help"]):
+    for args in (["info", corner_vol], ["help"], ["mesh", "--help"]):
         with open("/dev/full", "w") as full:
             r = subprocess.run([exe, *args], stdout=full, stderr=subprocess.PIPE, text=True, timeout=60)
         assert r.returncode == 1 and "cannot write the standard output: No space left on device" in r.stderr, (args, r)
-os.remove(os.path.join(out, "m.lvdv"))
+os.remove(corner_vol)
 # a mesh so small that its voxels fall below the volumes' smallest spacing (1e-30) says so (it was "the
 # mesh reaches 1e-30 and --padding 2 around it takes the grid beyond +-1e+30")
 tiny = os.path.join(out, "tiny.obj")
