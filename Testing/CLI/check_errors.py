@@ -111,6 +111,18 @@ with open(bad, "w") as f:
     f.write("radius 3\nsphere 1, 2,\n")
 code, err = run("script", bad)
 assert code == 1 and f"{bad}:2:" in err, (code, err)
+# --max-steps: a long script that is no endless loop can run (it was stopped at 50M steps with nothing to
+# do about it), and the step-limit error names the option; a bad value is a refused command line
+steps = os.path.join(out, "steps.lvs")
+with open(steps, "w") as f:
+    f.write("x = 0\nfor i in 0..1000 { x = x + 1 }\nprint x\n")
+code, err = run("script", steps, "--max-steps", "500")
+assert code == 1 and err == (f"lvdif script: {steps}:2:1: step limit of 500 exceeded (an endless loop? If not, raise "
+                             "the limit with --max-steps N)"), (code, err)
+r = subprocess.run([exe, "script", steps, "--max-steps", "5000"], capture_output=True, text=True, timeout=60)
+assert r.returncode == 0 and r.stdout.startswith("1000\n"), r
+code, err = run("script", steps, "--max-steps", "0")
+assert code == 2 and err.startswith("lvdif script: option --max-steps expects an integer in [1, "), (code, err)
 # the (small) script is read and its syntax checked before the (possibly large) --in volume is
 # loaded, as play reads its recording first: a missing script or a syntax error was found only
 # after the volume was read (here the volume cannot be read: the script's error is the one said)

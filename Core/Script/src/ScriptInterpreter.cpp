@@ -76,7 +76,9 @@ struct ScriptRunner::Impl
   void step(int line, int col)
   {
     if (++this->Owner->Steps > this->Options.maxSteps)
-      fail(line, col, "step limit of " + std::to_string(this->Options.maxSteps) + " exceeded (an endless loop?)");
+      fail(line, col, "step limit of " + std::to_string(this->Options.maxSteps) + " exceeded (an endless loop?" +
+          (this->Options.maxStepsRaisedBy.empty() ? std::string() : " If not, raise the limit with " + this->Options.maxStepsRaisedBy) +
+          ")");
     if ((this->Owner->Steps & 1023) == 0 && this->Options.interrupter)
       this->Options.interrupter->checkInterrupt();
   }

@@ -190,6 +190,16 @@ TEST(Script, StepLimitStopsEndlessLoops)
   const Where w = errorOf("x = 0\nwhile 1 { x = x + 1 }", o);
   EXPECT_EQ(w.line, 2);
   EXPECT_NE(w.detail.find("step limit of 10000 exceeded"), std::string::npos);
+  EXPECT_EQ(w.detail, "step limit of 10000 exceeded (an endless loop?)");
+  // a caller that lets the user raise the limit names how (`lvdif script --max-steps N`): a long script
+  // that is no endless loop was stopped with nothing to do about it
+  o.maxStepsRaisedBy = "--max-steps N";
+  EXPECT_EQ(errorOf("x = 0\nwhile 1 { x = x + 1 }", o).detail,
+    "step limit of 10000 exceeded (an endless loop? If not, raise the limit with --max-steps N)");
+  o.maxSteps = 100000; // and the raised limit is the one that holds
+  ScriptRunner r(o);
+  r.run("x = 0\nfor i in 0..20000 { x = x + 1 }");
+  EXPECT_EQ(r.variable("x"), 20000);
 }
 
 TEST(Script, CancelStopsTheScript)
