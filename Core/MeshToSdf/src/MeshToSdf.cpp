@@ -414,8 +414,9 @@ void warnIfNothingInside(const MeshToSdfPrepared& mesh, const GridGeometry& grid
       << (options.sign == SignMode::WindingNumber ? " (|winding number| < 1/2 everywhere, as for a single open sheet)"
                                                   : "")
       << ", so the field has no zero crossing and meshing it gives no surface; close the mesh, or use the "
-         "pseudo-normal sign (each side of a sheet gets its own sign) or the unsigned distance meshed at a "
-         "positive iso-value (a shell around the sheet)";
+         "pseudo-normal sign (--sign pseudo, vtkMeshToSDF's PSEUDO_NORMAL, the editor's \"Pseudo-normal\": each "
+         "side of a sheet gets its own sign) or the unsigned distance meshed at a positive iso-value (a shell "
+         "around the sheet; vtkMeshToSDF's UNSIGNED, not in lvdif mesh-to-sdf)";
   }
   else
   {

@@ -100,6 +100,8 @@ TEST(MeshToSdfWarnings, OpenSheetEnclosesNoVolume)
   ASSERT_EQ(w.stats.warnings.size(), 1u);
   EXPECT_TRUE(mentions(w.stats, "encloses no volume")) << w.stats.warnings[0];
   EXPECT_TRUE(mentions(w.stats, "pseudo-normal"));
+  // by the name of each front end's option (it named none: the CLI has no unsigned distance at all)
+  EXPECT_TRUE(mentions(w.stats, "(--sign pseudo, vtkMeshToSDF's PSEUDO_NORMAL, the editor's \"Pseudo-normal\""));
   // the option it names helps: each side of the sheet gets its own sign
   const Result pn = runFloat(m, 40, SignMode::PseudoNormal);
   EXPECT_GT(pn.inside, 0);
