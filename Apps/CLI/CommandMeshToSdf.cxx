@@ -99,6 +99,25 @@ int CommandMeshToSdf(int argc, char** argv)
       throw lvdif::Error(e.code(), "mesh '" + in + "': " + e.what());
     }
   };
+  // a mesh of one point as read: its coordinates may differ in the file only beyond float's precision
+  // (a unit cube at 1e29 was "fit grid: the mesh bounds have zero size")
+  {
+    const auto b = mesh.bounds();
+    if (b[0] == b[1])
+    {
+      std::string p = "(";
+      for (int a = 0; a < 3; ++a)
+      {
+        char c[40];
+        lvdif::formatDoubleC(c, sizeof c, "%.9g", double(b[0][a]));
+        p += std::string(a ? ", " : "") + c;
+      }
+      throw lvdif::Error(lvdif::ErrorCode::InvalidArgument, "mesh '" + in + "': all its " +
+          std::to_string(mesh.points.size()) + " points are the one point " + p + ")" +
+          " as read, so it has no size (coordinates are read as 32-bit floats, about 7 significant digits: "
+          "points that differ only beyond that, such as 1e29 and 1e29 + 1, are one point)");
+    }
+  }
   // a format of cubic volumes only (.bv, the original's N^3): the fitted grid made cubic, --dims on
   // every axis around the same centre and voxels (every mesh but a cube's was refused, with no
   // option that could make its grid cubic)

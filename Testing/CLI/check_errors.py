@@ -338,6 +338,18 @@ if os.path.exists("/dev/full"):
             r = subprocess.run([exe, *args], stdout=full, stderr=subprocess.PIPE, text=True, timeout=60)
         assert r.returncode == 1 and "cannot write the standard output: No space left on device" in r.stderr, (args, r)
 os.remove(corner_vol)
+# a mesh whose points are one point as read (they differ in the file only beyond float's ~7 digits) says
+# so (a unit cube at 1e29 was "fit grid: the mesh bounds have zero size")
+collapsed = os.path.join(out, "collapsed.obj")
+with open(collapsed, "w") as f:
+    f.write("v 1e29 1e29 1e29\nv 100000000000000000000000000001 1e29 1e29\nv 1e29 100000000000000000000000000001 1e29\n"
+            "v 1e29 1e29 100000000000000000000000000001\nf 1 3 2\nf 1 2 4\nf 2 3 4\nf 3 1 4\n")
+code, err = run("mesh-to-sdf", collapsed, os.path.join(out, "m.lvdv"))
+assert code == 1 and err == (f"lvdif mesh-to-sdf: mesh '{collapsed}': all its 4 points are the one point (1.00000002e+29, "
+                             "1.00000002e+29, 1.00000002e+29) as read, so it has no size (coordinates are read as 32-bit "
+                             "floats, about 7 significant digits: points that differ only beyond that, such as 1e29 and "
+                             "1e29 + 1, are one point)"), (code, err)
+assert not os.path.exists(os.path.join(out, "m.lvdv"))
 # a mesh so small that its voxels fall below the volumes' smallest spacing (1e-30) says so (it was "the
 # mesh reaches 1e-30 and --padding 2 around it takes the grid beyond +-1e+30")
 tiny = os.path.join(out, "tiny.obj")
