@@ -20,7 +20,16 @@ Arguments::Arguments(
     const std::string a = argv[i];
     if (a.rfind("--", 0) == 0 && a.size() > 2)
     {
-      const std::string key = a.substr(2);
+      std::string key = a.substr(2);
+      // --dims=64 is --dims 64, as in the editor's command line (it was "unknown option --dims=64")
+      const std::size_t eq = key.find('=');
+      std::string inlineValue;
+      const bool hasInlineValue = eq != std::string::npos;
+      if (hasInlineValue)
+      {
+        inlineValue = key.substr(eq + 1);
+        key.erase(eq);
+      }
       // known before its value is taken: an unknown last option said "needs a
       // value", and an unknown one before a positional swallowed it
       if (!listed(valued, key) && !listed(flags, key))
@@ -30,7 +39,13 @@ Arguments::Arguments(
         throw lvdif::Error(lvdif::ErrorCode::InvalidArgument, "option --" + key + " given twice");
       if (listed(flags, key))
       {
+        if (hasInlineValue)
+          throw lvdif::Error(lvdif::ErrorCode::InvalidArgument, "option --" + key + " takes no value");
         this->Options[key] = "1";
+      }
+      else if (hasInlineValue)
+      {
+        this->Options[key] = inlineValue;
       }
       else if (i + 1 < argc)
       {
@@ -43,6 +58,10 @@ Arguments::Arguments(
     }
     else
     {
+      // -dims 64: an option with one dash, taken for a file name (the usage line came, not why)
+      const std::string key = a.size() > 1 && a[0] == '-' && a[1] != '-' ? a.substr(1, a.find('=') - 1) : std::string();
+      if (!key.empty() && (listed(valued, key) || listed(flags, key)))
+        throw lvdif::Error(lvdif::ErrorCode::InvalidArgument, "unknown option " + a + " (options start with two dashes: --" + key + ")");
       this->Positional.push_back(a);
     }
   }

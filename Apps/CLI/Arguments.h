@@ -1,4 +1,4 @@
-// Minimal command-line parsing: positional arguments and `--key value` /
+// Minimal command-line parsing: positional arguments and `--key value` (or `--key=value`) /
 // `--flag` options, with errors that name the bad option.
 #pragma once
 

@@ -12,14 +12,16 @@
 
 #include <cstdio>
 #include <fstream>
+#include <limits>
 #include <sstream>
 
 int CommandScript(int argc, char** argv)
 {
-  Arguments args(argc, argv, 2, { "in", "out", "mesh", "png", "size" });
+  Arguments args(argc, argv, 2, { "in", "out", "mesh", "png", "size", "max-steps" });
   if (args.positional().size() != 1)
     throw lvdif::Error(lvdif::ErrorCode::InvalidArgument,
-      "usage: lvdif script FILE.lvs [--in VOLUME] [--out VOLUME] [--mesh OUT.ply] [--png OUT.png] [--size N]");
+      "usage: lvdif script FILE.lvs [--in VOLUME] [--out VOLUME] [--mesh OUT.ply] [--png OUT.png] [--size N] "
+      "[--max-steps N]");
   const std::string path = args.positional()[0];
   // --size is the empty start canvas's: with --in the volume is the start (it
   // was ignored without a word)
@@ -28,17 +30,38 @@ int CommandScript(int argc, char** argv)
       "--size (the size of an empty start canvas) cannot be used with --in (the script starts from that volume)");
   // the start canvas's size is refused before any output is checked or volume built
   const long n = args.has("in") ? 0 : args.getCanvasSize("size", 128);
+  // a long script that is no endless loop (a loop over every voxel of 512^3 is 134M steps) could not run
+  const long maxSteps = args.getInt("max-steps", static_cast<long>(lvdif::ScriptOptions().maxSteps), 1,
+    std::numeric_limits<long>::max());
   CheckEditOutputs(args);
   AcceptEditCommandLine(args);
   ProgressBar progress;
   lvdif::ScriptOptions options;
   options.interrupter = &progress;
+  options.maxSteps = static_cast<std::uint64_t>(maxSteps);
+  options.maxStepsRaisedBy = "--max-steps N";
   // --size and a script's `canvas N` both size the canvas: refused, not "the script wins" (--size was ignored)
   if (args.has("size")) options.canvasSizeGivenBy = "--size " + std::to_string(n);
   // the output's rule on the result's dimensions, before the script runs (a .bv of a
   // non-cubic canvas failed only when saving, after the whole script)
   if (args.has("out"))
     options.resultRule = [out = args.get("out", "")](const lvdif::Index3& dims) { return VolumeOutputDimsProblem(out, dims); };
+  // file:line:column, the way compilers report, so editors can jump to it
+  auto atScriptLine = [&](auto&& work) {
+    try
+    {
+      work();
+    }
+    catch (const lvdif::ScriptError& e)
+    {
+      throw lvdif::Error(e.code(), path + ":" + std::to_string(e.line()) + ":" + std::to_string(e.column()) + ": " + e.detail());
+    }
+  };
+  // the (small) script is read and its syntax checked before the (possibly large) volume is
+  // loaded, as play reads its recording first (a missing script or a typo in it was found
+  // only after --in was read)
+  const std::string text = lvdif::readScriptFile(path);
+  atScriptLine([&] { lvdif::checkScript(text); });
   lvdif::ScriptRunner runner(options);
   std::shared_ptr<lvdif::DictionaryVolume> start;
   if (args.has("in"))
@@ -53,15 +76,7 @@ int CommandScript(int argc, char** argv)
     start = std::make_unique<lvdif::DictionaryVolume>(o);
   }
   runner.attach(*start);
-  try
-  {
-    runner.run(lvdif::readScriptFile(path));
-  }
-  catch (const lvdif::ScriptError& e)
-  {
-    // file:line:column, the way compilers report, so editors can jump to it
-    throw lvdif::Error(e.code(), path + ":" + std::to_string(e.line()) + ":" + std::to_string(e.column()) + ": " + e.detail());
-  }
+  atScriptLine([&] { runner.run(text); });
   std::unique_ptr<lvdif::DictionaryVolume> made = runner.takeVolume();
   const lvdif::DictionaryVolume& result = made ? *made : *start;
   std::printf("%s: %llu edits, %llu steps\n", path.c_str(), (unsigned long long)runner.edits(),

@@ -99,18 +99,41 @@ int CommandMeshToSdf(int argc, char** argv)
       throw lvdif::Error(e.code(), "mesh '" + in + "': " + e.what());
     }
   };
-  lvdif::GridGeometry grid = namingTheMesh([&] { return lvdif::fitGridToMesh(mesh, dims, padding); });
+  // a mesh of one point as read: its coordinates may differ in the file only beyond float's precision
+  // (a unit cube at 1e29 was "fit grid: the mesh bounds have zero size")
+  {
+    const auto b = mesh.bounds();
+    if (b[0] == b[1])
+    {
+      std::string p = "(";
+      for (int a = 0; a < 3; ++a)
+      {
+        char c[40];
+        lvdif::formatDoubleC(c, sizeof c, "%.9g", double(b[0][a]));
+        p += std::string(a ? ", " : "") + c;
+      }
+      throw lvdif::Error(lvdif::ErrorCode::InvalidArgument, "mesh '" + in + "': all its " +
+          std::to_string(mesh.points.size()) + " points are the one point " + p + ")" +
+          " as read, so it has no size (coordinates are read as 32-bit floats, about 7 significant digits: "
+          "points that differ only beyond that, such as 1e29 and 1e29 + 1, are one point)");
+    }
+  }
   // a format of cubic volumes only (.bv, the original's N^3): the fitted grid made cubic, --dims on
   // every axis around the same centre and voxels (every mesh but a cube's was refused, with no
   // option that could make its grid cubic)
-  if (VolumeOutputIsCubicOnly(out))
-  {
-    for (int a = 0; a < 3; ++a)
+  auto gridWith = [&](double pad) {
+    lvdif::GridGeometry g = namingTheMesh([&] { return lvdif::fitGridToMesh(mesh, dims, pad); });
+    if (VolumeOutputIsCubicOnly(out))
     {
-      grid.origin[a] -= 0.5 * static_cast<double>(dims - grid.dims[a]) * grid.spacing[a];
-      grid.dims[a] = dims;
+      for (int a = 0; a < 3; ++a)
+      {
+        g.origin[a] -= 0.5 * static_cast<double>(dims - g.dims[a]) * g.spacing[a];
+        g.dims[a] = dims;
+      }
     }
-  }
+    return g;
+  };
+  lvdif::GridGeometry grid = gridWith(padding);
   lvdif::VolumeOptions vo = lvdif::volumeOptionsOn(grid);
   vo.bandWidth = bandWidth;
   // a mesh inside the world range whose padded grid is not, or so small that its
@@ -139,9 +162,14 @@ int CommandMeshToSdf(int argc, char** argv)
     char r[40], limit[40];
     lvdif::formatDoubleC(r, sizeof r, "%g", reach);
     lvdif::formatDoubleC(limit, sizeof limit, "%g", lvdif::MaxWorldCoordinate);
+    // less padding helps only where the grid without it fits (with --padding 0, or a mesh at the
+    // world range's edge, "use less padding" was advice that could not work)
+    const bool lessPaddingFits =
+      padding > 0 && lvdif::DictionaryVolume::checkGeometry(lvdif::volumeOptionsOn(gridWith(0))).empty();
     throw lvdif::Error(lvdif::ErrorCode::InvalidArgument, std::string("the mesh reaches ") + r + " and --padding " +
-        args.get("padding", "2") + " around it takes the grid beyond +-" + limit +
-        " (the volumes' world range): scale the mesh down or use less padding");
+        args.get("padding", "2") + " around it takes the grid beyond +-" + limit + " (the volumes' world range): " +
+        (lessPaddingFits ? "use less padding (--padding 0 fits) or scale the mesh down"
+                         : "scale the mesh down (less padding cannot help: even --padding 0 takes the grid beyond it)"));
   }
   // a format's own limit, known from the fitted grid: before the work, not after it (.bv found a
   // non-cubic grid only when saving, after minutes of mesh to SDF)

@@ -9,6 +9,7 @@
 #include "vtkObjectFactory.h"
 #include "vtkOutputWindow.h"
 
+#include <cerrno>
 #include <csignal>
 #include <cstdio>
 #include <cstring>
@@ -76,13 +77,26 @@ const Command commands[] = {
     "(.bv: on every axis, the original's cubic grid around the mesh), "
     "--padding 2 voxels, --sign winding, --band 8 voxels (0: no band), --device auto" },
   { "script", CommandScript,
-    "script FILE.lvs [--in VOLUME] [--out VOLUME] [--mesh OUT] [--png OUT.png] [--size N]   run a script; --size: "
-    "the empty start canvas (default 128) of a script without --in and without its own 'canvas'" },
+    "script FILE.lvs [--in VOLUME] [--out VOLUME] [--mesh OUT] [--png OUT.png] [--size N] [--max-steps N]   run a "
+    "script; --size: the empty start canvas (default 128) of a script without --in and without its own 'canvas'; "
+    "--max-steps: the most statements, loop iterations and dabs it may run (default 50000000)" },
   { "play", CommandPlay, "play RECORDING.lvr --in VOLUME [--out VOLUME] [--mesh OUT] [--png OUT.png]   replay edits" },
 };
 
 const char* const ExitStatusHelp = "exit status: 0 done, 1 failed while running, 2 command line refused (nothing "
                                    "read or written), 130 cancelled (Ctrl-C)";
+
+/// The exit status once stdout is flushed: what a command printed there (info's description, the
+/// summary lines, --help) that could not be written is a failure (`lvdif info v.lvdv > /dev/full`
+/// exited 0 with nothing written).
+int flushed(int status, const char* name)
+{
+  if (std::fflush(stdout) == 0 && !std::ferror(stdout)) return status;
+  const int e = errno;
+  std::fprintf(stderr, "lvdif%s%s: cannot write the standard output: %s\n", name ? " " : "", name ? name : "",
+    e ? std::strerror(e) : "write error");
+  return status == 0 ? 1 : status;
+}
 
 int usage(FILE* f)
 {
@@ -105,7 +119,8 @@ int main(int argc, char** argv)
   vtkOutputWindow::SetInstance(messages);
   vtkLogger::SetStderrVerbosity(vtkLogger::VERBOSITY_OFF); // VTK logs each message there too
   std::signal(SIGABRT, onAbort);
-  if (!std::strcmp(argv[1], "help") || !std::strcmp(argv[1], "--help") || !std::strcmp(argv[1], "-h")) return usage(stdout);
+  if (!std::strcmp(argv[1], "help") || !std::strcmp(argv[1], "--help") || !std::strcmp(argv[1], "-h"))
+    return flushed(usage(stdout), nullptr);
   for (const auto& c : commands)
   {
     if (std::strcmp(argv[1], c.name) == 0)
@@ -116,12 +131,12 @@ int main(int argc, char** argv)
         if (!std::strcmp(argv[i], "--help") || !std::strcmp(argv[i], "-h"))
         {
           std::printf("usage: lvdif %s\n\n%s\n", c.help, ExitStatusHelp);
-          return 0;
+          return flushed(0, c.name);
         }
       }
       try
       {
-        return c.run(argc, argv);
+        return flushed(c.run(argc, argv), c.name);
       }
       catch (const lvdif::Error& e)
       {

@@ -45,6 +45,16 @@ code, err = run("info", "x.lvdv", "--header-only", "--header-only")
 assert code == 2 and err == "lvdif info: option --header-only given twice", (code, err)
 code, err = run("no-such-command")
 assert code == 2 and "unknown command" in err, (code, err)
+# --key=value is --key value, as in the editor's command line (it was "unknown option --dims=16"); a flag
+# takes no value; an option written with one dash is named (it was taken for a file: the usage line came)
+code, err = run("mesh-to-sdf", "in.obj", "out.lvdv", "--dims=16", "--dims", "24")
+assert code == 2 and err == "lvdif mesh-to-sdf: option --dims given twice", (code, err)
+code, err = run("mesh-to-sdf", "in.obj", "out.lvdv", "--dims=sixteen")
+assert code == 2 and err == "lvdif mesh-to-sdf: option --dims expects an integer in [2, 1048576], got 'sixteen'", (code, err)
+code, err = run("mesh-to-sdf", "in.obj", "out.lvdv", "--svf=1")
+assert code == 2 and err == "lvdif mesh-to-sdf: option --svf takes no value", (code, err)
+code, err = run("mesh-to-sdf", "in.obj", "out.lvdv", "-dims", "16")
+assert code == 2 and err == "lvdif mesh-to-sdf: unknown option -dims (options start with two dashes: --dims)", (code, err)
 code, err = run("demo", "--bogus", "1")
 assert code == 2 and err == "lvdif demo: unknown option --bogus", (code, err)
 # an unknown option is named where it stands: last on the line it said "needs a value",
@@ -101,6 +111,26 @@ with open(bad, "w") as f:
     f.write("radius 3\nsphere 1, 2,\n")
 code, err = run("script", bad)
 assert code == 1 and f"{bad}:2:" in err, (code, err)
+# --max-steps: a long script that is no endless loop can run (it was stopped at 50M steps with nothing to
+# do about it), and the step-limit error names the option; a bad value is a refused command line
+steps = os.path.join(out, "steps.lvs")
+with open(steps, "w") as f:
+    f.write("x = 0\nfor i in 0..1000 { x = x + 1 }\nprint x\n")
+code, err = run("script", steps, "--max-steps", "500")
+assert code == 1 and err == (f"lvdif script: {steps}:2:1: step limit of 500 exceeded (an endless loop? If not, raise "
+                             "the limit with --max-steps N)"), (code, err)
+r = subprocess.run([exe, "script", steps, "--max-steps", "5000"], capture_output=True, text=True, timeout=60)
+assert r.returncode == 0 and r.stdout.startswith("1000\n"), r
+code, err = run("script", steps, "--max-steps", "0")
+assert code == 2 and err.startswith("lvdif script: option --max-steps expects an integer in [1, "), (code, err)
+# the (small) script is read and its syntax checked before the (possibly large) --in volume is
+# loaded, as play reads its recording first: a missing script or a syntax error was found only
+# after the volume was read (here the volume cannot be read: the script's error is the one said)
+missing_in = os.path.join(out, "no-such-in.lvdv")
+code, err = run("script", os.path.join(out, "no-such.lvs"), "--in", missing_in)
+assert code == 1 and "no-such.lvs" in err and missing_in not in err and "read volume" not in err, (code, err)
+code, err = run("script", bad, "--in", missing_in)
+assert code == 1 and f"{bad}:2:" in err and missing_in not in err and "read volume" not in err, (code, err)
 # `script --size` (the start canvas of a script without `canvas`) follows demo's
 # canvas rule, refused up front: before the script is read or any output written
 sized = os.path.join(out, "sized.lvs")
@@ -287,8 +317,51 @@ near = os.path.join(out, "near.obj")
 with open(near, "w") as f:
     f.write("v -9e29 0 0\nv 9e29 0 0\nv 0 9e29 0\nf 1 2 3\n")
 code, err = run("mesh-to-sdf", near, os.path.join(out, "m.lvdv"), "--dims", "8", "--padding", "3")
+# less padding is advised only where it helps (it was advised with --padding 0, and here, where
+# --padding 0 fails too)
 assert code == 1 and err == ("lvdif mesh-to-sdf: the mesh reaches 9e+29 and --padding 3 around it takes the grid beyond "
-                             "+-1e+30 (the volumes' world range): scale the mesh down or use less padding"), (code, err)
+                             "+-1e+30 (the volumes' world range): scale the mesh down (less padding cannot help: even "
+                             "--padding 0 takes the grid beyond it)"), (code, err)
+code, err = run("mesh-to-sdf", near, os.path.join(out, "m.lvdv"), "--dims", "8", "--padding", "0")
+assert code == 1 and err.endswith("scale the mesh down (less padding cannot help: even --padding 0 takes the grid "
+                                  "beyond it)"), (code, err)
+assert not os.path.exists(os.path.join(out, "m.lvdv"))
+corner = os.path.join(out, "corner.obj")
+corner_vol = os.path.join(out, "corner.lvdv")  # (not m.lvdv: that one must not exist above and below)
+if os.path.exists(corner_vol):
+    os.remove(corner_vol)  # from an earlier run
+with open(corner, "w") as f:
+    f.write("v 0 0 0\nv 9e29 0 0\nv 0 9e29 0\nv 0 0 9e29\nf 1 3 2\nf 1 2 4\nf 2 3 4\nf 3 1 4\n")
+code, err = run("mesh-to-sdf", corner, corner_vol, "--padding", "10")
+assert code == 1 and err == ("lvdif mesh-to-sdf: the mesh reaches 9e+29 and --padding 10 around it takes the grid beyond "
+                             "+-1e+30 (the volumes' world range): use less padding (--padding 0 fits) or scale the "
+                             "mesh down"), (code, err)
+assert not os.path.exists(corner_vol)
+code, err = run("mesh-to-sdf", corner, corner_vol, "--padding", "0")  # the advice works
+assert code == 0 and os.path.exists(corner_vol), (code, err)
+os.remove(corner_vol)
+code, err = run("mesh-to-sdf", corner, corner_vol, "--padding=0", "--dims=16")  # --key=value
+info = subprocess.run([exe, "info", corner_vol], capture_output=True, text=True, timeout=60).stdout
+assert code == 0 and "dimensions  16 x 16 x 16" in info and "--dims 16 --padding 0 " in info, (code, err, info)
+# what a command prints on stdout (info's description, --help) is its output: when it cannot be
+# written the run failed (`lvdif info v.lvdv > /dev/full` exited 0 with nothing written)
+if os.path.exists("/dev/full"):
+    for args in (["info", corner_vol], ["help"], ["mesh", "--help"]):
+        with open("/dev/full", "w") as full:
+            r = subprocess.run([exe, *args], stdout=full, stderr=subprocess.PIPE, text=True, timeout=60)
+        assert r.returncode == 1 and "cannot write the standard output: No space left on device" in r.stderr, (args, r)
+os.remove(corner_vol)
+# a mesh whose points are one point as read (they differ in the file only beyond float's ~7 digits) says
+# so (a unit cube at 1e29 was "fit grid: the mesh bounds have zero size")
+collapsed = os.path.join(out, "collapsed.obj")
+with open(collapsed, "w") as f:
+    f.write("v 1e29 1e29 1e29\nv 100000000000000000000000000001 1e29 1e29\nv 1e29 100000000000000000000000000001 1e29\n"
+            "v 1e29 1e29 100000000000000000000000000001\nf 1 3 2\nf 1 2 4\nf 2 3 4\nf 3 1 4\n")
+code, err = run("mesh-to-sdf", collapsed, os.path.join(out, "m.lvdv"))
+assert code == 1 and err == (f"lvdif mesh-to-sdf: mesh '{collapsed}': all its 4 points are the one point (1.00000002e+29, "
+                             "1.00000002e+29, 1.00000002e+29) as read, so it has no size (coordinates are read as 32-bit "
+                             "floats, about 7 significant digits: points that differ only beyond that, such as 1e29 and "
+                             "1e29 + 1, are one point)"), (code, err)
 assert not os.path.exists(os.path.join(out, "m.lvdv"))
 # a mesh so small that its voxels fall below the volumes' smallest spacing (1e-30) says so (it was "the
 # mesh reaches 1e-30 and --padding 2 around it takes the grid beyond +-1e+30")

@@ -130,6 +130,16 @@ run = subprocess.run([exe, "mesh-to-sdf", sheet, f"{out}/sheet.lvdv", "--dims", 
 assert run.returncode == 0 and os.path.exists(f"{out}/sheet.lvdv"), run.stderr
 warnings = [l for l in run.stderr.splitlines() if l.startswith("warning: ")]
 assert len(warnings) == 1 and "encloses no volume" in warnings[0] and "pseudo-normal" in warnings[0], run.stderr
+# ... naming the option of this tool that helps (it named "the pseudo-normal sign" and "the unsigned distance
+# meshed at a positive iso-value", neither by an option, and lvdif has no unsigned distance), and that
+# option helps: no warning, and the volume meshes to a surface
+assert "(--sign pseudo," in warnings[0] and "not in lvdif mesh-to-sdf" in warnings[0], warnings[0]
+run = subprocess.run([exe, "mesh-to-sdf", sheet, f"{out}/sheet_pseudo.lvdv", "--dims", "32", "--device", "cpu",
+                      "--sign", "pseudo"], capture_output=True, text=True, timeout=60)
+assert run.returncode == 0 and "warning:" not in run.stderr, run.stderr
+run = subprocess.run([exe, "mesh", f"{out}/sheet_pseudo.lvdv", f"{out}/sheet_pseudo.ply"], capture_output=True,
+                     text=True, timeout=60)
+assert run.returncode == 0 and "warning:" not in run.stderr and not run.stdout.startswith("0 "), run
 run = subprocess.run([exe, "mesh-to-sdf", mesh, f"{out}/sphere_again.lvdv", "--dims", "24", "--device", "cpu"],
                      capture_output=True, text=True, timeout=60)
 assert run.returncode == 0 and "warning:" not in run.stderr, run.stderr

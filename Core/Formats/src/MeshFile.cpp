@@ -64,7 +64,10 @@ void checkMeshHead(ByteSource& source, MeshFormat format)
           binary = "its header announces " + std::to_string(n) + " triangles, 84 + 50 x " + std::to_string(n) + " = " +
             std::to_string(84 + 50 * std::uint64_t(n)) + " bytes, but the file has " + std::to_string(size) + " bytes";
         }
-        fail(ErrorCode::CorruptData, "STL", "neither a binary STL (" + binary + ") nor an ASCII one (no 'solid')");
+        // a binary STL's header often starts with "solid" too: then the reason is the binary bytes
+        const bool solid = b != std::string::npos && h.compare(b, 5, "solid") == 0;
+        fail(ErrorCode::CorruptData, "STL", "neither a binary STL (" + binary + ") nor an ASCII one (" +
+            (solid ? "it starts with 'solid' but holds binary data: a NUL byte in its first 4 KiB" : "no 'solid'") + ")");
       }
       return;
     }
@@ -106,6 +109,10 @@ bool parallelObj(const char* p, std::size_t size, TriangleMesh& mesh)
     if (!e) e = end;
     const char* b = q;
     const char* t = nullptr;
+    // a line continued on the next (a backslash at its end): the serial reader joins them
+    const char* last = e;
+    while (last > b && TextScanner::blank(last[-1])) --last;
+    if (last > b && last[-1] == '\\') return false;
     if (nextToken(b, e, t))
     {
       const std::size_t n = static_cast<std::size_t>(b - t);
@@ -240,8 +247,20 @@ TriangleMesh readObj(const std::vector<char>& data)
           (count == 1 ? what : plural) + " defined so far (OBJ counts from 1; negative counts back)");
     return v > 0 ? v - 1 : count + v;
   };
+  std::vector<std::string> more;
   while (s.next(t))
   {
+    // a line that ends in a backslash continues on the next (the OBJ specification's line
+    // continuation; "f 1 2 \" was "'\' is not an integer"); messages name the last line
+    while (!t.empty() && t.back().back() == '\\')
+    {
+      t.back().pop_back();
+      if (t.back().empty())
+        t.pop_back();
+      if (!s.next(more))
+        break;
+      t.insert(t.end(), more.begin(), more.end());
+    }
     if (t.empty())
       continue;
     if (t[0] == "vt")

@@ -116,6 +116,30 @@ TEST(MeshFile, ByteOrderMarkBeforeTheTextIsSkipped)
   expectError("v 0 0 0\n" + bom + "v 1 0 0\nv 1 1 0\nf 1 2 3\n", MeshFormat::Obj, "OBJ line 4: vertex index 3 out of range");
 }
 
+// The OBJ specification joins a line that ends in a backslash with the next
+// one ("f 1 2 \" then "3 4"); such files were refused with "'\' is not an integer".
+TEST(MeshFile, ObjLinesEndingInABackslashContinue)
+{
+  expectSquare(readText("v 0 0 0\nv 1 0 \\\n 0\nv 1 1 0\nv 0 1 0.5\nf 1 2 \\\n3 4\n", MeshFormat::Obj));
+  // CRLF, a backslash against the last token, a statement over three lines, a comment before the backslash
+  expectSquare(readText("v 0 0 0\r\nv 1 0 0\r\nv 1 1 0\r\nv 0 1 0.5\r\nf 1 2\\\r\n  3 \\ # corner 4 next\r\n 4\r\n",
+    MeshFormat::Obj));
+  // on the last line: nothing follows, the statement is the line
+  expectSquare(readText("v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0.5\nf 1 2 3 4 \\", MeshFormat::Obj));
+  // a message names the line where the statement ends
+  expectError("v 0 0 0\nv 1 0 0\nf 1 2 \\\n 9\n", MeshFormat::Obj, "OBJ line 4: vertex index 9 out of range");
+  // a file large enough for the parallel reader (4 MiB or more) gives the serial reader's mesh: a
+  // group name continued onto a 'v' line takes it (it is no vertex), and the faces count without it
+  std::string big = "g part \\\nv 5 5 5\n";
+  for (int i = 0; i < 120000; ++i) big += "v " + std::to_string(i) + " 0.25 0.125\nv 0 1 0\nv 0 0 1\n";
+  for (int i = 0; i < 120000; ++i) big += "f " + std::to_string(3 * i + 1) + " " + std::to_string(3 * i + 2) + " " + std::to_string(3 * i + 3) + "\n";
+  ASSERT_GT(big.size(), std::size_t(1) << 22);
+  const TriangleMesh m = readText(big, MeshFormat::Obj);
+  ASSERT_EQ(m.points.size(), 360000u);
+  EXPECT_EQ(m.points[0], (Vec3f{ 0, 0.25f, 0.125f }));
+  EXPECT_EQ(m.triangles.back(), (std::array<std::uint32_t, 3>{ 359997, 359998, 359999 }));
+}
+
 TEST(MeshFile, StlAsciiAndBinaryShareCorners)
 {
   const std::string ascii = "solid sq\nfacet normal 0 0 1\n outer loop\n  vertex 0 0 0\n  vertex 1 0 0\n  vertex 1 1 0\n"
@@ -195,6 +219,12 @@ TEST(MeshFile, MalformedInputsAreClearErrors)
     // a binary STL whose count disagrees with its size names both (it said only "size is not 84 + 50 x triangle count")
     { "STL wrong count", std::string(80, ' ') + std::string("\x05\0\0\0", 4) + std::string(150, '\0'), MeshFormat::Stl,
       "STL: neither a binary STL (its header announces 5 triangles, 84 + 50 x 5 = 334 bytes, but the file has 234 bytes) nor an ASCII one (no 'solid')" },
+    // a binary STL whose header starts with "solid" (many exporters write one) and whose size is off: it was
+    // "nor an ASCII one (no 'solid')" about a file that starts with 'solid'
+    { "STL solid header, wrong count", "solid part" + std::string(70, ' ') + std::string("\x05\0\0\0", 4) +
+      std::string(151, '\0'), MeshFormat::Stl,
+      "STL: neither a binary STL (its header announces 5 triangles, 84 + 50 x 5 = 334 bytes, but the file has 235 bytes) "
+      "nor an ASCII one (it starts with 'solid' but holds binary data: a NUL byte in its first 4 KiB)" },
     { "STL 4-vertex facet", "solid a\nfacet normal 0 0 1\nouter loop\nvertex 0 0 0\nvertex 1 0 0\nvertex 1 1 0\nvertex 0 1 0\nendloop\nendfacet\nendsolid\n", MeshFormat::Stl, "facet with 4" },
   };
   for (const Case& c : cases)

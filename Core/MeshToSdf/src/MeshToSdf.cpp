@@ -374,8 +374,13 @@ void warnIfPartsVanish(const MeshToSdfPrepared& mesh, const GridGeometry& grid, 
       small = small && b[3 + a] - b[a] < h;
       // no grid point k with lo < k < hi: one on the bounds is on the part's
       // surface at most, never inside it (a fitted grid puts one on the mesh's
-      // bounds, and a centred axis one on its middle)
-      between = between || std::floor(lo) + 1 >= hi;
+      // bounds, and a centred axis one on its middle). Within a thousandth of a
+      // voxel (the distances' finest step) counts as on the bounds: the fitted
+      // grid's point on them came out a hair inside in double arithmetic
+      // (29.000000000000004 against 29), and a small part far from the rest,
+      // which sets the bounds, vanished without the warning.
+      const double t = 1e-3;
+      between = between || std::floor(lo + t) + 1 >= hi - t;
     }
     vanish += small && between;
   }
@@ -409,8 +414,9 @@ void warnIfNothingInside(const MeshToSdfPrepared& mesh, const GridGeometry& grid
       << (options.sign == SignMode::WindingNumber ? " (|winding number| < 1/2 everywhere, as for a single open sheet)"
                                                   : "")
       << ", so the field has no zero crossing and meshing it gives no surface; close the mesh, or use the "
-         "pseudo-normal sign (each side of a sheet gets its own sign) or the unsigned distance meshed at a "
-         "positive iso-value (a shell around the sheet)";
+         "pseudo-normal sign (--sign pseudo, vtkMeshToSDF's PSEUDO_NORMAL, the editor's \"Pseudo-normal\": each "
+         "side of a sheet gets its own sign) or the unsigned distance meshed at a positive iso-value (a shell "
+         "around the sheet; vtkMeshToSDF's UNSIGNED, not in lvdif mesh-to-sdf)";
   }
   else
   {

@@ -55,8 +55,18 @@ struct ScriptRunner::Impl
   BrushShape Shape = BrushShape::Sphere;
   double Radius = 3;
   int StrokeLine = 0, StrokeColumn = 0;
+  std::size_t StrokeUndoCount = 0; // the editor's undo count at the open stroke's 'begin'
   bool StrokeOpen = false; // a stroke this script began is open (the editor may be the caller's)
   std::size_t TopDone = 0, TopTotal = 1;
+  // The script's own history: every edit command is one step (docs/SCRIPTING.md),
+  // also one that changed no voxel (a dab beside the canvas, `op paint` away from
+  // the surface), which the editor's history does not hold (its steps are the
+  // chunks written), so `undo` after it undid the edit before it. Done/Undone:
+  // the steps of this run since its start or its last `canvas`, true where the
+  // editor holds the step. RedoDropped: an edit since then, so the editor's redo
+  // steps from before the run (an attached editor's) are not the script's to redo.
+  std::vector<bool> Done, Undone;
+  bool RedoDropped = false;
 
   [[noreturn]] static void fail(int line, int col, const std::string& what)
   {
@@ -66,14 +76,33 @@ struct ScriptRunner::Impl
   void step(int line, int col)
   {
     if (++this->Owner->Steps > this->Options.maxSteps)
-      fail(line, col, "step limit of " + std::to_string(this->Options.maxSteps) + " exceeded (an endless loop?)");
+      fail(line, col, "step limit of " + std::to_string(this->Options.maxSteps) + " exceeded (an endless loop?" +
+          (this->Options.maxStepsRaisedBy.empty() ? std::string() : " If not, raise the limit with " + this->Options.maxStepsRaisedBy) +
+          ")");
     if ((this->Owner->Steps & 1023) == 0 && this->Options.interrupter)
       this->Options.interrupter->checkInterrupt();
+  }
+
+  void resetHistory()
+  {
+    this->Done.clear();
+    this->Undone.clear();
+    this->RedoDropped = false;
+  }
+
+  /// An edit command made one script step; `before`: the editor's undo count before it.
+  void edited(const Editor& ed, const EditResult& r, std::size_t before)
+  {
+    // the editor keeps a step for every edit that changed a voxel (a device's history may keep one more)
+    this->Done.push_back(r.changedVoxels > 0 || !r.changedChunks.empty() || ed.undoCount() > before);
+    this->Undone.clear();
+    this->RedoDropped = true;
   }
 
   void setVolume(DictionaryVolume* v)
   {
     this->Volume = v;
+    this->resetHistory();
     this->OwnedEd = std::make_unique<Editor>(*v);
     this->Ed = this->OwnedEd.get();
     this->Ed->stroke.radius = this->Radius;
@@ -401,7 +430,8 @@ struct ScriptRunner::Impl
       d.shape = c == "dab" ? this->Shape : c == "cube" ? BrushShape::Cube : BrushShape::Sphere;
       d.center = { a[0], a[1], a[2] };
       d.radius = c == "dab" ? this->Radius : this->positive(s, a[3], c == "cube" ? "half edge" : "radius");
-      ed.dab(d);
+      const std::size_t before = ed.undoCount();
+      this->edited(ed, ed.dab(d), before);
       ++this->Owner->Edits;
     }
     else if (c == "line")
@@ -409,11 +439,13 @@ struct ScriptRunner::Impl
       BrushSample p0, p1;
       p0.position = { a[0], a[1], a[2] };
       p1.position = { a[3], a[4], a[5] };
-      ed.strokeThrough({ p0, p1 });
+      const std::size_t before = ed.undoCount();
+      this->edited(ed, ed.strokeThrough({ p0, p1 }), before);
       ++this->Owner->Edits;
     }
     else if (c == "begin")
     {
+      this->StrokeUndoCount = ed.undoCount();
       ed.beginStroke();
       this->StrokeOpen = true;
       this->StrokeLine = s.line;
@@ -434,21 +466,30 @@ struct ScriptRunner::Impl
       if (!ed.strokeOpen())
         fail(s.line, s.column, "'end' without 'begin'");
       this->StrokeOpen = false; // endStroke closes it even when it fails
-      ed.endStroke();
+      this->edited(ed, ed.endStroke(), this->StrokeUndoCount);
       ++this->Owner->Edits;
     }
     // nothing to undo or redo is the script's mistake, named as the player names it
     // (both did nothing without a word: an `undo` after `canvas fill`, which clears
     // the history, or one `undo` too many ran on and saved the edits it meant to drop)
+    // (a step of the script's that changed nothing is undone and redone without the editor)
     else if (c == "undo")
     {
-      if (!ed.undo())
+      const bool held = this->Done.empty() || this->Done.back();
+      if (held && !ed.undo())
         fail(s.line, s.column, "'undo' has nothing to undo: no edit since the start or the last 'canvas'");
+      if (!this->Done.empty())
+        this->Done.pop_back();
+      this->Undone.push_back(held);
     }
     else if (c == "redo")
     {
-      if (!ed.redo())
+      const bool held = this->Undone.empty() || this->Undone.back();
+      if (held && ((this->Undone.empty() && this->RedoDropped) || !ed.redo()))
         fail(s.line, s.column, "'redo' has nothing to redo: no edit was undone since the last edit");
+      if (!this->Undone.empty())
+        this->Undone.pop_back();
+      this->Done.push_back(held);
     }
   }
 
@@ -486,6 +527,7 @@ struct ScriptRunner::Impl
       DictionaryVolume& v = *this->Volume;
       const Voxel fill = s.word == "fill" ? Voxel{ v.insideVoxel().sdf, v.colors().add(ed.brush.color) } : v.outsideVoxel();
       ed.fillVolume(fill); // not undoable: clears the history
+      this->resetHistory();
       return;
     }
     Index3 dims;
@@ -593,6 +635,7 @@ void ScriptRunner::run(const std::string& source)
   this->P->TopDone = 0;
   this->P->TopTotal = std::max<std::size_t>(1, prog.statements.size());
   this->P->StrokeOpen = false;
+  this->P->resetHistory(); // the caller's editor may have undone or redone since the last run
   try
   {
     this->P->run(prog.statements, true);

@@ -8,6 +8,7 @@
 
 #include <cctype>
 #include <cmath>
+#include <cstdio>
 #include <cstdlib>
 
 namespace lvdif
@@ -27,7 +28,9 @@ std::vector<Token> lex(const std::string& src)
     "lexing and parsing a script of " + formatBytes(src.size()));
   std::vector<Token> out;
   int line = 1, col = 1;
-  std::size_t i = 0;
+  // a UTF-8 byte order mark before the text (Windows editors write one) is not
+  // part of it: it was "line 1, column 1: unexpected character byte 239"
+  std::size_t i = src.compare(0, 3, "\xEF\xBB\xBF") == 0 ? 3 : 0;
   auto push = [&](Tok k, const std::string& text, int l, int c) {
     Token t;
     t.kind = k;
@@ -173,6 +176,30 @@ std::vector<Token> lex(const std::string& src)
     }
     const unsigned char u = static_cast<unsigned char>(ch);
     std::string shown = std::isprint(u) ? std::string("'") + ch + "'" : "byte " + std::to_string(int(u));
+    // a UTF-8 character (text copied from a web page or a word processor): shown whole, with its
+    // code point and, for the look-alikes of a space or a minus, what to type (it was "byte 194")
+    const int more = (u & 0xE0) == 0xC0 ? 1 : (u & 0xF0) == 0xE0 ? 2 : (u & 0xF8) == 0xF0 ? 3 : -1;
+    if (more > 0)
+    {
+      std::uint32_t cp = u & (0x3F >> more);
+      bool valid = i + static_cast<std::size_t>(more) < src.size();
+      for (int k = 1; valid && k <= more; ++k)
+      {
+        const unsigned char b = static_cast<unsigned char>(src[i + static_cast<std::size_t>(k)]);
+        valid = (b & 0xC0) == 0x80;
+        cp = (cp << 6) | (b & 0x3F);
+      }
+      if (valid && cp >= 0x80)
+      {
+        char hex[16];
+        std::snprintf(hex, sizeof hex, "U+%04X", static_cast<unsigned>(cp));
+        const bool space = cp == 0xA0 || (cp >= 0x2000 && cp <= 0x200B) || cp == 0x202F || cp == 0x3000;
+        const bool minus = cp == 0x2212 || (cp >= 0x2010 && cp <= 0x2015);
+        shown = space ? std::string(hex) + " (a no-break or other wide space: type a plain space)"
+          : "'" + src.substr(i, static_cast<std::size_t>(more) + 1) + "' " + hex +
+            (minus ? " (a dash or minus sign: type '-')" : " (scripts are ASCII outside comments)");
+      }
+    }
     throw ScriptError(ErrorCode::ParseError, l, c, "unexpected character " + shown);
   }
   push(Tok::End, "end of script", line, col);

@@ -14,6 +14,7 @@
 #include <chrono>
 #include <cmath>
 #include <fstream>
+#include <memory>
 #include <random>
 #include <set>
 #include <sstream>
@@ -189,6 +190,16 @@ TEST(Script, StepLimitStopsEndlessLoops)
   const Where w = errorOf("x = 0\nwhile 1 { x = x + 1 }", o);
   EXPECT_EQ(w.line, 2);
   EXPECT_NE(w.detail.find("step limit of 10000 exceeded"), std::string::npos);
+  EXPECT_EQ(w.detail, "step limit of 10000 exceeded (an endless loop?)");
+  // a caller that lets the user raise the limit names how (`lvdif script --max-steps N`): a long script
+  // that is no endless loop was stopped with nothing to do about it
+  o.maxStepsRaisedBy = "--max-steps N";
+  EXPECT_EQ(errorOf("x = 0\nwhile 1 { x = x + 1 }", o).detail,
+    "step limit of 10000 exceeded (an endless loop? If not, raise the limit with --max-steps N)");
+  o.maxSteps = 100000; // and the raised limit is the one that holds
+  ScriptRunner r(o);
+  r.run("x = 0\nfor i in 0..20000 { x = x + 1 }");
+  EXPECT_EQ(r.variable("x"), 20000);
 }
 
 TEST(Script, CancelStopsTheScript)
@@ -228,6 +239,106 @@ TEST(Script, UndoAndRedoWithNothingToActOnAreErrors)
   e.brush.color = Rgba{ 255, 0, 0, 255 };
   e.dab(Dab{ BrushShape::Sphere, { 8, 8, 8 }, 3, {} });
   EXPECT_EQ(edittest::countDifferences(*r.volume(), v), 0);
+}
+
+// Every edit command is one undoable step (docs/SCRIPTING.md), also one that
+// changes no voxel: the editor keeps no step for it, so `undo` after it undid
+// the edit before it (`sphere` then a `sphere` beside the canvas then `undo` left
+// an empty canvas). The oracle is an editor that made only the edits meant to stay.
+TEST(Script, AnEditThatChangesNothingIsAStepOfItsOwn)
+{
+  DictionaryVolume sphereOnly(edittest::options(32, 32));
+  {
+    Editor e(sphereOnly);
+    e.dab(Dab{ BrushShape::Sphere, { 16, 16, 16 }, 6, {} });
+  }
+  const DictionaryVolume empty(edittest::options(32, 32));
+  const std::string sphere = "canvas 32\nsphere 16 16 16 6\n";
+  auto volumeAfter = [](const std::string& src) {
+    auto r = std::make_unique<ScriptRunner>();
+    r->run(src);
+    return r;
+  };
+  // a dab beside the canvas, a paint away from the surface, a line and a stroke beside the canvas: undone alone
+  for (const char* noop : { "sphere 1000 1000 1000 3", "op paint\nsphere 3 3 3 1", "line 900 900 900 950 900 900",
+         "begin\npoint 900 900 900\npoint 950 900 900\nend" })
+  {
+    const auto r = volumeAfter(sphere + noop + "\nundo");
+    EXPECT_EQ(edittest::countDifferences(*r->volume(), sphereOnly), 0) << noop;
+    // the next undo is the sphere's, and the one after has nothing left
+    EXPECT_EQ(edittest::countDifferences(*volumeAfter(sphere + noop + "\nundo\nundo")->volume(), empty), 0) << noop;
+    const Where w = errorOf(sphere + noop + "\nundo\nundo\nundo");
+    EXPECT_EQ(w.detail, "'undo' has nothing to undo: no edit since the start or the last 'canvas'") << noop;
+  }
+  // redo of the step that changed nothing, then undo: the sphere stays
+  EXPECT_EQ(edittest::countDifferences(
+              *volumeAfter(sphere + "sphere 1000 1000 1000 3\nundo\nredo\nundo")->volume(), sphereOnly), 0);
+  // undo of both, then redo of both in order
+  EXPECT_EQ(edittest::countDifferences(
+              *volumeAfter(sphere + "sphere 1000 1000 1000 3\nundo\nundo\nredo\nredo")->volume(), sphereOnly), 0);
+  // a new edit, even one that changes nothing, drops what was undone (the sphere came back by `redo`)
+  Where w = errorOf(sphere + "undo\nsphere 1000 1000 1000 3\nredo");
+  EXPECT_EQ(w.line, 5);
+  EXPECT_EQ(w.detail, "'redo' has nothing to redo: no edit was undone since the last edit");
+  // a script driving an editor: its `undo` past its own steps undoes the editor's edits before the run
+  DictionaryVolume v(edittest::options(32, 32));
+  Editor ed(v);
+  ed.dab(Dab{ BrushShape::Sphere, { 16, 16, 16 }, 6, {} });
+  ScriptRunner r;
+  r.attach(ed);
+  r.run("sphere 1000 1000 1000 3\nundo");
+  EXPECT_EQ(edittest::countDifferences(v, sphereOnly), 0);
+  r.run("sphere 1000 1000 1000 3\nundo\nundo");
+  EXPECT_EQ(edittest::countDifferences(v, empty), 0);
+}
+
+// A UTF-8 byte order mark before the text (Windows editors write one) is
+// skipped, as the mesh readers skip it: a script saved so failed at once with
+// "line 1, column 1: unexpected character byte 239".
+TEST(Script, AByteOrderMarkBeforeTheTextIsSkipped)
+{
+  ScriptRunner a, b;
+  a.run("\xEF\xBB\xBF" "canvas 16\nsphere 8 8 8 3\n");
+  b.run("canvas 16\nsphere 8 8 8 3\n");
+  EXPECT_EQ(a.edits(), 1u);
+  EXPECT_EQ(edittest::countDifferences(*a.volume(), *b.volume()), 0);
+  // positions on the first line are counted after it
+  Where w = errorOf("\xEF\xBB\xBF" "frob 1");
+  EXPECT_EQ(w.line, 1);
+  EXPECT_EQ(w.column, 1);
+  EXPECT_EQ(w.detail, "unknown command 'frob'");
+  w = errorOf("\xEF\xBB\xBF" "print 1 +");
+  EXPECT_EQ(w.column, 10);
+  // only before the text: elsewhere it is still a character no script has
+  w = errorOf("print 1\n\xEF\xBB\xBF" "print 2");
+  EXPECT_EQ(w.line, 2);
+  EXPECT_EQ(w.column, 1);
+  EXPECT_NE(w.detail.find("unexpected character"), std::string::npos) << w.detail;
+}
+
+// A character outside ASCII (text copied from a web page or a word processor)
+// is named whole with its code point, and a look-alike of a space or a minus
+// with what to type: a no-break space between arguments was "unexpected
+// character byte 194", at the right place but with nothing to recognise it by.
+TEST(Script, CharactersOutsideAsciiAreNamed)
+{
+  Where w = errorOf("canvas 16\nsphere 8,\xC2\xA0" "8, 8, 3");
+  EXPECT_EQ(w.line, 2);
+  EXPECT_EQ(w.column, 10);
+  EXPECT_EQ(w.detail, "unexpected character U+00A0 (a no-break or other wide space: type a plain space)");
+  w = errorOf("print 3 \xE2\x88\x92 1");
+  EXPECT_EQ(w.column, 9);
+  EXPECT_EQ(w.detail, "unexpected character '\xE2\x88\x92' U+2212 (a dash or minus sign: type '-')");
+  w = errorOf("print 3 \xE2\x80\x93 1");
+  EXPECT_EQ(w.detail, "unexpected character '\xE2\x80\x93' U+2013 (a dash or minus sign: type '-')");
+  w = errorOf("r\xC3\xA9" "sultat = 1");
+  EXPECT_EQ(w.column, 2);
+  EXPECT_EQ(w.detail, "unexpected character '\xC3\xA9' U+00E9 (scripts are ASCII outside comments)");
+  // in a comment any text is fine; a byte that starts no UTF-8 character, or a cut one, is a byte
+  EXPECT_EQ(errorOf("# r\xC3\xA9sultat \xE2\x88\x92 \xC2\xA0\nprint 1").detail, "no error");
+  EXPECT_EQ(errorOf("print \xFF").detail, "unexpected character byte 255");
+  EXPECT_EQ(errorOf("print \xC3").detail, "unexpected character byte 195");
+  EXPECT_EQ(errorOf("print \xE2\x88 1").detail, "unexpected character byte 226");
 }
 
 TEST(Script, CommandsDriveTheSameEditsAsTheEditor)

@@ -52,6 +52,9 @@ private:
 struct ScriptOptions
 {
   std::uint64_t maxSteps = 50'000'000;
+  /// How the caller lets a user raise maxSteps (e.g. "--max-steps N"), named in the
+  /// step-limit error, or empty (the message then only asks about an endless loop).
+  std::string maxStepsRaisedBy;
   /// Options of volumes made by `canvas` (its dims replace options.dims).
   VolumeOptions canvas;
   /// Output of `print` (default: standard output).
