@@ -164,7 +164,7 @@ run lvdvp-twice 1 "spacing given twice" -- "$exe" convert pv/twice.lvdvp x.lvdv
 # (it was found after the conversion: "piece 0: cannot write ...")
 mkdir -p pv/busy_0.lvdv
 printf 'OFF\n4 4 0\n0 0 0\n1 0 0\n0 1 0\n0 0 1\n3 0 2 1\n3 0 1 3\n3 0 3 2\n3 1 2 3\n' >tet.off
-run lvdvp-piece 2 "cannot write 'pv/busy_0.lvdv': not a regular file" -- "$exe" mesh-to-sdf tet.off pv/busy.lvdvp --dims 64
+run lvdvp-piece 2 "cannot write 'pv/busy_0.lvdv': a folder, not a regular file" -- "$exe" mesh-to-sdf tet.off pv/busy.lvdvp --dims 64
 grep -q "mesh to SDF" lvdvp-piece.err && note "lvdvp-piece: converted before refusing: $(head -c 300 lvdvp-piece.err)"
 # a garbage 3 GiB (sparse) mesh is refused after its head
 printf 'garbage' >big.ply && truncate -s 3G big.ply
