@@ -440,7 +440,18 @@ NearestResult Bvh::nearest(V3 p, std::int32_t hint, double maxDist2, const std::
       {
         const std::int32_t ti = this->Order[i];
         if (ti == best.tri || (skipCount > 0 && skipped(ti))) continue;
-        takeIfNearer(best, p, this->Tris[ti].v, ti);
+        const Tri& t = this->Tris[ti];
+        const Closest c = closestPointOnTriangle(p, t.v[0], t.v[1], t.v[2]);
+        const V3 d = c.point - p;
+        const double d2 = dot(d, d);
+        // ties go to the lowest index, so every accelerator (and the GPU) picks
+        // the same triangle, whose normal Normal mode uses
+        if (d2 < best.dist2 || (d2 == best.dist2 && (best.tri < 0 || ti < best.tri)))
+        {
+          best.dist2 = d2;
+          best.tri = ti;
+          best.closest = c;
+        }
       }
       continue;
     }

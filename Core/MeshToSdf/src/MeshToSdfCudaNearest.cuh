@@ -59,7 +59,17 @@ __device__ NearestResult nearestDev(const DevBvh& b, V3 p, int hintSlot, double 
       {
         const int ti = b.order[i];
         if (ti == best.tri) continue;
-        if (takeIfNearer(best, p, b.leaf[i].v, ti)) bestSlot = i;
+        const GpuTri& t = b.leaf[i];
+        const Closest c = closestPointOnTriangle(p, t.v[0], t.v[1], t.v[2]);
+        const V3 d = c.point - p;
+        const double d2 = dot(d, d);
+        if (d2 < best.dist2 || (d2 == best.dist2 && (best.tri < 0 || ti < best.tri)))
+        {
+          best.dist2 = d2;
+          best.tri = ti;
+          best.closest = c;
+          bestSlot = i;
+        }
       }
       continue;
     }

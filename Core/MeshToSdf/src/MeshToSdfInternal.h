@@ -111,22 +111,6 @@ struct NearestResult
   Closest closest;
 };
 
-/// One triangle ti (corners v) of a nearest-triangle query at p: taken when
-/// nearer than `best`, or as near with a lower index. Ties go to the lowest
-/// index, so every accelerator and the GPU pick the same triangle, whose
-/// normal the Normal sign reads. One source for Bvh::nearest and nearestDev.
-LVDIF_HD bool takeIfNearer(NearestResult& best, V3 p, const V3 v[3], std::int32_t ti)
-{
-  const Closest c = closestPointOnTriangle(p, v[0], v[1], v[2]);
-  const V3 d = c.point - p;
-  const double d2 = dot(d, d);
-  if (!(d2 < best.dist2 || (d2 == best.dist2 && (best.tri < 0 || ti < best.tri)))) return false;
-  best.dist2 = d2;
-  best.tri = ti;
-  best.closest = c;
-  return true;
-}
-
 /// A voxel's value from its nearest triangle: the sign s times the distance in
 /// output units (toOut per world unit), saturated at the band. One expression
 /// for the CPU's distance rows and the sharp features' voxels
