@@ -335,8 +335,10 @@ TEST(LVDIFFiles, ParaViewHintsListTheRegistrysExtensions)
 
 namespace
 {
-/// An ASCII .vti of an 8 x 8 x 8 image (sdf = x - 3.5), written by VTK in `pieces` pieces.
-std::string writeSmallVti(const std::string& path, int pieces)
+/// An 8 x 8 x 8 image (sdf = x - 3.5, spacing 0.5 1 2) written by VTK's
+/// writer as `setUp` sets it up: the file's text, or "" if the write failed.
+template <typename SetUp>
+std::string writeSmallVtiWith(const std::string& path, SetUp setUp)
 {
   vtkNew<vtkImageData> image;
   image->SetDimensions(8, 8, 8);
@@ -349,10 +351,18 @@ std::string writeSmallVti(const std::string& path, int pieces)
   vtkNew<vtkXMLImageDataWriter> writer;
   writer->SetFileName(path.c_str());
   writer->SetInputData(image);
-  writer->SetDataModeToAscii();
-  writer->SetNumberOfPieces(pieces);
+  setUp(writer.Get());
   if (writer->Write() != 1) return "";
   return slurp(path);
+}
+
+/// The small image as ASCII in `pieces` pieces.
+std::string writeSmallVti(const std::string& path, int pieces)
+{
+  return writeSmallVtiWith(path, [pieces](vtkXMLImageDataWriter* w) {
+    w->SetDataModeToAscii();
+    w->SetNumberOfPieces(pieces);
+  });
 }
 
 /// The text with `from` replaced by `to` (which must occur once).
@@ -432,25 +442,15 @@ TEST(LVDIFFiles, AVtiWithABadSpacingIsRefused)
 
 namespace
 {
-/// The 8 x 8 x 8 image of writeSmallVti, compressed (zlib), in a data mode.
+/// The small image of writeSmallVti, compressed (zlib), in a data mode.
 std::string writeCompressedVti(const std::string& path, int mode, bool encoded, bool header64)
 {
-  vtkNew<vtkImageData> image;
-  image->SetDimensions(8, 8, 8);
-  vtkNew<vtkFloatArray> sdf;
-  sdf->SetName("sdf");
-  sdf->SetNumberOfTuples(8 * 8 * 8);
-  for (vtkIdType i = 0; i < 8 * 8 * 8; ++i) sdf->SetValue(i, float(i % 8) - 3.5f);
-  image->GetPointData()->SetScalars(sdf);
-  vtkNew<vtkXMLImageDataWriter> writer;
-  writer->SetFileName(path.c_str());
-  writer->SetInputData(image);
-  writer->SetCompressorTypeToZLib();
-  writer->SetDataMode(mode);
-  writer->SetEncodeAppendedData(encoded);
-  if (header64) writer->SetHeaderTypeToUInt64();
-  if (writer->Write() != 1) return "";
-  return slurp(path);
+  return writeSmallVtiWith(path, [&](vtkXMLImageDataWriter* w) {
+    w->SetCompressorTypeToZLib();
+    w->SetDataMode(mode);
+    w->SetEncodeAppendedData(encoded);
+    if (header64) w->SetHeaderTypeToUInt64();
+  });
 }
 } // namespace
 
