@@ -115,20 +115,16 @@ bool append(lvdif::ChunkMesh& m, const lvdif::DictionaryVolume& v, float iso)
       const std::int64_t face = side == 0 ? 0 : n[a] - 1;   // the face's points along a
       const std::int64_t cellA = side == 0 ? 0 : n[a] - 2;  // the boundary cells along a
       const int outward = side == 0 ? -1 : 1;
-      auto point = [&](std::int64_t i, std::int64_t j) {
+      // the index (i, j) in the face's plane at `along` on axis a
+      auto onFace = [&](std::int64_t along, std::int64_t i, std::int64_t j) {
         lvdif::Index3 p;
-        p[a] = face;
+        p[a] = along;
         p[u] = i;
         p[w] = j;
         return p;
       };
-      auto cellOf = [&](std::int64_t i, std::int64_t j) {
-        lvdif::Index3 c;
-        c[a] = cellA;
-        c[u] = i;
-        c[w] = j;
-        return c;
-      };
+      auto point = [&](std::int64_t i, std::int64_t j) { return onFace(face, i, j); };
+      auto cellOf = [&](std::int64_t i, std::int64_t j) { return onFace(cellA, i, j); };
       // Squares wholly inside and of one colour are joined into rectangles
       // (a Full canvas's face is one quad per chunk, not two triangles per
       // voxel: 3.1 million triangles and 3 GB on a 512^3 canvas): runs along
