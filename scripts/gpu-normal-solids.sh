@@ -27,4 +27,7 @@ grep -E "^## |^mesh:|^machine:|^\| (cold|warm|prepared)|sharp features|rc=[1-9]"
 # one warm normal call's whole trace on CUDA (where its time goes)
 run 30 $M "$A" 1024 normal auto bvh volume 8 2 cold,warm@normal --trace
 awk '/^## .*cold,warm@normal --trace/{on=1} on' "$L" | grep -E "^\[mesh to SDF\]|^\| warm" | tail -40 | tee -a "$OUT/summary.txt"
+# sub2's warm normal call: where its build goes (the parts, the solid check's steps)
+run 40 $M "sub2:$A" 1024 normal auto bvh volume 8 2 cold,warm@winding,warm@normal --trace
+awk '/^## .*sub2.*cold,warm@winding,warm@normal --trace/{on=1} on' "$L" | grep -E "^\[mesh to SDF\]|^\| warm" | tail -45 | tee -a "$OUT/summary.txt"
 echo "total $(( $(date +%s) - T0 )) s" | tee -a "$OUT/summary.txt"
