@@ -543,7 +543,7 @@ MeshToSdfStats meshToSdf(const MeshToSdfPrepared& mesh, const GridGeometry& grid
   stats.device = chooseDevice(mesh, options, stats);
   auto engine = makeEngine(mesh, grid, options, options.bandWidth, stats.device, stats);
   const bool sharp = given.sign == SignMode::Normal && stats.signByWinding;
-  std::future<std::vector<SharpVoxel>> regions;
+  std::future<SharpRegionVoxels> regions;
   auto startRegions = [&](bool onGpu) {
     if (sharp)
       regions = sharpRegions(mesh, grid, extent, outputScale(grid, options), options.bandWidth, interrupter, onGpu,
@@ -564,7 +564,9 @@ MeshToSdfStats meshToSdf(const MeshToSdfPrepared& mesh, const GridGeometry& grid
   }
   if (sharp)
   {
-    const std::vector<SharpVoxel> voxels = regions.get();
+    const SharpRegionVoxels r = regions.get();
+    r.warnIfMoved(stats);
+    const std::vector<SharpVoxel>& voxels = r.voxels;
     const std::int64_t nx = extent.hi[0] - extent.lo[0] + 1, ny = extent.hi[1] - extent.lo[1] + 1;
     for (const SharpVoxel& v : voxels)
       out[(v.i - extent.lo[0]) + nx * ((v.j - extent.lo[1]) + ny * (v.k - extent.lo[2]))] = v.value;
@@ -628,7 +630,7 @@ MeshToSdfStats meshToSdf(const MeshToSdfPrepared& mesh, DictionaryVolume& volume
   stats.device = chooseDevice(mesh, options, stats);
   auto engine = makeEngine(mesh, grid, opts, volume.bandWidth(), stats.device, stats);
   const bool sharp = given.sign == SignMode::Normal && stats.signByWinding;
-  std::future<std::vector<SharpVoxel>> regions;
+  std::future<SharpRegionVoxels> regions;
   auto startRegions = [&](bool onGpu) {
     if (sharp)
       regions = sharpRegions(mesh, grid, whole, outputScale(grid, opts), volume.bandWidth(), interrupter, onGpu,
@@ -670,7 +672,9 @@ MeshToSdfStats meshToSdf(const MeshToSdfPrepared& mesh, DictionaryVolume& volume
   }
   if (sharp)
   {
-    std::vector<SharpVoxel> voxels = regions.get();
+    SharpRegionVoxels r = regions.get();
+    r.warnIfMoved(stats);
+    std::vector<SharpVoxel>& voxels = r.voxels;
     const double t0 = now();
     storeSharpVoxels(volume, voxels);
     stats.sharpVoxels = static_cast<std::int64_t>(voxels.size());

@@ -107,6 +107,10 @@ KeyCopyCounts keyCopyCounts();
 /// fallback, as if pinned host memory were refused.
 void refusePinnedKeys(bool refuse);
 
+/// Tests: true makes sharpRegionVoxelsOnDevice fail (a DeviceFailure, as
+/// a CUDA call that failed), so that the CPU's fallback can be tested.
+void failSharpRegionsOnDevice(bool fail);
+
 /// Tests: the mesh tree's leaf copies as the device copy gathers them from
 /// the welded mesh (they must equal leafCopies(bvh)).
 std::vector<detail::meshtosdf::LeafTri> meshLeavesOnDevice(

@@ -12,6 +12,7 @@
 #include "lvdif/CudaCheck.cuh"
 
 #include <algorithm>
+#include <atomic>
 #include <tuple>
 #include <vector>
 
@@ -125,13 +126,21 @@ private:
   cudaStream_t S;
   std::vector<void*> Ptrs;
 };
+std::atomic<bool> failForTests{ false };
 } // namespace
+
+void failSharpRegionsOnDevice(bool fail)
+{
+  failForTests.store(fail);
+}
 
 std::vector<SharpVoxel> sharpRegionVoxelsOnDevice(const DeviceMesh& device, const SharpFeatures& sharp,
   const std::vector<SharpBrick>& bricks, const GridGeometry& grid, const VoxelBox& extent, double toOut, double band)
 {
   std::vector<SharpVoxel> out;
   if (bricks.empty()) return out;
+  if (failForTests.load())
+    throw Error(ErrorCode::DeviceFailure, "CUDA: sharp features' regions: failed on purpose (failSharpRegionsOnDevice)");
   const auto& mesh = static_cast<const CudaMesh&>(device);
   const PreparedMesh& prepared = mesh.prepared();
   std::vector<SharpFeatureDev> features;

@@ -68,7 +68,7 @@ MeshToSdfOptions signOfSolids(const MeshToSdfPrepared& mesh, const MeshToSdfOpti
   return o;
 }
 
-std::future<std::vector<SharpVoxel>> sharpRegions(const MeshToSdfPrepared& mesh, const GridGeometry& grid,
+std::future<SharpRegionVoxels> sharpRegions(const MeshToSdfPrepared& mesh, const GridGeometry& grid,
   const VoxelBox& extent, double toOut, double band, Interrupter& interrupter, bool onGpu, bool tracePhases)
 {
   return std::async(onGpu ? std::launch::async : std::launch::deferred,
@@ -81,23 +81,41 @@ std::future<std::vector<SharpVoxel>> sharpRegions(const MeshToSdfPrepared& mesh,
       const std::vector<SharpBrick> bricks = sharpRegionBricks(sharp, *bvh, grid, extent, interrupter);
       trace(("sharp features' regions: " + std::to_string(bricks.size()) + " bricks").c_str(), now() - t0);
       const double t1 = now();
-      std::vector<SharpVoxel> voxels;
+      SharpRegionVoxels r;
+      bool onCpu = !onGpu;
       if (onGpu)
       {
-        double unused = 0;
-        voxels = meshtosdf_cuda::sharpRegionVoxelsOnDevice(
-          impl.deviceMesh(false, false, unused), sharp, bricks, grid, extent, toOut, band);
+        try
+        {
+          double unused = 0;
+          r.voxels = meshtosdf_cuda::sharpRegionVoxelsOnDevice(
+            impl.deviceMesh(false, false, unused), sharp, bricks, grid, extent, toOut, band);
+        }
+        catch (const Error& e)
+        {
+          // the CPU's step 2 computes the same voxels (tested): a GPU that
+          // fails here (out of memory beside the pass) costs time, not the call
+          if (e.code() == ErrorCode::Cancelled) throw;
+          r.gpuFailure = e.what();
+          r.voxels.clear();
+          onCpu = true;
+        }
         interrupter.checkInterrupt();
       }
-      else
-      {
-        voxels = sharpRegionVoxels(impl.mesh, sharp, *bvh, bricks, grid, extent, toOut, band, interrupter);
-      }
-      trace(("sharp features' regions: " + std::to_string(voxels.size()) + " voxels" + (onGpu ? " (GPU)" : ""))
+      if (onCpu) r.voxels = sharpRegionVoxels(impl.mesh, sharp, *bvh, bricks, grid, extent, toOut, band, interrupter);
+      trace(("sharp features' regions: " + std::to_string(r.voxels.size()) + " voxels" + (onCpu ? "" : " (GPU)"))
               .c_str(),
         now() - t1);
-      return voxels;
+      return r;
     });
+}
+
+void SharpRegionVoxels::warnIfMoved(MeshToSdfStats& stats) const
+{
+  if (this->gpuFailure.empty()) return;
+  stats.warnings.push_back("mesh to SDF: the sharp features' regions were computed on the CPU (the same values, "
+                           "more time): their GPU step failed: " +
+    this->gpuFailure);
 }
 
 void storeSharpVoxels(DictionaryVolume& volume, std::vector<SharpVoxel>& voxels)

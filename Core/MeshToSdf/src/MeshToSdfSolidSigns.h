@@ -36,8 +36,16 @@ MeshToSdfOptions signOfSolids(const MeshToSdfPrepared& mesh, const MeshToSdfOpti
 /// like every accelerator) on the GPU for a call on CUDA (onGpu: a thread of
 /// its own beside the session's kernels; the device copy of the mesh must
 /// exist, so open the session first), else on the CPU when get() is called,
-/// after the CPU's pass (both use every thread).
-std::future<std::vector<SharpVoxel>> sharpRegions(const MeshToSdfPrepared& mesh, const GridGeometry& grid,
+/// after the CPU's pass (both use every thread). A GPU step that fails
+/// (not a cancel) is done again on the CPU, with a warning (gpuFailure).
+struct SharpRegionVoxels
+{
+  std::vector<SharpVoxel> voxels;
+  std::string gpuFailure; // why step 2 left the GPU for the CPU (empty: it did not)
+  /// A warning in stats when step 2 moved to the CPU.
+  void warnIfMoved(MeshToSdfStats& stats) const;
+};
+std::future<SharpRegionVoxels> sharpRegions(const MeshToSdfPrepared& mesh, const GridGeometry& grid,
   const VoxelBox& extent, double toOut, double band, Interrupter& interrupter, bool onGpu, bool tracePhases);
 
 /// The sharp regions' voxels into the volume, chunk by chunk on the threads

@@ -378,6 +378,42 @@ TEST(MeshToSdfSolid, SharpRegionsOnTheGpuEqualTheCpu)
   EXPECT_GT(compared, 0);
 }
 
+/// A GPU whose step 2 fails leaves it to the CPU: the same floats, and a
+/// warning that says so (the call does not fail).
+TEST(MeshToSdfSolid, SharpRegionsFallBackToTheCpuWhenTheGpuFails)
+{
+  if (!cuda::available()) GTEST_SKIP() << "no CUDA device";
+  const TriangleMesh mesh = spikyBall();
+  const GridGeometry g = fitGridToMesh(mesh, 40, 3);
+  std::vector<float> onGpu(static_cast<std::size_t>(g.count())), fellBack(onGpu.size());
+  MeshToSdfOptions o;
+  o.sign = SignMode::Normal;
+  o.bandWidth = 3;
+  o.device = Device::Cuda;
+  const MeshToSdfStats a = meshToSdf(mesh, FloatGridView{ onGpu.data(), g }, o);
+  ASSERT_TRUE(a.signByWinding);
+  ASSERT_GT(a.sharpVoxels, 0);
+  for (const std::string& w : a.warnings) EXPECT_EQ(w.find("sharp features' regions"), std::string::npos) << w;
+  detail::meshtosdf_cuda::failSharpRegionsOnDevice(true);
+  MeshToSdfStats b;
+  try
+  {
+    b = meshToSdf(mesh, FloatGridView{ fellBack.data(), g }, o);
+  }
+  catch (...)
+  {
+    detail::meshtosdf_cuda::failSharpRegionsOnDevice(false);
+    throw;
+  }
+  detail::meshtosdf_cuda::failSharpRegionsOnDevice(false);
+  EXPECT_EQ(b.sharpVoxels, a.sharpVoxels);
+  EXPECT_EQ(differences(onGpu, fellBack).differ, 0);
+  bool warned = false;
+  for (const std::string& w : b.warnings)
+    warned = warned || (w.find("computed on the CPU") != std::string::npos && w.find("on purpose") != std::string::npos);
+  EXPECT_TRUE(warned) << "no warning of the CPU fallback";
+}
+
 /// A mesh that is not a solid's boundary keeps the pseudo-normal path, and
 /// its field is unchanged by the option.
 TEST(MeshToSdfSolid, OthersKeepThePseudoNormalPath)

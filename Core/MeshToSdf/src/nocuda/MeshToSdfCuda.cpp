@@ -18,6 +18,8 @@ std::unique_ptr<Session> openSession(const DeviceMesh&, const GridGeometry&, con
   throw Error(ErrorCode::Unsupported, "mesh to SDF: this build has no CUDA");
 }
 
+void failSharpRegionsOnDevice(bool) {}
+
 std::vector<detail::meshtosdf::SharpVoxel> sharpRegionVoxelsOnDevice(const DeviceMesh&,
   const detail::meshtosdf::SharpFeatures&, const std::vector<detail::meshtosdf::SharpBrick>&, const GridGeometry&,
   const VoxelBox&, double, double)
