@@ -273,15 +273,24 @@ NearestIndex::NearestIndex(const TriList& tris)
   }
   this->Scale = scale;
   if (n == 0) return;
+  double t0 = now();
   Builder b(refs);
   b.buildAll();
+  trace("nearest index: binary tree", now() - t0);
+  t0 = now();
   this->PosOf.assign(n, -1);
-  this->Tris.reserve(n);
   this->Nodes.reserve(n / 2 + 1);
 
+  // a leaf's record is written after the layout (below, on the threads):
+  // the layout only assigns its position
+  std::vector<std::int32_t> triAt; // position -> triangle
+  triAt.reserve(n);
   auto addTri = [&](std::int32_t t) {
+    triAt.push_back(t);
+    return ~static_cast<std::int32_t>(triAt.size() - 1);
+  };
+  auto packTri = [&](std::int32_t t, Packed& p, PlanesF& f) {
     const Tri& src = tris[static_cast<std::size_t>(t)];
-    Packed p;
     for (int k = 0; k < 3; ++k) p.v[k] = src.v[k];
     // plane bound only where the normal's direction is accurate: the cross
     // product's rounding tilts it by about 2^-50 |e1||e2| / |e1 x e2|; slivers
@@ -308,9 +317,6 @@ NearestIndex::NearestIndex(const TriList& tris)
       }
     }
     p.index = t;
-    this->PosOf[static_cast<std::size_t>(t)] = static_cast<std::int32_t>(this->Tris.size());
-    this->Tris.push_back(p);
-    PlanesF f;
     for (int k = 0; k < 4; ++k)
     {
       f.x[k] = static_cast<float>(p.plane[k][0]);
@@ -318,8 +324,6 @@ NearestIndex::NearestIndex(const TriList& tris)
       f.z[k] = static_cast<float>(p.plane[k][2]);
       f.w[k] = static_cast<float>(p.plane[k][3]);
     }
-    this->TriPlanes.push_back(f);
-    return ~static_cast<std::int32_t>(this->Tris.size() - 1);
   };
 
   // a child's slab: its area-weighted mean normal rounded to float, and the
@@ -357,6 +361,8 @@ NearestIndex::NearestIndex(const TriList& tris)
 #pragma omp parallel for schedule(dynamic, 256)
   for (std::int64_t i = 0; i < static_cast<std::int64_t>(b.Nodes.size()); ++i)
     childSlab(b.Nodes[static_cast<std::size_t>(i)], slabOf[static_cast<std::size_t>(i)].data());
+  trace("nearest index: slabs", now() - t0);
+  t0 = now();
 
   // collapse: open the child of largest surface area until four, then emit
   // in preorder (children's triangles and nodes laid out as they are visited)
@@ -420,6 +426,19 @@ NearestIndex::NearestIndex(const TriList& tris)
     return id;
   };
   emit(emit, 0, 1);
+  trace("nearest index: 4-wide layout", now() - t0);
+  t0 = now();
+  const auto placed = static_cast<std::int64_t>(triAt.size());
+  resizeLargeForOverwrite(this->Tris, triAt.size());
+  resizeLargeForOverwrite(this->TriPlanes, triAt.size());
+#pragma omp parallel for schedule(static)
+  for (std::int64_t pos = 0; pos < placed; ++pos)
+  {
+    const std::int32_t t = triAt[static_cast<std::size_t>(pos)];
+    packTri(t, this->Tris[static_cast<std::size_t>(pos)], this->TriPlanes[static_cast<std::size_t>(pos)]);
+    this->PosOf[static_cast<std::size_t>(t)] = static_cast<std::int32_t>(pos);
+  }
+  trace("nearest index: leaf records", now() - t0);
   this->Depth = maxDepth;
   require(this->Depth <= 80, "mesh to SDF: nearest-triangle tree too deep");
 }

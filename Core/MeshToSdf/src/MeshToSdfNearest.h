@@ -121,14 +121,14 @@ private:
   void traverseRowSse(NearestRowState& s) const;
   void traverseRowAvx2(NearestRowState& s) const;
   std::vector<Node> Nodes;
-  std::vector<Packed> Tris;          // in traversal order
+  LargeVector<Packed> Tris;          // in traversal order
   /// Packed::plane rounded to float, per plane k: x[k] y[k] z[k] w[k]
   /// (nearestRow tests four points at once; its margin covers the rounding)
   struct alignas(16) PlanesF
   {
     float x[4], y[4], z[4], w[4];
   };
-  std::vector<PlanesF> TriPlanes;    // same order as Tris
+  LargeVector<PlanesF> TriPlanes;    // same order as Tris
   std::vector<std::int32_t> PosOf;   // triangle index -> position in Tris
   double Scale = 0;                  // largest |coordinate| of the mesh
   std::size_t Depth = 0;
