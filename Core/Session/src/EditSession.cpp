@@ -72,6 +72,8 @@ void EditSession::teardown()
   this->Dev.reset();
   this->DeviceQueue.clear();
   this->Held.clear(); // a new volume is meshed whole
+  this->CoarseMark.clear();
+  this->CoarseCount = 0;
 }
 
 void EditSession::build(std::shared_ptr<DictionaryVolume> volume, const BrushSettings* brush, const StrokeSettings* stroke)
@@ -120,7 +122,10 @@ void EditSession::build(std::shared_ptr<DictionaryVolume> volume, const BrushSet
   mo.device = this->Dev && this->Opts.meshing ? Device::Cuda : Device::Cpu;
   this->Mesher = std::make_unique<ChunkedMarchingCubes>(*this->Vol, mo);
   if (this->Opts.meshing && !this->Dev)
+  {
     this->Worker = std::make_unique<MarchingCubesWorker>(*this->Mesher);
+    this->CoarseMark.assign(static_cast<std::size_t>(this->Mesher->chunkCount()), 0);
+  }
   this->Vol->takeDirtyChunks();
   // every mesh chunk changed (consumers drop what they had)
   std::vector<std::int64_t> all(static_cast<std::size_t>(this->Mesher->chunkCount()));
@@ -184,7 +189,41 @@ void EditSession::request(const std::vector<std::int64_t>& ids)
   else if (this->Holding)
     uniteSorted(this->Held, ids);
   else
-    this->Worker->request(ids);
+    this->toWorker(ids);
+}
+
+void EditSession::toWorker(const std::vector<std::int64_t>& ids)
+{
+  const int level = this->CoarseMin > 0 && ids.size() >= this->CoarseMin ? 1 : 0;
+  for (std::int64_t id : ids)
+  {
+    char& m = this->CoarseMark[static_cast<std::size_t>(id)];
+    this->CoarseCount += static_cast<std::size_t>(level) - static_cast<std::size_t>(m);
+    m = static_cast<char>(level);
+  }
+  this->Worker->request(ids, level);
+}
+
+void EditSession::setCoarseMeshing(std::size_t minChunks)
+{
+  this->CoarseMin = minChunks;
+}
+
+std::size_t EditSession::refineMeshes()
+{
+  if (!this->Worker || this->CoarseCount == 0)
+    return 0;
+  std::vector<std::int64_t> ids;
+  ids.reserve(this->CoarseCount);
+  for (std::size_t id = 0; id < this->CoarseMark.size(); ++id)
+    if (this->CoarseMark[id])
+    {
+      ids.push_back(static_cast<std::int64_t>(id));
+      this->CoarseMark[id] = 0;
+    }
+  this->CoarseCount = 0;
+  this->Worker->request(ids, 0);
+  return ids.size();
 }
 
 void EditSession::releaseMeshing()
@@ -195,7 +234,7 @@ void EditSession::releaseMeshing()
   std::vector<std::int64_t> ids;
   ids.swap(this->Held);
   if (this->Worker)
-    this->Worker->request(ids);
+    this->toWorker(ids);
 }
 
 void EditSession::afterEdit(const EditResult& edit, bool changed)
@@ -336,6 +375,8 @@ void EditSession::requestAllMeshes()
     return;
   if (this->Worker)
   {
+    std::fill(this->CoarseMark.begin(), this->CoarseMark.end(), 0);
+    this->CoarseCount = 0;
     this->Worker->requestAll();
     return;
   }
