@@ -74,6 +74,7 @@ void EditSession::teardown()
   this->Held.clear(); // a new volume is meshed whole
   this->CoarseMark.clear();
   this->CoarseCount = 0;
+  this->Refine.clear();
 }
 
 void EditSession::build(std::shared_ptr<DictionaryVolume> volume, const BrushSettings* brush, const StrokeSettings* stroke)
@@ -206,6 +207,8 @@ void EditSession::toWorker(const std::vector<std::int64_t>& ids)
 
 void EditSession::setCoarseMeshing(std::size_t minChunks)
 {
+  if (minChunks > 0)
+    this->startRefine(); // a new stroke: the last one's refinement first
   this->CoarseMin = minChunks;
 }
 
@@ -213,17 +216,32 @@ std::size_t EditSession::refineMeshes()
 {
   if (!this->Worker || this->CoarseCount == 0)
     return 0;
-  std::vector<std::int64_t> ids;
-  ids.reserve(this->CoarseCount);
   for (std::size_t id = 0; id < this->CoarseMark.size(); ++id)
     if (this->CoarseMark[id])
     {
-      ids.push_back(static_cast<std::int64_t>(id));
+      this->Refine.push_back(static_cast<std::int64_t>(id));
       this->CoarseMark[id] = 0;
     }
+  const std::size_t n = this->CoarseCount;
   this->CoarseCount = 0;
-  this->Worker->request(ids, 0);
-  return ids.size();
+  if (this->Held.empty() && this->Worker->idle())
+    this->startRefine();
+  return n;
+}
+
+void EditSession::startRefine()
+{
+  if (this->Refine.empty())
+    return;
+  std::vector<std::int64_t> ids;
+  ids.swap(this->Refine);
+  // a chunk asked coarsely again since (a new stroke) is refined at that stroke's end
+  ids.erase(std::remove_if(ids.begin(), ids.end(), [this](std::int64_t id) { return this->CoarseMark[static_cast<std::size_t>(id)] != 0; }),
+    ids.end());
+  std::sort(ids.begin(), ids.end());
+  ids.erase(std::unique(ids.begin(), ids.end()), ids.end());
+  if (!ids.empty())
+    this->Worker->request(ids, 0);
 }
 
 void EditSession::releaseMeshing()
@@ -392,7 +410,12 @@ void EditSession::requestAllMeshes()
 std::vector<ChunkMesh> EditSession::collectMeshes(std::vector<Clock::time_point>* gatheredAt)
 {
   if (this->Worker)
+  {
+    // a refinement waits until the stroke's last meshes are done
+    if (!this->Refine.empty() && this->Held.empty() && this->Worker->idle())
+      this->startRefine();
     return this->Worker->collect(gatheredAt);
+  }
   std::vector<ChunkMesh> out;
   if (gatheredAt)
     gatheredAt->clear();
@@ -422,14 +445,18 @@ std::vector<ChunkMesh> EditSession::collectMeshes(std::vector<Clock::time_point>
 
 bool EditSession::meshingIdle() const
 {
-  return this->Worker ? this->Held.empty() && this->Worker->idle() : this->DeviceQueue.empty();
+  return this->Worker ? this->Held.empty() && this->Refine.empty() && this->Worker->idle() : this->DeviceQueue.empty();
 }
 
 void EditSession::waitMeshingIdle()
 {
   this->releaseMeshing();
   if (this->Worker)
+  {
     this->Worker->waitIdle();
+    this->startRefine();
+    this->Worker->waitIdle();
+  }
 }
 
 std::vector<std::int64_t> EditSession::takeChangedMeshChunks()

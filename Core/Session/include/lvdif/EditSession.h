@@ -183,7 +183,11 @@ public:
   std::size_t coarseMeshing() const { return this->CoarseMin; }
   /// Asks for the full-resolution mesh of every chunk whose last request was
   /// coarse (each supersedes that chunk's coarse mesh); returns how many. A
-  /// front end calls it when the stroke ends, after releaseMeshing().
+  /// front end calls it when the stroke ends, after releaseMeshing(). The
+  /// request reaches the worker once it has finished what is queued (so the
+  /// stroke's last coarse meshes are shown first): at once when it is idle,
+  /// else at the next collectMeshes() that finds it idle, waitMeshingIdle(),
+  /// or the next setCoarseMeshing(n > 0); meshingIdle() is false until then.
   std::size_t refineMeshes();
   /// Mesh chunks whose last request was coarse (refineMeshes would ask for them).
   std::size_t coarseChunks() const { return this->CoarseCount; }
@@ -201,6 +205,8 @@ private:
   void request(const std::vector<std::int64_t>& ids);
   /// Hands one request to the CPU worker at the level setCoarseMeshing says.
   void toWorker(const std::vector<std::int64_t>& ids);
+  /// Hands the pending refinement (refineMeshes) to the worker.
+  void startRefine();
   std::unique_lock<std::mutex> lockSource();
 
   EditSessionOptions Opts;
@@ -215,6 +221,7 @@ private:
   std::size_t CoarseMin = 0;             // CPU: requests of this many chunks are coarse (0: never)
   std::vector<char> CoarseMark;          // CPU: per mesh chunk, 1 when its last request was coarse
   std::size_t CoarseCount = 0;           // CPU: chunks marked
+  std::vector<std::int64_t> Refine;      // CPU: chunks to refine once the worker is idle (refineMeshes)
   std::vector<std::int64_t> DeviceQueue; // GPU: mesh chunks to mesh at the next collect (sorted)
   PackedChunkMeshes Packed;              // GPU: the device meshes' page-locked block (reused)
   std::vector<std::int64_t> Changed;     // since takeChangedMeshChunks
