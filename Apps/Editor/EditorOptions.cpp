@@ -20,6 +20,13 @@
 #include <cstdlib>
 #include <limits>
 
+std::size_t strokeLodMinChunks(const QString& mode)
+{
+  // auto: measured on the 2-core VM at 512^3 (docs/BENCHMARKS.md, session 24)
+  constexpr std::size_t AutoMinChunks = 24;
+  return mode == "on" ? 1 : (mode == "off" ? 0 : AutoMinChunks);
+}
+
 namespace
 {
 [[noreturn]] void fail(const QString& message)
@@ -211,12 +218,19 @@ EditorOptions parseEditorOptions(const QStringList& arguments)
     "Show the view as a widget that Qt composes into the window after each frame (QVTKOpenGLNativeWidget), as before; "
     "by default it is a native window of its own (QVTKOpenGLWindow in a window container), presented alone. For "
     "comparisons.");
+  const QCommandLineOption strokeLod("stroke-lod",
+    "Level of detail of a stroke's frames: auto (default), on or off. While you drag, the mesh chunks a frame changed "
+    "are meshed on every 2nd voxel (about 1/4 of the triangles; on: always, auto: when the frame changed " +
+      QString::number(strokeLodMinChunks("auto")) +
+      " or more chunks, as a large brush does) and shown at once; when the stroke ends they are meshed again at full "
+      "resolution, so the surface at rest is exactly the one without it. Also in the View menu.",
+    "mode", "auto");
   const QCommandLineOption multisampledDrag("multisampled-drag",
     "Draw a stroke's frames with the view's multisampling (by default they have one sample per pixel and the view is "
     "drawn whole, multisampled, once the stroke is still). For comparisons.");
   // What a user reaches for first; the options for tests and comparisons last.
   p.addOptions({ open, openMesh, meshRes, meshSign, meshReorient, create, fill, script, save, exp, shot, windowShot,
-    op, shape, kind, radius, color, strength, falloff, mirror, size, samples, perVertex, matcap, autosave, noRecovery,
+    op, shape, kind, radius, color, strength, falloff, mirror, size, samples, perVertex, matcap, strokeLod, autosave, noRecovery,
     recoveryDir, quit, drag, dragShot, undo, dragMods, keys, keysAfter, saveAsAnswer, openAnswer, cancelDialogs, wheel, printStatus, recoveryAnswer, benchmark, timing, fullRedraw,
     drawRanges, multisampledDrag, stockBackground, widgetView });
   // an unknown option or a missing value: one line and status 2, as every
@@ -391,6 +405,9 @@ EditorOptions parseEditorOptions(const QStringList& arguments)
   o.stockBackground = p.isSet(stockBackground);
   o.nativeView = !p.isSet(widgetView);
   o.multisampledDrag = p.isSet(multisampledDrag);
+  o.strokeLod = p.value(strokeLod);
+  if (o.strokeLod != "auto" && o.strokeLod != "on" && o.strokeLod != "off")
+    fail("--stroke-lod expects auto, on or off, got '" + o.strokeLod + "'");
   if (p.isSet(drawRanges))
     o.drawRangeTriangles = integerOption(p.value(drawRanges), "--draw-ranges", 0, std::numeric_limits<int>::max());
   if (p.isSet(samples))

@@ -8,6 +8,7 @@
 #include "lvdif/Stroke.h"
 
 #include <array>
+#include <cstddef>
 
 struct EditorOptions
 {
@@ -57,6 +58,7 @@ struct EditorOptions
   bool nativeView = true;     // the view in a native window of its own (QVTKOpenGLWindow), presented alone; --widget-view: false
   bool stockBackground = false; // --stock-background: VTK's gradient background, a new quad per frame (comparisons)
   int drawRangeTriangles = 32; // --draw-ranges N: triangles per draw range of a chunk (0: one draw per chunk)
+  QString strokeLod = "auto"; // --stroke-lod auto|on|off: a stroke's frames meshed coarsely, refined at its end (View menu too)
   /// The size of the canvas made when no file is opened: --new, or 128^3.
   std::array<int, 3> canvasDims() const
   {
@@ -64,6 +66,11 @@ struct EditorOptions
   }
   bool batch() const { return this->quit || !this->screenshot.isEmpty() || !this->windowShot.isEmpty() || !this->save.isEmpty() || !this->exportMesh.isEmpty(); }
 };
+
+/// The mesh chunks a frame of a stroke must invalidate for its meshes to be
+/// made coarsely (lvdif::EditSession::setCoarseMeshing) under a --stroke-lod
+/// mode (auto, on, off); one rule for the option and the View menu.
+std::size_t strokeLodMinChunks(const QString& mode);
 
 /// The command line without Qt's own options (-platform, -display, -style,
 /// -geometry, ...), which the QApplication takes: the editor's options are

@@ -32,6 +32,7 @@
 #include "vtkTetrahedralColorMapper.h"
 
 #include <QAction>
+#include <QActionGroup>
 #include <QApplication>
 #include <QCloseEvent>
 #include <QDir>
@@ -334,6 +335,19 @@ void MainWindow::buildMenus()
       on ? vtkTetrahedralColorMapper::Tetrahedral : vtkTetrahedralColorMapper::PerVertex);
     this->RenderWindow->Render();
   });
+  // the same three modes as --stroke-lod
+  QMenu* lod = view->addMenu("Stroke &level of detail");
+  this->StrokeLodActions = new QActionGroup(this);
+  for (const auto& m : { std::make_pair("auto", "&Auto (coarse while a large brush drags)"),
+         std::make_pair("on", "&On (coarse while dragging)"), std::make_pair("off", "O&ff (full resolution)") })
+  {
+    QAction* a = lod->addAction(m.second);
+    a->setCheckable(true);
+    a->setData(QString(m.first));
+    a->setChecked(this->Options.strokeLod == m.first);
+    this->StrokeLodActions->addAction(a);
+    connect(a, &QAction::triggered, this, [this, mode = QString(m.first)] { this->setStrokeLod(mode); });
+  }
   view->addAction("&Reset camera", this, &MainWindow::resetView);
   this->buildViewMenu(view);
   this->buildHelpMenu();
@@ -398,6 +412,8 @@ bool MainWindow::beginStroke()
   try
   {
     this->Doc.beginStroke();
+    // a level of detail for the stroke's frames (finishStrokeMeshing refines)
+    this->Doc.session().setCoarseMeshing(strokeLodMinChunks(this->Options.strokeLod));
     this->Painting = true;
   }
   catch (const std::exception& e)
@@ -453,7 +469,7 @@ void MainWindow::addBrushSample(const double* sample)
   catch (const std::exception& e)
   {
     this->Painting = false;
-    this->Doc.session().releaseMeshing(); // what the stroke changed before the failure
+    this->finishStrokeMeshing(); // what the stroke changed before the failure
     this->showError("The brush failed", e);
     return;
   }
@@ -517,10 +533,31 @@ void MainWindow::endStroke()
   {
     this->showError("The brush failed", e);
   }
-  this->Doc.session().releaseMeshing(); // the stroke's last dabs too; the frame timer or the mesh timer shows them
+  this->finishStrokeMeshing(); // the stroke's last dabs too; the frame timer or the mesh timer shows them
   this->updatePreview(nullptr, true);
   this->LastEdit = QDateTime::currentDateTime();
   this->updateTitle();
+}
+
+void MainWindow::finishStrokeMeshing()
+{
+  lvdif::EditSession& s = this->Doc.session();
+  s.releaseMeshing(); // at the stroke's level
+  s.setCoarseMeshing(0);
+  // every chunk shown coarsely gets its full-resolution mesh (the worker meshes
+  // a chunk still queued at the latest level asked): the picture at rest is the
+  // one without a level of detail
+  this->Refined = s.refineMeshes();
+  this->RefineAt = std::chrono::steady_clock::now();
+}
+
+void MainWindow::setStrokeLod(const QString& mode)
+{
+  this->Options.strokeLod = mode;
+  if (this->StrokeLodActions)
+    for (QAction* a : this->StrokeLodActions->actions())
+      if (a->data().toString() == mode)
+        a->setChecked(true);
 }
 
 void MainWindow::showFinishedMeshes()
@@ -541,7 +578,10 @@ void MainWindow::installFinishedMeshes()
   if (shown.chunks.empty())
     shown.installStart = std::chrono::steady_clock::now();
   for (const lvdif::ChunkMesh& mesh : meshes)
+  {
     shown.chunks.push_back(mesh.chunkId);
+    shown.levels.push_back(mesh.level);
+  }
   shown.gatheredAt.insert(shown.gatheredAt.end(), gatheredAt.begin(), gatheredAt.end());
   // In completion order; a later mesh of a chunk supersedes an earlier one.
   std::map<std::int64_t, const lvdif::ChunkMesh*> newest;

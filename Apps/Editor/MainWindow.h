@@ -54,6 +54,7 @@ struct ShownMeshes
   using TimePoint = std::chrono::steady_clock::time_point;
   std::vector<std::int64_t> chunks;
   std::vector<TimePoint> gatheredAt;
+  std::vector<int> levels; // per mesh: 0 full resolution, 1 coarse (a stroke's level of detail)
   TimePoint installStart; // the first install since the last frame (brush samples share a frame)
   TimePoint renderStart;  // the frame's Render() call
 };
@@ -150,6 +151,14 @@ public slots:
   /// next frame (drawn when the event loop is free).
   void addBrushSample(const double* sample);
   void endStroke();
+  /// The level of detail of strokes (--stroke-lod, View > Stroke level of
+  /// detail): auto, on or off; from the next stroke on.
+  void setStrokeLod(const QString& mode);
+  const QString& strokeLod() const { return this->Options.strokeLod; }
+  /// When the last stroke ended and its coarse meshes were asked for again at
+  /// full resolution, and how many (0: none were coarse).
+  std::chrono::steady_clock::time_point refineRequestedAt() const { return this->RefineAt; }
+  std::size_t refinedChunks() const { return this->Refined; }
 
   // ---- the view -------------------------------------------------------------
   /// Installs the chunk meshes finished since the last call as actors and
@@ -270,6 +279,12 @@ private:
   vtkNew<vtkBrushWidget> Brush;
   bool ViewInitialized = false;
   bool Painting = false;
+  /// After a stroke (or its failure): its held requests to the worker, then
+  /// full resolution for the chunks it meshed coarsely.
+  void finishStrokeMeshing();
+  std::chrono::steady_clock::time_point RefineAt;
+  std::size_t Refined = 0;
+  QActionGroup* StrokeLodActions = nullptr;
   double Pressure = -1; // last tablet pressure in [0, 1]; -1: no tablet in use
   QActionGroup* ToolActions = nullptr;
   std::vector<QAction*> ShortcutActions;

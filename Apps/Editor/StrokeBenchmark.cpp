@@ -238,6 +238,7 @@ void StrokeBenchmark::deliver(std::size_t i)
   if (i + 1 == this->Samples.size())
   {
     this->Window.endStroke();
+    this->EndAt = std::chrono::steady_clock::now();
     this->sampleApplied(); // the stroke's last dabs (Drill): one more request
     this->Ended = true;
     this->finishWhenIdle();
@@ -263,7 +264,8 @@ void StrokeBenchmark::frameRendered(const ShownMeshes& shown)
   this->Window.renderWindow()->WaitForCompletion();
   const TimePoint renderEnd = std::chrono::steady_clock::now();
   for (std::size_t i = 0; i < shown.chunks.size() && i < shown.gatheredAt.size(); ++i)
-    this->Delivered[shown.chunks[i]].emplace_back(shown.gatheredAt[i], renderEnd);
+    this->Delivered[shown.chunks[i]].push_back(
+      Shown{ shown.gatheredAt[i], renderEnd, i < shown.levels.size() ? shown.levels[i] : 0 });
   this->RenderMs.push_back(ms(renderEnd - shown.installStart));
   this->DrawMs.push_back(ms(renderEnd - shown.renderStart));
   this->LastFrame = renderEnd;
@@ -309,13 +311,13 @@ void StrokeBenchmark::report()
     for (std::int64_t id : r.chunks)
     {
       const auto& d = this->Delivered[id];
-      const auto it = std::find_if(d.begin(), d.end(), [&](const std::pair<TimePoint, TimePoint>& g) { return g.first > r.editedAt; });
+      const auto it = std::find_if(d.begin(), d.end(), [&](const Shown& g) { return g.gathered > r.editedAt; });
       if (it == d.end())
       {
         ++missing;
         continue;
       }
-      shown = std::max(shown, it->second);
+      shown = std::max(shown, it->rendered);
     }
     latency.push_back(ms(shown - this->Start) - 1e3 * r.sampleTime);
     if (std::getenv("LVDIF_BENCH_TRACE"))
@@ -327,8 +329,40 @@ void StrokeBenchmark::report()
   std::printf("benchmark-stroke: %s: %zu samples over %.2f s, volume %lldx%lldx%lld, %zu re-mesh requests\n",
     this->Name.toLocal8Bit().constData(), this->Samples.size(), this->Samples.back().time,
     static_cast<long long>(d[0]), static_cast<long long>(d[1]), static_cast<long long>(d[2]), this->Requests.size());
-  std::printf("benchmark-stroke: latency from sample time to rendered frame: p50 %.2f ms, p95 %.2f ms, max %.2f ms\n",
-    percentile(latency, 0.5), percentile(latency, 0.95), percentile(latency, 1.0));
+  // the stroke's level of detail: how many of its meshes were coarse, and when
+  // every chunk it changed showed its full-resolution mesh of its last edit
+  std::map<std::int64_t, TimePoint> lastEdit;
+  for (const Request& r : this->Requests)
+    for (std::int64_t id : r.chunks)
+      lastEdit[id] = std::max(lastEdit[id], r.editedAt);
+  int coarse = 0, meshes = 0, unrefined = 0;
+  TimePoint refined = this->EndAt;
+  for (const auto& kv : this->Delivered)
+    for (const Shown& g : kv.second)
+    {
+      ++meshes;
+      coarse += g.level != 0;
+    }
+  for (const auto& kv : lastEdit)
+  {
+    const auto& d = this->Delivered[kv.first];
+    const auto it =
+      std::find_if(d.begin(), d.end(), [&](const Shown& g) { return g.level == 0 && g.gathered > kv.second; });
+    if (it == d.end())
+      ++unrefined;
+    else
+      refined = std::max(refined, it->rendered);
+  }
+  std::printf("benchmark-stroke: latency from sample time to rendered frame: p50 %.2f ms, p95 %.2f ms, max %.2f ms "
+              "(--stroke-lod %s: %s; %d of the %d meshes shown were coarse)\n",
+    percentile(latency, 0.5), percentile(latency, 0.95), percentile(latency, 1.0),
+    this->Window.strokeLod().toLocal8Bit().constData(),
+    coarse ? "the latency counts the coarse meshes" : "every mesh at full resolution", coarse, meshes);
+  std::printf("benchmark-stroke: refine: every one of the %zu chunks the stroke changed shown at full resolution "
+              "%.2f ms after the stroke's end (%zu chunks were asked again at full resolution)\n",
+    lastEdit.size(), ms(refined - this->EndAt), this->Window.refinedChunks());
+  if (unrefined)
+    std::printf("benchmark-stroke: error: %d chunks the stroke changed never showed their full-resolution mesh\n", unrefined);
   std::printf("benchmark-stroke: frames with new meshes: %d in %.2f s, %.1f fps; install+render p50 %.2f ms, p95 %.2f ms\n",
     this->Frames, seconds, this->Frames / seconds, percentile(this->RenderMs, 0.5), percentile(this->RenderMs, 0.95));
   std::printf("benchmark-stroke: render (drawing the frame, glFinish included) p50 %.2f ms, p95 %.2f ms, max %.2f ms\n",
@@ -390,5 +424,5 @@ void StrokeBenchmark::report()
   if (missing)
     std::printf("benchmark-stroke: error: %d requested chunk meshes never showed\n", missing);
   std::fflush(stdout);
-  QApplication::exit(missing || differ || this->Requests.empty() ? 1 : 0);
+  QApplication::exit(missing || unrefined || differ || this->Requests.empty() ? 1 : 0);
 }

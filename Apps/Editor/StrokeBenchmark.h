@@ -25,6 +25,11 @@
 // blank lines skipped; without times, 50 Hz), or a recording (.lvr/.lvrec):
 // the centres of its dabs as samples at 50 Hz (recordings keep no sample
 // times). The brush is the tool panel's (--radius, --op, --color, --brush).
+//
+// Level of detail (--stroke-lod): the latency counts the first mesh that
+// shows the sample, coarse or not (the report says how many were coarse);
+// "refine" is the time from the stroke's end until the frame at which every
+// chunk the stroke changed shows its full-resolution mesh of its last edit.
 #pragma once
 
 #include "lvdif/Stroke.h"
@@ -91,8 +96,14 @@ private:
   double CurrentSampleTime = 0;
   bool Ended = false;
   std::vector<Request> Requests;
-  // per chunk: (gathered, rendered) of every mesh installed, in order
-  std::map<std::int64_t, std::vector<std::pair<TimePoint, TimePoint>>> Delivered;
+  struct Shown
+  {
+    TimePoint gathered, rendered;
+    int level = 0; // 1: a coarse mesh of the stroke's level of detail
+  };
+  // per chunk: every mesh installed, in order
+  std::map<std::int64_t, std::vector<Shown>> Delivered;
+  TimePoint EndAt; // the stroke ended (MainWindow::endStroke returned)
   std::vector<double> RenderMs; // from the first install of a frame's meshes to its end
   std::vector<double> DrawMs;   // the frame's Render() and glFinish
   TimePoint LastFrame;

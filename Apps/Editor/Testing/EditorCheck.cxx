@@ -54,7 +54,9 @@
 //                       band) within the tessellation's sagitta plus the
 //                       dictionary's precision, and the grid is fitted (64 on
 //                       every axis, the box contains the sphere).
+#include "vtkCellArray.h"
 #include "vtkFloatArray.h"
+#include "vtkIdList.h"
 #include "vtkImageData.h"
 #include "vtkImageDifference.h"
 #include "vtkNew.h"
@@ -68,6 +70,7 @@
 #include "vtkXMLImageDataWriter.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -419,6 +422,72 @@ vtkSmartPointer<vtkImageData> readPicture(const char* path, int dims[3])
   return rgb ? img : nullptr;
 }
 
+/// Two exported meshes hold the same triangles (as coordinate triples, each
+/// rotated to start at its smallest point, orientation kept), bit for bit.
+void checkSameMesh(const char* a, const char* b)
+{
+  auto triangles = [](const char* path) {
+    vtkNew<vtkPLYReader> r;
+    r->SetFileName(path);
+    r->Update();
+    vtkPolyData* pd = r->GetOutput();
+    std::vector<std::array<float, 9>> tris;
+    vtkCellArray* polys = pd->GetPolys();
+    vtkNew<vtkIdList> ids;
+    for (polys->InitTraversal(); polys->GetNextCell(ids);)
+    {
+      if (ids->GetNumberOfIds() != 3)
+        continue;
+      std::array<std::array<float, 3>, 3> p;
+      for (int k = 0; k < 3; ++k)
+      {
+        double x[3];
+        pd->GetPoint(ids->GetId(k), x);
+        p[k] = { static_cast<float>(x[0]), static_cast<float>(x[1]), static_cast<float>(x[2]) };
+      }
+      const int first = static_cast<int>(std::min_element(p.begin(), p.end()) - p.begin());
+      std::array<float, 9> t;
+      for (int k = 0; k < 3; ++k)
+        for (int c = 0; c < 3; ++c)
+          t[3 * k + c] = p[(first + k) % 3][c];
+      tris.push_back(t);
+    }
+    std::sort(tris.begin(), tris.end());
+    return tris;
+  };
+  const auto ta = triangles(a), tb = triangles(b);
+  std::printf("triangles: %zu in %s, %zu in %s\n", ta.size(), a, tb.size(), b);
+  check(ta.size() > 1000, std::string(a) + " has triangles");
+  check(ta == tb, std::string(a) + " and " + b + " hold the same triangles");
+}
+
+/// Two screenshots differ in more than `least` pixels (a channel off by more than 8).
+void checkImagesDiffer(const char* a, const char* b, long least)
+{
+  int da[3], db[3];
+  auto ia = readPicture(a, da), ib = readPicture(b, db);
+  if (!ia || !ib)
+    return;
+  long differ = 0;
+  if (da[0] == db[0] && da[1] == db[1])
+  {
+    const int ca = ia->GetNumberOfScalarComponents(), cb = ib->GetNumberOfScalarComponents();
+    auto* pa = static_cast<unsigned char*>(ia->GetScalarPointer());
+    auto* pb = static_cast<unsigned char*>(ib->GetScalarPointer());
+    for (long i = 0; i < static_cast<long>(da[0]) * da[1]; ++i)
+    {
+      bool d = false;
+      for (int c = 0; c < 3; ++c)
+        d = d || std::abs(int(pa[ca * i + c]) - int(pb[cb * i + c])) > 8;
+      differ += d;
+    }
+  }
+  else
+    differ = -1;
+  std::printf("pixels that differ between %s and %s: %ld\n", a, b, differ);
+  check(differ > least, std::string(a) + " and " + b + " differ in more than " + std::to_string(least) + " pixels");
+}
+
 void checkCursorAspect(const char* path, double ratio)
 {
   int dims[3];
@@ -636,6 +705,16 @@ int main(int argc, char* argv[])
       checkMeshSphere(argv[++i]);
     else if (!std::strcmp(argv[i], "--mesh") && i + 1 < argc)
       checkMesh(argv[++i]);
+    else if (!std::strcmp(argv[i], "--same-mesh") && i + 2 < argc)
+    {
+      checkSameMesh(argv[i + 1], argv[i + 2]);
+      i += 2;
+    }
+    else if (!std::strcmp(argv[i], "--images-differ") && i + 3 < argc)
+    {
+      checkImagesDiffer(argv[i + 1], argv[i + 2], std::atol(argv[i + 3]));
+      i += 3;
+    }
     else
     {
       std::fprintf(stderr, "usage: %s [--sphere V.vti] [--added V.vti] [--script-shape V.vti] [--image T.png B.png] [--mesh M.ply] [--write-sphere-obj F.obj] [--write-sphere-obj-reversed-cap F.obj] [--mesh-sphere V.vti]\n", argv[0]);

@@ -1,5 +1,5 @@
 # Runs the checker with PREP first if given (e.g. to write an input mesh),
-# the editor with ARGS (and again with ARGS2 if given), then the checker
+# the editor with ARGS (and again with ARGS2, then ARGS3, if given), then the checker
 # with CHECKS; fails if any fails.
 # PARAMS: the test's keywords (set() commands written by lvdif_editor_test)
 if (DEFINED PARAMS)
@@ -27,6 +27,9 @@ include("${CMAKE_CURRENT_LIST_DIR}/CheckOutput.cmake")
 check_output("${step_output}")
 if (DEFINED ARGS2)
   run_step("second lvdif-editor run" "${EDITOR}" ${ARGS2}) # e.g. reopening what the first saved
+endif ()
+if (DEFINED ARGS3)
+  run_step("third lvdif-editor run" "${EDITOR}" ${ARGS3})
 endif ()
 # CONTENT_FILE / CONTENT: a text file the run wrote and a regular expression its text must match
 if (DEFINED CONTENT_FILE)

@@ -56,6 +56,94 @@ void ChunkedMarchingCubes::Impl::init(const Index3& dims, const MarchingCubesOpt
     Tables = std::shared_ptr<const MarchingCubesTables>(&marchingCubesTables(), [](const MarchingCubesTables*) {});
   Options.device = resolveDevice(options.device);
   if (Options.device == Device::Cuda) Cuda = makeMarchingCubesCudaState(*Tables);
+  // level 1: the grid subsampled by 2 (coarse point c = full point 2c)
+  bool coarse = true;
+  for (int a = 0; a < 3; ++a) coarse = coarse && dims[a] >= 3 && options.gridOffset[a] % 2 == 0;
+  if (coarse)
+  {
+    auto c = std::make_shared<Impl>();
+    c->Options = Options;
+    c->Options.cornerColors = false;
+    c->Options.device = Device::Cpu;
+    c->Tables = Tables;
+    c->Counts = Counts;
+    c->First = First;
+    c->Total = Total;
+    c->Origin = Origin;
+    for (int a = 0; a < 3; ++a)
+    {
+      c->Options.gridOffset[a] = options.gridOffset[a] / 2;
+      c->Dims[a] = (dims[a] - 1) / 2 + 1;
+      c->Cells[a] = c->Dims[a] - 1;
+      c->Spacing[a] = 2.0 * Spacing[a];
+      c->InvSpacing[a] = static_cast<float>(1.0 / c->Spacing[a]);
+    }
+    Coarse = c;
+  }
+}
+
+VoxelBox ChunkedMarchingCubes::Impl::coarseCells(std::int64_t id) const
+{
+  const VoxelBox f = cells(id);
+  VoxelBox b;
+  for (int a = 0; a < 3; ++a)
+  {
+    b.lo[a] = (f.lo[a] + 1) / 2; // the first even point in the chunk's cells
+    b.hi[a] = std::min<std::int64_t>(f.hi[a] / 2, Coarse->Dims[a] - 2);
+  }
+  return b;
+}
+
+void ChunkedMarchingCubes::Impl::gatherCoarseInto(std::int64_t id, ChunkInput& in) const
+{
+  const Impl& C = *Coarse;
+  in.view = nullptr;
+  in.viewColors = nullptr;
+  in.level = 1;
+  in.chunkId = id;
+  in.cells = coarseCells(id);
+  Index3 hi;
+  for (int a = 0; a < 3; ++a)
+  {
+    in.lo[a] = std::max<std::int64_t>(in.cells.lo[a] - 1, 0);
+    hi[a] = std::min<std::int64_t>(in.cells.hi[a] + 2, C.Dims[a] - 1);
+    in.size[a] = hi[a] - in.lo[a] + 1;
+  }
+  const std::size_t n = static_cast<std::size_t>(in.size[0] * in.size[1] * in.size[2]);
+  const bool colors = wantsColors();
+  in.voxels.clear();
+  in.sdfTable = nullptr;
+  in.isoKey = 0;
+  in.colorKeys.clear();
+  in.palette.clear();
+  in.values.resize(n);
+  in.colors.resize(colors ? n : 0);
+  std::size_t o = 0;
+  if (Volume)
+  {
+    const DictionaryVolume& v = *Volume;
+    const float* table = v.sdfDictionary().table();
+    const Rgba* palette = v.colors().colors().data();
+    for (std::int64_t z = in.lo[2]; z <= hi[2]; ++z)
+      for (std::int64_t y = in.lo[1]; y <= hi[1]; ++y)
+        for (std::int64_t x = in.lo[0]; x <= hi[0]; ++x, ++o)
+        {
+          const Voxel w = v.get(2 * x, 2 * y, 2 * z);
+          in.values[o] = table[w.sdf];
+          if (colors) in.colors[o] = palette[w.color];
+        }
+  }
+  else
+  {
+    for (std::int64_t z = in.lo[2]; z <= hi[2]; ++z)
+      for (std::int64_t y = in.lo[1]; y <= hi[1]; ++y)
+        for (std::int64_t x = in.lo[0]; x <= hi[0]; ++x, ++o)
+        {
+          const std::int64_t g = Grid.geometry.index(2 * x, 2 * y, 2 * z);
+          in.values[o] = Grid.data[g];
+          if (colors) in.colors[o] = GridColors[g];
+        }
+  }
 }
 
 VoxelBox ChunkedMarchingCubes::Impl::cells(std::int64_t id) const
@@ -174,10 +262,51 @@ bool ChunkedMarchingCubes::gather(std::int64_t id, ChunkInput& into) const
   return true;
 }
 
+bool ChunkedMarchingCubes::gather(std::int64_t id, ChunkInput& into, int level) const
+{
+  if (level == 0) return this->gather(id, into);
+  require(level == 1, "marching cubes: level of detail " + std::to_string(level) + " is not 0 or 1");
+  require(id >= 0 && id < P->Total, "marching cubes: chunk id " + std::to_string(id) + " out of range");
+  require(P->Coarse != nullptr,
+    "marching cubes: the coarse level needs 3 or more points per axis and an even grid offset");
+  const VoxelBox cc = P->coarseCells(id);
+  if (cc.empty()) return false;
+  // the full chunk's range bounds the coarse points it holds
+  const VoxelBox full = P->points(id);
+  bool within = true;
+  for (int a = 0; a < 3; ++a) within = within && 2 * (cc.hi[a] + 1) <= full.hi[a];
+  if (within && P->empty(id)) return false;
+  P->gatherCoarseInto(id, into);
+  // no cut cell: nothing to mesh
+  const float iso = P->Options.isoValue;
+  bool above = false, below = false;
+  for (std::int64_t z = cc.lo[2]; z <= cc.hi[2] + 1; ++z)
+    for (std::int64_t y = cc.lo[1]; y <= cc.hi[1] + 1; ++y)
+    {
+      const float* row = into.values.data() + into.local(cc.lo[0], y, z);
+      for (std::int64_t i = 0; i <= cc.hi[0] + 1 - cc.lo[0]; ++i) (row[i] >= iso ? above : below) = true;
+      if (above && below) return true;
+    }
+  return false;
+}
+
+ChunkMesh ChunkedMarchingCubes::extractChunkCoarse(std::int64_t id) const
+{
+  thread_local ChunkInput in;
+  if (this->gather(id, in, 1)) return this->mesh(in);
+  ChunkMesh m;
+  m.chunkId = id;
+  m.level = 1;
+  m.chunkCoord = P->globalCoord(id);
+  m.cells = P->cells(id);
+  return m;
+}
+
 void ChunkedMarchingCubes::Impl::gatherInto(std::int64_t id, ChunkInput& input) const
 {
   const Impl* P = this;
   ChunkInput* in = &input;
+  in->level = 0;
   in->view = nullptr;
   in->viewColors = nullptr;
   in->chunkId = id;
@@ -341,6 +470,21 @@ void ChunkedMarchingCubes::Impl::gatherInto(std::int64_t id, ChunkInput& input) 
 
 ChunkMesh ChunkedMarchingCubes::mesh(const ChunkInput& input) const
 {
+  if (input.level == 1)
+  {
+    // the coarse grid's mesh (CPU kernel), named in full-resolution terms
+    ChunkMesh m = meshChunkCpu(*P->Coarse, input);
+    m.level = 1;
+    m.cells = P->cells(input.chunkId);
+    const Index3& cd = P->Coarse->Dims;
+    for (std::uint64_t& e : m.edgeIds)
+    {
+      const std::int64_t lin = static_cast<std::int64_t>(e / 3);
+      const std::int64_t x = lin % cd[0], y = (lin / cd[0]) % cd[1], z = lin / (cd[0] * cd[1]);
+      e = 3 * static_cast<std::uint64_t>(2 * x + P->Dims[0] * (2 * y + P->Dims[1] * 2 * z)) + e % 3;
+    }
+    return m;
+  }
   return P->Cuda ? meshChunkCuda(*P, input) : meshChunkCpu(*P, input);
 }
 

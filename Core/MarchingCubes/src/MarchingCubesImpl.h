@@ -36,6 +36,15 @@ public:
   std::array<float, 3> InvSpacing{ 1, 1, 1 };
   // float grids: min and max value of each chunk's points
   std::vector<float> MinValue, MaxValue;
+  /// Level 1 (extractChunkCoarse): the geometry of the grid subsampled by 2
+  /// (Dims, Spacing, InvSpacing, gridOffset halved; the same chunk ids, Counts
+  /// and First), no corner colours; meshChunkCpu of a level-1 input runs with
+  /// it. Null when the grid has fewer than 3 points on an axis or an odd gridOffset.
+  std::shared_ptr<const Impl> Coarse;
+  /// Level 1: the coarse cells chunk id owns (those whose lowest full point 2c
+  /// lies in cells(id)), in coarse point indices; empty when none.
+  VoxelBox coarseCells(std::int64_t id) const;
+  void gatherCoarseInto(std::int64_t id, ChunkedMarchingCubes::ChunkInput& in) const;
 
   void init(const Index3& dims, const MarchingCubesOptions& options);
   /// Local chunk coordinate (0..Counts-1).

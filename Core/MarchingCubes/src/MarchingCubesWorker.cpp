@@ -20,8 +20,9 @@ MarchingCubesWorker::MarchingCubesWorker(const ChunkedMarchingCubes& mesher)
 
 MarchingCubesWorker::~MarchingCubesWorker() { this->shutdown(); }
 
-void MarchingCubesWorker::request(const std::vector<std::int64_t>& chunkIds)
+void MarchingCubesWorker::request(const std::vector<std::int64_t>& chunkIds, int level)
 {
+  require(level == 0 || level == 1, "marching cubes worker: level of detail is not 0 or 1");
   {
     std::lock_guard<std::mutex> lock(this->QueueMutex);
     require(!this->Stop, "marching cubes worker: request after shutdown");
@@ -29,10 +30,8 @@ void MarchingCubesWorker::request(const std::vector<std::int64_t>& chunkIds)
     {
       require(id >= 0 && id < this->Mesher.chunkCount(), "marching cubes worker: chunk id out of range");
       if (!this->Queued[id])
-      {
-        this->Queued[id] = 1;
         this->Queue.push_back(id);
-      }
+      this->Queued[id] = static_cast<char>(level + 1);
     }
   }
   this->Wake.notify_one();
@@ -103,12 +102,14 @@ void MarchingCubesWorker::run()
   const int threads = gpu ? 1 : std::max(1, omp_get_max_threads());
   const int width = gpu ? 1 : threads * BatchPerThread;
   std::vector<std::int64_t> ids;
+  std::vector<int> levels;
   // one reusable input per slot (no allocation per chunk once warm)
   std::vector<ChunkedMarchingCubes::ChunkInput> inputs(static_cast<std::size_t>(width));
   std::vector<char> has(static_cast<std::size_t>(width));
   for (;;)
   {
     ids.clear();
+    levels.clear();
     {
       std::unique_lock<std::mutex> lock(this->QueueMutex);
       this->Wake.wait(lock, [this] { return this->Stop || !this->Queue.empty(); });
@@ -117,6 +118,7 @@ void MarchingCubesWorker::run()
       {
         const std::int64_t id = this->Queue.front();
         this->Queue.pop_front();
+        levels.push_back(this->Queued[id] - 1);
         this->Queued[id] = 0; // a request from now on means "mesh it again"
         ids.push_back(id);
       }
@@ -135,7 +137,7 @@ void MarchingCubesWorker::run()
       {
         try
         {
-          has[i] = this->Mesher.gather(ids[i], inputs[i]);
+          has[i] = this->Mesher.gather(ids[i], inputs[i], levels[i]);
         }
         catch (const Error&)
         {
@@ -156,6 +158,7 @@ void MarchingCubesWorker::run()
         else
         {
           meshes[i].chunkId = ids[i];
+          meshes[i].level = levels[i];
           meshes[i].chunkCoord = this->Mesher.chunkCoord(ids[i]);
           meshes[i].cells = this->Mesher.chunkCells(ids[i]);
         }

@@ -72,6 +72,9 @@ void EditSession::teardown()
   this->Dev.reset();
   this->DeviceQueue.clear();
   this->Held.clear(); // a new volume is meshed whole
+  this->CoarseMark.clear();
+  this->CoarseCount = 0;
+  this->Refine.clear();
 }
 
 void EditSession::build(std::shared_ptr<DictionaryVolume> volume, const BrushSettings* brush, const StrokeSettings* stroke)
@@ -120,7 +123,10 @@ void EditSession::build(std::shared_ptr<DictionaryVolume> volume, const BrushSet
   mo.device = this->Dev && this->Opts.meshing ? Device::Cuda : Device::Cpu;
   this->Mesher = std::make_unique<ChunkedMarchingCubes>(*this->Vol, mo);
   if (this->Opts.meshing && !this->Dev)
+  {
     this->Worker = std::make_unique<MarchingCubesWorker>(*this->Mesher);
+    this->CoarseMark.assign(static_cast<std::size_t>(this->Mesher->chunkCount()), 0);
+  }
   this->Vol->takeDirtyChunks();
   // every mesh chunk changed (consumers drop what they had)
   std::vector<std::int64_t> all(static_cast<std::size_t>(this->Mesher->chunkCount()));
@@ -184,7 +190,58 @@ void EditSession::request(const std::vector<std::int64_t>& ids)
   else if (this->Holding)
     uniteSorted(this->Held, ids);
   else
-    this->Worker->request(ids);
+    this->toWorker(ids);
+}
+
+void EditSession::toWorker(const std::vector<std::int64_t>& ids)
+{
+  const int level = this->CoarseMin > 0 && ids.size() >= this->CoarseMin ? 1 : 0;
+  for (std::int64_t id : ids)
+  {
+    char& m = this->CoarseMark[static_cast<std::size_t>(id)];
+    this->CoarseCount += static_cast<std::size_t>(level) - static_cast<std::size_t>(m);
+    m = static_cast<char>(level);
+  }
+  this->Worker->request(ids, level);
+}
+
+void EditSession::setCoarseMeshing(std::size_t minChunks)
+{
+  if (minChunks > 0)
+    this->startRefine(); // a new stroke: the last one's refinement first
+  this->CoarseMin = minChunks;
+}
+
+std::size_t EditSession::refineMeshes()
+{
+  if (!this->Worker || this->CoarseCount == 0)
+    return 0;
+  for (std::size_t id = 0; id < this->CoarseMark.size(); ++id)
+    if (this->CoarseMark[id])
+    {
+      this->Refine.push_back(static_cast<std::int64_t>(id));
+      this->CoarseMark[id] = 0;
+    }
+  const std::size_t n = this->CoarseCount;
+  this->CoarseCount = 0;
+  if (this->Held.empty() && this->Worker->idle())
+    this->startRefine();
+  return n;
+}
+
+void EditSession::startRefine()
+{
+  if (this->Refine.empty())
+    return;
+  std::vector<std::int64_t> ids;
+  ids.swap(this->Refine);
+  // a chunk asked coarsely again since (a new stroke) is refined at that stroke's end
+  ids.erase(std::remove_if(ids.begin(), ids.end(), [this](std::int64_t id) { return this->CoarseMark[static_cast<std::size_t>(id)] != 0; }),
+    ids.end());
+  std::sort(ids.begin(), ids.end());
+  ids.erase(std::unique(ids.begin(), ids.end()), ids.end());
+  if (!ids.empty())
+    this->Worker->request(ids, 0);
 }
 
 void EditSession::releaseMeshing()
@@ -195,7 +252,7 @@ void EditSession::releaseMeshing()
   std::vector<std::int64_t> ids;
   ids.swap(this->Held);
   if (this->Worker)
-    this->Worker->request(ids);
+    this->toWorker(ids);
 }
 
 void EditSession::afterEdit(const EditResult& edit, bool changed)
@@ -336,6 +393,8 @@ void EditSession::requestAllMeshes()
     return;
   if (this->Worker)
   {
+    std::fill(this->CoarseMark.begin(), this->CoarseMark.end(), 0);
+    this->CoarseCount = 0;
     this->Worker->requestAll();
     return;
   }
@@ -351,7 +410,12 @@ void EditSession::requestAllMeshes()
 std::vector<ChunkMesh> EditSession::collectMeshes(std::vector<Clock::time_point>* gatheredAt)
 {
   if (this->Worker)
+  {
+    // a refinement waits until the stroke's last meshes are done
+    if (!this->Refine.empty() && this->Held.empty() && this->Worker->idle())
+      this->startRefine();
     return this->Worker->collect(gatheredAt);
+  }
   std::vector<ChunkMesh> out;
   if (gatheredAt)
     gatheredAt->clear();
@@ -381,14 +445,18 @@ std::vector<ChunkMesh> EditSession::collectMeshes(std::vector<Clock::time_point>
 
 bool EditSession::meshingIdle() const
 {
-  return this->Worker ? this->Held.empty() && this->Worker->idle() : this->DeviceQueue.empty();
+  return this->Worker ? this->Held.empty() && this->Refine.empty() && this->Worker->idle() : this->DeviceQueue.empty();
 }
 
 void EditSession::waitMeshingIdle()
 {
   this->releaseMeshing();
   if (this->Worker)
+  {
     this->Worker->waitIdle();
+    this->startRefine();
+    this->Worker->waitIdle();
+  }
 }
 
 std::vector<std::int64_t> EditSession::takeChangedMeshChunks()

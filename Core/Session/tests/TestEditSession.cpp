@@ -118,6 +118,64 @@ TEST(EditSession, HeldMeshingMeshesTheUnionOnceAndEqualsSampleBySample)
   }
 }
 
+TEST(EditSession, CoarseStrokeMeshesAreRefinedToTheFullMeshes)
+{
+  // Level of detail during strokes: with coarse meshing on, a stroke's
+  // requests are meshed at level 1 (the volume edited as without it: equal to
+  // a session with it off); after refineMeshes() the newest mesh of every
+  // chunk is the full-resolution one of the final volume.
+  for (std::size_t minChunks : { std::size_t(1), std::size_t(4) })
+  {
+    auto start = sphereVolume(64, 16);
+    lvdif::EditSession lod(start->clone(), cpuOptions());
+    lvdif::EditSession plain(start->clone(), cpuOptions());
+    lod.requestAllMeshes();
+    lod.waitMeshingIdle();
+    MeshStore store;
+    store.take(lod.collectMeshes());
+    std::size_t coarse = 0, full = 0;
+    for (const Op& op : randomOps(21, 12, 64))
+    {
+      if (op.kind != Op::Stroke)
+        continue;
+      apply(plain, op);
+      lod.brush() = op.brush;
+      lod.stroke() = op.stroke;
+      lod.setCoarseMeshing(minChunks);
+      lod.beginStroke();
+      for (const lvdif::BrushSample& sample : op.samples)
+      {
+        lod.holdMeshing();
+        lod.addSample(sample);
+        lod.releaseMeshing();
+        lod.waitMeshingIdle();
+        for (const lvdif::ChunkMesh& m : lod.collectMeshes())
+        {
+          (m.level ? coarse : full)++;
+          store.meshes[m.chunkId] = m;
+        }
+      }
+      lod.endStroke();
+      lod.setCoarseMeshing(0);
+      const std::size_t pending = lod.coarseChunks();
+      EXPECT_EQ(lod.refineMeshes(), pending);
+      EXPECT_EQ(lod.coarseChunks(), 0u);
+      lod.waitMeshingIdle();
+      // in completion order: a coarse mesh still in flight at the refine comes before the full one
+      store.take(lod.collectMeshes());
+      for (const auto& kv : store.meshes)
+        EXPECT_EQ(kv.second.level, 0) << "chunk " << kv.first << " still coarse after the refine";
+    }
+    EXPECT_GT(coarse, 10u) << "the strokes were meshed coarsely";
+    if (minChunks > 1)
+      EXPECT_GT(full, 0u) << "small requests stay at full resolution";
+    EXPECT_EQ(differences(lod.volume(), plain.volume()), 0) << "the level of detail changes no voxel";
+    std::string problem;
+    EXPECT_EQ(compareWithFullRemesh(store, lod.volume(), lod.mesher().options(), &problem), 0)
+      << "min chunks " << minChunks << ": " << problem;
+  }
+}
+
 TEST(EditSession, WaitMeshingIdleReleasesHeldRequests)
 {
   auto v = sphereVolume(64, 16);

@@ -90,6 +90,10 @@ struct MarchingCubesOptions
 struct ChunkMesh
 {
   std::int64_t chunkId = -1;
+  /// Level of detail: 0 full resolution; 1 coarse (ChunkedMarchingCubes::
+  /// extractChunkCoarse: every 2nd point per axis, no corner colours, edgeIds
+  /// of the coarse grid's edges named by their lower full-resolution point).
+  int level = 0;
   Index3 chunkCoord{ 0, 0, 0 };
   /// The cells this chunk owns (inclusive); cell (i,j,k) spans points i..i+1 etc.
   VoxelBox cells;
@@ -179,6 +183,18 @@ public:
 
   /// Meshes one chunk (thread-safe while nobody writes the source).
   ChunkMesh extractChunk(std::int64_t id) const;
+  /// Level of detail 1, a preview (the editor's stroke frames): the chunk
+  /// meshed on every 2nd grid point per axis, i.e. exactly the full-resolution
+  /// mesh of the grid subsampled by 2 (points 0,2,4,..., spacing doubled, same
+  /// origin: the same world coordinates) over the coarse cells whose lowest
+  /// point lies in this chunk's cells: 1/8 of the cells, about 1/4 of the
+  /// triangles. Normals and point colours as at full resolution (of the
+  /// subsampled grid); no corner colours nor triangleCells (the renderer then
+  /// colours by vertex). Coarse chunks are seamless among themselves; against
+  /// a full-resolution neighbour the surface has cracks. A grid with an odd
+  /// number of cells loses its last layer of cells. CPU kernel on any mesher;
+  /// needs an even gridOffset (Error InvalidArgument otherwise).
+  ChunkMesh extractChunkCoarse(std::int64_t id) const;
   /// Meshes the given chunks (OpenMP over chunks); one result per id, in order,
   /// empty meshes included (so the caller can drop a chunk that lost its surface).
   std::vector<ChunkMesh> extractChunks(const std::vector<std::int64_t>& ids,
@@ -246,6 +262,10 @@ public:
     /// this way (no copy); gather() always copies (the worker's snapshot).
     const float* view = nullptr;
     const Rgba* viewColors = nullptr;
+    /// 0: as above. 1 (gather(id, into, 1)): the coarse grid of
+    /// extractChunkCoarse; lo, size and cells in coarse point indices, values
+    /// (and colours) decoded.
+    int level = 0;
     const float* valueData() const { return view ? view : values.data(); }
     const Rgba* colorData() const { return view ? viewColors : (colors.empty() ? nullptr : colors.data()); }
     std::int64_t local(std::int64_t x, std::int64_t y, std::int64_t z) const
@@ -259,6 +279,9 @@ public:
   /// The same into an existing input (its buffers reused: no allocation once
   /// warm). Returns false (and leaves `into` unchanged) when the chunk is empty.
   bool gather(std::int64_t id, ChunkInput& into) const;
+  /// The same at a level of detail (0 or 1, see extractChunkCoarse); mesh()
+  /// meshes the input at its level.
+  bool gather(std::int64_t id, ChunkInput& into, int level) const;
   /// Meshes a gathered input (reads nothing else; any thread).
   ChunkMesh mesh(const ChunkInput& input) const;
 

@@ -43,7 +43,10 @@ public:
   std::mutex& sourceMutex() { return this->SourceMutex; }
 
   /// Queues marching cubes chunk ids; ids already queued are not queued twice.
-  void request(const std::vector<std::int64_t>& chunkIds);
+  /// `level`: 0 full resolution, 1 coarse (ChunkedMarchingCubes::
+  /// extractChunkCoarse; ChunkMesh::level says which a mesh is). A chunk
+  /// queued again takes the level of the latest request.
+  void request(const std::vector<std::int64_t>& chunkIds, int level = 0);
   /// Queues every chunk (cheap for empty ones: a range test).
   void requestAll();
   /// The meshes finished since the last call (never waits for meshing). With
@@ -68,7 +71,7 @@ private:
   mutable std::mutex QueueMutex;
   std::condition_variable Wake, Idle;
   std::deque<std::int64_t> Queue;
-  std::vector<char> Queued;
+  std::vector<char> Queued; // 0: not queued; else the requested level + 1
   std::vector<ChunkMesh> Done;
   std::vector<std::chrono::steady_clock::time_point> DoneGathered; // parallel to Done
   int InFlight = 0;

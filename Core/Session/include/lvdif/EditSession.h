@@ -172,6 +172,25 @@ public:
   /// Hands the held requests to the worker (one request, their union).
   void releaseMeshing();
   bool meshingHeld() const { return this->Holding; }
+  /// Level of detail for interactive strokes (CPU worker only; on the GPU
+  /// nothing changes): from now on, a request of at least `minChunks` mesh
+  /// chunks at once (one edit's, or a released hold's union) is meshed
+  /// coarsely (ChunkMesh::level 1, ChunkedMarchingCubes::extractChunkCoarse:
+  /// 1/8 of the cells), smaller ones at full resolution; 0 (the default): never
+  /// coarse, 1: always. The volume is edited exactly as without it; only the
+  /// meshes differ until refineMeshes().
+  void setCoarseMeshing(std::size_t minChunks);
+  std::size_t coarseMeshing() const { return this->CoarseMin; }
+  /// Asks for the full-resolution mesh of every chunk whose last request was
+  /// coarse (each supersedes that chunk's coarse mesh); returns how many. A
+  /// front end calls it when the stroke ends, after releaseMeshing(). The
+  /// request reaches the worker once it has finished what is queued (so the
+  /// stroke's last coarse meshes are shown first): at once when it is idle,
+  /// else at the next collectMeshes() that finds it idle, waitMeshingIdle(),
+  /// or the next setCoarseMeshing(n > 0); meshingIdle() is false until then.
+  std::size_t refineMeshes();
+  /// Mesh chunks whose last request was coarse (refineMeshes would ask for them).
+  std::size_t coarseChunks() const { return this->CoarseCount; }
   /// The mesh chunks the last edit call invalidated, and when (right after the edit).
   const std::vector<std::int64_t>& lastRequest() const { return this->LastRequest; }
   Clock::time_point lastRequestTime() const { return this->LastRequestAt; }
@@ -184,6 +203,10 @@ private:
   /// Queues the meshes invalidated by the last editor call (`edit` = its lastWrite()).
   void afterEdit(const EditResult& edit, bool changed);
   void request(const std::vector<std::int64_t>& ids);
+  /// Hands one request to the CPU worker at the level setCoarseMeshing says.
+  void toWorker(const std::vector<std::int64_t>& ids);
+  /// Hands the pending refinement (refineMeshes) to the worker.
+  void startRefine();
   std::unique_lock<std::mutex> lockSource();
 
   EditSessionOptions Opts;
@@ -195,6 +218,10 @@ private:
   std::unique_ptr<MarchingCubesWorker> Worker;
   bool Holding = false;
   std::vector<std::int64_t> Held;        // CPU: held requests (sorted), for releaseMeshing
+  std::size_t CoarseMin = 0;             // CPU: requests of this many chunks are coarse (0: never)
+  std::vector<char> CoarseMark;          // CPU: per mesh chunk, 1 when its last request was coarse
+  std::size_t CoarseCount = 0;           // CPU: chunks marked
+  std::vector<std::int64_t> Refine;      // CPU: chunks to refine once the worker is idle (refineMeshes)
   std::vector<std::int64_t> DeviceQueue; // GPU: mesh chunks to mesh at the next collect (sorted)
   PackedChunkMeshes Packed;              // GPU: the device meshes' page-locked block (reused)
   std::vector<std::int64_t> Changed;     // since takeChangedMeshChunks
