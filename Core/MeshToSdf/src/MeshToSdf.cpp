@@ -538,8 +538,9 @@ MeshToSdfStats meshToSdf(const MeshToSdfPrepared& mesh, const GridGeometry& grid
     require(extent.lo[a] >= 0 && extent.hi[a] < grid.dims[a], "mesh to SDF: the extent lies outside the grid");
   }
   MeshToSdfStats stats;
+  const BuildInterruptScope cancel(interrupter);
+  interrupter.start("mesh to SDF"); // the solid check below may take seconds
   const MeshToSdfOptions options = signOfSolids(mesh, given, stats, grid, extent);
-  interrupter.start("mesh to SDF");
   stats.device = chooseDevice(mesh, options, stats);
   auto engine = makeEngine(mesh, grid, options, options.bandWidth, stats.device, stats);
   const bool sharp = given.sign == SignMode::Normal && stats.signByWinding;
@@ -623,10 +624,11 @@ MeshToSdfStats meshToSdf(const MeshToSdfPrepared& mesh, DictionaryVolume& volume
   // a chunk region keeps the Normal path: its sharp regions may leave it
   MeshToSdfOptions forSolids = given;
   if (!given.chunkRegion.empty() && given.sign == SignMode::Normal) forSolids.solidsByWinding = false;
+  const BuildInterruptScope cancel(interrupter);
+  interrupter.start("mesh to SDF"); // the solid check below may take seconds
   const MeshToSdfOptions options = signOfSolids(mesh, forSolids, stats, grid, whole);
   MeshToSdfOptions opts = options;
   opts.unit = DistanceUnit::Voxel;
-  interrupter.start("mesh to SDF");
   stats.device = chooseDevice(mesh, options, stats);
   auto engine = makeEngine(mesh, grid, opts, volume.bandWidth(), stats.device, stats);
   const bool sharp = given.sign == SignMode::Normal && stats.signByWinding;
@@ -793,6 +795,7 @@ MeshToSdfStats prepareAndRun(const TriangleMesh& mesh, Out&& out, const MeshToSd
   Interrupter& interrupter)
 {
   const PhaseTraceScope tracing(options.tracePhases);
+  const BuildInterruptScope cancel(interrupter); // preparing a large mesh takes seconds
   const MeshToSdfPrepared prepared = prepareOneCall(mesh, options);
   MeshToSdfStats stats = meshToSdf(prepared, std::forward<Out>(out), options, interrupter);
   stats.buildSeconds += prepared.prepareSeconds();
@@ -803,6 +806,7 @@ MeshToSdfStats meshToSdf(const TriangleMesh& mesh, const GridGeometry& grid, con
   const MeshToSdfOptions& options, Interrupter& interrupter)
 {
   const PhaseTraceScope tracing(options.tracePhases);
+  const BuildInterruptScope cancel(interrupter); // preparing a large mesh takes seconds
   const MeshToSdfPrepared prepared = prepareOneCall(mesh, options);
   MeshToSdfStats stats = meshToSdf(prepared, grid, extent, out, options, interrupter);
   stats.buildSeconds += prepared.prepareSeconds();

@@ -232,6 +232,7 @@ Bvh::Bvh(const TriList& tris, std::int32_t parallelSplitMin)
     const double t = now();
     trace(what, t - tp);
     tp = t;
+    checkBuildInterrupt();
   };
   // every element of these arrays is written by the build, on the threads:
   // their pages are first touched there (Memory.h)

@@ -277,6 +277,7 @@ NearestIndex::NearestIndex(const TriList& tris)
   Builder b(refs);
   b.buildAll();
   trace("nearest index: binary tree", now() - t0);
+  checkBuildInterrupt();
   t0 = now();
   this->PosOf.assign(n, -1);
   this->Nodes.reserve(n / 2 + 1);
@@ -362,6 +363,7 @@ NearestIndex::NearestIndex(const TriList& tris)
   for (std::int64_t i = 0; i < static_cast<std::int64_t>(b.Nodes.size()); ++i)
     childSlab(b.Nodes[static_cast<std::size_t>(i)], slabOf[static_cast<std::size_t>(i)].data());
   trace("nearest index: slabs", now() - t0);
+  checkBuildInterrupt();
   t0 = now();
 
   // collapse: open the child of largest surface area until four, then emit
@@ -427,6 +429,7 @@ NearestIndex::NearestIndex(const TriList& tris)
   };
   emit(emit, 0, 1);
   trace("nearest index: 4-wide layout", now() - t0);
+  checkBuildInterrupt();
   t0 = now();
   const auto placed = static_cast<std::int64_t>(triAt.size());
   resizeLargeForOverwrite(this->Tris, triAt.size());

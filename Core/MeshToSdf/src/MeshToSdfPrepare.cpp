@@ -414,6 +414,7 @@ void prepareMesh(const TriangleMesh& mesh, PreparedMesh& out, bool pseudoNormals
     const double t = now();
     trace(what, t - tp);
     tp = t;
+    checkBuildInterrupt();
   };
   validateOnThreads(mesh);
   out = PreparedMesh();
@@ -546,6 +547,8 @@ void addPseudoNormals(PreparedMesh& out)
 {
   if (out.pseudoNormals) return;
   double tp = now();
+  // no cancel here: this adds to a prepared mesh in place, which a stop half
+  // way would leave half written
   const std::function<void(const char*)> lap = [&tp](const char* what) {
     const double t = now();
     trace(what, t - tp);

@@ -43,6 +43,24 @@ PhaseTraceScope::~PhaseTraceScope() { tracePhasesOn = previous; }
 
 bool tracePhasesActive() { return tracePhasesOn; }
 
+namespace
+{
+thread_local Interrupter* buildInterrupter = nullptr;
+} // namespace
+
+BuildInterruptScope::BuildInterruptScope(Interrupter& interrupter)
+  : previous(buildInterrupter)
+{
+  buildInterrupter = &interrupter;
+}
+
+BuildInterruptScope::~BuildInterruptScope() { buildInterrupter = previous; }
+
+void checkBuildInterrupt()
+{
+  if (buildInterrupter) buildInterrupter->checkInterrupt();
+}
+
 void trace(const char* what, double seconds)
 {
   if (tracePhasesOn) std::fprintf(stderr, "[mesh to SDF] %s: %.2f ms\n", what, seconds * 1e3);

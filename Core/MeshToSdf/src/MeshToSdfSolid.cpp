@@ -523,6 +523,7 @@ SolidBoundary checkSolidBoundary(const PreparedMesh& mesh, const Bvh& bvh, const
   double t0 = now();
   checkFans(mesh, result);
   trace("solid check: edges and fans", now() - t0);
+  checkBuildInterrupt();
   if (!result.failed())
   {
     t0 = now();
@@ -532,6 +533,7 @@ SolidBoundary checkSolidBoundary(const PreparedMesh& mesh, const Bvh& bvh, const
     for (int a = 0; a < 3; ++a) extent = std::max(extent, mesh.hi[a] - mesh.lo[a]);
     EmbeddedCheck(mesh, bvh, 1e-9 * extent, result).run();
     trace("solid check: no triangles meet", now() - t0);
+    checkBuildInterrupt();
   }
   if (!result.failed())
   {

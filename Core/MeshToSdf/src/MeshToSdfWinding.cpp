@@ -316,6 +316,7 @@ WindingSigner::WindingSigner(const PreparedMesh& mesh, std::shared_ptr<const Bvh
     const double t0 = now();
     om = orientMesh(mesh.tris, mesh.welded);
     trace("winding: orientation pass", now() - t0);
+    checkBuildInterrupt();
     this->CorrectedFaces = om.flippedCount + om.removedCount;
     this->ReversedFaces = om.flippedCount;
     this->OpposedDuplicates = om.opposedDuplicates;
@@ -359,9 +360,11 @@ WindingSigner::WindingSigner(const PreparedMesh& mesh, std::shared_ptr<const Bvh
   if (!boundary->empty() && capLoops(*boundary, caps))
   {
     trace("winding: caps", now() - t0);
+    checkBuildInterrupt();
     t0 = now();
     buildClosure(this->Plus, mesh.tris, state, *boundary, &caps);
     trace("winding: closure BVH", now() - t0);
+    checkBuildInterrupt();
     this->PlusIsCone = false;
     if (state && !caps.empty()) this->CapsOnly = std::make_unique<DipoleTree>(caps);
     f.insert(f.end(), caps.begin(), caps.end());
@@ -370,6 +373,7 @@ WindingSigner::WindingSigner(const PreparedMesh& mesh, std::shared_ptr<const Bvh
   {
     buildClosure(this->Plus, mesh.tris, state, *boundary);
     trace("winding: closure BVH", now() - t0);
+    checkBuildInterrupt();
     this->PlusIsCone = state == nullptr; // M+ = M: exactly the cone over dM (shared with the CUDA path)
   }
   t0 = now();
