@@ -11,7 +11,11 @@
 #   (Testing/Benchmarks/Core/bench_stroke_latency_core). Files and logs in $OUT
 #   (default ./out-editor-stroke); stdout: the load and each run's report.
 #   EDITOR_ARGS: more lvdif-editor options, e.g. --full-redraw (every frame
-#   drawn whole, as before partial redraws) for the comparison.
+#   drawn whole, as before partial redraws) for the comparison, or
+#   "--stroke-lod on|off" (default auto: coarse meshes for frames that changed
+#   24 or more chunks). Each report says whether its latency counts coarse
+#   meshes, and its "refine" line the time from the stroke's end until every
+#   chunk it changed shows its full-resolution mesh.
 set -u
 B=${1:?usage: scripts/bench-editor-stroke.sh BUILD_DIR [N] [RUNS]}
 N=${2:-512}
@@ -33,6 +37,6 @@ for r in 15 40; do
       "$EDITOR" --open "$OUT/sphere$N.lvdv" --op add --brush drill --radius "$r" --color "#e65032" \
       --size 640x669 --no-recovery --autosave 0 --benchmark-stroke "$OUT/stroke$N.jsonl" ${EDITOR_ARGS:-} > "$L" 2>&1
     echo "rc=$?, load after: $(cut -d' ' -f1-3 /proc/loadavg)" | tee -a "$L"
-    grep "^benchmark-stroke:" "$L" | grep -v "frames are drawn by"
+    grep "^benchmark-stroke:" "$L" | grep -v "frames are drawn by" # latency, refine, frames, render, ...
   done
 done
