@@ -753,15 +753,31 @@ bool MainWindow::saveVolume(const QString& path)
 
 bool MainWindow::undo()
 {
-  const bool done = this->Doc.hasVolume() && !this->Painting && this->Doc.undo();
+  // an error is said, never thrown out of the event loop (that aborted the editor)
+  bool done = false;
+  try
+  {
+    done = this->Doc.hasVolume() && !this->Painting && this->Doc.undo();
+  }
+  catch (const std::exception& e)
+  {
+    this->showError("Cannot undo", e);
+  }
   this->updateTitle();
   return done;
 }
 
 void MainWindow::redo()
 {
-  if (this->Doc.hasVolume() && !this->Painting)
-    this->Doc.redo();
+  try
+  {
+    if (this->Doc.hasVolume() && !this->Painting)
+      this->Doc.redo();
+  }
+  catch (const std::exception& e)
+  {
+    this->showError("Cannot redo", e);
+  }
   this->updateTitle();
 }
 

@@ -167,7 +167,27 @@ void VolumeDocument::beginStroke()
 
 void VolumeDocument::addSample(const lvdif::BrushSample& s)
 {
-  this->Session->addSample(s);
+  try
+  {
+    this->Session->addSample(s);
+  }
+  catch (...)
+  {
+    // The stroke ends at its failure (an edit over the memory limit): what it
+    // applied before stays, one undo step. Left open, it refused every later
+    // stroke ("a stroke is already open"), and Ctrl+Z threw "finish the open
+    // stroke first" out of the event loop: the editor aborted, the work unsaved.
+    try
+    {
+      this->endStroke();
+    }
+    catch (...)
+    {
+      // the stroke's own failure is the one reported
+    }
+    this->noteChanges();
+    throw;
+  }
   this->noteChanges();
 }
 
