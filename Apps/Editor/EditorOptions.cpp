@@ -192,7 +192,8 @@ EditorOptions parseEditorOptions(const QStringList& arguments)
     "Brush radius in voxels, in (0, " + maxRadius + "] (default " + defaultRadius + ").", "r", defaultRadius);
   const QCommandLineOption color("color", "Brush colour, #rrggbb or an SVG colour name (default: the panel's).", "color");
   const QCommandLineOption size("size",
-    "Window size WxH in pixels (default 900x700); at least the window's least size (the Brush panel's height).",
+    "Window size WxH in pixels (default 900x700); at least the window's least size (the Brush panel's height), at "
+    "most the screen's.",
     "size", "900x700");
   const QCommandLineOption quit("quit", "Quit when the command-line work is done.");
   const QCommandLineOption noRecovery("no-recovery", "Do not offer to recover an autosaved volume.");

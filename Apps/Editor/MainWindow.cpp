@@ -614,6 +614,8 @@ void MainWindow::installFinishedMeshes()
       std::fprintf(stderr, "lvdif-editor: first surface shown %lld ms after the window was made\n",
         static_cast<long long>(this->Clock.elapsed()));
   }
+  else
+    this->settleHome();
   this->Status->setText(QString("%1 chunks, %2 triangles")
                           .arg(this->Chunks->GetNumberOfChunks())
                           .arg(this->Chunks->GetNumberOfTriangles()));
@@ -649,6 +651,37 @@ void MainWindow::resetView()
       this->RenderWindow->SetSize(w, h);
   }
   this->setViewPreset(-1);
+  // the first meshes may be a part of the surface: the view fits it again as the rest comes
+  this->HomeSettling = this->Doc.hasVolume();
+  this->homeTarget(this->HomeBounds);
+  vtkCamera* cam = this->Renderer->GetActiveCamera();
+  cam->GetPosition(this->HomeCamera);
+  cam->GetFocalPoint(this->HomeCamera + 3);
+  cam->GetViewUp(this->HomeCamera + 6);
+  this->HomeCamera[9] = cam->GetParallelProjection() ? cam->GetParallelScale() : cam->GetViewAngle();
+}
+
+void MainWindow::settleHome()
+{
+  if (!this->HomeSettling)
+    return;
+  vtkCamera* cam = this->Renderer->GetActiveCamera();
+  double now[10];
+  cam->GetPosition(now);
+  cam->GetFocalPoint(now + 3);
+  cam->GetViewUp(now + 6);
+  now[9] = cam->GetParallelProjection() ? cam->GetParallelScale() : cam->GetViewAngle();
+  if (this->Painting || !std::equal(now, now + 10, this->HomeCamera))
+  {
+    this->HomeSettling = false; // the user's view from now on
+    return;
+  }
+  double target[6];
+  this->homeTarget(target);
+  const bool idle = this->Doc.meshingIdle();
+  if (!std::equal(target, target + 6, this->HomeBounds))
+    this->resetView();
+  this->HomeSettling = !idle;
 }
 
 bool MainWindow::newCanvas(int nx, int ny, int nz, VolumeDocument::Fill fill)
@@ -760,15 +793,31 @@ bool MainWindow::saveVolume(const QString& path)
 
 bool MainWindow::undo()
 {
-  const bool done = this->Doc.hasVolume() && !this->Painting && this->Doc.undo();
+  // an error is said, never thrown out of the event loop (that aborted the editor)
+  bool done = false;
+  try
+  {
+    done = this->Doc.hasVolume() && !this->Painting && this->Doc.undo();
+  }
+  catch (const std::exception& e)
+  {
+    this->showError("Cannot undo", e);
+  }
   this->updateTitle();
   return done;
 }
 
 void MainWindow::redo()
 {
-  if (this->Doc.hasVolume() && !this->Painting)
-    this->Doc.redo();
+  try
+  {
+    if (this->Doc.hasVolume() && !this->Painting)
+      this->Doc.redo();
+  }
+  catch (const std::exception& e)
+  {
+    this->showError("Cannot redo", e);
+  }
   this->updateTitle();
 }
 

@@ -199,6 +199,9 @@ private:
   void syncToolActions();
   void scaleRadius(double factor);
   void volumeBounds(double b[6]);
+  /// What the home view and the view presets show whole: the shown surface's
+  /// bounds, or the volume's box while none is shown.
+  void homeTarget(double b[6]);
   /// -1: home (the command line's camera, Y up); else Front, Back, Right, Left, Top, Bottom.
   void setViewPreset(int preset);
   void frameSurface();
@@ -227,6 +230,9 @@ private:
   void drawFrame();
   void autosave();
   void resetView();
+  /// While a new volume's first meshes come in: the home view again as the
+  /// surface grows, unless the camera was moved or a stroke began.
+  void settleHome();
   void volumeReplaced();
   void updateTitle();
   bool maybeSave();
@@ -278,6 +284,11 @@ private:
   vtkNew<EditorBrushRepresentation> BrushRep; // on the surface, or on the solid's box (EditorBrush.h)
   vtkNew<vtkBrushWidget> Brush;
   bool ViewInitialized = false;
+  // The home view of a new volume settles as its meshes come (settleHome):
+  // the target it fitted and the camera it left.
+  bool HomeSettling = false;
+  double HomeBounds[6] = { 0, 0, 0, 0, 0, 0 };
+  double HomeCamera[10] = { 0, 0, 0, 0, 0, 0, 0, 0, 0, 0 };
   bool Painting = false;
   /// After a stroke (or its failure): its held requests to the worker, then
   /// full resolution for the chunks it meshed coarsely.

@@ -12,6 +12,7 @@
 #include "vtkCellArray.h"
 #include "vtkChunkActorManager.h"
 #include "vtkDoubleArray.h"
+#include "vtkMath.h"
 #include "vtkGenericOpenGLRenderWindow.h"
 #include "vtkPointData.h"
 #include "vtkPoints.h"
@@ -48,6 +49,7 @@
 #include <QVTKOpenGLWindow.h>
 
 #include <cmath>
+#include <limits>
 
 namespace
 {
@@ -213,6 +215,50 @@ void MainWindow::volumeBounds(double b[6])
   }
 }
 
+namespace
+{
+/// The largest zoom (vtkCamera::Zoom) at which every corner of `bounds` stays
+/// in the view of `cam`, of width / height `aspect`, in width and in height,
+/// with a margin of 4 % (infinity when no corner limits it).
+double fittingZoom(vtkCamera* cam, double aspect, const double bounds[6])
+{
+  const double* eye = cam->GetPosition();
+  double dop[3], up[3], right[3];
+  cam->GetDirectionOfProjection(dop);
+  cam->GetViewUp(up);
+  vtkMath::Normalize(dop);
+  vtkMath::Cross(dop, up, right);
+  vtkMath::Normalize(right);
+  vtkMath::Cross(right, dop, up);
+  double reach = 0; // the corners' largest half extent the view needs, as a tangent (perspective) or a length
+  for (int c = 0; c < 8; ++c)
+  {
+    const double p[3] = { bounds[c & 1], bounds[2 + ((c >> 1) & 1)], bounds[4 + ((c >> 2) & 1)] };
+    const double v[3] = { p[0] - eye[0], p[1] - eye[1], p[2] - eye[2] };
+    const double x = std::fabs(vtkMath::Dot(v, right)) / std::max(aspect, 1e-6), y = std::fabs(vtkMath::Dot(v, up));
+    const double depth = vtkMath::Dot(v, dop);
+    if (cam->GetParallelProjection())
+      reach = std::max(reach, std::max(x, y));
+    else if (depth > 0)
+      reach = std::max(reach, std::max(x, y) / depth);
+  }
+  reach *= 1.04;
+  if (!(reach > 0))
+    return std::numeric_limits<double>::infinity();
+  if (cam->GetParallelProjection())
+    return cam->GetParallelScale() / reach;
+  // Zoom divides the view angle
+  return cam->GetViewAngle() / vtkMath::DegreesFromRadians(2 * std::atan(reach));
+}
+} // namespace
+
+void MainWindow::homeTarget(double b[6])
+{
+  this->Chunks->GetBounds(b);
+  if (!(b[1] >= b[0]))
+    this->volumeBounds(b);
+}
+
 void MainWindow::setViewPreset(int preset)
 {
   vtkCamera* cam = this->Renderer->GetActiveCamera();
@@ -241,7 +287,18 @@ void MainWindow::setViewPreset(int preset)
     cam->Elevation(25);
     cam->OrthogonalizeViewUp();
   }
-  cam->Zoom(1.4); // the volume's box is mostly empty around the surface
+  // The volume's box is mostly empty around the surface: 1.4 times closer,
+  // but no closer than shows the whole surface (the box while none is shown)
+  // in width and in height. A Full canvas's surface is its box, which a narrow
+  // window cut off (--size 300x800 showed a third of its width).
+  double zoom = 1.4;
+  if (this->Doc.hasVolume())
+  {
+    double target[6];
+    this->homeTarget(target);
+    zoom = std::min(zoom, fittingZoom(cam, this->Renderer->GetTiledAspectRatio(), target));
+  }
+  cam->Zoom(zoom);
   this->Renderer->ResetCameraClippingRange();
   this->RenderWindow->Render();
 }

@@ -74,6 +74,14 @@ void VolumeDocument::hold(std::shared_ptr<lvdif::DictionaryVolume> volume)
   this->SeenChanges = this->Session->changeCount();
   this->Modified = false;
   this->EditsSinceAutosave = 0;
+  this->resetHistory();
+  this->RedoDropped = false; // a new history
+}
+
+void VolumeDocument::resetHistory()
+{
+  this->Done.clear();
+  this->Undone.clear();
 }
 
 void VolumeDocument::noteChanges()
@@ -152,36 +160,93 @@ void VolumeDocument::save(const QString& path, bool asCopy)
 
 void VolumeDocument::beginStroke()
 {
+  this->StrokeUndoCount = this->Session->undoCount();
+  this->StrokeChanges = this->Session->changeCount();
   this->Session->beginStroke();
 }
 
 void VolumeDocument::addSample(const lvdif::BrushSample& s)
 {
-  this->Session->addSample(s);
+  try
+  {
+    this->Session->addSample(s);
+  }
+  catch (...)
+  {
+    // The stroke ends at its failure (an edit over the memory limit): what it
+    // applied before stays, one undo step. Left open, it refused every later
+    // stroke ("a stroke is already open"), and Ctrl+Z threw "finish the open
+    // stroke first" out of the event loop: the editor aborted, the work unsaved.
+    try
+    {
+      this->endStroke();
+    }
+    catch (...)
+    {
+      // the stroke's own failure is the one reported
+    }
+    this->noteChanges();
+    throw;
+  }
   this->noteChanges();
 }
 
 void VolumeDocument::endStroke()
 {
-  if (this->Session->strokeOpen())
+  if (!this->Session->strokeOpen())
+    return;
+  // One step of ours whatever it changed (the script runner's rule, one for
+  // every front end): the session holds it when it wrote a chunk (a device's
+  // history may keep one more). The session closes its step even when the
+  // stroke fails; then whether it holds one is told by its counts.
+  bool held = true;
+  try
   {
-    this->Session->endStroke();
-    this->noteChanges();
+    const lvdif::EditResult r = this->Session->endStroke();
+    held = r.changedVoxels > 0 || !r.changedChunks.empty() || this->Session->undoCount() > this->StrokeUndoCount;
   }
+  catch (...)
+  {
+    this->Done.push_back(this->Session->changeCount() != this->StrokeChanges ||
+      this->Session->undoCount() != this->StrokeUndoCount);
+    this->Undone.clear();
+    this->RedoDropped = true;
+    this->noteChanges();
+    throw;
+  }
+  this->Done.push_back(held);
+  this->Undone.clear();
+  this->RedoDropped = true;
+  this->noteChanges();
 }
 
 bool VolumeDocument::undo()
 {
-  const bool done = this->Session->undo();
+  const bool held = this->Done.empty() || this->Done.back();
+  if (held && !this->Session->undo())
+  {
+    // the session's cap dropped the oldest steps: nothing of ours is left below
+    this->Done.clear();
+    return false;
+  }
+  if (!this->Done.empty())
+    this->Done.pop_back();
+  this->Undone.push_back(held);
   this->noteChanges();
-  return done;
+  return true;
 }
 
 bool VolumeDocument::redo()
 {
-  const bool done = this->Session->redo();
+  const bool held = this->Undone.empty() || this->Undone.back();
+  // a stroke since the last undo dropped what was undone, also one that changed nothing
+  if (held && ((this->Undone.empty() && this->RedoDropped) || !this->Session->redo()))
+    return false;
+  if (!this->Undone.empty())
+    this->Undone.pop_back();
+  this->Done.push_back(held);
   this->noteChanges();
-  return done;
+  return true;
 }
 
 void VolumeDocument::startRecording()
@@ -197,16 +262,23 @@ lvdif::Recording VolumeDocument::stopRecording()
 void VolumeDocument::play(const lvdif::Recording& r)
 {
   // as runScript: the edits played before an error stay, so they count as changes
+  // (and are the session's steps: the strokes' history goes on from its)
+  const std::uint64_t before = this->Session->changeCount();
+  auto after = [&] {
+    if (this->Session->changeCount() != before)
+      this->resetHistory();
+    this->noteChanges();
+  };
   try
   {
     this->Session->play(r);
   }
   catch (...)
   {
-    this->noteChanges();
+    after();
     throw;
   }
-  this->noteChanges();
+  after();
 }
 
 void VolumeDocument::runScript(const std::string& source, const lvdif::ScriptOptions& options)
@@ -214,10 +286,15 @@ void VolumeDocument::runScript(const std::string& source, const lvdif::ScriptOpt
   const int generation = this->Session->generation();
   // whether the script succeeded or failed later: edits made before an error
   // stay (each undoable), and a `canvas N` volume is kept (the session adopts it)
+  bool ran = true;
   auto after = [&] {
+    // its edits are the session's steps (the runner kept its own no-op steps for the run only)
+    if (ran)
+      this->resetHistory();
     this->noteChanges();
     if (this->Session->generation() != generation)
     {
+      this->RedoDropped = false; // a new volume's history
       // a new volume: no file yet (Save must not write it over the file that was open)
       this->Path.clear();
       this->Session->requestAllMeshes();
@@ -234,7 +311,12 @@ void VolumeDocument::runScript(const std::string& source, const lvdif::ScriptOpt
     // refused before any statement ran (a `canvas N` where the caller fixed
     // the canvas): the document is as it was, not modified
     if (!options.canvasSizeGivenBy.empty() && e.detail().find(options.canvasSizeGivenBy) != std::string::npos)
+    {
       this->SeenChanges = this->Session->changeCount();
+      ran = false;
+    }
+    if (e.code() == lvdif::ErrorCode::ParseError)
+      ran = false; // refused before it ran
     after();
     throw;
   }

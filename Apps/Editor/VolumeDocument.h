@@ -63,6 +63,11 @@ public:
   void beginStroke();
   void addSample(const lvdif::BrushSample& s);
   void endStroke();
+  /// Undo and redo by the script policy (docs/SCRIPTING.md, docs/EDITING.md):
+  /// every stroke is one step, also one that changed no voxel (a carve in empty
+  /// space), which the session's history does not hold: its undo and redo
+  /// change nothing, and a new stroke drops what was undone. False when there
+  /// is nothing to undo (redo).
   bool undo();
   bool redo();
   void startRecording();
@@ -89,6 +94,9 @@ private:
   void hold(std::shared_ptr<lvdif::DictionaryVolume> volume);
   /// Counts a change when the session's count moved.
   void noteChanges();
+  /// The strokes' own history starts again from the session's (a new volume,
+  /// a script or a recording played: their steps are the session's).
+  void resetHistory();
 
   std::unique_ptr<lvdif::EditSession> Session;
   QString Path;
@@ -96,4 +104,15 @@ private:
   int EditsSinceAutosave = 0;
   std::uint64_t SeenChanges = 0;
   bool CapsPending = false; // all meshes were requested: the box caps of chunks the device skips come with the next collect
+  // The strokes' history, as the script runner keeps a script's: Done/Undone
+  // hold the steps since resetHistory(), true where the session holds the step
+  // (a stroke that changed no voxel is false: the session keeps no step for
+  // it, so Ctrl+Z after it undid the stroke before). Before them (empty), the
+  // session's own history. RedoDropped: a stroke since, so the session's redo
+  // steps from before it are not to be redone (the session drops them only on
+  // a stroke that changes something).
+  std::vector<bool> Done, Undone;
+  bool RedoDropped = false;
+  std::size_t StrokeUndoCount = 0;   // the session's undo count at beginStroke
+  std::uint64_t StrokeChanges = 0;   // its change count there
 };

@@ -7,6 +7,7 @@
 #include <QApplication>
 #include <QElapsedTimer>
 #include <QOpenGLContext>
+#include <QScreen>
 #include <QSurfaceFormat>
 #include <QTimer>
 #include <QVTKOpenGLNativeWidget.h>
@@ -79,6 +80,24 @@ int main(int argc, char* argv[])
   QApplication::setApplicationName("lvdif-editor");
   QApplication::setOrganizationName("LVDIF");
 
+  // A --size larger than the screen (the whole desktop) is refused before the
+  // window is made: 16384x16384 under Xvfb's 1280x1024 screen ran for many
+  // minutes and tens of GB (the view's framebuffers; 8192x8192 took 52 s and
+  // 4 GB), and no screen could show it.
+  if (options.sizeGiven)
+  {
+    const QScreen* screen = QGuiApplication::primaryScreen();
+    const QSize desktop = screen ? screen->virtualSize() : QSize();
+    if (desktop.isValid() && (options.width > desktop.width() || options.height > desktop.height()))
+    {
+      std::fprintf(stderr,
+        "lvdif-editor: --size %dx%d is larger than the screen, %dx%d: give at most that (headless, give Xvfb a larger "
+        "screen: xvfb-run -a -s \"-screen 0 %dx%dx24\" lvdif-editor ...)\n",
+        options.width, options.height, desktop.width(), desktop.height(), std::max(options.width, desktop.width()),
+        std::max(options.height, desktop.height()));
+      return 2;
+    }
+  }
   QElapsedTimer sinceWindow;
   sinceWindow.start();
   MainWindow window(options);

@@ -20,6 +20,7 @@
 #include "vtkPoints.h"
 #include "vtkPointData.h"
 #include "vtkPolyData.h"
+#include "vtkPropCollection.h"
 #include "vtkProperty.h"
 #include "vtkRenderer.h"
 #include "vtkSMPTools.h"
@@ -29,6 +30,7 @@
 #include <cstdint>
 #include <cstring>
 #include <map>
+#include <unordered_set>
 #include <utility>
 #include <vector>
 
@@ -584,12 +586,37 @@ void vtkChunkActorManager::RemoveChunk(vtkIdType chunkId)
 
 void vtkChunkActorManager::RemoveAllChunks()
 {
+  if (vtkRenderer* ren = this->Internal->Renderer)
+  {
+    // vtkRenderer::RemoveActor finds the actor by a scan of the renderer's
+    // props (and actors) from the first: removed in chunk id order, which is
+    // not the order they were added in, n chunks cost up to n^2 / 2 steps.
+    // In the order of that list each is found among the first few.
+    std::unordered_set<vtkProp*> ours;
+    ours.reserve(this->Internal->Chunks.size());
+    for (auto& kv : this->Internal->Chunks)
+    {
+      ours.insert(kv.second.Actor.Get());
+    }
+    std::vector<vtkProp*> inOrder;
+    inOrder.reserve(ours.size());
+    vtkPropCollection* props = ren->GetViewProps();
+    vtkCollectionSimpleIterator it;
+    props->InitTraversal(it);
+    while (vtkProp* p = props->GetNextProp(it))
+    {
+      if (ours.count(p))
+      {
+        inOrder.push_back(p);
+      }
+    }
+    for (vtkProp* p : inOrder)
+    {
+      ren->RemoveActor(p); // the manager's Entry keeps it alive until the clear below
+    }
+  }
   for (auto& kv : this->Internal->Chunks)
   {
-    if (this->Internal->Renderer)
-    {
-      this->Internal->Renderer->RemoveActor(kv.second.Actor);
-    }
     if (this->Internal->Culler)
     {
       this->Internal->Culler->SetInputChangesAnnounced(kv.second.Actor, false);

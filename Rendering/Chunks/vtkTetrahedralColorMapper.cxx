@@ -8,6 +8,9 @@
 #include "vtkObjectFactory.h"
 #include "vtkOpenGLHelper.h"
 #include "vtkOpenGLIndexBufferObject.h"
+#include "vtkOpenGLRenderWindow.h"
+#include "vtkOpenGLState.h"
+#include "vtkOpenGLVertexBufferObjectCache.h"
 #include "vtkOpenGLVertexBufferObjectGroup.h"
 #include "vtkPoints.h"
 #include "vtkRenderer.h"
@@ -149,10 +152,33 @@ bool hasTetrahedralArrays(vtkPolyData* pd)
 } // namespace
 
 vtkTetrahedralColorMapper::vtkTetrahedralColorMapper()
+  : OwnVBOCache(vtkSmartPointer<vtkOpenGLVertexBufferObjectCache>::New())
 {
   this->SetColorModeToDirectScalars();
   this->SetScalarModeToUsePointFieldData();
   this->SelectColorArray("rgba");
+}
+
+vtkOpenGLVertexBufferObjectCache* vtkTetrahedralColorMapper::GetOwnVBOCache()
+{
+  return this->OwnVBOCache;
+}
+
+void vtkTetrahedralColorMapper::BuildBufferObjects(vtkRenderer* ren, vtkActor* act)
+{
+  // The superclass caches each array through the render window's cache, the
+  // context's (vtkOpenGLState's): this mapper's own stands there meanwhile.
+  auto* window = vtkOpenGLRenderWindow::SafeDownCast(ren->GetRenderWindow());
+  vtkOpenGLState* state = window ? window->GetState() : nullptr;
+  if (!state)
+  {
+    this->Superclass::BuildBufferObjects(ren, act);
+    return;
+  }
+  vtkSmartPointer<vtkOpenGLVertexBufferObjectCache> shared = state->GetVBOCache();
+  state->SetVBOCache(this->OwnVBOCache);
+  this->Superclass::BuildBufferObjects(ren, act);
+  state->SetVBOCache(shared);
 }
 
 void vtkTetrahedralColorMapper::InstallShaderReplacements(vtkShaderProperty* property, bool on)

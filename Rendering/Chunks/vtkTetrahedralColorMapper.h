@@ -51,9 +51,11 @@
 
 #include "lvdifRenderingChunksModule.h" // for export macro
 #include "vtkOpenGLPolyDataMapper.h"
+#include "vtkSmartPointer.h" // for the mapper's own VBO cache
 
 #include <vector> // for the draw ranges
 
+class vtkOpenGLVertexBufferObjectCache;
 class vtkShaderProperty;
 
 class LVDIFRENDERINGCHUNKS_EXPORT vtkTetrahedralColorMapper : public vtkOpenGLPolyDataMapper
@@ -120,6 +122,10 @@ public:
   /// MTime and GetMeshMTime()); after that, it computes them again.
   void SetInputBounds(const double bounds[6]);
 
+  /// The cache of this mapper's vertex buffers: its own, not the context's
+  /// (BuildBufferObjects), so that releasing them scans only its own arrays.
+  vtkOpenGLVertexBufferObjectCache* GetOwnVBOCache();
+
   /// Installs (or with on=false removes) the tetrahedral GLSL on a shader
   /// property. Public so that other mappers of the same data can share it.
   static void InstallShaderReplacements(vtkShaderProperty* property, bool on);
@@ -132,6 +138,13 @@ protected:
 
   void RenderPieceDraw(vtkRenderer* ren, vtkActor* act) override;
   void ComputeBounds() override;
+  /// The superclass's, with this mapper's own VBO cache in place of the
+  /// context's: VTK 9.1 finds the entry of a released VBO by scanning every
+  /// array its cache holds (vtkOpenGLVertexBufferObjectCache::RemoveVBO), so
+  /// with one mapper per chunk in the context's cache, releasing n chunks cost
+  /// n^2 steps (dropping 30,000 chunk actors stalled the editor for minutes).
+  /// A chunk's arrays belong to it alone: nothing is lost by not sharing them.
+  void BuildBufferObjects(vtkRenderer* ren, vtkActor* act) override;
 
   int InterpolationMode = Tetrahedral;
   bool UsedTetrahedral = false;
@@ -141,6 +154,7 @@ protected:
   vtkIdType LastTrianglesDrawn = 0;
   int LastDrawCalls = 0;
   vtkTimeStamp DrawTime;
+  vtkSmartPointer<vtkOpenGLVertexBufferObjectCache> OwnVBOCache;
 
 private:
   // SetInputBounds: the bounds, and the input and times they hold for

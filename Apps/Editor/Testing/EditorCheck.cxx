@@ -44,6 +44,8 @@
 //   --cursor-aspect T.png RATIO   the pure green pixels (the cursor in a
 //                       --color #00ff00 run, drawn unlit) span a box of
 //                       height / width = RATIO within 15 %.
+//   --inside-view T.png  the model (pixels brighter than the background) is in
+//                       the picture and reaches none of its four sides.
 //   --tube-thickness T.png RATIO   a --color #00ff00 Dynamic stroke's preview
 //                       (translucent green) is at its thickest RATIO times as
 //                       tall as the cursor (pure green, the full radius at
@@ -517,6 +519,36 @@ void checkCursorAspect(const char* path, double ratio)
   check(std::fabs(h / w - ratio) <= 0.15 * ratio, "the cursor's height / width is the spacing's");
 }
 
+void checkInsideView(const char* path)
+{
+  int dims[3];
+  const auto img = readPicture(path, dims);
+  if (!img)
+    return;
+  // the model: a pixel brighter than the background gradient (at most 51 in
+  // every channel: Background (0.16, 0.17, 0.2), Background2 darker)
+  int lo[2] = { dims[0], dims[1] }, hi[2] = { -1, -1 };
+  long count = 0;
+  for (int j = 0; j < dims[1]; ++j)
+    for (int i = 0; i < dims[0]; ++i)
+    {
+      const auto* p = static_cast<unsigned char*>(img->GetScalarPointer(i, j, 0));
+      if (std::max(p[0], std::max(p[1], p[2])) > 70)
+      {
+        ++count;
+        lo[0] = std::min(lo[0], i);
+        lo[1] = std::min(lo[1], j);
+        hi[0] = std::max(hi[0], i);
+        hi[1] = std::max(hi[1], j);
+      }
+    }
+  std::printf("model: %ld pixels in columns %d..%d, rows %d..%d of %d x %d\n", count, lo[0], hi[0], lo[1], hi[1],
+    dims[0], dims[1]);
+  check(count > 1000, "the model is in the picture");
+  check(lo[0] > 0 && hi[0] < dims[0] - 1, "the model is whole in the view's width (it reaches no side)");
+  check(lo[1] > 0 && hi[1] < dims[1] - 1, "the model is whole in the view's height (it reaches neither end)");
+}
+
 void checkTubeThickness(const char* path, double ratio)
 {
   int dims[3];
@@ -696,6 +728,8 @@ int main(int argc, char* argv[])
       checkCursorAspect(argv[i + 1], std::atof(argv[i + 2]));
       i += 2;
     }
+    else if (!std::strcmp(argv[i], "--inside-view") && i + 1 < argc)
+      checkInsideView(argv[++i]);
     else if (!std::strcmp(argv[i], "--tube-thickness") && i + 2 < argc)
     {
       checkTubeThickness(argv[i + 1], std::atof(argv[i + 2]));
