@@ -20,8 +20,8 @@ int CommandScript(int argc, char** argv)
   Arguments args(argc, argv, 2, { "in", "out", "mesh", "png", "size", "max-steps" });
   if (args.positional().size() != 1)
     throw lvdif::Error(lvdif::ErrorCode::InvalidArgument,
-      "usage: lvdif script FILE.lvs [--in VOLUME] [--out VOLUME] [--mesh OUT.ply] [--png OUT.png] [--size N] "
-      "[--max-steps N]");
+      "usage: lvdif script FILE.lvs [--in VOLUME] [--out VOLUME] [--mesh OUT.ply] [--png OUT.png] "
+      "[--size N|NXxNYxNZ] [--max-steps N]");
   const std::string path = args.positional()[0];
   // --size is the empty start canvas's: with --in the volume is the start (it
   // was ignored without a word)
@@ -29,7 +29,7 @@ int CommandScript(int argc, char** argv)
     throw lvdif::Error(lvdif::ErrorCode::InvalidArgument,
       "--size (the size of an empty start canvas) cannot be used with --in (the script starts from that volume)");
   // the start canvas's size is refused before any output is checked or volume built
-  const long n = args.has("in") ? 0 : args.getCanvasSize("size", 128);
+  const lvdif::Index3 size = args.has("in") ? lvdif::Index3{ 0, 0, 0 } : args.getCanvasDims("size", 128);
   // a long script that is no endless loop (a loop over every voxel of 512^3 is 134M steps) could not run
   const long maxSteps = args.getInt("max-steps", static_cast<long>(lvdif::ScriptOptions().maxSteps), 1,
     std::numeric_limits<long>::max());
@@ -41,7 +41,7 @@ int CommandScript(int argc, char** argv)
   options.maxSteps = static_cast<std::uint64_t>(maxSteps);
   options.maxStepsRaisedBy = "--max-steps N";
   // --size and a script's `canvas N` both size the canvas: refused, not "the script wins" (--size was ignored)
-  if (args.has("size")) options.canvasSizeGivenBy = "--size " + std::to_string(n);
+  if (args.has("size")) options.canvasSizeGivenBy = "--size " + args.get("size", "");
   // the output's rule on the result's dimensions, before the script runs (a .bv of a
   // non-cubic canvas failed only when saving, after the whole script)
   if (args.has("out"))
@@ -72,7 +72,7 @@ int CommandScript(int argc, char** argv)
   {
     // scripts without `canvas` edit an empty canvas of --size (default 128)
     lvdif::VolumeOptions o;
-    o.dims = { n, n, n };
+    o.dims = size;
     start = std::make_unique<lvdif::DictionaryVolume>(o);
   }
   runner.attach(*start);

@@ -128,6 +128,11 @@ void removeStaleTemps(const std::string& path)
 }
 } // namespace
 
+void removeStaleTemporaries(const std::string& path)
+{
+  removeStaleTemps(path);
+}
+
 void MemorySource::read(std::uint64_t offset, void* dst, std::size_t n)
 {
   checkRange(offset, n, this->Size);
@@ -377,6 +382,17 @@ void requireWritable(const std::string& givenPath)
   const std::string dir = directoryOf(path);
   if (::stat(dir.c_str(), &st) != 0 || !S_ISDIR(st.st_mode))
   {
+    // the nearest existing folder or file above: a file there is named as the
+    // cause (FILE/x.lvdv said "the folder 'FILE' does not exist")
+    std::string up = dir;
+    while (::stat(up.c_str(), &st) != 0 && up != "." && up != "/")
+    {
+      up = directoryOf(up);
+    }
+    if (::stat(up.c_str(), &st) == 0 && !S_ISDIR(st.st_mode))
+    {
+      throw Error(ErrorCode::IoFailure, "cannot write '" + givenPath + "': '" + up + "' is a file, not a folder");
+    }
     throw Error(ErrorCode::IoFailure, "cannot write '" + givenPath + "': the folder '" + dir + "' does not exist");
   }
   const std::string notWritable = "cannot write '" + givenPath + "': the folder '" + dir + "' is not writable";

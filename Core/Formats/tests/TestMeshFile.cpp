@@ -146,6 +146,20 @@ TEST(MeshFile, StlAsciiAndBinaryShareCorners)
                             " endloop\nendfacet\nfacet normal 0 0 1\nouter loop\nvertex 0 0 0\nvertex 1 1 0\n"
                             "vertex 0 1 0.5\nendloop\nendfacet\nendsolid sq\n";
   expectSquare(readText(ascii, MeshFormat::Stl));
+  // the keywords in any case, as some exporters write them ("SOLID" was "no 'solid'",
+  // "FACET" "unexpected 'FACET'"); the name after solid keeps its case
+  std::string upper = ascii;
+  for (const char* w : { "solid", "facet", "normal", "outer", "loop", "vertex", "endloop", "endfacet", "endsolid" })
+    for (std::size_t at = upper.find(w); at != std::string::npos; at = upper.find(w, at + 1))
+      for (std::size_t i = at; i < at + std::strlen(w); ++i)
+        upper[i] = static_cast<char>(upper[i] - 'a' + 'A');
+  ASSERT_EQ(upper.rfind("SOLID sq\nFACET NORMAL 0 0 1\n OUTER LOOP\n  VERTEX 0 0 0\n", 0), 0u) << upper;
+  expectSquare(readText(upper, MeshFormat::Stl));
+  expectSquare(readText("Solid x\nFacet normal 0 0 1\nOuter Loop\nVertex 0 0 0\nVertex 1 0 0\nVertex 1 1 0\nEndLoop\n"
+                        "EndFacet\nfacet normal 0 0 1\nouter loop\nvertex 0 0 0\nvertex 1 1 0\nvertex 0 1 0.5\nENDLOOP\n"
+                        "endfacet\nEndSolid x\n",
+    MeshFormat::Stl));
+  expectError("SOLID x\nFACET NORMAL 0 0 1\nOUTER LOOP\nVERTICES 0 0 0\n", MeshFormat::Stl, "unexpected 'VERTICES'");
   std::string bin(80, ' ');
   put<std::uint32_t>(bin, 2);
   const float tris[2][9] = { { 0, 0, 0, 1, 0, 0, 1, 1, 0 }, { 0, 0, 0, 1, 1, 0, 0, 1, 0.5f } };
