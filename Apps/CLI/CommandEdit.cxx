@@ -61,7 +61,19 @@ int CommandScript(int argc, char** argv)
   // loaded, as play reads its recording first (a missing script or a typo in it was found
   // only after --in was read)
   const std::string text = lvdif::readScriptFile(path);
-  atScriptLine([&] { lvdif::checkScript(text); });
+  try
+  {
+    atScriptLine([&] { lvdif::checkScript(text); });
+  }
+  catch (const lvdif::Error& e)
+  {
+    // a recording given to script: said so (it was "unknown command 'LVDIF'")
+    const std::size_t b = text.compare(0, 3, "\xEF\xBB\xBF") == 0 ? 3 : 0;
+    if (text.compare(b, 15, "LVDIF-RECORDING") != 0)
+      throw;
+    throw lvdif::Error(e.code(), std::string(e.what()) + " (this is a recording: replay it with lvdif play " + path +
+        " --in VOLUME)");
+  }
   lvdif::ScriptRunner runner(options);
   std::shared_ptr<lvdif::DictionaryVolume> start;
   if (args.has("in"))
@@ -98,7 +110,21 @@ int CommandPlay(int argc, char** argv)
   AcceptEditCommandLine(args);
   ProgressBar progress;
   // the (small) recording is read and checked before the (possibly large) volume is loaded
-  const lvdif::Recording recording = lvdif::loadRecording(args.positional()[0]);
+  const lvdif::Recording recording = [&] {
+    try
+    {
+      return lvdif::loadRecording(args.positional()[0]);
+    }
+    catch (const lvdif::Error& e)
+    {
+      // a script given to play: said so (it was only "expected the version line")
+      const std::string& path = args.positional()[0];
+      const bool script = path.size() > 4 && path.compare(path.size() - 4, 4, ".lvs") == 0;
+      if (!script || std::string(e.what()).find(": expected the version line") == std::string::npos)
+        throw;
+      throw lvdif::Error(e.code(), std::string(e.what()) + " (this is a script: run it with lvdif script " + path + ")");
+    }
+  }();
   if (!recording.warning.empty()) // a version 1 recording: no end record to tell a cut one
     std::fprintf(stderr, "warning: %s\n", recording.warning.c_str());
   auto volume = LoadAnyVolume(args.get("in", ""), progress);

@@ -250,6 +250,15 @@ with open(cut, "w") as g:
 r = subprocess.run([exe, "play", cut, "--in", play_in, "--out", play_in], capture_output=True, text=True, timeout=60)
 assert r.returncode == 0 and r.stderr.count("warning:") == 1 and \
     "a version 1 recording has no end record" in r.stderr, r
+# a script given to play and a recording given to script say what the file is and the command that
+# takes it (they said only "expected the version line" and "unknown command 'LVDIF'")
+play_script = os.path.join(out, "play-in.lvs")
+code, err = run("play", play_script, "--in", play_in)
+assert code == 1 and err == (f"lvdif play: {play_script}:1:1: expected the version line 'LVDIF-RECORDING 2' "
+                             f"(this is a script: run it with lvdif script {play_script})"), (code, err)
+code, err = run("script", rec)
+assert code == 1 and err == (f"lvdif script: {rec}:1:1: unknown command 'LVDIF' (this is a recording: replay it "
+                             f"with lvdif play {rec} --in VOLUME)"), (code, err)
 # ... and so does script (it ran the whole script and kept nothing without a word)
 r = subprocess.run([exe, "script", os.path.join(out, "play-in.lvs")], capture_output=True, text=True, timeout=60)
 warnings = [line for line in r.stderr.splitlines() if line.startswith("warning:")]

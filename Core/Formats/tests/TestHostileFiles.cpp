@@ -252,4 +252,7 @@ TEST(HostileFiles, SaveByNameChecksTheWriterAndKeepsTheOldFile)
     "cannot write '" + file + "/sub/x.ply': '" + file + "' is a file, not a folder");
   EXPECT_EQ(errorOf([&] { requireWritable(d.path + "/no/x.ply"); }),
     "cannot write '" + d.path + "/no/x.ply': the folder '" + d.path + "/no' does not exist");
+  // ... and when reading (it said "Not a directory")
+  EXPECT_EQ(errorOf([&] { FileSource in(file + "/x.ply"); }),
+    "cannot open '" + file + "/x.ply': '" + file + "' is a file, not a folder");
 }

@@ -414,6 +414,36 @@ TEST(LVDIFFiles, AVtiWhosePiecesDoNotFillItsExtentIsRefused)
   std::remove(path.c_str());
 }
 
+// An empty .vti (a save that never wrote, a truncated copy) was reported in VTK's
+// words: "Error parsing input file.  ReadXMLInformation aborting.". Now in ours,
+// as every reader names an empty file.
+TEST(LVDIFFiles, AnEmptyVtiIsNamedAsEmpty)
+{
+  const std::string path = temp("empty.vti");
+  std::ofstream(path).close();
+  EXPECT_EQ(loadError(path), "cannot read '" + path + "': the file is empty: no VTK image in it");
+  std::ofstream(path) << "\n \r\n\t\n";
+  EXPECT_EQ(loadError(path), "cannot read '" + path + "': the file is empty (blank): no VTK image in it");
+  std::remove(path.c_str());
+}
+
+// An error in a .lvdvp index named the index itself ("index 'x.lvdvp', line 2:
+// ..."), so the readers' one guard, which adds "cannot read 'x':" unless the
+// message names the file, left the prefix every other reader's error has. Now
+// the index's errors are "line N: what" behind that prefix, and a byte order
+// mark before the index is skipped, as in every text format.
+TEST(LVDIFFiles, AnLvdvpErrorHasTheReadersPrefix)
+{
+  const std::string path = temp("bad.lvdvp");
+  std::ofstream(path) << "LVDIF-PVOLUME 1\nbogus 1\n";
+  EXPECT_EQ(loadError(path), "cannot read '" + path + "': line 2: unknown key 'bogus'");
+  std::ofstream(path).close();
+  EXPECT_EQ(loadError(path), "cannot read '" + path + "': empty file");
+  std::ofstream(path) << "\xEF\xBB\xBFLVDIF-PVOLUME 1\nbogus 1\n";
+  EXPECT_EQ(loadError(path), "cannot read '" + path + "': line 2: unknown key 'bogus'");
+  std::remove(path.c_str());
+}
+
 // Spacing="nan 1 1" (or inf) in a .vti was read as spacing 1 (VTK's reader takes
 // what it cannot parse for its default), 0 and negative spacings were read
 // (a zero spacing until the conversion refused it, after reading the data).
