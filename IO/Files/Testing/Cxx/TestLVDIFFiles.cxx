@@ -386,6 +386,18 @@ std::string loadError(const std::string& path)
   }
   return "(read without an error)";
 }
+
+/// Writes each text to temp(name) in turn: LoadVolume's error is "cannot read 'path': " + the expected words.
+void expectLoadErrors(const std::string& name, const std::vector<std::pair<std::string, std::string>>& cases)
+{
+  const std::string path = temp(name);
+  for (const auto& c : cases)
+  {
+    std::ofstream(path, std::ios::binary) << c.first;
+    EXPECT_EQ(loadError(path), "cannot read '" + path + "': " + c.second) << c.first;
+  }
+  std::remove(path.c_str());
+}
 } // namespace
 
 // A .vti whose WholeExtent is larger than its one piece's Extent was read: the
@@ -419,12 +431,8 @@ TEST(LVDIFFiles, AVtiWhosePiecesDoNotFillItsExtentIsRefused)
 // as every reader names an empty file.
 TEST(LVDIFFiles, AnEmptyVtiIsNamedAsEmpty)
 {
-  const std::string path = temp("empty.vti");
-  std::ofstream(path).close();
-  EXPECT_EQ(loadError(path), "cannot read '" + path + "': the file is empty: no VTK image in it");
-  std::ofstream(path) << "\n \r\n\t\n";
-  EXPECT_EQ(loadError(path), "cannot read '" + path + "': the file is empty (blank): no VTK image in it");
-  std::remove(path.c_str());
+  expectLoadErrors("empty.vti", { { "", "the file is empty: no VTK image in it" },
+                                  { "\n \r\n\t\n", "the file is empty (blank): no VTK image in it" } });
 }
 
 // An error in a .lvdvp index named the index itself ("index 'x.lvdvp', line 2:
@@ -434,14 +442,8 @@ TEST(LVDIFFiles, AnEmptyVtiIsNamedAsEmpty)
 // mark before the index is skipped, as in every text format.
 TEST(LVDIFFiles, AnLvdvpErrorHasTheReadersPrefix)
 {
-  const std::string path = temp("bad.lvdvp");
-  std::ofstream(path) << "LVDIF-PVOLUME 1\nbogus 1\n";
-  EXPECT_EQ(loadError(path), "cannot read '" + path + "': line 2: unknown key 'bogus'");
-  std::ofstream(path).close();
-  EXPECT_EQ(loadError(path), "cannot read '" + path + "': empty file");
-  std::ofstream(path) << "\xEF\xBB\xBFLVDIF-PVOLUME 1\nbogus 1\n";
-  EXPECT_EQ(loadError(path), "cannot read '" + path + "': line 2: unknown key 'bogus'");
-  std::remove(path.c_str());
+  expectLoadErrors("bad.lvdvp", { { "LVDIF-PVOLUME 1\nbogus 1\n", "line 2: unknown key 'bogus'" }, { "", "empty file" },
+                                  { "\xEF\xBB\xBFLVDIF-PVOLUME 1\nbogus 1\n", "line 2: unknown key 'bogus'" } });
 }
 
 // Spacing="nan 1 1" (or inf) in a .vti was read as spacing 1 (VTK's reader takes
