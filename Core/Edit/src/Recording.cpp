@@ -255,7 +255,27 @@ Recording readRecording(std::istream& in, const std::string& name)
       if (d.shape == BrushShape::Capsule)
         for (int a = 0; a < 3; ++a)
           d.end[a] = toNumber(words[5 + a].text, at, words[5 + a].column, "capsule end");
-      rule([&] { validate(d, r.records.back().dabs.size()); }, words[1].column);
+      {
+        // the one rule of a dab (validate), reported at the value it refuses: each
+        // group of values alone, in the line's order (a huge radius was named at x)
+        const std::size_t n = r.records.back().dabs.size();
+        const std::size_t end = d.shape == BrushShape::Capsule ? 5 : 0, vec = withVec ? want - 2 : 0;
+        for (std::size_t at : { std::size_t(1), std::size_t(4), end, vec })
+        {
+          Dab probe;
+          probe.shape = d.shape;
+          if (at == 1)
+            probe.center = d.center;
+          if (at == 4)
+            probe.radius = d.radius;
+          if (at == end && end)
+            probe.end = d.end;
+          if (at == vec && vec)
+            probe.vec = d.vec;
+          if (at)
+            rule([&] { validate(probe, n); }, words[at].column);
+        }
+      }
       r.records.back().dabs.push_back(d);
       --expectDabs;
       continue;

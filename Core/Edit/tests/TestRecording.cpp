@@ -185,6 +185,15 @@ TEST(Recording, ParseErrorsNameTheLine)
     "edit time=0 op=add shape=sphere kind=basic spacing=1.6 blend=0 coloroffset=1.5 color=1,2,3,255 dabs=2\n";
   EXPECT_EQ(errorOf(head + edit + "d 1 2 3 4\n"), "recording:3:1: recording ends 1 dab lines early");
   EXPECT_EQ(errorOf(head + edit + "d 1 2 3 4\nd 1 2 x 4\n"), "recording:4:7: dab position is not a finite number: 'x'");
+  // a value out of the dabs' range is named at it (a huge radius was named at x, column 3)
+  EXPECT_EQ(errorOf(head + edit + "d 1 2 3 1e300\n").rfind("recording:3:9: dab 0 radius must be a finite number in ", 0), 0u)
+    << errorOf(head + edit + "d 1 2 3 1e300\n");
+  EXPECT_EQ(errorOf(head + edit + "d 1 2e30 3 4\n").rfind("recording:3:3: dab 0 position must be a finite number in ", 0), 0u)
+    << errorOf(head + edit + "d 1 2e30 3 4\n");
+  EXPECT_EQ(errorOf(head + edit + "d 1 2 3 4\nd:capsule 1 2 3 4 5 6 7e30\n")
+              .rfind("recording:4:19: dab 1 capsule end must be a finite number in ", 0),
+    0u)
+    << errorOf(head + edit + "d 1 2 3 4\nd:capsule 1 2 3 4 5 6 7e30\n");
   EXPECT_EQ(errorOf(head + "\n# c\nedit time=0 op=melt\n"), "recording:4:16: unknown op 'melt'");
   EXPECT_EQ(errorOf(head + "bogus time=1\n"), "recording:2:1: unknown record 'bogus'");
   // an empty file: line 1, as every position is 1-based (it said "recording:0:1")
