@@ -403,6 +403,9 @@ TriangleMesh readOff(const std::vector<char>& data)
   if (t.size() < 2)
     fail(ErrorCode::ParseError, s.where(), "expected vertex, face (and edge) counts");
   const std::int64_t nv = parseInt(t[0], s.where()), nf = parseInt(t[1], s.where());
+  if (nv < 0 || nf < 0) // ("-3 vertices and 1 faces cannot fit in the rest of the file")
+    fail(ErrorCode::ParseError, s.where(),
+      "negative " + std::string(nv < 0 ? "vertex" : "face") + " count " + std::to_string(nv < 0 ? nv : nf));
   // every vertex needs at least 6 bytes ("0 0 0\n"), every face 8 ("3 0 1 2\n")
   if (nv < 0 || nf < 0 || nv > std::int64_t(s.remaining() / 6) || nf > std::int64_t(s.remaining() / 8) ||
     nv > std::int64_t(UINT32_MAX))

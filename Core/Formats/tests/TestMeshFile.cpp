@@ -200,6 +200,9 @@ TEST(MeshFile, MalformedInputsAreClearErrors)
     { "OBJ no faces", "v 0 0 0\n", MeshFormat::Obj, "no triangles" },
     { "OFF negative index", "OFF\n3 1 0\n" + tri + "3 0 -1 2\n", MeshFormat::Off, "out of range" },
     { "OFF huge counts", "OFF\n2000000000 1 0\n0 0 0\n", MeshFormat::Off, "cannot fit" },
+    // a negative count is named as one (it was "-3 vertices and 1 faces cannot fit in the rest of the file")
+    { "OFF negative vertex count", "OFF\n-3 1 0\n" + tri + "3 0 1 2\n", MeshFormat::Off, "OFF line 2: negative vertex count -3" },
+    { "OFF negative face count", "OFF\n3 -1 0\n" + tri, MeshFormat::Off, "OFF line 2: negative face count -1" },
     { "OFF truncated", "OFF\n3 1 0\n0 0 0\n1 0 0\n# a comment long enough to pass the size bound\n", MeshFormat::Off, "file ends" },
     { "OFF counts past the size", "OFF\n3 1 0\n0 0 0\n1 0 0\n", MeshFormat::Off, "cannot fit" },
     { "OFF face shorter than announced", "OFF\n3 1 0\n" + tri + "4 0 1 2\n", MeshFormat::Off, "announces 4" },
