@@ -108,6 +108,7 @@ TEST(Script, SyntaxErrorsGiveLineAndColumn)
   const Case cases[] = {
     { "x = 1 +\n", 1, 8, "expected a value, found the end of the line" },
     { "canvas 64\n  dab 1 2\n", 2, 3, "'dab' takes 3 arguments, got 2" },
+    { "color 10 20\n", 1, 1, "'color' takes 3 or 4 arguments, got 2" }, // it said "3 to 4"
     { "for i in 0..3 {\n  dab 1 2 3\n", 1, 15, "this '{' is never closed" },
     { "brush cylinder", 1, 7, "'brush' expects one of: cube, sphere; found 'cylinder'" },
     { "\n\nx = 3 $ 4", 3, 7, "unexpected character '$'" },
