@@ -113,6 +113,11 @@ struct Watch
 
 [[noreturn]] void unknown(const std::string& path, Kind kind, bool saving)
 {
+  // an empty argument ('lvdif convert v.lvdv ""') was "cannot write '': volumes are .lvdv, ... files"
+  if (path.empty())
+    throw lvdif::Error(lvdif::ErrorCode::InvalidArgument,
+      std::string("no ") + (kind == Kind::Volume ? "volume" : "mesh") + " file name to " + (saving ? "write" : "read") +
+        " (an empty argument)");
   std::string list;
   for (const Format& f : Formats())
   {

@@ -225,6 +225,19 @@ TEST(LVDIFFiles, UnknownExtensionsAreOneClearError)
   }
   EXPECT_THROW(LVDIFFiles::LoadVolume(temp("missing.lvdv")), lvdif::Error);
   EXPECT_THROW(LVDIFFiles::SaveMesh(vtkPolyData::New(), temp("x.off")), lvdif::Error); // .off is read-only
+  // an empty name is named as such (it was "cannot write '': volumes are .lvdv, ... files")
+  for (const bool saving : { false, true })
+  {
+    try
+    {
+      LVDIFFiles::RequireFormat("", LVDIFFiles::Kind::Volume, saving);
+      ADD_FAILURE() << "no error";
+    }
+    catch (const lvdif::Error& e)
+    {
+      EXPECT_EQ(std::string(e.what()), std::string("no volume file name to ") + (saving ? "write" : "read") + " (an empty argument)");
+    }
+  }
   EXPECT_EQ(LVDIFFiles::Extension("/a.b/c.LVDV"), "lvdv");
   EXPECT_EQ(LVDIFFiles::Extension("/a.b/c"), "");
   EXPECT_NE(LVDIFFiles::DialogFilter(LVDIFFiles::Kind::Volume, true).find("(*.lvdv)"), std::string::npos);
