@@ -119,6 +119,30 @@ long Arguments::getCanvasSize(const std::string& key, long fallback) const
   return n;
 }
 
+lvdif::Index3 Arguments::getCanvasDims(const std::string& key, long fallback) const
+{
+  if (!this->has(key)) return { fallback, fallback, fallback };
+  // N (a cube) or NXxNYxNZ, as the editor's --new (it took N only)
+  const std::string v = this->get(key, "");
+  std::vector<std::string> parts(1);
+  for (char c : v)
+    if (c == 'x') parts.emplace_back();
+    else parts.back() += c;
+  lvdif::Index3 dims{ 0, 0, 0 };
+  for (int a = 0; a < 3; ++a)
+  {
+    long n = 0;
+    if ((parts.size() != 1 && parts.size() != 3) || !parseLong(parts[parts.size() == 1 ? 0 : a], n))
+      refuse(key, "N or NXxNYxNZ, each " + rangeText(lvdif::DictionaryVolume::MinCanvasDimension, lvdif::DictionaryVolume::MaxDimension), v);
+    dims[a] = n;
+  }
+  // DictionaryVolume::checkCanvasDimensions is the one canvas rule of every editor
+  const std::string problem = lvdif::DictionaryVolume::checkCanvasDimensions(dims);
+  if (!problem.empty())
+    throw lvdif::Error(lvdif::ErrorCode::InvalidArgument, "--" + key + " " + v + ": " + problem);
+  return dims;
+}
+
 double Arguments::getDouble(const std::string& key, double fallback, double lo, double hi) const
 {
   if (!this->has(key)) return fallback;

@@ -2,7 +2,9 @@
 // `--flag` options, with errors that name the bad option.
 #pragma once
 
+#include <array>
 #include <cmath>
+#include <cstdint>
 #include <map>
 #include <string>
 #include <vector>
@@ -27,6 +29,8 @@ public:
   /// An integer edge length N for a new N x N x N canvas, refused (naming the
   /// option) unless the editors' one canvas rule accepts it.
   long getCanvasSize(const std::string& key, long fallback) const;
+  /// A canvas of N^3 or NXxNYxNZ voxels (fallback: a cube), by the same canvas rule.
+  std::array<std::int64_t, 3> getCanvasDims(const std::string& key, long fallback) const;
 
 private:
   std::vector<std::string> Positional;

@@ -20,8 +20,8 @@ int CommandScript(int argc, char** argv)
   Arguments args(argc, argv, 2, { "in", "out", "mesh", "png", "size", "max-steps" });
   if (args.positional().size() != 1)
     throw lvdif::Error(lvdif::ErrorCode::InvalidArgument,
-      "usage: lvdif script FILE.lvs [--in VOLUME] [--out VOLUME] [--mesh OUT.ply] [--png OUT.png] [--size N] "
-      "[--max-steps N]");
+      "usage: lvdif script FILE.lvs [--in VOLUME] [--out VOLUME] [--mesh OUT.ply] [--png OUT.png] "
+      "[--size N|NXxNYxNZ] [--max-steps N]");
   const std::string path = args.positional()[0];
   // --size is the empty start canvas's: with --in the volume is the start (it
   // was ignored without a word)
@@ -29,7 +29,7 @@ int CommandScript(int argc, char** argv)
     throw lvdif::Error(lvdif::ErrorCode::InvalidArgument,
       "--size (the size of an empty start canvas) cannot be used with --in (the script starts from that volume)");
   // the start canvas's size is refused before any output is checked or volume built
-  const long n = args.has("in") ? 0 : args.getCanvasSize("size", 128);
+  const lvdif::Index3 size = args.has("in") ? lvdif::Index3{ 0, 0, 0 } : args.getCanvasDims("size", 128);
   // a long script that is no endless loop (a loop over every voxel of 512^3 is 134M steps) could not run
   const long maxSteps = args.getInt("max-steps", static_cast<long>(lvdif::ScriptOptions().maxSteps), 1,
     std::numeric_limits<long>::max());
@@ -41,7 +41,7 @@ int CommandScript(int argc, char** argv)
   options.maxSteps = static_cast<std::uint64_t>(maxSteps);
   options.maxStepsRaisedBy = "--max-steps N";
   // --size and a script's `canvas N` both size the canvas: refused, not "the script wins" (--size was ignored)
-  if (args.has("size")) options.canvasSizeGivenBy = "--size " + std::to_string(n);
+  if (args.has("size")) options.canvasSizeGivenBy = "--size " + args.get("size", "");
   // the output's rule on the result's dimensions, before the script runs (a .bv of a
   // non-cubic canvas failed only when saving, after the whole script)
   if (args.has("out"))
@@ -61,7 +61,19 @@ int CommandScript(int argc, char** argv)
   // loaded, as play reads its recording first (a missing script or a typo in it was found
   // only after --in was read)
   const std::string text = lvdif::readScriptFile(path);
-  atScriptLine([&] { lvdif::checkScript(text); });
+  try
+  {
+    atScriptLine([&] { lvdif::checkScript(text); });
+  }
+  catch (const lvdif::Error& e)
+  {
+    // a recording given to script: said so (it was "unknown command 'LVDIF'")
+    const std::size_t b = text.compare(0, 3, "\xEF\xBB\xBF") == 0 ? 3 : 0;
+    if (text.compare(b, 15, "LVDIF-RECORDING") != 0)
+      throw;
+    throw lvdif::Error(e.code(), std::string(e.what()) + " (this is a recording: replay it with lvdif play " + path +
+        " --in VOLUME)");
+  }
   lvdif::ScriptRunner runner(options);
   std::shared_ptr<lvdif::DictionaryVolume> start;
   if (args.has("in"))
@@ -72,7 +84,7 @@ int CommandScript(int argc, char** argv)
   {
     // scripts without `canvas` edit an empty canvas of --size (default 128)
     lvdif::VolumeOptions o;
-    o.dims = { n, n, n };
+    o.dims = size;
     start = std::make_unique<lvdif::DictionaryVolume>(o);
   }
   runner.attach(*start);
@@ -98,7 +110,21 @@ int CommandPlay(int argc, char** argv)
   AcceptEditCommandLine(args);
   ProgressBar progress;
   // the (small) recording is read and checked before the (possibly large) volume is loaded
-  const lvdif::Recording recording = lvdif::loadRecording(args.positional()[0]);
+  const lvdif::Recording recording = [&] {
+    try
+    {
+      return lvdif::loadRecording(args.positional()[0]);
+    }
+    catch (const lvdif::Error& e)
+    {
+      // a script given to play: said so (it was only "expected the version line")
+      const std::string& path = args.positional()[0];
+      const bool script = path.size() > 4 && path.compare(path.size() - 4, 4, ".lvs") == 0;
+      if (!script || std::string(e.what()).find(": expected the version line") == std::string::npos)
+        throw;
+      throw lvdif::Error(e.code(), std::string(e.what()) + " (this is a script: run it with lvdif script " + path + ")");
+    }
+  }();
   if (!recording.warning.empty()) // a version 1 recording: no end record to tell a cut one
     std::fprintf(stderr, "warning: %s\n", recording.warning.c_str());
   auto volume = LoadAnyVolume(args.get("in", ""), progress);

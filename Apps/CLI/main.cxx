@@ -77,8 +77,8 @@ const Command commands[] = {
     "(.bv: on every axis, the original's cubic grid around the mesh), "
     "--padding 2 voxels, --sign winding, --band 8 voxels (0: no band), --device auto" },
   { "script", CommandScript,
-    "script FILE.lvs [--in VOLUME] [--out VOLUME] [--mesh OUT] [--png OUT.png] [--size N] [--max-steps N]   run a "
-    "script; --size: the empty start canvas (default 128) of a script without --in and without its own 'canvas'; "
+    "script FILE.lvs [--in VOLUME] [--out VOLUME] [--mesh OUT] [--png OUT.png] [--size N|NXxNYxNZ] [--max-steps N]   run a "
+    "script; --size: the empty start canvas (N^3 or NXxNYxNZ voxels, default 128) of a script without --in and without its own 'canvas'; "
     "--max-steps: the most statements, loop iterations and dabs it may run (default 50000000)" },
   { "play", CommandPlay, "play RECORDING.lvr --in VOLUME [--out VOLUME] [--mesh OUT] [--png OUT.png]   replay edits" },
 };

@@ -113,6 +113,11 @@ struct Watch
 
 [[noreturn]] void unknown(const std::string& path, Kind kind, bool saving)
 {
+  // an empty argument ('lvdif convert v.lvdv ""') was "cannot write '': volumes are .lvdv, ... files"
+  if (path.empty())
+    throw lvdif::Error(lvdif::ErrorCode::InvalidArgument,
+      std::string("no ") + (kind == Kind::Volume ? "volume" : "mesh") + " file name to " + (saving ? "write" : "read") +
+        " (an empty argument)");
   std::string list;
   for (const Format& f : Formats())
   {
@@ -423,7 +428,9 @@ void RequireWritable(const std::string& path)
 {
   lvdif::requireWritable(path);
   // a single process writes piece 0 (ranks their own, each checked by its writer)
-  if (Extension(path) == "lvdvp") lvdif::requireWritable(vtkPDictionaryVolumeWriter::PieceFilePath(path, 0));
+  if (Extension(path) == "lvdvp")
+    lvdif::requireWritable(vtkPDictionaryVolumeWriter::PieceFilePath(
+      path, 0, vtkPDictionaryVolumeWriter::NextGeneration(path)));
 }
 
 std::shared_ptr<lvdif::DictionaryVolume> LoadVolume(const std::string& path, lvdif::Interrupter& interrupter)
@@ -431,10 +438,19 @@ std::shared_ptr<lvdif::DictionaryVolume> LoadVolume(const std::string& path, lvd
   const Format* f = &RequireFormat(path, Kind::Volume, false);
   // a file to read, as Core's readers require of theirs (lvdif::FileSource):
   // a folder named x.vti was read by VTK's XML parser, "Error parsing input file"
+  const std::string what = "cannot read '" + path + "'";
   {
     lvdif::FileSource file(path);
+    // an empty (or blank) .vti was VTK's "Error parsing input file. ReadXMLInformation aborting."
+    if (f->extension == "vti" && file.size() <= 4096)
+    {
+      std::string text(static_cast<std::size_t>(file.size()), '\0');
+      if (!text.empty()) file.read(0, &text[0], text.size());
+      if (text.find_first_not_of(" \t\r\n") == std::string::npos)
+        throw lvdif::Error(lvdif::ErrorCode::CorruptData,
+          what + ": the file is empty" + (text.empty() ? "" : " (blank)") + ": no VTK image in it");
+    }
   }
-  const std::string what = "cannot read '" + path + "'";
   vtkSmartPointer<vtkAlgorithm> reader, last;
   if (f->extension == "lvdv")
   {

@@ -18,10 +18,11 @@ namespace
 {
 const char* MAGIC = "LVDIF-PVOLUME";
 
-[[noreturn]] void fail(const std::string& path, int line, const std::string& what)
+[[noreturn]] void fail(int line, const std::string& what)
 {
-  throw lvdif::Error(lvdif::ErrorCode::CorruptData,
-    "index '" + path + "'" + (line > 0 ? ", line " + std::to_string(line) : std::string()) + ": " + what);
+  // the reader's one guard names the file ("cannot read 'x.lvdvp': line 3: ..."): a
+  // message that named it ("index 'x.lvdvp', line 3: ...") lost that prefix
+  throw lvdif::Error(lvdif::ErrorCode::CorruptData, (line > 0 ? "line " + std::to_string(line) + ": " : std::string()) + what);
 }
 
 lvdif::VoxelBox extentBox(const int e[6])
@@ -50,13 +51,39 @@ std::string directoryOf(const std::string& path)
   return slash == std::string::npos ? std::string() : path.substr(0, slash + 1);
 }
 
-std::string pieceFileName(const std::string& indexPath, int piece)
+namespace
+{
+/// "dir/name.lvdvp" -> "name"
+std::string setStem(const std::string& indexPath)
 {
   std::string name = indexPath.substr(directoryOf(indexPath).size());
   const auto dot = name.find_last_of('.');
   if (dot != std::string::npos && dot > 0)
     name.resize(dot);
-  return name + "_" + std::to_string(piece) + ".lvdv";
+  return name;
+}
+}
+
+std::string pieceFileName(const std::string& indexPath, int piece, int generation)
+{
+  return setStem(indexPath) + "_" + std::to_string(piece) + (generation == 1 ? ".g1" : "") + ".lvdv";
+}
+
+bool isPieceFileName(const std::string& indexPath, const std::string& file, int* piece)
+{
+  const std::string stem = setStem(indexPath) + "_";
+  if (file.compare(0, stem.size(), stem) != 0)
+    return false;
+  std::size_t i = stem.size(), digits = 0;
+  long p = 0;
+  for (; i < file.size() && file[i] >= '0' && file[i] <= '9' && digits < 9; ++i, ++digits)
+    p = 10 * p + (file[i] - '0');
+  const std::string rest = file.substr(i);
+  if (digits == 0 || (digits > 1 && file[stem.size()] == '0') || (rest != ".lvdv" && rest != ".g1.lvdv"))
+    return false;
+  if (piece)
+    *piece = static_cast<int>(p);
+  return true;
 }
 
 VolumeIndex readVolumeIndex(const std::string& path)
@@ -69,7 +96,7 @@ VolumeIndex readVolumeIndex(const std::string& path)
     std::string head(static_cast<std::size_t>(std::min<std::uint64_t>(source.size(), 65536)), '\0');
     if (!head.empty())
       source.read(0, &head[0], head.size());
-    std::istringstream h(head);
+    std::istringstream h(head.substr(head.rfind("\xEF\xBB\xBF", 0) == 0 ? 3 : 0)); // a UTF-8 byte order mark
     std::string line;
     for (int n = 1; std::getline(h, line); ++n)
     {
@@ -83,7 +110,7 @@ VolumeIndex readVolumeIndex(const std::string& path)
       std::string key;
       ls >> key;
       if (key != MAGIC)
-        fail(path, n, std::string("not an LVDIF volume index (expected '") + MAGIC + " <version>')");
+        fail(n, std::string("not an LVDIF volume index (expected '") + MAGIC + " <version>')");
       break;
     }
   }
@@ -91,7 +118,7 @@ VolumeIndex readVolumeIndex(const std::string& path)
   std::string text(static_cast<std::size_t>(source.size()), '\0');
   if (!text.empty())
     source.read(0, &text[0], text.size());
-  std::istringstream in(text);
+  std::istringstream in(text.substr(text.rfind("\xEF\xBB\xBF", 0) == 0 ? 3 : 0));
   VolumeIndex index;
   std::string line;
   int lineNo = 0, declaredPieces = -1;
@@ -111,29 +138,29 @@ VolumeIndex readVolumeIndex(const std::string& path)
     auto complete = [&] {
       std::string extra;
       if (ls >> extra)
-        fail(path, lineNo, key + " has a value too many: '" + extra.substr(0, 40) + "'");
+        fail(lineNo, key + " has a value too many: '" + extra.substr(0, 40) + "'");
     };
     if (!haveMagic)
     {
       // the first line that is not a comment (comments before it skipped the check)
       if (key != MAGIC || !(ls >> index.version))
-        fail(path, lineNo, std::string("not an LVDIF volume index (expected '") + MAGIC + " <version>')");
+        fail(lineNo, std::string("not an LVDIF volume index (expected '") + MAGIC + " <version>')");
       if (index.version != 1)
-        fail(path, lineNo, "unsupported index version " + std::to_string(index.version) + " (this reader knows 1)");
+        fail(lineNo, "unsupported index version " + std::to_string(index.version) + " (this reader knows 1)");
       complete();
       haveMagic = true;
       continue;
     }
     if (key != "piece" && !seen.insert(key).second)
-      fail(path, lineNo, key + " given twice"); // the last one silently won
+      fail(lineNo, key + " given twice"); // the last one silently won
     if (key == "whole_extent")
     {
       for (int& v : index.wholeExtent)
         if (!(ls >> v))
-          fail(path, lineNo, "whole_extent needs 6 integers");
+          fail(lineNo, "whole_extent needs 6 integers");
       complete();
       if (!extentIsValid(index.wholeExtent))
-        fail(path, lineNo, "empty whole_extent");
+        fail(lineNo, "empty whole_extent");
       haveWhole = true;
     }
     else if (key == "origin" || key == "spacing")
@@ -141,14 +168,14 @@ VolumeIndex readVolumeIndex(const std::string& path)
       double* v = key == "origin" ? index.origin : index.spacing;
       for (int a = 0; a < 3; ++a)
         if (!(ls >> v[a]))
-          fail(path, lineNo, key + " needs 3 numbers");
+          fail(lineNo, key + " needs 3 numbers");
       complete();
       (key == "origin" ? haveOrigin : haveSpacing) = true;
     }
     else if (key == "pieces")
     {
       if (!(ls >> declaredPieces) || declaredPieces < 1 || declaredPieces > (1 << 20))
-        fail(path, lineNo, "pieces needs a count in 1..1048576");
+        fail(lineNo, "pieces needs a count in 1..1048576");
       complete();
     }
     else if (key == "piece")
@@ -156,25 +183,25 @@ VolumeIndex readVolumeIndex(const std::string& path)
       VolumeIndexPiece p;
       for (int& v : p.extent)
         if (!(ls >> v))
-          fail(path, lineNo, "piece needs 6 integers and a file name");
+          fail(lineNo, "piece needs 6 integers and a file name");
       std::getline(ls >> std::ws, p.file);
       if (p.file.empty() || p.file.find('/') != std::string::npos)
-        fail(path, lineNo, "piece file must be a plain file name beside the index");
+        fail(lineNo, "piece file must be a plain file name beside the index");
       if (!extentIsValid(p.extent) || !haveWhole || !contains(index.wholeExtent, p.extent))
-        fail(path, lineNo, "piece extent empty or outside whole_extent (whole_extent must come first)");
+        fail(lineNo, "piece extent empty or outside whole_extent (whole_extent must come first)");
       index.pieces.push_back(p);
     }
     else
     {
-      fail(path, lineNo, "unknown key '" + key.substr(0, 40) + "'");
+      fail(lineNo, "unknown key '" + key.substr(0, 40) + "'");
     }
   }
   if (!haveMagic)
-    fail(path, 0, lineNo == 0 ? "empty file" : std::string("no '") + MAGIC + " <version>' line");
+    fail(0, lineNo == 0 ? "empty file" : std::string("no '") + MAGIC + " <version>' line");
   if (!haveWhole || !haveOrigin || !haveSpacing)
-    fail(path, 0, "whole_extent, origin and spacing are required");
+    fail(0, "whole_extent, origin and spacing are required");
   if (declaredPieces != static_cast<int>(index.pieces.size()))
-    fail(path, 0, "declares " + std::to_string(declaredPieces) + " pieces, lists " + std::to_string(index.pieces.size()));
+    fail(0, "declares " + std::to_string(declaredPieces) + " pieces, lists " + std::to_string(index.pieces.size()));
   // the pieces tile the whole extent: a duplicate or overlapping piece (two
   // claims on the same points) and a hole were accepted
   std::vector<lvdif::VoxelBox> boxes;
@@ -182,7 +209,7 @@ VolumeIndex readVolumeIndex(const std::string& path)
     boxes.push_back(extentBox(p.extent));
   const std::string problem = lvdif::pieceTilingProblem(extentBox(index.wholeExtent), boxes, "piece");
   if (!problem.empty())
-    fail(path, 0, problem + " (pieces counted in the order listed)");
+    fail(0, problem + " (pieces counted in the order listed)");
   return index;
 }
 

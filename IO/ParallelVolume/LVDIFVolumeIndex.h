@@ -27,8 +27,14 @@ struct VolumeIndex
 VolumeIndex readVolumeIndex(const std::string& path);
 /// Writes it crash-safely (temporary file, then rename).
 void writeVolumeIndex(const VolumeIndex& index, const std::string& path);
-/// "dir/name.lvdvp" -> "name_<piece>.lvdv" (the piece file's name, relative to the index).
-std::string pieceFileName(const std::string& indexPath, int piece);
+/// "dir/name.lvdvp" -> "name_<piece>.lvdv" (the piece file's name, relative to the
+/// index) of generation 0, "name_<piece>.g1.lvdv" of generation 1: a write puts its
+/// pieces under the generation the current index does not list, so the old set
+/// stays whole until the new index replaces the old one.
+std::string pieceFileName(const std::string& indexPath, int piece, int generation = 0);
+/// Whether `file` (a name beside the index) is a piece file name of that index's set
+/// (either generation); `piece` is then its piece number.
+bool isPieceFileName(const std::string& indexPath, const std::string& file, int* piece = nullptr);
 /// The directory part of a path, with its trailing '/', or "".
 std::string directoryOf(const std::string& path);
 /// True if the piece extent is not empty.

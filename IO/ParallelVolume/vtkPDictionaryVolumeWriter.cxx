@@ -26,6 +26,7 @@
 #include <cerrno>
 #include <cstdio>
 #include <cstring>
+#include <dirent.h>
 #include <unistd.h>
 #include <utility>
 #include <vector>
@@ -202,16 +203,54 @@ vtkTypeBool vtkPDictionaryVolumeWriter::ProcessRequest(
   return this->Superclass::ProcessRequest(request, inputVector, outputVector);
 }
 
-std::string vtkPDictionaryVolumeWriter::PieceFilePath(const std::string& indexPath, int piece)
+std::string vtkPDictionaryVolumeWriter::PieceFilePath(const std::string& indexPath, int piece, int generation)
 {
-  return lvdifvtk::directoryOf(indexPath) + lvdifvtk::pieceFileName(indexPath, piece);
+  return lvdifvtk::directoryOf(indexPath) + lvdifvtk::pieceFileName(indexPath, piece, generation);
 }
 
-std::string vtkPDictionaryVolumeWriter::StagedPiecePath(const std::string& indexPath, int piece)
+int vtkPDictionaryVolumeWriter::NextGeneration(const std::string& indexPath)
 {
-  // the project's name for a temporary file ("<file>.tmp-<pid>-XXXXXX.<ext>", ByteStream.h)
-  return PieceFilePath(indexPath, piece) + ".tmp-" + std::to_string(::getpid()) + "-staged.lvdv";
+  // the generation the current index does not list (none, or one that cannot be read: 0)
+  try
+  {
+    for (const lvdifvtk::VolumeIndexPiece& p : lvdifvtk::readVolumeIndex(indexPath).pieces)
+    {
+      int n = 0;
+      if (lvdifvtk::isPieceFileName(indexPath, p.file, &n) && p.file == lvdifvtk::pieceFileName(indexPath, n, 0))
+        return 1;
+    }
+  }
+  catch (const lvdif::Error&)
+  {
+  }
+  return 0;
 }
+
+namespace
+{
+/// The names in the index's folder that are piece files of its set (either generation).
+std::vector<std::string> setFiles(const std::string& indexPath, bool temporaries)
+{
+  std::vector<std::string> names;
+  const std::string dir = lvdifvtk::directoryOf(indexPath);
+  DIR* d = ::opendir(dir.empty() ? "." : dir.c_str());
+  if (!d)
+    return names;
+  while (const dirent* e = ::readdir(d))
+  {
+    std::string name = e->d_name;
+    const auto tmp = name.find(".tmp-");
+    if (temporaries && tmp != std::string::npos)
+      name.resize(tmp); // "<piece file>.tmp-<pid>-XXXXXX...": the piece file's name
+    else if (temporaries || tmp != std::string::npos)
+      continue;
+    if (lvdifvtk::isPieceFileName(indexPath, name) && std::find(names.begin(), names.end(), name) == names.end())
+      names.push_back(name);
+  }
+  ::closedir(d);
+  return names;
+}
+} // namespace
 
 bool vtkPDictionaryVolumeWriter::WritePiece(
   vtkSparseDictionaryVolume* sparse, int pieceNumber, const int ext[6], const std::string& path)
@@ -297,11 +336,13 @@ void vtkPDictionaryVolumeWriter::WriteData()
   }
   // the folder and the settings, before any file: one error on this writer naming the file asked for
   // (each piece's writer would report them on itself, naming its piece file)
+  int generation = 0;
   if (!LVDIFVolumeBridge::CallCore(this, [&] {
         lvdif::requireWritable(this->FileName);
+        generation = NextGeneration(this->FileName);
         // a serial run writes every piece: each file is checked before the first is written
         for (int p = 0; serial && p < this->NumberOfPieces; ++p)
-          lvdif::requireWritable(PieceFilePath(this->FileName, p));
+          lvdif::requireWritable(PieceFilePath(this->FileName, p, generation));
         lvdif::checkCompressionLevel(this->CompressionLevel, "CompressionLevel");
         if (!sparse) LVDIFVolumeBridge::CheckVolumeSettings(this->ChunkEdge, this->BandWidth);
       }))
@@ -322,12 +363,28 @@ void vtkPDictionaryVolumeWriter::WriteData()
   {
     inInfo->Get(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT(), whole);
   }
+  // The temporary files of writes of this set that were killed (their process
+  // is gone) were left beside the pieces: removed first, each by the project's
+  // rule (lvdif::removeStaleTemporaries). A rank removes its own piece's only.
+  if (serial)
+  {
+    for (const std::string& name : setFiles(this->FileName, true))
+      lvdif::removeStaleTemporaries(lvdifvtk::directoryOf(this->FileName) + name);
+  }
+  else
+  {
+    for (int g = 0; g < 2; ++g)
+      lvdif::removeStaleTemporaries(PieceFilePath(this->FileName, this->Piece, g));
+  }
   // this process's pieces: all of them in a serial run, else its own. Each is
-  // written to a temporary file beside its own and renamed over it only when
-  // every piece is written: a write that failed part way had replaced the
-  // pieces before it, and the old index listed them beside old ones.
+  // written (crash-safely) under the generation the current index does not
+  // list, so the old index and its pieces stay whole until the new index
+  // replaces the old one, the one switch of the write. Until session 24 the
+  // pieces were renamed over the old ones before the index was written: a
+  // rename failing after others had succeeded left the old index listing new
+  // pieces beside old ones.
   int ok = 1;
-  std::vector<std::pair<std::string, std::string>> staged; // (temporary, piece file)
+  std::vector<std::string> written; // this process's new pieces
   for (int p = serial ? 0 : this->Piece; ok && p < (serial ? this->NumberOfPieces : this->Piece + 1); ++p)
   {
     int ext[6] = { 0, -1, 0, -1, 0, -1 }; // an empty piece: nothing
@@ -337,9 +394,10 @@ void vtkPDictionaryVolumeWriter::WriteData()
       PieceExtent(whole, p, this->NumberOfPieces, ext);
     if (!lvdifvtk::extentIsValid(ext))
       continue;
-    staged.emplace_back(StagedPiecePath(this->FileName, p), PieceFilePath(this->FileName, p));
-    ok = sparse ? (this->WritePiece(sparse, p, ext, staged.back().first) ? 1 : 0)
-                : (this->WritePiece(image, p, ext, staged.back().first) ? 1 : 0);
+    const std::string path = PieceFilePath(this->FileName, p, generation);
+    ok = sparse ? (this->WritePiece(sparse, p, ext, path) ? 1 : 0) : (this->WritePiece(image, p, ext, path) ? 1 : 0);
+    if (ok)
+      written.push_back(path);
   }
 
   const int all = this->AgreeOnPieces(ok);
@@ -348,16 +406,6 @@ void vtkPDictionaryVolumeWriter::WriteData()
     vtkErrorMacro("another piece failed; the index is not written");
   }
   ok = all;
-  for (const auto& s : staged)
-  {
-    if (ok && std::rename(s.first.c_str(), s.second.c_str()) != 0)
-    {
-      vtkErrorMacro("cannot rename '" << s.first << "' over the piece '" << s.second << "': " << std::strerror(errno));
-      ok = 0;
-    }
-    if (!ok)
-      std::remove(s.first.c_str()); // a failed write leaves no temporary file
-  }
   if (ok && (serial || this->Piece == 0))
   {
     lvdifvtk::VolumeIndex index;
@@ -384,7 +432,7 @@ void vtkPDictionaryVolumeWriter::WriteData()
         PieceExtent(whole, p, this->NumberOfPieces, piece.extent);
       if (!lvdifvtk::extentIsValid(piece.extent))
         continue;
-      piece.file = lvdifvtk::pieceFileName(this->FileName, p);
+      piece.file = lvdifvtk::pieceFileName(this->FileName, p, generation);
       index.pieces.push_back(piece);
     }
     try
@@ -395,6 +443,14 @@ void vtkPDictionaryVolumeWriter::WriteData()
     {
       vtkErrorMacro(<< e.what());
       ok = 0;
+    }
+    // the index lists the new pieces: the set's other piece files (the old
+    // generation, pieces of a write with more pieces) are no part of it now
+    for (const std::string& name : ok ? setFiles(this->FileName, false) : std::vector<std::string>())
+    {
+      if (std::none_of(index.pieces.begin(), index.pieces.end(),
+            [&](const lvdifvtk::VolumeIndexPiece& q) { return q.file == name; }))
+        std::remove((lvdifvtk::directoryOf(this->FileName) + name).c_str());
     }
   }
   if (this->IsCollective())
@@ -408,6 +464,9 @@ void vtkPDictionaryVolumeWriter::WriteData()
   }
   if (!ok)
   {
+    // no index lists them: the old index and its pieces are the volume, as before the write
+    for (const std::string& path : written)
+      std::remove(path.c_str());
     this->SetErrorCode(vtkErrorCode::UnknownError);
   }
 }

@@ -6,7 +6,8 @@
  * its keys and chunk edge (nothing re-encoded; BandWidth and ChunkEdge then
  * do not apply).
  * Every process writes its piece (Piece of NumberOfPieces; ParaView sets both
- * from the MPI rank and size) as `<name>_<piece>.lvdv` beside FileName
+ * from the MPI rank and size) as `<name>_<piece>.lvdv` or `<name>_<piece>.g1.lvdv`
+ * (the generation the current index does not list: NextGeneration) beside FileName
  * (`<name>.lvdvp`), with vtkDictionaryVolumeWriter's encoding (BandWidth,
  * ChunkEdge, CompressionLevel). Piece 0 writes the index: a small text file
  * with the format version, the whole extent, origin, spacing and each
@@ -98,13 +99,17 @@ public:
   /// The extent of `piece` of `numberOfPieces` of `wholeExtent` (the translator's block split, no ghosts).
   static void PieceExtent(const int wholeExtent[6], int piece, int numberOfPieces, int extent[6]);
 
-  /// The file piece `piece` is written to, beside the index `indexPath`
-  /// (name_<piece>.lvdv): what a save checks before the work.
-  static std::string PieceFilePath(const std::string& indexPath, int piece);
-  /// The temporary file the piece is written to first (PieceFilePath +
-  /// ".tmp-<pid>-staged.lvdv"), renamed over PieceFilePath once every piece is
-  /// written, then the index: a write that fails keeps the old files.
-  static std::string StagedPiecePath(const std::string& indexPath, int piece);
+  /// The file of piece `piece` of generation `generation` beside the index
+  /// `indexPath`: name_<piece>.lvdv (generation 0), name_<piece>.g1.lvdv (1).
+  static std::string PieceFilePath(const std::string& indexPath, int piece, int generation = 0);
+  /// The generation a write to `indexPath` puts its pieces in: the one the
+  /// current index does not list (0 when there is none or it cannot be read).
+  /// The pieces are written there crash-safely, then the index is replaced
+  /// (the one switch), then the set's piece files the new index does not list
+  /// are removed: a write that fails at any point keeps the old index and its
+  /// pieces whole. A write first removes the temporary files that killed
+  /// writes of the set left (lvdif::removeStaleTemporaries).
+  static int NextGeneration(const std::string& indexPath);
 
 protected:
   vtkPDictionaryVolumeWriter();
@@ -137,8 +142,7 @@ private:
   int AgreeOnIndex(int ok);
   /// No Controller, or one of one process: this process writes every piece.
   bool IsSerial() const;
-  // each writes the piece to `path`: its temporary file (StagedPiecePath),
-  // renamed over the piece's file only when every piece is written
+  // each writes the piece to `path` (the piece's file of the new generation)
   bool WritePiece(vtkImageData* image, int piece, const int extent[6], const std::string& path);
   bool WritePiece(vtkSparseDictionaryVolume* sparse, int piece, const int extent[6], const std::string& path);
   vtkPDictionaryVolumeWriter(const vtkPDictionaryVolumeWriter&) = delete;

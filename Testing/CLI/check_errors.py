@@ -97,11 +97,17 @@ for p in ("nan", "inf", "-1", "1e999"):
 for value in ("99999999999999999999", "-99999999999999999999", "1048577", "1", "12x", "", "0x10"):
     code, err = run("mesh-to-sdf", "in.obj", os.path.join(out, "x.lvdv"), "--dims", value)
     assert code == 2 and err == f"lvdif mesh-to-sdf: option --dims expects an integer in [2, 1048576], got '{value}'", (code, err)
-for cmd in (["demo", "--out", out + "-huge"], ["script", "x.lvs"]):
-    code, err = run(*cmd, "--size", "99999999999999999999")
-    assert code == 2 and err == (f"lvdif {cmd[0]}: option --size expects an integer in [2, 1048576], "
-                                 "got '99999999999999999999'"), (code, err)
+code, err = run("demo", "--out", out + "-huge", "--size", "99999999999999999999")
+assert code == 2 and err == ("lvdif demo: option --size expects an integer in [2, 1048576], "
+                             "got '99999999999999999999'"), (code, err)
 assert not os.path.exists(out + "-huge")
+# script --size takes N or NXxNYxNZ, as the editor's --new (it took N only: '--size 32x16x8' was refused)
+for value in ("99999999999999999999", "32x16", "32x16x", "x", "32x16x8x4", "32xtenx8"):
+    code, err = run("script", "x.lvs", "--size", value)
+    assert code == 2 and err == ("lvdif script: option --size expects N or NXxNYxNZ, each an integer in [2, 1048576], "
+                                 f"got '{value}'"), (value, code, err)
+code, err = run("script", "x.lvs", "--size", "32x1x8")
+assert code == 2 and err.startswith("lvdif script: --size 32x1x8: a canvas of 32 x 1 x 8 voxels cannot be edited"), (code, err)
 code, err = run("mesh-to-sdf", "in.obj", os.path.join(out, "x.lvdv"), "--band", "nan")
 assert code == 2 and err == "lvdif mesh-to-sdf: option --band expects a number, got 'nan'", (code, err)
 
@@ -146,6 +152,11 @@ for n in ("1", "0", "1048577"):
     assert not os.path.exists(sized_vol), n
 code, err = run("script", os.path.join(out, "no-such.lvs"), "--size", "1")
 assert code == 2 and err.startswith("lvdif script: --size 1: a canvas of 1 x 1 x 1"), (code, err)
+# ... and a box canvas runs: the volume written has those dimensions (oracle: lvdif info)
+box_vol = os.path.join(out, "sized-box.lvdv")
+assert run("script", sized, "--size", "24x16x8", "--out", box_vol)[0] == 0
+r = subprocess.run([exe, "info", box_vol], capture_output=True, text=True, timeout=60)
+assert r.returncode == 0 and "24 x 16 x 8" in r.stdout, r
 # --size with --in: refused (it was ignored: the script ran on the volume's grid),
 # before the volume or the script is read and before any output is written
 in_size_vol = os.path.join(out, "in-size.lvdv")
@@ -239,6 +250,15 @@ with open(cut, "w") as g:
 r = subprocess.run([exe, "play", cut, "--in", play_in, "--out", play_in], capture_output=True, text=True, timeout=60)
 assert r.returncode == 0 and r.stderr.count("warning:") == 1 and \
     "a version 1 recording has no end record" in r.stderr, r
+# a script given to play and a recording given to script say what the file is and the command that
+# takes it (they said only "expected the version line" and "unknown command 'LVDIF'")
+play_script = os.path.join(out, "play-in.lvs")
+code, err = run("play", play_script, "--in", play_in)
+assert code == 1 and err == (f"lvdif play: {play_script}:1:1: expected the version line 'LVDIF-RECORDING 2' "
+                             f"(this is a script: run it with lvdif script {play_script})"), (code, err)
+code, err = run("script", rec)
+assert code == 1 and err == (f"lvdif script: {rec}:1:1: unknown command 'LVDIF' (this is a recording: replay it "
+                             f"with lvdif play {rec} --in VOLUME)"), (code, err)
 # ... and so does script (it ran the whole script and kept nothing without a word)
 r = subprocess.run([exe, "script", os.path.join(out, "play-in.lvs")], capture_output=True, text=True, timeout=60)
 warnings = [line for line in r.stderr.splitlines() if line.startswith("warning:")]
@@ -317,23 +337,42 @@ near = os.path.join(out, "near.obj")
 with open(near, "w") as f:
     f.write("v -9e29 0 0\nv 9e29 0 0\nv 0 9e29 0\nf 1 2 3\n")
 code, err = run("mesh-to-sdf", near, os.path.join(out, "m.lvdv"), "--dims", "8", "--padding", "3")
-# less padding is advised only where it helps (it was advised with --padding 0, and here, where
-# --padding 0 fails too)
 assert code == 1 and err == ("lvdif mesh-to-sdf: the mesh reaches 9e+29 and --padding 3 around it takes the grid beyond "
-                             "+-1e+30 (the volumes' world range): scale the mesh down (less padding cannot help: even "
-                             "--padding 0 takes the grid beyond it)"), (code, err)
-code, err = run("mesh-to-sdf", near, os.path.join(out, "m.lvdv"), "--dims", "8", "--padding", "0")
-assert code == 1 and err.endswith("scale the mesh down (less padding cannot help: even --padding 0 takes the grid "
-                                  "beyond it)"), (code, err)
-assert not os.path.exists(os.path.join(out, "m.lvdv"))
+                             "+-1e+30 (the volumes' world range): use less padding (--padding 0 fits) or scale the "
+                             "mesh down"), (code, err)
+# the range is the voxels' world coordinates: with --padding 0 they span [-9e29, 9e29] and the grid
+# fits (it counted |origin| + spacing x dims and refused it, as it refused a mesh spanning
+# [-4e29, 4e29] at the default padding)
+near_vol = os.path.join(out, "near.lvdv")
+code, err = run("mesh-to-sdf", near, near_vol, "--dims", "8", "--padding", "0")
+assert code == 0 and os.path.exists(near_vol), (code, err)
+os.remove(near_vol)
+wide = os.path.join(out, "wide.obj")
+with open(wide, "w") as f:
+    f.write("v -4e29 -4e29 -4e29\nv 4e29 -4e29 -4e29\nv -4e29 4e29 -4e29\nv -4e29 -4e29 4e29\n"
+            "f 1 3 2\nf 1 2 4\nf 2 3 4\nf 3 1 4\n")
+code, err = run("mesh-to-sdf", wide, near_vol, "--dims", "16")
+assert code == 0 and os.path.exists(near_vol), (code, err)
+os.remove(near_vol)
+# less padding is advised only where it helps (it was advised with --padding 0): a .bv's cubic grid
+# around a flat mesh at y = 9e29 reaches y = 1.8e30 with any padding
+flat = os.path.join(out, "flat.obj")
+with open(flat, "w") as f:
+    f.write("v -9e29 9e29 0\nv 9e29 9e29 0\nv 0 9e29 1e28\nf 1 2 3\n")
+for pad in ("3", "0"):
+    code, err = run("mesh-to-sdf", flat, os.path.join(out, "SDF_8_m.bv"), "--dims", "8", "--padding", pad)
+    assert code == 1 and err == (f"lvdif mesh-to-sdf: the mesh reaches 9e+29 and --padding {pad} around it takes the grid "
+                                 "beyond +-1e+30 (the volumes' world range): scale the mesh down (less padding cannot "
+                                 "help: even --padding 0 takes the grid beyond it)"), (code, err)
+assert not os.path.exists(os.path.join(out, "m.lvdv")) and not os.path.exists(os.path.join(out, "SDF_8_m.bv"))
 corner = os.path.join(out, "corner.obj")
 corner_vol = os.path.join(out, "corner.lvdv")  # (not m.lvdv: that one must not exist above and below)
 if os.path.exists(corner_vol):
     os.remove(corner_vol)  # from an earlier run
 with open(corner, "w") as f:
     f.write("v 0 0 0\nv 9e29 0 0\nv 0 9e29 0\nv 0 0 9e29\nf 1 3 2\nf 1 2 4\nf 2 3 4\nf 3 1 4\n")
-code, err = run("mesh-to-sdf", corner, corner_vol, "--padding", "10")
-assert code == 1 and err == ("lvdif mesh-to-sdf: the mesh reaches 9e+29 and --padding 10 around it takes the grid beyond "
+code, err = run("mesh-to-sdf", corner, corner_vol, "--padding", "15")
+assert code == 1 and err == ("lvdif mesh-to-sdf: the mesh reaches 9e+29 and --padding 15 around it takes the grid beyond "
                              "+-1e+30 (the volumes' world range): use less padding (--padding 0 fits) or scale the "
                              "mesh down"), (code, err)
 assert not os.path.exists(corner_vol)

@@ -10,13 +10,8 @@ EDITOR=$1
 CHECK=$2
 DIR=$3
 SIZE=$4
-rm -rf "$DIR"
-mkdir -p "$DIR"
-fail() {
-  echo "FAIL: $*"
-  [ -n "${pid:-}" ] && kill -9 "$pid" 2> /dev/null
-  exit 1
-}
+source "$(dirname "${BASH_SOURCE[0]}")/TestPreamble.sh"
+on_fail() { [ -n "${pid:-}" ] && kill -9 "$pid" 2> /dev/null; }
 "$CHECK" --write-sphere-obj "$DIR/sphere.obj" || fail "could not write the mesh"
 # a conversion of many seconds: 2048 points along the sphere's axis
 "$EDITOR" --open-mesh "$DIR/sphere.obj" --mesh-resolution 2048 --size "$SIZE" --no-recovery --autosave 0 \

@@ -10,12 +10,7 @@ CHECK=$2
 LVDIF=$3
 DIR=$4
 SIZE=$5
-rm -rf "$DIR"
-mkdir -p "$DIR"
-fail() {
-  echo "FAIL: $*"
-  exit 1
-}
+source "$(dirname "${BASH_SOURCE[0]}")/TestPreamble.sh"
 "$CHECK" --write-cone-obj "$DIR/cone.obj" || fail "could not write the mesh"
 "$EDITOR" --open-mesh "$DIR/cone.obj" --mesh-resolution 32 --size "$SIZE" --no-recovery --autosave 0 \
   --save "$DIR/SDF_32_editor.bv" || fail "the editor failed"

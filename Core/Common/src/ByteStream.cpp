@@ -23,6 +23,21 @@ std::string systemError(const std::string& what, const std::string& path)
   return what + " '" + path + "': " + std::strerror(errno);
 }
 
+std::string directoryOf(const std::string& path);
+
+/// The nearest existing path above `path` when it is not a folder (a file
+/// where a folder of the path should be), else "".
+std::string fileAbove(const std::string& path)
+{
+  struct stat st;
+  std::string up = directoryOf(path);
+  while (::stat(up.c_str(), &st) != 0 && up != "." && up != "/")
+  {
+    up = directoryOf(up);
+  }
+  return ::stat(up.c_str(), &st) == 0 && !S_ISDIR(st.st_mode) ? up : std::string();
+}
+
 void checkRange(std::uint64_t offset, std::size_t n, std::uint64_t size)
 {
   if (offset > size || n > size - offset)
@@ -128,6 +143,11 @@ void removeStaleTemps(const std::string& path)
 }
 } // namespace
 
+void removeStaleTemporaries(const std::string& path)
+{
+  removeStaleTemps(path);
+}
+
 void MemorySource::read(std::uint64_t offset, void* dst, std::size_t n)
 {
   checkRange(offset, n, this->Size);
@@ -146,7 +166,10 @@ FileSource::FileSource(const std::string& path)
   this->Fd = ::open(path.c_str(), O_RDONLY | O_CLOEXEC | O_NONBLOCK);
   if (this->Fd < 0)
   {
-    throw Error(ErrorCode::IoFailure, systemError("cannot open", path));
+    // FILE/x.obj said "Not a directory"
+    const std::string file = errno == ENOTDIR ? fileAbove(path) : std::string();
+    throw Error(ErrorCode::IoFailure,
+      file.empty() ? systemError("cannot open", path) : "cannot open '" + path + "': '" + file + "' is a file, not a folder");
   }
   struct stat st;
   const bool known = ::fstat(this->Fd, &st) == 0;
@@ -377,6 +400,13 @@ void requireWritable(const std::string& givenPath)
   const std::string dir = directoryOf(path);
   if (::stat(dir.c_str(), &st) != 0 || !S_ISDIR(st.st_mode))
   {
+    // a file where a folder should be is named as the cause (FILE/x.lvdv said
+    // "the folder 'FILE' does not exist")
+    const std::string file = fileAbove(path);
+    if (!file.empty())
+    {
+      throw Error(ErrorCode::IoFailure, "cannot write '" + givenPath + "': '" + file + "' is a file, not a folder");
+    }
     throw Error(ErrorCode::IoFailure, "cannot write '" + givenPath + "': the folder '" + dir + "' does not exist");
   }
   const std::string notWritable = "cannot write '" + givenPath + "': the folder '" + dir + "' is not writable";

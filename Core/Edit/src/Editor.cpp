@@ -156,6 +156,12 @@ void Editor::fillVolume(Voxel fill)
   if (this->Device)
     this->Device->reload(); // drops the device's pending edits and history too
   this->touchStorageChunks(all);
+  // recorded as the values, not the keys: a player's dictionaries may number them otherwise
+  EditRecord e;
+  e.type = EditRecord::Type::Fill;
+  e.sdf = v.decode(fill.sdf);
+  e.brush.color = v.colors().color(fill.color);
+  this->record(e);
 }
 
 void Editor::record(const EditRecord& e)
@@ -486,6 +492,8 @@ void Editor::play(const Recording& r, Interrupter& interrupter, std::size_t* pla
             (undo ? "undo" : "redo") + "') has nothing to " + (undo ? "undo" : "redo") +
             ": the recording does not start from this volume and history, so it cannot be played back exactly");
     }
+    else if (e.type == EditRecord::Type::Fill)
+      this->fillVolume(Voxel{ this->Volume.encode(static_cast<float>(e.sdf)), this->Volume.colors().add(e.brush.color) });
     else
     {
       this->brush = e.brush;

@@ -28,6 +28,11 @@ std::string num(double v)
   return buf;
 }
 
+std::string colorText(const Rgba& c)
+{
+  return std::to_string(c.r) + "," + std::to_string(c.g) + "," + std::to_string(c.b) + "," + std::to_string(c.a);
+}
+
 // Errors read "<name>:<line>:<column>: what" (1-based), like the scripts'.
 struct Where
 {
@@ -119,13 +124,18 @@ const std::map<std::string, BrushShape> Shapes{ { "sphere", BrushShape::Sphere }
 // the keys of an edit record (docs/RECORDING.md)
 const std::set<std::string> EditKeys{ "time", "op", "shape", "kind", "spacing", "blend", "coloroffset", "rounding",
   "color", "dabs", "strength", "falloff", "invert", "mirrorx", "mirrory", "mirrorz" };
+// the keys of a fill record
+const std::set<std::string> FillKeys{ "time", "sdf", "color" };
 const std::map<std::string, BrushKind> Kinds{ { "single", BrushKind::Single }, { "basic", BrushKind::Basic },
   { "dynamic", BrushKind::Dynamic }, { "drill", BrushKind::Drill } };
 } // namespace
 
 void writeRecording(std::ostream& out, const Recording& r)
 {
-  out << "LVDIF-RECORDING " << Recording::Version << "\n";
+  // version 3 only where a fill record needs it: the others stay readable by older builds
+  const bool fills = std::any_of(
+    r.records.begin(), r.records.end(), [](const EditRecord& e) { return e.type == EditRecord::Type::Fill; });
+  out << "LVDIF-RECORDING " << (fills ? 3 : 2) << "\n";
   if (r.canvas[0] > 0)
     out << "canvas " << r.canvas[0] << " " << r.canvas[1] << " " << r.canvas[2] << "\n";
   for (const EditRecord& e : r.records)
@@ -135,13 +145,17 @@ void writeRecording(std::ostream& out, const Recording& r)
       out << (e.type == EditRecord::Type::Undo ? "undo" : "redo") << " time=" << num(e.time) << "\n";
       continue;
     }
+    if (e.type == EditRecord::Type::Fill)
+    {
+      out << "fill time=" << num(e.time) << " sdf=" << num(e.sdf) << " color=" << colorText(e.brush.color) << "\n";
+      continue;
+    }
     // the shape of the first dab names the edit; each dab line carries its own when capsules mix in
     const BrushShape shape = e.dabs.empty() ? BrushShape::Sphere : e.dabs.front().shape;
     out << "edit time=" << num(e.time) << " op=" << toString(e.brush.op) << " shape=" << toString(shape)
         << " kind=" << toString(e.kind) << " spacing=" << num(e.spacing) << " blend=" << num(e.brush.blend)
-        << " coloroffset=" << num(e.brush.colorOffset) << " rounding=" << num(e.brush.rounding) << " color=" << int(e.brush.color.r) << ","
-        << int(e.brush.color.g) << "," << int(e.brush.color.b) << "," << int(e.brush.color.a)
-        << " dabs=" << e.dabs.size();
+        << " coloroffset=" << num(e.brush.colorOffset) << " rounding=" << num(e.brush.rounding)
+        << " color=" << colorText(e.brush.color) << " dabs=" << e.dabs.size();
     // the sculpting settings only where they differ from the defaults (older files stay as they were)
     if (e.brush.strength != 1)
       out << " strength=" << num(e.brush.strength);
@@ -193,6 +207,8 @@ Recording readRecording(std::istream& in, const std::string& name)
   while (in.rdbuf() && readLine(in, line, at))
   {
     ++at.Line;
+    if (at.Line == 1 && line.rfind("\xEF\xBB\xBF", 0) == 0)
+      line.erase(0, 3); // a UTF-8 byte order mark (editors add one), as scripts skip it
     if (!line.empty() && line.back() == '\r')
       line.pop_back();
     if (line.empty() || line[0] == '#')
@@ -239,7 +255,27 @@ Recording readRecording(std::istream& in, const std::string& name)
       if (d.shape == BrushShape::Capsule)
         for (int a = 0; a < 3; ++a)
           d.end[a] = toNumber(words[5 + a].text, at, words[5 + a].column, "capsule end");
-      rule([&] { validate(d, r.records.back().dabs.size()); }, words[1].column);
+      {
+        // the one rule of a dab (validate), reported at the value it refuses: each
+        // group of values alone, in the line's order (a huge radius was named at x)
+        const std::size_t n = r.records.back().dabs.size();
+        const std::size_t end = d.shape == BrushShape::Capsule ? 5 : 0, vec = withVec ? want - 2 : 0;
+        for (std::size_t at : { std::size_t(1), std::size_t(4), end, vec })
+        {
+          Dab probe;
+          probe.shape = d.shape;
+          if (at == 1)
+            probe.center = d.center;
+          if (at == 4)
+            probe.radius = d.radius;
+          if (at == end && end)
+            probe.end = d.end;
+          if (at == vec && vec)
+            probe.vec = d.vec;
+          if (at)
+            rule([&] { validate(probe, n); }, words[at].column);
+        }
+      }
       r.records.back().dabs.push_back(d);
       --expectDabs;
       continue;
@@ -281,10 +317,14 @@ Recording readRecording(std::istream& in, const std::string& name)
     }
     // the record word first: a stray dab line is named as one, not as a bad key=value
     const bool undoRedo = head.text == "undo" || head.text == "redo";
+    const bool fill = head.text == "fill";
     if (head.text == "d" || head.text.rfind("d:", 0) == 0)
       at.bad(head.column, "dab line outside an edit (the edit's dabs= count is already read)");
-    if (!undoRedo && head.text != "edit")
+    if (!undoRedo && !fill && head.text != "edit")
       at.bad(head.column, "unknown record '" + head.text + "'");
+    if (fill && version < 3)
+      at.bad(head.column, "a fill record needs version 3 ('LVDIF-RECORDING 3'), this file says version " +
+          std::to_string(version));
     // every key once and known: a misspelt optional key (strenght=) would otherwise be ignored
     std::map<std::string, std::pair<std::string, std::size_t>> kv;
     for (std::size_t w = 1; w < words.size(); ++w)
@@ -293,7 +333,7 @@ Recording readRecording(std::istream& in, const std::string& name)
       if (eq == std::string::npos)
         at.bad(words[w].column, "expected key=value, got '" + words[w].text + "'");
       const std::string key = words[w].text.substr(0, eq);
-      if (!(undoRedo ? key == "time" : EditKeys.count(key) > 0))
+      if (!(undoRedo ? key == "time" : fill ? FillKeys.count(key) > 0 : EditKeys.count(key) > 0))
         at.bad(words[w].column, "unknown key '" + key + "' in a '" + head.text + "' record");
       if (!kv.emplace(key, std::make_pair(words[w].text.substr(eq + 1), words[w].column + eq + 1)).second)
         at.bad(words[w].column, "key '" + key + "' given twice");
@@ -308,11 +348,42 @@ Recording readRecording(std::istream& in, const std::string& name)
       const auto& v = get(key);
       return toNumber(v.first, at, v.second, key);
     };
+    // exactly four whole numbers 0..255 and three commas ("1.5,2,3,4" read as 1,5,2,3 before)
+    auto color = [&] {
+      const std::string& text = get("color").first;
+      int rgba[4] = { 0, 0, 0, 0 };
+      int n = 0;
+      std::size_t i = 0;
+      bool ok = true;
+      for (; ok && n < 4; ++n)
+      {
+        const std::size_t from = i;
+        int v = 0;
+        while (i < text.size() && text[i] >= '0' && text[i] <= '9' && i - from < 3)
+          v = 10 * v + (text[i++] - '0');
+        ok = i > from && (n == 3 ? i == text.size() : i < text.size() && text[i++] == ',');
+        rgba[n] = v;
+      }
+      if (!ok)
+        at.bad(get("color").second, "color must be r,g,b,a (four whole numbers 0..255), got '" + text + "'");
+      for (int v : rgba)
+        if (v > 255)
+          at.bad(get("color").second, "color components must be 0..255, got '" + text + "'");
+      return Rgba{ std::uint8_t(rgba[0]), std::uint8_t(rgba[1]), std::uint8_t(rgba[2]), std::uint8_t(rgba[3]) };
+    };
     EditRecord e;
     e.time = number("time");
     if (undoRedo)
     {
       e.type = head.text == "undo" ? EditRecord::Type::Undo : EditRecord::Type::Redo;
+      r.records.push_back(e);
+      continue;
+    }
+    if (fill)
+    {
+      e.type = EditRecord::Type::Fill;
+      e.sdf = number("sdf");
+      e.brush.color = color();
       r.records.push_back(e);
       continue;
     }
@@ -346,29 +417,7 @@ Recording readRecording(std::istream& in, const std::string& name)
     }
     rule([&] { validate(e.brush); }, head.column);
     rule([&] { checkedNumber(e.spacing, EditLimits::MinSpacing, EditLimits::MaxSize, "spacing"); }, get("spacing").second);
-    {
-      // exactly four whole numbers 0..255 and three commas ("1.5,2,3,4" read as 1,5,2,3 before)
-      const std::string& text = get("color").first;
-      int rgba[4] = { 0, 0, 0, 0 };
-      int n = 0;
-      std::size_t i = 0;
-      bool ok = true;
-      for (; ok && n < 4; ++n)
-      {
-        const std::size_t from = i;
-        int v = 0;
-        while (i < text.size() && text[i] >= '0' && text[i] <= '9' && i - from < 3)
-          v = 10 * v + (text[i++] - '0');
-        ok = i > from && (n == 3 ? i == text.size() : i < text.size() && text[i++] == ',');
-        rgba[n] = v;
-      }
-      if (!ok)
-        at.bad(get("color").second, "color must be r,g,b,a (four whole numbers 0..255), got '" + text + "'");
-      for (int v : rgba)
-        if (v > 255)
-          at.bad(get("color").second, "color components must be 0..255, got '" + text + "'");
-      e.brush.color = Rgba{ std::uint8_t(rgba[0]), std::uint8_t(rgba[1]), std::uint8_t(rgba[2]), std::uint8_t(rgba[3]) };
-    }
+    e.brush.color = color();
     const double n = number("dabs");
     if (n < 0 || n != std::floor(n) || n > double(limits.maxDabsPerEdit))
       at.bad(get("dabs").second, "dabs must be a count of at most " + std::to_string(limits.maxDabsPerEdit));
@@ -411,7 +460,7 @@ Recording loadRecording(const std::string& path)
   const std::string magic = "LVDIF-RECORDING";
   std::string head(static_cast<std::size_t>(std::min<std::uint64_t>(src.size(), 4096)), '\0');
   src.read(0, &head[0], head.size());
-  std::size_t b = 0;
+  std::size_t b = head.rfind("\xEF\xBB\xBF", 0) == 0 ? 3 : 0; // a UTF-8 byte order mark
   while (b < head.size() && head[b] == '#') // comment lines before the version line
   {
     const std::size_t nl = head.find('\n', b);

@@ -9,6 +9,8 @@
 
 #include <gtest/gtest.h>
 
+#include <cstdio>
+#include <fstream>
 #include <random>
 #include <sstream>
 
@@ -22,15 +24,30 @@ std::string recordingErrorOf(const std::string& s)
   std::istringstream in(s);
   return errortest::errorMessageOf([&] { readRecording(in); }, ErrorCode::ParseError);
 }
+
+/// A volume of n^3 voxels holding a sphere, a copy of it as it was (the start
+/// of every playback) and an editor on it that records.
+struct RecordedSphere
+{
+  DictionaryVolume v;
+  std::unique_ptr<DictionaryVolume> start;
+  Editor e;
+  RecordedSphere(std::int64_t n, const SdfFunction& sphere)
+    : v(edittest::options(n, 16))
+    , start((fillFromFunction(v, sphere), v.clone()))
+    , e(v)
+  {
+    this->e.startRecording();
+  }
+};
 } // namespace
 
 TEST(Recording, RecordWriteReadPlayIsBitExact)
 {
-  DictionaryVolume v(edittest::options(64, 16));
-  fillFromFunction(v, sphereSdf(30, 34, 31, 17));
-  auto start = v.clone();
-  Editor e(v);
-  e.startRecording();
+  RecordedSphere setup(64, sphereSdf(30, 34, 31, 17));
+  DictionaryVolume& v = setup.v;
+  Editor& e = setup.e;
+  const std::unique_ptr<DictionaryVolume>& start = setup.start;
   std::mt19937 rng(5);
   std::uniform_real_distribution<double> pos(3, 61), rad(1.5, 8);
   for (int i = 0; i < 10; ++i)
@@ -162,12 +179,21 @@ TEST(Recording, ParseErrorsNameTheLine)
 {
   const auto errorOf = recordingErrorOf;
   EXPECT_EQ(errorOf("hello\n"), "recording:1:1: expected the version line 'LVDIF-RECORDING 2'");
-  EXPECT_EQ(errorOf("LVDIF-RECORDING 3\n"), "recording:1:17: unsupported recording version '3'");
+  EXPECT_EQ(errorOf("LVDIF-RECORDING 4\n"), "recording:1:17: unsupported recording version '4'");
   const std::string head = "LVDIF-RECORDING 1\n";
   const std::string edit =
     "edit time=0 op=add shape=sphere kind=basic spacing=1.6 blend=0 coloroffset=1.5 color=1,2,3,255 dabs=2\n";
   EXPECT_EQ(errorOf(head + edit + "d 1 2 3 4\n"), "recording:3:1: recording ends 1 dab lines early");
   EXPECT_EQ(errorOf(head + edit + "d 1 2 3 4\nd 1 2 x 4\n"), "recording:4:7: dab position is not a finite number: 'x'");
+  // a value out of the dabs' range is named at it (a huge radius was named at x, column 3)
+  EXPECT_EQ(errorOf(head + edit + "d 1 2 3 1e300\n").rfind("recording:3:9: dab 0 radius must be a finite number in ", 0), 0u)
+    << errorOf(head + edit + "d 1 2 3 1e300\n");
+  EXPECT_EQ(errorOf(head + edit + "d 1 2e30 3 4\n").rfind("recording:3:3: dab 0 position must be a finite number in ", 0), 0u)
+    << errorOf(head + edit + "d 1 2e30 3 4\n");
+  EXPECT_EQ(errorOf(head + edit + "d 1 2 3 4\nd:capsule 1 2 3 4 5 6 7e30\n")
+              .rfind("recording:4:19: dab 1 capsule end must be a finite number in ", 0),
+    0u)
+    << errorOf(head + edit + "d 1 2 3 4\nd:capsule 1 2 3 4 5 6 7e30\n");
   EXPECT_EQ(errorOf(head + "\n# c\nedit time=0 op=melt\n"), "recording:4:16: unknown op 'melt'");
   EXPECT_EQ(errorOf(head + "bogus time=1\n"), "recording:2:1: unknown record 'bogus'");
   // an empty file: line 1, as every position is 1-based (it said "recording:0:1")
@@ -207,6 +233,52 @@ TEST(Recording, MalformedFieldsAreRefusedNotGuessed)
   ASSERT_EQ(r.records.size(), 1u);
   EXPECT_EQ(r.records[0].brush.strength, 0.5);
   EXPECT_TRUE(r.records[0].brush.invert);
+}
+
+// The fill record (a script's `canvas fill|clear`, version 3) is read strictly,
+// as every record; its playback is checked against the script run directly
+// (Script.CanvasFillAndClearArePlayedBackFromARecording).
+TEST(Recording, FillRecordsNeedVersion3AndTheirKeys)
+{
+  const auto errorOf = recordingErrorOf;
+  EXPECT_EQ(errorOf("LVDIF-RECORDING 2\nfill time=0 sdf=1 color=1,2,3,4\nend records=1\n"),
+    "recording:2:1: a fill record needs version 3 ('LVDIF-RECORDING 3'), this file says version 2");
+  const std::string head = "LVDIF-RECORDING 3\n";
+  EXPECT_EQ(errorOf(head + "fill time=0 sdf=1\n"), "recording:2:18: missing color=");
+  EXPECT_EQ(errorOf(head + "fill time=0 sdf=x color=1,2,3,4\n"), "recording:2:17: sdf is not a finite number: 'x'");
+  EXPECT_EQ(errorOf(head + "fill time=0 sdf=1 color=1,2,3\n"),
+    "recording:2:25: color must be r,g,b,a (four whole numbers 0..255), got '1,2,3'");
+  EXPECT_EQ(errorOf(head + "fill time=0 sdf=1 color=1,2,3,4 dabs=1\n"),
+    "recording:2:33: unknown key 'dabs' in a 'fill' record");
+  std::istringstream in(head + "canvas 8 8 8\nfill time=2.5 sdf=-0.75 color=1,2,3,4\nend records=1\n");
+  const Recording r = readRecording(in);
+  ASSERT_EQ(r.records.size(), 1u);
+  EXPECT_EQ(r.records[0].type, EditRecord::Type::Fill);
+  EXPECT_EQ(r.records[0].time, 2.5);
+  EXPECT_EQ(r.records[0].sdf, -0.75);
+  EXPECT_EQ(r.records[0].brush.color, (Rgba{ 1, 2, 3, 4 }));
+  std::ostringstream out;
+  writeRecording(out, r);
+  EXPECT_EQ(out.str(), head + "canvas 8 8 8\nfill time=2.5 sdf=-0.75 color=1,2,3,4\nend records=1\n");
+}
+
+// A recording saved with a UTF-8 byte order mark (as Windows editors save) was
+// refused ("expected the version line"); scripts skip the mark, so do recordings.
+TEST(Recording, AByteOrderMarkBeforeTheVersionLineIsSkipped)
+{
+  const std::string text = "LVDIF-RECORDING 2\nundo time=0\nend records=1\n";
+  const std::string path = ::testing::TempDir() + "/bom.lvr";
+  for (const std::string& before : { std::string(), std::string("# made by hand\n") })
+  {
+    std::ofstream(path, std::ios::binary) << "\xEF\xBB\xBF" << before << text;
+    EXPECT_EQ(loadRecording(path).records.size(), 1u) << before;
+    std::istringstream in("\xEF\xBB\xBF" + before + text);
+    EXPECT_EQ(readRecording(in).records.size(), 1u) << before;
+  }
+  // only before the text: elsewhere it is the stray bytes it is
+  EXPECT_EQ(recordingErrorOf("LVDIF-RECORDING 2\n\xEF\xBB\xBFundo time=0\n"),
+    "recording:2:1: unknown record '\xEF\xBB\xBFundo'");
+  std::remove(path.c_str());
 }
 
 TEST(Recording, ImportsTheOriginalCsvWithAxisSwapAndScaling)
@@ -257,11 +329,10 @@ TEST(Recording, ImportsTheOriginalCsvWithAxisSwapAndScaling)
 // record) plays the same, with one warning.
 TEST(Recording, ACutRecordingIsRefused)
 {
-  DictionaryVolume v(edittest::options(48, 16));
-  fillFromFunction(v, sphereSdf(24, 24, 24, 10));
-  auto start = v.clone();
-  Editor e(v);
-  e.startRecording();
+  RecordedSphere setup(48, sphereSdf(24, 24, 24, 10));
+  DictionaryVolume& v = setup.v;
+  Editor& e = setup.e;
+  const std::unique_ptr<DictionaryVolume>& start = setup.start;
   for (int i = 0; i < 11; ++i)
     e.dab(Dab{ BrushShape::Sphere, { 10.25 + 2.5 * i, 24.5, 30.125 }, 3.5 + 0.125 * i, {} });
   e.undo();

@@ -52,7 +52,8 @@ void checkMeshHead(ByteSource& source, MeshFormat format)
           return; // a binary STL
       }
       const std::size_t b = h.find_first_not_of(" \t\r\n");
-      if (b == std::string::npos || h.compare(b, 5, "solid") != 0 || !text())
+      const bool solid = b != std::string::npos && equalsAsciiNoCase(h.substr(b, 5), "solid");
+      if (!solid || !text())
       {
         // a binary STL whose count disagrees with its size (a truncated copy, an
         // exporter writing 0): both numbers, so the user sees which
@@ -65,7 +66,6 @@ void checkMeshHead(ByteSource& source, MeshFormat format)
             std::to_string(84 + 50 * std::uint64_t(n)) + " bytes, but the file has " + std::to_string(size) + " bytes";
         }
         // a binary STL's header often starts with "solid" too: then the reason is the binary bytes
-        const bool solid = b != std::string::npos && h.compare(b, 5, "solid") == 0;
         fail(ErrorCode::CorruptData, "STL", "neither a binary STL (" + binary + ") nor an ASCII one (" +
             (solid ? "it starts with 'solid' but holds binary data: a NUL byte in its first 4 KiB" : "no 'solid'") + ")");
       }
@@ -403,6 +403,9 @@ TriangleMesh readOff(const std::vector<char>& data)
   if (t.size() < 2)
     fail(ErrorCode::ParseError, s.where(), "expected vertex, face (and edge) counts");
   const std::int64_t nv = parseInt(t[0], s.where()), nf = parseInt(t[1], s.where());
+  if (nv < 0 || nf < 0) // ("-3 vertices and 1 faces cannot fit in the rest of the file")
+    fail(ErrorCode::ParseError, s.where(),
+      "negative " + std::string(nv < 0 ? "vertex" : "face") + " count " + std::to_string(nv < 0 ? nv : nf));
   // every vertex needs at least 6 bytes ("0 0 0\n"), every face 8 ("3 0 1 2\n")
   if (nv < 0 || nf < 0 || nv > std::int64_t(s.remaining() / 6) || nf > std::int64_t(s.remaining() / 8) ||
     nv > std::int64_t(UINT32_MAX))
@@ -541,25 +544,27 @@ TriangleMesh readStl(const std::vector<char>& data)
   // ASCII: solid / facet normal / outer loop / vertex x3 / endloop / endfacet / endsolid
   TextScanner s(data.data(), data.size(), "STL");
   std::vector<std::string> t;
-  if (!s.nextNonEmpty(t) || t[0] != "solid")
+  if (!s.nextNonEmpty(t) || !equalsAsciiNoCase(t[0], "solid"))
     fail(ErrorCode::CorruptData, "STL", "neither a binary STL (size is not 84 + 50 x triangle count) nor an ASCII one (no 'solid')");
   std::vector<std::uint32_t> corners;
   while (s.nextNonEmpty(t))
   {
-    if (t[0] == "vertex")
+    std::string word = t[0]; // the keywords in any case (SOLID, FACET, VERTEX, ... were refused)
+    lowerAscii(word);
+    if (word == "vertex")
     {
       if (t.size() != 4)
         fail(ErrorCode::ParseError, s.where(), "vertex needs 3 coordinates");
       corners.push_back(merge.add(mesh, point(parseReal(t[1], s.where()), parseReal(t[2], s.where()), parseReal(t[3], s.where()), s.where())));
     }
-    else if (t[0] == "endloop")
+    else if (word == "endloop")
     {
       if (corners.size() != 3)
         fail(ErrorCode::ParseError, s.where(), "facet with " + std::to_string(corners.size()) + " vertices (STL facets have 3)");
       mesh.triangles.push_back({ corners[0], corners[1], corners[2] });
       corners.clear();
     }
-    else if (t[0] != "facet" && t[0] != "outer" && t[0] != "endfacet" && t[0] != "endsolid" && t[0] != "solid")
+    else if (word != "facet" && word != "outer" && word != "endfacet" && word != "endsolid" && word != "solid")
       fail(ErrorCode::ParseError, s.where(), "unexpected " + quoted(t[0]) + binaryHint(t[0]));
   }
   if (!corners.empty())

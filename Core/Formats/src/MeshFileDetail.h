@@ -34,6 +34,21 @@ inline std::size_t byteOrderMark(const char* p, std::size_t size)
   return size >= 3 && std::memcmp(p, "\xEF\xBB\xBF", 3) == 0 ? 3 : 0;
 }
 
+/// ASCII letters to lower case in place (keywords of formats that take any case).
+inline void lowerAscii(std::string& s)
+{
+  for (char& c : s)
+    if (c >= 'A' && c <= 'Z')
+      c = static_cast<char>(c - 'A' + 'a');
+}
+
+/// a == lower (a lower-case ASCII keyword) ignoring the case of a's ASCII letters.
+inline bool equalsAsciiNoCase(std::string a, const char* lower)
+{
+  lowerAscii(a);
+  return a == lower;
+}
+
 /// Splits text into lines and lines into whitespace-separated tokens; a
 /// byte order mark before the text is skipped.
 class TextScanner

@@ -245,4 +245,14 @@ TEST(HostileFiles, SaveByNameChecksTheWriterAndKeepsTheOldFile)
   EXPECT_NE(errorOf([&] { requireWritable("/nonexistent_dir/x.ply"); }).find("does not exist"), std::string::npos);
   EXPECT_NE(errorOf([&] { requireWritable(d.path); }).find("not a regular file"), std::string::npos);
   EXPECT_EQ(errorOf([&] { requireWritable(d.path + "/new.ply"); }), "no error");
+  // a file where a folder should be is named as such (it said "the folder 'F' does not exist")
+  EXPECT_EQ(errorOf([&] { requireWritable(file + "/x.ply"); }),
+    "cannot write '" + file + "/x.ply': '" + file + "' is a file, not a folder");
+  EXPECT_EQ(errorOf([&] { requireWritable(file + "/sub/x.ply"); }),
+    "cannot write '" + file + "/sub/x.ply': '" + file + "' is a file, not a folder");
+  EXPECT_EQ(errorOf([&] { requireWritable(d.path + "/no/x.ply"); }),
+    "cannot write '" + d.path + "/no/x.ply': the folder '" + d.path + "/no' does not exist");
+  // ... and when reading (it said "Not a directory")
+  EXPECT_EQ(errorOf([&] { FileSource in(file + "/x.ply"); }),
+    "cannot open '" + file + "/x.ply': '" + file + "' is a file, not a folder");
 }

@@ -146,6 +146,20 @@ TEST(MeshFile, StlAsciiAndBinaryShareCorners)
                             " endloop\nendfacet\nfacet normal 0 0 1\nouter loop\nvertex 0 0 0\nvertex 1 1 0\n"
                             "vertex 0 1 0.5\nendloop\nendfacet\nendsolid sq\n";
   expectSquare(readText(ascii, MeshFormat::Stl));
+  // the keywords in any case, as some exporters write them ("SOLID" was "no 'solid'",
+  // "FACET" "unexpected 'FACET'"); the name after solid keeps its case
+  std::string upper = ascii;
+  for (const char* w : { "solid", "facet", "normal", "outer", "loop", "vertex", "endloop", "endfacet", "endsolid" })
+    for (std::size_t at = upper.find(w); at != std::string::npos; at = upper.find(w, at + 1))
+      for (std::size_t i = at; i < at + std::strlen(w); ++i)
+        upper[i] = static_cast<char>(upper[i] - 'a' + 'A');
+  ASSERT_EQ(upper.rfind("SOLID sq\nFACET NORMAL 0 0 1\n OUTER LOOP\n  VERTEX 0 0 0\n", 0), 0u) << upper;
+  expectSquare(readText(upper, MeshFormat::Stl));
+  expectSquare(readText("Solid x\nFacet normal 0 0 1\nOuter Loop\nVertex 0 0 0\nVertex 1 0 0\nVertex 1 1 0\nEndLoop\n"
+                        "EndFacet\nfacet normal 0 0 1\nouter loop\nvertex 0 0 0\nvertex 1 1 0\nvertex 0 1 0.5\nENDLOOP\n"
+                        "endfacet\nEndSolid x\n",
+    MeshFormat::Stl));
+  expectError("SOLID x\nFACET NORMAL 0 0 1\nOUTER LOOP\nVERTICES 0 0 0\n", MeshFormat::Stl, "unexpected 'VERTICES'");
   std::string bin(80, ' ');
   put<std::uint32_t>(bin, 2);
   const float tris[2][9] = { { 0, 0, 0, 1, 0, 0, 1, 1, 0 }, { 0, 0, 0, 1, 1, 0, 0, 1, 0.5f } };
@@ -186,6 +200,9 @@ TEST(MeshFile, MalformedInputsAreClearErrors)
     { "OBJ no faces", "v 0 0 0\n", MeshFormat::Obj, "no triangles" },
     { "OFF negative index", "OFF\n3 1 0\n" + tri + "3 0 -1 2\n", MeshFormat::Off, "out of range" },
     { "OFF huge counts", "OFF\n2000000000 1 0\n0 0 0\n", MeshFormat::Off, "cannot fit" },
+    // a negative count is named as one (it was "-3 vertices and 1 faces cannot fit in the rest of the file")
+    { "OFF negative vertex count", "OFF\n-3 1 0\n" + tri + "3 0 1 2\n", MeshFormat::Off, "OFF line 2: negative vertex count -3" },
+    { "OFF negative face count", "OFF\n3 -1 0\n" + tri, MeshFormat::Off, "OFF line 2: negative face count -1" },
     { "OFF truncated", "OFF\n3 1 0\n0 0 0\n1 0 0\n# a comment long enough to pass the size bound\n", MeshFormat::Off, "file ends" },
     { "OFF counts past the size", "OFF\n3 1 0\n0 0 0\n1 0 0\n", MeshFormat::Off, "cannot fit" },
     { "OFF face shorter than announced", "OFF\n3 1 0\n" + tri + "4 0 1 2\n", MeshFormat::Off, "announces 4" },

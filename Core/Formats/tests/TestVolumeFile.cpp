@@ -599,6 +599,41 @@ TEST(VolumeFileMalformed, GeometryIsRefusedOrFiniteInFloat)
   }
 }
 
+// The rule protects the world coordinates of the voxels (origin + index x
+// spacing, index 0 .. dims - 1): it counted |origin| + spacing x dims, so a grid
+// around a mesh spanning [-4e29, 4e29] was refused although every voxel of it
+// lies within +-4.2e29. Oracle: the coordinates of the first and last voxel,
+// computed here, against the +-1e30 range; accepted exactly when both are in it.
+TEST(VolumeFileMalformed, GeometryCountsTheVoxelsWorldCoordinatesExactly)
+{
+  VolumeOptions o;
+  o.dims = { 128, 4, 4 };
+  o.chunkEdge = 8;
+  o.spacing = { 8.2e29 / 127, 1, 1 };
+  o.origin = { -4.1e29, 0, 0 };
+  EXPECT_EQ(DictionaryVolume::checkGeometry(o), "");
+  EXPECT_NO_THROW(DictionaryVolume v(o));
+  std::mt19937 rng(7);
+  std::uniform_real_distribution<double> u(-1.2e30, 1.2e30);
+  int accepted = 0, refused = 0;
+  for (int i = 0; i < 2000; ++i)
+  {
+    const double first = u(rng), lastWanted = u(rng);
+    o.dims[0] = 2 + static_cast<std::int64_t>(rng() % 300);
+    o.origin[0] = std::min(first, lastWanted);
+    o.spacing[0] = (std::max(first, lastWanted) - o.origin[0]) / double(o.dims[0] - 1);
+    if (!(o.spacing[0] >= DictionaryVolume::MinSpacing))
+      continue;
+    const double last = o.origin[0] + double(o.dims[0] - 1) * o.spacing[0];
+    const bool inRange = std::fabs(o.origin[0]) <= 1e30 && std::fabs(last) <= 1e30;
+    EXPECT_EQ(DictionaryVolume::checkGeometry(o).empty(), inRange) << o.origin[0] << " + " << o.spacing[0] << " x "
+                                                                   << o.dims[0] - 1 << " = " << last;
+    (inRange ? accepted : refused) += 1;
+  }
+  EXPECT_GT(accepted, 200);
+  EXPECT_GT(refused, 200);
+}
+
 TEST(VolumeFile, CompressionLevelOutsideZstdsRangeIsRefusedBeforeAnyByte)
 {
   // the one rule of every writer's level (the VTK writers check it before any work)

@@ -312,17 +312,31 @@ struct ScriptRunner::Impl
     return *this->Ed;
   }
 
-  // one rule and one message for sizes ('radius -1' said "must be > 0", 'radius 2e7' "in [0, 1e+07]")
-  double positive(const Stmt& s, double v, const char* what)
+  /// A rule on the value of argument i, reported at that value (`color 300 0 0`
+  /// named the statement's column).
+  template <typename Check>
+  double argument(const Stmt& s, std::size_t i, double v, Check check)
   {
     try
     {
-      return checkedPositive(v, EditLimits::MaxSize, what);
+      return check(v);
     }
     catch (const Error& e)
     {
-      fail(s.line, s.column, e.what());
+      const Expr& at = *s.args[i];
+      fail(at.line, at.column, e.what());
     }
+  }
+
+  // one rule and one message for sizes ('radius -1' said "must be > 0", 'radius 2e7' "in [0, 1e+07]")
+  double positive(const Stmt& s, std::size_t i, double v, const char* what)
+  {
+    return this->argument(s, i, v, [&](double x) { return checkedPositive(x, EditLimits::MaxSize, what); });
+  }
+
+  double ranged(const Stmt& s, std::size_t i, double v, double lo, double hi, const char* what)
+  {
+    return this->argument(s, i, v, [&](double x) { return checkedNumber(x, lo, hi, what); });
   }
 
   // Dabs count as steps: an edit may make at most the steps left (checked
@@ -383,7 +397,7 @@ struct ScriptRunner::Impl
       return this->canvas(s, a);
     if (c == "radius")
     {
-      this->Radius = this->positive(s, a[0], "radius");
+      this->Radius = this->positive(s, 0, a[0], "radius");
       if (this->Ed)
         this->Ed->stroke.radius = this->Radius;
       return;
@@ -401,9 +415,15 @@ struct ScriptRunner::Impl
       std::uint8_t v[4] = { 0, 0, 0, 255 };
       for (size_t i = 0; i < a.size(); ++i)
       {
-        if (!(a[i] >= 0 && a[i] <= 255))
-          fail(s.line, s.column, "colour components must be in 0..255");
-        v[i] = static_cast<std::uint8_t>(std::lround(a[i]));
+        v[i] = static_cast<std::uint8_t>(std::lround(this->argument(s, i, a[i], [](double x) {
+          if (!(x >= 0 && x <= 255))
+          {
+            std::ostringstream o;
+            o << "colour components must be in 0..255, got " << x;
+            throw Error(ErrorCode::InvalidArgument, o.str());
+          }
+          return x;
+        })));
       }
       ed.brush.color = Rgba{ v[0], v[1], v[2], v[3] };
     }
@@ -416,20 +436,20 @@ struct ScriptRunner::Impl
                                           : BrushKind::Drill;
     else if (c == "blend")
     {
-      ed.brush.blend = checkedNumber(a[0], 0, EditLimits::MaxSize, "blend");
+      ed.brush.blend = this->ranged(s, 0, a[0], 0, EditLimits::MaxSize, "blend");
     }
     else if (c == "round")
     {
-      ed.brush.rounding = checkedNumber(a[0], 0, EditLimits::MaxSize, "round");
+      ed.brush.rounding = this->ranged(s, 0, a[0], 0, EditLimits::MaxSize, "round");
     }
     else if (c == "spacing")
-      ed.stroke.spacing = checkedNumber(a[0], EditLimits::MinSpacing, EditLimits::MaxSize, "spacing");
+      ed.stroke.spacing = this->ranged(s, 0, a[0], EditLimits::MinSpacing, EditLimits::MaxSize, "spacing");
     else if (c == "dab" || c == "sphere" || c == "cube")
     {
       Dab d;
       d.shape = c == "dab" ? this->Shape : c == "cube" ? BrushShape::Cube : BrushShape::Sphere;
       d.center = { a[0], a[1], a[2] };
-      d.radius = c == "dab" ? this->Radius : this->positive(s, a[3], c == "cube" ? "half edge" : "radius");
+      d.radius = c == "dab" ? this->Radius : this->positive(s, 3, a[3], c == "cube" ? "half edge" : "radius");
       const std::size_t before = ed.undoCount();
       this->edited(ed, ed.dab(d), before);
       ++this->Owner->Edits;

@@ -266,7 +266,8 @@ private:
     if (n < spec.minArgs || n > spec.maxArgs || (s->name == "canvas" && n == 2))
     {
       std::string want = spec.minArgs == spec.maxArgs ? std::to_string(spec.minArgs)
-                                                      : std::to_string(spec.minArgs) + " to " + std::to_string(spec.maxArgs);
+                                                      : std::to_string(spec.minArgs) + (spec.maxArgs == spec.minArgs + 1 ? " or " : " to ") +
+          std::to_string(spec.maxArgs); // ("3 to 4 arguments" for color's 3 or 4)
       if (s->name == "canvas")
         want = "1 or 3 (or the word fill or clear)";
       this->fail(t, "'" + s->name + "' takes " + want + " argument" + (want == "1" ? "" : "s") + ", got " +

@@ -18,6 +18,7 @@
 #include <random>
 #include <set>
 #include <sstream>
+#include <stdexcept>
 
 using namespace lvdif;
 
@@ -58,6 +59,17 @@ std::string readScript(const char* name)
   s << in.rdbuf();
   return s.str();
 }
+
+/// Runs the bundled script Data/scripts/<name>; the canvas it made.
+DictionaryVolume& runBundled(ScriptRunner& r, const char* name)
+{
+  const std::string src = readScript(name);
+  EXPECT_FALSE(src.empty()) << name;
+  r.run(src);
+  if (!r.volume())
+    throw std::runtime_error(std::string(name) + " made no canvas");
+  return *r.volume();
+}
 } // namespace
 
 TEST(Script, ArithmeticPrecedenceAndFunctions)
@@ -96,6 +108,7 @@ TEST(Script, SyntaxErrorsGiveLineAndColumn)
   const Case cases[] = {
     { "x = 1 +\n", 1, 8, "expected a value, found the end of the line" },
     { "canvas 64\n  dab 1 2\n", 2, 3, "'dab' takes 3 arguments, got 2" },
+    { "color 10 20\n", 1, 1, "'color' takes 3 or 4 arguments, got 2" }, // it said "3 to 4"
     { "for i in 0..3 {\n  dab 1 2 3\n", 1, 15, "this '{' is never closed" },
     { "brush cylinder", 1, 7, "'brush' expects one of: cube, sphere; found 'cylinder'" },
     { "\n\nx = 3 $ 4", 3, 7, "unexpected character '$'" },
@@ -181,6 +194,16 @@ TEST(Script, RunTimeErrorsGiveLineAndColumn)
   w = errorOf("canvas 16\nbegin\npoint 1 2 3");
   EXPECT_EQ(w.line, 2);
   EXPECT_EQ(w.column, 1);
+  // a bad value is named at its column, not the statement's ('color 300 0 0' said column 1)
+  w = errorOf("canvas 16\n  color 10, 300, 0");
+  EXPECT_EQ(w.line, 2);
+  EXPECT_EQ(w.column, 13);
+  EXPECT_EQ(w.detail, "colour components must be in 0..255, got 300");
+  EXPECT_EQ(errorOf("canvas 16\ncolor 0 0 0 -1").column, 13);
+  EXPECT_EQ(errorOf("canvas 16\nradius -2").column, 8);
+  EXPECT_EQ(errorOf("canvas 16\nsphere 1 2 3 0").column, 14);
+  EXPECT_EQ(errorOf("canvas 16\nblend -1").column, 7);
+  EXPECT_EQ(errorOf("canvas 16\nspacing 0").column, 9);
 }
 
 TEST(Script, StepLimitStopsEndlessLoops)
@@ -292,6 +315,38 @@ TEST(Script, AnEditThatChangesNothingIsAStepOfItsOwn)
   EXPECT_EQ(edittest::countDifferences(v, empty), 0);
 }
 
+// `canvas fill` and `canvas clear` run while recording were missing from the
+// recording (the format had no record for them): the playback gave another
+// model. They are fill records now (version 3), played back as fills.
+// Oracle: the same script run directly on the same start volume.
+TEST(Script, CanvasFillAndClearArePlayedBackFromARecording)
+{
+  const std::string src = "sphere 8 8 8 4\ncanvas clear\ncolor 255 0 0\nsphere 20 20 20 5\ncanvas fill\n"
+                          "op subtract\nsphere 16 16 16 6\nundo\nredo\ncolor 0 0 255\nop add\nsphere 4 4 4 3\n";
+  DictionaryVolume start(edittest::options(32, 16));
+  auto direct = start.clone(), recorded = start.clone(), played = start.clone();
+  auto runOn = [&](DictionaryVolume& v, bool record) {
+    Editor ed(v);
+    if (record)
+      ed.startRecording();
+    ScriptRunner r;
+    r.attach(ed);
+    r.run(src);
+    return record ? ed.stopRecording() : Recording();
+  };
+  runOn(*direct, false);
+  std::stringstream text;
+  writeRecording(text, runOn(*recorded, true));
+  EXPECT_EQ(text.str().rfind("LVDIF-RECORDING 3\n", 0), 0u) << text.str();
+  EXPECT_NE(text.str().find("\nfill time=1 sdf=8 color=200,200,200,255\n"), std::string::npos) << text.str();
+  EXPECT_NE(text.str().find("\nfill time=3 sdf=-8 color=255,0,0,255\n"), std::string::npos) << text.str();
+  Editor player(*played);
+  player.play(readRecording(text));
+  EXPECT_EQ(edittest::countDifferences(*played, *recorded), 0);
+  EXPECT_EQ(edittest::countDifferences(*played, *direct), 0);
+  EXPECT_EQ(played->colors(), direct->colors());
+}
+
 // A UTF-8 byte order mark before the text (Windows editors write one) is
 // skipped, as the mesh readers skip it: a script saved so failed at once with
 // "line 1, column 1: unexpected character byte 239".
@@ -366,10 +421,7 @@ TEST(Script, CommandsDriveTheSameEditsAsTheEditor)
 TEST(Script, DiceMatchesTheAnalyticRoundedCubeMinusPips)
 {
   ScriptRunner r;
-  const std::string src = readScript("dice.lvs");
-  ASSERT_FALSE(src.empty());
-  r.run(src);
-  DictionaryVolume& v = *r.volume();
+  DictionaryVolume& v = runBundled(r, "dice.lvs");
   const double n = 128, c = 64, h = 0.4 * n, round = 0.06 * n, pr = 0.1 * n;
   std::vector<std::array<double, 3>> pips{ { c, c, c - h }, { c, c + h, c } };
   for (int i = 0; i < 4; ++i)
@@ -407,10 +459,7 @@ TEST(Script, DiceMatchesTheAnalyticRoundedCubeMinusPips)
 TEST(Script, SpiralDrawsNineTaperedLinesInNineColours)
 {
   ScriptRunner r;
-  const std::string src = readScript("spiral.lvs");
-  ASSERT_FALSE(src.empty());
-  r.run(src);
-  DictionaryVolume& v = *r.volume();
+  DictionaryVolume& v = runBundled(r, "spiral.lvs");
   EXPECT_EQ(r.edits(), 9u);
   EXPECT_EQ(r.editor()->undoStack().undoCount(), 9u);
   std::set<ColorKey> used;
@@ -577,12 +626,12 @@ TEST(Script, DabsCountAsStepsAndRunawayLinesAreRefusedFirst)
     }
     EXPECT_LT(std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count(), 10.0);
   }
-  // out-of-range numbers name the command's position
-  for (const char* cmd : { "blend 1e300", "round 1e300", "spacing 1e-9", "radius 1e300" })
+  // out-of-range numbers are named at the number (they named the command's position)
+  for (const std::string cmd : { "blend 1e300", "round 1e300", "spacing 1e-9", "radius 1e300" })
   {
-    const Where w = errorOf(std::string("canvas 16\n") + cmd + "\n");
+    const Where w = errorOf("canvas 16\n" + cmd + "\n");
     EXPECT_EQ(w.line, 2) << cmd;
-    EXPECT_EQ(w.column, 1) << cmd;
+    EXPECT_EQ(w.column, int(cmd.find(' ')) + 2) << cmd;
     EXPECT_NE(w.detail.find("must be a finite number in"), std::string::npos) << w.detail;
   }
 }

@@ -185,7 +185,11 @@ std::string DictionaryVolume::checkGeometry(const VolumeOptions& o)
 {
   for (int a = 0; a < 3; ++a)
   {
-    const double far = std::fabs(o.origin[a]) + o.spacing[a] * double(o.dims[a]);
+    // the world coordinates of the first and the last voxel, as worldPosition()
+    // computes them (|origin| + spacing x dims refused a grid of a mesh spanning
+    // [-4e29, 4e29], every voxel of which is within the range)
+    const double last = o.origin[a] + double(std::max<std::int64_t>(o.dims[a] - 1, 0)) * o.spacing[a];
+    const double far = std::max(std::fabs(o.origin[a]), std::fabs(last));
     if (!std::isfinite(o.origin[a]) || !std::isfinite(o.spacing[a]) || !(o.spacing[a] >= MinSpacing) ||
       !(far <= MaxWorldCoordinate))
     {

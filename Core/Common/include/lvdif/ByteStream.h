@@ -103,6 +103,12 @@ void saveAtomically(const std::string& path, const std::function<void(ByteSink&)
 /// missing or empty result is a failure (Error IoFailure).
 void saveAtomicallyByName(const std::string& path, const std::function<void(const std::string& tmpPath)>& produce);
 
+/// Removes the temporary files of saves of `path` killed earlier
+/// ("<path>.tmp-<pid>-XXXXXX[.ext]" whose process is gone), as saveAtomically
+/// does first; for writers whose files are saved under several names (the
+/// pieces of a .lvdvp set).
+void removeStaleTemporaries(const std::string& path);
+
 /// Checks, before any expensive work, that `path` can be saved: its directory
 /// exists and is writable, and an existing file (or a symlink's target) is a
 /// writable regular file. Error IoFailure naming the problem.

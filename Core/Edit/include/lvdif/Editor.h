@@ -48,7 +48,8 @@ public:
   std::size_t undoCount() const;
   void clearHistory();
   /// Sets every voxel to `fill` (a script's `canvas fill|clear`): not undoable,
-  /// so the history is cleared; every storage chunk is touched.
+  /// so the history is cleared; every storage chunk is touched. Recorded (when
+  /// recording) as a fill record of the distance and colour, which play() repeats.
   void fillVolume(Voxel fill);
 
   BrushSettings brush;

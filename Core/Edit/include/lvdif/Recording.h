@@ -11,6 +11,9 @@
 //   undo time=1.5
 //   end records=2
 //
+// A recording with a `fill time=T sdf=D color=r,g,b,a` record (every voxel set:
+// a script's `canvas fill|clear`) is written as version 3.
+//
 // Numbers are written with 17 significant digits, so reading a recording gives
 // the same doubles and playing it back (Editor::play) on the same start volume
 // reproduces the volume bit for bit. The player applies the recorded dabs as
@@ -37,11 +40,15 @@ struct EditRecord
   {
     Edit,
     Undo,
-    Redo
+    Redo,
+    /// Every voxel set to one value (a script's `canvas fill|clear`,
+    /// Editor::fillVolume): `sdf` and the colour brush.color. Not undoable.
+    Fill
   };
   Type type = Type::Edit;
   double time = 0;
   BrushSettings brush;
+  double sdf = 0; // a Fill record's distance (decoded, so another dictionary encodes it again)
   BrushKind kind = BrushKind::Single;
   double spacing = 1.6;
   std::vector<Dab> dabs;
@@ -49,10 +56,12 @@ struct EditRecord
 
 struct Recording
 {
-  /// The version written. Version 2 ends with `end records=N`, so that a file
-  /// cut short (at a line or inside a number) is refused; version 1 files (no
-  /// end record) are still read, with `warning` set.
-  static constexpr int Version = 2;
+  /// The newest version. Version 2 ends with `end records=N`, so that a file
+  /// cut short (at a line or inside a number) is refused; version 3 adds the
+  /// `fill` record and is written only for a recording that has one (others are
+  /// written as version 2, which older builds read). Version 1 files (no end
+  /// record) are still read, with `warning` set.
+  static constexpr int Version = 3;
   /// Dimensions of the volume it was recorded on (the `canvas` line; {0, 0, 0}:
   /// not known, as in recordings written before it and imported CSVs).
   /// Editor::play refuses a volume of other dimensions before applying anything.

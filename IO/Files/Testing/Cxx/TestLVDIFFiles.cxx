@@ -225,6 +225,19 @@ TEST(LVDIFFiles, UnknownExtensionsAreOneClearError)
   }
   EXPECT_THROW(LVDIFFiles::LoadVolume(temp("missing.lvdv")), lvdif::Error);
   EXPECT_THROW(LVDIFFiles::SaveMesh(vtkPolyData::New(), temp("x.off")), lvdif::Error); // .off is read-only
+  // an empty name is named as such (it was "cannot write '': volumes are .lvdv, ... files")
+  for (const bool saving : { false, true })
+  {
+    try
+    {
+      LVDIFFiles::RequireFormat("", LVDIFFiles::Kind::Volume, saving);
+      ADD_FAILURE() << "no error";
+    }
+    catch (const lvdif::Error& e)
+    {
+      EXPECT_EQ(std::string(e.what()), std::string("no volume file name to ") + (saving ? "write" : "read") + " (an empty argument)");
+    }
+  }
   EXPECT_EQ(LVDIFFiles::Extension("/a.b/c.LVDV"), "lvdv");
   EXPECT_EQ(LVDIFFiles::Extension("/a.b/c"), "");
   EXPECT_NE(LVDIFFiles::DialogFilter(LVDIFFiles::Kind::Volume, true).find("(*.lvdv)"), std::string::npos);
@@ -386,6 +399,18 @@ std::string loadError(const std::string& path)
   }
   return "(read without an error)";
 }
+
+/// Writes each text to temp(name) in turn: LoadVolume's error is "cannot read 'path': " + the expected words.
+void expectLoadErrors(const std::string& name, const std::vector<std::pair<std::string, std::string>>& cases)
+{
+  const std::string path = temp(name);
+  for (const auto& c : cases)
+  {
+    std::ofstream(path, std::ios::binary) << c.first;
+    EXPECT_EQ(loadError(path), "cannot read '" + path + "': " + c.second) << c.first;
+  }
+  std::remove(path.c_str());
+}
 } // namespace
 
 // A .vti whose WholeExtent is larger than its one piece's Extent was read: the
@@ -412,6 +437,26 @@ TEST(LVDIFFiles, AVtiWhosePiecesDoNotFillItsExtentIsRefused)
   EXPECT_EQ(loadError(path), "cannot read '" + path + "': the whole extent 0 7 0 7 0 8 is larger than its piece's " +
       "extent 0 7 0 7 0 7: the points outside it would be made up");
   std::remove(path.c_str());
+}
+
+// An empty .vti (a save that never wrote, a truncated copy) was reported in VTK's
+// words: "Error parsing input file.  ReadXMLInformation aborting.". Now in ours,
+// as every reader names an empty file.
+TEST(LVDIFFiles, AnEmptyVtiIsNamedAsEmpty)
+{
+  expectLoadErrors("empty.vti", { { "", "the file is empty: no VTK image in it" },
+                                  { "\n \r\n\t\n", "the file is empty (blank): no VTK image in it" } });
+}
+
+// An error in a .lvdvp index named the index itself ("index 'x.lvdvp', line 2:
+// ..."), so the readers' one guard, which adds "cannot read 'x':" unless the
+// message names the file, left the prefix every other reader's error has. Now
+// the index's errors are "line N: what" behind that prefix, and a byte order
+// mark before the index is skipped, as in every text format.
+TEST(LVDIFFiles, AnLvdvpErrorHasTheReadersPrefix)
+{
+  expectLoadErrors("bad.lvdvp", { { "LVDIF-PVOLUME 1\nbogus 1\n", "line 2: unknown key 'bogus'" }, { "", "empty file" },
+                                  { "\xEF\xBB\xBFLVDIF-PVOLUME 1\nbogus 1\n", "line 2: unknown key 'bogus'" } });
 }
 
 // Spacing="nan 1 1" (or inf) in a .vti was read as spacing 1 (VTK's reader takes

@@ -37,6 +37,7 @@
 #include <algorithm>
 #include <chrono>
 #include <fcntl.h>
+#include <functional>
 #include <future>
 #include <cmath>
 #include <cstdlib>
@@ -46,6 +47,7 @@
 #include <string>
 #include <dirent.h>
 #include <sys/stat.h>
+#include <sys/wait.h>
 #include <unistd.h>
 
 namespace
@@ -549,6 +551,67 @@ std::string fileBytes(const std::string& p)
   std::ifstream f(p, std::ios::binary);
   return std::string(std::istreambuf_iterator<char>(f), std::istreambuf_iterator<char>());
 }
+
+/// Another volume than makeImage()'s: other values and colour, another extent and geometry.
+vtkSmartPointer<vtkImageData> otherImage()
+{
+  return makeSdfImage({ 3, 3 + NX - 1, -2, -2 + NY - 1, 5, 5 + NZ - 1 }, { -2.0, 0.5, 3.0 }, { 0.25, 0.5, 0.75 },
+    [](int i, int j, int k) { return analytic(i, j, k) + 3.0; },
+    [](int, int, int) { return std::array<unsigned char, 4>{ 1, 2, 3, 255 }; });
+}
+
+/// The names (sorted) of tmpName(stem...) files in the test folder that contain `part`.
+std::vector<std::string> setFiles(const std::string& stem, const std::string& part)
+{
+  const std::string full = tmpName(stem);
+  const std::string prefix = full.substr(full.find_last_of('/') + 1), own = prefix.substr(0, prefix.size() - stem.size());
+  std::vector<std::string> names;
+  if (DIR* d = ::opendir(std::string(::testing::TempDir()).c_str()))
+  {
+    while (const dirent* e = ::readdir(d))
+    {
+      const std::string name = e->d_name;
+      if (name.compare(0, prefix.size(), prefix) == 0 && name.find(part) != std::string::npos)
+        names.push_back(name.substr(own.size()));
+    }
+    ::closedir(d);
+  }
+  std::sort(names.begin(), names.end());
+  return names;
+}
+
+/// Writes img (as a sparse volume) over the set `index` in 3 pieces in one
+/// serial Write(), calling `hook` once when the first piece's save reports that
+/// it has written every chunk; Write()'s result.
+int writeOver(vtkImageData* img, const std::string& index, const std::function<void(vtkPDictionaryVolumeWriter*)>& hook)
+{
+  vtkNew<vtkImageToSparseVolume> sparse;
+  sparse->SetInputData(img);
+  vtkNew<vtkPDictionaryVolumeWriter> w;
+  w->SetController(nullptr);
+  w->SetInputConnection(sparse->GetOutputPort());
+  w->SetFileName(index.c_str());
+  w->SetNumberOfPieces(3);
+  struct Watch
+  {
+    vtkPDictionaryVolumeWriter* writer;
+    const std::function<void(vtkPDictionaryVolumeWriter*)>& hook;
+    bool called = false;
+  } watch{ w, hook };
+  vtkNew<vtkCallbackCommand> onProgress;
+  onProgress->SetClientData(&watch);
+  onProgress->SetCallback([](vtkObject*, unsigned long, void* client, void* call) {
+    auto* wt = static_cast<Watch*>(client);
+    if (!wt->called && *static_cast<double*>(call) >= 0.999)
+    {
+      wt->called = true;
+      wt->hook(wt->writer);
+    }
+  });
+  w->AddObserver(vtkCommand::ProgressEvent, onProgress);
+  w->GlobalWarningDisplayOff();
+  return w->Write();
+}
 } // namespace
 
 // An index that lists a piece twice, or a piece overlapping the others, was
@@ -620,60 +683,108 @@ TEST(PVolumeIO, SerialWriteThatFailsPartWayKeepsTheOldFiles)
   const std::string piece[3] = { vtkPDictionaryVolumeWriter::PieceFilePath(index, 0),
     vtkPDictionaryVolumeWriter::PieceFilePath(index, 1), vtkPDictionaryVolumeWriter::PieceFilePath(index, 2) };
   const std::string before[4] = { fileBytes(index), fileBytes(piece[0]), fileBytes(piece[1]), fileBytes(piece[2]) };
-  // another volume (other values) written over it, from a sparse input
-  vtkSmartPointer<vtkImageData> other = makeSdfImage({ 3, 3 + NX - 1, -2, -2 + NY - 1, 5, 5 + NZ - 1 },
-    { -2.0, 0.5, 3.0 }, { 0.25, 0.5, 0.75 }, [](int i, int j, int k) { return analytic(i, j, k) + 3.0; },
-    [](int, int, int) { return std::array<unsigned char, 4>{ 1, 2, 3, 255 }; });
-  vtkNew<vtkImageToSparseVolume> sparse;
-  sparse->SetInputData(other);
-  vtkNew<vtkPDictionaryVolumeWriter> w;
-  w->SetController(nullptr);
-  w->SetInputConnection(sparse->GetOutputPort());
-  w->SetFileName(index.c_str());
-  w->SetNumberOfPieces(3);
-  // cancelled when piece 0's save reports it has written every chunk: piece 0
-  // is then saved, and the next piece stops at its first check
-  struct Watch
-  {
-    vtkPDictionaryVolumeWriter* writer;
-    bool cancelled = false;
-  } watch{ w };
-  vtkNew<vtkCallbackCommand> onProgress;
-  onProgress->SetClientData(&watch);
-  onProgress->SetCallback([](vtkObject*, unsigned long, void* client, void* call) {
-    auto* wt = static_cast<Watch*>(client);
-    if (!wt->cancelled && *static_cast<double*>(call) >= 0.999)
-    {
-      wt->cancelled = true;
-      wt->writer->SetAbortExecute(1);
-    }
-  });
-  w->AddObserver(vtkCommand::ProgressEvent, onProgress);
-  w->GlobalWarningDisplayOff();
-  EXPECT_EQ(w->Write(), 0);
-  EXPECT_TRUE(watch.cancelled);
+  // another volume written over it, cancelled when piece 0's save reports it has
+  // written every chunk: piece 0 is then saved, and the next piece stops at its first check
+  bool cancelled = false;
+  EXPECT_EQ(writeOver(otherImage(), index, [&](vtkPDictionaryVolumeWriter* w) {
+    cancelled = true;
+    w->SetAbortExecute(1);
+  }),
+    0);
+  EXPECT_TRUE(cancelled);
   EXPECT_TRUE(fileBytes(index) == before[0]) << "index";
   for (int p = 0; p < 3; ++p)
     EXPECT_TRUE(fileBytes(piece[p]) == before[1 + p]) << "piece " << p;
   // no temporary file left beside them
-  const std::string dir = std::string(::testing::TempDir());
-  const std::string stem = "lvdif_p_" + std::to_string(getpid()) + "_keep";
-  int left = 0;
-  if (DIR* d = ::opendir(dir.c_str()))
-  {
-    while (const dirent* e = ::readdir(d))
-    {
-      const std::string name = e->d_name;
-      left += name.compare(0, stem.size(), stem) == 0 && name.find(".tmp-") != std::string::npos ? 1 : 0;
-    }
-    ::closedir(d);
-  }
-  EXPECT_EQ(left, 0);
+  EXPECT_EQ(setFiles("keep", ".tmp-"), std::vector<std::string>());
   vtkNew<vtkPDictionaryVolumeReader> r;
   r->SetFileName(index.c_str());
   expectSameArrays(decoded(r), serialRoundTrip(img));
   for (const std::string& f : { index, piece[0], piece[1], piece[2] })
     std::remove(f.c_str());
+}
+
+// A write's pieces were renamed over the old ones before the new index was
+// written: a rename failing after others had succeeded (the folder changed
+// under the writer) left the old index listing new pieces beside old ones. Now
+// the pieces go to the generation the old index does not list (name_<p>.g1.lvdv
+// beside name_<p>.lvdv), and only the new index switches: a piece failing after
+// others were saved (here piece 2's file becomes a folder during the write)
+// leaves the old index and its pieces byte for byte, and the new pieces are
+// removed. Oracle: the files' bytes before the write and the serial round trip
+// of each volume. A write that succeeds switches generation and removes the
+// old pieces; the next one switches back.
+TEST(PVolumeIO, AWriteFailingAfterSomePiecesKeepsTheOldSetWhole)
+{
+  vtkSmartPointer<vtkImageData> img = makeImage(), other = otherImage();
+  const std::string index = tmpName("gen.lvdvp");
+  writePieces(img, index, 3);
+  const std::vector<std::string> plain{ "gen_0.lvdv", "gen_1.lvdv", "gen_2.lvdv" };
+  ASSERT_EQ(setFiles("gen_", ""), plain);
+  std::vector<std::string> before{ fileBytes(index) };
+  for (const std::string& f : plain)
+    before.push_back(fileBytes(tmpName(f)));
+  const std::string blocker = tmpName("gen_2.g1.lvdv");
+  EXPECT_EQ(writeOver(other, index, [&](vtkPDictionaryVolumeWriter*) { ::mkdir(blocker.c_str(), 0755); }), 0);
+  ::rmdir(blocker.c_str());
+  EXPECT_TRUE(fileBytes(index) == before[0]) << "index";
+  for (std::size_t p = 0; p < plain.size(); ++p)
+    EXPECT_TRUE(fileBytes(tmpName(plain[p])) == before[1 + p]) << plain[p];
+  EXPECT_EQ(setFiles("gen_", ""), plain); // the new pieces 0 and 1 are removed, no temporary is left
+  auto read = [&] {
+    vtkNew<vtkPDictionaryVolumeReader> r;
+    r->SetFileName(index.c_str());
+    return vtkSmartPointer<vtkImageData>(decoded(r));
+  };
+  expectSameArrays(read(), serialRoundTrip(img));
+  // the same write without the folder: the new generation, the old pieces removed
+  EXPECT_EQ(writeOver(other, index, [](vtkPDictionaryVolumeWriter*) {}), 1);
+  const std::vector<std::string> now = setFiles("gen_", ""); // (this sparse volume has chunks for 2 of its 3 pieces)
+  EXPECT_FALSE(now.empty());
+  for (const std::string& f : now)
+  {
+    EXPECT_NE(f.find(".g1.lvdv"), std::string::npos) << f;
+    EXPECT_NE(fileBytes(index).find(f + "\n"), std::string::npos) << f << " is not in the index";
+  }
+  expectSameArrays(read(), serialRoundTrip(other));
+  // and back, in 2 pieces: the third of generation 1 is no part of the set any more
+  writePieces(img, index, 2);
+  EXPECT_EQ(setFiles("gen_", ""), std::vector<std::string>(plain.begin(), plain.begin() + 2));
+  expectSameArrays(read(), serialRoundTrip(img));
+  for (const std::string& f : setFiles("gen", ""))
+    std::remove(tmpName(f).c_str());
+}
+
+// A write that was killed (or whose machine went down) left its temporary piece
+// files beside the set for good (name_<p>.lvdv.tmp-<pid>-staged.lvdv): the next
+// write of the set removes those whose process is gone, by the project's rule
+// for temporary files (lvdif::removeStaleTemporaries), and only those of the
+// set: a live process's, another set's and other files stay.
+TEST(PVolumeIO, TemporariesOfAKilledWriteAreRemovedByTheNextWrite)
+{
+  const pid_t child = ::fork();
+  if (child == 0)
+    ::_exit(0);
+  ASSERT_GT(child, 0);
+  ASSERT_EQ(::waitpid(child, nullptr, 0), child); // a process that is gone
+  const std::string dead = std::to_string(child), live = std::to_string(::getppid());
+  const std::vector<std::string> stale{ "stale_0.lvdv.tmp-" + dead + "-staged.lvdv",
+    "stale_1.g1.lvdv.tmp-" + dead + "-Ab12Cd.lvdv", "stale_7.lvdv.tmp-" + dead + "-staged.lvdv",
+    "stale_5.g1.lvdv" /* a piece no index lists */ };
+  const std::vector<std::string> kept{ "stale_0.lvdv.tmp-" + live + "-staged.lvdv", "stale_0.lvdv.bak",
+    "stale_5.g2.lvdv", "stalex_0.lvdv.tmp-" + dead + "-staged.lvdv" };
+  for (const std::string& f : stale)
+    std::ofstream(tmpName(f)) << "left";
+  for (const std::string& f : kept)
+    std::ofstream(tmpName(f)) << "other";
+  const std::string index = tmpName("stale.lvdvp");
+  writePieces(makeImage(), index, 2);
+  for (const std::string& f : stale)
+    EXPECT_FALSE(std::ifstream(tmpName(f)).good()) << f << " is left";
+  for (const std::string& f : kept)
+    EXPECT_EQ(fileBytes(tmpName(f)), "other") << f;
+  for (const std::string& f : setFiles("stale", ""))
+    std::remove(tmpName(f).c_str());
 }
 
 // A piece file that is no .lvdv (here: the index itself, a .vti) or a damaged

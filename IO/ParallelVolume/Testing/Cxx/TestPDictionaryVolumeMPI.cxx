@@ -64,6 +64,14 @@ int main(int argc, char* argv[])
 
   run.check(writePieces(c, good, okIndex) == 1, "both inputs good: Write() answers 1");
   run.check(exists(okIndex), "both inputs good: the index exists");
+  // written again: every rank puts its piece in the generation the index does not
+  // list, piece 0 switches the index and removes the old pieces (docs/FORMAT.md)
+  run.check(writePieces(c, good, okIndex) == 1, "written again: Write() answers 1");
+  for (int p = 0; p < 2; ++p)
+  {
+    run.check(exists(vtkPDictionaryVolumeWriter::PieceFilePath(okIndex, p, 1)), "written again: the new pieces exist");
+    run.check(!exists(vtkPDictionaryVolumeWriter::PieceFilePath(okIndex, p, 0)), "written again: the old pieces are removed");
+  }
 
   // rank 1's reader fails (no such file): both ranks return, with 0, and no index
   vtkObject::GlobalWarningDisplayOff(); // the expected reader error, once per run is enough
