@@ -145,7 +145,8 @@ EditorOptions parseEditorOptions(const QStringList& arguments)
   const LVDIFFiles::Kind volumeKind = LVDIFFiles::Kind::Volume, meshKind = LVDIFFiles::Kind::Mesh;
   const QCommandLineOption open("open", "Open a volume (" + extensions(volumeKind, false) + ").", "file");
   const QCommandLineOption openMesh("open-mesh", "Convert a mesh (" + extensions(meshKind, false) + ") to a volume and open it.", "file");
-  const QCommandLineOption meshRes("mesh-resolution", "Voxels along the mesh's longest axis (--open-mesh; default 128).", "n", "128");
+  const QCommandLineOption meshRes("mesh-resolution", "Voxels along the mesh's longest axis (--open-mesh; default 128). A volume that cannot fit the "
+    "memory limit (LVDIF_MEMORY_LIMIT) is refused before converting.", "n", "128");
   const QCommandLineOption meshSign("mesh-sign", "Sign of --open-mesh: winding, pseudo or normal (default winding).", "mode", "winding");
   const QCommandLineOption meshReorient("mesh-reorient",
     "--open-mesh with the winding sign: re-orient the faces consistently (the CLI's --reorient).");

@@ -106,10 +106,29 @@ void VolumeDocument::newCanvas(int nx, int ny, int nz, Fill fill)
   }
   else if (fill == Fill::Sphere)
   {
-    // a starter sphere of at most 64 voxels: its mesh (and so the first frame) stays
-    // small on large canvases; the rest of the canvas is uniform and costs nothing
-    const double r = std::min(64.0, 0.35 * std::min(nx, std::min(ny, nz)));
-    lvdif::fillFromFunction(*v, lvdif::sphereSdf(0.5 * (nx - 1), 0.5 * (ny - 1), 0.5 * (nz - 1), r));
+    // a starter shape reaching at most 64 voxels from the centre: its mesh (and so the
+    // first frame) stays small on large canvases; the rest of the canvas is uniform and
+    // costs nothing. On a cubic canvas a sphere of radius 0.35 n; on another, a box of
+    // half size 0.35 n on each axis (at most 64) rounded by the smallest of them, so
+    // that it spans the canvas as the sphere does a cube (256 x 16 x 40 had a sphere
+    // of 16 voxels across, a dot in the long view)
+    const int n[3] = { nx, ny, nz };
+    double half[3], r = 64.0;
+    for (int a = 0; a < 3; ++a)
+      r = std::min(r, half[a] = std::min(64.0, 0.35 * n[a]));
+    const double cx = 0.5 * (nx - 1), cy = 0.5 * (ny - 1), cz = 0.5 * (nz - 1);
+    if (half[0] == r && half[1] == r && half[2] == r)
+      lvdif::fillFromFunction(*v, lvdif::sphereSdf(cx, cy, cz, r));
+    else
+    {
+      const double hx = half[0] - r, hy = half[1] - r, hz = half[2] - r;
+      lvdif::fillFromFunction(*v, [=](double x, double y, double z) {
+        const double qx = std::fabs(x - cx) - hx, qy = std::fabs(y - cy) - hy, qz = std::fabs(z - cz) - hz;
+        const double ox = std::max(qx, 0.0), oy = std::max(qy, 0.0), oz = std::max(qz, 0.0);
+        return static_cast<float>(
+          std::sqrt(ox * ox + oy * oy + oz * oz) + std::min(std::max(qx, std::max(qy, qz)), 0.0) - r);
+      });
+    }
   }
   this->Path.clear();
   this->hold(std::move(v));

@@ -495,7 +495,13 @@ std::shared_ptr<lvdif::DictionaryVolume> LoadVolume(const std::string& path, lvd
     // before it reads them: a forged extent ended in "std::bad_alloc". Its
     // size is known from the header (UpdateInformation reads no data): at
     // least 4 bytes a point for the sdf, up to 4 more for the sparse volume.
-    if (!reader->GetExecutive()->UpdateInformation()) watch.check(false, what);
+    if (!reader->GetExecutive()->UpdateInformation())
+    {
+      // VTK's XML parser found no XML image: its words were "Error parsing input file"
+      if ((watch.errors + watch.innerErrors).find("Error parsing") != std::string::npos)
+        throw lvdif::Error(lvdif::ErrorCode::CorruptData, what + ": not a VTK XML image (truncated or another format)");
+      watch.check(false, what);
+    }
     int e[6];
     reader->GetOutputInformation(0)->Get(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT(), e);
     const std::string image = what + ": the image of " + std::to_string(std::int64_t(e[1]) - e[0] + 1) + " x " +

@@ -699,6 +699,36 @@ int main(int argc, char* argv[])
         check(differ == 0, "every distance and colour equal");
       }
     }
+    else if (!std::strcmp(argv[i], "--starter-extent") && i + 1 < argc)
+    {
+      // the starter shape of a --fill sphere canvas spans 2 x min(64, 0.35 n) voxels
+      // (+-1) on each axis: on 256 x 16 x 40 it was a sphere of 11 voxels across
+      auto img = readVolume(argv[++i]);
+      int dims[3];
+      img->GetDimensions(dims);
+      auto* sdf = vtkFloatArray::SafeDownCast(img->GetPointData()->GetArray("sdf"));
+      check(sdf != nullptr, std::string(argv[i]) + " has an sdf array");
+      if (!sdf)
+        continue;
+      int lo[3] = { dims[0], dims[1], dims[2] }, hi[3] = { -1, -1, -1 };
+      vtkIdType id = 0;
+      for (int k = 0; k < dims[2]; ++k)
+        for (int j = 0; j < dims[1]; ++j)
+          for (int ii = 0; ii < dims[0]; ++ii, ++id)
+            if (sdf->GetValue(id) < 0)
+            {
+              const int p[3] = { ii, j, k };
+              for (int a = 0; a < 3; ++a)
+                lo[a] = std::min(lo[a], p[a]), hi[a] = std::max(hi[a], p[a]);
+            }
+      for (int a = 0; a < 3; ++a)
+      {
+        const double want = 2 * std::min(64.0, 0.35 * dims[a]), got = hi[a] - lo[a] + 1;
+        check(std::fabs(got - want) <= 1.5 && std::fabs((lo[a] + hi[a]) - (dims[a] - 1)) <= 1,
+          std::string(argv[i]) + ": the starter shape spans " + std::to_string(int(got)) + " voxels on axis " +
+            "xyz"[a] + ", centred; want about " + std::to_string(want));
+      }
+    }
     else if (!std::strcmp(argv[i], "--volume") && i + 1 < argc)
     {
       auto img = readVolume(argv[++i]);

@@ -8,6 +8,8 @@
 #include "MeshToSdfDamagedMeshes.h"
 #include "lvdif/Cuda.h"
 #include "lvdif/DictionaryVolume.h"
+#include "lvdif/Error.h"
+#include "lvdif/Memory.h"
 #include "lvdif/MeshToSdf.h"
 
 #include <gtest/gtest.h>
@@ -101,7 +103,7 @@ TEST(MeshToSdfWarnings, OpenSheetEnclosesNoVolume)
   EXPECT_TRUE(mentions(w.stats, "encloses no volume")) << w.stats.warnings[0];
   EXPECT_TRUE(mentions(w.stats, "pseudo-normal"));
   // by the name of each front end's option (it named none: the CLI has no unsigned distance at all)
-  EXPECT_TRUE(mentions(w.stats, "(--sign pseudo, vtkMeshToSDF's PSEUDO_NORMAL, the editor's \"Pseudo-normal\""));
+  EXPECT_TRUE(mentions(w.stats, "(--sign pseudo, lvdif-editor --mesh-sign pseudo, vtkMeshToSDF's PSEUDO_NORMAL, the editor's \"Pseudo-normal\""));
   // the option it names helps: each side of the sheet gets its own sign
   const Result pn = runFloat(m, 40, SignMode::PseudoNormal);
   EXPECT_GT(pn.inside, 0);
@@ -551,4 +553,47 @@ TEST(MeshToSdfWarnings, PseudoNormalAndNormalNameTheReorientedWindingSign)
   }
   EXPECT_GT(wrongPn, 0);
   EXPECT_EQ(wrongFixed, 0);
+}
+
+// A volume that cannot fit its memory limit ran until a chunk's expansion met
+// the limit ("expanding chunk ... holds 2.00 GiB of its 2.00 GiB limit", after
+// minutes at 4096^3). Now it is refused before any work, naming the limit and
+// the options; the oracle of "never refuse what fits" is the conversion itself:
+// the bound is at most what it took, and a limit of exactly that converts.
+TEST(MeshToSdfMemory, RefusesWhatCannotFitBeforeAnyWorkAndNeverWhatFits)
+{
+  const lvdif::TriangleMesh sphere = lvdif::makeSphereMesh(0.1f, -0.2f, 0.05f, 1.0f, 24, 48);
+  lvdif::VolumeOptions vo = lvdif::volumeOptionsOn(lvdif::fitGridToMesh(sphere, 160, 2));
+  vo.chunkEdge = 16;
+  lvdif::MeshToSdfOptions o;
+  o.device = lvdif::Device::Cpu;
+  lvdif::DictionaryVolume unlimited(vo);
+  const std::uint64_t least = lvdif::meshToSdfLeastMemory(sphere, unlimited, o);
+  lvdif::meshToSdf(sphere, unlimited, o);
+  const std::uint64_t used = unlimited.memoryBytes();
+  EXPECT_LE(least, used);
+  EXPECT_GT(least, lvdif::DictionaryVolume::tableBytes(vo) + (used - lvdif::DictionaryVolume::tableBytes(vo)) / 4);
+  ASSERT_GT(lvdif::DictionaryVolume::denseBytes(vo), used); // the estimate runs
+
+  vo.memoryLimit = used; // fits exactly: converted, the same volume
+  lvdif::DictionaryVolume fits(vo);
+  EXPECT_NO_THROW(lvdif::meshToSdf(sphere, fits, o));
+  EXPECT_EQ(fits.memoryBytes(), used);
+
+  vo.memoryLimit = least - 1;
+  lvdif::DictionaryVolume tooSmall(vo);
+  try
+  {
+    lvdif::meshToSdf(sphere, tooSmall, o);
+    ADD_FAILURE() << "a volume over its limit was converted";
+  }
+  catch (const lvdif::Error& e)
+  {
+    const std::string what = e.what();
+    EXPECT_EQ(e.code(), lvdif::ErrorCode::OutOfMemory);
+    EXPECT_NE(what.find("needs at least " + lvdif::formatBytes(least)), std::string::npos) << what;
+    EXPECT_NE(what.find("LVDIF_MEMORY_LIMIT"), std::string::npos) << what;
+    EXPECT_NE(what.find("lvdif-editor --mesh-resolution"), std::string::npos) << what;
+  }
+  EXPECT_EQ(tooSmall.expandedChunkCount(), 0); // refused before any work
 }

@@ -228,6 +228,15 @@ MeshToSdfStats meshToSdf(const TriangleMesh& mesh, const FloatGridView& out, con
 MeshToSdfStats meshToSdf(const TriangleMesh& mesh, DictionaryVolume& volume, const MeshToSdfOptions& options,
   Interrupter& interrupter = nullInterrupter());
 
+/// Bytes the volume certainly needs after meshToSdf(mesh, volume, options):
+/// its chunk table and the chunks (of options.chunkRegion, if given) that the
+/// mesh's surface passes through, which hold voxels below the band (a lower
+/// bound: never more than the conversion takes). meshToSdf(mesh, volume, ...)
+/// refuses a volume whose bound exceeds its memory limit before any work,
+/// naming the limit (LVDIF_MEMORY_LIMIT) and the options of fewer voxels.
+std::uint64_t meshToSdfLeastMemory(const TriangleMesh& mesh, const DictionaryVolume& volume,
+  const MeshToSdfOptions& options);
+
 /// The same three calls on a prepared mesh: no preparation, and on CUDA no
 /// upload after the first call (buildSeconds then holds only what was still
 /// missing, e.g. the first upload).

@@ -448,6 +448,17 @@ TEST(LVDIFFiles, AnEmptyVtiIsNamedAsEmpty)
                                   { "\n \r\n\t\n", "the file is empty (blank): no VTK image in it" } });
 }
 
+// A .vti that is not XML, or one cut off inside its XML (a copy that stopped
+// early), was VTK's "Error parsing input file". Now one message in our words.
+TEST(LVDIFFiles, ANonXmlOrTruncatedVtiIsNamedAsSuch)
+{
+  const std::string path = temp("cut.vti");
+  const std::string vti = writeSmallVti(path, 1);
+  ASSERT_GT(vti.size(), 200u);
+  const std::string said = "not a VTK XML image (truncated or another format)";
+  expectLoadErrors("cut.vti", { { "This is not a VTK XML file\n", said }, { vti.substr(0, 120), said } });
+}
+
 // An error in a .lvdvp index named the index itself ("index 'x.lvdvp', line 2:
 // ..."), so the readers' one guard, which adds "cannot read 'x':" unless the
 // message names the file, left the prefix every other reader's error has. Now
