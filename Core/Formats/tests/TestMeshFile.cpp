@@ -242,7 +242,26 @@ TEST(MeshFile, MalformedInputsAreClearErrors)
       std::string(151, '\0'), MeshFormat::Stl,
       "STL: neither a binary STL (its header announces 5 triangles, 84 + 50 x 5 = 334 bytes, but the file has 235 bytes) "
       "nor an ASCII one (it starts with 'solid' but holds binary data: a NUL byte in its first 4 KiB)" },
-    { "STL 4-vertex facet", "solid a\nfacet normal 0 0 1\nouter loop\nvertex 0 0 0\nvertex 1 0 0\nvertex 1 1 0\nvertex 0 1 0\nendloop\nendfacet\nendsolid\n", MeshFormat::Stl, "facet with 4" },
+    // a facet of the wrong shape names its line (a file cut off after 'facet normal' said
+    // "holds no triangles"; a facet without 'endloop' or 'endfacet' was taken)
+    { "STL 4-vertex facet", "solid a\nfacet normal 0 0 1\nouter loop\nvertex 0 0 0\nvertex 1 0 0\nvertex 1 1 0\nvertex 0 1 0\nendloop\nendfacet\nendsolid\n", MeshFormat::Stl,
+      "STL line 7: the facet of line 2 has a 4th vertex (STL facets have 3)" },
+    { "STL 2-vertex facet", "solid a\nfacet normal 0 0 1\nouter loop\nvertex 0 0 0\nvertex 1 0 0\nendloop\nendfacet\nendsolid\n", MeshFormat::Stl,
+      "STL line 6: the facet of line 2 has 2 vertices (STL facets have 3)" },
+    { "STL cut after facet normal", "solid a\nfacet normal 0 0 1\n", MeshFormat::Stl,
+      "STL line 2: the file ends inside the facet of line 2 (no 'outer loop': is it cut off?)" },
+    { "STL cut inside a loop", "solid a\nfacet normal 0 0 1\nouter loop\nvertex 0 0 0\nvertex 1 0 0\nvertex 0 1 0\n", MeshFormat::Stl,
+      "STL line 6: the file ends inside the facet of line 2 (no 'endloop': is it cut off?)" },
+    { "STL cut before endfacet", "solid a\nfacet normal 0 0 1\nouter loop\nvertex 0 0 0\nvertex 1 0 0\nvertex 0 1 0\nendloop\n", MeshFormat::Stl,
+      "STL line 7: the file ends inside the facet of line 2 (no 'endfacet': is it cut off?)" },
+    { "STL no endloop", "solid a\nfacet normal 0 0 1\nouter loop\nvertex 0 0 0\nvertex 1 0 0\nvertex 0 1 0\nendfacet\nendsolid\n", MeshFormat::Stl,
+      "STL line 7: 'endfacet' inside the facet of line 2 (no 'endloop')" },
+    { "STL no endfacet", "solid a\nfacet normal 0 0 1\nouter loop\nvertex 0 0 0\nvertex 1 0 0\nvertex 0 1 0\nendloop\n"
+      "facet normal 0 0 1\nouter loop\nvertex 0 0 0\nvertex 1 0 0\nvertex 0 1 0\nendloop\nendfacet\nendsolid\n", MeshFormat::Stl,
+      "STL line 8: a facet starts before the facet of line 2 ends (no 'endfacet')" },
+    { "STL endsolid in a facet", "solid a\nfacet normal 0 0 1\nouter loop\nvertex 0 0 0\nendsolid\n", MeshFormat::Stl,
+      "STL line 5: 'endsolid' inside the facet of line 2 (no 'endloop')" },
+    { "STL vertex outside a loop", "solid a\nvertex 0 0 0\n", MeshFormat::Stl, "STL line 2: 'vertex' outside a facet's 'outer loop'" },
   };
   for (const Case& c : cases)
   {
