@@ -417,8 +417,15 @@ TriangleMesh readPly(const std::vector<char>& data)
           continue;
         }
         const double count = next(p.countType, p.countKind);
-        if (count < 0 || count > double(left))
-          fail(ErrorCode::CorruptData, where(), "list of " + std::to_string(static_cast<long long>(count)) + " items");
+        // the count and what the record or the file has room for ("PLY face 1: list of 300 items" said neither)
+        const std::string announces = "list '" + p.name + "' announces " + std::to_string(static_cast<long long>(count)) + " items";
+        if (count < 0)
+          fail(ErrorCode::CorruptData, where(), announces + ", a negative count");
+        if (enc == Encoding::Ascii && count > double(tok.size() - at))
+          fail(ErrorCode::CorruptData, where(), announces + " but the record holds " + std::to_string(tok.size() - at) +
+              " more values (a wrong count, or a damaged file)");
+        if (count > double(left))
+          fail(ErrorCode::CorruptData, where(), announces + ", more than the " + std::to_string(left) + " bytes after the header");
         if (isFace && int(i) == ilist && count > double(MaxPolygonCorners))
           checkFaceCorners(static_cast<std::int64_t>(count), where(), faceCode); // before reading its corners
         for (std::int64_t k = 0; k < static_cast<std::int64_t>(count); ++k)

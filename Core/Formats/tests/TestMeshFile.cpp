@@ -214,6 +214,20 @@ TEST(MeshFile, MalformedInputsAreClearErrors)
     { "PLY too few values", plyHead + "0 0\n1 0 0\n0 1 0\n3 0 1 2\n", MeshFormat::Ply, "too few" },
     { "PLY huge count", "ply\nformat binary_little_endian 1.0\nelement vertex 4000000000\nproperty float x\nproperty float y\nproperty float z\nend_header\n" + std::string(12, '\0'), MeshFormat::Ply, "cannot fit" },
     { "PLY truncated binary", binaryPly(false).substr(0, binaryPly(false).size() - 3), MeshFormat::Ply, "ends inside" },
+    // a list's count that the record or the file cannot hold names the list, its count and the room
+    // (it was "PLY face 0: list of 300 items", and a count one too many "record has too few values")
+    { "PLY list count past the record", plyHead + tri + "300 0 1 2\n", MeshFormat::Ply,
+      "PLY face 0: list 'vertex_indices' announces 300 items but the record holds 3 more values (a wrong count, or a damaged file)" },
+    { "PLY list count one too many", plyHead + tri + "4 0 1 2\n", MeshFormat::Ply,
+      "PLY face 0: list 'vertex_indices' announces 4 items but the record holds 3 more values" },
+    { "PLY negative list count", plyHead + tri + "-1 0 1 2\n", MeshFormat::Ply,
+      "PLY face 0: list 'vertex_indices' announces -1 items, a negative count" },
+    { "PLY binary list count past the file", [] {
+        std::string b = binaryPly(false);
+        const std::size_t body = b.find("end_header\n") + 11;
+        b[body + 4 * 17] = char(200); // the face's uchar count, after 4 vertices of 8 + 4 + 4 + 1 bytes
+        return b;
+      }(), MeshFormat::Ply, "PLY face 0: list 'vertex_indices' announces 200 items, more than the 85 bytes after the header" },
     { "PLY no format", "ply\nelement vertex 0\nend_header\n", MeshFormat::Ply, "no format" },
     { "PLY no end_header", "ply\nformat ascii 1.0\nelement vertex 0\n", MeshFormat::Ply, "no end_header" },
     { "PLY missing z", "ply\nformat ascii 1.0\nelement vertex 1\nproperty float x\nproperty float y\nend_header\n0 0\n", MeshFormat::Ply, "without x, y and z" },
