@@ -116,6 +116,10 @@ for value in (" 2", "2 ", "0x10", "0X1p1"):
     assert code == 2 and err == f"lvdif mesh-to-sdf: option --padding expects a number in [0, 1048576], got '{value}'{hint}", (code, err)
 code, err = run("mesh-to-sdf", "in.obj", os.path.join(out, "x.lvdv"), "--band", " 4")
 assert code == 2 and err == "lvdif mesh-to-sdf: option --band expects a number, got ' 4' (no spaces around the number)", (code, err)
+# mesh-to-sdf --dims is one number (the longest axis): NXxNYxNZ, as script --size takes, was "expects an integer"
+code, err = run("mesh-to-sdf", "in.obj", os.path.join(out, "x.lvdv"), "--dims", "7x300x2")
+assert code == 2 and err == ("lvdif mesh-to-sdf: option --dims expects one integer, the voxels along the mesh's longest axis "
+                             "(the other axes follow the mesh's proportions), got '7x300x2'"), (code, err)
 code, err = run("demo", "--out", out + "-huge", "--size", "99999999999999999999")
 assert code == 2 and err == ("lvdif demo: option --size expects an integer in [2, 1048576], "
                              "got '99999999999999999999'"), (code, err)
