@@ -216,6 +216,20 @@ TEST(MeshFile, MalformedInputsAreClearErrors)
     { "PLY truncated binary", binaryPly(false).substr(0, binaryPly(false).size() - 3), MeshFormat::Ply, "ends inside" },
     // a list's count that the record or the file cannot hold names the list, its count and the room
     // (it was "PLY face 0: list of 300 items", and a count one too many "record has too few values")
+    // a type the header cannot have is named (it was "bad list property types", or for a scalar
+    // "expected 'property <type> <name>' or ...")
+    { "PLY float list count", "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\nproperty float z\n"
+      "element face 1\nproperty list float int vertex_indices\nend_header\n" + tri + "3 0 1 2\n", MeshFormat::Ply,
+      "PLY header line 8: list count type 'float' is not an integer type" },
+    { "PLY unknown list item type", "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\nproperty float z\n"
+      "element face 1\nproperty list uchar int64 vertex_indices\nend_header\n" + tri + "3 0 1 2\n", MeshFormat::Ply,
+      "PLY header line 8: unknown list item type 'int64' (PLY's types: char, uchar, short, ushort, int, uint, float, double, or int8, " },
+    { "PLY unknown list count type", "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\nproperty float z\n"
+      "element face 1\nproperty list byte int vertex_indices\nend_header\n" + tri + "3 0 1 2\n", MeshFormat::Ply,
+      "PLY header line 8: unknown list count type 'byte' (PLY's types:" },
+    { "PLY unknown scalar type", "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\nproperty real z\n"
+      "element face 1\nproperty list uchar int vertex_indices\nend_header\n" + tri + "3 0 1 2\n", MeshFormat::Ply,
+      "PLY header line 6: unknown property type 'real' (PLY's types:" },
     { "PLY list count past the record", plyHead + tri + "300 0 1 2\n", MeshFormat::Ply,
       "PLY face 0: list 'vertex_indices' announces 300 items but the record holds 3 more values (a wrong count, or a damaged file)" },
     { "PLY list count one too many", plyHead + tri + "4 0 1 2\n", MeshFormat::Ply,
