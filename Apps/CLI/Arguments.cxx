@@ -5,6 +5,7 @@
 #include "lvdif/Error.h"
 
 #include <algorithm>
+#include <cctype>
 #include <cerrno>
 #include <cstdlib>
 #include <cstdio>
@@ -75,11 +76,22 @@ std::string Arguments::get(const std::string& key, const std::string& fallback) 
 
 namespace
 {
+/// The one guard of a number's text before strtol/strtod read it: not empty, no
+/// leading white space (which both skip: --size " 32" was taken as 32; trailing
+/// text is refused by the callers' end check) and no hexadecimal (strtod reads
+/// --padding 0x10 as 16, strtol base 10 refuses it).
+bool plainNumberText(const std::string& v)
+{
+  if (v.empty() || std::isspace(static_cast<unsigned char>(v[0]))) return false;
+  return v.find_first_of("xX") == std::string::npos;
+}
+
 /// The text as a long: false unless all of it is one, within long's range
 /// (strtol saturates at LONG_MAX with ERANGE: --dims 99999999999999999999
 /// was reported as "not 9223372036854775807").
 bool parseLong(const std::string& v, long& x)
 {
+  if (!plainNumberText(v)) return false;
   char* end = nullptr;
   errno = 0;
   x = std::strtol(v.c_str(), &end, 10);
@@ -88,7 +100,10 @@ bool parseLong(const std::string& v, long& x)
 
 [[noreturn]] void refuse(const std::string& key, const std::string& what, const std::string& v)
 {
-  throw lvdif::Error(lvdif::ErrorCode::InvalidArgument, "option --" + key + " expects " + what + ", got '" + v + "'");
+  // a quoted " 32" reads like 32 in a terminal: say what is wrong with it
+  const bool spaced = !v.empty() && (std::isspace(static_cast<unsigned char>(v.front())) || std::isspace(static_cast<unsigned char>(v.back())));
+  throw lvdif::Error(lvdif::ErrorCode::InvalidArgument, "option --" + key + " expects " + what + ", got '" + v + "'" +
+      (spaced ? " (no spaces around the number)" : ""));
 }
 
 std::string rangeText(long lo, long hi)
@@ -150,7 +165,7 @@ double Arguments::getDouble(const std::string& key, double fallback, double lo, 
   // the C locale's decimal point, whatever LC_NUMERIC says (one conversion in Core)
   char* end = nullptr;
   const double x = lvdif::strtodC(v.c_str(), &end);
-  if (end == v.c_str() || *end != '\0' || !(x >= lo && x <= hi)) // NaN fails every comparison
+  if (!plainNumberText(v) || end == v.c_str() || *end != '\0' || !(x >= lo && x <= hi)) // NaN fails every comparison
   {
     char range[96] = "";
     if (lo > -HUGE_VAL || hi < HUGE_VAL)

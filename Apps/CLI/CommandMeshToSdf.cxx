@@ -52,6 +52,15 @@ int CommandMeshToSdf(int argc, char** argv)
   if (args.positional().size() != 2)
     throw lvdif::Error(lvdif::ErrorCode::InvalidArgument, Usage);
   const std::string in = args.positional()[0], out = args.positional()[1];
+  // --dims 7x300x2 (script's --size, the editor's --new take NXxNYxNZ) was "expects an integer": say why one
+  {
+    const std::string v = args.get("dims", "");
+    const auto x1 = v.find('x'), x2 = x1 == std::string::npos ? x1 : v.find('x', x1 + 1);
+    if (x2 != std::string::npos && v.find('x', x2 + 1) == std::string::npos && x1 > 0 && x2 > x1 + 1 && x2 + 1 < v.size() &&
+      v.find_first_not_of("0123456789x") == std::string::npos)
+      throw lvdif::Error(lvdif::ErrorCode::InvalidArgument, "option --dims expects one integer, the voxels along the mesh's "
+          "longest axis (the other axes follow the mesh's proportions), got '" + v + "'");
+  }
   const long dims = args.getInt("dims", 128, 2, lvdif::DictionaryVolume::MaxDimension);
   // (more padding than voxels is refused below, naming both options)
   const double padding = args.getDouble("padding", 2.0, 0, double(lvdif::DictionaryVolume::MaxDimension));

@@ -97,6 +97,29 @@ for p in ("nan", "inf", "-1", "1e999"):
 for value in ("99999999999999999999", "-99999999999999999999", "1048577", "1", "12x", "", "0x10"):
     code, err = run("mesh-to-sdf", "in.obj", os.path.join(out, "x.lvdv"), "--dims", value)
     assert code == 2 and err == f"lvdif mesh-to-sdf: option --dims expects an integer in [2, 1048576], got '{value}'", (code, err)
+# the one guard refuses white space around a number (strtol/strtod skip leading blanks:
+# --size " 32" was taken as 32) and a hexadecimal double (--padding 0x10 was 16)
+for value in (" 32", "32 ", "\t32", "\n32"):
+    code, err = run("mesh-to-sdf", "in.obj", os.path.join(out, "x.lvdv"), "--dims", value)
+    assert code == 2 and err == (f"lvdif mesh-to-sdf: option --dims expects an integer in [2, 1048576], got '{value}' "
+                                 "(no spaces around the number)"), (code, err)
+code, err = run("demo", "--out", out + "-spaced", "--size", " 32")
+assert code == 2 and err == ("lvdif demo: option --size expects an integer in [2, 1048576], got ' 32' "
+                             "(no spaces around the number)"), (code, err)
+assert not os.path.exists(out + "-spaced"), "demo --size ' 32' left its output folder"
+code, err = run("script", "x.lvs", "--size", "32x 16x8")
+assert code == 2 and err == ("lvdif script: option --size expects N or NXxNYxNZ, each an integer in [2, 1048576], "
+                             "got '32x 16x8'"), (code, err)
+for value in (" 2", "2 ", "0x10", "0X1p1"):
+    code, err = run("mesh-to-sdf", "in.obj", os.path.join(out, "x.lvdv"), "--padding", value)
+    hint = " (no spaces around the number)" if value.strip() != value else ""
+    assert code == 2 and err == f"lvdif mesh-to-sdf: option --padding expects a number in [0, 1048576], got '{value}'{hint}", (code, err)
+code, err = run("mesh-to-sdf", "in.obj", os.path.join(out, "x.lvdv"), "--band", " 4")
+assert code == 2 and err == "lvdif mesh-to-sdf: option --band expects a number, got ' 4' (no spaces around the number)", (code, err)
+# mesh-to-sdf --dims is one number (the longest axis): NXxNYxNZ, as script --size takes, was "expects an integer"
+code, err = run("mesh-to-sdf", "in.obj", os.path.join(out, "x.lvdv"), "--dims", "7x300x2")
+assert code == 2 and err == ("lvdif mesh-to-sdf: option --dims expects one integer, the voxels along the mesh's longest axis "
+                             "(the other axes follow the mesh's proportions), got '7x300x2'"), (code, err)
 code, err = run("demo", "--out", out + "-huge", "--size", "99999999999999999999")
 assert code == 2 and err == ("lvdif demo: option --size expects an integer in [2, 1048576], "
                              "got '99999999999999999999'"), (code, err)

@@ -546,6 +546,12 @@ TriangleMesh readStl(const std::vector<char>& data)
   std::vector<std::string> t;
   if (!s.nextNonEmpty(t) || !equalsAsciiNoCase(t[0], "solid"))
     fail(ErrorCode::CorruptData, "STL", "neither a binary STL (size is not 84 + 50 x triangle count) nor an ASCII one (no 'solid')");
+  // where each record may stand: a file cut off after 'facet normal' said "holds no triangles",
+  // a facet without 'endloop' or 'endfacet' was taken or joined to the next one
+  enum class In { Solid, Facet, Loop, LoopDone } in = In::Solid;
+  std::int64_t facetLine = 0;
+  auto facetText = [&] { return "the facet of line " + std::to_string(facetLine); };
+  auto missing = [&] { return std::string(in == In::LoopDone ? "no 'endfacet'" : in == In::Loop ? "no 'endloop'" : "no 'outer loop'"); };
   std::vector<std::uint32_t> corners;
   while (s.nextNonEmpty(t))
   {
@@ -553,22 +559,55 @@ TriangleMesh readStl(const std::vector<char>& data)
     lowerAscii(word);
     if (word == "vertex")
     {
+      if (in != In::Loop)
+        fail(ErrorCode::ParseError, s.where(), "'vertex' outside a facet's 'outer loop'");
       if (t.size() != 4)
         fail(ErrorCode::ParseError, s.where(), "vertex needs 3 coordinates");
+      if (corners.size() == 3)
+        fail(ErrorCode::ParseError, s.where(), facetText() + " has a 4th vertex (STL facets have 3)");
       corners.push_back(merge.add(mesh, point(parseReal(t[1], s.where()), parseReal(t[2], s.where()), parseReal(t[3], s.where()), s.where())));
+    }
+    else if (word == "facet")
+    {
+      if (in != In::Solid)
+        fail(ErrorCode::ParseError, s.where(), "a facet starts before " + facetText() + " ends (" + missing() + ")");
+      in = In::Facet;
+      facetLine = s.line();
+    }
+    else if (word == "outer")
+    {
+      if (in != In::Facet)
+        fail(ErrorCode::ParseError, s.where(), in == In::Solid ? "'outer loop' outside a facet" : "a second 'outer loop' in " + facetText());
+      in = In::Loop;
     }
     else if (word == "endloop")
     {
+      if (in != In::Loop)
+        fail(ErrorCode::ParseError, s.where(), "'endloop' without its 'outer loop'");
       if (corners.size() != 3)
-        fail(ErrorCode::ParseError, s.where(), "facet with " + std::to_string(corners.size()) + " vertices (STL facets have 3)");
+        fail(ErrorCode::ParseError, s.where(), facetText() + " has " + std::to_string(corners.size()) + " vertices (STL facets have 3)");
       mesh.triangles.push_back({ corners[0], corners[1], corners[2] });
       corners.clear();
+      in = In::LoopDone;
     }
-    else if (word != "facet" && word != "outer" && word != "endfacet" && word != "endsolid" && word != "solid")
+    else if (word == "endfacet")
+    {
+      if (in == In::Solid)
+        fail(ErrorCode::ParseError, s.where(), "'endfacet' without its 'facet'");
+      if (in != In::LoopDone)
+        fail(ErrorCode::ParseError, s.where(), "'endfacet' inside " + facetText() + " (" + missing() + ")");
+      in = In::Solid;
+    }
+    else if (word == "endsolid" || word == "solid")
+    {
+      if (in != In::Solid)
+        fail(ErrorCode::ParseError, s.where(), "'" + word + "' inside " + facetText() + " (" + missing() + ")");
+    }
+    else
       fail(ErrorCode::ParseError, s.where(), "unexpected " + quoted(t[0]) + binaryHint(t[0]));
   }
-  if (!corners.empty())
-    fail(ErrorCode::ParseError, s.where(), "file ends inside a facet");
+  if (in != In::Solid)
+    fail(ErrorCode::ParseError, s.where(), "the file ends inside " + facetText() + " (" + missing() + ": is it cut off?)");
   finish(mesh, "STL");
   return mesh;
 }

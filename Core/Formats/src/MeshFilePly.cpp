@@ -39,6 +39,9 @@ struct Element
   std::vector<Property> properties;
 };
 
+const char* const TypeNames = " (PLY's types: char, uchar, short, ushort, int, uint, float, double, or int8, uint8, "
+                              "int16, uint16, int32, uint32, float32, float64)";
+
 bool scalarType(const std::string& t, int& size, char& kind)
 {
   static const struct { const char* name; int size; char kind; } types[] = { { "char", 1, 'i' }, { "int8", 1, 'i' },
@@ -263,12 +266,19 @@ TriangleMesh readPly(const std::vector<char>& data)
       if (t.size() == 5 && t[1] == "list")
       {
         p.list = true;
-        if (!scalarType(t[2], p.countType, p.countKind) || p.countKind == 'f' || !scalarType(t[3], p.type, p.kind))
-          fail(ErrorCode::ParseError, s.where(), "bad list property types");
+        // which type is wrong, and why (it was "bad list property types")
+        if (!scalarType(t[2], p.countType, p.countKind))
+          fail(ErrorCode::ParseError, s.where(), "unknown list count type " + quoted(t[2]) + TypeNames);
+        if (p.countKind == 'f')
+          fail(ErrorCode::ParseError, s.where(), "list count type " + quoted(t[2]) + " is not an integer type");
+        if (!scalarType(t[3], p.type, p.kind))
+          fail(ErrorCode::ParseError, s.where(), "unknown list item type " + quoted(t[3]) + TypeNames);
         p.name = t[4];
       }
       else if (t.size() == 3 && scalarType(t[1], p.type, p.kind))
         p.name = t[2];
+      else if (t.size() == 3 && t[1] != "list")
+        fail(ErrorCode::ParseError, s.where(), "unknown property type " + quoted(t[1]) + TypeNames);
       else
         fail(ErrorCode::ParseError, s.where(), "expected 'property <type> <name>' or 'property list <type> <type> <name>'");
       for (const Property& o : elements.back().properties)
@@ -417,8 +427,15 @@ TriangleMesh readPly(const std::vector<char>& data)
           continue;
         }
         const double count = next(p.countType, p.countKind);
-        if (count < 0 || count > double(left))
-          fail(ErrorCode::CorruptData, where(), "list of " + std::to_string(static_cast<long long>(count)) + " items");
+        // the count and what the record or the file has room for ("PLY face 1: list of 300 items" said neither)
+        const std::string announces = "list '" + p.name + "' announces " + std::to_string(static_cast<long long>(count)) + " items";
+        if (count < 0)
+          fail(ErrorCode::CorruptData, where(), announces + ", a negative count");
+        if (enc == Encoding::Ascii && count > double(tok.size() - at))
+          fail(ErrorCode::CorruptData, where(), announces + " but the record holds " + std::to_string(tok.size() - at) +
+              " more values (a wrong count, or a damaged file)");
+        if (count > double(left))
+          fail(ErrorCode::CorruptData, where(), announces + ", more than the " + std::to_string(left) + " bytes after the header");
         if (isFace && int(i) == ilist && count > double(MaxPolygonCorners))
           checkFaceCorners(static_cast<std::int64_t>(count), where(), faceCode); // before reading its corners
         for (std::int64_t k = 0; k < static_cast<std::int64_t>(count); ++k)

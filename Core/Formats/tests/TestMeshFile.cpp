@@ -214,6 +214,34 @@ TEST(MeshFile, MalformedInputsAreClearErrors)
     { "PLY too few values", plyHead + "0 0\n1 0 0\n0 1 0\n3 0 1 2\n", MeshFormat::Ply, "too few" },
     { "PLY huge count", "ply\nformat binary_little_endian 1.0\nelement vertex 4000000000\nproperty float x\nproperty float y\nproperty float z\nend_header\n" + std::string(12, '\0'), MeshFormat::Ply, "cannot fit" },
     { "PLY truncated binary", binaryPly(false).substr(0, binaryPly(false).size() - 3), MeshFormat::Ply, "ends inside" },
+    // a list's count that the record or the file cannot hold names the list, its count and the room
+    // (it was "PLY face 0: list of 300 items", and a count one too many "record has too few values")
+    // a type the header cannot have is named (it was "bad list property types", or for a scalar
+    // "expected 'property <type> <name>' or ...")
+    { "PLY float list count", "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\nproperty float z\n"
+      "element face 1\nproperty list float int vertex_indices\nend_header\n" + tri + "3 0 1 2\n", MeshFormat::Ply,
+      "PLY header line 8: list count type 'float' is not an integer type" },
+    { "PLY unknown list item type", "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\nproperty float z\n"
+      "element face 1\nproperty list uchar int64 vertex_indices\nend_header\n" + tri + "3 0 1 2\n", MeshFormat::Ply,
+      "PLY header line 8: unknown list item type 'int64' (PLY's types: char, uchar, short, ushort, int, uint, float, double, or int8, " },
+    { "PLY unknown list count type", "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\nproperty float z\n"
+      "element face 1\nproperty list byte int vertex_indices\nend_header\n" + tri + "3 0 1 2\n", MeshFormat::Ply,
+      "PLY header line 8: unknown list count type 'byte' (PLY's types:" },
+    { "PLY unknown scalar type", "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\nproperty real z\n"
+      "element face 1\nproperty list uchar int vertex_indices\nend_header\n" + tri + "3 0 1 2\n", MeshFormat::Ply,
+      "PLY header line 6: unknown property type 'real' (PLY's types:" },
+    { "PLY list count past the record", plyHead + tri + "300 0 1 2\n", MeshFormat::Ply,
+      "PLY face 0: list 'vertex_indices' announces 300 items but the record holds 3 more values (a wrong count, or a damaged file)" },
+    { "PLY list count one too many", plyHead + tri + "4 0 1 2\n", MeshFormat::Ply,
+      "PLY face 0: list 'vertex_indices' announces 4 items but the record holds 3 more values" },
+    { "PLY negative list count", plyHead + tri + "-1 0 1 2\n", MeshFormat::Ply,
+      "PLY face 0: list 'vertex_indices' announces -1 items, a negative count" },
+    { "PLY binary list count past the file", [] {
+        std::string b = binaryPly(false);
+        const std::size_t body = b.find("end_header\n") + 11;
+        b[body + 4 * 17] = char(200); // the face's uchar count, after 4 vertices of 8 + 4 + 4 + 1 bytes
+        return b;
+      }(), MeshFormat::Ply, "PLY face 0: list 'vertex_indices' announces 200 items, more than the 85 bytes after the header" },
     { "PLY no format", "ply\nelement vertex 0\nend_header\n", MeshFormat::Ply, "no format" },
     { "PLY no end_header", "ply\nformat ascii 1.0\nelement vertex 0\n", MeshFormat::Ply, "no end_header" },
     { "PLY missing z", "ply\nformat ascii 1.0\nelement vertex 1\nproperty float x\nproperty float y\nend_header\n0 0\n", MeshFormat::Ply, "without x, y and z" },
@@ -242,7 +270,26 @@ TEST(MeshFile, MalformedInputsAreClearErrors)
       std::string(151, '\0'), MeshFormat::Stl,
       "STL: neither a binary STL (its header announces 5 triangles, 84 + 50 x 5 = 334 bytes, but the file has 235 bytes) "
       "nor an ASCII one (it starts with 'solid' but holds binary data: a NUL byte in its first 4 KiB)" },
-    { "STL 4-vertex facet", "solid a\nfacet normal 0 0 1\nouter loop\nvertex 0 0 0\nvertex 1 0 0\nvertex 1 1 0\nvertex 0 1 0\nendloop\nendfacet\nendsolid\n", MeshFormat::Stl, "facet with 4" },
+    // a facet of the wrong shape names its line (a file cut off after 'facet normal' said
+    // "holds no triangles"; a facet without 'endloop' or 'endfacet' was taken)
+    { "STL 4-vertex facet", "solid a\nfacet normal 0 0 1\nouter loop\nvertex 0 0 0\nvertex 1 0 0\nvertex 1 1 0\nvertex 0 1 0\nendloop\nendfacet\nendsolid\n", MeshFormat::Stl,
+      "STL line 7: the facet of line 2 has a 4th vertex (STL facets have 3)" },
+    { "STL 2-vertex facet", "solid a\nfacet normal 0 0 1\nouter loop\nvertex 0 0 0\nvertex 1 0 0\nendloop\nendfacet\nendsolid\n", MeshFormat::Stl,
+      "STL line 6: the facet of line 2 has 2 vertices (STL facets have 3)" },
+    { "STL cut after facet normal", "solid a\nfacet normal 0 0 1\n", MeshFormat::Stl,
+      "STL line 2: the file ends inside the facet of line 2 (no 'outer loop': is it cut off?)" },
+    { "STL cut inside a loop", "solid a\nfacet normal 0 0 1\nouter loop\nvertex 0 0 0\nvertex 1 0 0\nvertex 0 1 0\n", MeshFormat::Stl,
+      "STL line 6: the file ends inside the facet of line 2 (no 'endloop': is it cut off?)" },
+    { "STL cut before endfacet", "solid a\nfacet normal 0 0 1\nouter loop\nvertex 0 0 0\nvertex 1 0 0\nvertex 0 1 0\nendloop\n", MeshFormat::Stl,
+      "STL line 7: the file ends inside the facet of line 2 (no 'endfacet': is it cut off?)" },
+    { "STL no endloop", "solid a\nfacet normal 0 0 1\nouter loop\nvertex 0 0 0\nvertex 1 0 0\nvertex 0 1 0\nendfacet\nendsolid\n", MeshFormat::Stl,
+      "STL line 7: 'endfacet' inside the facet of line 2 (no 'endloop')" },
+    { "STL no endfacet", "solid a\nfacet normal 0 0 1\nouter loop\nvertex 0 0 0\nvertex 1 0 0\nvertex 0 1 0\nendloop\n"
+      "facet normal 0 0 1\nouter loop\nvertex 0 0 0\nvertex 1 0 0\nvertex 0 1 0\nendloop\nendfacet\nendsolid\n", MeshFormat::Stl,
+      "STL line 8: a facet starts before the facet of line 2 ends (no 'endfacet')" },
+    { "STL endsolid in a facet", "solid a\nfacet normal 0 0 1\nouter loop\nvertex 0 0 0\nendsolid\n", MeshFormat::Stl,
+      "STL line 5: 'endsolid' inside the facet of line 2 (no 'endloop')" },
+    { "STL vertex outside a loop", "solid a\nvertex 0 0 0\n", MeshFormat::Stl, "STL line 2: 'vertex' outside a facet's 'outer loop'" },
   };
   for (const Case& c : cases)
   {
