@@ -596,4 +596,20 @@ TEST(MeshToSdfMemory, RefusesWhatCannotFitBeforeAnyWorkAndNeverWhatFits)
     EXPECT_NE(what.find("lvdif-editor --mesh-resolution"), std::string::npos) << what;
   }
   EXPECT_EQ(tooSmall.expandedChunkCount(), 0); // refused before any work
+
+  // between the bound and the need: past the estimate, the conversion's own
+  // guard stops it inside its parallel loop, as one error (it once aborted)
+  ASSERT_LT(least + 2 * 16 * 16 * 16 * sizeof(lvdif::Voxel), used);
+  vo.memoryLimit = used - 2 * 16 * 16 * 16 * sizeof(lvdif::Voxel);
+  lvdif::DictionaryVolume between(vo);
+  try
+  {
+    lvdif::meshToSdf(sphere, between, o);
+    ADD_FAILURE() << "a volume over its limit was converted";
+  }
+  catch (const lvdif::Error& e)
+  {
+    EXPECT_EQ(e.code(), lvdif::ErrorCode::OutOfMemory) << e.what();
+    EXPECT_EQ(std::string(e.what()).find("needs at least"), std::string::npos) << "refused by the estimate: " << e.what();
+  }
 }
