@@ -490,19 +490,16 @@ void checkImagesDiffer(const char* a, const char* b, long least)
   check(differ > least, std::string(a) + " and " + b + " differ in more than " + std::to_string(least) + " pixels");
 }
 
-void checkCursorAspect(const char* path, double ratio)
+/// How many pixels of the picture pass `is` (RGB bytes), and their bounding
+/// box in lo, hi (columns, rows; lo > hi when none).
+template <typename Is>
+long pixelBox(vtkImageData* img, const int dims[3], Is is, int lo[2], int hi[2])
 {
-  int dims[3];
-  const auto img = readPicture(path, dims);
-  if (!img)
-    return;
-  int lo[2] = { dims[0], dims[1] }, hi[2] = { -1, -1 };
+  lo[0] = dims[0], lo[1] = dims[1], hi[0] = hi[1] = -1;
   long count = 0;
   for (int j = 0; j < dims[1]; ++j)
     for (int i = 0; i < dims[0]; ++i)
-    {
-      const auto* p = static_cast<unsigned char*>(img->GetScalarPointer(i, j, 0));
-      if (p[1] > 150 && p[0] < 90 && p[2] < 90)
+      if (is(static_cast<const unsigned char*>(img->GetScalarPointer(i, j, 0))))
       {
         ++count;
         lo[0] = std::min(lo[0], i);
@@ -510,7 +507,18 @@ void checkCursorAspect(const char* path, double ratio)
         hi[0] = std::max(hi[0], i);
         hi[1] = std::max(hi[1], j);
       }
-    }
+  return count;
+}
+
+void checkCursorAspect(const char* path, double ratio)
+{
+  int dims[3];
+  const auto img = readPicture(path, dims);
+  if (!img)
+    return;
+  int lo[2], hi[2];
+  const long count =
+    pixelBox(img, dims, [](const unsigned char* p) { return p[1] > 150 && p[0] < 90 && p[2] < 90; }, lo, hi);
   check(count > 20, "the cursor is in the picture (" + std::to_string(count) + " pixels)");
   if (count <= 20)
     return;
@@ -527,21 +535,9 @@ void checkInsideView(const char* path)
     return;
   // the model: a pixel brighter than the background gradient (at most 51 in
   // every channel: Background (0.16, 0.17, 0.2), Background2 darker)
-  int lo[2] = { dims[0], dims[1] }, hi[2] = { -1, -1 };
-  long count = 0;
-  for (int j = 0; j < dims[1]; ++j)
-    for (int i = 0; i < dims[0]; ++i)
-    {
-      const auto* p = static_cast<unsigned char*>(img->GetScalarPointer(i, j, 0));
-      if (std::max(p[0], std::max(p[1], p[2])) > 70)
-      {
-        ++count;
-        lo[0] = std::min(lo[0], i);
-        lo[1] = std::min(lo[1], j);
-        hi[0] = std::max(hi[0], i);
-        hi[1] = std::max(hi[1], j);
-      }
-    }
+  int lo[2], hi[2];
+  const long count =
+    pixelBox(img, dims, [](const unsigned char* p) { return std::max(p[0], std::max(p[1], p[2])) > 70; }, lo, hi);
   std::printf("model: %ld pixels in columns %d..%d, rows %d..%d of %d x %d\n", count, lo[0], hi[0], lo[1], hi[1],
     dims[0], dims[1]);
   check(count > 1000, "the model is in the picture");
