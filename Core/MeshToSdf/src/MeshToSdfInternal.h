@@ -63,6 +63,11 @@ private:
 /// Throws Error(Cancelled) when this thread's call was cancelled.
 void checkBuildInterrupt();
 
+/// Throws Error(OutOfMemory) when converting `mesh` into `volume` certainly
+/// needs more than the volume's memory limit (meshToSdfLeastMemory, in
+/// MeshToSdfMemory.cpp); checks nothing where even a dense volume fits.
+void requireVolumeFits(const TriangleMesh& mesh, const DictionaryVolume& volume, const MeshToSdfOptions& options);
+
 struct PreparedMesh
 {
   TriList tris;          // non-degenerate triangles only
