@@ -383,17 +383,29 @@ Voxel* DictionaryVolume::expandChunk(std::int64_t id)
     return own;
   }
   const std::uint64_t bytes = static_cast<std::uint64_t>(n) * sizeof(Voxel);
+  // Reserve the chunk before checking: threads expanding different chunks at
+  // once each see the others' reservations, so together they never pass the
+  // limit (a check before the count let 16 threads overshoot by 15 chunks).
+  this->Expanded.fetch_add(1);
   const std::uint64_t used = this->memoryBytes();
-  if (used + bytes > this->Limit)
+  if (used > this->Limit)
   {
+    this->Expanded.fetch_sub(1);
     std::ostringstream msg;
     msg << "expanding chunk " << id << " needs " << formatBytes(bytes) << " more; the volume holds "
-        << formatBytes(used) << " of its " << formatBytes(this->Limit) << " limit";
+        << formatBytes(used - bytes) << " of its " << formatBytes(this->Limit) << " limit";
     throw Error(ErrorCode::OutOfMemory, msg.str());
   }
-  d = allocateBuffer(n);
+  try
+  {
+    d = allocateBuffer(n);
+  }
+  catch (...)
+  {
+    this->Expanded.fetch_sub(1);
+    throw;
+  }
   std::fill(d, d + n, c.Uniform);
-  this->Expanded.fetch_add(1);
   c.Data.store(d, std::memory_order_release);
   return d;
 }

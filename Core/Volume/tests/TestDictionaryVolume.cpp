@@ -7,8 +7,10 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <atomic>
 #include <random>
 #include <string>
+#include <thread>
 #include <vector>
 
 using namespace lvdif;
@@ -178,6 +180,47 @@ TEST(DictionaryVolume, RefusesAbsurdSizesBeforeAllocating)
     },
     Error);
   EXPECT_LT(residentMemoryBytes(), rssBefore + (64ull << 20));
+}
+
+// Threads expanding different chunks at once never pass the limit together:
+// the limit leaves room for exactly `room` chunks, so exactly that many expand
+// and the others are refused. (A check before counting let 16 threads on the
+// GPU host overshoot; the mesh conversion's memory test caught it there.)
+TEST(DictionaryVolume, ConcurrentExpansionsStayWithinTheLimit)
+{
+  VolumeOptions o = opts(256, 256, 256, 16);
+  const std::uint64_t chunkBytes = 16 * 16 * 16 * sizeof(Voxel);
+  const std::int64_t room = 5;
+  o.memoryLimit = DictionaryVolume(opts(256, 256, 256, 16)).memoryBytes() + room * chunkBytes;
+  for (int round = 0; round < 20; ++round)
+  {
+    DictionaryVolume v(o);
+    const int threads = 16;
+    std::atomic<int> ready{ 0 }, expanded{ 0 }, refused{ 0 };
+    std::vector<std::thread> pool;
+    for (int t = 0; t < threads; ++t)
+    {
+      pool.emplace_back([&, t] {
+        ready.fetch_add(1);
+        while (ready.load() < threads) {}
+        try
+        {
+          v.expandChunk(t * 7);
+          expanded.fetch_add(1);
+        }
+        catch (const Error& e)
+        {
+          EXPECT_EQ(e.code(), ErrorCode::OutOfMemory);
+          refused.fetch_add(1);
+        }
+      });
+    }
+    for (std::thread& th : pool) th.join();
+    ASSERT_EQ(expanded.load(), room) << "round " << round;
+    ASSERT_EQ(refused.load(), threads - room);
+    ASSERT_EQ(v.expandedChunkCount(), room);
+    ASSERT_LE(v.memoryBytes(), o.memoryLimit);
+  }
 }
 
 TEST(DictionaryVolume, Sparse2048SphereWithinMemory)
