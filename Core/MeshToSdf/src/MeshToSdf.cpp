@@ -245,7 +245,7 @@ void volumeRegion(DictionaryVolume& volume, const VoxelBox& region, std::uint64_
 /// memory (piece k stored while k + 1 is copied), all while the GPU computes
 /// group g + 1.
 void volumeOnCuda(detail::meshtosdf_cuda::Session& session, DictionaryVolume& volume, const MeshToSdfOptions& opts,
-  MeshToSdfStats& stats, Interrupter& intr)
+  MeshToSdfStats& stats, Interrupter& intr, const std::function<void()>& beforeStoring)
 {
   const Index3 dims = volume.options().dims;
   const std::int64_t edge = volume.chunkEdge();
@@ -264,6 +264,7 @@ void volumeOnCuda(detail::meshtosdf_cuda::Session& session, DictionaryVolume& vo
   };
   detail::meshtosdf_cuda::ChunkKeys keys;
   session.launchKeys(boxOf(0), static_cast<int>(edge), enc, band, stats);
+  beforeStoring(); // while the GPU computes the first group
   const std::int64_t e3 = edge * edge * edge;
   double listSeconds = 0, waitSeconds = 0, storeSeconds = 0; // the parts of writeSeconds (tracePhases)
   for (std::int64_t g0 = 0; g0 < cc[2]; g0 += group)
@@ -525,6 +526,12 @@ bool wholeGrid(const GridGeometry& grid, const VoxelBox& extent)
   return true;
 }
 
+MeshToSdfStats gridPass(const MeshToSdfPrepared& mesh, const GridGeometry& grid, const VoxelBox& extent, float* out,
+  const MeshToSdfOptions& given, const MeshToSdfOptions& options, MeshToSdfStats& stats, Interrupter& interrupter,
+  SolidCheckBesideGpu* check);
+MeshToSdfStats volumePass(const MeshToSdfPrepared& mesh, DictionaryVolume& volume, const MeshToSdfOptions& given,
+  const MeshToSdfOptions& options, MeshToSdfStats& stats, Interrupter& interrupter, SolidCheckBesideGpu* check);
+
 } // namespace
 
 MeshToSdfStats meshToSdf(const MeshToSdfPrepared& mesh, const GridGeometry& grid, const VoxelBox& extent,
@@ -538,18 +545,43 @@ MeshToSdfStats meshToSdf(const MeshToSdfPrepared& mesh, const GridGeometry& grid
   {
     require(extent.lo[a] >= 0 && extent.hi[a] < grid.dims[a], "mesh to SDF: the extent lies outside the grid");
   }
-  MeshToSdfStats stats;
   const BuildInterruptScope cancel(interrupter);
   interrupter.start("mesh to SDF"); // the solid check below may take seconds
+  if (resolveDevice(given.device) == Device::Cuda && SolidCheckBesideGpu::applies(mesh, given, grid, extent))
+  {
+    SolidCheckBesideGpu check(mesh, given, grid, extent, interrupter);
+    try
+    {
+      MeshToSdfStats stats;
+      const MeshToSdfOptions options = check.windingOptions(stats);
+      return gridPass(mesh, grid, extent, out, given, options, stats, interrupter, &check);
+    }
+    catch (const SolidCheckBesideGpu::NotASolid&)
+    {
+      trace("solid check beside the GPU: not a solid, the call again on the sign's own path", 0);
+    }
+  }
+  MeshToSdfStats stats;
   const MeshToSdfOptions options = signOfSolids(mesh, given, stats, grid, extent);
+  return gridPass(mesh, grid, extent, out, given, options, stats, interrupter, nullptr);
+}
+
+namespace
+{
+/// The float grid call after its sign's route is chosen: `check` (CUDA only)
+/// is the solid check still running beside the pass, confirmed after it.
+MeshToSdfStats gridPass(const MeshToSdfPrepared& mesh, const GridGeometry& grid, const VoxelBox& extent, float* out,
+  const MeshToSdfOptions& given, const MeshToSdfOptions& options, MeshToSdfStats& stats, Interrupter& interrupter,
+  SolidCheckBesideGpu* check)
+{
   stats.device = chooseDevice(mesh, options, stats);
   auto engine = makeEngine(mesh, grid, options, options.bandWidth, stats.device, stats);
   const bool sharp = given.sign == SignMode::Normal && stats.signByWinding;
   std::future<SharpRegionVoxels> regions;
   auto startRegions = [&](bool onGpu) {
     if (sharp)
-      regions = sharpRegions(mesh, grid, extent, outputScale(grid, options), options.bandWidth, interrupter, onGpu,
-        given.tracePhases);
+      regions = sharpRegions(mesh, grid, extent, outputScale(grid, options), options.bandWidth,
+        check ? check->regionsInterrupter() : interrupter, onGpu, given.tracePhases);
   };
   if (stats.device == Device::Cuda)
   {
@@ -557,10 +589,12 @@ MeshToSdfStats meshToSdf(const MeshToSdfPrepared& mesh, const GridGeometry& grid
     const auto session = openCuda(mesh, *engine, options, stats);
     startRegions(true); // after the session: its step 2 reads the device copy of the mesh
     session->compute(extent, out, stats, interrupter);
+    if (check) check->confirm(stats); // else `out` is computed again, whole
     if (parts.valid()) parts.get();
   }
   else
   {
+    if (check) check->confirm(stats); // (only CUDA calls go ahead)
     startRegions(false);
     computeBox(*engine, extent, out, stats, interrupter, 0.0, 1.0);
   }
@@ -605,6 +639,7 @@ MeshToSdfStats meshToSdf(const MeshToSdfPrepared& mesh, const GridGeometry& grid
   interrupter.end();
   return stats;
 }
+} // namespace
 
 MeshToSdfStats meshToSdf(const MeshToSdfPrepared& mesh, const FloatGridView& out, const MeshToSdfOptions& options,
   Interrupter& interrupter)
@@ -627,7 +662,36 @@ MeshToSdfStats meshToSdf(const MeshToSdfPrepared& mesh, DictionaryVolume& volume
   if (!given.chunkRegion.empty() && given.sign == SignMode::Normal) forSolids.solidsByWinding = false;
   const BuildInterruptScope cancel(interrupter);
   interrupter.start("mesh to SDF"); // the solid check below may take seconds
+  if (given.chunkRegion.empty() && resolveDevice(given.device) == Device::Cuda &&
+    SolidCheckBesideGpu::applies(mesh, forSolids, grid, whole))
+  {
+    SolidCheckBesideGpu check(mesh, forSolids, grid, whole, interrupter);
+    try
+    {
+      const MeshToSdfOptions options = check.windingOptions(stats);
+      return volumePass(mesh, volume, given, options, stats, interrupter, &check);
+    }
+    catch (const SolidCheckBesideGpu::NotASolid&)
+    {
+      trace("solid check beside the GPU: not a solid, the call again on the sign's own path", 0);
+      stats = MeshToSdfStats();
+    }
+  }
   const MeshToSdfOptions options = signOfSolids(mesh, forSolids, stats, grid, whole);
+  return volumePass(mesh, volume, given, options, stats, interrupter, nullptr);
+}
+
+namespace
+{
+/// The volume call after its sign's route is chosen: `check` (CUDA only) is
+/// the solid check still running beside the pass, confirmed before the
+/// pass stores anything into the volume.
+MeshToSdfStats volumePass(const MeshToSdfPrepared& mesh, DictionaryVolume& volume, const MeshToSdfOptions& given,
+  const MeshToSdfOptions& options, MeshToSdfStats& stats, Interrupter& interrupter, SolidCheckBesideGpu* check)
+{
+  const GridGeometry grid = gridOf(volume.options());
+  VoxelBox whole;
+  whole.hi = { grid.dims[0] - 1, grid.dims[1] - 1, grid.dims[2] - 1 };
   MeshToSdfOptions opts = options;
   opts.unit = DistanceUnit::Voxel;
   stats.device = chooseDevice(mesh, options, stats);
@@ -636,12 +700,13 @@ MeshToSdfStats meshToSdf(const MeshToSdfPrepared& mesh, DictionaryVolume& volume
   std::future<SharpRegionVoxels> regions;
   auto startRegions = [&](bool onGpu) {
     if (sharp)
-      regions = sharpRegions(mesh, grid, whole, outputScale(grid, opts), volume.bandWidth(), interrupter, onGpu,
-        given.tracePhases);
+      regions = sharpRegions(mesh, grid, whole, outputScale(grid, opts), volume.bandWidth(),
+        check ? check->regionsInterrupter() : interrupter, onGpu, given.tracePhases);
   };
   const bool region = !options.chunkRegion.empty();
   require(!region || options.svfFilters == 0,
     "mesh to SDF: a chunk region cannot be combined with the sign voxel filters (they need the whole volume)");
+  if (check && stats.device != Device::Cuda) check->confirm(stats); // (only CUDA calls go ahead)
   if (region)
   {
     std::unique_ptr<detail::meshtosdf_cuda::Session> cuda;
@@ -660,7 +725,9 @@ MeshToSdfStats meshToSdf(const MeshToSdfPrepared& mesh, DictionaryVolume& volume
     std::future<void> parts = partsBesideGpu(mesh, options.sign != SignMode::Unsigned);
     const auto session = openCuda(mesh, *engine, opts, stats);
     startRegions(true); // after the session: its step 2 reads the device copy of the mesh
-    volumeOnCuda(*session, volume, opts, stats, interrupter);
+    volumeOnCuda(*session, volume, opts, stats, interrupter, [&] {
+      if (check) check->confirm(stats);
+    });
     if (parts.valid()) parts.get();
   }
   else
@@ -716,6 +783,7 @@ MeshToSdfStats meshToSdf(const MeshToSdfPrepared& mesh, DictionaryVolume& volume
   interrupter.end();
   return stats;
 }
+} // namespace
 
 /// prepareMeshToSdf; the winding structures only when sign is WindingNumber
 /// (otherwise built on first use: on CUDA while the GPU computes distances).

@@ -10,6 +10,7 @@
 
 #include <algorithm>
 #include <array>
+#include <atomic>
 #include <cmath>
 #include <cstdint>
 #include <functional>
@@ -451,6 +452,8 @@ struct MeshToSdfPrepared::Impl
   /// not self-intersecting, winding number 0 or 1), checked on first use:
   /// then the PseudoNormal sign is the winding sign (MeshToSdf.cpp).
   const detail::meshtosdf::SolidBoundary& solidBoundary();
+  /// Whether solidBoundary() has been found (then it costs nothing).
+  bool solidBoundaryKnown() const { return this->SolidKnown.load(std::memory_order_acquire); }
   /// The sharp features (MeshToSdfSharpFeatures.h) of a mesh whose
   /// solidBoundary() holds, found on first use: for the Normal sign.
   const detail::meshtosdf::SharpFeatures& sharpFeatures();
@@ -475,6 +478,7 @@ private:
   const detail::meshtosdf::MeshParts& partsLocked(); // under PartsLock
   std::once_flag SolidOnce;
   std::unique_ptr<detail::meshtosdf::SolidBoundary> Solid;
+  std::atomic<bool> SolidKnown{ false };
   std::once_flag SharpOnce;
   std::unique_ptr<detail::meshtosdf::SharpFeatures> Sharp;
 };

@@ -330,6 +330,7 @@ const SolidBoundary& MeshToSdfPrepared::Impl::solidBoundary()
     const std::shared_ptr<const Bvh> tree = this->meshBvh();
     const double t0 = now();
     this->Solid = std::make_unique<SolidBoundary>(checkSolidBoundary(this->mesh, *tree, p));
+    this->SolidKnown.store(true, std::memory_order_release);
     trace(this->Solid->solid ? "solid check: the mesh bounds a solid" : "solid check: not a solid's boundary", now() - t0);
   });
   return *this->Solid;

@@ -3,6 +3,7 @@
 #include "MeshToSdfSolidSigns.h"
 
 #include "MeshToSdfCuda.h"
+#include "MeshToSdfInternal.h"
 #include "MeshToSdfSolid.h"
 #include "lvdif/ParallelFailure.h"
 
@@ -16,11 +17,52 @@ namespace lvdif
 namespace detail::meshtosdf
 {
 
+namespace
+{
+bool normalsSign(const MeshToSdfOptions& options)
+{
+  return options.sign == SignMode::Normal || options.sign == SignMode::PseudoNormal;
+}
+
+bool meshInsideGrid(const MeshToSdfPrepared& mesh, const GridGeometry& grid, const VoxelBox& extent)
+{
+  const PreparedMesh& m = mesh.impl().mesh;
+  return insideExtent(V3{ m.lo[0], m.lo[1], m.lo[2] }, grid, extent) &&
+    insideExtent(V3{ m.hi[0], m.hi[1], m.hi[2] }, grid, extent);
+}
+
+/// The route's conditions other than the solid check, for a solid.
+bool routeApplies(const MeshToSdfPrepared& mesh, const MeshToSdfOptions& options, MeshToSdfStats& stats,
+  const GridGeometry& grid, const VoxelBox& extent)
+{
+  if (options.sign != SignMode::Normal) return true;
+  // the sharp features' voxels take the CPU's queries of the BVH path
+  if (options.useVertexNormals || options.accel != MeshToSdfAccel::Bvh) return false;
+  // every sharp feature must lie inside the grid. A mesh inside it needs
+  // no search here: the regions' thread finds them (beside the GPU's pass)
+  if (meshInsideGrid(mesh, grid, extent)) return true;
+  const double t1 = now();
+  const SharpFeatures& sharp = mesh.impl().sharpFeatures();
+  stats.buildSeconds += now() - t1;
+  if (sharpFeaturesInside(sharp, grid, extent)) return true;
+  trace("normal sign on its own path: a sharp feature lies outside the grid", 0);
+  return false;
+}
+
+MeshToSdfOptions byWinding(const MeshToSdfOptions& options, MeshToSdfStats& stats)
+{
+  MeshToSdfOptions o = options;
+  o.sign = SignMode::WindingNumber;
+  o.reorientFaces = false;
+  stats.signByWinding = true;
+  return o;
+}
+} // namespace
+
 MeshToSdfOptions signOfSolids(const MeshToSdfPrepared& mesh, const MeshToSdfOptions& options, MeshToSdfStats& stats,
   const GridGeometry& grid, const VoxelBox& extent)
 {
-  const bool normals = options.sign == SignMode::Normal || options.sign == SignMode::PseudoNormal;
-  if (!normals) return options;
+  if (!normalsSign(options)) return options;
   const double t0 = now();
   const SolidBoundary& solid = mesh.impl().solidBoundary();
   stats.buildSeconds += now() - t0;
@@ -34,38 +76,68 @@ MeshToSdfOptions signOfSolids(const MeshToSdfPrepared& mesh, const MeshToSdfOpti
     stats.warnings.push_back(m.str());
   }
   if (!options.solidsByWinding) return options;
-  const bool normal = options.sign == SignMode::Normal;
   if (!solid.solid)
   {
-    trace(((normal ? "normal" : "pseudo-normal") + std::string(" sign on its own path: ") + solid.why).c_str(), 0);
+    trace(((options.sign == SignMode::Normal ? "normal" : "pseudo-normal") + std::string(" sign on its own path: ") +
+            solid.why)
+            .c_str(),
+      0);
     return options;
   }
-  if (normal)
-  {
-    // the sharp features' voxels take the CPU's queries of the BVH path
-    if (options.useVertexNormals || options.accel != MeshToSdfAccel::Bvh) return options;
-    // every sharp feature must lie inside the grid. A mesh inside it needs
-    // no search here: the regions' thread finds them (beside the GPU's pass)
-    const PreparedMesh& m = mesh.impl().mesh;
-    const bool meshInside = insideExtent(V3{ m.lo[0], m.lo[1], m.lo[2] }, grid, extent) &&
-      insideExtent(V3{ m.hi[0], m.hi[1], m.hi[2] }, grid, extent);
-    if (!meshInside)
-    {
-      const double t1 = now();
-      const SharpFeatures& sharp = mesh.impl().sharpFeatures();
-      stats.buildSeconds += now() - t1;
-      if (!sharpFeaturesInside(sharp, grid, extent))
-      {
-        trace("normal sign on its own path: a sharp feature lies outside the grid", 0);
-        return options;
-      }
-    }
-  }
-  MeshToSdfOptions o = options;
-  o.sign = SignMode::WindingNumber;
-  o.reorientFaces = false;
-  stats.signByWinding = true;
-  return o;
+  return routeApplies(mesh, options, stats, grid, extent) ? byWinding(options, stats) : options;
+}
+
+bool SolidCheckBesideGpu::applies(const MeshToSdfPrepared& mesh, const MeshToSdfOptions& options,
+  const GridGeometry& grid, const VoxelBox& extent)
+{
+  MeshToSdfPrepared::Impl& impl = mesh.impl();
+  // a mesh with a boundary is no solid, and its winding structures may take
+  // seconds (the orientation pass, caps): only closed meshes go ahead
+  return normalsSign(options) && options.solidsByWinding && impl.mesh.boundaryEdges == 0 &&
+    !impl.solidBoundaryKnown() &&
+    (options.sign != SignMode::Normal ||
+      (!options.useVertexNormals && options.accel == MeshToSdfAccel::Bvh && meshInsideGrid(mesh, grid, extent)));
+}
+
+SolidCheckBesideGpu::SolidCheckBesideGpu(const MeshToSdfPrepared& mesh, const MeshToSdfOptions& options,
+  const GridGeometry& grid, const VoxelBox& extent, Interrupter& interrupter)
+  : Mesh(mesh)
+  , Options(options)
+  , Grid(grid)
+  , Extent(extent)
+{
+  this->Stop.caller = &interrupter;
+  trace("solid check beside the GPU's pass: started", 0);
+  this->Check = std::async(std::launch::async, [this] {
+    const PhaseTraceScope tracing(this->Options.tracePhases); // this thread's own
+    const BuildInterruptScope cancel(this->Stop);
+    this->Mesh.impl().solidBoundary();
+  });
+}
+
+SolidCheckBesideGpu::~SolidCheckBesideGpu()
+{
+  // a pass that failed before confirm(): the check is not waited for to its end
+  this->Stop.dropped.store(true);
+  if (this->Check.valid()) this->Check.wait();
+}
+
+MeshToSdfOptions SolidCheckBesideGpu::windingOptions(MeshToSdfStats& stats) const
+{
+  return byWinding(this->Options, stats);
+}
+
+void SolidCheckBesideGpu::confirm(MeshToSdfStats& stats)
+{
+  const double t0 = now();
+  this->Check.get(); // a cancel comes out here
+  MeshToSdfStats checked;
+  signOfSolids(this->Mesh, this->Options, checked, this->Grid, this->Extent); // found: its warnings and route
+  stats.buildSeconds += now() - t0; // the part of the check the GPU's pass did not hide
+  stats.warnings.insert(stats.warnings.end(), checked.warnings.begin(), checked.warnings.end());
+  if (checked.signByWinding) return;
+  this->Stop.dropped.store(true); // the sharp regions' thread stops at its next poll
+  throw NotASolid{};
 }
 
 std::future<SharpRegionVoxels> sharpRegions(const MeshToSdfPrepared& mesh, const GridGeometry& grid,

@@ -472,3 +472,66 @@ TEST(MeshToSdfSolid, PartsFacingInwardsAreWarnedAbout)
   // the winding sign is right either way: no such warning
   EXPECT_EQ(warningsOf(reversed(sphere), SignMode::WindingNumber).find("face inwards"), std::string::npos);
 }
+
+/// On CUDA the one-call API checks a closed mesh beside the GPU's pass
+/// (SolidCheckBesideGpu): a solid keeps the winding route, anything else is
+/// computed again on its sign's own path. Either way the result, the route and
+/// the warnings are those of the same call on a prepared mesh whose check ran
+/// first (signOfSolids before the pass), into float grids and volumes.
+TEST(MeshToSdfSolid, SolidCheckBesideTheGpuGivesTheCheckFirstResult)
+{
+  if (!cuda::available()) GTEST_SKIP() << "no CUDA device";
+  const TriangleMesh sphere = makeSphereMesh(0.05f, -0.03f, 0.02f, 1.0f, 12, 24);
+  std::vector<std::pair<std::string, TriangleMesh>> meshes = solids();
+  meshes.emplace_back("spiky ball", spikyBall());
+  meshes.emplace_back("facing inwards", reversed(sphere));
+  meshes.emplace_back("two spheres overlapping",
+    oracle::merge(makeSphereMesh(-0.3f, 0, 0, 0.5f, 10, 20), makeSphereMesh(0.3f, 0.05f, 0, 0.5f, 10, 20)));
+  meshes.emplace_back("nested, both facing out",
+    oracle::merge(makeSphereMesh(0, 0, 0, 0.9f, 14, 28), makeSphereMesh(0.05f, 0, 0, 0.5f, 10, 20)));
+  int ahead = 0, again = 0;
+  for (const auto& [name, mesh] : meshes)
+    for (SignMode sign : { SignMode::Normal, SignMode::PseudoNormal })
+    {
+      const std::string where = name + (sign == SignMode::Normal ? ", normal" : ", pseudo-normal");
+      const GridGeometry g = fitGridToMesh(mesh, 40, 3);
+      MeshToSdfOptions o;
+      o.sign = sign;
+      o.bandWidth = 3;
+      o.device = Device::Cuda;
+      // the check first: a prepared mesh whose check has run
+      const MeshToSdfPrepared checkedFirst = prepareMeshToSdf(mesh, sign);
+      checkedFirst.impl().solidBoundary();
+      std::vector<float> want(static_cast<std::size_t>(g.count())), got(want.size());
+      const MeshToSdfStats a = meshToSdf(checkedFirst, FloatGridView{ want.data(), g }, o);
+      o.tracePhases = true;
+      testing::internal::CaptureStderr();
+      const MeshToSdfStats b = meshToSdf(mesh, FloatGridView{ got.data(), g }, o);
+      const std::string traced = testing::internal::GetCapturedStderr();
+      ASSERT_NE(traced.find("solid check beside the GPU's pass"), std::string::npos) << where << ": not ahead\n" << traced;
+      const bool redone = traced.find("the call again on the sign's own path") != std::string::npos;
+      ahead += !redone;
+      again += redone;
+      EXPECT_EQ(redone, !a.signByWinding) << where;
+      EXPECT_EQ(a.signByWinding, b.signByWinding) << where;
+      EXPECT_EQ(a.sharpVoxels, b.sharpVoxels) << where;
+      EXPECT_EQ(a.warnings, b.warnings) << where;
+      EXPECT_EQ(differences(want, got).differ, 0) << where << ", float grid";
+      // into a volume: the same keys
+      VolumeOptions vo = volumeOptionsOn(g);
+      vo.chunkEdge = 16;
+      DictionaryVolume wantVolume(vo), gotVolume(vo);
+      o.tracePhases = false;
+      const MeshToSdfStats c = meshToSdf(checkedFirst, wantVolume, o);
+      const MeshToSdfStats d = meshToSdf(mesh, gotVolume, o);
+      EXPECT_EQ(c.signByWinding, d.signByWinding) << where;
+      EXPECT_EQ(c.warnings, d.warnings) << where;
+      std::int64_t differ = 0;
+      for (std::int64_t k = 0; k < g.dims[2]; ++k)
+        for (std::int64_t j = 0; j < g.dims[1]; ++j)
+          for (std::int64_t i = 0; i < g.dims[0]; ++i) differ += wantVolume.get(i, j, k).sdf != gotVolume.get(i, j, k).sdf;
+      EXPECT_EQ(differ, 0) << where << ", volume";
+    }
+  EXPECT_GT(ahead, 0);
+  EXPECT_GT(again, 0);
+}
