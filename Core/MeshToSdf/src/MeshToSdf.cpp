@@ -263,7 +263,9 @@ void volumeOnCuda(detail::meshtosdf_cuda::Session& session, DictionaryVolume& vo
     return b;
   };
   detail::meshtosdf_cuda::ChunkKeys keys;
+  const double q0 = now();
   session.launchKeys(boxOf(0), static_cast<int>(edge), enc, band, stats);
+  trace("write: the first group's kernels queued", now() - q0);
   beforeStoring(); // while the GPU computes the first group
   const std::int64_t e3 = edge * edge * edge;
   double listSeconds = 0, waitSeconds = 0, storeSeconds = 0; // the parts of writeSeconds (tracePhases)

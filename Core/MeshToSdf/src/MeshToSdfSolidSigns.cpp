@@ -134,6 +134,7 @@ void SolidCheckBesideGpu::confirm(MeshToSdfStats& stats)
   MeshToSdfStats checked;
   signOfSolids(this->Mesh, this->Options, checked, this->Grid, this->Extent); // found: its warnings and route
   stats.buildSeconds += now() - t0; // the part of the check the GPU's pass did not hide
+  trace("solid check beside the GPU's pass: waited for", now() - t0);
   stats.warnings.insert(stats.warnings.end(), checked.warnings.begin(), checked.warnings.end());
   if (checked.signByWinding) return;
   this->Stop.dropped.store(true); // the sharp regions' thread stops at its next poll
