@@ -1,3 +1,7 @@
+#!/bin/bash
+# GPU host: the timeline of one-call Normal runs at 1024^3 (sub2 and the armadillo, Device Auto, volume,
+# --trace): the last call's phase lines sorted by when they ended (ms from its first line, duration, phase),
+# to see what overlaps what (the pass, the solid check, the sharp regions). usage: OUT=dir scripts/gpu-timeline.sh
 set -u
 . scripts/gpu-common.sh
 mkdir -p $OUT; T0=$(date +%s)
