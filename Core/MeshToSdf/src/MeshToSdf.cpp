@@ -245,7 +245,7 @@ void volumeRegion(DictionaryVolume& volume, const VoxelBox& region, std::uint64_
 /// memory (piece k stored while k + 1 is copied), all while the GPU computes
 /// group g + 1.
 void volumeOnCuda(detail::meshtosdf_cuda::Session& session, DictionaryVolume& volume, const MeshToSdfOptions& opts,
-  MeshToSdfStats& stats, Interrupter& intr, const std::function<void()>& beforeStoring)
+  MeshToSdfStats& stats, Interrupter& intr, const std::function<void()>& beforeEachGroup)
 {
   const Index3 dims = volume.options().dims;
   const std::int64_t edge = volume.chunkEdge();
@@ -263,15 +263,13 @@ void volumeOnCuda(detail::meshtosdf_cuda::Session& session, DictionaryVolume& vo
     return b;
   };
   detail::meshtosdf_cuda::ChunkKeys keys;
-  const double q0 = now();
   session.launchKeys(boxOf(0), static_cast<int>(edge), enc, band, stats);
-  trace("write: the first group's kernels queued", now() - q0);
-  beforeStoring(); // while the GPU computes the first group
   const std::int64_t e3 = edge * edge * edge;
   double listSeconds = 0, waitSeconds = 0, storeSeconds = 0; // the parts of writeSeconds (tracePhases)
   for (std::int64_t g0 = 0; g0 < cc[2]; g0 += group)
   {
     intr.checkInterrupt();
+    beforeEachGroup();
     const double fetch0 = stats.writeSeconds;
     session.fetchKeys(keys, stats); // its time after the kernels' wait counts as write
     listSeconds += stats.writeSeconds - fetch0;
@@ -686,8 +684,8 @@ MeshToSdfStats meshToSdf(const MeshToSdfPrepared& mesh, DictionaryVolume& volume
 namespace
 {
 /// The volume call after its sign's route is chosen: `check` (CUDA only) is
-/// the solid check still running beside the pass, confirmed before the
-/// pass stores anything into the volume.
+/// the solid check still running beside the pass, polled between its groups
+/// and confirmed after it.
 MeshToSdfStats volumePass(const MeshToSdfPrepared& mesh, DictionaryVolume& volume, const MeshToSdfOptions& given,
   const MeshToSdfOptions& options, MeshToSdfStats& stats, Interrupter& interrupter, SolidCheckBesideGpu* check)
 {
@@ -727,9 +725,13 @@ MeshToSdfStats volumePass(const MeshToSdfPrepared& mesh, DictionaryVolume& volum
     std::future<void> parts = partsBesideGpu(mesh, options.sign != SignMode::Unsigned);
     const auto session = openCuda(mesh, *engine, opts, stats);
     startRegions(true); // after the session: its step 2 reads the device copy of the mesh
+    // a pass beside the solid check stores as it goes, and stops at the next
+    // group once the check has found no solid (the call then runs again on
+    // the sign's own path, which writes every chunk: nothing of this pass stays)
     volumeOnCuda(*session, volume, opts, stats, interrupter, [&] {
-      if (check) check->confirm(stats);
+      if (check) check->stopIfNotASolid(stats);
     });
+    if (check) check->confirm(stats);
     if (parts.valid()) parts.get();
   }
   else

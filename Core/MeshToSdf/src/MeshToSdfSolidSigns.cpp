@@ -8,6 +8,7 @@
 #include "lvdif/ParallelFailure.h"
 
 #include <algorithm>
+#include <chrono>
 #include <memory>
 #include <sstream>
 #include <string>
@@ -127,18 +128,31 @@ MeshToSdfOptions SolidCheckBesideGpu::windingOptions(MeshToSdfStats& stats) cons
   return byWinding(this->Options, stats);
 }
 
-void SolidCheckBesideGpu::confirm(MeshToSdfStats& stats)
+void SolidCheckBesideGpu::conclude(MeshToSdfStats& stats)
 {
-  const double t0 = now();
   this->Check.get(); // a cancel comes out here
+  this->Concluded = true;
   MeshToSdfStats checked;
   signOfSolids(this->Mesh, this->Options, checked, this->Grid, this->Extent); // found: its warnings and route
-  stats.buildSeconds += now() - t0; // the part of the check the GPU's pass did not hide
-  trace("solid check beside the GPU's pass: waited for", now() - t0);
   stats.warnings.insert(stats.warnings.end(), checked.warnings.begin(), checked.warnings.end());
   if (checked.signByWinding) return;
   this->Stop.dropped.store(true); // the sharp regions' thread stops at its next poll
   throw NotASolid{};
+}
+
+void SolidCheckBesideGpu::stopIfNotASolid(MeshToSdfStats& stats)
+{
+  if (!this->Concluded && this->Check.wait_for(std::chrono::seconds(0)) == std::future_status::ready)
+    this->conclude(stats);
+}
+
+void SolidCheckBesideGpu::confirm(MeshToSdfStats& stats)
+{
+  if (this->Concluded) return;
+  const double t0 = now();
+  this->conclude(stats);
+  stats.buildSeconds += now() - t0; // the part of the check the GPU's pass did not hide
+  trace("solid check beside the GPU's pass: waited for", now() - t0);
 }
 
 std::future<SharpRegionVoxels> sharpRegions(const MeshToSdfPrepared& mesh, const GridGeometry& grid,
