@@ -23,7 +23,7 @@ gpu_build_ab bench_mesh_to_sdf "bench_mesh_to_sdf LVDIFMeshToSdfTests LVDIFVolum
 GPU_TESTS_AT_ONCE=1 gpu_core_tests b-after 300 MeshToSdf Volume
 : > "$L"
 R=cold,warm@winding,warm@normal,warm@pseudonormal,warm@normal,warm@winding,warm@pseudonormal
-for round in 1 2; do
+for round in ${ROUNDS:-1 2}; do
   for mesh in "sub2:$A" "$A"; do
     order="before after"
     [ "$round" = 2 ] && order="after before"
@@ -32,5 +32,13 @@ for round in 1 2; do
     done
   done
 done
-grep -E "^## |^\| (call|run|cold|warm)|solid check|sharp features:|rc=[1-9]" "$L" | cut -c1-150 | tee -a "$OUT/summary.txt"
+grep -E "^## |^\| (run|cold|warm)|rc=[1-9]" "$L" | cut -c1-150 | tee -a "$OUT/summary.txt"
+# the timeline of the working tree's last warm normal call on sub2 (phases by
+# when they ended, ms from its first line; durations)
+b-after/Testing/Benchmarks/Core/bench_mesh_to_sdf "sub2:$A" 1024 normal auto bvh volume 8 2 cold,warm@winding,warm@normal --trace > "$OUT/timeline.log" 2>&1
+n=$(grep -n "solid check beside the GPU's pass: started" "$OUT/timeline.log" | tail -1 | cut -d: -f1)
+tail -n +$((n - 12)) "$OUT/timeline.log" | grep "^\[mesh" |
+  sed -E 's/^\[mesh to SDF\] (.*): ([0-9.]+) ms \(ends at ([0-9.]+) ms\)/\3 \2 \1/' | sort -n |
+  awk 'NR==1{b=$1} {printf "%8.1f %8.1f  %s\n", $1-b, $2, substr($0, index($0,$3))}' | tee -a "$OUT/summary.txt"
+grep -E "^\| warm@normal" "$OUT/timeline.log" | cut -c1-150 | tee -a "$OUT/summary.txt"
 echo "total $(( $(date +%s) - T0 )) s" | tee -a "$OUT/summary.txt"
