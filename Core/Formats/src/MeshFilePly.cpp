@@ -272,7 +272,7 @@ TriangleMesh readPly(const std::vector<char>& data)
       if (t[1] == "ascii") enc = Encoding::Ascii;
       else if (t[1] == "binary_little_endian") enc = Encoding::LittleEndian;
       else if (t[1] == "binary_big_endian") enc = Encoding::BigEndian;
-      else fail(ErrorCode::ParseError, s.where(), "unknown encoding " + quoted(t[1]));
+      else fail(ErrorCode::ParseError, s.where(), "unknown encoding " + quotedText(t[1]));
       haveFormat = true;
     }
     else if (t[0] == "element")
@@ -288,7 +288,7 @@ TriangleMesh readPly(const std::vector<char>& data)
       // (a second 'x' replaced the first; two vertex elements mixed their counts)
       for (const Element& o : elements)
         if (o.name == e.name)
-          fail(ErrorCode::ParseError, s.where(), "element " + quoted(e.name) + " given twice");
+          fail(ErrorCode::ParseError, s.where(), "element " + quotedText(e.name) + " given twice");
       elements.push_back(e);
     }
     else if (t[0] == "property")
@@ -301,23 +301,23 @@ TriangleMesh readPly(const std::vector<char>& data)
         p.list = true;
         // which type is wrong, and why (it was "bad list property types")
         if (!scalarType(t[2], p.countType, p.countKind))
-          fail(ErrorCode::ParseError, s.where(), "unknown list count type " + quoted(t[2]) + TypeNames);
+          fail(ErrorCode::ParseError, s.where(), "unknown list count type " + quotedText(t[2]) + TypeNames);
         if (p.countKind == 'f')
-          fail(ErrorCode::ParseError, s.where(), "list count type " + quoted(t[2]) + " is not an integer type");
+          fail(ErrorCode::ParseError, s.where(), "list count type " + quotedText(t[2]) + " is not an integer type");
         if (!scalarType(t[3], p.type, p.kind))
-          fail(ErrorCode::ParseError, s.where(), "unknown list item type " + quoted(t[3]) + TypeNames);
+          fail(ErrorCode::ParseError, s.where(), "unknown list item type " + quotedText(t[3]) + TypeNames);
         p.name = t[4];
       }
       else if (t.size() == 3 && scalarType(t[1], p.type, p.kind))
         p.name = t[2];
       else if (t.size() == 3 && t[1] != "list")
-        fail(ErrorCode::ParseError, s.where(), "unknown property type " + quoted(t[1]) + TypeNames);
+        fail(ErrorCode::ParseError, s.where(), "unknown property type " + quotedText(t[1]) + TypeNames);
       else
         fail(ErrorCode::ParseError, s.where(), "expected 'property <type> <name>' or 'property list <type> <type> <name>'");
       for (const Property& o : elements.back().properties)
         if (o.name == p.name)
           fail(ErrorCode::ParseError, s.where(),
-            "property " + quoted(p.name) + " of element " + quoted(elements.back().name) + " given twice");
+            "property " + quotedText(p.name) + " of element " + quotedText(elements.back().name) + " given twice");
       elements.back().properties.push_back(p);
     }
     else if (t[0] == "end_header")
@@ -326,7 +326,7 @@ TriangleMesh readPly(const std::vector<char>& data)
       break;
     }
     else
-      fail(ErrorCode::ParseError, s.where(), "unknown header line " + quoted(t[0]) + binaryHint(t[0]));
+      fail(ErrorCode::ParseError, s.where(), "unknown header line " + quotedText(t[0]) + binaryHint(t[0]));
   }
   if (!haveFormat || !ended)
     fail(ErrorCode::ParseError, "PLY header", !haveFormat ? "no format line" : "no end_header");
@@ -338,7 +338,7 @@ TriangleMesh readPly(const std::vector<char>& data)
   {
     const std::int64_t minBytes = std::max<std::int64_t>(1, static_cast<std::int64_t>(e.properties.size()));
     if (e.count > std::int64_t(left) / minBytes)
-      fail(ErrorCode::CorruptData, "PLY element " + quoted(e.name),
+      fail(ErrorCode::CorruptData, "PLY element " + quotedText(e.name),
         std::to_string(e.count) + " records cannot fit in the " + std::to_string(left) + " bytes after the header");
     if (e.name == "vertex")
       vertexCount = e.count;

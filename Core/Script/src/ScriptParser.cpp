@@ -4,6 +4,7 @@
 #include "ScriptAst.h"
 
 #include "lvdif/Script.h"
+#include "lvdif/QuotedText.h"
 
 #include <map>
 #include <set>
@@ -90,7 +91,7 @@ private:
       return "the end of the script";
     if (t.kind == Tok::Newline)
       return "the end of the line";
-    return "'" + t.text + "'";
+    return quotedText(t.text);
   }
   const Token& expect(Tok k, const char* what)
   {
@@ -239,7 +240,7 @@ private:
       this->fail(t, "'else' without 'if'");
     auto it = commands().find(t.text);
     if (it == commands().end())
-      this->fail(t, "unknown command '" + t.text + "'");
+      this->fail(t, "unknown command " + quotedText(t.text));
     this->next();
     s->kind = Stmt::Kind::Command;
     s->name = t.text;
@@ -282,7 +283,7 @@ private:
     if (t.kind != Tok::Ident)
       this->fail(t, "expected a variable name, found " + describe(t));
     if (keywords().count(t.text) || commands().count(t.text))
-      this->fail(t, "'" + t.text + "' is a reserved word and cannot be a variable");
+      this->fail(t, quotedText(t.text) + " is a reserved word and cannot be a variable");
     return this->next().text;
   }
 
@@ -408,7 +409,7 @@ private:
     if (t.kind == Tok::Ident)
     {
       if (keywords().count(t.text))
-        this->fail(t, "expected a value, found the keyword '" + t.text + "'");
+        this->fail(t, "expected a value, found the keyword " + quotedText(t.text));
       this->next();
       if (this->at(Tok::LParen))
       {

@@ -131,6 +131,19 @@ TEST(Script, SyntaxErrorsGiveLineAndColumn)
   }
 }
 
+// A token of 100,000 characters (a number, a name) is quoted as the mesh readers quote file text:
+// 40 characters then "..." (lvdif/QuotedText.h); the whole token was in the message, a 100 kB line.
+TEST(Script, LongTokensAreQuotedShort)
+{
+  const std::string ones(100000, '1'), name(100000, 'a');
+  const std::string ones40 = "'" + ones.substr(0, 40) + "...'", name40 = "'" + name.substr(0, 40) + "...'";
+  EXPECT_EQ(errorOf("sphere 1 1 1 " + ones).detail, "number " + ones40 + " is out of range");
+  EXPECT_EQ(errorOf("x = 1\n" + name + " 1 2").detail, "unknown command " + name40);
+  EXPECT_EQ(errorOf("x = " + name).detail, "undefined variable " + name40);
+  EXPECT_EQ(errorOf("x = " + name + "(1)").detail, "unknown function " + name40);
+  EXPECT_EQ(errorOf("x = (1 " + name).detail, "expected ')', found " + name40);
+}
+
 TEST(Script, RunTimeErrorsGiveLineAndColumn)
 {
   Where w = errorOf("x = 1\ny = x + zz");
