@@ -118,6 +118,12 @@ TEST(Script, SyntaxErrorsGiveLineAndColumn)
     { "for in 0..3 { }", 0, 5, "'in' is a reserved word and cannot be a variable" },
     { "x = 12abc", 0, 7, "unexpected 'a' after a number" },
     { "}", 0, 0, "unexpected '}' without a matching '{'" },
+    // a minus that subtracts where an argument was meant is named (it said only "takes 4 arguments, got 3")
+    { "sphere 1 1 1 -1", 1, 1, "'sphere' takes 4 arguments, got 3 (the '-' at column 14, with a space before it and "
+                               "none after, subtracts: separate the arguments with commas when one starts with a minus, "
+                               "as in 'dab 10, -2, 5')" },
+    { "sphere 1 1 1 - 1", 1, 1, "'sphere' takes 4 arguments, got 3" },
+    { "sphere 1 1 1", 1, 1, "'sphere' takes 4 arguments, got 3" },
   };
   for (const Case& c : cases)
   {
