@@ -127,9 +127,13 @@ int CommandPlay(int argc, char** argv)
   }();
   if (!recording.warning.empty()) // a version 1 recording: no end record to tell a cut one
     std::fprintf(stderr, "warning: %s\n", recording.warning.c_str());
+  // a replay keeps the dimensions: the output's rule on them before replaying, from a .lvdv's
+  // header before loading it
+  std::string refused = args.has("out") ? VolumeOutputProblemForInput(args.get("out", ""), args.get("in", "")) : std::string();
+  if (!refused.empty())
+    throw lvdif::Error(lvdif::ErrorCode::InvalidArgument, refused + " (the volume of --in)");
   auto volume = LoadAnyVolume(args.get("in", ""), progress);
-  // a replay keeps the dimensions: the output's rule on them before replaying
-  const std::string refused = args.has("out") ? VolumeOutputDimsProblem(args.get("out", ""), volume->dims()) : std::string();
+  refused = args.has("out") ? VolumeOutputDimsProblem(args.get("out", ""), volume->dims()) : std::string();
   if (!refused.empty())
     throw lvdif::Error(lvdif::ErrorCode::InvalidArgument, refused + " (the volume of --in)");
   lvdif::Editor editor(*volume);

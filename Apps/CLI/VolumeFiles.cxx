@@ -4,6 +4,7 @@
 
 #include "lvdif/Error.h"
 #include "lvdif/LegacyBv.h"
+#include "lvdif/VolumeFile.h"
 
 std::string Extension(const std::string& path)
 {
@@ -27,6 +28,22 @@ std::string VolumeOutputDimsProblem(const std::string& path, const lvdif::Index3
   // the writer's own rule (the only format with a rule on the dimensions)
   const std::string problem = VolumeOutputIsCubicOnly(path) ? lvdif::checkLegacyBvDims(dims, path) : std::string();
   return problem.empty() ? problem : "cannot write '" + path + "': " + problem;
+}
+
+std::string VolumeOutputProblemForInput(const std::string& path, const std::string& input)
+{
+  if (!VolumeOutputIsCubicOnly(path) || Extension(input) != "lvdv")
+    return std::string();
+  lvdif::Index3 dims;
+  try
+  {
+    dims = lvdif::readVolumeInfo(input).options.dims;
+  }
+  catch (const lvdif::Error&)
+  {
+    return std::string(); // the load names what is wrong with the file
+  }
+  return VolumeOutputDimsProblem(path, dims);
 }
 
 bool VolumeOutputIsCubicOnly(const std::string& path)

@@ -17,6 +17,10 @@ void CheckVolumeOutput(const std::string& path);
 /// format's rule (.bv: cubic, the edge its SDF_<N>_ name says), for the commands that know the
 /// dimensions before their work: checked before it, not when saving after it.
 std::string VolumeOutputDimsProblem(const std::string& path, const lvdif::Index3& dims);
+/// VolumeOutputDimsProblem for the volume in `input` where its header tells the dimensions (a
+/// .lvdv, header only), so that a command refuses before reading the whole volume; "" otherwise
+/// (the check after loading it then speaks).
+std::string VolumeOutputProblemForInput(const std::string& path, const std::string& input);
 /// True when `path`'s format holds cubic volumes only (.bv, the original's N^3).
 bool VolumeOutputIsCubicOnly(const std::string& path);
 void SaveAnyVolume(const lvdif::DictionaryVolume& volume, const std::string& path,

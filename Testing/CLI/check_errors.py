@@ -562,6 +562,12 @@ assert r.returncode == 1 and "edits" not in r.stdout and r.stderr.strip().splitl
 r = subprocess.run([exe, "play", rec, "--in", ns_vol, "--out", ns_bv], capture_output=True, text=True, timeout=60)
 assert r.returncode == 1 and "replayed" not in r.stdout and r.stderr.strip().splitlines()[-1] == (
     f"lvdif play: cannot write '{ns_bv}': .bv holds only cubic volumes; this one is 32 x 32 x 16 (the volume of --in)"), r
+# a .lvdv's dimensions come from its header: refused before the volume is read (it was read whole first,
+# "read volume: done", and convert's refusal came from the writer)
+assert "read volume" not in r.stderr, r
+r = subprocess.run([exe, "convert", ns_vol, ns_bv], capture_output=True, text=True, timeout=60)
+assert r.returncode == 1 and r.stderr.strip() == (
+    f"lvdif convert: cannot write '{ns_bv}': .bv holds only cubic volumes; this one is 32 x 32 x 16 (the volume of {ns_vol})"), r
 assert not os.path.exists(ns_bv)
 code, err = run("script", keep_script, "--size", "32", "--out", os.path.join(out, "SDF_64_keep.bv"))
 assert code == 1 and err.endswith("file name says N = 64 but the volume's edge is 32"), (code, err)
