@@ -11,7 +11,6 @@
 #include "lvdif/CNumbers.h"
 #include "lvdif/Cuda.h"
 #include "lvdif/Error.h"
-#include "lvdif/Memory.h"
 #include "lvdif/MeshFile.h"
 #include "lvdif/MeshToSdf.h"
 
@@ -84,18 +83,7 @@ int CommandMeshToSdf(int argc, char** argv)
   // a grid's chunk table alone past the memory limit, named with --dims (it was the volume's own words,
   // "chunk table of a 1000000 x 1000000 x 1000000 volume needs 666.13 TiB ...", with no option to change)
   auto requireTable = [&](const lvdif::Index3& d, const std::string& whose) {
-    lvdif::VolumeOptions o;
-    o.dims = d;
-    try
-    {
-      lvdif::requireMemory(lvdif::DictionaryVolume::tableBytes(o), "--dims " + std::to_string(dims) + " makes " + whose +
-          " of " + std::to_string(d[0]) + " x " + std::to_string(d[1]) + " x " + std::to_string(d[2]) +
-          " voxels, whose chunk table alone");
-    }
-    catch (const lvdif::Error& e)
-    {
-      throw lvdif::Error(e.code(), std::string(e.what()) + ": use fewer --dims");
-    }
+    RequireChunkTable(d, "--dims " + std::to_string(dims) + " makes " + whose, "use fewer --dims");
   };
   // a cubic-only format's grid is --dims on every axis, whatever the mesh: its rules (the N of an
   // SDF_<N>_ name) and its chunk table before the mesh is read, as a refused command line (the mesh

@@ -4,6 +4,7 @@
 
 #include "lvdif/Error.h"
 #include "lvdif/LegacyBv.h"
+#include "lvdif/Memory.h"
 #include "lvdif/VolumeFile.h"
 
 std::string Extension(const std::string& path)
@@ -44,6 +45,21 @@ std::string VolumeOutputProblemForInput(const std::string& path, const std::stri
     return std::string(); // the load names what is wrong with the file
   }
   return VolumeOutputDimsProblem(path, dims);
+}
+
+void RequireChunkTable(const lvdif::Index3& dims, const std::string& what, const std::string& advice)
+{
+  lvdif::VolumeOptions o;
+  o.dims = dims;
+  try
+  {
+    lvdif::requireMemory(lvdif::DictionaryVolume::tableBytes(o), what + " of " + std::to_string(dims[0]) + " x " +
+        std::to_string(dims[1]) + " x " + std::to_string(dims[2]) + " voxels, whose chunk table alone");
+  }
+  catch (const lvdif::Error& e)
+  {
+    throw lvdif::Error(e.code(), std::string(e.what()) + ": " + advice);
+  }
 }
 
 bool VolumeOutputIsCubicOnly(const std::string& path)

@@ -71,10 +71,21 @@ assert code == 2 and "each axis needs 2..1048576 voxels" in err, (code, err)
 code, err = run("demo", "--size", "0", "--out", out + "-size0")
 assert code == 2 and err.startswith("lvdif demo: --size") and "line" not in err, (code, err)
 assert not __import__("os").path.exists(out + "-size0"), "demo --size 0 left its output folder"
+# a --size whose canvas's chunk table alone passes the memory limit is a refused command line naming the
+# option, before the folder is made (status 2; it was the volume's own "chunk table of a ... volume needs",
+# status 1, after making the folder); so is script's --size
 code, err = run("demo", "--size", "100000", "--out", out + "-size1e5")
-assert code == 1 and err.startswith("lvdif demo: --size 100000: ") and "line" not in err, (code, err)
-# a failure after the output folder was made (here the canvas limit) removes the folder it made
+assert code == 2 and err.startswith("lvdif demo: --size 100000 makes a canvas of 100000 x 100000 x 100000 voxels, "
+                                    "whose chunk table alone needs ") and err.endswith(": use a smaller --size"), (code, err)
 assert not __import__("os").path.exists(out + "-size1e5"), "demo --size 100000 left its output folder"
+code, err = run("script", "no-such-script.lvs", "--size", "1048576", "--out", out + "-big.lvdv")
+assert code == 2 and err.startswith("lvdif script: --size 1048576 makes a canvas of 1048576 x 1048576 x 1048576 voxels, "
+                                    "whose chunk table alone needs 768.00 TiB, more than the limit of "), (code, err)
+# a failure after the output folder was made (the build over a small memory limit) removes the folder it made
+r = subprocess.run([exe, "demo", "--size", "512", "--out", out + "-size512"], capture_output=True, text=True, timeout=60,
+                   env=dict(__import__("os").environ, LVDIF_MEMORY_LIMIT="2M"))
+assert r.returncode == 1 and r.stderr.strip().startswith("lvdif demo: --size 512: ") and "line" not in r.stderr, r
+assert not __import__("os").path.exists(out + "-size512"), "demo --size 512 left its output folder"
 # an axis of 1 and one over 1048576: the canvas rule's one message (DictionaryVolume::checkCanvasDimensions)
 code, err = run("demo", "--size", "1", "--out", out + "-size1")
 assert code == 2 and err == ("lvdif demo: --size 1: a canvas of 1 x 1 x 1 voxels cannot be edited: each axis needs "
