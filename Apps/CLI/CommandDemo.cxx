@@ -6,6 +6,7 @@
 #include "DemoScene.h"
 #include "MeshOutput.h"
 #include "ProgressBar.h"
+#include "VolumeFiles.h"
 
 #include "lvdif/DictionaryVolume.h"
 #include "lvdif/Error.h"
@@ -26,6 +27,7 @@ int CommandDemo(int argc, char** argv)
   const std::string out = args.get("out", "out");
   // before the output folder is made
   const long size = args.getCanvasSize("size", 128);
+  RequireChunkTable({ size, size, size }, "--size " + std::to_string(size) + " makes a canvas", "use a smaller --size");
   // a folder this command makes is removed again if the command then fails
   // (e.g. a --size over the memory limit, found only by the build)
   const bool made = ::mkdir(out.c_str(), 0755) == 0;

@@ -30,6 +30,10 @@ int CommandScript(int argc, char** argv)
       "--size (the size of an empty start canvas) cannot be used with --in (the script starts from that volume)");
   // the start canvas's size is refused before any output is checked or volume built
   const lvdif::Index3 size = args.has("in") ? lvdif::Index3{ 0, 0, 0 } : args.getCanvasDims("size", 128);
+  // its chunk table against the memory limit, as a refused command line naming the option (--size 1048576
+  // was the volume's "chunk table of a ... volume needs 768.00 TiB ...", status 1)
+  if (!args.has("in"))
+    RequireChunkTable(size, "--size " + args.get("size", "128") + " makes a canvas", "use a smaller --size");
   // a long script that is no endless loop (a loop over every voxel of 512^3 is 134M steps) could not run
   const long maxSteps = args.getInt("max-steps", static_cast<long>(lvdif::ScriptOptions().maxSteps), 1,
     std::numeric_limits<long>::max());
@@ -127,9 +131,13 @@ int CommandPlay(int argc, char** argv)
   }();
   if (!recording.warning.empty()) // a version 1 recording: no end record to tell a cut one
     std::fprintf(stderr, "warning: %s\n", recording.warning.c_str());
+  // a replay keeps the dimensions: the output's rule on them before replaying, from a .lvdv's
+  // header before loading it
+  std::string refused = args.has("out") ? VolumeOutputProblemForInput(args.get("out", ""), args.get("in", "")) : std::string();
+  if (!refused.empty())
+    throw lvdif::Error(lvdif::ErrorCode::InvalidArgument, refused + " (the volume of --in)");
   auto volume = LoadAnyVolume(args.get("in", ""), progress);
-  // a replay keeps the dimensions: the output's rule on them before replaying
-  const std::string refused = args.has("out") ? VolumeOutputDimsProblem(args.get("out", ""), volume->dims()) : std::string();
+  refused = args.has("out") ? VolumeOutputDimsProblem(args.get("out", ""), volume->dims()) : std::string();
   if (!refused.empty())
     throw lvdif::Error(lvdif::ErrorCode::InvalidArgument, refused + " (the volume of --in)");
   lvdif::Editor editor(*volume);

@@ -80,6 +80,21 @@ int CommandMeshToSdf(int argc, char** argv)
   if (args.has("svf"))
     options.svfFilters = lvdif::SvfAll; // SVF1..SVF4, the paper's cleanup (meant for --sign normal)
 
+  // a grid's chunk table alone past the memory limit, named with --dims (it was the volume's own words,
+  // "chunk table of a 1000000 x 1000000 x 1000000 volume needs 666.13 TiB ...", with no option to change)
+  auto requireTable = [&](const lvdif::Index3& d, const std::string& whose) {
+    RequireChunkTable(d, "--dims " + std::to_string(dims) + " makes " + whose, "use fewer --dims");
+  };
+  // a cubic-only format's grid is --dims on every axis, whatever the mesh: its rules (the N of an
+  // SDF_<N>_ name) and its chunk table before the mesh is read, as a refused command line (the mesh
+  // was read first, and the refusal said "the grid fitted to the mesh", status 1)
+  if (VolumeOutputIsCubicOnly(out))
+  {
+    const std::string refused = VolumeOutputDimsProblem(out, { dims, dims, dims });
+    if (!refused.empty())
+      throw lvdif::Error(lvdif::ErrorCode::InvalidArgument, refused + " (--dims " + std::to_string(dims) + " on every axis)");
+    requireTable({ dims, dims, dims }, "the cubic grid");
+  }
   CheckVolumeOutput(out);
   CommandLineAccepted();
   ProgressBar progress;
@@ -180,11 +195,7 @@ int CommandMeshToSdf(int argc, char** argv)
         (lessPaddingFits ? "use less padding (--padding 0 fits) or scale the mesh down"
                          : "scale the mesh down (less padding cannot help: even --padding 0 takes the grid beyond it)"));
   }
-  // a format's own limit, known from the fitted grid: before the work, not after it (.bv found a
-  // non-cubic grid only when saving, after minutes of mesh to SDF)
-  const std::string refused = VolumeOutputDimsProblem(out, grid.dims);
-  if (!refused.empty())
-    throw lvdif::Error(lvdif::ErrorCode::InvalidArgument, refused + " (the grid fitted to the mesh)");
+  requireTable(grid.dims, "this mesh's grid");
   lvdif::DictionaryVolume volume(vo);
   const lvdif::MeshToSdfStats stats = namingTheMesh([&] { return lvdif::meshToSdf(mesh, volume, options, progress); });
   SaveAnyVolume(volume, out,

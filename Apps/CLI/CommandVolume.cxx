@@ -86,6 +86,11 @@ int CommandConvert(int argc, char** argv)
     throw lvdif::Error(lvdif::ErrorCode::InvalidArgument, "usage: lvdif convert IN OUT   (.lvdv, .lvdvp, .bv, .vti, .vdb)");
   CheckVolumeOutput(args.positional()[1]);
   CommandLineAccepted();
+  // a .lvdv's dimensions from its header against the output's rule (.bv: cubic), before reading it whole
+  // (a non-cubic volume to .bv was read, then refused by the writer)
+  const std::string refused = VolumeOutputProblemForInput(args.positional()[1], args.positional()[0]);
+  if (!refused.empty())
+    throw lvdif::Error(lvdif::ErrorCode::InvalidArgument, refused + " (the volume of " + args.positional()[0] + ")");
   ProgressBar progress;
   auto volume = LoadAnyVolume(args.positional()[0], progress);
   SaveAnyVolume(*volume, args.positional()[1], { { "converted_from", args.positional()[0] } }, progress);

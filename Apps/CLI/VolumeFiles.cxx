@@ -4,6 +4,8 @@
 
 #include "lvdif/Error.h"
 #include "lvdif/LegacyBv.h"
+#include "lvdif/Memory.h"
+#include "lvdif/VolumeFile.h"
 
 std::string Extension(const std::string& path)
 {
@@ -27,6 +29,37 @@ std::string VolumeOutputDimsProblem(const std::string& path, const lvdif::Index3
   // the writer's own rule (the only format with a rule on the dimensions)
   const std::string problem = VolumeOutputIsCubicOnly(path) ? lvdif::checkLegacyBvDims(dims, path) : std::string();
   return problem.empty() ? problem : "cannot write '" + path + "': " + problem;
+}
+
+std::string VolumeOutputProblemForInput(const std::string& path, const std::string& input)
+{
+  if (!VolumeOutputIsCubicOnly(path) || Extension(input) != "lvdv")
+    return std::string();
+  lvdif::Index3 dims;
+  try
+  {
+    dims = lvdif::readVolumeInfo(input).options.dims;
+  }
+  catch (const lvdif::Error&)
+  {
+    return std::string(); // the load names what is wrong with the file
+  }
+  return VolumeOutputDimsProblem(path, dims);
+}
+
+void RequireChunkTable(const lvdif::Index3& dims, const std::string& what, const std::string& advice)
+{
+  lvdif::VolumeOptions o;
+  o.dims = dims;
+  try
+  {
+    lvdif::requireMemory(lvdif::DictionaryVolume::tableBytes(o), what + " of " + std::to_string(dims[0]) + " x " +
+        std::to_string(dims[1]) + " x " + std::to_string(dims[2]) + " voxels, whose chunk table alone");
+  }
+  catch (const lvdif::Error& e)
+  {
+    throw lvdif::Error(e.code(), std::string(e.what()) + ": " + advice);
+  }
 }
 
 bool VolumeOutputIsCubicOnly(const std::string& path)

@@ -17,6 +17,15 @@ void CheckVolumeOutput(const std::string& path);
 /// format's rule (.bv: cubic, the edge its SDF_<N>_ name says), for the commands that know the
 /// dimensions before their work: checked before it, not when saving after it.
 std::string VolumeOutputDimsProblem(const std::string& path, const lvdif::Index3& dims);
+/// VolumeOutputDimsProblem for the volume in `input` where its header tells the dimensions (a
+/// .lvdv, header only), so that a command refuses before reading the whole volume; "" otherwise
+/// (the check after loading it then speaks).
+std::string VolumeOutputProblemForInput(const std::string& path, const std::string& input);
+/// The chunk table of a volume of `dims` (the least it needs) against the memory limit, for a size
+/// the command line gives, before the work: "WHAT of NX x NY x NZ voxels, whose chunk table alone
+/// needs ..., more than the limit of ... (set LVDIF_MEMORY_LIMIT to change it): ADVICE" (it was the
+/// volume's own words after the work began, naming no option).
+void RequireChunkTable(const lvdif::Index3& dims, const std::string& what, const std::string& advice);
 /// True when `path`'s format holds cubic volumes only (.bv, the original's N^3).
 bool VolumeOutputIsCubicOnly(const std::string& path);
 void SaveAnyVolume(const lvdif::DictionaryVolume& volume, const std::string& path,

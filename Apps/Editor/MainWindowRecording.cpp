@@ -87,7 +87,10 @@ bool MainWindow::playRecording(const QString& path)
   try
   {
     const lvdif::Recording recording = lvdif::loadRecording(path.toStdString());
+    const int before = this->Doc.generation();
     this->Doc.play(recording);
+    if (this->Doc.generation() != before)
+      this->volumeReplaced(); // an old recording's own starter canvas
     if (!recording.warning.empty())
     {
       // a version 1 recording (no end record): played, said once

@@ -104,7 +104,7 @@ void VolumeDocument::newCanvas(int nx, int ny, int nz, Fill fill)
   {
     v = std::make_shared<lvdif::DictionaryVolume>(o, v->insideVoxel());
   }
-  else if (fill == Fill::Sphere)
+  else if (fill == Fill::Sphere || fill == Fill::Dot)
   {
     // a starter shape reaching at most 64 voxels from the centre: its mesh (and so the
     // first frame) stays small on large canvases; the rest of the canvas is uniform and
@@ -117,7 +117,7 @@ void VolumeDocument::newCanvas(int nx, int ny, int nz, Fill fill)
     for (int a = 0; a < 3; ++a)
       r = std::min(r, half[a] = std::min(64.0, 0.35 * n[a]));
     const double cx = 0.5 * (nx - 1), cy = 0.5 * (ny - 1), cz = 0.5 * (nz - 1);
-    if (half[0] == r && half[1] == r && half[2] == r)
+    if (fill == Fill::Dot || (half[0] == r && half[1] == r && half[2] == r))
       lvdif::fillFromFunction(*v, lvdif::sphereSdf(cx, cy, cz, r));
     else
     {
@@ -132,6 +132,8 @@ void VolumeDocument::newCanvas(int nx, int ny, int nz, Fill fill)
   }
   this->Path.clear();
   this->hold(std::move(v));
+  this->StarterGeneration = fill == Fill::Sphere ? this->Session->generation() : -1;
+  this->StarterChanges = this->Session->changeCount();
 }
 
 void VolumeDocument::adopt(std::shared_ptr<lvdif::DictionaryVolume> volume)
@@ -280,6 +282,20 @@ lvdif::Recording VolumeDocument::stopRecording()
 
 void VolumeDocument::play(const lvdif::Recording& r)
 {
+  // A non-cubic canvas's starter is a rounded box since session 24 (a sphere, a dot on a long
+  // canvas, before): a recording made on the old one played on the box, another model. On the
+  // untouched starter canvas it starts from the starter it was made on, where its version says.
+  const lvdif::Index3 d = this->volume().dims();
+  if (this->StarterGeneration == this->Session->generation() && this->StarterChanges == this->Session->changeCount() &&
+    !(d[0] == d[1] && d[1] == d[2]) && (r.canvas[0] == 0 || r.canvas == d) && r.version < 3)
+  {
+    if (r.version == 2)
+      throw lvdif::Error(lvdif::ErrorCode::InvalidArgument,
+        "a version 2 recording of a non-cubic canvas does not say which starter shape it was made on (the sphere of "
+        "builds before session 24 or the rounded box since), so it is not played on the starter canvas (nothing was "
+        "played): open the volume it was recorded on and play it there");
+    this->newCanvas(int(d[0]), int(d[1]), int(d[2]), Fill::Dot);
+  }
   // as runScript: the edits played before an error stay, so they count as changes
   // (and are the session's steps: the strokes' history goes on from its)
   const std::uint64_t before = this->Session->changeCount();

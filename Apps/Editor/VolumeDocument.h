@@ -23,7 +23,10 @@ public:
   {
     Empty,
     Full,
-    Sphere
+    Sphere,
+    /// The starter of builds before session 24 on every canvas: the sphere of
+    /// Sphere's radius, a dot on a long canvas (recordings of version 1 start on it)
+    Dot
   };
 
   VolumeDocument();
@@ -72,6 +75,10 @@ public:
   bool redo();
   void startRecording();
   lvdif::Recording stopRecording();
+  /// Plays a recording as one undo step a record. On a non-cubic starter canvas
+  /// (newCanvas Sphere, untouched) it starts from the starter the recording was
+  /// made on: a version 1 recording (before session 24) on the Dot; a version 2
+  /// one, which cannot say which, is refused (lvdif::Error) before anything plays.
   void play(const lvdif::Recording& r);
   /// Runs an LVDIF script (docs/SCRIPTING.md) through the session: its edits
   /// are undoable; a `canvas` command makes a new volume (`options`: its rules,
@@ -99,6 +106,10 @@ private:
   void resetHistory();
 
   std::unique_ptr<lvdif::EditSession> Session;
+  // the untouched starter canvas of newCanvas (Sphere): its volume's generation
+  // and the session's change count then (-1: the volume is no starter)
+  int StarterGeneration = -1;
+  std::uint64_t StarterChanges = 0;
   QString Path;
   bool Modified = false;
   int EditsSinceAutosave = 0;

@@ -71,10 +71,21 @@ assert code == 2 and "each axis needs 2..1048576 voxels" in err, (code, err)
 code, err = run("demo", "--size", "0", "--out", out + "-size0")
 assert code == 2 and err.startswith("lvdif demo: --size") and "line" not in err, (code, err)
 assert not __import__("os").path.exists(out + "-size0"), "demo --size 0 left its output folder"
+# a --size whose canvas's chunk table alone passes the memory limit is a refused command line naming the
+# option, before the folder is made (status 2; it was the volume's own "chunk table of a ... volume needs",
+# status 1, after making the folder); so is script's --size
 code, err = run("demo", "--size", "100000", "--out", out + "-size1e5")
-assert code == 1 and err.startswith("lvdif demo: --size 100000: ") and "line" not in err, (code, err)
-# a failure after the output folder was made (here the canvas limit) removes the folder it made
+assert code == 2 and err.startswith("lvdif demo: --size 100000 makes a canvas of 100000 x 100000 x 100000 voxels, "
+                                    "whose chunk table alone needs ") and err.endswith(": use a smaller --size"), (code, err)
 assert not __import__("os").path.exists(out + "-size1e5"), "demo --size 100000 left its output folder"
+code, err = run("script", "no-such-script.lvs", "--size", "1048576", "--out", out + "-big.lvdv")
+assert code == 2 and err.startswith("lvdif script: --size 1048576 makes a canvas of 1048576 x 1048576 x 1048576 voxels, "
+                                    "whose chunk table alone needs 768.00 TiB, more than the limit of "), (code, err)
+# a failure after the output folder was made (the build over a small memory limit) removes the folder it made
+r = subprocess.run([exe, "demo", "--size", "512", "--out", out + "-size512"], capture_output=True, text=True, timeout=60,
+                   env=dict(__import__("os").environ, LVDIF_MEMORY_LIMIT="2M"))
+assert r.returncode == 1 and r.stderr.strip().startswith("lvdif demo: --size 512: ") and "line" not in r.stderr, r
+assert not __import__("os").path.exists(out + "-size512"), "demo --size 512 left its output folder"
 # an axis of 1 and one over 1048576: the canvas rule's one message (DictionaryVolume::checkCanvasDimensions)
 code, err = run("demo", "--size", "1", "--out", out + "-size1")
 assert code == 2 and err == ("lvdif demo: --size 1: a canvas of 1 x 1 x 1 voxels cannot be edited: each axis needs "
@@ -241,10 +252,34 @@ tet = os.path.join(out, "tet.obj")
 with open(tet, "w") as f:
     f.write("v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nf 1 3 2\nf 1 2 4\nf 2 3 4\nf 3 1 4\n")
 named = os.path.join(out, "SDF_32_tet.bv")
-code, err = run("mesh-to-sdf", tet, named, "--dims", "16")
-assert code == 1 and "mesh to SDF" not in err and err == (f"lvdif mesh-to-sdf: cannot write '{named}': file name says N = 32 "
-                                                          "but the volume's edge is 16 (the grid fitted to the mesh)"), (code, err)
+# a .bv's grid is --dims on every axis whatever the mesh: its name's N is checked before the mesh is read,
+# as a refused command line (status 2; it was read first, status 1, "(the grid fitted to the mesh)")
+for mesh in (tet, os.path.join(out, "no-such-mesh.obj")):
+    code, err = run("mesh-to-sdf", mesh, named, "--dims", "16")
+    assert code == 2 and err == (f"lvdif mesh-to-sdf: cannot write '{named}': file name says N = 32 "
+                                 "but the volume's edge is 16 (--dims 16 on every axis)"), (code, err)
 assert run("mesh-to-sdf", tet, named, "--dims", "32")[0] == 0
+# --dims is checked against the volumes' axis limit (2^20 = 1048576) before the mesh is read (status 2, above);
+# a --dims within it is refused by the memory its grid needs: a .bv's cubic grid before the mesh is read
+# (status 2), another grid, which the mesh's proportions decide, after (status 1, the memory error), both
+# naming --dims (it was "chunk table of a 1000000 x 1000000 x 1000000 volume needs ...", naming no option)
+env = dict(os.environ, LVDIF_MEMORY_LIMIT="1G")
+for target, mesh, expect in ((os.path.join(out, "big.bv"), os.path.join(out, "no-such-mesh.obj"), 2),
+                             (os.path.join(out, "big.lvdv"), tet, 1)):
+    r = subprocess.run([exe, "mesh-to-sdf", mesh, target, "--dims", "1000000"], capture_output=True, text=True,
+                       timeout=120, env=env)
+    whose = "the cubic grid" if expect == 2 else "this mesh's grid"
+    assert r.returncode == expect and r.stderr.splitlines()[-1] == (
+        f"lvdif mesh-to-sdf: --dims 1000000 makes {whose} of 1000000 x 1000000 x 1000000 voxels, whose chunk table alone "
+        "needs 666.13 TiB, more than the limit of 1.00 GiB (set LVDIF_MEMORY_LIMIT to change it): use fewer --dims"), (r.returncode, r.stderr)
+    assert not os.path.exists(target)
+# a long thin mesh at the same --dims has a small grid: not refused for its table
+needle = os.path.join(out, "needle.obj")
+with open(needle, "w") as f:
+    f.write("v 0 0 0\nv 1000 0 0\nv 0 0.001 0\nv 0 0 0.001\nf 1 3 2\nf 1 2 4\nf 2 3 4\nf 3 1 4\n")
+r = subprocess.run([exe, "mesh-to-sdf", needle, os.path.join(out, "needle.lvdv"), "--dims", "1000000"],
+                   capture_output=True, text=True, timeout=120, env=dict(os.environ, LVDIF_MEMORY_LIMIT="64M"))
+assert r.returncode == 1 and "chunk table alone" not in r.stderr and "mesh to SDF: a 1000000 x 6 x 6 volume of this mesh needs at least" in r.stderr, (r.returncode, r.stderr)
 # play says what it replayed, and warns when nothing is written (it was silent, exit 0)
 rec = os.path.join(out, "one.lvr")
 with open(rec, "w") as f:
@@ -538,6 +573,12 @@ assert r.returncode == 1 and "edits" not in r.stdout and r.stderr.strip().splitl
 r = subprocess.run([exe, "play", rec, "--in", ns_vol, "--out", ns_bv], capture_output=True, text=True, timeout=60)
 assert r.returncode == 1 and "replayed" not in r.stdout and r.stderr.strip().splitlines()[-1] == (
     f"lvdif play: cannot write '{ns_bv}': .bv holds only cubic volumes; this one is 32 x 32 x 16 (the volume of --in)"), r
+# a .lvdv's dimensions come from its header: refused before the volume is read (it was read whole first,
+# "read volume: done", and convert's refusal came from the writer)
+assert "read volume" not in r.stderr, r
+r = subprocess.run([exe, "convert", ns_vol, ns_bv], capture_output=True, text=True, timeout=60)
+assert r.returncode == 1 and r.stderr.strip() == (
+    f"lvdif convert: cannot write '{ns_bv}': .bv holds only cubic volumes; this one is 32 x 32 x 16 (the volume of {ns_vol})"), r
 assert not os.path.exists(ns_bv)
 code, err = run("script", keep_script, "--size", "32", "--out", os.path.join(out, "SDF_64_keep.bv"))
 assert code == 1 and err.endswith("file name says N = 64 but the volume's edge is 32"), (code, err)
@@ -576,4 +617,5 @@ with open(line, "w") as f:
     f.write("v 0 0 0\nv 1 1 1\nv 2 2 2\nf 1 2 3\n")
 code, err = run("mesh-to-sdf", line, os.path.join(out, "line.lvdv"), "--dims", "16")
 # the last line: a CUDA build without a usable GPU prints its one notice first
-assert code == 1 and err.splitlines()[-1].startswith(f"lvdif mesh-to-sdf: mesh '{line}': ") and "non-zero area" in err, (code, err)
+assert code == 1 and err.splitlines()[-1] == f"lvdif mesh-to-sdf: mesh '{line}': the mesh's only triangle has zero area " \
+    "(its corners coincide or lie on one line), so there is no surface to convert: check the file's points and faces", (code, err)

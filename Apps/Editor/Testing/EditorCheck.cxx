@@ -695,10 +695,12 @@ int main(int argc, char* argv[])
         check(differ == 0, "every distance and colour equal");
       }
     }
-    else if (!std::strcmp(argv[i], "--starter-extent") && i + 1 < argc)
+    else if ((!std::strcmp(argv[i], "--starter-extent") || !std::strcmp(argv[i], "--dot-extent")) && i + 1 < argc)
     {
       // the starter shape of a --fill sphere canvas spans 2 x min(64, 0.35 n) voxels
-      // (+-1) on each axis: on 256 x 16 x 40 it was a sphere of 11 voxels across
+      // (+-1) on each axis: on 256 x 16 x 40 it was a sphere of 11 voxels across;
+      // --dot-extent: that sphere (the starter before session 24), the smallest axis's on every axis
+      const bool dot = !std::strcmp(argv[i], "--dot-extent");
       auto img = readVolume(argv[++i]);
       int dims[3];
       img->GetDimensions(dims);
@@ -717,9 +719,10 @@ int main(int argc, char* argv[])
               for (int a = 0; a < 3; ++a)
                 lo[a] = std::min(lo[a], p[a]), hi[a] = std::max(hi[a], p[a]);
             }
+      const double least = 2 * std::min({ 64.0, 0.35 * dims[0], 0.35 * dims[1], 0.35 * dims[2] });
       for (int a = 0; a < 3; ++a)
       {
-        const double want = 2 * std::min(64.0, 0.35 * dims[a]), got = hi[a] - lo[a] + 1;
+        const double want = dot ? least : 2 * std::min(64.0, 0.35 * dims[a]), got = hi[a] - lo[a] + 1;
         check(std::fabs(got - want) <= 1.5 && std::fabs((lo[a] + hi[a]) - (dims[a] - 1)) <= 1,
           std::string(argv[i]) + ": the starter shape spans " + std::to_string(int(got)) + " voxels on axis " +
             "xyz"[a] + ", centred; want about " + std::to_string(want));

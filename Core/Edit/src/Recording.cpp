@@ -132,10 +132,12 @@ const std::map<std::string, BrushKind> Kinds{ { "single", BrushKind::Single }, {
 
 void writeRecording(std::ostream& out, const Recording& r)
 {
-  // version 3 only where a fill record needs it: the others stay readable by older builds
+  // version 3 only where a fill record needs it, 4 where the canvas is not a cube (its
+  // starter shape in the editors is the rounded box): the others stay readable by older builds
   const bool fills = std::any_of(
     r.records.begin(), r.records.end(), [](const EditRecord& e) { return e.type == EditRecord::Type::Fill; });
-  out << "LVDIF-RECORDING " << (fills ? 3 : 2) << "\n";
+  const bool cubic = r.canvas[0] == r.canvas[1] && r.canvas[1] == r.canvas[2];
+  out << "LVDIF-RECORDING " << (!cubic ? 4 : fills ? 3 : 2) << "\n";
   if (r.canvas[0] > 0)
     out << "canvas " << r.canvas[0] << " " << r.canvas[1] << " " << r.canvas[2] << "\n";
   for (const EditRecord& e : r.records)
@@ -439,6 +441,7 @@ Recording readRecording(std::istream& in, const std::string& name)
     ++at.Line; // where the end record was due
     at.bad(1, "the recording is cut short: no 'end records=N' line (a version 2 recording ends with one)");
   }
+  r.version = static_cast<int>(version);
   if (version < 2)
     r.warning = name + ": a version 1 recording has no end record, so a cut file cannot be told from a whole one; its " +
       std::to_string(r.records.size()) + " records are played as they are";

@@ -175,11 +175,39 @@ TEST(Recording, AnotherCanvasIsRefusedBeforePlaying)
     "recording:3:1: the canvas line must come once, right after the version line");
 }
 
+// A recording of a non-cubic canvas is version 4: the editors' starter shape on such a canvas
+// became a rounded box in session 24 (a sphere before), and a version 2 file cannot say which
+// one it was recorded on (the editor played old ones on the box). The version read is kept.
+TEST(Recording, NonCubicCanvasIsVersion4AndTheVersionReadIsKept)
+{
+  auto written = [](Index3 canvas, bool fill) {
+    Recording r;
+    r.canvas = canvas;
+    if (fill)
+    {
+      r.records.emplace_back();
+      r.records.back().type = EditRecord::Type::Fill;
+    }
+    std::stringstream text;
+    writeRecording(text, r);
+    const std::string head = text.str().substr(0, text.str().find('\n'));
+    EXPECT_EQ(readRecording(text).version, head.back() - '0') << head;
+    return head;
+  };
+  EXPECT_EQ(written({ 48, 48, 48 }, false), "LVDIF-RECORDING 2");
+  EXPECT_EQ(written({ 48, 48, 48 }, true), "LVDIF-RECORDING 3");
+  EXPECT_EQ(written({ 0, 0, 0 }, false), "LVDIF-RECORDING 2");
+  EXPECT_EQ(written({ 64, 16, 24 }, false), "LVDIF-RECORDING 4");
+  EXPECT_EQ(written({ 48, 48, 16 }, true), "LVDIF-RECORDING 4");
+  std::istringstream v1("LVDIF-RECORDING 1\ncanvas 64 16 24\n");
+  EXPECT_EQ(readRecording(v1).version, 1);
+}
+
 TEST(Recording, ParseErrorsNameTheLine)
 {
   const auto errorOf = recordingErrorOf;
   EXPECT_EQ(errorOf("hello\n"), "recording:1:1: expected the version line 'LVDIF-RECORDING 2'");
-  EXPECT_EQ(errorOf("LVDIF-RECORDING 4\n"), "recording:1:17: unsupported recording version '4'");
+  EXPECT_EQ(errorOf("LVDIF-RECORDING 5\n"), "recording:1:17: unsupported recording version '5'");
   const std::string head = "LVDIF-RECORDING 1\n";
   const std::string edit =
     "edit time=0 op=add shape=sphere kind=basic spacing=1.6 blend=0 coloroffset=1.5 color=1,2,3,255 dabs=2\n";

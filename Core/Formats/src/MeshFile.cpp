@@ -296,11 +296,11 @@ TriangleMesh readObj(const std::vector<char>& data)
         {
           const std::string nor = f.substr(b + 1);
           if (nor.empty() || nor.find('/') != std::string::npos)
-            fail(ErrorCode::ParseError, s.where(), "bad face corner " + quoted(f) + " (expected v, v/vt, v//vn or v/vt/vn)" + binaryHint(f));
+            fail(ErrorCode::ParseError, s.where(), "bad face corner " + quotedText(f) + " (expected v, v/vt, v//vn or v/vt/vn)" + binaryHint(f));
           resolve(nor, normals, "normal", "normals");
         }
         else if (tex.empty())
-          fail(ErrorCode::ParseError, s.where(), "bad face corner " + quoted(f) + " (expected v, v/vt, v//vn or v/vt/vn)" + binaryHint(f));
+          fail(ErrorCode::ParseError, s.where(), "bad face corner " + quotedText(f) + " (expected v, v/vt, v//vn or v/vt/vn)" + binaryHint(f));
       }
       addPolygon(mesh, ids, n, s.where(), ErrorCode::ParseError);
     }
@@ -604,7 +604,7 @@ TriangleMesh readStl(const std::vector<char>& data)
         fail(ErrorCode::ParseError, s.where(), "'" + word + "' inside " + facetText() + " (" + missing() + ")");
     }
     else
-      fail(ErrorCode::ParseError, s.where(), "unexpected " + quoted(t[0]) + binaryHint(t[0]));
+      fail(ErrorCode::ParseError, s.where(), "unexpected " + quotedText(t[0]) + binaryHint(t[0]));
   }
   if (in != In::Solid)
     fail(ErrorCode::ParseError, s.where(), "the file ends inside " + facetText() + " (" + missing() + ": is it cut off?)");

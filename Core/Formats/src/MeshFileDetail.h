@@ -5,6 +5,7 @@
 #include "lvdif/Error.h"
 #include "lvdif/CNumbers.h"
 #include "lvdif/MeshFile.h"
+#include "lvdif/QuotedText.h"
 #include "lvdif/TriangleMesh.h"
 
 #include <algorithm>
@@ -156,31 +157,6 @@ inline bool nextToken(const char*& b, const char* end, const char*& t)
   return true;
 }
 
-/// Text from a file as a message quotes it: in single quotes, at most 40
-/// bytes (then "..."), every byte that is not printable ASCII as \xHH. The
-/// bytes went in raw: a binary body under an ASCII PLY header ended the
-/// message at its first NUL ("PLY vertex 0: '"), and an OBJ face corner of
-/// 100,000 characters was quoted whole.
-inline std::string quoted(const std::string& t)
-{
-  std::string q = "'";
-  const std::size_t n = std::min<std::size_t>(t.size(), 40);
-  for (std::size_t i = 0; i < n; ++i)
-  {
-    const unsigned char c = static_cast<unsigned char>(t[i]);
-    if (c >= 0x20 && c < 0x7f)
-    {
-      q += static_cast<char>(c);
-      continue;
-    }
-    static const char hex[] = "0123456789abcdef";
-    q += "\\x";
-    q += hex[c >> 4];
-    q += hex[c & 15];
-  }
-  return q + (t.size() > n ? "...'" : "'");
-}
-
 /// What bytes that no text holds (a NUL, other control bytes but tab and
 /// CR) in a quoted token suggest, for the end of its message; "" for text.
 inline std::string binaryHint(const std::string& t)
@@ -196,9 +172,9 @@ inline double parseReal(const std::string& t, const std::string& where)
   char* end = nullptr;
   const double v = strtodC(t.c_str(), &end);
   if (t.empty() || end != t.c_str() + t.size())
-    fail(ErrorCode::ParseError, where, quoted(t) + " is not a number" + binaryHint(t));
+    fail(ErrorCode::ParseError, where, quotedText(t) + " is not a number" + binaryHint(t));
   if (!std::isfinite(v))
-    fail(ErrorCode::ParseError, where, "coordinate " + quoted(t) + " is NaN or infinite" + binaryHint(t));
+    fail(ErrorCode::ParseError, where, "coordinate " + quotedText(t) + " is NaN or infinite" + binaryHint(t));
   return v;
 }
 
@@ -208,7 +184,7 @@ inline std::int64_t parseInt(const std::string& t, const std::string& where)
   errno = 0;
   const long long v = std::strtoll(t.c_str(), &end, 10);
   if (t.empty() || end != t.c_str() + t.size() || errno == ERANGE)
-    fail(ErrorCode::ParseError, where, quoted(t) + " is not an integer" + binaryHint(t));
+    fail(ErrorCode::ParseError, where, quotedText(t) + " is not an integer" + binaryHint(t));
   return v;
 }
 

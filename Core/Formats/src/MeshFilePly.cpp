@@ -129,6 +129,39 @@ struct BinaryReader
     return static_cast<double>(static_cast<std::int64_t>(u << shift) >> shift);
   }
 };
+/// Whether the binary record at `r`'s position reads as a valid face of `e`
+/// (every list's count in range and its bytes there, the vertex list's corners
+/// 3.. MaxPolygonCorners, each an index in [0, vertexCount)). Reads a copy, so
+/// it changes nothing; used only to explain an error.
+bool readsAsFace(BinaryReader r, const Element& e, int ilist, std::int64_t vertexCount)
+{
+  try
+  {
+    for (std::size_t i = 0; i < e.properties.size(); ++i)
+    {
+      const Property& p = e.properties[i];
+      if (!p.list)
+      {
+        r.value(p.type, p.kind);
+        continue;
+      }
+      const double count = r.value(p.countType, p.countKind);
+      if (count < 0 || count * p.type > double(r.end - r.p) || (int(i) == ilist && (count < 3 || count > double(MaxPolygonCorners))))
+        return false;
+      for (std::int64_t k = 0; k < static_cast<std::int64_t>(count); ++k)
+      {
+        const double v = r.value(p.type, p.kind);
+        if (int(i) == ilist && !(v >= 0 && v < double(vertexCount) && v == std::floor(v)))
+          return false;
+      }
+    }
+  }
+  catch (const Error&)
+  {
+    return false;
+  }
+  return true;
+}
 } // namespace
 
 /// An ASCII element on OpenMP threads: vertices whose records are all
@@ -239,7 +272,7 @@ TriangleMesh readPly(const std::vector<char>& data)
       if (t[1] == "ascii") enc = Encoding::Ascii;
       else if (t[1] == "binary_little_endian") enc = Encoding::LittleEndian;
       else if (t[1] == "binary_big_endian") enc = Encoding::BigEndian;
-      else fail(ErrorCode::ParseError, s.where(), "unknown encoding " + quoted(t[1]));
+      else fail(ErrorCode::ParseError, s.where(), "unknown encoding " + quotedText(t[1]));
       haveFormat = true;
     }
     else if (t[0] == "element")
@@ -255,7 +288,7 @@ TriangleMesh readPly(const std::vector<char>& data)
       // (a second 'x' replaced the first; two vertex elements mixed their counts)
       for (const Element& o : elements)
         if (o.name == e.name)
-          fail(ErrorCode::ParseError, s.where(), "element " + quoted(e.name) + " given twice");
+          fail(ErrorCode::ParseError, s.where(), "element " + quotedText(e.name) + " given twice");
       elements.push_back(e);
     }
     else if (t[0] == "property")
@@ -268,23 +301,23 @@ TriangleMesh readPly(const std::vector<char>& data)
         p.list = true;
         // which type is wrong, and why (it was "bad list property types")
         if (!scalarType(t[2], p.countType, p.countKind))
-          fail(ErrorCode::ParseError, s.where(), "unknown list count type " + quoted(t[2]) + TypeNames);
+          fail(ErrorCode::ParseError, s.where(), "unknown list count type " + quotedText(t[2]) + TypeNames);
         if (p.countKind == 'f')
-          fail(ErrorCode::ParseError, s.where(), "list count type " + quoted(t[2]) + " is not an integer type");
+          fail(ErrorCode::ParseError, s.where(), "list count type " + quotedText(t[2]) + " is not an integer type");
         if (!scalarType(t[3], p.type, p.kind))
-          fail(ErrorCode::ParseError, s.where(), "unknown list item type " + quoted(t[3]) + TypeNames);
+          fail(ErrorCode::ParseError, s.where(), "unknown list item type " + quotedText(t[3]) + TypeNames);
         p.name = t[4];
       }
       else if (t.size() == 3 && scalarType(t[1], p.type, p.kind))
         p.name = t[2];
       else if (t.size() == 3 && t[1] != "list")
-        fail(ErrorCode::ParseError, s.where(), "unknown property type " + quoted(t[1]) + TypeNames);
+        fail(ErrorCode::ParseError, s.where(), "unknown property type " + quotedText(t[1]) + TypeNames);
       else
         fail(ErrorCode::ParseError, s.where(), "expected 'property <type> <name>' or 'property list <type> <type> <name>'");
       for (const Property& o : elements.back().properties)
         if (o.name == p.name)
           fail(ErrorCode::ParseError, s.where(),
-            "property " + quoted(p.name) + " of element " + quoted(elements.back().name) + " given twice");
+            "property " + quotedText(p.name) + " of element " + quotedText(elements.back().name) + " given twice");
       elements.back().properties.push_back(p);
     }
     else if (t[0] == "end_header")
@@ -293,7 +326,7 @@ TriangleMesh readPly(const std::vector<char>& data)
       break;
     }
     else
-      fail(ErrorCode::ParseError, s.where(), "unknown header line " + quoted(t[0]) + binaryHint(t[0]));
+      fail(ErrorCode::ParseError, s.where(), "unknown header line " + quotedText(t[0]) + binaryHint(t[0]));
   }
   if (!haveFormat || !ended)
     fail(ErrorCode::ParseError, "PLY header", !haveFormat ? "no format line" : "no end_header");
@@ -305,7 +338,7 @@ TriangleMesh readPly(const std::vector<char>& data)
   {
     const std::int64_t minBytes = std::max<std::int64_t>(1, static_cast<std::int64_t>(e.properties.size()));
     if (e.count > std::int64_t(left) / minBytes)
-      fail(ErrorCode::CorruptData, "PLY element " + quoted(e.name),
+      fail(ErrorCode::CorruptData, "PLY element " + quotedText(e.name),
         std::to_string(e.count) + " records cannot fit in the " + std::to_string(left) + " bytes after the header");
     if (e.name == "vertex")
       vertexCount = e.count;
@@ -397,6 +430,11 @@ TriangleMesh readPly(const std::vector<char>& data)
     }
     if (enc == Encoding::Ascii && (isVertex || isFace) && parallelAscii(e, isVertex, ix, iy, iz, vertexCount, body, mesh))
       r0 = e.count;
+    // binary faces: the corner count of the record before, so that a face
+    // that fails because the count before it was one too high (its last corner read from
+    // this record's bytes, this record read from the wrong place) is reported at that
+    // face, not at this one
+    double previousCorners = -1;
     for (std::int64_t r = r0; r < e.count; ++r)
     {
       // the record's name, made only for a message (not per record: binary
@@ -406,70 +444,100 @@ TriangleMesh readPly(const std::vector<char>& data)
         if (whereText.empty()) whereText = prefix + std::to_string(r);
         return whereText;
       };
-      ids.clear();
-      std::size_t at = 0; // token position in ASCII
-      if (enc == Encoding::Ascii && !body.nextNonEmpty(tok))
-        fail(ErrorCode::ParseError, where(), "file ends before this record");
-      auto next = [&](int size, char kind) -> double {
-        if (enc != Encoding::Ascii)
-          return bin.value(size, kind);
-        if (at >= tok.size())
-          fail(ErrorCode::ParseError, where(), "record has too few values");
-        const std::string& v = tok[at++];
-        return kind == 'f' ? parseReal(v, where()) : static_cast<double>(parseInt(v, where()));
-      };
-      for (std::size_t i = 0; i < e.properties.size(); ++i)
+      const unsigned char* start = bin.p;
+      double corners = -1;
+      try
       {
-        const Property& p = e.properties[i];
-        if (!p.list)
+        ids.clear();
+        std::size_t at = 0; // token position in ASCII
+        if (enc == Encoding::Ascii && !body.nextNonEmpty(tok))
+          fail(ErrorCode::ParseError, where(), "file ends before this record");
+        auto next = [&](int size, char kind) -> double {
+          if (enc != Encoding::Ascii)
+            return bin.value(size, kind);
+          if (at >= tok.size())
+            fail(ErrorCode::ParseError, where(), "record has too few values");
+          const std::string& v = tok[at++];
+          return kind == 'f' ? parseReal(v, where()) : static_cast<double>(parseInt(v, where()));
+        };
+        for (std::size_t i = 0; i < e.properties.size(); ++i)
         {
-          scalars[i] = next(p.type, p.kind);
-          continue;
-        }
-        const double count = next(p.countType, p.countKind);
-        // the count and what the record or the file has room for ("PLY face 1: list of 300 items" said neither)
-        const std::string announces = "list '" + p.name + "' announces " + std::to_string(static_cast<long long>(count)) + " items";
-        if (count < 0)
-          fail(ErrorCode::CorruptData, where(), announces + ", a negative count");
-        if (enc == Encoding::Ascii && count > double(tok.size() - at))
-          fail(ErrorCode::CorruptData, where(), announces + " but the record holds " + std::to_string(tok.size() - at) +
-              " more values (a wrong count, or a damaged file)");
-        if (count > double(left))
-          fail(ErrorCode::CorruptData, where(), announces + ", more than the " + std::to_string(left) + " bytes after the header");
-        if (isFace && int(i) == ilist && count > double(MaxPolygonCorners))
-          checkFaceCorners(static_cast<std::int64_t>(count), where(), faceCode); // before reading its corners
-        for (std::int64_t k = 0; k < static_cast<std::int64_t>(count); ++k)
-        {
-          const double v = next(p.type, p.kind);
-          if (int(i) == ilist)
+          const Property& p = e.properties[i];
+          if (!p.list)
           {
-            if (v != std::floor(v))
-              fail(ErrorCode::CorruptData, where(), "vertex index is not an integer");
-            ids.push_back(static_cast<std::int64_t>(std::max(-1.0, std::min(v, 1e18))));
+            scalars[i] = next(p.type, p.kind);
+            continue;
+          }
+          const double count = next(p.countType, p.countKind);
+          // the count and what the record or the file has room for ("PLY face 1: list of 300 items" said neither)
+          const std::string announces = "list '" + p.name + "' announces " + std::to_string(static_cast<long long>(count)) + " items";
+          if (count < 0)
+            fail(ErrorCode::CorruptData, where(), announces + ", a negative count");
+          if (enc == Encoding::Ascii && count > double(tok.size() - at))
+            fail(ErrorCode::CorruptData, where(), announces + " but the record holds " + std::to_string(tok.size() - at) +
+                " more values (a wrong count, or a damaged file)");
+          if (count > double(left))
+            fail(ErrorCode::CorruptData, where(), announces + ", more than the " + std::to_string(left) + " bytes after the header");
+          // the record's own place (a count one too high in the last face was "PLY face: file ends inside the element data")
+          if (enc != Encoding::Ascii && count * p.type > double(bin.end - bin.p))
+            fail(ErrorCode::CorruptData, where(), announces + " of " + std::to_string(p.type) + " bytes, but the file ends inside them, " +
+                std::to_string(bin.end - bin.p) + " bytes after the count (a wrong count, or a cut file)");
+          if (int(i) == ilist)
+            corners = count;
+          if (isFace && int(i) == ilist && count > double(MaxPolygonCorners))
+            checkFaceCorners(static_cast<std::int64_t>(count), where(), faceCode); // before reading its corners
+          for (std::int64_t k = 0; k < static_cast<std::int64_t>(count); ++k)
+          {
+            const double v = next(p.type, p.kind);
+            if (int(i) == ilist)
+            {
+              if (v != std::floor(v))
+                fail(ErrorCode::CorruptData, where(), "vertex index is not an integer");
+              ids.push_back(static_cast<std::int64_t>(std::max(-1.0, std::min(v, 1e18))));
+            }
           }
         }
+        if (enc == Encoding::Ascii && at != tok.size())
+          fail(ErrorCode::ParseError, where(), "record has " + std::to_string(tok.size() - at) + " values too many");
+        if (isVertex)
+        {
+          const double x = scalars[size_t(ix)], y = scalars[size_t(iy)], z = scalars[size_t(iz)];
+          const double m = 3.4e38; // point()'s range: it names the record when it fails
+          if (std::fabs(x) < m && std::fabs(y) < m && std::fabs(z) < m)
+            mesh.points.push_back({ static_cast<float>(x), static_cast<float>(y), static_cast<float>(z) });
+          else
+            mesh.points.push_back(point(x, y, z, where()));
+        }
+        else if (isFace)
+        {
+          // a valid triangle straight in; anything else through addPolygon (fans, messages)
+          if (ids.size() == 3 && ids[0] >= 0 && ids[0] < vertexCount && ids[1] >= 0 && ids[1] < vertexCount &&
+            ids[2] >= 0 && ids[2] < vertexCount)
+            mesh.triangles.push_back({ static_cast<std::uint32_t>(ids[0]), static_cast<std::uint32_t>(ids[1]),
+              static_cast<std::uint32_t>(ids[2]) });
+          else
+            addPolygon(mesh, ids, vertexCount, where(), faceCode);
+        }
       }
-      if (enc == Encoding::Ascii && at != tok.size())
-        fail(ErrorCode::ParseError, where(), "record has " + std::to_string(tok.size() - at) + " values too many");
-      if (isVertex)
+      catch (const Error& failed)
       {
-        const double x = scalars[size_t(ix)], y = scalars[size_t(iy)], z = scalars[size_t(iz)];
-        const double m = 3.4e38; // point()'s range: it names the record when it fails
-        if (std::fabs(x) < m && std::fabs(y) < m && std::fabs(z) < m)
-          mesh.points.push_back({ static_cast<float>(x), static_cast<float>(y), static_cast<float>(z) });
-        else
-          mesh.points.push_back(point(x, y, z, where()));
+        // the face before announced c >= 4 corners, and with c - 1 of them this record reads
+        // as a valid face: its count is most likely one too high; said at that face
+        const int itemBytes = ilist >= 0 ? e.properties[size_t(ilist)].type : 0;
+        BinaryReader shifted = bin;
+        shifted.p = start - itemBytes;
+        if (enc == Encoding::Ascii || !isFace || previousCorners < 4 || !readsAsFace(shifted, e, ilist, vertexCount))
+          throw;
+        const std::string what = failed.what(), at = where() + ": ";
+        const std::string name = e.properties[size_t(ilist)].name;
+        const long long c = static_cast<long long>(previousCorners);
+        fail(failed.code(), prefix + std::to_string(r - 1),
+          "list '" + name + "' announces " + std::to_string(c) + " items, most likely one too many: its last item was read "
+            "from the bytes of face " + std::to_string(r) + ", which then failed (" +
+            (what.compare(0, at.size(), at) == 0 ? what.substr(at.size()) : what) + "); with " + std::to_string(c - 1) +
+            " items, face " + std::to_string(r) + " reads as a valid face");
       }
-      else if (isFace)
-      {
-        // a valid triangle straight in; anything else through addPolygon (fans, messages)
-        if (ids.size() == 3 && ids[0] >= 0 && ids[0] < vertexCount && ids[1] >= 0 && ids[1] < vertexCount &&
-          ids[2] >= 0 && ids[2] < vertexCount)
-          mesh.triangles.push_back({ static_cast<std::uint32_t>(ids[0]), static_cast<std::uint32_t>(ids[1]),
-            static_cast<std::uint32_t>(ids[2]) });
-        else
-          addPolygon(mesh, ids, vertexCount, where(), faceCode);
-      }
+      previousCorners = corners;
     }
   }
   // text past the last element's records: wrong counts or a damaged file (dropped without a word)

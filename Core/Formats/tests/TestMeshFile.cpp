@@ -5,6 +5,7 @@
 #include "lvdif/MeshFile.h"
 
 #include "CommaLocale.h"
+#include "ErrorTestUtil.h"
 
 #include <gtest/gtest.h>
 
@@ -78,6 +79,29 @@ std::string binaryPly(bool big)
   for (int i : { 0, 1, 2, 3 })
     put<std::int32_t>(s, i, big);
   return s;
+}
+/// Vertex (i, j) of the large readers' tests' grid, as an OFF or ASCII PLY line ("x y z 255").
+std::string gridVertex(int i, int j)
+{
+  char buf[96];
+  return std::string(buf, static_cast<std::size_t>(std::snprintf(buf, sizeof buf, "%.9g %.9g %.9g 255\n",
+    0.1 * i + 1e-7 * j, 0.37 * j, std::sin(0.3 * i) * 1e-3)));
+}
+
+/// The k x k grid's two triangles a cell as "3 a b c" lines; the second one's
+/// ids after `a` are joined by `gap` and it ends with `tail` (white space and
+/// extra values the readers must take).
+std::vector<std::string> gridFaces(int k, const std::string& gap, const std::string& tail)
+{
+  std::vector<std::string> faces;
+  for (int j = 0; j + 1 < k; ++j)
+    for (int i = 0; i + 1 < k; ++i)
+    {
+      const int a = j * k + i, b = a + 1, c = a + k + 1, d = a + k;
+      faces.push_back("3 " + std::to_string(a) + " " + std::to_string(b) + " " + std::to_string(c) + "\n");
+      faces.push_back("3 " + std::to_string(a) + gap + std::to_string(c) + " " + std::to_string(d) + tail);
+    }
+  return faces;
 }
 } // namespace
 
@@ -485,6 +509,43 @@ TEST(MeshFile, BinaryPlyFastPathMatchesTheGeneralReader)
   expectError(whole.substr(0, vertexBytes + 16 * 3 + 5), MeshFormat::Ply, "ends inside");
 }
 
+// A binary PLY face whose corner count is one too high takes its last corner from the
+// next face's bytes, and the next face is read from the wrong place: it was reported
+// ("PLY face 2: a face needs at least 3 vertices, this one has 0"), the wrong face; now
+// the face whose count is wrong, with what was found. A count one too high in the last
+// face was "PLY face: file ends inside the element data", naming no face.
+TEST(MeshFile, BinaryPlyCountOneTooHighIsReportedAtItsFace)
+{
+  auto ply = [](std::vector<std::vector<int>> faces, int wrong) {
+    std::string s = "ply\nformat binary_little_endian 1.0\nelement vertex 4\nproperty float x\nproperty float y\n"
+                    "property float z\nelement face " + std::to_string(faces.size()) +
+      "\nproperty list uchar int vertex_indices\nend_header\n";
+    for (int i = 0; i < 4; ++i)
+      for (float c : { float(i & 1), float(i >> 1), 0.f }) put<float>(s, c);
+    for (std::size_t f = 0; f < faces.size(); ++f)
+    {
+      put<std::uint8_t>(s, static_cast<std::uint8_t>(faces[f].size() + (int(f) == wrong)));
+      for (int id : faces[f]) put<std::int32_t>(s, id);
+    }
+    return s;
+  };
+  const std::vector<std::vector<int>> faces = { { 0, 1, 2 }, { 1, 3, 2 }, { 0, 1, 3 } };
+  EXPECT_EQ(readText(ply(faces, -1), MeshFormat::Ply).triangles.size(), 3u); // the oracle: the file is right with its counts
+  auto message = [](const std::string& text) {
+    return errortest::errorMessageOf([&] { readText(text, MeshFormat::Ply); }, ErrorCode::CorruptData);
+  };
+  // face 1 announces 4: its fourth corner is face 2's count byte (3) and the first bytes of its 0, a valid
+  // index 3, and face 2's count is the last byte of that 0
+  EXPECT_EQ(message(ply(faces, 1)),
+    "PLY face 1: list 'vertex_indices' announces 4 items, most likely one too many: its last item was read from the "
+    "bytes of face 2, which then failed (a face needs at least 3 vertices, this one has 0); with 3 items, face 2 reads "
+    "as a valid face");
+  EXPECT_EQ(message(ply(faces, 2)), "PLY face 2: list 'vertex_indices' announces 4 items of 4 bytes, but the file ends "
+                                    "inside them, 12 bytes after the count (a wrong count, or a cut file)");
+  // a face that is wrong itself stays reported where it is
+  EXPECT_EQ(message(ply({ { 0, 1, 2 }, { 1, 3, 2, 2 }, { 0, 1, 9 } }, -1)), "PLY face 2: vertex index 9 out of range [0, 4)");
+}
+
 TEST(MeshFile, BinaryStlSharesCornersOfLargeMeshes)
 {
   // a 40 x 40 grid as 3,200 separate STL triangles: the 1,681 distinct
@@ -534,20 +595,10 @@ TEST(MeshFile, LargeOffOnThreadsMatchesTheSerialReader)
   // a quad and a '+' sign give the serial reader's result or message.
   const int k = 250;
   std::string body;
-  char buf[96];
   for (int j = 0; j < k; ++j)
-    for (int i = 0; i < k; ++i)
-      body += std::string(buf, static_cast<std::size_t>(std::snprintf(buf, sizeof buf, "%.9g %.9g %.9g 255\n",
-        0.1 * i + 1e-7 * j, 0.37 * j, std::sin(0.3 * i) * 1e-3)));
+    for (int i = 0; i < k; ++i) body += gridVertex(i, j);
   const std::size_t verticesEnd = body.size();
-  std::vector<std::string> faces;
-  for (int j = 0; j + 1 < k; ++j)
-    for (int i = 0; i + 1 < k; ++i)
-    {
-      const int a = j * k + i, b = a + 1, c = a + k + 1, d = a + k;
-      faces.push_back("3 " + std::to_string(a) + " " + std::to_string(b) + " " + std::to_string(c) + "\n");
-      faces.push_back("3 " + std::to_string(a) + " " + std::to_string(c) + " " + std::to_string(d) + " 1 2 3\n");
-    }
+  std::vector<std::string> faces = gridFaces(k, " ", " 1 2 3\n");
   faces.push_back("3 0 1 2\n");
   faces.push_back("3 2 1 0\n");
   faces.push_back("3 0 1 251\n");
@@ -587,19 +638,9 @@ TEST(MeshFile, LargeAsciiPlyOnThreadsMatchesTheSerialReader)
   // mesh; a '+' sign, a quad, an index out of range and a value too many
   // give the serial loop's result or message.
   const int k = 250;
-  std::vector<std::string> verts, faces;
-  char buf[96];
+  std::vector<std::string> verts, faces = gridFaces(k, "\t", " \r\n");
   for (int j = 0; j < k; ++j)
-    for (int i = 0; i < k; ++i)
-      verts.emplace_back(buf, static_cast<std::size_t>(std::snprintf(buf, sizeof buf, "%.9g %.9g %.9g 255\n",
-        0.1 * i + 1e-7 * j, 0.37 * j, std::sin(0.3 * i) * 1e-3)));
-  for (int j = 0; j + 1 < k; ++j)
-    for (int i = 0; i + 1 < k; ++i)
-    {
-      const int a = j * k + i, b = a + 1, c = a + k + 1, d = a + k;
-      faces.push_back("3 " + std::to_string(a) + " " + std::to_string(b) + " " + std::to_string(c) + "\n");
-      faces.push_back("3 " + std::to_string(a) + "\t" + std::to_string(c) + " " + std::to_string(d) + " \r\n");
-    }
+    for (int i = 0; i < k; ++i) verts.push_back(gridVertex(i, j));
   faces.push_back("3 0 1 2\n");
   faces.push_back("\n3 2 1 0\n");
   auto file = [&](const std::vector<std::string>& vs, const std::vector<std::string>& fs, const std::string& extra) {

@@ -458,8 +458,11 @@ void prepareMesh(const TriangleMesh& mesh, PreparedMesh& out, bool pseudoNormals
   inclusiveSum(slot.data() + 1, nt);
   const std::size_t n = slot[nt];
   out.degenerate = nt - n;
-  require(n > 0, "mesh has no triangle of non-zero area (" + std::to_string(out.degenerate) +
-      " degenerate triangles)");
+  // one sentence, its count in the right number ("no triangle of non-zero area (1 degenerate triangles)")
+  require(n > 0, (nt == 1 ? std::string("the mesh's only triangle has zero area (its corners coincide or lie on one line)")
+                          : "all " + std::to_string(nt) + " triangles of the mesh have zero area (the corners of each "
+                            "coincide or lie on one line)") +
+      ", so there is no surface to convert: check the file's points and faces");
   // the records and welded ids are written whole below, on the threads,
   // which fault their pages in; the edge normals are sums (zero first)
   resizeLargeForOverwrite(out.tris, n);

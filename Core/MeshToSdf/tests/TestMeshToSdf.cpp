@@ -326,7 +326,12 @@ TEST(MeshToSdf, BadInputIsRefused)
   TriangleMesh allDegenerate;
   allDegenerate.points = { { 0, 0, 0 }, { 1, 1, 1 }, { 2, 2, 2 } };
   allDegenerate.triangles = { { 0, 1, 2 } };
-  refusal(allDegenerate, g);
+  // one sentence, the count in the right number ("no triangle of non-zero area (1 degenerate triangles)")
+  EXPECT_EQ(refusal(allDegenerate, g), "the mesh's only triangle has zero area (its corners coincide or lie on one line), "
+                                       "so there is no surface to convert: check the file's points and faces");
+  allDegenerate.triangles = { { 0, 1, 2 }, { 2, 1, 0 }, { 0, 0, 1 } };
+  EXPECT_EQ(refusal(allDegenerate, g), "all 3 triangles of the mesh have zero area (the corners of each coincide or lie "
+                                       "on one line), so there is no surface to convert: check the file's points and faces");
   GridGeometry huge = g;
   huge.dims = { 1 << 22, 4, 4 };
   refusal(sphere, huge);

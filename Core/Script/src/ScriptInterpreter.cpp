@@ -7,6 +7,7 @@
 
 #include "lvdif/ByteStream.h"
 #include "lvdif/Memory.h"
+#include "lvdif/QuotedText.h"
 
 #include <algorithm>
 #include <cmath>
@@ -122,7 +123,7 @@ struct ScriptRunner::Impl
       {
         auto it = this->Vars.find(e.name);
         if (it == this->Vars.end())
-          fail(e.line, e.column, "undefined variable '" + e.name + "'");
+          fail(e.line, e.column, "undefined variable " + quotedText(e.name));
         return it->second;
       }
       case Expr::Kind::Unary:
@@ -202,11 +203,11 @@ struct ScriptRunner::Impl
       { "round", 1 }, { "exp", 1 }, { "log", 1 }, { "pow", 2 }, { "min", -2 }, { "max", -2 }, { "clamp", 3 } };
     auto it = arity.find(e.name);
     if (it == arity.end())
-      fail(e.line, e.column, "unknown function '" + e.name + "'");
+      fail(e.line, e.column, "unknown function " + quotedText(e.name));
     const int n = static_cast<int>(e.args.size());
     if ((it->second > 0 && n != it->second) || (it->second < 0 && n < -it->second))
       fail(e.line, e.column,
-        "'" + e.name + "' takes " + (it->second > 0 ? std::to_string(it->second) : "at least 2") + " argument" +
+        quotedText(e.name) + " takes " + (it->second > 0 ? std::to_string(it->second) : "at least 2") + " argument" +
           (it->second == 1 ? "" : "s") + ", got " + std::to_string(n));
     std::vector<double> a;
     for (const auto& x : e.args)

@@ -5,6 +5,7 @@
 
 #include "lvdif/Memory.h"
 #include "lvdif/Script.h"
+#include "lvdif/QuotedText.h"
 
 #include <cctype>
 #include <cmath>
@@ -97,7 +98,7 @@ std::vector<Token> lex(const std::string& src)
       t.line = l;
       t.column = c;
       if (!std::isfinite(t.number))
-        throw ScriptError(ErrorCode::ParseError, l, c, "number '" + text + "' is out of range");
+        throw ScriptError(ErrorCode::ParseError, l, c, "number " + quotedText(text) + " is out of range");
       if (j < src.size() && (std::isalpha(static_cast<unsigned char>(src[j])) || src[j] == '_'))
         throw ScriptError(ErrorCode::ParseError, l, c + static_cast<int>(j - i),
           std::string("unexpected '") + src[j] + "' after a number");

@@ -4,6 +4,7 @@
 #include "ScriptAst.h"
 
 #include "lvdif/Script.h"
+#include "lvdif/QuotedText.h"
 
 #include <map>
 #include <set>
@@ -90,7 +91,7 @@ private:
       return "the end of the script";
     if (t.kind == Tok::Newline)
       return "the end of the line";
-    return "'" + t.text + "'";
+    return quotedText(t.text);
   }
   const Token& expect(Tok k, const char* what)
   {
@@ -239,7 +240,7 @@ private:
       this->fail(t, "'else' without 'if'");
     auto it = commands().find(t.text);
     if (it == commands().end())
-      this->fail(t, "unknown command '" + t.text + "'");
+      this->fail(t, "unknown command " + quotedText(t.text));
     this->next();
     s->kind = Stmt::Kind::Command;
     s->name = t.text;
@@ -256,6 +257,7 @@ private:
       s->word = this->next().text;
       return s;
     }
+    const std::size_t firstArg = this->I;
     while (!(this->at(Tok::Newline) || this->at(Tok::Semicolon) || this->at(Tok::RBrace) || this->at(Tok::End)))
     {
       s->args.push_back(this->expression());
@@ -270,8 +272,21 @@ private:
           std::to_string(spec.maxArgs); // ("3 to 4 arguments" for color's 3 or 4)
       if (s->name == "canvas")
         want = "1 or 3 (or the word fill or clear)";
+      // too few where a '-' with a space before it and none after follows a value ('sphere 1 1 1 -1'
+      // said only "takes 4 arguments, got 3"): that minus subtracts
+      std::string why;
+      for (std::size_t k = firstArg + 1; n < spec.minArgs && why.empty() && k + 1 < this->I; ++k)
+      {
+        const Token &before = this->T[k - 1], &minus = this->T[k], &after = this->T[k + 1];
+        if (minus.kind == Tok::Minus && before.line == minus.line && after.line == minus.line &&
+          (before.kind == Tok::Number || before.kind == Tok::Ident || before.kind == Tok::RParen) &&
+          before.column + static_cast<int>(before.text.size()) < minus.column && after.column == minus.column + 1)
+          why = " (the '-' at column " + std::to_string(minus.column) +
+            ", with a space before it and none after, subtracts: separate the arguments with commas when one starts "
+            "with a minus, as in 'dab 10, -2, 5')";
+      }
       this->fail(t, "'" + s->name + "' takes " + want + " argument" + (want == "1" ? "" : "s") + ", got " +
-          std::to_string(n));
+          std::to_string(n) + why);
     }
     return s;
   }
@@ -282,7 +297,7 @@ private:
     if (t.kind != Tok::Ident)
       this->fail(t, "expected a variable name, found " + describe(t));
     if (keywords().count(t.text) || commands().count(t.text))
-      this->fail(t, "'" + t.text + "' is a reserved word and cannot be a variable");
+      this->fail(t, quotedText(t.text) + " is a reserved word and cannot be a variable");
     return this->next().text;
   }
 
@@ -408,7 +423,7 @@ private:
     if (t.kind == Tok::Ident)
     {
       if (keywords().count(t.text))
-        this->fail(t, "expected a value, found the keyword '" + t.text + "'");
+        this->fail(t, "expected a value, found the keyword " + quotedText(t.text));
       this->next();
       if (this->at(Tok::LParen))
       {

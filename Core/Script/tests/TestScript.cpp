@@ -118,6 +118,12 @@ TEST(Script, SyntaxErrorsGiveLineAndColumn)
     { "for in 0..3 { }", 0, 5, "'in' is a reserved word and cannot be a variable" },
     { "x = 12abc", 0, 7, "unexpected 'a' after a number" },
     { "}", 0, 0, "unexpected '}' without a matching '{'" },
+    // a minus that subtracts where an argument was meant is named (it said only "takes 4 arguments, got 3")
+    { "sphere 1 1 1 -1", 1, 1, "'sphere' takes 4 arguments, got 3 (the '-' at column 14, with a space before it and "
+                               "none after, subtracts: separate the arguments with commas when one starts with a minus, "
+                               "as in 'dab 10, -2, 5')" },
+    { "sphere 1 1 1 - 1", 1, 1, "'sphere' takes 4 arguments, got 3" },
+    { "sphere 1 1 1", 1, 1, "'sphere' takes 4 arguments, got 3" },
   };
   for (const Case& c : cases)
   {
@@ -129,6 +135,19 @@ TEST(Script, SyntaxErrorsGiveLineAndColumn)
       EXPECT_EQ(w.column, c.column) << c.script;
     EXPECT_EQ(w.detail, c.detail) << c.script;
   }
+}
+
+// A token of 100,000 characters (a number, a name) is quoted as the mesh readers quote file text:
+// 40 characters then "..." (lvdif/QuotedText.h); the whole token was in the message, a 100 kB line.
+TEST(Script, LongTokensAreQuotedShort)
+{
+  const std::string ones(100000, '1'), name(100000, 'a');
+  const std::string ones40 = "'" + ones.substr(0, 40) + "...'", name40 = "'" + name.substr(0, 40) + "...'";
+  EXPECT_EQ(errorOf("sphere 1 1 1 " + ones).detail, "number " + ones40 + " is out of range");
+  EXPECT_EQ(errorOf("x = 1\n" + name + " 1 2").detail, "unknown command " + name40);
+  EXPECT_EQ(errorOf("x = " + name).detail, "undefined variable " + name40);
+  EXPECT_EQ(errorOf("x = " + name + "(1)").detail, "unknown function " + name40);
+  EXPECT_EQ(errorOf("x = (1 " + name).detail, "expected ')', found " + name40);
 }
 
 TEST(Script, RunTimeErrorsGiveLineAndColumn)

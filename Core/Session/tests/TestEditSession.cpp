@@ -23,6 +23,21 @@ lvdif::EditSessionOptions cpuOptions()
   return o;
 }
 
+/// Two CPU sessions on copies of the 64^3 sphere (chunk edge 16): `tested`,
+/// meshed whole into `store`, and `control`, the same edits another way.
+struct SessionPair
+{
+  std::shared_ptr<lvdif::DictionaryVolume> start = sphereVolume(64, 16);
+  lvdif::EditSession tested{ start->clone(), cpuOptions() };
+  lvdif::EditSession control{ start->clone(), cpuOptions() };
+  MeshStore store;
+  SessionPair()
+  {
+    tested.requestAllMeshes();
+    tested.waitMeshingIdle();
+    store.take(tested.collectMeshes());
+  }
+};
 } // namespace
 
 TEST(EditSession, RandomStrokesUndoRedoEqualReplayAndMeshesEqualFullRemesh)
@@ -60,13 +75,9 @@ TEST(EditSession, HeldMeshingMeshesTheUnionOnceAndEqualsSampleBySample)
   // meshes equal a full re-mesh of the final volume.
   for (std::uint32_t seed : { 11u, 12u })
   {
-    auto start = sphereVolume(64, 16);
-    lvdif::EditSession held(start->clone(), cpuOptions());
-    lvdif::EditSession oneByOne(start->clone(), cpuOptions());
-    held.requestAllMeshes();
-    held.waitMeshingIdle();
-    MeshStore store;
-    store.take(held.collectMeshes());
+    SessionPair pair;
+    lvdif::EditSession &held = pair.tested, &oneByOne = pair.control;
+    MeshStore& store = pair.store;
     for (const Op& op : randomOps(seed, 12, 64))
     {
       if (op.kind != Op::Stroke)
@@ -126,13 +137,9 @@ TEST(EditSession, CoarseStrokeMeshesAreRefinedToTheFullMeshes)
   // chunk is the full-resolution one of the final volume.
   for (std::size_t minChunks : { std::size_t(1), std::size_t(4) })
   {
-    auto start = sphereVolume(64, 16);
-    lvdif::EditSession lod(start->clone(), cpuOptions());
-    lvdif::EditSession plain(start->clone(), cpuOptions());
-    lod.requestAllMeshes();
-    lod.waitMeshingIdle();
-    MeshStore store;
-    store.take(lod.collectMeshes());
+    SessionPair pair;
+    lvdif::EditSession &lod = pair.tested, &plain = pair.control;
+    MeshStore& store = pair.store;
     std::size_t coarse = 0, full = 0;
     for (const Op& op : randomOps(21, 12, 64))
     {

@@ -12,7 +12,8 @@
 //   end records=2
 //
 // A recording with a `fill time=T sdf=D color=r,g,b,a` record (every voxel set:
-// a script's `canvas fill|clear`) is written as version 3.
+// a script's `canvas fill|clear`) is written as version 3, one of a non-cubic
+// canvas as version 4.
 //
 // Numbers are written with 17 significant digits, so reading a recording gives
 // the same doubles and playing it back (Editor::play) on the same start volume
@@ -59,9 +60,16 @@ struct Recording
   /// The newest version. Version 2 ends with `end records=N`, so that a file
   /// cut short (at a line or inside a number) is refused; version 3 adds the
   /// `fill` record and is written only for a recording that has one (others are
-  /// written as version 2, which older builds read). Version 1 files (no end
-  /// record) are still read, with `warning` set.
-  static constexpr int Version = 3;
+  /// written as version 2, which older builds read). Version 4 is written for a
+  /// recording of a non-cubic canvas (and may hold fill records): it was made
+  /// where the editors' starter shape on such a canvas is the rounded box that
+  /// spans it (since session 24; a sphere of the smallest axis's size before), so
+  /// that a player can start from the canvas it was recorded on (docs/RECORDING.md).
+  /// Version 1 files (no end record) are still read, with `warning` set.
+  static constexpr int Version = 4;
+  /// The version line of the file read (readRecording); writeRecording writes
+  /// the lowest version that holds the recording, whatever this says.
+  int version = Version;
   /// Dimensions of the volume it was recorded on (the `canvas` line; {0, 0, 0}:
   /// not known, as in recordings written before it and imported CSVs).
   /// Editor::play refuses a volume of other dimensions before applying anything.
