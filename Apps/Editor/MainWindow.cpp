@@ -587,7 +587,9 @@ void MainWindow::installFinishedMeshes()
   std::map<std::int64_t, const lvdif::ChunkMesh*> newest;
   for (const lvdif::ChunkMesh& mesh : meshes)
     newest[mesh.chunkId] = &mesh;
-  // the actors of a frame's chunks in one call: SetChunks prepares them in parallel
+  // the actors of a frame's chunks in one call: SetChunks prepares them in
+  // parallel, and leaves a chunk whose new mesh equals its shown one as it is
+  const vtkMTimeType managerTime = this->Chunks->GetMTime();
   const auto t0 = std::chrono::steady_clock::now();
   std::vector<vtkIdType> ids;
   std::vector<vtkSmartPointer<vtkPolyData>> polys;
@@ -602,10 +604,16 @@ void MainWindow::installFinishedMeshes()
     }
   }
   const auto t1 = std::chrono::steady_clock::now();
+  const vtkIdType unchanged = this->Chunks->GetNumberOfUnchangedMeshes();
   this->Chunks->SetChunks(ids, std::vector<vtkPolyData*>(polys.begin(), polys.end()));
   this->Profile.convertMs += std::chrono::duration<double, std::milli>(t1 - t0).count();
   this->Profile.setChunkMs += msSince(t1);
   this->Profile.meshes += static_cast<int>(newest.size());
+  this->Profile.unchangedMeshes += static_cast<int>(this->Chunks->GetNumberOfUnchangedMeshes() - unchanged);
+  // a chunk replaced or removed (the manager is modified only then), or the camera moved below
+  vtkCamera* camera = this->Renderer->GetActiveCamera();
+  const vtkMTimeType cameraTime = camera->GetMTime();
+  this->PendingChanged = this->PendingChanged || this->Chunks->GetMTime() > managerTime;
   if (!this->ViewInitialized && this->Chunks->GetNumberOfChunks() > 0)
   {
     this->resetView();
@@ -616,6 +624,7 @@ void MainWindow::installFinishedMeshes()
   }
   else
     this->settleHome();
+  this->PendingChanged = this->PendingChanged || camera->GetMTime() != cameraTime;
   this->Status->setText(QString("%1 chunks, %2 triangles")
                           .arg(this->Chunks->GetNumberOfChunks())
                           .arg(this->Chunks->GetNumberOfTriangles()));
@@ -627,7 +636,16 @@ void MainWindow::drawFrame()
     return;
   ShownMeshes shown;
   std::swap(shown, this->Pending);
+  shown.drawn = this->PendingChanged;
+  this->PendingChanged = false;
   shown.renderStart = std::chrono::steady_clock::now();
+  if (!shown.drawn)
+  {
+    // every new mesh equalled its chunk's shown one: the view shows them already
+    ++this->Profile.undrawnFrames;
+    emit this->meshesShown(shown);
+    return;
+  }
   this->RenderWindow->Render();
   this->LastRenderMs = msSince(shown.renderStart);
   this->Profile.renderMs += this->LastRenderMs;

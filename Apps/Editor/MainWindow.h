@@ -57,6 +57,10 @@ struct ShownMeshes
   std::vector<int> levels; // per mesh: 0 full resolution, 1 coarse (a stroke's level of detail)
   TimePoint installStart; // the first install since the last frame (brush samples share a frame)
   TimePoint renderStart;  // the frame's Render() call
+  /// Whether the frame was drawn: false when every mesh equalled the one its
+  /// chunk showed (vtkChunkActorManager left them as they were), so the view
+  /// already showed them and nothing was rendered.
+  bool drawn = true;
 };
 
 /// Where the UI thread's time went during brush input (summed since
@@ -70,6 +74,8 @@ struct StrokeProfile
   double renderMs = 0;   // Render() of frames with new meshes (without glFinish)
   int samples = 0;
   int meshes = 0;        // chunk meshes installed
+  int unchangedMeshes = 0; // of those, equal to the chunk's shown mesh: left as shown
+  int undrawnFrames = 0;   // frames whose meshes were all unchanged: not rendered
   int frames = 0;
   int settleTimeouts = 0; // frames whose settle wait ended before the worker was idle
 };
@@ -270,6 +276,7 @@ private:
   QTimer* MeshTimer = nullptr;
   QTimer* FrameTimer = nullptr; // the frame after brush samples (coalesces a backlog of samples)
   ShownMeshes Pending;          // installed since the last frame
+  bool PendingChanged = false;  // some chunk actor or the camera changed since the last frame
   StrokeProfile Profile;
   double LastRenderMs = 0; // Render() of the last frame with new meshes
   QTimer* AutosaveTimer = nullptr;

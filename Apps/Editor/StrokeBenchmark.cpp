@@ -205,6 +205,9 @@ void StrokeBenchmark::start()
   connect(&this->Window, &MainWindow::meshesShown, this, &StrokeBenchmark::frameRendered);
   this->Window.resetStrokeProfile();
   this->Start = std::chrono::steady_clock::now();
+  if (std::getenv("LVDIF_BENCH_TRACE")) // the clock's own time too: to cut a profile (perf -k CLOCK_MONOTONIC) to the stroke
+    std::fprintf(stderr, "benchmark-stroke-trace: stroke starts at %.6f s of the steady clock\n",
+      std::chrono::duration<double>(this->Start.time_since_epoch()).count());
   this->LastFrame = this->Start;
   if (!this->Window.beginStroke())
   {
@@ -266,6 +269,12 @@ void StrokeBenchmark::frameRendered(const ShownMeshes& shown)
   for (std::size_t i = 0; i < shown.chunks.size() && i < shown.gatheredAt.size(); ++i)
     this->Delivered[shown.chunks[i]].push_back(
       Shown{ shown.gatheredAt[i], renderEnd, i < shown.levels.size() ? shown.levels[i] : 0 });
+  if (!shown.drawn)
+  {
+    // every mesh equalled its chunk's shown one: the last frame drawn shows them
+    ++this->UndrawnFrames;
+    return;
+  }
   this->RenderMs.push_back(ms(renderEnd - shown.installStart));
   this->DrawMs.push_back(ms(renderEnd - shown.renderStart));
   this->LastFrame = renderEnd;
@@ -363,8 +372,10 @@ void StrokeBenchmark::report()
     lastEdit.size(), ms(refined - this->EndAt), this->Window.refinedChunks());
   if (unrefined)
     std::printf("benchmark-stroke: error: %d chunks the stroke changed never showed their full-resolution mesh\n", unrefined);
-  std::printf("benchmark-stroke: frames with new meshes: %d in %.2f s, %.1f fps; install+render p50 %.2f ms, p95 %.2f ms\n",
-    this->Frames, seconds, this->Frames / seconds, percentile(this->RenderMs, 0.5), percentile(this->RenderMs, 0.95));
+  std::printf("benchmark-stroke: frames with new meshes: %d in %.2f s, %.1f fps; install+render p50 %.2f ms, p95 %.2f ms "
+              "(and %d not drawn: every mesh equal to its chunk's shown one)\n",
+    this->Frames, seconds, this->Frames / seconds, percentile(this->RenderMs, 0.5), percentile(this->RenderMs, 0.95),
+    this->UndrawnFrames);
   std::printf("benchmark-stroke: render (drawing the frame, glFinish included) p50 %.2f ms, p95 %.2f ms, max %.2f ms\n",
     percentile(this->DrawMs, 0.5), percentile(this->DrawMs, 0.95), percentile(this->DrawMs, 1.0));
   std::printf("benchmark-stroke: chunk triangles drawn per frame p50 %.0f, p95 %.0f, in p50 %.0f draw calls "
@@ -374,9 +385,11 @@ void StrokeBenchmark::report()
     this->Window.chunkActors()->GetNumberOfChunks(), this->Window.chunkActors()->GetDrawRangeTriangles());
   const StrokeProfile& p = this->Window.strokeProfile();
   std::printf("benchmark-stroke: UI thread, summed over the stroke: brush %.0f ms (%d samples), settle wait %.0f ms, "
-              "mesh to polydata %.0f ms + actor update %.0f ms (%d chunk meshes), Render() %.0f ms (%d frames); "
+              "mesh to polydata %.0f ms + actor update %.0f ms (%d chunk meshes, %d of them equal to the shown mesh and "
+              "left as shown), Render() %.0f ms (%d frames); "
               "%d frames stopped waiting for the worker before it was idle\n",
-    p.brushMs, p.samples, p.settleMs, p.convertMs, p.setChunkMs, p.meshes, p.renderMs, p.frames, p.settleTimeouts);
+    p.brushMs, p.samples, p.settleMs, p.convertMs, p.setChunkMs, p.meshes, p.unchangedMeshes, p.renderMs, p.frames,
+    p.settleTimeouts);
   std::printf("benchmark-stroke: frames are drawn by this display's OpenGL; under Xvfb (Mesa llvmpipe, software) "
               "frame times are not representative of a GPU\n");
   long differ = 0;

@@ -108,6 +108,7 @@ private:
   std::vector<double> DrawMs;   // the frame's Render() and glFinish
   TimePoint LastFrame;
   int Frames = 0;
+  int UndrawnFrames = 0; // frames whose meshes all equalled the shown ones (not rendered)
   std::vector<double> TrianglesDrawn; // per frame, by the chunk actors
   std::vector<double> DrawCalls;      // per frame, the chunk actors' triangle draw calls
   int FullBefore = 0, PartialBefore = 0; // the culler's counts at the stroke's start

@@ -7,6 +7,7 @@
 #include "vtkBoundingBox.h"
 #include "vtkCellArray.h"
 #include "vtkCellData.h"
+#include "vtkDataSetAttributes.h"
 #include "vtkDataArray.h"
 #include "vtkFieldData.h"
 #include "vtkMath.h"
@@ -223,6 +224,97 @@ bool changedBoundsOf(vtkPolyData* before, const SortedTriangleHashes& sb, vtkPol
   }
   std::copy(b, b + 6, bounds);
   return true;
+}
+
+namespace
+{
+// The same numeric type, tuples, components and bytes (data arrays of the
+// standard memory layout only; bit, string and variant arrays never compare equal).
+bool sameValues(vtkAbstractArray* x, vtkAbstractArray* y)
+{
+  if (x == y)
+  {
+    return true;
+  }
+  if (!vtkDataArray::SafeDownCast(x) || !vtkDataArray::SafeDownCast(y) || x->GetDataType() != y->GetDataType() ||
+    x->GetDataType() == VTK_BIT || x->GetNumberOfComponents() != y->GetNumberOfComponents() ||
+    x->GetNumberOfTuples() != y->GetNumberOfTuples() || !x->HasStandardMemoryLayout() ||
+    !y->HasStandardMemoryLayout())
+  {
+    return false;
+  }
+  const std::size_t bytes =
+    static_cast<std::size_t>(x->GetNumberOfValues()) * static_cast<std::size_t>(x->GetDataTypeSize());
+  return bytes == 0 || std::memcmp(x->GetVoidPointer(0), y->GetVoidPointer(0), bytes) == 0;
+}
+
+bool sameName(const char* x, const char* y)
+{
+  return (x == nullptr) == (y == nullptr) && (!x || std::strcmp(x, y) == 0);
+}
+
+bool sameAttributes(vtkDataSetAttributes* x, vtkDataSetAttributes* y)
+{
+  if (x->GetNumberOfArrays() != y->GetNumberOfArrays())
+  {
+    return false;
+  }
+  int ix[vtkDataSetAttributes::NUM_ATTRIBUTES], iy[vtkDataSetAttributes::NUM_ATTRIBUTES];
+  x->GetAttributeIndices(ix);
+  y->GetAttributeIndices(iy);
+  if (!std::equal(ix, ix + vtkDataSetAttributes::NUM_ATTRIBUTES, iy))
+  {
+    return false;
+  }
+  for (int i = 0; i < x->GetNumberOfArrays(); ++i)
+  {
+    vtkAbstractArray* ax = x->GetAbstractArray(i);
+    vtkAbstractArray* ay = y->GetAbstractArray(i);
+    if (!sameName(ax->GetName(), ay->GetName()) || !sameValues(ax, ay))
+    {
+      return false;
+    }
+  }
+  return true;
+}
+
+bool sameCells(vtkCellArray* x, vtkCellArray* y)
+{
+  const vtkIdType nx = x ? x->GetNumberOfCells() : 0;
+  const vtkIdType ny = y ? y->GetNumberOfCells() : 0;
+  if (nx != ny)
+  {
+    return false;
+  }
+  return nx == 0 ||
+    (sameValues(x->GetOffsetsArray(), y->GetOffsetsArray()) &&
+      sameValues(x->GetConnectivityArray(), y->GetConnectivityArray()));
+}
+} // namespace
+
+bool sameMesh(vtkPolyData* a, vtkPolyData* b)
+{
+  if (!a || !b)
+  {
+    return false;
+  }
+  if (a == b)
+  {
+    return true;
+  }
+  vtkPoints* pa = a->GetPoints();
+  vtkPoints* pb = b->GetPoints();
+  if ((pa == nullptr) != (pb == nullptr) || (pa && !sameValues(pa->GetData(), pb->GetData())))
+  {
+    return false;
+  }
+  if (a->GetFieldData()->GetNumberOfArrays() || b->GetFieldData()->GetNumberOfArrays())
+  {
+    return false;
+  }
+  return sameCells(a->GetPolys(), b->GetPolys()) && sameCells(a->GetVerts(), b->GetVerts()) &&
+    sameCells(a->GetLines(), b->GetLines()) && sameCells(a->GetStrips(), b->GetStrips()) &&
+    sameAttributes(a->GetPointData(), b->GetPointData()) && sameAttributes(a->GetCellData(), b->GetCellData());
 }
 
 bool unionBounds(vtkPolyData* before, vtkPolyData* after, double bounds[6])

@@ -33,6 +33,13 @@ SortedTriangleHashes sortedWithIndex(const std::vector<std::uint64_t>& order);
 bool changedBoundsOf(vtkPolyData* before, const SortedTriangleHashes& sb, vtkPolyData* after,
   const SortedTriangleHashes& sa, double bounds[6], std::vector<double>* points = nullptr);
 
+/// Whether two meshes are equal value for value: points, every point and
+/// cell array (names, types, attribute roles, bytes), and every cell array's
+/// offsets and connectivity; no field data. False whenever it cannot tell
+/// cheaply (an array without the standard memory layout, different storage
+/// types): a conservative test, never true for meshes that draw differently.
+bool sameMesh(vtkPolyData* a, vtkPolyData* b);
+
 /// The union of both meshes' bounds (either may be null or empty); false if both are empty.
 bool unionBounds(vtkPolyData* before, vtkPolyData* after, double bounds[6]);
 

@@ -37,6 +37,7 @@
 vtkStandardNewMacro(vtkChunkActorManager);
 
 using lvdif::render::changedBoundsOf;
+using lvdif::render::sameMesh;
 using lvdif::render::sortedWithIndex;
 using lvdif::render::triangleHashes;
 using lvdif::render::unionBounds;
@@ -327,8 +328,31 @@ vtkSmartPointer<vtkPolyData> vtkChunkActorManager::PrepareChunk(vtkPolyData* mes
   return out;
 }
 
+bool vtkChunkActorManager::ShowsEqualMesh(vtkIdType chunkId, vtkPolyData* mesh)
+{
+  // A re-meshed chunk often comes back the same (an edit that rewrote voxels
+  // away from the surface, or recoloured the inside): its preparation, buffer
+  // upload and redraw would change no pixel.
+  auto it = this->Internal->Chunks.find(chunkId);
+  if (it == this->Internal->Chunks.end() || !mesh || mesh->GetNumberOfCells() == 0)
+  {
+    return false;
+  }
+  const Internals::Entry& e = it->second;
+  // the shown mesh as it was given (a caller may have changed its object since)
+  // and prepared with today's geometry
+  return e.Source && e.Source.Get() != mesh && e.Source->GetMTime() == e.SourceMTime &&
+    std::equal(this->Origin, this->Origin + 3, e.PreparedOrigin) &&
+    std::equal(this->Spacing, this->Spacing + 3, e.PreparedSpacing) && sameMesh(e.Source, mesh);
+}
+
 void vtkChunkActorManager::SetChunk(vtkIdType chunkId, vtkPolyData* mesh, bool prepared)
 {
+  if (this->ShowsEqualMesh(chunkId, mesh))
+  {
+    ++this->NumberOfUnchangedMeshes;
+    return;
+  }
   vtkSmartPointer<vtkPolyData> ready = prepared ? vtkSmartPointer<vtkPolyData>(mesh) : this->PrepareChunk(mesh);
   Hashes hashes; // only with a culler to declare changes to
   vtkPartialRedrawCuller* culler = this->Internal->Culler;
@@ -352,11 +376,23 @@ void vtkChunkActorManager::SetChunks(const std::vector<vtkIdType>& chunkIds, con
   // A mesh given twice is prepared on this thread.
   const auto& chunks = this->Internal->Chunks;
   std::map<vtkIdType, int> named;
-  std::map<vtkPolyData*, int> reads; // per mesh object: the threads' readers
   for (std::size_t i = 0; i < n; ++i)
   {
     ++named[chunkIds[i]];
-    ++reads[meshes[i]];
+  }
+  // a chunk named once whose mesh equals its shown one stays as it is
+  std::vector<char> unchanged(n, 0);
+  for (std::size_t i = 0; i < n; ++i)
+  {
+    unchanged[i] = named[chunkIds[i]] == 1 && this->ShowsEqualMesh(chunkIds[i], meshes[i]);
+  }
+  std::map<vtkPolyData*, int> reads; // per mesh object: the threads' readers
+  for (std::size_t i = 0; i < n; ++i)
+  {
+    if (!unchanged[i])
+    {
+      ++reads[meshes[i]];
+    }
   }
   bool distinct = true;
   for (const auto& kv : reads)
@@ -366,6 +402,10 @@ void vtkChunkActorManager::SetChunks(const std::vector<vtkIdType>& chunkIds, con
   std::vector<vtkPolyData*> before(n, nullptr);
   for (std::size_t i = 0; i < n; ++i)
   {
+    if (unchanged[i])
+    {
+      continue;
+    }
     auto it = chunks.find(chunkIds[i]);
     if (named[chunkIds[i]] == 1 && it != chunks.end() && it->second.Source && it->second.HashesValid)
     {
@@ -380,6 +420,10 @@ void vtkChunkActorManager::SetChunks(const std::vector<vtkIdType>& chunkIds, con
   auto prepare = [&](vtkIdType begin, vtkIdType end) {
     for (vtkIdType i = begin; i < end; ++i)
     {
+      if (unchanged[i])
+      {
+        continue;
+      }
       ready[i] = this->PrepareChunk(meshes[i]);
       hashed[i] = declare && hashesOf(meshes[i], hashes[i]);
       if (hashed[i] && before[i] && reads.at(before[i]) == 1)
@@ -401,6 +445,11 @@ void vtkChunkActorManager::SetChunks(const std::vector<vtkIdType>& chunkIds, con
   }
   for (std::size_t i = 0; i < n; ++i)
   {
+    if (unchanged[i])
+    {
+      ++this->NumberOfUnchangedMeshes;
+      continue;
+    }
     this->ApplyChunk(chunkIds[i], meshes[i], ready[i], ready[i].Get() != meshes[i], hashed[i] ? &hashes[i] : nullptr,
       &changes[i]);
   }
@@ -738,4 +787,5 @@ void vtkChunkActorManager::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "Spacing: " << this->Spacing[0] << " " << this->Spacing[1] << " " << this->Spacing[2] << "\n";
   os << indent << "InterpolationMode: " << this->InterpolationMode << "\n";
   os << indent << "NumberOfChunkUpdates: " << this->NumberOfChunkUpdates << "\n";
+  os << indent << "NumberOfUnchangedMeshes: " << this->NumberOfUnchangedMeshes << "\n";
 }

@@ -84,8 +84,14 @@ public:
   vtkSmartPointer<vtkPolyData> PrepareChunk(vtkPolyData* mesh) const;
 
   /// Replaces the mesh of one chunk. A null or empty mesh removes the chunk.
+  /// A mesh equal, value for value, to the one the chunk shows
+  /// (lvdif::render::sameMesh: points, point and cell arrays, cells), given
+  /// as another object while the shown one is unmodified and the geometry
+  /// (origin, spacing) is the one it was prepared with, leaves the chunk as it
+  /// is: nothing is prepared, uploaded or redrawn (NumberOfUnchangedMeshes).
   void SetChunk(vtkIdType chunkId, vtkPolyData* mesh, bool prepared = false);
-  /// SetChunk of each (id, mesh) in order, the meshes prepared (and their
+  /// SetChunk of each (id, mesh) in order (an equal mesh of a chunk named once
+  /// left as shown, as in SetChunk), the meshes prepared (and their
   /// changes measured) in parallel (vtkSMPTools): a frame's re-meshed chunks.
   /// A mesh object is read by one thread at a time (one given twice makes the
   /// call prepare on this thread).
@@ -110,6 +116,9 @@ public:
   vtkSmartPointer<vtkPolyData> GetMergedMesh();
   /// How many times a chunk's mesh was replaced or added since construction.
   vtkGetMacro(NumberOfChunkUpdates, vtkIdType);
+  /// How many meshes given to SetChunk/SetChunks equalled their chunk's shown
+  /// mesh and were left as shown (not counted in NumberOfChunkUpdates).
+  vtkGetMacro(NumberOfUnchangedMeshes, vtkIdType);
 
   void SetVisibility(bool visible);
 
@@ -151,6 +160,7 @@ protected:
   int InterpolationMode = 0;
   int DrawRangeTriangles = 32;
   vtkIdType NumberOfChunkUpdates = 0;
+  vtkIdType NumberOfUnchangedMeshes = 0;
 
 private:
   vtkChunkActorManager(const vtkChunkActorManager&) = delete;
@@ -164,6 +174,8 @@ private:
   struct Change;
   void ApplyChunk(vtkIdType chunkId, vtkPolyData* mesh, vtkPolyData* ready, bool owned, Hashes* hashes,
     const Change* change = nullptr);
+  /// Whether the chunk shows a mesh equal to `mesh` (see SetChunk), so that it may stay as it is.
+  bool ShowsEqualMesh(vtkIdType chunkId, vtkPolyData* mesh);
   /// triangleHashes of `mesh`, sorted with their triangles' indices; false if it has cells other than triangles.
   static bool hashesOf(vtkPolyData* mesh, Hashes& out);
 

@@ -20,11 +20,13 @@
 #include "vtkPolyData.h"
 #include "vtkRenderer.h"
 #include "vtkTetrahedralColorMapper.h"
+#include "vtkUnsignedCharArray.h"
 
 #include <gtest/gtest.h>
 
 #include <algorithm>
 #include <map>
+#include <set>
 #include <string>
 #include <vector>
 
@@ -404,6 +406,12 @@ TEST(ChunkActorManager, ReplacesOnlyTheChangedChunk)
   const vtkIdType changed = chunks.begin()->first;
   auto other = sphereMesh(40); // a fresh mesh object for the changed chunk
   auto replacement = splitChunks(other, 16, 39)[changed];
+  // ... with one point moved (an equal mesh would leave the chunk as shown:
+  // AnEqualMeshLeavesTheChunkAsShown)
+  double x[3];
+  replacement->GetPoints()->GetPoint(0, x);
+  x[0] += 0.25;
+  replacement->GetPoints()->SetPoint(0, x);
   const vtkIdType updates = mgr->GetNumberOfChunkUpdates();
   mgr->SetChunk(changed, replacement);
   EXPECT_EQ(mgr->GetNumberOfChunkUpdates(), updates + 1);
@@ -837,3 +845,95 @@ TEST(ChunkActorManager, ChangedBoundsAreThoseOfTheDifferingTriangles)
     EXPECT_EQ(b[i], before->GetBounds()[i]);
 }
 
+
+// A re-meshed chunk whose new mesh equals the one it shows (another object,
+// the same values) is left as it is: not prepared, refilled or uploaded again.
+// What it shows is then still exactly a fresh preparation of the new mesh; a
+// mesh differing in one point coordinate, one point colour or one corner
+// colour is shown; a shown mesh whose object the caller changed in place is
+// never taken as equal (its preparation would be stale).
+TEST(ChunkActorManager, AnEqualMeshLeavesTheChunkAsShown)
+{
+  auto chunks = splitChunks(sphereMesh(40), 16, 39);
+  auto copies = splitChunks(sphereMesh(40), 16, 39); // built again: equal values, other objects
+  ASSERT_EQ(chunks.size(), copies.size());
+  ASSERT_GE(chunks.size(), 8u);
+  vtkNew<vtkRenderer> ren;
+  vtkNew<vtkPartialRedrawCuller> culler;
+  culler->SetEnabled(true);
+  vtkNew<vtkChunkActorManager> mgr;
+  mgr->SetRenderer(ren);
+  mgr->SetRedrawCuller(culler);
+  std::vector<vtkIdType> ids;
+  std::vector<vtkPolyData*> meshes;
+  for (auto& kv : chunks)
+  {
+    mgr->SetChunk(kv.first, kv.second);
+    ids.push_back(kv.first);
+    meshes.push_back(copies.at(kv.first));
+  }
+  EXPECT_EQ(mgr->GetNumberOfUnchangedMeshes(), 0);
+  // three chunks differ in one value each: a coordinate, a point colour, a corner colour
+  auto it = copies.begin();
+  vtkPolyData* moved = (it++)->second;
+  vtkPolyData* repainted = (it++)->second;
+  vtkPolyData* recornered = (it++)->second;
+  double x[3];
+  moved->GetPoints()->GetPoint(1, x);
+  x[2] += 1e-3;
+  moved->GetPoints()->SetPoint(1, x);
+  auto* rgba = vtkUnsignedCharArray::SafeDownCast(repainted->GetPointData()->GetArray("rgba"));
+  auto* corners = vtkUnsignedCharArray::SafeDownCast(recornered->GetCellData()->GetArray("corner_rgba"));
+  ASSERT_TRUE(rgba && corners);
+  rgba->SetValue(5, static_cast<unsigned char>(rgba->GetValue(5) ^ 1));
+  corners->SetValue(7, static_cast<unsigned char>(corners->GetValue(7) ^ 1));
+  const std::set<vtkPolyData*> differing{ moved, repainted, recornered };
+
+  std::map<vtkIdType, std::pair<vtkPolyData*, vtkMTimeType>> shown;
+  for (vtkIdType id : ids)
+    shown[id] = { shownMesh(mgr, id), shownMesh(mgr, id)->GetMTime() };
+  const vtkIdType updates = mgr->GetNumberOfChunkUpdates();
+  mgr->SetChunks(ids, meshes);
+  EXPECT_EQ(mgr->GetNumberOfChunkUpdates(), updates + 3);
+  EXPECT_EQ(mgr->GetNumberOfUnchangedMeshes(), static_cast<vtkIdType>(ids.size()) - 3);
+  for (std::size_t i = 0; i < ids.size(); ++i)
+  {
+    vtkPolyData* now = shownMesh(mgr, ids[i]);
+    ASSERT_NE(now, nullptr);
+    EXPECT_EQ(now, shown[ids[i]].first); // refilled in place or untouched
+    if (differing.count(meshes[i]))
+      EXPECT_GT(now->GetMTime(), shown[ids[i]].second) << "chunk " << ids[i] << " was not updated";
+    else
+      EXPECT_EQ(now->GetMTime(), shown[ids[i]].second) << "chunk " << ids[i] << " was prepared again";
+    // the oracle: whatever was skipped, each chunk shows its new mesh's preparation
+    vtkSmartPointer<vtkPolyData> fresh = mgr->PrepareChunk(meshes[i]);
+    EXPECT_EQ(differsFrom(now, fresh), "") << "chunk " << ids[i];
+  }
+  // SetChunk does the same
+  const vtkIdType first = ids.front();
+  auto again = splitChunks(sphereMesh(40), 16, 39);
+  const vtkIdType unchangedBefore = mgr->GetNumberOfUnchangedMeshes();
+  vtkPolyData* equalToFirst = again.at(ids[3]);
+  mgr->SetChunk(ids[3], equalToFirst);
+  EXPECT_EQ(mgr->GetNumberOfUnchangedMeshes(), unchangedBefore + 1);
+  // The shown mesh's own object changed in place by its caller: its chunk's
+  // preparation is of the old values, so a mesh equal to the new values is shown.
+  vtkPolyData* given = meshes[0]; // the chunk's source now (it was updated: moved)
+  ASSERT_EQ(ids[0], first);
+  vtkSmartPointer<vtkPolyData> sameValues = vtkSmartPointer<vtkPolyData>::New();
+  sameValues->DeepCopy(given);
+  given->GetPoints()->GetPoint(2, x);
+  x[1] += 0.5;
+  given->GetPoints()->SetPoint(2, x);
+  given->GetPoints()->Modified(); // as VTK asks of a change in place
+  sameValues->GetPoints()->SetPoint(2, x);
+  const vtkIdType updatesBefore = mgr->GetNumberOfChunkUpdates();
+  mgr->SetChunk(first, sameValues);
+  EXPECT_EQ(mgr->GetNumberOfChunkUpdates(), updatesBefore + 1);
+  EXPECT_EQ(mgr->GetNumberOfUnchangedMeshes(), unchangedBefore + 1);
+  EXPECT_EQ(differsFrom(shownMesh(mgr, first), mgr->PrepareChunk(sameValues)), "");
+  // another geometry (origin) prepares every chunk again, equal mesh or not
+  mgr->SetOrigin(1, 0, 0);
+  mgr->SetChunk(ids[3], again.at(ids[3]));
+  EXPECT_EQ(mgr->GetNumberOfUnchangedMeshes(), unchangedBefore + 1);
+}
