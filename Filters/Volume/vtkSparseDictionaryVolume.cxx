@@ -7,6 +7,7 @@
 #include "lvdif/Memory.h"
 
 #include "vtkCompositeDataIterator.h"
+#include "vtkDataObjectTreeInternals.h" // vtkDataObjectTreeIndex
 #include "vtkDataObjectTreeIterator.h"
 #include "vtkFieldData.h"
 #include "vtkIdTypeArray.h"
@@ -324,7 +325,21 @@ public:
   vtkDataObject* GetCurrentDataObject() override
   {
     return this->Decoded(this->Superclass::GetCurrentDataObject(),
-      vtkSparseDictionaryVolume::SafeDownCast(this->GetDataSet()), this->GetCurrentFlatIndex());
+      vtkSparseDictionaryVolume::SafeDownCast(this->GetDataSet()), this->CurrentLeafFlatIndex());
+  }
+
+  /// The flat index of the leaf the iterator stands on, in either direction:
+  /// VTK refuses GetCurrentFlatIndex in reverse order (an error each call), and
+  /// vtkCompositeDataProbeFilter (ParaView's Probe, Plot Over Line) walks the
+  /// leaves in reverse. A volume's tree is one level, so the leaf's flat
+  /// index is its partition index + 1. 0 when not on a leaf of a volume.
+  unsigned int CurrentLeafFlatIndex()
+  {
+    if (!this->GetReverse()) return this->GetCurrentFlatIndex();
+    auto* owner = vtkSparseDictionaryVolume::SafeDownCast(this->GetDataSet());
+    if (!owner || !owner->HasVolume() || this->IsDoneWithTraversal()) return 0;
+    const vtkDataObjectTreeIndex index = this->GetCurrentIndex();
+    return index.size() == 1 ? index[0] + 1 : 0;
   }
 
   /// `leaf` (at `flatIndex`), decoded when it is an empty leaf of `owner`'s
@@ -434,7 +449,7 @@ vtkDataObject* vtkSparseDictionaryVolume::GetDataSet(vtkCompositeDataIterator* i
   // through GetCurrentDataObject: decode through the iterator, which holds the result
   vtkDataObject* leaf = this->Superclass::GetDataSet(iter);
   auto* ours = vtkSparseDictionaryVolumeIterator::SafeDownCast(iter);
-  return ours ? ours->Decoded(leaf, this, iter->GetCurrentFlatIndex()) : leaf;
+  return ours ? ours->Decoded(leaf, this, ours->CurrentLeafFlatIndex()) : leaf;
 }
 
 #if VTK_MAJOR_VERSION > 9 || (VTK_MAJOR_VERSION == 9 && VTK_MINOR_VERSION >= 2)
