@@ -242,6 +242,16 @@ int vtkChunkedMarchingCubes::Extract(vtkInformationVector** inputVector, vtkInfo
     vtkErrorMacro("no input: connect a sparse dictionary volume or an image with an SDF point array, or call SetVolume()");
     return 0;
   }
+  try
+  {
+    // the surface of a rotated image came out unrotated, without a word
+    LVDIFVolumeBridge::RequireAxisAligned(input);
+  }
+  catch (const lvdif::Error& e)
+  {
+    vtkErrorMacro(<< e.what());
+    return 0;
+  }
   int inExt[6];
   input->GetExtent(inExt);
   int whole[6];

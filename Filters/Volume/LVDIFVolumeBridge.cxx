@@ -815,6 +815,23 @@ void StoreRange(vtkIdTypeArray* array)
   StoreRangeOf(array);
 }
 
+void RequireAxisAligned(vtkImageData* image)
+{
+  // a rotated or flipped image (VTK's direction matrix, e.g. a .vti's
+  // Direction) would silently lose its orientation
+  vtkMatrix3x3* d = image ? image->GetDirectionMatrix() : nullptr;
+  if (d && !d->IsIdentity())
+  {
+    std::ostringstream msg;
+    msg << "the image's direction matrix is not the identity (";
+    for (int i = 0; i < 9; ++i)
+      msg << (i ? " " : "") << d->GetElement(i / 3, i % 3);
+    msg << "): a dictionary volume and its meshes are axis-aligned, resample the image onto an axis-aligned grid "
+           "first";
+    throw lvdif::Error(lvdif::ErrorCode::InvalidArgument, msg.str());
+  }
+}
+
 std::unique_ptr<lvdif::DictionaryVolume> VolumeFromImage(
   vtkImageData* image, vtkDataArray* sdf, vtkDataArray* rgba, lvdif::VolumeOptions options)
 {
@@ -822,20 +839,7 @@ std::unique_ptr<lvdif::DictionaryVolume> VolumeFromImage(
   {
     throw lvdif::Error(lvdif::ErrorCode::InvalidArgument, "no image or no SDF array");
   }
-  // a dictionary volume is axis-aligned: a rotated or flipped image (VTK's
-  // direction matrix, e.g. a .vti's Direction) would silently lose its orientation
-  if (vtkMatrix3x3* d = image->GetDirectionMatrix())
-  {
-    if (!d->IsIdentity())
-    {
-      std::ostringstream msg;
-      msg << "the image's direction matrix is not the identity (";
-      for (int i = 0; i < 9; ++i)
-        msg << (i ? " " : "") << d->GetElement(i / 3, i % 3);
-      msg << "): a dictionary volume is axis-aligned, resample the image onto an axis-aligned grid first";
-      throw lvdif::Error(lvdif::ErrorCode::InvalidArgument, msg.str());
-    }
-  }
+  RequireAxisAligned(image);
   const lvdif::GridGeometry g = Geometry(image);
   if (sdf->GetNumberOfTuples() != g.count() || sdf->GetNumberOfComponents() != 1)
   {

@@ -189,6 +189,11 @@ LVDIFFILTERSVOLUME_EXPORT void SetImageInformation(vtkInformation* outInfo, cons
 LVDIFFILTERSVOLUME_EXPORT std::string DenseImageWarning(
   std::uint64_t bytes, const int extent[6], std::uint64_t limit, const char* advice);
 
+/// Throws lvdif::Error (InvalidArgument, naming the matrix) when the image's
+/// direction matrix is not the identity: the one check of every image input
+/// (VolumeFromImage, vtkChunkedMarchingCubes), whose volumes and meshes are axis-aligned.
+LVDIFFILTERSVOLUME_EXPORT void RequireAxisAligned(vtkImageData* image);
+
 /// Geometry of an image's point grid (dims from its extent; origin moved to the extent's first point).
 LVDIFFILTERSVOLUME_EXPORT lvdif::GridGeometry Geometry(vtkImageData* image);
 

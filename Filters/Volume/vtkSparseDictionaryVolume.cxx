@@ -7,6 +7,7 @@
 #include "lvdif/Memory.h"
 
 #include "vtkCompositeDataIterator.h"
+#include "vtkDataObjectTreeInternals.h" // vtkDataObjectTreeIndex
 #include "vtkDataObjectTreeIterator.h"
 #include "vtkFieldData.h"
 #include "vtkIdTypeArray.h"
@@ -38,13 +39,16 @@ lvdif::VoxelBox partitionBox(const lvdif::DictionaryVolume& v, std::int64_t id)
 
 /// True when the partition of chunk `id` has cells whose corners can differ:
 /// the chunk or one of the upper neighbours its cells reach holds voxels, or
-/// two of them are uniform with different distances. A partition without a
-/// cell along an axis (the volume's last layer) is never needed.
+/// two of them are uniform with different distances. A partition of one point
+/// layer along an axis is never needed when the volume has more (the volume's
+/// last layer: the partition below holds it); an axis on which the whole
+/// volume is one point (a 2-D slice, a 1-D line) is flat in every partition,
+/// as in a vtkImageData of the volume, whose cells are then pixels or lines.
 bool partitionNeeded(const lvdif::DictionaryVolume& v, std::int64_t id)
 {
   const lvdif::VoxelBox b = partitionBox(v, id);
   for (int a = 0; a < 3; ++a)
-    if (b.hi[a] <= b.lo[a]) return false;
+    if (b.hi[a] <= b.lo[a] && v.dims()[a] > 1) return false;
   const lvdif::Index3 c = v.chunkCoord(id);
   const lvdif::Index3& n = v.chunkCounts();
   bool first = true;
@@ -321,7 +325,21 @@ public:
   vtkDataObject* GetCurrentDataObject() override
   {
     return this->Decoded(this->Superclass::GetCurrentDataObject(),
-      vtkSparseDictionaryVolume::SafeDownCast(this->GetDataSet()), this->GetCurrentFlatIndex());
+      vtkSparseDictionaryVolume::SafeDownCast(this->GetDataSet()), this->CurrentLeafFlatIndex());
+  }
+
+  /// The flat index of the leaf the iterator stands on, in either direction:
+  /// VTK refuses GetCurrentFlatIndex in reverse order (an error each call), and
+  /// vtkCompositeDataProbeFilter (ParaView's Probe, Plot Over Line) walks the
+  /// leaves in reverse. A volume's tree is one level, so the leaf's flat
+  /// index is its partition index + 1. 0 when not on a leaf of a volume.
+  unsigned int CurrentLeafFlatIndex()
+  {
+    if (!this->GetReverse()) return this->GetCurrentFlatIndex();
+    auto* owner = vtkSparseDictionaryVolume::SafeDownCast(this->GetDataSet());
+    if (!owner || !owner->HasVolume() || this->IsDoneWithTraversal()) return 0;
+    const vtkDataObjectTreeIndex index = this->GetCurrentIndex();
+    return index.size() == 1 ? index[0] + 1 : 0;
   }
 
   /// `leaf` (at `flatIndex`), decoded when it is an empty leaf of `owner`'s
@@ -431,7 +449,7 @@ vtkDataObject* vtkSparseDictionaryVolume::GetDataSet(vtkCompositeDataIterator* i
   // through GetCurrentDataObject: decode through the iterator, which holds the result
   vtkDataObject* leaf = this->Superclass::GetDataSet(iter);
   auto* ours = vtkSparseDictionaryVolumeIterator::SafeDownCast(iter);
-  return ours ? ours->Decoded(leaf, this, iter->GetCurrentFlatIndex()) : leaf;
+  return ours ? ours->Decoded(leaf, this, ours->CurrentLeafFlatIndex()) : leaf;
 }
 
 #if VTK_MAJOR_VERSION > 9 || (VTK_MAJOR_VERSION == 9 && VTK_MINOR_VERSION >= 2)
@@ -463,14 +481,14 @@ vtkIdType vtkSparseDictionaryVolume::GetNumberOfCells()
   vtkIdType n = 0;
   for (std::int64_t id : neededPartitions(*this->Volume, this->OwnsAll ? nullptr : this->Owned))
   {
-    // a corner point is one vertex cell (VTK's rule for a one-point image)
+    // VTK's rule for an image: the product of (points - 1) over the axes of
+    // more than one point (pixels of a flat volume's partitions, lines of a
+    // 1-D one), and a one-point image (a corner point) is one vertex cell
     const lvdif::VoxelBox b = sourceBox(*this->Volume, id);
-    if (isCorner(id))
-    {
-      ++n;
-      continue;
-    }
-    n += static_cast<vtkIdType>((b.hi[0] - b.lo[0]) * (b.hi[1] - b.lo[1]) * (b.hi[2] - b.lo[2]));
+    vtkIdType cells = 1;
+    for (int a = 0; a < 3; ++a)
+      if (b.hi[a] > b.lo[a]) cells *= static_cast<vtkIdType>(b.hi[a] - b.lo[a]);
+    n += cells;
   }
   return n;
 }

@@ -47,11 +47,39 @@ bool vtkLVDIFVolumeWriter::UpdateWholeInput(vtkWriter* writer)
   return exec && exec->UpdateInformation() && exec->UpdateWholeExtent();
 }
 
+bool vtkLVDIFVolumeWriter::CheckTarget()
+{
+  if (this->FileName.empty())
+  {
+    vtkErrorMacro("no file name: call SetFileName() first");
+    this->SetErrorCode(vtkErrorCode::NoFileNameError);
+    return false;
+  }
+  try
+  {
+    lvdif::requireWritable(this->FileName); // before the work, as the CLI
+    this->CheckSettings();
+    return true;
+  }
+  catch (const lvdif::Error& e)
+  {
+    vtkErrorMacro(<< LVDIFVolumeBridge::FileError("write", this->FileName, e.what()));
+    this->SetErrorCode(
+      e.code() == lvdif::ErrorCode::IoFailure ? vtkErrorCode::CannotOpenFileError : vtkErrorCode::UnknownError);
+    return false;
+  }
+}
+
 int vtkLVDIFVolumeWriter::Write()
 {
   if (this->GetNumberOfInputConnections(0) < 1)
     return this->Superclass::Write(); // VTK's "No input provided!"
   this->SetErrorCode(vtkErrorCode::NoError);
+  // the place and the settings before the input is brought up to date: a
+  // writer to a missing folder ran the whole pipeline (a mesh's conversion
+  // upstream: minutes) and only then said the folder was missing
+  if (!this->CheckTarget())
+    return 0;
   if (!UpdateWholeInput(this) && this->GetErrorCode() == vtkErrorCode::NoError)
     this->SetErrorCode(vtkErrorCode::UnknownError);
   return this->GetErrorCode() == vtkErrorCode::NoError ? 1 : 0;
@@ -63,8 +91,8 @@ void vtkLVDIFVolumeWriter::WriteData()
     vtkErrorMacro(<< what);
     this->SetErrorCode(code);
   };
-  if (this->FileName.empty())
-    return fail("no file name: call SetFileName() first", vtkErrorCode::NoFileNameError);
+  if (!this->CheckTarget())
+    return; // (ParaView's writers run WriteData through the executive, not Write)
   vtkSparseDictionaryVolume* sparse = vtkSparseDictionaryVolume::SafeDownCast(this->Superclass::GetInput());
   vtkImageData* image = this->GetInput();
   vtkDataArray* sdf = image ? image->GetPointData()->GetArray(LVDIFVolumeBridge::SdfArrayName) : nullptr;
@@ -75,8 +103,6 @@ void vtkLVDIFVolumeWriter::WriteData()
   LVDIFInterrupter interrupter(this, 0.0, 1.0);
   try
   {
-    lvdif::requireWritable(this->FileName); // before the work (an image's conversion), as the CLI
-    this->CheckSettings();
     if (sparse)
     {
       this->Save(*sparse->GetVolume(), SaveSource(), interrupter);

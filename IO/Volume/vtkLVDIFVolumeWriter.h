@@ -43,7 +43,9 @@ public:
   vtkImageData* GetInput();
 
   /// vtkWriter::Write, but 0 when the input failed upstream (vtkWriter's
-  /// answered 1, nothing written, and ran a failed reader a second time).
+  /// answered 1, nothing written, and ran a failed reader a second time);
+  /// the file name, its folder and the writer's settings are checked first
+  /// (CheckTarget), before the input is brought up to date.
   int Write() override;
 
   /// What Write() runs, for every LVDIF writer (vtkPDictionaryVolumeWriter
@@ -56,6 +58,9 @@ protected:
   ~vtkLVDIFVolumeWriter() override;
 
   void WriteData() final;
+  /// The file name, the place (lvdif::requireWritable) and CheckSettings: false
+  /// after one error (and the writer's error code) when one fails.
+  bool CheckTarget();
   int FillInputPortInformation(int port, vtkInformation* info) override;
 
   /// What a save is given besides the volume.

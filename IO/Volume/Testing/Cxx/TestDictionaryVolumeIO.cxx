@@ -341,3 +341,68 @@ TEST(DictionaryVolumeIO, AFolderThatTakesNoFilesIsNamedNotWritable)
     << catcher->Last;
   EXPECT_EQ(catcher->Last.find("No such file"), std::string::npos) << catcher->Last;
 }
+
+// A writer whose file cannot be written (a missing folder, an empty name) or
+// whose settings are refused (CompressionLevel 0) said so only after
+// Write() had brought its input up to date: the whole pipeline above it ran
+// first (a mesh's conversion to a volume: minutes at 512^3), then the writer
+// refused. Now Write() checks the place and the settings before the input is
+// updated: one error, 0, and the reader above never ran (its StartEvent, which
+// the executive sends before RequestData, never came). Then the same writer
+// with a good name writes, and the reader runs once.
+TEST(DictionaryVolumeIO, AnUnwritableTargetIsRefusedBeforeTheInputRuns)
+{
+  auto img = makeImage();
+  const std::string source = tempFile("upstream.lvdv"), target = tempFile("target.lvdv");
+  {
+    vtkNew<vtkDictionaryVolumeWriter> writer;
+    writer->SetInputData(img);
+    writer->SetFileName(source.c_str());
+    ASSERT_EQ(writer->Write(), 1);
+  }
+  struct Counter : vtkCommand
+  {
+    static Counter* New() { return new Counter; }
+    void Execute(vtkObject*, unsigned long, void*) override { ++this->Count; }
+    int Count = 0;
+  };
+  vtkNew<Counter> runs;
+  vtkNew<vtkDictionaryVolumeReader> reader;
+  reader->AddObserver(vtkCommand::StartEvent, runs);
+  reader->SetFileName(source.c_str());
+  vtkNew<vtkDictionaryVolumeWriter> writer;
+  writer->SetInputConnection(reader->GetOutputPort());
+  const std::string missing = ::testing::TempDir() + "lvdif_no_such_folder_" + std::to_string(::getpid()) + "/x.lvdv";
+  struct Case
+  {
+    std::string name;
+    int level;
+    std::string says;
+  };
+  for (const Case& c : { Case{ missing, 3, "cannot write '" + missing + "'" }, Case{ "", 3, "no file name" },
+         Case{ target, 0, "CompressionLevel" } })
+  {
+    vtkNew<ErrorCatcher> errors;
+    const unsigned long a = writer->AddObserver(vtkCommand::ErrorEvent, errors);
+    const unsigned long b = writer->GetExecutive()->AddObserver(vtkCommand::ErrorEvent, errors);
+    writer->SetFileName(c.name.c_str());
+    writer->SetCompressionLevel(c.level);
+    EXPECT_EQ(writer->Write(), 0) << c.says;
+    EXPECT_NE(writer->GetErrorCode(), 0UL) << c.says;
+    EXPECT_EQ(errors->Count, 1) << errors->Last;
+    EXPECT_NE(errors->Last.find(c.says), std::string::npos) << errors->Last;
+    EXPECT_EQ(runs->Count, 0) << "the reader ran for a write refused before the work: " << c.says;
+    writer->RemoveObserver(a);
+    writer->GetExecutive()->RemoveObserver(b);
+  }
+  std::ifstream none(target);
+  EXPECT_FALSE(none.good()) << "nothing written";
+  writer->SetFileName(target.c_str());
+  writer->SetCompressionLevel(3);
+  EXPECT_EQ(writer->Write(), 1);
+  EXPECT_EQ(runs->Count, 1);
+  std::ifstream written(target);
+  EXPECT_TRUE(written.good());
+  std::remove(source.c_str());
+  std::remove(target.c_str());
+}
