@@ -190,4 +190,15 @@ inline Rgba checkerColor(int i, int j, int k)
   const bool odd = ((i / 4) + (j / 4) + (k / 4)) % 2;
   return odd ? Rgba{ 230, 60, 40, 255 } : Rgba{ 40, 90, 220, 255 };
 }
+
+/// A sphere of radius 0.33 n about the image's centre, as a contract mesh in
+/// checker colours.
+inline vtkSmartPointer<vtkPolyData> sphereMesh(int n = 24, double spacing = 1.0)
+{
+  auto img = sdfImage(n, [n](double x, double y, double z) {
+    const double c = 0.5 * (n - 1);
+    return std::sqrt((x - c) * (x - c) + (y - c) * (y - c) + (z - c) * (z - c)) - 0.33 * n;
+  }, spacing);
+  return contractMesh(img, checkerColor);
+}
 } // namespace lvdiftest
