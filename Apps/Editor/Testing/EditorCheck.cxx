@@ -490,11 +490,15 @@ void checkImagesDiffer(const char* a, const char* b, long least)
   check(differ > least, std::string(a) + " and " + b + " differ in more than " + std::to_string(least) + " pixels");
 }
 
-/// How many pixels of the picture pass `is` (RGB bytes), and their bounding
+/// How many pixels of the picture at `path` pass `is` (RGB bytes; -1 when it
+/// cannot be read), and their bounding
 /// box in lo, hi (columns, rows; lo > hi when none).
 template <typename Is>
-long pixelBox(vtkImageData* img, const int dims[3], Is is, int lo[2], int hi[2])
+long pixelBox(const char* path, int dims[3], Is is, int lo[2], int hi[2])
 {
+  const auto img = readPicture(path, dims);
+  if (!img)
+    return -1; // readPicture said why
   lo[0] = dims[0], lo[1] = dims[1], hi[0] = hi[1] = -1;
   long count = 0;
   for (int j = 0; j < dims[1]; ++j)
@@ -512,13 +516,11 @@ long pixelBox(vtkImageData* img, const int dims[3], Is is, int lo[2], int hi[2])
 
 void checkCursorAspect(const char* path, double ratio)
 {
-  int dims[3];
-  const auto img = readPicture(path, dims);
-  if (!img)
-    return;
-  int lo[2], hi[2];
+  int dims[3], lo[2], hi[2];
   const long count =
-    pixelBox(img, dims, [](const unsigned char* p) { return p[1] > 150 && p[0] < 90 && p[2] < 90; }, lo, hi);
+    pixelBox(path, dims, [](const unsigned char* p) { return p[1] > 150 && p[0] < 90 && p[2] < 90; }, lo, hi);
+  if (count < 0)
+    return;
   check(count > 20, "the cursor is in the picture (" + std::to_string(count) + " pixels)");
   if (count <= 20)
     return;
@@ -529,15 +531,13 @@ void checkCursorAspect(const char* path, double ratio)
 
 void checkInsideView(const char* path)
 {
-  int dims[3];
-  const auto img = readPicture(path, dims);
-  if (!img)
-    return;
   // the model: a pixel brighter than the background gradient (at most 51 in
   // every channel: Background (0.16, 0.17, 0.2), Background2 darker)
-  int lo[2], hi[2];
+  int dims[3], lo[2], hi[2];
   const long count =
-    pixelBox(img, dims, [](const unsigned char* p) { return std::max(p[0], std::max(p[1], p[2])) > 70; }, lo, hi);
+    pixelBox(path, dims, [](const unsigned char* p) { return std::max(p[0], std::max(p[1], p[2])) > 70; }, lo, hi);
+  if (count < 0)
+    return;
   std::printf("model: %ld pixels in columns %d..%d, rows %d..%d of %d x %d\n", count, lo[0], hi[0], lo[1], hi[1],
     dims[0], dims[1]);
   check(count > 1000, "the model is in the picture");
