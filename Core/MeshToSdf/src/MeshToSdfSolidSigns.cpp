@@ -130,8 +130,8 @@ MeshToSdfOptions SolidCheckBesideGpu::windingOptions(MeshToSdfStats& stats) cons
 
 void SolidCheckBesideGpu::conclude(MeshToSdfStats& stats)
 {
-  this->Check.get(); // a cancel comes out here
-  this->Concluded = true;
+  this->Concluded = true; // before get(): a future is read once, and a cancel comes out of get()
+  this->Check.get();
   MeshToSdfStats checked;
   signOfSolids(this->Mesh, this->Options, checked, this->Grid, this->Extent); // found: its warnings and route
   stats.warnings.insert(stats.warnings.end(), checked.warnings.begin(), checked.warnings.end());
