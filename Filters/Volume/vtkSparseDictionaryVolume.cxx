@@ -20,8 +20,11 @@
 #include "vtkSmartPointer.h"
 
 #include <algorithm>
+#include <cstdlib>
 #include <functional>
+#include <mutex>
 #include <string>
+#include <unordered_map>
 #include <vector>
 
 vtkStandardNewMacro(vtkSparseDictionaryVolume);
@@ -162,7 +165,33 @@ std::uint64_t partitionBytes(const lvdif::DictionaryVolume& v, const std::vector
 }
 }
 
-vtkSparseDictionaryVolume::vtkSparseDictionaryVolume() = default;
+/// The decoded partitions held, by source (a chunk id, or a corner point's
+/// code): shared by an object and its shallow copies, which view the same
+/// partitions of the same Core volume.
+struct vtkSparseDictionaryVolume::HeldPartitions
+{
+  std::mutex Lock;
+  std::unordered_map<std::int64_t, vtkSmartPointer<vtkImageData>> Images;
+};
+
+namespace
+{
+/// LVDIF_RELEASE_PARTITIONS=1 (or on/yes/true): new objects release their partitions after use.
+bool releaseAfterUseByDefault()
+{
+  const char* v = std::getenv("LVDIF_RELEASE_PARTITIONS");
+  if (!v) return false;
+  const std::string s(v);
+  return s == "1" || s == "on" || s == "ON" || s == "yes" || s == "true" || s == "TRUE";
+}
+}
+
+vtkSparseDictionaryVolume::vtkSparseDictionaryVolume()
+  : ReleasePartitionsAfterUse(releaseAfterUseByDefault())
+  , Held(std::make_shared<HeldPartitions>())
+{
+}
+
 vtkSparseDictionaryVolume::~vtkSparseDictionaryVolume() = default;
 
 void vtkSparseDictionaryVolume::SetVolume(std::shared_ptr<lvdif::DictionaryVolume> volume)
@@ -172,6 +201,7 @@ void vtkSparseDictionaryVolume::SetVolume(std::shared_ptr<lvdif::DictionaryVolum
   this->PartitionsBuilt = false;
   this->PartitionChunks.clear();
   this->OwnsAll = true;
+  this->Held = std::make_shared<HeldPartitions>();
   this->Modified();
 }
 
@@ -201,7 +231,30 @@ void vtkSparseDictionaryVolume::VolumeModified()
   this->Superclass::SetNumberOfPartitions(0);
   this->PartitionsBuilt = false;
   this->PartitionChunks.clear();
+  // a new set: the shallow copies keep the old one (and the pointers they handed out)
+  this->Held = std::make_shared<HeldPartitions>();
   this->Modified();
+}
+
+void vtkSparseDictionaryVolume::SetReleasePartitionsAfterUse(bool on)
+{
+  if (on == this->ReleasePartitionsAfterUse) return;
+  this->ReleasePartitionsAfterUse = on;
+  this->Modified();
+}
+
+void vtkSparseDictionaryVolume::ReleaseDecodedPartitions()
+{
+  std::lock_guard<std::mutex> lock(this->Held->Lock);
+  this->Held->Images.clear();
+}
+
+double vtkSparseDictionaryVolume::GetHeldPartitionBytes() const
+{
+  std::lock_guard<std::mutex> lock(this->Held->Lock);
+  double bytes = 0.0;
+  for (const auto& held : this->Held->Images) bytes += 1024.0 * held.second->GetActualMemorySize();
+  return bytes;
 }
 
 void vtkSparseDictionaryVolume::SetPartitionColors(bool on)
@@ -295,13 +348,12 @@ vtkSmartPointer<vtkImageData> fillPartition(const lvdif::DictionaryVolume& v, st
   return image;
 }
 
-/// The iterator of the sparse volume: an empty leaf of a volume (a partition
-/// not decoded for good) is handed out decoded, and only while the iterator
-/// stands on it (the next step releases it unless the consumer kept a
-/// reference). So ParaView's data information, the outline and a
-/// per-partition filter hold one decoded partition at a time. The empty
-/// leaves are visited even when the consumer asks to skip empty nodes: they
-/// are partitions, only not held.
+/// The iterator of the sparse volume: an empty leaf of a volume is handed out
+/// decoded, held by the object (the default) or, when the object releases its
+/// partitions after use, by the iterator only while it stands on it (the next
+/// step releases it unless the consumer kept a reference). The empty leaves are
+/// visited even when the consumer asks to skip empty nodes: they are
+/// partitions, only not built.
 class vtkSparseDictionaryVolumeIterator : public vtkDataObjectTreeIterator
 {
 public:
@@ -343,10 +395,15 @@ public:
   }
 
   /// `leaf` (at `flatIndex`), decoded when it is an empty leaf of `owner`'s
-  /// volume (held until the next leaf), else `leaf`.
+  /// volume (held by the owner, or by this iterator until the next leaf), else `leaf`.
   vtkDataObject* Decoded(vtkDataObject* leaf, vtkSparseDictionaryVolume* owner, unsigned int flatIndex)
   {
     if (leaf || !owner || !owner->HasVolume() || flatIndex < 1) return leaf;
+    if (!owner->GetReleasePartitionsAfterUse())
+    {
+      vtkImageData* held = owner->GetHeldPartition(flatIndex - 1);
+      return held ? held : leaf;
+    }
     const std::int64_t id = owner->GetPartitionChunk(flatIndex - 1);
     if (id == -1) return leaf;
     if (this->Index != flatIndex)
@@ -414,19 +471,29 @@ vtkDataSet* vtkSparseDictionaryVolume::GetPartition(unsigned int idx)
 {
   this->UpdatePartitions();
   vtkDataSet* leaf = this->Superclass::GetPartition(idx);
-  const std::int64_t id = this->GetPartitionChunk(idx);
-  if (leaf || id == -1) return leaf;
-  // asked by index: decoded for good (the caller gets a pointer it does not own)
+  if (leaf || this->GetPartitionChunk(idx) == -1) return leaf;
+  // asked by index: held, whatever the mode (the caller gets a pointer it does not own)
+  return this->GetHeldPartition(idx);
+}
+
+vtkImageData* vtkSparseDictionaryVolume::GetHeldPartition(unsigned int idx)
+{
+  this->UpdatePartitions();
+  const std::int64_t source = this->GetPartitionChunk(idx);
+  if (source == -1) return nullptr;
+  std::lock_guard<std::mutex> lock(this->Held->Lock);
+  auto found = this->Held->Images.find(source);
+  if (found != this->Held->Images.end()) return found->second;
   try
   {
-    vtkSmartPointer<vtkImageData> image = fillPartition(*this->Volume, id, this->PartitionColors);
-    this->Superclass::SetPartition(idx, image);
+    vtkSmartPointer<vtkImageData> image = fillPartition(*this->Volume, source, this->PartitionColors);
+    this->Held->Images.emplace(source, image);
     return image;
   }
   catch (const lvdif::Error& e)
   {
     vtkErrorMacro(<< e.what());
-    return leaf;
+    return nullptr;
   }
 }
 
@@ -446,7 +513,7 @@ vtkDataObjectTreeIterator* vtkSparseDictionaryVolume::NewTreeIterator()
 vtkDataObject* vtkSparseDictionaryVolume::GetDataSet(vtkCompositeDataIterator* iter)
 {
   // vtk::Range (ParaView's data information) reads the leaves this way, not
-  // through GetCurrentDataObject: decode through the iterator, which holds the result
+  // through GetCurrentDataObject: decode through the iterator
   vtkDataObject* leaf = this->Superclass::GetDataSet(iter);
   auto* ours = vtkSparseDictionaryVolumeIterator::SafeDownCast(iter);
   return ours ? ours->Decoded(leaf, this, ours->CurrentLeafFlatIndex()) : leaf;
@@ -455,7 +522,7 @@ vtkDataObject* vtkSparseDictionaryVolume::GetDataSet(vtkCompositeDataIterator* i
 #if VTK_MAJOR_VERSION > 9 || (VTK_MAJOR_VERSION == 9 && VTK_MINOR_VERSION >= 2)
 vtkDataObject* vtkSparseDictionaryVolume::GetDataSet(unsigned int flatIndex)
 {
-  // the superclass would return a leaf decoded by an iterator it then deletes
+  // the superclass would walk an iterator of its own to the leaf
   this->UpdatePartitions();
   if (this->Volume && flatIndex >= 1 && flatIndex <= this->Superclass::GetNumberOfPartitions())
   {
@@ -512,15 +579,28 @@ void vtkSparseDictionaryVolume::CopyStructure(vtkCompositeDataSet* input)
   // copy of each leaf: the copy is still a view of the same Core volume. A
   // generic filter's output made the same way gets other leaves (SetDataSet
   // below drops the volume then).
-  this->Volume = s ? s->Volume : nullptr;
-  this->PartitionsBuilt = s != nullptr && s->PartitionsBuilt;
-  this->PartitionChunks = s ? s->PartitionChunks : std::vector<std::int64_t>();
-  this->OwnsAll = s ? s->OwnsAll : true;
   if (s)
   {
-    this->PartitionColors = s->PartitionColors;
-    std::copy(s->Owned, s->Owned + 6, this->Owned);
+    this->CopyViewFrom(*s);
+    return;
   }
+  this->Volume.reset();
+  this->PartitionsBuilt = false;
+  this->PartitionChunks.clear();
+  this->OwnsAll = true;
+  this->Held = std::make_shared<HeldPartitions>();
+}
+
+void vtkSparseDictionaryVolume::CopyViewFrom(const vtkSparseDictionaryVolume& s)
+{
+  this->Volume = s.Volume;
+  this->PartitionColors = s.PartitionColors;
+  this->PartitionsBuilt = s.PartitionsBuilt;
+  this->PartitionChunks = s.PartitionsBuilt ? s.PartitionChunks : std::vector<std::int64_t>();
+  this->OwnsAll = s.OwnsAll;
+  std::copy(s.Owned, s.Owned + 6, this->Owned);
+  this->ReleasePartitionsAfterUse = s.ReleasePartitionsAfterUse;
+  this->Held = s.Held;
 }
 
 void vtkSparseDictionaryVolume::SetDataSet(vtkCompositeDataIterator* iter, vtkDataObject* dataObj)
@@ -530,11 +610,15 @@ void vtkSparseDictionaryVolume::SetDataSet(vtkCompositeDataIterator* iter, vtkDa
   {
     this->Volume.reset(); // a filter's result over the partitions, not a view of the volume
   }
-  if (this->Volume && image && image->GetFieldData()->GetArray("chunk_id"))
+  if (this->Volume && this->ReleasePartitionsAfterUse && image && image->GetFieldData()->GetArray("chunk_id"))
   {
     // ParaView copies an output leaf by leaf (CopyStructure, then a shallow
-    // copy of each leaf our iterator decoded): a leaf that holds only our own
-    // arrays stays empty, so the copy decodes on demand as the original does
+    // copy of each leaf our iterator decoded): when partitions are released
+    // after use, a leaf that holds only our own arrays stays empty, so the copy
+    // decodes on demand as the original does. Not when they are held: a filter
+    // that fills its output leaf after setting it (vtkArrayCalculator sets the
+    // copy, drops its own reference, then adds the result array) needs the leaf
+    // kept, and a shallow copy of a held partition shares its arrays.
     vtkPointData* pd = image->GetPointData();
     bool ours = true;
     for (int a = 0; a < pd->GetNumberOfArrays() && ours; ++a)
@@ -568,6 +652,7 @@ void vtkSparseDictionaryVolume::Initialize()
   this->PartitionsBuilt = false;
   this->PartitionChunks.clear();
   this->OwnsAll = true;
+  this->Held = std::make_shared<HeldPartitions>();
 }
 
 void vtkSparseDictionaryVolume::ShallowCopy(vtkDataObject* src)
@@ -596,12 +681,18 @@ void vtkSparseDictionaryVolume::ShareFrom(vtkDataObject* src, const std::functio
   {
     superCopy(src);
   }
-  this->Volume = s ? s->Volume : nullptr;
-  this->PartitionColors = s ? s->PartitionColors : this->PartitionColors;
-  this->PartitionsBuilt = s ? s->PartitionsBuilt : false;
-  this->PartitionChunks = s && s->PartitionsBuilt ? s->PartitionChunks : std::vector<std::int64_t>();
-  this->OwnsAll = s ? s->OwnsAll : true;
-  if (s) std::copy(s->Owned, s->Owned + 6, this->Owned);
+  if (s)
+  {
+    this->CopyViewFrom(*s);
+  }
+  else
+  {
+    this->Volume.reset();
+    this->PartitionsBuilt = false;
+    this->PartitionChunks.clear();
+    this->OwnsAll = true;
+    this->Held = std::make_shared<HeldPartitions>();
+  }
   this->Modified();
 }
 
@@ -615,6 +706,7 @@ void vtkSparseDictionaryVolume::DeepCopy(vtkDataObject* src)
     this->Volume.reset();
     this->PartitionsBuilt = false;
     this->PartitionChunks.clear();
+    this->Held = std::make_shared<HeldPartitions>();
     return;
   }
   this->Superclass::SetNumberOfPartitions(0);
@@ -625,6 +717,8 @@ void vtkSparseDictionaryVolume::DeepCopy(vtkDataObject* src)
   this->PartitionChunks.clear();
   this->OwnsAll = s->OwnsAll;
   std::copy(s->Owned, s->Owned + 6, this->Owned);
+  this->ReleasePartitionsAfterUse = s->ReleasePartitionsAfterUse;
+  this->Held = std::make_shared<HeldPartitions>(); // a copy decodes its own
   this->Modified();
 }
 
@@ -637,8 +731,9 @@ unsigned long vtkSparseDictionaryVolume::GetActualMemorySize()
   }
   if (this->PartitionsBuilt)
   {
-    // the leaves as held (those decoded for good), not through this object's decoding iterator
+    // the leaves as set and the decoded partitions held, not through this object's decoding iterator
     kib += this->vtkDataObject::GetActualMemorySize();
+    kib += static_cast<unsigned long>(this->GetHeldPartitionBytes() / 1024);
     kib += static_cast<unsigned long>(this->PartitionChunks.capacity() * sizeof(std::int64_t) / 1024);
     vtkNew<vtkDataObjectTreeIterator> it;
     it->SetDataSet(this);
@@ -678,4 +773,6 @@ void vtkSparseDictionaryVolume::PrintSelf(ostream& os, vtkIndent indent)
   }
   os << indent << "PartitionColors: " << this->PartitionColors << "\n";
   os << indent << "PartitionsBuilt: " << this->PartitionsBuilt << "\n";
+  os << indent << "ReleasePartitionsAfterUse: " << this->ReleasePartitionsAfterUse << "\n";
+  os << indent << "HeldPartitionBytes: " << this->GetHeldPartitionBytes() << "\n";
 }

@@ -38,15 +38,31 @@
  * our own filters never makes them. Even then they are empty leaves (the
  * object keeps the chunk id of each, 16 + 8 bytes a partition; a vtkImageData
  * without arrays would cost about 8 KiB in VTK 9.2). This object's iterator
- * decodes the leaf it stands on into a new image (checked against lvdif's
- * memory limit, LVDIF_MEMORY_LIMIT) and releases it at the next step unless
- * the consumer keeps a reference: ParaView's data information, the outline
- * and per-partition filters (Contour, Cutter) hold one decoded partition at a
- * time. The iterator visits the empty leaves even when asked to skip empty
- * nodes (they are partitions, only not held). ParaView's copy of an output
- * (CopyStructure and a shallow copy of each decoded leaf) keeps its leaves
- * empty too and decodes on demand. GetPartition(i) decodes partition i for
- * good. A consumer that walks the leaves with an iterator of its own (not
+ * decodes the leaf it stands on into an image (checked against lvdif's memory
+ * limit, LVDIF_MEMORY_LIMIT); GetPartition(i) and GetDataSet(flat index) do
+ * the same by index. What becomes of a decoded partition:
+ *  - held (the default): the object keeps it until the volume changes
+ *    (VolumeModified, SetVolume, Initialize, ReleaseData) or
+ *    ReleaseDecodedPartitions(), so any consumer may keep the pointer it got.
+ *    VTK's vtkCompositeDataSet::GetDataSets collects every leaf's pointer
+ *    before using them (vtkArrayCalculator; ParaView's Calculator, Plot Over
+ *    Line, Ghost Cells Generator): with partitions released at the
+ *    iterator's next step those pointers dangled (a segmentation fault until
+ *    session 26). The cost: after a consumer visited every partition (ParaView's
+ *    data information does, on every output), they are all held decoded
+ *    (GetPartitionBytes(), 8 bytes a point with colours): less than a dense
+ *    image (only the band's chunks), more than the Core volume.
+ *  - released after use (SetReleasePartitionsAfterUse(true), or the
+ *    environment variable LVDIF_RELEASE_PARTITIONS=1 for every new object):
+ *    the iterator keeps only the partition it stands on and releases it at
+ *    its next step, so ParaView's data information, the outline and
+ *    per-partition filters (Contour, Cutter, Threshold, Clip) hold one decoded
+ *    partition at a time. For such pipelines only: a consumer that keeps
+ *    pointers past the step (the filters above) reads freed memory.
+ * The decoded partitions are shared by the shallow copies of this object
+ * (ParaView's post filter copies every output). The iterator visits the empty
+ * leaves even when asked to skip empty nodes (they are partitions, only not
+ * built). A consumer that walks the leaves with an iterator of its own (not
  * NewIterator), or calls vtkPartitionedDataSet::GetPartition, sees empty
  * leaves. After editing the Core volume in place, call VolumeModified()
  * (drops the partitions; the dirty flags stay in the Core volume for
@@ -70,6 +86,7 @@ namespace lvdif
 {
 class DictionaryVolume;
 }
+class vtkImageData;
 
 class LVDIFFILTERSVOLUME_EXPORT vtkSparseDictionaryVolume : public vtkPartitionedDataSet
 {
@@ -120,6 +137,20 @@ public:
   void GetOwnedChunks(int box[6]) const;
   ///@}
 
+  ///@{
+  /// Release each decoded partition at the iterator's next step (see the class
+  /// comment: for pipelines of per-partition filters only). Default: off, or on
+  /// when the environment variable LVDIF_RELEASE_PARTITIONS is 1 at construction.
+  void SetReleasePartitionsAfterUse(bool on);
+  bool GetReleasePartitionsAfterUse() const { return this->ReleasePartitionsAfterUse; }
+  vtkBooleanMacro(ReleasePartitionsAfterUse, bool);
+  ///@}
+  /// Releases the held decoded partitions now (they are decoded again on demand;
+  /// pointers handed out before are no longer valid).
+  void ReleaseDecodedPartitions();
+  /// Bytes of the decoded partitions held now (shared with this object's shallow copies).
+  double GetHeldPartitionBytes() const;
+
   /// Builds the partitions (empty leaves) now if they are not built (idempotent).
   bool UpdatePartitions();
   bool GetPartitionsBuilt() const { return this->PartitionsBuilt; }
@@ -129,6 +160,9 @@ public:
   /// The storage chunk of partition `idx`, or -1 (no volume, not built, out of
   /// range); for a corner point's partition -2 - the point's linear index.
   std::int64_t GetPartitionChunk(unsigned int idx) const;
+  /// Partition `idx` decoded and held (see the class comment), or null (not a
+  /// partition of a volume; a failed decode reports its error).
+  vtkImageData* GetHeldPartition(unsigned int idx);
 #endif
 
   ///@{
@@ -163,7 +197,11 @@ public:
   /// Setting a leaf that is not a vtkImageData (a generic filter's result over
   /// the partitions, e.g. vtkContourFilter's, whose composite output the
   /// executive makes with NewInstance + CopyStructure) drops the Core volume:
-  /// such an object is a plain partitioned dataset (HasVolume() false).
+  /// such an object is a plain partitioned dataset (HasVolume() false). An
+  /// image leaf is kept as set (vtkArrayCalculator fills it afterwards), except
+  /// when partitions are released after use and it is a shallow copy of a
+  /// decoded partition with only its arrays (ParaView's copy of an output):
+  /// that leaf stays empty and is decoded on demand.
   void SetDataSet(vtkCompositeDataIterator* iter, vtkDataObject* dataObj) override;
 
   void Initialize() override;
@@ -197,6 +235,14 @@ protected:
   bool PartitionsBuilt = false;
   bool OwnsAll = true;
   int Owned[6] = { 0, -1, 0, -1, 0, -1 };
+  bool ReleasePartitionsAfterUse = false;
+#ifndef __VTK_WRAP__
+  /// The decoded partitions held, by source; shared by the shallow copies.
+  struct HeldPartitions;
+  std::shared_ptr<HeldPartitions> Held;
+  /// Copies the view's state (volume, partitions, colours, owned chunks, held partitions) from `s`.
+  void CopyViewFrom(const vtkSparseDictionaryVolume& s);
+#endif
   /// The storage chunk of each partition (built with them).
   std::vector<std::int64_t> PartitionChunks;
 
