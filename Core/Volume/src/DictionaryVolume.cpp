@@ -383,18 +383,23 @@ Voxel* DictionaryVolume::expandChunk(std::int64_t id)
     return own;
   }
   const std::uint64_t bytes = static_cast<std::uint64_t>(n) * sizeof(Voxel);
-  // Reserve the chunk before checking: threads expanding different chunks at
-  // once each see the others' reservations, so together they never pass the
-  // limit (a check before the count let 16 threads overshoot by 15 chunks).
-  this->Expanded.fetch_add(1);
-  const std::uint64_t used = this->memoryBytes();
-  if (used > this->Limit)
+  // Reserve the chunk only if it fits, in one compare-and-swap: threads
+  // expanding different chunks at once then never pass the limit together (a
+  // check before counting let 16 threads overshoot by 15 chunks) and never
+  // refuse a chunk that fits (a count before checking made threads refuse
+  // each other's transient reservations: 3 of 5 fitting chunks on a 16-core host).
+  std::int64_t expanded = this->Expanded.load();
+  while (true)
   {
-    this->Expanded.fetch_sub(1);
-    std::ostringstream msg;
-    msg << "expanding chunk " << id << " needs " << formatBytes(bytes) << " more; the volume holds "
-        << formatBytes(used - bytes) << " of its " << formatBytes(this->Limit) << " limit";
-    throw Error(ErrorCode::OutOfMemory, msg.str());
+    const std::uint64_t used = this->memoryBytesWith(expanded);
+    if (used + bytes > this->Limit)
+    {
+      std::ostringstream msg;
+      msg << "expanding chunk " << id << " needs " << formatBytes(bytes) << " more; the volume holds "
+          << formatBytes(used) << " of its " << formatBytes(this->Limit) << " limit";
+      throw Error(ErrorCode::OutOfMemory, msg.str());
+    }
+    if (this->Expanded.compare_exchange_weak(expanded, expanded + 1)) break;
   }
   try
   {
@@ -550,8 +555,13 @@ std::vector<std::int64_t> DictionaryVolume::takeDirtyChunks()
 
 std::uint64_t DictionaryVolume::memoryBytes() const
 {
+  return this->memoryBytesWith(this->Expanded.load());
+}
+
+std::uint64_t DictionaryVolume::memoryBytesWith(std::int64_t expanded) const
+{
   const std::uint64_t table = static_cast<std::uint64_t>(this->ChunkTotal) * sizeof(Chunk);
-  const std::uint64_t data = static_cast<std::uint64_t>(this->Expanded.load()) *
+  const std::uint64_t data = static_cast<std::uint64_t>(expanded) *
     static_cast<std::uint64_t>(chunkSize(this->Options.chunkEdge)) * sizeof(Voxel);
   const std::uint64_t dict = this->Colors.size() * (sizeof(Rgba) + 16);
   return table + data + dict;

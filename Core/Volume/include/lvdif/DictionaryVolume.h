@@ -263,6 +263,8 @@ private:
 
   void init(const VolumeOptions& options, Voxel fill, bool useFill);
   void freeChunkData(Chunk& c);
+  /// memoryBytes() with `expanded` chunks expanded.
+  std::uint64_t memoryBytesWith(std::int64_t expanded) const;
   /// True when no other volume holds the buffer (so it may be written).
   static bool ownsBuffer(const Voxel* d);
 
