@@ -15,6 +15,7 @@
 #include "vtkInformation.h"
 #include "vtkInformationVector.h"
 #include "vtkIntArray.h"
+#include "vtkNew.h"
 #include "vtkObjectFactory.h"
 #include "vtkPointData.h"
 #include "vtkSmartPointer.h"
@@ -172,6 +173,12 @@ struct vtkSparseDictionaryVolume::HeldPartitions
 {
   std::mutex Lock;
   std::unordered_map<std::int64_t, vtkSmartPointer<vtkImageData>> Images;
+  std::uint64_t Bytes = 0;  // of the images' point arrays, as partitionBytes counts them
+  bool LimitReported = false; // one error for the set, not one per partition
+  /// What a partition that could not be decoded is handed out as: an image
+  /// without points (a null leaf would break consumers that asked to skip
+  /// empty nodes, e.g. vtkArrayCalculator, which calls NewInstance on it).
+  vtkNew<vtkImageData> Undecoded;
 };
 
 namespace
@@ -247,6 +254,8 @@ void vtkSparseDictionaryVolume::ReleaseDecodedPartitions()
 {
   std::lock_guard<std::mutex> lock(this->Held->Lock);
   this->Held->Images.clear();
+  this->Held->Bytes = 0;
+  this->Held->LimitReported = false;
 }
 
 double vtkSparseDictionaryVolume::GetHeldPartitionBytes() const
@@ -417,6 +426,7 @@ public:
       catch (const lvdif::Error& e)
       {
         vtkErrorWithObjectMacro(owner, << e.what());
+        this->Current = vtkSmartPointer<vtkImageData>::New(); // no points, but not a null leaf (see Undecoded)
       }
     }
     return this->Current;
@@ -481,19 +491,32 @@ vtkImageData* vtkSparseDictionaryVolume::GetHeldPartition(unsigned int idx)
   this->UpdatePartitions();
   const std::int64_t source = this->GetPartitionChunk(idx);
   if (source == -1) return nullptr;
-  std::lock_guard<std::mutex> lock(this->Held->Lock);
-  auto found = this->Held->Images.find(source);
-  if (found != this->Held->Images.end()) return found->second;
+  HeldPartitions& held = *this->Held;
+  std::lock_guard<std::mutex> lock(held.Lock);
+  auto found = held.Images.find(source);
+  if (found != held.Images.end()) return found->second;
+  const std::uint64_t bytes = partitionBytes(*this->Volume, { source }, this->PartitionColors);
   try
   {
+    // the partitions held together, not only this one, against the memory limit
+    lvdif::requireMemory(held.Bytes + bytes, "holding the sparse volume's decoded partitions (" +
+        lvdif::formatBytes(held.Bytes) + " held, " + std::to_string(held.Images.size()) + " of " +
+        std::to_string(this->PartitionChunks.size()) + " partitions)");
     vtkSmartPointer<vtkImageData> image = fillPartition(*this->Volume, source, this->PartitionColors);
-    this->Held->Images.emplace(source, image);
+    held.Images.emplace(source, image);
+    held.Bytes += bytes;
     return image;
   }
   catch (const lvdif::Error& e)
   {
-    vtkErrorMacro(<< e.what());
-    return nullptr;
+    if (!held.LimitReported)
+    {
+      vtkErrorMacro(<< e.what()
+                    << "; the partitions left are not decoded. A pipeline of per-partition filters (Contour, "
+                       "Slice, Clip, Threshold) can decode one at a time: LVDIF_RELEASE_PARTITIONS=1.");
+    }
+    held.LimitReported = true;
+    return held.Undecoded;
   }
 }
 

@@ -160,8 +160,10 @@ public:
   /// The storage chunk of partition `idx`, or -1 (no volume, not built, out of
   /// range); for a corner point's partition -2 - the point's linear index.
   std::int64_t GetPartitionChunk(unsigned int idx) const;
-  /// Partition `idx` decoded and held (see the class comment), or null (not a
-  /// partition of a volume; a failed decode reports its error).
+  /// Partition `idx` decoded and held (see the class comment); null when it is
+  /// not a partition of a volume; an image without points when it could not be
+  /// decoded (the error is reported once: the memory limit, for the partitions
+  /// held together).
   vtkImageData* GetHeldPartition(unsigned int idx);
 #endif
 

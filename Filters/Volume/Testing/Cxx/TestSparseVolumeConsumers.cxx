@@ -17,6 +17,7 @@
 #include "vtkNew.h"
 #include "vtkPointData.h"
 #include "vtkSmartPointer.h"
+#include "vtkStringOutputWindow.h"
 
 #include <gtest/gtest.h>
 
@@ -24,6 +25,7 @@
 #include <cstdlib>
 #include <memory>
 #include <string>
+#include <vector>
 
 namespace
 {
@@ -160,4 +162,70 @@ TEST(SparseVolumeConsumers, ShallowCopiesShareTheHeldPartitions)
   EXPECT_GT(copy->GetHeldPartitionBytes(), 0.0);
   for (std::size_t i = 0; i < leaves.size(); ++i)
     EXPECT_EQ(mismatches(*volume, leaves[i], "sdf", 1.0), 0) << "partition " << i;
+}
+
+// The held partitions together stay within the memory limit (LVDIF_MEMORY_LIMIT):
+// past it the partitions left are not decoded (null leaves) with one error for
+// the volume, not one per partition; released, they all decode again.
+TEST(SparseVolumeConsumers, HeldPartitionsStayWithinTheMemoryLimit)
+{
+  const auto volume = twoSpheres();
+  vtkNew<vtkSparseDictionaryVolume> sparse;
+  sparse->SetVolume(volume);
+  const double all = sparse->GetPartitionBytes();
+  const std::string limit = std::to_string(static_cast<long long>(0.4 * all));
+  const char* old = std::getenv("LVDIF_MEMORY_LIMIT");
+  const std::string kept = old ? old : "";
+  ::setenv("LVDIF_MEMORY_LIMIT", limit.c_str(), 1);
+  vtkNew<vtkStringOutputWindow> window;
+  vtkSmartPointer<vtkOutputWindow> previous = vtkOutputWindow::GetInstance();
+  vtkOutputWindow::SetInstance(window);
+  const auto leaves = vtkCompositeDataSet::GetDataSets<vtkDataSet>(sparse, /*preserveNull=*/true);
+  const auto again = vtkCompositeDataSet::GetDataSets<vtkDataSet>(sparse, true);
+  vtkOutputWindow::SetInstance(previous);
+  if (old)
+    ::setenv("LVDIF_MEMORY_LIMIT", kept.c_str(), 1);
+  else
+    ::unsetenv("LVDIF_MEMORY_LIMIT");
+  ASSERT_EQ(leaves.size(), sparse->GetNumberOfPartitions());
+  std::size_t decoded = 0;
+  for (std::size_t i = 0; i < leaves.size(); ++i)
+  {
+    ASSERT_NE(leaves[i], nullptr) << "an undecoded partition is an image without points, not a null leaf";
+    if (leaves[i]->GetNumberOfPoints() == 0) continue;
+    ++decoded;
+    EXPECT_EQ(mismatches(*volume, leaves[i], "sdf", 1.0), 0) << "partition " << i;
+  }
+  EXPECT_GT(decoded, 0u);
+  EXPECT_LT(decoded, leaves.size());
+  EXPECT_LE(sparse->GetHeldPartitionBytes(), 0.4 * all + 64 * 1024.0 * decoded); // arrays + image overhead
+  const std::string messages = window->GetOutput();
+  const std::string what = "holding the sparse volume's decoded partitions";
+  std::size_t count = 0;
+  for (std::size_t at = messages.find(what); at != std::string::npos; at = messages.find(what, at + 1)) ++count;
+  EXPECT_EQ(count, 1u) << messages;
+  EXPECT_NE(messages.find("LVDIF_RELEASE_PARTITIONS=1"), std::string::npos) << messages;
+  // vtkArrayCalculator asks to skip empty nodes and calls NewInstance on every leaf it gets
+  ::setenv("LVDIF_MEMORY_LIMIT", limit.c_str(), 1);
+  sparse->ReleaseDecodedPartitions();
+  vtkOutputWindow::SetInstance(window);
+  vtkNew<vtkArrayCalculator> calculator;
+  calculator->SetInputData(sparse);
+  calculator->AddScalarArrayName("sdf");
+  calculator->SetFunction("sdf*2");
+  calculator->SetResultArrayName("twice");
+  calculator->Update();
+  vtkOutputWindow::SetInstance(previous);
+  if (old)
+    ::setenv("LVDIF_MEMORY_LIMIT", kept.c_str(), 1);
+  else
+    ::unsetenv("LVDIF_MEMORY_LIMIT");
+  const auto computed = vtkCompositeDataSet::GetDataSets<vtkDataSet>(calculator->GetOutputDataObject(0));
+  std::size_t withResult = 0;
+  for (vtkDataSet* leaf : computed) withResult += leaf->GetPointData()->GetArray("twice") != nullptr;
+  EXPECT_EQ(withResult, decoded) << "the calculator ran on the decoded partitions";
+  sparse->ReleaseDecodedPartitions();
+  const auto whole = vtkCompositeDataSet::GetDataSets<vtkDataSet>(sparse, true);
+  for (std::size_t i = 0; i < whole.size(); ++i)
+    EXPECT_EQ(mismatches(*volume, whole[i], "sdf", 1.0), 0) << "partition " << i;
 }
