@@ -80,9 +80,12 @@ int vtkLVDIFVolumeWriter::Write()
   // upstream: minutes) and only then said the folder was missing
   if (!this->CheckTarget())
     return 0;
+  this->Cancelled = false;
   if (!UpdateWholeInput(this) && this->GetErrorCode() == vtkErrorCode::NoError)
     this->SetErrorCode(vtkErrorCode::UnknownError);
-  return this->GetErrorCode() == vtkErrorCode::NoError ? 1 : 0;
+  // a cancel is no error, but nothing was written: 0 (it answered 1, and the
+  // caller took the old file, or none, for the volume it had asked for)
+  return this->GetErrorCode() == vtkErrorCode::NoError && !this->Cancelled ? 1 : 0;
 }
 
 void vtkLVDIFVolumeWriter::WriteData()
@@ -120,7 +123,10 @@ void vtkLVDIFVolumeWriter::WriteData()
   catch (const lvdif::Error& e)
   {
     if (e.code() == lvdif::ErrorCode::Cancelled)
-      return; // AbortExecute: not an error
+    {
+      this->Cancelled = true; // AbortExecute: not an error, but Write() answers 0
+      return;
+    }
     fail(LVDIFVolumeBridge::FileError("write", this->FileName, e.what()),
       e.code() == lvdif::ErrorCode::IoFailure ? vtkErrorCode::CannotOpenFileError : vtkErrorCode::UnknownError);
   }

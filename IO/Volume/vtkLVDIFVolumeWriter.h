@@ -8,7 +8,8 @@
  * file name and the input, makes the volume of an image input, calls Save, and
  * reports a failure once (vtkErrorMacro and the writer's error code); a cancel
  * (AbortExecute) is not an error. Write() returns 0 whenever nothing was
- * written, also when the input failed upstream (its own error says why). Subclasses say how an image becomes a volume
+ * written, also when the input failed upstream (its own error says why) and
+ * after a cancel (no message, error code NoError; the old file is kept). Subclasses say how an image becomes a volume
  * and how a volume is saved. Every save is crash-safe (lvdif::saveAtomically).
  */
 #ifndef vtkLVDIFVolumeWriter_h
@@ -88,6 +89,7 @@ protected:
   std::string FileName;
 
 private:
+  bool Cancelled = false; // the last WriteData was cancelled (AbortExecute)
   vtkLVDIFVolumeWriter(const vtkLVDIFVolumeWriter&) = delete;
   void operator=(const vtkLVDIFVolumeWriter&) = delete;
 };
