@@ -70,6 +70,33 @@ bool vtkLVDIFVolumeWriter::CheckTarget()
   }
 }
 
+bool vtkLVDIFVolumeWriter::CheckInputGrid()
+{
+  vtkInformation* inInfo = this->GetInputInformation(0, 0);
+  if (!inInfo || !inInfo->Has(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT()))
+    return true; // nothing announced: the save checks the volume
+  int whole[6];
+  inInfo->Get(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT(), whole);
+  const std::int64_t dims[3] = { std::int64_t(whole[1]) - whole[0] + 1, std::int64_t(whole[3]) - whole[2] + 1,
+    std::int64_t(whole[5]) - whole[4] + 1 };
+  if (dims[0] < 1 || dims[1] < 1 || dims[2] < 1)
+    return true; // an empty input: WriteData refuses it
+  double spacing[3];
+  if (inInfo->Has(vtkDataObject::SPACING()))
+    inInfo->Get(vtkDataObject::SPACING(), spacing);
+  try
+  {
+    this->CheckGrid(dims, inInfo->Has(vtkDataObject::SPACING()) ? spacing : nullptr);
+    return true;
+  }
+  catch (const lvdif::Error& e)
+  {
+    vtkErrorMacro(<< LVDIFVolumeBridge::FileError("write", this->FileName, e.what()));
+    this->SetErrorCode(vtkErrorCode::UnknownError);
+    return false;
+  }
+}
+
 int vtkLVDIFVolumeWriter::Write()
 {
   if (this->GetNumberOfInputConnections(0) < 1)
@@ -79,6 +106,17 @@ int vtkLVDIFVolumeWriter::Write()
   // writer to a missing folder ran the whole pipeline (a mesh's conversion
   // upstream: minutes) and only then said the folder was missing
   if (!this->CheckTarget())
+    return 0;
+  // what the format cannot hold, from the input's information pass (cheap):
+  // a non-cubic volume into a .bv ran the whole pipeline above the writer first
+  auto* exec = vtkStreamingDemandDrivenPipeline::SafeDownCast(this->GetExecutive());
+  if (!exec || !exec->UpdateInformation())
+  {
+    if (this->GetErrorCode() == vtkErrorCode::NoError)
+      this->SetErrorCode(vtkErrorCode::UnknownError); // (the input's own error says why)
+    return 0;
+  }
+  if (!this->CheckInputGrid())
     return 0;
   this->Cancelled = false;
   if (!UpdateWholeInput(this) && this->GetErrorCode() == vtkErrorCode::NoError)

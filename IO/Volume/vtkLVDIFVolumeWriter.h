@@ -18,6 +18,7 @@
 #include "lvdifIOVolumeModule.h"
 #include "vtkWriter.h"
 
+#include <cstdint>
 #include <memory>
 #include <string>
 
@@ -62,6 +63,9 @@ protected:
   /// The file name, the place (lvdif::requireWritable) and CheckSettings: false
   /// after one error (and the writer's error code) when one fails.
   bool CheckTarget();
+  /// CheckGrid on the input's information (its whole extent and spacing):
+  /// false after one error naming the file (and the writer's error code).
+  bool CheckInputGrid();
   int FillInputPortInformation(int port, vtkInformation* info) override;
 
   /// What a save is given besides the volume.
@@ -77,6 +81,12 @@ protected:
   /// The writer's own settings that apply to every input (a sparse one too),
   /// checked after the folder and before any work; throws lvdif::Error (default: none).
   virtual void CheckSettings() {}
+  /// The input's grid as its pipeline information announces it (points on
+  /// each axis; spacing, nullptr when not announced), checked by Write() after
+  /// the input's information pass and before any of its work: what the format
+  /// cannot hold (a .bv's cube, an OpenVDB level set's one spacing); throws
+  /// lvdif::Error (default: none). The save checks the volume itself again.
+  virtual void CheckGrid(const std::int64_t dims[3], const double* spacing) { (void)dims; (void)spacing; }
   /// Whether an image input's `rgba` array is read (default true).
   virtual bool ReadsImageColors() { return true; }
   /// The volume of an image input (default: its `sdf` and `rgba` encoded with

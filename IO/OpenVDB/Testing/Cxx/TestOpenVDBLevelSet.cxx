@@ -4,6 +4,9 @@
 // colours) and with OpenVDB's own `vdb_print`; the reader's output against the
 // analytic SDF; the core round trip key-exact; and the error paths.
 #include "LVDIFOpenVDB.h"
+#include "vtkDictionaryVolumeReader.h"
+#include "lvdif/DictionaryVolume.h"
+#include "lvdif/VolumeFile.h"
 #include "vtkOpenVDBLevelSetReader.h"
 #include "vtkSparseDictionaryVolume.h"
 #include "vtkSparseVolumeToImage.h"
@@ -365,4 +368,70 @@ TEST(OpenVDBLevelSet, ErrorsNameTheProblem)
   std::remove(path.c_str());
   std::remove(junk.c_str());
   std::remove(other.c_str());
+}
+
+// A volume of unequal spacing (which a level set cannot hold) was refused only
+// after the whole pipeline above the writer had run. Now Write() refuses it
+// from the input's information pass: one error naming the file and the rule,
+// Write() 0, the reader above never read its voxels, no file made; the same
+// grid with one spacing is then written. Oracle: the reader's StartEvent count
+// and the file system.
+TEST(OpenVDBLevelSet, AnisotropicSpacingIsRefusedBeforeTheInputRuns)
+{
+  struct Counter : vtkCommand
+  {
+    static Counter* New() { return new Counter; }
+    void Execute(vtkObject*, unsigned long, void*) override { ++this->Count; }
+    int Count = 0;
+  };
+  struct Errors : vtkCommand
+  {
+    static Errors* New() { return new Errors; }
+    void Execute(vtkObject*, unsigned long, void* data) override
+    {
+      ++this->Count;
+      this->Text += static_cast<const char*>(data);
+    }
+    int Count = 0;
+    std::string Text;
+  };
+  const std::string stem = ::testing::TempDir() + "lvdif_vdbgrid_" + std::to_string(::getpid());
+  const std::string source = stem + ".lvdv", target = stem + ".vdb";
+  for (const bool isotropic : { false, true })
+  {
+    lvdif::VolumeOptions o;
+    o.dims = { 12, 10, 8 };
+    o.chunkEdge = 4;
+    o.spacing = { 0.5, isotropic ? 0.5 : 0.25, 0.5 };
+    lvdif::saveVolume(lvdif::DictionaryVolume(o), source);
+    vtkNew<Counter> runs;
+    vtkNew<vtkDictionaryVolumeReader> reader;
+    reader->AddObserver(vtkCommand::StartEvent, runs);
+    reader->SetFileName(source.c_str());
+    vtkNew<Errors> errors;
+    vtkNew<vtkOpenVDBLevelSetWriter> writer;
+    writer->AddObserver(vtkCommand::ErrorEvent, errors);
+    writer->GetExecutive()->AddObserver(vtkCommand::ErrorEvent, errors);
+    writer->SetInputConnection(reader->GetOutputPort());
+    writer->SetFileName(target.c_str());
+    writer->SetHalfWidth(3);
+    const int written = writer->Write();
+    if (isotropic)
+    {
+      EXPECT_EQ(written, 1) << errors->Text;
+      EXPECT_EQ(runs->Count, 1);
+      EXPECT_EQ(::access(target.c_str(), F_OK), 0);
+    }
+    else
+    {
+      EXPECT_EQ(written, 0);
+      EXPECT_EQ(errors->Count, 1) << errors->Text;
+      EXPECT_NE(errors->Text.find("needs isotropic spacing"), std::string::npos) << errors->Text;
+      EXPECT_NE(errors->Text.find(target), std::string::npos) << errors->Text;
+      EXPECT_EQ(runs->Count, 0) << "the reader ran for a write refused before the work";
+      EXPECT_NE(::access(target.c_str(), F_OK), 0);
+    }
+    std::remove(source.c_str());
+    std::remove(target.c_str());
+  }
 }

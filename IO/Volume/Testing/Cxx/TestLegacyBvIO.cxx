@@ -4,13 +4,16 @@
 // or not; image -> .bv -> image matches the analytic SDF it was made from and
 // the palette colours exactly, and a second export is byte-identical to the
 // first (exact at the key level); bad sizes and names give one error each.
+#include "vtkDictionaryVolumeReader.h"
 #include "vtkLegacyBvReader.h"
 #include "vtkSparseDictionaryVolume.h"
 #include "vtkSparseVolumeToImage.h"
 #include "vtkLegacyBvWriter.h"
 
+#include "lvdif/DictionaryVolume.h"
 #include "lvdif/Error.h"
 #include "lvdif/LegacyBv.h"
+#include "lvdif/VolumeFile.h"
 
 #include "vtkCommand.h"
 #include "vtkExecutive.h"
@@ -23,6 +26,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdio>
 #include <cstdint>
 #include <fstream>
 #include <iterator>
@@ -390,5 +394,75 @@ TEST(LegacyBvIO, ReaderSaysWhatTheImportSays)
     EXPECT_FALSE(vtkLegacyBvReader::CanReadFile(path.c_str())) << c.name;
     std::remove(path.c_str());
   }
+  ::rmdir(dir.c_str());
+}
+
+// A volume the format cannot hold (not a cube, or not the edge the file's
+// SDF_<N>_ name gives) was refused only after the whole pipeline above the
+// writer had run (a mesh's conversion: minutes). Now Write() refuses it from
+// the input's information pass: one error naming the file and the rule, Write()
+// 0, the reader above never read its voxels (its StartEvent: RequestData), no
+// file made; a cube of the right edge is then written. Oracle: the reader's
+// StartEvent count and the file system.
+TEST(LegacyBvIO, AVolumeTheFormatCannotHoldIsRefusedBeforeTheInputRuns)
+{
+  struct Counter : vtkCommand
+  {
+    static Counter* New() { return new Counter; }
+    void Execute(vtkObject*, unsigned long, void*) override { ++this->Count; }
+    int Count = 0;
+  };
+  const std::string dir = ::testing::TempDir() + "lvdif_bvgrid_" + std::to_string(::getpid());
+  ASSERT_EQ(::mkdir(dir.c_str(), 0755), 0);
+  struct Case
+  {
+    lvdif::Index3 dims;
+    std::string target, says;
+  };
+  for (const Case& c : { Case{ { 12, 10, 8 }, dir + "/box.bv", ".bv holds only cubic volumes; this one is 12 x 10 x 8" },
+         Case{ { 8, 8, 8 }, dir + "/SDF_16_named.bv", "file name says N = 16 but the volume's edge is 8" } })
+  {
+    lvdif::VolumeOptions o;
+    o.dims = c.dims;
+    o.chunkEdge = 4;
+    const std::string source = dir + "/source.lvdv";
+    lvdif::saveVolume(lvdif::DictionaryVolume(o), source);
+    vtkNew<Counter> runs;
+    vtkNew<vtkDictionaryVolumeReader> reader;
+    reader->AddObserver(vtkCommand::StartEvent, runs);
+    reader->SetFileName(source.c_str());
+    vtkNew<ErrorCatcher> errors;
+    vtkNew<vtkLegacyBvWriter> writer;
+    writer->AddObserver(vtkCommand::ErrorEvent, errors);
+    writer->GetExecutive()->AddObserver(vtkCommand::ErrorEvent, errors);
+    writer->SetInputConnection(reader->GetOutputPort());
+    writer->SetFileName(c.target.c_str());
+    EXPECT_EQ(writer->Write(), 0) << c.says;
+    EXPECT_EQ(errors->Count, 1) << errors->Text;
+    EXPECT_NE(errors->Text.find(c.says), std::string::npos) << errors->Text;
+    EXPECT_NE(errors->Text.find(c.target), std::string::npos) << errors->Text;
+    EXPECT_EQ(runs->Count, 0) << "the reader ran for a write refused before the work: " << c.says;
+    EXPECT_NE(::access(c.target.c_str(), F_OK), 0) << c.target;
+    std::remove(source.c_str());
+  }
+  // a cube named by its edge: written, the reader ran once
+  lvdif::VolumeOptions o;
+  o.dims = { 8, 8, 8 };
+  o.chunkEdge = 4;
+  const std::string source = dir + "/cube.lvdv", target = dir + "/SDF_8_cube.bv";
+  lvdif::saveVolume(lvdif::DictionaryVolume(o), source);
+  vtkNew<Counter> runs;
+  vtkNew<vtkDictionaryVolumeReader> reader;
+  reader->AddObserver(vtkCommand::StartEvent, runs);
+  reader->SetFileName(source.c_str());
+  vtkNew<vtkLegacyBvWriter> writer;
+  writer->SetInputConnection(reader->GetOutputPort());
+  writer->SetFileName(target.c_str());
+  EXPECT_EQ(writer->Write(), 1);
+  EXPECT_EQ(runs->Count, 1);
+  struct stat st;
+  EXPECT_TRUE(::stat(target.c_str(), &st) == 0 && st.st_size == 4 * 8 * 8 * 8) << target;
+  std::remove(source.c_str());
+  std::remove(target.c_str());
   ::rmdir(dir.c_str());
 }
