@@ -10,6 +10,8 @@
 #include "lvdif/Error.h"
 #include "lvdif/VolumeFile.h"
 
+#include "vtkCallbackCommand.h"
+#include "vtkCommand.h"
 #include "vtkCommunicator.h"
 #include "vtkDataObject.h"
 #include "vtkErrorCode.h"
@@ -312,8 +314,28 @@ bool vtkPDictionaryVolumeWriter::WritePiece(
   w->SetChunkEdge(this->ChunkEdge);
   w->SetCompressionLevel(this->CompressionLevel);
   w->SetVolumeName(this->VolumeName.c_str());
-  w->Write();
-  return w->GetErrorCode() == vtkErrorCode::NoError;
+  // the piece's progress is this writer's (a serial run: piece p of n is the
+  // p-th n-th of it), and this writer's cancel the piece's: the pieces of an
+  // image reported no progress and could not be cancelled
+  struct Forward
+  {
+    vtkPDictionaryVolumeWriter* outer;
+    double shift, scale;
+  } forward{ this, this->IsSerial() ? double(pieceNumber) / this->NumberOfPieces : 0.0,
+    this->IsSerial() ? 1.0 / this->NumberOfPieces : 1.0 };
+  vtkNew<vtkCallbackCommand> onProgress;
+  onProgress->SetClientData(&forward);
+  onProgress->SetCallback([](vtkObject* caller, unsigned long, void* client, void* call) {
+    auto* f = static_cast<Forward*>(client);
+    f->outer->UpdateProgress(f->shift + f->scale * *static_cast<double*>(call));
+    if (f->outer->GetAbortExecute())
+      static_cast<vtkAlgorithm*>(caller)->SetAbortExecute(1);
+  });
+  w->AddObserver(vtkCommand::ProgressEvent, onProgress);
+  if (this->GetAbortExecute())
+    return false; // cancelled before this piece
+  // Write() answers 0 for a cancel too (nothing written; no error)
+  return w->Write() == 1;
 }
 
 bool vtkPDictionaryVolumeWriter::InputIsImage()

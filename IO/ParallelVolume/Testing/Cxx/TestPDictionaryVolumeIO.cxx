@@ -986,3 +986,69 @@ TEST(PVolumeIO, AnUnwritableTargetIsRefusedBeforeTheInputRuns)
          vtkPDictionaryVolumeWriter::PieceFilePath(index, 0, 1), vtkPDictionaryVolumeWriter::PieceFilePath(index, 1, 0) })
     std::remove(f.c_str());
 }
+
+// An image written as .lvdvp goes through one .lvdv writer per piece, whose
+// progress and cancel were its own: the .lvdvp writer reported no progress
+// between 0 and 1 and a cancel (AbortExecute from a progress observer, ParaView's
+// or a Qt dialog's) could not reach the pieces: the write ran to the end and
+// replaced the old set. Now the pieces' progress is the writer's (piece p of n
+// its p-th n-th) and its cancel theirs: Write() answers 0, the old index and
+// pieces stay byte for byte, no temporary file is left; uncancelled, the same
+// write reports progress in (0, 1) and is read back as the image. Oracles: the
+// files' bytes before the write, the serial round trip.
+TEST(PVolumeIO, AnImageWriteReportsProgressAndCanBeCancelled)
+{
+  vtkSmartPointer<vtkImageData> img = makeImage();
+  const std::string index = tmpName("cancelimg.lvdvp");
+  writePieces(img, index, 3);
+  const std::string piece[3] = { vtkPDictionaryVolumeWriter::PieceFilePath(index, 0),
+    vtkPDictionaryVolumeWriter::PieceFilePath(index, 1), vtkPDictionaryVolumeWriter::PieceFilePath(index, 2) };
+  const std::string before[4] = { fileBytes(index), fileBytes(piece[0]), fileBytes(piece[1]), fileBytes(piece[2]) };
+  struct Watch
+  {
+    bool cancel;
+    std::vector<double> progress;
+  };
+  for (const bool cancel : { true, false })
+  {
+    Watch watch{ cancel, {} };
+    vtkNew<vtkPDictionaryVolumeWriter> w;
+    w->SetController(nullptr);
+    w->SetInputData(otherImage());
+    w->SetFileName(index.c_str());
+    w->SetNumberOfPieces(3);
+    vtkNew<vtkCallbackCommand> onProgress;
+    onProgress->SetClientData(&watch);
+    onProgress->SetCallback([](vtkObject* caller, unsigned long, void* client, void* call) {
+      auto* wt = static_cast<Watch*>(client);
+      const double p = *static_cast<double*>(call);
+      wt->progress.push_back(p);
+      if (wt->cancel && p > 0.0 && p < 1.0) // within the write: piece 1 or 2 starts
+        static_cast<vtkAlgorithm*>(caller)->SetAbortExecute(1);
+    });
+    w->AddObserver(vtkCommand::ProgressEvent, onProgress);
+    const int written = w->Write();
+    const bool reported = std::any_of(
+      watch.progress.begin(), watch.progress.end(), [](double p) { return p > 0.0 && p < 1.0; });
+    EXPECT_TRUE(reported) << "no progress between 0 and 1 (" << watch.progress.size() << " reports)";
+    if (cancel)
+    {
+      EXPECT_EQ(written, 0) << "cancelled";
+      EXPECT_TRUE(fileBytes(index) == before[0]) << "index";
+      for (int p = 0; p < 3; ++p)
+        EXPECT_TRUE(fileBytes(piece[p]) == before[1 + p]) << "piece " << p;
+      EXPECT_EQ(setFiles("cancelimg", ".tmp-"), std::vector<std::string>());
+    }
+    else
+    {
+      EXPECT_EQ(written, 1);
+      vtkNew<vtkPDictionaryVolumeReader> r;
+      r->SetFileName(index.c_str());
+      expectSameArrays(decoded(r), serialRoundTrip(otherImage()));
+    }
+  }
+  std::remove(index.c_str());
+  for (int g = 0; g < 2; ++g)
+    for (int p = 0; p < 3; ++p)
+      std::remove(vtkPDictionaryVolumeWriter::PieceFilePath(index, p, g).c_str());
+}
