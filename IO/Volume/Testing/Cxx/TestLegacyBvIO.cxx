@@ -16,6 +16,10 @@
 #include "lvdif/VolumeFile.h"
 
 #include "vtkCommand.h"
+#include "vtkCompositeDataSet.h"
+#include "vtkContourFilter.h"
+#include "vtkDataObject.h"
+#include "vtkDataSet.h"
 #include "vtkExecutive.h"
 #include "vtkFloatArray.h"
 #include "vtkImageData.h"
@@ -465,4 +469,70 @@ TEST(LegacyBvIO, AVolumeTheFormatCannotHoldIsRefusedBeforeTheInputRuns)
   std::remove(source.c_str());
   std::remove(target.c_str());
   ::rmdir(dir.c_str());
+}
+
+// Under pieces (pvbatch rank r of n), every rank's read of a .bv held the whole
+// volume as its partitions: ParaView's Contour over the pieces gave each
+// triangle n times, Integrate Variables n times the volume (2 ranks: 28,664
+// triangles for 14,332). The file has no index and is still read whole, but a
+// piece now owns only its block of chunks, by the .lvdv reader's rule. Oracle:
+// VTK's vtkContourFilter on the dense image of the whole read; the pieces'
+// contours over their partitions must add up to it, each piece contributing.
+TEST(LegacyBvIO, PiecesOwnTheirChunksOnly)
+{
+  const int n = 72; // 3 x 3 x 3 chunks of 32
+  vtkNew<vtkImageData> img;
+  img->SetDimensions(n, n, n);
+  vtkNew<vtkFloatArray> sdf;
+  sdf->SetName("sdf");
+  sdf->SetNumberOfTuples(n * n * n);
+  for (int k = 0, id = 0; k < n; ++k)
+    for (int j = 0; j < n; ++j)
+      for (int i = 0; i < n; ++i, ++id)
+      {
+        const double dx = i - 35.3, dy = j - 36.6, dz = k - 34.2;
+        sdf->SetValue(id, static_cast<float>(std::sqrt(dx * dx + dy * dy + dz * dz) - 27.5));
+      }
+  img->GetPointData()->AddArray(sdf);
+  const std::string path = tempFile("72");
+  {
+    vtkNew<vtkLegacyBvWriter> writer;
+    writer->SetInputData(img);
+    writer->SetFileName(path.c_str());
+    ASSERT_EQ(writer->Write(), 1);
+  }
+  vtkNew<vtkLegacyBvReader> whole;
+  whole->SetFileName(path.c_str());
+  vtkNew<vtkSparseVolumeToImage> dense;
+  dense->SetInputConnection(whole->GetOutputPort());
+  vtkNew<vtkContourFilter> oracle;
+  oracle->SetInputConnection(dense->GetOutputPort());
+  oracle->SetValue(0, 0.0);
+  oracle->SetInputArrayToProcess(0, 0, 0, vtkDataObject::FIELD_ASSOCIATION_POINTS, "sdf");
+  oracle->Update();
+  const vtkIdType expected = oracle->GetOutput()->GetNumberOfCells();
+  ASSERT_GT(expected, 1000);
+  for (int pieces = 1; pieces <= 4; ++pieces)
+  {
+    vtkIdType sum = 0;
+    for (int piece = 0; piece < pieces; ++piece)
+    {
+      vtkNew<vtkLegacyBvReader> reader;
+      reader->SetFileName(path.c_str());
+      vtkNew<vtkContourFilter> contour;
+      contour->SetInputConnection(reader->GetOutputPort());
+      contour->SetValue(0, 0.0);
+      contour->SetInputArrayToProcess(0, 0, 0, vtkDataObject::FIELD_ASSOCIATION_POINTS, "sdf");
+      contour->UpdatePiece(piece, pieces, 0);
+      vtkIdType cells = 0;
+      if (auto* out = vtkCompositeDataSet::SafeDownCast(contour->GetOutputDataObject(0)))
+        cells = out->GetNumberOfCells();
+      else if (auto* ds = vtkDataSet::SafeDownCast(contour->GetOutputDataObject(0)))
+        cells = ds->GetNumberOfCells();
+      EXPECT_GT(cells, 0) << "piece " << piece << " of " << pieces;
+      sum += cells;
+    }
+    EXPECT_EQ(sum, expected) << pieces << " pieces";
+  }
+  std::remove(path.c_str());
 }
