@@ -14,6 +14,10 @@
 #include "SdfImageTestUtil.h"
 
 #include "vtkCommand.h"
+#include "vtkCompositeDataSet.h"
+#include "vtkContourFilter.h"
+#include "vtkDataObject.h"
+#include "vtkDataSet.h"
 #include "vtkExecutive.h"
 #include "vtkFloatArray.h"
 #include "vtkImageData.h"
@@ -434,4 +438,45 @@ TEST(OpenVDBLevelSet, AnisotropicSpacingIsRefusedBeforeTheInputRuns)
     std::remove(source.c_str());
     std::remove(target.c_str());
   }
+}
+
+// Under pieces (UpdatePiece, a pvbatch rank) every piece's read held the whole
+// volume as its partitions, so a generic filter over the pieces (VTK's Contour)
+// counted it once a piece. A piece now owns only its block of chunks, by the
+// .lvdv reader's rule. Oracle: vtkContourFilter on the dense image of the whole
+// read; the pieces' contours over their partitions add up to it.
+TEST(OpenVDBLevelSet, PiecesOwnTheirChunksOnly)
+{
+  const std::string path = writeSphere("pieces.vdb");
+  auto contourOf = [](vtkAlgorithm* source, int piece, int pieces) {
+    vtkNew<vtkContourFilter> contour;
+    contour->SetInputConnection(source->GetOutputPort());
+    contour->SetValue(0, 0.0);
+    contour->SetInputArrayToProcess(0, 0, 0, vtkDataObject::FIELD_ASSOCIATION_POINTS, "sdf");
+    contour->UpdatePiece(piece, pieces, 0);
+    if (auto* c = vtkCompositeDataSet::SafeDownCast(contour->GetOutputDataObject(0)))
+      return c->GetNumberOfCells();
+    auto* d = vtkDataSet::SafeDownCast(contour->GetOutputDataObject(0));
+    return d ? d->GetNumberOfCells() : vtkIdType(0);
+  };
+  vtkNew<vtkOpenVDBLevelSetReader> whole;
+  whole->SetFileName(path.c_str());
+  whole->SetPadding(24); // more than one chunk of 32 a axis
+  vtkNew<vtkSparseVolumeToImage> dense;
+  dense->SetInputConnection(whole->GetOutputPort());
+  const vtkIdType expected = contourOf(dense, 0, 1);
+  ASSERT_GT(expected, 100);
+  for (int pieces = 1; pieces <= 4; ++pieces)
+  {
+    vtkIdType sum = 0;
+    for (int piece = 0; piece < pieces; ++piece)
+    {
+      vtkNew<vtkOpenVDBLevelSetReader> reader;
+      reader->SetFileName(path.c_str());
+      reader->SetPadding(24);
+      sum += contourOf(reader, piece, pieces);
+    }
+    EXPECT_EQ(sum, expected) << pieces << " pieces";
+  }
+  std::remove(path.c_str());
 }
