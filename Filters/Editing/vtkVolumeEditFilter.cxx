@@ -137,7 +137,21 @@ int vtkVolumeEditFilter::RequestData(
     }
     if (sparseOut)
     {
+      // every rank edits the whole volume (an edit can reach anywhere), but a
+      // piece (pvbatch rank r of n) owns only its block of chunks, by the
+      // .lvdv reader's rule: every rank's partitions were the whole volume,
+      // and ParaView's Contour over 2 ranks gave every triangle twice
+      int owned[6] = { 0, -1, 0, -1, 0, -1 };
+      lvdif::VoxelBox region;
+      const int kind = LVDIFVolumeBridge::RequestedVoxels(outInfo, volume->options(), owned, region);
+      if (kind < 0)
+      {
+        sparseOut->Initialize(); // a piece without chunks: empty
+        return 1;
+      }
       sparseOut->SetVolume(volume);
+      if (kind == 1)
+        sparseOut->SetOwnedChunks(owned);
       sparseOut->SetPartitionColors(sparseIn->GetPartitionColors() && this->WithColor);
     }
     else

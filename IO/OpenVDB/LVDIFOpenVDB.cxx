@@ -130,16 +130,20 @@ void checkImportPadding(int padding, const std::string& name)
     name + " must be a number of voxels in [0, " + std::to_string(MaxImportPadding) + "], not " + std::to_string(padding));
 }
 
-void checkExport(const DictionaryVolume& volume, const ExportOptions& options)
+void checkExportSpacing(const double spacing[3])
 {
-  const VolumeOptions& o = volume.options();
-  const double vs = o.spacing[0];
+  const double vs = spacing[0];
   for (int a = 1; a < 3; ++a)
   {
-    require(std::fabs(o.spacing[a] - vs) <= 1e-9 * vs,
+    require(std::fabs(spacing[a] - vs) <= 1e-9 * vs,
       "OpenVDB export needs isotropic spacing (a level set has one distance unit); the volume has spacing " +
-        std::to_string(o.spacing[0]) + ", " + std::to_string(o.spacing[1]) + ", " + std::to_string(o.spacing[2]));
+        std::to_string(spacing[0]) + ", " + std::to_string(spacing[1]) + ", " + std::to_string(spacing[2]));
   }
+}
+
+void checkExport(const DictionaryVolume& volume, const ExportOptions& options)
+{
+  checkExportSpacing(volume.options().spacing.data());
   checkHalfWidth(options.halfWidth, "OpenVDB export: the half width");
   require(!options.sdfName.empty(), "OpenVDB export: empty grid name");
 }

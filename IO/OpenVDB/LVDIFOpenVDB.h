@@ -88,6 +88,8 @@ LVDIFIOOPENVDB_EXPORT void checkImportPadding(int padding, const std::string& na
 /// The writer checks it before it says anything about the band (it warned of a
 /// narrower band and then refused the volume).
 LVDIFIOOPENVDB_EXPORT void checkExport(const DictionaryVolume& volume, const ExportOptions& options);
+/// The spacing rule of checkExport alone (one distance unit: isotropic); throws Error.
+LVDIFIOOPENVDB_EXPORT void checkExportSpacing(const double spacing[3]);
 
 /// Writes the .vdb (Error(InvalidArgument) for anisotropic spacing,
 /// Error(IoFailure) when OpenVDB cannot write, Error(Cancelled)).

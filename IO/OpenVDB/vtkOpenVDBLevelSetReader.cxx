@@ -144,8 +144,21 @@ int vtkOpenVDBLevelSetReader::RequestData(
     output->Initialize();
     return 0;
   }
+  // a piece (UpdatePiece, a pvbatch rank) owns only its block of chunks, by
+  // the .lvdv reader's rule: every piece's partitions were the whole volume
+  int owned[6] = { 0, -1, 0, -1, 0, -1 };
+  lvdif::VoxelBox region;
+  const int kind = LVDIFVolumeBridge::RequestedVoxels(
+    outputVector->GetInformationObject(0), this->Internal->Volume->options(), owned, region);
+  if (kind < 0)
+  {
+    output->Initialize(); // a piece without chunks: empty
+    return 1;
+  }
   output->SetPartitionColors(this->WithColor);
   output->SetVolume(this->Internal->Volume);
+  if (kind == 1)
+    output->SetOwnedChunks(owned);
   this->UpdateProgress(1.0);
   return 1;
 }

@@ -19,6 +19,12 @@ void vtkOpenVDBLevelSetWriter::CheckSettings()
   lvdif::vdb::checkHalfWidth(this->HalfWidth, "HalfWidth");
 }
 
+void vtkOpenVDBLevelSetWriter::CheckGrid(const std::int64_t*, const double* spacing)
+{
+  if (spacing)
+    lvdif::vdb::checkExportSpacing(spacing);
+}
+
 lvdif::VolumeOptions vtkOpenVDBLevelSetWriter::ImageVolumeOptions()
 {
   lvdif::VolumeOptions options;

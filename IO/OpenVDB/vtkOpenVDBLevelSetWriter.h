@@ -60,6 +60,8 @@ protected:
 
   void Save(const lvdif::DictionaryVolume& volume, const SaveSource& source, lvdif::Interrupter& interrupter) override;
   void CheckSettings() override;
+  /// One spacing on every axis (lvdif::vdb::checkExportSpacing).
+  void CheckGrid(const std::int64_t dims[3], const double* spacing) override;
   bool ReadsImageColors() override { return this->WithColor; }
   lvdif::VolumeOptions ImageVolumeOptions() override;
 

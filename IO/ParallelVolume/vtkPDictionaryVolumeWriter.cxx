@@ -10,6 +10,8 @@
 #include "lvdif/Error.h"
 #include "lvdif/VolumeFile.h"
 
+#include "vtkCallbackCommand.h"
+#include "vtkCommand.h"
 #include "vtkCommunicator.h"
 #include "vtkDataObject.h"
 #include "vtkErrorCode.h"
@@ -122,6 +124,26 @@ int vtkPDictionaryVolumeWriter::Write()
   else
   {
     this->SetErrorCode(vtkErrorCode::NoError);
+    // the pieces, the file name, the folder and the settings before the input
+    // is brought up to date, as vtkLVDIFVolumeWriter::Write: a write into a
+    // missing folder ran the whole pipeline above it (Mesh To SDF: minutes)
+    // and only then refused. The ranks agree first: a rank that stopped here
+    // while the others ran a collective filter upstream would hang them.
+    int generation = 0;
+    int ok = this->CheckTarget(this->InputIsImage(), generation) ? 1 : 0;
+    if (this->IsCollective())
+    {
+      int all = ok;
+      this->Controller->AllReduce(&ok, &all, 1, vtkCommunicator::MIN_OP);
+      if (!all && ok)
+      {
+        vtkErrorMacro("another piece refused its file or settings; nothing is written");
+        this->SetErrorCode(vtkErrorCode::UnknownError);
+      }
+      ok = all;
+    }
+    if (!ok)
+      return 0; // every rank alike: nothing ran, nothing to agree on
     if (!vtkLVDIFVolumeWriter::UpdateWholeInput(this) && this->GetErrorCode() == vtkErrorCode::NoError)
       this->SetErrorCode(vtkErrorCode::UnknownError);
     written = this->GetErrorCode() == vtkErrorCode::NoError ? 1 : 0;
@@ -292,22 +314,47 @@ bool vtkPDictionaryVolumeWriter::WritePiece(
   w->SetChunkEdge(this->ChunkEdge);
   w->SetCompressionLevel(this->CompressionLevel);
   w->SetVolumeName(this->VolumeName.c_str());
-  w->Write();
-  return w->GetErrorCode() == vtkErrorCode::NoError;
+  // the piece's progress is this writer's (a serial run: piece p of n is the
+  // p-th n-th of it), and this writer's cancel the piece's: the pieces of an
+  // image reported no progress and could not be cancelled
+  struct Forward
+  {
+    vtkPDictionaryVolumeWriter* outer;
+    double shift, scale;
+  } forward{ this, this->IsSerial() ? double(pieceNumber) / this->NumberOfPieces : 0.0,
+    this->IsSerial() ? 1.0 / this->NumberOfPieces : 1.0 };
+  vtkNew<vtkCallbackCommand> onProgress;
+  onProgress->SetClientData(&forward);
+  onProgress->SetCallback([](vtkObject* caller, unsigned long, void* client, void* call) {
+    auto* f = static_cast<Forward*>(client);
+    f->outer->UpdateProgress(f->shift + f->scale * *static_cast<double*>(call));
+    if (f->outer->GetAbortExecute())
+      static_cast<vtkAlgorithm*>(caller)->SetAbortExecute(1);
+  });
+  w->AddObserver(vtkCommand::ProgressEvent, onProgress);
+  if (this->GetAbortExecute())
+    return false; // cancelled before this piece
+  // Write() answers 0 for a cancel too (nothing written; no error)
+  return w->Write() == 1;
 }
 
-void vtkPDictionaryVolumeWriter::WriteData()
+bool vtkPDictionaryVolumeWriter::InputIsImage()
 {
-  vtkImageData* image = this->GetInput();
-  auto* sparseInput = vtkSparseDictionaryVolume::SafeDownCast(this->Superclass::GetInput());
-  auto* sparse = sparseInput && sparseInput->HasVolume() ? sparseInput : nullptr;
-  vtkInformation* inInfo = this->GetInputInformation(0, 0);
+  // the input's type, known once its data object exists (nothing computed)
+  auto* exec = vtkStreamingDemandDrivenPipeline::SafeDownCast(this->GetExecutive());
+  if (exec)
+    exec->UpdateDataObject();
+  return !vtkSparseDictionaryVolume::SafeDownCast(this->Superclass::GetInput());
+}
+
+bool vtkPDictionaryVolumeWriter::CheckTarget(bool imageInput, int& generation)
+{
   if (!this->PieceExists())
   {
     vtkErrorMacro("piece " << this->Piece << " of " << this->NumberOfPieces << " does not exist: Piece must be in [0, "
                            << "NumberOfPieces - 1] and NumberOfPieces >= 1");
     this->SetErrorCode(vtkErrorCode::UnknownError);
-    return;
+    return false;
   }
   const bool serial = this->IsSerial();
   if (!serial && !this->IsCollective() && this->NumberOfPieces > 1)
@@ -317,36 +364,49 @@ void vtkPDictionaryVolumeWriter::WriteData()
                                     << " processes (one piece each) or none (one process writes every piece); "
                                     << "the Controller has " << this->Controller->GetNumberOfProcesses());
     this->SetErrorCode(vtkErrorCode::UnknownError);
-    return;
+    return false;
   }
-  const bool emptyPiece =
-    !serial && sparseInput && !sparse && EmptySparsePiece(inInfo, this->Piece, this->NumberOfPieces);
   if (this->FileName.empty())
   {
     vtkErrorMacro("no file name: call SetFileName() first");
     this->SetErrorCode(vtkErrorCode::NoFileNameError);
-    return;
+    return false;
   }
+  // the folder and the settings, before any file: one error on this writer naming the file asked for
+  // (each piece's writer would report them on itself, naming its piece file)
+  if (!LVDIFVolumeBridge::CallCore(this, [&] {
+        lvdif::requireWritable(this->FileName);
+        generation = NextGeneration(this->FileName);
+        // a serial run writes every piece, a rank its own: each file is checked before the first is written
+        for (int p = serial ? 0 : this->Piece; p < (serial ? this->NumberOfPieces : this->Piece + 1); ++p)
+          lvdif::requireWritable(PieceFilePath(this->FileName, p, generation));
+        lvdif::checkCompressionLevel(this->CompressionLevel, "CompressionLevel");
+        if (imageInput) LVDIFVolumeBridge::CheckVolumeSettings(this->ChunkEdge, this->BandWidth);
+      }))
+  {
+    this->SetErrorCode(vtkErrorCode::UnknownError);
+    return false;
+  }
+  return true;
+}
+
+void vtkPDictionaryVolumeWriter::WriteData()
+{
+  vtkImageData* image = this->GetInput();
+  auto* sparseInput = vtkSparseDictionaryVolume::SafeDownCast(this->Superclass::GetInput());
+  auto* sparse = sparseInput && sparseInput->HasVolume() ? sparseInput : nullptr;
+  vtkInformation* inInfo = this->GetInputInformation(0, 0);
+  // (again here: ParaView may run WriteData through the executive, not Write)
+  int generation = 0;
+  if (!this->CheckTarget(!sparseInput, generation))
+    return;
+  const bool serial = this->IsSerial();
+  const bool emptyPiece =
+    !serial && sparseInput && !sparse && EmptySparsePiece(inInfo, this->Piece, this->NumberOfPieces);
   if (!emptyPiece &&
     ((!image && !sparse) || !inInfo || (!sparse && !inInfo->Has(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT()))))
   {
     vtkErrorMacro("no input image or sparse volume");
-    this->SetErrorCode(vtkErrorCode::UnknownError);
-    return;
-  }
-  // the folder and the settings, before any file: one error on this writer naming the file asked for
-  // (each piece's writer would report them on itself, naming its piece file)
-  int generation = 0;
-  if (!LVDIFVolumeBridge::CallCore(this, [&] {
-        lvdif::requireWritable(this->FileName);
-        generation = NextGeneration(this->FileName);
-        // a serial run writes every piece: each file is checked before the first is written
-        for (int p = 0; serial && p < this->NumberOfPieces; ++p)
-          lvdif::requireWritable(PieceFilePath(this->FileName, p, generation));
-        lvdif::checkCompressionLevel(this->CompressionLevel, "CompressionLevel");
-        if (!sparse) LVDIFVolumeBridge::CheckVolumeSettings(this->ChunkEdge, this->BandWidth);
-      }))
-  {
     this->SetErrorCode(vtkErrorCode::UnknownError);
     return;
   }

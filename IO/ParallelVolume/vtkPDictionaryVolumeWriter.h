@@ -142,6 +142,15 @@ private:
   int AgreeOnIndex(int ok);
   /// No Controller, or one of one process: this process writes every piece.
   bool IsSerial() const;
+  /// The pieces, the file name, its folder and this process's piece files
+  /// (lvdif::requireWritable), the next generation and the settings (the
+  /// chunk edge and band only for an image input): false after one error and
+  /// the writer's error code. Run by Write() before the input is updated (the
+  /// ranks agree on it first) and by WriteData.
+  bool CheckTarget(bool imageInput, int& generation);
+  /// Whether the input is an image (not a sparse volume): its data object's
+  /// type, made by the pipeline without updating anything.
+  bool InputIsImage();
   // each writes the piece to `path` (the piece's file of the new generation)
   bool WritePiece(vtkImageData* image, int piece, const int extent[6], const std::string& path);
   bool WritePiece(vtkSparseDictionaryVolume* sparse, int piece, const int extent[6], const std::string& path);

@@ -70,6 +70,33 @@ bool vtkLVDIFVolumeWriter::CheckTarget()
   }
 }
 
+bool vtkLVDIFVolumeWriter::CheckInputGrid()
+{
+  vtkInformation* inInfo = this->GetInputInformation(0, 0);
+  if (!inInfo || !inInfo->Has(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT()))
+    return true; // nothing announced: the save checks the volume
+  int whole[6];
+  inInfo->Get(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT(), whole);
+  const std::int64_t dims[3] = { std::int64_t(whole[1]) - whole[0] + 1, std::int64_t(whole[3]) - whole[2] + 1,
+    std::int64_t(whole[5]) - whole[4] + 1 };
+  if (dims[0] < 1 || dims[1] < 1 || dims[2] < 1)
+    return true; // an empty input: WriteData refuses it
+  double spacing[3];
+  if (inInfo->Has(vtkDataObject::SPACING()))
+    inInfo->Get(vtkDataObject::SPACING(), spacing);
+  try
+  {
+    this->CheckGrid(dims, inInfo->Has(vtkDataObject::SPACING()) ? spacing : nullptr);
+    return true;
+  }
+  catch (const lvdif::Error& e)
+  {
+    vtkErrorMacro(<< LVDIFVolumeBridge::FileError("write", this->FileName, e.what()));
+    this->SetErrorCode(vtkErrorCode::UnknownError);
+    return false;
+  }
+}
+
 int vtkLVDIFVolumeWriter::Write()
 {
   if (this->GetNumberOfInputConnections(0) < 1)
@@ -80,9 +107,23 @@ int vtkLVDIFVolumeWriter::Write()
   // upstream: minutes) and only then said the folder was missing
   if (!this->CheckTarget())
     return 0;
+  // what the format cannot hold, from the input's information pass (cheap):
+  // a non-cubic volume into a .bv ran the whole pipeline above the writer first
+  auto* exec = vtkStreamingDemandDrivenPipeline::SafeDownCast(this->GetExecutive());
+  if (!exec || !exec->UpdateInformation())
+  {
+    if (this->GetErrorCode() == vtkErrorCode::NoError)
+      this->SetErrorCode(vtkErrorCode::UnknownError); // (the input's own error says why)
+    return 0;
+  }
+  if (!this->CheckInputGrid())
+    return 0;
+  this->Cancelled = false;
   if (!UpdateWholeInput(this) && this->GetErrorCode() == vtkErrorCode::NoError)
     this->SetErrorCode(vtkErrorCode::UnknownError);
-  return this->GetErrorCode() == vtkErrorCode::NoError ? 1 : 0;
+  // a cancel is no error, but nothing was written: 0 (it answered 1, and the
+  // caller took the old file, or none, for the volume it had asked for)
+  return this->GetErrorCode() == vtkErrorCode::NoError && !this->Cancelled ? 1 : 0;
 }
 
 void vtkLVDIFVolumeWriter::WriteData()
@@ -120,7 +161,10 @@ void vtkLVDIFVolumeWriter::WriteData()
   catch (const lvdif::Error& e)
   {
     if (e.code() == lvdif::ErrorCode::Cancelled)
-      return; // AbortExecute: not an error
+    {
+      this->Cancelled = true; // AbortExecute: not an error, but Write() answers 0
+      return;
+    }
     fail(LVDIFVolumeBridge::FileError("write", this->FileName, e.what()),
       e.code() == lvdif::ErrorCode::IoFailure ? vtkErrorCode::CannotOpenFileError : vtkErrorCode::UnknownError);
   }

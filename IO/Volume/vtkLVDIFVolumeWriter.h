@@ -8,7 +8,8 @@
  * file name and the input, makes the volume of an image input, calls Save, and
  * reports a failure once (vtkErrorMacro and the writer's error code); a cancel
  * (AbortExecute) is not an error. Write() returns 0 whenever nothing was
- * written, also when the input failed upstream (its own error says why). Subclasses say how an image becomes a volume
+ * written, also when the input failed upstream (its own error says why) and
+ * after a cancel (no message, error code NoError; the old file is kept). Subclasses say how an image becomes a volume
  * and how a volume is saved. Every save is crash-safe (lvdif::saveAtomically).
  */
 #ifndef vtkLVDIFVolumeWriter_h
@@ -17,6 +18,7 @@
 #include "lvdifIOVolumeModule.h"
 #include "vtkWriter.h"
 
+#include <cstdint>
 #include <memory>
 #include <string>
 
@@ -61,6 +63,9 @@ protected:
   /// The file name, the place (lvdif::requireWritable) and CheckSettings: false
   /// after one error (and the writer's error code) when one fails.
   bool CheckTarget();
+  /// CheckGrid on the input's information (its whole extent and spacing):
+  /// false after one error naming the file (and the writer's error code).
+  bool CheckInputGrid();
   int FillInputPortInformation(int port, vtkInformation* info) override;
 
   /// What a save is given besides the volume.
@@ -76,6 +81,12 @@ protected:
   /// The writer's own settings that apply to every input (a sparse one too),
   /// checked after the folder and before any work; throws lvdif::Error (default: none).
   virtual void CheckSettings() {}
+  /// The input's grid as its pipeline information announces it (points on
+  /// each axis; spacing, nullptr when not announced), checked by Write() after
+  /// the input's information pass and before any of its work: what the format
+  /// cannot hold (a .bv's cube, an OpenVDB level set's one spacing); throws
+  /// lvdif::Error (default: none). The save checks the volume itself again.
+  virtual void CheckGrid(const std::int64_t dims[3], const double* spacing) { (void)dims; (void)spacing; }
   /// Whether an image input's `rgba` array is read (default true).
   virtual bool ReadsImageColors() { return true; }
   /// The volume of an image input (default: its `sdf` and `rgba` encoded with
@@ -88,6 +99,7 @@ protected:
   std::string FileName;
 
 private:
+  bool Cancelled = false; // the last WriteData was cancelled (AbortExecute)
   vtkLVDIFVolumeWriter(const vtkLVDIFVolumeWriter&) = delete;
   void operator=(const vtkLVDIFVolumeWriter&) = delete;
 };

@@ -5,6 +5,7 @@
 #include "vtkSparseDictionaryVolume.h"
 
 #include "lvdif/CNumbers.h"
+#include "lvdif/DictionaryVolume.h"
 #include "lvdif/Error.h"
 #include "lvdif/LegacyBv.h"
 
@@ -17,6 +18,7 @@
 
 #include <cmath>
 #include <cstdint>
+#include <memory>
 #include <string>
 
 vtkStandardNewMacro(vtkLegacyBvReader);
@@ -121,8 +123,23 @@ int vtkLegacyBvReader::RequestData(vtkInformation*, vtkInformationVector**, vtkI
   try
   {
     options.bandWidth = LVDIFVolumeBridge::BandOption(this->BandWidth);
-    // The file has no index: it is read whole (no sub-extents).
-    output->SetVolume(lvdif::loadLegacyBv(this->FileName, options, interrupter));
+    // The file has no index: it is read whole (no sub-extents). A piece of a
+    // distributed read (pvbatch rank r of n) still owns only its block of
+    // chunks, by the .lvdv reader's rule (LVDIFVolumeBridge::RequestedVoxels):
+    // every rank's partitions were the whole volume, and ParaView's filters
+    // over them (Contour, Integrate Variables) counted it once a rank.
+    std::shared_ptr<lvdif::DictionaryVolume> volume = lvdif::loadLegacyBv(this->FileName, options, interrupter);
+    int owned[6] = { 0, -1, 0, -1, 0, -1 };
+    lvdif::VoxelBox region;
+    const int kind = LVDIFVolumeBridge::RequestedVoxels(outInfo, volume->options(), owned, region);
+    if (kind < 0)
+    {
+      output->Initialize(); // a piece without chunks: empty
+      return 1;
+    }
+    output->SetVolume(std::move(volume));
+    if (kind == 1)
+      output->SetOwnedChunks(owned);
   }
   catch (const lvdif::Error& e)
   {

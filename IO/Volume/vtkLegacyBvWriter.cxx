@@ -2,6 +2,7 @@
 
 #include "LVDIFVolumeBridge.h"
 
+#include "lvdif/Error.h"
 #include "lvdif/LegacyBv.h"
 
 #include "vtkDataArray.h"
@@ -100,6 +101,13 @@ void vtkLegacyBvWriter::Save(const lvdif::DictionaryVolume& volume, const SaveSo
   options.swapXZ = this->SwapXZ;
   options.distanceScale = this->DistanceScale;
   lvdif::saveLegacyBv(volume, this->FileName, options, interrupter);
+}
+
+void vtkLegacyBvWriter::CheckGrid(const std::int64_t dims[3], const double*)
+{
+  const std::string problem = lvdif::checkLegacyBvDims({ dims[0], dims[1], dims[2] }, this->FileName);
+  if (!problem.empty())
+    throw lvdif::Error(lvdif::ErrorCode::InvalidArgument, problem);
 }
 
 void vtkLegacyBvWriter::PrintSelf(ostream& os, vtkIndent indent)

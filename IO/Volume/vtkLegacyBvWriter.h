@@ -53,6 +53,8 @@ protected:
   ~vtkLegacyBvWriter() override;
 
   void Save(const lvdif::DictionaryVolume& volume, const SaveSource& source, lvdif::Interrupter& interrupter) override;
+  /// A cube, of the edge the file name's SDF_<N>_ names (lvdif::checkLegacyBvDims).
+  void CheckGrid(const std::int64_t dims[3], const double* spacing) override;
   std::unique_ptr<lvdif::DictionaryVolume> ImageToVolume(
     vtkImageData* image, vtkDataArray* sdf, vtkDataArray* rgba) override;
   lvdif::VolumeOptions ImageVolumeOptions() override;

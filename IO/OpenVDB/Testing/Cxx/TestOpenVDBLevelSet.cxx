@@ -4,6 +4,9 @@
 // colours) and with OpenVDB's own `vdb_print`; the reader's output against the
 // analytic SDF; the core round trip key-exact; and the error paths.
 #include "LVDIFOpenVDB.h"
+#include "vtkDictionaryVolumeReader.h"
+#include "lvdif/DictionaryVolume.h"
+#include "lvdif/VolumeFile.h"
 #include "vtkOpenVDBLevelSetReader.h"
 #include "vtkSparseDictionaryVolume.h"
 #include "vtkSparseVolumeToImage.h"
@@ -11,6 +14,10 @@
 #include "SdfImageTestUtil.h"
 
 #include "vtkCommand.h"
+#include "vtkCompositeDataSet.h"
+#include "vtkContourFilter.h"
+#include "vtkDataObject.h"
+#include "vtkDataSet.h"
 #include "vtkExecutive.h"
 #include "vtkFloatArray.h"
 #include "vtkImageData.h"
@@ -365,4 +372,111 @@ TEST(OpenVDBLevelSet, ErrorsNameTheProblem)
   std::remove(path.c_str());
   std::remove(junk.c_str());
   std::remove(other.c_str());
+}
+
+// A volume of unequal spacing (which a level set cannot hold) was refused only
+// after the whole pipeline above the writer had run. Now Write() refuses it
+// from the input's information pass: one error naming the file and the rule,
+// Write() 0, the reader above never read its voxels, no file made; the same
+// grid with one spacing is then written. Oracle: the reader's StartEvent count
+// and the file system.
+TEST(OpenVDBLevelSet, AnisotropicSpacingIsRefusedBeforeTheInputRuns)
+{
+  struct Counter : vtkCommand
+  {
+    static Counter* New() { return new Counter; }
+    void Execute(vtkObject*, unsigned long, void*) override { ++this->Count; }
+    int Count = 0;
+  };
+  struct Errors : vtkCommand
+  {
+    static Errors* New() { return new Errors; }
+    void Execute(vtkObject*, unsigned long, void* data) override
+    {
+      ++this->Count;
+      this->Text += static_cast<const char*>(data);
+    }
+    int Count = 0;
+    std::string Text;
+  };
+  const std::string stem = ::testing::TempDir() + "lvdif_vdbgrid_" + std::to_string(::getpid());
+  const std::string source = stem + ".lvdv", target = stem + ".vdb";
+  for (const bool isotropic : { false, true })
+  {
+    lvdif::VolumeOptions o;
+    o.dims = { 12, 10, 8 };
+    o.chunkEdge = 4;
+    o.spacing = { 0.5, isotropic ? 0.5 : 0.25, 0.5 };
+    lvdif::saveVolume(lvdif::DictionaryVolume(o), source);
+    vtkNew<Counter> runs;
+    vtkNew<vtkDictionaryVolumeReader> reader;
+    reader->AddObserver(vtkCommand::StartEvent, runs);
+    reader->SetFileName(source.c_str());
+    vtkNew<Errors> errors;
+    vtkNew<vtkOpenVDBLevelSetWriter> writer;
+    writer->AddObserver(vtkCommand::ErrorEvent, errors);
+    writer->GetExecutive()->AddObserver(vtkCommand::ErrorEvent, errors);
+    writer->SetInputConnection(reader->GetOutputPort());
+    writer->SetFileName(target.c_str());
+    writer->SetHalfWidth(3);
+    const int written = writer->Write();
+    if (isotropic)
+    {
+      EXPECT_EQ(written, 1) << errors->Text;
+      EXPECT_EQ(runs->Count, 1);
+      EXPECT_EQ(::access(target.c_str(), F_OK), 0);
+    }
+    else
+    {
+      EXPECT_EQ(written, 0);
+      EXPECT_EQ(errors->Count, 1) << errors->Text;
+      EXPECT_NE(errors->Text.find("needs isotropic spacing"), std::string::npos) << errors->Text;
+      EXPECT_NE(errors->Text.find(target), std::string::npos) << errors->Text;
+      EXPECT_EQ(runs->Count, 0) << "the reader ran for a write refused before the work";
+      EXPECT_NE(::access(target.c_str(), F_OK), 0);
+    }
+    std::remove(source.c_str());
+    std::remove(target.c_str());
+  }
+}
+
+// Under pieces (UpdatePiece, a pvbatch rank) every piece's read held the whole
+// volume as its partitions, so a generic filter over the pieces (VTK's Contour)
+// counted it once a piece. A piece now owns only its block of chunks, by the
+// .lvdv reader's rule. Oracle: vtkContourFilter on the dense image of the whole
+// read; the pieces' contours over their partitions add up to it.
+TEST(OpenVDBLevelSet, PiecesOwnTheirChunksOnly)
+{
+  const std::string path = writeSphere("pieces.vdb");
+  auto contourOf = [](vtkAlgorithm* source, int piece, int pieces) {
+    vtkNew<vtkContourFilter> contour;
+    contour->SetInputConnection(source->GetOutputPort());
+    contour->SetValue(0, 0.0);
+    contour->SetInputArrayToProcess(0, 0, 0, vtkDataObject::FIELD_ASSOCIATION_POINTS, "sdf");
+    contour->UpdatePiece(piece, pieces, 0);
+    if (auto* c = vtkCompositeDataSet::SafeDownCast(contour->GetOutputDataObject(0)))
+      return c->GetNumberOfCells();
+    auto* d = vtkDataSet::SafeDownCast(contour->GetOutputDataObject(0));
+    return d ? d->GetNumberOfCells() : vtkIdType(0);
+  };
+  vtkNew<vtkOpenVDBLevelSetReader> whole;
+  whole->SetFileName(path.c_str());
+  whole->SetPadding(24); // more than one chunk of 32 a axis
+  vtkNew<vtkSparseVolumeToImage> dense;
+  dense->SetInputConnection(whole->GetOutputPort());
+  const vtkIdType expected = contourOf(dense, 0, 1);
+  ASSERT_GT(expected, 100);
+  for (int pieces = 1; pieces <= 4; ++pieces)
+  {
+    vtkIdType sum = 0;
+    for (int piece = 0; piece < pieces; ++piece)
+    {
+      vtkNew<vtkOpenVDBLevelSetReader> reader;
+      reader->SetFileName(path.c_str());
+      reader->SetPadding(24);
+      sum += contourOf(reader, piece, pieces);
+    }
+    EXPECT_EQ(sum, expected) << pieces << " pieces";
+  }
+  std::remove(path.c_str());
 }

@@ -45,6 +45,7 @@
 #include <fstream>
 #include <iterator>
 #include <string>
+#include <vector>
 #include <dirent.h>
 #include <sys/stat.h>
 #include <sys/wait.h>
@@ -878,4 +879,176 @@ TEST(PVolumeIO, CanReadFileDoesNotBlockOnAFifo)
   EXPECT_TRUE(vtkPDictionaryVolumeReader::CanReadFile(index.c_str()));
   std::remove(index.c_str());
   std::remove(vtkPDictionaryVolumeWriter::PieceFilePath(index, 0).c_str());
+}
+
+// A .lvdvp write into a missing folder (or a folder where a piece file would
+// go, without a name, with CompressionLevel 0, with a piece that does not
+// exist, an image input with a bad ChunkEdge) ran the whole pipeline above it
+// (a mesh's conversion: minutes) and only then refused. Now Write() refuses
+// first: one error naming the cause, Write() 0, the reader above never ran,
+// and an existing index stays byte for byte; then a good write runs it once.
+// Oracle: the reader's StartEvent count and the files on disk.
+TEST(PVolumeIO, AnUnwritableTargetIsRefusedBeforeTheInputRuns)
+{
+  struct ErrorCatcher : vtkCommand
+  {
+    static ErrorCatcher* New() { return new ErrorCatcher; }
+    void Execute(vtkObject*, unsigned long, void* data) override
+    {
+      ++this->Count;
+      this->Last += static_cast<const char*>(data);
+    }
+    int Count = 0;
+    std::string Last;
+  };
+  struct Counter : vtkCommand
+  {
+    static Counter* New() { return new Counter; }
+    void Execute(vtkObject*, unsigned long, void*) override { ++this->Count; }
+    int Count = 0;
+  };
+  auto bytes = [](const std::string& p) {
+    std::ifstream f(p, std::ios::binary);
+    return std::string(std::istreambuf_iterator<char>(f), std::istreambuf_iterator<char>());
+  };
+  vtkSmartPointer<vtkImageData> img = makeImage();
+  const std::string source = tmpName("before_source.lvdv"), index = tmpName("before.lvdvp");
+  {
+    vtkNew<vtkDictionaryVolumeWriter> w;
+    w->SetInputData(img);
+    w->SetFileName(source.c_str());
+    ASSERT_EQ(w->Write(), 1);
+  }
+  writePieces(img, index, 2);
+  const std::string missing = tmpName("no_such_folder") + "/x.lvdvp";
+  for (const bool imageInput : { false, true })
+  {
+    const std::string before = bytes(index); // (the second round: the first's good write)
+    // folders where piece 2 of a 3-piece write would go (either generation; a
+    // good write removes the empty folders named like its set's piece files)
+    for (int g = 0; g < 2; ++g)
+      ::mkdir(vtkPDictionaryVolumeWriter::PieceFilePath(index, 2, g).c_str(), 0755);
+    vtkNew<Counter> runs;
+    vtkNew<vtkDictionaryVolumeReader> reader;
+    reader->AddObserver(vtkCommand::StartEvent, runs);
+    reader->SetFileName(source.c_str());
+    vtkNew<vtkSparseVolumeToImage> dense;
+    dense->SetInputConnection(reader->GetOutputPort());
+    vtkNew<vtkPDictionaryVolumeWriter> writer;
+    writer->SetController(nullptr);
+    writer->SetInputConnection(imageInput ? dense->GetOutputPort() : reader->GetOutputPort());
+    struct Case
+    {
+      std::string name;
+      int level, chunkEdge, piece, pieces;
+      std::string says;
+    };
+    std::vector<Case> cases = { { missing, 3, 32, 0, 1, "the folder" }, { "", 3, 32, 0, 1, "no file name" },
+      { index, 0, 32, 0, 1, "CompressionLevel" }, { index, 3, 32, 0, 3, "before_2" },
+      { index, 3, 32, 2, 2, "does not exist" } };
+    if (imageInput)
+      cases.push_back({ index, 3, 5, 0, 1, "5" }); // a chunk edge applies to an image input only
+    for (const Case& c : cases)
+    {
+      vtkNew<ErrorCatcher> errors;
+      const unsigned long a = writer->AddObserver(vtkCommand::ErrorEvent, errors);
+      const unsigned long b = writer->GetExecutive()->AddObserver(vtkCommand::ErrorEvent, errors);
+      writer->SetFileName(c.name.c_str());
+      writer->SetCompressionLevel(c.level);
+      writer->SetChunkEdge(c.chunkEdge);
+      writer->SetPiece(c.piece);
+      writer->SetNumberOfPieces(c.pieces);
+      EXPECT_EQ(writer->Write(), 0) << c.says;
+      EXPECT_NE(writer->GetErrorCode(), 0UL) << c.says;
+      EXPECT_EQ(errors->Count, 1) << errors->Last;
+      EXPECT_NE(errors->Last.find(c.says), std::string::npos) << errors->Last;
+      EXPECT_EQ(runs->Count, 0) << "the reader ran for a write refused before the work: " << c.says;
+      EXPECT_EQ(bytes(index), before) << c.says;
+      writer->RemoveObserver(a);
+      writer->GetExecutive()->RemoveObserver(b);
+    }
+    // the same writer, fixed: the reader runs once and the volume is written
+    writer->SetFileName(index.c_str());
+    writer->SetCompressionLevel(3);
+    writer->SetChunkEdge(32);
+    writer->SetPiece(0);
+    writer->SetNumberOfPieces(1);
+    EXPECT_EQ(writer->Write(), 1);
+    EXPECT_EQ(runs->Count, 1);
+    vtkNew<vtkPDictionaryVolumeReader> back;
+    back->SetFileName(index.c_str());
+    back->Update();
+    EXPECT_EQ(voxels(back), NX * NY * NZ);
+  }
+  for (int g = 0; g < 2; ++g)
+    ::rmdir(vtkPDictionaryVolumeWriter::PieceFilePath(index, 2, g).c_str());
+  for (const std::string& f : { source, index, vtkPDictionaryVolumeWriter::PieceFilePath(index, 0, 0),
+         vtkPDictionaryVolumeWriter::PieceFilePath(index, 0, 1), vtkPDictionaryVolumeWriter::PieceFilePath(index, 1, 0) })
+    std::remove(f.c_str());
+}
+
+// An image written as .lvdvp goes through one .lvdv writer per piece, whose
+// progress and cancel were its own: the .lvdvp writer reported no progress
+// between 0 and 1 and a cancel (AbortExecute from a progress observer, ParaView's
+// or a Qt dialog's) could not reach the pieces: the write ran to the end and
+// replaced the old set. Now the pieces' progress is the writer's (piece p of n
+// its p-th n-th) and its cancel theirs: Write() answers 0, the old index and
+// pieces stay byte for byte, no temporary file is left; uncancelled, the same
+// write reports progress in (0, 1) and is read back as the image. Oracles: the
+// files' bytes before the write, the serial round trip.
+TEST(PVolumeIO, AnImageWriteReportsProgressAndCanBeCancelled)
+{
+  vtkSmartPointer<vtkImageData> img = makeImage();
+  const std::string index = tmpName("cancelimg.lvdvp");
+  writePieces(img, index, 3);
+  const std::string piece[3] = { vtkPDictionaryVolumeWriter::PieceFilePath(index, 0),
+    vtkPDictionaryVolumeWriter::PieceFilePath(index, 1), vtkPDictionaryVolumeWriter::PieceFilePath(index, 2) };
+  const std::string before[4] = { fileBytes(index), fileBytes(piece[0]), fileBytes(piece[1]), fileBytes(piece[2]) };
+  struct Watch
+  {
+    bool cancel;
+    std::vector<double> progress;
+  };
+  for (const bool cancel : { true, false })
+  {
+    Watch watch{ cancel, {} };
+    vtkNew<vtkPDictionaryVolumeWriter> w;
+    w->SetController(nullptr);
+    w->SetInputData(otherImage());
+    w->SetFileName(index.c_str());
+    w->SetNumberOfPieces(3);
+    vtkNew<vtkCallbackCommand> onProgress;
+    onProgress->SetClientData(&watch);
+    onProgress->SetCallback([](vtkObject* caller, unsigned long, void* client, void* call) {
+      auto* wt = static_cast<Watch*>(client);
+      const double p = *static_cast<double*>(call);
+      wt->progress.push_back(p);
+      if (wt->cancel && p > 0.0 && p < 1.0) // within the write: piece 1 or 2 starts
+        static_cast<vtkAlgorithm*>(caller)->SetAbortExecute(1);
+    });
+    w->AddObserver(vtkCommand::ProgressEvent, onProgress);
+    const int written = w->Write();
+    const bool reported = std::any_of(
+      watch.progress.begin(), watch.progress.end(), [](double p) { return p > 0.0 && p < 1.0; });
+    EXPECT_TRUE(reported) << "no progress between 0 and 1 (" << watch.progress.size() << " reports)";
+    if (cancel)
+    {
+      EXPECT_EQ(written, 0) << "cancelled";
+      EXPECT_TRUE(fileBytes(index) == before[0]) << "index";
+      for (int p = 0; p < 3; ++p)
+        EXPECT_TRUE(fileBytes(piece[p]) == before[1 + p]) << "piece " << p;
+      EXPECT_EQ(setFiles("cancelimg", ".tmp-"), std::vector<std::string>());
+    }
+    else
+    {
+      EXPECT_EQ(written, 1);
+      vtkNew<vtkPDictionaryVolumeReader> r;
+      r->SetFileName(index.c_str());
+      expectSameArrays(decoded(r), serialRoundTrip(otherImage()));
+    }
+  }
+  std::remove(index.c_str());
+  for (int g = 0; g < 2; ++g)
+    for (int p = 0; p < 3; ++p)
+      std::remove(vtkPDictionaryVolumeWriter::PieceFilePath(index, p, g).c_str());
 }

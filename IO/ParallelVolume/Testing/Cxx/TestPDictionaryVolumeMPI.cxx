@@ -3,9 +3,12 @@
 // other rank waited in the all-reduce for it forever (the test timed out).
 // Also the good case: both pieces and the index are written, and a failed
 // index (piece 0's) fails every rank's Write(); NumberOfPieces unlike the
-// Controller's processes is refused before anything is written.
+// Controller's processes is refused before anything is written. A piece file
+// one rank cannot write is refused by every rank before any input runs (the
+// ranks agree first; before, both ran their input and only then refused).
 #include "MPITestUtil.h"
 #include "vtkDictionaryVolumeReader.h"
+#include "vtkCommand.h"
 #include "vtkNew.h"
 #include "vtkPDictionaryVolumeWriter.h"
 
@@ -24,10 +27,20 @@ bool exists(const std::string& path)
   return ::stat(path.c_str(), &st) == 0;
 }
 
-/// Every rank writes its piece of `index` from `input`; returns Write()'s answer.
-int writePieces(vtkMultiProcessController* c, const std::string& input, const std::string& index)
+struct Counter : vtkCommand
 {
+  static Counter* New() { return new Counter; }
+  void Execute(vtkObject*, unsigned long, void*) override { ++this->Count; }
+  int Count = 0;
+};
+
+/// Every rank writes its piece of `index` from `input`; returns Write()'s
+/// answer (and in `runs` how often this rank's reader ran).
+int writePieces(vtkMultiProcessController* c, const std::string& input, const std::string& index, int* runs = nullptr)
+{
+  vtkNew<Counter> counter;
   vtkNew<vtkDictionaryVolumeReader> reader;
+  reader->AddObserver(vtkCommand::StartEvent, counter);
   reader->SetFileName(input.c_str());
   vtkNew<vtkPDictionaryVolumeWriter> writer;
   writer->SetInputConnection(reader->GetOutputPort());
@@ -35,7 +48,10 @@ int writePieces(vtkMultiProcessController* c, const std::string& input, const st
   writer->SetController(c);
   writer->SetNumberOfPieces(c->GetNumberOfProcesses());
   writer->SetPiece(c->GetLocalProcessId());
-  return writer->Write();
+  const int written = writer->Write();
+  if (runs)
+    *runs = counter->Count;
+  return written;
 }
 }
 
@@ -85,6 +101,20 @@ int main(int argc, char* argv[])
     ::mkdir(folderIndex.c_str(), 0755);
   c->Barrier();
   run.check(writePieces(c, good, folderIndex) == 0, "the index cannot be written: Write() answers 0 on every rank");
+
+  // rank 1's piece file cannot be written (a folder has its name): every
+  // rank refuses before its input runs, and none waits for the other
+  const std::string blocked = dir + "/mpi_blocked.lvdvp";
+  if (rank == 0)
+  {
+    std::remove(blocked.c_str());
+    ::mkdir(vtkPDictionaryVolumeWriter::PieceFilePath(blocked, 1, 0).c_str(), 0755);
+  }
+  c->Barrier();
+  int runs = -1;
+  run.check(writePieces(c, good, blocked, &runs) == 0, "a piece file cannot be written: Write() answers 0 on every rank");
+  run.check(runs == 0, "a piece file cannot be written: no rank's input ran");
+  run.check(!exists(blocked), "a piece file cannot be written: no index");
 
   // NumberOfPieces 3 on a Controller of 2 processes: each rank would write
   // every piece; refused on every rank before anything is written

@@ -406,3 +406,78 @@ TEST(DictionaryVolumeIO, AnUnwritableTargetIsRefusedBeforeTheInputRuns)
   std::remove(source.c_str());
   std::remove(target.c_str());
 }
+
+// A write cancelled through AbortExecute (a progress observer, ParaView's or a
+// Qt dialog's cancel) wrote nothing and kept the old file, as it should, but
+// Write() answered 1: a Python caller checking Write() took the old file (or
+// none) for the volume it had asked for. Now 0, with no error message and the
+// error code NoError (a cancel is no error); the old file is kept byte for byte
+// and no temporary file is left. Oracle: the file's bytes before the write.
+TEST(DictionaryVolumeIO, ACancelledWriteAnswersZeroAndKeepsTheOldFile)
+{
+  auto bytes = [](const std::string& p) {
+    std::ifstream f(p, std::ios::binary);
+    return std::string(std::istreambuf_iterator<char>(f), std::istreambuf_iterator<char>());
+  };
+  const std::string target = tempFile("cancelled.lvdv"), fresh = tempFile("cancelled_new.lvdv");
+  auto img = makeImage();
+  {
+    vtkNew<vtkDictionaryVolumeWriter> w;
+    w->SetInputData(img);
+    w->SetFileName(target.c_str());
+    ASSERT_EQ(w->Write(), 1);
+  }
+  const std::string before = bytes(target);
+  ASSERT_FALSE(before.empty());
+  // another volume over it
+  auto other = makeSdfImage({ 0, 95, 0, 95, 0, 95 }, { -2.0, 0.5, 3.0 }, { 0.25, 0.5, 0.75 },
+    [](int i, int j, int k) { return std::sin(0.3 * i) + std::cos(0.2 * j) * std::sin(0.1 * k); },
+    [](int, int, int) { return std::array<unsigned char, 4>{ 1, 2, 3, 255 }; });
+  struct CancelOnProgress : vtkCommand
+  {
+    static CancelOnProgress* New() { return new CancelOnProgress; }
+    void Execute(vtkObject* caller, unsigned long, void* data) override
+    {
+      const double p = *static_cast<double*>(data);
+      // the save's own progress (its last report comes before the file is
+      // committed; a small image reports only 0 and that)
+      if (this->Armed && p > 0.0 && this->Cancels == 0)
+      {
+        static_cast<vtkAlgorithm*>(caller)->SetAbortExecute(1);
+        ++this->Cancels;
+      }
+    }
+    bool Armed = true;
+    int Cancels = 0;
+  };
+  for (const std::string& path : { target, fresh })
+  {
+    std::remove(fresh.c_str());
+    vtkNew<CancelOnProgress> cancel;
+    vtkNew<ErrorCatcher> errors;
+    vtkNew<vtkDictionaryVolumeWriter> w;
+    w->AddObserver(vtkCommand::ProgressEvent, cancel);
+    w->AddObserver(vtkCommand::ErrorEvent, errors);
+    w->GetExecutive()->AddObserver(vtkCommand::ErrorEvent, errors);
+    // chunks of 4: 13,824 of them, so the save reports progress between its
+    // batches of 64 chunks a thread (one batch reports only its end, after which the file is committed)
+    w->SetInputData(other);
+    w->SetChunkEdge(4);
+    w->SetFileName(path.c_str());
+    EXPECT_EQ(w->Write(), 0) << path << ": cancelled, nothing written";
+    EXPECT_GE(cancel->Cancels, 1);
+    EXPECT_EQ(w->GetErrorCode(), 0UL) << "a cancel is no error";
+    EXPECT_EQ(errors->Count, 0) << errors->Last;
+    if (path == target)
+      EXPECT_TRUE(bytes(target) == before) << "the old file changed";
+    else
+      EXPECT_NE(::access(fresh.c_str(), F_OK), 0) << "a cancelled write made a new file";
+    // the same writer, not cancelled: written
+    cancel->Armed = false;
+    w->SetAbortExecute(0);
+    EXPECT_EQ(w->Write(), 1) << path;
+    EXPECT_FALSE(bytes(path) == before) << path;
+  }
+  std::remove(target.c_str());
+  std::remove(fresh.c_str());
+}

@@ -4,15 +4,22 @@
 // or not; image -> .bv -> image matches the analytic SDF it was made from and
 // the palette colours exactly, and a second export is byte-identical to the
 // first (exact at the key level); bad sizes and names give one error each.
+#include "vtkDictionaryVolumeReader.h"
 #include "vtkLegacyBvReader.h"
 #include "vtkSparseDictionaryVolume.h"
 #include "vtkSparseVolumeToImage.h"
 #include "vtkLegacyBvWriter.h"
 
+#include "lvdif/DictionaryVolume.h"
 #include "lvdif/Error.h"
 #include "lvdif/LegacyBv.h"
+#include "lvdif/VolumeFile.h"
 
 #include "vtkCommand.h"
+#include "vtkCompositeDataSet.h"
+#include "vtkContourFilter.h"
+#include "vtkDataObject.h"
+#include "vtkDataSet.h"
 #include "vtkExecutive.h"
 #include "vtkFloatArray.h"
 #include "vtkImageData.h"
@@ -23,6 +30,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdio>
 #include <cstdint>
 #include <fstream>
 #include <iterator>
@@ -391,4 +399,140 @@ TEST(LegacyBvIO, ReaderSaysWhatTheImportSays)
     std::remove(path.c_str());
   }
   ::rmdir(dir.c_str());
+}
+
+// A volume the format cannot hold (not a cube, or not the edge the file's
+// SDF_<N>_ name gives) was refused only after the whole pipeline above the
+// writer had run (a mesh's conversion: minutes). Now Write() refuses it from
+// the input's information pass: one error naming the file and the rule, Write()
+// 0, the reader above never read its voxels (its StartEvent: RequestData), no
+// file made; a cube of the right edge is then written. Oracle: the reader's
+// StartEvent count and the file system.
+TEST(LegacyBvIO, AVolumeTheFormatCannotHoldIsRefusedBeforeTheInputRuns)
+{
+  struct Counter : vtkCommand
+  {
+    static Counter* New() { return new Counter; }
+    void Execute(vtkObject*, unsigned long, void*) override { ++this->Count; }
+    int Count = 0;
+  };
+  const std::string dir = ::testing::TempDir() + "lvdif_bvgrid_" + std::to_string(::getpid());
+  ASSERT_EQ(::mkdir(dir.c_str(), 0755), 0);
+  struct Case
+  {
+    lvdif::Index3 dims;
+    std::string target, says;
+  };
+  for (const Case& c : { Case{ { 12, 10, 8 }, dir + "/box.bv", ".bv holds only cubic volumes; this one is 12 x 10 x 8" },
+         Case{ { 8, 8, 8 }, dir + "/SDF_16_named.bv", "file name says N = 16 but the volume's edge is 8" } })
+  {
+    lvdif::VolumeOptions o;
+    o.dims = c.dims;
+    o.chunkEdge = 4;
+    const std::string source = dir + "/source.lvdv";
+    lvdif::saveVolume(lvdif::DictionaryVolume(o), source);
+    vtkNew<Counter> runs;
+    vtkNew<vtkDictionaryVolumeReader> reader;
+    reader->AddObserver(vtkCommand::StartEvent, runs);
+    reader->SetFileName(source.c_str());
+    vtkNew<ErrorCatcher> errors;
+    vtkNew<vtkLegacyBvWriter> writer;
+    writer->AddObserver(vtkCommand::ErrorEvent, errors);
+    writer->GetExecutive()->AddObserver(vtkCommand::ErrorEvent, errors);
+    writer->SetInputConnection(reader->GetOutputPort());
+    writer->SetFileName(c.target.c_str());
+    EXPECT_EQ(writer->Write(), 0) << c.says;
+    EXPECT_EQ(errors->Count, 1) << errors->Text;
+    EXPECT_NE(errors->Text.find(c.says), std::string::npos) << errors->Text;
+    EXPECT_NE(errors->Text.find(c.target), std::string::npos) << errors->Text;
+    EXPECT_EQ(runs->Count, 0) << "the reader ran for a write refused before the work: " << c.says;
+    EXPECT_NE(::access(c.target.c_str(), F_OK), 0) << c.target;
+    std::remove(source.c_str());
+  }
+  // a cube named by its edge: written, the reader ran once
+  lvdif::VolumeOptions o;
+  o.dims = { 8, 8, 8 };
+  o.chunkEdge = 4;
+  const std::string source = dir + "/cube.lvdv", target = dir + "/SDF_8_cube.bv";
+  lvdif::saveVolume(lvdif::DictionaryVolume(o), source);
+  vtkNew<Counter> runs;
+  vtkNew<vtkDictionaryVolumeReader> reader;
+  reader->AddObserver(vtkCommand::StartEvent, runs);
+  reader->SetFileName(source.c_str());
+  vtkNew<vtkLegacyBvWriter> writer;
+  writer->SetInputConnection(reader->GetOutputPort());
+  writer->SetFileName(target.c_str());
+  EXPECT_EQ(writer->Write(), 1);
+  EXPECT_EQ(runs->Count, 1);
+  struct stat st;
+  EXPECT_TRUE(::stat(target.c_str(), &st) == 0 && st.st_size == 4 * 8 * 8 * 8) << target;
+  std::remove(source.c_str());
+  std::remove(target.c_str());
+  ::rmdir(dir.c_str());
+}
+
+// Under pieces (pvbatch rank r of n), every rank's read of a .bv held the whole
+// volume as its partitions: ParaView's Contour over the pieces gave each
+// triangle n times, Integrate Variables n times the volume (2 ranks: 28,664
+// triangles for 14,332). The file has no index and is still read whole, but a
+// piece now owns only its block of chunks, by the .lvdv reader's rule. Oracle:
+// VTK's vtkContourFilter on the dense image of the whole read; the pieces'
+// contours over their partitions must add up to it, each piece contributing.
+TEST(LegacyBvIO, PiecesOwnTheirChunksOnly)
+{
+  const int n = 72; // 3 x 3 x 3 chunks of 32
+  vtkNew<vtkImageData> img;
+  img->SetDimensions(n, n, n);
+  vtkNew<vtkFloatArray> sdf;
+  sdf->SetName("sdf");
+  sdf->SetNumberOfTuples(n * n * n);
+  for (int k = 0, id = 0; k < n; ++k)
+    for (int j = 0; j < n; ++j)
+      for (int i = 0; i < n; ++i, ++id)
+      {
+        const double dx = i - 35.3, dy = j - 36.6, dz = k - 34.2;
+        sdf->SetValue(id, static_cast<float>(std::sqrt(dx * dx + dy * dy + dz * dz) - 27.5));
+      }
+  img->GetPointData()->AddArray(sdf);
+  const std::string path = tempFile("72");
+  {
+    vtkNew<vtkLegacyBvWriter> writer;
+    writer->SetInputData(img);
+    writer->SetFileName(path.c_str());
+    ASSERT_EQ(writer->Write(), 1);
+  }
+  vtkNew<vtkLegacyBvReader> whole;
+  whole->SetFileName(path.c_str());
+  vtkNew<vtkSparseVolumeToImage> dense;
+  dense->SetInputConnection(whole->GetOutputPort());
+  vtkNew<vtkContourFilter> oracle;
+  oracle->SetInputConnection(dense->GetOutputPort());
+  oracle->SetValue(0, 0.0);
+  oracle->SetInputArrayToProcess(0, 0, 0, vtkDataObject::FIELD_ASSOCIATION_POINTS, "sdf");
+  oracle->Update();
+  const vtkIdType expected = oracle->GetOutput()->GetNumberOfCells();
+  ASSERT_GT(expected, 1000);
+  for (int pieces = 1; pieces <= 4; ++pieces)
+  {
+    vtkIdType sum = 0;
+    for (int piece = 0; piece < pieces; ++piece)
+    {
+      vtkNew<vtkLegacyBvReader> reader;
+      reader->SetFileName(path.c_str());
+      vtkNew<vtkContourFilter> contour;
+      contour->SetInputConnection(reader->GetOutputPort());
+      contour->SetValue(0, 0.0);
+      contour->SetInputArrayToProcess(0, 0, 0, vtkDataObject::FIELD_ASSOCIATION_POINTS, "sdf");
+      contour->UpdatePiece(piece, pieces, 0);
+      vtkIdType cells = 0;
+      if (auto* out = vtkCompositeDataSet::SafeDownCast(contour->GetOutputDataObject(0)))
+        cells = out->GetNumberOfCells();
+      else if (auto* ds = vtkDataSet::SafeDownCast(contour->GetOutputDataObject(0)))
+        cells = ds->GetNumberOfCells();
+      EXPECT_GT(cells, 0) << "piece " << piece << " of " << pieces;
+      sum += cells;
+    }
+    EXPECT_EQ(sum, expected) << pieces << " pieces";
+  }
+  std::remove(path.c_str());
 }
