@@ -150,7 +150,7 @@ EditorOptions parseEditorOptions(const QStringList& arguments)
   const QCommandLineOption meshSign("mesh-sign", "Sign of --open-mesh: winding, pseudo or normal (default winding).", "mode", "winding");
   const QCommandLineOption meshReorient("mesh-reorient",
     "--open-mesh with the winding sign: re-orient the faces consistently (the CLI's --reorient).");
-  const QCommandLineOption create("new", "New canvas of N^3 or NXxNYxNZ voxels (without --open or --open-mesh: 128^3).", "size");
+  const QCommandLineOption create("new", "New canvas of N^3 or NXxNYxNZ voxels, 2 to 1048576 a side, as memory allows (without --open or --open-mesh: 128^3).", "size");
   const QCommandLineOption fill("fill",
     "Fill of a new canvas: empty, full or sphere (default sphere; with a --script, empty, as the start canvas of "
     "`lvdif script`; a recording keeps sphere).", "fill", "sphere");
@@ -296,6 +296,17 @@ EditorOptions parseEditorOptions(const QStringList& arguments)
     const std::string tooThin = lvdif::DictionaryVolume::checkCanvasDimensions({ o.newDims[0], o.newDims[1], o.newDims[2] });
     if (!tooThin.empty())
       fail("--new " + p.value(create) + ": " + QString::fromStdString(tooThin));
+    // the chunk table of the canvas (what making it allocates first) against the memory limit,
+    // in the CLI's words for its --size: it was the canvas's own error after Qt had started,
+    // naming no option, status 1 (and without a display, the display's error)
+    try
+    {
+      RequireChunkTable({ o.newDims[0], o.newDims[1], o.newDims[2] }, "--new " + p.value(create).toStdString() + " makes a canvas", "use a smaller --new");
+    }
+    catch (const lvdif::Error& e)
+    {
+      fail(e.what());
+    }
   }
   o.fill = p.value(fill);
   o.fillGiven = p.isSet(fill);

@@ -48,6 +48,16 @@ foreach (case "--radius;abc|--radius expects a number, got 'abc'"
     message(FATAL_ERROR "without a display '${case}' should be refused with status 2 and '${expect}' alone")
   endif ()
 endforeach ()
+# A --new whose chunk table alone passes the memory limit is a refused command
+# line before the window, in the CLI's words for its --size (it was the canvas's
+# own error once Qt had started, naming no option, status 1; without a display,
+# the display's error).
+execute_process(COMMAND "${EDITOR}" --new 100000 --no-recovery --autosave 0 --quit
+  RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
+message("--new 100000: status ${rc}\n${out}${err}")
+if (NOT rc EQUAL 2 OR NOT "${err}" MATCHES "lvdif-editor: --new 100000 makes a canvas of 100000 x 100000 x 100000 voxels, whose chunk table alone needs [0-9.]+ GiB, more than the limit of [^\n]*: use a smaller --new\n$")
+  message(FATAL_ERROR "--new 100000 should be refused with status 2 and one line naming --new")
+endif ()
 # Qt's offscreen platform has no OpenGL for the view: one line and status 1 (the
 # first frame crashed the editor, status 139).
 execute_process(COMMAND "${EDITOR}" -platform offscreen --new 16 --no-recovery --autosave 0 --quit
