@@ -1,5 +1,6 @@
 #include "EditorOptions.h"
 
+#include "EditorDriver.h" // the words of --keys
 #include "LVDIFFiles.h"
 #include "MainWindow.h" // isScriptFile
 #include "MeshImport.h"
@@ -354,6 +355,13 @@ EditorOptions parseEditorOptions(const QStringList& arguments)
     fail("--mirror expects axis letters x, y, z, got '" + o.mirror + "'");
   o.keys = p.value(keys);
   o.keysAfter = p.value(keysAfter);
+  // every word a key, before the window and the work (a misspelt key failed the run after the
+  // volume was loaded, a mesh converted or a script run, status 1)
+  for (const QCommandLineOption* option : { &keys, &keysAfter })
+    for (const QString& word : p.value(*option).split(' ', Qt::SkipEmptyParts))
+      if (editorKeyOfWord(word) == 0)
+        fail("--" + option->names().first() + ": '" + word + "' is not a key (Qt's key names, as \"G ] Ctrl+Z\"; "
+          "LeftBracket and RightBracket for [ and ])");
   for (const QString& m : p.value(dragMods).toLower().split(',', Qt::SkipEmptyParts))
   {
     if (m == "ctrl")

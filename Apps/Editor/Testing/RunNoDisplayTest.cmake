@@ -37,7 +37,10 @@ endif ()
 # Qt's, taken with their values, and not refused as unknown.
 foreach (case "--radius;abc|--radius expects a number, got 'abc'"
     "-display;:12345;-style;fusion;--strength;1.5|--strength must be a finite number in [(]0, 1[]] [(]got 1.5[)]"
-    "--bogus|lvdif-editor: Unknown option 'bogus'")
+    "--bogus|lvdif-editor: Unknown option 'bogus'"
+    # a word of --keys that is no key (it failed the run after the volume was made, status 1)
+    "--keys;G Bogus|lvdif-editor: --keys: 'Bogus' is not a key"
+    "--keys-after;Ctrl+Z,Ctrl+Y|lvdif-editor: --keys-after: 'Ctrl[+]Z,Ctrl[+]Y' is not a key")
   string(REPLACE "|" ";" case "${case}")
   list(GET case -1 expect)
   list(REMOVE_AT case -1)
