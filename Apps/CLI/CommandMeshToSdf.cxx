@@ -22,7 +22,7 @@
 
 namespace
 {
-const char* const Usage = "usage: lvdif mesh-to-sdf MESH OUT.(lvdv|bv|vti|vdb) [--dims N] [--padding P] "
+const char* const Usage = "usage: lvdif mesh-to-sdf MESH OUT.(lvdv|lvdvp|bv|vti|vdb) [--dims N] [--padding P] "
                           "[--sign normal|pseudo|winding] [--reorient] [--svf] [--band B] [--device cpu|cuda|auto]";
 
 /// A number as the shortest text that reads back as the same double (std::to_string

@@ -72,7 +72,7 @@ const Command commands[] = {
   { "mesh", CommandMesh, "mesh VOLUME OUT.(ply|obj|stl|vtp) [--png OUT.png]   extract the surface of a volume" },
   { "convert", CommandConvert, "convert IN OUT   between volume formats: .lvdv, .lvdvp, .bv (the original's), .vti, .vdb" },
   { "mesh-to-sdf", CommandMeshToSdf,
-    "mesh-to-sdf MESH OUT.(lvdv|bv|vti|vdb) [--dims N] [--padding P] [--sign normal|pseudo|winding] [--reorient] [--svf] [--band B] "
+    "mesh-to-sdf MESH OUT.(lvdv|lvdvp|bv|vti|vdb) [--dims N] [--padding P] [--sign normal|pseudo|winding] [--reorient] [--svf] [--band B] "
     "[--device cpu|cuda|auto]   voxelize a mesh (OBJ, OFF, STL, PLY); defaults: --dims 128 voxels on the longest axis (2 to 1048576, as memory allows) "
     "(.bv: on every axis, the original's cubic grid around the mesh), "
     "--padding 2 voxels, --sign winding, --band 8 voxels (0: no band), --device auto" },

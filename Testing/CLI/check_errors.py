@@ -619,3 +619,14 @@ code, err = run("mesh-to-sdf", line, os.path.join(out, "line.lvdv"), "--dims", "
 # the last line: a CUDA build without a usable GPU prints its one notice first
 assert code == 1 and err.splitlines()[-1] == f"lvdif mesh-to-sdf: mesh '{line}': the mesh's only triangle has zero area " \
     "(its corners coincide or lie on one line), so there is no surface to convert: check the file's points and faces", (code, err)
+# the usage of mesh-to-sdf names every volume format it writes (it left out .lvdvp, which it writes)
+r = subprocess.run([exe, "mesh-to-sdf", "--help"], capture_output=True, text=True, timeout=60)
+listed = r.stdout.split("OUT.(", 1)[1].split(")", 1)[0].split("|")
+r = subprocess.run([exe, "help"], capture_output=True, text=True, timeout=60)
+assert "mesh-to-sdf MESH OUT.(" + "|".join(listed) + ")" in r.stdout, (listed, r.stdout)
+tetra = os.path.join(out, "tetra.obj")
+with open(tetra, "w") as f:
+    f.write("v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nf 1 3 2\nf 1 2 4\nf 1 4 3\nf 2 3 4\n")
+for ext in ("lvdv", "lvdvp", "bv", "vti", "vdb"):
+    code, err = run("mesh-to-sdf", tetra, os.path.join(out, "tetra-out." + ext), "--dims", "12")
+    assert (code == 0) == (ext in listed), (ext, listed, code, err)
