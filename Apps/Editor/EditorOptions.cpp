@@ -1,5 +1,6 @@
 #include "EditorOptions.h"
 
+#include "Arguments.h" // the CLI's guard of a number's text
 #include "EditorDriver.h" // the words of --keys
 #include "LVDIFFiles.h"
 #include "MainWindow.h" // isScriptFile
@@ -42,9 +43,11 @@ namespace
 int integerOption(const QString& text, const QString& name, qint64 lo, qint64 hi)
 {
   bool ok = false;
-  const qint64 v = text.trimmed().toLongLong(&ok);
+  // the CLI's guard of the text first (" 32" was taken as 32, where the CLI refuses it)
+  const qint64 v = plainNumberText(text.toStdString()) ? text.toLongLong(&ok) : 0;
   if (!ok || v < lo || v > hi)
-    fail(name + " expects an integer in [" + QString::number(lo) + ", " + QString::number(hi) + "], got '" + text + "'");
+    fail(name + " expects an integer in [" + QString::number(lo) + ", " + QString::number(hi) + "], got '" + text + "'" +
+      QString::fromStdString(numberTextHint(text.toStdString())));
   return static_cast<int>(v);
 }
 
@@ -55,9 +58,9 @@ int integerOption(const QString& text, const QString& name, qint64 lo, qint64 hi
 double positiveOption(const QString& text, const QString& name, double hi)
 {
   bool ok = false;
-  const double v = text.trimmed().toDouble(&ok);
+  const double v = plainNumberText(text.toStdString()) ? text.toDouble(&ok) : 0;
   if (!ok || !std::isfinite(v))
-    fail(name + " expects a number, got '" + text + "'");
+    fail(name + " expects a number, got '" + text + "'" + QString::fromStdString(numberTextHint(text.toStdString())));
   try
   {
     lvdif::checkedPositive(v, hi, name.toStdString());
@@ -287,9 +290,11 @@ EditorOptions parseEditorOptions(const QStringList& arguments)
     for (int a = 0; a < 3; ++a)
     {
       bool ok = false;
-      const qint64 v = parts[parts.size() == 1 ? 0 : a].trimmed().toLongLong(&ok);
+      const QString& part = parts[parts.size() == 1 ? 0 : a];
+      const qint64 v = plainNumberText(part.toStdString()) ? part.toLongLong(&ok) : 0;
       if (!ok || v < std::numeric_limits<int>::min() || v > std::numeric_limits<int>::max())
-        fail("--new expects N or NXxNYxNZ in whole numbers of voxels, got '" + p.value(create) + "'");
+        fail("--new expects N or NXxNYxNZ in whole numbers of voxels, got '" + p.value(create) + "'" +
+          QString::fromStdString(numberTextHint(part.toStdString())));
       n[a] = static_cast<int>(v);
     }
     o.newDims = { n[0], n[1], n[2] };
