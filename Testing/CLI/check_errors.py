@@ -630,3 +630,19 @@ with open(tetra, "w") as f:
 for ext in ("lvdv", "lvdvp", "bv", "vti", "vdb"):
     code, err = run("mesh-to-sdf", tetra, os.path.join(out, "tetra-out." + ext), "--dims", "12")
     assert (code == 0) == (ext in listed), (ext, listed, code, err)
+# files named as pieces of a .lvdvp that has no index yet (a user's scan_1.lvdv beside a first write of
+# scan.lvdvp) are another volume's: refused before the work, kept byte for byte (scan_0.lvdv was
+# overwritten and the others removed as the set's old pieces)
+users = os.path.join(out, "scan_1.lvdv")
+assert run("mesh-to-sdf", tetra, users, "--dims", "12")[0] == 0
+with open(users, "rb") as f:
+    users_bytes = f.read()
+scan = os.path.join(out, "scan.lvdvp")
+if os.path.exists(scan):
+    os.remove(scan)
+code, err = run("convert", users, scan)
+assert code == 2 and err.splitlines()[-1] == (
+    f"lvdif convert: cannot write '{scan}': 'scan_1.lvdv' lies beside it, named as a piece of its set, but no index "
+    "lists them (another volume's files?), and writing the set would overwrite or remove them: move them, or choose "
+    "another name"), (code, err)
+assert not os.path.exists(scan) and open(users, "rb").read() == users_bytes
