@@ -646,3 +646,10 @@ assert code == 2 and err.splitlines()[-1] == (
     "lists them (another volume's files?), and writing the set would overwrite or remove them: move them, or choose "
     "another name"), (code, err)
 assert not os.path.exists(scan) and open(users, "rb").read() == users_bytes
+# a refused command line's usage is the synopsis of the command's help (the usage lines were copies of
+# it that drifted: play's and script's said --mesh OUT.ply, mesh-to-sdf's left out .lvdvp)
+for cmd in ("info", "mesh", "convert", "mesh-to-sdf", "script", "play"):
+    r = subprocess.run([exe, cmd, "--help"], capture_output=True, text=True, timeout=60)
+    synopsis = r.stdout.splitlines()[0].split("   ")[0]
+    code, err = run(cmd)
+    assert code == 2 and err.splitlines()[-1] == "lvdif " + cmd + ": " + synopsis, (cmd, code, err, synopsis)
