@@ -278,6 +278,11 @@ TEST(MeshFile, MalformedInputsAreClearErrors)
         b[body + 4 * 17] = char(200); // the face's uchar count, after 4 vertices of 8 + 4 + 4 + 1 bytes
         return b;
       }(), MeshFormat::Ply, "PLY face 0: list 'vertex_indices' announces 200 items, more than the 85 bytes after the header" },
+    // triangle strips are not read: named (it said only "the file holds no triangles")
+    { "PLY tristrips", "ply\nformat ascii 1.0\nelement vertex 4\nproperty float x\nproperty float y\nproperty float z\n"
+      "element tristrips 1\nproperty list int int vertex_indices\nend_header\n0 0 0\n1 0 0\n0 1 0\n1 1 0\n4 0 1 2 3\n",
+      MeshFormat::Ply, "PLY: the file holds no triangles: only the element 'face' is read, and its 1 'tristrips' records "
+      "(triangle strips?) are not faces" },
     { "PLY no format", "ply\nelement vertex 0\nend_header\n", MeshFormat::Ply, "no format" },
     { "PLY no end_header", "ply\nformat ascii 1.0\nelement vertex 0\n", MeshFormat::Ply, "no end_header" },
     { "PLY missing z", "ply\nformat ascii 1.0\nelement vertex 1\nproperty float x\nproperty float y\nend_header\n0 0\n", MeshFormat::Ply, "without x, y and z" },
