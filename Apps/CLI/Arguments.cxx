@@ -74,17 +74,22 @@ std::string Arguments::get(const std::string& key, const std::string& fallback) 
   return it == this->Options.end() ? fallback : it->second;
 }
 
-namespace
-{
-/// The one guard of a number's text before strtol/strtod read it: not empty, no
-/// leading white space (which both skip: --size " 32" was taken as 32; trailing
-/// text is refused by the callers' end check) and no hexadecimal (strtod reads
-/// --padding 0x10 as 16, strtol base 10 refuses it).
 bool plainNumberText(const std::string& v)
 {
-  if (v.empty() || std::isspace(static_cast<unsigned char>(v[0]))) return false;
+  if (v.empty() || std::isspace(static_cast<unsigned char>(v.front())) || std::isspace(static_cast<unsigned char>(v.back())))
+    return false;
   return v.find_first_of("xX") == std::string::npos;
 }
+
+std::string numberTextHint(const std::string& v)
+{
+  // a quoted " 32" reads like 32 in a terminal: say what is wrong with it
+  const bool spaced = !v.empty() && (std::isspace(static_cast<unsigned char>(v.front())) || std::isspace(static_cast<unsigned char>(v.back())));
+  return spaced ? " (no spaces around the number)" : "";
+}
+
+namespace
+{
 
 /// The text as a long: false unless all of it is one, within long's range
 /// (strtol saturates at LONG_MAX with ERANGE: --dims 99999999999999999999
@@ -100,10 +105,8 @@ bool parseLong(const std::string& v, long& x)
 
 [[noreturn]] void refuse(const std::string& key, const std::string& what, const std::string& v)
 {
-  // a quoted " 32" reads like 32 in a terminal: say what is wrong with it
-  const bool spaced = !v.empty() && (std::isspace(static_cast<unsigned char>(v.front())) || std::isspace(static_cast<unsigned char>(v.back())));
   throw lvdif::Error(lvdif::ErrorCode::InvalidArgument, "option --" + key + " expects " + what + ", got '" + v + "'" +
-      (spaced ? " (no spaces around the number)" : ""));
+      numberTextHint(v));
 }
 
 std::string rangeText(long lo, long hi)

@@ -9,6 +9,15 @@
 #include <string>
 #include <vector>
 
+/// The one guard of a number's text before it is read (strtol, strtod, or the editor's Qt
+/// conversions): not empty, no white space around it (strtol and strtod skip it: --size " 32" was
+/// taken as 32, and so was the editor's --new " 32") and no hexadecimal (strtod reads --padding
+/// 0x10 as 16).
+bool plainNumberText(const std::string& v);
+/// " (no spaces around the number)" when `v` has white space at either end, else "": what a
+/// refusal of such a text adds, since a quoted " 32" reads like 32 in a terminal.
+std::string numberTextHint(const std::string& v);
+
 class Arguments
 {
 public:

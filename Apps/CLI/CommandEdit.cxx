@@ -19,9 +19,7 @@ int CommandScript(int argc, char** argv)
 {
   Arguments args(argc, argv, 2, { "in", "out", "mesh", "png", "size", "max-steps" });
   if (args.positional().size() != 1)
-    throw lvdif::Error(lvdif::ErrorCode::InvalidArgument,
-      "usage: lvdif script FILE.lvs [--in VOLUME] [--out VOLUME] [--mesh OUT.ply] [--png OUT.png] "
-      "[--size N|NXxNYxNZ] [--max-steps N]");
+    throw lvdif::Error(lvdif::ErrorCode::InvalidArgument, CommandUsage("script"));
   const std::string path = args.positional()[0];
   // --size is the empty start canvas's: with --in the volume is the start (it
   // was ignored without a word)
@@ -108,8 +106,7 @@ int CommandPlay(int argc, char** argv)
 {
   Arguments args(argc, argv, 2, { "in", "out", "mesh", "png" });
   if (args.positional().size() != 1 || !args.has("in"))
-    throw lvdif::Error(lvdif::ErrorCode::InvalidArgument,
-      "usage: lvdif play RECORDING.lvr --in VOLUME [--out VOLUME] [--mesh OUT.ply] [--png OUT.png]");
+    throw lvdif::Error(lvdif::ErrorCode::InvalidArgument, CommandUsage("play"));
   CheckEditOutputs(args);
   AcceptEditCommandLine(args);
   ProgressBar progress;

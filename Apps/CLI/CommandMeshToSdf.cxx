@@ -22,9 +22,6 @@
 
 namespace
 {
-const char* const Usage = "usage: lvdif mesh-to-sdf MESH OUT.(lvdv|bv|vti|vdb) [--dims N] [--padding P] "
-                          "[--sign normal|pseudo|winding] [--reorient] [--svf] [--band B] [--device cpu|cuda|auto]";
-
 /// A number as the shortest text that reads back as the same double (std::to_string
 /// rounds to 6 decimals: --padding 0.1234567 was recorded as 0.123457).
 std::string exactNumber(double v)
@@ -50,7 +47,7 @@ int CommandMeshToSdf(int argc, char** argv)
 {
   Arguments args(argc, argv, 2, { "dims", "padding", "sign", "band", "device" }, { "svf", "reorient" });
   if (args.positional().size() != 2)
-    throw lvdif::Error(lvdif::ErrorCode::InvalidArgument, Usage);
+    throw lvdif::Error(lvdif::ErrorCode::InvalidArgument, CommandUsage("mesh-to-sdf"));
   const std::string in = args.positional()[0], out = args.positional()[1];
   // --dims 7x300x2 (script's --size, the editor's --new take NXxNYxNZ) was "expects an integer": say why one
   {

@@ -20,7 +20,7 @@ int CommandInfo(int argc, char** argv)
 {
   Arguments args(argc, argv, 2, {}, { "header-only" });
   if (args.positional().size() != 1)
-    throw lvdif::Error(lvdif::ErrorCode::InvalidArgument, "usage: lvdif info VOLUME.lvdv [--header-only]");
+    throw lvdif::Error(lvdif::ErrorCode::InvalidArgument, CommandUsage("info"));
   const std::string& path = args.positional()[0];
   const bool headerOnly = args.has("header-only");
   // another volume format is not "a damaged .lvdv" (it said "header: bad magic")
@@ -65,7 +65,7 @@ int CommandMesh(int argc, char** argv)
 {
   Arguments args(argc, argv, 2, { "png" });
   if (args.positional().size() != 2)
-    throw lvdif::Error(lvdif::ErrorCode::InvalidArgument, "usage: lvdif mesh VOLUME OUT.(ply|obj|stl|vtp) [--png OUT.png]");
+    throw lvdif::Error(lvdif::ErrorCode::InvalidArgument, CommandUsage("mesh"));
   CheckMeshOutput(args.positional()[1]);
   if (args.has("png")) CheckPngOutput(args.get("png", ""));
   CommandLineAccepted();
@@ -83,7 +83,7 @@ int CommandConvert(int argc, char** argv)
 {
   Arguments args(argc, argv, 2, {});
   if (args.positional().size() != 2)
-    throw lvdif::Error(lvdif::ErrorCode::InvalidArgument, "usage: lvdif convert IN OUT   (.lvdv, .lvdvp, .bv, .vti, .vdb)");
+    throw lvdif::Error(lvdif::ErrorCode::InvalidArgument, CommandUsage("convert"));
   CheckVolumeOutput(args.positional()[1]);
   CommandLineAccepted();
   // a .lvdv's dimensions from its header against the output's rule (.bv: cubic), before reading it whole

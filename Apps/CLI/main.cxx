@@ -70,17 +70,17 @@ const Command commands[] = {
     "info VOLUME.lvdv [--header-only]   describe a volume file (header, chunks, colours, metadata) after checking "
     "every chunk; --header-only skips the chunks" },
   { "mesh", CommandMesh, "mesh VOLUME OUT.(ply|obj|stl|vtp) [--png OUT.png]   extract the surface of a volume" },
-  { "convert", CommandConvert, "convert IN OUT   between volume formats: .lvdv, .lvdvp, .bv (the original's), .vti, .vdb" },
+  { "convert", CommandConvert, "convert IN OUT (each .lvdv, .lvdvp, .bv, .vti or .vdb)   between volume formats (.bv: the original's)" },
   { "mesh-to-sdf", CommandMeshToSdf,
-    "mesh-to-sdf MESH OUT.(lvdv|bv|vti|vdb) [--dims N] [--padding P] [--sign normal|pseudo|winding] [--reorient] [--svf] [--band B] "
+    "mesh-to-sdf MESH OUT.(lvdv|lvdvp|bv|vti|vdb) [--dims N] [--padding P] [--sign normal|pseudo|winding] [--reorient] [--svf] [--band B] "
     "[--device cpu|cuda|auto]   voxelize a mesh (OBJ, OFF, STL, PLY); defaults: --dims 128 voxels on the longest axis (2 to 1048576, as memory allows) "
     "(.bv: on every axis, the original's cubic grid around the mesh), "
     "--padding 2 voxels, --sign winding, --band 8 voxels (0: no band), --device auto" },
   { "script", CommandScript,
-    "script FILE.lvs [--in VOLUME] [--out VOLUME] [--mesh OUT] [--png OUT.png] [--size N|NXxNYxNZ] [--max-steps N]   run a "
+    "script FILE.lvs [--in VOLUME] [--out VOLUME] [--mesh OUT.(ply|obj|stl|vtp)] [--png OUT.png] [--size N|NXxNYxNZ] [--max-steps N]   run a "
     "script; --size: the empty start canvas (N^3 or NXxNYxNZ voxels, default 128) of a script without --in and without its own 'canvas'; "
     "--max-steps: the most statements, loop iterations and dabs it may run (default 50000000)" },
-  { "play", CommandPlay, "play RECORDING.lvr --in VOLUME [--out VOLUME] [--mesh OUT] [--png OUT.png]   replay edits" },
+  { "play", CommandPlay, "play RECORDING.lvr --in VOLUME [--out VOLUME] [--mesh OUT.(ply|obj|stl|vtp)] [--png OUT.png]   replay edits" },
 };
 
 const char* const ExitStatusHelp = "exit status: 0 done, 1 failed while running, 2 command line refused (nothing "
@@ -105,6 +105,17 @@ int usage(FILE* f)
   std::fprintf(f, "\n%s\n", ExitStatusHelp);
   return f == stdout ? 0 : 2;
 }
+}
+
+std::string CommandUsage(const char* name)
+{
+  for (const auto& c : commands)
+    if (!std::strcmp(c.name, name))
+    {
+      const std::string help = c.help;
+      return "usage: lvdif " + help.substr(0, help.find("   ")); // the synopsis, before its description
+    }
+  return "usage: lvdif " + std::string(name);
 }
 
 void CommandLineAccepted()

@@ -217,22 +217,29 @@ void EditorDriver::drag(
   modifierKeys(QEvent::KeyRelease);
 }
 
+int editorKeyOfWord(QString word)
+{
+  // bracket names for callers that cannot pass brackets (CMake lists)
+  word.replace("LeftBracket", "[").replace("RightBracket", "]");
+  const QKeySequence seq = QKeySequence::fromString(word, QKeySequence::PortableText);
+  // an unknown name parses as Key_unknown, which QTest cannot type (it asserts); one key a word
+  if (seq.count() != 1 || seq[0] == 0 || (seq[0] & ~Qt::KeyboardModifierMask) == Qt::Key_unknown)
+    return 0;
+  return seq[0];
+}
+
 bool EditorDriver::typeKeys(const QString& keys)
 {
 #ifdef LVDIF_EDITOR_HAVE_QTTEST
   QWidget* v = this->Window.viewWidget();
-  for (QString word : keys.split(' ', Qt::SkipEmptyParts))
+  for (const QString& word : keys.split(' ', Qt::SkipEmptyParts))
   {
-    // bracket names for callers that cannot pass brackets (CMake lists)
-    word.replace("LeftBracket", "[").replace("RightBracket", "]");
-    const QKeySequence seq = QKeySequence::fromString(word, QKeySequence::PortableText);
-    // an unknown name parses as Key_unknown, which QTest cannot type (it asserts)
-    if (seq.isEmpty() || seq[0] == 0 || (seq[0] & ~Qt::KeyboardModifierMask) == Qt::Key_unknown)
+    const int k = editorKeyOfWord(word);
+    if (k == 0)
     {
       std::fprintf(stderr, "lvdif-editor: --keys: '%s' is not a key\n", word.toLocal8Bit().constData());
       return false;
     }
-    const int k = seq[0];
     // without a window manager (Xvfb) nothing activates the window, and window
     // shortcuts only fire in the active window
     QApplication::setActiveWindow(&this->Window);

@@ -19,6 +19,11 @@
 struct EditorOptions;
 class MainWindow;
 
+/// The key combination of one word of --keys (QKeySequence's portable text, "Ctrl+Z";
+/// LeftBracket/RightBracket for [ and ]) as Qt's key code with its modifiers; 0 when the
+/// word is not one key. The option parser checks every word with it before the window opens.
+int editorKeyOfWord(QString word);
+
 class EditorDriver : public QObject
 {
   Q_OBJECT

@@ -1,5 +1,7 @@
 #include "EditorOptions.h"
 
+#include "Arguments.h" // the CLI's guard of a number's text
+#include "EditorDriver.h" // the words of --keys
 #include "LVDIFFiles.h"
 #include "MainWindow.h" // isScriptFile
 #include "MeshImport.h"
@@ -41,9 +43,11 @@ namespace
 int integerOption(const QString& text, const QString& name, qint64 lo, qint64 hi)
 {
   bool ok = false;
-  const qint64 v = text.trimmed().toLongLong(&ok);
+  // the CLI's guard of the text first (" 32" was taken as 32, where the CLI refuses it)
+  const qint64 v = plainNumberText(text.toStdString()) ? text.toLongLong(&ok) : 0;
   if (!ok || v < lo || v > hi)
-    fail(name + " expects an integer in [" + QString::number(lo) + ", " + QString::number(hi) + "], got '" + text + "'");
+    fail(name + " expects an integer in [" + QString::number(lo) + ", " + QString::number(hi) + "], got '" + text + "'" +
+      QString::fromStdString(numberTextHint(text.toStdString())));
   return static_cast<int>(v);
 }
 
@@ -54,9 +58,9 @@ int integerOption(const QString& text, const QString& name, qint64 lo, qint64 hi
 double positiveOption(const QString& text, const QString& name, double hi)
 {
   bool ok = false;
-  const double v = text.trimmed().toDouble(&ok);
+  const double v = plainNumberText(text.toStdString()) ? text.toDouble(&ok) : 0;
   if (!ok || !std::isfinite(v))
-    fail(name + " expects a number, got '" + text + "'");
+    fail(name + " expects a number, got '" + text + "'" + QString::fromStdString(numberTextHint(text.toStdString())));
   try
   {
     lvdif::checkedPositive(v, hi, name.toStdString());
@@ -150,7 +154,7 @@ EditorOptions parseEditorOptions(const QStringList& arguments)
   const QCommandLineOption meshSign("mesh-sign", "Sign of --open-mesh: winding, pseudo or normal (default winding).", "mode", "winding");
   const QCommandLineOption meshReorient("mesh-reorient",
     "--open-mesh with the winding sign: re-orient the faces consistently (the CLI's --reorient).");
-  const QCommandLineOption create("new", "New canvas of N^3 or NXxNYxNZ voxels (without --open or --open-mesh: 128^3).", "size");
+  const QCommandLineOption create("new", "New canvas of N^3 or NXxNYxNZ voxels, 2 to 1048576 a side, as memory allows (without --open or --open-mesh: 128^3).", "size");
   const QCommandLineOption fill("fill",
     "Fill of a new canvas: empty, full or sphere (default sphere; with a --script, empty, as the start canvas of "
     "`lvdif script`; a recording keeps sphere).", "fill", "sphere");
@@ -286,9 +290,11 @@ EditorOptions parseEditorOptions(const QStringList& arguments)
     for (int a = 0; a < 3; ++a)
     {
       bool ok = false;
-      const qint64 v = parts[parts.size() == 1 ? 0 : a].trimmed().toLongLong(&ok);
+      const QString& part = parts[parts.size() == 1 ? 0 : a];
+      const qint64 v = plainNumberText(part.toStdString()) ? part.toLongLong(&ok) : 0;
       if (!ok || v < std::numeric_limits<int>::min() || v > std::numeric_limits<int>::max())
-        fail("--new expects N or NXxNYxNZ in whole numbers of voxels, got '" + p.value(create) + "'");
+        fail("--new expects N or NXxNYxNZ in whole numbers of voxels, got '" + p.value(create) + "'" +
+          QString::fromStdString(numberTextHint(part.toStdString())));
       n[a] = static_cast<int>(v);
     }
     o.newDims = { n[0], n[1], n[2] };
@@ -296,6 +302,17 @@ EditorOptions parseEditorOptions(const QStringList& arguments)
     const std::string tooThin = lvdif::DictionaryVolume::checkCanvasDimensions({ o.newDims[0], o.newDims[1], o.newDims[2] });
     if (!tooThin.empty())
       fail("--new " + p.value(create) + ": " + QString::fromStdString(tooThin));
+    // the chunk table of the canvas (what making it allocates first) against the memory limit,
+    // in the CLI's words for its --size: it was the canvas's own error after Qt had started,
+    // naming no option, status 1 (and without a display, the display's error)
+    try
+    {
+      RequireChunkTable({ o.newDims[0], o.newDims[1], o.newDims[2] }, "--new " + p.value(create).toStdString() + " makes a canvas", "use a smaller --new");
+    }
+    catch (const lvdif::Error& e)
+    {
+      fail(e.what());
+    }
   }
   o.fill = p.value(fill);
   o.fillGiven = p.isSet(fill);
@@ -343,6 +360,13 @@ EditorOptions parseEditorOptions(const QStringList& arguments)
     fail("--mirror expects axis letters x, y, z, got '" + o.mirror + "'");
   o.keys = p.value(keys);
   o.keysAfter = p.value(keysAfter);
+  // every word a key, before the window and the work (a misspelt key failed the run after the
+  // volume was loaded, a mesh converted or a script run, status 1)
+  for (const QCommandLineOption* option : { &keys, &keysAfter })
+    for (const QString& word : p.value(*option).split(' ', Qt::SkipEmptyParts))
+      if (editorKeyOfWord(word) == 0)
+        fail("--" + option->names().first() + ": '" + word + "' is not a key (Qt's key names, as \"G ] Ctrl+Z\"; "
+          "LeftBracket and RightBracket for [ and ])");
   for (const QString& m : p.value(dragMods).toLower().split(',', Qt::SkipEmptyParts))
   {
     if (m == "ctrl")

@@ -702,8 +702,27 @@ std::unique_ptr<lvdif::DictionaryVolume> VolumeFromImage(
     for (std::int64_t p = 0; p < g.count(); ++p)
     {
       double t[4] = { 0, 0, 0, 255 };
-      for (int cidx = 0; cidx < nc; ++cidx) t[cidx] = rgba->GetComponent(p, cidx);
+      for (int cidx = 0; cidx < nc; ++cidx)
+      {
+        // whole numbers 0..255 (a float array of colours in [0, 1], as many VTK sources make, was
+        // cast to black, and a value past 255 or below 0 cast to whatever the conversion gave)
+        t[cidx] = rgba->GetComponent(p, cidx);
+        if (!(t[cidx] >= 0 && t[cidx] <= 255 && t[cidx] == std::floor(t[cidx])))
+        {
+          std::ostringstream msg;
+          msg << "RGBA array '" << (rgba->GetName() ? rgba->GetName() : "") << "' holds " << t[cidx] << " at point " << p
+              << ", component " << cidx << ": colours are whole numbers 0..255 (an unsigned char array)";
+          if (rgba->GetDataType() == VTK_FLOAT || rgba->GetDataType() == VTK_DOUBLE)
+            msg << "; colours in [0, 1] are to be scaled by 255 first";
+          throw lvdif::Error(lvdif::ErrorCode::InvalidArgument, msg.str());
+        }
+      }
       if (nc == 1) t[1] = t[2] = t[0];
+      if (nc == 2) // luminance and alpha, as VTK reads two components
+      {
+        t[3] = t[1];
+        t[1] = t[2] = t[0];
+      }
       lvdif::Rgba col{ static_cast<std::uint8_t>(t[0]), static_cast<std::uint8_t>(t[1]),
         static_cast<std::uint8_t>(t[2]), static_cast<std::uint8_t>(t[3]) };
       keyOfPoint[static_cast<size_t>(p)] = volume->colors().add(col);

@@ -429,8 +429,11 @@ void RequireWritable(const std::string& path)
   lvdif::requireWritable(path);
   // a single process writes piece 0 (ranks their own, each checked by its writer)
   if (Extension(path) == "lvdvp")
+  {
     lvdif::requireWritable(vtkPDictionaryVolumeWriter::PieceFilePath(
       path, 0, vtkPDictionaryVolumeWriter::NextGeneration(path)));
+    vtkPDictionaryVolumeWriter::RequireNoUnlistedPieces(path);
+  }
 }
 
 std::shared_ptr<lvdif::DictionaryVolume> LoadVolume(const std::string& path, lvdif::Interrupter& interrupter)

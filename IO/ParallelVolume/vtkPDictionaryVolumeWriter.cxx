@@ -274,6 +274,29 @@ std::vector<std::string> setFiles(const std::string& indexPath, bool temporaries
 }
 } // namespace
 
+void vtkPDictionaryVolumeWriter::RequireNoUnlistedPieces(const std::string& indexPath)
+{
+  // a set that has an index owns the files named as its pieces (leftovers of killed writes are
+  // removed); before its first index they were overwritten or removed without a word, a user's
+  // scan_1.lvdv and scan_2.lvdv deleted by writing scan.lvdvp
+  if (::access(indexPath.c_str(), F_OK) == 0)
+    return;
+  std::vector<std::string> names = setFiles(indexPath, false);
+  if (names.empty())
+    return;
+  std::sort(names.begin(), names.end());
+  std::string list = "'" + names[0] + "'";
+  for (std::size_t i = 1; i < names.size() && i < 3; ++i)
+    list += ", '" + names[i] + "'";
+  if (names.size() > 3)
+    list += " and " + std::to_string(names.size() - 3) + " more";
+  throw lvdif::Error(lvdif::ErrorCode::InvalidArgument,
+    "cannot write '" + indexPath + "': " + list + (names.size() == 1 ? " lies" : " lie") +
+      " beside it, named as " + (names.size() == 1 ? "a piece" : "pieces") +
+      " of its set, but no index lists them (another volume's files?), and writing the set would overwrite or "
+      "remove them: move them, or choose another name");
+}
+
 bool vtkPDictionaryVolumeWriter::WritePiece(
   vtkSparseDictionaryVolume* sparse, int pieceNumber, const int ext[6], const std::string& path)
 {
@@ -376,6 +399,8 @@ bool vtkPDictionaryVolumeWriter::CheckTarget(bool imageInput, int& generation)
   // (each piece's writer would report them on itself, naming its piece file)
   if (!LVDIFVolumeBridge::CallCore(this, [&] {
         lvdif::requireWritable(this->FileName);
+        if (serial) // (ranks of a controller would see each other's new pieces before the index)
+          RequireNoUnlistedPieces(this->FileName);
         generation = NextGeneration(this->FileName);
         // a serial run writes every piece, a rank its own: each file is checked before the first is written
         for (int p = serial ? 0 : this->Piece; p < (serial ? this->NumberOfPieces : this->Piece + 1); ++p)

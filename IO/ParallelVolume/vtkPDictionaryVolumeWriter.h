@@ -110,6 +110,12 @@ public:
   /// pieces whole. A write first removes the temporary files that killed
   /// writes of the set left (lvdif::removeStaleTemporaries).
   static int NextGeneration(const std::string& indexPath);
+  /// Throws lvdif::Error when `indexPath` does not exist yet but files beside it are
+  /// named as pieces of its set (name_<digits>.lvdv, name_<digits>.g1.lvdv): no index
+  /// lists them, so they may be another volume's (scan_1.lvdv, scan_2.lvdv), and the
+  /// first write of the set would overwrite or remove them. Checked before any work by
+  /// the front ends (LVDIFFiles::RequireWritable) and by Write().
+  static void RequireNoUnlistedPieces(const std::string& indexPath);
 
 protected:
   vtkPDictionaryVolumeWriter();

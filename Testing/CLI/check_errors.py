@@ -619,3 +619,37 @@ code, err = run("mesh-to-sdf", line, os.path.join(out, "line.lvdv"), "--dims", "
 # the last line: a CUDA build without a usable GPU prints its one notice first
 assert code == 1 and err.splitlines()[-1] == f"lvdif mesh-to-sdf: mesh '{line}': the mesh's only triangle has zero area " \
     "(its corners coincide or lie on one line), so there is no surface to convert: check the file's points and faces", (code, err)
+# the usage of mesh-to-sdf names every volume format it writes (it left out .lvdvp, which it writes)
+r = subprocess.run([exe, "mesh-to-sdf", "--help"], capture_output=True, text=True, timeout=60)
+listed = r.stdout.split("OUT.(", 1)[1].split(")", 1)[0].split("|")
+r = subprocess.run([exe, "help"], capture_output=True, text=True, timeout=60)
+assert "mesh-to-sdf MESH OUT.(" + "|".join(listed) + ")" in r.stdout, (listed, r.stdout)
+tetra = os.path.join(out, "tetra.obj")
+with open(tetra, "w") as f:
+    f.write("v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nf 1 3 2\nf 1 2 4\nf 1 4 3\nf 2 3 4\n")
+for ext in ("lvdv", "lvdvp", "bv", "vti", "vdb"):
+    code, err = run("mesh-to-sdf", tetra, os.path.join(out, "tetra-out." + ext), "--dims", "12")
+    assert (code == 0) == (ext in listed), (ext, listed, code, err)
+# files named as pieces of a .lvdvp that has no index yet (a user's scan_1.lvdv beside a first write of
+# scan.lvdvp) are another volume's: refused before the work, kept byte for byte (scan_0.lvdv was
+# overwritten and the others removed as the set's old pieces)
+users = os.path.join(out, "scan_1.lvdv")
+assert run("mesh-to-sdf", tetra, users, "--dims", "12")[0] == 0
+with open(users, "rb") as f:
+    users_bytes = f.read()
+scan = os.path.join(out, "scan.lvdvp")
+if os.path.exists(scan):
+    os.remove(scan)
+code, err = run("convert", users, scan)
+assert code == 2 and err.splitlines()[-1] == (
+    f"lvdif convert: cannot write '{scan}': 'scan_1.lvdv' lies beside it, named as a piece of its set, but no index "
+    "lists them (another volume's files?), and writing the set would overwrite or remove them: move them, or choose "
+    "another name"), (code, err)
+assert not os.path.exists(scan) and open(users, "rb").read() == users_bytes
+# a refused command line's usage is the synopsis of the command's help (the usage lines were copies of
+# it that drifted: play's and script's said --mesh OUT.ply, mesh-to-sdf's left out .lvdvp)
+for cmd in ("info", "mesh", "convert", "mesh-to-sdf", "script", "play"):
+    r = subprocess.run([exe, cmd, "--help"], capture_output=True, text=True, timeout=60)
+    synopsis = r.stdout.splitlines()[0].split("   ")[0]
+    code, err = run(cmd)
+    assert code == 2 and err.splitlines()[-1] == "lvdif " + cmd + ": " + synopsis, (cmd, code, err, synopsis)

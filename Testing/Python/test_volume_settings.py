@@ -18,6 +18,7 @@ back for the writers), the errors the class reports. Runs without ParaView,
 on a non-cubic grid with anisotropic spacing.
 Usage: test_volume_settings.py OUTDIR"""
 import math
+import glob
 import os
 import sys
 
@@ -108,8 +109,11 @@ def volume_of(cls, inp, **kw):
 
 def written(cls, ext, inp, **kw):
     path = os.path.join(out, "settings_%s.%s" % (cls, ext))
-    if os.path.exists(path):
-        os.remove(path)
+    # a fresh write: the index and, for a .lvdvp, its pieces (pieces without their index are refused
+    # as possibly another volume's files)
+    for name in [path] + glob.glob(os.path.join(out, "settings_%s_*.lvdv" % cls)):
+        if os.path.exists(name):
+            os.remove(name)
     ok, errs, _ = run(cls, inp=inp, path=path, **kw)
     if not ok:
         return ok, errs, None

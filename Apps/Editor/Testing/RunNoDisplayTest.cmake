@@ -37,7 +37,13 @@ endif ()
 # Qt's, taken with their values, and not refused as unknown.
 foreach (case "--radius;abc|--radius expects a number, got 'abc'"
     "-display;:12345;-style;fusion;--strength;1.5|--strength must be a finite number in [(]0, 1[]] [(]got 1.5[)]"
-    "--bogus|lvdif-editor: Unknown option 'bogus'")
+    "--bogus|lvdif-editor: Unknown option 'bogus'"
+    # a word of --keys that is no key (it failed the run after the volume was made, status 1)
+    "--keys;G Bogus|lvdif-editor: --keys: 'Bogus' is not a key"
+    "--keys-after;Ctrl+Z,Ctrl+Y|lvdif-editor: --keys-after: 'Ctrl[+]Z,Ctrl[+]Y' is not a key"
+    # a number with spaces around it, refused as the CLI's options refuse it (the editor took ' 5' as 5)
+    "--radius; 5|lvdif-editor: --radius expects a number, got ' 5' [(]no spaces around the number[)]"
+    "--samples;4 |lvdif-editor: --samples expects an integer in [[]0, 16[]], got '4 ' [(]no spaces around the number[)]")
   string(REPLACE "|" ";" case "${case}")
   list(GET case -1 expect)
   list(REMOVE_AT case -1)
@@ -48,6 +54,22 @@ foreach (case "--radius;abc|--radius expects a number, got 'abc'"
     message(FATAL_ERROR "without a display '${case}' should be refused with status 2 and '${expect}' alone")
   endif ()
 endforeach ()
+# A --new whose chunk table alone passes the memory limit is a refused command
+# line before the window, in the CLI's words for its --size (it was the canvas's
+# own error once Qt had started, naming no option, status 1; without a display,
+# the display's error).
+execute_process(COMMAND "${EDITOR}" --new 100000 --no-recovery --autosave 0 --quit
+  RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
+message("--new 100000: status ${rc}\n${out}${err}")
+if (NOT rc EQUAL 2 OR NOT "${err}" MATCHES "lvdif-editor: --new 100000 makes a canvas of 100000 x 100000 x 100000 voxels, whose chunk table alone needs [0-9.]+ GiB, more than the limit of [^\n]*: use a smaller --new\n$")
+  message(FATAL_ERROR "--new 100000 should be refused with status 2 and one line naming --new")
+endif ()
+execute_process(COMMAND "${EDITOR}" --new "32x 16x16" --no-recovery --autosave 0 --quit
+  RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
+message("--new '32x 16x16': status ${rc}\n${out}${err}")
+if (NOT rc EQUAL 2 OR NOT "${err}" MATCHES "lvdif-editor: --new expects N or NXxNYxNZ in whole numbers of voxels, got '32x 16x16' [(]no spaces around the number[)]")
+  message(FATAL_ERROR "--new '32x 16x16' should be refused with status 2, as the CLI's --size")
+endif ()
 # Qt's offscreen platform has no OpenGL for the view: one line and status 1 (the
 # first frame crashed the editor, status 139).
 execute_process(COMMAND "${EDITOR}" -platform offscreen --new 16 --no-recovery --autosave 0 --quit

@@ -417,6 +417,25 @@ Recording readRecording(std::istream& in, const std::string& name)
         e.brush.symmetry.plane[a] = number(key.c_str());
       }
     }
+    // each value by the one brush rule, named at its column (a blend of -1 or strength=2 was named
+    // at the record's first column, where the dab values and the spacing are named at theirs)
+    for (const char* key : { "blend", "coloroffset", "rounding", "strength", "mirrorx", "mirrory", "mirrorz" })
+      if (kv.count(key))
+      {
+        BrushSettings one;
+        const std::string k = key;
+        if (k == "blend") one.blend = e.brush.blend;
+        else if (k == "coloroffset") one.colorOffset = e.brush.colorOffset;
+        else if (k == "rounding") one.rounding = e.brush.rounding;
+        else if (k == "strength") one.strength = e.brush.strength;
+        else
+        {
+          const int a = k.back() - 'x';
+          one.symmetry.mirror[a] = true;
+          one.symmetry.plane[a] = e.brush.symmetry.plane[a];
+        }
+        rule([&] { validate(one); }, get(key).second);
+      }
     rule([&] { validate(e.brush); }, head.column);
     rule([&] { checkedNumber(e.spacing, EditLimits::MinSpacing, EditLimits::MaxSize, "spacing"); }, get("spacing").second);
     e.brush.color = color();

@@ -229,6 +229,23 @@ TEST(Recording, ParseErrorsNameTheLine)
   EXPECT_EQ(errorOf("# only a comment\n"), "recording:1:1: empty recording (no version line)");
 }
 
+TEST(Recording, BrushValuesAreNamedAtTheirColumn)
+{
+  // A brush value out of its range is named at the value, as the dab values and the spacing are
+  // (they were all named at column 1, the record's start: "recording:2:1: brush blend radius ...").
+  const std::string head = "LVDIF-RECORDING 1\n";
+  for (const std::string& field : { std::string("blend=-1"), std::string("coloroffset=-1"), std::string("rounding=-1"),
+         std::string("strength=2"), std::string("strength=0"), std::string("mirrory=2e9"), std::string("mirrorz=-2e9") })
+  {
+    const std::string line = "edit time=0 op=add shape=sphere kind=basic spacing=1.6 " +
+      std::string(field.rfind("blend", 0) == 0 ? "" : "blend=0 ") +
+      (field.rfind("coloroffset", 0) == 0 ? "" : "coloroffset=1.5 ") + field + " color=1,2,3,255 dabs=1";
+    const std::size_t column = line.find(field) + field.find('=') + 2; // 1-based, the value's first character
+    const std::string error = recordingErrorOf(head + line + "\nd 1 2 3 4\n");
+    EXPECT_EQ(error.rfind("recording:2:" + std::to_string(column) + ": ", 0), 0u) << field << ": " << error;
+  }
+}
+
 TEST(Recording, MalformedFieldsAreRefusedNotGuessed)
 {
   // Each of these was read as something else before: "1.5,..." as the colour

@@ -397,6 +397,26 @@ TriangleMesh readOff(const std::vector<char>& data)
   std::vector<std::string> t;
   if (!s.nextNonEmpty(t) || t[0].size() < 3 || t[0].compare(t[0].size() - 3, 3, "OFF") != 0)
     fail(ErrorCode::ParseError, "OFF line 1", "missing the OFF header");
+  // the header is [ST][C][N][4][n]OFF: texture coordinates, colours and normals follow a vertex's
+  // x y z and are skipped; 4 (homogeneous x y z w) and n (a dimension line) change what the
+  // coordinates are, and were read as if absent: a 4OFF of w = 2 came out twice its size
+  {
+    const std::string& h = t[0];
+    std::size_t i = h.compare(0, 2, "ST") == 0 ? 2 : 0;
+    for (const char flag : { 'C', 'N' })
+      if (i < h.size() && h[i] == flag)
+        ++i;
+    const std::string rest = h.substr(i, h.size() - 3 - i);
+    if (rest == "4" || rest == "n" || rest == "4n")
+      fail(ErrorCode::ParseError, "OFF line 1",
+        "header " + quotedText(h) + ": " +
+          (rest == "4" ? std::string("homogeneous vertices (x y z w) are not read; write the points x/w y/w z/w")
+                       : std::string("vertices of the dimension given on the next line are not read; write 3-D points")) +
+          " under an 'OFF' header");
+    if (!rest.empty())
+      fail(ErrorCode::ParseError, "OFF line 1",
+        "header " + quotedText(h) + " is not an OFF header ([ST][C][N]OFF: OFF, COFF, NOFF, CNOFF, STOFF, ...)");
+  }
   t.erase(t.begin()); // counts may follow on the same line
   if (t.empty() && !s.nextNonEmpty(t))
     fail(ErrorCode::ParseError, s.where(), "missing the vertex and face counts");

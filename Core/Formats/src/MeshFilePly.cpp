@@ -5,6 +5,8 @@
 // left before anything is allocated.
 #include "MeshFileDetail.h"
 
+#include <algorithm>
+
 #include <charconv>
 #include <system_error>
 
@@ -543,6 +545,14 @@ TriangleMesh readPly(const std::vector<char>& data)
   // text past the last element's records: wrong counts or a damaged file (dropped without a word)
   if (enc == Encoding::Ascii && body.nextNonEmpty(tok))
     fail(ErrorCode::ParseError, body.where(), "more records than the header's element counts (wrong counts, or a damaged file)");
+  // triangle strips (element 'tristrips', as some scanners write) are not read: say so, not
+  // only "the file holds no triangles"
+  if (mesh.triangles.empty())
+    for (const Element& e : elements)
+      if (e.name != "vertex" && e.name != "face" && e.count > 0 &&
+        std::any_of(e.properties.begin(), e.properties.end(), [](const Property& q) { return q.list; }))
+        fail(ErrorCode::ParseError, "PLY", "the file holds no triangles: only the element 'face' is read, and its " +
+            std::to_string(e.count) + " " + quotedText(e.name) + " records (triangle strips?) are not faces");
   finish(mesh, "PLY");
   return mesh;
 }

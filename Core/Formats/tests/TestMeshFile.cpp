@@ -110,6 +110,9 @@ TEST(MeshFile, EveryFormatReadsTheSquare)
   expectSquare(readText("# square\nv 0 0 0\nv 1 0 0\nvt 0 0\nv 1 1 0\nv 0 1 0.5\nvn 0 0 1\ng a\nf 1/1 2//1 3/1/1 -1\n",
     MeshFormat::Obj));
   expectSquare(readText("OFF\n# c\n4 1 0\n0 0 0\n1 0 0\n1 1 0\n0 1 0.5\n4 0 1 2 3 255 0 0\n", MeshFormat::Off));
+  // OFF's variants whose extra vertex columns (colour, normal, texture coordinates) follow x y z
+  for (const std::string header : { "COFF", "NOFF", "CNOFF", "STOFF", "STCNOFF" })
+    expectSquare(readText(header + "\n4 1 0\n0 0 0 9 9\n1 0 0 9 9\n1 1 0 9 9\n0 1 0.5 9 9\n4 0 1 2 3\n", MeshFormat::Off));
   expectSquare(readText("ply\nformat ascii 1.0\nelement vertex 4\nproperty float x\nproperty float y\nproperty float z\n"
                         "element face 1\nproperty list uchar int vertex_indices\nend_header\n"
                         "0 0 0\n1 0 0\n1 1 0\n0 1 0.5\n4 0 1 2 3\n",
@@ -231,6 +234,15 @@ TEST(MeshFile, MalformedInputsAreClearErrors)
     { "OFF counts past the size", "OFF\n3 1 0\n0 0 0\n1 0 0\n", MeshFormat::Off, "cannot fit" },
     { "OFF face shorter than announced", "OFF\n3 1 0\n" + tri + "4 0 1 2\n", MeshFormat::Off, "announces 4" },
     { "OFF no header", "3 1 0\n" + tri, MeshFormat::Off, "header" },
+    // OFF's header variants that change what the coordinates are were read as plain OFF (a 4OFF whose
+    // w is 2 came out twice its size, an nOFF's dimension line "expected vertex, face (and edge) counts")
+    { "4OFF", "4OFF\n3 1 0\n0 0 0 2\n2 0 0 2\n0 2 0 2\n3 0 1 2\n", MeshFormat::Off,
+      "OFF line 1: header '4OFF': homogeneous vertices (x y z w) are not read; write the points x/w y/w z/w under an 'OFF' header" },
+    { "nOFF", "nOFF\n3\n3 1 0\n" + tri + "3 0 1 2\n", MeshFormat::Off,
+      "OFF line 1: header 'nOFF': vertices of the dimension given on the next line are not read" },
+    { "C4OFF", "C4OFF\n3 1 0\n0 0 0 2\n2 0 0 2\n0 2 0 2\n3 0 1 2\n", MeshFormat::Off, "header 'C4OFF': homogeneous" },
+    { "OFF unknown prefix", "HELLOOFF\n3 1 0\n" + tri + "3 0 1 2\n", MeshFormat::Off,
+      "OFF line 1: header 'HELLOOFF' is not an OFF header ([ST][C][N]OFF" },
     { "PLY index out of range", plyHead + tri + "3 0 1 3\n", MeshFormat::Ply, "out of range" },
     { "PLY negative index", plyHead + tri + "3 0 -1 2\n", MeshFormat::Ply, "out of range" },
     { "PLY empty face", plyHead + tri + "0\n", MeshFormat::Ply, "PLY face 0: a face needs at least 3 vertices, this one has 0" },
@@ -266,6 +278,11 @@ TEST(MeshFile, MalformedInputsAreClearErrors)
         b[body + 4 * 17] = char(200); // the face's uchar count, after 4 vertices of 8 + 4 + 4 + 1 bytes
         return b;
       }(), MeshFormat::Ply, "PLY face 0: list 'vertex_indices' announces 200 items, more than the 85 bytes after the header" },
+    // triangle strips are not read: named (it said only "the file holds no triangles")
+    { "PLY tristrips", "ply\nformat ascii 1.0\nelement vertex 4\nproperty float x\nproperty float y\nproperty float z\n"
+      "element tristrips 1\nproperty list int int vertex_indices\nend_header\n0 0 0\n1 0 0\n0 1 0\n1 1 0\n4 0 1 2 3\n",
+      MeshFormat::Ply, "PLY: the file holds no triangles: only the element 'face' is read, and its 1 'tristrips' records "
+      "(triangle strips?) are not faces" },
     { "PLY no format", "ply\nelement vertex 0\nend_header\n", MeshFormat::Ply, "no format" },
     { "PLY no end_header", "ply\nformat ascii 1.0\nelement vertex 0\n", MeshFormat::Ply, "no end_header" },
     { "PLY missing z", "ply\nformat ascii 1.0\nelement vertex 1\nproperty float x\nproperty float y\nend_header\n0 0\n", MeshFormat::Ply, "without x, y and z" },

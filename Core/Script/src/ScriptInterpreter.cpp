@@ -229,7 +229,17 @@ struct ScriptRunner::Impl
     else if (f == "exp") r = std::exp(a[0]);
     else if (f == "log") r = std::log(a[0]);
     else if (f == "pow") r = std::pow(a[0], a[1]);
-    else if (f == "clamp") r = std::max(a[1], std::min(a[2], a[0]));
+    else if (f == "clamp")
+    {
+      // reversed bounds are a mistake, not a constant (clamp(x, 10, 0) gave 10 for every x)
+      if (a[1] > a[2])
+      {
+        std::ostringstream o;
+        o << "'clamp' takes (x, lo, hi) with lo <= hi, got lo " << a[1] << " above hi " << a[2];
+        fail(e.args[1]->line, e.args[1]->column, o.str());
+      }
+      r = std::max(a[1], std::min(a[2], a[0]));
+    }
     else if (f == "min" || f == "max")
     {
       r = a[0];

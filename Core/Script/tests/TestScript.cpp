@@ -163,6 +163,19 @@ TEST(Script, RunTimeErrorsGiveLineAndColumn)
   EXPECT_EQ(w.detail, "division by zero");
   w = errorOf("x = sqrt(-1)");
   EXPECT_EQ(w.column, 5);
+  // clamp's bounds reversed are named at lo (clamp(x, 10, 0) gave 10 for every x without a word)
+  w = errorOf("x = 3\ny = clamp(x, 10, 0)");
+  EXPECT_EQ(w.line, 2);
+  EXPECT_EQ(w.column, 14);
+  EXPECT_EQ(w.detail, "'clamp' takes (x, lo, hi) with lo <= hi, got lo 10 above hi 0");
+  {
+    std::string printed; // lo == hi is the one value
+    ScriptOptions o;
+    o.print = [&](const std::string& t) { printed += t + "\n"; };
+    ScriptRunner equal(o);
+    equal.run("print clamp(-4, 2, 2), clamp(1, 0, 3), clamp(9, 0, 3)");
+    EXPECT_EQ(printed, "2 1 3\n");
+  }
   w = errorOf("dab 1 2 3");
   EXPECT_EQ(w.detail, "no canvas: start with 'canvas N' (or attach a volume)");
   // an absurd canvas is refused by every volume's rule, the chunk table's memory before

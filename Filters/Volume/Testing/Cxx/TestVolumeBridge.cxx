@@ -14,6 +14,7 @@
 #include "vtkCompositeDataSet.h"
 #include "vtkDataObject.h"
 #include "vtkFieldData.h"
+#include "vtkDoubleArray.h"
 #include "vtkFloatArray.h"
 #include "vtkImageData.h"
 #include "vtkInformation.h"
@@ -139,6 +140,57 @@ TEST(VolumeBridge, BadInputIsAClearError)
   nan->FillValue(1.0f);
   nan->SetValue(5, std::nanf(""));
   EXPECT_THROW(LVDIFVolumeBridge::VolumeFromImage(img, nan, nullptr, lvdif::VolumeOptions()), lvdif::Error);
+}
+
+// Colours are whole numbers 0..255: a float array in [0, 1] was cast to black without a word, and
+// values past 255 or below 0 to whatever the conversion gave; two components are luminance and alpha,
+// as VTK reads them (they were red and green).
+TEST(VolumeBridge, ColoursAreWholeNumbersFrom0To255)
+{
+  vtkNew<vtkImageData> img;
+  img->SetDimensions(4, 4, 4);
+  vtkNew<vtkFloatArray> sdf;
+  sdf->SetNumberOfTuples(64);
+  sdf->FillValue(1.0f);
+  auto colours = [&](vtkDataArray* rgba) { return LVDIFVolumeBridge::VolumeFromImage(img, sdf, rgba, lvdif::VolumeOptions()); };
+  vtkNew<vtkFloatArray> unit;
+  unit->SetName("rgba");
+  unit->SetNumberOfComponents(4);
+  unit->SetNumberOfTuples(64);
+  unit->FillValue(0.5f);
+  try
+  {
+    colours(unit);
+    ADD_FAILURE() << "colours in [0, 1] were taken";
+  }
+  catch (const lvdif::Error& e)
+  {
+    EXPECT_STREQ(e.what(), "RGBA array 'rgba' holds 0.5 at point 0, component 0: colours are whole numbers 0..255 "
+                           "(an unsigned char array); colours in [0, 1] are to be scaled by 255 first");
+  }
+  for (const double bad : { 256.0, -1.0, 1e10, std::nan("") })
+  {
+    vtkNew<vtkDoubleArray> out;
+    out->SetNumberOfComponents(3);
+    out->SetNumberOfTuples(64);
+    out->FillValue(7);
+    out->SetComponent(9, 2, bad);
+    EXPECT_THROW(colours(out), lvdif::Error) << bad;
+  }
+  vtkNew<vtkUnsignedCharArray> la;
+  la->SetNumberOfComponents(2);
+  la->SetNumberOfTuples(64);
+  for (vtkIdType i = 0; i < 64; ++i)
+  {
+    la->SetComponent(i, 0, 40);
+    la->SetComponent(i, 1, 200);
+  }
+  const auto v = colours(la);
+  const lvdif::Rgba c = v->colors()[v->get(1, 2, 3).color];
+  EXPECT_EQ(int(c.r), 40);
+  EXPECT_EQ(int(c.g), 40);
+  EXPECT_EQ(int(c.b), 40);
+  EXPECT_EQ(int(c.a), 200);
 }
 
 // StoreRange's cached range against VTK's own range pass over the same values

@@ -77,6 +77,9 @@ TEST(LVDIFFiles, EveryVolumeFormatRoundTrips)
     if (f.kind != LVDIFFiles::Kind::Volume || f.writerClass.empty() || f.readerClass.empty()) continue;
     ++formats;
     const std::string path = temp("SDF_40_sphere." + f.extension);
+    // a fresh write: an earlier run's pieces without their index are refused as another volume's files
+    for (const char* piece : { "_0.lvdv", "_0.g1.lvdv" })
+      std::remove(temp(std::string("SDF_40_sphere") + piece).c_str());
     LVDIFFiles::SaveVolume(v, path, { { "source mesh", "analytic" } });
     std::shared_ptr<lvdif::DictionaryVolume> back = LVDIFFiles::LoadVolume(path);
     ASSERT_TRUE(back) << f.extension;

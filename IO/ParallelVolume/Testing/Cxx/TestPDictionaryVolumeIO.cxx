@@ -774,17 +774,62 @@ TEST(PVolumeIO, TemporariesOfAKilledWriteAreRemovedByTheNextWrite)
     "stale_5.g1.lvdv" /* a piece no index lists */ };
   const std::vector<std::string> kept{ "stale_0.lvdv.tmp-" + live + "-staged.lvdv", "stale_0.lvdv.bak",
     "stale_5.g2.lvdv", "stalex_0.lvdv.tmp-" + dead + "-staged.lvdv" };
+  // the set has an index (a first write): its killed later writes left the files (a piece no
+  // index lists beside a set without an index may be another volume's: the write refuses it,
+  // PVolumeIO.AFirstWriteKeepsFilesNamedAsItsPieces)
+  const std::string index = tmpName("stale.lvdvp");
+  writePieces(makeImage(), index, 2);
   for (const std::string& f : stale)
     std::ofstream(tmpName(f)) << "left";
   for (const std::string& f : kept)
     std::ofstream(tmpName(f)) << "other";
-  const std::string index = tmpName("stale.lvdvp");
   writePieces(makeImage(), index, 2);
   for (const std::string& f : stale)
     EXPECT_FALSE(std::ifstream(tmpName(f)).good()) << f << " is left";
   for (const std::string& f : kept)
     EXPECT_EQ(fileBytes(tmpName(f)), "other") << f;
   for (const std::string& f : setFiles("stale", ""))
+    std::remove(tmpName(f).c_str());
+}
+
+// Files named as pieces of a set that has no index yet (a user's scan_1.lvdv and scan_2.lvdv
+// beside a first write of scan.lvdvp) were overwritten (scan_0.lvdv) or removed (the others, as
+// "piece files the new index does not list") without a word. Now the first write is refused before
+// anything is written, naming them, and they stay byte for byte; once they are gone it writes.
+TEST(PVolumeIO, AFirstWriteKeepsFilesNamedAsItsPieces)
+{
+  const std::string index = tmpName("foreign.lvdvp");
+  const std::vector<std::string> foreign{ "foreign_0.lvdv", "foreign_1.lvdv", "foreign_7.g1.lvdv" };
+  for (const std::string& f : foreign)
+    std::ofstream(tmpName(f)) << "a user's " << f;
+  vtkNew<vtkPDictionaryVolumeWriter> w;
+  w->SetController(nullptr);
+  w->SetInputData(makeImage());
+  w->SetFileName(index.c_str());
+  w->SetNumberOfPieces(2);
+  std::string text;
+  vtkNew<vtkCallbackCommand> onError;
+  onError->SetClientData(&text);
+  onError->SetCallback([](vtkObject*, unsigned long, void* client, void* call) {
+    auto* t = static_cast<std::string*>(client);
+    if (t->empty()) *t = static_cast<const char*>(call);
+  });
+  w->AddObserver(vtkCommand::ErrorEvent, onError);
+  vtkObject::GlobalWarningDisplayOn(); // ErrorEvent fires only with it on
+  EXPECT_EQ(w->Write(), 0);
+  vtkObject::GlobalWarningDisplayOff();
+  EXPECT_NE(text.find("'lvdif_p_" + std::to_string(getpid()) + "_foreign_0.lvdv', 'lvdif_p_" +
+              std::to_string(getpid()) + "_foreign_1.lvdv', 'lvdif_p_" + std::to_string(getpid()) +
+              "_foreign_7.g1.lvdv' lie beside it, named as pieces of its set, but no index lists them"),
+    std::string::npos)
+    << text;
+  EXPECT_FALSE(std::ifstream(index).good()) << "an index was written";
+  for (const std::string& f : foreign)
+    EXPECT_EQ(fileBytes(tmpName(f)), "a user's " + f) << f;
+  for (const std::string& f : foreign)
+    std::remove(tmpName(f).c_str());
+  writePieces(makeImage(), index, 2);
+  for (const std::string& f : setFiles("foreign", ""))
     std::remove(tmpName(f).c_str());
 }
 
