@@ -170,10 +170,10 @@ void warnIfNothingInside(const MeshToSdfPrepared& mesh, const GridGeometry& grid
   if (mesh.boundaryEdges() > 0)
   {
     w << "mesh to SDF: no voxel is inside the mesh (deeper than 1 voxel): it is open (" << mesh.boundaryEdges()
-      << " boundary edges) and encloses no volume at any voxel centre"
-      << (options.sign == SignMode::WindingNumber ? " (|winding number| < 1/2 everywhere, as for a single open sheet)"
+      << " boundary edges) and encloses no volume deeper than one voxel at any voxel centre"
+      << (options.sign == SignMode::WindingNumber ? " (|winding number| >= 1/2 nowhere farther than one voxel from the mesh, as for a single open sheet)"
                                                   : "")
-      << ", so the field has no zero crossing and meshing it gives no surface; close the mesh, or use the "
+      << ", so meshing the field gives no surface (at most slivers within a voxel of the mesh); close the mesh, or use the "
          "pseudo-normal sign (--sign pseudo, lvdif-editor --mesh-sign pseudo, vtkMeshToSDF's PSEUDO_NORMAL, the "
          "editor's \"Pseudo-normal\": each "
          "side of a sheet gets its own sign) or the unsigned distance meshed at a positive iso-value (a shell "
@@ -200,15 +200,15 @@ void warnIfNothingInside(const MeshToSdfPrepared& mesh, const GridGeometry& grid
     w << "mesh to SDF: no voxel centre lies inside the mesh (deeper than 1 voxel): ";
     if (!reaches)
       w << "the grid does not reach the mesh (" << spans.str()
-        << "), so the field has no zero crossing and meshing it gives no surface; place the grid over the mesh, or "
+        << "), so meshing the field gives no surface (at most slivers within a voxel of the mesh); place the grid over the mesh, or "
            "let it be fitted to the mesh";
     else if (!covers)
       w << "the grid covers only a part of the mesh's bounds, and no voxel centre there is inside (" << spans.str()
-        << "), so the field has no zero crossing and meshing it gives no surface; place the grid over the whole "
+        << "), so meshing the field gives no surface (at most slivers within a voxel of the mesh); place the grid over the whole "
            "mesh, or let it be fitted to the mesh";
     else
       w << "the voxels (spacing " << h
-        << ") are larger than the mesh's parts, so the field has no zero crossing and meshing it gives no surface; "
+        << ") are larger than the mesh's parts, so meshing the field gives no surface (at most slivers within a voxel of the mesh); "
            "use more voxels (a higher resolution / --dims) or less padding";
   }
   stats.warnings.push_back(w.str());

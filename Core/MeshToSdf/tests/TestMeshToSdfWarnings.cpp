@@ -120,6 +120,30 @@ TEST(MeshToSdfWarnings, OpenSheetEnclosesNoVolume)
   EXPECT_TRUE(mentions(meshToSdf(m, vol, o), "encloses no volume"));
 }
 
+// A part thinner than a voxel can still cross zero: a grid point inside it lies
+// within a voxel of its surface. The warning that no voxel is deeper than one
+// voxel inside said "the field has no zero crossing and meshing it gives no
+// surface", while a new user's thin cylinder meshed to 976 triangles: it now
+// says what is true, no surface or slivers at most.
+TEST(MeshToSdfWarnings, AThinPartsWarningDoesNotDenyItsSlivers)
+{
+  const TriangleMesh m = makeBoxMesh({ 0.0f, -0.15f, -0.15f }, { 10.0f, 0.15f, 0.15f });
+  GridGeometry g;
+  g.dims = { 25, 5, 5 };
+  g.spacing = { 0.5, 0.5, 0.5 };
+  g.origin = { -1.0, -1.0, -1.0 }; // the row of points y = z = 0 runs inside the box
+  std::vector<float> out(static_cast<std::size_t>(g.count()));
+  MeshToSdfOptions o;
+  o.device = Device::Cpu;
+  const MeshToSdfStats s = meshToSdf(m, FloatGridView{ out.data(), g }, o);
+  EXPECT_LT(*std::min_element(out.begin(), out.end()), 0.0f) << "the premise: grid points inside the box";
+  EXPECT_EQ(deepInside(out), 0);
+  ASSERT_EQ(s.warnings.size(), 1u);
+  EXPECT_NE(s.warnings[0].find("larger than the mesh's parts"), std::string::npos) << s.warnings[0];
+  EXPECT_EQ(s.warnings[0].find("no zero crossing"), std::string::npos) << s.warnings[0];
+  EXPECT_NE(s.warnings[0].find("at most slivers"), std::string::npos) << s.warnings[0];
+}
+
 TEST(MeshToSdfWarnings, VoxelsLargerThanTheParts)
 {
   const TriangleMesh m = twoSmallBoxes();
