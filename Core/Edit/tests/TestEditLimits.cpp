@@ -260,7 +260,9 @@ TEST(EditLimits, RecordingsRefuseBadNumbersWithNameLineAndColumn)
                                                        "[-1e+09, 1e+09] (got 3e+300)");
   std::string big = edit;
   big.replace(big.find("blend=0"), 7, "blend=1e300");
-  EXPECT_NE(errorOf(head + big + "d 1 2 3 4\n").find("x.lvr:2:1: brush blend radius"), std::string::npos);
+  // at the value's column (since session 26; it was the edit line's column 1)
+  const std::string blendAt = "x.lvr:2:" + std::to_string(big.find("blend=") + 7) + ": brush blend radius";
+  EXPECT_NE(errorOf(head + big + "d 1 2 3 4\n").find(blendAt), std::string::npos) << errorOf(head + big + "d 1 2 3 4\n");
   std::string tiny = edit;
   tiny.replace(tiny.find("spacing=1.6"), 11, "spacing=1e-9");
   const std::string at = "x.lvr:2:" + std::to_string(tiny.find("spacing=") + 9) + ": spacing must be";
