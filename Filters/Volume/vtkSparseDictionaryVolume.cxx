@@ -607,6 +607,11 @@ void vtkSparseDictionaryVolume::CopyStructure(vtkCompositeDataSet* input)
     this->CopyViewFrom(*s);
     return;
   }
+  this->DropView();
+}
+
+void vtkSparseDictionaryVolume::DropView()
+{
   this->Volume.reset();
   this->PartitionsBuilt = false;
   this->PartitionChunks.clear();
@@ -671,11 +676,7 @@ void vtkSparseDictionaryVolume::SetDataSet(vtkCompositeDataIterator* iter, vtkDa
 void vtkSparseDictionaryVolume::Initialize()
 {
   this->Superclass::Initialize();
-  this->Volume.reset();
-  this->PartitionsBuilt = false;
-  this->PartitionChunks.clear();
-  this->OwnsAll = true;
-  this->Held = std::make_shared<HeldPartitions>();
+  this->DropView();
 }
 
 void vtkSparseDictionaryVolume::ShallowCopy(vtkDataObject* src)
@@ -710,11 +711,7 @@ void vtkSparseDictionaryVolume::ShareFrom(vtkDataObject* src, const std::functio
   }
   else
   {
-    this->Volume.reset();
-    this->PartitionsBuilt = false;
-    this->PartitionChunks.clear();
-    this->OwnsAll = true;
-    this->Held = std::make_shared<HeldPartitions>();
+    this->DropView();
   }
   this->Modified();
 }
@@ -726,10 +723,7 @@ void vtkSparseDictionaryVolume::DeepCopy(vtkDataObject* src)
   if (!s)
   {
     this->Superclass::DeepCopy(src);
-    this->Volume.reset();
-    this->PartitionsBuilt = false;
-    this->PartitionChunks.clear();
-    this->Held = std::make_shared<HeldPartitions>();
+    this->DropView();
     return;
   }
   this->Superclass::SetNumberOfPartitions(0);

@@ -244,6 +244,8 @@ protected:
   std::shared_ptr<HeldPartitions> Held;
   /// Copies the view's state (volume, partitions, colours, owned chunks, held partitions) from `s`.
   void CopyViewFrom(const vtkSparseDictionaryVolume& s);
+  /// No volume, no partitions, all chunks owned, a new (empty) set of held partitions.
+  void DropView();
 #endif
   /// The storage chunk of each partition (built with them).
   std::vector<std::int64_t> PartitionChunks;
