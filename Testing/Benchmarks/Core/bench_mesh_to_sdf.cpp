@@ -25,6 +25,7 @@
 #include "lvdif/Memory.h"
 
 #include <omp.h>
+#include <sys/resource.h>
 
 #include <cmath>
 #include <cstdio>
@@ -36,6 +37,14 @@
 #include <vector>
 
 using namespace lvdif;
+
+/// Minor page faults of this process so far (all threads).
+static long minorFaults()
+{
+  rusage u{};
+  getrusage(RUSAGE_SELF, &u);
+  return u.ru_minflt;
+}
 
 static int benchMain(int argc, char** argv)
 {
@@ -155,6 +164,9 @@ static int benchMain(int argc, char** argv)
     // process CPU time of the call (all threads): robust to a loaded machine
     const std::clock_t cpu0 = std::clock();
     double cpuSeconds = 0;
+    // minor page faults of the call (all threads): a store that faults its
+    // chunks in anew shows here (the allocator returned the last volume's pages)
+    const long faults0 = minorFaults();
     const bool usePrepared = run == "prepared";
     if (output == "float")
     {
@@ -194,11 +206,12 @@ static int benchMain(int argc, char** argv)
       bench::fmt(st.distanceSeconds * 1e3, 1), bench::fmt(st.signSeconds * 1e3, 1),
       bench::fmt(st.writeSeconds * 1e3, 1), bench::fmt(callMs, 1), std::to_string(st.windingEvaluations),
       std::to_string(st.windingExact), std::to_string(inside), std::to_string(expanded),
-      std::to_string(st.degenerateSkipped), std::to_string(st.farVoxels), bench::fmt(cpuSeconds, 2) });
+      std::to_string(st.degenerateSkipped), std::to_string(st.farVoxels), bench::fmt(cpuSeconds, 2),
+      std::to_string(minorFaults() - faults0) });
   }
   bench::printTable({ "run", "device", "read ms", "build ms", "distance ms", "sign ms", "write ms",
                       "end-to-end ms", "winding evals", "fallback", "inside voxels", "expanded chunks",
-                      "degenerate", "far-block voxels", "CPU s" },
+                      "degenerate", "far-block voxels", "CPU s", "minor faults" },
     rows);
   std::printf("prepareMeshToSdf: %.1f ms (%d OpenMP threads); the first prepared row includes the upload\n",
     prepareMs, omp_get_max_threads());
