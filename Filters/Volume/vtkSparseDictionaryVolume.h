@@ -148,11 +148,26 @@ public:
   /// Releases the held decoded partitions now (they are decoded again on demand;
   /// pointers handed out before are no longer valid).
   void ReleaseDecodedPartitions();
-  /// Bytes of the decoded partitions held now (shared with this object's shallow copies).
+  /// Bytes of the decoded partitions held now (shared with this object's shallow
+  /// copies): the images' own size (vtkImageData::GetActualMemorySize), the
+  /// measure the memory limit is checked on.
   double GetHeldPartitionBytes() const;
 
-  /// Builds the partitions (empty leaves) now if they are not built (idempotent).
+  /// Builds the partitions now if they are not built (idempotent); when they
+  /// are held (not released after use), also decodes them all: DecodePartitions().
+  /// False when that was refused (see DecodePartitions).
   bool UpdatePartitions();
+  /// Decodes every partition, holds them and sets them as the tree's leaves,
+  /// so that every VTK path sees them (vtkPartitionedDataSet::GetPartition
+  /// through a base-class pointer, DeepCopy into a plain vtkPartitionedDataSet,
+  /// a consumer's own vtkDataObjectTreeIterator, vtkXMLPartitionedDataSetWriter).
+  /// All or none: refused with one error when they do not fit the memory limit
+  /// together (LVDIF_MEMORY_LIMIT; checked on their point arrays before
+  /// allocating, then on the images' own size), or when one cannot be decoded;
+  /// then none of the partitions not held is decoded (not tried again until
+  /// ReleaseDecodedPartitions() or the volume changes) and false is returned.
+  /// Idempotent (cheap once done). Held mode does it when the partitions are built.
+  bool DecodePartitions();
   bool GetPartitionsBuilt() const { return this->PartitionsBuilt; }
   /// Call after editing the Core volume in place: drops the partitions and Modified().
   void VolumeModified();
@@ -160,11 +175,14 @@ public:
   /// The storage chunk of partition `idx`, or -1 (no volume, not built, out of
   /// range); for a corner point's partition -2 - the point's linear index.
   std::int64_t GetPartitionChunk(unsigned int idx) const;
-  /// Partition `idx` decoded and held (see the class comment); null when it is
-  /// not a partition of a volume; an image without points when it could not be
-  /// decoded (the error is reported once: the memory limit, for the partitions
-  /// held together).
+  /// Partition `idx` decoded and held, and set as its leaf if that is empty
+  /// (see the class comment); null when it is not a partition of a volume; an
+  /// image without points when it could not be decoded: alone over the memory
+  /// limit or not decodable (one error for the set, saying which and why), or
+  /// not fitting with the partitions held (one error for the set).
   vtkImageData* GetHeldPartition(unsigned int idx);
+  /// As above; decode false: only a partition held already (else the image without points).
+  vtkImageData* GetHeldPartition(unsigned int idx, bool decode);
 #endif
 
   ///@{
@@ -242,6 +260,12 @@ protected:
   /// The decoded partitions held, by source; shared by the shallow copies.
   struct HeldPartitions;
   std::shared_ptr<HeldPartitions> Held;
+  /// Builds the partitions as empty leaves (idempotent).
+  bool BuildPartitions();
+  /// Sets a decoded partition as leaf `idx` when the leaf is empty (no Modified()).
+  void SetDecodedLeaf(unsigned int idx, vtkImageData* image);
+  /// Decodes partition `idx` into `held` (whose lock the caller holds); null, reported, when it cannot.
+  vtkImageData* DecodeHeld(unsigned int idx, HeldPartitions& held);
   /// Copies the view's state (volume, partitions, colours, owned chunks, held partitions) from `s`.
   void CopyViewFrom(const vtkSparseDictionaryVolume& s);
   /// No volume, no partitions, all chunks owned, a new (empty) set of held partitions.
@@ -249,6 +273,8 @@ protected:
 #endif
   /// The storage chunk of each partition (built with them).
   std::vector<std::int64_t> PartitionChunks;
+  /// Every held partition is set as this object's leaf (DecodePartitions' fast path).
+  bool LeavesSet = false;
 
 private:
   vtkSparseDictionaryVolume(const vtkSparseDictionaryVolume&) = delete;
