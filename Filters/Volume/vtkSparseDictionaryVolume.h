@@ -35,36 +35,48 @@
  * The partitions are built lazily, on the first request through the
  * composite API (NewIterator, NewTreeIterator, GetNumberOfPartitions,
  * GetPartition, CopyStructure, ShallowCopy of this object), so a pipeline of
- * our own filters never makes them. Even then they are empty leaves (the
- * object keeps the chunk id of each, 16 + 8 bytes a partition; a vtkImageData
- * without arrays would cost about 8 KiB in VTK 9.2). This object's iterator
- * decodes the leaf it stands on into an image (checked against lvdif's memory
- * limit, LVDIF_MEMORY_LIMIT); GetPartition(i) and GetDataSet(flat index) do
- * the same by index. What becomes of a decoded partition:
- *  - held (the default): the object keeps it until the volume changes
- *    (VolumeModified, SetVolume, Initialize, ReleaseData) or
- *    ReleaseDecodedPartitions(), so any consumer may keep the pointer it got.
- *    VTK's vtkCompositeDataSet::GetDataSets collects every leaf's pointer
- *    before using them (vtkArrayCalculator; ParaView's Calculator, Plot Over
- *    Line, Ghost Cells Generator): with partitions released at the
- *    iterator's next step those pointers dangled (a segmentation fault until
- *    session 26). The cost: after a consumer visited every partition (ParaView's
- *    data information does, on every output), they are all held decoded
- *    (GetPartitionBytes(), 8 bytes a point with colours): less than a dense
- *    image (only the band's chunks), more than the Core volume.
+ * our own filters never makes them (nor decodes any). What building them does:
+ *  - held (the default): every partition is decoded then (DecodePartitions(),
+ *    checked against lvdif's memory limit, LVDIF_MEMORY_LIMIT), held by the
+ *    object until the volume changes (VolumeModified, SetVolume, Initialize,
+ *    ReleaseData) or ReleaseDecodedPartitions(), and set as the tree's leaf
+ *    (the superclass's storage), so every VTK path sees the decoded images:
+ *    this class's overrides and iterator, and the paths that read the tree
+ *    itself (vtkPartitionedDataSet::GetPartition through a base-class pointer,
+ *    DeepCopy or ShallowCopy into a plain vtkPartitionedDataSet, a consumer's
+ *    own vtkDataObjectTreeIterator, vtkXMLPartitionedDataSetWriter). Any
+ *    consumer may keep the pointers it got (vtkCompositeDataSet::GetDataSets
+ *    collects every leaf before using them: vtkArrayCalculator, ParaView's
+ *    Calculator, Plot Over Line, Ghost Cells Generator; until session 26 these
+ *    read freed memory). All or none: when they do not fit the memory limit
+ *    together, none is decoded, with one error (the leaves stay empty; this
+ *    class's paths hand out images without points), so that no consumer
+ *    (a writer, a copy) takes a part of the volume for all of it. The cost:
+ *    all partitions decoded (GetHeldPartitionBytes(), the images' own size;
+ *    about GetPartitionBytes(), 8 bytes a point with colours): less than a
+ *    dense image (only the band's chunks), more than the Core volume.
+ *    ParaView's data information visits every partition of every output anyway.
+ *    Before anything asked for the partitions, a path that reads the tree
+ *    itself sees no partition (call GetNumberOfPartitions() or
+ *    DecodePartitions() first).
  *  - released after use (SetReleasePartitionsAfterUse(true), or the
  *    environment variable LVDIF_RELEASE_PARTITIONS=1 for every new object):
- *    the iterator keeps only the partition it stands on and releases it at
- *    its next step, so ParaView's data information, the outline and
- *    per-partition filters (Contour, Cutter, Threshold, Clip) hold one decoded
- *    partition at a time. For such pipelines only: a consumer that keeps
- *    pointers past the step (the filters above) reads freed memory.
+ *    the leaves stay empty (16 + 8 bytes a partition; a vtkImageData without
+ *    arrays would cost about 8 KiB in VTK 9.2); this object's iterator decodes
+ *    the leaf it stands on and releases it at its next step, so ParaView's
+ *    data information, the outline and per-partition filters (Contour,
+ *    Cutter, Threshold, Clip) hold one decoded partition at a time.
+ *    GetPartition(i) and GetDataSet(flat index) decode partition i and hold it
+ *    (and set it as its leaf). For such pipelines only: a consumer that keeps
+ *    pointers past the step (the filters above, and
+ *    vtkXMLPartitionedDataSetWriter, which collects the leaves with GetDataSets)
+ *    reads freed memory, and the paths that read the tree itself see empty
+ *    leaves (or the partitions asked for by index). Call DecodePartitions()
+ *    before such a consumer (it holds them all, within the memory limit).
  * The decoded partitions are shared by the shallow copies of this object
  * (ParaView's post filter copies every output). The iterator visits the empty
  * leaves even when asked to skip empty nodes (they are partitions, only not
- * built). A consumer that walks the leaves with an iterator of its own (not
- * NewIterator), or calls vtkPartitionedDataSet::GetPartition, sees empty
- * leaves. After editing the Core volume in place, call VolumeModified()
+ * decoded). After editing the Core volume in place, call VolumeModified()
  * (drops the partitions; the dirty flags stay in the Core volume for
  * vtkChunkedMarchingCubes' incremental update).
  *
