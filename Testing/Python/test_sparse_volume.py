@@ -17,7 +17,7 @@ Usage: test_sparse_volume.py LVDIF_CLI DICE_SCRIPT WORKDIR
    (vtkTrivialProducer, vtkPassThrough) keeps the subclass.
 4. .vtpd: vtkXMLPartitionedDataSetWriter writes the partitions of a volume
    fresh from its reader (a plain vtkPartitionedDataSet sharing its decoded
-   partitions, as ParaView's Save Data makes it), and the file reads back
+   partitions), and the file reads back
    (vtkXMLPartitionedDataSetReader) equal to the dense image of
    vtkSparseVolumeToImage, voxel for voxel where the band is; over the memory
    limit the partitions are refused with one clear error (none written as if
@@ -331,9 +331,13 @@ if os.path.exists(vtpd):
     os.remove(vtpd)
 # VTK's writer names the file's type after the input's class (vtkSparseDictionaryVolume), which VTK's
 # reader refuses ("Cannot find vtkPartitionedDataSet element"): write a plain partitioned dataset
-# sharing the partitions (ParaView's Save Data does the same). A plain ShallowCopy reads the tree
-# itself: until session 27 its leaves were empty and the file held no partition.
+# sharing the partitions (docs/PYTHON.md). A plain ShallowCopy reads the tree itself: until
+# session 27 its leaves were empty and the file held no partition.
 fresh.GetOutput().GetNumberOfPartitions()  # builds (and, held, decodes) the partitions
+check(fresh.GetOutput().DecodePartitions() and
+      fresh.GetOutput().GetHeldPartitionBytes() >= fresh.GetOutput().GetPartitionBytes(),
+      "DecodePartitions: every partition held (%d bytes; point arrays: %d)" % (
+          fresh.GetOutput().GetHeldPartitionBytes(), fresh.GetOutput().GetPartitionBytes()))
 plain = vtkPartitionedDataSet()
 plain.ShallowCopy(fresh.GetOutput())
 writer = vtkXMLPartitionedDataSetWriter()
@@ -398,6 +402,7 @@ def on_error2(obj, event, message):
 on_error2.CallDataType = "string0"
 refused.GetOutput().AddObserver(vtkCommand.ErrorEvent, on_error2)
 refused.GetOutput().GetNumberOfPartitions()
+check(not refused.GetOutput().DecodePartitions(), "over the memory limit DecodePartitions says False")
 plain2 = vtkPartitionedDataSet()
 plain2.ShallowCopy(refused.GetOutput())
 writer2 = vtkXMLPartitionedDataSetWriter()
