@@ -173,8 +173,15 @@ struct vtkSparseDictionaryVolume::HeldPartitions
 {
   std::mutex Lock;
   std::unordered_map<std::int64_t, vtkSmartPointer<vtkImageData>> Images;
-  std::uint64_t Bytes = 0;  // of the images' point arrays, as partitionBytes counts them
-  bool LimitReported = false; // one error for the set, not one per partition
+  /// The images' own size (vtkImageData::GetActualMemorySize, in bytes): the
+  /// one measure, checked against the memory limit and reported by
+  /// GetHeldPartitionBytes (before decoding, the point arrays' size is the
+  /// lower bound that refuses before allocating).
+  std::uint64_t Bytes = 0;
+  bool AllHeld = false;       // every partition is held (DecodePartitions succeeded)
+  bool AllRefused = false;    // DecodePartitions was refused: not tried again until released or changed
+  bool LimitReported = false; // held together over the limit: one error for the set
+  bool DecodeReported = false; // a partition not decoded on its own (alone over the limit, or a decode error): one error
   /// What a partition that could not be decoded is handed out as: an image
   /// without points (a null leaf would break consumers that asked to skip
   /// empty nodes, e.g. vtkArrayCalculator, which calls NewInstance on it).
@@ -252,18 +259,29 @@ void vtkSparseDictionaryVolume::SetReleasePartitionsAfterUse(bool on)
 
 void vtkSparseDictionaryVolume::ReleaseDecodedPartitions()
 {
-  std::lock_guard<std::mutex> lock(this->Held->Lock);
-  this->Held->Images.clear();
-  this->Held->Bytes = 0;
-  this->Held->LimitReported = false;
+  HeldPartitions& held = *this->Held;
+  std::lock_guard<std::mutex> lock(held.Lock);
+  // this object's leaves that are held partitions go too (a shallow copy keeps
+  // the ones set as its own leaves until it changes)
+  auto& children = this->Internals->Children;
+  for (std::size_t i = 0; i < children.size() && i < this->PartitionChunks.size(); ++i)
+  {
+    auto found = held.Images.find(this->PartitionChunks[i]);
+    if (found != held.Images.end() && children[i].DataObject == found->second) children[i].DataObject = nullptr;
+  }
+  held.Images.clear();
+  held.Bytes = 0;
+  held.AllHeld = false;
+  held.AllRefused = false;
+  held.LimitReported = false;
+  held.DecodeReported = false;
+  this->LeavesSet = false;
 }
 
 double vtkSparseDictionaryVolume::GetHeldPartitionBytes() const
 {
   std::lock_guard<std::mutex> lock(this->Held->Lock);
-  double bytes = 0.0;
-  for (const auto& held : this->Held->Images) bytes += 1024.0 * held.second->GetActualMemorySize();
-  return bytes;
+  return static_cast<double>(this->Held->Bytes);
 }
 
 void vtkSparseDictionaryVolume::SetPartitionColors(bool on)
@@ -410,7 +428,8 @@ public:
     if (leaf || !owner || !owner->HasVolume() || flatIndex < 1) return leaf;
     if (!owner->GetReleasePartitionsAfterUse())
     {
-      vtkImageData* held = owner->GetHeldPartition(flatIndex - 1);
+      // held: NewTreeIterator decoded them all (or none, with one error)
+      vtkImageData* held = owner->GetHeldPartition(flatIndex - 1, /*decode=*/false);
       return held ? held : leaf;
     }
     const std::int64_t id = owner->GetPartitionChunk(flatIndex - 1);
@@ -454,16 +473,25 @@ private:
 vtkStandardNewMacro(vtkSparseDictionaryVolumeIterator);
 }
 
-bool vtkSparseDictionaryVolume::UpdatePartitions()
+bool vtkSparseDictionaryVolume::BuildPartitions()
 {
   if (this->PartitionsBuilt || !this->Volume) return true;
-  // the partitions are empty leaves (16 bytes each), decoded by the iterator
-  // or by GetPartition: a vtkImageData without arrays would cost about 8 KiB
+  // the leaves start empty (16 bytes each): a vtkImageData without arrays would cost about 8 KiB
   this->PartitionChunks = neededPartitions(*this->Volume, this->OwnsAll ? nullptr : this->Owned);
   this->Superclass::SetNumberOfPartitions(0);
   this->Superclass::SetNumberOfPartitions(static_cast<unsigned int>(this->PartitionChunks.size()));
   this->PartitionsBuilt = true;
+  this->LeavesSet = false;
   return true;
+}
+
+bool vtkSparseDictionaryVolume::UpdatePartitions()
+{
+  if (!this->Volume) return true;
+  this->BuildPartitions();
+  // held: the partitions are the tree's leaves, decoded, for every VTK path
+  // (released after use: empty leaves, decoded by this object's iterator)
+  return this->ReleasePartitionsAfterUse ? true : this->DecodePartitions();
 }
 
 std::int64_t vtkSparseDictionaryVolume::GetPartitionChunk(unsigned int idx) const
@@ -483,41 +511,177 @@ vtkDataSet* vtkSparseDictionaryVolume::GetPartition(unsigned int idx)
   vtkDataSet* leaf = this->Superclass::GetPartition(idx);
   if (leaf || this->GetPartitionChunk(idx) == -1) return leaf;
   // asked by index: held, whatever the mode (the caller gets a pointer it does not own)
-  return this->GetHeldPartition(idx);
+  return this->GetHeldPartition(idx, /*decode=*/true);
 }
 
 vtkImageData* vtkSparseDictionaryVolume::GetHeldPartition(unsigned int idx)
 {
   this->UpdatePartitions();
+  return this->GetHeldPartition(idx, /*decode=*/true);
+}
+
+void vtkSparseDictionaryVolume::SetDecodedLeaf(unsigned int idx, vtkImageData* image)
+{
+  // not Modified(): the data are the volume's, unchanged (a pipeline would run again)
+  auto& children = this->Internals->Children;
+  if (idx < children.size() && !children[idx].DataObject) children[idx].DataObject = image;
+}
+
+vtkImageData* vtkSparseDictionaryVolume::GetHeldPartition(unsigned int idx, bool decode)
+{
   const std::int64_t source = this->GetPartitionChunk(idx);
   if (source == -1) return nullptr;
   HeldPartitions& held = *this->Held;
   std::lock_guard<std::mutex> lock(held.Lock);
   auto found = held.Images.find(source);
-  if (found != held.Images.end()) return found->second;
-  const std::uint64_t bytes = partitionBytes(*this->Volume, { source }, this->PartitionColors);
+  vtkImageData* image = found != held.Images.end() ? found->second.Get() : nullptr;
+  if (!image && decode) image = this->DecodeHeld(idx, held);
+  if (!image) return held.Undecoded;
+  this->SetDecodedLeaf(idx, image);
+  return image;
+}
+
+namespace
+{
+std::uint64_t imageBytes(vtkImageData* image)
+{
+  return 1024u * static_cast<std::uint64_t>(image->GetActualMemorySize());
+}
+
+std::string partitionName(const lvdif::DictionaryVolume& v, unsigned int idx, std::int64_t source)
+{
+  return "partition " + std::to_string(idx) + " of the sparse volume (" +
+    (isCorner(source) ? std::string("a corner point") : "chunk " + std::to_string(source)) + ", " +
+    std::to_string(sourceBox(v, source).voxelCount()) + " points)";
+}
+
+const char* const ReleaseHint = " Per-partition filters (Contour, Slice, Clip, Threshold) can decode one partition "
+                                "at a time: LVDIF_RELEASE_PARTITIONS=1.";
+}
+
+vtkImageData* vtkSparseDictionaryVolume::DecodeHeld(unsigned int idx, HeldPartitions& held)
+{
+  const std::int64_t source = this->PartitionChunks[idx];
+  const std::string name = partitionName(*this->Volume, idx, source);
+  const std::uint64_t limit = lvdif::memoryLimitBytes();
+  const std::uint64_t least = partitionBytes(*this->Volume, { source }, this->PartitionColors);
+  vtkSmartPointer<vtkImageData> image;
   try
   {
-    // the partitions held together, not only this one, against the memory limit
-    lvdif::requireMemory(held.Bytes + bytes, "holding the sparse volume's decoded partitions (" +
-        lvdif::formatBytes(held.Bytes) + " held, " + std::to_string(held.Images.size()) + " of " +
-        std::to_string(this->PartitionChunks.size()) + " partitions)");
-    vtkSmartPointer<vtkImageData> image = fillPartition(*this->Volume, source, this->PartitionColors);
-    held.Images.emplace(source, image);
-    held.Bytes += bytes;
-    return image;
+    // alone over the limit: refused before allocating (its point arrays at least)
+    lvdif::requireMemory(least, "decoding " + name + " on its own", limit);
+    image = fillPartition(*this->Volume, source, this->PartitionColors);
+    lvdif::requireMemory(imageBytes(image), "decoding " + name + " on its own", limit);
   }
   catch (const lvdif::Error& e)
   {
+    if (!held.DecodeReported)
+    {
+      vtkErrorMacro(<< e.what() << ": it is not decoded (an image without points stands for it).");
+    }
+    held.DecodeReported = true;
+    return nullptr;
+  }
+  const std::uint64_t bytes = imageBytes(image);
+  if (held.Bytes + bytes > limit)
+  {
     if (!held.LimitReported)
     {
-      vtkErrorMacro(<< e.what()
-                    << "; the partitions left are not decoded. A pipeline of per-partition filters (Contour, "
-                       "Slice, Clip, Threshold) can decode one at a time: LVDIF_RELEASE_PARTITIONS=1.");
+      vtkErrorMacro(<< "holding the sparse volume's decoded partitions: " << name << " needs "
+                    << lvdif::formatBytes(bytes) << " with the " << lvdif::formatBytes(held.Bytes) << " held ("
+                    << held.Images.size() << " of " << this->PartitionChunks.size()
+                    << " partitions), more than the limit of " << lvdif::formatBytes(limit)
+                    << " (set LVDIF_MEMORY_LIMIT to change it): a partition that does not fit with the ones held "
+                       "is not decoded (an image without points stands for it)."
+                    << ReleaseHint);
     }
     held.LimitReported = true;
-    return held.Undecoded;
+    return nullptr;
   }
+  held.Images.emplace(source, image);
+  held.Bytes += bytes;
+  return image;
+}
+
+bool vtkSparseDictionaryVolume::DecodePartitions()
+{
+  if (!this->Volume) return true;
+  this->BuildPartitions();
+  HeldPartitions& held = *this->Held;
+  std::lock_guard<std::mutex> lock(held.Lock);
+  if (held.AllHeld && this->LeavesSet) return true;
+  const lvdif::DictionaryVolume& v = *this->Volume;
+  const unsigned int n = static_cast<unsigned int>(this->PartitionChunks.size());
+  std::vector<unsigned int> missing;
+  std::uint64_t least = 0; // the missing partitions' point arrays: a lower bound of their size
+  for (unsigned int i = 0; i < n; ++i)
+  {
+    auto found = held.Images.find(this->PartitionChunks[i]);
+    if (found != held.Images.end())
+    {
+      this->SetDecodedLeaf(i, found->second);
+      continue;
+    }
+    missing.push_back(i);
+    least += partitionBytes(v, { this->PartitionChunks[i] }, this->PartitionColors);
+  }
+  if (missing.empty())
+  {
+    held.AllHeld = true;
+    this->LeavesSet = true;
+    return true;
+  }
+  if (held.AllRefused) return false;
+  // all or none: a consumer (a writer, a copy, a filter that keeps the leaves)
+  // never gets a part of the volume as if it were all of it
+  const std::uint64_t limit = lvdif::memoryLimitBytes();
+  const std::string what = "decoding the sparse volume's " + std::to_string(n) + " partitions to hold them (" +
+    std::to_string(n - missing.size()) + " held, " + lvdif::formatBytes(held.Bytes) + ")";
+  std::vector<std::int64_t> added;
+  std::uint64_t addedBytes = 0;
+  bool decodeError = false;
+  try
+  {
+    lvdif::requireMemory(held.Bytes + least, what, limit);
+    for (unsigned int i : missing)
+    {
+      const std::int64_t source = this->PartitionChunks[i];
+      least -= partitionBytes(v, { source }, this->PartitionColors);
+      vtkSmartPointer<vtkImageData> image;
+      try
+      {
+        image = fillPartition(v, source, this->PartitionColors);
+      }
+      catch (const lvdif::Error& e)
+      {
+        decodeError = true;
+        throw lvdif::Error(e.code(), partitionName(v, i, source) + " could not be decoded: " + e.what());
+      }
+      addedBytes += imageBytes(image);
+      lvdif::requireMemory(held.Bytes + addedBytes + least, what, limit);
+      held.Images.emplace(source, image);
+      added.push_back(source);
+    }
+  }
+  catch (const lvdif::Error& e)
+  {
+    for (std::int64_t source : added) held.Images.erase(source);
+    held.AllRefused = true;
+    bool& reported = decodeError ? held.DecodeReported : held.LimitReported;
+    if (!reported)
+    {
+      vtkErrorMacro(<< e.what() << ": none of the partitions not held is decoded (images without points stand "
+                                   "for them; a writer would write none of them)."
+                    << (decodeError ? "" : ReleaseHint));
+    }
+    reported = true;
+    return false;
+  }
+  held.Bytes += addedBytes;
+  for (unsigned int i : missing) this->SetDecodedLeaf(i, held.Images[this->PartitionChunks[i]]);
+  held.AllHeld = true;
+  this->LeavesSet = true;
+  return true;
 }
 
 vtkCompositeDataIterator* vtkSparseDictionaryVolume::NewIterator()
@@ -617,6 +781,7 @@ void vtkSparseDictionaryVolume::DropView()
   this->PartitionChunks.clear();
   this->OwnsAll = true;
   this->Held = std::make_shared<HeldPartitions>();
+  this->LeavesSet = false;
 }
 
 void vtkSparseDictionaryVolume::CopyViewFrom(const vtkSparseDictionaryVolume& s)
@@ -629,6 +794,7 @@ void vtkSparseDictionaryVolume::CopyViewFrom(const vtkSparseDictionaryVolume& s)
   std::copy(s.Owned, s.Owned + 6, this->Owned);
   this->ReleasePartitionsAfterUse = s.ReleasePartitionsAfterUse;
   this->Held = s.Held;
+  this->LeavesSet = false; // its leaves are set from the held ones when asked (UpdatePartitions)
 }
 
 void vtkSparseDictionaryVolume::SetDataSet(vtkCompositeDataIterator* iter, vtkDataObject* dataObj)
@@ -752,11 +918,18 @@ unsigned long vtkSparseDictionaryVolume::GetActualMemorySize()
     kib += this->vtkDataObject::GetActualMemorySize();
     kib += static_cast<unsigned long>(this->GetHeldPartitionBytes() / 1024);
     kib += static_cast<unsigned long>(this->PartitionChunks.capacity() * sizeof(std::int64_t) / 1024);
-    vtkNew<vtkDataObjectTreeIterator> it;
-    it->SetDataSet(this);
-    for (it->InitTraversal(); !it->IsDoneWithTraversal(); it->GoToNextItem())
+    // the leaves that are not held partitions (those are counted above), not
+    // through this object's decoding iterator
+    HeldPartitions& held = *this->Held;
+    std::lock_guard<std::mutex> lock(held.Lock);
+    const auto& children = this->Internals->Children;
+    for (std::size_t i = 0; i < children.size(); ++i)
     {
-      kib += it->GetCurrentDataObject()->GetActualMemorySize();
+      vtkDataObject* leaf = children[i].DataObject;
+      if (!leaf) continue;
+      auto found = i < this->PartitionChunks.size() ? held.Images.find(this->PartitionChunks[i]) : held.Images.end();
+      if (found != held.Images.end() && found->second == leaf) continue;
+      kib += leaf->GetActualMemorySize();
     }
   }
   return kib;

@@ -35,36 +35,48 @@
  * The partitions are built lazily, on the first request through the
  * composite API (NewIterator, NewTreeIterator, GetNumberOfPartitions,
  * GetPartition, CopyStructure, ShallowCopy of this object), so a pipeline of
- * our own filters never makes them. Even then they are empty leaves (the
- * object keeps the chunk id of each, 16 + 8 bytes a partition; a vtkImageData
- * without arrays would cost about 8 KiB in VTK 9.2). This object's iterator
- * decodes the leaf it stands on into an image (checked against lvdif's memory
- * limit, LVDIF_MEMORY_LIMIT); GetPartition(i) and GetDataSet(flat index) do
- * the same by index. What becomes of a decoded partition:
- *  - held (the default): the object keeps it until the volume changes
- *    (VolumeModified, SetVolume, Initialize, ReleaseData) or
- *    ReleaseDecodedPartitions(), so any consumer may keep the pointer it got.
- *    VTK's vtkCompositeDataSet::GetDataSets collects every leaf's pointer
- *    before using them (vtkArrayCalculator; ParaView's Calculator, Plot Over
- *    Line, Ghost Cells Generator): with partitions released at the
- *    iterator's next step those pointers dangled (a segmentation fault until
- *    session 26). The cost: after a consumer visited every partition (ParaView's
- *    data information does, on every output), they are all held decoded
- *    (GetPartitionBytes(), 8 bytes a point with colours): less than a dense
- *    image (only the band's chunks), more than the Core volume.
+ * our own filters never makes them (nor decodes any). What building them does:
+ *  - held (the default): every partition is decoded then (DecodePartitions(),
+ *    checked against lvdif's memory limit, LVDIF_MEMORY_LIMIT), held by the
+ *    object until the volume changes (VolumeModified, SetVolume, Initialize,
+ *    ReleaseData) or ReleaseDecodedPartitions(), and set as the tree's leaf
+ *    (the superclass's storage), so every VTK path sees the decoded images:
+ *    this class's overrides and iterator, and the paths that read the tree
+ *    itself (vtkPartitionedDataSet::GetPartition through a base-class pointer,
+ *    DeepCopy or ShallowCopy into a plain vtkPartitionedDataSet, a consumer's
+ *    own vtkDataObjectTreeIterator, vtkXMLPartitionedDataSetWriter). Any
+ *    consumer may keep the pointers it got (vtkCompositeDataSet::GetDataSets
+ *    collects every leaf before using them: vtkArrayCalculator, ParaView's
+ *    Calculator, Plot Over Line, Ghost Cells Generator; until session 26 these
+ *    read freed memory). All or none: when they do not fit the memory limit
+ *    together, none is decoded, with one error (the leaves stay empty; this
+ *    class's paths hand out images without points), so that no consumer
+ *    (a writer, a copy) takes a part of the volume for all of it. The cost:
+ *    all partitions decoded (GetHeldPartitionBytes(), the images' own size;
+ *    about GetPartitionBytes(), 8 bytes a point with colours): less than a
+ *    dense image (only the band's chunks), more than the Core volume.
+ *    ParaView's data information visits every partition of every output anyway.
+ *    Before anything asked for the partitions, a path that reads the tree
+ *    itself sees no partition (call GetNumberOfPartitions() or
+ *    DecodePartitions() first).
  *  - released after use (SetReleasePartitionsAfterUse(true), or the
  *    environment variable LVDIF_RELEASE_PARTITIONS=1 for every new object):
- *    the iterator keeps only the partition it stands on and releases it at
- *    its next step, so ParaView's data information, the outline and
- *    per-partition filters (Contour, Cutter, Threshold, Clip) hold one decoded
- *    partition at a time. For such pipelines only: a consumer that keeps
- *    pointers past the step (the filters above) reads freed memory.
+ *    the leaves stay empty (16 + 8 bytes a partition; a vtkImageData without
+ *    arrays would cost about 8 KiB in VTK 9.2); this object's iterator decodes
+ *    the leaf it stands on and releases it at its next step, so ParaView's
+ *    data information, the outline and per-partition filters (Contour,
+ *    Cutter, Threshold, Clip) hold one decoded partition at a time.
+ *    GetPartition(i) and GetDataSet(flat index) decode partition i and hold it
+ *    (and set it as its leaf). For such pipelines only: a consumer that keeps
+ *    pointers past the step (the filters above, and
+ *    vtkXMLPartitionedDataSetWriter, which collects the leaves with GetDataSets)
+ *    reads freed memory, and the paths that read the tree itself see empty
+ *    leaves (or the partitions asked for by index). Call DecodePartitions()
+ *    before such a consumer (it holds them all, within the memory limit).
  * The decoded partitions are shared by the shallow copies of this object
  * (ParaView's post filter copies every output). The iterator visits the empty
  * leaves even when asked to skip empty nodes (they are partitions, only not
- * built). A consumer that walks the leaves with an iterator of its own (not
- * NewIterator), or calls vtkPartitionedDataSet::GetPartition, sees empty
- * leaves. After editing the Core volume in place, call VolumeModified()
+ * decoded). After editing the Core volume in place, call VolumeModified()
  * (drops the partitions; the dirty flags stay in the Core volume for
  * vtkChunkedMarchingCubes' incremental update).
  *
@@ -148,11 +160,26 @@ public:
   /// Releases the held decoded partitions now (they are decoded again on demand;
   /// pointers handed out before are no longer valid).
   void ReleaseDecodedPartitions();
-  /// Bytes of the decoded partitions held now (shared with this object's shallow copies).
+  /// Bytes of the decoded partitions held now (shared with this object's shallow
+  /// copies): the images' own size (vtkImageData::GetActualMemorySize), the
+  /// measure the memory limit is checked on.
   double GetHeldPartitionBytes() const;
 
-  /// Builds the partitions (empty leaves) now if they are not built (idempotent).
+  /// Builds the partitions now if they are not built (idempotent); when they
+  /// are held (not released after use), also decodes them all: DecodePartitions().
+  /// False when that was refused (see DecodePartitions).
   bool UpdatePartitions();
+  /// Decodes every partition, holds them and sets them as the tree's leaves,
+  /// so that every VTK path sees them (vtkPartitionedDataSet::GetPartition
+  /// through a base-class pointer, DeepCopy into a plain vtkPartitionedDataSet,
+  /// a consumer's own vtkDataObjectTreeIterator, vtkXMLPartitionedDataSetWriter).
+  /// All or none: refused with one error when they do not fit the memory limit
+  /// together (LVDIF_MEMORY_LIMIT; checked on their point arrays before
+  /// allocating, then on the images' own size), or when one cannot be decoded;
+  /// then none of the partitions not held is decoded (not tried again until
+  /// ReleaseDecodedPartitions() or the volume changes) and false is returned.
+  /// Idempotent (cheap once done). Held mode does it when the partitions are built.
+  bool DecodePartitions();
   bool GetPartitionsBuilt() const { return this->PartitionsBuilt; }
   /// Call after editing the Core volume in place: drops the partitions and Modified().
   void VolumeModified();
@@ -160,11 +187,14 @@ public:
   /// The storage chunk of partition `idx`, or -1 (no volume, not built, out of
   /// range); for a corner point's partition -2 - the point's linear index.
   std::int64_t GetPartitionChunk(unsigned int idx) const;
-  /// Partition `idx` decoded and held (see the class comment); null when it is
-  /// not a partition of a volume; an image without points when it could not be
-  /// decoded (the error is reported once: the memory limit, for the partitions
-  /// held together).
+  /// Partition `idx` decoded and held, and set as its leaf if that is empty
+  /// (see the class comment); null when it is not a partition of a volume; an
+  /// image without points when it could not be decoded: alone over the memory
+  /// limit or not decodable (one error for the set, saying which and why), or
+  /// not fitting with the partitions held (one error for the set).
   vtkImageData* GetHeldPartition(unsigned int idx);
+  /// As above; decode false: only a partition held already (else the image without points).
+  vtkImageData* GetHeldPartition(unsigned int idx, bool decode);
 #endif
 
   ///@{
@@ -242,6 +272,12 @@ protected:
   /// The decoded partitions held, by source; shared by the shallow copies.
   struct HeldPartitions;
   std::shared_ptr<HeldPartitions> Held;
+  /// Builds the partitions as empty leaves (idempotent).
+  bool BuildPartitions();
+  /// Sets a decoded partition as leaf `idx` when the leaf is empty (no Modified()).
+  void SetDecodedLeaf(unsigned int idx, vtkImageData* image);
+  /// Decodes partition `idx` into `held` (whose lock the caller holds); null, reported, when it cannot.
+  vtkImageData* DecodeHeld(unsigned int idx, HeldPartitions& held);
   /// Copies the view's state (volume, partitions, colours, owned chunks, held partitions) from `s`.
   void CopyViewFrom(const vtkSparseDictionaryVolume& s);
   /// No volume, no partitions, all chunks owned, a new (empty) set of held partitions.
@@ -249,6 +285,8 @@ protected:
 #endif
   /// The storage chunk of each partition (built with them).
   std::vector<std::int64_t> PartitionChunks;
+  /// Every held partition is set as this object's leaf (DecodePartitions' fast path).
+  bool LeavesSet = false;
 
 private:
   vtkSparseDictionaryVolume(const vtkSparseDictionaryVolume&) = delete;

@@ -15,6 +15,13 @@ Usage: test_sparse_volume.py LVDIF_CLI DICE_SCRIPT WORKDIR
    one clear error naming the size and the limit.
 3. ShallowCopy shares the Core volume; DeepCopy clones it; the executive
    (vtkTrivialProducer, vtkPassThrough) keeps the subclass.
+4. .vtpd: vtkXMLPartitionedDataSetWriter writes the partitions of a volume
+   fresh from its reader (a plain vtkPartitionedDataSet sharing its decoded
+   partitions), and the file reads back
+   (vtkXMLPartitionedDataSetReader) equal to the dense image of
+   vtkSparseVolumeToImage, voxel for voxel where the band is; over the memory
+   limit the partitions are refused with one clear error (none written as if
+   it were the volume).
 """
 import os
 import subprocess
@@ -186,8 +193,9 @@ cut = sum(b.GetNumberOfCells() for b in blocks(cutter.GetOutputDataObject(0)))
 check(cut > 0, "vtkCutter slices the partitions (%d cells)" % cut)
 
 # ParaView copies every output (its post filter): CopyStructure, then a shallow copy of each leaf
-# the iterator decoded. The original's partitions are empty leaves (a vtkImageData is about 8 KiB
-# even without arrays) and its decoded partitions are held beside them, shared with the copy;
+# the iterator decoded. The original's decoded partitions are held, shared with the copy, and
+# they are its own leaves (session 27: held beside empty leaves before, which the paths that read
+# the tree itself, e.g. vtkPartitionedDataSet.GetPartition, saw empty);
 # the copy keeps the shallow copies it was given (they share the held arrays); a decoded leaf's
 # arrays are its own, so ranges cached in them (ParaView's data information) go with it.
 fresh = lvdif.vtkDictionaryVolumeReader()
@@ -210,9 +218,10 @@ n = original.GetNumberOfPartitions()
 check(len(chunk_ids) == n and len(set(chunk_ids)) == n and chunk_ids == sorted(chunk_ids),
       "the iterator visits the %d empty leaves, each decoded with its own chunk" % n)
 check(copy.HasVolume() and copy.GetNumberOfPartitions() == n and
-      all(vtkPartitionedDataSet.GetPartition(original, i) is None for i in range(n)) and
+      all(vtkPartitionedDataSet.GetPartition(original, i) is not None and
+          vtkPartitionedDataSet.GetPartition(original, i) == original.GetPartition(i) for i in range(n)) and
       original.GetHeldPartitionBytes() > 0 and copy.GetHeldPartitionBytes() == original.GetHeldPartitionBytes(),
-      "the original's leaves stay empty; the copy shares its held partitions")
+      "the original's leaves are its held partitions; the copy shares them")
 skip = original.NewIterator()
 skip.SkipEmptyNodesOn()  # as vtk::Range and ParaView's geometry filter ask
 skip.InitTraversal()
@@ -310,5 +319,106 @@ check("needs" in message and "limit" in message and "%d x %d x %d" % (n, n, n) i
       "one clear error naming the size and the limit")
 check(to_dense.GetRequiredBytes() == dense_bytes, "it states the memory it needs (%d bytes)" % to_dense.GetRequiredBytes())
 del os.environ["LVDIF_MEMORY_LIMIT"]
+
+# ---- 4. .vtpd: VTK's partitioned dataset writer and reader ------------------------------------
+from vtkmodules.vtkIOParallelXML import vtkXMLPartitionedDataSetWriter
+from vtkmodules.vtkIOXML import vtkXMLPartitionedDataSetReader
+fresh = lvdif.vtkDictionaryVolumeReader()
+fresh.SetFileName(small)
+fresh.Update()
+vtpd = os.path.join(work, "dice96.vtpd")
+if os.path.exists(vtpd):
+    os.remove(vtpd)
+# VTK's writer names the file's type after the input's class (vtkSparseDictionaryVolume), which VTK's
+# reader refuses ("Cannot find vtkPartitionedDataSet element"): write a plain partitioned dataset
+# sharing the partitions (docs/PYTHON.md). A plain ShallowCopy reads the tree itself: until
+# session 27 its leaves were empty and the file held no partition.
+fresh.GetOutput().GetNumberOfPartitions()  # builds (and, held, decodes) the partitions
+check(fresh.GetOutput().DecodePartitions() and
+      fresh.GetOutput().GetHeldPartitionBytes() >= fresh.GetOutput().GetPartitionBytes(),
+      "DecodePartitions: every partition held (%d bytes; point arrays: %d)" % (
+          fresh.GetOutput().GetHeldPartitionBytes(), fresh.GetOutput().GetPartitionBytes()))
+plain = vtkPartitionedDataSet()
+plain.ShallowCopy(fresh.GetOutput())
+writer = vtkXMLPartitionedDataSetWriter()
+writer.SetInputData(plain)
+writer.SetFileName(vtpd)
+check(writer.Write() == 1 and os.path.exists(vtpd), "vtkXMLPartitionedDataSetWriter wrote %s" % vtpd)
+back = vtkXMLPartitionedDataSetReader()
+back.SetFileName(vtpd)
+back.Update()
+read = back.GetOutput()
+saved = fresh.GetOutput()
+to_image = lvdif.vtkSparseVolumeToImage()
+to_image.SetInputConnection(fresh.GetOutputPort())
+to_image.Update()
+image = to_image.GetOutput()
+ie = image.GetExtent()
+image_sdf = image.GetPointData().GetArray("sdf")
+n_read = read.GetNumberOfPartitions() if read is not None else 0
+check(n_read == saved.GetNumberOfPartitions() > 1,
+      "the file holds %d partitions, the volume %d" % (n_read, saved.GetNumberOfPartitions()))
+bad = points = 0
+covered = set()
+for i in range(n_read):
+    part = read.GetPartition(i)
+    if part is None or part.GetPointData().GetArray("sdf") is None:
+        bad += 1
+        continue
+    e = part.GetExtent()
+    values = part.GetPointData().GetArray("sdf")
+    k = 0
+    for z in range(e[4], e[5] + 1):
+        for y in range(e[2], e[3] + 1):
+            row = ((z - ie[4]) * (ie[3] - ie[2] + 1) + (y - ie[2])) * (ie[1] - ie[0] + 1) - ie[0]
+            for x in range(e[0], e[1] + 1):
+                bad += values.GetValue(k) != image_sdf.GetValue(row + x)
+                covered.add(row + x)
+                k += 1
+    points += k
+print("   .vtpd: %d partitions, %d points, %d differ from the dense image" % (n_read, points, bad))
+check(bad == 0 and points == saved.GetNumberOfPoints(),
+      "the .vtpd reads back equal to the dense image where the band is (%d points, %d differ)" % (points, bad))
+# every voxel of the dense image whose cells can differ is in the file: the band's voxels
+band = 0
+bw = saved.GetBandWidth()
+for j in range(image_sdf.GetNumberOfTuples()):
+    if abs(image_sdf.GetValue(j)) < bw and j not in covered:
+        band += 1
+check(band == 0, "every voxel inside the band is written (%d missing)" % band)
+# over the memory limit: one clear error, no partition written as if it were the volume
+refused = lvdif.vtkDictionaryVolumeReader()
+refused.SetFileName(small)
+refused.Update()
+os.environ["LVDIF_MEMORY_LIMIT"] = str(int(0.4 * refused.GetOutput().GetPartitionBytes()))
+vtpd2 = os.path.join(work, "dice96-refused.vtpd")
+errors2 = []
+
+
+def on_error2(obj, event, message):
+    errors2.append(message)
+
+
+on_error2.CallDataType = "string0"
+refused.GetOutput().AddObserver(vtkCommand.ErrorEvent, on_error2)
+refused.GetOutput().GetNumberOfPartitions()
+check(not refused.GetOutput().DecodePartitions(), "over the memory limit DecodePartitions says False")
+plain2 = vtkPartitionedDataSet()
+plain2.ShallowCopy(refused.GetOutput())
+writer2 = vtkXMLPartitionedDataSetWriter()
+writer2.SetInputData(plain2)
+writer2.SetFileName(vtpd2)
+writer2.Write()
+del os.environ["LVDIF_MEMORY_LIMIT"]
+written = 0
+if os.path.exists(vtpd2):
+    back2 = vtkXMLPartitionedDataSetReader()
+    back2.SetFileName(vtpd2)
+    back2.Update()
+    written = sum(1 for i in range(back2.GetOutput().GetNumberOfPartitions())
+                  if back2.GetOutput().GetPartition(i) is not None)
+print("   over the limit: %d error(s): %s" % (len(errors2), errors2[0].strip().splitlines()[-1] if errors2 else ""))
+check(len(errors2) == 1 and "more than the limit" in errors2[0] and written == 0,
+      "over the memory limit: one clear error, no partition written (%d errors, %d written)" % (len(errors2), written))
 
 finish()
