@@ -789,3 +789,66 @@ TEST(MeshToSdfMemory, RefusesWhatCannotFitBeforeAnyWorkAndNeverWhatFits)
   }
 }
 
+
+
+// The bound counted only the chunks the surface passes through: about half of
+// what a fine grid takes (the chunks within the band beside them are expanded
+// too), so a unit mesh at spacing 0.001 under a 2 GiB limit ran until the
+// limit was full and then failed. It now counts the chunks of voxels within
+// band - 1 of the surface as well: a limit just below the bound is refused
+// before any chunk is expanded, naming the grid, the bound and the limit, and
+// a limit of what the conversion took (the oracle: the conversion itself)
+// still converts, on a box and a sphere, chunks of 8 to 32.
+TEST(MeshToSdfMemory, TheBoundCountsTheBandAroundTheSurface)
+{
+  struct Case
+  {
+    lvdif::TriangleMesh mesh;
+    std::int64_t res;
+    int edge;
+  };
+  const std::vector<Case> cases = {
+    { makeBoxMesh({ 0.1f, 0.2f, 0.3f }, { 1.1f, 0.9f, 1.25f }), 160, 8 },
+    { makeBoxMesh({ 0.1f, 0.2f, 0.3f }, { 1.1f, 0.9f, 1.25f }), 160, 16 },
+    { lvdif::makeSphereMesh(0.1f, -0.2f, 0.05f, 1.0f, 24, 48), 160, 32 },
+    { lvdif::makeSphereMesh(0.1f, -0.2f, 0.05f, 1.0f, 24, 48), 96, 8 },
+  };
+  for (const Case& c : cases)
+  {
+    lvdif::VolumeOptions vo = lvdif::volumeOptionsOn(lvdif::fitGridToMesh(c.mesh, c.res, 2));
+    vo.chunkEdge = c.edge;
+    lvdif::MeshToSdfOptions o;
+    o.device = lvdif::Device::Cpu;
+    lvdif::DictionaryVolume unlimited(vo);
+    const std::uint64_t least = lvdif::meshToSdfLeastMemory(c.mesh, unlimited, o);
+    lvdif::meshToSdf(c.mesh, unlimited, o);
+    const std::uint64_t used = unlimited.memoryBytes();
+    const std::uint64_t table = lvdif::DictionaryVolume::tableBytes(vo);
+    const std::string name = std::to_string(c.res) + " edge " + std::to_string(c.edge);
+    EXPECT_LE(least, used) << name; // never refuses what fits
+    EXPECT_GE(least - table, 3 * (used - table) / 4) << name << ": the band's chunks counted";
+    ASSERT_GT(lvdif::DictionaryVolume::denseBytes(vo), used); // the estimate runs
+
+    vo.memoryLimit = used; // fits exactly: converted
+    lvdif::DictionaryVolume fits(vo);
+    EXPECT_NO_THROW(lvdif::meshToSdf(c.mesh, fits, o)) << name;
+
+    vo.memoryLimit = least - 1; // cannot fit: refused up front
+    lvdif::DictionaryVolume tooSmall(vo);
+    try
+    {
+      lvdif::meshToSdf(c.mesh, tooSmall, o);
+      ADD_FAILURE() << name << ": a volume over its limit was converted";
+    }
+    catch (const lvdif::Error& e)
+    {
+      const std::string what = e.what();
+      EXPECT_EQ(e.code(), lvdif::ErrorCode::OutOfMemory);
+      const std::string grid = std::to_string(vo.dims[0]) + " x " + std::to_string(vo.dims[1]) + " x " + std::to_string(vo.dims[2]);
+      EXPECT_NE(what.find("a " + grid + " volume"), std::string::npos) << what;
+      EXPECT_NE(what.find("needs at least " + lvdif::formatBytes(least)), std::string::npos) << what;
+      EXPECT_NE(what.find("limit of " + lvdif::formatBytes(least - 1)), std::string::npos) << what;
+    }
+    EXPECT_EQ(tooSmall.expandedChunkCount(), 0) << name << ": refused before any work";
+  }
+}
