@@ -7,7 +7,9 @@
  * so one filter can run several stages) and answers wasInterrupted() from
  * vtkAlgorithm::GetAbortExecute(), the only cancel mechanism VTK 9.1 has.
  * Progress is forwarded only from the thread that created the adapter, since
- * observers (e.g. a Qt progress bar) are not prepared for OpenMP worker threads.
+ * observers (e.g. a Qt progress bar) are not prepared for OpenMP worker threads,
+ * and only in steps of 1 % of the filter's progress or every quarter second
+ * (progress()), whatever rate Core reports at.
  */
 #ifndef LVDIFInterrupter_h
 #define LVDIFInterrupter_h
@@ -15,6 +17,7 @@
 #include "lvdif/Interrupter.h"
 #include "lvdifFiltersVolumeModule.h"
 
+#include <chrono>
 #include <thread>
 
 class vtkAlgorithm;
@@ -34,6 +37,10 @@ private:
   double Shift;
   double Scale;
   std::thread::id Owner;
+  static constexpr double Step = 0.01; // the least change forwarded at once
+  static constexpr std::chrono::milliseconds MinInterval{ 250 }; // any change after this
+  double Last = -1.0;                   // the last value forwarded (-1: none this stage)
+  std::chrono::steady_clock::time_point LastTime;
 };
 
 #endif

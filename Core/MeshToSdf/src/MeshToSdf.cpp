@@ -11,6 +11,7 @@
 #include "MeshToSdfSolid.h"
 #include "MeshToSdfVolumeStore.h"
 #include "MeshToSdfNearest.h" // the prepared mesh owns one (destroyed here)
+#include "MeshToSdfParallelSort.h"
 #include "lvdif/Memory.h"
 #include "lvdif/ParallelFailure.h"
 
@@ -153,24 +154,160 @@ void warnIfPartsVanish(const MeshToSdfPrepared& mesh, const GridGeometry& grid, 
   stats.warnings.push_back(w.str());
 }
 
+/// Exact duplicate faces (the same three welded corners) of a prepared mesh,
+/// for the warnings: a duplicate's edges do not cancel against its
+/// neighbours', so each isolated one adds 3 to boundaryEdges (edges of
+/// non-zero net multiplicity), and a closed box with two faces duplicated was
+/// reported with "8 boundary edges" (and, when nothing was inside, as "open").
+struct DuplicateFaces
+{
+  std::size_t copies = 0;  // faces beyond the first of each group (what removing the duplicates removes)
+  std::size_t opposed = 0; // faces cancelled by a copy of opposite orientation (group size - |net|)
+  std::size_t stacked = 0; // same-orientation copies beyond the first (sum of |net| - 1)
+  /// boundaryEdges of the mesh with every group kept once (in its net
+  /// orientation; that of its first face where the copies cancel)
+  std::size_t boundaryWithout = 0;
+};
+
+/// Counts the duplicate groups by a sort of the faces' sorted corner ids and
+/// the edges of the mesh with each group kept once by a sort of their uses
+/// (on the OpenMP threads; called only for a mesh with boundary edges or a
+/// field with nothing inside: a closed mesh's call never pays for it).
+DuplicateFaces duplicateFaces(const PreparedMesh& m)
+{
+  DuplicateFaces d;
+  const std::size_t n = m.welded.size();
+  requireMemory(static_cast<std::uint64_t>(n) * 64, "mesh to SDF: the duplicate-face count of the warnings");
+  std::vector<std::array<std::uint32_t, 4>> key(n); // sorted ids, triangle
+#pragma omp parallel for schedule(static)
+  for (std::int64_t ti = 0; ti < static_cast<std::int64_t>(n); ++ti)
+  {
+    const auto t = static_cast<std::size_t>(ti);
+    std::array<std::uint32_t, 3> c = m.welded[t];
+    std::sort(c.begin(), c.end());
+    key[t] = { c[0], c[1], c[2], static_cast<std::uint32_t>(t) };
+  }
+  parallelSort(key, std::less<std::array<std::uint32_t, 4>>());
+  auto parity = [&](const std::array<std::uint32_t, 4>& k) { // +1: t runs its sorted corners in cyclic order
+    const std::array<std::uint32_t, 3>& w = m.welded[k[3]];
+    return (w[0] == k[0] && w[1] == k[1]) || (w[0] == k[1] && w[1] == k[2]) || (w[0] == k[2] && w[1] == k[0]) ? 1 : -1;
+  };
+  struct Use
+  {
+    std::uint32_t lo, hi;
+    int dir;
+  };
+  std::vector<Use> uses;
+  uses.reserve(3 * n);
+  auto addFace = [&](std::uint32_t a, std::uint32_t b, std::uint32_t c) {
+    const std::uint32_t v[3] = { a, b, c };
+    for (int k = 0; k < 3; ++k)
+    {
+      const std::uint32_t p = v[k], q = v[(k + 1) % 3];
+      uses.push_back({ std::min(p, q), std::max(p, q), p < q ? 1 : -1 });
+    }
+  };
+  for (std::size_t g = 0; g < n;)
+  {
+    std::size_t g1 = g;
+    int net = 0;
+    for (; g1 < n && key[g1][0] == key[g][0] && key[g1][1] == key[g][1] && key[g1][2] == key[g][2]; ++g1)
+      net += parity(key[g1]);
+    const std::size_t size = g1 - g, absNet = static_cast<std::size_t>(std::abs(net));
+    d.copies += size - 1;
+    d.opposed += size - absNet;
+    d.stacked += absNet > 1 ? absNet - 1 : 0;
+    // the group once: its net orientation, or its first face's
+    const int keep = net != 0 ? (net > 0 ? 1 : -1) : parity(key[g]);
+    if (keep > 0)
+      addFace(key[g][0], key[g][1], key[g][2]);
+    else
+      addFace(key[g][0], key[g][2], key[g][1]);
+    g = g1;
+  }
+  if (d.copies == 0)
+  {
+    d.boundaryWithout = m.boundaryEdges;
+    return d;
+  }
+  std::vector<std::array<std::uint32_t, 3>> sorted(uses.size()); // lo, hi, dir + 1 (a total order with ties)
+  for (std::size_t i = 0; i < uses.size(); ++i)
+    sorted[i] = { uses[i].lo, uses[i].hi, static_cast<std::uint32_t>(uses[i].dir + 1) };
+  parallelSort(sorted, std::less<std::array<std::uint32_t, 3>>());
+  for (std::size_t e = 0; e < sorted.size();)
+  {
+    std::size_t e1 = e;
+    int mult = 0;
+    for (; e1 < sorted.size() && sorted[e1][0] == sorted[e][0] && sorted[e1][1] == sorted[e][1]; ++e1)
+      mult += static_cast<int>(sorted[e1][2]) - 1;
+    d.boundaryWithout += mult != 0;
+    e = e1;
+  }
+  return d;
+}
+
+/// The option that keeps each duplicate group once and orients the faces
+/// (the winding-number sign of the re-oriented mesh), as every front end names it.
+constexpr const char* ReorientOption =
+  "--reorient, lvdif-editor --mesh-reorient, ReorientFaces, the editor's \"Re-orient faces\"";
+
+/// What a mesh's duplicate faces do, in one sentence for the warnings:
+/// counts, that the mesh is closed without them where it is, and what the
+/// sign makes of them.
+std::string describeDuplicates(const PreparedMesh& m, const DuplicateFaces& d)
+{
+  std::ostringstream w;
+  w << d.copies << " of the mesh's " << m.tris.size() << " faces are exact duplicates of another face (the same three corners)";
+  if (d.stacked > 0) w << ": " << d.stacked << " doubled in the same orientation";
+  if (d.opposed > 0)
+    w << (d.stacked > 0 ? ", and " : ": ") << d.opposed << " faces are cancelled by exact duplicates of opposite orientation";
+  if (d.boundaryWithout == 0)
+  {
+    w << "; the mesh is closed once each is kept once";
+    if (m.boundaryEdges > 0)
+      w << " (its " << m.boundaryEdges << " boundary edges, of non-zero net multiplicity, are the duplicates' edges, not holes)";
+  }
+  else
+    w << "; with each kept once the mesh still has " << d.boundaryWithout << " boundary edges";
+  return w.str();
+}
+
 /// stats.warnings when a signed field over the whole grid has no voxel
 /// inside (`inside`: voxels deeper than deepInsideLimit inside the surface);
 /// when some voxel is inside, the parts that vanish (warnIfPartsVanish).
-void warnIfNothingInside(const MeshToSdfPrepared& mesh, const GridGeometry& grid, const MeshToSdfOptions& options,
+/// Returns true when its warning named the mesh's duplicate faces (then
+/// warnIfFacesDuplicated says nothing more).
+bool warnIfNothingInside(const MeshToSdfPrepared& mesh, const GridGeometry& grid, const MeshToSdfOptions& options,
   std::int64_t inside, MeshToSdfStats& stats)
 {
-  if (options.sign == SignMode::Unsigned) return;
+  if (options.sign == SignMode::Unsigned) return false;
   if (inside > 0)
   {
     warnIfPartsVanish(mesh, grid, stats);
-    return;
+    return false;
   }
   const double h = std::min({ grid.spacing[0], grid.spacing[1], grid.spacing[2] });
   std::ostringstream w;
-  if (mesh.boundaryEdges() > 0)
+  // duplicates that cancel every face of a closed mesh leave a winding number
+  // of 0 everywhere: not an open mesh, nor voxels too large (what it said)
+  const DuplicateFaces dup = duplicateFaces(mesh.impl().mesh);
+  if (dup.copies > 0 && (dup.boundaryWithout == 0 || dup.opposed > 0))
   {
-    w << "mesh to SDF: no voxel is inside the mesh (deeper than 1 voxel): it is open (" << mesh.boundaryEdges()
-      << " boundary edges) and encloses no volume deeper than one voxel at any voxel centre"
+    w << "mesh to SDF: no voxel is inside the mesh (deeper than 1 voxel): " << describeDuplicates(mesh.impl().mesh, dup)
+      << "; faces and their reversed copies cancel, so the "
+      << (options.sign == SignMode::WindingNumber ? "winding number is 0 there" : "sign reads cancelled normals there")
+      << " and meshing the field gives no surface (at most slivers within a voxel of the mesh); remove the duplicated faces";
+    if (mesh.boundaryEdges() > 0)
+      w << ", or use the winding-number sign with the faces re-oriented, which keeps each duplicate once (" << ReorientOption << ")";
+    else // every oriented edge cancels: the mesh is taken as closed, with no orientation pass
+      w << " (re-orienting the faces cannot help: with every edge cancelled the mesh is taken as closed, as given)";
+    stats.warnings.push_back(w.str());
+    return true;
+  }
+  if (dup.boundaryWithout > 0)
+  {
+    w << "mesh to SDF: no voxel is inside the mesh (deeper than 1 voxel): it is open (" << dup.boundaryWithout
+      << " boundary edges" << (dup.copies > 0 ? " once its duplicate faces are kept once" : "") << ") and encloses no volume deeper than one voxel at any voxel centre"
       << (options.sign == SignMode::WindingNumber ? " (|winding number| >= 1/2 nowhere farther than one voxel from the mesh, as for a single open sheet)"
                                                   : "")
       << ", so meshing the field gives no surface (at most slivers within a voxel of the mesh); close the mesh, or use the "
@@ -212,22 +349,57 @@ void warnIfNothingInside(const MeshToSdfPrepared& mesh, const GridGeometry& grid
            "use more voxels (a higher resolution / --dims) or less padding";
   }
   stats.warnings.push_back(w.str());
+  return false;
+}
+
+/// stats.warnings when the mesh has exact duplicate faces and boundary edges
+/// (isolated duplicates count 3 each; a closed mesh whose every face is
+/// doubled has none and a field unchanged by them: not looked for), unless
+/// warnIfNothingInside named them (`said`) or the call keeps each duplicate
+/// once (reorientFaces). Same-orientation duplicates on a closed mesh gave
+/// no word at all, and the CLI's "8 boundary edges" read as an open mesh.
+void warnIfFacesDuplicated(
+  const MeshToSdfPrepared& mesh, const MeshToSdfOptions& options, MeshToSdfStats& stats, bool said)
+{
+  if (said || mesh.boundaryEdges() == 0 || (options.sign == SignMode::WindingNumber && options.reorientFaces)) return;
+  const PreparedMesh& m = mesh.impl().mesh;
+  const DuplicateFaces dup = duplicateFaces(m);
+  if (dup.copies == 0) return;
+  std::ostringstream w;
+  w << "mesh to SDF: " << describeDuplicates(m, dup) << "; ";
+  switch (options.sign)
+  {
+  case SignMode::WindingNumber:
+    w << "the winding number counts each face as often as it appears (a doubled face twice, a face and its reversed "
+         "copy not at all), and the exact field of such faces is slower to compute";
+    break;
+  case SignMode::Unsigned:
+    w << "the unsigned distance is the same with or without them";
+    break;
+  default:
+    w << "the " << (options.sign == SignMode::Normal ? "normal" : "pseudo-normal")
+      << " sign sums their normals with their neighbours' (a face and its reversed copy cancel), so it may be wrong "
+         "next to them";
+    break;
+  }
+  w << "; remove the duplicated faces, or use the winding-number sign with the faces re-oriented, which keeps each "
+       "duplicate once and is faster ("
+    << ReorientOption << ")";
+  stats.warnings.push_back(w.str());
 }
 
 /// stats.warnings when the faces' orientation is inconsistent and the sign
 /// cannot be what the user means. Winding sign without reorientFaces: faces
 /// reversed against their neighbours (the orientation pass's F; under each the
 /// winding number drops below 1/2, w_M = w_M+ - 2 w_t, which carves an extra
-/// surface into the solid) or cancelled by an exact duplicate of opposite
-/// orientation (one-face holes the winding number bridges, but slowly);
-/// either way the exact field of the faces as given is also several times
+/// surface into the solid); the exact field of the faces as given is also several times
 /// slower to compute than the re-oriented one (docs/MESH_TO_SDF.md, "Damaged
 /// meshes"). Normal and pseudo-normal signs: edges whose two faces run them
 /// the same way (the prepared mesh's orientation seams), near which those
 /// signs read the reversed faces' normals.
 void warnIfFacesReversed(const MeshToSdfPrepared& mesh, const MeshToSdfOptions& options, MeshToSdfStats& stats)
 {
-  constexpr const char* option = "--reorient, lvdif-editor --mesh-reorient, ReorientFaces, the editor's \"Re-orient faces\"";
+  constexpr const char* option = ReorientOption;
   if (options.sign == SignMode::Normal || options.sign == SignMode::PseudoNormal)
   {
     const std::size_t seams = mesh.impl().mesh.orientationSeams;
@@ -244,22 +416,17 @@ void warnIfFacesReversed(const MeshToSdfPrepared& mesh, const MeshToSdfOptions& 
   if (options.sign != SignMode::WindingNumber || options.reorientFaces || !mesh.impl().hasWindingSigner()) return;
   double unused = 0;
   const detail::meshtosdf::WindingSigner& w = mesh.impl().windingSigner(unused);
-  const std::size_t reversed = w.reversedFaces(), opposed = w.opposedDuplicates();
-  if (reversed == 0 && opposed == 0) return;
+  // (duplicates of opposite orientation: warnIfFacesDuplicated, for every sign)
+  const std::size_t reversed = w.reversedFaces();
+  if (reversed == 0) return;
   const double faces = static_cast<double>(std::max<std::size_t>(1, mesh.triangles()));
   std::ostringstream m;
   m.precision(3);
   m << "mesh to SDF: the faces' orientation is inconsistent: ";
-  if (reversed > 0)
   {
     m << reversed << " of " << mesh.triangles() << " faces (" << 100.0 * static_cast<double>(reversed) / faces
       << " %) run against their neighbours, so the winding number of the faces as given falls below 1/2 under "
          "them and the field has extra surfaces inside the solid there";
-  }
-  if (opposed > 0)
-  {
-    m << (reversed > 0 ? "; " : "") << opposed
-      << " faces are cancelled by exact duplicates of opposite orientation (a hole each)";
   }
   m << ", and the exact field of such faces is slower to compute; if the faces bound one solid, re-orient them ("
     << option << "), which is also faster";
@@ -380,6 +547,7 @@ MeshToSdfStats gridPass(const MeshToSdfPrepared& mesh, const GridGeometry& grid,
     stats.svfFlips = signVoxelFilter(view, p, interrupter).totalFlips();
     stats.svfSeconds = now() - t0;
   }
+  bool duplicatesSaid = false;
   if (wholeGrid(grid, extent) && options.sign != SignMode::Unsigned)
   {
     // a piece of a larger grid may rightly have nothing inside: whole grids
@@ -392,9 +560,10 @@ MeshToSdfStats gridPass(const MeshToSdfPrepared& mesh, const GridGeometry& grid,
     const std::int64_t n = extent.voxelCount();
 #pragma omp parallel for reduction(+ : inside)
     for (std::int64_t i = 0; i < n; ++i) inside += out[i] < deep;
-    warnIfNothingInside(mesh, grid, options, inside, stats);
+    duplicatesSaid = warnIfNothingInside(mesh, grid, options, inside, stats);
   }
   warnIfFacesReversed(mesh, options, stats);
+  warnIfFacesDuplicated(mesh, options, stats, duplicatesSaid);
   interrupter.end();
   return stats;
 }
@@ -522,6 +691,7 @@ MeshToSdfStats volumePass(const MeshToSdfPrepared& mesh, DictionaryVolume& volum
     stats.svfFlips = signVoxelFilter(volume, p, interrupter).totalFlips();
     stats.svfSeconds = now() - t0;
   }
+  bool duplicatesSaid = false;
   if (options.sign != SignMode::Unsigned && !region) // a region may rightly have nothing inside
   {
     // voxels deep inside (as for float grids): uniform chunks by their
@@ -540,9 +710,10 @@ MeshToSdfStats volumePass(const MeshToSdfPrepared& mesh, DictionaryVolume& volum
         for (std::int64_t y = b.lo[1]; y <= b.hi[1] && inside == 0; ++y)
           for (std::int64_t x = b.lo[0]; x <= b.hi[0] && inside == 0; ++x) inside += volume.get(x, y, z).sdf < zero;
     }
-    warnIfNothingInside(mesh, grid, options, inside, stats);
+    duplicatesSaid = warnIfNothingInside(mesh, grid, options, inside, stats);
   }
   warnIfFacesReversed(mesh, options, stats);
+  warnIfFacesDuplicated(mesh, options, stats, duplicatesSaid);
   interrupter.end();
   return stats;
 }

@@ -6,6 +6,7 @@
 #include "lvdif/Memory.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdint>
 #include <sstream>
@@ -48,6 +49,36 @@ std::uint64_t meshToSdfLeastMemory(const TriangleMesh& mesh, const DictionaryVol
     touched += (word & bit) ? 0 : 1;
     word |= bit;
   };
+  // Every voxel within band - 1 of the surface holds a distance a whole voxel
+  // below the band, so its chunk is expanded too: not only the chunks the
+  // surface passes through (the bound was about half of what a fine grid took,
+  // so a unit mesh at spacing 0.001 under a 2 GiB limit ran until the limit
+  // was full). Around each point, the voxels nearest to the points `reach`
+  // away in the 26 directions of the cube's faces, edges and corners: each is
+  // within reach + sqrt(3)/2 = band - 1 of the surface.
+  const double reach = static_cast<double>(band) - 1.0 - 0.5 * std::sqrt(3.0);
+  std::vector<std::array<double, 3>> around;
+  if (reach > 0)
+    for (int dz = -1; dz <= 1; ++dz)
+      for (int dy = -1; dy <= 1; ++dy)
+        for (int dx = -1; dx <= 1; ++dx)
+        {
+          if (dx == 0 && dy == 0 && dz == 0) continue;
+          const double l = std::sqrt(static_cast<double>(dx * dx + dy * dy + dz * dz));
+          around.push_back({ reach * dx / l, reach * dy / l, reach * dz / l });
+        }
+  double last[3] = { -1.0, -1.0, -1.0 }; // the voxel of the last point marked around (small triangles share it)
+  auto markAround = [&](const double v[3]) {
+    const double k[3] = { std::floor(v[0] + 0.5), std::floor(v[1] + 0.5), std::floor(v[2] + 0.5) };
+    if (k[0] == last[0] && k[1] == last[1] && k[2] == last[2]) return;
+    for (int a = 0; a < 3; ++a) last[a] = k[a];
+    mark(v);
+    for (const auto& d : around)
+    {
+      const double w[3] = { v[0] + d[0], v[1] + d[1], v[2] + d[2] };
+      mark(w);
+    }
+  };
   // points on each triangle (of non-zero area) at most half a chunk apart: a
   // lower bound of the chunks its surface passes through (at most 4096 steps
   // a side, so a few huge triangles cost little)
@@ -84,7 +115,7 @@ std::uint64_t meshToSdfLeastMemory(const TriangleMesh& mesh, const DictionaryVol
         const double u = double(i) / steps, w = double(j) / steps;
         const double v[3] = { p[0][0] + u * e1[0] + w * e2[0], p[0][1] + u * e1[1] + w * e2[1],
           p[0][2] + u * e1[2] + w * e2[2] };
-        mark(v);
+        markAround(v);
       }
   }
   return table + touched * chunkBytes;

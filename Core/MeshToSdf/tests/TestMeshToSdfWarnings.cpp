@@ -449,7 +449,150 @@ long long countBefore(const std::string& w, const std::string& what)
   while (b > 0 && w[b - 1] >= '0' && w[b - 1] <= '9') --b;
   return b == at ? -1 : std::stoll(w.substr(b, at - b));
 }
+
+/// Brute force over the faces of non-zero area, by their corners' positions
+/// (std::map, no welding of the code under test): faces beyond the first of
+/// each set of three corners, those cancelled by a copy of opposite
+/// orientation (group size - |net|) and those doubling one in the same
+/// orientation (|net| - 1); and edges of non-zero net multiplicity.
+struct DuplicateOracle
+{
+  long long copies = 0, opposed = 0, stacked = 0, boundaryEdges = 0;
+};
+DuplicateOracle duplicateOracle(const TriangleMesh& m)
+{
+  using P = std::array<float, 3>;
+  std::map<std::array<P, 3>, std::vector<int>> groups; // sorted corners -> +-1 per face
+  std::map<std::pair<P, P>, int> edges;
+  for (const auto& t : m.triangles)
+  {
+    if (area2(m, t) == 0) continue;
+    const std::array<P, 3> c{ m.points[t[0]], m.points[t[1]], m.points[t[2]] };
+    std::array<P, 3> sorted = c;
+    std::sort(sorted.begin(), sorted.end());
+    // +1 when the face runs its sorted corners in cyclic order
+    int parity = -1;
+    for (int k = 0; k < 3; ++k) parity = c[k] == sorted[0] && c[(k + 1) % 3] == sorted[1] ? 1 : parity;
+    groups[sorted].push_back(parity);
+    for (int k = 0; k < 3; ++k)
+    {
+      const P a = c[k], b = c[(k + 1) % 3];
+      edges[{ std::min(a, b), std::max(a, b) }] += a < b ? 1 : -1;
+    }
+  }
+  DuplicateOracle o;
+  for (const auto& [key, dirs] : groups)
+  {
+    const long long size = static_cast<long long>(dirs.size());
+    const long long net = std::abs(std::accumulate(dirs.begin(), dirs.end(), 0LL));
+    o.copies += size - 1;
+    o.opposed += size - net;
+    o.stacked += std::max(0LL, net - 1);
+  }
+  for (const auto& [e, mult] : edges) o.boundaryEdges += mult != 0;
+  return o;
+}
+
+/// makeBoxMesh's box with copies of its faces `which` (reversed or not).
+TriangleMesh boxWithCopies(const std::vector<int>& which, bool reversed)
+{
+  TriangleMesh m = makeBoxMesh({ 0.1f, 0.2f, 0.3f }, { 1.1f, 0.9f, 1.25f });
+  for (int t : which)
+  {
+    auto f = m.triangles[static_cast<std::size_t>(t)];
+    if (reversed) std::swap(f[1], f[2]);
+    m.triangles.push_back(f);
+  }
+  return m;
+}
+
+/// Grid points strictly inside the box [lo, hi] (by their coordinates):
+/// the voxels a field of the box has inside.
+std::int64_t pointsInsideBox(const GridGeometry& g, const Vec3f& lo, const Vec3f& hi)
+{
+  std::int64_t n[3] = { 0, 0, 0 };
+  for (int a = 0; a < 3; ++a)
+    for (std::int64_t i = 0; i < g.dims[a]; ++i)
+    {
+      const double x = g.origin[a] + g.spacing[a] * static_cast<double>(i);
+      n[a] += x > lo[a] + 1e-6 && x < hi[a] - 1e-6;
+    }
+  return n[0] * n[1] * n[2];
+}
 } // namespace
+
+// A closed box with two of its faces (4 triangles) duplicated in the same
+// orientation: the copies' edges do not cancel, so the CLI said "8 boundary
+// edges" as of an open mesh, and no warning named the duplicates. Now one
+// warning, in every sign mode, counts them, says the mesh is closed once
+// each is kept once and names the option that keeps them once; the field is
+// the box's (grid points inside it, counted from their coordinates).
+TEST(MeshToSdfWarnings, DuplicatedFacesOfAClosedMeshAreNamedNotCalledOpen)
+{
+  const TriangleMesh m = boxWithCopies({ 0, 1, 2, 3 }, false); // the z = lo and z = hi quads
+  const DuplicateOracle d = duplicateOracle(m);
+  ASSERT_EQ(d.copies, 4);
+  ASSERT_EQ(d.stacked, 4);
+  ASSERT_EQ(d.boundaryEdges, 8); // the premise: each copied quad's 4 outer edges
+  const GridGeometry g = fitGridToMesh(m, 48, 2.0);
+  const std::int64_t inside = pointsInsideBox(g, { 0.1f, 0.2f, 0.3f }, { 1.1f, 0.9f, 1.25f });
+  for (const SignMode s : { SignMode::WindingNumber, SignMode::PseudoNormal, SignMode::Normal })
+  {
+    std::vector<float> out(static_cast<std::size_t>(g.count()));
+    MeshToSdfOptions o;
+    o.sign = s;
+    o.device = Device::Cpu;
+    const MeshToSdfStats st = meshToSdf(m, FloatGridView{ out.data(), g }, o);
+    EXPECT_EQ(static_cast<long long>(st.boundaryEdges), d.boundaryEdges);
+    std::int64_t negative = 0;
+    for (float v : out) negative += v < 0;
+    EXPECT_EQ(negative, inside) << toString(s); // the box's field, as the warning says
+    ASSERT_EQ(st.warnings.size(), 1u) << toString(s);
+    const std::string& w = st.warnings[0];
+    EXPECT_EQ(countBefore(w, " of the mesh's 16 faces are exact duplicates"), d.copies) << w;
+    EXPECT_EQ(countBefore(w, " doubled in the same orientation"), d.stacked) << w;
+    EXPECT_NE(w.find("closed once each is kept once"), std::string::npos) << w;
+    EXPECT_NE(w.find("8 boundary edges"), std::string::npos) << w;
+    EXPECT_EQ(w.find("open ("), std::string::npos) << w;
+    EXPECT_NE(w.find("--reorient"), std::string::npos) << w;
+  }
+  // the option it names keeps each copy once: no boundary left, no warning
+  std::vector<float> out(static_cast<std::size_t>(g.count()));
+  MeshToSdfOptions o;
+  o.device = Device::Cpu;
+  o.reorientFaces = true;
+  EXPECT_TRUE(meshToSdf(m, FloatGridView{ out.data(), g }, o).warnings.empty());
+  // and the box itself warns of nothing
+  EXPECT_TRUE(runFloat(makeBoxMesh({ 0.1f, 0.2f, 0.3f }, { 1.1f, 0.9f, 1.25f }), 48, SignMode::WindingNumber).stats.warnings.empty());
+}
+
+// A closed box whose every face has a reversed copy: the winding number is 0
+// everywhere, so nothing is inside; the warning said "the voxels ... are
+// larger than the mesh's parts" (use more voxels: no help at any resolution).
+// Now it names the cancelled duplicates and says the mesh is closed once
+// each is kept once; never "open" nor "more voxels".
+TEST(MeshToSdfWarnings, ABoxWhoseFacesAllCancelIsNotBlamedOnTheVoxels)
+{
+  const TriangleMesh m = boxWithCopies({ 0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11 }, true);
+  const DuplicateOracle d = duplicateOracle(m);
+  ASSERT_EQ(d.copies, 12);
+  ASSERT_EQ(d.opposed, 24);
+  ASSERT_EQ(d.boundaryEdges, 0);
+  for (const std::int64_t res : { 32, 96 })
+  {
+    const Result r = runFloat(m, res, SignMode::WindingNumber);
+    EXPECT_EQ(r.inside, 0); // the premise: w = 0 everywhere
+    ASSERT_EQ(r.stats.warnings.size(), 1u);
+    const std::string& w = r.stats.warnings[0];
+    EXPECT_EQ(countBefore(w, " of the mesh's 24 faces are exact duplicates"), d.copies) << w;
+    EXPECT_EQ(countBefore(w, " faces are cancelled by exact duplicates of opposite orientation"), d.opposed) << w;
+    EXPECT_NE(w.find("closed once each is kept once"), std::string::npos) << w;
+    EXPECT_NE(w.find("remove the duplicated faces"), std::string::npos) << w;
+    EXPECT_EQ(w.find("larger than the mesh's parts"), std::string::npos) << w;
+    EXPECT_EQ(w.find("more voxels"), std::string::npos) << w;
+    EXPECT_EQ(w.find("open ("), std::string::npos) << w;
+  }
+}
 
 TEST(MeshToSdfWarnings, ReversedFacesNameReorient)
 {
@@ -512,8 +655,16 @@ TEST(MeshToSdfWarnings, DuplicatesOfOppositeOrientation)
   ASSERT_EQ(r.stats.warnings.size(), 1u);
   EXPECT_EQ(countBefore(r.stats.warnings[0], " faces are cancelled by exact duplicates"), opposed) << r.stats.warnings[0];
   EXPECT_NE(r.stats.warnings[0].find("--reorient"), std::string::npos);
-  // same-orientation duplicates alone change nothing: no warning
-  EXPECT_TRUE(runFloat(signquality::damaged(clean, "dup20"), 32, SignMode::WindingNumber).stats.warnings.empty());
+  // same-orientation duplicates leave the solid as it was, but are named too
+  // (their edges counted as boundary edges, and they gave no word at all)
+  const TriangleMesh dup20 = signquality::damaged(clean, "dup20");
+  const DuplicateOracle d = duplicateOracle(dup20);
+  ASSERT_GT(d.stacked, 0);
+  const Result same = runFloat(dup20, 32, SignMode::WindingNumber);
+  ASSERT_EQ(same.stats.warnings.size(), 1u);
+  EXPECT_EQ(countBefore(same.stats.warnings[0], " doubled in the same orientation"), d.stacked) << same.stats.warnings[0];
+  EXPECT_EQ(countBefore(same.stats.warnings[0], " faces are cancelled"), -1) << same.stats.warnings[0];
+  EXPECT_EQ(same.inside, runFloat(clean, 32, SignMode::WindingNumber).inside);
 }
 
 TEST(MeshToSdfWarnings, PseudoNormalAndNormalNameTheReorientedWindingSign)
@@ -635,5 +786,69 @@ TEST(MeshToSdfMemory, RefusesWhatCannotFitBeforeAnyWorkAndNeverWhatFits)
   {
     EXPECT_EQ(e.code(), lvdif::ErrorCode::OutOfMemory) << e.what();
     EXPECT_EQ(std::string(e.what()).find("needs at least"), std::string::npos) << "refused by the estimate: " << e.what();
+  }
+}
+
+
+
+// The bound counted only the chunks the surface passes through: about half of
+// what a fine grid takes (the chunks within the band beside them are expanded
+// too), so a unit mesh at spacing 0.001 under a 2 GiB limit ran until the
+// limit was full and then failed. It now counts the chunks of voxels within
+// band - 1 of the surface as well: a limit just below the bound is refused
+// before any chunk is expanded, naming the grid, the bound and the limit, and
+// a limit of what the conversion took (the oracle: the conversion itself)
+// still converts, on a box and a sphere, chunks of 8 to 32.
+TEST(MeshToSdfMemory, TheBoundCountsTheBandAroundTheSurface)
+{
+  struct Case
+  {
+    lvdif::TriangleMesh mesh;
+    std::int64_t res;
+    int edge;
+  };
+  const std::vector<Case> cases = {
+    { makeBoxMesh({ 0.1f, 0.2f, 0.3f }, { 1.1f, 0.9f, 1.25f }), 160, 8 },
+    { makeBoxMesh({ 0.1f, 0.2f, 0.3f }, { 1.1f, 0.9f, 1.25f }), 160, 16 },
+    { lvdif::makeSphereMesh(0.1f, -0.2f, 0.05f, 1.0f, 24, 48), 160, 32 },
+    { lvdif::makeSphereMesh(0.1f, -0.2f, 0.05f, 1.0f, 24, 48), 96, 8 },
+  };
+  for (const Case& c : cases)
+  {
+    lvdif::VolumeOptions vo = lvdif::volumeOptionsOn(lvdif::fitGridToMesh(c.mesh, c.res, 2));
+    vo.chunkEdge = c.edge;
+    lvdif::MeshToSdfOptions o;
+    o.device = lvdif::Device::Cpu;
+    lvdif::DictionaryVolume unlimited(vo);
+    const std::uint64_t least = lvdif::meshToSdfLeastMemory(c.mesh, unlimited, o);
+    lvdif::meshToSdf(c.mesh, unlimited, o);
+    const std::uint64_t used = unlimited.memoryBytes();
+    const std::uint64_t table = lvdif::DictionaryVolume::tableBytes(vo);
+    const std::string name = std::to_string(c.res) + " edge " + std::to_string(c.edge);
+    EXPECT_LE(least, used) << name; // never refuses what fits
+    EXPECT_GE(least - table, 3 * (used - table) / 4) << name << ": the band's chunks counted";
+    ASSERT_GT(lvdif::DictionaryVolume::denseBytes(vo), used); // the estimate runs
+
+    vo.memoryLimit = used; // fits exactly: converted
+    lvdif::DictionaryVolume fits(vo);
+    EXPECT_NO_THROW(lvdif::meshToSdf(c.mesh, fits, o)) << name;
+
+    vo.memoryLimit = least - 1; // cannot fit: refused up front
+    lvdif::DictionaryVolume tooSmall(vo);
+    try
+    {
+      lvdif::meshToSdf(c.mesh, tooSmall, o);
+      ADD_FAILURE() << name << ": a volume over its limit was converted";
+    }
+    catch (const lvdif::Error& e)
+    {
+      const std::string what = e.what();
+      EXPECT_EQ(e.code(), lvdif::ErrorCode::OutOfMemory);
+      const std::string grid = std::to_string(vo.dims[0]) + " x " + std::to_string(vo.dims[1]) + " x " + std::to_string(vo.dims[2]);
+      EXPECT_NE(what.find("a " + grid + " volume"), std::string::npos) << what;
+      EXPECT_NE(what.find("needs at least " + lvdif::formatBytes(least)), std::string::npos) << what;
+      EXPECT_NE(what.find("limit of " + lvdif::formatBytes(least - 1)), std::string::npos) << what;
+    }
+    EXPECT_EQ(tooSmall.expandedChunkCount(), 0) << name << ": refused before any work";
   }
 }

@@ -230,8 +230,9 @@ MeshToSdfStats meshToSdf(const TriangleMesh& mesh, DictionaryVolume& volume, con
 
 /// Bytes the volume certainly needs after meshToSdf(mesh, volume, options):
 /// its chunk table and the chunks (of options.chunkRegion, if given) that the
-/// mesh's surface passes through, which hold voxels below the band (a lower
-/// bound: never more than the conversion takes). meshToSdf(mesh, volume, ...)
+/// mesh's surface passes through or that hold a voxel within band - 1 of it,
+/// which hold voxels below the band (a lower bound: never more than the
+/// conversion takes). meshToSdf(mesh, volume, ...)
 /// refuses a volume whose bound exceeds its memory limit before any work,
 /// naming the limit (LVDIF_MEMORY_LIMIT) and the options of fewer voxels.
 std::uint64_t meshToSdfLeastMemory(const TriangleMesh& mesh, const DictionaryVolume& volume,

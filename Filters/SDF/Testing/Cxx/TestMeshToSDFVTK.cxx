@@ -29,6 +29,7 @@
 #include <cmath>
 #include <limits>
 #include <string>
+#include <vector>
 
 namespace
 {
@@ -327,6 +328,74 @@ TEST(vtkMeshToSDF, AbortStopsAndProgressIsReported)
   EXPECT_GT(cb->Calls, 0);
   auto* sparse = vtkSparseDictionaryVolume::SafeDownCast(f->GetOutputDataObject(0));
   EXPECT_FALSE(sparse && sparse->HasVolume()); // cancelled: no volume
+}
+
+namespace
+{
+/// Every ProgressEvent's value; optionally sets AbortExecute at the first
+/// value of at least abortFrom.
+struct ProgressLog
+{
+  vtkNew<vtkCallbackCommand> cb;
+  std::vector<double> values;
+  double abortFrom = 2.0; // never
+  explicit ProgressLog(vtkAlgorithm* a)
+  {
+    this->cb->SetClientData(this);
+    this->cb->SetCallback([](vtkObject* caller, unsigned long, void* client, void* call) {
+      auto* self = static_cast<ProgressLog*>(client);
+      self->values.push_back(*static_cast<double*>(call));
+      if (self->values.back() >= self->abortFrom) static_cast<vtkAlgorithm*>(caller)->SetAbortExecute(1);
+    });
+    a->AddObserver(vtkCommand::ProgressEvent, this->cb);
+  }
+};
+} // namespace
+
+// Core reports progress after every row: a run sent ~23,000 ProgressEvents a
+// second (each a redraw of ParaView's progress bar). Now they come in steps of
+// 1 % (or a quarter second apart), as VTK's own filters report: at most ~100
+// (and a few timed ones) per run, never going back, ending at 1.
+TEST(vtkMeshToSDF, ProgressEventsComeInOnePercentStepsAndEndAtOne)
+{
+  vtkNew<vtkSphereSource> sphere;
+  sphere->SetThetaResolution(32);
+  sphere->SetPhiResolution(24);
+  vtkNew<vtkMeshToSDF> f;
+  f->SetInputConnection(sphere->GetOutputPort());
+  f->SetMaxDimension(160); // 160 x 160 x 160: 25,600 rows, each one a report of Core's
+  f->SetDevice(vtkMeshToSDF::DEVICE_CPU);
+  ProgressLog log(f);
+  f->Update();
+  auto* sparse = vtkSparseDictionaryVolume::SafeDownCast(f->GetOutputDataObject(0));
+  ASSERT_TRUE(sparse && sparse->HasVolume());
+  ASSERT_FALSE(log.values.empty());
+  EXPECT_LE(log.values.size(), 200u);
+  EXPECT_GE(log.values.size(), 10u) << "the bar still moves";
+  for (std::size_t i = 1; i < log.values.size(); ++i) EXPECT_GE(log.values[i], log.values[i - 1]) << i;
+  EXPECT_EQ(log.values.back(), 1.0);
+}
+
+// An abort requested from a ProgressEvent (as ParaView's progress handler
+// does) still stops the run early: no volume, and no event after it past the
+// point where it was asked.
+TEST(vtkMeshToSDF, AbortStopsAThrottledRunEarly)
+{
+  vtkNew<vtkSphereSource> sphere;
+  sphere->SetThetaResolution(32);
+  sphere->SetPhiResolution(24);
+  vtkNew<vtkMeshToSDF> f;
+  f->SetInputConnection(sphere->GetOutputPort());
+  f->SetMaxDimension(160);
+  f->SetDevice(vtkMeshToSDF::DEVICE_CPU);
+  ProgressLog log(f);
+  log.abortFrom = 0.05;
+  f->Update();
+  auto* sparse = vtkSparseDictionaryVolume::SafeDownCast(f->GetOutputDataObject(0));
+  EXPECT_FALSE(sparse && sparse->HasVolume()); // cancelled: no volume
+  ASSERT_FALSE(log.values.empty());
+  EXPECT_GE(log.values.back(), 0.05);
+  EXPECT_LT(log.values.back(), 0.2) << "the run went on after the abort";
 }
 
 // A piece (UpdatePiece, as a pvbatch rank) or a smaller update extent computes
