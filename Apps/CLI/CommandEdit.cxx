@@ -134,7 +134,9 @@ int CommandPlay(int argc, char** argv)
   if (!refused.empty())
     throw lvdif::Error(lvdif::ErrorCode::InvalidArgument, refused + " (the volume of --in)");
   auto volume = LoadAnyVolume(args.get("in", ""), progress);
-  refused = args.has("out") ? VolumeOutputDimsProblem(args.get("out", ""), volume->dims()) : std::string();
+  refused = args.has("out")
+    ? VolumeOutputDimsProblem(args.get("out", ""), volume->dims(), volume->options().spacing.data())
+    : std::string();
   if (!refused.empty())
     throw lvdif::Error(lvdif::ErrorCode::InvalidArgument, refused + " (the volume of --in)");
   lvdif::Editor editor(*volume);

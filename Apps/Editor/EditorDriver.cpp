@@ -328,7 +328,9 @@ bool EditorDriver::startStrokeBenchmark(const QString& path)
 {
   try
   {
-    auto* bench = new StrokeBenchmark(this->Window, StrokeBenchmark::loadSamples(path), QFileInfo(path).fileName());
+    const lvdif::Index3 dims = this->Window.document().volume().dims();
+    auto* bench =
+      new StrokeBenchmark(this->Window, StrokeBenchmark::loadSamples(path, &dims), QFileInfo(path).fileName());
     this->waitForLayout(); // a native view renders nothing before its window is exposed
     this->waitForSurface();
     bench->start();
