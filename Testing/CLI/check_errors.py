@@ -645,6 +645,12 @@ else:
     assert r.returncode == 1 and "read volume" not in r.stderr and "replayed" not in r.stdout and \
         r.stderr.strip().splitlines()[-1] == f"lvdif play: {refusal} (the volume of --in)", r
     assert open(aniso_vdb, "rb").read() == b"old"
+    # script --in likewise, before the script runs (it ran the whole script, then the save refused it)
+    r = subprocess.run([exe, "script", keep_script, "--in", aniso, "--out", aniso_vdb], capture_output=True,
+                       text=True, timeout=60)
+    assert r.returncode == 1 and "edits" not in r.stdout and r.stderr.strip().splitlines()[-1] == (
+        f"lvdif script: {refusal}"), r
+    assert open(aniso_vdb, "rb").read() == b"old"
 print("error handling OK")
 # errors about the mesh found after reading it say which file (they named none: "fit grid: the mesh
 # bounds have zero size", "mesh has no triangle of non-zero area")
