@@ -47,7 +47,9 @@ int CommandScript(int argc, char** argv)
   // the output's rule on the result's dimensions, before the script runs (a .bv of a
   // non-cubic canvas failed only when saving, after the whole script)
   if (args.has("out"))
-    options.resultRule = [out = args.get("out", "")](const lvdif::Index3& dims) { return VolumeOutputDimsProblem(out, dims); };
+    options.resultRule = [out = args.get("out", "")](const lvdif::Index3& dims, const std::array<double, 3>& spacing) {
+      return VolumeOutputDimsProblem(out, dims, spacing.data());
+    };
   // file:line:column, the way compilers report, so editors can jump to it
   auto atScriptLine = [&](auto&& work) {
     try
@@ -134,7 +136,9 @@ int CommandPlay(int argc, char** argv)
   if (!refused.empty())
     throw lvdif::Error(lvdif::ErrorCode::InvalidArgument, refused + " (the volume of --in)");
   auto volume = LoadAnyVolume(args.get("in", ""), progress);
-  refused = args.has("out") ? VolumeOutputDimsProblem(args.get("out", ""), volume->dims()) : std::string();
+  refused = args.has("out")
+    ? VolumeOutputDimsProblem(args.get("out", ""), volume->dims(), volume->options().spacing.data())
+    : std::string();
   if (!refused.empty())
     throw lvdif::Error(lvdif::ErrorCode::InvalidArgument, refused + " (the volume of --in)");
   lvdif::Editor editor(*volume);

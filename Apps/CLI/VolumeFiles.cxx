@@ -24,27 +24,28 @@ void CheckVolumeOutput(const std::string& path)
   LVDIFFiles::RequireWritable(path);
 }
 
-std::string VolumeOutputDimsProblem(const std::string& path, const lvdif::Index3& dims)
+std::string VolumeOutputDimsProblem(const std::string& path, const lvdif::Index3& dims, const double* spacing)
 {
-  // the writer's own rule (the only format with a rule on the dimensions)
-  const std::string problem = VolumeOutputIsCubicOnly(path) ? lvdif::checkLegacyBvDims(dims, path) : std::string();
+  // the writers' own rules (a .bv's cube, an OpenVDB level set's one spacing), from the one registry
+  const std::string problem = LVDIFFiles::GridProblem(path, dims, spacing);
   return problem.empty() ? problem : "cannot write '" + path + "': " + problem;
 }
 
 std::string VolumeOutputProblemForInput(const std::string& path, const std::string& input)
 {
-  if (!VolumeOutputIsCubicOnly(path) || Extension(input) != "lvdv")
+  if (Extension(input) != "lvdv")
     return std::string();
-  lvdif::Index3 dims;
+  lvdif::VolumeOptions options;
   try
   {
-    dims = lvdif::readVolumeInfo(input).options.dims;
+    options = lvdif::readVolumeInfo(input).options;
   }
   catch (const lvdif::Error&)
   {
     return std::string(); // the load names what is wrong with the file
   }
-  return VolumeOutputDimsProblem(path, dims);
+  // the header's spacing too: a .lvdv of unequal spacing to .vdb was read whole, then refused
+  return VolumeOutputDimsProblem(path, options.dims, options.spacing.data());
 }
 
 void RequireChunkTable(const lvdif::Index3& dims, const std::string& what, const std::string& advice)

@@ -13,13 +13,14 @@
 std::shared_ptr<lvdif::DictionaryVolume> LoadAnyVolume(const std::string& path, lvdif::Interrupter& progress);
 /// A volume extension the file registry can write, and a writable place, checked before the work.
 void CheckVolumeOutput(const std::string& path);
-/// "" when a volume of these dimensions can be saved to `path`, else "cannot write 'PATH': " and its
-/// format's rule (.bv: cubic, the edge its SDF_<N>_ name says), for the commands that know the
-/// dimensions before their work: checked before it, not when saving after it.
-std::string VolumeOutputDimsProblem(const std::string& path, const lvdif::Index3& dims);
-/// VolumeOutputDimsProblem for the volume in `input` where its header tells the dimensions (a
-/// .lvdv, header only), so that a command refuses before reading the whole volume; "" otherwise
-/// (the check after loading it then speaks).
+/// "" when a volume of these dimensions (and spacing, when given) can be saved to `path`, else
+/// "cannot write 'PATH': " and its format's rule (LVDIFFiles::GridProblem: .bv cubic, the edge its
+/// SDF_<N>_ name says; .vdb one spacing), for the commands that know the grid before their work:
+/// checked before it, not when saving after it.
+std::string VolumeOutputDimsProblem(const std::string& path, const lvdif::Index3& dims, const double* spacing = nullptr);
+/// VolumeOutputDimsProblem for the volume in `input` where its header tells the grid (a
+/// .lvdv, header only: dimensions and spacing), so that a command refuses before reading the whole
+/// volume; "" otherwise (the check after loading it then speaks).
 std::string VolumeOutputProblemForInput(const std::string& path, const std::string& input);
 /// The chunk table of a volume of `dims` (the least it needs) against the memory limit, for a size
 /// the command line gives, before the work: "WHAT of NX x NY x NZ voxels, whose chunk table alone

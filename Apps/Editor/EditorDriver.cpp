@@ -1,4 +1,5 @@
 #include "EditorDriver.h"
+#include "VolumeFiles.h" // the CLI's rule of an output on the volume's grid
 
 #include "EditorOptions.h"
 #include "MainWindow.h"
@@ -46,6 +47,21 @@ int EditorDriver::runBatch()
   // recording's Stop or a question waited forever for nobody).
   if (o.batch() || !o.saveAsAnswer.isEmpty() || !o.openAnswer.isEmpty() || o.cancelDialogs > 0)
     this->answerSaveDialogs(o.saveAsAnswer, o.openAnswer, o.cancelDialogs);
+  // --save's rule on the grid of the volume opened (a .bv's cube, a .vdb's one
+  // spacing), before the work: `--open long.lvdv --replay-drag ... --screenshot
+  // s.png --save x.bv` did the drag and wrote the screenshot, then failed to
+  // save. A script may make its own canvas: its rule stands at its `canvas`.
+  if (!o.save.isEmpty() && this->Window.document().hasVolume() && (o.script.isEmpty() || !isScriptFile(o.script)))
+  {
+    const lvdif::DictionaryVolume& v = this->Window.document().volume();
+    const std::string refused = VolumeOutputDimsProblem(o.save.toStdString(), v.dims(), v.options().spacing.data());
+    if (!refused.empty())
+    {
+      std::fprintf(stderr, "lvdif-editor: --save %s: %s (nothing was done)\n", o.save.toLocal8Bit().constData(),
+        refused.c_str());
+      return 1;
+    }
+  }
   // a script first: it sets the scene the keys and the drag then work on
   if (!o.script.isEmpty())
     ok = this->Window.runScript(o.script) && ok;
@@ -328,7 +344,9 @@ bool EditorDriver::startStrokeBenchmark(const QString& path)
 {
   try
   {
-    auto* bench = new StrokeBenchmark(this->Window, StrokeBenchmark::loadSamples(path), QFileInfo(path).fileName());
+    const lvdif::Index3 dims = this->Window.document().volume().dims();
+    auto* bench =
+      new StrokeBenchmark(this->Window, StrokeBenchmark::loadSamples(path, &dims), QFileInfo(path).fileName());
     this->waitForLayout(); // a native view renders nothing before its window is exposed
     this->waitForSurface();
     bench->start();

@@ -9,6 +9,7 @@
 #include "lvdif/DictionaryVolume.h"
 #include "lvdif/EditLimits.h"
 #include "lvdif/Error.h"
+#include "lvdif/Recording.h"
 
 #include <QColor>
 #include <QCoreApplication>
@@ -149,12 +150,17 @@ EditorOptions parseEditorOptions(const QStringList& arguments)
   const LVDIFFiles::Kind volumeKind = LVDIFFiles::Kind::Volume, meshKind = LVDIFFiles::Kind::Mesh;
   const QCommandLineOption open("open", "Open a volume (" + extensions(volumeKind, false) + ").", "file");
   const QCommandLineOption openMesh("open-mesh", "Convert a mesh (" + extensions(meshKind, false) + ") to a volume and open it.", "file");
-  const QCommandLineOption meshRes("mesh-resolution", "Voxels along the mesh's longest axis (--open-mesh; default 128). A volume that cannot fit the "
-    "memory limit (LVDIF_MEMORY_LIMIT) is refused before converting.", "n", "128");
+  // the range said (it was not), the dialog's, as the default: one constant each
+  const QString defaultMeshRes = QString::number(MeshImportSettings().resolution);
+  const QCommandLineOption meshRes("mesh-resolution",
+    "Voxels along the mesh's longest axis, " + QString::number(MeshImportSettings::MinResolution) + " to " +
+      QString::number(MeshImportSettings::MaxResolution) + " (--open-mesh; default " + defaultMeshRes +
+      "). A volume that cannot fit the memory limit (LVDIF_MEMORY_LIMIT) is refused before converting.",
+    "n", defaultMeshRes);
   const QCommandLineOption meshSign("mesh-sign", "Sign of --open-mesh: winding, pseudo or normal (default winding).", "mode", "winding");
   const QCommandLineOption meshReorient("mesh-reorient",
     "--open-mesh with the winding sign: re-orient the faces consistently (the CLI's --reorient).");
-  const QCommandLineOption create("new", "New canvas of N^3 or NXxNYxNZ voxels, 2 to 1048576 a side, as memory allows (without --open or --open-mesh: 128^3).", "size");
+  const QCommandLineOption create("new", "New canvas of N^3 or NXxNYxNZ voxels, 2 to 1048576 a side, as memory allows (without --open or --open-mesh: the canvas a --script recording was made on, else 128^3).", "size");
   const QCommandLineOption fill("fill",
     "Fill of a new canvas: empty, full or sphere (default sphere; with a --script, empty, as the start canvas of "
     "`lvdif script`; a recording keeps sphere).", "fill", "sphere");
@@ -267,7 +273,8 @@ EditorOptions parseEditorOptions(const QStringList& arguments)
   EditorOptions o;
   o.open = p.value(open);
   o.openMesh = p.value(openMesh);
-  o.meshResolution = integerOption(p.value(meshRes), "--mesh-resolution", 8, 4096);
+  o.meshResolution = integerOption(
+    p.value(meshRes), "--mesh-resolution", MeshImportSettings::MinResolution, MeshImportSettings::MaxResolution);
   o.meshSign = p.value(meshSign);
   try
   {
@@ -461,6 +468,39 @@ EditorOptions parseEditorOptions(const QStringList& arguments)
       if (p.isSet(*work))
         fail("--benchmark-stroke replays its stroke, prints the latency and quits: not with --" + work->names().first() +
           " (it was skipped)");
+  // A recording given without a volume to play it on (no --new, --open or
+  // --open-mesh) starts from the starter canvas of its own size, the one it was
+  // recorded on: `lvdif-editor --script strokes.lvr` played on the 128^3 canvas
+  // and was refused ("the recording was made on a 64 x 16 x 24 canvas; this
+  // volume is 128 x 128 x 128"). So does --benchmark-stroke's recording. A size
+  // the canvas rule refuses is left to the playback's refusal.
+  if (!p.isSet(create) && !p.isSet(open) && !p.isSet(openMesh))
+    for (const QString& file : { o.script, o.benchmarkStroke })
+      if (!file.isEmpty() && !isScriptFile(file))
+      {
+        lvdif::Index3 c{ 0, 0, 0 };
+        try
+        {
+          c = lvdif::loadRecording(file.toLocal8Bit().toStdString()).canvas;
+        }
+        catch (const std::exception&)
+        {
+          // the playback names what is wrong with it
+        }
+        bool fits = c[0] > 0 && lvdif::DictionaryVolume::checkCanvasDimensions(c).empty();
+        try
+        {
+          if (fits)
+            RequireChunkTable(c, "the canvas", "");
+        }
+        catch (const lvdif::Error&)
+        {
+          fits = false;
+        }
+        if (fits)
+          o.newDims = { int(c[0]), int(c[1]), int(c[2]) };
+        break;
+      }
   checkOutput("save", o.save, &volumeKind);
   checkOutput("export", o.exportMesh, &meshKind);
   checkOutput("screenshot", o.screenshot, nullptr);

@@ -59,7 +59,8 @@ struct EditorOptions
   bool stockBackground = false; // --stock-background: VTK's gradient background, a new quad per frame (comparisons)
   int drawRangeTriangles = 32; // --draw-ranges N: triangles per draw range of a chunk (0: one draw per chunk)
   QString strokeLod = "auto"; // --stroke-lod auto|on|off: a stroke's frames meshed coarsely, refined at its end (View menu too)
-  /// The size of the canvas made when no file is opened: --new, or 128^3.
+  /// The size of the canvas made when no file is opened: --new (or, without it, a
+  /// --script or --benchmark-stroke recording's canvas), or 128^3.
   std::array<int, 3> canvasDims() const
   {
     return { newDims[0] > 0 ? newDims[0] : 128, newDims[1] > 0 ? newDims[1] : 128, newDims[2] > 0 ? newDims[2] : 128 };

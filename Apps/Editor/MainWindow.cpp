@@ -366,11 +366,15 @@ void MainWindow::applyBrushState()
       static_cast<std::uint8_t>(s.color.blue()), static_cast<std::uint8_t>(s.color.alpha()) };
     e.stroke.shape = static_cast<lvdif::BrushShape>(s.shape);
     e.stroke.radius = s.radius;
-    // Basic strokes are applied as they go (the Core's Drill mode of
-    // application, here with the cursor on the surface) so the user sees
-    // the surface change under the mouse; Dynamic needs the whole stroke
-    // for its taper and is applied on release.
-    e.stroke.kind = s.kind == 2 ? lvdif::BrushKind::Dynamic : lvdif::BrushKind::Drill;
+    // Basic strokes are applied as they go (as the Core's Drill, here with
+    // the cursor on the surface) so the user sees the surface change under
+    // the mouse; Dynamic needs the whole stroke for its taper and is applied
+    // on release. The kind is the one chosen, so a recording names it (a
+    // Basic stroke was recorded as kind=drill).
+    e.stroke.kind = s.kind == 2 ? lvdif::BrushKind::Dynamic
+      : s.kind == 3             ? lvdif::BrushKind::Drill
+                                : lvdif::BrushKind::Basic;
+    e.stroke.applyAsItGoes = true;
     // The cursor in world units of the x axis, scaled per axis to the dab's
     // true extent (r * spacing[a]); the wheel's range is every edit input's,
     // (0, EditLimits::MaxSize] voxels (the cursor capped it at 1e6 world units).

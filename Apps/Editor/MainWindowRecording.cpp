@@ -168,12 +168,14 @@ bool MainWindow::runScript(const QString& path)
     return this->playRecording(path);
   const int before = this->Doc.hasVolume() ? this->Doc.generation() : -1;
   lvdif::ScriptOptions options;
-  // A batch run's --save: its rule on the volume's dimensions (a .bv is cubic),
-  // checked before the script runs, and at a `canvas N` before it makes the
-  // canvas, as `lvdif script --out` does (the whole script ran, then the save failed).
+  // A batch run's --save: its rule on the volume's grid (a .bv is cubic, a .vdb
+  // has one spacing), checked before the script runs, and at a `canvas N` before
+  // it makes the canvas, as `lvdif script --out` does (the whole script ran, then
+  // the save failed).
   if (this->Options.batch() && !this->Options.save.isEmpty())
-    options.resultRule = [save = this->Options.save.toStdString()](const lvdif::Index3& dims) {
-      return VolumeOutputDimsProblem(save, dims);
+    options.resultRule = [save = this->Options.save.toStdString()](
+                           const lvdif::Index3& dims, const std::array<double, 3>& spacing) {
+      return VolumeOutputDimsProblem(save, dims, spacing.data());
     };
   // While recording, a script that can make a new canvas (a `canvas N`, taken
   // branch or not) stops the recording first and asks for its file, as New and

@@ -87,7 +87,7 @@ bool askMeshImportSettings(QWidget* parent, MeshImportSettings& settings)
   dlg.setWindowTitle("Open mesh");
   auto* form = new QFormLayout(&dlg);
   auto* resolution = new QSpinBox(&dlg);
-  resolution->setRange(8, 4096);
+  resolution->setRange(MeshImportSettings::MinResolution, MeshImportSettings::MaxResolution);
   resolution->setValue(settings.resolution);
   resolution->setToolTip("Voxels along the mesh's longest axis");
   form->addRow("Resolution", resolution);

@@ -16,6 +16,8 @@ class QWidget;
 
 struct MeshImportSettings
 {
+  /// The range of `resolution`: the dialog's and --mesh-resolution's (its help says it).
+  static constexpr int MinResolution = 8, MaxResolution = 4096;
   int resolution = 128; // points along the mesh's longest axis
   int signMode = 2;     // vtkMeshToSDF::NORMAL / PSEUDO_NORMAL / WINDING_NUMBER (default)
   double padding = 2.0; // voxels of margin around the mesh

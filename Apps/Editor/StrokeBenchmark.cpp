@@ -48,14 +48,40 @@ double ms(std::chrono::steady_clock::duration d)
 }
 } // namespace
 
-std::vector<lvdif::BrushSample> StrokeBenchmark::loadSamples(const QString& path)
+std::vector<lvdif::BrushSample> StrokeBenchmark::loadSamples(const QString& path, const lvdif::Index3* dims)
 {
   const std::string file = path.toStdString();
   std::vector<lvdif::BrushSample> samples;
-  const QString suffix = QFileInfo(path).suffix().toLower();
-  if (suffix == "lvr" || suffix == "lvrec")
+  // the text first (the one reader of text files: a FIFO, a folder or a
+  // device refused without blocking; its size within the memory limit: a FIFO
+  // hung the editor for good in std::ifstream), then a recording by its
+  // extension or its first line, as --script and Play recording tell one (a
+  // recording saved without .lvr was read as samples: "expected '{'")
+  std::string text;
+  try
   {
-    for (const lvdif::EditRecord& r : lvdif::loadRecording(file).records)
+    text = lvdif::readScriptFile(file);
+  }
+  catch (const lvdif::Error& e)
+  {
+    throw lvdif::Error(e.code(), "cannot read '" + file + "': " + e.what());
+  }
+  const QString suffix = QFileInfo(path).suffix().toLower();
+  if (suffix == "lvr" || suffix == "lvrec" || isRecordingText(text))
+  {
+    std::istringstream in(text);
+    const lvdif::Recording recording = lvdif::readRecording(in, file);
+    const lvdif::Index3& c = recording.canvas;
+    if (dims && c[0] > 0 && c != *dims)
+    {
+      auto size = [](const lvdif::Index3& d, const char* by) {
+        return std::to_string(d[0]) + by + std::to_string(d[1]) + by + std::to_string(d[2]);
+      };
+      throw lvdif::Error(lvdif::ErrorCode::InvalidArgument,
+        "'" + file + "' was recorded on a " + size(c, " x ") + " canvas; this volume is " + size(*dims, " x ") +
+          ", where its stroke would go elsewhere or outside: run it on its canvas (--new " + size(c, "x") + ")");
+    }
+    for (const lvdif::EditRecord& r : recording.records)
       if (r.type == lvdif::EditRecord::Type::Edit)
         for (const lvdif::Dab& d : r.dabs)
         {
@@ -67,18 +93,6 @@ std::vector<lvdif::BrushSample> StrokeBenchmark::loadSamples(const QString& path
   }
   else
   {
-    // the one reader of text files (a FIFO, a folder or a device refused
-    // without blocking; its size within the memory limit): a FIFO hung the
-    // editor for good in std::ifstream
-    std::string text;
-    try
-    {
-      text = lvdif::readScriptFile(file);
-    }
-    catch (const lvdif::Error& e)
-    {
-      throw lvdif::Error(e.code(), "cannot read '" + file + "': " + e.what());
-    }
     std::istringstream in(text);
     std::string line;
     int number = 0;

@@ -56,8 +56,11 @@ public:
   using TimePoint = std::chrono::steady_clock::time_point;
 
   /// Reads the samples (positions in voxels, times in seconds from 0); throws
-  /// lvdif::Error naming the file and line on bad input.
-  static std::vector<lvdif::BrushSample> loadSamples(const QString& path);
+  /// lvdif::Error naming the file and line on bad input. A recording's samples
+  /// are voxels of its canvas: with `dims` (the volume's), one made on a canvas
+  /// of other dimensions is refused, as its playback is (the stroke went
+  /// elsewhere or outside without a word).
+  static std::vector<lvdif::BrushSample> loadSamples(const QString& path, const lvdif::Index3* dims = nullptr);
 
   StrokeBenchmark(MainWindow& window, std::vector<lvdif::BrushSample> samples, const QString& name);
 

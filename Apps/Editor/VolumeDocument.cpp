@@ -293,7 +293,9 @@ void VolumeDocument::play(const lvdif::Recording& r)
       throw lvdif::Error(lvdif::ErrorCode::InvalidArgument,
         "a version 2 recording of a non-cubic canvas does not say which starter shape it was made on (the sphere of "
         "builds before session 24 or the rounded box since), so it is not played on the starter canvas (nothing was "
-        "played): open the volume it was recorded on and play it there");
+        "played): play it on the volume it was recorded on (File > Open), or say its starter on its version line: "
+        "'LVDIF-RECORDING 4' for the rounded box of this build's new canvas, 'LVDIF-RECORDING 1' for the older "
+        "sphere (and delete its last line, 'end records=N', which version 1 has not)");
     this->newCanvas(int(d[0]), int(d[1]), int(d[2]), Fill::Dot);
   }
   // as runScript: the edits played before an error stay, so they count as changes

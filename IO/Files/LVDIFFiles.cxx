@@ -13,6 +13,7 @@
 #include "vtkSparseDictionaryVolume.h"
 #include "vtkSparseVolumeToImage.h"
 #ifdef LVDIF_WITH_OPENVDB_MODULE
+#include "LVDIFOpenVDB.h"
 #include "vtkOpenVDBLevelSetReader.h"
 #include "vtkOpenVDBLevelSetWriter.h"
 #endif
@@ -20,6 +21,7 @@
 #include "lvdif/ByteStream.h"
 #include "lvdif/CNumbers.h"
 #include "lvdif/Error.h"
+#include "lvdif/LegacyBv.h"
 #include "lvdif/Memory.h"
 #include "lvdif/PieceTiling.h"
 
@@ -434,6 +436,29 @@ void RequireWritable(const std::string& path)
       path, 0, vtkPDictionaryVolumeWriter::NextGeneration(path)));
     vtkPDictionaryVolumeWriter::RequireNoUnlistedPieces(path);
   }
+}
+
+std::string GridProblem(const std::string& path, const lvdif::Index3& dims, const double* spacing)
+{
+  const std::string ext = Extension(path);
+  if (ext == "bv")
+    return lvdif::checkLegacyBvDims(dims, path);
+#ifdef LVDIF_WITH_OPENVDB_MODULE
+  if (ext == "vdb" && spacing)
+  {
+    try
+    {
+      lvdif::vdb::checkExportSpacing(spacing);
+    }
+    catch (const lvdif::Error& e)
+    {
+      return e.what();
+    }
+  }
+#else
+  (void)spacing;
+#endif
+  return std::string();
 }
 
 std::shared_ptr<lvdif::DictionaryVolume> LoadVolume(const std::string& path, lvdif::Interrupter& interrupter)

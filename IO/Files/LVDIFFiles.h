@@ -67,6 +67,15 @@ LVDIFIOFILES_EXPORT std::string DialogFilter(Kind kind, bool forSaving);
 /// the work). Front ends call it before any work.
 LVDIFIOFILES_EXPORT void RequireWritable(const std::string& path);
 
+/// What a volume of this grid cannot be saved to `path` as, in its writer's
+/// words ("" when it can): a .bv's cube of the edge its SDF_<N>_ name says
+/// (lvdif::checkLegacyBvDims), an OpenVDB level set's one spacing
+/// (lvdif::vdb::checkExportSpacing; not checked when `spacing` is nullptr).
+/// For front ends that know the grid before their work (a .lvdv's header, a
+/// size on the command line), so that they refuse before it.
+LVDIFIOFILES_EXPORT std::string GridProblem(
+  const std::string& path, const lvdif::Index3& dims, const double* spacing = nullptr);
+
 /// Reads a volume by extension. Throws lvdif::Error naming the file and the
 /// problem (unknown extension, the reader's own error), Cancelled when the
 /// interrupter says so.

@@ -603,6 +603,54 @@ else:
     assert run("convert", os.path.join(out, "cube8.vdb"), back)[0] == 0
     r = subprocess.run([exe, "info", back], capture_output=True, text=True, timeout=60)
     assert r.returncode == 0 and ", band 8\n" in r.stdout, r.stdout
+    # a .lvdv of unequal spacing (which a level set cannot hold) to .vdb: refused from the header, before
+    # the volume is read (it was read whole, then the writer refused it). The oracle: a chunk's payload
+    # is damaged, so a whole read fails on it; the refusal comes first, naming the spacing.
+    n = 16
+    values = " ".join(f"{((x - 7.5) ** 2 + (2 * (y - 7.5)) ** 2 + (z - 7.5) ** 2) ** 0.5 - 6:.4f}"
+                      for z in range(n) for y in range(n) for x in range(n))
+    aniso_vti = os.path.join(out, "aniso.vti")
+    with open(aniso_vti, "w") as f:
+        f.write('<?xml version="1.0"?>\n<VTKFile type="ImageData" version="0.1" byte_order="LittleEndian">\n'
+                f'<ImageData WholeExtent="0 {n - 1} 0 {n - 1} 0 {n - 1}" Origin="0 0 0" Spacing="1 2 1">\n'
+                f'<Piece Extent="0 {n - 1} 0 {n - 1} 0 {n - 1}"><PointData Scalars="sdf">\n'
+                f'<DataArray type="Float32" Name="sdf" format="ascii">{values}</DataArray>\n'
+                "</PointData></Piece></ImageData></VTKFile>\n")
+    aniso = os.path.join(out, "aniso.lvdv")
+    code, err = run("convert", aniso_vti, aniso)
+    assert code == 0, (code, err)
+    r = subprocess.run([exe, "info", aniso, "--header-only"], capture_output=True, text=True, timeout=60)
+    assert r.returncode == 0 and "spacing 1 2 1" in r.stdout, r
+    with open(aniso, "rb") as f:
+        data = bytearray(f.read())
+    table_offset = struct.unpack_from("<Q", data, len(data) - 32)[0]
+    payloads = [struct.unpack_from("<QI", data, e) for e in range(table_offset, len(data) - 32, 24)]
+    at, size = next(p for p in payloads if p[1] > 0)
+    data[at + size // 2] ^= 0x04
+    aniso_damaged = os.path.join(out, "aniso-damaged.lvdv")
+    with open(aniso_damaged, "wb") as f:
+        f.write(data)
+    assert run("info", aniso_damaged)[0] == 1  # a whole read fails on the payload
+    aniso_vdb = os.path.join(out, "aniso.vdb")
+    with open(aniso_vdb, "wb") as f:
+        f.write(b"old")
+    refusal = (f"cannot write '{aniso_vdb}': OpenVDB export needs isotropic spacing (a level set has one distance "
+               "unit); the volume has spacing 1.000000, 2.000000, 1.000000")
+    r = subprocess.run([exe, "convert", aniso_damaged, aniso_vdb], capture_output=True, text=True, timeout=60)
+    assert r.returncode == 1 and "read volume" not in r.stderr and r.stderr.strip() == (
+        f"lvdif convert: {refusal} (the volume of {aniso_damaged})"), r
+    # play likewise, before its volume is read and the recording replayed
+    r = subprocess.run([exe, "play", rec, "--in", aniso_damaged, "--out", aniso_vdb], capture_output=True, text=True,
+                       timeout=60)
+    assert r.returncode == 1 and "read volume" not in r.stderr and "replayed" not in r.stdout and \
+        r.stderr.strip().splitlines()[-1] == f"lvdif play: {refusal} (the volume of --in)", r
+    assert open(aniso_vdb, "rb").read() == b"old"
+    # script --in likewise, before the script runs (it ran the whole script, then the save refused it)
+    r = subprocess.run([exe, "script", keep_script, "--in", aniso, "--out", aniso_vdb], capture_output=True,
+                       text=True, timeout=60)
+    assert r.returncode == 1 and "edits" not in r.stdout and r.stderr.strip().splitlines()[-1] == (
+        f"lvdif script: {refusal}"), r
+    assert open(aniso_vdb, "rb").read() == b"old"
 print("error handling OK")
 # errors about the mesh found after reading it say which file (they named none: "fit grid: the mesh
 # bounds have zero size", "mesh has no triangle of non-zero area")

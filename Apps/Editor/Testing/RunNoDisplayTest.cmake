@@ -15,6 +15,27 @@ foreach (expect "--open-mesh <file>" "default[ \n]+128" "default[ \n]+sphere" "-
     message(FATAL_ERROR "--help does not say '${expect}'")
   endif ()
 endforeach ()
+# --mesh-resolution says its range (it said none: "Voxels along the mesh's longest
+# axis (--open-mesh; default 128)"), and the range said is the one taken: its ends
+# pass the options (and then need a window: status 1), one beyond them is refused
+# (status 2) in the same numbers.
+if (NOT "${out}" MATCHES "--mesh-resolution <n>[ \n]+Voxels along the[ \n]+mesh's[ \n]+longest[ \n]+axis,[ \n]+([0-9]+)[ \n]+to[ \n]+([0-9]+)[ \n]")
+  message(FATAL_ERROR "--help does not give the range of --mesh-resolution")
+endif ()
+set(lo "${CMAKE_MATCH_1}")
+set(hi "${CMAKE_MATCH_2}")
+math(EXPR below "${lo} - 1")
+math(EXPR above "${hi} + 1")
+foreach (value_rc "${lo}|1" "${hi}|1" "${below}|2" "${above}|2")
+  string(REPLACE "|" ";" value_rc "${value_rc}")
+  list(GET value_rc 0 value)
+  list(GET value_rc 1 want)
+  execute_process(COMMAND "${EDITOR}" --open-mesh no-such-mesh.obj --mesh-resolution ${value} --no-recovery
+    --autosave 0 --quit RESULT_VARIABLE rc OUTPUT_VARIABLE o ERROR_VARIABLE e)
+  if (NOT rc EQUAL want OR (want EQUAL 2 AND NOT "${e}" MATCHES "--mesh-resolution expects an integer in [[]${lo}, ${hi}[]]"))
+    message(FATAL_ERROR "--mesh-resolution ${value}: status ${rc} (want ${want}): ${e}")
+  endif ()
+endforeach ()
 execute_process(COMMAND "${EDITOR}" --new 16 --no-recovery --autosave 0 --quit
   RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
 message("--new 16 --quit: status ${rc}\n${out}${err}")

@@ -103,7 +103,9 @@ void StrokeBuilder::add(const BrushSample& sample)
 std::vector<Dab> StrokeBuilder::takeReady()
 {
   std::vector<Dab> out;
-  if (this->Settings.kind != BrushKind::Drill)
+  const bool live = this->Settings.kind == BrushKind::Drill ||
+    (this->Settings.kind == BrushKind::Basic && this->Settings.applyAsItGoes);
+  if (!live)
   {
     return out;
   }

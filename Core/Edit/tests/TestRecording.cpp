@@ -95,6 +95,65 @@ TEST(Recording, RecordWriteReadPlayIsBitExact)
   EXPECT_EQ(edittest::countDifferences(*start, v), 0);
 }
 
+// A Basic stroke applied as it goes (the Qt editor's Basic: the surface
+// changes under the cursor, as a Drill stroke's) is recorded as kind=basic,
+// the kind the user chose: the editor set Drill for it, and its recordings said
+// kind=drill. It is applied as it goes and leaves the volume a Drill stroke
+// through the same samples leaves, bit for bit, and its replay gives it again
+// with the same kind.
+TEST(Recording, ABasicStrokeAppliedAsItGoesIsRecordedAsBasic)
+{
+  const std::vector<std::array<double, 3>> path{ { 10, 12, 30 }, { 16, 14, 31 }, { 24, 20, 33 }, { 30, 30, 32 },
+    { 36, 34, 30 } };
+  auto stroke = [&](DictionaryVolume& v, BrushKind kind, bool asItGoes, std::size_t* appliedBeforeTheEnd) {
+    Editor e(v);
+    e.stroke.kind = kind;
+    e.stroke.applyAsItGoes = asItGoes;
+    e.stroke.radius = 4;
+    e.startRecording();
+    e.beginStroke();
+    for (const auto& p : path)
+    {
+      BrushSample s;
+      s.position = p;
+      s.buttons = 1;
+      *appliedBeforeTheEnd += e.addSample(s).changedChunks.size();
+    }
+    e.endStroke();
+    return e.stopRecording();
+  };
+  DictionaryVolume basic(edittest::options(48, 16)), drill(edittest::options(48, 16));
+  fillFromFunction(basic, sphereSdf(24, 24, 24, 14));
+  fillFromFunction(drill, sphereSdf(24, 24, 24, 14));
+  const std::unique_ptr<DictionaryVolume> start = basic.clone();
+  std::size_t basicLive = 0, drillLive = 0;
+  const Recording rb = stroke(basic, BrushKind::Basic, true, &basicLive);
+  const Recording rd = stroke(drill, BrushKind::Drill, false, &drillLive);
+  EXPECT_GT(basicLive, 0u); // applied while the stroke was open
+  EXPECT_EQ(basicLive, drillLive);
+  EXPECT_EQ(edittest::countDifferences(basic, drill), 0);
+  ASSERT_EQ(rb.records.size(), 1u);
+  EXPECT_EQ(rb.records[0].kind, BrushKind::Basic);
+  EXPECT_EQ(rd.records[0].kind, BrushKind::Drill);
+  std::stringstream text;
+  writeRecording(text, rb);
+  EXPECT_NE(text.str().find(" kind=basic "), std::string::npos) << text.str();
+  // replayed: the same volume, and recorded again as basic
+  const Recording back = readRecording(text);
+  Editor player(*start);
+  player.startRecording();
+  player.play(back);
+  EXPECT_EQ(edittest::countDifferences(*start, basic), 0);
+  EXPECT_EQ(player.stopRecording().records.at(0).kind, BrushKind::Basic);
+  // without applyAsItGoes a Basic stroke still waits for its end
+  DictionaryVolume waits(edittest::options(48, 16));
+  fillFromFunction(waits, sphereSdf(24, 24, 24, 14));
+  std::size_t waitLive = 0;
+  stroke(waits, BrushKind::Basic, false, &waitLive);
+  EXPECT_EQ(waitLive, 0u);
+  EXPECT_EQ(edittest::countDifferences(waits, basic), 0);
+}
+
 TEST(Recording, AnUndoWithNothingToUndoStopsPlayback)
 {
   // The recording starts after an edit and undoes it: played on the volume it

@@ -580,7 +580,7 @@ struct ScriptRunner::Impl
           " voxels (ScriptOptions::maxCanvasVoxels)");
     if (this->Options.resultRule)
     {
-      const std::string refused = this->Options.resultRule(dims);
+      const std::string refused = this->Options.resultRule(dims, this->Options.canvas.spacing);
       if (!refused.empty())
         fail(s.line, s.column, refused);
     }
@@ -656,7 +656,8 @@ void ScriptRunner::run(const std::string& source)
   // the attached volume is the result unless a `canvas N` replaces it (checked there)
   if (this->P->Options.resultRule && this->P->Volume && !firstNewCanvas(prog.statements))
   {
-    const std::string refused = this->P->Options.resultRule(this->P->Volume->dims());
+    const std::string refused =
+      this->P->Options.resultRule(this->P->Volume->dims(), this->P->Volume->options().spacing);
     if (!refused.empty())
       throw Error(ErrorCode::InvalidArgument, refused);
   }

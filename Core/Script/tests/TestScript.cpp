@@ -749,8 +749,10 @@ TEST(Script, ResultRuleIsCheckedBeforeTheEdits)
 {
   ScriptOptions o;
   std::vector<Index3> asked;
-  o.resultRule = [&asked](const Index3& d) {
+  o.resultRule = [&asked](const Index3& d, const std::array<double, 3>& h) {
     asked.push_back(d);
+    if (h[0] != h[1] || h[1] != h[2])
+      return std::string("not one spacing");
     return d[0] == d[1] && d[1] == d[2] ? std::string() : std::string("not a cube");
   };
   {
@@ -794,4 +796,22 @@ TEST(Script, ResultRuleIsCheckedBeforeTheEdits)
   ScriptRunner cube(o);
   EXPECT_NO_THROW(cube.run("canvas 16\nsphere 8 8 8 3\n"));
   EXPECT_EQ(cube.edits(), 1u);
+  // the rule is given the volume's spacing too (lvdif script --in x.lvdv --out x.vdb of unequal
+  // spacing ran the whole script, then the save refused it)
+  VolumeOptions stretched;
+  stretched.dims = { 16, 16, 16 };
+  stretched.spacing = { 1, 2, 1 };
+  DictionaryVolume w(stretched);
+  {
+    ScriptRunner r(o);
+    r.attach(w);
+    EXPECT_EQ(errortest::errorMessageOf([&] { r.run("sphere 4 4 4 3\n"); }, ErrorCode::InvalidArgument),
+      "not one spacing");
+    EXPECT_EQ(r.edits(), 0u);
+  }
+  {
+    ScriptRunner r(o); // its own canvas has the canvas options' spacing
+    r.attach(w);
+    EXPECT_NO_THROW(r.run("canvas 16\nsphere 8 8 8 3\n"));
+  }
 }

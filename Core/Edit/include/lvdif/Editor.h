@@ -3,7 +3,8 @@
 // edit in one undo step, and appends it to the recording when recording.
 //
 // Interactive strokes: beginStroke(), addSample() for each device sample
-// (Drill strokes are applied as they go), endStroke(). pump() does this from an
+// (Drill strokes, and Basic ones with applyAsItGoes, are applied as they go),
+// endStroke(). pump() does this from an
 // InputDevice: button bit 0 pressed starts a stroke, held adds samples, released
 // ends it. A Grab stroke is applied as it goes, one dab per sample: centred on
 // the previous sample, displacing by the move since it (Brush.h).

@@ -19,6 +19,10 @@
 //               returns the dabs of the path walked since the previous call,
 //               the spacing continuing across calls (the original flushes every
 //               5 samples in its VR drill mode).
+// applyAsItGoes: a Basic stroke applied in real time as Drill is (takeReady() gives
+// the path walked since the previous call), for a front end that shows the
+// surface change under the cursor (the Qt editor); the dabs are the same, and the
+// stroke stays Basic (its recording says kind=basic, not drill).
 // Pressure: when pressureDrivesRadius and a sample has pressure >= 0, the radius
 // at that sample is max(minRadius, radius * min(pressure, 1)); radii are
 // interpolated linearly between samples (the taper multiplies on top).
@@ -61,6 +65,7 @@ struct StrokeSettings
   double spacing = 1.6;                  // fixed interpolation interval, voxels (> 0)
   double minRadius = 1.0;                // end radius of the taper, floor for pressure
   bool pressureDrivesRadius = true;
+  bool applyAsItGoes = false;            // Basic only: applied as it goes, as Drill (see above)
 };
 
 /// Validates settings (Error InvalidArgument with the offending field).
@@ -76,7 +81,8 @@ public:
   const StrokeSettings& settings() const { return this->Settings; }
 
   void add(const BrushSample& sample);
-  /// Dabs that may be applied now (Drill: the path since the last call; others: none).
+  /// Dabs that may be applied now (Drill, and Basic with applyAsItGoes: the path since
+  /// the last call; others: none).
   std::vector<Dab> takeReady();
   /// Ends the stroke and returns every dab not yet taken (with the taper for Dynamic).
   std::vector<Dab> finish();

@@ -20,6 +20,7 @@
 #include "lvdif/Error.h"
 #include "lvdif/Interrupter.h"
 
+#include <array>
 #include <functional>
 #include <limits>
 #include <memory>
@@ -72,11 +73,12 @@ struct ScriptOptions
   /// script's canvas silently replaced the one of `lvdif script --size`).
   std::string canvasSizeGivenBy;
   /// The rule the volume the script leaves must meet (e.g. its output file's:
-  /// a .bv is cubic), as "" or the reason it fails: checked on the attached
-  /// volume before anything runs when the script has no `canvas N`, and by each
-  /// `canvas N` before it makes its canvas (an error at that statement), so a
-  /// script is not run to the end for a volume that cannot be saved.
-  std::function<std::string(const Index3& dims)> resultRule;
+  /// a .bv is cubic, a .vdb has one spacing), given its dimensions and spacing,
+  /// as "" or the reason it fails: checked on the attached volume before
+  /// anything runs when the script has no `canvas N`, and by each `canvas N`
+  /// before it makes its canvas (an error at that statement), so a script is
+  /// not run to the end for a volume that cannot be saved.
+  std::function<std::string(const Index3& dims, const std::array<double, 3>& spacing)> resultRule;
 };
 
 /// Parses only (syntax and command names/arity); throws ScriptError (ParseError).
