@@ -355,30 +355,60 @@ to_image.Update()
 image = to_image.GetOutput()
 ie = image.GetExtent()
 image_sdf = image.GetPointData().GetArray("sdf")
-n_read = read.GetNumberOfPartitions() if read is not None else 0
+
+
+def against_image(read):
+    """A partitioned dataset read back against the dense image: (partitions, points, points or
+    partitions that differ, the image indices covered)."""
+    n = read.GetNumberOfPartitions() if read is not None else 0
+    bad = points = 0
+    covered = set()
+    for i in range(n):
+        part = read.GetPartition(i)
+        if part is None or part.GetPointData().GetArray("sdf") is None:
+            bad += 1
+            continue
+        e = part.GetExtent()
+        values = part.GetPointData().GetArray("sdf")
+        k = 0
+        for z in range(e[4], e[5] + 1):
+            for y in range(e[2], e[3] + 1):
+                row = ((z - ie[4]) * (ie[3] - ie[2] + 1) + (y - ie[2])) * (ie[1] - ie[0] + 1) - ie[0]
+                for x in range(e[0], e[1] + 1):
+                    bad += values.GetValue(k) != image_sdf.GetValue(row + x)
+                    covered.add(row + x)
+                    k += 1
+        points += k
+    return n, points, bad, covered
+
+
+n_read, points, bad, covered = against_image(read)
 check(n_read == saved.GetNumberOfPartitions() > 1,
       "the file holds %d partitions, the volume %d" % (n_read, saved.GetNumberOfPartitions()))
-bad = points = 0
-covered = set()
-for i in range(n_read):
-    part = read.GetPartition(i)
-    if part is None or part.GetPointData().GetArray("sdf") is None:
-        bad += 1
-        continue
-    e = part.GetExtent()
-    values = part.GetPointData().GetArray("sdf")
-    k = 0
-    for z in range(e[4], e[5] + 1):
-        for y in range(e[2], e[3] + 1):
-            row = ((z - ie[4]) * (ie[3] - ie[2] + 1) + (y - ie[2])) * (ie[1] - ie[0] + 1) - ie[0]
-            for x in range(e[0], e[1] + 1):
-                bad += values.GetValue(k) != image_sdf.GetValue(row + x)
-                covered.add(row + x)
-                k += 1
-    points += k
 print("   .vtpd: %d partitions, %d points, %d differ from the dense image" % (n_read, points, bad))
 check(bad == 0 and points == saved.GetNumberOfPoints(),
       "the .vtpd reads back equal to the dense image where the band is (%d points, %d differ)" % (points, bad))
+# the volume written as it is (ParaView's Save Data does this): its index names the element after
+# the sparse volume's class; VTK's reader refuses it, lvdif.vtkXMLSparseVolumeReader reads it, and
+# only it (each reader's CanReadFile answers for its own files)
+direct = os.path.join(work, "dice96-direct.vtpd")
+if os.path.exists(direct):
+    os.remove(direct)
+writer_d = vtkXMLPartitionedDataSetWriter()
+writer_d.SetInputData(saved)
+writer_d.SetFileName(direct)
+check(writer_d.Write() == 1 and os.path.exists(direct), "the sparse volume itself written as %s" % direct)
+sparse_reader = lvdif.vtkXMLSparseVolumeReader()
+check(sparse_reader.CanReadFile(direct) == 1 and vtkXMLPartitionedDataSetReader().CanReadFile(direct) == 0,
+      "the direct .vtpd is the sparse-volume reader's, not VTK's")
+check(sparse_reader.CanReadFile(vtpd) == 0 and vtkXMLPartitionedDataSetReader().CanReadFile(vtpd) == 1,
+      "a plain partitioned dataset's .vtpd stays VTK's reader's")
+sparse_reader.SetFileName(direct)
+sparse_reader.Update()
+n_direct, points_d, bad_d, _ = against_image(sparse_reader.GetOutput())
+check(n_direct == saved.GetNumberOfPartitions() and bad_d == 0 and points_d == saved.GetNumberOfPoints(),
+      "the direct .vtpd reads back equal to the dense image (%d partitions, %d points, %d differ)" %
+      (n_direct, points_d, bad_d))
 # every voxel of the dense image whose cells can differ is in the file: the band's voxels
 band = 0
 bw = saved.GetBandWidth()

@@ -134,8 +134,8 @@ check(len(ghosted) == sparse.GetNumberOfPartitions() and bad == 0 and grown > hi
 # Save Data as .vtpd (XMLPPartitionedDataSetWriter through ParaView's file series writer): every
 # partition is written as its own .vti, equal to the dense image at the same grid points. Until
 # session 27 the writer's copy of the volume read the partitioned dataset's own leaves, which were
-# empty. Known limit (docs/PARAVIEW.md): VTK's writer names the index's type after the input's class,
-# vtkSparseDictionaryVolume, which VTK's .vtpd reader refuses; the .vti files read as they are.
+# empty. VTK's writer names the index's type after the input's class, vtkSparseDictionaryVolume,
+# which ParaView's .vtpd reader refuses; Open takes the plugin's LVDIFSparseVolumeVTPDReader for it.
 import os
 import shutil
 import tempfile
@@ -159,6 +159,14 @@ check(os.path.exists(vtpd) and len(parts) == sparse.GetNumberOfPartitions() and 
       and bad == 0,
       "Save Data .vtpd: %d partition files of %d, %d points of %d, %d differ from the dense image"
       % (len(parts), sparse.GetNumberOfPartitions(), points, sparse.GetNumberOfPoints(), bad))
+reopened = pvs.OpenDataFile(vtpd) if os.path.exists(vtpd) else None
+kind = reopened.GetXMLName() if reopened is not None else None
+back = leaves(output(reopened)) if reopened is not None else []
+bad = sum(mismatched_points(leaf, "sdf", at) for leaf in back)
+check(kind == "LVDIFSparseVolumeVTPDReader" and len(back) == sparse.GetNumberOfPartitions() and bad == 0
+      and sum(leaf.GetNumberOfPoints() for leaf in back) == sparse.GetNumberOfPoints(),
+      "Open of the saved .vtpd: reader %s, %d partitions of %d, %d points differ from the dense image"
+      % (kind, len(back), sparse.GetNumberOfPartitions(), bad))
 shutil.rmtree(folder, ignore_errors=True)
 
 print("failures:", check.failures)
