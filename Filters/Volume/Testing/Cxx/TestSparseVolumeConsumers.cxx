@@ -63,6 +63,18 @@ int mismatches(const lvdif::DictionaryVolume& v, vtkDataSet* leaf, const char* n
         bad += values->GetComponent(i, 0) != factor * static_cast<double>(v.sdf(x, y, z));
   return bad;
 }
+
+/// vtkArrayCalculator (ParaView's Calculator) on `input`, run: array "twice" = 2 x sdf.
+vtkSmartPointer<vtkArrayCalculator> twiceTheSdf(vtkDataObject* input)
+{
+  vtkNew<vtkArrayCalculator> calculator;
+  calculator->SetInputData(input);
+  calculator->AddScalarArrayName("sdf");
+  calculator->SetFunction("sdf*2");
+  calculator->SetResultArrayName("twice");
+  calculator->Update();
+  return calculator.GetPointer();
+}
 }
 
 // GetDataSets walks an iterator to the end, deletes it, and returns raw
@@ -99,12 +111,7 @@ TEST(SparseVolumeConsumers, ArrayCalculatorRunsOnThePartitions)
   const auto volume = twoSpheres();
   vtkNew<vtkSparseDictionaryVolume> sparse;
   sparse->SetVolume(volume);
-  vtkNew<vtkArrayCalculator> calculator;
-  calculator->SetInputData(sparse);
-  calculator->AddScalarArrayName("sdf");
-  calculator->SetFunction("sdf*2");
-  calculator->SetResultArrayName("twice");
-  calculator->Update();
+  const auto calculator = twiceTheSdf(sparse);
   auto* out = vtkCompositeDataSet::SafeDownCast(calculator->GetOutputDataObject(0));
   ASSERT_NE(out, nullptr);
   const auto leaves = vtkCompositeDataSet::GetDataSets<vtkDataSet>(out);
@@ -247,12 +254,7 @@ TEST(SparseVolumeConsumers, HeldPartitionsAreAllDecodedOrNone)
   // vtkArrayCalculator asks to skip empty nodes and calls NewInstance on every leaf it gets
   {
     LimitAndMessages limit(bytesText(0.4 * all));
-    vtkNew<vtkArrayCalculator> calculator;
-    calculator->SetInputData(sparse);
-    calculator->AddScalarArrayName("sdf");
-    calculator->SetFunction("sdf*2");
-    calculator->SetResultArrayName("twice");
-    calculator->Update();
+    const auto calculator = twiceTheSdf(sparse);
     std::size_t withPoints = 0;
     for (vtkDataSet* leaf : vtkCompositeDataSet::GetDataSets<vtkDataSet>(calculator->GetOutputDataObject(0)))
       withPoints += leaf->GetNumberOfPoints() > 0;
