@@ -149,7 +149,8 @@ struct MeshToSdfStats
 {
   std::size_t triangles = 0;         // used (non-degenerate)
   std::size_t degenerateSkipped = 0; // zero-area triangles skipped
-  std::size_t boundaryEdges = 0;     // edges of the open boundary (0: closed)
+  std::size_t boundaryEdges = 0;     // edges whose oriented uses do not cancel (net multiplicity != 0): holes' rims,
+                                     // and the rims of reversed or duplicated faces (the warnings name those); 0: closed
   Device device = Device::Cpu;
   double buildSeconds = 0, distanceSeconds = 0, signSeconds = 0, writeSeconds = 0;
   std::int64_t windingEvaluations = 0; // voxels whose winding number was evaluated (not carried)
@@ -193,7 +194,7 @@ public:
   }
   std::size_t triangles() const;         // used (non-degenerate)
   std::size_t degenerateSkipped() const; // zero-area triangles skipped
-  std::size_t boundaryEdges() const;     // 0: closed
+  std::size_t boundaryEdges() const;     // as MeshToSdfStats::boundaryEdges; 0: closed
   double prepareSeconds() const;         // host time spent by prepareMeshToSdf
   Impl& impl() const { return *this->Pimpl; }
 
