@@ -40,6 +40,7 @@
 #include <limits>
 #include <new>
 #include <cstring>
+#include <numeric>
 #include <sstream>
 #include <vector>
 
@@ -666,14 +667,14 @@ void RequireAxisAligned(vtkImageData* image)
   }
 }
 
-std::unique_ptr<lvdif::DictionaryVolume> VolumeFromImage(
-  vtkImageData* image, vtkDataArray* sdf, vtkDataArray* rgba, lvdif::VolumeOptions options)
+namespace
 {
-  if (!image || !sdf)
-  {
-    throw lvdif::Error(lvdif::ErrorCode::InvalidArgument, "no image or no SDF array");
-  }
-  RequireAxisAligned(image);
+/// VolumeFromImage and VolumeFromImageRegion: `options` holds the volume's
+/// grid; its voxel (x, y, z) is the image's point (x, y, z) + `shift` (image
+/// indices from the image's first point); only the chunks of `region` are written.
+std::unique_ptr<lvdif::DictionaryVolume> FillFromImage(vtkImageData* image, vtkDataArray* sdf, vtkDataArray* rgba,
+  const lvdif::VolumeOptions& options, const std::array<std::int64_t, 3>& shift, const lvdif::VoxelBox* region)
+{
   const lvdif::GridGeometry g = Geometry(image);
   if (sdf->GetNumberOfTuples() != g.count() || sdf->GetNumberOfComponents() != 1)
   {
@@ -687,13 +688,20 @@ std::unique_ptr<lvdif::DictionaryVolume> VolumeFromImage(
   {
     throw lvdif::Error(lvdif::ErrorCode::InvalidArgument, "RGBA array does not match the image's points");
   }
-  options.dims = g.dims;
-  options.origin = g.origin;
-  options.spacing = g.spacing;
   auto volume = std::make_unique<lvdif::DictionaryVolume>(options);
   const int nc = rgba ? rgba->GetNumberOfComponents() : 0;
   auto* f = vtkFloatArray::SafeDownCast(sdf);
-  const std::int64_t chunks = volume->chunkCount();
+  std::vector<std::int64_t> ids;
+  if (region)
+  {
+    ids = volume->chunksInBox(*region);
+  }
+  else
+  {
+    ids.resize(static_cast<std::size_t>(volume->chunkCount()));
+    std::iota(ids.begin(), ids.end(), std::int64_t(0));
+  }
+  const std::int64_t chunks = static_cast<std::int64_t>(ids.size());
   // Colours are added serially first so keys are deterministic.
   std::vector<lvdif::ColorKey> keyOfPoint;
   if (rgba)
@@ -730,15 +738,16 @@ std::unique_ptr<lvdif::DictionaryVolume> VolumeFromImage(
   }
   bool sawNaN = false;
 #pragma omp parallel for schedule(dynamic, 4) reduction(|| : sawNaN)
-  for (std::int64_t id = 0; id < chunks; ++id)
+  for (std::int64_t i = 0; i < chunks; ++i)
   {
-    const lvdif::VoxelBox b = volume->chunkBox(id);
+    const std::int64_t id = ids[static_cast<std::size_t>(i)];
+    const lvdif::VoxelBox b = region ? volume->chunkBox(id).intersect(*region) : volume->chunkBox(id);
     lvdif::Voxel* d = volume->expandChunk(id);
     for (std::int64_t z = b.lo[2]; z <= b.hi[2]; ++z)
       for (std::int64_t y = b.lo[1]; y <= b.hi[1]; ++y)
         for (std::int64_t x = b.lo[0]; x <= b.hi[0]; ++x)
         {
-          const std::int64_t p = g.index(x, y, z);
+          const std::int64_t p = g.index(x + shift[0], y + shift[1], z + shift[2]);
           const float v = f ? f->GetValue(p) : static_cast<float>(sdf->GetComponent(p, 0));
           sawNaN = sawNaN || std::isnan(v);
           d[volume->localIndex(x, y, z)] =
@@ -752,6 +761,49 @@ std::unique_ptr<lvdif::DictionaryVolume> VolumeFromImage(
   }
   volume->takeDirtyChunks();
   return volume;
+}
+} // namespace
+
+std::unique_ptr<lvdif::DictionaryVolume> VolumeFromImage(
+  vtkImageData* image, vtkDataArray* sdf, vtkDataArray* rgba, lvdif::VolumeOptions options)
+{
+  if (!image || !sdf)
+  {
+    throw lvdif::Error(lvdif::ErrorCode::InvalidArgument, "no image or no SDF array");
+  }
+  RequireAxisAligned(image);
+  const lvdif::GridGeometry g = Geometry(image);
+  options.dims = g.dims;
+  options.origin = g.origin;
+  options.spacing = g.spacing;
+  return FillFromImage(image, sdf, rgba, options, { 0, 0, 0 }, nullptr);
+}
+
+std::unique_ptr<lvdif::DictionaryVolume> VolumeFromImageRegion(vtkImageData* image, vtkDataArray* sdf,
+  vtkDataArray* rgba, lvdif::VolumeOptions options, const int wholeLo[3], const lvdif::VoxelBox& region)
+{
+  if (!image || !sdf)
+  {
+    throw lvdif::Error(lvdif::ErrorCode::InvalidArgument, "no image or no SDF array");
+  }
+  RequireAxisAligned(image);
+  int ext[6];
+  image->GetExtent(ext);
+  std::array<std::int64_t, 3> shift{};
+  for (int a = 0; a < 3; ++a)
+  {
+    shift[a] = static_cast<std::int64_t>(wholeLo[a]) - ext[2 * a];
+    if (region.lo[a] + shift[a] < 0 || region.hi[a] + wholeLo[a] > ext[2 * a + 1])
+    {
+      std::ostringstream msg;
+      msg << "the input image's extent (" << ext[0] << " " << ext[1] << " " << ext[2] << " " << ext[3] << " " << ext[4]
+          << " " << ext[5] << ") does not cover the piece's points " << region.lo[0] + wholeLo[0] << ".."
+          << region.hi[0] + wholeLo[0] << ", " << region.lo[1] + wholeLo[1] << ".." << region.hi[1] + wholeLo[1]
+          << ", " << region.lo[2] + wholeLo[2] << ".." << region.hi[2] + wholeLo[2];
+      throw lvdif::Error(lvdif::ErrorCode::InvalidArgument, msg.str());
+    }
+  }
+  return FillFromImage(image, sdf, rgba, options, shift, &region);
 }
 
 } // namespace LVDIFVolumeBridge

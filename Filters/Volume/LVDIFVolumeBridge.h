@@ -171,6 +171,16 @@ LVDIFFILTERSVOLUME_EXPORT void FillImage(
 LVDIFFILTERSVOLUME_EXPORT std::unique_ptr<lvdif::DictionaryVolume> VolumeFromImage(
   vtkImageData* image, vtkDataArray* sdf, vtkDataArray* rgba, lvdif::VolumeOptions options);
 
+/// A piece's volume: `options` gives the whole grid (dims, origin, spacing as
+/// well), whose point (0, 0, 0) is the image's point `wholeLo` (the whole
+/// extent's first point); only the chunks holding voxels of `region` are
+/// written, from the image (its extent must cover the region), the others stay
+/// uniform outside. The chunk grid is then the whole grid's, as the readers'
+/// pieces (vtkImageToSparseVolume under pvbatch). Throws as VolumeFromImage.
+LVDIFFILTERSVOLUME_EXPORT std::unique_ptr<lvdif::DictionaryVolume> VolumeFromImageRegion(vtkImageData* image,
+  vtkDataArray* sdf, vtkDataArray* rgba, lvdif::VolumeOptions options, const int wholeLo[3],
+  const lvdif::VoxelBox& region);
+
 /// The voxels of `extent` (inclusive point indices, inside the volume) as a
 /// volume of their own: the same chunk edge, band, dictionaries and keys
 /// (no re-encoding), origin moved to the extent's first point.
