@@ -287,6 +287,14 @@ bool PieceChunks(int piece, int pieces, const lvdif::VolumeOptions& o, int owned
   return true;
 }
 
+void GrowToWholeChunks(lvdif::VoxelBox& region, const lvdif::VolumeOptions& o)
+{
+  for (int a = 0; a < 3; ++a)
+  {
+    region.hi[a] = std::min<std::int64_t>((region.hi[a] / o.chunkEdge + 1) * o.chunkEdge - 1, o.dims[a] - 1);
+  }
+}
+
 int RequestedVoxels(vtkInformation* outInfo, const lvdif::VolumeOptions& o, int owned[6], lvdif::VoxelBox& region)
 {
   using SDDP = vtkStreamingDemandDrivenPipeline;

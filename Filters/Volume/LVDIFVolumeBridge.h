@@ -133,6 +133,14 @@ LVDIFFILTERSVOLUME_EXPORT void SetSparseInformation(vtkInformation* outInfo, con
 LVDIFFILTERSVOLUME_EXPORT bool PieceChunks(
   int piece, int pieces, const lvdif::VolumeOptions& options, int owned[6], lvdif::VoxelBox& region);
 
+/// A piece's `region` (PieceChunks': its chunks and the one layer of points
+/// their partitions share with the next chunks) grown to whole chunks, as the
+/// .lvdv reader loads them: whether a uniform chunk has a partition depends on
+/// its neighbour chunks as a whole, so a producer that filled only the shared
+/// layer of a neighbour (its other voxels left outside) gave partitions the
+/// serial run has not (ParaView's Integrate Variables over 2 ranks differed).
+LVDIFFILTERSVOLUME_EXPORT void GrowToWholeChunks(lvdif::VoxelBox& region, const lvdif::VolumeOptions& options);
+
 /// The voxels a sparse producer's request needs, by the .lvdv reader's rule:
 /// piece p of n > 1: its chunk block (PieceChunks; `owned` set, returns 1, or
 /// -1 for a piece without chunks); else an update extent smaller than the

@@ -100,18 +100,6 @@ bool WholeGrid(vtkInformation* inInfo, int chunkEdge, lvdif::VolumeOptions& o, i
   return true;
 }
 
-/// A piece's region (its chunks and the layer of points its partitions share
-/// with the next chunks) grown to whole chunks: whether a uniform chunk's
-/// partition exists depends on its neighbours' chunks as a whole (a neighbour
-/// of one plane, the rest left outside, gave partitions the serial run has not).
-void GrowToWholeChunks(lvdif::VoxelBox& region, const lvdif::VolumeOptions& o)
-{
-  for (int a = 0; a < 3; ++a)
-  {
-    region.hi[a] = std::min<std::int64_t>((region.hi[a] / o.chunkEdge + 1) * o.chunkEdge - 1, o.dims[a] - 1);
-  }
-}
-
 int Pieces(vtkInformation* outInfo)
 {
   using SDDP = vtkStreamingDemandDrivenPipeline;
@@ -140,7 +128,7 @@ int vtkImageToSparseVolume::RequestUpdateExtent(
       // the .lvdv reader's rule: the image points of those chunks and of the
       // next chunks, as the reader loads them (a piece without chunks: one point, unused)
       const int kind = LVDIFVolumeBridge::RequestedVoxels(outInfo, o, owned, region);
-      GrowToWholeChunks(region, o);
+      LVDIFVolumeBridge::GrowToWholeChunks(region, o);
       for (int a = 0; a < 3; ++a)
       {
         whole[2 * a] = lo[a] + (kind < 0 ? 0 : static_cast<int>(region.lo[a]));
@@ -213,7 +201,7 @@ int vtkImageToSparseVolume::Produce(vtkInformationVector** inputVector, vtkInfor
       output->Initialize(); // a piece without chunks: empty
       return 1;
     }
-    GrowToWholeChunks(region, options);
+    LVDIFVolumeBridge::GrowToWholeChunks(region, options);
   }
   return LVDIFVolumeBridge::CallCore(this, [&] {
     options.bandWidth = LVDIFVolumeBridge::BandOption(this->BandWidth);

@@ -165,6 +165,13 @@ int vtkPDictionaryVolumeReader::RequestData(
         output->Initialize(); // a piece without chunks: empty
         return;
       }
+      if (kind == 1)
+      {
+        // the next chunks whole, as the .lvdv reader loads them (their shared
+        // layer alone gave partitions the serial read has not: ParaView's
+        // Integrate Variables over 2 ranks gave 52,832 for the serial 43,264)
+        LVDIFVolumeBridge::GrowToWholeChunks(want, options);
+      }
       // (readVolumeIndex checked that the pieces tile the whole extent, so they hold `want`)
       auto volume = std::make_shared<lvdif::DictionaryVolume>(options);
       lvdif::DictionaryVolume& out = *volume;

@@ -6,7 +6,8 @@
 # its volume from its own image piece, with its own chunk grid: Contour was
 # right but Integrate Variables (the partitions' volume, their points' sums)
 # differed from the serial run. Now every piece is a block of the whole grid's
-# chunks (the .lvdv reader's rule) and all of it equals the serial run.
+# chunks (the .lvdv reader's rule) and all of it equals the serial run, also
+# the .lvdvp the ranks write (each writes its piece) read back.
 #
 #   pvbatch mpi_image_to_sparse.py PLUGIN TMPDIR --reference            (1 rank: writes the reference)
 #   mpirun -np 2|4 pvbatch mpi_image_to_sparse.py PLUGIN TMPDIR --compare
@@ -45,6 +46,10 @@ facts = {
     "integrate": integrate(sparse),
     "contour": len(T.triangle_key_list(T.contour_surface(sparse))),
 }
+# written as .lvdvp by these ranks (the writer asks each rank for its piece) and read back
+written = os.path.join(tmpdir, "mpi_image_to_sparse_np%d.lvdvp" % nranks)
+pvs.SaveData(written, proxy=sparse)
+facts["written"] = integrate(pvs.OpenDataFile(written))
 print("facts:", facts)
 
 if mode == "--reference":
@@ -62,6 +67,8 @@ else:
         vol, nranks, rvol))
     check(abs(s - rs) <= 1e-6 * max(1.0, abs(rs)), "Integrate Variables' sdf %r over %d ranks equals the serial %r" % (
         s, nranks, rs))
+    check(facts["written"] == ref["written"], "the .lvdvp %d ranks wrote reads back as the serial one: %s, %s" % (
+        nranks, facts["written"], ref["written"]))
     check(facts["contour"] == ref["contour"], "%d Contour triangles equal the serial %d" % (
         facts["contour"], ref["contour"]))
 
