@@ -313,6 +313,40 @@ TEST(PVolumeIO, PiecesPartitionsAreTheSerialReadsOnes)
   std::remove(index.c_str());
 }
 
+// The reader's progress over a set of 3 pieces went to 1 at each piece file's
+// load and back to 0.003 at its copy, so an observer that cancels at "done"
+// (or a progress bar) saw the read end three times. Now it only goes forward
+// and reaches 1 once, at the end; the volume is the one written.
+TEST(PVolumeIO, ReadProgressGoesForwardToOneOnce)
+{
+  vtkSmartPointer<vtkImageData> img = makeImage();
+  const std::string index = tmpName("progress.lvdvp");
+  writePieces(img, index, 3);
+  std::vector<double> values;
+  vtkNew<vtkCallbackCommand> onProgress;
+  onProgress->SetClientData(&values);
+  onProgress->SetCallback([](vtkObject*, unsigned long, void* client, void* call) {
+    static_cast<std::vector<double>*>(client)->push_back(*static_cast<double*>(call));
+  });
+  vtkNew<vtkPDictionaryVolumeReader> r;
+  r->SetFileName(index.c_str());
+  r->AddObserver(vtkCommand::ProgressEvent, onProgress);
+  expectSameArrays(decoded(r), serialRoundTrip(img));
+  ASSERT_GE(values.size(), 3u);
+  int backwards = 0, ones = 0;
+  for (std::size_t i = 0; i < values.size(); ++i)
+  {
+    backwards += i > 0 && values[i] < values[i - 1] ? 1 : 0;
+    ones += values[i] >= 1.0 ? 1 : 0;
+  }
+  EXPECT_EQ(backwards, 0) << "progress went back";
+  EXPECT_EQ(values.back(), 1.0);
+  EXPECT_GT(static_cast<int>(values.size()) - ones, 10) << "progress below 1 on the way";
+  for (int p = 0; p < 3; ++p)
+    std::remove(vtkPDictionaryVolumeWriter::PieceFilePath(index, p).c_str());
+  std::remove(index.c_str());
+}
+
 INSTANTIATE_TEST_SUITE_P(Pieces, PVolumeIO, ::testing::Values(1, 2, 3, 4));
 
 TEST(PVolumeIO, ErrorsAreReported)
