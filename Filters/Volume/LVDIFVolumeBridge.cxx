@@ -36,6 +36,7 @@
 
 #include <algorithm>
 #include <array>
+#include <atomic>
 #include <cmath>
 #include <limits>
 #include <new>
@@ -681,7 +682,8 @@ namespace
 /// grid; its voxel (x, y, z) is the image's point (x, y, z) + `shift` (image
 /// indices from the image's first point); only the chunks of `region` are written.
 std::unique_ptr<lvdif::DictionaryVolume> FillFromImage(vtkImageData* image, vtkDataArray* sdf, vtkDataArray* rgba,
-  const lvdif::VolumeOptions& options, const std::array<std::int64_t, 3>& shift, const lvdif::VoxelBox* region)
+  const lvdif::VolumeOptions& options, const std::array<std::int64_t, 3>& shift, const lvdif::VoxelBox* region,
+  lvdif::Interrupter* interrupter)
 {
   const lvdif::GridGeometry g = Geometry(image);
   if (sdf->GetNumberOfTuples() != g.count() || sdf->GetNumberOfComponents() != 1)
@@ -745,9 +747,25 @@ std::unique_ptr<lvdif::DictionaryVolume> FillFromImage(vtkImageData* image, vtkD
     }
   }
   bool sawNaN = false;
+  // progress and cancel: Image To Sparse Volume of a 1024^3 image ran for many
+  // seconds with no progress between 0 and 1 and ignored ParaView's cancel
+  std::atomic<std::int64_t> done{ 0 };
+  std::atomic<bool> cancelled{ false };
+  if (interrupter) interrupter->start("image to sparse volume");
 #pragma omp parallel for schedule(dynamic, 4) reduction(|| : sawNaN)
   for (std::int64_t i = 0; i < chunks; ++i)
   {
+    if (cancelled.load(std::memory_order_relaxed)) continue;
+    if (interrupter)
+    {
+      if (interrupter->wasInterrupted())
+      {
+        cancelled = true;
+        continue;
+      }
+      // (LVDIFInterrupter forwards only its own thread's reports)
+      interrupter->progress(static_cast<double>(done.fetch_add(1) + 1) / static_cast<double>(chunks));
+    }
     const std::int64_t id = ids[static_cast<std::size_t>(i)];
     const lvdif::VoxelBox b = region ? volume->chunkBox(id).intersect(*region) : volume->chunkBox(id);
     lvdif::Voxel* d = volume->expandChunk(id);
@@ -763,6 +781,10 @@ std::unique_ptr<lvdif::DictionaryVolume> FillFromImage(vtkImageData* image, vtkD
         }
     volume->tryCollapseChunk(id);
   }
+  if (cancelled)
+  {
+    throw lvdif::Error(lvdif::ErrorCode::Cancelled, "operation cancelled");
+  }
   if (sawNaN)
   {
     throw lvdif::Error(lvdif::ErrorCode::InvalidArgument, "the SDF array contains NaN values");
@@ -772,8 +794,8 @@ std::unique_ptr<lvdif::DictionaryVolume> FillFromImage(vtkImageData* image, vtkD
 }
 } // namespace
 
-std::unique_ptr<lvdif::DictionaryVolume> VolumeFromImage(
-  vtkImageData* image, vtkDataArray* sdf, vtkDataArray* rgba, lvdif::VolumeOptions options)
+std::unique_ptr<lvdif::DictionaryVolume> VolumeFromImage(vtkImageData* image, vtkDataArray* sdf, vtkDataArray* rgba,
+  lvdif::VolumeOptions options, lvdif::Interrupter* interrupter)
 {
   if (!image || !sdf)
   {
@@ -784,11 +806,12 @@ std::unique_ptr<lvdif::DictionaryVolume> VolumeFromImage(
   options.dims = g.dims;
   options.origin = g.origin;
   options.spacing = g.spacing;
-  return FillFromImage(image, sdf, rgba, options, { 0, 0, 0 }, nullptr);
+  return FillFromImage(image, sdf, rgba, options, { 0, 0, 0 }, nullptr, interrupter);
 }
 
 std::unique_ptr<lvdif::DictionaryVolume> VolumeFromImageRegion(vtkImageData* image, vtkDataArray* sdf,
-  vtkDataArray* rgba, lvdif::VolumeOptions options, const int wholeLo[3], const lvdif::VoxelBox& region)
+  vtkDataArray* rgba, lvdif::VolumeOptions options, const int wholeLo[3], const lvdif::VoxelBox& region,
+  lvdif::Interrupter* interrupter)
 {
   if (!image || !sdf)
   {
@@ -811,7 +834,7 @@ std::unique_ptr<lvdif::DictionaryVolume> VolumeFromImageRegion(vtkImageData* ima
       throw lvdif::Error(lvdif::ErrorCode::InvalidArgument, msg.str());
     }
   }
-  return FillFromImage(image, sdf, rgba, options, shift, &region);
+  return FillFromImage(image, sdf, rgba, options, shift, &region, interrupter);
 }
 
 } // namespace LVDIFVolumeBridge

@@ -12,6 +12,7 @@
 
 #include "lvdif/DenseGrid.h"
 #include "lvdif/DictionaryVolume.h"
+#include "lvdif/Interrupter.h"
 #include "lvdif/TriangleMesh.h"
 #include "lvdifFiltersVolumeModule.h"
 
@@ -176,8 +177,10 @@ LVDIFFILTERSVOLUME_EXPORT void FillImage(
 /// `options` supplies chunk edge, band width and dictionary; dims, origin and
 /// spacing come from the image. Throws lvdif::Error on bad input, and on an
 /// image whose direction matrix is not the identity (the volume is axis-aligned).
-LVDIFFILTERSVOLUME_EXPORT std::unique_ptr<lvdif::DictionaryVolume> VolumeFromImage(
-  vtkImageData* image, vtkDataArray* sdf, vtkDataArray* rgba, lvdif::VolumeOptions options);
+/// With an `interrupter`: progress over the chunks and its cancel polled at each
+/// chunk (Error(Cancelled) after the chunks begun).
+LVDIFFILTERSVOLUME_EXPORT std::unique_ptr<lvdif::DictionaryVolume> VolumeFromImage(vtkImageData* image,
+  vtkDataArray* sdf, vtkDataArray* rgba, lvdif::VolumeOptions options, lvdif::Interrupter* interrupter = nullptr);
 
 /// A piece's volume: `options` gives the whole grid (dims, origin, spacing as
 /// well), whose point (0, 0, 0) is the image's point `wholeLo` (the whole
@@ -187,7 +190,7 @@ LVDIFFILTERSVOLUME_EXPORT std::unique_ptr<lvdif::DictionaryVolume> VolumeFromIma
 /// pieces (vtkImageToSparseVolume under pvbatch). Throws as VolumeFromImage.
 LVDIFFILTERSVOLUME_EXPORT std::unique_ptr<lvdif::DictionaryVolume> VolumeFromImageRegion(vtkImageData* image,
   vtkDataArray* sdf, vtkDataArray* rgba, lvdif::VolumeOptions options, const int wholeLo[3],
-  const lvdif::VoxelBox& region);
+  const lvdif::VoxelBox& region, lvdif::Interrupter* interrupter = nullptr);
 
 /// The voxels of `extent` (inclusive point indices, inside the volume) as a
 /// volume of their own: the same chunk edge, band, dictionaries and keys

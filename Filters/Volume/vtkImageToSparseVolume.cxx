@@ -1,5 +1,6 @@
 #include "vtkImageToSparseVolume.h"
 
+#include "LVDIFInterrupter.h"
 #include "LVDIFVolumeBridge.h"
 #include "vtkSparseDictionaryVolume.h"
 
@@ -203,18 +204,27 @@ int vtkImageToSparseVolume::Produce(vtkInformationVector** inputVector, vtkInfor
     }
     LVDIFVolumeBridge::GrowToWholeChunks(region, options);
   }
-  return LVDIFVolumeBridge::CallCore(this, [&] {
+  LVDIFInterrupter interrupter(this);
+  const bool ok = LVDIFVolumeBridge::CallCore(this, [&] {
     options.bandWidth = LVDIFVolumeBridge::BandOption(this->BandWidth);
     if (kind == 1)
     {
-      output->SetVolume(LVDIFVolumeBridge::VolumeFromImageRegion(image, sdf, rgba, options, wholeLo, region));
+      output->SetVolume(
+        LVDIFVolumeBridge::VolumeFromImageRegion(image, sdf, rgba, options, wholeLo, region, &interrupter));
       output->SetOwnedChunks(owned);
     }
     else
     {
-      output->SetVolume(LVDIFVolumeBridge::VolumeFromImage(image, sdf, rgba, options));
+      output->SetVolume(LVDIFVolumeBridge::VolumeFromImage(image, sdf, rgba, options, &interrupter));
     }
-  }) ? 1 : 0;
+  });
+  if (!ok)
+  {
+    output->Initialize(); // a cancel or an error: no volume
+    return 0;
+  }
+  this->UpdateProgress(1.0);
+  return 1;
 }
 
 void vtkImageToSparseVolume::PrintSelf(ostream& os, vtkIndent indent)

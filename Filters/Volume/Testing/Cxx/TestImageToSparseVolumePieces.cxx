@@ -10,6 +10,8 @@
 #include "vtkImageToSparseVolume.h"
 #include "vtkSparseDictionaryVolume.h"
 
+#include "vtkCallbackCommand.h"
+#include "vtkCommand.h"
 #include "vtkCompositeDataIterator.h"
 #include "vtkDataArray.h"
 #include "vtkDataSetAttributes.h"
@@ -162,4 +164,54 @@ TEST(vtkImageToSparseVolume, SerialPartitionsHoldTheImagesValues)
   }
   EXPECT_GT(checked, 1000);
   EXPECT_EQ(wrong, 0);
+}
+
+// Image To Sparse Volume of a large image ran with no progress between 0 and 1
+// and ignored a cancel (ParaView's, or SetAbortExecute from an observer). Now
+// progress over the chunks, and a cancel at the first report past 0 leaves no
+// volume. Oracle: the same filter without the cancel holds the volume.
+namespace
+{
+struct Progress
+{
+  std::vector<double> values;
+  bool abortPastZero = false;
+};
+void onProgress(vtkObject* caller, unsigned long, void* client, void* call)
+{
+  auto* p = static_cast<Progress*>(client);
+  const double v = *static_cast<double*>(call);
+  p->values.push_back(v);
+  if (p->abortPastZero && v > 0) static_cast<vtkAlgorithm*>(caller)->SetAbortExecute(1);
+}
+} // namespace
+
+TEST(vtkImageToSparseVolume, ReportsProgressAndHonoursACancel)
+{
+  vtkSmartPointer<vtkAlgorithm> source = imageSource();
+  for (const bool cancel : { false, true })
+  {
+    Progress log;
+    log.abortPastZero = cancel;
+    vtkSmartPointer<vtkImageToSparseVolume> f = toSparse(source->GetOutputPort());
+    vtkNew<vtkCallbackCommand> cb;
+    cb->SetCallback(onProgress);
+    cb->SetClientData(&log);
+    f->AddObserver(vtkCommand::ProgressEvent, cb);
+    f->Update();
+    auto* out = vtkSparseDictionaryVolume::SafeDownCast(f->GetOutputDataObject(0));
+    int within = 0;
+    for (const double v : log.values) within += v > 0 && v < 1 ? 1 : 0;
+    if (!cancel)
+    {
+      EXPECT_TRUE(out->HasVolume());
+      EXPECT_GT(within, 10) << "progress between 0 and 1";
+      EXPECT_EQ(log.values.back(), 1.0);
+    }
+    else
+    {
+      EXPECT_FALSE(out->HasVolume()) << "the cancelled filter's output";
+      EXPECT_LT(within, 10) << "it stopped soon after the cancel";
+    }
+  }
 }
