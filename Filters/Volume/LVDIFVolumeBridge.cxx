@@ -36,10 +36,12 @@
 
 #include <algorithm>
 #include <array>
+#include <atomic>
 #include <cmath>
 #include <limits>
 #include <new>
 #include <cstring>
+#include <numeric>
 #include <sstream>
 #include <vector>
 
@@ -284,6 +286,14 @@ bool PieceChunks(int piece, int pieces, const lvdif::VolumeOptions& o, int owned
     region.hi[a] = std::min<std::int64_t>(static_cast<std::int64_t>(block[2 * a + 1]) * o.chunkEdge, o.dims[a] - 1);
   }
   return true;
+}
+
+void GrowToWholeChunks(lvdif::VoxelBox& region, const lvdif::VolumeOptions& o)
+{
+  for (int a = 0; a < 3; ++a)
+  {
+    region.hi[a] = std::min<std::int64_t>((region.hi[a] / o.chunkEdge + 1) * o.chunkEdge - 1, o.dims[a] - 1);
+  }
 }
 
 int RequestedVoxels(vtkInformation* outInfo, const lvdif::VolumeOptions& o, int owned[6], lvdif::VoxelBox& region)
@@ -666,14 +676,15 @@ void RequireAxisAligned(vtkImageData* image)
   }
 }
 
-std::unique_ptr<lvdif::DictionaryVolume> VolumeFromImage(
-  vtkImageData* image, vtkDataArray* sdf, vtkDataArray* rgba, lvdif::VolumeOptions options)
+namespace
 {
-  if (!image || !sdf)
-  {
-    throw lvdif::Error(lvdif::ErrorCode::InvalidArgument, "no image or no SDF array");
-  }
-  RequireAxisAligned(image);
+/// VolumeFromImage and VolumeFromImageRegion: `options` holds the volume's
+/// grid; its voxel (x, y, z) is the image's point (x, y, z) + `shift` (image
+/// indices from the image's first point); only the chunks of `region` are written.
+std::unique_ptr<lvdif::DictionaryVolume> FillFromImage(vtkImageData* image, vtkDataArray* sdf, vtkDataArray* rgba,
+  const lvdif::VolumeOptions& options, const std::array<std::int64_t, 3>& shift, const lvdif::VoxelBox* region,
+  lvdif::Interrupter* interrupter)
+{
   const lvdif::GridGeometry g = Geometry(image);
   if (sdf->GetNumberOfTuples() != g.count() || sdf->GetNumberOfComponents() != 1)
   {
@@ -687,13 +698,20 @@ std::unique_ptr<lvdif::DictionaryVolume> VolumeFromImage(
   {
     throw lvdif::Error(lvdif::ErrorCode::InvalidArgument, "RGBA array does not match the image's points");
   }
-  options.dims = g.dims;
-  options.origin = g.origin;
-  options.spacing = g.spacing;
   auto volume = std::make_unique<lvdif::DictionaryVolume>(options);
   const int nc = rgba ? rgba->GetNumberOfComponents() : 0;
   auto* f = vtkFloatArray::SafeDownCast(sdf);
-  const std::int64_t chunks = volume->chunkCount();
+  std::vector<std::int64_t> ids;
+  if (region)
+  {
+    ids = volume->chunksInBox(*region);
+  }
+  else
+  {
+    ids.resize(static_cast<std::size_t>(volume->chunkCount()));
+    std::iota(ids.begin(), ids.end(), std::int64_t(0));
+  }
+  const std::int64_t chunks = static_cast<std::int64_t>(ids.size());
   // Colours are added serially first so keys are deterministic.
   std::vector<lvdif::ColorKey> keyOfPoint;
   if (rgba)
@@ -729,16 +747,33 @@ std::unique_ptr<lvdif::DictionaryVolume> VolumeFromImage(
     }
   }
   bool sawNaN = false;
+  // progress and cancel: Image To Sparse Volume of a 1024^3 image ran for many
+  // seconds with no progress between 0 and 1 and ignored ParaView's cancel
+  std::atomic<std::int64_t> done{ 0 };
+  std::atomic<bool> cancelled{ false };
+  if (interrupter) interrupter->start("image to sparse volume");
 #pragma omp parallel for schedule(dynamic, 4) reduction(|| : sawNaN)
-  for (std::int64_t id = 0; id < chunks; ++id)
+  for (std::int64_t i = 0; i < chunks; ++i)
   {
-    const lvdif::VoxelBox b = volume->chunkBox(id);
+    if (cancelled.load(std::memory_order_relaxed)) continue;
+    if (interrupter)
+    {
+      if (interrupter->wasInterrupted())
+      {
+        cancelled = true;
+        continue;
+      }
+      // (LVDIFInterrupter forwards only its own thread's reports)
+      interrupter->progress(static_cast<double>(done.fetch_add(1) + 1) / static_cast<double>(chunks));
+    }
+    const std::int64_t id = ids[static_cast<std::size_t>(i)];
+    const lvdif::VoxelBox b = region ? volume->chunkBox(id).intersect(*region) : volume->chunkBox(id);
     lvdif::Voxel* d = volume->expandChunk(id);
     for (std::int64_t z = b.lo[2]; z <= b.hi[2]; ++z)
       for (std::int64_t y = b.lo[1]; y <= b.hi[1]; ++y)
         for (std::int64_t x = b.lo[0]; x <= b.hi[0]; ++x)
         {
-          const std::int64_t p = g.index(x, y, z);
+          const std::int64_t p = g.index(x + shift[0], y + shift[1], z + shift[2]);
           const float v = f ? f->GetValue(p) : static_cast<float>(sdf->GetComponent(p, 0));
           sawNaN = sawNaN || std::isnan(v);
           d[volume->localIndex(x, y, z)] =
@@ -746,12 +781,60 @@ std::unique_ptr<lvdif::DictionaryVolume> VolumeFromImage(
         }
     volume->tryCollapseChunk(id);
   }
+  if (cancelled)
+  {
+    throw lvdif::Error(lvdif::ErrorCode::Cancelled, "operation cancelled");
+  }
   if (sawNaN)
   {
     throw lvdif::Error(lvdif::ErrorCode::InvalidArgument, "the SDF array contains NaN values");
   }
   volume->takeDirtyChunks();
   return volume;
+}
+} // namespace
+
+std::unique_ptr<lvdif::DictionaryVolume> VolumeFromImage(vtkImageData* image, vtkDataArray* sdf, vtkDataArray* rgba,
+  lvdif::VolumeOptions options, lvdif::Interrupter* interrupter)
+{
+  if (!image || !sdf)
+  {
+    throw lvdif::Error(lvdif::ErrorCode::InvalidArgument, "no image or no SDF array");
+  }
+  RequireAxisAligned(image);
+  const lvdif::GridGeometry g = Geometry(image);
+  options.dims = g.dims;
+  options.origin = g.origin;
+  options.spacing = g.spacing;
+  return FillFromImage(image, sdf, rgba, options, { 0, 0, 0 }, nullptr, interrupter);
+}
+
+std::unique_ptr<lvdif::DictionaryVolume> VolumeFromImageRegion(vtkImageData* image, vtkDataArray* sdf,
+  vtkDataArray* rgba, lvdif::VolumeOptions options, const int wholeLo[3], const lvdif::VoxelBox& region,
+  lvdif::Interrupter* interrupter)
+{
+  if (!image || !sdf)
+  {
+    throw lvdif::Error(lvdif::ErrorCode::InvalidArgument, "no image or no SDF array");
+  }
+  RequireAxisAligned(image);
+  int ext[6];
+  image->GetExtent(ext);
+  std::array<std::int64_t, 3> shift{};
+  for (int a = 0; a < 3; ++a)
+  {
+    shift[a] = static_cast<std::int64_t>(wholeLo[a]) - ext[2 * a];
+    if (region.lo[a] + shift[a] < 0 || region.hi[a] + wholeLo[a] > ext[2 * a + 1])
+    {
+      std::ostringstream msg;
+      msg << "the input image's extent (" << ext[0] << " " << ext[1] << " " << ext[2] << " " << ext[3] << " " << ext[4]
+          << " " << ext[5] << ") does not cover the piece's points " << region.lo[0] + wholeLo[0] << ".."
+          << region.hi[0] + wholeLo[0] << ", " << region.lo[1] + wholeLo[1] << ".." << region.hi[1] + wholeLo[1]
+          << ", " << region.lo[2] + wholeLo[2] << ".." << region.hi[2] + wholeLo[2];
+      throw lvdif::Error(lvdif::ErrorCode::InvalidArgument, msg.str());
+    }
+  }
+  return FillFromImage(image, sdf, rgba, options, shift, &region, interrupter);
 }
 
 } // namespace LVDIFVolumeBridge

@@ -12,6 +12,7 @@
 
 #include "lvdif/DenseGrid.h"
 #include "lvdif/DictionaryVolume.h"
+#include "lvdif/Interrupter.h"
 #include "lvdif/TriangleMesh.h"
 #include "lvdifFiltersVolumeModule.h"
 
@@ -133,6 +134,14 @@ LVDIFFILTERSVOLUME_EXPORT void SetSparseInformation(vtkInformation* outInfo, con
 LVDIFFILTERSVOLUME_EXPORT bool PieceChunks(
   int piece, int pieces, const lvdif::VolumeOptions& options, int owned[6], lvdif::VoxelBox& region);
 
+/// A piece's `region` (PieceChunks': its chunks and the one layer of points
+/// their partitions share with the next chunks) grown to whole chunks, as the
+/// .lvdv reader loads them: whether a uniform chunk has a partition depends on
+/// its neighbour chunks as a whole, so a producer that filled only the shared
+/// layer of a neighbour (its other voxels left outside) gave partitions the
+/// serial run has not (ParaView's Integrate Variables over 2 ranks differed).
+LVDIFFILTERSVOLUME_EXPORT void GrowToWholeChunks(lvdif::VoxelBox& region, const lvdif::VolumeOptions& options);
+
 /// The voxels a sparse producer's request needs, by the .lvdv reader's rule:
 /// piece p of n > 1: its chunk block (PieceChunks; `owned` set, returns 1, or
 /// -1 for a piece without chunks); else an update extent smaller than the
@@ -168,8 +177,20 @@ LVDIFFILTERSVOLUME_EXPORT void FillImage(
 /// `options` supplies chunk edge, band width and dictionary; dims, origin and
 /// spacing come from the image. Throws lvdif::Error on bad input, and on an
 /// image whose direction matrix is not the identity (the volume is axis-aligned).
-LVDIFFILTERSVOLUME_EXPORT std::unique_ptr<lvdif::DictionaryVolume> VolumeFromImage(
-  vtkImageData* image, vtkDataArray* sdf, vtkDataArray* rgba, lvdif::VolumeOptions options);
+/// With an `interrupter`: progress over the chunks and its cancel polled at each
+/// chunk (Error(Cancelled) after the chunks begun).
+LVDIFFILTERSVOLUME_EXPORT std::unique_ptr<lvdif::DictionaryVolume> VolumeFromImage(vtkImageData* image,
+  vtkDataArray* sdf, vtkDataArray* rgba, lvdif::VolumeOptions options, lvdif::Interrupter* interrupter = nullptr);
+
+/// A piece's volume: `options` gives the whole grid (dims, origin, spacing as
+/// well), whose point (0, 0, 0) is the image's point `wholeLo` (the whole
+/// extent's first point); only the chunks holding voxels of `region` are
+/// written, from the image (its extent must cover the region), the others stay
+/// uniform outside. The chunk grid is then the whole grid's, as the readers'
+/// pieces (vtkImageToSparseVolume under pvbatch). Throws as VolumeFromImage.
+LVDIFFILTERSVOLUME_EXPORT std::unique_ptr<lvdif::DictionaryVolume> VolumeFromImageRegion(vtkImageData* image,
+  vtkDataArray* sdf, vtkDataArray* rgba, lvdif::VolumeOptions options, const int wholeLo[3],
+  const lvdif::VoxelBox& region, lvdif::Interrupter* interrupter = nullptr);
 
 /// The voxels of `extent` (inclusive point indices, inside the volume) as a
 /// volume of their own: the same chunk edge, band, dictionaries and keys

@@ -8,6 +8,13 @@
  * sparse dictionary volume with the given ChunkEdge and BandWidth (distances
  * saturate to +-BandWidth; chunks that become uniform collapse). The same
  * encoding as vtkDictionaryVolumeWriter uses for image input.
+ *
+ * Pieces (pvbatch rank r of n, UpdatePiece): a block of the whole grid's
+ * storage chunks, by the .lvdv reader's rule (LVDIFVolumeBridge::RequestedVoxels):
+ * the filter asks its input for those chunks' points and the next chunks',
+ * the output is a volume of the whole grid holding them (the other chunks
+ * uniform outside) with SetOwnedChunks, so the pieces' partitions together
+ * are exactly the serial run's.
  */
 #ifndef vtkImageToSparseVolume_h
 #define vtkImageToSparseVolume_h

@@ -447,6 +447,17 @@ void vtkPDictionaryVolumeWriter::WriteData()
   else if (!emptyPiece)
   {
     inInfo->Get(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT(), whole);
+    if (!lvdifvtk::extentIsValid(whole))
+    {
+      // an image without points (an empty vtkImageData, a source that made
+      // nothing) wrote an index of no pieces, removed the old set's pieces and
+      // Write() returned 1; its own reader then refused the index ("empty whole_extent")
+      vtkErrorMacro("the input image has no points (whole extent " << whole[0] << " " << whole[1] << " " << whole[2]
+                                                                   << " " << whole[3] << " " << whole[4] << " " << whole[5]
+                                                                   << "): nothing is written, the old file is kept");
+      this->SetErrorCode(vtkErrorCode::UnknownError);
+      return;
+    }
   }
   // The temporary files of writes of this set that were killed (their process
   // is gone) were left beside the pieces: removed first, each by the project's

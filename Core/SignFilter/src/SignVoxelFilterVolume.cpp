@@ -401,8 +401,18 @@ SignVoxelFilterStats signVoxelFilter(
   {
     interrupter.checkInterrupt();
     const std::int64_t b0 = next, b1 = std::min(lastA, b0 + slab - 1);
+    // progress within the slab too, at its stages (a volume of one slab, the
+    // usual case, reported nothing between 0 and 1), and a cancel honoured
+    // between them, before the slab writes anything
+    const double total = double(last - first + 1), done = double(std::min(b0, last + 1) - first),
+                 own = double(std::max<std::int64_t>(0, std::min(b1, last) - b0 + 1));
+    auto stage = [&](double within) {
+      interrupter.progress((done + within * own) / total);
+      interrupter.checkInterrupt();
+    };
     float* at0 = buf.data() + (b0 - base) * f.nUV;
     decodePlanes(volume, f, b0, b1, at0);
+    stage(0.1);
     if (svf1)
     {
       for (std::int64_t p = b0; p <= b1; ++p)
@@ -411,6 +421,7 @@ SignVoxelFilterStats signVoxelFilter(
         st.flips[0] += p <= last ? flips : 0;
       }
       st.iterations[0] = 1;
+      stage(0.2);
     }
     if (svf23)
     {
@@ -423,6 +434,7 @@ SignVoxelFilterStats signVoxelFilter(
       {
         planarRuns(buf.data() + (b1 - base) * f.nUV, f, 1, params); // the ghost plane after: not counted
       }
+      stage(0.6);
     }
 
     // SVF4 (reading the unflipped SVF3 results) and the write-back of the planes whose neighbours are here

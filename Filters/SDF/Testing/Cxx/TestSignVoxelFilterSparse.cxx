@@ -10,6 +10,8 @@
 
 #include "lvdif/DictionaryVolume.h"
 
+#include "vtkCallbackCommand.h"
+#include "vtkCommand.h"
 #include "vtkDataArray.h"
 #include "vtkFieldData.h"
 #include "vtkIdTypeArray.h"
@@ -224,4 +226,66 @@ TEST(vtkSignVoxelFilterSparse, OutputSharesUnchangedChunksAndEditsStaySeparate)
   EXPECT_EQ(voxels(out), outEdited) << "an edit of the input changed the output";
   EXPECT_EQ(out.sharedChunkCount(), unchanged - 2);
   EXPECT_EQ(in->sharedChunkCount(), unchanged - 2);
+}
+
+// A volume of one slab (every volume below the 128 MiB slab budget, i.e. the
+// usual case): the filter reported no progress between 0 and 1, so ParaView's
+// progress bar stood still for the whole run, and a cancel was only seen at
+// the start of a slab (so never, once begun). Now: progress at the slab's
+// stages, each one a point where a cancel is honoured.
+namespace
+{
+struct ProgressLog
+{
+  std::vector<double> values;
+  double abortAbove = 2.0; // abort at the first value past this
+};
+void logProgress(vtkObject* caller, unsigned long, void* clientData, void* callData)
+{
+  auto* log = static_cast<ProgressLog*>(clientData);
+  const double v = *static_cast<double*>(callData);
+  log->values.push_back(v);
+  if (v > log->abortAbove) static_cast<vtkAlgorithm*>(caller)->SetAbortExecute(1);
+}
+vtkSmartPointer<vtkSignVoxelFilter> oneSlabFilter(ProgressLog& log)
+{
+  vtkNew<vtkSparseDictionaryVolume> input;
+  input->SetVolume(corruptedSphere());
+  auto tp = vtkSmartPointer<vtkTrivialProducer>::New();
+  tp->SetOutput(input);
+  auto svf = vtkSmartPointer<vtkSignVoxelFilter>::New();
+  svf->SetInputConnection(tp->GetOutputPort());
+  svf->SetDevice(vtkSignVoxelFilter::DEVICE_CPU);
+  vtkNew<vtkCallbackCommand> cb;
+  cb->SetCallback(logProgress);
+  cb->SetClientData(&log);
+  svf->AddObserver(vtkCommand::ProgressEvent, cb);
+  return svf;
+}
+} // namespace
+
+TEST(vtkSignVoxelFilterSparse, AVolumeOfOneSlabReportsProgressAndHonoursACancel)
+{
+  ProgressLog log;
+  vtkSmartPointer<vtkSignVoxelFilter> svf = oneSlabFilter(log);
+  svf->Update();
+  std::vector<double> within;
+  for (const double v : log.values)
+    if (v > 0.0 && v < 1.0) within.push_back(v);
+  EXPECT_GE(within.size(), 3u) << "progress between 0 and 1";
+  for (std::size_t i = 1; i < within.size(); ++i) EXPECT_LE(within[i - 1], within[i]) << "progress goes forward";
+  ASSERT_TRUE(vtkSparseDictionaryVolume::SafeDownCast(svf->GetOutputDataObject(0))->HasVolume());
+
+  // a cancel at the first progress past 0: no result, no statistics
+  ProgressLog cancelled;
+  cancelled.abortAbove = 0.0;
+  vtkSmartPointer<vtkSignVoxelFilter> stopped = oneSlabFilter(cancelled);
+  stopped->Update();
+  auto* out = vtkSparseDictionaryVolume::SafeDownCast(stopped->GetOutputDataObject(0));
+  EXPECT_FALSE(out->HasVolume()) << "the cancelled filter's output";
+  EXPECT_EQ(out->GetFieldData()->GetArray("svf_flips"), nullptr);
+  double last = 0;
+  for (const double v : cancelled.values)
+    if (v < 1.0) last = std::max(last, v);
+  EXPECT_LT(last, 0.5) << "it stopped at the first stage past 0";
 }

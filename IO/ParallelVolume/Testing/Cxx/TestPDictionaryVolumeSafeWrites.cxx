@@ -589,3 +589,46 @@ TEST(PVolumeIO, AnImageWriteReportsProgressAndCanBeCancelled)
     for (int p = 0; p < 3; ++p)
       std::remove(vtkPDictionaryVolumeWriter::PieceFilePath(index, p, g).c_str());
 }
+
+// A new user's empty vtkImageData (or a source that made nothing) written over
+// an existing set: Write() returned 1, the old pieces were removed and the index
+// rewritten with no pieces and an empty whole extent, which the reader refuses.
+// Now the write is refused with one error and the old set stays byte for byte.
+// Oracle: the files' bytes before, and the serial round trip of the old volume.
+TEST(PVolumeIO, AnEmptyImageIsRefusedAndKeepsTheOldSet)
+{
+  vtkSmartPointer<vtkImageData> img = makeImage();
+  const std::string index = tmpName("emptyover.lvdvp");
+  writePieces(img, index, 2);
+  const std::string piece[2] = { vtkPDictionaryVolumeWriter::PieceFilePath(index, 0),
+    vtkPDictionaryVolumeWriter::PieceFilePath(index, 1) };
+  const std::string before[3] = { fileBytes(index), fileBytes(piece[0]), fileBytes(piece[1]) };
+  ASSERT_FALSE(before[1].empty());
+  std::string error;
+  vtkNew<vtkCallbackCommand> onError;
+  onError->SetClientData(&error);
+  onError->SetCallback([](vtkObject*, unsigned long, void* client, void* call) {
+    auto* t = static_cast<std::string*>(client);
+    if (t->empty()) *t = static_cast<const char*>(call);
+  });
+  vtkNew<vtkImageData> empty;
+  vtkNew<vtkPDictionaryVolumeWriter> w;
+  w->SetController(nullptr);
+  w->SetInputData(empty);
+  w->SetFileName(index.c_str());
+  w->SetNumberOfPieces(2);
+  w->AddObserver(vtkCommand::ErrorEvent, onError);
+  vtkObject::GlobalWarningDisplayOn(); // ErrorEvent fires only with it on
+  EXPECT_EQ(w->Write(), 0);
+  vtkObject::GlobalWarningDisplayOff();
+  EXPECT_NE(error.find("no points"), std::string::npos) << error;
+  EXPECT_TRUE(fileBytes(index) == before[0]) << "index";
+  for (int p = 0; p < 2; ++p)
+    EXPECT_TRUE(fileBytes(piece[p]) == before[1 + p]) << "piece " << p;
+  EXPECT_EQ(readError(index), "");
+  vtkNew<vtkPDictionaryVolumeReader> r;
+  r->SetFileName(index.c_str());
+  expectSameArrays(decoded(r), serialRoundTrip(img));
+  for (const std::string& f : { index, piece[0], piece[1] })
+    std::remove(f.c_str());
+}
