@@ -752,7 +752,11 @@ std::unique_ptr<lvdif::DictionaryVolume> FillFromImage(vtkImageData* image, vtkD
   std::atomic<std::int64_t> done{ 0 };
   std::atomic<bool> cancelled{ false };
   if (interrupter) interrupter->start("image to sparse volume");
-#pragma omp parallel for schedule(dynamic, 4) reduction(|| : sawNaN)
+  // static: the calling thread (the only one whose reports LVDIFInterrupter
+  // forwards) gets its fixed share of chunks from the start, so progress and an
+  // observer's cancel come however the threads are scheduled (with dynamic
+  // grabs a descheduled calling thread reported nothing on a loaded machine)
+#pragma omp parallel for schedule(static) reduction(|| : sawNaN)
   for (std::int64_t i = 0; i < chunks; ++i)
   {
     if (cancelled.load(std::memory_order_relaxed)) continue;
