@@ -39,6 +39,7 @@ PROXIES = {
     "vtkDictionaryVolumeWriter": ("writers", "LVDIFDictionaryVolumeWriter"),
     "vtkPDictionaryVolumeReader": ("sources", "LVDIFParallelDictionaryVolumeReader"),
     "vtkLegacyBvReader": ("sources", "LVDIFLegacyBvReader"),
+    "vtkXMLSparseVolumeReader": ("sources", "LVDIFSparseVolumeVTPDReader"),  # a saved sparse volume's .vtpd
     "vtkPDictionaryVolumeWriter": ("writers", "LVDIFParallelDictionaryVolumeWriter"),
     "vtkVolumeEditFilter": ("filters", "VolumeEditFilter"),
     "vtkLVDIFMeshReader": ("sources", "LVDIFMeshReader"),
