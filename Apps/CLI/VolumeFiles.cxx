@@ -33,19 +33,12 @@ std::string VolumeOutputDimsProblem(const std::string& path, const lvdif::Index3
 
 std::string VolumeOutputProblemForInput(const std::string& path, const std::string& input)
 {
-  if (Extension(input) != "lvdv")
-    return std::string();
-  lvdif::VolumeOptions options;
-  try
-  {
-    options = lvdif::readVolumeInfo(input).options;
-  }
-  catch (const lvdif::Error&)
-  {
+  // the input's grid from its header (a .lvdv's, a .vti's): a .lvdv or .vti of unequal
+  // spacing to .vdb was read whole, then refused
+  lvdif::VolumeOptions grid;
+  if (!LVDIFFiles::ReadGrid(input, grid))
     return std::string(); // the load names what is wrong with the file
-  }
-  // the header's spacing too: a .lvdv of unequal spacing to .vdb was read whole, then refused
-  return VolumeOutputDimsProblem(path, options.dims, options.spacing.data());
+  return VolumeOutputDimsProblem(path, grid.dims, grid.spacing.data());
 }
 
 void RequireChunkTable(const lvdif::Index3& dims, const std::string& what, const std::string& advice)

@@ -24,9 +24,11 @@
 #include "lvdif/LegacyBv.h"
 #include "lvdif/Memory.h"
 #include "lvdif/PieceTiling.h"
+#include "lvdif/VolumeFile.h"
 
 #include "vtkCallbackCommand.h"
 #include "vtkCommand.h"
+#include "vtkDataObject.h"
 #include "vtkExecutive.h"
 #include "vtkInformation.h"
 #include "vtkNew.h"
@@ -459,6 +461,43 @@ std::string GridProblem(const std::string& path, const lvdif::Index3& dims, cons
   (void)spacing;
 #endif
   return std::string();
+}
+
+bool ReadGrid(const std::string& path, lvdif::VolumeOptions& grid)
+{
+  const std::string ext = Extension(path);
+  try
+  {
+    if (ext == "lvdv")
+    {
+      grid = lvdif::readVolumeInfo(path).options;
+      return true;
+    }
+    if (ext != "vti")
+      return false;
+    auto reader = vtkSmartPointer<vtkXMLImageDataReader>::New();
+    reader->SetFileName(path.c_str());
+    Watch watch(lvdif::nullInterrupter(), { reader }); // keeps VTK's errors (the load says what is wrong)
+    if (!reader->GetExecutive()->UpdateInformation() || !watch.errors.empty() || !watch.innerErrors.empty())
+      return false;
+    vtkInformation* info = reader->GetOutputInformation(0);
+    int e[6];
+    double spacing[3] = { 1, 1, 1 }, origin[3] = { 0, 0, 0 };
+    info->Get(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT(), e);
+    if (info->Has(vtkDataObject::SPACING())) info->Get(vtkDataObject::SPACING(), spacing);
+    if (info->Has(vtkDataObject::ORIGIN())) info->Get(vtkDataObject::ORIGIN(), origin);
+    for (int a = 0; a < 3; ++a)
+    {
+      grid.dims[a] = std::max<std::int64_t>(1, std::int64_t(e[2 * a + 1]) - e[2 * a] + 1);
+      grid.spacing[a] = spacing[a];
+      grid.origin[a] = origin[a] + e[2 * a] * spacing[a];
+    }
+    return true;
+  }
+  catch (const lvdif::Error&)
+  {
+    return false;
+  }
 }
 
 std::shared_ptr<lvdif::DictionaryVolume> LoadVolume(const std::string& path, lvdif::Interrupter& interrupter)

@@ -76,6 +76,13 @@ LVDIFIOFILES_EXPORT void RequireWritable(const std::string& path);
 LVDIFIOFILES_EXPORT std::string GridProblem(
   const std::string& path, const lvdif::Index3& dims, const double* spacing = nullptr);
 
+/// The grid (dims, spacing, origin) of a volume file from its header alone,
+/// without reading its data: a .lvdv's header, a .vti's (VTK's reader's
+/// information pass). False for other formats and for a file whose header
+/// cannot be read (nothing is printed: the load names what is wrong). For
+/// GridProblem before a conversion reads the whole input.
+LVDIFIOFILES_EXPORT bool ReadGrid(const std::string& path, lvdif::VolumeOptions& grid);
+
 /// Reads a volume by extension. Throws lvdif::Error naming the file and the
 /// problem (unknown extension, the reader's own error), Cancelled when the
 /// interrupter says so.

@@ -651,6 +651,17 @@ else:
     assert r.returncode == 1 and "edits" not in r.stdout and r.stderr.strip().splitlines()[-1] == (
         f"lvdif script: {refusal}"), r
     assert open(aniso_vdb, "rb").read() == b"old"
+    # a .vti of unequal spacing likewise, from its header (it was read whole, then refused): its data is
+    # cut short (a whole read fails on it), and the refusal comes first, naming the spacing
+    with open(aniso_vti) as f:
+        text = f.read()
+    cut_vti = os.path.join(out, "aniso-cut.vti")
+    with open(cut_vti, "w") as f:
+        f.write(text.replace(values, values[:len(values) // 2]))
+    assert run("convert", cut_vti, os.path.join(out, "aniso-cut.lvdv"))[0] == 1  # a whole read fails on it
+    r = subprocess.run([exe, "convert", cut_vti, aniso_vdb], capture_output=True, text=True, timeout=60)
+    assert r.returncode == 1 and r.stderr.strip() == f"lvdif convert: {refusal} (the volume of {cut_vti})", r
+    assert open(aniso_vdb, "rb").read() == b"old"
 print("error handling OK")
 # errors about the mesh found after reading it say which file (they named none: "fit grid: the mesh
 # bounds have zero size", "mesh has no triangle of non-zero area")
