@@ -28,6 +28,22 @@ struct EdgeUse
 };
 } // namespace
 
+std::vector<std::array<std::uint32_t, 4>> facesByCornerSet(const LargeVector<std::array<std::uint32_t, 3>>& welded)
+{
+  const std::size_t n = welded.size();
+  std::vector<std::array<std::uint32_t, 4>> key(n);
+#pragma omp parallel for schedule(static)
+  for (std::int64_t ti = 0; ti < static_cast<std::int64_t>(n); ++ti)
+  {
+    const auto t = static_cast<std::size_t>(ti);
+    std::array<std::uint32_t, 3> c = welded[t];
+    std::sort(c.begin(), c.end());
+    key[t] = { c[0], c[1], c[2], static_cast<std::uint32_t>(t) };
+  }
+  parallelSort(key, std::less<std::array<std::uint32_t, 4>>());
+  return key;
+}
+
 OrientedMesh orientMesh(const TriList& tris, const LargeVector<std::array<std::uint32_t, 3>>& welded)
 {
   OrientedMesh out;
@@ -54,21 +70,9 @@ OrientedMesh orientMesh(const TriList& tris, const LargeVector<std::array<std::u
   // exact duplicates (same vertex set): keep one face of the net orientation
   // (of the group's first face when the orientations cancel)
   {
-    std::vector<std::array<std::uint32_t, 4>> key(n); // sorted ids, triangle
-#pragma omp parallel for schedule(static)
-    for (std::int64_t ti = 0; ti < static_cast<std::int64_t>(n); ++ti)
-    {
-      const auto t = static_cast<std::size_t>(ti);
-      std::array<std::uint32_t, 3> s{ id[3 * t], id[3 * t + 1], id[3 * t + 2] };
-      std::sort(s.begin(), s.end());
-      key[t] = { s[0], s[1], s[2], static_cast<std::uint32_t>(t) };
-    }
-    parallelSort(key, std::less<std::array<std::uint32_t, 4>>());
+    const std::vector<std::array<std::uint32_t, 4>> key = facesByCornerSet(welded); // sorted ids, triangle
     // orientation of t relative to the sorted order (an even permutation: +1)
-    auto parity = [&](std::uint32_t t, const std::array<std::uint32_t, 4>& k) {
-      const std::uint32_t a = id[3 * t], b = id[3 * t + 1];
-      return (a == k[0] && b == k[1]) || (a == k[1] && b == k[2]) || (a == k[2] && b == k[0]) ? 1 : -1;
-    };
+    auto parity = [&](std::uint32_t t, const std::array<std::uint32_t, 4>& k) { return cornerParity(welded[t], k); };
     for (std::size_t g = 0; g < n;)
     {
       std::size_t g1 = g;

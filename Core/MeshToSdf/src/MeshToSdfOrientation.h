@@ -53,5 +53,19 @@ struct OrientedMesh
 /// depend on the thread count.
 OrientedMesh orientMesh(const TriList& tris, const LargeVector<std::array<std::uint32_t, 3>>& welded);
 
+/// The faces keyed by their corner set, { sorted welded ids, face }, in sorted
+/// order, so that exact duplicates (the same three corners) are adjacent; the
+/// one grouping of duplicates (orientMesh, and the warnings' count). Sorts on
+/// OpenMP threads; the order does not depend on the thread count.
+std::vector<std::array<std::uint32_t, 4>> facesByCornerSet(const LargeVector<std::array<std::uint32_t, 3>>& welded);
+
+/// +1 when `corners` (a face's welded ids) run the sorted ids of its key in
+/// cyclic order (an even permutation), else -1: a duplicate's orientation.
+inline int cornerParity(const std::array<std::uint32_t, 3>& corners, const std::array<std::uint32_t, 4>& key)
+{
+  const std::uint32_t a = corners[0], b = corners[1];
+  return (a == key[0] && b == key[1]) || (a == key[1] && b == key[2]) || (a == key[2] && b == key[0]) ? 1 : -1;
+}
+
 } // namespace detail::meshtosdf
 } // namespace lvdif

@@ -2,6 +2,7 @@
 #include "MeshToSdfWarnings.h"
 
 #include "MeshToSdfInternal.h"
+#include "MeshToSdfOrientation.h"
 #include "MeshToSdfParallelSort.h"
 #include "lvdif/Memory.h"
 
@@ -94,20 +95,8 @@ DuplicateFaces duplicateFaces(const PreparedMesh& m)
   DuplicateFaces d;
   const std::size_t n = m.welded.size();
   requireMemory(static_cast<std::uint64_t>(n) * 64, "mesh to SDF: the duplicate-face count of the warnings");
-  std::vector<std::array<std::uint32_t, 4>> key(n); // sorted ids, triangle
-#pragma omp parallel for schedule(static)
-  for (std::int64_t ti = 0; ti < static_cast<std::int64_t>(n); ++ti)
-  {
-    const auto t = static_cast<std::size_t>(ti);
-    std::array<std::uint32_t, 3> c = m.welded[t];
-    std::sort(c.begin(), c.end());
-    key[t] = { c[0], c[1], c[2], static_cast<std::uint32_t>(t) };
-  }
-  parallelSort(key, std::less<std::array<std::uint32_t, 4>>());
-  auto parity = [&](const std::array<std::uint32_t, 4>& k) { // +1: t runs its sorted corners in cyclic order
-    const std::array<std::uint32_t, 3>& w = m.welded[k[3]];
-    return (w[0] == k[0] && w[1] == k[1]) || (w[0] == k[1] && w[1] == k[2]) || (w[0] == k[2] && w[1] == k[0]) ? 1 : -1;
-  };
+  const std::vector<std::array<std::uint32_t, 4>> key = facesByCornerSet(m.welded); // sorted ids, triangle
+  auto parity = [&](const std::array<std::uint32_t, 4>& k) { return cornerParity(m.welded[k[3]], k); };
   struct Use
   {
     std::uint32_t lo, hi;
