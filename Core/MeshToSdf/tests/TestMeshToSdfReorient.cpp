@@ -5,7 +5,9 @@
 // farther than 1 voxel, after reversing 30 % / 70 % of the faces at random
 // and duplicating some; and without the option the mesh as given is used
 // (30 % reversed: the exact winding number is ~0.4 inside, so the inside is
-// mostly lost: that is what the option is for).
+// mostly lost: that is what the option is for). Also closed meshes whose
+// faces all have reversed copies (every edge cancelled): the option gives
+// their solid back, and every sign's warning names it.
 #include "MeshToSdfOracle.h"
 #include "lvdif/Cuda.h"
 #include "lvdif/MeshToSdf.h"
