@@ -76,6 +76,12 @@ struct PreparedMesh
   double boundaryLength = 0;      // total length of the boundary chain (0 when closed)
   std::size_t boundaryEdges = 0;  // edges of non-zero net multiplicity
   std::size_t orientationSeams = 0; // of those, edges of exactly two faces running them the same way
+  /// Edges used by more than two faces (non-manifold). Every exact duplicate
+  /// face (the same three welded corners) that is not alone with its copies
+  /// has such edges, so a closed mesh (boundaryEdges 0) without them has no
+  /// duplicates worth looking for: the duplicate searches (the reoriented
+  /// winding sign's orientation pass, the warnings' count) run only then.
+  std::size_t crowdedEdges = 0;
   /// The boundary chain as directed segments (a -> b, repeated per unit of
   /// multiplicity): the oriented edges of the triangles that do not cancel.
   std::vector<std::array<V3, 2>> boundary;
@@ -279,8 +285,10 @@ public:
   explicit WindingSigner(const PreparedMesh& mesh, std::shared_ptr<const Bvh> meshBvh = nullptr);
   ~WindingSigner();
   /// False when the boundary is empty or a few edges of multiplicity 1 (holes):
-  /// then no orientation pass runs and the closure is the cone over dM, as on
-  /// CUDA. True: the orientation pass runs (flippedTriangles() tells what it found).
+  /// then no orientation pass runs for M as given and the closure is M itself
+  /// or the cone over dM, as on CUDA (a closed mesh with edges of more than two
+  /// faces still gets the pass, for M+ alone: duplicates of closed parts).
+  /// True: the orientation pass runs (flippedTriangles() tells what it found).
   static bool mayHaveReversedFaces(const PreparedMesh& mesh);
   /// Flips the sign of the voxels of one row (unsigned distances in out,
   /// world distance = out / toOut) where |w| >= 0.5. Positions x0 + i * h.
@@ -386,7 +394,7 @@ private:
   std::size_t OpposedDuplicates = 0;     // OrientedMesh::opposedDuplicates
   std::unique_ptr<DipoleTree> Flipped;   // F reversed, weight 2, R reversed, weight 1, and the caps S (null if all empty)
   std::unique_ptr<DipoleTree> CapsOnly;  // the caps S alone (reoriented), when F or R is not empty
-  std::vector<std::uint8_t> OrientState;            // OrientedMesh::state when Plus closes M itself but F or R is not empty
+  std::vector<std::uint8_t> OrientState;            // OrientedMesh::state when Plus closes M itself (caps over dM, or a closed M) but F or R is not empty
   std::vector<std::array<V3, 2>> OrientBoundary;     // the boundary of M+ then
   mutable std::once_flag ReorientedOnce;
   mutable std::unique_ptr<Closure> Reoriented;       // M+ closed by caps (reorientFaces), from OrientState

@@ -254,6 +254,7 @@ void edgePass(PreparedMesh& out, std::size_t nv, const LargeVector<V3>* weldPos,
     std::vector<double> lengthOf;            // per vertex with boundary edges, in vertex order
     std::size_t edges = 0;
     std::size_t seams = 0; // edges of two faces that run them the same way (one of the two is reversed)
+    std::size_t crowded = 0; // edges of more than two (kept) faces
   };
   std::vector<BucketBoundary> bucketBoundary(boundary ? nb : 0);
   const std::int64_t nbI = static_cast<std::int64_t>(nb);
@@ -287,12 +288,15 @@ void edgePass(PreparedMesh& out, std::size_t nv, const LargeVector<V3>* weldPos,
           std::size_t e1g = e;
           V3 en;
           int mult = 0;
+          std::size_t faces = 0; // uses by kept (non-degenerate) triangles
           for (; e1g < g1 && static_cast<std::uint32_t>(group[e1g].key >> 32) == hiE; ++e1g)
           {
             const std::uint32_t cf = static_cast<std::uint32_t>(group[e1g].key);
             if (normals && cf < nk) en = en + out.tris[cf / 3].n;
+            faces += cf < nk;
             mult += group[e1g].dir; // a -> b with a < b counts +1
           }
+          if (boundary) bucketBoundary[b].crowded += faces > 2;
           if (normals)
           {
             const V3 enu = normalized(en);
@@ -334,6 +338,7 @@ void edgePass(PreparedMesh& out, std::size_t nv, const LargeVector<V3>* weldPos,
       for (const double l : bb.lengthOf) out.boundaryLength += l;
       out.boundaryEdges += bb.edges;
       out.orientationSeams += bb.seams;
+      out.crowdedEdges += bb.crowded;
       out.boundary.insert(out.boundary.end(), bb.segments.begin(), bb.segments.end());
     }
   }

@@ -93,9 +93,11 @@ bool SolidCheckBesideGpu::applies(const MeshToSdfPrepared& mesh, const MeshToSdf
 {
   MeshToSdfPrepared::Impl& impl = mesh.impl();
   // a mesh with a boundary is no solid, and its winding structures may take
-  // seconds (the orientation pass, caps): only closed meshes go ahead
+  // seconds (the orientation pass, caps): only closed meshes go ahead; nor is
+  // one with an edge of more than two faces (the check's first step fails on
+  // it, and its winding structures run the orientation pass: reversed copies)
   return normalsSign(options) && options.solidsByWinding && impl.mesh.boundaryEdges == 0 &&
-    !impl.solidBoundaryKnown() &&
+    impl.mesh.crowdedEdges == 0 && !impl.solidBoundaryKnown() &&
     (options.sign != SignMode::Normal ||
       (!options.useVertexNormals && options.accel == MeshToSdfAccel::Bvh && meshInsideGrid(mesh, grid, extent)));
 }

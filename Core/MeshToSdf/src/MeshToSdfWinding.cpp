@@ -302,6 +302,28 @@ WindingSigner::WindingSigner(const PreparedMesh& mesh, std::shared_ptr<const Bvh
     const double t0 = now();
     this->Plus.bvh = meshBvh ? std::move(meshBvh) : std::make_shared<const Bvh>(mesh.tris);
     trace("winding: closure BVH (the mesh's)", now() - t0);
+    // Closed parts whose faces all have copies (a face and its reversed copy
+    // cancel: w = 0 there) leave every edge cancelled; only edges of more
+    // than two faces betray them. M as given needs nothing more, but the
+    // re-oriented mesh M+ keeps each duplicate once (reorientFaces: before,
+    // with no orientation pass, it was M and such parts stayed empty). A
+    // clean closed mesh has no such edge and pays nothing.
+    if (mesh.crowdedEdges > 0)
+    {
+      const double t1 = now();
+      OrientedMesh om = orientMesh(mesh.tris, mesh.welded);
+      trace("winding: orientation pass (a closed mesh with edges of more than two faces)", now() - t1);
+      checkBuildInterrupt();
+      if (om.removedCount != 0)
+      {
+        // (the faces as given are a closed chain: nothing is reversed in M
+        // itself, so ReversedFaces, the warning's count, stays 0)
+        this->CorrectedFaces = om.flippedCount + om.removedCount;
+        this->OpposedDuplicates = om.opposedDuplicates;
+        this->OrientState = std::move(om.state); // for reorientFaces, built on first use
+        this->OrientBoundary = std::move(om.boundary);
+      }
+    }
     return;
   }
   // The orientation pass (a sort of every edge) only pays when the boundary

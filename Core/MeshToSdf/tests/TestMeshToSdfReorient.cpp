@@ -5,7 +5,9 @@
 // farther than 1 voxel, after reversing 30 % / 70 % of the faces at random
 // and duplicating some; and without the option the mesh as given is used
 // (30 % reversed: the exact winding number is ~0.4 inside, so the inside is
-// mostly lost: that is what the option is for).
+// mostly lost: that is what the option is for). Also closed meshes whose
+// faces all have reversed copies (every edge cancelled): the option gives
+// their solid back, and every sign's warning names it.
 #include "MeshToSdfOracle.h"
 #include "lvdif/Cuda.h"
 #include "lvdif/MeshToSdf.h"
@@ -159,4 +161,114 @@ TEST(MeshToSdfReorient, WithoutTheOptionTheMeshAsGivenDecides)
   MeshToSdfStats st;
   const Count c = compareWith(clean, m, false, grid(), st);
   EXPECT_GT(c.wrong, c.far / 50) << "as given, " << c.wrong << " of " << c.far << " far voxels differ from the undamaged mesh";
+}
+
+namespace
+{
+/// `clean` with a reversed copy of every face: a closed mesh (every oriented
+/// edge cancels) whose winding number is 0 everywhere, as exporters of
+/// double-sided surfaces write it. firstCopies: every third face's copy comes
+/// before the face itself (the faces kept once are then not all the original's).
+TriangleMesh withReversedCopies(const TriangleMesh& clean, bool firstCopies)
+{
+  TriangleMesh m = clean;
+  m.triangles.clear();
+  for (std::size_t t = 0; t < clean.triangles.size(); ++t)
+  {
+    auto f = clean.triangles[t], r = f;
+    std::swap(r[1], r[2]);
+    const bool before = firstCopies && t % 3 == 0;
+    m.triangles.push_back(before ? r : f);
+    m.triangles.push_back(before ? f : r);
+  }
+  return m;
+}
+
+std::size_t faces(const TriangleMesh& m)
+{
+  std::size_t n = 0;
+  for (const auto& t : m.triangles) n += !oracle::degenerate(m, t);
+  return n;
+}
+} // namespace
+
+// A closed sphere whose every face has a reversed copy: every oriented edge
+// cancels, so the orientation pass did not run and --reorient computed the
+// winding number of the mesh as given, 0 everywhere: nothing inside, with
+// the warning that re-orienting "cannot help". Now the pass runs for M+ when
+// some edge has more than two faces (each edge here has four), M+ keeps each
+// pair once, and the field is the undamaged sphere's (brute-force winding
+// numbers) on every voxel farther than 1 voxel; as given, the warning names
+// the option instead of denying it, and says the mesh is closed once each
+// pair is kept once.
+TEST(MeshToSdfReorient, AClosedMeshWhoseFacesAllHaveReversedCopiesGetsItsSolidBack)
+{
+  const TriangleMesh clean = makeSphereMesh(0.05f, -0.03f, 0.02f, 1.0f, 12, 24);
+  for (const bool firstCopies : { false, true })
+  {
+    const TriangleMesh m = withReversedCopies(clean, firstCopies);
+    MeshToSdfStats st;
+    const Count fixed = compareWith(clean, m, true, grid(), st);
+    EXPECT_EQ(st.boundaryEdges, 0u); // the premise: closed as given
+    EXPECT_GT(fixed.far, grid().count() / 2);
+    EXPECT_EQ(fixed.wrong, 0) << fixed.wrong << " of " << fixed.far << " far voxels wrong";
+    EXPECT_TRUE(st.warnings.empty()) << st.warnings[0];
+    const Count given = compareWith(clean, m, false, grid(), st);
+    EXPECT_GT(given.wrong, given.far / 10); // w = 0: the inside is lost as given
+    ASSERT_EQ(st.warnings.size(), 1u);
+    EXPECT_NE(st.warnings[0].find("--reorient"), std::string::npos) << st.warnings[0];
+    EXPECT_EQ(st.warnings[0].find("cannot help"), std::string::npos) << st.warnings[0];
+    // kept once, the pairs close the sphere whichever copy comes first (it
+    // said "still has 512 boundary edges" when some copies came first)
+    EXPECT_NE(st.warnings[0].find("closed once each is kept once"), std::string::npos) << st.warnings[0];
+  }
+}
+
+// The same closed double-sided sphere beside a clean box, in every sign: the
+// box keeps voxels inside, so the "nothing inside" warning does not speak,
+// and the duplicates of a closed mesh were not looked for (to keep clean
+// closed meshes' calls free): the winding sign dropped the sphere (w = 0) and
+// the normal and pseudo-normal signs read cancelled normals at its edges and
+// corners, without a word. Now one warning counts the cancelled faces (every
+// face of the sphere and its copy) and names --reorient, which gives both
+// solids (brute-force winding numbers of the undamaged mesh). A closed mesh
+// with edges of more than two faces but no duplicates (two boxes sharing an
+// edge), or whose sphere is doubled in one orientation (w = 2 inside, the
+// same field), is not warned about.
+TEST(MeshToSdfReorient, ReversedCopiesOfAClosedPartAreNamedInEverySign)
+{
+  const TriangleMesh sphere = makeSphereMesh(-0.45f, -0.03f, 0.02f, 0.7f, 10, 20);
+  const TriangleMesh box = makeBoxMesh({ 0.3f, -0.5f, -0.45f }, { 0.9f, 0.2f, 0.5f });
+  const TriangleMesh clean = oracle::merge(sphere, box);
+  const TriangleMesh m = oracle::merge(withReversedCopies(sphere, true), box);
+  const std::size_t cancelled = 2 * faces(sphere);
+  GridGeometry g;
+  g.dims = { 27, 16, 16 };
+  g.origin = { -1.3, -0.8, -0.7 };
+  g.spacing = { 0.1, 0.1, 0.1 };
+  for (const SignMode s : { SignMode::WindingNumber, SignMode::PseudoNormal, SignMode::Normal })
+  {
+    MeshToSdfOptions o;
+    o.sign = s;
+    o.device = Device::Cpu;
+    std::vector<float> sdf(static_cast<std::size_t>(g.count()));
+    const MeshToSdfStats st = meshToSdf(m, FloatGridView{ sdf.data(), g }, o);
+    ASSERT_EQ(st.warnings.size(), 1u) << toString(s);
+    const std::string& w = st.warnings[0];
+    EXPECT_NE(w.find(std::to_string(cancelled) + " faces are cancelled by exact duplicates of opposite orientation"),
+      std::string::npos) << w;
+    EXPECT_NE(w.find("--reorient"), std::string::npos) << w;
+    // the clean mesh, one-orientation doubling and a shared edge: no word
+    for (const TriangleMesh& quiet : { clean, oracle::merge(clean, sphere),
+           oracle::merge(box, makeBoxMesh({ 0.9f, 0.2f, -0.45f }, { 1.2f, 0.5f, 0.5f })) })
+    {
+      const MeshToSdfStats q = meshToSdf(quiet, FloatGridView{ sdf.data(), g }, o);
+      EXPECT_TRUE(q.warnings.empty()) << toString(s) << ": " << q.warnings[0];
+    }
+  }
+  MeshToSdfStats st;
+  const Count fixed = compareWith(clean, m, true, g, st);
+  EXPECT_GT(fixed.far, g.count() / 2);
+  EXPECT_EQ(fixed.wrong, 0) << fixed.wrong << " of " << fixed.far << " far voxels wrong";
+  EXPECT_TRUE(st.warnings.empty());
 }
