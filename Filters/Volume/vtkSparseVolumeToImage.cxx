@@ -1,5 +1,6 @@
 #include "vtkSparseVolumeToImage.h"
 
+#include "LVDIFInterrupter.h"
 #include "LVDIFVolumeBridge.h"
 #include "vtkSparseDictionaryVolume.h"
 
@@ -120,7 +121,8 @@ int vtkSparseVolumeToImage::Produce(vtkInformationVector** inputVector, vtkInfor
   int ext[6];
   outInfo->Get(vtkStreamingDemandDrivenPipeline::UPDATE_EXTENT(), ext);
   const lvdif::DictionaryVolume& volume = *input->GetVolume();
-  return LVDIFVolumeBridge::CallCore(this, [&] {
+  LVDIFInterrupter interrupter(this);
+  const bool ok = LVDIFVolumeBridge::CallCore(this, [&] {
     std::uint64_t points = 1;
     std::ostringstream what;
     what << "a dense image of "; // (the error names the class already)
@@ -141,8 +143,15 @@ int vtkSparseVolumeToImage::Produce(vtkInformationVector** inputVector, vtkInfor
       if (!warning.empty()) vtkWarningMacro(<< warning);
     }
     lvdif::requireMemory(bytes, what.str(), limit);
-    LVDIFVolumeBridge::FillImage(volume, ext, output, this->WithColor);
-  }) ? 1 : 0;
+    LVDIFVolumeBridge::FillImage(volume, ext, output, this->WithColor, &interrupter);
+  });
+  if (!ok)
+  {
+    output->Initialize(); // a cancel (no error: VTK's rule) or an error: no image, not a part of one
+    return 0;
+  }
+  this->UpdateProgress(1.0);
+  return 1;
 }
 
 void vtkSparseVolumeToImage::PrintSelf(ostream& os, vtkIndent indent)
