@@ -10,6 +10,7 @@
 #include "vtkImageToSparseVolume.h"
 #include "vtkSparseDictionaryVolume.h"
 #include "vtkSparseVolumeToImage.h"
+#include "vtkDictionaryVolumeToImage.h"
 
 #include "lvdif/AnalyticFill.h"
 #include "lvdif/DictionaryVolume.h"
@@ -234,12 +235,26 @@ TEST(vtkSparseVolumeToImage, ReportsProgressAndHonoursACancel)
   o.spacing = { 0.5, 0.25, 2.0 };
   auto volume = std::make_shared<lvdif::DictionaryVolume>(o);
   lvdif::fillFromFunction(*volume, lvdif::sphereSdf(18, 45, 6, 9));
+  // and vtkDictionaryVolumeToImage (a Core volume held by C++ code), which had neither either
+  for (const bool sourceOfCoreVolume : { false, true })
   for (const bool cancel : { false, true })
   {
     vtkNew<vtkSparseDictionaryVolume> sparse;
     sparse->SetVolume(volume);
-    vtkNew<vtkSparseVolumeToImage> f;
-    f->SetInputData(sparse);
+    vtkSmartPointer<vtkImageAlgorithm> f;
+    if (sourceOfCoreVolume)
+    {
+      auto source = vtkSmartPointer<vtkDictionaryVolumeToImage>::New();
+      source->SetVolume(volume);
+      f = source;
+    }
+    else
+    {
+      auto toImage = vtkSmartPointer<vtkSparseVolumeToImage>::New();
+      toImage->SetInputData(sparse);
+      f = toImage;
+    }
+    SCOPED_TRACE(sourceOfCoreVolume ? "vtkDictionaryVolumeToImage" : "vtkSparseVolumeToImage");
     Progress log;
     log.abortPastZero = cancel;
     vtkNew<vtkCallbackCommand> cb;
@@ -247,7 +262,7 @@ TEST(vtkSparseVolumeToImage, ReportsProgressAndHonoursACancel)
     cb->SetClientData(&log);
     f->AddObserver(vtkCommand::ProgressEvent, cb);
     f->Update();
-    vtkImageData* image = f->GetOutput();
+    vtkImageData* image = vtkImageData::SafeDownCast(f->GetOutputDataObject(0));
     int within = 0;
     for (const double v : log.values) within += v > 0 && v < 1 ? 1 : 0;
     if (!cancel)
