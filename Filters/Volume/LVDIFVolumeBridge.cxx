@@ -473,7 +473,8 @@ bool InformationFailed(vtkInformation* outInfo)
   return true;
 }
 
-void FillImage(const lvdif::DictionaryVolume& volume, const int extentIn[6], vtkImageData* image, bool withColor)
+void FillImage(const lvdif::DictionaryVolume& volume, const int extentIn[6], vtkImageData* image, bool withColor,
+  lvdif::Interrupter* interrupter)
 {
   const auto& dims = volume.dims();
   int ext[6];
@@ -512,9 +513,25 @@ void FillImage(const lvdif::DictionaryVolume& volume, const int extentIn[6], vtk
   const float* table = volume.sdfDictionary().table();
   const std::int64_t edgeMask = volume.chunkEdge() - 1;
   const std::size_t colorCount = colors.size();
+  // progress and cancel by planes, as VolumeFromImage's by chunks (Sparse Volume
+  // To Image of a large extent ran with no progress and ignored ParaView's cancel);
+  // static: the calling thread, whose reports LVDIFInterrupter forwards, has its share
+  std::atomic<std::int64_t> done{ 0 };
+  std::atomic<bool> cancelled{ false };
+  if (interrupter) interrupter->start("sparse volume to image");
 #pragma omp parallel for schedule(static) if (parallel)
   for (std::int64_t k = 0; k < nz; ++k)
   {
+    if (cancelled.load(std::memory_order_relaxed)) continue;
+    if (interrupter)
+    {
+      if (interrupter->wasInterrupted())
+      {
+        cancelled = true;
+        continue;
+      }
+      interrupter->progress(static_cast<double>(done.fetch_add(1) + 1) / static_cast<double>(nz));
+    }
     const std::int64_t z = ext[4] + k;
     for (std::int64_t j = 0; j < ny; ++j)
     {
@@ -544,6 +561,10 @@ void FillImage(const lvdif::DictionaryVolume& volume, const int extentIn[6], vtk
         x0 = x1 + 1;
       }
     }
+  }
+  if (cancelled)
+  {
+    throw lvdif::Error(lvdif::ErrorCode::Cancelled, "operation cancelled");
   }
   // ParaView's data information then needs no range pass of its own
   StoreRange(sdf);

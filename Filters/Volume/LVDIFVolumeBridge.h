@@ -169,8 +169,10 @@ LVDIFFILTERSVOLUME_EXPORT vtkInformationIntegerKey* CHUNK_EDGE();
 
 /// Writes the voxels of `extent` (clipped to the volume) into `image`:
 /// extent, origin, spacing, `sdf` and, if withColor, `rgba`.
-LVDIFFILTERSVOLUME_EXPORT void FillImage(
-  const lvdif::DictionaryVolume& volume, const int extent[6], vtkImageData* image, bool withColor);
+/// With an `interrupter`: progress over the planes and its cancel polled at each
+/// plane (Error(Cancelled) after the planes begun; `image` then gets no arrays).
+LVDIFFILTERSVOLUME_EXPORT void FillImage(const lvdif::DictionaryVolume& volume, const int extent[6],
+  vtkImageData* image, bool withColor, lvdif::Interrupter* interrupter = nullptr);
 
 /// Builds a dictionary volume from an image's float SDF array (any real type
 /// is converted) and optional RGBA array (1 to 4 unsigned char components).

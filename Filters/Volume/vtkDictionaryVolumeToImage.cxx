@@ -1,5 +1,6 @@
 #include "vtkDictionaryVolumeToImage.h"
 
+#include "LVDIFInterrupter.h"
 #include "LVDIFVolumeBridge.h"
 
 #include "lvdif/DictionaryVolume.h"
@@ -51,15 +52,14 @@ int vtkDictionaryVolumeToImage::RequestData(
   vtkImageData* output = vtkImageData::GetData(outInfo);
   int ext[6];
   outInfo->Get(vtkStreamingDemandDrivenPipeline::UPDATE_EXTENT(), ext);
-  try
+  // progress and cancel as vtkSparseVolumeToImage's (it had neither)
+  LVDIFInterrupter interrupter(this);
+  if (!LVDIFVolumeBridge::CallCore(this, [&] { LVDIFVolumeBridge::FillImage(*this->Volume, ext, output, this->WithColor, &interrupter); }))
   {
-    LVDIFVolumeBridge::FillImage(*this->Volume, ext, output, this->WithColor);
-  }
-  catch (const lvdif::Error& e)
-  {
-    vtkErrorMacro(<< e.what());
+    output->Initialize(); // a cancel (no error) or an error: no image, not a part of one
     return LVDIFVolumeBridge::FailReported(outInfo);
   }
+  this->UpdateProgress(1.0);
   return 1;
 }
 

@@ -1,5 +1,6 @@
 #include "vtkSparseVolumeToImage.h"
 
+#include "LVDIFInterrupter.h"
 #include "LVDIFVolumeBridge.h"
 #include "vtkSparseDictionaryVolume.h"
 
@@ -16,6 +17,21 @@
 #include <string>
 
 vtkStandardNewMacro(vtkSparseVolumeToImage);
+
+namespace
+{
+/// What a user can change when the dense image of `points` is refused: without
+/// colours (4 bytes a point) when that fits, else a smaller extent or the
+/// sparse volume's own filters, which need no dense image.
+std::string RefusalFix(std::uint64_t points, bool withColor, std::uint64_t limit)
+{
+  if (withColor && points <= limit / 4)
+    return "; without colours (WithColor off, ParaView's With Color) it needs " + lvdif::formatBytes(points * 4) +
+      ", within the limit";
+  return "; ask for a smaller extent (an update extent: a vtkExtractVOI after it asks for its box only), or use the "
+         "sparse volume's own filters (Chunked Marching Cubes, the writers), which need no dense image";
+}
+}
 
 vtkSparseVolumeToImage::vtkSparseVolumeToImage() = default;
 vtkSparseVolumeToImage::~vtkSparseVolumeToImage() = default;
@@ -120,7 +136,8 @@ int vtkSparseVolumeToImage::Produce(vtkInformationVector** inputVector, vtkInfor
   int ext[6];
   outInfo->Get(vtkStreamingDemandDrivenPipeline::UPDATE_EXTENT(), ext);
   const lvdif::DictionaryVolume& volume = *input->GetVolume();
-  return LVDIFVolumeBridge::CallCore(this, [&] {
+  LVDIFInterrupter interrupter(this);
+  const bool ok = LVDIFVolumeBridge::CallCore(this, [&] {
     std::uint64_t points = 1;
     std::ostringstream what;
     what << "a dense image of "; // (the error names the class already)
@@ -140,9 +157,24 @@ int vtkSparseVolumeToImage::Produce(vtkInformationVector** inputVector, vtkInfor
         LVDIFVolumeBridge::DenseImageWarning(bytes, ext, limit, "the sparse volume's own filters need no dense image");
       if (!warning.empty()) vtkWarningMacro(<< warning);
     }
-    lvdif::requireMemory(bytes, what.str(), limit);
-    LVDIFVolumeBridge::FillImage(volume, ext, output, this->WithColor);
-  }) ? 1 : 0;
+    try
+    {
+      lvdif::requireMemory(bytes, what.str(), limit);
+    }
+    catch (const lvdif::Error& e)
+    {
+      // the refusal named only LVDIF_MEMORY_LIMIT: name what fits within the limit as well
+      throw lvdif::Error(e.code(), std::string(e.what()) + RefusalFix(points, this->WithColor, limit));
+    }
+    LVDIFVolumeBridge::FillImage(volume, ext, output, this->WithColor, &interrupter);
+  });
+  if (!ok)
+  {
+    output->Initialize(); // a cancel (no error: VTK's rule) or an error: no image, not a part of one
+    return 0;
+  }
+  this->UpdateProgress(1.0);
+  return 1;
 }
 
 void vtkSparseVolumeToImage::PrintSelf(ostream& os, vtkIndent indent)

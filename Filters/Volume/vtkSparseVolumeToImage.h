@@ -9,7 +9,9 @@
  * (LVDIF_MEMORY_LIMIT, or 90% of the available memory). It produces any
  * sub-extent (CAN_PRODUCE_SUB_EXTENT): streaming and pvbatch pieces decode
  * only their part. GetRequiredBytes() tells the size of the whole image
- * after UpdateInformation.
+ * after UpdateInformation. Progress over the image's planes (LVDIFInterrupter:
+ * in 1 % steps or every quarter second); AbortExecute stops it at the next
+ * plane, with no error, and leaves an empty output, never a part-filled image.
  */
 #ifndef vtkSparseVolumeToImage_h
 #define vtkSparseVolumeToImage_h

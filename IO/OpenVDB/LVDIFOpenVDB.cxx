@@ -148,7 +148,7 @@ void checkExport(const DictionaryVolume& volume, const ExportOptions& options)
   require(!options.sdfName.empty(), "OpenVDB export: empty grid name");
 }
 
-void exportLevelSet(
+std::uint64_t exportLevelSet(
   const DictionaryVolume& volume, const std::string& path, const ExportOptions& options, Interrupter& interrupter)
 {
   checkExport(volume, options);
@@ -236,6 +236,7 @@ void exportLevelSet(
     throw Error(ErrorCode::IoFailure, "cannot rename the written .vdb onto '" + path + "'");
   }
   interrupter.progress(1.0);
+  return static_cast<std::uint64_t>(sdf->activeVoxelCount());
 }
 
 std::unique_ptr<DictionaryVolume> importLevelSet(

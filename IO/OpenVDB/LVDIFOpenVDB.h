@@ -92,8 +92,10 @@ LVDIFIOOPENVDB_EXPORT void checkExport(const DictionaryVolume& volume, const Exp
 LVDIFIOOPENVDB_EXPORT void checkExportSpacing(const double spacing[3]);
 
 /// Writes the .vdb (Error(InvalidArgument) for anisotropic spacing,
-/// Error(IoFailure) when OpenVDB cannot write, Error(Cancelled)).
-LVDIFIOOPENVDB_EXPORT void exportLevelSet(const DictionaryVolume& volume, const std::string& path,
+/// Error(IoFailure) when OpenVDB cannot write, Error(Cancelled)). Returns the
+/// active voxels of the level set written: 0 for a volume with no voxel within
+/// the band (no surface), whose file importLevelSet refuses ("no active voxels").
+LVDIFIOOPENVDB_EXPORT std::uint64_t exportLevelSet(const DictionaryVolume& volume, const std::string& path,
   const ExportOptions& options = ExportOptions(), Interrupter& interrupter = nullInterrupter());
 
 /// Reads a level set (Error(IoFailure) for a file OpenVDB cannot open,

@@ -59,7 +59,14 @@ void vtkOpenVDBLevelSetWriter::Save(
                                             : "OpenVDB's default: a level set's background is finite; set HalfWidth for another")
                     << ")");
   }
-  lvdif::vdb::exportLevelSet(volume, this->FileName, exportOptions, interrupter);
+  if (lvdif::vdb::exportLevelSet(volume, this->FileName, exportOptions, interrupter) == 0)
+  {
+    // valid OpenVDB, but probably not what was wanted: it was written without a word,
+    // and reading it back failed ("no active voxels"); an all-inside volume reads as empty
+    vtkWarningMacro(<< "'" << this->FileName << "': the volume has no voxel within the narrow band (no surface), "
+                    << "so the level set holds no active voxel: it reads back as nothing (vtkOpenVDBLevelSetReader "
+                    << "refuses it, and an inside is lost); .lvdv keeps such a volume");
+  }
 }
 
 void vtkOpenVDBLevelSetWriter::PrintSelf(ostream& os, vtkIndent indent)

@@ -431,7 +431,10 @@ void vtkPDictionaryVolumeWriter::WriteData()
   if (!emptyPiece &&
     ((!image && !sparse) || !inInfo || (!sparse && !inInfo->Has(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT()))))
   {
-    vtkErrorMacro("no input image or sparse volume");
+    // a sparse volume from a producer that failed or made nothing is no missing input:
+    // said as the other volume writers say it (it read "no input image or sparse volume")
+    vtkErrorMacro(<< (sparseInput && !sparse ? "the input sparse volume holds no dictionary volume"
+                                             : "no input image or sparse volume"));
     this->SetErrorCode(vtkErrorCode::UnknownError);
     return;
   }

@@ -552,6 +552,11 @@ std::vector<ChunkMesh> ChunkedMarchingCubes::extractChunks(const std::vector<std
   std::atomic<bool> cancelled{ false };
   std::atomic<std::int64_t> done{ 0 };
   const std::int64_t n = static_cast<std::int64_t>(ids.size());
+  // progress about 1024 times a run, and after every chunk of a small one: every
+  // 64th chunk left a run of one batch (vtkChunkedMarchingCubes meshes a sparse
+  // volume 64 chunks at a time) with no progress between 0 and 1, so ParaView's
+  // bar jumped and its cancel, asked from a progress event, never came
+  const std::int64_t progressStep = std::max<std::int64_t>(1, n / 1024);
   Error firstError(ErrorCode::InvalidArgument, "");
   std::atomic<bool> failed{ false };
   // the GPU path meshes one chunk at a time (its kernels fill the device)
@@ -572,7 +577,7 @@ std::vector<ChunkMesh> ChunkedMarchingCubes::extractChunks(const std::vector<std
     }
     const std::int64_t d = ++done;
     if (interrupter.wasInterrupted()) cancelled = true;
-    if ((d & 63) == 0)
+    if (d % progressStep == 0)
     {
 #pragma omp critical(lvdif_mc_progress)
       interrupter.progress(static_cast<double>(d) / static_cast<double>(n));

@@ -11,6 +11,8 @@
 #include "lvdif/DictionaryVolume.h"
 
 #include "vtkAppendPolyData.h"
+#include "vtkCallbackCommand.h"
+#include "vtkCommand.h"
 #include "vtkCompositeDataIterator.h"
 #include "vtkPartitionedDataSet.h"
 #include "vtkTrivialProducer.h"
@@ -96,4 +98,78 @@ TEST(ChunkedMarchingCubesSparse, EditedInPlaceRemeshesOnlyDirtyChunks)
   mc->SetIsoValue(0.5);
   mc->Update();
   EXPECT_EQ(mc->GetLastChunksMeshed(), -1);
+}
+
+// A sparse volume of one batch of marching-cubes chunks (at most 64: the
+// filter meshes 64 at a time) reported no progress between 0 and 1 (Core
+// forwarded every 64th chunk only), so ParaView's progress bar jumped and a
+// cancel asked from a progress event came only after the work. Now progress
+// within the batch, in both output modes, and a cancel at the first report
+// past 0 leaves an empty output. Oracle for "it stopped": the same run
+// without the cancel has triangles.
+namespace
+{
+struct McProgress
+{
+  std::vector<double> values;
+  bool abortPastZero = false;
+};
+void onMcProgress(vtkObject* caller, unsigned long, void* client, void* call)
+{
+  auto* p = static_cast<McProgress*>(client);
+  const double v = *static_cast<double*>(call);
+  p->values.push_back(v);
+  if (p->abortPastZero && v > 0) static_cast<vtkAlgorithm*>(caller)->SetAbortExecute(1);
+}
+vtkIdType triangles(vtkDataObject* out)
+{
+  if (auto* pd = vtkPolyData::SafeDownCast(out)) return pd->GetNumberOfCells();
+  auto* pds = vtkPartitionedDataSet::SafeDownCast(out);
+  vtkIdType n = 0;
+  for (unsigned int i = 0; pds && i < pds->GetNumberOfPartitions(); ++i)
+    n += pds->GetPartition(i) ? pds->GetPartition(i)->GetNumberOfCells() : 0;
+  return n;
+}
+}
+
+TEST(ChunkedMarchingCubesSparse, OneBatchReportsProgressAndHonoursACancel)
+{
+  lvdif::VolumeOptions o;
+  o.dims = { 128, 128, 128 };
+  o.chunkEdge = 32;
+  auto volume = std::make_shared<lvdif::DictionaryVolume>(o);
+  lvdif::fillFromFunction(*volume, lvdif::sphereSdf(64, 64, 64, 50));
+  for (const int mode : { vtkChunkedMarchingCubes::PARTITIONED, vtkChunkedMarchingCubes::MERGED })
+    for (const bool cancel : { false, true })
+    {
+      vtkNew<vtkSparseDictionaryVolume> sparse;
+      sparse->SetVolume(volume);
+      vtkNew<vtkChunkedMarchingCubes> mc;
+      mc->SetInputData(sparse);
+      mc->SetChunkEdge(32); // 4 x 4 x 4 chunks: one batch
+      mc->SetOutputMode(mode);
+      McProgress log;
+      log.abortPastZero = cancel;
+      vtkNew<vtkCallbackCommand> cb;
+      cb->SetCallback(onMcProgress);
+      cb->SetClientData(&log);
+      mc->AddObserver(vtkCommand::ProgressEvent, cb);
+      mc->Update();
+      int within = 0;
+      for (const double v : log.values) within += v > 0 && v < 1 ? 1 : 0;
+      const vtkIdType n = triangles(mc->GetOutputDataObject(0));
+      if (!cancel)
+      {
+        EXPECT_GT(n, 1000) << "mode " << mode;
+        EXPECT_GT(within, 5) << "progress between 0 and 1, mode " << mode;
+        ASSERT_FALSE(log.values.empty());
+        EXPECT_EQ(log.values.back(), 1.0);
+        EXPECT_TRUE(std::is_sorted(log.values.begin(), log.values.end())) << "progress never goes back";
+      }
+      else
+      {
+        EXPECT_EQ(n, 0) << "the cancelled filter's output, mode " << mode;
+        EXPECT_LE(within, 3) << "it stopped soon after the cancel, mode " << mode;
+      }
+    }
 }

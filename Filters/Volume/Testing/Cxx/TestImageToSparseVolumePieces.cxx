@@ -9,6 +9,11 @@
 // the dense image's own values at those points.
 #include "vtkImageToSparseVolume.h"
 #include "vtkSparseDictionaryVolume.h"
+#include "vtkSparseVolumeToImage.h"
+#include "vtkDictionaryVolumeToImage.h"
+
+#include "lvdif/AnalyticFill.h"
+#include "lvdif/DictionaryVolume.h"
 
 #include "vtkCallbackCommand.h"
 #include "vtkCommand.h"
@@ -212,6 +217,86 @@ TEST(vtkImageToSparseVolume, ReportsProgressAndHonoursACancel)
     {
       EXPECT_FALSE(out->HasVolume()) << "the cancelled filter's output";
       EXPECT_LT(within, 10) << "it stopped soon after the cancel";
+    }
+  }
+}
+
+// Sparse Volume To Image reported no progress at all and could not be
+// cancelled. Now progress over the planes, and a cancel at the first report
+// past 0 leaves an empty image (no points, no arrays: never a part-filled one).
+// On a non-cubic grid of unequal spacing and a non-zero origin; oracle for
+// the finished image: the Core volume's own voxel accessor and grid.
+TEST(vtkSparseVolumeToImage, ReportsProgressAndHonoursACancel)
+{
+  lvdif::VolumeOptions o;
+  o.dims = { 37, 90, 13 };
+  o.chunkEdge = 8;
+  o.origin = { -3.5, 2.0, 10.25 };
+  o.spacing = { 0.5, 0.25, 2.0 };
+  auto volume = std::make_shared<lvdif::DictionaryVolume>(o);
+  lvdif::fillFromFunction(*volume, lvdif::sphereSdf(18, 45, 6, 9));
+  // and vtkDictionaryVolumeToImage (a Core volume held by C++ code), which had neither either
+  for (const bool sourceOfCoreVolume : { false, true })
+  for (const bool cancel : { false, true })
+  {
+    vtkNew<vtkSparseDictionaryVolume> sparse;
+    sparse->SetVolume(volume);
+    vtkSmartPointer<vtkImageAlgorithm> f;
+    if (sourceOfCoreVolume)
+    {
+      auto source = vtkSmartPointer<vtkDictionaryVolumeToImage>::New();
+      source->SetVolume(volume);
+      f = source;
+    }
+    else
+    {
+      auto toImage = vtkSmartPointer<vtkSparseVolumeToImage>::New();
+      toImage->SetInputData(sparse);
+      f = toImage;
+    }
+    SCOPED_TRACE(sourceOfCoreVolume ? "vtkDictionaryVolumeToImage" : "vtkSparseVolumeToImage");
+    Progress log;
+    log.abortPastZero = cancel;
+    vtkNew<vtkCallbackCommand> cb;
+    cb->SetCallback(onProgress);
+    cb->SetClientData(&log);
+    f->AddObserver(vtkCommand::ProgressEvent, cb);
+    f->Update();
+    vtkImageData* image = vtkImageData::SafeDownCast(f->GetOutputDataObject(0));
+    int within = 0;
+    for (const double v : log.values) within += v > 0 && v < 1 ? 1 : 0;
+    if (!cancel)
+    {
+      EXPECT_GT(within, 5) << "progress between 0 and 1";
+      ASSERT_FALSE(log.values.empty());
+      EXPECT_EQ(log.values.back(), 1.0);
+      int dims[3];
+      image->GetDimensions(dims);
+      ASSERT_EQ(dims[0], 37);
+      ASSERT_EQ(dims[1], 90);
+      ASSERT_EQ(dims[2], 13);
+      double origin[3], spacing[3];
+      image->GetOrigin(origin);
+      image->GetSpacing(spacing);
+      for (int a = 0; a < 3; ++a)
+      {
+        EXPECT_EQ(origin[a], o.origin[a]);
+        EXPECT_EQ(spacing[a], o.spacing[a]);
+      }
+      vtkDataArray* sdf = image->GetPointData()->GetArray("sdf");
+      ASSERT_NE(sdf, nullptr);
+      vtkIdType wrong = 0, p = 0;
+      for (int z = 0; z < 13; ++z)
+        for (int y = 0; y < 90; ++y)
+          for (int x = 0; x < 37; ++x, ++p)
+            wrong += sdf->GetTuple1(p) == volume->sdf(x, y, z) ? 0 : 1;
+      EXPECT_EQ(wrong, 0);
+    }
+    else
+    {
+      EXPECT_EQ(image->GetNumberOfPoints(), 0) << "the cancelled filter's output";
+      EXPECT_EQ(image->GetPointData()->GetNumberOfArrays(), 0);
+      EXPECT_LT(within, 3) << "it stopped at the plane after the cancel";
     }
   }
 }

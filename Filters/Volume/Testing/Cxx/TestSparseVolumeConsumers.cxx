@@ -13,6 +13,8 @@
 #include "vtkCompositeDataIterator.h"
 #include "vtkCompositeDataSet.h"
 #include "vtkDataObjectTreeIterator.h"
+#include "vtkExtractVOI.h"
+#include "vtkSparseVolumeToImage.h"
 #include "vtkPartitionedDataSet.h"
 #include "vtkDataArray.h"
 #include "vtkImageData.h"
@@ -394,4 +396,63 @@ TEST(SparseVolumeConsumers, APartitionAloneOverTheLimitSaysSo)
   EXPECT_LT(decoded, n);
   EXPECT_EQ(limit.Count("holding the sparse volume's decoded partitions"), 1u) << limit.Messages();
   EXPECT_EQ(limit.Count("on its own"), 1u) << limit.Messages();
+}
+
+// Sparse Volume To Image over the memory limit said only "set
+// LVDIF_MEMORY_LIMIT to change it". It now names what fits: without colours
+// (4 bytes a point) when that is within the limit, else a smaller extent,
+// which a downstream vtkExtractVOI asks for.
+// Oracle for both fixes named: they run within the same limit, and give the
+// Core volume's own values.
+TEST(SparseVolumeConsumers, DenseImageRefusalNamesWhatFits)
+{
+  lvdif::VolumeOptions o;
+  o.dims = { 64, 64, 64 };
+  o.chunkEdge = 16;
+  auto volume = std::make_shared<lvdif::DictionaryVolume>(o);
+  lvdif::fillFromFunction(*volume, lvdif::sphereSdf(32, 32, 32, 20));
+  vtkNew<vtkSparseDictionaryVolume> sparse;
+  sparse->SetVolume(volume);
+  const double points = 64.0 * 64 * 64;
+  {
+    LimitAndMessages limit(bytesText(6 * points)); // sdf + rgba: 8 bytes a point; sdf alone: 4
+    vtkNew<vtkSparseVolumeToImage> dense;
+    dense->SetInputData(sparse);
+    dense->Update();
+    EXPECT_EQ(dense->GetOutput()->GetNumberOfPoints(), 0);
+    EXPECT_NE(limit.Messages().find("more than the limit"), std::string::npos) << limit.Messages();
+    EXPECT_NE(limit.Messages().find("without colours (WithColor off"), std::string::npos) << limit.Messages();
+    EXPECT_NE(limit.Messages().find("1.00 MiB, within the limit"), std::string::npos) << limit.Messages();
+    dense->WithColorOff();
+    dense->Update();
+    EXPECT_EQ(dense->GetOutput()->GetNumberOfPoints(), static_cast<vtkIdType>(points)) << "the fix named works";
+  }
+  {
+    LimitAndMessages limit(bytesText(2 * points)); // not even the sdf alone
+    vtkNew<vtkSparseVolumeToImage> dense;
+    dense->SetInputData(sparse);
+    dense->Update();
+    EXPECT_EQ(dense->GetOutput()->GetNumberOfPoints(), 0);
+    EXPECT_EQ(limit.Messages().find("without colours"), std::string::npos) << "it would not fit either";
+    EXPECT_NE(limit.Messages().find("ask for a smaller extent"), std::string::npos) << limit.Messages();
+    vtkNew<vtkSparseVolumeToImage> asked; // the fix named: only the box is asked for
+    asked->SetInputData(sparse);
+    vtkNew<vtkExtractVOI> voi;
+    voi->SetInputConnection(asked->GetOutputPort());
+    voi->SetVOI(10, 41, 5, 36, 20, 51);
+    voi->Update();
+    vtkImageData* box = voi->GetOutput();
+    ASSERT_EQ(box->GetNumberOfPoints(), 32 * 32 * 32) << limit.Messages();
+    vtkDataArray* sdf = box->GetPointData()->GetArray("sdf");
+    ASSERT_NE(sdf, nullptr);
+    vtkIdType wrong = 0;
+    for (int z = 20; z <= 51; ++z)
+      for (int y = 5; y <= 36; ++y)
+        for (int x = 10; x <= 41; ++x)
+        {
+          int ijk[3] = { x, y, z };
+          wrong += sdf->GetTuple1(box->ComputePointId(ijk)) == volume->sdf(x, y, z) ? 0 : 1;
+        }
+    EXPECT_EQ(wrong, 0);
+  }
 }

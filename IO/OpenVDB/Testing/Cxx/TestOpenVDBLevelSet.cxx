@@ -480,3 +480,43 @@ TEST(OpenVDBLevelSet, PiecesOwnTheirChunksOnly)
   }
   std::remove(path.c_str());
 }
+
+// A volume with no voxel within the band (an empty canvas, or all inside) was
+// written as a level set without active voxels, without a word; reading it
+// back then failed ("no active voxels") and an inside read as nothing. The
+// writer now says so in one warning (the file is valid OpenVDB, so it is
+// written). Oracle: the reader's refusal of that file; a volume with a
+// surface gets no such warning.
+TEST(OpenVDBLevelSet, AVolumeWithoutSurfaceIsWrittenWithAWarning)
+{
+  for (const bool surface : { false, true })
+  {
+    vtkSmartPointer<vtkImageData> image = makeSdfImage({ 0, 19, 0, 15, 0, 11 }, { O[0], O[1], O[2] }, { H, H, H },
+      [surface](int i, int, int) { return surface ? i - 9.5 : -20.0; }, colourOf);
+    const std::string path = tempFile(surface ? "surface.vdb" : "inside.vdb");
+    vtkNew<ErrorCatcher> warnings;
+    vtkNew<vtkOpenVDBLevelSetWriter> writer;
+    writer->AddObserver(vtkCommand::WarningEvent, warnings);
+    writer->SetInputData(image);
+    writer->SetFileName(path.c_str());
+    writer->SetHalfWidth(HW);
+    EXPECT_EQ(writer->Write(), 1) << "valid OpenVDB: written";
+    vtkNew<ErrorCatcher> errors;
+    vtkNew<vtkOpenVDBLevelSetReader> reader;
+    reader->AddObserver(vtkCommand::ErrorEvent, errors);
+    reader->SetFileName(path.c_str());
+    reader->Update();
+    if (surface)
+    {
+      EXPECT_EQ(warnings->Count, 0) << warnings->Last;
+      EXPECT_EQ(errors->Count, 0) << errors->Last;
+    }
+    else
+    {
+      EXPECT_NE(errors->Last.find("no active voxels"), std::string::npos) << "the oracle: " << errors->Last;
+      EXPECT_EQ(warnings->Count, 1) << warnings->Last;
+      EXPECT_NE(warnings->Last.find("no voxel within the narrow band"), std::string::npos) << warnings->Last;
+    }
+    std::remove(path.c_str());
+  }
+}

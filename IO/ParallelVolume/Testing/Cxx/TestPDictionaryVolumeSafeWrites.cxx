@@ -632,3 +632,39 @@ TEST(PVolumeIO, AnEmptyImageIsRefusedAndKeepsTheOldSet)
   for (const std::string& f : { index, piece[0], piece[1] })
     std::remove(f.c_str());
 }
+
+// A sparse volume that holds no volume (its producer failed or made nothing)
+// given to the .lvdvp writer was "no input image or sparse volume", as if
+// nothing were connected; the .lvdv, .vdb and .bv writers say "the input
+// sparse volume holds no dictionary volume", and so does this one now. The old
+// set stays byte for byte (oracle: the files' bytes before).
+TEST(PVolumeIO, ASparseVolumeWithoutVolumeIsNamedAsSuch)
+{
+  vtkSmartPointer<vtkImageData> img = makeImage();
+  const std::string index = tmpName("novolume.lvdvp");
+  writePieces(img, index, 2);
+  const std::string piece0 = vtkPDictionaryVolumeWriter::PieceFilePath(index, 0);
+  const std::string before[2] = { fileBytes(index), fileBytes(piece0) };
+  std::string error;
+  vtkNew<vtkCallbackCommand> onError;
+  onError->SetClientData(&error);
+  onError->SetCallback([](vtkObject*, unsigned long, void* client, void* call) {
+    auto* t = static_cast<std::string*>(client);
+    if (t->empty()) *t = static_cast<const char*>(call);
+  });
+  vtkNew<vtkSparseDictionaryVolume> none;
+  vtkNew<vtkPDictionaryVolumeWriter> w;
+  w->SetController(nullptr);
+  w->SetInputData(none);
+  w->SetFileName(index.c_str());
+  w->SetNumberOfPieces(2);
+  w->AddObserver(vtkCommand::ErrorEvent, onError);
+  vtkObject::GlobalWarningDisplayOn(); // ErrorEvent fires only with it on
+  EXPECT_EQ(w->Write(), 0);
+  vtkObject::GlobalWarningDisplayOff();
+  EXPECT_NE(error.find("the input sparse volume holds no dictionary volume"), std::string::npos) << error;
+  EXPECT_TRUE(fileBytes(index) == before[0]) << "index";
+  EXPECT_TRUE(fileBytes(piece0) == before[1]) << "piece 0";
+  for (const std::string& f : { index, piece0, vtkPDictionaryVolumeWriter::PieceFilePath(index, 1) })
+    std::remove(f.c_str());
+}
