@@ -164,6 +164,9 @@ lvdif::TriangleMesh ToTriangleMesh(vtkPolyData* pd, bool withNormals)
 {
   lvdif::TriangleMesh m;
   const vtkIdType np = pd->GetNumberOfPoints();
+  if (np > static_cast<vtkIdType>(std::numeric_limits<std::uint32_t>::max()))
+    throw lvdif::Error(lvdif::ErrorCode::InvalidArgument,
+      "the mesh has " + std::to_string(np) + " points, more than 32-bit indices reach (4294967295)");
   m.points.resize(static_cast<std::size_t>(np));
   for (vtkIdType i = 0; i < np; ++i)
   {
@@ -182,11 +185,20 @@ lvdif::TriangleMesh ToTriangleMesh(vtkPolyData* pd, bool withNormals)
       m.normals[i] = { static_cast<float>(n[0]), static_cast<float>(n[1]), static_cast<float>(n[2]) };
     }
   }
-  auto id = [](vtkIdType v) { return static_cast<std::uint32_t>(v); };
+  // VTK's ids are 64-bit and no reader checks a cell's against the points: an id of 2^32 + 2 was cast
+  // to point 2 (a wrong triangle, without a word), and a negative one said "refers to point 4294967295"
+  vtkIdType cell = 0;
+  const char* kind = "polygon";
+  auto id = [&](vtkIdType v) {
+    if (v < 0 || v >= np)
+      throw lvdif::Error(lvdif::ErrorCode::InvalidArgument, std::string(kind) + " " + std::to_string(cell) +
+          " of the mesh refers to point " + std::to_string(v) + ", but the mesh has " + std::to_string(np) + " points");
+    return static_cast<std::uint32_t>(v);
+  };
   vtkIdType n;
   const vtkIdType* ids;
   vtkCellArray* polys = pd->GetPolys();
-  for (polys->InitTraversal(); polys->GetNextCell(n, ids);)
+  for (polys->InitTraversal(); polys->GetNextCell(n, ids); ++cell)
   {
     for (vtkIdType k = 1; k + 1 < n; ++k)
     {
@@ -194,7 +206,9 @@ lvdif::TriangleMesh ToTriangleMesh(vtkPolyData* pd, bool withNormals)
     }
   }
   vtkCellArray* strips = pd->GetStrips();
-  for (strips->InitTraversal(); strips->GetNextCell(n, ids);)
+  kind = "triangle strip";
+  cell = 0;
+  for (strips->InitTraversal(); strips->GetNextCell(n, ids); ++cell)
   {
     for (vtkIdType k = 0; k + 2 < n; ++k)
     {

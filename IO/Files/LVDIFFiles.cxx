@@ -1,4 +1,5 @@
 #include "LVDIFFiles.h"
+#include "LVDIFXmlNesting.h"
 
 #include "LVDIFVolumeBridge.h"
 
@@ -47,12 +48,21 @@
 
 #include <algorithm>
 #include <cctype>
+#include <cerrno>
+#include <exception>
+#include <fcntl.h>
 #include <functional>
+#include <thread>
+#include <unistd.h>
 
 namespace LVDIFFiles
 {
 namespace
 {
+/// The deepest nesting of a .vti's XML elements read (VTKFile, ImageData, Piece,
+/// PointData, DataArray, InformationKey, Value: 7 at most as VTK writes them).
+constexpr int MaxXmlNesting = 64;
+
 /// Runs a VTK algorithm for Core-style callers: progress and cancel through
 /// the interrupter, the algorithm's errors turned into one lvdif::Error.
 struct Watch
@@ -60,7 +70,11 @@ struct Watch
   lvdif::Interrupter& interrupter;
   std::string errors;
   std::string innerErrors; // of the objects inside a reader (VTK's XML parser)
-  vtkNew<vtkCallbackCommand> onProgress, onError, onInnerError;
+  // the executive's "Algorithm vtkX(0x...) returned failure for request: vtkInformation ..." and
+  // its dump of the request, a dozen lines: only the algorithm's name kept, said only when
+  // the algorithm itself said nothing (VTK's XML writers fail on a full disk without a word)
+  std::string executiveErrors;
+  vtkNew<vtkCallbackCommand> onProgress, onError, onInnerError, onExecutiveError;
 
   Watch(lvdif::Interrupter& in, const std::vector<vtkAlgorithm*>& algorithms)
     : interrupter(in)
@@ -79,6 +93,17 @@ struct Watch
       const std::string text = LVDIFVolumeBridge::MessageText(static_cast<const char*>(call));
       if (w->errors.empty()) w->errors = text; // the first error names the cause
     });
+    this->onExecutiveError->SetClientData(this);
+    this->onExecutiveError->SetCallback([](vtkObject*, unsigned long, void* client, void* call) {
+      auto* w = static_cast<Watch*>(client);
+      const std::string text = static_cast<const char*>(call);
+      const auto at = text.find("Algorithm "), paren = text.find('(', at == std::string::npos ? 0 : at);
+      if (!w->executiveErrors.empty()) return;
+      if (at != std::string::npos && paren != std::string::npos && text.find("returned failure", paren) != std::string::npos)
+        w->executiveErrors = text.substr(at + 10, paren - at - 10) + " failed without saying why";
+      else
+        w->executiveErrors = LVDIFVolumeBridge::MessageText(text.substr(0, text.find('\n')).c_str());
+    });
     this->onInnerError->SetClientData(this);
     this->onInnerError->SetCallback([](vtkObject*, unsigned long, void* client, void* call) {
       auto* w = static_cast<Watch*>(client);
@@ -88,7 +113,7 @@ struct Watch
     {
       a->AddObserver(vtkCommand::ProgressEvent, this->onProgress);
       a->AddObserver(vtkCommand::ErrorEvent, this->onError);
-      a->GetExecutive()->AddObserver(vtkCommand::ErrorEvent, this->onError);
+      a->GetExecutive()->AddObserver(vtkCommand::ErrorEvent, this->onExecutiveError);
       if (auto* xml = vtkXMLReader::SafeDownCast(a))
       {
         // the reader's own XML parser (made at each read) is no observed
@@ -105,7 +130,9 @@ struct Watch
   void check(bool ok, const std::string& what)
   {
     this->interrupter.checkInterrupt();
+    ok = ok && this->executiveErrors.empty(); // (a writer's Write() answered 1 over the executive's failure)
     if (this->errors.empty() && !ok) this->errors = this->innerErrors;
+    if (this->errors.empty() && !ok) this->errors = this->executiveErrors;
     if (!ok || !this->errors.empty())
     {
       const std::string text =
@@ -368,6 +395,96 @@ std::shared_ptr<lvdif::DictionaryVolume> volumeOf(vtkAlgorithm* a)
   auto* sparse = vtkSparseDictionaryVolume::SafeDownCast(a->GetOutputDataObject(0));
   return sparse ? sparse->GetVolume() : nullptr;
 }
+
+/// The safe save (lvdif::saveAtomically) of a VTK writer that says nothing when
+/// a write fails (vtkPLYWriter and vtkOBJWriter write through an unchecked FILE*
+/// or ofstream, so on a full disk Write() answered 1 over a cut file, which the
+/// save then renamed over the old one). The writer writes into a pipe (through a
+/// link to its /proc/self/fd path: it writes in order, never seeks) and a thread
+/// copies the bytes into the save's checked sink, whose failure (ENOSPC) is the
+/// save's. False, nothing written, where no link can be made beside the file (a
+/// FAT folder): the caller saves by name.
+bool saveThroughPipe(const std::string& path, const std::function<void(const std::string& target)>& write)
+{
+  int fds[2];
+  if (::pipe2(fds, O_CLOEXEC) != 0)
+    return false;
+  // the writer is given a link to the pipe named as the save's temporary files ("x.ply.tmp-PID-XXXXXX.ply":
+  // the file's extension, as vtkPLYWriter adds ".ply" to a name without it; a killed save's is
+  // removed by the next save, lvdif::removeStaleTemporaries). A folder without links (FAT): false.
+  const auto dot = path.find_last_of('.'), slash = path.find_last_of('/');
+  const std::string ext = dot == std::string::npos || (slash != std::string::npos && dot < slash) ? "" : path.substr(dot);
+  std::string link = path + ".tmp-" + std::to_string(::getpid()) + "-XXXXXX" + ext;
+  const int made = ::mkstemps(&link[0], static_cast<int>(ext.size()));
+  const bool linked = made >= 0 && ::close(made) == 0 && ::unlink(link.c_str()) == 0 &&
+    ::symlink(("/proc/self/fd/" + std::to_string(fds[1])).c_str(), link.c_str()) == 0;
+  auto closePipe = [&] {
+    ::unlink(link.c_str());
+    if (fds[1] >= 0)
+      ::close(fds[1]);
+    ::close(fds[0]);
+  };
+  if (!linked)
+  {
+    if (made >= 0)
+      ::unlink(link.c_str()); // (a file or a link left by a failed step)
+    closePipe();
+    return false;
+  }
+  try
+  {
+    lvdif::saveAtomically(path, [&](lvdif::ByteSink& sink) {
+      std::exception_ptr failed;
+      // drains the pipe to its end even after a failure (a writer left writing into a
+      // closed pipe would get SIGPIPE)
+      std::thread copy([&] {
+        std::vector<char> buffer(std::size_t(1) << 16);
+        for (;;)
+        {
+          const ssize_t n = ::read(fds[0], buffer.data(), buffer.size());
+          if (n < 0 && errno == EINTR)
+            continue;
+          if (n <= 0)
+            break;
+          if (!failed)
+          {
+            try
+            {
+              sink.write(buffer.data(), static_cast<std::size_t>(n));
+            }
+            catch (...)
+            {
+              failed = std::current_exception();
+            }
+          }
+        }
+      });
+      try
+      {
+        write(link);
+      }
+      catch (...)
+      {
+        ::close(fds[1]);
+        fds[1] = -1;
+        copy.join();
+        throw;
+      }
+      ::close(fds[1]); // the writer closed its own: the copy reads to the end
+      fds[1] = -1;
+      copy.join();
+      if (failed)
+        std::rethrow_exception(failed);
+    });
+  }
+  catch (...)
+  {
+    closePipe();
+    throw;
+  }
+  closePipe();
+  return true;
+}
 } // namespace
 
 const std::vector<Format>& Formats()
@@ -475,6 +592,7 @@ bool ReadGrid(const std::string& path, lvdif::VolumeOptions& grid)
     }
     if (ext != "vti")
       return false;
+    RequireXmlNestingBelow(path, MaxXmlNesting, "cannot read '" + path + "'");
     auto reader = vtkSmartPointer<vtkXMLImageDataReader>::New();
     reader->SetFileName(path.c_str());
     Watch watch(lvdif::nullInterrupter(), { reader }); // keeps VTK's errors (the load says what is wrong)
@@ -518,6 +636,8 @@ std::shared_ptr<lvdif::DictionaryVolume> LoadVolume(const std::string& path, lvd
           what + ": the file is empty" + (text.empty() ? "" : " (blank)") + ": no VTK image in it");
     }
   }
+  if (f->extension == "vti")
+    RequireXmlNestingBelow(path, MaxXmlNesting, what);
   vtkSmartPointer<vtkAlgorithm> reader, last;
   if (f->extension == "lvdv")
   {
@@ -639,7 +759,7 @@ void SaveVolume(const std::shared_ptr<lvdif::DictionaryVolume>& volume, const st
   Watch watch(interrupter, watched);
   interrupter.start("save volume");
   auto write = [&] {
-    const bool ok = writer->GetExecutive()->Update() != 0;
+    const bool ok = writer->GetExecutive()->Update() != 0 && writer->GetErrorCode() == 0;
     watch.check(ok, "cannot write '" + path + "'");
   };
   if (byName)
@@ -673,44 +793,77 @@ void SaveMesh(vtkPolyData* mesh, const std::string& path)
 {
   const Format* f = &RequireFormat(path, Kind::Mesh, true);
   vtkSmartPointer<vtkAlgorithm> writer;
-  std::function<int()> write;
+  std::function<int(const std::string& target)> write; // the writer writes to `target`
+  // A save never destroys the old file: the writer writes a temporary file renamed over it
+  // (the editor's export wrote in place, so a failing write lost the old mesh). The PLY and
+  // OBJ writers never check their writes (on a full disk Write() answered 1 over a cut file):
+  // their bytes go through a pipe into the save's checked sink (saveThroughPipe).
+  enum class Route
+  {
+    ByName, // a writer that reports a failed write itself
+    Pipe
+  } route = Route::ByName;
   if (f->extension == "ply")
   {
     auto w = vtkSmartPointer<vtkPLYWriter>::New();
-    w->SetFileName(path.c_str());
+    route = Route::Pipe;
     w->SetFileTypeToBinary();
     w->SetArrayName("rgba");
     w->SetColorModeToDefault();
     w->EnableAlphaOn();
     writer = w;
-    write = [w] { return w->Write(); };
+    write = [w](const std::string& target) {
+      w->SetFileName(target.c_str());
+      return w->Write();
+    };
   }
   else if (f->extension == "obj")
   {
     auto w = vtkSmartPointer<vtkOBJWriter>::New();
-    w->SetFileName(path.c_str());
+    route = Route::Pipe;
     writer = w;
-    write = [w] { return w->Write(); };
+    write = [w](const std::string& target) {
+      w->SetFileName(target.c_str());
+      return w->Write();
+    };
   }
   else if (f->extension == "stl")
   {
     auto w = vtkSmartPointer<vtkSTLWriter>::New();
-    w->SetFileName(path.c_str());
     w->SetFileTypeToBinary();
     writer = w;
-    write = [w] { return w->Write(); };
+    write = [w](const std::string& target) {
+      w->SetFileName(target.c_str());
+      return w->Write();
+    };
   }
   else
   {
     auto w = vtkSmartPointer<vtkXMLPolyDataWriter>::New();
-    w->SetFileName(path.c_str());
     writer = w;
-    write = [w] { return w->Write(); };
+    write = [w](const std::string& target) {
+      w->SetFileName(target.c_str());
+      return w->Write();
+    };
   }
   writer->SetInputDataObject(mesh);
   Watch watch(lvdif::nullInterrupter(), { writer });
-  const bool ok = write() != 0;
-  watch.check(ok, "cannot write '" + path + "'");
+  auto run = [&](const std::string& target) {
+    // (VTK's XML writer answered 1 on a full disk, its error code set)
+    watch.check(write(target) != 0 && writer->GetErrorCode() == 0, "cannot write '" + path + "'");
+  };
+  try
+  {
+    if (route == Route::ByName)
+      lvdif::saveAtomicallyByName(path, run); // (a temporary of the same extension)
+    else if (!saveThroughPipe(path, run))
+      lvdif::saveAtomicallyByName(path, run); // a folder without links: as before, a full disk unseen
+  }
+  catch (const lvdif::Error& e)
+  {
+    // the save's own failures name its temporary file: the file given first, as the volumes' saves
+    throw lvdif::Error(e.code(), LVDIFVolumeBridge::WithContext("cannot write '" + path + "': ", e.what()));
+  }
 }
 
 } // namespace LVDIFFiles

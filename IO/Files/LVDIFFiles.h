@@ -98,7 +98,9 @@ LVDIFIOFILES_EXPORT void SaveVolume(const std::shared_ptr<lvdif::DictionaryVolum
 LVDIFIOFILES_EXPORT vtkSmartPointer<vtkPolyData> LoadMesh(const std::string& path);
 
 /// Writes a mesh by extension (binary where the format allows; `rgba` as
-/// colours in .ply). Throws lvdif::Error on an unknown extension or failure.
+/// colours in .ply), crash-safely: a temporary file renamed over the old one, so
+/// a failed write (a full disk too) leaves the old file as it was. Throws
+/// lvdif::Error on an unknown extension or failure.
 LVDIFIOFILES_EXPORT void SaveMesh(vtkPolyData* mesh, const std::string& path);
 }
 

@@ -8,8 +8,11 @@
 #include <openvdb/tools/SignedFloodFill.h>
 
 #include <algorithm>
+#include <cerrno>
 #include <cmath>
 #include <cstdio>
+#include <cstring>
+#include <fstream>
 #include <sstream>
 #include <unistd.h>
 
@@ -44,6 +47,16 @@ std::vector<GridSummary> summarize(const openvdb::GridPtrVec& grids)
   }
   return out;
 }
+
+/// io::File::write's archive (seekable, the same bytes) into a stream of the caller's,
+/// which can report a failed write (File's own ofstream is never checked).
+struct CheckedArchive : openvdb::io::Archive
+{
+  void writeTo(std::ostream& os, const openvdb::GridPtrVec& grids) const
+  {
+    this->openvdb::io::Archive::write(os, grids, /*seekable=*/true);
+  }
+};
 
 /// Opens a file, turning OpenVDB's exceptions into lvdif::Error.
 void openFile(openvdb::io::File& file, const std::string& path)
@@ -217,24 +230,30 @@ std::uint64_t exportLevelSet(
   {
     grids.push_back(rgba);
   }
-  // Crash-safe as our own files: write beside the target, then rename over it.
-  const std::string tmp = path + ".tmp" + std::to_string(::getpid());
-  try
-  {
-    openvdb::io::File file(tmp);
-    file.write(grids);
-    file.close();
-  }
-  catch (const std::exception& e)
-  {
-    std::remove(tmp.c_str());
-    throw Error(ErrorCode::IoFailure, "OpenVDB cannot write '" + path + "': " + e.what());
-  }
-  if (std::rename(tmp.c_str(), path.c_str()) != 0)
-  {
-    std::remove(tmp.c_str());
-    throw Error(ErrorCode::IoFailure, "cannot rename the written .vdb onto '" + path + "'");
-  }
+  // The project's one safe save (a temporary file renamed over the old one; it was a
+  // "<path>.tmp<pid>" of its own), into a stream that throws when a write fails:
+  // io::File::write writes through an ofstream it never checks, so on a full disk it wrote
+  // a cut file without a word, which was renamed over the old one (status 0).
+  saveAtomicallyByName(path, [&](const std::string& tmp) {
+    std::ofstream file(tmp, std::ios::out | std::ios::binary | std::ios::trunc);
+    if (!file)
+      throw Error(ErrorCode::IoFailure, "OpenVDB cannot write '" + path + "': cannot open '" + tmp + "'");
+    file.exceptions(std::ios::failbit | std::ios::badbit);
+    try
+    {
+      CheckedArchive().writeTo(file, grids);
+      file.close();
+    }
+    catch (const std::ios_base::failure&)
+    {
+      const int error = errno;
+      throw Error(ErrorCode::IoFailure, "OpenVDB cannot write '" + path + "': " + std::strerror(error ? error : EIO));
+    }
+    catch (const std::exception& e)
+    {
+      throw Error(ErrorCode::IoFailure, "OpenVDB cannot write '" + path + "': " + e.what());
+    }
+  });
   interrupter.progress(1.0);
   return static_cast<std::uint64_t>(sdf->activeVoxelCount());
 }

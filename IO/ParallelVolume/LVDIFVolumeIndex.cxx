@@ -1,6 +1,7 @@
 #include "LVDIFVolumeIndex.h"
 
 #include "lvdif/ByteStream.h"
+#include "lvdif/DictionaryVolume.h"
 #include "lvdif/Error.h"
 #include "lvdif/Memory.h"
 #include "lvdif/PieceTiling.h"
@@ -200,6 +201,21 @@ VolumeIndex readVolumeIndex(const std::string& path)
     fail(0, lineNo == 0 ? "empty file" : std::string("no '") + MAGIC + " <version>' line");
   if (!haveWhole || !haveOrigin || !haveSpacing)
     fail(0, "whole_extent, origin and spacing are required");
+  // the volume's one geometry rule (finite, spacing >= 1e-30, every point within +-1e30), on the grid
+  // the reader makes (origin at the whole extent's first point): "spacing -1 1 1" or "0 1 1" passed,
+  // the pipeline was told that grid, and the read failed later in the volume's own words
+  {
+    lvdif::VolumeOptions grid;
+    for (int a = 0; a < 3; ++a)
+    {
+      grid.dims[a] = static_cast<std::int64_t>(index.wholeExtent[2 * a + 1]) - index.wholeExtent[2 * a] + 1;
+      grid.origin[a] = index.origin[a] + index.spacing[a] * index.wholeExtent[2 * a];
+      grid.spacing[a] = index.spacing[a];
+    }
+    const std::string geometry = lvdif::DictionaryVolume::checkGeometry(grid);
+    if (!geometry.empty())
+      fail(0, "origin and spacing: " + geometry);
+  }
   if (declaredPieces != static_cast<int>(index.pieces.size()))
     fail(0, "declares " + std::to_string(declaredPieces) + " pieces, lists " + std::to_string(index.pieces.size()));
   // the pieces tile the whole extent: a duplicate or overlapping piece (two

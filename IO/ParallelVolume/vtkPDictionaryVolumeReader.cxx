@@ -21,6 +21,9 @@
 #include "vtkStreamingDemandDrivenPipeline.h"
 
 #include <algorithm>
+#include <cmath>
+#include <iomanip>
+#include <locale>
 #include <sstream>
 #include <utility>
 #include <vector>
@@ -115,6 +118,55 @@ lvdif::VolumeOptions indexOptions(const lvdifvtk::VolumeIndex& index, const std:
   return o;
 }
 
+/// A piece's voxels in the volume's indices (from 0).
+lvdif::VoxelBox pieceBox(const lvdifvtk::VolumeIndex& index, const lvdifvtk::VolumeIndexPiece& piece)
+{
+  lvdif::VoxelBox box;
+  for (int a = 0; a < 3; ++a)
+  {
+    box.lo[a] = static_cast<std::int64_t>(piece.extent[2 * a]) - index.wholeExtent[2 * a];
+    box.hi[a] = static_cast<std::int64_t>(piece.extent[2 * a + 1]) - index.wholeExtent[2 * a];
+  }
+  return box;
+}
+
+/// The piece file's header against the index: its size, and its grid where
+/// the index puts it (spacing, and origin = the index's origin + spacing x the
+/// piece's first point, as the writer makes it; to a millionth of a voxel). A
+/// piece of another size was refused only after the whole volume was made, and
+/// one of another grid (a file of another set copied in) was read without a word.
+void checkPiece(const lvdifvtk::VolumeIndex& index, const lvdifvtk::VolumeIndexPiece& piece, const std::string& dir)
+{
+  const lvdif::VolumeOptions o = inPiece(piece.file, [&] { return lvdif::readVolumeInfo(dir + piece.file).options; });
+  const lvdif::VoxelBox box = pieceBox(index, piece);
+  auto text = [](double x, double y, double z) {
+    std::ostringstream s;
+    s.imbue(std::locale::classic());
+    s << std::setprecision(10) << x << " " << y << " " << z;
+    return s.str();
+  };
+  for (int a = 0; a < 3; ++a)
+    if (o.dims[a] != box.hi[a] - box.lo[a] + 1)
+      throw lvdif::Error(lvdif::ErrorCode::CorruptData,
+        "piece file '" + piece.file + "' has " + std::to_string(o.dims[0]) + " x " + std::to_string(o.dims[1]) + " x " +
+          std::to_string(o.dims[2]) + " voxels, the index gives it " + std::to_string(box.hi[0] - box.lo[0] + 1) + " x " +
+          std::to_string(box.hi[1] - box.lo[1] + 1) + " x " + std::to_string(box.hi[2] - box.lo[2] + 1));
+  double origin[3];
+  bool same = true;
+  for (int a = 0; a < 3; ++a)
+  {
+    const double s = index.spacing[a];
+    origin[a] = index.origin[a] + s * piece.extent[2 * a];
+    same = same && std::fabs(o.spacing[a] - s) <= 1e-9 * s &&
+      std::fabs(o.origin[a] - origin[a]) <= 1e-6 * s + 1e-12 * std::fabs(origin[a]);
+  }
+  if (!same)
+    throw lvdif::Error(lvdif::ErrorCode::CorruptData,
+      "piece file '" + piece.file + "' has origin " + text(o.origin[0], o.origin[1], o.origin[2]) + " and spacing " +
+        text(o.spacing[0], o.spacing[1], o.spacing[2]) + ", the index puts it at " + text(origin[0], origin[1], origin[2]) +
+        " with spacing " + text(index.spacing[0], index.spacing[1], index.spacing[2]) + " (a piece of another volume?)");
+}
+
 }
 
 int vtkPDictionaryVolumeReader::RequestInformation(
@@ -182,24 +234,19 @@ int vtkPDictionaryVolumeReader::RequestData(
       std::int64_t total = 0, done = 0;
       for (const lvdifvtk::VolumeIndexPiece& piece : index.pieces)
       {
-        lvdif::VoxelBox box;
-        for (int a = 0; a < 3; ++a)
-        {
-          box.lo[a] = static_cast<std::int64_t>(piece.extent[2 * a]) - index.wholeExtent[2 * a];
-          box.hi[a] = static_cast<std::int64_t>(piece.extent[2 * a + 1]) - index.wholeExtent[2 * a];
-        }
-        total += box.intersect(want).voxelCount();
+        total += pieceBox(index, piece).intersect(want).voxelCount();
       }
       total = std::max<std::int64_t>(total, 1);
+      // the pieces this request reads, each header against the index, before the volume is made
+      for (const lvdifvtk::VolumeIndexPiece& piece : index.pieces)
+      {
+        if (!pieceBox(index, piece).intersect(want).empty())
+          checkPiece(index, piece, dir);
+      }
       // in reverse, so that on a shared plane the first piece listed writes last
       for (auto it = index.pieces.rbegin(); it != index.pieces.rend(); ++it)
       {
-        lvdif::VoxelBox box; // the piece in the volume's indices
-        for (int a = 0; a < 3; ++a)
-        {
-          box.lo[a] = static_cast<std::int64_t>(it->extent[2 * a]) - index.wholeExtent[2 * a];
-          box.hi[a] = static_cast<std::int64_t>(it->extent[2 * a + 1]) - index.wholeExtent[2 * a];
-        }
+        const lvdif::VoxelBox box = pieceBox(index, *it); // the piece in the volume's indices
         const lvdif::VoxelBox part = box.intersect(want);
         if (part.empty())
         {
@@ -220,7 +267,7 @@ int vtkPDictionaryVolumeReader::RequestData(
           inPiece(it->file, [&] { return lvdif::loadVolume(dir + it->file, read, interrupter); });
         for (int a = 0; a < 3; ++a)
         {
-          if (pv->dims()[a] != box.hi[a] - box.lo[a] + 1)
+          if (pv->dims()[a] != box.hi[a] - box.lo[a] + 1) // (checkPiece read its header; the file changed since)
           {
             throw lvdif::Error(lvdif::ErrorCode::CorruptData,
               "piece file '" + it->file + "' does not have the size the index gives it");

@@ -712,3 +712,34 @@ for cmd in ("info", "mesh", "convert", "mesh-to-sdf", "script", "play"):
     synopsis = r.stdout.splitlines()[0].split("   ")[0]
     code, err = run(cmd)
     assert code == 2 and err.splitlines()[-1] == "lvdif " + cmd + ": " + synopsis, (cmd, code, err, synopsis)
+# a save on a full disk (here a file size limit: the writes fail with EFBIG, as with ENOSPC) fails with one line
+# naming the file and keeps the old file byte for byte: the PLY and OBJ writers and OpenVDB said nothing and the cut
+# file replaced the old one (status 0), and VTK's XML writers' failure was the executive's dump of a dozen lines
+import resource  # noqa: E402
+import signal  # noqa: E402
+
+
+def file_size_limit():
+    signal.signal(signal.SIGXFSZ, signal.SIG_IGN)
+    resource.setrlimit(resource.RLIMIT_FSIZE, (4096, resource.RLIM_INFINITY))
+
+
+full_vol = os.path.join(out, "full.lvdv")
+assert run("mesh-to-sdf", tetra, full_vol, "--dims", "48")[0] == 0
+for name, cmd in (("full.ply", "mesh"), ("full.obj", "mesh"), ("full.stl", "mesh"), ("full.vtp", "mesh"),
+                  ("full.vdb", "convert"), ("full.vti", "convert")):
+    target = os.path.join(out, name)
+    with open(target, "w") as f:
+        f.write("the old file")
+    r = subprocess.run([exe, cmd, full_vol, target], capture_output=True, text=True, timeout=120,
+                       preexec_fn=file_size_limit)
+    if name == "full.vdb" and "vdb" in r.stderr and "format" in r.stderr and "cannot write" not in r.stderr:
+        os.remove(target)
+        continue  # no OpenVDB in this build
+    said = [line for line in r.stderr.splitlines() if not line.endswith(": done") and "CUDA" not in line]
+    assert (r.returncode == 1 and len(said) == 1 and said[0].startswith(f"lvdif {cmd}: ")
+            and f"cannot write '{target}': " in said[0]), (name, r.returncode, r.stderr)
+    with open(target, "rb") as f:
+        assert f.read() == b"the old file", name
+    os.remove(target)
+os.remove(full_vol)

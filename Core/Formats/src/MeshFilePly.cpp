@@ -545,6 +545,13 @@ TriangleMesh readPly(const std::vector<char>& data)
   // text past the last element's records: wrong counts or a damaged file (dropped without a word)
   if (enc == Encoding::Ascii && body.nextNonEmpty(tok))
     fail(ErrorCode::ParseError, body.where(), "more records than the header's element counts (wrong counts, or a damaged file)");
+  // ... and bytes past them in a binary file, the same (a face count of 1 where 4 faces follow made a
+  // mesh of one triangle without a word); white space alone (a line end some writers add) is no record
+  if (enc != Encoding::Ascii &&
+    std::any_of(bin.p, bin.end, [](unsigned char c) { return !(c == '\n' || c == '\r' || c == ' ' || c == '\t'); }))
+    fail(ErrorCode::CorruptData, "PLY",
+      "more data than the header's element counts: " + std::to_string(bin.end - bin.p) +
+        " bytes after the last record (wrong counts, or a damaged file)");
   // triangle strips (element 'tristrips', as some scanners write) are not read: say so, not
   // only "the file holds no triangles"
   if (mesh.triangles.empty())

@@ -127,10 +127,22 @@ ParsedFile parse(ByteSource& src, std::uint64_t memoryLimit)
     corrupt(std::string("SDF dictionary parameters: ") + e.what());
   }
 
+  // the volume's own rules on its options (DictionaryVolume::tableBytes checks
+  // them all), as the header's: a band narrower than the dictionary's first step
+  // passed decodeHeader and was refused here as an InvalidArgument naming no file
+  // part ("band width ... is below ..."), a command line's fault to the CLI
+  std::uint64_t volumeTable = 0;
+  try
+  {
+    volumeTable = DictionaryVolume::tableBytes(h.options);
+  }
+  catch (const Error& e)
+  {
+    corrupt(std::string("header: ") + e.what());
+  }
   // table: its size is bounded by the file; refuse it if the volume's own
   // table would not fit in memory anyway
-  requireMemory(DictionaryVolume::tableBytes(h.options) + h.chunkCount * volume_file::TableEntryBytes,
-    "chunk table of the file", memoryLimit);
+  requireMemory(volumeTable + h.chunkCount * volume_file::TableEntryBytes, "chunk table of the file", memoryLimit);
   std::vector<std::uint8_t> tb(static_cast<size_t>(h.chunkCount * volume_file::TableEntryBytes));
   src.read(tableOffset, tb.data(), tb.size());
   if (checksum64(tb.data(), tb.size()) != tableChecksum)

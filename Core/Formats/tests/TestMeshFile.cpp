@@ -119,6 +119,8 @@ TEST(MeshFile, EveryFormatReadsTheSquare)
     MeshFormat::Ply));
   expectSquare(readText(binaryPly(false), MeshFormat::Ply));
   expectSquare(readText(binaryPly(true), MeshFormat::Ply));
+  // a line end after the binary records (some writers add one) is no record
+  expectSquare(readText(binaryPly(false) + "\r\n", MeshFormat::Ply));
 }
 
 TEST(MeshFile, ByteOrderMarkBeforeTheTextIsSkipped)
@@ -290,6 +292,21 @@ TEST(MeshFile, MalformedInputsAreClearErrors)
     // records past the header's counts: dropped without a word (a mesh with holes), now refused
     { "PLY more faces than counted", plyHead + tri + "3 0 1 2\n3 0 2 1\n", MeshFormat::Ply,
       "PLY line 14: more records than the header's element counts" },
+    // ... and in a binary file: the faces past the count were dropped without a word, as a last face
+    // whose count was one too low lost its last corner (the bytes left were never looked at)
+    { "PLY binary more faces than counted", [] {
+        std::string b = binaryPly(false);
+        put<std::uint8_t>(b, 3);
+        for (int i : { 0, 2, 1 })
+          put<std::int32_t>(b, i);
+        return b;
+      }(), MeshFormat::Ply,
+      "PLY: more data than the header's element counts: 13 bytes after the last record (wrong counts, or a damaged file)" },
+    { "PLY binary list count one too low", [] {
+        std::string b = binaryPly(false);
+        b[b.find("end_header\n") + 11 + 4 * 17] = 3; // the face's uchar count: 3 of its 4 corners read
+        return b;
+      }(), MeshFormat::Ply, "PLY: more data than the header's element counts: 4 bytes after the last record" },
     { "OFF more faces than counted", "OFF\n3 1 0\n" + tri + "3 0 1 2\n\n# a comment\n3 0 2 1\n", MeshFormat::Off,
       "OFF line 9: more records than the header's 3 vertices and 1 faces" },
     // a name given twice is a broken header: the last one was taken (a second x made

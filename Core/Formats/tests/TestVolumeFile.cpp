@@ -487,6 +487,10 @@ TEST(VolumeFileMalformed, CraftedHeadersAndTables)
     { "spacing 1e-300", [](Bytes& f) { patchHeader(f, 80, 0x01a56e1fc2f8f359ull, 8); }, "spacing >=" },
     { "negative band", [](Bytes& f) { patchHeader(f, 92, 0xbf800000u, 4); }, "band" },
     { "bad dictionary step", [](Bytes& f) { patchHeader(f, 104, 0, 8); }, "SDF dictionary" },
+    // a band narrower than the dictionary's first step (0.001): it passed the header's check
+    // and was the volume's InvalidArgument, "band width 0.0005 is below ...", naming no file part
+    { "band below the dictionary's step", [](Bytes& f) { patchHeader(f, 92, 0x3a03126fu, 4); },
+      "header: band width 0.0005 is below the distance dictionary's step of 0.001" },
     { "zero colours", [](Bytes& f) { patchHeader(f, kColorCount, 0, 4); }, "colour dictionary count" },
     { "65536 colours", [](Bytes& f) { patchHeader(f, kColorCount, 65536, 4); }, "colour dictionary count" },
     { "huge colour count", [](Bytes& f) { patchHeader(f, kColorCount, 0xffffffffu, 4); }, "colour dictionary count" },

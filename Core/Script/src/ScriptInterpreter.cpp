@@ -291,6 +291,16 @@ struct ScriptRunner::Impl
         const double from = this->eval(*s.from), to = this->eval(*s.to);
         for (double i = from; i < to; i += 1.0)
         {
+          // past 2^53 a double's neighbours are 2 or more apart: i + 1 rounds back to i, and
+          // 'for i in 1e16..1e16+4' ran the same i until the step limit (25 million prints)
+          if (i + 1.0 == i)
+          {
+            std::ostringstream o;
+            o.precision(17);
+            o << "the loop cannot count past " << i << ": adding 1 gives the same number (doubles are whole "
+              << "steps apart only below 2^53 = 9007199254740992)";
+            fail(s.line, s.column, o.str());
+          }
           this->step(s.line, s.column);
           this->Vars[s.name] = i;
           this->run(s.body, false);

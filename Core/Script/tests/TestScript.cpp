@@ -257,6 +257,32 @@ TEST(Script, StepLimitStopsEndlessLoops)
   EXPECT_EQ(r.variable("x"), 20000);
 }
 
+// A for loop from past 2^53 never advanced (i + 1 rounds back to i): 'for i in 1e16..1e16+4' ran its
+// body on the same i until the step limit (`lvdif script` printed "1e+16" 25 million times). Now the
+// loop stops at the first i that adding 1 does not change, named at the for; oracle: 2^53 + 1 == 2^53
+// in double arithmetic, and a loop just below it counts.
+TEST(Script, ForLoopPastTwoToThe53IsAClearError)
+{
+  ScriptOptions o;
+  o.maxSteps = 1000000;
+  int prints = 0;
+  o.print = [&](const std::string&) { ++prints; };
+  const Where w = errorOf("canvas 16\nx = 1\nfor i in 1e16..1e16 + 4 { print i }", o);
+  EXPECT_EQ(w.line, 3);
+  EXPECT_EQ(w.column, 1);
+  EXPECT_EQ(w.detail, "the loop cannot count past 10000000000000000: adding 1 gives the same number (doubles are "
+                      "whole steps apart only below 2^53 = 9007199254740992)");
+  EXPECT_EQ(prints, 0);
+  // from 2^53 - 2 it counts to 2^53, where 2^53 + 1 is 2^53
+  prints = 0;
+  EXPECT_EQ(errorOf("for i in 9007199254740990..9007199254740999 { print i }", o).detail.rfind(
+              "the loop cannot count past 9007199254740992:", 0), 0u);
+  EXPECT_EQ(prints, 2);
+  ScriptRunner r(o);
+  r.run("x = 0\nfor i in 9007199254740980..9007199254740990 { x = x + 1 }");
+  EXPECT_EQ(r.variable("x"), 10);
+}
+
 TEST(Script, CancelStopsTheScript)
 {
   struct CancelAfter : Interrupter

@@ -8,6 +8,7 @@
 #include "lvdif/AnalyticFill.h"
 #include "lvdif/Error.h"
 
+#include "vtkCellArray.h"
 #include "vtkCompositeDataIterator.h"
 #include "vtkCompositeDataProbeFilter.h"
 #include "vtkContourFilter.h"
@@ -20,6 +21,7 @@
 #include "vtkInformation.h"
 #include "vtkNew.h"
 #include "vtkOutlineFilter.h"
+#include "vtkPoints.h"
 #include "vtkPolyData.h"
 #include "vtkSmartPointer.h"
 #include "vtkStringOutputWindow.h"
@@ -140,6 +142,48 @@ TEST(VolumeBridge, BadInputIsAClearError)
   nan->FillValue(1.0f);
   nan->SetValue(5, std::nanf(""));
   EXPECT_THROW(LVDIFVolumeBridge::VolumeFromImage(img, nan, nullptr, lvdif::VolumeOptions()), lvdif::Error);
+}
+
+// A polydata's cells hold 64-bit ids that no VTK reader checks against the points (a .vtp's
+// connectivity is taken as written): an id of 2^32 + 2 became point 2, a wrong triangle without a
+// word, and a negative one "refers to point 4294967295". Oracle: the ids as written against the
+// 4 points the mesh has.
+TEST(VolumeBridge, MeshIdsPastThePointsAreAClearError)
+{
+  auto mesh = [](vtkIdType last, bool strip) {
+    vtkNew<vtkPoints> points;
+    for (int i = 0; i < 4; ++i)
+      points->InsertNextPoint(i & 1, (i >> 1) & 1, 0);
+    vtkNew<vtkCellArray> cells;
+    const vtkIdType ids[3] = { 0, 1, last };
+    cells->InsertNextCell(3, ids);
+    auto pd = vtkSmartPointer<vtkPolyData>::New();
+    pd->SetPoints(points);
+    if (strip)
+      pd->SetStrips(cells);
+    else
+      pd->SetPolys(cells);
+    return pd;
+  };
+  auto message = [](vtkPolyData* pd) {
+    try
+    {
+      LVDIFVolumeBridge::ToTriangleMesh(pd, false);
+    }
+    catch (const lvdif::Error& e)
+    {
+      return std::string(e.what());
+    }
+    return std::string("(accepted)");
+  };
+  const vtkIdType wraps = (vtkIdType(1) << 32) + 2;
+  EXPECT_EQ(message(mesh(wraps, false)),
+    "polygon 0 of the mesh refers to point " + std::to_string(wraps) + ", but the mesh has 4 points");
+  EXPECT_EQ(message(mesh(-1, false)), "polygon 0 of the mesh refers to point -1, but the mesh has 4 points");
+  EXPECT_EQ(message(mesh(4, true)), "triangle strip 0 of the mesh refers to point 4, but the mesh has 4 points");
+  const lvdif::TriangleMesh good = LVDIFVolumeBridge::ToTriangleMesh(mesh(3, false), false);
+  ASSERT_EQ(good.triangles.size(), 1u);
+  EXPECT_EQ(good.triangles[0], (std::array<std::uint32_t, 3>{ 0, 1, 3 }));
 }
 
 // Colours are whole numbers 0..255: a float array in [0, 1] was cast to black without a word, and

@@ -33,7 +33,10 @@
 #include <cstdio>
 #include <fstream>
 #include <iostream>
+#include <csignal>
+#include <iterator>
 #include <regex>
+#include <sys/resource.h>
 #include <unistd.h>
 
 namespace
@@ -313,6 +316,52 @@ TEST(OpenVDBLevelSet, CoreRoundTripIsKeyExactInTheBand)
       }
   EXPECT_GT(inBand, 10000);
   EXPECT_EQ(bad, 0);
+  std::remove(path.c_str());
+}
+
+// An export on a full disk (a file size limit, RLIMIT_FSIZE) fails and
+// keeps the old file byte for byte. OpenVDB writes through an ofstream it never checks: the
+// export wrote a cut file without a word and renamed it over the old one (`lvdif convert
+// v.lvdv x.vdb` exited 0). Oracle: the old file's bytes and the lvdif::Error.
+TEST(OpenVDBLevelSet, AnExportOnAFullDiskKeepsTheOldFile)
+{
+  lvdif::VolumeOptions o;
+  o.dims = { 64, 64, 64 };
+  o.chunkEdge = 16;
+  o.bandWidth = 5.0f;
+  lvdif::DictionaryVolume v(o);
+  for (int z = 0; z < 64; ++z)
+    for (int y = 0; y < 64; ++y)
+      for (int x = 0; x < 64; ++x)
+      {
+        const double dx = x - 31.6, dy = y - 30.1, dz = z - 32.3;
+        v.set(x, y, z, lvdif::Voxel{ v.encode(static_cast<float>(std::sqrt(dx * dx + dy * dy + dz * dz) - 25.0)), 0 });
+      }
+  const std::string path = tempFile("full.vdb");
+  std::ofstream(path) << "the old file";
+  {
+    // a write past the limit fails with EFBIG, as on a full disk (SIGXFSZ ignored); in this
+    // process (a forked child's TBB and OpenMP pools spun for minutes), lifted again at once
+    auto* oldHandler = std::signal(SIGXFSZ, SIG_IGN);
+    rlimit old{};
+    ::getrlimit(RLIMIT_FSIZE, &old);
+    const rlimit limit{ 16384, old.rlim_max };
+    ::setrlimit(RLIMIT_FSIZE, &limit);
+    bool refused = false;
+    try
+    {
+      lvdif::vdb::exportLevelSet(v, path);
+    }
+    catch (const lvdif::Error&)
+    {
+      refused = true;
+    }
+    ::setrlimit(RLIMIT_FSIZE, &old);
+    std::signal(SIGXFSZ, oldHandler);
+    EXPECT_TRUE(refused) << "the export did not fail";
+  }
+  std::ifstream in(path, std::ios::binary);
+  EXPECT_EQ(std::string(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()), "the old file");
   std::remove(path.c_str());
 }
 

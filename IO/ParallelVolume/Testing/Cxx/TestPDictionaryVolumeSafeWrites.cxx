@@ -5,6 +5,10 @@
 // and after, and the upstream's StartEvent count.
 #include "PDictionaryVolumeTestUtil.h"
 
+#include "lvdif/VolumeFile.h"
+
+#include <cstring>
+
 using namespace pvio;
 
 
@@ -340,6 +344,77 @@ TEST(PVolumeIO, ABadPieceFileIsNamed)
     std::string::npos)
     << error;
   for (const std::string& f : { index, p0, p1 })
+    std::remove(f.c_str());
+}
+
+// A piece file of the index's size but another grid (a file of another set of the
+// same shape copied in: another spacing, or shifted) was read without a word, its
+// voxels put where the index says. Now its header is checked against the index
+// before the volume is made (origin = the index's origin + spacing x the piece's
+// first point; the writer's rule), and the error names the piece file. Oracle:
+// the header fields as docs/FORMAT.md lays them out (origin at byte 40, spacing at
+// 64, the checksum of bytes [0, 152) at 152).
+TEST(PVolumeIO, APieceOfAnotherGridIsRefused)
+{
+  vtkSmartPointer<vtkImageData> img = makeImage(); // spacing 0.25 0.5 0.75
+  const std::string index = tmpName("grid.lvdvp");
+  writePieces(img, index, 2);
+  const std::string p1 = vtkPDictionaryVolumeWriter::PieceFilePath(index, 1);
+  const std::string stem = "lvdif_p_" + std::to_string(getpid()) + "_grid_1.lvdv";
+  const std::string good = fileBytes(p1);
+  ASSERT_EQ(readError(index), "");
+  auto patched = [&](std::size_t at, double value) {
+    std::string b = good;
+    std::memcpy(&b[at], &value, 8);
+    const std::uint64_t sum = lvdif::checksum64(b.data(), 152);
+    std::memcpy(&b[152], &sum, 8);
+    std::ofstream(p1, std::ios::binary) << b;
+  };
+  patched(64, 0.5); // spacing x 0.5, not 0.25
+  std::string error = readError(index);
+  EXPECT_NE(error.find("piece file '" + stem + "' has origin "), std::string::npos) << error;
+  EXPECT_NE(error.find(" and spacing 0.5 0.5 0.75, the index puts it at "), std::string::npos) << error;
+  EXPECT_NE(error.find(" with spacing 0.25 0.5 0.75 (a piece of another volume?)"), std::string::npos) << error;
+  double z = 0;
+  std::memcpy(&z, &good[56], 8);
+  patched(56, z + 0.75); // one voxel up in z
+  error = readError(index);
+  EXPECT_NE(error.find("piece file '" + stem + "' has origin "), std::string::npos) << error;
+  patched(56, z + 1e-9); // a millionth of a voxel is the same grid
+  EXPECT_EQ(readError(index), "");
+  for (const std::string& f : { index, vtkPDictionaryVolumeWriter::PieceFilePath(index, 0), p1 })
+    std::remove(f.c_str());
+}
+
+// An index whose spacing is no spacing ("-1 1 1", "0 1 1") or whose grid leaves the volumes'
+// range was read: its information told the pipeline that grid, and the read failed later in the
+// volume's own words. Now the index is refused in its information pass by the volumes' one
+// geometry rule (DictionaryVolume::checkGeometry); the pieces are the good set's.
+TEST(PVolumeIO, AnIndexOfNoGridIsRefusedInItsInformation)
+{
+  vtkSmartPointer<vtkImageData> img = makeImage();
+  const std::string index = tmpName("nogrid.lvdvp");
+  writePieces(img, index, 2);
+  const std::string text = fileBytes(index);
+  const std::size_t at = text.find("\nspacing ");
+  ASSERT_NE(at, std::string::npos);
+  const std::size_t end = text.find('\n', at + 1);
+  const std::string bad = tmpName("nogrid_bad.lvdvp");
+  for (const char* line : { "spacing -1 0.5 0.75", "spacing 0.25 0 0.75", "spacing 0.25 0.5 1e300" })
+  {
+    // the bad index lists the good set's pieces by name: they lie beside it
+    std::ofstream(bad) << text.substr(0, at + 1) + line + text.substr(end);
+    vtkNew<vtkPDictionaryVolumeReader> r;
+    r->GlobalWarningDisplayOff();
+    r->SetFileName(bad.c_str());
+    EXPECT_EQ(r->GetExecutive()->UpdateInformation(), 0) << line;
+    const std::string error = readError(bad);
+    EXPECT_NE(error.find("': origin and spacing: volume origin "), std::string::npos) << line << ": " << error;
+  }
+  std::ofstream(bad) << text;
+  EXPECT_EQ(readError(bad), "");
+  for (const std::string& f : { index, bad, vtkPDictionaryVolumeWriter::PieceFilePath(index, 0),
+         vtkPDictionaryVolumeWriter::PieceFilePath(index, 1) })
     std::remove(f.c_str());
 }
 
