@@ -1,4 +1,5 @@
 #include "LVDIFFiles.h"
+#include "LVDIFPipedSave.h"
 #include "LVDIFXmlNesting.h"
 
 #include "LVDIFVolumeBridge.h"
@@ -48,12 +49,7 @@
 
 #include <algorithm>
 #include <cctype>
-#include <cerrno>
-#include <exception>
-#include <fcntl.h>
 #include <functional>
-#include <thread>
-#include <unistd.h>
 
 namespace LVDIFFiles
 {
@@ -396,95 +392,6 @@ std::shared_ptr<lvdif::DictionaryVolume> volumeOf(vtkAlgorithm* a)
   return sparse ? sparse->GetVolume() : nullptr;
 }
 
-/// The safe save (lvdif::saveAtomically) of a VTK writer that says nothing when
-/// a write fails (vtkPLYWriter and vtkOBJWriter write through an unchecked FILE*
-/// or ofstream, so on a full disk Write() answered 1 over a cut file, which the
-/// save then renamed over the old one). The writer writes into a pipe (through a
-/// link to its /proc/self/fd path: it writes in order, never seeks) and a thread
-/// copies the bytes into the save's checked sink, whose failure (ENOSPC) is the
-/// save's. False, nothing written, where no link can be made beside the file (a
-/// FAT folder): the caller saves by name.
-bool saveThroughPipe(const std::string& path, const std::function<void(const std::string& target)>& write)
-{
-  int fds[2];
-  if (::pipe2(fds, O_CLOEXEC) != 0)
-    return false;
-  // the writer is given a link to the pipe named as the save's temporary files ("x.ply.tmp-PID-XXXXXX.ply":
-  // the file's extension, as vtkPLYWriter adds ".ply" to a name without it; a killed save's is
-  // removed by the next save, lvdif::removeStaleTemporaries). A folder without links (FAT): false.
-  const auto dot = path.find_last_of('.'), slash = path.find_last_of('/');
-  const std::string ext = dot == std::string::npos || (slash != std::string::npos && dot < slash) ? "" : path.substr(dot);
-  std::string link = path + ".tmp-" + std::to_string(::getpid()) + "-XXXXXX" + ext;
-  const int made = ::mkstemps(&link[0], static_cast<int>(ext.size()));
-  const bool linked = made >= 0 && ::close(made) == 0 && ::unlink(link.c_str()) == 0 &&
-    ::symlink(("/proc/self/fd/" + std::to_string(fds[1])).c_str(), link.c_str()) == 0;
-  auto closePipe = [&] {
-    ::unlink(link.c_str());
-    if (fds[1] >= 0)
-      ::close(fds[1]);
-    ::close(fds[0]);
-  };
-  if (!linked)
-  {
-    if (made >= 0)
-      ::unlink(link.c_str()); // (a file or a link left by a failed step)
-    closePipe();
-    return false;
-  }
-  try
-  {
-    lvdif::saveAtomically(path, [&](lvdif::ByteSink& sink) {
-      std::exception_ptr failed;
-      // drains the pipe to its end even after a failure (a writer left writing into a
-      // closed pipe would get SIGPIPE)
-      std::thread copy([&] {
-        std::vector<char> buffer(std::size_t(1) << 16);
-        for (;;)
-        {
-          const ssize_t n = ::read(fds[0], buffer.data(), buffer.size());
-          if (n < 0 && errno == EINTR)
-            continue;
-          if (n <= 0)
-            break;
-          if (!failed)
-          {
-            try
-            {
-              sink.write(buffer.data(), static_cast<std::size_t>(n));
-            }
-            catch (...)
-            {
-              failed = std::current_exception();
-            }
-          }
-        }
-      });
-      try
-      {
-        write(link);
-      }
-      catch (...)
-      {
-        ::close(fds[1]);
-        fds[1] = -1;
-        copy.join();
-        throw;
-      }
-      ::close(fds[1]); // the writer closed its own: the copy reads to the end
-      fds[1] = -1;
-      copy.join();
-      if (failed)
-        std::rethrow_exception(failed);
-    });
-  }
-  catch (...)
-  {
-    closePipe();
-    throw;
-  }
-  closePipe();
-  return true;
-}
 } // namespace
 
 const std::vector<Format>& Formats()
@@ -797,7 +704,7 @@ void SaveMesh(vtkPolyData* mesh, const std::string& path)
   // A save never destroys the old file: the writer writes a temporary file renamed over it
   // (the editor's export wrote in place, so a failing write lost the old mesh). The PLY and
   // OBJ writers never check their writes (on a full disk Write() answered 1 over a cut file):
-  // their bytes go through a pipe into the save's checked sink (saveThroughPipe).
+  // their bytes go through a pipe into the save's checked sink (SaveThroughPipe).
   enum class Route
   {
     ByName, // a writer that reports a failed write itself
@@ -856,7 +763,7 @@ void SaveMesh(vtkPolyData* mesh, const std::string& path)
   {
     if (route == Route::ByName)
       lvdif::saveAtomicallyByName(path, run); // (a temporary of the same extension)
-    else if (!saveThroughPipe(path, run))
+    else if (!SaveThroughPipe(path, run))
       lvdif::saveAtomicallyByName(path, run); // a folder without links: as before, a full disk unseen
   }
   catch (const lvdif::Error& e)
