@@ -35,6 +35,24 @@ std::string readError(const std::string& path)
   return text;
 }
 
+/// The writer's first error text of a Write() that must fail (0).
+std::string writeError(vtkPDictionaryVolumeWriter* w)
+{
+  std::string text;
+  vtkNew<vtkCallbackCommand> onError;
+  onError->SetClientData(&text);
+  onError->SetCallback([](vtkObject*, unsigned long, void* client, void* call) {
+    auto* t = static_cast<std::string*>(client);
+    if (t->empty()) *t = static_cast<const char*>(call);
+  });
+  w->AddObserver(vtkCommand::ErrorEvent, onError);
+  vtkObject::GlobalWarningDisplayOn(); // ErrorEvent fires only with it on
+  EXPECT_EQ(w->Write(), 0);
+  vtkObject::GlobalWarningDisplayOff();
+  w->RemoveObserver(onError);
+  return text;
+}
+
 std::string fileBytes(const std::string& p)
 {
   std::ifstream f(p, std::ios::binary);
@@ -295,17 +313,7 @@ TEST(PVolumeIO, AFirstWriteKeepsFilesNamedAsItsPieces)
   w->SetInputData(makeImage());
   w->SetFileName(index.c_str());
   w->SetNumberOfPieces(2);
-  std::string text;
-  vtkNew<vtkCallbackCommand> onError;
-  onError->SetClientData(&text);
-  onError->SetCallback([](vtkObject*, unsigned long, void* client, void* call) {
-    auto* t = static_cast<std::string*>(client);
-    if (t->empty()) *t = static_cast<const char*>(call);
-  });
-  w->AddObserver(vtkCommand::ErrorEvent, onError);
-  vtkObject::GlobalWarningDisplayOn(); // ErrorEvent fires only with it on
-  EXPECT_EQ(w->Write(), 0);
-  vtkObject::GlobalWarningDisplayOff();
+  const std::string text = writeError(w);
   EXPECT_NE(text.find("'lvdif_p_" + std::to_string(getpid()) + "_foreign_0.lvdv', 'lvdif_p_" +
               std::to_string(getpid()) + "_foreign_1.lvdv', 'lvdif_p_" + std::to_string(getpid()) +
               "_foreign_7.g1.lvdv' lie beside it, named as pieces of its set, but no index lists them"),
@@ -679,23 +687,13 @@ TEST(PVolumeIO, AnEmptyImageIsRefusedAndKeepsTheOldSet)
     vtkPDictionaryVolumeWriter::PieceFilePath(index, 1) };
   const std::string before[3] = { fileBytes(index), fileBytes(piece[0]), fileBytes(piece[1]) };
   ASSERT_FALSE(before[1].empty());
-  std::string error;
-  vtkNew<vtkCallbackCommand> onError;
-  onError->SetClientData(&error);
-  onError->SetCallback([](vtkObject*, unsigned long, void* client, void* call) {
-    auto* t = static_cast<std::string*>(client);
-    if (t->empty()) *t = static_cast<const char*>(call);
-  });
   vtkNew<vtkImageData> empty;
   vtkNew<vtkPDictionaryVolumeWriter> w;
   w->SetController(nullptr);
   w->SetInputData(empty);
   w->SetFileName(index.c_str());
   w->SetNumberOfPieces(2);
-  w->AddObserver(vtkCommand::ErrorEvent, onError);
-  vtkObject::GlobalWarningDisplayOn(); // ErrorEvent fires only with it on
-  EXPECT_EQ(w->Write(), 0);
-  vtkObject::GlobalWarningDisplayOff();
+  const std::string error = writeError(w);
   EXPECT_NE(error.find("no points"), std::string::npos) << error;
   EXPECT_TRUE(fileBytes(index) == before[0]) << "index";
   for (int p = 0; p < 2; ++p)
@@ -720,23 +718,13 @@ TEST(PVolumeIO, ASparseVolumeWithoutVolumeIsNamedAsSuch)
   writePieces(img, index, 2);
   const std::string piece0 = vtkPDictionaryVolumeWriter::PieceFilePath(index, 0);
   const std::string before[2] = { fileBytes(index), fileBytes(piece0) };
-  std::string error;
-  vtkNew<vtkCallbackCommand> onError;
-  onError->SetClientData(&error);
-  onError->SetCallback([](vtkObject*, unsigned long, void* client, void* call) {
-    auto* t = static_cast<std::string*>(client);
-    if (t->empty()) *t = static_cast<const char*>(call);
-  });
   vtkNew<vtkSparseDictionaryVolume> none;
   vtkNew<vtkPDictionaryVolumeWriter> w;
   w->SetController(nullptr);
   w->SetInputData(none);
   w->SetFileName(index.c_str());
   w->SetNumberOfPieces(2);
-  w->AddObserver(vtkCommand::ErrorEvent, onError);
-  vtkObject::GlobalWarningDisplayOn(); // ErrorEvent fires only with it on
-  EXPECT_EQ(w->Write(), 0);
-  vtkObject::GlobalWarningDisplayOff();
+  const std::string error = writeError(w);
   EXPECT_NE(error.find("the input sparse volume holds no dictionary volume"), std::string::npos) << error;
   EXPECT_TRUE(fileBytes(index) == before[0]) << "index";
   EXPECT_TRUE(fileBytes(piece0) == before[1]) << "piece 0";
