@@ -54,4 +54,45 @@ dims, sdf, rgba = same(os.path.join(out, "script-cli.vti"), os.path.join(out, "s
 centre = 16 + 32 * (16 + 32 * 16)
 assert sdf[centre] < 0 and list(rgba[centre]) == DEFAULT_COLOR, (sdf[centre], rgba[centre])
 
+# 2. a recording played without --in starts from its own canvas, as the editor's --script without --new
+#    does: a cubic canvas (the sphere), a non-cubic one in version 4 (the rounded box) and in version 1
+#    (the older sphere), and --fill empty as the editor's --fill empty
+cubic = os.path.join(out, "cubic.lvr")
+with open(cubic, "w") as f:
+    f.write("LVDIF-RECORDING 2\ncanvas 40 40 40\nedit time=0 op=subtract shape=sphere kind=single spacing=1.6 "
+            "blend=0 coloroffset=1.5 rounding=0 color=230,90,60,255 dabs=1\nd 20 20 33 6\n"
+            "edit time=1 op=paint shape=sphere kind=single spacing=1.6 blend=0 coloroffset=1.5 rounding=0 "
+            "color=20,200,90,255 dabs=1\nd 20 33 20 5\nend records=2\n")
+cases = [(cubic, []), (os.path.join(editor_testing, "long-canvas-v2-said-box.lvr"), []),
+         (os.path.join(editor_testing, "long-canvas-v1.lvr"), []), (cubic, ["--fill", "empty"]),
+         (cubic, ["--fill", "full"])]
+for i, (rec, fill) in enumerate(cases):
+    cli, ed = os.path.join(out, f"play{i}-cli.vti"), os.path.join(out, f"play{i}-editor.vti")
+    r = run([exe, "play", rec, "--out", cli, *fill])
+    assert "records replayed on its own " in r.stdout, r.stdout
+    run([editor, "--script", rec, "--save", ed, *fill, *EDITOR_BATCH])
+    dims, sdf, rgba = same(cli, ed, (rec, fill))
+    # not a trivial agreement: the starter (or the fill) holds material, and the recording changed it
+    if fill != ["--fill", "empty"]:
+        assert (sdf < 0).any() and (sdf > 0).any() or fill == ["--fill", "full"], (rec, fill)
+# a version 2 recording of a non-cubic canvas cannot say which starter it was made on: refused as the
+# editor refuses it, naming the CLI's way to give the volume, and nothing written
+v2 = os.path.join(editor_testing, "long-canvas-v2.lvr")
+target = os.path.join(out, "v2.vti")
+r = run([exe, "play", v2, "--out", target], expect=1)
+assert "does not say which starter shape it was made on" in r.stderr and "(--in VOLUME)" in r.stderr, r.stderr
+assert not os.path.exists(target)
+# --fill is the own canvas's: with --in it is refused before anything is read (status 2)
+r = run([exe, "play", cubic, "--in", "missing.lvdv", "--fill", "empty"], expect=2)
+assert r.stderr.strip() == ("lvdif play: --fill fills the recording's own canvas (without --in): not with --in "
+                            "(the replay starts from that volume)"), r.stderr
+r = run([exe, "play", cubic, "--fill", "sphre"], expect=2)
+assert r.stderr.strip() == "lvdif play: --fill must be empty, full or sphere, not 'sphre'", r.stderr
+# a recording that does not say its canvas needs --in
+nocanvas = os.path.join(out, "nocanvas.lvr")
+with open(cubic) as f, open(nocanvas, "w") as g:
+    g.write(f.read().replace("canvas 40 40 40\n", ""))
+r = run([exe, "play", nocanvas, "--out", os.path.join(out, "nocanvas.vti")], expect=1)
+assert "does not say the canvas it was made on" in r.stderr and "--in VOLUME" in r.stderr, r.stderr
+
 print("ok")
