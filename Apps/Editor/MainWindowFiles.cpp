@@ -39,7 +39,10 @@ void MainWindow::newDialog()
   for (int a = 0; a < 3; ++a)
   {
     sizes[a] = new QSpinBox(&dlg);
-    sizes[a]->setRange(static_cast<int>(lvdif::DictionaryVolume::MinCanvasDimension), 4096); // the editors' one smallest canvas
+    // the editors' one canvas rule, as --new, `lvdif script --size` and a script's `canvas N` (the dialog stopped at
+    // 4096, where they take 1048576 a side, as memory allows: a larger canvas's memory is refused when made)
+    sizes[a]->setRange(static_cast<int>(lvdif::DictionaryVolume::MinCanvasDimension),
+      static_cast<int>(lvdif::DictionaryVolume::MaxDimension));
     sizes[a]->setValue(128);
     form->addRow(names[a], sizes[a]);
   }

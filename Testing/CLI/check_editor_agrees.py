@@ -95,4 +95,22 @@ with open(cubic) as f, open(nocanvas, "w") as g:
 r = run([exe, "play", nocanvas, "--out", os.path.join(out, "nocanvas.vti")], expect=1)
 assert "does not say the canvas it was made on" in r.stderr and "--in VOLUME" in r.stderr, r.stderr
 
+# 3. the voxels along a mesh's longest axis have one range in both: lvdif mesh-to-sdf --dims and the editor's
+#    --mesh-resolution (8 to 4096 there, 2 to 1048576 here), refused in the same words, and below the
+#    padding's least (2 x 2 + 2) each says why
+sheet = os.path.join(editor_testing, "open-sheet.obj")
+for n in ("1", "1048577"):
+    cli = run([exe, "mesh-to-sdf", sheet, os.path.join(out, "range.lvdv"), "--dims", n], expect=2).stderr.strip()
+    ed = run([editor, "--open-mesh", sheet, "--mesh-resolution", n, "--quit", *EDITOR_BATCH], expect=2).stderr.strip()
+    assert cli == f"lvdif mesh-to-sdf: option --dims expects an integer in [2, 1048576], got '{n}'", cli
+    assert ed == f"lvdif-editor: --mesh-resolution expects an integer in [2, 1048576], got '{n}'", ed
+cli = run([exe, "mesh-to-sdf", sheet, os.path.join(out, "range.lvdv"), "--dims", "4"], expect=2).stderr.strip()
+ed = run([editor, "--open-mesh", sheet, "--mesh-resolution", "4", "--quit", *EDITOR_BATCH], expect=2).stderr.strip()
+assert "--dims 4 leaves no voxel for the mesh inside --padding 2" in cli, cli
+assert ed == ("lvdif-editor: --mesh-resolution 4 leaves no voxel for the mesh inside the 2 voxels of padding on every "
+              "side: use at least 6 (2 x padding + 2)"), ed
+# above the old 4096 the option is taken (the next refusal is another rule's: no --open-mesh here)
+ed = run([editor, "--mesh-resolution", "5000", "--quit", *EDITOR_BATCH], expect=2).stderr.strip()
+assert ed == ("lvdif-editor: --mesh-resolution, --mesh-sign and --mesh-reorient are options of --open-mesh, which is "
+              "not given"), ed
 print("ok")
