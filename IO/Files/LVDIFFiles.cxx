@@ -43,7 +43,9 @@
 #include "vtkXMLImageDataReader.h"
 #include "vtkXMLReader.h"
 #include "vtkXMLImageDataWriter.h"
+#include "vtkXMLPolyDataReader.h"
 #include "vtkXMLPolyDataWriter.h"
+#include "vtkCellArray.h"
 
 #include <algorithm>
 #include <cctype>
@@ -672,45 +674,81 @@ vtkSmartPointer<vtkPolyData> LoadMesh(const std::string& path)
 void SaveMesh(vtkPolyData* mesh, const std::string& path)
 {
   const Format* f = &RequireFormat(path, Kind::Mesh, true);
-  vtkSmartPointer<vtkAlgorithm> writer;
-  std::function<int()> write;
-  if (f->extension == "ply")
-  {
-    auto w = vtkSmartPointer<vtkPLYWriter>::New();
-    w->SetFileName(path.c_str());
-    w->SetFileTypeToBinary();
-    w->SetArrayName("rgba");
-    w->SetColorModeToDefault();
-    w->EnableAlphaOn();
-    writer = w;
-    write = [w] { return w->Write(); };
-  }
-  else if (f->extension == "obj")
-  {
-    auto w = vtkSmartPointer<vtkOBJWriter>::New();
-    w->SetFileName(path.c_str());
-    writer = w;
-    write = [w] { return w->Write(); };
-  }
-  else if (f->extension == "stl")
-  {
-    auto w = vtkSmartPointer<vtkSTLWriter>::New();
-    w->SetFileName(path.c_str());
-    w->SetFileTypeToBinary();
-    writer = w;
-    write = [w] { return w->Write(); };
-  }
-  else
-  {
-    auto w = vtkSmartPointer<vtkXMLPolyDataWriter>::New();
-    w->SetFileName(path.c_str());
-    writer = w;
-    write = [w] { return w->Write(); };
-  }
-  writer->SetInputDataObject(mesh);
-  Watch watch(lvdif::nullInterrupter(), { writer });
-  const bool ok = write() != 0;
-  watch.check(ok, "cannot write '" + path + "'");
+  RequireWritable(path); // before the writer runs, in the CLI's words
+  // VTK's mesh writers truncate the file they are given first: each writes a temporary file renamed
+  // over `path` (the editor's Export wrote in place, so an export that failed midway destroyed the old
+  // file; only the CLI wrapped this call)
+  lvdif::saveAtomicallyByName(path, [&](const std::string& tmp) {
+    vtkSmartPointer<vtkAlgorithm> writer;
+    std::function<int()> write;
+    if (f->extension == "ply")
+    {
+      auto w = vtkSmartPointer<vtkPLYWriter>::New();
+      w->SetFileName(tmp.c_str());
+      w->SetFileTypeToBinary();
+      w->SetArrayName("rgba");
+      w->SetColorModeToDefault();
+      w->EnableAlphaOn();
+      writer = w;
+      write = [w] { return w->Write(); };
+    }
+    else if (f->extension == "obj")
+    {
+      auto w = vtkSmartPointer<vtkOBJWriter>::New();
+      w->SetFileName(tmp.c_str());
+      writer = w;
+      write = [w] { return w->Write(); };
+    }
+    else if (f->extension == "stl")
+    {
+      auto w = vtkSmartPointer<vtkSTLWriter>::New();
+      w->SetFileName(tmp.c_str());
+      w->SetFileTypeToBinary();
+      writer = w;
+      write = [w] { return w->Write(); };
+    }
+    else
+    {
+      auto w = vtkSmartPointer<vtkXMLPolyDataWriter>::New();
+      w->SetFileName(tmp.c_str());
+      writer = w;
+      write = [w] { return w->Write(); };
+    }
+    writer->SetInputDataObject(mesh);
+    {
+      Watch watch(lvdif::nullInterrupter(), { writer });
+      const bool ok = write() != 0;
+      watch.check(ok, "cannot write '" + path + "'");
+    }
+    // VTK's mesh writers do not check their writes: under a full disk or a file size limit they left a
+    // cut file, and the save succeeded (`lvdif mesh` exited 0 and the editor's Export said nothing, the
+    // old file replaced by the cut one). The file written is read back and its triangles counted.
+    vtkIdType expected = 0;
+    if (vtkCellArray* polys = mesh->GetPolys())
+      for (vtkIdType c = 0; c < polys->GetNumberOfCells(); ++c)
+        expected += std::max<vtkIdType>(polys->GetCellSize(c) - 2, 0);
+    vtkSmartPointer<vtkAlgorithm> reader;
+    if (f->extension == "vtp")
+    {
+      auto r = vtkSmartPointer<vtkXMLPolyDataReader>::New();
+      r->SetFileName(tmp.c_str());
+      reader = r;
+    }
+    else
+    {
+      auto r = vtkSmartPointer<vtkLVDIFMeshReader>::New();
+      r->SetFileName(tmp.c_str());
+      reader = r;
+    }
+    Watch watch(lvdif::nullInterrupter(), { reader });
+    const bool read = reader->GetExecutive()->Update() != 0;
+    vtkPolyData* back = vtkPolyData::SafeDownCast(reader->GetOutputDataObject(0));
+    const vtkIdType got = read && back ? back->GetNumberOfPolys() : -1;
+    if (got != expected)
+      throw lvdif::Error(lvdif::ErrorCode::IoFailure, "cannot write '" + path + "': the file written holds " +
+          (got < 0 ? std::string("no readable mesh") : std::to_string(got) + " of its " + std::to_string(expected) +
+          " triangles") + " (the disk full, or a file size limit?); the old file is kept");
+  });
 }
 
 } // namespace LVDIFFiles
