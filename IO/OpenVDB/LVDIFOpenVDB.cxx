@@ -217,24 +217,42 @@ void exportLevelSet(
   {
     grids.push_back(rgba);
   }
-  // Crash-safe as our own files: write beside the target, then rename over it.
-  const std::string tmp = path + ".tmp" + std::to_string(::getpid());
-  try
-  {
-    openvdb::io::File file(tmp);
-    file.write(grids);
-    file.close();
-  }
-  catch (const std::exception& e)
-  {
-    std::remove(tmp.c_str());
-    throw Error(ErrorCode::IoFailure, "OpenVDB cannot write '" + path + "': " + e.what());
-  }
-  if (std::rename(tmp.c_str(), path.c_str()) != 0)
-  {
-    std::remove(tmp.c_str());
-    throw Error(ErrorCode::IoFailure, "cannot rename the written .vdb onto '" + path + "'");
-  }
+  // Crash-safe as every save of the project (saveAtomicallyByName: a temporary file renamed over the
+  // old one, its mode kept, synced; this writer had a rename of its own). OpenVDB does not check its
+  // writes: under a full disk or a file size limit the cut file was renamed over the old one and the
+  // save succeeded, so the file is read back and its grids' active voxels counted first.
+  saveAtomicallyByName(path, [&](const std::string& tmp) {
+    try
+    {
+      {
+        openvdb::io::File file(tmp);
+        file.write(grids);
+        file.close();
+      }
+      bool whole = false;
+      try
+      {
+        openvdb::io::File back(tmp);
+        back.open(/*delayLoad=*/false);
+        const openvdb::GridPtrVecPtr read = back.getGrids();
+        back.close();
+        whole = read && read->size() == grids.size();
+        for (std::size_t i = 0; whole && i < grids.size(); ++i)
+          whole = (*read)[i] && (*read)[i]->activeVoxelCount() == grids[i]->activeVoxelCount();
+      }
+      catch (const std::exception&)
+      {
+        // (OpenVDB's words about a cut file quote its garbage)
+      }
+      if (!whole)
+        throw std::runtime_error("the file written does not hold the grids whole (the disk full, or a file size limit?); "
+                                 "the old file is kept");
+    }
+    catch (const std::exception& e)
+    {
+      throw Error(ErrorCode::IoFailure, "OpenVDB cannot write '" + path + "': " + e.what());
+    }
+  });
   interrupter.progress(1.0);
 }
 

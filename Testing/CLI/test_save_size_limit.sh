@@ -3,7 +3,7 @@
 # (ulimit -f; SIGXFSZ ignored, so writes fail with EFBIG as on a full disk) every mesh format of
 # `lvdif mesh` and the editor's --export, --screenshot and --screenshot-window keep the old file and
 # exit 1. VTK's mesh writers and QImage::save do not check their writes: the cut file was renamed over
-# the old one (the editor wrote in place) and the run exited 0.
+# the old one (the editor wrote in place) and the run exited 0; so did OpenVDB's .vdb writer.
 # Usage: test_save_size_limit.sh LVDIF LVDIF_EDITOR OUT (under an X display, for the editor)
 set -u
 lvdif=$1 editor=$2 out=$3
@@ -24,6 +24,19 @@ for ext in ply obj stl vtp; do
   [ $rc -eq 1 ] || fail "lvdif mesh to old.$ext under the limit exited $rc: $(tail -1 "mesh-$ext.log")"
   [ "$(cat "old.$ext")" = "old file" ] || fail "old.$ext was replaced by a cut file"
   grep -q "^lvdif mesh: cannot write 'old.$ext'" "mesh-$ext.log" || fail "no error line for old.$ext: $(cat "mesh-$ext.log")"
+done
+# the volume formats of a command's --out alike (the OpenVDB writer, which had a rename of its own, wrote a
+# cut .vdb and exited 0)
+printf 'LVDIF-RECORDING 2\ncanvas 64 64 64\nend records=0\n' > c64.lvr
+for ext in lvdv vti bv vdb; do
+  "$lvdif" play c64.lvr --out "whole.$ext" > /dev/null 2>&1 || { echo "(no .$ext writer in this build)"; continue; }
+  [ "$(stat -c %s "whole.$ext")" -gt 8192 ] || fail "whole.$ext is not over the limit: the test proves nothing"
+  printf 'old file\n' > "old.$ext"
+  limited 8 "$lvdif" play c64.lvr --out "old.$ext" > "play-$ext.log" 2>&1
+  rc=$?
+  [ $rc -eq 1 ] || fail "lvdif play --out old.$ext under the limit exited $rc: $(tail -1 "play-$ext.log")"
+  [ "$(cat "old.$ext")" = "old file" ] || fail "old.$ext was replaced by a cut file"
+  grep -q "^lvdif play: .*cannot write '[^']*old.$ext" "play-$ext.log" || fail "no error line for old.$ext: $(cat "play-$ext.log")"
 done
 batch=(--new 64 --fill sphere --size 640x669 --no-recovery --autosave 0)
 for option in --export --screenshot --screenshot-window; do
