@@ -28,6 +28,9 @@
 
 #include "vtkCallbackCommand.h"
 #include "vtkCommand.h"
+#include "vtkErrorCode.h"
+#include "vtkWriter.h"
+#include "vtkXMLWriter.h"
 #include "vtkDataObject.h"
 #include "vtkExecutive.h"
 #include "vtkInformation.h"
@@ -63,6 +66,7 @@ struct Watch
   std::string errors;
   std::string innerErrors; // of the objects inside a reader (VTK's XML parser)
   vtkNew<vtkCallbackCommand> onProgress, onError, onInnerError;
+  std::vector<vtkAlgorithm*> writers; // their error codes name a failed write that no message names
 
   Watch(lvdif::Interrupter& in, const std::vector<vtkAlgorithm*>& algorithms)
     : interrupter(in)
@@ -79,6 +83,10 @@ struct Watch
     this->onError->SetCallback([](vtkObject*, unsigned long, void* client, void* call) {
       auto* w = static_cast<Watch*>(client);
       const std::string text = LVDIFVolumeBridge::MessageText(static_cast<const char*>(call));
+      // the executive's "Algorithm vtkX(0x...) returned failure for request: vtkInformation (0x...)" and a
+      // dump of the request, many lines, names no cause: check() names the writer's instead (a .vti or .vtp
+      // save over a full disk was that dump)
+      if (text.rfind("Algorithm ", 0) == 0 && text.find(" returned failure for request") != std::string::npos) return;
       if (w->errors.empty()) w->errors = text; // the first error names the cause
     });
     this->onInnerError->SetClientData(this);
@@ -88,6 +96,7 @@ struct Watch
     });
     for (vtkAlgorithm* a : algorithms)
     {
+      if (vtkWriter::SafeDownCast(a) || vtkXMLWriter::SafeDownCast(a)) this->writers.push_back(a);
       a->AddObserver(vtkCommand::ProgressEvent, this->onProgress);
       a->AddObserver(vtkCommand::ErrorEvent, this->onError);
       a->GetExecutive()->AddObserver(vtkCommand::ErrorEvent, this->onError);
@@ -108,10 +117,17 @@ struct Watch
   {
     this->interrupter.checkInterrupt();
     if (this->errors.empty() && !ok) this->errors = this->innerErrors;
+    for (vtkAlgorithm* w : this->writers)
+      if (this->errors.empty() && w->GetErrorCode() != vtkErrorCode::NoError)
+        this->errors = w->GetErrorCode() == vtkErrorCode::OutOfDiskSpaceError
+          ? std::string("the writer ran out of space (the disk full, or a file size limit?)")
+          : std::string("the writer failed (") + vtkErrorCode::GetStringFromErrorCode(w->GetErrorCode()) + ")";
     if (!ok || !this->errors.empty())
     {
       const std::string text =
-        this->errors.empty() ? what + ": failed" : LVDIFVolumeBridge::WithContext(what + ": ", this->errors);
+        !this->errors.empty() ? LVDIFVolumeBridge::WithContext(what + ": ", this->errors)
+        : this->writers.empty() ? what + ": failed"
+                                : what + ": the writer failed without a reason (the disk full, or a file size limit?)";
       throw lvdif::Error(lvdif::ErrorCode::IoFailure, text);
     }
   }

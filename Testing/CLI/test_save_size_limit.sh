@@ -37,6 +37,8 @@ for ext in lvdv vti bv vdb; do
   [ $rc -eq 1 ] || fail "lvdif play --out old.$ext under the limit exited $rc: $(tail -1 "play-$ext.log")"
   [ "$(cat "old.$ext")" = "old file" ] || fail "old.$ext was replaced by a cut file"
   grep -q "^lvdif play: .*cannot write '[^']*old.$ext" "play-$ext.log" || fail "no error line for old.$ext: $(cat "play-$ext.log")"
+  # one line: the .vti writer's failure was VTK's executive's dump of the request, many lines, no cause
+  ! grep -q "^ \|returned failure for request\|: failed$" "play-$ext.log" || fail "not one clear error for old.$ext: $(cat "play-$ext.log")"
 done
 batch=(--new 64 --fill sphere --size 640x669 --no-recovery --autosave 0)
 for option in --export --screenshot --screenshot-window; do
