@@ -743,6 +743,8 @@ void SaveMesh(vtkPolyData* mesh, const std::string& path)
     if (vtkCellArray* polys = mesh->GetPolys())
       for (vtkIdType c = 0; c < polys->GetNumberOfCells(); ++c)
         expected += std::max<vtkIdType>(polys->GetCellSize(c) - 2, 0);
+    if (expected == 0)
+      return; // (the mesh readers refuse a file without triangles: an empty mesh's header is not read back)
     vtkSmartPointer<vtkAlgorithm> reader;
     if (f->extension == "vtp")
     {
