@@ -154,10 +154,11 @@ EditorOptions parseEditorOptions(const QStringList& arguments)
   // the range said (it was not), the dialog's, as the default: one constant each
   const QString defaultMeshRes = QString::number(MeshImportSettings().resolution);
   const QCommandLineOption meshRes("mesh-resolution",
-    "Voxels along the mesh's longest axis, " + QString::number(MeshImportSettings().leastResolution()) + " (2 x its " +
-      QString::number(MeshImportSettings().padding) + " voxels of padding + 2) to " +
-      QString::number(lvdif::DictionaryVolume::MaxDimension) + ", as lvdif mesh-to-sdf --dims (--open-mesh; default " +
-      defaultMeshRes + "). A volume that cannot fit the memory limit (LVDIF_MEMORY_LIMIT) is refused before converting.",
+    "Voxels along the mesh's longest axis, " + QString::number(MeshImportSettings().leastResolution()) + " to " +
+      QString::number(lvdif::DictionaryVolume::MaxDimension) + " (at least 2 x its " +
+      QString::number(MeshImportSettings().padding) + " voxels of padding + 2, as lvdif mesh-to-sdf --dims; --open-mesh; "
+      "default " + defaultMeshRes + "). A volume that cannot fit the memory limit (LVDIF_MEMORY_LIMIT) is refused before "
+      "converting.",
     "n", defaultMeshRes);
   const QCommandLineOption meshSign("mesh-sign", "Sign of --open-mesh: winding, pseudo or normal (default winding).", "mode", "winding");
   const QCommandLineOption meshReorient("mesh-reorient",
