@@ -9,6 +9,7 @@
 #include "lvdif/Error.h"
 #include "lvdif/Recording.h"
 #include "lvdif/Script.h"
+#include "lvdif/StarterCanvas.h"
 
 #include <cstdio>
 #include <fstream>
@@ -106,22 +107,30 @@ int CommandScript(int argc, char** argv)
 
 int CommandPlay(int argc, char** argv)
 {
-  Arguments args(argc, argv, 2, { "in", "out", "mesh", "png" });
-  if (args.positional().size() != 1 || !args.has("in"))
+  Arguments args(argc, argv, 2, { "in", "out", "mesh", "png", "fill" });
+  if (args.positional().size() != 1)
     throw lvdif::Error(lvdif::ErrorCode::InvalidArgument, CommandUsage("play"));
+  // without --in the recording plays on its own canvas, new as the editor makes it (`lvdif-editor
+  // --script R.lvr` without --new or --open): a recording made on the editor's starter canvas
+  // could not be replayed here at all (--in was required and nothing made that canvas)
+  const bool ownCanvas = !args.has("in");
+  if (args.has("fill") && !ownCanvas)
+    throw lvdif::Error(lvdif::ErrorCode::InvalidArgument,
+      "--fill fills the recording's own canvas (without --in): not with --in (the replay starts from that volume)");
+  const lvdif::CanvasFill fill = lvdif::canvasFillFromName(args.get("fill", "sphere"), "--fill");
   CheckEditOutputs(args);
   AcceptEditCommandLine(args);
   ProgressBar progress;
+  const std::string& path = args.positional()[0];
   // the (small) recording is read and checked before the (possibly large) volume is loaded
   const lvdif::Recording recording = [&] {
     try
     {
-      return lvdif::loadRecording(args.positional()[0]);
+      return lvdif::loadRecording(path);
     }
     catch (const lvdif::Error& e)
     {
       // a script given to play: said so (it was only "expected the version line")
-      const std::string& path = args.positional()[0];
       const bool script = path.size() > 4 && path.compare(path.size() - 4, 4, ".lvs") == 0;
       if (!script || std::string(e.what()).find(": expected the version line") == std::string::npos)
         throw;
@@ -130,24 +139,49 @@ int CommandPlay(int argc, char** argv)
   }();
   if (!recording.warning.empty()) // a version 1 recording: no end record to tell a cut one
     std::fprintf(stderr, "warning: %s\n", recording.warning.c_str());
-  // a replay keeps the dimensions: the output's rule on them before replaying, from a .lvdv's
-  // header before loading it
-  std::string refused = args.has("out") ? VolumeOutputProblemForInput(args.get("out", ""), args.get("in", "")) : std::string();
-  if (!refused.empty())
-    throw lvdif::Error(lvdif::ErrorCode::InvalidArgument, refused + " (the volume of --in)");
-  auto volume = LoadAnyVolume(args.get("in", ""), progress);
-  refused = args.has("out")
-    ? VolumeOutputDimsProblem(args.get("out", ""), volume->dims(), volume->options().spacing.data())
-    : std::string();
-  if (!refused.empty())
-    throw lvdif::Error(lvdif::ErrorCode::InvalidArgument, refused + " (the volume of --in)");
+  std::shared_ptr<lvdif::DictionaryVolume> volume;
+  std::string startName;
+  if (ownCanvas)
+  {
+    const lvdif::Index3& c = recording.canvas;
+    if (c[0] == 0)
+      throw lvdif::Error(lvdif::ErrorCode::InvalidArgument, path + " does not say the canvas it was made on (no "
+          "'canvas' line: an old recording or an imported CSV): give the volume to play it on with --in VOLUME");
+    const std::string problem = lvdif::DictionaryVolume::checkCanvasDimensions(c);
+    if (!problem.empty())
+      throw lvdif::Error(lvdif::ErrorCode::InvalidArgument, path + ": its canvas: " + problem);
+    RequireChunkTable(c, path + "'s canvas", "nothing was played");
+    startName = "its own " + std::to_string(c[0]) + " x " + std::to_string(c[1]) + " x " + std::to_string(c[2]) +
+      " canvas (--fill " + args.get("fill", "sphere") + ")";
+    // the output's rule on the dimensions before the canvas is made and played
+    const std::string refused = args.has("out") ? VolumeOutputDimsProblem(args.get("out", ""), c) : std::string();
+    if (!refused.empty())
+      throw lvdif::Error(lvdif::ErrorCode::InvalidArgument, refused + " (the recording's canvas)");
+    // the starter shape it was made on, by its version, as the editor's (a version 2 recording of a
+    // non-cubic canvas cannot say which: refused, nothing played)
+    volume = lvdif::makeCanvas(c, fill == lvdif::CanvasFill::Sphere ? lvdif::recordedStarter(recording, c, "--in VOLUME") : fill);
+  }
+  else
+  {
+    startName = args.get("in", "");
+    // a replay keeps the dimensions: the output's rule on them before replaying, from a .lvdv's
+    // header before loading it
+    std::string refused = args.has("out") ? VolumeOutputProblemForInput(args.get("out", ""), args.get("in", "")) : std::string();
+    if (!refused.empty())
+      throw lvdif::Error(lvdif::ErrorCode::InvalidArgument, refused + " (the volume of --in)");
+    volume = LoadAnyVolume(args.get("in", ""), progress);
+    refused = args.has("out")
+      ? VolumeOutputDimsProblem(args.get("out", ""), volume->dims(), volume->options().spacing.data())
+      : std::string();
+    if (!refused.empty())
+      throw lvdif::Error(lvdif::ErrorCode::InvalidArgument, refused + " (the volume of --in)");
+  }
   lvdif::Editor editor(*volume);
   editor.play(recording, progress);
   // a replay said nothing at all, and without an output it keeps nothing: both said
-  std::printf("%s: %zu records replayed on %s\n", args.positional()[0].c_str(), recording.records.size(),
-    args.get("in", "").c_str());
+  std::printf("%s: %zu records replayed on %s\n", path.c_str(), recording.records.size(), startName.c_str());
   if (!args.has("out") && !args.has("mesh") && !args.has("png"))
     std::fprintf(stderr, "warning: nothing written (no --out, --mesh or --png): the replay only checked the recording\n");
-  WriteEditOutputs(*volume, args, { { "recording", args.positional()[0] } }, progress);
+  WriteEditOutputs(*volume, args, { { "recording", path } }, progress);
   return 0;
 }

@@ -58,7 +58,9 @@ int CommandMeshToSdf(int argc, char** argv)
       throw lvdif::Error(lvdif::ErrorCode::InvalidArgument, "option --dims expects one integer, the voxels along the mesh's "
           "longest axis (the other axes follow the mesh's proportions), got '" + v + "'");
   }
-  const long dims = args.getInt("dims", 128, 2, lvdif::DictionaryVolume::MaxDimension);
+  // every fitted grid's and canvas's range (lvdif-editor --mesh-resolution, --new, script --size, vtkMeshToSDF)
+  const long dims =
+    args.getInt("dims", 128, lvdif::DictionaryVolume::MinCanvasDimension, lvdif::DictionaryVolume::MaxDimension);
   // (more padding than voxels is refused below, naming both options)
   const double padding = args.getDouble("padding", 2.0, 0, double(lvdif::DictionaryVolume::MaxDimension));
   const double band = args.getDouble("band", 8.0); // its range: the filters' rule below
@@ -201,7 +203,11 @@ int CommandMeshToSdf(int argc, char** argv)
           exactNumber(padding) + " --sign " + lvdif::signModeName(options.sign) + (args.has("svf") ? " --svf" : "") +
           (options.reorientFaces ? " --reorient" : "") + " --band " + exactNumber(band) } },
     progress);
-  std::printf("%zu triangles (%zu degenerate skipped, %zu boundary edges) -> %lld x %lld x %lld voxels, sign %s, "
+  // what stats.boundaryEdges counts, in the warnings' words: the edges whose oriented uses do not cancel, which
+  // are holes' rims and the edges of reversed or duplicated faces alike ("8 boundary edges" called a closed box
+  // with two faces doubled open; the warnings then say which it is)
+  std::printf("%zu triangles (%zu degenerate skipped, %zu edges of non-zero net multiplicity: holes' rims or the edges "
+              "of reversed or duplicated faces) -> %lld x %lld x %lld voxels, sign %s, "
               "device %s, %lld sign flips by the filters -> %s\n",
     stats.triangles, stats.degenerateSkipped, stats.boundaryEdges, (long long)grid.dims[0], (long long)grid.dims[1],
     (long long)grid.dims[2], lvdif::signModeName(options.sign), lvdif::toString(stats.device), (long long)stats.svfFlips,

@@ -80,7 +80,11 @@ const Command commands[] = {
     "script FILE.lvs [--in VOLUME] [--out VOLUME] [--mesh OUT.(ply|obj|stl|vtp)] [--png OUT.png] [--size N|NXxNYxNZ] [--max-steps N]   run a "
     "script; --size: the empty start canvas (N^3 or NXxNYxNZ voxels, default 128) of a script without --in and without its own 'canvas'; "
     "--max-steps: the most statements, loop iterations and dabs it may run (default 50000000)" },
-  { "play", CommandPlay, "play RECORDING.lvr --in VOLUME [--out VOLUME] [--mesh OUT.(ply|obj|stl|vtp)] [--png OUT.png]   replay edits" },
+  { "play", CommandPlay,
+    "play RECORDING.lvr [--in VOLUME | --fill empty|full|sphere] [--out VOLUME] [--mesh OUT.(ply|obj|stl|vtp)] [--png OUT.png]   "
+    "replay edits on --in, or without it on the canvas the recording was made on (its 'canvas' line), new as "
+    "lvdif-editor makes it: --fill as the editor's, default sphere (the editor's starter shape, the one the recording's "
+    "version says)" },
 };
 
 const char* const ExitStatusHelp = "exit status: 0 done, 1 failed while running, 2 command line refused (nothing "

@@ -10,6 +10,7 @@
 #include "lvdif/EditLimits.h"
 #include "lvdif/Error.h"
 #include "lvdif/Recording.h"
+#include "lvdif/StarterCanvas.h"
 
 #include <QColor>
 #include <QCoreApplication>
@@ -153,14 +154,18 @@ EditorOptions parseEditorOptions(const QStringList& arguments)
   // the range said (it was not), the dialog's, as the default: one constant each
   const QString defaultMeshRes = QString::number(MeshImportSettings().resolution);
   const QCommandLineOption meshRes("mesh-resolution",
-    "Voxels along the mesh's longest axis, " + QString::number(MeshImportSettings::MinResolution) + " to " +
-      QString::number(MeshImportSettings::MaxResolution) + " (--open-mesh; default " + defaultMeshRes +
-      "). A volume that cannot fit the memory limit (LVDIF_MEMORY_LIMIT) is refused before converting.",
+    "Voxels along the mesh's longest axis, " + QString::number(MeshImportSettings().leastResolution()) + " to " +
+      QString::number(lvdif::DictionaryVolume::MaxDimension) + " (at least 2 x its " +
+      QString::number(MeshImportSettings().padding) + " voxels of padding + 2, as lvdif mesh-to-sdf --dims; --open-mesh; "
+      "default " + defaultMeshRes + "). A volume that cannot fit the memory limit (LVDIF_MEMORY_LIMIT) is refused before "
+      "converting.",
     "n", defaultMeshRes);
   const QCommandLineOption meshSign("mesh-sign", "Sign of --open-mesh: winding, pseudo or normal (default winding).", "mode", "winding");
   const QCommandLineOption meshReorient("mesh-reorient",
     "--open-mesh with the winding sign: re-orient the faces consistently (the CLI's --reorient).");
-  const QCommandLineOption create("new", "New canvas of N^3 or NXxNYxNZ voxels, 2 to 1048576 a side, as memory allows (without --open or --open-mesh: the canvas a --script recording was made on, else 128^3).", "size");
+  const QCommandLineOption create("new", "New canvas of N^3 or NXxNYxNZ voxels, " +
+    QString::number(lvdif::DictionaryVolume::MinCanvasDimension) + " to " + QString::number(lvdif::DictionaryVolume::MaxDimension) +
+    " a side, as memory allows (without --open or --open-mesh: the canvas a --script recording was made on, else 128^3).", "size");
   const QCommandLineOption fill("fill",
     "Fill of a new canvas: empty, full or sphere (default sphere; with a --script, empty, as the start canvas of "
     "`lvdif script`; a recording keeps sphere).", "fill", "sphere");
@@ -273,8 +278,14 @@ EditorOptions parseEditorOptions(const QStringList& arguments)
   EditorOptions o;
   o.open = p.value(open);
   o.openMesh = p.value(openMesh);
-  o.meshResolution = integerOption(
-    p.value(meshRes), "--mesh-resolution", MeshImportSettings::MinResolution, MeshImportSettings::MaxResolution);
+  // every fitted grid's range, as `lvdif mesh-to-sdf --dims` (it was 8 to 4096 here, 2 to 1048576 there) ...
+  o.meshResolution = integerOption(p.value(meshRes), "--mesh-resolution", lvdif::DictionaryVolume::MinCanvasDimension,
+    lvdif::DictionaryVolume::MaxDimension);
+  // ... and the padding's least, said why, as the CLI's --dims below 2 x padding + 2
+  if (o.meshResolution < MeshImportSettings().leastResolution())
+    fail("--mesh-resolution " + QString::number(o.meshResolution) + " leaves no voxel for the mesh inside the " +
+      QString::number(MeshImportSettings().padding) + " voxels of padding on every side: use at least " +
+      QString::number(MeshImportSettings().leastResolution()) + " (2 x padding + 2)");
   o.meshSign = p.value(meshSign);
   try
   {
@@ -323,8 +334,14 @@ EditorOptions parseEditorOptions(const QStringList& arguments)
   }
   o.fill = p.value(fill);
   o.fillGiven = p.isSet(fill);
-  if (o.fill != "empty" && o.fill != "full" && o.fill != "sphere")
-    fail("--fill must be empty, full or sphere");
+  try
+  {
+    lvdif::canvasFillFromName(o.fill.toStdString(), "--fill"); // Core's words, as `lvdif play --fill`
+  }
+  catch (const lvdif::Error& e)
+  {
+    fail(e.what());
+  }
   o.script = p.value(script);
   if (p.isSet(drag))
   {

@@ -1,5 +1,8 @@
 // MainWindow: the file dialogs, mesh export and screenshots.
 #include "MainWindow.h"
+
+#include "lvdif/ByteStream.h"
+#include "lvdif/Error.h"
 #include "vtkPartialRedrawCuller.h"
 
 #include "LVDIFFiles.h"
@@ -27,6 +30,36 @@
 #include <cstdio>
 #include <stdexcept>
 
+namespace
+{
+/// A picture saved as the CLI saves one, a temporary file renamed over the old: QImage::save truncated
+/// the old picture first, so a save that failed midway (a full disk) destroyed it. "" when saved,
+/// else why not.
+std::string savePicture(const QImage& image, const QString& path, const char* noImage)
+{
+  try
+  {
+    if (image.isNull())
+      return noImage;
+    lvdif::saveAtomicallyByName(path.toLocal8Bit().toStdString(), [&](const std::string& tmp) {
+      if (!image.save(QString::fromLocal8Bit(tmp.c_str()), "PNG"))
+        throw lvdif::Error(lvdif::ErrorCode::IoFailure, "the PNG writer failed");
+      // QImage::save said yes to a file cut by a full disk or a file size limit (its last buffer is
+      // written on close, unchecked): read back, as the CLI's pictures and meshes are
+      const QImage back(QString::fromLocal8Bit(tmp.c_str()), "PNG");
+      if (back.isNull() || back.size() != image.size())
+        throw lvdif::Error(lvdif::ErrorCode::IoFailure, "the file written holds no whole picture (the disk full, or a "
+          "file size limit?); the old file is kept");
+    });
+  }
+  catch (const std::exception& e)
+  {
+    return e.what();
+  }
+  return "";
+}
+} // namespace
+
 void MainWindow::newDialog()
 {
   if (!this->maybeSave())
@@ -39,7 +72,10 @@ void MainWindow::newDialog()
   for (int a = 0; a < 3; ++a)
   {
     sizes[a] = new QSpinBox(&dlg);
-    sizes[a]->setRange(static_cast<int>(lvdif::DictionaryVolume::MinCanvasDimension), 4096); // the editors' one smallest canvas
+    // the editors' one canvas rule, as --new, `lvdif script --size` and a script's `canvas N` (the dialog stopped at
+    // 4096, where they take 1048576 a side, as memory allows: a larger canvas's memory is refused when made)
+    sizes[a]->setRange(static_cast<int>(lvdif::DictionaryVolume::MinCanvasDimension),
+      static_cast<int>(lvdif::DictionaryVolume::MaxDimension));
     sizes[a]->setValue(128);
     form->addRow(names[a], sizes[a]);
   }
@@ -162,12 +198,10 @@ bool MainWindow::saveWindowShot(const QString& path)
     painter.drawImage(QRect(this->ViewWidget->mapTo(this, QPoint(0, 0)), this->ViewWidget->size()), this->grabView());
   }
   this->RenderWindow->SetSingleSampleFrames(single);
-  if (shot.isNull() || !shot.save(path, "PNG"))
-  {
-    this->showError("Cannot write " + path, std::runtime_error("no window image to save"));
-    return false;
-  }
-  return true;
+  const std::string failed = savePicture(shot.toImage(), path, "no window image to save");
+  if (!failed.empty())
+    this->showError("Cannot write " + path, std::runtime_error(failed));
+  return failed.empty();
 }
 
 bool MainWindow::saveScreenshot(const QString& path)
@@ -178,12 +212,10 @@ bool MainWindow::saveScreenshot(const QString& path)
   this->RenderWindow->Render();
   const QImage image = this->grabView().convertToFormat(QImage::Format_RGB888);
   this->RenderWindow->SetSingleSampleFrames(single);
-  if (image.isNull() || !image.save(path, "PNG"))
-  {
-    this->showError("Cannot write " + path, std::runtime_error("no frame to save"));
-    return false;
-  }
-  return true;
+  const std::string failed = savePicture(image, path, "no frame to save");
+  if (!failed.empty())
+    this->showError("Cannot write " + path, std::runtime_error(failed));
+  return failed.empty();
 }
 
 void MainWindow::screenshotDialog()

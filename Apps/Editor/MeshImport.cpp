@@ -87,7 +87,8 @@ bool askMeshImportSettings(QWidget* parent, MeshImportSettings& settings)
   dlg.setWindowTitle("Open mesh");
   auto* form = new QFormLayout(&dlg);
   auto* resolution = new QSpinBox(&dlg);
-  resolution->setRange(MeshImportSettings::MinResolution, MeshImportSettings::MaxResolution);
+  // every fitted grid's range, the padding's least (as --mesh-resolution and lvdif mesh-to-sdf --dims)
+  resolution->setRange(settings.leastResolution(), static_cast<int>(lvdif::DictionaryVolume::MaxDimension));
   resolution->setValue(settings.resolution);
   resolution->setToolTip("Voxels along the mesh's longest axis");
   form->addRow("Resolution", resolution);

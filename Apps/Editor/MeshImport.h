@@ -10,15 +10,20 @@
 
 #include <QString>
 
+#include <cmath>
 #include <memory>
 
 class QWidget;
 
 struct MeshImportSettings
 {
-  /// The range of `resolution`: the dialog's and --mesh-resolution's (its help says it).
-  static constexpr int MinResolution = 8, MaxResolution = 4096;
+  /// The range of `resolution` (the dialog's and --mesh-resolution's) is every fitted grid's, `lvdif
+  /// mesh-to-sdf --dims`' and vtkMeshToSDF's MaxDimension's: DictionaryVolume::MinCanvasDimension to
+  /// MaxDimension, as memory allows, and at least 2 x padding + 2 (leastResolution); it was 8 to 4096 here.
   int resolution = 128; // points along the mesh's longest axis
+  /// The least resolution that leaves one cell for the mesh inside the padding (2 x padding + 2), as
+  /// fitGridToMesh and `lvdif mesh-to-sdf` require.
+  int leastResolution() const { return static_cast<int>(std::ceil(2 * this->padding + 2)); }
   int signMode = 2;     // vtkMeshToSDF::NORMAL / PSEUDO_NORMAL / WINDING_NUMBER (default)
   double padding = 2.0; // voxels of margin around the mesh
   bool reorientFaces = false; // winding sign: of the consistently re-oriented mesh (vtkMeshToSDF::ReorientFaces)

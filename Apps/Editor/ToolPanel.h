@@ -25,7 +25,9 @@ struct BrushState
   double strength = 1.0; // (0, 1]
   int falloff = 0;       // lvdif::Falloff: 0 constant, 1 linear, 2 smooth, 3 sharp
   bool mirror[3] = { false, false, false }; // symmetry about the volume's centre planes
-  QColor color = QColor(230, 90, 60);
+  // Core's default, as every front end (the editor had its own, scripts and the CLI white)
+  QColor color = QColor(lvdif::DefaultBrushColor.r, lvdif::DefaultBrushColor.g, lvdif::DefaultBrushColor.b,
+    lvdif::DefaultBrushColor.a);
 };
 
 /// The tools in lvdif::BrushOp order: name, shortcut key, tool tip.

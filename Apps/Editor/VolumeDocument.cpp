@@ -3,10 +3,10 @@
 #include "BoxCaps.h"
 #include "LVDIFFiles.h"
 
-#include "lvdif/AnalyticFill.h"
 #include "lvdif/Cuda.h"
 #include "lvdif/Error.h"
 #include "lvdif/Script.h"
+#include "lvdif/StarterCanvas.h"
 
 #include "vtkLogger.h"
 #include "vtkObjectFactory.h"
@@ -96,40 +96,8 @@ void VolumeDocument::noteChanges()
 
 void VolumeDocument::newCanvas(int nx, int ny, int nz, Fill fill)
 {
-  lvdif::VolumeOptions o;
-  o.dims = { nx, ny, nz };
-  o.chunkEdge = 32;
-  std::shared_ptr<lvdif::DictionaryVolume> v = lvdif::DictionaryVolume::newCanvas(o); // the editors' one canvas rule
-  if (fill == Fill::Full)
-  {
-    v = std::make_shared<lvdif::DictionaryVolume>(o, v->insideVoxel());
-  }
-  else if (fill == Fill::Sphere || fill == Fill::Dot)
-  {
-    // a starter shape reaching at most 64 voxels from the centre: its mesh (and so the
-    // first frame) stays small on large canvases; the rest of the canvas is uniform and
-    // costs nothing. On a cubic canvas a sphere of radius 0.35 n; on another, a box of
-    // half size 0.35 n on each axis (at most 64) rounded by the smallest of them, so
-    // that it spans the canvas as the sphere does a cube (256 x 16 x 40 had a sphere
-    // of 16 voxels across, a dot in the long view)
-    const int n[3] = { nx, ny, nz };
-    double half[3], r = 64.0;
-    for (int a = 0; a < 3; ++a)
-      r = std::min(r, half[a] = std::min(64.0, 0.35 * n[a]));
-    const double cx = 0.5 * (nx - 1), cy = 0.5 * (ny - 1), cz = 0.5 * (nz - 1);
-    if (fill == Fill::Dot || (half[0] == r && half[1] == r && half[2] == r))
-      lvdif::fillFromFunction(*v, lvdif::sphereSdf(cx, cy, cz, r));
-    else
-    {
-      const double hx = half[0] - r, hy = half[1] - r, hz = half[2] - r;
-      lvdif::fillFromFunction(*v, [=](double x, double y, double z) {
-        const double qx = std::fabs(x - cx) - hx, qy = std::fabs(y - cy) - hy, qz = std::fabs(z - cz) - hz;
-        const double ox = std::max(qx, 0.0), oy = std::max(qy, 0.0), oz = std::max(qz, 0.0);
-        return static_cast<float>(
-          std::sqrt(ox * ox + oy * oy + oz * oz) + std::min(std::max(qx, std::max(qy, qz)), 0.0) - r);
-      });
-    }
-  }
+  // Core's one new canvas and starter shape, as `lvdif play` without --in makes it
+  std::shared_ptr<lvdif::DictionaryVolume> v = lvdif::makeCanvas({ nx, ny, nz }, fill);
   this->Path.clear();
   this->hold(std::move(v));
   this->StarterGeneration = fill == Fill::Sphere ? this->Session->generation() : -1;
@@ -282,22 +250,12 @@ lvdif::Recording VolumeDocument::stopRecording()
 
 void VolumeDocument::play(const lvdif::Recording& r)
 {
-  // A non-cubic canvas's starter is a rounded box since session 24 (a sphere, a dot on a long
-  // canvas, before): a recording made on the old one played on the box, another model. On the
-  // untouched starter canvas it starts from the starter it was made on, where its version says.
+  // On the untouched starter canvas a recording starts from the starter it was made on, where
+  // its version says (Core's rule, as `lvdif play` without --in).
   const lvdif::Index3 d = this->volume().dims();
   if (this->StarterGeneration == this->Session->generation() && this->StarterChanges == this->Session->changeCount() &&
-    !(d[0] == d[1] && d[1] == d[2]) && (r.canvas[0] == 0 || r.canvas == d) && r.version < 3)
-  {
-    if (r.version == 2)
-      throw lvdif::Error(lvdif::ErrorCode::InvalidArgument,
-        "a version 2 recording of a non-cubic canvas does not say which starter shape it was made on (the sphere of "
-        "builds before session 24 or the rounded box since), so it is not played on the starter canvas (nothing was "
-        "played): play it on the volume it was recorded on (File > Open), or say its starter on its version line: "
-        "'LVDIF-RECORDING 4' for the rounded box of this build's new canvas, 'LVDIF-RECORDING 1' for the older "
-        "sphere (and delete its last line, 'end records=N', which version 1 has not)");
+    (r.canvas[0] == 0 || r.canvas == d) && lvdif::recordedStarter(r, d, "File > Open") == Fill::Dot)
     this->newCanvas(int(d[0]), int(d[1]), int(d[2]), Fill::Dot);
-  }
   // as runScript: the edits played before an error stay, so they count as changes
   // (and are the session's steps: the strokes' history goes on from its)
   const std::uint64_t before = this->Session->changeCount();

@@ -7,6 +7,7 @@
 #pragma once
 
 #include "lvdif/EditSession.h"
+#include "lvdif/StarterCanvas.h"
 
 #include <chrono>
 
@@ -19,15 +20,8 @@
 class VolumeDocument
 {
 public:
-  enum class Fill
-  {
-    Empty,
-    Full,
-    Sphere,
-    /// The starter of builds before session 24 on every canvas: the sphere of
-    /// Sphere's radius, a dot on a long canvas (recordings of version 1 start on it)
-    Dot
-  };
+  /// Core's canvas fills (lvdif/StarterCanvas.h: Empty, Full, Sphere, the old starter Dot)
+  using Fill = lvdif::CanvasFill;
 
   VolumeDocument();
   ~VolumeDocument();

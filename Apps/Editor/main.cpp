@@ -144,9 +144,7 @@ int main(int argc, char* argv[])
       // recording keeps the editor's start canvas, on which it was recorded.
       const QString fillName =
         options.fillGiven || options.script.isEmpty() || !isScriptFile(options.script) ? options.fill : "empty";
-      const VolumeDocument::Fill fill = fillName == "empty"
-        ? VolumeDocument::Fill::Empty
-        : (fillName == "full" ? VolumeDocument::Fill::Full : VolumeDocument::Fill::Sphere);
+      const VolumeDocument::Fill fill = lvdif::canvasFillFromName(fillName.toStdString(), "--fill"); // checked by the parser
       loaded = window.newCanvas(nx, ny, nz, fill);
     }
   }

@@ -110,10 +110,11 @@ lvdif::GridGeometry gridFor(vtkPolyData* pd, bool explicitGrid, const int dims[3
       // at least one cell per axis, as fitGridToMesh
       const double n = std::max(std::ceil((b[2 * a + 1] - b[2 * a]) / sampleSpacing + 2 * padding - 1e-9) + 1,
         static_cast<double>(lvdif::DictionaryVolume::MinCanvasDimension));
-      if (n > static_cast<double>(1 << 20))
+      if (n > static_cast<double>(lvdif::DictionaryVolume::MaxDimension))
       {
         std::ostringstream msg;
-        msg << "Sample Spacing " << sampleSpacing << " gives more than 2^20 points along an axis";
+        msg << "Sample Spacing " << sampleSpacing << " gives more than " << lvdif::DictionaryVolume::MaxDimension
+            << " points along an axis";
         throw lvdif::Error(lvdif::ErrorCode::InvalidArgument, msg.str());
       }
       g.dims[a] = static_cast<std::int64_t>(n);
@@ -153,10 +154,12 @@ void vtkMeshToSDF::CheckFittedGridSettings() const
     throw lvdif::Error(lvdif::ErrorCode::InvalidArgument, msg.str());
   }
   if (this->SampleSpacing == 0 &&
-    (this->MaxDimension < 2 || this->MaxDimension > lvdif::DictionaryVolume::MaxDimension))
+    (this->MaxDimension < lvdif::DictionaryVolume::MinCanvasDimension ||
+      this->MaxDimension > lvdif::DictionaryVolume::MaxDimension))
   {
     throw lvdif::Error(lvdif::ErrorCode::InvalidArgument,
-      "Max Dimension must be in [2, " + std::to_string(lvdif::DictionaryVolume::MaxDimension) +
+      "Max Dimension must be in [" + std::to_string(lvdif::DictionaryVolume::MinCanvasDimension) + ", " +
+        std::to_string(lvdif::DictionaryVolume::MaxDimension) +
         "] (points on the longest axis), not " + std::to_string(this->MaxDimension));
   }
 }

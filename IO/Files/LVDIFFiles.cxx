@@ -30,6 +30,9 @@
 
 #include "vtkCallbackCommand.h"
 #include "vtkCommand.h"
+#include "vtkErrorCode.h"
+#include "vtkWriter.h"
+#include "vtkXMLWriter.h"
 #include "vtkDataObject.h"
 #include "vtkExecutive.h"
 #include "vtkInformation.h"
@@ -46,6 +49,7 @@
 #include "vtkXMLReader.h"
 #include "vtkXMLImageDataWriter.h"
 #include "vtkXMLPolyDataWriter.h"
+#include "vtkCellArray.h"
 
 #include <algorithm>
 #include <cctype>
@@ -68,9 +72,11 @@ struct Watch
   std::string innerErrors; // of the objects inside a reader (VTK's XML parser)
   // the executive's "Algorithm vtkX(0x...) returned failure for request: vtkInformation ..." and
   // its dump of the request, a dozen lines: only the algorithm's name kept, said only when
-  // the algorithm itself said nothing (VTK's XML writers fail on a full disk without a word)
+  // neither the algorithm nor a writer's error code says more (VTK's XML writers fail on a full
+  // disk without a word)
   std::string executiveErrors;
   vtkNew<vtkCallbackCommand> onProgress, onError, onInnerError, onExecutiveError;
+  std::vector<vtkAlgorithm*> writers; // their error codes name a failed write that no message names
 
   Watch(lvdif::Interrupter& in, const std::vector<vtkAlgorithm*>& algorithms)
     : interrupter(in)
@@ -107,6 +113,7 @@ struct Watch
     });
     for (vtkAlgorithm* a : algorithms)
     {
+      if (vtkWriter::SafeDownCast(a) || vtkXMLWriter::SafeDownCast(a)) this->writers.push_back(a);
       a->AddObserver(vtkCommand::ProgressEvent, this->onProgress);
       a->AddObserver(vtkCommand::ErrorEvent, this->onError);
       a->GetExecutive()->AddObserver(vtkCommand::ErrorEvent, this->onExecutiveError);
@@ -128,11 +135,18 @@ struct Watch
     this->interrupter.checkInterrupt();
     ok = ok && this->executiveErrors.empty(); // (a writer's Write() answered 1 over the executive's failure)
     if (this->errors.empty() && !ok) this->errors = this->innerErrors;
+    for (vtkAlgorithm* w : this->writers)
+      if (this->errors.empty() && w->GetErrorCode() != vtkErrorCode::NoError)
+        this->errors = w->GetErrorCode() == vtkErrorCode::OutOfDiskSpaceError
+          ? std::string("the writer ran out of space (the disk full, or a file size limit?)")
+          : std::string("the writer failed (") + vtkErrorCode::GetStringFromErrorCode(w->GetErrorCode()) + ")";
     if (this->errors.empty() && !ok) this->errors = this->executiveErrors;
     if (!ok || !this->errors.empty())
     {
       const std::string text =
-        this->errors.empty() ? what + ": failed" : LVDIFVolumeBridge::WithContext(what + ": ", this->errors);
+        !this->errors.empty() ? LVDIFVolumeBridge::WithContext(what + ": ", this->errors)
+        : this->writers.empty() ? what + ": failed"
+                                : what + ": the writer failed without a reason (the disk full, or a file size limit?)";
       throw lvdif::Error(lvdif::ErrorCode::IoFailure, text);
     }
   }

@@ -32,7 +32,9 @@ foreach (value_rc "${lo}|1" "${hi}|1" "${below}|2" "${above}|2")
   list(GET value_rc 1 want)
   execute_process(COMMAND "${EDITOR}" --open-mesh no-such-mesh.obj --mesh-resolution ${value} --no-recovery
     --autosave 0 --quit RESULT_VARIABLE rc OUTPUT_VARIABLE o ERROR_VARIABLE e)
-  if (NOT rc EQUAL want OR (want EQUAL 2 AND NOT "${e}" MATCHES "--mesh-resolution expects an integer in [[]${lo}, ${hi}[]]"))
+  # below the least: the padding's rule, saying why (the range's ends are every fitted grid's, 2 and 1048576)
+  if (NOT rc EQUAL want OR (want EQUAL 2 AND NOT "${e}" MATCHES "--mesh-resolution expects an integer in [[]2, ${hi}[]]"
+      AND NOT "${e}" MATCHES "--mesh-resolution ${value} leaves no voxel for the mesh inside the 2 voxels of padding on every side: use at least ${lo}"))
     message(FATAL_ERROR "--mesh-resolution ${value}: status ${rc} (want ${want}): ${e}")
   endif ()
 endforeach ()

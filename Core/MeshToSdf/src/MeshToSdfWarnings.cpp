@@ -177,7 +177,7 @@ std::string describeDuplicates(const PreparedMesh& m, const DuplicateFaces& d)
   {
     w << "; the mesh is closed once each is kept once";
     if (m.boundaryEdges > 0)
-      w << " (its " << m.boundaryEdges << " boundary edges, of non-zero net multiplicity, are the duplicates' edges, not holes)";
+      w << " (its " << m.boundaryEdges << " edges of non-zero net multiplicity are the duplicates' edges, not holes)";
   }
   else
     w << "; with each kept once the mesh still has " << d.boundaryWithout << " boundary edges";

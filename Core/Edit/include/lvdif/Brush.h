@@ -159,10 +159,18 @@ struct Dab
   double value = 0;
 };
 
+/// The brush colour of every front end until one is chosen (the editor's colour
+/// button, a script's `color`, vtkLVDIFEditor::SetColor, a recording's records
+/// carry their own): the editor's, which a user sees first, and one that shows
+/// on the unpainted light grey. Scripts, `lvdif script` and vtkLVDIFEditor had
+/// white (255, 255, 255) where the editor had this: a script run in the editor
+/// and by the CLI gave other colours.
+inline constexpr Rgba DefaultBrushColor{ 230, 90, 60, 255 };
+
 struct BrushSettings
 {
   BrushOp op = BrushOp::Add;
-  Rgba color{ 255, 255, 255, 255 };
+  Rgba color = DefaultBrushColor;
   /// Smooth blend radius k in voxels (0 = hard CSG).
   double blend = 0.0;
   /// Skin thickness (voxels) that gets the colour; the original uses 1.5.
