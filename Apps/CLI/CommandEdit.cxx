@@ -77,7 +77,7 @@ int CommandScript(int argc, char** argv)
     if (text.compare(b, 15, "LVDIF-RECORDING") != 0)
       throw;
     throw lvdif::Error(e.code(), std::string(e.what()) + " (this is a recording: replay it with lvdif play " + path +
-        " --in VOLUME)");
+        ", on the canvas it names or with --in VOLUME)");
   }
   lvdif::ScriptRunner runner(options);
   std::shared_ptr<lvdif::DictionaryVolume> start;

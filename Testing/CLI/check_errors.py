@@ -316,7 +316,7 @@ assert code == 1 and err == (f"lvdif play: {play_script}:1:1: expected the versi
                              f"(this is a script: run it with lvdif script {play_script})"), (code, err)
 code, err = run("script", rec)
 assert code == 1 and err == (f"lvdif script: {rec}:1:1: unknown command 'LVDIF' (this is a recording: replay it "
-                             f"with lvdif play {rec} --in VOLUME)"), (code, err)
+                             f"with lvdif play {rec}, on the canvas it names or with --in VOLUME)"), (code, err)
 # ... and so does script (it ran the whole script and kept nothing without a word)
 r = subprocess.run([exe, "script", os.path.join(out, "play-in.lvs")], capture_output=True, text=True, timeout=60)
 warnings = [line for line in r.stderr.splitlines() if line.startswith("warning:")]
